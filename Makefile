@@ -1,0 +1,137 @@
+# aabench: build, test, run, bench, install.
+#
+#   make run     install missing Debian packages, build, run the main benchmark
+#   make test    the same set-up, then every test (plain and under ASan+UBSan)
+#   make bench   speed measurements (not tests: nothing here asserts a time)
+#   make install PREFIX=/usr/local
+#
+# Dependencies are found with pkg-config; scripts/install-deps.sh installs
+# what is missing.  Targets that need them re-enter make after installing,
+# so the flags below are computed with the packages present.
+
+PREFIX ?= /usr/local
+# V=1 shows the full commands
+Q := $(if $(V),,@)
+BUILD  := build
+CC     := gcc
+CXX    := g++
+
+PKGS      := gsl OpenImageIO
+TEST_PKGS := cmocka
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+TEST_LIBS  = $(shell pkg-config --cflags --libs $(TEST_PKGS) 2>/dev/null)
+
+WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-unknown-pragmas
+CPPFLAGS := -D_DEFAULT_SOURCE -Iharness -Ipatterns -Ialgorithms
+CFLAGS   := -std=c11 -O2 -g $(WARN) -fopenmp -fPIC
+CXXFLAGS := -std=c++17 -O2 -g -Wall -Wextra -Werror -fPIC
+LDLIBS    = $(PKG_LIBS) -lstdc++ -lm -fopenmp
+
+SAN       := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+SAN_BUILD := $(BUILD)/san
+
+CLI_SRC  := harness/main.c harness/cli.c $(wildcard harness/cmd_*.c)
+LIB_CSRC := $(filter-out $(CLI_SRC),$(wildcard harness/*.c)) $(wildcard patterns/*.c) \
+            $(wildcard algorithms/*.c)
+LIB_XSRC := $(wildcard harness/*.cpp)
+TEST_SRC := $(wildcard tests/test_*.c)
+TEST_AUX := $(filter-out $(TEST_SRC) tests/bench_%.c,$(wildcard tests/*.c))
+BENCH_SRC := $(wildcard tests/bench_*.c)
+HEADERS  := $(wildcard harness/*.h patterns/*.h algorithms/*.h tests/*.h)
+
+# $(1): build folder, $(2): extra flags
+define objs
+$(patsubst %.c,$(1)/obj/%.o,$(LIB_CSRC)) $(patsubst %.cpp,$(1)/obj/%.o,$(LIB_XSRC))
+endef
+
+LIB      := $(BUILD)/libaabench.a
+SAN_LIB  := $(SAN_BUILD)/libaabench.a
+TESTS     := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
+SAN_TESTS := $(patsubst tests/%.c,$(SAN_BUILD)/tests/%,$(TEST_SRC))
+BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
+
+# keep the objects of test helpers between runs
+.SECONDARY:
+
+.PHONY: all deps run test check-tests check-tests-san bench install clean
+.DEFAULT_GOAL := all
+
+all: $(BUILD)/aabench $(LIB)
+
+deps:
+	@sh scripts/install-deps.sh
+
+# ---- plain build ----
+$(BUILD)/obj/%.o: %.c $(HEADERS)
+	@mkdir -p $(dir $@)
+	@echo '  CC    $@'
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) -c $< -o $@
+$(BUILD)/obj/%.o: %.cpp $(HEADERS)
+	@mkdir -p $(dir $@)
+	@echo '  CXX   $@'
+	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(PKG_CFLAGS) -c $< -o $@
+$(LIB): $(call objs,$(BUILD))
+	@rm -f $@
+	@echo '  AR    $@'
+	$(Q)ar rcs $@ $^
+$(BUILD)/aabench: $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_SRC)) $(LIB)
+	@echo '  LD    $@'
+	$(Q)$(CC) $(CFLAGS) $^ -o $@ $(LDLIBS)
+$(BUILD)/tests/%: tests/%.c $(patsubst %.c,$(BUILD)/obj/%.o,$(TEST_AUX)) $(LIB)
+	@mkdir -p $(dir $@)
+	@echo '  LD    $@'
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -Itests $(PKG_CFLAGS) $^ -o $@ $(LDLIBS) $(TEST_LIBS)
+$(BUILD)/bench_%: tests/bench_%.c $(LIB)
+	@echo '  LD    $@'
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) $^ -o $@ $(LDLIBS)
+
+# ---- sanitizer build ----
+$(SAN_BUILD)/obj/%.o: %.c $(HEADERS)
+	@mkdir -p $(dir $@)
+	@echo '  CC    $@'
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) $(PKG_CFLAGS) -c $< -o $@
+$(SAN_BUILD)/obj/%.o: %.cpp $(HEADERS)
+	@mkdir -p $(dir $@)
+	@echo '  CXX   $@'
+	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) -O1 $(SAN) $(PKG_CFLAGS) -c $< -o $@
+$(SAN_LIB): $(call objs,$(SAN_BUILD))
+	@rm -f $@
+	@echo '  AR    $@'
+	$(Q)ar rcs $@ $^
+$(SAN_BUILD)/aabench: $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_SRC)) $(SAN_LIB)
+	@echo '  LD    $@'
+	$(Q)$(CC) $(CFLAGS) $(SAN) $^ -o $@ $(LDLIBS)
+$(SAN_BUILD)/tests/%: tests/%.c $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(TEST_AUX)) $(SAN_LIB)
+	@mkdir -p $(dir $@)
+	@echo '  LD    $@'
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $^ -o $@ $(LDLIBS) $(TEST_LIBS)
+
+# ---- the two set-up commands ----
+run: deps
+	@$(MAKE) --no-print-directory all
+	@sh scripts/run.sh
+
+test: deps
+	@$(MAKE) --no-print-directory check-tests
+	@$(MAKE) --no-print-directory check-tests-san
+
+check-tests: $(BUILD)/aabench $(TESTS)
+	@sh scripts/run-tests.sh $(BUILD) $(TESTS)
+
+check-tests-san: $(SAN_BUILD)/aabench $(SAN_TESTS)
+	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  sh scripts/run-tests.sh $(SAN_BUILD) $(SAN_TESTS)
+
+bench: deps
+	@$(MAKE) --no-print-directory $(BUILD)/aabench $(BENCHES)
+	@sh scripts/bench.sh $(BUILD)
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include
+	install -m 755 $(BUILD)/aabench $(DESTDIR)$(PREFIX)/bin/
+	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
+	install -m 644 harness/aabench.h $(DESTDIR)$(PREFIX)/include/
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,113 @@
+/*
+ * cli.c: helpers shared by the subcommands.
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+int cli_fail(const char *cmd, int status)
+{
+    fprintf(stderr, "aabench %s: %s\n", cmd, aa_last_error());
+    return aa_exit_code(status);
+}
+
+int cli_bad_option(const char *cmd, int c, char *const argv[])
+{
+    const char *arg = argv[optind - 1];
+    if (c == ':')
+        fprintf(stderr, "aabench %s: option %s needs a value\n", cmd, arg);
+    else if (optopt)
+        fprintf(stderr, "aabench %s: unknown option -%c\n", cmd, optopt);
+    else
+        fprintf(stderr, "aabench %s: unknown option %s\n", cmd, arg);
+    fprintf(stderr, "Try 'aabench %s --help'.\n", cmd);
+    return 2;
+}
+
+void cli_getopt_reset(void)
+{
+    optind = 0; /* glibc: full reinitialisation */
+    opterr = 0;
+}
+
+int cli_parse_real(const char *name, const char *text, double lo, double hi, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(text, &end);
+    if (end == text || *end || errno == ERANGE || !isfinite(v))
+        return aa_fail(AA_EINVAL, "%s \"%s\" is not a finite number", name, text);
+    if (v < lo || v > hi)
+        return aa_fail(AA_EINVAL, "%s %s is out of range (%g to %g)", name, text, lo, hi);
+    *out = v;
+    return AA_OK;
+}
+
+int cli_parse_int(const char *name, const char *text, long lo, long hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    if (end == text || *end || errno == ERANGE)
+        return aa_fail(AA_EINVAL, "%s \"%s\" is not a whole number", name, text);
+    if (v < lo || v > hi)
+        return aa_fail(AA_EINVAL, "%s %s is out of range (%ld to %ld)", name, text, lo, hi);
+    *out = (int)v;
+    return AA_OK;
+}
+
+int cli_parse_pair(const char *name, const char *text, double lo, double hi, double *a,
+                   double *b)
+{
+    char buf[256];
+    const char *comma = strchr(text, ',');
+    if (!comma || strlen(text) >= sizeof buf)
+        return aa_fail(AA_EINVAL, "%s \"%s\" is not two numbers X,Y", name, text);
+    memcpy(buf, text, (size_t)(comma - text));
+    buf[comma - text] = '\0';
+    int st = cli_parse_real(name, buf, lo, hi, a);
+    return st ? st : cli_parse_real(name, comma + 1, lo, hi, b);
+}
+
+int cli_check_output(const char *path)
+{
+    if (!path || !*path)
+        return aa_fail(AA_EINVAL, "no output file given (-o FILE)");
+    if (!aa_image_ext_known(path))
+        return aa_fail(AA_EINVAL,
+                       "output \"%s\": unknown image type (use .exr, .tif, .png, .pfm or .txt)",
+                       path);
+    char dir[4096];
+    const char *slash = strrchr(path, '/');
+    if (slash) {
+        size_t n = (size_t)(slash - path);
+        if (n >= sizeof dir)
+            return aa_fail(AA_EINVAL, "output path too long");
+        memcpy(dir, path, n);
+        dir[n] = '\0';
+        if (n == 0)
+            strcpy(dir, "/");
+    } else {
+        strcpy(dir, ".");
+    }
+    if (access(dir, W_OK | X_OK) != 0)
+        return aa_fail(AA_EIO, "output \"%s\": folder %s %s", path, dir,
+                       errno == ENOENT ? "does not exist" : "is not writable");
+    return AA_OK;
+}
+
+const char *cli_cache_dir(void)
+{
+    const char *env = getenv("AABENCH_CACHE");
+    return env && *env ? env : "results/cache";
+}
+
+int cli_progress_wanted(void)
+{
+    const char *ci = getenv("CI");
+    return isatty(2) && !(ci && *ci && strcmp(ci, "false") != 0);
+}

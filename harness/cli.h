@@ -1,0 +1,38 @@
+/*
+ * cli.h: what the `aabench` subcommands share.  The command line is a thin
+ * client of the library (as lua.c is of Lua): each subcommand parses its
+ * options, checks everything before any work, calls the library and maps
+ * the status to an exit code (0 ok, 1 check failed, 2 bad input or usage,
+ * 3 input/output or internal error).
+ */
+#ifndef AA_CLI_H
+#define AA_CLI_H
+
+#include "aabench.h"
+
+#include <getopt.h>
+#include <stdio.h>
+
+/* Print "aabench CMD: <last error>" to stderr; returns the exit code. */
+int cli_fail(const char *cmd, int status);
+/* Report a getopt failure (unknown option or missing argument). */
+int cli_bad_option(const char *cmd, int c, char *const argv[]);
+/* Reset getopt before a subcommand parses its arguments. */
+void cli_getopt_reset(void);
+
+int cli_parse_real(const char *name, const char *text, double lo, double hi, double *out);
+int cli_parse_int(const char *name, const char *text, long lo, long hi, int *out);
+int cli_parse_pair(const char *name, const char *text, double lo, double hi, double *a,
+                   double *b);
+/* The output file: a known image extension and a folder that exists and
+ * can be written, checked before any work. */
+int cli_check_output(const char *path);
+/* Default cache folder: $AABENCH_CACHE, else results/cache. */
+const char *cli_cache_dir(void);
+/* 1 if stderr is a terminal and CI is not set: progress may be shown. */
+int cli_progress_wanted(void);
+
+int cmd_list(int argc, char **argv);
+int cmd_truth(int argc, char **argv);
+
+#endif

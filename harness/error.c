@@ -1,0 +1,62 @@
+/*
+ * error.c: the library's one error path.
+ *
+ * A failing function records a message for its thread with aa_fail() and
+ * returns the status; callers add context with aa_fail_context().  Nothing
+ * is printed here: the command line decides what the user sees.
+ */
+#include "aabench.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#define AA_ERROR_LEN 1024
+
+static _Thread_local char last_error[AA_ERROR_LEN];
+
+int aa_fail(int status, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(last_error, sizeof last_error, fmt, ap);
+    va_end(ap);
+    return status;
+}
+
+int aa_fail_context(int status, const char *fmt, ...)
+{
+    char context[AA_ERROR_LEN], old[AA_ERROR_LEN];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(context, sizeof context, fmt, ap);
+    va_end(ap);
+    memcpy(old, last_error, sizeof old);
+    /* "context: old", cut to fit */
+    size_t n = strlen(context), m = strlen(old);
+    if (n > AA_ERROR_LEN - 3)
+        n = AA_ERROR_LEN - 3;
+    memcpy(last_error, context, n);
+    memcpy(last_error + n, ": ", 2);
+    n += 2;
+    if (m > AA_ERROR_LEN - 1 - n)
+        m = AA_ERROR_LEN - 1 - n;
+    memcpy(last_error + n, old, m);
+    last_error[n + m] = '\0';
+    return status;
+}
+
+const char *aa_last_error(void)
+{
+    return last_error;
+}
+
+int aa_exit_code(int status)
+{
+    switch (status) {
+    case AA_OK: return 0;
+    case AA_ECHECK: return 1;
+    case AA_EINVAL: return 2;
+    default: return 3;
+    }
+}

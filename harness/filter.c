@@ -1,0 +1,173 @@
+/*
+ * filter.c: the reconstruction filters of PATTERNS.md, in pixel units.
+ *
+ * Every filter is separable, w(u) w(v), with a 1-D weight normalised to
+ * integral 1, so exact methods and the ground truth need only the 1-D
+ * weight and its integral (the cdf): the integral of the filter over a span
+ * [x0, x1] of constant colour along a line is cdf(x1 - uc) - cdf(x0 - uc).
+ *
+ *   box        1 on [-1/2, 1/2]                        (area sampling)
+ *   tent:r=R   max(0, 1 - |t|/R) / R                   (Crow fig. 2.13, 2.14)
+ *   gauss:s=S  exp(-t^2 / (2 S^2)) / (S sqrt(2 pi))    (untruncated)
+ *
+ * The Gaussian has unbounded support; users of `radius` truncate it where
+ * the 2-D mass outside the square [-R, R]^2 is below a stated tail, and
+ * that mass is reported so it can enter an error bound.
+ */
+#include "aabench.h"
+
+#include <math.h>
+
+static const aa_param no_params[] = {{0}};
+
+static const aa_param tent_params[] = {
+    {"r", AA_PARAM_REAL, 1.0, 0.01, 16.0, 0, NULL,
+     "half-width in pixels: the weight falls linearly to zero at |t| = r"},
+    {0}};
+
+static const aa_param gauss_params[] = {
+    {"s", AA_PARAM_REAL, 0.5, 0.01, 8.0, 0, NULL, "standard deviation in pixels"},
+    {0}};
+
+/* ---- box ---- */
+
+static double box_weight(const double *p, double t)
+{
+    (void)p;
+    return fabs(t) <= 0.5 ? 1.0 : 0.0;
+}
+
+static double box_cdf(const double *p, double t)
+{
+    (void)p;
+    return t <= -0.5 ? 0.0 : (t >= 0.5 ? 1.0 : t + 0.5);
+}
+
+static double box_radius(const double *p, double tail, double *lost)
+{
+    (void)p, (void)tail;
+    *lost = 0.0;
+    return 0.5;
+}
+
+static int box_kinks(const double *p, double *t)
+{
+    (void)p;
+    t[0] = -0.5;
+    t[1] = 0.5;
+    return 2;
+}
+
+/* ---- tent ---- */
+
+static double tent_weight(const double *p, double t)
+{
+    double r = p[0], a = fabs(t);
+    return a >= r ? 0.0 : (1.0 - a / r) / r;
+}
+
+static double tent_cdf(const double *p, double t)
+{
+    double r = p[0];
+    if (t <= -r)
+        return 0.0;
+    if (t >= r)
+        return 1.0;
+    double d = t <= 0.0 ? t + r : r - t; /* distance to the nearer end */
+    double tail = 0.5 * (d / r) * (d / r);
+    return t <= 0.0 ? tail : 1.0 - tail;
+}
+
+static double tent_radius(const double *p, double tail, double *lost)
+{
+    (void)tail;
+    *lost = 0.0;
+    return p[0];
+}
+
+static int tent_kinks(const double *p, double *t)
+{
+    t[0] = -p[0];
+    t[1] = 0.0;
+    t[2] = p[0];
+    return 3;
+}
+
+/* ---- Gaussian ---- */
+
+static double gauss_weight(const double *p, double t)
+{
+    double s = p[0], z = t / s;
+    return exp(-0.5 * z * z) / (s * 2.5066282746310002);
+}
+
+static double gauss_cdf(const double *p, double t)
+{
+    return 0.5 * erfc(-t / (p[0] * M_SQRT2));
+}
+
+/* The square [-R, R]^2 misses 1 - (1 - e)^2 <= 2e of the mass, with
+ * e = erfc(R / (s sqrt 2)) the 1-D mass outside [-R, R]. */
+static double gauss_radius(const double *p, double tail, double *lost)
+{
+    double k = 1.0;
+    while (2.0 * erfc(k / M_SQRT2) > tail && k < 40.0)
+        k += 0.25;
+    *lost = 2.0 * erfc(k / M_SQRT2);
+    return k * p[0];
+}
+
+static int gauss_kinks(const double *p, double *t)
+{
+    (void)p, (void)t;
+    return 0;
+}
+
+const aa_filter_type aa_filter_box = {
+    {"box", "1 on [-1/2, 1/2]^2: area sampling (the default)", no_params},
+    box_weight, box_cdf, box_radius, box_kinks};
+
+const aa_filter_type aa_filter_tent = {
+    {"tent", "separable pyramid of half-width r pixels (Crow fig. 2.13: r=0.5, 2.14: r=1)",
+     tent_params},
+    tent_weight, tent_cdf, tent_radius, tent_kinks};
+
+const aa_filter_type aa_filter_gauss = {
+    {"gauss", "separable untruncated Gaussian of standard deviation s pixels", gauss_params},
+    gauss_weight, gauss_cdf, gauss_radius, gauss_kinks};
+
+const aa_filter_type *const aa_filter_types[] = {&aa_filter_box, &aa_filter_tent,
+                                                 &aa_filter_gauss, NULL};
+
+/* The tail of the 2-D weight a user may neglect (well under the 1e-12
+ * bound of the reference). */
+#define FILTER_TAIL 1e-14
+
+static void filter_init(aa_filter *f)
+{
+    f->radius = f->type->radius(f->spec.v, FILTER_TAIL, &f->lost);
+}
+
+int aa_filter_parse(const char *text, aa_filter *out)
+{
+    aa_spec spec;
+    int st = aa_spec_parse(text, (const void *const *)aa_filter_types, "filter", &spec);
+    if (st)
+        return st;
+    out->type = (const aa_filter_type *)spec.info;
+    out->spec = spec;
+    filter_init(out);
+    return AA_OK;
+}
+
+void aa_filter_default(aa_filter *out)
+{
+    out->type = &aa_filter_box;
+    aa_spec_default(&aa_filter_box.info, &out->spec);
+    filter_init(out);
+}
+
+int aa_filter_is_box(const aa_filter *f)
+{
+    return f->type == &aa_filter_box;
+}

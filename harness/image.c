@@ -1,0 +1,845 @@
+/*
+ * image.c: images in memory and in files.
+ *
+ * Inside, an image is linear light in doubles (DESIGN.md, "Principles").
+ * Files are chosen by extension (DESIGN.md, "Command line"):
+ *
+ *   .exr .tif .tiff .pfm  32-bit float, linear, the image's own channels;
+ *   .png                  8 bits, display encoded (sRGB unless told), for eyes;
+ *   .txt                  text, every value with %.17g, so nothing is lost.
+ *
+ * The binary formats go through OpenImageIO (oiio.cpp), except for writing
+ * .pfm: OpenImageIO 2.4 (Debian 12) reads PFM but its PNM writer only makes
+ * 8- and 16-bit PPM/PGM, so we write that simple format here.  The .txt
+ * format is ours, so its reader is written to be strict and safe on hostile
+ * input: nothing is allocated before the header's sizes are checked, and
+ * every refusal names the file and the line.
+ *
+ * Every write goes to a temporary name beside the result and is renamed
+ * into place (files.c), so a failure leaves no output behind.
+ *
+ * Text numbers are always C-locale text ('.' as decimal point), whatever
+ * locale the program around the library has set: a .txt file or an encoding
+ * spec must mean the same thing on every machine.
+ */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+
+#include "aabench.h"
+#include "oiio.h"
+
+#include <errno.h>
+#include <locale.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* RGB plus one: what every format here can hold, and more than any image the
+ * harness makes (RGB results, 1-channel bounds). */
+#define MAX_CHANNELS 4
+
+/* Longest .txt line accepted: a pixel line is at most about 120 characters
+ * ("65535 65535" and four %.17g values), so this leaves room for any
+ * reasonable spacing while bounding what a hostile file can make us hold. */
+#define TXT_LINE_MAX 1024
+
+/* Room for a temporary file name (PATH_MAX on Linux). */
+#define TEMP_NAME_MAX 4096
+
+/* ------------------------------------------------------------------------
+ * Images in memory
+ * ------------------------------------------------------------------------ */
+
+/* w * h * c doubles, if that many bytes can be addressed. */
+static int image_count(int w, int h, int c, size_t *n)
+{
+    size_t pixels = (size_t)w * (size_t)h; /* both <= INT_MAX: no overflow */
+    if ((size_t)c > SIZE_MAX / sizeof(double) / pixels)
+        return 0;
+    *n = pixels * (size_t)c;
+    return 1;
+}
+
+int aa_image_alloc(aa_image *im, int w, int h, int c)
+{
+    if (im == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_alloc: no image");
+    *im = (aa_image){0};
+    if (w <= 0 || h <= 0 || c <= 0)
+        return aa_fail(AA_EINVAL, "image %d x %d x %d: sizes must be positive", w, h, c);
+    size_t n;
+    if (!image_count(w, h, c, &n))
+        return aa_fail(AA_EINVAL, "image %d x %d x %d: too large to address on this machine", w,
+                       h, c);
+    /* Zeroed, so methods that accumulate can start from the image. */
+    double *v = calloc(n, sizeof *v);
+    if (v == NULL)
+        return aa_fail(AA_ENOMEM, "image %d x %d x %d: out of memory (%zu bytes)", w, h, c,
+                       n * sizeof *v);
+    *im = (aa_image){.w = w, .h = h, .c = c, .v = v};
+    return AA_OK;
+}
+
+void aa_image_free(aa_image *im)
+{
+    if (im == NULL)
+        return;
+    free(im->v);
+    *im = (aa_image){0};
+}
+
+/* Number of values in an image that passed check_image. */
+static size_t image_values(const aa_image *im)
+{
+    return (size_t)im->w * (size_t)im->h * (size_t)im->c;
+}
+
+/* ------------------------------------------------------------------------
+ * Numbers as text
+ * ------------------------------------------------------------------------ */
+
+/* The C locale for numbers, switched on for this thread only while a file or
+ * spec is converted. */
+typedef struct c_numbers {
+    locale_t c, saved;
+} c_numbers;
+
+static int c_numbers_begin(c_numbers *n, const char *what)
+{
+    n->c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+    if (n->c == (locale_t)0)
+        return aa_fail(AA_ENOMEM, "%s: cannot make the C locale: %s", what, strerror(errno));
+    n->saved = uselocale(n->c);
+    return AA_OK;
+}
+
+static void c_numbers_end(c_numbers *n)
+{
+    uselocale(n->saved);
+    freelocale(n->c);
+}
+
+static int is_digit(char ch)
+{
+    return ch >= '0' && ch <= '9';
+}
+
+/* Skip digits; how many there were. */
+static size_t skip_digits(const char **p, const char *end)
+{
+    const char *start = *p;
+    while (*p < end && is_digit(**p))
+        (*p)++;
+    return (size_t)(*p - start);
+}
+
+/* Plain decimal syntax, [+-]d[.d][(e|E)[+-]d] with at least one digit in
+ * the mantissa.  strtod would also take hex floats, "inf", "nan" and
+ * leading blanks, none of which %.17g of a finite value writes. */
+static int decimal_syntax(const char *s, size_t len)
+{
+    const char *p = s, *end = s + len;
+    if (p < end && (*p == '+' || *p == '-'))
+        p++;
+    size_t digits = skip_digits(&p, end);
+    if (p < end && *p == '.') {
+        p++;
+        digits += skip_digits(&p, end);
+    }
+    if (digits == 0)
+        return 0;
+    if (p < end && (*p == 'e' || *p == 'E')) {
+        p++;
+        if (p < end && (*p == '+' || *p == '-'))
+            p++;
+        if (skip_digits(&p, end) == 0)
+            return 0;
+    }
+    return p == end;
+}
+
+typedef enum number_result { NUMBER_OK, NUMBER_MALFORMED, NUMBER_NOT_FINITE } number_result;
+
+/* The finite number spelled by s[0, len), which is followed by a character
+ * that cannot continue a number (blank or NUL).  Needs c_numbers. */
+static number_result parse_number(const char *s, size_t len, double *v)
+{
+    if (!decimal_syntax(s, len))
+        return NUMBER_MALFORMED;
+    char *end;
+    /* ERANGE is no reason to refuse: an underflow is still the correctly
+     * rounded value (5e-324 is one), and an overflow is caught as not
+     * finite just below. */
+    *v = strtod(s, &end);
+    if (end != s + len)
+        return NUMBER_MALFORMED;
+    return isfinite(*v) ? NUMBER_OK : NUMBER_NOT_FINITE;
+}
+
+/* ------------------------------------------------------------------------
+ * Display encoding
+ * ------------------------------------------------------------------------ */
+
+static const char encode_accepted[] =
+    "accepted: srgb, linear, gamma:G with G a number in [1, 4]";
+
+int aa_encode_parse(const char *text, aa_encode *out)
+{
+    static const char prefix[] = "gamma:";
+    if (text == NULL)
+        return aa_fail(AA_EINVAL, "no encoding given (%s)", encode_accepted);
+    if (strcmp(text, "srgb") == 0) {
+        *out = (aa_encode){AA_ENCODE_SRGB, 0};
+        return AA_OK;
+    }
+    if (strcmp(text, "linear") == 0) {
+        *out = (aa_encode){AA_ENCODE_LINEAR, 1};
+        return AA_OK;
+    }
+    if (strncmp(text, prefix, sizeof prefix - 1) != 0)
+        return aa_fail(AA_EINVAL, "unknown encoding '%s' (%s)", text, encode_accepted);
+    const char *g = text + sizeof prefix - 1;
+    c_numbers numbers;
+    int status = c_numbers_begin(&numbers, "encoding");
+    if (status != AA_OK)
+        return status;
+    double gamma;
+    number_result r = parse_number(g, strlen(g), &gamma);
+    c_numbers_end(&numbers);
+    if (r != NUMBER_OK || !(gamma >= 1 && gamma <= 4))
+        return aa_fail(AA_EINVAL, "encoding '%s': gamma '%s' is not a number in [1, 4] (%s)", text,
+                       g, encode_accepted);
+    *out = (aa_encode){AA_ENCODE_GAMMA, gamma};
+    return AA_OK;
+}
+
+/* IEC 61966-2-1 (sRGB), the encoding transfer function. */
+static double srgb_encode(double v)
+{
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+}
+
+/* Its inverse, as the standard gives it. */
+static double srgb_decode(double e)
+{
+    return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+}
+
+double aa_encode_value(const aa_encode *e, double linear)
+{
+    /* fmax before fmin: a NaN becomes 0, never a NaN byte. */
+    double v = fmin(fmax(linear, 0.0), 1.0);
+    switch (e->kind) {
+    case AA_ENCODE_LINEAR: return v;
+    case AA_ENCODE_GAMMA: return pow(v, 1 / e->gamma);
+    case AA_ENCODE_SRGB:
+    default: return srgb_encode(v);
+    }
+}
+
+static int encode_valid(const aa_encode *e)
+{
+    switch (e->kind) {
+    case AA_ENCODE_SRGB:
+    case AA_ENCODE_LINEAR: return 1;
+    case AA_ENCODE_GAMMA: return e->gamma >= 1 && e->gamma <= 4;
+    default: return 0;
+    }
+}
+
+/* The tag oiio.h uses for an encoding: 0 sRGB, else the power law's gamma. */
+static double encode_gamma(const aa_encode *e)
+{
+    switch (e->kind) {
+    case AA_ENCODE_LINEAR: return 1;
+    case AA_ENCODE_GAMMA: return e->gamma;
+    default: return 0;
+    }
+}
+
+/* Linear light from a display-encoded value, for a file tagged `gamma`. */
+static double decode_value(double gamma, double e)
+{
+    return gamma == 0 ? srgb_decode(e) : pow(e, gamma);
+}
+
+/* ------------------------------------------------------------------------
+ * File formats
+ * ------------------------------------------------------------------------ */
+
+typedef enum format_kind { FORMAT_TXT, FORMAT_FLOAT, FORMAT_PFM, FORMAT_8BIT } format_kind;
+
+typedef struct image_format {
+    const char *ext;      /* lower case, with its dot */
+    const char *oiio;     /* OpenImageIO's writer; NULL if we write it */
+    format_kind kind;
+    unsigned channels;    /* bit c set: c channels can be stored */
+    const char *channels_why;
+} image_format;
+
+#define ONE_TO_FOUR 0x1eu  /* 1, 2, 3, 4 */
+#define GREY_OR_RGB 0x0au  /* 1, 3 */
+
+static const image_format formats[] = {
+    {".exr", "exr", FORMAT_FLOAT, ONE_TO_FOUR, "1 to 4"},
+    {".tif", "tif", FORMAT_FLOAT, ONE_TO_FOUR, "1 to 4"},
+    {".tiff", "tiff", FORMAT_FLOAT, ONE_TO_FOUR, "1 to 4"},
+    {".pfm", NULL, FORMAT_PFM, GREY_OR_RGB, "1 or 3 (all PFM can hold)"},
+    /* PNG could hold 2 or 4, but every reader takes the last as alpha. */
+    {".png", "png", FORMAT_8BIT, GREY_OR_RGB, "1 or 3 (2 or 4 would be read as alpha)"},
+    {".txt", NULL, FORMAT_TXT, ONE_TO_FOUR, "1 to 4"}, /* last: txt_format */
+};
+
+#define FORMAT_COUNT (sizeof formats / sizeof formats[0])
+static const image_format *const txt_format = &formats[FORMAT_COUNT - 1];
+
+/* ASCII only: a locale must not change which files we accept. */
+static int same_ignoring_case(const char *a, const char *b)
+{
+    for (; *a && *b; a++, b++) {
+        char x = *a >= 'A' && *a <= 'Z' ? (char)(*a - 'A' + 'a') : *a;
+        if (x != *b)
+            return 0;
+    }
+    return *a == *b;
+}
+
+/* The format named by the end of `path`; the extension must follow a file
+ * name, so "dir/.png" (a hidden file) has none. */
+static const image_format *format_of(const char *path)
+{
+    size_t n = strlen(path);
+    for (size_t k = 0; k < FORMAT_COUNT; k++) {
+        size_t e = strlen(formats[k].ext);
+        if (n > e && path[n - e - 1] != '/' && same_ignoring_case(path + n - e, formats[k].ext))
+            return &formats[k];
+    }
+    return NULL;
+}
+
+int aa_image_ext_known(const char *path)
+{
+    return path != NULL && format_of(path) != NULL;
+}
+
+static int unknown_format(const char *path)
+{
+    char list[64] = "";
+    for (size_t k = 0; k < FORMAT_COUNT; k++) {
+        strcat(list, " ");
+        strcat(list, formats[k].ext);
+    }
+    return aa_fail(AA_EINVAL, "%s: unknown image file extension (accepted:%s)", path, list);
+}
+
+/* ------------------------------------------------------------------------
+ * Writing
+ * ------------------------------------------------------------------------ */
+
+/* An image the format can hold, and whose file can be read back. */
+static int check_image(const char *path, const aa_image *im, const image_format *f)
+{
+    if (im == NULL || im->v == NULL || im->w <= 0 || im->h <= 0 || im->c <= 0)
+        return aa_fail(AA_EINVAL, "%s: no image to write", path);
+    if (im->w > AA_MAX_SIDE || im->h > AA_MAX_SIDE)
+        return aa_fail(AA_EINVAL, "%s: image %d x %d: a side is above %d", path, im->w, im->h,
+                       AA_MAX_SIDE);
+    if (im->c > MAX_CHANNELS || !(f->channels & (1u << im->c)))
+        return aa_fail(AA_EINVAL, "%s: %d channels: %s takes %s", path, im->c, f->ext,
+                       f->channels_why);
+    return AA_OK;
+}
+
+/* What one write puts in its file. */
+typedef struct write_job {
+    const image_format *format;
+    const aa_image *im;
+    const unsigned char *bytes; /* display-encoded samples, for 8-bit files */
+    double gamma;               /* their encoding (oiio.h) */
+} write_job;
+
+/* Write a file with stdio: `body` returns nonzero on a write error, with
+ * errno set. */
+static int stdio_write(const char *tmp, const aa_image *im,
+                       int (*body)(FILE *f, const aa_image *im))
+{
+    /* "x": never write through a name someone else has just made. */
+    FILE *f = fopen(tmp, "wbx");
+    if (f == NULL)
+        return aa_fail(AA_EIO, "cannot create %s: %s", tmp, strerror(errno));
+    int failed = body(f, im) != 0;
+    int err = errno;
+    /* fclose flushes the last buffer, where a full disk shows. */
+    if (fclose(f) != 0 && !failed) {
+        failed = 1;
+        err = errno;
+    }
+    return failed ? aa_fail(AA_EIO, "cannot write %s: %s", tmp, strerror(err)) : AA_OK;
+}
+
+static int txt_lines(FILE *f, const aa_image *im)
+{
+    if (fprintf(f, "# aabench %d %d %d\n", im->w, im->h, im->c) < 0)
+        return -1;
+    for (int j = 0; j < im->h; j++) {
+        for (int i = 0; i < im->w; i++) {
+            const double *v = aa_pixel(im, i, j);
+            if (fprintf(f, "%d %d", i, j) < 0)
+                return -1;
+            /* 17 significant digits identify every double (IEEE 754-2008,
+             * 5.12.2), so strtod gives back the same bits. */
+            for (int k = 0; k < im->c; k++)
+                if (fprintf(f, " %.17g", v[k]) < 0)
+                    return -1;
+            if (putc('\n', f) == EOF)
+                return -1;
+        }
+    }
+    return 0;
+}
+
+static int txt_write_file(const char *tmp, const aa_image *im)
+{
+    c_numbers numbers;
+    int status = c_numbers_begin(&numbers, tmp);
+    if (status != AA_OK)
+        return status;
+    status = stdio_write(tmp, im, txt_lines);
+    c_numbers_end(&numbers);
+    return status;
+}
+
+/* PFM (Debevec's portable float map): "PF" (3 channels) or "Pf" (1), the
+ * size, and a scale whose sign gives the byte order, negative for
+ * little-endian; then 32-bit floats, rows from the bottom of the image up.
+ * We always write little-endian, byte by byte, whatever this machine is. */
+static int pfm_samples(FILE *f, const aa_image *im)
+{
+    for (int j = im->h - 1; j >= 0; j--) {
+        const double *v = aa_pixel(im, 0, j);
+        for (size_t k = 0; k < (size_t)im->w * (size_t)im->c; k++) {
+            float x = (float)v[k]; /* round to nearest (C11 6.3.1.5) */
+            uint32_t bits;
+            memcpy(&bits, &x, sizeof bits);
+            for (int b = 0; b < 32; b += 8)
+                if (putc_unlocked((int)((bits >> b) & 0xffu), f) == EOF)
+                    return -1;
+        }
+    }
+    return 0;
+}
+
+static int pfm_body(FILE *f, const aa_image *im)
+{
+    if (fprintf(f, "%s\n%d %d\n-1.0\n", im->c == 3 ? "PF" : "Pf", im->w, im->h) < 0)
+        return -1;
+    /* One lock for the whole file, so putc_unlocked is allowed. */
+    flockfile(f);
+    int failed = pfm_samples(f, im);
+    funlockfile(f);
+    return failed;
+}
+
+static int write_file(const char *tmp, const write_job *job)
+{
+    const aa_image *im = job->im;
+    switch (job->format->kind) {
+    case FORMAT_TXT: return txt_write_file(tmp, im);
+    case FORMAT_PFM: return stdio_write(tmp, im, pfm_body);
+    case FORMAT_FLOAT:
+        return aa__oiio_write_float(tmp, job->format->oiio, im->w, im->h, im->c, im->v);
+    case FORMAT_8BIT:
+        return aa__oiio_write_8bit(tmp, job->format->oiio, im->w, im->h, im->c, job->bytes,
+                                   job->gamma);
+    }
+    return aa_fail(AA_EFAIL, "%s: unknown format kind", tmp);
+}
+
+/* Write under a temporary name and rename into place; on any failure the
+ * temporary file is removed, so nothing is left behind. */
+static int write_via_temp(const char *path, const write_job *job)
+{
+    char tmp[TEMP_NAME_MAX];
+    int status = aa_temp_name(path, tmp, sizeof tmp);
+    if (status != AA_OK)
+        return status;
+    status = write_file(tmp, job);
+    if (status == AA_OK && rename(tmp, path) != 0)
+        status = aa_fail(AA_EIO, "cannot rename %s into place: %s", tmp, strerror(errno));
+    if (status != AA_OK) {
+        remove(tmp); /* may not exist, if creating it failed */
+        return aa_fail_context(status, "%s", path);
+    }
+    return AA_OK;
+}
+
+/* The .txt format holds finite values only (its reader refuses the rest),
+ * so refuse them here, before any file is made. */
+static int check_finite(const char *path, const aa_image *im)
+{
+    size_t n = image_values(im);
+    for (size_t k = 0; k < n; k++) {
+        if (!isfinite(im->v[k])) {
+            size_t pixel = k / (size_t)im->c;
+            return aa_fail(AA_EINVAL, "%s: pixel (%zu, %zu) channel %zu is %g: .txt holds "
+                           "finite values only", path, pixel % (size_t)im->w,
+                           pixel / (size_t)im->w, k % (size_t)im->c, im->v[k]);
+        }
+    }
+    return AA_OK;
+}
+
+int aa_image_write_txt(const char *path, const aa_image *im)
+{
+    if (path == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_write_txt: no path");
+    int status = check_image(path, im, txt_format);
+    if (status == AA_OK)
+        status = check_finite(path, im);
+    if (status != AA_OK)
+        return status;
+    write_job job = {.format = txt_format, .im = im};
+    return write_via_temp(path, &job);
+}
+
+/* Display-encode and round to the nearest 8-bit code (halves up). */
+static int encode_bytes(const char *path, const aa_image *im, const aa_encode *e,
+                        unsigned char **out)
+{
+    size_t n = image_values(im);
+    unsigned char *q = malloc(n);
+    if (q == NULL)
+        return aa_fail(AA_ENOMEM, "%s: out of memory (%zu bytes)", path, n);
+    for (size_t k = 0; k < n; k++)
+        q[k] = (unsigned char)floor(aa_encode_value(e, im->v[k]) * 255 + 0.5);
+    *out = q;
+    return AA_OK;
+}
+
+int aa_image_write(const char *path, const aa_image *im, const aa_encode *enc)
+{
+    static const aa_encode srgb = {AA_ENCODE_SRGB, 0};
+    if (path == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_write: no path");
+    const image_format *f = format_of(path);
+    if (f == NULL)
+        return unknown_format(path);
+    if (f->kind == FORMAT_TXT)
+        return aa_image_write_txt(path, im);
+    int status = check_image(path, im, f);
+    if (status != AA_OK)
+        return status;
+    write_job job = {.format = f, .im = im};
+    unsigned char *bytes = NULL;
+    if (f->kind == FORMAT_8BIT) {
+        if (enc == NULL)
+            enc = &srgb;
+        if (!encode_valid(enc))
+            return aa_fail(AA_EINVAL, "%s: invalid display encoding", path);
+        status = encode_bytes(path, im, enc, &bytes);
+        if (status != AA_OK)
+            return status;
+        job.bytes = bytes;
+        job.gamma = encode_gamma(enc);
+    }
+    status = write_via_temp(path, &job);
+    free(bytes);
+    return status;
+}
+
+/* ------------------------------------------------------------------------
+ * Reading .txt
+ * ------------------------------------------------------------------------ */
+
+typedef struct txt_reader {
+    FILE *f;
+    const char *path;
+    unsigned long line;     /* number of the line in buf, from 1 */
+    char buf[TXT_LINE_MAX]; /* that line, without its end */
+} txt_reader;
+
+/* Refuse the file at the current line. */
+static int txt_refuse(const txt_reader *r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+static int txt_refuse(const txt_reader *r, const char *fmt, ...)
+{
+    char why[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    return aa_fail(AA_EIO, "%s:%lu: %s", r->path, r->line, why);
+}
+
+/* The next line into r->buf; *got is 0 at the end of the file.  A last line
+ * without its newline is refused: it is what a cut-off file looks like, and
+ * its last number may have lost digits. */
+static int txt_next_line(txt_reader *r, int *got)
+{
+    size_t n = 0;
+    int ch;
+    r->line++;
+    while ((ch = getc_unlocked(r->f)) != EOF && ch != '\n') {
+        if (ch == '\0')
+            return txt_refuse(r, "NUL byte: not a text file");
+        if (n + 1 >= sizeof r->buf)
+            return txt_refuse(r, "line longer than %d characters", TXT_LINE_MAX - 1);
+        r->buf[n++] = (char)ch;
+    }
+    if (ferror(r->f))
+        return txt_refuse(r, "read error: %s", strerror(errno));
+    if (ch == EOF && n > 0)
+        return txt_refuse(r, "the file ends inside this line (cut short?)");
+    if (n > 0 && r->buf[n - 1] == '\r')
+        n--; /* a file that went through Windows */
+    r->buf[n] = '\0';
+    *got = ch != EOF;
+    return AA_OK;
+}
+
+typedef struct token {
+    const char *s;
+    size_t n;
+} token;
+
+static int is_blank(char ch)
+{
+    return ch == ' ' || ch == '\t';
+}
+
+/* The next blank-separated word of the line at *p; 0 if none is left. */
+static int next_token(const char **p, token *t)
+{
+    while (is_blank(**p))
+        (*p)++;
+    if (**p == '\0')
+        return 0;
+    t->s = *p;
+    while (**p != '\0' && !is_blank(**p))
+        (*p)++;
+    t->n = (size_t)(*p - t->s);
+    return 1;
+}
+
+/* A count or index: decimal digits only, at most 9 so it fits an int. */
+static int parse_count(const token *t, int *v)
+{
+    if (t->n == 0 || t->n > 9)
+        return 0;
+    int x = 0;
+    for (size_t k = 0; k < t->n; k++) {
+        if (!is_digit(t->s[k]))
+            return 0;
+        x = 10 * x + (t->s[k] - '0');
+    }
+    *v = x;
+    return 1;
+}
+
+/* How much of a token to show in a message ("%.*s"): a hostile file must
+ * not fill the message with one long word. */
+static int shown(const token *t)
+{
+    return t->n < 40 ? (int)t->n : 40;
+}
+
+static int txt_header(txt_reader *r, int *w, int *h, int *c)
+{
+    static const char expected[] = "expected the header '# aabench W H C'";
+    int got;
+    int status = txt_next_line(r, &got);
+    if (status != AA_OK)
+        return status;
+    if (!got)
+        return txt_refuse(r, "empty file: %s", expected);
+    const char *p = r->buf;
+    token t[6];
+    int n = 0;
+    while (n < 6 && next_token(&p, &t[n]))
+        n++;
+    if (n != 5 || t[0].n != 1 || t[0].s[0] != '#' || t[1].n != 7 ||
+        memcmp(t[1].s, "aabench", 7) != 0)
+        return txt_refuse(r, "%s", expected);
+    if (!parse_count(&t[2], w) || !parse_count(&t[3], h) || !parse_count(&t[4], c))
+        return txt_refuse(r, "%s with W, H, C whole numbers", expected);
+    if (*w < 1 || *w > AA_MAX_SIDE || *h < 1 || *h > AA_MAX_SIDE)
+        return txt_refuse(r, "image %d x %d: sides must be in [1, %d]", *w, *h, AA_MAX_SIDE);
+    if (*c < 1 || *c > MAX_CHANNELS)
+        return txt_refuse(r, "%d channels: must be in [1, %d]", *c, MAX_CHANNELS);
+    status = aa_size_check(*w, *h, *c, 1);
+    if (status != AA_OK)
+        return aa_fail_context(AA_EIO, "%s:%lu", r->path, r->line);
+    return AA_OK;
+}
+
+/* One pixel line: "i j v0 .. v(c-1)" for pixel (i, j). */
+static int txt_pixel(txt_reader *r, int i, int j, int c, double *v)
+{
+    int got;
+    int status = txt_next_line(r, &got);
+    if (status != AA_OK)
+        return status;
+    if (!got)
+        return txt_refuse(r, "the file ends before pixel (%d, %d)", i, j);
+    const char *p = r->buf;
+    token ti, tj;
+    int fi, fj;
+    if (!next_token(&p, &ti) || !next_token(&p, &tj) || !parse_count(&ti, &fi) ||
+        !parse_count(&tj, &fj))
+        return txt_refuse(r, "expected pixel '%d %d' and %d values", i, j, c);
+    if (fi != i || fj != j)
+        return txt_refuse(r, "found pixel (%d, %d) where (%d, %d) belongs: pixels go row by "
+                          "row, i fastest", fi, fj, i, j);
+    for (int k = 0; k < c; k++) {
+        token t;
+        if (!next_token(&p, &t))
+            return txt_refuse(r, "pixel (%d, %d) has %d values, expected %d", i, j, k, c);
+        switch (parse_number(t.s, t.n, &v[k])) {
+        case NUMBER_OK: break;
+        case NUMBER_NOT_FINITE: return txt_refuse(r, "'%.*s' is not finite", shown(&t), t.s);
+        default: return txt_refuse(r, "malformed number '%.*s'", shown(&t), t.s);
+        }
+    }
+    token extra;
+    if (next_token(&p, &extra))
+        return txt_refuse(r, "pixel (%d, %d) has more than %d values", i, j, c);
+    return AA_OK;
+}
+
+static int txt_body(txt_reader *r, aa_image *im)
+{
+    for (int j = 0; j < im->h; j++)
+        for (int i = 0; i < im->w; i++) {
+            int status = txt_pixel(r, i, j, im->c, aa_pixel(im, i, j));
+            if (status != AA_OK)
+                return status;
+        }
+    int got;
+    int status = txt_next_line(r, &got);
+    if (status == AA_OK && got)
+        status = txt_refuse(r, "a line after the last pixel");
+    return status;
+}
+
+static int txt_read(txt_reader *r, aa_image *im)
+{
+    int w = 0, h = 0, c = 0;
+    int status = txt_header(r, &w, &h, &c);
+    if (status == AA_OK)
+        status = aa_image_alloc(im, w, h, c);
+    if (status == AA_OK)
+        status = txt_body(r, im);
+    return status;
+}
+
+int aa_image_read_txt(const char *path, aa_image *im)
+{
+    if (path == NULL || im == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_read_txt: no path or no image");
+    *im = (aa_image){0};
+    txt_reader r = {.path = path};
+    r.f = fopen(path, "r");
+    if (r.f == NULL)
+        return aa_fail(AA_EIO, "%s: cannot open: %s", path, strerror(errno));
+    c_numbers numbers;
+    int status = c_numbers_begin(&numbers, path);
+    if (status == AA_OK) {
+        /* One lock for the whole file, so getc_unlocked is allowed. */
+        flockfile(r.f);
+        status = txt_read(&r, im);
+        funlockfile(r.f);
+        c_numbers_end(&numbers);
+    }
+    fclose(r.f);
+    if (status != AA_OK)
+        aa_image_free(im);
+    return status;
+}
+
+/* ------------------------------------------------------------------------
+ * Reading through OpenImageIO
+ * ------------------------------------------------------------------------ */
+
+/* 8-bit samples arrive as code / 255; snap back to the code and decode
+ * through a table, which is exact and costs one pow per code, not per
+ * sample. */
+static void decode_8bit(aa_image *im, double gamma)
+{
+    double table[256];
+    for (int q = 0; q < 256; q++)
+        table[q] = decode_value(gamma, q / 255.0);
+    size_t n = image_values(im);
+    for (size_t k = 0; k < n; k++) {
+        long q = lround(im->v[k] * 255);
+        im->v[k] = table[q < 0 ? 0 : q > 255 ? 255 : q];
+    }
+}
+
+static void decode_integers(aa_image *im, const aa__oiio_info *info)
+{
+    if (info->bits == 8) {
+        decode_8bit(im, info->gamma);
+        return;
+    }
+    size_t n = image_values(im);
+    for (size_t k = 0; k < n; k++)
+        im->v[k] = decode_value(info->gamma, im->v[k]);
+}
+
+/* Sizes from a file header, checked before anything is allocated. */
+static int check_file_size(const char *path, const aa__oiio_info *info)
+{
+    if (info->w < 1 || info->w > AA_MAX_SIDE || info->h < 1 || info->h > AA_MAX_SIDE)
+        return aa_fail(AA_EIO, "%s: image %d x %d: sides must be in [1, %d]", path, info->w,
+                       info->h, AA_MAX_SIDE);
+    if (info->c < 1 || info->c > MAX_CHANNELS)
+        return aa_fail(AA_EIO, "%s: %d channels: must be in [1, %d]", path, info->c,
+                       MAX_CHANNELS);
+    if (aa_size_check(info->w, info->h, info->c, 1) != AA_OK)
+        return aa_fail_context(AA_EIO, "%s", path);
+    return AA_OK;
+}
+
+static int read_oiio(const char *path, aa_image *im)
+{
+    aa__oiio_in *in;
+    aa__oiio_info info;
+    int status = aa__oiio_open(path, &in, &info);
+    if (status != AA_OK)
+        return status;
+    status = check_file_size(path, &info);
+    if (status == AA_OK)
+        status = aa_image_alloc(im, info.w, info.h, info.c);
+    if (status == AA_OK)
+        status = aa__oiio_read(in, im->v);
+    aa__oiio_close(in);
+    if (status != AA_OK) {
+        aa_image_free(im);
+        return status;
+    }
+    /* Float files hold linear light; integer files hold display codes. */
+    if (!info.is_float)
+        decode_integers(im, &info);
+    return AA_OK;
+}
+
+int aa_image_read(const char *path, aa_image *im)
+{
+    if (path == NULL || im == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_read: no path or no image");
+    *im = (aa_image){0};
+    const image_format *f = format_of(path);
+    if (f == NULL)
+        return unknown_format(path);
+    if (f->kind == FORMAT_TXT)
+        return aa_image_read_txt(path, im);
+    return read_oiio(path, im);
+}

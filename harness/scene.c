@@ -1,0 +1,816 @@
+/*
+ * scene.c: the scene model.
+ *
+ * A scene is opaque layers, front to back, each an RGB colour, a fill rule
+ * (nonzero or even-odd) and closed paths of line segments and quadratic
+ * Bezier arcs, over a background colour (DESIGN.md, "The three contracts").
+ * Finishing a scene splits every edge at its y extrema into y-monotone
+ * pieces stored top to bottom, so that a horizontal line meets a piece at
+ * most once: x as a function of y is then a single root of a quadratic,
+ * taken in the cancellation-free form.
+ *
+ * Crossing rule: a piece meets the line y when y0 <= y < y1.  A path passing
+ * through a vertex is counted once, a path turning at a vertex zero or two
+ * times, and a horizontal piece never; so winding numbers along any line are
+ * exact for closed paths.  The colour at a point is that of the front-most
+ * layer whose fill rule holds for its winding number.
+ *
+ * Pieces are indexed in bins along y (each piece listed in every bin it
+ * overlaps), so the queries touch only the pieces near the line or
+ * rectangle asked about.  Everything here is read-only once finished and
+ * can be shared between threads.
+ */
+#include "scene_internal.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A bin index larger than this many entries is coarsened. */
+#define INDEX_MAX_ENTRIES ((size_t)1 << 24)
+#define INDEX_MAX_BINS ((size_t)1 << 22)
+
+/* ---- growing arrays ---- */
+
+static int grow(void **array, size_t *cap, size_t need, size_t size)
+{
+    if (need <= *cap)
+        return AA_OK;
+    size_t n = *cap ? *cap : 16;
+    while (n < need) {
+        if (n > SIZE_MAX / 2 / size)
+            return aa_fail(AA_ENOMEM, "scene too large");
+        n *= 2;
+    }
+    void *p = realloc(*array, n * size);
+    if (!p)
+        return aa_fail(AA_ENOMEM, "out of memory growing a scene to %zu items", need);
+    *array = p;
+    *cap = n;
+    return AA_OK;
+}
+
+/* ---- building ---- */
+
+aa_scene *aa_scene_new(aa_rgb background)
+{
+    aa_scene *s = calloc(1, sizeof *s);
+    if (!s) {
+        aa_fail(AA_ENOMEM, "out of memory for a scene");
+        return NULL;
+    }
+    s->background = background;
+    return s;
+}
+
+void aa_scene_free(aa_scene *s)
+{
+    if (!s)
+        return;
+    free(s->colour);
+    free(s->rule);
+    free(s->edges);
+    free(s->contour);
+    free(s->pieces);
+    free(s->bin_start);
+    free(s->bin_items);
+    free(s);
+}
+
+static int check_colour(aa_rgb c)
+{
+    for (int k = 0; k < 3; k++)
+        if (!(c.c[k] >= 0.0 && c.c[k] <= 1.0))
+            return aa_fail(AA_EINVAL, "colour channel %d is %g, outside [0, 1]", k, c.c[k]);
+    return AA_OK;
+}
+
+static int check_building(aa_scene *s)
+{
+    if (s->finished)
+        return aa_fail(AA_EFAIL, "scene is finished: no more paths can be added");
+    return AA_OK;
+}
+
+int aa_scene_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule)
+{
+    int st = check_building(s);
+    if (st || (st = check_colour(colour)))
+        return st;
+    if (rule != AA_FILL_NONZERO && rule != AA_FILL_EVENODD)
+        return aa_fail(AA_EINVAL, "unknown fill rule %d", (int)rule);
+    if (s->open && (st = aa_scene_close(s)))
+        return st;
+    size_t cap = s->caplayers;
+    if ((st = grow((void **)&s->colour, &cap, (size_t)s->nlayers + 1, sizeof *s->colour)))
+        return st;
+    cap = s->caplayers;
+    if ((st = grow((void **)&s->rule, &cap, (size_t)s->nlayers + 1, sizeof *s->rule)))
+        return st;
+    s->caplayers = cap;
+    s->colour[s->nlayers] = colour;
+    s->rule[s->nlayers] = rule;
+    s->current = s->nlayers++;
+    return AA_OK;
+}
+
+static int check_point(double x, double y)
+{
+    if (!isfinite(x) || !isfinite(y))
+        return aa_fail(AA_EINVAL, "path point (%g, %g) is not finite", x, y);
+    return AA_OK;
+}
+
+static int add_edge(aa_scene *s, double cx, double cy, double x, double y, int quad)
+{
+    int st = grow((void **)&s->edges, &s->capedges, s->nedges + 1, sizeof *s->edges);
+    if (st)
+        return st;
+    aa_edge *e = &s->edges[s->nedges++];
+    e->x0 = s->penx;
+    e->y0 = s->peny;
+    e->cx = cx;
+    e->cy = cy;
+    e->x1 = x;
+    e->y1 = y;
+    e->quad = quad;
+    e->layer = s->current;
+    s->penx = x;
+    s->peny = y;
+    return AA_OK;
+}
+
+int aa_scene_move_to(aa_scene *s, double x, double y)
+{
+    int st = check_building(s);
+    if (st || (st = check_point(x, y)))
+        return st;
+    if (s->current < 0 || s->nlayers == 0)
+        return aa_fail(AA_EFAIL, "path started before any layer");
+    if (s->open && (st = aa_scene_close(s)))
+        return st;
+    s->open = 1;
+    s->startx = s->penx = x;
+    s->starty = s->peny = y;
+    s->contour_first = s->nedges;
+    return AA_OK;
+}
+
+int aa_scene_line_to(aa_scene *s, double x, double y)
+{
+    int st = check_building(s);
+    if (st || (st = check_point(x, y)))
+        return st;
+    if (!s->open)
+        return aa_fail(AA_EFAIL, "line_to without move_to");
+    if (x == s->penx && y == s->peny)
+        return AA_OK; /* a zero-length edge has no effect on any query */
+    return add_edge(s, 0.5 * (s->penx + x), 0.5 * (s->peny + y), x, y, 0);
+}
+
+int aa_scene_quad_to(aa_scene *s, double cx, double cy, double x, double y)
+{
+    int st = check_building(s);
+    if (st || (st = check_point(cx, cy)) || (st = check_point(x, y)))
+        return st;
+    if (!s->open)
+        return aa_fail(AA_EFAIL, "quad_to without move_to");
+    if (x == s->penx && y == s->peny && cx == x && cy == y)
+        return AA_OK;
+    return add_edge(s, cx, cy, x, y, 1);
+}
+
+int aa_scene_close(aa_scene *s)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (!s->open)
+        return AA_OK;
+    if ((s->penx != s->startx || s->peny != s->starty) &&
+        (st = aa_scene_line_to(s, s->startx, s->starty)))
+        return st;
+    s->open = 0;
+    if (s->nedges == s->contour_first)
+        return AA_OK; /* an empty path */
+    if ((st = grow((void **)&s->contour, &s->capcontours, s->ncontours + 2,
+                   sizeof *s->contour)))
+        return st;
+    s->contour[s->ncontours++] = s->contour_first;
+    return AA_OK;
+}
+
+/* ---- pieces ---- */
+
+/* Power basis of a piece from its control points. */
+static void piece_basis(aa_piece *p)
+{
+    if (p->kind == AA_PIECE_QUAD) {
+        p->ay = p->y0 - 2.0 * p->cy + p->y1;
+        p->by = 2.0 * (p->cy - p->y0);
+        p->ax = p->x0 - 2.0 * p->cx + p->x1;
+        p->bx = 2.0 * (p->cx - p->x0);
+    } else {
+        p->ay = p->ax = 0.0;
+        p->by = p->y1 - p->y0;
+        p->bx = p->x1 - p->x0;
+    }
+    p->xmin = fmin(p->x0, p->x1);
+    p->xmax = fmax(p->x0, p->x1);
+    if (p->kind == AA_PIECE_QUAD && p->ax != 0.0) {
+        double t = -p->bx / (2.0 * p->ax);
+        if (t > 0.0 && t < 1.0) {
+            double x = p->x0 + t * (p->bx + t * p->ax);
+            p->xmin = fmin(p->xmin, x);
+            p->xmax = fmax(p->xmax, x);
+        }
+    }
+}
+
+/* Store one y-monotone part (x0,y0)-(cx,cy)-(x1,y1) top to bottom. */
+static int add_piece(aa_scene *s, size_t *cap, const double q[6], int quad, int layer,
+                     size_t edge)
+{
+    int st = grow((void **)&s->pieces, cap, s->npieces + 1, sizeof *s->pieces);
+    if (st)
+        return st;
+    aa_piece *p = &s->pieces[s->npieces++];
+    int down = q[5] >= q[1];
+    const double *a = down ? q : q + 4, *b = down ? q + 4 : q;
+    p->x0 = a[0];
+    p->y0 = a[1];
+    p->cx = q[2];
+    p->cy = q[3];
+    p->x1 = b[0];
+    p->y1 = b[1];
+    p->layer = layer;
+    p->edge = (int)edge;
+    if (p->y0 == p->y1 && (!quad || p->cy == p->y0)) {
+        p->kind = AA_PIECE_FLAT;
+        p->dir = 0;
+    } else {
+        p->kind = quad ? AA_PIECE_QUAD : AA_PIECE_LINE;
+        p->dir = down ? 1 : -1;
+        /* Keep the control point inside the y range: it is mathematically,
+         * and clamping removes rounding that could spoil monotonicity. */
+        if (quad)
+            p->cy = fmin(fmax(p->cy, p->y0), p->y1);
+    }
+    piece_basis(p);
+    return AA_OK;
+}
+
+/* Split each edge at its y extremum into monotone pieces. */
+static int build_pieces(aa_scene *s)
+{
+    size_t cap = 0;
+    s->npieces = 0;
+    for (size_t k = 0; k < s->nedges; k++) {
+        const aa_edge *e = &s->edges[k];
+        double q[6] = {e->x0, e->y0, e->cx, e->cy, e->x1, e->y1};
+        double den = e->y0 - 2.0 * e->cy + e->y1;
+        double t = e->quad && den != 0.0 ? (e->y0 - e->cy) / den : -1.0;
+        int st;
+        if (t > 0.0 && t < 1.0) {
+            /* de Casteljau at t; the split point is the y extremum, where the
+             * tangent is horizontal, so both inner controls share its y. */
+            double ax = e->x0 + t * (e->cx - e->x0), ay = e->y0 + t * (e->cy - e->y0);
+            double bx = e->cx + t * (e->x1 - e->cx), by = e->cy + t * (e->y1 - e->cy);
+            double mx = ax + t * (bx - ax), my = ay + t * (by - ay);
+            double first[6] = {e->x0, e->y0, ax, my, mx, my};
+            double second[6] = {mx, my, bx, my, e->x1, e->y1};
+            if ((st = add_piece(s, &cap, first, 1, e->layer, k)) ||
+                (st = add_piece(s, &cap, second, 1, e->layer, k)))
+                return st;
+        } else if ((st = add_piece(s, &cap, q, e->quad, e->layer, k))) {
+            return st;
+        }
+    }
+    return AA_OK;
+}
+
+/* ---- the y index ---- */
+
+static size_t bin_of(const aa_scene *s, double y)
+{
+    double b = floor((y - s->iy0) / s->ihb);
+    if (!(b > 0.0))
+        return 0;
+    if (b >= (double)s->nbins)
+        return s->nbins - 1;
+    return (size_t)b;
+}
+
+static size_t index_entries(aa_scene *s)
+{
+    size_t n = 0;
+    for (size_t k = 0; k < s->npieces; k++)
+        n += bin_of(s, s->pieces[k].y1) - bin_of(s, s->pieces[k].y0) + 1;
+    return n;
+}
+
+/* Bins of height about `hint` over the pieces' y range, coarsened until
+ * the index has at most max(INDEX_MAX_ENTRIES, 8 n) entries. */
+static int build_index(aa_scene *s, double hint)
+{
+    double y0 = s->by0, y1 = s->by1, extent = y1 - y0;
+    if (s->npieces >= UINT32_MAX)
+        return aa_fail(AA_EINVAL, "scene has %zu pieces, more than the index holds", s->npieces);
+    size_t nb = 1, limit = s->npieces * 8 > INDEX_MAX_ENTRIES ? s->npieces * 8 : INDEX_MAX_ENTRIES;
+    if (s->npieces && extent > 0.0 && hint > 0.0) {
+        double want = ceil(extent / hint);
+        nb = want >= (double)INDEX_MAX_BINS ? INDEX_MAX_BINS : (size_t)want;
+        if (nb < 1)
+            nb = 1;
+    }
+    s->iy0 = y0;
+    for (;;) {
+        s->nbins = nb;
+        s->ihb = extent > 0.0 ? extent / (double)nb : 1.0;
+        if (nb == 1 || index_entries(s) <= limit)
+            break;
+        nb /= 2;
+    }
+    free(s->bin_start);
+    free(s->bin_items);
+    s->bin_items = NULL;
+    s->bin_start = calloc(s->nbins + 1, sizeof *s->bin_start);
+    size_t entries = index_entries(s);
+    if (!s->bin_start || (entries && !(s->bin_items = malloc(entries * sizeof *s->bin_items))))
+        return aa_fail(AA_ENOMEM, "out of memory indexing %zu pieces", s->npieces);
+    for (size_t k = 0; k < s->npieces; k++)
+        for (size_t b = bin_of(s, s->pieces[k].y0); b <= bin_of(s, s->pieces[k].y1); b++)
+            s->bin_start[b + 1]++;
+    for (size_t b = 0; b < s->nbins; b++)
+        s->bin_start[b + 1] += s->bin_start[b];
+    size_t *fill = malloc(s->nbins * sizeof *fill);
+    if (!fill)
+        return aa_fail(AA_ENOMEM, "out of memory indexing %zu pieces", s->npieces);
+    memcpy(fill, s->bin_start, s->nbins * sizeof *fill);
+    for (size_t k = 0; k < s->npieces; k++)
+        for (size_t b = bin_of(s, s->pieces[k].y0); b <= bin_of(s, s->pieces[k].y1); b++)
+            s->bin_items[fill[b]++] = (uint32_t)k;
+    free(fill);
+    return AA_OK;
+}
+
+size_t aa__scene_gather(const aa_scene *s, double ya, double yb, aa__visit visit, void *ctx)
+{
+    size_t count = 0;
+    if (!s->npieces || yb < s->by0 || ya > s->by1)
+        return 0;
+    size_t qa = bin_of(s, ya), qb = bin_of(s, yb);
+    for (size_t b = qa; b <= qb; b++) {
+        for (size_t e = s->bin_start[b]; e < s->bin_start[b + 1]; e++) {
+            const aa_piece *p = &s->pieces[s->bin_items[e]];
+            size_t first = bin_of(s, p->y0);
+            if (b != (first > qa ? first : qa))
+                continue; /* reported from an earlier bin of this query */
+            if (p->y0 > yb || p->y1 < ya)
+                continue;
+            count += visit(ctx, p) != 0;
+        }
+    }
+    return count;
+}
+
+static void compute_bounds(aa_scene *s)
+{
+    s->has_bounds = s->nedges > 0;
+    s->bx0 = s->by0 = s->bx1 = s->by1 = 0.0;
+    for (size_t k = 0; k < s->npieces; k++) {
+        const aa_piece *p = &s->pieces[k];
+        if (k == 0) {
+            s->bx0 = p->xmin;
+            s->bx1 = p->xmax;
+            s->by0 = p->y0;
+            s->by1 = p->y1;
+        }
+        s->bx0 = fmin(s->bx0, p->xmin);
+        s->bx1 = fmax(s->bx1, p->xmax);
+        s->by0 = fmin(s->by0, p->y0);
+        s->by1 = fmax(s->by1, p->y1);
+    }
+}
+
+static int finish(aa_scene *s, double hint)
+{
+    int st;
+    if ((st = build_pieces(s)))
+        return st;
+    compute_bounds(s);
+    if ((st = build_index(s, hint)))
+        return st;
+    s->grey = 1;
+    for (int l = -1; l < s->nlayers; l++) {
+        aa_rgb c = l < 0 ? s->background : s->colour[l];
+        if (c.c[0] != c.c[1] || c.c[1] != c.c[2])
+            s->grey = 0;
+    }
+    if ((st = grow((void **)&s->contour, &s->capcontours, s->ncontours + 1,
+                   sizeof *s->contour)))
+        return st;
+    s->contour[s->ncontours] = s->nedges; /* sentinel */
+    s->finished = 1;
+    return AA_OK;
+}
+
+int aa_scene_finish(aa_scene *s)
+{
+    int st = check_building(s);
+    if (st || (st = check_colour(s->background)))
+        return st;
+    if (s->open && (st = aa_scene_close(s)))
+        return st;
+    /* Pattern units: about 256 bins over the unit square. */
+    return finish(s, 1.0 / 256.0);
+}
+
+/* Extent of one coordinate of a quadratic Bezier (the curve, not its
+ * control polygon). */
+static void curve_extent(double a, double c, double b, int quad, double *lo, double *hi)
+{
+    *lo = fmin(a, b);
+    *hi = fmax(a, b);
+    double den = a - 2.0 * c + b;
+    if (quad && den != 0.0) {
+        double t = (a - c) / den;
+        if (t > 0.0 && t < 1.0) {
+            double v = (1 - t) * (1 - t) * a + 2 * t * (1 - t) * c + t * t * b;
+            *lo = fmin(*lo, v);
+            *hi = fmax(*hi, v);
+        }
+    }
+}
+
+int aa_scene_clip_unit(aa_scene *s)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (s->open && (st = aa_scene_close(s)))
+        return st;
+    double x0 = 0, y0 = 0, x1 = 1, y1 = 1;
+    for (size_t k = 0; k < s->nedges; k++) {
+        const aa_edge *e = &s->edges[k];
+        double lo, hi;
+        curve_extent(e->x0, e->cx, e->x1, e->quad, &lo, &hi);
+        x0 = fmin(x0, lo), x1 = fmax(x1, hi);
+        curve_extent(e->y0, e->cy, e->y1, e->quad, &lo, &hi);
+        y0 = fmin(y0, lo), y1 = fmax(y1, hi);
+    }
+    if (x0 >= 0 && y0 >= 0 && x1 <= 1 && y1 <= 1)
+        return AA_OK; /* nothing reaches outside */
+    /* A new front layer of the background colour: a frame around the unit
+     * square (even-odd of the outer rectangle and the square). */
+    if ((st = aa_scene_layer(s, s->background, AA_FILL_EVENODD)))
+        return st;
+    int front = s->nlayers - 1;
+    aa_rgb colour = s->colour[front];
+    memmove(s->colour + 1, s->colour, (size_t)front * sizeof *s->colour);
+    memmove(s->rule + 1, s->rule, (size_t)front * sizeof *s->rule);
+    s->colour[0] = colour;
+    s->rule[0] = AA_FILL_EVENODD;
+    for (size_t k = 0; k < s->nedges; k++)
+        s->edges[k].layer++;
+    s->current = 0;
+    x0 -= 1, y0 -= 1, x1 += 1, y1 += 1;
+    double rect[2][4] = {{x0, y0, x1, y1}, {0, 0, 1, 1}};
+    for (int r = 0; r < 2; r++) {
+        const double *q = rect[r];
+        if ((st = aa_scene_move_to(s, q[0], q[1])) || (st = aa_scene_line_to(s, q[2], q[1])) ||
+            (st = aa_scene_line_to(s, q[2], q[3])) || (st = aa_scene_line_to(s, q[0], q[3])) ||
+            (st = aa_scene_close(s)))
+            return st;
+    }
+    return AA_OK;
+}
+
+aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty,
+                              double hint)
+{
+    if (!s->finished) {
+        aa_fail(AA_EFAIL, "transform of an unfinished scene");
+        return NULL;
+    }
+    if (!(sx > 0 && sy > 0 && isfinite(sx) && isfinite(sy) && isfinite(tx) && isfinite(ty))) {
+        aa_fail(AA_EINVAL, "scene transform (%g, %g, %g, %g) is not a positive scaling",
+                sx, sy, tx, ty);
+        return NULL;
+    }
+    aa_scene *t = aa_scene_new(s->background);
+    if (!t)
+        return NULL;
+    int st = AA_OK;
+    for (int l = 0; l < s->nlayers && !st; l++)
+        st = aa_scene_layer(t, s->colour[l], s->rule[l]);
+    if (!st && s->nedges) {
+        t->edges = malloc(s->nedges * sizeof *t->edges);
+        t->contour = malloc((s->ncontours + 1) * sizeof *t->contour);
+        if (!t->edges || !t->contour)
+            st = aa_fail(AA_ENOMEM, "out of memory copying a scene");
+    }
+    if (!st) {
+        t->capedges = t->nedges = s->nedges;
+        for (size_t k = 0; k < s->nedges; k++) {
+            const aa_edge *e = &s->edges[k];
+            aa_edge *d = &t->edges[k];
+            *d = *e;
+            d->x0 = sx * e->x0 + tx, d->y0 = sy * e->y0 + ty;
+            d->cx = sx * e->cx + tx, d->cy = sy * e->cy + ty;
+            d->x1 = sx * e->x1 + tx, d->y1 = sy * e->y1 + ty;
+            if (!e->quad) { /* keep lines' control points exactly midway */
+                d->cx = 0.5 * (d->x0 + d->x1);
+                d->cy = 0.5 * (d->y0 + d->y1);
+            }
+            if (!isfinite(d->x0) || !isfinite(d->y0) || !isfinite(d->x1) ||
+                !isfinite(d->y1) || !isfinite(d->cx) || !isfinite(d->cy))
+                st = aa_fail(AA_EINVAL, "scene transform overflows");
+        }
+        if (s->nedges) {
+            t->capcontours = s->ncontours + 1;
+            t->ncontours = s->ncontours;
+            memcpy(t->contour, s->contour, s->ncontours * sizeof *t->contour);
+        }
+    }
+    if (!st)
+        st = finish(t, hint);
+    if (st) {
+        aa_scene_free(t);
+        return NULL;
+    }
+    return t;
+}
+
+aa_scene *aa_scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty)
+{
+    return aa__scene_transform(s, sx, sy, tx, ty, sy / 256.0);
+}
+
+aa_scene *aa_scene_place(const aa_scene *s, int w, int h, double t, double vx, double vy)
+{
+    if (w < 1 || h < 1 || !isfinite(t) || !isfinite(vx) || !isfinite(vy)) {
+        aa_fail(AA_EINVAL, "cannot place a scene on %dx%d at time %g moving (%g, %g)", w, h,
+                t, vx, vy);
+        return NULL;
+    }
+    /* One bin per pixel row: a row's strip then reads one or two bins. */
+    return aa__scene_transform(s, (double)w, (double)h, t * vx, t * vy, 1.0);
+}
+
+/* ---- reading ---- */
+
+aa_rgb aa_scene_background(const aa_scene *s) { return s->background; }
+int aa_scene_layer_count(const aa_scene *s) { return s->nlayers; }
+aa_rgb aa_scene_layer_colour(const aa_scene *s, int layer) { return s->colour[layer]; }
+aa_fill_rule aa_scene_layer_rule(const aa_scene *s, int layer) { return s->rule[layer]; }
+int aa_scene_is_grey(const aa_scene *s) { return s->grey; }
+
+const aa_edge *aa_scene_edges(const aa_scene *s, size_t *n)
+{
+    *n = s->nedges;
+    return s->edges;
+}
+
+const size_t *aa_scene_contours(const aa_scene *s, size_t *ncontours)
+{
+    *ncontours = s->ncontours;
+    return s->contour;
+}
+
+const aa_piece *aa_scene_pieces(const aa_scene *s, size_t *n)
+{
+    *n = s->npieces;
+    return s->pieces;
+}
+
+int aa_scene_bounds(const aa_scene *s, double *x0, double *y0, double *x1, double *y1)
+{
+    *x0 = s->bx0;
+    *y0 = s->by0;
+    *x1 = s->bx1;
+    *y1 = s->by1;
+    return s->has_bounds;
+}
+
+aa_rgb aa_scene_colour_of(const aa_scene *s, const int *wind)
+{
+    for (int l = 0; l < s->nlayers; l++) {
+        int inside = s->rule[l] == AA_FILL_EVENODD ? (wind[l] & 1) : wind[l] != 0;
+        if (inside)
+            return s->colour[l];
+    }
+    return s->background;
+}
+
+/* ---- piece geometry ---- */
+
+double aa_piece_t_at(const aa_piece *p, double y)
+{
+    double d = y - p->y0, t;
+    if (p->kind == AA_PIECE_FLAT || !(d > 0.0))
+        return 0.0;
+    if (y >= p->y1)
+        return 1.0;
+    if (p->ay == 0.0) {
+        t = d / p->by;
+    } else {
+        /* Root of ay t^2 + by t - d = 0 in [0, 1]: by >= 0 on a monotone
+         * piece, so 2d / (by + sqrt(by^2 + 4 ay d)) has no cancellation. */
+        double disc = fma(p->by, p->by, 4.0 * p->ay * d);
+        double den = p->by + sqrt(disc > 0.0 ? disc : 0.0);
+        t = den > 0.0 ? 2.0 * d / den : 0.0;
+    }
+    return t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+}
+
+double aa_piece_x_at(const aa_piece *p, double y)
+{
+    if (p->kind == AA_PIECE_LINE) {
+        /* Interpolate from the nearer end: exact at both ends. */
+        double h = p->y1 - p->y0;
+        if (!(h > 0.0))
+            return p->x0;
+        if (y - p->y0 <= p->y1 - y)
+            return p->x0 + (y - p->y0) / h * p->bx;
+        return p->x1 - (p->y1 - y) / h * p->bx;
+    }
+    if (p->kind == AA_PIECE_FLAT)
+        return p->x0;
+    double t = aa_piece_t_at(p, y);
+    return p->x0 + t * (p->bx + t * p->ax);
+}
+
+void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, double *xmax)
+{
+    if (p->kind == AA_PIECE_FLAT || (ya <= p->y0 && yb >= p->y1)) {
+        *xmin = p->xmin;
+        *xmax = p->xmax;
+        return;
+    }
+    double a = ya > p->y0 ? ya : p->y0, b = yb < p->y1 ? yb : p->y1;
+    if (a > b)
+        a = b;
+    if (p->kind == AA_PIECE_LINE) {
+        double xa = aa_piece_x_at(p, a), xb = aa_piece_x_at(p, b);
+        *xmin = fmin(xa, xb);
+        *xmax = fmax(xa, xb);
+        return;
+    }
+    double ta = aa_piece_t_at(p, a), tb = aa_piece_t_at(p, b);
+    double xa = p->x0 + ta * (p->bx + ta * p->ax), xb = p->x0 + tb * (p->bx + tb * p->ax);
+    *xmin = fmin(xa, xb);
+    *xmax = fmax(xa, xb);
+    if (p->ax != 0.0) {
+        double t = -p->bx / (2.0 * p->ax);
+        if (t > ta && t < tb) {
+            double x = p->x0 + t * (p->bx + t * p->ax);
+            *xmin = fmin(*xmin, x);
+            *xmax = fmax(*xmax, x);
+        }
+    }
+}
+
+/* b^2 - 4ac with the products' rounding errors compensated (Kahan). */
+static double discriminant(double a, double b, double c)
+{
+    double p = b * b, q = 4.0 * a * c;
+    double dp = fma(b, b, -p), dq = fma(4.0 * a, c, -q);
+    return (p - q) + (dp - dq);
+}
+
+int aa_piece_meet_x(const aa_piece *p, double x, double ys[2])
+{
+    double ts[2];
+    int n = 0;
+    if (p->kind == AA_PIECE_FLAT || x < p->xmin || x > p->xmax)
+        return 0;
+    double c = p->x0 - x;
+    if (p->ax == 0.0) {
+        if (p->bx != 0.0)
+            ts[n++] = -c / p->bx;
+    } else {
+        double d = discriminant(p->ax, p->bx, c);
+        if (d < 0.0)
+            return 0;
+        double q = -0.5 * (p->bx + copysign(sqrt(d), p->bx));
+        if (q != 0.0)
+            ts[n++] = c / q;
+        ts[n++] = q / p->ax;
+    }
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        if (!(ts[k] > 0.0 && ts[k] < 1.0))
+            continue;
+        double y = p->y0 + ts[k] * (p->by + ts[k] * p->ay);
+        if (y > p->y0 && y < p->y1)
+            ys[m++] = y;
+    }
+    if (m == 2 && ys[0] > ys[1]) {
+        double t = ys[0];
+        ys[0] = ys[1];
+        ys[1] = t;
+    }
+    if (m == 2 && ys[0] == ys[1])
+        m = 1;
+    return m;
+}
+
+/* ---- point and line queries ---- */
+
+struct point_ctx {
+    const aa_scene *s;
+    double x, y;
+    int *wind;
+};
+
+static int visit_point(void *vctx, const aa_piece *p)
+{
+    struct point_ctx *ctx = vctx;
+    if (p->dir && p->y0 <= ctx->y && ctx->y < p->y1 && aa_piece_x_at(p, ctx->y) < ctx->x)
+        ctx->wind[p->layer] += p->dir;
+    return 0;
+}
+
+aa_rgb aa_scene_colour_at(const aa_scene *s, double x, double y)
+{
+    int small[16], *wind = small;
+    if (s->nlayers > 16 && !(wind = calloc((size_t)s->nlayers, sizeof *wind)))
+        return s->background; /* cannot happen in practice: tiny allocation */
+    memset(wind, 0, (size_t)(s->nlayers < 16 ? 16 : s->nlayers) * sizeof *wind);
+    struct point_ctx ctx = {s, x, y, wind};
+    aa__scene_gather(s, y, y, visit_point, &ctx);
+    aa_rgb c = aa_scene_colour_of(s, wind);
+    if (wind != small)
+        free(wind);
+    return c;
+}
+
+struct line_ctx {
+    double y;
+    aa_crossing *out;
+    size_t cap, n;
+};
+
+static int visit_line(void *vctx, const aa_piece *p)
+{
+    struct line_ctx *ctx = vctx;
+    if (!p->dir || !(p->y0 <= ctx->y && ctx->y < p->y1))
+        return 0;
+    if (ctx->n < ctx->cap) {
+        aa_crossing *c = &ctx->out[ctx->n];
+        c->x = aa_piece_x_at(p, ctx->y);
+        c->dir = p->dir;
+        c->layer = p->layer;
+    }
+    ctx->n++;
+    return 1;
+}
+
+static int cmp_crossing(const void *a, const void *b)
+{
+    const aa_crossing *p = a, *q = b;
+    if (p->x != q->x)
+        return p->x < q->x ? -1 : 1;
+    if (p->layer != q->layer)
+        return p->layer - q->layer;
+    return p->dir - q->dir;
+}
+
+size_t aa_scene_crossings(const aa_scene *s, double y, aa_crossing *out, size_t cap)
+{
+    struct line_ctx ctx = {y, out, cap, 0};
+    aa__scene_gather(s, y, y, visit_line, &ctx);
+    if (ctx.n > 1 && ctx.n <= cap)
+        qsort(out, ctx.n, sizeof *out, cmp_crossing);
+    return ctx.n;
+}
+
+struct touch_ctx {
+    const aa_scene *s;
+    double x0, y0, x1, y1;
+    size_t *out;
+    size_t cap, n;
+};
+
+static int visit_touch(void *vctx, const aa_piece *p)
+{
+    struct touch_ctx *ctx = vctx;
+    double lo, hi;
+    aa_piece_xrange(p, ctx->y0, ctx->y1, &lo, &hi);
+    if (hi < ctx->x0 || lo > ctx->x1)
+        return 0;
+    if (ctx->n < ctx->cap)
+        ctx->out[ctx->n] = (size_t)(p - ctx->s->pieces);
+    ctx->n++;
+    return 1;
+}
+
+size_t aa_scene_touching(const aa_scene *s, double x0, double y0, double x1, double y1,
+                         size_t *out, size_t cap)
+{
+    struct touch_ctx ctx = {s, x0, y0, x1, y1, out, cap, 0};
+    aa__scene_gather(s, y0, y1, visit_touch, &ctx);
+    return ctx.n;
+}

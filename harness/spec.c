@@ -1,0 +1,314 @@
+/*
+ * spec.c: parameter specs "NAME" and "NAME:key=value,key=value".
+ *
+ * Patterns, filters and methods describe their parameters with a table of
+ * aa_param (key, kind, default, range, help); one parser serves them all, so
+ * every kind refuses bad input the same way: an unknown name lists the
+ * known names, an unknown key lists the accepted keys, a bad value says the
+ * accepted range.  Values are doubles in parameter order; a CHOICE value is
+ * the index of its word.  Reals may be written as fractions ("4/256"), as
+ * PATTERNS.md writes its defaults.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "aabench.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define SPEC_MAX_TEXT 4096
+
+size_t aa_param_count(const aa_info *info)
+{
+    size_t n = 0;
+    if (info->params)
+        while (info->params[n].kind != AA_PARAM_END)
+            n++;
+    return n;
+}
+
+int aa_spec_index(const aa_info *info, const char *key)
+{
+    size_t n = aa_param_count(info);
+    for (size_t k = 0; k < n; k++)
+        if (strcmp(info->params[k].key, key) == 0)
+            return (int)k;
+    return -1;
+}
+
+const aa_info *aa_table_find(const void *const *table, const char *name)
+{
+    for (size_t k = 0; table[k]; k++) {
+        const aa_info *info = table[k];
+        if (strcmp(info->name, name) == 0)
+            return info;
+    }
+    return NULL;
+}
+
+void aa_spec_default(const aa_info *info, aa_spec *out)
+{
+    size_t n = aa_param_count(info);
+    memset(out, 0, sizeof *out);
+    out->info = info;
+    for (size_t k = 0; k < n && k < AA_MAX_PARAMS; k++)
+        out->v[k] = info->params[k].def;
+}
+
+/* A finite number written as a decimal or as "p/q"; the whole text. */
+static int parse_real(const char *text, double *value)
+{
+    char *end;
+    double num, den = 1.0;
+    if (!*text || isspace((unsigned char)*text))
+        return -1;
+    errno = 0;
+    num = strtod(text, &end);
+    if (end == text || errno == ERANGE)
+        return -1;
+    if (*end == '/') {
+        const char *d = end + 1;
+        if (!*d || isspace((unsigned char)*d))
+            return -1;
+        den = strtod(d, &end);
+        if (end == d || errno == ERANGE || den == 0.0)
+            return -1;
+    }
+    if (*end)
+        return -1;
+    *value = num / den;
+    return isfinite(*value) ? 0 : -1;
+}
+
+/* The words of a "a|b|c" choice list, for messages: "a, b or c". */
+static void choice_words(const char *choices, char *buf, size_t len)
+{
+    size_t n = 0, words = 1;
+    for (const char *c = choices; *c; c++)
+        words += *c == '|';
+    buf[0] = '\0';
+    for (size_t w = 0; w < words; w++) {
+        const char *start = choices;
+        for (size_t k = 0; k < w; k++)
+            start = strchr(start, '|') + 1;
+        const char *stop = strchr(start, '|');
+        size_t wl = stop ? (size_t)(stop - start) : strlen(start);
+        const char *sep = w == 0 ? "" : (w + 1 == words ? " or " : ", ");
+        int m = snprintf(buf + n, len > n ? len - n : 0, "%s%.*s", sep, (int)wl, start);
+        if (m < 0 || (size_t)m >= len - n)
+            return;
+        n += (size_t)m;
+    }
+}
+
+/* The accepted range of a numeric parameter, for messages. */
+static void range_text(const aa_param *p, char *buf, size_t len)
+{
+    if (p->kind == AA_PARAM_INT)
+        snprintf(buf, len, "an integer from %.17g to %.17g", p->min, p->max);
+    else
+        snprintf(buf, len, "a finite number %s %.17g and <= %.17g", p->open_min ? ">" : ">=",
+                 p->min, p->max);
+}
+
+int aa_param_parse(const aa_param *p, const char *text, double *value)
+{
+    char what[256];
+    double v;
+    if (p->kind == AA_PARAM_CHOICE) {
+        size_t tl = strlen(text), index = 0;
+        const char *start = p->choices;
+        for (;;) {
+            const char *stop = strchr(start, '|');
+            size_t wl = stop ? (size_t)(stop - start) : strlen(start);
+            if (wl == tl && strncmp(start, text, tl) == 0) {
+                *value = (double)index;
+                return AA_OK;
+            }
+            if (!stop)
+                break;
+            start = stop + 1;
+            index++;
+        }
+        choice_words(p->choices, what, sizeof what);
+        return aa_fail(AA_EINVAL, "%s=%s: accepted values are %s", p->key, text, what);
+    }
+    range_text(p, what, sizeof what);
+    if (parse_real(text, &v) != 0)
+        return aa_fail(AA_EINVAL, "%s=%s: not a number (expected %s)", p->key, text, what);
+    if (p->kind == AA_PARAM_INT && v != floor(v))
+        return aa_fail(AA_EINVAL, "%s=%s: not an integer (expected %s)", p->key, text, what);
+    if (v < p->min || v > p->max || (p->open_min && v == p->min))
+        return aa_fail(AA_EINVAL, "%s=%s: out of range (expected %s)", p->key, text, what);
+    *value = v;
+    return AA_OK;
+}
+
+/* "name1, name2, name3" for an unknown-name message. */
+static void table_names(const void *const *table, char *buf, size_t len)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (size_t k = 0; table[k]; k++) {
+        const aa_info *info = table[k];
+        int m = snprintf(buf + n, len - n, "%s%s", k ? ", " : "", info->name);
+        if (m < 0 || (size_t)m >= len - n)
+            return;
+        n += (size_t)m;
+    }
+}
+
+static void param_keys(const aa_info *info, char *buf, size_t len)
+{
+    size_t n = 0, count = aa_param_count(info);
+    snprintf(buf, len, "%s", count ? "" : "none");
+    for (size_t k = 0; k < count; k++) {
+        int m = snprintf(buf + n, len - n, "%s%s", k ? ", " : "", info->params[k].key);
+        if (m < 0 || (size_t)m >= len - n)
+            return;
+        n += (size_t)m;
+    }
+}
+
+static int parse_pairs(char *rest, const aa_info *info, const char *what, aa_spec *out)
+{
+    int given[AA_MAX_PARAMS] = {0};
+    char keys[512];
+    char *pair = rest;
+    while (pair) {
+        char *next = strchr(pair, ',');
+        if (next)
+            *next++ = '\0';
+        char *eq = strchr(pair, '=');
+        if (!eq || eq == pair)
+            return aa_fail(AA_EINVAL, "%s %s: \"%s\" is not key=value", what, info->name,
+                           pair);
+        *eq = '\0';
+        int k = aa_spec_index(info, pair);
+        if (k < 0) {
+            param_keys(info, keys, sizeof keys);
+            return aa_fail(AA_EINVAL, "%s %s has no parameter \"%s\" (accepted: %s)", what,
+                           info->name, pair, keys);
+        }
+        if (given[k]++)
+            return aa_fail(AA_EINVAL, "%s %s: %s given twice", what, info->name, pair);
+        int st = aa_param_parse(&info->params[k], eq + 1, &out->v[k]);
+        if (st)
+            return aa_fail_context(st, "%s %s", what, info->name);
+        pair = next;
+    }
+    return AA_OK;
+}
+
+int aa_spec_parse(const char *text, const void *const *table, const char *what,
+                  aa_spec *out)
+{
+    char buf[SPEC_MAX_TEXT], names[1024];
+    if (!text || !*text)
+        return aa_fail(AA_EINVAL, "empty %s spec", what);
+    if (strlen(text) >= sizeof buf)
+        return aa_fail(AA_EINVAL, "%s spec longer than %d characters", what, SPEC_MAX_TEXT - 1);
+    strcpy(buf, text);
+    char *colon = strchr(buf, ':');
+    if (colon)
+        *colon = '\0';
+    const aa_info *info = aa_table_find(table, buf);
+    if (!info) {
+        table_names(table, names, sizeof names);
+        return aa_fail(AA_EINVAL, "unknown %s \"%s\" (known: %s)", what, buf, names);
+    }
+    if (aa_param_count(info) > AA_MAX_PARAMS)
+        return aa_fail(AA_EFAIL, "%s %s declares too many parameters", what, info->name);
+    aa_spec_default(info, out);
+    if (colon && !colon[1])
+        return aa_fail(AA_EINVAL, "%s %s: nothing after ':' (expected key=value,...)", what,
+                       info->name);
+    return colon ? parse_pairs(colon + 1, info, what, out) : AA_OK;
+}
+
+int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
+{
+    const aa_info *info = spec->info;
+    size_t count = aa_param_count(info);
+    int m = snprintf(buf, len, "%s", info->name);
+    size_t n = m > 0 ? (size_t)m : 0;
+    for (size_t k = 0; k < count && n < len; k++) {
+        const aa_param *p = &info->params[k];
+        if (p->kind == AA_PARAM_CHOICE) {
+            const char *start = p->choices;
+            for (int w = 0; w < (int)spec->v[k]; w++)
+                start = strchr(start, '|') + 1;
+            const char *stop = strchr(start, '|');
+            int wl = stop ? (int)(stop - start) : (int)strlen(start);
+            m = snprintf(buf + n, len - n, "%c%s=%.*s", k ? ',' : ':', p->key, wl, start);
+        } else {
+            m = snprintf(buf + n, len - n, "%c%s=%.17g", k ? ',' : ':', p->key, spec->v[k]);
+        }
+        if (m < 0)
+            break;
+        n += (size_t)m;
+    }
+    if (n >= len)
+        return aa_fail(AA_EFAIL, "spec of %s does not fit in %zu characters", info->name, len);
+    return AA_OK;
+}
+
+/* ---- sizes ---- */
+
+static int parse_side(const char *s, const char *end, int *out)
+{
+    long v = 0;
+    if (s == end || end - s > 9)
+        return -1;
+    for (const char *c = s; c < end; c++) {
+        if (!isdigit((unsigned char)*c))
+            return -1;
+        v = v * 10 + (*c - '0');
+    }
+    *out = (int)(v > AA_MAX_SIDE ? AA_MAX_SIDE + 1 : v);
+    return 0;
+}
+
+int aa_size_parse(const char *text, int *w, int *h)
+{
+    const char *x = text ? strchr(text, 'x') : NULL;
+    int ww, hh;
+    if (!x || parse_side(text, x, &ww) || parse_side(x + 1, x + 1 + strlen(x + 1), &hh))
+        return aa_fail(AA_EINVAL, "size \"%s\" is not WxH (two whole numbers, e.g. 256x256)",
+                       text ? text : "");
+    if (ww < 1 || hh < 1 || ww > AA_MAX_SIDE || hh > AA_MAX_SIDE)
+        return aa_fail(AA_EINVAL, "size \"%s\": each side must be from 1 to %d", text,
+                       AA_MAX_SIDE);
+    *w = ww;
+    *h = hh;
+    return AA_OK;
+}
+
+/* Physical memory in bytes, or 0 if unknown. */
+static double physical_memory(void)
+{
+    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    return pages > 0 && size > 0 ? (double)pages * (double)size : 0.0;
+}
+
+int aa_size_check(int w, int h, int channels, int copies)
+{
+    if (w < 1 || h < 1 || w > AA_MAX_SIDE || h > AA_MAX_SIDE || channels < 1 || copies < 1)
+        return aa_fail(AA_EINVAL, "image size %dx%dx%d out of range (sides 1 to %d)", w, h,
+                       channels, AA_MAX_SIDE);
+    double need = (double)w * h * channels * copies * sizeof(double);
+    double have = physical_memory();
+    /* Leave half of the machine for everything else. */
+    if (have > 0 && need > have / 2)
+        return aa_fail(AA_EINVAL,
+                       "size %dx%d needs %.1f GB of images, more than half of this machine's "
+                       "%.1f GB",
+                       w, h, need / 1e9, have / 1e9);
+    if (need > (double)SIZE_MAX / 2)
+        return aa_fail(AA_EINVAL, "size %dx%d is too large to address", w, h);
+    return AA_OK;
+}

@@ -1,0 +1,11 @@
+/*
+ * patterns.h: the pattern types (one file each) and their table.
+ */
+#ifndef AA_PATTERNS_H
+#define AA_PATTERNS_H
+
+#include "aabench.h"
+
+extern const aa_pattern_type aa_pattern_crow;
+
+#endif

@@ -1,0 +1,6 @@
+#!/bin/sh
+# bench.sh BUILD: the speed measurements of `make bench`.
+set -eu
+build=$1
+echo "== ground truth (reference image), crow; medians of repeated renders =="
+"$build/bench_truth" -p crow -s 1024x1024,4096x4096 -f "box;tent:r=0.5;tent:r=1;gauss" -t 1,2

@@ -1,0 +1,60 @@
+/*
+ * oracle.h - an independent second derivation of the `crow` reference image.
+ *
+ * The harness computes reference values of Crow's parabolic moire pattern by
+ * its own quadrature; the tests compare it with this file's values, which are
+ * derived only from ../shared/PATTERNS.md ("Coordinates and pixel values",
+ * "Filters", "`crow`") and share no code with the harness.
+ *
+ * Units: x, y in pattern units (the image shows [0,1]^2, y down); a pixel
+ * (i, j) of a W x H image covers [i/W, (i+1)/W] x [j/H, (j+1)/H].  Filter
+ * sizes R and S are in pixel units.  Any integers i, j are accepted: pixels
+ * outside the image see the black background, as PATTERNS.md defines it.
+ *
+ * Every function rejects invalid parameters (oracle_crow_valid() == 0, W or
+ * H < 1, R or S not positive and finite): oracle_crow_point() returns 0 and
+ * the others return NAN with *err = INFINITY.
+ */
+#ifndef AABENCH_TESTS_ORACLE_H
+#define AABENCH_TESTS_ORACLE_H
+
+typedef struct oracle_crow {
+	int curves;  /* N, the number of arcs */
+	double kmax; /* C, curvature coefficient of arc 0 */
+	double gap0; /* spacing of arcs 0 and 1 at mid-height */
+	double gap1; /* spacing of arcs N-2 and N-1 at mid-height */
+} oracle_crow;
+
+/* The defaults of PATTERNS.md: 96, 0.6, 4/256, 0.5/256. */
+oracle_crow oracle_crow_defaults(void);
+
+/* 1 if N is even and >= 2, all numbers finite and no two neighbouring arcs
+ * touch anywhere on 0 <= y <= 1, else 0.  For C >= 0 this is exactly
+ * PATTERNS.md's rule g_k - C/(4(N-1)) > 0; for C < 0 the closest approach is
+ * at mid-height and g_k > 0 is required as well. */
+int oracle_crow_valid(const oracle_crow *p);
+
+/* The pattern at (x, y): 1 white, 0 black.  Black outside [0,1]^2.  A point
+ * exactly on an arc may go either way. */
+int oracle_crow_point(const oracle_crow *p, double x, double y);
+
+/* Box-filter value of pixel (i, j) in closed form (alternating sum over arcs
+ * of the exact area right of each arc inside the pixel), computed in long
+ * double: within 1.1e-16 of a __float128 reference on every pixel tried. */
+double oracle_crow_box(const oracle_crow *p, int W, int H, int i, int j);
+
+/* Tent (tent:r=R) and untruncated Gaussian (gauss:s=S) values of pixel
+ * (i, j), by brute force: the integral along x in closed form, the integral
+ * along y by composite Simpson on a fine uniform grid.  *err (may be NULL)
+ * receives an upper estimate of this function's own error: the difference
+ * between Simpson on n and 2n panels, plus rounding, plus (Gaussian) the
+ * filter mass left out by truncation at 9 S.  For the default pattern on
+ * 64 x 64 and 256 x 256 images *err is at most 3.2e-11 (tent R = 0.5, 1;
+ * Gaussian S = 0.5, 1), at about 0.5 ms (tent) and 1-3 ms (Gaussian) per
+ * pixel, 13 ms at worst. */
+double oracle_crow_tent(const oracle_crow *p, int W, int H, int i, int j,
+			double R, double *err);
+double oracle_crow_gauss(const oracle_crow *p, int W, int H, int i, int j,
+			 double S, double *err);
+
+#endif

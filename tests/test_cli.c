@@ -1,0 +1,185 @@
+/*
+ * test_cli.c: the `aabench` command's contract (DESIGN.md, "Command line"):
+ * bad input gets exit status 2 and a message naming the problem and what is
+ * accepted, an unwritable output 3, and a refused command writes nothing.
+ * The command under test is $AABENCH (set by scripts/run-tests.sh).
+ */
+#include "aabench.h"
+
+#include <fcntl.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+static char dir[] = "/tmp/aabench-cli-XXXXXX";
+static char output[8192];
+
+/* Run aabench with args (NULL-terminated); capture stdout+stderr. */
+static int run(const char *const *args)
+{
+    const char *exe = getenv("AABENCH");
+    char log[4096];
+    snprintf(log, sizeof log, "%s/log", dir);
+    pid_t pid = fork();
+    if (pid == 0) {
+        int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(fd, 1);
+        dup2(fd, 2);
+        const char *argv[32] = {exe};
+        for (int k = 0; args[k] && k < 30; k++)
+            argv[k + 1] = args[k];
+        execv(exe, (char *const *)argv);
+        _exit(127);
+    }
+    int status;
+    waitpid(pid, &status, 0);
+    FILE *f = fopen(log, "r");
+    size_t n = f ? fread(output, 1, sizeof output - 1, f) : 0;
+    output[n] = '\0';
+    if (f)
+        fclose(f);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+/* The folder holds only the log: nothing else was written, not even a
+ * temporary file. */
+static void folder_clean(void)
+{
+    char cmd[4200];
+    snprintf(cmd, sizeof cmd, "test \"$(ls -A %s | grep -v '^log$' | wc -l)\" = 0", dir);
+    if (system(cmd) != 0)
+        fail_msg("files were left in %s", dir);
+}
+
+static void expect(int code, const char *needle, const char *const *args)
+{
+    int got = run(args);
+    if (got != code || !strstr(output, needle))
+        fail_msg("aabench %s %s ...: exit %d (expected %d), output \"%s\" (expected \"%s\")",
+                 args[0], args[1] ? args[1] : "", got, code, output, needle);
+    folder_clean();
+}
+
+static char out_exr[256], out_txt[256];
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    const char *o = out_exr;
+#define T(code, needle, ...)                                                                   \
+    do {                                                                                       \
+        const char *a[] = {__VA_ARGS__, NULL};                                                 \
+        expect(code, needle, a);                                                               \
+    } while (0)
+    T(2, "unknown pattern \"nosuch\" (known: crow", "truth", "-p", "nosuch", "-s", "8x8", "-o", o);
+    T(2, "no parameter \"bogus\" (accepted: curves, kmax, gap0, gap1)", "truth", "-p",
+      "crow:bogus=1", "-s", "8x8", "-o", o);
+    T(2, "must be even", "truth", "-p", "crow:curves=3", "-s", "8x8", "-o", o);
+    T(2, "touch", "truth", "-p", "crow:kmax=5", "-s", "8x8", "-o", o);
+    T(2, "kmax=nan: not a number", "truth", "-p", "crow:kmax=nan", "-s", "8x8", "-o", o);
+    T(2, "kmax=inf: not a number", "truth", "-p", "crow:kmax=inf", "-s", "8x8", "-o", o);
+    T(2, "out of range (expected an integer from 2 to 65536)", "truth", "-p",
+      "crow:curves=1000000", "-s", "8x8", "-o", o);
+    T(2, "is not WxH", "truth", "-p", "crow", "-s", "256", "-o", o);
+    T(2, "is not WxH", "truth", "-p", "crow", "-s", "axb", "-o", o);
+    T(2, "each side must be from 1 to 65536", "truth", "-p", "crow", "-s", "0x5", "-o", o);
+    T(2, "GB", "truth", "-p", "crow", "-s", "65536x65536", "-o", o);
+    T(2, "r=-1: out of range", "truth", "-p", "crow", "-s", "8x8", "-f", "tent:r=-1", "-o", o);
+    T(2, "unknown filter \"cone\" (known: box, tent, gauss)", "truth", "-p", "crow", "-s",
+      "8x8", "-f", "cone", "-o", o);
+    T(2, "unknown image type", "truth", "-p", "crow", "-s", "8x8", "-o", "x.bmp");
+    T(2, "are required", "truth", "-p", "crow", "-s", "8x8");
+    T(2, "unknown option", "truth", "--frobnicate", "-p", "crow", "-s", "8x8", "-o", o);
+    T(2, "needs a value", "truth", "-p", "crow", "-s", "8x8", "-o");
+    T(2, "--threads 0 is out of range", "truth", "-p", "crow", "-s", "8x8", "-o", o,
+      "--threads", "0");
+    T(2, "--time \"nan\" is not a finite number", "truth", "-p", "crow", "-s", "8x8", "-o", o,
+      "--time", "nan");
+    T(2, "not two numbers", "truth", "-p", "crow", "-s", "8x8", "-o", o, "--motion", "1");
+    T(3, "does not exist", "truth", "-p", "crow", "-s", "8x8", "-o",
+      "/nonexistent-aabench/x.exr");
+    T(2, "unknown command", "frobnicate");
+    T(2, "unknown list", "list", "methods-and-more");
+#undef T
+}
+
+static void test_success(void **state)
+{
+    (void)state;
+    const char *list[] = {"list", NULL};
+    assert_int_equal(run(list), 0);
+    assert_non_null(strstr(output, "crow\t"));
+    assert_non_null(strstr(output, "tent\t"));
+    const char *help[] = {"truth", "--help", NULL};
+    assert_int_equal(run(help), 0);
+    assert_non_null(strstr(output, "usage: aabench truth"));
+    const char *truth[] = {"truth", "-p", "crow", "-s", "8x4", "-o", out_txt, "--no-cache", NULL};
+    assert_int_equal(run(truth), 0);
+    aa_image im;
+    assert_int_equal(aa_image_read_txt(out_txt, &im), AA_OK);
+    assert_true(im.w == 8 && im.h == 4 && im.c == 3);
+    aa_image_free(&im);
+    unlink(out_txt);
+}
+
+static void test_cache(void **state)
+{
+    (void)state;
+    char cache[256];
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    const char *truth[] = {"truth", "-p", "crow", "-s", "16x8", "-f", "tent:r=0.5",
+                           "-o", out_txt, "--cache", cache, NULL};
+    assert_int_equal(run(truth), 0);
+    assert_null(strstr(output, "from the cache"));
+    aa_image a, b;
+    assert_int_equal(aa_image_read_txt(out_txt, &a), AA_OK);
+    assert_int_equal(run(truth), 0);
+    assert_non_null(strstr(output, "from the cache"));
+    assert_int_equal(aa_image_read_txt(out_txt, &b), AA_OK);
+    assert_memory_equal(a.v, b.v, sizeof(double) * 16 * 8 * 3);
+    /* a different filter parameter is a different image: not from the cache */
+    const char *other[] = {"truth", "-p", "crow", "-s", "16x8", "-f", "tent:r=0.75",
+                           "-o", out_txt, "--cache", cache, NULL};
+    assert_int_equal(run(other), 0);
+    assert_null(strstr(output, "from the cache"));
+    aa_image_free(&a);
+    aa_image_free(&b);
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "rm -rf %s %s", cache, out_txt);
+    assert_int_equal(system(cmd), 0);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    if (!getenv("AABENCH") || !mkdtemp(dir))
+        return -1;
+    snprintf(out_exr, sizeof out_exr, "%s/out.exr", dir);
+    snprintf(out_txt, sizeof out_txt, "%s/out.txt", dir);
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[4200];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    return system(cmd);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_success),
+        cmocka_unit_test(test_cache),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

@@ -1,0 +1,148 @@
+/*
+ * test_spec.c: parsing specs, parameters and sizes; every registered type
+ * (patterns, filters) has a consistent parameter table.
+ */
+#include "aabench.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+static const void *const *pattern_table(void) { return (const void *const *)aa_pattern_types; }
+static const void *const *filter_table(void) { return (const void *const *)aa_filter_types; }
+
+static void test_defaults(void **state)
+{
+    (void)state;
+    aa_spec s;
+    assert_int_equal(aa_spec_parse("crow", pattern_table(), "pattern", &s), AA_OK);
+    /* PATTERNS.md: curves 96, kmax 0.6, gap0 4/256, gap1 0.5/256 */
+    assert_true(s.v[0] == 96 && s.v[1] == 0.6 && s.v[2] == 4.0 / 256 && s.v[3] == 0.5 / 256);
+    assert_int_equal(aa_spec_parse("tent", filter_table(), "filter", &s), AA_OK);
+    assert_true(s.v[0] == 1.0); /* PATTERNS.md: default R = 1 */
+    assert_int_equal(aa_spec_parse("gauss", filter_table(), "filter", &s), AA_OK);
+    assert_true(s.v[0] == 0.5); /* PATTERNS.md: default S = 0.5 */
+}
+
+static void test_values(void **state)
+{
+    (void)state;
+    aa_spec s;
+    assert_int_equal(aa_spec_parse("crow:curves=64,gap0=4/256", pattern_table(), "pattern", &s),
+                     AA_OK);
+    assert_true(s.v[0] == 64 && s.v[2] == 0.015625);
+    assert_int_equal(aa_spec_parse("tent:r=0.5", filter_table(), "filter", &s), AA_OK);
+    assert_true(s.v[0] == 0.5);
+    assert_int_equal(aa_spec_parse("gauss:s=1e0", filter_table(), "filter", &s), AA_OK);
+    assert_true(s.v[0] == 1.0);
+}
+
+static void refused(const char *text, const void *const *table, const char *needle)
+{
+    aa_spec s;
+    int st = aa_spec_parse(text, table, "thing", &s);
+    if (st != AA_EINVAL || !strstr(aa_last_error(), needle))
+        fail_msg("\"%s\": status %d, message \"%s\", expected it to mention \"%s\"", text, st,
+                 aa_last_error(), needle);
+}
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    const void *const *p = pattern_table(), *const *f = filter_table();
+    refused("", p, "empty");
+    refused("nosuch", p, "known: crow");
+    refused("crow:", p, "nothing after");
+    refused("crow:bogus=1", p, "accepted: curves, kmax, gap0, gap1");
+    refused("crow:curves", p, "not key=value");
+    refused("crow:curves=", p, "not a number");
+    refused("crow:curves=1.5", p, "not an integer");
+    refused("crow:curves=0", p, "out of range");
+    refused("crow:curves=1e9", p, "out of range");
+    refused("crow:kmax=nan", p, "not a number");
+    refused("crow:kmax=inf", p, "not a number");
+    refused("crow:kmax=-inf", p, "not a number");
+    refused("crow:kmax=0x", p, "not a number");
+    refused("crow:kmax= 1", p, "not a number");
+    refused("crow:gap0=1/0", p, "not a number");
+    refused("crow:curves=4,curves=6", p, "twice");
+    refused("tent:r=-1", f, "out of range");
+    refused("tent:r=0", f, "out of range");
+    refused("gauss:s=1e400", f, "not a number");
+    refused("box:r=1", f, "accepted: none");
+}
+
+static void test_format_round_trip(void **state)
+{
+    (void)state;
+    /* every type's canonical text parses back to the same values */
+    const void *const *tables[] = {pattern_table(), filter_table()};
+    for (int t = 0; t < 2; t++) {
+        for (size_t k = 0; tables[t][k]; k++) {
+            const aa_info *info = tables[t][k];
+            aa_spec a, b;
+            char text[2048];
+            aa_spec_default(info, &a);
+            assert_int_equal(aa_spec_format(&a, text, sizeof text), AA_OK);
+            assert_int_equal(aa_spec_parse(text, tables[t], "thing", &b), AA_OK);
+            assert_memory_equal(a.v, b.v, sizeof a.v);
+        }
+    }
+}
+
+/* Every parameter table is consistent: defaults inside their ranges,
+ * keys unique, at most AA_MAX_PARAMS, a help text. */
+static void test_tables(void **state)
+{
+    (void)state;
+    const void *const *tables[] = {pattern_table(), filter_table()};
+    for (int t = 0; t < 2; t++) {
+        for (size_t k = 0; tables[t][k]; k++) {
+            const aa_info *info = tables[t][k];
+            size_t n = aa_param_count(info);
+            assert_true(n <= AA_MAX_PARAMS);
+            assert_non_null(info->summary);
+            assert_true(aa_table_find(tables[t], info->name) == info);
+            for (size_t q = 0; q < n; q++) {
+                const aa_param *p = &info->params[q];
+                assert_non_null(p->help);
+                assert_int_equal(aa_spec_index(info, p->key), (int)q);
+                if (p->kind != AA_PARAM_CHOICE)
+                    assert_true(p->def >= p->min && p->def <= p->max &&
+                                !(p->open_min && p->def == p->min));
+            }
+        }
+    }
+}
+
+static void test_sizes(void **state)
+{
+    (void)state;
+    int w, h;
+    assert_int_equal(aa_size_parse("256x129", &w, &h), AA_OK);
+    assert_true(w == 256 && h == 129);
+    assert_int_equal(aa_size_parse("1x1", &w, &h), AA_OK);
+    const char *bad[] = {"", "256", "x256", "256x", "0x5", "5x0", "-5x5", "5x-5", "5.5x5",
+                         "5x5x5", "65537x1", "99999999999x1", " 5x5", "5x5 ", "0x10"};
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++)
+        if (aa_size_parse(bad[k], &w, &h) != AA_EINVAL)
+            fail_msg("size \"%s\" accepted", bad[k]);
+    /* 65536 x 65536 x 3 doubles is 103 GB: more than this machine's memory */
+    assert_int_equal(aa_size_check(65536, 65536, 3, 1), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "GB"));
+    assert_int_equal(aa_size_check(256, 256, 3, 1), AA_OK);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_defaults),   cmocka_unit_test(test_values),
+        cmocka_unit_test(test_refusals),   cmocka_unit_test(test_format_round_trip),
+        cmocka_unit_test(test_tables),     cmocka_unit_test(test_sizes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

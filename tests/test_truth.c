@@ -1,0 +1,424 @@
+/*
+ * test_truth.c: the ground truth against independent derivations.
+ *
+ *  - `crow` under the box filter against tests/oracle.c's closed form (the
+ *    alternating sum of exact "area right of arc k" integrals of clamped
+ *    quadratics, derived from PATTERNS.md alone), on every pixel of 256x256,
+ *    7x3 and 255x129, with default and non-default parameters: 1e-12.
+ *  - tent and Gaussian against the oracle's brute-force integration, within
+ *    that integration's own error estimate.
+ *  - uniform regions and pixels wholly inside a band are exact (0 or 1);
+ *    every pixel's bound is at most 1e-12; 1 and 2 threads agree bit for bit.
+ *  - polygon scenes (several layers, vertices inside pixels) against areas
+ *    from an independent polygon clipper written here (Sutherland-Hodgman and
+ *    the shoelace formula); Catmull's pixel is (0, 0.25, 0.5) (Catmull 1978).
+ *  - a parabolic segment's area is 2/3 of its control triangle (Archimedes).
+ *  - the reference cache returns the same image and treats a damaged file
+ *    as a miss.
+ */
+#include "aabench.h"
+#include "oracle.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
+
+/* Reference of a pattern spec at w x h under filter text. */
+static void reference(const char *pattern, int w, int h, const char *filter, int threads,
+                      aa_image *img, aa_image *bound, aa_truth_stats *stats)
+{
+    aa_spec spec;
+    aa_filter f;
+    aa_scene *s, *placed;
+    assert_int_equal(aa_pattern_parse(pattern, &spec), AA_OK);
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
+    assert_non_null(placed = aa_scene_place(s, w, h, 0, 0, 0));
+    assert_int_equal(aa_image_alloc(img, w, h, 3), AA_OK);
+    if (bound)
+        assert_int_equal(aa_image_alloc(bound, w, h, 1), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &f, threads, img, bound, stats), AA_OK);
+    aa_scene_free(placed);
+    aa_scene_free(s);
+}
+
+static oracle_crow oracle_params(const char *pattern)
+{
+    aa_spec spec;
+    assert_int_equal(aa_pattern_parse(pattern, &spec), AA_OK);
+    oracle_crow p = {(int)spec.v[0], spec.v[1], spec.v[2], spec.v[3]};
+    assert_true(oracle_crow_valid(&p));
+    return p;
+}
+
+static void check_box(const char *pattern, int w, int h)
+{
+    aa_image img, bound;
+    aa_truth_stats st;
+    oracle_crow p = oracle_params(pattern);
+    reference(pattern, w, h, "box", 0, &img, &bound, &st);
+    double worst = 0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            double want = oracle_crow_box(&p, w, h, i, j), *px = aa_pixel(&img, i, j);
+            double d = fabs(px[0] - want);
+            worst = fmax(worst, d);
+            if (d > 1e-12 || px[1] != px[0] || px[2] != px[0])
+                fail_msg("%s %dx%d pixel (%d, %d): reference %.17g, closed form %.17g", pattern,
+                         w, h, i, j, px[0], want);
+            assert_true(*aa_pixel(&bound, i, j) <= AA_TRUTH_BOUND);
+        }
+    print_message("%-40s %4dx%-4d box: max |ref - closed form| %.2e, max bound %.2e, %zu "
+                  "integrated, %zu filled\n",
+                  pattern, w, h, worst, st.max_bound, st.integrated, st.filled);
+    aa_image_free(&img);
+    aa_image_free(&bound);
+}
+
+static void test_crow_box_default(void **state)
+{
+    (void)state;
+    check_box("crow", 256, 256);
+    check_box("crow", 7, 3);
+    check_box("crow", 255, 129);
+    check_box("crow", 1, 1);
+}
+
+static void test_crow_box_other(void **state)
+{
+    (void)state;
+    check_box("crow:curves=24,kmax=0.1,gap0=0.03,gap1=0.004", 256, 256);
+    check_box("crow:curves=24,kmax=0.1,gap0=0.03,gap1=0.004", 7, 3);
+    check_box("crow:curves=24,kmax=0.1,gap0=0.03,gap1=0.004", 255, 129);
+    check_box("crow:curves=2,kmax=0.3,gap0=0.2", 33, 17);
+    check_box("crow:curves=40,kmax=-0.4,gap0=0.01,gap1=0.02", 101, 77); /* curving left */
+    /* arcs reaching outside the unit square, clipped by the background */
+    check_box("crow:curves=10,kmax=0.5,gap0=0.2,gap1=0.05", 64, 48);
+}
+
+/* Tent and Gaussian against the oracle's brute force on a sample of pixels
+ * (the brute force costs milliseconds a pixel). */
+static void check_filtered(const char *pattern, int w, int h, const char *filter, double r,
+                           int gauss)
+{
+    aa_image img, bound;
+    aa_truth_stats st;
+    oracle_crow p = oracle_params(pattern);
+    reference(pattern, w, h, filter, 0, &img, &bound, &st);
+    double worst = 0, worst_ratio = 0;
+    int checked = 0;
+    for (int j = 0; j < h; j += 3)
+        for (int i = (j * 7) % 5; i < w; i += 5) {
+            double err, want = gauss ? oracle_crow_gauss(&p, w, h, i, j, r, &err)
+                                     : oracle_crow_tent(&p, w, h, i, j, r, &err);
+            double got = aa_pixel(&img, i, j)[0], d = fabs(got - want);
+            double allowed = err + *aa_pixel(&bound, i, j);
+            if (!(d <= allowed))
+                fail_msg("%s %s pixel (%d, %d): reference %.17g, brute force %.17g +- %.2e", pattern,
+                         filter, i, j, got, want, err);
+            worst = fmax(worst, d);
+            worst_ratio = fmax(worst_ratio, d / allowed);
+            checked++;
+        }
+    print_message("%-40s %4dx%-4d %-12s: %d pixels, max |ref - brute| %.2e (at most %.0f%% of "
+                  "the brute force's error estimate), max bound %.2e\n",
+                  pattern, w, h, filter, checked, worst, 100 * worst_ratio, st.max_bound);
+    assert_true(st.max_bound <= AA_TRUTH_BOUND);
+    aa_image_free(&img);
+    aa_image_free(&bound);
+}
+
+static void test_crow_tent(void **state)
+{
+    (void)state;
+    check_filtered("crow", 64, 64, "tent:r=0.5", 0.5, 0);
+    check_filtered("crow", 64, 64, "tent:r=1", 1.0, 0);
+    check_filtered("crow:curves=24,kmax=0.1,gap0=0.03,gap1=0.004", 47, 31, "tent:r=1.5", 1.5, 0);
+}
+
+static void test_crow_gauss(void **state)
+{
+    (void)state;
+    check_filtered("crow", 64, 64, "gauss", 0.5, 1);
+    check_filtered("crow", 48, 40, "gauss:s=1", 1.0, 1);
+}
+
+/* Pixels that no arc enters are exactly 0 or 1 and match the pattern. */
+static void test_uniform_exact(void **state)
+{
+    (void)state;
+    const int w = 256, h = 256;
+    aa_image img;
+    aa_truth_stats st;
+    oracle_crow p = oracle_params("crow");
+    reference("crow", w, h, "box", 1, &img, NULL, &st);
+    int inside = 0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            /* no arc meets the pixel iff the colour at its four corners and
+             * the arcs' extents say so: test with a dense grid of points
+             * instead, independently of the scene code */
+            int first = oracle_crow_point(&p, (i + 0.5) / w, (j + 0.5) / h), same = 1;
+            for (int a = 0; a <= 16 && same; a++)
+                for (int b = 0; b <= 16 && same; b++)
+                    same = oracle_crow_point(&p, (i + a / 16.0) / w, (j + b / 16.0) / h) == first;
+            if (!same)
+                continue;
+            /* a 16x16 grid can miss a sliver: confirm with the closed form */
+            if (oracle_crow_box(&p, w, h, i, j) != first)
+                continue;
+            inside++;
+            assert_true(aa_pixel(&img, i, j)[0] == (double)first);
+        }
+    print_message("%d pixels wholly inside a band or the background, all exactly 0 or 1\n", inside);
+    assert_true(inside > 30000);
+    aa_image_free(&img);
+}
+
+static void test_threads_identical(void **state)
+{
+    (void)state;
+    const char *filters[] = {"box", "tent:r=1", "gauss"};
+    for (int k = 0; k < 3; k++) {
+        aa_image a, b;
+        aa_truth_stats st;
+        reference("crow", 97, 61, filters[k], 1, &a, NULL, &st);
+        reference("crow", 97, 61, filters[k], 2, &b, NULL, &st);
+        assert_memory_equal(a.v, b.v, sizeof(double) * 97 * 61 * 3);
+        aa_image_free(&a);
+        aa_image_free(&b);
+    }
+}
+
+/* ---- polygons against an independent clipper ---- */
+
+typedef struct poly {
+    int n;
+    double x[64], y[64];
+} poly;
+
+/* Clip against the half-plane a x + b y <= c (Sutherland-Hodgman). */
+static poly clip(const poly *in, double a, double b, double c)
+{
+    poly out = {0};
+    for (int k = 0; k < in->n; k++) {
+        int m = (k + 1) % in->n;
+        double dk = a * in->x[k] + b * in->y[k] - c, dm = a * in->x[m] + b * in->y[m] - c;
+        if (dk <= 0)
+            out.x[out.n] = in->x[k], out.y[out.n++] = in->y[k];
+        if ((dk < 0 && dm > 0) || (dk > 0 && dm < 0)) {
+            double t = dk / (dk - dm);
+            out.x[out.n] = in->x[k] + t * (in->x[m] - in->x[k]);
+            out.y[out.n++] = in->y[k] + t * (in->y[m] - in->y[k]);
+        }
+    }
+    return out;
+}
+
+static double area(const poly *p)
+{
+    double s = 0;
+    for (int k = 0; k < p->n; k++) {
+        int m = (k + 1) % p->n;
+        s += p->x[k] * p->y[m] - p->x[m] * p->y[k];
+    }
+    return 0.5 * fabs(s);
+}
+
+/* Area of convex polygon p inside the square [x0, x0+d] x [y0, y0+d]. */
+static double area_in_square(const poly *p, double x0, double y0, double d)
+{
+    poly q = clip(p, -1, 0, -x0);
+    q = clip(&q, 1, 0, x0 + d);
+    q = clip(&q, 0, -1, -y0);
+    q = clip(&q, 0, 1, y0 + d);
+    return area(&q);
+}
+
+/* Two convex polygons in two layers, the front one red over a white one
+ * behind, on grey: the box value per pixel is grey + (red - grey) A_front
+ * + (white - grey) (A_back - A_overlap), with the overlap the back polygon
+ * clipped by the front one's edges (both convex). */
+static void test_polygon_layers(void **state)
+{
+    (void)state;
+    const int w = 23, h = 17;
+    poly front = {3, {0.13, 0.81, 0.37}, {0.21, 0.33, 0.92}};
+    poly back = {5, {0.4, 0.95, 0.9, 0.6, 0.35}, {0.05, 0.2, 0.7, 0.85, 0.5}};
+    const aa_rgb red = {{1, 0, 0}}, grey = {{0.25, 0.25, 0.25}};
+    aa_scene *s = aa_scene_new(grey);
+    const poly *polys[2] = {&front, &back};
+    aa_rgb colours[2] = {red, white};
+    for (int l = 0; l < 2; l++) {
+        assert_int_equal(aa_scene_layer(s, colours[l], AA_FILL_NONZERO), AA_OK);
+        assert_int_equal(aa_scene_move_to(s, polys[l]->x[0], polys[l]->y[0]), AA_OK);
+        for (int k = 1; k < polys[l]->n; k++)
+            assert_int_equal(aa_scene_line_to(s, polys[l]->x[k], polys[l]->y[k]), AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *placed = aa_scene_place(s, w, h, 0, 0, 0);
+    aa_filter f;
+    aa_filter_default(&f);
+    aa_image img;
+    aa_truth_stats st;
+    assert_int_equal(aa_image_alloc(&img, w, h, 3), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &f, 0, &img, NULL, &st), AA_OK);
+    /* the overlap: back clipped to the inside of front (front is ordered
+     * counter-clockwise on screen with y down; clip by each edge's side) */
+    poly overlap = back;
+    for (int k = 0; k < front.n; k++) {
+        int m = (k + 1) % front.n, o = (k + 2) % front.n;
+        double a = front.y[m] - front.y[k], b = front.x[k] - front.x[m];
+        double c = a * front.x[k] + b * front.y[k];
+        if (a * front.x[o] + b * front.y[o] > c) /* keep the side holding vertex o */
+            a = -a, b = -b, c = -c;
+        overlap = clip(&overlap, a, b, c);
+    }
+    double worst = 0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            /* pattern units: the pixel is the square of side 1/w by 1/h; scale
+             * y so the pixel is square in a stretched copy */
+            poly fs = front, bs = back, os = overlap;
+            for (int k = 0; k < fs.n; k++) fs.x[k] *= w, fs.y[k] *= h;
+            for (int k = 0; k < bs.n; k++) bs.x[k] *= w, bs.y[k] *= h;
+            for (int k = 0; k < os.n; k++) os.x[k] *= w, os.y[k] *= h;
+            double af = area_in_square(&fs, i, j, 1), ab = area_in_square(&bs, i, j, 1);
+            double ao = area_in_square(&os, i, j, 1);
+            for (int c = 0; c < 3; c++) {
+                double want = grey.c[c] + (red.c[c] - grey.c[c]) * af +
+                              (white.c[c] - grey.c[c]) * (ab - ao);
+                double d = fabs(aa_pixel(&img, i, j)[c] - want);
+                worst = fmax(worst, d);
+                if (d > 1e-12)
+                    fail_msg("pixel (%d, %d) channel %d: %.17g, clipper %.17g", i, j, c,
+                             aa_pixel(&img, i, j)[c], want);
+            }
+        }
+    print_message("two polygon layers 23x17: max |ref - clipper| %.2e\n", worst);
+    aa_image_free(&img);
+    aa_scene_free(placed);
+    aa_scene_free(s);
+}
+
+/* Catmull 1978, fig. 1: "The correct integration would be 25% green, 25%
+ * black, 50% blue and no red": the pixel is (0, 0.25, 0.5). */
+static void test_catmull_pixel(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new(black);
+    double rects[3][4] = {{0, 0, 0.5, 0.5}, {0, 0.5, 1, 1}, {0.1, 0.1, 0.45, 0.9}};
+    aa_rgb colours[3] = {{{0, 1, 0}}, {{0, 0, 1}}, {{1, 0, 0}}};
+    for (int l = 0; l < 3; l++) {
+        const double *r = rects[l];
+        assert_int_equal(aa_scene_layer(s, colours[l], AA_FILL_NONZERO), AA_OK);
+        assert_int_equal(aa_scene_move_to(s, r[0], r[1]), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, r[2], r[1]), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, r[2], r[3]), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, r[0], r[3]), AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *placed = aa_scene_place(s, 1, 1, 0, 0, 0);
+    aa_filter f;
+    aa_filter_default(&f);
+    aa_image img;
+    assert_int_equal(aa_image_alloc(&img, 1, 1, 3), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &f, 1, &img, NULL, NULL), AA_OK);
+    assert_true(fabs(img.v[0]) < 1e-15 && fabs(img.v[1] - 0.25) < 1e-15 &&
+                fabs(img.v[2] - 0.5) < 1e-15);
+    aa_image_free(&img);
+    aa_scene_free(placed);
+    aa_scene_free(s);
+}
+
+/* The segment between the chord and the quadratic arc (0.1,0.9)-(0.5,-0.3)-
+ * (0.9,0.9) has 2/3 of the control triangle's area (Archimedes): the
+ * triangle has base 0.8 and height 1.2, area 0.48, so the segment 0.32. */
+static void test_parabolic_segment(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new(black);
+    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.1, 0.9), AA_OK);
+    assert_int_equal(aa_scene_quad_to(s, 0.5, -0.3, 0.9, 0.9), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_filter f;
+    aa_filter_default(&f);
+    aa_image img;
+    aa_truth_stats st;
+    /* the whole image as one pixel, and summed over 13 x 11 pixels */
+    int sizes[2][2] = {{1, 1}, {13, 11}};
+    for (int k = 0; k < 2; k++) {
+        int w = sizes[k][0], h = sizes[k][1];
+        aa_scene *placed = aa_scene_place(s, w, h, 0, 0, 0);
+        assert_int_equal(aa_image_alloc(&img, w, h, 3), AA_OK);
+        assert_int_equal(aa_truth_render(placed, &f, 0, &img, NULL, &st), AA_OK);
+        double sum = 0;
+        for (int p = 0; p < w * h; p++)
+            sum += img.v[3 * p];
+        assert_true(fabs(sum / (w * h) - 0.32) < 1e-13);
+        aa_image_free(&img);
+        aa_scene_free(placed);
+    }
+    aa_scene_free(s);
+}
+
+static void test_cache(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-cache-XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    aa_view v;
+    memset(&v, 0, sizeof v);
+    assert_int_equal(aa_pattern_parse("crow", &v.pattern), AA_OK);
+    assert_int_equal(aa_filter_parse("tent:r=0.5", &v.filter), AA_OK);
+    v.w = 40, v.h = 30;
+    aa_image a, b;
+    int hit;
+    assert_int_equal(aa_reference(&v, dir, 0, &a, NULL, &hit), AA_OK);
+    assert_int_equal(hit, 0);
+    assert_int_equal(aa_reference(&v, dir, 0, &b, NULL, &hit), AA_OK);
+    assert_int_equal(hit, 1);
+    assert_memory_equal(a.v, b.v, sizeof(double) * 40 * 30 * 3);
+    aa_image_free(&b);
+    /* damage the file: cut it short; the next call recomputes */
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "for f in %s/*.bin; do truncate -s 100 \"$f\"; done", dir);
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(aa_reference(&v, dir, 0, &b, NULL, &hit), AA_OK);
+    assert_int_equal(hit, 0);
+    assert_memory_equal(a.v, b.v, sizeof(double) * 40 * 30 * 3);
+    aa_image_free(&b);
+    /* another time is another image */
+    v.t = 1, v.vx = 0.5;
+    assert_int_equal(aa_reference(&v, dir, 0, &b, NULL, &hit), AA_OK);
+    assert_int_equal(hit, 0);
+    aa_image_free(&a);
+    aa_image_free(&b);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_crow_box_default), cmocka_unit_test(test_crow_box_other),
+        cmocka_unit_test(test_crow_tent),        cmocka_unit_test(test_crow_gauss),
+        cmocka_unit_test(test_uniform_exact),    cmocka_unit_test(test_threads_identical),
+        cmocka_unit_test(test_polygon_layers),   cmocka_unit_test(test_catmull_pixel),
+        cmocka_unit_test(test_parabolic_segment), cmocka_unit_test(test_cache),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
