@@ -26,7 +26,7 @@ WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-unknown-prag
 CPPFLAGS := -D_DEFAULT_SOURCE -Iharness -Ipatterns -Ialgorithms
 CFLAGS   := -std=c11 -O2 -g $(WARN) -fopenmp -fPIC
 CXXFLAGS := -std=c++17 -O2 -g -Wall -Wextra -Werror -fPIC
-LDLIBS    = $(PKG_LIBS) -lstdc++ -lm -fopenmp
+LDLIBS    = $(PKG_LIBS) -lstdc++ -lm -ldl -fopenmp
 
 SAN       := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 SAN_BUILD := $(BUILD)/san
@@ -36,7 +36,8 @@ LIB_CSRC := $(filter-out $(CLI_SRC),$(wildcard harness/*.c)) $(wildcard patterns
             $(wildcard algorithms/*.c)
 LIB_XSRC := $(wildcard harness/*.cpp)
 TEST_SRC := $(wildcard tests/test_*.c)
-TEST_AUX := $(filter-out $(TEST_SRC) tests/bench_%.c,$(wildcard tests/*.c))
+TEST_AUX := $(filter-out $(TEST_SRC) tests/bench_%.c tests/plugin_%.c,$(wildcard tests/*.c))
+PLUGIN_SRC := $(wildcard tests/plugin_*.c)
 BENCH_SRC := $(wildcard tests/bench_*.c)
 HEADERS  := $(wildcard harness/*.h patterns/*.h algorithms/*.h tests/*.h)
 
@@ -48,13 +49,15 @@ endef
 LIB      := $(BUILD)/libaabench.a
 SAN_LIB  := $(SAN_BUILD)/libaabench.a
 TESTS     := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
+PLUGINS   := $(patsubst tests/%.c,$(BUILD)/tests/%.so,$(PLUGIN_SRC))
+SAN_PLUGINS := $(patsubst tests/%.c,$(SAN_BUILD)/tests/%.so,$(PLUGIN_SRC))
 SAN_TESTS := $(patsubst tests/%.c,$(SAN_BUILD)/tests/%,$(TEST_SRC))
 BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
 
 # keep the objects of test helpers between runs
 .SECONDARY:
 
-.PHONY: all deps run test check-tests check-tests-san bench install clean
+.PHONY: all deps run test check-tests check-tests-san check-gate baseline bench install clean
 .DEFAULT_GOAL := all
 
 all: $(BUILD)/aabench $(LIB)
@@ -75,13 +78,19 @@ $(LIB): $(call objs,$(BUILD))
 	@rm -f $@
 	@echo '  AR    $@'
 	$(Q)ar rcs $@ $^
+# The command exports the whole library, so plug-ins can call it.
+WHOLE = -rdynamic -Wl,--whole-archive $(1) -Wl,--no-whole-archive
 $(BUILD)/aabench: $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_SRC)) $(LIB)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CFLAGS) $^ -o $@ $(LDLIBS)
+	$(Q)$(CC) $(CFLAGS) $(filter %.o,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS)
 $(BUILD)/tests/%: tests/%.c $(patsubst %.c,$(BUILD)/obj/%.o,$(TEST_AUX)) $(LIB)
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -Itests $(PKG_CFLAGS) $^ -o $@ $(LDLIBS) $(TEST_LIBS)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -Itests $(PKG_CFLAGS) $(filter-out %.a,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
+$(BUILD)/tests/%.so: tests/%.c harness/aabench.h
+	@mkdir -p $(dir $@)
+	@echo '  LD    $@'
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -shared $< -o $@
 $(BUILD)/bench_%: tests/bench_%.c $(LIB)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) $^ -o $@ $(LDLIBS)
@@ -101,11 +110,15 @@ $(SAN_LIB): $(call objs,$(SAN_BUILD))
 	$(Q)ar rcs $@ $^
 $(SAN_BUILD)/aabench: $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_SRC)) $(SAN_LIB)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CFLAGS) $(SAN) $^ -o $@ $(LDLIBS)
+	$(Q)$(CC) $(CFLAGS) $(SAN) $(filter %.o,$^) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS)
 $(SAN_BUILD)/tests/%: tests/%.c $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(TEST_AUX)) $(SAN_LIB)
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $^ -o $@ $(LDLIBS) $(TEST_LIBS)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $(filter-out %.a,$^) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
+$(SAN_BUILD)/tests/%.so: tests/%.c harness/aabench.h
+	@mkdir -p $(dir $@)
+	@echo '  LD    $@'
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -shared $< -o $@
 
 # ---- the two set-up commands ----
 run: deps
@@ -115,11 +128,21 @@ run: deps
 test: deps
 	@$(MAKE) --no-print-directory check-tests
 	@$(MAKE) --no-print-directory check-tests-san
+	@$(MAKE) --no-print-directory check-gate
 
-check-tests: $(BUILD)/aabench $(TESTS)
+# The regression gate: the quick suite against results/baseline.csv.
+check-gate: $(BUILD)/aabench
+	$(BUILD)/aabench check --baseline results/baseline.csv
+
+# Remake the baseline from the quick suite (commit the result).
+baseline: $(BUILD)/aabench
+	$(BUILD)/aabench run --suite quick --reps 3 --no-images --no-plots -q --out $(BUILD)/baseline-run
+	cp $(BUILD)/baseline-run/results.csv results/baseline.csv
+
+check-tests: $(BUILD)/aabench $(TESTS) $(PLUGINS)
 	@sh scripts/run-tests.sh $(BUILD) $(TESTS)
 
-check-tests-san: $(SAN_BUILD)/aabench $(SAN_TESTS)
+check-tests-san: $(SAN_BUILD)/aabench $(SAN_TESTS) $(SAN_PLUGINS)
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  sh scripts/run-tests.sh $(SAN_BUILD) $(SAN_TESTS)
 

@@ -107,6 +107,9 @@ void aa_spec_default(const aa_info *info, aa_spec *out);
 int aa_spec_format(const aa_spec *spec, char *buf, size_t len);
 /* Index of parameter `key`, or -1. */
 int aa_spec_index(const aa_info *info, const char *key);
+/* A file-name-safe form of a spec: letters, digits, '.' and '-' kept, every
+ * other character '_'. */
+void aa_spec_slug(const char *text, char *buf, size_t len);
 /* Parse one value for `param` (used by spec parsing and by options). */
 int aa_param_parse(const aa_param *param, const char *text, double *value);
 size_t aa_param_count(const aa_info *info);
@@ -257,6 +260,14 @@ void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, doub
  * line x, strictly inside (y0, y1); returns how many. */
 int aa_piece_meet_x(const aa_piece *p, double x, double ys[2]);
 
+/* The heights (ascending, at most max) in (ya, yb) where two pieces meet
+ * (cross or touch) while both are present: in closed form for lines, a
+ * line and an arc, and two arcs whose x is quadratic in y; for two general
+ * arcs by bisection on their exact x extents (to 1e-12 relative), which
+ * cannot miss a meeting.  Flat pieces meet nothing. */
+int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys,
+                  int max);
+
 /* Point and line queries (work on any finished scene). */
 aa_rgb aa_scene_colour_at(const aa_scene *s, double x, double y);
 
@@ -302,9 +313,20 @@ aa_rgb aa_strip_colour_at(const aa_strip *st, double x, double y);
  * (base + pieces that ended inside the band): add the local pieces' own
  * crossings to get any point of the window. */
 void aa_strip_winding_left(const aa_strip *st, double y, int *wind);
-/* Pieces entered or left so far in this band: unchanged between two
- * windows with no local piece means the same uniform colour. */
-size_t aa_strip_events(const aa_strip *st);
+/* 1 if no piece ends inside the band: then every piece meeting it crosses
+ * every line of the band, so the winding left of a window is the same on
+ * all its lines and a point's colour depends only on which local pieces lie
+ * left of it (a shortcut for sampling methods). */
+int aa_strip_all_full(const aa_strip *st);
+/* The left end of the next piece to enter (INFINITY if none). */
+double aa_strip_next_entry(const aa_strip *st);
+/* With the window of pixel i ([i + 1/2 - r, i + 1/2 + r]) holding no local
+ * piece: the run of pixels i .. end-1 (of a row of w) whose windows are all
+ * uniform with the same colour, found without a window call each.  Returns
+ * end (> i) and the colour at height y; `wind` is the caller's winding
+ * array (one int per layer). */
+int aa_strip_uniform_run(const aa_strip *st, int i, int w, double r, double y, int *wind,
+                         aa_rgb *colour);
 
 typedef struct aa_span {
     double x0, x1;
@@ -411,6 +433,247 @@ int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_ima
                  aa_truth_stats *stats, int *from_cache);
 
 /* ------------------------------------------------------------------------
+ * Methods (algorithms/): named, parameterised renderers
+ *
+ * A method is a constant type struct, as GSL describes each generator with
+ * one gsl_rng_type: metadata, the size of its instance state, and functions.
+ * The harness allocates `size` zeroed bytes of state, calls init once
+ * (outside any timing), render one or more times with the same job (an
+ * instance serves the job it was initialised with: tables made in init for
+ * that job's scene, size and filter stay valid), and release.  A method
+ * writes a W x H linear RGB image and counters; it never allocates inside
+ * its per-pixel loops, and its image must not depend on the thread count:
+ * random streams come from (seed, pixel, frame), see aa_rng_seed, the frame
+ * being aa_frame_index(t).
+ * ------------------------------------------------------------------------ */
+
+typedef struct aa_counters {
+    uint64_t samples;          /* point evaluations of the scene */
+    uint64_t expensive_pixels; /* pixels that took more than the cheap path */
+} aa_counters;
+
+/* What a render is asked for. */
+typedef struct aa_job {
+    const aa_scene *pattern; /* the pattern's scene, pattern units */
+    const aa_scene *placed;  /* the same placed at time t, pixel units */
+    int w, h;
+    double t, vx, vy; /* time (frames) and motion (pixels per frame) */
+    aa_filter filter;
+    uint64_t seed;
+    int threads;    /* OpenMP threads to use (>= 1) */
+    int frame_only; /* temporal methods: the single frame at t, not the eye's image */
+} aa_job;
+
+/* Build a job for a pattern scene (placing it at t); aa_job_free frees
+ * only what aa_job_init made (the placed scene). */
+int aa_job_init(aa_job *job, const aa_scene *pattern, int w, int h, double t, double vx,
+                double vy, const aa_filter *f, uint64_t seed, int threads);
+void aa_job_free(aa_job *job);
+
+enum aa_method_flags {
+    AA_METHOD_SEEDED = 1,  /* the image depends on the seed */
+    AA_METHOD_TEMPORAL = 2 /* the image depends on several frames */
+};
+
+typedef struct aa_method_type {
+    aa_info info;
+    size_t size;    /* bytes of instance state */
+    unsigned flags; /* aa_method_flags */
+    /* Refuse parameter values or a filter the method cannot honour, with a
+     * message that says what is accepted (NULL: everything is accepted). */
+    int (*check)(const double *p, const aa_filter *f);
+    /* Prepare for renders of jobs like this one (tables, workspaces). */
+    int (*init)(void *state, const double *p, const aa_job *job);
+    int (*render)(void *state, const double *p, const aa_job *job, aa_image *out,
+                  aa_counters *counters);
+    void (*release)(void *state);
+} aa_method_type;
+
+typedef struct aa_method {
+    const aa_method_type *type;
+    aa_spec spec;
+    void *state;
+} aa_method;
+
+extern const aa_method_type *const aa_method_types[]; /* built-in, NULL-terminated */
+
+/* The method table in use: the built-in methods, then those of loaded
+ * plug-ins.  NULL-terminated; valid until the next aa_plugin_load. */
+const void *const *aa_method_table(void);
+/* Parse a method spec and check it against the filter. */
+int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out);
+int aa_method_init(aa_method *m, const aa_spec *spec, const aa_job *job);
+int aa_method_render(aa_method *m, const aa_job *job, aa_image *out, aa_counters *counters);
+void aa_method_free(aa_method *m);
+
+/* Render `reps` times (after one untimed init); the image and counters are
+ * those of the last render, `seconds` receives each render's time (may be
+ * NULL).  The image must be allocated W x H x 3 and is touched before
+ * timing, so page faults are not counted. */
+int aa_method_run(const aa_spec *spec, const aa_job *job, int reps, aa_image *out,
+                  aa_counters *counters, double *seconds);
+
+/* Plug-ins: a shared library exporting `aa_plugin_abi` (an int equal to
+ * AA_PLUGIN_ABI) and `aa_plugin_methods` (a NULL-terminated array of
+ * pointers to aa_method_type).  Its methods join the table; a name that is
+ * already there is refused. */
+#define AA_PLUGIN_ABI 1
+int aa_plugin_load(const char *path);
+
+/* ---- helpers for methods ---- */
+
+/* Support radius a sampling method uses for the filter: box 1/2, tent r,
+ * Gaussian 3 s (pbrt's default radius 1.5 for s = 0.5).  Sampling methods
+ * truncate the Gaussian there; their error against the untruncated
+ * reference includes that. */
+double aa_filter_support(const aa_filter *f);
+
+/* Counter-based random streams: one per (seed, pixel, frame), so an image
+ * does not depend on how pixels are shared among threads (random.c).  The
+ * hash and the next number are inline: methods call them per sample. */
+typedef struct aa_rng {
+    uint64_t state;
+} aa_rng;
+/* SplitMix64's output function: a bijective 64-bit mixer. */
+static inline uint64_t aa_hash64(uint64_t x)
+{
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ull;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebull;
+    x ^= x >> 31;
+    return x;
+}
+void aa_rng_seed(aa_rng *r, uint64_t seed, uint64_t pixel, uint64_t frame);
+static inline uint64_t aa_rng_next(aa_rng *r)
+{
+    r->state += 0x9e3779b97f4a7c15ull;
+    return aa_hash64(r->state);
+}
+double aa_rng_uniform(aa_rng *r); /* in [0, 1), 53 random bits */
+/* The frame of time t (frames) for aa_rng_seed: floor(t) as a
+ * two's-complement 64-bit integer (modulo 2^64 beyond its range), so every
+ * t of [n, n + 1) is frame n (0.3 and 0.7 are frame 0, 1 is frame 1, -0.5
+ * is frame -1); 0 for a t that is not finite. */
+uint64_t aa_frame_index(double t);
+
+/* ------------------------------------------------------------------------
+ * Metrics: an image against its reference
+ * ------------------------------------------------------------------------ */
+
+typedef struct aa_metrics {
+    /* linear light, over every channel of every pixel */
+    double rmse, mae, max_err, psnr; /* psnr = 10 log10(1/mse), infinite if equal */
+    int max_at[3];                   /* pixel i, j and channel of max_err */
+    /* the same after display encoding */
+    double rmse_enc, mae_enc, max_err_enc, psnr_enc;
+    /* power of the error image's spectrum per pixel: total (= the mean
+     * squared error of the channel mean), below 1/4 cycle per pixel in x
+     * and y (moire), and the rest up to the Nyquist frequency */
+    double alias_total, alias_low, alias_high;
+    double ssim; /* on the display-encoded luma */
+} aa_metrics;
+
+/* enc NULL: sRGB.  Images must have the same size and channels. */
+int aa_metrics_compute(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                       aa_metrics *m);
+
+/* ------------------------------------------------------------------------
+ * Runs: every method on every view of a suite, measured
+ * ------------------------------------------------------------------------ */
+
+/* One result: a pattern x size x filter x method. */
+typedef struct aa_row {
+    char pattern[512];  /* the pattern spec as given */
+    char filter[128];   /* the filter spec as given */
+    char method[512];   /* the method spec as given */
+    char canonical[1024]; /* the method spec with every parameter */
+    int w, h;
+    double t, vx, vy;
+    uint64_t seed;
+    int threads, reps;
+    double spp;         /* samples per pixel */
+    aa_metrics m;
+    double seconds, seconds_min, seconds_max; /* median, min, max of the renders */
+    double ns_per_pixel, ns_per_sample;
+    uint64_t samples, expensive_pixels;
+    double expensive_fraction;
+    int ok;             /* 0: refused or failed, see note */
+    char note[512];
+} aa_row;
+
+/* A suite is a list of groups; each group is a cross product of patterns,
+ * sizes, filters and methods (NULL-terminated lists of specs). */
+typedef struct aa_suite_group {
+    const char *const *patterns, *const *sizes, *const *filters, *const *methods;
+} aa_suite_group;
+
+typedef struct aa_suite {
+    const char *name, *summary;
+    const aa_suite_group *groups; /* ends with a group whose patterns is NULL */
+} aa_suite;
+
+extern const aa_suite aa_suites[]; /* ends with a NULL name */
+const aa_suite *aa_suite_find(const char *name);
+
+typedef struct aa_run_config {
+    const char *const *patterns, *const *sizes, *const *filters, *const *methods;
+    size_t npatterns, nsizes, nfilters, nmethods;
+    int reps, threads;
+    uint64_t seed;
+    double t, vx, vy;
+    const char *cache_dir;  /* NULL: no cache */
+    const char *images_dir; /* NULL: no images written */
+    aa_encode enc;
+    /* called before each case (may be NULL); returning non-zero stops */
+    int (*progress)(void *ctx, size_t done, size_t total, const char *what);
+    void *ctx;
+    /* called after each row (may be NULL), e.g. to save results so far */
+    int (*row_done)(void *ctx, const aa_row *rows, size_t n);
+} aa_run_config;
+
+/* Check every spec of the config (patterns, sizes, filters, methods) before
+ * any work. */
+int aa_run_check(const aa_run_config *cfg);
+/* Run it: *rows (malloc'd, n rows) in pattern, size, filter, method order.
+ * A method that refuses a filter gives a row with ok = 0 and the reason. */
+int aa_run(const aa_run_config *cfg, aa_row **rows, size_t *n);
+
+/* results.csv and results.json: one row per case. */
+int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n);
+int aa_rows_write_json(const char *path, const aa_row *rows, size_t n);
+/* Read a results or baseline CSV back (the columns written above). */
+int aa_rows_read_csv(const char *path, aa_row **rows, size_t *n);
+
+/* Convergence: RMSE against samples per pixel over `phases` random sub-pixel
+ * shifts of the scene; the log-log slope by least squares (gsl_fit_linear). */
+typedef struct aa_convergence {
+    size_t n;
+    double spp[64], rmse[64], rmse_sd[64], seconds[64];
+    double slope, slope_err, intercept;
+} aa_convergence;
+int aa_converge(const aa_spec *pattern, const char *method, const aa_filter *f, int w, int h,
+                const int *spp, size_t nspp, int phases, uint64_t seed, int threads,
+                const char *cache_dir, aa_convergence *out);
+
+/* A montage: images side by side in `columns`, each copied pixel for
+ * pixel (never resampled) under up to AA_TILE_LINES lines of label; written
+ * as any image file (PNG display-encoded with enc). */
+#define AA_TILE_LINES 3
+typedef struct aa_tile {
+    const aa_image *image; /* W x H x 3 */
+    const char *label[AA_TILE_LINES]; /* NULL-terminated if fewer */
+} aa_tile;
+int aa_montage_write(const char *path, const aa_tile *tiles, size_t n, int columns,
+                     const aa_encode *enc);
+
+/* Plots with gnuplot into `dir`: error_vs_time.{dat,gp,png} (log-log, each
+ * view's Pareto front marked) and convergence.{dat,gp,png}. */
+int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n);
+int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *const *names,
+                        size_t n, const char *title);
+
+/* ------------------------------------------------------------------------
  * Files
  * ------------------------------------------------------------------------ */
 
@@ -419,6 +682,12 @@ int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_ima
 int aa_file_write_atomic(const char *path, const void *data, size_t len);
 /* mkdir -p */
 int aa_mkdirs(const char *path);
+/* snprintf for paths: AA_EINVAL if the result does not fit. */
+int aa_pathf(char *buf, size_t len, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
 /* A temporary name beside `path` keeping its extension. */
 int aa_temp_name(const char *path, char *buf, size_t len);
 

@@ -60,6 +60,18 @@ int cli_parse_int(const char *name, const char *text, long lo, long hi, int *out
     return AA_OK;
 }
 
+int cli_parse_seed(const char *text, uint64_t *out)
+{
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (end == text || *end || errno == ERANGE || text[0] == '-' || text[0] == ' ' ||
+        text[0] == '+')
+        return aa_fail(AA_EINVAL, "--seed \"%s\" is not a whole number from 0 to 2^64-1", text);
+    *out = v;
+    return AA_OK;
+}
+
 int cli_parse_pair(const char *name, const char *text, double lo, double hi, double *a,
                    double *b)
 {
@@ -73,14 +85,9 @@ int cli_parse_pair(const char *name, const char *text, double lo, double hi, dou
     return st ? st : cli_parse_real(name, comma + 1, lo, hi, b);
 }
 
-int cli_check_output(const char *path)
+/* The folder of `path` exists and can be written. */
+static int check_folder(const char *path)
 {
-    if (!path || !*path)
-        return aa_fail(AA_EINVAL, "no output file given (-o FILE)");
-    if (!aa_image_ext_known(path))
-        return aa_fail(AA_EINVAL,
-                       "output \"%s\": unknown image type (use .exr, .tif, .png, .pfm or .txt)",
-                       path);
     char dir[4096];
     const char *slash = strrchr(path, '/');
     if (slash) {
@@ -98,6 +105,54 @@ int cli_check_output(const char *path)
         return aa_fail(AA_EIO, "output \"%s\": folder %s %s", path, dir,
                        errno == ENOENT ? "does not exist" : "is not writable");
     return AA_OK;
+}
+
+int cli_check_output(const char *path)
+{
+    if (!path || !*path)
+        return aa_fail(AA_EINVAL, "no output file given (-o FILE)");
+    if (!aa_image_ext_known(path))
+        return aa_fail(AA_EINVAL,
+                       "output \"%s\": unknown image type (use .exr, .tif, .png, .pfm or .txt)",
+                       path);
+    return check_folder(path);
+}
+
+int cli_check_output_file(const char *path, const char *ext)
+{
+    size_t n = strlen(path), e = strlen(ext);
+    if (n <= e || strcmp(path + n - e, ext) != 0)
+        return aa_fail(AA_EINVAL, "output \"%s\" must end in %s", path, ext);
+    return check_folder(path);
+}
+
+int cli_default_threads(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n > 0 ? (int)(n > 1024 ? 1024 : n) : 1;
+}
+
+void cli_json_string(const char *text, char *buf, size_t len)
+{
+    size_t n = 0;
+    if (len < 3) {
+        if (len)
+            buf[0] = '\0';
+        return;
+    }
+    buf[n++] = '"';
+    for (const unsigned char *c = (const unsigned char *)text; *c && n + 8 < len; c++) {
+        if (*c == '"' || *c == '\\') {
+            buf[n++] = '\\';
+            buf[n++] = (char)*c;
+        } else if (*c < 0x20) {
+            n += (size_t)snprintf(buf + n, len - n, "\\u%04x", *c);
+        } else {
+            buf[n++] = (char)*c;
+        }
+    }
+    buf[n++] = '"';
+    buf[n] = '\0';
 }
 
 const char *cli_cache_dir(void)

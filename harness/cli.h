@@ -11,6 +11,7 @@
 #include "aabench.h"
 
 #include <getopt.h>
+#include <stdint.h>
 #include <stdio.h>
 
 /* Print "aabench CMD: <last error>" to stderr; returns the exit code. */
@@ -22,11 +23,18 @@ void cli_getopt_reset(void);
 
 int cli_parse_real(const char *name, const char *text, double lo, double hi, double *out);
 int cli_parse_int(const char *name, const char *text, long lo, long hi, int *out);
+int cli_parse_seed(const char *text, uint64_t *out);
 int cli_parse_pair(const char *name, const char *text, double lo, double hi, double *a,
                    double *b);
 /* The output file: a known image extension and a folder that exists and
  * can be written, checked before any work. */
 int cli_check_output(const char *path);
+/* A non-image output with a required extension (".json", ".csv"). */
+int cli_check_output_file(const char *path, const char *ext);
+/* The number of threads to use by default: all cores. */
+int cli_default_threads(void);
+/* `text` as a JSON string literal (quoted, escaped) into buf. */
+void cli_json_string(const char *text, char *buf, size_t len);
 /* Default cache folder: $AABENCH_CACHE, else results/cache. */
 const char *cli_cache_dir(void);
 /* 1 if stderr is a terminal and CI is not set: progress may be shown. */
@@ -34,5 +42,10 @@ int cli_progress_wanted(void);
 
 int cmd_list(int argc, char **argv);
 int cmd_truth(int argc, char **argv);
+int cmd_render(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
+int cmd_run(int argc, char **argv);
+int cmd_check(int argc, char **argv);
+int cmd_converge(int argc, char **argv);
 
 #endif

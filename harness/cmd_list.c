@@ -32,21 +32,27 @@ static void list_table(const void *const *table, int verbose)
 
 static void usage(FILE *out)
 {
-    fprintf(out, "usage: aabench list [patterns|filters] [-v]\n\n"
+    fprintf(out, "usage: aabench list [methods|patterns|filters] [-v] [--plugin LIB.so]\n\n"
                  "Prints one line per type: name, tab, one-line summary.\n"
-                 "  -v, --params   also list each type's parameters with default and range\n");
+                 "  -v, --params       also list each type's parameters with default and range\n"
+                 "      --plugin LIB   load methods from a shared library first (repeatable)\n");
 }
 
 int cmd_list(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"params", no_argument, 0, 'v'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
-    int c, verbose = 0;
+    static const struct option opts[] = {{"params", no_argument, 0, 'v'},
+                                         {"plugin", required_argument, 0, 'P'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
+    int c, verbose = 0, st;
     cli_getopt_reset();
     while ((c = getopt_long(argc, argv, ":vh", opts, NULL)) != -1) {
         if (c == 'v')
             verbose = 1;
-        else if (c == 'h') {
+        else if (c == 'P') {
+            if ((st = aa_plugin_load(optarg)))
+                return cli_fail("list", st);
+        } else if (c == 'h') {
             usage(stdout);
             return 0;
         } else
@@ -57,9 +63,15 @@ int cmd_list(int argc, char **argv)
         return 2;
     }
     const char *what = optind < argc ? argv[optind] : NULL;
-    if (what && strcmp(what, "patterns") && strcmp(what, "filters")) {
-        fprintf(stderr, "aabench list: unknown list \"%s\" (patterns or filters)\n", what);
+    if (what && strcmp(what, "methods") && strcmp(what, "patterns") && strcmp(what, "filters")) {
+        fprintf(stderr, "aabench list: unknown list \"%s\" (methods, patterns or filters)\n",
+                what);
         return 2;
+    }
+    if (!what || !strcmp(what, "methods")) {
+        if (!what)
+            printf("# methods\n");
+        list_table(aa_method_table(), verbose);
     }
     if (!what || !strcmp(what, "patterns")) {
         if (!what)

@@ -18,6 +18,8 @@
 
 #include "aabench.h"
 
+#include <stdarg.h>
+
 #include <errno.h>
 #include <fcntl.h>
 #include <stdatomic.h>
@@ -167,4 +169,16 @@ double aa_now(void)
     /* CLOCK_MONOTONIC is required by POSIX.1-2008, so this cannot fail. */
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+int aa_pathf(char *buf, size_t len, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(buf, len, fmt, ap);
+    va_end(ap);
+    if (n < 0 || (size_t)n >= len)
+        return aa_fail(AA_EINVAL, "path too long (more than %zu characters): %.80s...", len - 1,
+                       buf);
+    return AA_OK;
 }

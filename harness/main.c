@@ -12,6 +12,11 @@ static const struct command {
 } commands[] = {
     {"list", cmd_list, "list patterns, filters and methods"},
     {"truth", cmd_truth, "write the exact reference image of a pattern"},
+    {"render", cmd_render, "render a pattern with a method, timed"},
+    {"run", cmd_run, "the benchmark: every method on a suite, measured and plotted"},
+    {"check", cmd_check, "rerun the baseline's cases; exit 1 on a regression"},
+    {"converge", cmd_converge, "RMSE against samples per pixel, and its slope"},
+    {"compare", cmd_compare, "error metrics between two image files"},
     {NULL, NULL, NULL}};
 
 static void usage(FILE *out)

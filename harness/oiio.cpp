@@ -15,6 +15,8 @@
 
 #include "aabench.h"
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/strutil.h>
 
@@ -27,6 +29,8 @@ using OIIO::ImageInput;
 using OIIO::ImageOutput;
 using OIIO::ImageSpec;
 using OIIO::TypeDesc;
+using OIIO::ImageBuf;
+namespace ImageBufAlgo = OIIO::ImageBufAlgo;
 
 struct aa__oiio_in {
     std::unique_ptr<ImageInput> file;
@@ -180,4 +184,26 @@ extern "C" void aa__oiio_close(aa__oiio_in *in)
     } catch (...) {
     }
     delete in;
+}
+
+/* The labels' font: Debian's fonts-dejavu-core (scripts/install-deps.sh
+ * installs it).  OpenImageIO's own default face is not in Debian. */
+#define AA_FONT "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
+
+/* Draw `text` into a W x H x C double buffer with OpenImageIO's FreeType text
+ * renderer, left aligned, top of the text at (x, y).  Used for the labels of
+ * montages. */
+extern "C" int aa__oiio_text(double *pixels, int w, int h, int c, int x, int y, const char *text,
+                             int size, const float *colour)
+{
+    return guarded("text", [&] {
+        ImageSpec spec(w, h, c, TypeDesc::DOUBLE);
+        ImageBuf buf(spec, pixels);
+        if (!ImageBufAlgo::render_text(buf, x, y, text, size, AA_FONT, OIIO::cspan<float>(colour, c),
+                                       ImageBufAlgo::TextAlignX::Left,
+                                       ImageBufAlgo::TextAlignY::Top))
+            return fail(AA_EIO, "text", "cannot draw a label (is a font installed?)",
+                        buf.geterror());
+        return (int)AA_OK;
+    });
 }

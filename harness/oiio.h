@@ -57,6 +57,11 @@ int aa__oiio_open(const char *path, aa__oiio_in **in, aa__oiio_info *info);
  * (no display decoding). */
 int aa__oiio_read(aa__oiio_in *in, double *pixels);
 
+/* Draw text (top-left at x, y; `size` pixels; colour of c floats) into a
+ * W x H x C double buffer, with OpenImageIO's default font. */
+int aa__oiio_text(double *pixels, int w, int h, int c, int x, int y, const char *text, int size,
+                  const float *colour);
+
 /* Close and free; NULL is fine. */
 void aa__oiio_close(aa__oiio_in *in);
 

@@ -778,12 +778,33 @@ static int cmp_crossing(const void *a, const void *b)
     return p->dir - q->dir;
 }
 
+/* Pieces come in path order, so a line's crossings are nearly sorted:
+ * insertion sort is linear then; past a budget of moves, qsort. */
+static void sort_crossings(aa_crossing *c, size_t n)
+{
+    size_t moves = 0, budget = 8 * n + 64;
+    for (size_t k = 1; k < n; k++) {
+        aa_crossing v = c[k];
+        size_t at = k;
+        while (at > 0 && cmp_crossing(&c[at - 1], &v) > 0) {
+            c[at] = c[at - 1];
+            at--;
+            if (++moves > budget) {
+                c[at] = v;
+                qsort(c, n, sizeof *c, cmp_crossing);
+                return;
+            }
+        }
+        c[at] = v;
+    }
+}
+
 size_t aa_scene_crossings(const aa_scene *s, double y, aa_crossing *out, size_t cap)
 {
     struct line_ctx ctx = {y, out, cap, 0};
     aa__scene_gather(s, y, y, visit_line, &ctx);
     if (ctx.n > 1 && ctx.n <= cap)
-        qsort(out, ctx.n, sizeof *out, cmp_crossing);
+        sort_crossings(out, ctx.n);
     return ctx.n;
 }
 
@@ -813,4 +834,121 @@ size_t aa_scene_touching(const aa_scene *s, double x0, double y0, double x1, dou
     struct touch_ctx ctx = {s, x0, y0, x1, y1, out, cap, 0};
     aa__scene_gather(s, y0, y1, visit_touch, &ctx);
     return ctx.n;
+}
+
+/* ---- where two pieces meet ---- */
+
+/* x as a quadratic in u = y - lo, for a piece whose y is linear in its
+ * parameter (lines, and arcs with ay = 0 such as crow's). */
+static void x_in_u(const aa_piece *p, double lo, double *c0, double *c1, double *c2)
+{
+    double t = (lo - p->y0) / p->by;
+    *c0 = p->x0 + t * (p->bx + t * p->ax);
+    *c1 = (p->bx + 2.0 * p->ax * t) / p->by;
+    *c2 = p->ax / (p->by * p->by);
+}
+
+/* Roots of a u^2 + b u + c in (0, len), cancellation-free. */
+static int quadratic_roots(double a, double b, double c, double len, double *u)
+{
+    double r[2];
+    int n = 0, m = 0;
+    if (a == 0.0) {
+        if (b != 0.0)
+            r[n++] = -c / b;
+    } else {
+        double d = discriminant(a, b, c);
+        if (d < 0.0)
+            return 0;
+        double h = -0.5 * (b + copysign(sqrt(d), b));
+        if (h != 0.0)
+            r[n++] = c / h;
+        r[n++] = h / a;
+    }
+    for (int k = 0; k < n; k++)
+        if (r[k] > 0.0 && r[k] < len)
+            u[m++] = r[k];
+    return m;
+}
+
+typedef struct meet_ctx {
+    const aa_piece *p, *q;
+    double *ys;
+    int n, max, budget;
+} meet_ctx;
+
+/* Bisect [a, b] while the two pieces' exact x extents there overlap: an
+ * interval holding a meeting always overlaps, so none is missed; an
+ * interval narrower than the resolution is reported by its middle. */
+static void subdivide(meet_ctx *c, double a, double b, int depth)
+{
+    double pa, pb, qa, qb;
+    if (c->n >= c->max || --c->budget < 0)
+        return;
+    aa_piece_xrange(c->p, a, b, &pa, &pb);
+    aa_piece_xrange(c->q, a, b, &qa, &qb);
+    /* a margin of rounding: a meeting at an end of the interval must not
+     * look disjoint in both halves */
+    double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
+    if (pb < qa - tol || qb < pa - tol)
+        return;
+    double m = 0.5 * (a + b);
+    if (depth >= 60 || b - a <= 1e-12 * fmax(1.0, fabs(m)) || !(m > a && m < b)) {
+        if (c->n == 0 || m - c->ys[c->n - 1] > 1e-12 * fmax(1.0, fabs(m)))
+            c->ys[c->n++] = m;
+        return;
+    }
+    subdivide(c, a, m, depth + 1);
+    subdivide(c, m, b, depth + 1);
+}
+
+int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys, int max)
+{
+    if (!p->dir || !q->dir || max < 1)
+        return 0;
+    double lo = fmax(fmax(p->y0, q->y0), ya), hi = fmin(fmin(p->y1, q->y1), yb);
+    if (!(lo < hi))
+        return 0;
+    if (p->ay == 0.0 && q->ay == 0.0) {
+        /* both x quadratic in y: their difference is a quadratic */
+        double a0, a1, a2, b0, b1, b2, u[2];
+        x_in_u(p, lo, &a0, &a1, &a2);
+        x_in_u(q, lo, &b0, &b1, &b2);
+        int n = quadratic_roots(a2 - b2, a1 - b1, a0 - b0, hi - lo, u), m = 0;
+        if (n == 2 && u[0] > u[1]) {
+            double t = u[0];
+            u[0] = u[1], u[1] = t;
+        }
+        for (int k = 0; k < n && m < max; k++)
+            ys[m++] = lo + u[k];
+        return m;
+    }
+    if (p->kind == AA_PIECE_QUAD && q->kind == AA_PIECE_LINE) {
+        const aa_piece *t = p;
+        p = q, q = t;
+    }
+    if (p->kind == AA_PIECE_LINE) {
+        /* arc q(t) against line p, x = p.x0 + (y - p.y0) s: a quadratic in t */
+        double s = p->bx / p->by, ts[2];
+        double a = q->ax - s * q->ay, b = q->bx - s * q->by;
+        double c = q->x0 - p->x0 - (q->y0 - p->y0) * s;
+        int n = quadratic_roots(a, b, c, 1.0, ts), m = 0;
+        double y[2];
+        for (int k = 0; k < n; k++) {
+            double v = q->y0 + ts[k] * (q->by + ts[k] * q->ay);
+            if (v > lo && v < hi)
+                y[m++] = v;
+        }
+        if (m == 2 && y[0] > y[1]) {
+            double t = y[0];
+            y[0] = y[1], y[1] = t;
+        }
+        for (int k = 0; k < m && k < max; k++)
+            ys[k] = y[k];
+        return m < max ? m : max;
+    }
+    /* two general arcs (a quartic): bisection on exact extents */
+    meet_ctx c = {p, q, ys, 0, max, 4096};
+    subdivide(&c, lo, hi, 0);
+    return c.n;
 }

@@ -10,17 +10,20 @@
  * sequence of spans of constant colour bounded by the pieces' crossings,
  * and the filter's integral over a span is a difference of its cdf.
  *
- * Box and tent: the outer integral along v is done by GSL's QAGP with
- * breakpoints wherever that inner function is not smooth: the ends of
- * pieces (vertices), horizontal edges, the heights where a piece crosses a
- * vertical line at which the filter has a kink (the window's sides for the
- * box; r, 0, -r for the tent), the filter's own kinks along v, and the
- * intersections of pieces with lines.  Between breakpoints the integrand is
- * smooth; for `crow` and the box it is a polynomial of degree 2 and the
- * first 21-point Gauss-Kronrod pass is exact.
+ * Box and tent: the outer integral along v is done interval by interval
+ * with GSL's adaptive Gauss-Kronrod (QAG), between breakpoints placed
+ * wherever that inner function is not smooth: the ends of pieces (vertices,
+ * and the turning points where arcs are split), horizontal edges, the
+ * heights where a piece crosses a vertical line at which the filter has a
+ * kink (the window's sides for the box; r, 0, -r for the tent), the
+ * filter's own kinks along v, and the heights where two pieces meet.
+ * Between breakpoints the integrand is smooth; for `crow` and the box it is
+ * a polynomial of degree 2 and the first 21-point pass is exact.  Next to
+ * a turning point x moves like the square root of the height, so there the
+ * half interval is integrated in u = sqrt(|v - v_turn|).
  *
  * The Gaussian (untruncated; the window is the square of half-side R =
- * f->radius outside which its mass is below 1e-14): QAGP alone needs some
+ * f->radius outside which its mass is below 1e-14): QAG alone needs some
  * 170 evaluations of the inner integral a pixel, as the integrand is
  * nowhere a polynomial.  But the filter is separable, so
  *
@@ -33,7 +36,7 @@
  * of each panel, and each pixel is a dot product of those values, over the
  * panels that cover [vc - R, vc + R], with a table of w(node - vc) times
  * the Kronrod weights that is the same for every row (one table per row
- * phase when h > 1; if 2 R < 1, s < 1/16, rows share no panel and QAGP
+ * phase when h > 1; if 2 R < 1, s < 1/16, rows share no panel and QAG
  * does it all).  The 10-point Gauss rule embedded in the same nodes
  * gives the error estimate, |K21 - G10| summed over the panels: pessimistic
  * (it is G10's error; K21's is at the rounding level), measured below 1e-15
@@ -55,15 +58,15 @@
  * |dx/dy|, too fast for the panel) and they are ordered consistently with
  * the pieces outside.  A column for which any of this fails in a panel
  * marks that panel, and every pixel that needs a marked panel, or whose
- * bound comes out above AA_TRUTH_BOUND / 4, is integrated by QAGP as for
+ * bound comes out above AA_TRUTH_BOUND / 4, is integrated by QAG as for
  * the other filters.  Uniform pixels are filled in both cases.  On crow
  * (1024 x 1024, s = 0.5) every non-uniform pixel takes the fixed rule; its
  * error bound is the estimate, plus twice the truncated mass (x and v),
  * plus rounding.  The cdf at a crossing comes from a table of Phi and its
  * Taylor coefficients (7 terms, steps of 1/32 standard deviation, error at
  * the rounding level), laid out so that one offset serves every column a
- * crossing is near.  Under QAGP, the Gaussian adds as breakpoints the
- * heights where a piece crosses x = uc + k s (without them QAGP can miss
+ * crossing is near.  Under QAG, the Gaussian adds as breakpoints the
+ * heights where a piece crosses x = uc + k s (without them QAG can miss
  * the steep step of a nearly horizontal edge and still report a small
  * error) and where two arcs meet.
  *
@@ -74,7 +77,7 @@
  * coordinate's last bit is 5e-13 px, the inner integral still carries only
  * rounding of the order of 1e-16.
  *
- * Each pixel carries an error bound: QAGP's estimate or the fixed rule's,
+ * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
  * rounding.  Pixels whose window meets no piece are uniform: they take the
  * colour of their centre with no integration.  This path shares nothing
@@ -96,7 +99,7 @@
 #include <omp.h>
 #endif
 
-/* QAGP is asked for this absolute accuracy per pixel and channel: above its
+/* QAG is asked for this absolute accuracy per pixel and channel: above its
  * rounding floor (50 eps times the integral of |f|, about 1e-14 here) and
  * well below AA_TRUTH_BOUND. */
 #define TRUTH_EPSABS 2e-13
@@ -124,6 +127,8 @@ typedef struct worker {
     size_t limit;
     double *pts;
     size_t npts, cap_pts;
+    double sing[64]; /* heights (relative) where a piece turns: x ~ sqrt */
+    size_t nsing;
     local_piece *lp;
     crossing *cross;
     size_t nlp, cap_lp;
@@ -188,105 +193,38 @@ static int add_abs(worker *w, double y, double lo, double hi)
     return y > lo && y < hi ? add_point(w, y - w->vc) : AA_OK;
 }
 
-/* Heights where arcs p and q meet within [lo, hi] (and the window's rows):
- * the sign changes of x_p - x_q on 32 samples, refined by bisection.  Two
- * meetings closer than a sample apart may be missed: QAGP's bisection is
- * then left with them, as it was with every meeting of two arcs before. */
-static int add_arc_meetings(worker *w, const aa_piece *p, const aa_piece *q, double lo, double hi)
-{
-    lo = fmax(lo, w->vc - w->R), hi = fmin(hi, w->vc + w->R);
-    if (!(lo < hi))
-        return AA_OK;
-    double pa, pb, qa, qb;
-    aa_piece_xrange(p, lo, hi, &pa, &pb);
-    aa_piece_xrange(q, lo, hi, &qa, &qb);
-    if (pb < qa || qb < pa)
-        return AA_OK;
-    const int n = 32;
-    double ya = lo, da = aa_piece_x_at(p, ya) - aa_piece_x_at(q, ya);
-    for (int k = 1; k <= n; k++) {
-        double yb = k < n ? lo + (hi - lo) * k / n : hi;
-        double db = aa_piece_x_at(p, yb) - aa_piece_x_at(q, yb);
-        if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
-            double a = ya, b = yb, fa = da;
-            for (int it = 0; it < 64; it++) {
-                double m = 0.5 * (a + b);
-                if (!(m > a && m < b))
-                    break;
-                double fm = aa_piece_x_at(p, m) - aa_piece_x_at(q, m);
-                if ((fm < 0.0) == (fa < 0.0))
-                    a = m, fa = fm;
-                else
-                    b = m;
-            }
-            int st = add_abs(w, 0.5 * (a + b), lo, hi);
-            if (st)
-                return st;
-        }
-        ya = yb, da = db;
-    }
-    return AA_OK;
-}
-
-/* Heights where pieces p and q meet, for lines and a line with an arc; for
- * two arcs (a quartic) under the Gaussian only, by sampling, so that box
- * and tent keep their path (for them QAGP's bisection finds such kinks). */
+/* Heights where pieces p and q meet inside the window: every kind of pair,
+ * every filter (aa_piece_meet: closed forms, or bisection on exact extents
+ * for two general arcs).  Where two edges cross, the inner integral has a
+ * kink that QAG's error estimate does not always see. */
 static int add_intersections(worker *w, const aa_piece *p, const aa_piece *q)
 {
-    if (!p->dir || !q->dir)
-        return AA_OK;
-    if (p->kind == AA_PIECE_QUAD) {
-        const aa_piece *t = p;
-        p = q;
-        q = t;
-    }
-    if (p->kind == AA_PIECE_QUAD) {
-        if (w->f->type != &aa_filter_gauss)
-            return AA_OK;
-        return add_arc_meetings(w, p, q, fmax(p->y0, q->y0), fmin(p->y1, q->y1));
-    }
-    double lo = fmax(p->y0, q->y0), hi = fmin(p->y1, q->y1);
-    if (!(lo < hi))
-        return AA_OK;
-    /* line p: x = p.x0 + (y - p.y0) s */
-    double s = p->bx / p->by;
-    if (q->kind == AA_PIECE_LINE) {
-        double r = q->bx / q->by;
-        if (s == r)
-            return AA_OK;
-        double y = (q->x0 - p->x0 + p->y0 * s - q->y0 * r) / (s - r);
-        return add_abs(w, y, lo, hi);
-    }
-    /* arc q(t) against line p: (ax - s ay) t^2 + (bx - s by) t + c = 0 */
-    double a = q->ax - s * q->ay, b = q->bx - s * q->by;
-    double c = q->x0 - p->x0 - (q->y0 - p->y0) * s;
-    double ts[2];
-    int n = 0;
-    if (a == 0.0) {
-        if (b != 0.0)
-            ts[n++] = -c / b;
-    } else {
-        double d = b * b - 4.0 * a * c;
-        if (d < 0.0)
-            return AA_OK;
-        double h = -0.5 * (b + copysign(sqrt(d), b));
-        if (h != 0.0)
-            ts[n++] = c / h;
-        ts[n++] = h / a;
-    }
-    for (int k = 0; k < n; k++) {
-        int st;
-        if (ts[k] > 0.0 && ts[k] < 1.0 &&
-            (st = add_abs(w, q->y0 + ts[k] * (q->by + ts[k] * q->ay), lo, hi)))
-            return st;
-    }
-    return AA_OK;
+    double ys[16];
+    int n = aa_piece_meet(p, q, w->vc - w->R, w->vc + w->R, ys, 16), st = AA_OK;
+    for (int k = 0; k < n && !st; k++)
+        st = add_abs(w, ys[k], -INFINITY, INFINITY);
+    return st;
 }
 
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return x < y ? -1 : (x > y);
+}
+
+/* Remember a turning point s (relative) inside [-R, R]. */
+static void note_turn(worker *w, double s)
+{
+    if (s >= -w->R && s <= w->R && w->nsing < sizeof w->sing / sizeof *w->sing)
+        w->sing[w->nsing++] = s;
+}
+
+static int is_turn(const worker *w, double s)
+{
+    for (size_t k = 0; k < w->nsing; k++)
+        if (w->sing[k] == s)
+            return 1;
+    return 0;
 }
 
 /* Breakpoints of the current pixel, relative to vc, sorted, from -R to R. */
@@ -298,12 +236,13 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
     for (int k = 0; k < nk && !st; k++)
         st = add_point(w, kink[k]);
     if (w->f->type == &aa_filter_gauss) {
-        /* Start QAGP on panels two standard deviations wide, where one
+        /* Start QAG on panels two standard deviations wide, where one
          * 21-point pass integrates the Gaussian factor to rounding. */
         double sd = w->f->spec.v[0];
         for (double z = -w->R + 2.0 * sd; z < w->R && !st; z += 2.0 * sd)
             st = add_point(w, z);
     }
+    w->nsing = 0;
     for (size_t k = 0; k < n && !st; k++) {
         const aa_piece *p = local[k];
         double ys[2];
@@ -312,6 +251,15 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
             break;
         if (p->kind == AA_PIECE_FLAT)
             continue;
+        if (p->kind == AA_PIECE_QUAD) {
+            /* an end where dy/dt = 0 (an arc's turning point in y, where
+             * edges are split): there x - x_end grows like sqrt(y - y_end) */
+            double tiny = 1e-12 * (p->y1 - p->y0);
+            if (fabs(p->by) <= tiny)
+                note_turn(w, p->y0 - w->vc);
+            if (fabs(p->by + 2.0 * p->ay) <= tiny)
+                note_turn(w, p->y1 - w->vc);
+        }
         /* where the piece crosses a vertical line at which the filter's
          * cdf has a kink (the window's sides for the box) */
         for (int j = 0; j < nk && !st; j++) {
@@ -321,7 +269,7 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
         }
         /* Gaussian: where it crosses x = uc + k s.  A steep piece sweeps
          * the window in a short stretch of v, where the inner integral
-         * rises like Phi on a scale s / |dx/dy|; without these points QAGP
+         * rises like Phi on a scale s / |dx/dy|; without these points QAG
          * can miss such a step and still report a small error (seen with
          * a nearly horizontal edge: an error of 1e-12 against an estimate
          * of 2e-14).  Between them the piece moves by s along x. */
@@ -472,6 +420,67 @@ static double integrand(double s, void *params)
     return ws * sum;
 }
 
+/* The integrand near a turning point e, in u with s = e + sign u^2: the
+ * square root becomes smooth, and ds = 2 u du. */
+typedef struct turn_ctx {
+    worker *w;
+    double e, sign;
+} turn_ctx;
+
+static double integrand_turn(double u, void *params)
+{
+    const turn_ctx *t = params;
+    return 2.0 * u * integrand(t->e + t->sign * u * u, t->w);
+}
+
+/* One interval: a single 21-point Gauss-Kronrod pass, which is what QAG
+ * starts with and is enough between breakpoints nearly always (for crow
+ * under the box it is exact), then QAG's bisection only if its estimate is
+ * above eps.  Calling the pass directly saves QAG's set-up per interval. */
+static void qag(worker *w, gsl_function *F, double a, double b, double eps, double *res,
+                double *err)
+{
+    double r = 0.0, e = 0.0, resabs, resasc;
+    gsl_integration_qk21(F, a, b, &r, &e, &resabs, &resasc);
+    if (!(e <= eps))
+        gsl_integration_qag(F, a, b, eps, 0.0, w->limit, GSL_INTEG_GAUSS21, w->ws, &r, &e);
+    *res += r;
+    *err += e;
+}
+
+/* The outer integral as a sum over the breakpoints' intervals, each by
+ * adaptive Gauss-Kronrod (QAG) on its own.  Between breakpoints the
+ * integrand is smooth, so no extrapolation is wanted: QAG's, across all
+ * the intervals at once, was seen to return a wrong value (2.6e-7 off)
+ * with an estimate of 9e-15 on a pixel where two arcs turn.  A half
+ * interval next to a turning point is integrated in u = sqrt(|s - e|). */
+static void integrate_intervals(worker *w, double *result, double *abserr)
+{
+    gsl_function F = {integrand, w};
+    double span = w->pts[w->npts - 1] - w->pts[0];
+    *result = *abserr = 0.0;
+    for (size_t k = 0; k + 1 < w->npts; k++) {
+        double a = w->pts[k], b = w->pts[k + 1];
+        double eps = fmax(TRUTH_EPSABS * (b - a) / span, 1e-17);
+        int ta = is_turn(w, a), tb = is_turn(w, b);
+        if (!ta && !tb) {
+            qag(w, &F, a, b, eps, result, abserr);
+            continue;
+        }
+        double m = 0.5 * (a + b);
+        turn_ctx lo = {w, a, 1.0}, hi = {w, b, -1.0};
+        gsl_function G = {integrand_turn, &lo}, H = {integrand_turn, &hi};
+        if (ta)
+            qag(w, &G, 0.0, sqrt(m - a), 0.5 * eps, result, abserr);
+        else
+            qag(w, &F, a, m, 0.5 * eps, result, abserr);
+        if (tb)
+            qag(w, &H, 0.0, sqrt(b - m), 0.5 * eps, result, abserr);
+        else
+            qag(w, &F, m, b, 0.5 * eps, result, abserr);
+    }
+}
+
 static int reserve_workspace(worker *w, size_t npts)
 {
     if (npts + 64 <= w->limit)
@@ -495,13 +504,11 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     if ((st = load_local(w, local, n)) || (st = breakpoints(w, local, n)) ||
         (st = reserve_workspace(w, w->npts)))
         return st;
-    gsl_function F = {integrand, w};
     double worst = 0.0;
     for (int ch = 0; ch < (grey ? 1 : 3); ch++) {
         double result = 0.0, abserr = 0.0;
         w->channel = ch;
-        gsl_integration_qagp(&F, w->pts, w->npts, TRUTH_EPSABS, 0.0, w->limit, w->ws,
-                             &result, &abserr);
+        integrate_intervals(w, &result, &abserr);
         value[ch] = result;
         worst = fmax(worst, abserr);
     }
@@ -523,18 +530,18 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
 #define GK_S 24 /* stored per panel and column: the nodes, then zeros */
 #define GL_N 10
 /* Pieces steeper than this (|dx/dy|) make G vary on a scale below s and
- * leave the panel to QAGP: measured, |K21 - G10| on a panel of 2 s grows
+ * leave the panel to QAG: measured, |K21 - G10| on a panel of 2 s grows
  * from 8e-16 at slope 0.6 to 3e-14 at 1 and 2e-12 at 1.5 (s = 0.5). */
 #define FAST_SLOPE 1.0
-/* A fixed-rule pixel whose bound exceeds this goes to QAGP instead. */
+/* A fixed-rule pixel whose bound exceeds this goes to QAG instead. */
 #define FAST_LIMIT (AA_TRUTH_BOUND / 4)
 /* Slack on x extents and on the tests for meeting pieces, in pixels. */
 #define FAST_TOL 1e-9
 /* Pairs tested per piece before a crowd of overlapping pieces is simply
- * left to QAGP. */
+ * left to QAG. */
 #define FAST_PAIRS 64
 /* Per-thread panel buffers above this many bytes (22 MB for a colour image
- * 4096 wide, s = 0.5): QAGP for every pixel. */
+ * 4096 wide, s = 0.5): QAG for every pixel. */
 #define FAST_MAX_BYTES ((size_t)256 << 20)
 
 enum { PANEL_CONST = 0, PANEL_NODES = 1, PANEL_BAD = 2 };
@@ -1112,7 +1119,7 @@ static double cross_cdf(const panel_worker *fs, const node_cross *c, int i)
  * cr[e..f), every crossing before it of a piece wholly left of the window
  * and every one after it (to b) of a piece wholly right.  Then the colours
  * after each crossing are those of the full line.  Returns 0 if the pieces
- * are not so ordered (the column then goes to QAGP). */
+ * are not so ordered (the column then goes to QAG). */
 static int near_run(const node_cross *cr, size_t a, size_t b, int i, size_t *e, size_t *f)
 {
     size_t s = a;
@@ -1286,7 +1293,7 @@ static int fast_panel(panel_worker *fs, long p)
     memset(fs->bad_diff, 0, ((size_t)w + 1) * sizeof *fs->bad_diff);
     /* The inner integral G of a column is analytic on the panel unless a
      * piece near it ends inside, is flat inside, is steep, or meets
-     * another; those columns are marked for QAGP. */
+     * another; those columns are marked for QAG. */
     size_t nb = 0;
     double reach = 0.0; /* widest extent of a piece that is not marked */
     for (size_t k = 0; k < n; k++) {
@@ -1459,7 +1466,7 @@ typedef struct row_stats {
 } row_stats;
 
 /* Row j.  fs, if not NULL, offers the fixed rule to the non-uniform
- * pixels (Gaussian); the others, or those it declines, take QAGP. */
+ * pixels (Gaussian); the others, or those it declines, take QAG. */
 static int render_row(worker *w, panel_worker *fs, int j, aa_image *out, aa_image *bound,
                       row_stats *rs)
 {
@@ -1469,34 +1476,38 @@ static int render_row(worker *w, panel_worker *fs, int j, aa_image *out, aa_imag
     int st = aa_strip_begin(w->strip, w->vc - R, w->vc + R);
     if (st)
         return st;
-    size_t events = (size_t)-1;
-    aa_rgb uniform = {{0, 0, 0}};
     int phase = 0, panels = 0;
-    for (int i = 0; i < out->w; i++) {
+    for (int i = 0; i < out->w;) {
         double *px = aa_pixel(out, i, j), b;
         w->uc = i + 0.5;
         if (aa_strip_window(w->strip, w->uc - R, w->uc + R) == 0) {
-            /* A run of uniform windows with no piece entering or leaving
-             * between them has one colour. */
-            if (aa_strip_events(w->strip) != events) {
-                uniform = aa_strip_colour_at(w->strip, w->uc, w->vc);
-                events = aa_strip_events(w->strip);
-            }
-            px[0] = uniform.c[0], px[1] = uniform.c[1], px[2] = uniform.c[2];
+            /* a run of uniform windows: one colour, no integration */
+            aa_rgb c;
+            int end = aa_strip_uniform_run(w->strip, i, out->w, R, w->vc, w->wind, &c);
             b = w->f->lost;
-            rs->filled++;
-        } else {
-            events = (size_t)-1;
-            /* the row's panels, computed when a pixel first needs them */
-            if (fs && !panels && (st = fast_row(fs, j, &phase)))
-                return st;
-            panels = 1;
-            if (fs && fast_pixel(fs, j, phase, i, grey, px, &b))
-                rs->fast++;
-            else if ((st = integrate_pixel(w, grey, px, &b)))
-                return st;
-            rs->integrated++;
+            for (int k = i; k < end; k++, px += 3) {
+                px[0] = c.c[0], px[1] = c.c[1], px[2] = c.c[2];
+                if (bound)
+                    *aa_pixel(bound, k, j) = b;
+            }
+            rs->filled += (size_t)(end - i);
+            if (b > rs->max_bound) {
+                rs->max_bound = b;
+                rs->worst_i = i;
+                rs->worst_j = j;
+            }
+            i = end;
+            continue;
         }
+        /* the row's panels, computed when a pixel first needs them */
+        if (fs && !panels && (st = fast_row(fs, j, &phase)))
+            return st;
+        panels = 1;
+        if (fs && fast_pixel(fs, j, phase, i, grey, px, &b))
+            rs->fast++;
+        else if ((st = integrate_pixel(w, grey, px, &b)))
+            return st;
+        rs->integrated++;
         if (bound)
             *aa_pixel(bound, i, j) = b;
         if (b > rs->max_bound) {
@@ -1504,14 +1515,15 @@ static int render_row(worker *w, panel_worker *fs, int j, aa_image *out, aa_imag
             rs->worst_i = i;
             rs->worst_j = j;
         }
+        i++;
     }
     return AA_OK;
 }
 
-/* Internal (tests, benchmarks): mode AA__TRUTH_QAGP integrates every
- * non-uniform pixel with QAGP, as before the fixed rule existed; *nfast
+/* Internal (tests, benchmarks): mode AA__TRUTH_QAG integrates every
+ * non-uniform pixel with QAG, as before the fixed rule existed; *nfast
  * (may be NULL) receives the number of pixels the fixed rule took. */
-#define AA__TRUTH_QAGP 1
+#define AA__TRUTH_QAG 1
 int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int threads, int mode,
                           aa_image *out, aa_image *bound, aa_truth_stats *stats, size_t *nfast);
 
@@ -1522,7 +1534,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
         return aa_fail(AA_EINVAL, "reference needs a 3-channel image");
     if (bound && (bound->w != out->w || bound->h != out->h || bound->c != 1))
         return aa_fail(AA_EINVAL, "reference bound image must be %dx%dx1", out->w, out->h);
-    gsl_set_error_handler_off(); /* QAGP's status is judged by its error estimate */
+    gsl_set_error_handler_off(); /* QAG's status is judged by its error estimate */
     int status = AA_OK;
     char message[1024] = "";
     row_stats total = {0, 0, 0, 0.0, -1, -1};
@@ -1534,11 +1546,11 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
 #endif
     /* The Gaussian takes the fixed rule, unless asked not to, or its panel
      * buffers would be unreasonably large, or the windows of neighbouring
-     * rows do not overlap (s < 1/16: no panel to share, and QAGP is then
+     * rows do not overlap (s < 1/16: no panel to share, and QAG is then
      * as fast: measured on crow 256x256, s = 0.05). */
     gauss_plan plan;
     int use_fast = 0;
-    if (f->type == &aa_filter_gauss && mode != AA__TRUTH_QAGP && 2.0 * f->radius >= 1.0) {
+    if (f->type == &aa_filter_gauss && mode != AA__TRUTH_QAG && 2.0 * f->radius >= 1.0) {
         if ((status = plan_init(&plan, f)))
             return status;
         use_fast = fast_bytes(&plan, out->w, aa_scene_is_grey(placed) ? 1 : 3) <= FAST_MAX_BYTES;

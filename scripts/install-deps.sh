@@ -12,17 +12,20 @@ need() { # need CHECK PACKAGE
     pc:*) pkg-config --exists "${1#pc:}" 2>/dev/null && return 0 ;;
     cmd:*) command -v "${1#cmd:}" >/dev/null 2>&1 && return 0 ;;
     hdr:*) [ -f "/usr/include/${1#hdr:}" ] && return 0 ;;
+    file:*) [ -f "${1#file:}" ] && return 0 ;;
     esac
     missing="$missing $2"
 }
 
 need cmd:gcc gcc
 need cmd:g++ g++
+need hdr:stdio.h libc6-dev
 need cmd:pkg-config pkg-config
 need pc:gsl libgsl-dev
 need pc:OpenImageIO libopenimageio-dev
 need pc:cmocka libcmocka-dev
 need cmd:gnuplot gnuplot-nox
+need file:/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf fonts-dejavu-core
 
 [ -z "$missing" ] && exit 0
 

@@ -1,8 +1,5 @@
 #!/bin/sh
-# run.sh: the main job of `make run`.
-# Until the benchmark exists: the reference image of `crow` at 256x256 (box).
+# run.sh: the main job of `make run`: the default suite of `aabench run`
+# (every method family at its main settings on crow 256x256 and 1024x1024).
 set -eu
-mkdir -p results
-build/aabench truth -p crow -s 256x256 -o results/crow-256-box.exr
-build/aabench truth -p crow -s 256x256 -o results/crow-256-box.png
-echo "reference images of crow: results/crow-256-box.exr (linear float), results/crow-256-box.png (sRGB)"
+build/aabench run --suite default

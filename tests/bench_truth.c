@@ -5,7 +5,7 @@
  * into an image allocated and touched once (page faults are not the
  * reference's cost), several times, and prints the median with min and max,
  * and the cost per integrated (edge) pixel; for the Gaussian, the share of
- * those pixels that took the fixed rule rather than QAGP (truth.c).
+ * those pixels that took the fixed rule rather than QAG (truth.c).
  * Nothing here is a test: the figures are read, not asserted.
  *
  * usage: bench_truth [-p PATTERN] [-s WxH,...] [-f FILTER;...] [-t 1,2] [-r REPS]

@@ -105,6 +105,19 @@ static void test_refusals(void **state)
     T(2, "not two numbers", "truth", "-p", "crow", "-s", "8x8", "-o", o, "--motion", "1");
     T(3, "does not exist", "truth", "-p", "crow", "-s", "8x8", "-o",
       "/nonexistent-aabench/x.exr");
+    T(2, "unknown method \"nosuch\" (known: point", "render", "-p", "crow", "-m", "nosuch", "-s",
+      "8x8", "-o", o);
+    T(2, "no prefilter", "render", "-p", "crow", "-m", "point", "-f", "tent", "-s", "8x8", "-o",
+      o);
+    T(2, "--reps 0 is out of range", "render", "-p", "crow", "-m", "point", "-s", "8x8", "-o",
+      o, "--reps", "0");
+    T(2, "--seed \"-1\" is not a whole number", "render", "-p", "crow", "-m", "point", "-s",
+      "8x8", "-o", o, "--seed", "-1");
+    T(2, "must end in .json", "render", "-p", "crow", "-m", "point", "-s", "8x8", "-o", o,
+      "--stats", "x.txt");
+    T(2, "are required", "render", "-p", "crow", "-s", "8x8", "-o", o);
+    T(3, "plug-in /nonexistent/p.so", "render", "--plugin", "/nonexistent/p.so", "-p", "crow",
+      "-m", "point", "-s", "8x8", "-o", o);
     T(2, "unknown command", "frobnicate");
     T(2, "unknown list", "list", "methods-and-more");
 #undef T
@@ -126,6 +139,39 @@ static void test_success(void **state)
     assert_int_equal(aa_image_read_txt(out_txt, &im), AA_OK);
     assert_true(im.w == 8 && im.h == 4 && im.c == 3);
     aa_image_free(&im);
+    unlink(out_txt);
+}
+
+static void test_render(void **state)
+{
+    (void)state;
+    char stats[256];
+    snprintf(stats, sizeof stats, "%s/stats.json", dir);
+    const char *render[] = {"render", "-p", "crow", "-m", "point", "-s", "16x8", "-o", out_txt,
+                            "--stats", stats, "--reps", "3", NULL};
+    assert_int_equal(run(render), 0);
+    FILE *f = fopen(stats, "r");
+    assert_non_null(f);
+    char json[4096];
+    size_t n = fread(json, 1, sizeof json - 1, f);
+    json[n] = '\0';
+    fclose(f);
+    const char *keys[] = {"\"render_seconds\": ", "\"samples\": 128", "\"pixels\": 128",
+                          "\"expensive_pixels\": 0", "\"reps\": 3", "\"method\": \"point\""};
+    for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
+        if (!strstr(json, keys[k]))
+            fail_msg("stats lack %s: %s", keys[k], json);
+    unlink(stats);
+    unlink(out_txt);
+    /* a plug-in's method through the command line */
+    const char *plugin = getenv("AABENCH_PLUGIN");
+    const char *list[] = {"list", "methods", "--plugin", plugin, NULL};
+    assert_int_equal(run(list), 0);
+    assert_non_null(strstr(output, "centre4\t"));
+    const char *prender[] = {"render", "--plugin", plugin, "-p", "crow", "-m", "centre4", "-s",
+                             "16x8", "-o", out_txt, NULL};
+    assert_int_equal(run(prender), 0);
+    assert_int_equal(access(out_txt, F_OK), 0);
     unlink(out_txt);
 }
 
@@ -159,7 +205,7 @@ static void test_cache(void **state)
 static int setup(void **state)
 {
     (void)state;
-    if (!getenv("AABENCH") || !mkdtemp(dir))
+    if (!getenv("AABENCH") || !getenv("AABENCH_PLUGIN") || !mkdtemp(dir))
         return -1;
     snprintf(out_exr, sizeof out_exr, "%s/out.exr", dir);
     snprintf(out_txt, sizeof out_txt, "%s/out.txt", dir);
@@ -179,6 +225,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_success),
+        cmocka_unit_test(test_render),
         cmocka_unit_test(test_cache),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

@@ -1,0 +1,1661 @@
+/*
+ * area.c: exact area sampling, the box filter integrated in closed form
+ * (Catmull 1978, "A hidden-surface algorithm with anti-aliasing": the
+ * average visible intensity over the pixel's square, "The pixel
+ * integrater", fig. 1; Crow 1976, ch. 3, "Implementation of a tiler":
+ * "Left Areas - Right Areas = Area", fig. 3.13).
+ *
+ * Rows.  The scene is walked one pixel row, the band [j, j+1], at a time.
+ * Along any line of the band the colour is a step function of x that
+ * changes only at the pieces' crossings, so a pixel's value is Crow's
+ * signed sum: the colour at its left plus, for every piece, the colour jump
+ * across the piece times the area of the pixel right of it (fig. 3.13, with
+ * colour jumps in place of his +1 for left edges and -1 for right edges).
+ * While no two pieces cross and none ends inside the band, the order of the
+ * crossings along x is the same on every line of the band, so each piece's
+ * jump is one constant: the colour difference of the winding numbers on its
+ * two sides, front layers hiding those behind, fill rules applied.  The sum
+ * is then exact for any number of layers and any winding numbers.  As in
+ * FreeType's smooth rasterizer, a piece adds `area` to the cells it crosses
+ * and `cover` (its height) to the cell after, resolved late in one sweep.
+ *
+ * Clusters.  The band's pieces, in x order, link the cells they touch into
+ * clusters; between clusters no piece is met, the colour is constant and
+ * known exactly from the winding numbers, and those pixels are filled
+ * without integration.  Each cluster restarts from an exact colour: no
+ * running sum across the row, flat pixels come out exactly, rounding cannot
+ * build up.  The common cluster, one piece spanning the band through one or
+ * two cells, writes its pixels directly.
+ *
+ * Arcs are integrated exactly.  Each piece is expanded about its point on
+ * the line y = ja (ja a multiple of ANCHOR_ROWS, fixed, so no result
+ * depends on the rows a thread did before), in extended precision from its
+ * control points: at 4096 px an absolute coordinate's last bit is 5e-13 px.
+ * Everything after that is in cell-local coordinates, u = x - cell and
+ * v = y - row, and tau, the Bezier parameter from that point; a quadratic's
+ * Taylor form is exact, and u stays within ANCHOR_ROWS times the slope.
+ * Over a part of an arc inside one cell, tau from tau_a to tau_a + d, the
+ * area of the cell right of it is
+ *
+ *     dy (1 - (u_a + u_b)/2) + d^3 (y' x'' - x' y'') / 12,
+ *
+ * the trapezoid under the chord plus the parabolic segment between chord
+ * and arc (two thirds of its control triangle, Archimedes); y' x'' - x' y''
+ * is one constant along a parabola, and dy = d (y'(tau_a) + ay d): no term
+ * is large, so nothing cancels (difference forms throughout).  Pieces whose
+ * y is quadratic in t (general arcs, x(y) with a square root) need no
+ * special case: every integral is a polynomial in tau.
+ *
+ * Hidden surfaces.  Clusters where pieces cross, or end inside the band
+ * (vertices, flat edges), need the per-pixel treatment Catmull describes
+ * ("A correct solution for this filter requires a hidden-surface algorithm
+ * at each pixel!"):
+ *
+ *  - integrator=catmull (the default), clusters of lines: each pixel goes
+ *    to Catmull's recursive pixel integrater.  Split the pixel by the line
+ *    of an edge of the front-most layer that still has edges inside the
+ *    region, clip every edge into the two halves (the clipper of his
+ *    "Clipping" section), recurse on both; a region in which the front
+ *    layer has no edge left is wholly inside it (it hides everything behind:
+ *    return its colour times the area) or wholly outside (go on with the
+ *    layers behind).  His polygons are here the layers' regions under their
+ *    fill rules: the winding numbers at the region's centroid decide inside
+ *    or outside, so self-overlapping paths and holes need no polygon set
+ *    operations.  Horizontal edges take part as splitters.
+ *  - clusters with arcs (and every cluster with integrator=bands): the
+ *    cluster's band is cut at every vertex and every crossing of two pieces
+ *    into sub-bands with a fixed order along x, each summed as above.  This
+ *    is exact, not an approximation (no flattening): an arc meets a line
+ *    where a quadratic in t vanishes, and another arc where a quartic does
+ *    (the arc substituted in the other's implicit parabola), whose roots are
+ *    isolated between those of its derivatives and bisected to full
+ *    precision.
+ *
+ * Speed (crow 1024x1024 box, one core; see the measurements in the
+ * comments at each choice): the per-row order of the active list is kept,
+ * so for most scenes the pieces arrive in x order and clusters are written
+ * as they close, with a sorted pass only when a piece comes out of order;
+ * one extended-precision expansion per piece every ANCHOR_ROWS rows, and
+ * the tau and u of a band's bottom reused as the next band's top; fills in
+ * whole 16-byte stores; non-temporal stores for images over STREAM_BYTES;
+ * each thread's workspace on cache lines of its own.  Rows are shared out
+ * by OpenMP in blocks.  Workspaces are made in init, O(width + pieces) per
+ * thread; nothing is allocated while rendering.  Every sort breaks ties by
+ * piece index and every row depends only on the scene, so the image is
+ * bit-identical for any thread count.
+ *
+ * Counters: samples = 0 (no point of the scene is sampled);
+ * expensive_pixels = the pixels some piece touches (integrated, by the cell
+ * sweep or a pixel integrater), the others being filled.
+ *
+ * Known answers (tests/test_area.c): Catmull's fig. 1 pixel is
+ * (0, 0.25, 0.5); `crow` 256x256 equals the box reference within 1e-9 (in
+ * practice 2e-15; 2e-14 at 4096 px wide).
+ *
+ * Limits.  The box filter only: tent and gauss are refused.  Results carry
+ * rounding, about 1e-15 per pixel at 256 px and 1e-14 at 4096 px, and are
+ * clamped to [0, 1].  Catmull's integrater takes polygons only; where arcs
+ * meet other edges in a pixel the bands do the work, exactly, except that
+ * crossings closer than CROSS_MARGIN (1e-12 px, in y) to a vertex or to the
+ * band's edge are not split (an error below 1e-24), and arcs that touch
+ * without crossing are not split (their order does not change).  In
+ * Catmull's integrater edges within CM_EPS (1e-14 px) of a splitting line
+ * count as lying on it.  A pixel with more than CM_MAX_EDGES edges goes to
+ * the bands instead; a cluster's crossings are gathered CM_MAX_EVENTS at a
+ * time (bounded memory, more passes).  Coordinates beyond 2^30 px lose
+ * precision.  Crossings inside a cluster are found pair by pair among
+ * pieces whose extents overlap: quadratic in the number of pieces that
+ * crowd one cluster.
+ */
+#include "methods.h"
+
+#include <limits.h>
+#include <math.h>
+#include <omp.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#if defined(__SSE2__) && defined(__x86_64__)
+#include <emmintrin.h>
+#define AR_STREAM 1
+#else
+#define AR_STREAM 0
+#endif
+
+enum { P_INTEGRATOR };
+enum { INT_CATMULL, INT_BANDS };
+
+static const aa_param area_params[] = {
+    {"integrator", AA_PARAM_CHOICE, INT_CATMULL, 0, 0, 0, "catmull|bands",
+     "pixels where edges cross or end: Catmull's recursive pixel integrater (polygons; "
+     "arcs use bands) or exact y-bands everywhere"},
+    {0}};
+
+/* Catmull's integrater works on at most this many edges in a pixel. */
+#define CM_MAX_EDGES 48
+#define CM_MAX_VERTS (CM_MAX_EDGES + 8)
+/* Sub-band boundaries gathered per pass (bounded memory). */
+#define CM_MAX_EVENTS 2048
+/* Crossings this close (in y, px) to a band's edge are not split. */
+#define CROSS_MARGIN 1e-12
+/* Catmull: edges this close (px) to a splitting line lie on it. */
+#define CM_EPS 1e-14
+/* Images larger than this are written with non-temporal stores.  Measured
+ * on `crow` here: 1024^2 (24 MB) is faster with ordinary stores (it stays
+ * in the last-level cache), 1536^2 (54 MB) and larger faster streamed
+ * (4096^2: 17.1 against 18.6 ms). */
+#define STREAM_BYTES (32.0 * 1024 * 1024)
+/* Rows per extended-precision expansion of a piece. */
+#define ANCHOR_ROWS 16
+/* Integer range of cell origins. */
+#define CELL_LIMIT 1073741824.0
+
+/* ------------------------------------------------------------------------
+ * Pieces, as the method reads them (shared, read-only)
+ * ------------------------------------------------------------------------ */
+
+typedef struct ar_piece {
+    /* what every row reads first, in one cache line */
+    double y0, y1;     /* y range */
+    double xmin, xmax; /* x extent of the whole piece */
+    int flat, line, dir, layer;
+    uint32_t id; /* index in the scene: the tie-break of every sort */
+    double byd, ayd; /* by and ay rounded, to find T */
+    double k6;       /* (y' x'' - x' y'') / 12, constant along a parabola */
+    /* power basis from the control points, extended precision:
+     * x(t) = x0 + t (bx + t ax), y(t) = y0 + t (by + t ay) */
+    long double x0, bx, ax, y0l, by, ay;
+} ar_piece;
+
+/* A piece as a worker sees it, one per piece, kept from row to row.
+ *
+ * Its expansion about its point on the line y = ja (or its top, if lower),
+ * exact from the control points, in cell-local coordinates: u(tau) =
+ * U + tau (g + tau ax) is x - c0 and v(tau) = Va + tau (vy + tau ay) is
+ * y - ja, tau = t - T with T the parameter at that point.  One expansion
+ * serves ANCHOR_ROWS rows.  Then its part inside the current band [j, j+1],
+ * where v is y - j (V = Va - (j - ja)). */
+typedef struct ar_seg {
+    const ar_piece *p;
+    int ja, c0, mline;
+    double U, Va, g, vy, ax, ay;
+    double te;   /* tau of the x extremum (infinite if none) */
+    double ivy;  /* 1 / vy when ay = 0 */
+    double k6;   /* (y' x'' - x' y'') / 12, constant along a parabola */
+    double tend; /* tau at the piece's end */
+    /* tau and u on the line y = ja + mline (the bottom of the last band
+     * rendered): the next band's top, without solving again */
+    double tline, uline;
+    /* the current band */
+    double V;
+    double ta, tb;  /* tau at the band's (or piece's) top and bottom */
+    double ua, ub;  /* u there */
+    double va, vb;  /* v there: max(0, y0 - j), min(1, y1 - j) */
+    double lo, hi;  /* u extent inside the band */
+    int ca, cb;     /* first and last cell touched, in [-1, W] */
+} ar_seg;
+
+typedef struct ar_key {
+    double key;
+    uint32_t id, idx;
+} ar_key;
+
+/* Catmull: an edge clipped to the pixel, pixel-local coordinates. */
+typedef struct cm_edge {
+    double x0, y0, x1, y1;
+    int layer;
+} cm_edge;
+
+typedef struct cm_level {
+    int nv, ne;
+    double vx[CM_MAX_VERTS], vy[CM_MAX_VERTS];
+    cm_edge e[CM_MAX_EDGES];
+} cm_level;
+
+/* One thread's workspace.  Workers and everything they write are kept on
+ * cache lines of their own (a shared line made two threads slower than
+ * one). */
+typedef struct ar_worker {
+    _Alignas(64) uint32_t *active; /* indices into the sorted pieces */
+    size_t nactive, next;
+    double first_end; /* the lowest bottom of an active piece */
+    int row;          /* last row rendered (-2: none) */
+    ar_seg *seg;     /* per sorted piece */
+    uint32_t *list;  /* the current row's segs, in active order */
+    ar_key *order, *sub;
+    double *acc, *cov; /* per cell and channel */
+    int *wind, *wtmp;
+    double *ev;
+    cm_level *cm;
+    uint64_t expensive;
+} ar_worker;
+
+typedef struct ar_state {
+    const aa_scene *scene;
+    int w, nworkers;
+    ar_piece *piece; /* sorted by (y0, id) */
+    size_t npieces;
+    int nl, nch;         /* layers; channels computed (1 for grey scenes) */
+    double (*colour)[3]; /* per layer, then the background */
+    int *evenodd;
+    ar_worker *workers;
+} ar_state;
+
+/* Row context passed through the cluster functions. */
+typedef struct ar_row {
+    const ar_state *S;
+    ar_worker *wk;
+    int j, W, integrator, stream;
+    double *px; /* the row's first pixel */
+} ar_row;
+
+/* ------------------------------------------------------------------------
+ * Small helpers
+ * ------------------------------------------------------------------------ */
+
+static inline const double *colour_of(const ar_state *S, const int *w)
+{
+    for (int l = 0; l < S->nl; l++)
+        if (S->evenodd[l] ? (w[l] & 1) : (w[l] != 0))
+            return S->colour[l];
+    return S->colour[S->nl];
+}
+
+static inline double u_at(const ar_seg *s, double t) { return s->U + t * (s->g + t * s->ax); }
+
+/* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
+ * in the cancellation-free form. */
+static inline double solve_v(const ar_seg *s, double v)
+{
+    double c = s->V - v;
+    if (s->ay == 0.0)
+        return -c / s->vy;
+    double disc = s->vy * s->vy - 4.0 * s->ay * c;
+    double den = s->vy + sqrt(disc > 0.0 ? disc : 0.0);
+    return den > 0.0 ? -2.0 * c / den : 0.0;
+}
+
+/* The same inside the band, exact at the ends of the seg. */
+static inline double tau_of_v(const ar_seg *s, double v)
+{
+    if (v <= s->va)
+        return s->ta;
+    if (v >= s->vb)
+        return s->tb;
+    return solve_v(s, v);
+}
+
+/* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1). */
+static inline double tau_of_u(const ar_seg *s, double k, double sg)
+{
+    double c = s->U - k, g = s->g;
+    double disc = g * g - 4.0 * s->ax * c, q = sqrt(disc > 0.0 ? disc : 0.0);
+    if (sg * g > 0.0 || s->ax == 0.0)
+        return -2.0 * c / (g + sg * q);
+    return (-g + sg * q) / (2.0 * s->ax);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : (x > y);
+}
+
+static int cmp_key(const void *a, const void *b)
+{
+    const ar_key *p = a, *q = b;
+    if (p->key != q->key)
+        return p->key < q->key ? -1 : 1;
+    return p->id < q->id ? -1 : (p->id > q->id);
+}
+
+/* Sort by (key, id): a total order, so the result does not depend on the
+ * starting order.  Insertion sort (the common input is nearly sorted),
+ * qsort past a budget of moves. */
+static void sort_keys(ar_key *k, size_t n)
+{
+    size_t moves = 0, budget = 8 * n + 64;
+    for (size_t a = 1; a < n; a++) {
+        ar_key v = k[a];
+        size_t at = a;
+        while (at > 0 && cmp_key(&k[at - 1], &v) > 0) {
+            k[at] = k[at - 1];
+            at--;
+            if (++moves > budget) {
+                k[at] = v;
+                qsort(k, n, sizeof *k, cmp_key);
+                return;
+            }
+        }
+        k[at] = v;
+    }
+}
+
+/* ------------------------------------------------------------------------
+ * Roots of a polynomial of degree <= 4 on (0, 1) where it changes sign
+ * ------------------------------------------------------------------------ */
+
+static double poly_eval(const double *c, int d, double s)
+{
+    double r = c[d];
+    for (int k = d - 1; k >= 0; k--)
+        r = r * s + c[k];
+    return r;
+}
+
+/* Ascending roots in (0, 1) at which the sign changes: a touching root
+ * (even multiplicity) is no crossing and is not reported. */
+static int poly_roots(const double *c, int d, double *r)
+{
+    while (d > 0 && c[d] == 0.0)
+        d--;
+    if (d == 0)
+        return 0;
+    if (d == 1) {
+        double s = -c[0] / c[1];
+        if (s > 0.0 && s < 1.0) {
+            r[0] = s;
+            return 1;
+        }
+        return 0;
+    }
+    if (d == 2) {
+        double disc = c[1] * c[1] - 4.0 * c[2] * c[0];
+        if (!(disc > 0.0))
+            return 0;
+        double q = -0.5 * (c[1] + copysign(sqrt(disc), c[1]));
+        double s[2] = {q / c[2], q != 0.0 ? c[0] / q : 0.0};
+        if (s[0] > s[1]) {
+            double t = s[0];
+            s[0] = s[1], s[1] = t;
+        }
+        int n = 0;
+        for (int k = 0; k < 2; k++)
+            if (s[k] > 0.0 && s[k] < 1.0)
+                r[n++] = s[k];
+        return n;
+    }
+    /* isolate: between consecutive sign changes of the derivative the
+     * polynomial is monotone, so bisection finds each crossing */
+    double dc[4] = {0, 0, 0, 0}, crit[4];
+    for (int k = 0; k < d; k++)
+        dc[k] = (k + 1) * c[k + 1];
+    int m = poly_roots(dc, d - 1, crit), n = 0;
+    double a = 0.0, fa = poly_eval(c, d, 0.0);
+    for (int k = 0; k <= m; k++) {
+        double b = k < m ? crit[k] : 1.0, fb = poly_eval(c, d, b);
+        if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
+            double lo = a, hi = b, flo = fa;
+            for (int it = 0; it < 200; it++) {
+                double mid = 0.5 * (lo + hi);
+                if (mid <= lo || mid >= hi)
+                    break;
+                double fm = poly_eval(c, d, mid);
+                if ((fm < 0.0) == (flo < 0.0) && fm != 0.0)
+                    lo = mid, flo = fm;
+                else
+                    hi = mid;
+            }
+            r[n++] = 0.5 * (lo + hi);
+        }
+        a = b, fa = fb;
+    }
+    return n;
+}
+
+/* ------------------------------------------------------------------------
+ * A piece in the band
+ * ------------------------------------------------------------------------ */
+
+/* Expand piece p about its point on line y = ja (or its top, if lower),
+ * in extended precision from its control points. */
+static void expand(ar_seg *a, const ar_piece *p, int ja)
+{
+    long double T, X, Y;
+    if (p->y0 >= ja) {
+        T = 0.0L;
+        X = p->x0;
+        Y = p->y0l - ja;
+    } else {
+        /* T need not solve y(T) = ja exactly (Y keeps the residual), so it
+         * is found in double; only x(T) and y(T) need the extra bits */
+        double d = ja - p->y0, t;
+        if (p->ayd == 0.0) {
+            t = d / p->byd;
+        } else {
+            double disc = p->byd * p->byd + 4.0 * p->ayd * d;
+            double den = p->byd + sqrt(disc > 0.0 ? disc : 0.0);
+            t = den > 0.0 ? 2.0 * d / den : 0.0;
+        }
+        T = t < 1.0 ? t : 1.0;
+        X = p->x0 + T * (p->bx + T * p->ax);
+        Y = (p->y0l - ja) + T * (p->by + T * p->ay);
+    }
+    /* the cell from the double value (x87 floorl and conversions reload
+     * the control word: measured as 10% of the render) */
+    double c0 = floor((double)X);
+    c0 = c0 < -CELL_LIMIT ? -CELL_LIMIT : (c0 > CELL_LIMIT ? CELL_LIMIT : c0);
+    a->p = p;
+    a->ja = ja;
+    a->c0 = (int)c0;
+    a->U = (double)(X - c0);
+    a->Va = (double)Y;
+    a->g = (double)(p->bx + 2.0L * p->ax * T);
+    a->vy = (double)(p->by + 2.0L * p->ay * T);
+    a->ax = (double)p->ax;
+    a->ay = (double)p->ay;
+    a->tend = (double)(1.0L - T);
+    a->te = a->ax != 0.0 ? -a->g / (2.0 * a->ax) : INFINITY;
+    a->ivy = a->ay == 0.0 && a->vy > 0.0 ? 1.0 / a->vy : 0.0;
+    a->k6 = p->k6;
+    a->mline = INT_MIN;
+}
+
+/* tau where the piece meets the line y = ja + m (the same expression
+ * whichever band asks, so a band's top equals the band above's bottom). */
+static inline double line_tau(const ar_seg *a, int m)
+{
+    double c = a->Va - m;
+    if (a->ay == 0.0)
+        return -c * a->ivy;
+    double disc = a->vy * a->vy - 4.0 * a->ay * c;
+    double den = a->vy + sqrt(disc > 0.0 ? disc : 0.0);
+    return den > 0.0 ? -2.0 * c / den : 0.0;
+}
+
+/* The cell of x (clamped to +-2^30): floor(x), except that a negative
+ * integer gives the cell to its left.  A piece exactly on a cell's side
+ * may be put in either cell: its area share in the other is zero. */
+static inline int icell(double x)
+{
+    x = x > -CELL_LIMIT ? x : -CELL_LIMIT; /* maxsd, minsd: no branch */
+    x = x < CELL_LIMIT ? x : CELL_LIMIT;
+    return (int)x - (x < 0.0);
+}
+
+/* Piece p clipped to the band [j, j+1], in its seg s.  Returns 0 if it
+ * lies right of the image. */
+static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
+{
+    s->p = p;
+    if (p->flat) {
+        double lo = floor(p->xmin), hi = floor(p->xmax);
+        if (lo >= W)
+            return 0;
+        s->ca = lo < -1 ? -1 : (int)lo;
+        s->cb = hi < -1 ? -1 : (hi >= W ? W : (int)hi);
+        s->va = s->vb = p->y0 - j;
+        return 1;
+    }
+    /* One expansion serves ANCHOR_ROWS rows: a quadratic's Taylor form is
+     * exact, and u stays within ANCHOR_ROWS times the slope of the anchor,
+     * so rounding grows by at most that factor.  The anchor rows are fixed
+     * (multiples of ANCHOR_ROWS), so the values do not depend on the rows
+     * a thread rendered before. */
+    int ja = j - j % ANCHOR_ROWS, m = j - ja;
+    if (s->ja != ja)
+        expand(s, p, ja);
+    double ta, tb, ua, ub;
+    if (p->y0 >= j)
+        ta = 0.0, ua = s->U;
+    else if (s->mline == m)
+        ta = s->tline, ua = s->uline;
+    else
+        ta = line_tau(s, m), ua = u_at(s, ta);
+    if (p->y1 <= j + 1.0) {
+        tb = s->tend;
+        ub = u_at(s, tb);
+    } else {
+        /* kept as computed, so that the next band's top is what it would
+         * compute itself */
+        tb = line_tau(s, m + 1);
+        ub = u_at(s, tb);
+        s->mline = m + 1, s->tline = tb, s->uline = ub;
+    }
+    if (!(tb >= ta))
+        tb = ta, ub = ua;
+    s->ta = ta, s->tb = tb;
+    s->ua = ua, s->ub = ub;
+    s->lo = s->ua < s->ub ? s->ua : s->ub;
+    s->hi = s->ua < s->ub ? s->ub : s->ua;
+    if (s->te > ta && s->te < tb) {
+        double ue = u_at(s, s->te);
+        s->lo = ue < s->lo ? ue : s->lo;
+        s->hi = ue > s->hi ? ue : s->hi;
+    }
+    int lo = s->c0 + icell(s->lo), hi = s->c0 + icell(s->hi);
+    if (lo >= W)
+        return 0;
+    s->ca = lo < -1 ? -1 : lo;
+    s->cb = hi < -1 ? -1 : (hi >= W ? W : hi);
+    return 1;
+}
+
+/* The band's fields that only the general cluster paths read: v at the
+ * band's top line, and the seg's v range in the band. */
+static void band_fields(ar_seg *s, int j)
+{
+    const ar_piece *p = s->p;
+    if (p->flat)
+        return;
+    s->V = s->Va - (j - s->ja);
+    s->va = p->y0 > j ? p->y0 - j : 0.0;
+    s->vb = p->y1 < j + 1.0 ? p->y1 - j : 1.0;
+}
+
+/* ------------------------------------------------------------------------
+ * Cell accumulation (Crow's left areas minus right areas)
+ * ------------------------------------------------------------------------ */
+
+/* The area right of the part of s from tau ta to tb (u from ua to ub,
+ * relative to its column) inside the column, and its height *dy. */
+static inline double part_area(const ar_seg *s, double ta, double tb, double ua, double ub,
+                               double *dy)
+{
+    double d = tb - ta;
+    *dy = d * (s->vy + s->ay * (ta + tb));
+    return *dy * (1.0 - 0.5 * (ua + ub)) + d * d * d * s->k6;
+}
+
+/* The part of s from tau ta to tb lies in local column k: add dc times
+ * the area of the cell right of it, and times its height to the cover of
+ * the cell after (the cells left of the image pass it on to cell 0). */
+static inline void emit(ar_worker *wk, const ar_seg *s, double k, double ta, double tb,
+                        double ua, double ub, const double *dc, int nch, int W)
+{
+    double dy, right = part_area(s, ta, tb, ua - k, ub - k, &dy);
+    int col = s->c0 + (int)k;
+    if (col < s->ca)
+        col = s->ca;
+    if (col > s->cb)
+        col = s->cb;
+    if (col >= W)
+        return;
+    if (col < 0) {
+        for (int ch = 0; ch < nch; ch++)
+            wk->cov[ch] += dc[ch] * dy;
+        return;
+    }
+    double *acc = wk->acc + (size_t)col * nch, *cov = wk->cov + (size_t)(col + 1) * nch;
+    for (int ch = 0; ch < nch; ch++) {
+        acc[ch] += dc[ch] * right;
+        cov[ch] += dc[ch] * dy;
+    }
+}
+
+/* An x-monotone part from (t1, u1) to (t2, u2): walk its cells. */
+static void walk(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1, double u2,
+                 const double *dc, int nch, int W)
+{
+    int right = u2 >= u1;
+    double k = right ? floor(u1) : ceil(u1) - 1.0;
+    double kend = right ? ceil(u2) - 1.0 : floor(u2);
+    if (right ? kend < k : kend > k)
+        kend = k;
+    double ta = t1, ua = u1;
+    for (;;) {
+        double tb = t2, ub = u2;
+        if (k != kend) {
+            ub = right ? k + 1.0 : k;
+            tb = tau_of_u(s, ub, right ? 1.0 : -1.0);
+            if (!(tb >= ta))
+                tb = ta;
+            if (tb > t2)
+                tb = t2;
+        }
+        emit(wk, s, k, ta, tb, ua, ub, dc, nch, W);
+        if (k == kend)
+            break;
+        ta = tb, ua = ub;
+        k += right ? 1.0 : -1.0;
+    }
+}
+
+/* Add colour jump dc times the area right of s from tau t1 to t2. */
+static void accumulate(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1,
+                       double u2, const double *dc, int nch, int W)
+{
+    if (s->te > t1 && s->te < t2) {
+        double ue = u_at(s, s->te);
+        walk(wk, s, t1, s->te, u1, ue, dc, nch, W);
+        walk(wk, s, s->te, t2, ue, u2, dc, nch, W);
+        return;
+    }
+    walk(wk, s, t1, t2, u1, u2, dc, nch, W);
+}
+
+/* Rounding may step just outside [0, 1]. */
+static inline double clamp01(double v)
+{
+    v = v > 0.0 ? v : 0.0; /* maxsd, minsd: no branch */
+    return v < 1.0 ? v : 1.0;
+}
+
+/* Store one pixel, clamped, non-temporal when the row streams. */
+static inline void store_px(const ar_row *r, double *px, const double *v)
+{
+    /* scalars straight to the image: going through a small array cost a
+     * store-forwarding stall per pixel (measured: a fifth of the render) */
+    double c0 = clamp01(v[0]), c1 = clamp01(v[1]), c2 = clamp01(v[2]);
+#if AR_STREAM
+    if (r->stream) {
+        _mm_stream_si64((long long *)px, _mm_cvtsi128_si64(_mm_castpd_si128(_mm_set_sd(c0))));
+        _mm_stream_si64((long long *)px + 1,
+                        _mm_cvtsi128_si64(_mm_castpd_si128(_mm_set_sd(c1))));
+        _mm_stream_si64((long long *)px + 2,
+                        _mm_cvtsi128_si64(_mm_castpd_si128(_mm_set_sd(c2))));
+        return;
+    }
+#else
+    (void)r;
+#endif
+    px[0] = c0, px[1] = c1, px[2] = c2;
+}
+
+/* Write the cluster's cells [lo, hi] from colour cin plus the cells'
+ * cover and area, clearing them for the next cluster. */
+static void resolve(const ar_row *r, int lo, int hi, const double *cin)
+{
+    ar_worker *wk = r->wk;
+    int nch = r->S->nch, a = lo < 0 ? 0 : lo, b = hi >= r->W ? r->W - 1 : hi;
+    double run[3] = {cin[0], cin[1], cin[2]};
+    for (int i = a; i <= b; i++) {
+        double *acc = wk->acc + (size_t)i * nch, *cov = wk->cov + (size_t)i * nch;
+        double v[3] = {0, 0, 0};
+        for (int ch = 0; ch < nch; ch++) {
+            run[ch] += cov[ch];
+            v[ch] = run[ch] + acc[ch];
+            acc[ch] = cov[ch] = 0.0;
+        }
+        if (nch == 1)
+            v[1] = v[2] = v[0];
+        store_px(r, r->px + 3 * (size_t)i, v);
+    }
+    for (int ch = 0; ch < nch; ch++)
+        wk->cov[(size_t)(b + 1) * nch + ch] = 0.0;
+}
+
+/* Add, in order, the colour jump across each seg in keys[0..n) (sorted
+ * along x) times its area from v = ya to yb.  w holds the windings left of
+ * the first; c their colour. */
+static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const double *c,
+                  double ya, double yb, int whole)
+{
+    const ar_state *S = r->S;
+    ar_seg *seg = r->wk->seg;
+    for (size_t k = 0; k < n; k++) {
+        const ar_seg *s = &seg[keys[k].idx];
+        w[s->p->layer] += s->p->dir;
+        const double *nx = colour_of(S, w);
+        double dc[3] = {nx[0] - c[0], nx[1] - c[1], nx[2] - c[2]};
+        c = nx;
+        if (dc[0] == 0.0 && dc[1] == 0.0 && dc[2] == 0.0)
+            continue;
+        if (whole) {
+            accumulate(r->wk, s, s->ta, s->tb, s->ua, s->ub, dc, S->nch, r->W);
+        } else {
+            double t1 = tau_of_v(s, ya), t2 = tau_of_v(s, yb);
+            accumulate(r->wk, s, t1, t2, u_at(s, t1), u_at(s, t2), dc, S->nch, r->W);
+        }
+    }
+}
+
+/* ------------------------------------------------------------------------
+ * Crossings of two pieces
+ * ------------------------------------------------------------------------ */
+
+/* Heights v in (ya, yb), away from its ends, where segs p and q cross.
+ * Both are reparametrised over [ya, yb] as P(s) = Pa + s B + s^2 A in
+ * coordinates relative to p's cell; the crossings are where P meets q's
+ * implicit curve: for a line, cross(X - Qa, Bq) = 0; for a parabola,
+ * cross(X - Qa, Aq)^2 = k cross(X - Qa, Bq), k = cross(Aq, Bq) (from
+ * X - Qa = s Bq + s^2 Aq), a polynomial of degree <= 4 in s. */
+static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb, double *out)
+{
+    if (p->p->line && !q->p->line) {
+        const ar_seg *t = p;
+        p = q, q = t;
+    }
+    double pa = tau_of_v(p, ya), pb = tau_of_v(p, yb), qa = tau_of_v(q, ya), qb = tau_of_v(q, yb);
+    double dp = pb - pa, dq = qb - qa, shift = (double)q->c0 - (double)p->c0;
+    double Px = u_at(p, pa), Py = p->V + pa * (p->vy + pa * p->ay);
+    double Bx = dp * (p->g + 2.0 * p->ax * pa), By = dp * (p->vy + 2.0 * p->ay * pa);
+    double Ax = dp * dp * p->ax, Ay = dp * dp * p->ay;
+    double Qx = shift + u_at(q, qa), Qy = q->V + qa * (q->vy + qa * q->ay);
+    double Cx = dq * (q->g + 2.0 * q->ax * qa), Cy = dq * (q->vy + 2.0 * q->ay * qa);
+    double Dx = dq * dq * q->ax, Dy = dq * dq * q->ay;
+    double ex = Px - Qx, ey = Py - Qy;
+    /* beta(s) = cross(P(s) - Qa, C) */
+    double b0 = ex * Cy - ey * Cx, b1 = Bx * Cy - By * Cx, b2 = Ax * Cy - Ay * Cx;
+    double k = Dx * Cy - Dy * Cx, c[5] = {0, 0, 0, 0, 0};
+    double scale = (Cx * Cx + Cy * Cy) * sqrt(Dx * Dx + Dy * Dy);
+    int arc = !q->p->line && fabs(k) > 1e-14 * scale;
+    /* alpha(s) = cross(P(s) - Qa, D) */
+    double a0 = ex * Dy - ey * Dx, a1 = Bx * Dy - By * Dx, a2 = Ax * Dy - Ay * Dx;
+    if (arc) {
+        c[0] = a0 * a0 - k * b0;
+        c[1] = 2.0 * a0 * a1 - k * b1;
+        c[2] = a1 * a1 + 2.0 * a0 * a2 - k * b2;
+        c[3] = 2.0 * a1 * a2;
+        c[4] = a2 * a2;
+    } else {
+        c[0] = b0, c[1] = b1, c[2] = b2;
+    }
+    double s[4];
+    int m = poly_roots(c, 4, s), n = 0;
+    for (int i = 0; i < m; i++) {
+        if (arc) {
+            double sig = -(a0 + s[i] * (a1 + s[i] * a2)) / k;
+            if (!(sig >= -1e-9 && sig <= 1.0 + 1e-9))
+                continue;
+        }
+        double v = Py + s[i] * (By + s[i] * Ay);
+        if (v > ya + CROSS_MARGIN && v < yb - CROSS_MARGIN)
+            out[n++] = v;
+    }
+    return n;
+}
+
+/* ------------------------------------------------------------------------
+ * Clusters
+ * ------------------------------------------------------------------------ */
+
+/* keys[0..n) = the cluster's segs ordered by the left end of their extent
+ * (relative to cell lo), for finding pairs whose extents overlap. */
+static void order_by_left(const ar_row *r, const ar_key *in, size_t n, int lo, ar_key *keys)
+{
+    const ar_seg *seg = r->wk->seg;
+    for (size_t k = 0; k < n; k++) {
+        const ar_seg *s = &seg[in[k].idx];
+        keys[k].key = s->p->flat ? s->p->xmin - lo : (double)(s->c0 - lo) + s->lo;
+        keys[k].id = in[k].id;
+        keys[k].idx = in[k].idx;
+    }
+    sort_keys(keys, n);
+}
+
+static inline double right_end(const ar_seg *s, int lo)
+{
+    return s->p->flat ? s->p->xmax - lo : (double)(s->c0 - lo) + s->hi;
+}
+
+/* Does any pair of the cluster (all spanning the band) cross inside it? */
+static int any_crossing(const ar_row *r, const ar_key *keys, size_t n, int lo)
+{
+    const ar_seg *seg = r->wk->seg;
+    double reach = -INFINITY, out[4];
+    for (size_t k = 0; k < n; k++) {
+        const ar_seg *s = &seg[keys[k].idx];
+        double left = keys[k].key;
+        if (reach >= left)
+            for (size_t m = 0; m < k; m++) {
+                const ar_seg *t = &seg[keys[m].idx];
+                if (right_end(t, lo) >= left && pair_crossings(t, s, 0.0, 1.0, out))
+                    return 1;
+            }
+        reach = fmax(reach, right_end(s, lo));
+    }
+    return 0;
+}
+
+/* No vertex, no crossing: one order along x for the whole band. */
+static void cluster_fast(const ar_row *r, const ar_key *in, size_t n, int lo, int hi, int *w,
+                         const double *cin)
+{
+    ar_key *keys = r->wk->sub;
+    if (n == 1) {
+        keys[0] = in[0];
+    } else {
+        /* the order along x: at mid-band, relative to cell lo */
+        for (size_t k = 0; k < n; k++) {
+            const ar_seg *s = &r->wk->seg[in[k].idx];
+            keys[k].key = (double)(s->c0 - lo) + u_at(s, tau_of_v(s, 0.5));
+            keys[k].id = in[k].id;
+            keys[k].idx = in[k].idx;
+        }
+        sort_keys(keys, n);
+    }
+    sweep(r, keys, n, w, cin, 0.0, 1.0, 1);
+    resolve(r, lo, hi, cin);
+}
+
+/* The sub-band boundaries of one pass over the band, from y up to lim. */
+typedef struct ev_buf {
+    double *v;
+    size_t n;
+    double y, lim;
+} ev_buf;
+
+/* Keep boundary v if it lies inside (y, lim).  When the buffer is full,
+ * keep its lower half and lower lim to the first value dropped: the next
+ * pass starts there and finds the rest again (bounded memory). */
+static void add_event(ev_buf *b, double v)
+{
+    if (!(v > b->y && v < b->lim))
+        return;
+    if (b->n == CM_MAX_EVENTS) {
+        qsort(b->v, b->n, sizeof *b->v, cmp_double);
+        b->n = CM_MAX_EVENTS / 2;
+        b->lim = b->v[b->n];
+        if (!(v < b->lim))
+            return;
+    }
+    b->v[b->n++] = v;
+}
+
+/* Heights inside (y, ylim) where the cluster's order along x changes:
+ * vertices, flat edges, crossings.  keys: ordered by left end.  If there
+ * are more than CM_MAX_EVENTS, *ylim is lowered so that those found are all
+ * there are below it.  Returns the count, sorted, unique, in r->wk->ev. */
+static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo, double y,
+                          double *ylim)
+{
+    const ar_seg *seg = r->wk->seg;
+    ev_buf b = {r->wk->ev, 0, y, *ylim};
+    double reach = -INFINITY, out[4];
+    for (size_t k = 0; k < n; k++) {
+        const ar_seg *s = &seg[keys[k].idx];
+        add_event(&b, s->va);
+        if (!s->p->flat)
+            add_event(&b, s->vb);
+        double left = keys[k].key;
+        if (!s->p->flat && reach >= left)
+            for (size_t m = 0; m < k; m++) {
+                const ar_seg *t = &seg[keys[m].idx];
+                if (t->p->flat || right_end(t, lo) < left)
+                    continue;
+                double ya = fmax(fmax(s->va, t->va), y), yb = fmin(fmin(s->vb, t->vb), b.lim);
+                if (!(ya < yb))
+                    continue;
+                int c = pair_crossings(t, s, ya, yb, out);
+                for (int i = 0; i < c; i++)
+                    add_event(&b, out[i]);
+            }
+        reach = fmax(reach, right_end(s, lo));
+    }
+    qsort(b.v, b.n, sizeof *b.v, cmp_double);
+    size_t m = 0;
+    for (size_t k = 0; k < b.n; k++)
+        if (m == 0 || b.v[k] > b.v[m - 1])
+            b.v[m++] = b.v[k];
+    *ylim = b.lim;
+    return m;
+}
+
+/* The band cut into sub-bands with a fixed order along x, each swept. */
+static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
+                          const int *w, const double *cin)
+{
+    ar_worker *wk = r->wk;
+    ar_key *keys = wk->sub, *list = wk->sub + n;
+    order_by_left(r, in, n, lo, keys);
+    double y = 0.0;
+    size_t nl = (size_t)r->S->nl;
+    while (y < 1.0) {
+        double lim = 1.0;
+        size_t ne = band_events(r, keys, n, lo, y, &lim);
+        for (size_t e = 0; e <= ne; e++) {
+            double ya = y, yb = e < ne ? wk->ev[e] : lim;
+            y = yb;
+            if (!(yb > ya))
+                continue;
+            /* the segs spanning the sub-band, ordered along x at its middle */
+            double vm = 0.5 * (ya + yb);
+            size_t m = 0;
+            for (size_t k = 0; k < n; k++) {
+                const ar_seg *s = &wk->seg[keys[k].idx];
+                if (s->p->flat || !(s->va <= ya && s->vb >= yb))
+                    continue;
+                list[m].key = (double)(s->c0 - lo) + u_at(s, tau_of_v(s, vm));
+                list[m].id = keys[k].id;
+                list[m++].idx = keys[k].idx;
+            }
+            sort_keys(list, m);
+            memcpy(wk->wtmp, w, nl * sizeof *w);
+            sweep(r, list, m, wk->wtmp, cin, ya, yb, 0);
+        }
+    }
+    resolve(r, lo, hi, cin);
+}
+
+/* ---- Catmull's pixel integrater ---- */
+
+/* Winding numbers at pixel-local point (x, y) of pixel i. */
+static void cm_winding(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
+                       double x, double y, int *out)
+{
+    memcpy(out, w, (size_t)r->S->nl * sizeof *w);
+    for (size_t k = 0; k < n; k++) {
+        const ar_seg *s = &r->wk->seg[in[k].idx];
+        if (s->p->flat || !(s->va <= y && y < s->vb))
+            continue;
+        if ((double)(s->c0 - i) + u_at(s, tau_of_v(s, y)) < x)
+            out[s->p->layer] += s->p->dir;
+    }
+}
+
+/* Split level d's region and edges by the line through e (keeping side
+ * `side` of it) into level d + 1. */
+/* A splitting line: side * (a x + b y + c) is the signed distance. */
+typedef struct cm_line {
+    double a, b, c, side;
+} cm_line;
+
+/* The distance of (x, y) from the line, zero within CM_EPS. */
+static inline double cm_dist(const cm_line *l, double x, double y)
+{
+    double d = l->side * (l->a * x + l->b * y + l->c);
+    return fabs(d) <= CM_EPS ? 0.0 : d;
+}
+
+static void cm_split(cm_level *from, cm_level *to, const cm_edge *e, double side)
+{
+    double a = e->y1 - e->y0, b = e->x0 - e->x1;
+    double len = sqrt(a * a + b * b);
+    a /= len, b /= len;
+    cm_line L = {a, b, -(a * e->x0 + b * e->y0), side};
+    /* the region: Sutherland-Hodgman against one side */
+    to->nv = 0;
+    for (int k = 0; k < from->nv; k++) {
+        int m = (k + 1) % from->nv;
+        double dk = cm_dist(&L, from->vx[k], from->vy[k]);
+        double dm = cm_dist(&L, from->vx[m], from->vy[m]);
+        if (dk >= 0.0 && to->nv < CM_MAX_VERTS) {
+            to->vx[to->nv] = from->vx[k];
+            to->vy[to->nv++] = from->vy[k];
+        }
+        if (((dk > 0.0 && dm < 0.0) || (dk < 0.0 && dm > 0.0)) && to->nv < CM_MAX_VERTS) {
+            double t = dk / (dk - dm);
+            to->vx[to->nv] = from->vx[k] + t * (from->vx[m] - from->vx[k]);
+            to->vy[to->nv++] = from->vy[k] + t * (from->vy[m] - from->vy[k]);
+        }
+    }
+    /* the edges: those on the line are clipped (dropped), the others cut */
+    to->ne = 0;
+    for (int k = 0; k < from->ne; k++) {
+        const cm_edge *f = &from->e[k];
+        if (f == e)
+            continue;
+        double d0 = cm_dist(&L, f->x0, f->y0), d1 = cm_dist(&L, f->x1, f->y1);
+        if ((d0 <= 0.0 && d1 <= 0.0))
+            continue; /* other side, or on the line */
+        cm_edge g = *f;
+        if (d0 < 0.0 || d1 < 0.0) {
+            double t = d0 / (d0 - d1), x = f->x0 + t * (f->x1 - f->x0),
+                   yy = f->y0 + t * (f->y1 - f->y0);
+            if (d0 < 0.0)
+                g.x0 = x, g.y0 = yy;
+            else
+                g.x1 = x, g.y1 = yy;
+        }
+        to->e[to->ne++] = g;
+    }
+}
+
+/* Catmull's integrater on level d: add colour times area of its region. */
+static void cm_integrate(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
+                         int d, double *sum)
+{
+    const ar_state *S = r->S;
+    cm_level *lv = &r->wk->cm[d];
+    double area = 0.0, cx = 0.0, cy = 0.0;
+    if (lv->nv < 3)
+        return;
+    for (int k = 0; k < lv->nv; k++) {
+        int m = (k + 1) % lv->nv;
+        double cr = lv->vx[k] * lv->vy[m] - lv->vx[m] * lv->vy[k];
+        area += cr;
+        cx += (lv->vx[k] + lv->vx[m]) * cr;
+        cy += (lv->vy[k] + lv->vy[m]) * cr;
+    }
+    if (area == 0.0)
+        return;
+    cx /= 3.0 * area, cy /= 3.0 * area;
+    area = 0.5 * fabs(area);
+    /* the front-most layer with an edge left in the region */
+    int front = S->nl;
+    const cm_edge *split = NULL;
+    for (int k = 0; k < lv->ne; k++)
+        if (lv->e[k].layer < front)
+            front = lv->e[k].layer, split = &lv->e[k];
+    int *wind = r->wk->wtmp;
+    cm_winding(r, in, n, w, i, cx, cy, wind);
+    /* layers in front of it have no edge here: each is all in or all out */
+    for (int l = 0; l < front; l++)
+        if (S->evenodd[l] ? (wind[l] & 1) : (wind[l] != 0)) {
+            for (int ch = 0; ch < 3; ch++)
+                sum[ch] += S->colour[l][ch] * area;
+            return;
+        }
+    if (!split) {
+        const double *c = S->colour[S->nl];
+        for (int ch = 0; ch < 3; ch++)
+            sum[ch] += c[ch] * area;
+        return;
+    }
+    cm_split(lv, lv + 1, split, 1.0);
+    cm_integrate(r, in, n, w, i, d + 1, sum);
+    cm_split(lv, lv + 1, split, -1.0);
+    cm_integrate(r, in, n, w, i, d + 1, sum);
+}
+
+/* Clip the segment to 0 <= x <= 1; 0 if nothing (of length) is left. */
+static int clip_unit_x(cm_edge *e)
+{
+    double t0 = 0.0, t1 = 1.0, dx = e->x1 - e->x0;
+    if (dx == 0.0) {
+        if (!(e->x0 > 0.0 && e->x0 < 1.0))
+            return 0;
+    } else {
+        double ta = (0.0 - e->x0) / dx, tb = (1.0 - e->x0) / dx;
+        if (ta > tb) {
+            double t = ta;
+            ta = tb, tb = t;
+        }
+        t0 = fmax(t0, ta), t1 = fmin(t1, tb);
+        if (!(t1 > t0))
+            return 0;
+    }
+    double x0 = e->x0 + t0 * dx, y0 = e->y0 + t0 * (e->y1 - e->y0);
+    double x1 = e->x0 + t1 * dx, y1 = e->y0 + t1 * (e->y1 - e->y0);
+    e->x0 = fmin(fmax(x0, 0.0), 1.0), e->y0 = y0;
+    e->x1 = fmin(fmax(x1, 0.0), 1.0), e->y1 = y1;
+    return fabs(e->x1 - e->x0) + fabs(e->y1 - e->y0) > 1e-15;
+}
+
+/* Every pixel of the cluster by Catmull's integrater; 0 if a pixel has too
+ * many edges for it (nothing written then). */
+static int cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
+                           const int *w)
+{
+    int a = lo < 0 ? 0 : lo, b = hi >= r->W ? r->W - 1 : hi;
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = a; i <= b; i++) {
+            cm_level *lv = &r->wk->cm[0];
+            lv->ne = 0;
+            for (size_t k = 0; k < n; k++) {
+                const ar_seg *s = &r->wk->seg[in[k].idx];
+                if (s->ca > i || s->cb < i)
+                    continue;
+                cm_edge e;
+                if (s->p->flat)
+                    e = (cm_edge){s->p->xmin - i, s->va, s->p->xmax - i, s->va, s->p->layer};
+                else
+                    e = (cm_edge){(double)(s->c0 - i) + s->ua, s->va,
+                                  (double)(s->c0 - i) + s->ub, s->vb, s->p->layer};
+                if (!clip_unit_x(&e))
+                    continue;
+                if (lv->ne == CM_MAX_EDGES)
+                    return 0;
+                lv->e[lv->ne++] = e;
+            }
+            if (pass == 0)
+                continue; /* first pass: only check the edge counts */
+            lv->nv = 4;
+            lv->vx[0] = 0, lv->vy[0] = 0, lv->vx[1] = 1, lv->vy[1] = 0;
+            lv->vx[2] = 1, lv->vy[2] = 1, lv->vx[3] = 0, lv->vy[3] = 1;
+            double sum[3] = {0, 0, 0};
+            cm_integrate(r, in, n, w, i, 0, sum);
+            store_px(r, r->px + 3 * (size_t)i, sum);
+        }
+    return 1;
+}
+
+/* Pixel cin + dc area; grey scenes compute one channel. */
+static inline void put(const ar_row *r, double *px, const double *cin, const double *dc,
+                       double area)
+{
+    if (r->S->nch == 1 && !r->stream) {
+        double v = clamp01(cin[0] + dc[0] * area);
+        px[0] = v, px[1] = v, px[2] = v;
+        return;
+    }
+    double v[3] = {cin[0] + dc[0] * area, cin[1] + dc[1] * area, cin[2] + dc[2] * area};
+    store_px(r, px, v);
+}
+
+/* The common cluster: one seg spanning the band, monotone in x, in one or
+ * two cells of the image (single_kind and the cells checked), written
+ * directly, without the cell arrays: a tenth of the cost of the general
+ * path on `crow`.  w moves past the seg; returns the colour right of it. */
+static inline int single_kind(const ar_row *r, const ar_seg *s)
+{
+    return s->p->y0 <= r->j && s->p->y1 >= r->j + 1.0 && !(s->te > s->ta && s->te < s->tb);
+}
+
+static inline const double *single(const ar_row *r, const ar_seg *s, int *w,
+                                   const double *cin)
+{
+    const ar_piece *p = s->p;
+    w[p->layer] += p->dir;
+    const double *nx = colour_of(r->S, w);
+    double dc[3] = {nx[0] - cin[0], nx[1] - cin[1], nx[2] - cin[2]};
+    double *px = r->px + 3 * (size_t)s->ca, dy;
+    double k = (double)(s->ca - s->c0); /* the left cell, local */
+    if (s->ca == s->cb) {
+        put(r, px, cin, dc, part_area(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy));
+        return nx;
+    }
+    /* two cells: the piece crosses their common side x = c0 + k + 1 */
+    double dl, dr, al, ar;
+    if (s->ub > s->ua) {
+        double tc = tau_of_u(s, k + 1.0, 1.0);
+        tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
+        al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
+        ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
+    } else {
+        double tc = tau_of_u(s, k + 1.0, -1.0);
+        tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
+        ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
+        al = part_area(s, tc, s->tb, 1.0, s->ub - k, &dl);
+    }
+    put(r, px, cin, dc, al);
+    put(r, px + 3, cin, dc, dl + ar);
+    return nx;
+}
+
+/* single() if s is of its kind; 0 (and nothing changed) if not. */
+static int cluster_single(const ar_row *r, const ar_seg *s, int *w, const double *cin)
+{
+    if (s->cb - s->ca > 1 || s->ca < 0 || s->cb >= r->W || !single_kind(r, s))
+        return 0;
+    single(r, s, w, cin);
+    return 1;
+}
+
+/* One cluster: the segs in[0..n) link cells lo..hi; w holds the windings
+ * left of it (updated to those right of it), cin their colour. */
+static void cluster(const ar_row *r, const ar_key *in, size_t n, int lo, int hi, int *w,
+                    const double *cin)
+{
+    const ar_seg *seg = r->wk->seg;
+    int j = r->j;
+    for (size_t k = 0; k < n; k++)
+        band_fields(&r->wk->seg[in[k].idx], j);
+    if (hi >= 0) {
+        int events = 0, lines = 1;
+        for (size_t k = 0; k < n; k++) {
+            const ar_piece *p = seg[in[k].idx].p;
+            events |= p->flat || p->y0 > j || p->y1 < j + 1.0;
+            lines &= p->flat || p->line;
+        }
+        if (!events && n >= 2) {
+            ar_key *keys = r->wk->sub;
+            order_by_left(r, in, n, lo, keys);
+            events = any_crossing(r, keys, n, lo);
+        }
+        if (!events) {
+            int *wf = r->wk->wtmp; /* the sweep moves a copy; w moves below */
+            memcpy(wf, w, (size_t)r->S->nl * sizeof *w);
+            cluster_fast(r, in, n, lo, hi, wf, cin);
+        } else if (!(r->integrator == INT_CATMULL && lines &&
+                     cluster_catmull(r, in, n, lo, hi, w))) {
+            cluster_bands(r, in, n, lo, hi, w, cin);
+        }
+    }
+    /* the windings right of the cluster are those of any line of the band */
+    double yref = j + 0.5;
+    for (size_t k = 0; k < n; k++) {
+        const ar_piece *p = seg[in[k].idx].p;
+        if (!p->flat && p->y0 <= yref && yref < p->y1)
+            w[p->layer] += p->dir;
+    }
+}
+
+/* ------------------------------------------------------------------------
+ * Rows
+ * ------------------------------------------------------------------------ */
+
+/* Fill pixels [i0, i1) of a row of W with colour c, two pixels (three
+ * 16-byte stores) at a time.  Before a cluster (i1 < W) the last pair may
+ * run one pixel into it, which the cluster writes next: no alignment head,
+ * no tail loop, so a short run costs one predictable loop (mispredicted
+ * branches in the ~100 short runs of a `crow` row were measured as a large
+ * part of the render).  If `stream`, non-temporal and exact (the image is
+ * larger than the caches: the stores then do not read the lines first). */
+static void fill(double *px, int i0, int i1, int W, const double *c, int stream)
+{
+    double *p = px + 3 * (size_t)i0;
+    int n = i1 - i0;
+    if (n <= 0)
+        return;
+#if AR_STREAM
+    if (stream) {
+        double *end = px + 3 * (size_t)i1, pat[8] = {c[0], c[1], c[2], c[0],
+                                                       c[1], c[2], c[0], c[1]};
+        long long bits[6];
+        memcpy(bits, pat, sizeof bits);
+        int ph = 0;
+        if ((uintptr_t)p & 15) {
+            _mm_stream_si64((long long *)p++, bits[0]);
+            ph = 1;
+        }
+        __m128d v0 = _mm_loadu_pd(pat + ph), v1 = _mm_loadu_pd(pat + ph + 2),
+                v2 = _mm_loadu_pd(pat + ph + 4);
+        for (; end - p >= 6; p += 6) {
+            _mm_stream_pd(p, v0);
+            _mm_stream_pd(p + 2, v1);
+            _mm_stream_pd(p + 4, v2);
+        }
+        for (int k = ph; p < end; k++)
+            _mm_stream_si64((long long *)p++, bits[k % 6]);
+        return;
+    }
+    __m128d v0 = _mm_set_pd(c[1], c[0]), v1 = _mm_set_pd(c[0], c[2]), v2 = _mm_set_pd(c[2], c[1]);
+    if (i0 + ((n + 3) & ~3) <= W) {
+        /* whole chunks of 4 pixels: every pixel after the run is written
+         * again later in the row, so running over is harmless */
+        do {
+            _mm_storeu_pd(p, v0);
+            _mm_storeu_pd(p + 2, v1);
+            _mm_storeu_pd(p + 4, v2);
+            _mm_storeu_pd(p + 6, v0);
+            _mm_storeu_pd(p + 8, v1);
+            _mm_storeu_pd(p + 10, v2);
+            p += 12, n -= 4;
+        } while (n > 0);
+        return;
+    }
+    if (i1 == W)
+        n &= ~1;
+    for (; n > 0; n -= 2, p += 6) {
+        _mm_storeu_pd(p, v0);
+        _mm_storeu_pd(p + 2, v1);
+        _mm_storeu_pd(p + 4, v2);
+    }
+#else
+    (void)stream;
+    double pat[6] = {c[0], c[1], c[2], c[0], c[1], c[2]};
+    if (i1 == W)
+        n &= ~1;
+    for (; n > 0; n -= 2, p += 6)
+        memcpy(p, pat, sizeof pat);
+#endif
+    if (i1 == W && ((i1 - i0) & 1))
+        p[0] = c[0], p[1] = c[1], p[2] = c[2];
+}
+
+/* Bring the active list to row j: the pieces meeting the band, in the
+ * order of the sorted pieces (canonical, whatever the rows before). */
+static void update_active(const ar_state *S, ar_worker *wk, int j)
+{
+    if (wk->row != j - 1) {
+        wk->nactive = 0;
+        wk->next = 0;
+        wk->first_end = INFINITY;
+    }
+    wk->row = j;
+    double bottom = j + 1.0;
+    size_t m = wk->nactive;
+    if (wk->first_end <= j) { /* some piece has ended: drop those */
+        double first_end = INFINITY;
+        m = 0;
+        for (size_t k = 0; k < wk->nactive; k++) {
+            double y1 = S->piece[wk->active[k]].y1;
+            if (y1 > j) {
+                wk->active[m++] = wk->active[k];
+                first_end = y1 < first_end ? y1 : first_end;
+            }
+        }
+        wk->first_end = first_end;
+    }
+    while (wk->next < S->npieces && S->piece[wk->next].y0 < bottom) {
+        double y1 = S->piece[wk->next].y1;
+        if (y1 > j) {
+            wk->active[m++] = (uint32_t)wk->next;
+            wk->first_end = y1 < wk->first_end ? y1 : wk->first_end;
+        }
+        wk->next++;
+    }
+    wk->nactive = m;
+}
+
+/* Write the row from pixel x to the end of the cluster keys[0..n) (cells
+ * lo..hi): the run before it in colour *c, then the cluster; w and *c move
+ * past it.  Returns the next pixel to write. */
+static int flush(const ar_row *r, ar_key *keys, size_t n, int lo, int hi, int x, int *w,
+                 const double **c)
+{
+    if (lo > x)
+        fill(r->px, x, lo, r->W, *c, r->stream);
+    double cin[3] = {(*c)[0], (*c)[1], (*c)[2]};
+    if (!(n == 1 && cluster_single(r, &r->wk->seg[keys[0].idx], w, cin)))
+        cluster(r, keys, n, lo, hi, w, cin);
+    *c = colour_of(r->S, w);
+    return hi + 1 > x ? (hi + 1 > r->W ? r->W : hi + 1) : x;
+}
+
+/* The cluster list[0..n) of the one-pass order: keys in canonical order,
+ * the same as the sorted pass gives it. */
+static int flush_list(const ar_row *r, const uint32_t *list, size_t n, int lo, int hi, int x,
+                      int *w, const double **c)
+{
+    ar_seg *seg = r->wk->seg;
+    ar_key *keys = r->wk->order;
+    for (size_t k = 0; k < n; k++) {
+        keys[k].key = seg[list[k]].ca;
+        keys[k].id = seg[list[k]].p->id;
+        keys[k].idx = list[k];
+    }
+    sort_keys(keys, n); /* canonical order, however the segs came */
+    return flush(r, keys, n, lo, hi, x, w, c);
+}
+
+/* The image's cells of a cluster: the pixels that took more than a fill. */
+static inline uint64_t cells_of(int lo, int hi, int W)
+{
+    int a = lo < 0 ? 0 : lo, b = hi >= W ? W - 1 : hi;
+    return b >= a ? (uint64_t)(b - a + 1) : 0;
+}
+
+/* flush_list, with the common single seg inline (a call per piece was
+ * measured at a tenth of the render). */
+static inline int close_cluster(const ar_row *r, const uint32_t *list, size_t n, int lo, int hi,
+                                int x, int *w, const double **c)
+{
+    if (n == 1) {
+        const ar_seg *s = &r->wk->seg[list[0]];
+        if (s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s)) {
+            if (lo > x)
+                fill(r->px, x, lo, r->W, *c, r->stream);
+            *c = single(r, s, w, *c);
+            return hi + 1;
+        }
+    }
+    return flush_list(r, list, n, lo, hi, x, w, c);
+}
+
+static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, int stream,
+                       aa_image *out)
+{
+    int W = S->w;
+    update_active(S, wk, j);
+    ar_row r = {S, wk, j, W, integrator, stream, aa_pixel(out, 0, j)};
+    int *w = wk->wind;
+    memset(w, 0, (size_t)S->nl * sizeof *w);
+    const double *c = colour_of(S, w);
+    /* One pass in the active list's order, which for most scenes (and
+     * always for `crow`) is already the order along x: a cluster is written
+     * as soon as a piece starts right of it.  A piece out of order sends the
+     * row to the sorted pass below; both give the same clusters, each
+     * sorted the same way, so the same image. */
+    size_t n = 0, first = 0;
+    int lo = 0, hi = 0, x = 0, ordered = 1;
+    uint64_t cells = 0;
+    for (size_t k = 0; k < wk->nactive; k++) {
+        uint32_t ix = wk->active[k];
+        const ar_piece *p = &S->piece[ix];
+        if (p->xmin >= W || (p->flat && !(p->y0 > j && p->y0 < j + 1.0)))
+            continue; /* right of the image, or flat on the band's edge */
+        ar_seg *s = &wk->seg[ix];
+        if (!seg_make(s, p, j, W))
+            continue;
+        wk->list[n] = ix;
+        if (ordered) {
+            if (n == first) {
+                lo = s->ca, hi = s->cb;
+            } else if (s->ca > hi) {
+                cells += cells_of(lo, hi, W);
+                x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c);
+                first = n;
+                lo = s->ca, hi = s->cb;
+            } else if (s->ca >= lo) {
+                hi = s->cb > hi ? s->cb : hi;
+            } else {
+                ordered = 0;
+            }
+        }
+        n++;
+    }
+    if (ordered) {
+        if (n > first) {
+            cells += cells_of(lo, hi, W);
+            x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c);
+        }
+        if (x < W)
+            fill(r.px, x, W, W, c, stream);
+        wk->expensive += cells;
+        return;
+    }
+    /* the sorted pass, from the start of the row */
+    ar_key *keys = wk->order;
+    for (size_t k = 0; k < n; k++) {
+        keys[k].key = wk->seg[wk->list[k]].ca;
+        keys[k].id = wk->seg[wk->list[k]].p->id;
+        keys[k].idx = wk->list[k];
+    }
+    sort_keys(keys, n);
+    memset(w, 0, (size_t)S->nl * sizeof *w);
+    c = colour_of(S, w);
+    x = 0;
+    for (size_t k = 0; k < n;) {
+        first = k;
+        lo = wk->seg[keys[k].idx].ca, hi = wk->seg[keys[k].idx].cb;
+        for (k++; k < n && wk->seg[keys[k].idx].ca <= hi; k++)
+            if (wk->seg[keys[k].idx].cb > hi)
+                hi = wk->seg[keys[k].idx].cb;
+        wk->expensive += cells_of(lo, hi, W);
+        x = flush(&r, keys + first, k - first, lo, hi, x, w, &c);
+    }
+    if (x < W)
+        fill(r.px, x, W, W, c, stream);
+}
+
+/* ------------------------------------------------------------------------
+ * State
+ * ------------------------------------------------------------------------ */
+
+static int cmp_piece(const void *a, const void *b)
+{
+    const ar_piece *p = a, *q = b;
+    if (p->y0 != q->y0)
+        return p->y0 < q->y0 ? -1 : 1;
+    return p->id < q->id ? -1 : (p->id > q->id);
+}
+
+static void state_free(ar_state *S)
+{
+    for (int t = 0; t < S->nworkers; t++) {
+        ar_worker *wk = &S->workers[t];
+        free(wk->active);
+        free(wk->seg);
+        free(wk->list);
+        free(wk->order);
+        free(wk->sub);
+        free(wk->acc);
+        free(wk->cov);
+        free(wk->wind);
+        free(wk->wtmp);
+        free(wk->ev);
+        free(wk->cm);
+    }
+    free(S->workers);
+    free(S->piece);
+    free(S->colour);
+    free(S->evenodd);
+    memset(S, 0, sizeof *S);
+}
+
+static int load_pieces(ar_state *S, const aa_scene *scene)
+{
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(scene, &n);
+    if (n >= UINT32_MAX)
+        return aa_fail(AA_EINVAL, "area: %zu pieces, more than it indexes", n);
+    if (n && !(S->piece = calloc(n, sizeof *S->piece)))
+        return aa_fail(AA_ENOMEM, "out of memory for %zu pieces", n);
+    S->npieces = n;
+    for (size_t k = 0; k < n; k++) {
+        const aa_piece *p = &pc[k];
+        ar_piece *q = &S->piece[k];
+        long double x0 = p->x0, cx = p->cx, x1 = p->x1, y0 = p->y0, cy = p->cy, y1 = p->y1;
+        q->flat = p->kind == AA_PIECE_FLAT;
+        q->line = p->kind != AA_PIECE_QUAD;
+        q->x0 = x0, q->y0l = y0;
+        if (p->kind == AA_PIECE_QUAD) {
+            q->ax = x0 - 2 * cx + x1, q->bx = 2 * (cx - x0);
+            q->ay = y0 - 2 * cy + y1, q->by = 2 * (cy - y0);
+        } else {
+            q->ax = 0, q->bx = x1 - x0;
+            q->ay = 0, q->by = y1 - y0;
+        }
+        q->y0 = p->y0, q->y1 = p->y1;
+        q->xmin = p->xmin, q->xmax = p->xmax;
+        q->byd = (double)q->by, q->ayd = (double)q->ay;
+        /* y'(t) x'' - x'(t) y'' = (by + 2 ay t) 2 ax - (bx + 2 ax t) 2 ay
+         * = 2 (by ax - bx ay) for every t */
+        q->k6 = (double)((q->by * q->ax - q->bx * q->ay) / 6.0L);
+        q->dir = p->dir;
+        q->layer = p->layer;
+        q->id = (uint32_t)k;
+    }
+    if (n)
+        qsort(S->piece, n, sizeof *S->piece, cmp_piece);
+    return AA_OK;
+}
+
+static int load_colours(ar_state *S, const aa_scene *scene)
+{
+    int nl = aa_scene_layer_count(scene);
+    S->nl = nl;
+    S->colour = calloc((size_t)nl + 1, sizeof *S->colour);
+    S->evenodd = calloc((size_t)nl + 1, sizeof *S->evenodd);
+    if (!S->colour || !S->evenodd)
+        return aa_fail(AA_ENOMEM, "out of memory for %d layers", nl);
+    for (int l = 0; l <= nl; l++) {
+        aa_rgb c = l < nl ? aa_scene_layer_colour(scene, l) : aa_scene_background(scene);
+        memcpy(S->colour[l], c.c, sizeof c.c);
+        if (l < nl)
+            S->evenodd[l] = aa_scene_layer_rule(scene, l) == AA_FILL_EVENODD;
+    }
+    S->nch = aa_scene_is_grey(scene) ? 1 : 3;
+    return AA_OK;
+}
+
+/* n zeroed items of `size` bytes on whole cache lines of their own. */
+static void *line_alloc(size_t n, size_t size)
+{
+    if (n && size > (SIZE_MAX - 64) / n)
+        return NULL;
+    size_t bytes = (n * size + 63) & ~(size_t)63;
+    void *p = aligned_alloc(64, bytes ? bytes : 64);
+    if (p)
+        memset(p, 0, bytes ? bytes : 64);
+    return p;
+}
+
+static int worker_alloc(ar_worker *wk, const ar_state *S)
+{
+    size_t n = S->npieces ? S->npieces : 1, cells = ((size_t)S->w + 2) * (size_t)S->nch;
+    size_t nl = (size_t)(S->nl > 0 ? S->nl : 1);
+    wk->active = line_alloc(n, sizeof *wk->active);
+    wk->seg = line_alloc(n, sizeof *wk->seg);
+    wk->list = line_alloc(n, sizeof *wk->list);
+    wk->order = line_alloc(n, sizeof *wk->order);
+    wk->sub = line_alloc(2 * n, sizeof *wk->sub);
+    wk->acc = line_alloc(cells, sizeof *wk->acc);
+    wk->cov = line_alloc(cells, sizeof *wk->cov);
+    wk->wind = line_alloc(nl, sizeof *wk->wind);
+    wk->wtmp = line_alloc(nl, sizeof *wk->wtmp);
+    wk->ev = line_alloc(CM_MAX_EVENTS, sizeof *wk->ev);
+    wk->cm = line_alloc(CM_MAX_EDGES + 2, sizeof *wk->cm);
+    wk->row = -2;
+    if (wk->seg)
+        for (size_t k = 0; k < n; k++)
+            wk->seg[k].ja = INT_MIN;
+    if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
+        !wk->wind || !wk->wtmp || !wk->ev || !wk->cm)
+        return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
+                       S->w);
+    return AA_OK;
+}
+
+/* Tables and workspaces for this job, made outside any timing (init), or
+ * again if a render asks for another scene, width or more threads. */
+static int state_ready(ar_state *S, const aa_job *job)
+{
+    if (S->scene == job->placed && S->w == job->w && S->nworkers >= job->threads)
+        return AA_OK;
+    state_free(S);
+    S->w = job->w;
+    int st;
+    if ((st = load_pieces(S, job->placed)) || (st = load_colours(S, job->placed)))
+        goto fail;
+    if (!(S->workers = line_alloc((size_t)job->threads, sizeof *S->workers))) {
+        st = aa_fail(AA_ENOMEM, "out of memory for %d workers", job->threads);
+        goto fail;
+    }
+    S->nworkers = job->threads;
+    for (int t = 0; t < job->threads; t++)
+        if ((st = worker_alloc(&S->workers[t], S)))
+            goto fail;
+    S->scene = job->placed;
+    return AA_OK;
+fail:
+    state_free(S);
+    return st;
+}
+
+/* ------------------------------------------------------------------------
+ * The method
+ * ------------------------------------------------------------------------ */
+
+static int area_check(const double *p, const aa_filter *f)
+{
+    (void)p;
+    if (!aa_filter_is_box(f))
+        return aa_fail(AA_EINVAL, "area integrates the box filter exactly and no other "
+                                  "(use -f box; tent and gauss are not supported)");
+    return AA_OK;
+}
+
+static int area_init(void *state, const double *p, const aa_job *job)
+{
+    (void)p;
+    return state_ready(state, job);
+}
+
+static int area_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                       aa_counters *counters)
+{
+    ar_state *S = state;
+    int st = state_ready(S, job);
+    if (st)
+        return st;
+    int integrator = (int)p[P_INTEGRATOR];
+    /* non-temporal stores pay when the image does not fit in the caches */
+    int stream = (double)job->w * job->h * 3 * sizeof(double) > STREAM_BYTES;
+    uint64_t expensive = 0;
+#pragma omp parallel num_threads(job->threads) reduction(+ : expensive)
+    {
+        ar_worker *wk = &S->workers[omp_get_thread_num()];
+        wk->row = -2;
+        wk->expensive = 0;
+#pragma omp for schedule(static)
+        for (int j = 0; j < job->h; j++)
+            render_row(S, wk, j, integrator, stream, out);
+#if AR_STREAM
+        if (stream)
+            _mm_sfence(); /* order the non-temporal stores before the join */
+#endif
+        expensive += wk->expensive;
+    }
+    counters->samples = 0;
+    counters->expensive_pixels = expensive;
+    return AA_OK;
+}
+
+static void area_release(void *state)
+{
+    state_free(state);
+}
+
+const aa_method_type aa_method_area = {
+    {"area", "exact box-filter area (Catmull 1978; Crow fig. 3.13), arcs integrated exactly",
+     area_params},
+    sizeof(ar_state),
+    0,
+    area_check,
+    area_init,
+    area_render,
+    area_release};

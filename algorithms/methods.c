@@ -1,0 +1,17 @@
+/*
+ * methods.c: the table of built-in method types.
+ *
+ * Adding a method is one file defining an aa_method_type plus one line here
+ * (or a plug-in: see aa_plugin_load).  The tests loop over this table, so
+ * every method meets every generic property.
+ */
+#include "methods.h"
+
+const aa_method_type *const aa_method_types[] = {
+    &aa_method_point,
+    &aa_method_supersample,
+    &aa_method_jitter,
+    &aa_method_hexagon,
+    &aa_method_trio,
+    &aa_method_area,
+    NULL};

@@ -1,0 +1,33 @@
+/*
+ * methods.h: the built-in method types (one file each) and their table.
+ */
+#ifndef AA_METHODS_H
+#define AA_METHODS_H
+
+#include "aabench.h"
+
+extern const aa_method_type aa_method_point;
+extern const aa_method_type aa_method_supersample;
+extern const aa_method_type aa_method_jitter;
+extern const aa_method_type aa_method_hexagon;
+extern const aa_method_type aa_method_trio;
+extern const aa_method_type aa_method_area;
+
+/* Point-sample the placed scene at pixel centres offset by (dx, dy)
+ * pixels into out (used by point, hexagon and trio). */
+int aa_point_sample(const aa_scene *placed, double dx, double dy, int threads, aa_image *out);
+
+/* One row of point samples with a caller's workspace (one per thread): the
+ * line y, centres i + 1/2 + dx, into row[0 .. 3w).  No allocation. */
+typedef struct aa_point_ws {
+    aa_crossing *cross;
+    size_t cap;
+    int *wind;
+    int nl;
+} aa_point_ws;
+int aa_point_ws_init(aa_point_ws *ws, const aa_scene *placed);
+void aa_point_ws_free(aa_point_ws *ws);
+void aa_point_row(const aa_scene *placed, aa_point_ws *ws, double dx, double y, double *row,
+                  int w);
+
+#endif

@@ -1,0 +1,179 @@
+/*
+ * cmd_check.c: `aabench check`: the regression gate.
+ *
+ * Reruns every case of the baseline (results/baseline.csv, made by
+ * `aabench run --suite quick`, or any results.csv) and compares each
+ * method's error with its baseline row: a case fails when its RMSE or its
+ * maximum error exceeds the baseline's by more than the relative tolerance
+ * (default 0.1%, plus 1e-12 absolute), when a method of the baseline no
+ * longer exists, or when it now refuses a case it ran.  Render time is not
+ * compared: time is measured by the benchmark, never asserted.  Methods from
+ * plug-ins are checked the same way (--plugin, with a baseline of theirs).
+ */
+#include "cli.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEFAULT_TOLERANCE 1e-3
+#define ABS_TOLERANCE 1e-12
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: aabench check [--baseline FILE] [--tolerance REL] [--plugin LIB.so]...\n\n"
+            "Reruns the cases of the baseline (default results/baseline.csv, made by\n"
+            "'aabench run --suite quick') and exits 1, naming each offender, when a method's\n"
+            "RMSE or maximum error exceeds its baseline by more than REL relative (default\n"
+            "0.001, i.e. 0.1%%) plus 1e-12, or a baseline method is missing or now refused.\n\n"
+            "  --baseline FILE    the baseline CSV\n"
+            "  --tolerance REL    relative tolerance on the errors (0 to 1)\n"
+            "  --plugin LIB.so    load methods from a shared library (repeatable)\n"
+            "  --threads N        threads (the results do not depend on it)\n"
+            "  --cache DIR        reference cache; --no-cache\n"
+            "  -v, --verbose      also print the cases that pass\n");
+}
+
+static int same_view(const aa_row *a, const aa_row *b)
+{
+    return !strcmp(a->pattern, b->pattern) && !strcmp(a->filter, b->filter) && a->w == b->w &&
+           a->h == b->h && a->t == b->t && a->vx == b->vx && a->vy == b->vy && a->seed == b->seed;
+}
+
+static int worse(double now, double base, double tol)
+{
+    return now > base * (1.0 + tol) + ABS_TOLERANCE;
+}
+
+int cmd_check(int argc, char **argv)
+{
+    enum { O_BASELINE = 256, O_TOL, O_PLUGIN, O_THREADS, O_CACHE, O_NOCACHE };
+    static const struct option opts[] = {
+        {"baseline", required_argument, 0, O_BASELINE}, {"tolerance", required_argument, 0, O_TOL},
+        {"plugin", required_argument, 0, O_PLUGIN},   {"threads", required_argument, 0, O_THREADS},
+        {"cache", required_argument, 0, O_CACHE},     {"no-cache", no_argument, 0, O_NOCACHE},
+        {"verbose", no_argument, 0, 'v'},             {"help", no_argument, 0, 'h'},
+        {0, 0, 0, 0}};
+    const char *baseline = "results/baseline.csv", *cache = cli_cache_dir();
+    double tol = DEFAULT_TOLERANCE;
+    int c, st = AA_OK, threads = 0, verbose = 0;
+    cli_getopt_reset();
+    while ((c = getopt_long(argc, argv, ":vh", opts, NULL)) != -1) {
+        switch (c) {
+        case O_BASELINE: baseline = optarg; break;
+        case O_TOL: st = cli_parse_real("--tolerance", optarg, 0, 1, &tol); break;
+        case O_PLUGIN: st = aa_plugin_load(optarg); break;
+        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &threads); break;
+        case O_CACHE: cache = optarg; break;
+        case O_NOCACHE: cache = ""; break;
+        case 'v': verbose = 1; break;
+        case 'h': usage(stdout); return 0;
+        default: return cli_bad_option("check", c, argv);
+        }
+        if (st)
+            return cli_fail("check", st);
+    }
+    if (optind < argc) {
+        fprintf(stderr, "aabench check: unexpected argument \"%s\"\n", argv[optind]);
+        return 2;
+    }
+    aa_row *base;
+    size_t nb;
+    if ((st = aa_rows_read_csv(baseline, &base, &nb)))
+        return cli_fail("check", st);
+    if (nb == 0) {
+        free(base);
+        fprintf(stderr, "aabench check: %s holds no cases\n", baseline);
+        return 2;
+    }
+    if (threads <= 0)
+        threads = cli_default_threads();
+    int *done = calloc(nb, sizeof *done);
+    const char **methods = malloc(nb * sizeof *methods);
+    size_t offenders = 0, checked = 0;
+    for (size_t k = 0; k < nb && !st; k++) {
+        if (done[k])
+            continue;
+        /* the baseline's methods on this view that still exist */
+        size_t nm = 0;
+        size_t *which = malloc(nb * sizeof *which);
+        for (size_t q = k; q < nb; q++) {
+            if (done[q] || !same_view(&base[k], &base[q]))
+                continue;
+            done[q] = 1;
+            aa_spec spec;
+            if (aa_spec_parse(base[q].method, aa_method_table(), "method", &spec)) {
+                printf("FAIL %s on %s %dx%d %s: %s\n", base[q].method, base[q].pattern, base[q].w,
+                       base[q].h, base[q].filter, aa_last_error());
+                offenders++;
+                continue;
+            }
+            methods[nm] = base[q].method;
+            which[nm++] = q;
+        }
+        if (nm == 0) {
+            free(which);
+            continue;
+        }
+        char size[32];
+        snprintf(size, sizeof size, "%dx%d", base[k].w, base[k].h);
+        const char *p[1] = {base[k].pattern}, *s[1] = {size}, *f[1] = {base[k].filter};
+        aa_run_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.patterns = p, cfg.npatterns = 1;
+        cfg.sizes = s, cfg.nsizes = 1;
+        cfg.filters = f, cfg.nfilters = 1;
+        cfg.methods = methods, cfg.nmethods = nm;
+        cfg.reps = 1, cfg.threads = threads, cfg.seed = base[k].seed;
+        cfg.t = base[k].t, cfg.vx = base[k].vx, cfg.vy = base[k].vy;
+        cfg.cache_dir = *cache ? cache : NULL;
+        cfg.enc.kind = AA_ENCODE_SRGB;
+        aa_row *now;
+        size_t nn;
+        if ((st = aa_run(&cfg, &now, &nn))) {
+            free(now);
+            free(which);
+            break;
+        }
+        for (size_t m = 0; m < nn; m++) {
+            const aa_row *b = &base[which[m]], *r = &now[m];
+            checked++;
+            const char *why = NULL;
+            char detail[512] = "";
+            if (b->ok && !r->ok) {
+                why = "now refused";
+                snprintf(detail, sizeof detail, "%s", r->note);
+            } else if (b->ok && (worse(r->m.rmse, b->m.rmse, tol) ||
+                                 worse(r->m.max_err, b->m.max_err, tol))) {
+                why = "error above its baseline";
+                snprintf(detail, sizeof detail,
+                         "rmse %.9g (baseline %.9g, %+.3f%%), max_err %.9g (baseline %.9g)",
+                         r->m.rmse, b->m.rmse, 100 * (r->m.rmse / b->m.rmse - 1), r->m.max_err,
+                         b->m.max_err);
+            }
+            if (why) {
+                printf("FAIL %s on %s %s %s: %s: %s\n", b->method, b->pattern, size, b->filter, why,
+                       detail);
+                offenders++;
+            } else if (verbose) {
+                printf("ok   %s on %s %s %s: rmse %.9g (baseline %.9g)\n", b->method, b->pattern,
+                       size, b->filter, r->m.rmse, b->m.rmse);
+            }
+        }
+        free(now);
+        free(which);
+    }
+    free(done);
+    free(methods);
+    free(base);
+    if (st)
+        return cli_fail("check", st);
+    if (offenders) {
+        printf("check: %zu of %zu cases failed against %s (tolerance %g relative)\n", offenders,
+               nb, baseline, tol);
+        return 1;
+    }
+    printf("check: %zu cases within %g of %s\n", checked, tol, baseline);
+    return 0;
+}

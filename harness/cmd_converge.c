@@ -1,0 +1,97 @@
+/*
+ * cmd_converge.c: `aabench converge`: RMSE against samples per pixel.
+ */
+#include "cli.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: aabench converge -p PATTERN -m METHOD -s WxH --spp 1,4,16,... [--phases K]\n"
+            "                        [-f FILTER] [--seed N] [--threads N] [--out DIR]\n\n"
+            "Measures the RMSE of METHOD at each samples-per-pixel count over K random\n"
+            "sub-pixel shifts of the scene (default 8), fits the slope of log RMSE against\n"
+            "log spp by least squares and prints it on the last line as 'slope S +- E'.\n"
+            "The method's spp parameter is set (or n, for an n x n grid: spp must be squares).\n"
+            "With --out DIR, also draws DIR/convergence.png.\n");
+}
+
+int cmd_converge(int argc, char **argv)
+{
+    enum { O_SPP = 256, O_PHASES, O_SEED, O_THREADS, O_OUT, O_CACHE, O_NOCACHE, O_PLUGIN };
+    static const struct option opts[] = {
+        {"pattern", required_argument, 0, 'p'}, {"method", required_argument, 0, 'm'},
+        {"size", required_argument, 0, 's'},    {"filter", required_argument, 0, 'f'},
+        {"spp", required_argument, 0, O_SPP},   {"phases", required_argument, 0, O_PHASES},
+        {"seed", required_argument, 0, O_SEED}, {"threads", required_argument, 0, O_THREADS},
+        {"out", required_argument, 0, O_OUT},   {"cache", required_argument, 0, O_CACHE},
+        {"no-cache", no_argument, 0, O_NOCACHE}, {"plugin", required_argument, 0, O_PLUGIN},
+        {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
+    const char *pattern = NULL, *method = NULL, *size = NULL, *filter = NULL, *spps = NULL,
+               *out = NULL, *cache = cli_cache_dir();
+    int c, st = AA_OK, phases = 8, threads = 0;
+    uint64_t seed = 1;
+    cli_getopt_reset();
+    while ((c = getopt_long(argc, argv, ":p:m:s:f:h", opts, NULL)) != -1) {
+        switch (c) {
+        case 'p': pattern = optarg; break;
+        case 'm': method = optarg; break;
+        case 's': size = optarg; break;
+        case 'f': filter = optarg; break;
+        case O_SPP: spps = optarg; break;
+        case O_PHASES: st = cli_parse_int("--phases", optarg, 1, 1024, &phases); break;
+        case O_SEED: st = cli_parse_seed(optarg, &seed); break;
+        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &threads); break;
+        case O_OUT: out = optarg; break;
+        case O_CACHE: cache = optarg; break;
+        case O_NOCACHE: cache = ""; break;
+        case O_PLUGIN: st = aa_plugin_load(optarg); break;
+        case 'h': usage(stdout); return 0;
+        default: return cli_bad_option("converge", c, argv);
+        }
+        if (st)
+            return cli_fail("converge", st);
+    }
+    if (optind < argc || !pattern || !method || !size || !spps) {
+        fprintf(stderr, "aabench converge: -p PATTERN, -m METHOD, -s WxH and --spp LIST are "
+                        "required\n");
+        usage(stderr);
+        return 2;
+    }
+    int spp[64], w, h;
+    size_t n = 0;
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s", spps);
+    for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
+        if (n == 64)
+            return aa_fail(AA_EINVAL, "more than 64 spp values"), cli_fail("converge", AA_EINVAL);
+        if ((st = cli_parse_int("--spp value", t, 1, 1 << 20, &spp[n++])))
+            return cli_fail("converge", st);
+    }
+    aa_spec pspec;
+    aa_filter f;
+    aa_convergence conv;
+    if ((st = aa_pattern_parse(pattern, &pspec)) || (st = aa_size_parse(size, &w, &h)) ||
+        (st = aa_size_check(w, h, 3, 3)) ||
+        (st = filter ? aa_filter_parse(filter, &f) : (aa_filter_default(&f), AA_OK)) ||
+        (st = aa_converge(&pspec, method, &f, w, h, spp, n, phases, seed,
+                          threads > 0 ? threads : cli_default_threads(), *cache ? cache : NULL,
+                          &conv)))
+        return cli_fail("converge", st);
+    printf("# %s on %s %s %s, %d phases\n# spp rmse rmse_sd seconds\n", method, pattern, size,
+           filter ? filter : "box", phases);
+    for (size_t k = 0; k < conv.n; k++)
+        printf("%g %.6e %.3e %.4f\n", conv.spp[k], conv.rmse[k], conv.rmse_sd[k], conv.seconds[k]);
+    if (out) {
+        const char *names[1] = {method};
+        char title[1024];
+        snprintf(title, sizeof title, "Convergence of %s on %s %s %s, %d shifts", method, pattern,
+                 size, filter ? filter : "box", phases);
+        if ((st = aa_plot_convergence(out, &conv, names, 1, title)))
+            return cli_fail("converge", st);
+    }
+    printf("slope %.4f +- %.4f\n", conv.slope, conv.slope_err);
+    return 0;
+}

@@ -1,0 +1,183 @@
+/*
+ * cmd_render.c: `aabench render`: one method on one pattern, timed.
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: aabench render -p PATTERN -m METHOD -s WxH [-f FILTER] -o OUT [options]\n\n"
+            "Renders the pattern with the method and writes the image.\n\n"
+            "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"
+            "  -m, --method SPEC    method, e.g. jitter:spp=16,seq=sobol ('aabench list methods -v')\n"
+            "  -s, --size WxH       image size in pixels\n"
+            "  -f, --filter SPEC    box (default), tent:r=R or gauss:s=S\n"
+            "  -o, --out FILE       .exr .tif .pfm (float), .png (8-bit, display encoded), .txt\n"
+            "      --seed N         seed of the random streams (default 1)\n"
+            "      --time T         time in frames (default 0)\n"
+            "      --motion VX,VY   motion in pixels per frame (default 0,0)\n"
+            "      --frame-only     temporal methods: the single frame at T, not the eye's image\n"
+            "      --threads N      threads (default: all cores); the image does not depend on it\n"
+            "      --reps N         renders to time (default 1); the median is reported\n"
+            "      --stats FILE     write timing and counters as JSON\n"
+            "      --plugin LIB.so  load methods from a shared library (repeatable)\n"
+            "      --encode E       .png encoding: srgb (default), linear or gamma:G\n"
+            "  -q, --quiet          print nothing on success\n");
+}
+
+typedef struct render_args {
+    const char *pattern, *method, *size, *filter, *out, *stats;
+    double t, vx, vy;
+    uint64_t seed;
+    int threads, reps, frame_only, quiet;
+    aa_encode enc;
+} render_args;
+
+/* Returns -1 to go on, or the exit code to stop with. */
+static int parse(int argc, char **argv, render_args *a)
+{
+    enum { O_SEED = 256, O_TIME, O_MOTION, O_FRAME, O_THREADS, O_REPS, O_STATS, O_PLUGIN,
+           O_ENCODE };
+    static const struct option opts[] = {
+        {"pattern", required_argument, 0, 'p'}, {"method", required_argument, 0, 'm'},
+        {"size", required_argument, 0, 's'},    {"filter", required_argument, 0, 'f'},
+        {"out", required_argument, 0, 'o'},     {"seed", required_argument, 0, O_SEED},
+        {"time", required_argument, 0, O_TIME}, {"motion", required_argument, 0, O_MOTION},
+        {"frame-only", no_argument, 0, O_FRAME}, {"threads", required_argument, 0, O_THREADS},
+        {"reps", required_argument, 0, O_REPS}, {"stats", required_argument, 0, O_STATS},
+        {"plugin", required_argument, 0, O_PLUGIN}, {"encode", required_argument, 0, O_ENCODE},
+        {"quiet", no_argument, 0, 'q'},         {"help", no_argument, 0, 'h'},
+        {0, 0, 0, 0}};
+    int c, st = AA_OK;
+    cli_getopt_reset();
+    while ((c = getopt_long(argc, argv, ":p:m:s:f:o:qh", opts, NULL)) != -1) {
+        switch (c) {
+        case 'p': a->pattern = optarg; break;
+        case 'm': a->method = optarg; break;
+        case 's': a->size = optarg; break;
+        case 'f': a->filter = optarg; break;
+        case 'o': a->out = optarg; break;
+        case 'q': a->quiet = 1; break;
+        case O_SEED: st = cli_parse_seed(optarg, &a->seed); break;
+        case O_TIME: st = cli_parse_real("--time", optarg, -1e9, 1e9, &a->t); break;
+        case O_MOTION: st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy); break;
+        case O_FRAME: a->frame_only = 1; break;
+        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &a->threads); break;
+        case O_REPS: st = cli_parse_int("--reps", optarg, 1, 1000, &a->reps); break;
+        case O_STATS: a->stats = optarg; break;
+        case O_PLUGIN: st = aa_plugin_load(optarg); break;
+        case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
+        case 'h': usage(stdout); return 0;
+        default: return cli_bad_option("render", c, argv);
+        }
+        if (st)
+            return cli_fail("render", st);
+    }
+    if (optind < argc) {
+        fprintf(stderr, "aabench render: unexpected argument \"%s\"\n", argv[optind]);
+        return 2;
+    }
+    if (!a->pattern || !a->method || !a->size || !a->out) {
+        fprintf(stderr, "aabench render: -p PATTERN, -m METHOD, -s WxH and -o OUT are required\n");
+        usage(stderr);
+        return 2;
+    }
+    return -1;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static int write_stats(const char *path, const render_args *a, const aa_spec *pattern,
+                       const aa_spec *method, const aa_filter *f, int w, int h,
+                       const double *seconds, const aa_counters *c, int threads)
+{
+    char ps[1024], ms[1024], fs[256], buf[8192];
+    double sorted[1000];
+    memcpy(sorted, seconds, (size_t)a->reps * sizeof *sorted);
+    qsort(sorted, (size_t)a->reps, sizeof *sorted, cmp_double);
+    double med = sorted[a->reps / 2], pixels = (double)w * h;
+    aa_spec_format(pattern, ps, sizeof ps);
+    aa_spec_format(method, ms, sizeof ms);
+    aa_spec_format(&f->spec, fs, sizeof fs);
+    char pj[2048], mj[2048], gj[2048], fj[512];
+    cli_json_string(ps, pj, sizeof pj);
+    cli_json_string(ms, mj, sizeof mj);
+    cli_json_string(a->method, gj, sizeof gj);
+    cli_json_string(fs, fj, sizeof fj);
+    int n = snprintf(
+        buf, sizeof buf,
+        "{\n  \"pattern\": %s,\n  \"method\": %s,\n  \"method_given\": %s,\n"
+        "  \"filter\": %s,\n  \"size\": \"%dx%d\",\n  \"seed\": %llu,\n  \"time\": %.17g,\n"
+        "  \"motion\": [%.17g, %.17g],\n  \"threads\": %d,\n  \"reps\": %d,\n"
+        "  \"render_seconds\": %.9g,\n  \"render_seconds_min\": %.9g,\n"
+        "  \"render_seconds_max\": %.9g,\n  \"pixels\": %.0f,\n  \"samples\": %llu,\n"
+        "  \"expensive_pixels\": %llu,\n  \"ns_per_pixel\": %.6g,\n  \"ns_per_sample\": %.6g\n}\n",
+        pj, mj, gj, fj, w, h, (unsigned long long)a->seed, a->t, a->vx, a->vy, threads, a->reps,
+        med, sorted[0], sorted[a->reps - 1], pixels, (unsigned long long)c->samples,
+        (unsigned long long)c->expensive_pixels, med * 1e9 / pixels,
+        c->samples ? med * 1e9 / (double)c->samples : 0.0);
+    if (n < 0 || (size_t)n >= sizeof buf)
+        return aa_fail(AA_EFAIL, "stats too long");
+    return aa_file_write_atomic(path, buf, (size_t)n);
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_args a;
+    memset(&a, 0, sizeof a);
+    a.seed = 1;
+    a.reps = 1;
+    a.enc.kind = AA_ENCODE_SRGB;
+    int st, code = parse(argc, argv, &a);
+    if (code >= 0)
+        return code;
+    aa_spec pattern, method;
+    aa_filter f;
+    int w, h;
+    if ((st = aa_pattern_parse(a.pattern, &pattern)) || (st = aa_size_parse(a.size, &w, &h)) ||
+        (st = aa_size_check(w, h, 3, 2)) ||
+        (st = a.filter ? aa_filter_parse(a.filter, &f) : (aa_filter_default(&f), AA_OK)) ||
+        (st = aa_method_parse(a.method, &f, &method)) || (st = cli_check_output(a.out)) ||
+        (a.stats && (st = cli_check_output_file(a.stats, ".json"))))
+        return cli_fail("render", st);
+    int threads = a.threads > 0 ? a.threads : cli_default_threads();
+    aa_scene *scene = NULL;
+    aa_job job = {0};
+    aa_image img = {0};
+    aa_counters counters;
+    double seconds[1000];
+    if (!(st = aa_pattern_scene(&pattern, &scene)) &&
+        !(st = aa_job_init(&job, scene, w, h, a.t, a.vx, a.vy, &f, a.seed, threads)) &&
+        !(st = aa_image_alloc(&img, w, h, 3))) {
+        job.frame_only = a.frame_only;
+        st = aa_method_run(&method, &job, a.reps, &img, &counters, seconds);
+    }
+    if (!st)
+        st = aa_image_write(a.out, &img, &a.enc);
+    if (!st && a.stats)
+        st = write_stats(a.stats, &a, &pattern, &method, &f, w, h, seconds, &counters, threads);
+    aa_image_free(&img);
+    aa_job_free(&job);
+    aa_scene_free(scene);
+    if (st)
+        return cli_fail("render", st);
+    if (!a.quiet) {
+        qsort(seconds, (size_t)a.reps, sizeof *seconds, cmp_double);
+        char ms[1024];
+        aa_spec_format(&method, ms, sizeof ms);
+        printf("wrote %s: %s, %dx%d, median %.4f s over %d render%s, %llu samples, %llu "
+               "expensive pixels\n",
+               a.out, ms, w, h, seconds[a.reps / 2], a.reps, a.reps > 1 ? "s" : "",
+               (unsigned long long)counters.samples,
+               (unsigned long long)counters.expensive_pixels);
+    }
+    return 0;
+}

@@ -1,0 +1,517 @@
+/*
+ * cmd_run.c: `aabench run`: the benchmark's main job.
+ *
+ * Runs a suite (or the patterns, sizes, filters and methods given) and writes
+ * into results/runs/<UTC time>/ (results/latest points there) or --out DIR:
+ * results.csv and results.json (rewritten after every case, atomically, so
+ * an interrupted run keeps what it measured and no file is half-written),
+ * images/ (EXR values, PNG for eyes, error maps), montage.png (the first
+ * view's reference and methods side by side, labelled with name and RMSE),
+ * plots/error_vs_time.png and plots/convergence.png.  At the end a table on
+ * the terminal sorted by error; a progress bar on standard error while it
+ * runs, when that is a terminal and CI is not set.
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define MAX_LIST 256
+
+static volatile sig_atomic_t interrupted;
+
+/* The first interrupt stops after the current case, with every file
+ * complete; a second one quits at once. */
+static void on_signal(int sig)
+{
+    static const char msg[] = "\naabench run: stopping after this case (again to quit now)\n";
+    if (interrupted)
+        _exit(130);
+    interrupted = sig;
+    ssize_t w = write(2, msg, sizeof msg - 1);
+    (void)w;
+}
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: aabench run [--suite NAME] [-p PATTERN]... [-m METHOD]... [-s WxH]...\n"
+            "                   [-f FILTER]... [--reps N] [--out DIR] [options]\n\n"
+            "Runs every method on every pattern x size x filter, measures error against the\n"
+            "exact reference and render time, and writes results.csv, results.json, images/,\n"
+            "montage.png and plots/ into results/runs/<UTC time>/ (results/latest links to it)\n"
+            "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n\n"
+            "  --suite NAME      quick, default (the default), paper or full (--list-suites)\n"
+            "  --reps N          renders timed per case (default 5); the median is reported\n"
+            "  --out DIR         output folder\n"
+            "  --threads N       threads (default: all cores)\n"
+            "  --seed N          seed of the random streams (default 1)\n"
+            "  --time T          time in frames (default 0)\n"
+            "  --motion VX,VY    motion in pixels per frame (default 0,0)\n"
+            "  --encode E        display encoding of PNGs and of the *_enc metrics: srgb\n"
+            "                    (default), linear or gamma:G (gamma:2 is Crow's square law)\n"
+            "  --plugin LIB.so   load methods from a shared library (repeatable)\n"
+            "  --no-images       do not write images/ and montage.png\n"
+            "  --no-plots        do not draw plots/ (no convergence either)\n"
+            "  --cache DIR       reference cache (default results/cache); --no-cache\n"
+            "  --list-suites     list the suites and exit\n"
+            "  -q, --quiet       no table at the end\n"
+            "Exit status: 0 done, 2 bad input, 3 input/output error, 130 interrupted.\n");
+}
+
+typedef struct list {
+    const char *v[MAX_LIST];
+    size_t n;
+} list;
+
+typedef struct run_args {
+    const char *suite, *out, *cache;
+    list p, m, s, f;
+    int reps, threads, images, plots, quiet;
+    uint64_t seed;
+    double t, vx, vy;
+    aa_encode enc;
+} run_args;
+
+static int push(list *l, const char *v, const char *what)
+{
+    if (l->n == MAX_LIST)
+        return aa_fail(AA_EINVAL, "more than %d %s given", MAX_LIST, what);
+    l->v[l->n++] = v;
+    return AA_OK;
+}
+
+static int parse(int argc, char **argv, run_args *a)
+{
+    enum { O_SUITE = 256, O_REPS, O_OUT, O_THREADS, O_SEED, O_TIME, O_MOTION, O_ENCODE,
+           O_PLUGIN, O_NOIMAGES, O_NOPLOTS, O_CACHE, O_NOCACHE, O_LIST };
+    static const struct option opts[] = {
+        {"suite", required_argument, 0, O_SUITE}, {"pattern", required_argument, 0, 'p'},
+        {"method", required_argument, 0, 'm'},   {"size", required_argument, 0, 's'},
+        {"filter", required_argument, 0, 'f'},   {"reps", required_argument, 0, O_REPS},
+        {"out", required_argument, 0, O_OUT},    {"threads", required_argument, 0, O_THREADS},
+        {"seed", required_argument, 0, O_SEED},  {"time", required_argument, 0, O_TIME},
+        {"motion", required_argument, 0, O_MOTION}, {"encode", required_argument, 0, O_ENCODE},
+        {"plugin", required_argument, 0, O_PLUGIN}, {"no-images", no_argument, 0, O_NOIMAGES},
+        {"no-plots", no_argument, 0, O_NOPLOTS}, {"cache", required_argument, 0, O_CACHE},
+        {"no-cache", no_argument, 0, O_NOCACHE}, {"list-suites", no_argument, 0, O_LIST},
+        {"quiet", no_argument, 0, 'q'},          {"help", no_argument, 0, 'h'},
+        {0, 0, 0, 0}};
+    int c, st = AA_OK;
+    cli_getopt_reset();
+    while ((c = getopt_long(argc, argv, ":p:m:s:f:qh", opts, NULL)) != -1) {
+        switch (c) {
+        case O_SUITE: a->suite = optarg; break;
+        case 'p': st = push(&a->p, optarg, "patterns"); break;
+        case 'm': st = push(&a->m, optarg, "methods"); break;
+        case 's': st = push(&a->s, optarg, "sizes"); break;
+        case 'f': st = push(&a->f, optarg, "filters"); break;
+        case O_REPS: st = cli_parse_int("--reps", optarg, 1, 1000, &a->reps); break;
+        case O_OUT: a->out = optarg; break;
+        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &a->threads); break;
+        case O_SEED: st = cli_parse_seed(optarg, &a->seed); break;
+        case O_TIME: st = cli_parse_real("--time", optarg, -1e9, 1e9, &a->t); break;
+        case O_MOTION: st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy); break;
+        case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
+        case O_PLUGIN: st = aa_plugin_load(optarg); break;
+        case O_NOIMAGES: a->images = 0; break;
+        case O_NOPLOTS: a->plots = 0; break;
+        case O_CACHE: a->cache = optarg; break;
+        case O_NOCACHE: a->cache = ""; break;
+        case 'q': a->quiet = 1; break;
+        case O_LIST:
+            for (const aa_suite *s = aa_suites; s->name; s++)
+                printf("%s\t%s\n", s->name, s->summary);
+            return 0;
+        case 'h': usage(stdout); return 0;
+        default: return cli_bad_option("run", c, argv);
+        }
+        if (st)
+            return cli_fail("run", st);
+    }
+    if (optind < argc) {
+        fprintf(stderr, "aabench run: unexpected argument \"%s\"\n", argv[optind]);
+        return 2;
+    }
+    return -1;
+}
+
+/* ---- output folder ---- */
+
+static int make_run_dir(char *dir, size_t len, int *linked)
+{
+    char stamp[64];
+    time_t now = time(NULL);
+    struct tm tm;
+    gmtime_r(&now, &tm);
+    strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", &tm);
+    int st = aa_mkdirs("results/runs");
+    if (st)
+        return st;
+    for (int k = 1; k < 100; k++) {
+        if (k == 1)
+            snprintf(dir, len, "results/runs/%s", stamp);
+        else
+            snprintf(dir, len, "results/runs/%s-%d", stamp, k);
+        if (mkdir(dir, 0755) == 0) {
+            /* results/latest -> runs/<stamp>, replaced atomically */
+            char tmp[256];
+            snprintf(tmp, sizeof tmp, "results/.latest.%ld", (long)getpid());
+            unlink(tmp);
+            *linked = symlink(dir + strlen("results/"), tmp) == 0 &&
+                      rename(tmp, "results/latest") == 0;
+            if (!*linked)
+                unlink(tmp);
+            return AA_OK;
+        }
+        if (errno != EEXIST)
+            return aa_fail(AA_EIO, "cannot make %s: %s", dir, strerror(errno));
+    }
+    return aa_fail(AA_EIO, "cannot make a run folder under results/runs");
+}
+
+/* ---- progress and saving ---- */
+
+typedef struct run_ctx {
+    const char *dir;
+    int bar;
+    double t0;
+} run_ctx;
+
+static int progress(void *vctx, size_t done, size_t total, const char *what)
+{
+    run_ctx *ctx = vctx;
+    if (ctx->bar) {
+        const int width = 30;
+        int fill = total ? (int)(width * done / total) : width;
+        double el = aa_now() - ctx->t0;
+        fprintf(stderr, "\r\033[K[%.*s%*s] %zu/%zu %5.0fs %.60s", fill,
+                "==============================", width - fill, "", done, total, el, what);
+        if (done == total)
+            fprintf(stderr, "\n");
+        fflush(stderr);
+    }
+    return interrupted != 0;
+}
+
+static int save(void *vctx, const aa_row *rows, size_t n)
+{
+    run_ctx *ctx = vctx;
+    char path[4096];
+    int st = aa_pathf(path, sizeof path, "%s/results.csv", ctx->dir);
+    if (!st && !(st = aa_rows_write_csv(path, rows, n)) &&
+        !(st = aa_pathf(path, sizeof path, "%s/results.json", ctx->dir)))
+        st = aa_rows_write_json(path, rows, n);
+    return st;
+}
+
+/* ---- what runs after the cases ---- */
+
+/* The first view's reference and every method, side by side. */
+static int write_montage(const char *dir, const aa_row *rows, size_t n, const aa_encode *enc)
+{
+    char path[4096], labels[64][2][128];
+    aa_image imgs[64];
+    aa_tile tiles[64];
+    size_t nt = 0;
+    int st = AA_OK;
+    if (n == 0)
+        return AA_OK;
+    aa_view view;
+    memset(&view, 0, sizeof view);
+    if ((st = aa_pattern_parse(rows[0].pattern, &view.pattern)) ||
+        (st = aa_filter_parse(rows[0].filter, &view.filter)))
+        return st;
+    view.w = rows[0].w, view.h = rows[0].h;
+    view.t = rows[0].t, view.vx = rows[0].vx, view.vy = rows[0].vy;
+    if ((st = aa_reference(&view, cli_cache_dir(), 0, &imgs[0], NULL, NULL)))
+        return st;
+    tiles[nt].image = &imgs[nt];
+    snprintf(labels[nt][0], 128, "reference (%.100s)", rows[0].filter);
+    snprintf(labels[nt][1], 128, "exact");
+    nt++;
+    for (size_t k = 0; k < n && nt < 64 && !st; k++) {
+        if (!rows[k].ok || strcmp(rows[k].pattern, rows[0].pattern) ||
+            strcmp(rows[k].filter, rows[0].filter) || rows[k].w != rows[0].w ||
+            rows[k].h != rows[0].h)
+            continue;
+        /* the EXR written by the run holds the values */
+        char ps[512], fs[256], ms[512];
+        aa_spec_slug(rows[k].pattern, ps, sizeof ps);
+        aa_spec_slug(rows[k].filter, fs, sizeof fs);
+        aa_spec_slug(rows[k].method, ms, sizeof ms);
+        if ((st = aa_pathf(path, sizeof path, "%s/images/%s-%dx%d-%s-%s.exr", dir, ps, rows[k].w,
+                           rows[k].h, fs, ms)) ||
+            (st = aa_image_read(path, &imgs[nt])))
+            break;
+        tiles[nt].image = &imgs[nt];
+        snprintf(labels[nt][0], 128, "%.120s", rows[k].method);
+        snprintf(labels[nt][1], 128, "RMSE %.3g", rows[k].m.rmse);
+        nt++;
+    }
+    for (size_t k = 0; k < nt; k++) {
+        tiles[k].label[0] = labels[k][0];
+        tiles[k].label[1] = labels[k][1];
+        tiles[k].label[2] = NULL;
+    }
+    if (!st) {
+        int cols = nt <= 4 ? (int)nt : (nt <= 9 ? 3 : 4);
+        if (rows[0].w <= 160)
+            cols = nt <= 6 ? (int)nt : 6;
+        if (!(st = aa_pathf(path, sizeof path, "%s/montage.png", dir)))
+            st = aa_montage_write(path, tiles, nt, cols, enc);
+    }
+    for (size_t k = 0; k < nt; k++)
+        aa_image_free(&imgs[k]);
+    return st;
+}
+
+/* A method spec without its spp= or n= pair, to name a convergence curve
+ * (which varies that count). */
+static void without_count(const char *spec, char *buf, size_t len)
+{
+    const char *colon = strchr(spec, ':');
+    size_t n = colon ? (size_t)(colon - spec) : strlen(spec);
+    snprintf(buf, len, "%.*s", (int)n, spec);
+    if (!colon)
+        return;
+    char rest[512];
+    snprintf(rest, sizeof rest, "%s", colon + 1);
+    int first = 1;
+    for (char *pair = strtok(rest, ","); pair; pair = strtok(NULL, ",")) {
+        if (!strncmp(pair, "spp=", 4) || !strncmp(pair, "n=", 2))
+            continue;
+        size_t used = strlen(buf);
+        snprintf(buf + used, len - used, "%c%s", first ? ':' : ',', pair);
+        first = 0;
+    }
+}
+
+/* Convergence of the sampling methods among those run, on the first
+ * pattern at 128x128 under the first filter. */
+static int write_convergence(const char *dir, const run_args *a, const char *const *methods,
+                             size_t nm, const char *pattern, const char *filter, int threads)
+{
+    const char *names[16];
+    aa_convergence conv[16];
+    size_t n = 0;
+    aa_spec pspec, mspec;
+    aa_filter f;
+    int st;
+    if ((st = aa_pattern_parse(pattern, &pspec)) || (st = aa_filter_parse(filter, &f)))
+        return st;
+    static const int spp[] = {1, 4, 16, 64, 256};
+    for (size_t k = 0; k < nm && n < 16; k++) {
+        if (aa_method_parse(methods[k], &f, &mspec) ||
+            (aa_spec_index(mspec.info, "spp") < 0 && aa_spec_index(mspec.info, "n") < 0))
+            continue;
+        /* one curve per method family variant: skip a spec that differs
+         * from an earlier one only in its sample count */
+        int seen = 0;
+        for (size_t q = 0; q < n && !seen; q++) {
+            aa_spec other;
+            aa_method_parse(names[q], &f, &other);
+            if (other.info == mspec.info) {
+                int same = 1;
+                for (size_t p = 0; p < aa_param_count(mspec.info); p++) {
+                    const char *key = mspec.info->params[p].key;
+                    if (strcmp(key, "spp") && strcmp(key, "n") && other.v[p] != mspec.v[p])
+                        same = 0;
+                }
+                seen = same;
+            }
+        }
+        if (seen)
+            continue;
+        if ((st = aa_converge(&pspec, methods[k], &f, 128, 128, spp, 5, 4, a->seed, threads,
+                              cli_cache_dir(), &conv[n])) == AA_OK)
+            names[n++] = methods[k];
+        else if (st != AA_EINVAL)
+            return st;
+    }
+    if (n == 0)
+        return AA_OK;
+    char title[1024], labels[16][256];
+    const char *shown[16];
+    for (size_t k = 0; k < n; k++) {
+        without_count(names[k], labels[k], sizeof labels[k]);
+        shown[k] = labels[k];
+    }
+    snprintf(title, sizeof title, "Convergence on %s 128x128 %s, 4 random sub-pixel shifts",
+             pattern, filter);
+    return aa_plot_convergence(dir, conv, shown, n, title);
+}
+
+static int cmp_rmse(const void *a, const void *b)
+{
+    const aa_row *x = *(const aa_row *const *)a, *y = *(const aa_row *const *)b;
+    if (x->ok != y->ok)
+        return y->ok - x->ok;
+    return x->m.rmse < y->m.rmse ? -1 : x->m.rmse > y->m.rmse;
+}
+
+static void print_table(const aa_row *rows, size_t n)
+{
+    const aa_row **order = malloc(n * sizeof *order);
+    if (!order)
+        return;
+    for (size_t k = 0; k < n; k++)
+        order[k] = &rows[k];
+    qsort(order, n, sizeof *order, cmp_rmse);
+    printf("%-30s %-10s %-12s %-10s %10s %9s %8s %10s %9s %6s\n", "method", "pattern", "size",
+           "filter", "rmse", "max_err", "psnr", "time (ms)", "ns/px", "exp%");
+    for (size_t k = 0; k < n; k++) {
+        const aa_row *r = order[k];
+        char size[32];
+        snprintf(size, sizeof size, "%dx%d", r->w, r->h);
+        if (!r->ok) {
+            printf("%-30.30s %-10.10s %-12s %-10.10s %s\n", r->method, r->pattern, size, r->filter,
+                   r->note);
+            continue;
+        }
+        printf("%-30.30s %-10.10s %-12s %-10.10s %10.3e %9.2e %8.2f %10.3f %9.2f %6.1f\n",
+               r->method, r->pattern, size, r->filter, r->m.rmse, r->m.max_err, r->m.psnr,
+               r->seconds * 1e3, r->ns_per_pixel, 100 * r->expensive_fraction);
+    }
+    free(order);
+}
+
+/* ---- the command ---- */
+
+/* The cross products to run: the suite's groups, with any list given on the
+ * command line replacing the groups' own. */
+static size_t groups_of(const run_args *a, const aa_suite *suite, aa_run_config *cfgs,
+                        size_t max)
+{
+    size_t n = 0;
+    for (const aa_suite_group *g = suite->groups; g->patterns && n < max; g++) {
+        aa_run_config *c = &cfgs[n];
+        memset(c, 0, sizeof *c);
+#define LIST_OR(field, given, count)                                                             \
+    if (given.n) {                                                                               \
+        c->field = given.v;                                                                      \
+        c->count = given.n;                                                                      \
+    } else {                                                                                     \
+        c->field = g->field;                                                                     \
+        while (g->field[c->count])                                                               \
+            c->count++;                                                                          \
+    }
+        LIST_OR(patterns, a->p, npatterns)
+        LIST_OR(sizes, a->s, nsizes)
+        LIST_OR(filters, a->f, nfilters)
+        LIST_OR(methods, a->m, nmethods)
+#undef LIST_OR
+        n++;
+        if (a->p.n && a->s.n && a->f.n && a->m.n)
+            break; /* everything given: one cross product */
+    }
+    return n;
+}
+
+int cmd_run(int argc, char **argv)
+{
+    run_args a;
+    memset(&a, 0, sizeof a);
+    a.suite = "default";
+    a.reps = 5;
+    a.images = a.plots = 1;
+    a.seed = 1;
+    a.cache = cli_cache_dir();
+    a.enc.kind = AA_ENCODE_SRGB;
+    int st, code = parse(argc, argv, &a);
+    if (code >= 0)
+        return code;
+    const aa_suite *suite = aa_suite_find(a.suite);
+    if (!suite) {
+        fprintf(stderr, "aabench run: unknown suite \"%s\" (quick, default, paper, full)\n",
+                a.suite);
+        return 2;
+    }
+    aa_run_config cfgs[16];
+    size_t ng = groups_of(&a, suite, cfgs, 16);
+    int threads = a.threads > 0 ? a.threads : cli_default_threads();
+    char dir[4096], images[4200], plots[4200];
+    int linked = 0;
+    for (size_t g = 0; g < ng; g++) {
+        cfgs[g].reps = a.reps;
+        cfgs[g].threads = threads;
+        if ((st = aa_run_check(&cfgs[g])))
+            return cli_fail("run", st);
+    }
+    if (a.out) {
+        snprintf(dir, sizeof dir, "%s", a.out);
+        if ((st = aa_mkdirs(dir)))
+            return cli_fail("run", st);
+    } else if ((st = make_run_dir(dir, sizeof dir, &linked))) {
+        return cli_fail("run", st);
+    }
+    if ((st = aa_pathf(images, sizeof images, "%s/images", dir)) ||
+        (st = aa_pathf(plots, sizeof plots, "%s/plots", dir)))
+        return cli_fail("run", st);
+    run_ctx ctx = {dir, cli_progress_wanted(), aa_now()};
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+
+    aa_row *all = NULL;
+    size_t nall = 0;
+    st = AA_OK;
+    for (size_t g = 0; g < ng && !st; g++) {
+        aa_run_config *c = &cfgs[g];
+        c->seed = a.seed;
+        c->t = a.t, c->vx = a.vx, c->vy = a.vy;
+        c->cache_dir = *a.cache ? a.cache : NULL;
+        c->images_dir = a.images ? images : NULL;
+        c->enc = a.enc;
+        c->progress = progress;
+        c->ctx = &ctx;
+        aa_row *rows;
+        size_t n;
+        st = aa_run(c, &rows, &n);
+        aa_row *grown = realloc(all, (nall + n + 1) * sizeof *all);
+        if (grown) {
+            all = grown;
+            memcpy(all + nall, rows, n * sizeof *rows);
+            nall += n;
+        } else if (!st) {
+            st = aa_fail(AA_ENOMEM, "out of memory");
+        }
+        free(rows);
+        if (!st && nall)
+            st = save(&ctx, all, nall);
+    }
+    if (!st && nall) {
+        if (a.images)
+            st = write_montage(dir, all, nall, &a.enc);
+        if (!st && a.plots) {
+            if (!(st = aa_plot_error_vs_time(plots, all, nall)))
+                st = write_convergence(plots, &a, cfgs[0].methods, cfgs[0].nmethods,
+                                       cfgs[0].patterns[0], cfgs[0].filters[0], threads);
+        }
+    }
+    if (interrupted) {
+        if (nall)
+            save(&ctx, all, nall);
+        fprintf(stderr, "\naabench run: interrupted; %zu result%s kept in %s\n", nall,
+                nall == 1 ? "" : "s", dir);
+        free(all);
+        return 130;
+    }
+    if (st) {
+        free(all);
+        return cli_fail("run", st);
+    }
+    if (!a.quiet)
+        print_table(all, nall);
+    printf("results: %s/results.csv%s\n", dir, linked ? " (results/latest)" : "");
+    free(all);
+    return 0;
+}

@@ -1,0 +1,136 @@
+/*
+ * converge.c: how a method's error falls with samples per pixel.
+ *
+ * One fixed scene position measures one alignment of samples and edges;
+ * regular grids in particular alias, so their error at one phase says
+ * little (REFERENCES.md, "Sampling and convergence").  So the scene is shifted
+ * by K random sub-pixel offsets (phase k: (dx, dy) uniform in [0, 1)^2
+ * from the seed; the view is the pattern at time 1 moving (dx, dy)), and
+ * at each samples-per-pixel count the RMSE is taken over all K phases
+ * together (the root of the mean of the phases' mean squared errors), with
+ * the phases' spread.  The slope of log RMSE against log spp comes from
+ * gsl_fit_linear, its error from the fit's covariance: about -1/2 for
+ * independent random samples, -3/4 for stratified ones on edges.
+ *
+ * The method's sample count is set through its `spp` parameter, or through
+ * `n` (an n x n grid: spp must then be a square).
+ */
+#include "aabench.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_fit.h>
+
+/* The method spec at `spp` samples per pixel. */
+static int spec_at(const char *method, const aa_filter *f, int spp, aa_spec *out)
+{
+    int st = aa_method_parse(method, f, out);
+    if (st)
+        return st;
+    int k = aa_spec_index(out->info, "spp");
+    if (k >= 0) {
+        out->v[k] = spp;
+    } else if ((k = aa_spec_index(out->info, "n")) >= 0) {
+        int n = (int)lround(sqrt((double)spp));
+        if (n * n != spp)
+            return aa_fail(AA_EINVAL, "%s takes an n x n grid: spp %d is not a square", method,
+                           spp);
+        out->v[k] = n;
+    } else {
+        return aa_fail(AA_EINVAL, "method %s has no spp or n parameter to vary", method);
+    }
+    const aa_param *p = &out->info->params[k];
+    if (out->v[k] < p->min || out->v[k] > p->max)
+        return aa_fail(AA_EINVAL, "%s: %s=%g is out of its range %g to %g", method, p->key,
+                       out->v[k], p->min, p->max);
+    const aa_method_type *type = (const aa_method_type *)out->info;
+    return type->check ? type->check(out->v, f) : AA_OK;
+}
+
+int aa_converge(const aa_spec *pattern, const char *method, const aa_filter *f, int w, int h,
+                const int *spp, size_t nspp, int phases, uint64_t seed, int threads,
+                const char *cache_dir, aa_convergence *out)
+{
+    int st;
+    memset(out, 0, sizeof *out);
+    if (nspp < 3 || nspp > 64) /* three points at least for the slope's error */
+        return aa_fail(AA_EINVAL, "convergence needs 3 to 64 spp values, not %zu", nspp);
+    if (phases < 1 || phases > 1024)
+        return aa_fail(AA_EINVAL, "phases %d out of range (1 to 1024)", phases);
+    for (size_t k = 0; k < nspp; k++) {
+        aa_spec s;
+        if (spp[k] < 1 || (k && spp[k] <= spp[k - 1]))
+            return aa_fail(AA_EINVAL, "spp values must be positive and increasing");
+        if ((st = spec_at(method, f, spp[k], &s)))
+            return st;
+    }
+    aa_scene *scene = NULL;
+    aa_image ref = {0}, img = {0};
+    double *mse = calloc(nspp * (size_t)phases, sizeof *mse);
+    if (!mse)
+        return aa_fail(AA_ENOMEM, "out of memory");
+    if ((st = aa_pattern_scene(pattern, &scene)) || (st = aa_image_alloc(&img, w, h, 3)))
+        goto done;
+    for (int k = 0; k < phases && !st; k++) {
+        aa_rng rng;
+        aa_rng_seed(&rng, seed, (uint64_t)k, 0x5eed);
+        aa_view view = {*pattern, w, h, *f, 1.0, aa_rng_uniform(&rng), aa_rng_uniform(&rng)};
+        aa_job job;
+        if ((st = aa_reference(&view, cache_dir, threads, &ref, NULL, NULL)) ||
+            (st = aa_job_init(&job, scene, w, h, view.t, view.vx, view.vy, f, seed, threads)))
+            break;
+        for (size_t q = 0; q < nspp && !st; q++) {
+            aa_spec s;
+            aa_counters c;
+            aa_metrics m;
+            double sec;
+            if ((st = spec_at(method, f, spp[q], &s)) ||
+                (st = aa_method_run(&s, &job, 1, &img, &c, &sec)) ||
+                (st = aa_metrics_compute(&ref, &img, NULL, &m)))
+                break;
+            mse[q * (size_t)phases + (size_t)k] = m.rmse * m.rmse;
+            out->seconds[q] += sec / phases;
+        }
+        aa_job_free(&job);
+        aa_image_free(&ref);
+    }
+    if (st)
+        goto done;
+    double x[64], y[64];
+    out->n = nspp;
+    for (size_t q = 0; q < nspp; q++) {
+        double sum = 0, s1 = 0, s2 = 0;
+        for (int k = 0; k < phases; k++) {
+            double e = mse[q * (size_t)phases + (size_t)k];
+            sum += e;
+            s1 += sqrt(e);
+            s2 += e;
+        }
+        out->spp[q] = spp[q];
+        out->rmse[q] = sqrt(sum / phases);
+        double mean = s1 / phases;
+        out->rmse_sd[q] = phases > 1 ? sqrt(fmax(0.0, (s2 - phases * mean * mean) / (phases - 1)))
+                                     : 0.0;
+        if (!(out->rmse[q] > 0)) {
+            st = aa_fail(AA_EINVAL, "%s has zero error at spp %d: no slope to fit", method,
+                         spp[q]);
+            goto done;
+        }
+        x[q] = log(out->spp[q]);
+        y[q] = log(out->rmse[q]);
+    }
+    double c0, c1, cov00, cov01, cov11, sumsq;
+    gsl_fit_linear(x, 1, y, 1, nspp, &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
+    out->intercept = c0;
+    out->slope = c1;
+    out->slope_err = sqrt(cov11);
+done:
+    free(mse);
+    aa_image_free(&ref);
+    aa_image_free(&img);
+    aa_scene_free(scene);
+    return st;
+}

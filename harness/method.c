@@ -1,0 +1,150 @@
+/*
+ * method.c: the method contract's generic layer (DESIGN.md, "The three
+ * contracts"): the table in use, parsing and checking specs, instances, and
+ * the timed render driver.  A method type only describes itself; this file
+ * allocates its state, so a method (or a plug-in) never sizes its own
+ * instance, as gsl_rng_alloc does for a gsl_rng_type.
+ */
+#include "aabench.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define TABLE_MAX 256
+
+static const aa_method_type *table[TABLE_MAX + 1];
+static size_t table_n;
+
+static void table_fill(void)
+{
+    if (table_n)
+        return;
+    while (aa_method_types[table_n] && table_n < TABLE_MAX) {
+        table[table_n] = aa_method_types[table_n];
+        table_n++;
+    }
+    table[table_n] = NULL;
+}
+
+const void *const *aa_method_table(void)
+{
+    table_fill();
+    return (const void *const *)table;
+}
+
+/* Called by the plug-in loader: add types, refusing duplicates. */
+int aa__method_register(const aa_method_type *const *types, const char *origin)
+{
+    table_fill();
+    size_t n = 0;
+    for (; types[n]; n++) {
+        const aa_method_type *t = types[n];
+        if (!t->info.name || !t->info.summary || !t->render)
+            return aa_fail(AA_EINVAL, "%s: method %zu lacks a name, summary or render", origin, n);
+        if (aa_table_find((const void *const *)table, t->info.name))
+            return aa_fail(AA_EINVAL, "%s: method \"%s\" is already defined", origin,
+                           t->info.name);
+        if (aa_param_count(&t->info) > AA_MAX_PARAMS)
+            return aa_fail(AA_EINVAL, "%s: method \"%s\" has more than %d parameters", origin,
+                           t->info.name, AA_MAX_PARAMS);
+    }
+    if (table_n + n > TABLE_MAX)
+        return aa_fail(AA_EINVAL, "%s: more than %d methods", origin, TABLE_MAX);
+    for (size_t k = 0; k < n; k++)
+        table[table_n++] = types[k];
+    table[table_n] = NULL;
+    return AA_OK;
+}
+
+int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out)
+{
+    int st = aa_spec_parse(text, aa_method_table(), "method", out);
+    if (st)
+        return st;
+    const aa_method_type *type = (const aa_method_type *)out->info;
+    if (type->check && (st = type->check(out->v, f)))
+        return aa_fail_context(st, "method %s", type->info.name);
+    return AA_OK;
+}
+
+int aa_method_init(aa_method *m, const aa_spec *spec, const aa_job *job)
+{
+    const aa_method_type *type = (const aa_method_type *)spec->info;
+    int st;
+    memset(m, 0, sizeof *m);
+    if (type->check && (st = type->check(spec->v, &job->filter)))
+        return aa_fail_context(st, "method %s", type->info.name);
+    m->type = type;
+    m->spec = *spec;
+    if (type->size && !(m->state = calloc(1, type->size)))
+        return aa_fail(AA_ENOMEM, "out of memory for method %s", type->info.name);
+    if (type->init && (st = type->init(m->state, spec->v, job))) {
+        aa_method_free(m);
+        return aa_fail_context(st, "method %s", type->info.name);
+    }
+    return AA_OK;
+}
+
+int aa_method_render(aa_method *m, const aa_job *job, aa_image *out, aa_counters *counters)
+{
+    if (!out->v || out->w != job->w || out->h != job->h || out->c != 3)
+        return aa_fail(AA_EINVAL, "render needs a %dx%dx3 image", job->w, job->h);
+    memset(counters, 0, sizeof *counters);
+    int st = m->type->render(m->state, m->spec.v, job, out, counters);
+    return st ? aa_fail_context(st, "method %s", m->type->info.name) : AA_OK;
+}
+
+void aa_method_free(aa_method *m)
+{
+    if (m->type && m->type->release && m->state)
+        m->type->release(m->state);
+    free(m->state);
+    memset(m, 0, sizeof *m);
+}
+
+int aa_method_run(const aa_spec *spec, const aa_job *job, int reps, aa_image *out,
+                  aa_counters *counters, double *seconds)
+{
+    aa_method m;
+    int st = aa_method_init(&m, spec, job);
+    if (st)
+        return st;
+    /* touch the output once: page faults are not the method's cost */
+    memset(out->v, 0, (size_t)out->w * (size_t)out->h * 3 * sizeof *out->v);
+    for (int r = 0; r < reps && !st; r++) {
+        double t0 = aa_now();
+        st = aa_method_render(&m, job, out, counters);
+        if (seconds)
+            seconds[r] = aa_now() - t0;
+    }
+    aa_method_free(&m);
+    return st;
+}
+
+int aa_job_init(aa_job *job, const aa_scene *pattern, int w, int h, double t, double vx,
+                double vy, const aa_filter *f, uint64_t seed, int threads)
+{
+    memset(job, 0, sizeof *job);
+    job->pattern = pattern;
+    job->w = w, job->h = h;
+    job->t = t, job->vx = vx, job->vy = vy;
+    job->filter = *f;
+    job->seed = seed;
+    job->threads = threads > 0 ? threads : 1;
+    if (!(job->placed = aa_scene_place(pattern, w, h, t, vx, vy)))
+        return aa_fail_context(AA_EINVAL, "placing the scene");
+    return AA_OK;
+}
+
+void aa_job_free(aa_job *job)
+{
+    aa_scene_free((aa_scene *)job->placed);
+    job->placed = NULL;
+}
+
+double aa_filter_support(const aa_filter *f)
+{
+    if (f->type == &aa_filter_gauss)
+        return 3.0 * f->spec.v[0];
+    return f->radius;
+}

@@ -1,0 +1,190 @@
+/*
+ * metrics.c: error of an image against its reference (DESIGN.md,
+ * "Measuring").
+ *
+ *  - rmse, mae, max_err (and where), psnr = 10 log10(1 / mse): over every
+ *    channel of every pixel, in linear light, and again after display
+ *    encoding (sRGB, or Crow's square law: gamma:2);
+ *  - aliasing energy: the power spectrum of the error image (the mean of its
+ *    channels), by GSL's mixed-radix FFT of the rows then the columns.  The
+ *    total equals the mean squared error of that channel mean (Parseval);
+ *    it is split at half the Nyquist frequency: `alias_low` holds the
+ *    frequencies below 1/4 cycle per pixel (in x and y), where aliased
+ *    detail shows as moire, `alias_high` the band from there to the Nyquist
+ *    frequency, where staircases and sample noise live;
+ *  - SSIM (Wang, Bovik, Sheikh and Simoncelli 2004) on the display-encoded
+ *    luma (Rec. 709 weights), 11x11 Gaussian window of s = 1.5, C1 =
+ *    (0.01)^2, C2 = (0.03)^2, values in [0, 1]; the mean over the pixels
+ *    whose window fits in the image (all pixels, window clipped and
+ *    renormalised, for images smaller than 11 pixels).
+ */
+#include "aabench.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_fft_complex.h>
+
+static void pointwise(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                      double *rmse, double *mae, double *max_err, int *where, double *psnr)
+{
+    size_t n = (size_t)ref->w * ref->h * ref->c;
+    double s2 = 0, s1 = 0, mx = -1;
+    size_t at = 0;
+    for (size_t k = 0; k < n; k++) {
+        double a = ref->v[k], b = img->v[k];
+        if (enc)
+            a = aa_encode_value(enc, a), b = aa_encode_value(enc, b);
+        double d = fabs(b - a);
+        s1 += d;
+        s2 += d * d;
+        if (d > mx)
+            mx = d, at = k;
+    }
+    *mae = s1 / (double)n;
+    *rmse = sqrt(s2 / (double)n);
+    *max_err = mx;
+    where[2] = (int)(at % (size_t)ref->c);
+    at /= (size_t)ref->c;
+    where[0] = (int)(at % (size_t)ref->w);
+    where[1] = (int)(at / (size_t)ref->w);
+    *psnr = s2 > 0 ? 10.0 * log10((double)n / s2) : INFINITY;
+}
+
+/* FFT of the channel-mean error; energies per pixel. */
+static int spectrum(const aa_image *ref, const aa_image *img, aa_metrics *m)
+{
+    int w = ref->w, h = ref->h, c = ref->c;
+    size_t n = (size_t)w * h;
+    double *z = malloc(2 * n * sizeof *z);
+    gsl_fft_complex_wavetable *tw = gsl_fft_complex_wavetable_alloc((size_t)w);
+    gsl_fft_complex_wavetable *th = gsl_fft_complex_wavetable_alloc((size_t)h);
+    /* GSL wants a workspace of each transform's own length */
+    gsl_fft_complex_workspace *ws = gsl_fft_complex_workspace_alloc((size_t)w);
+    gsl_fft_complex_workspace *wh = gsl_fft_complex_workspace_alloc((size_t)h);
+    int st = AA_OK;
+    if (!z || !tw || !th || !ws || !wh) {
+        st = aa_fail(AA_ENOMEM, "out of memory for the error spectrum of %dx%d", w, h);
+        goto done;
+    }
+    for (size_t p = 0; p < n; p++) {
+        double e = 0;
+        for (int k = 0; k < c; k++)
+            e += img->v[p * (size_t)c + (size_t)k] - ref->v[p * (size_t)c + (size_t)k];
+        z[2 * p] = e / c;
+        z[2 * p + 1] = 0;
+    }
+    for (int j = 0; j < h && !st; j++)
+        if (gsl_fft_complex_forward(z + 2 * (size_t)j * w, 1, (size_t)w, tw, ws))
+            st = aa_fail(AA_EFAIL, "FFT of row %d failed", j);
+    for (int i = 0; i < w && !st; i++)
+        if (gsl_fft_complex_forward(z + 2 * (size_t)i, (size_t)w, (size_t)h, th, wh))
+            st = aa_fail(AA_EFAIL, "FFT of column %d failed", i);
+    double low = 0, high = 0;
+    for (int j = 0; j < h && !st; j++) {
+        /* frequency in cycles per pixel, folded to [0, 1/2] */
+        double fy = fabs((j <= h / 2 ? j : j - h) / (double)h);
+        for (int i = 0; i < w; i++) {
+            double fx = fabs((i <= w / 2 ? i : i - w) / (double)w);
+            size_t p = (size_t)j * w + i;
+            double power = z[2 * p] * z[2 * p] + z[2 * p + 1] * z[2 * p + 1];
+            if (fx < 0.25 && fy < 0.25)
+                low += power;
+            else
+                high += power;
+        }
+    }
+    /* Parseval: sum |Z|^2 = n sum |e|^2, so per pixel divide by n^2 */
+    m->alias_low = low / ((double)n * n);
+    m->alias_high = high / ((double)n * n);
+    m->alias_total = m->alias_low + m->alias_high;
+done:
+    free(z);
+    if (tw)
+        gsl_fft_complex_wavetable_free(tw);
+    if (th)
+        gsl_fft_complex_wavetable_free(th);
+    if (ws)
+        gsl_fft_complex_workspace_free(ws);
+    if (wh)
+        gsl_fft_complex_workspace_free(wh);
+    return st;
+}
+
+static double luma(const aa_image *im, size_t p, const aa_encode *enc)
+{
+    const double *v = im->v + p * (size_t)im->c;
+    double y = im->c >= 3 ? 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2] : v[0];
+    return aa_encode_value(enc, y);
+}
+
+static int ssim(const aa_image *ref, const aa_image *img, const aa_encode *enc, double *out)
+{
+    const int r = 5;
+    const double C1 = 1e-4, C2 = 9e-4;
+    int w = ref->w, h = ref->h;
+    size_t n = (size_t)w * h;
+    double g[11], *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+    if (!a || !b) {
+        free(a);
+        free(b);
+        return aa_fail(AA_ENOMEM, "out of memory for SSIM");
+    }
+    for (int k = -r; k <= r; k++)
+        g[k + r] = exp(-k * k / (2 * 1.5 * 1.5));
+    for (size_t p = 0; p < n; p++)
+        a[p] = luma(ref, p, enc), b[p] = luma(img, p, enc);
+    int inner = w > 2 * r && h > 2 * r;
+    double sum = 0;
+    size_t count = 0;
+    for (int j = inner ? r : 0; j < (inner ? h - r : h); j++)
+        for (int i = inner ? r : 0; i < (inner ? w - r : w); i++) {
+            double sw = 0, ma = 0, mb = 0, aa = 0, bb = 0, ab = 0;
+            for (int dj = -r; dj <= r; dj++) {
+                if (j + dj < 0 || j + dj >= h)
+                    continue;
+                for (int di = -r; di <= r; di++) {
+                    if (i + di < 0 || i + di >= w)
+                        continue;
+                    double wt = g[dj + r] * g[di + r];
+                    size_t p = (size_t)(j + dj) * w + (size_t)(i + di);
+                    sw += wt;
+                    ma += wt * a[p], mb += wt * b[p];
+                    aa += wt * a[p] * a[p], bb += wt * b[p] * b[p], ab += wt * a[p] * b[p];
+                }
+            }
+            ma /= sw, mb /= sw;
+            double va = aa / sw - ma * ma, vb = bb / sw - mb * mb, cov = ab / sw - ma * mb;
+            sum += ((2 * ma * mb + C1) * (2 * cov + C2)) /
+                   ((ma * ma + mb * mb + C1) * (va + vb + C2));
+            count++;
+        }
+    free(a);
+    free(b);
+    *out = sum / (double)count;
+    return AA_OK;
+}
+
+int aa_metrics_compute(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                       aa_metrics *m)
+{
+    aa_encode srgb = {AA_ENCODE_SRGB, 0};
+    if (!enc)
+        enc = &srgb;
+    if (ref->w != img->w || ref->h != img->h || ref->c != img->c)
+        return aa_fail(AA_EINVAL, "images differ in size: %dx%dx%d and %dx%dx%d", ref->w, ref->h,
+                       ref->c, img->w, img->h, img->c);
+    size_t n = (size_t)ref->w * ref->h * ref->c;
+    for (size_t k = 0; k < n; k++)
+        if (!isfinite(ref->v[k]) || !isfinite(img->v[k]))
+            return aa_fail(AA_EINVAL, "image value %zu is not finite", k);
+    memset(m, 0, sizeof *m);
+    pointwise(ref, img, NULL, &m->rmse, &m->mae, &m->max_err, m->max_at, &m->psnr);
+    int where[3];
+    pointwise(ref, img, enc, &m->rmse_enc, &m->mae_enc, &m->max_err_enc, where, &m->psnr_enc);
+    gsl_set_error_handler_off();
+    int st = spectrum(ref, img, m);
+    return st ? st : ssim(ref, img, enc, &m->ssim);
+}

@@ -1,0 +1,38 @@
+/*
+ * plugin.c: methods from shared libraries loaded at run time.
+ *
+ * A plug-in is built against aabench.h and exports `aa_plugin_abi` (equal to
+ * AA_PLUGIN_ABI) and `aa_plugin_methods`, a NULL-terminated array of method
+ * types.  It may call any public aa_ function: the aabench command exports
+ * the whole library to it.  The library stays loaded until the process ends
+ * (its type structs are in the table).
+ */
+#include "aabench.h"
+
+#include <dlfcn.h>
+
+int aa__method_register(const aa_method_type *const *types, const char *origin);
+
+int aa_plugin_load(const char *path)
+{
+    void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (!lib)
+        return aa_fail(AA_EIO, "plug-in %s: %s", path, dlerror());
+    const int *abi = dlsym(lib, "aa_plugin_abi");
+    const aa_method_type *const *types = dlsym(lib, "aa_plugin_methods");
+    if (!abi || !types) {
+        dlclose(lib);
+        return aa_fail(AA_EINVAL, "plug-in %s exports no aa_plugin_abi or aa_plugin_methods",
+                       path);
+    }
+    if (*abi != AA_PLUGIN_ABI) {
+        int got = *abi;
+        dlclose(lib);
+        return aa_fail(AA_EINVAL, "plug-in %s was built for interface %d, this is %d", path,
+                       got, AA_PLUGIN_ABI);
+    }
+    int st = aa__method_register(types, path);
+    if (st)
+        dlclose(lib);
+    return st;
+}

@@ -1,0 +1,70 @@
+/*
+ * suite.c: the named suites of `aabench run` (DESIGN.md, "Measuring").
+ *
+ *   quick    every family once on crow 128x128 box: the regression gate's
+ *            suite (results/baseline.csv); well under 30 s
+ *   default  every family at its main settings on crow 256x256 and
+ *            1024x1024 box: the main job of `make run`
+ *   paper    the settings of the seed figures (Crow 1976 figs. 2.10-2.14)
+ *   full     every method variant, every filter, both sizes
+ */
+#include "aabench.h"
+
+#include <string.h>
+
+#define LIST(...) ((const char *const[]){__VA_ARGS__, NULL})
+
+static const aa_suite_group quick[] = {
+    {LIST("crow"), LIST("128x128"), LIST("box"),
+     LIST("point", "supersample", "jitter", "hexagon", "trio", "area")},
+    {NULL, NULL, NULL, NULL}};
+
+static const aa_suite_group main_suite[] = {
+    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("box"),
+     LIST("point", "supersample:n=3", "supersample:n=4", "supersample:pattern=msaa4",
+          "supersample:pattern=msaa8", "jitter:spp=16", "jitter:spp=16,seq=random",
+          "jitter:spp=16,seq=sobol", "jitter:spp=16,seq=halton", "jitter:spp=64", "hexagon",
+          "trio", "trio:variant=sancha", "trio:variant=recursive", "area")},
+    {NULL, NULL, NULL, NULL}};
+
+/* Crow 1976: fig. 2.10 point sampled, 2.11 nine equal samples, 2.12 25
+ * unequally weighted samples (tent base two pixels), 2.13 and 2.14 the
+ * triangular filters of base one and two pixels (their references are the
+ * exact images; sampled approximations beside them). */
+static const aa_suite_group paper[] = {
+    {LIST("crow"), LIST("256x256"), LIST("box"),
+     LIST("point", "supersample:n=3", "jitter:spp=16", "area")},
+    {LIST("crow"), LIST("256x256"), LIST("tent:r=1"),
+     LIST("supersample:n=5", "supersample:n=3", "jitter:spp=64")},
+    {LIST("crow"), LIST("256x256"), LIST("tent:r=0.5"),
+     LIST("supersample:n=5", "jitter:spp=64")},
+    {NULL, NULL, NULL, NULL}};
+
+static const aa_suite_group full[] = {
+    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("box"),
+     LIST("point", "supersample:n=2", "supersample:n=3", "supersample:n=4", "supersample:n=8",
+          "supersample:pattern=msaa2", "supersample:pattern=msaa4", "supersample:pattern=msaa8",
+          "supersample:pattern=msaa16", "jitter:spp=4", "jitter:spp=16", "jitter:spp=64",
+          "jitter:spp=256", "jitter:spp=16,seq=random", "jitter:spp=16,seq=sobol",
+          "jitter:spp=16,seq=halton", "jitter:spp=16,seq=niederreiter", "hexagon", "trio",
+          "trio:variant=sancha", "trio:variant=recursive", "area")},
+    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("tent:r=0.5", "tent:r=1", "gauss"),
+     LIST("supersample:n=3", "supersample:n=5", "supersample:pattern=msaa8", "jitter:spp=16",
+          "jitter:spp=64", "jitter:spp=64,seq=sobol")},
+    {NULL, NULL, NULL, NULL}};
+
+const aa_suite aa_suites[] = {
+    {"quick", "every family once on crow 128x128 box (the regression gate)", quick},
+    {"default", "every family at its main settings on crow 256x256 and 1024x1024 box",
+     main_suite},
+    {"paper", "the settings of Crow's figures 2.10-2.14", paper},
+    {"full", "every method variant under every filter", full},
+    {NULL, NULL, NULL}};
+
+const aa_suite *aa_suite_find(const char *name)
+{
+    for (const aa_suite *s = aa_suites; s->name; s++)
+        if (!strcmp(s->name, name))
+            return s;
+    return NULL;
+}

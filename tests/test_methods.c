@@ -1,0 +1,342 @@
+/*
+ * test_methods.c: every method in the table (built-in, and the example
+ * plug-in loaded at start) meets the generic properties, as GSL's rng tests
+ * loop over every generator:
+ *
+ *  - a uniform scene renders exactly (every pixel is its colour);
+ *  - values are finite and in [0, 1];
+ *  - the same seed gives the same image, 1 and 2 threads the same image, and
+ *    a seeded method gives another image for another seed;
+ *  - out-of-range, non-finite and unknown parameters are refused;
+ *  - every filter is honoured or refused with a message;
+ *  - the counters make sense.
+ *
+ * Every CHOICE parameter is run with each of its words.  Then the ordering
+ * on crow 256x256 box that the methods exist to show: RMSE falls from point
+ * to supersample n=3 to jitter spp=64 to area.
+ */
+#include "aabench.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#define W 41
+#define H 29
+
+/* The specs to test for a method: the default, and one per word of each
+ * CHOICE parameter. */
+static int method_specs(const aa_info *info, char specs[][256], int max)
+{
+    int n = 0;
+    snprintf(specs[n++], 256, "%s", info->name);
+    for (size_t k = 0; k < aa_param_count(info) && n < max; k++) {
+        const aa_param *p = &info->params[k];
+        if (p->kind != AA_PARAM_CHOICE)
+            continue;
+        const char *start = p->choices;
+        while (start && n < max) {
+            const char *stop = strchr(start, '|');
+            int len = stop ? (int)(stop - start) : (int)strlen(start);
+            snprintf(specs[n++], 256, "%s:%s=%.*s", info->name, p->key, len, start);
+            start = stop ? stop + 1 : NULL;
+        }
+    }
+    return n;
+}
+
+static aa_scene *crow_scene(void)
+{
+    aa_spec spec;
+    aa_scene *s;
+    assert_int_equal(aa_pattern_parse("crow", &spec), AA_OK);
+    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
+    return s;
+}
+
+/* A scene with no edge in view: one colour everywhere on the image. */
+static aa_scene *uniform_scene(aa_rgb colour)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_int_equal(aa_scene_layer(s, colour, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, -3, -3), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 4, -3), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 4, 4), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, -3, 4), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+/* Render; returns the status (the image is allocated on success). */
+static int render(const char *method, const aa_scene *scene, const char *filter, int w, int h,
+                  uint64_t seed, int threads, aa_image *out, aa_counters *c)
+{
+    aa_filter f;
+    aa_spec spec;
+    aa_job job;
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    int st = aa_method_parse(method, &f, &spec);
+    if (st)
+        return st;
+    assert_int_equal(aa_job_init(&job, scene, w, h, 0.0, 0.0, 0.0, &f, seed, threads), AA_OK);
+    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
+    st = aa_method_run(&spec, &job, 1, out, c, NULL);
+    aa_job_free(&job);
+    if (st)
+        aa_image_free(out);
+    return st;
+}
+
+/* $AABENCH_METHODS (a comma-separated list of names), if set, limits the
+ * generic loops to those methods: for working on one method. */
+static int selected(const char *name)
+{
+    const char *list = getenv("AABENCH_METHODS");
+    if (!list || !*list)
+        return 1;
+    size_t n = strlen(name);
+    for (const char *p = list; (p = strstr(p, name)); p += n)
+        if ((p == list || p[-1] == ',') && (p[n] == ',' || p[n] == '\0'))
+            return 1;
+    return 0;
+}
+
+static void for_each_spec(void (*check)(const char *spec, const aa_method_type *type))
+{
+    const void *const *table = aa_method_table();
+    for (size_t k = 0; table[k]; k++) {
+        if (!selected(((const aa_info *)table[k])->name))
+            continue;
+        char specs[32][256];
+        int n = method_specs(table[k], specs, 32);
+        for (int s = 0; s < n; s++)
+            check(specs[s], table[k]);
+    }
+}
+
+static void check_uniform(const char *spec, const aa_method_type *type)
+{
+    (void)type;
+    const aa_rgb colour = {{0.3, 0.5, 0.7}};
+    aa_scene *s = uniform_scene(colour);
+    aa_image img;
+    aa_counters c;
+    if (render(spec, s, "box", W, H, 1, 2, &img, &c))
+        fail_msg("%s: %s", spec, aa_last_error());
+    for (int p = 0; p < W * H; p++)
+        for (int ch = 0; ch < 3; ch++)
+            if (img.v[3 * p + ch] != colour.c[ch])
+                fail_msg("%s: uniform scene pixel %d channel %d is %.17g, not %.17g", spec, p,
+                         ch, img.v[3 * p + ch], colour.c[ch]);
+    aa_image_free(&img);
+    aa_scene_free(s);
+}
+
+static void test_uniform_exact(void **state)
+{
+    (void)state;
+    for_each_spec(check_uniform);
+}
+
+static void check_range_and_determinism(const char *spec, const aa_method_type *type)
+{
+    aa_scene *s = crow_scene();
+    aa_image a, b, c2;
+    aa_counters ca, cb, cc;
+    if (render(spec, s, "box", W, H, 7, 1, &a, &ca))
+        fail_msg("%s: %s", spec, aa_last_error());
+    for (int p = 0; p < W * H * 3; p++)
+        if (!(a.v[p] >= 0.0 && a.v[p] <= 1.0))
+            fail_msg("%s: value %.17g at %d outside [0, 1]", spec, a.v[p], p);
+    assert_int_equal(render(spec, s, "box", W, H, 7, 2, &b, &cb), AA_OK);
+    if (memcmp(a.v, b.v, sizeof(double) * W * H * 3))
+        fail_msg("%s: 1 and 2 threads give different images", spec);
+    if (ca.samples != cb.samples || ca.expensive_pixels != cb.expensive_pixels)
+        fail_msg("%s: 1 and 2 threads give different counters", spec);
+    assert_true(ca.expensive_pixels <= (uint64_t)W * H);
+    assert_int_equal(render(spec, s, "box", W, H, 8, 2, &c2, &cc), AA_OK);
+    int differs = memcmp(a.v, c2.v, sizeof(double) * W * H * 3) != 0;
+    if (differs != ((type->flags & AA_METHOD_SEEDED) != 0))
+        fail_msg("%s: another seed %s the image, but the method %s seeded", spec,
+                 differs ? "changes" : "does not change", differs ? "is not" : "is");
+    aa_image_free(&a);
+    aa_image_free(&b);
+    aa_image_free(&c2);
+    aa_scene_free(s);
+}
+
+static void test_range_and_determinism(void **state)
+{
+    (void)state;
+    for_each_spec(check_range_and_determinism);
+}
+
+static void check_filters(const char *spec, const aa_method_type *type)
+{
+    (void)type;
+    const char *filters[] = {"tent:r=0.5", "tent:r=1", "gauss", "gauss:s=1"};
+    aa_scene *s = crow_scene();
+    for (int k = 0; k < 4; k++) {
+        aa_image img;
+        aa_counters c;
+        int st = render(spec, s, filters[k], 19, 13, 1, 2, &img, &c);
+        if (st == AA_EINVAL) {
+            /* refused: the message must say what the method accepts */
+            if (strlen(aa_last_error()) < 20)
+                fail_msg("%s refuses %s without a clear message: \"%s\"", spec, filters[k],
+                         aa_last_error());
+            continue;
+        }
+        if (st)
+            fail_msg("%s with %s: %s", spec, filters[k], aa_last_error());
+        for (int p = 0; p < 19 * 13 * 3; p++)
+            assert_true(img.v[p] >= 0.0 && img.v[p] <= 1.0);
+        aa_image_free(&img);
+    }
+    aa_scene_free(s);
+}
+
+static void test_filters(void **state)
+{
+    (void)state;
+    for_each_spec(check_filters);
+}
+
+/* Out of range, not finite, not an integer, unknown: all refused. */
+static void test_bad_parameters(void **state)
+{
+    (void)state;
+    const void *const *table = aa_method_table();
+    aa_filter box;
+    aa_spec spec;
+    aa_filter_default(&box);
+    for (size_t k = 0; table[k]; k++) {
+        const aa_info *info = table[k];
+        char text[512];
+        snprintf(text, sizeof text, "%s:no_such_key=1", info->name);
+        assert_int_equal(aa_method_parse(text, &box, &spec), AA_EINVAL);
+        for (size_t q = 0; q < aa_param_count(info); q++) {
+            const aa_param *p = &info->params[q];
+            const char *bad[4] = {"nan", "inf", "", ""};
+            char below[64], above[64];
+            if (p->kind == AA_PARAM_CHOICE) {
+                bad[2] = "no-such-word";
+                bad[3] = "1";
+            } else {
+                snprintf(below, sizeof below, "%.17g", p->min - (p->kind == AA_PARAM_INT ? 1 : fabs(p->min) + 1));
+                snprintf(above, sizeof above, "%.17g", p->max + (p->kind == AA_PARAM_INT ? 1 : fabs(p->max) + 1));
+                bad[2] = below;
+                bad[3] = above;
+            }
+            for (int b = 0; b < 4; b++) {
+                snprintf(text, sizeof text, "%s:%s=%s", info->name, p->key, bad[b]);
+                if (aa_method_parse(text, &box, &spec) != AA_EINVAL)
+                    fail_msg("method spec \"%s\" accepted", text);
+            }
+        }
+    }
+}
+
+/* point: each pixel is the scene's colour at its centre. */
+static void test_point_is_centres(void **state)
+{
+    (void)state;
+    aa_scene *s = crow_scene();
+    aa_image img;
+    aa_counters c;
+    assert_int_equal(render("point", s, "box", 97, 61, 1, 2, &img, &c), AA_OK);
+    aa_scene *placed = aa_scene_place(s, 97, 61, 0, 0, 0);
+    for (int j = 0; j < 61; j++)
+        for (int i = 0; i < 97; i++)
+            assert_true(aa_pixel(&img, i, j)[0] == aa_scene_colour_at(placed, i + 0.5, j + 0.5).c[0]);
+    assert_true(c.samples == 97 * 61);
+    aa_scene_free(placed);
+    aa_image_free(&img);
+    aa_scene_free(s);
+}
+
+/* The example plug-in's method is in the table and renders like the mean of
+ * its four samples. */
+static void test_plugin(void **state)
+{
+    (void)state;
+    aa_filter box;
+    aa_spec spec;
+    aa_filter_default(&box);
+    assert_int_equal(aa_method_parse("centre4", &box, &spec), AA_OK);
+    /* loading it twice is refused: the name is taken */
+    char path[4096];
+    snprintf(path, sizeof path, "%s", getenv("AABENCH_PLUGIN"));
+    assert_int_equal(aa_plugin_load(path), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "already defined"));
+    assert_int_equal(aa_plugin_load("/nonexistent/plugin.so"), AA_EIO);
+}
+
+static double rmse(const aa_image *a, const aa_image *b)
+{
+    double s = 0;
+    size_t n = (size_t)a->w * a->h * 3;
+    for (size_t k = 0; k < n; k++)
+        s += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
+    return sqrt(s / (double)n);
+}
+
+/* The ordering the methods exist to show (the acceptance). */
+static void test_rmse_order(void **state)
+{
+    (void)state;
+    const char *order[] = {"point", "supersample:n=3", "jitter:spp=64", "area"};
+    aa_scene *s = crow_scene(), *placed = aa_scene_place(s, 256, 256, 0, 0, 0);
+    aa_filter box;
+    aa_filter_default(&box);
+    aa_image ref, img;
+    assert_int_equal(aa_image_alloc(&ref, 256, 256, 3), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &box, 0, &ref, NULL, NULL), AA_OK);
+    double last = INFINITY;
+    for (int k = 0; k < 4; k++) {
+        aa_counters c;
+        assert_int_equal(render(order[k], s, "box", 256, 256, 1, 2, &img, &c), AA_OK);
+        double e = rmse(&img, &ref);
+        print_message("crow 256x256 box: %-16s RMSE %.3e, %llu samples\n", order[k], e,
+                      (unsigned long long)c.samples);
+        if (!(e < last))
+            fail_msg("%s has RMSE %.3e, not below the previous method's %.3e", order[k], e, last);
+        last = e;
+        aa_image_free(&img);
+    }
+    aa_image_free(&ref);
+    aa_scene_free(placed);
+    aa_scene_free(s);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    const char *plugin = getenv("AABENCH_PLUGIN");
+    if (!plugin || aa_plugin_load(plugin)) {
+        fprintf(stderr, "test_methods: cannot load the example plug-in $AABENCH_PLUGIN: %s\n",
+                plugin ? aa_last_error() : "not set");
+        return -1;
+    }
+    return 0;
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_uniform_exact),
+        cmocka_unit_test(test_range_and_determinism),
+        cmocka_unit_test(test_filters),
+        cmocka_unit_test(test_bad_parameters),
+        cmocka_unit_test(test_point_is_centres),
+        cmocka_unit_test(test_plugin),
+        cmocka_unit_test(test_rmse_order),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}

@@ -1,0 +1,319 @@
+/*
+ * test_run.c: the benchmark's runs, reports and regression gate.
+ *
+ *  - results.csv and results.json parse back (the CSV through the library's
+ *    reader, the JSON through a strict validator written here), with the
+ *    values of the rows that made them;
+ *  - `aabench check` passes on a baseline made from its own run, fails
+ *    (exit 1, naming the offender) when a baseline error is made smaller
+ *    than what the method achieves, and when a baseline method is missing;
+ *  - an interrupted `aabench run` leaves no half-written or temporary file:
+ *    everything in its folder is complete and parses.
+ */
+#include "aabench.h"
+
+#include <ctype.h>
+#include <fcntl.h>
+#include <math.h>
+#include <setjmp.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+static char dir[] = "/tmp/aabench-run-XXXXXX";
+static char output[16384];
+
+static int run_cmd(const char *const *args, int interrupt_after_ms)
+{
+    const char *exe = getenv("AABENCH");
+    char log[512];
+    snprintf(log, sizeof log, "%s/log", dir);
+    pid_t pid = fork();
+    if (pid == 0) {
+        int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(fd, 1);
+        dup2(fd, 2);
+        const char *argv[40] = {exe};
+        for (int k = 0; args[k] && k < 38; k++)
+            argv[k + 1] = args[k];
+        execv(exe, (char *const *)argv);
+        _exit(127);
+    }
+    if (interrupt_after_ms > 0) {
+        struct timespec ts = {interrupt_after_ms / 1000, (interrupt_after_ms % 1000) * 1000000L};
+        nanosleep(&ts, NULL);
+        kill(pid, SIGINT);
+    }
+    int status;
+    waitpid(pid, &status, 0);
+    FILE *f = fopen(log, "r");
+    size_t n = f ? fread(output, 1, sizeof output - 1, f) : 0;
+    output[n] = '\0';
+    if (f)
+        fclose(f);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/* ---- a strict JSON validator (RFC 8259 grammar) ---- */
+
+static const char *ws(const char *p)
+{
+    while (*p == ' ' || *p == '\n' || *p == '\r' || *p == '\t')
+        p++;
+    return p;
+}
+
+static const char *value(const char *p);
+
+static const char *string(const char *p)
+{
+    if (*p++ != '"')
+        return NULL;
+    while (*p != '"') {
+        if (!*p || (unsigned char)*p < 0x20)
+            return NULL;
+        if (*p == '\\') {
+            p++;
+            if (*p == 'u') {
+                for (int k = 1; k <= 4; k++)
+                    if (!isxdigit((unsigned char)p[k]))
+                        return NULL;
+                p += 4;
+            } else if (!strchr("\"\\/bfnrt", *p)) {
+                return NULL;
+            }
+        }
+        p++;
+    }
+    return p + 1;
+}
+
+static const char *number(const char *p)
+{
+    const char *s = p;
+    if (*p == '-')
+        p++;
+    if (!isdigit((unsigned char)*p))
+        return NULL;
+    while (isdigit((unsigned char)*p) || *p == '.' || *p == 'e' || *p == 'E' || *p == '+' ||
+           *p == '-')
+        p++;
+    char *end;
+    strtod(s, &end);
+    return end == p ? p : NULL;
+}
+
+static const char *value(const char *p)
+{
+    p = ws(p);
+    if (*p == '{' || *p == '[') {
+        char close = *p == '{' ? '}' : ']';
+        int object = *p == '{';
+        p = ws(p + 1);
+        if (*p == close)
+            return p + 1;
+        for (;;) {
+            if (object) {
+                if (!(p = string(ws(p))) || *(p = ws(p)) != ':')
+                    return NULL;
+                p++;
+            }
+            if (!(p = value(p)))
+                return NULL;
+            p = ws(p);
+            if (*p == close)
+                return p + 1;
+            if (*p++ != ',')
+                return NULL;
+        }
+    }
+    if (*p == '"')
+        return string(p);
+    if (!strncmp(p, "true", 4) || !strncmp(p, "null", 4))
+        return p + 4;
+    if (!strncmp(p, "false", 5))
+        return p + 5;
+    return number(p);
+}
+
+static void json_valid(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    static char buf[1 << 20];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    const char *end = value(buf);
+    if (!end || *ws(end))
+        fail_msg("%s is not valid JSON", path);
+}
+
+/* A small run through the library: rows, then CSV and JSON. */
+static void test_reports_parse_back(void **state)
+{
+    (void)state;
+    const char *patterns[] = {"crow"}, *sizes[] = {"24x16"}, *filters[] = {"box"};
+    const char *methods[] = {"point", "centre4", "point"};
+    aa_run_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.patterns = patterns, cfg.npatterns = 1;
+    cfg.sizes = sizes, cfg.nsizes = 1;
+    cfg.filters = filters, cfg.nfilters = 1;
+    cfg.methods = methods, cfg.nmethods = 3;
+    cfg.reps = 2, cfg.threads = 2, cfg.seed = 3;
+    aa_row *rows, *back;
+    size_t n, nb;
+    assert_int_equal(aa_run(&cfg, &rows, &n), AA_OK);
+    assert_int_equal(n, 3);
+    /* a note with a comma and a quote must survive the CSV */
+    snprintf(rows[1].note, sizeof rows[1].note, "a \"quoted\", note");
+    char csv[512], json[512];
+    snprintf(csv, sizeof csv, "%s/r.csv", dir);
+    snprintf(json, sizeof json, "%s/r.json", dir);
+    assert_int_equal(aa_rows_write_csv(csv, rows, n), AA_OK);
+    assert_int_equal(aa_rows_write_json(json, rows, n), AA_OK);
+    assert_int_equal(aa_rows_read_csv(csv, &back, &nb), AA_OK);
+    assert_int_equal(nb, n);
+    for (size_t k = 0; k < n; k++) {
+        assert_string_equal(back[k].method, rows[k].method);
+        assert_string_equal(back[k].pattern, rows[k].pattern);
+        assert_string_equal(back[k].note, rows[k].note);
+        assert_true(back[k].w == 24 && back[k].h == 16 && back[k].ok == 1);
+        /* %.9g keeps nine significant digits */
+        assert_true(fabs(back[k].m.rmse - rows[k].m.rmse) <= 1e-8 * rows[k].m.rmse);
+        assert_true(fabs(back[k].seconds - rows[k].seconds) <= 1e-8 * rows[k].seconds);
+    }
+    /* the same method twice gives the same error (deterministic) */
+    assert_true(rows[0].m.rmse == rows[2].m.rmse);
+    json_valid(json);
+    free(rows);
+    free(back);
+}
+
+static void test_gate(void **state)
+{
+    (void)state;
+    char out[512], csv[512], bad[512], missing[512];
+    snprintf(out, sizeof out, "%s/gate", dir);
+    snprintf(csv, sizeof csv, "%s/gate/results.csv", dir);
+    const char *plugin = getenv("AABENCH_PLUGIN");
+    const char *run[] = {"run", "-p", "crow", "-s", "32x24", "-f", "box", "-m", "point", "-m",
+                         "centre4", "--plugin", plugin, "--reps", "1", "--no-images",
+                         "--no-plots", "--out", out, "-q", NULL};
+    assert_int_equal(run_cmd(run, 0), 0);
+    const char *check[] = {"check", "--baseline", csv, "--plugin", plugin, NULL};
+    if (run_cmd(check, 0) != 0)
+        fail_msg("check fails on its own baseline: %s", output);
+    /* a baseline claiming half the error of point: point is an offender */
+    aa_row *rows;
+    size_t n;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    for (size_t k = 0; k < n; k++)
+        if (!strcmp(rows[k].method, "point"))
+            rows[k].m.rmse *= 0.5;
+    snprintf(bad, sizeof bad, "%s/worse.csv", dir);
+    assert_int_equal(aa_rows_write_csv(bad, rows, n), AA_OK);
+    const char *check_bad[] = {"check", "--baseline", bad, "--plugin", plugin, NULL};
+    assert_int_equal(run_cmd(check_bad, 0), 1);
+    assert_non_null(strstr(output, "FAIL point on crow 32x24 box: error above its baseline"));
+    assert_null(strstr(output, "FAIL centre4"));
+    /* a method the table no longer has: an offender too */
+    free(rows);
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    snprintf(rows[0].method, sizeof rows[0].method, "vanished");
+    snprintf(missing, sizeof missing, "%s/missing.csv", dir);
+    assert_int_equal(aa_rows_write_csv(missing, rows, n), AA_OK);
+    const char *check_missing[] = {"check", "--baseline", missing, "--plugin", plugin, NULL};
+    assert_int_equal(run_cmd(check_missing, 0), 1);
+    assert_non_null(strstr(output, "FAIL vanished"));
+    /* without the plug-in, its method is missing */
+    const char *check_noplugin[] = {"check", "--baseline", csv, NULL};
+    assert_int_equal(run_cmd(check_noplugin, 0), 1);
+    assert_non_null(strstr(output, "FAIL centre4"));
+    free(rows);
+}
+
+/* Interrupt a run part-way: exit 130, and nothing half-written. */
+static void test_interrupted(void **state)
+{
+    (void)state;
+    char out[512], cmd[1200];
+    snprintf(out, sizeof out, "%s/interrupted", dir);
+    const char *plugin = getenv("AABENCH_PLUGIN");
+    const char *run[] = {"run", "-p", "crow", "-s", "48x48", "-s", "64x64", "-s", "96x96",
+                         "-m", "centre4", "-m", "point", "--plugin", plugin, "--reps", "20",
+                         "--out", out, "--no-cache", "-q", NULL};
+    int code = run_cmd(run, 400);
+    if (code != 130 && code != 0)
+        fail_msg("interrupted run exited %d: %s", code, output);
+    /* no temporary files (hidden, named .NAME.PID.N.ext) anywhere */
+    snprintf(cmd, sizeof cmd, "test -z \"$(find %s -name '.*' ! -name '.' | head -1)\"", out);
+    if (system(cmd) != 0)
+        fail_msg("temporary files left in %s", out);
+    char csv[600];
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    if (access(csv, F_OK) == 0) {
+        aa_row *rows;
+        size_t n;
+        assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+        free(rows);
+        snprintf(csv, sizeof csv, "%s/results.json", out);
+        json_valid(csv);
+    }
+    /* every image file present reads back whole */
+    snprintf(cmd, sizeof cmd,
+             "for f in $(find %s -name '*.exr' -o -name '*.png'); do echo $f; done > %s/list", out,
+             dir);
+    assert_int_equal(system(cmd), 0);
+    snprintf(cmd, sizeof cmd, "%s/list", dir);
+    FILE *f = fopen(cmd, "r");
+    char line[1024];
+    int files = 0;
+    while (f && fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = '\0';
+        aa_image im;
+        if (aa_image_read(line, &im))
+            fail_msg("%s does not read back: %s", line, aa_last_error());
+        aa_image_free(&im);
+        files++;
+    }
+    if (f)
+        fclose(f);
+    print_message("interrupted run: exit %d, %d image files, all complete\n", code, files);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    const char *plugin = getenv("AABENCH_PLUGIN");
+    if (!getenv("AABENCH") || !plugin || !mkdtemp(dir) || aa_plugin_load(plugin))
+        return -1;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    return system(cmd);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_reports_parse_back),
+        cmocka_unit_test(test_gate),
+        cmocka_unit_test(test_interrupted),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
