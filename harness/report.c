@@ -381,6 +381,13 @@ int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
 #undef NUM
             if (!strcmp(h, "size") && sscanf(v, "%dx%d", &row->w, &row->h) != 2)
                 bad = 1;
+            if (!strcmp(h, "seed")) {
+                char *end;
+                errno = 0;
+                row->seed = strtoull(v, &end, 10);
+                if (errno || end == v || *end || *v == '-')
+                    bad = 1;
+            }
             if (!strcmp(h, "ok"))
                 row->ok = !strcmp(v, "1");
         }

@@ -188,6 +188,8 @@ static void test_reports_parse_back(void **state)
         assert_string_equal(back[k].pattern, rows[k].pattern);
         assert_string_equal(back[k].note, rows[k].note);
         assert_true(back[k].w == 24 && back[k].h == 16 && back[k].ok == 1);
+        /* the gate reruns a row with its own seed */
+        assert_true(back[k].seed == 3 && rows[k].seed == 3);
         /* %.9g keeps nine significant digits */
         assert_true(fabs(back[k].m.rmse - rows[k].m.rmse) <= 1e-8 * rows[k].m.rmse);
         assert_true(fabs(back[k].seconds - rows[k].seconds) <= 1e-8 * rows[k].seconds);
