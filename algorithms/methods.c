@@ -14,4 +14,6 @@ const aa_method_type *const aa_method_types[] = {
     &aa_method_hexagon,
     &aa_method_trio,
     &aa_method_area,
+    &aa_method_taa,
+    &aa_method_cycle,
     NULL};

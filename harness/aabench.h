@@ -578,6 +578,29 @@ typedef struct aa_metrics {
 int aa_metrics_compute(const aa_image *ref, const aa_image *img, const aa_encode *enc,
                        aa_metrics *m);
 
+/* Temporal metrics of n displayed frames at times t0, t0 + 1, ... against
+ * the references at the same times (temporal.c): eye_rmse over every
+ * window of `window` frames (eye's image: the frames' mean, against the
+ * references' mean), flicker (per channel and pixel, the population
+ * standard deviation over time of frame minus reference; its mean and max),
+ * conservation ((max - min)/mean of the total intensity over the frames). */
+#define AA_TEMPORAL_MAX_FRAMES 256
+typedef struct aa_temporal {
+    int frames, window;
+    double eye_rmse;
+    double flicker_mean, flicker_max;
+    double conservation;
+    double popping; /* NAN unless measured (aa_temporal_popping) */
+} aa_temporal;
+int aa_temporal_compute(const aa_image *frames, const aa_image *refs, int n, int window,
+                        aa_temporal *out);
+/* Popping: ndots dots centred at (cx, cy) (pixel units) plus shift[2k],
+ * shift[2k+1] at frame k; the fraction of (dot, consecutive frames) whose
+ * value (channel mean summed over the pixels with centres within 1.5 px of
+ * the dot) changes by more than half its reference value. */
+int aa_temporal_popping(const aa_image *frames, const aa_image *refs, int n, const double *cx,
+                        const double *cy, size_t ndots, const double *shift, double *out);
+
 /* ------------------------------------------------------------------------
  * Runs: every method on every view of a suite, measured
  * ------------------------------------------------------------------------ */
@@ -600,6 +623,8 @@ typedef struct aa_row {
     double expensive_fraction;
     int ok;             /* 0: refused or failed, see note */
     char note[512];
+    int temporal;       /* 1: an animated run: the temporal metrics below were taken */
+    aa_temporal tm;
 } aa_row;
 
 /* A suite is a list of groups; each group is a cross product of patterns,
@@ -616,6 +641,18 @@ typedef struct aa_suite {
 extern const aa_suite aa_suites[]; /* ends with a NULL name */
 const aa_suite *aa_suite_find(const char *name);
 
+/* The animated suites (suite_temporal.c): their motion (pixels per frame),
+ * the frames the temporal metrics are taken over and the eye's window; the
+ * command line's --motion, --frames and --window override them. */
+typedef struct aa_suite_motion {
+    const char *suite;
+    double vx, vy;
+    int frames, window;
+} aa_suite_motion;
+extern const aa_suite_group aa_suite_temporal_groups[];
+/* NULL for a still suite. */
+const aa_suite_motion *aa_suite_motion_find(const char *suite);
+
 typedef struct aa_run_config {
     const char *const *patterns, *const *sizes, *const *filters, *const *methods;
     size_t npatterns, nsizes, nfilters, nmethods;
@@ -630,6 +667,10 @@ typedef struct aa_run_config {
     void *ctx;
     /* called after each row (may be NULL), e.g. to save results so far */
     int (*row_done)(void *ctx, const aa_row *rows, size_t n);
+    /* temporal metrics: taken when the motion is not zero or `temporal` is
+     * set, over `frames` frames (times t, t + 1, ...; 0: 24) and an eye
+     * window of `window` frames (0: 6) */
+    int temporal, frames, window;
 } aa_run_config;
 
 /* Check every spec of the config (patterns, sizes, filters, methods) before
@@ -655,6 +696,13 @@ typedef struct aa_convergence {
 int aa_converge(const aa_spec *pattern, const char *method, const aa_filter *f, int w, int h,
                 const int *spp, size_t nspp, int phases, uint64_t seed, int threads,
                 const char *cache_dir, aa_convergence *out);
+/* The same for a scene at time t moving (vx, vy) pixels per frame: each
+ * phase's random sub-pixel shift is added to the motion's displacement
+ * (aa_converge is this with 0, 0, 0). */
+int aa_converge_moving(const aa_spec *pattern, const char *method, const aa_filter *f, int w,
+                       int h, double t, double vx, double vy, const int *spp, size_t nspp,
+                       int phases, uint64_t seed, int threads, const char *cache_dir,
+                       aa_convergence *out);
 
 /* A montage: images side by side in `columns`, each copied pixel for
  * pixel (never resampled) under up to AA_TILE_LINES lines of label; written

@@ -10,17 +10,21 @@ static void usage(FILE *out)
 {
     fprintf(out,
             "usage: aabench converge -p PATTERN -m METHOD -s WxH --spp 1,4,16,... [--phases K]\n"
-            "                        [-f FILTER] [--seed N] [--threads N] [--out DIR]\n\n"
+            "                        [-f FILTER] [--time T] [--motion VX,VY] [--seed N]\n"
+            "                        [--threads N] [--out DIR]\n\n"
             "Measures the RMSE of METHOD at each samples-per-pixel count over K random\n"
             "sub-pixel shifts of the scene (default 8), fits the slope of log RMSE against\n"
             "log spp by least squares and prints it on the last line as 'slope S +- E'.\n"
             "The method's spp parameter is set (or n, for an n x n grid: spp must be squares).\n"
+            "--time T and --motion VX,VY place the scene at time T (frames) moving VX,VY\n"
+            "pixels per frame, the shifts added; the reference is that frame's.\n"
             "With --out DIR, also draws DIR/convergence.png.\n");
 }
 
 int cmd_converge(int argc, char **argv)
 {
-    enum { O_SPP = 256, O_PHASES, O_SEED, O_THREADS, O_OUT, O_CACHE, O_NOCACHE, O_PLUGIN };
+    enum { O_SPP = 256, O_PHASES, O_SEED, O_THREADS, O_OUT, O_CACHE, O_NOCACHE, O_PLUGIN,
+           O_TIME, O_MOTION };
     static const struct option opts[] = {
         {"pattern", required_argument, 0, 'p'}, {"method", required_argument, 0, 'm'},
         {"size", required_argument, 0, 's'},    {"filter", required_argument, 0, 'f'},
@@ -28,11 +32,13 @@ int cmd_converge(int argc, char **argv)
         {"seed", required_argument, 0, O_SEED}, {"threads", required_argument, 0, O_THREADS},
         {"out", required_argument, 0, O_OUT},   {"cache", required_argument, 0, O_CACHE},
         {"no-cache", no_argument, 0, O_NOCACHE}, {"plugin", required_argument, 0, O_PLUGIN},
+        {"time", required_argument, 0, O_TIME}, {"motion", required_argument, 0, O_MOTION},
         {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
     const char *pattern = NULL, *method = NULL, *size = NULL, *filter = NULL, *spps = NULL,
                *out = NULL, *cache = cli_cache_dir();
     int c, st = AA_OK, phases = 8, threads = 0;
     uint64_t seed = 1;
+    double tm = 0.0, vx = 0.0, vy = 0.0;
     cli_getopt_reset();
     while ((c = getopt_long(argc, argv, ":p:m:s:f:h", opts, NULL)) != -1) {
         switch (c) {
@@ -48,6 +54,8 @@ int cmd_converge(int argc, char **argv)
         case O_CACHE: cache = optarg; break;
         case O_NOCACHE: cache = ""; break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
+        case O_TIME: st = cli_parse_real("--time", optarg, -1e9, 1e9, &tm); break;
+        case O_MOTION: st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &vx, &vy); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("converge", c, argv);
         }
@@ -76,7 +84,7 @@ int cmd_converge(int argc, char **argv)
     if ((st = aa_pattern_parse(pattern, &pspec)) || (st = aa_size_parse(size, &w, &h)) ||
         (st = aa_size_check(w, h, 3, 3)) ||
         (st = filter ? aa_filter_parse(filter, &f) : (aa_filter_default(&f), AA_OK)) ||
-        (st = aa_converge(&pspec, method, &f, w, h, spp, n, phases, seed,
+        (st = aa_converge_moving(&pspec, method, &f, w, h, tm, vx, vy, spp, n, phases, seed,
                           threads > 0 ? threads : cli_default_threads(), *cache ? cache : NULL,
                           &conv)))
         return cli_fail("converge", st);

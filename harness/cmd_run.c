@@ -47,13 +47,18 @@ static void usage(FILE *out)
             "exact reference and render time, and writes results.csv, results.json, images/,\n"
             "montage.png and plots/ into results/runs/<UTC time>/ (results/latest links to it)\n"
             "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n\n"
-            "  --suite NAME      quick, default (the default), paper or full (--list-suites)\n"
+            "  --suite NAME      quick, default (the default), paper, full or temporal\n"
+            "                    (--list-suites)\n"
             "  --reps N          renders timed per case (default 5); the median is reported\n"
             "  --out DIR         output folder\n"
             "  --threads N       threads (default: all cores)\n"
             "  --seed N          seed of the random streams (default 1)\n"
             "  --time T          time in frames (default 0)\n"
-            "  --motion VX,VY    motion in pixels per frame (default 0,0)\n"
+            "  --motion VX,VY    motion in pixels per frame (default 0,0; the temporal\n"
+            "                    suite's own: 0.37,0.11)\n"
+            "  --frames N        animated runs: frames the temporal metrics are taken over,\n"
+            "                    at times T, T+1, ... (default 24)\n"
+            "  --window W        animated runs: frames the eye integrates (default 6)\n"
             "  --encode E        display encoding of PNGs and of the *_enc metrics: srgb\n"
             "                    (default), linear or gamma:G (gamma:2 is Crow's square law)\n"
             "  --plugin LIB.so   load methods from a shared library (repeatable)\n"
@@ -74,6 +79,7 @@ typedef struct run_args {
     const char *suite, *out, *cache;
     list p, m, s, f;
     int reps, threads, images, plots, quiet;
+    int frames, window, motion_given;
     uint64_t seed;
     double t, vx, vy;
     aa_encode enc;
@@ -90,7 +96,7 @@ static int push(list *l, const char *v, const char *what)
 static int parse(int argc, char **argv, run_args *a)
 {
     enum { O_SUITE = 256, O_REPS, O_OUT, O_THREADS, O_SEED, O_TIME, O_MOTION, O_ENCODE,
-           O_PLUGIN, O_NOIMAGES, O_NOPLOTS, O_CACHE, O_NOCACHE, O_LIST };
+           O_PLUGIN, O_NOIMAGES, O_NOPLOTS, O_CACHE, O_NOCACHE, O_LIST, O_FRAMES, O_WINDOW };
     static const struct option opts[] = {
         {"suite", required_argument, 0, O_SUITE}, {"pattern", required_argument, 0, 'p'},
         {"method", required_argument, 0, 'm'},   {"size", required_argument, 0, 's'},
@@ -102,6 +108,7 @@ static int parse(int argc, char **argv, run_args *a)
         {"no-plots", no_argument, 0, O_NOPLOTS}, {"cache", required_argument, 0, O_CACHE},
         {"no-cache", no_argument, 0, O_NOCACHE}, {"list-suites", no_argument, 0, O_LIST},
         {"quiet", no_argument, 0, 'q'},          {"help", no_argument, 0, 'h'},
+        {"frames", required_argument, 0, O_FRAMES}, {"window", required_argument, 0, O_WINDOW},
         {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
@@ -117,7 +124,16 @@ static int parse(int argc, char **argv, run_args *a)
         case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &a->threads); break;
         case O_SEED: st = cli_parse_seed(optarg, &a->seed); break;
         case O_TIME: st = cli_parse_real("--time", optarg, -1e9, 1e9, &a->t); break;
-        case O_MOTION: st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy); break;
+        case O_MOTION:
+            st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy);
+            a->motion_given = 1;
+            break;
+        case O_FRAMES:
+            st = cli_parse_int("--frames", optarg, 2, AA_TEMPORAL_MAX_FRAMES, &a->frames);
+            break;
+        case O_WINDOW:
+            st = cli_parse_int("--window", optarg, 1, AA_TEMPORAL_MAX_FRAMES, &a->window);
+            break;
         case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
         case O_NOIMAGES: a->images = 0; break;
@@ -356,6 +372,63 @@ static int cmp_rmse(const void *a, const void *b)
     return x->m.rmse < y->m.rmse ? -1 : x->m.rmse > y->m.rmse;
 }
 
+/* Animated runs: by pattern, then by the eye's error. */
+static int cmp_eye(const void *a, const void *b)
+{
+    const aa_row *x = *(const aa_row *const *)a, *y = *(const aa_row *const *)b;
+    int c = strcmp(x->pattern, y->pattern);
+    if (c)
+        return c;
+    if (x->temporal != y->temporal)
+        return y->temporal - x->temporal;
+    if (!x->temporal)
+        return cmp_rmse(a, b);
+    return x->tm.eye_rmse < y->tm.eye_rmse ? -1 : x->tm.eye_rmse > y->tm.eye_rmse;
+}
+
+/* The temporal columns, and after the table the offsets the eye prefers:
+ * per pattern, the method of least eye_rmse among those that sample points
+ * in frames (temporal methods and point-sampled ones; area, exact, is the
+ * floor), and the least flicker. */
+static void print_temporal(const aa_row **order, size_t n)
+{
+    printf("%-30s %-10s %-9s %10s %10s %10s %10s %8s %6s\n", "method", "pattern", "size",
+           "rmse", "eye_rmse", "flicker", "flick_max", "conserv", "pop");
+    for (size_t k = 0; k < n; k++) {
+        const aa_row *r = order[k];
+        char size[32];
+        snprintf(size, sizeof size, "%dx%d", r->w, r->h);
+        if (!r->ok || !r->temporal) {
+            printf("%-30.30s %-10.10s %-9s %s\n", r->method, r->pattern, size, r->note);
+            continue;
+        }
+        printf("%-30.30s %-10.10s %-9s %10.3e %10.3e %10.3e %10.3e %8.2e", r->method, r->pattern,
+               size, r->m.rmse, r->tm.eye_rmse, r->tm.flicker_mean, r->tm.flicker_max,
+               r->tm.conservation);
+        if (isfinite(r->tm.popping))
+            printf(" %6.3f", r->tm.popping);
+        printf("\n");
+    }
+    printf("\nthe eye's preference (least eye_rmse; least mean flicker), area excluded:\n");
+    for (size_t k = 0; k < n; k++) {
+        if (k && !strcmp(order[k]->pattern, order[k - 1]->pattern))
+            continue;
+        const aa_row *best = NULL, *calm = NULL;
+        for (size_t q = k; q < n && !strcmp(order[q]->pattern, order[k]->pattern); q++) {
+            const aa_row *r = order[q];
+            if (!r->ok || !r->temporal || !strncmp(r->method, "area", 4))
+                continue;
+            if (!best || r->tm.eye_rmse < best->tm.eye_rmse)
+                best = r;
+            if (!calm || r->tm.flicker_mean < calm->tm.flicker_mean)
+                calm = r;
+        }
+        if (best)
+            printf("  %-10.10s %s (eye_rmse %.3e); %s (flicker %.3e)\n", order[k]->pattern,
+                   best->method, best->tm.eye_rmse, calm->method, calm->tm.flicker_mean);
+    }
+}
+
 static void print_table(const aa_row *rows, size_t n)
 {
     const aa_row **order = malloc(n * sizeof *order);
@@ -363,7 +436,10 @@ static void print_table(const aa_row *rows, size_t n)
         return;
     for (size_t k = 0; k < n; k++)
         order[k] = &rows[k];
-    qsort(order, n, sizeof *order, cmp_rmse);
+    int temporal = 0;
+    for (size_t k = 0; k < n; k++)
+        temporal |= rows[k].temporal;
+    qsort(order, n, sizeof *order, temporal ? cmp_eye : cmp_rmse);
     printf("%-30s %-10s %-12s %-10s %10s %9s %8s %10s %9s %6s\n", "method", "pattern", "size",
            "filter", "rmse", "max_err", "psnr", "time (ms)", "ns/px", "exp%");
     for (size_t k = 0; k < n; k++) {
@@ -378,6 +454,10 @@ static void print_table(const aa_row *rows, size_t n)
         printf("%-30.30s %-10.10s %-12s %-10.10s %10.3e %9.2e %8.2f %10.3f %9.2f %6.1f\n",
                r->method, r->pattern, size, r->filter, r->m.rmse, r->m.max_err, r->m.psnr,
                r->seconds * 1e3, r->ns_per_pixel, 100 * r->expensive_fraction);
+    }
+    if (temporal) {
+        printf("\n");
+        print_temporal(order, n);
     }
     free(order);
 }
@@ -429,7 +509,8 @@ int cmd_run(int argc, char **argv)
         return code;
     const aa_suite *suite = aa_suite_find(a.suite);
     if (!suite) {
-        fprintf(stderr, "aabench run: unknown suite \"%s\" (quick, default, paper, full)\n",
+        fprintf(stderr,
+                "aabench run: unknown suite \"%s\" (quick, default, paper, full, temporal)\n",
                 a.suite);
         return 2;
     }
@@ -438,9 +519,15 @@ int cmd_run(int argc, char **argv)
     int threads = a.threads > 0 ? a.threads : cli_default_threads();
     char dir[4096], images[4200], plots[4200];
     int linked = 0;
+    const aa_suite_motion *mo = aa_suite_motion_find(suite->name);
+    if (mo && !a.motion_given)
+        a.vx = mo->vx, a.vy = mo->vy;
     for (size_t g = 0; g < ng; g++) {
         cfgs[g].reps = a.reps;
         cfgs[g].threads = threads;
+        cfgs[g].temporal = mo != NULL;
+        cfgs[g].frames = a.frames ? a.frames : mo ? mo->frames : 0;
+        cfgs[g].window = a.window ? a.window : mo ? mo->window : 0;
         if ((st = aa_run_check(&cfgs[g])))
             return cli_fail("run", st);
     }

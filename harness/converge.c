@@ -54,10 +54,41 @@ int aa_converge(const aa_spec *pattern, const char *method, const aa_filter *f, 
                 const int *spp, size_t nspp, int phases, uint64_t seed, int threads,
                 const char *cache_dir, aa_convergence *out)
 {
+    return aa_converge_moving(pattern, method, f, w, h, 0.0, 0.0, 0.0, spp, nspp, phases, seed,
+                              threads, cache_dir, out);
+}
+
+/* Phase k's job and reference view.  Still: the scene at time 1 moving by
+ * the shift d (so a still convergence is what it always was).  Moving: the
+ * scene translated by d, at time t moving (vx, vy) (a temporal method sees
+ * the motion); its reference is the one frame displaced by t v + d. */
+static int phase_job(aa_scene *scene, aa_scene **shifted, aa_view *view, const aa_filter *f,
+                     double t, double vx, double vy, double dx, double dy, uint64_t seed,
+                     int threads, aa_job *job)
+{
+    int w = view->w, h = view->h;
+    view->t = 1.0;
+    if (t == 0.0 && vx == 0.0 && vy == 0.0) {
+        view->vx = dx, view->vy = dy;
+        return aa_job_init(job, scene, w, h, 1.0, dx, dy, f, seed, threads);
+    }
+    view->vx = t * vx + dx, view->vy = t * vy + dy;
+    if (!(*shifted = aa_scene_transform(scene, 1.0, 1.0, dx / w, dy / h)))
+        return aa_fail_context(AA_EINVAL, "shifting the scene");
+    return aa_job_init(job, *shifted, w, h, t, vx, vy, f, seed, threads);
+}
+
+int aa_converge_moving(const aa_spec *pattern, const char *method, const aa_filter *f, int w,
+                       int h, double t, double vx, double vy, const int *spp, size_t nspp,
+                       int phases, uint64_t seed, int threads, const char *cache_dir,
+                       aa_convergence *out)
+{
     int st;
     memset(out, 0, sizeof *out);
     if (nspp < 3 || nspp > 64) /* three points at least for the slope's error */
         return aa_fail(AA_EINVAL, "convergence needs 3 to 64 spp values, not %zu", nspp);
+    if (!isfinite(t) || !isfinite(vx) || !isfinite(vy))
+        return aa_fail(AA_EINVAL, "time and motion must be finite");
     if (phases < 1 || phases > 1024)
         return aa_fail(AA_EINVAL, "phases %d out of range (1 to 1024)", phases);
     for (size_t k = 0; k < nspp; k++) {
@@ -77,11 +108,20 @@ int aa_converge(const aa_spec *pattern, const char *method, const aa_filter *f, 
     for (int k = 0; k < phases && !st; k++) {
         aa_rng rng;
         aa_rng_seed(&rng, seed, (uint64_t)k, 0x5eed);
-        aa_view view = {*pattern, w, h, *f, 1.0, aa_rng_uniform(&rng), aa_rng_uniform(&rng)};
+        double dx = aa_rng_uniform(&rng), dy = aa_rng_uniform(&rng);
+        aa_view view = {*pattern, w, h, *f, 1.0, 0.0, 0.0};
+        aa_scene *shifted = NULL;
         aa_job job;
-        if ((st = aa_reference(&view, cache_dir, threads, &ref, NULL, NULL)) ||
-            (st = aa_job_init(&job, scene, w, h, view.t, view.vx, view.vy, f, seed, threads)))
+        if ((st = phase_job(scene, &shifted, &view, f, t, vx, vy, dx, dy, seed, threads, &job)))
+        {
+            aa_scene_free(shifted);
             break;
+        }
+        if ((st = aa_reference(&view, cache_dir, threads, &ref, NULL, NULL))) {
+            aa_job_free(&job);
+            aa_scene_free(shifted);
+            break;
+        }
         for (size_t q = 0; q < nspp && !st; q++) {
             aa_spec s;
             aa_counters c;
@@ -95,6 +135,7 @@ int aa_converge(const aa_spec *pattern, const char *method, const aa_filter *f, 
             out->seconds[q] += sec / phases;
         }
         aa_job_free(&job);
+        aa_scene_free(shifted);
         aa_image_free(&ref);
     }
     if (st)

@@ -114,6 +114,13 @@ static void num(text *t, double v)
     X(samples, M(put(t, "%llu", (unsigned long long)r->samples)))                                \
     X(expensive_pixels, M(put(t, "%llu", (unsigned long long)r->expensive_pixels)))              \
     X(expensive_fraction, M(num(t, r->expensive_fraction)))                                      \
+    X(frames, T(put(t, "%d", r->tm.frames)))                                                    \
+    X(window, T(put(t, "%d", r->tm.window)))                                                    \
+    X(eye_rmse, T(num(t, r->tm.eye_rmse)))                                                      \
+    X(flicker_mean, T(num(t, r->tm.flicker_mean)))                                              \
+    X(flicker_max, T(num(t, r->tm.flicker_max)))                                                \
+    X(conservation, T(num(t, r->tm.conservation)))                                              \
+    X(popping, T(if (isfinite(r->tm.popping)) num(t, r->tm.popping)))                           \
     X(threads, put(t, "%d", r->threads))                                                         \
     X(reps, put(t, "%d", r->reps))                                                               \
     X(seed, put(t, "%llu", (unsigned long long)r->seed))                                         \
@@ -122,6 +129,13 @@ static void num(text *t, double v)
     X(vy, num(t, r->vy))                                                                         \
     X(ok, put(t, "%d", r->ok))                                                                   \
     X(note, csv_field(t, r->note))
+
+/* temporal metrics only for animated rows that ran */
+#define T(write)                                                                                 \
+    do {                                                                                         \
+        if (r->ok && r->temporal)                                                                \
+            write;                                                                               \
+    } while (0)
 
 /* measurements only for rows that ran */
 #define M(write)                                                                                 \
@@ -220,6 +234,23 @@ int aa_rows_write_json(const char *path, const aa_row *rows, size_t n)
             put(t, ", \"max_at\": [%d, %d, %d], \"samples\": %llu, \"expensive_pixels\": %llu",
                 r->m.max_at[0], r->m.max_at[1], r->m.max_at[2], (unsigned long long)r->samples,
                 (unsigned long long)r->expensive_pixels);
+            if (r->temporal) {
+                put(t, ", \"temporal\": {\"frames\": %d, \"window\": %d", r->tm.frames,
+                    r->tm.window);
+                const struct {
+                    const char *key;
+                    double v;
+                } g[] = {{"eye_rmse", r->tm.eye_rmse},
+                         {"flicker_mean", r->tm.flicker_mean},
+                         {"flicker_max", r->tm.flicker_max},
+                         {"conservation", r->tm.conservation},
+                         {"popping", r->tm.popping}};
+                for (size_t q = 0; q < sizeof g / sizeof *g; q++) {
+                    put(t, ", \"%s\": ", g[q].key);
+                    json_num(t, g[q].v);
+                }
+                put(t, "}");
+            }
         }
         put(t, ", \"threads\": %d, \"reps\": %d, \"seed\": %llu, \"time\": ", r->threads, r->reps,
             (unsigned long long)r->seed);
@@ -364,6 +395,7 @@ int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
         aa_row *row = &rows[n];
         memset(row, 0, sizeof *row);
         row->ok = 1;
+        row->tm.popping = NAN;
         for (int k = 0; k < nh; k++) {
             const char *h = head[k], *v = cell[k];
 #define STR(name) if (!strcmp(h, #name)) snprintf(row->name, sizeof row->name, "%s", v);
@@ -377,6 +409,9 @@ int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
             NUM("render_seconds", row->seconds) NUM("ns_per_pixel", row->ns_per_pixel)
             NUM("ns_per_sample", row->ns_per_sample) NUM("time", row->t) NUM("vx", row->vx)
             NUM("vy", row->vy) NUM("expensive_fraction", row->expensive_fraction)
+            NUM("eye_rmse", row->tm.eye_rmse) NUM("flicker_mean", row->tm.flicker_mean)
+            NUM("flicker_max", row->tm.flicker_max) NUM("conservation", row->tm.conservation)
+            NUM("popping", row->tm.popping)
 #undef STR
 #undef NUM
             if (!strcmp(h, "size") && sscanf(v, "%dx%d", &row->w, &row->h) != 2)
@@ -390,6 +425,12 @@ int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
             }
             if (!strcmp(h, "ok"))
                 row->ok = !strcmp(v, "1");
+            if (!strcmp(h, "eye_rmse") && *v)
+                row->temporal = 1;
+            if (!strcmp(h, "frames") && *v)
+                row->tm.frames = atoi(v);
+            if (!strcmp(h, "window") && *v)
+                row->tm.window = atoi(v);
         }
         if (bad || !*row->pattern || !*row->method || row->w < 1 || row->h < 1) {
             st = aa_fail(AA_EIO, "%s:%zu: malformed row", path, lineno);

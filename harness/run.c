@@ -32,6 +32,12 @@ int aa_run_check(const aa_run_config *cfg)
         (st = check_list(cfg->filters, cfg->nfilters, "filter")) ||
         (st = check_list(cfg->methods, cfg->nmethods, "method")))
         return st;
+    if (cfg->frames < 0 || cfg->frames == 1 || cfg->frames > AA_TEMPORAL_MAX_FRAMES)
+        return aa_fail(AA_EINVAL, "frames %d out of range (2 to %d)", cfg->frames,
+                       AA_TEMPORAL_MAX_FRAMES);
+    if (cfg->window < 0 || cfg->window > (cfg->frames > 0 ? cfg->frames : 24))
+        return aa_fail(AA_EINVAL, "eye window %d out of range (1 to the %d frames)",
+                       cfg->window, cfg->frames > 0 ? cfg->frames : 24);
     if (cfg->reps < 1 || cfg->reps > 1000)
         return aa_fail(AA_EINVAL, "reps %d out of range (1 to 1000)", cfg->reps);
     for (size_t k = 0; k < cfg->npatterns; k++)
@@ -156,6 +162,124 @@ static int run_method(const aa_run_config *cfg, const aa_job *job, const aa_imag
     return AA_OK;
 }
 
+/* ---- temporal metrics of animated runs ---- */
+
+static int animated(const aa_run_config *cfg)
+{
+    return cfg->temporal || cfg->vx != 0.0 || cfg->vy != 0.0;
+}
+
+static int frame_count(const aa_run_config *cfg)
+{
+    return cfg->frames > 0 ? cfg->frames : 24;
+}
+
+static int window_of(const aa_run_config *cfg)
+{
+    return cfg->window > 0 ? cfg->window : 6;
+}
+
+/* The frames' references: the view at times t, t + 1, ... (from the cache). */
+static int temporal_refs(const aa_run_config *cfg, const aa_view *still, aa_image *refs)
+{
+    int n = frame_count(cfg), st;
+    for (int k = 0; k < n; k++) {
+        aa_view v = *still;
+        v.t = cfg->t + k;
+        if ((st = aa_reference(&v, cfg->cache_dir, cfg->threads, &refs[k], NULL, NULL)))
+            return st;
+    }
+    return AA_OK;
+}
+
+/* Dots (the `dots` pattern): the centre of each closed path's bounds, in
+ * pixel units at time 0.  *n = 0 for other patterns. */
+static int dot_centres(const aa_view *view, const aa_scene *scene, double **cx, double **cy,
+                       size_t *n)
+{
+    *cx = *cy = NULL;
+    *n = 0;
+    if (strcmp(view->pattern.info->name, "dots"))
+        return AA_OK;
+    size_t ne, nc;
+    const aa_edge *e = aa_scene_edges(scene, &ne);
+    const size_t *start = aa_scene_contours(scene, &nc);
+    if (!nc)
+        return AA_OK;
+    *cx = malloc(nc * sizeof **cx);
+    *cy = malloc(nc * sizeof **cy);
+    if (!*cx || !*cy)
+        return aa_fail(AA_ENOMEM, "out of memory for %zu dots", nc);
+    for (size_t c = 0; c < nc; c++) {
+        double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+        for (size_t k = start[c]; k < start[c + 1] && k < ne; k++) {
+            x0 = fmin(x0, fmin(e[k].x0, e[k].x1)), x1 = fmax(x1, fmax(e[k].x0, e[k].x1));
+            y0 = fmin(y0, fmin(e[k].y0, e[k].y1)), y1 = fmax(y1, fmax(e[k].y0, e[k].y1));
+        }
+        (*cx)[c] = 0.5 * (x0 + x1) * view->w;
+        (*cy)[c] = 0.5 * (y0 + y1) * view->h;
+    }
+    *n = nc;
+    return AA_OK;
+}
+
+/* The displayed frames of a method at times t, t + 1, ... (temporal methods
+ * with frame_only), measured against the references. */
+static int run_temporal(const aa_run_config *cfg, const aa_view *view, const aa_scene *scene,
+                        const aa_image *refs, aa_image *frames, aa_row *row)
+{
+    int n = frame_count(cfg), st = AA_OK;
+    aa_spec spec;
+    double *cx = NULL, *cy = NULL, *shift = NULL;
+    size_t nd = 0;
+    if ((st = aa_method_parse(row->method, &view->filter, &spec)))
+        return st;
+    for (int k = 0; k < n && !st; k++) {
+        aa_job job;
+        aa_counters c;
+        if ((st = aa_job_init(&job, scene, view->w, view->h, cfg->t + k, cfg->vx, cfg->vy,
+                              &view->filter, cfg->seed, cfg->threads)))
+            break;
+        job.frame_only = 1;
+        st = aa_method_run(&spec, &job, 1, &frames[k], &c, NULL);
+        aa_job_free(&job);
+    }
+    if (!st)
+        st = aa_temporal_compute(frames, refs, n, window_of(cfg), &row->tm);
+    if (!st)
+        st = dot_centres(view, scene, &cx, &cy, &nd);
+    if (!st && nd) {
+        if (!(shift = malloc(2 * (size_t)n * sizeof *shift))) {
+            st = aa_fail(AA_ENOMEM, "out of memory");
+        } else {
+            for (int k = 0; k < n; k++)
+                shift[2 * k] = (cfg->t + k) * cfg->vx, shift[2 * k + 1] = (cfg->t + k) * cfg->vy;
+            st = aa_temporal_popping(frames, refs, n, cx, cy, nd, shift, &row->tm.popping);
+        }
+    }
+    free(cx);
+    free(cy);
+    free(shift);
+    if (st)
+        return aa_fail_context(st, "temporal metrics of %s on %s", row->method, row->pattern);
+    row->temporal = 1;
+    return AA_OK;
+}
+
+static void free_images(aa_image *im, int n)
+{
+    for (int k = 0; im && k < n; k++)
+        aa_image_free(&im[k]);
+}
+
+static int alloc_images(aa_image *im, int n, int w, int h)
+{
+    int st = AA_OK;
+    for (int k = 0; k < n && !st; k++)
+        st = aa_image_alloc(&im[k], w, h, 3);
+    return st;
+}
+
 int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
 {
     int st = aa_run_check(cfg);
@@ -167,9 +291,14 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
     aa_scene *scene = NULL;
     aa_image ref = {0}, img = {0};
     aa_job job = {0};
-    if (!rows || !seconds) {
+    const int nt = animated(cfg) ? frame_count(cfg) : 0;
+    aa_image *refs = nt ? calloc((size_t)nt, sizeof *refs) : NULL;
+    aa_image *frames = nt ? calloc((size_t)nt, sizeof *frames) : NULL;
+    if (!rows || !seconds || (nt && (!refs || !frames))) {
         free(rows);
         free(seconds);
+        free(refs);
+        free(frames);
         return aa_fail(AA_ENOMEM, "out of memory for %zu results", total);
     }
     if (cfg->images_dir && (st = aa_mkdirs(cfg->images_dir)))
@@ -184,6 +313,9 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
             aa_size_parse(cfg->sizes[is], &view.w, &view.h);
             if ((st = aa_image_alloc(&img, view.w, view.h, 3)))
                 break;
+            if (nt && ((st = aa_size_check(view.w, view.h, 3, 2 * nt + 4)) ||
+                       (st = alloc_images(frames, nt, view.w, view.h))))
+                break;
             for (size_t jf = 0; jf < cfg->nfilters && !st; jf++) {
                 char stem[1400], ps[512], fs[256];
                 aa_filter_parse(cfg->filters[jf], &view.filter);
@@ -197,6 +329,8 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                 if ((st = aa_reference(&view, cfg->cache_dir, cfg->threads, &ref, NULL, NULL)) ||
                     (st = aa_job_init(&job, scene, view.w, view.h, cfg->t, cfg->vx, cfg->vy,
                                       &view.filter, cfg->seed, cfg->threads)))
+                    break;
+                if (nt && (st = temporal_refs(cfg, &view, refs)))
                     break;
                 snprintf(stem, sizeof stem, "%s-%dx%d-%s-reference", ps, view.w, view.h, fs);
                 if (cfg->images_dir && (st = write_images(cfg, stem, NULL, &ref)))
@@ -216,14 +350,19 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     snprintf(stem, sizeof stem, "%s-%dx%d-%s-%s", ps, view.w, view.h, fs, ms);
                     if ((st = run_method(cfg, &job, &ref, &img, stem, row, seconds)))
                         break;
+                    if (nt && row->ok &&
+                        (st = run_temporal(cfg, &view, scene, refs, frames, row)))
+                        break;
                     n++;
                     if (cfg->row_done && (st = cfg->row_done(cfg->ctx, rows, n)))
                         break;
                 }
                 aa_job_free(&job);
                 aa_image_free(&ref);
+                free_images(refs, nt);
             }
             aa_image_free(&img);
+            free_images(frames, nt);
         }
         aa_scene_free(scene);
         scene = NULL;
@@ -231,6 +370,10 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
     if (!st && cfg->progress)
         cfg->progress(cfg->ctx, n, total, "done");
 done:
+    free_images(refs, nt);
+    free_images(frames, nt);
+    free(refs);
+    free(frames);
     aa_job_free(&job);
     aa_image_free(&ref);
     aa_image_free(&img);

@@ -59,6 +59,8 @@ const aa_suite aa_suites[] = {
      main_suite},
     {"paper", "the settings of Crow's figures 2.10-2.14", paper},
     {"full", "every method variant under every filter", full},
+    {"temporal", "fence, dots, crow and star moving at sub-pixel speeds: temporal metrics",
+     aa_suite_temporal_groups},
     {NULL, NULL, NULL}};
 
 const aa_suite *aa_suite_find(const char *name)

@@ -1,0 +1,51 @@
+/*
+ * frames.h: what the temporal methods `taa` and `cycle` share (internal to
+ * algorithms/): a stack of point-sampled frames at times t, t - 1, ...,
+ * each sampled at the pixel centres moved by its own offset, combined
+ * oldest first by out += (frame - out) * weight.  A weight of 1/(m) for the
+ * m-th frame gives the running mean (cycle, like hexagon.c), a constant
+ * alpha the exponential history of temporal antialiasing (taa).
+ *
+ * Work is shared in bands of AA__FRAMES_BAND rows whatever the thread
+ * count, so the image does not depend on it.  The placed scenes (one per
+ * frame time, one for a still scene) and the scratch bands are made by
+ * aa__frames_ready in init, and again only for a job of another size, time,
+ * motion, thread count or frame count.
+ */
+#ifndef AA_FRAMES_H
+#define AA_FRAMES_H
+
+#include "aabench.h"
+
+#define AA__FRAMES_BAND 8
+
+typedef struct aa__frames {
+    const aa_scene *pattern;
+    int w, h, threads, n;
+    double t, vx, vy;
+    aa_scene **placed; /* placed[k]: the scene at time t - k */
+    int shared;        /* still scene: every placed[k] is placed[0] */
+    double *scratch;   /* threads x band x w x 3 */
+} aa__frames;
+
+/* Scenes for n frames of the job (t, t - 1, ..., t - n + 1). */
+int aa__frames_ready(aa__frames *fs, const aa_job *job, int n);
+void aa__frames_free(aa__frames *fs);
+/* Combine frames n-1 (oldest) .. 0: frame k sampled at centres + (dx[k],
+ * dy[k]); out = frame n-1, then out += (frame k - out) * weight[k].  n must
+ * not exceed the n given to aa__frames_ready.  Sets samples = n W H. */
+int aa__frames_render(aa__frames *fs, const aa_job *job, int n, const double *dx,
+                      const double *dy, const double *weight, aa_image *out,
+                      aa_counters *counters);
+
+/* The radical inverse of i in base b (Halton's sequence): 0, 1/2, 1/4, ...
+ * for b = 2. */
+double aa__radical_inverse(uint64_t i, unsigned b);
+/* n mod m in 0 .. m-1 for any n. */
+static inline int aa__mod(long long n, int m)
+{
+    int r = (int)(n % m);
+    return r < 0 ? r + m : r;
+}
+
+#endif

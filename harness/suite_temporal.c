@@ -1,0 +1,40 @@
+/*
+ * suite_temporal.c: the animated suite `temporal` (issue: motion and time).
+ *
+ * Small objects and fine detail moving at sub-pixel speeds, where single
+ * frames alias and what the eye integrates over a few frames matters
+ * (Crow 1976, ch. 4; Catmull 1978 on the picket fence): `fence`, `dots`,
+ * `crow` and `star` at 128x128 under the box, moving (0.37, 0.11) pixels a
+ * frame over 24 frames, with the eye's window of 6 frames.
+ *
+ * Methods: the still ones as a yardstick (point, area, the 8 msaa
+ * positions in every frame, 9 jittered samples), and the temporal ones:
+ * Crow's hexagon at its defaults and swept in radius and in the order of
+ * its vertices, taa (Halton(2,3) jitter with an exponential history, 8 and
+ * 16 frames), and cycle (the msaa8 and msaa16 positions one per frame).
+ * Which offsets the eye prefers is read off eye_rmse and flicker; `aabench
+ * run` prints the best per pattern after the table.
+ */
+#include "aabench.h"
+
+#include <string.h>
+
+#define LIST(...) ((const char *const[]){__VA_ARGS__, NULL})
+
+const aa_suite_group aa_suite_temporal_groups[] = {
+    {LIST("fence", "dots", "crow", "star"), LIST("128x128"), LIST("box"),
+     LIST("point", "area", "supersample:pattern=msaa8", "jitter:spp=9", "hexagon",
+          "hexagon:radius=0.25", "hexagon:radius=0.35", "hexagon:radius=0.7",
+          "hexagon:order=012345", "hexagon:order=031425", "hexagon:order=024135", "taa",
+          "taa:frames=16", "cycle:positions=msaa8", "cycle:positions=msaa16")},
+    {NULL, NULL, NULL, NULL}};
+
+static const aa_suite_motion motions[] = {{"temporal", 0.37, 0.11, 24, 6}, {NULL, 0, 0, 0, 0}};
+
+const aa_suite_motion *aa_suite_motion_find(const char *suite)
+{
+    for (const aa_suite_motion *m = motions; suite && m->suite; m++)
+        if (!strcmp(m->suite, suite))
+            return m;
+    return NULL;
+}
