@@ -11,6 +11,12 @@
 
 const aa_pattern_type *const aa_pattern_types[] = {
     &aa_pattern_crow,
+    &aa_pattern_catmull,
+    &aa_pattern_slivers,
+    &aa_pattern_star,
+    &aa_pattern_feibush,
+    &aa_pattern_fence,
+    &aa_pattern_dots,
     NULL};
 
 int aa_pattern_parse(const char *text, aa_spec *out)

@@ -7,5 +7,11 @@
 #include "aabench.h"
 
 extern const aa_pattern_type aa_pattern_crow;
+extern const aa_pattern_type aa_pattern_catmull;
+extern const aa_pattern_type aa_pattern_slivers;
+extern const aa_pattern_type aa_pattern_star;
+extern const aa_pattern_type aa_pattern_feibush;
+extern const aa_pattern_type aa_pattern_fence;
+extern const aa_pattern_type aa_pattern_dots;
 
 #endif

@@ -1,0 +1,382 @@
+/*
+ * test_patterns.c: the seed scenes of PATTERNS.md against answers derived
+ * independently of the scene model and the reference:
+ *
+ *  - catmull: the 1x1 box value (0, 0.25, 0.5), Catmull's own statement
+ *    (Catmull 1978, fig. 1), from the reference and from `area`; no red
+ *    anywhere when tiled (the red layer is wholly hidden);
+ *  - star: the total white area S R^2 sin(pi/S)/2 (a wedge is an isosceles
+ *    triangle with legs R and apex angle pi/S);
+ *  - fence: every pixel's box value in closed form, the covered length of
+ *    the pixel's column range (whole periods plus a clipped remainder)
+ *    times its row's overlap with [1/4, 3/4];
+ *  - feibush: the area of each colour from its own homography, found here
+ *    by solving the 8x8 linear system of the four corner correspondences
+ *    with GSL (not Heckbert's closed form the pattern uses), integrating
+ *    the Jacobian determinant det(M)/w^3 over each stripe's texture
+ *    rectangle by nested GSL quadrature;
+ *  - dots: the total area n^2 size^2;
+ *  - slivers: the total area, triangle k having base h_k and height 0.9;
+ *  - every pattern: the reference is within [0, 1] with its error bound
+ *    within AA_TRUTH_BOUND; bad parameters are refused.
+ */
+#include "aabench.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdlib.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_linalg.h>
+
+/* The box reference of a pattern spec at w x h. */
+static void reference(const char *pattern, int w, int h, const char *filter, aa_image *img,
+                      double *max_bound)
+{
+    aa_spec spec;
+    aa_filter f;
+    aa_scene *s, *placed;
+    aa_truth_stats st;
+    assert_int_equal(aa_pattern_parse(pattern, &spec), AA_OK);
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
+    assert_non_null(placed = aa_scene_place(s, w, h, 0, 0, 0));
+    assert_int_equal(aa_image_alloc(img, w, h, 3), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &f, 0, img, NULL, &st), AA_OK);
+    if (max_bound)
+        *max_bound = st.max_bound;
+    aa_scene_free(placed);
+    aa_scene_free(s);
+}
+
+/* The sum of channel c times the pixel area: the pattern's integral. */
+static double integral(const aa_image *img, int c)
+{
+    double sum = 0.0;
+    for (int j = 0; j < img->h; j++)
+        for (int i = 0; i < img->w; i++)
+            sum += aa_pixel(img, i, j)[c];
+    return sum / ((double)img->w * img->h);
+}
+
+static void test_catmull_pixel(void **state)
+{
+    (void)state;
+    aa_image img;
+    reference("catmull", 1, 1, "box", &img, NULL);
+    assert_true(fabs(img.v[0]) <= 1e-12);
+    assert_true(fabs(img.v[1] - 0.25) <= 1e-12);
+    assert_true(fabs(img.v[2] - 0.5) <= 1e-12);
+    aa_image_free(&img);
+
+    /* the exact method gives the same pixel */
+    aa_spec pat, m;
+    aa_filter f;
+    aa_scene *s;
+    aa_job job;
+    aa_counters c;
+    aa_filter_default(&f);
+    assert_int_equal(aa_pattern_parse("catmull", &pat), AA_OK);
+    assert_int_equal(aa_pattern_scene(&pat, &s), AA_OK);
+    assert_int_equal(aa_method_parse("area", &f, &m), AA_OK);
+    assert_int_equal(aa_job_init(&job, s, 1, 1, 0, 0, 0, &f, 1, 1), AA_OK);
+    assert_int_equal(aa_image_alloc(&img, 1, 1, 3), AA_OK);
+    assert_int_equal(aa_method_run(&m, &job, 1, &img, &c, NULL), AA_OK);
+    assert_true(fabs(img.v[0]) <= 1e-12);
+    assert_true(fabs(img.v[1] - 0.25) <= 1e-12);
+    assert_true(fabs(img.v[2] - 0.5) <= 1e-12);
+    aa_image_free(&img);
+    aa_job_free(&job);
+    aa_scene_free(s);
+}
+
+static void test_catmull_hidden(void **state)
+{
+    (void)state;
+    aa_image img;
+    reference("catmull:tiles=3", 64, 64, "box", &img, NULL);
+    /* per tile: green 1/4, blue 1/2, red 0 */
+    assert_true(fabs(integral(&img, 1) - 0.25) <= 1e-12);
+    assert_true(fabs(integral(&img, 2) - 0.5) <= 1e-12);
+    for (size_t k = 0; k < (size_t)img.w * img.h; k++)
+        assert_true(fabs(img.v[3 * k]) <= 1e-15);
+    aa_image_free(&img);
+}
+
+static void test_star_area(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *spec;
+        int spokes, w, h;
+    } cases[] = {{"star", 36, 256, 256}, {"star:spokes=7,rot=13", 7, 61, 47},
+                 {"star:spokes=3,rot=0", 3, 32, 32}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        aa_image img;
+        double bound;
+        reference(cases[k].spec, cases[k].w, cases[k].h, "box", &img, &bound);
+        const double R = 0.48, S = cases[k].spokes;
+        double want = S * R * R * sin(M_PI / S) / 2.0;
+        if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
+            fail_msg("%s: %.17g want %.17g (rel %.3g)", cases[k].spec, integral(&img, 0), want, (integral(&img, 0) - want) / want);
+        assert_true(bound <= AA_TRUTH_BOUND);
+        aa_image_free(&img);
+    }
+}
+
+/* The white length of the fence in [1/4, x] (x clipped to [1/4, 3/4]). */
+static double fence_run(double x, double per, double duty)
+{
+    x = fmin(fmax(x, 0.25), 0.75);
+    double z = (x - 0.25) / per, whole = floor(z);
+    return whole * duty * per + fmin((z - whole) * per, duty * per);
+}
+
+static void test_fence_pixels(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *spec;
+        double per, duty;
+        int w, h;
+    } cases[] = {{"fence", 0.9 / 256, 0.5, 64, 64},
+                 {"fence:period=0.013,duty=0.3", 0.013, 0.3, 61, 47},
+                 {"fence:period=0.2,duty=1", 0.2, 1.0, 9, 5}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        aa_image img;
+        reference(cases[k].spec, cases[k].w, cases[k].h, "box", &img, NULL);
+        const int W = cases[k].w, H = cases[k].h;
+        for (int j = 0; j < H; j++) {
+            double ly = fmax(0.0, fmin((j + 1.0) / H, 0.75) - fmax((double)j / H, 0.25));
+            for (int i = 0; i < W; i++) {
+                double lx = fence_run((i + 1.0) / W, cases[k].per, cases[k].duty) -
+                            fence_run((double)i / W, cases[k].per, cases[k].duty);
+                double want = W * lx * H * ly;
+                assert_true(fabs(aa_pixel(&img, i, j)[0] - want) <= 1e-12);
+            }
+        }
+        aa_image_free(&img);
+    }
+}
+
+/* The homography of the feibush square, from the 8x8 system of its four
+ * corner correspondences: x (g s + h t + 1) = a s + b t + c, likewise y. */
+static void feibush_matrix(double M[3][3])
+{
+    static const double st[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    static const double xy[4][2] = {{0.32, 0.18}, {0.72, 0.24}, {0.97, 0.96}, {0.04, 0.90}};
+    double A[64] = {0}, b[8];
+    for (int k = 0; k < 4; k++) {
+        double s = st[k][0], t = st[k][1], x = xy[k][0], y = xy[k][1];
+        double *rx = &A[16 * k], *ry = rx + 8;
+        /* unknowns a b c d e f g h */
+        rx[0] = s, rx[1] = t, rx[2] = 1, rx[6] = -x * s, rx[7] = -x * t, b[2 * k] = x;
+        ry[3] = s, ry[4] = t, ry[5] = 1, ry[6] = -y * s, ry[7] = -y * t, b[2 * k + 1] = y;
+    }
+    gsl_matrix_view Av = gsl_matrix_view_array(A, 8, 8);
+    gsl_vector_view bv = gsl_vector_view_array(b, 8);
+    gsl_vector *u = gsl_vector_alloc(8);
+    gsl_permutation *perm = gsl_permutation_alloc(8);
+    int sign;
+    assert_int_equal(gsl_linalg_LU_decomp(&Av.matrix, perm, &sign), 0);
+    assert_int_equal(gsl_linalg_LU_solve(&Av.matrix, perm, &bv.vector, u), 0);
+    for (int k = 0; k < 8; k++)
+        M[k / 3][k % 3] = gsl_vector_get(u, (size_t)k);
+    M[2][2] = 1.0;
+    gsl_vector_free(u);
+    gsl_permutation_free(perm);
+}
+
+typedef struct jac_ctx {
+    double (*M)[3];
+    double det, s;
+} jac_ctx;
+
+/* |det J| of the projective map at (s, t): |det M| / w^3. */
+static double jac_t(double t, void *p)
+{
+    jac_ctx *c = p;
+    double w = c->M[2][0] * c->s + c->M[2][1] * t + c->M[2][2];
+    return fabs(c->det) / (w * w * w);
+}
+
+static double jac_s(double s, void *p)
+{
+    jac_ctx *c = p;
+    c->s = s;
+    gsl_function F = {jac_t, c};
+    double r, e;
+    size_t n;
+    gsl_integration_qng(&F, 0.0, 1.0, 1e-15, 1e-15, &r, &e, &n);
+    return r;
+}
+
+static void test_feibush_areas(void **state)
+{
+    (void)state;
+    double M[3][3];
+    feibush_matrix(M);
+    jac_ctx c = {M, 0, 0};
+    c.det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+            M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+            M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    static const int stripes[] = {24, 7};
+    for (size_t k = 0; k < 2; k++) {
+        int S = stripes[k];
+        double red = 0.0, white = 0.0;
+        for (int m = 0; m < S; m++) {
+            gsl_function F = {jac_s, &c};
+            double r, e;
+            size_t n;
+            gsl_integration_qng(&F, (double)m / S, (m + 1.0) / S, 1e-15, 1e-15, &r, &e, &n);
+            *(m % 2 ? &white : &red) += r;
+        }
+        char spec[64];
+        snprintf(spec, sizeof spec, "feibush:stripes=%d", S);
+        aa_image img;
+        reference(spec, 97, 83, "box", &img, NULL);
+        /* red stripes are (1, 0, 0), white (1, 1, 1) */
+        double r_all = integral(&img, 0), g = integral(&img, 1);
+        assert_true(fabs(g - white) <= 1e-10);
+        assert_true(fabs((r_all - g) - red) <= 1e-10);
+        /* and the whole square by the shoelace formula */
+        static const double q[4][2] = {{0.32, 0.18}, {0.72, 0.24}, {0.97, 0.96}, {0.04, 0.90}};
+        double shoe = 0.0;
+        for (int v = 0; v < 4; v++)
+            shoe += q[v][0] * q[(v + 1) % 4][1] - q[(v + 1) % 4][0] * q[v][1];
+        assert_true(fabs(r_all - fabs(shoe) / 2.0) <= 1e-12);
+        aa_image_free(&img);
+    }
+}
+
+static void test_dots_area(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *spec;
+        double n, size;
+    } cases[] = {{"dots", 16, 0.3 / 256}, {"dots:n=5,size=0.01", 5, 0.01}};
+    for (size_t k = 0; k < 2; k++) {
+        aa_image img;
+        reference(cases[k].spec, 128, 96, "box", &img, NULL);
+        double want = cases[k].n * cases[k].n * cases[k].size * cases[k].size;
+        if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
+            fail_msg("%s: %.17g want %.17g (rel %.3g)", cases[k].spec, integral(&img, 0), want, (integral(&img, 0) - want) / want);
+        aa_image_free(&img);
+    }
+}
+
+/* The area of the convex polygon p (n vertices, n <= 8) clipped to the
+ * unit square: Sutherland-Hodgman against the four sides, then the shoelace
+ * formula. */
+static double clipped_area(const double (*p)[2], int n)
+{
+    double a[16][2], b[16][2];
+    for (int k = 0; k < n; k++)
+        a[k][0] = p[k][0], a[k][1] = p[k][1];
+    for (int side = 0; side < 4; side++) {
+        int axis = side / 2, m = 0;
+        double lim = side % 2 ? 1.0 : 0.0, sgn = side % 2 ? -1.0 : 1.0;
+        for (int k = 0; k < n; k++) {
+            const double *u = a[k], *v = a[(k + 1) % n];
+            double du = sgn * (u[axis] - lim), dv = sgn * (v[axis] - lim);
+            if (du >= 0)
+                b[m][0] = u[0], b[m][1] = u[1], m++;
+            if ((du >= 0) != (dv >= 0)) {
+                double t = du / (du - dv);
+                b[m][0] = u[0] + t * (v[0] - u[0]), b[m][1] = u[1] + t * (v[1] - u[1]), m++;
+            }
+        }
+        n = m;
+        for (int k = 0; k < n; k++)
+            a[k][0] = b[k][0], a[k][1] = b[k][1];
+    }
+    double sum = 0.0;
+    for (int k = 0; k < n; k++)
+        sum += a[k][0] * a[(k + 1) % n][1] - a[(k + 1) % n][0] * a[k][1];
+    return fabs(sum) / 2.0;
+}
+
+static void test_slivers_area(void **state)
+{
+    (void)state;
+    /* the default's outermost triangle pokes out of the unit square at the
+     * bottom (y up to 1.0002), so the areas are clipped */
+    static const struct {
+        const char *spec;
+        int K;
+        double tilt, hmin, hmax;
+    } cases[] = {{"slivers", 24, 0.1, 0.1 / 256, 1.5 / 256},
+                 {"slivers:count=5,tilt=2,hmin=0.001,hmax=0.02", 5, 2, 0.001, 0.02},
+                 {"slivers:count=1,hmin=0.003,hmax=0.003", 1, 0.1, 0.003, 0.003}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double want = 0.0;
+        const int K = cases[k].K;
+        for (int t = 0; t < K; t++) {
+            double h = K == 1 ? cases[k].hmin
+                              : cases[k].hmin + (cases[k].hmax - cases[k].hmin) * t / (K - 1.0);
+            double y = (t + 0.5) / K, d = 0.9 * tan((t - (K - 1) / 2.0) * cases[k].tilt * M_PI / 180);
+            const double tri[3][2] = {{0.05, y}, {0.95, y + d - h / 2}, {0.95, y + d + h / 2}};
+            want += clipped_area(tri, 3);
+        }
+        aa_image img;
+        reference(cases[k].spec, 256, 256, "box", &img, NULL);
+        if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
+            fail_msg("%s: %.17g want %.17g", cases[k].spec, integral(&img, 0), want);
+        aa_image_free(&img);
+    }
+}
+
+/* Every pattern in the table: defaults build, the reference is in [0, 1]
+ * within its bound, for every filter. */
+static void test_every_pattern(void **state)
+{
+    (void)state;
+    static const char *filters[] = {"box", "tent:r=1", "gauss"};
+    for (const aa_pattern_type *const *t = aa_pattern_types; *t; t++)
+        for (size_t k = 0; k < 3; k++) {
+            aa_image img;
+            double bound;
+            reference((*t)->info.name, 40, 28, filters[k], &img, &bound);
+            assert_true(bound <= AA_TRUTH_BOUND);
+            for (size_t q = 0; q < (size_t)3 * img.w * img.h; q++)
+                assert_true(img.v[q] >= -1e-12 && img.v[q] <= 1 + 1e-12);
+            aa_image_free(&img);
+        }
+}
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    static const char *bad[] = {
+        "fence:period=0",          "fence:period=1e-6",   "fence:duty=0",
+        "fence:duty=1.5",          "dots:n=0",            "dots:n=257",
+        "dots:size=0",             "star:spokes=0",       "star:spokes=5000",
+        "star:rot=nan",            "catmull:tiles=0",     "catmull:tiles=257",
+        "slivers:count=0",         "slivers:hmin=-1e-3",  "slivers:hmin=0.01,hmax=0.001",
+        "slivers:count=24,tilt=8", "feibush:stripes=0",   "feibush:stripes=70000",
+        "star:spokes=3.5",         "catmull:depth=2"};
+    aa_spec spec;
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        if (aa_pattern_parse(bad[k], &spec) == AA_OK)
+            fail_msg("%s was accepted", bad[k]);
+    }
+    /* the limits themselves are accepted */
+    assert_int_equal(aa_pattern_parse("fence:period=7.62939453125e-06", &spec), AA_OK);
+    assert_int_equal(aa_pattern_parse("slivers:count=3,tilt=80,hmin=0,hmax=0", &spec), AA_OK);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_catmull_pixel), cmocka_unit_test(test_catmull_hidden),
+        cmocka_unit_test(test_star_area),     cmocka_unit_test(test_fence_pixels),
+        cmocka_unit_test(test_feibush_areas), cmocka_unit_test(test_dots_area),
+        cmocka_unit_test(test_slivers_area),  cmocka_unit_test(test_every_pattern),
+        cmocka_unit_test(test_refusals),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
