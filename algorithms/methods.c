@@ -16,4 +16,5 @@ const aa_method_type *const aa_method_types[] = {
     &aa_method_area,
     &aa_method_taa,
     &aa_method_cycle,
+    &aa_method_adaptive,
     NULL};

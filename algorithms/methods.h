@@ -14,6 +14,7 @@ extern const aa_method_type aa_method_trio;
 extern const aa_method_type aa_method_area;
 extern const aa_method_type aa_method_taa;
 extern const aa_method_type aa_method_cycle;
+extern const aa_method_type aa_method_adaptive;
 
 /* Point-sample the placed scene at pixel centres offset by (dx, dy)
  * pixels into out (used by point, hexagon and trio). */
