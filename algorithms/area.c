@@ -1001,16 +1001,21 @@ static void cm_integrate(const ar_row *r, const ar_key *in, size_t n, const int 
     double area = 0.0, cx = 0.0, cy = 0.0;
     if (lv->nv < 3)
         return;
-    for (int k = 0; k < lv->nv; k++) {
-        int m = (k + 1) % lv->nv;
-        double cr = lv->vx[k] * lv->vy[m] - lv->vx[m] * lv->vy[k];
+    /* relative to the first vertex, so that a sliver's centroid is found
+     * to its own size, not to the pixel's (a region 1e-9 px wide would
+     * otherwise get a centroid 1e-7 px off, outside itself) */
+    const double ox = lv->vx[0], oy = lv->vy[0];
+    for (int k = 1; k + 1 < lv->nv; k++) {
+        double ax = lv->vx[k] - ox, ay = lv->vy[k] - oy;
+        double bx = lv->vx[k + 1] - ox, by = lv->vy[k + 1] - oy;
+        double cr = ax * by - bx * ay;
         area += cr;
-        cx += (lv->vx[k] + lv->vx[m]) * cr;
-        cy += (lv->vy[k] + lv->vy[m]) * cr;
+        cx += (ax + bx) * cr;
+        cy += (ay + by) * cr;
     }
     if (area == 0.0)
         return;
-    cx /= 3.0 * area, cy /= 3.0 * area;
+    cx = ox + cx / (3.0 * area), cy = oy + cy / (3.0 * area);
     area = 0.5 * fabs(area);
     /* the front-most layer with an edge left in the region */
     int front = S->nl;

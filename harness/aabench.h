@@ -725,6 +725,28 @@ int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *co
  * Files
  * ------------------------------------------------------------------------ */
 
+/* ------------------------------------------------------------------------
+ * The stress suite (stress.c): scenes at the limits of the geometry, the
+ * reference and `area` against a long double evaluation, every method
+ * finite and within [0, 1]
+ * ------------------------------------------------------------------------ */
+
+typedef struct aa_stress_result {
+    const char *name;
+    int w, h;
+    double ref_err, ref_bound;   /* reference against the evaluation */
+    double area_err, area_bound; /* `area` against the evaluation */
+    size_t nonfinite;            /* NaN or Inf values, reference and methods */
+    size_t out_of_range;         /* method values outside [0, 1] */
+    int methods, refused;        /* methods run, methods that refused */
+    int pass;
+} aa_stress_result;
+
+size_t aa_stress_count(void);
+const char *aa_stress_name(size_t k);
+/* Run case k; a status for failures to run (memory), not for failed checks. */
+int aa_stress_run_case(size_t k, int threads, aa_stress_result *r);
+
 /* Write `len` bytes to `path` through a temporary file in the same folder
  * and rename; nothing is left behind on failure. */
 int aa_file_write_atomic(const char *path, const void *data, size_t len);

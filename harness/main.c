@@ -17,6 +17,7 @@ static const struct command {
     {"check", cmd_check, "rerun the baseline's cases; exit 1 on a regression"},
     {"converge", cmd_converge, "RMSE against samples per pixel, and its slope"},
     {"compare", cmd_compare, "error metrics between two image files"},
+    {"stress", cmd_stress, "numerical stress cases against a long double evaluation"},
     {NULL, NULL, NULL}};
 
 static void usage(FILE *out)
