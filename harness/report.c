@@ -383,6 +383,11 @@ int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
                 bad = 1;
             if (!strcmp(h, "ok"))
                 row->ok = !strcmp(v, "1");
+            if (!strcmp(h, "seed")) { /* the gate reruns with the baseline's seed */
+                char *end;
+                row->seed = strtoull(v, &end, 10);
+                bad |= end == v || *end != '\0' || *v == '-';
+            }
         }
         if (bad || !*row->pattern || !*row->method || row->w < 1 || row->h < 1) {
             st = aa_fail(AA_EIO, "%s:%zu: malformed row", path, lineno);
