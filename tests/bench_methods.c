@@ -4,8 +4,10 @@
  *
  * One run, one table.  For each method spec (and the reference, "reference":
  * aa_truth_render), on one pattern, size and filter: the median render time
- * with 1 and 2 threads (`reps` renders each after one untimed init, into an
- * image allocated and touched once), the ratio of each to `point` at the
+ * with 1 and 2 threads (`reps` renders each after one untimed init per
+ * thread count, into an image allocated and touched once; the 1- and
+ * 2-thread renders take turns, so a load that comes and goes on a shared
+ * machine falls on both alike), the ratio of each to `point` at the
  * same thread count, the speed-up of 2 threads over 1, the largest error
  * against the reference (rendered once beforehand; for the reference its
  * own error bound), and the peak memory of a render at a larger size.
@@ -55,22 +57,56 @@ static double median(double *t, int n)
 
 static int is_reference(const char *spec) { return !strcmp(spec, "reference"); }
 
-/* Time `reps` renders of spec (or the reference) into img. */
+/* One render of spec (or the reference) with instance m (unused for the
+ * reference) into img; returns its time, or a negative value on failure. */
+static double render_once(const char *spec, aa_method *m, const aa_job *job, aa_image *img)
+{
+    aa_counters c;
+    double t0 = aa_now();
+    int st = is_reference(spec)
+                 ? aa_truth_render(job->placed, &job->filter, job->threads, img, NULL, NULL)
+                 : aa_method_render(m, job, img, &c);
+    return st ? -1.0 : aa_now() - t0;
+}
+
+/* Time `reps` renders of spec with 1 and with 2 threads (jobs[0], jobs[1]),
+ * taking turns, so that both thread counts see the same load of a shared
+ * machine: t1[r], t2[r].  One untimed init per thread count. */
+static int time_spec2(const char *spec, const aa_job *jobs, int reps, aa_image *img,
+                      double *t1, double *t2)
+{
+    aa_method m[2] = {{0}, {0}};
+    aa_spec ms;
+    int st = AA_OK;
+    if (!is_reference(spec))
+        if ((st = aa_method_parse(spec, &jobs[0].filter, &ms)) ||
+            (st = aa_method_init(&m[0], &ms, &jobs[0])) ||
+            (st = aa_method_init(&m[1], &ms, &jobs[1])))
+            goto done;
+    for (int r = 0; r < reps && !st; r++)
+        if ((t1[r] = render_once(spec, &m[0], &jobs[0], img)) < 0 ||
+            (t2[r] = render_once(spec, &m[1], &jobs[1], img)) < 0)
+            st = AA_EFAIL;
+done:
+    if (!is_reference(spec)) {
+        if (m[0].type)
+            aa_method_free(&m[0]);
+        if (m[1].type)
+            aa_method_free(&m[1]);
+    }
+    return st;
+}
+
+/* One untimed render (the memory child). */
 static int time_spec(const char *spec, const aa_job *job, int reps, aa_image *img,
                      double *t)
 {
-    if (is_reference(spec)) {
-        for (int r = 0; r < reps; r++) {
-            double t0 = aa_now();
-            if (aa_truth_render(job->placed, &job->filter, job->threads, img, NULL, NULL))
-                return 1;
-            t[r] = aa_now() - t0;
-        }
-        return 0;
-    }
+    (void)reps;
+    if (is_reference(spec))
+        return aa_truth_render(job->placed, &job->filter, job->threads, img, NULL, NULL);
     aa_spec m;
     aa_counters c;
-    return aa_method_parse(spec, &job->filter, &m) || aa_method_run(&m, job, reps, img, &c, t);
+    return aa_method_parse(spec, &job->filter, &m) || aa_method_run(&m, job, 1, img, &c, t);
 }
 
 /* The child: allocate and touch a W x H x 3 image and then, unless spec is
@@ -182,7 +218,8 @@ int main(int argc, char **argv)
     aa_truth_stats tstats;
     if (aa_truth_render(job[1].placed, &f, 2, &ref, NULL, &tstats))
         return 3;
-    double *t = malloc((size_t)reps * sizeof *t);
+    double *t = malloc((size_t)reps * sizeof *t), *t2 = malloc((size_t)reps * sizeof *t2);
+    memset(img.v, 0, (size_t)w * h * 3 * sizeof *img.v); /* page faults are no method's cost */
     row rows[MAXSPECS] = {{0}};
     long base_kb = mw ? child_peak_kb("-", pattern, msize, filter) : 0;
     double image_mb = (double)mw * mh * 3 * sizeof(double) / 1048576.0;
@@ -191,13 +228,12 @@ int main(int argc, char **argv)
         row *r = &rows[k];
         r->spec = specs[k];
         r->ok = 1;
-        for (int th = 0; th < 2 && r->ok; th++) {
-            if (time_spec(r->spec, &job[th], reps, &img, t)) {
-                snprintf(r->note, sizeof r->note, "%s", aa_last_error());
-                r->ok = 0;
-                break;
-            }
-            r->med[th] = median(t, reps);
+        if (time_spec2(r->spec, job, reps, &img, t, t2)) {
+            snprintf(r->note, sizeof r->note, "%s", aa_last_error());
+            r->ok = 0;
+        } else {
+            r->med[0] = median(t, reps);
+            r->med[1] = median(t2, reps);
         }
         if (!r->ok)
             continue;
@@ -305,6 +341,7 @@ int main(int argc, char **argv)
         }
     }
     free(t);
+    free(t2);
     for (int th = 0; th < 2; th++)
         aa_job_free(&job[th]);
     aa_image_free(&img);
