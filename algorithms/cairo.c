@@ -7,7 +7,8 @@
  * control points p0 + 2/3 (c - p0) and p1 + 2/3 (c - p1)), every path
  * closed.  Cairo flattens curves to `tolerance` (px, Cairo's default 0.1)
  * and converts the polygon to coverage with the scan converter `aa` selects
- * (CAIRO_ANTIALIAS_BEST, GOOD or FAST: Cairo chooses the grid of each); the
+ * (CAIRO_ANTIALIAS_BEST, GOOD or FAST: Cairo chooses the grid of each;
+ * 1.16's image backend gives BEST and GOOD the same image on crow); the
  * A8 surface keeps coverage as 8 bits.  The fill rule is the layer's
  * (CAIRO_FILL_RULE_WINDING or EVEN_ODD).  Our image receives alpha / 255,
  * mixed between the background and the layer's grey (peer.h).
