@@ -176,6 +176,47 @@ static void test_half_plane(void **state)
     aa_scene_free(s);
 }
 
+/* Many thin rectangles, two per pixel column: [i + 1/8, i + 3/8] and
+ * [i + 5/8, i + 7/8] in x, [2.25, 13.5] in y, on a 1024 x 16 image.  Each
+ * row crosses 4096 edges: more than FreeType 2.12's cell pool holds for one
+ * row, so it renders in clipped tiles, which must not show (the coverage is
+ * the closed-form overlap, within 1/255, in every pixel). */
+static double thin_cover(int i, int j)
+{
+    (void)i;
+    return 0.5 * overlap(2.25, 13.5, j, j + 1.0);
+}
+
+static void test_many_edges(void **state)
+{
+    (void)state;
+    const int w = 1024, h = 16;
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    for (int i = 0; i < w; i++)
+        for (int k = 0; k < 2; k++) {
+            double x0 = i + 0.125 + 0.5 * k, x1 = x0 + 0.25;
+            assert_int_equal(aa_scene_move_to(s, x0 / w, 2.25 / h), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x1 / w, 2.25 / h), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x1 / w, 13.5 / h), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x0 / w, 13.5 / h), AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+        }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    const char *peers[] = {"freetype", "stb", "cairo"};
+    for (int k = 0; k < 3; k++) {
+        aa_image img;
+        if (render(peers[k], s, "box", w, h, 2, &img))
+            fail_msg("%s: %s", peers[k], aa_last_error());
+        double e = max_error(&img, thin_cover);
+        print_message("4096 edges a row, %-8s: max error %.3e\n", peers[k], e);
+        if (!(e <= 1.0 / 255 + 1e-6))
+            fail_msg("%s: max error %.3e above 1/255 with 4096 edges a row", peers[k], e);
+        aa_image_free(&img);
+    }
+    aa_scene_free(s);
+}
+
 /* One crow band: arcs are curves, not chords (a chord would lose about
  * c/6 of area per arc). */
 static void test_crow_band_area(void **state)
@@ -312,8 +353,11 @@ static void test_refusals_cli(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_rectangle),        cmocka_unit_test(test_half_plane),
-        cmocka_unit_test(test_crow_band_area),   cmocka_unit_test(test_refusals_library),
+        cmocka_unit_test(test_rectangle),
+        cmocka_unit_test(test_half_plane),
+        cmocka_unit_test(test_crow_band_area),
+        cmocka_unit_test(test_many_edges),
+        cmocka_unit_test(test_refusals_library),
         cmocka_unit_test(test_refusals_cli),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
