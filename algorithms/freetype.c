@@ -19,8 +19,9 @@
  * FT_OUTLINE_EVEN_ODD_FILL.  It is built once in init.
  *
  * Tiles.  FreeType 2.12's cell pool is small and fixed; a band of rows that
- * overflows it is halved in y, but a single row crossed by many edges
- * (crow's ~100 arcs) still overflows (Raster_Overflow).  Its own
+ * overflows it is halved in y, but a single row crossed by thousands of
+ * edges still overflows (Raster_Overflow; crow's default 96 arcs fit, 4000
+ * arcs 4096 px wide need tiles of 512 columns).  Its own
  * documentation allows a clip box for direct rendering (FT_RASTER_FLAG_CLIP,
  * clip_box in integer pixels): the image is rendered in bands of BAND rows,
  * each split into vertical tiles by halving its width on every overflow
