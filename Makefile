@@ -17,6 +17,8 @@ CC     := gcc
 CXX    := g++
 
 PKGS      := gsl OpenImageIO
+# the peer rasterizers (algorithms/freetype.c, stb.c, cairo.c)
+PKGS      += freetype2 stb cairo
 TEST_PKGS := cmocka
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)

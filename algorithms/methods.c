@@ -17,4 +17,7 @@ const aa_method_type *const aa_method_types[] = {
     &aa_method_taa,
     &aa_method_cycle,
     &aa_method_adaptive,
+    &aa_method_freetype,
+    &aa_method_stb,
+    &aa_method_cairo,
     NULL};

@@ -15,6 +15,9 @@ extern const aa_method_type aa_method_area;
 extern const aa_method_type aa_method_taa;
 extern const aa_method_type aa_method_cycle;
 extern const aa_method_type aa_method_adaptive;
+extern const aa_method_type aa_method_freetype;
+extern const aa_method_type aa_method_stb;
+extern const aa_method_type aa_method_cairo;
 
 /* Point-sample the placed scene at pixel centres offset by (dx, dy)
  * pixels into out (used by point, hexagon and trio). */

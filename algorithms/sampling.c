@@ -106,14 +106,32 @@ void aa__sampler_by_subsets(aa__sampler_worker *wk, const aa_scene *s, double y,
     double a0 = 0, a1 = 0, a2 = 0, total = 0;
     aa_rgb first = {{0, 0, 0}};
     int uniform = 1, any = 0;
+    /* One layer (crow): a subset's colour is the layer's where its rule
+     * holds for the winding left of the window plus the subset's
+     * directions, else the background (aa_scene_colour_of, without copying
+     * winding arrays per subset). */
+    aa_rgb one[2];
+    int evenodd = 0;
+    if (nl == 1) {
+        one[0] = aa_scene_background(s), one[1] = aa_scene_layer_colour(s, 0);
+        evenodd = aa_scene_layer_rule(s, 0) == AA_FILL_EVENODD;
+    }
     for (unsigned m = 0; m < (1u << np); m++) {
         if (!(wsum[m] > 0.0)) /* no sample */
             continue;
-        memcpy(wk->wind2, wk->wind, (size_t)(nl > 0 ? nl : 1) * sizeof *wk->wind2);
-        for (int q = 0; q < np; q++)
-            if (m >> q & 1u)
-                wk->wind2[pcs[q]->layer] += pcs[q]->dir;
-        aa_rgb c = aa_scene_colour_of(s, wk->wind2);
+        aa_rgb c;
+        if (nl == 1) {
+            int w = wk->wind[0];
+            for (int q = 0; q < np; q++)
+                w += (m >> q & 1u) ? pcs[q]->dir : 0;
+            c = one[evenodd ? (w & 1) : w != 0];
+        } else {
+            memcpy(wk->wind2, wk->wind, (size_t)(nl > 0 ? nl : 1) * sizeof *wk->wind2);
+            for (int q = 0; q < np; q++)
+                if (m >> q & 1u)
+                    wk->wind2[pcs[q]->layer] += pcs[q]->dir;
+            c = aa_scene_colour_of(s, wk->wind2);
+        }
         if (!any)
             first = c, any = 1;
         uniform = uniform && aa__sampler_same_rgb(c, first);

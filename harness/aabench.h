@@ -472,7 +472,9 @@ void aa_job_free(aa_job *job);
 
 enum aa_method_flags {
     AA_METHOD_SEEDED = 1,  /* the image depends on the seed */
-    AA_METHOD_TEMPORAL = 2 /* the image depends on several frames */
+    AA_METHOD_TEMPORAL = 2, /* the image depends on several frames */
+    AA_METHOD_SOME_SCENES = 4 /* init refuses some scenes (colour, several layers) with
+                                 AA_EINVAL and a message: the peer rasterizers */
 };
 
 typedef struct aa_method_type {

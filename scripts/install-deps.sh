@@ -24,6 +24,9 @@ need cmd:pkg-config pkg-config
 need pc:gsl libgsl-dev
 need pc:OpenImageIO libopenimageio-dev
 need pc:cmocka libcmocka-dev
+need pc:freetype2 libfreetype-dev
+need pc:stb libstb-dev
+need pc:cairo libcairo2-dev
 need cmd:gnuplot gnuplot-nox
 need file:/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf fonts-dejavu-core
 

@@ -1,19 +1,47 @@
 /*
- * bench_methods.c: speed of the methods (`make bench`).
+ * bench_methods.c: speed of the methods against each other and against the
+ * peer rasterizers (`make bench`).
  *
- * For each method spec, renders the pattern into an image allocated and
- * touched once, `reps` times after one untimed init, and prints the median
- * with min and max, ns per pixel and per sample, the expensive pixels, and
- * the ratio to `point` measured in the same run with the same thread count.
+ * One run, one table.  For each method spec (and the reference, "reference":
+ * aa_truth_render), on one pattern, size and filter: the median render time
+ * with 1 and 2 threads (`reps` renders each after one untimed init per
+ * thread count, into an image allocated and touched once; the 1- and
+ * 2-thread renders take turns, so a load that comes and goes on a shared
+ * machine falls on both alike), the ratio of each to `point` at the
+ * same thread count, the speed-up of 2 threads over 1, the largest error
+ * against the reference (rendered once beforehand; for the reference its
+ * own error bound), and the peak memory of a render at a larger size.
+ *
+ * Peak memory: each method renders once (init and render, 2 threads) in a
+ * fresh process (this program run again with --peak) that first allocates
+ * and touches the W x H x 3 output image; its peak is its own VmHWM
+ * (/proc/self/status).  A baseline process that only allocates and touches the image
+ * is subtracted, so "extra" is what
+ * the method needs beyond its output; "total/image" is (image + extra) /
+ * image, the figure the target "at most twice the output image" reads.
+ *
+ * Then the ratios the targets name, each from this run's medians.
  * Figures are read, not asserted.
  *
- * usage: bench_methods [-p PATTERN] [-s WxH] [-f FILTER] [-t 1,2] [-r REPS] [SPEC...]
+ * usage: bench_methods [-p PATTERN] [-s WxH] [-f FILTER] [-r REPS] [-m WxH|none] [SPEC...]
  */
 #include "aabench.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+#define MAXSPECS 64
+
+typedef struct row {
+    const char *spec;
+    int ok;
+    char note[256];
+    double med[2], err;
+    double extra_mb, total_ratio;
+} row;
 
 static int cmp(const void *a, const void *b)
 {
@@ -21,85 +49,303 @@ static int cmp(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+static double median(double *t, int n)
+{
+    qsort(t, (size_t)n, sizeof *t, cmp);
+    return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+}
+
+static int is_reference(const char *spec) { return !strcmp(spec, "reference"); }
+
+/* One render of spec (or the reference) with instance m (unused for the
+ * reference) into img; returns its time, or a negative value on failure. */
+static double render_once(const char *spec, aa_method *m, const aa_job *job, aa_image *img)
+{
+    aa_counters c;
+    double t0 = aa_now();
+    int st = is_reference(spec)
+                 ? aa_truth_render(job->placed, &job->filter, job->threads, img, NULL, NULL)
+                 : aa_method_render(m, job, img, &c);
+    return st ? -1.0 : aa_now() - t0;
+}
+
+/* Time `reps` renders of spec with 1 and with 2 threads (jobs[0], jobs[1]),
+ * taking turns, so that both thread counts see the same load of a shared
+ * machine: t1[r], t2[r].  One untimed init per thread count. */
+static int time_spec2(const char *spec, const aa_job *jobs, int reps, aa_image *img,
+                      double *t1, double *t2)
+{
+    aa_method m[2] = {{0}, {0}};
+    aa_spec ms;
+    int st = AA_OK;
+    if (!is_reference(spec))
+        if ((st = aa_method_parse(spec, &jobs[0].filter, &ms)) ||
+            (st = aa_method_init(&m[0], &ms, &jobs[0])) ||
+            (st = aa_method_init(&m[1], &ms, &jobs[1])))
+            goto done;
+    for (int r = 0; r < reps && !st; r++)
+        if ((t1[r] = render_once(spec, &m[0], &jobs[0], img)) < 0 ||
+            (t2[r] = render_once(spec, &m[1], &jobs[1], img)) < 0)
+            st = AA_EFAIL;
+done:
+    if (!is_reference(spec)) {
+        if (m[0].type)
+            aa_method_free(&m[0]);
+        if (m[1].type)
+            aa_method_free(&m[1]);
+    }
+    return st;
+}
+
+/* One untimed render (the memory child). */
+static int time_spec(const char *spec, const aa_job *job, int reps, aa_image *img,
+                     double *t)
+{
+    (void)reps;
+    if (is_reference(spec))
+        return aa_truth_render(job->placed, &job->filter, job->threads, img, NULL, NULL);
+    aa_spec m;
+    aa_counters c;
+    return aa_method_parse(spec, &job->filter, &m) || aa_method_run(&m, job, 1, img, &c, t);
+}
+
+/* The child: allocate and touch a W x H x 3 image and then, unless spec is
+ * "-", render spec into it once (2 threads).  Exit status 0 on success. */
+static int peak_child(const char *spec, const char *pattern, const char *size,
+                      const char *filter)
+{
+    aa_spec pspec;
+    aa_scene *scene;
+    aa_filter f;
+    aa_image img;
+    aa_job job;
+    int w, h;
+    if (aa_pattern_parse(pattern, &pspec) || aa_pattern_scene(&pspec, &scene) ||
+        aa_size_parse(size, &w, &h) || aa_filter_parse(filter, &f) ||
+        aa_image_alloc(&img, w, h, 3) || aa_job_init(&job, scene, w, h, 0, 0, 0, &f, 1, 2))
+        return 3;
+    memset(img.v, 0, (size_t)w * h * 3 * sizeof *img.v);
+    double t;
+    if (strcmp(spec, "-") && time_spec(spec, &job, 1, &img, &t))
+        return 3;
+    FILE *st = fopen("/proc/self/status", "r");
+    char line[256];
+    long kb = -1;
+    while (st && fgets(line, sizeof line, st))
+        if (sscanf(line, "VmHWM: %ld", &kb) == 1)
+            break;
+    if (st)
+        fclose(st);
+    printf("%ld\n", kb);
+    return kb < 0 ? 3 : 0;
+}
+
+/* Peak resident memory (kB) of a fresh process (this program run again
+ * with --peak: nothing of our memory or OpenMP state carried over) running
+ * peak_child, read from its own /proc/self/status VmHWM (a process that
+ * forks or spawns starts from a copy of its parent's memory, which
+ * ru_maxrss would count). */
+static long child_peak_kb(const char *spec, const char *pattern, const char *size,
+                          const char *filter)
+{
+    char exe[4096], cmd[8192];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return -1;
+    exe[n] = '\0';
+    snprintf(cmd, sizeof cmd, "'%s' --peak '%s' '%s' '%s' '%s'", exe, spec, pattern, size,
+             filter);
+    fflush(stdout);
+    FILE *p = popen(cmd, "r");
+    long kb = -1;
+    if (!p)
+        return -1;
+    if (fscanf(p, "%ld", &kb) != 1)
+        kb = -1;
+    if (pclose(p) != 0)
+        kb = -1;
+    return kb;
+}
+
 int main(int argc, char **argv)
 {
-    const char *pattern = "crow", *size = "1024x1024", *filter = "box", *threads = "1,2";
+    const char *pattern = "crow", *size = "1024x1024", *filter = "box", *msize = "4096x4096";
     int reps = 15, first = 1;
-    static const char *defaults[] = {"point", "supersample:n=3", "supersample:n=4",
-                                     "supersample:pattern=msaa8", "jitter:spp=16",
-                                     "jitter:spp=16,seq=sobol", "jitter:spp=64", "hexagon",
-                                     "trio", "trio:variant=sancha", "trio:variant=recursive",
-                                     "area", NULL};
+    if (argc == 6 && !strcmp(argv[1], "--peak"))
+        return peak_child(argv[2], argv[3], argv[4], argv[5]);
+    static const char *defaults[] = {
+        "point", "area", "freetype", "stb", "stb:flatness=0.01", "cairo",
+        "cairo:aa=best,tolerance=0.01", "jitter:spp=16", "jitter:spp=16,seq=sobol",
+        "jitter:spp=64", "supersample:n=3", "supersample:n=4", "supersample:pattern=msaa8",
+        "hexagon", "trio", "trio:variant=sancha", "trio:variant=recursive", "reference"};
     while (first + 1 < argc && argv[first][0] == '-') {
         const char *o = argv[first], *v = argv[first + 1];
         if (!strcmp(o, "-p")) pattern = v;
         else if (!strcmp(o, "-s")) size = v;
         else if (!strcmp(o, "-f")) filter = v;
-        else if (!strcmp(o, "-t")) threads = v;
         else if (!strcmp(o, "-r")) reps = atoi(v);
+        else if (!strcmp(o, "-m")) msize = v;
         else break;
         first += 2;
     }
-    const char **specs = first < argc ? (const char **)argv + first : defaults;
-    size_t nspecs = 0;
-    while (specs[nspecs] && (specs != defaults || defaults[nspecs]))
-        nspecs++;
-    if (specs != defaults)
+    const char *const *specs = defaults;
+    size_t nspecs = sizeof defaults / sizeof defaults[0];
+    if (first < argc) {
+        specs = (const char *const *)argv + first;
         nspecs = (size_t)(argc - first);
-    if (reps < 1 || reps > 1000)
+    }
+    if (nspecs > MAXSPECS)
+        nspecs = MAXSPECS;
+    if (reps < 5 || reps > 1000)
         reps = 15;
     aa_spec pspec;
     aa_scene *scene;
     aa_filter f;
-    int w, h;
+    int w, h, mw = 0, mh = 0;
     if (aa_pattern_parse(pattern, &pspec) || aa_pattern_scene(&pspec, &scene) ||
-        aa_size_parse(size, &w, &h) || aa_filter_parse(filter, &f)) {
+        aa_size_parse(size, &w, &h) || aa_filter_parse(filter, &f) ||
+        (strcmp(msize, "none") && aa_size_parse(msize, &mw, &mh))) {
         fprintf(stderr, "bench_methods: %s\n", aa_last_error());
         return 2;
     }
-    aa_image img;
-    if (aa_image_alloc(&img, w, h, 3))
+    aa_image img, ref;
+    aa_job job[2];
+    if (aa_image_alloc(&img, w, h, 3) || aa_image_alloc(&ref, w, h, 3))
         return 3;
-    double *t = malloc((size_t)reps * sizeof *t);
-    printf("%s %dx%d %s, median of %d renders (min max), one untimed init\n", pattern, w, h,
-           filter, reps);
-    char tbuf[64];
-    snprintf(tbuf, sizeof tbuf, "%s", threads);
-    for (char *ts = strtok(tbuf, ","); ts; ts = strtok(NULL, ",")) {
-        int nt = atoi(ts);
-        double point = 0;
-        aa_job job;
-        if (nt < 1 || aa_job_init(&job, scene, w, h, 0, 0, 0, &f, 1, nt))
+    for (int t = 0; t < 2; t++)
+        if (aa_job_init(&job[t], scene, w, h, 0, 0, 0, &f, 1, t + 1))
             return 2;
-        for (size_t k = 0; k < nspecs; k++) {
-            aa_spec m;
-            aa_counters c;
-            if (aa_method_parse(specs[k], &f, &m)) {
-                printf("  %-28s refused: %s\n", specs[k], aa_last_error());
-                continue;
-            }
-            if (aa_method_run(&m, &job, reps, &img, &c, t)) {
-                printf("  %-28s failed: %s\n", specs[k], aa_last_error());
-                continue;
-            }
-            qsort(t, (size_t)reps, sizeof *t, cmp);
-            double med = t[reps / 2];
-            if (!strcmp(specs[k], "point"))
-                point = med;
-            printf("  %-28s %d thr %9.3f ms (%.3f %.3f) %7.2f ns/px %7.2f ns/sample  "
-                   "expensive %5.1f%%",
-                   specs[k], nt, med * 1e3, t[0] * 1e3, t[reps - 1] * 1e3,
-                   med * 1e9 / ((double)w * h), c.samples ? med * 1e9 / (double)c.samples : 0.0,
-                   100.0 * (double)c.expensive_pixels / ((double)w * h));
-            if (point > 0 && strcmp(specs[k], "point"))
-                printf("  %6.2fx point", med / point);
-            printf("\n");
-            fflush(stdout);
+    aa_truth_stats tstats;
+    if (aa_truth_render(job[1].placed, &f, 2, &ref, NULL, &tstats))
+        return 3;
+    double *t = malloc((size_t)reps * sizeof *t), *t2 = malloc((size_t)reps * sizeof *t2);
+    memset(img.v, 0, (size_t)w * h * 3 * sizeof *img.v); /* page faults are no method's cost */
+    row rows[MAXSPECS] = {{0}};
+    long base_kb = mw ? child_peak_kb("-", pattern, msize, filter) : 0;
+    double image_mb = (double)mw * mh * 3 * sizeof(double) / 1048576.0;
+
+    for (size_t k = 0; k < nspecs; k++) {
+        row *r = &rows[k];
+        r->spec = specs[k];
+        r->ok = 1;
+        if (time_spec2(r->spec, job, reps, &img, t, t2)) {
+            snprintf(r->note, sizeof r->note, "%s", aa_last_error());
+            r->ok = 0;
+        } else {
+            r->med[0] = median(t, reps);
+            r->med[1] = median(t2, reps);
         }
-        aa_job_free(&job);
+        if (!r->ok)
+            continue;
+        aa_metrics m;
+        if (is_reference(r->spec))
+            r->err = tstats.max_bound;
+        else if (!aa_metrics_compute(&ref, &img, NULL, &m))
+            r->err = m.max_err;
+        if (mw) {
+            long kb = child_peak_kb(r->spec, pattern, msize, filter);
+            r->extra_mb = kb < 0 || base_kb < 0 ? NAN : (double)(kb - base_kb) / 1024.0;
+            r->total_ratio = (image_mb + r->extra_mb) / image_mb;
+        }
+    }
+
+    const row *pt = NULL;
+    for (size_t k = 0; k < nspecs; k++)
+        if (!strcmp(rows[k].spec, "point") && rows[k].ok)
+            pt = &rows[k];
+    printf("%s %dx%d %s: median of %d renders, one untimed init; max error against the "
+           "reference\n(for the reference, its error bound); peak memory of one render at "
+           "%s, 2 threads,\nbeyond the %.0f MB output image (baseline: a child that only "
+           "allocates it)\n\n",
+           pattern, w, h, filter, reps, mw ? msize : "(not measured)", image_mb);
+    printf("%-30s %10s %10s %10s %8s %8s %7s %10s %8s\n", "method", "max error", "1 thr ms",
+           "2 thr ms", "/point 1", "/point 2", "2t/1t", "extra MB", "tot/img");
+    for (size_t k = 0; k < nspecs; k++) {
+        const row *r = &rows[k];
+        if (!r->ok) {
+            printf("%-30s refused or failed: %s\n", r->spec, r->note);
+            continue;
+        }
+        printf("%-30s %10.2e %10.3f %10.3f", r->spec, r->err, r->med[0] * 1e3,
+               r->med[1] * 1e3);
+        if (pt)
+            printf(" %8.2f %8.2f", r->med[0] / pt->med[0], r->med[1] / pt->med[1]);
+        else
+            printf(" %8s %8s", "-", "-");
+        printf(" %7.2f", r->med[0] / r->med[1]);
+        if (mw)
+            printf(" %10.1f %8.3f", r->extra_mb, r->total_ratio);
+        printf("\n");
+    }
+
+    /* the ratios the targets name */
+    const row *area = NULL;
+    for (size_t k = 0; k < nspecs; k++)
+        if (!strcmp(rows[k].spec, "area") && rows[k].ok)
+            area = &rows[k];
+    if (area) {
+        printf("\nratios (this run's medians; 1 thread, 2 threads):\n");
+        if (pt)
+            printf("  %-40s %6.2f %6.2f   target <= 1.5: %s\n", "area / point",
+                   area->med[0] / pt->med[0], area->med[1] / pt->med[1],
+                   area->med[0] / pt->med[0] <= 1.5 && area->med[1] / pt->med[1] <= 1.5
+                       ? "met" : "NOT met");
+        for (size_t k = 0; k < nspecs; k++) {
+            const row *r = &rows[k];
+            if (!r->ok || (strncmp(r->spec, "freetype", 8) && strncmp(r->spec, "stb", 3) &&
+                           strncmp(r->spec, "cairo", 5)))
+                continue;
+            char name[128];
+            snprintf(name, sizeof name, "area / %s", r->spec);
+            double er = area->err > 0 ? r->err / area->err : INFINITY;
+            printf("  %-40s %6.2f %6.2f   its error / area's: %.1e  (faster and >= 1e6: "
+                   "%s)\n",
+                   name, area->med[0] / r->med[0], area->med[1] / r->med[1], er,
+                   area->med[0] < r->med[0] && area->med[1] < r->med[1] && er >= 1e6
+                       ? "met" : "not met");
+        }
+        for (size_t k = 0; k < nspecs && pt; k++) {
+            const row *r = &rows[k];
+            if (!r->ok || !(!strcmp(r->spec, "jitter:spp=16") ||
+                            !strcmp(r->spec, "supersample:n=4") || is_reference(r->spec)))
+                continue;
+            char name[128];
+            snprintf(name, sizeof name, "%s / point", r->spec);
+            printf("  %-40s %6.2f %6.2f", name, r->med[0] / pt->med[0],
+                   r->med[1] / pt->med[1]);
+            if (!strcmp(r->spec, "jitter:spp=16"))
+                printf("   target <= 8: %s", r->med[0] / pt->med[0] <= 8 &&
+                                                     r->med[1] / pt->med[1] <= 8
+                                                 ? "met" : "NOT met");
+            printf("\n");
+        }
+        printf("\n2 threads over 1 (target >= 1.7 for area, point, jitter:spp=16, "
+               "reference):\n");
+        for (size_t k = 0; k < nspecs; k++) {
+            const row *r = &rows[k];
+            if (r->ok && (!strcmp(r->spec, "area") || !strcmp(r->spec, "point") ||
+                          !strcmp(r->spec, "jitter:spp=16") || is_reference(r->spec)))
+                printf("  %-40s %6.2f   %s\n", r->spec, r->med[0] / r->med[1],
+                       r->med[0] / r->med[1] >= 1.7 ? "met" : "NOT met");
+        }
+        if (mw) {
+            printf("\npeak memory at %s (target: total <= 2 x image + O(width) per "
+                   "thread):\n", msize);
+            for (size_t k = 0; k < nspecs; k++) {
+                const row *r = &rows[k];
+                if (r->ok)
+                    printf("  %-40s %8.1f MB extra, %.3f x image   %s\n", r->spec,
+                           r->extra_mb, r->total_ratio,
+                           r->total_ratio <= 2.0 ? "met" : "NOT met");
+            }
+        }
     }
     free(t);
+    free(t2);
+    for (int th = 0; th < 2; th++)
+        aa_job_free(&job[th]);
     aa_image_free(&img);
+    aa_image_free(&ref);
     aa_scene_free(scene);
     return 0;
 }

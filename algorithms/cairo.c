@@ -1,0 +1,206 @@
+/*
+ * cairo.c: Cairo's image-surface fill as a peer (cairo_fill on an A8 image
+ * surface, Cairo 1.16's image backend and its scan converters).
+ *
+ * The scene's one layer is one Cairo path: lines as line_to, each quadratic
+ * arc as the cubic Bezier that is the same curve (degree elevation, exact:
+ * control points p0 + 2/3 (c - p0) and p1 + 2/3 (c - p1)), every path
+ * closed.  Cairo flattens curves to `tolerance` (px, Cairo's default 0.1)
+ * and converts the polygon to coverage with the scan converter `aa` selects
+ * (CAIRO_ANTIALIAS_BEST, GOOD or FAST: Cairo chooses the grid of each;
+ * 1.16's image backend gives BEST and GOOD the same image on crow); the
+ * A8 surface keeps coverage as 8 bits.  The fill rule is the layer's
+ * (CAIRO_FILL_RULE_WINDING or EVEN_ODD).  Our image receives alpha / 255,
+ * mixed between the background and the layer's grey (peer.h).
+ *
+ * Tiles: bands of BAND rows, each filled into its thread's BAND x W A8
+ * surface through a translation, so memory is O(width) per thread and bands
+ * run in parallel; the path is built once in init and appended per band.
+ * A row's coverage does not depend on its band: Cairo's converters work row
+ * by row (the translation is by whole pixels, exact in its 24.8 fixed
+ * point).
+ *
+ * Limits: grey scenes of at most one layer and the box filter only; 8-bit
+ * coverage (up to 1/510 from rounding); positions in 24.8 fixed point
+ * (1/256 px) and coordinates within Cairo's fixed-point range (about
+ * 2^23 px, larger scenes are refused); curves flattened; fast (no
+ * antialiasing) is point sampling by Cairo's own rule.
+ */
+#include "methods.h"
+#include "peer.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cairo.h>
+
+#define BAND 64 /* rows per band */
+#define CAIRO_MAX_COORD 4194304.0 /* px */
+
+enum { AA, TOLERANCE };
+enum { AA_BEST, AA_GOOD, AA_FAST };
+
+static const aa_param cairo_params[] = {
+    {"aa", AA_PARAM_CHOICE, AA_BEST, 0, 0, 0, "best|good|fast",
+     "Cairo's antialias mode (CAIRO_ANTIALIAS_BEST, GOOD, FAST)"},
+    {"tolerance", AA_PARAM_REAL, 0.1, 0.0, 100.0, 1, NULL,
+     "curve flattening tolerance in pixels (Cairo's default 0.1)"},
+    {0}};
+
+typedef struct cairo_state {
+    aa_peer_scene ps;
+    cairo_path_t *path;
+    cairo_surface_t **surf; /* one BAND x W A8 surface per thread */
+    int nsurf;
+    double lut[256];
+} cairo_state;
+
+static int cairo_check(const double *p, const aa_filter *f)
+{
+    (void)p;
+    return aa_peer_check_filter("cairo", f);
+}
+
+static void cairo_release(void *state)
+{
+    cairo_state *s = state;
+    for (int k = 0; k < s->nsurf; k++)
+        if (s->surf[k])
+            cairo_surface_destroy(s->surf[k]);
+    free(s->surf);
+    if (s->path)
+        cairo_path_destroy(s->path);
+    s->surf = NULL, s->path = NULL, s->nsurf = 0;
+}
+
+/* The scene's path, built on a scratch context and copied out. */
+static int cairo_build_path(cairo_state *s, const aa_scene *scene)
+{
+    size_t nedges, ncont;
+    const aa_edge *e = aa_scene_edges(scene, &nedges);
+    const size_t *start = aa_scene_contours(scene, &ncont);
+    for (size_t k = 0; k < nedges; k++) {
+        const double c[6] = {e[k].x0, e[k].y0, e[k].cx, e[k].cy, e[k].x1, e[k].y1};
+        for (int q = 0; q < 6; q++)
+            if (!(fabs(c[q]) <= CAIRO_MAX_COORD))
+                return aa_fail(AA_EINVAL,
+                               "cairo: a coordinate of %.17g px is beyond the %.0f px that "
+                               "Cairo's 24.8 fixed point keeps",
+                               c[q], CAIRO_MAX_COORD);
+    }
+    cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
+    cairo_t *cr = cairo_create(scratch);
+    for (size_t c = 0; c < ncont; c++) {
+        if (start[c] == start[c + 1])
+            continue;
+        cairo_move_to(cr, e[start[c]].x0, e[start[c]].y0);
+        for (size_t k = start[c]; k < start[c + 1]; k++) {
+            const aa_edge *d = &e[k];
+            if (d->quad)
+                cairo_curve_to(cr, d->x0 + 2.0 / 3.0 * (d->cx - d->x0),
+                               d->y0 + 2.0 / 3.0 * (d->cy - d->y0),
+                               d->x1 + 2.0 / 3.0 * (d->cx - d->x1),
+                               d->y1 + 2.0 / 3.0 * (d->cy - d->y1), d->x1, d->y1);
+            else
+                cairo_line_to(cr, d->x1, d->y1);
+        }
+        cairo_close_path(cr);
+    }
+    s->path = cairo_copy_path(cr);
+    int st = cairo_status(cr) || !s->path || s->path->status
+                 ? aa_fail(AA_ENOMEM, "cairo: cannot build the path (%s)",
+                           cairo_status_to_string(cairo_status(cr)))
+                 : AA_OK;
+    cairo_destroy(cr);
+    cairo_surface_destroy(scratch);
+    return st;
+}
+
+static int cairo_init(void *state, const double *p, const aa_job *job)
+{
+    (void)p;
+    cairo_state *s = state;
+    int st = aa_peer_scene_read("cairo", job, &s->ps);
+    if (!st)
+        st = cairo_build_path(s, job->placed);
+    if (!st) {
+        s->nsurf = job->threads > 0 ? job->threads : 1;
+        s->surf = calloc((size_t)s->nsurf, sizeof *s->surf);
+        if (!s->surf)
+            st = aa_fail(AA_ENOMEM, "cairo: out of memory");
+        for (int k = 0; k < s->nsurf && !st; k++) {
+            s->surf[k] = cairo_image_surface_create(CAIRO_FORMAT_A8, job->w, BAND);
+            if (cairo_surface_status(s->surf[k]))
+                st = aa_fail(AA_ENOMEM, "cairo: cannot make a %dx%d A8 surface", job->w,
+                             BAND);
+        }
+    }
+    for (int k = 0; k < 256; k++)
+        s->lut[k] = aa_peer_mix(&s->ps, k / 255.0);
+    if (st)
+        cairo_release(s);
+    return st;
+}
+
+static int cairo_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                        aa_counters *counters)
+{
+    static const cairo_antialias_t modes[] = {CAIRO_ANTIALIAS_BEST, CAIRO_ANTIALIAS_GOOD,
+                                              CAIRO_ANTIALIAS_FAST};
+    cairo_state *s = state;
+    counters->samples = 0;
+    counters->expensive_pixels = 0;
+    int nbands = (job->h + BAND - 1) / BAND, status = AA_OK;
+#pragma omp parallel num_threads(s->nsurf)
+    {
+        cairo_surface_t *surf = s->surf[omp_get_thread_num()];
+#pragma omp for schedule(dynamic, 1)
+        for (int b = 0; b < nbands; b++) {
+            int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
+            if (!s->ps.layers) {
+                for (int j = y0; j < y0 + rows; j++)
+                    aa_peer_fill(out, j, 0, job->w, s->ps.bg);
+                continue;
+            }
+            cairo_surface_flush(surf);
+            unsigned char *data = cairo_image_surface_get_data(surf);
+            int stride = cairo_image_surface_get_stride(surf);
+            memset(data, 0, (size_t)stride * BAND);
+            cairo_surface_mark_dirty(surf);
+            cairo_t *cr = cairo_create(surf);
+            cairo_set_antialias(cr, modes[(int)p[AA]]);
+            cairo_set_tolerance(cr, p[TOLERANCE]);
+            cairo_set_fill_rule(cr, s->ps.rule == AA_FILL_EVENODD ? CAIRO_FILL_RULE_EVEN_ODD
+                                                                  : CAIRO_FILL_RULE_WINDING);
+            cairo_translate(cr, 0.0, -(double)y0);
+            cairo_append_path(cr, s->path);
+            cairo_set_source_rgba(cr, 0, 0, 0, 1);
+            cairo_fill(cr);
+            if (cairo_status(cr)) {
+#pragma omp atomic write
+                status = AA_EFAIL;
+            }
+            cairo_destroy(cr);
+            cairo_surface_flush(surf);
+            for (int j = 0; j < rows; j++) {
+                const unsigned char *row = data + (size_t)j * stride;
+                double *px = aa_pixel(out, 0, y0 + j);
+                for (int i = 0; i < job->w; i++, px += 3)
+                    px[0] = px[1] = px[2] = s->lut[row[i]];
+            }
+        }
+    }
+    return status ? aa_fail(status, "cairo: cairo_fill failed") : AA_OK;
+}
+
+const aa_method_type aa_method_cairo = {
+    {"cairo", "peer: Cairo's A8 image-surface fill (8-bit coverage, curves flattened)",
+     cairo_params},
+    sizeof(cairo_state),
+    AA_METHOD_SOME_SCENES,
+    cairo_check,
+    cairo_init,
+    cairo_render,
+    cairo_release};

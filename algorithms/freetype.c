@@ -1,0 +1,260 @@
+/*
+ * freetype.c: FreeType's smooth rasterizer as a peer (FreeType 2,
+ * src/smooth/ftgrays.c, reached through FT_Outline_Render).
+ *
+ * The rasterizer follows the same idea as our area method and as Crow's
+ * "Left Areas - Right Areas = Area" (Crow 1976, ch. 3, fig. 3.13): every
+ * edge adds a signed `area` to the cells it crosses and a `cover` to the
+ * cell after, resolved in one sweep along the row.  It works in fixed point
+ * and flattens curves: the outline is given in 26.6 (positions rounded to
+ * 1/64 pixel), conic (quadratic) arcs are split into lines (ftgrays.c's
+ * gray_render_conic, by a deviation bound), and the coverage of a pixel is
+ * reported as 0 .. 255.  Our image receives coverage / 255 per pixel through
+ * the direct-rendering callback (FT_RASTER_FLAG_DIRECT, gray_spans), mixed
+ * between the background and the layer's grey.
+ *
+ * The outline is the placed scene's: one contour per path, lines as
+ * on-curve points, quadratic arcs as a conic control point
+ * (FT_CURVE_TAG_CONIC) and an on-curve end; the layer's even-odd rule sets
+ * FT_OUTLINE_EVEN_ODD_FILL.  It is built once in init.
+ *
+ * Tiles.  FreeType 2.12's cell pool is small and fixed; a band of rows that
+ * overflows it is halved in y, but a single row crossed by thousands of
+ * edges still overflows (Raster_Overflow; crow's default 96 arcs fit, 4000
+ * arcs 4096 px wide need tiles of 512 columns).  Its own
+ * documentation allows a clip box for direct rendering (FT_RASTER_FLAG_CLIP,
+ * clip_box in integer pixels): the image is rendered in bands of BAND rows,
+ * each split into vertical tiles by halving its width on every overflow
+ * (the width that worked is remembered per band).  Cells left of a clip box
+ * carry their cover into it, so a pixel's coverage is the same in any tile:
+ * the image does not depend on the tiling or the thread count.  Bands run
+ * in parallel, one FT_Library per thread (FreeType's rule: a library is not
+ * shared between threads).
+ *
+ * Limits: grey scenes of at most one layer and the box filter only
+ * (peer.h); 8-bit coverage (an error of up to 1/510 from rounding alone);
+ * positions rounded to 1/64 px; arcs flattened; at most 32767 points and
+ * contours (FT_Outline counts in shorts) and coordinates within 2^20 px:
+ * larger scenes are refused.  Nonzero coverage is |accumulated area|
+ * clamped to 1, which differs from exact nonzero coverage where contours
+ * overlap inside a pixel.
+ */
+#include "methods.h"
+#include "peer.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+
+#include <ft2build.h>
+#include FT_FREETYPE_H
+#include FT_OUTLINE_H
+
+#define BAND 32            /* rows per parallel band */
+#define FT_MAX_COORD 1048576.0 /* px */
+
+typedef struct ft_state {
+    aa_peer_scene ps;
+    FT_Outline outline;
+    FT_Library *lib; /* one per thread */
+    int nlib;
+    int *strip; /* per band: tile width that rendered without overflow */
+    int nbands;
+} ft_state;
+
+typedef struct ft_target {
+    aa_image *out;
+    const aa_peer_scene *ps;
+    int x0, x1, y0, y1; /* the tile: pixels [x0, x1) x [y0, y1) */
+} ft_target;
+
+static const aa_param ft_params[] = {{0}};
+
+static int ft_check(const double *p, const aa_filter *f)
+{
+    (void)p;
+    return aa_peer_check_filter("freetype", f);
+}
+
+static void ft_release(void *state)
+{
+    ft_state *s = state;
+    for (int k = 0; k < s->nlib; k++)
+        if (s->lib[k])
+            FT_Done_FreeType(s->lib[k]);
+    free(s->lib);
+    free(s->strip);
+    free(s->outline.points);
+    free(s->outline.tags);
+    free(s->outline.contours);
+    s->lib = NULL, s->strip = NULL, s->nlib = 0;
+    s->outline.points = NULL, s->outline.tags = NULL, s->outline.contours = NULL;
+}
+
+static FT_Pos to26_6(double v) { return (FT_Pos)lround(v * 64.0); }
+
+static int ft_build_outline(ft_state *s, const aa_scene *scene)
+{
+    size_t nedges, ncont;
+    const aa_edge *e = aa_scene_edges(scene, &nedges);
+    const size_t *start = aa_scene_contours(scene, &ncont);
+    /* at most: a start point, then a control and an end per edge */
+    size_t cap = ncont + 2 * nedges;
+    if (ncont > 32767 || cap > 32767)
+        return aa_fail(AA_EINVAL,
+                       "freetype: the scene has %zu paths and up to %zu outline points; "
+                       "FreeType's outline takes at most 32767 of each",
+                       ncont, cap);
+    for (size_t k = 0; k < nedges; k++) {
+        const double c[6] = {e[k].x0, e[k].y0, e[k].cx, e[k].cy, e[k].x1, e[k].y1};
+        for (int q = 0; q < 6; q++)
+            if (!(fabs(c[q]) <= FT_MAX_COORD))
+                return aa_fail(AA_EINVAL,
+                               "freetype: a coordinate of %.17g px is beyond the %.0f px "
+                               "that 26.6 fixed point keeps here",
+                               c[q], FT_MAX_COORD);
+    }
+    FT_Outline *o = &s->outline;
+    o->points = malloc((cap ? cap : 1) * sizeof *o->points);
+    o->tags = malloc(cap ? cap : 1);
+    o->contours = malloc((ncont ? ncont : 1) * sizeof *o->contours);
+    if (!o->points || !o->tags || !o->contours)
+        return aa_fail(AA_ENOMEM, "freetype: out of memory for the outline");
+    int n = 0, nc = 0;
+    for (size_t c = 0; c < ncont; c++) {
+        size_t a = start[c], b = start[c + 1];
+        if (a == b)
+            continue;
+        int first = n;
+        o->points[n] = (FT_Vector){to26_6(e[a].x0), to26_6(e[a].y0)};
+        o->tags[n++] = FT_CURVE_TAG_ON;
+        for (size_t k = a; k < b; k++) {
+            if (e[k].quad) {
+                o->points[n] = (FT_Vector){to26_6(e[k].cx), to26_6(e[k].cy)};
+                o->tags[n++] = FT_CURVE_TAG_CONIC;
+            }
+            FT_Vector end = {to26_6(e[k].x1), to26_6(e[k].y1)};
+            /* the closing point is the first point again: the contour closes
+             * itself */
+            if (k + 1 == b && end.x == o->points[first].x && end.y == o->points[first].y)
+                break;
+            o->points[n] = end;
+            o->tags[n++] = FT_CURVE_TAG_ON;
+        }
+        o->contours[nc++] = (short)(n - 1);
+    }
+    o->n_points = (short)n;
+    o->n_contours = (short)nc;
+    o->flags = s->ps.rule == AA_FILL_EVENODD ? FT_OUTLINE_EVEN_ODD_FILL : FT_OUTLINE_NONE;
+    return AA_OK;
+}
+
+static int ft_init(void *state, const double *p, const aa_job *job)
+{
+    (void)p;
+    ft_state *s = state;
+    int st = aa_peer_scene_read("freetype", job, &s->ps);
+    if (!st)
+        st = ft_build_outline(s, job->placed);
+    if (!st) {
+        s->nlib = job->threads > 0 ? job->threads : 1;
+        s->nbands = (job->h + BAND - 1) / BAND;
+        s->lib = calloc((size_t)s->nlib, sizeof *s->lib);
+        s->strip = malloc((size_t)s->nbands * sizeof *s->strip);
+        if (!s->lib || !s->strip)
+            st = aa_fail(AA_ENOMEM, "freetype: out of memory");
+        for (int k = 0; k < s->nbands && !st; k++)
+            s->strip[k] = job->w;
+        for (int k = 0; k < s->nlib && !st; k++)
+            if (FT_Init_FreeType(&s->lib[k]))
+                st = aa_fail(AA_EFAIL, "freetype: FT_Init_FreeType failed");
+    }
+    if (st)
+        ft_release(s);
+    return st;
+}
+
+static void ft_spans(int y, int count, const FT_Span *spans, void *user)
+{
+    const ft_target *t = user;
+    if (y < t->y0 || y >= t->y1)
+        return;
+    for (int k = 0; k < count; k++) {
+        int i0 = spans[k].x, i1 = spans[k].x + spans[k].len;
+        if (i0 < t->x0)
+            i0 = t->x0;
+        if (i1 > t->x1)
+            i1 = t->x1;
+        if (i0 < i1)
+            aa_peer_fill(t->out, y, i0, i1, aa_peer_mix(t->ps, spans[k].coverage / 255.0));
+    }
+}
+
+/* Render pixels [x0, x1) x [y0, y1) in tiles of at most *width columns,
+ * halving *width on overflow. */
+static int ft_band(ft_state *s, FT_Library lib, aa_image *out, int y0, int y1, int *width)
+{
+    int x0 = 0;
+    while (x0 < out->w) {
+        int x1 = x0 + *width < out->w ? x0 + *width : out->w;
+        ft_target t = {out, &s->ps, x0, x1, y0, y1};
+        FT_Raster_Params rp = {0};
+        rp.source = &s->outline;
+        rp.flags = FT_RASTER_FLAG_AA | FT_RASTER_FLAG_DIRECT | FT_RASTER_FLAG_CLIP;
+        rp.gray_spans = ft_spans;
+        rp.user = &t;
+        rp.clip_box = (FT_BBox){x0, y0, x1, y1};
+        FT_Error err = FT_Outline_Render(lib, &s->outline, &rp);
+        if (err == FT_Err_Raster_Overflow && *width > 1) {
+            *width = (*width + 1) / 2; /* rows already swept are rewritten alike */
+            continue;
+        }
+        if (err)
+            return err == FT_Err_Raster_Overflow ? AA_EINVAL : AA_EFAIL;
+        x0 = x1;
+    }
+    return AA_OK;
+}
+
+static int ft_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                     aa_counters *counters)
+{
+    (void)p;
+    ft_state *s = state;
+    int status = AA_OK;
+    counters->samples = 0;
+    counters->expensive_pixels = 0;
+#pragma omp parallel num_threads(s->nlib)
+    {
+        FT_Library lib = s->lib[omp_get_thread_num()];
+#pragma omp for schedule(dynamic, 1)
+        for (int b = 0; b < s->nbands; b++) {
+            int y0 = b * BAND, y1 = y0 + BAND < job->h ? y0 + BAND : job->h;
+            for (int j = y0; j < y1; j++)
+                aa_peer_fill(out, j, 0, job->w, s->ps.bg);
+            if (!s->ps.layers || !s->outline.n_points)
+                continue;
+            int st = ft_band(s, lib, out, y0, y1, &s->strip[b]);
+            if (st) {
+#pragma omp atomic write
+                status = st;
+            }
+        }
+    }
+    if (status == AA_EINVAL)
+        return aa_fail(AA_EINVAL, "freetype: the rasterizer's cell pool overflows even on "
+                                  "one-pixel-wide tiles: too many edges in one pixel column");
+    if (status)
+        return aa_fail(status, "freetype: FT_Outline_Render failed");
+    return AA_OK;
+}
+
+const aa_method_type aa_method_freetype = {
+    {"freetype", "peer: FreeType's smooth rasterizer (8-bit coverage, 26.6 outline)",
+     ft_params},
+    sizeof(ft_state),
+    AA_METHOD_SOME_SCENES,
+    ft_check,
+    ft_init,
+    ft_render,
+    ft_release};

@@ -1,0 +1,36 @@
+/*
+ * peer.h: what the peer rasterizers (freetype.c, stb.c, cairo.c) share.
+ *
+ * The peers are other libraries' coverage rasterizers given the same placed
+ * scene as our methods.  Each produces a coverage a in [0, 1] per pixel for
+ * one filled layer; the pixel is then (1 - a) background + a colour, so a
+ * coverage of exactly 0 or 1 gives the colour exactly.  They take grey
+ * scenes of at most one layer and the box filter only: anything else is
+ * refused with a message (status AA_EINVAL, exit status 2 from the command).
+ */
+#ifndef AA_PEER_H
+#define AA_PEER_H
+
+#include "aabench.h"
+
+/* The one layer of a peer's scene. */
+typedef struct aa_peer_scene {
+    double bg, fg;     /* grey levels of the background and of the layer */
+    int layers;        /* 0 (background only) or 1 */
+    aa_fill_rule rule; /* the layer's rule (nonzero if no layer) */
+} aa_peer_scene;
+
+/* Refuse a filter other than box (`name` is the method, for the message). */
+int aa_peer_check_filter(const char *name, const aa_filter *f);
+/* Read the placed scene of the job, refusing colour scenes and several
+ * layers. */
+int aa_peer_scene_read(const char *name, const aa_job *job, aa_peer_scene *ps);
+/* The grey value of coverage a. */
+static inline double aa_peer_mix(const aa_peer_scene *ps, double a)
+{
+    return (1.0 - a) * ps->bg + a * ps->fg;
+}
+/* Fill pixels [i0, i1) of row j of a W x H x 3 image with grey v. */
+void aa_peer_fill(aa_image *out, int j, int i0, int i1, double v);
+
+#endif

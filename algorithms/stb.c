@@ -1,0 +1,267 @@
+/*
+ * stb.c: stb_truetype's exact-area rasterizer as a peer (Sean Barrett's
+ * stb_truetype.h, rasterizer version 2, reached through stbtt_Rasterize).
+ *
+ * Version 2 flattens curves into lines (stbtt_FlattenCurves: a quadratic is
+ * halved until its midpoint lies within `flatness` pixels of its chord's),
+ * then computes, for every pixel, the signed area to the right of each
+ * line inside it, in single precision, and writes |sum| clamped to 1 as an
+ * 8-bit coverage ("exact-area" in its own words: exact for the polygon
+ * under its rule).  Our image receives coverage / 255, mixed between the
+ * background and the layer's grey (peer.h).  The parameter `flatness` (px,
+ * default 0.35, stb_truetype's own default for glyphs) is passed through.
+ *
+ * The rule.  stb has no even-odd rule: the coverage is the |accumulated
+ * signed area|, a nonzero-like rule.  It is the intended coverage when the
+ * winding number takes only the values 0 and one sign (every filled region
+ * wound once, the same way): then nonzero and even-odd agree.  For an
+ * even-odd layer init checks this exactly: between consecutive critical
+ * heights (vertices, ends of y-monotone pieces, and the heights where two
+ * pieces meet, aa_piece_meet) the order of the pieces along x does not
+ * change, so one line through the middle of each such slab meets every
+ * region; the winding numbers along those lines must stay in {0, 1} or in
+ * {0, -1}.  Crow passes: each white band is its own closed path, all wound
+ * alike.  Other even-odd scenes are refused.
+ *
+ * Tiles.  stbtt_Rasterize writes a whole bitmap; the image is rendered in
+ * bands of BAND rows (y_off), each flattened and rasterized on its own into
+ * its thread's BAND x W bytes, so memory is O(width) per thread and bands
+ * run in parallel.  Rows do not depend on the band they are in.
+ *
+ * Limits: grey scenes of at most one layer and the box filter only; 8-bit
+ * coverage (up to 1/510 from rounding); single-precision geometry (at
+ * 4096 px a coordinate's last bit is 2.4e-4 px); curves flattened; nonzero
+ * coverage is |accumulated area| clamped to 1, which under-estimates where
+ * opposite windings meet in a pixel and over-estimates where windings of 2
+ * do (stb_truetype's own documentation says so); even-odd scenes only as
+ * above.
+ */
+#include "methods.h"
+#include "peer.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Vertices in float (stb_truetype allows predefining its vertex type), so
+ * positions are not rounded to 16-bit integers. */
+#define stbtt_vertex_type float
+typedef struct {
+    stbtt_vertex_type x, y, cx, cy, cx1, cy1;
+    unsigned char type, padding;
+} stbtt_vertex;
+#define stbtt_vertex stbtt_vertex
+
+#define STBTT_STATIC
+#define STB_TRUETYPE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wstrict-prototypes"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#include <stb_truetype.h>
+#pragma GCC diagnostic pop
+
+#define BAND 64 /* rows per band */
+
+enum { FLATNESS };
+
+static const aa_param stb_params[] = {
+    {"flatness", AA_PARAM_REAL, 0.35, 0.0, 100.0, 1, NULL,
+     "curve flattening tolerance in pixels (stb_truetype's default 0.35)"},
+    {0}};
+
+typedef struct stb_state {
+    aa_peer_scene ps;
+    stbtt_vertex *v;
+    int nv;
+    unsigned char **buf; /* one BAND x W bitmap per thread */
+    int nbuf;
+    double lut[256];
+} stb_state;
+
+static int stb_check(const double *p, const aa_filter *f)
+{
+    (void)p;
+    return aa_peer_check_filter("stb", f);
+}
+
+static void stb_release(void *state)
+{
+    stb_state *s = state;
+    for (int k = 0; k < s->nbuf; k++)
+        free(s->buf[k]);
+    free(s->buf);
+    free(s->v);
+    s->buf = NULL, s->v = NULL, s->nbuf = 0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static int cmp_piece_xmin(const void *a, const void *b)
+{
+    const aa_piece *p = *(const aa_piece *const *)a, *q = *(const aa_piece *const *)b;
+    return p->xmin < q->xmin ? -1 : p->xmin > q->xmin;
+}
+
+/* Even-odd by nonzero: the winding numbers must stay within {0, s} for one
+ * sign s (see the header).  AA_OK if so. */
+static int stb_check_windings(const aa_scene *scene)
+{
+    size_t np;
+    const aa_piece *pc = aa_scene_pieces(scene, &np);
+    if (!np)
+        return AA_OK;
+    size_t cap = 2 * np + 16, n = 0;
+    double *ys = malloc(cap * sizeof *ys);
+    const aa_piece **by_x = malloc(np * sizeof *by_x);
+    aa_crossing *cross = malloc((np + 1) * sizeof *cross);
+    int st = (!ys || !by_x || !cross) ? aa_fail(AA_ENOMEM, "stb: out of memory") : AA_OK;
+    for (size_t k = 0; k < np && !st; k++) {
+        ys[n++] = pc[k].y0;
+        ys[n++] = pc[k].y1;
+        by_x[k] = &pc[k];
+    }
+    if (!st)
+        qsort(by_x, np, sizeof *by_x, cmp_piece_xmin);
+    /* meeting heights of pieces whose extents overlap */
+    for (size_t a = 0; a < np && !st; a++)
+        for (size_t b = a + 1; b < np && by_x[b]->xmin <= by_x[a]->xmax && !st; b++) {
+            const aa_piece *p = by_x[a], *q = by_x[b];
+            double ya = fmax(p->y0, q->y0), yb = fmin(p->y1, q->y1), m[4];
+            if (!(ya < yb))
+                continue;
+            int nm = aa_piece_meet(p, q, ya, yb, m, 4);
+            for (int k = 0; k < nm && !st; k++) {
+                if (n == cap) {
+                    double *t = realloc(ys, 2 * cap * sizeof *ys);
+                    if (!t) {
+                        st = aa_fail(AA_ENOMEM, "stb: out of memory");
+                        break;
+                    }
+                    ys = t, cap *= 2;
+                }
+                ys[n++] = m[k];
+            }
+        }
+    if (!st)
+        qsort(ys, n, sizeof *ys, cmp_double);
+    int seen = 0; /* the sign of the nonzero windings met */
+    for (size_t k = 0; k + 1 < n && !st; k++) {
+        if (!(ys[k] < ys[k + 1]))
+            continue;
+        double y = 0.5 * (ys[k] + ys[k + 1]);
+        size_t nc = aa_scene_crossings(scene, y, cross, np + 1);
+        int wind = 0;
+        for (size_t c = 0; c < nc && !st; c++) {
+            wind += cross[c].dir;
+            if (wind == 0)
+                continue;
+            if (wind > 1 || wind < -1 || (seen && wind != seen))
+                st = aa_fail(AA_EINVAL,
+                             "stb fills by nonzero only: this even-odd scene has winding "
+                             "numbers %d and %d (at y = %.17g px), so nonzero would not give "
+                             "its coverage; it accepts even-odd scenes whose filled regions "
+                             "are each wound once, all the same way",
+                             seen ? seen : wind, wind, y);
+            seen = wind;
+        }
+    }
+    free(ys);
+    free(by_x);
+    free(cross);
+    return st;
+}
+
+static int stb_init(void *state, const double *p, const aa_job *job)
+{
+    (void)p;
+    stb_state *s = state;
+    int st = aa_peer_scene_read("stb", job, &s->ps);
+    if (!st && s->ps.layers && s->ps.rule == AA_FILL_EVENODD)
+        st = stb_check_windings(job->placed);
+    size_t nedges, ncont;
+    const aa_edge *e = aa_scene_edges(job->placed, &nedges);
+    const size_t *start = aa_scene_contours(job->placed, &ncont);
+    if (!st && ncont + nedges > (size_t)INT32_MAX / 2)
+        st = aa_fail(AA_EINVAL, "stb: %zu edges are more than stbtt_Rasterize counts", nedges);
+    if (!st) {
+        s->v = malloc((ncont + nedges + 1) * sizeof *s->v);
+        s->nbuf = job->threads > 0 ? job->threads : 1;
+        s->buf = calloc((size_t)s->nbuf, sizeof *s->buf);
+        if (!s->v || !s->buf)
+            st = aa_fail(AA_ENOMEM, "stb: out of memory");
+        for (int k = 0; k < s->nbuf && !st; k++)
+            if (!(s->buf[k] = malloc((size_t)BAND * (size_t)job->w)))
+                st = aa_fail(AA_ENOMEM, "stb: out of memory");
+    }
+    for (size_t c = 0; c < ncont && !st; c++) {
+        if (start[c] == start[c + 1])
+            continue;
+        stbtt_vertex *v = &s->v[s->nv++];
+        memset(v, 0, sizeof *v);
+        v->type = STBTT_vmove;
+        v->x = (float)e[start[c]].x0, v->y = (float)e[start[c]].y0;
+        for (size_t k = start[c]; k < start[c + 1]; k++) {
+            v = &s->v[s->nv++];
+            memset(v, 0, sizeof *v);
+            v->type = e[k].quad ? STBTT_vcurve : STBTT_vline;
+            v->x = (float)e[k].x1, v->y = (float)e[k].y1;
+            v->cx = (float)e[k].cx, v->cy = (float)e[k].cy;
+        }
+    }
+    for (int k = 0; k < 256; k++)
+        s->lut[k] = aa_peer_mix(&s->ps, k / 255.0);
+    if (st)
+        stb_release(s);
+    return st;
+}
+
+static int stb_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                      aa_counters *counters)
+{
+    stb_state *s = state;
+    counters->samples = 0;
+    counters->expensive_pixels = 0;
+    int nbands = (job->h + BAND - 1) / BAND;
+#pragma omp parallel num_threads(s->nbuf)
+    {
+        unsigned char *buf = s->buf[omp_get_thread_num()];
+#pragma omp for schedule(dynamic, 1)
+        for (int b = 0; b < nbands; b++) {
+            int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
+            if (!s->ps.layers || !s->nv) {
+                for (int j = y0; j < y0 + rows; j++)
+                    aa_peer_fill(out, j, 0, job->w, s->ps.bg);
+                continue;
+            }
+            memset(buf, 0, (size_t)rows * (size_t)job->w);
+            stbtt__bitmap bm = {job->w, rows, job->w, buf};
+            stbtt_Rasterize(&bm, (float)p[FLATNESS], s->v, s->nv, 1.0f, 1.0f, 0.0f, 0.0f, 0,
+                            y0, 0, NULL);
+            for (int j = 0; j < rows; j++) {
+                const unsigned char *row = buf + (size_t)j * job->w;
+                double *px = aa_pixel(out, 0, y0 + j);
+                for (int i = 0; i < job->w; i++, px += 3)
+                    px[0] = px[1] = px[2] = s->lut[row[i]];
+            }
+        }
+    }
+    return AA_OK;
+}
+
+const aa_method_type aa_method_stb = {
+    {"stb", "peer: stb_truetype's exact-area rasterizer (8-bit coverage, curves flattened)",
+     stb_params},
+    sizeof(stb_state),
+    AA_METHOD_SOME_SCENES,
+    stb_check,
+    stb_init,
+    stb_render,
+    stb_release};

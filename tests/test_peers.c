@@ -1,0 +1,364 @@
+/*
+ * test_peers.c: the peer rasterizers (freetype, stb, cairo) on scenes whose
+ * coverage is known in closed form, and their refusals.
+ *
+ * Known answers, independent of the code under test:
+ *  - an axis-aligned rectangle: a pixel's coverage is the overlap of two
+ *    intervals in x times that in y;
+ *  - a half-plane x < a + b y: a pixel's coverage is
+ *    (F(a + b (j+1) - i) - F(a + b j - i)) / b with F the antiderivative of
+ *    clamp(t, 0, 1) (F = 0, t^2/2, t - 1/2 on t < 0, [0, 1], > 1);
+ *  - one crow band (two parabolic arcs): its area is g0 - (c0 - c1)/12
+ *    (patterns/crow.c, integral of the difference of the two parabolas),
+ *    so the image's sum is W H times that.
+ * Every vertex lies on a 1/64 px grid, so FreeType's 26.6 and Cairo's 24.8
+ * fixed point and stb's floats hold it exactly; the images are powers of
+ * two, so placing the scene (u = W x) is exact too.
+ *
+ * Tolerances are each peer's own quantisation:
+ *  - 8-bit coverage: stb rounds to the nearest 1/255 (error <= 0.5/255);
+ *    FreeType takes floor(256 a) clamped to 255 and we divide by 255
+ *    (error <= 1/255); Cairo's A8 surface rounds its 8-bit alpha (1/255);
+ *  - positions: FreeType computes cell crossings in 1/256 px (PIXEL_BITS 8),
+ *    another 1/256 per edge pixel: 2/255 in all; Cairo's "best" and "good"
+ *    scan converters sample sub-rows (tor scan converter, a grid of 15 and
+ *    4 rows in 1.16) and their polygon areas are exact on axis-aligned
+ *    edges on that grid (rectangle: 1/255); a sloped edge of slope b
+ *    (dx/dy) is integrated by sub-rows, an error up to b/rows per pixel.
+ * The crow band's sum carries flattening: each peer's bound is its
+ * tolerance (px) times the arcs' length (2 arcs of about H px) over W H.
+ */
+#include "aabench.h"
+
+#include <fcntl.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#define W 16
+#define H 16
+
+typedef struct peer_case {
+    const char *spec;
+    double tol_rect, tol_slope; /* max error: rectangle, half-plane of slope 5/16 */
+    double flat;                /* flattening tolerance, px */
+} peer_case;
+
+static const peer_case cases[] = {
+    {"freetype", 1.0 / 255 + 1e-12, 2.0 / 255 + 1e-12, 0.25},
+    {"stb", 0.5 / 255 + 1e-6, 0.5 / 255 + 1e-6, 0.35},
+    {"stb:flatness=0.01", 0.5 / 255 + 1e-6, 0.5 / 255 + 1e-6, 0.01},
+    {"cairo", 1.0 / 255 + 1e-12, 1.0 / 255 + 0.3125 / 15, 0.1},
+    {"cairo:aa=good", 1.0 / 255 + 1e-12, 1.0 / 255 + 0.3125 / 4, 0.1},
+    {"cairo:aa=good,tolerance=0.01", 1.0 / 255 + 1e-12, 1.0 / 255 + 0.3125 / 4, 0.01},
+};
+#define NCASES (sizeof cases / sizeof cases[0])
+
+/* A one-layer grey scene (white on black) of one closed polygon given in
+ * pixels of a W x H image (stored in pattern units). */
+static aa_scene *polygon(const double *xy, int n, aa_fill_rule rule)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, rule), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, xy[0] / W, xy[1] / H), AA_OK);
+    for (int k = 1; k < n; k++)
+        assert_int_equal(aa_scene_line_to(s, xy[2 * k] / W, xy[2 * k + 1] / H), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+/* Render a scene with a method spec; returns the status. */
+static int render(const char *spec, const aa_scene *scene, const char *filter, int w, int h,
+                  int threads, aa_image *out)
+{
+    aa_filter f;
+    aa_spec m;
+    aa_job job;
+    aa_counters c;
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    int st = aa_method_parse(spec, &f, &m);
+    if (st)
+        return st;
+    assert_int_equal(aa_job_init(&job, scene, w, h, 0, 0, 0, &f, 1, threads), AA_OK);
+    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
+    st = aa_method_run(&m, &job, 1, out, &c, NULL);
+    aa_job_free(&job);
+    if (st)
+        aa_image_free(out);
+    return st;
+}
+
+static double overlap(double a0, double a1, double b0, double b1)
+{
+    double lo = fmax(a0, b0), hi = fmin(a1, b1);
+    return hi > lo ? hi - lo : 0.0;
+}
+
+/* The largest error against want(i, j); every channel equal. */
+static double max_error(const aa_image *img, double (*want)(int, int))
+{
+    double worst = 0.0;
+    for (int j = 0; j < img->h; j++)
+        for (int i = 0; i < img->w; i++) {
+            const double *px = aa_pixel(img, i, j);
+            assert_true(px[0] == px[1] && px[1] == px[2]);
+            worst = fmax(worst, fabs(px[0] - want(i, j)));
+        }
+    return worst;
+}
+
+static const double RX0 = 2.25, RX1 = 7.625, RY0 = 1.5, RY1 = 5.125 + 8.0;
+
+static double rect_cover(int i, int j)
+{
+    return overlap(RX0, RX1, i, i + 1.0) * overlap(RY0, RY1, j, j + 1.0);
+}
+
+static void test_rectangle(void **state)
+{
+    (void)state;
+    const double xy[] = {RX0, RY0, RX1, RY0, RX1, RY1, RX0, RY1};
+    for (int rule = 0; rule < 2; rule++) {
+        aa_scene *s = polygon(xy, 4, (aa_fill_rule)rule);
+        for (size_t k = 0; k < NCASES; k++) {
+            aa_image img;
+            if (render(cases[k].spec, s, "box", W, H, 2, &img))
+                fail_msg("%s: %s", cases[k].spec, aa_last_error());
+            double e = max_error(&img, rect_cover);
+            print_message("rectangle %-30s rule %d: max error %.3e (bound %.3e)\n",
+                          cases[k].spec, rule, e, cases[k].tol_rect);
+            if (!(e <= cases[k].tol_rect))
+                fail_msg("%s: rectangle max error %.3e above %.3e", cases[k].spec, e,
+                         cases[k].tol_rect);
+            aa_image_free(&img);
+        }
+        aa_scene_free(s);
+    }
+}
+
+/* Half-plane x < A + B y, as a polygon reaching beyond the image. */
+static const double A = 3.5625, B = 0.3125;
+
+static double F(double t) { return t < 0 ? 0.0 : t > 1 ? t - 0.5 : 0.5 * t * t; }
+
+static double half_cover(int i, int j)
+{
+    return (F(A + B * (j + 1) - i) - F(A + B * j - i)) / B;
+}
+
+static void test_half_plane(void **state)
+{
+    (void)state;
+    const double xy[] = {-4, -1, A - B, -1, A + 17 * B, 17, -4, 17};
+    aa_scene *s = polygon(xy, 4, AA_FILL_NONZERO);
+    for (size_t k = 0; k < NCASES; k++) {
+        aa_image img;
+        if (render(cases[k].spec, s, "box", W, H, 1, &img))
+            fail_msg("%s: %s", cases[k].spec, aa_last_error());
+        double e = max_error(&img, half_cover);
+        print_message("half-plane %-30s: max error %.3e (bound %.3e)\n", cases[k].spec, e,
+                      cases[k].tol_slope);
+        if (!(e <= cases[k].tol_slope))
+            fail_msg("%s: half-plane max error %.3e above %.3e", cases[k].spec, e,
+                     cases[k].tol_slope);
+        aa_image_free(&img);
+    }
+    aa_scene_free(s);
+}
+
+/* Many thin rectangles, two per pixel column: [i + 1/8, i + 3/8] and
+ * [i + 5/8, i + 7/8] in x, [2.25, 13.5] in y, on a 1024 x 16 image.  Each
+ * row crosses 4096 edges: more than FreeType 2.12's cell pool holds for one
+ * row, so it renders in clipped tiles, which must not show (the coverage is
+ * the closed-form overlap, within 1/255, in every pixel). */
+static double thin_cover(int i, int j)
+{
+    (void)i;
+    return 0.5 * overlap(2.25, 13.5, j, j + 1.0);
+}
+
+static void test_many_edges(void **state)
+{
+    (void)state;
+    const int w = 1024, h = 16;
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    for (int i = 0; i < w; i++)
+        for (int k = 0; k < 2; k++) {
+            double x0 = i + 0.125 + 0.5 * k, x1 = x0 + 0.25;
+            assert_int_equal(aa_scene_move_to(s, x0 / w, 2.25 / h), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x1 / w, 2.25 / h), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x1 / w, 13.5 / h), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x0 / w, 13.5 / h), AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+        }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    const char *peers[] = {"freetype", "stb", "cairo"};
+    for (int k = 0; k < 3; k++) {
+        aa_image img;
+        if (render(peers[k], s, "box", w, h, 2, &img))
+            fail_msg("%s: %s", peers[k], aa_last_error());
+        double e = max_error(&img, thin_cover);
+        print_message("4096 edges a row, %-8s: max error %.3e\n", peers[k], e);
+        if (!(e <= 1.0 / 255 + 1e-6))
+            fail_msg("%s: max error %.3e above 1/255 with 4096 edges a row", peers[k], e);
+        aa_image_free(&img);
+    }
+    aa_scene_free(s);
+}
+
+/* One crow band: arcs are curves, not chords (a chord would lose about
+ * c/6 of area per arc). */
+static void test_crow_band_area(void **state)
+{
+    (void)state;
+    const int n = 256;
+    const double g0 = 0.25, c0 = 0.6; /* crow:curves=2: c1 = 0 */
+    aa_spec ps;
+    aa_scene *s;
+    assert_int_equal(aa_pattern_parse("crow:curves=2,gap0=0.25,kmax=0.6", &ps), AA_OK);
+    assert_int_equal(aa_pattern_scene(&ps, &s), AA_OK);
+    double want = g0 - c0 / 12.0;
+    for (size_t k = 0; k < NCASES; k++) {
+        aa_image img;
+        if (render(cases[k].spec, s, "box", n, n, 2, &img))
+            fail_msg("%s: %s", cases[k].spec, aa_last_error());
+        double sum = 0;
+        for (size_t p = 0; p < (size_t)n * n; p++)
+            sum += img.v[3 * p];
+        double area = sum / ((double)n * n);
+        /* flattening: at most `flat` px over two arcs of ~n px, plus 8-bit
+         * rounding that does not cancel (at most 1/255 on 2 n edge pixels) */
+        double bound = (cases[k].flat * 2.0 * n + 2.0 * n / 255.0) / ((double)n * n);
+        print_message("crow band %-30s: area %.6f, closed form %.6f, bound %.2e\n",
+                      cases[k].spec, area, want, bound);
+        if (!(fabs(area - want) <= bound))
+            fail_msg("%s: area %.9f, closed form %.9f (bound %.2e)", cases[k].spec, area,
+                     want, bound);
+        /* and not the chords' area, which differs by c0/6 */
+        assert_true(fabs(area - want) < c0 / 60.0);
+        aa_image_free(&img);
+    }
+    aa_scene_free(s);
+}
+
+/* The library refuses a colour scene and an even-odd scene stb cannot fill. */
+static void test_refusals_library(void **state)
+{
+    (void)state;
+    const char *peers[] = {"freetype", "stb", "cairo"};
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 0.5, 0}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.25, 0.25), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.75, 0.25), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.5, 0.75), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    for (int k = 0; k < 3; k++) {
+        aa_image img;
+        assert_int_equal(render(peers[k], s, "box", W, H, 1, &img), AA_EINVAL);
+        assert_non_null(strstr(aa_last_error(), "grey"));
+        assert_int_equal(render(peers[k], s, "tent:r=1", W, H, 1, &img), AA_EINVAL);
+        assert_non_null(strstr(aa_last_error(), "box"));
+    }
+    aa_scene_free(s);
+    /* two nested squares wound alike: winding 2 inside the inner one */
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    for (int rule = 0; rule < 2; rule++) {
+        aa_scene_free(s);
+        s = aa_scene_new((aa_rgb){{0, 0, 0}});
+        assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, (aa_fill_rule)rule), AA_OK);
+        const double sq[2][4] = {{0.125, 0.125, 0.875, 0.875}, {0.25, 0.25, 0.5, 0.5}};
+        for (int q = 0; q < 2; q++) {
+            assert_int_equal(aa_scene_move_to(s, sq[q][0], sq[q][1]), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, sq[q][2], sq[q][1]), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, sq[q][2], sq[q][3]), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, sq[q][0], sq[q][3]), AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        aa_image img;
+        int st = render("stb", s, "box", W, H, 1, &img);
+        if (rule == AA_FILL_EVENODD) {
+            assert_int_equal(st, AA_EINVAL);
+            assert_non_null(strstr(aa_last_error(), "even-odd"));
+        } else {
+            /* nonzero: the inner square is filled too, as stb does it */
+            assert_int_equal(st, AA_OK);
+            assert_true(aa_pixel(&img, 5, 5)[0] == 1.0);
+            aa_image_free(&img);
+        }
+        /* FreeType and Cairo have both rules: the inner square is a hole
+         * under even-odd (pixels 4..7 lie inside it) */
+        for (int k = 0; k < 3; k += 2) {
+            assert_int_equal(render(peers[k], s, "box", W, H, 1, &img), AA_OK);
+            assert_true(aa_pixel(&img, 5, 5)[0] == (rule == AA_FILL_EVENODD ? 0.0 : 1.0));
+            assert_true(aa_pixel(&img, 10, 10)[0] == 1.0);
+            aa_image_free(&img);
+        }
+    }
+    aa_scene_free(s);
+}
+
+/* Through the command: several layers (crow reaching outside the unit
+ * square gets a front layer of background) and a tent filter: exit 2. */
+static char dir[] = "/tmp/aabench-peers-XXXXXX";
+
+static int run_cli(const char *method, const char *pattern, const char *filter,
+                   const char *out)
+{
+    const char *exe = getenv("AABENCH");
+    assert_non_null(exe);
+    pid_t pid = fork();
+    if (pid == 0) {
+        int fd = open("/dev/null", O_WRONLY);
+        dup2(fd, 1);
+        dup2(fd, 2);
+        execl(exe, exe, "render", "-p", pattern, "-m", method, "-f", filter, "-s", "32x32",
+              "-o", out, (char *)NULL);
+        _exit(127);
+    }
+    int status;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+static void test_refusals_cli(void **state)
+{
+    (void)state;
+    const char *peers[] = {"freetype", "stb", "cairo"};
+    assert_non_null(mkdtemp(dir));
+    char out[256];
+    snprintf(out, sizeof out, "%s/x.exr", dir);
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(run_cli(peers[k], "crow:curves=2,gap0=1.5", "box", out), 2);
+        assert_int_equal(run_cli(peers[k], "crow", "tent:r=1", out), 2);
+        assert_int_equal(access(out, F_OK), -1); /* nothing written */
+        /* the same command with an accepted scene and filter succeeds */
+        assert_int_equal(run_cli(peers[k], "crow", "box", out), 0);
+        assert_int_equal(unlink(out), 0);
+    }
+    assert_int_equal(rmdir(dir), 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_rectangle),
+        cmocka_unit_test(test_half_plane),
+        cmocka_unit_test(test_crow_band_area),
+        cmocka_unit_test(test_many_edges),
+        cmocka_unit_test(test_refusals_library),
+        cmocka_unit_test(test_refusals_cli),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
