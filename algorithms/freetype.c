@@ -34,7 +34,7 @@
  * Limits: grey scenes of at most one layer and the box filter only
  * (peer.h); 8-bit coverage (an error of up to 1/510 from rounding alone);
  * positions rounded to 1/64 px; arcs flattened; at most 32767 points and
- * contours (FT_Outline counts in shorts) and coordinates within 2^20 px:
+ * contours (FT_Outline counts in shorts) and coordinates within 2^17 px:
  * larger scenes are refused.  Nonzero coverage is |accumulated area|
  * clamped to 1, which differs from exact nonzero coverage where contours
  * overlap inside a pixel.
@@ -51,7 +51,7 @@
 #include FT_OUTLINE_H
 
 #define BAND 32            /* rows per parallel band */
-#define FT_MAX_COORD 1048576.0 /* px */
+#define FT_MAX_COORD 131072.0 /* px: the smooth rasterizer fails beyond about 2^18 */
 
 typedef struct ft_state {
     aa_peer_scene ps;

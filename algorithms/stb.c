@@ -65,6 +65,12 @@ typedef struct {
 #pragma GCC diagnostic pop
 
 #define BAND 64 /* rows per band */
+/* The scene is given to stb one pixel lower and read back with a y offset
+ * one larger.  stb_truetype clamps an edge that ends above the bitmap's
+ * first scanline only when that offset is not zero, and asserts otherwise
+ * (a scene moved partly above the image stopped the program); a whole-pixel
+ * shift changes nothing else. */
+#define Y_SHIFT 1
 
 enum { FLATNESS };
 
@@ -207,13 +213,13 @@ static int stb_init(void *state, const double *p, const aa_job *job)
         stbtt_vertex *v = &s->v[s->nv++];
         memset(v, 0, sizeof *v);
         v->type = STBTT_vmove;
-        v->x = (float)e[start[c]].x0, v->y = (float)e[start[c]].y0;
+        v->x = (float)e[start[c]].x0, v->y = (float)(e[start[c]].y0 + Y_SHIFT);
         for (size_t k = start[c]; k < start[c + 1]; k++) {
             v = &s->v[s->nv++];
             memset(v, 0, sizeof *v);
             v->type = e[k].quad ? STBTT_vcurve : STBTT_vline;
-            v->x = (float)e[k].x1, v->y = (float)e[k].y1;
-            v->cx = (float)e[k].cx, v->cy = (float)e[k].cy;
+            v->x = (float)e[k].x1, v->y = (float)(e[k].y1 + Y_SHIFT);
+            v->cx = (float)e[k].cx, v->cy = (float)(e[k].cy + Y_SHIFT);
         }
     }
     for (int k = 0; k < 256; k++)
@@ -244,7 +250,7 @@ static int stb_render(void *state, const double *p, const aa_job *job, aa_image 
             memset(buf, 0, (size_t)rows * (size_t)job->w);
             stbtt__bitmap bm = {job->w, rows, job->w, buf};
             stbtt_Rasterize(&bm, (float)p[FLATNESS], s->v, s->nv, 1.0f, 1.0f, 0.0f, 0.0f, 0,
-                            y0, 0, NULL);
+                            y0 + Y_SHIFT, 0, NULL);
             for (int j = 0; j < rows; j++) {
                 const unsigned char *row = buf + (size_t)j * job->w;
                 double *px = aa_pixel(out, 0, y0 + j);

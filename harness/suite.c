@@ -17,7 +17,8 @@
 
 static const aa_suite_group quick[] = {
     {LIST("crow"), LIST("128x128"), LIST("box"),
-     LIST("point", "supersample", "jitter", "hexagon", "trio", "area")},
+     LIST("point", "supersample", "jitter", "hexagon", "trio", "area", "adaptive", "taa",
+          "cycle", "freetype", "stb", "cairo")},
     {NULL, NULL, NULL, NULL}};
 
 static const aa_suite_group main_suite[] = {
@@ -25,7 +26,8 @@ static const aa_suite_group main_suite[] = {
      LIST("point", "supersample:n=3", "supersample:n=4", "supersample:pattern=msaa4",
           "supersample:pattern=msaa8", "jitter:spp=16", "jitter:spp=16,seq=random",
           "jitter:spp=16,seq=sobol", "jitter:spp=16,seq=halton", "jitter:spp=64", "hexagon",
-          "trio", "trio:variant=sancha", "trio:variant=recursive", "area")},
+          "trio", "trio:variant=sancha", "trio:variant=recursive", "area", "adaptive", "taa",
+          "freetype", "stb", "cairo")},
     {NULL, NULL, NULL, NULL}};
 
 /* Crow 1976: fig. 2.10 point sampled, 2.11 nine equal samples, 2.12 25

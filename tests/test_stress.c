@@ -55,6 +55,8 @@ static void test_sizes_and_moves(void **state)
     run_named("crow 7x3");
     run_named("crow kmax 1e-15");
     run_named("crow at t=1e6 moved 20,-1 px");
+    /* stb_truetype asserted on a scene reaching above the image */
+    run_named("star moved 12.3,-7.7 px over 1e6 frames");
 }
 
 int main(void)
