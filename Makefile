@@ -3,6 +3,8 @@
 #   make run     install missing Debian packages, build, run the main benchmark
 #   make test    the same set-up, then every test (plain and under ASan+UBSan)
 #   make bench   speed measurements (not tests: nothing here asserts a time)
+#   make fuzz    libFuzzer on the spec parsers and image readers (needs clang)
+#   make valgrind  the tests under valgrind memcheck
 #   make install PREFIX=/usr/local
 #
 # Dependencies are found with pkg-config; scripts/install-deps.sh installs
@@ -59,7 +61,8 @@ BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
 # keep the objects of test helpers between runs
 .SECONDARY:
 
-.PHONY: all deps run test check-tests check-tests-san check-gate baseline bench install clean
+.PHONY: all deps run test check-tests check-tests-san check-gate baseline bench install clean \
+        fuzz valgrind
 .DEFAULT_GOAL := all
 
 all: $(BUILD)/aabench $(LIB)
@@ -121,6 +124,53 @@ $(SAN_BUILD)/tests/%.so: tests/%.c harness/aabench.h
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -shared $< -o $@
+
+# ---- fuzzing (libFuzzer; clang, not part of `make test`) ----
+# The library is built again with clang into build/fuzz, instrumented for
+# the fuzzer and ASan+UBSan, with LLVM's OpenMP (Debian libomp-dev).
+FUZZ_BUILD   := $(BUILD)/fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_FLAGS   := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g -O1
+FUZZ_TARGETS := $(FUZZ_BUILD)/fuzz_spec $(FUZZ_BUILD)/fuzz_image
+$(FUZZ_BUILD)/obj/%.o: %.c $(HEADERS)
+	@mkdir -p $(dir $@)
+	@echo '  CLANG $@'
+	$(Q)clang $(CPPFLAGS) -std=c11 $(WARN) -fPIC -fopenmp $(FUZZ_FLAGS) $(PKG_CFLAGS) -c $< -o $@
+$(FUZZ_BUILD)/obj/%.o: %.cpp $(HEADERS)
+	@mkdir -p $(dir $@)
+	@echo '  CLANG $@'
+	$(Q)clang++ $(CPPFLAGS) -std=c++17 -Wall -Wextra -Werror -fPIC $(FUZZ_FLAGS) $(PKG_CFLAGS) -c $< -o $@
+$(FUZZ_BUILD)/libaabench.a: $(call objs,$(FUZZ_BUILD))
+	@rm -f $@
+	@echo '  AR    $@'
+	$(Q)ar rcs $@ $^
+$(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_BUILD)/libaabench.a
+	@echo '  LD    $@'
+	$(Q)clang++ $(CPPFLAGS) -x c -std=c11 $(WARN) -fsanitize=fuzzer,address,undefined -g -O1 $< -x none \
+	  $(FUZZ_BUILD)/libaabench.a -o $@ $(PKG_LIBS) -lm -ldl -fopenmp
+fuzz:
+	@command -v clang >/dev/null 2>&1 && test -e /usr/lib/llvm-14/lib/libomp.so || { echo "make fuzz needs clang and libomp-dev: apt-get install clang libomp-dev" >&2; exit 2; }
+	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)
+	@for t in spec image; do \
+	  mkdir -p $(FUZZ_BUILD)/corpus-$$t $(FUZZ_BUILD)/crash-$$t; \
+	  echo "fuzz_$$t: $(FUZZ_SECONDS) s"; \
+	  $(FUZZ_BUILD)/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 \
+	    -artifact_prefix=$(FUZZ_BUILD)/crash-$$t/ -print_final_stats=1 \
+	    $(FUZZ_BUILD)/corpus-$$t tests/fuzz/corpus/$$t 2>&1 | \
+	    grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss|==[0-9]+==ERROR|SUMMARY)' ; \
+	  if ls $(FUZZ_BUILD)/crash-$$t/* >/dev/null 2>&1; then \
+	    echo "fuzz_$$t found crashes: $(FUZZ_BUILD)/crash-$$t/ (add them to tests/fuzz/regress/$$t/)"; exit 1; fi; \
+	done
+
+# ---- valgrind (memcheck) over the plain test binaries ----
+# tests/valgrind/hwy_timer.c explains the preloaded library.
+$(BUILD)/valgrind/hwy_timer.so: tests/valgrind/hwy_timer.c
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(CFLAGS) -shared $< -o $@
+valgrind: $(BUILD)/aabench $(TESTS) $(PLUGINS) $(BUILD)/valgrind/hwy_timer.so
+	@command -v valgrind >/dev/null 2>&1 || { echo "make valgrind needs valgrind: apt-get install valgrind" >&2; exit 2; }
+	@LD_PRELOAD=$(CURDIR)/$(BUILD)/valgrind/hwy_timer.so AABENCH_VALGRIND=1 \
+	  sh scripts/run-tests.sh $(BUILD) $(TESTS)
 
 # ---- the two set-up commands ----
 run: deps

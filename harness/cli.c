@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 int cli_fail(const char *cmd, int status)
@@ -104,6 +105,9 @@ static int check_folder(const char *path)
     if (access(dir, W_OK | X_OK) != 0)
         return aa_fail(AA_EIO, "output \"%s\": folder %s %s", path, dir,
                        errno == ENOENT ? "does not exist" : "is not writable");
+    struct stat sb;
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return aa_fail(AA_EIO, "output \"%s\" is a folder, not a file", path);
     return AA_OK;
 }
 

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -123,6 +124,117 @@ static void test_refusals(void **state)
 #undef T
 }
 
+#define T(code, needle, ...)                                                                   \
+    do {                                                                                       \
+        const char *a[] = {__VA_ARGS__, NULL};                                                 \
+        expect(code, needle, a);                                                               \
+    } while (0)
+
+/* Write `len` bytes to path (a file outside the checked folder). */
+static void put_file(const char *path, const char *data, size_t len)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(data, 1, len, f), len);
+    fclose(f);
+}
+
+/* Bad input to every other command: exit 2 for bad input, 3 for files that
+ * cannot be read or written, a message, and nothing written. */
+static void test_refusals_everywhere(void **state)
+{
+    (void)state;
+    char in[] = "/tmp/aabench-cli-in-XXXXXX";
+    assert_non_null(mkdtemp(in));
+    char ok[300], trunc[300], shortf[300], badnum[300], nanf[300], huge[300], empty[300],
+        folder[300], pfm[300], csv[300], under[300], sub[300], o[300];
+#define PATH(v, name) snprintf(v, sizeof v, "%s/" name, in)
+    PATH(ok, "ok.txt"), PATH(trunc, "trunc.exr"), PATH(shortf, "short.txt");
+    PATH(badnum, "badnum.txt"), PATH(nanf, "nan.txt"), PATH(huge, "huge.txt");
+    PATH(empty, "empty.txt"), PATH(folder, "d.exr"), PATH(pfm, "h.pfm"), PATH(csv, "bad.csv");
+    PATH(under, "ok.txt/x.exr"), PATH(sub, "ok.txt/sub");
+#undef PATH
+    snprintf(o, sizeof o, "%s/x.exr", dir);
+    static const char good[] = "# aabench 2 1 3\n0 0 0.5 0.25 1\n1 0 0 0 0.125\n";
+    put_file(ok, good, sizeof good - 1);
+    put_file(shortf, "# aabench 2 2 1\n0 0 1\n", 22);
+    put_file(badnum, "# aabench 2 1 3\n0 0 0.5 x 1\n1 0 0 0 0.125\n", 41);
+    put_file(nanf, "# aabench 1 1 1\n0 0 nan\n", 24);
+    put_file(huge, "# aabench 99999999 99999999 3\n", 30);
+    put_file(empty, "", 0);
+    put_file(pfm, "Pf\n2 1\n-1.0\n\0\0\0", 15);
+    put_file(csv, "a,b\n1\n", 6);
+    assert_int_equal(mkdir(folder, 0755), 0);
+    {
+        /* a real .exr cut short */
+        char full[300];
+        snprintf(full, sizeof full, "%s/full.exr", in);
+        const char *a[] = {"truth", "-p", "crow", "-s", "8x8", "-o", full, "--no-cache", NULL};
+        assert_int_equal(run(a), 0);
+        FILE *f = fopen(full, "rb");
+        char head[100];
+        assert_int_equal(fread(head, 1, sizeof head, f), sizeof head);
+        fclose(f);
+        put_file(trunc, head, sizeof head);
+    }
+    /* compare: corrupt and unreadable images */
+    T(3, "the file ends before pixel", "compare", ok, shortf);
+    T(3, "malformed number", "compare", ok, badnum);
+    T(3, "malformed number 'nan'", "compare", ok, nanf);
+    T(3, "sides must be in [1, 65536]", "compare", ok, huge);
+    T(3, "empty file", "compare", ok, empty);
+    T(3, "cannot read", "compare", ok, folder);
+    T(3, "cannot read", "compare", ok, trunc);
+    T(3, "cannot read", "compare", ok, pfm);
+    T(3, "cannot read", "compare", ok, "/nonexistent-aabench.exr");
+    T(2, "needs two image files", "compare", ok);
+    T(2, "is not a number in [1, 4]", "compare", ok, ok, "--encode", "gamma:nan");
+    /* run */
+    T(2, "unknown pattern \"nosuch\"", "run", "-p", "nosuch", "-q", "--out", dir);
+    T(2, "unknown method \"nosuch\"", "run", "-m", "nosuch", "-q", "--out", dir);
+    T(2, "each side must be from 1 to 65536", "run", "-s", "0x0", "-q", "--out", dir);
+    T(2, "unknown suite \"nosuch\"", "run", "--suite", "nosuch", "-q", "--out", dir);
+    T(2, "--reps 0 is out of range", "run", "--reps", "0", "-q", "--out", dir);
+    T(2, "is not a finite number", "run", "-p", "crow", "-m", "point", "-s", "8x8", "--motion",
+      "nan,0", "-q", "--out", dir);
+    T(2, "r=inf: not a number", "run", "-p", "crow", "-m", "point", "-s", "8x8", "-f",
+      "tent:r=inf", "-q", "--out", dir);
+    T(2, "kmax given twice", "run", "-p", "crow:kmax=0.1,kmax=0.2", "-q", "--out", dir);
+    T(3, "is not a folder", "run", "-p", "crow", "-m", "point", "-s", "8x8", "-q", "--out", sub);
+    /* converge */
+    T(2, "is not a whole number", "converge", "-p", "crow", "-m", "jitter", "-s", "8x8", "--spp",
+      "1,4,abc", "--out", dir);
+    T(2, "out of range", "converge", "-p", "crow", "-m", "jitter", "-s", "8x8", "--spp", "0",
+      "--out", dir);
+    T(2, "no spp or n parameter", "converge", "-p", "crow", "-m", "point", "-s", "8x8", "--spp",
+      "1,4,16", "--out", dir);
+    T(2, "--phases 0 is out of range", "converge", "-p", "crow", "-m", "jitter", "-s", "8x8",
+      "--spp", "1,4,16", "--phases", "0", "--out", dir);
+    T(2, "each side must be from 1 to 65536", "converge", "-p", "crow", "-m", "jitter", "-s",
+      "99999x99999", "--spp", "1,4,16", "--out", dir);
+    T(3, "is not a folder", "converge", "-p", "crow", "-m", "jitter", "-s", "8x8", "--spp",
+      "1,4,16", "--out", sub);
+    /* check */
+    T(3, "cannot open", "check", "--baseline", "/nonexistent-aabench.csv");
+    T(3, "no CSV header", "check", "--baseline", empty);
+    T(3, "no CSV header", "check", "--baseline", csv);
+    T(2, "--tolerance -1 is out of range", "check", "--tolerance", "-1");
+    /* stress and list */
+    T(2, "--only 0 is out of range", "stress", "--only", "0", "--out", dir);
+    T(2, "--only 99 is out of range", "stress", "--only", "99", "--out", dir);
+    T(2, "--threads 0 is out of range", "stress", "--threads", "0", "--out", dir);
+    T(3, "is not a folder", "stress", "--only", "1", "--out", sub);
+    T(2, "unknown list \"nosuch\"", "list", "nosuch");
+    /* outputs that cannot be written */
+    T(3, "is a folder, not a file", "truth", "-p", "crow", "-s", "8x8", "-o", folder);
+    T(3, "is not writable", "render", "-p", "crow", "-m", "point", "-s", "8x8", "-o", under);
+    (void)o;
+    char cmd[400];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", in);
+    assert_int_equal(system(cmd), 0);
+}
+#undef T
+
 static void test_success(void **state)
 {
     (void)state;
@@ -224,6 +336,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_refusals_everywhere),
         cmocka_unit_test(test_success),
         cmocka_unit_test(test_render),
         cmocka_unit_test(test_cache),
