@@ -13,6 +13,18 @@
 
 #include <cmocka.h>
 
+/* The closed form's 1e-15 tolerances count on long double's 64-bit
+ * mantissa; where long double is no wider than double (valgrind emulates
+ * the x87 unit in double) those checks are skipped. */
+static void needs_extended_precision(void)
+{
+    volatile long double one = 1.0L, tiny = 0x1p-60L;
+    if (one + tiny == one) {
+        print_message("long double is not extended here: skipped\n");
+        skip();
+    }
+}
+
 #include "oracle.h"
 
 #define CHECK_NEAR(got, want, tol)                                             \
@@ -244,6 +256,7 @@ static void check_box_sum(const oracle_crow *p, double area, int W, int H)
 
 static void test_box_sums(void **state)
 {
+    needs_extended_precision();
 	(void)state;
 	const int size[][2] = { { 2, 3 }, { 7, 5 }, { 16, 16 }, { 33, 17 },
 				{ 64, 64 }, { 256, 256 }, { 1000, 3 }, { 3, 1000 } };
@@ -279,6 +292,7 @@ static void test_box_uniform(void **state)
 
 static void test_box_symmetry(void **state)
 {
+    needs_extended_precision();
 	(void)state;
 	/* I(x, y) = I(x, 1 - y) and row H-1-j is the mirror of row j. */
 	const int size[][2] = { { 64, 64 }, { 37, 23 }, { 256, 10 } };
@@ -293,6 +307,7 @@ static void test_box_symmetry(void **state)
 
 static void test_box_stripes(void **state)
 {
+    needs_extended_precision();
 	(void)state;
 	/* C = 0: box value = W * (white length of the column), rows full. */
 	oracle_crow p = { 96, 0, 4.0 / 256, 0.5 / 256 };
