@@ -15,4 +15,5 @@ const aa_method_type *const aa_method_types[] = {
     &aa_method_trio,
     &aa_method_area,
     &aa_method_crowtable,
+    &aa_method_conetable,
     NULL};

@@ -13,6 +13,7 @@ extern const aa_method_type aa_method_hexagon;
 extern const aa_method_type aa_method_trio;
 extern const aa_method_type aa_method_area;
 extern const aa_method_type aa_method_crowtable;
+extern const aa_method_type aa_method_conetable;
 
 /* Point-sample the placed scene at pixel centres offset by (dx, dy)
  * pixels into out (used by point, hexagon and trio). */

@@ -251,6 +251,78 @@ static void test_crow_pattern_bound(void **state)
     crow_within("crowtable", "gauss", 1.5, crow_bound);
 }
 
+/* ---- conetable ---- */
+
+/* conetable's header bound on one chord end's interpolation error: the
+ * variation of D over a table cell, at most (pi/2)/res * 1/(2 pi) along the
+ * angle and c/(2 M sqrt(2 pi)) / res along the distance. */
+static double cone_end_bound(double cut, int res)
+{
+    double M = -expm1(-0.5 * cut * cut);
+    return (0.25 + cut / (2.0 * M * sqrt(2.0 * M_PI))) / res;
+}
+
+static void test_cone_half_plane_converges(void **state)
+{
+    (void)state;
+    const int res[] = {8, 32, 128, 512};
+    const double angles[] = {0.0, 0.5, 1.2};
+    for (int a = 0; a < 3; a++) {
+        double first = 0, last = 0;
+        for (int k = 0; k < 4; k++) {
+            char spec[64];
+            snprintf(spec, sizeof spec, "conetable:cut=8,res=%d", res[k]);
+            /* the radial Gaussian over a half-plane: Phi(signed distance / s),
+             * whatever the edge's angle; cut=8 leaves 1.3e-14 outside */
+            double e = half_plane_error(spec, "gauss", 10.3, 12.2, angles[a]);
+            /* one edge reaches the mask: two chord ends */
+            double bound = 2.0 * cone_end_bound(8.0, res[k]) + 3e-14;
+            print_message("conetable gauss angle %.1f res=%-3d half-plane max error %.3e "
+                          "(bound %.3e)\n",
+                          angles[a], res[k], e, bound);
+            if (!(e <= bound))
+                fail_msg("%s: error %.3e above the bound %.3e", spec, e, bound);
+            if (k == 0)
+                first = e;
+            last = e;
+        }
+        assert_true(last < first / 8.0);
+    }
+}
+
+/* conetable's header bound at cut=C, res=N, tol=T (parsed from the method
+ * spec): truncation 2 exp(-c^2/2), and per piece near the pixel two chord
+ * ends per chord (n chords by the flattening rule) plus (2/3) tol L wmax
+ * for the flattening, L bounded by the piece's y extent in the mask's rows
+ * plus twice its x extent there. */
+static double cone_bound(const aa_filter *f, const char *method, int pieces, double xvar)
+{
+    double cut = 2.0, tol = 1e-3;
+    int res = 64;
+    const char *q;
+    if ((q = strstr(method, "cut=")))
+        cut = atof(q + 4);
+    if ((q = strstr(method, "res=")))
+        res = atoi(q + 4);
+    if ((q = strstr(method, "tol=")))
+        tol = atof(q + 4);
+    double s = f->spec.v[0], R = cut * s, M = -expm1(-0.5 * cut * cut);
+    double wmax = 1.0 / (2.0 * M_PI * s * s * M);
+    /* crow's arcs in the 128 px image: |a| <= 128 * (largest curvature term,
+     * at most 1 pattern unit), the band 2R of 128 px in t */
+    double dt = 2.0 * R / 128.0, chords = ceil(sqrt(128.0 * dt * dt / (4.0 * tol)));
+    double trunc = 2.0 * exp(-0.5 * cut * cut);
+    return trunc + pieces * (2.0 * chords * cone_end_bound(cut, res)) +
+           (2.0 / 3.0) * tol * wmax * (pieces * 2.0 * R + xvar) + 1e-12;
+}
+
+static void test_cone_pattern_bound(void **state)
+{
+    (void)state;
+    crow_within("conetable", "gauss", 2.0 * 0.5, cone_bound);
+    crow_within("conetable:cut=4,res=256", "gauss", 4.0 * 0.5, cone_bound);
+}
+
 /* ---- refusals through the command line ---- */
 
 static int run_cli(const char *const *args, char *out, size_t cap)
@@ -298,6 +370,9 @@ static void test_refusals(void **state)
     (void)state;
     refused("crowtable:cut=4", "tent", "truncates the Gaussian only");
     refused("crowtable:res=0", "box", "res");
+    refused("conetable", "box", "circular mask");
+    refused("conetable", "tent:r=1", "circular mask");
+    refused("conetable:weight=cone", "gauss", "no exact reference");
 }
 
 int main(void)
@@ -305,6 +380,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_crow_half_plane_converges),
         cmocka_unit_test(test_crow_pattern_bound),
+        cmocka_unit_test(test_cone_half_plane_converges),
+        cmocka_unit_test(test_cone_pattern_bound),
         cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
