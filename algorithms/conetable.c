@@ -85,6 +85,12 @@
  *    about as 1/res^2);
  *  - flattening: at most (2/3) tol L wmax, see above.
  *
+ * Known answers (tests/test_tables.c): with cut=8 a half-plane at any angle
+ * gives Phi(d / s), d the signed distance of the centre, within the
+ * interpolation bound of its two chord ends (measured: 1.3e-3 at res=32,
+ * 8e-5 to 4e-4 at res=128); every pixel of crow 128x128 is within the
+ * bound above with the pieces near it counted from the scene.
+ *
  * Cost: per pixel whose mask square meets an edge, the winding at O and,
  * per segment of the nearby pieces, a projection, an atan2 and a bilinear
  * read; other pixels are filled in runs (aa_strip_uniform_run).  Each

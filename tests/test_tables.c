@@ -265,7 +265,7 @@ static double cone_end_bound(double cut, int res)
 static void test_cone_half_plane_converges(void **state)
 {
     (void)state;
-    const int res[] = {8, 32, 128, 512};
+    const int res[] = {8, 32, 128, 256};
     const double angles[] = {0.0, 0.5, 1.2};
     for (int a = 0; a < 3; a++) {
         double first = 0, last = 0;
