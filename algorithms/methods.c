@@ -20,4 +20,6 @@ const aa_method_type *const aa_method_types[] = {
     &aa_method_freetype,
     &aa_method_stb,
     &aa_method_cairo,
+    &aa_method_crowtable,
+    &aa_method_conetable,
     NULL};

@@ -18,6 +18,8 @@ extern const aa_method_type aa_method_adaptive;
 extern const aa_method_type aa_method_freetype;
 extern const aa_method_type aa_method_stb;
 extern const aa_method_type aa_method_cairo;
+extern const aa_method_type aa_method_crowtable;
+extern const aa_method_type aa_method_conetable;
 
 /* Point-sample the placed scene at pixel centres offset by (dx, dy)
  * pixels into out (used by point, hexagon and trio). */

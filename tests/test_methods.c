@@ -5,7 +5,9 @@
  *
  *  - a uniform scene renders exactly (every pixel is its colour); a method
  *    flagged AA_METHOD_SOME_SCENES may refuse the colour one with a message,
- *    and must then render it in grey exactly;
+ *    and must then render it in grey exactly; these first checks use the
+ *    box, or the Gaussian for a method that refuses the box (a circularly
+ *    symmetric filter);
  *  - values are finite and in [0, 1];
  *  - the same seed gives the same image, 1 and 2 threads the same image, and
  *    a seeded method gives another image for another seed;
@@ -122,13 +124,35 @@ static void for_each_spec(void (*check)(const char *spec, const aa_method_type *
     }
 }
 
+/* The filter a method's generic checks use: box, or gauss for a method
+ * that refuses the box (a circularly symmetric one); NULL if it refuses
+ * both, with a message that must say what it accepts. */
+static const char *home_filter(const char *spec)
+{
+    const char *filters[] = {"box", "gauss"};
+    for (int k = 0; k < 2; k++) {
+        aa_filter f;
+        aa_spec m;
+        assert_int_equal(aa_filter_parse(filters[k], &f), AA_OK);
+        if (aa_method_parse(spec, &f, &m) == AA_OK)
+            return filters[k];
+    }
+    if (strlen(aa_last_error()) < 20)
+        fail_msg("%s refuses box and gauss without a clear message: \"%s\"", spec,
+                 aa_last_error());
+    return NULL;
+}
+
 static void check_uniform(const char *spec, const aa_method_type *type)
 {
     aa_rgb colour = {{0.3, 0.5, 0.7}};
+    const char *filter = home_filter(spec);
+    if (!filter)
+        return;
     aa_scene *s = uniform_scene(colour);
     aa_image img;
     aa_counters c;
-    int st = render(spec, s, "box", W, H, 1, 2, &img, &c);
+    int st = render(spec, s, filter, W, H, 1, 2, &img, &c);
     if (st == AA_EINVAL && (type->flags & AA_METHOD_SOME_SCENES)) {
         /* a method that says it refuses some scenes may refuse colour, with
          * a message; it must then take the same scene in grey */
@@ -138,7 +162,7 @@ static void check_uniform(const char *spec, const aa_method_type *type)
         aa_scene_free(s);
         colour = (aa_rgb){{0.3, 0.3, 0.3}};
         s = uniform_scene(colour);
-        st = render(spec, s, "box", W, H, 1, 2, &img, &c);
+        st = render(spec, s, filter, W, H, 1, 2, &img, &c);
     }
     if (st)
         fail_msg("%s: %s", spec, aa_last_error());
@@ -159,21 +183,24 @@ static void test_uniform_exact(void **state)
 
 static void check_range_and_determinism(const char *spec, const aa_method_type *type)
 {
+    const char *filter = home_filter(spec);
+    if (!filter)
+        return;
     aa_scene *s = crow_scene();
     aa_image a, b, c2;
     aa_counters ca, cb, cc;
-    if (render(spec, s, "box", W, H, 7, 1, &a, &ca))
+    if (render(spec, s, filter, W, H, 7, 1, &a, &ca))
         fail_msg("%s: %s", spec, aa_last_error());
     for (int p = 0; p < W * H * 3; p++)
         if (!(a.v[p] >= 0.0 && a.v[p] <= 1.0))
             fail_msg("%s: value %.17g at %d outside [0, 1]", spec, a.v[p], p);
-    assert_int_equal(render(spec, s, "box", W, H, 7, 2, &b, &cb), AA_OK);
+    assert_int_equal(render(spec, s, filter, W, H, 7, 2, &b, &cb), AA_OK);
     if (memcmp(a.v, b.v, sizeof(double) * W * H * 3))
         fail_msg("%s: 1 and 2 threads give different images", spec);
     if (ca.samples != cb.samples || ca.expensive_pixels != cb.expensive_pixels)
         fail_msg("%s: 1 and 2 threads give different counters", spec);
     assert_true(ca.expensive_pixels <= (uint64_t)W * H);
-    assert_int_equal(render(spec, s, "box", W, H, 8, 2, &c2, &cc), AA_OK);
+    assert_int_equal(render(spec, s, filter, W, H, 8, 2, &c2, &cc), AA_OK);
     int differs = memcmp(a.v, c2.v, sizeof(double) * W * H * 3) != 0;
     if (differs != ((type->flags & AA_METHOD_SEEDED) != 0))
         fail_msg("%s: another seed %s the image, but the method %s seeded", spec,

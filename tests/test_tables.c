@@ -1,0 +1,388 @@
+/*
+ * test_tables.c: the table-driven prefilters crowtable (Crow 1976) and
+ * conetable (Feibush, Levoy and Cook 1980).
+ *
+ * Known answers are independent of the methods:
+ *  - a half-plane: for a separable filter and an axis-aligned edge at u = e
+ *    the exact value right of it is 1 - C(e - u_c), C the filter's 1-D
+ *    integral (closed form: the tent's piecewise quadratic, the Gaussian's
+ *    erfc); for the Gaussian, which is also circularly symmetric, the same
+ *    holds for an edge at any angle with e - u_c the signed distance.
+ *    The tabulated values must approach it within the error bound each
+ *    method's header derives, which falls with the table resolution.
+ *  - crow 128x128: the exact reference (aa_truth_render), every pixel within
+ *    the derived bound, with the number of pieces near the pixel counted
+ *    from the scene's own piece extents (not from the methods).
+ *  - refusals through the CLI exit with status 2.
+ */
+#include "aabench.h"
+
+#include <fcntl.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+/* A half-plane of white right of the line through (px, py) pattern units
+ * with direction angle `angle` (0: vertical, the region right of it), on
+ * black; the image is square so pattern and pixel angles agree. */
+static aa_scene *half_plane(double px, double py, double angle)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    double dx = sin(angle), dy = cos(angle); /* along the edge, downwards */
+    double nx = dy, ny = -dx;                /* into the white side */
+    double L = 50.0;
+    assert_int_equal(aa_scene_move_to(s, px - L * dx, py - L * dy), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, px + L * dx, py + L * dy), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, px + L * dx + L * nx, py + L * dy + L * ny), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, px - L * dx + L * nx, py - L * dy + L * ny), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static int render(const char *method, const aa_scene *scene, const char *filter, int w, int h,
+                  int threads, aa_image *out)
+{
+    aa_filter f;
+    aa_spec spec;
+    aa_job job;
+    aa_counters c;
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    int st = aa_method_parse(method, &f, &spec);
+    if (st)
+        return st;
+    assert_int_equal(aa_job_init(&job, scene, w, h, 0.0, 0.0, 0.0, &f, 1, threads), AA_OK);
+    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
+    st = aa_method_run(&spec, &job, 1, out, &c, NULL);
+    aa_job_free(&job);
+    if (st)
+        aa_image_free(out);
+    return st;
+}
+
+#define HW 24
+
+/* Largest error against 1 - C(signed distance) over a HW x HW image of the
+ * half-plane through (px, py) pixels at `angle`. */
+static double half_plane_error(const char *method, const char *filter, double px, double py,
+                               double angle)
+{
+    aa_filter f;
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    aa_scene *s = half_plane(px / HW, py / HW, angle);
+    aa_image img;
+    if (render(method, s, filter, HW, HW, 2, &img))
+        fail_msg("%s with %s: %s", method, filter, aa_last_error());
+    double nx = cos(angle), ny = -sin(angle), worst = 0.0;
+    for (int j = 0; j < HW; j++)
+        for (int i = 0; i < HW; i++) {
+            double d = (i + 0.5 - px) * nx + (j + 0.5 - py) * ny; /* > 0: white side */
+            double exact = 1.0 - aa_filter_cdf(&f, -d);
+            const double *v = aa_pixel(&img, i, j);
+            for (int ch = 0; ch < 3; ch++) {
+                if (!(v[ch] >= 0.0 && v[ch] <= 1.0))
+                    fail_msg("%s: value %.17g outside [0, 1]", method, v[ch]);
+                worst = fmax(worst, fabs(v[ch] - exact));
+            }
+        }
+    aa_image_free(&img);
+    aa_scene_free(s);
+    return worst;
+}
+
+/* ---- crowtable ---- */
+
+/* The header's per-piece bound: wx d / 2 (lookup) + 2 R w2 d (rows), with
+ * d = 2R / ceil(2R res); `rows` 0 for an axis-aligned edge (its rows are
+ * exact). */
+static double crow_piece_bound(double wx, double R, int res, int rows)
+{
+    double d = 2.0 * R / ceil(2.0 * R * res);
+    return wx * d / 2.0 + (rows ? 2.0 * R * wx * wx * d : 0.0);
+}
+
+static void test_crow_half_plane_converges(void **state)
+{
+    (void)state;
+    const struct {
+        const char *filter;
+        double wx, R;
+    } cases[] = {{"box", 1.0, 0.5},
+                 {"tent:r=0.5", 2.0, 0.5},
+                 {"tent:r=1", 1.0, 1.0},
+                 {"gauss", 1.0 / (0.5 * sqrt(2.0 * M_PI)), 8 * 0.5}};
+    const int res[] = {2, 8, 32, 128};
+    for (int c = 0; c < 4; c++) {
+        int gauss = c == 3;
+        double first = 0, last = 0;
+        for (int k = 0; k < 4; k++) {
+            char spec[64];
+            snprintf(spec, sizeof spec, "crowtable:res=%d%s", res[k], gauss ? ",cut=8" : "");
+            /* an edge at 10.3 px, off every table grid used */
+            double e = half_plane_error(spec, cases[c].filter, 10.3, 0.0, 0.0);
+            double bound = crow_piece_bound(cases[c].wx, cases[c].R, res[k], 0) + 1e-12;
+            print_message("crowtable %-10s res=%-3d half-plane max error %.3e (bound %.3e)\n",
+                          cases[c].filter, res[k], e, bound);
+            if (!(e <= bound))
+                fail_msg("%s %s: error %.3e above the bound %.3e", spec, cases[c].filter, e,
+                         bound);
+            if (k == 0)
+                first = e;
+            last = e;
+        }
+        /* converges: 64 times the resolution, the error well down */
+        assert_true(last < first / 8.0);
+    }
+    /* the Gaussian is radial: a slanted edge has the same closed form; its
+     * rows add the second term of the bound */
+    for (int k = 0; k < 4; k++) {
+        char spec[64];
+        snprintf(spec, sizeof spec, "crowtable:res=%d,cut=8", res[k]);
+        double e = half_plane_error(spec, "gauss", 11.7, 12.0, 0.5);
+        double wx = 1.0 / (0.5 * sqrt(2.0 * M_PI));
+        double bound = crow_piece_bound(wx, 4.0, res[k], 1) + 1e-12;
+        print_message("crowtable gauss slanted res=%-3d max error %.3e (bound %.3e)\n", res[k],
+                      e, bound);
+        assert_true(e <= bound);
+    }
+}
+
+/* The pieces near the square of half-width R around (cx, cy), from the
+ * scene's own piece geometry: *count gets how many have an extent meeting
+ * it, and the return value bounds their total x variation inside it (a
+ * y-monotone quadratic turns at most once in x, so at most twice its x
+ * extent within the square's rows, clipped to the square). */
+static double pieces_near(const aa_scene *placed, double cx, double cy, double R, int *count)
+{
+    size_t n;
+    const aa_piece *p = aa_scene_pieces(placed, &n);
+    double var = 0.0;
+    *count = 0;
+    for (size_t q = 0; q < n; q++) {
+        if (!(p[q].xmax >= cx - R && p[q].xmin <= cx + R && p[q].y1 >= cy - R &&
+              p[q].y0 <= cy + R))
+            continue;
+        ++*count;
+        double a = p[q].xmin, b = p[q].xmax;
+        if (p[q].kind != AA_PIECE_FLAT)
+            aa_piece_xrange(&p[q], fmax(cy - R, p[q].y0), fmin(cy + R, p[q].y1), &a, &b);
+        double ext = fmin(b, cx + R) - fmax(a, cx - R);
+        var += ext > 0.0 ? (p[q].kind == AA_PIECE_QUAD ? 2.0 : 1.0) * ext : 0.0;
+    }
+    return var;
+}
+
+typedef double bound_fn(const aa_filter *f, const char *method, int pieces, double xvar);
+
+/* Every pixel of crow 128x128 within bound(pieces near it) of the exact
+ * reference; prints RMSE and max. */
+static void crow_within(const char *method, const char *filter, double R, bound_fn *bound)
+{
+    aa_spec ps;
+    aa_scene *s, *placed;
+    aa_filter f;
+    assert_int_equal(aa_pattern_parse("crow", &ps), AA_OK);
+    assert_int_equal(aa_pattern_scene(&ps, &s), AA_OK);
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    placed = aa_scene_place(s, 128, 128, 0, 0, 0);
+    aa_image ref, img;
+    assert_int_equal(aa_image_alloc(&ref, 128, 128, 3), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &f, 0, &ref, NULL, NULL), AA_OK);
+    if (render(method, s, filter, 128, 128, 2, &img))
+        fail_msg("%s: %s", method, aa_last_error());
+    double sum = 0, worst = 0, worst_bound = 0;
+    for (int j = 0; j < 128; j++)
+        for (int i = 0; i < 128; i++) {
+            int k;
+            double xvar = pieces_near(placed, i + 0.5, j + 0.5, R, &k);
+            double b = bound(&f, method, k, xvar);
+            for (int ch = 0; ch < 3; ch++) {
+                double e = fabs(aa_pixel(&img, i, j)[ch] - aa_pixel(&ref, i, j)[ch]);
+                sum += e * e;
+                worst = fmax(worst, e);
+                worst_bound = fmax(worst_bound, b);
+                if (!(e <= b))
+                    fail_msg("%s %s: pixel (%d, %d) error %.3e above its bound %.3e", method,
+                             filter, i, j, e, b);
+            }
+        }
+    print_message("%s %-10s crow 128x128: RMSE %.3e, max %.3e (largest bound %.3e)\n", method,
+                  filter, sqrt(sum / (128.0 * 128 * 3)), worst, worst_bound);
+    aa_image_free(&img);
+    aa_image_free(&ref);
+    aa_scene_free(placed);
+    aa_scene_free(s);
+}
+
+/* crowtable's header bound at its defaults (res=16, cut=3): per piece
+ * wx d / 2 for the lookups, and w2 (d / 2) times the pieces' x variation in
+ * the square for the rows (the 2 R w2 d per piece of the header, with the
+ * variation counted instead of bounded by 4R). */
+static double crow_bound(const aa_filter *f, const char *method, int pieces, double xvar)
+{
+    (void)method;
+    double wx, R, trunc = 0.0;
+    if (f->type == &aa_filter_gauss) {
+        double s = f->spec.v[0], m = erf(3.0 / M_SQRT2);
+        wx = 1.0 / (s * sqrt(2.0 * M_PI));
+        R = 3.0 * s;
+        trunc = 2.0 * (1.0 - m * m);
+    } else {
+        wx = aa_filter_weight(f, 0.0);
+        R = f->radius;
+    }
+    double d = 2.0 * R / ceil(2.0 * R * 16);
+    return pieces * crow_piece_bound(wx, R, 16, 0) + wx * wx * d / 2.0 * xvar + trunc + 1e-12;
+}
+
+static void test_crow_pattern_bound(void **state)
+{
+    (void)state;
+    crow_within("crowtable", "tent:r=0.5", 0.5, crow_bound);
+    crow_within("crowtable", "tent:r=1", 1.0, crow_bound);
+    crow_within("crowtable", "gauss", 1.5, crow_bound);
+}
+
+/* ---- conetable ---- */
+
+/* conetable's header bound on one chord end's interpolation error: the
+ * variation of D over a table cell, at most (pi/2)/res * 1/(2 pi) along the
+ * angle and c/(2 M sqrt(2 pi)) / res along the distance. */
+static double cone_end_bound(double cut, int res)
+{
+    double M = -expm1(-0.5 * cut * cut);
+    return (0.25 + cut / (2.0 * M * sqrt(2.0 * M_PI))) / res;
+}
+
+static void test_cone_half_plane_converges(void **state)
+{
+    (void)state;
+    const int res[] = {8, 32, 128, 256};
+    const double angles[] = {0.0, 0.5, 1.2};
+    for (int a = 0; a < 3; a++) {
+        double first = 0, last = 0;
+        for (int k = 0; k < 4; k++) {
+            char spec[64];
+            snprintf(spec, sizeof spec, "conetable:cut=8,res=%d", res[k]);
+            /* the radial Gaussian over a half-plane: Phi(signed distance / s),
+             * whatever the edge's angle; cut=8 leaves 1.3e-14 outside */
+            double e = half_plane_error(spec, "gauss", 10.3, 12.2, angles[a]);
+            /* one edge reaches the mask: two chord ends */
+            double bound = 2.0 * cone_end_bound(8.0, res[k]) + 3e-14;
+            print_message("conetable gauss angle %.1f res=%-3d half-plane max error %.3e "
+                          "(bound %.3e)\n",
+                          angles[a], res[k], e, bound);
+            if (!(e <= bound))
+                fail_msg("%s: error %.3e above the bound %.3e", spec, e, bound);
+            if (k == 0)
+                first = e;
+            last = e;
+        }
+        assert_true(last < first / 8.0);
+    }
+}
+
+/* conetable's header bound at cut=C, res=N, tol=T (parsed from the method
+ * spec): truncation 2 exp(-c^2/2), and per piece near the pixel two chord
+ * ends per chord (n chords by the flattening rule) plus (2/3) tol L wmax
+ * for the flattening, L bounded by the piece's y extent in the mask's rows
+ * plus twice its x extent there. */
+static double cone_bound(const aa_filter *f, const char *method, int pieces, double xvar)
+{
+    double cut = 2.0, tol = 1e-3;
+    int res = 64;
+    const char *q;
+    if ((q = strstr(method, "cut=")))
+        cut = atof(q + 4);
+    if ((q = strstr(method, "res=")))
+        res = atoi(q + 4);
+    if ((q = strstr(method, "tol=")))
+        tol = atof(q + 4);
+    double s = f->spec.v[0], R = cut * s, M = -expm1(-0.5 * cut * cut);
+    double wmax = 1.0 / (2.0 * M_PI * s * s * M);
+    /* crow's arcs in the 128 px image: |a| <= 128 * (largest curvature term,
+     * at most 1 pattern unit), the band 2R of 128 px in t */
+    double dt = 2.0 * R / 128.0, chords = ceil(sqrt(128.0 * dt * dt / (4.0 * tol)));
+    double trunc = 2.0 * exp(-0.5 * cut * cut);
+    return trunc + pieces * (2.0 * chords * cone_end_bound(cut, res)) +
+           (2.0 / 3.0) * tol * wmax * (pieces * 2.0 * R + xvar) + 1e-12;
+}
+
+static void test_cone_pattern_bound(void **state)
+{
+    (void)state;
+    crow_within("conetable", "gauss", 2.0 * 0.5, cone_bound);
+    crow_within("conetable:cut=4,res=256", "gauss", 4.0 * 0.5, cone_bound);
+}
+
+/* ---- refusals through the command line ---- */
+
+static int run_cli(const char *const *args, char *out, size_t cap)
+{
+    const char *exe = getenv("AABENCH");
+    if (!exe)
+        fail_msg("$AABENCH is not set");
+    char log[] = "/tmp/aabench-tables-XXXXXX";
+    int fd = mkstemp(log);
+    assert_true(fd >= 0);
+    pid_t pid = fork();
+    if (pid == 0) {
+        dup2(fd, 1);
+        dup2(fd, 2);
+        const char *argv[32] = {exe};
+        for (int k = 0; args[k] && k < 30; k++)
+            argv[k + 1] = args[k];
+        execv(exe, (char *const *)argv);
+        _exit(127);
+    }
+    int status;
+    waitpid(pid, &status, 0);
+    lseek(fd, 0, SEEK_SET);
+    ssize_t n = read(fd, out, cap - 1);
+    out[n > 0 ? n : 0] = '\0';
+    close(fd);
+    unlink(log);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+static void refused(const char *method, const char *filter, const char *words)
+{
+    char out[4096];
+    const char *args[] = {"render", "-p", "crow", "-s", "8x8", "-m", method, "-f", filter,
+                          "-o", "/tmp/aabench-tables-never.pfm", NULL};
+    int code = run_cli(args, out, sizeof out);
+    if (code != 2 || !strstr(out, words))
+        fail_msg("%s -f %s: exit %d, \"%s\" (expected 2 and \"%s\")", method, filter, code, out,
+                 words);
+    assert_int_equal(access("/tmp/aabench-tables-never.pfm", F_OK), -1);
+}
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    refused("crowtable:cut=4", "tent", "truncates the Gaussian only");
+    refused("crowtable:res=0", "box", "res");
+    refused("conetable", "box", "circular mask");
+    refused("conetable", "tent:r=1", "circular mask");
+    refused("conetable:weight=cone", "gauss", "no exact reference");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_crow_half_plane_converges),
+        cmocka_unit_test(test_crow_pattern_bound),
+        cmocka_unit_test(test_cone_half_plane_converges),
+        cmocka_unit_test(test_cone_pattern_bound),
+        cmocka_unit_test(test_refusals),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
