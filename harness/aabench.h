@@ -723,6 +723,35 @@ int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n);
 int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *const *names,
                         size_t n, const char *title);
 
+/* Published figures (figures.c): the seed papers' comparison figures remade
+ * into a folder as NAME.png (labelled panels, aa_montage_write) and NAME.txt
+ * (settings, the command that remakes it, and each panel's RMSE and largest
+ * error against the exact reference, linear light); aa_figure_index writes
+ * index.html showing every figure present in the folder. */
+#define AA_FIGURE_PANELS 6
+typedef struct aa_figure_panel {
+    char label[128];
+    int reference;                   /* 1: the panel is the exact reference */
+    double rmse, max_err;            /* linear light */
+    double rmse_enc, max_err_enc;    /* after the panel's display encoding */
+    double rgb[3];                   /* the first pixel (1 x 1 figures: its colour) */
+} aa_figure_panel;
+typedef struct aa_figure_result {
+    const char *name;
+    int npanels;
+    aa_figure_panel panel[AA_FIGURE_PANELS];
+    double seconds;
+} aa_figure_result;
+size_t aa_figure_count(void);
+const char *aa_figure_name(size_t k);  /* NULL past the end */
+const char *aa_figure_title(size_t k);
+int aa_figure_find(const char *name);  /* index, or -1 */
+/* Make figure k in `dir` (which must exist); references come from and go
+ * to `cache_dir` (NULL: no cache).  Nothing is left half-written. */
+int aa_figure_make(size_t k, const char *dir, const char *cache_dir, int threads,
+                   aa_figure_result *r);
+int aa_figure_index(const char *dir);
+
 /* ------------------------------------------------------------------------
  * Files
  * ------------------------------------------------------------------------ */

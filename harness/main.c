@@ -18,6 +18,7 @@ static const struct command {
     {"converge", cmd_converge, "RMSE against samples per pixel, and its slope"},
     {"compare", cmd_compare, "error metrics between two image files"},
     {"stress", cmd_stress, "numerical stress cases against a long double evaluation"},
+    {"figures", cmd_figures, "the seed papers' comparison figures remade, with a gallery"},
     {NULL, NULL, NULL}};
 
 static void usage(FILE *out)

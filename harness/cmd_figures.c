@@ -1,0 +1,118 @@
+/*
+ * cmd_figures.c: `aabench figures [--out DIR] [--only NAME,...] [--threads N]
+ * [-q]`: the seed papers' comparison figures remade (figures.c), a table of
+ * each panel's errors on standard output, DIR/index.html a gallery of them.
+ */
+#include "cli.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(FILE *out)
+{
+    fprintf(out, "usage: aabench figures [--out DIR] [--only NAME,...] [--threads N] [-q]\n\n"
+                 "Remakes the published comparison figures of the seed papers (Crow 1977,\n"
+                 "Catmull 1978, Feibush, Levoy and Cook 1980): DIR/NAME.png with labelled\n"
+                 "panels, DIR/NAME.txt with the settings and each panel's RMSE and largest\n"
+                 "error against the exact reference, and DIR/index.html, a gallery of the\n"
+                 "figures in DIR.  References are cached in $AABENCH_CACHE (default\n"
+                 "results/cache).\n\n"
+                 "      --out DIR       folder (default results/figures)\n"
+                 "      --only N,...    only these figures:\n");
+    for (size_t k = 0; k < aa_figure_count(); k++)
+        fprintf(out, "                        %s\n", aa_figure_name(k));
+    fprintf(out, "      --threads N     threads (the images do not depend on it)\n"
+                 "  -q, --quiet         no progress\n");
+}
+
+static int parse_only(const char *text, unsigned char *want, size_t n)
+{
+    char buf[1024];
+    if (strlen(text) >= sizeof buf)
+        return aa_fail(AA_EINVAL, "--only: list too long");
+    strcpy(buf, text);
+    memset(want, 0, n);
+    int any = 0;
+    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+        int k = aa_figure_find(tok);
+        if (k < 0) {
+            char names[1024] = "";
+            for (size_t j = 0; j < n; j++) {
+                strncat(names, j ? ", " : "", sizeof names - strlen(names) - 1);
+                strncat(names, aa_figure_name(j), sizeof names - strlen(names) - 1);
+            }
+            return aa_fail(AA_EINVAL, "--only: no figure \"%s\" (accepted: %s)", tok, names);
+        }
+        want[k] = 1;
+        any = 1;
+    }
+    if (!any)
+        return aa_fail(AA_EINVAL, "--only: empty list (give figure names separated by commas)");
+    return AA_OK;
+}
+
+int cmd_figures(int argc, char **argv)
+{
+    enum { O_OUT = 256, O_ONLY, O_THREADS };
+    static const struct option opts[] = {{"out", required_argument, 0, O_OUT},
+                                         {"only", required_argument, 0, O_ONLY},
+                                         {"threads", required_argument, 0, O_THREADS},
+                                         {"quiet", no_argument, 0, 'q'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
+    enum { NMAX = 64 };
+    const size_t n = aa_figure_count();
+    unsigned char want[NMAX];
+    const char *dir = "results/figures";
+    int c, st = AA_OK, threads = cli_default_threads(), quiet = 0;
+    if (n > NMAX)
+        return cli_fail("figures", aa_fail(AA_EFAIL, "too many figures"));
+    memset(want, 1, sizeof want);
+    cli_getopt_reset();
+    while (!st && (c = getopt_long(argc, argv, ":hq", opts, NULL)) != -1) {
+        switch (c) {
+        case O_OUT: dir = optarg; break;
+        case O_ONLY: st = parse_only(optarg, want, n); break;
+        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &threads); break;
+        case 'q': quiet = 1; break;
+        case 'h': usage(stdout); return 0;
+        default: return cli_bad_option("figures", c, argv);
+        }
+    }
+    if (!st && optind < argc)
+        st = aa_fail(AA_EINVAL, "unexpected argument \"%s\"", argv[optind]);
+    if (!st && *dir == '\0')
+        st = aa_fail(AA_EINVAL, "--out: empty folder name");
+    if (!st)
+        st = aa_mkdirs(dir);
+    if (st)
+        return cli_fail("figures", st);
+    int show = !quiet && cli_progress_wanted();
+    double t0 = aa_now();
+    printf("%-15s %-30s %12s %12s\n", "figure", "panel", "rmse", "max_err");
+    for (size_t k = 0; k < n && !st; k++) {
+        if (!want[k])
+            continue;
+        if (show)
+            fprintf(stderr, "\r%-70s", aa_figure_name(k));
+        aa_figure_result r;
+        if ((st = aa_figure_make(k, dir, cli_cache_dir(), threads, &r)))
+            break;
+        if (show)
+            fprintf(stderr, "\r%70s\r", "");
+        for (int p = 0; p < r.npanels; p++) {
+            if (r.panel[p].reference)
+                printf("%-15s %-30s %12s %12s\n", r.name, r.panel[p].label, "reference", "-");
+            else
+                printf("%-15s %-30s %12.4e %12.4e\n", r.name, r.panel[p].label, r.panel[p].rmse,
+                       r.panel[p].max_err);
+        }
+        fflush(stdout);
+    }
+    if (!st)
+        st = aa_figure_index(dir);
+    if (st)
+        return cli_fail("figures", st);
+    printf("wrote %s/index.html (%.1f s)\n", dir, aa_now() - t0);
+    return 0;
+}
