@@ -66,7 +66,8 @@
  * local piece of its window (one or two on crow) and a comparison: its
  * colour is that of the subset of local pieces left of it, found once per
  * pixel.  Elsewhere a sample also asks the strip for the winding left of
- * the window on its line.  Counters: samples = point evaluations,
+ * the window on its line.  On a field scene (the zone plate) every pixel is
+ * sampled through the point function.  Counters: samples = point evaluations,
  * expensive_pixels = pixels sampled.
  *
  * Limits.  Noise instead of aliasing: the RMSE of a pixel crossed by an
@@ -554,7 +555,7 @@ const aa_method_type aa_method_jitter = {
     {"jitter", "spp stratified, random or Owen-scrambled quasi-random samples per pixel",
      jitter_params},
     sizeof(jt_state),
-    AA_METHOD_SEEDED,
+    AA_METHOD_SEEDED | AA_METHOD_FIELDS,
     jitter_check,
     jitter_init,
     jitter_render,

@@ -11,6 +11,7 @@
 
 const aa_pattern_type *const aa_pattern_types[] = {
     &aa_pattern_crow,
+    &aa_pattern_zoneplate,
     NULL};
 
 int aa_pattern_parse(const char *text, aa_spec *out)

@@ -7,5 +7,6 @@
 #include "aabench.h"
 
 extern const aa_pattern_type aa_pattern_crow;
+extern const aa_pattern_type aa_pattern_zoneplate;
 
 #endif
