@@ -325,17 +325,19 @@ static aa_rgb zoneplate_value(const double *p, double x, double y)
     return (aa_rgb){{v, v, v}};
 }
 
-/* The integrals of every column (n = W, scale s, shift t) into g, b. */
+/* The integrals of every column (n = W, scale s, shift t) into g, their
+ * bounds into b and their magnitudes into m. */
 static int axis_integrals(double k, double s, double t, int n, const aa_filter *f,
-                          double complex *g, double *b, int threads)
+                          double complex *g, double *b, double *m, int threads)
 {
     dd a = dd_div((dd){k, 0.0}, dd_mul((dd){s, 0.0}, (dd){s, 0.0}));
-    dd m = two_sum(t, 0.5 * s); /* the plate's centre in pixel units */
+    dd o = two_sum(t, 0.5 * s); /* the plate's centre in pixel units */
     int status = AA_OK;
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (int i = 0; i < n; i++) {
-        dd c = dd_add(two_sum(i + 0.5, -m.hi), (dd){-m.lo, 0.0});
+        dd c = dd_add(two_sum(i + 0.5, -o.hi), (dd){-o.lo, 0.0});
         int st = aa__zoneplate_1d(f, a.hi, a.lo, c.hi, c.lo, &g[i], &b[i]);
+        m[i] = cabs(g[i]);
         if (st) {
 #pragma omp atomic write
             status = st;
@@ -356,14 +358,16 @@ static int zoneplate_pixels(const double *p, const double map[4], const aa_filte
 #endif
     int W = out->w, H = out->h;
     double complex *gx = malloc(((size_t)W + (size_t)H) * sizeof *gx), *gy = gx ? gx + W : NULL;
-    double *bx = malloc(((size_t)W + (size_t)H) * sizeof *bx), *by = bx ? bx + W : NULL;
+    size_t n = (size_t)W + (size_t)H;
+    double *bx = malloc(2 * n * sizeof *bx), *by = bx ? bx + W : NULL;
+    double *mx = bx ? bx + n : NULL, *my = bx ? mx + W : NULL;
     int st = AA_OK;
     if (!gx || !bx)
         st = aa_fail(AA_ENOMEM, "out of memory for the zone plate's %d + %d integrals", W, H);
     if (!st)
-        st = axis_integrals(p[P_K], map[0], map[2], W, f, gx, bx, nt);
+        st = axis_integrals(p[P_K], map[0], map[2], W, f, gx, bx, mx, nt);
     if (!st)
-        st = axis_integrals(p[P_K], map[1], map[3], H, f, gy, by, nt);
+        st = axis_integrals(p[P_K], map[1], map[3], H, f, gy, by, my, nt);
     double worst_b = 0.0;
     int wi = -1, wj = -1;
     if (!st) {
@@ -375,7 +379,7 @@ static int zoneplate_pixels(const double *p, const double map[4], const aa_filte
             for (int j = 0; j < H; j++) {
                 for (int i = 0; i < W; i++) {
                     double v = 0.5 + 0.5 * creal(gx[i] * gy[j]);
-                    double e = 0.5 * (cabs(gy[j]) * bx[i] + cabs(gx[i]) * by[j] + bx[i] * by[j]) +
+                    double e = 0.5 * (my[j] * bx[i] + mx[i] * by[j] + bx[i] * by[j]) +
                                2.0 * DBL_EPSILON;
                     v = v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
                     double *px = aa_pixel(out, i, j);
