@@ -1614,17 +1614,34 @@ static int area_check(const double *p, const aa_filter *f)
     return AA_OK;
 }
 
+/* The exact integration is of edges: a field scene has none (it would come
+ * out as the background).  aa_method_init refuses it already, since the
+ * type does not declare AA_METHOD_FIELDS; this is for direct calls. */
+static int refuse_field(const aa_job *job)
+{
+    const aa_field_type *field = aa_scene_field(job->placed, NULL, NULL, NULL);
+    if (field)
+        return aa_fail(AA_EINVAL, "area integrates the edges of scenes of paths exactly; "
+                                  "pattern %s is a procedural field without edges (its exact "
+                                  "values are the reference itself): use a sampling method",
+                       field->name);
+    return AA_OK;
+}
+
 static int area_init(void *state, const double *p, const aa_job *job)
 {
     (void)p;
-    return state_ready(state, job);
+    int st = refuse_field(job);
+    return st ? st : state_ready(state, job);
 }
 
 static int area_render(void *state, const double *p, const aa_job *job, aa_image *out,
                        aa_counters *counters)
 {
     ar_state *S = state;
-    int st = state_ready(S, job);
+    int st = refuse_field(job);
+    if (!st)
+        st = state_ready(S, job);
     if (st)
         return st;
     int integrator = (int)p[P_INTEGRATOR];

@@ -288,7 +288,7 @@ const aa_method_type aa_method_hexagon = {
                 "(Crow fig. 4.1)",
      hexagon_params},
     sizeof(hexagon_state),
-    AA_METHOD_TEMPORAL,
+    AA_METHOD_TEMPORAL | AA_METHOD_FIELDS,
     hexagon_check,
     hexagon_init,
     hexagon_render,

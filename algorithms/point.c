@@ -11,6 +11,9 @@
  * no prefilter, so edges staircase, detail finer than a pixel aliases into
  * moire, and objects between centres vanish.
  *
+ * On a field scene (aabench.h, "Fields": the zone plate) there are no
+ * crossings: each centre takes the field's value (aa_scene_colour_at).
+ *
  * Limits: it has no filter; it is measured against the box reference and
  * refuses other filters.  A centre exactly on an edge takes the colour to
  * the edge's left (the scene's crossing rule).
@@ -75,6 +78,12 @@ void aa_point_ws_free(aa_point_ws *ws)
 void aa_point_row(const aa_scene *placed, aa_point_ws *ws, double dx, double y, double *row,
                   int w)
 {
+    if (aa_scene_field(placed, NULL, NULL, NULL)) {
+        /* a field: its point function at every centre */
+        for (int i = 0; i < w; i++)
+            fill(row, i, i + 1, aa_scene_colour_at(placed, i + 0.5 + dx, y));
+        return;
+    }
     size_t n = aa_scene_crossings(placed, y, ws->cross, ws->cap);
     memset(ws->wind, 0, (size_t)ws->nl * sizeof *ws->wind);
     int i = 0;
@@ -124,7 +133,7 @@ static int point_render(void *state, const double *p, const aa_job *job, aa_imag
 const aa_method_type aa_method_point = {
     {"point", "one sample at each pixel centre (Crow fig. 2.10)", point_params},
     0,
-    0,
+    AA_METHOD_FIELDS,
     point_check,
     NULL,
     point_render,

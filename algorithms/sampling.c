@@ -43,6 +43,7 @@ static int worker_make(aa__sampler_worker *wk, const aa_scene *scene, size_t own
     memset(b, 0, size);
     wk->own = b;
     wk->wind = (int *)(b + o_wind), wk->wind2 = wk->wind + nw;
+    wk->field = aa_scene_field(scene, NULL, NULL, NULL) != NULL;
     return AA_OK;
 }
 

@@ -19,6 +19,9 @@
  *    failure flag that stops the rows when a strip cannot be built
  *    (aa__sampler_render, aa__sampler_row);
  *  - the colour of a point from the worker's strip (aa__sampler_colour_at);
+ *  - a field scene (aabench.h, "Fields"), which has no edges: no uniform
+ *    runs, every pixel shaded, every sample's colour from the point
+ *    function (the worker's `field` flag);
  *  - the by-subset colouring of a pixel in a band that no piece ends in:
  *    there a sample's colour depends only on which local pieces lie left of
  *    it, so a method sums its samples' weights per subset and the colours
@@ -48,6 +51,7 @@ typedef struct aa__sampler_worker {
     aa_strip *strip;
     void *own;         /* the method's scratch (own_size bytes, cache-line aligned) */
     int *wind, *wind2; /* one per layer each */
+    int field;         /* the scene is a field: every sample from its point function */
     void *block;       /* all of the above but the strip, in whole cache lines */
 } aa__sampler_worker;
 
@@ -96,6 +100,16 @@ static inline int aa__sampler_row(aa__sampler_worker *wk, int j, double r, uint6
                                   uint64_t *samples, uint64_t *expensive)
 {
     double cy = j + 0.5;
+    if (wk->field) {
+        /* a field has no edges to find uniform runs by: every pixel is
+         * sampled (the shading reads the point function) */
+        for (int i = 0; i < out->w; i++) {
+            ++*expensive;
+            *samples += count;
+            shade(ctx, wk, i, j, aa_pixel(out, i, j));
+        }
+        return 0;
+    }
     if (aa_strip_begin(wk->strip, cy - r, cy + r))
         return 1;
     for (int i = 0; i < out->w;) {
@@ -120,10 +134,16 @@ static inline int aa__sampler_row(aa__sampler_worker *wk, int j, double r, uint6
  * by-subset path applies: a band no piece ends in (aa_strip_all_full) and
  * at most AA__SAMPLER_SUBSET_MAX local pieces.  Returns the number of
  * them that cross lines, put in pcs (bit q of a subset is pcs[q]), or -1
- * when every sample's colour must come from the strip. */
+ * when every sample's colour must come from the strip (or, on a field, no
+ * local pieces and -1: every sample from the point function). */
 static inline int aa__sampler_subsets(aa__sampler_worker *wk, const aa_piece *const **loc,
                                       size_t *nloc, const aa_piece *pcs[AA__SAMPLER_SUBSET_MAX])
 {
+    if (wk->field) {
+        *loc = NULL;
+        *nloc = 0;
+        return -1;
+    }
     int ragged = !aa_strip_all_full(wk->strip);
     *loc = aa_strip_local(wk->strip, nloc);
     if (ragged || *nloc > AA__SAMPLER_SUBSET_MAX)
@@ -145,11 +165,14 @@ void aa__sampler_by_subsets(aa__sampler_worker *wk, const aa_scene *s, double y,
 
 /* The colour at (x, y) in the strip's current window: the winding left of
  * the window plus the local pieces crossing line y left of x (as
- * aa_strip_colour_at, with the worker's own winding array). */
+ * aa_strip_colour_at, with the worker's own winding array); on a field, the
+ * point function. */
 static inline aa_rgb aa__sampler_colour_at(aa__sampler_worker *wk, const aa_scene *s,
                                            const aa_piece *const *loc, size_t nloc, double x,
                                            double y)
 {
+    if (wk->field)
+        return aa_scene_colour_at(s, x, y);
     aa_strip_winding_left(wk->strip, y, wk->wind);
     for (size_t k = 0; k < nloc; k++) {
         const aa_piece *p = loc[k];

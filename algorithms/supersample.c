@@ -35,7 +35,8 @@
  * is that of the subset of local pieces left of it, found once per pixel;
  * elsewhere the strip gives the winding left of the window per line.
  * Counters: samples = positions evaluated, expensive_pixels = pixels that
- * were sampled.  The workers, the row loop and the by-subset colouring are
+ * were sampled.  On a field scene (the zone plate) every pixel is sampled
+ * and every sample is the point function.  The workers, the row loop and the by-subset colouring are
  * shared with jitter (sampling.h); this file has the plans and weights.
  *
  * Limits.  The grid is regular, so it aliases: detail near the grid's own
@@ -319,12 +320,33 @@ static void list_general(aa__sampler_worker *wk, const ss_plan *pl, const aa_sce
     put(px, acc, pl->total, first, uniform);
 }
 
-/* Pixel (i, j), whose footprint holds local pieces (aa__sampler_shade_fn). */
+/* Grid pixel on a field scene: every sample from the point function. */
+static void grid_field(const ss_plan *pl, const aa_scene *s, double x0, double y0, double *px)
+{
+    double acc[3] = {0, 0, 0};
+    for (int b = 0; b < pl->n; b++) {
+        double r0 = 0, r1 = 0, r2 = 0, y = y0 + pl->at[b];
+        for (int a = 0; a < pl->n; a++) {
+            aa_rgb c = aa_scene_colour_at(s, x0 + pl->at[a], y);
+            r0 += pl->w1[a] * c.c[0], r1 += pl->w1[a] * c.c[1], r2 += pl->w1[a] * c.c[2];
+        }
+        acc[0] += pl->w1[b] * r0, acc[1] += pl->w1[b] * r1, acc[2] += pl->w1[b] * r2;
+    }
+    aa_rgb none = {{0, 0, 0}};
+    put(px, acc, pl->total, none, 0);
+}
+
+/* Pixel (i, j), whose footprint holds local pieces (aa__sampler_shade_fn),
+ * or any pixel of a field scene. */
 static void shade(const void *ctx, aa__sampler_worker *wk, int i, int j, double *px)
 {
     const ss_render *R = ctx;
     const ss_plan *pl = R->plan;
     double cx = i + 0.5, cy = j + 0.5;
+    if (wk->field && pl->grid) {
+        grid_field(pl, R->scene, cx - pl->half, cy - pl->half, px);
+        return;
+    }
     const aa_piece *const *loc, *pcs[AA__SAMPLER_SUBSET_MAX];
     size_t nloc;
     int np = aa__sampler_subsets(wk, &loc, &nloc, pcs);
@@ -387,7 +409,7 @@ const aa_method_type aa_method_supersample = {
      "n x n grid (Crow figs. 2.11-2.12) or msaa positions per pixel, filter-weighted",
      supersample_params},
     sizeof(ss_state),
-    0,
+    AA_METHOD_FIELDS,
     supersample_check,
     supersample_init,
     supersample_render,

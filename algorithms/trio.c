@@ -614,7 +614,7 @@ const aa_method_type aa_method_trio = {
              "or a recursive filter (Crow figs. 4.2-4.3)",
      trio_params},
     sizeof(trio_state),
-    0,
+    AA_METHOD_FIELDS,
     trio_check,
     trio_init,
     trio_render,

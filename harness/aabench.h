@@ -287,6 +287,52 @@ size_t aa_scene_touching(const aa_scene *s, double x0, double y0, double x1, dou
                          size_t *out, size_t cap);
 
 /* ------------------------------------------------------------------------
+ * Fields: a procedural scene, a point function plus its own exact pixel
+ * integral (DESIGN.md, "The three contracts"), such as the zone plate.
+ *
+ * A scene carries either layers of paths or one field, never both: a field
+ * scene has no layers, no edges and no pieces, covers the whole plane and
+ * has no background showing.  The field is defined in its own units (the
+ * pattern's); the scene keeps the map to them, so placing or transforming a
+ * field scene only composes that map and the field stays exact.  Queries on
+ * a field scene: aa_scene_colour_at gives the field's value, crossings and
+ * touching give none, aa_scene_bounds gives the whole plane (infinite
+ * bounds, returns 1), aa_scene_is_grey the field's own greyness.
+ * ------------------------------------------------------------------------ */
+
+#define AA_FIELD_MAX_PARAMS 8
+
+struct aa_filter; /* below, with the filters */
+
+typedef struct aa_field_type {
+    const char *name;
+    /* bump when its reference values could change (part of the cache key) */
+    int version;
+    int grey; /* 1 if every value is grey */
+    /* The value at (x, y) in the field's own units. */
+    aa_rgb (*value)(const double *p, double x, double y);
+    /* The exact filtered image of the field placed so that its own point
+     * (x, y) is at (map[0] x + map[2], map[1] y + map[3]) in pixel units:
+     * pixel (i, j) is the integral of f(u - i - 1/2, v - j - 1/2) times the
+     * value there.  bound (may be NULL): 1 channel, per-pixel error bounds;
+     * *max_bound and *worst (i, j) receive the largest.  threads <= 0:
+     * OpenMP's default. */
+    int (*pixels)(const double *p, const double map[4], const struct aa_filter *f, int threads,
+                  aa_image *out, aa_image *bound, double *max_bound, int worst[2]);
+} aa_field_type;
+
+/* Make an empty, unfinished scene (no layers yet) a field scene with
+ * parameters p[0 .. n) (n <= AA_FIELD_MAX_PARAMS); the map is the identity.
+ * Layers added afterwards are refused, and so is a field on a scene that
+ * has layers. */
+int aa_scene_set_field(aa_scene *s, const aa_field_type *type, const double *p, int n);
+/* The scene's field, or NULL for a scene of layers; *p and *n (may be
+ * NULL) get its parameters and their count, map (may be NULL) the map from
+ * its units to the scene's (sx, sy, tx, ty: x' = sx x + tx, y' = sy y + ty). */
+const aa_field_type *aa_scene_field(const aa_scene *s, const double **p, int *n,
+                                    double map[4]);
+
+/* ------------------------------------------------------------------------
  * Strips: fast windowed queries along a horizontal band of a scene.
  *
  * A strip holds the pieces meeting the band [ya, yb].  Windows [xl, xr]
@@ -473,8 +519,13 @@ void aa_job_free(aa_job *job);
 enum aa_method_flags {
     AA_METHOD_SEEDED = 1,  /* the image depends on the seed */
     AA_METHOD_TEMPORAL = 2, /* the image depends on several frames */
-    AA_METHOD_SOME_SCENES = 4 /* init refuses some scenes (colour, several layers) with
-                                 AA_EINVAL and a message: the peer rasterizers */
+    /* init refuses some scenes (colour, several layers) with AA_EINVAL and
+     * a message: the peer rasterizers */
+    AA_METHOD_SOME_SCENES = 4,
+    /* the method renders a field scene (aa_scene_field) through its point
+     * function; a method without this flag is refused a field scene by
+     * aa_method_init, rather than rendering the background */
+    AA_METHOD_FIELDS = 8
 };
 
 typedef struct aa_method_type {

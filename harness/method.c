@@ -67,11 +67,27 @@ int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out)
     return AA_OK;
 }
 
+/* A method that does not declare AA_METHOD_FIELDS is refused a field scene
+ * (it would see no edges and render the background). */
+static int check_scene(const aa_method_type *type, const aa_job *job)
+{
+    const aa_field_type *field = job->placed ? aa_scene_field(job->placed, NULL, NULL, NULL) : NULL;
+    if (field && !(type->flags & AA_METHOD_FIELDS))
+        return aa_fail(AA_EINVAL,
+                       "method %s renders scenes of paths only, and pattern %s is a procedural "
+                       "field: use a method that samples it (such as point, supersample or "
+                       "jitter)",
+                       type->info.name, field->name);
+    return AA_OK;
+}
+
 int aa_method_init(aa_method *m, const aa_spec *spec, const aa_job *job)
 {
     const aa_method_type *type = (const aa_method_type *)spec->info;
     int st;
     memset(m, 0, sizeof *m);
+    if ((st = check_scene(type, job)))
+        return st;
     if (type->check && (st = type->check(spec->v, &job->filter)))
         return aa_fail_context(st, "method %s", type->info.name);
     m->type = type;
@@ -89,8 +105,11 @@ int aa_method_render(aa_method *m, const aa_job *job, aa_image *out, aa_counters
 {
     if (!out->v || out->w != job->w || out->h != job->h || out->c != 3)
         return aa_fail(AA_EINVAL, "render needs a %dx%dx3 image", job->w, job->h);
+    int st = check_scene(m->type, job);
+    if (st)
+        return st;
     memset(counters, 0, sizeof *counters);
-    int st = m->type->render(m->state, m->spec.v, job, out, counters);
+    st = m->type->render(m->state, m->spec.v, job, out, counters);
     return st ? aa_fail_context(st, "method %s", m->type->info.name) : AA_OK;
 }
 

@@ -25,6 +25,8 @@
 #define TRUTH_VERSION 1
 #define CACHE_MAGIC "aabench-reference\n"
 
+static int field_key(const aa_view *view, char *buf, size_t len);
+
 int aa_view_key(const aa_view *view, char *buf, size_t len)
 {
     char pattern[1024], filter[256];
@@ -38,7 +40,32 @@ int aa_view_key(const aa_view *view, char *buf, size_t len)
                      view->vy);
     if (n < 0 || (size_t)n >= len)
         return aa_fail(AA_EFAIL, "view key too long");
-    return AA_OK;
+    return field_key(view, buf + n, len - (size_t)n);
+}
+
+/* A field pattern (aabench.h, "Fields") adds a line naming the field, the
+ * version of its integral and its parameters, so that a change to the
+ * field's code or parameters is never served an old image.  A pattern that
+ * cannot be built adds nothing (its reference fails anyway). */
+static int field_key(const aa_view *view, char *buf, size_t len)
+{
+    aa_scene *s = NULL;
+    const double *p;
+    int np, n, st = AA_OK;
+    if (aa_pattern_scene(&view->pattern, &s) != AA_OK)
+        return AA_OK;
+    const aa_field_type *field = aa_scene_field(s, &p, &np, NULL);
+    if (field) {
+        n = snprintf(buf, len, "field %s %d", field->name, field->version);
+        for (int k = 0; k < np && n >= 0 && (size_t)n < len; k++)
+            n += snprintf(buf + n, len - (size_t)n, " %.17g", p[k]);
+        if (n >= 0 && (size_t)n < len)
+            n += snprintf(buf + n, len - (size_t)n, "\n");
+        if (n < 0 || (size_t)n >= len)
+            st = aa_fail(AA_EFAIL, "view key too long");
+    }
+    aa_scene_free(s);
+    return st;
 }
 
 static uint64_t fnv1a(const char *s)

@@ -140,9 +140,14 @@ static int run_method(const aa_run_config *cfg, const aa_job *job, const aa_imag
         snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
         return AA_OK;
     }
-    if (st || (st = aa_spec_format(&spec, row->canonical, sizeof row->canonical)) ||
-        (st = aa_method_run(&spec, job, cfg->reps, img, &c, seconds)) ||
-        (st = aa_metrics_compute(ref, img, &cfg->enc, &row->m)))
+    if (!st && !(st = aa_spec_format(&spec, row->canonical, sizeof row->canonical)) &&
+        (st = aa_method_run(&spec, job, cfg->reps, img, &c, seconds)) == AA_EINVAL) {
+        /* refused at init: a scene it cannot take (colour, several layers, a
+         * field): a result too */
+        snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
+        return AA_OK;
+    }
+    if (st || (st = aa_metrics_compute(ref, img, &cfg->enc, &row->m)))
         return aa_fail_context(st, "%s on %s %dx%d %s", row->method, row->pattern, row->w,
                                row->h, row->filter);
     qsort(seconds, (size_t)cfg->reps, sizeof *seconds, cmp_double);

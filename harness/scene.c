@@ -100,6 +100,8 @@ int aa_scene_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule)
         return st;
     if (rule != AA_FILL_NONZERO && rule != AA_FILL_EVENODD)
         return aa_fail(AA_EINVAL, "unknown fill rule %d", (int)rule);
+    if (s->field)
+        return aa_fail(AA_EINVAL, "scene is a field (%s): it has no layers", s->field->name);
     if (s->open && (st = aa_scene_close(s)))
         return st;
     size_t cap = s->caplayers;
@@ -199,6 +201,44 @@ int aa_scene_close(aa_scene *s)
         return st;
     s->contour[s->ncontours++] = s->contour_first;
     return AA_OK;
+}
+
+/* ---- fields ---- */
+
+int aa_scene_set_field(aa_scene *s, const aa_field_type *type, const double *p, int n)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (!type || !type->value || !type->pixels || n < 0 || n > AA_FIELD_MAX_PARAMS)
+        return aa_fail(AA_EINVAL, "a field needs a value and a pixels function and at most "
+                                  "%d parameters",
+                       AA_FIELD_MAX_PARAMS);
+    if (s->nlayers || s->nedges || s->field)
+        return aa_fail(AA_EINVAL, "a scene is either layers of paths or one field, not both");
+    for (int k = 0; k < n; k++)
+        if (!isfinite(p[k]))
+            return aa_fail(AA_EINVAL, "field %s: parameter %d is not finite", type->name, k);
+    s->field = type;
+    s->fnparam = n;
+    memset(s->fparam, 0, sizeof s->fparam);
+    if (n)
+        memcpy(s->fparam, p, (size_t)n * sizeof *p);
+    s->fmap[0] = s->fmap[1] = 1.0;
+    s->fmap[2] = s->fmap[3] = 0.0;
+    return AA_OK;
+}
+
+const aa_field_type *aa_scene_field(const aa_scene *s, const double **p, int *n,
+                                    double map[4])
+{
+    if (p)
+        *p = s->field ? s->fparam : NULL;
+    if (n)
+        *n = s->field ? s->fnparam : 0;
+    if (map && s->field)
+        memcpy(map, s->fmap, sizeof s->fmap);
+    return s->field;
 }
 
 /* ---- pieces ---- */
@@ -412,6 +452,12 @@ static int finish(aa_scene *s, double hint)
                    sizeof *s->contour)))
         return st;
     s->contour[s->ncontours] = s->nedges; /* sentinel */
+    if (s->field) {
+        s->grey = s->field->grey;
+        s->has_bounds = 1;
+        s->bx0 = s->by0 = -INFINITY;
+        s->bx1 = s->by1 = INFINITY;
+    }
     s->finished = 1;
     return AA_OK;
 }
@@ -533,6 +579,19 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
             t->ncontours = s->ncontours;
             memcpy(t->contour, s->contour, s->ncontours * sizeof *t->contour);
         }
+    }
+    if (!st && s->field) {
+        /* compose the map: the field's point goes to s's, then through this one */
+        t->field = s->field;
+        memcpy(t->fparam, s->fparam, sizeof t->fparam);
+        t->fnparam = s->fnparam;
+        t->fmap[0] = sx * s->fmap[0];
+        t->fmap[1] = sy * s->fmap[1];
+        t->fmap[2] = sx * s->fmap[2] + tx;
+        t->fmap[3] = sy * s->fmap[3] + ty;
+        for (int k = 0; k < 4; k++)
+            if (!isfinite(t->fmap[k]) || (k < 2 && !(t->fmap[k] > 0.0)))
+                st = aa_fail(AA_EINVAL, "scene transform of the field overflows");
     }
     if (!st)
         st = finish(t, hint);
@@ -735,6 +794,9 @@ static int visit_point(void *vctx, const aa_piece *p)
 
 aa_rgb aa_scene_colour_at(const aa_scene *s, double x, double y)
 {
+    if (s->field)
+        return s->field->value(s->fparam, (x - s->fmap[2]) / s->fmap[0],
+                               (y - s->fmap[3]) / s->fmap[1]);
     int small[16], *wind = small;
     if (s->nlayers > 16 && !(wind = calloc((size_t)s->nlayers, sizeof *wind)))
         return s->background; /* cannot happen in practice: tiny allocation */

@@ -34,6 +34,12 @@ struct aa_scene {
     size_t nbins;
     size_t *bin_start;   /* nbins + 1 */
     uint32_t *bin_items; /* piece indices */
+
+    /* a field scene (aa_scene_set_field): no layers, the field everywhere */
+    const aa_field_type *field;
+    double fparam[AA_FIELD_MAX_PARAMS];
+    int fnparam;
+    double fmap[4]; /* sx, sy, tx, ty: the field's (x, y) is at (sx x + tx, sy y + ty) */
 };
 
 /* Call visit(ctx, piece) once for every piece whose closed y range meets

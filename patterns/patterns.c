@@ -17,6 +17,7 @@ const aa_pattern_type *const aa_pattern_types[] = {
     &aa_pattern_feibush,
     &aa_pattern_fence,
     &aa_pattern_dots,
+    &aa_pattern_zoneplate,
     NULL};
 
 int aa_pattern_parse(const char *text, aa_spec *out)

@@ -13,5 +13,6 @@ extern const aa_pattern_type aa_pattern_star;
 extern const aa_pattern_type aa_pattern_feibush;
 extern const aa_pattern_type aa_pattern_fence;
 extern const aa_pattern_type aa_pattern_dots;
+extern const aa_pattern_type aa_pattern_zoneplate;
 
 #endif

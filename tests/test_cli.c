@@ -119,6 +119,9 @@ static void test_refusals(void **state)
     T(2, "are required", "render", "-p", "crow", "-s", "8x8", "-o", o);
     T(3, "plug-in /nonexistent/p.so", "render", "--plugin", "/nonexistent/p.so", "-p", "crow",
       "-m", "point", "-s", "8x8", "-o", o);
+    T(2, "area renders scenes of paths only, and pattern zoneplate is a procedural field",
+      "render", "-p", "zoneplate", "-m", "area", "-s", "8x8", "-o", o);
+    T(2, "k=0: out of range", "truth", "-p", "zoneplate:k=0", "-s", "8x8", "-o", o);
     T(2, "unknown command", "frobnicate");
     T(2, "unknown list", "list", "methods-and-more");
 #undef T

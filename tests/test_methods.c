@@ -13,7 +13,9 @@
  *    a seeded method gives another image for another seed;
  *  - out-of-range, non-finite and unknown parameters are refused;
  *  - every filter is honoured or refused with a message;
- *  - the counters make sense.
+ *  - the counters make sense;
+ *  - on the zone plate (a field scene) a method samples the field, or
+ *    refuses it if it does not declare AA_METHOD_FIELDS.
  *
  * Every CHOICE parameter is run with each of its words.  Then the ordering
  * on crow 256x256 box that the methods exist to show: RMSE falls from point
@@ -217,6 +219,61 @@ static void test_range_and_determinism(void **state)
     for_each_spec(check_range_and_determinism);
 }
 
+/* The zone plate, a field scene (aabench.h, "Fields"): a method that
+ * declares AA_METHOD_FIELDS samples its point function (values in [0, 1],
+ * not all one colour as the background would be, the same for 1 and 2
+ * threads and for the same seed); any other is refused with exit status 2
+ * and a message naming the field. */
+static void check_zoneplate(const char *spec, const aa_method_type *type)
+{
+    aa_spec ps;
+    aa_scene *s;
+    assert_int_equal(aa_pattern_parse("zoneplate", &ps), AA_OK);
+    assert_int_equal(aa_pattern_scene(&ps, &s), AA_OK);
+    aa_image a, b, c2;
+    aa_counters ca, cb, cc;
+    const char *filter = home_filter(spec);
+    if (!filter) {
+        aa_scene_free(s);
+        return;
+    }
+    int st = render(spec, s, filter, W, H, 7, 1, &a, &ca);
+    if (!(type->flags & AA_METHOD_FIELDS)) {
+        if (st != AA_EINVAL || aa_exit_code(st) != 2 || !strstr(aa_last_error(), "zoneplate"))
+            fail_msg("%s: a field scene is not refused clearly (status %d, \"%s\")", spec, st,
+                     aa_last_error());
+        aa_scene_free(s);
+        return;
+    }
+    if (st)
+        fail_msg("%s: %s", spec, aa_last_error());
+    double lo = 1, hi = 0;
+    for (int p = 0; p < W * H * 3; p++) {
+        if (!(a.v[p] >= 0.0 && a.v[p] <= 1.0))
+            fail_msg("%s: zoneplate value %.17g at %d outside [0, 1]", spec, a.v[p], p);
+        lo = fmin(lo, a.v[p]), hi = fmax(hi, a.v[p]);
+    }
+    if (!(hi - lo > 0.5))
+        fail_msg("%s: zoneplate image spans only [%g, %g]: not the rings", spec, lo, hi);
+    assert_true(ca.samples >= (uint64_t)W * H);
+    assert_int_equal(render(spec, s, filter, W, H, 7, 2, &b, &cb), AA_OK);
+    if (memcmp(a.v, b.v, sizeof(double) * W * H * 3))
+        fail_msg("%s: zoneplate: 1 and 2 threads give different images", spec);
+    assert_int_equal(render(spec, s, filter, W, H, 7, 2, &c2, &cc), AA_OK);
+    if (memcmp(a.v, c2.v, sizeof(double) * W * H * 3))
+        fail_msg("%s: zoneplate: the same seed gives another image", spec);
+    aa_image_free(&a);
+    aa_image_free(&b);
+    aa_image_free(&c2);
+    aa_scene_free(s);
+}
+
+static void test_zoneplate(void **state)
+{
+    (void)state;
+    for_each_spec(check_zoneplate);
+}
+
 static void check_filters(const char *spec, const aa_method_type *type)
 {
     (void)type;
@@ -372,6 +429,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_uniform_exact),
         cmocka_unit_test(test_range_and_determinism),
+        cmocka_unit_test(test_zoneplate),
         cmocka_unit_test(test_filters),
         cmocka_unit_test(test_bad_parameters),
         cmocka_unit_test(test_point_is_centres),
