@@ -88,6 +88,16 @@ static void test_refusals(void **state)
     T(2, "kmax=inf: not a number", "truth", "-p", "crow:kmax=inf", "-s", "8x8", "-o", o);
     T(2, "out of range (expected an integer from 2 to 65536)", "truth", "-p",
       "crow:curves=1000000", "-s", "8x8", "-o", o);
+    T(2, "from 1 to 4096", "truth", "-p", "star:spokes=5000", "-s", "8x8", "-o", o);
+    T(2, "gives 500000 bars; at most 65536", "truth", "-p", "fence:period=1e-6", "-s", "8x8",
+      "-o", o);
+    T(2, "duty=0: out of range", "truth", "-p", "fence:duty=0", "-s", "8x8", "-o", o);
+    T(2, "from 1 to 256", "truth", "-p", "dots:n=257", "-s", "8x8", "-o", o);
+    T(2, "from 1 to 256", "truth", "-p", "catmull:tiles=0", "-s", "8x8", "-o", o);
+    T(2, "hmin=0.01 must not exceed hmax=0.001", "truth", "-p", "slivers:hmin=0.01,hmax=0.001",
+      "-s", "8x8", "-o", o);
+    T(2, "from 1 to 65536", "truth", "-p", "slivers:count=100000", "-s", "8x8", "-o", o);
+    T(2, "from 1 to 65536", "truth", "-p", "feibush:stripes=70000", "-s", "8x8", "-o", o);
     T(2, "is not WxH", "truth", "-p", "crow", "-s", "256", "-o", o);
     T(2, "is not WxH", "truth", "-p", "crow", "-s", "axb", "-o", o);
     T(2, "each side must be from 1 to 65536", "truth", "-p", "crow", "-s", "0x5", "-o", o);
@@ -245,6 +255,13 @@ static void test_success(void **state)
     assert_int_equal(run(list), 0);
     assert_non_null(strstr(output, "crow\t"));
     assert_non_null(strstr(output, "tent\t"));
+    const char *patterns[] = {"list", "patterns", NULL};
+    assert_int_equal(run(patterns), 0);
+    static const char *names[] = {"crow\t", "catmull\t", "slivers\t", "star\t",
+                                  "feibush\t", "fence\t", "dots\t"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (!strstr(output, names[k]))
+            fail_msg("aabench list patterns: no %s in \"%s\"", names[k], output);
     const char *help[] = {"truth", "--help", NULL};
     assert_int_equal(run(help), 0);
     assert_non_null(strstr(output, "usage: aabench truth"));

@@ -7,9 +7,13 @@
  *    anywhere when tiled (the red layer is wholly hidden);
  *  - star: the total white area S R^2 sin(pi/S)/2 (a wedge is an isosceles
  *    triangle with legs R and apex angle pi/S);
+ *  - star: every pixel's box value by clipping each wedge to the pixel
+ *    (Sutherland-Hodgman and the shoelace formula), and sqrt(2) R^2 for the
+ *    four quadrant pixels of a 4-spoke star;
  *  - fence: every pixel's box value in closed form, the covered length of
  *    the pixel's column range (whole periods plus a clipped remainder)
- *    times its row's overlap with [1/4, 3/4];
+ *    times its row's overlap with [1/4, 3/4]; the total duty (1/2)^2 when
+ *    whole periods fit, its closed form otherwise;
  *  - feibush: the area of each colour from its own homography, found here
  *    by solving the 8x8 linear system of the four corner correspondences
  *    with GSL (not Heckbert's closed form the pattern uses), integrating
@@ -106,6 +110,83 @@ static void test_catmull_hidden(void **state)
     aa_image_free(&img);
 }
 
+/* The area of the convex polygon p (n vertices, n <= 8) clipped to the
+ * rectangle [x0, x1] x [y0, y1]: Sutherland-Hodgman against the four sides,
+ * then the shoelace formula. */
+static double clipped_area_rect(const double (*p)[2], int n, double x0, double y0, double x1,
+                                double y1)
+{
+    double a[16][2], b[16][2];
+    const double lims[4] = {x0, x1, y0, y1};
+    for (int k = 0; k < n; k++)
+        a[k][0] = p[k][0], a[k][1] = p[k][1];
+    for (int side = 0; side < 4; side++) {
+        int axis = side / 2, m = 0;
+        double lim = lims[side], sgn = side % 2 ? -1.0 : 1.0;
+        for (int k = 0; k < n; k++) {
+            const double *u = a[k], *v = a[(k + 1) % n];
+            double du = sgn * (u[axis] - lim), dv = sgn * (v[axis] - lim);
+            if (du >= 0)
+                b[m][0] = u[0], b[m][1] = u[1], m++;
+            if ((du >= 0) != (dv >= 0)) {
+                double t = du / (du - dv);
+                b[m][0] = u[0] + t * (v[0] - u[0]), b[m][1] = u[1] + t * (v[1] - u[1]), m++;
+            }
+        }
+        n = m;
+        for (int k = 0; k < n; k++)
+            a[k][0] = b[k][0], a[k][1] = b[k][1];
+    }
+    double sum = 0.0;
+    for (int k = 0; k < n; k++)
+        sum += a[k][0] * a[(k + 1) % n][1] - a[(k + 1) % n][0] * a[k][1];
+    return fabs(sum) / 2.0;
+}
+
+/* The same, clipped to the unit square. */
+static double clipped_area(const double (*p)[2], int n)
+{
+    return clipped_area_rect(p, n, 0.0, 0.0, 1.0, 1.0);
+}
+
+/* Every pixel of a star: the wedges are disjoint triangles, so a pixel's box
+ * value is the sum of the areas of the wedges clipped to it (polygon
+ * clipping and the shoelace formula, independent of the scene model and the
+ * reference) over the pixel's area.  Also spokes=4, rot=0 on 2x2: wedge k
+ * spans the angles k pi/2 .. k pi/2 + pi/4 and lies wholly in one quadrant
+ * pixel (R = 0.48 < 1/2), so every pixel is 4 R^2 sin(pi/4)/2 = sqrt(2) R^2. */
+static void test_star_pixels(void **state)
+{
+    (void)state;
+    const double R = 0.48;
+    aa_image img;
+    reference("star:spokes=4,rot=0", 2, 2, "box", &img, NULL);
+    for (int k = 0; k < 4; k++)
+        assert_true(fabs(img.v[3 * k] - sqrt(2.0) * R * R) <= 1e-12);
+    aa_image_free(&img);
+
+    const int S = 7, W = 23, H = 17;
+    const double rot = 13.0 * M_PI / 180.0;
+    reference("star:spokes=7,rot=13", W, H, "box", &img, NULL);
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            double want = 0.0;
+            for (int k = 0; k < S; k++) {
+                double a = 2.0 * M_PI * k / S + rot, b = a + M_PI / S;
+                const double tri[3][2] = {{0.5, 0.5},
+                                          {0.5 + R * cos(a), 0.5 + R * sin(a)},
+                                          {0.5 + R * cos(b), 0.5 + R * sin(b)}};
+                want += clipped_area_rect(tri, 3, (double)i / W, (double)j / H, (i + 1.0) / W,
+                                          (j + 1.0) / H);
+            }
+            want *= (double)W * H;
+            if (!(fabs(aa_pixel(&img, i, j)[0] - want) <= 1e-12))
+                fail_msg("star pixel (%d, %d): %.17g want %.17g", i, j, aa_pixel(&img, i, j)[0],
+                         want);
+        }
+    aa_image_free(&img);
+}
+
 static void test_star_area(void **state)
 {
     (void)state;
@@ -121,7 +202,8 @@ static void test_star_area(void **state)
         const double R = 0.48, S = cases[k].spokes;
         double want = S * R * R * sin(M_PI / S) / 2.0;
         if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
-            fail_msg("%s: %.17g want %.17g (rel %.3g)", cases[k].spec, integral(&img, 0), want, (integral(&img, 0) - want) / want);
+            fail_msg("%s: %.17g want %.17g (rel %.3g)", cases[k].spec, integral(&img, 0), want,
+                     (integral(&img, 0) - want) / want);
         assert_true(bound <= AA_TRUTH_BOUND);
         aa_image_free(&img);
     }
@@ -133,6 +215,31 @@ static double fence_run(double x, double per, double duty)
     x = fmin(fmax(x, 0.25), 0.75);
     double z = (x - 0.25) / per, whole = floor(z);
     return whole * duty * per + fmin((z - whole) * per, duty * per);
+}
+
+/* The fence's total intensity: the bars are (duty p) wide and 1/2 tall; when
+ * a whole number q of periods fits in [1/4, 3/4] the total is exactly
+ * duty (1/2)^2, otherwise (1/2) (q duty p + min(r, duty p)) with the
+ * remainder r = 1/2 - q p.  The image size does not matter (box filter). */
+static void test_fence_total(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *spec;
+        double per, duty;
+        int w, h;
+    } cases[] = {{"fence:period=0.0625", 0.0625, 0.5, 48, 40},
+                 {"fence:period=0.0625,duty=0.3", 0.0625, 0.3, 33, 31},
+                 {"fence", 0.9 / 256, 0.5, 100, 64}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        aa_image img;
+        reference(cases[k].spec, cases[k].w, cases[k].h, "box", &img, NULL);
+        const double p = cases[k].per, on = cases[k].duty * p, q = floor(0.5 / p);
+        double want = k < 2 ? cases[k].duty * 0.25 : 0.5 * (q * on + fmin(0.5 - q * p, on));
+        if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
+            fail_msg("%s: %.17g want %.17g", cases[k].spec, integral(&img, 0), want);
+        aa_image_free(&img);
+    }
 }
 
 static void test_fence_pixels(void **state)
@@ -264,40 +371,10 @@ static void test_dots_area(void **state)
         reference(cases[k].spec, 128, 96, "box", &img, NULL);
         double want = cases[k].n * cases[k].n * cases[k].size * cases[k].size;
         if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
-            fail_msg("%s: %.17g want %.17g (rel %.3g)", cases[k].spec, integral(&img, 0), want, (integral(&img, 0) - want) / want);
+            fail_msg("%s: %.17g want %.17g (rel %.3g)", cases[k].spec, integral(&img, 0), want,
+                     (integral(&img, 0) - want) / want);
         aa_image_free(&img);
     }
-}
-
-/* The area of the convex polygon p (n vertices, n <= 8) clipped to the
- * unit square: Sutherland-Hodgman against the four sides, then the shoelace
- * formula. */
-static double clipped_area(const double (*p)[2], int n)
-{
-    double a[16][2], b[16][2];
-    for (int k = 0; k < n; k++)
-        a[k][0] = p[k][0], a[k][1] = p[k][1];
-    for (int side = 0; side < 4; side++) {
-        int axis = side / 2, m = 0;
-        double lim = side % 2 ? 1.0 : 0.0, sgn = side % 2 ? -1.0 : 1.0;
-        for (int k = 0; k < n; k++) {
-            const double *u = a[k], *v = a[(k + 1) % n];
-            double du = sgn * (u[axis] - lim), dv = sgn * (v[axis] - lim);
-            if (du >= 0)
-                b[m][0] = u[0], b[m][1] = u[1], m++;
-            if ((du >= 0) != (dv >= 0)) {
-                double t = du / (du - dv);
-                b[m][0] = u[0] + t * (v[0] - u[0]), b[m][1] = u[1] + t * (v[1] - u[1]), m++;
-            }
-        }
-        n = m;
-        for (int k = 0; k < n; k++)
-            a[k][0] = b[k][0], a[k][1] = b[k][1];
-    }
-    double sum = 0.0;
-    for (int k = 0; k < n; k++)
-        sum += a[k][0] * a[(k + 1) % n][1] - a[(k + 1) % n][0] * a[k][1];
-    return fabs(sum) / 2.0;
 }
 
 static void test_slivers_area(void **state)
@@ -318,7 +395,8 @@ static void test_slivers_area(void **state)
         for (int t = 0; t < K; t++) {
             double h = K == 1 ? cases[k].hmin
                               : cases[k].hmin + (cases[k].hmax - cases[k].hmin) * t / (K - 1.0);
-            double y = (t + 0.5) / K, d = 0.9 * tan((t - (K - 1) / 2.0) * cases[k].tilt * M_PI / 180);
+            double y = (t + 0.5) / K;
+            double d = 0.9 * tan((t - (K - 1) / 2.0) * cases[k].tilt * M_PI / 180);
             const double tri[3][2] = {{0.05, y}, {0.95, y + d - h / 2}, {0.95, y + d + h / 2}};
             want += clipped_area(tri, 3);
         }
@@ -373,7 +451,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_catmull_pixel), cmocka_unit_test(test_catmull_hidden),
-        cmocka_unit_test(test_star_area),     cmocka_unit_test(test_fence_pixels),
+        cmocka_unit_test(test_star_area),     cmocka_unit_test(test_star_pixels),
+        cmocka_unit_test(test_fence_pixels),  cmocka_unit_test(test_fence_total),
         cmocka_unit_test(test_feibush_areas), cmocka_unit_test(test_dots_area),
         cmocka_unit_test(test_slivers_area),  cmocka_unit_test(test_every_pattern),
         cmocka_unit_test(test_refusals),
