@@ -62,6 +62,24 @@
 #include <math.h>
 #include <stdlib.h>
 
+#ifndef CMPLX
+/* glibc defines CMPLX only for compilers that have __builtin_complex (not
+ * clang 14); C11 6.2.5 lays a complex number out as an array of its real
+ * and imaginary parts, so this builds the same value, signed zeros and
+ * infinities included. */
+static inline double complex zp_cmplx(double re, double im)
+{
+    union {
+        double complex z;
+        double part[2];
+    } u;
+    u.part[0] = re;
+    u.part[1] = im;
+    return u.z;
+}
+#define CMPLX(re, im) zp_cmplx((re), (im))
+#endif
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
