@@ -1,9 +1,9 @@
 /*
- * frames.h: what the temporal methods `taa` and `cycle` share (internal to
- * algorithms/): a stack of point-sampled frames at times t, t - 1, ...,
- * each sampled at the pixel centres moved by its own offset, combined
- * oldest first by out += (frame - out) * weight.  A weight of 1/(m) for the
- * m-th frame gives the running mean (cycle, like hexagon.c), a constant
+ * frames.h: what the temporal methods `hexagon`, `taa` and `cycle` share
+ * (internal to algorithms/): a stack of point-sampled frames at times t,
+ * t - 1, ..., each sampled at the pixel centres moved by its own offset,
+ * combined oldest first by out += (frame - out) * weight.  A weight of 1/m
+ * for the m-th frame gives the running mean (hexagon, cycle), a constant
  * alpha the exponential history of temporal antialiasing (taa).
  *
  * Work is shared in bands of AA__FRAMES_BAND rows whatever the thread

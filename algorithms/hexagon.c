@@ -68,12 +68,12 @@
  *    leaves the range of the frames.  It equals the plain mean up to a few
  *    units in the last place.
  *
- * Work is shared out in bands of BAND rows (fixed, whatever the thread
- * count): each band samples its frames into the output and a per-thread
- * scratch band that stays in cache, so the image does not depend on the
- * thread count.  The placed scenes (one per frame time, or one for a still
- * scene) and the scratch bands are made in init; render makes them again
- * only if it is given a job of another size, time, motion or thread count.
+ * The frames are sampled and combined by the frame stack the temporal
+ * comparators share (frames.h): work goes out in bands of a fixed number
+ * of rows, each sampled into the output and a per-thread scratch band, so
+ * the image does not depend on the thread count; the placed scenes (one
+ * per frame time, or one for a still scene) are made in init and again
+ * only for a job of another size, time, motion or thread count.
  *
  * Counters: samples = frames x pixels (pixels for --frame-only);
  * expensive_pixels = 0 (every pixel takes the same path).
@@ -94,17 +94,13 @@
  * frames' box references, the eye's image has RMSE 0.097 and six plain
  * point frames 0.051 (still: 0.066 against point's 0.180).
  */
+#include "frames.h"
 #include "methods.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #define MAX_FRAMES 60
-#define BAND 8 /* rows per unit of work: a scratch band of 1024 px is 192 KiB */
 
 enum { P_RADIUS, P_FRAMES, P_ORDER, P_ANGLE };
 
@@ -124,14 +120,7 @@ static const aa_param hexagon_params[] = {
     {0}};
 
 typedef struct hexagon_state {
-    /* what the scenes and scratch were made for */
-    const aa_scene *pattern;
-    int w, h, threads, nframes;
-    double t, vx, vy;
-    aa_scene *placed[MAX_FRAMES]; /* placed[k]: the scene at time t - k */
-    int shared;                   /* still scene: placed[k] == placed[0] */
-    double *scratch;              /* threads x BAND x w x 3 */
-    int vertex[6];                /* the order word's digits */
+    aa__frames fs; /* the scenes of the window's frames and the scratch bands */
 } hexagon_state;
 
 static int hexagon_check(const double *p, const aa_filter *f)
@@ -143,20 +132,10 @@ static int hexagon_check(const double *p, const aa_filter *f)
     return AA_OK;
 }
 
-static void release_scenes(hexagon_state *s)
-{
-    int n = s->shared ? 1 : s->nframes;
-    for (int k = 0; k < n; k++)
-        aa_scene_free(s->placed[k]);
-    memset(s->placed, 0, sizeof s->placed);
-    free(s->scratch);
-    s->scratch = NULL;
-    s->nframes = 0;
-}
-
 static void hexagon_release(void *state)
 {
-    release_scenes(state);
+    hexagon_state *s = state;
+    aa__frames_free(&s->fs);
 }
 
 /* The digits of the order word chosen by p[P_ORDER]. */
@@ -169,118 +148,31 @@ static void order_digits(const double *p, int vertex[6])
         vertex[k] = word[k] - '0';
 }
 
-/* Place the scene at every frame time of the window and size the scratch. */
-static int prepare(hexagon_state *s, const double *p, const aa_job *job)
-{
-    release_scenes(s);
-    s->pattern = job->pattern;
-    s->w = job->w, s->h = job->h, s->threads = job->threads;
-    s->t = job->t, s->vx = job->vx, s->vy = job->vy;
-    s->nframes = (int)p[P_FRAMES];
-    s->shared = job->vx == 0.0 && job->vy == 0.0;
-    order_digits(p, s->vertex);
-    for (int k = 0; k < (s->shared ? 1 : s->nframes); k++)
-        if (!(s->placed[k] = aa_scene_place(job->pattern, job->w, job->h, job->t - k, job->vx,
-                                            job->vy))) {
-            s->nframes = k; /* free only what was made */
-            s->shared = 0;
-            return aa_fail_context(AA_EINVAL, "placing frame %d", k);
-        }
-    if (s->shared)
-        for (int k = 1; k < s->nframes; k++)
-            s->placed[k] = s->placed[0];
-    size_t n = (size_t)(job->threads > 0 ? job->threads : 1) * BAND * (size_t)job->w * 3;
-    if (!(s->scratch = malloc(n * sizeof *s->scratch)))
-        return aa_fail(AA_ENOMEM, "out of memory for %d scratch bands", job->threads);
-    return AA_OK;
-}
-
 static int hexagon_init(void *state, const double *p, const aa_job *job)
 {
-    return prepare(state, p, job);
-}
-
-static int same_job(const hexagon_state *s, const aa_job *job)
-{
-    return s->scratch && s->pattern == job->pattern && s->w == job->w && s->h == job->h &&
-           s->threads == job->threads && s->t == job->t && s->vx == job->vx &&
-           s->vy == job->vy;
-}
-
-/* n mod 6 in 0 .. 5 for any n. */
-static int mod6(long long n)
-{
-    int m = (int)(n % 6);
-    return m < 0 ? m + 6 : m;
-}
-
-/* The running mean: m += (x - m)/k, with inv = 1/k. */
-static void accumulate(double *restrict m, const double *restrict x, size_t len, double inv)
-{
-#pragma omp simd
-    for (size_t q = 0; q < len; q++)
-        m[q] += (x[q] - m[q]) * inv;
+    hexagon_state *s = state;
+    return aa__frames_ready(&s->fs, job, (int)p[P_FRAMES]);
 }
 
 static int hexagon_render(void *state, const double *p, const aa_job *job, aa_image *out,
                           aa_counters *counters)
 {
     hexagon_state *s = state;
-    int st;
-    if (!same_job(s, job) && (st = prepare(s, p, job)))
+    int st, vertex[6];
+    if ((st = aa__frames_ready(&s->fs, job, (int)p[P_FRAMES])))
         return st;
-    const int n = job->frame_only ? 1 : s->nframes;
+    order_digits(p, vertex);
+    const int n = job->frame_only ? 1 : (int)p[P_FRAMES];
     const long long base = (long long)floor(job->t);
     const double r = p[P_RADIUS], deg = M_PI / 180.0;
-    double dx[MAX_FRAMES], dy[MAX_FRAMES];
+    double dx[MAX_FRAMES], dy[MAX_FRAMES], wt[MAX_FRAMES];
     for (int k = 0; k < n; k++) { /* frame k of the window: time t - k */
-        double a = (p[P_ANGLE] + 60.0 * s->vertex[mod6(base - k)]) * deg;
+        double a = (p[P_ANGLE] + 60.0 * vertex[aa__mod(base - k, 6)]) * deg;
         dx[k] = r * cos(a);
         dy[k] = r * sin(a);
+        wt[k] = 1.0 / (double)(n - k); /* the running mean, oldest frame first */
     }
-    const int w = job->w, bands = (job->h + BAND - 1) / BAND;
-    int status = AA_OK;
-#pragma omp parallel num_threads(job->threads)
-    {
-        int me = 0;
-#ifdef _OPENMP
-        me = omp_get_thread_num();
-#endif
-        double *scratch = s->scratch + (size_t)me * BAND * (size_t)w * 3;
-        aa_point_ws ws;
-        /* every frame's scene has the same pieces: one workspace serves all */
-        int bad = aa_point_ws_init(&ws, s->placed[0]);
-#pragma omp for schedule(static)
-        for (int b = 0; b < bands; b++) {
-            if (bad)
-                continue;
-            const int j0 = b * BAND, bh = job->h - j0 < BAND ? job->h - j0 : BAND;
-            const size_t len = (size_t)bh * (size_t)w * 3;
-            double *band = aa_pixel(out, 0, j0);
-            /* oldest frame first, straight into the output; then the
-             * running mean of the younger ones */
-            for (int j = 0; j < bh; j++)
-                aa_point_row(s->placed[n - 1], &ws, dx[n - 1], j0 + j + 0.5 + dy[n - 1],
-                             band + 3 * (size_t)j * (size_t)w, w);
-            for (int k = n - 2; k >= 0; k--) {
-                for (int j = 0; j < bh; j++)
-                    aa_point_row(s->placed[k], &ws, dx[k], j0 + j + 0.5 + dy[k],
-                                 scratch + 3 * (size_t)j * (size_t)w, w);
-                accumulate(band, scratch, len, 1.0 / (double)(n - k));
-            }
-        }
-        if (!bad)
-            aa_point_ws_free(&ws);
-        else {
-#pragma omp atomic write
-            status = bad;
-        }
-    }
-    if (status)
-        return aa_fail(status, "out of memory while sampling the frames");
-    counters->samples = (uint64_t)n * (uint64_t)job->w * (uint64_t)job->h;
-    counters->expensive_pixels = 0;
-    return AA_OK;
+    return aa__frames_render(&s->fs, job, n, dx, dy, wt, out, counters);
 }
 
 const aa_method_type aa_method_hexagon = {
