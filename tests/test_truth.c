@@ -577,6 +577,15 @@ static aa_scene *half_plane(double px, double py, double theta, aa_rgb fg, aa_rg
     return s;
 }
 
+/* Whether long double arithmetic is wider than double here: valgrind
+ * emulates the x87 unit in double, and the fixed rule's rounding bound
+ * counts on the 64-bit mantissa (truth.c, LDBL_EPSILON). */
+static int long_double_extended(void)
+{
+    volatile long double one = 1.0L, tiny = 0x1p-60L;
+    return one + tiny != one;
+}
+
 /* Every pixel against Phi(d / s) (long double: its own error is below
  * 1e-18), within the pixel's bound; returns the largest error / bound over
  * the pixels the fixed rule took, and checks which path the pixels took. */
@@ -603,6 +612,9 @@ static double check_half_plane(double sd, double theta, int want_fast)
     long double ex = (long double)e[0].x1 - e[0].x0, ey = (long double)e[0].y1 - e[0].y0;
     long double len = sqrtl(ex * ex + ey * ey);
     double worst = 0, ratio = 0;
+    /* without extended precision the per-pixel bound is not claimed; the
+     * error must still be within the reference's promise */
+    const int extended = long_double_extended();
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++) {
             /* n = (ey, -ex) / len points into the interior */
@@ -613,7 +625,7 @@ static double check_half_plane(double sd, double theta, int want_fast)
             for (int c = 0; c < 3; c++) {
                 double want = (double)(bg.c[c] + (fg.c[c] - bg.c[c]) * phi);
                 double err = fabs(aa_pixel(&img, i, j)[c] - want);
-                if (!(err <= b + 2e-16))
+                if (!(err <= (extended ? b : AA_TRUTH_BOUND) + 2e-16))
                     fail_msg("half-plane s=%g theta=%g pixel (%d, %d) channel %d: %.17g, "
                              "closed form %.17g, error %.2e > bound %.2e",
                              sd, theta, i, j, c, aa_pixel(&img, i, j)[c], want, err, b);
@@ -647,7 +659,8 @@ static void test_gauss_half_plane(void **state)
         r = fmax(r, check_half_plane(sds[k], 3.0, 1));
         r = fmax(r, check_half_plane(sds[k], -20.0, 1));
         r = fmax(r, check_half_plane(sds[k], 40.0, 1));
-        assert_true(r <= 1.0);
+        if (long_double_extended())
+            assert_true(r <= 1.0);
         /* steep and nearly horizontal: QAG */
         check_half_plane(sds[k], 60.0, 0);
         check_half_plane(sds[k], -80.0, 0);
