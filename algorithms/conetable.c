@@ -159,7 +159,6 @@ static const aa_param conetable_params[] = {
 
 typedef struct cn_table {
     int n;          /* intervals per index */
-    int cone;       /* weight=cone (else Gaussian) */
     double rc;      /* mask radius in pixels */
     double *d;      /* d[(n + 1) * a + b]: D(u_a, theta_b) */
 } cn_table;
@@ -262,7 +261,6 @@ static int table_make(cn_table *tab, const double *p, const aa_filter *f)
     free(tab->d);
     tab->d = d;
     tab->n = n;
-    tab->cone = cone;
     tab->rc = cone ? f->spec.v[0] : cut * f->spec.v[0];
     return AA_OK;
 }
