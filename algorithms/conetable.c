@@ -53,15 +53,22 @@
  *    where several do and their regions do not overlap inside it; where
  *    regions of several layers overlap inside the mask it is the
  *    compositing approximation Crow's z-buffer tiler also makes.
- *  - Weights.  weight=gauss: exp(-r^2 / (2 s^2)) with s from -f gauss:s=S,
+ *  - Weights.  weight=auto (the default) takes the weight the filter
+ *    names: gauss with -f gauss:s=S, cone with -f cone:r=R; naming the
+ *    other one is refused, so the method is always measured against the
+ *    reference of the weight it forms.
+ *    weight=gauss: exp(-r^2 / (2 s^2)) with s from -f gauss:s=S,
  *    cut off at Rc = cut s (cut=, default 2, Feibush et al.'s radius) and
  *    normalised by the volume inside the mask, so uniform regions are
  *    exact.  It is measured against the untruncated, separable Gaussian
  *    reference (the 2-D Gaussian is both), so the error includes the
  *    truncation: exp(-cut^2 / 2) of the volume lies outside the mask
- *    (13.5 % at cut = 2, 1.1 % at 3, 3.4e-4 at 4).  weight=cone (their fig.
- *    2f, 3a) is recognised but refused: the harness has no exact reference
- *    for a cone filter yet, so its error could not be measured.
+ *    (13.5 % at cut = 2, 1.1 % at 3, 3.4e-4 at 4).
+ *    weight=cone (their fig. 2f, 3a): 1 - r / Rc with the mask radius
+ *    Rc = R from -f cone:r=R, normalised by its volume pi Rc^2 / 3, which
+ *    is all inside the mask: it is measured against the exact cone
+ *    reference (filter.c, truth.c) and has no truncation error.  cut= is
+ *    the Gaussian's and is refused with the cone.
  *
  * The table is made in init by Gauss-Legendre quadrature of
  * D(u, theta) = -(1 / (2 pi M)) int_0^min(theta, acos u)
@@ -69,7 +76,15 @@
  * u = h / Rc, c = cut, M = 1 - exp(-c^2 / 2) (the sector integral of the
  * radial weight, in closed form in r): five points on each of 8 sub-cells
  * per table cell, cut at acos u where the integrand has a kink, accurate to
- * about 1e-13.
+ * about 1e-13.  For the cone the same sector integral is a polynomial,
+ * (3 / pi) int_a^1 (1 - rho) rho drho = (3 / pi) (1/6 - a^2/2 + a^3/3)
+ * with a = u sec phi, and its integral over phi is closed:
+ *
+ *   D(u, theta) = -(3 / pi) [t / 6 - (u^2 / 2) tan t
+ *                            + (u^3 / 6) (sec t tan t + ln(sec t + tan t))],
+ *
+ * t = min(theta, acos u) (int sec^2 = tan, int sec^3 = (sec tan +
+ * ln(sec + tan)) / 2); D(0, theta) = -theta / (2 pi) and D(1, .) = 0.
  *
  * Error analysis (per pixel, against the untruncated Gaussian reference):
  *  - truncation: at most 2 exp(-cut^2 / 2) (the volume outside the mask
@@ -85,6 +100,21 @@
  *    about as 1/res^2);
  *  - flattening: at most (2/3) tol L wmax, see above.
  *
+ * Error analysis for weight=cone (per pixel, against the exact cone
+ * reference): no truncation (the weight is zero outside the mask and its
+ * whole volume is inside); interpolation as above with |dD/dtheta| <=
+ * (3 / pi) (1/6) = 1 / (2 pi) and, since the sector integrand has a double
+ * zero at a = 1 (no boundary term), dD/du = (3 / pi) int_0^sqrt(1 - u^2)
+ * (1 - sqrt(u^2 + x^2)) dx (substituting x = u tan phi), the integral of
+ * half a row of the unit cone, largest at u = 0: |dD/du| <= 3 / (2 pi).
+ * So per chord end at most (1/4 + 3 / (2 pi)) / res = 0.727 / res, and
+ * flattening (2/3) tol L wmax with wmax = 3 / (pi R^2).  Measured
+ * (tests/test_tables.c): a half-plane under cone:r=2 is off by at most
+ * 8.4e-3 at res=8 and 1.0e-5 at res=256 (bound 0.18 and 5.7e-3); crow
+ * 64x64, cone:r=1, defaults: RMSE 3.1e-4, max 2.2e-3, every pixel within
+ * its bound; crow 256x256: RMSE 2.2e-4, max 2.0e-3 (res=256, tol=1e-6:
+ * 1.6e-5 and 4.4e-4, so the table and the flattening share the error).
+ *
  * Known answers (tests/test_tables.c): with cut=8 a half-plane at any angle
  * gives Phi(d / s), d the signed distance of the centre, within the
  * interpolation bound of its two chord ends (measured: 1.3e-3 at res=32,
@@ -96,8 +126,8 @@
  * read; other pixels are filled in runs (aa_strip_uniform_run).  Each
  * pixel depends only on its row's strip: the image is the same for any
  * thread count.  Counters: samples = 0 (no point samples), expensive_pixels
- * = pixels summed.  Limits: Gaussian weight only (box and tent are
- * separable squares, not circles: refused); a centre exactly on an edge
+ * = pixels summed.  Limits: radial weights only, Gaussian or cone (box and
+ * tent are separable squares, not circles: refused); a centre exactly on an edge
  * takes the winding the scene's crossing rule gives; values clamped to
  * [0, 1].
  */
@@ -112,13 +142,15 @@
 #define CN_MAX_STEPS 256 /* chords per piece and pixel */
 
 enum { P_WEIGHT, P_CUT, P_RES, P_TOL };
-enum { W_GAUSS, W_CONE };
+enum { W_AUTO, W_GAUSS, W_CONE };
+#define CN_DEFAULT_CUT 2.0
 
 static const aa_param conetable_params[] = {
-    {"weight", AA_PARAM_CHOICE, W_GAUSS, 0, 0, 0, "gauss|cone",
-     "radial weight: Gaussian (s from -f gauss:s=S); cone is refused (no exact reference)"},
-    {"cut", AA_PARAM_REAL, 2.0, 0.5, 8.0, 0, NULL,
-     "mask radius in standard deviations (Feibush et al.: 2)"},
+    {"weight", AA_PARAM_CHOICE, W_AUTO, 0, 0, 0, "auto|gauss|cone",
+     "radial weight: the filter's (auto), Gaussian (-f gauss:s=S) or cone (-f cone:r=R, "
+     "Feibush et al. fig. 2f)"},
+    {"cut", AA_PARAM_REAL, CN_DEFAULT_CUT, 0.5, 8.0, 0, NULL,
+     "Gaussian only: mask radius in standard deviations (Feibush et al.: 2)"},
     {"res", AA_PARAM_INT, 64, 2, CN_MAX_RES, 0, NULL,
      "table intervals along each index (distance to the edge's line, angle)"},
     {"tol", AA_PARAM_REAL, 1e-3, 1e-6, 0.5, 0, NULL,
@@ -145,16 +177,36 @@ typedef struct cn_render {
 
 static int conetable_check(const double *p, const aa_filter *f)
 {
-    if ((int)p[P_WEIGHT] == W_CONE)
-        return aa_fail(AA_EINVAL, "conetable: weight=cone has no exact reference to be "
-                                  "measured against yet (the harness's filters are box, tent "
-                                  "and gauss); use weight=gauss with -f gauss:s=S");
-    if (f->type != &aa_filter_gauss)
-        return aa_fail(AA_EINVAL, "conetable weighs a circular mask with a radial Gaussian and "
-                                  "is measured against -f gauss:s=S; %s is a separable square "
-                                  "filter it cannot form",
+    int weight = (int)p[P_WEIGHT];
+    if (f->type != &aa_filter_gauss && f->type != &aa_filter_cone)
+        return aa_fail(AA_EINVAL, "conetable weighs a circular mask with a radial weight and "
+                                  "is measured against -f gauss:s=S or -f cone:r=R; %s is a "
+                                  "separable square filter it cannot form",
                        f->type->info.name);
+    if (weight == W_CONE && f->type != &aa_filter_cone)
+        return aa_fail(AA_EINVAL, "conetable: weight=cone is measured against the cone "
+                                  "reference: use -f cone:r=R (or weight=gauss with -f %s)",
+                       f->type->info.name);
+    if (weight == W_GAUSS && f->type != &aa_filter_gauss)
+        return aa_fail(AA_EINVAL, "conetable: weight=gauss is measured against the Gaussian "
+                                  "reference: use -f gauss:s=S (or weight=cone with -f %s)",
+                       f->type->info.name);
+    if (f->type == &aa_filter_cone && p[P_CUT] != CN_DEFAULT_CUT)
+        return aa_fail(AA_EINVAL, "cut=%g sets the Gaussian's mask; the cone's mask is its "
+                                  "radius r of -f cone:r=R (leave cut out)",
+                       p[P_CUT]);
     return AA_OK;
+}
+
+/* The cone's D(u, theta) in closed form (header). */
+static double cone_d(double u, double theta)
+{
+    double t = fmin(theta, acos(u));
+    if (!(t > 0.0))
+        return 0.0;
+    double sec = 1.0 / cos(t), tn = tan(t);
+    return -(3.0 / M_PI) *
+           (t / 6.0 - 0.5 * u * u * tn + (u * u * u / 6.0) * (sec * tn + log(sec + tn)));
 }
 
 /* 5-point Gauss-Legendre on [-1, 1]. */
@@ -186,9 +238,13 @@ static int table_make(cn_table *tab, const double *p, const aa_filter *f)
     double *d = malloc((size_t)(n + 1) * (size_t)(n + 1) * sizeof *d);
     if (!d)
         return aa_fail(AA_ENOMEM, "out of memory for a %d x %d table", n + 1, n + 1);
+    int cone = f->type == &aa_filter_cone;
     double e0 = exp(-0.5 * cut * cut), M = -expm1(-0.5 * cut * cut);
     double scale = -1.0 / (2.0 * M_PI * M);
-    for (int a = 0; a <= n; a++) {
+    for (int a = 0; a <= n && cone; a++)
+        for (int b = 0; b <= n; b++)
+            d[(size_t)(n + 1) * a + b] = cone_d((double)a / n, M_PI_2 * b / n);
+    for (int a = 0; a <= n && !cone; a++) {
         double u = (double)a / n, k = 0.5 * u * u * cut * cut;
         double kink = acos(u); /* beyond it the triangle's far side is outside the mask */
         double acc = 0.0;
@@ -205,7 +261,7 @@ static int table_make(cn_table *tab, const double *p, const aa_filter *f)
     free(tab->d);
     tab->d = d;
     tab->n = n;
-    tab->rc = cut * f->spec.v[0];
+    tab->rc = cone ? f->spec.v[0] : cut * f->spec.v[0];
     return AA_OK;
 }
 

@@ -28,7 +28,10 @@
  *    in each 2^-a x 3^-b box.
  *
  * Weights and value.  Sample s at offset (dx, dy) from the centre weighs
- * w(dx) w(dy) (1 for the box), and the pixel is the weighted mean
+ * w(dx) w(dy) (1 for the box; for the cone, which is not separable, its
+ * 2-D weight w(dx, dy), with samples over the square of its radius, so a
+ * fifth of them (1 - pi/4) fall outside the disc and weigh 0; should all of
+ * a pixel's do, it takes their plain mean), and the pixel is the weighted mean
  * sum w_s I_s / sum w_s: a ratio estimator of the filtered value, unbiased
  * only as spp grows (exactly unbiased for the box, whose weights are
  * equal), and the Gaussian is truncated at 3s (its 2-D mass outside, about
@@ -118,7 +121,7 @@ static int square_side(int n)
 
 static int jitter_check(const double *p, const aa_filter *f)
 {
-    (void)f; /* box, tent and gauss are all sampled over aa_filter_support */
+    (void)f; /* every filter is sampled over aa_filter_support, by its 2-D weight */
     int spp = (int)p[P_SPP];
     if ((int)p[P_SEQ] == SEQ_STRATIFIED && !square_side(spp)) {
         int k = (int)floor(sqrt((double)spp));
@@ -438,7 +441,7 @@ typedef struct jt_pixel {
 static inline double weight(const aa_filter *f, int box, const jt_pixel *pix, double dx,
                             double dy)
 {
-    return box ? 1.0 : aa_filter_weight(f, dx - pix->r) * aa_filter_weight(f, dy - pix->r);
+    return box ? 1.0 : aa_filter_weight2(f, dx - pix->r, dy - pix->r);
 }
 
 /* A pixel in a band no piece ends in (aa_strip_all_full) with few local
@@ -487,8 +490,15 @@ static void shade_simple(const jt_row *R, aa__sampler_worker *wk, const jt_pixel
             right += sub[n];
         wsum[0] = spp - right, wsum[1] = right;
     } else {
-        for (int n = 0; n < spp; n++)
-            wsum[sub[n]] += weight(f, aa_filter_is_box(f), pix, u[n], v[n]);
+        double total = 0.0;
+        for (int n = 0; n < spp; n++) {
+            double w = weight(f, aa_filter_is_box(f), pix, u[n], v[n]);
+            wsum[sub[n]] += w;
+            total += w;
+        }
+        /* every sample outside the cone's disc: the samples' plain mean */
+        for (int n = 0; n < spp && !(total > 0.0); n++)
+            wsum[sub[n]] += 1.0;
     }
     aa__sampler_by_subsets(wk, R->job->placed, pix->cy, pcs, np, wsum, px);
 }
@@ -500,7 +510,7 @@ static void shade_general(const jt_row *R, aa__sampler_worker *wk, const jt_pixe
     const aa_filter *f = &R->job->filter;
     int box = aa_filter_is_box(f);
     double x0 = pix->cx - pix->r, y0 = pix->cy - pix->r;
-    double a0 = 0, a1 = 0, a2 = 0, total = 0;
+    double a0 = 0, a1 = 0, a2 = 0, total = 0, m0 = 0, m1 = 0, m2 = 0;
     aa_rgb first = {{0, 0, 0}};
     int uniform = 1;
     for (int n = 0; n < R->S->spp; n++) {
@@ -511,8 +521,11 @@ static void shade_general(const jt_row *R, aa__sampler_worker *wk, const jt_pixe
             first = c;
         uniform = uniform && aa__sampler_same_rgb(c, first);
         a0 += w * c.c[0], a1 += w * c.c[1], a2 += w * c.c[2];
+        m0 += c.c[0], m1 += c.c[1], m2 += c.c[2];
         total += w;
     }
+    if (!(total > 0.0)) /* every sample outside the cone's disc: their plain mean */
+        a0 = m0, a1 = m1, a2 = m2, total = R->S->spp;
     const double acc[3] = {a0, a1, a2};
     for (int ch = 0; ch < 3; ch++)
         px[ch] = uniform ? first.c[ch] : acc[ch] / total;

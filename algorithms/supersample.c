@@ -13,7 +13,9 @@
  * samples taken per image dot"); n = 5 with -f tent:r=1 is fig. 2.12 ("25
  * unequally weighted samples"): offsets 0, +-0.4, +-0.8 pixel, 1-D weights
  * 1, 0.6, 0.2, so the centre sample weighs 1/2.6^2 and a corner one
- * 0.04/2.6^2.  The Pfenning slides (slide 25) describe the same thing:
+ * 0.04/2.6^2.  With -f cone:r=R, which is not separable, sample (a, b)
+ * weighs the cone's 2-D weight w(dx_a, dy_b) (the corners of the grid, outside
+ * the disc, weigh 0).  The Pfenning slides (slide 25) describe the same thing:
  * render a 3x3 grid of mini-pixels, average the results using a filter.
  *
  * pattern=msaa2|msaa4|msaa8|msaa16: the standard Direct3D/Vulkan
@@ -97,8 +99,11 @@ typedef struct ss_plan {
     int grid;    /* 1: n x n grid; 0: a list of positions */
     int n;       /* grid side, or the number of positions kept */
     double half; /* the samples lie in the centre's square of this half-width */
-    /* grid: sample a of a row or column lies at (centre - half) + at[a] */
-    double at[SS_MAX_N], w1[SS_MAX_N];
+    /* grid: sample a of a row or column lies at (centre - half) + at[a];
+     * sample (a, b) weighs rf[b] rw[b n + a]: for a separable filter
+     * w1[b] w1[a] (a row's sum times its factor), else the 2-D weight
+     * with rf[b] = 1 */
+    double at[SS_MAX_N], rf[SS_MAX_N], rw[SS_MAX_N * SS_MAX_N];
     /* list: offsets from the centre and 2-D weights */
     double dx[SS_MAX_POS], dy[SS_MAX_POS], w[SS_MAX_POS];
     double total; /* sum of the 2-D weights, summed as the samples are */
@@ -109,19 +114,26 @@ static int plan_make(ss_plan *pl, const double *p, const aa_filter *f)
 {
     memset(pl, 0, sizeof *pl);
     if ((int)p[P_PATTERN] == PAT_GRID) {
-        double r = aa_filter_support(f), rowsum = 0.0;
+        double r = aa_filter_support(f);
+        int n = (int)p[P_N], sep = aa_filter_is_separable(f);
         pl->grid = 1;
-        pl->n = (int)p[P_N];
+        pl->n = n;
         pl->half = r;
-        for (int a = 0; a < pl->n; a++) {
+        for (int a = 0; a < n; a++)
             /* for the box, (2a+1)/2 / n = (a + 1/2)/n exactly */
-            pl->at[a] = (2 * a + 1) * r / pl->n;
-            pl->w1[a] = aa_filter_weight(f, pl->at[a] - r);
-            rowsum += pl->w1[a];
+            pl->at[a] = (2 * a + 1) * r / n;
+        for (int b = 0; b < n; b++) {
+            double rowsum = 0.0;
+            pl->rf[b] = sep ? aa_filter_weight(f, pl->at[b] - r) : 1.0;
+            for (int a = 0; a < n; a++) {
+                double w = sep ? aa_filter_weight(f, pl->at[a] - r)
+                               : aa_filter_weight2(f, pl->at[a] - r, pl->at[b] - r);
+                pl->rw[b * n + a] = w;
+                rowsum += w;
+            }
+            /* the weighted sum is accumulated row by row as rf[b] * (row sum) */
+            pl->total += pl->rf[b] * rowsum;
         }
-        /* the weighted sum is accumulated row by row as w1[b] * (row sum) */
-        for (int b = 0; b < pl->n; b++)
-            pl->total += pl->w1[b] * rowsum;
         pl->count = (uint64_t)pl->n * (uint64_t)pl->n;
     } else {
         int m;
@@ -129,7 +141,7 @@ static int plan_make(ss_plan *pl, const double *p, const aa_filter *f)
         pl->half = 0.5;
         for (int k = 0; k < m; k++) {
             double dx = v[k][0] / 16.0, dy = v[k][1] / 16.0;
-            double w = aa_filter_weight(f, dx) * aa_filter_weight(f, dy);
+            double w = aa_filter_weight2(f, dx, dy);
             if (!(w > 0.0))
                 continue;
             pl->dx[pl->n] = dx;
@@ -181,6 +193,7 @@ static void grid_subsets(aa__sampler_worker *wk, const ss_plan *pl, const aa_sce
     double wsum[1 << AA__SAMPLER_SUBSET_MAX] = {0};
     for (int b = 0; b < pl->n; b++) {
         double y = y0 + pl->at[b], xs[AA__SAMPLER_SUBSET_MAX];
+        const double *w1 = pl->rw + b * pl->n;
         for (int q = 0; q < np; q++)
             xs[q] = aa_piece_x_at(pcs[q], y);
         if (np == 1) {
@@ -188,20 +201,20 @@ static void grid_subsets(aa__sampler_worker *wk, const ss_plan *pl, const aa_sce
             double r0 = 0, r1 = 0;
             for (int a = 0; a < pl->n; a++) {
                 int right = xs[0] < x0 + pl->at[a];
-                r0 += right ? 0.0 : pl->w1[a];
-                r1 += right ? pl->w1[a] : 0.0;
+                r0 += right ? 0.0 : w1[a];
+                r1 += right ? w1[a] : 0.0;
             }
-            wsum[0] += pl->w1[b] * r0, wsum[1] += pl->w1[b] * r1;
+            wsum[0] += pl->rf[b] * r0, wsum[1] += pl->rf[b] * r1;
         } else {
             double row[1 << AA__SAMPLER_SUBSET_MAX] = {0};
             for (int a = 0; a < pl->n; a++) {
                 unsigned m = 0;
                 for (int q = 0; q < np; q++)
                     m |= (unsigned)(xs[q] < x0 + pl->at[a]) << q;
-                row[m] += pl->w1[a];
+                row[m] += w1[a];
             }
             for (unsigned m = 0; m < (1u << np); m++)
-                wsum[m] += pl->w1[b] * row[m];
+                wsum[m] += pl->rf[b] * row[m];
         }
     }
     aa__sampler_by_subsets(wk, s, y0 + pl->half, pcs, np, wsum, px);
@@ -268,6 +281,7 @@ static void grid_general(aa__sampler_worker *wk, const ss_plan *pl, const aa_sce
     int uniform = 1;
     for (int b = 0; b < pl->n; b++) {
         double y = y0 + pl->at[b], r0 = 0, r1 = 0, r2 = 0, seg = 0;
+        const double *w1 = pl->rw + b * pl->n;
         aa_strip_winding_left(wk->strip, y, wk->wind);
         size_t m = line_crossings(loc, nloc, y, cross), q = 0;
         aa_rgb c = aa_scene_colour_of(s, wk->wind);
@@ -277,7 +291,7 @@ static void grid_general(aa__sampler_worker *wk, const ss_plan *pl, const aa_sce
             double stop = q < m ? cross[q].x : INFINITY;
             int a0 = a;
             while (a < pl->n && x0 + pl->at[a] <= stop)
-                seg += pl->w1[a++];
+                seg += w1[a++];
             if (a > a0) {
                 if (b == 0 && a0 == 0)
                     first = c;
@@ -296,7 +310,7 @@ static void grid_general(aa__sampler_worker *wk, const ss_plan *pl, const aa_sce
             }
             c = aa_scene_colour_of(s, wk->wind);
         }
-        acc[0] += pl->w1[b] * r0, acc[1] += pl->w1[b] * r1, acc[2] += pl->w1[b] * r2;
+        acc[0] += pl->rf[b] * r0, acc[1] += pl->rf[b] * r1, acc[2] += pl->rf[b] * r2;
     }
     put(px, acc, pl->total, first, uniform);
 }
@@ -326,11 +340,12 @@ static void grid_field(const ss_plan *pl, const aa_scene *s, double x0, double y
     double acc[3] = {0, 0, 0};
     for (int b = 0; b < pl->n; b++) {
         double r0 = 0, r1 = 0, r2 = 0, y = y0 + pl->at[b];
+        const double *w1 = pl->rw + b * pl->n;
         for (int a = 0; a < pl->n; a++) {
             aa_rgb c = aa_scene_colour_at(s, x0 + pl->at[a], y);
-            r0 += pl->w1[a] * c.c[0], r1 += pl->w1[a] * c.c[1], r2 += pl->w1[a] * c.c[2];
+            r0 += w1[a] * c.c[0], r1 += w1[a] * c.c[1], r2 += w1[a] * c.c[2];
         }
-        acc[0] += pl->w1[b] * r0, acc[1] += pl->w1[b] * r1, acc[2] += pl->w1[b] * r2;
+        acc[0] += pl->rf[b] * r0, acc[1] += pl->rf[b] * r1, acc[2] += pl->rf[b] * r2;
     }
     aa_rgb none = {{0, 0, 0}};
     put(px, acc, pl->total, none, 0);

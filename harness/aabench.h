@@ -384,19 +384,35 @@ typedef struct aa_span {
 size_t aa_strip_spans(aa_strip *st, double y, aa_span *out, size_t cap);
 
 /* ------------------------------------------------------------------------
- * Filters: separable, normalised weights in pixel units (PATTERNS.md)
+ * Filters: normalised weights in pixel units (PATTERNS.md)
+ *
+ * box, tent and gauss are separable, w(u) w(v): `weight` and `cdf` are
+ * their 1-D weight and its integral.  cone (Feibush et al. fig. 2f, 3a,
+ * an extension of PATTERNS.md's table) is radial and not separable: its
+ * `weight` and `cdf` are NULL, and it gives instead the 2-D weight and the
+ * integral of a row, which is what the exact inner integral along u needs.
+ * Code that reads the 1-D weight checks aa_filter_is_separable first (a
+ * method's check refuses a filter it cannot form); aa_filter_weight2 and
+ * aa_filter_row_cdf serve every filter.
  * ------------------------------------------------------------------------ */
 
 typedef struct aa_filter_type {
     aa_info info;
-    /* 1-D weight w(t) and its integral from -infinity to t */
+    /* Separable filters: the 1-D weight w(t) and its integral from
+     * -infinity to t.  NULL for a filter that is not separable. */
     double (*weight)(const double *p, double t);
     double (*cdf)(const double *p, double t);
     /* Radius of the support; for an unbounded weight, the radius outside
      * which the 2-D mass is below `tail` (and *lost gets that mass). */
     double (*radius)(const double *p, double tail, double *lost);
-    /* Points where the 1-D weight is not smooth (at most 8); returns count. */
+    /* Points where the weight is not smooth along either axis (for a
+     * filter that is not separable, where the integral of a row is not
+     * smooth in v) (at most 8); returns count. */
     int (*kinks)(const double *p, double *t);
+    /* Filters that are not separable (NULL otherwise): the 2-D weight
+     * w(u, v), and the integral over u' in (-infinity, u] of w(u', v). */
+    double (*weight2)(const double *p, double u, double v);
+    double (*row_cdf)(const double *p, double v, double u);
 } aa_filter_type;
 
 typedef struct aa_filter {
@@ -407,11 +423,16 @@ typedef struct aa_filter {
 } aa_filter;
 
 extern const aa_filter_type *const aa_filter_types[]; /* NULL-terminated */
-extern const aa_filter_type aa_filter_box, aa_filter_tent, aa_filter_gauss;
+extern const aa_filter_type aa_filter_box, aa_filter_tent, aa_filter_gauss, aa_filter_cone;
 
 int aa_filter_parse(const char *text, aa_filter *out);
 void aa_filter_default(aa_filter *out); /* box */
 int aa_filter_is_box(const aa_filter *f);
+static inline int aa_filter_is_separable(const aa_filter *f)
+{
+    return f->type->weight != NULL;
+}
+/* The 1-D weight and cdf: separable filters only. */
 static inline double aa_filter_weight(const aa_filter *f, double t)
 {
     return f->type->weight(f->spec.v, t);
@@ -419,6 +440,21 @@ static inline double aa_filter_weight(const aa_filter *f, double t)
 static inline double aa_filter_cdf(const aa_filter *f, double t)
 {
     return f->type->cdf(f->spec.v, t);
+}
+/* The 2-D weight at offset (u, v) from the centre, any filter (for a
+ * separable one, w(u) w(v) computed as such). */
+static inline double aa_filter_weight2(const aa_filter *f, double u, double v)
+{
+    if (f->type->weight2)
+        return f->type->weight2(f->spec.v, u, v);
+    return f->type->weight(f->spec.v, u) * f->type->weight(f->spec.v, v);
+}
+/* The integral over u' in (-infinity, u] of w(u', v), any filter. */
+static inline double aa_filter_row_cdf(const aa_filter *f, double v, double u)
+{
+    if (f->type->row_cdf)
+        return f->type->row_cdf(f->spec.v, v, u);
+    return f->type->weight(f->spec.v, v) * f->type->cdf(f->spec.v, u);
 }
 
 /* ------------------------------------------------------------------------
@@ -575,7 +611,7 @@ int aa_plugin_load(const char *path);
 
 /* ---- helpers for methods ---- */
 
-/* Support radius a sampling method uses for the filter: box 1/2, tent r,
+/* Support radius a sampling method uses for the filter: box 1/2, tent r, cone r,
  * Gaussian 3 s (pbrt's default radius 1.5 for s = 0.5).  Sampling methods
  * truncate the Gaussian there; their error against the untruncated
  * reference includes that. */

@@ -15,7 +15,7 @@ static void usage(FILE *out)
             "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"
             "  -m, --method SPEC    method, e.g. jitter:spp=16,seq=sobol ('aabench list methods -v')\n"
             "  -s, --size WxH       image size in pixels\n"
-            "  -f, --filter SPEC    box (default), tent:r=R or gauss:s=S\n"
+            "  -f, --filter SPEC    box (default), tent:r=R, gauss:s=S or cone:r=R\n"
             "  -o, --out FILE       .exr .tif .pfm (float), .png (8-bit, display encoded), .txt\n"
             "      --seed N         seed of the random streams (default 1)\n"
             "      --time T         time in frames (default 0)\n"

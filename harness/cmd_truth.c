@@ -14,7 +14,7 @@ static void usage(FILE *out)
             "pixel centre, exact to 1e-12 per pixel (GSL quadrature along y, exact along x).\n\n"
             "  -p, --pattern SPEC   pattern, e.g. crow or crow:curves=64 ('aabench list patterns')\n"
             "  -s, --size WxH       image size in pixels\n"
-            "  -f, --filter SPEC    box (default), tent:r=R or gauss:s=S\n"
+            "  -f, --filter SPEC    box (default), tent:r=R, gauss:s=S or cone:r=R\n"
             "  -o, --out FILE       .exr .tif .pfm (float), .png (8-bit, display encoded), .txt\n"
             "      --time T         time in frames (default 0)\n"
             "      --motion VX,VY   motion in pixels per frame (default 0,0)\n"

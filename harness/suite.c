@@ -5,7 +5,8 @@
  *            suite (results/baseline.csv); well under 30 s
  *   default  every family at its main settings on crow 256x256 and
  *            1024x1024 box: the main job of `make run`
- *   paper    the settings of the seed figures (Crow 1976 figs. 2.10-2.14)
+ *   paper    the settings of the seed figures (Crow 1976 figs. 2.10-2.14;
+ *            Feibush et al. 1980 fig. 3a, the cone table)
  *   full     every method variant, every filter, both sizes, on crow; the
  *            other seed scenes at 256x256
  */
@@ -41,6 +42,9 @@ static const aa_suite_group paper[] = {
      LIST("supersample:n=5", "supersample:n=3", "jitter:spp=64")},
     {LIST("crow"), LIST("256x256"), LIST("tent:r=0.5"),
      LIST("supersample:n=5", "jitter:spp=64")},
+    /* Feibush, Levoy and Cook 1980, fig. 2f, 3a: the cone's volumes over
+     * right triangles from a table, against the exact cone reference */
+    {LIST("crow"), LIST("256x256"), LIST("cone"), LIST("conetable:weight=cone")},
     {NULL, NULL, NULL, NULL}};
 
 static const aa_suite_group full[] = {
@@ -54,6 +58,8 @@ static const aa_suite_group full[] = {
     {LIST("crow"), LIST("256x256", "1024x1024"), LIST("tent:r=0.5", "tent:r=1", "gauss"),
      LIST("supersample:n=3", "supersample:n=5", "supersample:pattern=msaa8", "jitter:spp=16",
           "jitter:spp=64", "jitter:spp=64,seq=sobol")},
+    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("cone"),
+     LIST("conetable:weight=cone", "supersample:n=5", "jitter:spp=64")},
     {LIST("catmull:tiles=3", "slivers", "star", "feibush", "fence", "dots"), LIST("256x256"),
      LIST("box"),
      LIST("point", "supersample:n=4", "supersample:pattern=msaa8", "jitter:spp=16",
@@ -66,7 +72,8 @@ const aa_suite aa_suites[] = {
     {"quick", "every family once on crow 128x128 box (the regression gate)", quick},
     {"default", "every family at its main settings on crow 256x256 and 1024x1024 box",
      main_suite},
-    {"paper", "the settings of Crow's figures 2.10-2.14", paper},
+    {"paper", "the settings of Crow's figures 2.10-2.14 and Feibush's cone table (fig. 3a)",
+     paper},
     {"full", "every method variant under every filter", full},
     {"temporal", "fence, dots, crow and star moving at sub-pixel speeds: temporal metrics",
      aa_suite_temporal_groups},

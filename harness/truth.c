@@ -77,6 +77,18 @@
  * coordinate's last bit is 5e-13 px, the inner integral still carries only
  * rounding of the order of 1e-16.
  *
+ * The cone (radial, not separable; filter.c) takes the QAG path with the
+ * row's integral in place of the cdf difference: at height s the spans
+ * between crossings are weighed by the closed-form integral of the row
+ * over them (aa_filter_row_cdf, which clips them to the disc's chord), so
+ * the inner integral stays exact.  Its breakpoints add v = 0, where the
+ * row integral has a v^2 log|v| term, the heights where a piece crosses
+ * the circle of radius R around the centre (the span's end leaves the
+ * chord there and the integrand's second derivative jumps), and v = +-R,
+ * where the chord closes like sqrt(R - |v|): the half intervals next to
+ * them are integrated in u = sqrt(R - |v|), as at turning points, where
+ * the integrand (about (R - |v|)^(3/2)) becomes smooth.
+ *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
  * rounding.  Pixels whose window meets no piece are uniform: they take the
@@ -94,6 +106,7 @@
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
+#include <gsl/gsl_poly.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -136,6 +149,8 @@ typedef struct worker {
     double uc, vc, R;
     int channel;
     int box;
+    int radial; /* not separable (cone): rows weighed by aa_filter_row_cdf */
+    gsl_poly_complex_workspace *poly; /* radial: the circle's crossings */
 } worker;
 
 static void worker_free(worker *w)
@@ -143,6 +158,8 @@ static void worker_free(worker *w)
     aa_strip_free(w->strip);
     if (w->ws)
         gsl_integration_workspace_free(w->ws);
+    if (w->poly)
+        gsl_poly_complex_workspace_free(w->poly);
     free(w->pts);
     free(w->lp);
     free(w->cross);
@@ -156,13 +173,16 @@ static int worker_init(worker *w, const aa_scene *scene, const aa_filter *f)
     w->scene = scene;
     w->f = f;
     w->box = aa_filter_is_box(f);
+    w->radial = !aa_filter_is_separable(f);
     w->R = f->radius;
     w->limit = 1024;
     w->strip = aa_strip_new(scene);
     w->ws = gsl_integration_workspace_alloc(w->limit);
     int nl = aa_scene_layer_count(scene);
     w->wind = calloc((size_t)(nl > 0 ? nl : 1), sizeof *w->wind);
-    if (!w->strip || !w->ws || !w->wind) {
+    if (w->radial)
+        w->poly = gsl_poly_complex_workspace_alloc(5);
+    if (!w->strip || !w->ws || !w->wind || (w->radial && !w->poly)) {
         worker_free(w);
         memset(w, 0, sizeof *w);
         return aa_fail(AA_ENOMEM, "out of memory for a reference worker");
@@ -227,6 +247,62 @@ static int is_turn(const worker *w, double s)
     return 0;
 }
 
+/* Radial filter: heights where piece p crosses the circle of radius R
+ * around (uc, vc).  The piece's part in the disc's rows is taken as
+ * t = ta + (tb - ta) tau, tau in [0, 1], so that the coefficients are of
+ * the order of R; the crossings are the real roots in [0, 1] of the
+ * quartic |(x(tau), y(tau)) - centre|^2 - R^2 (a quadratic for a line;
+ * GSL's companion matrix, then Newton in long double).  A root that is a
+ * little off only leaves the kink inside an interval, where QAG's
+ * bisection still finds it. */
+static int add_circle(worker *w, const aa_piece *p)
+{
+    if (p->kind == AA_PIECE_FLAT)
+        return AA_OK;
+    double lo = fmax(w->vc - w->R, p->y0), hi = fmin(w->vc + w->R, p->y1);
+    if (!(lo < hi))
+        return AA_OK;
+    long double ta = lo <= p->y0 ? 0.0 : aa_piece_t_at(p, lo);
+    long double tb = hi >= p->y1 ? 1.0 : aa_piece_t_at(p, hi), h = tb - ta;
+    if (!(h > 0))
+        return AA_OK;
+    long double X = p->x0 + ta * (p->bx + ta * p->ax) - (long double)w->uc;
+    long double Y = p->y0 + ta * (p->by + ta * p->ay) - (long double)w->vc;
+    long double bx = h * (p->bx + 2 * ta * p->ax), ax = h * h * p->ax;
+    long double by = h * (p->by + 2 * ta * p->ay), ay = h * h * p->ay, R = w->R;
+    double c[5] = {(double)(X * X + Y * Y - R * R), (double)(2 * (X * bx + Y * by)),
+                   (double)(bx * bx + by * by + 2 * (X * ax + Y * ay)),
+                   (double)(2 * (ax * bx + ay * by)), (double)(ax * ax + ay * ay)};
+    double t[4], z[8];
+    int n = 0;
+    if (c[4] == 0.0) { /* then c[3] = 0 too: a line */
+        n = gsl_poly_solve_quadratic(c[2], c[1], c[0], &t[0], &t[1]);
+    } else if (gsl_poly_complex_solve(c, 5, w->poly, z) == GSL_SUCCESS) {
+        for (int k = 0; k < 4; k++)
+            if (fabs(z[2 * k + 1]) <= 1e-6 * (1.0 + fabs(z[2 * k])))
+                t[n++] = z[2 * k];
+    }
+    for (int k = 0; k < n; k++) {
+        long double u = t[k];
+        if (!(u > -0.01 && u < 1.01))
+            continue;
+        for (int it = 0; it < 4; it++) {
+            long double x = X + u * (bx + u * ax), y = Y + u * (by + u * ay);
+            long double g = x * x + y * y - R * R;
+            long double dg = 2 * (x * (bx + 2 * u * ax) + y * (by + 2 * u * ay));
+            if (dg == 0)
+                break;
+            u -= g / dg;
+        }
+        if (!(u >= 0 && u <= 1))
+            continue;
+        int st = add_point(w, (double)(Y + u * (by + u * ay)));
+        if (st)
+            return st;
+    }
+    return AA_OK;
+}
+
 /* Breakpoints of the current pixel, relative to vc, sorted, from -R to R. */
 static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
 {
@@ -243,6 +319,14 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
             st = add_point(w, z);
     }
     w->nsing = 0;
+    if (w->radial) {
+        /* the chord closes like a square root at both ends */
+        note_turn(w, -w->R);
+        note_turn(w, w->R);
+        /* and the v^2 log|v| term at 0 becomes u^5 log u, smooth enough
+         * for one Gauss-Kronrod pass where in v QAG bisects a dozen times */
+        note_turn(w, 0.0);
+    }
     for (size_t k = 0; k < n && !st; k++) {
         const aa_piece *p = local[k];
         double ys[2];
@@ -259,6 +343,13 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
                 note_turn(w, p->y0 - w->vc);
             if (fabs(p->by + 2.0 * p->ay) <= tiny)
                 note_turn(w, p->y1 - w->vc);
+        }
+        if (w->radial) {
+            st = add_circle(w, p);
+            if (!st && n <= TRUTH_MAX_PAIRS)
+                for (size_t q = k + 1; q < n && !st; q++)
+                    st = add_intersections(w, p, local[q]);
+            continue;
         }
         /* where the piece crosses a vertical line at which the filter's
          * cdf has a kink (the window's sides for the box) */
@@ -371,12 +462,12 @@ static long double crossing_at(const local_piece *q, long double s)
 }
 
 /* The inner integral along u at height s = v - vc, for one channel, times
- * w(s).  Coordinates are relative to the pixel centre; the window is
- * [-R, R]. */
+ * w(s) (for a radial filter, the rows' own integrals).  Coordinates are
+ * relative to the pixel centre; the window is [-R, R]. */
 static double integrand(double s, void *params)
 {
     worker *w = params;
-    double ws = w->box ? 1.0 : aa_filter_weight(w->f, s);
+    double ws = w->box || w->radial ? 1.0 : aa_filter_weight(w->f, s);
     if (ws == 0.0)
         return 0.0;
     double R = w->R;
@@ -408,7 +499,9 @@ static double integrand(double s, void *params)
         double next = k < nc ? w->cross[k].x : R;
         if (next > cur) {
             double c = aa_scene_colour_of(w->scene, w->wind).c[w->channel];
-            double fnext = w->box ? next : aa_filter_cdf(w->f, next);
+            double fnext = w->box      ? next
+                           : w->radial ? aa_filter_row_cdf(w->f, s, next)
+                                       : aa_filter_cdf(w->f, next);
             if (c != 0.0)
                 sum += c * (w->box ? next - cur : fnext - fcur);
             cur = next;
@@ -516,8 +609,11 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
         value[1] = value[2] = value[0];
     /* Rounding: relative crossings are within a few ulps of R (long double
      * arithmetic, then one rounding to double); each moves the inner
-     * integral by at most that times the filter's peak. */
-    double peak = w->box ? 1.0 : aa_filter_weight(w->f, 0.0);
+     * integral by at most that times the filter's peak (for the cone, the
+     * integral over v of the largest weight of a row, 3 / (pi R)). */
+    double peak = w->box      ? 1.0
+                  : w->radial ? aa_filter_weight2(w->f, 0.0, 0.0) * w->R
+                              : aa_filter_weight(w->f, 0.0);
     *bound = worst + w->f->lost + 8.0 * DBL_EPSILON * fmax(w->R, 1.0) * peak * (double)n;
     return AA_OK;
 }

@@ -749,8 +749,8 @@ static void test_threads_identical(void **state)
 static void test_filters_refused(void **state)
 {
     (void)state;
-    const char *filters[] = {"tent", "tent:r=0.5", "gauss", "gauss:s=1"};
-    for (int k = 0; k < 4; k++) {
+    const char *filters[] = {"tent", "tent:r=0.5", "gauss", "gauss:s=1", "cone"};
+    for (int k = 0; k < 5; k++) {
         aa_filter f;
         aa_spec spec;
         assert_int_equal(aa_filter_parse(filters[k], &f), AA_OK);

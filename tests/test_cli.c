@@ -103,8 +103,13 @@ static void test_refusals(void **state)
     T(2, "each side must be from 1 to 65536", "truth", "-p", "crow", "-s", "0x5", "-o", o);
     T(2, "GB", "truth", "-p", "crow", "-s", "65536x65536", "-o", o);
     T(2, "r=-1: out of range", "truth", "-p", "crow", "-s", "8x8", "-f", "tent:r=-1", "-o", o);
-    T(2, "unknown filter \"cone\" (known: box, tent, gauss)", "truth", "-p", "crow", "-s",
-      "8x8", "-f", "cone", "-o", o);
+    T(2, "unknown filter \"lanczos\" (known: box, tent, gauss, cone)", "truth", "-p",
+      "crow", "-s", "8x8", "-f", "lanczos", "-o", o);
+    T(2, "r=0: out of range", "truth", "-p", "crow", "-s", "8x8", "-f", "cone:r=0", "-o", o);
+    T(2, "r=nan: not a number", "truth", "-p", "crow", "-s", "8x8", "-f", "cone:r=nan", "-o",
+      o);
+    T(2, "r=8.5: out of range", "truth", "-p", "crow", "-s", "8x8", "-f", "cone:r=8.5", "-o",
+      o);
     T(2, "unknown image type", "truth", "-p", "crow", "-s", "8x8", "-o", "x.bmp");
     T(2, "are required", "truth", "-p", "crow", "-s", "8x8");
     T(2, "unknown option", "truth", "--frobnicate", "-p", "crow", "-s", "8x8", "-o", o);

@@ -12,7 +12,9 @@
  *    method's header derives, which falls with the table resolution.
  *  - crow 128x128: the exact reference (aa_truth_render), every pixel within
  *    the derived bound, with the number of pieces near the pixel counted
- *    from the scene's own piece extents (not from the methods).
+ *    from the scene's own piece extents (not from the methods); conetable's
+ *    cone weight on crow 64x64 against the exact cone reference (-f cone),
+ *    and on a half-plane against the closed-form volume of a cut cone.
  *  - refusals through the CLI exit with status 2.
  */
 #include "aabench.h"
@@ -180,11 +182,13 @@ static double pieces_near(const aa_scene *placed, double cx, double cy, double R
     return var;
 }
 
-typedef double bound_fn(const aa_filter *f, const char *method, int pieces, double xvar);
+typedef double bound_fn(const aa_filter *f, const char *method, int n, int pieces,
+                        double xvar);
 
-/* Every pixel of crow 128x128 within bound(pieces near it) of the exact
+/* Every pixel of crow n x n within bound(pieces near it) of the exact
  * reference; prints RMSE and max. */
-static void crow_within(const char *method, const char *filter, double R, bound_fn *bound)
+static void crow_within_n(const char *method, const char *filter, int n, double R,
+                          bound_fn *bound)
 {
     aa_spec ps;
     aa_scene *s, *placed;
@@ -192,18 +196,18 @@ static void crow_within(const char *method, const char *filter, double R, bound_
     assert_int_equal(aa_pattern_parse("crow", &ps), AA_OK);
     assert_int_equal(aa_pattern_scene(&ps, &s), AA_OK);
     assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    placed = aa_scene_place(s, 128, 128, 0, 0, 0);
+    placed = aa_scene_place(s, n, n, 0, 0, 0);
     aa_image ref, img;
-    assert_int_equal(aa_image_alloc(&ref, 128, 128, 3), AA_OK);
+    assert_int_equal(aa_image_alloc(&ref, n, n, 3), AA_OK);
     assert_int_equal(aa_truth_render(placed, &f, 0, &ref, NULL, NULL), AA_OK);
-    if (render(method, s, filter, 128, 128, 2, &img))
+    if (render(method, s, filter, n, n, 2, &img))
         fail_msg("%s: %s", method, aa_last_error());
     double sum = 0, worst = 0, worst_bound = 0;
-    for (int j = 0; j < 128; j++)
-        for (int i = 0; i < 128; i++) {
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
             int k;
             double xvar = pieces_near(placed, i + 0.5, j + 0.5, R, &k);
-            double b = bound(&f, method, k, xvar);
+            double b = bound(&f, method, n, k, xvar);
             for (int ch = 0; ch < 3; ch++) {
                 double e = fabs(aa_pixel(&img, i, j)[ch] - aa_pixel(&ref, i, j)[ch]);
                 sum += e * e;
@@ -214,21 +218,27 @@ static void crow_within(const char *method, const char *filter, double R, bound_
                              filter, i, j, e, b);
             }
         }
-    print_message("%s %-10s crow 128x128: RMSE %.3e, max %.3e (largest bound %.3e)\n", method,
-                  filter, sqrt(sum / (128.0 * 128 * 3)), worst, worst_bound);
+    print_message("%s %-10s crow %dx%d: RMSE %.3e, max %.3e (largest bound %.3e)\n", method,
+                  filter, n, n, sqrt(sum / ((double)n * n * 3)), worst, worst_bound);
     aa_image_free(&img);
     aa_image_free(&ref);
     aa_scene_free(placed);
     aa_scene_free(s);
 }
 
+static void crow_within(const char *method, const char *filter, double R, bound_fn *bound)
+{
+    crow_within_n(method, filter, 128, R, bound);
+}
+
 /* crowtable's header bound at its defaults (res=16, cut=3): per piece
  * wx d / 2 for the lookups, and w2 (d / 2) times the pieces' x variation in
  * the square for the rows (the 2 R w2 d per piece of the header, with the
  * variation counted instead of bounded by 4R). */
-static double crow_bound(const aa_filter *f, const char *method, int pieces, double xvar)
+static double crow_bound(const aa_filter *f, const char *method, int n, int pieces,
+                         double xvar)
 {
-    (void)method;
+    (void)method, (void)n;
     double wx, R, trunc = 0.0;
     if (f->type == &aa_filter_gauss) {
         double s = f->spec.v[0], m = erf(3.0 / M_SQRT2);
@@ -295,7 +305,8 @@ static void test_cone_half_plane_converges(void **state)
  * ends per chord (n chords by the flattening rule) plus (2/3) tol L wmax
  * for the flattening, L bounded by the piece's y extent in the mask's rows
  * plus twice its x extent there. */
-static double cone_bound(const aa_filter *f, const char *method, int pieces, double xvar)
+static double cone_bound(const aa_filter *f, const char *method, int n, int pieces,
+                         double xvar)
 {
     double cut = 2.0, tol = 1e-3;
     int res = 64;
@@ -308,9 +319,9 @@ static double cone_bound(const aa_filter *f, const char *method, int pieces, dou
         tol = atof(q + 4);
     double s = f->spec.v[0], R = cut * s, M = -expm1(-0.5 * cut * cut);
     double wmax = 1.0 / (2.0 * M_PI * s * s * M);
-    /* crow's arcs in the 128 px image: |a| <= 128 * (largest curvature term,
-     * at most 1 pattern unit), the band 2R of 128 px in t */
-    double dt = 2.0 * R / 128.0, chords = ceil(sqrt(128.0 * dt * dt / (4.0 * tol)));
+    /* crow's arcs in the n px image: |a| <= n * (largest curvature term,
+     * at most 1 pattern unit), the band 2R of n px in t */
+    double dt = 2.0 * R / n, chords = ceil(sqrt(n * dt * dt / (4.0 * tol)));
     double trunc = 2.0 * exp(-0.5 * cut * cut);
     return trunc + pieces * (2.0 * chords * cone_end_bound(cut, res)) +
            (2.0 / 3.0) * tol * wmax * (pieces * 2.0 * R + xvar) + 1e-12;
@@ -321,6 +332,93 @@ static void test_cone_pattern_bound(void **state)
     (void)state;
     crow_within("conetable", "gauss", 2.0 * 0.5, cone_bound);
     crow_within("conetable:cut=4,res=256", "gauss", 4.0 * 0.5, cone_bound);
+}
+
+/* ---- conetable, weight=cone ---- */
+
+/* The header's bound for the cone weight at res=N, tol=T: no truncation;
+ * per chord end (1/4 + 3/(2 pi)) / res (|dD/dtheta| <= 1/(2 pi) over a
+ * cell of pi/(2 res), |dD/du| <= 3/(2 pi) over 1/res); flattening
+ * (2/3) tol L wmax with wmax = 3/(pi R^2); chords counted as for the
+ * Gaussian. */
+static double cone_end_bound_cone(int res)
+{
+    return (0.25 + 3.0 / (2.0 * M_PI)) / res;
+}
+
+static double cone_weight_bound(const aa_filter *f, const char *method, int n, int pieces,
+                                double xvar)
+{
+    double tol = 1e-3;
+    int res = 64;
+    const char *q;
+    if ((q = strstr(method, "res=")))
+        res = atoi(q + 4);
+    if ((q = strstr(method, "tol=")))
+        tol = atof(q + 4);
+    double R = f->spec.v[0], wmax = 3.0 / (M_PI * R * R);
+    double dt = 2.0 * R / n, chords = ceil(sqrt(n * dt * dt / (4.0 * tol)));
+    return pieces * (2.0 * chords * cone_end_bound_cone(res)) +
+           (2.0 / 3.0) * tol * wmax * (pieces * 2.0 * R + xvar) + 1e-12;
+}
+
+static void test_cone_weight_crow(void **state)
+{
+    (void)state;
+    crow_within_n("conetable:weight=cone", "cone", 64, 1.0, cone_weight_bound);
+    crow_within_n("conetable", "cone:r=1.5", 64, 1.5, cone_weight_bound);
+    crow_within_n("conetable:weight=cone,res=256", "cone", 64, 1.0, cone_weight_bound);
+}
+
+/* Fraction of the cone's volume beyond a line at delta R from its centre:
+ * (1/pi)(acos d - 2 d sqrt(1 - d^2) + d^3 ln((1 + sqrt(1 - d^2)) / d))
+ * (derived and checked in tests/test_cone.c). */
+static double cone_cut(double d)
+{
+    if (d >= 1.0)
+        return 0.0;
+    if (d < 0.0)
+        return 1.0 - cone_cut(-d);
+    double s = sqrt((1.0 - d) * (1.0 + d));
+    return (acos(d) - 2.0 * d * s + (d > 0.0 ? d * d * d * log((1.0 + s) / d) : 0.0)) / M_PI;
+}
+
+/* A half-plane through the table: every pixel within the bound of its
+ * two chord ends, and the error falling with res. */
+static void test_cone_weight_half_plane(void **state)
+{
+    (void)state;
+    const int res[] = {8, 32, 128, 256};
+    const double angles[] = {0.0, 0.5, 1.2};
+    for (int a = 0; a < 3; a++) {
+        double first = 0, last = 0;
+        for (int k = 0; k < 4; k++) {
+            char spec[64];
+            snprintf(spec, sizeof spec, "conetable:weight=cone,res=%d", res[k]);
+            aa_scene *s = half_plane(10.3 / HW, 12.2 / HW, angles[a]);
+            aa_image img;
+            if (render(spec, s, "cone:r=2", HW, HW, 2, &img))
+                fail_msg("%s: %s", spec, aa_last_error());
+            double nx = cos(angles[a]), ny = -sin(angles[a]), e = 0.0;
+            for (int j = 0; j < HW; j++)
+                for (int i = 0; i < HW; i++) {
+                    double d = (i + 0.5 - 10.3) * nx + (j + 0.5 - 12.2) * ny;
+                    e = fmax(e, fabs(aa_pixel(&img, i, j)[0] - (1.0 - cone_cut(d / 2.0))));
+                }
+            aa_image_free(&img);
+            aa_scene_free(s);
+            double bound = 2.0 * cone_end_bound_cone(res[k]) + 3e-14;
+            print_message("conetable cone angle %.1f res=%-3d half-plane max error %.3e "
+                          "(bound %.3e)\n",
+                          angles[a], res[k], e, bound);
+            if (!(e <= bound))
+                fail_msg("%s: error %.3e above the bound %.3e", spec, e, bound);
+            if (k == 0)
+                first = e;
+            last = e;
+        }
+        assert_true(last < first / 8.0);
+    }
 }
 
 /* ---- refusals through the command line ---- */
@@ -372,7 +470,17 @@ static void test_refusals(void **state)
     refused("crowtable:res=0", "box", "res");
     refused("conetable", "box", "circular mask");
     refused("conetable", "tent:r=1", "circular mask");
-    refused("conetable:weight=cone", "gauss", "no exact reference");
+    refused("conetable:weight=cone", "gauss", "use -f cone:r=R");
+    refused("conetable:weight=gauss", "cone", "use -f gauss:s=S");
+    refused("conetable:weight=cone,cut=3", "cone", "leave cut out");
+    refused("conetable", "cone:r=0", "out of range");
+    refused("conetable", "cone:r=nan", "not a number");
+    /* methods that cannot form a filter that is not separable say what
+     * they accept */
+    refused("crowtable", "cone", "separable filter");
+    refused("area", "cone", "box");
+    refused("point", "cone", "box");
+    refused("trio", "cone", "box");
 }
 
 int main(void)
@@ -382,6 +490,8 @@ int main(void)
         cmocka_unit_test(test_crow_pattern_bound),
         cmocka_unit_test(test_cone_half_plane_converges),
         cmocka_unit_test(test_cone_pattern_bound),
+        cmocka_unit_test(test_cone_weight_crow),
+        cmocka_unit_test(test_cone_weight_half_plane),
         cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
