@@ -638,7 +638,7 @@ static double check_half_plane(double sd, double theta, int want_fast)
                   "fixed rule; max error %.2e, max error/bound %.3f, max bound %.2e\n",
                   sd, theta, tan(t), st.integrated, fast, worst, ratio, st.max_bound);
     assert_true(st.integrated > 0);
-    if (want_fast)
+    if (want_fast && extended) /* without it the reference takes QAG only */
         assert_int_equal(fast, st.integrated);
     else
         assert_int_equal(fast, 0);
@@ -763,6 +763,10 @@ static aa_scene *mixed_scene(int w, int h)
 static void test_gauss_fallback(void **state)
 {
     (void)state;
+    if (!long_double_extended()) { /* the reference takes QAG only: no rule to test */
+        print_message("long double is not extended here: skipped\n");
+        skip();
+    }
     const int w = 47, h = 43;
     aa_scene *s = mixed_scene(w, h);
     const char *filters[] = {"gauss", "gauss:s=0.3", "gauss:s=0.8"};
@@ -777,6 +781,10 @@ static void test_gauss_fallback(void **state)
 static void test_gauss_crow_against_qagp(void **state)
 {
     (void)state;
+    if (!long_double_extended()) { /* the reference takes QAG only: no rule to test */
+        print_message("long double is not extended here: skipped\n");
+        skip();
+    }
     const char *patterns[] = {"crow", "crow:curves=10,kmax=0.5,gap0=0.2,gap1=0.05",
                               "crow:curves=40,kmax=-0.4,gap0=0.01,gap1=0.02"};
     int sizes[3][2] = {{72, 56}, {48, 40}, {57, 45}};
