@@ -72,6 +72,19 @@ static int render(const char *method, const aa_scene *scene, const char *filter,
 
 #define HW 24
 
+/* Fraction of the cone's volume beyond a line at delta R from its centre:
+ * (1/pi)(acos d - 2 d sqrt(1 - d^2) + d^3 ln((1 + sqrt(1 - d^2)) / d))
+ * (derived and checked in tests/test_cone.c). */
+static double cone_cut(double d)
+{
+    if (d >= 1.0)
+        return 0.0;
+    if (d < 0.0)
+        return 1.0 - cone_cut(-d);
+    double s = sqrt((1.0 - d) * (1.0 + d));
+    return (acos(d) - 2.0 * d * s + (d > 0.0 ? d * d * d * log((1.0 + s) / d) : 0.0)) / M_PI;
+}
+
 /* Largest error against 1 - C(signed distance) over a HW x HW image of the
  * half-plane through (px, py) pixels at `angle`. */
 static double half_plane_error(const char *method, const char *filter, double px, double py,
@@ -87,7 +100,9 @@ static double half_plane_error(const char *method, const char *filter, double px
     for (int j = 0; j < HW; j++)
         for (int i = 0; i < HW; i++) {
             double d = (i + 0.5 - px) * nx + (j + 0.5 - py) * ny; /* > 0: white side */
-            double exact = 1.0 - aa_filter_cdf(&f, -d);
+            /* separable: the 1-D cdf across the edge; the cone: its cut
+             * volume (f.radius is its R) */
+            double exact = f.type->cdf ? 1.0 - aa_filter_cdf(&f, -d) : 1.0 - cone_cut(d / f.radius);
             const double *v = aa_pixel(&img, i, j);
             for (int ch = 0; ch < 3; ch++) {
                 if (!(v[ch] >= 0.0 && v[ch] <= 1.0))
@@ -272,32 +287,45 @@ static double cone_end_bound(double cut, int res)
     return (0.25 + cut / (2.0 * M * sqrt(2.0 * M_PI))) / res;
 }
 
-static void test_cone_half_plane_converges(void **state)
+/* conetable (spec_fmt with its res) over half-planes at three angles: every
+ * pixel within `bound` (two chord ends: one edge reaches the mask), and the
+ * error falling by at least 8 from res 8 to res 256. */
+static void table_half_planes(const char *spec_fmt, const char *filter,
+                              double (*bound)(int res))
 {
-    (void)state;
     const int res[] = {8, 32, 128, 256};
     const double angles[] = {0.0, 0.5, 1.2};
     for (int a = 0; a < 3; a++) {
         double first = 0, last = 0;
         for (int k = 0; k < 4; k++) {
             char spec[64];
-            snprintf(spec, sizeof spec, "conetable:cut=8,res=%d", res[k]);
-            /* the radial Gaussian over a half-plane: Phi(signed distance / s),
-             * whatever the edge's angle; cut=8 leaves 1.3e-14 outside */
-            double e = half_plane_error(spec, "gauss", 10.3, 12.2, angles[a]);
-            /* one edge reaches the mask: two chord ends */
-            double bound = 2.0 * cone_end_bound(8.0, res[k]) + 3e-14;
-            print_message("conetable gauss angle %.1f res=%-3d half-plane max error %.3e "
-                          "(bound %.3e)\n",
-                          angles[a], res[k], e, bound);
-            if (!(e <= bound))
-                fail_msg("%s: error %.3e above the bound %.3e", spec, e, bound);
+            snprintf(spec, sizeof spec, spec_fmt, res[k]);
+            double e = half_plane_error(spec, filter, 10.3, 12.2, angles[a]);
+            double b = bound(res[k]);
+            print_message("%s %s angle %.1f half-plane max error %.3e (bound %.3e)\n", spec,
+                          filter, angles[a], e, b);
+            if (!(e <= b))
+                fail_msg("%s: error %.3e above the bound %.3e", spec, e, b);
             if (k == 0)
                 first = e;
             last = e;
         }
         assert_true(last < first / 8.0);
     }
+}
+
+/* cut=8 leaves 1.3e-14 of the Gaussian outside the mask */
+static double gauss_cut8_bound(int res)
+{
+    return 2.0 * cone_end_bound(8.0, res) + 3e-14;
+}
+
+static void test_cone_half_plane_converges(void **state)
+{
+    (void)state;
+    /* the radial Gaussian over a half-plane: Phi(signed distance / s),
+     * whatever the edge's angle */
+    table_half_planes("conetable:cut=8,res=%d", "gauss", gauss_cut8_bound);
 }
 
 /* conetable's header bound at cut=C, res=N, tol=T (parsed from the method
@@ -370,55 +398,16 @@ static void test_cone_weight_crow(void **state)
     crow_within_n("conetable:weight=cone,res=256", "cone", 64, 1.0, cone_weight_bound);
 }
 
-/* Fraction of the cone's volume beyond a line at delta R from its centre:
- * (1/pi)(acos d - 2 d sqrt(1 - d^2) + d^3 ln((1 + sqrt(1 - d^2)) / d))
- * (derived and checked in tests/test_cone.c). */
-static double cone_cut(double d)
+static double cone_table_bound(int res)
 {
-    if (d >= 1.0)
-        return 0.0;
-    if (d < 0.0)
-        return 1.0 - cone_cut(-d);
-    double s = sqrt((1.0 - d) * (1.0 + d));
-    return (acos(d) - 2.0 * d * s + (d > 0.0 ? d * d * d * log((1.0 + s) / d) : 0.0)) / M_PI;
+    return 2.0 * cone_end_bound_cone(res) + 3e-14;
 }
 
-/* A half-plane through the table: every pixel within the bound of its
- * two chord ends, and the error falling with res. */
+/* A half-plane through the cone's table: the cut cone's volume. */
 static void test_cone_weight_half_plane(void **state)
 {
     (void)state;
-    const int res[] = {8, 32, 128, 256};
-    const double angles[] = {0.0, 0.5, 1.2};
-    for (int a = 0; a < 3; a++) {
-        double first = 0, last = 0;
-        for (int k = 0; k < 4; k++) {
-            char spec[64];
-            snprintf(spec, sizeof spec, "conetable:weight=cone,res=%d", res[k]);
-            aa_scene *s = half_plane(10.3 / HW, 12.2 / HW, angles[a]);
-            aa_image img;
-            if (render(spec, s, "cone:r=2", HW, HW, 2, &img))
-                fail_msg("%s: %s", spec, aa_last_error());
-            double nx = cos(angles[a]), ny = -sin(angles[a]), e = 0.0;
-            for (int j = 0; j < HW; j++)
-                for (int i = 0; i < HW; i++) {
-                    double d = (i + 0.5 - 10.3) * nx + (j + 0.5 - 12.2) * ny;
-                    e = fmax(e, fabs(aa_pixel(&img, i, j)[0] - (1.0 - cone_cut(d / 2.0))));
-                }
-            aa_image_free(&img);
-            aa_scene_free(s);
-            double bound = 2.0 * cone_end_bound_cone(res[k]) + 3e-14;
-            print_message("conetable cone angle %.1f res=%-3d half-plane max error %.3e "
-                          "(bound %.3e)\n",
-                          angles[a], res[k], e, bound);
-            if (!(e <= bound))
-                fail_msg("%s: error %.3e above the bound %.3e", spec, e, bound);
-            if (k == 0)
-                first = e;
-            last = e;
-        }
-        assert_true(last < first / 8.0);
-    }
+    table_half_planes("conetable:weight=cone,res=%d", "cone:r=2", cone_table_bound);
 }
 
 /* ---- refusals through the command line ---- */
