@@ -316,6 +316,7 @@ int aa_figure_make(size_t k, const char *dir, const char *cache_dir, int threads
     memset(imgs, 0, sizeof imgs);
     memset(tiles, 0, sizeof tiles);
     memset(tl, 0, sizeof tl);
+    memset(labels, 0, sizeof labels); /* a panel may have no third line */
     int st = aa_pattern_parse(f->pattern, &view.pattern);
     if (!st)
         st = aa_filter_parse(f->filter, &view.filter);
