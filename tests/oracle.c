@@ -462,3 +462,14 @@ double oracle_crow_gauss(const oracle_crow *p, int W, int H, int i, int j,
 {
 	return filtered(p, W, H, i, j, GAUSS, S, err);
 }
+
+double oracle_cone_cut(double delta)
+{
+    if (delta >= 1.0)
+        return 0.0;
+    if (delta < 0.0)
+        return 1.0 - oracle_cone_cut(-delta);
+    double s = sqrt((1.0 - delta) * (1.0 + delta));
+    double tail = delta > 0.0 ? delta * delta * delta * log((1.0 + s) / delta) : 0.0;
+    return (acos(delta) - 2.0 * delta * s + tail) / M_PI;
+}

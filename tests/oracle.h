@@ -57,4 +57,12 @@ double oracle_crow_tent(const oracle_crow *p, int W, int H, int i, int j,
 double oracle_crow_gauss(const oracle_crow *p, int W, int H, int i, int j,
 			 double S, double *err);
 
+/* Fraction of the cone filter's volume (cone:r=R) beyond a line at distance
+ * delta R from its centre:
+ *   (1/pi) (acos delta - 2 delta sqrt(1 - delta^2)
+ *           + delta^3 ln((1 + sqrt(1 - delta^2)) / delta)),
+ * 1 - C(-delta) for delta < 0.  Derived in polar coordinates (the
+ * derivation is in tests/test_cone.c, which checks it by quadrature). */
+double oracle_cone_cut(double delta);
+
 #endif

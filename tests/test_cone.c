@@ -402,19 +402,6 @@ static void test_polygon_polar(void **state)
 
 /* ---- closed forms ---- */
 
-/* The covered fraction of the cone's volume beyond a line at distance
- * delta R from its centre (header). */
-static double cone_cut(double delta)
-{
-    if (delta >= 1.0)
-        return 0.0;
-    if (delta < 0.0)
-        return 1.0 - cone_cut(-delta);
-    double s = sqrt((1.0 - delta) * (1.0 + delta));
-    double tail = delta > 0.0 ? delta * delta * delta * log((1.0 + s) / delta) : 0.0;
-    return (acos(delta) - 2.0 * delta * s + tail) / M_PI;
-}
-
 /* The same fraction as (6/pi) int_0^acos(delta) f(delta sec phi) dphi by
  * 20-point Gauss-Legendre on 64 panels (f is a polynomial in sec phi,
  * smooth on the interval). */
@@ -469,7 +456,7 @@ static void half_plane_case(const char *filter, double px, double py, double ang
     for (int j = 0; j < HW; j++)
         for (int i = 0; i < HW; i++) {
             double d = (i + 0.5 - px) * nx + (j + 0.5 - py) * ny; /* > 0: white side */
-            double want = 1.0 - cone_cut(d / R);
+            double want = 1.0 - oracle_cone_cut(d / R);
             for (int ch = 0; ch < 3; ch++) {
                 double got = aa_pixel(&img, i, j)[ch], e = fabs(got - want);
                 worst = fmax(worst, e);
@@ -493,9 +480,9 @@ static void half_plane_case(const char *filter, double px, double py, double ang
 static void test_half_plane_closed_form(void **state)
 {
     (void)state;
-    assert_true(cone_cut(0.0) == 0.5 && cone_cut(1.0) == 0.0);
+    assert_true(oracle_cone_cut(0.0) == 0.5 && oracle_cone_cut(1.0) == 0.0);
     for (double delta = 0.01; delta < 1.0; delta += 0.07) {
-        double a = cone_cut(delta), b = cone_cut_quadrature(delta);
+        double a = oracle_cone_cut(delta), b = cone_cut_quadrature(delta);
         if (fabs(a - b) > 1e-15)
             fail_msg("V(%g): closed form %.17g, quadrature %.17g", delta, a, b);
     }
@@ -653,7 +640,7 @@ static void test_samplers(void **state)
     for (int j = 0; j < HW; j++)
         for (int i = 0; i < HW; i++) {
             double d = (i + 0.5 - 10.3) * nx + (j + 0.5 - 12.2) * ny;
-            worst = fmax(worst, fabs(aa_pixel(&img, i, j)[0] - (1.0 - cone_cut(d))));
+            worst = fmax(worst, fabs(aa_pixel(&img, i, j)[0] - (1.0 - oracle_cone_cut(d))));
         }
     print_message("jitter:spp=4096 -f cone half-plane: max error %.2e\n", worst);
     assert_true(worst < 0.03);

@@ -18,6 +18,7 @@
  *  - refusals through the CLI exit with status 2.
  */
 #include "aabench.h"
+#include "oracle.h"
 
 #include <fcntl.h>
 #include <math.h>
@@ -72,19 +73,6 @@ static int render(const char *method, const aa_scene *scene, const char *filter,
 
 #define HW 24
 
-/* Fraction of the cone's volume beyond a line at delta R from its centre:
- * (1/pi)(acos d - 2 d sqrt(1 - d^2) + d^3 ln((1 + sqrt(1 - d^2)) / d))
- * (derived and checked in tests/test_cone.c). */
-static double cone_cut(double d)
-{
-    if (d >= 1.0)
-        return 0.0;
-    if (d < 0.0)
-        return 1.0 - cone_cut(-d);
-    double s = sqrt((1.0 - d) * (1.0 + d));
-    return (acos(d) - 2.0 * d * s + (d > 0.0 ? d * d * d * log((1.0 + s) / d) : 0.0)) / M_PI;
-}
-
 /* Largest error against 1 - C(signed distance) over a HW x HW image of the
  * half-plane through (px, py) pixels at `angle`. */
 static double half_plane_error(const char *method, const char *filter, double px, double py,
@@ -102,7 +90,8 @@ static double half_plane_error(const char *method, const char *filter, double px
             double d = (i + 0.5 - px) * nx + (j + 0.5 - py) * ny; /* > 0: white side */
             /* separable: the 1-D cdf across the edge; the cone: its cut
              * volume (f.radius is its R) */
-            double exact = f.type->cdf ? 1.0 - aa_filter_cdf(&f, -d) : 1.0 - cone_cut(d / f.radius);
+            double exact = f.type->cdf ? 1.0 - aa_filter_cdf(&f, -d)
+                                       : 1.0 - oracle_cone_cut(d / f.radius);
             const double *v = aa_pixel(&img, i, j);
             for (int ch = 0; ch < 3; ch++) {
                 if (!(v[ch] >= 0.0 && v[ch] <= 1.0))
