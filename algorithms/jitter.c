@@ -497,8 +497,9 @@ static void shade_simple(const jt_row *R, aa__sampler_worker *wk, const jt_pixel
             total += w;
         }
         /* every sample outside the cone's disc: the samples' plain mean */
-        for (int n = 0; n < spp && !(total > 0.0); n++)
-            wsum[sub[n]] += 1.0;
+        if (!(total > 0.0))
+            for (int n = 0; n < spp; n++)
+                wsum[sub[n]] += 1.0;
     }
     aa__sampler_by_subsets(wk, R->job->placed, pix->cy, pcs, np, wsum, px);
 }

@@ -490,6 +490,12 @@ typedef struct aa_truth_stats {
     int worst_i, worst_j;
 } aa_truth_stats;
 
+/* Whether long double arithmetic is wider than double where this runs (the
+ * type may say so while an emulator, valgrind for one, computes it in
+ * double).  The reference's Gaussian fixed rule and the extended-precision
+ * goals of the tests count on it. */
+int aa_long_double_is_extended(void);
+
 /* The reference image of a placed scene (pixel units).  `bound`, if not
  * NULL, receives a 1-channel image of per-pixel error bounds (the largest
  * over channels).  threads <= 0: OpenMP's default.  Fails only on bad

@@ -175,13 +175,6 @@ static double cone_row_cdf(const double *p, double v, double u)
     return 3.0 / (M_PI * r) * (cone_g(x, y) + cone_g(c, y));
 }
 
-static double cone_radius(const double *p, double tail, double *lost)
-{
-    (void)tail;
-    *lost = 0.0;
-    return p[0];
-}
-
 const aa_filter_type aa_filter_cone = {
     {"cone",
      "radial cone of radius r pixels, not separable (Feibush et al. fig. 2f, 3a; an "
@@ -189,8 +182,8 @@ const aa_filter_type aa_filter_cone = {
      cone_params},
     NULL,
     NULL,
-    cone_radius,
-    tent_kinks, /* -r, 0, r */
+    tent_radius, /* r, nothing lost */
+    tent_kinks,  /* -r, 0, r */
     cone_weight2,
     cone_row_cdf};
 

@@ -345,18 +345,17 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
                 note_turn(w, p->y1 - w->vc);
         }
         if (w->radial) {
+            /* where the piece crosses the disc's rim: a span's end leaves
+             * the chord there (the row integral has no kink in u inside) */
             st = add_circle(w, p);
-            if (!st && n <= TRUTH_MAX_PAIRS)
-                for (size_t q = k + 1; q < n && !st; q++)
-                    st = add_intersections(w, p, local[q]);
-            continue;
-        }
-        /* where the piece crosses a vertical line at which the filter's
-         * cdf has a kink (the window's sides for the box) */
-        for (int j = 0; j < nk && !st; j++) {
-            int m = aa_piece_meet_x(p, w->uc + kink[j], ys);
-            for (int q = 0; q < m && !st; q++)
-                st = add_abs(w, ys[q], -INFINITY, INFINITY);
+        } else {
+            /* where the piece crosses a vertical line at which the filter's
+             * cdf has a kink (the window's sides for the box) */
+            for (int j = 0; j < nk && !st; j++) {
+                int m = aa_piece_meet_x(p, w->uc + kink[j], ys);
+                for (int q = 0; q < m && !st; q++)
+                    st = add_abs(w, ys[q], -INFINITY, INFINITY);
+            }
         }
         /* Gaussian: where it crosses x = uc + k s.  A steep piece sweeps
          * the window in a short stretch of v, where the inner integral
@@ -1647,9 +1646,7 @@ static int field_render(const aa_scene *placed, const aa_filter *f, int threads,
 int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int threads, int mode,
                           aa_image *out, aa_image *bound, aa_truth_stats *stats, size_t *nfast);
 
-/* Whether long double arithmetic is wider than double at run time (the
- * type may say so while an emulator computes it in double). */
-static int long_double_is_extended(void)
+int aa_long_double_is_extended(void)
 {
     volatile long double one = 1.0L, tiny = 0x1p-60L;
     return one + tiny != one;
@@ -1684,7 +1681,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
     gauss_plan plan;
     int use_fast = 0;
     if (f->type == &aa_filter_gauss && mode != AA__TRUTH_QAG && 2.0 * f->radius >= 1.0 &&
-        long_double_is_extended()) {
+        aa_long_double_is_extended()) {
         if ((status = plan_init(&plan, f)))
             return status;
         use_fast = fast_bytes(&plan, out->w, aa_scene_is_grey(placed) ? 1 : 3) <= FAST_MAX_BYTES;

@@ -50,6 +50,7 @@
  */
 #include "aabench.h"
 #include "oracle.h"
+#include "scenes.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -423,18 +424,12 @@ static double cone_cut_quadrature(double delta)
     return 6.0 / M_PI * sum;
 }
 
-/* White right of the line through (px, py) (pattern units) at `angle`
- * from the vertical, on black. */
+/* White right of the line through (px, py) pattern units at `angle`, on
+ * black (tests/scenes.c). */
 static aa_scene *half_plane(double px, double py, double angle)
 {
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
-    double dx = sin(angle), dy = cos(angle), nx = dy, ny = -dx, L = 50.0;
-    assert_int_equal(aa_scene_move_to(s, px - L * dx, py - L * dy), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, px + L * dx, py + L * dy), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, px + L * dx + L * nx, py + L * dy + L * ny), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, px - L * dx + L * nx, py - L * dy + L * ny), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *s = scenes_half_plane(px, py, angle);
+    assert_non_null(s);
     return s;
 }
 

@@ -19,6 +19,7 @@
  */
 #include "aabench.h"
 #include "oracle.h"
+#include "scenes.h"
 
 #include <fcntl.h>
 #include <math.h>
@@ -32,24 +33,6 @@
 #include <unistd.h>
 
 #include <cmocka.h>
-
-/* A half-plane of white right of the line through (px, py) pattern units
- * with direction angle `angle` (0: vertical, the region right of it), on
- * black; the image is square so pattern and pixel angles agree. */
-static aa_scene *half_plane(double px, double py, double angle)
-{
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
-    double dx = sin(angle), dy = cos(angle); /* along the edge, downwards */
-    double nx = dy, ny = -dx;                /* into the white side */
-    double L = 50.0;
-    assert_int_equal(aa_scene_move_to(s, px - L * dx, py - L * dy), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, px + L * dx, py + L * dy), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, px + L * dx + L * nx, py + L * dy + L * ny), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, px - L * dx + L * nx, py - L * dy + L * ny), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
-}
 
 static int render(const char *method, const aa_scene *scene, const char *filter, int w, int h,
                   int threads, aa_image *out)
@@ -80,7 +63,8 @@ static double half_plane_error(const char *method, const char *filter, double px
 {
     aa_filter f;
     assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    aa_scene *s = half_plane(px / HW, py / HW, angle);
+    aa_scene *s = scenes_half_plane(px / HW, py / HW, angle); /* white right of the line */
+    assert_non_null(s);
     aa_image img;
     if (render(method, s, filter, HW, HW, 2, &img))
         fail_msg("%s with %s: %s", method, filter, aa_last_error());
@@ -90,8 +74,8 @@ static double half_plane_error(const char *method, const char *filter, double px
             double d = (i + 0.5 - px) * nx + (j + 0.5 - py) * ny; /* > 0: white side */
             /* separable: the 1-D cdf across the edge; the cone: its cut
              * volume (f.radius is its R) */
-            double exact = f.type->cdf ? 1.0 - aa_filter_cdf(&f, -d)
-                                       : 1.0 - oracle_cone_cut(d / f.radius);
+            double exact = aa_filter_is_separable(&f) ? 1.0 - aa_filter_cdf(&f, -d)
+                                                       : 1.0 - oracle_cone_cut(d / f.radius);
             const double *v = aa_pixel(&img, i, j);
             for (int ch = 0; ch < 3; ch++) {
                 if (!(v[ch] >= 0.0 && v[ch] <= 1.0))

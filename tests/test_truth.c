@@ -577,15 +577,6 @@ static aa_scene *half_plane(double px, double py, double theta, aa_rgb fg, aa_rg
     return s;
 }
 
-/* Whether long double arithmetic is wider than double here: valgrind
- * emulates the x87 unit in double, and the fixed rule's rounding bound
- * counts on the 64-bit mantissa (truth.c, LDBL_EPSILON). */
-static int long_double_extended(void)
-{
-    volatile long double one = 1.0L, tiny = 0x1p-60L;
-    return one + tiny != one;
-}
-
 /* Every pixel against Phi(d / s) (long double: its own error is below
  * 1e-18), within the pixel's bound; returns the largest error / bound over
  * the pixels the fixed rule took, and checks which path the pixels took. */
@@ -614,7 +605,7 @@ static double check_half_plane(double sd, double theta, int want_fast)
     double worst = 0, ratio = 0;
     /* without extended precision the per-pixel bound is not claimed; the
      * error must still be within the reference's promise */
-    const int extended = long_double_extended();
+    const int extended = aa_long_double_is_extended();
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++) {
             /* n = (ey, -ex) / len points into the interior */
@@ -659,7 +650,7 @@ static void test_gauss_half_plane(void **state)
         r = fmax(r, check_half_plane(sds[k], 3.0, 1));
         r = fmax(r, check_half_plane(sds[k], -20.0, 1));
         r = fmax(r, check_half_plane(sds[k], 40.0, 1));
-        if (long_double_extended())
+        if (aa_long_double_is_extended())
             assert_true(r <= 1.0);
         /* steep and nearly horizontal: QAG */
         check_half_plane(sds[k], 60.0, 0);
@@ -763,7 +754,7 @@ static aa_scene *mixed_scene(int w, int h)
 static void test_gauss_fallback(void **state)
 {
     (void)state;
-    if (!long_double_extended()) { /* the reference takes QAG only: no rule to test */
+    if (!aa_long_double_is_extended()) { /* the reference takes QAG only: no rule to test */
         print_message("long double is not extended here: skipped\n");
         skip();
     }
@@ -781,7 +772,7 @@ static void test_gauss_fallback(void **state)
 static void test_gauss_crow_against_qagp(void **state)
 {
     (void)state;
-    if (!long_double_extended()) { /* the reference takes QAG only: no rule to test */
+    if (!aa_long_double_is_extended()) { /* the reference takes QAG only: no rule to test */
         print_message("long double is not extended here: skipped\n");
         skip();
     }
