@@ -27,7 +27,9 @@ PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 TEST_LIBS  = $(shell pkg-config --cflags --libs $(TEST_PKGS) 2>/dev/null)
 
 WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-unknown-pragmas
-CPPFLAGS := -D_DEFAULT_SOURCE -Iharness -Ipatterns -Ialgorithms
+HARNESS  := harness/core harness/truth harness/bench harness/cli
+# -MMD -MP: each object records the headers it read (build/**/*.d)
+CPPFLAGS := -MMD -MP -D_DEFAULT_SOURCE -Iharness $(addprefix -I,$(HARNESS)) -Ipatterns -Ialgorithms
 CFLAGS   := -std=c11 -O2 -g $(WARN) -fopenmp -fPIC
 CXXFLAGS := -std=c++17 -O2 -g -Wall -Wextra -Werror -fPIC
 LDLIBS    = $(PKG_LIBS) -lstdc++ -lm -ldl -fopenmp
@@ -35,15 +37,14 @@ LDLIBS    = $(PKG_LIBS) -lstdc++ -lm -ldl -fopenmp
 SAN       := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 SAN_BUILD := $(BUILD)/san
 
-CLI_SRC  := harness/main.c harness/cli.c $(wildcard harness/cmd_*.c)
-LIB_CSRC := $(filter-out $(CLI_SRC),$(wildcard harness/*.c)) $(wildcard patterns/*.c) \
-            $(wildcard algorithms/*.c)
-LIB_XSRC := $(wildcard harness/*.cpp)
+CLI_SRC  := $(wildcard harness/cli/*.c)
+LIB_CSRC := $(wildcard harness/core/*.c harness/truth/*.c harness/bench/*.c) \
+            $(wildcard patterns/*.c) $(wildcard algorithms/*.c)
+LIB_XSRC := $(wildcard harness/core/*.cpp)
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_AUX := $(filter-out $(TEST_SRC) tests/bench_%.c tests/plugin_%.c,$(wildcard tests/*.c))
 PLUGIN_SRC := $(wildcard tests/plugin_*.c)
 BENCH_SRC := $(wildcard tests/bench_*.c)
-HEADERS  := $(wildcard harness/*.h patterns/*.h algorithms/*.h tests/*.h)
 
 # $(1): build folder, $(2): extra flags
 define objs
@@ -59,7 +60,7 @@ SAN_TESTS := $(patsubst tests/%.c,$(SAN_BUILD)/tests/%,$(TEST_SRC))
 BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
 
 # keep the objects of test helpers between runs
-.SECONDARY:
+.PRECIOUS: $(BUILD)/obj/%.o $(SAN_BUILD)/obj/%.o
 
 .PHONY: all deps run test check-tests check-tests-san check-gate baseline bench install clean \
         fuzz valgrind
@@ -71,11 +72,11 @@ deps:
 	@sh scripts/install-deps.sh
 
 # ---- plain build ----
-$(BUILD)/obj/%.o: %.c $(HEADERS)
+$(BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	@echo '  CC    $@'
 	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) -c $< -o $@
-$(BUILD)/obj/%.o: %.cpp $(HEADERS)
+$(BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	@echo '  CXX   $@'
 	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(PKG_CFLAGS) -c $< -o $@
@@ -101,11 +102,11 @@ $(BUILD)/bench_%: tests/bench_%.c $(LIB)
 	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) $^ -o $@ $(LDLIBS)
 
 # ---- sanitizer build ----
-$(SAN_BUILD)/obj/%.o: %.c $(HEADERS)
+$(SAN_BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	@echo '  CC    $@'
 	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) $(PKG_CFLAGS) -c $< -o $@
-$(SAN_BUILD)/obj/%.o: %.cpp $(HEADERS)
+$(SAN_BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	@echo '  CXX   $@'
 	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) -O1 $(SAN) $(PKG_CFLAGS) -c $< -o $@
@@ -132,11 +133,11 @@ FUZZ_BUILD   := $(BUILD)/fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_FLAGS   := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g -O1
 FUZZ_TARGETS := $(FUZZ_BUILD)/fuzz_spec $(FUZZ_BUILD)/fuzz_image
-$(FUZZ_BUILD)/obj/%.o: %.c $(HEADERS)
+$(FUZZ_BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	@echo '  CLANG $@'
 	$(Q)clang $(CPPFLAGS) -std=c11 $(WARN) -Wno-pass-failed -fPIC -fopenmp $(FUZZ_FLAGS) $(PKG_CFLAGS) -c $< -o $@
-$(FUZZ_BUILD)/obj/%.o: %.cpp $(HEADERS)
+$(FUZZ_BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	@echo '  CLANG $@'
 	$(Q)clang++ $(CPPFLAGS) -std=c++17 -Wall -Wextra -Werror -fPIC $(FUZZ_FLAGS) $(PKG_CFLAGS) -c $< -o $@
@@ -218,3 +219,5 @@ install: all
 
 clean:
 	rm -rf $(BUILD)
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
