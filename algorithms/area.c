@@ -107,6 +107,7 @@
  * pieces whose extents overlap: quadratic in the number of pieces that
  * crowd one cluster.
  */
+#include "core.h"
 #include "methods.h"
 
 #include <limits.h>

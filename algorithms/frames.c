@@ -1,6 +1,7 @@
 /*
  * frames.c: a stack of offset point-sampled frames, combined (frames.h).
  */
+#include "core.h"
 #include "frames.h"
 #include "methods.h"
 

@@ -11,13 +11,14 @@
  * no prefilter, so edges staircase, detail finer than a pixel aliases into
  * moire, and objects between centres vanish.
  *
- * On a field scene (aabench.h, "Fields": the zone plate) there are no
+ * On a field scene (core.h, "Fields": the zone plate) there are no
  * crossings: each centre takes the field's value (aa_scene_colour_at).
  *
  * Limits: it has no filter; it is measured against the box reference and
  * refuses other filters.  A centre exactly on an edge takes the colour to
  * the edge's left (the scene's crossing rule).
  */
+#include "core.h"
 #include "methods.h"
 
 #include <math.h>

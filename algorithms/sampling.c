@@ -2,6 +2,7 @@
  * sampling.c: the workers, the parallel row loop and the by-subset colour
  * shared by supersample and jitter (sampling.h says what and why).
  */
+#include "core.h"
 #include "sampling.h"
 
 #include <omp.h>

@@ -19,7 +19,7 @@
  *    failure flag that stops the rows when a strip cannot be built
  *    (aa__sampler_render, aa__sampler_row);
  *  - the colour of a point from the worker's strip (aa__sampler_colour_at);
- *  - a field scene (aabench.h, "Fields"), which has no edges: no uniform
+ *  - a field scene (core.h, "Fields"), which has no edges: no uniform
  *    runs, every pixel shaded, every sample's colour from the point
  *    function (the worker's `field` flag);
  *  - the by-subset colouring of a pixel in a band that no piece ends in:

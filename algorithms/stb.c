@@ -36,6 +36,7 @@
  * do (stb_truetype's own documentation says so); even-odd scenes only as
  * above.
  */
+#include "core.h"
 #include "methods.h"
 #include "peer.h"
 

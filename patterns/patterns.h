@@ -4,7 +4,7 @@
 #ifndef AA_PATTERNS_H
 #define AA_PATTERNS_H
 
-#include "aabench.h"
+#include "core.h"
 
 extern const aa_pattern_type aa_pattern_crow;
 extern const aa_pattern_type aa_pattern_catmull;

@@ -7,7 +7,7 @@
  * side); toward the corners (r up to 0.71) it passes it and the rings alias
  * into false plates, which is what the pattern is for.
  *
- * The scene is a field (aabench.h, "Fields"): this point function plus its
+ * The scene is a field (core.h, "Fields"): this point function plus its
  * own exact pixel integral.  Placed by (sx, sy, tx, ty) (aa_scene_place:
  * sx = W, tx = t vx), pixel (i, j) under the separable filter w(u) w(v) is
  *

@@ -5,7 +5,7 @@
 #ifndef AA_ZONEPLATE_H
 #define AA_ZONEPLATE_H
 
-#include "aabench.h"
+#include "core.h"
 
 #include <complex.h>
 

@@ -25,7 +25,7 @@
  *
  * usage: bench_methods [-p PATTERN] [-s WxH] [-f FILTER] [-r REPS] [-m WxH|none] [SPEC...]
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <stdio.h>

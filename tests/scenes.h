@@ -4,7 +4,7 @@
 #ifndef AA_TEST_SCENES_H
 #define AA_TEST_SCENES_H
 
-#include "aabench.h"
+#include "bench.h"
 
 /* White right of the line through (px, py) (pattern units) with direction
  * angle `angle` from the vertical (0: the region right of a vertical line),

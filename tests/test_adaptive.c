@@ -12,7 +12,7 @@
  *  - A band thinner than a pixel that misses the corners is lost without
  *    tagging (the paper's case 6d) and found with it.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>

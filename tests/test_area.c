@@ -24,7 +24,7 @@
  *  - known counters, exact uniform pixels, any thread count the same image,
  *    filters other than the box refused with a message.
  */
-#include "aabench.h"
+#include "bench.h"
 #include "oracle.h"
 
 #include <math.h>

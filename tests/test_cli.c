@@ -4,7 +4,7 @@
  * accepted, an unwritable output 3, and a refused command writes nothing.
  * The command under test is $AABENCH (set by scripts/run-tests.sh).
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <fcntl.h>
 #include <setjmp.h>

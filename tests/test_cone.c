@@ -48,7 +48,7 @@
  *    jitter with many samples approaches the half-plane's closed form, and
  *    with one sample stays finite where the sample misses the disc.
  */
-#include "aabench.h"
+#include "bench.h"
 #include "oracle.h"
 #include "scenes.h"
 

@@ -7,7 +7,7 @@
  * the RMSE summed in this file.  An unwritable --out must give exit status
  * 3 and write nothing.  The command under test is $AABENCH.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>

@@ -7,7 +7,7 @@
  * (row_cdf) is checked against Simpson on its 2-D weight along rows, the
  * rows' masses against Simpson across v (volume 1), and known values.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>

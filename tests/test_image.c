@@ -29,7 +29,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "aabench.h"
+#include "bench.h"
 
 /* ------------------------------------------------------------------------
  * The test folder

@@ -21,7 +21,7 @@
  * on crow 256x256 box that the methods exist to show: RMSE falls from point
  * to supersample n=3 to jitter spp=64 to area.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -219,7 +219,7 @@ static void test_range_and_determinism(void **state)
     for_each_spec(check_range_and_determinism);
 }
 
-/* The zone plate, a field scene (aabench.h, "Fields"): a method that
+/* The zone plate, a field scene (core.h, "Fields"): a method that
  * declares AA_METHOD_FIELDS samples its point function (values in [0, 1],
  * not all one colour as the background would be, the same for 1 and 2
  * threads and for the same seed); any other is refused with exit status 2

@@ -1,7 +1,7 @@
 /*
  * test_metrics.c: the error metrics on cases worked by hand.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>

@@ -24,7 +24,7 @@
  *  - every pattern: the reference is within [0, 1] with its error bound
  *    within AA_TRUTH_BOUND; bad parameters are refused.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>

@@ -28,7 +28,7 @@
  * The crow band's sum carries flattening: each peer's bound is its
  * tolerance (px) times the arcs' length (2 arcs of about H px) over W H.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <fcntl.h>
 #include <math.h>

@@ -10,7 +10,7 @@
  *  - an interrupted `aabench run` leaves no half-written or temporary file:
  *    everything in its folder is complete and parses.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <ctype.h>
 #include <fcntl.h>

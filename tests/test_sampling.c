@@ -33,7 +33,7 @@
  *    REFERENCES.md), slopes fitted over spp = 4..256.
  *  - tent and Gaussian are honoured: many samples approach their references.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>

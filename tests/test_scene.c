@@ -5,7 +5,7 @@
  * queries) is checked against the plain point query on many random points
  * of `crow` and of a polygon scene with vertices inside the bands.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>

@@ -2,7 +2,7 @@
  * test_spec.c: parsing specs, parameters and sizes; every registered type
  * (patterns, filters) has a consistent parameter table.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>

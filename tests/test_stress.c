@@ -6,7 +6,7 @@
  * sizes.  The expected values are the suite's long double evaluation of the
  * same scenes (stress.c), a path separate from truth.c and area.c.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <setjmp.h>
 #include <stdarg.h>

@@ -17,7 +17,7 @@
  *    and on a half-plane against the closed-form volume of a cut cone.
  *  - refusals through the CLI exit with status 2.
  */
-#include "aabench.h"
+#include "bench.h"
 #include "oracle.h"
 #include "scenes.h"
 

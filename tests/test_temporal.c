@@ -27,7 +27,7 @@
  *    toward the supersampled image (the equal-weight mean of the 8 offsets);
  *  - cycle on a still scene with one full cycle is supersample's msaa image.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>

@@ -31,7 +31,7 @@
  *  - 1, 2 and 3 threads agree bit for bit on a larger image (the recursive
  *    filter's pipeline), and the counters.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <setjmp.h>

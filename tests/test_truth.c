@@ -25,7 +25,7 @@
  *    fall-back path) and crow against the QAG-only computation, within
  *    the two bounds; thread counts 1, 2, 3 bit-identical.
  */
-#include "aabench.h"
+#include "bench.h"
 #include "oracle.h"
 
 #include <math.h>
@@ -39,12 +39,9 @@
 
 #include <cmocka.h>
 
-/* Internal to truth.c (tests and benchmarks only): mode 1 integrates every
- * non-uniform pixel with QAG, as before the Gaussian's fixed rule; *fast
- * receives the number of pixels the fixed rule took. */
-#define TRUTH_QAG_ONLY 1
-int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int threads, int mode,
-                          aa_image *out, aa_image *bound, aa_truth_stats *stats, size_t *fast);
+/* aa__truth_render_mode (truth.h): mode 1 integrates every non-uniform
+ * pixel with QAG, as before the Gaussian's fixed rule. */
+#define TRUTH_QAG_ONLY AA__TRUTH_QAG
 
 static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
 

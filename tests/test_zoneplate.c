@@ -18,7 +18,7 @@
  *    the still reference shifted by hand;
  *  - the scene queries on a field scene, the domain of k, the cache key.
  */
-#include "aabench.h"
+#include "bench.h"
 #include "zoneplate.h"
 
 #include <complex.h>

@@ -15,7 +15,7 @@
  * The method's sample count is set through its `spp` parameter, or through
  * `n` (an n x n grid: spp must then be a square).
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -16,7 +16,7 @@
  * magnified, by replicating pixels), so a page viewer's scaling may add
  * moire of its own.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <stdio.h>

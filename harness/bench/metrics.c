@@ -18,7 +18,7 @@
  *    whose window fits in the image (all pixels, window clipped and
  *    renormalised, for images smaller than 11 pixels).
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -5,7 +5,7 @@
  * rescaled its tiles would add moire of its own.  Labels are drawn with
  * OpenImageIO's text renderer (DejaVu Sans) above each tile.
  */
-#include "aabench.h"
+#include "bench.h"
 #include "oiio.h"
 
 #include <stdio.h>

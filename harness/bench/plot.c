@@ -14,7 +14,7 @@
  *   convergence     RMSE against samples per pixel, log-log, with each
  *                   method's fitted line and slope
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <errno.h>
 #include <math.h>

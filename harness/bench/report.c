@@ -7,7 +7,7 @@
  * empty measurements and its reason in `note`.  Both files are written
  * atomically.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <errno.h>
 #include <math.h>

@@ -8,7 +8,7 @@
  * Everything is checked before any work, so a typo in the last method of a
  * long suite is refused at once.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <stdio.h>

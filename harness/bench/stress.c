@@ -34,7 +34,7 @@
  * the case with a message; a NaN, an Inf, a value outside or a failure
  * other than a refusal fails the case.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -10,7 +10,7 @@
  *   full     every method variant, every filter, both sizes, on crow; the
  *            other seed scenes at 256x256
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <string.h>
 

@@ -15,7 +15,7 @@
  * Which offsets the eye prefers is read off eye_rmse and flicker; `aabench
  * run` prints the best per pattern after the table.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <string.h>
 

@@ -37,7 +37,7 @@
  * Limits: the frames are whole images held in memory (n of them, plus n
  * references); the harness keeps n at most AA_TEMPORAL_MAX_FRAMES.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <math.h>
 #include <stdlib.h>

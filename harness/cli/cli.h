@@ -8,7 +8,7 @@
 #ifndef AA_CLI_H
 #define AA_CLI_H
 
-#include "aabench.h"
+#include "bench.h"
 
 #include <getopt.h>
 #include <stdint.h>

@@ -5,7 +5,7 @@
  * returns the status; callers add context with aa_fail_context().  Nothing
  * is printed here: the command line decides what the user sees.
  */
-#include "aabench.h"
+#include "core.h"
 
 #include <stdarg.h>
 #include <stdio.h>

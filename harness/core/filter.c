@@ -31,7 +31,7 @@
  * the 2-D mass outside the square [-R, R]^2 is below a stated tail, and
  * that mass is reported so it can enter an error bound.
  */
-#include "aabench.h"
+#include "core.h"
 
 #include <math.h>
 

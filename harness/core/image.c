@@ -26,7 +26,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 
-#include "aabench.h"
+#include "core.h"
 #include "oiio.h"
 
 #include <errno.h>

@@ -5,7 +5,7 @@
  * allocates its state, so a method (or a plug-in) never sizes its own
  * instance, as gsl_rng_alloc does for a gsl_rng_type.
  */
-#include "aabench.h"
+#include "core.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -13,7 +13,7 @@
  */
 #include "oiio.h"
 
-#include "aabench.h"
+#include "core.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>

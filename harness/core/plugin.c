@@ -1,17 +1,15 @@
 /*
  * plugin.c: methods from shared libraries loaded at run time.
  *
- * A plug-in is built against aabench.h and exports `aa_plugin_abi` (equal to
+ * A plug-in is built against aabench.h alone and exports `aa_plugin_abi` (equal to
  * AA_PLUGIN_ABI) and `aa_plugin_methods`, a NULL-terminated array of method
  * types.  It may call any public aa_ function: the aabench command exports
  * the whole library to it.  The library stays loaded until the process ends
  * (its type structs are in the table).
  */
-#include "aabench.h"
+#include "core.h"
 
 #include <dlfcn.h>
-
-int aa__method_register(const aa_method_type *const *types, const char *origin);
 
 int aa_plugin_load(const char *path)
 {

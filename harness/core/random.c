@@ -15,7 +15,7 @@
  * next; the frame number is taken modulo 2^64, so that no time, however
  * far, is refused.
  */
-#include "aabench.h"
+#include "core.h"
 
 #include <math.h>
 

@@ -5,7 +5,7 @@
 #ifndef AA_SCENE_INTERNAL_H
 #define AA_SCENE_INTERNAL_H
 
-#include "aabench.h"
+#include "core.h"
 
 struct aa_scene {
     aa_rgb background;

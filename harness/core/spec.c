@@ -10,7 +10,7 @@
  * PATTERNS.md writes its defaults.
  */
 #define _POSIX_C_SOURCE 200809L
-#include "aabench.h"
+#include "core.h"
 
 #include <ctype.h>
 #include <errno.h>

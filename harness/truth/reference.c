@@ -13,7 +13,7 @@
  * host byte order.  Anything that does not match is a miss and is
  * recomputed; files are written atomically.
  */
-#include "aabench.h"
+#include "truth.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -43,7 +43,7 @@ int aa_view_key(const aa_view *view, char *buf, size_t len)
     return field_key(view, buf + n, len - (size_t)n);
 }
 
-/* A field pattern (aabench.h, "Fields") adds a line naming the field, the
+/* A field pattern (core.h, "Fields") adds a line naming the field, the
  * version of its integral and its parameters, so that a change to the
  * field's code or parameters is never served an old image.  A pattern that
  * cannot be built adds nothing (its reference fails anyway). */

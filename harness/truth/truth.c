@@ -96,7 +96,7 @@
  * with the methods beyond the scene's own queries (the strip tells which
  * pieces are near a window and the winding numbers left of it).
  */
-#include "aabench.h"
+#include "truth.h"
 
 #include <float.h>
 #include <math.h>
@@ -1615,7 +1615,7 @@ static int render_row(worker *w, panel_worker *fs, int j, aa_image *out, aa_imag
     return AA_OK;
 }
 
-/* A field scene: the field's own exact pixel integral (aabench.h,
+/* A field scene: the field's own exact pixel integral (core.h,
  * "Fields"); every pixel counts as integrated. */
 static int field_render(const aa_scene *placed, const aa_filter *f, int threads, aa_image *out,
                         aa_image *bound, aa_truth_stats *stats, size_t *nfast)
@@ -1638,13 +1638,6 @@ static int field_render(const aa_scene *placed, const aa_filter *f, int threads,
         *nfast = 0;
     return AA_OK;
 }
-
-/* Internal (tests, benchmarks): mode AA__TRUTH_QAG integrates every
- * non-uniform pixel with QAG, as before the fixed rule existed; *nfast
- * (may be NULL) receives the number of pixels the fixed rule took. */
-#define AA__TRUTH_QAG 1
-int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int threads, int mode,
-                          aa_image *out, aa_image *bound, aa_truth_stats *stats, size_t *nfast);
 
 int aa_long_double_is_extended(void)
 {

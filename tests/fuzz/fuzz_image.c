@@ -6,7 +6,7 @@
  * must return a status and a whole image or nothing; a .txt image that was
  * read must write and read back identically.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <stdint.h>
 #include <stdio.h>

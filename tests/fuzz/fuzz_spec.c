@@ -7,7 +7,7 @@
  * status and never crash, read out of bounds or leave a half-made spec; an
  * accepted pattern spec must also pass its own domain check again.
  */
-#include "aabench.h"
+#include "bench.h"
 
 #include <stdint.h>
 #include <stdlib.h>

@@ -1,0 +1,227 @@
+/*
+ * bench.h: the benchmark (harness/bench): metrics, temporal metrics, runs
+ * and suites, results files, convergence, montages, plots, the published
+ * figures and the stress suite.
+ */
+#ifndef AA_BENCH_H
+#define AA_BENCH_H
+
+#include "truth.h"
+
+/* ------------------------------------------------------------------------
+ * Metrics: an image against its reference
+ * ------------------------------------------------------------------------ */
+
+typedef struct aa_metrics {
+    /* linear light, over every channel of every pixel */
+    double rmse, mae, max_err, psnr; /* psnr = 10 log10(1/mse), infinite if equal */
+    int max_at[3];                   /* pixel i, j and channel of max_err */
+    /* the same after display encoding */
+    double rmse_enc, mae_enc, max_err_enc, psnr_enc;
+    /* power of the error image's spectrum per pixel: total (= the mean
+     * squared error of the channel mean), below 1/4 cycle per pixel in x
+     * and y (moire), and the rest up to the Nyquist frequency */
+    double alias_total, alias_low, alias_high;
+    double ssim; /* on the display-encoded luma */
+} aa_metrics;
+
+/* enc NULL: sRGB.  Images must have the same size and channels. */
+int aa_metrics_compute(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                       aa_metrics *m);
+
+/* Temporal metrics of n displayed frames at times t0, t0 + 1, ... against
+ * the references at the same times (temporal.c): eye_rmse over every
+ * window of `window` frames (eye's image: the frames' mean, against the
+ * references' mean), flicker (per channel and pixel, the population
+ * standard deviation over time of frame minus reference; its mean and max),
+ * conservation ((max - min)/mean of the total intensity over the frames). */
+#define AA_TEMPORAL_MAX_FRAMES 256
+typedef struct aa_temporal {
+    int frames, window;
+    double eye_rmse;
+    double flicker_mean, flicker_max;
+    double conservation;
+    double popping; /* NAN unless measured (aa_temporal_popping) */
+} aa_temporal;
+int aa_temporal_compute(const aa_image *frames, const aa_image *refs, int n, int window,
+                        aa_temporal *out);
+/* Popping: ndots dots centred at (cx, cy) (pixel units) plus shift[2k],
+ * shift[2k+1] at frame k; the fraction of (dot, consecutive frames) whose
+ * value (channel mean summed over the pixels with centres within 1.5 px of
+ * the dot) changes by more than half its reference value. */
+int aa_temporal_popping(const aa_image *frames, const aa_image *refs, int n, const double *cx,
+                        const double *cy, size_t ndots, const double *shift, double *out);
+
+/* ------------------------------------------------------------------------
+ * Runs: every method on every view of a suite, measured
+ * ------------------------------------------------------------------------ */
+
+/* One result: a pattern x size x filter x method. */
+typedef struct aa_row {
+    char pattern[512];  /* the pattern spec as given */
+    char filter[128];   /* the filter spec as given */
+    char method[512];   /* the method spec as given */
+    char canonical[1024]; /* the method spec with every parameter */
+    int w, h;
+    double t, vx, vy;
+    uint64_t seed;
+    int threads, reps;
+    double spp;         /* samples per pixel */
+    aa_metrics m;
+    double seconds, seconds_min, seconds_max; /* median, min, max of the renders */
+    double ns_per_pixel, ns_per_sample;
+    uint64_t samples, expensive_pixels;
+    double expensive_fraction;
+    int ok;             /* 0: refused or failed, see note */
+    char note[512];
+    int temporal;       /* 1: an animated run: the temporal metrics below were taken */
+    aa_temporal tm;
+} aa_row;
+
+/* A suite is a list of groups; each group is a cross product of patterns,
+ * sizes, filters and methods (NULL-terminated lists of specs). */
+typedef struct aa_suite_group {
+    const char *const *patterns, *const *sizes, *const *filters, *const *methods;
+} aa_suite_group;
+
+typedef struct aa_suite {
+    const char *name, *summary;
+    const aa_suite_group *groups; /* ends with a group whose patterns is NULL */
+} aa_suite;
+
+extern const aa_suite aa_suites[]; /* ends with a NULL name */
+const aa_suite *aa_suite_find(const char *name);
+
+/* The animated suites (suite_temporal.c): their motion (pixels per frame),
+ * the frames the temporal metrics are taken over and the eye's window; the
+ * command line's --motion, --frames and --window override them. */
+typedef struct aa_suite_motion {
+    const char *suite;
+    double vx, vy;
+    int frames, window;
+} aa_suite_motion;
+extern const aa_suite_group aa_suite_temporal_groups[];
+/* NULL for a still suite. */
+const aa_suite_motion *aa_suite_motion_find(const char *suite);
+
+typedef struct aa_run_config {
+    const char *const *patterns, *const *sizes, *const *filters, *const *methods;
+    size_t npatterns, nsizes, nfilters, nmethods;
+    int reps, threads;
+    uint64_t seed;
+    double t, vx, vy;
+    const char *cache_dir;  /* NULL: no cache */
+    const char *images_dir; /* NULL: no images written */
+    aa_encode enc;
+    /* called before each case (may be NULL); returning non-zero stops */
+    int (*progress)(void *ctx, size_t done, size_t total, const char *what);
+    void *ctx;
+    /* called after each row (may be NULL), e.g. to save results so far */
+    int (*row_done)(void *ctx, const aa_row *rows, size_t n);
+    /* temporal metrics: taken when the motion is not zero or `temporal` is
+     * set, over `frames` frames (times t, t + 1, ...; 0: 24) and an eye
+     * window of `window` frames (0: 6) */
+    int temporal, frames, window;
+} aa_run_config;
+
+/* Check every spec of the config (patterns, sizes, filters, methods) before
+ * any work. */
+int aa_run_check(const aa_run_config *cfg);
+/* Run it: *rows (malloc'd, n rows) in pattern, size, filter, method order.
+ * A method that refuses a filter gives a row with ok = 0 and the reason. */
+int aa_run(const aa_run_config *cfg, aa_row **rows, size_t *n);
+
+/* results.csv and results.json: one row per case. */
+int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n);
+int aa_rows_write_json(const char *path, const aa_row *rows, size_t n);
+/* Read a results or baseline CSV back (the columns written above). */
+int aa_rows_read_csv(const char *path, aa_row **rows, size_t *n);
+
+/* Convergence: RMSE against samples per pixel over `phases` random sub-pixel
+ * shifts of the scene; the log-log slope by least squares (gsl_fit_linear). */
+typedef struct aa_convergence {
+    size_t n;
+    double spp[64], rmse[64], rmse_sd[64], seconds[64];
+    double slope, slope_err, intercept;
+} aa_convergence;
+int aa_converge(const aa_spec *pattern, const char *method, const aa_filter *f, int w, int h,
+                const int *spp, size_t nspp, int phases, uint64_t seed, int threads,
+                const char *cache_dir, aa_convergence *out);
+/* The same for a scene at time t moving (vx, vy) pixels per frame: each
+ * phase's random sub-pixel shift is added to the motion's displacement
+ * (aa_converge is this with 0, 0, 0). */
+int aa_converge_moving(const aa_spec *pattern, const char *method, const aa_filter *f, int w,
+                       int h, double t, double vx, double vy, const int *spp, size_t nspp,
+                       int phases, uint64_t seed, int threads, const char *cache_dir,
+                       aa_convergence *out);
+
+/* A montage: images side by side in `columns`, each copied pixel for
+ * pixel (never resampled) under up to AA_TILE_LINES lines of label; written
+ * as any image file (PNG display-encoded with enc). */
+#define AA_TILE_LINES 3
+typedef struct aa_tile {
+    const aa_image *image; /* W x H x 3 */
+    const char *label[AA_TILE_LINES]; /* NULL-terminated if fewer */
+} aa_tile;
+int aa_montage_write(const char *path, const aa_tile *tiles, size_t n, int columns,
+                     const aa_encode *enc);
+
+/* Plots with gnuplot into `dir`: error_vs_time.{dat,gp,png} (log-log, each
+ * view's Pareto front marked) and convergence.{dat,gp,png}. */
+int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n);
+int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *const *names,
+                        size_t n, const char *title);
+
+/* Published figures (figures.c): the seed papers' comparison figures remade
+ * into a folder as NAME.png (labelled panels, aa_montage_write) and NAME.txt
+ * (settings, the command that remakes it, and each panel's RMSE and largest
+ * error against the exact reference, linear light); aa_figure_index writes
+ * index.html showing every figure present in the folder. */
+#define AA_FIGURE_PANELS 6
+typedef struct aa_figure_panel {
+    char label[128];
+    int reference;                   /* 1: the panel is the exact reference */
+    double rmse, max_err;            /* linear light */
+    double rmse_enc, max_err_enc;    /* after the panel's display encoding */
+    double rgb[3];                   /* the first pixel (1 x 1 figures: its colour) */
+} aa_figure_panel;
+typedef struct aa_figure_result {
+    const char *name;
+    int npanels;
+    aa_figure_panel panel[AA_FIGURE_PANELS];
+    double seconds;
+} aa_figure_result;
+size_t aa_figure_count(void);
+const char *aa_figure_name(size_t k);  /* NULL past the end */
+const char *aa_figure_title(size_t k);
+int aa_figure_find(const char *name);  /* index, or -1 */
+/* Make figure k in `dir` (which must exist); references come from and go
+ * to `cache_dir` (NULL: no cache).  Nothing is left half-written. */
+int aa_figure_make(size_t k, const char *dir, const char *cache_dir, int threads,
+                   aa_figure_result *r);
+int aa_figure_index(const char *dir);
+
+/* ------------------------------------------------------------------------
+ * The stress suite (stress.c): scenes at the limits of the geometry, the
+ * reference and `area` against a long double evaluation, every method
+ * finite and within [0, 1]
+ * ------------------------------------------------------------------------ */
+
+typedef struct aa_stress_result {
+    const char *name;
+    int w, h;
+    double ref_err, ref_bound;   /* reference against the evaluation */
+    double area_err, area_bound; /* `area` against the evaluation */
+    size_t nonfinite;            /* NaN or Inf values, reference and methods */
+    size_t out_of_range;         /* method values outside [0, 1] */
+    int methods, refused;        /* methods run, methods that refused */
+    int pass;
+} aa_stress_result;
+
+size_t aa_stress_count(void);
+const char *aa_stress_name(size_t k);
+/* Run case k; a status for failures to run (memory), not for failed checks. */
+int aa_stress_run_case(size_t k, int threads, aa_stress_result *r);
+
+
+#endif /* AA_BENCH_H */
