@@ -1,0 +1,144 @@
+/*
+ * truth_internal.h: what the two integration paths of the reference share
+ * (truth.c: QAG and the image; truth_gauss.c: the Gaussian's fixed rule on
+ * panels).  Private to harness/truth.
+ */
+#ifndef AA_TRUTH_INTERNAL_H
+#define AA_TRUTH_INTERNAL_H
+
+#include "truth.h"
+
+/* A local piece in coordinates relative to the pixel centre (uc, vc):
+ * y(t) - vc = y0 + t (by + t ay), x(t) - uc = x0 + t (bx + t ax). */
+typedef struct local_piece {
+    long double y0, y1, x0, ax, bx, ay, by;
+    int dir, layer;
+} local_piece;
+
+/* The piece p relative to the centre (uc, vc), in extended precision. */
+void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long double vc);
+/* The crossing of q with the line at relative height s, less its x0. */
+long double truth_crossing_part(const local_piece *q, long double s);
+/* qsort order of doubles. */
+int truth_cmp_double(const void *a, const void *b);
+
+/* ------------------------------------------------------------------------
+ * The Gaussian: one fixed rule on panels shared by the rows
+ * ------------------------------------------------------------------------ */
+
+#define GK_N 21 /* Gauss-Kronrod 10/21 (GSL's qk21) */
+#define GK_S 24 /* stored per panel and column: the nodes, then zeros */
+#define GL_N 10
+/* Pieces steeper than this (|dx/dy|) make G vary on a scale below s and
+ * leave the panel to QAG: measured, |K21 - G10| on a panel of 2 s grows
+ * from 8e-16 at slope 0.6 to 3e-14 at 1 and 2e-12 at 1.5 (s = 0.5). */
+#define FAST_SLOPE 1.0
+/* A fixed-rule pixel whose bound exceeds this goes to QAG instead. */
+#define FAST_LIMIT (AA_TRUTH_BOUND / 4)
+/* Slack on x extents and on the tests for meeting pieces, in pixels. */
+#define FAST_TOL 1e-9
+/* Pairs tested per piece before a crowd of overlapping pieces is simply
+ * left to QAG. */
+#define FAST_PAIRS 64
+/* Per-thread panel buffers above this many bytes (22 MB for a colour image
+ * 4096 wide, s = 0.5): QAG for every pixel. */
+#define FAST_MAX_BYTES ((size_t)256 << 20)
+
+enum { PANEL_CONST = 0, PANEL_NODES = 1, PANEL_BAD = 2 };
+
+/* Taylor terms of the tabulated cdf: with steps of at most 1/32 standard
+ * deviation, 7 terms leave a truncation error below 1e-18 (6 leave 4e-16;
+ * measured against erfcl over |z| <= 10.5: largest error 1.1e-16, the
+ * rounding of values near 1). */
+#define CDF_TERMS 7
+#define CDF_STEPS 32
+_Static_assert(CDF_TERMS == 7, "node_crossings writes seven powers");
+
+/* What every thread shares: the rule, the panel grid and the weight tables.
+ * Panels have height h = num/den pixels (one of the two is 1) and panel p
+ * covers [p h, (p+1) h].  Row j has phase j mod num; its window is covered
+ * by np[phase] panels from base(j) + r0[phase], base(j) = (j div num) den. */
+typedef struct gauss_plan {
+    double x[GK_N], wk[GK_N], wg[GK_N]; /* on [-1, 1], x ascending */
+    int num, den, np_max;
+    int *np, *r0;         /* per phase */
+    double *a, *d, *mass; /* [phase][k][node], [phase][k] */
+    double R, lost, peak, s, inv_s;
+    double node_err; /* (h + R/2) R / s^2: node heights in the weights */
+    /* The cdf in z = t/s, tabulated at z_k = k dz, |k| <= kt, as Phi(z_k)
+     * and the Taylor coefficients Phi^(n)(z_k)/n!, n = 1..CDF_TERMS, with
+     * dz = 1/(s M): a column to the right is M entries down, so one offset
+     * from the grid serves every column a crossing is near. */
+    int M;
+    long kt;
+    double *cdf_tab; /* [2 kt + 1][CDF_TERMS + 1] */
+} gauss_plan;
+
+/* A piece meeting the current panel, in extended precision (absolute
+ * coordinates), with the x extent of its part in the panel and the columns
+ * whose window that extent meets (c0 > c1: none). */
+typedef struct band_piece {
+    local_piece q;
+    double xmin, xmax;
+    int c0, c1;
+} band_piece;
+
+typedef struct node_cross {
+    double x;             /* rounded: for sorting and searching */
+    int k;                /* band piece */
+    int c0, c1;           /* its columns */
+    long base;            /* cdf table row for column 0 (x - 1/2 near base/M) */
+    double pw[CDF_TERMS]; /* powers of the offset from that row, in z */
+} node_cross;
+
+typedef struct key_index {
+    double key;
+    size_t k;
+} key_index;
+
+/* One thread's state for the fixed rule: a ring of `ring` panels, each
+ * with per column a kind, the most crossings one node saw, the constant
+ * colour (PANEL_CONST) or the inner integral at the nodes (PANEL_NODES). */
+typedef struct panel_worker {
+    const gauss_plan *plan;
+    const aa_filter *f;
+    const aa_scene *scene;
+    aa_strip *strip;
+    int w, nc, ring;
+    long lo, hi;
+    int valid;
+    unsigned char *kind;   /* [ring][w] */
+    unsigned short *nnear; /* [ring][w] */
+    double *cst;           /* [ring][w][nc] */
+    double *g;             /* [ring][w][nc][GK_S] */
+    int *near_diff, *bad_diff, *runs;
+    size_t nruns;
+    size_t *row_cells; /* first cell of each panel of the current row */
+    band_piece *bp;
+    node_cross *cr; /* [GK_N][cap]: the crossings of each node line */
+    double *col;    /* [GK_N][cap][3]: the colour after each */
+    size_t nx[GK_N], at[GK_N][2];
+    key_index *keys;
+    size_t *act;
+    int *tail_c0;
+    size_t cap;
+    int *wind;
+    double col_empty[3];
+} panel_worker;
+
+/* The plan (rule, panel grid, weight tables) of a Gaussian filter. */
+int plan_init(gauss_plan *pl, const aa_filter *f);
+void plan_free(gauss_plan *pl);
+/* Bytes of one thread's panel buffers for an image w wide of nc channels. */
+size_t fast_bytes(const gauss_plan *pl, int w, int nc);
+int fast_init(panel_worker *fs, const gauss_plan *pl, const aa_filter *f,
+              const aa_scene *scene, int w);
+void fast_free(panel_worker *fs);
+/* Make the panels row j needs; *phase receives its phase. */
+int fast_row(panel_worker *fs, int j, int *phase);
+/* Pixel (i, j) by the fixed rule: 1 with value and bound set, 0 if the
+ * pixel must go to QAG. */
+int fast_pixel(const panel_worker *fs, int j, int phase, int i, int grey, double *value,
+               double *bound);
+
+#endif /* AA_TRUTH_INTERNAL_H */
