@@ -109,6 +109,7 @@
  */
 #include "core.h"
 #include "methods.h"
+#include "area_internal.h"
 
 #include <limits.h>
 #include <math.h>
@@ -116,12 +117,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#if defined(__SSE2__) && defined(__x86_64__)
-#include <emmintrin.h>
-#define AR_STREAM 1
-#else
-#define AR_STREAM 0
-#endif
 
 enum { P_INTEGRATOR };
 enum { INT_CATMULL, INT_BANDS };
@@ -132,159 +127,9 @@ static const aa_param area_params[] = {
      "arcs use bands) or exact y-bands everywhere"},
     {0}};
 
-/* Catmull's integrater works on at most this many edges in a pixel. */
-#define CM_MAX_EDGES 48
-#define CM_MAX_VERTS (CM_MAX_EDGES + 8)
-/* Sub-band boundaries gathered per pass (bounded memory). */
-#define CM_MAX_EVENTS 2048
-/* Crossings this close (in y, px) to a band's edge are not split. */
-#define CROSS_MARGIN 1e-12
-/* Catmull: edges this close (px) to a splitting line lie on it. */
-#define CM_EPS 1e-14
-/* Images larger than this are written with non-temporal stores.  Measured
- * on `crow` here: 1024^2 (24 MB) is faster with ordinary stores (it stays
- * in the last-level cache), 1536^2 (54 MB) and larger faster streamed
- * (4096^2: 17.1 against 18.6 ms). */
-#define STREAM_BYTES (32.0 * 1024 * 1024)
-/* Rows per extended-precision expansion of a piece. */
-#define ANCHOR_ROWS 16
-/* Integer range of cell origins. */
-#define CELL_LIMIT 1073741824.0
-
-/* ------------------------------------------------------------------------
- * Pieces, as the method reads them (shared, read-only)
- * ------------------------------------------------------------------------ */
-
-typedef struct ar_piece {
-    /* what every row reads first, in one cache line */
-    double y0, y1;     /* y range */
-    double xmin, xmax; /* x extent of the whole piece */
-    int flat, line, dir, layer;
-    uint32_t id; /* index in the scene: the tie-break of every sort */
-    double byd, ayd; /* by and ay rounded, to find T */
-    double k6;       /* (y' x'' - x' y'') / 12, constant along a parabola */
-    /* power basis from the control points, extended precision:
-     * x(t) = x0 + t (bx + t ax), y(t) = y0 + t (by + t ay) */
-    long double x0, bx, ax, y0l, by, ay;
-} ar_piece;
-
-/* A piece as a worker sees it, one per piece, kept from row to row.
- *
- * Its expansion about its point on the line y = ja (or its top, if lower),
- * exact from the control points, in cell-local coordinates: u(tau) =
- * U + tau (g + tau ax) is x - c0 and v(tau) = Va + tau (vy + tau ay) is
- * y - ja, tau = t - T with T the parameter at that point.  One expansion
- * serves ANCHOR_ROWS rows.  Then its part inside the current band [j, j+1],
- * where v is y - j (V = Va - (j - ja)). */
-typedef struct ar_seg {
-    const ar_piece *p;
-    int ja, c0, mline;
-    double U, Va, g, vy, ax, ay;
-    double te;   /* tau of the x extremum (infinite if none) */
-    double ivy;  /* 1 / vy when ay = 0 */
-    double k6;   /* (y' x'' - x' y'') / 12, constant along a parabola */
-    double tend; /* tau at the piece's end */
-    /* tau and u on the line y = ja + mline (the bottom of the last band
-     * rendered): the next band's top, without solving again */
-    double tline, uline;
-    /* the current band */
-    double V;
-    double ta, tb;  /* tau at the band's (or piece's) top and bottom */
-    double ua, ub;  /* u there */
-    double va, vb;  /* v there: max(0, y0 - j), min(1, y1 - j) */
-    double lo, hi;  /* u extent inside the band */
-    int ca, cb;     /* first and last cell touched, in [-1, W] */
-} ar_seg;
-
-typedef struct ar_key {
-    double key;
-    uint32_t id, idx;
-} ar_key;
-
-/* Catmull: an edge clipped to the pixel, pixel-local coordinates. */
-typedef struct cm_edge {
-    double x0, y0, x1, y1;
-    int layer;
-} cm_edge;
-
-typedef struct cm_level {
-    int nv, ne;
-    double vx[CM_MAX_VERTS], vy[CM_MAX_VERTS];
-    cm_edge e[CM_MAX_EDGES];
-} cm_level;
-
-/* One thread's workspace.  Workers and everything they write are kept on
- * cache lines of their own (a shared line made two threads slower than
- * one). */
-typedef struct ar_worker {
-    _Alignas(64) uint32_t *active; /* indices into the sorted pieces */
-    size_t nactive, next;
-    double first_end; /* the lowest bottom of an active piece */
-    int row;          /* last row rendered (-2: none) */
-    ar_seg *seg;     /* per sorted piece */
-    uint32_t *list;  /* the current row's segs, in active order */
-    ar_key *order, *sub;
-    double *acc, *cov; /* per cell and channel */
-    int *wind, *wtmp;
-    double *ev;
-    cm_level *cm;
-    uint64_t expensive;
-} ar_worker;
-
-typedef struct ar_state {
-    const aa_scene *scene;
-    int w, nworkers;
-    ar_piece *piece; /* sorted by (y0, id) */
-    size_t npieces;
-    int nl, nch;         /* layers; channels computed (1 for grey scenes) */
-    double (*colour)[3]; /* per layer, then the background */
-    int *evenodd;
-    ar_worker *workers;
-} ar_state;
-
-/* Row context passed through the cluster functions. */
-typedef struct ar_row {
-    const ar_state *S;
-    ar_worker *wk;
-    int j, W, integrator, stream;
-    double *px; /* the row's first pixel */
-} ar_row;
-
 /* ------------------------------------------------------------------------
  * Small helpers
  * ------------------------------------------------------------------------ */
-
-static inline const double *colour_of(const ar_state *S, const int *w)
-{
-    for (int l = 0; l < S->nl; l++)
-        if (S->evenodd[l] ? (w[l] & 1) : (w[l] != 0))
-            return S->colour[l];
-    return S->colour[S->nl];
-}
-
-static inline double u_at(const ar_seg *s, double t) { return s->U + t * (s->g + t * s->ax); }
-
-/* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
- * in the cancellation-free form. */
-static inline double solve_v(const ar_seg *s, double v)
-{
-    double c = s->V - v;
-    if (s->ay == 0.0)
-        return -c / s->vy;
-    double disc = s->vy * s->vy - 4.0 * s->ay * c;
-    double den = s->vy + sqrt(disc > 0.0 ? disc : 0.0);
-    return den > 0.0 ? -2.0 * c / den : 0.0;
-}
-
-/* The same inside the band, exact at the ends of the seg. */
-static inline double tau_of_v(const ar_seg *s, double v)
-{
-    if (v <= s->va)
-        return s->ta;
-    if (v >= s->vb)
-        return s->tb;
-    return solve_v(s, v);
-}
 
 /* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1). */
 static inline double tau_of_u(const ar_seg *s, double k, double sg)
@@ -625,34 +470,6 @@ static void accumulate(ar_worker *wk, const ar_seg *s, double t1, double t2, dou
     walk(wk, s, t1, t2, u1, u2, dc, nch, W);
 }
 
-/* Rounding may step just outside [0, 1]. */
-static inline double clamp01(double v)
-{
-    v = v > 0.0 ? v : 0.0; /* maxsd, minsd: no branch */
-    return v < 1.0 ? v : 1.0;
-}
-
-/* Store one pixel, clamped, non-temporal when the row streams. */
-static inline void store_px(const ar_row *r, double *px, const double *v)
-{
-    /* scalars straight to the image: going through a small array cost a
-     * store-forwarding stall per pixel (measured: a fifth of the render) */
-    double c0 = clamp01(v[0]), c1 = clamp01(v[1]), c2 = clamp01(v[2]);
-#if AR_STREAM
-    if (r->stream) {
-        _mm_stream_si64((long long *)px, _mm_cvtsi128_si64(_mm_castpd_si128(_mm_set_sd(c0))));
-        _mm_stream_si64((long long *)px + 1,
-                        _mm_cvtsi128_si64(_mm_castpd_si128(_mm_set_sd(c1))));
-        _mm_stream_si64((long long *)px + 2,
-                        _mm_cvtsi128_si64(_mm_castpd_si128(_mm_set_sd(c2))));
-        return;
-    }
-#else
-    (void)r;
-#endif
-    px[0] = c0, px[1] = c1, px[2] = c2;
-}
-
 /* Write the cluster's cells [lo, hi] from colour cin plus the cells'
  * cover and area, clearing them for the next cluster. */
 static void resolve(const ar_row *r, int lo, int hi, const double *cin)
@@ -919,194 +736,6 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
     resolve(r, lo, hi, cin);
 }
 
-/* ---- Catmull's pixel integrater ---- */
-
-/* Winding numbers at pixel-local point (x, y) of pixel i. */
-static void cm_winding(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
-                       double x, double y, int *out)
-{
-    memcpy(out, w, (size_t)r->S->nl * sizeof *w);
-    for (size_t k = 0; k < n; k++) {
-        const ar_seg *s = &r->wk->seg[in[k].idx];
-        if (s->p->flat || !(s->va <= y && y < s->vb))
-            continue;
-        if ((double)(s->c0 - i) + u_at(s, tau_of_v(s, y)) < x)
-            out[s->p->layer] += s->p->dir;
-    }
-}
-
-/* Split level d's region and edges by the line through e (keeping side
- * `side` of it) into level d + 1. */
-/* A splitting line: side * (a x + b y + c) is the signed distance. */
-typedef struct cm_line {
-    double a, b, c, side;
-} cm_line;
-
-/* The distance of (x, y) from the line, zero within CM_EPS. */
-static inline double cm_dist(const cm_line *l, double x, double y)
-{
-    double d = l->side * (l->a * x + l->b * y + l->c);
-    return fabs(d) <= CM_EPS ? 0.0 : d;
-}
-
-static void cm_split(cm_level *from, cm_level *to, const cm_edge *e, double side)
-{
-    double a = e->y1 - e->y0, b = e->x0 - e->x1;
-    double len = sqrt(a * a + b * b);
-    a /= len, b /= len;
-    cm_line L = {a, b, -(a * e->x0 + b * e->y0), side};
-    /* the region: Sutherland-Hodgman against one side */
-    to->nv = 0;
-    for (int k = 0; k < from->nv; k++) {
-        int m = (k + 1) % from->nv;
-        double dk = cm_dist(&L, from->vx[k], from->vy[k]);
-        double dm = cm_dist(&L, from->vx[m], from->vy[m]);
-        if (dk >= 0.0 && to->nv < CM_MAX_VERTS) {
-            to->vx[to->nv] = from->vx[k];
-            to->vy[to->nv++] = from->vy[k];
-        }
-        if (((dk > 0.0 && dm < 0.0) || (dk < 0.0 && dm > 0.0)) && to->nv < CM_MAX_VERTS) {
-            double t = dk / (dk - dm);
-            to->vx[to->nv] = from->vx[k] + t * (from->vx[m] - from->vx[k]);
-            to->vy[to->nv++] = from->vy[k] + t * (from->vy[m] - from->vy[k]);
-        }
-    }
-    /* the edges: those on the line are clipped (dropped), the others cut */
-    to->ne = 0;
-    for (int k = 0; k < from->ne; k++) {
-        const cm_edge *f = &from->e[k];
-        if (f == e)
-            continue;
-        double d0 = cm_dist(&L, f->x0, f->y0), d1 = cm_dist(&L, f->x1, f->y1);
-        if ((d0 <= 0.0 && d1 <= 0.0))
-            continue; /* other side, or on the line */
-        cm_edge g = *f;
-        if (d0 < 0.0 || d1 < 0.0) {
-            double t = d0 / (d0 - d1), x = f->x0 + t * (f->x1 - f->x0),
-                   yy = f->y0 + t * (f->y1 - f->y0);
-            if (d0 < 0.0)
-                g.x0 = x, g.y0 = yy;
-            else
-                g.x1 = x, g.y1 = yy;
-        }
-        to->e[to->ne++] = g;
-    }
-}
-
-/* Catmull's integrater on level d: add colour times area of its region. */
-static void cm_integrate(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
-                         int d, double *sum)
-{
-    const ar_state *S = r->S;
-    cm_level *lv = &r->wk->cm[d];
-    double area = 0.0, cx = 0.0, cy = 0.0;
-    if (lv->nv < 3)
-        return;
-    /* relative to the first vertex, so that a sliver's centroid is found
-     * to its own size, not to the pixel's (a region 1e-9 px wide would
-     * otherwise get a centroid 1e-7 px off, outside itself) */
-    const double ox = lv->vx[0], oy = lv->vy[0];
-    for (int k = 1; k + 1 < lv->nv; k++) {
-        double ax = lv->vx[k] - ox, ay = lv->vy[k] - oy;
-        double bx = lv->vx[k + 1] - ox, by = lv->vy[k + 1] - oy;
-        double cr = ax * by - bx * ay;
-        area += cr;
-        cx += (ax + bx) * cr;
-        cy += (ay + by) * cr;
-    }
-    if (area == 0.0)
-        return;
-    cx = ox + cx / (3.0 * area), cy = oy + cy / (3.0 * area);
-    area = 0.5 * fabs(area);
-    /* the front-most layer with an edge left in the region */
-    int front = S->nl;
-    const cm_edge *split = NULL;
-    for (int k = 0; k < lv->ne; k++)
-        if (lv->e[k].layer < front)
-            front = lv->e[k].layer, split = &lv->e[k];
-    int *wind = r->wk->wtmp;
-    cm_winding(r, in, n, w, i, cx, cy, wind);
-    /* layers in front of it have no edge here: each is all in or all out */
-    for (int l = 0; l < front; l++)
-        if (S->evenodd[l] ? (wind[l] & 1) : (wind[l] != 0)) {
-            for (int ch = 0; ch < 3; ch++)
-                sum[ch] += S->colour[l][ch] * area;
-            return;
-        }
-    if (!split) {
-        const double *c = S->colour[S->nl];
-        for (int ch = 0; ch < 3; ch++)
-            sum[ch] += c[ch] * area;
-        return;
-    }
-    cm_split(lv, lv + 1, split, 1.0);
-    cm_integrate(r, in, n, w, i, d + 1, sum);
-    cm_split(lv, lv + 1, split, -1.0);
-    cm_integrate(r, in, n, w, i, d + 1, sum);
-}
-
-/* Clip the segment to 0 <= x <= 1; 0 if nothing (of length) is left. */
-static int clip_unit_x(cm_edge *e)
-{
-    double t0 = 0.0, t1 = 1.0, dx = e->x1 - e->x0;
-    if (dx == 0.0) {
-        if (!(e->x0 > 0.0 && e->x0 < 1.0))
-            return 0;
-    } else {
-        double ta = (0.0 - e->x0) / dx, tb = (1.0 - e->x0) / dx;
-        if (ta > tb) {
-            double t = ta;
-            ta = tb, tb = t;
-        }
-        t0 = fmax(t0, ta), t1 = fmin(t1, tb);
-        if (!(t1 > t0))
-            return 0;
-    }
-    double x0 = e->x0 + t0 * dx, y0 = e->y0 + t0 * (e->y1 - e->y0);
-    double x1 = e->x0 + t1 * dx, y1 = e->y0 + t1 * (e->y1 - e->y0);
-    e->x0 = fmin(fmax(x0, 0.0), 1.0), e->y0 = y0;
-    e->x1 = fmin(fmax(x1, 0.0), 1.0), e->y1 = y1;
-    return fabs(e->x1 - e->x0) + fabs(e->y1 - e->y0) > 1e-15;
-}
-
-/* Every pixel of the cluster by Catmull's integrater; 0 if a pixel has too
- * many edges for it (nothing written then). */
-static int cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
-                           const int *w)
-{
-    int a = lo < 0 ? 0 : lo, b = hi >= r->W ? r->W - 1 : hi;
-    for (int pass = 0; pass < 2; pass++)
-        for (int i = a; i <= b; i++) {
-            cm_level *lv = &r->wk->cm[0];
-            lv->ne = 0;
-            for (size_t k = 0; k < n; k++) {
-                const ar_seg *s = &r->wk->seg[in[k].idx];
-                if (s->ca > i || s->cb < i)
-                    continue;
-                cm_edge e;
-                if (s->p->flat)
-                    e = (cm_edge){s->p->xmin - i, s->va, s->p->xmax - i, s->va, s->p->layer};
-                else
-                    e = (cm_edge){(double)(s->c0 - i) + s->ua, s->va,
-                                  (double)(s->c0 - i) + s->ub, s->vb, s->p->layer};
-                if (!clip_unit_x(&e))
-                    continue;
-                if (lv->ne == CM_MAX_EDGES)
-                    return 0;
-                lv->e[lv->ne++] = e;
-            }
-            if (pass == 0)
-                continue; /* first pass: only check the edge counts */
-            lv->nv = 4;
-            lv->vx[0] = 0, lv->vy[0] = 0, lv->vx[1] = 1, lv->vy[1] = 0;
-            lv->vx[2] = 1, lv->vy[2] = 1, lv->vx[3] = 0, lv->vy[3] = 1;
-            double sum[3] = {0, 0, 0};
-            cm_integrate(r, in, n, w, i, 0, sum);
-            store_px(r, r->px + 3 * (size_t)i, sum);
-        }
-    return 1;
-}
-
 /* Pixel cin + dc area; grey scenes compute one channel. */
 static inline void put(const ar_row *r, double *px, const double *cin, const double *dc,
                        double area)
@@ -1195,7 +824,7 @@ static void cluster(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
             memcpy(wf, w, (size_t)r->S->nl * sizeof *w);
             cluster_fast(r, in, n, lo, hi, wf, cin);
         } else if (!(r->integrator == INT_CATMULL && lines &&
-                     cluster_catmull(r, in, n, lo, hi, w))) {
+                     area_cluster_catmull(r, in, n, lo, hi, w))) {
             cluster_bands(r, in, n, lo, hi, w, cin);
         }
     }
