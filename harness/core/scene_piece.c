@@ -1,0 +1,242 @@
+/*
+ * scene_piece.c: the geometry of one piece, a y-monotone line or parabolic
+ * arc (aabench.h, aa_piece): its x and parameter at a height, its x extent
+ * over a band, where it meets a vertical line, and where two pieces meet.
+ * Pure functions of the pieces: no scene is read here.
+ */
+#include "core.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- piece geometry ---- */
+
+double aa_piece_t_at(const aa_piece *p, double y)
+{
+    double d = y - p->y0, t;
+    if (p->kind == AA_PIECE_FLAT || !(d > 0.0))
+        return 0.0;
+    if (y >= p->y1)
+        return 1.0;
+    if (p->ay == 0.0) {
+        t = d / p->by;
+    } else {
+        /* Root of ay t^2 + by t - d = 0 in [0, 1]: by >= 0 on a monotone
+         * piece, so 2d / (by + sqrt(by^2 + 4 ay d)) has no cancellation. */
+        double disc = fma(p->by, p->by, 4.0 * p->ay * d);
+        double den = p->by + sqrt(disc > 0.0 ? disc : 0.0);
+        t = den > 0.0 ? 2.0 * d / den : 0.0;
+    }
+    return t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+}
+
+double aa_piece_x_at(const aa_piece *p, double y)
+{
+    if (p->kind == AA_PIECE_LINE) {
+        /* Interpolate from the nearer end: exact at both ends. */
+        double h = p->y1 - p->y0;
+        if (!(h > 0.0))
+            return p->x0;
+        if (y - p->y0 <= p->y1 - y)
+            return p->x0 + (y - p->y0) / h * p->bx;
+        return p->x1 - (p->y1 - y) / h * p->bx;
+    }
+    if (p->kind == AA_PIECE_FLAT)
+        return p->x0;
+    double t = aa_piece_t_at(p, y);
+    return p->x0 + t * (p->bx + t * p->ax);
+}
+
+void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, double *xmax)
+{
+    if (p->kind == AA_PIECE_FLAT || (ya <= p->y0 && yb >= p->y1)) {
+        *xmin = p->xmin;
+        *xmax = p->xmax;
+        return;
+    }
+    double a = ya > p->y0 ? ya : p->y0, b = yb < p->y1 ? yb : p->y1;
+    if (a > b)
+        a = b;
+    if (p->kind == AA_PIECE_LINE) {
+        double xa = aa_piece_x_at(p, a), xb = aa_piece_x_at(p, b);
+        *xmin = fmin(xa, xb);
+        *xmax = fmax(xa, xb);
+        return;
+    }
+    double ta = aa_piece_t_at(p, a), tb = aa_piece_t_at(p, b);
+    double xa = p->x0 + ta * (p->bx + ta * p->ax), xb = p->x0 + tb * (p->bx + tb * p->ax);
+    *xmin = fmin(xa, xb);
+    *xmax = fmax(xa, xb);
+    if (p->ax != 0.0) {
+        double t = -p->bx / (2.0 * p->ax);
+        if (t > ta && t < tb) {
+            double x = p->x0 + t * (p->bx + t * p->ax);
+            *xmin = fmin(*xmin, x);
+            *xmax = fmax(*xmax, x);
+        }
+    }
+}
+
+/* b^2 - 4ac with the products' rounding errors compensated (Kahan). */
+static double discriminant(double a, double b, double c)
+{
+    double p = b * b, q = 4.0 * a * c;
+    double dp = fma(b, b, -p), dq = fma(4.0 * a, c, -q);
+    return (p - q) + (dp - dq);
+}
+
+int aa_piece_meet_x(const aa_piece *p, double x, double ys[2])
+{
+    double ts[2];
+    int n = 0;
+    if (p->kind == AA_PIECE_FLAT || x < p->xmin || x > p->xmax)
+        return 0;
+    double c = p->x0 - x;
+    if (p->ax == 0.0) {
+        if (p->bx != 0.0)
+            ts[n++] = -c / p->bx;
+    } else {
+        double d = discriminant(p->ax, p->bx, c);
+        if (d < 0.0)
+            return 0;
+        double q = -0.5 * (p->bx + copysign(sqrt(d), p->bx));
+        if (q != 0.0)
+            ts[n++] = c / q;
+        ts[n++] = q / p->ax;
+    }
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        if (!(ts[k] > 0.0 && ts[k] < 1.0))
+            continue;
+        double y = p->y0 + ts[k] * (p->by + ts[k] * p->ay);
+        if (y > p->y0 && y < p->y1)
+            ys[m++] = y;
+    }
+    if (m == 2 && ys[0] > ys[1]) {
+        double t = ys[0];
+        ys[0] = ys[1];
+        ys[1] = t;
+    }
+    if (m == 2 && ys[0] == ys[1])
+        m = 1;
+    return m;
+}
+
+/* ---- where two pieces meet ---- */
+
+/* x as a quadratic in u = y - lo, for a piece whose y is linear in its
+ * parameter (lines, and arcs with ay = 0 such as crow's). */
+static void x_in_u(const aa_piece *p, double lo, double *c0, double *c1, double *c2)
+{
+    double t = (lo - p->y0) / p->by;
+    *c0 = p->x0 + t * (p->bx + t * p->ax);
+    *c1 = (p->bx + 2.0 * p->ax * t) / p->by;
+    *c2 = p->ax / (p->by * p->by);
+}
+
+/* Roots of a u^2 + b u + c in (0, len), cancellation-free. */
+static int quadratic_roots(double a, double b, double c, double len, double *u)
+{
+    double r[2];
+    int n = 0, m = 0;
+    if (a == 0.0) {
+        if (b != 0.0)
+            r[n++] = -c / b;
+    } else {
+        double d = discriminant(a, b, c);
+        if (d < 0.0)
+            return 0;
+        double h = -0.5 * (b + copysign(sqrt(d), b));
+        if (h != 0.0)
+            r[n++] = c / h;
+        r[n++] = h / a;
+    }
+    for (int k = 0; k < n; k++)
+        if (r[k] > 0.0 && r[k] < len)
+            u[m++] = r[k];
+    return m;
+}
+
+typedef struct meet_ctx {
+    const aa_piece *p, *q;
+    double *ys;
+    int n, max, budget;
+} meet_ctx;
+
+/* Bisect [a, b] while the two pieces' exact x extents there overlap: an
+ * interval holding a meeting always overlaps, so none is missed; an
+ * interval narrower than the resolution is reported by its middle. */
+static void subdivide(meet_ctx *c, double a, double b, int depth)
+{
+    double pa, pb, qa, qb;
+    if (c->n >= c->max || --c->budget < 0)
+        return;
+    aa_piece_xrange(c->p, a, b, &pa, &pb);
+    aa_piece_xrange(c->q, a, b, &qa, &qb);
+    /* a margin of rounding: a meeting at an end of the interval must not
+     * look disjoint in both halves */
+    double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
+    if (pb < qa - tol || qb < pa - tol)
+        return;
+    double m = 0.5 * (a + b);
+    if (depth >= 60 || b - a <= 1e-12 * fmax(1.0, fabs(m)) || !(m > a && m < b)) {
+        if (c->n == 0 || m - c->ys[c->n - 1] > 1e-12 * fmax(1.0, fabs(m)))
+            c->ys[c->n++] = m;
+        return;
+    }
+    subdivide(c, a, m, depth + 1);
+    subdivide(c, m, b, depth + 1);
+}
+
+int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys, int max)
+{
+    if (!p->dir || !q->dir || max < 1)
+        return 0;
+    double lo = fmax(fmax(p->y0, q->y0), ya), hi = fmin(fmin(p->y1, q->y1), yb);
+    if (!(lo < hi))
+        return 0;
+    if (p->ay == 0.0 && q->ay == 0.0) {
+        /* both x quadratic in y: their difference is a quadratic */
+        double a0, a1, a2, b0, b1, b2, u[2];
+        x_in_u(p, lo, &a0, &a1, &a2);
+        x_in_u(q, lo, &b0, &b1, &b2);
+        int n = quadratic_roots(a2 - b2, a1 - b1, a0 - b0, hi - lo, u), m = 0;
+        if (n == 2 && u[0] > u[1]) {
+            double t = u[0];
+            u[0] = u[1], u[1] = t;
+        }
+        for (int k = 0; k < n && m < max; k++)
+            ys[m++] = lo + u[k];
+        return m;
+    }
+    if (p->kind == AA_PIECE_QUAD && q->kind == AA_PIECE_LINE) {
+        const aa_piece *t = p;
+        p = q, q = t;
+    }
+    if (p->kind == AA_PIECE_LINE) {
+        /* arc q(t) against line p, x = p.x0 + (y - p.y0) s: a quadratic in t */
+        double s = p->bx / p->by, ts[2];
+        double a = q->ax - s * q->ay, b = q->bx - s * q->by;
+        double c = q->x0 - p->x0 - (q->y0 - p->y0) * s;
+        int n = quadratic_roots(a, b, c, 1.0, ts), m = 0;
+        double y[2];
+        for (int k = 0; k < n; k++) {
+            double v = q->y0 + ts[k] * (q->by + ts[k] * q->ay);
+            if (v > lo && v < hi)
+                y[m++] = v;
+        }
+        if (m == 2 && y[0] > y[1]) {
+            double t = y[0];
+            y[0] = y[1], y[1] = t;
+        }
+        for (int k = 0; k < m && k < max; k++)
+            ys[k] = y[k];
+        return m < max ? m : max;
+    }
+    /* two general arcs (a quartic): bisection on exact extents */
+    meet_ctx c = {p, q, ys, 0, max, 4096};
+    subdivide(&c, lo, hi, 0);
+    return c.n;
+}
