@@ -199,6 +199,14 @@ check-tests-san: $(SAN_BUILD)/aabench $(SAN_TESTS) $(SAN_PLUGINS)
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  sh scripts/run-tests.sh $(SAN_BUILD) $(SAN_TESTS)
 
+# The contract tests every built-in method passes (tests/test_methods.c),
+# run on the methods of a plug-in: make check-plugin PLUGIN=path/to/lib.so
+.PHONY: check-plugin
+check-plugin: $(BUILD)/tests/test_methods
+	@test -n "$(PLUGIN)" || { echo "usage: make check-plugin PLUGIN=lib.so" >&2; exit 2; }
+	@test -f "$(PLUGIN)" || { echo "check-plugin: no file $(PLUGIN)" >&2; exit 2; }
+	@AABENCH_PLUGIN=$(abspath $(PLUGIN)) AABENCH_PLUGIN_ONLY=1 $(BUILD)/tests/test_methods
+
 bench: deps
 	@$(MAKE) --no-print-directory $(BUILD)/aabench $(BENCHES)
 	@sh scripts/bench.sh $(BUILD)

@@ -2,8 +2,9 @@
  * cycle.c: the standard multisample positions visited one per frame, the
  * eye's image the mean of a window of frames: Crow's temporal scheme (1976,
  * ch. 4, fig. 4.1, algorithms/hexagon.c) with the hexagon's six vertices
- * replaced by the Direct3D/Vulkan msaa positions (REFERENCES.md, "Sampling
- * and convergence"; the same table as supersample's pattern=msaaN).
+ * replaced by the Direct3D/Vulkan msaa positions (algorithms/README.md,
+ * "Standard multisample positions"; the same table as supersample's
+ * pattern=msaaN).
  *
  * Frame n (an integer, negative allowed; the scene at time T - k for frame
  * floor(T) - k) samples each pixel at its centre moved by position
@@ -46,7 +47,7 @@ static const aa_param cycle_params[] = {
      "frames the eye integrates, ending at --time (0: one cycle of the positions)"},
     {0}};
 
-/* In 1/16 pixel from the centre, y down (REFERENCES.md). */
+/* In 1/16 pixel from the centre, y down (algorithms/README.md). */
 static const signed char msaa2[][2] = {{4, 4}, {-4, -4}};
 static const signed char msaa4[][2] = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
 static const signed char msaa8[][2] = {{1, -3}, {-1, 3}, {5, 1},  {-3, -5},

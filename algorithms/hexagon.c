@@ -18,7 +18,7 @@
  *  - Frames.  Frame n (an integer, negative allowed) is shown at time n;
  *    a real time T shows frame floor(T).  The eye's image at time T is the
  *    mean of `frames` frames, the scene at times T, T-1, ..., T-frames+1
- *    (each frame the scene at its own time, PATTERNS.md "Animation", so a
+ *    (each frame the scene at its own time, patterns/README.md, "Animation", so a
  *    moving scene moves between frames), with frame numbers floor(T) - k.
  *    `--frame-only` (job->frame_only) gives the single frame at T.
  *  - Vertex.  Frame n uses vertex order[n mod 6] (mod taken non-negative):

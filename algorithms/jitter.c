@@ -80,8 +80,9 @@
  * expensive_pixels = pixels sampled.
  *
  * Limits.  Noise instead of aliasing: the RMSE of a pixel crossed by an
- * edge falls as spp^-3/4 for stratified points (Mitchell 1996,
- * REFERENCES.md; the tests measure -0.75, and the same for the scrambled
+ * edge falls as spp^-3/4 for stratified points (Mitchell 1996;
+ * algorithms/README.md, "Convergence rates"; the tests measure -0.75, and
+ * the same for the scrambled
  * Sobol nets) and as spp^-1/2 for random points; other spp than 2^m lose
  * the net property.  With a filter other than the box the ratio estimator
  * adds a bias of order 1/spp, and the Gaussian is truncated at 3s.  Each
@@ -181,7 +182,8 @@ static void prefixes(const double *x, int n, int d, uint32_t *out)
 /* The first n points of GSL's 2-D sequence into x[], y[]; Sobol's with the
  * origin put back in front.  Dimension 2 is within every GSL limit
  * (sobol 40, niederreiter_2 12, halton 1229; gsl_qrng_alloc would not
- * refuse more, REFERENCES.md), and every point is checked to lie in
+ * refuse more: algorithms/README.md, "Quasi-random sequences in GSL"), and
+ * every point is checked to lie in
  * [0,1)^2. */
 static int points_fetch(int seq, int n, double *x, double *y)
 {
@@ -468,9 +470,9 @@ static void shade_simple(const jt_row *R, aa__sampler_worker *wk, const jt_pixel
              * t = d/by (d = y - y0) the power basis of aabench.h is
              * x = x0 + d (bx/by + d ax/by^2), no division per sample.  It
              * may differ from aa_piece_x_at in the last bits, which only
-             * decides samples within rounding of the edge (PATTERNS.md:
-             * on the edge, either side).  Measured: a fifth of the time of
-             * jitter spp=16 on crow. */
+             * decides samples within rounding of the edge
+             * (patterns/README.md, "Boundaries": on the edge, either side).
+             * Measured: a fifth of the time of jitter spp=16 on crow. */
             double b = p->bx / p->by, c = p->ax / (p->by * p->by);
             for (int n = 0; n < spp; n++) {
                 double x = x0 + u[n], d = y0 + v[n] - p->y0;

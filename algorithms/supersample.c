@@ -19,8 +19,8 @@
  * render a 3x3 grid of mini-pixels, average the results using a filter.
  *
  * pattern=msaa2|msaa4|msaa8|msaa16: the standard Direct3D/Vulkan
- * multisample positions (REFERENCES.md, "Sampling and convergence"), v/16
- * pixel from the centre, all inside the pixel.  Their weights are the
+ * multisample positions (algorithms/README.md, "Standard multisample
+ * positions"), v/16 pixel from the centre, all inside the pixel.  Their weights are the
  * filter's at those positions, normalised; positions where it is zero
  * (tent:r=0.5 at the pixel's edge) are not evaluated.  n is the grid's side
  * only: with an msaa pattern it must stay at its default (3) and is
@@ -44,15 +44,15 @@
  * Limits.  The grid is regular, so it aliases: detail near the grid's own
  * frequency (n samples per pixel) still makes moire, only finer than point
  * sampling's, and along edges aligned with the grid the error falls like
- * N^-1/2 in N = n^2 and is structured, not noise (REFERENCES.md).  The
- * weighted mean is a ratio estimator, normalised by its own weights rather
+ * N^-1/2 in N = n^2 and is structured, not noise (algorithms/README.md,
+ * "Convergence rates").  The weighted mean is a ratio estimator, normalised by its own weights rather
  * than the filter's integral, which keeps constant regions exact; the
  * Gaussian is truncated at 3s (its mass outside, about 0.5% in 2-D, is
  * never sampled); the msaa patterns see only the pixel,
  * whatever the filter's support.  A sample exactly on an edge takes the
  * colour left of it, except on the footprint's left border, where a piece
- * ending exactly there counts as left of the window (PATTERNS.md: no result
- * may depend on it).
+ * ending exactly there counts as left of the window (patterns/README.md,
+ * "Boundaries": no result may depend on it).
  */
 #include "methods.h"
 #include "sampling.h"
@@ -75,7 +75,8 @@ static const aa_param supersample_params[] = {
     {0}};
 
 /* The standard multisample positions in 1/16 pixel from the centre, y down
- * (REFERENCES.md: Direct3D and Vulkan standard sample patterns). */
+ * (the Direct3D and Vulkan standard sample patterns: algorithms/README.md,
+ * "Standard multisample positions"). */
 static const signed char msaa2[][2] = {{4, 4}, {-4, -4}};
 static const signed char msaa4[][2] = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
 static const signed char msaa8[][2] = {{1, -3}, {-1, 3}, {5, 1},  {-3, -5},

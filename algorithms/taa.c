@@ -1,8 +1,9 @@
 /*
- * taa.c: temporal antialiasing as games do it (REFERENCES.md, "Sampling and
- * convergence": the projection jittered per frame along Halton(2,3) over 8
- * or 16 frames, history blended with a factor around 0.1; Crow's hexagon,
- * 1976 ch. 4 fig. 4.1, is its ancestor, algorithms/hexagon.c).
+ * taa.c: temporal antialiasing as games do it (algorithms/README.md,
+ * "Temporal antialiasing": the projection jittered per frame along
+ * Halton(2,3) over 8 or 16 frames, history blended with a factor around
+ * 0.1; Crow's hexagon, 1976 ch. 4 fig. 4.1, is its ancestor,
+ * algorithms/hexagon.c).
  *
  * Frame n (an integer; the scene at time T - k for frame floor(T) - k) is
  * point sampled at the pixel centres moved by the offset
@@ -10,7 +11,7 @@
  *     (phi2(i) - 1/2, phi3(i) - 1/2),   i = n mod `frames`,
  *
  * phi_b the radical inverse in base b, so index 0 is (0, 0) in the pixel's
- * [0,1]^2 coordinates and the 8-frame sequence is REFERENCES.md's (0/8,
+ * [0,1]^2 coordinates and the 8-frame sequence is algorithms/README.md's (0/8,
  * 0/9) (4/8, 3/9) (2/8, 6/9) (6/8, 1/9) ...  The history is
  *
  *     h = x(first frame),  then  h <- h + alpha (x - h)   (= alpha x + (1 - alpha) h)

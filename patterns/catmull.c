@@ -1,6 +1,6 @@
 /*
  * catmull.c: the hidden-surface pixel (Catmull 1978, "A hidden-surface
- * algorithm with anti-aliasing", fig. 1; PATTERNS.md "catmull").
+ * algorithm with anti-aliasing", fig. 1; patterns/README.md, `catmull`).
  *
  * Opaque layers, front to back, over black: in front a green square
  * [0, 1/2] x [0, 1/2] and a blue rectangle [0, 1] x [1/2, 1]; behind them a

@@ -1,6 +1,6 @@
 /*
  * crow.c: Crow's parabolic moire pattern (Crow 1976, ch. 2, figs. 2.9-2.14),
- * exactly as PATTERNS.md defines it.
+ * exactly as patterns/README.md, `crow`, defines it.
  *
  * N nearly parallel parabolic arcs x_k(y) = a_k + c_k (y - 1/2)^2 on
  * 0 <= y <= 1, curvature c_k = C (1 - k/(N-1)) falling linearly to zero from
@@ -13,8 +13,8 @@
  *
  * Domain: N even, 2 <= N <= CROW_MAX_CURVES; gaps positive; and the arcs
  * never touch: x_{k+1}(y) - x_k(y) = g_k - (C/(N-1)) (y - 1/2)^2 > 0 on
- * [0, 1], which for C >= 0 is PATTERNS.md's g_k - C/(4(N-1)) > 0 and for
- * C < 0 is g_k > 0.
+ * [0, 1], which for C >= 0 is g_k - C/(4(N-1)) > 0 (closest at y = 0 and
+ * y = 1) and for C < 0 is g_k > 0 (closest at mid-height).
  *
  * CROW_MAX_CURVES = 65536 bounds the scene (about 10 MB of edges and
  * pieces, and a reference that must handle every arc crossing every row):

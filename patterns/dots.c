@@ -1,5 +1,5 @@
 /*
- * dots.c: objects smaller than a pixel (PATTERNS.md "dots"; Crow 1976,
+ * dots.c: objects smaller than a pixel (patterns/README.md, `dots`; Crow 1976,
  * ch. 1: small objects that point sampling loses or makes blink as they
  * move).
  *

@@ -1,6 +1,6 @@
 /*
  * feibush.c: perspective stripes (Feibush, Levoy and Cook 1980, "Synthetic
- * texturing using digital filters", fig. 4; PATTERNS.md "feibush").
+ * texturing using digital filters", fig. 4; patterns/README.md, `feibush`).
  *
  * A square textured with M = stripes vertical stripes, alternately red
  * (1, 0, 0) and white (1, 1, 1), stripe 0 red, on black.  In texture space

@@ -1,5 +1,5 @@
 /*
- * fence.c: a picket fence finer than a pixel (PATTERNS.md "fence"; Catmull
+ * fence.c: a picket fence finer than a pixel (patterns/README.md, `fence`; Catmull
  * 1978, sec. 1: with point sampling "the picture can be all white in one
  * picture and all black in the next" as such a fence moves, while with area
  * sampling its total intensity stays constant).

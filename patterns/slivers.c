@@ -1,6 +1,6 @@
 /*
  * slivers.c: slender, nearly horizontal triangles (Crow 1976, fig. 3.17;
- * PATTERNS.md "slivers").  Point sampling breaks them into strings of
+ * patterns/README.md, `slivers`).  Point sampling breaks them into strings of
  * beads; exact filtering keeps them whole.
  *
  * K = count white triangles on black; triangle k has vertices

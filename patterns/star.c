@@ -1,5 +1,5 @@
 /*
- * star.c: the Siemens star (PATTERNS.md "star"), a classic resolution
+ * star.c: the Siemens star (patterns/README.md, `star`), a classic resolution
  * target: S white wedges on black whose frequency grows without bound
  * toward the centre, so every finite sampling rate aliases near it.
  *

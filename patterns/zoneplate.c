@@ -1,5 +1,5 @@
 /*
- * zoneplate.c: the zone plate, exactly as PATTERNS.md ("zoneplate") defines
+ * zoneplate.c: the zone plate, exactly as patterns/README.md, `zoneplate`, defines
  * it: I(x, y) = (1 + cos(k r^2))/2, grey, r^2 = (x - 1/2)^2 + (y - 1/2)^2,
  * on the whole plane (no background).  The local frequency is k r/pi cycles
  * per unit, so with the default k = 256 pi it reaches 128 cycles per unit,

@@ -1,14 +1,14 @@
 /*
  * oracle.c - the `crow` pattern, derived a second time for the tests.
  *
- * Source: ../shared/PATTERNS.md, "`crow`" (Crow 1976, fig. 2.9-2.14).  With
+ * Source: patterns/README.md, `crow` (Crow 1976, fig. 2.9-2.14).  With
  * t = y - 1/2 the arcs are x_k = a_k + c_k t^2 on -1/2 <= t <= 1/2, where
  *
  *     a_k = a_0 + sum_{m<k} g_m = a_0 + k gap0 + (gap1 - gap0) k(k-1) / (2(N-2))
  *     a_0 = (1 - S)/2,  S = (N-1)(gap0 + gap1)/2   (N = 2: S = gap0)
  *     c_k = C (N-1-k)/(N-1)
  *
- * (closed forms of PATTERNS.md's recursion; the sum of an arithmetic series).
+ * (closed forms of that definition's recursion; the sum of an arithmetic series).
  * Neighbouring arcs differ by g_k - C t^2/(N-1), so they are ordered at every
  * y when the pattern is valid, and I = sum_k (-1)^k H(x - x_k(y)) inside the
  * unit square.

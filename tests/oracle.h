@@ -3,13 +3,13 @@
  *
  * The harness computes reference values of Crow's parabolic moire pattern by
  * its own quadrature; the tests compare it with this file's values, which are
- * derived only from ../shared/PATTERNS.md ("Coordinates and pixel values",
- * "Filters", "`crow`") and share no code with the harness.
+ * derived only from patterns/README.md ("Coordinates and pixel values",
+ * "Filters", `crow`) and share no code with the harness.
  *
  * Units: x, y in pattern units (the image shows [0,1]^2, y down); a pixel
  * (i, j) of a W x H image covers [i/W, (i+1)/W] x [j/H, (j+1)/H].  Filter
  * sizes R and S are in pixel units.  Any integers i, j are accepted: pixels
- * outside the image see the black background, as PATTERNS.md defines it.
+ * outside the image see the black background, as patterns/README.md defines it.
  *
  * Every function rejects invalid parameters (oracle_crow_valid() == 0, W or
  * H < 1, R or S not positive and finite): oracle_crow_point() returns 0 and
@@ -25,13 +25,13 @@ typedef struct oracle_crow {
 	double gap1; /* spacing of arcs N-2 and N-1 at mid-height */
 } oracle_crow;
 
-/* The defaults of PATTERNS.md: 96, 0.6, 4/256, 0.5/256. */
+/* The defaults of patterns/README.md, `crow`: 96, 0.6, 4/256, 0.5/256. */
 oracle_crow oracle_crow_defaults(void);
 
 /* 1 if N is even and >= 2, all numbers finite and no two neighbouring arcs
  * touch anywhere on 0 <= y <= 1, else 0.  For C >= 0 this is exactly
- * PATTERNS.md's rule g_k - C/(4(N-1)) > 0; for C < 0 the closest approach is
- * at mid-height and g_k > 0 is required as well. */
+ * the rule g_k - C/(4(N-1)) > 0 of patterns/README.md, `crow`; for C < 0 the
+ * closest approach is at mid-height and g_k > 0 is required as well. */
 int oracle_crow_valid(const oracle_crow *p);
 
 /* The pattern at (x, y): 1 white, 0 black.  Black outside [0,1]^2.  A point

@@ -4,8 +4,8 @@
  *
  *  - `crow` under the box filter against aa_truth_render (adaptive
  *    quadrature, its own code path) and against tests/oracle.c's closed
- *    form from PATTERNS.md, on every pixel of 256x256, 7x3 and 255x129:
- *    within 1e-9 (the issue's bar); in practice about 1e-15.  Also
+ *    form from patterns/README.md, on every pixel of 256x256, 7x3 and 255x129:
+ *    within 1e-9 (the bar set for it); in practice about 1e-15.  Also
  *    non-default parameters, arcs reaching outside the unit square (so the
  *    background frame layer overlaps them), a scene moved by a fraction of a
  *    pixel, and 4096-pixel-wide and -tall images.
@@ -131,9 +131,9 @@ static double check_reference(const char *what, const aa_scene *scene, int w, in
 
 /* ---- crow ---- */
 
-/* The issue's acceptance: the box reference within 1e-9 on crow 256x256,
+/* The acceptance bar: the box reference within 1e-9 on crow 256x256,
  * 7x3 and 255x129.  The reference is aa_truth_render (QAGP with
- * breakpoints, harness/truth.c), which shares nothing with the method but
+ * breakpoints, harness/truth/truth.c), which shares nothing with the method but
  * the scene. */
 static void test_crow_reference(void **state)
 {
@@ -146,7 +146,7 @@ static void test_crow_reference(void **state)
 }
 
 /* The same pixels against tests/oracle.c, a closed form derived from
- * PATTERNS.md alone (long double; it agrees with the reference to 1e-12). */
+ * patterns/README.md alone (long double; it agrees with the reference to 1e-12). */
 static void test_crow_oracle(void **state)
 {
     (void)state;

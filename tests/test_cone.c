@@ -6,7 +6,7 @@
  *        P = int_0^2pi dphi int_0^R (3 / (pi R^2)) (1 - r / R) r I dr,
  *    along each ray the scene is constant between the ray's crossings of
  *    the scene's edges, found here from the test's own description of the
- *    scene (crow's arcs x = a_k + c_k (y - 1/2)^2 from PATTERNS.md, or a
+ *    scene (crow's arcs x = a_k + c_k (y - 1/2)^2 from patterns/README.md, or a
  *    test-only polygon), the colour of each span from the test's own point
  *    query (tests/oracle.c for crow, a crossing count for the polygon), and
  *    the radial integral of (1 - r/R) r over a span in closed form; the
@@ -80,7 +80,7 @@ typedef struct brute_scene {
     int W, H;
 } brute_scene;
 
-/* PATTERNS.md, `crow`: g_k, S, a_0, a_{k+1} = a_k + g_k, c_k. */
+/* patterns/README.md, `crow`: g_k, S, a_0, a_{k+1} = a_k + g_k, c_k. */
 static void crow_arcs(brute_scene *b)
 {
     int N = b->cp.curves;

@@ -1,5 +1,6 @@
 /*
- * test_filter.c: the filters of PATTERNS.md.  For every filter in the table
+ * test_filter.c: the filters of patterns/README.md ("Filters").  For every
+ * filter in the table
  * the cdf is the integral of the weight (checked by composite Simpson
  * between the kinks, where the weight is smooth), it runs from 0 to 1, it is
  * symmetric, and the declared support holds all but the stated tail.  The

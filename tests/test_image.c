@@ -1,5 +1,5 @@
 /*
- * test_image.c: images in memory and in files (harness/image.c, files.c,
+ * test_image.c: images in memory and in files (harness/core/image.c, files.c,
  * oiio.cpp).
  *
  * Every test works in a fresh folder made with mkdtemp; the teardown checks
@@ -305,7 +305,8 @@ static void test_txt_exact_text(void **state)
     memcpy(im.v, v, sizeof v);
     const char *path = in_dir(state, "exact.txt");
     assert_int_equal(aa_image_write_txt(path, &im), AA_OK);
-    /* The format is DESIGN.md's.  The digits are the exact binary values
+    /* The format is harness/README.md's ("Command line").  The digits are the
+     * exact binary values
      * (Python: decimal.Decimal(0.1) = 0.1000000000000000055511...,
      * Decimal(1/3) = 0.33333333333333331482..., Decimal(1e-300) =
      * 1.00000000000000002505...e-300, Decimal(5e-324) =
@@ -348,7 +349,7 @@ static void test_txt_round_trip(void **state)
 
 static void test_txt_read_known(void **state)
 {
-    /* Written by hand from DESIGN.md's format; blanks may be runs of spaces
+    /* Written by hand from harness/README.md's format; blanks may be runs of spaces
      * or tabs and lines may end in CR LF. */
     const char text[] = "# aabench 2 2 2\n"
                         "0 0 0.5 -1e-3\n"

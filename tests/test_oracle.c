@@ -1,8 +1,9 @@
 /*
  * test_oracle.c - checks the independent `crow` oracle (oracle.c) against
- * facts derived by hand from ../shared/PATTERNS.md.  Each expected value says
- * where it comes from.  The arcs the tests use are built by PATTERNS.md's
- * literal recursion a_{k+1} = a_k + g_k, not by the oracle's closed form.
+ * facts derived by hand from patterns/README.md, `crow`.  Each expected value
+ * says where it comes from.  The arcs the tests use are built by that
+ * definition's literal recursion a_{k+1} = a_k + g_k, not by the oracle's
+ * closed form.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -38,11 +39,11 @@ static void needs_extended_precision(void)
 
 static const double pi = 3.14159265358979323846;
 
-/* ---- facts derived from PATTERNS.md -------------------------------------- */
+/* ---- facts derived from patterns/README.md ------------------------------- */
 
 #define MAXARCS 128
 
-/* The arcs x_k = a_k + c_k (y - 1/2)^2 by PATTERNS.md's recursion. */
+/* The arcs x_k = a_k + c_k (y - 1/2)^2 by patterns/README.md's recursion. */
 struct arcs {
 	int n;
 	double a[MAXARCS], c[MAXARCS];
@@ -80,7 +81,7 @@ static double white_area(const oracle_crow *p)
 	return n * (p->gap0 + p->gap1) / 4 - n * p->kmax / (24 * (n - 1));
 }
 
-/* Antiderivatives of the one-dimensional filters (PATTERNS.md, "Filters"):
+/* Antiderivatives of the one-dimensional filters (patterns/README.md, "Filters"):
  * the tent (1 - |t|/R)/R integrates to (t+R)^2/(2R^2) on [-R, 0] and
  * 1 - (R-t)^2/(2R^2) on [0, R]; the Gaussian to erfc(-t/(S sqrt 2))/2. */
 static double tent_cdf(double t, double r)
@@ -127,7 +128,7 @@ static const oracle_crow crow_pair = { 2, 0.6, 0.3, 0 };
 static void test_defaults(void **state)
 {
 	(void)state;
-	oracle_crow p = oracle_crow_defaults(); /* PATTERNS.md's table */
+	oracle_crow p = oracle_crow_defaults(); /* patterns/README.md's table */
 	assert_int_equal(p.curves, 96);
 	assert_true(p.kmax == 0.6 && p.gap0 == 4.0 / 256 && p.gap1 == 0.5 / 256);
 	assert_true(oracle_crow_valid(&p));

@@ -1,5 +1,5 @@
 /*
- * test_patterns.c: the seed scenes of PATTERNS.md against answers derived
+ * test_patterns.c: the seed scenes of patterns/README.md against answers derived
  * independently of the scene model and the reference:
  *
  *  - catmull: the 1x1 box value (0, 0.25, 0.5), Catmull's own statement

@@ -9,8 +9,9 @@
  *    2.12 implies: offsets 0, +-0.4, +-0.8, 1-D weights 1, 0.6, 0.2, so a
  *    sample weighs w_a w_b / 2.6^2 (read off with a tiny square around one
  *    sample position).
- *  - the msaa patterns sample exactly the positions of REFERENCES.md,
- *    written out again here in its own notation (v/16 from the centre).
+ *  - the msaa patterns sample exactly the positions of algorithms/README.md
+ *    ("Standard multisample positions"), written out again here in its own
+ *    notation (v/16 from the centre).
  *  - jitter stratified puts exactly one sample in each cell of the k x k
  *    grid (a scene that is white on one cell gives exactly 1/k^2); random
  *    does not.
@@ -18,7 +19,8 @@
  *    its direction numbers (identity and Pascal matrix mod 2, Gray-code
  *    order), skipping the origin; niederreiter_2 is (0,0) followed by the
  *    same points; Halton starts at index 1.  gsl_qrng_alloc does not fail
- *    above the dimension limits (REFERENCES.md).  Sobol's first 2^m points are not a (0,m,2)-net, with the origin
+ *    above the dimension limits (algorithms/README.md, "Quasi-random
+ *    sequences in GSL").  Sobol's first 2^m points are not a (0,m,2)-net, with the origin
  *    put back they are; niederreiter's are.
  *  - the Owen-scrambled sets jitter uses remain (0,m,2)-nets (every
  *    elementary box of volume 2^-m holds exactly one sample, seen through a
@@ -30,7 +32,8 @@
  *    RMSE(jitter spp=64) < RMSE(supersample n=3), against aa_truth_render.
  *  - convergence over random sub-pixel shifts of a polygon: RMSE falls as
  *    spp^-3/4 for stratified jitter and spp^-1/2 for random (Mitchell 1996;
- *    REFERENCES.md), slopes fitted over spp = 4..256.
+ *    algorithms/README.md, "Convergence rates"), slopes fitted over
+ *    spp = 4..256.
  *  - tent and Gaussian are honoured: many samples approach their references.
  */
 #include "bench.h"
@@ -250,7 +253,7 @@ static void test_supersample_crow_figures(void **state)
     }
 }
 
-/* REFERENCES.md, "Standard multisample positions": in 1/16 pixel from the
+/* algorithms/README.md, "Standard multisample positions": in 1/16 pixel from the
  * pixel centre, y down, i.e. at 0.5 + v/16 in the pixel. */
 static const struct {
     const char *name;
@@ -712,7 +715,8 @@ static double convergence_slope(const aa_scene *s, const char *seq, int shifts)
     return c1;
 }
 
-/* Mitchell (1996), REFERENCES.md: for an edge, RMSE ~ spp^-3/4 stratified,
+/* Mitchell (1996), algorithms/README.md, "Convergence rates": for an edge,
+ * RMSE ~ spp^-3/4 stratified,
  * spp^-1/2 random.  The fit over 16 shifts of a polygon on 48x48 (about
  * 170 edge pixels each) has a standard error near 0.01; the bands below
  * are several times that, and the seeds are fixed. */

@@ -20,12 +20,12 @@ static void test_defaults(void **state)
     (void)state;
     aa_spec s;
     assert_int_equal(aa_spec_parse("crow", pattern_table(), "pattern", &s), AA_OK);
-    /* PATTERNS.md: curves 96, kmax 0.6, gap0 4/256, gap1 0.5/256 */
+    /* patterns/README.md, `crow`: curves 96, kmax 0.6, gap0 4/256, gap1 0.5/256 */
     assert_true(s.v[0] == 96 && s.v[1] == 0.6 && s.v[2] == 4.0 / 256 && s.v[3] == 0.5 / 256);
     assert_int_equal(aa_spec_parse("tent", filter_table(), "filter", &s), AA_OK);
-    assert_true(s.v[0] == 1.0); /* PATTERNS.md: default R = 1 */
+    assert_true(s.v[0] == 1.0); /* patterns/README.md, "Filters": default R = 1 */
     assert_int_equal(aa_spec_parse("gauss", filter_table(), "filter", &s), AA_OK);
-    assert_true(s.v[0] == 0.5); /* PATTERNS.md: default S = 0.5 */
+    assert_true(s.v[0] == 0.5); /* patterns/README.md, "Filters": default S = 0.5 */
 }
 
 static void test_values(void **state)

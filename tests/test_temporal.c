@@ -1,5 +1,5 @@
 /*
- * test_temporal.c: motion and time (harness/temporal.c, algorithms/taa.c,
+ * test_temporal.c: motion and time (harness/bench/temporal.c, algorithms/taa.c,
  * algorithms/cycle.c, and --time/--motion in every method).
  *
  *  - the metrics on hand-computed sequences: a constant offset c between
@@ -11,7 +11,7 @@
  *    time t moving v is, bit for bit, its image at time t of the scene
  *    translated by t v (64x64, offsets in 1/4 pixel: both placements round
  *    the same), and a temporal method's image changes with the motion;
- *  - Catmull's picket fence (PATTERNS.md `fence`, built here from its
+ *  - Catmull's picket fence (patterns/README.md, `fence`, built here from its
  *    definition) moving 0.37 px a frame over 8 frames at 128x128: the total
  *    intensity of `area` is constant to 1e-9 relative and equals the fence's
  *    area in pixels (bars of width duty * period clipped to [1/4, 3/4],
@@ -225,7 +225,7 @@ static void test_methods_honour_motion(void **state)
 /* ---- Catmull's picket fence ---- */
 
 #define FENCE_P (0.9 / 256)
-/* PATTERNS.md `fence`: white where 1/4 <= x <= 3/4, 1/4 <= y <= 3/4 and
+/* patterns/README.md, `fence`: white where 1/4 <= x <= 3/4, 1/4 <= y <= 3/4 and
  * frac((x - 1/4)/p) < 1/2. */
 static aa_scene *fence_scene(double *area)
 {

@@ -3,7 +3,7 @@
  *
  *  - `crow` under the box filter against tests/oracle.c's closed form (the
  *    alternating sum of exact "area right of arc k" integrals of clamped
- *    quadratics, derived from PATTERNS.md alone), on every pixel of 256x256,
+ *    quadratics, derived from patterns/README.md alone), on every pixel of 256x256,
  *    7x3 and 255x129, with default and non-default parameters: 1e-12.
  *  - tent and Gaussian against the oracle's brute-force integration, within
  *    that integration's own error estimate.

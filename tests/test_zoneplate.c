@@ -154,7 +154,8 @@ typedef struct two_d {
     gsl_integration_workspace *inner;
 } two_d;
 
-/* The point function of PATTERNS.md, written here, at pixel-unit (u, v). */
+/* The point function of patterns/README.md, `zoneplate`, written here, at
+ * pixel-unit (u, v). */
 static double plate(const two_d *p, double u, double v)
 {
     double x = (u - p->tx) / p->sx - 0.5, y = (v - p->ty) / p->sy - 0.5;

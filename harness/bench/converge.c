@@ -3,7 +3,7 @@
  *
  * One fixed scene position measures one alignment of samples and edges;
  * regular grids in particular alias, so their error at one phase says
- * little (REFERENCES.md, "Sampling and convergence").  So the scene is shifted
+ * little (algorithms/README.md, "Convergence rates").  So the scene is shifted
  * by K random sub-pixel offsets (phase k: (dx, dy) uniform in [0, 1)^2
  * from the seed; the view is the pattern at time 1 moving (dx, dy)), and
  * at each samples-per-pixel count the RMSE is taken over all K phases

@@ -11,7 +11,7 @@
  * display intensity (the square law; fig-crow-A), Catmull (1978) fig. 1
  * (one pixel's colour by each method) and Feibush, Levoy and Cook (1980)
  * figs. 4b-4d.  Limits: the patterns are this project's renditions of the
- * papers' scenes (PATTERNS.md), not scans of the originals, and the panels
+ * papers' scenes (patterns/README.md), not scans of the originals, and the panels
  * are shown at the size they are rendered (only fig-catmull-1 is
  * magnified, by replicating pixels), so a page viewer's scaling may add
  * moire of its own.

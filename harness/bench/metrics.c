@@ -1,5 +1,5 @@
 /*
- * metrics.c: error of an image against its reference (DESIGN.md,
+ * metrics.c: error of an image against its reference (harness/README.md,
  * "Measuring").
  *
  *  - rmse, mae, max_err (and where), psnr = 10 log10(1 / mse): over every

@@ -1,5 +1,5 @@
 /*
- * suite.c: the named suites of `aabench run` (DESIGN.md, "Measuring").
+ * suite.c: the named suites of `aabench run` (README.md, "The benchmark").
  *
  *   quick    every family once on crow 128x128 box: the regression gate's
  *            suite (results/baseline.csv); well under 30 s

@@ -1,5 +1,5 @@
 /*
- * suite_temporal.c: the animated suite `temporal` (issue: motion and time).
+ * suite_temporal.c: the animated suite `temporal` (motion and time).
  *
  * Small objects and fine detail moving at sub-pixel speeds, where single
  * frames alias and what the eye integrates over a few frames matters

@@ -1,5 +1,5 @@
 /*
- * temporal.c: the temporal metrics of an animated run (DESIGN.md,
+ * temporal.c: the temporal metrics of an animated run (harness/README.md,
  * "Measuring": error of the eye-integrated image, flicker, conservation of
  * total intensity as a scene moves).
  *
@@ -32,7 +32,7 @@
  *    of its reference value there (the same sum over the references, the
  *    mean of the two frames').  popping is the fraction of (dot, pair of
  *    consecutive frames) that pop.  Point sampling makes small dots blink on
- *    and off (PATTERNS.md, `dots`); area sampling never pops.
+ *    and off (patterns/README.md, `dots`); area sampling never pops.
  *
  * Limits: the frames are whole images held in memory (n of them, plus n
  * references); the harness keeps n at most AA_TEMPORAL_MAX_FRAMES.

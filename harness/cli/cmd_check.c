@@ -104,8 +104,17 @@ int cmd_check(int argc, char **argv)
             done[q] = 1;
             aa_spec spec;
             if (aa_spec_parse(base[q].method, aa_method_table(), "method", &spec)) {
-                printf("FAIL %s on %s %dx%d %s: %s\n", base[q].method, base[q].pattern, base[q].w,
-                       base[q].h, base[q].filter, aa_last_error());
+                char name[128];
+                snprintf(name, sizeof name, "%.*s", (int)strcspn(base[q].method, ":"),
+                         base[q].method);
+                if (!aa_table_find(aa_method_table(), name))
+                    printf("FAIL %s on %s %dx%d %s: no method \"%s\" is built in or loaded; if "
+                           "a plug-in defines it, load it with --plugin LIB.so\n",
+                           base[q].method, base[q].pattern, base[q].w, base[q].h, base[q].filter,
+                           name);
+                else
+                    printf("FAIL %s on %s %dx%d %s: %s\n", base[q].method, base[q].pattern,
+                           base[q].w, base[q].h, base[q].filter, aa_last_error());
                 offenders++;
                 continue;
             }

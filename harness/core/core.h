@@ -95,7 +95,7 @@ int aa_scene_close(aa_scene *s);
  * non-finite coordinates.  Queries need a finished scene. */
 int aa_scene_finish(aa_scene *s);
 /* Add a front layer of the background colour covering everything outside
- * the unit square, when the content reaches outside it (PATTERNS.md:
+ * the unit square, when the content reaches outside it (patterns/README.md:
  * outside the unit square every pattern is its background). */
 int aa_scene_clip_unit(aa_scene *s);
 
@@ -115,7 +115,7 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
 
 /* ------------------------------------------------------------------------
  * Fields: a procedural scene, a point function plus its own exact pixel
- * integral (DESIGN.md, "The three contracts"), such as the zone plate.
+ * integral (harness/README.md, "The three contracts"), such as the zone plate.
  *
  * A scene carries either layers of paths or one field, never both: a field
  * scene has no layers, no edges and no pieces, covers the whole plane and
@@ -167,7 +167,7 @@ int aa_filter_parse(const char *text, aa_filter *out);
 void aa_filter_default(aa_filter *out); /* box */
 
 /* ------------------------------------------------------------------------
- * Patterns (patterns/): named, parameterised scenes (PATTERNS.md)
+ * Patterns (patterns/): named, parameterised scenes (patterns/README.md)
  * ------------------------------------------------------------------------ */
 
 typedef struct aa_pattern_type {

@@ -3,7 +3,7 @@
  * and the clock.
  *
  * Every result file is written under a temporary name in its own folder and
- * renamed into place (DESIGN.md, "Command line"): rename(2) within one file
+ * renamed into place (harness/README.md, "Principles"): rename(2) within one file
  * system is atomic, so a reader sees either the old file or the whole new
  * one, and a run that fails or is interrupted leaves at most a hidden
  * temporary file, never a half-written result under the real name.

@@ -1,5 +1,6 @@
 /*
- * filter.c: the reconstruction filters of PATTERNS.md, in pixel units.
+ * filter.c: the reconstruction filters of patterns/README.md ("Filters"), in
+ * pixel units.
  *
  * Every filter is separable, w(u) w(v), with a 1-D weight normalised to
  * integral 1, so exact methods and the ground truth need only the 1-D
@@ -10,8 +11,8 @@
  *   tent:r=R   max(0, 1 - |t|/R) / R                   (Crow fig. 2.13, 2.14)
  *   gauss:s=S  exp(-t^2 / (2 S^2)) / (S sqrt(2 pi))    (untruncated)
  *
- * and one radial filter that is not separable (an extension of PATTERNS.md's
- * table: Feibush, Levoy and Cook 1980, fig. 2f and 3a, the cone their
+ * and one radial filter that is not separable (added to the three separable
+ * ones: Feibush, Levoy and Cook 1980, fig. 2f and 3a, the cone their
  * circular filter table is drawn for):
  *
  *   cone:r=R   3 / (pi R^2) max(0, 1 - sqrt(u^2 + v^2) / R)   (volume 1)
@@ -177,8 +178,7 @@ static double cone_row_cdf(const double *p, double v, double u)
 
 const aa_filter_type aa_filter_cone = {
     {"cone",
-     "radial cone of radius r pixels, not separable (Feibush et al. fig. 2f, 3a; an "
-     "extension of PATTERNS.md)",
+     "radial cone of radius r pixels, not separable (Feibush et al. fig. 2f, 3a)",
      cone_params},
     NULL,
     NULL,

@@ -1,8 +1,9 @@
 /*
  * image.c: images in memory and in files.
  *
- * Inside, an image is linear light in doubles (DESIGN.md, "Principles").
- * Files are chosen by extension (DESIGN.md, "Command line"):
+ * Inside, an image is linear light in doubles (harness/README.md,
+ * "Principles").  Files are chosen by extension (harness/README.md, "Command
+ * line"):
  *
  *   .exr .tif .tiff .pfm  32-bit float, linear, the image's own channels;
  *   .png                  8 bits, display encoded (sRGB unless told), for eyes;

@@ -1,9 +1,9 @@
 /*
- * method.c: the method contract's generic layer (DESIGN.md, "The three
- * contracts"): the table in use, parsing and checking specs, instances, and
- * the timed render driver.  A method type only describes itself; this file
- * allocates its state, so a method (or a plug-in) never sizes its own
- * instance, as gsl_rng_alloc does for a gsl_rng_type.
+ * method.c: the method contract's generic layer (harness/README.md, "The
+ * three contracts"): the table in use, parsing and checking specs,
+ * instances, and the timed render driver.  A method type only describes
+ * itself; this file allocates its state, so a method (or a plug-in) never
+ * sizes its own instance, as gsl_rng_alloc does for a gsl_rng_type.
  */
 #include "core.h"
 

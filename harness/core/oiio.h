@@ -1,5 +1,5 @@
 /*
- * oiio.h: internal C interface to OpenImageIO (harness/oiio.cpp).
+ * oiio.h: internal C interface to OpenImageIO (harness/core/oiio.cpp).
  *
  * oiio.cpp is the project's only C++.  It moves pixels between memory and
  * files and nothing else: which formats are allowed, channel limits, display

@@ -10,12 +10,27 @@
 #include "core.h"
 
 #include <dlfcn.h>
+#include <string.h>
 
 int aa_plugin_load(const char *path)
 {
+    /* A name without a slash is a file in the current folder, as a user
+     * means it, not a library for dlopen to search the system paths for. */
+    char local[4096];
+    if (!strchr(path, '/')) {
+        if (aa_pathf(local, sizeof local, "./%s", path))
+            return aa_fail_context(AA_EINVAL, "plug-in %s", path);
+        path = local;
+    }
     void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (!lib)
-        return aa_fail(AA_EIO, "plug-in %s: %s", path, dlerror());
+    if (!lib) {
+        /* dlerror() starts with the path itself: say it once */
+        const char *why = dlerror();
+        size_t n = strlen(path);
+        if (!strncmp(why, path, n) && !strncmp(why + n, ": ", 2))
+            why += n + 2;
+        return aa_fail(AA_EIO, "plug-in %s: %s", path, why);
+    }
     const int *abi = dlsym(lib, "aa_plugin_abi");
     const aa_method_type *const *types = dlsym(lib, "aa_plugin_methods");
     if (!abi || !types) {

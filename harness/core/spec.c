@@ -7,7 +7,7 @@
  * known names, an unknown key lists the accepted keys, a bad value says the
  * accepted range.  Values are doubles in parameter order; a CHOICE value is
  * the index of its word.  Reals may be written as fractions ("4/256"), as
- * PATTERNS.md writes its defaults.
+ * patterns/README.md writes its defaults.
  */
 #define _POSIX_C_SOURCE 200809L
 #include "core.h"
