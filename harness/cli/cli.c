@@ -170,3 +170,9 @@ int cli_progress_wanted(void)
     const char *ci = getenv("CI");
     return isatty(2) && !(ci && *ci && strcmp(ci, "false") != 0);
 }
+
+void cli_warn(const char *message, void *ctx)
+{
+    (void)ctx;
+    fprintf(stderr, "aabench: warning: %s\n", message);
+}

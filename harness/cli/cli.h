@@ -14,6 +14,9 @@
 #include <stdint.h>
 #include <stdio.h>
 
+/* The library's warning handler (aa_set_warn): "aabench: warning: MSG" on
+ * stderr. */
+void cli_warn(const char *message, void *ctx);
 /* Print "aabench CMD: <last error>" to stderr; returns the exit code. */
 int cli_fail(const char *cmd, int status);
 /* Report a getopt failure (unknown option or missing argument). */

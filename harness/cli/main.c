@@ -35,6 +35,7 @@ static void usage(FILE *out)
 
 int main(int argc, char **argv)
 {
+    aa_set_warn(cli_warn, NULL);
     if (argc < 2) {
         usage(stderr);
         return 2;

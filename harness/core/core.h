@@ -18,6 +18,14 @@ extern "C" {
 /* The shell exit status for a library status (0, 1, 2 or 3). */
 int aa_exit_code(int status);
 
+/* Warnings: something was wrong and was worked around (a corrupt cache file
+ * recomputed, say).  The library calls the handler installed here, from any
+ * thread (the handler must be thread-safe); with none, warnings are dropped.
+ * The command line installs one that prints to stderr. */
+typedef void (*aa_warn_fn)(const char *message, void *ctx);
+void aa_set_warn(aa_warn_fn fn, void *ctx);
+void aa_warn(const char *fmt, ...) AA_PRINTF(1, 2);
+
 
 /* Parse `text` against `table` (a NULL-terminated array of pointers to types
  * whose first member is an aa_info).  `what` names the kind in messages

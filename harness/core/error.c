@@ -3,7 +3,9 @@
  *
  * A failing function records a message for its thread with aa_fail() and
  * returns the status; callers add context with aa_fail_context().  Nothing
- * is printed here: the command line decides what the user sees.
+ * is printed here: the command line decides what the user sees.  Warnings
+ * (something was wrong and was worked around, such as a corrupt cache file
+ * recomputed) go to the handler the program installs with aa_set_warn.
  */
 #include "core.h"
 
@@ -44,6 +46,28 @@ int aa_fail_context(int status, const char *fmt, ...)
     memcpy(last_error + n, old, m);
     last_error[n + m] = '\0';
     return status;
+}
+
+static aa_warn_fn warn_fn;
+static void *warn_ctx;
+
+void aa_set_warn(aa_warn_fn fn, void *ctx)
+{
+    warn_fn = fn;
+    warn_ctx = ctx;
+}
+
+void aa_warn(const char *fmt, ...)
+{
+    aa_warn_fn fn = warn_fn;
+    if (!fn)
+        return;
+    char msg[AA_ERROR_LEN];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    fn(msg, warn_ctx);
 }
 
 const char *aa_last_error(void)

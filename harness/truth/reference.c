@@ -8,22 +8,31 @@
  * 64-bit FNV-1a hash of it, and the file holds the whole key, which is
  * compared on reading, so a hash collision is a miss, never a wrong image.
  *
- * Cache file: "aabench-reference\n", the key's length (uint32) and text,
- * w, h, c (int32), the largest error bound (double), then w h c doubles,
- * host byte order.  Anything that does not match is a miss and is
- * recomputed; files are written atomically.
+ * Cache file: CACHE_MAGIC, the key's length (uint32) and text, w, h, c
+ * (int32), the largest error bound (double), w h c doubles, then a 64-bit
+ * checksum of everything after the magic; host byte order.  A file from
+ * another version, or for another key (a hash collision), is a miss and is
+ * recomputed.  A file of ours that does not hold together (short, long, a
+ * checksum that does not match, values that are not finite) is corrupt: a
+ * warning says so (aa_warn) and the reference is recomputed and stored
+ * again.  Only regular files are opened (a FIFO would block the reader).
+ * Files are written atomically, so concurrent writers of the same
+ * reference (shards on a shared folder) leave one whole file.
  */
 #include "truth.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* Bump when the ground truth's results could change. */
 #define TRUTH_VERSION 1
-#define CACHE_MAGIC "aabench-reference\n"
+#define CACHE_MAGIC "aabench-reference 2\n"
 
 static int field_key(const aa_view *view, char *buf, size_t len);
 
@@ -86,35 +95,144 @@ static int cache_path(const char *dir, const char *key, char *buf, size_t len)
     return AA_OK;
 }
 
-/* 1 on a hit (image filled), 0 on a miss. */
+/* A 64-bit checksum: each 8-byte word, mixed with its position in the
+ * stream, through SplitMix64's bijective finaliser, so a changed, moved or
+ * swapped word changes the result.  Fed in pieces; a piece that is not a
+ * whole number of words is only ever the last. */
+typedef struct checksum {
+    uint64_t h, k;
+} checksum;
+
+static void checksum_add(checksum *c, const void *data, size_t n)
+{
+    const unsigned char *p = data;
+    for (; n >= 8; n -= 8, p += 8, c->k++) {
+        uint64_t w;
+        memcpy(&w, p, 8);
+        c->h = aa_hash64(c->h ^ w ^ (c->k * 0x9e3779b97f4a7c15ull));
+    }
+    if (n) {
+        uint64_t w = 0;
+        memcpy(&w, p, n);
+        c->h = aa_hash64(c->h ^ w ^ ((uint64_t)n << 56) ^ (c->k++ * 0x9e3779b97f4a7c15ull));
+    }
+}
+
+static size_t read_bytes(int fd, void *buf, size_t n)
+{
+    size_t got = 0;
+    while (got < n) {
+        ssize_t k = read(fd, (char *)buf + got, n - got);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k <= 0)
+            break;
+        got += (size_t)k;
+    }
+    return got;
+}
+
+/* Longest key a cache file may claim (ours are under 2 kB). */
+#define KEY_MAX 65536
+
+/* 1 on a hit (image filled), 0 on a miss.  The whole file is checked
+ * against its checksum before its key is compared, so a damaged key warns
+ * like damaged pixels, while a whole file of another view (a hash
+ * collision) is a quiet miss. */
 static int cache_read(const char *path, const char *key, int w, int h, aa_image *out,
                       double *max_bound)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
         return 0;
+    struct stat sb;
+    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        close(fd);
+        aa_warn("reference cache %s is not a regular file: not read; the reference is "
+                "recomputed",
+                path);
+        return 0;
+    }
     char magic[sizeof CACHE_MAGIC];
     uint32_t klen = 0;
     int32_t dims[3];
+    uint64_t stored_sum;
     int hit = 0;
+    const char *why = NULL;
     char *stored = NULL;
-    if (fread(magic, 1, sizeof CACHE_MAGIC - 1, f) != sizeof CACHE_MAGIC - 1 ||
-        memcmp(magic, CACHE_MAGIC, sizeof CACHE_MAGIC - 1) != 0 ||
-        fread(&klen, sizeof klen, 1, f) != 1 || klen != strlen(key))
+    checksum sum = {0, 0};
+    if (read_bytes(fd, magic, sizeof CACHE_MAGIC - 1) != sizeof CACHE_MAGIC - 1 ||
+        memcmp(magic, CACHE_MAGIC, sizeof CACHE_MAGIC - 1) != 0)
+        goto done; /* not ours, or another version's: a miss */
+    why = "cut short";
+    if (read_bytes(fd, &klen, sizeof klen) != sizeof klen)
         goto done;
-    if (!(stored = malloc(klen + 1)) || fread(stored, 1, klen, f) != klen ||
-        memcmp(stored, key, klen) != 0)
+    if (klen > KEY_MAX) {
+        why = "damaged (its key length is absurd)";
         goto done;
-    if (fread(dims, sizeof dims, 1, f) != 1 || dims[0] != w || dims[1] != h || dims[2] != 3 ||
-        fread(max_bound, sizeof *max_bound, 1, f) != 1)
+    }
+    if (!(stored = malloc((size_t)klen + 1))) {
+        why = "too large to read into memory";
         goto done;
-    size_t count = (size_t)w * (size_t)h * 3;
-    if (fread(out->v, sizeof *out->v, count, f) != count || fgetc(f) != EOF)
+    }
+    if (read_bytes(fd, stored, klen) != klen || read_bytes(fd, dims, sizeof dims) != sizeof dims ||
+        read_bytes(fd, max_bound, sizeof *max_bound) != sizeof *max_bound)
         goto done;
+    if (dims[0] < 1 || dims[1] < 1 || dims[0] > AA_MAX_SIDE || dims[1] > AA_MAX_SIDE ||
+        dims[2] != 3) {
+        why = "damaged (its size is absurd)";
+        goto done;
+    }
+    size_t count = (size_t)dims[0] * (size_t)dims[1] * 3;
+    uint64_t expect = (uint64_t)(sizeof CACHE_MAGIC - 1) + sizeof klen + klen + sizeof dims +
+                      sizeof *max_bound + count * sizeof(double) + sizeof stored_sum;
+    if ((uint64_t)sb.st_size != expect) {
+        why = (uint64_t)sb.st_size < expect ? "cut short" : "of the wrong length";
+        goto done;
+    }
+    checksum_add(&sum, &klen, sizeof klen);
+    checksum_add(&sum, stored, klen);
+    checksum_add(&sum, dims, sizeof dims);
+    checksum_add(&sum, max_bound, sizeof *max_bound);
+    int ours = dims[0] == w && dims[1] == h;
+    if (ours) {
+        if (read_bytes(fd, out->v, count * sizeof *out->v) != count * sizeof *out->v)
+            goto done;
+        checksum_add(&sum, out->v, count * sizeof *out->v);
+    } else { /* another size: read only to check the file */
+        double chunk[4096];
+        for (size_t left = count; left > 0;) {
+            size_t n = left < 4096 ? left : 4096;
+            if (read_bytes(fd, chunk, n * sizeof *chunk) != n * sizeof *chunk)
+                goto done;
+            checksum_add(&sum, chunk, n * sizeof *chunk);
+            left -= n;
+        }
+    }
+    if (read_bytes(fd, &stored_sum, sizeof stored_sum) != sizeof stored_sum)
+        goto done;
+    if (sum.h != stored_sum) {
+        why = "damaged (its checksum does not match)";
+        goto done;
+    }
+    why = NULL;
+    if (klen != strlen(key) || memcmp(stored, key, klen) != 0)
+        goto done; /* a whole file of another view under the same hash */
+    if (!ours || !(*max_bound >= 0.0) || !isfinite(*max_bound)) {
+        why = "inconsistent with its key";
+        goto done;
+    }
+    for (size_t k = 0; k < count; k++)
+        if (!(out->v[k] >= 0.0 && out->v[k] <= 1.0)) {
+            why = "holding a value outside [0, 1]";
+            goto done;
+        }
     hit = 1;
 done:
+    if (why)
+        aa_warn("reference cache %s is %s: recomputing it", path, why);
     free(stored);
-    fclose(f);
+    close(fd);
     return hit;
 }
 
@@ -128,16 +246,24 @@ static int cache_write(const char *dir, const char *path, const char *key, const
     int32_t dims[3] = {im->w, im->h, im->c};
     size_t pixels = (size_t)im->w * (size_t)im->h * (size_t)im->c * sizeof *im->v;
     size_t len = sizeof CACHE_MAGIC - 1 + sizeof klen + klen + sizeof dims + sizeof max_bound +
-                 pixels;
+                 pixels + sizeof(uint64_t);
     char *buf = malloc(len), *p = buf;
     if (!buf)
         return aa_fail(AA_ENOMEM, "out of memory writing the reference cache");
+    checksum sum = {0, 0};
     memcpy(p, CACHE_MAGIC, sizeof CACHE_MAGIC - 1), p += sizeof CACHE_MAGIC - 1;
+    /* the same pieces, in the same order, as the reader checks */
+    checksum_add(&sum, &klen, sizeof klen);
+    checksum_add(&sum, key, klen);
+    checksum_add(&sum, dims, sizeof dims);
+    checksum_add(&sum, &max_bound, sizeof max_bound);
+    checksum_add(&sum, im->v, pixels);
     memcpy(p, &klen, sizeof klen), p += sizeof klen;
     memcpy(p, key, klen), p += klen;
     memcpy(p, dims, sizeof dims), p += sizeof dims;
     memcpy(p, &max_bound, sizeof max_bound), p += sizeof max_bound;
-    memcpy(p, im->v, pixels);
+    memcpy(p, im->v, pixels), p += pixels;
+    memcpy(p, &sum.h, sizeof sum.h);
     st = aa_file_write_atomic(path, buf, len);
     free(buf);
     return st;

@@ -1,0 +1,239 @@
+/*
+ * test_faults.c: results stay right when files and inputs go wrong.
+ *
+ * The reference cache: a file of the cache that is damaged anywhere (a
+ * flipped bit in the pixels, the bound, the key or the checksum), cut short,
+ * grown, or holding another view's pixels under this view's header is never
+ * served: the reference is recomputed, equal to a fresh computation, and a
+ * warning names the file.  A FIFO in the cache's place is not opened (a
+ * reader would block forever: the test runs under an alarm).
+ */
+#include "bench.h"
+
+#include <stdarg.h>
+#include <setjmp.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static char warned[1024];
+static int nwarn;
+
+static void capture(const char *message, void *ctx)
+{
+    (void)ctx;
+    snprintf(warned, sizeof warned, "%s", message);
+    nwarn++;
+}
+
+static void make_view(aa_view *v, const char *pattern, int w, int h)
+{
+    memset(v, 0, sizeof *v);
+    assert_int_equal(aa_pattern_parse(pattern, &v->pattern), AA_OK);
+    v->w = w, v->h = h;
+    aa_filter_default(&v->filter);
+}
+
+/* The one cache file of `dir` into path. */
+static void cache_file(const char *dir, char *path, size_t len)
+{
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "ls %s/ref-*.bin", dir);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    assert_non_null(fgets(path, (int)len, p));
+    path[strcspn(path, "\n")] = '\0';
+    pclose(p);
+}
+
+static long file_size(const char *path)
+{
+    struct stat sb;
+    assert_int_equal(stat(path, &sb), 0);
+    return (long)sb.st_size;
+}
+
+static void flip_byte(const char *path, long at)
+{
+    FILE *f = fopen(path, "r+b");
+    assert_non_null(f);
+    assert_int_equal(fseek(f, at, SEEK_SET), 0);
+    int c = fgetc(f);
+    assert_true(c != EOF);
+    assert_int_equal(fseek(f, at, SEEK_SET), 0);
+    fputc(c ^ 0x10, f);
+    assert_int_equal(fclose(f), 0);
+}
+
+static void copy_file(const char *from, const char *to)
+{
+    char cmd[2400];
+    snprintf(cmd, sizeof cmd, "cp '%s' '%s'", from, to);
+    assert_int_equal(system(cmd), 0);
+}
+
+static int same_image(const aa_image *a, const aa_image *b)
+{
+    return a->w == b->w && a->h == b->h && a->c == b->c &&
+           !memcmp(a->v, b->v, (size_t)a->w * a->h * a->c * sizeof *a->v);
+}
+
+/* Read the view's reference through the cache: expect a recomputation with
+ * a warning naming the file, and the fresh image. */
+static void expect_recomputed(const aa_view *v, const char *dir, const char *path,
+                              const aa_image *fresh, const char *what)
+{
+    aa_image img;
+    int hit = -1;
+    nwarn = 0, warned[0] = '\0';
+    assert_int_equal(aa_reference(v, dir, 1, &img, NULL, &hit), AA_OK);
+    if (hit != 0 || nwarn != 1 || !strstr(warned, path))
+        fail_msg("%s: hit %d, %d warnings (\"%s\")", what, hit, nwarn, warned);
+    assert_true(same_image(&img, fresh));
+    aa_image_free(&img);
+    /* and the file was stored again, whole: the next read is a hit */
+    nwarn = 0;
+    assert_int_equal(aa_reference(v, dir, 1, &img, NULL, &hit), AA_OK);
+    assert_int_equal(hit, 1);
+    assert_int_equal(nwarn, 0);
+    assert_true(same_image(&img, fresh));
+    aa_image_free(&img);
+}
+
+static void test_cache_damage(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", path[1024], save[1100];
+    assert_non_null(mkdtemp(dir));
+    aa_set_warn(capture, NULL);
+    aa_view v;
+    make_view(&v, "crow", 24, 16);
+    aa_image fresh;
+    int hit = -1;
+    assert_int_equal(aa_reference(&v, NULL, 1, &fresh, NULL, NULL), AA_OK);
+    aa_image first;
+    assert_int_equal(aa_reference(&v, dir, 1, &first, NULL, &hit), AA_OK);
+    aa_image_free(&first);
+    cache_file(dir, path, sizeof path);
+    snprintf(save, sizeof save, "%s.good", path);
+    copy_file(path, save);
+    long size = file_size(path);
+    size_t pixels = (size_t)24 * 16 * 3 * sizeof(double);
+    /* byte offsets: the first key byte (after the 20-byte magic and the
+     * 4-byte length), the bound (just before the pixels), a pixel, the
+     * checksum (the last 8 bytes) */
+    long at[] = {24, size - 8 - (long)pixels - 8, size - 8 - (long)pixels / 2, size - 3};
+    const char *name[] = {"key", "bound", "pixels", "checksum"};
+    for (int k = 0; k < 4; k++) {
+        copy_file(save, path);
+        flip_byte(path, at[k]);
+        expect_recomputed(&v, dir, path, &fresh, name[k]);
+    }
+    /* cut short, and grown */
+    copy_file(save, path);
+    assert_int_equal(truncate(path, size - 100), 0);
+    expect_recomputed(&v, dir, path, &fresh, "cut short");
+    copy_file(save, path);
+    assert_int_equal(truncate(path, size + 8), 0);
+    expect_recomputed(&v, dir, path, &fresh, "grown");
+    aa_image_free(&fresh);
+    aa_set_warn(NULL, NULL);
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+/* Another view's pixels pasted under this view's header (same size, so
+ * every length matches): only the checksum can tell. */
+static void test_cache_pasted(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", path_a[1024], path_b[1024];
+    assert_non_null(mkdtemp(dir));
+    aa_set_warn(capture, NULL);
+    aa_view a, b;
+    make_view(&a, "crow", 20, 20);
+    make_view(&b, "star", 20, 20);
+    aa_image fresh, img;
+    assert_int_equal(aa_reference(&a, NULL, 1, &fresh, NULL, NULL), AA_OK);
+    char sub_a[1100], sub_b[1100];
+    snprintf(sub_a, sizeof sub_a, "%s/a", dir);
+    snprintf(sub_b, sizeof sub_b, "%s/b", dir);
+    assert_int_equal(aa_reference(&a, sub_a, 1, &img, NULL, NULL), AA_OK);
+    aa_image_free(&img);
+    assert_int_equal(aa_reference(&b, sub_b, 1, &img, NULL, NULL), AA_OK);
+    aa_image_free(&img);
+    cache_file(sub_a, path_a, sizeof path_a);
+    cache_file(sub_b, path_b, sizeof path_b);
+    size_t pixels = (size_t)20 * 20 * 3 * sizeof(double);
+    long size_a = file_size(path_a), size_b = file_size(path_b);
+    FILE *fb = fopen(path_b, "rb"), *fa = fopen(path_a, "r+b");
+    assert_non_null(fb);
+    assert_non_null(fa);
+    char *buf = malloc(pixels);
+    assert_int_equal(fseek(fb, size_b - 8 - (long)pixels, SEEK_SET), 0);
+    assert_int_equal(fread(buf, 1, pixels, fb), pixels);
+    assert_int_equal(fseek(fa, size_a - 8 - (long)pixels, SEEK_SET), 0);
+    assert_int_equal(fwrite(buf, 1, pixels, fa), pixels);
+    fclose(fb);
+    assert_int_equal(fclose(fa), 0);
+    free(buf);
+    expect_recomputed(&a, sub_a, path_a, &fresh, "pasted pixels");
+    aa_image_free(&fresh);
+    aa_set_warn(NULL, NULL);
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+static void on_alarm(int sig)
+{
+    (void)sig;
+    static const char msg[] = "test_faults: the cache reader blocked on a FIFO\n";
+    if (write(2, msg, sizeof msg - 1) < 0) {
+    }
+    _exit(1);
+}
+
+static void test_cache_fifo(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", path[1024];
+    assert_non_null(mkdtemp(dir));
+    aa_set_warn(capture, NULL);
+    aa_view v;
+    make_view(&v, "crow", 8, 8);
+    aa_image img, fresh;
+    assert_int_equal(aa_reference(&v, NULL, 1, &fresh, NULL, NULL), AA_OK);
+    assert_int_equal(aa_reference(&v, dir, 1, &img, NULL, NULL), AA_OK);
+    aa_image_free(&img);
+    cache_file(dir, path, sizeof path);
+    assert_int_equal(unlink(path), 0);
+    assert_int_equal(mkfifo(path, 0644), 0);
+    signal(SIGALRM, on_alarm);
+    alarm(30);
+    expect_recomputed(&v, dir, path, &fresh, "FIFO");
+    alarm(0);
+    aa_image_free(&fresh);
+    aa_set_warn(NULL, NULL);
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cache_damage),
+        cmocka_unit_test(test_cache_pasted),
+        cmocka_unit_test(test_cache_fifo),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
