@@ -369,7 +369,7 @@ static int zoneplate_pixels(const double *p, const double map[4], const aa_filte
                             int worst[2])
 {
 #ifdef _OPENMP
-    int nt = threads > 0 ? threads : omp_get_max_threads();
+    int nt = aa_thread_count(threads);
 #else
     int nt = 1;
     (void)threads;

@@ -7,6 +7,10 @@
  * served: the reference is recomputed, equal to a fresh computation, and a
  * warning names the file.  A FIFO in the cache's place is not opened (a
  * reader would block forever: the test runs under an alarm).
+ *
+ * The command ($AABENCH): an absurd OMP_NUM_THREADS does not crash it;
+ * `converge --out` writes its table once when stdout is a file (a forked
+ * child used to flush the parent's buffer a second time).
  */
 #include "bench.h"
 
@@ -21,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 static char warned[1024];
@@ -228,12 +233,83 @@ static void test_cache_fifo(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* Run $AABENCH with argv (NULL-terminated, without the program), `env`
+ * ("NAME=value" or NULL) added, stdout to `out` (or /dev/null), stderr to
+ * /dev/null.  The exit status, or 128 + the signal that ended it. */
+static int run_cli(const char *const *argv, const char *env, const char *out)
+{
+    const char *exe = getenv("AABENCH");
+    assert_non_null(exe);
+    const char *args[64] = {exe};
+    int n = 1;
+    for (; argv[n - 1] && n < 63; n++)
+        args[n] = argv[n - 1];
+    args[n] = NULL;
+    fflush(NULL);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        int fd = open(out ? out : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int null = open("/dev/null", O_WRONLY);
+        if (fd < 0 || null < 0 || dup2(fd, 1) < 0 || dup2(null, 2) < 0)
+            _exit(126);
+        if (env && putenv((char *)env) != 0)
+            _exit(126);
+        execv(exe, (char *const *)args);
+        _exit(127);
+    }
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+static void test_absurd_threads(void **state)
+{
+    (void)state;
+    const char *truth[] = {"truth", "-p", "crow", "-s", "8x8", "--no-cache", "-o",
+                           "/tmp/aabench-faults-threads.txt", NULL};
+    assert_int_equal(run_cli(truth, "OMP_NUM_THREADS=100000", NULL), 0);
+    const char *zone[] = {"truth", "-p", "zoneplate", "-s", "8x8", "--no-cache", "-o",
+                          "/tmp/aabench-faults-threads.txt", NULL};
+    assert_int_equal(run_cli(zone, "OMP_NUM_THREADS=100000", NULL), 0);
+    unlink("/tmp/aabench-faults-threads.txt");
+}
+
+static void test_converge_once(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", out[1100], plots[1100];
+    assert_non_null(mkdtemp(dir));
+    snprintf(out, sizeof out, "%s/table.txt", dir);
+    snprintf(plots, sizeof plots, "%s/plots", dir);
+    const char *argv[] = {"converge", "-p",      "crow",    "-m",     "jitter",
+                          "-s",       "16x16",   "--spp",   "4,16,64", "--phases",
+                          "2",        "--out",   plots,     "--no-cache", NULL};
+    assert_int_equal(run_cli(argv, NULL, out), 0);
+    FILE *f = fopen(out, "r");
+    assert_non_null(f);
+    char line[512];
+    int rows = 0, slopes = 0;
+    while (fgets(line, sizeof line, f)) {
+        rows += line[0] >= '0' && line[0] <= '9';
+        slopes += !strncmp(line, "slope", 5);
+    }
+    fclose(f);
+    assert_int_equal(rows, 3);
+    assert_int_equal(slopes, 1);
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cache_damage),
         cmocka_unit_test(test_cache_pasted),
         cmocka_unit_test(test_cache_fifo),
+        cmocka_unit_test(test_absurd_threads),
+        cmocka_unit_test(test_converge_once),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

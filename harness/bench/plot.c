@@ -19,6 +19,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
@@ -27,13 +28,17 @@
 /* Run gnuplot on `script`; its messages go to `log`. */
 static int gnuplot(const char *script, const char *log)
 {
+    /* The child must not inherit unwritten stdio buffers: it would write
+     * them again when its streams are closed. */
+    fflush(NULL);
     pid_t pid = fork();
     if (pid < 0)
         return aa_fail(AA_EIO, "cannot start gnuplot: %s", strerror(errno));
     if (pid == 0) {
-        FILE *f = freopen(log, "w", stderr);
-        (void)f;
-        if (!freopen("/dev/null", "w", stdout))
+        /* file descriptors only: no stdio in the child */
+        int err = open(log, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+        if (err < 0 || null < 0 || dup2(err, 2) < 0 || dup2(null, 1) < 0)
             _exit(126);
         execlp("gnuplot", "gnuplot", script, (char *)NULL);
         _exit(127);

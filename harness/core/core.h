@@ -236,6 +236,13 @@ int aa_plugin_load(const char *path);
  * name already in the table is refused. */
 int aa__method_register(const aa_method_type *const *types, const char *origin);
 
+/* The threads to use for a `threads` argument: itself if positive, else
+ * OpenMP's default (OMP_NUM_THREADS, or the cores) clamped to at most four
+ * per core and AA_MAX_THREADS, so an absurd environment cannot crash the
+ * thread library. */
+#define AA_MAX_THREADS 1024
+int aa_thread_count(int threads);
+
 /* ---- files and the clock ---- */
 
 /* Write `len` bytes to `path` through a temporary file in the same folder

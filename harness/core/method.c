@@ -7,6 +7,10 @@
  */
 #include "core.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -166,4 +170,18 @@ double aa_filter_support(const aa_filter *f)
     if (f->type == &aa_filter_gauss)
         return 3.0 * f->spec.v[0];
     return f->radius;
+}
+
+int aa_thread_count(int threads)
+{
+    if (threads > 0)
+        return threads < AA_MAX_THREADS ? threads : AA_MAX_THREADS;
+#ifdef _OPENMP
+    int n = omp_get_max_threads(), cap = 4 * omp_get_num_procs();
+    if (cap > AA_MAX_THREADS)
+        cap = AA_MAX_THREADS;
+    return n < 1 ? 1 : n < cap ? n : cap;
+#else
+    return 1;
+#endif
 }

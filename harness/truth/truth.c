@@ -721,7 +721,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
     char message[1024] = "";
     row_stats total = {0, 0, 0, 0.0, -1, -1};
 #ifdef _OPENMP
-    int nthreads = threads > 0 ? threads : omp_get_max_threads();
+    int nthreads = aa_thread_count(threads);
 #else
     int nthreads = 1;
     (void)threads;
