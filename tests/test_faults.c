@@ -10,7 +10,8 @@
  *
  * The command ($AABENCH): an absurd OMP_NUM_THREADS does not crash it;
  * `converge --out` writes its table once when stdout is a file (a forked
- * child used to flush the parent's buffer a second time).
+ * child used to flush the parent's buffer a second time); two runs into
+ * one folder at once both succeed and leave no temporary file.
  */
 #include "bench.h"
 
@@ -236,7 +237,18 @@ static void test_cache_fifo(void **state)
 /* Run $AABENCH with argv (NULL-terminated, without the program), `env`
  * ("NAME=value" or NULL) added, stdout to `out` (or /dev/null), stderr to
  * /dev/null.  The exit status, or 128 + the signal that ended it. */
+static pid_t spawn_cli(const char *const *argv, const char *env, const char *out);
+
 static int run_cli(const char *const *argv, const char *env, const char *out)
+{
+    pid_t pid = spawn_cli(argv, env, out);
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/* The same, started: returns the child's pid. */
+static pid_t spawn_cli(const char *const *argv, const char *env, const char *out)
 {
     const char *exe = getenv("AABENCH");
     assert_non_null(exe);
@@ -258,9 +270,7 @@ static int run_cli(const char *const *argv, const char *env, const char *out)
         execv(exe, (char *const *)args);
         _exit(127);
     }
-    int status;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return pid;
 }
 
 static void test_absurd_threads(void **state)
@@ -302,6 +312,34 @@ static void test_converge_once(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* Two runs into one folder at once: each renames only its own temporary
+ * files (plots included), so both succeed and nothing temporary is left. */
+static void test_two_runs_one_folder(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", cache[1100];
+    assert_non_null(mkdtemp(dir));
+    snprintf(cache, sizeof cache, "AABENCH_CACHE=%s/cache", dir);
+    for (int round = 0; round < 3; round++) {
+        const char *argv[] = {"run", "-p", "crow", "-s", "16x16", "-m", "point", "-m", "area",
+                              "--reps", "1", "--no-images", "-q", "--out", dir, NULL};
+        pid_t a = spawn_cli(argv, cache, NULL), b = spawn_cli(argv, cache, NULL);
+        int sa, sb;
+        assert_int_equal(waitpid(a, &sa, 0), a);
+        assert_int_equal(waitpid(b, &sb, 0), b);
+        assert_true(WIFEXITED(sa) && WEXITSTATUS(sa) == 0);
+        assert_true(WIFEXITED(sb) && WEXITSTATUS(sb) == 0);
+    }
+    char cmd[1400];
+    /* temporary names start with a dot */
+    snprintf(cmd, sizeof cmd, "test -z \"$(find '%s' -name '.*' ! -name . -print)\"", dir);
+    assert_int_equal(system(cmd), 0);
+    snprintf(cmd, sizeof cmd, "test -s '%s/plots/error_vs_time.png'", dir);
+    assert_int_equal(system(cmd), 0);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -310,6 +348,7 @@ int main(void)
         cmocka_unit_test(test_cache_fifo),
         cmocka_unit_test(test_absurd_threads),
         cmocka_unit_test(test_converge_once),
+        cmocka_unit_test(test_two_runs_one_folder),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -25,8 +25,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-/* Run gnuplot on `script`; its messages go to `log`. */
-static int gnuplot(const char *script, const char *log)
+/* Run gnuplot on `script` in folder `dir` with the assignments `assign`
+ * (gnuplot commands run first, e.g. "out='x.png'"); its messages go to
+ * `log`. */
+static int gnuplot(const char *dir, const char *script, const char *assign, const char *log)
 {
     /* The child must not inherit unwritten stdio buffers: it would write
      * them again when its streams are closed. */
@@ -38,9 +40,9 @@ static int gnuplot(const char *script, const char *log)
         /* file descriptors only: no stdio in the child */
         int err = open(log, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
         int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
-        if (err < 0 || null < 0 || dup2(err, 2) < 0 || dup2(null, 1) < 0)
+        if (err < 0 || null < 0 || dup2(err, 2) < 0 || dup2(null, 1) < 0 || chdir(dir) != 0)
             _exit(126);
-        execlp("gnuplot", "gnuplot", script, (char *)NULL);
+        execlp("gnuplot", "gnuplot", "-e", assign, script, (char *)NULL);
         _exit(127);
     }
     int status;
@@ -53,24 +55,67 @@ static int gnuplot(const char *script, const char *log)
     return AA_OK;
 }
 
-/* Write `script` (whose output is `tmp`), run it, and rename tmp to png. */
-static int draw(const char *dir, const char *name, const char *script_text, const char *tmp)
+/* The file name part of a path. */
+static const char *base_of(const char *path)
 {
-    char gp[4096], png[4096], log[4096];
-    snprintf(gp, sizeof gp, "%s/%s.gp", dir, name);
-    snprintf(png, sizeof png, "%s/%s.png", dir, name);
-    snprintf(log, sizeof log, "%s/.%s.log", dir, name);
-    int st = aa_file_write_atomic(gp, script_text, strlen(script_text));
-    if (st || (st = gnuplot(gp, log))) {
-        unlink(tmp);
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
+}
+
+/* gnuplot's string syntax into buf: single quotes, with '' for a quote. */
+static void gp_quote(char *buf, size_t len, const char *s)
+{
+    size_t n = 0;
+    if (n + 1 < len)
+        buf[n++] = '\'';
+    for (; *s && n + 3 < len; s++) {
+        buf[n++] = *s;
+        if (*s == '\'')
+            buf[n++] = '\'';
+    }
+    if (n + 1 < len)
+        buf[n++] = '\'';
+    buf[n] = '\0';
+}
+
+/* Draw NAME.png in `dir` from the data at the temporary path `dat_tmp` (to
+ * become dat_name) with `script_text`, which reads the variables `dat` and
+ * `out` (and gives them the final names when unset, so the saved NAME.gp
+ * remakes the picture by itself).  Every file is written under a unique
+ * temporary name and renamed only once gnuplot has succeeded, so two runs
+ * into one folder never use each other's files. */
+static int draw(const char *dir, const char *name, const char *script_text, const char *dat_tmp,
+                const char *dat_name)
+{
+    char gp[4096], png[4096], log[4096], gp_tmp[4096], png_tmp[4096], dat[4096];
+    char assign[8192], q_out[2048], q_dat[2048];
+    int st;
+    if ((st = aa_pathf(gp, sizeof gp, "%s/%s.gp", dir, name)) ||
+        (st = aa_pathf(png, sizeof png, "%s/%s.png", dir, name)) ||
+        (st = aa_pathf(dat, sizeof dat, "%s/%s", dir, dat_name)) ||
+        (st = aa_temp_name(gp, gp_tmp, sizeof gp_tmp)) ||
+        (st = aa_temp_name(png, png_tmp, sizeof png_tmp)) ||
+        (st = aa_pathf(log, sizeof log, "%s.log", gp_tmp))) {
+        unlink(dat_tmp);
         return st;
     }
+    gp_quote(q_out, sizeof q_out, base_of(png_tmp));
+    gp_quote(q_dat, sizeof q_dat, base_of(dat_tmp));
+    snprintf(assign, sizeof assign, "out=%s; dat=%s", q_out, q_dat);
+    if ((st = aa_file_write_atomic(gp_tmp, script_text, strlen(script_text))) ||
+        (st = gnuplot(dir, base_of(gp_tmp), assign, log)))
+        goto fail;
     unlink(log);
-    if (rename(tmp, png) != 0) {
-        unlink(tmp);
-        return aa_fail(AA_EIO, "cannot rename %s to %s: %s", tmp, png, strerror(errno));
+    if (rename(dat_tmp, dat) != 0 || rename(png_tmp, png) != 0 || rename(gp_tmp, gp) != 0) {
+        st = aa_fail(AA_EIO, "cannot rename the plot %s into place: %s", png, strerror(errno));
+        goto fail;
     }
     return AA_OK;
+fail:
+    unlink(dat_tmp);
+    unlink(png_tmp);
+    unlink(gp_tmp);
+    return st;
 }
 
 static int same_view(const aa_row *a, const aa_row *b)
@@ -166,25 +211,23 @@ int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
     }
     free(view);
     free(done);
-    if (fclose(f) != 0 || rename(tmp, dat) != 0) {
+    if (fclose(f) != 0) {
         unlink(tmp);
         return aa_fail(AA_EIO, "cannot write %s", dat);
     }
-    if (views == 0)
+    if (views == 0) {
+        unlink(tmp);
         return aa_fail(AA_EINVAL, "no measured rows to plot");
-    char png[4096], script[65536];
-    snprintf(png, sizeof png, "%s/error_vs_time.png", dir);
-    if ((st = aa_temp_name(png, tmp, sizeof tmp)))
-        return st;
+    }
+    char script[65536];
     int cols = views == 1 ? 1 : (views <= 4 ? 2 : 3), rws = (views + cols - 1) / cols;
     FILE *s = fmemopen(script, sizeof script, "w");
     fprintf(s, "# error against time: made by aabench run; run with: gnuplot error_vs_time.gp\n"
-               "set terminal pngcairo size %d,%d font 'DejaVu Sans,10'\nset output ",
+               "set terminal pngcairo size %d,%d font 'DejaVu Sans,10'\n"
+               "if (!exists('out')) out = 'error_vs_time.png'\n"
+               "if (!exists('dat')) dat = 'error_vs_time.dat'\nset output out\n",
             640 * cols, 480 * rws + 40);
-    gp_string(s, tmp);
-    fprintf(s, "\ndat = 'error_vs_time.dat'\ncd ");
-    gp_string(s, dir);
-    fprintf(s, "\nset multiplot layout %d,%d title 'Error against render time (dashed: Pareto "
+    fprintf(s, "set multiplot layout %d,%d title 'Error against render time (dashed: Pareto "
                "front; down-triangles: exact to rounding, drawn at the floor)'\n"
                "set logscale xy\nset grid\nunset key\n"
                "set xlabel 'render time, median (s)'\nset ylabel 'RMSE (linear light)'\n",
@@ -204,13 +247,13 @@ int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
     }
     fprintf(s, "unset multiplot\n");
     fclose(s);
-    return draw(dir, "error_vs_time", script, tmp);
+    return draw(dir, "error_vs_time", script, tmp, "error_vs_time.dat");
 }
 
 int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *const *names,
                         size_t n, const char *title)
 {
-    char dat[4096], tmp[4096], png[4096];
+    char dat[4096], tmp[4096];
     int st = aa_mkdirs(dir);
     if (st)
         return st;
@@ -229,28 +272,24 @@ int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *co
                     exp(c[k].intercept) * pow(c[k].spp[q], c[k].slope));
         fprintf(f, "\n\n");
     }
-    if (fclose(f) != 0 || rename(tmp, dat) != 0) {
+    if (fclose(f) != 0) {
         unlink(tmp);
         return aa_fail(AA_EIO, "cannot write %s", dat);
     }
-    snprintf(png, sizeof png, "%s/convergence.png", dir);
-    if ((st = aa_temp_name(png, tmp, sizeof tmp)))
-        return st;
     char script[8192];
     FILE *s = fmemopen(script, sizeof script, "w");
     fprintf(s, "# convergence: made by aabench; run with: gnuplot convergence.gp\n"
-               "set terminal pngcairo size 900,600 font 'DejaVu Sans,10'\nset output ");
-    gp_string(s, tmp);
-    fprintf(s, "\nset logscale xy\nset grid\nset key bottom left\n"
+               "set terminal pngcairo size 900,600 font 'DejaVu Sans,10'\n"
+               "if (!exists('out')) out = 'convergence.png'\n"
+               "if (!exists('dat')) dat = 'convergence.dat'\nset output out\n");
+    fprintf(s, "set logscale xy\nset grid\nset key bottom left\n"
                "set xlabel 'samples per pixel'\nset ylabel 'RMSE over random sub-pixel shifts'\n"
                "set title ");
     gp_string(s, title);
-    fprintf(s, "\ndat = 'convergence.dat'\ncd ");
-    gp_string(s, dir);
     fprintf(s, "\nplot for [m=0:%zu] dat index m using 1:2 with points pt 7 lc m+1 "
                "title columnheader(1), \\\n"
                "     for [m=0:%zu] dat index m using 1:4 with lines lc m+1 notitle\n",
             n - 1, n - 1);
     fclose(s);
-    return draw(dir, "convergence", script, tmp);
+    return draw(dir, "convergence", script, tmp, "convergence.dat");
 }
