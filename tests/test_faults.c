@@ -340,6 +340,28 @@ static void test_two_runs_one_folder(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* A result name of 250 characters (NAME_MAX is 255): its temporary name
+ * must still fit. */
+static void test_long_name(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", path[1100];
+    assert_non_null(mkdtemp(dir));
+    const char *ext[] = {".png", ".txt", ".exr"};
+    for (int k = 0; k < 3; k++) {
+        int n = snprintf(path, sizeof path, "%s/", dir);
+        memset(path + n, 'x', 246);
+        snprintf(path + n + 246, sizeof path - (size_t)n - 246, "%s", ext[k]);
+        const char *argv[] = {"truth", "-p", "crow", "-s", "8x8", "--no-cache", "-o", path, NULL};
+        assert_int_equal(run_cli(argv, NULL, NULL), 0);
+        struct stat sb;
+        assert_int_equal(stat(path, &sb), 0);
+    }
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -349,6 +371,7 @@ int main(void)
         cmocka_unit_test(test_absurd_threads),
         cmocka_unit_test(test_converge_once),
         cmocka_unit_test(test_two_runs_one_folder),
+        cmocka_unit_test(test_long_name),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -60,12 +60,16 @@ int aa_temp_name(const char *path, char *buf, size_t len)
     if (*base == '\0')
         return aa_fail(AA_EINVAL, "%s: not a file name (ends with '/' or is empty)", path);
     const char *ext = extension(base);
+    if (strlen(ext) > 16)
+        ext = "";
     unsigned long n = atomic_fetch_add(&temp_counter, 1);
     /* Same folder, so the rename stays on one file system; a leading dot,
-     * so tools listing results skip it; the real extension, so a writer
-     * that looks at the name picks the right format. */
-    int k = snprintf(buf, len, "%.*s.%.*s.%ld.%lu%s", (int)(base - path), path,
-                     (int)(ext - base), base, (long)getpid(), n, ext);
+     * so tools listing results skip it; the process and a counter, so no two
+     * writers share a name; short, so a result name near NAME_MAX still
+     * has a temporary name; the real extension, so a writer that looks at
+     * the name picks the right format. */
+    int k = snprintf(buf, len, "%.*s.aa-%ld-%lu%s", (int)(base - path), path, (long)getpid(), n,
+                     ext);
     if (k < 0 || (size_t)k >= len)
         return aa_fail(AA_EINVAL, "%s: temporary name too long for its buffer (%zu bytes)", path,
                        len);
