@@ -11,7 +11,9 @@
  * The binary formats go through OpenImageIO (oiio.cpp), except for writing
  * .pfm: OpenImageIO 2.4 (Debian 12) reads PFM but its PNM writer only makes
  * 8- and 16-bit PPM/PGM, so we write that simple format here.  The .txt
- * format is ours; its reader and writer are in image_txt.c.
+ * format is ours; its reader and writer are in image_txt.c.  OpenImageIO is
+ * a module of its own, loaded the first time a file needs it (the end of
+ * this file, and oiio.h), so neither .txt nor writing .pfm loads it.
  *
  * Every write goes to a temporary name beside the result and is renamed
  * into place (files.c), so a failure leaves no output behind.
@@ -36,6 +38,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <dlfcn.h>
+#include <limits.h>
+#include <pthread.h>
+#include <unistd.h>
 
 /* Room for a temporary file name (PATH_MAX on Linux). */
 #define TEMP_NAME_MAX 4096
@@ -335,6 +342,7 @@ typedef struct write_job {
     const aa_image *im;
     const unsigned char *bytes; /* display-encoded samples, for 8-bit files */
     double gamma;               /* their encoding (oiio.h) */
+    const aa__oiio_api *oiio;   /* for the formats OpenImageIO writes */
 } write_job;
 
 int aa__image_stdio_write(const char *tmp, const aa_image *im,
@@ -392,10 +400,10 @@ static int write_file(const char *tmp, const write_job *job)
     case FORMAT_TXT: return aa__txt_write_file(tmp, im);
     case FORMAT_PFM: return aa__image_stdio_write(tmp, im, pfm_body);
     case FORMAT_FLOAT:
-        return aa__oiio_write_float(tmp, job->format->oiio, im->w, im->h, im->c, im->v);
+        return job->oiio->write_float(tmp, job->format->oiio, im->w, im->h, im->c, im->v);
     case FORMAT_8BIT:
-        return aa__oiio_write_8bit(tmp, job->format->oiio, im->w, im->h, im->c, job->bytes,
-                                   job->gamma);
+        return job->oiio->write_8bit(tmp, job->format->oiio, im->w, im->h, im->c, job->bytes,
+                                     job->gamma);
     }
     return aa_fail(AA_EFAIL, "%s: unknown format kind", tmp);
 }
@@ -471,7 +479,11 @@ int aa_image_write(const char *path, const aa_image *im, const aa_encode *enc)
         job.bytes = bytes;
         job.gamma = encode_gamma(enc);
     }
-    status = write_via_temp(path, &job);
+    /* Loaded before the temporary file is made, so a failure names `path`. */
+    if (f->oiio != NULL && (job.oiio = aa__oiio(path)) == NULL)
+        status = AA_EIO;
+    else
+        status = write_via_temp(path, &job);
     free(bytes);
     return status;
 }
@@ -522,17 +534,20 @@ static int check_file_size(const char *path, const aa__oiio_info *info)
 
 static int read_oiio(const char *path, aa_image *im)
 {
+    const aa__oiio_api *oiio = aa__oiio(path);
+    if (oiio == NULL)
+        return AA_EIO;
     aa__oiio_in *in;
     aa__oiio_info info;
-    int status = aa__oiio_open(path, &in, &info);
+    int status = oiio->open(path, &in, &info);
     if (status != AA_OK)
         return status;
     status = check_file_size(path, &info);
     if (status == AA_OK)
         status = aa_image_alloc(im, info.w, info.h, info.c);
     if (status == AA_OK)
-        status = aa__oiio_read(in, im->v);
-    aa__oiio_close(in);
+        status = oiio->read(in, im->v);
+    oiio->close(in);
     if (status != AA_OK) {
         aa_image_free(im);
         return status;
@@ -554,4 +569,157 @@ int aa_image_read(const char *path, aa_image *im)
     if (f->kind == FORMAT_TXT)
         return aa_image_read_txt(path, im);
     return read_oiio(path, im);
+}
+
+/* ------------------------------------------------------------------------
+ * OpenImageIO, loaded on first use
+ * ------------------------------------------------------------------------ */
+
+/* Where `make install` puts the module: $(PREFIX)/lib/aabench, given by the
+ * Makefile. */
+#ifndef AA_OIIO_DIR
+#define AA_OIIO_DIR "/usr/local/lib/aabench"
+#endif
+
+static pthread_once_t oiio_once = PTHREAD_ONCE_INIT;
+static const aa__oiio_api *oiio_api;
+/* Why oiio_api is NULL, for every caller's message. */
+static char oiio_why[768];
+
+/* Say why in oiio_why (cut to fit). */
+static void oiio_say(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+static void oiio_say(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(oiio_why, sizeof oiio_why, fmt, ap);
+    va_end(ap);
+}
+
+#ifdef AA_OIIO_STATIC
+
+/* Linked in (oiio.h): nothing to load. */
+static void oiio_load(void)
+{
+    oiio_api = aa__oiio_entry(AA__OIIO_VERSION, aa_fail);
+    if (oiio_api == NULL)
+        oiio_say("the OpenImageIO code linked in is from another version of aabench");
+}
+
+#else
+
+/* Load the module at `path` into oiio_api, or say why not in oiio_why. */
+static void oiio_open(const char *path)
+{
+    void *module = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (module == NULL) {
+        const char *err = dlerror();
+        oiio_say("%s", err ? err : "dlopen failed");
+        return;
+    }
+    void *sym = dlsym(module, AA__OIIO_ENTRY);
+    if (sym == NULL) {
+        const char *err = dlerror();
+        oiio_say("%s", err ? err : "no " AA__OIIO_ENTRY);
+        dlclose(module);
+        return;
+    }
+    /* POSIX lets a dlsym result be a function; memcpy says so in ISO C. */
+    const aa__oiio_api *(*entry)(int, aa__oiio_fail_fn);
+    memcpy(&entry, &sym, sizeof entry);
+    oiio_api = entry(AA__OIIO_VERSION, aa_fail);
+    if (oiio_api == NULL) {
+        oiio_say("it was built for another version of aabench");
+        dlclose(module);
+    }
+    /* Otherwise kept for the life of the process: OpenImageIO keeps threads
+     * and caches that must not be unloaded under it. */
+}
+
+/* Put "cannot load the OpenImageIO module NAME: " before oiio_why; `how`
+ * says where the name came from. */
+static void oiio_cannot_load(const char *name, const char *how)
+{
+    char why[sizeof oiio_why];
+    memcpy(why, oiio_why, sizeof why);
+    oiio_say("cannot load the OpenImageIO module %s%s: %s", name, how, why);
+}
+
+/* dir/aabench-oiio.so into buf (PATH_MAX); 0 if it does not fit. */
+static int module_in(char *buf, const char *dir)
+{
+    int n = snprintf(buf, PATH_MAX, "%s/%s", dir, AA__OIIO_MODULE);
+    return n > 0 && n < PATH_MAX;
+}
+
+/* The module is $AABENCH_OIIO when that is set (and only then, so a wrong
+ * setting is reported, not passed over).  Otherwise it is looked for beside
+ * the running program, in the folder above it (the test programs are in
+ * build/tests/) and in AA_OIIO_DIR; the first that exists is the one loaded,
+ * or whose failure is reported. */
+static void oiio_load(void)
+{
+    const char *explicit_path = getenv("AABENCH_OIIO");
+    if (explicit_path != NULL && *explicit_path != '\0') {
+        oiio_open(explicit_path);
+        if (oiio_api == NULL)
+            oiio_cannot_load(explicit_path, " (AABENCH_OIIO)");
+        return;
+    }
+    char exe[PATH_MAX], cand[3][PATH_MAX];
+    int n = 0;
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len > 0) {
+        exe[len] = '\0';
+        for (int up = 0; up < 2; up++) {
+            char *slash = strrchr(exe, '/');
+            if (slash == NULL)
+                break;
+            *slash = '\0';
+            if (module_in(cand[n], *exe ? exe : "/"))
+                n++;
+        }
+    }
+    if (module_in(cand[n], AA_OIIO_DIR))
+        n++;
+    for (int k = 0; k < n; k++) {
+        oiio_open(cand[k]);
+        if (oiio_api != NULL)
+            return;
+        if (access(cand[k], F_OK) == 0) { /* there, but it does not load */
+            oiio_cannot_load(cand[k], "");
+            return;
+        }
+    }
+    /* Found nowhere: each place, and the loader's word on the last. */
+    char why[sizeof oiio_why];
+    memcpy(why, oiio_why, sizeof why);
+    oiio_say("the OpenImageIO module %s was not found: looked for %s%s%s%s%s "
+             "(AABENCH_OIIO may give its path); %s", AA__OIIO_MODULE, n > 0 ? cand[0] : "",
+             n > 1 ? ", " : "", n > 1 ? cand[1] : "", n > 2 ? ", " : "", n > 2 ? cand[2] : "",
+             why);
+}
+
+#endif
+
+const aa__oiio_api *aa__oiio(const char *path)
+{
+    pthread_once(&oiio_once, oiio_load);
+    if (oiio_api == NULL)
+        aa_fail(AA_EIO, "%s: %s", path, oiio_why);
+    return oiio_api;
+}
+
+int aa__oiio_text(double *pixels, int w, int h, int c, int x, int y, const char *text, int size,
+                  const float *colour)
+{
+    const aa__oiio_api *oiio = aa__oiio("montage labels");
+    if (oiio == NULL)
+        return AA_EIO;
+    return oiio->text(pixels, w, h, c, x, y, text, size, colour);
 }
