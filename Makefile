@@ -46,6 +46,8 @@ SAN       := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-
 SAN_BUILD := $(BUILD)/san
 
 CLI_SRC  := $(wildcard harness/cli/*.c)
+# the command line but main.c, for tests that call cli_main() in-process
+CLI_LIB_SRC := $(filter-out harness/cli/main.c,$(CLI_SRC))
 LIB_CSRC := $(wildcard harness/core/*.c harness/truth/*.c harness/bench/*.c) \
             $(wildcard patterns/*.c) $(wildcard algorithms/*.c)
 OIIO_SRC := harness/core/oiio.cpp
@@ -61,6 +63,8 @@ endef
 
 LIB      := $(BUILD)/libaabench.a
 SAN_LIB  := $(SAN_BUILD)/libaabench.a
+CLI_LIB     := $(BUILD)/libaabench-cli.a
+SAN_CLI_LIB := $(SAN_BUILD)/libaabench-cli.a
 OIIO_SO     := $(BUILD)/aabench-oiio.so
 SAN_OIIO_SO := $(SAN_BUILD)/aabench-oiio.so
 TESTS     := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
@@ -107,15 +111,20 @@ $(LIB): $(call objs,$(BUILD))
 	@rm -f $@
 	@echo '  AR    $@'
 	$(Q)ar rcs $@ $^
+$(CLI_LIB): $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_LIB_SRC))
+	@rm -f $@
+	@echo '  AR    $@'
+	$(Q)ar rcs $@ $^
 # The command exports the whole library, so plug-ins can call it.
 WHOLE = -rdynamic -Wl,--whole-archive $(1) -Wl,--no-whole-archive
 $(BUILD)/aabench: $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_SRC)) $(LIB) | $(OIIO_SO)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CFLAGS) $(filter %.o,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS)
-$(BUILD)/tests/%: tests/%.c $(patsubst %.c,$(BUILD)/obj/%.o,$(TEST_AUX)) $(LIB) | $(OIIO_SO)
+# A test links the command line's objects it uses (cli_main...) from $(CLI_LIB).
+$(BUILD)/tests/%: tests/%.c $(patsubst %.c,$(BUILD)/obj/%.o,$(TEST_AUX)) $(CLI_LIB) $(LIB) | $(OIIO_SO)
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -Itests $(PKG_CFLAGS) $< $(filter %.o,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -Itests $(PKG_CFLAGS) $< $(filter %.o,$^) $(CLI_LIB) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
 $(BUILD)/tests/%.so: tests/%.c harness/aabench.h
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
@@ -140,13 +149,17 @@ $(SAN_LIB): $(call objs,$(SAN_BUILD))
 	@rm -f $@
 	@echo '  AR    $@'
 	$(Q)ar rcs $@ $^
+$(SAN_CLI_LIB): $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_LIB_SRC))
+	@rm -f $@
+	@echo '  AR    $@'
+	$(Q)ar rcs $@ $^
 $(SAN_BUILD)/aabench: $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_SRC)) $(SAN_LIB) | $(SAN_OIIO_SO)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CFLAGS) $(SAN) $(filter %.o,$^) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS)
-$(SAN_BUILD)/tests/%: tests/%.c $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(TEST_AUX)) $(SAN_LIB) | $(SAN_OIIO_SO)
+$(SAN_BUILD)/tests/%: tests/%.c $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(TEST_AUX)) $(SAN_CLI_LIB) $(SAN_LIB) | $(SAN_OIIO_SO)
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $< $(filter %.o,$^) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $< $(filter %.o,$^) $(SAN_CLI_LIB) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
 $(SAN_BUILD)/tests/%.so: tests/%.c harness/aabench.h
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'

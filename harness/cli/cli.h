@@ -14,6 +14,11 @@
 #include <stdint.h>
 #include <stdio.h>
 
+/* The whole command line: argv[0] the program, argv[1] the subcommand;
+ * returns the exit status (cli_main.c).  main.c calls it; tests call it in
+ * a forked child, without exec (tests/test_cli.c). */
+int cli_main(int argc, char **argv);
+
 /* Print "aabench CMD: <last error>" to stderr; returns the exit code. */
 int cli_fail(const char *cmd, int status);
 /* Report a getopt failure (unknown option or missing argument). */
