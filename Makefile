@@ -18,12 +18,20 @@ BUILD  := build
 CC     := gcc
 CXX    := g++
 
-PKGS      := gsl OpenImageIO
+PKGS      := gsl
 # the peer rasterizers (algorithms/freetype.c, stb.c, cairo.c)
 PKGS      += freetype2 stb cairo
 TEST_PKGS := cmocka
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+# OpenImageIO is linked into a module of its own, aabench-oiio.so
+# (harness/core/oiio.cpp), which the library loads with dlopen when an image
+# file first needs it (harness/core/oiio.h): the command and the tests do
+# not link it, and start without loading its ~250 libraries.
+OIIO_CFLAGS = $(shell pkg-config --cflags OpenImageIO 2>/dev/null)
+OIIO_LIBS   = $(shell pkg-config --libs OpenImageIO 2>/dev/null)
+# where `make install` puts the module; compiled into image.c
+OIIO_DIR   := $(PREFIX)/lib/aabench
 TEST_LIBS  = $(shell pkg-config --cflags --libs $(TEST_PKGS) 2>/dev/null)
 
 WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-unknown-pragmas
@@ -32,27 +40,33 @@ HARNESS  := harness/core harness/truth harness/bench harness/cli
 CPPFLAGS := -MMD -MP -D_DEFAULT_SOURCE -Iharness $(addprefix -I,$(HARNESS)) -Ipatterns -Ialgorithms
 CFLAGS   := -std=c11 -O2 -g $(WARN) -fopenmp -fPIC
 CXXFLAGS := -std=c++17 -O2 -g -Wall -Wextra -Werror -fPIC
-LDLIBS    = $(PKG_LIBS) -lstdc++ -lm -ldl -fopenmp
+LDLIBS    = $(PKG_LIBS) -lm -ldl -fopenmp
 
 SAN       := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 SAN_BUILD := $(BUILD)/san
 
 CLI_SRC  := $(wildcard harness/cli/*.c)
+# the command line but main.c, for tests that call cli_main() in-process
+CLI_LIB_SRC := $(filter-out harness/cli/main.c,$(CLI_SRC))
 LIB_CSRC := $(wildcard harness/core/*.c harness/truth/*.c harness/bench/*.c) \
             $(wildcard patterns/*.c) $(wildcard algorithms/*.c)
-LIB_XSRC := $(wildcard harness/core/*.cpp)
+OIIO_SRC := harness/core/oiio.cpp
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_AUX := $(filter-out $(TEST_SRC) tests/bench_%.c tests/plugin_%.c,$(wildcard tests/*.c))
 PLUGIN_SRC := $(wildcard tests/plugin_*.c)
 BENCH_SRC := $(wildcard tests/bench_*.c)
 
-# $(1): build folder, $(2): extra flags
+# $(1): build folder
 define objs
-$(patsubst %.c,$(1)/obj/%.o,$(LIB_CSRC)) $(patsubst %.cpp,$(1)/obj/%.o,$(LIB_XSRC))
+$(patsubst %.c,$(1)/obj/%.o,$(LIB_CSRC))
 endef
 
 LIB      := $(BUILD)/libaabench.a
 SAN_LIB  := $(SAN_BUILD)/libaabench.a
+CLI_LIB     := $(BUILD)/libaabench-cli.a
+SAN_CLI_LIB := $(SAN_BUILD)/libaabench-cli.a
+OIIO_SO     := $(BUILD)/aabench-oiio.so
+SAN_OIIO_SO := $(SAN_BUILD)/aabench-oiio.so
 TESTS     := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
 PLUGINS   := $(patsubst tests/%.c,$(BUILD)/tests/%.so,$(PLUGIN_SRC))
 SAN_PLUGINS := $(patsubst tests/%.c,$(SAN_BUILD)/tests/%.so,$(PLUGIN_SRC))
@@ -63,10 +77,10 @@ BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
 .PRECIOUS: $(BUILD)/obj/%.o $(SAN_BUILD)/obj/%.o
 
 .PHONY: all deps run test check-tests check-tests-san check-gate baseline bench install clean \
-        fuzz valgrind
+        fuzz valgrind FORCE
 .DEFAULT_GOAL := all
 
-all: $(BUILD)/aabench $(LIB)
+all: $(BUILD)/aabench $(LIB) $(OIIO_SO)
 
 deps:
 	@sh scripts/install-deps.sh
@@ -79,27 +93,45 @@ $(BUILD)/obj/%.o: %.c
 $(BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	@echo '  CXX   $@'
-	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(PKG_CFLAGS) -c $< -o $@
+	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(OIIO_CFLAGS) -c $< -o $@
+# The module's install folder is compiled into image.o, which is remade when
+# PREFIX changes (the file $(BUILD)/oiio-dir holds the last one).
+$(BUILD)/oiio-dir: FORCE
+	@mkdir -p $(dir $@)
+	@echo '$(OIIO_DIR)' | cmp -s - $@ || echo '$(OIIO_DIR)' > $@
+FORCE:
+$(BUILD)/obj/harness/core/image.o $(SAN_BUILD)/obj/harness/core/image.o: $(BUILD)/oiio-dir
+$(BUILD)/obj/harness/core/image.o $(SAN_BUILD)/obj/harness/core/image.o: \
+  CPPFLAGS += -DAA_OIIO_DIR='"$(OIIO_DIR)"'
+# -z defs: the module needs no symbol of the program that loads it.
+$(OIIO_SO): $(patsubst %.cpp,$(BUILD)/obj/%.o,$(OIIO_SRC))
+	@echo '  LD    $@'
+	$(Q)$(CXX) $(CXXFLAGS) -shared -Wl,-z,defs $^ -o $@ $(OIIO_LIBS)
 $(LIB): $(call objs,$(BUILD))
+	@rm -f $@
+	@echo '  AR    $@'
+	$(Q)ar rcs $@ $^
+$(CLI_LIB): $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_LIB_SRC))
 	@rm -f $@
 	@echo '  AR    $@'
 	$(Q)ar rcs $@ $^
 # The command exports the whole library, so plug-ins can call it.
 WHOLE = -rdynamic -Wl,--whole-archive $(1) -Wl,--no-whole-archive
-$(BUILD)/aabench: $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_SRC)) $(LIB)
+$(BUILD)/aabench: $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_SRC)) $(LIB) | $(OIIO_SO)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CFLAGS) $(filter %.o,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS)
-$(BUILD)/tests/%: tests/%.c $(patsubst %.c,$(BUILD)/obj/%.o,$(TEST_AUX)) $(LIB)
+# A test links the command line's objects it uses (cli_main...) from $(CLI_LIB).
+$(BUILD)/tests/%: tests/%.c $(patsubst %.c,$(BUILD)/obj/%.o,$(TEST_AUX)) $(CLI_LIB) $(LIB) | $(OIIO_SO)
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -Itests $(PKG_CFLAGS) $(filter-out %.a,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -Itests $(PKG_CFLAGS) $< $(filter %.o,$^) $(CLI_LIB) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
 $(BUILD)/tests/%.so: tests/%.c harness/aabench.h
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -shared $< -o $@
-$(BUILD)/bench_%: tests/bench_%.c $(LIB)
+$(BUILD)/bench_%: tests/bench_%.c $(LIB) | $(OIIO_SO)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) $^ -o $@ $(LDLIBS)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) $< $(LIB) -o $@ $(LDLIBS)
 
 # ---- sanitizer build ----
 $(SAN_BUILD)/obj/%.o: %.c
@@ -109,18 +141,25 @@ $(SAN_BUILD)/obj/%.o: %.c
 $(SAN_BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	@echo '  CXX   $@'
-	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) -O1 $(SAN) $(PKG_CFLAGS) -c $< -o $@
+	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) -O1 $(SAN) $(OIIO_CFLAGS) -c $< -o $@
+$(SAN_OIIO_SO): $(patsubst %.cpp,$(SAN_BUILD)/obj/%.o,$(OIIO_SRC))
+	@echo '  LD    $@'
+	$(Q)$(CXX) $(CXXFLAGS) -O1 $(SAN) -shared -Wl,-z,defs $^ -o $@ $(OIIO_LIBS)
 $(SAN_LIB): $(call objs,$(SAN_BUILD))
 	@rm -f $@
 	@echo '  AR    $@'
 	$(Q)ar rcs $@ $^
-$(SAN_BUILD)/aabench: $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_SRC)) $(SAN_LIB)
+$(SAN_CLI_LIB): $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_LIB_SRC))
+	@rm -f $@
+	@echo '  AR    $@'
+	$(Q)ar rcs $@ $^
+$(SAN_BUILD)/aabench: $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_SRC)) $(SAN_LIB) | $(SAN_OIIO_SO)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CFLAGS) $(SAN) $(filter %.o,$^) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS)
-$(SAN_BUILD)/tests/%: tests/%.c $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(TEST_AUX)) $(SAN_LIB)
+$(SAN_BUILD)/tests/%: tests/%.c $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(TEST_AUX)) $(SAN_CLI_LIB) $(SAN_LIB) | $(SAN_OIIO_SO)
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $(filter-out %.a,$^) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $< $(filter %.o,$^) $(SAN_CLI_LIB) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
 $(SAN_BUILD)/tests/%.so: tests/%.c harness/aabench.h
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
@@ -128,7 +167,9 @@ $(SAN_BUILD)/tests/%.so: tests/%.c harness/aabench.h
 
 # ---- fuzzing (libFuzzer; clang, not part of `make test`) ----
 # The library is built again with clang into build/fuzz, instrumented for
-# the fuzzer and ASan+UBSan, with LLVM's OpenMP (Debian libomp-dev).
+# the fuzzer and ASan+UBSan, with LLVM's OpenMP (Debian libomp-dev).  Here
+# oiio.o is linked into the targets and image.c calls it directly
+# (-DAA_OIIO_STATIC, harness/core/oiio.h): no module to load.
 FUZZ_BUILD   := $(BUILD)/fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_FLAGS   := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g -O1
@@ -140,15 +181,16 @@ $(FUZZ_BUILD)/obj/%.o: %.c
 $(FUZZ_BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	@echo '  CLANG $@'
-	$(Q)clang++ $(CPPFLAGS) -std=c++17 -Wall -Wextra -Werror -fPIC $(FUZZ_FLAGS) $(PKG_CFLAGS) -c $< -o $@
-$(FUZZ_BUILD)/libaabench.a: $(call objs,$(FUZZ_BUILD))
+	$(Q)clang++ $(CPPFLAGS) -std=c++17 -Wall -Wextra -Werror -fPIC $(FUZZ_FLAGS) $(OIIO_CFLAGS) -c $< -o $@
+$(FUZZ_BUILD)/obj/harness/core/image.o: CPPFLAGS += -DAA_OIIO_STATIC
+$(FUZZ_BUILD)/libaabench.a: $(call objs,$(FUZZ_BUILD)) $(patsubst %.cpp,$(FUZZ_BUILD)/obj/%.o,$(OIIO_SRC))
 	@rm -f $@
 	@echo '  AR    $@'
 	$(Q)ar rcs $@ $^
 $(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_BUILD)/libaabench.a
 	@echo '  LD    $@'
 	$(Q)clang++ $(CPPFLAGS) -x c -std=c11 $(WARN) -fsanitize=fuzzer,address,undefined -g -O1 $< -x none \
-	  $(FUZZ_BUILD)/libaabench.a -o $@ $(PKG_LIBS) -lm -ldl -fopenmp
+	  $(FUZZ_BUILD)/libaabench.a -o $@ $(PKG_LIBS) $(OIIO_LIBS) -lm -ldl -fopenmp
 fuzz:
 	@command -v clang >/dev/null 2>&1 && test -e /usr/lib/llvm-14/lib/libomp.so || { echo "make fuzz needs clang and libomp-dev: apt-get install clang libomp-dev" >&2; exit 2; }
 	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)
@@ -220,8 +262,10 @@ figures: $(BUILD)/aabench
 	else echo "figures: chromium missing, gallery not checked (apt-get install chromium)"; fi
 
 install: all
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include \
+	  $(DESTDIR)$(OIIO_DIR)
 	install -m 755 $(BUILD)/aabench $(DESTDIR)$(PREFIX)/bin/
+	install -m 755 $(OIIO_SO) $(DESTDIR)$(OIIO_DIR)/
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
 	install -m 644 harness/aabench.h $(DESTDIR)$(PREFIX)/include/
 

@@ -3,7 +3,8 @@
  * line"):
  * bad input gets exit status 2 and a message naming the problem and what is
  * accepted, an unwritable output 3, and a refused command writes nothing.
- * The command under test is $AABENCH (set by scripts/run-tests.sh).
+ * The command under test is $AABENCH (set by scripts/run-tests.sh); one
+ * test runs the command line in-process instead (cli_main, in a child).
  */
 #include "bench.h"
 
@@ -19,6 +20,8 @@
 #include <unistd.h>
 
 #include <cmocka.h>
+
+#include "cli.h"
 
 static char dir[] = "/tmp/aabench-cli-XXXXXX";
 static char output[8192];
@@ -280,6 +283,43 @@ static void test_success(void **state)
     unlink(out_txt);
 }
 
+/* The command line without exec: cli_main() in a forked child of this
+ * process, its standard output into a file.  The child must not count on
+ * OpenMP state from here (fork copies no threads of libgomp's pool); this
+ * process runs no parallel region, the other tests exec the command. */
+static void test_cli_main(void **state)
+{
+    (void)state;
+    char log[4096];
+    snprintf(log, sizeof log, "%s/log", dir);
+    fflush(NULL);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd < 0 || dup2(fd, 1) < 0)
+            _exit(126);
+        close(fd);
+        char a0[] = "aabench", a1[] = "list", a2[] = "patterns";
+        char *argv[] = {a0, a1, a2, NULL};
+        int code = cli_main(3, argv);
+        fflush(NULL);
+        _exit(code);
+    }
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 0);
+    FILE *f = fopen(log, "r");
+    assert_non_null(f);
+    size_t n = fread(output, 1, sizeof output - 1, f);
+    output[n] = '\0';
+    fclose(f);
+    if (!strstr(output, "crow\t") || !strstr(output, "zoneplate\t"))
+        fail_msg("cli_main list patterns: \"%s\"", output);
+    folder_clean();
+}
+
 static void test_render(void **state)
 {
     (void)state;
@@ -364,6 +404,7 @@ int main(void)
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_refusals_everywhere),
         cmocka_unit_test(test_success),
+        cmocka_unit_test(test_cli_main),
         cmocka_unit_test(test_render),
         cmocka_unit_test(test_cache),
     };

@@ -14,6 +14,11 @@
 #include <stdint.h>
 #include <stdio.h>
 
+/* The whole command line: argv[0] the program, argv[1] the subcommand;
+ * returns the exit status (cli_main.c).  main.c calls it; tests call it in
+ * a forked child, without exec (tests/test_cli.c). */
+int cli_main(int argc, char **argv);
+
 /* The library's warning handler (aa_set_warn): "aabench: warning: MSG" on
  * stderr. */
 void cli_warn(const char *message, void *ctx);

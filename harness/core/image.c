@@ -12,9 +12,9 @@
  * The binary formats go through OpenImageIO (oiio.cpp), except for writing
  * .pfm: OpenImageIO 2.4 (Debian 12) reads PFM but its PNM writer only makes
  * 8- and 16-bit PPM/PGM, so we write that simple format here.  The .txt
- * format is ours, so its reader is written to be strict and safe on hostile
- * input: nothing is allocated before the header's sizes are checked, and
- * every refusal names the file and the line.
+ * format is ours; its reader and writer are in image_txt.c.  OpenImageIO is
+ * a module of its own, loaded the first time a file needs it (the end of
+ * this file, and oiio.h), so neither .txt nor writing .pfm loads it.
  *
  * Every write goes to a temporary name beside the result and is renamed
  * into place (files.c), so a failure leaves no output behind.
@@ -29,6 +29,7 @@
 
 #include "core.h"
 #include "oiio.h"
+#include "image_internal.h"
 
 #include <errno.h>
 #include <locale.h>
@@ -39,14 +40,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* RGB plus one: what every format here can hold, and more than any image the
- * harness makes (RGB results, 1-channel bounds). */
-#define MAX_CHANNELS 4
-
-/* Longest .txt line accepted: a pixel line is at most about 120 characters
- * ("65535 65535" and four %.17g values), so this leaves room for any
- * reasonable spacing while bounding what a hostile file can make us hold. */
-#define TXT_LINE_MAX 1024
+#include <dlfcn.h>
+#include <limits.h>
+#include <pthread.h>
+#include <unistd.h>
 
 /* Room for a temporary file name (PATH_MAX on Linux). */
 #define TEMP_NAME_MAX 4096
@@ -103,13 +100,7 @@ static size_t image_values(const aa_image *im)
  * Numbers as text
  * ------------------------------------------------------------------------ */
 
-/* The C locale for numbers, switched on for this thread only while a file or
- * spec is converted. */
-typedef struct c_numbers {
-    locale_t c, saved;
-} c_numbers;
-
-static int c_numbers_begin(c_numbers *n, const char *what)
+int aa__c_numbers_begin(aa__c_numbers *n, const char *what)
 {
     n->c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
     if (n->c == (locale_t)0)
@@ -118,22 +109,17 @@ static int c_numbers_begin(c_numbers *n, const char *what)
     return AA_OK;
 }
 
-static void c_numbers_end(c_numbers *n)
+void aa__c_numbers_end(aa__c_numbers *n)
 {
     uselocale(n->saved);
     freelocale(n->c);
-}
-
-static int is_digit(char ch)
-{
-    return ch >= '0' && ch <= '9';
 }
 
 /* Skip digits; how many there were. */
 static size_t skip_digits(const char **p, const char *end)
 {
     const char *start = *p;
-    while (*p < end && is_digit(**p))
+    while (*p < end && aa__is_digit(**p))
         (*p)++;
     return (size_t)(*p - start);
 }
@@ -163,22 +149,18 @@ static int decimal_syntax(const char *s, size_t len)
     return p == end;
 }
 
-typedef enum number_result { NUMBER_OK, NUMBER_MALFORMED, NUMBER_NOT_FINITE } number_result;
-
-/* The finite number spelled by s[0, len), which is followed by a character
- * that cannot continue a number (blank or NUL).  Needs c_numbers. */
-static number_result parse_number(const char *s, size_t len, double *v)
+aa__number_result aa__parse_number(const char *s, size_t len, double *v)
 {
     if (!decimal_syntax(s, len))
-        return NUMBER_MALFORMED;
+        return AA__NUMBER_MALFORMED;
     char *end;
     /* ERANGE is no reason to refuse: an underflow is still the correctly
      * rounded value (5e-324 is one), and an overflow is caught as not
      * finite just below. */
     *v = strtod(s, &end);
     if (end != s + len)
-        return NUMBER_MALFORMED;
-    return isfinite(*v) ? NUMBER_OK : NUMBER_NOT_FINITE;
+        return AA__NUMBER_MALFORMED;
+    return isfinite(*v) ? AA__NUMBER_OK : AA__NUMBER_NOT_FINITE;
 }
 
 /* ------------------------------------------------------------------------
@@ -204,14 +186,14 @@ int aa_encode_parse(const char *text, aa_encode *out)
     if (strncmp(text, prefix, sizeof prefix - 1) != 0)
         return aa_fail(AA_EINVAL, "unknown encoding '%s' (%s)", text, encode_accepted);
     const char *g = text + sizeof prefix - 1;
-    c_numbers numbers;
-    int status = c_numbers_begin(&numbers, "encoding");
+    aa__c_numbers numbers;
+    int status = aa__c_numbers_begin(&numbers, "encoding");
     if (status != AA_OK)
         return status;
     double gamma;
-    number_result r = parse_number(g, strlen(g), &gamma);
-    c_numbers_end(&numbers);
-    if (r != NUMBER_OK || !(gamma >= 1 && gamma <= 4))
+    aa__number_result r = aa__parse_number(g, strlen(g), &gamma);
+    aa__c_numbers_end(&numbers);
+    if (r != AA__NUMBER_OK || !(gamma >= 1 && gamma <= 4))
         return aa_fail(AA_EINVAL, "encoding '%s': gamma '%s' is not a number in [1, 4] (%s)", text,
                        g, encode_accepted);
     *out = (aa_encode){AA_ENCODE_GAMMA, gamma};
@@ -349,7 +331,7 @@ static int check_image(const char *path, const aa_image *im, const image_format 
     if (im->w > AA_MAX_SIDE || im->h > AA_MAX_SIDE)
         return aa_fail(AA_EINVAL, "%s: image %d x %d: a side is above %d", path, im->w, im->h,
                        AA_MAX_SIDE);
-    if (im->c > MAX_CHANNELS || !(f->channels & (1u << im->c)))
+    if (im->c > AA__IMAGE_MAX_CHANNELS || !(f->channels & (1u << im->c)))
         return aa_fail(AA_EINVAL, "%s: %d channels: %s takes %s", path, im->c, f->ext,
                        f->channels_why);
     return AA_OK;
@@ -361,12 +343,11 @@ typedef struct write_job {
     const aa_image *im;
     const unsigned char *bytes; /* display-encoded samples, for 8-bit files */
     double gamma;               /* their encoding (oiio.h) */
+    const aa__oiio_api *oiio;   /* for the formats OpenImageIO writes */
 } write_job;
 
-/* Write a file with stdio: `body` returns nonzero on a write error, with
- * errno set. */
-static int stdio_write(const char *tmp, const aa_image *im,
-                       int (*body)(FILE *f, const aa_image *im))
+int aa__image_stdio_write(const char *tmp, const aa_image *im,
+                          int (*body)(FILE *f, const aa_image *im))
 {
     /* "x": never write through a name someone else has just made. */
     FILE *f = fopen(tmp, "wbx");
@@ -380,38 +361,6 @@ static int stdio_write(const char *tmp, const aa_image *im,
         err = errno;
     }
     return failed ? aa_fail(AA_EIO, "cannot write %s: %s", tmp, strerror(err)) : AA_OK;
-}
-
-static int txt_lines(FILE *f, const aa_image *im)
-{
-    if (fprintf(f, "# aabench %d %d %d\n", im->w, im->h, im->c) < 0)
-        return -1;
-    for (int j = 0; j < im->h; j++) {
-        for (int i = 0; i < im->w; i++) {
-            const double *v = aa_pixel(im, i, j);
-            if (fprintf(f, "%d %d", i, j) < 0)
-                return -1;
-            /* 17 significant digits identify every double (IEEE 754-2008,
-             * 5.12.2), so strtod gives back the same bits. */
-            for (int k = 0; k < im->c; k++)
-                if (fprintf(f, " %.17g", v[k]) < 0)
-                    return -1;
-            if (putc('\n', f) == EOF)
-                return -1;
-        }
-    }
-    return 0;
-}
-
-static int txt_write_file(const char *tmp, const aa_image *im)
-{
-    c_numbers numbers;
-    int status = c_numbers_begin(&numbers, tmp);
-    if (status != AA_OK)
-        return status;
-    status = stdio_write(tmp, im, txt_lines);
-    c_numbers_end(&numbers);
-    return status;
 }
 
 /* PFM (Debevec's portable float map): "PF" (3 channels) or "Pf" (1), the
@@ -449,13 +398,13 @@ static int write_file(const char *tmp, const write_job *job)
 {
     const aa_image *im = job->im;
     switch (job->format->kind) {
-    case FORMAT_TXT: return txt_write_file(tmp, im);
-    case FORMAT_PFM: return stdio_write(tmp, im, pfm_body);
+    case FORMAT_TXT: return aa__txt_write_file(tmp, im);
+    case FORMAT_PFM: return aa__image_stdio_write(tmp, im, pfm_body);
     case FORMAT_FLOAT:
-        return aa__oiio_write_float(tmp, job->format->oiio, im->w, im->h, im->c, im->v);
+        return job->oiio->write_float(tmp, job->format->oiio, im->w, im->h, im->c, im->v);
     case FORMAT_8BIT:
-        return aa__oiio_write_8bit(tmp, job->format->oiio, im->w, im->h, im->c, job->bytes,
-                                   job->gamma);
+        return job->oiio->write_8bit(tmp, job->format->oiio, im->w, im->h, im->c, job->bytes,
+                                     job->gamma);
     }
     return aa_fail(AA_EFAIL, "%s: unknown format kind", tmp);
 }
@@ -478,29 +427,13 @@ static int write_via_temp(const char *path, const write_job *job)
     return AA_OK;
 }
 
-/* The .txt format holds finite values only (its reader refuses the rest),
- * so refuse them here, before any file is made. */
-static int check_finite(const char *path, const aa_image *im)
-{
-    size_t n = image_values(im);
-    for (size_t k = 0; k < n; k++) {
-        if (!isfinite(im->v[k])) {
-            size_t pixel = k / (size_t)im->c;
-            return aa_fail(AA_EINVAL, "%s: pixel (%zu, %zu) channel %zu is %g: .txt holds "
-                           "finite values only", path, pixel % (size_t)im->w,
-                           pixel / (size_t)im->w, k % (size_t)im->c, im->v[k]);
-        }
-    }
-    return AA_OK;
-}
-
 int aa_image_write_txt(const char *path, const aa_image *im)
 {
     if (path == NULL)
         return aa_fail(AA_EINVAL, "aa_image_write_txt: no path");
     int status = check_image(path, im, txt_format);
     if (status == AA_OK)
-        status = check_finite(path, im);
+        status = aa__txt_check_finite(path, im);
     if (status != AA_OK)
         return status;
     write_job job = {.format = txt_format, .im = im};
@@ -547,221 +480,12 @@ int aa_image_write(const char *path, const aa_image *im, const aa_encode *enc)
         job.bytes = bytes;
         job.gamma = encode_gamma(enc);
     }
-    status = write_via_temp(path, &job);
+    /* Loaded before the temporary file is made, so a failure names `path`. */
+    if (f->oiio != NULL && (job.oiio = aa__oiio(path)) == NULL)
+        status = AA_EIO;
+    else
+        status = write_via_temp(path, &job);
     free(bytes);
-    return status;
-}
-
-/* ------------------------------------------------------------------------
- * Reading .txt
- * ------------------------------------------------------------------------ */
-
-typedef struct txt_reader {
-    FILE *f;
-    const char *path;
-    unsigned long line;     /* number of the line in buf, from 1 */
-    char buf[TXT_LINE_MAX]; /* that line, without its end */
-} txt_reader;
-
-/* Refuse the file at the current line. */
-static int txt_refuse(const txt_reader *r, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-
-static int txt_refuse(const txt_reader *r, const char *fmt, ...)
-{
-    char why[256];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(why, sizeof why, fmt, ap);
-    va_end(ap);
-    return aa_fail(AA_EIO, "%s:%lu: %s", r->path, r->line, why);
-}
-
-/* The next line into r->buf; *got is 0 at the end of the file.  A last line
- * without its newline is refused: it is what a cut-off file looks like, and
- * its last number may have lost digits. */
-static int txt_next_line(txt_reader *r, int *got)
-{
-    size_t n = 0;
-    int ch;
-    r->line++;
-    while ((ch = getc_unlocked(r->f)) != EOF && ch != '\n') {
-        if (ch == '\0')
-            return txt_refuse(r, "NUL byte: not a text file");
-        if (n + 1 >= sizeof r->buf)
-            return txt_refuse(r, "line longer than %d characters", TXT_LINE_MAX - 1);
-        r->buf[n++] = (char)ch;
-    }
-    if (ferror(r->f))
-        return txt_refuse(r, "read error: %s", strerror(errno));
-    if (ch == EOF && n > 0)
-        return txt_refuse(r, "the file ends inside this line (cut short?)");
-    if (n > 0 && r->buf[n - 1] == '\r')
-        n--; /* a file that went through Windows */
-    r->buf[n] = '\0';
-    *got = ch != EOF;
-    return AA_OK;
-}
-
-typedef struct token {
-    const char *s;
-    size_t n;
-} token;
-
-static int is_blank(char ch)
-{
-    return ch == ' ' || ch == '\t';
-}
-
-/* The next blank-separated word of the line at *p; 0 if none is left. */
-static int next_token(const char **p, token *t)
-{
-    while (is_blank(**p))
-        (*p)++;
-    if (**p == '\0')
-        return 0;
-    t->s = *p;
-    while (**p != '\0' && !is_blank(**p))
-        (*p)++;
-    t->n = (size_t)(*p - t->s);
-    return 1;
-}
-
-/* A count or index: decimal digits only, at most 9 so it fits an int. */
-static int parse_count(const token *t, int *v)
-{
-    if (t->n == 0 || t->n > 9)
-        return 0;
-    int x = 0;
-    for (size_t k = 0; k < t->n; k++) {
-        if (!is_digit(t->s[k]))
-            return 0;
-        x = 10 * x + (t->s[k] - '0');
-    }
-    *v = x;
-    return 1;
-}
-
-/* How much of a token to show in a message ("%.*s"): a hostile file must
- * not fill the message with one long word. */
-static int shown(const token *t)
-{
-    return t->n < 40 ? (int)t->n : 40;
-}
-
-static int txt_header(txt_reader *r, int *w, int *h, int *c)
-{
-    static const char expected[] = "expected the header '# aabench W H C'";
-    int got;
-    int status = txt_next_line(r, &got);
-    if (status != AA_OK)
-        return status;
-    if (!got)
-        return txt_refuse(r, "empty file: %s", expected);
-    const char *p = r->buf;
-    token t[6];
-    int n = 0;
-    while (n < 6 && next_token(&p, &t[n]))
-        n++;
-    if (n != 5 || t[0].n != 1 || t[0].s[0] != '#' || t[1].n != 7 ||
-        memcmp(t[1].s, "aabench", 7) != 0)
-        return txt_refuse(r, "%s", expected);
-    if (!parse_count(&t[2], w) || !parse_count(&t[3], h) || !parse_count(&t[4], c))
-        return txt_refuse(r, "%s with W, H, C whole numbers", expected);
-    if (*w < 1 || *w > AA_MAX_SIDE || *h < 1 || *h > AA_MAX_SIDE)
-        return txt_refuse(r, "image %d x %d: sides must be in [1, %d]", *w, *h, AA_MAX_SIDE);
-    if (*c < 1 || *c > MAX_CHANNELS)
-        return txt_refuse(r, "%d channels: must be in [1, %d]", *c, MAX_CHANNELS);
-    status = aa_size_check(*w, *h, *c, 1);
-    if (status != AA_OK)
-        return aa_fail_context(AA_EIO, "%s:%lu", r->path, r->line);
-    return AA_OK;
-}
-
-/* One pixel line: "i j v0 .. v(c-1)" for pixel (i, j). */
-static int txt_pixel(txt_reader *r, int i, int j, int c, double *v)
-{
-    int got;
-    int status = txt_next_line(r, &got);
-    if (status != AA_OK)
-        return status;
-    if (!got)
-        return txt_refuse(r, "the file ends before pixel (%d, %d)", i, j);
-    const char *p = r->buf;
-    token ti, tj;
-    int fi, fj;
-    if (!next_token(&p, &ti) || !next_token(&p, &tj) || !parse_count(&ti, &fi) ||
-        !parse_count(&tj, &fj))
-        return txt_refuse(r, "expected pixel '%d %d' and %d values", i, j, c);
-    if (fi != i || fj != j)
-        return txt_refuse(r, "found pixel (%d, %d) where (%d, %d) belongs: pixels go row by "
-                          "row, i fastest", fi, fj, i, j);
-    for (int k = 0; k < c; k++) {
-        token t;
-        if (!next_token(&p, &t))
-            return txt_refuse(r, "pixel (%d, %d) has %d values, expected %d", i, j, k, c);
-        switch (parse_number(t.s, t.n, &v[k])) {
-        case NUMBER_OK: break;
-        case NUMBER_NOT_FINITE: return txt_refuse(r, "'%.*s' is not finite", shown(&t), t.s);
-        default: return txt_refuse(r, "malformed number '%.*s'", shown(&t), t.s);
-        }
-    }
-    token extra;
-    if (next_token(&p, &extra))
-        return txt_refuse(r, "pixel (%d, %d) has more than %d values", i, j, c);
-    return AA_OK;
-}
-
-static int txt_body(txt_reader *r, aa_image *im)
-{
-    for (int j = 0; j < im->h; j++)
-        for (int i = 0; i < im->w; i++) {
-            int status = txt_pixel(r, i, j, im->c, aa_pixel(im, i, j));
-            if (status != AA_OK)
-                return status;
-        }
-    int got;
-    int status = txt_next_line(r, &got);
-    if (status == AA_OK && got)
-        status = txt_refuse(r, "a line after the last pixel");
-    return status;
-}
-
-static int txt_read(txt_reader *r, aa_image *im)
-{
-    int w = 0, h = 0, c = 0;
-    int status = txt_header(r, &w, &h, &c);
-    if (status == AA_OK)
-        status = aa_image_alloc(im, w, h, c);
-    if (status == AA_OK)
-        status = txt_body(r, im);
-    return status;
-}
-
-int aa_image_read_txt(const char *path, aa_image *im)
-{
-    if (path == NULL || im == NULL)
-        return aa_fail(AA_EINVAL, "aa_image_read_txt: no path or no image");
-    *im = (aa_image){0};
-    txt_reader r = {.path = path};
-    r.f = fopen(path, "r");
-    if (r.f == NULL)
-        return aa_fail(AA_EIO, "%s: cannot open: %s", path, strerror(errno));
-    c_numbers numbers;
-    int status = c_numbers_begin(&numbers, path);
-    if (status == AA_OK) {
-        /* One lock for the whole file, so getc_unlocked is allowed. */
-        flockfile(r.f);
-        status = txt_read(&r, im);
-        funlockfile(r.f);
-        c_numbers_end(&numbers);
-    }
-    fclose(r.f);
-    if (status != AA_OK)
-        aa_image_free(im);
     return status;
 }
 
@@ -801,9 +525,9 @@ static int check_file_size(const char *path, const aa__oiio_info *info)
     if (info->w < 1 || info->w > AA_MAX_SIDE || info->h < 1 || info->h > AA_MAX_SIDE)
         return aa_fail(AA_EIO, "%s: image %d x %d: sides must be in [1, %d]", path, info->w,
                        info->h, AA_MAX_SIDE);
-    if (info->c < 1 || info->c > MAX_CHANNELS)
+    if (info->c < 1 || info->c > AA__IMAGE_MAX_CHANNELS)
         return aa_fail(AA_EIO, "%s: %d channels: must be in [1, %d]", path, info->c,
-                       MAX_CHANNELS);
+                       AA__IMAGE_MAX_CHANNELS);
     if (aa_size_check(info->w, info->h, info->c, 1) != AA_OK)
         return aa_fail_context(AA_EIO, "%s", path);
     return AA_OK;
@@ -811,17 +535,20 @@ static int check_file_size(const char *path, const aa__oiio_info *info)
 
 static int read_oiio(const char *path, aa_image *im)
 {
+    const aa__oiio_api *oiio = aa__oiio(path);
+    if (oiio == NULL)
+        return AA_EIO;
     aa__oiio_in *in;
     aa__oiio_info info;
-    int status = aa__oiio_open(path, &in, &info);
+    int status = oiio->open(path, &in, &info);
     if (status != AA_OK)
         return status;
     status = check_file_size(path, &info);
     if (status == AA_OK)
         status = aa_image_alloc(im, info.w, info.h, info.c);
     if (status == AA_OK)
-        status = aa__oiio_read(in, im->v);
-    aa__oiio_close(in);
+        status = oiio->read(in, im->v);
+    oiio->close(in);
     if (status != AA_OK) {
         aa_image_free(im);
         return status;
@@ -843,4 +570,157 @@ int aa_image_read(const char *path, aa_image *im)
     if (f->kind == FORMAT_TXT)
         return aa_image_read_txt(path, im);
     return read_oiio(path, im);
+}
+
+/* ------------------------------------------------------------------------
+ * OpenImageIO, loaded on first use
+ * ------------------------------------------------------------------------ */
+
+/* Where `make install` puts the module: $(PREFIX)/lib/aabench, given by the
+ * Makefile. */
+#ifndef AA_OIIO_DIR
+#define AA_OIIO_DIR "/usr/local/lib/aabench"
+#endif
+
+static pthread_once_t oiio_once = PTHREAD_ONCE_INIT;
+static const aa__oiio_api *oiio_api;
+/* Why oiio_api is NULL, for every caller's message. */
+static char oiio_why[768];
+
+/* Say why in oiio_why (cut to fit). */
+static void oiio_say(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+static void oiio_say(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(oiio_why, sizeof oiio_why, fmt, ap);
+    va_end(ap);
+}
+
+#ifdef AA_OIIO_STATIC
+
+/* Linked in (oiio.h): nothing to load. */
+static void oiio_load(void)
+{
+    oiio_api = aa__oiio_entry(AA__OIIO_VERSION, aa_fail);
+    if (oiio_api == NULL)
+        oiio_say("the OpenImageIO code linked in is from another version of aabench");
+}
+
+#else
+
+/* Load the module at `path` into oiio_api, or say why not in oiio_why. */
+static void oiio_open(const char *path)
+{
+    void *module = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (module == NULL) {
+        const char *err = dlerror();
+        oiio_say("%s", err ? err : "dlopen failed");
+        return;
+    }
+    void *sym = dlsym(module, AA__OIIO_ENTRY);
+    if (sym == NULL) {
+        const char *err = dlerror();
+        oiio_say("%s", err ? err : "no " AA__OIIO_ENTRY);
+        dlclose(module);
+        return;
+    }
+    /* POSIX lets a dlsym result be a function; memcpy says so in ISO C. */
+    const aa__oiio_api *(*entry)(int, aa__oiio_fail_fn);
+    memcpy(&entry, &sym, sizeof entry);
+    oiio_api = entry(AA__OIIO_VERSION, aa_fail);
+    if (oiio_api == NULL) {
+        oiio_say("it was built for another version of aabench");
+        dlclose(module);
+    }
+    /* Otherwise kept for the life of the process: OpenImageIO keeps threads
+     * and caches that must not be unloaded under it. */
+}
+
+/* Put "cannot load the OpenImageIO module NAME: " before oiio_why; `how`
+ * says where the name came from. */
+static void oiio_cannot_load(const char *name, const char *how)
+{
+    char why[sizeof oiio_why];
+    memcpy(why, oiio_why, sizeof why);
+    oiio_say("cannot load the OpenImageIO module %s%s: %s", name, how, why);
+}
+
+/* dir/aabench-oiio.so into buf (PATH_MAX); 0 if it does not fit. */
+static int module_in(char *buf, const char *dir)
+{
+    int n = snprintf(buf, PATH_MAX, "%s/%s", dir, AA__OIIO_MODULE);
+    return n > 0 && n < PATH_MAX;
+}
+
+/* The module is $AABENCH_OIIO when that is set (and only then, so a wrong
+ * setting is reported, not passed over).  Otherwise it is looked for beside
+ * the running program, in the folder above it (the test programs are in
+ * build/tests/) and in AA_OIIO_DIR; the first that exists is the one loaded,
+ * or whose failure is reported. */
+static void oiio_load(void)
+{
+    const char *explicit_path = getenv("AABENCH_OIIO");
+    if (explicit_path != NULL && *explicit_path != '\0') {
+        oiio_open(explicit_path);
+        if (oiio_api == NULL)
+            oiio_cannot_load(explicit_path, " (AABENCH_OIIO)");
+        return;
+    }
+    char exe[PATH_MAX], cand[3][PATH_MAX];
+    int n = 0;
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len > 0) {
+        exe[len] = '\0';
+        for (int up = 0; up < 2; up++) {
+            char *slash = strrchr(exe, '/');
+            if (slash == NULL)
+                break;
+            *slash = '\0';
+            if (module_in(cand[n], *exe ? exe : "/"))
+                n++;
+        }
+    }
+    if (module_in(cand[n], AA_OIIO_DIR))
+        n++;
+    for (int k = 0; k < n; k++) {
+        oiio_open(cand[k]);
+        if (oiio_api != NULL)
+            return;
+        if (access(cand[k], F_OK) == 0) { /* there, but it does not load */
+            oiio_cannot_load(cand[k], "");
+            return;
+        }
+    }
+    /* Found nowhere: each place, and the loader's word on the last. */
+    char why[sizeof oiio_why];
+    memcpy(why, oiio_why, sizeof why);
+    oiio_say("the OpenImageIO module %s was not found: looked for %s%s%s%s%s "
+             "(AABENCH_OIIO may give its path); %s", AA__OIIO_MODULE, n > 0 ? cand[0] : "",
+             n > 1 ? ", " : "", n > 1 ? cand[1] : "", n > 2 ? ", " : "", n > 2 ? cand[2] : "",
+             why);
+}
+
+#endif
+
+const aa__oiio_api *aa__oiio(const char *path)
+{
+    pthread_once(&oiio_once, oiio_load);
+    if (oiio_api == NULL)
+        aa_fail(AA_EIO, "%s: %s", path, oiio_why);
+    return oiio_api;
+}
+
+int aa__oiio_text(double *pixels, int w, int h, int c, int x, int y, const char *text, int size,
+                  const float *colour)
+{
+    const aa__oiio_api *oiio = aa__oiio("montage labels");
+    if (oiio == NULL)
+        return AA_EIO;
+    return oiio->text(pixels, w, h, c, x, y, text, size, colour);
 }

@@ -10,6 +10,10 @@
  * Every channel is a value (colour or a bound), never alpha: files are
  * written with no alpha channel and read with "oiio:UnassociatedAlpha", so
  * OpenImageIO never multiplies or divides one channel by another.
+ *
+ * Built as the module aabench-oiio.so (oiio.h says why), which exports
+ * aa__oiio_entry() and nothing else of ours; failures go through the aa_fail
+ * the library hands to it (report()).
  */
 #include "oiio.h"
 
@@ -32,6 +36,9 @@ using OIIO::TypeDesc;
 using OIIO::ImageBuf;
 namespace ImageBufAlgo = OIIO::ImageBufAlgo;
 
+/* The library's aa_fail, from aa__oiio_entry(). */
+static aa__oiio_fail_fn report;
+
 struct aa__oiio_in {
     std::unique_ptr<ImageInput> file;
     std::string path;
@@ -45,7 +52,7 @@ static int fail(int status, const char *path, const char *what, std::string deta
         detail.pop_back();
     if (detail.empty())
         detail = "no reason given by OpenImageIO";
-    return aa_fail(status, "%s: %s: %s", path, what, detail.c_str());
+    return report(status, "%s: %s: %s", path, what, detail.c_str());
 }
 
 /* Run `body` and turn any exception into a status. */
@@ -54,11 +61,11 @@ template <class Body> static int guarded(const char *path, Body &&body) noexcept
     try {
         return body();
     } catch (const std::bad_alloc &) {
-        return aa_fail(AA_ENOMEM, "%s: out of memory in OpenImageIO", path);
+        return report(AA_ENOMEM, "%s: out of memory in OpenImageIO", path);
     } catch (const std::exception &e) {
-        return aa_fail(AA_EIO, "%s: OpenImageIO: %s", path, e.what());
+        return report(AA_EIO, "%s: OpenImageIO: %s", path, e.what());
     } catch (...) {
-        return aa_fail(AA_EFAIL, "%s: unknown exception in OpenImageIO", path);
+        return report(AA_EFAIL, "%s: unknown exception in OpenImageIO", path);
     }
 }
 
@@ -101,16 +108,16 @@ static int write_image(const char *path, const char *format, int w, int h, int c
     return AA_OK;
 }
 
-extern "C" int aa__oiio_write_float(const char *path, const char *format, int w, int h, int c,
-                                    const double *pixels)
+static int write_float(const char *path, const char *format, int w, int h, int c,
+                       const double *pixels)
 {
     return guarded(path, [&] {
         return write_image(path, format, w, h, c, TypeDesc::FLOAT, TypeDesc::DOUBLE, pixels, 1);
     });
 }
 
-extern "C" int aa__oiio_write_8bit(const char *path, const char *format, int w, int h, int c,
-                                   const unsigned char *pixels, double gamma)
+static int write_8bit(const char *path, const char *format, int w, int h, int c,
+                      const unsigned char *pixels, double gamma)
 {
     return guarded(path, [&] {
         return write_image(path, format, w, h, c, TypeDesc::UINT8, TypeDesc::UINT8, pixels,
@@ -141,7 +148,7 @@ static int open_image(const char *path, aa__oiio_in **in, aa__oiio_info *info)
         return fail(AA_EIO, path, "cannot read", OIIO::geterror());
     const ImageSpec &spec = file->spec();
     if (spec.deep || spec.depth != 1)
-        return aa_fail(AA_EIO, "%s: deep and volume images are not supported", path);
+        return report(AA_EIO, "%s: deep and volume images are not supported", path);
     info->w = spec.width;
     info->h = spec.height;
     info->c = spec.nchannels;
@@ -155,13 +162,13 @@ static int open_image(const char *path, aa__oiio_in **in, aa__oiio_info *info)
     return AA_OK;
 }
 
-extern "C" int aa__oiio_open(const char *path, aa__oiio_in **in, aa__oiio_info *info)
+static int open_file(const char *path, aa__oiio_in **in, aa__oiio_info *info)
 {
     *in = nullptr;
     return guarded(path, [&] { return open_image(path, in, info); });
 }
 
-extern "C" int aa__oiio_read(aa__oiio_in *in, double *pixels)
+static int read_pixels(aa__oiio_in *in, double *pixels)
 {
     const char *path = in->path.c_str();
     return guarded(path, [&] {
@@ -173,7 +180,7 @@ extern "C" int aa__oiio_read(aa__oiio_in *in, double *pixels)
     });
 }
 
-extern "C" void aa__oiio_close(aa__oiio_in *in)
+static void close_file(aa__oiio_in *in)
 {
     if (in == nullptr)
         return;
@@ -193,8 +200,8 @@ extern "C" void aa__oiio_close(aa__oiio_in *in)
 /* Draw `text` into a W x H x C double buffer with OpenImageIO's FreeType text
  * renderer, left aligned, top of the text at (x, y).  Used for the labels of
  * montages. */
-extern "C" int aa__oiio_text(double *pixels, int w, int h, int c, int x, int y, const char *text,
-                             int size, const float *colour)
+static int draw_text(double *pixels, int w, int h, int c, int x, int y, const char *text,
+                     int size, const float *colour)
 {
     return guarded("text", [&] {
         ImageSpec spec(w, h, c, TypeDesc::DOUBLE);
@@ -206,4 +213,15 @@ extern "C" int aa__oiio_text(double *pixels, int w, int h, int c, int x, int y, 
                         buf.geterror());
         return (int)AA_OK;
     });
+}
+
+/* The module's one entry point (oiio.h). */
+extern "C" const aa__oiio_api *aa__oiio_entry(int version, aa__oiio_fail_fn library_fail)
+{
+    static const aa__oiio_api api = {write_float, write_8bit, open_file,
+                                     read_pixels, close_file, draw_text};
+    if (version != AA__OIIO_VERSION || library_fail == nullptr)
+        return nullptr;
+    report = library_fail;
+    return &api;
 }

@@ -1,0 +1,59 @@
+/*
+ * cli_main.c: the `aabench` command line: finds the subcommand and runs it.
+ * main.c only calls cli_main(); the tests link this and the cmd_*.c files
+ * to run the command line in a child process without exec.
+ */
+#include "cli.h"
+
+#include <string.h>
+
+static const struct command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+} commands[] = {
+    {"list", cmd_list, "list patterns, filters and methods"},
+    {"truth", cmd_truth, "write the exact reference image of a pattern"},
+    {"render", cmd_render, "render a pattern with a method, timed"},
+    {"run", cmd_run, "the benchmark: every method on a suite, measured and plotted"},
+    {"check", cmd_check, "rerun the baseline's cases; exit 1 on a regression"},
+    {"converge", cmd_converge, "RMSE against samples per pixel, and its slope"},
+    {"compare", cmd_compare, "error metrics between two image files"},
+    {"stress", cmd_stress, "numerical stress cases against a long double evaluation"},
+    {"figures", cmd_figures, "the seed papers' comparison figures remade, with a gallery"},
+    {NULL, NULL, NULL}};
+
+static void usage(FILE *out)
+{
+    fprintf(out, "usage: aabench COMMAND [options]\n\n"
+                 "A benchmark and test harness for antialiasing methods.\n\ncommands:\n");
+    for (const struct command *c = commands; c->name; c++)
+        fprintf(out, "  %-8s %s\n", c->name, c->summary);
+    fprintf(out, "\nSpecs are NAME or NAME:key=value,... (e.g. crow:curves=64, tent:r=1).\n"
+                 "'aabench COMMAND --help' describes a command.\n"
+                 "Exit status: 0 success, 1 a check failed, 2 bad input or usage,\n"
+                 "3 input/output or internal error.\n");
+}
+
+int cli_main(int argc, char **argv)
+{
+    aa_set_warn(cli_warn, NULL);
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        printf("aabench %s\n", AA_VERSION);
+        return 0;
+    }
+    for (const struct command *c = commands; c->name; c++)
+        if (!strcmp(argv[1], c->name))
+            return c->run(argc - 1, argv + 1);
+    fprintf(stderr, "aabench: unknown command \"%s\"\n", argv[1]);
+    usage(stderr);
+    return 2;
+}

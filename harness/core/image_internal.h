@@ -1,0 +1,53 @@
+/*
+ * image_internal.h: what image.c shares with image_txt.c, the reader and
+ * writer of the .txt format.
+ */
+#ifndef AA_IMAGE_INTERNAL_H
+#define AA_IMAGE_INTERNAL_H
+
+#include "aabench.h"
+
+#include <locale.h>
+#include <stddef.h>
+#include <stdio.h>
+
+/* RGB plus one: what every format here can hold, and more than any image the
+ * harness makes (RGB results, 1-channel bounds). */
+#define AA__IMAGE_MAX_CHANNELS 4
+
+/* The C locale for numbers, switched on for this thread only while a file or
+ * spec is converted (image.c). */
+typedef struct aa__c_numbers {
+    locale_t c, saved;
+} aa__c_numbers;
+
+int aa__c_numbers_begin(aa__c_numbers *n, const char *what);
+void aa__c_numbers_end(aa__c_numbers *n);
+
+static inline int aa__is_digit(char ch)
+{
+    return ch >= '0' && ch <= '9';
+}
+
+typedef enum aa__number_result {
+    AA__NUMBER_OK,
+    AA__NUMBER_MALFORMED,
+    AA__NUMBER_NOT_FINITE
+} aa__number_result;
+
+/* The finite number spelled by s[0, len), which is followed by a character
+ * that cannot continue a number (blank or NUL).  Needs aa__c_numbers. */
+aa__number_result aa__parse_number(const char *s, size_t len, double *v);
+
+/* Write the file `tmp` with stdio (image.c): `body` returns nonzero on a
+ * write error, with errno set. */
+int aa__image_stdio_write(const char *tmp, const aa_image *im,
+                          int (*body)(FILE *f, const aa_image *im));
+
+/* The .txt format (image_txt.c).  Write `im` to the new file `tmp`. */
+int aa__txt_write_file(const char *tmp, const aa_image *im);
+/* The format holds finite values only: refuse the others before any file
+ * is made. */
+int aa__txt_check_finite(const char *path, const aa_image *im);
+
+#endif
