@@ -5,7 +5,7 @@
 #ifndef AA_IMAGE_INTERNAL_H
 #define AA_IMAGE_INTERNAL_H
 
-#include "aabench.h"
+#include "core.h"
 
 #include <locale.h>
 #include <stddef.h>

@@ -16,7 +16,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 
-#include "aabench.h"
+#include "core.h"
 #include "image_internal.h"
 
 #include <errno.h>
