@@ -11,7 +11,9 @@
  * The command ($AABENCH): an absurd OMP_NUM_THREADS does not crash it;
  * `converge --out` writes its table once when stdout is a file (a forked
  * child used to flush the parent's buffer a second time); two runs into
- * one folder at once both succeed and leave no temporary file.
+ * one folder at once both succeed and leave no temporary file; a result
+ * name near NAME_MAX is written; output to a full standard output is an
+ * error (exit status 3).
  */
 #include "bench.h"
 
@@ -362,6 +364,41 @@ static void test_long_name(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* Standard output that cannot be written (/dev/full: ENOSPC) is an error
+ * (exit status 3), never a silent success. */
+static void test_stdout_full(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", a[1100], b[1100], out[1100], csv[1100];
+    assert_non_null(mkdtemp(dir));
+    snprintf(a, sizeof a, "%s/a.txt", dir);
+    snprintf(b, sizeof b, "%s/b.txt", dir);
+    snprintf(out, sizeof out, "%s/run", dir);
+    snprintf(csv, sizeof csv, "%s/run/results.csv", dir);
+    const char *ta[] = {"truth", "-p", "crow", "-s", "8x8", "--no-cache", "-o", a, NULL};
+    const char *tb[] = {"truth", "-p", "star", "-s", "8x8", "--no-cache", "-o", b, NULL};
+    const char *run[] = {"run", "-p",      "crow", "-s",          "8x8", "-m", "point",
+                         "--reps", "1", "--no-images", "--no-plots", "-q", "--out", out, NULL};
+    assert_int_equal(run_cli(ta, NULL, NULL), 0);
+    assert_int_equal(run_cli(tb, NULL, NULL), 0);
+    assert_int_equal(run_cli(run, "AABENCH_CACHE=/tmp/aabench-faults-cache", NULL), 0);
+    const char *list[] = {"list", "methods", NULL};
+    const char *help[] = {"--help", NULL};
+    const char *compare[] = {"compare", a, b, NULL};
+    const char *check[] = {"check", "--baseline", csv, NULL};
+    const char *const *cmds[] = {list, help, compare, check};
+    for (int k = 0; k < 4; k++) {
+        /* the same commands succeed with somewhere to write */
+        assert_int_equal(run_cli(cmds[k], "AABENCH_CACHE=/tmp/aabench-faults-cache", NULL), 0);
+        int st = run_cli(cmds[k], "AABENCH_CACHE=/tmp/aabench-faults-cache", "/dev/full");
+        if (st != 3)
+            fail_msg("aabench %s > /dev/full exited %d, not 3", cmds[k][0], st);
+    }
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s' /tmp/aabench-faults-cache", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -372,6 +409,7 @@ int main(void)
         cmocka_unit_test(test_converge_once),
         cmocka_unit_test(test_two_runs_one_folder),
         cmocka_unit_test(test_long_name),
+        cmocka_unit_test(test_stdout_full),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -816,22 +816,29 @@ static void test_temp_name(void **state)
 {
     (void)state;
     char a[256], b[256], pid[32];
-    snprintf(pid, sizeof pid, ".%ld.", (long)getpid());
+    snprintf(pid, sizeof pid, ".aa-%ld-", (long)getpid());
     assert_int_equal(aa_temp_name("out/x.y/img.exr", a, sizeof a), AA_OK);
     assert_int_equal(aa_temp_name("out/x.y/img.exr", b, sizeof b), AA_OK);
     assert_string_not_equal(a, b);
-    /* Same folder, a leading dot, the stem, the process id, the extension. */
-    assert_int_equal(strncmp(a, "out/x.y/.img.", 13), 0);
-    assert_non_null(strstr(a, pid));
+    /* Same folder, a leading dot, the process id, a counter, the extension;
+     * short whatever the name (a name near NAME_MAX still has one). */
+    assert_int_equal(strncmp(a, "out/x.y/", 8), 0);
+    assert_int_equal(strncmp(a + 8, pid, strlen(pid)), 0);
     assert_string_equal(a + strlen(a) - 4, ".exr");
     assert_null(strchr(a + 8, '/'));
+    assert_true(strlen(a + 8) < 40);
 
     assert_int_equal(aa_temp_name("plain", a, sizeof a), AA_OK);
-    assert_int_equal(strncmp(a, ".plain.", 7), 0);
+    assert_int_equal(strncmp(a, pid, strlen(pid)), 0);
     assert_null(strchr(a, '/'));
+    assert_null(strchr(a + strlen(pid), '.')); /* no extension */
     assert_int_equal(aa_temp_name("/r.TXT", a, sizeof a), AA_OK);
-    assert_int_equal(strncmp(a, "/.r.", 4), 0);
+    assert_int_equal(strncmp(a + 1, pid, strlen(pid)), 0);
+    assert_int_equal(a[0], '/');
     assert_string_equal(a + strlen(a) - 4, ".TXT");
+    /* an absurdly long extension is dropped rather than kept */
+    assert_int_equal(aa_temp_name("d/x.aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa", a, sizeof a), AA_OK);
+    assert_null(strchr(a + 2 + strlen(pid), '.'));
 
     assert_int_equal(aa_temp_name("dir/", a, sizeof a), AA_EINVAL);
     assert_int_equal(aa_temp_name("", a, sizeof a), AA_EINVAL);

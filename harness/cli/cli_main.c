@@ -5,6 +5,7 @@
  */
 #include "cli.h"
 
+#include <errno.h>
 #include <string.h>
 
 static const struct command {
@@ -35,6 +36,20 @@ static void usage(FILE *out)
                  "3 input/output or internal error.\n");
 }
 
+/* The subcommand's exit status, unless what it wrote to standard output
+ * did not all get there (a full disk, a closed pipe, /dev/full): then 3,
+ * with a message, as for any other output. */
+static int finish(const char *cmd, int status)
+{
+    errno = 0;
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "aabench%s%s: cannot write standard output: %s\n", cmd ? " " : "",
+                cmd ? cmd : "", errno ? strerror(errno) : "write error");
+        return 3;
+    }
+    return status;
+}
+
 int cli_main(int argc, char **argv)
 {
     aa_set_warn(cli_warn, NULL);
@@ -44,15 +59,15 @@ int cli_main(int argc, char **argv)
     }
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         usage(stdout);
-        return 0;
+        return finish(NULL, 0);
     }
     if (!strcmp(argv[1], "--version")) {
         printf("aabench %s\n", AA_VERSION);
-        return 0;
+        return finish(NULL, 0);
     }
     for (const struct command *c = commands; c->name; c++)
         if (!strcmp(argv[1], c->name))
-            return c->run(argc - 1, argv + 1);
+            return finish(c->name, c->run(argc - 1, argv + 1));
     fprintf(stderr, "aabench: unknown command \"%s\"\n", argv[1]);
     usage(stderr);
     return 2;
