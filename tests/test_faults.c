@@ -13,7 +13,8 @@
  * child used to flush the parent's buffer a second time); two runs into
  * one folder at once both succeed and leave no temporary file; a result
  * name near NAME_MAX is written; output to a full standard output is an
- * error (exit status 3).
+ * error (exit status 3); outputs are all written or none; a method's NaN
+ * or out-of-range value fails the render; SIGTERM exits 130 cleanly.
  */
 #include "bench.h"
 
@@ -399,6 +400,105 @@ static void test_stdout_full(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+static void read_text(const char *path, char *buf, size_t len)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    size_t n = fread(buf, 1, len - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+}
+
+/* A command that fails after its work leaves every output as it was: the
+ * main output is written only once the others have been (truth -o with a
+ * --bound that cannot be written: here its format's module is missing). */
+static void test_all_or_nothing(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", out[1100], bound[1100], cmd[1400];
+    assert_non_null(mkdtemp(dir));
+    snprintf(out, sizeof out, "%s/o.txt", dir);
+    snprintf(bound, sizeof bound, "%s/b.exr", dir);
+    FILE *f = fopen(out, "w");
+    assert_non_null(f);
+    fputs("previous\n", f);
+    assert_int_equal(fclose(f), 0);
+    const char *argv[] = {"truth", "-p", "crow", "-s", "8x8", "--no-cache",
+                          "-o",    out,  "--bound", bound, NULL};
+    assert_int_equal(run_cli(argv, "AABENCH_OIIO=/nonexistent/aabench-oiio.so", NULL), 3);
+    char text[64];
+    read_text(out, text, sizeof text);
+    assert_string_equal(text, "previous\n");
+    snprintf(cmd, sizeof cmd, "test -z \"$(find '%s' -name '.*' ! -name . -print)\"", dir);
+    assert_int_equal(system(cmd), 0);
+    /* a folder that is a file: refused before any work, exit 3 */
+    snprintf(bound, sizeof bound, "%s/o.txt/b.txt", dir);
+    assert_int_equal(run_cli(argv, NULL, NULL), 3);
+    read_text(out, text, sizeof text);
+    assert_string_equal(text, "previous\n");
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+/* The example plug-in's faulty methods (plugin_faulty.so beside the tests'
+ * command): NaN or 1.5 in the image is a failed render (exit 1), with the
+ * first bad pixel named, and nothing written. */
+static void faulty_plugin(char *path, size_t len)
+{
+    const char *exe = getenv("AABENCH");
+    assert_non_null(exe);
+    const char *slash = strrchr(exe, '/');
+    assert_non_null(slash);
+    snprintf(path, len, "%.*s/tests/plugin_faulty.so", (int)(slash - exe), exe);
+}
+
+static void test_bad_values(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", out[1100], plugin[1100], err[1100], cmd[5000];
+    assert_non_null(mkdtemp(dir));
+    faulty_plugin(plugin, sizeof plugin);
+    snprintf(out, sizeof out, "%s/o.png", dir);
+    snprintf(err, sizeof err, "%s/err.txt", dir);
+    const char *methods[] = {"nanout", "over"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(cmd, sizeof cmd,
+                 "'%s' render --plugin '%s' -m %s -p crow -s 8x8 -o '%s' 2>'%s'; test $? = 1",
+                 getenv("AABENCH"), plugin, methods[k], out, err);
+        assert_int_equal(system(cmd), 0);
+        char text[1024];
+        read_text(err, text, sizeof text);
+        if (!strstr(text, "pixel (1, 2) channel 1") || !strstr(text, "2 values"))
+            fail_msg("%s: %s", methods[k], text);
+        assert_int_equal(access(out, F_OK), -1);
+    }
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+/* SIGTERM during a long reference: exit status 130 and no temporary file. */
+static void test_interrupted(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/aabench-faults-XXXXXX", out[1100], cmd[1400];
+    assert_non_null(mkdtemp(dir));
+    snprintf(out, sizeof out, "%s/o.txt", dir);
+    const char *argv[] = {"truth", "-p", "crow", "-s", "2048x2048", "-f", "gauss", "--no-cache",
+                          "--threads", "1", "-o", out, NULL};
+    pid_t pid = spawn_cli(argv, NULL, NULL);
+    usleep(300 * 1000);
+    assert_int_equal(kill(pid, SIGTERM), 0);
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 130);
+    assert_int_equal(access(out, F_OK), -1);
+    snprintf(cmd, sizeof cmd, "test -z \"$(find '%s' -name '.*' ! -name . -print)\"", dir);
+    assert_int_equal(system(cmd), 0);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -410,6 +510,9 @@ int main(void)
         cmocka_unit_test(test_two_runs_one_folder),
         cmocka_unit_test(test_long_name),
         cmocka_unit_test(test_stdout_full),
+        cmocka_unit_test(test_all_or_nothing),
+        cmocka_unit_test(test_bad_values),
+        cmocka_unit_test(test_interrupted),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

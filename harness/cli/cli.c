@@ -3,7 +3,10 @@
  */
 #include "cli.h"
 
+#include <signal.h>
+
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -102,10 +105,24 @@ static int check_folder(const char *path)
     } else {
         strcpy(dir, ".");
     }
-    if (access(dir, W_OK | X_OK) != 0)
-        return aa_fail(AA_EIO, "output \"%s\": folder %s %s", path, dir,
-                       errno == ENOENT ? "does not exist" : "is not writable");
     struct stat sb;
+    if (stat(dir, &sb) != 0)
+        return aa_fail(AA_EIO, "output \"%s\": folder %s %s", path, dir,
+                       errno == ENOENT ? "does not exist" : strerror(errno));
+    if (!S_ISDIR(sb.st_mode))
+        return aa_fail(AA_EIO, "output \"%s\": %s is a file, not a folder", path, dir);
+    /* Try it: access() says yes to root on a read-only file system, and
+     * nothing short of making a file tells a full one. */
+    char probe[4096];
+    int st = aa_temp_name(path, probe, sizeof probe);
+    if (st)
+        return st;
+    int fd = open(probe, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0)
+        return aa_fail(AA_EIO, "output \"%s\": cannot write in folder %s: %s", path, dir,
+                       strerror(errno));
+    close(fd);
+    unlink(probe);
     if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
         return aa_fail(AA_EIO, "output \"%s\" is a folder, not a file", path);
     return AA_OK;
@@ -175,4 +192,55 @@ void cli_warn(const char *message, void *ctx)
 {
     (void)ctx;
     fprintf(stderr, "aabench: warning: %s\n", message);
+}
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    aa_temp_cleanup();
+    _exit(130);
+}
+
+void cli_signals_install(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+int cli_stage(cli_outputs *o, const char *path, const char **tmp)
+{
+    if (o->n >= CLI_MAX_OUTPUTS)
+        return aa_fail(AA_EFAIL, "too many outputs");
+    int st = aa_temp_name(path, o->tmp[o->n], sizeof o->tmp[o->n]);
+    if (st)
+        return st;
+    o->path[o->n] = path;
+    *tmp = o->tmp[o->n++];
+    return AA_OK;
+}
+
+void cli_discard(cli_outputs *o)
+{
+    for (int k = 0; k < o->n; k++)
+        unlink(o->tmp[k]);
+    o->n = 0;
+}
+
+int cli_commit(cli_outputs *o)
+{
+    for (int k = 0; k < o->n; k++)
+        if (rename(o->tmp[k], o->path[k]) != 0) {
+            int err = errno;
+            for (int q = k; q < o->n; q++)
+                unlink(o->tmp[q]);
+            o->n = 0;
+            return aa_fail(AA_EIO, "%s: cannot rename into place: %s", o->path[k],
+                           strerror(err));
+        }
+    o->n = 0;
+    return AA_OK;
 }

@@ -39,6 +39,25 @@ int cli_parse_pair(const char *name, const char *text, double lo, double hi, dou
 int cli_check_output(const char *path);
 /* A non-image output with a required extension (".json", ".csv"). */
 int cli_check_output_file(const char *path, const char *ext);
+/* SIGINT and SIGTERM: remove the temporary files still on disk and exit
+ * with status 130 (installed first thing by cli_main; `run` installs its
+ * own, which lets the case under way finish). */
+void cli_signals_install(void);
+
+/* Outputs written all or nothing: each is written under a temporary name
+ * (cli_stage gives it), and only when every one has been written are they
+ * renamed into place (cli_commit); otherwise none is (cli_discard). */
+#define CLI_MAX_OUTPUTS 4
+typedef struct cli_outputs {
+    int n;
+    const char *path[CLI_MAX_OUTPUTS];
+    char tmp[CLI_MAX_OUTPUTS][4096];
+} cli_outputs;
+/* The temporary name to write `path` under. */
+int cli_stage(cli_outputs *o, const char *path, const char **tmp);
+int cli_commit(cli_outputs *o);
+void cli_discard(cli_outputs *o);
+
 /* The number of threads to use by default: all cores. */
 int cli_default_threads(void);
 /* `text` as a JSON string literal (quoted, escaped) into buf. */

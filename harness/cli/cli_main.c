@@ -52,6 +52,7 @@ static int finish(const char *cmd, int status)
 
 int cli_main(int argc, char **argv)
 {
+    cli_signals_install();
     aa_set_warn(cli_warn, NULL);
     if (argc < 2) {
         usage(stderr);

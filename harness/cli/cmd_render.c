@@ -26,7 +26,10 @@ static void usage(FILE *out)
             "      --stats FILE     write timing and counters as JSON\n"
             "      --plugin LIB.so  load methods from a shared library (repeatable)\n"
             "      --encode E       .png encoding: srgb (default), linear or gamma:G\n"
-            "  -q, --quiet          print nothing on success\n");
+            "  -q, --quiet          print nothing on success\n\n"
+            "Outputs are written only when all of them can be. Exit status: 0 done, 1 the\n"
+            "method gave a value outside [0, 1] or not finite (nothing written), 2 bad input,\n"
+            "3 input/output error, 130 interrupted.\n");
 }
 
 typedef struct render_args {
@@ -160,10 +163,28 @@ int cmd_render(int argc, char **argv)
         job.frame_only = a.frame_only;
         st = aa_method_run(&method, &job, a.reps, &img, &counters, seconds);
     }
+    int at[3];
+    double bad_value = 0.0;
+    size_t bad = st ? 0 : aa_image_bad_values(&img, at, &bad_value);
+    if (bad) {
+        char ms[1024];
+        aa_spec_format(&method, ms, sizeof ms);
+        st = aa_fail(AA_ECHECK,
+                     "method %s gave %zu value%s outside [0, 1] or not finite, the first %.17g at "
+                     "pixel (%d, %d) channel %d: nothing written",
+                     ms, bad, bad == 1 ? "" : "s", bad_value, at[0], at[1], at[2]);
+    }
+    /* every output written before any replaces what was there */
+    cli_outputs outs = {0};
+    const char *tmp;
+    if (!st && !(st = cli_stage(&outs, a.out, &tmp)))
+        st = aa_image_write(tmp, &img, &a.enc);
+    if (!st && a.stats && !(st = cli_stage(&outs, a.stats, &tmp)))
+        st = write_stats(tmp, &a, &pattern, &method, &f, w, h, seconds, &counters, threads);
     if (!st)
-        st = aa_image_write(a.out, &img, &a.enc);
-    if (!st && a.stats)
-        st = write_stats(a.stats, &a, &pattern, &method, &f, w, h, seconds, &counters, threads);
+        st = cli_commit(&outs);
+    else
+        cli_discard(&outs);
     aa_image_free(&img);
     aa_job_free(&job);
     aa_scene_free(scene);

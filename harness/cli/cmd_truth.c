@@ -119,10 +119,17 @@ int cmd_truth(int argc, char **argv)
         st = aa_reference(&a.view, *a.cache ? a.cache : NULL, a.threads, &img, &stats, &cached);
     }
     double seconds = aa_now() - t0;
+    /* every output written before any replaces what was there */
+    cli_outputs outs = {0};
+    const char *tmp;
+    if (!st && !(st = cli_stage(&outs, a.out, &tmp)))
+        st = aa_image_write(tmp, &img, &a.enc);
+    if (!st && a.bound && !(st = cli_stage(&outs, a.bound, &tmp)))
+        st = aa_image_write(tmp, &bound, NULL);
     if (!st)
-        st = aa_image_write(a.out, &img, &a.enc);
-    if (!st && a.bound)
-        st = aa_image_write(a.bound, &bound, NULL);
+        st = cli_commit(&outs);
+    else
+        cli_discard(&outs);
     aa_image_free(&img);
     aa_image_free(&bound);
     if (st)

@@ -232,6 +232,12 @@ int aa_method_run(const aa_spec *spec, const aa_job *job, int reps, aa_image *ou
  * already there is refused. */
 int aa_plugin_load(const char *path);
 
+/* Values of a method's image outside [0, 1] or not finite: their count
+ * (0 if none), and the first one's pixel and channel in at[0..2] (i, j,
+ * channel) and value in *value.  A method's image with any is a failed
+ * render, never a result. */
+size_t aa_image_bad_values(const aa_image *im, int at[3], double *value);
+
 /* Add a plug-in's methods to the table; `origin` names it in messages.  A
  * name already in the table is refused. */
 int aa__method_register(const aa_method_type *const *types, const char *origin);
@@ -258,6 +264,9 @@ int aa_pathf(char *buf, size_t len, const char *fmt, ...)
     ;
 /* A temporary name beside `path` keeping its extension. */
 int aa_temp_name(const char *path, char *buf, size_t len);
+/* Remove the temporary files of the last names aa_temp_name gave that are
+ * still on disk: for a signal handler (async-signal-safe). */
+void aa_temp_cleanup(void);
 
 /* Monotonic clock in seconds. */
 double aa_now(void);

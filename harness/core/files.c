@@ -52,6 +52,36 @@ static const char *extension(const char *base)
     return dot && dot != base ? dot : base + strlen(base);
 }
 
+/* The temporary names handed out last, so an interrupted program can remove
+ * those still on disk (aa_temp_cleanup, from a signal handler).  A slot is
+ * read by the handler only while its state is READY; a name already renamed
+ * into place no longer exists, and names are never reused (process id and
+ * counter), so unlinking it again is harmless. */
+#define TEMP_SLOTS 64
+enum { SLOT_EMPTY, SLOT_WRITING, SLOT_READY };
+static struct {
+    atomic_int state;
+    char name[TEMP_NAME_MAX];
+} temp_slots[TEMP_SLOTS];
+
+static void temp_remember(const char *name, unsigned long id)
+{
+    unsigned long k = id % TEMP_SLOTS;
+    size_t n = strlen(name);
+    if (n >= TEMP_NAME_MAX)
+        return;
+    atomic_store(&temp_slots[k].state, SLOT_WRITING);
+    memcpy(temp_slots[k].name, name, n + 1);
+    atomic_store(&temp_slots[k].state, SLOT_READY);
+}
+
+void aa_temp_cleanup(void)
+{
+    for (int k = 0; k < TEMP_SLOTS; k++)
+        if (atomic_load(&temp_slots[k].state) == SLOT_READY)
+            unlink(temp_slots[k].name); /* async-signal-safe */
+}
+
 int aa_temp_name(const char *path, char *buf, size_t len)
 {
     if (path == NULL || buf == NULL || len == 0)
@@ -73,6 +103,7 @@ int aa_temp_name(const char *path, char *buf, size_t len)
     if (k < 0 || (size_t)k >= len)
         return aa_fail(AA_EINVAL, "%s: temporary name too long for its buffer (%zu bytes)", path,
                        len);
+    temp_remember(buf, n);
     return AA_OK;
 }
 

@@ -185,3 +185,21 @@ int aa_thread_count(int threads)
     return 1;
 #endif
 }
+
+size_t aa_image_bad_values(const aa_image *im, int at[3], double *value)
+{
+    size_t n = (size_t)im->w * (size_t)im->h * (size_t)im->c, bad = 0;
+    for (size_t k = 0; k < n; k++) {
+        double v = im->v[k];
+        if (v >= 0.0 && v <= 1.0) /* false for NaN */
+            continue;
+        if (bad++ == 0) {
+            size_t px = k / (size_t)im->c;
+            at[0] = (int)(px % (size_t)im->w);
+            at[1] = (int)(px / (size_t)im->w);
+            at[2] = (int)(k % (size_t)im->c);
+            *value = v;
+        }
+    }
+    return bad;
+}
