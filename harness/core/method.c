@@ -56,15 +56,19 @@ int aa__method_register(const aa_method_type *const *types, const char *origin)
     return AA_OK;
 }
 
+int aa_method_check(const aa_spec *spec, const aa_filter *f)
+{
+    const aa_method_type *type = (const aa_method_type *)spec->info;
+    int st;
+    if (type->check && (st = type->check(spec->v, f)))
+        return aa_fail_context(st, "method %s", type->info.name);
+    return AA_OK;
+}
+
 int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out)
 {
     int st = aa_spec_parse(text, aa_method_table(), "method", out);
-    if (st)
-        return st;
-    const aa_method_type *type = (const aa_method_type *)out->info;
-    if (type->check && (st = type->check(out->v, f)))
-        return aa_fail_context(st, "method %s", type->info.name);
-    return AA_OK;
+    return st ? st : aa_method_check(out, f);
 }
 
 /* A method that does not declare AA_METHOD_FIELDS is refused a field scene
@@ -86,10 +90,8 @@ int aa_method_init(aa_method *m, const aa_spec *spec, const aa_job *job)
     const aa_method_type *type = (const aa_method_type *)spec->info;
     int st;
     memset(m, 0, sizeof *m);
-    if ((st = check_scene(type, job)))
+    if ((st = check_scene(type, job)) || (st = aa_method_check(spec, &job->filter)))
         return st;
-    if (type->check && (st = type->check(spec->v, &job->filter)))
-        return aa_fail_context(st, "method %s", type->info.name);
     m->type = type;
     m->spec = *spec;
     if (type->size && !(m->state = calloc(1, type->size)))
