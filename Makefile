@@ -26,7 +26,7 @@ PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 TEST_LIBS  = $(shell pkg-config --cflags --libs $(TEST_PKGS) 2>/dev/null)
 
-WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-unknown-pragmas
+WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Wno-unknown-pragmas
 HARNESS  := harness/core harness/truth harness/bench harness/cli
 # -MMD -MP: each object records the headers it read (build/**/*.d)
 CPPFLAGS := -MMD -MP -D_DEFAULT_SOURCE -Iharness $(addprefix -I,$(HARNESS)) -Ipatterns -Ialgorithms

@@ -11,15 +11,11 @@
  * usage: bench_truth [-p PATTERN] [-s WxH,...] [-f FILTER;...] [-t 1,2] [-r REPS]
  */
 #include "aabench.h"
+#include "truth_internal.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Internal to truth.c: mode 0 is aa_truth_render's; *fast receives the
- * number of pixels the Gaussian's fixed rule took. */
-int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int threads, int mode,
-                          aa_image *out, aa_image *bound, aa_truth_stats *stats, size_t *fast);
 
 static int cmp(const void *a, const void *b)
 {

@@ -6,6 +6,7 @@
  * instance, as gsl_rng_alloc does for a gsl_rng_type.
  */
 #include "aabench.h"
+#include "method_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -32,7 +33,7 @@ const void *const *aa_method_table(void)
     return (const void *const *)table;
 }
 
-/* Called by the plug-in loader: add types, refusing duplicates. */
+/* Called by the plug-in loader (method_internal.h). */
 int aa__method_register(const aa_method_type *const *types, const char *origin)
 {
     table_fill();

@@ -8,10 +8,9 @@
  * (its type structs are in the table).
  */
 #include "aabench.h"
+#include "method_internal.h"
 
 #include <dlfcn.h>
-
-int aa__method_register(const aa_method_type *const *types, const char *origin);
 
 int aa_plugin_load(const char *path)
 {

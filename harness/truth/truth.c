@@ -97,6 +97,7 @@
  * pieces are near a window and the winding numbers left of it).
  */
 #include "aabench.h"
+#include "truth_internal.h"
 
 #include <float.h>
 #include <math.h>
@@ -1638,13 +1639,6 @@ static int field_render(const aa_scene *placed, const aa_filter *f, int threads,
         *nfast = 0;
     return AA_OK;
 }
-
-/* Internal (tests, benchmarks): mode AA__TRUTH_QAG integrates every
- * non-uniform pixel with QAG, as before the fixed rule existed; *nfast
- * (may be NULL) receives the number of pixels the fixed rule took. */
-#define AA__TRUTH_QAG 1
-int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int threads, int mode,
-                          aa_image *out, aa_image *bound, aa_truth_stats *stats, size_t *nfast);
 
 int aa_long_double_is_extended(void)
 {
