@@ -861,7 +861,6 @@ typedef struct aa_figure_result {
 } aa_figure_result;
 size_t aa_figure_count(void);
 const char *aa_figure_name(size_t k);  /* NULL past the end */
-const char *aa_figure_title(size_t k);
 int aa_figure_find(const char *name);  /* index, or -1 */
 /* Make figure k in `dir` (which must exist); references come from and go
  * to `cache_dir` (NULL: no cache).  Nothing is left half-written. */

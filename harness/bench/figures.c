@@ -122,11 +122,6 @@ const char *aa_figure_name(size_t k)
     return k < NFIG ? figures[k].name : NULL;
 }
 
-const char *aa_figure_title(size_t k)
-{
-    return k < NFIG ? figures[k].title : NULL;
-}
-
 int aa_figure_find(const char *name)
 {
     for (size_t k = 0; k < NFIG; k++)
