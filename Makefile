@@ -46,7 +46,7 @@ TEST_AUX := $(filter-out $(TEST_SRC) tests/bench_%.c tests/plugin_%.c,$(wildcard
 PLUGIN_SRC := $(wildcard tests/plugin_*.c)
 BENCH_SRC := $(wildcard tests/bench_*.c)
 
-# $(1): build folder, $(2): extra flags
+# The library's objects in build folder $(1)
 define objs
 $(patsubst %.c,$(1)/obj/%.o,$(LIB_CSRC)) $(patsubst %.cpp,$(1)/obj/%.o,$(LIB_XSRC))
 endef
