@@ -149,8 +149,14 @@ $(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_BUILD)/libaabench.a
 	@echo '  LD    $@'
 	$(Q)clang++ $(CPPFLAGS) -x c -std=c11 $(WARN) -fsanitize=fuzzer,address,undefined -g -O1 $< -x none \
 	  $(FUZZ_BUILD)/libaabench.a -o $@ $(PKG_LIBS) -lm -ldl -fopenmp
+# clang's OpenMP (omp.h, libomp) is found by building and running a program
+# that uses it, so any clang version with its libomp-dev does.
 fuzz:
-	@command -v clang >/dev/null 2>&1 && test -e /usr/lib/llvm-14/lib/libomp.so || { echo "make fuzz needs clang and libomp-dev: apt-get install clang libomp-dev" >&2; exit 2; }
+	@mkdir -p $(FUZZ_BUILD)
+	@command -v clang >/dev/null 2>&1 && \
+	  printf '#include <omp.h>\nint main(void) { return omp_get_max_threads() < 1; }\n' | \
+	  clang -fopenmp -x c - -o $(FUZZ_BUILD)/omp-probe 2>/dev/null && $(FUZZ_BUILD)/omp-probe || \
+	  { echo "make fuzz needs clang and its OpenMP: apt-get install clang libomp-dev" >&2; exit 2; }
 	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)
 	@for t in spec image; do \
 	  mkdir -p $(FUZZ_BUILD)/corpus-$$t $(FUZZ_BUILD)/crash-$$t; \
