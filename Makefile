@@ -217,11 +217,22 @@ figures: $(BUILD)/aabench
 	@if command -v chromium >/dev/null 2>&1; then sh scripts/check-gallery.sh results/figures; \
 	else echo "figures: chromium missing, gallery not checked (apt-get install chromium)"; fi
 
+# make install [PREFIX=/usr/local] [DESTDIR=staging]: the command, the
+# library, and for plug-in authors the public headers (PUBLIC_HEADERS, into
+# PREFIX/include/aabench/) and aabench.pc (from aabench.pc.in), so that
+#     cc -shared -fPIC $$(pkg-config --cflags aabench) method.c -o method.so
+# builds a plug-in.  DESTDIR prefixes every path written, not those in the
+# .pc file.
+PUBLIC_HEADERS := harness/aabench.h
+AA_VERSION = $(shell sed -n 's/^.define AA_VERSION "\(.*\)"$$/\1/p' $(PUBLIC_HEADERS))
 install: all
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
+	  $(DESTDIR)$(PREFIX)/include/aabench
 	install -m 755 $(BUILD)/aabench $(DESTDIR)$(PREFIX)/bin/
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
-	install -m 644 harness/aabench.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/aabench/
+	sed -e 's|@prefix@|$(PREFIX)|' -e 's|@version@|$(AA_VERSION)|' aabench.pc.in >$(BUILD)/aabench.pc
+	install -m 644 $(BUILD)/aabench.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
 
 clean:
 	rm -rf $(BUILD)
