@@ -34,7 +34,7 @@ OIIO_LIBS   = $(shell pkg-config --libs OpenImageIO 2>/dev/null)
 OIIO_DIR   := $(PREFIX)/lib/aabench
 TEST_LIBS  = $(shell pkg-config --cflags --libs $(TEST_PKGS) 2>/dev/null)
 
-WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-unknown-pragmas
+WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Wno-unknown-pragmas
 HARNESS  := harness/core harness/truth harness/bench harness/cli
 # -MMD -MP: each object records the headers it read (build/**/*.d)
 CPPFLAGS := -MMD -MP -D_DEFAULT_SOURCE -Iharness $(addprefix -I,$(HARNESS)) -Ipatterns -Ialgorithms
@@ -56,7 +56,7 @@ TEST_AUX := $(filter-out $(TEST_SRC) tests/bench_%.c tests/plugin_%.c,$(wildcard
 PLUGIN_SRC := $(wildcard tests/plugin_*.c)
 BENCH_SRC := $(wildcard tests/bench_*.c)
 
-# $(1): build folder
+# The library's objects in build folder $(1)
 define objs
 $(patsubst %.c,$(1)/obj/%.o,$(LIB_CSRC))
 endef
@@ -191,8 +191,14 @@ $(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_BUILD)/libaabench.a
 	@echo '  LD    $@'
 	$(Q)clang++ $(CPPFLAGS) -x c -std=c11 $(WARN) -fsanitize=fuzzer,address,undefined -g -O1 $< -x none \
 	  $(FUZZ_BUILD)/libaabench.a -o $@ $(PKG_LIBS) $(OIIO_LIBS) -lm -ldl -fopenmp
+# clang's OpenMP (omp.h, libomp) is found by building and running a program
+# that uses it, so any clang version with its libomp-dev does.
 fuzz:
-	@command -v clang >/dev/null 2>&1 && test -e /usr/lib/llvm-14/lib/libomp.so || { echo "make fuzz needs clang and libomp-dev: apt-get install clang libomp-dev" >&2; exit 2; }
+	@mkdir -p $(FUZZ_BUILD)
+	@command -v clang >/dev/null 2>&1 && \
+	  printf '#include <omp.h>\nint main(void) { return omp_get_max_threads() < 1; }\n' | \
+	  clang -fopenmp -x c - -o $(FUZZ_BUILD)/omp-probe 2>/dev/null && $(FUZZ_BUILD)/omp-probe || \
+	  { echo "make fuzz needs clang and its OpenMP: apt-get install clang libomp-dev" >&2; exit 2; }
 	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)
 	@for t in spec image; do \
 	  mkdir -p $(FUZZ_BUILD)/corpus-$$t $(FUZZ_BUILD)/crash-$$t; \
@@ -261,13 +267,23 @@ figures: $(BUILD)/aabench
 	@if command -v chromium >/dev/null 2>&1; then sh scripts/check-gallery.sh results/figures; \
 	else echo "figures: chromium missing, gallery not checked (apt-get install chromium)"; fi
 
+# make install [PREFIX=/usr/local] [DESTDIR=staging]: the command, the
+# library, and for plug-in authors the public headers (PUBLIC_HEADERS, into
+# PREFIX/include/aabench/) and aabench.pc (from harness/aabench.pc.in), so that
+#     cc -shared -fPIC $$(pkg-config --cflags aabench) method.c -o method.so
+# builds a plug-in.  DESTDIR prefixes every path written, not those in the
+# .pc file.
+PUBLIC_HEADERS := harness/aabench.h
+AA_VERSION = $(shell sed -n 's/^.define AA_VERSION "\(.*\)"$$/\1/p' harness/core/core.h)
 install: all
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include \
-	  $(DESTDIR)$(OIIO_DIR)
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
+	  $(DESTDIR)$(PREFIX)/include/aabench $(DESTDIR)$(OIIO_DIR)
 	install -m 755 $(BUILD)/aabench $(DESTDIR)$(PREFIX)/bin/
 	install -m 755 $(OIIO_SO) $(DESTDIR)$(OIIO_DIR)/
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
-	install -m 644 harness/aabench.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/aabench/
+	sed -e 's|@prefix@|$(PREFIX)|' -e 's|@version@|$(AA_VERSION)|' harness/aabench.pc.in >$(BUILD)/aabench.pc
+	install -m 644 $(BUILD)/aabench.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
 
 clean:
 	rm -rf $(BUILD)

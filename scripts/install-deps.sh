@@ -1,5 +1,6 @@
 #!/bin/sh
-# install-deps.sh: install the Debian packages aabench needs that are missing.
+# install-deps.sh: install the Debian packages aabench needs that are missing,
+# and generate the locale its tests use.
 #
 # Each need is checked the cheapest way (pkg-config module, command, header);
 # only what is missing is installed, so a second run is a no-op.  Installing
@@ -30,19 +31,50 @@ need pc:cairo libcairo2-dev
 need cmd:gnuplot gnuplot-nox
 need file:/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf fonts-dejavu-core
 
-[ -z "$missing" ] && exit 0
+# The tests run the number formatting under a locale whose decimal point is
+# a comma (LOCALE); Debian generates it from /etc/locale.gen with locale-gen
+# (package locales).
+LOCALE=de_DE.UTF-8
+have_locale() {
+    locale -a 2>/dev/null | grep -qix 'de_DE\.utf-\{0,1\}8'
+}
+need_locale=""
+if ! have_locale; then
+    need_locale=1
+    need file:/usr/sbin/locale-gen locales
+fi
 
-echo "install-deps: installing${missing}" >&2
+[ -z "$missing" ] && [ -z "$need_locale" ] && exit 0
+
 if [ "$(id -u)" -eq 0 ]; then
     SUDO=""
 elif command -v sudo >/dev/null 2>&1; then
     SUDO="sudo"
 else
-    echo "install-deps: not root; run as root: apt-get install -y${missing}" >&2
+    echo "install-deps: not root; run as root:" >&2
+    [ -n "$missing" ] && echo "    apt-get install -y${missing}" >&2
+    [ -n "$need_locale" ] &&
+        echo "    sed -i 's/^# *$LOCALE UTF-8/$LOCALE UTF-8/' /etc/locale.gen && locale-gen" >&2
     exit 1
 fi
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-# shellcheck disable=SC2086
-$SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
+if [ -n "$missing" ]; then
+    echo "install-deps: installing${missing}" >&2
+    export DEBIAN_FRONTEND=noninteractive
+    $SUDO apt-get update -qq
+    # shellcheck disable=SC2086
+    $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
+fi
+if [ -n "$need_locale" ]; then
+    echo "install-deps: generating the locale $LOCALE" >&2
+    if grep -q "^# *$LOCALE UTF-8" /etc/locale.gen 2>/dev/null; then
+        $SUDO sed -i "s/^# *$LOCALE UTF-8/$LOCALE UTF-8/" /etc/locale.gen
+    elif ! grep -q "^$LOCALE UTF-8" /etc/locale.gen 2>/dev/null; then
+        echo "$LOCALE UTF-8" | $SUDO tee -a /etc/locale.gen >/dev/null
+    fi
+    $SUDO /usr/sbin/locale-gen >/dev/null
+    if ! have_locale; then
+        echo "install-deps: locale $LOCALE is still missing after locale-gen" >&2
+        exit 1
+    fi
+fi
 echo "install-deps: done" >&2

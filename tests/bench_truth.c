@@ -11,6 +11,7 @@
  * usage: bench_truth [-p PATTERN] [-s WxH,...] [-f FILTER;...] [-t 1,2] [-r REPS]
  */
 #include "bench.h"
+#include "truth_internal.h"
 
 #include <stdio.h>
 #include <stdlib.h>

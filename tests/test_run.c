@@ -161,19 +161,34 @@ static void json_valid(const char *path)
 static void test_reports_parse_back(void **state)
 {
     (void)state;
-    const char *patterns[] = {"crow"}, *sizes[] = {"24x16"}, *filters[] = {"box"};
-    const char *methods[] = {"point", "centre4", "point"};
+    aa_run_spec patterns[1] = {{.text = "crow"}}, methods[4];
+    aa_run_size sizes[1] = {{24, 16}};
+    aa_run_filter filters[1] = {{.text = "box"}};
+    const char *names[] = {"point", "centre4", "point", "jitter:seq=random,spp=4"};
+    assert_int_equal(aa_pattern_parse(patterns[0].text, &patterns[0].spec), AA_OK);
+    assert_int_equal(aa_filter_parse(filters[0].text, &filters[0].filter), AA_OK);
+    for (size_t k = 0; k < 4; k++) {
+        methods[k].text = names[k];
+        assert_int_equal(aa_spec_parse(names[k], aa_method_table(), "method", &methods[k].spec),
+                         AA_OK);
+    }
+    /* the last given by its value alone: the run shows its canonical text */
+    methods[3].text = NULL;
     aa_run_config cfg;
     memset(&cfg, 0, sizeof cfg);
     cfg.patterns = patterns, cfg.npatterns = 1;
     cfg.sizes = sizes, cfg.nsizes = 1;
     cfg.filters = filters, cfg.nfilters = 1;
-    cfg.methods = methods, cfg.nmethods = 3;
+    cfg.methods = methods, cfg.nmethods = 4;
     cfg.reps = 2, cfg.threads = 2, cfg.seed = 3;
     aa_row *rows, *back;
     size_t n, nb;
     assert_int_equal(aa_run(&cfg, &rows, &n), AA_OK);
-    assert_int_equal(n, 3);
+    assert_int_equal(n, 4);
+    /* the spec as given, or, given none, every parameter in table order */
+    assert_string_equal(rows[1].method, "centre4");
+    assert_string_equal(rows[3].method, "jitter:spp=4,seq=random");
+    assert_string_equal(rows[3].pattern, "crow");
     /* a note with a comma and a quote must survive the CSV */
     snprintf(rows[1].note, sizeof rows[1].note, "a \"quoted\", note");
     char csv[512], json[512];

@@ -27,6 +27,7 @@
  */
 #include "bench.h"
 #include "oracle.h"
+#include "truth_internal.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -38,10 +39,6 @@
 #include <unistd.h>
 
 #include <cmocka.h>
-
-/* aa__truth_render_mode (truth.h): mode 1 integrates every non-uniform
- * pixel with QAG, as before the Gaussian's fixed rule. */
-#define TRUTH_QAG_ONLY AA__TRUTH_QAG
 
 static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
 
@@ -676,7 +673,7 @@ static double check_against_qagp(const char *what, const aa_scene *placed, int w
     assert_int_equal(aa__truth_render_mode(placed, &f, 1, 0, &a, &ba, &sa, &fast), AA_OK);
     assert_int_equal(aa__truth_render_mode(placed, &f, 2, 0, &a2, NULL, NULL, &fast2), AA_OK);
     assert_int_equal(aa__truth_render_mode(placed, &f, 3, 0, &a3, NULL, NULL, NULL), AA_OK);
-    assert_int_equal(aa__truth_render_mode(placed, &f, 2, TRUTH_QAG_ONLY, &b, &bb, &sb, NULL),
+    assert_int_equal(aa__truth_render_mode(placed, &f, 2, AA__TRUTH_QAG, &b, &bb, &sb, NULL),
                      AA_OK);
     size_t bytes = sizeof(double) * (size_t)w * (size_t)h * 3;
     assert_memory_equal(a.v, a2.v, bytes);

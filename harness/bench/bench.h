@@ -104,8 +104,29 @@ extern const aa_suite_group aa_suite_temporal_groups[];
 /* NULL for a still suite. */
 const aa_suite_motion *aa_suite_motion_find(const char *suite);
 
+/* A run's patterns, filters and methods are parsed once, where their text
+ * comes in (the command line, a suite, a baseline), and reach the run as
+ * values.  `text` (may be NULL) is the spec as it was given: the results'
+ * pattern, filter and method columns, the image names and the progress
+ * show it; NULL shows the canonical text of the value (aa_spec_format).
+ * Nothing parses it again. */
+typedef struct aa_run_spec {
+    aa_spec spec;
+    const char *text;
+} aa_run_spec;
+typedef struct aa_run_filter {
+    aa_filter filter;
+    const char *text;
+} aa_run_filter;
+typedef struct aa_run_size {
+    int w, h;
+} aa_run_size;
+
 typedef struct aa_run_config {
-    const char *const *patterns, *const *sizes, *const *filters, *const *methods;
+    const aa_run_spec *patterns;  /* pattern specs */
+    const aa_run_size *sizes;
+    const aa_run_filter *filters;
+    const aa_run_spec *methods;   /* method specs, checked against each filter by the run */
     size_t npatterns, nsizes, nfilters, nmethods;
     int reps, threads;
     uint64_t seed;
@@ -124,8 +145,8 @@ typedef struct aa_run_config {
     int temporal, frames, window;
 } aa_run_config;
 
-/* Check every spec of the config (patterns, sizes, filters, methods) before
- * any work. */
+/* Check the config before any work: lists present, sizes within memory,
+ * counts in range, each spec of the kind its list holds. */
 int aa_run_check(const aa_run_config *cfg);
 /* Run it: *rows (malloc'd, n rows) in pattern, size, filter, method order.
  * A method that refuses a filter gives a row with ok = 0 and the reason. */
@@ -138,19 +159,20 @@ int aa_rows_write_json(const char *path, const aa_row *rows, size_t n);
 int aa_rows_read_csv(const char *path, aa_row **rows, size_t *n);
 
 /* Convergence: RMSE against samples per pixel over `phases` random sub-pixel
- * shifts of the scene; the log-log slope by least squares (gsl_fit_linear). */
+ * shifts of the scene; the log-log slope by least squares (gsl_fit_linear).
+ * The method spec's spp (or n, an n x n grid) takes each count in turn. */
 typedef struct aa_convergence {
     size_t n;
     double spp[64], rmse[64], rmse_sd[64], seconds[64];
     double slope, slope_err, intercept;
 } aa_convergence;
-int aa_converge(const aa_spec *pattern, const char *method, const aa_filter *f, int w, int h,
+int aa_converge(const aa_spec *pattern, const aa_spec *method, const aa_filter *f, int w, int h,
                 const int *spp, size_t nspp, int phases, uint64_t seed, int threads,
                 const char *cache_dir, aa_convergence *out);
 /* The same for a scene at time t moving (vx, vy) pixels per frame: each
  * phase's random sub-pixel shift is added to the motion's displacement
  * (aa_converge is this with 0, 0, 0). */
-int aa_converge_moving(const aa_spec *pattern, const char *method, const aa_filter *f, int w,
+int aa_converge_moving(const aa_spec *pattern, const aa_spec *method, const aa_filter *f, int w,
                        int h, double t, double vx, double vy, const int *spp, size_t nspp,
                        int phases, uint64_t seed, int threads, const char *cache_dir,
                        aa_convergence *out);
@@ -193,7 +215,6 @@ typedef struct aa_figure_result {
 } aa_figure_result;
 size_t aa_figure_count(void);
 const char *aa_figure_name(size_t k);  /* NULL past the end */
-const char *aa_figure_title(size_t k);
 int aa_figure_find(const char *name);  /* index, or -1 */
 /* Make figure k in `dir` (which must exist); references come from and go
  * to `cache_dir` (NULL: no cache).  Nothing is left half-written. */

@@ -25,32 +25,33 @@
 #include <gsl/gsl_fit.h>
 
 /* The method spec at `spp` samples per pixel. */
-static int spec_at(const char *method, const aa_filter *f, int spp, aa_spec *out)
+static int spec_at(const aa_spec *method, const aa_filter *f, int spp, aa_spec *out)
 {
-    int st = aa_method_parse(method, f, out);
+    const char *name = method->info->name;
+    int st = aa_method_check(method, f);
     if (st)
         return st;
+    *out = *method;
     int k = aa_spec_index(out->info, "spp");
     if (k >= 0) {
         out->v[k] = spp;
     } else if ((k = aa_spec_index(out->info, "n")) >= 0) {
         int n = (int)lround(sqrt((double)spp));
         if (n * n != spp)
-            return aa_fail(AA_EINVAL, "%s takes an n x n grid: spp %d is not a square", method,
-                           spp);
+            return aa_fail(AA_EINVAL, "method %s takes an n x n grid: spp %d is not a square",
+                           name, spp);
         out->v[k] = n;
     } else {
-        return aa_fail(AA_EINVAL, "method %s has no spp or n parameter to vary", method);
+        return aa_fail(AA_EINVAL, "method %s has no spp or n parameter to vary", name);
     }
     const aa_param *p = &out->info->params[k];
     if (out->v[k] < p->min || out->v[k] > p->max)
-        return aa_fail(AA_EINVAL, "%s: %s=%g is out of its range %g to %g", method, p->key,
+        return aa_fail(AA_EINVAL, "method %s: %s=%g is out of its range %g to %g", name, p->key,
                        out->v[k], p->min, p->max);
-    const aa_method_type *type = (const aa_method_type *)out->info;
-    return type->check ? type->check(out->v, f) : AA_OK;
+    return aa_method_check(out, f);
 }
 
-int aa_converge(const aa_spec *pattern, const char *method, const aa_filter *f, int w, int h,
+int aa_converge(const aa_spec *pattern, const aa_spec *method, const aa_filter *f, int w, int h,
                 const int *spp, size_t nspp, int phases, uint64_t seed, int threads,
                 const char *cache_dir, aa_convergence *out)
 {
@@ -78,7 +79,7 @@ static int phase_job(aa_scene *scene, aa_scene **shifted, aa_view *view, const a
     return aa_job_init(job, *shifted, w, h, t, vx, vy, f, seed, threads);
 }
 
-int aa_converge_moving(const aa_spec *pattern, const char *method, const aa_filter *f, int w,
+int aa_converge_moving(const aa_spec *pattern, const aa_spec *method, const aa_filter *f, int w,
                        int h, double t, double vx, double vy, const int *spp, size_t nspp,
                        int phases, uint64_t seed, int threads, const char *cache_dir,
                        aa_convergence *out)
@@ -156,8 +157,8 @@ int aa_converge_moving(const aa_spec *pattern, const char *method, const aa_filt
         out->rmse_sd[q] = phases > 1 ? sqrt(fmax(0.0, (s2 - phases * mean * mean) / (phases - 1)))
                                      : 0.0;
         if (!(out->rmse[q] > 0)) {
-            st = aa_fail(AA_EINVAL, "%s has zero error at spp %d: no slope to fit", method,
-                         spp[q]);
+            st = aa_fail(AA_EINVAL, "method %s has zero error at spp %d: no slope to fit",
+                         method->info->name, spp[q]);
             goto done;
         }
         x[q] = log(out->spp[q]);

@@ -17,6 +17,7 @@
  * moire of its own.
  */
 #include "bench.h"
+#include "c_numbers_internal.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -120,11 +121,6 @@ size_t aa_figure_count(void)
 const char *aa_figure_name(size_t k)
 {
     return k < NFIG ? figures[k].name : NULL;
-}
-
-const char *aa_figure_title(size_t k)
-{
-    return k < NFIG ? figures[k].title : NULL;
 }
 
 int aa_figure_find(const char *name)
@@ -297,8 +293,8 @@ static int write_caption(const char *dir, const fig_def *f, const aa_figure_resu
     return write_stream(path, m, &buf, &len);
 }
 
-int aa_figure_make(size_t k, const char *dir, const char *cache_dir, int threads,
-                   aa_figure_result *r)
+static int figure_make(size_t k, const char *dir, const char *cache_dir, int threads,
+                       aa_figure_result *r)
 {
     if (k >= NFIG)
         return aa_fail(AA_EINVAL, "no figure %zu (there are %zu)", k, NFIG);
@@ -389,6 +385,20 @@ int aa_figure_make(size_t k, const char *dir, const char *cache_dir, int threads
     aa_image_free(&ref);
     aa_scene_free(scene);
     r->seconds = aa_now() - t0;
+    return st;
+}
+
+/* The settings file and the panels' labels write C-locale numbers,
+ * whatever LC_NUMERIC the program has set. */
+int aa_figure_make(size_t k, const char *dir, const char *cache_dir, int threads,
+                   aa_figure_result *r)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, dir);
+    if (st)
+        return st;
+    st = figure_make(k, dir, cache_dir, threads, r);
+    aa__c_numbers_end(&numbers);
     return st;
 }
 

@@ -13,8 +13,12 @@
  *                   the lowest other error, labelled with their error
  *   convergence     RMSE against samples per pixel, log-log, with each
  *                   method's fitted line and slope
+ *
+ * Numbers in the data and the scripts are C-locale text, whatever
+ * LC_NUMERIC the program has set (gnuplot reads them so).
  */
 #include "bench.h"
+#include "c_numbers_internal.h"
 
 #include <errno.h>
 #include <math.h>
@@ -143,7 +147,7 @@ static void gp_string(FILE *f, const char *s)
 /* Errors below this are exact to rounding: drawn on the panel's floor. */
 #define EXACT 1e-9
 
-int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
+static int plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
 {
     char dat[4096], tmp[4096];
     int st = aa_mkdirs(dir);
@@ -250,8 +254,8 @@ int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
     return draw(dir, "error_vs_time", script, tmp, "error_vs_time.dat");
 }
 
-int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *const *names,
-                        size_t n, const char *title)
+static int plot_convergence(const char *dir, const aa_convergence *c, const char *const *names,
+                            size_t n, const char *title)
 {
     char dat[4096], tmp[4096];
     int st = aa_mkdirs(dir);
@@ -292,4 +296,27 @@ int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *co
             n - 1, n - 1);
     fclose(s);
     return draw(dir, "convergence", script, tmp, "convergence.dat");
+}
+
+int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, dir);
+    if (st)
+        return st;
+    st = plot_error_vs_time(dir, rows, n);
+    aa__c_numbers_end(&numbers);
+    return st;
+}
+
+int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *const *names,
+                        size_t n, const char *title)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, dir);
+    if (st)
+        return st;
+    st = plot_convergence(dir, c, names, n, title);
+    aa__c_numbers_end(&numbers);
+    return st;
 }

@@ -5,9 +5,11 @@
  * quoted, quotes doubled (method specs contain commas).  Numbers are written
  * with %.9g; an infinite PSNR is "inf".  A refused or failed case has ok = 0,
  * empty measurements and its reason in `note`.  Both files are written
- * atomically.
+ * atomically.  Numbers are C-locale text ('.' as the decimal point), read
+ * and written so whatever LC_NUMERIC the program has set.
  */
 #include "bench.h"
+#include "c_numbers_internal.h"
 
 #include <errno.h>
 #include <math.h>
@@ -144,7 +146,7 @@ static void num(text *t, double v)
             write;                                                                               \
     } while (0)
 
-int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n)
+static int write_csv(const char *path, const aa_row *rows, size_t n)
 {
     text tb = {0}, *t = &tb;
     int first = 1;
@@ -189,7 +191,7 @@ static void json_num(text *t, double v)
         put(t, "null");
 }
 
-int aa_rows_write_json(const char *path, const aa_row *rows, size_t n)
+static int write_json(const char *path, const aa_row *rows, size_t n)
 {
     text tb = {0}, *t = &tb;
     put(t, "[\n");
@@ -265,6 +267,28 @@ int aa_rows_write_json(const char *path, const aa_row *rows, size_t n)
     }
     put(t, "]\n");
     return finish(t, path);
+}
+
+int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, path);
+    if (st)
+        return st;
+    st = write_csv(path, rows, n);
+    aa__c_numbers_end(&numbers);
+    return st;
+}
+
+int aa_rows_write_json(const char *path, const aa_row *rows, size_t n)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, path);
+    if (st)
+        return st;
+    st = write_json(path, rows, n);
+    aa__c_numbers_end(&numbers);
+    return st;
 }
 
 /* ---- reading CSV ---- */
@@ -350,7 +374,7 @@ static int read_record(FILE *f, char *buf, size_t len)
     }
 }
 
-int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
+static int read_csv(const char *path, aa_row **rows_out, size_t *n_out)
 {
     FILE *f = fopen(path, "r");
     if (!f)
@@ -451,5 +475,19 @@ done:
     }
     *rows_out = rows;
     *n_out = n;
+    return st;
+}
+
+int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, path);
+    if (st) {
+        *rows_out = NULL;
+        *n_out = 0;
+        return st;
+    }
+    st = read_csv(path, rows_out, n_out);
+    aa__c_numbers_end(&numbers);
     return st;
 }

@@ -15,18 +15,25 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int check_list(const char *const *specs, size_t n, const char *what)
+static int check_list(const void *list, size_t n, const char *what)
 {
-    if (n == 0 || !specs)
+    if (n == 0 || !list)
         return aa_fail(AA_EINVAL, "no %s given", what);
+    return AA_OK;
+}
+
+/* A spec whose type is the one of that name in `table`. */
+static int check_type(const aa_info *info, const void *const *table, const char *what)
+{
+    if (!info || !info->name || aa_table_find(table, info->name) != info)
+        return aa_fail(AA_EINVAL, "%s %s is not a known %s", what,
+                       info && info->name ? info->name : "(none)", what);
     return AA_OK;
 }
 
 int aa_run_check(const aa_run_config *cfg)
 {
-    int st, w, h;
-    aa_spec spec;
-    aa_filter f;
+    int st;
     if ((st = check_list(cfg->patterns, cfg->npatterns, "pattern")) ||
         (st = check_list(cfg->sizes, cfg->nsizes, "size")) ||
         (st = check_list(cfg->filters, cfg->nfilters, "filter")) ||
@@ -40,21 +47,40 @@ int aa_run_check(const aa_run_config *cfg)
                        cfg->window, cfg->frames > 0 ? cfg->frames : 24);
     if (cfg->reps < 1 || cfg->reps > 1000)
         return aa_fail(AA_EINVAL, "reps %d out of range (1 to 1000)", cfg->reps);
-    for (size_t k = 0; k < cfg->npatterns; k++)
-        if ((st = aa_pattern_parse(cfg->patterns[k], &spec)))
+    for (size_t k = 0; k < cfg->npatterns; k++) {
+        const aa_spec *p = &cfg->patterns[k].spec;
+        if ((st = check_type(p->info, (const void *const *)aa_pattern_types, "pattern")))
             return st;
+        const aa_pattern_type *type = (const aa_pattern_type *)p->info;
+        if (type->check && (st = type->check(p->v)))
+            return st;
+    }
     for (size_t k = 0; k < cfg->nsizes; k++)
-        if ((st = aa_size_parse(cfg->sizes[k], &w, &h)) || (st = aa_size_check(w, h, 3, 4)))
+        if ((st = aa_size_check(cfg->sizes[k].w, cfg->sizes[k].h, 3, 4)))
             return st;
-    /* a method must parse; whether it accepts each filter is a result */
-    aa_filter_default(&f);
-    for (size_t k = 0; k < cfg->nfilters; k++)
-        if ((st = aa_filter_parse(cfg->filters[k], &f)))
+    /* a method must be known; whether it accepts each filter is a result */
+    for (size_t k = 0; k < cfg->nfilters; k++) {
+        const aa_filter *f = &cfg->filters[k].filter;
+        if ((st = check_type(f->spec.info, (const void *const *)aa_filter_types, "filter")))
             return st;
+        if (f->spec.info != &f->type->info)
+            return aa_fail(AA_EINVAL, "filter %s: its spec is of another filter",
+                           f->type->info.name);
+    }
     for (size_t k = 0; k < cfg->nmethods; k++)
-        if ((st = aa_spec_parse(cfg->methods[k], aa_method_table(), "method", &spec)))
+        if ((st = check_type(cfg->methods[k].spec.info, aa_method_table(), "method")))
             return st;
     return AA_OK;
+}
+
+/* The text a run shows for a spec: as given, else its canonical text. */
+static const char *shown(const char *text, const aa_spec *spec, char *buf, size_t len)
+{
+    if (text)
+        return text;
+    if (aa_spec_format(spec, buf, len))
+        snprintf(buf, len, "%s", spec->info->name);
+    return buf;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -130,18 +156,18 @@ static void row_names(aa_row *row, const char *pattern, int w, int h, const char
 }
 
 /* One method on one view. */
-static int run_method(const aa_run_config *cfg, const aa_job *job, const aa_image *ref,
-                      aa_image *img, const char *stem, aa_row *row, double *seconds)
+static int run_method(const aa_run_config *cfg, const aa_job *job, const aa_spec *spec,
+                      const aa_image *ref, aa_image *img, const char *stem, aa_row *row,
+                      double *seconds)
 {
-    aa_spec spec;
     aa_counters c;
-    int st = aa_method_parse(row->method, &job->filter, &spec);
+    int st = aa_method_check(spec, &job->filter);
     if (st == AA_EINVAL) { /* refused (e.g. a filter it cannot honour): a result */
         snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
         return AA_OK;
     }
-    if (!st && !(st = aa_spec_format(&spec, row->canonical, sizeof row->canonical)) &&
-        (st = aa_method_run(&spec, job, cfg->reps, img, &c, seconds)) == AA_EINVAL) {
+    if (!st && !(st = aa_spec_format(spec, row->canonical, sizeof row->canonical)) &&
+        (st = aa_method_run(spec, job, cfg->reps, img, &c, seconds)) == AA_EINVAL) {
         /* refused at init: a scene it cannot take (colour, several layers, a
          * field): a result too */
         snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
@@ -231,14 +257,12 @@ static int dot_centres(const aa_view *view, const aa_scene *scene, double **cx, 
 /* The displayed frames of a method at times t, t + 1, ... (temporal methods
  * with frame_only), measured against the references. */
 static int run_temporal(const aa_run_config *cfg, const aa_view *view, const aa_scene *scene,
-                        const aa_image *refs, aa_image *frames, aa_row *row)
+                        const aa_spec *spec, const aa_image *refs, aa_image *frames,
+                        aa_row *row)
 {
     int n = frame_count(cfg), st = AA_OK;
-    aa_spec spec;
     double *cx = NULL, *cy = NULL, *shift = NULL;
     size_t nd = 0;
-    if ((st = aa_method_parse(row->method, &view->filter, &spec)))
-        return st;
     for (int k = 0; k < n && !st; k++) {
         aa_job job;
         aa_counters c;
@@ -246,7 +270,7 @@ static int run_temporal(const aa_run_config *cfg, const aa_view *view, const aa_
                               &view->filter, cfg->seed, cfg->threads)))
             break;
         job.frame_only = 1;
-        st = aa_method_run(&spec, &job, 1, &frames[k], &c, NULL);
+        st = aa_method_run(spec, &job, 1, &frames[k], &c, NULL);
         aa_job_free(&job);
     }
     if (!st)
@@ -310,23 +334,28 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
         goto done;
     for (size_t ip = 0; ip < cfg->npatterns && !st; ip++) {
         aa_view view;
+        char pbuf[sizeof rows->pattern];
+        const char *pattern = shown(cfg->patterns[ip].text, &cfg->patterns[ip].spec, pbuf,
+                                    sizeof pbuf);
         memset(&view, 0, sizeof view);
-        if ((st = aa_pattern_parse(cfg->patterns[ip], &view.pattern)) ||
-            (st = aa_pattern_scene(&view.pattern, &scene)))
+        view.pattern = cfg->patterns[ip].spec;
+        if ((st = aa_pattern_scene(&view.pattern, &scene)))
             break;
         for (size_t is = 0; is < cfg->nsizes && !st; is++) {
-            aa_size_parse(cfg->sizes[is], &view.w, &view.h);
+            view.w = cfg->sizes[is].w, view.h = cfg->sizes[is].h;
             if ((st = aa_image_alloc(&img, view.w, view.h, 3)))
                 break;
             if (nt && ((st = aa_size_check(view.w, view.h, 3, 2 * nt + 4)) ||
                        (st = alloc_images(frames, nt, view.w, view.h))))
                 break;
             for (size_t jf = 0; jf < cfg->nfilters && !st; jf++) {
-                char stem[1400], ps[512], fs[256];
-                aa_filter_parse(cfg->filters[jf], &view.filter);
+                char stem[1400], ps[512], fs[256], fbuf[sizeof rows->filter];
+                const char *filter = shown(cfg->filters[jf].text, &cfg->filters[jf].filter.spec,
+                                           fbuf, sizeof fbuf);
+                view.filter = cfg->filters[jf].filter;
                 view.t = cfg->t, view.vx = cfg->vx, view.vy = cfg->vy;
-                aa_spec_slug(cfg->patterns[ip], ps, sizeof ps);
-                aa_spec_slug(cfg->filters[jf], fs, sizeof fs);
+                aa_spec_slug(pattern, ps, sizeof ps);
+                aa_spec_slug(filter, fs, sizeof fs);
                 if (cfg->progress && cfg->progress(cfg->ctx, n, total, "reference")) {
                     st = aa_fail(AA_EFAIL, "interrupted");
                     break;
@@ -341,22 +370,23 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                 if (cfg->images_dir && (st = write_images(cfg, stem, NULL, &ref)))
                     break;
                 for (size_t im = 0; im < cfg->nmethods && !st; im++) {
-                    char what[1400], ms[512];
+                    char what[1400], ms[512], mbuf[sizeof rows->method];
+                    const aa_spec *spec = &cfg->methods[im].spec;
+                    const char *method = shown(cfg->methods[im].text, spec, mbuf, sizeof mbuf);
                     aa_row *row = &rows[n];
-                    snprintf(what, sizeof what, "%s %dx%d %s %s", cfg->patterns[ip], view.w,
-                             view.h, cfg->filters[jf], cfg->methods[im]);
+                    snprintf(what, sizeof what, "%s %dx%d %s %s", pattern, view.w, view.h, filter,
+                             method);
                     if (cfg->progress && cfg->progress(cfg->ctx, n, total, what)) {
                         st = aa_fail(AA_EFAIL, "interrupted");
                         break;
                     }
-                    row_names(row, cfg->patterns[ip], view.w, view.h, cfg->filters[jf],
-                              cfg->methods[im], cfg);
-                    aa_spec_slug(cfg->methods[im], ms, sizeof ms);
+                    row_names(row, pattern, view.w, view.h, filter, method, cfg);
+                    aa_spec_slug(method, ms, sizeof ms);
                     snprintf(stem, sizeof stem, "%s-%dx%d-%s-%s", ps, view.w, view.h, fs, ms);
-                    if ((st = run_method(cfg, &job, &ref, &img, stem, row, seconds)))
+                    if ((st = run_method(cfg, &job, spec, &ref, &img, stem, row, seconds)))
                         break;
                     if (nt && row->ok &&
-                        (st = run_temporal(cfg, &view, scene, refs, frames, row)))
+                        (st = run_temporal(cfg, &view, scene, spec, refs, frames, row)))
                         break;
                     n++;
                     if (cfg->row_done && (st = cfg->row_done(cfg->ctx, rows, n)))

@@ -2,6 +2,7 @@
  * cli.c: helpers shared by the subcommands.
  */
 #include "cli.h"
+#include "c_numbers_internal.h"
 
 #include <signal.h>
 
@@ -38,12 +39,19 @@ void cli_getopt_reset(void)
     opterr = 0;
 }
 
+/* C-locale numbers ('.' as the decimal point) whatever the locale. */
 int cli_parse_real(const char *name, const char *text, double lo, double hi, double *out)
 {
     char *end;
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, name);
+    if (st)
+        return st;
     errno = 0;
     double v = strtod(text, &end);
-    if (end == text || *end || errno == ERANGE || !isfinite(v))
+    int range = errno == ERANGE;
+    aa__c_numbers_end(&numbers);
+    if (end == text || *end || range || !isfinite(v))
         return aa_fail(AA_EINVAL, "%s \"%s\" is not a finite number", name, text);
     if (v < lo || v > hi)
         return aa_fail(AA_EINVAL, "%s %s is out of range (%g to %g)", name, text, lo, hi);

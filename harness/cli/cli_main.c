@@ -4,6 +4,7 @@
  * to run the command line in a child process without exec.
  */
 #include "cli.h"
+#include "c_numbers_internal.h"
 
 #include <errno.h>
 #include <string.h>
@@ -66,9 +67,20 @@ int cli_main(int argc, char **argv)
         printf("aabench %s\n", AA_VERSION);
         return finish(NULL, 0);
     }
+    /* The command never sets a locale, but a plug-in it loads might: its
+     * numbers (options read, tables and files written) stay C-locale text. */
+    aa__c_numbers numbers;
+    if (aa__c_numbers_begin(&numbers)) {
+        fprintf(stderr, "aabench: cannot make the C locale\n");
+        return 3;
+    }
     for (const struct command *c = commands; c->name; c++)
-        if (!strcmp(argv[1], c->name))
-            return finish(c->name, c->run(argc - 1, argv + 1));
+        if (!strcmp(argv[1], c->name)) {
+            int code = c->run(argc - 1, argv + 1);
+            aa__c_numbers_end(&numbers);
+            return finish(c->name, code);
+        }
+    aa__c_numbers_end(&numbers);
     fprintf(stderr, "aabench: unknown command \"%s\"\n", argv[1]);
     usage(stderr);
     return 2;

@@ -90,20 +90,22 @@ int cmd_check(int argc, char **argv)
     if (threads <= 0)
         threads = cli_default_threads();
     int *done = calloc(nb, sizeof *done);
-    const char **methods = malloc(nb * sizeof *methods);
+    aa_run_spec *methods = malloc(nb * sizeof *methods);
+    size_t *which = malloc(nb * sizeof *which);
     size_t offenders = 0, checked = 0;
+    if (!done || !methods || !which)
+        st = aa_fail(AA_ENOMEM, "out of memory for %zu cases", nb);
     for (size_t k = 0; k < nb && !st; k++) {
         if (done[k])
             continue;
         /* the baseline's methods on this view that still exist */
         size_t nm = 0;
-        size_t *which = malloc(nb * sizeof *which);
         for (size_t q = k; q < nb; q++) {
             if (done[q] || !same_view(&base[k], &base[q]))
                 continue;
             done[q] = 1;
-            aa_spec spec;
-            if (aa_spec_parse(base[q].method, aa_method_table(), "method", &spec)) {
+            methods[nm].text = base[q].method;
+            if (aa_spec_parse(base[q].method, aa_method_table(), "method", &methods[nm].spec)) {
                 char name[128];
                 snprintf(name, sizeof name, "%.*s", (int)strcspn(base[q].method, ":"),
                          base[q].method);
@@ -118,21 +120,24 @@ int cmd_check(int argc, char **argv)
                 offenders++;
                 continue;
             }
-            methods[nm] = base[q].method;
             which[nm++] = q;
         }
-        if (nm == 0) {
-            free(which);
+        if (nm == 0)
             continue;
-        }
+        /* the view, parsed once for all its methods */
         char size[32];
         snprintf(size, sizeof size, "%dx%d", base[k].w, base[k].h);
-        const char *p[1] = {base[k].pattern}, *s[1] = {size}, *f[1] = {base[k].filter};
+        aa_run_spec pattern = {.text = base[k].pattern};
+        aa_run_filter filter = {.text = base[k].filter};
+        aa_run_size wh = {base[k].w, base[k].h};
+        if ((st = aa_pattern_parse(base[k].pattern, &pattern.spec)) ||
+            (st = aa_filter_parse(base[k].filter, &filter.filter)))
+            break;
         aa_run_config cfg;
         memset(&cfg, 0, sizeof cfg);
-        cfg.patterns = p, cfg.npatterns = 1;
-        cfg.sizes = s, cfg.nsizes = 1;
-        cfg.filters = f, cfg.nfilters = 1;
+        cfg.patterns = &pattern, cfg.npatterns = 1;
+        cfg.sizes = &wh, cfg.nsizes = 1;
+        cfg.filters = &filter, cfg.nfilters = 1;
         cfg.methods = methods, cfg.nmethods = nm;
         cfg.reps = 1, cfg.threads = threads, cfg.seed = base[k].seed;
         cfg.t = base[k].t, cfg.vx = base[k].vx, cfg.vy = base[k].vy;
@@ -142,7 +147,6 @@ int cmd_check(int argc, char **argv)
         size_t nn;
         if ((st = aa_run(&cfg, &now, &nn))) {
             free(now);
-            free(which);
             break;
         }
         for (size_t m = 0; m < nn; m++) {
@@ -171,10 +175,10 @@ int cmd_check(int argc, char **argv)
             }
         }
         free(now);
-        free(which);
     }
     free(done);
     free(methods);
+    free(which);
     free(base);
     if (st)
         return cli_fail("check", st);

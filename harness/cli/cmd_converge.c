@@ -78,13 +78,14 @@ int cmd_converge(int argc, char **argv)
         if ((st = cli_parse_int("--spp value", t, 1, 1 << 20, &spp[n++])))
             return cli_fail("converge", st);
     }
-    aa_spec pspec;
+    aa_spec pspec, mspec;
     aa_filter f;
     aa_convergence conv;
     if ((st = aa_pattern_parse(pattern, &pspec)) || (st = aa_size_parse(size, &w, &h)) ||
         (st = aa_size_check(w, h, 3, 3)) ||
         (st = filter ? aa_filter_parse(filter, &f) : (aa_filter_default(&f), AA_OK)) ||
-        (st = aa_converge_moving(&pspec, method, &f, w, h, tm, vx, vy, spp, n, phases, seed,
+        (st = aa_method_parse(method, &f, &mspec)) ||
+        (st = aa_converge_moving(&pspec, &mspec, &f, w, h, tm, vx, vy, spp, n, phases, seed,
                           threads > 0 ? threads : cli_default_threads(), *cache ? cache : NULL,
                           &conv)))
         return cli_fail("converge", st);

@@ -229,8 +229,10 @@ static int save(void *vctx, const aa_row *rows, size_t n)
 
 /* ---- what runs after the cases ---- */
 
-/* The first view's reference and every method, side by side. */
-static int write_montage(const char *dir, const aa_row *rows, size_t n, const aa_encode *enc)
+/* The first view's reference and every method, side by side (the first
+ * view is the first pattern, size and filter of the first cross product). */
+static int write_montage(const char *dir, const aa_run_config *first, const aa_row *rows,
+                         size_t n, const aa_encode *enc)
 {
     char path[4096], labels[64][2][128];
     aa_image imgs[64];
@@ -241,9 +243,8 @@ static int write_montage(const char *dir, const aa_row *rows, size_t n, const aa
         return AA_OK;
     aa_view view;
     memset(&view, 0, sizeof view);
-    if ((st = aa_pattern_parse(rows[0].pattern, &view.pattern)) ||
-        (st = aa_filter_parse(rows[0].filter, &view.filter)))
-        return st;
+    view.pattern = first->patterns[0].spec;
+    view.filter = first->filters[0].filter;
     view.w = rows[0].w, view.h = rows[0].h;
     view.t = rows[0].t, view.vx = rows[0].vx, view.vy = rows[0].vy;
     if ((st = aa_reference(&view, cli_cache_dir(), 0, &imgs[0], NULL, NULL)))
@@ -311,33 +312,32 @@ static void without_count(const char *spec, char *buf, size_t len)
 
 /* Convergence of the sampling methods among those run, on the first
  * pattern at 128x128 under the first filter. */
-static int write_convergence(const char *dir, const run_args *a, const char *const *methods,
-                             size_t nm, const char *pattern, const char *filter, int threads)
+static int write_convergence(const char *dir, const run_args *a, const aa_run_config *first,
+                             int threads)
 {
-    const char *names[16];
+    const aa_run_spec *names[16];
     aa_convergence conv[16];
     size_t n = 0;
-    aa_spec pspec, mspec;
-    aa_filter f;
+    const aa_spec *pspec = &first->patterns[0].spec;
+    const aa_filter *f = &first->filters[0].filter;
+    const char *pattern = first->patterns[0].text, *filter = first->filters[0].text;
     int st;
-    if ((st = aa_pattern_parse(pattern, &pspec)) || (st = aa_filter_parse(filter, &f)))
-        return st;
     static const int spp[] = {1, 4, 16, 64, 256};
-    for (size_t k = 0; k < nm && n < 16; k++) {
-        if (aa_method_parse(methods[k], &f, &mspec) ||
-            (aa_spec_index(mspec.info, "spp") < 0 && aa_spec_index(mspec.info, "n") < 0))
+    for (size_t k = 0; k < first->nmethods && n < 16; k++) {
+        const aa_spec *mspec = &first->methods[k].spec;
+        if (aa_method_check(mspec, f) ||
+            (aa_spec_index(mspec->info, "spp") < 0 && aa_spec_index(mspec->info, "n") < 0))
             continue;
         /* one curve per method family variant: skip a spec that differs
          * from an earlier one only in its sample count */
         int seen = 0;
         for (size_t q = 0; q < n && !seen; q++) {
-            aa_spec other;
-            aa_method_parse(names[q], &f, &other);
-            if (other.info == mspec.info) {
+            const aa_spec *other = &names[q]->spec;
+            if (other->info == mspec->info) {
                 int same = 1;
-                for (size_t p = 0; p < aa_param_count(mspec.info); p++) {
-                    const char *key = mspec.info->params[p].key;
-                    if (strcmp(key, "spp") && strcmp(key, "n") && other.v[p] != mspec.v[p])
+                for (size_t p = 0; p < aa_param_count(mspec->info); p++) {
+                    const char *key = mspec->info->params[p].key;
+                    if (strcmp(key, "spp") && strcmp(key, "n") && other->v[p] != mspec->v[p])
                         same = 0;
                 }
                 seen = same;
@@ -345,9 +345,9 @@ static int write_convergence(const char *dir, const run_args *a, const char *con
         }
         if (seen)
             continue;
-        if ((st = aa_converge(&pspec, methods[k], &f, 128, 128, spp, 5, 4, a->seed, threads,
+        if ((st = aa_converge(pspec, mspec, f, 128, 128, spp, 5, 4, a->seed, threads,
                               cli_cache_dir(), &conv[n])) == AA_OK)
-            names[n++] = methods[k];
+            names[n++] = &first->methods[k];
         else if (st != AA_EINVAL)
             return st;
     }
@@ -356,7 +356,7 @@ static int write_convergence(const char *dir, const run_args *a, const char *con
     char title[1024], labels[16][256];
     const char *shown[16];
     for (size_t k = 0; k < n; k++) {
-        without_count(names[k], labels[k], sizeof labels[k]);
+        without_count(names[k]->text, labels[k], sizeof labels[k]);
         shown[k] = labels[k];
     }
     snprintf(title, sizeof title, "Convergence on %s 128x128 %s, 4 random sub-pixel shifts",
@@ -464,75 +464,149 @@ static void print_table(const aa_row *rows, size_t n)
 
 /* ---- the command ---- */
 
-/* The cross products to run: the suite's groups, with any list given on the
- * command line replacing the groups' own. */
-static size_t groups_of(const run_args *a, const aa_suite *suite, aa_run_config *cfgs,
-                        size_t max)
+/* ---- the lists, parsed once ---- */
+
+#define MAX_GROUPS 16
+
+/* The arrays of parsed lists, freed together at the end of the run. */
+typedef struct owned {
+    void *v[4 * (MAX_GROUPS + 1)];
+    size_t n;
+} owned;
+
+static void *own(owned *o, size_t n, size_t size)
+{
+    void *p = o->n < sizeof o->v / sizeof o->v[0] ? calloc(n ? n : 1, size) : NULL;
+    if (p)
+        o->v[o->n++] = p;
+    return p;
+}
+
+static void owned_free(owned *o)
+{
+    while (o->n)
+        free(o->v[--o->n]);
+}
+
+static size_t count(const char *const *v)
 {
     size_t n = 0;
-    for (const aa_suite_group *g = suite->groups; g->patterns && n < max; g++) {
-        aa_run_config *c = &cfgs[n];
-        memset(c, 0, sizeof *c);
-#define LIST_OR(field, given, count)                                                             \
-    if (given.n) {                                                                               \
-        c->field = given.v;                                                                      \
-        c->count = given.n;                                                                      \
-    } else {                                                                                     \
-        c->field = g->field;                                                                     \
-        while (g->field[c->count])                                                               \
-            c->count++;                                                                          \
-    }
-        LIST_OR(patterns, a->p, npatterns)
-        LIST_OR(sizes, a->s, nsizes)
-        LIST_OR(filters, a->f, nfilters)
-        LIST_OR(methods, a->m, nmethods)
-#undef LIST_OR
+    while (v[n])
         n++;
-        if (a->p.n && a->s.n && a->f.n && a->m.n)
-            break; /* everything given: one cross product */
-    }
     return n;
 }
 
-int cmd_run(int argc, char **argv)
+/* Each list is parsed where it comes in, and keeps the text it was given
+ * as, for the results' columns and the image names. */
+static int parse_patterns(owned *o, const char *const *text, size_t n, aa_run_spec **out)
 {
-    run_args a;
-    memset(&a, 0, sizeof a);
-    a.suite = "default";
-    a.reps = 5;
-    a.images = a.plots = 1;
-    a.seed = 1;
-    a.cache = cli_cache_dir();
-    a.enc.kind = AA_ENCODE_SRGB;
-    int st, code = parse(argc, argv, &a);
-    if (code >= 0)
-        return code;
-    const aa_suite *suite = aa_suite_find(a.suite);
-    if (!suite) {
-        fprintf(stderr,
-                "aabench run: unknown suite \"%s\" (quick, default, paper, full, temporal)\n",
-                a.suite);
-        return 2;
+    aa_run_spec *v = *out = own(o, n, sizeof *v);
+    int st = v ? AA_OK : aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t k = 0; k < n && !st; k++) {
+        v[k].text = text[k];
+        st = aa_pattern_parse(text[k], &v[k].spec);
     }
-    aa_run_config cfgs[16];
-    size_t ng = groups_of(&a, suite, cfgs, 16);
-    int threads = a.threads > 0 ? a.threads : cli_default_threads();
+    return st;
+}
+
+static int parse_sizes(owned *o, const char *const *text, size_t n, aa_run_size **out)
+{
+    aa_run_size *v = *out = own(o, n, sizeof *v);
+    int st = v ? AA_OK : aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t k = 0; k < n && !st; k++)
+        if (!(st = aa_size_parse(text[k], &v[k].w, &v[k].h)))
+            st = aa_size_check(v[k].w, v[k].h, 3, 4);
+    return st;
+}
+
+static int parse_filters(owned *o, const char *const *text, size_t n, aa_run_filter **out)
+{
+    aa_run_filter *v = *out = own(o, n, sizeof *v);
+    int st = v ? AA_OK : aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t k = 0; k < n && !st; k++) {
+        v[k].text = text[k];
+        st = aa_filter_parse(text[k], &v[k].filter);
+    }
+    return st;
+}
+
+/* Whether a method accepts each filter is a result of the run, not a parse
+ * error: only the spec is parsed here. */
+static int parse_methods(owned *o, const char *const *text, size_t n, aa_run_spec **out)
+{
+    aa_run_spec *v = *out = own(o, n, sizeof *v);
+    int st = v ? AA_OK : aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t k = 0; k < n && !st; k++) {
+        v[k].text = text[k];
+        st = aa_spec_parse(text[k], aa_method_table(), "method", &v[k].spec);
+    }
+    return st;
+}
+
+/* The cross products to run: the suite's groups, with any list given on the
+ * command line replacing the groups' own.  The lists given are parsed once,
+ * and shared by every group. */
+static int groups_of(const run_args *a, const aa_suite *suite, owned *o, aa_run_config *cfgs,
+                     size_t max, size_t *ng)
+{
+    aa_run_spec *gp = NULL, *gm = NULL;
+    aa_run_size *gs = NULL;
+    aa_run_filter *gf = NULL;
+    int st = AA_OK;
+    *ng = 0;
+    if ((a->p.n && (st = parse_patterns(o, a->p.v, a->p.n, &gp))) ||
+        (a->s.n && (st = parse_sizes(o, a->s.v, a->s.n, &gs))) ||
+        (a->f.n && (st = parse_filters(o, a->f.v, a->f.n, &gf))) ||
+        (a->m.n && (st = parse_methods(o, a->m.v, a->m.n, &gm))))
+        return st;
+    for (const aa_suite_group *g = suite->groups; g->patterns && *ng < max; g++) {
+        aa_run_config *c = &cfgs[(*ng)++];
+        aa_run_spec *p = gp, *m = gm;
+        aa_run_size *s = gs;
+        aa_run_filter *f = gf;
+        size_t np = a->p.n ? a->p.n : count(g->patterns), ns = a->s.n ? a->s.n : count(g->sizes),
+               nf = a->f.n ? a->f.n : count(g->filters), nm = a->m.n ? a->m.n : count(g->methods);
+        if ((!a->p.n && (st = parse_patterns(o, g->patterns, np, &p))) ||
+            (!a->s.n && (st = parse_sizes(o, g->sizes, ns, &s))) ||
+            (!a->f.n && (st = parse_filters(o, g->filters, nf, &f))) ||
+            (!a->m.n && (st = parse_methods(o, g->methods, nm, &m))))
+            return st;
+        memset(c, 0, sizeof *c);
+        c->patterns = p, c->npatterns = np;
+        c->sizes = s, c->nsizes = ns;
+        c->filters = f, c->nfilters = nf;
+        c->methods = m, c->nmethods = nm;
+        if (a->p.n && a->s.n && a->f.n && a->m.n)
+            break; /* everything given: one cross product */
+    }
+    return AA_OK;
+}
+
+/* Run the suite's cross products (or those given) and write everything. */
+static int run_suite(run_args *a, const aa_suite *suite, owned *o)
+{
+    aa_run_config cfgs[MAX_GROUPS];
+    size_t ng;
+    int st = groups_of(a, suite, o, cfgs, MAX_GROUPS, &ng);
+    if (st)
+        return cli_fail("run", st);
+    int threads = a->threads > 0 ? a->threads : cli_default_threads();
     char dir[4096], images[4200], plots[4200];
     int linked = 0;
     const aa_suite_motion *mo = aa_suite_motion_find(suite->name);
-    if (mo && !a.motion_given)
-        a.vx = mo->vx, a.vy = mo->vy;
+    if (mo && !a->motion_given)
+        a->vx = mo->vx, a->vy = mo->vy;
     for (size_t g = 0; g < ng; g++) {
-        cfgs[g].reps = a.reps;
+        cfgs[g].reps = a->reps;
         cfgs[g].threads = threads;
         cfgs[g].temporal = mo != NULL;
-        cfgs[g].frames = a.frames ? a.frames : mo ? mo->frames : 0;
-        cfgs[g].window = a.window ? a.window : mo ? mo->window : 0;
+        cfgs[g].frames = a->frames ? a->frames : mo ? mo->frames : 0;
+        cfgs[g].window = a->window ? a->window : mo ? mo->window : 0;
         if ((st = aa_run_check(&cfgs[g])))
             return cli_fail("run", st);
     }
-    if (a.out) {
-        snprintf(dir, sizeof dir, "%s", a.out);
+    if (a->out) {
+        snprintf(dir, sizeof dir, "%s", a->out);
         if ((st = aa_mkdirs(dir)))
             return cli_fail("run", st);
     } else if ((st = make_run_dir(dir, sizeof dir, &linked))) {
@@ -553,11 +627,11 @@ int cmd_run(int argc, char **argv)
     st = AA_OK;
     for (size_t g = 0; g < ng && !st; g++) {
         aa_run_config *c = &cfgs[g];
-        c->seed = a.seed;
-        c->t = a.t, c->vx = a.vx, c->vy = a.vy;
-        c->cache_dir = *a.cache ? a.cache : NULL;
-        c->images_dir = a.images ? images : NULL;
-        c->enc = a.enc;
+        c->seed = a->seed;
+        c->t = a->t, c->vx = a->vx, c->vy = a->vy;
+        c->cache_dir = *a->cache ? a->cache : NULL;
+        c->images_dir = a->images ? images : NULL;
+        c->enc = a->enc;
         c->progress = progress;
         c->ctx = &ctx;
         aa_row *rows;
@@ -576,12 +650,11 @@ int cmd_run(int argc, char **argv)
             st = save(&ctx, all, nall);
     }
     if (!st && nall) {
-        if (a.images)
-            st = write_montage(dir, all, nall, &a.enc);
-        if (!st && a.plots) {
+        if (a->images)
+            st = write_montage(dir, &cfgs[0], all, nall, &a->enc);
+        if (!st && a->plots) {
             if (!(st = aa_plot_error_vs_time(plots, all, nall)))
-                st = write_convergence(plots, &a, cfgs[0].methods, cfgs[0].nmethods,
-                                       cfgs[0].patterns[0], cfgs[0].filters[0], threads);
+                st = write_convergence(plots, a, &cfgs[0], threads);
         }
     }
     if (interrupted) {
@@ -596,9 +669,35 @@ int cmd_run(int argc, char **argv)
         free(all);
         return cli_fail("run", st);
     }
-    if (!a.quiet)
+    if (!a->quiet)
         print_table(all, nall);
     printf("results: %s/results.csv%s\n", dir, linked ? " (results/latest)" : "");
     free(all);
     return 0;
+}
+
+int cmd_run(int argc, char **argv)
+{
+    run_args a;
+    memset(&a, 0, sizeof a);
+    a.suite = "default";
+    a.reps = 5;
+    a.images = a.plots = 1;
+    a.seed = 1;
+    a.cache = cli_cache_dir();
+    a.enc.kind = AA_ENCODE_SRGB;
+    int code = parse(argc, argv, &a);
+    if (code >= 0)
+        return code;
+    const aa_suite *suite = aa_suite_find(a.suite);
+    if (!suite) {
+        fprintf(stderr,
+                "aabench run: unknown suite \"%s\" (quick, default, paper, full, temporal)\n",
+                a.suite);
+        return 2;
+    }
+    owned o = {{0}, 0};
+    code = run_suite(&a, suite, &o);
+    owned_free(&o);
+    return code;
 }

@@ -215,6 +215,8 @@ extern const aa_method_type *const aa_method_types[]; /* built-in, NULL-terminat
 const void *const *aa_method_table(void);
 /* Parse a method spec and check it against the filter. */
 int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out);
+/* Check a parsed method spec against a filter (the method's own check). */
+int aa_method_check(const aa_spec *spec, const aa_filter *f);
 int aa_method_init(aa_method *m, const aa_spec *spec, const aa_job *job);
 int aa_method_render(aa_method *m, const aa_job *job, aa_image *out, aa_counters *counters);
 void aa_method_free(aa_method *m);
@@ -237,10 +239,6 @@ int aa_plugin_load(const char *path);
  * channel) and value in *value.  A method's image with any is a failed
  * render, never a result. */
 size_t aa_image_bad_values(const aa_image *im, int at[3], double *value);
-
-/* Add a plug-in's methods to the table; `origin` names it in messages.  A
- * name already in the table is refused. */
-int aa__method_register(const aa_method_type *const *types, const char *origin);
 
 /* The threads to use for a `threads` argument: itself if positive, else
  * OpenMP's default (OMP_NUM_THREADS, or the cores) clamped to at most four

@@ -8,6 +8,7 @@
  * recomputed) go to the handler the program installs with aa_set_warn.
  */
 #include "core.h"
+#include "c_numbers_internal.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -17,11 +18,22 @@
 
 static _Thread_local char last_error[AA_ERROR_LEN];
 
+/* Messages quote numbers as specs and options write them: C-locale text
+ * (in the caller's locale should the C locale be out of reach). */
+static void format(char *buf, size_t len, const char *fmt, va_list ap)
+{
+    aa__c_numbers numbers;
+    int c = aa__c_numbers_begin(&numbers) == 0;
+    vsnprintf(buf, len, fmt, ap);
+    if (c)
+        aa__c_numbers_end(&numbers);
+}
+
 int aa_fail(int status, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(last_error, sizeof last_error, fmt, ap);
+    format(last_error, sizeof last_error, fmt, ap);
     va_end(ap);
     return status;
 }
@@ -31,7 +43,7 @@ int aa_fail_context(int status, const char *fmt, ...)
     char context[AA_ERROR_LEN], old[AA_ERROR_LEN];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(context, sizeof context, fmt, ap);
+    format(context, sizeof context, fmt, ap);
     va_end(ap);
     memcpy(old, last_error, sizeof old);
     /* "context: old", cut to fit */

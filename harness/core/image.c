@@ -100,21 +100,6 @@ static size_t image_values(const aa_image *im)
  * Numbers as text
  * ------------------------------------------------------------------------ */
 
-int aa__c_numbers_begin(aa__c_numbers *n, const char *what)
-{
-    n->c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-    if (n->c == (locale_t)0)
-        return aa_fail(AA_ENOMEM, "%s: cannot make the C locale: %s", what, strerror(errno));
-    n->saved = uselocale(n->c);
-    return AA_OK;
-}
-
-void aa__c_numbers_end(aa__c_numbers *n)
-{
-    uselocale(n->saved);
-    freelocale(n->c);
-}
-
 /* Skip digits; how many there were. */
 static size_t skip_digits(const char **p, const char *end)
 {
@@ -187,7 +172,7 @@ int aa_encode_parse(const char *text, aa_encode *out)
         return aa_fail(AA_EINVAL, "unknown encoding '%s' (%s)", text, encode_accepted);
     const char *g = text + sizeof prefix - 1;
     aa__c_numbers numbers;
-    int status = aa__c_numbers_begin(&numbers, "encoding");
+    int status = aa__c_numbers_enter(&numbers, "encoding");
     if (status != AA_OK)
         return status;
     double gamma;

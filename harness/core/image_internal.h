@@ -15,14 +15,8 @@
  * harness makes (RGB results, 1-channel bounds). */
 #define AA__IMAGE_MAX_CHANNELS 4
 
-/* The C locale for numbers, switched on for this thread only while a file or
- * spec is converted (image.c). */
-typedef struct aa__c_numbers {
-    locale_t c, saved;
-} aa__c_numbers;
-
-int aa__c_numbers_begin(aa__c_numbers *n, const char *what);
-void aa__c_numbers_end(aa__c_numbers *n);
+/* Numbers in files and specs are C-locale text (c_numbers_internal.h). */
+#include "c_numbers_internal.h"
 
 static inline int aa__is_digit(char ch)
 {

@@ -58,7 +58,7 @@ static int txt_lines(FILE *f, const aa_image *im)
 int aa__txt_write_file(const char *tmp, const aa_image *im)
 {
     aa__c_numbers numbers;
-    int status = aa__c_numbers_begin(&numbers, tmp);
+    int status = aa__c_numbers_enter(&numbers, tmp);
     if (status != AA_OK)
         return status;
     status = aa__image_stdio_write(tmp, im, txt_lines);
@@ -282,7 +282,7 @@ int aa_image_read_txt(const char *path, aa_image *im)
     if (r.f == NULL)
         return aa_fail(AA_EIO, "%s: cannot open: %s", path, strerror(errno));
     aa__c_numbers numbers;
-    int status = aa__c_numbers_begin(&numbers, path);
+    int status = aa__c_numbers_enter(&numbers, path);
     if (status == AA_OK) {
         /* One lock for the whole file, so getc_unlocked is allowed. */
         flockfile(r.f);

@@ -6,6 +6,7 @@
  * sizes its own instance, as gsl_rng_alloc does for a gsl_rng_type.
  */
 #include "core.h"
+#include "method_internal.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -36,7 +37,7 @@ const void *const *aa_method_table(void)
     return (const void *const *)table;
 }
 
-/* Called by the plug-in loader: add types, refusing duplicates. */
+/* Called by the plug-in loader (method_internal.h). */
 int aa__method_register(const aa_method_type *const *types, const char *origin)
 {
     table_fill();
@@ -60,15 +61,19 @@ int aa__method_register(const aa_method_type *const *types, const char *origin)
     return AA_OK;
 }
 
+int aa_method_check(const aa_spec *spec, const aa_filter *f)
+{
+    const aa_method_type *type = (const aa_method_type *)spec->info;
+    int st;
+    if (type->check && (st = type->check(spec->v, f)))
+        return aa_fail_context(st, "method %s", type->info.name);
+    return AA_OK;
+}
+
 int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out)
 {
     int st = aa_spec_parse(text, aa_method_table(), "method", out);
-    if (st)
-        return st;
-    const aa_method_type *type = (const aa_method_type *)out->info;
-    if (type->check && (st = type->check(out->v, f)))
-        return aa_fail_context(st, "method %s", type->info.name);
-    return AA_OK;
+    return st ? st : aa_method_check(out, f);
 }
 
 /* A method that does not declare AA_METHOD_FIELDS is refused a field scene
@@ -90,10 +95,8 @@ int aa_method_init(aa_method *m, const aa_spec *spec, const aa_job *job)
     const aa_method_type *type = (const aa_method_type *)spec->info;
     int st;
     memset(m, 0, sizeof *m);
-    if ((st = check_scene(type, job)))
+    if ((st = check_scene(type, job)) || (st = aa_method_check(spec, &job->filter)))
         return st;
-    if (type->check && (st = type->check(spec->v, &job->filter)))
-        return aa_fail_context(st, "method %s", type->info.name);
     m->type = type;
     m->spec = *spec;
     if (type->size && !(m->state = calloc(1, type->size)))

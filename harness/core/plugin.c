@@ -8,6 +8,7 @@
  * (its type structs are in the table).
  */
 #include "core.h"
+#include "method_internal.h"
 
 #include <dlfcn.h>
 #include <string.h>

@@ -11,6 +11,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "core.h"
+#include "c_numbers_internal.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -59,7 +60,8 @@ void aa_spec_default(const aa_info *info, aa_spec *out)
         out->v[k] = info->params[k].def;
 }
 
-/* A finite number written as a decimal or as "p/q"; the whole text. */
+/* A finite number written as a decimal or as "p/q"; the whole text.  Needs
+ * C-locale numbers (aa__c_numbers). */
 static int parse_real(const char *text, double *value)
 {
     char *end;
@@ -115,7 +117,7 @@ static void range_text(const aa_param *p, char *buf, size_t len)
                  p->min, p->max);
 }
 
-int aa_param_parse(const aa_param *p, const char *text, double *value)
+static int param_parse(const aa_param *p, const char *text, double *value)
 {
     char what[256];
     double v;
@@ -146,6 +148,18 @@ int aa_param_parse(const aa_param *p, const char *text, double *value)
         return aa_fail(AA_EINVAL, "%s=%s: out of range (expected %s)", p->key, text, what);
     *value = v;
     return AA_OK;
+}
+
+/* Values are C-locale text, whatever the program's LC_NUMERIC. */
+int aa_param_parse(const aa_param *p, const char *text, double *value)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, "parameter");
+    if (st)
+        return st;
+    st = param_parse(p, text, value);
+    aa__c_numbers_end(&numbers);
+    return st;
 }
 
 /* "name1, name2, name3" for an unknown-name message. */
@@ -234,6 +248,10 @@ int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
 {
     const aa_info *info = spec->info;
     size_t count = aa_param_count(info);
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, info->name);
+    if (st)
+        return st;
     int m = snprintf(buf, len, "%s", info->name);
     size_t n = m > 0 ? (size_t)m : 0;
     for (size_t k = 0; k < count && n < len; k++) {
@@ -252,6 +270,7 @@ int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
             break;
         n += (size_t)m;
     }
+    aa__c_numbers_end(&numbers);
     if (n >= len)
         return aa_fail(AA_EFAIL, "spec of %s does not fit in %zu characters", info->name, len);
     return AA_OK;

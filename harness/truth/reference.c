@@ -20,6 +20,7 @@
  * reference (shards on a shared folder) leave one whole file.
  */
 #include "truth.h"
+#include "c_numbers_internal.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -36,20 +37,27 @@
 
 static int field_key(const aa_view *view, char *buf, size_t len);
 
+/* The key's numbers are C-locale text, whatever the program's LC_NUMERIC:
+ * the same view has the same key in every locale. */
 int aa_view_key(const aa_view *view, char *buf, size_t len)
 {
     char pattern[1024], filter[256];
+    aa__c_numbers numbers;
     int st;
     if ((st = aa_spec_format(&view->pattern, pattern, sizeof pattern)) ||
-        (st = aa_spec_format(&view->filter.spec, filter, sizeof filter)))
+        (st = aa_spec_format(&view->filter.spec, filter, sizeof filter)) ||
+        (st = aa__c_numbers_enter(&numbers, "view key")))
         return st;
     int n = snprintf(buf, len, "truth %d\npattern %s\nsize %dx%d\nfilter %s\ntime %.17g\n"
                      "motion %.17g,%.17g\n",
                      TRUTH_VERSION, pattern, view->w, view->h, filter, view->t, view->vx,
                      view->vy);
     if (n < 0 || (size_t)n >= len)
-        return aa_fail(AA_EFAIL, "view key too long");
-    return field_key(view, buf + n, len - (size_t)n);
+        st = aa_fail(AA_EFAIL, "view key too long");
+    else
+        st = field_key(view, buf + n, len - (size_t)n);
+    aa__c_numbers_end(&numbers);
+    return st;
 }
 
 /* A field pattern (core.h, "Fields") adds a line naming the field, the

@@ -7,14 +7,13 @@
  * read must write and read back identically.
  */
 #include "bench.h"
+#include "fuzz.h"
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-int aa_fuzz_image(const uint8_t *data, size_t size);
 
 static int put(const char *path, const uint8_t *data, size_t size)
 {
@@ -60,7 +59,6 @@ int aa_fuzz_image(const uint8_t *data, size_t size)
 }
 
 #ifndef AA_FUZZ_NO_MAIN
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     return aa_fuzz_image(data, size);

@@ -8,12 +8,11 @@
  * accepted pattern spec must also pass its own domain check again.
  */
 #include "bench.h"
+#include "fuzz.h"
 
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-
-int aa_fuzz_spec(const uint8_t *data, size_t size);
 
 int aa_fuzz_spec(const uint8_t *data, size_t size)
 {
@@ -47,7 +46,6 @@ int aa_fuzz_spec(const uint8_t *data, size_t size)
 }
 
 #ifndef AA_FUZZ_NO_MAIN
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     return aa_fuzz_spec(data, size);

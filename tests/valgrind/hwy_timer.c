@@ -10,6 +10,7 @@
  */
 #include <stdint.h>
 
+/* Highway declares it in a C++ header only: the C declaration is here. */
 uint64_t _ZN3hwy8platform15TimerResolutionEv(void);
 
 uint64_t _ZN3hwy8platform15TimerResolutionEv(void)
