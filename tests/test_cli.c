@@ -249,7 +249,7 @@ static void test_refusals_everywhere(void **state)
     T(2, "unknown list \"nosuch\"", "list", "nosuch");
     /* outputs that cannot be written */
     T(3, "is a folder, not a file", "truth", "-p", "crow", "-s", "8x8", "-o", folder);
-    T(3, "is not writable", "render", "-p", "crow", "-m", "point", "-s", "8x8", "-o", under);
+    T(3, "is a file, not a folder", "render", "-p", "crow", "-m", "point", "-s", "8x8", "-o", under);
     (void)o;
     char cmd[400];
     snprintf(cmd, sizeof cmd, "rm -rf %s", in);
