@@ -499,6 +499,37 @@ static void test_interrupted(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* The plug-in kit: `--plugin NAME.so` without a slash is the file in the
+ * current folder (not a library for the system's search path), and a
+ * baseline naming a plug-in's method without --plugin says to load it. */
+static void test_plugin_by_name(void **state)
+{
+    (void)state;
+    const char *plugin = getenv("AABENCH_PLUGIN");
+    assert_non_null(plugin);
+    char dir[] = "/tmp/aabench-faults-XXXXXX", cmd[5000], csv[1100], out[1100];
+    assert_non_null(mkdtemp(dir));
+    snprintf(cmd, sizeof cmd,
+             "cp '%s' '%s/mine.so' && cd '%s' && '%s' list methods --plugin mine.so | "
+             "grep -q '^centre4'",
+             plugin, dir, dir, getenv("AABENCH"));
+    assert_int_equal(system(cmd), 0);
+    /* a baseline with the plug-in's method, checked without --plugin */
+    snprintf(out, sizeof out, "%s/run", dir);
+    snprintf(csv, sizeof csv, "%s/run/results.csv", dir);
+    const char *run[] = {"run", "--plugin", plugin, "-p", "crow", "-s", "8x8", "-m", "centre4",
+                         "--reps", "1", "--no-images", "--no-plots", "-q", "--out", out, NULL};
+    assert_int_equal(run_cli(run, "AABENCH_CACHE=/tmp/aabench-faults-cache", NULL), 0);
+    snprintf(cmd, sizeof cmd,
+             "AABENCH_CACHE=/tmp/aabench-faults-cache '%s' check --baseline '%s' > '%s/check.txt';"
+             " test $? = 1 && grep -q 'no method \"centre4\" is built in or loaded.*--plugin' "
+             "'%s/check.txt'",
+             getenv("AABENCH"), csv, dir, dir);
+    assert_int_equal(system(cmd), 0);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s' /tmp/aabench-faults-cache", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -513,6 +544,7 @@ int main(void)
         cmocka_unit_test(test_all_or_nothing),
         cmocka_unit_test(test_bad_values),
         cmocka_unit_test(test_interrupted),
+        cmocka_unit_test(test_plugin_by_name),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
