@@ -9,7 +9,9 @@
 extern const aa_method_type aa_method_point;
 extern const aa_method_type aa_method_supersample;
 extern const aa_method_type aa_method_jitter;
-extern const aa_method_type aa_method_hexagon;
+/* hexagon shows its frames through moving dots (aabench.h, "Displays") */
+extern const aa_display_method_type aa_method_hexagon_display;
+#define aa_method_hexagon (aa_method_hexagon_display.method)
 extern const aa_method_type aa_method_trio;
 extern const aa_method_type aa_method_area;
 extern const aa_method_type aa_method_taa;

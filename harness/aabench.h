@@ -346,7 +346,11 @@ enum aa_method_flags {
     /* the method renders a field scene (aa_scene_field) through its point
      * function; a method without this flag is refused a field scene by
      * aa_method_init, rather than rendering the background */
-    AA_METHOD_FIELDS = 8
+    AA_METHOD_FIELDS = 8,
+    /* its image is what a screen shows whose dots move from frame to frame
+     * (Crow 1976, ch. 4): the type is the `method` member of an
+     * aa_display_method_type, whose `display` says where (below) */
+    AA_METHOD_DISPLAY = 16
 };
 
 typedef struct aa_method_type {
@@ -362,6 +366,49 @@ typedef struct aa_method_type {
                   aa_counters *counters);
     void (*release)(void *state);
 } aa_method_type;
+
+/* ------------------------------------------------------------------------
+ * Displays: where a method's dots are shown (Crow 1976, ch. 4, "A temporal
+ * scheme": "the data in the scene description is shifted to compensate.
+ * Therefore, the image always stays in the same place on the screen while
+ * the dot positions change").
+ *
+ * An ordinary method's value of pixel (i, j) is shown on the pixel's own
+ * square, and is measured against the reference of that pixel.  A method
+ * flagged AA_METHOD_DISPLAY shows each of its frames on a screen whose
+ * dots are moved: in frame k the dot of pixel p is a uniform square one
+ * pixel wide centred on p's centre plus (dx_k, dy_k), the dots of a frame
+ * tiling the plane (a flat field, the dots just touching) and covering the
+ * image with a ring of one dot beyond its border.  Its image is the
+ * eye's: the frames' screens, weighted, seen through the image's fixed
+ * pixel squares (the mean of the screen over each square).  So a frame
+ * whose dots have values x(p) gives pixel q
+ *
+ *     sum over p of x(p) a(q - p - d_k),  a(u, v) = max(0, 1 - |u|) max(0, 1 - |v|),
+ *
+ * the area of pixel q that dot p covers.  The reference it is measured
+ * against is the same screen showing in each dot its exact value, the
+ * scene at the frame's time convolved with the filter at the dot's centre
+ * (harness/bench/display.c).  With every offset 0 this is the ordinary
+ * display and the ordinary reference.
+ * ------------------------------------------------------------------------ */
+
+#define AA_DISPLAY_MAX_FRAMES 64
+
+typedef struct aa_display_frame {
+    double t;      /* the frame's time */
+    double dx, dy; /* its dots' offset from the pixel centres, in pixels, within [-1, 1] */
+    double weight; /* its share of the image; the shares of an image sum to 1 */
+} aa_display_frame;
+
+typedef struct aa_display_method_type {
+    aa_method_type method; /* flags include AA_METHOD_DISPLAY; first, so that a
+                            * pointer to this is a pointer to the method */
+    /* The frames the image of `job` is made of (at most
+     * AA_DISPLAY_MAX_FRAMES) into frames[], their count into *n; *n = 0
+     * when this image is shown in the ordinary way.  Never reads the scene. */
+    int (*display)(const double *p, const aa_job *job, aa_display_frame *frames, int *n);
+} aa_display_method_type;
 
 /* Support radius a sampling method uses: box 1/2, tent r, cone r, Gaussian 3 s
  * (truncated there; the error against the exact reference includes that). */

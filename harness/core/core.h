@@ -226,6 +226,14 @@ void aa_method_free(aa_method *m);
 int aa_method_run(const aa_spec *spec, const aa_job *job, int reps, aa_image *out,
                   aa_counters *counters, double *seconds);
 
+/* Where the image of `spec` for `job` is shown (aabench.h, "Displays"):
+ * its frames into frames[AA_DISPLAY_MAX_FRAMES] and their count into *n, 0
+ * for a method shown in the ordinary way (every method not flagged
+ * AA_METHOD_DISPLAY).  The frames are checked: offsets within [-1, 1],
+ * weights that sum to 1. */
+int aa_method_display(const aa_spec *spec, const aa_job *job, aa_display_frame *frames,
+                      int *n);
+
 /* Plug-ins: a shared library exporting `aa_plugin_abi` (an int equal to
  * AA_PLUGIN_ABI) and `aa_plugin_methods` (a NULL-terminated array of
  * pointers to aa_method_type).  Its methods join the table; a name that is
