@@ -26,6 +26,7 @@ typedef struct aa__frames {
     aa_scene **placed; /* placed[k]: the scene at time t - k */
     int shared;        /* still scene: every placed[k] is placed[0] */
     double *scratch;   /* threads x band x w x 3 */
+    double *dots;      /* screen display: per thread, band + 1 + n rows of w + 1 dots */
 } aa__frames;
 
 /* Scenes for n frames of the job (t, t - 1, ..., t - n + 1). */
@@ -37,6 +38,23 @@ void aa__frames_free(aa__frames *fs);
 int aa__frames_render(aa__frames *fs, const aa_job *job, int n, const double *dx,
                       const double *dy, const double *weight, aa_image *out,
                       aa_counters *counters);
+
+/* The screen display (core.h, "Displays"): frame k's dots are sampled
+ * at the pixel centres + (dx[k], dy[k]), |dx|, |dy| <= 1, and shown there
+ * as squares one pixel wide, which cover pixel q by the areas
+ * a(q - p - d) = (1 - |u|)(1 - |v|), the bilinear weights of the two
+ * nearest dots in each direction; the dots in the ring just beyond the
+ * image are sampled too.  The frames are combined as by aa__frames_render.
+ * aa__frames_screen makes the per-thread dot bands (after
+ * aa__frames_ready).  Each thread takes a block of rows in bands, and a
+ * band of a frame starts from the last row of dots of the band before;
+ * samples = n (W + 1) (H + 1), the dots of the frames (one more row and
+ * column than there are pixels); a thread that starts inside the image
+ * samples its first row of dots again, which is not counted. */
+int aa__frames_screen(aa__frames *fs);
+int aa__frames_render_screen(aa__frames *fs, const aa_job *job, int n, const double *dx,
+                             const double *dy, const double *weight, aa_image *out,
+                             aa_counters *counters);
 
 /* The radical inverse of i in base b (Halton's sequence): 0, 1/2, 1/4, ...
  * for b = 2. */

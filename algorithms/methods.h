@@ -4,12 +4,14 @@
 #ifndef AA_METHODS_H
 #define AA_METHODS_H
 
-#include "aabench.h"
+#include "core.h"
 
 extern const aa_method_type aa_method_point;
 extern const aa_method_type aa_method_supersample;
 extern const aa_method_type aa_method_jitter;
-extern const aa_method_type aa_method_hexagon;
+/* hexagon shows its frames through moving dots (core.h, "Displays") */
+extern const aa_display_method_type aa_method_hexagon_display;
+#define aa_method_hexagon (aa_method_hexagon_display.method)
 extern const aa_method_type aa_method_trio;
 extern const aa_method_type aa_method_area;
 extern const aa_method_type aa_method_taa;

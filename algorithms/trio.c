@@ -2,7 +2,8 @@
  * trio.c: smoothing the completed point-sampled image (Crow 1976, ch. 4,
  * "Processing the completed image", figs. 4.2 and 4.3).  The image is
  * point sampled at pixel centres (aa_point_sample, as `point`), then one of
- * the three post-processes Crow describes is applied (`variant`):
+ * the three post-processes Crow describes is applied (`variant`), or a
+ * variant of the first:
  *
  * trio (default): Lance Williams' edge smoothing by trio detection.
  *   Crow: "searching for places where the edge moves from one dot row to the
@@ -36,38 +37,55 @@
  *      step), the step is one dot long, and the edge goes on in the same
  *      direction.  Otherwise the end is open: a corner of a shape, the end
  *      of an edge, the image border.
- *   4. Lines.  Two consecutive trios bound a run; the line between them is
- *      drawn through the middle of each step (the trio's middle dot moved
- *      half a dot onto the discontinuity it marks, so that the line follows
- *      the edge rather than the dot centres).  For a run that takes the
- *      edge from one row to the next (a Z) this line crosses the run's
- *      boundary at the middle of the run: it is the same as two half-lines
- *      from each step to the run's middle.  For a run whose two steps go
- *      the same way (a U: a bump one row high, at a turning point of a
- *      curve) the text's line would run half a dot off the boundary along
- *      the whole run; we keep the two half-lines, meeting on the boundary at
- *      the run's middle (as MLAA does, Reshetov 2009).  A half-line ends
- *      only at a trio: the half of a run beside an open end is unchanged.
+ *   4. Lines.  Two consecutive trios bound a run, and "a line is
+ *      constructed between their mid dots": a straight line from one end of
+ *      the run to the other, whatever the two steps do.  Each mid dot is
+ *      taken at the middle of its step, the corner dot moved half a dot
+ *      onto the discontinuity it marks: the line through the corner dots'
+ *      own centres lies half a dot off the edge, on the side they were
+ *      traced on, and cannot give fig. 4.3's shares (a run of two dots,
+ *      slope 1/2: it gives its mid dot 1/2 and the dots beside it 1/16),
+ *      where the middles of the steps give exactly 3/4 and 1/4 (step 5).
+ *      For a run that takes the edge from one row to the next (a Z: the
+ *      steps go opposite ways across the run's line) the line crosses the
+ *      boundary at the middle of the run.  For a run whose two steps go the
+ *      same way (a U: a bump one row high, at a turning point of a curve)
+ *      the line runs half a dot beyond the boundary, along the whole run,
+ *      through the middles of the bump's dots.  A run with an open end is
+ *      between fewer than two trios and gets no line: it stays as sampled.
  *   5. Shades.  Where the line passes beyond the boundary into a dot, the
  *      dot takes the colour across the boundary in proportion to the part
  *      of the dot's square on the other side of the line (the exact area
  *      under the line inside the column, in the dot's own colour and its
  *      neighbour's).  A run of two dots gives fig. 4.3's answer: each dot
  *      beside the step keeps 3/4 of its own colour and takes 1/4 of the
- *      other side's.
- *   6. Both directions.  The same is done on the boundary lines between dot
- *      columns, so mostly-vertical edges are smoothed too.  A run one dot
- *      long is left as sampled: there the edge is locally at 45 degrees, the
- *      run is itself the step of the runs beside it, and the lines drawn
- *      along rows and along columns are the same line, so taking its shares
- *      (an eighth each side) in both directions would count the same area
- *      twice.  So a mostly-horizontal edge's unit vertical steps, seen as
- *      vertical runs, leave it alone, and a 45-degree staircase stays as it
- *      is.  A dot beside several discontinuities sums their shares (scaled
- *      down if they exceed 1), every share taken from the sampled image, so
- *      the result does not depend on the order of work.
+ *      other side's.  A run one dot long between two trios (the edge at 45
+ *      degrees) gives the dots on either side an eighth each, the area of
+ *      the 45-degree line through the steps' middles; a U gives each dot of
+ *      the bump half of the colour around it.
+ *   6. Both directions.  Crow speaks of dot rows; the same is done on the
+ *      boundary lines between dot columns, so mostly-vertical edges, whose
+ *      steps along rows are longer than one dot and so form no trios, are
+ *      smoothed too.  A run along a column one dot long is not drawn: it is
+ *      the unit step of row runs one dot long, whose line (the same line)
+ *      the rows have drawn, and drawing it twice would count its area
+ *      twice.  A dot beside several discontinuities sums their shares
+ *      (scaled down if they exceed 1), every share taken from the sampled
+ *      image, so the result does not depend on the order of work.
  *   Colour: detection on the largest channel difference; the shares are
  *   applied to all three channels alike.
+ *
+ * halflines (a variant, the default of earlier versions): steps 1 to 3 and
+ *   5 as above, with lines after MLAA (Reshetov 2009) rather than Crow's:
+ *   each run is shaded by two half-lines, from the middle of the step at
+ *   each end that is a trio to the point of the boundary at the run's
+ *   middle, so a Z gets Crow's line, a U two half-lines meeting on the
+ *   boundary (a triangle, not a band), a run with one trio the half-line
+ *   at that end, and a run one dot long, along rows or columns, nothing (a
+ *   45-degree staircase stays as sampled).  It is kept because it is the
+ *   better of the two on curved scenes (below): the turning points of
+ *   crow's arcs are U runs, where Crow's band halves dots the arc barely
+ *   enters.
  *
  * sancha: T. L. Sancha's neighbour compromise.  "Whenever the intensity of
  *   neighboring dots differs by more than a preset amount, one of them is
@@ -96,11 +114,11 @@
  *   dealt round-robin.  The arithmetic is the same whatever the threads.
  *
  * Counters: samples = pixels (one point sample each).  expensive_pixels:
- * trio, the pixels beside at least one discontinuity (those whose shares
+ * trio and halflines, the pixels beside at least one discontinuity (those whose shares
  * are gathered rather than copied; not all of them change); sancha, the
  * pixels it changed; recursive, every pixel (each one is filtered).
  *
- * Memory (made in init): trio keeps the samples, a mask byte and four
+ * Memory (made in init): trio and halflines keep the samples, a mask byte and four
  * shares per dot (57 bytes a pixel); sancha the samples; recursive a
  * progress counter per row.
  *
@@ -110,14 +128,22 @@
  * trio: the edge's position inside a dot is unknown, so the line goes
  * through the middle of each step and can be off by up to half a dot; a
  * straight edge is recovered well only when its runs are long (nearly
- * horizontal or vertical), and a 45-degree staircase is left as it is;
- * junctions, saddles, lines one dot thick turning back, and the ends of
- * edges at corners and at the image border are left as sampled; the
- * shares assume each discontinuity separates two flat colours, so edges on
- * shaded surfaces or textures blend with the wrong colours; the whole
- * image is re-examined each frame, so in animation the smoothing moves
- * with the staircase.  On crow 256x256 against the box reference, trio has
- * RMSE 0.092 where point sampling has 0.180.  sancha blurs every
+ * horizontal or vertical); a 45-degree staircase gets an eighth a dot
+ * whatever the edge's true position within the dots; a U run is taken for
+ * a band half a dot wide; junctions, saddles, lines one dot thick turning
+ * back, and runs ending at corners and at the image border are left as
+ * sampled; the shares assume each discontinuity separates two flat
+ * colours, so edges on shaded surfaces or textures blend with the wrong
+ * colours; the whole image is re-examined each frame, so in animation the
+ * smoothing moves with the staircase.  RMSE against the box reference at
+ * 256x256 (aabench run, box): crow, trio 0.1228, halflines 0.0916, point
+ * 0.1796; star, trio 0.0579, halflines 0.0556, point 0.1046.  Taken one at
+ * a time (the three ways the variants differ): drawing U runs as Crow's
+ * band rather than two half-lines costs most on crow (0.0961 with
+ * half-lines there, all else Crow's); leaving runs with one trio
+ * unshaded costs a little (0.1193 on crow, 0.0513 on star with
+ * half-lines at such ends); drawing the 45-degree runs along rows helps
+ * star (0.0627 without them) and does not change crow.  sancha blurs every
  * high-contrast edge, correct or not, and always on its upper-left side,
  * which moves edges up and left by about a quarter dot: RMSE 0.254, worse
  * than point.  recursive blurs everything and, being one-sided, shifts the
@@ -138,13 +164,14 @@
 #endif
 
 enum { P_VARIANT, P_THRESHOLD, P_WEIGHT };
-enum { V_TRIO, V_SANCHA, V_RECURSIVE };
+enum { V_TRIO, V_SANCHA, V_RECURSIVE, V_HALFLINES };
 
 static const aa_param trio_params[] = {
-    {"variant", AA_PARAM_CHOICE, V_TRIO, 0, 0, 0, "trio|sancha|recursive",
-     "Williams' trio smoothing, Sancha's compromise or the recursive filter"},
+    {"variant", AA_PARAM_CHOICE, V_TRIO, 0, 0, 0, "trio|sancha|recursive|halflines",
+     "Williams' trio smoothing, Sancha's compromise, the recursive filter, or trios with "
+     "MLAA's half-lines"},
     {"threshold", AA_PARAM_REAL, 0.125, 0.0, 1.0, 0, NULL,
-     "trio and sancha: a larger channel difference is a discontinuity (1: none)"},
+     "trio, halflines and sancha: a larger channel difference is a discontinuity (1: none)"},
     {"weight", AA_PARAM_REAL, 0.25, 0.0, 0.5, 0, NULL,
      "recursive: weight of the left and of the upper dot (the dot keeps 1 - 2 weight)"},
     {0}};
@@ -195,7 +222,7 @@ static int prepare(trio_state *s, const double *p, const aa_job *job)
     int ok = 1;
     if (s->variant != V_RECURSIVE)
         ok = (s->img = malloc(n * 3 * sizeof *s->img)) != NULL;
-    if (ok && s->variant == V_TRIO)
+    if (ok && (s->variant == V_TRIO || s->variant == V_HALFLINES))
         ok = (s->mask = malloc(n)) && (s->hw = malloc(n * 2 * sizeof *s->hw)) &&
              (s->vw = malloc(n * 2 * sizeof *s->vw));
     if (s->variant == V_RECURSIVE)
@@ -209,7 +236,7 @@ static int prepare(trio_state *s, const double *p, const aa_job *job)
     /* touch everything once here, so page faults are not timed */
     if (s->img)
         memset(s->img, 0, n * 3 * sizeof *s->img);
-    if (s->variant == V_TRIO) {
+    if (s->variant == V_TRIO || s->variant == V_HALFLINES) {
         memset(s->mask, 0, n);
         memset(s->hw, 0, n * 2 * sizeof *s->hw);
         memset(s->vw, 0, n * 2 * sizeof *s->vw);
@@ -244,6 +271,7 @@ static inline uint64_t load8(const unsigned char *p)
 typedef struct grid {
     const unsigned char *mask;
     int w, h;
+    int halflines; /* variant=halflines: MLAA's half-lines (see the header) */
 } grid;
 
 static inline int seg_h(const grid *g, int i, int j)
@@ -325,13 +353,63 @@ static void shade_run(const grid *g, int tr, int l, int a, int b, double dl, dou
     }
 }
 
+/* The integrals over a unit column of the positive and the negative parts
+ * of the linear function from f0 to f1. */
+static void parts(double f0, double f1, double *pos, double *neg)
+{
+    if (f0 >= 0 && f1 >= 0)
+        *pos = 0.5 * (f0 + f1), *neg = 0.0;
+    else if (f0 <= 0 && f1 <= 0)
+        *pos = 0.0, *neg = -0.5 * (f0 + f1);
+    else {
+        double t = f0 / (f0 - f1); /* where it crosses zero */
+        double a = 0.5 * f0 * t, b = 0.5 * f1 * (1.0 - t);
+        *pos = f0 > 0 ? a : b, *neg = f0 > 0 ? -b : -a;
+    }
+}
+
+/* Crow's line between the mid dots of the trios at the two ends of run
+ * [a, b] of line l: the straight line from offset dl at the run's left end
+ * (position a) to dr at its right end (b + 1).  In each column the part of
+ * the line beyond the boundary on the far side is the far dot's share of
+ * the near dot's colour, the part on the near side the near dot's share of
+ * the far dot's. */
+static void shade_line(const grid *g, int tr, int l, int a, int b, double dl, double dr,
+                       double *hw, double *vw)
+{
+    const double len = (double)b + 1.0 - (double)a;
+    for (int u = a; u <= b; u++) {
+        double *share = tr ? vw + 2 * ((size_t)u * (size_t)g->w + (size_t)l)
+                           : hw + 2 * ((size_t)l * (size_t)g->w + (size_t)u);
+        double f0 = dl + (dr - dl) * ((double)(u - a) / len);
+        double f1 = dl + (dr - dl) * ((double)(u + 1 - a) / len);
+        double pos, neg;
+        parts(f0, f1, &pos, &neg);
+        share[0] = neg, share[1] = pos;
+    }
+}
+
 /* Run [a, b] of line l, found: its ends examined and its dots shaded. */
 static void found_run(const grid *g, int tr, int l, int a, int b, double *hw, double *vw)
 {
-    /* a run one dot long is left alone (see the header, step 6) */
-    double dl = b > a ? trio_end(g, tr, l, a - 1, a - 1, a) : 0.0;
-    double dr = b > a ? trio_end(g, tr, l, b, b + 1, b) : 0.0;
-    shade_run(g, tr, l, a, b, dl, dr, hw, vw);
+    if (g->halflines) {
+        /* a run one dot long is left alone (see the header, halflines) */
+        double dl = b > a ? trio_end(g, tr, l, a - 1, a - 1, a) : 0.0;
+        double dr = b > a ? trio_end(g, tr, l, b, b + 1, b) : 0.0;
+        shade_run(g, tr, l, a, b, dl, dr, hw, vw);
+        return;
+    }
+    /* along columns a run one dot long is the step of the row runs beside
+     * it, which have drawn its line already (see the header, step 6) */
+    double dl = 0.0, dr = 0.0;
+    if (!tr || b > a) {
+        dl = trio_end(g, tr, l, a - 1, a - 1, a);
+        dr = trio_end(g, tr, l, b, b + 1, b);
+    }
+    if (dl != 0.0 && dr != 0.0)
+        shade_line(g, tr, l, a, b, dl, dr, hw, vw);
+    else
+        shade_run(g, tr, l, a, b, 0.0, 0.0, hw, vw); /* no line: the shares are zero */
 }
 
 /* Every run of the line between dot rows l and l+1, skipping eight
@@ -444,7 +522,7 @@ static inline int none8(const unsigned char *m, const unsigned char *up, int i)
 static uint64_t trio_smooth(trio_state *s, double threshold, int threads, aa_image *out)
 {
     const int w = s->w, h = s->h;
-    const grid g = {s->mask, w, h};
+    const grid g = {s->mask, w, h, s->variant == V_HALFLINES};
     const double *img = s->img;
     uint64_t expensive = 0;
 #pragma omp parallel num_threads(threads)

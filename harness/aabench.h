@@ -346,7 +346,7 @@ enum aa_method_flags {
     /* the method renders a field scene (aa_scene_field) through its point
      * function; a method without this flag is refused a field scene by
      * aa_method_init, rather than rendering the background */
-    AA_METHOD_FIELDS = 8
+    AA_METHOD_FIELDS = 8 /* 16: AA_METHOD_DISPLAY, built-in only (core.h, "Displays") */
 };
 
 typedef struct aa_method_type {

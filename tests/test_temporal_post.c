@@ -4,7 +4,8 @@
  * (algorithms/trio.c, Crow ch. 4, figs. 4.2-4.3), beyond the generic tests
  * of test_methods.c.
  *
- * hexagon:
+ * hexagon (display=fixed, the model of earlier versions; the screen display
+ * and the random path are tested in test_crow_methods.c):
  *  - the eye's image is the mean of its frames, each rendered alone with
  *    frame_only at the window's times (T, T-1, ..., moving scene, real and
  *    negative T, several windows and orders);
@@ -20,8 +21,8 @@
  *    an eye integrating six frames should see) than the mean of six point
  *    frames is.
  * trio:
- *  - an edge lying on pixel boundaries (rectangles, a bar one dot thick) and
- *    a 45-degree staircase are left as sampled;
+ *  - an edge lying on pixel boundaries (rectangles, a bar one dot thick) is
+ *    left as sampled, and by variant=halflines a 45-degree staircase;
  *  - a staircase of runs of two dots gives fig. 4.3's answer, 3/4 and 1/4,
  *    for a mostly-horizontal and a mostly-vertical edge;
  *  - slanted straight edges (colour) move toward the box reference: RMSE
@@ -199,11 +200,12 @@ static void check_eye(const char *method, int frames, double t, double vx, doubl
 static void test_hexagon_eye_is_mean_of_frames(void **state)
 {
     (void)state;
-    check_eye("hexagon", 6, 0.0, 0.0, 0.0);
-    check_eye("hexagon", 6, 7.25, 0.37, -0.21);
-    check_eye("hexagon:frames=4,order=012345", 4, -2.5, -0.4, 0.3);
-    check_eye("hexagon:frames=13,order=031425,radius=0.7,angle=20", 13, 100.9, 0.05, 0.02);
-    check_eye("hexagon:frames=1", 1, 3.0, 1.0, 0.0);
+    check_eye("hexagon:display=fixed", 6, 0.0, 0.0, 0.0);
+    check_eye("hexagon:display=fixed", 6, 7.25, 0.37, -0.21);
+    check_eye("hexagon:frames=4,order=012345,display=fixed", 4, -2.5, -0.4, 0.3);
+    check_eye("hexagon:frames=13,order=031425,radius=0.7,angle=20,display=fixed", 13, 100.9,
+              0.05, 0.02);
+    check_eye("hexagon:frames=1,display=fixed", 1, 3.0, 1.0, 0.0);
 }
 
 /* Vertex v of a hexagon of radius r whose vertex 0 is at `angle` degrees,
@@ -271,10 +273,10 @@ static void check_offsets(const char *method, double r, double angle, const char
 static void test_hexagon_offsets(void **state)
 {
     (void)state;
-    check_offsets("hexagon", 0.5, 0.0, "024153");
-    check_offsets("hexagon:order=012345", 0.5, 0.0, "012345");
-    check_offsets("hexagon:radius=0.3,angle=10,order=031425", 0.3, 10.0, "031425");
-    check_offsets("hexagon:radius=0.8,angle=45,order=014523", 0.8, 45.0, "014523");
+    check_offsets("hexagon:order=024153,display=fixed", 0.5, 0.0, "024153");
+    check_offsets("hexagon:order=012345,display=fixed", 0.5, 0.0, "012345");
+    check_offsets("hexagon:radius=0.3,angle=10,order=031425,display=fixed", 0.3, 10.0, "031425");
+    check_offsets("hexagon:radius=0.8,angle=45,order=014523,display=fixed", 0.8, 45.0, "014523");
 }
 
 static void test_hexagon_radius_zero_is_point(void **state)
@@ -326,7 +328,9 @@ static void test_hexagon_beats_point_on_crow(void **state)
         double t = motion[m][0], vx = motion[m][1], vy = motion[m][2];
         aa_image ref, hex, pt, ref_eye, pt_eye;
         reference(s, n, n, t, vx, vy, &ref);
-        assert_int_equal(render_at("hexagon", s, n, n, t, vx, vy, 0, 2, &hex, NULL), AA_OK);
+        assert_int_equal(
+            render_at("hexagon:display=fixed,order=024153", s, n, n, t, vx, vy, 0, 2, &hex, NULL),
+            AA_OK);
         assert_int_equal(render_at("point", s, n, n, t, vx, vy, 0, 2, &pt, NULL), AA_OK);
         double eh = rmse(&hex, &ref), ep = rmse(&pt, &ref);
         print_message("crow %dx%d T=%-4g v=(%g, %g) vs the box reference at T: hexagon RMSE "
@@ -357,15 +361,16 @@ static void test_hexagon_beats_point_on_crow(void **state)
 
 /* ---- trio ---- */
 
-static void check_unchanged(const char *what, const aa_scene *s, int w, int h)
+static void check_unchanged(const char *method, const char *what, const aa_scene *s, int w,
+                            int h)
 {
     aa_image a, b;
     aa_counters c;
-    render("trio", s, w, h, &a, &c);
+    render(method, s, w, h, &a, &c);
     render("point", s, w, h, &b, NULL);
     if (!same_image(&a, &b))
-        fail_msg("trio changed %s", what);
-    print_message("trio leaves %s as sampled (%llu pixels examined)\n", what,
+        fail_msg("%s changed %s", method, what);
+    print_message("%s leaves %s as sampled (%llu pixels examined)\n", method, what,
                   (unsigned long long)c.expensive_pixels);
     aa_image_free(&a);
     aa_image_free(&b);
@@ -386,13 +391,14 @@ static void test_trio_keeps_aligned_edges(void **state)
     rect(s, 12.0 / w, 10.0 / h, 30.0 / w, 25.0 / h);
     rect(s, 35.0 / w, 20.0 / h, 1.0, 1.0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    check_unchanged("rectangles on pixel boundaries", s, w, h);
+    check_unchanged("trio", "rectangles on pixel boundaries", s, w, h);
     aa_scene_free(s);
     /* a 45-degree staircase on a w x w image: y = x + 0.3 px, so dot (i, j)
      * is inside when j >= i + 1 and every run is one dot long */
     const double tri[] = {0, 0.3 / w, 1.0, 1.0 + 0.3 / w, 0, 1.0};
     s = polygon_scene(tri, 3, white, black);
-    check_unchanged("a 45-degree staircase", s, w, w);
+    /* the variant of earlier versions (tests/test_crow_methods.c: the default's eighths) */
+    check_unchanged("trio:variant=halflines", "a 45-degree staircase", s, w, w);
     aa_scene_free(s);
 }
 

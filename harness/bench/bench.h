@@ -53,6 +53,28 @@ int aa_temporal_popping(const aa_image *frames, const aa_image *refs, int n, con
                         const double *cy, size_t ndots, const double *shift, double *out);
 
 /* ------------------------------------------------------------------------
+ * Displays (display.c; core.h, "Displays")
+ * ------------------------------------------------------------------------ */
+
+/* The reference of an image made of n frames shown through moving dots:
+ * each frame's dots showing their exact values (the view's pattern, size,
+ * filter and motion; each frame at its own time), seen through the fixed
+ * pixel squares and weighted.  Allocates out (W x H x 3). */
+int aa_display_reference(const aa_view *view, const aa_display_frame *frames, int n,
+                         int threads, aa_image *out);
+/* The same for a pattern scene of one's own (pattern units), W x H, the
+ * filter and the motion (vx, vy) pixels per frame. */
+int aa_display_reference_scene(const aa_scene *pattern, int w, int h, const aa_filter *filter,
+                               double vx, double vy, const aa_display_frame *frames, int n,
+                               int threads, aa_image *out);
+/* The reference of `method`'s image for `job` when the method shows it
+ * through moving dots (aa_method_display): into out (allocated) and
+ * *shown = 1; else *shown = 0 and out is left alone (the view's ordinary
+ * reference applies). */
+int aa_display_view_reference(const aa_view *view, const aa_spec *method, const aa_job *job,
+                              int threads, aa_image *out, int *shown);
+
+/* ------------------------------------------------------------------------
  * Runs: every method on every view of a suite, measured
  * ------------------------------------------------------------------------ */
 

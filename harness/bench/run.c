@@ -155,12 +155,17 @@ static void row_names(aa_row *row, const char *pattern, int w, int h, const char
     row->reps = cfg->reps;
 }
 
-/* One method on one view. */
-static int run_method(const aa_run_config *cfg, const aa_job *job, const aa_spec *spec,
+/* One method on one view.  A method that shows its image through moving
+ * dots (core.h, "Displays") is measured against the reference seen
+ * through the same dots (display.c), any other against `ref`. */
+static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_job *job,
+                      const aa_spec *spec,
                       const aa_image *ref, aa_image *img, const char *stem, aa_row *row,
                       double *seconds)
 {
     aa_counters c;
+    aa_image dref = {0};
+    int shown = 0;
     int st = aa_method_check(spec, &job->filter);
     if (st == AA_EINVAL) { /* refused (e.g. a filter it cannot honour): a result */
         snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
@@ -173,9 +178,14 @@ static int run_method(const aa_run_config *cfg, const aa_job *job, const aa_spec
         snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
         return AA_OK;
     }
-    if (st || (st = aa_metrics_compute(ref, img, &cfg->enc, &row->m)))
+    if (!st)
+        st = aa_display_view_reference(view, spec, job, cfg->threads, &dref, &shown);
+    const aa_image *against = shown ? &dref : ref;
+    if (st || (st = aa_metrics_compute(against, img, &cfg->enc, &row->m))) {
+        aa_image_free(&dref);
         return aa_fail_context(st, "%s on %s %dx%d %s", row->method, row->pattern, row->w,
                                row->h, row->filter);
+    }
     qsort(seconds, (size_t)cfg->reps, sizeof *seconds, cmp_double);
     double pixels = (double)row->w * row->h;
     row->seconds = seconds[cfg->reps / 2];
@@ -188,9 +198,10 @@ static int run_method(const aa_run_config *cfg, const aa_job *job, const aa_spec
     row->ns_per_sample = c.samples ? row->seconds * 1e9 / (double)c.samples : 0.0;
     row->expensive_fraction = (double)c.expensive_pixels / pixels;
     row->ok = 1;
-    if (cfg->images_dir && (st = write_images(cfg, stem, ref, img)))
-        return st;
-    return AA_OK;
+    if (cfg->images_dir)
+        st = write_images(cfg, stem, against, img);
+    aa_image_free(&dref);
+    return st;
 }
 
 /* ---- temporal metrics of animated runs ---- */
@@ -255,7 +266,9 @@ static int dot_centres(const aa_view *view, const aa_scene *scene, double **cx, 
 }
 
 /* The displayed frames of a method at times t, t + 1, ... (temporal methods
- * with frame_only), measured against the references. */
+ * with frame_only), measured against the references; a frame shown through
+ * moving dots against its reference seen through the same dots (display.c),
+ * made here for this method. */
 static int run_temporal(const aa_run_config *cfg, const aa_view *view, const aa_scene *scene,
                         const aa_spec *spec, const aa_image *refs, aa_image *frames,
                         aa_row *row)
@@ -263,16 +276,33 @@ static int run_temporal(const aa_run_config *cfg, const aa_view *view, const aa_
     int n = frame_count(cfg), st = AA_OK;
     double *cx = NULL, *cy = NULL, *shift = NULL;
     size_t nd = 0;
+    aa_image *own = NULL; /* this method's references, when it moves its dots */
     for (int k = 0; k < n && !st; k++) {
         aa_job job;
         aa_counters c;
+        aa_image dref = {0};
+        int shown = 0;
         if ((st = aa_job_init(&job, scene, view->w, view->h, cfg->t + k, cfg->vx, cfg->vy,
                               &view->filter, cfg->seed, cfg->threads)))
             break;
         job.frame_only = 1;
         st = aa_method_run(spec, &job, 1, &frames[k], &c, NULL);
+        if (!st)
+            st = aa_display_view_reference(view, spec, &job, cfg->threads, &dref, &shown);
         aa_job_free(&job);
+        if (!st && shown && !own && !(own = calloc((size_t)n, sizeof *own)))
+            st = aa_fail(AA_ENOMEM, "out of memory");
+        if (st || !shown)
+            aa_image_free(&dref);
+        else
+            own[k] = dref; /* owned by own[] from here */
     }
+    for (int k = 0; own && k < n && !st; k++)
+        if (!own[k].v)
+            st = aa_fail(AA_EFAIL, "method %s shows some frames through moving dots and "
+                                   "others not", row->method);
+    if (own)
+        refs = own;
     if (!st)
         st = aa_temporal_compute(frames, refs, n, window_of(cfg), &row->tm);
     if (!st)
@@ -289,6 +319,11 @@ static int run_temporal(const aa_run_config *cfg, const aa_view *view, const aa_
     free(cx);
     free(cy);
     free(shift);
+    if (own) {
+        for (int k = 0; k < n; k++)
+            aa_image_free(&own[k]);
+        free(own);
+    }
     if (st)
         return aa_fail_context(st, "temporal metrics of %s on %s", row->method, row->pattern);
     row->temporal = 1;
@@ -383,7 +418,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     row_names(row, pattern, view.w, view.h, filter, method, cfg);
                     aa_spec_slug(method, ms, sizeof ms);
                     snprintf(stem, sizeof stem, "%s-%dx%d-%s-%s", ps, view.w, view.h, fs, ms);
-                    if ((st = run_method(cfg, &job, spec, &ref, &img, stem, row, seconds)))
+                    if ((st = run_method(cfg, &view, &job, spec, &ref, &img, stem, row, seconds)))
                         break;
                     if (nt && row->ok &&
                         (st = run_temporal(cfg, &view, scene, spec, refs, frames, row)))

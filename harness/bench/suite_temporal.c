@@ -9,8 +9,10 @@
  *
  * Methods: the still ones as a yardstick (point, area, the 8 msaa
  * positions in every frame, 9 jittered samples), and the temporal ones:
- * Crow's hexagon at its defaults and swept in radius and in the order of
- * its vertices, taa (Halton(2,3) jitter with an exponential history, 8 and
+ * Crow's hexagon at its defaults (the screen display, the random path) and
+ * swept in radius and in the order of its vertices (024153 the default of
+ * earlier versions), and its fixed display (the model of earlier
+ * versions), taa (Halton(2,3) jitter with an exponential history, 8 and
  * 16 frames), and cycle (the msaa8 and msaa16 positions one per frame).
  * Which offsets the eye prefers is read off eye_rmse and flicker; `aabench
  * run` prints the best per pattern after the table.
@@ -25,7 +27,8 @@ const aa_suite_group aa_suite_temporal_groups[] = {
     {LIST("fence", "dots", "crow", "star"), LIST("128x128"), LIST("box"),
      LIST("point", "area", "supersample:pattern=msaa8", "jitter:spp=9", "hexagon",
           "hexagon:radius=0.25", "hexagon:radius=0.35", "hexagon:radius=0.7",
-          "hexagon:order=012345", "hexagon:order=031425", "hexagon:order=024135", "taa",
+          "hexagon:order=012345", "hexagon:order=031425", "hexagon:order=024135",
+          "hexagon:order=024153", "hexagon:display=fixed,order=024153", "taa",
           "taa:frames=16", "cycle:positions=msaa8", "cycle:positions=msaa16")},
     {NULL, NULL, NULL, NULL}};
 

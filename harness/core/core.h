@@ -194,6 +194,55 @@ int aa_pattern_parse(const char *text, aa_spec *out);
 /* Build the finished scene (pattern units) of a parsed pattern spec. */
 int aa_pattern_scene(const aa_spec *spec, aa_scene **out);
 
+/* ------------------------------------------------------------------------
+ * Displays: where a method's dots are shown (Crow 1976, ch. 4, "A temporal
+ * scheme": "the data in the scene description is shifted to compensate.
+ * Therefore, the image always stays in the same place on the screen while
+ * the dot positions change").
+ *
+ * An ordinary method's value of pixel (i, j) is shown on the pixel's own
+ * square, and is measured against the reference of that pixel.  A method
+ * flagged AA_METHOD_DISPLAY shows each of its frames on a screen whose
+ * dots are moved: in frame k the dot of pixel p is a uniform square one
+ * pixel wide centred on p's centre plus (dx_k, dy_k), the dots of a frame
+ * tiling the plane (a flat field, the dots just touching) and covering the
+ * image with a ring of one dot beyond its border.  Its image is the
+ * eye's: the frames' screens, weighted, seen through the image's fixed
+ * pixel squares (the mean of the screen over each square).  So a frame
+ * whose dots have values x(p) gives pixel q
+ *
+ *     sum over p of x(p) a(q - p - d_k),  a(u, v) = max(0, 1 - |u|) max(0, 1 - |v|),
+ *
+ * the area of pixel q that dot p covers.  The reference it is measured
+ * against is the same screen showing in each dot its exact value, the
+ * scene at the frame's time convolved with the filter at the dot's centre
+ * (harness/bench/display.c).  With every offset 0 this is the ordinary
+ * display and the ordinary reference.
+ * ------------------------------------------------------------------------ */
+
+/* A method's image is what a screen shows whose dots move from frame to
+ * frame (Crow 1976, ch. 4): its type is the `method` member of an
+ * aa_display_method_type, whose `display` says where.  For built-in
+ * methods (aa_method_flags, aabench.h). */
+#define AA_METHOD_DISPLAY 16
+
+#define AA_DISPLAY_MAX_FRAMES 64
+
+typedef struct aa_display_frame {
+    double t;      /* the frame's time */
+    double dx, dy; /* its dots' offset from the pixel centres, in pixels, within [-1, 1] */
+    double weight; /* its share of the image; the shares of an image sum to 1 */
+} aa_display_frame;
+
+typedef struct aa_display_method_type {
+    aa_method_type method; /* flags include AA_METHOD_DISPLAY; first, so that a
+                            * pointer to this is a pointer to the method */
+    /* The frames the image of `job` is made of (at most
+     * AA_DISPLAY_MAX_FRAMES) into frames[], their count into *n; *n = 0
+     * when this image is shown in the ordinary way.  Never reads the scene. */
+    int (*display)(const double *p, const aa_job *job, aa_display_frame *frames, int *n);
+} aa_display_method_type;
+
 /* ---- method instances and the method table ---- */
 
 /* Build a job for a pattern scene (placing it at t); aa_job_free frees
@@ -227,6 +276,14 @@ void aa_method_free(aa_method *m);
  * timing, so page faults are not counted. */
 int aa_method_run(const aa_spec *spec, const aa_job *job, int reps, aa_image *out,
                   aa_counters *counters, double *seconds);
+
+/* Where the image of `spec` for `job` is shown ("Displays" above):
+ * its frames into frames[AA_DISPLAY_MAX_FRAMES] and their count into *n, 0
+ * for a method shown in the ordinary way (every method not flagged
+ * AA_METHOD_DISPLAY).  The frames are checked: offsets within [-1, 1],
+ * weights that sum to 1. */
+int aa_method_display(const aa_spec *spec, const aa_job *job, aa_display_frame *frames,
+                      int *n);
 
 /* Plug-ins: a shared library exporting `aa_plugin_abi` (an int equal to
  * AA_PLUGIN_ABI) and `aa_plugin_methods` (a NULL-terminated array of

@@ -12,6 +12,7 @@
 #include <omp.h>
 #endif
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -49,6 +50,9 @@ int aa__method_register(const aa_method_type *const *types, const char *origin)
         if (aa_table_find((const void *const *)table, t->info.name))
             return aa_fail(AA_EINVAL, "%s: method \"%s\" is already defined", origin,
                            t->info.name);
+        if ((t->flags & AA_METHOD_DISPLAY) && !((const aa_display_method_type *)t)->display)
+            return aa_fail(AA_EINVAL, "%s: method \"%s\" is flagged AA_METHOD_DISPLAY but has no "
+                                      "display function", origin, t->info.name);
         if (aa_param_count(&t->info) > AA_MAX_PARAMS)
             return aa_fail(AA_EINVAL, "%s: method \"%s\" has more than %d parameters", origin,
                            t->info.name, AA_MAX_PARAMS);
@@ -145,6 +149,35 @@ int aa_method_run(const aa_spec *spec, const aa_job *job, int reps, aa_image *ou
     }
     aa_method_free(&m);
     return st;
+}
+
+int aa_method_display(const aa_spec *spec, const aa_job *job, aa_display_frame *frames,
+                      int *n)
+{
+    const aa_method_type *type = (const aa_method_type *)spec->info;
+    *n = 0;
+    if (!(type->flags & AA_METHOD_DISPLAY))
+        return AA_OK;
+    const aa_display_method_type *d = (const aa_display_method_type *)type;
+    int st = d->display(spec->v, job, frames, n);
+    if (st)
+        return aa_fail_context(st, "display of method %s", type->info.name);
+    if (*n < 0 || *n > AA_DISPLAY_MAX_FRAMES)
+        return aa_fail(AA_EFAIL, "method %s shows %d frames (0 to %d)", type->info.name, *n,
+                       AA_DISPLAY_MAX_FRAMES);
+    double sum = 0.0;
+    for (int k = 0; k < *n; k++) {
+        const aa_display_frame *f = &frames[k];
+        if (!(fabs(f->dx) <= 1.0 && fabs(f->dy) <= 1.0 && f->weight >= 0.0 && isfinite(f->t)))
+            return aa_fail(AA_EFAIL, "method %s: frame %d shown at (%g, %g) with weight %g "
+                                     "(offsets within [-1, 1], weights not negative)",
+                           type->info.name, k, f->dx, f->dy, f->weight);
+        sum += f->weight;
+    }
+    if (*n > 0 && !(fabs(sum - 1.0) <= 1e-12))
+        return aa_fail(AA_EFAIL, "method %s: the weights of its frames sum to %.17g, not 1",
+                       type->info.name, sum);
+    return AA_OK;
 }
 
 int aa_job_init(aa_job *job, const aa_scene *pattern, int w, int h, double t, double vx,
