@@ -230,8 +230,10 @@ static int cache_read(const char *path, const char *key, int w, int h, aa_image 
         why = "inconsistent with its key";
         goto done;
     }
+    /* a reference is within [0, 1] up to its own rounding (a pixel of 0
+     * under the tent can come out -1e-17) */
     for (size_t k = 0; k < count; k++)
-        if (!(out->v[k] >= 0.0 && out->v[k] <= 1.0)) {
+        if (!(out->v[k] >= -1e-9 && out->v[k] <= 1.0 + 1e-9)) {
             why = "holding a value outside [0, 1]";
             goto done;
         }
