@@ -11,16 +11,24 @@
  * both sums come from two finite tables of partial sums of the 1-D weight,
  * "from the lower non-zero bound to some point": the sum between two points
  * is the difference of two entries (fig. 2.7), "four lookups, two subtracts
- * and two multiplies" per rectangle.  Each edge crossing the filter's
- * square is represented by rectangles (fig. 2.8), the area right of a left
- * edge added and that right of a right edge subtracted (fig. 3.13).  Only
- * pixels whose square meets an edge are summed; the others take their
- * colour (ch. 3: "the summations need only be computed in the problem
- * areas").
+ * and two multiplies" per rectangle.  The blocks: "at most only a few edges
+ * in the image pass through [the square].  So far it has been sufficient to
+ * approximate the image function by forming a single rectangular area for
+ * each of these edges [Fig. 2.8]"; the area right of a left edge is added
+ * and that right of a right edge subtracted (fig. 3.13), and in the tiler
+ * the rectangle comes from where "a tagged edge enters the top of the
+ * square area ... [and] exits at the bottom", an edge "too small or too
+ * close to horizontal" from its end points (ch. 3).  Only pixels whose
+ * square meets an edge are summed; the others take their colour (ch. 3:
+ * "the summations need only be computed in the problem areas").
  *
- * What is chosen here (the thesis gives no table size and no rule for
- * forming the rectangles beyond "a single rectangular area for each of
- * these edges"):
+ * So form=crow, the default, is Crow's: one rectangle per edge.  form=rows
+ * is a finer variant, not his, kept for comparison: the square cut into the
+ * table's rows, a rectangle per run of colour in each row, first order in
+ * 1/res where Crow's rectangle is not (below).
+ *
+ * What is chosen here (the thesis gives no table size, and no rule for an
+ * edge's rectangle beyond its entry and exit):
  *
  *  - The table.  With R the filter's half-width (box 1/2, tent r, Gaussian
  *    cut s, see below) and N = ceil(2 R res) intervals of width d = 2R/N
@@ -30,16 +38,31 @@
  *    the same (the filters are symmetric and square).  A coordinate is
  *    looked up at the nearest entry, as Crow's discrete tables are: an edge
  *    position is known only to the table's resolution.
- *  - The rectangles.  The square is cut into the table's N rows of height
- *    d.  In row k the colour along the row's middle line is a step
- *    function of x (its crossings with the scene's edges); each run of constant colour c between
- *    x0 and x1 becomes the rectangle [x0, x1] x row k, of weight
+ *  - form=crow.  Each piece of edge (the scene's y-monotone pieces of lines
+ *    and arcs) is clipped to the square's rows and cut where it crosses the
+ *    square's left and right sides.  Each part inside the square gives one
+ *    rectangle, from the mean x of its two ends (its entry and exit) to the
+ *    square's right side, over its rows: weight (1 - T(x)) (T(y1) - T(y0)).
+ *    Its colour is the step of colour across the edge (right minus left)
+ *    at the middle of its rows, found from the winding numbers just left of
+ *    it there (pieces at the same x, such as the shared edge of two
+ *    abutting polygons, taken in the order of their index, so that the two
+ *    steps add up to the whole): an edge hidden behind a front layer steps
+ *    by nothing, so hidden surfaces are resolved edge by edge as in Crow's
+ *    scanning algorithm (ch. 3), one colour step per edge.  The parts of
+ *    edges left of the square are in the colour just inside its left side,
+ *    which is summed in blocks of full rows between the heights where it
+ *    can change (the local pieces' ends, flat pieces' heights and crossings
+ *    of the left side); parts right of it add nothing; a flat edge bounds no
+ *    rows (its polygon's other edges carry its area).
+ *  - form=rows.  The square is cut into the table's N rows of height d.  In
+ *    row k the colour along the row's middle line is a step function of x
+ *    (its crossings with the scene's edges); each run of constant colour c
+ *    between x0 and x1 becomes the rectangle [x0, x1] x row k, of weight
  *    (T(x1) - T(x0)) (T[k+1] - T[k]) c.  Summing the runs is Crow's left
  *    areas minus right areas with the colour jumps in place of +-1, and
  *    handles any number of edges, layers and fill rules per row.
- *  - Box: R = 1/2 and T is linear, so the method is area sampling by
- *    rectangles of height 1/N; it needs no table in principle and uses the
- *    same code.
+ *  - Box: R = 1/2 and T is linear; the same code.
  *  - Gaussian: truncated at R = cut s (cut=, default 3, aa_filter_support's
  *    radius) and renormalised by the truncated mass, so a uniform region
  *    stays exact.  The untruncated reference then measures the truncation:
@@ -49,11 +72,23 @@
  * Error analysis (per pixel, against the exact reference with the same
  * filter; wx the largest 1-D weight, w2 = wx^2 the largest 2-D weight):
  *
- *  - lookup: an end of a run snapped to the nearest entry moves by at most
- *    d/2, changing T by at most wx d / 2; over the rows (their weights sum
- *    to 1) each edge contributes at most wx d / 2 per unit of colour jump;
- *  - rows: within a row an edge is replaced by the vertical line through
- *    its crossing of the middle line; the area between is at most
+ *  - lookup: an end snapped to the nearest entry moves by at most d/2,
+ *    changing T by at most wx d / 2.  form=crow reads three entries per
+ *    rectangle and two per block of rows; form=rows, over its rows (whose
+ *    weights sum to 1), at most wx d / 2 per edge and unit of colour jump;
+ *  - form=crow, the rectangle: an edge x(y) replaced by its mean position
+ *    over its rows.  For a straight edge of slope s (dx/dy) crossing the
+ *    whole square at horizontal offset e from the centre, the rectangle
+ *    gives 1 - C(e) where the exact value is the mean of 1 - C(e + s v)
+ *    under the weight of v: off by about s^2 C''(e) var(v) / 2 (s^2 / 12 at
+ *    most for tent:r=1, var(v) = 1/6), which does not fall with res; for an
+ *    edge that ends inside the square the rows are not symmetric about the
+ *    centre and the error is first order in s.  One colour step per edge:
+ *    where the colours beside an edge change inside the square (another
+ *    edge crosses or ends on it) the step at its middle is taken for all of
+ *    it;
+ *  - form=rows: within a row an edge is replaced by the vertical line
+ *    through its crossing of the middle line; the area between is at most
  *    (d / 2) times the edge's x extent inside the row, and those extents
  *    add up to the edge's x variation inside the square, at most 4R for a
  *    y-monotone quadratic piece (2R for a line), so each piece contributes
@@ -61,31 +96,40 @@
  *  - truncation (Gaussian only): at most 2 (1 - m^2) per unit of contrast
  *    (the mass moved by renormalising plus the mass lost).
  *
- * So |error| <= K (wx d / 2 + 2 R w2 d) + trunc for K pieces meeting the
- * square and contrast 1: first order in 1/res.  Known answers
- * (tests/test_tables.c): a half-plane right of a vertical edge at u = e
- * gives 1 - C(e - u_c) within wx d / 2 (its rows are exact), e.g. within
- * 3.9e-3 for tent:r=1 at res=128; and every pixel of crow 128x128 is
- * within the bound above, with K and the pieces' x variation counted from
- * the scene.
+ * So form=rows is within K (wx d / 2 + 2 R w2 d) + trunc for K pieces
+ * meeting the square and contrast 1, first order in 1/res; form=crow is
+ * exact up to the lookups for vertical edges only.  Measured on crow
+ * 256x256 against the exact references (RMSE, max): tent:r=1, res=16:
+ * crow 1.0e-2, 8.1e-2; rows 3.1e-3, 4.3e-2; res=256: crow 4.4e-3, 7.6e-2;
+ * rows 4.7e-5, 1.7e-3; gauss (s = 0.5), res=16: crow 1.1e-2, 1.4e-1; rows
+ * 2.9e-3, 4.3e-2.  Crow's largest errors are in the top and bottom rows,
+ * where crow's arcs end slanted (slope up to 0.6) inside the square.
+ * Known answers (tests/test_tables.c, form=rows: a half-plane right of a
+ * vertical edge at u = e gives 1 - C(e - u_c) within wx d / 2; every pixel
+ * of crow 128x128 within the bound above.  tests/test_prefilters.c,
+ * form=crow: a slanted straight edge across the square gives 1 - C(e)
+ * within the lookup, which the exact value differs from by about s^2 / 12;
+ * abutting rectangles of different colours and one hidden behind them
+ * within the lookups of the exact reference; nothing of a hidden polygon
+ * shows).
  *
  * Cost.  Runs of pixels whose squares meet no edge are filled
- * (aa_strip_uniform_run).  The others are summed one table row at a time:
- * the crossings of that row's middle line are found once per image row
- * (aa_scene_crossings) and swept left to right, so a summed pixel costs, per
- * table row, the crossings inside its square (two lookups each) and one
- * colour; N table rows per pixel make the cost linear in res (crow
- * 1024x1024 tent:r=1, res=16: about 140 ns per pixel, one core).  Tables are
- * made in init; each thread's crossings, sums and indices are made with its
- * strip, so nothing is allocated while rendering.  A pixel depends only on
- * its image row: the image is the same for any thread count.  Counters:
- * samples = 0 (the scene is read along lines, not at points),
- * expensive_pixels = pixels that were summed.
+ * (aa_strip_uniform_run).  form=crow: per summed pixel and part of an edge
+ * in its square, three lookups and the winding just left of it (a pass
+ * over the local pieces), so quadratic in the (few) local pieces.
+ * form=rows: summed one table row at a time: the crossings of that row's
+ * middle line are found once per image row (aa_scene_crossings) and swept
+ * left to right, so a summed pixel costs, per table row, the crossings
+ * inside its square (two lookups each) and one colour; N table rows per
+ * pixel make the cost linear in res (crow 1024x1024 tent:r=1, res=16:
+ * about 140 ns per pixel, one core).  Tables are made in init; each
+ * thread's scratch is made with its strip, so nothing is allocated while
+ * rendering.  A pixel depends only on its image row: the image is the same
+ * for any thread count.  Counters: samples = 0 (the scene is read along
+ * lines, not at points), expensive_pixels = pixels that were summed.
  *
- * Limits: separable filters only (box, tent, gauss); the approximation is
- * first order in 1/res in both directions, and rows cost linearly in res.
- * Values are clamped to [0, 1] (the snapped sums of a mixed pixel may round
- * a hair outside).
+ * Limits: separable filters only (box, tent, gauss); values are clamped to
+ * [0, 1] (the snapped sums of a mixed pixel may round a hair outside).
  */
 #include "methods.h"
 #include "sampling.h"
@@ -97,13 +141,18 @@
 #define CT_MAX_RES 1024
 #define CT_DEFAULT_CUT 3.0
 
-enum { P_RES, P_CUT };
+enum { P_RES, P_CUT, P_FORM };
+enum { FORM_CROW, FORM_ROWS };
 
 static const aa_param crowtable_params[] = {
     {"res", AA_PARAM_INT, 16, 1, CT_MAX_RES, 0, NULL,
-     "table entries per pixel: the partial-sum tables' resolution and the rows' height 1/res"},
+     "table entries per pixel: the partial-sum tables' resolution (and, form=rows, the rows' "
+     "height 1/res)"},
     {"cut", AA_PARAM_REAL, CT_DEFAULT_CUT, 1.0, 8.0, 0, NULL,
      "Gaussian only: truncation half-width in standard deviations"},
+    {"form", AA_PARAM_CHOICE, FORM_CROW, 0, 0, 0, "crow|rows",
+     "rectangles: one per edge in the square (crow, Crow's fig. 2.8) or one per run of colour "
+     "in each of the table's rows (rows, a finer variant)"},
     {0}};
 
 typedef struct ct_table {
@@ -115,7 +164,7 @@ typedef struct ct_table {
 
 typedef struct ct_state {
     ct_table tab;
-    aa__sampler sampler; /* workers; own scratch: ct_scratch */
+    aa__sampler sampler; /* workers; own scratch: ct_scratch or ct_edges */
     size_t ncross;
 } ct_state;
 
@@ -123,6 +172,7 @@ typedef struct ct_render {
     const ct_table *tab;
     const aa_scene *scene; /* placed */
     size_t ncross;
+    const aa_piece *pieces; /* the scene's, for a piece's index */
 } ct_render;
 
 static double ct_half_width(const double *p, const aa_filter *f)
@@ -286,31 +336,191 @@ static int render_row(const void *ctx, aa__sampler_worker *wk, int j, aa_image *
     return 0;
 }
 
-static int prepare(ct_state *S, const aa_job *job)
+/* ---- form=crow: one rectangle per edge (Crow's fig. 2.8) ---- */
+
+/* An edge's part inside the square: its rows [lo, hi], the middle row ym
+ * and its x there (the order along x), the rectangle's left side xr (the
+ * mean of where the part enters and leaves: Crow's "where a tagged edge
+ * enters the top of the square area ... where the edge exits at the
+ * bottom", or its end points for an edge "too small or too close to
+ * horizontal"), its index for ties. */
+typedef struct ct_edge {
+    const aa_piece *p;
+    double lo, hi, ym, xm, xr;
+    int id;
+} ct_edge;
+
+/* Parts: at most two per piece (a y-monotone arc leaves and re-enters the
+ * square once); heights: the rows' ends, two ends and two crossings of the
+ * square's left side per piece. */
+static size_t edges_size(size_t npieces)
+{
+    return 2 * npieces * sizeof(ct_edge) + (4 * npieces + 2) * sizeof(double);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void sort_small(double *v, int n)
+{
+    for (int a = 1; a < n; a++) {
+        double t = v[a];
+        int b = a;
+        while (b > 0 && v[b - 1] > t)
+            v[b] = v[b - 1], b--;
+        v[b] = t;
+    }
+}
+
+/* Pixel (i, j) whose square holds local pieces (aa__sampler_shade_fn).  The
+ * colour just inside the square's left side, in blocks of rows between the
+ * heights where it can change (the ends of local pieces, the heights of
+ * flat ones, where a piece crosses the left side), plus one rectangle per
+ * edge inside the square, from the edge to the square's right side over the
+ * edge's rows, weighted by the step of colour across the edge at its middle
+ * row.  (An edge left of the square is in the colour at its left side; one
+ * right of it adds nothing.) */
+static void shade_crow(const void *ctx, aa__sampler_worker *wk, int i, int j, double *px)
+{
+    const ct_render *R = ctx;
+    const ct_table *tab = R->tab;
+    const aa_scene *s = R->scene;
+    double half = tab->half, left = i + 0.5 - half, right = left + 2.0 * half;
+    double top = j + 0.5 - half, bottom = top + 2.0 * half;
+    size_t nloc, k = 0, nb = 0;
+    const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
+    ct_edge *e = wk->own;
+    double *ys = (double *)(e + 2 * nloc);
+    ys[nb++] = top;
+    ys[nb++] = bottom;
+    for (size_t q = 0; q < nloc; q++) {
+        const aa_piece *p = loc[q];
+        if (!p->dir) {
+            /* a flat edge bounds no rows (its area right is nil), but the
+             * colour left of the square may change at its height */
+            if (p->y0 > top && p->y0 < bottom)
+                ys[nb++] = p->y0;
+            continue;
+        }
+        double lo = fmax(p->y0, top), hi = fmin(p->y1, bottom);
+        if (!(lo < hi))
+            continue;
+        if (lo > top)
+            ys[nb++] = lo;
+        if (hi < bottom)
+            ys[nb++] = hi;
+        /* the piece's rows cut where it crosses the square's sides */
+        double cut[6], m[2];
+        int nc = 0;
+        cut[nc++] = lo;
+        cut[nc++] = hi;
+        int c = aa_piece_meet_x(p, left, m);
+        for (int r = 0; r < c; r++)
+            if (m[r] > lo && m[r] < hi)
+                cut[nc++] = m[r], ys[nb++] = m[r];
+        c = aa_piece_meet_x(p, right, m);
+        for (int r = 0; r < c; r++)
+            if (m[r] > lo && m[r] < hi)
+                cut[nc++] = m[r];
+        sort_small(cut, nc);
+        for (int r = 0; r + 1 < nc; r++) {
+            if (!(cut[r] < cut[r + 1]))
+                continue;
+            double ym = 0.5 * (cut[r] + cut[r + 1]), xm = aa_piece_x_at(p, ym);
+            if (!(xm >= left && xm <= right))
+                continue;
+            e[k++] = (ct_edge){p, cut[r], cut[r + 1], ym, xm,
+                               0.5 * (aa_piece_x_at(p, cut[r]) + aa_piece_x_at(p, cut[r + 1])),
+                               (int)(p - R->pieces)};
+        }
+    }
+    qsort(ys, nb, sizeof *ys, cmp_double);
+    double acc[3] = {0.0, 0.0, 0.0};
+    for (size_t b = 0; b + 1 < nb; b++) {
+        if (!(ys[b] < ys[b + 1]))
+            continue;
+        double wy = lookup(tab, ys[b + 1] - top) - lookup(tab, ys[b] - top);
+        if (!(wy != 0.0))
+            continue;
+        double y = 0.5 * (ys[b] + ys[b + 1]);
+        aa_strip_winding_left(wk->strip, y, wk->wind);
+        for (size_t q = 0; q < nloc; q++) {
+            const aa_piece *g = loc[q];
+            if (g->dir && g->y0 <= y && y < g->y1 && aa_piece_x_at(g, y) < left)
+                wk->wind[g->layer] += g->dir;
+        }
+        aa_rgb c = aa_scene_colour_of(s, wk->wind);
+        for (int ch = 0; ch < 3; ch++)
+            acc[ch] += wy * c.c[ch];
+    }
+    for (size_t q = 0; q < k; q++) {
+        const ct_edge *E = &e[q];
+        double w = (1.0 - lookup(tab, E->xr - left)) *
+                   (lookup(tab, E->hi - top) - lookup(tab, E->lo - top));
+        if (!(w != 0.0))
+            continue;
+        /* the winding just left of the edge at its middle row: the pieces
+         * left of the square, and the local ones before it along x (ties,
+         * such as two abutting polygons' shared edge, by index) */
+        aa_strip_winding_left(wk->strip, E->ym, wk->wind);
+        for (size_t r = 0; r < nloc; r++) {
+            const aa_piece *g = loc[r];
+            if (!g->dir || g == E->p || !(g->y0 <= E->ym && E->ym < g->y1))
+                continue;
+            double x = aa_piece_x_at(g, E->ym);
+            if (x < E->xm || (x == E->xm && (int)(g - R->pieces) < E->id))
+                wk->wind[g->layer] += g->dir;
+        }
+        aa_rgb c0 = aa_scene_colour_of(s, wk->wind);
+        wk->wind[E->p->layer] += E->p->dir;
+        aa_rgb c1 = aa_scene_colour_of(s, wk->wind);
+        for (int ch = 0; ch < 3; ch++)
+            acc[ch] += w * (c1.c[ch] - c0.c[ch]);
+    }
+    for (int ch = 0; ch < 3; ch++)
+        px[ch] = acc[ch] < 0.0 ? 0.0 : (acc[ch] > 1.0 ? 1.0 : acc[ch]);
+}
+
+static int render_row_crow(const void *ctx, aa__sampler_worker *wk, int j, aa_image *out,
+                           uint64_t *samples, uint64_t *expensive)
+{
+    const ct_render *R = ctx;
+    return aa__sampler_row(wk, j, R->tab->half, 0, shade_crow, ctx, out, samples, expensive);
+}
+
+static int prepare(ct_state *S, const double *p, const aa_job *job)
 {
     size_t npieces;
     aa_scene_pieces(job->placed, &npieces);
     S->ncross = npieces + 1;
-    return aa__sampler_ready(&S->sampler, job, scratch_size(S->ncross, job->w));
+    size_t own = (int)p[P_FORM] == FORM_CROW ? edges_size(npieces)
+                                              : scratch_size(S->ncross, job->w);
+    return aa__sampler_ready(&S->sampler, job, own);
 }
 
 static int crowtable_init(void *state, const double *p, const aa_job *job)
 {
     ct_state *S = state;
     int st = table_make(&S->tab, p, &job->filter);
-    return st ? st : prepare(S, job);
+    return st ? st : prepare(S, p, job);
 }
 
 static int crowtable_render(void *state, const double *p, const aa_job *job, aa_image *out,
                             aa_counters *counters)
 {
-    (void)p;
     ct_state *S = state;
-    int st = prepare(S, job);
+    int st = prepare(S, p, job);
     if (st)
         return st;
-    const ct_render R = {&S->tab, job->placed, S->ncross};
-    return aa__sampler_render(&S->sampler, job, out, render_row, &R, counters);
+    size_t npieces;
+    const aa_piece *pieces = aa_scene_pieces(job->placed, &npieces);
+    const ct_render R = {&S->tab, job->placed, S->ncross, pieces};
+    return aa__sampler_render(&S->sampler, job, out,
+                              (int)p[P_FORM] == FORM_CROW ? render_row_crow : render_row, &R,
+                              counters);
 }
 
 static void crowtable_release(void *state)
@@ -323,7 +533,8 @@ static void crowtable_release(void *state)
 
 const aa_method_type aa_method_crowtable = {
     {"crowtable",
-     "Crow's partial-sum lookup tables over rectangles per edge and row (figs. 2.7-2.8, 3.12)",
+     "Crow's partial-sum lookup tables, one rectangle per edge (figs. 2.7-2.8; form=rows: per "
+     "run of colour in each row)",
      crowtable_params},
     sizeof(ct_state),
     0,

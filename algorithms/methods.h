@@ -22,6 +22,7 @@ extern const aa_method_type aa_method_stb;
 extern const aa_method_type aa_method_cairo;
 extern const aa_method_type aa_method_crowtable;
 extern const aa_method_type aa_method_conetable;
+extern const aa_method_type aa_method_crowtiler;
 
 /* Point-sample the placed scene at pixel centres offset by (dx, dy)
  * pixels into out (used by point, hexagon and trio). */
