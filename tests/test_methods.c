@@ -137,12 +137,13 @@ static void for_each_spec(void (*check)(const char *spec, const aa_method_type *
 }
 
 /* The filter a method's generic checks use: box, or gauss for a method
- * that refuses the box (a circularly symmetric one); NULL if it refuses
- * both, with a message that must say what it accepts. */
+ * that refuses the box (a circularly symmetric one), or the tent of radius
+ * 1 (Crow's tiler); NULL if it refuses all, with a message that must say
+ * what it accepts. */
 static const char *home_filter(const char *spec)
 {
-    const char *filters[] = {"box", "gauss"};
-    for (int k = 0; k < 2; k++) {
+    const char *filters[] = {"box", "gauss", "tent:r=1"};
+    for (int k = 0; k < 3; k++) {
         aa_filter f;
         aa_spec m;
         assert_int_equal(aa_filter_parse(filters[k], &f), AA_OK);
@@ -150,7 +151,7 @@ static const char *home_filter(const char *spec)
             return filters[k];
     }
     if (strlen(aa_last_error()) < 20)
-        fail_msg("%s refuses box and gauss without a clear message: \"%s\"", spec,
+        fail_msg("%s refuses box, gauss and tent without a clear message: \"%s\"", spec,
                  aa_last_error());
     return NULL;
 }

@@ -54,7 +54,8 @@ static int render(const char *method, const aa_scene *scene, int w, int h, doubl
                   double vy, int frame_only, aa_image *out)
 {
     /* box, or the Gaussian for a method that forms only circular filters
-     * (conetable): the motion checks below do not depend on the filter */
+     * (conetable), or the tent of radius 1 for Crow's tiler: the motion
+     * checks below do not depend on the filter */
     aa_filter filter;
     aa_spec spec;
     aa_job job;
@@ -63,6 +64,10 @@ static int render(const char *method, const aa_scene *scene, int w, int h, doubl
     int st = aa_method_parse(method, &filter, &spec);
     if (st == AA_EINVAL) {
         assert_int_equal(aa_filter_parse("gauss", &filter), AA_OK);
+        st = aa_method_parse(method, &filter, &spec);
+    }
+    if (st == AA_EINVAL) {
+        assert_int_equal(aa_filter_parse("tent:r=1", &filter), AA_OK);
         st = aa_method_parse(method, &filter, &spec);
     }
     if (st)
