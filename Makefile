@@ -103,6 +103,21 @@ FORCE:
 $(BUILD)/obj/harness/core/image.o $(SAN_BUILD)/obj/harness/core/image.o: $(BUILD)/oiio-dir
 $(BUILD)/obj/harness/core/image.o $(SAN_BUILD)/obj/harness/core/image.o: \
   CPPFLAGS += -DAA_OIIO_DIR='"$(OIIO_DIR)"'
+# What results files record of the build (harness/bench/context.c): the
+# commit and dirty flag and the libraries' versions in build/build-info.h
+# (scripts/build-info.sh, replaced only when it changes), the compiler's
+# flags in AA_BUILD_FLAGS.
+BUILD_INFO := $(BUILD)/build-info.h
+$(BUILD_INFO): FORCE
+	@mkdir -p $(dir $@)
+	@sh scripts/build-info.sh > $@.tmp && { cmp -s $@.tmp $@ || mv $@.tmp $@; }; rm -f $@.tmp
+CONTEXT_O := harness/bench/context.o
+$(BUILD)/obj/$(CONTEXT_O) $(SAN_BUILD)/obj/$(CONTEXT_O) $(BUILD)/fuzz/obj/$(CONTEXT_O): $(BUILD_INFO)
+$(BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"' \
+  -DAA_BUILD_FLAGS='"$(CFLAGS)"'
+$(SAN_BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"' \
+  -DAA_BUILD_FLAGS='"$(CFLAGS) -O1 $(SAN)"'
+$(BUILD)/fuzz/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"'
 # -z defs: the module needs no symbol of the program that loads it.
 $(OIIO_SO): $(patsubst %.cpp,$(BUILD)/obj/%.o,$(OIIO_SRC))
 	@echo '  LD    $@'
