@@ -270,9 +270,11 @@ check-plugin: $(BUILD)/tests/test_methods
 	@test -f "$(PLUGIN)" || { echo "check-plugin: no file $(PLUGIN)" >&2; exit 2; }
 	@AABENCH_PLUGIN=$(abspath $(PLUGIN)) AABENCH_PLUGIN_ONLY=1 $(BUILD)/tests/test_methods
 
+# make bench [TARGET_CI=PCT] [BUDGET=S] [REPS=N]: the timing of each figure
+# (scripts/bench.sh)
 bench: deps
 	@$(MAKE) --no-print-directory $(BUILD)/aabench $(BENCHES)
-	@sh scripts/bench.sh $(BUILD)
+	@TARGET_CI='$(TARGET_CI)' BUDGET='$(BUDGET)' REPS='$(REPS)' sh scripts/bench.sh $(BUILD)
 
 # The seed papers' figures remade into results/figures, then the gallery
 # checked in a headless browser when chromium is present.

@@ -26,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 
 #include <cmocka.h>
 
@@ -218,6 +219,214 @@ static void test_measure_counts(void **state)
     free(t);
 }
 
+/* ---- results files, comparisons and the diff command ---- */
+
+static char dir[] = "/tmp/aabench-timing-XXXXXX";
+
+static void fill_row(aa_row *r, const char *method, double rmse, double scale)
+{
+    memset(r, 0, sizeof *r);
+    snprintf(r->pattern, sizeof r->pattern, "crow");
+    snprintf(r->filter, sizeof r->filter, "box");
+    snprintf(r->method, sizeof r->method, "%s", method);
+    snprintf(r->canonical, sizeof r->canonical, "%s", method);
+    r->w = 16, r->h = 8, r->seed = 1, r->threads = 1, r->ok = 1;
+    r->m.rmse = rmse, r->m.max_err = 2 * rmse;
+    aa_timing *t = &r->timing;
+    t->n = 10, t->threads = 1, t->target_ci = 0.02;
+    for (int k = 0; k < 10; k++)
+        t->wall[k] = t->cpu[k] = scale * (1.0 + 0.01 * k); /* 10 distinct times */
+    aa_time_stats_compute(t->wall, 10, &t->stats);
+    t->ci_rel = (t->stats.ci_hi - t->stats.ci_lo) / 2 / t->stats.median;
+    r->seconds = t->stats.median, r->reps = 10, r->seeds = 1;
+}
+
+static char *slurp(const char *path)
+{
+    static char buf[1 << 16];
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+static void test_results_round_trip(void **state)
+{
+    (void)state;
+    aa_row *rows = calloc(2, sizeof *rows), *back;
+    size_t n;
+    char csv[128], json[128];
+    assert_non_null(rows);
+    fill_row(&rows[0], "point", 0.25, 1e-3);
+    rows[0].timing.noisy = AA_NOISY_BUSY | AA_NOISY_OUTLIERS;
+    fill_row(&rows[1], "jitter:spp=4", 0.125, 2e-3);
+    rows[1].seeds = 3, rows[1].rmse_mean = 0.13, rows[1].rmse_ci_lo = 0.12;
+    rows[1].rmse_ci_hi = 0.14;
+    snprintf(csv, sizeof csv, "%s/results.csv", dir);
+    snprintf(json, sizeof json, "%s/results.json", dir);
+    assert_int_equal(aa_rows_write_csv(csv, rows, 2), AA_OK);
+    assert_int_equal(aa_rows_read_csv(csv, &back, &n), AA_OK);
+    assert_int_equal(n, 2);
+    for (size_t k = 0; k < 2; k++) {
+        assert_int_equal(back[k].timing.n, 10);
+        for (int q = 0; q < 10; q++)
+            assert_true(fabs(back[k].timing.wall[q] - rows[k].timing.wall[q]) <=
+                        1e-8 * rows[k].timing.wall[q]);
+        assert_true(back[k].timing.stats.ci_lo == back[k].timing.wall[1]); /* x(2) of 10 */
+    }
+    assert_int_equal(back[0].timing.noisy, AA_NOISY_BUSY | AA_NOISY_OUTLIERS);
+    assert_int_equal(back[1].timing.noisy, 0);
+    assert_true(back[1].seeds == 3 && back[1].rmse_mean == 0.13 && back[1].rmse_ci_hi == 0.14);
+    free(back);
+    /* results.json: an object, the context first, then the rows with their
+     * times; the context names the command line given */
+    aa_context ctx;
+    const char *argv[] = {"aabench", "run", "--seeds", "3"};
+    assert_int_equal(aa_context_collect(&ctx, 4, argv, 2), AA_OK);
+    assert_int_equal(aa_results_write_json(json, &ctx, rows, 2), AA_OK);
+    const char *t = slurp(json);
+    assert_true(!strncmp(t, "{\n  \"context\": {", 16));
+    const char *keys[] = {"\"commit\": ", "\"dirty\": ", "\"compiler\": ", "\"cflags\": ",
+                          "\"cpu\": ", "\"cores\": ", "\"threads\": 2", "\"os\": ",
+                          "\"kernel\": ", "\"gsl\": ", "\"openimageio\": ", "\"freetype\": ",
+                          "\"cairo\": ", "\"stb\": ", "\"date\": ", "\"load\": [",
+                          "\"command\": [\"aabench\", \"run\", \"--seeds\", \"3\"]",
+                          "\"results\": [", "\"times\": [0.001, 0.00101,",
+                          "\"noisy\": true, \"noise\": \"outliers+busy\"", "\"seeds\": 3"};
+    for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
+        if (!strstr(t, keys[k]))
+            fail_msg("results.json lacks %s", keys[k]);
+    free(rows);
+}
+
+/* A results file of the columns written before the timing's (the
+ * committed baseline's): read, with no times and one seed. */
+static void test_old_results(void **state)
+{
+    (void)state;
+    char csv[128];
+    snprintf(csv, sizeof csv, "%s/old.csv", dir);
+    FILE *f = fopen(csv, "w");
+    assert_non_null(f);
+    fputs("pattern,size,filter,method,canonical,spp,rmse,mae,max_err,render_seconds,threads,reps,"
+          "seed,time,vx,vy,ok,note\n"
+          "crow,128x128,box,point,point,1,0.257,0.1,0.65,0.00013,2,3,1,0,0,0,1,\n",
+          f);
+    fclose(f);
+    aa_row *rows;
+    size_t n;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    assert_int_equal(n, 1);
+    assert_true(rows[0].timing.n == 0 && rows[0].seeds == 1 && rows[0].seconds == 0.00013);
+    assert_true(rows[0].timing.noisy == 0);
+    free(rows);
+}
+
+static void test_case_compare(void **state)
+{
+    (void)state;
+    aa_row *r = calloc(2, sizeof *r);
+    aa_case_change c;
+    assert_non_null(r);
+    /* errors: worse beyond (1 + tol) + 1e-12 */
+    fill_row(&r[0], "point", 1.0, 1e-3);
+    fill_row(&r[1], "point", 1.0011, 1e-3);
+    assert_int_equal(aa_case_compare(&r[0], &r[1], 1e-3, &c), AA_OK);
+    assert_true(c.error_worse && fabs(c.rmse_change - 0.0011) < 1e-12);
+    r[1].m.rmse = 1.0009, r[1].m.max_err = 2.0018;
+    assert_int_equal(aa_case_compare(&r[0], &r[1], 1e-3, &c), AA_OK);
+    assert_false(c.error_worse);
+    /* times: R's example as repetition times, now = x, before = y: U = 35,
+     * two-sided p = 2 x 0.1103, not significant; ratio of the medians */
+    const double x[] = {0.80, 0.83, 1.89, 1.04, 1.45, 1.38, 1.91, 1.64, 0.73, 1.46};
+    const double y[] = {1.15, 0.88, 0.90, 0.74, 1.21};
+    r[1].timing.n = 10, r[0].timing.n = 5;
+    memcpy(r[1].timing.wall, x, sizeof x);
+    memcpy(r[0].timing.wall, y, sizeof y);
+    r[1].seconds = 1.415, r[0].seconds = 0.90; /* the medians */
+    assert_int_equal(aa_case_compare(&r[0], &r[1], 1e-3, &c), AA_OK);
+    assert_true(c.tested && c.u == 35 && fabs(c.p / 2 - 0.1103) < 5e-5 && !c.significant);
+    assert_true(fabs(c.time_ratio - 1.415 / 0.90) < 1e-12);
+    /* refused now */
+    r[1].ok = 0;
+    assert_int_equal(aa_case_compare(&r[0], &r[1], 1e-3, &c), AA_OK);
+    assert_true(c.refused && !c.tested);
+    free(r);
+}
+
+/* The diff command's exit status: 0, 1 on an error regression, 1 with
+ * --fail-slower on a significant slow-down beyond it, 2 on bad input. */
+static void test_diff_command(void **state)
+{
+    (void)state;
+    const char *exe = getenv("AABENCH");
+    if (!exe)
+        skip();
+    aa_row *r = calloc(2, sizeof *r);
+    assert_non_null(r);
+    char a[128], b[128], c[128], cmd[1024];
+    snprintf(a, sizeof a, "%s/a.csv", dir);
+    snprintf(b, sizeof b, "%s/b.csv", dir);
+    snprintf(c, sizeof c, "%s/c.csv", dir);
+    fill_row(&r[0], "point", 0.25, 1e-3);
+    fill_row(&r[1], "area", 1e-16, 2e-3);
+    assert_int_equal(aa_rows_write_csv(a, r, 2), AA_OK);
+    /* b: every time doubled (all 10 above all 10: U = 100, p = 1.8e-4) */
+    fill_row(&r[0], "point", 0.25, 2e-3);
+    fill_row(&r[1], "area", 1e-16, 4e-3);
+    assert_int_equal(aa_rows_write_csv(b, r, 2), AA_OK);
+    /* c: the error of point worse */
+    fill_row(&r[0], "point", 0.26, 1e-3);
+    fill_row(&r[1], "area", 1e-16, 2e-3);
+    assert_int_equal(aa_rows_write_csv(c, r, 2), AA_OK);
+    struct {
+        const char *args;
+        int code;
+    } cases[] = {{"diff %s %s", 0},
+                 {"diff %s %s --fail-slower 50", 1},
+                 {"diff %s %s --fail-slower 150", 0},
+                 {"diff %s %s", 1},
+                 {"diff %s", 2}};
+    const char *second[] = {b, b, b, c, ""};
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        char args[600];
+        snprintf(args, sizeof args, cases[k].args, a, second[k]);
+        snprintf(cmd, sizeof cmd, "'%s' %s > %s/out 2>&1", exe, args, dir);
+        int st = system(cmd);
+        if (!WIFEXITED(st) || WEXITSTATUS(st) != cases[k].code) {
+            char out[256];
+            snprintf(out, sizeof out, "%s/out", dir);
+            fail_msg("aabench %s: exit %d, expected %d: %s", args, WEXITSTATUS(st),
+                     cases[k].code, slurp(out));
+        }
+    }
+    /* the slow-down is named as significant */
+    snprintf(cmd, sizeof cmd, "'%s' diff %s %s > %s/out 2>&1", exe, a, b, dir);
+    assert_int_equal(system(cmd), 0);
+    char out[256];
+    snprintf(out, sizeof out, "%s/out", dir);
+    const char *text = slurp(out);
+    assert_non_null(strstr(text, "+100.0%"));
+    assert_non_null(strstr(text, "2 significantly slower"));
+    free(r);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    return system(cmd);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -228,6 +437,10 @@ int main(void)
         cmocka_unit_test(test_mann_whitney_ties),
         cmocka_unit_test(test_noisy_text),
         cmocka_unit_test(test_measure_counts),
+        cmocka_unit_test(test_results_round_trip),
+        cmocka_unit_test(test_old_results),
+        cmocka_unit_test(test_case_compare),
+        cmocka_unit_test(test_diff_command),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -441,6 +441,9 @@ static int read_record(FILE *f, char *buf, size_t len)
     }
 }
 
+/* "noisy" read as 1: a reason is taken from "noise", else "ci" */
+#define NOISY_MARKED (1u << 31)
+
 /* The timing columns (absent from older files: a row then has no times,
  * timing.n = 0, and one seed).  Returns non-zero if a cell is malformed. */
 static int read_timing_cell(aa_row *row, const char *h, const char *v)
@@ -465,8 +468,8 @@ static int read_timing_cell(aa_row *row, const char *h, const char *v)
     }
     if (!strcmp(h, "noise"))
         t->noisy |= aa_noisy_parse(v);
-    if (!strcmp(h, "noisy") && !strcmp(v, "1") && !t->noisy)
-        t->noisy = AA_NOISY_CI; /* marked, reason not given */
+    if (!strcmp(h, "noisy") && !strcmp(v, "1"))
+        t->noisy |= NOISY_MARKED;
     if (!strcmp(h, "seeds") && *v)
         row->seeds = atoi(v);
 #define TNUM(name, dst) if (!strcmp(h, name) && *v) dst = field_num(v, &bad);
@@ -483,6 +486,11 @@ static int read_timing_cell(aa_row *row, const char *h, const char *v)
 static void settle_timing(aa_row *row)
 {
     aa_timing *t = &row->timing;
+    if (t->noisy & NOISY_MARKED) {
+        t->noisy &= ~NOISY_MARKED;
+        if (!t->noisy)
+            t->noisy = AA_NOISY_CI; /* marked, reason not given */
+    }
     if (row->seeds < 1)
         row->seeds = 1;
     if (t->n == 0)
