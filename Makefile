@@ -252,7 +252,7 @@ check-gate: $(BUILD)/aabench
 
 # Remake the baseline from the quick suite (commit the result).
 baseline: $(BUILD)/aabench
-	$(BUILD)/aabench run --suite quick --reps 3 --no-images --no-plots -q --out $(BUILD)/baseline-run
+	$(BUILD)/aabench run --suite quick --no-images --no-plots -q --out $(BUILD)/baseline-run
 	cp $(BUILD)/baseline-run/results.csv results/baseline.csv
 
 check-tests: $(BUILD)/aabench $(TESTS) $(PLUGINS)

@@ -444,6 +444,21 @@ static void print_temporal(const aa_row **order, size_t n)
     }
 }
 
+/* --seeds N: the stochastic methods' mean RMSE over the seeds. */
+static void print_seeds(const aa_row **order, size_t n)
+{
+    int header = 0;
+    for (size_t k = 0; k < n; k++) {
+        const aa_row *r = order[k];
+        if (!r->ok || r->seeds < 2)
+            continue;
+        if (!header++)
+            printf("\nover %d seeds (stochastic methods): mean RMSE and its 95%% CI\n", r->seeds);
+        printf("  %-30.30s %-10.10s %4dx%-5d %-10.10s %.4e [%.4e, %.4e]\n", r->method, r->pattern,
+               r->w, r->h, r->filter, r->rmse_mean, r->rmse_ci_lo, r->rmse_ci_hi);
+    }
+}
+
 static void print_table(const aa_row *rows, size_t n)
 {
     const aa_row **order = malloc(n * sizeof *order);
@@ -476,6 +491,7 @@ static void print_table(const aa_row *rows, size_t n)
         printf("\n");
         print_temporal(order, n);
     }
+    print_seeds(order, n);
     free(order);
 }
 
