@@ -103,6 +103,21 @@ FORCE:
 $(BUILD)/obj/harness/core/image.o $(SAN_BUILD)/obj/harness/core/image.o: $(BUILD)/oiio-dir
 $(BUILD)/obj/harness/core/image.o $(SAN_BUILD)/obj/harness/core/image.o: \
   CPPFLAGS += -DAA_OIIO_DIR='"$(OIIO_DIR)"'
+# What results files record of the build (harness/bench/context.c): the
+# commit and dirty flag and the libraries' versions in build/build-info.h
+# (scripts/build-info.sh, replaced only when it changes), the compiler's
+# flags in AA_BUILD_FLAGS.
+BUILD_INFO := $(BUILD)/build-info.h
+$(BUILD_INFO): FORCE
+	@mkdir -p $(dir $@)
+	@sh scripts/build-info.sh > $@.tmp && { cmp -s $@.tmp $@ || mv $@.tmp $@; }; rm -f $@.tmp
+CONTEXT_O := harness/bench/context.o
+$(BUILD)/obj/$(CONTEXT_O) $(SAN_BUILD)/obj/$(CONTEXT_O) $(BUILD)/fuzz/obj/$(CONTEXT_O): $(BUILD_INFO)
+$(BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"' \
+  -DAA_BUILD_FLAGS='"$(CFLAGS)"'
+$(SAN_BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"' \
+  -DAA_BUILD_FLAGS='"$(CFLAGS) -O1 $(SAN)"'
+$(BUILD)/fuzz/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"'
 # -z defs: the module needs no symbol of the program that loads it.
 $(OIIO_SO): $(patsubst %.cpp,$(BUILD)/obj/%.o,$(OIIO_SRC))
 	@echo '  LD    $@'
@@ -237,7 +252,7 @@ check-gate: $(BUILD)/aabench
 
 # Remake the baseline from the quick suite (commit the result).
 baseline: $(BUILD)/aabench
-	$(BUILD)/aabench run --suite quick --reps 3 --no-images --no-plots -q --out $(BUILD)/baseline-run
+	$(BUILD)/aabench run --suite quick --no-images --no-plots -q --out $(BUILD)/baseline-run
 	cp $(BUILD)/baseline-run/results.csv results/baseline.csv
 
 check-tests: $(BUILD)/aabench $(TESTS) $(PLUGINS)
@@ -255,9 +270,11 @@ check-plugin: $(BUILD)/tests/test_methods
 	@test -f "$(PLUGIN)" || { echo "check-plugin: no file $(PLUGIN)" >&2; exit 2; }
 	@AABENCH_PLUGIN=$(abspath $(PLUGIN)) AABENCH_PLUGIN_ONLY=1 $(BUILD)/tests/test_methods
 
+# make bench [TARGET_CI=PCT] [BUDGET=S] [REPS=N]: the timing of each figure
+# (scripts/bench.sh)
 bench: deps
 	@$(MAKE) --no-print-directory $(BUILD)/aabench $(BENCHES)
-	@sh scripts/bench.sh $(BUILD)
+	@TARGET_CI='$(TARGET_CI)' BUDGET='$(BUDGET)' REPS='$(REPS)' sh scripts/bench.sh $(BUILD)
 
 # The seed papers' figures remade into results/figures, then the gallery
 # checked in a headless browser when chromium is present.

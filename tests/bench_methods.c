@@ -4,10 +4,15 @@
  *
  * One run, one table.  For each method spec (and the reference, "reference":
  * aa_truth_render), on one pattern, size and filter: the median render time
- * with 1 and 2 threads (`reps` renders each after one untimed init per
- * thread count, into an image allocated and touched once; the 1- and
+ * with 1 and 2 threads and the relative half-width of its 95% CI (after one
+ * untimed init and one untimed warm-up render per thread count, into an
+ * image allocated and touched once, repeated until both CIs are within the
+ * target, --target-ci PCT (default 2), or the budget runs out, --budget S
+ * (default 1 s per thread count), or exactly -r N times; the 1- and
  * 2-thread renders take turns, so a load that comes and goes on a shared
- * machine falls on both alike), the ratio of each to `point` at the
+ * machine falls on both alike; aa_timing_measure), a mark on a noisy
+ * timing (CI target missed, many outliers, other processes busy on the
+ * cores: no ratio built on it is judged), the ratio of each to `point` at the
  * same thread count, the speed-up of 2 threads over 1, the largest error
  * against the reference (rendered once beforehand; for the reference its
  * own error bound), and the peak memory of a render at a larger size.
@@ -23,7 +28,8 @@
  * Then the ratios the targets name, each from this run's medians.
  * Figures are read, not asserted.
  *
- * usage: bench_methods [-p PATTERN] [-s WxH] [-f FILTER] [-r REPS] [-m WxH|none] [SPEC...]
+ * usage: bench_methods [-p PATTERN] [-s WxH] [-f FILTER] [-r REPS] [--target-ci PCT]
+ *                      [--budget S] [-m WxH|none] [SPEC...]
  */
 #include "bench.h"
 
@@ -39,41 +45,54 @@ typedef struct row {
     const char *spec;
     int ok;
     char note[256];
-    double med[2], err;
+    double med[2], ci[2], err; /* medians, their CIs' relative half-widths */
+    unsigned noisy[2];
     double extra_mb, total_ratio;
 } row;
 
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *t, int n)
-{
-    qsort(t, (size_t)n, sizeof *t, cmp);
-    return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
-}
-
 static int is_reference(const char *spec) { return !strcmp(spec, "reference"); }
 
-/* One render of spec (or the reference) with instance m (unused for the
- * reference) into img; returns its time, or a negative value on failure. */
-static double render_once(const char *spec, aa_method *m, const aa_job *job, aa_image *img)
+/* A verdict on a target from timings: never judged on a noisy one. */
+static const char *judge(int met, const row *a, const row *b)
 {
-    aa_counters c;
-    double t0 = aa_now();
-    int st = is_reference(spec)
-                 ? aa_truth_render(job->placed, &job->filter, job->threads, img, NULL, NULL)
-                 : aa_method_render(m, job, img, &c);
-    return st ? -1.0 : aa_now() - t0;
+    if (a->noisy[0] || a->noisy[1] || (b && (b->noisy[0] || b->noisy[1])))
+        return "not judged: noisy timing";
+    return met ? "met" : "NOT met";
 }
 
-/* Time `reps` renders of spec with 1 and with 2 threads (jobs[0], jobs[1]),
- * taking turns, so that both thread counts see the same load of a shared
- * machine: t1[r], t2[r].  One untimed init per thread count. */
-static int time_spec2(const char *spec, const aa_job *jobs, int reps, aa_image *img,
-                      double *t1, double *t2)
+/* "12.345 +-1.2%*": a median in ms, its CI and a star if noisy */
+static void ms_text(const row *r, int th, char *buf, size_t len)
+{
+    if (isfinite(r->ci[th]))
+        snprintf(buf, len, "%.3f +-%.1f%%%s", r->med[th] * 1e3, 100 * r->ci[th],
+                 r->noisy[th] ? "*" : "");
+    else
+        snprintf(buf, len, "%.3f%s", r->med[th] * 1e3, r->noisy[th] ? "*" : "");
+}
+
+/* One render of spec (or the reference) with instance m (unused for the
+ * reference) into img. */
+typedef struct render_ctx {
+    const char *spec;
+    aa_method *m;
+    const aa_job *job;
+    aa_image *img;
+} render_ctx;
+
+static int render_once(void *vctx)
+{
+    render_ctx *c = vctx;
+    aa_counters counters;
+    return is_reference(c->spec) ? aa_truth_render(c->job->placed, &c->job->filter,
+                                                   c->job->threads, c->img, NULL, NULL)
+                                 : aa_method_render(c->m, c->job, c->img, &counters);
+}
+
+/* Time spec with 1 and with 2 threads (jobs[0], jobs[1]), taking turns, so
+ * that both thread counts see the same load of a shared machine, by the
+ * plan: t[0], t[1].  One untimed init per thread count. */
+static int time_spec2(const char *spec, const aa_job *jobs, const aa_timing_plan *plan,
+                      aa_image *img, aa_timing *t)
 {
     aa_method m[2] = {{0}, {0}};
     aa_spec ms;
@@ -83,10 +102,11 @@ static int time_spec2(const char *spec, const aa_job *jobs, int reps, aa_image *
             (st = aa_method_init(&m[0], &ms, &jobs[0])) ||
             (st = aa_method_init(&m[1], &ms, &jobs[1])))
             goto done;
-    for (int r = 0; r < reps && !st; r++)
-        if ((t1[r] = render_once(spec, &m[0], &jobs[0], img)) < 0 ||
-            (t2[r] = render_once(spec, &m[1], &jobs[1], img)) < 0)
-            st = AA_EFAIL;
+    render_ctx c[2] = {{spec, &m[0], &jobs[0], img}, {spec, &m[1], &jobs[1], img}};
+    aa_timed_fn fn[2] = {render_once, render_once};
+    void *ctx[2] = {&c[0], &c[1]};
+    int threads[2] = {jobs[0].threads, jobs[1].threads};
+    st = aa_timing_measure(plan, 2, fn, ctx, threads, t);
 done:
     if (!is_reference(spec)) {
         if (m[0].type)
@@ -170,7 +190,8 @@ static long child_peak_kb(const char *spec, const char *pattern, const char *siz
 int main(int argc, char **argv)
 {
     const char *pattern = "crow", *size = "1024x1024", *filter = "box", *msize = "4096x4096";
-    int reps = 15, first = 1;
+    int reps = 0, first = 1;
+    aa_timing_plan plan = {0};
     if (argc == 6 && !strcmp(argv[1], "--peak"))
         return peak_child(argv[2], argv[3], argv[4], argv[5]);
     static const char *defaults[] = {
@@ -184,6 +205,8 @@ int main(int argc, char **argv)
         else if (!strcmp(o, "-s")) size = v;
         else if (!strcmp(o, "-f")) filter = v;
         else if (!strcmp(o, "-r")) reps = atoi(v);
+        else if (!strcmp(o, "--target-ci")) plan.target_ci = atof(v) / 100;
+        else if (!strcmp(o, "--budget")) plan.budget = atof(v);
         else if (!strcmp(o, "-m")) msize = v;
         else break;
         first += 2;
@@ -196,8 +219,13 @@ int main(int argc, char **argv)
     }
     if (nspecs > MAXSPECS)
         nspecs = MAXSPECS;
-    if (reps < 5 || reps > 1000)
-        reps = 15;
+    if (reps < 0 || reps > AA_TIMING_MAX_REPS)
+        reps = 0;
+    plan.reps = reps;
+    if (!(plan.target_ci >= 0 && plan.target_ci < 1) || !(plan.budget >= 0)) {
+        fprintf(stderr, "bench_methods: --target-ci PCT (0 to 100), --budget S (>= 0)\n");
+        return 2;
+    }
     aa_spec pspec;
     aa_scene *scene;
     aa_filter f;
@@ -218,7 +246,9 @@ int main(int argc, char **argv)
     aa_truth_stats tstats;
     if (aa_truth_render(job[1].placed, &f, 2, &ref, NULL, &tstats))
         return 3;
-    double *t = malloc((size_t)reps * sizeof *t), *t2 = malloc((size_t)reps * sizeof *t2);
+    aa_timing *t = malloc(2 * sizeof *t);
+    if (!t)
+        return 3;
     memset(img.v, 0, (size_t)w * h * 3 * sizeof *img.v); /* page faults are no method's cost */
     row rows[MAXSPECS] = {{0}};
     long base_kb = mw ? child_peak_kb("-", pattern, msize, filter) : 0;
@@ -228,12 +258,15 @@ int main(int argc, char **argv)
         row *r = &rows[k];
         r->spec = specs[k];
         r->ok = 1;
-        if (time_spec2(r->spec, job, reps, &img, t, t2)) {
+        if (time_spec2(r->spec, job, &plan, &img, t)) {
             snprintf(r->note, sizeof r->note, "%s", aa_last_error());
             r->ok = 0;
         } else {
-            r->med[0] = median(t, reps);
-            r->med[1] = median(t2, reps);
+            for (int th = 0; th < 2; th++) {
+                r->med[th] = t[th].stats.median;
+                r->ci[th] = t[th].ci_rel;
+                r->noisy[th] = t[th].noisy;
+            }
         }
         if (!r->ok)
             continue;
@@ -253,12 +286,20 @@ int main(int argc, char **argv)
     for (size_t k = 0; k < nspecs; k++)
         if (!strcmp(rows[k].spec, "point") && rows[k].ok)
             pt = &rows[k];
-    printf("%s %dx%d %s: median of %d renders, one untimed init; max error against the "
-           "reference\n(for the reference, its error bound); peak memory of one render at "
-           "%s, 2 threads,\nbeyond the %.0f MB output image (baseline: a child that only "
-           "allocates it)\n\n",
-           pattern, w, h, filter, reps, mw ? msize : "(not measured)", image_mb);
-    printf("%-30s %10s %10s %10s %8s %8s %7s %10s %8s\n", "method", "max error", "1 thr ms",
+    char how[128];
+    if (reps)
+        snprintf(how, sizeof how, "%d timed renders", reps);
+    else
+        snprintf(how, sizeof how, "renders until the 95%% CI is within %g%% or %g s",
+                 100 * (plan.target_ci > 0 ? plan.target_ci : AA_TIMING_TARGET),
+                 plan.budget > 0 ? plan.budget : AA_TIMING_BUDGET);
+    printf("%s %dx%d %s: median and the relative half-width of its 95%% CI (%s, after\n"
+           "one untimed init and warm-up; * noisy: target missed, many outliers or other\n"
+           "processes busy on the cores); max error against the reference (for the\n"
+           "reference, its error bound); peak memory of one render at %s, 2 threads,\n"
+           "beyond the %.0f MB output image (baseline: a child that only allocates it)\n\n",
+           pattern, w, h, filter, how, mw ? msize : "(not measured)", image_mb);
+    printf("%-30s %10s %18s %18s %8s %8s %7s %10s %8s\n", "method", "max error", "1 thr ms",
            "2 thr ms", "/point 1", "/point 2", "2t/1t", "extra MB", "tot/img");
     for (size_t k = 0; k < nspecs; k++) {
         const row *r = &rows[k];
@@ -266,13 +307,15 @@ int main(int argc, char **argv)
             printf("%-30s refused or failed: %s\n", r->spec, r->note);
             continue;
         }
-        printf("%-30s %10.2e %10.3f %10.3f", r->spec, r->err, r->med[0] * 1e3,
-               r->med[1] * 1e3);
+        char m1[48], m2[48];
+        ms_text(r, 0, m1, sizeof m1);
+        ms_text(r, 1, m2, sizeof m2);
+        printf("%-30s %10.2e %18s %18s", r->spec, r->err, m1, m2);
         if (pt)
             printf(" %8.2f %8.2f", r->med[0] / pt->med[0], r->med[1] / pt->med[1]);
         else
             printf(" %8s %8s", "-", "-");
-        printf(" %7.2f", r->med[0] / r->med[1]);
+        printf(" %6.2f%s", r->med[0] / r->med[1], r->noisy[0] || r->noisy[1] ? "*" : " ");
         if (mw)
             printf(" %10.1f %8.3f", r->extra_mb, r->total_ratio);
         printf("\n");
@@ -288,8 +331,8 @@ int main(int argc, char **argv)
         if (pt)
             printf("  %-40s %6.2f %6.2f   target <= 1.5: %s\n", "area / point",
                    area->med[0] / pt->med[0], area->med[1] / pt->med[1],
-                   area->med[0] / pt->med[0] <= 1.5 && area->med[1] / pt->med[1] <= 1.5
-                       ? "met" : "NOT met");
+                   judge(area->med[0] / pt->med[0] <= 1.5 && area->med[1] / pt->med[1] <= 1.5,
+                         area, pt));
         for (size_t k = 0; k < nspecs; k++) {
             const row *r = &rows[k];
             if (!r->ok || (strncmp(r->spec, "freetype", 8) && strncmp(r->spec, "stb", 3) &&
@@ -301,8 +344,8 @@ int main(int argc, char **argv)
             printf("  %-40s %6.2f %6.2f   its error / area's: %.1e  (faster and >= 1e6: "
                    "%s)\n",
                    name, area->med[0] / r->med[0], area->med[1] / r->med[1], er,
-                   area->med[0] < r->med[0] && area->med[1] < r->med[1] && er >= 1e6
-                       ? "met" : "not met");
+                   judge(area->med[0] < r->med[0] && area->med[1] < r->med[1] && er >= 1e6,
+                         area, r));
         }
         for (size_t k = 0; k < nspecs && pt; k++) {
             const row *r = &rows[k];
@@ -314,9 +357,8 @@ int main(int argc, char **argv)
             printf("  %-40s %6.2f %6.2f", name, r->med[0] / pt->med[0],
                    r->med[1] / pt->med[1]);
             if (!strcmp(r->spec, "jitter:spp=16"))
-                printf("   target <= 8: %s", r->med[0] / pt->med[0] <= 8 &&
-                                                     r->med[1] / pt->med[1] <= 8
-                                                 ? "met" : "NOT met");
+                printf("   target <= 8: %s",
+                       judge(r->med[0] / pt->med[0] <= 8 && r->med[1] / pt->med[1] <= 8, r, pt));
             printf("\n");
         }
         printf("\n2 threads over 1 (target >= 1.7 for area, point, jitter:spp=16, "
@@ -326,7 +368,7 @@ int main(int argc, char **argv)
             if (r->ok && (!strcmp(r->spec, "area") || !strcmp(r->spec, "point") ||
                           !strcmp(r->spec, "jitter:spp=16") || is_reference(r->spec)))
                 printf("  %-40s %6.2f   %s\n", r->spec, r->med[0] / r->med[1],
-                       r->med[0] / r->med[1] >= 1.7 ? "met" : "NOT met");
+                       judge(r->med[0] / r->med[1] >= 1.7, r, NULL));
         }
         if (mw) {
             printf("\npeak memory at %s (target: total <= 2 x image + O(width) per "
@@ -340,8 +382,23 @@ int main(int argc, char **argv)
             }
         }
     }
+    size_t noisy = 0;
+    for (size_t k = 0; k < nspecs; k++)
+        noisy += rows[k].ok && (rows[k].noisy[0] || rows[k].noisy[1]);
+    if (noisy) {
+        printf("\nwarning: %zu of %zu methods have a noisy timing (*); no speed-up, loss or "
+               "target\nbuilt on one is judged:", noisy, nspecs);
+        for (size_t k = 0; k < nspecs; k++)
+            if (rows[k].ok && (rows[k].noisy[0] || rows[k].noisy[1])) {
+                char a[64], b[64];
+                aa_noisy_text(rows[k].noisy[0], a, sizeof a);
+                aa_noisy_text(rows[k].noisy[1], b, sizeof b);
+                printf("\n  %-30s 1 thread: %s; 2 threads: %s", rows[k].spec, *a ? a : "quiet",
+                       *b ? b : "quiet");
+            }
+        printf("\n");
+    }
     free(t);
-    free(t2);
     for (int th = 0; th < 2; th++)
         aa_job_free(&job[th]);
     aa_image_free(&img);

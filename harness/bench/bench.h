@@ -98,6 +98,15 @@ typedef struct aa_row {
     char note[512];
     int temporal;       /* 1: an animated run: the temporal metrics below were taken */
     aa_temporal tm;
+    /* the timing by precision (core.h, "timing and its statistics"): every
+     * render's wall and CPU time, their statistics and the noise seen;
+     * timing.n = 0 when not timed (a results file without times) */
+    aa_timing timing;
+    /* several seeds (run --seeds N): the seeds the error was measured over
+     * (1: the method is deterministic or one was asked) and the mean RMSE
+     * with its 95% interval (NaN for one seed) */
+    int seeds;
+    double rmse_mean, rmse_ci_lo, rmse_ci_hi;
 } aa_row;
 
 /* A suite is a list of groups; each group is a cross product of patterns,
@@ -165,6 +174,14 @@ typedef struct aa_run_config {
      * set, over `frames` frames (times t, t + 1, ...; 0: 24) and an eye
      * window of `window` frames (0: 6) */
     int temporal, frames, window;
+    /* timing by precision: reps (above) > 0 is a fixed count; with reps 0
+     * each case is timed until the relative half-width of its median's 95%
+     * CI is at most target_ci (0: 2%) or `budget` seconds (0: 1 s) have
+     * passed, at least AA_TIMING_MIN_REPS renders */
+    double target_ci, budget;
+    /* stochastic methods (AA_METHOD_SEEDED) are measured over `seeds` seeds,
+     * seed, seed + 1, ... (0 or 1: one) */
+    int seeds;
 } aa_run_config;
 
 /* Check the config before any work: lists present, sizes within memory,
@@ -179,6 +196,56 @@ int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n);
 int aa_rows_write_json(const char *path, const aa_row *rows, size_t n);
 /* Read a results or baseline CSV back (the columns written above). */
 int aa_rows_read_csv(const char *path, aa_row **rows, size_t *n);
+
+/* What a results file says of the run that made it (context.c): the
+ * commit (git, run in the program's checkout; else the one it was built
+ * from), the compiler and its flags, the CPU, cores, threads, OS and
+ * kernel, the libraries' versions, the date, the load and the command
+ * line. */
+typedef struct aa_context {
+    char commit[64];
+    int dirty;             /* 1 dirty, 0 clean, -1 unknown */
+    char commit_from[16];  /* "checkout" (git at run time) or "build" */
+    char compiler[128], cflags[512];
+    char cpu[256];
+    int cores, cores_allowed, threads;
+    char os[256], kernel[128], machine[64], governor[64];
+    char gsl[32], oiio[32], freetype[32], cairo[32], stb[64];
+    char date[32];         /* UTC, ISO 8601 */
+    double load[3];        /* load averages at the start */
+    int argc;
+    const char *const *argv; /* the command line, kept by the caller */
+} aa_context;
+int aa_context_collect(aa_context *c, int argc, const char *const *argv, int threads);
+/* The context as a JSON object, its inner lines indented by `indent`
+ * spaces (malloc'd; NULL when out of memory). */
+char *aa_context_json(const aa_context *c, int indent);
+/* results.json as {"context": ..., "results": [rows]} (ctx NULL: null). */
+int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row *rows, size_t n);
+/* A row's timing as JSON members, each ", \"key\": value" (malloc'd). */
+char *aa_row_timing_json(const aa_row *r);
+
+/* Comparing two runs (diff.c), case by case. */
+#define AA_ERROR_ABS_TOLERANCE 1e-12
+#define AA_TIME_ALPHA 0.05 /* a time change is significant at p below this */
+typedef struct aa_case_change {
+    const aa_row *old, *now;
+    int error_worse;    /* rmse or max_err above old (1 + tol) + 1e-12 */
+    int refused;        /* ran before, refused now */
+    double rmse_change; /* now / old - 1 */
+    double time_ratio;  /* median now / median before; NaN if either is missing */
+    int tested;         /* both had repetition times: Mann-Whitney U was taken */
+    double u, z, p;     /* of now against before (z > 0: slower) */
+    int significant;    /* tested and p < AA_TIME_ALPHA */
+    int noisy;          /* either measurement was marked noisy */
+} aa_case_change;
+/* The same case: pattern, size, filter, method, time, motion, seed. */
+int aa_case_same(const aa_row *a, const aa_row *b);
+int aa_case_compare(const aa_row *old, const aa_row *now, double tol, aa_case_change *c);
+/* A run folder (its results.csv) or a results file (.csv; for a .json the
+ * results.csv beside it, which holds the same rows and every repetition's
+ * time) read as rows. */
+int aa_results_load(const char *path, aa_row **rows, size_t *n);
 
 /* Convergence: RMSE against samples per pixel over `phases` random sub-pixel
  * shifts of the scene; the log-log slope by least squares (gsl_fit_linear).

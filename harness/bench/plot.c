@@ -6,13 +6,19 @@
  * (.png, drawn under a temporary name and renamed).
  *
  *   error_vs_time   RMSE against median render time, log-log, one panel per
- *                   view (pattern, size, filter), methods labelled, the
- *                   view's Pareto front (no other method both faster and more
- *                   accurate) drawn as a staircase; methods exact to rounding
- *                   (RMSE below 1e-9) sit on the panel's floor, a quarter of
- *                   the lowest other error, labelled with their error
- *   convergence     RMSE against samples per pixel, log-log, with each
- *                   method's fitted line and slope
+ *                   view (pattern, size, filter), each method family its own
+ *                   colour and marker, horizontal bars for the 95% CI of the
+ *                   median, each point numbered and a numbered key beside the
+ *                   panel (names never overlap the points or each other),
+ *                   noisy timings starred, the view's Pareto front (no other
+ *                   method both faster and more accurate) drawn as a
+ *                   staircase; methods exact to rounding (RMSE below 1e-9)
+ *                   sit on the panel's floor, a quarter of the lowest other
+ *                   error, their error given in the key
+ *   convergence     RMSE against samples per pixel, log-log, one colour and
+ *                   marker per method and sequence with its fitted line and
+ *                   slope, and the theory's slopes for edges drawn dashed:
+ *                   -1/2 (independent random), -3/4 (stratified, QMC)
  *
  * Numbers in the data and the scripts are C-locale text, whatever
  * LC_NUMERIC the program has set (gnuplot reads them so).
@@ -147,6 +153,53 @@ static void gp_string(FILE *f, const char *s)
 /* Errors below this are exact to rounding: drawn on the panel's floor. */
 #define EXACT 1e-9
 
+/* Each method family (the spec's name) its own colour and marker, the same
+ * in every panel and plot: colours from Okabe and Ito's palette (told apart
+ * by colour-blind readers; its yellow darkened to show on white) and a few
+ * more, markers filled then open. */
+static const char *const family_colour[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
+                                            "#E69F00", "#56B4E9", "#000000", "#A08800",
+                                            "#7F3C8D", "#8C564B", "#666666", "#1B9E77"};
+static const int family_marker[] = {7, 5, 9, 11, 13, 15, 4, 6, 8, 10, 12, 14, 1, 2, 3};
+#define NCOLOURS (sizeof family_colour / sizeof *family_colour)
+#define NMARKERS (sizeof family_marker / sizeof *family_marker)
+#define MAX_FAMILIES 64
+
+typedef struct families {
+    char name[MAX_FAMILIES][64];
+    int n;
+} families;
+
+/* The family of a method spec is its name; its index is its place in the
+ * method table, so a family keeps its style from run to run (a name not in
+ * the table comes after it, in order of appearance). */
+static int family_of(families *f, const char *method)
+{
+    char name[64];
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(method, ":"), method);
+    if (f->n == 0) {
+        const void *const *table = aa_method_table();
+        for (size_t k = 0; table[k] && f->n < MAX_FAMILIES; k++)
+            snprintf(f->name[f->n++], sizeof f->name[0], "%s",
+                     ((const aa_info *)table[k])->name);
+    }
+    for (int k = 0; k < f->n; k++)
+        if (!strcmp(f->name[k], name))
+            return k;
+    if (f->n == MAX_FAMILIES)
+        return MAX_FAMILIES - 1;
+    snprintf(f->name[f->n], sizeof f->name[0], "%s", name);
+    return f->n++;
+}
+
+/* A style: colour and marker of family k, distinct for the first
+ * NCOLOURS x NMARKERS families (colours cycle first, markers shift). */
+static void family_style(int k, const char **colour, int *marker)
+{
+    *colour = family_colour[(size_t)k % NCOLOURS];
+    *marker = family_marker[((size_t)k + (size_t)k / NCOLOURS) % NMARKERS];
+}
+
 static int plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
 {
     char dat[4096], tmp[4096];
@@ -159,19 +212,50 @@ static int plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
     FILE *f = fopen(tmp, "w");
     const aa_row **view = malloc(n * sizeof *view);
     int *done = calloc(n, sizeof *done), views = 0;
-    double floors[64];
-    char titles[64][256];
-    if (!f || !view || !done) {
+    size_t script_len = 1 << 20;
+    char *script = malloc(script_len);
+    FILE *s = script ? fmemopen(script, script_len, "w") : NULL;
+    families fam = {.n = 0};
+    if (!f || !view || !done || !s) {
         if (f)
             fclose(f);
+        if (s)
+            fclose(s);
+        free(script);
         free(view);
         free(done);
         unlink(tmp);
         return aa_fail(AA_EIO, "cannot write %s", dat);
     }
-    /* per view, three blocks: the methods, those exact to rounding (drawn
-     * on the floor, labelled with their error), and the Pareto front */
-    for (size_t k = 0; k < n && views < 64; k++) {
+    /* the families in the order they first appear, so styles are stable */
+    for (size_t k = 0; k < n; k++)
+        if (rows[k].ok)
+            family_of(&fam, rows[k].method);
+    /* count the views for the layout */
+    int nviews = 0;
+    for (size_t k = 0; k < n; k++) {
+        if (done[k] || !rows[k].ok || !(rows[k].seconds > 0))
+            continue;
+        nviews++;
+        for (size_t q = k; q < n; q++)
+            if (rows[q].ok && same_view(&rows[k], &rows[q]))
+                done[q] = 1;
+    }
+    memset(done, 0, n * sizeof *done);
+    int cols = nviews <= 3 ? 1 : 2, rws = (nviews + cols - 1) / cols;
+    fprintf(s, "# error against time: made by aabench run; run with: gnuplot error_vs_time.gp\n"
+               "set terminal pngcairo size %d,%d font 'DejaVu Sans,10'\n"
+               "if (!exists('out')) out = 'error_vs_time.png'\n"
+               "if (!exists('dat')) dat = 'error_vs_time.dat'\nset output out\n",
+            1150 * cols, 600 * (rws > 0 ? rws : 1) + 50);
+    fprintf(s, "set multiplot layout %d,%d title \"Error against render time: median, bars = "
+               "95%% CI of the median; dashed: Pareto front; * noisy timing\" font ',12'\n"
+               "set logscale xy\nset grid\nunset key\nset rmargin 52\n"
+               "set format y '%%.0e'\n"
+               "set xlabel 'render time, median and its 95%% CI (s)'\n"
+               "set ylabel 'RMSE (linear light)'\n",
+            rws > 0 ? rws : 1, cols);
+    for (size_t k = 0; k < n && views < nviews; k++) {
         if (done[k] || !rows[k].ok || !(rows[k].seconds > 0))
             continue;
         size_t nv = 0;
@@ -185,24 +269,24 @@ static int plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
             }
         qsort(view, nv, sizeof *view, cmp_time);
         double floor = isfinite(lowest) ? lowest / 4 : 1e-3;
-        floors[views] = floor;
-        snprintf(titles[views], sizeof titles[views], "%s %dx%d %s", rows[k].pattern, rows[k].w,
-                 rows[k].h, rows[k].filter);
-        fprintf(f, "# %s\n", titles[views]);
-        for (size_t q = 0; q < nv; q++)
-            if (view[q]->m.rmse >= EXACT)
-                fprintf(f, "%.9g %.9g \"%s\"\n", view[q]->seconds, view[q]->m.rmse,
-                        view[q]->method);
-        fprintf(f, "\n\n");
-        int exact = 0;
-        for (size_t q = 0; q < nv; q++)
-            if (view[q]->m.rmse < EXACT) {
-                fprintf(f, "%.9g %.9g \"%s (%.1e)\"\n", view[q]->seconds, floor, view[q]->method,
-                        view[q]->m.rmse);
-                exact = 1;
-            }
-        if (!exact)
-            fprintf(f, "nan nan \"\"\n");
+        char title[256];
+        snprintf(title, sizeof title, "%s %dx%d %s, %d thread%s", rows[k].pattern, rows[k].w,
+                 rows[k].h, rows[k].filter, rows[k].threads, rows[k].threads == 1 ? "" : "s");
+        /* block 2v: x y xlo xhi family number label-x label-y; the label
+         * (the method's number) sits in one of four corners by turn, so
+         * neighbours' numbers fall apart */
+        fprintf(f, "# %s\n", title);
+        static const double corner[4][2] = {{1.12, 1.18}, {1.12, 0.85}, {0.80, 1.18},
+                                            {0.80, 0.85}};
+        for (size_t q = 0; q < nv; q++) {
+            const aa_row *r = view[q];
+            double y = r->m.rmse >= EXACT ? r->m.rmse : floor;
+            double lo = isfinite(r->timing.stats.ci_lo) ? r->timing.stats.ci_lo : r->seconds;
+            double hi = isfinite(r->timing.stats.ci_hi) ? r->timing.stats.ci_hi : r->seconds;
+            fprintf(f, "%.9g %.9g %.9g %.9g %d %zu %.9g %.9g\n", r->seconds, y, lo, hi,
+                    family_of(&fam, r->method), q + 1, r->seconds * corner[q % 4][0],
+                    y * corner[q % 4][1]);
+        }
         fprintf(f, "\n\n");
         double best = INFINITY;
         for (size_t q = 0; q < nv; q++)
@@ -211,47 +295,68 @@ static int plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
                 fprintf(f, "%.9g %.9g\n", view[q]->seconds, fmax(best, floor));
             }
         fprintf(f, "\n\n");
+        /* the panel: its numbered key at the right, each entry with its
+         * family's marker */
+        fprintf(s, "unset label\nset title ");
+        gp_string(s, title);
+        fprintf(s, "\nset yrange [%.9g:*]\n", floor / 1.5);
+        double dy = fmin(0.05, 0.98 / (double)(nv ? nv : 1));
+        for (size_t q = 0; q < nv; q++) {
+            const aa_row *r = view[q];
+            const char *colour;
+            int marker;
+            char entry[768];
+            family_style(family_of(&fam, r->method), &colour, &marker);
+            if (r->m.rmse >= EXACT)
+                snprintf(entry, sizeof entry, "%zu  %.40s%s", q + 1, r->method,
+                         r->timing.noisy ? " *" : "");
+            else
+                snprintf(entry, sizeof entry, "%zu  %.40s (RMSE %.0e, at the floor)%s", q + 1,
+                         r->method, r->m.rmse, r->timing.noisy ? " *" : "");
+            fprintf(s, "set label %zu ", q + 1);
+            gp_string(s, entry);
+            fprintf(s, " at graph 1.04, graph %.4f left front font ',8' point pt %d ps 0.9 "
+                       "lc rgb '%s' offset 1.2,0\n",
+                    1.0 - dy * (double)q, marker, colour);
+        }
+        fprintf(s, "plot ");
+        int first = 1;
+        for (int fi = 0; fi < fam.n; fi++) {
+            int present = 0;
+            for (size_t q = 0; q < nv && !present; q++)
+                present = family_of(&fam, view[q]->method) == fi;
+            if (!present)
+                continue;
+            const char *colour;
+            int marker;
+            family_style(fi, &colour, &marker);
+            fprintf(s, "%sdat index %d using 1:($5==%d?$2:1/0):3:4 with xerrorbars pt %d ps 1.2 "
+                       "lw 1.3 lc rgb '%s'",
+                    first ? "" : ", \\\n     ", 2 * views, fi, marker, colour);
+            first = 0;
+        }
+        fprintf(s, ", \\\n     dat index %d using 7:8:6 with labels font ',8' tc rgb 'gray20', "
+                   "\\\n     dat index %d using 1:2 with steps lw 1.2 dt 2 lc rgb 'gray40'\n",
+                2 * views, 2 * views + 1);
         views++;
     }
+    fprintf(s, "unset multiplot\n");
     free(view);
     free(done);
-    if (fclose(f) != 0) {
+    int bad_script = fclose(s) != 0;
+    if (fclose(f) != 0 || bad_script) {
+        free(script);
         unlink(tmp);
         return aa_fail(AA_EIO, "cannot write %s", dat);
     }
     if (views == 0) {
+        free(script);
         unlink(tmp);
         return aa_fail(AA_EINVAL, "no measured rows to plot");
     }
-    char script[65536];
-    int cols = views == 1 ? 1 : (views <= 4 ? 2 : 3), rws = (views + cols - 1) / cols;
-    FILE *s = fmemopen(script, sizeof script, "w");
-    fprintf(s, "# error against time: made by aabench run; run with: gnuplot error_vs_time.gp\n"
-               "set terminal pngcairo size %d,%d font 'DejaVu Sans,10'\n"
-               "if (!exists('out')) out = 'error_vs_time.png'\n"
-               "if (!exists('dat')) dat = 'error_vs_time.dat'\nset output out\n",
-            640 * cols, 480 * rws + 40);
-    fprintf(s, "set multiplot layout %d,%d title 'Error against render time (dashed: Pareto "
-               "front; down-triangles: exact to rounding, drawn at the floor)'\n"
-               "set logscale xy\nset grid\nunset key\n"
-               "set xlabel 'render time, median (s)'\nset ylabel 'RMSE (linear light)'\n",
-            rws, cols);
-    for (int v = 0; v < views; v++) {
-        fprintf(s, "set title ");
-        gp_string(s, titles[v]);
-        fprintf(s, "\nset yrange [%.9g:*]\n", floors[v] / 1.5);
-        fprintf(s, "plot dat index %d using 1:2 with points pt 7 ps 1.1 lc 1, \\\n"
-                   "     '' index %d using 1:2:3 with labels left offset 0.6,0.25 font ',7' "
-                   "tc lt 1, \\\n"
-                   "     '' index %d using 1:2 with points pt 11 ps 1.4 lc 2, \\\n"
-                   "     '' index %d using 1:2:3 with labels left offset 0.7,0.3 font ',7' "
-                   "tc lt 2, \\\n"
-                   "     '' index %d using 1:2 with steps lw 1.2 dt 2 lc rgb 'gray40'\n",
-                3 * v, 3 * v, 3 * v + 1, 3 * v + 1, 3 * v + 2);
-    }
-    fprintf(s, "unset multiplot\n");
-    fclose(s);
-    return draw(dir, "error_vs_time", script, tmp, "error_vs_time.dat");
+    st = draw(dir, "error_vs_time", script, tmp, "error_vs_time.dat");
+    free(script);
+    return st;
 }
 
 static int plot_convergence(const char *dir, const aa_convergence *c, const char *const *names,
@@ -269,32 +374,57 @@ static int plot_convergence(const char *dir, const aa_convergence *c, const char
     FILE *f = fopen(tmp, "w");
     if (!f)
         return aa_fail(AA_EIO, "cannot write %s", dat);
+    double top = 0, x0 = INFINITY, x1 = 0;
     for (size_t k = 0; k < n; k++) {
         fprintf(f, "\"%s: slope %.3f +- %.3f\"\n", names[k], c[k].slope, c[k].slope_err);
-        for (size_t q = 0; q < c[k].n; q++)
+        for (size_t q = 0; q < c[k].n; q++) {
             fprintf(f, "%.9g %.9g %.9g %.9g\n", c[k].spp[q], c[k].rmse[q], c[k].rmse_sd[q],
                     exp(c[k].intercept) * pow(c[k].spp[q], c[k].slope));
+            x1 = fmax(x1, c[k].spp[q]);
+            if (c[k].spp[q] < x0)
+                x0 = c[k].spp[q], top = c[k].rmse[q];
+            else if (c[k].spp[q] == x0)
+                top = fmax(top, c[k].rmse[q]);
+        }
         fprintf(f, "\n\n");
     }
     if (fclose(f) != 0) {
         unlink(tmp);
         return aa_fail(AA_EIO, "cannot write %s", dat);
     }
-    char script[8192];
+    char script[16384];
     FILE *s = fmemopen(script, sizeof script, "w");
     fprintf(s, "# convergence: made by aabench; run with: gnuplot convergence.gp\n"
-               "set terminal pngcairo size 900,600 font 'DejaVu Sans,10'\n"
+               "set terminal pngcairo size 1000,650 font 'DejaVu Sans,10'\n"
                "if (!exists('out')) out = 'convergence.png'\n"
                "if (!exists('dat')) dat = 'convergence.dat'\nset output out\n");
-    fprintf(s, "set logscale xy\nset grid\nset key bottom left\n"
+    fprintf(s, "set logscale xy\nset grid\nset key inside left bottom box opaque font ',9' "
+               "spacing 1.2\n"
                "set xlabel 'samples per pixel'\nset ylabel 'RMSE over random sub-pixel shifts'\n"
-               "set title ");
+               "set format y '%%.0e'\nset title ");
     gp_string(s, title);
-    fprintf(s, "\nplot for [m=0:%zu] dat index m using 1:2 with points pt 7 lc m+1 "
-               "title columnheader(1), \\\n"
-               "     for [m=0:%zu] dat index m using 1:4 with lines lc m+1 notitle\n",
-            n - 1, n - 1);
-    fclose(s);
+    /* the theory's slopes for edges, drawn from above the first count's
+     * highest error so they stand apart from the measured curves */
+    fprintf(s, "\nx0 = %.9g; y0 = %.9g\nset xrange [x0 / 1.3:%.9g]\n"
+               "random(x) = y0 * (x / x0)**(-0.5)\nstratified(x) = y0 * (x / x0)**(-0.75)\n",
+            isfinite(x0) ? x0 : 1.0, top > 0 ? 1.8 * top : 1.0,
+            isfinite(x0) ? fmax(x1, x0) * 1.3 : 10.0);
+    fprintf(s, "plot random(x) with lines dt 2 lw 1.5 lc rgb 'gray30' "
+               "title 'theory: spp^{-1/2} (independent random)', \\\n"
+               "     stratified(x) with lines dt 3 lw 1.5 lc rgb 'gray30' "
+               "title 'theory: spp^{-3/4} (stratified, QMC; edges)'");
+    for (size_t k = 0; k < n; k++) {
+        const char *colour;
+        int marker;
+        family_style((int)k, &colour, &marker);
+        fprintf(s, ", \\\n     dat index %zu using 1:2 with points pt %d ps 1.3 lc rgb '%s' "
+                   "title columnheader(1), \\\n"
+                   "     dat index %zu using 1:4 with lines lw 1.5 lc rgb '%s' notitle",
+                k, marker, colour, k, colour);
+    }
+    fprintf(s, "\n");
+    if (fclose(s) != 0)
+        return aa_fail(AA_EIO, "convergence script too long");
     return draw(dir, "convergence", script, tmp, "convergence.dat");
 }
 

@@ -130,7 +130,61 @@ static void num(text *t, double v)
     X(vx, num(t, r->vx))                                                                         \
     X(vy, num(t, r->vy))                                                                         \
     X(ok, put(t, "%d", r->ok))                                                                   \
-    X(note, csv_field(t, r->note))
+    X(note, csv_field(t, r->note))                                                               \
+    TIMING_COLUMNS(X)
+
+/* The timing by precision's columns (core.h, "timing and its statistics"),
+ * after the older ones: a reader of older files finds them missing. */
+#define TIMING_COLUMNS(X)                                                                        \
+    X(render_seconds_mean, S(opt(t, r->timing.stats.mean)))                                      \
+    X(render_seconds_sd, S(opt(t, r->timing.stats.sd)))                                          \
+    X(render_seconds_mad, S(opt(t, r->timing.stats.mad)))                                        \
+    X(render_seconds_ci_lo, S(opt(t, r->timing.stats.ci_lo)))                                    \
+    X(render_seconds_ci_hi, S(opt(t, r->timing.stats.ci_hi)))                                    \
+    X(ci_level, S(opt(t, r->timing.stats.ci_level)))                                             \
+    X(target_ci, S(opt(t, r->timing.target_ci)))                                                 \
+    X(outliers, S(put(t, "%zu", r->timing.stats.outliers)))                                      \
+    X(cpu_seconds, S(opt(t, r->timing.cpu_median)))                                              \
+    X(cpu_share, S(opt(t, r->timing.cpu_share)))                                                 \
+    X(load_before, S(opt(t, r->timing.load_before)))                                             \
+    X(load_after, S(opt(t, r->timing.load_after)))                                               \
+    X(others_cores, S(opt(t, r->timing.others_cores)))                                           \
+    X(steal, S(opt(t, r->timing.steal)))                                                         \
+    X(noisy, M(put(t, "%d", r->timing.noisy != 0)))                                              \
+    X(noise, M(noise_cell(t, r)))                                                                \
+    X(seeds, M(put(t, "%d", r->seeds > 0 ? r->seeds : 1)))                                       \
+    X(rmse_mean, M(if (r->seeds > 1) opt(t, r->rmse_mean)))                                      \
+    X(rmse_ci_lo, M(if (r->seeds > 1) opt(t, r->rmse_ci_lo)))                                    \
+    X(rmse_ci_hi, M(if (r->seeds > 1) opt(t, r->rmse_ci_hi)))                                    \
+    X(times, S(times_cell(t, r)))
+
+/* timing columns only for rows that ran and were timed */
+#define S(write)                                                                                 \
+    do {                                                                                         \
+        if (r->ok && r->timing.n > 0)                                                            \
+            write;                                                                               \
+    } while (0)
+
+/* a number, or an empty cell when it is not finite (no interval, unknown) */
+static void opt(text *t, double v)
+{
+    if (isfinite(v))
+        put(t, "%.9g", v);
+}
+
+static void noise_cell(text *t, const aa_row *r)
+{
+    char why[128];
+    aa_noisy_text(r->timing.noisy, why, sizeof why);
+    put(t, "%s", why);
+}
+
+/* every render's time, separated by spaces */
+static void times_cell(text *t, const aa_row *r)
+{
+    for (int k = 0; k < r->timing.n; k++)
+        put(t, k ? " %.9g" : "%.9g", r->timing.wall[k]);
+}
 
 /* temporal metrics only for animated rows that ran */
 #define T(write)                                                                                 \
@@ -191,10 +245,14 @@ static void json_num(text *t, double v)
         put(t, "null");
 }
 
-static int write_json(const char *path, const aa_row *rows, size_t n)
+static int write_json(const char *path, const aa_context *ctx, const aa_row *rows, size_t n)
 {
     text tb = {0}, *t = &tb;
-    put(t, "[\n");
+    char *cj = ctx ? aa_context_json(ctx, 2) : NULL;
+    if (ctx && !cj)
+        t->failed = 1;
+    put(t, "{\n  \"context\": %s,\n  \"results\": [\n", cj ? cj : "null");
+    free(cj);
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = &rows[k];
         put(t, "  {\"pattern\": ");
@@ -263,9 +321,13 @@ static int write_json(const char *path, const aa_row *rows, size_t n)
         json_num(t, r->vy);
         put(t, "], \"note\": ");
         json_string(t, r->note);
-        put(t, "}%s\n", k + 1 < n ? "," : "");
+        char *timing = aa_row_timing_json(r);
+        if (!timing)
+            t->failed = 1;
+        put(t, "%s}%s\n", timing ? timing : "", k + 1 < n ? "," : "");
+        free(timing);
     }
-    put(t, "]\n");
+    put(t, "]\n}\n");
     return finish(t, path);
 }
 
@@ -282,18 +344,23 @@ int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n)
 
 int aa_rows_write_json(const char *path, const aa_row *rows, size_t n)
 {
+    return aa_results_write_json(path, NULL, rows, n);
+}
+
+int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row *rows, size_t n)
+{
     aa__c_numbers numbers;
     int st = aa__c_numbers_enter(&numbers, path);
     if (st)
         return st;
-    st = write_json(path, rows, n);
+    st = write_json(path, ctx, rows, n);
     aa__c_numbers_end(&numbers);
     return st;
 }
 
 /* ---- reading CSV ---- */
 
-#define CSV_MAX_FIELDS 64
+#define CSV_MAX_FIELDS 128
 #define CSV_MAX_LINE 65536
 
 /* Split one record (which may span lines inside quotes) into fields, in
@@ -372,6 +439,68 @@ static int read_record(FILE *f, char *buf, size_t len)
             return 1;
         }
     }
+}
+
+/* "noisy" read as 1: a reason is taken from "noise", else "ci" */
+#define NOISY_MARKED (1u << 31)
+
+/* The timing columns (absent from older files: a row then has no times,
+ * timing.n = 0, and one seed).  Returns non-zero if a cell is malformed. */
+static int read_timing_cell(aa_row *row, const char *h, const char *v)
+{
+    int bad = 0;
+    aa_timing *t = &row->timing;
+    if (!strcmp(h, "times")) {
+        char *end;
+        t->n = 0;
+        for (const char *p = v; *p;) {
+            if (t->n == AA_TIMING_MAX_REPS)
+                return 1;
+            errno = 0;
+            double x = strtod(p, &end);
+            if (end == p || errno || !(x >= 0))
+                return 1;
+            t->wall[t->n++] = x;
+            p = end;
+            while (*p == ' ')
+                p++;
+        }
+    }
+    if (!strcmp(h, "noise"))
+        t->noisy |= aa_noisy_parse(v);
+    if (!strcmp(h, "noisy") && !strcmp(v, "1"))
+        t->noisy |= NOISY_MARKED;
+    if (!strcmp(h, "seeds") && *v)
+        row->seeds = atoi(v);
+#define TNUM(name, dst) if (!strcmp(h, name) && *v) dst = field_num(v, &bad);
+    TNUM("target_ci", t->target_ci) TNUM("cpu_seconds", t->cpu_median)
+    TNUM("cpu_share", t->cpu_share) TNUM("load_before", t->load_before)
+    TNUM("load_after", t->load_after) TNUM("others_cores", t->others_cores)
+    TNUM("steal", t->steal) TNUM("rmse_mean", row->rmse_mean)
+    TNUM("rmse_ci_lo", row->rmse_ci_lo) TNUM("rmse_ci_hi", row->rmse_ci_hi)
+#undef TNUM
+    return bad;
+}
+
+/* A row read back: its statistics from its times (when the file has them). */
+static void settle_timing(aa_row *row)
+{
+    aa_timing *t = &row->timing;
+    if (t->noisy & NOISY_MARKED) {
+        t->noisy &= ~NOISY_MARKED;
+        if (!t->noisy)
+            t->noisy = AA_NOISY_CI; /* marked, reason not given */
+    }
+    if (row->seeds < 1)
+        row->seeds = 1;
+    if (t->n == 0)
+        return;
+    aa_time_stats_compute(t->wall, (size_t)t->n, &t->stats);
+    t->ci_rel = isfinite(t->stats.ci_lo) && t->stats.median > 0
+                    ? (t->stats.ci_hi - t->stats.ci_lo) / 2 / t->stats.median
+                    : NAN;
+    t->target_met = t->ci_rel <= t->target_ci;
+    t->threads = row->threads;
 }
 
 static int read_csv(const char *path, aa_row **rows_out, size_t *n_out)
@@ -455,7 +584,10 @@ static int read_csv(const char *path, aa_row **rows_out, size_t *n_out)
                 row->tm.frames = atoi(v);
             if (!strcmp(h, "window") && *v)
                 row->tm.window = atoi(v);
+            if (read_timing_cell(row, h, v))
+                bad = 1;
         }
+        settle_timing(row);
         if (bad || !*row->pattern || !*row->method || row->w < 1 || row->h < 1) {
             st = aa_fail(AA_EIO, "%s:%zu: malformed row", path, lineno);
             goto done;

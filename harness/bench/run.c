@@ -3,8 +3,11 @@
  *
  * For each pattern x size x filter the reference comes from the cache (or
  * is computed once and stored); then each method is initialised once,
- * rendered `reps` times into an image touched beforehand (only the render is
- * timed, not set-up or file output), and measured against the reference.
+ * rendered once untimed (warm-up) and then timed into an image touched
+ * beforehand, `reps` times or until its median is known to the target
+ * precision (aa_method_time; only the render is timed, not set-up or file
+ * output), and measured against the reference; a stochastic method's error
+ * is also measured over `seeds` seeds.
  * Everything is checked before any work, so a typo in the last method of a
  * long suite is refused at once.
  */
@@ -45,8 +48,15 @@ int aa_run_check(const aa_run_config *cfg)
     if (cfg->window < 0 || cfg->window > (cfg->frames > 0 ? cfg->frames : 24))
         return aa_fail(AA_EINVAL, "eye window %d out of range (1 to the %d frames)",
                        cfg->window, cfg->frames > 0 ? cfg->frames : 24);
-    if (cfg->reps < 1 || cfg->reps > 1000)
-        return aa_fail(AA_EINVAL, "reps %d out of range (1 to 1000)", cfg->reps);
+    if (cfg->reps < 0 || cfg->reps > AA_TIMING_MAX_REPS)
+        return aa_fail(AA_EINVAL, "reps %d out of range (1 to %d; 0: by precision)", cfg->reps,
+                       AA_TIMING_MAX_REPS);
+    if (!(cfg->target_ci >= 0 && cfg->target_ci < 1) || !(cfg->budget >= 0 && cfg->budget <= 3600))
+        return aa_fail(AA_EINVAL, "timing target %g or budget %g s out of range (0 to 1; 0 to "
+                                  "3600 s)",
+                       cfg->target_ci, cfg->budget);
+    if (cfg->seeds < 0 || cfg->seeds > 1000)
+        return aa_fail(AA_EINVAL, "seeds %d out of range (1 to 1000)", cfg->seeds);
     for (size_t k = 0; k < cfg->npatterns; k++) {
         const aa_spec *p = &cfg->patterns[k].spec;
         if ((st = check_type(p->info, (const void *const *)aa_pattern_types, "pattern")))
@@ -81,12 +91,6 @@ static const char *shown(const char *text, const aa_spec *spec, char *buf, size_
     if (aa_spec_format(spec, buf, len))
         snprintf(buf, len, "%s", spec->info->name);
     return buf;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
 }
 
 void aa_spec_slug(const char *text, char *buf, size_t len)
@@ -155,14 +159,47 @@ static void row_names(aa_row *row, const char *pattern, int w, int h, const char
     row->reps = cfg->reps;
 }
 
+/* A stochastic method's RMSE over seeds seed, seed + 1, ... (the first
+ * already measured in row->m): the mean and its 95% interval.  The image
+ * is overwritten. */
+static int run_seeds(const aa_run_config *cfg, const aa_job *job, const aa_spec *spec,
+                     const aa_image *ref, aa_image *img, aa_row *row)
+{
+    const aa_method_type *type = (const aa_method_type *)spec->info;
+    row->seeds = 1;
+    row->rmse_mean = row->m.rmse;
+    row->rmse_ci_lo = row->rmse_ci_hi = NAN;
+    if (cfg->seeds <= 1 || !(type->flags & AA_METHOD_SEEDED))
+        return AA_OK;
+    double *rmse = malloc((size_t)cfg->seeds * sizeof *rmse);
+    if (!rmse)
+        return aa_fail(AA_ENOMEM, "out of memory for %d seeds", cfg->seeds);
+    rmse[0] = row->m.rmse;
+    int st = AA_OK;
+    for (int k = 1; k < cfg->seeds && !st; k++) {
+        aa_job other = *job; /* the same placed scene, another seed */
+        aa_counters c;
+        aa_metrics m;
+        other.seed = cfg->seed + (uint64_t)k;
+        if (!(st = aa_method_run(spec, &other, 1, img, &c, NULL)) &&
+            !(st = aa_metrics_compute(ref, img, &cfg->enc, &m)))
+            rmse[k] = m.rmse;
+    }
+    if (!st && !(st = aa_mean_ci(rmse, (size_t)cfg->seeds, 0.95, &row->rmse_mean,
+                                 &row->rmse_ci_lo, &row->rmse_ci_hi)))
+        row->seeds = cfg->seeds;
+    free(rmse);
+    return st;
+}
+
 /* One method on one view.  A method that shows its image through moving
  * dots (core.h, "Displays") is measured against the reference seen
  * through the same dots (display.c), any other against `ref`. */
 static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_job *job,
-                      const aa_spec *spec,
-                      const aa_image *ref, aa_image *img, const char *stem, aa_row *row,
-                      double *seconds)
+                      const aa_spec *spec, const aa_image *ref, aa_image *img, const char *stem,
+                      aa_row *row)
 {
+    aa_timing_plan plan = {cfg->reps, cfg->target_ci, cfg->budget};
     aa_counters c;
     aa_image dref = {0};
     int shown = 0;
@@ -172,7 +209,7 @@ static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_jo
         return AA_OK;
     }
     if (!st && !(st = aa_spec_format(spec, row->canonical, sizeof row->canonical)) &&
-        (st = aa_method_run(spec, job, cfg->reps, img, &c, seconds)) == AA_EINVAL) {
+        (st = aa_method_time(spec, job, &plan, img, &c, &row->timing)) == AA_EINVAL) {
         /* refused at init: a scene it cannot take (colour, several layers, a
          * field): a result too */
         snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
@@ -186,11 +223,11 @@ static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_jo
         return aa_fail_context(st, "%s on %s %dx%d %s", row->method, row->pattern, row->w,
                                row->h, row->filter);
     }
-    qsort(seconds, (size_t)cfg->reps, sizeof *seconds, cmp_double);
     double pixels = (double)row->w * row->h;
-    row->seconds = seconds[cfg->reps / 2];
-    row->seconds_min = seconds[0];
-    row->seconds_max = seconds[cfg->reps - 1];
+    row->reps = row->timing.n;
+    row->seconds = row->timing.stats.median;
+    row->seconds_min = row->timing.stats.min;
+    row->seconds_max = row->timing.stats.max;
     row->samples = c.samples;
     row->expensive_pixels = c.expensive_pixels;
     row->spp = (double)c.samples / pixels;
@@ -200,6 +237,8 @@ static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_jo
     row->ok = 1;
     if (cfg->images_dir)
         st = write_images(cfg, stem, against, img);
+    if (!st)
+        st = run_seeds(cfg, job, spec, against, img, row);
     aa_image_free(&dref);
     return st;
 }
@@ -351,16 +390,14 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
         return st;
     size_t total = cfg->npatterns * cfg->nsizes * cfg->nfilters * cfg->nmethods, n = 0;
     aa_row *rows = calloc(total, sizeof *rows);
-    double *seconds = malloc((size_t)cfg->reps * sizeof *seconds);
     aa_scene *scene = NULL;
     aa_image ref = {0}, img = {0};
     aa_job job = {0};
     const int nt = animated(cfg) ? frame_count(cfg) : 0;
     aa_image *refs = nt ? calloc((size_t)nt, sizeof *refs) : NULL;
     aa_image *frames = nt ? calloc((size_t)nt, sizeof *frames) : NULL;
-    if (!rows || !seconds || (nt && (!refs || !frames))) {
+    if (!rows || (nt && (!refs || !frames))) {
         free(rows);
-        free(seconds);
         free(refs);
         free(frames);
         return aa_fail(AA_ENOMEM, "out of memory for %zu results", total);
@@ -418,7 +455,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     row_names(row, pattern, view.w, view.h, filter, method, cfg);
                     aa_spec_slug(method, ms, sizeof ms);
                     snprintf(stem, sizeof stem, "%s-%dx%d-%s-%s", ps, view.w, view.h, fs, ms);
-                    if ((st = run_method(cfg, &view, &job, spec, &ref, &img, stem, row, seconds)))
+                    if ((st = run_method(cfg, &view, &job, spec, &ref, &img, stem, row)))
                         break;
                     if (nt && row->ok &&
                         (st = run_temporal(cfg, &view, scene, spec, refs, frames, row)))
@@ -448,7 +485,6 @@ done:
     aa_image_free(&ref);
     aa_image_free(&img);
     aa_scene_free(scene);
-    free(seconds);
     *rows_out = rows;
     *n_out = n;
     return st;

@@ -252,3 +252,73 @@ int cli_commit(cli_outputs *o)
     o->n = 0;
     return AA_OK;
 }
+
+/* ---- the command line and timing, for the results ---- */
+
+static int whole_argc;
+static const char *const *whole_argv;
+
+void cli__set_command_line(int argc, char **argv)
+{
+    whole_argc = argc;
+    whole_argv = (const char *const *)argv;
+}
+
+void cli_command_line(int *argc, const char *const **argv)
+{
+    *argc = whole_argc;
+    *argv = whole_argv;
+}
+
+int cli_parse_target(const char *text, double *out)
+{
+    double pct;
+    int st = cli_parse_real("--target-ci", text, 0.01, 50, &pct);
+    if (!st)
+        *out = pct / 100;
+    return st;
+}
+
+int cli_parse_budget(const char *text, double *out)
+{
+    return cli_parse_real("--budget", text, 0.001, 3600, out);
+}
+
+void cli_time_text(const aa_row *r, char *buf, size_t len)
+{
+    const aa_timing *t = &r->timing;
+    if (t->n > 0 && isfinite(t->ci_rel))
+        snprintf(buf, len, "%.3f +-%.1f%%%s", r->seconds * 1e3, 100 * t->ci_rel,
+                 t->noisy ? " *" : "");
+    else
+        snprintf(buf, len, "%.3f +-?%s", r->seconds * 1e3, t->noisy ? " *" : "");
+}
+
+size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n)
+{
+    size_t noisy = 0;
+    for (size_t k = 0; k < n; k++)
+        noisy += rows[k].ok && rows[k].timing.noisy;
+    if (!noisy)
+        return 0;
+    fprintf(stderr,
+            "aabench %s: warning: %zu of %zu timings are noisy (marked * and noisy = 1 in "
+            "the results; 'ci': the CI target was not met, 'outliers': many renders beyond 3 "
+            "MADs, 'busy': other processes used the cores, 'steal': the hypervisor took "
+            "time, 'preempted': wall time well above CPU time). Compare them with care, and see "
+            "the README's \"A quiet measurement\":\n",
+            cmd, noisy, n);
+    for (size_t k = 0; k < n; k++) {
+        const aa_row *r = &rows[k];
+        if (!r->ok || !r->timing.noisy)
+            continue;
+        char why[128];
+        aa_noisy_text(r->timing.noisy, why, sizeof why);
+        fprintf(stderr, "  %s on %s %dx%d %s, %d thread%s: %s (CI +-%.1f%%, %zu outliers of %d, "
+                        "others used %.2f cores)\n",
+                r->method, r->pattern, r->w, r->h, r->filter, r->threads,
+                r->threads == 1 ? "" : "s", why, 100 * r->timing.ci_rel, r->timing.stats.outliers,
+                r->timing.n, r->timing.others_cores);
+    }
+    return noisy;
+}

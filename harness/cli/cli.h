@@ -67,6 +67,21 @@ const char *cli_cache_dir(void);
 /* 1 if stderr is a terminal and CI is not set: progress may be shown. */
 int cli_progress_wanted(void);
 
+/* The whole command line cli_main was given (argv[0] the program), for the
+ * results' context. */
+void cli_command_line(int *argc, const char *const **argv);
+void cli__set_command_line(int argc, char **argv); /* by cli_main */
+/* Timing options shared by run, render and check: --target-ci PCT (a
+ * percentage, 0.01 to 50, returned as a fraction) and --budget S. */
+int cli_parse_target(const char *text, double *out);
+int cli_parse_budget(const char *text, double *out);
+/* The median render time in ms with its CI's relative half-width and a
+ * mark for a noisy measurement: "12.345 +-1.2%", "12.345 +-9.9% *". */
+void cli_time_text(const aa_row *r, char *buf, size_t len);
+/* On stderr, a warning naming each case whose timing is marked noisy, with
+ * the reasons; returns their count. */
+size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n);
+
 int cmd_list(int argc, char **argv);
 int cmd_truth(int argc, char **argv);
 int cmd_render(int argc, char **argv);
@@ -76,5 +91,6 @@ int cmd_figures(int argc, char **argv);
 int cmd_run(int argc, char **argv);
 int cmd_check(int argc, char **argv);
 int cmd_converge(int argc, char **argv);
+int cmd_diff(int argc, char **argv);
 
 #endif

@@ -23,6 +23,7 @@ static const struct command {
     {"compare", cmd_compare, "error metrics between two image files"},
     {"stress", cmd_stress, "numerical stress cases against a long double evaluation"},
     {"figures", cmd_figures, "the seed papers' comparison figures remade, with a gallery"},
+    {"diff", cmd_diff, "two runs compared: error changes, and time changes with significance"},
     {NULL, NULL, NULL}};
 
 static void usage(FILE *out)
@@ -53,6 +54,7 @@ static int finish(const char *cmd, int status)
 
 int cli_main(int argc, char **argv)
 {
+    cli__set_command_line(argc, argv);
     cli_signals_install();
     aa_set_warn(cli_warn, NULL);
     if (argc < 2) {

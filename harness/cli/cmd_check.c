@@ -6,9 +6,12 @@
  * method's error with its baseline row: a case fails when its RMSE or its
  * maximum error exceeds the baseline's by more than the relative tolerance
  * (default 0.1%, plus 1e-12 absolute), when a method of the baseline no
- * longer exists, or when it now refuses a case it ran.  Render time is not
- * compared: time is measured by the benchmark, never asserted.  Methods from
- * plug-ins are checked the same way (--plugin, with a baseline of theirs).
+ * longer exists, or when it now refuses a case it ran.  Render time is
+ * reported, not gated: each case is timed by precision (as `run` does) and
+ * its change against the baseline's repetition times is tested as `diff`
+ * does (Mann-Whitney U); --fail-slower PCT makes a significant slow-down by
+ * more than PCT% fail too.  Methods from plug-ins are checked the same way
+ * (--plugin, with a baseline of theirs).
  */
 #include "cli.h"
 
@@ -32,7 +35,10 @@ static void usage(FILE *out)
             "  --plugin LIB.so    load methods from a shared library (repeatable)\n"
             "  --threads N        threads (the results do not depend on it)\n"
             "  --cache DIR        reference cache; --no-cache\n"
-            "  -v, --verbose      also print the cases that pass\n");
+            "  -v, --verbose      also print the cases that pass, and every time change\n"
+            "  --fail-slower PCT  also fail a case significantly slower than its baseline by\n"
+            "                     more than PCT%% (time is otherwise only reported)\n"
+            "  --target-ci PCT, --budget S, --reps N   timing, as for 'aabench run'\n");
 }
 
 static int same_view(const aa_row *a, const aa_row *b)
@@ -46,18 +52,61 @@ static int worse(double now, double base, double tol)
     return now > base * (1.0 + tol) + ABS_TOLERANCE;
 }
 
+/* Time changes against the baseline: reported; gated with --fail-slower. */
+typedef struct time_report {
+    aa_timing_plan plan;
+    double slower; /* < 0: not gated */
+    size_t slow, fast, same, untested, noisy, gate;
+} time_report;
+
+static int time_change(time_report *t, const aa_row *b, const aa_row *r, int verbose)
+{
+    aa_case_change c;
+    int st = aa_case_compare(b, r, 0, &c);
+    if (st || !r->ok)
+        return st;
+    t->noisy += c.noisy;
+    if (!c.tested) {
+        t->untested++;
+        return AA_OK;
+    }
+    int slow = c.significant && c.time_ratio > 1, fast = c.significant && c.time_ratio < 1;
+    int fails = slow && t->slower >= 0 && 100 * (c.time_ratio - 1) > t->slower;
+    t->slow += slow, t->fast += fast, t->same += !slow && !fast, t->gate += fails;
+    if (fails || verbose || (slow && t->slower < 0))
+        printf("%s %s on %s %dx%d %s: time %+.1f%% (median %.4g ms, baseline %.4g ms; p = %.2g)%s\n",
+               fails ? "FAIL" : "time", b->method, b->pattern, b->w, b->h, b->filter,
+               100 * (c.time_ratio - 1), r->seconds * 1e3, b->seconds * 1e3, c.p,
+               c.noisy ? ", noisy" : "");
+    return AA_OK;
+}
+
+static void time_summary(const time_report *t)
+{
+    printf("check: time %s: %zu significantly slower, %zu faster, %zu unchanged (Mann-Whitney U, "
+           "p < %g); %zu not tested (the baseline has no repetition times); %zu noisy\n",
+           t->slower >= 0 ? "(gated by --fail-slower)" : "(informational)", t->slow, t->fast,
+           t->same, AA_TIME_ALPHA, t->untested, t->noisy);
+}
+
 int cmd_check(int argc, char **argv)
 {
-    enum { O_BASELINE = 256, O_TOL, O_PLUGIN, O_THREADS, O_CACHE, O_NOCACHE };
+    enum { O_BASELINE = 256, O_TOL, O_PLUGIN, O_THREADS, O_CACHE, O_NOCACHE, O_SLOWER, O_TARGET,
+           O_BUDGET, O_REPS };
     static const struct option opts[] = {
         {"baseline", required_argument, 0, O_BASELINE}, {"tolerance", required_argument, 0, O_TOL},
         {"plugin", required_argument, 0, O_PLUGIN},   {"threads", required_argument, 0, O_THREADS},
         {"cache", required_argument, 0, O_CACHE},     {"no-cache", no_argument, 0, O_NOCACHE},
         {"verbose", no_argument, 0, 'v'},             {"help", no_argument, 0, 'h'},
+        {"fail-slower", required_argument, 0, O_SLOWER},
+        {"target-ci", required_argument, 0, O_TARGET},
+        {"budget", required_argument, 0, O_BUDGET},
+        {"reps", required_argument, 0, O_REPS},
         {0, 0, 0, 0}};
     const char *baseline = "results/baseline.csv", *cache = cli_cache_dir();
     double tol = DEFAULT_TOLERANCE;
     int c, st = AA_OK, threads = 0, verbose = 0;
+    time_report times = {.slower = -1};
     cli_getopt_reset();
     while ((c = getopt_long(argc, argv, ":vh", opts, NULL)) != -1) {
         switch (c) {
@@ -68,6 +117,10 @@ int cmd_check(int argc, char **argv)
         case O_CACHE: cache = optarg; break;
         case O_NOCACHE: cache = ""; break;
         case 'v': verbose = 1; break;
+        case O_SLOWER: st = cli_parse_real("--fail-slower", optarg, 0, 1e6, &times.slower); break;
+        case O_TARGET: st = cli_parse_target(optarg, &times.plan.target_ci); break;
+        case O_BUDGET: st = cli_parse_budget(optarg, &times.plan.budget); break;
+        case O_REPS: st = cli_parse_int("--reps", optarg, 1, 1000, &times.plan.reps); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("check", c, argv);
         }
@@ -139,7 +192,9 @@ int cmd_check(int argc, char **argv)
         cfg.sizes = &wh, cfg.nsizes = 1;
         cfg.filters = &filter, cfg.nfilters = 1;
         cfg.methods = methods, cfg.nmethods = nm;
-        cfg.reps = 1, cfg.threads = threads, cfg.seed = base[k].seed;
+        cfg.threads = threads, cfg.seed = base[k].seed;
+        cfg.reps = times.plan.reps, cfg.target_ci = times.plan.target_ci;
+        cfg.budget = times.plan.budget;
         cfg.t = base[k].t, cfg.vx = base[k].vx, cfg.vy = base[k].vy;
         cfg.cache_dir = *cache ? cache : NULL;
         cfg.enc.kind = AA_ENCODE_SRGB;
@@ -165,6 +220,8 @@ int cmd_check(int argc, char **argv)
                          r->m.rmse, b->m.rmse, 100 * (r->m.rmse / b->m.rmse - 1), r->m.max_err,
                          b->m.max_err);
             }
+            if (!why && (st = time_change(&times, b, r, verbose)))
+                break;
             if (why) {
                 printf("FAIL %s on %s %s %s: %s: %s\n", b->method, b->pattern, size, b->filter, why,
                        detail);
@@ -182,6 +239,8 @@ int cmd_check(int argc, char **argv)
     free(base);
     if (st)
         return cli_fail("check", st);
+    time_summary(&times);
+    offenders += times.gate;
     if (offenders) {
         printf("check: %zu of %zu cases failed against %s (tolerance %g relative)\n", offenders,
                nb, baseline, tol);

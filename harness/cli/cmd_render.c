@@ -4,6 +4,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,8 +23,13 @@ static void usage(FILE *out)
             "      --motion VX,VY   motion in pixels per frame (default 0,0)\n"
             "      --frame-only     temporal methods: the single frame at T, not the eye's image\n"
             "      --threads N      threads (default: all cores); the image does not depend on it\n"
-            "      --reps N         renders to time (default 1); the median is reported\n"
-            "      --stats FILE     write timing and counters as JSON\n"
+            "      --target-ci PCT  time until the 95%% CI of the median is within PCT%% of it\n"
+            "                       (default 2), after one untimed warm-up render\n"
+            "      --budget S       or until S seconds of renders have passed (default 1);\n"
+            "                       at least 5 renders either way\n"
+            "      --reps N         exactly N timed renders instead (overrides both)\n"
+            "      --stats FILE     write timing (every render's time and their statistics),\n"
+            "                       counters and the context (commit, machine) as JSON\n"
             "      --plugin LIB.so  load methods from a shared library (repeatable)\n"
             "      --encode E       .png encoding: srgb (default), linear or gamma:G\n"
             "  -q, --quiet          print nothing on success\n\n"
@@ -38,13 +44,14 @@ typedef struct render_args {
     uint64_t seed;
     int threads, reps, frame_only, quiet;
     aa_encode enc;
+    double target_ci, budget;
 } render_args;
 
 /* Returns -1 to go on, or the exit code to stop with. */
 static int parse(int argc, char **argv, render_args *a)
 {
     enum { O_SEED = 256, O_TIME, O_MOTION, O_FRAME, O_THREADS, O_REPS, O_STATS, O_PLUGIN,
-           O_ENCODE };
+           O_ENCODE, O_TARGET, O_BUDGET };
     static const struct option opts[] = {
         {"pattern", required_argument, 0, 'p'}, {"method", required_argument, 0, 'm'},
         {"size", required_argument, 0, 's'},    {"filter", required_argument, 0, 'f'},
@@ -54,6 +61,8 @@ static int parse(int argc, char **argv, render_args *a)
         {"reps", required_argument, 0, O_REPS}, {"stats", required_argument, 0, O_STATS},
         {"plugin", required_argument, 0, O_PLUGIN}, {"encode", required_argument, 0, O_ENCODE},
         {"quiet", no_argument, 0, 'q'},         {"help", no_argument, 0, 'h'},
+        {"target-ci", required_argument, 0, O_TARGET},
+        {"budget", required_argument, 0, O_BUDGET},
         {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
@@ -74,6 +83,8 @@ static int parse(int argc, char **argv, render_args *a)
         case O_STATS: a->stats = optarg; break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
         case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
+        case O_TARGET: st = cli_parse_target(optarg, &a->target_ci); break;
+        case O_BUDGET: st = cli_parse_budget(optarg, &a->budget); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("render", c, argv);
         }
@@ -92,21 +103,14 @@ static int parse(int argc, char **argv, render_args *a)
     return -1;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
+/* The statistics: the older keys first, then every render's time and its
+ * statistics (as in results.json's rows), then the run's context. */
 static int write_stats(const char *path, const render_args *a, const aa_spec *pattern,
                        const aa_spec *method, const aa_filter *f, int w, int h,
-                       const double *seconds, const aa_counters *c, int threads)
+                       const aa_timing *timing, const aa_counters *c, int threads)
 {
-    char ps[1024], ms[1024], fs[256], buf[8192];
-    double sorted[1000];
-    memcpy(sorted, seconds, (size_t)a->reps * sizeof *sorted);
-    qsort(sorted, (size_t)a->reps, sizeof *sorted, cmp_double);
-    double med = sorted[a->reps / 2], pixels = (double)w * h;
+    char ps[1024], ms[1024], fs[256];
+    double med = timing->stats.median, pixels = (double)w * h;
     aa_spec_format(pattern, ps, sizeof ps);
     aa_spec_format(method, ms, sizeof ms);
     aa_spec_format(&f->spec, fs, sizeof fs);
@@ -115,21 +119,48 @@ static int write_stats(const char *path, const render_args *a, const aa_spec *pa
     cli_json_string(ms, mj, sizeof mj);
     cli_json_string(a->method, gj, sizeof gj);
     cli_json_string(fs, fj, sizeof fj);
-    int n = snprintf(
-        buf, sizeof buf,
-        "{\n  \"pattern\": %s,\n  \"method\": %s,\n  \"method_given\": %s,\n"
-        "  \"filter\": %s,\n  \"size\": \"%dx%d\",\n  \"seed\": %llu,\n  \"time\": %.17g,\n"
-        "  \"motion\": [%.17g, %.17g],\n  \"threads\": %d,\n  \"reps\": %d,\n"
-        "  \"render_seconds\": %.9g,\n  \"render_seconds_min\": %.9g,\n"
-        "  \"render_seconds_max\": %.9g,\n  \"pixels\": %.0f,\n  \"samples\": %llu,\n"
-        "  \"expensive_pixels\": %llu,\n  \"ns_per_pixel\": %.6g,\n  \"ns_per_sample\": %.6g\n}\n",
-        pj, mj, gj, fj, w, h, (unsigned long long)a->seed, a->t, a->vx, a->vy, threads, a->reps,
-        med, sorted[0], sorted[a->reps - 1], pixels, (unsigned long long)c->samples,
-        (unsigned long long)c->expensive_pixels, med * 1e9 / pixels,
-        c->samples ? med * 1e9 / (double)c->samples : 0.0);
-    if (n < 0 || (size_t)n >= sizeof buf)
-        return aa_fail(AA_EFAIL, "stats too long");
-    return aa_file_write_atomic(path, buf, (size_t)n);
+    aa_row *row = calloc(1, sizeof *row);
+    aa_context context;
+    int argc;
+    const char *const *argv;
+    cli_command_line(&argc, &argv);
+    aa_context_collect(&context, argc, argv, threads);
+    char *cj = aa_context_json(&context, 2), *tj = NULL, *text = NULL;
+    size_t len = 0;
+    FILE *out = open_memstream(&text, &len);
+    if (row) {
+        row->ok = 1;
+        row->seeds = 1;
+        row->timing = *timing;
+        tj = aa_row_timing_json(row);
+    }
+    int st = AA_OK;
+    if (!row || !cj || !tj || !out) {
+        st = aa_fail(AA_ENOMEM, "out of memory writing the stats");
+    } else {
+        fprintf(out,
+                "{\n  \"pattern\": %s,\n  \"method\": %s,\n  \"method_given\": %s,\n"
+                "  \"filter\": %s,\n  \"size\": \"%dx%d\",\n  \"seed\": %llu,\n  \"time\": %.17g,\n"
+                "  \"motion\": [%.17g, %.17g],\n  \"threads\": %d,\n  \"reps\": %d,\n"
+                "  \"render_seconds\": %.9g,\n  \"render_seconds_min\": %.9g,\n"
+                "  \"render_seconds_max\": %.9g,\n  \"pixels\": %.0f,\n  \"samples\": %llu,\n"
+                "  \"expensive_pixels\": %llu,\n  \"ns_per_pixel\": %.6g,\n  \"ns_per_sample\": %.6g",
+                pj, mj, gj, fj, w, h, (unsigned long long)a->seed, a->t, a->vx, a->vy, threads,
+                timing->n, med, timing->stats.min, timing->stats.max, pixels,
+                (unsigned long long)c->samples, (unsigned long long)c->expensive_pixels,
+                med * 1e9 / pixels, c->samples ? med * 1e9 / (double)c->samples : 0.0);
+        /* the row's members ", \"key\": value", one per line */
+        fprintf(out, "%s,\n  \"context\": %s\n}\n", tj, cj);
+    }
+    if (out && fclose(out) != 0 && !st)
+        st = aa_fail(AA_ENOMEM, "out of memory writing the stats");
+    if (!st)
+        st = aa_file_write_atomic(path, text, len);
+    free(text);
+    free(cj);
+    free(tj);
+    free(row);
+    return st;
 }
 
 int cmd_render(int argc, char **argv)
@@ -137,7 +168,7 @@ int cmd_render(int argc, char **argv)
     render_args a;
     memset(&a, 0, sizeof a);
     a.seed = 1;
-    a.reps = 1;
+    a.reps = 0; /* by precision */
     a.enc.kind = AA_ENCODE_SRGB;
     int st, code = parse(argc, argv, &a);
     if (code >= 0)
@@ -156,12 +187,15 @@ int cmd_render(int argc, char **argv)
     aa_job job = {0};
     aa_image img = {0};
     aa_counters counters;
-    double seconds[1000];
+    aa_timing *timing = calloc(1, sizeof *timing);
+    aa_timing_plan plan = {a.reps, a.target_ci, a.budget};
+    if (!timing)
+        return cli_fail("render", aa_fail(AA_ENOMEM, "out of memory"));
     if (!(st = aa_pattern_scene(&pattern, &scene)) &&
         !(st = aa_job_init(&job, scene, w, h, a.t, a.vx, a.vy, &f, a.seed, threads)) &&
         !(st = aa_image_alloc(&img, w, h, 3))) {
         job.frame_only = a.frame_only;
-        st = aa_method_run(&method, &job, a.reps, &img, &counters, seconds);
+        st = aa_method_time(&method, &job, &plan, &img, &counters, timing);
     }
     int at[3];
     double bad_value = 0.0;
@@ -180,7 +214,7 @@ int cmd_render(int argc, char **argv)
     if (!st && !(st = cli_stage(&outs, a.out, &tmp)))
         st = aa_image_write(tmp, &img, &a.enc);
     if (!st && a.stats && !(st = cli_stage(&outs, a.stats, &tmp)))
-        st = write_stats(tmp, &a, &pattern, &method, &f, w, h, seconds, &counters, threads);
+        st = write_stats(tmp, &a, &pattern, &method, &f, w, h, timing, &counters, threads);
     if (!st)
         st = cli_commit(&outs);
     else
@@ -188,17 +222,28 @@ int cmd_render(int argc, char **argv)
     aa_image_free(&img);
     aa_job_free(&job);
     aa_scene_free(scene);
-    if (st)
+    if (st) {
+        free(timing);
         return cli_fail("render", st);
+    }
     if (!a.quiet) {
-        qsort(seconds, (size_t)a.reps, sizeof *seconds, cmp_double);
-        char ms[1024];
+        char ms[1024], ci[64] = "";
         aa_spec_format(&method, ms, sizeof ms);
-        printf("wrote %s: %s, %dx%d, median %.4f s over %d render%s, %llu samples, %llu "
+        if (isfinite(timing->ci_rel))
+            snprintf(ci, sizeof ci, " +-%.1f%% (95%% CI)", 100 * timing->ci_rel);
+        printf("wrote %s: %s, %dx%d, median %.4f s%s over %d render%s, %llu samples, %llu "
                "expensive pixels\n",
-               a.out, ms, w, h, seconds[a.reps / 2], a.reps, a.reps > 1 ? "s" : "",
+               a.out, ms, w, h, timing->stats.median, ci, timing->n, timing->n > 1 ? "s" : "",
                (unsigned long long)counters.samples,
                (unsigned long long)counters.expensive_pixels);
     }
+    if (timing->noisy) {
+        char why[128];
+        aa_noisy_text(timing->noisy, why, sizeof why);
+        fprintf(stderr, "aabench render: warning: the timing is noisy (%s): other processes used "
+                        "%.2f cores; see the README's \"A quiet measurement\"\n",
+                why, timing->others_cores);
+    }
+    free(timing);
     return 0;
 }

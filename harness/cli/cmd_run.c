@@ -49,7 +49,12 @@ static void usage(FILE *out)
             "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n\n"
             "  --suite NAME      quick, default (the default), paper, full or temporal\n"
             "                    (--list-suites)\n"
-            "  --reps N          renders timed per case (default 5); the median is reported\n"
+            "  --target-ci PCT   time each case until the 95%% CI of its median is within\n"
+            "                    PCT%% of it (default 2), after one untimed warm-up render\n"
+            "  --budget S        or until S seconds of renders have passed (default 1);\n"
+            "                    at least 5 renders either way\n"
+            "  --reps N          exactly N timed renders instead (overrides both)\n"
+            "  --seeds N         stochastic methods: the error over N seeds, mean and 95%% CI\n"
             "  --out DIR         output folder\n"
             "  --threads N       threads (default: all cores)\n"
             "  --seed N          seed of the random streams (default 1)\n"
@@ -83,6 +88,8 @@ typedef struct run_args {
     uint64_t seed;
     double t, vx, vy;
     aa_encode enc;
+    double target_ci, budget;
+    int seeds;
 } run_args;
 
 static int push(list *l, const char *v, const char *what)
@@ -96,7 +103,8 @@ static int push(list *l, const char *v, const char *what)
 static int parse(int argc, char **argv, run_args *a)
 {
     enum { O_SUITE = 256, O_REPS, O_OUT, O_THREADS, O_SEED, O_TIME, O_MOTION, O_ENCODE,
-           O_PLUGIN, O_NOIMAGES, O_NOPLOTS, O_CACHE, O_NOCACHE, O_LIST, O_FRAMES, O_WINDOW };
+           O_PLUGIN, O_NOIMAGES, O_NOPLOTS, O_CACHE, O_NOCACHE, O_LIST, O_FRAMES, O_WINDOW,
+           O_TARGET, O_BUDGET, O_SEEDS };
     static const struct option opts[] = {
         {"suite", required_argument, 0, O_SUITE}, {"pattern", required_argument, 0, 'p'},
         {"method", required_argument, 0, 'm'},   {"size", required_argument, 0, 's'},
@@ -109,6 +117,9 @@ static int parse(int argc, char **argv, run_args *a)
         {"no-cache", no_argument, 0, O_NOCACHE}, {"list-suites", no_argument, 0, O_LIST},
         {"quiet", no_argument, 0, 'q'},          {"help", no_argument, 0, 'h'},
         {"frames", required_argument, 0, O_FRAMES}, {"window", required_argument, 0, O_WINDOW},
+        {"target-ci", required_argument, 0, O_TARGET},
+        {"budget", required_argument, 0, O_BUDGET},
+        {"seeds", required_argument, 0, O_SEEDS},
         {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
@@ -135,6 +146,9 @@ static int parse(int argc, char **argv, run_args *a)
             st = cli_parse_int("--window", optarg, 1, AA_TEMPORAL_MAX_FRAMES, &a->window);
             break;
         case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
+        case O_TARGET: st = cli_parse_target(optarg, &a->target_ci); break;
+        case O_BUDGET: st = cli_parse_budget(optarg, &a->budget); break;
+        case O_SEEDS: st = cli_parse_int("--seeds", optarg, 1, 1000, &a->seeds); break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
         case O_NOIMAGES: a->images = 0; break;
         case O_NOPLOTS: a->plots = 0; break;
@@ -198,6 +212,7 @@ typedef struct run_ctx {
     const char *dir;
     int bar;
     double t0;
+    const aa_context *context; /* results.json's */
 } run_ctx;
 
 static int progress(void *vctx, size_t done, size_t total, const char *what)
@@ -223,7 +238,7 @@ static int save(void *vctx, const aa_row *rows, size_t n)
     int st = aa_pathf(path, sizeof path, "%s/results.csv", ctx->dir);
     if (!st && !(st = aa_rows_write_csv(path, rows, n)) &&
         !(st = aa_pathf(path, sizeof path, "%s/results.json", ctx->dir)))
-        st = aa_rows_write_json(path, rows, n);
+        st = aa_results_write_json(path, ctx->context, rows, n);
     return st;
 }
 
@@ -429,6 +444,21 @@ static void print_temporal(const aa_row **order, size_t n)
     }
 }
 
+/* --seeds N: the stochastic methods' mean RMSE over the seeds. */
+static void print_seeds(const aa_row **order, size_t n)
+{
+    int header = 0;
+    for (size_t k = 0; k < n; k++) {
+        const aa_row *r = order[k];
+        if (!r->ok || r->seeds < 2)
+            continue;
+        if (!header++)
+            printf("\nover %d seeds (stochastic methods): mean RMSE and its 95%% CI\n", r->seeds);
+        printf("  %-30.30s %-10.10s %4dx%-5d %-10.10s %.4e [%.4e, %.4e]\n", r->method, r->pattern,
+               r->w, r->h, r->filter, r->rmse_mean, r->rmse_ci_lo, r->rmse_ci_hi);
+    }
+}
+
 static void print_table(const aa_row *rows, size_t n)
 {
     const aa_row **order = malloc(n * sizeof *order);
@@ -440,8 +470,8 @@ static void print_table(const aa_row *rows, size_t n)
     for (size_t k = 0; k < n; k++)
         temporal |= rows[k].temporal;
     qsort(order, n, sizeof *order, temporal ? cmp_eye : cmp_rmse);
-    printf("%-30s %-10s %-12s %-10s %10s %9s %8s %10s %9s %6s\n", "method", "pattern", "size",
-           "filter", "rmse", "max_err", "psnr", "time (ms)", "ns/px", "exp%");
+    printf("%-30s %-10s %-12s %-10s %10s %9s %8s %-20s %9s %6s\n", "method", "pattern", "size",
+           "filter", "rmse", "max_err", "psnr", "ms, median +-CI", "ns/px", "exp%");
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = order[k];
         char size[32];
@@ -451,14 +481,17 @@ static void print_table(const aa_row *rows, size_t n)
                    r->note);
             continue;
         }
-        printf("%-30.30s %-10.10s %-12s %-10.10s %10.3e %9.2e %8.2f %10.3f %9.2f %6.1f\n",
-               r->method, r->pattern, size, r->filter, r->m.rmse, r->m.max_err, r->m.psnr,
-               r->seconds * 1e3, r->ns_per_pixel, 100 * r->expensive_fraction);
+        char ms[64];
+        cli_time_text(r, ms, sizeof ms);
+        printf("%-30.30s %-10.10s %-12s %-10.10s %10.3e %9.2e %8.2f %-20s %9.2f %6.1f\n",
+               r->method, r->pattern, size, r->filter, r->m.rmse, r->m.max_err, r->m.psnr, ms,
+               r->ns_per_pixel, 100 * r->expensive_fraction);
     }
     if (temporal) {
         printf("\n");
         print_temporal(order, n);
     }
+    print_seeds(order, n);
     free(order);
 }
 
@@ -598,6 +631,7 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         a->vx = mo->vx, a->vy = mo->vy;
     for (size_t g = 0; g < ng; g++) {
         cfgs[g].reps = a->reps;
+        cfgs[g].target_ci = a->target_ci, cfgs[g].budget = a->budget, cfgs[g].seeds = a->seeds;
         cfgs[g].threads = threads;
         cfgs[g].temporal = mo != NULL;
         cfgs[g].frames = a->frames ? a->frames : mo ? mo->frames : 0;
@@ -615,7 +649,12 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
     if ((st = aa_pathf(images, sizeof images, "%s/images", dir)) ||
         (st = aa_pathf(plots, sizeof plots, "%s/plots", dir)))
         return cli_fail("run", st);
-    run_ctx ctx = {dir, cli_progress_wanted(), aa_now()};
+    aa_context context;
+    int argc;
+    const char *const *argv;
+    cli_command_line(&argc, &argv);
+    aa_context_collect(&context, argc, argv, threads);
+    run_ctx ctx = {dir, cli_progress_wanted(), aa_now(), &context};
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -671,6 +710,7 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
     }
     if (!a->quiet)
         print_table(all, nall);
+    cli_warn_noisy("run", all, nall);
     printf("results: %s/results.csv%s\n", dir, linked ? " (results/latest)" : "");
     free(all);
     return 0;
@@ -681,7 +721,7 @@ int cmd_run(int argc, char **argv)
     run_args a;
     memset(&a, 0, sizeof a);
     a.suite = "default";
-    a.reps = 5;
+    a.reps = 0; /* by precision */
     a.images = a.plots = 1;
     a.seed = 1;
     a.cache = cli_cache_dir();

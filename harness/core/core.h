@@ -285,6 +285,112 @@ int aa_method_run(const aa_spec *spec, const aa_job *job, int reps, aa_image *ou
 int aa_method_display(const aa_spec *spec, const aa_job *job, aa_display_frame *frames,
                       int *n);
 
+/* ---- timing and its statistics (timing.c) ----
+ *
+ * A case is timed as hyperfine and Google Benchmark do: after the untimed
+ * init, one untimed render (warm-up), then timed renders until the 95%
+ * confidence interval of the median is within `target_ci` of it (relative
+ * half-width) or `budget` seconds of timed renders have passed, with at
+ * least AA_TIMING_MIN_REPS and at most AA_TIMING_MAX_REPS; or exactly
+ * `reps` renders when reps > 0.  Each render's wall time is taken on the
+ * monotonic clock and its CPU time on the calling thread's clock (one
+ * thread) or the process's (several), so preemption shows as wall time well
+ * above CPU time.  Around the renders the load average and /proc/stat are
+ * read, to see whether other processes used the cores meanwhile. */
+#define AA_TIMING_MAX_REPS 1000
+#define AA_TIMING_MIN_REPS 5
+#define AA_TIMING_TARGET 0.02  /* default target_ci: 2% */
+#define AA_TIMING_BUDGET 1.0   /* default budget, seconds */
+/* Outliers are "many" above this fraction of the repetitions. */
+#define AA_TIMING_MANY_OUTLIERS 0.10
+/* Other processes "used the cores" above this many cores on average. */
+#define AA_TIMING_BUSY_CORES 0.10
+/* One thread "was preempted" when its CPU time is below this share of its
+ * wall time. */
+#define AA_TIMING_CPU_SHARE 0.95
+
+typedef struct aa_timing_plan {
+    int reps;         /* > 0: exactly this many timed renders; 0: by precision */
+    double target_ci; /* relative half-width of the median's 95% CI; 0: 2% */
+    double budget;    /* seconds of timed renders per case; 0: 1 s */
+} aa_timing_plan;
+
+/* Statistics of a sample of times.  The confidence interval of the median
+ * is distribution-free: the order statistics x(l), x(n+1-l) with l the
+ * largest rank such that P(B <= l - 1) <= 2.5% for B ~ Binomial(n, 1/2);
+ * its coverage 1 - 2 P(B <= l - 1) is ci_level (>= 0.95).  With fewer than
+ * 6 values no such interval exists: ci_lo, ci_hi and ci_level are NaN.
+ * mad is the median absolute deviation scaled by 1.4826 (an estimate of
+ * the standard deviation for normal data, gsl_stats_mad); an outlier lies
+ * more than 3 mad from the median. */
+typedef struct aa_time_stats {
+    size_t n;
+    double median, mean, sd, mad, min, max;
+    double ci_lo, ci_hi, ci_level;
+    size_t outliers;
+} aa_time_stats;
+int aa_time_stats_compute(const double *x, size_t n, aa_time_stats *s);
+/* The 1-based ranks lo, hi of the order statistics that bound the median
+ * with coverage at least `level` (0 < level < 1), and that coverage;
+ * AA_EINVAL if n is too small for any. */
+int aa_median_ci_ranks(size_t n, double level, size_t *lo, size_t *hi, double *coverage);
+/* The mean of n >= 2 values and its `level` confidence interval by
+ * Student's t (gsl_cdf_tdist_Pinv). */
+int aa_mean_ci(const double *x, size_t n, double level, double *mean, double *lo, double *hi);
+/* Mann-Whitney U test of x against y (two-sided), normal approximation
+ * with the tie correction and no continuity correction (R's wilcox.test
+ * with exact = FALSE, correct = FALSE): u is U of x (the number of pairs
+ * with x above y, ties counting one half), z its standard score (positive:
+ * x tends to be larger), p the two-sided p-value (gsl_cdf_ugaussian_Q). */
+int aa_mann_whitney(const double *x, size_t nx, const double *y, size_t ny, double *u, double *z,
+                    double *p);
+
+/* Why a measurement is marked noisy (aa_timing.noisy). */
+enum {
+    AA_NOISY_CI = 1,        /* the CI target was not met */
+    AA_NOISY_OUTLIERS = 2,  /* more than AA_TIMING_MANY_OUTLIERS of the renders */
+    AA_NOISY_BUSY = 4,      /* other processes used the cores */
+    AA_NOISY_STEAL = 8,     /* the hypervisor took more than 1% of the cores' time */
+    AA_NOISY_PREEMPTED = 16 /* one thread: CPU time below 95% of wall time */
+};
+/* "ci+busy": the reasons' names joined by '+', "" if none. */
+void aa_noisy_text(unsigned noisy, char *buf, size_t len);
+/* The names back to AA_NOISY_* bits; unknown names are ignored. */
+unsigned aa_noisy_parse(const char *text);
+
+typedef struct aa_timing {
+    int n;          /* timed renders */
+    int threads;    /* threads of the job */
+    int fixed;      /* 1: a fixed count was asked (plan.reps) */
+    double target_ci, budget;
+    double wall[AA_TIMING_MAX_REPS], cpu[AA_TIMING_MAX_REPS]; /* seconds, in order */
+    aa_time_stats stats;  /* of wall */
+    double ci_rel;        /* (ci_hi - ci_lo) / 2 / median; NaN without a CI */
+    double cpu_median;    /* median CPU time of a render */
+    int target_met;
+    /* the machine around the timed renders */
+    double load_before, load_after; /* 1-minute load average (NaN: unknown) */
+    double others_cores;  /* other processes' mean busy cores (NaN: unknown) */
+    double steal;         /* share of the cores' time stolen (NaN: unknown) */
+    double cpu_share;     /* total CPU time / total wall time of the renders */
+    double elapsed;       /* seconds from the warm-up's start to the last render's end */
+    unsigned noisy;       /* AA_NOISY_* */
+} aa_timing;
+
+/* Time `k` functions taking turns (fn[i](ctx[i]) renders once; threads[i]
+ * is its thread count), each warmed up once, until each meets the plan's
+ * target or k times the budget has passed; out[i] gets each one's timing
+ * and the noise seen around them all.  A function's non-zero status stops
+ * everything and is returned. */
+typedef int (*aa_timed_fn)(void *ctx);
+int aa_timing_measure(const aa_timing_plan *plan, size_t k, aa_timed_fn const *fn,
+                      void *const *ctx, const int *threads, aa_timing *out);
+/* A method timed by the plan: init (untimed), a warm-up render, the timed
+ * renders; the image and counters are those of the last render.  The image
+ * is touched before timing. */
+int aa_method_time(const aa_spec *spec, const aa_job *job, const aa_timing_plan *plan,
+                   aa_image *out, aa_counters *counters, aa_timing *timing);
+
 /* Plug-ins: a shared library exporting `aa_plugin_abi` (an int equal to
  * AA_PLUGIN_ABI) and `aa_plugin_methods` (a NULL-terminated array of
  * pointers to aa_method_type).  Its methods join the table; a name that is

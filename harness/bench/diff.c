@@ -1,0 +1,159 @@
+/*
+ * diff.c: two runs compared case by case, and a row's timing as JSON.
+ *
+ * Errors are exact, so a change in them is judged by the regression gate's
+ * rule: worse when the RMSE or the largest error exceeds the old one by
+ * more than the relative tolerance plus 1e-12.  Times are samples, so a
+ * change in them is judged by the Mann-Whitney U test on the two runs'
+ * repetition times (aa_mann_whitney, normal approximation with the tie
+ * correction), which assumes nothing of their distribution; the effect
+ * reported is the ratio of the medians.
+ */
+#include "bench.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+int aa_case_same(const aa_row *a, const aa_row *b)
+{
+    return !strcmp(a->pattern, b->pattern) && !strcmp(a->filter, b->filter) &&
+           !strcmp(a->method, b->method) && a->w == b->w && a->h == b->h && a->t == b->t &&
+           a->vx == b->vx && a->vy == b->vy && a->seed == b->seed;
+}
+
+static int worse(double now, double old, double tol)
+{
+    return now > old * (1.0 + tol) + AA_ERROR_ABS_TOLERANCE;
+}
+
+int aa_case_compare(const aa_row *old, const aa_row *now, double tol, aa_case_change *c)
+{
+    memset(c, 0, sizeof *c);
+    c->old = old;
+    c->now = now;
+    c->rmse_change = c->time_ratio = c->u = c->z = c->p = NAN;
+    if (old->ok && !now->ok) {
+        c->refused = 1;
+        return AA_OK;
+    }
+    if (!old->ok || !now->ok)
+        return AA_OK;
+    c->error_worse = worse(now->m.rmse, old->m.rmse, tol) ||
+                     worse(now->m.max_err, old->m.max_err, tol);
+    c->rmse_change = old->m.rmse > 0 ? now->m.rmse / old->m.rmse - 1 : 0.0;
+    if (old->seconds > 0 && now->seconds > 0)
+        c->time_ratio = now->seconds / old->seconds;
+    c->noisy = old->timing.noisy || now->timing.noisy;
+    if (old->timing.n >= 2 && now->timing.n >= 2) {
+        int st = aa_mann_whitney(now->timing.wall, (size_t)now->timing.n, old->timing.wall,
+                                 (size_t)old->timing.n, &c->u, &c->z, &c->p);
+        if (st)
+            return st;
+        c->tested = 1;
+        c->significant = c->p < AA_TIME_ALPHA;
+    }
+    return AA_OK;
+}
+
+int aa_results_load(const char *path, aa_row **rows, size_t *n)
+{
+    struct stat sb;
+    char csv[4096];
+    *rows = NULL;
+    *n = 0;
+    if (stat(path, &sb) != 0)
+        return aa_fail(AA_EIO, "%s: %s", path, strerror(errno));
+    if (S_ISDIR(sb.st_mode)) {
+        int st = aa_pathf(csv, sizeof csv, "%s/results.csv", path);
+        if (st)
+            return st;
+    } else {
+        size_t len = strlen(path);
+        if (len >= 5 && !strcmp(path + len - 5, ".json")) {
+            const char *slash = strrchr(path, '/');
+            int st = aa_pathf(csv, sizeof csv, "%.*sresults.csv",
+                              slash ? (int)(slash - path + 1) : 0, path);
+            if (st)
+                return st;
+        } else {
+            snprintf(csv, sizeof csv, "%s", path);
+        }
+    }
+    return aa_rows_read_csv(csv, rows, n);
+}
+
+static void member(FILE *f, const char *key, double v)
+{
+    fprintf(f, ", \"%s\": ", key);
+    if (isfinite(v))
+        fprintf(f, "%.9g", v);
+    else
+        fputs("null", f);
+}
+
+char *aa_row_timing_json(const aa_row *r)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    if (!f)
+        return NULL;
+    const aa_timing *t = &r->timing;
+    if (r->ok && t->n > 0) {
+        const aa_time_stats *s = &t->stats;
+        fputs(", \"timing\": {\"times\": [", f);
+        for (int k = 0; k < t->n; k++)
+            fprintf(f, "%s%.9g", k ? ", " : "", t->wall[k]);
+        fputs("], \"cpu_times\": [", f);
+        for (int k = 0; k < t->n; k++)
+            fprintf(f, "%s%.9g", k ? ", " : "", t->cpu[k]);
+        fprintf(f, "], \"n\": %d, \"fixed\": %s", t->n, t->fixed ? "true" : "false");
+        member(f, "median", s->median);
+        member(f, "mean", s->mean);
+        member(f, "sd", s->sd);
+        member(f, "mad", s->mad);
+        member(f, "min", s->min);
+        member(f, "max", s->max);
+        fputs(", \"ci\": [", f);
+        if (isfinite(s->ci_lo))
+            fprintf(f, "%.9g, %.9g]", s->ci_lo, s->ci_hi);
+        else
+            fputs("null, null]", f);
+        member(f, "ci_level", s->ci_level);
+        member(f, "ci_relative", t->ci_rel);
+        member(f, "target_ci", t->target_ci);
+        fprintf(f, ", \"target_met\": %s, \"outliers\": %zu", t->target_met ? "true" : "false",
+                s->outliers);
+        member(f, "cpu_median", t->cpu_median);
+        member(f, "cpu_share", t->cpu_share);
+        member(f, "load_before", t->load_before);
+        member(f, "load_after", t->load_after);
+        member(f, "others_cores", t->others_cores);
+        member(f, "steal", t->steal);
+        member(f, "elapsed", t->elapsed);
+        fputs("}", f);
+    }
+    if (r->ok) {
+        char why[128];
+        aa_noisy_text(t->noisy, why, sizeof why);
+        fprintf(f, ", \"noisy\": %s, \"noise\": \"%s\"", t->noisy ? "true" : "false", why);
+        fprintf(f, ", \"seeds\": %d", r->seeds > 0 ? r->seeds : 1);
+        if (r->seeds > 1) {
+            member(f, "rmse_mean", r->rmse_mean);
+            fputs(", \"rmse_ci\": [", f);
+            if (isfinite(r->rmse_ci_lo))
+                fprintf(f, "%.9g, %.9g]", r->rmse_ci_lo, r->rmse_ci_hi);
+            else
+                fputs("null, null]", f);
+        }
+    }
+    if (fclose(f) != 0) {
+        free(text);
+        return NULL;
+    }
+    return text;
+}

@@ -1,0 +1,446 @@
+/*
+ * test_timing.c: the timing statistics against answers derived elsewhere,
+ * and the repetition rule's counts.  No test asserts a time.
+ *
+ * Known answers and where they come from:
+ *  - the ranks of the 95% confidence interval of the median: the published
+ *    table of Campbell and Gardner (BMJ 1988, "Calculating confidence
+ *    intervals for some non-parametric analyses", table 1, exact binomial
+ *    ranks for n <= 50; Conover, "Practical nonparametric statistics", for
+ *    n = 100: the 40th and 61st values), and the exact coverages
+ *    1 - 2 P(B <= l - 1) as fractions over 2^n from integer binomial sums
+ *    (n = 6: 62/64; n = 10: 1 - 22/1024; n = 20: 1 - 43400/2^20);
+ *  - Mann-Whitney U: R's documented example (?wilcox.test, Hollander and
+ *    Wolfe 1973 p. 69: permeability constants, W = 35, large-sample
+ *    p = 0.1103 one-sided) and a small tied example worked by hand below;
+ *  - the mean's interval: Student's t quantile t(0.975, 4) = 2.776 from the
+ *    printed t table;
+ *  - median, mean, standard deviation and MAD of {1, 2, 3, 4, 100} by hand.
+ */
+#include "bench.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include <cmocka.h>
+
+static void test_median_ci_table(void **state)
+{
+    (void)state;
+    /* n, lower rank, upper rank (Campbell and Gardner 1988, table 1) */
+    static const size_t table[][3] = {
+        {6, 1, 6},    {7, 1, 7},    {8, 1, 8},    {9, 2, 8},    {10, 2, 9},
+        {11, 2, 10},  {12, 3, 10},  {13, 3, 11},  {14, 3, 12},  {15, 4, 12},
+        {16, 4, 13},  {17, 5, 13},  {18, 5, 14},  {19, 5, 15},  {20, 6, 15},
+        {25, 8, 18},  {30, 10, 21}, {40, 14, 27}, {50, 18, 33}, {100, 40, 61}};
+    for (size_t k = 0; k < sizeof table / sizeof *table; k++) {
+        size_t lo, hi;
+        double cov;
+        assert_int_equal(aa_median_ci_ranks(table[k][0], 0.95, &lo, &hi, &cov), AA_OK);
+        if (lo != table[k][1] || hi != table[k][2])
+            fail_msg("n = %zu: ranks %zu, %zu; the table gives %zu, %zu", table[k][0], lo, hi,
+                     table[k][1], table[k][2]);
+        assert_true(cov >= 0.95 && cov < 1);
+    }
+    /* exact coverages: integer binomial sums over 2^n */
+    size_t lo, hi;
+    double cov;
+    assert_int_equal(aa_median_ci_ranks(6, 0.95, &lo, &hi, &cov), AA_OK);
+    assert_true(fabs(cov - 62.0 / 64.0) < 1e-14);
+    assert_int_equal(aa_median_ci_ranks(10, 0.95, &lo, &hi, &cov), AA_OK);
+    assert_true(fabs(cov - (1.0 - 22.0 / 1024.0)) < 1e-14);
+    /* n = 20: P(B <= 5) = (1 + 20 + 190 + 1140 + 4845 + 15504) / 2^20 */
+    assert_int_equal(aa_median_ci_ranks(20, 0.95, &lo, &hi, &cov), AA_OK);
+    assert_true(fabs(cov - (1.0 - 2.0 * 21700.0 / 1048576.0)) < 1e-14);
+    /* five values cannot give 95%: the widest interval covers 1 - 2/32 */
+    assert_int_equal(aa_median_ci_ranks(5, 0.95, &lo, &hi, &cov), AA_EINVAL);
+    assert_int_equal(aa_median_ci_ranks(0, 0.95, &lo, &hi, &cov), AA_EINVAL);
+    /* a lower level: n = 5 at 90% is [x(1), x(5)] covering 30/32 */
+    assert_int_equal(aa_median_ci_ranks(5, 0.90, &lo, &hi, &cov), AA_OK);
+    assert_true(lo == 1 && hi == 5 && fabs(cov - 30.0 / 32.0) < 1e-14);
+}
+
+static void test_time_stats(void **state)
+{
+    (void)state;
+    /* {1, 2, 3, 4, 100}: median 3, mean 22, sample variance
+     * (441 + 400 + 361 + 324 + 6084) / 4 = 1902.5; absolute deviations from
+     * the median {2, 1, 0, 1, 97}, their median 1, scaled 1.482602218505602
+     * (1 / Phi^-1(3/4)); only 100 lies beyond 3 of those */
+    const double x[] = {4, 100, 1, 3, 2};
+    aa_time_stats s;
+    assert_int_equal(aa_time_stats_compute(x, 5, &s), AA_OK);
+    assert_true(s.n == 5 && s.median == 3 && s.mean == 22 && s.min == 1 && s.max == 100);
+    assert_true(fabs(s.sd - sqrt(1902.5)) < 1e-12);
+    assert_true(fabs(s.mad - 1.482602218505602) < 1e-9);
+    assert_int_equal(s.outliers, 1);
+    assert_true(isnan(s.ci_lo) && isnan(s.ci_hi) && isnan(s.ci_level)); /* n < 6 */
+    /* 1..10 shuffled: median 5.5, interval [x(2), x(9)] = [2, 9] */
+    const double y[] = {7, 3, 10, 1, 5, 9, 2, 8, 6, 4};
+    assert_int_equal(aa_time_stats_compute(y, 10, &s), AA_OK);
+    assert_true(s.median == 5.5 && s.ci_lo == 2 && s.ci_hi == 9);
+    assert_true(fabs(s.ci_level - (1.0 - 22.0 / 1024.0)) < 1e-14);
+    assert_int_equal(s.outliers, 0);
+    assert_int_equal(aa_time_stats_compute(y, 0, &s), AA_OK);
+    assert_true(s.n == 0 && isnan(s.median));
+}
+
+static void test_mean_ci(void **state)
+{
+    (void)state;
+    /* {1, ..., 5}: mean 3, s = sqrt(2.5), half-width t(0.975, 4) s / sqrt 5
+     * with t = 2.776 (t table; 2.7764451 to more places) */
+    const double x[] = {1, 2, 3, 4, 5};
+    double m, lo, hi;
+    assert_int_equal(aa_mean_ci(x, 5, 0.95, &m, &lo, &hi), AA_OK);
+    double half = 2.7764451 * sqrt(2.5) / sqrt(5.0);
+    assert_true(m == 3 && fabs(lo - (3 - half)) < 1e-6 && fabs(hi - (3 + half)) < 1e-6);
+    assert_int_equal(aa_mean_ci(x, 1, 0.95, &m, &lo, &hi), AA_EINVAL);
+}
+
+static void test_mann_whitney_r_example(void **state)
+{
+    (void)state;
+    /* R: x <- c(0.80, 0.83, 1.89, 1.04, 1.45, 1.38, 1.91, 1.64, 0.73, 1.46);
+     * y <- c(1.15, 0.88, 0.90, 0.74, 1.21);
+     * wilcox.test(x, y, alternative = "greater", exact = FALSE,
+     * correct = FALSE): W = 35, p-value = 0.1103 */
+    const double x[] = {0.80, 0.83, 1.89, 1.04, 1.45, 1.38, 1.91, 1.64, 0.73, 1.46};
+    const double y[] = {1.15, 0.88, 0.90, 0.74, 1.21};
+    double u, z, p;
+    assert_int_equal(aa_mann_whitney(x, 10, y, 5, &u, &z, &p), AA_OK);
+    assert_true(u == 35);
+    assert_true(z > 0);
+    assert_true(fabs(p / 2 - 0.1103) < 5e-5); /* one-sided is half the two-sided */
+    /* the other way round: U of y is 10 x 5 - 35, z changes sign */
+    double u2, z2, p2;
+    assert_int_equal(aa_mann_whitney(y, 5, x, 10, &u2, &z2, &p2), AA_OK);
+    assert_true(u2 == 15 && fabs(z2 + z) < 1e-12 && fabs(p2 - p) < 1e-12);
+}
+
+static void test_mann_whitney_ties(void **state)
+{
+    (void)state;
+    /* x = {1, 2, 2, 3}, y = {2, 3, 3, 4}.  Sorted: 1x 2x 2x 2y 3x 3y 3y 4y;
+     * midranks 1; 3, 3, 3; 6, 6, 6; 8.  Rank sum of x = 1 + 3 + 3 + 6 = 13,
+     * U = 13 - 4 * 5 / 2 = 3, mean 4 * 4 / 2 = 8.  Ties: two groups of 3,
+     * sum of t^3 - t = 48; variance 16/12 (9 - 48 / (8 * 7)) = 10.857142857;
+     * z = -5 / sqrt(10.857142857) = -1.5174424467; two-sided p = 0.12916
+     * (R: wilcox.test(c(1,2,2,3), c(2,3,3,4), correct = FALSE)). */
+    const double x[] = {1, 2, 2, 3}, y[] = {2, 3, 3, 4};
+    double u, z, p;
+    assert_int_equal(aa_mann_whitney(x, 4, y, 4, &u, &z, &p), AA_OK);
+    assert_true(u == 3);
+    assert_true(fabs(z + 1.5174424467) < 1e-9);
+    assert_true(fabs(p - 0.129155014) < 1e-8);
+    /* all equal: no evidence either way */
+    const double c[] = {5, 5, 5};
+    assert_int_equal(aa_mann_whitney(c, 3, c, 3, &u, &z, &p), AA_OK);
+    assert_true(u == 4.5 && z == 0 && p == 1);
+    assert_int_equal(aa_mann_whitney(c, 0, c, 3, &u, &z, &p), AA_EINVAL);
+}
+
+static void test_noisy_text(void **state)
+{
+    (void)state;
+    char buf[64];
+    aa_noisy_text(0, buf, sizeof buf);
+    assert_string_equal(buf, "");
+    aa_noisy_text(AA_NOISY_CI | AA_NOISY_BUSY, buf, sizeof buf);
+    assert_string_equal(buf, "ci+busy");
+    aa_noisy_text(AA_NOISY_OUTLIERS | AA_NOISY_STEAL | AA_NOISY_PREEMPTED, buf, sizeof buf);
+    assert_string_equal(buf, "outliers+steal+preempted");
+}
+
+/* ---- the repetition rule: counts, never times ---- */
+
+static int calls;
+static int count_call(void *ctx)
+{
+    (void)ctx;
+    calls++;
+    return AA_OK;
+}
+static int fail_third(void *ctx)
+{
+    (void)ctx;
+    return ++calls == 3 ? AA_EFAIL : AA_OK;
+}
+
+static void test_measure_counts(void **state)
+{
+    (void)state;
+    aa_timing *t = malloc(2 * sizeof *t);
+    assert_non_null(t);
+    aa_timed_fn fn[2] = {count_call, count_call};
+    void *ctx[2] = {NULL, NULL};
+    int threads[2] = {1, 2};
+    /* a fixed count: one warm-up, then exactly reps */
+    aa_timing_plan fixed = {.reps = 7};
+    calls = 0;
+    assert_int_equal(aa_timing_measure(&fixed, 1, fn, ctx, threads, t), AA_OK);
+    assert_int_equal(calls, 8);
+    assert_true(t->n == 7 && t->fixed && t->stats.n == 7);
+    assert_true(t->stats.min <= t->stats.median && t->stats.median <= t->stats.max);
+    assert_true(t->stats.ci_lo <= t->stats.median && t->stats.median <= t->stats.ci_hi);
+    assert_true(t->threads == 1 && t->elapsed >= 0);
+    /* by precision, two functions taking turns: each warmed up, at least
+     * the minimum, at most the maximum */
+    aa_timing_plan adaptive = {.target_ci = 0.5, .budget = 0.01};
+    calls = 0;
+    assert_int_equal(aa_timing_measure(&adaptive, 2, fn, ctx, threads, t), AA_OK);
+    for (int k = 0; k < 2; k++) {
+        assert_true(t[k].n >= AA_TIMING_MIN_REPS && t[k].n <= AA_TIMING_MAX_REPS);
+        assert_true(!t[k].fixed && t[k].threads == threads[k]);
+        assert_true(t[k].target_ci == 0.5);
+        /* noisy for the target exactly when it was not met */
+        assert_int_equal(!!(t[k].noisy & AA_NOISY_CI), !t[k].target_met);
+    }
+    assert_int_equal(calls, 2 + t[0].n + t[1].n);
+    /* defaults */
+    aa_timing_plan none = {0};
+    calls = 0;
+    assert_int_equal(aa_timing_measure(&none, 1, fn, ctx, threads, t), AA_OK);
+    assert_true(t->target_ci == AA_TIMING_TARGET && t->budget == AA_TIMING_BUDGET);
+    /* a failure stops and is returned */
+    fn[0] = fail_third;
+    calls = 0;
+    assert_int_equal(aa_timing_measure(&fixed, 1, fn, ctx, threads, t), AA_EFAIL);
+    assert_int_equal(calls, 3);
+    /* out of range */
+    aa_timing_plan bad = {.reps = AA_TIMING_MAX_REPS + 1};
+    assert_int_equal(aa_timing_measure(&bad, 1, fn, ctx, threads, t), AA_EINVAL);
+    free(t);
+}
+
+/* ---- results files, comparisons and the diff command ---- */
+
+static char dir[] = "/tmp/aabench-timing-XXXXXX";
+
+static void fill_row(aa_row *r, const char *method, double rmse, double scale)
+{
+    memset(r, 0, sizeof *r);
+    snprintf(r->pattern, sizeof r->pattern, "crow");
+    snprintf(r->filter, sizeof r->filter, "box");
+    snprintf(r->method, sizeof r->method, "%s", method);
+    snprintf(r->canonical, sizeof r->canonical, "%s", method);
+    r->w = 16, r->h = 8, r->seed = 1, r->threads = 1, r->ok = 1;
+    r->m.rmse = rmse, r->m.max_err = 2 * rmse;
+    aa_timing *t = &r->timing;
+    t->n = 10, t->threads = 1, t->target_ci = 0.02;
+    for (int k = 0; k < 10; k++)
+        t->wall[k] = t->cpu[k] = scale * (1.0 + 0.01 * k); /* 10 distinct times */
+    aa_time_stats_compute(t->wall, 10, &t->stats);
+    t->ci_rel = (t->stats.ci_hi - t->stats.ci_lo) / 2 / t->stats.median;
+    r->seconds = t->stats.median, r->reps = 10, r->seeds = 1;
+}
+
+static char *slurp(const char *path)
+{
+    static char buf[1 << 16];
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+static void test_results_round_trip(void **state)
+{
+    (void)state;
+    aa_row *rows = calloc(2, sizeof *rows), *back;
+    size_t n;
+    char csv[128], json[128];
+    assert_non_null(rows);
+    fill_row(&rows[0], "point", 0.25, 1e-3);
+    rows[0].timing.noisy = AA_NOISY_BUSY | AA_NOISY_OUTLIERS;
+    fill_row(&rows[1], "jitter:spp=4", 0.125, 2e-3);
+    rows[1].seeds = 3, rows[1].rmse_mean = 0.13, rows[1].rmse_ci_lo = 0.12;
+    rows[1].rmse_ci_hi = 0.14;
+    snprintf(csv, sizeof csv, "%s/results.csv", dir);
+    snprintf(json, sizeof json, "%s/results.json", dir);
+    assert_int_equal(aa_rows_write_csv(csv, rows, 2), AA_OK);
+    assert_int_equal(aa_rows_read_csv(csv, &back, &n), AA_OK);
+    assert_int_equal(n, 2);
+    for (size_t k = 0; k < 2; k++) {
+        assert_int_equal(back[k].timing.n, 10);
+        for (int q = 0; q < 10; q++)
+            assert_true(fabs(back[k].timing.wall[q] - rows[k].timing.wall[q]) <=
+                        1e-8 * rows[k].timing.wall[q]);
+        assert_true(back[k].timing.stats.ci_lo == back[k].timing.wall[1]); /* x(2) of 10 */
+    }
+    assert_int_equal(back[0].timing.noisy, AA_NOISY_BUSY | AA_NOISY_OUTLIERS);
+    assert_int_equal(back[1].timing.noisy, 0);
+    assert_true(back[1].seeds == 3 && back[1].rmse_mean == 0.13 && back[1].rmse_ci_hi == 0.14);
+    free(back);
+    /* results.json: an object, the context first, then the rows with their
+     * times; the context names the command line given */
+    aa_context ctx;
+    const char *argv[] = {"aabench", "run", "--seeds", "3"};
+    assert_int_equal(aa_context_collect(&ctx, 4, argv, 2), AA_OK);
+    assert_int_equal(aa_results_write_json(json, &ctx, rows, 2), AA_OK);
+    const char *t = slurp(json);
+    assert_true(!strncmp(t, "{\n  \"context\": {", 16));
+    const char *keys[] = {"\"commit\": ", "\"dirty\": ", "\"compiler\": ", "\"cflags\": ",
+                          "\"cpu\": ", "\"cores\": ", "\"threads\": 2", "\"os\": ",
+                          "\"kernel\": ", "\"gsl\": ", "\"openimageio\": ", "\"freetype\": ",
+                          "\"cairo\": ", "\"stb\": ", "\"date\": ", "\"load\": [",
+                          "\"command\": [\"aabench\", \"run\", \"--seeds\", \"3\"]",
+                          "\"results\": [", "\"times\": [0.001, 0.00101,",
+                          "\"noisy\": true, \"noise\": \"outliers+busy\"", "\"seeds\": 3"};
+    for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
+        if (!strstr(t, keys[k]))
+            fail_msg("results.json lacks %s", keys[k]);
+    free(rows);
+}
+
+/* A results file of the columns written before the timing's (the
+ * committed baseline's): read, with no times and one seed. */
+static void test_old_results(void **state)
+{
+    (void)state;
+    char csv[128];
+    snprintf(csv, sizeof csv, "%s/old.csv", dir);
+    FILE *f = fopen(csv, "w");
+    assert_non_null(f);
+    fputs("pattern,size,filter,method,canonical,spp,rmse,mae,max_err,render_seconds,threads,reps,"
+          "seed,time,vx,vy,ok,note\n"
+          "crow,128x128,box,point,point,1,0.257,0.1,0.65,0.00013,2,3,1,0,0,0,1,\n",
+          f);
+    fclose(f);
+    aa_row *rows;
+    size_t n;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    assert_int_equal(n, 1);
+    assert_true(rows[0].timing.n == 0 && rows[0].seeds == 1 && rows[0].seconds == 0.00013);
+    assert_true(rows[0].timing.noisy == 0);
+    free(rows);
+}
+
+static void test_case_compare(void **state)
+{
+    (void)state;
+    aa_row *r = calloc(2, sizeof *r);
+    aa_case_change c;
+    assert_non_null(r);
+    /* errors: worse beyond (1 + tol) + 1e-12 */
+    fill_row(&r[0], "point", 1.0, 1e-3);
+    fill_row(&r[1], "point", 1.0011, 1e-3);
+    assert_int_equal(aa_case_compare(&r[0], &r[1], 1e-3, &c), AA_OK);
+    assert_true(c.error_worse && fabs(c.rmse_change - 0.0011) < 1e-12);
+    r[1].m.rmse = 1.0009, r[1].m.max_err = 2.0018;
+    assert_int_equal(aa_case_compare(&r[0], &r[1], 1e-3, &c), AA_OK);
+    assert_false(c.error_worse);
+    /* times: R's example as repetition times, now = x, before = y: U = 35,
+     * two-sided p = 2 x 0.1103, not significant; ratio of the medians */
+    const double x[] = {0.80, 0.83, 1.89, 1.04, 1.45, 1.38, 1.91, 1.64, 0.73, 1.46};
+    const double y[] = {1.15, 0.88, 0.90, 0.74, 1.21};
+    r[1].timing.n = 10, r[0].timing.n = 5;
+    memcpy(r[1].timing.wall, x, sizeof x);
+    memcpy(r[0].timing.wall, y, sizeof y);
+    r[1].seconds = 1.415, r[0].seconds = 0.90; /* the medians */
+    assert_int_equal(aa_case_compare(&r[0], &r[1], 1e-3, &c), AA_OK);
+    assert_true(c.tested && c.u == 35 && fabs(c.p / 2 - 0.1103) < 5e-5 && !c.significant);
+    assert_true(fabs(c.time_ratio - 1.415 / 0.90) < 1e-12);
+    /* refused now */
+    r[1].ok = 0;
+    assert_int_equal(aa_case_compare(&r[0], &r[1], 1e-3, &c), AA_OK);
+    assert_true(c.refused && !c.tested);
+    free(r);
+}
+
+/* The diff command's exit status: 0, 1 on an error regression, 1 with
+ * --fail-slower on a significant slow-down beyond it, 2 on bad input. */
+static void test_diff_command(void **state)
+{
+    (void)state;
+    const char *exe = getenv("AABENCH");
+    if (!exe)
+        skip();
+    aa_row *r = calloc(2, sizeof *r);
+    assert_non_null(r);
+    char a[128], b[128], c[128], cmd[1024];
+    snprintf(a, sizeof a, "%s/a.csv", dir);
+    snprintf(b, sizeof b, "%s/b.csv", dir);
+    snprintf(c, sizeof c, "%s/c.csv", dir);
+    fill_row(&r[0], "point", 0.25, 1e-3);
+    fill_row(&r[1], "area", 1e-16, 2e-3);
+    assert_int_equal(aa_rows_write_csv(a, r, 2), AA_OK);
+    /* b: every time doubled (all 10 above all 10: U = 100, p = 1.8e-4) */
+    fill_row(&r[0], "point", 0.25, 2e-3);
+    fill_row(&r[1], "area", 1e-16, 4e-3);
+    assert_int_equal(aa_rows_write_csv(b, r, 2), AA_OK);
+    /* c: the error of point worse */
+    fill_row(&r[0], "point", 0.26, 1e-3);
+    fill_row(&r[1], "area", 1e-16, 2e-3);
+    assert_int_equal(aa_rows_write_csv(c, r, 2), AA_OK);
+    struct {
+        const char *args;
+        int code;
+    } cases[] = {{"diff %s %s", 0},
+                 {"diff %s %s --fail-slower 50", 1},
+                 {"diff %s %s --fail-slower 150", 0},
+                 {"diff %s %s", 1},
+                 {"diff %s", 2}};
+    const char *second[] = {b, b, b, c, ""};
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        char args[600];
+        snprintf(args, sizeof args, cases[k].args, a, second[k]);
+        snprintf(cmd, sizeof cmd, "'%s' %s > %s/out 2>&1", exe, args, dir);
+        int st = system(cmd);
+        if (!WIFEXITED(st) || WEXITSTATUS(st) != cases[k].code) {
+            char out[256];
+            snprintf(out, sizeof out, "%s/out", dir);
+            fail_msg("aabench %s: exit %d, expected %d: %s", args, WEXITSTATUS(st),
+                     cases[k].code, slurp(out));
+        }
+    }
+    /* the slow-down is named as significant */
+    snprintf(cmd, sizeof cmd, "'%s' diff %s %s > %s/out 2>&1", exe, a, b, dir);
+    assert_int_equal(system(cmd), 0);
+    char out[256];
+    snprintf(out, sizeof out, "%s/out", dir);
+    const char *text = slurp(out);
+    assert_non_null(strstr(text, "+100.0%"));
+    assert_non_null(strstr(text, "2 significantly slower"));
+    free(r);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    return system(cmd);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_median_ci_table),
+        cmocka_unit_test(test_time_stats),
+        cmocka_unit_test(test_mean_ci),
+        cmocka_unit_test(test_mann_whitney_r_example),
+        cmocka_unit_test(test_mann_whitney_ties),
+        cmocka_unit_test(test_noisy_text),
+        cmocka_unit_test(test_measure_counts),
+        cmocka_unit_test(test_results_round_trip),
+        cmocka_unit_test(test_old_results),
+        cmocka_unit_test(test_case_compare),
+        cmocka_unit_test(test_diff_command),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
