@@ -89,10 +89,12 @@ WHOLE = -rdynamic -Wl,--whole-archive $(1) -Wl,--no-whole-archive
 $(BUILD)/aabench: $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_SRC)) $(LIB)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CFLAGS) $(filter %.o,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS)
+# A test links its own source and the objects only: its .d file adds the
+# headers and included sources it read as prerequisites, which are no inputs.
 $(BUILD)/tests/%: tests/%.c $(patsubst %.c,$(BUILD)/obj/%.o,$(TEST_AUX)) $(LIB)
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -Itests $(PKG_CFLAGS) $(filter-out %.a,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -Itests $(PKG_CFLAGS) $< $(filter %.o,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
 $(BUILD)/tests/%.so: tests/%.c harness/aabench.h
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
@@ -120,7 +122,7 @@ $(SAN_BUILD)/aabench: $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_SRC)) $(SAN_LIB)
 $(SAN_BUILD)/tests/%: tests/%.c $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(TEST_AUX)) $(SAN_LIB)
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $(filter-out %.a,$^) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $< $(filter %.o,$^) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS) $(TEST_LIBS)
 $(SAN_BUILD)/tests/%.so: tests/%.c harness/aabench.h
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
