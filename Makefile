@@ -1,7 +1,8 @@
 # aabench: build, test, run, bench, install.
 #
 #   make run     install missing Debian packages, build, run the main benchmark
-#   make test    the same set-up, then every test (plain and under ASan+UBSan)
+#   make test    the same set-up, then every test (plain and under ASan+UBSan),
+#                the test binaries in parallel (one job a core)
 #   make bench   speed measurements (not tests: nothing here asserts a time)
 #   make fuzz    libFuzzer on the spec parsers and image readers (needs clang)
 #   make valgrind  the tests under valgrind memcheck
@@ -76,8 +77,22 @@ BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
 # keep the objects of test helpers between runs
 .PRECIOUS: $(BUILD)/obj/%.o $(SAN_BUILD)/obj/%.o
 
+# Running the tests: each binary is its own target, NAME.run (phony), which
+# writes NAME.log and NAME.result beside the binary and never fails, so that
+# make -j runs them side by side and every test runs; the pass's summary
+# then prints the failed ones and "N passed, N failed" and fails if any did.
+# The longest start first, so that they do not run on alone at the end.
+SLOW_TESTS := test_cli test_truth_gauss test_tables test_peers test_oracle test_patterns
+ordered = $(foreach t,$(SLOW_TESTS),$(filter $(1)/tests/$(t),$(2))) \
+          $(filter-out $(addprefix $(1)/tests/,$(SLOW_TESTS)),$(2))
+TEST_RUNS     := $(addsuffix .run,$(call ordered,$(BUILD),$(TESTS)))
+SAN_TEST_RUNS := $(addsuffix .run,$(call ordered,$(SAN_BUILD),$(SAN_TESTS)))
+# A pass runs with one job a core (TEST_JOBS), unless make was given -j.
+TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+TEST_J     = $(if $(findstring -j,$(MAKEFLAGS)),,-j$(TEST_JOBS))
+
 .PHONY: all deps run test check-tests check-tests-san check-gate baseline bench install clean \
-        fuzz valgrind FORCE
+        fuzz valgrind FORCE check-tests-pass check-tests-san-pass $(TEST_RUNS) $(SAN_TEST_RUNS)
 .DEFAULT_GOAL := all
 
 all: $(BUILD)/aabench $(LIB) $(OIIO_SO)
@@ -135,7 +150,9 @@ WHOLE = -rdynamic -Wl,--whole-archive $(1) -Wl,--no-whole-archive
 $(BUILD)/aabench: $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_SRC)) $(LIB) | $(OIIO_SO)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CFLAGS) $(filter %.o,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS)
-# A test links the command line's objects it uses (cli_main...) from $(CLI_LIB).
+# A test links its own source and the objects only (its .d file adds the
+# headers and included sources it read as prerequisites, which are no
+# inputs), and the command line's objects it uses (cli_main...) from $(CLI_LIB).
 $(BUILD)/tests/%: tests/%.c $(patsubst %.c,$(BUILD)/obj/%.o,$(TEST_AUX)) $(CLI_LIB) $(LIB) | $(OIIO_SO)
 	@mkdir -p $(dir $@)
 	@echo '  LD    $@'
@@ -255,12 +272,24 @@ baseline: $(BUILD)/aabench
 	$(BUILD)/aabench run --suite quick --no-images --no-plots -q --out $(BUILD)/baseline-run
 	cp $(BUILD)/baseline-run/results.csv results/baseline.csv
 
-check-tests: $(BUILD)/aabench $(TESTS) $(PLUGINS)
-	@sh scripts/run-tests.sh $(BUILD) $(TESTS)
+check-tests:
+	@$(MAKE) --no-print-directory $(TEST_J) check-tests-pass
 
-check-tests-san: $(SAN_BUILD)/aabench $(SAN_TESTS) $(SAN_PLUGINS)
+check-tests-pass: $(TEST_RUNS)
+	@sh scripts/run-tests.sh summary $(TESTS)
+
+$(TEST_RUNS): %.run: % $(BUILD)/aabench $(PLUGINS)
+	@sh scripts/run-tests.sh one $(BUILD) $*
+
+check-tests-san:
+	@$(MAKE) --no-print-directory $(TEST_J) check-tests-san-pass
+
+check-tests-san-pass: $(SAN_TEST_RUNS)
+	@sh scripts/run-tests.sh summary $(SAN_TESTS)
+
+$(SAN_TEST_RUNS): %.run: % $(SAN_BUILD)/aabench $(SAN_PLUGINS)
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  sh scripts/run-tests.sh $(SAN_BUILD) $(SAN_TESTS)
+	  sh scripts/run-tests.sh one $(SAN_BUILD) $*
 
 # The contract tests every built-in method passes (tests/test_methods.c),
 # run on the methods of a plug-in: make check-plugin PLUGIN=path/to/lib.so

@@ -1,32 +1,88 @@
 #!/bin/sh
-# run-tests.sh BUILD TEST...: run each test binary, report, fail if any fails.
-# The tests find the command under test through $AABENCH and the example
-# plug-in through $AABENCH_PLUGIN.
-set -u
-build=$1
-shift
-AABENCH="$(pwd)/$build/aabench"
-AABENCH_PLUGIN="$(pwd)/$build/tests/plugin_example.so"
-export AABENCH AABENCH_PLUGIN
+# run-tests.sh: run test binaries and count what passed.
+#
+#   run-tests.sh one BUILD TEST      run one test binary; its output goes to
+#                                    TEST.log, its result (passed or failed)
+#                                    and wall time to TEST.result; prints one
+#                                    line (and the log if it failed); exits 0
+#                                    either way
+#   run-tests.sh summary TEST...     the failed tests, then "N passed, N
+#                                    failed" as the last line; exits 1 if
+#                                    any failed or did not run
+#   run-tests.sh BUILD TEST...       both, one test after the other
+#
+# The Makefile runs `one` for each test as its own target, so that make -j
+# runs them in parallel, then `summary`.  The tests find the command under
+# test through $AABENCH and the example plug-in through $AABENCH_PLUGIN.
 # AABENCH_VALGRIND=1 (make valgrind): each test under memcheck; errors and
 # definite or indirect leaks fail it.
-run=""
-if [ -n "${AABENCH_VALGRIND:-}" ]; then
-    run="valgrind --tool=memcheck --error-exitcode=1 --leak-check=full \
+set -u
+
+now() { date +%s.%N; }
+
+one() {
+    build=$1
+    t=$2
+    AABENCH="$(pwd)/$build/aabench"
+    AABENCH_PLUGIN="$(pwd)/$build/tests/plugin_example.so"
+    export AABENCH AABENCH_PLUGIN
+    run=""
+    if [ -n "${AABENCH_VALGRIND:-}" ]; then
+        run="valgrind --tool=memcheck --error-exitcode=1 --leak-check=full \
 --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect \
 --suppressions=$(pwd)/tests/valgrind.supp --quiet"
-fi
-failed=""
-for t in "$@"; do
-    if $run "$t" >"$t.log" 2>&1; then
-        printf '%-40s ok\n' "$t"
-    else
-        printf '%-40s FAILED (log: %s)\n' "$t" "$t.log"
-        cat "$t.log"
-        failed="$failed $t"
     fi
-done
-if [ -n "$failed" ]; then
-    echo "failed:$failed"
-    exit 1
-fi
+    rm -f "$t.result"
+    start=$(now)
+    if $run "$t" >"$t.log" 2>&1; then
+        result=passed
+    else
+        result=failed
+    fi
+    seconds=$(awk -v a="$start" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }')
+    echo "$result $seconds" >"$t.result"
+    if [ "$result" = passed ]; then
+        printf '%-40s ok     %6s s\n' "$t" "$seconds"
+    else
+        # in one printf, so that a parallel test's line does not land inside
+        printf '%-40s FAILED %6s s (log: %s)\n%s\n' "$t" "$seconds" "$t.log" "$(cat "$t.log")"
+    fi
+}
+
+summary() {
+    passed=0
+    failed=0
+    names=""
+    for t in "$@"; do
+        if [ "$(cut -d' ' -f1 "$t.result" 2>/dev/null)" = passed ]; then
+            passed=$((passed + 1))
+        else
+            failed=$((failed + 1))
+            names="$names $t"
+        fi
+    done
+    if [ "$failed" -gt 0 ]; then
+        echo "failed:$names"
+    fi
+    echo "$passed passed, $failed failed"
+    [ "$failed" -eq 0 ]
+}
+
+case "${1:-}" in
+one)
+    shift
+    one "$@"
+    ;;
+summary)
+    shift
+    summary "$@"
+    ;;
+*)
+    build=$1
+    shift
+    for t in "$@"; do
+        one "$build" "$t"
+    done
+    summary "$@"
+    ;;
+esac

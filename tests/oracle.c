@@ -51,6 +51,8 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 /* Precision choices.  The box closed form is cheap and runs in ext; the brute
  * force evaluates millions of arc positions and runs in double (its own
@@ -472,4 +474,74 @@ double oracle_cone_cut(double delta)
     double s = sqrt((1.0 - delta) * (1.0 + delta));
     double tail = delta > 0.0 ? delta * delta * delta * log((1.0 + s) / delta) : 0.0;
     return (acos(delta) - 2.0 * delta * s + tail) / M_PI;
+}
+
+/* ---- polygons (oracle.h): Sutherland-Hodgman and the shoelace formula ---- */
+
+static void poly_put(oracle_poly *out, double x, double y)
+{
+    if (out->n >= ORACLE_POLY_MAX) {
+        fprintf(stderr, "oracle_poly: more than %d vertices\n", ORACLE_POLY_MAX);
+        abort();
+    }
+    out->x[out->n] = x;
+    out->y[out->n++] = y;
+}
+
+oracle_poly oracle_poly_clip(const oracle_poly *in, double a, double b, double c)
+{
+    oracle_poly out = {0};
+    for (int k = 0; k < in->n; k++) {
+        int m = (k + 1) % in->n;
+        double dk = a * in->x[k] + b * in->y[k] - c, dm = a * in->x[m] + b * in->y[m] - c;
+        if (dk <= 0)
+            poly_put(&out, in->x[k], in->y[k]);
+        if ((dk < 0 && dm > 0) || (dk > 0 && dm < 0)) {
+            double t = dk / (dk - dm);
+            poly_put(&out, in->x[k] + t * (in->x[m] - in->x[k]),
+                     in->y[k] + t * (in->y[m] - in->y[k]));
+        }
+    }
+    return out;
+}
+
+oracle_poly oracle_poly_intersect(const oracle_poly *p, const oracle_poly *q)
+{
+    oracle_poly out = *p;
+    for (int k = 0; k < q->n; k++) {
+        int m = (k + 1) % q->n, o = (k + 2) % q->n;
+        double a = q->y[m] - q->y[k], b = q->x[k] - q->x[m];
+        double c = a * q->x[k] + b * q->y[k];
+        if (a * q->x[o] + b * q->y[o] > c) /* keep the side holding vertex o */
+            a = -a, b = -b, c = -c;
+        out = oracle_poly_clip(&out, a, b, c);
+    }
+    return out;
+}
+
+oracle_poly oracle_poly_scaled(const oracle_poly *p, double sx, double sy)
+{
+    oracle_poly out = *p;
+    for (int k = 0; k < out.n; k++)
+        out.x[k] *= sx, out.y[k] *= sy;
+    return out;
+}
+
+double oracle_poly_area(const oracle_poly *p)
+{
+    double s = 0;
+    for (int k = 0; k < p->n; k++) {
+        int m = (k + 1) % p->n;
+        s += p->x[k] * p->y[m] - p->x[m] * p->y[k];
+    }
+    return 0.5 * fabs(s);
+}
+
+double oracle_poly_area_in_rect(const oracle_poly *p, double x0, double y0, double x1, double y1)
+{
+    oracle_poly q = oracle_poly_clip(p, -1, 0, -x0);
+    q = oracle_poly_clip(&q, 1, 0, x1);
+    q = oracle_poly_clip(&q, 0, -1, -y0);
+    q = oracle_poly_clip(&q, 0, 1, y1);
+    return oracle_poly_area(&q);
 }

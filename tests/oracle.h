@@ -1,5 +1,6 @@
 /*
- * oracle.h - an independent second derivation of the `crow` reference image.
+ * oracle.h - an independent second derivation of the `crow` reference image,
+ * the cut cone's volume, and polygon areas by clipping (at the end).
  *
  * The harness computes reference values of Crow's parabolic moire pattern by
  * its own quadrature; the tests compare it with this file's values, which are
@@ -64,5 +65,32 @@ double oracle_crow_gauss(const oracle_crow *p, int W, int H, int i, int j,
  * 1 - C(-delta) for delta < 0.  Derived in polar coordinates (the
  * derivation is in tests/test_cone.c, which checks it by quadrature). */
 double oracle_cone_cut(double delta);
+
+/* ---- polygons: areas by clipping ----
+ *
+ * The area of a polygon inside a pixel or another convex polygon, by
+ * Sutherland-Hodgman clipping and the shoelace formula: a second way to the
+ * box value of scenes of straight edges, sharing nothing with the scene
+ * model, the reference or the methods.  Clipping by a half-plane is exact
+ * for any polygon whose part inside is one piece (convex ones always);
+ * oracle_poly_intersect needs q convex.  A result with more than
+ * ORACLE_POLY_MAX vertices aborts. */
+#define ORACLE_POLY_MAX 64
+
+typedef struct oracle_poly {
+    int n;
+    double x[ORACLE_POLY_MAX], y[ORACLE_POLY_MAX];
+} oracle_poly;
+
+/* p clipped to the half-plane a x + b y <= c. */
+oracle_poly oracle_poly_clip(const oracle_poly *p, double a, double b, double c);
+/* p clipped to the inside of convex q (either orientation). */
+oracle_poly oracle_poly_intersect(const oracle_poly *p, const oracle_poly *q);
+/* p with x scaled by sx and y by sy (pattern units to pixels: W, H). */
+oracle_poly oracle_poly_scaled(const oracle_poly *p, double sx, double sy);
+/* The area enclosed (shoelace; the absolute value, either orientation). */
+double oracle_poly_area(const oracle_poly *p);
+/* The area of p inside the rectangle [x0, x1] x [y0, y1]. */
+double oracle_poly_area_in_rect(const oracle_poly *p, double x0, double y0, double x1, double y1);
 
 #endif

@@ -4,22 +4,89 @@
 #include "scenes.h"
 
 #include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+
+#include <cmocka.h>
+
+aa_scene *scenes_pattern(const char *text)
+{
+    aa_spec spec;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(text, &spec) || aa_pattern_scene(&spec, &s))
+        fail_msg("pattern %s: %s", text, aa_last_error());
+    return s;
+}
+
+void scenes_path(aa_scene *s, const double *xy, int n)
+{
+    assert_int_equal(aa_scene_move_to(s, xy[0], xy[1]), AA_OK);
+    for (int k = 1; k < n; k++)
+        assert_int_equal(aa_scene_line_to(s, xy[2 * k], xy[2 * k + 1]), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+}
+
+void scenes_add_poly(aa_scene *s, const oracle_poly *p)
+{
+    assert_int_equal(aa_scene_move_to(s, p->x[0], p->y[0]), AA_OK);
+    for (int k = 1; k < p->n; k++)
+        assert_int_equal(aa_scene_line_to(s, p->x[k], p->y[k]), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+}
+
+void scenes_rect(aa_scene *s, double x0, double y0, double x1, double y1)
+{
+    const double xy[] = {x0, y0, x1, y0, x1, y1, x0, y1};
+    scenes_path(s, xy, 4);
+}
+
+aa_scene *scenes_polygon(const double *xy, int n, aa_rgb inside, aa_rgb outside,
+                         aa_fill_rule rule)
+{
+    aa_scene *s = aa_scene_new(outside);
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, inside, rule), AA_OK);
+    scenes_path(s, xy, n);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+aa_scene *scenes_rects(const double (*r)[4], int n)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    for (int k = 0; k < n; k++)
+        scenes_rect(s, r[k][0], r[k][1], r[k][2], r[k][3]);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+aa_scene *scenes_arc_segment(double x0, double y0, double cx, double cy, double x1, double y1)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, x0, y0), AA_OK);
+    assert_int_equal(aa_scene_quad_to(s, cx, cy, x1, y1), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+aa_scene *scenes_half_plane_of(double px, double py, double angle, double L, aa_rgb fg,
+                               aa_rgb bg)
+{
+    double dx = sin(angle), dy = cos(angle); /* along the edge, downwards */
+    double nx = dy, ny = -dx;                /* into the fg side */
+    const double xy[] = {px - L * dx,          py - L * dy,          px + L * dx,
+                         py + L * dy,          px + L * dx + L * nx, py + L * dy + L * ny,
+                         px - L * dx + L * nx, py - L * dy + L * ny};
+    return scenes_polygon(xy, 4, fg, bg, AA_FILL_NONZERO);
+}
 
 aa_scene *scenes_half_plane(double px, double py, double angle)
 {
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    if (!s)
-        return NULL;
-    double dx = sin(angle), dy = cos(angle); /* along the edge, downwards */
-    double nx = dy, ny = -dx;                /* into the white side */
-    const double L = 50.0;
-    if (aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO) ||
-        aa_scene_move_to(s, px - L * dx, py - L * dy) ||
-        aa_scene_line_to(s, px + L * dx, py + L * dy) ||
-        aa_scene_line_to(s, px + L * dx + L * nx, py + L * dy + L * ny) ||
-        aa_scene_line_to(s, px - L * dx + L * nx, py - L * dy + L * ny) || aa_scene_finish(s)) {
-        aa_scene_free(s);
-        return NULL;
-    }
-    return s;
+    return scenes_half_plane_of(px, py, angle, 50.0, (aa_rgb){{1, 1, 1}}, (aa_rgb){{0, 0, 0}});
 }

@@ -1,15 +1,44 @@
 /*
- * scenes.h: test-only scenes shared by several tests.
+ * scenes.h: test-only scenes and scene-building steps shared by several
+ * tests.  Every function fails the running test (cmocka) if the scene
+ * cannot be built, so none returns NULL.
  */
 #ifndef AA_TEST_SCENES_H
 #define AA_TEST_SCENES_H
 
 #include "bench.h"
+#include "oracle.h"
 
-/* White right of the line through (px, py) (pattern units) with direction
- * angle `angle` from the vertical (0: the region right of a vertical line),
- * on black: a square of side 50 with one side on the line.  NULL if the
- * scene cannot be built. */
+/* The scene of a pattern spec ("crow", "star:spokes=7"), pattern units. */
+aa_scene *scenes_pattern(const char *spec);
+
+/* A closed path in the current layer: move to the first of n points (x, y
+ * pairs in xy), lines to the others, close. */
+void scenes_path(aa_scene *s, const double *xy, int n);
+/* The same for an oracle polygon. */
+void scenes_add_poly(aa_scene *s, const oracle_poly *p);
+/* The rectangle [x0, x1] x [y0, y1] as a closed path (x0, y0) (x1, y0)
+ * (x1, y1) (x0, y1). */
+void scenes_rect(aa_scene *s, double x0, double y0, double x1, double y1);
+
+/* One polygon (n points, xy pairs) of colour `inside` under `rule` on
+ * `outside`, finished. */
+aa_scene *scenes_polygon(const double *xy, int n, aa_rgb inside, aa_rgb outside,
+                         aa_fill_rule rule);
+/* White rectangles {x0, y0, x1, y1} on black, one layer, finished. */
+aa_scene *scenes_rects(const double (*r)[4], int n);
+/* White on black: the region between the quadratic arc from (x0, y0) with
+ * control point (cx, cy) to (x1, y1) and its chord, finished. */
+aa_scene *scenes_arc_segment(double x0, double y0, double cx, double cy, double x1, double y1);
+
+/* `fg` right of the line through (px, py) with direction angle `angle`
+ * (radians) from the vertical (0: the region right of a vertical line), on
+ * `bg`: a square of side L with one side on the line, so the line's unit
+ * normal into fg is (cos angle, -sin angle).  Units are the caller's
+ * (pattern units to place, or pixels to render as placed). */
+aa_scene *scenes_half_plane_of(double px, double py, double angle, double L, aa_rgb fg,
+                               aa_rgb bg);
+/* White on black, L = 50 pattern units. */
 aa_scene *scenes_half_plane(double px, double py, double angle);
 
 #endif

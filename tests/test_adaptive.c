@@ -6,13 +6,16 @@
  *  - On a single straight edge the value converges to the exact coverage as
  *    the search deepens: the coverage is found independently by clipping
  *    the pixel square with the half-plane (Sutherland-Hodgman) and the
- *    shoelace formula; the paper's argument (the centroid of the two found
+ *    shoelace formula (tests/oracle.c); the paper's argument (the centroid of the two found
  *    points lies on the edge) bounds the error by the search resolution,
  *    2^-depth of a border.
  *  - A band thinner than a pixel that misses the corners is lost without
  *    tagging (the paper's case 6d) and found with it.
  */
 #include "bench.h"
+#include "oracle.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -29,43 +32,19 @@ static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
 static void render(const char *method, const aa_scene *scene, int w, int h, int threads,
                    aa_image *out, aa_counters *c)
 {
-    aa_filter f;
-    aa_spec m;
-    aa_job job;
-    aa_filter_default(&f);
-    assert_int_equal(aa_method_parse(method, &f, &m), AA_OK);
-    assert_int_equal(aa_job_init(&job, scene, w, h, 0, 0, 0, &f, 1, threads), AA_OK);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    assert_int_equal(aa_method_run(&m, &job, 1, out, c, NULL), AA_OK);
-    aa_job_free(&job);
-}
-
-static double rmse(const aa_image *a, const aa_image *b)
-{
-    double s = 0.0;
-    size_t n = (size_t)3 * a->w * a->h;
-    for (size_t k = 0; k < n; k++)
-        s += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
-    return sqrt(s / n);
+    support_render(method, scene, NULL, w, h, threads, out, c);
 }
 
 static void test_crow_against_supersample(void **state)
 {
     (void)state;
-    aa_spec spec;
-    aa_scene *s, *placed;
-    aa_filter f;
+    aa_scene *s = scenes_pattern("crow");
     aa_image ref, ad, ss;
     aa_counters cad, css;
-    aa_filter_default(&f);
-    assert_int_equal(aa_pattern_parse("crow", &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-    assert_non_null(placed = aa_scene_place(s, 256, 256, 0, 0, 0));
-    assert_int_equal(aa_image_alloc(&ref, 256, 256, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, &ref, NULL, NULL), AA_OK);
+    support_reference(s, &(support_view){.w = 256, .h = 256}, &ref, NULL, NULL);
     render("adaptive:tag=1", s, 256, 256, 2, &ad, &cad); /* the extension, not the default */
     render("supersample:n=4", s, 256, 256, 2, &ss, &css);
-    double ea = rmse(&ad, &ref), es = rmse(&ss, &ref);
+    double ea = support_rmse(&ad, &ref), es = support_rmse(&ss, &ref);
     if (!(ea <= es && cad.samples < css.samples))
         fail_msg("adaptive rmse %.6g with %llu samples; supersample:n=4 %.6g with %llu", ea,
                  (unsigned long long)cad.samples, es, (unsigned long long)css.samples);
@@ -74,45 +53,24 @@ static void test_crow_against_supersample(void **state)
     aa_image_free(&ref);
     aa_image_free(&ad);
     aa_image_free(&ss);
-    aa_scene_free(placed);
     aa_scene_free(s);
 }
 
 /* The half-plane y < a + b x (pattern units) as a large white quad. */
 static aa_scene *half_plane(double a, double b)
 {
-    aa_scene *s = aa_scene_new(black);
-    assert_non_null(s);
-    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, -1, -2), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 2, -2), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 2, a + 2 * b), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, -1, a - b), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    const double xy[] = {-1, -2, 2, -2, 2, a + 2 * b, -1, a - b};
+    return scenes_polygon(xy, 4, white, black, AA_FILL_NONZERO);
 }
 
 /* The area of the unit pixel [i, i+1] x [j, j+1] (pixel units) where
- * v < A + B u: the square clipped by the half-plane, then the shoelace. */
+ * v < A + B u, i.e. -B u + v <= A: the square clipped by the half-plane,
+ * then the shoelace. */
 static double pixel_coverage(int i, int j, double A, double B)
 {
-    double in[4][2] = {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}, out[8][2];
-    int n = 0;
-    for (int k = 0; k < 4; k++) {
-        const double *p = in[k], *q = in[(k + 1) % 4];
-        double dp = A + B * p[0] - p[1], dq = A + B * q[0] - q[1];
-        if (dp >= 0)
-            out[n][0] = p[0], out[n][1] = p[1], n++;
-        if ((dp >= 0) != (dq >= 0)) {
-            double t = dp / (dp - dq);
-            out[n][0] = p[0] + t * (q[0] - p[0]), out[n][1] = p[1] + t * (q[1] - p[1]), n++;
-        }
-    }
-    double sum = 0.0;
-    for (int k = 0; k < n; k++)
-        sum += out[k][0] * out[(k + 1) % n][1] - out[(k + 1) % n][0] * out[k][1];
-    return fabs(sum) / 2.0;
+    const oracle_poly square = {4, {i, i + 1, i + 1, i}, {j, j, j + 1, j + 1}};
+    oracle_poly in = oracle_poly_clip(&square, -B, 1, A);
+    return oracle_poly_area(&in);
 }
 
 static void test_straight_edge_converges(void **state)
@@ -150,15 +108,8 @@ static void test_thin_band_needs_tagging(void **state)
     /* 8x8 image; a white band 0.2 px tall across row 3, from 3.4 to 3.6
      * pixels: no pixel corner (integer lines) lies in it */
     const int W = 8, H = 8;
-    aa_scene *s = aa_scene_new(black);
-    assert_non_null(s);
-    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, -1, 3.4 / H), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 2, 3.4 / H), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 2, 3.6 / H), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, -1, 3.6 / H), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    const double band[1][4] = {{-1, 3.4 / H, 2, 3.6 / H}};
+    aa_scene *s = scenes_rects(band, 1);
     aa_image off, on;
     aa_counters c;
     render("adaptive:tag=0", s, W, H, 1, &off, &c);
@@ -176,12 +127,7 @@ static void test_thin_band_needs_tagging(void **state)
     aa_scene_free(s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_crow_against_supersample),
-        cmocka_unit_test(test_straight_edge_converges),
-        cmocka_unit_test(test_thin_band_needs_tagging),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_crow_against_supersample),
+             cmocka_unit_test(test_straight_edge_converges),
+             cmocka_unit_test(test_thin_band_needs_tagging))

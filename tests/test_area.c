@@ -11,8 +11,8 @@
  *    pixel, and 4096-pixel-wide and -tall images.
  *  - Catmull's own pixel (Catmull 1978, fig. 1): (0, 0.25, 0.5).
  *  - three overlapping convex polygon layers, front to back, against areas
- *    from a polygon clipper written here (Sutherland-Hodgman and the
- *    shoelace formula, as in tests/test_truth.c), with inclusion-exclusion
+ *    from tests/oracle.c's polygon clipper (Sutherland-Hodgman and the
+ *    shoelace formula), with inclusion-exclusion
  *    for what each layer shows; and two overlapping paths in one layer under
  *    each fill rule (nonzero: the union; even-odd: the symmetric
  *    difference).
@@ -26,6 +26,8 @@
  */
 #include "bench.h"
 #include "oracle.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -39,84 +41,37 @@
 
 static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
 
-/* Render `method` on a pattern-unit scene at w x h (time t, motion vx, vy). */
-static int render_at(const char *method, const aa_scene *scene, int w, int h, double t,
-                     double vx, double vy, int threads, aa_image *out, aa_counters *c)
+/* The two pixel integrators: Catmull's (for clusters of lines) with the
+ * bands for the rest, and the bands alone. */
+static const char *const methods[2] = {"area", "area:integrator=bands"};
+
+/* `method` or the box reference on a pattern-unit scene at w x h (time t,
+ * motion vx, vy). */
+static support_view view_at(int w, int h, double t, double vx, double vy, int threads)
 {
-    aa_filter f;
-    aa_spec spec;
-    aa_job job;
-    aa_filter_default(&f);
-    int st = aa_method_parse(method, &f, &spec);
-    if (st)
-        return st;
-    assert_int_equal(aa_job_init(&job, scene, w, h, t, vx, vy, &f, 1, threads), AA_OK);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    st = aa_method_run(&spec, &job, 1, out, c, NULL);
-    aa_job_free(&job);
-    if (st)
-        aa_image_free(out);
-    return st;
+    return (support_view){.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .seed = 1,
+                          .threads = threads};
 }
 
 static void render(const char *method, const aa_scene *scene, int w, int h, int threads,
                    aa_image *out, aa_counters *c)
 {
-    if (render_at(method, scene, w, h, 0, 0, 0, threads, out, c))
-        fail_msg("%s: %s", method, aa_last_error());
-}
-
-/* The box reference of the same view. */
-static void reference_at(const aa_scene *scene, int w, int h, double t, double vx, double vy,
-                         aa_image *out)
-{
-    aa_filter f;
-    aa_filter_default(&f);
-    aa_scene *placed = aa_scene_place(scene, w, h, t, vx, vy);
-    assert_non_null(placed);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, out, NULL, NULL), AA_OK);
-    aa_scene_free(placed);
-}
-
-static double max_diff(const aa_image *a, const aa_image *b, int *wi, int *wj)
-{
-    double worst = 0;
-    for (int j = 0; j < a->h; j++)
-        for (int i = 0; i < a->w; i++)
-            for (int ch = 0; ch < 3; ch++) {
-                double d = fabs(aa_pixel(a, i, j)[ch] - aa_pixel(b, i, j)[ch]);
-                if (!(d <= worst)) {
-                    worst = d;
-                    if (wi)
-                        *wi = i, *wj = j;
-                }
-            }
-    return worst;
-}
-
-static aa_scene *pattern(const char *text)
-{
-    aa_spec spec;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse(text, &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-    return s;
+    support_render(method, scene, NULL, w, h, threads, out, c);
 }
 
 /* Both integrators against the reference on a view; returns the worst. */
 static double check_reference(const char *what, const aa_scene *scene, int w, int h, double t,
                               double vx, double vy, double tol)
 {
-    const char *methods[2] = {"area", "area:integrator=bands"};
     aa_image ref, img;
     aa_counters c;
-    reference_at(scene, w, h, t, vx, vy, &ref);
+    const support_view mv = view_at(w, h, t, vx, vy, 2), rv = view_at(w, h, t, vx, vy, 0);
+    support_reference(scene, &rv, &ref, NULL, NULL);
     double worst = 0;
     for (int m = 0; m < 2; m++) {
-        assert_int_equal(render_at(methods[m], scene, w, h, t, vx, vy, 2, &img, &c), AA_OK);
+        support_render_must(methods[m], scene, &mv, &img, &c);
         int wi = 0, wj = 0;
-        double d = max_diff(&img, &ref, &wi, &wj);
+        double d = support_max_diff(&img, &ref, &wi, &wj);
         if (!(d <= tol))
             fail_msg("%s %dx%d %s: pixel (%d, %d) is %.17g, the reference %.17g (%.3e off)", what,
                      w, h, methods[m], wi, wj, aa_pixel(&img, wi, wj)[0],
@@ -138,7 +93,7 @@ static double check_reference(const char *what, const aa_scene *scene, int w, in
 static void test_crow_reference(void **state)
 {
     (void)state;
-    aa_scene *s = pattern("crow");
+    aa_scene *s = scenes_pattern("crow");
     int sizes[3][2] = {{256, 256}, {7, 3}, {255, 129}};
     for (int k = 0; k < 3; k++)
         check_reference("crow", s, sizes[k][0], sizes[k][1], 0, 0, 0, 1e-9);
@@ -150,24 +105,14 @@ static void test_crow_reference(void **state)
 static void test_crow_oracle(void **state)
 {
     (void)state;
-    aa_scene *s = pattern("crow");
+    aa_scene *s = scenes_pattern("crow");
     oracle_crow p = oracle_crow_defaults();
     int sizes[3][2] = {{256, 256}, {7, 3}, {255, 129}};
     for (int k = 0; k < 3; k++) {
         int w = sizes[k][0], h = sizes[k][1];
         aa_image img;
-        aa_counters c;
-        render("area", s, w, h, 1, &img, &c);
-        double worst = 0;
-        for (int j = 0; j < h; j++)
-            for (int i = 0; i < w; i++) {
-                double want = oracle_crow_box(&p, w, h, i, j), *px = aa_pixel(&img, i, j);
-                double d = fabs(px[0] - want);
-                worst = fmax(worst, d);
-                if (d > 1e-9 || px[1] != px[0] || px[2] != px[0])
-                    fail_msg("crow %dx%d pixel (%d, %d): area %.17g, closed form %.17g", w, h, i,
-                             j, px[0], want);
-            }
+        render("area", s, w, h, 1, &img, NULL);
+        double worst = support_check_crow_box("crow: area", &p, &img, 1e-9);
         print_message("crow %4dx%-4d max |area - closed form| %.2e\n", w, h, worst);
         aa_image_free(&img);
     }
@@ -194,7 +139,7 @@ static void test_crow_other(void **state)
         {"crow:curves=2,kmax=0.3,gap0=0.2", 33, 17, 1.5, -2.25, 0.7},
     };
     for (size_t k = 0; k < sizeof views / sizeof *views; k++) {
-        aa_scene *s = pattern(views[k].spec);
+        aa_scene *s = scenes_pattern(views[k].spec);
         check_reference(views[k].spec, s, views[k].w, views[k].h, views[k].t, views[k].vx,
                         views[k].vy, 1e-9);
         aa_scene_free(s);
@@ -207,7 +152,7 @@ static void test_crow_other(void **state)
 static void test_crow_large(void **state)
 {
     (void)state;
-    aa_scene *s = pattern("crow");
+    aa_scene *s = scenes_pattern("crow");
     double a = check_reference("crow, wide", s, 4096, 96, 0, 0, 0, 1e-12);
     double b = check_reference("crow, tall", s, 96, 4096, 0, 0, 0, 1e-12);
     /* the 1e-13 goal counts on long double's 64-bit mantissa where area.c
@@ -221,73 +166,11 @@ static void test_crow_large(void **state)
 
 /* ---- polygons ---- */
 
-typedef struct poly {
-    int n;
-    double x[64], y[64];
-} poly;
-
-/* Clip against the half-plane a x + b y <= c (Sutherland-Hodgman). */
-static poly clip(const poly *in, double a, double b, double c)
+/* p scaled to pixel units and clipped to pixel (i, j) (tests/oracle.c). */
+static double area_in_pixel(const oracle_poly *p, int w, int h, int i, int j)
 {
-    poly out = {0};
-    for (int k = 0; k < in->n; k++) {
-        int m = (k + 1) % in->n;
-        double dk = a * in->x[k] + b * in->y[k] - c, dm = a * in->x[m] + b * in->y[m] - c;
-        if (dk <= 0)
-            out.x[out.n] = in->x[k], out.y[out.n++] = in->y[k];
-        if ((dk < 0 && dm > 0) || (dk > 0 && dm < 0)) {
-            double t = dk / (dk - dm);
-            out.x[out.n] = in->x[k] + t * (in->x[m] - in->x[k]);
-            out.y[out.n++] = in->y[k] + t * (in->y[m] - in->y[k]);
-        }
-    }
-    return out;
-}
-
-/* The intersection of p with convex polygon q. */
-static poly clip_by(const poly *p, const poly *q)
-{
-    poly out = *p;
-    for (int k = 0; k < q->n; k++) {
-        int m = (k + 1) % q->n, o = (k + 2) % q->n;
-        double a = q->y[m] - q->y[k], b = q->x[k] - q->x[m];
-        double c = a * q->x[k] + b * q->y[k];
-        if (a * q->x[o] + b * q->y[o] > c) /* keep the side holding vertex o */
-            a = -a, b = -b, c = -c;
-        out = clip(&out, a, b, c);
-    }
-    return out;
-}
-
-static double area(const poly *p)
-{
-    double s = 0;
-    for (int k = 0; k < p->n; k++) {
-        int m = (k + 1) % p->n;
-        s += p->x[k] * p->y[m] - p->x[m] * p->y[k];
-    }
-    return 0.5 * fabs(s);
-}
-
-/* p scaled to pixel units and clipped to pixel (i, j). */
-static double area_in_pixel(const poly *p, int w, int h, int i, int j)
-{
-    poly q = *p;
-    for (int k = 0; k < q.n; k++)
-        q.x[k] *= w, q.y[k] *= h;
-    poly r = clip(&q, -1, 0, -i);
-    r = clip(&r, 1, 0, i + 1);
-    r = clip(&r, 0, -1, -j);
-    r = clip(&r, 0, 1, j + 1);
-    return area(&r);
-}
-
-static void add_poly(aa_scene *s, const poly *p)
-{
-    assert_int_equal(aa_scene_move_to(s, p->x[0], p->y[0]), AA_OK);
-    for (int k = 1; k < p->n; k++)
-        assert_int_equal(aa_scene_line_to(s, p->x[k], p->y[k]), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
+    oracle_poly q = oracle_poly_scaled(p, w, h);
+    return oracle_poly_area_in_rect(&q, i, j, i + 1, j + 1);
 }
 
 /* Catmull 1978, fig. 1: "The correct integration would be 25% green, 25%
@@ -301,7 +184,6 @@ static void test_catmull_pixel(void **state)
     (void)state;
     const double rects[3][4] = {{0, 0, 0.5, 0.5}, {0, 0.5, 1, 1}, {0.1, 0.1, 0.45, 0.9}};
     const aa_rgb colours[3] = {{{0, 1, 0}}, {{0, 0, 1}}, {{1, 0, 0}}};
-    const char *methods[2] = {"area", "area:integrator=bands"};
     for (int tiles = 1; tiles <= 4; tiles += 3) {
         aa_scene *s = aa_scene_new(black);
         for (int l = 0; l < 3; l++) {
@@ -310,10 +192,10 @@ static void test_catmull_pixel(void **state)
                 for (int q = 0; q < tiles; q++) {
                     const double *r = rects[l];
                     double d = 1.0 / tiles;
-                    poly pr = {4,
+                    oracle_poly pr = {4,
                                {(p + r[0]) * d, (p + r[2]) * d, (p + r[2]) * d, (p + r[0]) * d},
                                {(q + r[1]) * d, (q + r[1]) * d, (q + r[3]) * d, (q + r[3]) * d}};
-                    add_poly(s, &pr);
+                    scenes_add_poly(s, &pr);
                 }
         }
         assert_int_equal(aa_scene_finish(s), AA_OK);
@@ -348,6 +230,41 @@ static void test_catmull_pixel(void **state)
     }
 }
 
+/* What a pixel should be: the three channels of pixel (i, j) of a w x h
+ * image, from the clipper. */
+typedef void clipper_fn(const void *ctx, int w, int h, int i, int j, double want[3]);
+
+/* Both integrators at w x h against the clipper, every pixel and channel:
+ * each off by less than tol[ch], or exactly right where tol[ch] is 0.
+ * Prints and returns the largest difference. */
+static double against_clipper(const char *what, const aa_scene *s, int w, int h, int threads,
+                              clipper_fn *want, const void *ctx, const double tol[3])
+{
+    double worst = 0;
+    for (int m = 0; m < 2; m++) {
+        aa_image img;
+        render(methods[m], s, w, h, threads, &img, NULL);
+        double worst_m = 0;
+        for (int j = 0; j < h; j++)
+            for (int i = 0; i < w; i++) {
+                double v[3];
+                want(ctx, w, h, i, j, v);
+                for (int ch = 0; ch < 3; ch++) {
+                    double got = aa_pixel(&img, i, j)[ch], d = fabs(got - v[ch]);
+                    worst_m = fmax(worst_m, d);
+                    if (!(d < tol[ch] || d == 0.0))
+                        fail_msg("%s %dx%d %s pixel (%d, %d) channel %d: %.17g, clipper %.17g",
+                                 what, w, h, methods[m], i, j, ch, got, v[ch]);
+                }
+            }
+        print_message("%-46s %2dx%-2d %-22s max |area - clipper| %.2e\n", what, w, h,
+                      methods[m], worst_m);
+        aa_image_free(&img);
+        worst = fmax(worst, worst_m);
+    }
+    return worst;
+}
+
 /* Three convex polygons in three layers, front to back (red, green, blue:
  * one channel each, so each channel measures one layer's visible area), on
  * grey.  By inclusion-exclusion over the pixel:
@@ -355,58 +272,52 @@ static void test_catmull_pixel(void **state)
  *     visible(A) = |A|,  visible(B) = |B| - |A B|,
  *     visible(C) = |C| - |A C| - |B C| + |A B C|,
  *
- * each intersection of convex polygons found with the clipper above; the
- * pixel is grey + sum (colour - grey) visible.  Vertices fall inside pixels
- * and edges of all three layers cross inside pixels. */
+ * each intersection of convex polygons found with tests/oracle.c's clipper;
+ * the pixel is grey + sum (colour - grey) visible.  Vertices fall inside
+ * pixels and edges of all three layers cross inside pixels. */
+typedef struct layers {
+    oracle_poly A, B, C, AB, AC, BC, ABC;
+    aa_rgb colours[3], grey;
+} layers;
+
+static void layers_want(const void *ctx, int w, int h, int i, int j, double want[3])
+{
+    const layers *L = ctx;
+    double vis[3];
+    vis[0] = area_in_pixel(&L->A, w, h, i, j);
+    vis[1] = area_in_pixel(&L->B, w, h, i, j) - area_in_pixel(&L->AB, w, h, i, j);
+    vis[2] = area_in_pixel(&L->C, w, h, i, j) - area_in_pixel(&L->AC, w, h, i, j) -
+             area_in_pixel(&L->BC, w, h, i, j) + area_in_pixel(&L->ABC, w, h, i, j);
+    for (int ch = 0; ch < 3; ch++) {
+        want[ch] = L->grey.c[ch];
+        for (int l = 0; l < 3; l++)
+            want[ch] += (L->colours[l].c[ch] - L->grey.c[ch]) * vis[l];
+    }
+}
+
 static void test_polygon_layers(void **state)
 {
     (void)state;
-    const poly A = {3, {0.13, 0.81, 0.37}, {0.21, 0.33, 0.92}};
-    const poly B = {5, {0.4, 0.95, 0.9, 0.6, 0.35}, {0.05, 0.2, 0.7, 0.85, 0.5}};
-    const poly C = {4, {0.05, 0.62, 0.71, 0.12}, {0.55, 0.08, 0.74, 0.97}};
-    const poly *polys[3] = {&A, &B, &C};
-    const aa_rgb colours[3] = {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}};
-    const aa_rgb grey = {{0.25, 0.25, 0.25}};
-    aa_scene *s = aa_scene_new(grey);
+    layers L = {.A = {3, {0.13, 0.81, 0.37}, {0.21, 0.33, 0.92}},
+                .B = {5, {0.4, 0.95, 0.9, 0.6, 0.35}, {0.05, 0.2, 0.7, 0.85, 0.5}},
+                .C = {4, {0.05, 0.62, 0.71, 0.12}, {0.55, 0.08, 0.74, 0.97}},
+                .colours = {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}},
+                .grey = {{0.25, 0.25, 0.25}}};
+    L.AB = oracle_poly_intersect(&L.A, &L.B), L.AC = oracle_poly_intersect(&L.A, &L.C);
+    L.BC = oracle_poly_intersect(&L.B, &L.C), L.ABC = oracle_poly_intersect(&L.AB, &L.C);
+    const oracle_poly *polys[3] = {&L.A, &L.B, &L.C};
+    aa_scene *s = aa_scene_new(L.grey);
     for (int l = 0; l < 3; l++) {
-        assert_int_equal(aa_scene_layer(s, colours[l], l == 1 ? AA_FILL_EVENODD : AA_FILL_NONZERO),
-                         AA_OK);
-        add_poly(s, polys[l]);
+        assert_int_equal(
+            aa_scene_layer(s, L.colours[l], l == 1 ? AA_FILL_EVENODD : AA_FILL_NONZERO), AA_OK);
+        scenes_add_poly(s, polys[l]);
     }
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    poly AB = clip_by(&A, &B), AC = clip_by(&A, &C), BC = clip_by(&B, &C), ABC = clip_by(&AB, &C);
-    const char *methods[2] = {"area", "area:integrator=bands"};
+    const double tol[3] = {1e-13, 1e-13, 1e-13};
     int sizes[3][2] = {{23, 17}, {5, 4}, {1, 1}};
-    for (int z = 0; z < 3; z++) {
-        int w = sizes[z][0], h = sizes[z][1];
-        for (int m = 0; m < 2; m++) {
-            aa_image img;
-            aa_counters c;
-            render(methods[m], s, w, h, 2, &img, &c);
-            double worst = 0;
-            for (int j = 0; j < h; j++)
-                for (int i = 0; i < w; i++) {
-                    double vis[3];
-                    vis[0] = area_in_pixel(&A, w, h, i, j);
-                    vis[1] = area_in_pixel(&B, w, h, i, j) - area_in_pixel(&AB, w, h, i, j);
-                    vis[2] = area_in_pixel(&C, w, h, i, j) - area_in_pixel(&AC, w, h, i, j) -
-                             area_in_pixel(&BC, w, h, i, j) + area_in_pixel(&ABC, w, h, i, j);
-                    for (int ch = 0; ch < 3; ch++) {
-                        double want = grey.c[ch];
-                        for (int l = 0; l < 3; l++)
-                            want += (colours[l].c[ch] - grey.c[ch]) * vis[l];
-                        double d = fabs(aa_pixel(&img, i, j)[ch] - want);
-                        worst = fmax(worst, d);
-                        if (d > 1e-13)
-                            fail_msg("%s %dx%d pixel (%d, %d) channel %d: %.17g, clipper %.17g",
-                                     methods[m], w, h, i, j, ch, aa_pixel(&img, i, j)[ch], want);
-                    }
-                }
-            print_message("three polygon layers %2dx%-2d %-22s max |area - clipper| %.2e\n", w,
-                          h, methods[m], worst);
-            aa_image_free(&img);
-        }
-    }
+    for (int z = 0; z < 3; z++)
+        against_clipper("three polygon layers", s, sizes[z][0], sizes[z][1], 2, layers_want, &L,
+                        tol);
     aa_scene_free(s);
 }
 
@@ -415,46 +326,42 @@ static void test_polygon_layers(void **state)
  * union |A| + |B| - |A B|, even-odd the symmetric difference
  * |A| + |B| - 2 |A B|.  Drawn opposite ways, the overlap has winding 0 and
  * both rules show the symmetric difference. */
+typedef struct two_paths {
+    oracle_poly A, B, AB;
+    int difference; /* 1: the symmetric difference, 0: the union */
+} two_paths;
+
+static void two_paths_want(const void *ctx, int w, int h, int i, int j, double want[3])
+{
+    const two_paths *T = ctx;
+    double a = area_in_pixel(&T->A, w, h, i, j), b = area_in_pixel(&T->B, w, h, i, j);
+    double ab = area_in_pixel(&T->AB, w, h, i, j);
+    want[0] = want[1] = want[2] = T->difference ? a + b - 2 * ab : a + b - ab;
+}
+
 static void test_fill_rules(void **state)
 {
     (void)state;
-    const poly A = {4, {0.1, 0.7, 0.8, 0.2}, {0.15, 0.1, 0.6, 0.75}};
-    const poly B = {3, {0.45, 0.95, 0.3}, {0.3, 0.55, 0.9}};
-    poly Brev = B;
-    for (int k = 0; k < B.n; k++)
-        Brev.x[k] = B.x[B.n - 1 - k], Brev.y[k] = B.y[B.n - 1 - k];
-    poly AB = clip_by(&A, &B);
-    const int w = 19, h = 13;
+    two_paths T = {.A = {4, {0.1, 0.7, 0.8, 0.2}, {0.15, 0.1, 0.6, 0.75}},
+                   .B = {3, {0.45, 0.95, 0.3}, {0.3, 0.55, 0.9}}};
+    oracle_poly Brev = T.B;
+    for (int k = 0; k < T.B.n; k++)
+        Brev.x[k] = T.B.x[T.B.n - 1 - k], Brev.y[k] = T.B.y[T.B.n - 1 - k];
+    T.AB = oracle_poly_intersect(&T.A, &T.B);
+    const double tol[3] = {1e-13, 1e-13, 1e-13};
     for (int rule = 0; rule < 2; rule++)
         for (int rev = 0; rev < 2; rev++) {
             aa_scene *s = aa_scene_new(black);
             assert_int_equal(aa_scene_layer(s, white, rule ? AA_FILL_EVENODD : AA_FILL_NONZERO),
                              AA_OK);
-            add_poly(s, &A);
-            add_poly(s, rev ? &Brev : &B);
+            scenes_add_poly(s, &T.A);
+            scenes_add_poly(s, rev ? &Brev : &T.B);
             assert_int_equal(aa_scene_finish(s), AA_OK);
-            const char *methods[2] = {"area", "area:integrator=bands"};
-            for (int m = 0; m < 2; m++) {
-                aa_image img;
-                aa_counters c;
-                render(methods[m], s, w, h, 1, &img, &c);
-                double worst = 0;
-                for (int j = 0; j < h; j++)
-                    for (int i = 0; i < w; i++) {
-                        double a = area_in_pixel(&A, w, h, i, j), b = area_in_pixel(&B, w, h, i, j);
-                        double ab = area_in_pixel(&AB, w, h, i, j);
-                        double want = rule || rev ? a + b - 2 * ab : a + b - ab;
-                        double d = fabs(aa_pixel(&img, i, j)[0] - want);
-                        worst = fmax(worst, d);
-                        if (d > 1e-13)
-                            fail_msg("%s, %s, %s: pixel (%d, %d) %.17g, clipper %.17g", methods[m],
-                                     rule ? "even-odd" : "nonzero",
-                                     rev ? "opposite orientations" : "same orientation", i, j,
-                                     aa_pixel(&img, i, j)[0], want);
-                    }
-                aa_image_free(&img);
-                assert_true(worst <= 1e-13);
-            }
+            T.difference = rule || rev;
+            char what[64];
+            snprintf(what, sizeof what, "%s, %s", rule ? "even-odd" : "nonzero",
+                     rev ? "opposite orientations" : "same orientation");
+            assert_true(against_clipper(what, s, 19, 13, 1, two_paths_want, &T, tol) <= 1e-13);
             aa_scene_free(s);
         }
 }
@@ -465,55 +372,51 @@ static void test_fill_rules(void **state)
  * with the front strips: visible = sum_k |A_k| - sum_km |A_k B_m|, the
  * strips of a layer being disjoint.  With N = 40 the 1x1 image has 160
  * edges in its pixel (more than Catmull's integrater takes: the bands do
- * it) and 6400 crossings (more than one pass of events holds). */
+ * it) and 6400 crossings (more than one pass of events holds).  Red is the
+ * back layer, blue the front; green is exactly 0. */
+enum { STRIPS = 40 };
+
+typedef struct strips {
+    oracle_poly A[STRIPS], B[STRIPS];
+} strips;
+
+static void strips_want(const void *ctx, int w, int h, int i, int j, double want[3])
+{
+    const strips *S = ctx;
+    double red_area = 0, blue_area = 0;
+    for (int k = 0; k < STRIPS; k++) {
+        red_area += area_in_pixel(&S->A[k], w, h, i, j);
+        blue_area += area_in_pixel(&S->B[k], w, h, i, j);
+        for (int q = 0; q < STRIPS; q++) {
+            oracle_poly AB = oracle_poly_intersect(&S->A[k], &S->B[q]);
+            red_area -= area_in_pixel(&AB, w, h, i, j);
+        }
+    }
+    want[0] = red_area, want[1] = 0.0, want[2] = blue_area;
+}
+
 static void test_many_crossings(void **state)
 {
     (void)state;
-    enum { N = 40 };
-    static poly A[N], B[N];
-    for (int k = 0; k < N; k++) {
-        double a = 0.05 + 0.9 * k / N, t = 0.011;
-        A[k] = (poly){4, {0.02, 0.98, 0.98, 0.02}, {a, a + 0.03, a + 0.03 + t, a + t}};
-        B[k] = (poly){4, {a + 0.02, a + 0.02 + t, a + t, a}, {0.01, 0.01, 0.99, 0.99}};
+    static strips S;
+    for (int k = 0; k < STRIPS; k++) {
+        double a = 0.05 + 0.9 * k / STRIPS, t = 0.011;
+        S.A[k] = (oracle_poly){4, {0.02, 0.98, 0.98, 0.02}, {a, a + 0.03, a + 0.03 + t, a + t}};
+        S.B[k] = (oracle_poly){4, {a + 0.02, a + 0.02 + t, a + t, a}, {0.01, 0.01, 0.99, 0.99}};
     }
     const aa_rgb red = {{1, 0, 0}}, blue = {{0, 0, 1}};
     aa_scene *s = aa_scene_new(black);
     assert_int_equal(aa_scene_layer(s, blue, AA_FILL_NONZERO), AA_OK);
-    for (int k = 0; k < N; k++)
-        add_poly(s, &B[k]);
+    for (int k = 0; k < STRIPS; k++)
+        scenes_add_poly(s, &S.B[k]);
     assert_int_equal(aa_scene_layer(s, red, AA_FILL_EVENODD), AA_OK);
-    for (int k = 0; k < N; k++)
-        add_poly(s, &A[k]);
+    for (int k = 0; k < STRIPS; k++)
+        scenes_add_poly(s, &S.A[k]);
     assert_int_equal(aa_scene_finish(s), AA_OK);
+    const double tol[3] = {1e-13, 0.0, 1e-13};
     int sizes[2][2] = {{1, 1}, {3, 2}};
-    for (int z = 0; z < 2; z++) {
-        int w = sizes[z][0], h = sizes[z][1];
-        const char *methods[2] = {"area", "area:integrator=bands"};
-        for (int m = 0; m < 2; m++) {
-            aa_image img;
-            aa_counters c;
-            render(methods[m], s, w, h, 1, &img, &c);
-            for (int j = 0; j < h; j++)
-                for (int i = 0; i < w; i++) {
-                    double red_area = 0, blue_area = 0;
-                    for (int k = 0; k < N; k++) {
-                        red_area += area_in_pixel(&A[k], w, h, i, j);
-                        blue_area += area_in_pixel(&B[k], w, h, i, j);
-                        for (int q = 0; q < N; q++) {
-                            poly AB = clip_by(&A[k], &B[q]);
-                            red_area -= area_in_pixel(&AB, w, h, i, j);
-                        }
-                    }
-                    const double *px = aa_pixel(&img, i, j);
-                    if (!(fabs(px[0] - red_area) < 1e-13 && fabs(px[2] - blue_area) < 1e-13 &&
-                          px[1] == 0.0))
-                        fail_msg("%s %dx%d pixel (%d, %d): (%.17g, %.17g, %.17g), clipper (%.17g, "
-                                 "0, %.17g)",
-                                 methods[m], w, h, i, j, px[0], px[1], px[2], red_area, blue_area);
-                }
-            aa_image_free(&img);
-        }
-    }
+    for (int z = 0; z < 2; z++)
+        against_clipper("strips crossing", s, sizes[z][0], sizes[z][1], 1, strips_want, &S, tol);
     aa_scene_free(s);
 }
 
@@ -540,8 +443,8 @@ static void test_arc_under_layer(void **state)
     const aa_rgb grey = {{0.4, 0.4, 0.4}};
     aa_scene *s = aa_scene_new(black);
     assert_int_equal(aa_scene_layer(s, grey, AA_FILL_NONZERO), AA_OK);
-    poly rect = {4, {0.3, 0.6, 0.6, 0.3}, {-0.5, -0.5, 1.5, 1.5}};
-    add_poly(s, &rect);
+    oracle_poly rect = {4, {0.3, 0.6, 0.6, 0.3}, {-0.5, -0.5, 1.5, 1.5}};
+    scenes_add_poly(s, &rect);
     assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
     assert_int_equal(aa_scene_move_to(s, 0.1, 0.9), AA_OK);
     assert_int_equal(aa_scene_quad_to(s, 0.5, -0.3, 0.9, 0.9), AA_OK);
@@ -554,10 +457,7 @@ static void test_arc_under_layer(void **state)
         aa_image img;
         aa_counters c;
         render("area", s, w, h, 2, &img, &c);
-        double mean = 0;
-        for (int k = 0; k < w * h; k++)
-            mean += img.v[3 * k];
-        mean /= w * h;
+        double mean = support_channel_mean(&img, 0);
         if (!(fabs(mean - want) < 1e-14))
             fail_msg("%dx%d: mean %.17g, closed form %.17g", w, h, mean, want);
         aa_image_free(&img);
@@ -615,17 +515,12 @@ static void test_random_polygons(void **state)
         aa_scene *s = random_scene((uint64_t)k, 0.0);
         int w = sizes[k % 4][0], h = sizes[k % 4][1];
         double t = (k % 3) * 0.37;
-        aa_scene *placed = aa_scene_place(s, w, h, t, 0.31, -0.17);
-        aa_filter f;
-        aa_filter_default(&f);
+        const support_view v = view_at(w, h, t, 0.31, -0.17, 1);
         aa_image ref, bound, img;
-        assert_int_equal(aa_image_alloc(&ref, w, h, 3), AA_OK);
-        assert_int_equal(aa_image_alloc(&bound, w, h, 1), AA_OK);
-        assert_int_equal(aa_truth_render(placed, &f, 1, &ref, &bound, NULL), AA_OK);
-        const char *methods[2] = {"area", "area:integrator=bands"};
-        for (int m = 0; m < 2; m++) {
+        support_reference(s, &v, &ref, &bound, NULL);
+            for (int m = 0; m < 2; m++) {
             aa_counters c;
-            assert_int_equal(render_at(methods[m], s, w, h, t, 0.31, -0.17, 1, &img, &c), AA_OK);
+            support_render_must(methods[m], s, &v, &img, &c);
             for (int j = 0; j < h; j++)
                 for (int i = 0; i < w; i++)
                     for (int ch = 0; ch < 3; ch++) {
@@ -643,7 +538,6 @@ static void test_random_polygons(void **state)
         }
         aa_image_free(&ref);
         aa_image_free(&bound);
-        aa_scene_free(placed);
         aa_scene_free(s);
     }
     print_message("60 random polygon scenes: max |area - reference| %.2e where its bound is "
@@ -665,7 +559,7 @@ static void test_integrators_agree(void **state)
         aa_counters c;
         render("area:integrator=catmull", s, w, h, 1, &a, &c);
         render("area:integrator=bands", s, w, h, 2, &b, &c);
-        double d = max_diff(&a, &b, NULL, NULL);
+        double d = support_max_diff(&a, &b, NULL, NULL);
         if (!(d <= 1e-13))
             fail_msg("scene %d %dx%d: Catmull's integrater and the bands differ by %.3e", k, w,
                      h, d);
@@ -690,10 +584,9 @@ static void test_counters_and_uniform(void **state)
     const aa_rgb fg = {{0.2, 0.6, 0.9}}, bg = {{0.05, 0.1, 0.15}};
     aa_scene *s = aa_scene_new(bg);
     assert_int_equal(aa_scene_layer(s, fg, AA_FILL_NONZERO), AA_OK);
-    poly sq = {4, {0.31, 0.69, 0.69, 0.31}, {0.31, 0.31, 0.69, 0.69}};
-    add_poly(s, &sq);
+    oracle_poly sq = {4, {0.31, 0.69, 0.69, 0.31}, {0.31, 0.31, 0.69, 0.69}};
+    scenes_add_poly(s, &sq);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    const char *methods[2] = {"area", "area:integrator=bands"};
     for (int m = 0; m < 2; m++) {
         aa_image img;
         aa_counters c;
@@ -728,7 +621,7 @@ static void test_counters_and_uniform(void **state)
 static void test_threads_identical(void **state)
 {
     (void)state;
-    aa_scene *scenes[3] = {pattern("crow"), random_scene(7, 0.3), random_scene(8, 0.0)};
+    aa_scene *scenes[3] = {scenes_pattern("crow"), random_scene(7, 0.3), random_scene(8, 0.0)};
     for (int k = 0; k < 3; k++) {
         aa_image a, b;
         aa_counters ca, cb;
@@ -763,17 +656,18 @@ static void test_filters_refused(void **state)
     assert_int_equal(aa_method_parse("area:integrator=exact", &box, &spec), AA_EINVAL);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_crow_reference),     cmocka_unit_test(test_crow_oracle),
-        cmocka_unit_test(test_crow_other),         cmocka_unit_test(test_crow_large),
-        cmocka_unit_test(test_catmull_pixel),      cmocka_unit_test(test_polygon_layers),
-        cmocka_unit_test(test_fill_rules),         cmocka_unit_test(test_many_crossings),
-        cmocka_unit_test(test_arc_under_layer),
-        cmocka_unit_test(test_random_polygons),    cmocka_unit_test(test_integrators_agree),
-        cmocka_unit_test(test_counters_and_uniform), cmocka_unit_test(test_threads_identical),
-        cmocka_unit_test(test_filters_refused),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_crow_reference),
+             cmocka_unit_test(test_crow_oracle),
+             cmocka_unit_test(test_crow_other),
+             cmocka_unit_test(test_crow_large),
+             cmocka_unit_test(test_catmull_pixel),
+             cmocka_unit_test(test_polygon_layers),
+             cmocka_unit_test(test_fill_rules),
+             cmocka_unit_test(test_many_crossings),
+             cmocka_unit_test(test_arc_under_layer),
+             cmocka_unit_test(test_random_polygons),
+             cmocka_unit_test(test_integrators_agree),
+             cmocka_unit_test(test_counters_and_uniform),
+             cmocka_unit_test(test_threads_identical),
+             cmocka_unit_test(test_filters_refused))

@@ -3,10 +3,12 @@
  * line"):
  * bad input gets exit status 2 and a message naming the problem and what is
  * accepted, an unwritable output 3, and a refused command writes nothing.
- * The command under test is $AABENCH (set by scripts/run-tests.sh); one
- * test runs the command line in-process instead (cli_main, in a child).
+ * The command under test is $AABENCH (set by the Makefile), run by
+ * tests/support.c; one test runs the command line in-process instead
+ * (cli_main, in a child).
  */
 #include "bench.h"
+#include "support.h"
 
 #include <fcntl.h>
 #include <setjmp.h>
@@ -23,43 +25,19 @@
 
 #include "cli.h"
 
-static char dir[] = "/tmp/aabench-cli-XXXXXX";
+static char dir[200];
 static char output[8192];
 
 /* Run aabench with args (NULL-terminated); capture stdout+stderr. */
 static int run(const char *const *args)
 {
-    const char *exe = getenv("AABENCH");
-    char log[4096];
-    snprintf(log, sizeof log, "%s/log", dir);
-    pid_t pid = fork();
-    if (pid == 0) {
-        int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(fd, 1);
-        dup2(fd, 2);
-        const char *argv[32] = {exe};
-        for (int k = 0; args[k] && k < 30; k++)
-            argv[k + 1] = args[k];
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
-    int status;
-    waitpid(pid, &status, 0);
-    FILE *f = fopen(log, "r");
-    size_t n = f ? fread(output, 1, sizeof output - 1, f) : 0;
-    output[n] = '\0';
-    if (f)
-        fclose(f);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+    return support_aabench(args, output, sizeof output);
 }
 
-/* The folder holds only the log: nothing else was written, not even a
- * temporary file. */
+/* The folder is empty: nothing was written, not even a temporary file. */
 static void folder_clean(void)
 {
-    char cmd[4200];
-    snprintf(cmd, sizeof cmd, "test \"$(ls -A %s | grep -v '^log$' | wc -l)\" = 0", dir);
-    if (system(cmd) != 0)
+    if (support_count_entries(dir, NULL) != 0)
         fail_msg("files were left in %s", dir);
 }
 
@@ -152,22 +130,13 @@ static void test_refusals(void **state)
         expect(code, needle, a);                                                               \
     } while (0)
 
-/* Write `len` bytes to path (a file outside the checked folder). */
-static void put_file(const char *path, const char *data, size_t len)
-{
-    FILE *f = fopen(path, "wb");
-    assert_non_null(f);
-    assert_int_equal(fwrite(data, 1, len, f), len);
-    fclose(f);
-}
-
 /* Bad input to every other command: exit 2 for bad input, 3 for files that
  * cannot be read or written, a message, and nothing written. */
 static void test_refusals_everywhere(void **state)
 {
     (void)state;
-    char in[] = "/tmp/aabench-cli-in-XXXXXX";
-    assert_non_null(mkdtemp(in));
+    char in[256];
+    assert_int_equal(support_tmpdir(in, sizeof in, "cli-in"), 0);
     char ok[300], trunc[300], shortf[300], badnum[300], nanf[300], huge[300], empty[300],
         folder[300], pfm[300], csv[300], under[300], sub[300], o[300];
 #define PATH(v, name) snprintf(v, sizeof v, "%s/" name, in)
@@ -178,14 +147,14 @@ static void test_refusals_everywhere(void **state)
 #undef PATH
     snprintf(o, sizeof o, "%s/x.exr", dir);
     static const char good[] = "# aabench 2 1 3\n0 0 0.5 0.25 1\n1 0 0 0 0.125\n";
-    put_file(ok, good, sizeof good - 1);
-    put_file(shortf, "# aabench 2 2 1\n0 0 1\n", 22);
-    put_file(badnum, "# aabench 2 1 3\n0 0 0.5 x 1\n1 0 0 0 0.125\n", 41);
-    put_file(nanf, "# aabench 1 1 1\n0 0 nan\n", 24);
-    put_file(huge, "# aabench 99999999 99999999 3\n", 30);
-    put_file(empty, "", 0);
-    put_file(pfm, "Pf\n2 1\n-1.0\n\0\0\0", 15);
-    put_file(csv, "a,b\n1\n", 6);
+    support_write_file(ok, good, sizeof good - 1);
+    support_write_file(shortf, "# aabench 2 2 1\n0 0 1\n", 22);
+    support_write_file(badnum, "# aabench 2 1 3\n0 0 0.5 x 1\n1 0 0 0 0.125\n", 41);
+    support_write_file(nanf, "# aabench 1 1 1\n0 0 nan\n", 24);
+    support_write_file(huge, "# aabench 99999999 99999999 3\n", 30);
+    support_write_file(empty, "", 0);
+    support_write_file(pfm, "Pf\n2 1\n-1.0\n\0\0\0", 15);
+    support_write_file(csv, "a,b\n1\n", 6);
     assert_int_equal(mkdir(folder, 0755), 0);
     {
         /* a real .exr cut short */
@@ -197,7 +166,7 @@ static void test_refusals_everywhere(void **state)
         char head[100];
         assert_int_equal(fread(head, 1, sizeof head, f), sizeof head);
         fclose(f);
-        put_file(trunc, head, sizeof head);
+        support_write_file(trunc, head, sizeof head);
     }
     /* compare: corrupt and unreadable images */
     T(3, "the file ends before pixel", "compare", ok, shortf);
@@ -251,9 +220,7 @@ static void test_refusals_everywhere(void **state)
     T(3, "is a folder, not a file", "truth", "-p", "crow", "-s", "8x8", "-o", folder);
     T(3, "is a file, not a folder", "render", "-p", "crow", "-m", "point", "-s", "8x8", "-o", under);
     (void)o;
-    char cmd[400];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", in);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(in), 0);
 }
 #undef T
 
@@ -375,38 +342,25 @@ static void test_cache(void **state)
     assert_null(strstr(output, "from the cache"));
     aa_image_free(&a);
     aa_image_free(&b);
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "rm -rf %s %s", cache, out_txt);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(cache), 0);
+    assert_int_equal(unlink(out_txt), 0);
 }
 
 static int setup(void **state)
 {
-    (void)state;
-    if (!getenv("AABENCH") || !getenv("AABENCH_PLUGIN") || !mkdtemp(dir))
+    if (!getenv("AABENCH") || !getenv("AABENCH_PLUGIN") ||
+        support_tmpdir(dir, sizeof dir, "cli") != 0)
         return -1;
     snprintf(out_exr, sizeof out_exr, "%s/out.exr", dir);
     snprintf(out_txt, sizeof out_txt, "%s/out.txt", dir);
+    *state = dir; /* removed by support_teardown_dir */
     return 0;
 }
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[4200];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    return system(cmd);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_refusals),
-        cmocka_unit_test(test_refusals_everywhere),
-        cmocka_unit_test(test_success),
-        cmocka_unit_test(test_cli_main),
-        cmocka_unit_test(test_render),
-        cmocka_unit_test(test_cache),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+SUPPORT_MAIN(setup, support_teardown_dir,
+             cmocka_unit_test(test_refusals),
+             cmocka_unit_test(test_refusals_everywhere),
+             cmocka_unit_test(test_success),
+             cmocka_unit_test(test_cli_main),
+             cmocka_unit_test(test_render),
+             cmocka_unit_test(test_cache))

@@ -51,6 +51,7 @@
 #include "bench.h"
 #include "oracle.h"
 #include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -308,13 +309,10 @@ static void against_brute(const char *what, const aa_scene *s, const brute_scene
 {
     aa_filter f;
     assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    aa_scene *placed = aa_scene_place(s, b->W, b->H, 0, 0, 0);
-    assert_non_null(placed);
     aa_image ref, bound;
     aa_truth_stats st;
-    assert_int_equal(aa_image_alloc(&ref, b->W, b->H, 3), AA_OK);
-    assert_int_equal(aa_image_alloc(&bound, b->W, b->H, 1), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, &ref, &bound, &st), AA_OK);
+    support_reference(s, &(support_view){.w = b->W, .h = b->H, .filter = filter}, &ref, &bound,
+                      &st);
     assert_true(st.max_bound <= AA_TRUTH_BOUND);
     gsl_set_error_handler_off();
     gsl_integration_workspace *ws = gsl_integration_workspace_alloc(20000);
@@ -342,15 +340,11 @@ static void against_brute(const char *what, const aa_scene *s, const brute_scene
     gsl_integration_workspace_free(ws);
     aa_image_free(&ref);
     aa_image_free(&bound);
-    aa_scene_free(placed);
 }
 
 static void crow_case(const char *pattern, oracle_crow cp, int W, int H, const char *filter)
 {
-    aa_spec spec;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse(pattern, &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
+    aa_scene *s = scenes_pattern(pattern);
     brute_scene b;
     memset(&b, 0, sizeof b);
     b.crow = 1;
@@ -424,15 +418,6 @@ static double cone_cut_quadrature(double delta)
     return 6.0 / M_PI * sum;
 }
 
-/* White right of the line through (px, py) pattern units at `angle`, on
- * black (tests/scenes.c). */
-static aa_scene *half_plane(double px, double py, double angle)
-{
-    aa_scene *s = scenes_half_plane(px, py, angle);
-    assert_non_null(s);
-    return s;
-}
-
 #define HW 24
 
 static void half_plane_case(const char *filter, double px, double py, double angle)
@@ -440,12 +425,11 @@ static void half_plane_case(const char *filter, double px, double py, double ang
     aa_filter f;
     assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
     double R = f.spec.v[0];
-    aa_scene *s = half_plane(px / HW, py / HW, angle);
-    aa_scene *placed = aa_scene_place(s, HW, HW, 0, 0, 0);
+    aa_scene *s = scenes_half_plane(px / HW, py / HW, angle); /* white right of the line */
     aa_image img;
     aa_truth_stats st;
-    assert_int_equal(aa_image_alloc(&img, HW, HW, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 2, &img, NULL, &st), AA_OK);
+    support_reference(s, &(support_view){.w = HW, .h = HW, .filter = filter, .threads = 2}, &img,
+                      NULL, &st);
     assert_true(st.max_bound <= AA_TRUTH_BOUND);
     double nx = cos(angle), ny = -sin(angle), worst = 0.0;
     for (int j = 0; j < HW; j++)
@@ -468,7 +452,6 @@ static void half_plane_case(const char *filter, double px, double py, double ang
     print_message("%s half-plane angle %.2f: max error against the closed form %.2e\n", filter,
                   angle, worst);
     aa_image_free(&img);
-    aa_scene_free(placed);
     aa_scene_free(s);
 }
 
@@ -498,19 +481,15 @@ static void test_edge_through_centre(void **state)
     const char *filters[] = {"cone", "cone:r=0.6", "cone:r=3"};
     for (int q = 0; q < 3; q++)
         for (int k = 0; k < 6; k++) {
-            aa_filter f;
-            assert_int_equal(aa_filter_parse(filters[q], &f), AA_OK);
-            aa_scene *s = half_plane(12.5 / HW, 7.5 / HW, angles[k]);
-            aa_scene *placed = aa_scene_place(s, HW, HW, 0, 0, 0);
+            aa_scene *s = scenes_half_plane(12.5 / HW, 7.5 / HW, angles[k]);
             aa_image img;
-            assert_int_equal(aa_image_alloc(&img, HW, HW, 3), AA_OK);
-            assert_int_equal(aa_truth_render(placed, &f, 1, &img, NULL, NULL), AA_OK);
+            const support_view view = {.w = HW, .h = HW, .filter = filters[q], .threads = 1};
+            support_reference(s, &view, &img, NULL, NULL);
             double v = aa_pixel(&img, 12, 7)[1];
             if (!(fabs(v - 0.5) <= 1e-13))
                 fail_msg("%s edge through the centre at angle %g: %.17g", filters[q],
                          angles[k], v);
             aa_image_free(&img);
-            aa_scene_free(placed);
             aa_scene_free(s);
         }
 }
@@ -524,36 +503,23 @@ static void test_uniform(void **state)
     const aa_rgb c = {{0.25, 0.5, 0.75}};
     aa_scene *s = aa_scene_new(c);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    aa_filter f;
-    assert_int_equal(aa_filter_parse("cone:r=1.5", &f), AA_OK);
-    aa_scene *placed = aa_scene_place(s, 9, 7, 0, 0, 0);
     aa_image img;
     aa_truth_stats st;
-    assert_int_equal(aa_image_alloc(&img, 9, 7, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, &img, NULL, &st), AA_OK);
+    support_reference(s, &(support_view){.w = 9, .h = 7, .filter = "cone:r=1.5"}, &img, NULL,
+                      &st);
     assert_true(st.integrated == 0 && st.filled == 63);
     for (int j = 0; j < 7; j++)
         for (int i = 0; i < 9; i++)
             for (int ch = 0; ch < 3; ch++)
                 assert_true(aa_pixel(&img, i, j)[ch] == c.c[ch]);
     aa_image_free(&img);
-    aa_scene_free(placed);
     aa_scene_free(s);
     /* the line x + y = 20.5 px (45 degrees) on 24x24: pixel (9, 9) has its
      * centre at distance 1.5 / sqrt 2 = 1.06 > r = 1 of it, but the line
      * enters its square [8.5, 10.5]^2 */
-    s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_int_equal(aa_scene_layer(s, c, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 20.5 / HW, 0.0), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 1.0, 0.0), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 1.0, 1.0), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.0, 1.0), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.0, 20.5 / HW), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    assert_int_equal(aa_filter_parse("cone", &f), AA_OK);
-    placed = aa_scene_place(s, HW, HW, 0, 0, 0);
-    assert_int_equal(aa_image_alloc(&img, HW, HW, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, &img, NULL, &st), AA_OK);
+    const double xy[] = {20.5 / HW, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 20.5 / HW};
+    s = scenes_polygon(xy, 5, c, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO);
+    support_reference(s, &(support_view){.w = HW, .h = HW, .filter = "cone"}, &img, NULL, &st);
     const int inside[][2] = {{9, 9}, {11, 11}, {2, 16}};
     for (int k = 0; k < 3; k++) {
         int i = inside[k][0], j = inside[k][1];
@@ -565,7 +531,6 @@ static void test_uniform(void **state)
         }
     }
     aa_image_free(&img);
-    aa_scene_free(placed);
     aa_scene_free(s);
 }
 
@@ -575,17 +540,14 @@ static void test_threads_and_key(void **state)
 {
     (void)state;
     aa_spec spec;
-    aa_scene *s, *placed;
     aa_filter f;
     assert_int_equal(aa_pattern_parse("crow", &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
     assert_int_equal(aa_filter_parse("cone:r=1.25", &f), AA_OK);
-    placed = aa_scene_place(s, 33, 21, 0, 0, 0);
     aa_image a, b;
-    assert_int_equal(aa_image_alloc(&a, 33, 21, 3), AA_OK);
-    assert_int_equal(aa_image_alloc(&b, 33, 21, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 1, &a, NULL, NULL), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 2, &b, NULL, NULL), AA_OK);
+    support_view v = {.w = 33, .h = 21, .filter = "cone:r=1.25", .threads = 1};
+    support_pattern_reference("crow", &v, &a, NULL, NULL);
+    v.threads = 2;
+    support_pattern_reference("crow", &v, &b, NULL, NULL);
     assert_memory_equal(a.v, b.v, sizeof(double) * 33 * 21 * 3);
     aa_view view = {spec, 33, 21, f, 0.0, 0.0, 0.0};
     char key[2048];
@@ -593,31 +555,20 @@ static void test_threads_and_key(void **state)
     assert_non_null(strstr(key, "filter cone:r=1.25"));
     aa_image_free(&a);
     aa_image_free(&b);
-    aa_scene_free(placed);
-    aa_scene_free(s);
 }
 
 static void render_method(const char *method, const char *filter, const aa_scene *s, int w,
                           int h, aa_image *img)
 {
-    aa_filter f;
-    aa_spec spec;
-    aa_job job;
-    aa_counters c;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    if (aa_method_parse(method, &f, &spec))
-        fail_msg("%s -f %s: %s", method, filter, aa_last_error());
-    assert_int_equal(aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 7, 2), AA_OK);
-    assert_int_equal(aa_image_alloc(img, w, h, 3), AA_OK);
-    assert_int_equal(aa_method_run(&spec, &job, 1, img, &c, NULL), AA_OK);
-    aa_job_free(&job);
+    const support_view v = {.w = w, .h = h, .filter = filter, .seed = 7, .threads = 2};
+    support_render_must(method, s, &v, img, NULL);
 }
 
 static void test_samplers(void **state)
 {
     (void)state;
     /* the edge at x = 12.5 + 0.5 px: pixel 12's right column of samples */
-    aa_scene *s = half_plane(13.0 / HW, 0.5, 0.0);
+    aa_scene *s = scenes_half_plane(13.0 / HW, 0.5, 0.0);
     aa_image img;
     render_method("supersample", "cone", s, HW, HW, &img);
     double c = 1.0 - 2.0 * sqrt(2.0) / 3.0, want = (1.0 / 3.0 + 2.0 * c) / (7.0 / 3.0 + 4.0 * c);
@@ -629,7 +580,7 @@ static void test_samplers(void **state)
     aa_scene_free(s);
     /* jitter, 4096 samples a pixel, against the closed form of a slanted
      * half-plane (the estimator's spread is about 0.5 / sqrt(4096 pi / 4)) */
-    s = half_plane(10.3 / HW, 12.2 / HW, 0.5);
+    s = scenes_half_plane(10.3 / HW, 12.2 / HW, 0.5);
     render_method("jitter:spp=4096", "cone", s, HW, HW, &img);
     double worst = 0.0, nx = cos(0.5), ny = -sin(0.5);
     for (int j = 0; j < HW; j++)
@@ -648,16 +599,11 @@ static void test_samplers(void **state)
     aa_scene_free(s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_half_plane_closed_form),
-        cmocka_unit_test(test_edge_through_centre),
-        cmocka_unit_test(test_uniform),
-        cmocka_unit_test(test_threads_and_key),
-        cmocka_unit_test(test_samplers),
-        cmocka_unit_test(test_polygon_polar),
-        cmocka_unit_test(test_crow_polar),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_half_plane_closed_form),
+             cmocka_unit_test(test_edge_through_centre),
+             cmocka_unit_test(test_uniform),
+             cmocka_unit_test(test_threads_and_key),
+             cmocka_unit_test(test_samplers),
+             cmocka_unit_test(test_polygon_polar),
+             cmocka_unit_test(test_crow_polar))

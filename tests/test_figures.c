@@ -4,10 +4,13 @@
  * and index.html must exist, and a caption's RMSE must equal one recomputed
  * here from scratch: the same method run on its own (aa_method_run), the
  * reference rendered directly (aa_truth_render, not through the cache) and
- * the RMSE summed in this file.  An unwritable --out must give exit status
- * 3 and write nothing.  The command under test is $AABENCH.
+ * the RMSE summed by the tests' own code (tests/support.c).  An unwritable
+ * --out must give exit status 3 and write nothing.  The command under test
+ * is $AABENCH.
  */
 #include "bench.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -22,7 +25,7 @@
 
 #include <cmocka.h>
 
-static char dir[] = "/tmp/aabench-fig-XXXXXX";
+static char dir[256];
 
 static int exists(const char *name)
 {
@@ -36,13 +39,8 @@ static char *slurp(const char *name)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
     static char buf[65536];
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
+    return support_read_file(path, buf, sizeof buf, NULL);
 }
 
 /* The "rmse:" value of panel `panel` (1-based) in a caption. */
@@ -61,30 +59,16 @@ static double caption_rmse(const char *text, int panel)
  * every step done here. */
 static double recompute_rmse(const char *pattern, int w, int h, const char *method)
 {
-    aa_spec ps, ms;
-    aa_filter f;
-    aa_scene *scene = NULL;
-    aa_job job;
+    aa_scene *scene = scenes_pattern(pattern);
     aa_image img, ref;
     aa_counters counters;
-    assert_int_equal(aa_pattern_parse(pattern, &ps), 0);
-    assert_int_equal(aa_filter_parse("box", &f), 0);
-    assert_int_equal(aa_pattern_scene(&ps, &scene), 0);
-    assert_int_equal(aa_method_parse(method, &f, &ms), 0);
-    assert_int_equal(aa_job_init(&job, scene, w, h, 0, 0, 0, &f, 1, 1), 0);
-    assert_int_equal(aa_image_alloc(&img, w, h, 3), 0);
-    assert_int_equal(aa_method_run(&ms, &job, 1, &img, &counters, NULL), 0);
-    assert_int_equal(aa_image_alloc(&ref, w, h, 3), 0);
-    assert_int_equal(aa_truth_render(job.placed, &f, 0, &ref, NULL, NULL), 0);
-    double sum = 0;
-    size_t n = (size_t)w * h * 3;
-    for (size_t k = 0; k < n; k++)
-        sum += (img.v[k] - ref.v[k]) * (img.v[k] - ref.v[k]);
+    support_render(method, scene, "box", w, h, 1, &img, &counters);
+    support_reference(scene, &(support_view){.w = w, .h = h, .filter = "box"}, &ref, NULL, NULL);
+    double e = support_rmse(&img, &ref);
     aa_image_free(&img);
     aa_image_free(&ref);
-    aa_job_free(&job);
     aa_scene_free(scene);
-    return sqrt(sum / (double)n);
+    return e;
 }
 
 static void test_two_figures(void **state)
@@ -134,29 +118,14 @@ static void test_two_figures(void **state)
 /* Run $AABENCH with args; returns the exit status. */
 static int run(const char *const *args)
 {
-    const char *exe = getenv("AABENCH");
-    if (!exe)
-        skip();
-    pid_t pid = fork();
-    if (pid == 0) {
-        const char *argv[16] = {exe};
-        for (int k = 0; args[k] && k < 14; k++)
-            argv[k + 1] = args[k];
-        freopen("/dev/null", "w", stdout);
-        freopen("/dev/null", "w", stderr);
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
-    int status;
-    waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+    return support_aabench(args, NULL, 0);
 }
 
 static void test_unwritable_out(void **state)
 {
     (void)state;
-    char base[] = "/tmp/aabench-figw-XXXXXX", file[1024], out[2048];
-    assert_non_null(mkdtemp(base));
+    char base[256], file[1024], out[2048];
+    assert_int_equal(support_tmpdir(base, sizeof base, "figw"), 0);
     snprintf(file, sizeof file, "%s/plain", base);
     FILE *f = fopen(file, "w");
     assert_non_null(f);
@@ -166,30 +135,25 @@ static void test_unwritable_out(void **state)
     const char *args[] = {"figures", "-q", "--only", "fig-catmull-1", "--out", out, NULL};
     assert_int_equal(run(args), 3);
     /* nothing was written: the folder holds only the plain file */
-    char cmd[4300];
-    snprintf(cmd, sizeof cmd, "test \"$(ls -A %s)\" = plain", base);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_count_entries(base, NULL), 1);
+    assert_int_equal(support_count_entries(base, "plain"), 0);
     /* an unknown figure is bad input, refused before any work */
     snprintf(out, sizeof out, "%s/new", base);
     const char *bad[] = {"figures", "--only", "fig-nothing", "--out", out, NULL};
     assert_int_equal(run(bad), 2);
-    assert_int_equal(system(cmd), 0);
-    snprintf(cmd, sizeof cmd, "rm -rf %s", base);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_count_entries(base, NULL), 1);
+    assert_int_equal(support_count_entries(base, "plain"), 0);
+    assert_int_equal(support_rmtree(base), 0);
 }
 
-int main(void)
+static int setup(void **state)
 {
-    if (!mkdtemp(dir))
-        return 1;
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_two_figures),
-        cmocka_unit_test(test_unwritable_out),
-    };
-    int failed = cmocka_run_group_tests(tests, NULL, NULL);
-    char cmd[4200];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0)
-        failed++;
-    return failed;
+    if (support_tmpdir(dir, sizeof dir, "fig") != 0)
+        return -1;
+    *state = dir; /* removed by support_teardown_dir */
+    return 0;
 }
+
+SUPPORT_MAIN(setup, support_teardown_dir,
+             cmocka_unit_test(test_two_figures),
+             cmocka_unit_test(test_unwritable_out))

@@ -9,6 +9,7 @@
  * rows' masses against Simpson across v (volume 1), and known values.
  */
 #include "bench.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -170,13 +171,8 @@ static void test_refusals(void **state)
             fail_msg("filter \"%s\" accepted", bad[k]);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cdf_is_integral),
-        cmocka_unit_test(test_known_values),
-        cmocka_unit_test(test_cone_rows),
-        cmocka_unit_test(test_refusals),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_cdf_is_integral),
+             cmocka_unit_test(test_known_values),
+             cmocka_unit_test(test_cone_rows),
+             cmocka_unit_test(test_refusals))

@@ -9,6 +9,7 @@
 #define AA_FUZZ_NO_MAIN
 #include "fuzz/fuzz_image.c"
 #include "fuzz/fuzz_spec.c"
+#include "support.h"
 
 #include <dirent.h>
 #include <setjmp.h>
@@ -67,11 +68,6 @@ static void test_image_inputs(void **state)
     feed("tests/fuzz/regress/image", aa_fuzz_image);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_spec_inputs),
-        cmocka_unit_test(test_image_inputs),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_spec_inputs),
+             cmocka_unit_test(test_image_inputs))

@@ -3,7 +3,7 @@
  * image_txt.c, files.c, oiio.cpp), and the OpenImageIO module loaded only
  * when a file needs it.
  *
- * Every test works in a fresh folder made with mkdtemp; the teardown checks
+ * Every test works in a fresh folder (support_tmpdir); the teardown checks
  * that no temporary file (a name with a leading dot) was left behind, then
  * removes the folder.  Known answers say where they come from: none was
  * obtained by running the code under test.
@@ -31,8 +31,8 @@
 #include <unistd.h>
 
 #include <sys/wait.h>
-
 #include "bench.h"
+#include "support.h"
 
 /* ------------------------------------------------------------------------
  * The test folder
@@ -47,10 +47,7 @@ static int setup(void **state)
     fixture *fx = calloc(1, sizeof *fx);
     if (fx == NULL)
         return -1;
-    const char *tmp = getenv("TMPDIR");
-    snprintf(fx->dir, sizeof fx->dir, "%s/aabench-test-image-XXXXXX",
-             tmp && *tmp ? tmp : "/tmp");
-    if (mkdtemp(fx->dir) == NULL) {
+    if (support_tmpdir(fx->dir, sizeof fx->dir, "test-image") != 0) {
         free(fx);
         return -1;
     }
@@ -71,21 +68,13 @@ static int count_leftover(const char *path, const struct stat *st, int flag, str
     return 0;
 }
 
-static int remove_one(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-    (void)st;
-    (void)flag;
-    (void)ftw;
-    return remove(path);
-}
-
 static int teardown(void **state)
 {
     fixture *fx = *state;
     leftovers = 0;
     nftw(fx->dir, count_leftover, 16, FTW_PHYS);
     int failed = leftovers != 0;
-    if (nftw(fx->dir, remove_one, 16, FTW_DEPTH | FTW_PHYS) != 0)
+    if (support_rmtree(fx->dir) != 0)
         failed = 1;
     free(fx);
     return failed ? -1 : 0;
@@ -109,33 +98,14 @@ static int exists(const char *path)
 /* Entries in a folder, besides "." and "..". */
 static int entries(const char *dir)
 {
-    DIR *d = opendir(dir);
-    assert_non_null(d);
-    int n = 0;
-    for (struct dirent *e; (e = readdir(d)) != NULL;)
-        n += strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0;
-    closedir(d);
-    return n;
-}
-
-static void write_raw(const char *path, const char *data, size_t len)
-{
-    FILE *f = fopen(path, "wb");
-    assert_non_null(f);
-    assert_int_equal(fwrite(data, 1, len, f), len);
-    assert_int_equal(fclose(f), 0);
+    return support_count_entries(dir, NULL);
 }
 
 /* The whole content of a small file, NUL-terminated. */
 static char *slurp(const char *path, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
     static char buf[1 << 16];
-    *len = fread(buf, 1, sizeof buf - 1, f);
-    buf[*len] = '\0';
-    fclose(f);
-    return buf;
+    return support_read_file(path, buf, sizeof buf, len);
 }
 
 /* The refusal has this status and a message naming `what` (and "what:line:"
@@ -166,11 +136,17 @@ static void fill_distinct(aa_image *im, double scale)
                 aa_pixel(im, i, j)[k] = scale * (1 + i + 16 * j + 256 * k);
 }
 
+/* The image is w x h with c channels. */
+static void assert_shape(const aa_image *im, int w, int h, int c)
+{
+    assert_int_equal(im->w, w);
+    assert_int_equal(im->h, h);
+    assert_int_equal(im->c, c);
+}
+
 static void assert_same_bits(const aa_image *a, const aa_image *b)
 {
-    assert_int_equal(a->w, b->w);
-    assert_int_equal(a->h, b->h);
-    assert_int_equal(a->c, b->c);
+    assert_shape(a, b->w, b->h, b->c);
     assert_memory_equal(a->v, b->v, (size_t)a->w * a->h * a->c * sizeof(double));
 }
 
@@ -183,9 +159,7 @@ static void test_alloc(void **state)
     (void)state;
     aa_image im;
     assert_int_equal(aa_image_alloc(&im, 7, 3, 3), AA_OK);
-    assert_int_equal(im.w, 7);
-    assert_int_equal(im.h, 3);
-    assert_int_equal(im.c, 3);
+    assert_shape(&im, 7, 3, 3);
     for (size_t k = 0; k < 7 * 3 * 3; k++)
         assert_true(im.v[k] == 0.0);
     /* aa_pixel's layout, from aabench.h: v[((j * w + i) * c + k]. */
@@ -360,12 +334,10 @@ static void test_txt_read_known(void **state)
                         "0 1 1E2 .5\n"
                         "1 1 -0 7.\n";
     const char *path = in_dir(state, "known.txt");
-    write_raw(path, text, sizeof text - 1);
+    support_write_file(path, text, sizeof text - 1);
     aa_image im;
     assert_int_equal(aa_image_read_txt(path, &im), AA_OK);
-    assert_int_equal(im.w, 2);
-    assert_int_equal(im.h, 2);
-    assert_int_equal(im.c, 2);
+    assert_shape(&im, 2, 2, 2);
     const double want[] = {0.5, -1e-3, 0.25, 3, 100, 0.5, -0.0, 7};
     assert_memory_equal(im.v, want, sizeof want);
     aa_image_free(&im);
@@ -441,7 +413,7 @@ static void test_txt_corrupt(void **state)
         char name[32];
         snprintf(name, sizeof name, "corrupt-%02zu.txt", k);
         const char *path = in_dir(state, name);
-        write_raw(path, c->text, c->len);
+        support_write_file(path, c->text, c->len);
         aa_image im = {1, 1, 1, (double *)&im}; /* garbage the reader must clear */
         int status = aa_image_read(path, &im);
         if (status != AA_EIO)
@@ -460,7 +432,7 @@ static void test_txt_long_line(void **state)
     memset(text + n, ' ', 3000);
     text[n + 3000] = '\n';
     const char *path = in_dir(state, "long.txt");
-    write_raw(path, text, (size_t)n + 3001);
+    support_write_file(path, text, (size_t)n + 3001);
     aa_image im;
     assert_refused(aa_image_read_txt(path, &im), AA_EIO, path, 2);
     assert_null(im.v);
@@ -586,12 +558,10 @@ static const char pfm_known[] = "Pf\n2 2\n-1.0\n"
 static void test_pfm_known(void **state)
 {
     const char *path = in_dir(state, "known.pfm");
-    write_raw(path, pfm_known, sizeof pfm_known - 1);
+    support_write_file(path, pfm_known, sizeof pfm_known - 1);
     aa_image im;
     assert_int_equal(aa_image_read(path, &im), AA_OK);
-    assert_int_equal(im.w, 2);
-    assert_int_equal(im.h, 2);
-    assert_int_equal(im.c, 1);
+    assert_shape(&im, 2, 2, 1);
     const double want[] = {1, 2, 3, 4};
     assert_memory_equal(im.v, want, sizeof want);
 
@@ -630,9 +600,7 @@ static void test_png_srgb(void **state)
         im.v[3] = 0.5;
         assert_int_equal(aa_image_write(path, &im, NULL), AA_OK);
         assert_int_equal(aa_image_read(path, &back), AA_OK);
-        assert_int_equal(back.w, 101);
-        assert_int_equal(back.h, 3);
-        assert_int_equal(back.c, c);
+        assert_shape(&back, 101, 3, c);
         for (size_t k = 0; k < n; k++) {
             /* Round to the nearest of 256 codes: the code read back, put
              * through the encoding again, is within half a code of the
@@ -703,7 +671,7 @@ static void test_channels_refused(void **state)
     /* An existing file under the name stays as it was. */
     char keep[PATH_MAX + 64];
     snprintf(keep, sizeof keep, "%s", in_dir(state, "x.png"));
-    write_raw(keep, "keep", 4);
+    support_write_file(keep, "keep", 4);
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         const char *path = in_dir(state, bad[k].name);
         aa_image im;
@@ -801,7 +769,7 @@ static void test_bad_binary_files(void **state)
                 {"junk.exr", "v/1\x01\x02"}};
     for (size_t k = 0; k < sizeof junk / sizeof junk[0]; k++) {
         const char *p = in_dir(state, junk[k].name);
-        write_raw(p, junk[k].text, strlen(junk[k].text));
+        support_write_file(p, junk[k].text, strlen(junk[k].text));
         assert_refused(aa_image_read(p, &back), AA_EIO, junk[k].name, 0);
         assert_null(back.v);
     }
@@ -860,7 +828,7 @@ static void test_mkdirs(void **state)
     assert_int_equal(aa_mkdirs("."), AA_OK);
 
     /* A file in the way. */
-    write_raw(in_dir(state, "a/f"), "x", 1);
+    support_write_file(in_dir(state, "a/f"), "x", 1);
     snprintf(path, sizeof path, "%s", in_dir(state, "a/f/g"));
     assert_refused(aa_mkdirs(path), AA_EIO, "a/f", 0);
     assert_false(exists(path));
@@ -1021,37 +989,32 @@ static void test_module_missing(void **state)
 
 #define TEST(f) cmocka_unit_test_setup_teardown(f, setup, teardown)
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        /* first: they need a process that has not loaded the module yet */
-        TEST(test_module_on_demand),
-        TEST(test_module_missing),
-        TEST(test_alloc),
-        TEST(test_encode_parse_accepts),
-        TEST(test_encode_parse_refuses),
-        TEST(test_encode_value),
-        TEST(test_ext_known),
-        TEST(test_txt_exact_text),
-        TEST(test_txt_round_trip),
-        TEST(test_txt_read_known),
-        TEST(test_txt_corrupt),
-        TEST(test_txt_long_line),
-        TEST(test_txt_refuses_non_finite),
-        TEST(test_txt_locale),
-        TEST(test_float_round_trips),
-        TEST(test_pfm_known),
-        TEST(test_png_srgb),
-        TEST(test_png_other_encodings),
-        TEST(test_channels_refused),
-        TEST(test_unknown_extension),
-        TEST(test_missing_folder),
-        TEST(test_rename_fails),
-        TEST(test_bad_binary_files),
-        TEST(test_temp_name),
-        TEST(test_mkdirs),
-        TEST(test_write_atomic),
-        TEST(test_now),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             /* first: they need a process that has not loaded the module yet */
+             TEST(test_module_on_demand),
+             TEST(test_module_missing),
+             TEST(test_alloc),
+             TEST(test_encode_parse_accepts),
+             TEST(test_encode_parse_refuses),
+             TEST(test_encode_value),
+             TEST(test_ext_known),
+             TEST(test_txt_exact_text),
+             TEST(test_txt_round_trip),
+             TEST(test_txt_read_known),
+             TEST(test_txt_corrupt),
+             TEST(test_txt_long_line),
+             TEST(test_txt_refuses_non_finite),
+             TEST(test_txt_locale),
+             TEST(test_float_round_trips),
+             TEST(test_pfm_known),
+             TEST(test_png_srgb),
+             TEST(test_png_other_encodings),
+             TEST(test_channels_refused),
+             TEST(test_unknown_extension),
+             TEST(test_missing_folder),
+             TEST(test_rename_fails),
+             TEST(test_bad_binary_files),
+             TEST(test_temp_name),
+             TEST(test_mkdirs),
+             TEST(test_write_atomic),
+             TEST(test_now))

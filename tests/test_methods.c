@@ -22,6 +22,8 @@
  * to supersample n=3 to jitter spp=64 to area.
  */
 #include "bench.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -57,46 +59,19 @@ static int method_specs(const aa_info *info, char specs[][256], int max)
     return n;
 }
 
-static aa_scene *crow_scene(void)
-{
-    aa_spec spec;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse("crow", &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-    return s;
-}
-
 /* A scene with no edge in view: one colour everywhere on the image. */
 static aa_scene *uniform_scene(aa_rgb colour)
 {
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_int_equal(aa_scene_layer(s, colour, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, -3, -3), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 4, -3), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 4, 4), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, -3, 4), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    const double xy[] = {-3, -3, 4, -3, 4, 4, -3, 4};
+    return scenes_polygon(xy, 4, colour, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO);
 }
 
 /* Render; returns the status (the image is allocated on success). */
 static int render(const char *method, const aa_scene *scene, const char *filter, int w, int h,
                   uint64_t seed, int threads, aa_image *out, aa_counters *c)
 {
-    aa_filter f;
-    aa_spec spec;
-    aa_job job;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    int st = aa_method_parse(method, &f, &spec);
-    if (st)
-        return st;
-    assert_int_equal(aa_job_init(&job, scene, w, h, 0.0, 0.0, 0.0, &f, seed, threads), AA_OK);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    st = aa_method_run(&spec, &job, 1, out, c, NULL);
-    aa_job_free(&job);
-    if (st)
-        aa_image_free(out);
-    return st;
+    const support_view v = {.w = w, .h = h, .filter = filter, .seed = seed, .threads = threads};
+    return support_render_view(method, scene, &v, out, c);
 }
 
 /* $AABENCH_METHODS (a comma-separated list of names), if set, limits the
@@ -194,33 +169,52 @@ static void test_uniform_exact(void **state)
     for_each_spec(check_uniform);
 }
 
+/* Every value of a finite and in [0, 1]; the smallest and largest in *lo,
+ * *hi. */
+static void check_range(const char *spec, const char *what, const aa_image *a, double *lo,
+                        double *hi)
+{
+    *lo = 1, *hi = 0;
+    for (int p = 0; p < W * H * 3; p++) {
+        if (!(a->v[p] >= 0.0 && a->v[p] <= 1.0))
+            fail_msg("%s: %svalue %.17g at %d outside [0, 1]", spec, what, a->v[p], p);
+        *lo = fmin(*lo, a->v[p]), *hi = fmax(*hi, a->v[p]);
+    }
+}
+
+/* Render again with another seed or thread count: 1 if a comes back. */
+static int same_again(const char *spec, const aa_scene *s, const char *filter, uint64_t seed,
+                      int threads, const aa_image *a, aa_counters *c)
+{
+    aa_image b;
+    assert_int_equal(render(spec, s, filter, W, H, seed, threads, &b, c), AA_OK);
+    int same = support_same_image(a, &b);
+    aa_image_free(&b);
+    return same;
+}
+
 static void check_range_and_determinism(const char *spec, const aa_method_type *type)
 {
     const char *filter = home_filter(spec);
     if (!filter)
         return;
-    aa_scene *s = crow_scene();
-    aa_image a, b, c2;
-    aa_counters ca, cb, cc;
+    aa_scene *s = scenes_pattern("crow");
+    aa_image a;
+    aa_counters ca, cb;
+    double lo, hi;
     if (render(spec, s, filter, W, H, 7, 1, &a, &ca))
         fail_msg("%s: %s", spec, aa_last_error());
-    for (int p = 0; p < W * H * 3; p++)
-        if (!(a.v[p] >= 0.0 && a.v[p] <= 1.0))
-            fail_msg("%s: value %.17g at %d outside [0, 1]", spec, a.v[p], p);
-    assert_int_equal(render(spec, s, filter, W, H, 7, 2, &b, &cb), AA_OK);
-    if (memcmp(a.v, b.v, sizeof(double) * W * H * 3))
+    check_range(spec, "", &a, &lo, &hi);
+    if (!same_again(spec, s, filter, 7, 2, &a, &cb))
         fail_msg("%s: 1 and 2 threads give different images", spec);
     if (ca.samples != cb.samples || ca.expensive_pixels != cb.expensive_pixels)
         fail_msg("%s: 1 and 2 threads give different counters", spec);
     assert_true(ca.expensive_pixels <= (uint64_t)W * H);
-    assert_int_equal(render(spec, s, filter, W, H, 8, 2, &c2, &cc), AA_OK);
-    int differs = memcmp(a.v, c2.v, sizeof(double) * W * H * 3) != 0;
+    int differs = !same_again(spec, s, filter, 8, 2, &a, NULL);
     if (differs != ((type->flags & AA_METHOD_SEEDED) != 0))
         fail_msg("%s: another seed %s the image, but the method %s seeded", spec,
                  differs ? "changes" : "does not change", differs ? "is not" : "is");
     aa_image_free(&a);
-    aa_image_free(&b);
-    aa_image_free(&c2);
     aa_scene_free(s);
 }
 
@@ -237,12 +231,9 @@ static void test_range_and_determinism(void **state)
  * and a message naming the field. */
 static void check_zoneplate(const char *spec, const aa_method_type *type)
 {
-    aa_spec ps;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse("zoneplate", &ps), AA_OK);
-    assert_int_equal(aa_pattern_scene(&ps, &s), AA_OK);
-    aa_image a, b, c2;
-    aa_counters ca, cb, cc;
+    aa_scene *s = scenes_pattern("zoneplate");
+    aa_image a;
+    aa_counters ca;
     const char *filter = home_filter(spec);
     if (!filter) {
         aa_scene_free(s);
@@ -258,24 +249,16 @@ static void check_zoneplate(const char *spec, const aa_method_type *type)
     }
     if (st)
         fail_msg("%s: %s", spec, aa_last_error());
-    double lo = 1, hi = 0;
-    for (int p = 0; p < W * H * 3; p++) {
-        if (!(a.v[p] >= 0.0 && a.v[p] <= 1.0))
-            fail_msg("%s: zoneplate value %.17g at %d outside [0, 1]", spec, a.v[p], p);
-        lo = fmin(lo, a.v[p]), hi = fmax(hi, a.v[p]);
-    }
+    double lo, hi;
+    check_range(spec, "zoneplate ", &a, &lo, &hi);
     if (!(hi - lo > 0.5))
         fail_msg("%s: zoneplate image spans only [%g, %g]: not the rings", spec, lo, hi);
     assert_true(ca.samples >= (uint64_t)W * H);
-    assert_int_equal(render(spec, s, filter, W, H, 7, 2, &b, &cb), AA_OK);
-    if (memcmp(a.v, b.v, sizeof(double) * W * H * 3))
+    if (!same_again(spec, s, filter, 7, 2, &a, NULL))
         fail_msg("%s: zoneplate: 1 and 2 threads give different images", spec);
-    assert_int_equal(render(spec, s, filter, W, H, 7, 2, &c2, &cc), AA_OK);
-    if (memcmp(a.v, c2.v, sizeof(double) * W * H * 3))
+    if (!same_again(spec, s, filter, 7, 2, &a, NULL))
         fail_msg("%s: zoneplate: the same seed gives another image", spec);
     aa_image_free(&a);
-    aa_image_free(&b);
-    aa_image_free(&c2);
     aa_scene_free(s);
 }
 
@@ -289,7 +272,7 @@ static void check_filters(const char *spec, const aa_method_type *type)
 {
     (void)type;
     const char *filters[] = {"tent:r=0.5", "tent:r=1", "gauss", "gauss:s=1"};
-    aa_scene *s = crow_scene();
+    aa_scene *s = scenes_pattern("crow");
     for (int k = 0; k < 4; k++) {
         aa_image img;
         aa_counters c;
@@ -355,7 +338,7 @@ static void test_bad_parameters(void **state)
 static void test_point_is_centres(void **state)
 {
     (void)state;
-    aa_scene *s = crow_scene();
+    aa_scene *s = scenes_pattern("crow");
     aa_image img;
     aa_counters c;
     assert_int_equal(render("point", s, "box", 97, 61, 1, 2, &img, &c), AA_OK);
@@ -388,40 +371,14 @@ static void test_plugin(void **state)
     assert_int_equal(aa_plugin_load("/nonexistent/plugin.so"), AA_EIO);
 }
 
-static double rmse(const aa_image *a, const aa_image *b)
-{
-    double s = 0;
-    size_t n = (size_t)a->w * a->h * 3;
-    for (size_t k = 0; k < n; k++)
-        s += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
-    return sqrt(s / (double)n);
-}
-
 /* The ordering the methods exist to show: each finer than the last. */
 static void test_rmse_order(void **state)
 {
     (void)state;
     const char *order[] = {"point", "supersample:n=3", "jitter:spp=64", "area"};
-    aa_scene *s = crow_scene(), *placed = aa_scene_place(s, 256, 256, 0, 0, 0);
-    aa_filter box;
-    aa_filter_default(&box);
-    aa_image ref, img;
-    assert_int_equal(aa_image_alloc(&ref, 256, 256, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &box, 0, &ref, NULL, NULL), AA_OK);
-    double last = INFINITY;
-    for (int k = 0; k < 4; k++) {
-        aa_counters c;
-        assert_int_equal(render(order[k], s, "box", 256, 256, 1, 2, &img, &c), AA_OK);
-        double e = rmse(&img, &ref);
-        print_message("crow 256x256 box: %-16s RMSE %.3e, %llu samples\n", order[k], e,
-                      (unsigned long long)c.samples);
-        if (!(e < last))
-            fail_msg("%s has RMSE %.3e, not below the previous method's %.3e", order[k], e, last);
-        last = e;
-        aa_image_free(&img);
-    }
-    aa_image_free(&ref);
-    aa_scene_free(placed);
+    aa_scene *s = scenes_pattern("crow");
+    const support_view v = {.w = 256, .h = 256, .seed = 1, .threads = 2};
+    support_check_rmse_order("crow", s, &v, order, 4);
     aa_scene_free(s);
 }
 
@@ -440,17 +397,12 @@ static int setup(void **state)
     return 0;
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_uniform_exact),
-        cmocka_unit_test(test_range_and_determinism),
-        cmocka_unit_test(test_zoneplate),
-        cmocka_unit_test(test_filters),
-        cmocka_unit_test(test_bad_parameters),
-        cmocka_unit_test(test_point_is_centres),
-        cmocka_unit_test(test_plugin),
-        cmocka_unit_test(test_rmse_order),
-    };
-    return cmocka_run_group_tests(tests, setup, NULL);
-}
+SUPPORT_MAIN(setup, NULL,
+             cmocka_unit_test(test_uniform_exact),
+             cmocka_unit_test(test_range_and_determinism),
+             cmocka_unit_test(test_zoneplate),
+             cmocka_unit_test(test_filters),
+             cmocka_unit_test(test_bad_parameters),
+             cmocka_unit_test(test_point_is_centres),
+             cmocka_unit_test(test_plugin),
+             cmocka_unit_test(test_rmse_order))

@@ -2,6 +2,7 @@
  * test_metrics.c: the error metrics on cases worked by hand.
  */
 #include "bench.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -131,13 +132,8 @@ static void test_identical_and_encoded(void **state)
     aa_image_free(&img);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_constant_offset),
-        cmocka_unit_test(test_one_pixel),
-        cmocka_unit_test(test_sinusoid),
-        cmocka_unit_test(test_identical_and_encoded),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_constant_offset),
+             cmocka_unit_test(test_one_pixel),
+             cmocka_unit_test(test_sinusoid),
+             cmocka_unit_test(test_identical_and_encoded))

@@ -8,7 +8,8 @@
  *  - star: the total white area S R^2 sin(pi/S)/2 (a wedge is an isosceles
  *    triangle with legs R and apex angle pi/S);
  *  - star: every pixel's box value by clipping each wedge to the pixel
- *    (Sutherland-Hodgman and the shoelace formula), and sqrt(2) R^2 for the
+ *    (Sutherland-Hodgman and the shoelace formula, tests/oracle.c), and
+ *    sqrt(2) R^2 for the
  *    four quadrant pixels of a 4-spoke star;
  *  - fence: every pixel's box value in closed form, the covered length of
  *    the pixel's column range (whole periods plus a clipped remainder)
@@ -25,6 +26,9 @@
  *    within AA_TRUTH_BOUND; bad parameters are refused.
  */
 #include "bench.h"
+#include "oracle.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -36,34 +40,29 @@
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_linalg.h>
 
-/* The box reference of a pattern spec at w x h. */
+/* The reference of a pattern spec at w x h under filter text. */
 static void reference(const char *pattern, int w, int h, const char *filter, aa_image *img,
                       double *max_bound)
 {
-    aa_spec spec;
-    aa_filter f;
-    aa_scene *s, *placed;
     aa_truth_stats st;
-    assert_int_equal(aa_pattern_parse(pattern, &spec), AA_OK);
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-    assert_non_null(placed = aa_scene_place(s, w, h, 0, 0, 0));
-    assert_int_equal(aa_image_alloc(img, w, h, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, img, NULL, &st), AA_OK);
+    support_pattern_reference(pattern, &(support_view){.w = w, .h = h, .filter = filter}, img,
+                              NULL, &st);
     if (max_bound)
         *max_bound = st.max_bound;
-    aa_scene_free(placed);
-    aa_scene_free(s);
 }
 
-/* The sum of channel c times the pixel area: the pattern's integral. */
-static double integral(const aa_image *img, int c)
+/* The pattern's integral (channel 0 of its box reference at w x h) within
+ * 1e-12 relative of want; returns the reference's largest bound. */
+static double check_integral(const char *spec, int w, int h, double want)
 {
-    double sum = 0.0;
-    for (int j = 0; j < img->h; j++)
-        for (int i = 0; i < img->w; i++)
-            sum += aa_pixel(img, i, j)[c];
-    return sum / ((double)img->w * img->h);
+    aa_image img;
+    double bound;
+    reference(spec, w, h, "box", &img, &bound);
+    double got = support_channel_mean(&img, 0);
+    aa_image_free(&img);
+    if (!(fabs(got - want) <= 1e-12 * want))
+        fail_msg("%s: %.17g want %.17g (rel %.3g)", spec, got, want, (got - want) / want);
+    return bound;
 }
 
 static void test_catmull_pixel(void **state)
@@ -77,23 +76,12 @@ static void test_catmull_pixel(void **state)
     aa_image_free(&img);
 
     /* the exact method gives the same pixel */
-    aa_spec pat, m;
-    aa_filter f;
-    aa_scene *s;
-    aa_job job;
-    aa_counters c;
-    aa_filter_default(&f);
-    assert_int_equal(aa_pattern_parse("catmull", &pat), AA_OK);
-    assert_int_equal(aa_pattern_scene(&pat, &s), AA_OK);
-    assert_int_equal(aa_method_parse("area", &f, &m), AA_OK);
-    assert_int_equal(aa_job_init(&job, s, 1, 1, 0, 0, 0, &f, 1, 1), AA_OK);
-    assert_int_equal(aa_image_alloc(&img, 1, 1, 3), AA_OK);
-    assert_int_equal(aa_method_run(&m, &job, 1, &img, &c, NULL), AA_OK);
+    aa_scene *s = scenes_pattern("catmull");
+    support_render("area", s, NULL, 1, 1, 1, &img, NULL);
     assert_true(fabs(img.v[0]) <= 1e-12);
     assert_true(fabs(img.v[1] - 0.25) <= 1e-12);
     assert_true(fabs(img.v[2] - 0.5) <= 1e-12);
     aa_image_free(&img);
-    aa_job_free(&job);
     aa_scene_free(s);
 }
 
@@ -103,50 +91,11 @@ static void test_catmull_hidden(void **state)
     aa_image img;
     reference("catmull:tiles=3", 64, 64, "box", &img, NULL);
     /* per tile: green 1/4, blue 1/2, red 0 */
-    assert_true(fabs(integral(&img, 1) - 0.25) <= 1e-12);
-    assert_true(fabs(integral(&img, 2) - 0.5) <= 1e-12);
+    assert_true(fabs(support_channel_mean(&img, 1) - 0.25) <= 1e-12);
+    assert_true(fabs(support_channel_mean(&img, 2) - 0.5) <= 1e-12);
     for (size_t k = 0; k < (size_t)img.w * img.h; k++)
         assert_true(fabs(img.v[3 * k]) <= 1e-15);
     aa_image_free(&img);
-}
-
-/* The area of the convex polygon p (n vertices, n <= 8) clipped to the
- * rectangle [x0, x1] x [y0, y1]: Sutherland-Hodgman against the four sides,
- * then the shoelace formula. */
-static double clipped_area_rect(const double (*p)[2], int n, double x0, double y0, double x1,
-                                double y1)
-{
-    double a[16][2], b[16][2];
-    const double lims[4] = {x0, x1, y0, y1};
-    for (int k = 0; k < n; k++)
-        a[k][0] = p[k][0], a[k][1] = p[k][1];
-    for (int side = 0; side < 4; side++) {
-        int axis = side / 2, m = 0;
-        double lim = lims[side], sgn = side % 2 ? -1.0 : 1.0;
-        for (int k = 0; k < n; k++) {
-            const double *u = a[k], *v = a[(k + 1) % n];
-            double du = sgn * (u[axis] - lim), dv = sgn * (v[axis] - lim);
-            if (du >= 0)
-                b[m][0] = u[0], b[m][1] = u[1], m++;
-            if ((du >= 0) != (dv >= 0)) {
-                double t = du / (du - dv);
-                b[m][0] = u[0] + t * (v[0] - u[0]), b[m][1] = u[1] + t * (v[1] - u[1]), m++;
-            }
-        }
-        n = m;
-        for (int k = 0; k < n; k++)
-            a[k][0] = b[k][0], a[k][1] = b[k][1];
-    }
-    double sum = 0.0;
-    for (int k = 0; k < n; k++)
-        sum += a[k][0] * a[(k + 1) % n][1] - a[(k + 1) % n][0] * a[k][1];
-    return fabs(sum) / 2.0;
-}
-
-/* The same, clipped to the unit square. */
-static double clipped_area(const double (*p)[2], int n)
-{
-    return clipped_area_rect(p, n, 0.0, 0.0, 1.0, 1.0);
 }
 
 /* Every pixel of a star: the wedges are disjoint triangles, so a pixel's box
@@ -173,11 +122,11 @@ static void test_star_pixels(void **state)
             double want = 0.0;
             for (int k = 0; k < S; k++) {
                 double a = 2.0 * M_PI * k / S + rot, b = a + M_PI / S;
-                const double tri[3][2] = {{0.5, 0.5},
-                                          {0.5 + R * cos(a), 0.5 + R * sin(a)},
-                                          {0.5 + R * cos(b), 0.5 + R * sin(b)}};
-                want += clipped_area_rect(tri, 3, (double)i / W, (double)j / H, (i + 1.0) / W,
-                                          (j + 1.0) / H);
+                const oracle_poly tri = {3,
+                                         {0.5, 0.5 + R * cos(a), 0.5 + R * cos(b)},
+                                         {0.5, 0.5 + R * sin(a), 0.5 + R * sin(b)}};
+                want += oracle_poly_area_in_rect(&tri, (double)i / W, (double)j / H,
+                                                 (i + 1.0) / W, (j + 1.0) / H);
             }
             want *= (double)W * H;
             if (!(fabs(aa_pixel(&img, i, j)[0] - want) <= 1e-12))
@@ -196,16 +145,10 @@ static void test_star_area(void **state)
     } cases[] = {{"star", 36, 256, 256}, {"star:spokes=7,rot=13", 7, 61, 47},
                  {"star:spokes=3,rot=0", 3, 32, 32}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        aa_image img;
-        double bound;
-        reference(cases[k].spec, cases[k].w, cases[k].h, "box", &img, &bound);
         const double R = 0.48, S = cases[k].spokes;
         double want = S * R * R * sin(M_PI / S) / 2.0;
-        if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
-            fail_msg("%s: %.17g want %.17g (rel %.3g)", cases[k].spec, integral(&img, 0), want,
-                     (integral(&img, 0) - want) / want);
-        assert_true(bound <= AA_TRUTH_BOUND);
-        aa_image_free(&img);
+        assert_true(check_integral(cases[k].spec, cases[k].w, cases[k].h, want) <=
+                    AA_TRUTH_BOUND);
     }
 }
 
@@ -217,6 +160,13 @@ static double fence_run(double x, double per, double duty)
     return whole * duty * per + fmin((z - whole) * per, duty * per);
 }
 
+/* A fence spec with its period and duty, at w x h. */
+typedef struct fence_case {
+    const char *spec;
+    double per, duty;
+    int w, h;
+} fence_case;
+
 /* The fence's total intensity: the bars are (duty p) wide and 1/2 tall; when
  * a whole number q of periods fits in [1/4, 3/4] the total is exactly
  * duty (1/2)^2, otherwise (1/2) (q duty p + min(r, duty p)) with the
@@ -224,32 +174,20 @@ static double fence_run(double x, double per, double duty)
 static void test_fence_total(void **state)
 {
     (void)state;
-    static const struct {
-        const char *spec;
-        double per, duty;
-        int w, h;
-    } cases[] = {{"fence:period=0.0625", 0.0625, 0.5, 48, 40},
+    static const fence_case cases[] = {{"fence:period=0.0625", 0.0625, 0.5, 48, 40},
                  {"fence:period=0.0625,duty=0.3", 0.0625, 0.3, 33, 31},
                  {"fence", 0.9 / 256, 0.5, 100, 64}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        aa_image img;
-        reference(cases[k].spec, cases[k].w, cases[k].h, "box", &img, NULL);
         const double p = cases[k].per, on = cases[k].duty * p, q = floor(0.5 / p);
         double want = k < 2 ? cases[k].duty * 0.25 : 0.5 * (q * on + fmin(0.5 - q * p, on));
-        if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
-            fail_msg("%s: %.17g want %.17g", cases[k].spec, integral(&img, 0), want);
-        aa_image_free(&img);
+        check_integral(cases[k].spec, cases[k].w, cases[k].h, want);
     }
 }
 
 static void test_fence_pixels(void **state)
 {
     (void)state;
-    static const struct {
-        const char *spec;
-        double per, duty;
-        int w, h;
-    } cases[] = {{"fence", 0.9 / 256, 0.5, 64, 64},
+    static const fence_case cases[] = {{"fence", 0.9 / 256, 0.5, 64, 64},
                  {"fence:period=0.013,duty=0.3", 0.013, 0.3, 61, 47},
                  {"fence:period=0.2,duty=1", 0.2, 1.0, 9, 5}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
@@ -346,15 +284,12 @@ static void test_feibush_areas(void **state)
         aa_image img;
         reference(spec, 97, 83, "box", &img, NULL);
         /* red stripes are (1, 0, 0), white (1, 1, 1) */
-        double r_all = integral(&img, 0), g = integral(&img, 1);
+        double r_all = support_channel_mean(&img, 0), g = support_channel_mean(&img, 1);
         assert_true(fabs(g - white) <= 1e-10);
         assert_true(fabs((r_all - g) - red) <= 1e-10);
         /* and the whole square by the shoelace formula */
-        static const double q[4][2] = {{0.32, 0.18}, {0.72, 0.24}, {0.97, 0.96}, {0.04, 0.90}};
-        double shoe = 0.0;
-        for (int v = 0; v < 4; v++)
-            shoe += q[v][0] * q[(v + 1) % 4][1] - q[(v + 1) % 4][0] * q[v][1];
-        assert_true(fabs(r_all - fabs(shoe) / 2.0) <= 1e-12);
+        static const oracle_poly q = {4, {0.32, 0.72, 0.97, 0.04}, {0.18, 0.24, 0.96, 0.90}};
+        assert_true(fabs(r_all - oracle_poly_area(&q)) <= 1e-12);
         aa_image_free(&img);
     }
 }
@@ -366,15 +301,9 @@ static void test_dots_area(void **state)
         const char *spec;
         double n, size;
     } cases[] = {{"dots", 16, 0.3 / 256}, {"dots:n=5,size=0.01", 5, 0.01}};
-    for (size_t k = 0; k < 2; k++) {
-        aa_image img;
-        reference(cases[k].spec, 128, 96, "box", &img, NULL);
-        double want = cases[k].n * cases[k].n * cases[k].size * cases[k].size;
-        if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
-            fail_msg("%s: %.17g want %.17g (rel %.3g)", cases[k].spec, integral(&img, 0), want,
-                     (integral(&img, 0) - want) / want);
-        aa_image_free(&img);
-    }
+    for (size_t k = 0; k < 2; k++)
+        check_integral(cases[k].spec, 128, 96,
+                       cases[k].n * cases[k].n * cases[k].size * cases[k].size);
 }
 
 static void test_slivers_area(void **state)
@@ -397,14 +326,10 @@ static void test_slivers_area(void **state)
                               : cases[k].hmin + (cases[k].hmax - cases[k].hmin) * t / (K - 1.0);
             double y = (t + 0.5) / K;
             double d = 0.9 * tan((t - (K - 1) / 2.0) * cases[k].tilt * M_PI / 180);
-            const double tri[3][2] = {{0.05, y}, {0.95, y + d - h / 2}, {0.95, y + d + h / 2}};
-            want += clipped_area(tri, 3);
+            const oracle_poly tri = {3, {0.05, 0.95, 0.95}, {y, y + d - h / 2, y + d + h / 2}};
+            want += oracle_poly_area_in_rect(&tri, 0.0, 0.0, 1.0, 1.0);
         }
-        aa_image img;
-        reference(cases[k].spec, 256, 256, "box", &img, NULL);
-        if (!(fabs(integral(&img, 0) - want) <= 1e-12 * want))
-            fail_msg("%s: %.17g want %.17g", cases[k].spec, integral(&img, 0), want);
-        aa_image_free(&img);
+        check_integral(cases[k].spec, 256, 256, want);
     }
 }
 
@@ -447,15 +372,15 @@ static void test_refusals(void **state)
     assert_int_equal(aa_pattern_parse("slivers:count=3,tilt=80,hmin=0,hmax=0", &spec), AA_OK);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_catmull_pixel), cmocka_unit_test(test_catmull_hidden),
-        cmocka_unit_test(test_star_area),     cmocka_unit_test(test_star_pixels),
-        cmocka_unit_test(test_fence_pixels),  cmocka_unit_test(test_fence_total),
-        cmocka_unit_test(test_feibush_areas), cmocka_unit_test(test_dots_area),
-        cmocka_unit_test(test_slivers_area),  cmocka_unit_test(test_every_pattern),
-        cmocka_unit_test(test_refusals),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_catmull_pixel),
+             cmocka_unit_test(test_catmull_hidden),
+             cmocka_unit_test(test_star_area),
+             cmocka_unit_test(test_star_pixels),
+             cmocka_unit_test(test_fence_pixels),
+             cmocka_unit_test(test_fence_total),
+             cmocka_unit_test(test_feibush_areas),
+             cmocka_unit_test(test_dots_area),
+             cmocka_unit_test(test_slivers_area),
+             cmocka_unit_test(test_every_pattern),
+             cmocka_unit_test(test_refusals))

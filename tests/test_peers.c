@@ -29,6 +29,8 @@
  * tolerance (px) times the arcs' length (2 arcs of about H px) over W H.
  */
 #include "bench.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <fcntl.h>
 #include <math.h>
@@ -66,36 +68,19 @@ static const peer_case cases[] = {
  * pixels of a W x H image (stored in pattern units). */
 static aa_scene *polygon(const double *xy, int n, aa_fill_rule rule)
 {
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(s);
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, rule), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, xy[0] / W, xy[1] / H), AA_OK);
-    for (int k = 1; k < n; k++)
-        assert_int_equal(aa_scene_line_to(s, xy[2 * k] / W, xy[2 * k + 1] / H), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    double uv[16];
+    assert_true(n <= 8);
+    for (int k = 0; k < n; k++)
+        uv[2 * k] = xy[2 * k] / W, uv[2 * k + 1] = xy[2 * k + 1] / H;
+    return scenes_polygon(uv, n, (aa_rgb){{1, 1, 1}}, (aa_rgb){{0, 0, 0}}, rule);
 }
 
 /* Render a scene with a method spec; returns the status. */
 static int render(const char *spec, const aa_scene *scene, const char *filter, int w, int h,
                   int threads, aa_image *out)
 {
-    aa_filter f;
-    aa_spec m;
-    aa_job job;
-    aa_counters c;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    int st = aa_method_parse(spec, &f, &m);
-    if (st)
-        return st;
-    assert_int_equal(aa_job_init(&job, scene, w, h, 0, 0, 0, &f, 1, threads), AA_OK);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    st = aa_method_run(&m, &job, 1, out, &c, NULL);
-    aa_job_free(&job);
-    if (st)
-        aa_image_free(out);
-    return st;
+    const support_view v = {.w = w, .h = h, .filter = filter, .seed = 1, .threads = threads};
+    return support_render_view(spec, scene, &v, out, NULL);
 }
 
 static double overlap(double a0, double a1, double b0, double b1)
@@ -132,8 +117,7 @@ static void test_rectangle(void **state)
         aa_scene *s = polygon(xy, 4, (aa_fill_rule)rule);
         for (size_t k = 0; k < NCASES; k++) {
             aa_image img;
-            if (render(cases[k].spec, s, "box", W, H, 2, &img))
-                fail_msg("%s: %s", cases[k].spec, aa_last_error());
+            support_render(cases[k].spec, s, "box", W, H, 2, &img, NULL);
             double e = max_error(&img, rect_cover);
             print_message("rectangle %-30s rule %d: max error %.3e (bound %.3e)\n",
                           cases[k].spec, rule, e, cases[k].tol_rect);
@@ -163,8 +147,7 @@ static void test_half_plane(void **state)
     aa_scene *s = polygon(xy, 4, AA_FILL_NONZERO);
     for (size_t k = 0; k < NCASES; k++) {
         aa_image img;
-        if (render(cases[k].spec, s, "box", W, H, 1, &img))
-            fail_msg("%s: %s", cases[k].spec, aa_last_error());
+        support_render(cases[k].spec, s, "box", W, H, 1, &img, NULL);
         double e = max_error(&img, half_cover);
         print_message("half-plane %-30s: max error %.3e (bound %.3e)\n", cases[k].spec, e,
                       cases[k].tol_slope);
@@ -196,18 +179,13 @@ static void test_many_edges(void **state)
     for (int i = 0; i < w; i++)
         for (int k = 0; k < 2; k++) {
             double x0 = i + 0.125 + 0.5 * k, x1 = x0 + 0.25;
-            assert_int_equal(aa_scene_move_to(s, x0 / w, 2.25 / h), AA_OK);
-            assert_int_equal(aa_scene_line_to(s, x1 / w, 2.25 / h), AA_OK);
-            assert_int_equal(aa_scene_line_to(s, x1 / w, 13.5 / h), AA_OK);
-            assert_int_equal(aa_scene_line_to(s, x0 / w, 13.5 / h), AA_OK);
-            assert_int_equal(aa_scene_close(s), AA_OK);
+            scenes_rect(s, x0 / w, 2.25 / h, x1 / w, 13.5 / h);
         }
     assert_int_equal(aa_scene_finish(s), AA_OK);
     const char *peers[] = {"freetype", "stb", "cairo"};
     for (int k = 0; k < 3; k++) {
         aa_image img;
-        if (render(peers[k], s, "box", w, h, 2, &img))
-            fail_msg("%s: %s", peers[k], aa_last_error());
+        support_render(peers[k], s, "box", w, h, 2, &img, NULL);
         double e = max_error(&img, thin_cover);
         print_message("4096 edges a row, %-8s: max error %.3e\n", peers[k], e);
         if (!(e <= 1.0 / 255 + 1e-6))
@@ -224,19 +202,12 @@ static void test_crow_band_area(void **state)
     (void)state;
     const int n = 256;
     const double g0 = 0.25, c0 = 0.6; /* crow:curves=2: c1 = 0 */
-    aa_spec ps;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse("crow:curves=2,gap0=0.25,kmax=0.6", &ps), AA_OK);
-    assert_int_equal(aa_pattern_scene(&ps, &s), AA_OK);
+    aa_scene *s = scenes_pattern("crow:curves=2,gap0=0.25,kmax=0.6");
     double want = g0 - c0 / 12.0;
     for (size_t k = 0; k < NCASES; k++) {
         aa_image img;
-        if (render(cases[k].spec, s, "box", n, n, 2, &img))
-            fail_msg("%s: %s", cases[k].spec, aa_last_error());
-        double sum = 0;
-        for (size_t p = 0; p < (size_t)n * n; p++)
-            sum += img.v[3 * p];
-        double area = sum / ((double)n * n);
+        support_render(cases[k].spec, s, "box", n, n, 2, &img, NULL);
+        double area = support_channel_mean(&img, 0);
         /* flattening: at most `flat` px over two arcs of ~n px, plus 8-bit
          * rounding that does not cancel (at most 1/255 on 2 n edge pixels) */
         double bound = (cases[k].flat * 2.0 * n + 2.0 * n / 255.0) / ((double)n * n);
@@ -257,12 +228,9 @@ static void test_refusals_library(void **state)
 {
     (void)state;
     const char *peers[] = {"freetype", "stb", "cairo"};
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 0.5, 0}}, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 0.25, 0.25), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.75, 0.25), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.5, 0.75), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    const double tri[] = {0.25, 0.25, 0.75, 0.25, 0.5, 0.75};
+    aa_scene *s = scenes_polygon(tri, 3, (aa_rgb){{1, 0.5, 0}}, (aa_rgb){{0, 0, 0}},
+                                 AA_FILL_NONZERO);
     for (int k = 0; k < 3; k++) {
         aa_image img;
         assert_int_equal(render(peers[k], s, "box", W, H, 1, &img), AA_EINVAL);
@@ -278,13 +246,8 @@ static void test_refusals_library(void **state)
         s = aa_scene_new((aa_rgb){{0, 0, 0}});
         assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, (aa_fill_rule)rule), AA_OK);
         const double sq[2][4] = {{0.125, 0.125, 0.875, 0.875}, {0.25, 0.25, 0.5, 0.5}};
-        for (int q = 0; q < 2; q++) {
-            assert_int_equal(aa_scene_move_to(s, sq[q][0], sq[q][1]), AA_OK);
-            assert_int_equal(aa_scene_line_to(s, sq[q][2], sq[q][1]), AA_OK);
-            assert_int_equal(aa_scene_line_to(s, sq[q][2], sq[q][3]), AA_OK);
-            assert_int_equal(aa_scene_line_to(s, sq[q][0], sq[q][3]), AA_OK);
-            assert_int_equal(aa_scene_close(s), AA_OK);
-        }
+        for (int q = 0; q < 2; q++)
+            scenes_rect(s, sq[q][0], sq[q][1], sq[q][2], sq[q][3]);
         assert_int_equal(aa_scene_finish(s), AA_OK);
         aa_image img;
         int st = render("stb", s, "box", W, H, 1, &img);
@@ -311,33 +274,20 @@ static void test_refusals_library(void **state)
 
 /* Through the command: several layers (crow reaching outside the unit
  * square gets a front layer of background) and a tent filter: exit 2. */
-static char dir[] = "/tmp/aabench-peers-XXXXXX";
-
 static int run_cli(const char *method, const char *pattern, const char *filter,
                    const char *out)
 {
-    const char *exe = getenv("AABENCH");
-    assert_non_null(exe);
-    pid_t pid = fork();
-    if (pid == 0) {
-        int fd = open("/dev/null", O_WRONLY);
-        dup2(fd, 1);
-        dup2(fd, 2);
-        execl(exe, exe, "render", "-p", pattern, "-m", method, "-f", filter, "-s", "32x32",
-              "-o", out, (char *)NULL);
-        _exit(127);
-    }
-    int status;
-    waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+    const char *args[] = {"render", "-p", pattern, "-m", method, "-f", filter, "-s", "32x32",
+                          "-o", out, NULL};
+    return support_aabench(args, NULL, 0);
 }
 
 static void test_refusals_cli(void **state)
 {
     (void)state;
     const char *peers[] = {"freetype", "stb", "cairo"};
-    assert_non_null(mkdtemp(dir));
-    char out[256];
+    char dir[256], out[300];
+    assert_int_equal(support_tmpdir(dir, sizeof dir, "peers"), 0);
     snprintf(out, sizeof out, "%s/x.exr", dir);
     for (int k = 0; k < 3; k++) {
         assert_int_equal(run_cli(peers[k], "crow:curves=2,gap0=1.5", "box", out), 2);
@@ -350,15 +300,10 @@ static void test_refusals_cli(void **state)
     assert_int_equal(rmdir(dir), 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_rectangle),
-        cmocka_unit_test(test_half_plane),
-        cmocka_unit_test(test_crow_band_area),
-        cmocka_unit_test(test_many_edges),
-        cmocka_unit_test(test_refusals_library),
-        cmocka_unit_test(test_refusals_cli),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_rectangle),
+             cmocka_unit_test(test_half_plane),
+             cmocka_unit_test(test_crow_band_area),
+             cmocka_unit_test(test_many_edges),
+             cmocka_unit_test(test_refusals_library),
+             cmocka_unit_test(test_refusals_cli))

@@ -11,6 +11,7 @@
  *    everything in its folder is complete and parses.
  */
 #include "bench.h"
+#include "support.h"
 
 #include <ctype.h>
 #include <fcntl.h>
@@ -28,38 +29,13 @@
 
 #include <cmocka.h>
 
-static char dir[] = "/tmp/aabench-run-XXXXXX";
+static char dir[256];
 static char output[16384];
 
+/* Run $AABENCH with args, interrupted after interrupt_after_ms if > 0. */
 static int run_cmd(const char *const *args, int interrupt_after_ms)
 {
-    const char *exe = getenv("AABENCH");
-    char log[512];
-    snprintf(log, sizeof log, "%s/log", dir);
-    pid_t pid = fork();
-    if (pid == 0) {
-        int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(fd, 1);
-        dup2(fd, 2);
-        const char *argv[40] = {exe};
-        for (int k = 0; args[k] && k < 38; k++)
-            argv[k + 1] = args[k];
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
-    if (interrupt_after_ms > 0) {
-        struct timespec ts = {interrupt_after_ms / 1000, (interrupt_after_ms % 1000) * 1000000L};
-        nanosleep(&ts, NULL);
-        kill(pid, SIGINT);
-    }
-    int status;
-    waitpid(pid, &status, 0);
-    FILE *f = fopen(log, "r");
-    size_t n = f ? fread(output, 1, sizeof output - 1, f) : 0;
-    output[n] = '\0';
-    if (f)
-        fclose(f);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return support_aabench_interrupted(args, interrupt_after_ms, output, sizeof output);
 }
 
 /* ---- a strict JSON validator (RFC 8259 grammar) ---- */
@@ -146,13 +122,8 @@ static const char *value(const char *p)
 
 static void json_valid(const char *path)
 {
-    FILE *f = fopen(path, "r");
-    assert_non_null(f);
     static char buf[1 << 20];
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-    const char *end = value(buf);
+    const char *end = value(support_read_file(path, buf, sizeof buf, NULL));
     if (!end || *ws(end))
         fail_msg("%s is not valid JSON", path);
 }
@@ -310,27 +281,14 @@ static void test_interrupted(void **state)
 
 static int setup(void **state)
 {
-    (void)state;
     const char *plugin = getenv("AABENCH_PLUGIN");
-    if (!getenv("AABENCH") || !plugin || !mkdtemp(dir) || aa_plugin_load(plugin))
+    if (!getenv("AABENCH") || !plugin || support_tmpdir(dir, sizeof dir, "run") != 0)
         return -1;
-    return 0;
+    *state = dir; /* removed by support_teardown_dir */
+    return aa_plugin_load(plugin) ? -1 : 0;
 }
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    return system(cmd);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_reports_parse_back),
-        cmocka_unit_test(test_gate),
-        cmocka_unit_test(test_interrupted),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+SUPPORT_MAIN(setup, support_teardown_dir,
+             cmocka_unit_test(test_reports_parse_back),
+             cmocka_unit_test(test_gate),
+             cmocka_unit_test(test_interrupted))

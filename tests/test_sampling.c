@@ -37,6 +37,8 @@
  *  - tent and Gaussian are honoured: many samples approach their references.
  */
 #include "bench.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
@@ -55,40 +57,11 @@ static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
 
 /* ---- helpers ---- */
 
-static aa_scene *crow_scene(void)
-{
-    aa_spec spec;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse("crow", &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-    return s;
-}
-
-static void rect(aa_scene *s, double x0, double y0, double x1, double y1)
-{
-    assert_int_equal(aa_scene_move_to(s, x0, y0), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, x1, y0), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, x1, y1), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, x0, y1), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-}
-
-/* White rectangles on black, given in pattern units. */
-static aa_scene *rects_scene(const double (*r)[4], int n)
-{
-    aa_scene *s = aa_scene_new(black);
-    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    for (int k = 0; k < n; k++)
-        rect(s, r[k][0], r[k][1], r[k][2], r[k][3]);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
-}
-
 /* A square of side `side` centred at (x, y), in pattern units. */
 static aa_scene *dot_scene(double x, double y, double side)
 {
     const double r[1][4] = {{x - side / 2, y - side / 2, x + side / 2, y + side / 2}};
-    return rects_scene(r, 1);
+    return scenes_rects(r, 1);
 }
 
 /* Several layers, RGB colours, a quadratic arc, both fill rules. */
@@ -100,7 +73,7 @@ static aa_scene *rgb_scene(void)
     assert_int_equal(aa_scene_quad_to(s, 0.9, 0.05, 0.8, 0.7), AA_OK);
     assert_int_equal(aa_scene_line_to(s, 0.2, 0.9), AA_OK);
     assert_int_equal(aa_scene_close(s), AA_OK);
-    rect(s, 0.3, 0.3, 0.55, 0.62); /* a hole, even-odd */
+    scenes_rect(s, 0.3, 0.3, 0.55, 0.62); /* a hole, even-odd */
     assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.2, 0.8, 0.6}}, AA_FILL_NONZERO), AA_OK);
     assert_int_equal(aa_scene_move_to(s, 0.05, 0.95), AA_OK);
     assert_int_equal(aa_scene_line_to(s, 0.6, 0.02), AA_OK);
@@ -115,18 +88,9 @@ static void render_at(const char *method, const aa_scene *scene, const char *fil
                       int h, double t, double vx, double vy, uint64_t seed, int threads,
                       aa_image *out, aa_counters *c)
 {
-    aa_filter f;
-    aa_spec spec;
-    aa_job job;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    if (aa_method_parse(method, &f, &spec))
-        fail_msg("%s refused: %s", method, aa_last_error());
-    assert_int_equal(aa_job_init(&job, scene, w, h, t, vx, vy, &f, seed, threads), AA_OK);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    aa_counters dummy;
-    if (aa_method_run(&spec, &job, 1, out, c ? c : &dummy, NULL))
-        fail_msg("%s: %s", method, aa_last_error());
-    aa_job_free(&job);
+    const support_view v = {.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .filter = filter,
+                            .seed = seed, .threads = threads};
+    support_render_must(method, scene, &v, out, c);
 }
 
 static void render(const char *method, const aa_scene *scene, const char *filter, int w, int h,
@@ -146,25 +110,11 @@ static double one_pixel(const char *method, const aa_scene *scene, const char *f
     return v;
 }
 
-static double rmse(const aa_image *a, const aa_image *b)
-{
-    double s = 0;
-    size_t n = (size_t)a->w * a->h * 3;
-    for (size_t k = 0; k < n; k++)
-        s += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
-    return sqrt(s / (double)n);
-}
-
 static void truth(const aa_scene *scene, const char *filter, int w, int h, double t, double vx,
                   double vy, aa_image *out)
 {
-    aa_filter f;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    aa_scene *placed = aa_scene_place(scene, w, h, t, vx, vy);
-    assert_non_null(placed);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, out, NULL, NULL), AA_OK);
-    aa_scene_free(placed);
+    const support_view v = {.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .filter = filter};
+    support_reference(scene, &v, out, NULL, NULL);
 }
 
 /* ---- supersample ---- */
@@ -211,7 +161,7 @@ static void check_box_mean(const aa_scene *s, int w, int h, int n, double tol)
 static void test_supersample_box_is_mean(void **state)
 {
     (void)state;
-    aa_scene *crow = crow_scene(), *rgb = rgb_scene();
+    aa_scene *crow = scenes_pattern("crow"), *rgb = rgb_scene();
     /* crow's samples are 0 or 1: the count over n^2 is exact */
     for (int n = 1; n <= 5; n++)
         check_box_mean(crow, 61, 47, n, 0.0);
@@ -307,7 +257,7 @@ static void test_msaa_positions(void **state)
             r[k][0] = x - side / 10, r[k][1] = y - side / 8, r[k][2] = x + side / 10,
             r[k][3] = y + side / 8;
         }
-        aa_scene *s = rects_scene((const double(*)[4])r, n);
+        aa_scene *s = scenes_rects((const double(*)[4])r, n);
         aa_image img;
         render(spec, s, "box", 5, 4, 1, 1, &img, NULL);
         for (int j = 0; j < 4; j++)
@@ -338,9 +288,26 @@ static void test_msaa_positions(void **state)
 
 /* ---- jitter: stratification and seeds ---- */
 
-/* A 1x1 image of a scene white on cell (a, b) of the k x k grid is the
- * share of samples in that cell: exactly 1/k^2 for stratified jitter, for
- * every cell and seed. */
+/* A 1x1 image of a scene white on the box [x0, x1] x [y0, y1] is the share
+ * of the pixel's samples in the box: `want` (within tol) for every seed
+ * from 1 to `seeds`. */
+static void check_share(const char *spec, double x0, double y0, double x1, double y1,
+                        int seeds, double want, double tol)
+{
+    const double r[1][4] = {{x0, y0, x1, y1}};
+    aa_scene *s = scenes_rects(r, 1);
+    for (uint64_t seed = 1; seed <= (uint64_t)seeds; seed++) {
+        double v = one_pixel(spec, s, "box", seed);
+        if (!(fabs(v - want) <= tol))
+            fail_msg("%s seed %llu: the box [%g, %g] x [%g, %g] holds %.17g of the samples, "
+                     "not %.17g",
+                     spec, (unsigned long long)seed, x0, x1, y0, y1, v, want);
+    }
+    aa_scene_free(s);
+}
+
+/* Stratified jitter puts exactly 1/k^2 of its samples in each cell of the
+ * k x k grid, for every cell and seed. */
 static void test_jitter_stratified_cells(void **state)
 {
     (void)state;
@@ -348,18 +315,9 @@ static void test_jitter_stratified_cells(void **state)
         char spec[64];
         snprintf(spec, sizeof spec, "jitter:spp=%d", k * k);
         for (int b = 0; b < k; b++)
-            for (int a = 0; a < k; a++) {
-                const double r[1][4] = {{(double)a / k, (double)b / k, (a + 1.0) / k,
-                                         (b + 1.0) / k}};
-                aa_scene *s = rects_scene(r, 1);
-                for (uint64_t seed = 1; seed <= 6; seed++) {
-                    double v = one_pixel(spec, s, "box", seed);
-                    if (v != 1.0 / (k * k))
-                        fail_msg("%s seed %llu: cell (%d, %d) holds %.17g of the samples", spec,
-                                 (unsigned long long)seed, a, b, v);
-                }
-                aa_scene_free(s);
-            }
+            for (int a = 0; a < k; a++)
+                check_share(spec, (double)a / k, (double)b / k, (a + 1.0) / k, (b + 1.0) / k, 6,
+                            1.0 / (k * k), 0.0);
     }
     /* random points are not stratified: some cell of 4x4 is missed or
      * doubled (16 independent points fill all 16 cells with probability
@@ -368,7 +326,7 @@ static void test_jitter_stratified_cells(void **state)
     for (int cell = 0; cell < 16; cell++) {
         const double r[1][4] = {{(cell % 4) / 4.0, (cell / 4) / 4.0, (cell % 4 + 1) / 4.0,
                                  (cell / 4 + 1) / 4.0}};
-        aa_scene *s = rects_scene(r, 1);
+        aa_scene *s = scenes_rects(r, 1);
         off += one_pixel("jitter:spp=16,seq=random", s, "box", 1) != 1.0 / 16;
         aa_scene_free(s);
     }
@@ -389,7 +347,7 @@ static const char *const seqs[] = {"stratified", "random", "sobol", "halton", "n
 static void test_jitter_seeds(void **state)
 {
     (void)state;
-    aa_scene *s = crow_scene();
+    aa_scene *s = scenes_pattern("crow");
     const int w = 53, h = 37;
     const size_t bytes = sizeof(double) * w * h * 3;
     for (int q = 0; q < 5; q++) {
@@ -532,18 +490,9 @@ static void test_scrambled_nets(void **state)
             snprintf(spec, sizeof spec, "jitter:spp=%d,seq=%s", 1 << m, net_seqs[q]);
             for (int p = 0; p <= m; p++)
                 for (int a = 0; a < (1 << p); a++)
-                    for (int b = 0; b < (1 << (m - p)); b++) {
-                        const double r[1][4] = {{ldexp(a, -p), ldexp(b, p - m),
-                                                 ldexp(a + 1, -p), ldexp(b + 1, p - m)}};
-                        aa_scene *s = rects_scene(r, 1);
-                        for (uint64_t seed = 1; seed <= 3; seed++) {
-                            double v = one_pixel(spec, s, "box", seed);
-                            if (v != ldexp(1, -m))
-                                fail_msg("%s seed %llu: box %d,%d of 2^-%d x 2^-%d holds %.17g",
-                                         spec, (unsigned long long)seed, a, b, p, m - p, v);
-                        }
-                        aa_scene_free(s);
-                    }
+                    for (int b = 0; b < (1 << (m - p)); b++)
+                        check_share(spec, ldexp(a, -p), ldexp(b, p - m), ldexp(a + 1, -p),
+                                    ldexp(b + 1, p - m), 3, ldexp(1, -m), 0.0);
         }
     /* Halton: N = 2^a 3^b points, one in each 2^-a x 3^-b box */
     const int shapes[][2] = {{1, 1}, {2, 1}, {1, 2}, {3, 1}};
@@ -552,18 +501,9 @@ static void test_scrambled_nets(void **state)
         char spec[64];
         snprintf(spec, sizeof spec, "jitter:spp=%d,seq=halton", nx * ny);
         for (int a = 0; a < nx; a++)
-            for (int b = 0; b < ny; b++) {
-                const double r[1][4] = {{(double)a / nx, (double)b / ny, (a + 1.0) / nx,
-                                         (b + 1.0) / ny}};
-                aa_scene *s = rects_scene(r, 1);
-                for (uint64_t seed = 1; seed <= 3; seed++) {
-                    double v = one_pixel(spec, s, "box", seed);
-                    if (fabs(v - 1.0 / (nx * ny)) > 1e-15)
-                        fail_msg("%s seed %llu: box (%d, %d) of 1/%d x 1/%d holds %.17g", spec,
-                                 (unsigned long long)seed, a, b, nx, ny, v);
-                }
-                aa_scene_free(s);
-            }
+            for (int b = 0; b < ny; b++)
+                check_share(spec, (double)a / nx, (double)b / ny, (a + 1.0) / nx, (b + 1.0) / ny,
+                            3, 1.0 / (nx * ny), 1e-15);
     }
 }
 
@@ -583,7 +523,7 @@ static void test_scrambles_unbiased(void **state)
             q[0] = (i + 0.13) / W, q[1] = (j + 0.55) / W, q[2] = (i + 0.37) / W,
             q[3] = (j + 0.84) / W;
         }
-    aa_scene *s = rects_scene((const double(*)[4])r, W * W);
+    aa_scene *s = scenes_rects((const double(*)[4])r, W * W);
     const double area = 0.24 * 0.29;
     for (int q = 0; q < 5; q++)
         for (int spp = 4; spp <= 16; spp *= 4) {
@@ -611,24 +551,10 @@ static void test_scrambles_unbiased(void **state)
 static void test_rmse_crow(void **state)
 {
     (void)state;
-    aa_scene *s = crow_scene();
-    aa_image ref, img;
-    truth(s, "box", 256, 256, 0, 0, 0, &ref);
+    aa_scene *s = scenes_pattern("crow");
     const char *order[] = {"point", "supersample:n=3", "jitter:spp=64"};
-    double last = INFINITY;
-    for (int k = 0; k < 3; k++) {
-        aa_counters c;
-        render(order[k], s, "box", 256, 256, 1, 2, &img, &c);
-        double e = rmse(&img, &ref);
-        print_message("crow 256x256 box: %-16s RMSE %.4e, %llu samples, %llu pixels sampled\n",
-                      order[k], e, (unsigned long long)c.samples,
-                      (unsigned long long)c.expensive_pixels);
-        if (!(e < last))
-            fail_msg("%s: RMSE %.4e is not below the previous method's %.4e", order[k], e, last);
-        last = e;
-        aa_image_free(&img);
-    }
-    aa_image_free(&ref);
+    const support_view v = {.w = 256, .h = 256, .filter = "box", .seed = 1, .threads = 2};
+    support_check_rmse_order("crow", s, &v, order, 3);
     aa_scene_free(s);
 }
 
@@ -654,8 +580,9 @@ static void test_filters_converge(void **state)
         render("supersample:n=4", s, filters[k], 40, 32, 1, 2, &c, NULL);
         render("supersample:n=24", s, filters[k], 40, 32, 1, 2, &a, NULL);
         render("jitter:spp=576", s, filters[k], 40, 32, 1, 2, &b, NULL);
-        double ec = rmse(&c, &ref), ea = rmse(&a, &ref), eb = rmse(&b, &ref);
-        double ebox = rmse(&a, &box);
+        double ec = support_rmse(&c, &ref), ea = support_rmse(&a, &ref);
+        double eb = support_rmse(&b, &ref);
+        double ebox = support_rmse(&a, &box);
         print_message("rgb 40x32 %-10s: RMSE supersample n=4 %.2e, n=24 %.2e, jitter spp=576 "
                       "%.2e; n=24 against the box reference %.2e\n",
                       filters[k], ec, ea, eb, ebox);
@@ -671,16 +598,8 @@ static void test_filters_converge(void **state)
 /* A polygon with straight edges at several angles, in pattern units. */
 static aa_scene *polygon_scene(void)
 {
-    aa_scene *s = aa_scene_new(black);
-    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 0.11, 0.17), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.83, 0.09), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.91, 0.71), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.43, 0.93), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.21, 0.62), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    const double xy[] = {0.11, 0.17, 0.83, 0.09, 0.91, 0.71, 0.43, 0.93, 0.21, 0.62};
+    return scenes_polygon(xy, 5, white, black, AA_FILL_NONZERO);
 }
 
 /* RMSE against spp over random sub-pixel shifts (t = 1 with motion (vx,
@@ -700,7 +619,7 @@ static double convergence_slope(const aa_scene *s, const char *seq, int shifts)
             char spec[64];
             snprintf(spec, sizeof spec, "jitter:spp=%d,seq=%s", spps[q], seq);
             render_at(spec, s, "box", W, W, 1, vx, vy, 100 + k, 2, &img, NULL);
-            double e = rmse(&img, &ref);
+            double e = support_rmse(&img, &ref);
             mse[q] += e * e / shifts;
             aa_image_free(&img);
         }
@@ -734,20 +653,15 @@ static void test_convergence(void **state)
     aa_scene_free(s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_supersample_box_is_mean),
-        cmocka_unit_test(test_supersample_crow_figures),
-        cmocka_unit_test(test_msaa_positions),
-        cmocka_unit_test(test_jitter_stratified_cells),
-        cmocka_unit_test(test_jitter_seeds),
-        cmocka_unit_test(test_gsl_sequences),
-        cmocka_unit_test(test_scrambled_nets),
-        cmocka_unit_test(test_scrambles_unbiased),
-        cmocka_unit_test(test_rmse_crow),
-        cmocka_unit_test(test_filters_converge),
-        cmocka_unit_test(test_convergence),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_supersample_box_is_mean),
+             cmocka_unit_test(test_supersample_crow_figures),
+             cmocka_unit_test(test_msaa_positions),
+             cmocka_unit_test(test_jitter_stratified_cells),
+             cmocka_unit_test(test_jitter_seeds),
+             cmocka_unit_test(test_gsl_sequences),
+             cmocka_unit_test(test_scrambled_nets),
+             cmocka_unit_test(test_scrambles_unbiased),
+             cmocka_unit_test(test_rmse_crow),
+             cmocka_unit_test(test_filters_converge),
+             cmocka_unit_test(test_convergence))

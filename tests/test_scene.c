@@ -6,6 +6,8 @@
  * of `crow` and of a polygon scene with vertices inside the bands.
  */
 #include "bench.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -19,15 +21,6 @@
 static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
 static const aa_rgb red = {{1, 0, 0}}, green = {{0, 1, 0}}, blue = {{0, 0, 1}};
 
-static void rect(aa_scene *s, double x0, double y0, double x1, double y1)
-{
-    assert_int_equal(aa_scene_move_to(s, x0, y0), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, x1, y0), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, x1, y1), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, x0, y1), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-}
-
 static int same(aa_rgb a, aa_rgb b)
 {
     return a.c[0] == b.c[0] && a.c[1] == b.c[1] && a.c[2] == b.c[2];
@@ -36,10 +29,8 @@ static int same(aa_rgb a, aa_rgb b)
 static void test_square(void **state)
 {
     (void)state;
-    aa_scene *s = aa_scene_new(black);
-    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    rect(s, 0.25, 0.25, 0.75, 0.75);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    const double square[1][4] = {{0.25, 0.25, 0.75, 0.75}};
+    aa_scene *s = scenes_rects(square, 1); /* white on black */
     assert_true(same(aa_scene_colour_at(s, 0.5, 0.5), white));
     assert_true(same(aa_scene_colour_at(s, 0.1, 0.5), black));
     assert_true(same(aa_scene_colour_at(s, 0.5, 0.9), black));
@@ -64,11 +55,7 @@ static void test_square(void **state)
 static void test_arc_pieces(void **state)
 {
     (void)state;
-    aa_scene *s = aa_scene_new(black);
-    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 0, 0), AA_OK);
-    assert_int_equal(aa_scene_quad_to(s, 1, 2, 2, 0), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *s = scenes_arc_segment(0, 0, 1, 2, 2, 0);
     size_t n;
     const aa_piece *p = aa_scene_pieces(s, &n);
     /* split at the y extremum into two monotone pieces, plus the flat close */
@@ -113,8 +100,8 @@ static void test_fill_rules_and_layers(void **state)
     for (int rule = 0; rule < 2; rule++) {
         aa_scene *s = aa_scene_new(black);
         assert_int_equal(aa_scene_layer(s, white, rule), AA_OK);
-        rect(s, 0.1, 0.1, 0.6, 0.6);
-        rect(s, 0.4, 0.4, 0.9, 0.9);
+        scenes_rect(s, 0.1, 0.1, 0.6, 0.6);
+        scenes_rect(s, 0.4, 0.4, 0.9, 0.9);
         assert_int_equal(aa_scene_finish(s), AA_OK);
         assert_true(same(aa_scene_colour_at(s, 0.5, 0.5), rule == AA_FILL_NONZERO ? white : black));
         assert_true(same(aa_scene_colour_at(s, 0.2, 0.2), white));
@@ -123,11 +110,11 @@ static void test_fill_rules_and_layers(void **state)
     /* Catmull's pixel (Catmull 1978, fig. 1): green and blue in front hide red */
     aa_scene *s = aa_scene_new(black);
     assert_int_equal(aa_scene_layer(s, green, AA_FILL_NONZERO), AA_OK);
-    rect(s, 0, 0, 0.5, 0.5);
+    scenes_rect(s, 0, 0, 0.5, 0.5);
     assert_int_equal(aa_scene_layer(s, blue, AA_FILL_NONZERO), AA_OK);
-    rect(s, 0, 0.5, 1, 1);
+    scenes_rect(s, 0, 0.5, 1, 1);
     assert_int_equal(aa_scene_layer(s, red, AA_FILL_NONZERO), AA_OK);
-    rect(s, 0.1, 0.1, 0.45, 0.9);
+    scenes_rect(s, 0.1, 0.1, 0.45, 0.9);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     assert_true(same(aa_scene_colour_at(s, 0.2, 0.2), green));
     assert_true(same(aa_scene_colour_at(s, 0.2, 0.7), blue));
@@ -155,10 +142,7 @@ static void test_refusals(void **state)
 static void test_transform_and_clip(void **state)
 {
     (void)state;
-    aa_spec spec;
-    aa_scene *crow, *placed;
-    assert_int_equal(aa_pattern_parse("crow", &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &crow), AA_OK);
+    aa_scene *crow = scenes_pattern("crow"), *placed;
     assert_non_null(placed = aa_scene_place(crow, 300, 200, 2.0, 0.25, -0.5));
     /* u = 300 x + 2 * 0.25, v = 200 y - 2 * 0.5 */
     srand(7);
@@ -172,7 +156,7 @@ static void test_transform_and_clip(void **state)
     /* content outside the unit square is covered by the background */
     aa_scene *s = aa_scene_new(black);
     assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    rect(s, -0.5, -0.5, 0.5, 0.5);
+    scenes_rect(s, -0.5, -0.5, 0.5, 0.5);
     assert_int_equal(aa_scene_clip_unit(s), AA_OK);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     assert_int_equal(aa_scene_layer_count(s), 2);
@@ -247,10 +231,7 @@ static void check_strip(aa_scene *s, int w, int h, double radius)
 static void test_strip_crow(void **state)
 {
     (void)state;
-    aa_spec spec;
-    aa_scene *crow, *placed;
-    assert_int_equal(aa_pattern_parse("crow:curves=24,kmax=0.1", &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &crow), AA_OK);
+    aa_scene *crow = scenes_pattern("crow:curves=24,kmax=0.1"), *placed;
     assert_non_null(placed = aa_scene_place(crow, 61, 47, 0.3, 0.7, 0.2));
     check_strip(placed, 61, 47, 0.5);
     check_strip(placed, 61, 47, 1.5);
@@ -267,16 +248,11 @@ static void test_strip_polygons(void **state)
     aa_scene_free(s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_square),
-        cmocka_unit_test(test_arc_pieces),
-        cmocka_unit_test(test_fill_rules_and_layers),
-        cmocka_unit_test(test_refusals),
-        cmocka_unit_test(test_transform_and_clip),
-        cmocka_unit_test(test_strip_crow),
-        cmocka_unit_test(test_strip_polygons),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_square),
+             cmocka_unit_test(test_arc_pieces),
+             cmocka_unit_test(test_fill_rules_and_layers),
+             cmocka_unit_test(test_refusals),
+             cmocka_unit_test(test_transform_and_clip),
+             cmocka_unit_test(test_strip_crow),
+             cmocka_unit_test(test_strip_polygons))

@@ -3,6 +3,7 @@
  * (patterns, filters) has a consistent parameter table.
  */
 #include "bench.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -137,12 +138,10 @@ static void test_sizes(void **state)
     assert_int_equal(aa_size_check(256, 256, 3, 1), AA_OK);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_defaults),   cmocka_unit_test(test_values),
-        cmocka_unit_test(test_refusals),   cmocka_unit_test(test_format_round_trip),
-        cmocka_unit_test(test_tables),     cmocka_unit_test(test_sizes),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_defaults),
+             cmocka_unit_test(test_values),
+             cmocka_unit_test(test_refusals),
+             cmocka_unit_test(test_format_round_trip),
+             cmocka_unit_test(test_tables),
+             cmocka_unit_test(test_sizes))

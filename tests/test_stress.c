@@ -7,6 +7,7 @@
  * same scenes (stress.c), a path separate from truth.c and area.c.
  */
 #include "bench.h"
+#include "support.h"
 
 #include <setjmp.h>
 #include <stdarg.h>
@@ -59,12 +60,7 @@ static void test_sizes_and_moves(void **state)
     run_named("star moved 12.3,-7.7 px over 1e6 frames");
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_slivers),
-        cmocka_unit_test(test_degenerate),
-        cmocka_unit_test(test_sizes_and_moves),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_slivers),
+             cmocka_unit_test(test_degenerate),
+             cmocka_unit_test(test_sizes_and_moves))

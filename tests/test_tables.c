@@ -20,6 +20,7 @@
 #include "bench.h"
 #include "oracle.h"
 #include "scenes.h"
+#include "support.h"
 
 #include <fcntl.h>
 #include <math.h>
@@ -34,26 +35,6 @@
 
 #include <cmocka.h>
 
-static int render(const char *method, const aa_scene *scene, const char *filter, int w, int h,
-                  int threads, aa_image *out)
-{
-    aa_filter f;
-    aa_spec spec;
-    aa_job job;
-    aa_counters c;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    int st = aa_method_parse(method, &f, &spec);
-    if (st)
-        return st;
-    assert_int_equal(aa_job_init(&job, scene, w, h, 0.0, 0.0, 0.0, &f, 1, threads), AA_OK);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    st = aa_method_run(&spec, &job, 1, out, &c, NULL);
-    aa_job_free(&job);
-    if (st)
-        aa_image_free(out);
-    return st;
-}
-
 #define HW 24
 
 /* Largest error against 1 - C(signed distance) over a HW x HW image of the
@@ -64,10 +45,8 @@ static double half_plane_error(const char *method, const char *filter, double px
     aa_filter f;
     assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
     aa_scene *s = scenes_half_plane(px / HW, py / HW, angle); /* white right of the line */
-    assert_non_null(s);
     aa_image img;
-    if (render(method, s, filter, HW, HW, 2, &img))
-        fail_msg("%s with %s: %s", method, filter, aa_last_error());
+    support_render(method, s, filter, HW, HW, 2, &img, NULL);
     double nx = cos(angle), ny = -sin(angle), worst = 0.0;
     for (int j = 0; j < HW; j++)
         for (int i = 0; i < HW; i++) {
@@ -178,18 +157,13 @@ typedef double bound_fn(const aa_filter *f, const char *method, int n, int piece
 static void crow_within_n(const char *method, const char *filter, int n, double R,
                           bound_fn *bound)
 {
-    aa_spec ps;
-    aa_scene *s, *placed;
+    aa_scene *s = scenes_pattern("crow"), *placed = aa_scene_place(s, n, n, 0, 0, 0);
     aa_filter f;
-    assert_int_equal(aa_pattern_parse("crow", &ps), AA_OK);
-    assert_int_equal(aa_pattern_scene(&ps, &s), AA_OK);
+    assert_non_null(placed);
     assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    placed = aa_scene_place(s, n, n, 0, 0, 0);
     aa_image ref, img;
-    assert_int_equal(aa_image_alloc(&ref, n, n, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, &ref, NULL, NULL), AA_OK);
-    if (render(method, s, filter, n, n, 2, &img))
-        fail_msg("%s: %s", method, aa_last_error());
+    support_reference(s, &(support_view){.w = n, .h = n, .filter = filter}, &ref, NULL, NULL);
+    support_render(method, s, filter, n, n, 2, &img, NULL);
     double sum = 0, worst = 0, worst_bound = 0;
     for (int j = 0; j < n; j++)
         for (int i = 0; i < n; i++) {
@@ -306,18 +280,22 @@ static void test_cone_half_plane_converges(void **state)
  * ends per chord (n chords by the flattening rule) plus (2/3) tol L wmax
  * for the flattening, L bounded by the piece's y extent in the mask's rows
  * plus twice its x extent there. */
+/* conetable's cut, res and tol as the method spec gives them, else its
+ * defaults 2, 64 and 1e-3. */
+static void conetable_options(const char *method, double *cut, int *res, double *tol)
+{
+    const char *q;
+    *cut = (q = strstr(method, "cut=")) ? atof(q + 4) : 2.0;
+    *res = (q = strstr(method, "res=")) ? atoi(q + 4) : 64;
+    *tol = (q = strstr(method, "tol=")) ? atof(q + 4) : 1e-3;
+}
+
 static double cone_bound(const aa_filter *f, const char *method, int n, int pieces,
                          double xvar)
 {
-    double cut = 2.0, tol = 1e-3;
-    int res = 64;
-    const char *q;
-    if ((q = strstr(method, "cut=")))
-        cut = atof(q + 4);
-    if ((q = strstr(method, "res=")))
-        res = atoi(q + 4);
-    if ((q = strstr(method, "tol=")))
-        tol = atof(q + 4);
+    double cut, tol;
+    int res;
+    conetable_options(method, &cut, &res, &tol);
     double s = f->spec.v[0], R = cut * s, M = -expm1(-0.5 * cut * cut);
     double wmax = 1.0 / (2.0 * M_PI * s * s * M);
     /* crow's arcs in the n px image: |a| <= n * (largest curvature term,
@@ -350,13 +328,9 @@ static double cone_end_bound_cone(int res)
 static double cone_weight_bound(const aa_filter *f, const char *method, int n, int pieces,
                                 double xvar)
 {
-    double tol = 1e-3;
-    int res = 64;
-    const char *q;
-    if ((q = strstr(method, "res=")))
-        res = atoi(q + 4);
-    if ((q = strstr(method, "tol=")))
-        tol = atof(q + 4);
+    double cut, tol; /* cut: not for the cone weight (refused) */
+    int res;
+    conetable_options(method, &cut, &res, &tol);
     double R = f->spec.v[0], wmax = 3.0 / (M_PI * R * R);
     double dt = 2.0 * R / n, chords = ceil(sqrt(n * dt * dt / (4.0 * tol)));
     return pieces * (2.0 * chords * cone_end_bound_cone(res)) +
@@ -385,40 +359,12 @@ static void test_cone_weight_half_plane(void **state)
 
 /* ---- refusals through the command line ---- */
 
-static int run_cli(const char *const *args, char *out, size_t cap)
-{
-    const char *exe = getenv("AABENCH");
-    if (!exe)
-        fail_msg("$AABENCH is not set");
-    char log[] = "/tmp/aabench-tables-XXXXXX";
-    int fd = mkstemp(log);
-    assert_true(fd >= 0);
-    pid_t pid = fork();
-    if (pid == 0) {
-        dup2(fd, 1);
-        dup2(fd, 2);
-        const char *argv[32] = {exe};
-        for (int k = 0; args[k] && k < 30; k++)
-            argv[k + 1] = args[k];
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
-    int status;
-    waitpid(pid, &status, 0);
-    lseek(fd, 0, SEEK_SET);
-    ssize_t n = read(fd, out, cap - 1);
-    out[n > 0 ? n : 0] = '\0';
-    close(fd);
-    unlink(log);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-}
-
 static void refused(const char *method, const char *filter, const char *words)
 {
     char out[4096];
     const char *args[] = {"render", "-p", "crow", "-s", "8x8", "-m", method, "-f", filter,
                           "-o", "/tmp/aabench-tables-never.pfm", NULL};
-    int code = run_cli(args, out, sizeof out);
+    int code = support_aabench(args, out, sizeof out);
     if (code != 2 || !strstr(out, words))
         fail_msg("%s -f %s: exit %d, \"%s\" (expected 2 and \"%s\")", method, filter, code, out,
                  words);
@@ -428,33 +374,36 @@ static void refused(const char *method, const char *filter, const char *words)
 static void test_refusals(void **state)
 {
     (void)state;
-    refused("crowtable:cut=4", "tent", "truncates the Gaussian only");
-    refused("crowtable:res=0", "box", "res");
-    refused("conetable", "box", "circular mask");
-    refused("conetable", "tent:r=1", "circular mask");
-    refused("conetable:weight=cone", "gauss", "use -f cone:r=R");
-    refused("conetable:weight=gauss", "cone", "use -f gauss:s=S");
-    refused("conetable:weight=cone,cut=3", "cone", "leave cut out");
-    refused("conetable", "cone:r=0", "out of range");
-    refused("conetable", "cone:r=nan", "not a number");
+    /* the tables' own limits: method, filter, words the message must hold */
+    static const char *const limits[][3] = {
+        {"crowtable:cut=4", "tent", "truncates the Gaussian only"},
+        {"crowtable:res=0", "box", "res"},
+        {"conetable:weight=cone", "gauss", "use -f cone:r=R"},
+        {"conetable:weight=gauss", "cone", "use -f gauss:s=S"},
+        {"conetable:weight=cone,cut=3", "cone", "leave cut out"},
+    };
+    for (size_t k = 0; k < sizeof limits / sizeof *limits; k++)
+        refused(limits[k][0], limits[k][1], limits[k][2]);
+    /* conetable's circular mask: filters it cannot form or that are bad */
+    static const char *const masks[][2] = {{"box", "circular mask"},
+                                           {"tent:r=1", "circular mask"},
+                                           {"cone:r=0", "out of range"},
+                                           {"cone:r=nan", "not a number"}};
+    for (size_t k = 0; k < sizeof masks / sizeof *masks; k++)
+        refused("conetable", masks[k][0], masks[k][1]);
     /* methods that cannot form a filter that is not separable say what
      * they accept */
-    refused("crowtable", "cone", "separable filter");
-    refused("area", "cone", "box");
-    refused("point", "cone", "box");
-    refused("trio", "cone", "box");
+    static const char *const separable[][2] = {
+        {"crowtable", "separable filter"}, {"area", "box"}, {"point", "box"}, {"trio", "box"}};
+    for (size_t k = 0; k < sizeof separable / sizeof *separable; k++)
+        refused(separable[k][0], "cone", separable[k][1]);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_crow_half_plane_converges),
-        cmocka_unit_test(test_crow_pattern_bound),
-        cmocka_unit_test(test_cone_half_plane_converges),
-        cmocka_unit_test(test_cone_pattern_bound),
-        cmocka_unit_test(test_cone_weight_crow),
-        cmocka_unit_test(test_cone_weight_half_plane),
-        cmocka_unit_test(test_refusals),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_crow_half_plane_converges),
+             cmocka_unit_test(test_crow_pattern_bound),
+             cmocka_unit_test(test_cone_half_plane_converges),
+             cmocka_unit_test(test_cone_pattern_bound),
+             cmocka_unit_test(test_cone_weight_crow),
+             cmocka_unit_test(test_cone_weight_half_plane),
+             cmocka_unit_test(test_refusals))

@@ -28,6 +28,8 @@
  *  - cycle on a still scene with one full cycle is supersample's msaa image.
  */
 #include "bench.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -41,55 +43,32 @@
 
 /* ---- helpers ---- */
 
-static aa_scene *pattern_scene(const char *name)
-{
-    aa_spec spec;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse(name, &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-    return s;
-}
-
 static int render(const char *method, const aa_scene *scene, int w, int h, double t, double vx,
                   double vy, int frame_only, aa_image *out)
 {
     /* box, or the Gaussian for a method that forms only circular filters
      * (conetable), or the tent of radius 1 for Crow's tiler: the motion
      * checks below do not depend on the filter */
-    aa_filter filter;
-    aa_spec spec;
-    aa_job job;
-    aa_counters c;
-    aa_filter_default(&filter);
-    int st = aa_method_parse(method, &filter, &spec);
-    if (st == AA_EINVAL) {
-        assert_int_equal(aa_filter_parse("gauss", &filter), AA_OK);
-        st = aa_method_parse(method, &filter, &spec);
+    support_view v = {.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .seed = 3, .threads = 2,
+                      .frame_only = frame_only};
+    const char *filters[] = {"box", "gauss", "tent:r=1"};
+    for (int k = 0; k < 3; k++) {
+        aa_filter f;
+        aa_spec spec;
+        assert_int_equal(aa_filter_parse(filters[k], &f), AA_OK);
+        if (aa_method_parse(method, &f, &spec) != AA_EINVAL) {
+            v.filter = k ? filters[k] : NULL;
+            break;
+        }
     }
-    if (st == AA_EINVAL) {
-        assert_int_equal(aa_filter_parse("tent:r=1", &filter), AA_OK);
-        st = aa_method_parse(method, &filter, &spec);
-    }
-    if (st)
-        return st;
-    assert_int_equal(aa_job_init(&job, scene, w, h, t, vx, vy, &filter, 3, 2), AA_OK);
-    job.frame_only = frame_only;
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    st = aa_method_run(&spec, &job, 1, out, &c, NULL);
-    aa_job_free(&job);
-    return st;
+    return support_render_view(method, scene, &v, out, NULL);
 }
 
 static void reference(const aa_scene *scene, int w, int h, double t, double vx, double vy,
                       aa_image *out)
 {
-    aa_filter box;
-    aa_filter_default(&box);
-    aa_scene *placed = aa_scene_place(scene, w, h, t, vx, vy);
-    assert_non_null(placed);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &box, 1, out, NULL, NULL), AA_OK);
-    aa_scene_free(placed);
+    const support_view v = {.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .threads = 1};
+    support_reference(scene, &v, out, NULL, NULL);
 }
 
 static double total(const aa_image *im)
@@ -98,15 +77,6 @@ static double total(const aa_image *im)
     for (size_t k = 0; k < (size_t)im->w * im->h * 3; k++)
         s += im->v[k];
     return s / 3;
-}
-
-static double rmse(const aa_image *a, const aa_image *b)
-{
-    double s = 0;
-    size_t n = (size_t)a->w * a->h * 3;
-    for (size_t k = 0; k < n; k++)
-        s += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
-    return sqrt(s / (double)n);
 }
 
 static void free_all(aa_image *im, int n)
@@ -199,7 +169,7 @@ static void test_methods_honour_motion(void **state)
     (void)state;
     const int w = 64, h = 64;
     const double t = 2.0, vx = 0.375, vy = -0.25; /* displacement (0.75, -0.5) px */
-    aa_scene *s = pattern_scene("crow");
+    aa_scene *s = scenes_pattern("crow");
     aa_scene *moved = aa_scene_transform(s, 1.0, 1.0, t * vx / w, t * vy / h);
     assert_non_null(moved);
     const void *const *table = aa_method_table();
@@ -241,11 +211,7 @@ static aa_scene *fence_scene(double *area)
         double x0 = 0.25 + m * FENCE_P, x1 = fmin(0.75, x0 + 0.5 * FENCE_P);
         if (x0 >= 0.75)
             break;
-        assert_int_equal(aa_scene_move_to(s, x0, 0.25), AA_OK);
-        assert_int_equal(aa_scene_line_to(s, x1, 0.25), AA_OK);
-        assert_int_equal(aa_scene_line_to(s, x1, 0.75), AA_OK);
-        assert_int_equal(aa_scene_line_to(s, x0, 0.75), AA_OK);
-        assert_int_equal(aa_scene_close(s), AA_OK);
+        scenes_rect(s, x0, 0.25, x1, 0.75);
         *area += (x1 - x0) * 0.5;
     }
     assert_int_equal(aa_scene_finish(s), AA_OK);
@@ -297,7 +263,7 @@ static void test_hexagon_eye_beats_point(void **state)
 {
     (void)state;
     enum { N = 12 };
-    aa_scene *s = pattern_scene("crow");
+    aa_scene *s = scenes_pattern("crow");
     aa_image refs[N];
     for (int k = 0; k < N; k++)
         reference(s, 128, 128, k, 0.05, 0.02, &refs[k]);
@@ -347,14 +313,12 @@ static void test_taa_still(void **state)
 {
     (void)state;
     const int w = 96, h = 64;
-    aa_scene *s = pattern_scene("crow"), *placed = aa_scene_place(s, w, h, 0, 0, 0);
+    aa_scene *s = scenes_pattern("crow"), *placed = aa_scene_place(s, w, h, 0, 0, 0);
     aa_image img, form, mean;
     /* 0.9^511 ~ 4e-24: the start of the history is gone */
     assert_int_equal(render("taa:history=512", s, w, h, 5.5, 0, 0, 0, &img), AA_OK);
     taa_closed_form(placed, w, h, 5, 8, 0.1, &form);
-    double d = 0;
-    for (size_t k = 0; k < (size_t)w * h * 3; k++)
-        d = fmax(d, fabs(img.v[k] - form.v[k]));
+    double d = support_max_diff(&img, &form, NULL, NULL);
     print_message("taa still: largest difference from the closed form %.3e\n", d);
     assert_true(d < 1e-12);
     aa_image_free(&img);
@@ -367,7 +331,7 @@ static void test_taa_still(void **state)
                            "taa:alpha=0.02,history=1024"};
     for (int k = 0; k < 3; k++) {
         assert_int_equal(render(specs[k], s, w, h, 5, 0, 0, 0, &img), AA_OK);
-        double e = rmse(&img, &mean);
+        double e = support_rmse(&img, &mean);
         print_message("%s: RMSE to the 8-offset supersampled image %.3e\n", specs[k], e);
         assert_true(e < last);
         last = e;
@@ -382,7 +346,7 @@ static void test_taa_still(void **state)
 static void test_cycle_is_msaa(void **state)
 {
     (void)state;
-    aa_scene *s = pattern_scene("crow");
+    aa_scene *s = scenes_pattern("crow");
     const char *pairs[][2] = {{"cycle:positions=msaa8", "supersample:pattern=msaa8"},
                               {"cycle:positions=msaa16", "supersample:pattern=msaa16"},
                               {"cycle:positions=msaa4", "supersample:pattern=msaa4"}};
@@ -390,9 +354,7 @@ static void test_cycle_is_msaa(void **state)
         aa_image a, b;
         assert_int_equal(render(pairs[k][0], s, 80, 48, 3.7, 0, 0, 0, &a), AA_OK);
         assert_int_equal(render(pairs[k][1], s, 80, 48, 3.7, 0, 0, 0, &b), AA_OK);
-        double d = 0;
-        for (size_t q = 0; q < 80 * 48 * 3; q++)
-            d = fmax(d, fabs(a.v[q] - b.v[q]));
+        double d = support_max_diff(&a, &b, NULL, NULL);
         if (!(d < 1e-12))
             fail_msg("%s differs from %s by %.3e", pairs[k][0], pairs[k][1], d);
         aa_image_free(&a);
@@ -401,16 +363,11 @@ static void test_cycle_is_msaa(void **state)
     aa_scene_free(s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_metrics_known),
-        cmocka_unit_test(test_popping_known),
-        cmocka_unit_test(test_methods_honour_motion),
-        cmocka_unit_test(test_fence_conservation),
-        cmocka_unit_test(test_hexagon_eye_beats_point),
-        cmocka_unit_test(test_taa_still),
-        cmocka_unit_test(test_cycle_is_msaa),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_metrics_known),
+             cmocka_unit_test(test_popping_known),
+             cmocka_unit_test(test_methods_honour_motion),
+             cmocka_unit_test(test_fence_conservation),
+             cmocka_unit_test(test_hexagon_eye_beats_point),
+             cmocka_unit_test(test_taa_still),
+             cmocka_unit_test(test_cycle_is_msaa))

@@ -33,6 +33,8 @@
  *    filter's pipeline), and the counters.
  */
 #include "bench.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -47,29 +49,6 @@
 static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
 
 /* ---- scenes (pattern units) ---- */
-
-static void polygon(aa_scene *s, const double *xy, int n)
-{
-    assert_int_equal(aa_scene_move_to(s, xy[0], xy[1]), AA_OK);
-    for (int k = 1; k < n; k++)
-        assert_int_equal(aa_scene_line_to(s, xy[2 * k], xy[2 * k + 1]), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-}
-
-static void rect(aa_scene *s, double x0, double y0, double x1, double y1)
-{
-    const double xy[] = {x0, y0, x1, y0, x1, y1, x0, y1};
-    polygon(s, xy, 4);
-}
-
-static aa_scene *crow_scene(void)
-{
-    aa_spec spec;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse("crow", &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-    return s;
-}
 
 /* Many overlapping triangles of distinct colours: the colour at a point
  * changes within a pixel almost everywhere, so a frame tells its sample
@@ -87,7 +66,7 @@ static aa_scene *triangles_scene(void)
             xy[2 * v] = cx + 0.3 * (aa_rng_uniform(&r) - 0.5);
             xy[2 * v + 1] = cy + 0.3 * (aa_rng_uniform(&r) - 0.5);
         }
-        polygon(s, xy, 3);
+        scenes_path(s, xy, 3);
     }
     assert_int_equal(aa_scene_finish(s), AA_OK);
     return s;
@@ -96,11 +75,7 @@ static aa_scene *triangles_scene(void)
 /* A colour inside the polygon (x, y pairs), another outside. */
 static aa_scene *polygon_scene(const double *xy, int n, aa_rgb inside, aa_rgb outside)
 {
-    aa_scene *s = aa_scene_new(outside);
-    assert_int_equal(aa_scene_layer(s, inside, AA_FILL_NONZERO), AA_OK);
-    polygon(s, xy, n);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    return scenes_polygon(xy, n, inside, outside, AA_FILL_NONZERO);
 }
 
 /* ---- rendering ---- */
@@ -109,24 +84,10 @@ static int render_at(const char *method, const aa_scene *scene, int w, int h, do
                      double vx, double vy, int frame_only, int threads, aa_image *out,
                      aa_counters *c)
 {
-    aa_filter box;
-    aa_spec spec;
-    aa_job job;
-    aa_filter_default(&box);
-    int st = aa_method_parse(method, &box, &spec);
-    if (st)
-        return st;
-    assert_int_equal(aa_job_init(&job, scene, w, h, t, vx, vy, &box, 1, threads), AA_OK);
-    job.frame_only = frame_only;
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    aa_counters dummy;
-    st = aa_method_run(&spec, &job, 1, out, c ? c : &dummy, NULL);
-    aa_job_free(&job);
-    if (st) {
-        fail_msg("%s: %s", method, aa_last_error());
-        aa_image_free(out);
-    }
-    return st;
+    const support_view v = {.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .seed = 1,
+                            .threads = threads, .frame_only = frame_only};
+    support_render_must(method, scene, &v, out, c);
+    return AA_OK;
 }
 
 static void render(const char *method, const aa_scene *scene, int w, int h, aa_image *out,
@@ -138,27 +99,8 @@ static void render(const char *method, const aa_scene *scene, int w, int h, aa_i
 static void reference(const aa_scene *scene, int w, int h, double t, double vx, double vy,
                       aa_image *out)
 {
-    aa_filter box;
-    aa_filter_default(&box);
-    aa_scene *placed = aa_scene_place(scene, w, h, t, vx, vy);
-    assert_non_null(placed);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &box, 0, out, NULL, NULL), AA_OK);
-    aa_scene_free(placed);
-}
-
-static double rmse(const aa_image *a, const aa_image *b)
-{
-    double s = 0;
-    size_t n = (size_t)a->w * a->h * 3;
-    for (size_t k = 0; k < n; k++)
-        s += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
-    return sqrt(s / (double)n);
-}
-
-static int same_image(const aa_image *a, const aa_image *b)
-{
-    return memcmp(a->v, b->v, sizeof(double) * 3 * (size_t)a->w * a->h) == 0;
+    support_reference(scene, &(support_view){.w = w, .h = h, .t = t, .vx = vx, .vy = vy}, out,
+                      NULL, NULL);
 }
 
 /* ---- hexagon ---- */
@@ -167,7 +109,7 @@ static int same_image(const aa_image *a, const aa_image *b)
 static void check_eye(const char *method, int frames, double t, double vx, double vy)
 {
     const int w = 37, h = 23;
-    aa_scene *s = crow_scene();
+    aa_scene *s = scenes_pattern("crow");
     aa_image eye, frame, sum;
     aa_counters c;
     assert_int_equal(render_at(method, s, w, h, t, vx, vy, 0, 2, &eye, &c), AA_OK);
@@ -180,7 +122,7 @@ static void check_eye(const char *method, int frames, double t, double vx, doubl
         assert_true(c.samples == (uint64_t)w * h);
         for (int q = 0; q < 3 * w * h; q++)
             sum.v[q] += frame.v[q];
-        differs += !same_image(&frame, &eye);
+        differs += !support_same_image(&frame, &eye);
         aa_image_free(&frame);
     }
     double worst = 0;
@@ -282,11 +224,11 @@ static void test_hexagon_offsets(void **state)
 static void test_hexagon_radius_zero_is_point(void **state)
 {
     (void)state;
-    aa_scene *s = crow_scene();
+    aa_scene *s = scenes_pattern("crow");
     aa_image a, b;
     assert_int_equal(render_at("hexagon:radius=0", s, 64, 40, 2.5, 0, 0, 0, 2, &a, NULL), AA_OK);
     assert_int_equal(render_at("point", s, 64, 40, 2.5, 0, 0, 0, 2, &b, NULL), AA_OK);
-    assert_true(same_image(&a, &b));
+    assert_true(support_same_image(&a, &b));
     aa_image_free(&a);
     aa_image_free(&b);
     aa_scene_free(s);
@@ -314,7 +256,7 @@ static void test_hexagon_beats_point_on_crow(void **state)
 {
     (void)state;
     const int n = 256;
-    aa_scene *s = crow_scene();
+    aa_scene *s = scenes_pattern("crow");
     /* T, vx, vy, and whether the hexagon must win.  Crow meant the scheme
      * for still or slowly moving images ("when the dot positions are
      * constant and the edge position slowly varying, the staircases are
@@ -332,7 +274,7 @@ static void test_hexagon_beats_point_on_crow(void **state)
             render_at("hexagon:display=fixed,order=024153", s, n, n, t, vx, vy, 0, 2, &hex, NULL),
             AA_OK);
         assert_int_equal(render_at("point", s, n, n, t, vx, vy, 0, 2, &pt, NULL), AA_OK);
-        double eh = rmse(&hex, &ref), ep = rmse(&pt, &ref);
+        double eh = support_rmse(&hex, &ref), ep = support_rmse(&pt, &ref);
         print_message("crow %dx%d T=%-4g v=(%g, %g) vs the box reference at T: hexagon RMSE "
                       "%.4e, point %.4e\n",
                       n, n, t, vx, vy, eh, ep);
@@ -343,7 +285,7 @@ static void test_hexagon_beats_point_on_crow(void **state)
              * sees of point sampling */
             window_mean(s, n, n, t, vx, vy, 1, &ref_eye);
             window_mean(s, n, n, t, vx, vy, 0, &pt_eye);
-            double fh = rmse(&hex, &ref_eye), fp = rmse(&pt_eye, &ref_eye);
+            double fh = support_rmse(&hex, &ref_eye), fp = support_rmse(&pt_eye, &ref_eye);
             print_message("%38s vs the mean of the six frames' references: hexagon %.4e, six "
                           "point frames %.4e\n",
                           "", fh, fp);
@@ -368,7 +310,7 @@ static void check_unchanged(const char *method, const char *what, const aa_scene
     aa_counters c;
     render(method, s, w, h, &a, &c);
     render("point", s, w, h, &b, NULL);
-    if (!same_image(&a, &b))
+    if (!support_same_image(&a, &b))
         fail_msg("%s changed %s", method, what);
     print_message("%s leaves %s as sampled (%llu pixels examined)\n", method, what,
                   (unsigned long long)c.expensive_pixels);
@@ -385,11 +327,11 @@ static void test_trio_keeps_aligned_edges(void **state)
      * of them a bar one dot thick, another touching the image border */
     aa_scene *s = aa_scene_new(black);
     assert_int_equal(aa_scene_layer(s, orange, AA_FILL_NONZERO), AA_OK);
-    rect(s, 5.0 / w, 4.0 / h, 19.0 / w, 17.0 / h);
-    rect(s, 22.0 / w, 3.0 / h, 37.0 / w, 4.0 / h);
+    scenes_rect(s, 5.0 / w, 4.0 / h, 19.0 / w, 17.0 / h);
+    scenes_rect(s, 22.0 / w, 3.0 / h, 37.0 / w, 4.0 / h);
     assert_int_equal(aa_scene_layer(s, teal, AA_FILL_NONZERO), AA_OK);
-    rect(s, 12.0 / w, 10.0 / h, 30.0 / w, 25.0 / h);
-    rect(s, 35.0 / w, 20.0 / h, 1.0, 1.0);
+    scenes_rect(s, 12.0 / w, 10.0 / h, 30.0 / w, 25.0 / h);
+    scenes_rect(s, 35.0 / w, 20.0 / h, 1.0, 1.0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     check_unchanged("trio", "rectangles on pixel boundaries", s, w, h);
     aa_scene_free(s);
@@ -477,7 +419,7 @@ static void check_toward_reference(const char *what, const double *xy, int n, in
     reference(s, w, h, 0, 0, 0, &ref);
     render(method, s, w, h, &tr, NULL);
     render("point", s, w, h, &pt, NULL);
-    double et = rmse(&tr, &ref), ep = rmse(&pt, &ref);
+    double et = support_rmse(&tr, &ref), ep = support_rmse(&pt, &ref);
     print_message("%-26s %-22s RMSE %.4e, point %.4e (ratio %.2f)\n", what, method, et, ep,
                   et / ep);
     if (!(et < ep))
@@ -508,12 +450,12 @@ static void test_sancha(void **state)
     (void)state;
     /* threshold 1: no two values in [0, 1] differ by more than 1, the
      * infinite threshold: the point-sampled image comes back unchanged */
-    aa_scene *s = crow_scene();
+    aa_scene *s = scenes_pattern("crow");
     aa_image a, b;
     aa_counters c;
     render("trio:variant=sancha,threshold=1", s, 64, 48, &a, &c);
     render("point", s, 64, 48, &b, NULL);
-    assert_true(same_image(&a, &b));
+    assert_true(support_same_image(&a, &b));
     assert_true(c.expensive_pixels == 0);
     aa_image_free(&a);
     aa_image_free(&b);
@@ -528,7 +470,7 @@ static void test_sancha(void **state)
     const int w = 12, h = 10;
     s = aa_scene_new(black);
     assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    rect(s, 4.0 / w, 3.0 / h, 9.0 / w, 7.0 / h);
+    scenes_rect(s, 4.0 / w, 3.0 / h, 9.0 / w, 7.0 / h);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     render("trio:variant=sancha", s, w, h, &a, &c);
     int changed = 0;
@@ -573,9 +515,9 @@ static void check_recursive_step(int vertical)
     aa_scene *s = aa_scene_new(black);
     assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
     if (vertical)
-        rect(s, -1, 3.0 / h, 2, 2);
+        scenes_rect(s, -1, 3.0 / h, 2, 2);
     else
-        rect(s, 3.0 / w, -1, 2, 2);
+        scenes_rect(s, 3.0 / w, -1, 2, 2);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     aa_image img;
     render("trio:variant=recursive", s, w, h, &img, NULL);
@@ -610,7 +552,7 @@ static void test_threads_agree(void **state)
     (void)state;
     const char *methods[] = {"trio", "trio:variant=sancha", "trio:variant=recursive",
                              "trio:variant=recursive,weight=0.5", "hexagon"};
-    aa_scene *s = crow_scene();
+    aa_scene *s = scenes_pattern("crow");
     for (int k = 0; k < 5; k++) {
         aa_image a, b;
         aa_counters ca, cb;
@@ -619,7 +561,7 @@ static void test_threads_agree(void **state)
         for (int t = 2; t <= 3; t++) {
             assert_int_equal(render_at(methods[k], s, 300, 203, 1.5, 0.2, 0.1, 0, t, &b, &cb),
                              AA_OK);
-            if (!same_image(&a, &b) || ca.samples != cb.samples ||
+            if (!support_same_image(&a, &b) || ca.samples != cb.samples ||
                 ca.expensive_pixels != cb.expensive_pixels)
                 fail_msg("%s: 1 and %d threads differ", methods[k], t);
             aa_image_free(&b);
@@ -640,7 +582,7 @@ static void test_trio_counters(void **state)
     const int w = 12, h = 10;
     aa_scene *s = aa_scene_new(black);
     assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    rect(s, 4.0 / w, 3.0 / h, 9.0 / w, 7.0 / h);
+    scenes_rect(s, 4.0 / w, 3.0 / h, 9.0 / w, 7.0 / h);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     aa_image img;
     aa_counters c;
@@ -672,21 +614,16 @@ static void test_refusals(void **state)
     assert_int_equal(aa_method_parse("trio:variant=mlaa", &box, &spec), AA_EINVAL);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_hexagon_eye_is_mean_of_frames),
-        cmocka_unit_test(test_hexagon_offsets),
-        cmocka_unit_test(test_hexagon_radius_zero_is_point),
-        cmocka_unit_test(test_hexagon_beats_point_on_crow),
-        cmocka_unit_test(test_trio_keeps_aligned_edges),
-        cmocka_unit_test(test_trio_fig43),
-        cmocka_unit_test(test_trio_toward_reference),
-        cmocka_unit_test(test_sancha),
-        cmocka_unit_test(test_recursive_step),
-        cmocka_unit_test(test_threads_agree),
-        cmocka_unit_test(test_trio_counters),
-        cmocka_unit_test(test_refusals),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_hexagon_eye_is_mean_of_frames),
+             cmocka_unit_test(test_hexagon_offsets),
+             cmocka_unit_test(test_hexagon_radius_zero_is_point),
+             cmocka_unit_test(test_hexagon_beats_point_on_crow),
+             cmocka_unit_test(test_trio_keeps_aligned_edges),
+             cmocka_unit_test(test_trio_fig43),
+             cmocka_unit_test(test_trio_toward_reference),
+             cmocka_unit_test(test_sancha),
+             cmocka_unit_test(test_recursive_step),
+             cmocka_unit_test(test_threads_agree),
+             cmocka_unit_test(test_trio_counters),
+             cmocka_unit_test(test_refusals))

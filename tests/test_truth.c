@@ -10,24 +10,18 @@
  *  - uniform regions and pixels wholly inside a band are exact (0 or 1);
  *    every pixel's bound is at most 1e-12; 1 and 2 threads agree bit for bit.
  *  - polygon scenes (several layers, vertices inside pixels) against areas
- *    from an independent polygon clipper written here (Sutherland-Hodgman and
- *    the shoelace formula); Catmull's pixel is (0, 0.25, 0.5) (Catmull 1978).
+ *    from tests/oracle.c's polygon clipper (Sutherland-Hodgman and the
+ *    shoelace formula); Catmull's pixel is (0, 0.25, 0.5) (Catmull 1978).
  *  - a parabolic segment's area is 2/3 of its control triangle (Archimedes).
  *  - the reference cache returns the same image and treats a damaged file
  *    as a miss.
- *  - the Gaussian's fixed rule (truth.c): a straight edge through the image
- *    against the closed form (the 2-D Gaussian is radial, so a half-plane
- *    gives Phi(d / s), d the signed distance of the centre from the edge),
- *    every pixel within its own bound, for edges that take the fixed rule
- *    (slopes up to 0.84) and edges that must leave it to QAG (nearly
- *    horizontal), on each kind of panel grid (s = 0.07, 0.3, 0.5, 1.3);
- *    scenes with vertices, crossing edges, layers and general arcs (the
- *    fall-back path) and crow against the QAG-only computation, within
- *    the two bounds; thread counts 1, 2, 3 bit-identical.
+ *  - the Gaussian's fixed rule: tests/test_truth_gauss.c.
  */
 #include "bench.h"
 #include "oracle.h"
 #include "truth_internal.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -46,19 +40,8 @@ static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
 static void reference(const char *pattern, int w, int h, const char *filter, int threads,
                       aa_image *img, aa_image *bound, aa_truth_stats *stats)
 {
-    aa_spec spec;
-    aa_filter f;
-    aa_scene *s, *placed;
-    assert_int_equal(aa_pattern_parse(pattern, &spec), AA_OK);
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-    assert_non_null(placed = aa_scene_place(s, w, h, 0, 0, 0));
-    assert_int_equal(aa_image_alloc(img, w, h, 3), AA_OK);
-    if (bound)
-        assert_int_equal(aa_image_alloc(bound, w, h, 1), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, threads, img, bound, stats), AA_OK);
-    aa_scene_free(placed);
-    aa_scene_free(s);
+    const support_view v = {.w = w, .h = h, .filter = filter, .threads = threads};
+    support_pattern_reference(pattern, &v, img, bound, stats);
 }
 
 static oracle_crow oracle_params(const char *pattern)
@@ -76,17 +59,9 @@ static void check_box(const char *pattern, int w, int h)
     aa_truth_stats st;
     oracle_crow p = oracle_params(pattern);
     reference(pattern, w, h, "box", 0, &img, &bound, &st);
-    double worst = 0;
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) {
-            double want = oracle_crow_box(&p, w, h, i, j), *px = aa_pixel(&img, i, j);
-            double d = fabs(px[0] - want);
-            worst = fmax(worst, d);
-            if (d > 1e-12 || px[1] != px[0] || px[2] != px[0])
-                fail_msg("%s %dx%d pixel (%d, %d): reference %.17g, closed form %.17g", pattern,
-                         w, h, i, j, px[0], want);
-            assert_true(*aa_pixel(&bound, i, j) <= AA_TRUTH_BOUND);
-        }
+    double worst = support_check_crow_box(pattern, &p, &img, 1e-12);
+    for (int k = 0; k < w * h; k++)
+        assert_true(bound.v[k] <= AA_TRUTH_BOUND);
     print_message("%-40s %4dx%-4d box: max |ref - closed form| %.2e, max bound %.2e, %zu "
                   "integrated, %zu filled\n",
                   pattern, w, h, worst, st.max_bound, st.integrated, st.filled);
@@ -97,10 +72,9 @@ static void check_box(const char *pattern, int w, int h)
 static void test_crow_box_default(void **state)
 {
     (void)state;
-    check_box("crow", 256, 256);
-    check_box("crow", 7, 3);
-    check_box("crow", 255, 129);
-    check_box("crow", 1, 1);
+    const int sizes[][2] = {{256, 256}, {7, 3}, {255, 129}, {1, 1}};
+    for (int k = 0; k < 4; k++)
+        check_box("crow", sizes[k][0], sizes[k][1]);
 }
 
 static void test_crow_box_other(void **state)
@@ -211,49 +185,6 @@ static void test_threads_identical(void **state)
 
 /* ---- polygons against an independent clipper ---- */
 
-typedef struct poly {
-    int n;
-    double x[64], y[64];
-} poly;
-
-/* Clip against the half-plane a x + b y <= c (Sutherland-Hodgman). */
-static poly clip(const poly *in, double a, double b, double c)
-{
-    poly out = {0};
-    for (int k = 0; k < in->n; k++) {
-        int m = (k + 1) % in->n;
-        double dk = a * in->x[k] + b * in->y[k] - c, dm = a * in->x[m] + b * in->y[m] - c;
-        if (dk <= 0)
-            out.x[out.n] = in->x[k], out.y[out.n++] = in->y[k];
-        if ((dk < 0 && dm > 0) || (dk > 0 && dm < 0)) {
-            double t = dk / (dk - dm);
-            out.x[out.n] = in->x[k] + t * (in->x[m] - in->x[k]);
-            out.y[out.n++] = in->y[k] + t * (in->y[m] - in->y[k]);
-        }
-    }
-    return out;
-}
-
-static double area(const poly *p)
-{
-    double s = 0;
-    for (int k = 0; k < p->n; k++) {
-        int m = (k + 1) % p->n;
-        s += p->x[k] * p->y[m] - p->x[m] * p->y[k];
-    }
-    return 0.5 * fabs(s);
-}
-
-/* Area of convex polygon p inside the square [x0, x0+d] x [y0, y0+d]. */
-static double area_in_square(const poly *p, double x0, double y0, double d)
-{
-    poly q = clip(p, -1, 0, -x0);
-    q = clip(&q, 1, 0, x0 + d);
-    q = clip(&q, 0, -1, -y0);
-    q = clip(&q, 0, 1, y0 + d);
-    return area(&q);
-}
-
 /* Two convex polygons in two layers, the front one red over a white one
  * behind, on grey: the box value per pixel is grey + (red - grey) A_front
  * + (white - grey) (A_back - A_overlap), with the overlap the back polygon
@@ -262,49 +193,32 @@ static void test_polygon_layers(void **state)
 {
     (void)state;
     const int w = 23, h = 17;
-    poly front = {3, {0.13, 0.81, 0.37}, {0.21, 0.33, 0.92}};
-    poly back = {5, {0.4, 0.95, 0.9, 0.6, 0.35}, {0.05, 0.2, 0.7, 0.85, 0.5}};
+    const oracle_poly front = {3, {0.13, 0.81, 0.37}, {0.21, 0.33, 0.92}};
+    const oracle_poly back = {5, {0.4, 0.95, 0.9, 0.6, 0.35}, {0.05, 0.2, 0.7, 0.85, 0.5}};
     const aa_rgb red = {{1, 0, 0}}, grey = {{0.25, 0.25, 0.25}};
     aa_scene *s = aa_scene_new(grey);
-    const poly *polys[2] = {&front, &back};
+    const oracle_poly *polys[2] = {&front, &back};
     aa_rgb colours[2] = {red, white};
     for (int l = 0; l < 2; l++) {
         assert_int_equal(aa_scene_layer(s, colours[l], AA_FILL_NONZERO), AA_OK);
-        assert_int_equal(aa_scene_move_to(s, polys[l]->x[0], polys[l]->y[0]), AA_OK);
-        for (int k = 1; k < polys[l]->n; k++)
-            assert_int_equal(aa_scene_line_to(s, polys[l]->x[k], polys[l]->y[k]), AA_OK);
-        assert_int_equal(aa_scene_close(s), AA_OK);
+        scenes_add_poly(s, polys[l]);
     }
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    aa_scene *placed = aa_scene_place(s, w, h, 0, 0, 0);
-    aa_filter f;
-    aa_filter_default(&f);
     aa_image img;
     aa_truth_stats st;
-    assert_int_equal(aa_image_alloc(&img, w, h, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, &img, NULL, &st), AA_OK);
-    /* the overlap: back clipped to the inside of front (front is ordered
-     * counter-clockwise on screen with y down; clip by each edge's side) */
-    poly overlap = back;
-    for (int k = 0; k < front.n; k++) {
-        int m = (k + 1) % front.n, o = (k + 2) % front.n;
-        double a = front.y[m] - front.y[k], b = front.x[k] - front.x[m];
-        double c = a * front.x[k] + b * front.y[k];
-        if (a * front.x[o] + b * front.y[o] > c) /* keep the side holding vertex o */
-            a = -a, b = -b, c = -c;
-        overlap = clip(&overlap, a, b, c);
-    }
+    support_reference(s, &(support_view){.w = w, .h = h}, &img, NULL, &st);
+    /* the overlap: back clipped to the inside of front */
+    const oracle_poly overlap = oracle_poly_intersect(&back, &front);
+    /* pattern units: the pixel is the square of side 1/w by 1/h; scale y so
+     * the pixel is square in a stretched copy */
+    const oracle_poly fs = oracle_poly_scaled(&front, w, h), bs = oracle_poly_scaled(&back, w, h);
+    const oracle_poly os = oracle_poly_scaled(&overlap, w, h);
     double worst = 0;
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++) {
-            /* pattern units: the pixel is the square of side 1/w by 1/h; scale
-             * y so the pixel is square in a stretched copy */
-            poly fs = front, bs = back, os = overlap;
-            for (int k = 0; k < fs.n; k++) fs.x[k] *= w, fs.y[k] *= h;
-            for (int k = 0; k < bs.n; k++) bs.x[k] *= w, bs.y[k] *= h;
-            for (int k = 0; k < os.n; k++) os.x[k] *= w, os.y[k] *= h;
-            double af = area_in_square(&fs, i, j, 1), ab = area_in_square(&bs, i, j, 1);
-            double ao = area_in_square(&os, i, j, 1);
+            double af = oracle_poly_area_in_rect(&fs, i, j, i + 1, j + 1);
+            double ab = oracle_poly_area_in_rect(&bs, i, j, i + 1, j + 1);
+            double ao = oracle_poly_area_in_rect(&os, i, j, i + 1, j + 1);
             for (int c = 0; c < 3; c++) {
                 double want = grey.c[c] + (red.c[c] - grey.c[c]) * af +
                               (white.c[c] - grey.c[c]) * (ab - ao);
@@ -317,7 +231,6 @@ static void test_polygon_layers(void **state)
         }
     print_message("two polygon layers 23x17: max |ref - clipper| %.2e\n", worst);
     aa_image_free(&img);
-    aa_scene_free(placed);
     aa_scene_free(s);
 }
 
@@ -332,23 +245,14 @@ static void test_catmull_pixel(void **state)
     for (int l = 0; l < 3; l++) {
         const double *r = rects[l];
         assert_int_equal(aa_scene_layer(s, colours[l], AA_FILL_NONZERO), AA_OK);
-        assert_int_equal(aa_scene_move_to(s, r[0], r[1]), AA_OK);
-        assert_int_equal(aa_scene_line_to(s, r[2], r[1]), AA_OK);
-        assert_int_equal(aa_scene_line_to(s, r[2], r[3]), AA_OK);
-        assert_int_equal(aa_scene_line_to(s, r[0], r[3]), AA_OK);
-        assert_int_equal(aa_scene_close(s), AA_OK);
+        scenes_rect(s, r[0], r[1], r[2], r[3]);
     }
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    aa_scene *placed = aa_scene_place(s, 1, 1, 0, 0, 0);
-    aa_filter f;
-    aa_filter_default(&f);
     aa_image img;
-    assert_int_equal(aa_image_alloc(&img, 1, 1, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 1, &img, NULL, NULL), AA_OK);
+    support_reference(s, &(support_view){.w = 1, .h = 1, .threads = 1}, &img, NULL, NULL);
     assert_true(fabs(img.v[0]) < 1e-15 && fabs(img.v[1] - 0.25) < 1e-15 &&
                 fabs(img.v[2] - 0.5) < 1e-15);
     aa_image_free(&img);
-    aa_scene_free(placed);
     aa_scene_free(s);
 }
 
@@ -358,29 +262,15 @@ static void test_catmull_pixel(void **state)
 static void test_parabolic_segment(void **state)
 {
     (void)state;
-    aa_scene *s = aa_scene_new(black);
-    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 0.1, 0.9), AA_OK);
-    assert_int_equal(aa_scene_quad_to(s, 0.5, -0.3, 0.9, 0.9), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    aa_filter f;
-    aa_filter_default(&f);
+    aa_scene *s = scenes_arc_segment(0.1, 0.9, 0.5, -0.3, 0.9, 0.9);
     aa_image img;
     aa_truth_stats st;
     /* the whole image as one pixel, and summed over 13 x 11 pixels */
     int sizes[2][2] = {{1, 1}, {13, 11}};
     for (int k = 0; k < 2; k++) {
-        int w = sizes[k][0], h = sizes[k][1];
-        aa_scene *placed = aa_scene_place(s, w, h, 0, 0, 0);
-        assert_int_equal(aa_image_alloc(&img, w, h, 3), AA_OK);
-        assert_int_equal(aa_truth_render(placed, &f, 0, &img, NULL, &st), AA_OK);
-        double sum = 0;
-        for (int p = 0; p < w * h; p++)
-            sum += img.v[3 * p];
-        assert_true(fabs(sum / (w * h) - 0.32) < 1e-13);
+        support_reference(s, &(support_view){.w = sizes[k][0], .h = sizes[k][1]}, &img, NULL, &st);
+        assert_true(fabs(support_channel_mean(&img, 0) - 0.32) < 1e-13);
         aa_image_free(&img);
-        aa_scene_free(placed);
     }
     aa_scene_free(s);
 }
@@ -411,21 +301,14 @@ static double shapes_total(int rule, int w, int h, double *max_bound)
         assert_int_equal(aa_scene_close(s), AA_OK);
     }
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    aa_scene *placed = aa_scene_place(s, w, h, 0, 0, 0);
-    aa_filter f;
-    aa_filter_default(&f);
     aa_image img;
     aa_truth_stats st;
-    assert_int_equal(aa_image_alloc(&img, w, h, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 0, &img, NULL, &st), AA_OK);
-    double sum = 0;
-    for (int p = 0; p < w * h; p++)
-        sum += img.v[3 * p];
+    support_reference(s, &(support_view){.w = w, .h = h}, &img, NULL, &st);
+    double mean = support_channel_mean(&img, 0);
     *max_bound = st.max_bound;
     aa_image_free(&img);
-    aa_scene_free(placed);
     aa_scene_free(s);
-    return sum / ((double)w * h);
+    return mean;
 }
 
 static double triangle(const double *a)
@@ -462,10 +345,6 @@ static void test_crossing_arcs(void **state)
 static void test_random_arcs_against_area(void **state)
 {
     (void)state;
-    aa_filter f;
-    aa_spec area;
-    aa_filter_default(&f);
-    assert_int_equal(aa_method_parse("area", &f, &area), AA_OK);
     int bad = 0;
     double worst = 0;
     for (int sc = 0; sc < 300; sc++) {
@@ -483,15 +362,10 @@ static void test_random_arcs_against_area(void **state)
             assert_int_equal(aa_scene_close(s), AA_OK);
         }
         assert_int_equal(aa_scene_finish(s), AA_OK);
-        aa_job job;
         aa_image ref, img, bound;
         aa_counters c;
-        assert_int_equal(aa_job_init(&job, s, 12, 12, 0, 0, 0, &f, 1, 1), AA_OK);
-        assert_int_equal(aa_image_alloc(&ref, 12, 12, 3), AA_OK);
-        assert_int_equal(aa_image_alloc(&img, 12, 12, 3), AA_OK);
-        assert_int_equal(aa_image_alloc(&bound, 12, 12, 1), AA_OK);
-        assert_int_equal(aa_truth_render(job.placed, &f, 1, &ref, &bound, NULL), AA_OK);
-        assert_int_equal(aa_method_run(&area, &job, 1, &img, &c, NULL), AA_OK);
+        support_reference(s, &(support_view){.w = 12, .h = 12, .threads = 1}, &ref, &bound, NULL);
+        support_render("area", s, NULL, 12, 12, 1, &img, &c);
         for (int p = 0; p < 144; p++) {
             double d = fabs(ref.v[3 * p] - img.v[3 * p]);
             worst = fmax(worst, d);
@@ -505,7 +379,6 @@ static void test_random_arcs_against_area(void **state)
         aa_image_free(&ref);
         aa_image_free(&img);
         aa_image_free(&bound);
-        aa_job_free(&job);
         aa_scene_free(s);
     }
     print_message("300 random scenes of crossing arcs: max |reference - area| %.2e, %d pixels "
@@ -516,8 +389,8 @@ static void test_random_arcs_against_area(void **state)
 static void test_cache(void **state)
 {
     (void)state;
-    char dir[] = "/tmp/aabench-cache-XXXXXX";
-    assert_non_null(mkdtemp(dir));
+    char dir[256];
+    assert_int_equal(support_tmpdir(dir, sizeof dir, "cache"), 0);
     aa_view v;
     memset(&v, 0, sizeof v);
     assert_int_equal(aa_pattern_parse("crow", &v.pattern), AA_OK);
@@ -533,7 +406,7 @@ static void test_cache(void **state)
     aa_image_free(&b);
     /* damage the file: cut it short; the next call recomputes */
     char cmd[512];
-    snprintf(cmd, sizeof cmd, "for f in %s/*.bin; do truncate -s 100 \"$f\"; done", dir);
+    snprintf(cmd, sizeof cmd, "for f in '%s'/*.bin; do truncate -s 100 \"$f\"; done", dir);
     assert_int_equal(system(cmd), 0);
     assert_int_equal(aa_reference(&v, dir, 0, &b, NULL, &hit), AA_OK);
     assert_int_equal(hit, 0);
@@ -545,265 +418,19 @@ static void test_cache(void **state)
     assert_int_equal(hit, 0);
     aa_image_free(&a);
     aa_image_free(&b);
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
-
-/* ---- the Gaussian's fixed rule ---- */
-
-/* A half-plane of colour fg on bg, its edge through (px, py) at angle theta
- * (degrees) from the vertical, in pixel units: a quadrilateral whose other
- * edges are 5000 pixels away.  The interior is on the side of n = (cos t,
- * -sin t), so d = n . (c - p). */
-static aa_scene *half_plane(double px, double py, double theta, aa_rgb fg, aa_rgb bg)
-{
-    const double L = 5000.0, t = theta * M_PI / 180.0;
-    double ux = sin(t), uy = cos(t), nx = cos(t), ny = -sin(t);
-    aa_scene *s = aa_scene_new(bg);
-    assert_int_equal(aa_scene_layer(s, fg, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, px - L * ux, py - L * uy), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, px + L * ux, py + L * uy), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, px + L * ux + L * nx, py + L * uy + L * ny), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, px - L * ux + L * nx, py - L * uy + L * ny), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
-}
-
-/* Every pixel against Phi(d / s) (long double: its own error is below
- * 1e-18), within the pixel's bound; returns the largest error / bound over
- * the pixels the fixed rule took, and checks which path the pixels took. */
-static double check_half_plane(double sd, double theta, int want_fast)
-{
-    const int w = 31, h = 27;
-    const double px = 15.37, py = 12.61, t = theta * M_PI / 180.0;
-    const aa_rgb fg = {{0.9, 0.3, 0.05}}, bg = {{0.1, 0.2, 0.7}};
-    char spec[64];
-    snprintf(spec, sizeof spec, "gauss:s=%g", sd);
-    aa_filter f;
-    assert_int_equal(aa_filter_parse(spec, &f), AA_OK);
-    aa_scene *s = half_plane(px, py, theta, fg, bg);
-    aa_image img, bound;
-    aa_truth_stats st;
-    size_t fast = 0;
-    assert_int_equal(aa_image_alloc(&img, w, h, 3), AA_OK);
-    assert_int_equal(aa_image_alloc(&bound, w, h, 1), AA_OK);
-    assert_int_equal(aa__truth_render_mode(s, &f, 2, 0, &img, &bound, &st, &fast), AA_OK);
-    /* the edge as stored: its ends are rounded 5000 pixels out, which moves
-     * it by up to 1e-12 pixels, so d is measured from the stored edge */
-    size_t ne;
-    const aa_edge *e = aa_scene_edges(s, &ne);
-    long double ex = (long double)e[0].x1 - e[0].x0, ey = (long double)e[0].y1 - e[0].y0;
-    long double len = sqrtl(ex * ex + ey * ey);
-    double worst = 0, ratio = 0;
-    /* without extended precision the per-pixel bound is not claimed; the
-     * error must still be within the reference's promise */
-    const int extended = aa_long_double_is_extended();
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) {
-            /* n = (ey, -ex) / len points into the interior */
-            long double d = (ey * (i + 0.5L - e[0].x0) - ex * (j + 0.5L - e[0].y0)) / len;
-            long double phi = 0.5L * erfcl(-d / (sd * sqrtl(2.0L)));
-            double b = *aa_pixel(&bound, i, j);
-            assert_true(b <= AA_TRUTH_BOUND);
-            for (int c = 0; c < 3; c++) {
-                double want = (double)(bg.c[c] + (fg.c[c] - bg.c[c]) * phi);
-                double err = fabs(aa_pixel(&img, i, j)[c] - want);
-                if (!(err <= (extended ? b : AA_TRUTH_BOUND) + 2e-16))
-                    fail_msg("half-plane s=%g theta=%g pixel (%d, %d) channel %d: %.17g, "
-                             "closed form %.17g, error %.2e > bound %.2e",
-                             sd, theta, i, j, c, aa_pixel(&img, i, j)[c], want, err, b);
-                worst = fmax(worst, err);
-                if (b > f.lost * 1.01)
-                    ratio = fmax(ratio, err / b);
-            }
-        }
-    print_message("half-plane gauss:s=%-4g theta %4.1f (dx/dy %6.2f): %zu integrated, %zu by the "
-                  "fixed rule; max error %.2e, max error/bound %.3f, max bound %.2e\n",
-                  sd, theta, tan(t), st.integrated, fast, worst, ratio, st.max_bound);
-    assert_true(st.integrated > 0);
-    if (want_fast && extended) /* without it the reference takes QAG only */
-        assert_int_equal(fast, st.integrated);
-    else
-        assert_int_equal(fast, 0);
-    aa_image_free(&img);
-    aa_image_free(&bound);
-    aa_scene_free(s);
-    return ratio;
-}
-
-static void test_gauss_half_plane(void **state)
-{
-    (void)state;
-    const double sds[] = {0.07, 0.3, 0.5, 1.3};
-    for (int k = 0; k < 4; k++) {
-        /* smooth: the fixed rule's estimate bounds its actual error */
-        double r = 0;
-        r = fmax(r, check_half_plane(sds[k], 0.0, 1));
-        r = fmax(r, check_half_plane(sds[k], 3.0, 1));
-        r = fmax(r, check_half_plane(sds[k], -20.0, 1));
-        r = fmax(r, check_half_plane(sds[k], 40.0, 1));
-        if (aa_long_double_is_extended())
-            assert_true(r <= 1.0);
-        /* steep and nearly horizontal: QAG */
-        check_half_plane(sds[k], 60.0, 0);
-        check_half_plane(sds[k], -80.0, 0);
-        check_half_plane(sds[k], 89.5, 0);
-    }
-}
-
-/* The reference of `placed` with the fixed rule against QAG only: within
- * the sum of the two bounds per pixel and channel, and the same for 1, 2 and
- * 3 threads.  Returns the fraction of non-uniform pixels the rule took. */
-static double check_against_qagp(const char *what, const aa_scene *placed, int w, int h,
-                                 const char *filter)
-{
-    aa_filter f;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    aa_image a, b, a2, a3, ba, bb;
-    aa_truth_stats sa, sb;
-    size_t fast, fast2;
-    assert_int_equal(aa_image_alloc(&a, w, h, 3), AA_OK);
-    assert_int_equal(aa_image_alloc(&a2, w, h, 3), AA_OK);
-    assert_int_equal(aa_image_alloc(&a3, w, h, 3), AA_OK);
-    assert_int_equal(aa_image_alloc(&b, w, h, 3), AA_OK);
-    assert_int_equal(aa_image_alloc(&ba, w, h, 1), AA_OK);
-    assert_int_equal(aa_image_alloc(&bb, w, h, 1), AA_OK);
-    assert_int_equal(aa__truth_render_mode(placed, &f, 1, 0, &a, &ba, &sa, &fast), AA_OK);
-    assert_int_equal(aa__truth_render_mode(placed, &f, 2, 0, &a2, NULL, NULL, &fast2), AA_OK);
-    assert_int_equal(aa__truth_render_mode(placed, &f, 3, 0, &a3, NULL, NULL, NULL), AA_OK);
-    assert_int_equal(aa__truth_render_mode(placed, &f, 2, AA__TRUTH_QAG, &b, &bb, &sb, NULL),
-                     AA_OK);
-    size_t bytes = sizeof(double) * (size_t)w * (size_t)h * 3;
-    assert_memory_equal(a.v, a2.v, bytes);
-    assert_memory_equal(a.v, a3.v, bytes);
-    assert_int_equal(fast, fast2);
-    double worst = 0, ratio = 0;
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) {
-            double allowed = *aa_pixel(&ba, i, j) + *aa_pixel(&bb, i, j);
-            for (int c = 0; c < 3; c++) {
-                double d = fabs(aa_pixel(&a, i, j)[c] - aa_pixel(&b, i, j)[c]);
-                if (!(d <= allowed))
-                    fail_msg("%s %s pixel (%d, %d) channel %d: fixed rule %.17g, QAG %.17g", what,
-                             filter, i, j, c, aa_pixel(&a, i, j)[c], aa_pixel(&b, i, j)[c]);
-                worst = fmax(worst, d);
-                ratio = fmax(ratio, d / allowed);
-            }
-        }
-    if (!(sa.max_bound <= AA_TRUTH_BOUND && sb.max_bound <= AA_TRUTH_BOUND))
-        fail_msg("%s %s: largest bound %.2e with the fixed rule, %.2e with QAG only", what,
-                 filter, sa.max_bound, sb.max_bound);
-    assert_int_equal(sa.integrated, sb.integrated);
-    double share = sa.integrated ? (double)fast / (double)sa.integrated : 0.0;
-    print_message("%-28s %4dx%-4d %-11s: %zu integrated, %.1f%% by the fixed rule; max |rule - "
-                  "QAG| %.2e (%.0f%% of the bounds), max bound %.2e\n",
-                  what, w, h, filter, sa.integrated, 100 * share, worst, 100 * ratio, sa.max_bound);
-    aa_image_free(&a);
-    aa_image_free(&a2);
-    aa_image_free(&a3);
-    aa_image_free(&b);
-    aa_image_free(&ba);
-    aa_image_free(&bb);
-    return share;
-}
-
-/* Vertices inside pixels, nearly horizontal edges, edges of two layers
- * crossing, a self-intersecting even-odd star and arcs whose y is not
- * linear in the parameter: the fall-back path next to the fixed rule. */
-static aa_scene *mixed_scene(int w, int h)
-{
-    const aa_rgb red = {{0.95, 0.1, 0.2}}, teal = {{0.05, 0.6, 0.55}}, cream = {{1, 0.9, 0.7}};
-    aa_scene *s = aa_scene_new((aa_rgb){{0.05, 0.05, 0.1}});
-    /* front: a tall triangle with a nearly horizontal base */
-    assert_int_equal(aa_scene_layer(s, red, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 0.12 * w, 0.83 * h), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.31 * w, 0.06 * h), AA_OK);
-    assert_int_equal(aa_scene_line_to(s, 0.58 * w, 0.86 * h), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    /* middle: a tall five-pointed star, even-odd (its edges cross) */
-    assert_int_equal(aa_scene_layer(s, teal, AA_FILL_EVENODD), AA_OK);
-    for (int k = 0; k < 5; k++) {
-        double a = 2 * M_PI * (2 * k) / 5 + 0.3;
-        double x = (0.62 + 0.2 * cos(a)) * w, y = (0.5 + 0.45 * sin(a)) * h;
-        assert_int_equal(k ? aa_scene_line_to(s, x, y) : aa_scene_move_to(s, x, y), AA_OK);
-    }
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    /* back: a tall lens of two arcs, each through an x extremum, and a
-     * wide one through y extrema (split into monotone pieces whose y is
-     * not linear in the parameter) */
-    assert_int_equal(aa_scene_layer(s, cream, AA_FILL_NONZERO), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 0.45 * w, 0.04 * h), AA_OK);
-    assert_int_equal(aa_scene_quad_to(s, 0.95 * w, 0.45 * h, 0.52 * w, 0.97 * h), AA_OK);
-    assert_int_equal(aa_scene_quad_to(s, 0.7 * w, 0.4 * h, 0.45 * w, 0.04 * h), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 0.05 * w, 0.62 * h), AA_OK);
-    assert_int_equal(aa_scene_quad_to(s, 0.4 * w, 0.35 * h, 0.93 * w, 0.71 * h), AA_OK);
-    assert_int_equal(aa_scene_quad_to(s, 0.5 * w, 0.9 * h, 0.05 * w, 0.62 * h), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
-}
-
-static void test_gauss_fallback(void **state)
-{
-    (void)state;
-    if (!aa_long_double_is_extended()) { /* the reference takes QAG only: no rule to test */
-        print_message("long double is not extended here: skipped\n");
-        skip();
-    }
-    const int w = 47, h = 43;
-    aa_scene *s = mixed_scene(w, h);
-    const char *filters[] = {"gauss", "gauss:s=0.3", "gauss:s=0.8"};
-    for (int k = 0; k < 3; k++) {
-        double share = check_against_qagp("layers, star, arcs", s, w, h, filters[k]);
-        /* both paths are exercised */
-        assert_true(share > 0.05 && share < 0.95);
-    }
-    aa_scene_free(s);
-}
-
-static void test_gauss_crow_against_qagp(void **state)
-{
-    (void)state;
-    if (!aa_long_double_is_extended()) { /* the reference takes QAG only: no rule to test */
-        print_message("long double is not extended here: skipped\n");
-        skip();
-    }
-    const char *patterns[] = {"crow", "crow:curves=10,kmax=0.5,gap0=0.2,gap1=0.05",
-                              "crow:curves=40,kmax=-0.4,gap0=0.01,gap1=0.02"};
-    int sizes[3][2] = {{72, 56}, {48, 40}, {57, 45}};
-    for (int k = 0; k < 3; k++) {
-        aa_spec spec;
-        aa_scene *s;
-        assert_int_equal(aa_pattern_parse(patterns[k], &spec), AA_OK);
-        assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-        aa_scene *placed = aa_scene_place(s, sizes[k][0], sizes[k][1], 0, 0, 0);
-        assert_non_null(placed);
-        double share = check_against_qagp(patterns[k], placed, sizes[k][0], sizes[k][1],
-                                          k == 1 ? "gauss:s=0.8" : "gauss");
-        assert_true(share > 0.9);
-        aa_scene_free(placed);
-        /* moving: the arcs' ends leave the panel grid */
-        assert_non_null(placed = aa_scene_place(s, sizes[k][0], sizes[k][1], 0.37, 0.2, 0.45));
-        check_against_qagp(patterns[k], placed, sizes[k][0], sizes[k][1], "gauss");
-        aa_scene_free(placed);
-        aa_scene_free(s);
-    }
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_crow_box_default), cmocka_unit_test(test_crow_box_other),
-        cmocka_unit_test(test_crow_tent),        cmocka_unit_test(test_crow_gauss),
-        cmocka_unit_test(test_uniform_exact),    cmocka_unit_test(test_threads_identical),
-        cmocka_unit_test(test_polygon_layers),   cmocka_unit_test(test_catmull_pixel),
-        cmocka_unit_test(test_parabolic_segment), cmocka_unit_test(test_crossing_arcs),
-        cmocka_unit_test(test_random_arcs_against_area),
-        cmocka_unit_test(test_cache),
-        cmocka_unit_test(test_gauss_half_plane), cmocka_unit_test(test_gauss_fallback),
-        cmocka_unit_test(test_gauss_crow_against_qagp),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_crow_box_default),
+             cmocka_unit_test(test_crow_box_other),
+             cmocka_unit_test(test_crow_tent),
+             cmocka_unit_test(test_crow_gauss),
+             cmocka_unit_test(test_uniform_exact),
+             cmocka_unit_test(test_threads_identical),
+             cmocka_unit_test(test_polygon_layers),
+             cmocka_unit_test(test_catmull_pixel),
+             cmocka_unit_test(test_parabolic_segment),
+             cmocka_unit_test(test_crossing_arcs),
+             cmocka_unit_test(test_random_arcs_against_area),
+             cmocka_unit_test(test_cache))

@@ -20,6 +20,8 @@
  */
 #include "bench.h"
 #include "zoneplate.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <complex.h>
 #include <float.h>
@@ -208,20 +210,9 @@ static void reference(const char *pattern, int w, int h, const char *ftext, doub
                       double vx, double vy, aa_image *out, aa_image *bound,
                       aa_truth_stats *stats)
 {
-    aa_view v;
-    memset(&v, 0, sizeof v);
-    assert_int_equal(aa_pattern_parse(pattern, &v.pattern), AA_OK);
-    v.w = w, v.h = h, v.t = t, v.vx = vx, v.vy = vy;
-    v.filter = filter(ftext);
-    aa_scene *s, *placed;
-    assert_int_equal(aa_pattern_scene(&v.pattern, &s), AA_OK);
-    assert_non_null(placed = aa_scene_place(s, w, h, t, vx, vy));
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    if (bound)
-        assert_int_equal(aa_image_alloc(bound, w, h, 1), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &v.filter, 2, out, bound, stats), AA_OK);
-    aa_scene_free(placed);
-    aa_scene_free(s);
+    const support_view v = {.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .filter = ftext,
+                            .threads = 2};
+    support_pattern_reference(pattern, &v, out, bound, stats);
 }
 
 static void test_pixels_against_brute_force(void **state)
@@ -326,9 +317,7 @@ static void test_field_scene_queries(void **state)
 {
     (void)state;
     aa_spec spec;
-    aa_scene *s, *placed;
-    assert_int_equal(aa_pattern_parse("zoneplate:k=10", &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
+    aa_scene *s = scenes_pattern("zoneplate:k=10"), *placed;
     const double *p;
     int n;
     double map[4];
@@ -397,15 +386,10 @@ static void test_domain_and_key(void **state)
     assert_non_null(strstr(k2, "field zoneplate 1 100.5\n"));
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_1d_against_quadrature),
-        cmocka_unit_test(test_pixels_against_brute_force),
-        cmocka_unit_test(test_centre_taylor),
-        cmocka_unit_test(test_motion_is_translation),
-        cmocka_unit_test(test_field_scene_queries),
-        cmocka_unit_test(test_domain_and_key),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_1d_against_quadrature),
+             cmocka_unit_test(test_pixels_against_brute_force),
+             cmocka_unit_test(test_centre_taylor),
+             cmocka_unit_test(test_motion_is_translation),
+             cmocka_unit_test(test_field_scene_queries),
+             cmocka_unit_test(test_domain_and_key))

@@ -1,0 +1,374 @@
+/*
+ * support.c: helpers shared by the tests (support.h).
+ */
+#include "support.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <poll.h>
+#include <setjmp.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+/* ---- rendering ---- */
+
+static void view_filter(const support_view *v, aa_filter *f)
+{
+    if (!v->filter)
+        aa_filter_default(f);
+    else if (aa_filter_parse(v->filter, f) != AA_OK)
+        fail_msg("filter %s: %s", v->filter, aa_last_error());
+}
+
+int support_render_view(const char *method, const aa_scene *scene, const support_view *v,
+                        aa_image *out, aa_counters *c)
+{
+    aa_filter f;
+    aa_spec spec;
+    aa_job job;
+    aa_counters unused;
+    view_filter(v, &f);
+    int st = aa_method_parse(method, &f, &spec);
+    if (st)
+        return st;
+    assert_int_equal(aa_job_init(&job, scene, v->w, v->h, v->t, v->vx, v->vy, &f, v->seed,
+                                 v->threads),
+                     AA_OK);
+    job.frame_only = v->frame_only;
+    assert_int_equal(aa_image_alloc(out, v->w, v->h, 3), AA_OK);
+    st = aa_method_run(&spec, &job, 1, out, c ? c : &unused, NULL);
+    aa_job_free(&job);
+    if (st)
+        aa_image_free(out);
+    return st;
+}
+
+void support_render_must(const char *method, const aa_scene *scene, const support_view *v,
+                         aa_image *out, aa_counters *c)
+{
+    if (support_render_view(method, scene, v, out, c) != AA_OK)
+        fail_msg("%s -f %s: %s", method, v->filter ? v->filter : "box", aa_last_error());
+}
+
+void support_render(const char *method, const aa_scene *scene, const char *filter, int w,
+                    int h, int threads, aa_image *out, aa_counters *c)
+{
+    const support_view v = {.w = w, .h = h, .filter = filter, .seed = 1, .threads = threads};
+    support_render_must(method, scene, &v, out, c);
+}
+
+void support_reference(const aa_scene *scene, const support_view *v, aa_image *out,
+                       aa_image *bound, aa_truth_stats *stats)
+{
+    aa_filter f;
+    view_filter(v, &f);
+    aa_scene *placed = aa_scene_place(scene, v->w, v->h, v->t, v->vx, v->vy);
+    assert_non_null(placed);
+    assert_int_equal(aa_image_alloc(out, v->w, v->h, 3), AA_OK);
+    if (bound)
+        assert_int_equal(aa_image_alloc(bound, v->w, v->h, 1), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &f, v->threads, out, bound, stats), AA_OK);
+    aa_scene_free(placed);
+}
+
+void support_pattern_reference(const char *pattern, const support_view *v, aa_image *out,
+                               aa_image *bound, aa_truth_stats *stats)
+{
+    aa_spec spec;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(pattern, &spec) || aa_pattern_scene(&spec, &s))
+        fail_msg("pattern %s: %s", pattern, aa_last_error());
+    support_reference(s, v, out, bound, stats);
+    aa_scene_free(s);
+}
+
+/* ---- comparing images ---- */
+
+static size_t values(const aa_image *a, const aa_image *b)
+{
+    if (a->w != b->w || a->h != b->h || a->c != b->c)
+        fail_msg("images of %dx%dx%d and %dx%dx%d compared", a->w, a->h, a->c, b->w, b->h, b->c);
+    return (size_t)a->w * a->h * a->c;
+}
+
+double support_rmse(const aa_image *a, const aa_image *b)
+{
+    size_t n = values(a, b);
+    double s = 0;
+    for (size_t k = 0; k < n; k++)
+        s += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
+    return sqrt(s / (double)n);
+}
+
+double support_max_diff(const aa_image *a, const aa_image *b, int *wi, int *wj)
+{
+    values(a, b);
+    double worst = 0;
+    for (int j = 0; j < a->h; j++)
+        for (int i = 0; i < a->w; i++)
+            for (int ch = 0; ch < a->c; ch++) {
+                double d = fabs(aa_pixel(a, i, j)[ch] - aa_pixel(b, i, j)[ch]);
+                if (!(d <= worst)) {
+                    worst = isnan(d) ? INFINITY : d;
+                    if (wi)
+                        *wi = i;
+                    if (wj)
+                        *wj = j;
+                }
+            }
+    return worst;
+}
+
+int support_same_image(const aa_image *a, const aa_image *b)
+{
+    return memcmp(a->v, b->v, sizeof(double) * values(a, b)) == 0;
+}
+
+double support_channel_mean(const aa_image *im, int ch)
+{
+    double sum = 0.0;
+    for (int j = 0; j < im->h; j++)
+        for (int i = 0; i < im->w; i++)
+            sum += aa_pixel(im, i, j)[ch];
+    return sum / ((double)im->w * im->h);
+}
+
+/* ---- checks shared by several tests ---- */
+
+double support_check_crow_box(const char *what, const oracle_crow *p, const aa_image *img,
+                              double tol)
+{
+    double worst = 0;
+    for (int j = 0; j < img->h; j++)
+        for (int i = 0; i < img->w; i++) {
+            double want = oracle_crow_box(p, img->w, img->h, i, j);
+            const double *px = aa_pixel(img, i, j);
+            double d = fabs(px[0] - want);
+            worst = fmax(worst, d);
+            if (!(d <= tol) || px[1] != px[0] || px[2] != px[0])
+                fail_msg("%s %dx%d pixel (%d, %d): %.17g (%.17g, %.17g), closed form %.17g", what,
+                         img->w, img->h, i, j, px[0], px[1], px[2], want);
+        }
+    return worst;
+}
+
+void support_check_rmse_order(const char *what, const aa_scene *scene, const support_view *v,
+                              const char *const *methods, int n)
+{
+    aa_image ref, img;
+    support_reference(scene, v, &ref, NULL, NULL);
+    double last = INFINITY;
+    for (int k = 0; k < n; k++) {
+        aa_counters c;
+        support_render_must(methods[k], scene, v, &img, &c);
+        double e = support_rmse(&img, &ref);
+        print_message("%s %dx%d %s: %-16s RMSE %.4e, %llu samples, %llu pixels sampled\n", what,
+                      v->w, v->h, v->filter ? v->filter : "box", methods[k], e,
+                      (unsigned long long)c.samples, (unsigned long long)c.expensive_pixels);
+        aa_image_free(&img);
+        if (!(e < last))
+            fail_msg("%s: %s has RMSE %.4e, not below the previous method's %.4e", what,
+                     methods[k], e, last);
+        last = e;
+    }
+    aa_image_free(&ref);
+}
+
+/* ---- the command under test ---- */
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
+                                size_t cap)
+{
+    const char *exe = getenv("AABENCH");
+    if (!exe || !*exe)
+        fail_msg("$AABENCH (the command under test) is not set");
+    const char *limit_text = getenv("AABENCH_TEST_TIMEOUT");
+    double limit = limit_text && atof(limit_text) > 0 ? atof(limit_text) : SUPPORT_TIMEOUT;
+    /* everything the child needs is made before fork: the test may have
+     * threads, so the child only calls what is safe after fork */
+    size_t n = 0;
+    while (args[n])
+        n++;
+    const char **argv = calloc(n + 2, sizeof *argv);
+    assert_non_null(argv);
+    argv[0] = exe;
+    memcpy(argv + 1, args, n * sizeof *argv);
+    int fds[2];
+    assert_int_equal(pipe(fds), 0);
+    fcntl(fds[0], F_SETFD, FD_CLOEXEC);
+    double start = now_seconds();
+    pid_t pid = fork();
+    if (pid == 0) {
+        dup2(fds[1], 1);
+        dup2(fds[1], 2);
+        if (fds[1] > 2)
+            close(fds[1]);
+        execv(exe, (char *const *)argv);
+        _exit(127);
+    }
+    close(fds[1]);
+    free(argv);
+    if (pid < 0) {
+        close(fds[0]);
+        fail_msg("cannot start %s: %s", exe, strerror(errno));
+    }
+    size_t len = 0;
+    int open_pipe = 1, interrupted = interrupt_ms <= 0, status = 0, done = 0, timed_out = 0;
+    while (!done) {
+        double t = now_seconds() - start;
+        if (t >= limit) {
+            timed_out = 1;
+            kill(pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            break;
+        }
+        if (!interrupted && t * 1000.0 >= interrupt_ms) {
+            kill(pid, SIGINT);
+            interrupted = 1;
+        }
+        double next = limit;
+        if (!interrupted)
+            next = fmin(next, interrupt_ms / 1000.0);
+        int wait_ms = (int)ceil(1000.0 * (next - t));
+        if (!open_pipe) {
+            /* the output is closed: wait for the exit, a little at a time */
+            pid_t r = waitpid(pid, &status, WNOHANG);
+            if (r == pid)
+                done = 1;
+            else
+                poll(NULL, 0, wait_ms < 10 ? wait_ms : 10);
+            continue;
+        }
+        struct pollfd p = {fds[0], POLLIN, 0};
+        int ready = poll(&p, 1, wait_ms > 0 ? wait_ms : 0);
+        if (ready <= 0)
+            continue;
+        char chunk[4096];
+        ssize_t got = read(fds[0], chunk, sizeof chunk);
+        if (got < 0 && errno == EINTR)
+            continue;
+        if (got <= 0) {
+            open_pipe = 0;
+            continue;
+        }
+        if (out && cap > 1 && len < cap - 1) {
+            size_t take = (size_t)got < cap - 1 - len ? (size_t)got : cap - 1 - len;
+            memcpy(out + len, chunk, take);
+            len += take;
+        }
+    }
+    close(fds[0]);
+    if (out && cap > 0)
+        out[len] = '\0';
+    if (timed_out)
+        fail_msg("%s %s ... ran past %g s (AABENCH_TEST_TIMEOUT) and was killed; output: %s", exe,
+                 n ? args[0] : "", limit, out ? out : "");
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+int support_aabench(const char *const *args, char *out, size_t cap)
+{
+    return support_aabench_interrupted(args, 0, out, cap);
+}
+
+/* ---- temporary folders and files ---- */
+
+int support_tmpdir(char *buf, size_t len, const char *tag)
+{
+    const char *tmp = getenv("TMPDIR");
+    int n = snprintf(buf, len, "%s/aabench-%s-XXXXXX", tmp && *tmp ? tmp : "/tmp", tag);
+    if (n < 0 || (size_t)n >= len) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    return mkdtemp(buf) ? 0 : -1;
+}
+
+int support_rmtree(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0)
+        return -1;
+    if (!S_ISDIR(st.st_mode))
+        return unlink(path);
+    DIR *d = opendir(path);
+    if (!d)
+        return -1;
+    int failed = 0;
+    for (struct dirent *e; (e = readdir(d)) != NULL;) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+            continue;
+        size_t need = strlen(path) + strlen(e->d_name) + 2;
+        char *sub = malloc(need);
+        if (!sub) {
+            failed = 1;
+            break;
+        }
+        snprintf(sub, need, "%s/%s", path, e->d_name);
+        failed |= support_rmtree(sub) != 0;
+        free(sub);
+    }
+    closedir(d);
+    return rmdir(path) != 0 || failed ? -1 : 0;
+}
+
+void support_write_file(const char *path, const void *data, size_t len)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        fail_msg("cannot write %s: %s", path, strerror(errno));
+    assert_int_equal(fwrite(data, 1, len, f), len);
+    assert_int_equal(fclose(f), 0);
+}
+
+char *support_read_file(const char *path, char *buf, size_t cap, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        fail_msg("cannot read %s: %s", path, strerror(errno));
+    size_t n = fread(buf, 1, cap - 1, f);
+    int more = fgetc(f) != EOF;
+    fclose(f);
+    if (more)
+        fail_msg("%s is larger than the %zu bytes read", path, cap - 1);
+    buf[n] = '\0';
+    if (len)
+        *len = n;
+    return buf;
+}
+
+int support_count_entries(const char *dir, const char *except)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return -1;
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d)) != NULL;)
+        n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..") &&
+             !(except && !strcmp(e->d_name, except));
+    closedir(d);
+    return n;
+}
+
+int support_teardown_dir(void **state)
+{
+    return *state && support_rmtree(*state) == 0 ? 0 : -1;
+}

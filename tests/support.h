@@ -1,0 +1,134 @@
+/*
+ * support.h: what the tests share besides scenes (scenes.h) and known
+ * answers (oracle.h): rendering a method or the reference of a view,
+ * comparing images, running the command under test, temporary folders
+ * and files.  Failures inside these helpers fail the running test
+ * (cmocka), with the message of the library where there is one.
+ */
+#ifndef AA_TEST_SUPPORT_H
+#define AA_TEST_SUPPORT_H
+
+#include "bench.h"
+#include "oracle.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* ---- the test program ---- */
+
+/* A test program's main (expanded after the tests, where cmocka.h is
+ * included): the cmocka tests given (cmocka_unit_test(name), ...) run as
+ * one group with the group set-up and tear-down (NULL: none); the exit
+ * status is the number of tests that failed. */
+#define SUPPORT_MAIN(setup, teardown, ...)                                                         \
+    int main(void)                                                                                 \
+    {                                                                                              \
+        const struct CMUnitTest tests[] = {__VA_ARGS__};                                           \
+        return cmocka_run_group_tests(tests, setup, teardown);                                     \
+    }
+
+/* ---- rendering ---- */
+
+/* What to render: a w x h image at time t (frames) moving (vx, vy) pixels a
+ * frame, through the filter spec `filter` (NULL: the box).  `seed` and
+ * `frame_only` go to the job (aabench.h, aa_job).  `threads`: for a method
+ * at least 1 (<= 0 counts as 1); for the reference <= 0 is OpenMP's
+ * default. */
+typedef struct support_view {
+    int w, h;
+    double t, vx, vy;
+    const char *filter;
+    uint64_t seed;
+    int threads;
+    int frame_only;
+} support_view;
+
+/* Render the method spec on a scene in pattern units.  Returns the status
+ * of parsing the spec against the filter or of the render (the message in
+ * aa_last_error()); the image is allocated w x h x 3 only on AA_OK.
+ * `c` may be NULL. */
+int support_render_view(const char *method, const aa_scene *scene, const support_view *v,
+                        aa_image *out, aa_counters *c);
+/* The same, failing the test (with the method's message) unless it renders. */
+void support_render_must(const char *method, const aa_scene *scene, const support_view *v,
+                         aa_image *out, aa_counters *c);
+/* The common case: still, seed 1, through `filter` (NULL: the box). */
+void support_render(const char *method, const aa_scene *scene, const char *filter, int w,
+                    int h, int threads, aa_image *out, aa_counters *c);
+
+/* The reference (aa_truth_render) of a scene in pattern units placed for
+ * the view (`seed` and `frame_only` unused); `bound` (1 channel) and
+ * `stats` may be NULL. */
+void support_reference(const aa_scene *scene, const support_view *v, aa_image *out,
+                       aa_image *bound, aa_truth_stats *stats);
+/* The same for a pattern spec. */
+void support_pattern_reference(const char *pattern, const support_view *v, aa_image *out,
+                               aa_image *bound, aa_truth_stats *stats);
+
+/* ---- comparing images (same size and channels) ---- */
+
+/* Root mean square of the differences over every value. */
+double support_rmse(const aa_image *a, const aa_image *b);
+/* The largest |a - b| over every value (NaN counts as infinitely large);
+ * the pixel where it is goes to *wi, *wj (may be NULL). */
+double support_max_diff(const aa_image *a, const aa_image *b, int *wi, int *wj);
+/* 1 if the two images are the same bit for bit. */
+int support_same_image(const aa_image *a, const aa_image *b);
+/* The mean of channel ch over the pixels: for the box, the pattern's
+ * integral over the view. */
+double support_channel_mean(const aa_image *im, int ch);
+
+/* ---- checks shared by several tests ---- */
+
+/* Every pixel of img, a box-filtered image of crow with parameters p,
+ * against tests/oracle.c's closed form: fails the test (naming `what`)
+ * where channel 0 is more than tol off or the channels differ; returns the
+ * largest difference. */
+double support_check_crow_box(const char *what, const oracle_crow *p, const aa_image *img,
+                              double tol);
+/* The methods' RMSE against the reference of the view falls in the order
+ * given, each strictly below the one before; prints each. */
+void support_check_rmse_order(const char *what, const aa_scene *scene, const support_view *v,
+                              const char *const *methods, int n);
+
+/* ---- the command under test ---- */
+
+/* How long a command may run before it is killed and the test fails:
+ * SUPPORT_TIMEOUT seconds, or $AABENCH_TEST_TIMEOUT. */
+#define SUPPORT_TIMEOUT 300
+
+/* Run the command under test ($AABENCH, set by the Makefile) with args
+ * (NULL-terminated, without the program name), its standard output and
+ * error captured together into out (cap bytes with the final NUL; out may
+ * be NULL to discard them).  Returns the exit status, or 128 + the signal
+ * that ended it.  interrupt_ms > 0 sends SIGINT that many milliseconds
+ * after the start.  Fails the test if $AABENCH is not set, the command
+ * cannot be started, or it runs past the time-out.  Every test starts the
+ * command through here (a child process: its exit status, its signals and
+ * its start-up are part of what is tested). */
+int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
+                                size_t cap);
+int support_aabench(const char *const *args, char *out, size_t cap);
+
+/* ---- temporary folders and files ---- */
+
+/* Make a fresh folder $TMPDIR/aabench-TAG-XXXXXX (TMPDIR unset: /tmp) and
+ * put its path in buf; 0 on success, -1 with errno on failure. */
+int support_tmpdir(char *buf, size_t len, const char *tag);
+/* Remove a file or a folder and everything under it (links are removed,
+ * not followed); 0 on success. */
+int support_rmtree(const char *path);
+/* Write len bytes to path (fails the test if it cannot). */
+void support_write_file(const char *path, const void *data, size_t len);
+/* The whole content of a small file, NUL-terminated, in a buffer of the
+ * caller's; *len (may be NULL) gets its length.  Fails the test if the file
+ * cannot be read or does not fit. */
+char *support_read_file(const char *path, char *buf, size_t cap, size_t *len);
+/* The entries of a folder besides ".", ".." and `except` (may be NULL);
+ * -1 if it cannot be read. */
+int support_count_entries(const char *dir, const char *except);
+/* A cmocka group tear-down for a group whose set-up made a temporary
+ * folder and put its path in *state: removes it. */
+int support_teardown_dir(void **state);
+
+#endif
