@@ -284,6 +284,7 @@ static void test_cli_main(void **state)
     fclose(f);
     if (!strstr(output, "crow\t") || !strstr(output, "zoneplate\t"))
         fail_msg("cli_main list patterns: \"%s\"", output);
+    assert_int_equal(unlink(log), 0);
     folder_clean();
 }
 
