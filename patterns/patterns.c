@@ -32,12 +32,13 @@ int aa_pattern_parse(const char *text, aa_spec *out)
 int aa_pattern_scene(const aa_spec *spec, aa_scene **out)
 {
     const aa_pattern_type *type = (const aa_pattern_type *)spec->info;
+    *out = NULL;
     int st = type->check ? type->check(spec->v) : AA_OK;
     if (st)
         return st;
     aa_scene *s = aa_scene_new(type->background);
     if (!s)
-        return AA_ENOMEM;
+        return aa_fail(AA_ENOMEM, "out of memory for pattern %s", type->info.name);
     if ((st = type->build(spec->v, s)) || (st = aa_scene_clip_unit(s)) ||
         (st = aa_scene_finish(s))) {
         aa_scene_free(s);

@@ -2,11 +2,15 @@
  * test_fuzz_regress.c: the fuzz targets' seed corpus and every input that
  * once crashed them (tests/fuzz/corpus/, tests/fuzz/regress/), run through
  * the same code as `make fuzz` on every `make test` (plain and under
- * ASan+UBSan).  The targets abort on a broken invariant (a spec whose
- * canonical text parses differently, an image that does not read back as
- * written); the sanitizers catch the rest.
+ * ASan+UBSan): the spec parsers, the image readers, the reference cache's
+ * reader and the results CSV reader.  The targets abort on a broken
+ * invariant (a spec whose canonical text parses differently, an image that
+ * does not read back as written, a wrong reference served, a baseline row
+ * the gate cannot trust accepted); the sanitizers catch the rest.
  */
 #define AA_FUZZ_NO_MAIN
+#include "fuzz/fuzz_baseline.c"
+#include "fuzz/fuzz_cache.c"
 #include "fuzz/fuzz_image.c"
 #include "fuzz/fuzz_spec.c"
 #include "support.h"
@@ -68,6 +72,25 @@ static void test_image_inputs(void **state)
     feed("tests/fuzz/regress/image", aa_fuzz_image);
 }
 
+static void test_cache_inputs(void **state)
+{
+    (void)state;
+    assert_true(feed("tests/fuzz/corpus/cache", aa_fuzz_cache) >= 4);
+    feed("tests/fuzz/regress/cache", aa_fuzz_cache);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cache_dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+static void test_baseline_inputs(void **state)
+{
+    (void)state;
+    assert_true(feed("tests/fuzz/corpus/baseline", aa_fuzz_baseline) >= 8);
+    assert_true(feed("tests/fuzz/regress/baseline", aa_fuzz_baseline) >= 7);
+}
+
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_spec_inputs),
-             cmocka_unit_test(test_image_inputs))
+             cmocka_unit_test(test_image_inputs),
+             cmocka_unit_test(test_cache_inputs),
+             cmocka_unit_test(test_baseline_inputs))

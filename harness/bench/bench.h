@@ -107,6 +107,10 @@ typedef struct aa_row {
      * with its 95% interval (NaN for one seed) */
     int seeds;
     double rmse_mean, rmse_ci_lo, rmse_ci_hi;
+    /* 1: the case failed (ok = 0): the method gave an error or a value
+     * outside [0, 1] or not finite, crashed or timed out; the note says
+     * which.  0 with ok = 0: refused (a result, not a failure). */
+    int failed;
 } aa_row;
 
 /* A suite is a list of groups; each group is a cross product of patterns,
@@ -182,20 +186,41 @@ typedef struct aa_run_config {
     /* stochastic methods (AA_METHOD_SEEDED) are measured over `seeds` seeds,
      * seed, seed + 1, ... (0 or 1: one) */
     int seeds;
+    /* isolation (isolate.c): a case run in a child process of its own, so
+     * that a method that crashes or never returns is a failed case and the
+     * run goes on; a case longer than case_timeout seconds (0: 600) is
+     * stopped */
+    int isolate; /* AA_ISOLATE_NONE (0), AA_ISOLATE_PLUGINS or AA_ISOLATE_ALL */
+    double case_timeout;
 } aa_run_config;
+#define AA_ISOLATE_NONE 0
+#define AA_ISOLATE_PLUGINS 1 /* the methods of plug-ins only */
+#define AA_ISOLATE_ALL 2
+#define AA_CASE_TIMEOUT 600.0
 
 /* Check the config before any work: lists present, sizes within memory,
  * counts in range, each spec of the kind its list holds. */
 int aa_run_check(const aa_run_config *cfg);
 /* Run it: *rows (malloc'd, n rows) in pattern, size, filter, method order.
- * A method that refuses a filter gives a row with ok = 0 and the reason. */
+ * A method that refuses a filter gives a row with ok = 0 and the reason; a
+ * method that fails (an error, a value outside [0, 1] or not finite, and
+ * when isolated a crash or a time-out) a row with ok = 0 and failed = 1,
+ * and the run goes on.  A status only for the harness's own failures
+ * (files, memory, an interruption); *rows and *n hold the rows measured
+ * until then, whatever the status (NULL and 0 if none). */
 int aa_run(const aa_run_config *cfg, aa_row **rows, size_t *n);
 
 /* results.csv and results.json: one row per case. */
 int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n);
 int aa_rows_write_json(const char *path, const aa_row *rows, size_t n);
-/* Read a results or baseline CSV back (the columns written above). */
+/* Read a results or baseline CSV back (the columns written above),
+ * checked as strictly as a spec (report.c): a row the gate cannot trust is
+ * refused (AA_EINVAL) naming the file, line and column.  *rows is NULL and
+ * *n 0 on failure. */
 int aa_rows_read_csv(const char *path, aa_row **rows, size_t *n);
+/* The same from `len` bytes in memory; `name` names them in messages. */
+int aa_rows_parse_csv(const char *name, const char *data, size_t len, aa_row **rows,
+                      size_t *n);
 
 /* What a results file says of the run that made it (context.c): the
  * commit (git, run in the program's checkout; else the one it was built
@@ -276,6 +301,9 @@ typedef struct aa_tile {
 } aa_tile;
 int aa_montage_write(const char *path, const aa_tile *tiles, size_t n, int columns,
                      const aa_encode *enc);
+/* Whether a montage of n tiles of at most tw x th, in `columns`, under
+ * `lines` lines of label, can be made: to check before the work. */
+int aa_montage_check(int tw, int th, size_t n, int columns, int lines);
 
 /* Plots with gnuplot into `dir`: error_vs_time.{dat,gp,png} (log-log, each
  * view's Pareto front marked) and convergence.{dat,gp,png}. */

@@ -15,6 +15,31 @@
 #define FONT 13
 #define LINE (FONT + 4)
 
+/* The montage's size for n tiles of at most tw x th under `lines` lines of
+ * label. */
+static void montage_size(int tw, int th, size_t n, int columns, int lines, int *w, int *h)
+{
+    int rows = (int)((n + (size_t)columns - 1) / (size_t)columns);
+    if ((size_t)columns > n)
+        columns = (int)n;
+    *w = columns * (tw + GAP) + GAP;
+    *h = rows * (th + lines * LINE + GAP + 4) + GAP;
+}
+
+int aa_montage_check(int tw, int th, size_t n, int columns, int lines)
+{
+    if (n == 0 || columns < 1 || tw < 1 || th < 1 || tw > AA_MAX_SIDE || th > AA_MAX_SIDE ||
+        lines < 0 || lines > AA_TILE_LINES || n > (size_t)AA_MAX_SIDE)
+        return aa_fail(AA_EINVAL, "montage of %zu tiles of %dx%d in %d columns", n, tw, th,
+                       columns);
+    int w, h;
+    montage_size(tw, th, n, columns, lines, &w, &h);
+    int st = aa_size_check(w, h, 3, 1);
+    return st ? aa_fail_context(st, "a montage of %zu tile%s of %dx%d in %d columns", n,
+                                n == 1 ? "" : "s", tw, th, columns)
+              : AA_OK;
+}
+
 int aa_montage_write(const char *path, const aa_tile *tiles, size_t n, int columns,
                      const aa_encode *enc)
 {
@@ -31,13 +56,15 @@ int aa_montage_write(const char *path, const aa_tile *tiles, size_t n, int colum
             l++;
         lines = l > lines ? l : lines;
     }
-    int rows = (int)((n + (size_t)columns - 1) / (size_t)columns);
+    int st = aa_montage_check(tw, th, n, columns, lines);
+    if (st)
+        return st;
     if ((size_t)columns > n)
         columns = (int)n;
-    int cw = tw + GAP, ch = th + lines * LINE + GAP + 4;
+    int cw = tw + GAP, ch = th + lines * LINE + GAP + 4, mw, mh;
+    montage_size(tw, th, n, columns, lines, &mw, &mh);
     aa_image m;
-    int st = aa_size_check(columns * cw + GAP, rows * ch + GAP, 3, 1);
-    if (st || (st = aa_image_alloc(&m, columns * cw + GAP, rows * ch + GAP, 3)))
+    if ((st = aa_image_alloc(&m, mw, mh, 3)))
         return st;
     for (size_t p = 0; p < (size_t)m.w * m.h * 3; p++)
         m.v[p] = 0.01; /* a dark grey ground, apart from black */

@@ -13,6 +13,9 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
+#include <stddef.h>
+#include <float.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -358,54 +361,96 @@ int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row 
     return st;
 }
 
-/* ---- reading CSV ---- */
+/* A results CSV read back (a baseline above all) is checked as strictly as
+ * a spec: the regression gate must never pass on a row it cannot trust.
+ * The header names known columns, each once, the required ones present; a
+ * UTF-8 byte-order mark before it is skipped.  Every row has as many fields
+ * as the header; numbers are plain C-locale decimals, finite and within
+ * what the column can hold ("inf" only for a PSNR); sizes are WxH with
+ * nothing after; patterns and filters parse as specs; a row with ok = 1
+ * has every measurement and a row with ok = 0 none, but its reason in the
+ * note.  Anything else is refused (AA_EINVAL) naming the file, the line
+ * and the column; a file that has no header at all is not a results file
+ * (AA_EIO). */
 
-#define CSV_MAX_FIELDS 128
-#define CSV_MAX_LINE 65536
+#define CSV_MAX_BYTES ((size_t)256 << 20)
+#define CSV_MAX_FIELDS 256
 
-/* Split one record (which may span lines inside quotes) into fields, in
- * place; returns the number of fields or -1 if malformed. */
-static int csv_split(char *line, char **fields, int max)
-{
-    int n = 0;
-    char *r = line, *w = line;
-    for (;;) {
-        if (n == max)
-            return -1;
-        fields[n++] = w;
-        if (*r == '"') {
-            r++;
-            for (;;) {
-                if (!*r)
-                    return -1;
-                if (*r == '"') {
-                    if (r[1] == '"') {
-                        *w++ = '"';
-                        r += 2;
-                        continue;
-                    }
-                    r++;
-                    break;
-                }
-                *w++ = *r++;
-            }
-            if (*r && *r != ',')
-                return -1;
-        } else {
-            while (*r && *r != ',') {
-                if (*r == '"')
-                    return -1;
-                *w++ = *r++;
-            }
-        }
-        if (!*r) {
-            *w = '\0';
-            return n;
-        }
-        *w++ = '\0';
-        r++;
-    }
-}
+/* the columns the writer writes: a header may name only these */
+#define NAME(name, write) #name,
+static const char *const csv_known[] = {COLUMNS(NAME) NULL};
+#undef NAME
+
+enum { K_TEXT, K_SPEC_PATTERN, K_SPEC_FILTER, K_SIZE, K_REAL, K_COUNT, K_INT, K_SEED, K_OK };
+/* when a column holds a value: always; in rows with ok = 1; in rows with
+ * ok = 1 that are animated (temporal metrics), where it may also be empty
+ * (popping: only `dots` has it); text that may be empty */
+enum { G_ALWAYS, G_MEASURE, G_TEMPORAL, G_TEMPORAL_OPTIONAL, G_OPTIONAL };
+
+#define MEMBER_SIZE(m) sizeof(((aa_row *)0)->m)
+typedef struct csv_column {
+    const char *name;
+    int kind, group, required;
+    size_t off, size;
+    double lo, hi; /* K_REAL, K_INT: the range; hi = INFINITY lets "inf" in */
+} csv_column;
+
+#define TEXT(n, g, req) {#n, K_TEXT, g, req, offsetof(aa_row, n), MEMBER_SIZE(n), 0, 0}
+#define REAL(n, m, g, req, lo, hi) {#n, K_REAL, g, req, offsetof(aa_row, m), 0, lo, hi}
+#define INT(n, m, g, req, lo, hi) {#n, K_INT, g, req, offsetof(aa_row, m), 0, lo, hi}
+#define COUNT(n, m) {#n, K_COUNT, G_MEASURE, 0, offsetof(aa_row, m), 0, 0, 0}
+
+static const csv_column csv_columns[] = {
+    {"pattern", K_SPEC_PATTERN, G_ALWAYS, 1, offsetof(aa_row, pattern), MEMBER_SIZE(pattern), 0,
+     0},
+    {"size", K_SIZE, G_ALWAYS, 1, 0, 0, 0, 0},
+    {"filter", K_SPEC_FILTER, G_ALWAYS, 1, offsetof(aa_row, filter), MEMBER_SIZE(filter), 0, 0},
+    TEXT(method, G_ALWAYS, 1),
+    TEXT(canonical, G_OPTIONAL, 0),
+    REAL(spp, spp, G_MEASURE, 0, 0, DBL_MAX),
+    REAL(rmse, m.rmse, G_MEASURE, 1, 0, 1),
+    REAL(mae, m.mae, G_MEASURE, 0, 0, 1),
+    REAL(max_err, m.max_err, G_MEASURE, 1, 0, 1),
+    INT(max_i, m.max_at[0], G_MEASURE, 0, 0, AA_MAX_SIDE - 1),
+    INT(max_j, m.max_at[1], G_MEASURE, 0, 0, AA_MAX_SIDE - 1),
+    REAL(psnr, m.psnr, G_MEASURE, 0, 0, INFINITY),
+    REAL(rmse_enc, m.rmse_enc, G_MEASURE, 0, 0, 1),
+    REAL(mae_enc, m.mae_enc, G_MEASURE, 0, 0, 1),
+    REAL(max_err_enc, m.max_err_enc, G_MEASURE, 0, 0, 1),
+    REAL(psnr_enc, m.psnr_enc, G_MEASURE, 0, 0, INFINITY),
+    REAL(alias_total, m.alias_total, G_MEASURE, 0, 0, DBL_MAX),
+    REAL(alias_low, m.alias_low, G_MEASURE, 0, 0, DBL_MAX),
+    REAL(alias_high, m.alias_high, G_MEASURE, 0, 0, DBL_MAX),
+    REAL(ssim, m.ssim, G_MEASURE, 0, -1, 1),
+    REAL(render_seconds, seconds, G_MEASURE, 0, 0, DBL_MAX),
+    REAL(render_seconds_min, seconds_min, G_MEASURE, 0, 0, DBL_MAX),
+    REAL(render_seconds_max, seconds_max, G_MEASURE, 0, 0, DBL_MAX),
+    REAL(ns_per_pixel, ns_per_pixel, G_MEASURE, 0, 0, DBL_MAX),
+    REAL(ns_per_sample, ns_per_sample, G_MEASURE, 0, 0, DBL_MAX),
+    COUNT(samples, samples),
+    COUNT(expensive_pixels, expensive_pixels),
+    REAL(expensive_fraction, expensive_fraction, G_MEASURE, 0, 0, 1),
+    INT(frames, tm.frames, G_TEMPORAL, 0, 2, AA_TEMPORAL_MAX_FRAMES),
+    INT(window, tm.window, G_TEMPORAL, 0, 1, AA_TEMPORAL_MAX_FRAMES),
+    REAL(eye_rmse, tm.eye_rmse, G_TEMPORAL, 0, 0, 1),
+    REAL(flicker_mean, tm.flicker_mean, G_TEMPORAL, 0, 0, 1),
+    REAL(flicker_max, tm.flicker_max, G_TEMPORAL, 0, 0, 1),
+    REAL(conservation, tm.conservation, G_TEMPORAL, 0, 0, DBL_MAX),
+    REAL(popping, tm.popping, G_TEMPORAL_OPTIONAL, 0, 0, 1),
+    INT(threads, threads, G_ALWAYS, 0, 1, AA_MAX_THREADS),
+    INT(reps, reps, G_ALWAYS, 0, 1, 1000),
+    {"seed", K_SEED, G_ALWAYS, 1, offsetof(aa_row, seed), 0, 0, 0},
+    REAL(time, t, G_ALWAYS, 1, -1e9, 1e9),
+    REAL(vx, vx, G_ALWAYS, 1, -1e6, 1e6),
+    REAL(vy, vy, G_ALWAYS, 1, -1e6, 1e6),
+    {"ok", K_OK, G_ALWAYS, 1, offsetof(aa_row, ok), 0, 0, 0},
+    TEXT(note, G_OPTIONAL, 0),
+};
+#undef TEXT
+#undef REAL
+#undef INT
+#undef COUNT
+#define NCOLUMNS (sizeof csv_columns / sizeof *csv_columns)
 
 static double field_num(const char *s, int *bad)
 {
@@ -417,28 +462,6 @@ static double field_num(const char *s, int *bad)
     if (*end)
         *bad = 1;
     return v;
-}
-
-/* Read one logical CSV record: lines joined while quotes are open. */
-static int read_record(FILE *f, char *buf, size_t len)
-{
-    size_t n = 0;
-    int quotes = 0;
-    for (;;) {
-        if (!fgets(buf + n, (int)(len - n), f))
-            return n ? 1 : 0;
-        size_t m = strlen(buf + n);
-        for (size_t k = n; k < n + m; k++)
-            quotes ^= buf[k] == '"';
-        n += m;
-        if (n + 1 >= len)
-            return -1;
-        if (!quotes) {
-            while (n && (buf[n - 1] == '\n' || buf[n - 1] == '\r'))
-                buf[--n] = '\0';
-            return 1;
-        }
-    }
 }
 
 /* "noisy" read as 1: a reason is taken from "noise", else "ci" */
@@ -503,103 +526,416 @@ static void settle_timing(aa_row *row)
     t->threads = row->threads;
 }
 
-static int read_csv(const char *path, aa_row **rows_out, size_t *n_out)
+/* The parser: records of fields over the whole text, each field with the
+ * line it starts on. */
+typedef struct csv {
+    const char *name, *s;
+    size_t n, at, line;
+    char *buf; /* the record's fields, each NUL-terminated */
+    size_t blen, bcap;
+    size_t off[CSV_MAX_FIELDS], fline[CSV_MAX_FIELDS];
+    int nf;
+    const char *const *head; /* the header's names, once read (for messages) */
+} csv;
+
+static int csv_put(csv *p, char c)
 {
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return aa_fail(AA_EIO, "%s: cannot open: %s", path, strerror(errno));
-    char *line = malloc(CSV_MAX_LINE), *head[CSV_MAX_FIELDS], *cell[CSV_MAX_FIELDS];
-    char *header = malloc(CSV_MAX_LINE);
+    if (p->blen == p->bcap) {
+        size_t cap = p->bcap ? 2 * p->bcap : 4096;
+        char *b = realloc(p->buf, cap);
+        if (!b)
+            return aa_fail(AA_ENOMEM, "out of memory reading %s", p->name);
+        p->buf = b, p->bcap = cap;
+    }
+    p->buf[p->blen++] = c;
+    return AA_OK;
+}
+
+/* "FILE:LINE: column C (NAME): " before a message about field f. */
+static int csv_fail(const csv *p, int f, const char *fmt, ...) AA_PRINTF(3, 4);
+static int csv_fail(const csv *p, int f, const char *fmt, ...)
+{
+    char why[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    if (f < 0)
+        return aa_fail(AA_EINVAL, "%s:%zu: %s", aa_echo(p->name), p->line, why);
+    if (p->head && p->head[f])
+        return aa_fail(AA_EINVAL, "%s:%zu: column %d (%s): %s", aa_echo(p->name), p->fline[f],
+                       f + 1, aa_echo(p->head[f]), why);
+    return aa_fail(AA_EINVAL, "%s:%zu: column %d: %s", aa_echo(p->name), p->fline[f], f + 1, why);
+}
+
+/* The next record into p->buf; *got = 0 at the end.  Blank lines are
+ * skipped. */
+static int csv_record(csv *p, int *got)
+{
+    int st;
+    *got = 0;
+    p->nf = 0;
+    p->blen = 0;
+    while (p->at < p->n && (p->s[p->at] == '\n' ||
+                            (p->s[p->at] == '\r' && p->at + 1 < p->n && p->s[p->at + 1] == '\n'))) {
+        p->at += p->s[p->at] == '\r' ? 2 : 1;
+        p->line++;
+    }
+    if (p->at >= p->n)
+        return AA_OK;
+    for (;;) {
+        if (p->nf == CSV_MAX_FIELDS)
+            return csv_fail(p, -1, "more than %d fields", CSV_MAX_FIELDS);
+        int f = p->nf++;
+        p->off[f] = p->blen;
+        p->fline[f] = p->line;
+        if (p->at < p->n && p->s[p->at] == '"') {
+            p->at++;
+            for (;;) {
+                if (p->at >= p->n)
+                    return csv_fail(p, f, "the quote opened here is never closed");
+                char c = p->s[p->at++];
+                if (c == '"') {
+                    if (p->at < p->n && p->s[p->at] == '"') {
+                        p->at++;
+                    } else {
+                        break;
+                    }
+                } else if (c == '\0') {
+                    return csv_fail(p, f, "a NUL byte");
+                } else if (c == '\n') {
+                    p->line++;
+                }
+                if ((st = csv_put(p, c)))
+                    return st;
+            }
+            if (p->at < p->n && p->s[p->at] != ',' && p->s[p->at] != '\n' &&
+                !(p->s[p->at] == '\r' && p->at + 1 < p->n && p->s[p->at + 1] == '\n'))
+                return csv_fail(p, f, "text after the closing quote");
+        } else {
+            while (p->at < p->n && p->s[p->at] != ',' && p->s[p->at] != '\n') {
+                char c = p->s[p->at];
+                if (c == '"')
+                    return csv_fail(p, f, "a quote inside a field that does not start with one");
+                if (c == '\0')
+                    return csv_fail(p, f, "a NUL byte");
+                if (c == '\r') {
+                    if (p->at + 1 < p->n && p->s[p->at + 1] == '\n')
+                        break;
+                    return csv_fail(p, f, "a carriage return inside a field");
+                }
+                if ((st = csv_put(p, c)))
+                    return st;
+                p->at++;
+            }
+        }
+        if ((st = csv_put(p, '\0')))
+            return st;
+        if (p->at < p->n && p->s[p->at] == ',') {
+            p->at++;
+            continue;
+        }
+        /* the end of the record: a line break or the end of the text */
+        if (p->at < p->n) {
+            p->at += p->s[p->at] == '\r' ? 2 : 1;
+            p->line++;
+        }
+        *got = 1;
+        return AA_OK;
+    }
+}
+
+static const char *field_text(const csv *p, int f)
+{
+    return p->buf + p->off[f];
+}
+
+/* A plain decimal: [-]digits[.digits][e[+-]digits] (or .digits). */
+static int plain_decimal(const char *v)
+{
+    const char *c = v;
+    int digits = 0;
+    if (*c == '-')
+        c++;
+    while (*c >= '0' && *c <= '9')
+        c++, digits++;
+    if (*c == '.')
+        for (c++; *c >= '0' && *c <= '9'; c++)
+            digits++;
+    if (!digits)
+        return 0;
+    if (*c == 'e' || *c == 'E') {
+        c++;
+        if (*c == '+' || *c == '-')
+            c++;
+        if (!(*c >= '0' && *c <= '9'))
+            return 0;
+        while (*c >= '0' && *c <= '9')
+            c++;
+    }
+    return *c == '\0';
+}
+
+/* Digits only, at most UINT64_MAX. */
+static int plain_count(const char *v, uint64_t *out)
+{
+    uint64_t x = 0;
+    if (!*v)
+        return 0;
+    for (const char *c = v; *c; c++) {
+        if (*c < '0' || *c > '9')
+            return 0;
+        unsigned d = (unsigned)(*c - '0');
+        if (x > (UINT64_MAX - d) / 10)
+            return 0;
+        x = 10 * x + d;
+    }
+    *out = x;
+    return 1;
+}
+
+/* One field into the row. */
+static int csv_value(const csv *p, int f, const csv_column *col, const char *v, aa_row *row)
+{
+    char *dst = (char *)row + col->off;
+    switch (col->kind) {
+    case K_TEXT:
+    case K_SPEC_PATTERN:
+    case K_SPEC_FILTER: {
+        size_t len = strlen(v);
+        if (len >= col->size)
+            return csv_fail(p, f, "%zu characters, more than the %zu a %s can have", len,
+                            col->size - 1, col->name);
+        memcpy(dst, v, len + 1);
+        if (col->kind == K_SPEC_PATTERN || col->kind == K_SPEC_FILTER) {
+            aa_spec spec;
+            aa_filter filter;
+            int st = col->kind == K_SPEC_PATTERN ? aa_pattern_parse(v, &spec)
+                                                 : aa_filter_parse(v, &filter);
+            if (st) {
+                char why[1024];
+                snprintf(why, sizeof why, "%s", aa_last_error());
+                return csv_fail(p, f, "%s", why);
+            }
+        }
+        return AA_OK;
+    }
+    case K_SIZE:
+        if (aa_size_parse(v, &row->w, &row->h)) {
+            char why[1024];
+            snprintf(why, sizeof why, "%s", aa_last_error());
+            return csv_fail(p, f, "%s", why);
+        }
+        return AA_OK;
+    case K_REAL: {
+        double x;
+        if (col->hi == INFINITY && !strcmp(v, "inf")) {
+            x = INFINITY;
+        } else {
+            char *end;
+            if (!plain_decimal(v))
+                return csv_fail(p, f, "\"%s\" is not a number", aa_echo(v));
+            x = strtod(v, &end);
+            if (!isfinite(x))
+                return csv_fail(p, f, "%s is not a finite number", aa_echo(v));
+        }
+        if (!(x >= col->lo && x <= col->hi))
+            return csv_fail(p, f, "%s is out of range (%g to %g)", aa_echo(v), col->lo, col->hi);
+        memcpy(dst, &x, sizeof x);
+        return AA_OK;
+    }
+    case K_INT: {
+        uint64_t x;
+        if (!plain_count(v, &x))
+            return csv_fail(p, f, "\"%s\" is not a whole number", aa_echo(v));
+        if ((double)x < col->lo || (double)x > col->hi)
+            return csv_fail(p, f, "%s is out of range (%g to %g)", aa_echo(v), col->lo, col->hi);
+        int i = (int)x;
+        memcpy(dst, &i, sizeof i);
+        return AA_OK;
+    }
+    case K_COUNT:
+    case K_SEED: {
+        uint64_t x;
+        if (!plain_count(v, &x))
+            return csv_fail(p, f, "\"%s\" is not a whole number from 0 to 2^64-1", aa_echo(v));
+        memcpy(dst, &x, sizeof x);
+        return AA_OK;
+    }
+    case K_OK:
+        if (strcmp(v, "0") && strcmp(v, "1"))
+            return csv_fail(p, f, "\"%s\" is neither 0 nor 1", aa_echo(v));
+        row->ok = v[0] == '1';
+        return AA_OK;
+    }
+    return aa_fail(AA_EFAIL, "csv_value: unknown kind");
+}
+
+static const csv_column *column_named(const char *name)
+{
+    for (size_t k = 0; k < NCOLUMNS; k++)
+        if (!strcmp(csv_columns[k].name, name))
+            return &csv_columns[k];
+    return NULL;
+}
+
+/* What a single field cannot show: a reason for a row that did not run,
+ * a pixel inside the image, a window within the frames.  (Errors are not
+ * held to each other: a baseline tightened by hand, an rmse lowered below
+ * the mae, is still a baseline.) */
+static int csv_row_check(const csv *p, const int *at, aa_row *row)
+{
+#define AT(name) (column_named(name) ? at[column_named(name) - csv_columns] : -1)
+    if (!row->ok) {
+        int f = AT("note");
+        if (f < 0 || !*row->note)
+            return csv_fail(p, f >= 0 ? f : AT("ok"),
+                            "a row with ok=0 (refused or failed) must give its reason in the "
+                            "note");
+        return AA_OK;
+    }
+    if (row->m.max_at[0] >= row->w || row->m.max_at[1] >= row->h)
+        return csv_fail(p, AT(row->m.max_at[0] >= row->w ? "max_i" : "max_j"),
+                        "pixel (%d, %d) of the largest error is outside the %dx%d image",
+                        row->m.max_at[0], row->m.max_at[1], row->w, row->h);
+    if (row->temporal && row->tm.window > row->tm.frames)
+        return csv_fail(p, AT("window"), "a window of %d frames in %d frames", row->tm.window,
+                        row->tm.frames);
+    return AA_OK;
+#undef AT
+}
+
+static int parse_csv(const char *name, const char *data, size_t len, aa_row **rows_out,
+                     size_t *n_out)
+{
+    csv p = {.name = name, .s = data, .n = len, .line = 1};
+    const char *head[CSV_MAX_FIELDS + 1] = {0};
+    int at[NCOLUMNS], nh, got, st;
     aa_row *rows = NULL;
-    size_t n = 0, cap = 0, lineno = 1;
-    int nh = 0, st = AA_OK;
-    if (!line || !header) {
-        st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+    size_t n = 0, cap = 0;
+    char *names = NULL;
+    for (size_t k = 0; k < NCOLUMNS; k++)
+        at[k] = -1;
+    if (len >= 3 && !memcmp(data, "\xef\xbb\xbf", 3))
+        p.at = 3; /* a UTF-8 byte-order mark */
+    if ((st = csv_record(&p, &got)))
+        goto done;
+    if (!got) {
+        st = aa_fail(AA_EIO, "%s: no CSV header: the file is empty", aa_echo(name));
         goto done;
     }
-    if (read_record(f, header, CSV_MAX_LINE) != 1 ||
-        (nh = csv_split(header, head, CSV_MAX_FIELDS)) < 4) {
-        st = aa_fail(AA_EIO, "%s: no CSV header", path);
+    nh = p.nf;
+    if (!(names = malloc(p.blen))) {
+        st = aa_fail(AA_ENOMEM, "out of memory reading %s", aa_echo(name));
         goto done;
     }
-    for (int r; (r = read_record(f, line, CSV_MAX_LINE)) != 0;) {
-        lineno++;
-        if (r < 0) {
-            st = aa_fail(AA_EIO, "%s:%zu: record too long", path, lineno);
+    memcpy(names, p.buf, p.blen);
+    for (int f = 0; f < nh; f++)
+        head[f] = names + p.off[f];
+    {
+        int any = 0;
+        for (int f = 0; f < nh; f++)
+            any |= !strcmp(head[f], "pattern");
+        if (!any) {
+            st = aa_fail(AA_EIO,
+                         "%s: no CSV header: its first line does not name the columns of a "
+                         "results file (pattern,size,filter,method,...)",
+                         aa_echo(name));
             goto done;
         }
-        if (!*line)
-            continue;
-        int nc = csv_split(line, cell, CSV_MAX_FIELDS), bad = 0;
-        if (nc != nh) {
-            st = aa_fail(AA_EIO, "%s:%zu: %d fields, the header has %d", path, lineno, nc, nh);
+    }
+    p.head = head;
+    for (int f = 0; f < nh; f++) {
+        int known = 0;
+        for (size_t k = 0; csv_known[k]; k++)
+            known |= !strcmp(csv_known[k], head[f]);
+        if (!known) {
+            st = csv_fail(&p, f, "unknown column \"%s\"", aa_echo(head[f]));
             goto done;
+        }
+        for (int g = 0; g < f; g++)
+            if (!strcmp(head[g], head[f])) {
+                st = csv_fail(&p, f, "column \"%s\" given twice (columns %d and %d)", head[f],
+                              g + 1, f + 1);
+                goto done;
+            }
+        const csv_column *col = column_named(head[f]);
+        if (col)
+            at[col - csv_columns] = f;
+    }
+    for (size_t k = 0; k < NCOLUMNS; k++)
+        if (csv_columns[k].required && at[k] < 0) {
+            st = aa_fail(AA_EINVAL, "%s:%zu: no column \"%s\", which a results file must have",
+                         aa_echo(name), p.fline[0], csv_columns[k].name);
+            goto done;
+        }
+    for (;;) {
+        if ((st = csv_record(&p, &got)) || !got)
+            break;
+        if (p.nf != nh) {
+            st = aa_fail(AA_EINVAL, "%s:%zu: %d field%s, the header has %d", aa_echo(name),
+                         p.fline[0], p.nf, p.nf == 1 ? "" : "s", nh);
+            break;
         }
         if (n == cap) {
             size_t c2 = cap ? 2 * cap : 64;
-            aa_row *p = realloc(rows, c2 * sizeof *p);
-            if (!p) {
-                st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
-                goto done;
+            aa_row *r2 = realloc(rows, c2 * sizeof *r2);
+            if (!r2) {
+                st = aa_fail(AA_ENOMEM, "out of memory reading %s", aa_echo(name));
+                break;
             }
-            rows = p;
-            cap = c2;
+            rows = r2, cap = c2;
         }
         aa_row *row = &rows[n];
         memset(row, 0, sizeof *row);
-        row->ok = 1;
         row->tm.popping = NAN;
-        for (int k = 0; k < nh; k++) {
-            const char *h = head[k], *v = cell[k];
-#define STR(name) if (!strcmp(h, #name)) snprintf(row->name, sizeof row->name, "%s", v);
-#define NUM(name, dst) if (!strcmp(h, name)) dst = field_num(v, &bad);
-            STR(pattern) STR(filter) STR(method) STR(canonical) STR(note)
-            NUM("spp", row->spp) NUM("rmse", row->m.rmse) NUM("mae", row->m.mae)
-            NUM("max_err", row->m.max_err) NUM("psnr", row->m.psnr)
-            NUM("rmse_enc", row->m.rmse_enc) NUM("psnr_enc", row->m.psnr_enc)
-            NUM("alias_total", row->m.alias_total) NUM("alias_low", row->m.alias_low)
-            NUM("alias_high", row->m.alias_high) NUM("ssim", row->m.ssim)
-            NUM("render_seconds", row->seconds) NUM("ns_per_pixel", row->ns_per_pixel)
-            NUM("ns_per_sample", row->ns_per_sample) NUM("time", row->t) NUM("vx", row->vx)
-            NUM("vy", row->vy) NUM("expensive_fraction", row->expensive_fraction)
-            NUM("eye_rmse", row->tm.eye_rmse) NUM("flicker_mean", row->tm.flicker_mean)
-            NUM("flicker_max", row->tm.flicker_max) NUM("conservation", row->tm.conservation)
-            NUM("popping", row->tm.popping)
-#undef STR
-#undef NUM
-            if (!strcmp(h, "size") && sscanf(v, "%dx%d", &row->w, &row->h) != 2)
-                bad = 1;
-            if (!strcmp(h, "seed")) {
-                char *end;
-                errno = 0;
-                row->seed = strtoull(v, &end, 10);
-                if (errno || end == v || *end || *v == '-')
-                    bad = 1;
-            }
-            if (!strcmp(h, "ok"))
-                row->ok = !strcmp(v, "1");
-            if (!strcmp(h, "eye_rmse") && *v)
-                row->temporal = 1;
-            if (!strcmp(h, "frames") && *v)
-                row->tm.frames = atoi(v);
-            if (!strcmp(h, "window") && *v)
-                row->tm.window = atoi(v);
-            if (read_timing_cell(row, h, v))
-                bad = 1;
+        /* ok first: which columns must hold a value depends on it; then
+         * whether the row is animated */
+        const int f_ok = at[column_named("ok") - csv_columns];
+        if ((st = csv_value(&p, f_ok, column_named("ok"), field_text(&p, f_ok), row)))
+            break;
+        const csv_column *eye = column_named("eye_rmse");
+        row->temporal = row->ok && at[eye - csv_columns] >= 0 &&
+                        *field_text(&p, at[eye - csv_columns]);
+        for (size_t k = 0; k < NCOLUMNS && !st; k++) {
+            const csv_column *col = &csv_columns[k];
+            int f = at[k];
+            if (f < 0 || col->kind == K_OK)
+                continue;
+            const char *v = field_text(&p, f);
+            /* 1: must hold a value, 0: must be empty, -1: either */
+            int want = col->group == G_ALWAYS              ? 1
+                       : col->group == G_MEASURE           ? row->ok
+                       : col->group == G_TEMPORAL          ? row->temporal
+                       : col->group == G_TEMPORAL_OPTIONAL ? (row->temporal ? -1 : 0)
+                                                           : -1;
+            if (want == 1 && !*v)
+                st = csv_fail(&p, f, "empty, and %s", col->group == G_ALWAYS
+                                                          ? "every row needs it"
+                                                      : col->group == G_MEASURE
+                                                          ? "a row with ok=1 needs it"
+                                                          : "an animated row needs it");
+            else if (want == 0 && *v)
+                st = csv_fail(&p, f, "\"%s\" where %s", aa_echo(v),
+                              !row->ok
+                                  ? "a row with ok=0 (refused or failed) has no measurements"
+                                  : "a row without eye_rmse has no temporal metrics");
+            else if (*v || col->kind == K_TEXT)
+                st = csv_value(&p, f, col, v, row);
         }
-        settle_timing(row);
-        if (bad || !*row->pattern || !*row->method || row->w < 1 || row->h < 1) {
-            st = aa_fail(AA_EIO, "%s:%zu: malformed row", path, lineno);
-            goto done;
-        }
+        /* the timing columns (older files have none): read as they are */
+        for (int f = 0; f < nh && !st; f++)
+            if (!column_named(head[f]) && read_timing_cell(row, head[f], field_text(&p, f)))
+                st = csv_fail(&p, f, "malformed timing value \"%s\"", aa_echo(field_text(&p, f)));
+        if (!st)
+            settle_timing(row);
+        if (st || (st = csv_row_check(&p, at, row)))
+            break;
         n++;
     }
-    if (ferror(f))
-        st = aa_fail(AA_EIO, "%s: read error", path);
 done:
-    fclose(f);
-    free(line);
-    free(header);
+    free(p.buf);
+    free(names);
     if (st) {
         free(rows);
         rows = NULL;
@@ -610,16 +946,56 @@ done:
     return st;
 }
 
+int aa_rows_parse_csv(const char *name, const char *data, size_t len, aa_row **rows_out,
+                      size_t *n_out)
+{
+    *rows_out = NULL;
+    *n_out = 0;
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, name);
+    if (st)
+        return st;
+    st = parse_csv(name, data, len, rows_out, n_out);
+    aa__c_numbers_end(&numbers);
+    return st;
+}
+
 int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
 {
-    aa__c_numbers numbers;
-    int st = aa__c_numbers_enter(&numbers, path);
-    if (st) {
-        *rows_out = NULL;
-        *n_out = 0;
-        return st;
+    *rows_out = NULL;
+    *n_out = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return aa_fail(AA_EIO, "%s: cannot open: %s", aa_echo(path), strerror(errno));
+    char *data = NULL;
+    size_t n = 0, cap = 0;
+    int st = AA_OK;
+    for (;;) {
+        if (n == cap) {
+            if (cap >= CSV_MAX_BYTES) {
+                st = aa_fail(AA_EINVAL, "%s: larger than %zu MB: not a results file",
+                             aa_echo(path), CSV_MAX_BYTES >> 20);
+                break;
+            }
+            size_t c2 = cap ? 2 * cap : 65536;
+            char *d2 = realloc(data, c2);
+            if (!d2) {
+                st = aa_fail(AA_ENOMEM, "out of memory reading %s", aa_echo(path));
+                break;
+            }
+            data = d2, cap = c2;
+        }
+        size_t got = fread(data + n, 1, cap - n, f);
+        n += got;
+        if (got == 0) {
+            if (ferror(f))
+                st = aa_fail(AA_EIO, "%s: cannot read: %s", aa_echo(path), strerror(errno));
+            break;
+        }
     }
-    st = read_csv(path, rows_out, n_out);
-    aa__c_numbers_end(&numbers);
+    fclose(f);
+    if (!st)
+        st = aa_rows_parse_csv(path, data ? data : "", n, rows_out, n_out);
+    free(data);
     return st;
 }

@@ -9,11 +9,15 @@
  * output), and measured against the reference; a stochastic method's error
  * is also measured over `seeds` seeds.
  * Everything is checked before any work, so a typo in the last method of a
- * long suite is refused at once.
+ * long suite is refused at once.  A method that fails a case (an error, a
+ * value outside [0, 1] or not finite, and when the case is isolated a crash
+ * or a time-out: isolate.c) gives a failed row, and the run goes on.
  */
 #include "bench.h"
+#include "isolate_internal.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,6 +61,12 @@ int aa_run_check(const aa_run_config *cfg)
                        cfg->target_ci, cfg->budget);
     if (cfg->seeds < 0 || cfg->seeds > 1000)
         return aa_fail(AA_EINVAL, "seeds %d out of range (1 to 1000)", cfg->seeds);
+    if (cfg->isolate < AA_ISOLATE_NONE || cfg->isolate > AA_ISOLATE_ALL)
+        return aa_fail(AA_EINVAL, "isolation %d out of range (%d to %d)", cfg->isolate,
+                       AA_ISOLATE_NONE, AA_ISOLATE_ALL);
+    if (!(cfg->case_timeout >= 0 && cfg->case_timeout <= 1e9))
+        return aa_fail(AA_EINVAL, "case time-out %g s out of range (0, the default, to 1e9)",
+                       cfg->case_timeout);
     for (size_t k = 0; k < cfg->npatterns; k++) {
         const aa_spec *p = &cfg->patterns[k].spec;
         if ((st = check_type(p->info, (const void *const *)aa_pattern_types, "pattern")))
@@ -133,15 +143,15 @@ static int write_images(const aa_run_config *cfg, const char *stem, const aa_ima
 {
     char path[4096];
     int st;
-    snprintf(path, sizeof path, "%s/%s.exr", cfg->images_dir, stem);
-    if ((st = aa_image_write(path, img, NULL)))
-        return st;
-    snprintf(path, sizeof path, "%s/%s.png", cfg->images_dir, stem);
-    if ((st = aa_image_write(path, img, &cfg->enc)))
+    if ((st = aa_pathf(path, sizeof path, "%s/%s.exr", cfg->images_dir, stem)) ||
+        (st = aa_image_write(path, img, NULL)) ||
+        (st = aa_pathf(path, sizeof path, "%s/%s.png", cfg->images_dir, stem)) ||
+        (st = aa_image_write(path, img, &cfg->enc)))
         return st;
     if (!ref)
         return AA_OK;
-    snprintf(path, sizeof path, "%s/%s-error.png", cfg->images_dir, stem);
+    if ((st = aa_pathf(path, sizeof path, "%s/%s-error.png", cfg->images_dir, stem)))
+        return st;
     return write_error_map(path, ref, img);
 }
 
@@ -157,6 +167,40 @@ static void row_names(aa_row *row, const char *pattern, int w, int h, const char
     row->seed = cfg->seed;
     row->threads = cfg->threads;
     row->reps = cfg->reps;
+}
+
+/* The note of a case the method refused: a result (ok 0, failed 0). */
+static void row_refused(aa_row *row)
+{
+    snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
+}
+
+void aa__row_failed(aa_row *row, const char *fmt, ...)
+{
+    char why[sizeof row->note];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    row->ok = 0;
+    row->failed = 1;
+    row->temporal = 0;
+    snprintf(row->note, sizeof row->note, "failed: %.*s", (int)(sizeof row->note - 9), why);
+}
+
+/* An image of the method with values outside [0, 1] or not finite fails
+ * its case: 1 if so (the row says where). */
+static int bad_image(aa_row *row, const aa_image *img, const char *what)
+{
+    int at[3];
+    double v = 0;
+    size_t bad = aa_image_bad_values(img, at, &v);
+    if (bad)
+        aa__row_failed(row,
+                       "%s%zu value%s outside [0, 1] or not finite, the first %.17g at pixel "
+                       "(%d, %d) channel %d",
+                       what, bad, bad == 1 ? "" : "s", v, at[0], at[1], at[2]);
+    return bad != 0;
 }
 
 /* A stochastic method's RMSE over seeds seed, seed + 1, ... (the first
@@ -196,8 +240,7 @@ static int run_seeds(const aa_run_config *cfg, const aa_job *job, const aa_spec 
  * dots (core.h, "Displays") is measured against the reference seen
  * through the same dots (display.c), any other against `ref`. */
 static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_job *job,
-                      const aa_spec *spec, const aa_image *ref, aa_image *img, const char *stem,
-                      aa_row *row)
+                      const aa_spec *spec, const aa_image *ref, aa_image *img, aa_row *row)
 {
     aa_timing_plan plan = {cfg->reps, cfg->target_ci, cfg->budget};
     aa_counters c;
@@ -205,20 +248,31 @@ static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_jo
     int shown = 0;
     int st = aa_method_check(spec, &job->filter);
     if (st == AA_EINVAL) { /* refused (e.g. a filter it cannot honour): a result */
-        snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
+        row_refused(row);
         return AA_OK;
     }
-    if (!st && !(st = aa_spec_format(spec, row->canonical, sizeof row->canonical)) &&
-        (st = aa_method_time(spec, job, &plan, img, &c, &row->timing)) == AA_EINVAL) {
+    if (st) {
+        aa__row_failed(row, "%s", aa_last_error());
+        return AA_OK;
+    }
+    if ((st = aa_spec_format(spec, row->canonical, sizeof row->canonical)))
+        return aa_fail_context(st, "%s", row->method);
+    st = aa_method_time(spec, job, &plan, img, &c, &row->timing);
+    if (st == AA_EINVAL) {
         /* refused at init: a scene it cannot take (colour, several layers, a
          * field): a result too */
-        snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
+        row_refused(row);
         return AA_OK;
     }
-    if (!st)
-        st = aa_display_view_reference(view, spec, job, cfg->threads, &dref, &shown);
-    const aa_image *against = shown ? &dref : ref;
-    if (st || (st = aa_metrics_compute(against, img, &cfg->enc, &row->m))) {
+    if (st) {
+        aa__row_failed(row, "%s", aa_last_error());
+        return AA_OK;
+    }
+    if (bad_image(row, img, "gave "))
+        return AA_OK;
+    if (!(st = aa_display_view_reference(view, spec, job, cfg->threads, &dref, &shown)))
+        st = aa_metrics_compute(shown ? &dref : ref, img, &cfg->enc, &row->m);
+    if (st) {
         aa_image_free(&dref);
         return aa_fail_context(st, "%s on %s %dx%d %s", row->method, row->pattern, row->w,
                                row->h, row->filter);
@@ -235,10 +289,7 @@ static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_jo
     row->ns_per_sample = c.samples ? row->seconds * 1e9 / (double)c.samples : 0.0;
     row->expensive_fraction = (double)c.expensive_pixels / pixels;
     row->ok = 1;
-    if (cfg->images_dir)
-        st = write_images(cfg, stem, against, img);
-    if (!st)
-        st = run_seeds(cfg, job, spec, against, img, row);
+    st = run_seeds(cfg, job, spec, shown ? &dref : ref, img, row);
     aa_image_free(&dref);
     return st;
 }
@@ -321,13 +372,25 @@ static int run_temporal(const aa_run_config *cfg, const aa_view *view, const aa_
         aa_counters c;
         aa_image dref = {0};
         int shown = 0;
+        char what[64];
         if ((st = aa_job_init(&job, scene, view->w, view->h, cfg->t + k, cfg->vx, cfg->vy,
                               &view->filter, cfg->seed, cfg->threads)))
             break;
         job.frame_only = 1;
-        st = aa_method_run(spec, &job, 1, &frames[k], &c, NULL);
-        if (!st)
-            st = aa_display_view_reference(view, spec, &job, cfg->threads, &dref, &shown);
+        int mst = aa_method_run(spec, &job, 1, &frames[k], &c, NULL);
+        /* the method's failure on a frame fails the case, not the run */
+        snprintf(what, sizeof what, "frame %d (time %g): ", k, cfg->t + k);
+        if (mst) {
+            aa_job_free(&job);
+            aa__row_failed(row, "%s%s", what, aa_last_error());
+            st = AA_OK;
+            goto out;
+        }
+        if (bad_image(row, &frames[k], what)) {
+            aa_job_free(&job);
+            goto out;
+        }
+        st = aa_display_view_reference(view, spec, &job, cfg->threads, &dref, &shown);
         aa_job_free(&job);
         if (!st && shown && !own && !(own = calloc((size_t)n, sizeof *own)))
             st = aa_fail(AA_ENOMEM, "out of memory");
@@ -367,6 +430,48 @@ static int run_temporal(const aa_run_config *cfg, const aa_view *view, const aa_
         return aa_fail_context(st, "temporal metrics of %s on %s", row->method, row->pattern);
     row->temporal = 1;
     return AA_OK;
+out: /* the method failed a frame: the case failed (the row says why) */
+    if (own) {
+        for (int k = 0; k < n; k++)
+            aa_image_free(&own[k]);
+        free(own);
+    }
+    return AA_OK;
+}
+
+/* Everything a case needs, for run_case in this process or in a child. */
+typedef struct case_args {
+    const aa_run_config *cfg;
+    const aa_view *view;
+    const aa_scene *scene;
+    const aa_job *job;
+    const aa_spec *spec;
+    const aa_image *ref, *refs;
+    aa_image *img, *frames;
+    int nt;
+} case_args;
+
+/* One case: the method on the view, and for animated runs its frames. */
+static int run_case(void *arg, aa_row *row)
+{
+    const case_args *a = arg;
+    int st = run_method(a->cfg, a->view, a->job, a->spec, a->ref, a->img, row);
+    if (!st && a->nt && row->ok)
+        st = run_temporal(a->cfg, a->view, a->scene, a->spec, a->refs, a->frames, row);
+    return st;
+}
+
+/* Whether a method's cases run in a child of their own. */
+static int isolated(const aa_run_config *cfg, const aa_spec *spec)
+{
+    if (cfg->isolate == AA_ISOLATE_ALL)
+        return 1;
+    if (cfg->isolate != AA_ISOLATE_PLUGINS)
+        return 0;
+    for (size_t k = 0; aa_method_types[k]; k++)
+        if (&aa_method_types[k]->info == spec->info)
+            return 0; /* built in */
+    return 1;
 }
 
 static void free_images(aa_image *im, int n)
@@ -385,9 +490,12 @@ static int alloc_images(aa_image *im, int n, int w, int h)
 
 int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
 {
+    *rows_out = NULL;
+    *n_out = 0;
     int st = aa_run_check(cfg);
     if (st)
         return st;
+    const double timeout = cfg->case_timeout > 0 ? cfg->case_timeout : AA_CASE_TIMEOUT;
     size_t total = cfg->npatterns * cfg->nsizes * cfg->nfilters * cfg->nmethods, n = 0;
     aa_row *rows = calloc(total, sizeof *rows);
     aa_scene *scene = NULL;
@@ -455,10 +563,20 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     row_names(row, pattern, view.w, view.h, filter, method, cfg);
                     aa_spec_slug(method, ms, sizeof ms);
                     snprintf(stem, sizeof stem, "%s-%dx%d-%s-%s", ps, view.w, view.h, fs, ms);
-                    if ((st = run_method(cfg, &view, &job, spec, &ref, &img, stem, row)))
+                    case_args ca = {cfg, &view, scene, &job, spec, &ref, refs, &img, frames, nt};
+                    if (!isolated(cfg, spec)) {
+                        st = run_case(&ca, row);
+                    } else {
+                        st = aa__case_isolated(run_case, &ca, row, cfg->images_dir ? &img : NULL,
+                                               timeout, cfg->threads);
+                        if (!st && row->failed && !*row->canonical &&
+                            aa_spec_format(spec, row->canonical, sizeof row->canonical))
+                            row->canonical[0] = '\0';
+                    }
+                    if (st)
                         break;
-                    if (nt && row->ok &&
-                        (st = run_temporal(cfg, &view, scene, spec, refs, frames, row)))
+                    /* images are written here, by this process, whichever ran the case */
+                    if (row->ok && cfg->images_dir && (st = write_images(cfg, stem, &ref, &img)))
                         break;
                     n++;
                     if (cfg->row_done && (st = cfg->row_done(cfg->ctx, rows, n)))

@@ -8,6 +8,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,11 +25,12 @@ int cli_bad_option(const char *cmd, int c, char *const argv[])
 {
     const char *arg = argv[optind - 1];
     if (c == ':')
-        fprintf(stderr, "aabench %s: option %s needs a value\n", cmd, arg);
+        fprintf(stderr, "aabench %s: option %s needs a value\n", cmd, aa_echo(arg));
     else if (optopt)
-        fprintf(stderr, "aabench %s: unknown option -%c\n", cmd, optopt);
+        fprintf(stderr, "aabench %s: unknown option -%s\n", cmd,
+                aa_echo((char[]){(char)optopt, 0}));
     else
-        fprintf(stderr, "aabench %s: unknown option %s\n", cmd, arg);
+        fprintf(stderr, "aabench %s: unknown option %s\n", cmd, aa_echo(arg));
     fprintf(stderr, "Try 'aabench %s --help'.\n", cmd);
     return 2;
 }
@@ -52,9 +54,10 @@ int cli_parse_real(const char *name, const char *text, double lo, double hi, dou
     int range = errno == ERANGE;
     aa__c_numbers_end(&numbers);
     if (end == text || *end || range || !isfinite(v))
-        return aa_fail(AA_EINVAL, "%s \"%s\" is not a finite number", name, text);
+        return aa_fail(AA_EINVAL, "%s \"%s\" is not a finite number", name, aa_echo(text));
     if (v < lo || v > hi)
-        return aa_fail(AA_EINVAL, "%s %s is out of range (%g to %g)", name, text, lo, hi);
+        return aa_fail(AA_EINVAL, "%s %s is out of range (%g to %g)", name, aa_echo(text), lo,
+                       hi);
     *out = v;
     return AA_OK;
 }
@@ -64,10 +67,15 @@ int cli_parse_int(const char *name, const char *text, long lo, long hi, int *out
     char *end;
     errno = 0;
     long v = strtol(text, &end, 10);
+    /* digits too many for a long are a number out of range, not malformed */
+    if (end != text && !*end && errno == ERANGE)
+        return aa_fail(AA_EINVAL, "%s %s is out of range (%ld to %ld)", name, aa_echo(text), lo,
+                       hi);
     if (end == text || *end || errno == ERANGE)
-        return aa_fail(AA_EINVAL, "%s \"%s\" is not a whole number", name, text);
+        return aa_fail(AA_EINVAL, "%s \"%s\" is not a whole number", name, aa_echo(text));
     if (v < lo || v > hi)
-        return aa_fail(AA_EINVAL, "%s %s is out of range (%ld to %ld)", name, text, lo, hi);
+        return aa_fail(AA_EINVAL, "%s %s is out of range (%ld to %ld)", name, aa_echo(text), lo,
+                       hi);
     *out = (int)v;
     return AA_OK;
 }
@@ -79,7 +87,8 @@ int cli_parse_seed(const char *text, uint64_t *out)
     unsigned long long v = strtoull(text, &end, 10);
     if (end == text || *end || errno == ERANGE || text[0] == '-' || text[0] == ' ' ||
         text[0] == '+')
-        return aa_fail(AA_EINVAL, "--seed \"%s\" is not a whole number from 0 to 2^64-1", text);
+        return aa_fail(AA_EINVAL, "--seed \"%s\" is not a whole number from 0 to 2^64-1",
+                       aa_echo(text));
     *out = v;
     return AA_OK;
 }
@@ -90,7 +99,7 @@ int cli_parse_pair(const char *name, const char *text, double lo, double hi, dou
     char buf[256];
     const char *comma = strchr(text, ',');
     if (!comma || strlen(text) >= sizeof buf)
-        return aa_fail(AA_EINVAL, "%s \"%s\" is not two numbers X,Y", name, text);
+        return aa_fail(AA_EINVAL, "%s \"%s\" is not two numbers X,Y", name, aa_echo(text));
     memcpy(buf, text, (size_t)(comma - text));
     buf[comma - text] = '\0';
     int st = cli_parse_real(name, buf, lo, hi, a);
@@ -105,7 +114,8 @@ static int check_folder(const char *path)
     if (slash) {
         size_t n = (size_t)(slash - path);
         if (n >= sizeof dir)
-            return aa_fail(AA_EINVAL, "output path too long");
+            return aa_fail(AA_EINVAL, "output \"%s\": path too long (%zu characters, at most %zu)",
+                           aa_echo(path), strlen(path), sizeof dir - 1);
         memcpy(dir, path, n);
         dir[n] = '\0';
         if (n == 0)
@@ -115,10 +125,11 @@ static int check_folder(const char *path)
     }
     struct stat sb;
     if (stat(dir, &sb) != 0)
-        return aa_fail(AA_EIO, "output \"%s\": folder %s %s", path, dir,
+        return aa_fail(AA_EIO, "output \"%s\": folder %s %s", aa_echo(path), aa_echo(dir),
                        errno == ENOENT ? "does not exist" : strerror(errno));
     if (!S_ISDIR(sb.st_mode))
-        return aa_fail(AA_EIO, "output \"%s\": %s is a file, not a folder", path, dir);
+        return aa_fail(AA_EIO, "output \"%s\": %s is a file, not a folder", aa_echo(path),
+                       aa_echo(dir));
     /* Try it: access() says yes to root on a read-only file system, and
      * nothing short of making a file tells a full one. */
     char probe[4096];
@@ -127,12 +138,12 @@ static int check_folder(const char *path)
         return st;
     int fd = open(probe, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0)
-        return aa_fail(AA_EIO, "output \"%s\": cannot write in folder %s: %s", path, dir,
-                       strerror(errno));
+        return aa_fail(AA_EIO, "output \"%s\": cannot write in folder %s: %s", aa_echo(path),
+                       aa_echo(dir), strerror(errno));
     close(fd);
     unlink(probe);
     if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
-        return aa_fail(AA_EIO, "output \"%s\" is a folder, not a file", path);
+        return aa_fail(AA_EIO, "output \"%s\" is a folder, not a file", aa_echo(path));
     return AA_OK;
 }
 
@@ -143,7 +154,7 @@ int cli_check_output(const char *path)
     if (!aa_image_ext_known(path))
         return aa_fail(AA_EINVAL,
                        "output \"%s\": unknown image type (use .exr, .tif, .png, .pfm or .txt)",
-                       path);
+                       aa_echo(path));
     return check_folder(path);
 }
 
@@ -151,8 +162,43 @@ int cli_check_output_file(const char *path, const char *ext)
 {
     size_t n = strlen(path), e = strlen(ext);
     if (n <= e || strcmp(path + n - e, ext) != 0)
-        return aa_fail(AA_EINVAL, "output \"%s\" must end in %s", path, ext);
+        return aa_fail(AA_EINVAL, "output \"%s\" must end in %s", aa_echo(path), ext);
     return check_folder(path);
+}
+
+int cli_check_folder(const char *what, const char *path, size_t room)
+{
+    if (!path || !*path)
+        return aa_fail(AA_EINVAL, "%s: no folder given", what);
+    size_t n = strlen(path), max = CLI_PATH_MAX - 1 - room;
+    if (n > max)
+        return aa_fail(AA_EINVAL,
+                       "%s \"%s\": a folder name of %zu characters is too long (at most %zu, so "
+                       "that the files in it have names within %d)",
+                       what, aa_echo(path), n, max, CLI_PATH_MAX - 1);
+    char *prefix = malloc(n + 1);
+    if (!prefix)
+        return aa_fail(AA_ENOMEM, "out of memory");
+    int st = AA_OK;
+    /* each component within NAME_MAX, and each one that exists a folder */
+    for (size_t start = 0, k = 0; k <= n && !st; k++) {
+        if (k < n && path[k] != '/')
+            continue;
+        if (k - start > NAME_MAX)
+            st = aa_fail(AA_EINVAL, "%s \"%s\": the name %s is longer than %d characters", what,
+                         aa_echo(path), aa_echo(path + start), NAME_MAX);
+        start = k + 1;
+        if (st || k == 0)
+            continue;
+        memcpy(prefix, path, k);
+        prefix[k] = '\0';
+        struct stat sb;
+        if (stat(prefix, &sb) == 0 && !S_ISDIR(sb.st_mode))
+            st = aa_fail(AA_EIO, "%s \"%s\": %s is not a folder but a %s", what, aa_echo(path),
+                         aa_echo(prefix), S_ISREG(sb.st_mode) ? "file" : "special file");
+    }
+    free(prefix);
+    return st;
 }
 
 int cli_default_threads(void)

@@ -39,6 +39,12 @@ int cli_parse_pair(const char *name, const char *text, double lo, double hi, dou
 int cli_check_output(const char *path);
 /* A non-image output with a required extension (".json", ".csv"). */
 int cli_check_output_file(const char *path, const char *ext);
+/* A folder to write into (made if missing), checked before any work: its
+ * name and each of its components short enough, with `room` characters
+ * left for the names of the files written under it, and nothing in the
+ * way that is not a folder.  `what` names it in messages ("--out"). */
+#define CLI_PATH_MAX 4096
+int cli_check_folder(const char *what, const char *path, size_t room);
 /* SIGINT and SIGTERM: remove the temporary files still on disk and exit
  * with status 130 (installed first thing by cli_main; `run` installs its
  * own, which lets the case under way finish). */

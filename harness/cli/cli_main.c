@@ -83,7 +83,7 @@ int cli_main(int argc, char **argv)
             return finish(c->name, code);
         }
     aa__c_numbers_end(&numbers);
-    fprintf(stderr, "aabench: unknown command \"%s\"\n", argv[1]);
+    fprintf(stderr, "aabench: unknown command \"%s\"\n", aa_echo(argv[1]));
     usage(stderr);
     return 2;
 }

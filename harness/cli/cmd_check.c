@@ -6,12 +6,17 @@
  * method's error with its baseline row: a case fails when its RMSE or its
  * maximum error exceeds the baseline's by more than the relative tolerance
  * (default 0.1%, plus 1e-12 absolute), when a method of the baseline no
- * longer exists, or when it now refuses a case it ran.  Render time is
- * reported, not gated: each case is timed by precision (as `run` does) and
- * its change against the baseline's repetition times is tested as `diff`
- * does (Mann-Whitney U); --fail-slower PCT makes a significant slow-down by
- * more than PCT% fail too.  Methods from plug-ins are checked the same way
- * (--plugin, with a baseline of theirs).
+ * longer exists, when it now refuses or fails a case it ran, or runs a case
+ * the baseline records as refused (ok = 0: the refusal is confirmed, never
+ * counted as within).  Render time is reported, not gated: each case is
+ * timed by precision (as `run` does) and its change against the baseline's
+ * repetition times is tested as `diff` does (Mann-Whitney U); --fail-slower
+ * PCT makes a significant slow-down by more than PCT% fail too.  Methods from plug-ins are checked the same way
+ * (--plugin, with a baseline of theirs), each case in a child process of its
+ * own (--no-isolate to turn that off), so that a crash or a hang is a failed
+ * case.  The baseline is read strictly (aa_rows_read_csv) and every view is
+ * checked before any is run: a bad baseline is refused (exit 2), never
+ * half-checked.
  */
 #include "cli.h"
 
@@ -29,7 +34,8 @@ static void usage(FILE *out)
             "Reruns the cases of the baseline (default results/baseline.csv, made by\n"
             "'aabench run --suite quick') and exits 1, naming each offender, when a method's\n"
             "RMSE or maximum error exceeds its baseline by more than REL relative (default\n"
-            "0.001, i.e. 0.1%%) plus 1e-12, or a baseline method is missing or now refused.\n\n"
+            "0.001, i.e. 0.1%%) plus 1e-12, a baseline method is missing, now refused or\n"
+            "failing, or runs a case the baseline records as refused.\n\n"
             "  --baseline FILE    the baseline CSV\n"
             "  --tolerance REL    relative tolerance on the errors (0 to 1)\n"
             "  --plugin LIB.so    load methods from a shared library (repeatable)\n"
@@ -38,7 +44,12 @@ static void usage(FILE *out)
             "  -v, --verbose      also print the cases that pass, and every time change\n"
             "  --fail-slower PCT  also fail a case significantly slower than its baseline by\n"
             "                     more than PCT%% (time is otherwise only reported)\n"
-            "  --target-ci PCT, --budget S, --reps N   timing, as for 'aabench run'\n");
+            "  --target-ci PCT, --budget S, --reps N   timing, as for 'aabench run'\n"
+            "  --isolate          run every case in a child process (default: the methods\n"
+            "                     of plug-ins); --no-isolate: none\n"
+            "  --case-timeout S   an isolated case taking more than S seconds fails (600)\n"
+            "\nExit status: 0 every case within, 1 a case failed, 2 bad input (a baseline\n"
+            "that cannot be trusted included), 3 input/output error.\n");
 }
 
 static int same_view(const aa_row *a, const aa_row *b)
@@ -50,6 +61,51 @@ static int same_view(const aa_row *a, const aa_row *b)
 static int worse(double now, double base, double tol)
 {
     return now > base * (1.0 + tol) + ABS_TOLERANCE;
+}
+
+/* The baseline's cases on one view: its methods that exist (parsed), and
+ * their rows. */
+typedef struct view {
+    size_t first;      /* the view's first row */
+    size_t at, nm;     /* its methods: methods[at .. at + nm), rows which[...] */
+    aa_run_spec pattern;
+    aa_run_filter filter;
+    aa_run_size wh;
+} view;
+
+/* One baseline row against its rerun: NULL if it passes, else why not
+ * (detail filled). */
+static const char *verdict(const aa_row *b, const aa_row *r, double tol, char *detail,
+                           size_t len, int *confirmed)
+{
+    *confirmed = 0;
+    detail[0] = '\0';
+    if (r->failed) {
+        snprintf(detail, len, "%s", r->note);
+        return "now fails";
+    }
+    if (!b->ok && r->ok) {
+        snprintf(detail, len,
+                 "the baseline records it as not run (%s); it now runs (rmse %.9g): remake the "
+                 "baseline to gate it",
+                 b->note, r->m.rmse);
+        return "now runs a case its baseline records as refused";
+    }
+    if (!b->ok) {
+        *confirmed = 1; /* refused then, refused now */
+        return NULL;
+    }
+    if (!r->ok) {
+        snprintf(detail, len, "%s", r->note);
+        return "now refused";
+    }
+    if (worse(r->m.rmse, b->m.rmse, tol) || worse(r->m.max_err, b->m.max_err, tol)) {
+        snprintf(detail, len, "rmse %.9g (baseline %.9g, %+.3f%%), max_err %.9g (baseline %.9g)",
+                 r->m.rmse, b->m.rmse, 100 * (r->m.rmse / b->m.rmse - 1), r->m.max_err,
+                 b->m.max_err);
+        return "error above its baseline";
+    }
+    return NULL;
 }
 
 /* Time changes against the baseline: reported; gated with --fail-slower. */
@@ -91,21 +147,24 @@ static void time_summary(const time_report *t)
 
 int cmd_check(int argc, char **argv)
 {
-    enum { O_BASELINE = 256, O_TOL, O_PLUGIN, O_THREADS, O_CACHE, O_NOCACHE, O_SLOWER, O_TARGET,
-           O_BUDGET, O_REPS };
+    enum { O_BASELINE = 256, O_TOL, O_PLUGIN, O_THREADS, O_CACHE, O_NOCACHE,
+           O_ISOLATE, O_NOISOLATE, O_CASE_TIMEOUT, O_SLOWER, O_TARGET, O_BUDGET, O_REPS };
     static const struct option opts[] = {
         {"baseline", required_argument, 0, O_BASELINE}, {"tolerance", required_argument, 0, O_TOL},
         {"plugin", required_argument, 0, O_PLUGIN},   {"threads", required_argument, 0, O_THREADS},
         {"cache", required_argument, 0, O_CACHE},     {"no-cache", no_argument, 0, O_NOCACHE},
         {"verbose", no_argument, 0, 'v'},             {"help", no_argument, 0, 'h'},
+        {"isolate", no_argument, 0, O_ISOLATE},
+        {"no-isolate", no_argument, 0, O_NOISOLATE},
+        {"case-timeout", required_argument, 0, O_CASE_TIMEOUT},
         {"fail-slower", required_argument, 0, O_SLOWER},
         {"target-ci", required_argument, 0, O_TARGET},
         {"budget", required_argument, 0, O_BUDGET},
         {"reps", required_argument, 0, O_REPS},
         {0, 0, 0, 0}};
     const char *baseline = "results/baseline.csv", *cache = cli_cache_dir();
-    double tol = DEFAULT_TOLERANCE;
-    int c, st = AA_OK, threads = 0, verbose = 0;
+    double tol = DEFAULT_TOLERANCE, timeout = AA_CASE_TIMEOUT;
+    int c, st = AA_OK, threads = 0, verbose = 0, isolate = AA_ISOLATE_PLUGINS;
     time_report times = {.slower = -1};
     cli_getopt_reset();
     while ((c = getopt_long(argc, argv, ":vh", opts, NULL)) != -1) {
@@ -117,6 +176,11 @@ int cmd_check(int argc, char **argv)
         case O_CACHE: cache = optarg; break;
         case O_NOCACHE: cache = ""; break;
         case 'v': verbose = 1; break;
+        case O_ISOLATE: isolate = AA_ISOLATE_ALL; break;
+        case O_NOISOLATE: isolate = AA_ISOLATE_NONE; break;
+        case O_CASE_TIMEOUT:
+            st = cli_parse_real("--case-timeout", optarg, 0.001, 1e9, &timeout);
+            break;
         case O_SLOWER: st = cli_parse_real("--fail-slower", optarg, 0, 1e6, &times.slower); break;
         case O_TARGET: st = cli_parse_target(optarg, &times.plan.target_ci); break;
         case O_BUDGET: st = cli_parse_budget(optarg, &times.plan.budget); break;
@@ -128,16 +192,18 @@ int cmd_check(int argc, char **argv)
             return cli_fail("check", st);
     }
     if (optind < argc) {
-        fprintf(stderr, "aabench check: unexpected argument \"%s\"\n", argv[optind]);
+        fprintf(stderr, "aabench check: unexpected argument \"%s\"\n", aa_echo(argv[optind]));
         return 2;
     }
-    aa_row *base;
-    size_t nb;
+    if (*cache && (st = cli_check_folder("--cache", cache, 64)))
+        return cli_fail("check", st);
+    aa_row *base = NULL;
+    size_t nb = 0;
     if ((st = aa_rows_read_csv(baseline, &base, &nb)))
         return cli_fail("check", st);
     if (nb == 0) {
         free(base);
-        fprintf(stderr, "aabench check: %s holds no cases\n", baseline);
+        fprintf(stderr, "aabench check: %s holds no cases\n", aa_echo(baseline));
         return 2;
     }
     if (threads <= 0)
@@ -145,14 +211,17 @@ int cmd_check(int argc, char **argv)
     int *done = calloc(nb, sizeof *done);
     aa_run_spec *methods = malloc(nb * sizeof *methods);
     size_t *which = malloc(nb * sizeof *which);
-    size_t offenders = 0, checked = 0;
-    if (!done || !methods || !which)
+    view *views = malloc(nb * sizeof *views);
+    size_t offenders = 0, checked = 0, confirmed = 0, nv = 0, nm = 0;
+    if (!done || !methods || !which || !views)
         st = aa_fail(AA_ENOMEM, "out of memory for %zu cases", nb);
+    /* every view and method parsed, and every view checked, before any work */
     for (size_t k = 0; k < nb && !st; k++) {
         if (done[k])
             continue;
+        view *v = &views[nv];
+        v->first = k, v->at = nm, v->nm = 0;
         /* the baseline's methods on this view that still exist */
-        size_t nm = 0;
         for (size_t q = k; q < nb; q++) {
             if (done[q] || !same_view(&base[k], &base[q]))
                 continue;
@@ -174,58 +243,71 @@ int cmd_check(int argc, char **argv)
                 continue;
             }
             which[nm++] = q;
+            v->nm++;
         }
-        if (nm == 0)
+        if (v->nm == 0)
             continue;
-        /* the view, parsed once for all its methods */
-        char size[32];
-        snprintf(size, sizeof size, "%dx%d", base[k].w, base[k].h);
-        aa_run_spec pattern = {.text = base[k].pattern};
-        aa_run_filter filter = {.text = base[k].filter};
-        aa_run_size wh = {base[k].w, base[k].h};
-        if ((st = aa_pattern_parse(base[k].pattern, &pattern.spec)) ||
-            (st = aa_filter_parse(base[k].filter, &filter.filter)))
+        /* the view, parsed once for all its methods (the reader checked it
+         * parses) */
+        v->pattern = (aa_run_spec){.text = base[k].pattern};
+        v->filter = (aa_run_filter){.text = base[k].filter};
+        v->wh = (aa_run_size){base[k].w, base[k].h};
+        if ((st = aa_pattern_parse(base[k].pattern, &v->pattern.spec)) ||
+            (st = aa_filter_parse(base[k].filter, &v->filter.filter)))
             break;
-        aa_run_config cfg;
-        memset(&cfg, 0, sizeof cfg);
-        cfg.patterns = &pattern, cfg.npatterns = 1;
-        cfg.sizes = &wh, cfg.nsizes = 1;
-        cfg.filters = &filter, cfg.nfilters = 1;
-        cfg.methods = methods, cfg.nmethods = nm;
-        cfg.threads = threads, cfg.seed = base[k].seed;
-        cfg.reps = times.plan.reps, cfg.target_ci = times.plan.target_ci;
-        cfg.budget = times.plan.budget;
-        cfg.t = base[k].t, cfg.vx = base[k].vx, cfg.vy = base[k].vy;
-        cfg.cache_dir = *cache ? cache : NULL;
-        cfg.enc.kind = AA_ENCODE_SRGB;
-        aa_row *now;
-        size_t nn;
-        if ((st = aa_run(&cfg, &now, &nn))) {
+        nv++;
+    }
+    aa_run_config *cfgs = st ? NULL : calloc(nv ? nv : 1, sizeof *cfgs);
+    if (!st && !cfgs)
+        st = aa_fail(AA_ENOMEM, "out of memory for %zu views", nv);
+    for (size_t i = 0; i < nv && !st; i++) {
+        const view *v = &views[i];
+        const aa_row *b = &base[v->first];
+        aa_run_config *cfg = &cfgs[i];
+        cfg->patterns = &v->pattern, cfg->npatterns = 1;
+        cfg->sizes = &v->wh, cfg->nsizes = 1;
+        cfg->filters = &v->filter, cfg->nfilters = 1;
+        cfg->methods = methods + v->at, cfg->nmethods = v->nm;
+        cfg->reps = times.plan.reps, cfg->target_ci = times.plan.target_ci;
+        cfg->budget = times.plan.budget;
+        cfg->threads = threads, cfg->seed = b->seed;
+        cfg->t = b->t, cfg->vx = b->vx, cfg->vy = b->vy;
+        cfg->cache_dir = *cache ? cache : NULL;
+        cfg->enc.kind = AA_ENCODE_SRGB;
+        cfg->isolate = isolate;
+        cfg->case_timeout = timeout;
+        if ((st = aa_run_check(cfg)))
+            st = aa_fail_context(st, "%s: the case %s on %s %dx%d %s", aa_echo(baseline),
+                                 aa_echo(b->method), aa_echo(b->pattern), b->w, b->h,
+                                 aa_echo(b->filter));
+    }
+    for (size_t i = 0; i < nv && !st; i++) {
+        const view *v = &views[i];
+        char size[32];
+        snprintf(size, sizeof size, "%dx%d", v->wh.w, v->wh.h);
+        aa_row *now = NULL;
+        size_t nn = 0;
+        if ((st = aa_run(&cfgs[i], &now, &nn))) {
             free(now);
             break;
         }
         for (size_t m = 0; m < nn; m++) {
-            const aa_row *b = &base[which[m]], *r = &now[m];
+            const aa_row *b = &base[which[v->at + m]], *r = &now[m];
+            char detail[1200];
+            int ok_refused;
             checked++;
-            const char *why = NULL;
-            char detail[512] = "";
-            if (b->ok && !r->ok) {
-                why = "now refused";
-                snprintf(detail, sizeof detail, "%s", r->note);
-            } else if (b->ok && (worse(r->m.rmse, b->m.rmse, tol) ||
-                                 worse(r->m.max_err, b->m.max_err, tol))) {
-                why = "error above its baseline";
-                snprintf(detail, sizeof detail,
-                         "rmse %.9g (baseline %.9g, %+.3f%%), max_err %.9g (baseline %.9g)",
-                         r->m.rmse, b->m.rmse, 100 * (r->m.rmse / b->m.rmse - 1), r->m.max_err,
-                         b->m.max_err);
-            }
-            if (!why && (st = time_change(&times, b, r, verbose)))
+            const char *why = verdict(b, r, tol, detail, sizeof detail, &ok_refused);
+            if (!why && !ok_refused && (st = time_change(&times, b, r, verbose)))
                 break;
             if (why) {
                 printf("FAIL %s on %s %s %s: %s: %s\n", b->method, b->pattern, size, b->filter, why,
                        detail);
                 offenders++;
+            } else if (ok_refused) {
+                confirmed++;
+                if (verbose)
+                    printf("ok   %s on %s %s %s: refused, as the baseline records (%s)\n",
+                           b->method, b->pattern, size, b->filter, r->note);
             } else if (verbose) {
                 printf("ok   %s on %s %s %s: rmse %.9g (baseline %.9g)\n", b->method, b->pattern,
                        size, b->filter, r->m.rmse, b->m.rmse);
@@ -233,9 +315,11 @@ int cmd_check(int argc, char **argv)
         }
         free(now);
     }
+    free(cfgs);
     free(done);
     free(methods);
     free(which);
+    free(views);
     free(base);
     if (st)
         return cli_fail("check", st);
@@ -246,6 +330,9 @@ int cmd_check(int argc, char **argv)
                nb, baseline, tol);
         return 1;
     }
-    printf("check: %zu cases within %g of %s\n", checked, tol, baseline);
+    printf("check: %zu cases within %g of %s", checked - confirmed, tol, baseline);
+    if (confirmed)
+        printf(", %zu refusal%s confirmed", confirmed, confirmed == 1 ? "" : "s");
+    printf("\n");
     return 0;
 }

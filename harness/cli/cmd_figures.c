@@ -80,7 +80,7 @@ int cmd_figures(int argc, char **argv)
         }
     }
     if (!st && optind < argc)
-        st = aa_fail(AA_EINVAL, "unexpected argument \"%s\"", argv[optind]);
+        st = aa_fail(AA_EINVAL, "unexpected argument \"%s\"", aa_echo(argv[optind]));
     if (!st && *dir == '\0')
         st = aa_fail(AA_EINVAL, "--out: empty folder name");
     if (!st)

@@ -65,7 +65,7 @@ int cmd_list(int argc, char **argv)
     const char *what = optind < argc ? argv[optind] : NULL;
     if (what && strcmp(what, "methods") && strcmp(what, "patterns") && strcmp(what, "filters")) {
         fprintf(stderr, "aabench list: unknown list \"%s\" (methods, patterns or filters)\n",
-                what);
+                aa_echo(what));
         return 2;
     }
     if (!what || !strcmp(what, "methods")) {

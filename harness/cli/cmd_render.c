@@ -92,7 +92,7 @@ static int parse(int argc, char **argv, render_args *a)
             return cli_fail("render", st);
     }
     if (optind < argc) {
-        fprintf(stderr, "aabench render: unexpected argument \"%s\"\n", argv[optind]);
+        fprintf(stderr, "aabench render: unexpected argument \"%s\"\n", aa_echo(argv[optind]));
         return 2;
     }
     if (!a->pattern || !a->method || !a->size || !a->out) {

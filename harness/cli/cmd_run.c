@@ -14,6 +14,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -72,7 +73,18 @@ static void usage(FILE *out)
             "  --cache DIR       reference cache (default results/cache); --no-cache\n"
             "  --list-suites     list the suites and exit\n"
             "  -q, --quiet       no table at the end\n"
-            "Exit status: 0 done, 2 bad input, 3 input/output error, 130 interrupted.\n");
+            "  --isolate         run every case in a child process of its own (the default\n"
+            "                    for methods from plug-ins): a crash or a hang is a failed\n"
+            "                    case, and the run goes on\n"
+            "  --no-isolate      run every case in this process\n"
+            "  --case-timeout S  an isolated case taking more than S seconds fails (default\n"
+            "                    600)\n"
+            "\nA case whose method gives an error, a value outside [0, 1] or not finite,\n"
+            "crashes or times out is a failed case (ok=0 in results.csv, the reason in its\n"
+            "note); the run goes on.  results.csv and results.json are rewritten after every\n"
+            "case.\n"
+            "Exit status: 0 done, 1 some cases failed, 2 bad input, 3 input/output error,\n"
+            "130 interrupted.\n");
 }
 
 typedef struct list {
@@ -85,6 +97,8 @@ typedef struct run_args {
     list p, m, s, f;
     int reps, threads, images, plots, quiet;
     int frames, window, motion_given;
+    int isolate;          /* AA_ISOLATE_* */
+    double case_timeout;  /* seconds */
     uint64_t seed;
     double t, vx, vy;
     aa_encode enc;
@@ -104,7 +118,7 @@ static int parse(int argc, char **argv, run_args *a)
 {
     enum { O_SUITE = 256, O_REPS, O_OUT, O_THREADS, O_SEED, O_TIME, O_MOTION, O_ENCODE,
            O_PLUGIN, O_NOIMAGES, O_NOPLOTS, O_CACHE, O_NOCACHE, O_LIST, O_FRAMES, O_WINDOW,
-           O_TARGET, O_BUDGET, O_SEEDS };
+           O_TARGET, O_BUDGET, O_SEEDS, O_ISOLATE, O_NOISOLATE, O_CASE_TIMEOUT };
     static const struct option opts[] = {
         {"suite", required_argument, 0, O_SUITE}, {"pattern", required_argument, 0, 'p'},
         {"method", required_argument, 0, 'm'},   {"size", required_argument, 0, 's'},
@@ -120,6 +134,9 @@ static int parse(int argc, char **argv, run_args *a)
         {"target-ci", required_argument, 0, O_TARGET},
         {"budget", required_argument, 0, O_BUDGET},
         {"seeds", required_argument, 0, O_SEEDS},
+        {"isolate", no_argument, 0, O_ISOLATE},
+        {"no-isolate", no_argument, 0, O_NOISOLATE},
+        {"case-timeout", required_argument, 0, O_CASE_TIMEOUT},
         {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
@@ -155,6 +172,11 @@ static int parse(int argc, char **argv, run_args *a)
         case O_CACHE: a->cache = optarg; break;
         case O_NOCACHE: a->cache = ""; break;
         case 'q': a->quiet = 1; break;
+        case O_ISOLATE: a->isolate = AA_ISOLATE_ALL; break;
+        case O_NOISOLATE: a->isolate = AA_ISOLATE_NONE; break;
+        case O_CASE_TIMEOUT:
+            st = cli_parse_real("--case-timeout", optarg, 0.001, 1e9, &a->case_timeout);
+            break;
         case O_LIST:
             for (const aa_suite *s = aa_suites; s->name; s++)
                 printf("%s\t%s\n", s->name, s->summary);
@@ -166,7 +188,7 @@ static int parse(int argc, char **argv, run_args *a)
             return cli_fail("run", st);
     }
     if (optind < argc) {
-        fprintf(stderr, "aabench run: unexpected argument \"%s\"\n", argv[optind]);
+        fprintf(stderr, "aabench run: unexpected argument \"%s\"\n", aa_echo(argv[optind]));
         return 2;
     }
     return -1;
@@ -213,6 +235,10 @@ typedef struct run_ctx {
     int bar;
     double t0;
     const aa_context *context; /* results.json's */
+    /* every row so far: those of the groups run (nall) and of the one under
+     * way (copied of them), saved after every case */
+    aa_row *all;
+    size_t nall, cap, copied;
 } run_ctx;
 
 static int progress(void *vctx, size_t done, size_t total, const char *what)
@@ -242,7 +268,47 @@ static int save(void *vctx, const aa_row *rows, size_t n)
     return st;
 }
 
+/* Room in ctx->all for `more` rows after those kept. */
+static int grow(run_ctx *ctx, size_t more)
+{
+    size_t need = ctx->nall + more;
+    if (need <= ctx->cap)
+        return AA_OK;
+    size_t cap = ctx->cap ? ctx->cap : 64;
+    while (cap < need)
+        cap *= 2;
+    aa_row *p = realloc(ctx->all, cap * sizeof *p);
+    if (!p)
+        return aa_fail(AA_ENOMEM, "out of memory for %zu results", need);
+    ctx->all = p;
+    ctx->cap = cap;
+    return AA_OK;
+}
+
+/* After every case (aa_run_config.row_done): the rows of the earlier
+ * groups and the group's so far, written out, so that a run that is
+ * killed, or fails, keeps every case it measured. */
+static int row_done(void *vctx, const aa_row *rows, size_t n)
+{
+    run_ctx *ctx = vctx;
+    int st = grow(ctx, n);
+    if (st)
+        return st;
+    memcpy(ctx->all + ctx->nall + ctx->copied, rows + ctx->copied,
+           (n - ctx->copied) * sizeof *rows);
+    ctx->copied = n;
+    return save(ctx, ctx->all, ctx->nall + n);
+}
+
 /* ---- what runs after the cases ---- */
+
+/* The montage's columns for nt tiles of width w. */
+static int montage_columns(size_t nt, int w)
+{
+    if (w <= 160)
+        return nt <= 6 ? (int)nt : 6;
+    return nt <= 4 ? (int)nt : (nt <= 9 ? 3 : 4);
+}
 
 /* The first view's reference and every method, side by side (the first
  * view is the first pattern, size and filter of the first cross product). */
@@ -292,13 +358,8 @@ static int write_montage(const char *dir, const aa_run_config *first, const aa_r
         tiles[k].label[1] = labels[k][1];
         tiles[k].label[2] = NULL;
     }
-    if (!st) {
-        int cols = nt <= 4 ? (int)nt : (nt <= 9 ? 3 : 4);
-        if (rows[0].w <= 160)
-            cols = nt <= 6 ? (int)nt : 6;
-        if (!(st = aa_pathf(path, sizeof path, "%s/montage.png", dir)))
-            st = aa_montage_write(path, tiles, nt, cols, enc);
-    }
+    if (!st && !(st = aa_pathf(path, sizeof path, "%s/montage.png", dir)))
+        st = aa_montage_write(path, tiles, nt, montage_columns(nt, rows[0].w), enc);
     for (size_t k = 0; k < nt; k++)
         aa_image_free(&imgs[k]);
     return st;
@@ -327,8 +388,23 @@ static void without_count(const char *spec, char *buf, size_t len)
 
 /* Convergence of the sampling methods among those run, on the first
  * pattern at 128x128 under the first filter. */
+/* Whether the convergence, which runs in this process, may run a method:
+ * not one that failed a case, nor one from a plug-in the run isolated. */
+static int trusted(const run_args *a, const aa_run_spec *m, const aa_row *rows, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (rows[k].failed && !strcmp(rows[k].method, m->text))
+            return 0;
+    if (a->isolate == AA_ISOLATE_NONE)
+        return 1;
+    for (size_t k = 0; aa_method_types[k]; k++)
+        if (&aa_method_types[k]->info == m->spec.info)
+            return 1;
+    return 0;
+}
+
 static int write_convergence(const char *dir, const run_args *a, const aa_run_config *first,
-                             int threads)
+                             int threads, const aa_row *rows, size_t nrows)
 {
     const aa_run_spec *names[16];
     aa_convergence conv[16];
@@ -340,7 +416,7 @@ static int write_convergence(const char *dir, const run_args *a, const aa_run_co
     static const int spp[] = {1, 4, 16, 64, 256};
     for (size_t k = 0; k < first->nmethods && n < 16; k++) {
         const aa_spec *mspec = &first->methods[k].spec;
-        if (aa_method_check(mspec, f) ||
+        if (!trusted(a, &first->methods[k], rows, nrows) || aa_method_check(mspec, f) ||
             (aa_spec_index(mspec->info, "spp") < 0 && aa_spec_index(mspec->info, "n") < 0))
             continue;
         /* one curve per method family variant: skip a spec that differs
@@ -615,6 +691,99 @@ static int groups_of(const run_args *a, const aa_suite *suite, owned *o, aa_run_
     return AA_OK;
 }
 
+/* The failed cases, each on a line of its own and then all named in one,
+ * on standard error: exit status 1 if any. */
+static int report_failed(const aa_row *rows, size_t n)
+{
+    size_t failed = 0;
+    for (size_t k = 0; k < n; k++) {
+        if (!rows[k].failed)
+            continue;
+        failed++;
+        const char *why = rows[k].note;
+        if (!strncmp(why, "failed: ", 8))
+            why += 8;
+        fprintf(stderr, "aabench run: FAILED %s on %s %dx%d %s: %s\n", rows[k].method,
+                rows[k].pattern, rows[k].w, rows[k].h, rows[k].filter, why);
+    }
+    if (!failed)
+        return 0;
+    fprintf(stderr, "aabench run: %zu of %zu case%s failed:", failed, n, n == 1 ? "" : "s");
+    for (size_t k = 0, seen = 0; k < n; k++)
+        if (rows[k].failed)
+            fprintf(stderr, "%s %s on %s %dx%d %s", seen++ ? ";" : "", rows[k].method,
+                    rows[k].pattern, rows[k].w, rows[k].h, rows[k].filter);
+    fprintf(stderr, "\n");
+    return 1;
+}
+
+/* Everything checked before any work or any file: every method runs some
+ * case (a spec every filter of the run refuses, such as jitter:spp=15, is
+ * bad input, as `render` says), the images' names fit, the montage can be
+ * made, and the folders can be. */
+static int check_before_work(const run_args *a, const aa_run_config *cfgs, size_t ng)
+{
+    int st;
+    for (size_t g = 0; g < ng; g++)
+        for (size_t m = 0; m < cfgs[g].nmethods; m++) {
+            const aa_run_spec *spec = &cfgs[g].methods[m];
+            int runs = 0;
+            char why[1024] = "";
+            /* the same method text in any group, under any of its filters */
+            for (size_t h = 0; h < ng && !runs; h++)
+                for (size_t q = 0; q < cfgs[h].nmethods && !runs; q++) {
+                    const aa_run_spec *other = &cfgs[h].methods[q];
+                    if (other != spec && strcmp(other->text, spec->text))
+                        continue;
+                    for (size_t f = 0; f < cfgs[h].nfilters && !runs; f++) {
+                        if (!aa_method_check(&other->spec, &cfgs[h].filters[f].filter))
+                            runs = 1;
+                        else if (!*why)
+                            snprintf(why, sizeof why, "%s", aa_last_error());
+                    }
+                }
+            if (!runs)
+                return aa_fail(AA_EINVAL, "%s (and so under every filter of the run)", why);
+        }
+    if (a->images) {
+        /* images/PATTERN-WxH-FILTER-METHOD-error.png within NAME_MAX */
+        for (size_t g = 0; g < ng; g++)
+            for (size_t p = 0; p < cfgs[g].npatterns; p++)
+                for (size_t s = 0; s < cfgs[g].nsizes; s++)
+                    for (size_t f = 0; f < cfgs[g].nfilters; f++)
+                        for (size_t m = 0; m < cfgs[g].nmethods; m++) {
+                            char wh[64];
+                            snprintf(wh, sizeof wh, "-%dx%d-", cfgs[g].sizes[s].w,
+                                     cfgs[g].sizes[s].h);
+                            size_t len = strlen(cfgs[g].patterns[p].text) + strlen(wh) +
+                                         strlen(cfgs[g].filters[f].text) + 1 +
+                                         strlen(cfgs[g].methods[m].text) +
+                                         strlen("-reference-error.png");
+                            if (len > NAME_MAX)
+                                return aa_fail(
+                                    AA_EINVAL,
+                                    "the image names of %s on %s %s would be %zu characters "
+                                    "long, more than a file name can be (%d): shorter specs, or "
+                                    "--no-images",
+                                    aa_echo(cfgs[g].methods[m].text),
+                                    aa_echo(cfgs[g].patterns[p].text),
+                                    aa_echo(cfgs[g].filters[f].text), len, NAME_MAX);
+                        }
+        /* the montage: the first view's reference and up to 63 methods */
+        size_t most = cfgs[0].nmethods < 63 ? cfgs[0].nmethods + 1 : 64;
+        for (size_t nt = 1; nt <= most; nt++)
+            if ((st = aa_montage_check(cfgs[0].sizes[0].w, cfgs[0].sizes[0].h, nt,
+                                       montage_columns(nt, cfgs[0].sizes[0].w), 2)))
+                return aa_fail_context(st, "montage.png (or use --no-images)");
+    }
+    /* the output folder, with room for images/NAME under it */
+    if (a->out && (st = cli_check_folder("--out", a->out, strlen("/images/") + NAME_MAX)))
+        return st;
+    if (*a->cache && (st = cli_check_folder("--cache", a->cache, 64)))
+        return st;
+    return AA_OK;
+}
+
 /* Run the suite's cross products (or those given) and write everything. */
 static int run_suite(run_args *a, const aa_suite *suite, owned *o)
 {
@@ -636,11 +805,16 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         cfgs[g].temporal = mo != NULL;
         cfgs[g].frames = a->frames ? a->frames : mo ? mo->frames : 0;
         cfgs[g].window = a->window ? a->window : mo ? mo->window : 0;
+        cfgs[g].isolate = a->isolate;
+        cfgs[g].case_timeout = a->case_timeout;
         if ((st = aa_run_check(&cfgs[g])))
             return cli_fail("run", st);
     }
+    if ((st = check_before_work(a, cfgs, ng)))
+        return cli_fail("run", st);
     if (a->out) {
-        snprintf(dir, sizeof dir, "%s", a->out);
+        if ((st = aa_pathf(dir, sizeof dir, "%s", a->out)))
+            return cli_fail("run", st);
         if ((st = aa_mkdirs(dir)))
             return cli_fail("run", st);
     } else if ((st = make_run_dir(dir, sizeof dir, &linked))) {
@@ -654,15 +828,13 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
     const char *const *argv;
     cli_command_line(&argc, &argv);
     aa_context_collect(&context, argc, argv, threads);
-    run_ctx ctx = {dir, cli_progress_wanted(), aa_now(), &context};
+    run_ctx ctx = {dir, cli_progress_wanted(), aa_now(), &context, NULL, 0, 0, 0};
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 
-    aa_row *all = NULL;
-    size_t nall = 0;
     st = AA_OK;
     for (size_t g = 0; g < ng && !st; g++) {
         aa_run_config *c = &cfgs[g];
@@ -672,39 +844,53 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         c->images_dir = a->images ? images : NULL;
         c->enc = a->enc;
         c->progress = progress;
+        c->row_done = row_done;
         c->ctx = &ctx;
-        aa_row *rows;
-        size_t n;
+        aa_row *rows = NULL;
+        size_t n = 0;
+        ctx.copied = 0;
         st = aa_run(c, &rows, &n);
-        aa_row *grown = realloc(all, (nall + n + 1) * sizeof *all);
-        if (grown) {
-            all = grown;
-            memcpy(all + nall, rows, n * sizeof *rows);
-            nall += n;
+        /* the rows aa_run returns, whatever its status */
+        int gst = grow(&ctx, n);
+        if (!gst) {
+            memcpy(ctx.all + ctx.nall, rows, n * sizeof *rows);
+            ctx.nall += n;
         } else if (!st) {
-            st = aa_fail(AA_ENOMEM, "out of memory");
+            st = gst;
         }
+        ctx.copied = 0;
         free(rows);
-        if (!st && nall)
-            st = save(&ctx, all, nall);
     }
-    if (!st && nall) {
+    aa_row *all = ctx.all;
+    size_t nall = ctx.nall;
+    /* saved after every case already; once more so that a failed group's
+     * rows are on disk whatever it stopped at */
+    if (nall) {
+        int sst = save(&ctx, all, nall);
+        if (!st)
+            st = sst;
+    }
+    size_t ran = 0;
+    for (size_t k = 0; k < nall; k++)
+        ran += all[k].ok != 0;
+    if (!st && ran) {
         if (a->images)
             st = write_montage(dir, &cfgs[0], all, nall, &a->enc);
         if (!st && a->plots) {
             if (!(st = aa_plot_error_vs_time(plots, all, nall)))
-                st = write_convergence(plots, a, &cfgs[0], threads);
+                st = write_convergence(plots, a, &cfgs[0], threads, all, nall);
         }
     }
     if (interrupted) {
-        if (nall)
-            save(&ctx, all, nall);
         fprintf(stderr, "\naabench run: interrupted; %zu result%s kept in %s\n", nall,
                 nall == 1 ? "" : "s", dir);
         free(all);
         return 130;
     }
     if (st) {
+        if (nall)
+            fprintf(stderr, "aabench run: %zu result%s kept in %s/results.csv\n", nall,
+                    nall == 1 ? "" : "s", dir);
         free(all);
         return cli_fail("run", st);
     }
@@ -712,8 +898,9 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         print_table(all, nall);
     cli_warn_noisy("run", all, nall);
     printf("results: %s/results.csv%s\n", dir, linked ? " (results/latest)" : "");
+    int code = report_failed(all, nall);
     free(all);
-    return 0;
+    return code;
 }
 
 int cmd_run(int argc, char **argv)
@@ -726,6 +913,8 @@ int cmd_run(int argc, char **argv)
     a.seed = 1;
     a.cache = cli_cache_dir();
     a.enc.kind = AA_ENCODE_SRGB;
+    a.isolate = AA_ISOLATE_PLUGINS;
+    a.case_timeout = AA_CASE_TIMEOUT;
     int code = parse(argc, argv, &a);
     if (code >= 0)
         return code;
@@ -733,7 +922,7 @@ int cmd_run(int argc, char **argv)
     if (!suite) {
         fprintf(stderr,
                 "aabench run: unknown suite \"%s\" (quick, default, paper, full, temporal)\n",
-                a.suite);
+                aa_echo(a.suite));
         return 2;
     }
     owned o = {{0}, 0};

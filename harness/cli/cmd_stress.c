@@ -81,7 +81,7 @@ int cmd_stress(int argc, char **argv)
         }
     }
     if (!st && optind < argc)
-        st = aa_fail(AA_EINVAL, "unexpected argument \"%s\"", argv[optind]);
+        st = aa_fail(AA_EINVAL, "unexpected argument \"%s\"", aa_echo(argv[optind]));
     char csv[4096];
     if (!st)
         st = aa_pathf(csv, sizeof csv, "%s/stress.csv", dir);

@@ -72,7 +72,7 @@ static int parse(int argc, char **argv, truth_args *a)
             return cli_fail("truth", st);
     }
     if (optind < argc) {
-        fprintf(stderr, "aabench truth: unexpected argument \"%s\"\n", argv[optind]);
+        fprintf(stderr, "aabench truth: unexpected argument \"%s\"\n", aa_echo(argv[optind]));
         return 2;
     }
     if (!a->pattern || !a->size || !a->out) {

@@ -25,6 +25,10 @@ int aa_exit_code(int status);
 typedef void (*aa_warn_fn)(const char *message, void *ctx);
 void aa_set_warn(aa_warn_fn fn, void *ctx);
 void aa_warn(const char *fmt, ...) AA_PRINTF(1, 2);
+/* An input as messages quote it: control characters escaped, and past 96
+ * characters only the first 64 and "...(N characters)".  The text lives in
+ * one of four per-thread buffers: at most four per message. */
+const char *aa_echo(const char *text);
 
 
 /* Parse `text` against `table` (a NULL-terminated array of pointers to types

@@ -213,7 +213,7 @@ int aa_pathf(char *buf, size_t len, const char *fmt, ...)
     int n = vsnprintf(buf, len, fmt, ap);
     va_end(ap);
     if (n < 0 || (size_t)n >= len)
-        return aa_fail(AA_EINVAL, "path too long (more than %zu characters): %.80s...", len - 1,
-                       buf);
+        return aa_fail(AA_EINVAL, "path too long (more than %zu characters): %s", len - 1,
+                       aa_echo(buf));
     return AA_OK;
 }

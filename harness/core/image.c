@@ -169,7 +169,7 @@ int aa_encode_parse(const char *text, aa_encode *out)
         return AA_OK;
     }
     if (strncmp(text, prefix, sizeof prefix - 1) != 0)
-        return aa_fail(AA_EINVAL, "unknown encoding '%s' (%s)", text, encode_accepted);
+        return aa_fail(AA_EINVAL, "unknown encoding '%s' (%s)", aa_echo(text), encode_accepted);
     const char *g = text + sizeof prefix - 1;
     aa__c_numbers numbers;
     int status = aa__c_numbers_enter(&numbers, "encoding");
@@ -179,8 +179,8 @@ int aa_encode_parse(const char *text, aa_encode *out)
     aa__number_result r = aa__parse_number(g, strlen(g), &gamma);
     aa__c_numbers_end(&numbers);
     if (r != AA__NUMBER_OK || !(gamma >= 1 && gamma <= 4))
-        return aa_fail(AA_EINVAL, "encoding '%s': gamma '%s' is not a number in [1, 4] (%s)", text,
-                       g, encode_accepted);
+        return aa_fail(AA_EINVAL, "encoding '%s': gamma '%s' is not a number in [1, 4] (%s)",
+                       aa_echo(text), aa_echo(g), encode_accepted);
     *out = (aa_encode){AA_ENCODE_GAMMA, gamma};
     return AA_OK;
 }

@@ -20,7 +20,7 @@ int aa_plugin_load(const char *path)
     char local[4096];
     if (!strchr(path, '/')) {
         if (aa_pathf(local, sizeof local, "./%s", path))
-            return aa_fail_context(AA_EINVAL, "plug-in %s", path);
+            return aa_fail_context(AA_EINVAL, "plug-in %s", aa_echo(path));
         path = local;
     }
     void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
@@ -30,20 +30,20 @@ int aa_plugin_load(const char *path)
         size_t n = strlen(path);
         if (!strncmp(why, path, n) && !strncmp(why + n, ": ", 2))
             why += n + 2;
-        return aa_fail(AA_EIO, "plug-in %s: %s", path, why);
+        return aa_fail(AA_EIO, "plug-in %s: %s", aa_echo(path), why);
     }
     const int *abi = dlsym(lib, "aa_plugin_abi");
     const aa_method_type *const *types = dlsym(lib, "aa_plugin_methods");
     if (!abi || !types) {
         dlclose(lib);
         return aa_fail(AA_EINVAL, "plug-in %s exports no aa_plugin_abi or aa_plugin_methods",
-                       path);
+                       aa_echo(path));
     }
     if (*abi != AA_PLUGIN_ABI) {
         int got = *abi;
         dlclose(lib);
-        return aa_fail(AA_EINVAL, "plug-in %s was built for interface %d, this is %d", path,
-                       got, AA_PLUGIN_ABI);
+        return aa_fail(AA_EINVAL, "plug-in %s was built for interface %d, this is %d",
+                       aa_echo(path), got, AA_PLUGIN_ABI);
     }
     int st = aa__method_register(types, path);
     if (st)

@@ -137,15 +137,18 @@ static int param_parse(const aa_param *p, const char *text, double *value)
             index++;
         }
         choice_words(p->choices, what, sizeof what);
-        return aa_fail(AA_EINVAL, "%s=%s: accepted values are %s", p->key, text, what);
+        return aa_fail(AA_EINVAL, "%s=%s: accepted values are %s", p->key, aa_echo(text), what);
     }
     range_text(p, what, sizeof what);
     if (parse_real(text, &v) != 0)
-        return aa_fail(AA_EINVAL, "%s=%s: not a number (expected %s)", p->key, text, what);
+        return aa_fail(AA_EINVAL, "%s=%s: not a number (expected %s)", p->key, aa_echo(text),
+                       what);
     if (p->kind == AA_PARAM_INT && v != floor(v))
-        return aa_fail(AA_EINVAL, "%s=%s: not an integer (expected %s)", p->key, text, what);
+        return aa_fail(AA_EINVAL, "%s=%s: not an integer (expected %s)", p->key, aa_echo(text),
+                       what);
     if (v < p->min || v > p->max || (p->open_min && v == p->min))
-        return aa_fail(AA_EINVAL, "%s=%s: out of range (expected %s)", p->key, text, what);
+        return aa_fail(AA_EINVAL, "%s=%s: out of range (expected %s)", p->key, aa_echo(text),
+                       what);
     *value = v;
     return AA_OK;
 }
@@ -200,13 +203,13 @@ static int parse_pairs(char *rest, const aa_info *info, const char *what, aa_spe
         char *eq = strchr(pair, '=');
         if (!eq || eq == pair)
             return aa_fail(AA_EINVAL, "%s %s: \"%s\" is not key=value", what, info->name,
-                           pair);
+                           aa_echo(pair));
         *eq = '\0';
         int k = aa_spec_index(info, pair);
         if (k < 0) {
             param_keys(info, keys, sizeof keys);
             return aa_fail(AA_EINVAL, "%s %s has no parameter \"%s\" (accepted: %s)", what,
-                           info->name, pair, keys);
+                           info->name, aa_echo(pair), keys);
         }
         if (given[k]++)
             return aa_fail(AA_EINVAL, "%s %s: %s given twice", what, info->name, pair);
@@ -233,7 +236,7 @@ int aa_spec_parse(const char *text, const void *const *table, const char *what,
     const aa_info *info = aa_table_find(table, buf);
     if (!info) {
         table_names(table, names, sizeof names);
-        return aa_fail(AA_EINVAL, "unknown %s \"%s\" (known: %s)", what, buf, names);
+        return aa_fail(AA_EINVAL, "unknown %s \"%s\" (known: %s)", what, aa_echo(buf), names);
     }
     if (aa_param_count(info) > AA_MAX_PARAMS)
         return aa_fail(AA_EFAIL, "%s %s declares too many parameters", what, info->name);
@@ -278,17 +281,21 @@ int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
 
 /* ---- sizes ---- */
 
+/* Digits only, any number of them: a side too large to hold is out of
+ * range, not malformed (AA_MAX_SIDE + 1 stands for it). */
 static int parse_side(const char *s, const char *end, int *out)
 {
     long v = 0;
-    if (s == end || end - s > 9)
+    if (s == end)
         return -1;
     for (const char *c = s; c < end; c++) {
         if (!isdigit((unsigned char)*c))
             return -1;
         v = v * 10 + (*c - '0');
+        if (v > AA_MAX_SIDE)
+            v = AA_MAX_SIDE + 1;
     }
-    *out = (int)(v > AA_MAX_SIDE ? AA_MAX_SIDE + 1 : v);
+    *out = (int)v;
     return 0;
 }
 
@@ -298,10 +305,10 @@ int aa_size_parse(const char *text, int *w, int *h)
     int ww, hh;
     if (!x || parse_side(text, x, &ww) || parse_side(x + 1, x + 1 + strlen(x + 1), &hh))
         return aa_fail(AA_EINVAL, "size \"%s\" is not WxH (two whole numbers, e.g. 256x256)",
-                       text ? text : "");
+                       aa_echo(text ? text : ""));
     if (ww < 1 || hh < 1 || ww > AA_MAX_SIDE || hh > AA_MAX_SIDE)
-        return aa_fail(AA_EINVAL, "size \"%s\": each side must be from 1 to %d", text,
-                       AA_MAX_SIDE);
+        return aa_fail(AA_EINVAL, "size \"%s\" is out of range: each side must be from 1 to %d",
+                       aa_echo(text), AA_MAX_SIDE);
     *w = ww;
     *h = hh;
     return AA_OK;

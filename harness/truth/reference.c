@@ -286,6 +286,7 @@ int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_ima
     aa_truth_stats local;
     aa_scene *pattern = NULL, *placed = NULL;
     int st;
+    *out = (aa_image){0}; /* empty on failure, whatever the caller passed */
     if (!stats)
         stats = &local;
     memset(stats, 0, sizeof *stats);

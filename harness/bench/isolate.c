@@ -1,0 +1,235 @@
+/*
+ * isolate.c: one case of a run in a child process of its own.
+ *
+ * A method from a plug-in is code the harness has never seen: if it
+ * crashes, aborts or never returns, the run must record that as the case's
+ * outcome and go on, not end with it.  So the case runs in a child made by
+ * fork(): the child renders, measures and sends back its row (and, when the
+ * run writes images, the image) through a pipe, then ends with _exit.  The
+ * parent waits up to the time-out; a child killed by a signal, one that
+ * ends without a whole report, or one that runs out of time (killed with
+ * SIGKILL) gives a failed row: "crashed (signal 11)", "timed out after
+ * 600 s".  Everything the child needs (the reference, the scene, the job)
+ * is in its copy of the parent's memory; it writes no file, so a child
+ * killed halfway leaves nothing behind, and the parent writes the images.
+ *
+ * OpenMP: GCC's libgomp is not fork-safe once its thread pool exists (the
+ * child would wait forever for threads that were not copied), and the
+ * parent has used it (references, metrics, the methods run in process).
+ * Before each fork the parent releases its pool (omp_pause_resource_all
+ * with omp_pause_hard, OpenMP 5.0; the next parallel region makes a new
+ * one), and the child starts its own pool before the case, so that its
+ * first render is not timed with the threads' start-up; so does the parent
+ * after the case, for the methods it times itself.
+ *
+ * The child dies with its parent (PR_SET_PDEATHSIG on Linux): a run killed
+ * with SIGKILL leaves no case running.
+ */
+#include "bench.h"
+#include "isolate_internal.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#define REPORT_MAGIC 0x61616273636173ULL /* "aabscas" */
+
+/* What the child sends: this, then the image's pixels if `pixels`. */
+typedef struct report {
+    uint64_t magic;
+    int32_t status, pixels;
+    char error[1024];
+    aa_row row;
+} report;
+
+static int write_all(int fd, const void *data, size_t len)
+{
+    const char *p = data;
+    while (len > 0) {
+        ssize_t k = write(fd, p, len);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k <= 0)
+            return -1;
+        p += k;
+        len -= (size_t)k;
+    }
+    return 0;
+}
+
+static void child(int fd, aa__case_fn fn, void *arg, aa_row *row, aa_image *img, int threads,
+                  pid_t parent)
+{
+#ifdef __linux__
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+#endif
+    if (getppid() != parent)
+        _exit(120); /* the parent died before prctl */
+#ifdef _OPENMP
+    int nt = aa_thread_count(threads);
+#pragma omp parallel num_threads(nt)
+    {
+    }
+#else
+    (void)threads;
+#endif
+    static report r; /* static: no large stack frame in the child */
+    memset(&r, 0, sizeof r);
+    r.magic = REPORT_MAGIC;
+    r.row = *row;
+    r.status = fn(arg, &r.row);
+    if (r.status)
+        snprintf(r.error, sizeof r.error, "%s", aa_last_error());
+    r.pixels = img && !r.status && r.row.ok;
+    size_t bytes = r.pixels ? (size_t)img->w * img->h * 3 * sizeof *img->v : 0;
+    if (write_all(fd, &r, sizeof r) || (bytes && write_all(fd, img->v, bytes)))
+        _exit(121);
+    _exit(0);
+}
+
+/* Read what the child sends, until it is all there, the pipe is closed or
+ * the deadline passes.  Returns 1 when the report (and its pixels) came
+ * whole, 0 if not, -1 when the deadline passed. */
+static int receive(int fd, report *r, aa_image *img, double deadline)
+{
+    size_t got = 0, want = sizeof *r, bytes = 0;
+    for (;;) {
+        size_t total = want + bytes;
+        if (got == total)
+            return 1;
+        double left = deadline - aa_now();
+        if (left <= 0)
+            return -1;
+        struct pollfd pfd = {fd, POLLIN, 0};
+        int ms = left > 3600.0 ? 3600 * 1000 : (int)ceil(left * 1000);
+        int k = poll(&pfd, 1, ms);
+        if (k < 0 && errno == EINTR)
+            continue; /* an interrupt: the run stops after this case */
+        if (k < 0)
+            return 0;
+        if (k == 0)
+            continue;
+        char *dst;
+        size_t room;
+        if (got < want) {
+            dst = (char *)r + got;
+            room = want - got;
+        } else {
+            dst = (char *)img->v + (got - want);
+            room = total - got;
+        }
+        ssize_t n = read(fd, dst, room);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            return 0;
+        got += (size_t)n;
+        if (got == want) {
+            if (r->magic != REPORT_MAGIC)
+                return 0;
+            if (r->pixels) {
+                if (!img)
+                    return 0;
+                bytes = (size_t)img->w * img->h * 3 * sizeof *img->v;
+            }
+        }
+    }
+}
+
+int aa__case_isolated(aa__case_fn fn, void *arg, aa_row *row, aa_image *img, double timeout,
+                      int threads)
+{
+    int fds[2];
+#ifdef _OPENMP
+    if (omp_pause_resource_all(omp_pause_hard) != 0)
+        return aa_fail(AA_EFAIL, "cannot run %s in a child process: the OpenMP runtime would not "
+                                 "release its threads before fork",
+                       row->method);
+#endif
+    if (pipe(fds) != 0)
+        return aa_fail(AA_EIO, "cannot run %s in a child process: pipe: %s", row->method,
+                       strerror(errno));
+    fcntl(fds[0], F_SETFD, FD_CLOEXEC);
+    fcntl(fds[1], F_SETFD, FD_CLOEXEC);
+    /* the child must not write out what the parent's buffers hold */
+    fflush(NULL);
+    pid_t parent = getpid(), pid = fork();
+    if (pid < 0) {
+        int err = errno;
+        close(fds[0]);
+        close(fds[1]);
+        return aa_fail(AA_EIO, "cannot run %s in a child process: fork: %s", row->method,
+                       strerror(err));
+    }
+    if (pid == 0) {
+        close(fds[0]);
+        child(fds[1], fn, arg, row, img, threads, parent);
+    }
+    close(fds[1]);
+    report *r = malloc(sizeof *r);
+    const double deadline = aa_now() + timeout;
+    int whole = r ? receive(fds[0], r, img, deadline) : 0;
+    close(fds[0]);
+    /* the child ends now, or by the deadline (one that closed its end of
+     * the pipe may still be running) */
+    int status = 0;
+    pid_t done;
+    for (;;) {
+        done = waitpid(pid, &status, WNOHANG);
+        if (done < 0 && errno == EINTR)
+            continue;
+        if (done != 0 || whole < 0 || aa_now() >= deadline)
+            break;
+        struct timespec ts = {0, 5 * 1000 * 1000};
+        nanosleep(&ts, NULL);
+    }
+    if (done <= 0) {
+        if (whole >= 0 && aa_now() >= deadline)
+            whole = -1;
+        kill(pid, SIGKILL);
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+            ;
+    }
+    int st = AA_OK;
+    if (!r) {
+        st = aa_fail(AA_ENOMEM, "out of memory");
+    } else if (whole < 0) {
+        aa__row_failed(row, "timed out after %g s", timeout);
+    } else if (WIFSIGNALED(status)) {
+        aa__row_failed(row, "crashed (signal %d)", WTERMSIG(status));
+    } else if (!whole || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        aa__row_failed(row, "ended (exit status %d) without reporting its result",
+                       WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    } else if (r->status) {
+        r->error[sizeof r->error - 1] = '\0';
+        st = aa_fail(r->status, "%s", r->error);
+    } else {
+        *row = r->row;
+    }
+    free(r);
+#ifdef _OPENMP
+    /* this process's threads again, before it times a method itself */
+    int nt = aa_thread_count(threads);
+#pragma omp parallel num_threads(nt)
+    {
+    }
+#endif
+    return st;
+}
