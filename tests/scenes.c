@@ -90,3 +90,22 @@ aa_scene *scenes_half_plane(double px, double py, double angle)
 {
     return scenes_half_plane_of(px, py, angle, 50.0, (aa_rgb){{1, 1, 1}}, (aa_rgb){{0, 0, 0}});
 }
+
+aa_scene *scenes_triangles(uint64_t seed)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0.05, 0.1, 0.15}});
+    aa_rng r;
+    aa_rng_seed(&r, seed, 0, 0);
+    for (int k = 0; k < 60; k++) {
+        aa_rgb c = {{(k % 7) / 6.0, (k % 5) / 4.0, (k % 11) / 10.0}};
+        assert_int_equal(aa_scene_layer(s, c, AA_FILL_NONZERO), AA_OK);
+        double cx = aa_rng_uniform(&r), cy = aa_rng_uniform(&r), xy[6];
+        for (int v = 0; v < 3; v++) {
+            xy[2 * v] = cx + 0.3 * (aa_rng_uniform(&r) - 0.5);
+            xy[2 * v + 1] = cy + 0.3 * (aa_rng_uniform(&r) - 0.5);
+        }
+        scenes_path(s, xy, 3);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}

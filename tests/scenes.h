@@ -41,4 +41,9 @@ aa_scene *scenes_half_plane_of(double px, double py, double angle, double L, aa_
 /* White on black, L = 50 pattern units. */
 aa_scene *scenes_half_plane(double px, double py, double angle);
 
+/* Sixty overlapping triangles of distinct colours from the random stream of
+ * `seed`: a point's colour changes within a pixel almost everywhere, so a
+ * frame tells its sample positions apart. */
+aa_scene *scenes_triangles(uint64_t seed);
+
 #endif

@@ -45,6 +45,8 @@
  *    case 6d).
  */
 #include "bench.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -90,37 +92,6 @@ static aa_scene *polygon_scene(const double *uv, int n, int w, int h)
     assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
     polygon(s, xy, n);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
-}
-
-/* Overlapping triangles of distinct colours (a point's colour changes
- * within a pixel almost everywhere, so a frame tells its sample positions
- * apart). */
-static aa_scene *triangles_scene(void)
-{
-    aa_scene *s = aa_scene_new((aa_rgb){{0.05, 0.1, 0.15}});
-    aa_rng r;
-    aa_rng_seed(&r, 777, 0, 0);
-    for (int k = 0; k < 60; k++) {
-        aa_rgb c = {{(k % 7) / 6.0, (k % 5) / 4.0, (k % 11) / 10.0}};
-        assert_int_equal(aa_scene_layer(s, c, AA_FILL_NONZERO), AA_OK);
-        double cx = aa_rng_uniform(&r), cy = aa_rng_uniform(&r), xy[6];
-        for (int v = 0; v < 3; v++) {
-            xy[2 * v] = cx + 0.3 * (aa_rng_uniform(&r) - 0.5);
-            xy[2 * v + 1] = cy + 0.3 * (aa_rng_uniform(&r) - 0.5);
-        }
-        polygon(s, xy, 3);
-    }
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
-}
-
-static aa_scene *pattern_scene(const char *name)
-{
-    aa_spec spec;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse(name, &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
     return s;
 }
 
@@ -406,7 +377,7 @@ static void test_random_path(void **state)
     (void)state;
     enum { CYCLES = 24 };
     const int w = 29, h = 21;
-    aa_scene *s = triangles_scene();
+    aa_scene *s = scenes_triangles(777);
     aa_scene *placed = aa_scene_place(s, w, h, 0, 0, 0);
     int path[CYCLES][6], first[6] = {0}, distinct = 0;
     for (int c = 0; c < CYCLES; c++) {
@@ -517,7 +488,7 @@ static void test_run_uses_display_reference(void **state)
     (void)state;
     const int w = 32, h = 32;
     const char *word = "024153", *method = "hexagon:order=024153";
-    aa_scene *s = pattern_scene("crow");
+    aa_scene *s = scenes_pattern("crow");
     aa_filter box;
     aa_filter_default(&box);
     aa_row row;
@@ -749,7 +720,7 @@ static void test_trio_open_end(void **state)
 static void test_adaptive_default_is_paper(void **state)
 {
     (void)state;
-    aa_scene *s = pattern_scene("crow");
+    aa_scene *s = scenes_pattern("crow");
     aa_image a, b;
     aa_counters ca, cb;
     render_full("adaptive", s, 96, 80, 0, 0, 0, 0, 1, 2, &a, &ca);
@@ -771,18 +742,13 @@ static void test_adaptive_default_is_paper(void **state)
     aa_scene_free(s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_display_aligned_rectangle),
-        cmocka_unit_test(test_display_by_hand),
-        cmocka_unit_test(test_random_path),
-        cmocka_unit_test(test_run_uses_display_reference),
-        cmocka_unit_test(test_crow_still_and_moving),
-        cmocka_unit_test(test_trio_45_degrees),
-        cmocka_unit_test(test_trio_u_run),
-        cmocka_unit_test(test_trio_open_end),
-        cmocka_unit_test(test_adaptive_default_is_paper),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_display_aligned_rectangle),
+             cmocka_unit_test(test_display_by_hand),
+             cmocka_unit_test(test_random_path),
+             cmocka_unit_test(test_run_uses_display_reference),
+             cmocka_unit_test(test_crow_still_and_moving),
+             cmocka_unit_test(test_trio_45_degrees),
+             cmocka_unit_test(test_trio_u_run),
+             cmocka_unit_test(test_trio_open_end),
+             cmocka_unit_test(test_adaptive_default_is_paper))

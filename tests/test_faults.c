@@ -17,6 +17,7 @@
  * or out-of-range value fails the render; SIGTERM exits 130 cleanly.
  */
 #include "bench.h"
+#include "support.h"
 
 #include <stdarg.h>
 #include <setjmp.h>
@@ -154,9 +155,7 @@ static void test_cache_damage(void **state)
     expect_recomputed(&v, dir, path, &fresh, "grown");
     aa_image_free(&fresh);
     aa_set_warn(NULL, NULL);
-    char cmd[1200];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
 /* Another view's pixels pasted under this view's header (same size, so
@@ -197,9 +196,7 @@ static void test_cache_pasted(void **state)
     expect_recomputed(&a, sub_a, path_a, &fresh, "pasted pixels");
     aa_image_free(&fresh);
     aa_set_warn(NULL, NULL);
-    char cmd[1200];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
 static void on_alarm(int sig)
@@ -232,9 +229,7 @@ static void test_cache_fifo(void **state)
     alarm(0);
     aa_image_free(&fresh);
     aa_set_warn(NULL, NULL);
-    char cmd[1200];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
 /* Run $AABENCH with argv (NULL-terminated, without the program), `env`
@@ -310,9 +305,7 @@ static void test_converge_once(void **state)
     fclose(f);
     assert_int_equal(rows, 3);
     assert_int_equal(slopes, 1);
-    char cmd[1200];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
 /* Two runs into one folder at once: each renames only its own temporary
@@ -339,8 +332,7 @@ static void test_two_runs_one_folder(void **state)
     assert_int_equal(system(cmd), 0);
     snprintf(cmd, sizeof cmd, "test -s '%s/plots/error_vs_time.png'", dir);
     assert_int_equal(system(cmd), 0);
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
 /* A result name of 250 characters (NAME_MAX is 255): its temporary name
@@ -360,9 +352,7 @@ static void test_long_name(void **state)
         struct stat sb;
         assert_int_equal(stat(path, &sb), 0);
     }
-    char cmd[1200];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
 /* Standard output that cannot be written (/dev/full: ENOSPC) is an error
@@ -436,8 +426,7 @@ static void test_all_or_nothing(void **state)
     assert_int_equal(run_cli(argv, NULL, NULL), 3);
     read_text(out, text, sizeof text);
     assert_string_equal(text, "previous\n");
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
 /* The example plug-in's faulty methods (plugin_faulty.so beside the tests'
@@ -472,8 +461,7 @@ static void test_bad_values(void **state)
             fail_msg("%s: %s", methods[k], text);
         assert_int_equal(access(out, F_OK), -1);
     }
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
 /* SIGTERM during a long reference: exit status 130 and no temporary file. */
@@ -495,8 +483,7 @@ static void test_interrupted(void **state)
     assert_int_equal(access(out, F_OK), -1);
     snprintf(cmd, sizeof cmd, "test -z \"$(find '%s' -name '.*' ! -name . -print)\"", dir);
     assert_int_equal(system(cmd), 0);
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(support_rmtree(dir), 0);
 }
 
 /* The plug-in kit: `--plugin NAME.so` without a slash is the file in the
@@ -530,21 +517,16 @@ static void test_plugin_by_name(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cache_damage),
-        cmocka_unit_test(test_cache_pasted),
-        cmocka_unit_test(test_cache_fifo),
-        cmocka_unit_test(test_absurd_threads),
-        cmocka_unit_test(test_converge_once),
-        cmocka_unit_test(test_two_runs_one_folder),
-        cmocka_unit_test(test_long_name),
-        cmocka_unit_test(test_stdout_full),
-        cmocka_unit_test(test_all_or_nothing),
-        cmocka_unit_test(test_bad_values),
-        cmocka_unit_test(test_interrupted),
-        cmocka_unit_test(test_plugin_by_name),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_cache_damage),
+             cmocka_unit_test(test_cache_pasted),
+             cmocka_unit_test(test_cache_fifo),
+             cmocka_unit_test(test_absurd_threads),
+             cmocka_unit_test(test_converge_once),
+             cmocka_unit_test(test_two_runs_one_folder),
+             cmocka_unit_test(test_long_name),
+             cmocka_unit_test(test_stdout_full),
+             cmocka_unit_test(test_all_or_nothing),
+             cmocka_unit_test(test_bad_values),
+             cmocka_unit_test(test_interrupted),
+             cmocka_unit_test(test_plugin_by_name))

@@ -10,6 +10,7 @@
  * all use '.', written out by hand here.
  */
 #include "bench.h"
+#include "support.h"
 
 #include <locale.h>
 #include <setjmp.h>
@@ -183,26 +184,13 @@ static void test_message(void **state)
 
 static int setup(void **state)
 {
-    (void)state;
+    *state = dir;
     return mkdtemp(dir) ? 0 : -1;
 }
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    return system(cmd);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup_teardown(test_spec, comma_locale, c_locale),
-        cmocka_unit_test_setup_teardown(test_csv_json, comma_locale, c_locale),
-        cmocka_unit_test_setup_teardown(test_view_key, comma_locale, c_locale),
-        cmocka_unit_test_setup_teardown(test_plot_data, comma_locale, c_locale),
-        cmocka_unit_test_setup_teardown(test_message, comma_locale, c_locale),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+SUPPORT_MAIN(setup, support_teardown_dir,
+             cmocka_unit_test_setup_teardown(test_spec, comma_locale, c_locale),
+             cmocka_unit_test_setup_teardown(test_csv_json, comma_locale, c_locale),
+             cmocka_unit_test_setup_teardown(test_view_key, comma_locale, c_locale),
+             cmocka_unit_test_setup_teardown(test_plot_data, comma_locale, c_locale),
+             cmocka_unit_test_setup_teardown(test_message, comma_locale, c_locale))

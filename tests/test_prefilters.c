@@ -19,6 +19,8 @@
  *    scene's own piece geometry.
  */
 #include "bench.h"
+#include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -68,15 +70,6 @@ static void reference(const aa_scene *scene, const char *filter, int w, int h, a
     assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
     assert_int_equal(aa_truth_render(placed, &f, 2, out, NULL, NULL), AA_OK);
     aa_scene_free(placed);
-}
-
-static aa_scene *pattern(const char *name)
-{
-    aa_spec spec;
-    aa_scene *s;
-    assert_int_equal(aa_pattern_parse(name, &spec), AA_OK);
-    assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
-    return s;
 }
 
 /* RMSE and largest error of img against ref over every channel. */
@@ -271,7 +264,7 @@ static void test_cone_patterns(void **state)
     const char *methods[] = {"conetable:cut=4,res=256", "conetable:res=256"};
     for (int k = 0; k < 4; k++)
         for (int f = 0; f < 2; f++) {
-            aa_scene *s = pattern(names[k]);
+            aa_scene *s = scenes_pattern(names[k]);
             aa_image img, ref;
             must_render(methods[f], s, filters[f], 64, 64, &img);
             reference(s, filters[f], 64, 64, &ref);
@@ -428,7 +421,7 @@ static void test_tiler_exact(void **state)
     const char *names[] = {"catmull:tiles=4", "slivers", "star", "feibush", "crow",
                            "slivers:tilt=3,count=12"};
     for (int k = 0; k < 6; k++) {
-        aa_scene *s = pattern(names[k]);
+        aa_scene *s = scenes_pattern(names[k]);
         aa_image img, ref;
         must_render("crowtiler:area=exact,hidden=scan", s, "tent:r=1", 64, 64, &img);
         reference(s, "tent:r=1", 64, 64, &ref);
@@ -553,7 +546,7 @@ static void test_tiler_generic(void **state)
     aa_rgb colour = {{0.3, 0.5, 0.7}};
     aa_scene *u = aa_scene_new(colour);
     assert_int_equal(aa_scene_finish(u), AA_OK);
-    aa_scene *crow = pattern("crow");
+    aa_scene *crow = scenes_pattern("crow");
     /* 64 pixels: the displacement t v / 64 and its placing are exact in
      * binary, so the two placed scenes are the same bit for bit */
     aa_scene *moved = aa_scene_transform(crow, 1.0, 1.0, 2.0 * 0.375 / 64, 2.0 * -0.25 / 64);
@@ -610,19 +603,14 @@ static void test_tiler_refusals(void **state)
     refused("crowtable:form=exact", "tent:r=1", "form");
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cone_abutting_layers),
-        cmocka_unit_test(test_cone_hidden_adds_nothing),
-        cmocka_unit_test(test_cone_patterns),
-        cmocka_unit_test(test_crowtable_one_rectangle),
-        cmocka_unit_test(test_crowtable_layers),
-        cmocka_unit_test(test_tiler_exact),
-        cmocka_unit_test(test_tiler_priority),
-        cmocka_unit_test(test_tiler_tables),
-        cmocka_unit_test(test_tiler_generic),
-        cmocka_unit_test(test_tiler_refusals),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_cone_abutting_layers),
+             cmocka_unit_test(test_cone_hidden_adds_nothing),
+             cmocka_unit_test(test_cone_patterns),
+             cmocka_unit_test(test_crowtable_one_rectangle),
+             cmocka_unit_test(test_crowtable_layers),
+             cmocka_unit_test(test_tiler_exact),
+             cmocka_unit_test(test_tiler_priority),
+             cmocka_unit_test(test_tiler_tables),
+             cmocka_unit_test(test_tiler_generic),
+             cmocka_unit_test(test_tiler_refusals))

@@ -36,6 +36,7 @@
  * written by the command is read here with a reader of this file's own.
  */
 #include "bench.h"
+#include "support.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -902,18 +903,13 @@ static int teardown(void **state)
     return system(cmd);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_baseline_strict),
-        cmocka_unit_test(test_baseline_refusal_recorded),
-        cmocka_unit_test(test_rows_kept_when_killed),
-        cmocka_unit_test(test_bad_values_fail_case),
-        cmocka_unit_test(test_outputs_initialised),
-        cmocka_unit_test(test_isolated_faults),
-        cmocka_unit_test(test_isolated_equal),
-        cmocka_unit_test(test_checked_before_work),
-        cmocka_unit_test(test_messages),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+SUPPORT_MAIN(setup, teardown,
+             cmocka_unit_test(test_baseline_strict),
+             cmocka_unit_test(test_baseline_refusal_recorded),
+             cmocka_unit_test(test_rows_kept_when_killed),
+             cmocka_unit_test(test_bad_values_fail_case),
+             cmocka_unit_test(test_outputs_initialised),
+             cmocka_unit_test(test_isolated_faults),
+             cmocka_unit_test(test_isolated_equal),
+             cmocka_unit_test(test_checked_before_work),
+             cmocka_unit_test(test_messages))

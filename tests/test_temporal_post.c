@@ -50,28 +50,6 @@ static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
 
 /* ---- scenes (pattern units) ---- */
 
-/* Many overlapping triangles of distinct colours: the colour at a point
- * changes within a pixel almost everywhere, so a frame tells its sample
- * positions apart. */
-static aa_scene *triangles_scene(void)
-{
-    aa_scene *s = aa_scene_new((aa_rgb){{0.05, 0.1, 0.15}});
-    aa_rng r;
-    aa_rng_seed(&r, 12345, 0, 0);
-    for (int k = 0; k < 60; k++) {
-        aa_rgb c = {{(k % 7) / 6.0, (k % 5) / 4.0, (k % 11) / 10.0}};
-        assert_int_equal(aa_scene_layer(s, c, AA_FILL_NONZERO), AA_OK);
-        double cx = aa_rng_uniform(&r), cy = aa_rng_uniform(&r), xy[6];
-        for (int v = 0; v < 3; v++) {
-            xy[2 * v] = cx + 0.3 * (aa_rng_uniform(&r) - 0.5);
-            xy[2 * v + 1] = cy + 0.3 * (aa_rng_uniform(&r) - 0.5);
-        }
-        scenes_path(s, xy, 3);
-    }
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
-}
-
 /* A colour inside the polygon (x, y pairs), another outside. */
 static aa_scene *polygon_scene(const double *xy, int n, aa_rgb inside, aa_rgb outside)
 {
@@ -169,7 +147,7 @@ static void check_offsets(const char *method, double r, double angle, const char
 {
     const int w = 41, h = 29;
     const double vx = 0.3, vy = -0.7;
-    aa_scene *s = triangles_scene();
+    aa_scene *s = scenes_triangles(12345);
     for (double t = -7.5; t <= 6.0; t += 1.25) {
         int n = (int)floor(t), v = order[((n % 6) + 6) % 6] - '0';
         double dx[6], dy[6];

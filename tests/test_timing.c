@@ -18,6 +18,7 @@
  *  - median, mean, standard deviation and MAD of {1, 2, 3, 4, 100} by hand.
  */
 #include "bench.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -415,32 +416,19 @@ static void test_diff_command(void **state)
 
 static int setup(void **state)
 {
-    (void)state;
+    *state = dir;
     return mkdtemp(dir) ? 0 : -1;
 }
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    return system(cmd);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_median_ci_table),
-        cmocka_unit_test(test_time_stats),
-        cmocka_unit_test(test_mean_ci),
-        cmocka_unit_test(test_mann_whitney_r_example),
-        cmocka_unit_test(test_mann_whitney_ties),
-        cmocka_unit_test(test_noisy_text),
-        cmocka_unit_test(test_measure_counts),
-        cmocka_unit_test(test_results_round_trip),
-        cmocka_unit_test(test_old_results),
-        cmocka_unit_test(test_case_compare),
-        cmocka_unit_test(test_diff_command),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+SUPPORT_MAIN(setup, support_teardown_dir,
+             cmocka_unit_test(test_median_ci_table),
+             cmocka_unit_test(test_time_stats),
+             cmocka_unit_test(test_mean_ci),
+             cmocka_unit_test(test_mann_whitney_r_example),
+             cmocka_unit_test(test_mann_whitney_ties),
+             cmocka_unit_test(test_noisy_text),
+             cmocka_unit_test(test_measure_counts),
+             cmocka_unit_test(test_results_round_trip),
+             cmocka_unit_test(test_old_results),
+             cmocka_unit_test(test_case_compare),
+             cmocka_unit_test(test_diff_command))
