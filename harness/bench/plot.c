@@ -106,6 +106,12 @@ static int draw(const char *dir, const char *name, const char *script_text, cons
         (st = gnuplot(dir, base_of(gp_tmp), assign, log)))
         goto fail;
     unlink(log);
+    /* gnuplot exits 0 when its picture could not be written whole (a full
+     * disk): the picture must end as a PNG ends */
+    if ((st = aa_png_complete(png_tmp))) {
+        st = aa_fail_context(st, "%s", png);
+        goto fail;
+    }
     if (rename(dat_tmp, dat) != 0 || rename(png_tmp, png) != 0 || rename(gp_tmp, gp) != 0) {
         st = aa_fail(AA_EIO, "cannot rename the plot %s into place: %s", png, strerror(errno));
         goto fail;
@@ -211,9 +217,11 @@ int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
     }
     free(view);
     free(done);
-    if (fclose(f) != 0) {
+    /* a write error sets the stream's flag; fclose writes the rest */
+    int err = ferror(f);
+    if (fclose(f) != 0 || err) {
         unlink(tmp);
-        return aa_fail(AA_EIO, "cannot write %s", dat);
+        return aa_fail(AA_EIO, "cannot write %s: %s", dat, strerror(errno));
     }
     if (views == 0) {
         unlink(tmp);
@@ -272,9 +280,10 @@ int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *co
                     exp(c[k].intercept) * pow(c[k].spp[q], c[k].slope));
         fprintf(f, "\n\n");
     }
-    if (fclose(f) != 0) {
+    int err = ferror(f);
+    if (fclose(f) != 0 || err) {
         unlink(tmp);
-        return aa_fail(AA_EIO, "cannot write %s", dat);
+        return aa_fail(AA_EIO, "cannot write %s: %s", dat, strerror(errno));
     }
     char script[8192];
     FILE *s = fmemopen(script, sizeof script, "w");
