@@ -23,11 +23,24 @@ typedef struct aa_metrics {
      * and y (moire), and the rest up to the Nyquist frequency */
     double alias_total, alias_low, alias_high;
     double ssim; /* on the display-encoded luma */
+    /* pixels where either image holds a NaN or an infinity (only
+     * aa_metrics_compare takes such images): left out of everything above.
+     * psnr is infinite only for identical images (the same NaN or infinity
+     * in both counts as the same); NaN if they differ only where a value is
+     * not finite. */
+    size_t nonfinite;
 } aa_metrics;
 
-/* enc NULL: sRGB.  Images must have the same size and channels. */
+/* enc NULL: sRGB.  Images must have the same size and channels, and hold
+ * finite values only (else AA_EINVAL naming the pixel). */
 int aa_metrics_compute(const aa_image *ref, const aa_image *img, const aa_encode *enc,
                        aa_metrics *m);
+/* The same for images that may hold NaN or infinities (image files): their
+ * pixels are counted in m->nonfinite, not refused. */
+int aa_metrics_compare(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                       aa_metrics *m);
+/* The bytes aa_metrics_compute takes beyond the two images, at most. */
+double aa_metrics_bytes(int w, int h);
 
 /* Temporal metrics of n displayed frames at times t0, t0 + 1, ... against
  * the references at the same times (temporal.c): eye_rmse over every
@@ -301,9 +314,25 @@ typedef struct aa_tile {
 } aa_tile;
 int aa_montage_write(const char *path, const aa_tile *tiles, size_t n, int columns,
                      const aa_encode *enc);
-/* Whether a montage of n tiles of at most tw x th, in `columns`, under
- * `lines` lines of label, can be made: to check before the work. */
-int aa_montage_check(int tw, int th, size_t n, int columns, int lines);
+/* The same with tiles given one at a time, for montages too large to hold:
+ * the montage is drawn and written a row of tiles at a time, and asks
+ * `get` for each tile once, in order; `put` (may be NULL) is called when
+ * tile k has been copied, so its image can be freed.  Tiles are at most
+ * tw x th, with at most `lines` lines of label. */
+typedef struct aa_tile_source {
+    size_t n;
+    int tw, th, lines;
+    int (*get)(void *ctx, size_t k, aa_tile *tile);
+    void (*put)(void *ctx, size_t k);
+    void *ctx;
+} aa_tile_source;
+int aa_montage_stream(const char *path, const aa_tile_source *src, int columns,
+                      const aa_encode *enc);
+/* What such a montage holds at once (its row of tiles being drawn, and one
+ * tile), and the check of that and of the montage's sides against the
+ * limits, before any work (AA_EINVAL with a message). */
+double aa_montage_bytes(size_t n, int columns, int tw, int th, int lines);
+int aa_montage_check(size_t n, int columns, int tw, int th, int lines);
 
 /* Plots with gnuplot into `dir`: error_vs_time.{dat,gp,png} (log-log, each
  * view's Pareto front marked) and convergence.{dat,gp,png}. */

@@ -17,6 +17,12 @@
  *    (0.01)^2, C2 = (0.03)^2, values in [0, 1]; the mean over the pixels
  *    whose window fits in the image (all pixels, window clipped and
  *    renormalised, for images smaller than 11 pixels).
+ *
+ * aa_metrics_compute refuses images holding NaN or infinities (a method
+ * that makes one has failed); aa_metrics_compare, for image files, counts
+ * the pixels where either image holds one instead, and leaves them out:
+ * of the pointwise errors, and of the spectrum and SSIM as if both images
+ * were 0 there.
  */
 #include "bench.h"
 
@@ -27,30 +33,78 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fft_complex.h>
 
-static void pointwise(const aa_image *ref, const aa_image *img, const aa_encode *enc,
-                      double *rmse, double *mae, double *max_err, int *where, double *psnr)
+/* 1 if every channel of pixel p of both images is finite. */
+static int pixel_finite(const aa_image *ref, const aa_image *img, size_t p)
 {
-    size_t n = (size_t)ref->w * ref->h * ref->c;
+    size_t c = (size_t)ref->c;
+    for (size_t k = p * c; k < (p + 1) * c; k++)
+        if (!isfinite(ref->v[k]) || !isfinite(img->v[k]))
+            return 0;
+    return 1;
+}
+
+/* The pointwise errors over the pixels where both images are finite.  The
+ * sums are taken again relative to the largest error when they underflow
+ * (errors below 1e-154 square to nothing) or overflow, so that images that
+ * differ never get the rmse 0 and infinite PSNR of identical ones. */
+static void pointwise(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                      size_t nonfinite, int nonfinite_differ, double *rmse, double *mae,
+                      double *max_err, int *where, double *psnr)
+{
+    size_t pixels = (size_t)ref->w * ref->h, c = (size_t)ref->c, n = 0;
     double s2 = 0, s1 = 0, mx = -1;
     size_t at = 0;
-    for (size_t k = 0; k < n; k++) {
-        double a = ref->v[k], b = img->v[k];
-        if (enc)
-            a = aa_encode_value(enc, a), b = aa_encode_value(enc, b);
-        double d = fabs(b - a);
-        s1 += d;
-        s2 += d * d;
-        if (d > mx)
-            mx = d, at = k;
+    for (size_t p = 0; p < pixels; p++) {
+        if (nonfinite && !pixel_finite(ref, img, p))
+            continue;
+        for (size_t k = p * c; k < (p + 1) * c; k++) {
+            double a = ref->v[k], b = img->v[k];
+            if (enc)
+                a = aa_encode_value(enc, a), b = aa_encode_value(enc, b);
+            double d = fabs(b - a);
+            s1 += d;
+            s2 += d * d;
+            if (d > mx)
+                mx = d, at = k;
+        }
+        n += c;
     }
-    *mae = s1 / (double)n;
-    *rmse = sqrt(s2 / (double)n);
-    *max_err = mx;
-    where[2] = (int)(at % (size_t)ref->c);
-    at /= (size_t)ref->c;
+    where[2] = (int)(at % c);
+    at /= c;
     where[0] = (int)(at % (size_t)ref->w);
     where[1] = (int)(at / (size_t)ref->w);
-    *psnr = s2 > 0 ? 10.0 * log10((double)n / s2) : INFINITY;
+    if (n == 0) { /* no finite pixel */
+        *mae = *rmse = *max_err = *psnr = NAN;
+        where[0] = where[1] = where[2] = -1;
+        return;
+    }
+    *max_err = mx;
+    double mse = s2 / (double)n;
+    *mae = s1 / (double)n;
+    *rmse = sqrt(mse);
+    if (mx > 0 && isfinite(mx) && (!(mse > 1e-290) || !isfinite(s2) || !isfinite(s1))) {
+        double r2 = 0, r1 = 0;
+        for (size_t p = 0; p < pixels; p++) {
+            if (nonfinite && !pixel_finite(ref, img, p))
+                continue;
+            for (size_t k = p * c; k < (p + 1) * c; k++) {
+                double a = ref->v[k], b = img->v[k];
+                if (enc)
+                    a = aa_encode_value(enc, a), b = aa_encode_value(enc, b);
+                double d = fabs(b - a) / mx;
+                r1 += d;
+                r2 += d * d;
+            }
+        }
+        *mae = mx * (r1 / (double)n);
+        *rmse = mx * sqrt(r2 / (double)n);
+        *psnr = -20.0 * (log10(mx) + 0.5 * log10(r2 / (double)n));
+        return;
+    }
+    if (mx > 0)
+        *psnr = 10.0 * log10(1.0 / mse);
+    else /* equal where finite: identical unless they differ elsewhere */
+        *psnr = nonfinite_differ ? NAN : INFINITY;
 }
 
 /* FFT of the channel-mean error; energies per pixel. */
@@ -71,8 +125,9 @@ static int spectrum(const aa_image *ref, const aa_image *img, aa_metrics *m)
     }
     for (size_t p = 0; p < n; p++) {
         double e = 0;
-        for (int k = 0; k < c; k++)
-            e += img->v[p * (size_t)c + (size_t)k] - ref->v[p * (size_t)c + (size_t)k];
+        if (!m->nonfinite || pixel_finite(ref, img, p))
+            for (int k = 0; k < c; k++)
+                e += img->v[p * (size_t)c + (size_t)k] - ref->v[p * (size_t)c + (size_t)k];
         z[2 * p] = e / c;
         z[2 * p + 1] = 0;
     }
@@ -120,7 +175,8 @@ static double luma(const aa_image *im, size_t p, const aa_encode *enc)
     return aa_encode_value(enc, y);
 }
 
-static int ssim(const aa_image *ref, const aa_image *img, const aa_encode *enc, double *out)
+static int ssim(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                size_t nonfinite, double *out)
 {
     const int r = 5;
     const double C1 = 1e-4, C2 = 9e-4;
@@ -134,8 +190,12 @@ static int ssim(const aa_image *ref, const aa_image *img, const aa_encode *enc, 
     }
     for (int k = -r; k <= r; k++)
         g[k + r] = exp(-k * k / (2 * 1.5 * 1.5));
-    for (size_t p = 0; p < n; p++)
-        a[p] = luma(ref, p, enc), b[p] = luma(img, p, enc);
+    for (size_t p = 0; p < n; p++) {
+        if (nonfinite && !pixel_finite(ref, img, p))
+            a[p] = b[p] = 0; /* left out: the same in both */
+        else
+            a[p] = luma(ref, p, enc), b[p] = luma(img, p, enc);
+    }
     int inner = w > 2 * r && h > 2 * r;
     double sum = 0;
     size_t count = 0;
@@ -167,8 +227,8 @@ static int ssim(const aa_image *ref, const aa_image *img, const aa_encode *enc, 
     return AA_OK;
 }
 
-int aa_metrics_compute(const aa_image *ref, const aa_image *img, const aa_encode *enc,
-                       aa_metrics *m)
+static int metrics(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                   int count_nonfinite, aa_metrics *m)
 {
     aa_encode srgb = {AA_ENCODE_SRGB, 0};
     if (!enc)
@@ -176,15 +236,50 @@ int aa_metrics_compute(const aa_image *ref, const aa_image *img, const aa_encode
     if (ref->w != img->w || ref->h != img->h || ref->c != img->c)
         return aa_fail(AA_EINVAL, "images differ in size: %dx%dx%d and %dx%dx%d", ref->w, ref->h,
                        ref->c, img->w, img->h, img->c);
-    size_t n = (size_t)ref->w * ref->h * ref->c;
-    for (size_t k = 0; k < n; k++)
-        if (!isfinite(ref->v[k]) || !isfinite(img->v[k]))
-            return aa_fail(AA_EINVAL, "image value %zu is not finite", k);
     memset(m, 0, sizeof *m);
-    pointwise(ref, img, NULL, &m->rmse, &m->mae, &m->max_err, m->max_at, &m->psnr);
+    size_t pixels = (size_t)ref->w * ref->h, c = (size_t)ref->c;
+    int differ = 0; /* where not finite: not the same NaN or infinity in both */
+    for (size_t p = 0; p < pixels; p++) {
+        if (pixel_finite(ref, img, p))
+            continue;
+        for (size_t k = p * c; k < (p + 1) * c; k++)
+            differ |= !(ref->v[k] == img->v[k] || (isnan(ref->v[k]) && isnan(img->v[k])));
+        if (!count_nonfinite) {
+            size_t k = p * (size_t)ref->c;
+            while (isfinite(ref->v[k]) && isfinite(img->v[k]))
+                k++;
+            return aa_fail(AA_EINVAL, "%s pixel (%zu, %zu) channel %zu is %g, not finite",
+                           isfinite(ref->v[k]) ? "image" : "reference", p % (size_t)ref->w,
+                           p / (size_t)ref->w, k % (size_t)ref->c,
+                           isfinite(ref->v[k]) ? img->v[k] : ref->v[k]);
+        }
+        m->nonfinite++;
+    }
+    pointwise(ref, img, NULL, m->nonfinite, differ, &m->rmse, &m->mae, &m->max_err, m->max_at,
+              &m->psnr);
     int where[3];
-    pointwise(ref, img, enc, &m->rmse_enc, &m->mae_enc, &m->max_err_enc, where, &m->psnr_enc);
+    pointwise(ref, img, enc, m->nonfinite, differ, &m->rmse_enc, &m->mae_enc, &m->max_err_enc,
+              where, &m->psnr_enc);
     gsl_set_error_handler_off();
     int st = spectrum(ref, img, m);
-    return st ? st : ssim(ref, img, enc, &m->ssim);
+    return st ? st : ssim(ref, img, enc, m->nonfinite, &m->ssim);
+}
+
+int aa_metrics_compute(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                       aa_metrics *m)
+{
+    return metrics(ref, img, enc, 0, m);
+}
+
+int aa_metrics_compare(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                       aa_metrics *m)
+{
+    return metrics(ref, img, enc, 1, m);
+}
+
+double aa_metrics_bytes(int w, int h)
+{
+    /* the spectrum's complex image (freed before SSIM's two lumas, as
+     * large), and GSL's tables and workspaces for a row and a column */
+    return 2.0 * w * h * sizeof(double) + 64.0 * ((double)w + h);
 }

@@ -116,6 +116,12 @@ static int draw(const char *dir, const char *name, const char *script_text, cons
         (st = gnuplot(dir, base_of(gp_tmp), assign, log)))
         goto fail;
     unlink(log);
+    /* gnuplot exits 0 when its picture could not be written whole (a full
+     * disk): the picture must end as a PNG ends */
+    if ((st = aa_png_complete(png_tmp))) {
+        st = aa_fail_context(st, "%s", png);
+        goto fail;
+    }
     if (rename(dat_tmp, dat) != 0 || rename(png_tmp, png) != 0 || rename(gp_tmp, gp) != 0) {
         st = aa_fail(AA_EIO, "cannot rename the plot %s into place: %s", png, strerror(errno));
         goto fail;
@@ -343,11 +349,13 @@ static int plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
     fprintf(s, "unset multiplot\n");
     free(view);
     free(done);
+    /* a write error sets the stream's flag; fclose writes the rest */
+    int err = ferror(f);
     int bad_script = fclose(s) != 0;
-    if (fclose(f) != 0 || bad_script) {
+    if (fclose(f) != 0 || err || bad_script) {
         free(script);
         unlink(tmp);
-        return aa_fail(AA_EIO, "cannot write %s", dat);
+        return aa_fail(AA_EIO, "cannot write %s: %s", dat, strerror(errno));
     }
     if (views == 0) {
         free(script);
@@ -388,9 +396,10 @@ static int plot_convergence(const char *dir, const aa_convergence *c, const char
         }
         fprintf(f, "\n\n");
     }
-    if (fclose(f) != 0) {
+    int err = ferror(f);
+    if (fclose(f) != 0 || err) {
         unlink(tmp);
-        return aa_fail(AA_EIO, "cannot write %s", dat);
+        return aa_fail(AA_EIO, "cannot write %s: %s", dat, strerror(errno));
     }
     char script[16384];
     FILE *s = fmemopen(script, sizeof script, "w");

@@ -13,9 +13,43 @@ static void usage(FILE *out)
                  "Prints the error of IMAGE against REFERENCE (same size and channels; any of\n"
                  ".exr .tif .png .pfm .txt): rmse, mae, max_err and where, psnr, in linear\n"
                  "light and after display encoding; the error spectrum's power in total, below\n"
-                 "1/4 cycle per pixel (moire) and above; SSIM on the encoded luma.\n\n"
+                 "1/4 cycle per pixel (moire) and above; SSIM on the encoded luma.  Pixels\n"
+                 "holding NaN or infinity in either image are counted (nonfinite) and left out.\n"
+                 "Sizes and the memory needed are checked from the headers before any pixel\n"
+                 "is read.\n\n"
                  "      --encode E   display encoding: srgb (default), linear or gamma:G\n"
                  "      --json       print one JSON object instead of lines\n");
+}
+
+/* A JSON number, or null for NaN and infinities (JSON has neither). */
+static void json_num(double v)
+{
+    if (isfinite(v))
+        printf("%.9g", v);
+    else
+        printf("null");
+}
+
+/* Before any pixel is read: what comparing the two files will hold (both
+ * images, then the error spectrum or SSIM's lumas), from their headers,
+ * against the memory this process may take.  (Files of different sizes
+ * are refused once read, so that a damaged file is reported as such.) */
+static int check_sizes(const char *rpath, const char *ipath)
+{
+    int rw, rh, rc, iw, ih, ic, st;
+    if ((st = aa_image_file_size(rpath, &rw, &rh, &rc)) ||
+        (st = aa_image_file_size(ipath, &iw, &ih, &ic)))
+        return st;
+    char what[160];
+    if (rw == iw && rh == ih && rc == ic)
+        snprintf(what, sizeof what, "comparing two %dx%dx%d images", rw, rh, rc);
+    else
+        snprintf(what, sizeof what, "reading a %dx%dx%d and a %dx%dx%d image", rw, rh, rc, iw,
+                 ih, ic);
+    double need = (double)rw * rh * rc * sizeof(double) + (double)iw * ih * ic * sizeof(double);
+    if (rw == iw && rh == ih && rc == ic)
+        need += aa_metrics_bytes(rw, rh);
+    return aa_memory_check(need, what);
 }
 
 int cmd_compare(int argc, char **argv)
@@ -46,24 +80,41 @@ int cmd_compare(int argc, char **argv)
         usage(stderr);
         return 2;
     }
+    const char *rpath = argv[optind], *ipath = argv[optind + 1];
+    if ((st = check_sizes(rpath, ipath)))
+        return cli_fail("compare", st);
     aa_image ref = {0}, img = {0};
     aa_metrics m;
-    if ((st = aa_image_read(argv[optind], &ref)) || (st = aa_image_read(argv[optind + 1], &img)) ||
-        (st = aa_metrics_compute(&ref, &img, &enc, &m))) {
+    if ((st = aa_image_read(rpath, &ref)) || (st = aa_image_read(ipath, &img)) ||
+        (st = aa_metrics_compare(&ref, &img, &enc, &m))) {
         aa_image_free(&ref);
         aa_image_free(&img);
         return cli_fail("compare", st);
     }
-    if (json)
-        printf("{\"rmse\": %.9g, \"mae\": %.9g, \"max_err\": %.9g, \"max_at\": [%d, %d, %d], "
-               "\"psnr\": %.9g, \"rmse_enc\": %.9g, \"mae_enc\": %.9g, \"max_err_enc\": %.9g, "
-               "\"psnr_enc\": %.9g, \"alias_total\": %.9g, \"alias_low\": %.9g, "
-               "\"alias_high\": %.9g, \"ssim\": %.9g}\n",
-               m.rmse, m.mae, m.max_err, m.max_at[0], m.max_at[1], m.max_at[2],
-               isinf(m.psnr) ? 999.0 : m.psnr, m.rmse_enc, m.mae_enc, m.max_err_enc,
-               isinf(m.psnr_enc) ? 999.0 : m.psnr_enc, m.alias_total, m.alias_low, m.alias_high,
-               m.ssim);
-    else
+    if (json) {
+        /* JSON has no NaN and no infinity: those are null.  Identical
+         * images keep their PSNR of 999 (infinite); images that differ only
+         * where a value is not finite have none (null), and `nonfinite`
+         * counts those pixels. */
+        double psnr = m.psnr == INFINITY ? 999.0 : m.psnr;
+        double psnr_enc = m.psnr_enc == INFINITY ? 999.0 : m.psnr_enc;
+        const struct {
+            const char *key;
+            double v;
+        } nums[] = {{"rmse", m.rmse},         {"mae", m.mae},
+                    {"max_err", m.max_err},   {"psnr", psnr},
+                    {"rmse_enc", m.rmse_enc}, {"mae_enc", m.mae_enc},
+                    {"max_err_enc", m.max_err_enc}, {"psnr_enc", psnr_enc},
+                    {"alias_total", m.alias_total}, {"alias_low", m.alias_low},
+                    {"alias_high", m.alias_high},   {"ssim", m.ssim}};
+        for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
+            printf("%s\"%s\": ", k ? ", " : "{", nums[k].key);
+            json_num(nums[k].v);
+            if (!strcmp(nums[k].key, "max_err"))
+                printf(", \"max_at\": [%d, %d, %d]", m.max_at[0], m.max_at[1], m.max_at[2]);
+        }
+        printf(", \"nonfinite\": %zu}\n", m.nonfinite);
+    } else {
         printf("size         %dx%dx%d\n"
                "rmse         %.6e   (encoded %.6e)\n"
                "mae          %.6e   (encoded %.6e)\n"
@@ -74,6 +125,10 @@ int cmd_compare(int argc, char **argv)
                ref.w, ref.h, ref.c, m.rmse, m.rmse_enc, m.mae, m.mae_enc, m.max_err, m.max_at[0],
                m.max_at[1], m.max_at[2], m.max_err_enc, m.psnr, m.psnr_enc, m.alias_total,
                m.alias_low, m.alias_high, m.ssim);
+        if (m.nonfinite)
+            printf("nonfinite    %zu pixel%s hold NaN or infinity in either image: left out of "
+                   "the figures above\n", m.nonfinite, m.nonfinite == 1 ? "" : "s");
+    }
     aa_image_free(&ref);
     aa_image_free(&img);
     return 0;

@@ -302,66 +302,92 @@ static int row_done(void *vctx, const aa_row *rows, size_t n)
 
 /* ---- what runs after the cases ---- */
 
-/* The montage's columns for nt tiles of width w. */
-static int montage_columns(size_t nt, int w)
+/* montage.png: the first view's reference and every method, side by side. */
+
+#define MONTAGE_TILES 64
+#define MONTAGE_LINES 2
+
+/* Its columns, for n tiles of width w. */
+static int montage_columns(size_t n, int w)
 {
     if (w <= 160)
-        return nt <= 6 ? (int)nt : 6;
-    return nt <= 4 ? (int)nt : (nt <= 9 ? 3 : 4);
+        return n <= 6 ? (int)n : 6;
+    return n <= 4 ? (int)n : (n <= 9 ? 3 : 4);
 }
 
-/* The first view's reference and every method, side by side (the first
- * view is the first pattern, size and filter of the first cross product). */
+/* Its tiles, each read when the montage asks for it and freed once copied:
+ * the reference (from the cache), then each method's EXR written by the
+ * run. */
+typedef struct montage_source {
+    const char *dir;
+    const aa_row *rows;
+    size_t row[MONTAGE_TILES]; /* tile k > 0 is rows[row[k]] */
+    aa_view view;
+    aa_image im;
+    char labels[MONTAGE_LINES][128];
+} montage_source;
+
+static int montage_get(void *vctx, size_t k, aa_tile *tile)
+{
+    montage_source *s = vctx;
+    int st;
+    if (k == 0) {
+        if ((st = aa_reference(&s->view, cli_cache_dir(), 0, &s->im, NULL, NULL)))
+            return st;
+        snprintf(s->labels[0], 128, "reference (%.100s)", s->rows[0].filter);
+        snprintf(s->labels[1], 128, "exact");
+    } else {
+        const aa_row *r = &s->rows[s->row[k]];
+        char path[4096], ps[512], fs[256], ms[512];
+        aa_spec_slug(r->pattern, ps, sizeof ps);
+        aa_spec_slug(r->filter, fs, sizeof fs);
+        aa_spec_slug(r->method, ms, sizeof ms);
+        /* the EXR written by the run holds the values */
+        if ((st = aa_pathf(path, sizeof path, "%s/images/%s-%dx%d-%s-%s.exr", s->dir, ps, r->w,
+                           r->h, fs, ms)) ||
+            (st = aa_image_read(path, &s->im)))
+            return st;
+        snprintf(s->labels[0], 128, "%.120s", r->method);
+        snprintf(s->labels[1], 128, "RMSE %.3g", r->m.rmse);
+    }
+    tile->image = &s->im;
+    tile->label[0] = s->labels[0];
+    tile->label[1] = s->labels[1];
+    tile->label[2] = NULL;
+    return AA_OK;
+}
+
+static void montage_put(void *vctx, size_t k)
+{
+    (void)k;
+    aa_image_free(&((montage_source *)vctx)->im);
+}
+
 static int write_montage(const char *dir, const aa_run_config *first, const aa_row *rows,
                          size_t n, const aa_encode *enc)
 {
-    char path[4096], labels[64][2][128];
-    aa_image imgs[64];
-    aa_tile tiles[64];
-    size_t nt = 0;
-    int st = AA_OK;
     if (n == 0)
         return AA_OK;
-    aa_view view;
-    memset(&view, 0, sizeof view);
-    view.pattern = first->patterns[0].spec;
-    view.filter = first->filters[0].filter;
-    view.w = rows[0].w, view.h = rows[0].h;
-    view.t = rows[0].t, view.vx = rows[0].vx, view.vy = rows[0].vy;
-    if ((st = aa_reference(&view, cli_cache_dir(), 0, &imgs[0], NULL, NULL)))
-        return st;
-    tiles[nt].image = &imgs[nt];
-    snprintf(labels[nt][0], 128, "reference (%.100s)", rows[0].filter);
-    snprintf(labels[nt][1], 128, "exact");
-    nt++;
-    for (size_t k = 0; k < n && nt < 64 && !st; k++) {
-        if (!rows[k].ok || strcmp(rows[k].pattern, rows[0].pattern) ||
-            strcmp(rows[k].filter, rows[0].filter) || rows[k].w != rows[0].w ||
-            rows[k].h != rows[0].h)
-            continue;
-        /* the EXR written by the run holds the values */
-        char ps[512], fs[256], ms[512];
-        aa_spec_slug(rows[k].pattern, ps, sizeof ps);
-        aa_spec_slug(rows[k].filter, fs, sizeof fs);
-        aa_spec_slug(rows[k].method, ms, sizeof ms);
-        if ((st = aa_pathf(path, sizeof path, "%s/images/%s-%dx%d-%s-%s.exr", dir, ps, rows[k].w,
-                           rows[k].h, fs, ms)) ||
-            (st = aa_image_read(path, &imgs[nt])))
-            break;
-        tiles[nt].image = &imgs[nt];
-        snprintf(labels[nt][0], 128, "%.120s", rows[k].method);
-        snprintf(labels[nt][1], 128, "RMSE %.3g", rows[k].m.rmse);
-        nt++;
-    }
-    for (size_t k = 0; k < nt; k++) {
-        tiles[k].label[0] = labels[k][0];
-        tiles[k].label[1] = labels[k][1];
-        tiles[k].label[2] = NULL;
-    }
-    if (!st && !(st = aa_pathf(path, sizeof path, "%s/montage.png", dir)))
-        st = aa_montage_write(path, tiles, nt, montage_columns(nt, rows[0].w), enc);
-    for (size_t k = 0; k < nt; k++)
-        aa_image_free(&imgs[k]);
+    montage_source s;
+    memset(&s, 0, sizeof s);
+    s.dir = dir, s.rows = rows;
+    int st;
+    s.view.pattern = first->patterns[0].spec;
+    s.view.filter = first->filters[0].filter;
+    s.view.w = rows[0].w, s.view.h = rows[0].h;
+    s.view.t = rows[0].t, s.view.vx = rows[0].vx, s.view.vy = rows[0].vy;
+    size_t nt = 1;
+    for (size_t k = 0; k < n && nt < MONTAGE_TILES; k++)
+        if (rows[k].ok && !strcmp(rows[k].pattern, rows[0].pattern) &&
+            !strcmp(rows[k].filter, rows[0].filter) && rows[k].w == rows[0].w &&
+            rows[k].h == rows[0].h)
+            s.row[nt++] = k;
+    aa_tile_source src = {.n = nt, .tw = rows[0].w, .th = rows[0].h, .lines = MONTAGE_LINES,
+                          .get = montage_get, .put = montage_put, .ctx = &s};
+    char path[4096];
+    if (!(st = aa_pathf(path, sizeof path, "%s/montage.png", dir)))
+        st = aa_montage_stream(path, &src, montage_columns(nt, rows[0].w), enc);
+    aa_image_free(&s.im);
     return st;
 }
 
@@ -772,8 +798,8 @@ static int check_before_work(const run_args *a, const aa_run_config *cfgs, size_
         /* the montage: the first view's reference and up to 63 methods */
         size_t most = cfgs[0].nmethods < 63 ? cfgs[0].nmethods + 1 : 64;
         for (size_t nt = 1; nt <= most; nt++)
-            if ((st = aa_montage_check(cfgs[0].sizes[0].w, cfgs[0].sizes[0].h, nt,
-                                       montage_columns(nt, cfgs[0].sizes[0].w), 2)))
+            if ((st = aa_montage_check(nt, montage_columns(nt, cfgs[0].sizes[0].w),
+                                       cfgs[0].sizes[0].w, cfgs[0].sizes[0].h, MONTAGE_LINES)))
                 return aa_fail_context(st, "montage.png (or use --no-images)");
     }
     /* the output folder, with room for images/NAME under it */

@@ -53,10 +53,20 @@ size_t aa_param_count(const aa_info *info);
 const aa_info *aa_table_find(const void *const *table, const char *name);
 
 /* "WxH" with 1 <= W, H <= AA_MAX_SIDE, and an image of `channels` doubles
- * per pixel (`copies` of it) must fit in this machine's memory. */
+ * per pixel (`copies` of it) must fit in the memory budget below. */
 #define AA_MAX_SIDE 65536
 int aa_size_parse(const char *text, int *w, int *h);
 int aa_size_check(int w, int h, int channels, int copies);
+/* The bytes this process may still take: the smallest of half of the
+ * machine's memory, half of its cgroup's limit (memory.max, v2, or
+ * memory.limit_in_bytes, v1), and what is left of its address-space and
+ * data limits (RLIMIT_AS, RLIMIT_DATA); `why` (may be NULL) says which, for
+ * messages.  0 if nothing is known. */
+double aa_memory_budget(char *why, size_t len);
+/* AA_EINVAL, with a message saying what needs how much and what the limit
+ * is, if `bytes` is more than the budget; `what` names the need ("compare
+ * of 2048x2048x3"). */
+int aa_memory_check(double bytes, const char *what);
 
 /* ---- image files ---- */
 
@@ -85,9 +95,30 @@ int aa_image_ext_known(const char *path);
  * a failure leaves nothing behind.  (.pfm is written here, not by
  * OpenImageIO, whose 2.4 writer produces 8-bit P6 for it.) */
 int aa_image_write(const char *path, const aa_image *im, const aa_encode *enc);
+/* The same, row by row, for an image too large to hold whole (a montage):
+ * begin makes the temporary file, rows adds the next `rows` rows (top row
+ * first, W x rows x C doubles), finish checks that every row was written,
+ * closes and renames the file into place.  After a failure of begin or
+ * rows nothing is left on disk; a failed writer must still be given to
+ * finish (which returns that failure) or abort (which removes the
+ * temporary file).  Every write, flush and close is checked: a full disk
+ * is AA_EIO and the previous file under `path` stays as it was. */
+typedef struct aa_image_out aa_image_out;
+int aa_image_out_begin(const char *path, int w, int h, int c, const aa_encode *enc,
+                       aa_image_out **out);
+int aa_image_out_rows(aa_image_out *out, const double *v, int rows);
+int aa_image_out_finish(aa_image_out *out);
+void aa_image_out_abort(aa_image_out *out); /* NULL is fine */
 /* Read any of the formats above; 8-bit files are decoded with the encoding
  * they declare (sRGB if none).  On failure *im is left empty. */
 int aa_image_read(const char *path, aa_image *im);
+/* The size an image file declares (its header only: no pixel is read or
+ * allocated), checked as aa_image_read checks it but for memory, so a
+ * caller can count what it will hold before reading anything. */
+int aa_image_file_size(const char *path, int *w, int *h, int *c);
+/* AA_EIO if `path` starts as a PNG but does not end with its IEND chunk
+ * (cut short: a full disk, for a PNG some other program wrote). */
+int aa_png_complete(const char *path);
 /* The .txt format: "# aabench W H C", then "i j v0 .. v(C-1)" per pixel. */
 int aa_image_write_txt(const char *path, const aa_image *im);
 int aa_image_read_txt(const char *path, aa_image *im);

@@ -41,12 +41,19 @@
 #include <string.h>
 
 #include <dlfcn.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <pthread.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <sys/types.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 /* Room for a temporary file name (PATH_MAX on Linux). */
 #define TEMP_NAME_MAX 4096
+/* Room for the message of a writer's failure, kept for later calls. */
+#define AA_IMAGE_OUT_WHY 1024
 
 /* ------------------------------------------------------------------------
  * Images in memory
@@ -322,25 +329,16 @@ static int check_image(const char *path, const aa_image *im, const image_format 
     return AA_OK;
 }
 
-/* What one write puts in its file. */
-typedef struct write_job {
-    const image_format *format;
-    const aa_image *im;
-    const unsigned char *bytes; /* display-encoded samples, for 8-bit files */
-    double gamma;               /* their encoding (oiio.h) */
-    const aa__oiio_api *oiio;   /* for the formats OpenImageIO writes */
-} write_job;
-
-int aa__image_stdio_write(const char *tmp, const aa_image *im,
-                          int (*body)(FILE *f, const aa_image *im))
+/* Finish a file written with stdio: a write error sets the stream's error
+ * flag even when later calls succeed, and fflush then fclose write the
+ * last buffer, where a full disk shows. */
+static int stdio_close(FILE *f, const char *tmp)
 {
-    /* "x": never write through a name someone else has just made. */
-    FILE *f = fopen(tmp, "wbx");
-    if (f == NULL)
-        return aa_fail(AA_EIO, "cannot create %s: %s", tmp, strerror(errno));
-    int failed = body(f, im) != 0;
-    int err = errno;
-    /* fclose flushes the last buffer, where a full disk shows. */
+    int failed = 0, err = 0;
+    if (fflush(f) != 0 || ferror(f)) {
+        failed = 1;
+        err = errno ? errno : EIO;
+    }
     if (fclose(f) != 0 && !failed) {
         failed = 1;
         err = errno;
@@ -348,68 +346,256 @@ int aa__image_stdio_write(const char *tmp, const aa_image *im,
     return failed ? aa_fail(AA_EIO, "cannot write %s: %s", tmp, strerror(err)) : AA_OK;
 }
 
-/* PFM (Debevec's portable float map): "PF" (3 channels) or "Pf" (1), the
- * size, and a scale whose sign gives the byte order, negative for
- * little-endian; then 32-bit floats, rows from the bottom of the image up.
- * We always write little-endian, byte by byte, whatever this machine is. */
-static int pfm_samples(FILE *f, const aa_image *im)
+/* One image being written, row by row (core.h). */
+struct aa_image_out {
+    const image_format *format;
+    char *path;              /* the result */
+    char tmp[TEMP_NAME_MAX]; /* the temporary name it is written under */
+    int w, h, c, next_row;
+    aa_encode enc;           /* for 8-bit files */
+    FILE *f;                 /* .txt and .pfm, written here */
+    off_t pfm_data;          /* where the .pfm samples start */
+    const aa__oiio_api *oiio;
+    aa__oiio_out *oo;        /* the formats OpenImageIO writes */
+    unsigned char *bytes;    /* display-encoded rows, for 8-bit files */
+    size_t nbytes;
+    int status;              /* the first failure, kept for later calls */
+    char why[AA_IMAGE_OUT_WHY];
+};
+
+/* Remove what was made and keep the failure (and its message) for every
+ * later call on `out`. */
+static int out_failed(aa_image_out *out, int status)
 {
-    for (int j = im->h - 1; j >= 0; j--) {
-        const double *v = aa_pixel(im, 0, j);
-        for (size_t k = 0; k < (size_t)im->w * (size_t)im->c; k++) {
-            float x = (float)v[k]; /* round to nearest (C11 6.3.1.5) */
+    if (out->f != NULL) {
+        fclose(out->f);
+        out->f = NULL;
+    }
+    if (out->oo != NULL) {
+        out->oiio->out_abort(out->oo);
+        out->oo = NULL;
+    }
+    remove(out->tmp); /* may not exist, if creating it failed */
+    aa_fail_context(status, "%s", out->path);
+    out->status = status;
+    snprintf(out->why, sizeof out->why, "%s", aa_last_error());
+    return status;
+}
+
+static void out_free(aa_image_out *out)
+{
+    free(out->bytes);
+    free(out->path);
+    free(out);
+}
+
+/* The .pfm header (Debevec's portable float map): "PF" (3 channels) or
+ * "Pf" (1), the size, and a scale whose sign gives the byte order,
+ * negative for little-endian.  The samples follow, rows from the bottom of
+ * the image up. */
+static int pfm_header(aa_image_out *out)
+{
+    if (fprintf(out->f, "%s\n%d %d\n-1.0\n", out->c == 3 ? "PF" : "Pf", out->w, out->h) < 0)
+        return -1;
+    out->pfm_data = ftello(out->f);
+    return out->pfm_data < 0 ? -1 : 0;
+}
+
+/* Rows y0 .. y0 + rows - 1 of a .pfm: 32-bit floats, little-endian byte by
+ * byte whatever this machine is.  Their place in the file is one block,
+ * written from its first byte: the lowest of the rows first. */
+static int pfm_rows(aa_image_out *out, const double *v, int y0, int rows)
+{
+    size_t row_values = (size_t)out->w * (size_t)out->c;
+    off_t at = out->pfm_data + (off_t)(out->h - y0 - rows) * (off_t)(row_values * 4);
+    if (fseeko(out->f, at, SEEK_SET) != 0)
+        return -1;
+    int failed = 0;
+    /* One lock for the whole block, so putc_unlocked is allowed. */
+    flockfile(out->f);
+    for (int j = rows - 1; j >= 0 && !failed; j--) {
+        const double *row = v + (size_t)j * row_values;
+        for (size_t k = 0; k < row_values && !failed; k++) {
+            float x = (float)row[k]; /* round to nearest (C11 6.3.1.5) */
             uint32_t bits;
             memcpy(&bits, &x, sizeof bits);
-            for (int b = 0; b < 32; b += 8)
-                if (putc_unlocked((int)((bits >> b) & 0xffu), f) == EOF)
-                    return -1;
+            for (int b = 0; b < 32 && !failed; b += 8)
+                failed = putc_unlocked((int)((bits >> b) & 0xffu), out->f) == EOF;
         }
     }
-    return 0;
+    funlockfile(out->f);
+    return failed ? -1 : 0;
 }
 
-static int pfm_body(FILE *f, const aa_image *im)
+/* Display-encode and round to the nearest 8-bit code (halves up). */
+static void encode_bytes(const aa_encode *e, const double *v, size_t n, unsigned char *q)
 {
-    if (fprintf(f, "%s\n%d %d\n-1.0\n", im->c == 3 ? "PF" : "Pf", im->w, im->h) < 0)
-        return -1;
-    /* One lock for the whole file, so putc_unlocked is allowed. */
-    flockfile(f);
-    int failed = pfm_samples(f, im);
-    funlockfile(f);
-    return failed;
+    for (size_t k = 0; k < n; k++)
+        q[k] = (unsigned char)floor(aa_encode_value(e, v[k]) * 255 + 0.5);
 }
 
-static int write_file(const char *tmp, const write_job *job)
+static int check_out_size(const char *path, int w, int h, int c, const image_format *f)
 {
-    const aa_image *im = job->im;
-    switch (job->format->kind) {
-    case FORMAT_TXT: return aa__txt_write_file(tmp, im);
-    case FORMAT_PFM: return aa__image_stdio_write(tmp, im, pfm_body);
-    case FORMAT_FLOAT:
-        return job->oiio->write_float(tmp, job->format->oiio, im->w, im->h, im->c, im->v);
-    case FORMAT_8BIT:
-        return job->oiio->write_8bit(tmp, job->format->oiio, im->w, im->h, im->c, job->bytes,
-                                     job->gamma);
-    }
-    return aa_fail(AA_EFAIL, "%s: unknown format kind", tmp);
+    if (w <= 0 || h <= 0 || c <= 0)
+        return aa_fail(AA_EINVAL, "%s: image %d x %d x %d: sizes must be positive", path, w, h,
+                       c);
+    if (w > AA_MAX_SIDE || h > AA_MAX_SIDE)
+        return aa_fail(AA_EINVAL, "%s: image %d x %d: a side is above %d", path, w, h,
+                       AA_MAX_SIDE);
+    if (c > AA__IMAGE_MAX_CHANNELS || !(f->channels & (1u << c)))
+        return aa_fail(AA_EINVAL, "%s: %d channels: %s takes %s", path, c, f->ext,
+                       f->channels_why);
+    return AA_OK;
 }
 
-/* Write under a temporary name and rename into place; on any failure the
- * temporary file is removed, so nothing is left behind. */
-static int write_via_temp(const char *path, const write_job *job)
+int aa_image_out_begin(const char *path, int w, int h, int c, const aa_encode *enc,
+                       aa_image_out **result)
 {
-    char tmp[TEMP_NAME_MAX];
-    int status = aa_temp_name(path, tmp, sizeof tmp);
+    static const aa_encode srgb = {AA_ENCODE_SRGB, 0};
+    if (result == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_out_begin: nowhere to put the writer");
+    *result = NULL;
+    if (path == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_out_begin: no path");
+    const image_format *f = format_of(path);
+    if (f == NULL)
+        return unknown_format(path);
+    int status = check_out_size(path, w, h, c, f);
     if (status != AA_OK)
         return status;
-    status = write_file(tmp, job);
-    if (status == AA_OK && rename(tmp, path) != 0)
-        status = aa_fail(AA_EIO, "cannot rename %s into place: %s", tmp, strerror(errno));
-    if (status != AA_OK) {
-        remove(tmp); /* may not exist, if creating it failed */
-        return aa_fail_context(status, "%s", path);
+    if (enc == NULL)
+        enc = &srgb;
+    if (f->kind == FORMAT_8BIT && !encode_valid(enc))
+        return aa_fail(AA_EINVAL, "%s: invalid display encoding", path);
+    aa_image_out *out = calloc(1, sizeof *out);
+    if (out == NULL || (out->path = strdup(path)) == NULL) {
+        free(out);
+        return aa_fail(AA_ENOMEM, "%s: out of memory", path);
     }
+    out->format = f;
+    out->w = w, out->h = h, out->c = c;
+    out->enc = *enc;
+    /* Loaded before the temporary file is made, so a failure names `path`. */
+    if (f->oiio != NULL && (out->oiio = aa__oiio(path)) == NULL) {
+        out_free(out);
+        return AA_EIO;
+    }
+    status = aa_temp_name(path, out->tmp, sizeof out->tmp);
+    if (status != AA_OK) {
+        out_free(out);
+        return status;
+    }
+    switch (f->kind) {
+    case FORMAT_FLOAT:
+    case FORMAT_8BIT:
+        status = out->oiio->out_open(out->tmp, f->oiio, w, h, c, f->kind == FORMAT_FLOAT,
+                                     encode_gamma(enc), &out->oo);
+        break;
+    case FORMAT_TXT:
+    case FORMAT_PFM:
+        /* "x": never write through a name someone else has just made. */
+        out->f = fopen(out->tmp, "wbx");
+        if (out->f == NULL) {
+            status = aa_fail(AA_EIO, "cannot create %s: %s", out->tmp, strerror(errno));
+            break;
+        }
+        if ((f->kind == FORMAT_TXT ? aa__txt_header(out->f, w, h, c) : pfm_header(out)) != 0)
+            status = aa_fail(AA_EIO, "cannot write %s: %s", out->tmp, strerror(errno));
+        break;
+    }
+    if (status != AA_OK) {
+        out_failed(out, status);
+        out_free(out);
+        return status;
+    }
+    *result = out;
     return AA_OK;
+}
+
+int aa_image_out_rows(aa_image_out *out, const double *v, int rows)
+{
+    if (out == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_out_rows: no writer");
+    if (out->status != AA_OK)
+        return aa_fail(out->status, "%s", out->why);
+    if (v == NULL || rows < 1 || rows > out->h - out->next_row)
+        return out_failed(out, aa_fail(AA_EINVAL, "%d rows given after %d of %d", rows,
+                                       out->next_row, out->h));
+    size_t n = (size_t)out->w * (size_t)rows * (size_t)out->c;
+    int y0 = out->next_row, status = AA_OK;
+    switch (out->format->kind) {
+    case FORMAT_FLOAT:
+        status = out->oiio->out_rows(out->oo, y0, y0 + rows, v);
+        break;
+    case FORMAT_8BIT:
+        if (n > out->nbytes) {
+            unsigned char *grown = realloc(out->bytes, n);
+            if (grown == NULL) {
+                status = aa_fail(AA_ENOMEM, "out of memory (%zu bytes)", n);
+                break;
+            }
+            out->bytes = grown;
+            out->nbytes = n;
+        }
+        encode_bytes(&out->enc, v, n, out->bytes);
+        status = out->oiio->out_rows(out->oo, y0, y0 + rows, out->bytes);
+        break;
+    case FORMAT_TXT:
+        status = aa__txt_check_finite_rows(out->path, v, out->w, y0, rows, out->c);
+        if (status == AA_OK && aa__txt_rows(out->f, v, out->w, y0, rows, out->c) != 0)
+            status = aa_fail(AA_EIO, "cannot write %s: %s", out->tmp, strerror(errno));
+        break;
+    case FORMAT_PFM:
+        if (pfm_rows(out, v, y0, rows) != 0)
+            status = aa_fail(AA_EIO, "cannot write %s: %s", out->tmp, strerror(errno));
+        break;
+    }
+    if (status != AA_OK)
+        return out_failed(out, status);
+    out->next_row += rows;
+    return AA_OK;
+}
+
+int aa_image_out_finish(aa_image_out *out)
+{
+    if (out == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_out_finish: no writer");
+    int status = out->status;
+    if (status != AA_OK) {
+        status = aa_fail(status, "%s", out->why);
+        out_free(out);
+        return status;
+    }
+    if (out->next_row != out->h)
+        status = aa_fail(AA_EINVAL, "finished after %d of %d rows", out->next_row, out->h);
+    else if (out->oo != NULL) {
+        status = out->oiio->out_close(out->oo);
+        out->oo = NULL;
+    } else {
+        FILE *f = out->f;
+        out->f = NULL;
+        status = stdio_close(f, out->tmp);
+    }
+    if (status == AA_OK && rename(out->tmp, out->path) != 0)
+        status = aa_fail(AA_EIO, "cannot rename %s into place: %s", out->tmp, strerror(errno));
+    if (status != AA_OK)
+        out_failed(out, status);
+    out_free(out);
+    return status;
+}
+
+void aa_image_out_abort(aa_image_out *out)
+{
+    if (out == NULL)
+        return;
+    if (out->status == AA_OK) {
+        /* keep the caller's message: this is its failure, not ours */
+        char saved[AA_IMAGE_OUT_WHY];
+        snprintf(saved, sizeof saved, "%s", aa_last_error());
+        out_failed(out, AA_EFAIL);
+        aa_fail(AA_EFAIL, "%s", saved);
+    }
+    out_free(out);
 }
 
 int aa_image_write_txt(const char *path, const aa_image *im)
@@ -421,27 +607,17 @@ int aa_image_write_txt(const char *path, const aa_image *im)
         status = aa__txt_check_finite(path, im);
     if (status != AA_OK)
         return status;
-    write_job job = {.format = txt_format, .im = im};
-    return write_via_temp(path, &job);
-}
-
-/* Display-encode and round to the nearest 8-bit code (halves up). */
-static int encode_bytes(const char *path, const aa_image *im, const aa_encode *e,
-                        unsigned char **out)
-{
-    size_t n = image_values(im);
-    unsigned char *q = malloc(n);
-    if (q == NULL)
-        return aa_fail(AA_ENOMEM, "%s: out of memory (%zu bytes)", path, n);
-    for (size_t k = 0; k < n; k++)
-        q[k] = (unsigned char)floor(aa_encode_value(e, im->v[k]) * 255 + 0.5);
-    *out = q;
-    return AA_OK;
+    aa_image_out *out;
+    status = aa_image_out_begin(path, im->w, im->h, im->c, NULL, &out);
+    if (status == AA_OK && (status = aa_image_out_rows(out, im->v, im->h)) != AA_OK) {
+        aa_image_out_abort(out);
+        return status;
+    }
+    return status == AA_OK ? aa_image_out_finish(out) : status;
 }
 
 int aa_image_write(const char *path, const aa_image *im, const aa_encode *enc)
 {
-    static const aa_encode srgb = {AA_ENCODE_SRGB, 0};
     if (path == NULL)
         return aa_fail(AA_EINVAL, "aa_image_write: no path");
     const image_format *f = format_of(path);
@@ -452,26 +628,13 @@ int aa_image_write(const char *path, const aa_image *im, const aa_encode *enc)
     int status = check_image(path, im, f);
     if (status != AA_OK)
         return status;
-    write_job job = {.format = f, .im = im};
-    unsigned char *bytes = NULL;
-    if (f->kind == FORMAT_8BIT) {
-        if (enc == NULL)
-            enc = &srgb;
-        if (!encode_valid(enc))
-            return aa_fail(AA_EINVAL, "%s: invalid display encoding", path);
-        status = encode_bytes(path, im, enc, &bytes);
-        if (status != AA_OK)
-            return status;
-        job.bytes = bytes;
-        job.gamma = encode_gamma(enc);
+    aa_image_out *out;
+    status = aa_image_out_begin(path, im->w, im->h, im->c, enc, &out);
+    if (status == AA_OK && (status = aa_image_out_rows(out, im->v, im->h)) != AA_OK) {
+        aa_image_out_abort(out);
+        return status;
     }
-    /* Loaded before the temporary file is made, so a failure names `path`. */
-    if (f->oiio != NULL && (job.oiio = aa__oiio(path)) == NULL)
-        status = AA_EIO;
-    else
-        status = write_via_temp(path, &job);
-    free(bytes);
-    return status;
+    return status == AA_OK ? aa_image_out_finish(out) : status;
 }
 
 /* ------------------------------------------------------------------------
@@ -505,7 +668,7 @@ static void decode_integers(aa_image *im, const aa__oiio_info *info)
 }
 
 /* Sizes from a file header, checked before anything is allocated. */
-static int check_file_size(const char *path, const aa__oiio_info *info)
+static int check_file_sides(const char *path, const aa__oiio_info *info)
 {
     if (info->w < 1 || info->w > AA_MAX_SIDE || info->h < 1 || info->h > AA_MAX_SIDE)
         return aa_fail(AA_EIO, "%s: image %d x %d: sides must be in [1, %d]", path, info->w,
@@ -513,19 +676,55 @@ static int check_file_size(const char *path, const aa__oiio_info *info)
     if (info->c < 1 || info->c > AA__IMAGE_MAX_CHANNELS)
         return aa_fail(AA_EIO, "%s: %d channels: must be in [1, %d]", path, info->c,
                        AA__IMAGE_MAX_CHANNELS);
-    if (aa_size_check(info->w, info->h, info->c, 1) != AA_OK)
-        return aa_fail_context(AA_EIO, "%s", path);
+    return AA_OK;
+}
+
+static int check_file_size(const char *path, const aa__oiio_info *info)
+{
+    int status = check_file_sides(path, info);
+    if (status == AA_OK && aa_size_check(info->w, info->h, info->c, 1) != AA_OK)
+        status = aa_fail_context(AA_EIO, "%s", path);
+    return status;
+}
+
+/* A PNG ends with its IEND chunk.  OpenImageIO stops reading at the last
+ * row, so a file cut inside that chunk (or just before it) reads whole:
+ * such a file is refused all the same, as cut short.  A file that cannot be
+ * read here, or does not start as a PNG, is left to its reader, which says
+ * what is wrong with it. */
+int aa_png_complete(const char *path)
+{
+    static const unsigned char magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+    unsigned char head[8], tail[12];
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return AA_OK;
+    int png = fread(head, 1, sizeof head, f) == sizeof head && !memcmp(head, magic, sizeof magic);
+    int whole = !png || (fseeko(f, -(off_t)sizeof tail, SEEK_END) == 0 &&
+                         fread(tail, 1, sizeof tail, f) == sizeof tail &&
+                         !memcmp(tail, iend, sizeof iend));
+    int failed = ferror(f);
+    fclose(f);
+    if (!whole && !failed)
+        return aa_fail(AA_EIO, "%s: the PNG file does not end with its IEND chunk (cut "
+                       "short: was the disk full?)", path);
     return AA_OK;
 }
 
 static int read_oiio(const char *path, aa_image *im)
 {
+    /* Before OpenImageIO reads it: its PNG reader, given a file that ends
+     * early, leaks what libpng's error jump skips, and libpng prints. */
+    int status = aa_png_complete(path);
+    if (status != AA_OK)
+        return status;
     const aa__oiio_api *oiio = aa__oiio(path);
     if (oiio == NULL)
         return AA_EIO;
     aa__oiio_in *in;
     aa__oiio_info info;
-    int status = oiio->open(path, &in, &info);
+    status = oiio->open(path, &in, &info);
     if (status != AA_OK)
         return status;
     status = check_file_size(path, &info);
@@ -542,6 +741,30 @@ static int read_oiio(const char *path, aa_image *im)
     if (!info.is_float)
         decode_integers(im, &info);
     return AA_OK;
+}
+
+int aa_image_file_size(const char *path, int *w, int *h, int *c)
+{
+    if (path == NULL || w == NULL || h == NULL || c == NULL)
+        return aa_fail(AA_EINVAL, "aa_image_file_size: no path or nowhere to put the sizes");
+    const image_format *f = format_of(path);
+    if (f == NULL)
+        return unknown_format(path);
+    if (f->kind == FORMAT_TXT)
+        return aa__txt_info(path, w, h, c);
+    const aa__oiio_api *oiio = aa__oiio(path);
+    if (oiio == NULL)
+        return AA_EIO;
+    aa__oiio_in *in;
+    aa__oiio_info info;
+    int status = oiio->open(path, &in, &info);
+    if (status != AA_OK)
+        return status;
+    oiio->close(in);
+    status = check_file_sides(path, &info);
+    if (status == AA_OK)
+        *w = info.w, *h = info.h, *c = info.c;
+    return status;
 }
 
 int aa_image_read(const char *path, aa_image *im)
@@ -569,8 +792,9 @@ int aa_image_read(const char *path, aa_image *im)
 
 static pthread_once_t oiio_once = PTHREAD_ONCE_INIT;
 static const aa__oiio_api *oiio_api;
-/* Why oiio_api is NULL, for every caller's message. */
+/* Why oiio_api is NULL, for every caller's message, and the status. */
 static char oiio_why[768];
+static int oiio_status = AA_EIO;
 
 /* Say why in oiio_why (cut to fit). */
 static void oiio_say(const char *fmt, ...)
@@ -599,9 +823,120 @@ static void oiio_load(void)
 
 #else
 
+/* Loading the module runs the static constructors of the ~250 libraries
+ * under OpenImageIO.  Under a limit on this process's memory (RLIMIT_AS, as
+ * `ulimit -v` sets, or RLIMIT_DATA), some of them fail in ways that end the
+ * process before any code of ours can catch anything: a C++ exception out
+ * of a constructor (std::bad_alloc, std::system_error when a thread cannot
+ * be started) is std::terminate, and the loader's own failures to allocate
+ * thread-local storage or to load libgcc_s for unwinding are fatal errors.
+ * Which one happens depends on the limit to the megabyte.
+ *
+ * So under such a limit the module is first loaded by a child process (a
+ * copy of this one, with the same memory in use, and a margin taken away):
+ * only if the child loads it is it loaded here.  Otherwise the failure is
+ * reported as out of memory, naming the limit.  Without a limit (the usual
+ * case) this costs nothing. */
+
+/* Room the trial leaves unused (below). */
+#define OIIO_TRIAL_MARGIN ((size_t)64 << 20)
+
+/* The soft limit that applies, in bytes, and its name; 0 if none. */
+static double memory_limit(const char **name)
+{
+    struct rlimit r;
+    double limit = 0;
+    if (getrlimit(RLIMIT_AS, &r) == 0 && r.rlim_cur != RLIM_INFINITY) {
+        limit = (double)r.rlim_cur;
+        *name = "address space (RLIMIT_AS, ulimit -v)";
+    }
+    if (getrlimit(RLIMIT_DATA, &r) == 0 && r.rlim_cur != RLIM_INFINITY &&
+        (limit == 0 || (double)r.rlim_cur < limit)) {
+        limit = (double)r.rlim_cur;
+        *name = "data size (RLIMIT_DATA, ulimit -d)";
+    }
+    return limit;
+}
+
+/* 1 if the module may be loaded here: there is no limit, or a child
+ * loaded it with room to spare, or no child could be asked.  0 after
+ * saying in oiio_why what the child met. */
+static int oiio_trial(const char *path)
+{
+    const char *what = NULL;
+    double limit = memory_limit(&what);
+    int fds[2];
+    if (limit == 0 || access(path, F_OK) != 0 || pipe(fds) != 0)
+        return 1;
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(fds[0]);
+        close(fds[1]);
+        return 1; /* no trial: try here */
+    }
+    if (pid == 0) {
+        /* The child: whatever the libraries print as they die is not for
+         * the user; the parent says what happened.  Only the loader's
+         * message comes back, through the pipe. */
+        close(fds[0]);
+        int null = open("/dev/null", O_WRONLY);
+        if (null >= 0)
+            dup2(null, STDERR_FILENO);
+        /* The child has one thread where this process may have several,
+         * each of which the loader gives thread-local storage: it loads
+         * with OIIO_TRIAL_MARGIN bytes less room (writable, so RLIMIT_DATA
+         * counts them too; never touched), so that a close call in the
+         * child is a failure here too. */
+        if (mmap(NULL, OIIO_TRIAL_MARGIN, PROT_READ | PROT_WRITE,
+                 MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0) == MAP_FAILED)
+            _exit(2);
+        if (dlopen(path, RTLD_NOW | RTLD_LOCAL) != NULL)
+            _exit(0);
+        const char *err = dlerror();
+        if (err != NULL && write(fds[1], err, strlen(err)) < 0)
+            _exit(1);
+        _exit(1);
+    }
+    close(fds[1]);
+    char said[256];
+    size_t n = 0;
+    ssize_t k;
+    while (n < sizeof said - 1 &&
+           ((k = read(fds[0], said + n, sizeof said - 1 - n)) > 0 || (k < 0 && errno == EINTR)))
+        n += k > 0 ? (size_t)k : 0;
+    said[n] = '\0';
+    close(fds[0]);
+    int ws;
+    pid_t got;
+    while ((got = waitpid(pid, &ws, 0)) < 0 && errno == EINTR)
+        ;
+    if (got != pid)
+        return 1; /* reaped elsewhere (SIGCHLD ignored): try here */
+    if (WIFEXITED(ws) && WEXITSTATUS(ws) == 0)
+        return 1;
+    char how[400];
+    if (WIFEXITED(ws) && WEXITSTATUS(ws) == 1)
+        snprintf(how, sizeof how, "failed: %s", n ? said : "no reason given");
+    else if (WIFEXITED(ws) && WEXITSTATUS(ws) == 2)
+        snprintf(how, sizeof how, "found no room for a margin of %zu MB",
+                 OIIO_TRIAL_MARGIN >> 20);
+    else if (WIFSIGNALED(ws))
+        snprintf(how, sizeof how, "was ended by signal %d (%s)", WTERMSIG(ws),
+                 strsignal(WTERMSIG(ws)));
+    else
+        snprintf(how, sizeof how, "ended with exit status %d", WEXITSTATUS(ws));
+    oiio_say("not enough memory to load it under this process's limit of %.0f MB of %s (a "
+             "trial load in a child process, with %zu MB to spare, %s); raise the limit",
+             limit / 1e6, what, OIIO_TRIAL_MARGIN >> 20, how);
+    oiio_status = AA_ENOMEM;
+    return 0;
+}
+
 /* Load the module at `path` into oiio_api, or say why not in oiio_why. */
 static void oiio_open(const char *path)
 {
+    if (!oiio_trial(path))
+        return;
     void *module = dlopen(path, RTLD_NOW | RTLD_LOCAL);
     if (module == NULL) {
         const char *err = dlerror();
@@ -697,7 +1032,7 @@ const aa__oiio_api *aa__oiio(const char *path)
 {
     pthread_once(&oiio_once, oiio_load);
     if (oiio_api == NULL)
-        aa_fail(AA_EIO, "%s: %s", path, oiio_why);
+        aa_fail(oiio_status, "%s: %s", path, oiio_why);
     return oiio_api;
 }
 

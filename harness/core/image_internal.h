@@ -33,15 +33,16 @@ typedef enum aa__number_result {
  * that cannot continue a number (blank or NUL).  Needs aa__c_numbers. */
 aa__number_result aa__parse_number(const char *s, size_t len, double *v);
 
-/* Write the file `tmp` with stdio (image.c): `body` returns nonzero on a
- * write error, with errno set. */
-int aa__image_stdio_write(const char *tmp, const aa_image *im,
-                          int (*body)(FILE *f, const aa_image *im));
-
-/* The .txt format (image_txt.c).  Write `im` to the new file `tmp`. */
-int aa__txt_write_file(const char *tmp, const aa_image *im);
-/* The format holds finite values only: refuse the others before any file
- * is made. */
+/* The .txt format (image_txt.c): the header line, then rows y0 .. y0 +
+ * rows - 1 of a W-wide image of C channels (v holds just those rows).
+ * Both return -1 with errno set on a write error. */
+int aa__txt_header(FILE *f, int w, int h, int c);
+int aa__txt_rows(FILE *f, const double *v, int w, int y0, int rows, int c);
+/* The sizes a .txt file's header gives, checked as the reader does. */
+int aa__txt_info(const char *path, int *w, int *h, int *c);
+/* The format holds finite values only: refuse the others before they are
+ * written, naming the pixel. */
 int aa__txt_check_finite(const char *path, const aa_image *im);
+int aa__txt_check_finite_rows(const char *path, const double *v, int w, int y0, int rows, int c);
 
 #endif

@@ -34,19 +34,22 @@
  * Writing .txt
  * ------------------------------------------------------------------------ */
 
-static int txt_lines(FILE *f, const aa_image *im)
+int aa__txt_header(FILE *f, int w, int h, int c)
 {
-    if (fprintf(f, "# aabench %d %d %d\n", im->w, im->h, im->c) < 0)
-        return -1;
-    for (int j = 0; j < im->h; j++) {
-        for (int i = 0; i < im->w; i++) {
-            const double *v = aa_pixel(im, i, j);
-            if (fprintf(f, "%d %d", i, j) < 0)
+    return fprintf(f, "# aabench %d %d %d\n", w, h, c) < 0 ? -1 : 0;
+}
+
+static int txt_lines(FILE *f, const double *v, int w, int y0, int rows, int c)
+{
+    for (int j = 0; j < rows; j++) {
+        for (int i = 0; i < w; i++) {
+            const double *p = v + ((size_t)j * (size_t)w + (size_t)i) * (size_t)c;
+            if (fprintf(f, "%d %d", i, y0 + j) < 0)
                 return -1;
             /* 17 significant digits identify every double (IEEE 754-2008,
              * 5.12.2), so strtod gives back the same bits. */
-            for (int k = 0; k < im->c; k++)
-                if (fprintf(f, " %.17g", v[k]) < 0)
+            for (int k = 0; k < c; k++)
+                if (fprintf(f, " %.17g", p[k]) < 0)
                     return -1;
             if (putc('\n', f) == EOF)
                 return -1;
@@ -55,31 +58,37 @@ static int txt_lines(FILE *f, const aa_image *im)
     return 0;
 }
 
-int aa__txt_write_file(const char *tmp, const aa_image *im)
+int aa__txt_rows(FILE *f, const double *v, int w, int y0, int rows, int c)
 {
     aa__c_numbers numbers;
-    int status = aa__c_numbers_enter(&numbers, tmp);
-    if (status != AA_OK)
-        return status;
-    status = aa__image_stdio_write(tmp, im, txt_lines);
+    if (aa__c_numbers_begin(&numbers) != 0)
+        return -1;
+    int failed = txt_lines(f, v, w, y0, rows, c);
+    int err = errno;
     aa__c_numbers_end(&numbers);
-    return status;
+    errno = err;
+    return failed;
 }
 
 /* The reader refuses values that are not finite, so the writer refuses them
- * too, before any file is made. */
-int aa__txt_check_finite(const char *path, const aa_image *im)
+ * too, before any of them is written. */
+int aa__txt_check_finite_rows(const char *path, const double *v, int w, int y0, int rows, int c)
 {
-    size_t n = (size_t)im->w * (size_t)im->h * (size_t)im->c;
+    size_t n = (size_t)w * (size_t)rows * (size_t)c;
     for (size_t k = 0; k < n; k++) {
-        if (!isfinite(im->v[k])) {
-            size_t pixel = k / (size_t)im->c;
+        if (!isfinite(v[k])) {
+            size_t pixel = k / (size_t)c;
             return aa_fail(AA_EINVAL, "%s: pixel (%zu, %zu) channel %zu is %g: .txt holds "
-                           "finite values only", path, pixel % (size_t)im->w,
-                           pixel / (size_t)im->w, k % (size_t)im->c, im->v[k]);
+                           "finite values only", path, pixel % (size_t)w,
+                           (size_t)y0 + pixel / (size_t)w, k % (size_t)c, v[k]);
         }
     }
     return AA_OK;
+}
+
+int aa__txt_check_finite(const char *path, const aa_image *im)
+{
+    return aa__txt_check_finite_rows(path, im->v, im->w, 0, im->h, im->c);
 }
 
 /* ------------------------------------------------------------------------
@@ -205,10 +214,28 @@ static int txt_header(txt_reader *r, int *w, int *h, int *c)
         return txt_refuse(r, "image %d x %d: sides must be in [1, %d]", *w, *h, AA_MAX_SIDE);
     if (*c < 1 || *c > AA__IMAGE_MAX_CHANNELS)
         return txt_refuse(r, "%d channels: must be in [1, %d]", *c, AA__IMAGE_MAX_CHANNELS);
-    status = aa_size_check(*w, *h, *c, 1);
-    if (status != AA_OK)
-        return aa_fail_context(AA_EIO, "%s:%lu", r->path, r->line);
     return AA_OK;
+}
+
+/* "nan", "inf" or "infinity", in any case, signed or not: what printf
+ * writes for values the format does not hold. */
+static int non_finite_word(const token *t)
+{
+    static const char *const words[] = {"nan", "inf", "infinity"};
+    const char *s = t->s;
+    size_t n = t->n;
+    if (n > 0 && (*s == '+' || *s == '-'))
+        s++, n--;
+    for (size_t w = 0; w < sizeof words / sizeof words[0]; w++) {
+        if (strlen(words[w]) != n)
+            continue;
+        size_t k = 0;
+        while (k < n && (s[k] | 0x20) == words[w][k])
+            k++;
+        if (k == n)
+            return 1;
+    }
+    return 0;
 }
 
 /* One pixel line: "i j v0 .. v(c-1)" for pixel (i, j). */
@@ -236,8 +263,14 @@ static int txt_pixel(txt_reader *r, int i, int j, int c, double *v)
         switch (aa__parse_number(t.s, t.n, &v[k])) {
         case AA__NUMBER_OK: break;
         case AA__NUMBER_NOT_FINITE:
-            return txt_refuse(r, "'%.*s' is not finite", shown(&t), t.s);
-        default: return txt_refuse(r, "malformed number '%.*s'", shown(&t), t.s);
+            return txt_refuse(r, "pixel (%d, %d) channel %d: '%.*s' is not finite: .txt holds "
+                              "finite values only", i, j, k, shown(&t), t.s);
+        default:
+            if (non_finite_word(&t))
+                return txt_refuse(r, "pixel (%d, %d) channel %d: malformed number '%.*s': "
+                                  ".txt holds finite values only", i, j, k, shown(&t), t.s);
+            return txt_refuse(r, "pixel (%d, %d) channel %d: malformed number '%.*s'", i, j, k,
+                              shown(&t), t.s);
         }
     }
     token extra;
@@ -265,10 +298,25 @@ static int txt_read(txt_reader *r, aa_image *im)
 {
     int w = 0, h = 0, c = 0;
     int status = txt_header(r, &w, &h, &c);
+    if (status == AA_OK && aa_size_check(w, h, c, 1) != AA_OK)
+        status = aa_fail_context(AA_EIO, "%s:%lu", r->path, r->line);
     if (status == AA_OK)
         status = aa_image_alloc(im, w, h, c);
     if (status == AA_OK)
         status = txt_body(r, im);
+    return status;
+}
+
+int aa__txt_info(const char *path, int *w, int *h, int *c)
+{
+    txt_reader r = {.path = path};
+    r.f = fopen(path, "r");
+    if (r.f == NULL)
+        return aa_fail(AA_EIO, "%s: cannot open: %s", path, strerror(errno));
+    flockfile(r.f);
+    int status = txt_header(&r, w, h, c);
+    funlockfile(r.f);
+    fclose(r.f);
     return status;
 }
 

@@ -19,6 +19,14 @@
  * rather than calling it by name, so it needs no symbol of the program that
  * loads it.
  *
+ * Loading it runs the static constructors of those libraries, which may
+ * throw (std::bad_alloc, std::system_error) or fail fatally in the loader
+ * when memory is short, before any code of ours runs: no catch can stop
+ * that ending the process.  So under a limit on the process's memory
+ * (RLIMIT_AS or RLIMIT_DATA) image.c first loads the module in a child
+ * process, with a margin of room taken away, and reports AA_ENOMEM naming
+ * the limit if the child does not come back.
+ *
  * Built with -DAA_OIIO_STATIC (the fuzzing build), image.c calls
  * aa__oiio_entry() directly and oiio.o is linked into the program.
  *
@@ -39,7 +47,7 @@ extern "C" {
 #define AA__OIIO_ENTRY "aa__oiio_entry"
 /* Raised whenever the table or the meaning of an entry changes, so a module
  * from another build is refused rather than called wrongly. */
-#define AA__OIIO_VERSION 1
+#define AA__OIIO_VERSION 2
 
 /* What an opened file holds. */
 typedef struct aa__oiio_info {
@@ -53,27 +61,39 @@ typedef struct aa__oiio_info {
 } aa__oiio_info;
 
 typedef struct aa__oiio_in aa__oiio_in;
+typedef struct aa__oiio_out aa__oiio_out;
 
 typedef struct aa__oiio_api {
-    /* Write `pixels` to `path` in the file format named `format` (an
-     * extension without the dot: "exr", "tif", "png"), stored as 32-bit
-     * float.  The format is given apart from `path` because the file is
-     * written under a temporary name.  On failure a partial file may remain
-     * at `path`: the caller removes it. */
-    int (*write_float)(const char *path, const char *format, int w, int h, int c,
-                       const double *pixels);
-    /* The same for 8-bit samples already display-encoded by the caller; the
-     * file is tagged with the encoding `gamma` (as in aa__oiio_info) when
-     * the format can say it (PNG: sRGB chunk or gAMA). */
-    int (*write_8bit)(const char *path, const char *format, int w, int h, int c,
-                      const unsigned char *pixels, double gamma);
+    /* Create the new file `path` (it must not exist) and start writing a
+     * W x H x C image to it in the file format named `format` (an extension
+     * without the dot: "exr", "tif", "png"; given apart from `path` because
+     * the file is written under a temporary name).  With `is_float`, the
+     * samples are given as doubles and stored as 32-bit floats; otherwise
+     * they are given as 8-bit codes already display-encoded by the caller,
+     * and the file is tagged with the encoding `gamma` (as in aa__oiio_info)
+     * when the format can say it (PNG: sRGB chunk or gAMA).  Every byte
+     * goes through our own file descriptor, so every failing write, seek
+     * and close is seen.  *out is NULL on failure; a file may remain at
+     * `path`: the caller removes it. */
+    int (*out_open)(const char *path, const char *format, int w, int h, int c, int is_float,
+                    double gamma, aa__oiio_out **out);
+    /* Rows [y0, y1) of the image, in order, as W x (y1 - y0) x C samples
+     * of the kind given to out_open. */
+    int (*out_rows)(aa__oiio_out *out, int y0, int y1, const void *pixels);
+    /* Finish the file: OpenImageIO's close, then ours; AA_OK only if every
+     * call and every write since out_open succeeded.  Frees `out`. */
+    int (*out_close)(aa__oiio_out *out);
+    /* Give up writing: close and free without checking; NULL is fine. */
+    void (*out_abort)(aa__oiio_out *out);
     /* Open `path` and describe it in `info`; nothing is read or allocated
      * for the pixels, so the caller can check the sizes first.  Refuses deep
      * and volume images.  *in is NULL on failure. */
     int (*open)(const char *path, aa__oiio_in **in, aa__oiio_info *info);
     /* Read the first subimage into `pixels` (info.w * info.h * info.c
      * doubles) as stored, converted to double: integer samples become
-     * stored / max (no display decoding). */
+     * stored / max (no display decoding).  A file that ends early or holds
+     * damaged data is refused, even where OpenImageIO's read call returns
+     * true and leaves the failure in its error state only. */
     int (*read)(aa__oiio_in *in, double *pixels);
     /* Close and free; NULL is fine. */
     void (*close)(aa__oiio_in *in);

@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #define SPEC_MAX_TEXT 4096
@@ -314,6 +315,8 @@ int aa_size_parse(const char *text, int *w, int *h)
     return AA_OK;
 }
 
+/* ---- memory ---- */
+
 /* Physical memory in bytes, or 0 if unknown. */
 static double physical_memory(void)
 {
@@ -321,20 +324,177 @@ static double physical_memory(void)
     return pages > 0 && size > 0 ? (double)pages * (double)size : 0.0;
 }
 
+/* The number in a one-line file such as memory.max; 0 for "max", absent
+ * or unreadable, and for the v1 "no limit" (a number near 2^63). */
+static double limit_file(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return 0;
+    char line[64];
+    double v = 0;
+    if (fgets(line, sizeof line, f) != NULL && isdigit((unsigned char)line[0]))
+        v = strtod(line, NULL);
+    fclose(f);
+    return v > 0 && v < 0x1p60 ? v : 0;
+}
+
+/* The smaller of two limits, 0 meaning none. */
+static double smaller(double a, double b)
+{
+    return a == 0 ? b : b == 0 ? a : (a < b ? a : b);
+}
+
+/* The cgroup memory limit of this process, or 0: version 2 (memory.max of
+ * its cgroup and of every cgroup above it, up to the root of the
+ * hierarchy this process sees) and version 1 (memory.limit_in_bytes). */
+static double cgroup_limit(const char **version)
+{
+    double v2 = limit_file("/sys/fs/cgroup/memory.max");
+    double v1 = limit_file("/sys/fs/cgroup/memory/memory.limit_in_bytes");
+    FILE *f = fopen("/proc/self/cgroup", "r");
+    char line[1024], path[1200];
+    while (f != NULL && fgets(line, sizeof line, f) != NULL) {
+        /* "ID:CONTROLLERS:PATH"; version 2 is "0::PATH" */
+        line[strcspn(line, "\n")] = '\0';
+        char *c1 = strchr(line, ':'), *c2 = c1 != NULL ? strchr(c1 + 1, ':') : NULL;
+        if (c2 == NULL || c2[1] != '/')
+            continue;
+        *c2 = '\0';
+        int v2line = strcmp(line, "0:") == 0, memory = 0;
+        for (char *w = c1 + 1; *w && !memory; w += strcspn(w, ","), w += *w == ',')
+            memory = strncmp(w, "memory", 6) == 0 && (w[6] == ',' || w[6] == '\0');
+        if (!v2line && !memory)
+            continue;
+        const char *dir = c2 + 1;
+        /* the cgroup, then each cgroup above it */
+        char cg[1024];
+        snprintf(cg, sizeof cg, "%s", dir);
+        for (;;) {
+            size_t n = strlen(cg);
+            while (n > 1 && cg[n - 1] == '/')
+                cg[--n] = '\0';
+            if (v2line) {
+                snprintf(path, sizeof path, "/sys/fs/cgroup%s/memory.max", cg);
+                v2 = smaller(v2, limit_file(path));
+            } else {
+                snprintf(path, sizeof path, "/sys/fs/cgroup/memory%s/memory.limit_in_bytes", cg);
+                v1 = smaller(v1, limit_file(path));
+            }
+            char *slash = strrchr(cg, '/');
+            if (slash == NULL || slash == cg)
+                break;
+            *slash = '\0';
+        }
+    }
+    if (f != NULL)
+        fclose(f);
+    *version = v2 != 0 && (v1 == 0 || v2 <= v1) ? "the cgroup's memory.max"
+                                                 : "the cgroup's memory.limit_in_bytes";
+    return smaller(v2, v1);
+}
+
+/* Address space and data in use by this process (/proc/self/statm: size,
+ * and data + stack), in bytes; 0 if unknown. */
+static void in_use(double *vm, double *data)
+{
+    *vm = *data = 0;
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (f == NULL)
+        return;
+    unsigned long size, rss, shared, text, lib, dat;
+    long page = sysconf(_SC_PAGESIZE);
+    if (fscanf(f, "%lu %lu %lu %lu %lu %lu", &size, &rss, &shared, &text, &lib, &dat) == 6 &&
+        page > 0) {
+        *vm = (double)size * (double)page;
+        *data = (double)dat * (double)page;
+    }
+    fclose(f);
+}
+
+/* "1.5 GB" or "300 MB". */
+static void bytes_text(double b, char *buf, size_t len)
+{
+    if (b >= 1e9)
+        snprintf(buf, len, "%.1f GB", b / 1e9);
+    else
+        snprintf(buf, len, "%.0f MB", b / 1e6);
+}
+
+double aa_memory_budget(char *why, size_t len)
+{
+    char a[32], b[32];
+    double budget = 0, phys = physical_memory();
+    const char *version = NULL;
+    double cg = cgroup_limit(&version);
+    if (why != NULL && len > 0)
+        why[0] = '\0';
+    /* The machine, or this process's cgroup: half of it, the rest for
+     * everything else. */
+    if (phys > 0 && (cg == 0 || phys <= cg)) {
+        budget = phys / 2;
+        bytes_text(phys, a, sizeof a);
+        if (why != NULL)
+            snprintf(why, len, "half of this machine's %s", a);
+    } else if (cg > 0) {
+        budget = cg / 2;
+        bytes_text(cg, a, sizeof a);
+        if (why != NULL)
+            snprintf(why, len, "half of %s, %s", version, a);
+    }
+    /* Limits of this process (setrlimit, ulimit -v / -d): what is left. */
+    double vm, data;
+    in_use(&vm, &data);
+    struct rlimit r;
+    if (getrlimit(RLIMIT_AS, &r) == 0 && r.rlim_cur != RLIM_INFINITY) {
+        double left = (double)r.rlim_cur - vm;
+        left = left > 0 ? left : 1;
+        if (budget == 0 || left < budget) {
+            budget = left;
+            bytes_text((double)r.rlim_cur, a, sizeof a);
+            bytes_text(vm, b, sizeof b);
+            if (why != NULL)
+                snprintf(why, len, "what is left of this process's address-space limit "
+                         "RLIMIT_AS (ulimit -v) of %s, %s being in use", a, b);
+        }
+    }
+    if (getrlimit(RLIMIT_DATA, &r) == 0 && r.rlim_cur != RLIM_INFINITY) {
+        double left = (double)r.rlim_cur - data;
+        left = left > 0 ? left : 1;
+        if (budget == 0 || left < budget) {
+            budget = left;
+            bytes_text((double)r.rlim_cur, a, sizeof a);
+            bytes_text(data, b, sizeof b);
+            if (why != NULL)
+                snprintf(why, len, "what is left of this process's data limit RLIMIT_DATA "
+                         "(ulimit -d) of %s, %s being in use", a, b);
+        }
+    }
+    return budget;
+}
+
+int aa_memory_check(double bytes, const char *what)
+{
+    char why[256], need[32], have[32];
+    if (!(bytes <= (double)SIZE_MAX / 2))
+        return aa_fail(AA_EINVAL, "%s is too large to address", what);
+    double budget = aa_memory_budget(why, sizeof why);
+    if (budget > 0 && bytes > budget) {
+        bytes_text(bytes, need, sizeof need);
+        bytes_text(budget, have, sizeof have);
+        return aa_fail(AA_EINVAL, "%s needs %s of memory; the limit is %s (%s)", what, need,
+                       have, why);
+    }
+    return AA_OK;
+}
+
 int aa_size_check(int w, int h, int channels, int copies)
 {
     if (w < 1 || h < 1 || w > AA_MAX_SIDE || h > AA_MAX_SIDE || channels < 1 || copies < 1)
         return aa_fail(AA_EINVAL, "image size %dx%dx%d out of range (sides 1 to %d)", w, h,
                        channels, AA_MAX_SIDE);
-    double need = (double)w * h * channels * copies * sizeof(double);
-    double have = physical_memory();
-    /* Leave half of the machine for everything else. */
-    if (have > 0 && need > have / 2)
-        return aa_fail(AA_EINVAL,
-                       "size %dx%d needs %.1f GB of images, more than half of this machine's "
-                       "%.1f GB",
-                       w, h, need / 1e9, have / 1e9);
-    if (need > (double)SIZE_MAX / 2)
-        return aa_fail(AA_EINVAL, "size %dx%d is too large to address", w, h);
-    return AA_OK;
+    char what[64];
+    snprintf(what, sizeof what, "size %dx%d (%d image%s of %d channel%s)", w, h, copies,
+             copies == 1 ? "" : "s", channels, channels == 1 ? "" : "s");
+    return aa_memory_check((double)w * h * channels * copies * sizeof(double), what);
 }
