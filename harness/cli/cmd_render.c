@@ -211,10 +211,12 @@ int cmd_render(int argc, char **argv)
     /* every output written before any replaces what was there */
     cli_outputs outs = {0};
     const char *tmp;
-    if (!st && !(st = cli_stage(&outs, a.out, &tmp)))
-        st = aa_image_write(tmp, &img, &a.enc);
+    if (!st && !(st = cli_stage(&outs, a.out, &tmp)) &&
+        (st = aa_image_write(tmp, &img, &a.enc)))
+        st = aa_fail_context(st, "cannot write %s", a.out);
     if (!st && a.stats && !(st = cli_stage(&outs, a.stats, &tmp)))
-        st = write_stats(tmp, &a, &pattern, &method, &f, w, h, timing, &counters, threads);
+        if ((st = write_stats(tmp, &a, &pattern, &method, &f, w, h, timing, &counters, threads)))
+            st = aa_fail_context(st, "cannot write %s", a.stats);
     if (!st)
         st = cli_commit(&outs);
     else

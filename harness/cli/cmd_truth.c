@@ -122,10 +122,12 @@ int cmd_truth(int argc, char **argv)
     /* every output written before any replaces what was there */
     cli_outputs outs = {0};
     const char *tmp;
-    if (!st && !(st = cli_stage(&outs, a.out, &tmp)))
-        st = aa_image_write(tmp, &img, &a.enc);
-    if (!st && a.bound && !(st = cli_stage(&outs, a.bound, &tmp)))
-        st = aa_image_write(tmp, &bound, NULL);
+    if (!st && !(st = cli_stage(&outs, a.out, &tmp)) &&
+        (st = aa_image_write(tmp, &img, &a.enc)))
+        st = aa_fail_context(st, "cannot write %s", a.out);
+    if (!st && a.bound && !(st = cli_stage(&outs, a.bound, &tmp)) &&
+        (st = aa_image_write(tmp, &bound, NULL)))
+        st = aa_fail_context(st, "cannot write %s", a.bound);
     if (!st)
         st = cli_commit(&outs);
     else
