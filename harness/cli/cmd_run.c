@@ -878,7 +878,7 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         st = aa_run(c, &rows, &n);
         /* the rows aa_run returns, whatever its status */
         int gst = grow(&ctx, n);
-        if (!gst) {
+        if (!gst && n) {
             memcpy(ctx.all + ctx.nall, rows, n * sizeof *rows);
             ctx.nall += n;
         } else if (!st) {
