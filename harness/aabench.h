@@ -63,8 +63,17 @@ typedef enum aa_param_kind {
     AA_PARAM_END = 0, /* terminates a parameter list */
     AA_PARAM_INT,     /* an integer in [min, max] */
     AA_PARAM_REAL,    /* a finite real in [min, max], or (min, max] if open_min */
-    AA_PARAM_CHOICE   /* one word of `choices` ("a|b|c"); the value is its index */
+    AA_PARAM_CHOICE,  /* one word of `choices` ("a|b|c"); the value is its index */
+    /* A word that names something found at run time, such as an external
+     * renderer's adapter: letters, digits, '.', '_' and '-', starting with a
+     * letter or digit, at most AA_PARAM_WORD_MAX characters.  The value is
+     * the word's number in a table kept for the life of the process
+     * (aa_param_word gives the word back); `choices` holds the default word.
+     * Whether the word names anything is the method's check to say. */
+    AA_PARAM_WORD
 } aa_param_kind;
+
+#define AA_PARAM_WORD_MAX 63
 
 typedef struct aa_param {
     const char *key;
@@ -93,6 +102,8 @@ typedef struct aa_spec {
  * parameters in the order of its aa_param list (an index is the position in
  * that list; CHOICE values are word indices).  The index of `key`, or -1. */
 int aa_spec_index(const aa_info *info, const char *key);
+/* The word of an AA_PARAM_WORD value ("" for a value that numbers none). */
+const char *aa_param_word(double value);
 
 /* ------------------------------------------------------------------------
  * Images: W x H x C doubles, row-major, linear light
@@ -346,7 +357,10 @@ enum aa_method_flags {
     /* the method renders a field scene (aa_scene_field) through its point
      * function; a method without this flag is refused a field scene by
      * aa_method_init, rather than rendering the background */
-    AA_METHOD_FIELDS = 8 /* 16: AA_METHOD_DISPLAY, built-in only (core.h, "Displays") */
+    AA_METHOD_FIELDS = 8, /* 16: AA_METHOD_DISPLAY, built-in only (core.h, "Displays") */
+    /* render runs another program (an external renderer): its time includes
+     * that program's start-up, and a run's row says so in its note */
+    AA_METHOD_EXTERNAL = 32
 };
 
 typedef struct aa_method_type {

@@ -70,6 +70,7 @@ int cli_progress_wanted(void);
 int cmd_list(int argc, char **argv);
 int cmd_truth(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_export(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_stress(int argc, char **argv);
 int cmd_figures(int argc, char **argv);
