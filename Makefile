@@ -20,8 +20,8 @@ CC     := gcc
 CXX    := g++
 
 PKGS      := gsl
-# the peer rasterizers (algorithms/freetype.c, stb.c, cairo.c)
-PKGS      += freetype2 stb cairo
+# the peer rasterizers (algorithms/freetype.c, stb.c, cairo.c, agg.cpp)
+PKGS      += freetype2 stb cairo libagg
 TEST_PKGS := cmocka
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
@@ -41,7 +41,8 @@ HARNESS  := harness/core harness/truth harness/bench harness/cli
 CPPFLAGS := -MMD -MP -D_DEFAULT_SOURCE -Iharness $(addprefix -I,$(HARNESS)) -Ipatterns -Ialgorithms
 CFLAGS   := -std=c11 -O2 -g $(WARN) -fopenmp -fPIC
 CXXFLAGS := -std=c++17 -O2 -g -Wall -Wextra -Werror -fPIC
-LDLIBS    = $(PKG_LIBS) -lm -ldl -fopenmp
+# -lstdc++: the AGG peer (algorithms/agg.cpp) is C++ inside the library
+LDLIBS    = $(PKG_LIBS) -lstdc++ -lm -ldl -fopenmp
 
 SAN       := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 SAN_BUILD := $(BUILD)/san
@@ -51,6 +52,11 @@ CLI_SRC  := $(wildcard harness/cli/*.c)
 CLI_LIB_SRC := $(filter-out harness/cli/main.c,$(CLI_SRC))
 LIB_CSRC := $(wildcard harness/core/*.c harness/truth/*.c harness/bench/*.c) \
             $(wildcard patterns/*.c) $(wildcard algorithms/*.c)
+# C++ methods (agg.cpp), linked into the library; no exception leaves them.
+# C++20: AGG shifts negative covers left, which C++17 leaves undefined and
+# C++20 defines (two's complement).
+LIB_CXXSRC := $(wildcard algorithms/*.cpp)
+ALGO_CXXFLAGS = $(CXXFLAGS) -std=c++20 -fopenmp
 OIIO_SRC := harness/core/oiio.cpp
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_AUX := $(filter-out $(TEST_SRC) tests/bench_%.c tests/plugin_%.c,$(wildcard tests/*.c))
@@ -59,7 +65,7 @@ BENCH_SRC := $(wildcard tests/bench_*.c)
 
 # The library's objects in build folder $(1)
 define objs
-$(patsubst %.c,$(1)/obj/%.o,$(LIB_CSRC))
+$(patsubst %.c,$(1)/obj/%.o,$(LIB_CSRC)) $(patsubst %.cpp,$(1)/obj/%.o,$(LIB_CXXSRC))
 endef
 
 LIB      := $(BUILD)/libaabench.a
@@ -109,6 +115,10 @@ $(BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	@echo '  CXX   $@'
 	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(OIIO_CFLAGS) -c $< -o $@
+$(BUILD)/obj/algorithms/%.o: algorithms/%.cpp
+	@mkdir -p $(dir $@)
+	@echo '  CXX   $@'
+	$(Q)$(CXX) $(CPPFLAGS) $(ALGO_CXXFLAGS) $(PKG_CFLAGS) -c $< -o $@
 # The module's install folder is compiled into image.o, which is remade when
 # PREFIX changes (the file $(BUILD)/oiio-dir holds the last one).
 $(BUILD)/oiio-dir: FORCE
@@ -133,6 +143,12 @@ $(BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)
 $(SAN_BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"' \
   -DAA_BUILD_FLAGS='"$(CFLAGS) -O1 $(SAN)"'
 $(BUILD)/fuzz/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"'
+# The external method's renderer adapters: this tree's scripts/renderers,
+# then their copy that `make install` puts in $(OIIO_DIR)/renderers.
+$(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: $(BUILD)/oiio-dir
+$(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: \
+  CPPFLAGS += -DAA_RENDERERS_DIR='"$(CURDIR)/scripts/renderers"' \
+              -DAA_RENDERERS_INSTALLED='"$(OIIO_DIR)/renderers"'
 # -z defs: the module needs no symbol of the program that loads it.
 $(OIIO_SO): $(patsubst %.cpp,$(BUILD)/obj/%.o,$(OIIO_SRC))
 	@echo '  LD    $@'
@@ -174,6 +190,10 @@ $(SAN_BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	@echo '  CXX   $@'
 	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) -O1 $(SAN) $(OIIO_CFLAGS) -c $< -o $@
+$(SAN_BUILD)/obj/algorithms/%.o: algorithms/%.cpp
+	@mkdir -p $(dir $@)
+	@echo '  CXX   $@'
+	$(Q)$(CXX) $(CPPFLAGS) $(ALGO_CXXFLAGS) -O1 $(SAN) $(PKG_CFLAGS) -c $< -o $@
 $(SAN_OIIO_SO): $(patsubst %.cpp,$(SAN_BUILD)/obj/%.o,$(OIIO_SRC))
 	@echo '  LD    $@'
 	$(Q)$(CXX) $(CXXFLAGS) -O1 $(SAN) -shared -Wl,-z,defs $^ -o $@ $(OIIO_LIBS)
@@ -215,6 +235,10 @@ $(FUZZ_BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	@echo '  CLANG $@'
 	$(Q)clang++ $(CPPFLAGS) -std=c++17 -Wall -Wextra -Werror -fPIC $(FUZZ_FLAGS) $(OIIO_CFLAGS) -c $< -o $@
+$(FUZZ_BUILD)/obj/algorithms/%.o: algorithms/%.cpp
+	@mkdir -p $(dir $@)
+	@echo '  CLANG $@'
+	$(Q)clang++ $(CPPFLAGS) -std=c++20 -Wall -Wextra -Werror -fPIC -fopenmp $(FUZZ_FLAGS) $(PKG_CFLAGS) -c $< -o $@
 $(FUZZ_BUILD)/obj/harness/core/image.o: CPPFLAGS += -DAA_OIIO_STATIC
 $(FUZZ_BUILD)/libaabench.a: $(call objs,$(FUZZ_BUILD)) $(patsubst %.cpp,$(FUZZ_BUILD)/obj/%.o,$(OIIO_SRC))
 	@rm -f $@
@@ -327,6 +351,10 @@ install: all
 	  $(DESTDIR)$(PREFIX)/include/aabench $(DESTDIR)$(OIIO_DIR)
 	install -m 755 $(BUILD)/aabench $(DESTDIR)$(PREFIX)/bin/
 	install -m 755 $(OIIO_SO) $(DESTDIR)$(OIIO_DIR)/
+	install -d $(DESTDIR)$(OIIO_DIR)/renderers
+	install -m 755 scripts/renderers/rsvg scripts/renderers/chromium scripts/renderers/resvg \
+	  $(DESTDIR)$(OIIO_DIR)/renderers/
+	install -m 644 scripts/renderers/resvg.js scripts/renderers/README.md $(DESTDIR)$(OIIO_DIR)/renderers/
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
 	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/aabench/
 	sed -e 's|@prefix@|$(PREFIX)|' -e 's|@version@|$(AA_VERSION)|' harness/aabench.pc.in >$(BUILD)/aabench.pc

@@ -20,7 +20,15 @@ const aa_method_type *const aa_method_types[] = {
     &aa_method_freetype,
     &aa_method_stb,
     &aa_method_cairo,
+    &aa_method_agg,
     &aa_method_crowtable,
     &aa_method_conetable,
     &aa_method_crowtiler,
+    NULL};
+
+/* Methods that need an optional program (external.c runs an SVG renderer):
+ * not built in, since the generic tests render every built-in method; the
+ * command adds them to the table at start (aa_method_add_optional). */
+const aa_method_type *const aa_method_types_optional[] = {
+    &aa_method_external,
     NULL};

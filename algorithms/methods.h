@@ -5,6 +5,7 @@
 #define AA_METHODS_H
 
 #include "core.h"
+#include "agg.h" /* aa_method_agg: agg.cpp is C++ */
 
 extern const aa_method_type aa_method_point;
 extern const aa_method_type aa_method_supersample;
@@ -23,6 +24,8 @@ extern const aa_method_type aa_method_cairo;
 extern const aa_method_type aa_method_crowtable;
 extern const aa_method_type aa_method_conetable;
 extern const aa_method_type aa_method_crowtiler;
+/* runs an SVG renderer: in aa_method_types_optional, not the built-in table */
+extern const aa_method_type aa_method_external;
 
 /* Point-sample the placed scene at pixel centres offset by (dx, dy)
  * pixels into out (used by point, hexagon and trio). */

@@ -45,8 +45,7 @@ typedef enum aa_status {
     AA_EFAIL = 5   /* internal error (reported to the shell as 3) */
 } aa_status;
 
-/* Record an error for this thread and return `status`.  Every failure in the
- * library goes through here, so one breakpoint catches them all. */
+/* Record an error for this thread and return `status` (every failure). */
 int aa_fail(int status, const char *fmt, ...) AA_PRINTF(2, 3);
 /* The message of the last failure on this thread ("" if none). */
 const char *aa_last_error(void);
@@ -63,9 +62,14 @@ typedef enum aa_param_kind {
     AA_PARAM_END = 0, /* terminates a parameter list */
     AA_PARAM_INT,     /* an integer in [min, max] */
     AA_PARAM_REAL,    /* a finite real in [min, max], or (min, max] if open_min */
-    AA_PARAM_CHOICE   /* one word of `choices` ("a|b|c"); the value is its index */
+    AA_PARAM_CHOICE,  /* one word of `choices` ("a|b|c"); the value is its index */
+    /* a word naming something found at run time ([A-Za-z0-9._-], at most
+     * AA_PARAM_WORD_MAX); the value numbers it (aa_param_word); `choices`
+     * holds the default word */
+    AA_PARAM_WORD
 } aa_param_kind;
 
+#define AA_PARAM_WORD_MAX 63
 typedef struct aa_param {
     const char *key;
     aa_param_kind kind;
@@ -93,6 +97,8 @@ typedef struct aa_spec {
  * parameters in the order of its aa_param list (an index is the position in
  * that list; CHOICE values are word indices).  The index of `key`, or -1. */
 int aa_spec_index(const aa_info *info, const char *key);
+/* The word of an AA_PARAM_WORD value ("" for a value that numbers none). */
+const char *aa_param_word(double value);
 
 /* ------------------------------------------------------------------------
  * Images: W x H x C doubles, row-major, linear light
@@ -105,7 +111,7 @@ typedef struct aa_image {
 
 #define AA_MAX_CHANNELS 4
 
-/* Leaves *im empty on failure; sizes too large to address are AA_EINVAL. */
+/* Leaves *im empty on failure (AA_EINVAL: too large to address). */
 int aa_image_alloc(aa_image *im, int w, int h, int c);
 void aa_image_free(aa_image *im);
 static inline double *aa_pixel(const aa_image *im, int i, int j)
@@ -132,8 +138,8 @@ typedef struct aa_edge {
     int layer;
 } aa_edge;
 
-/* A y-monotone part of an edge, top to bottom (y0 <= y1).  It meets the line y
- * when y0 <= y < y1, so a vertex counts once and a flat piece never. */
+/* A y-monotone part of an edge, top to bottom (y0 <= y1); it meets line y when
+ * y0 <= y < y1 (a vertex counts once, a flat piece never). */
 typedef enum aa_piece_kind { AA_PIECE_LINE, AA_PIECE_QUAD, AA_PIECE_FLAT } aa_piece_kind;
 
 typedef struct aa_piece {
@@ -165,7 +171,6 @@ int aa_scene_is_grey(const aa_scene *s);
  * numbers `wind` (one per layer), or the background. */
 aa_rgb aa_scene_colour_of(const aa_scene *s, const int *wind);
 
-/* Piece geometry. */
 double aa_piece_x_at(const aa_piece *p, double y);    /* y in [y0, y1] */
 double aa_piece_t_at(const aa_piece *p, double y);    /* parameter at y */
 /* x extent of the part of the piece with y in [ya, yb] (ya <= yb). */
@@ -174,7 +179,6 @@ void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, doub
  * line x, strictly inside (y0, y1); returns how many. */
 int aa_piece_meet_x(const aa_piece *p, double x, double ys[2]);
 
-/* Point and line queries (work on any finished scene). */
 aa_rgb aa_scene_colour_at(const aa_scene *s, double x, double y);
 
 typedef struct aa_crossing {
@@ -183,12 +187,10 @@ typedef struct aa_crossing {
     int layer;
 } aa_crossing;
 
-/* The crossings of the horizontal line y, sorted by x; writes at most
- * `cap` and returns the total count (call again with more room if larger). */
+/* The crossings of line y, sorted by x: at most `cap` written, the total returned. */
 size_t aa_scene_crossings(const aa_scene *s, double y, aa_crossing *out, size_t cap);
-/* Indices of the pieces that touch the closed rectangle [x0,x1] x [y0,y1]
- * (conservatively: a piece whose extent inside the rectangle's rows
- * overlaps it); same counting convention as aa_scene_crossings. */
+/* Indices of the pieces that touch [x0,x1] x [y0,y1] (conservatively, by their
+ * extent in its rows), counted as aa_scene_crossings counts. */
 size_t aa_scene_touching(const aa_scene *s, double x0, double y0, double x1, double y1,
                          size_t *out, size_t cap);
 
@@ -213,9 +215,8 @@ const aa_piece *const *aa_strip_local(const aa_strip *st, size_t *n);
 /* Winding numbers (one per layer) at (x, y) inside the window and band. */
 void aa_strip_winding(const aa_strip *st, double x, double y, int *wind);
 aa_rgb aa_strip_colour_at(const aa_strip *st, double x, double y);
-/* The winding numbers at line y from the pieces left of the window only
- * (base + pieces that ended inside the band): add the local pieces' own
- * crossings to get any point of the window. */
+/* The winding at line y from the pieces left of the window (add the local
+ * pieces' crossings to get any point of the window). */
 void aa_strip_winding_left(const aa_strip *st, double y, int *wind);
 /* 1 if no piece ends inside the band: the winding left of a window is then
  * the same on all its lines (a shortcut for sampling methods). */
@@ -233,8 +234,7 @@ typedef struct aa_span {
     aa_rgb colour;
 } aa_span;
 
-/* The spans of constant colour along line y from xl to xr in the current
- * window: writes at most `cap`, returns the count (at most local + 1). */
+/* The spans of one colour along line y in the window (at most local + 1). */
 size_t aa_strip_spans(aa_strip *st, double y, aa_span *out, size_t cap);
 
 /* ------------------------------------------------------------------------
@@ -325,7 +325,6 @@ typedef struct aa_counters {
     uint64_t expensive_pixels; /* pixels that took more than the cheap path */
 } aa_counters;
 
-/* What a render is asked for. */
 typedef struct aa_job {
     const aa_scene *pattern; /* the pattern's scene, pattern units */
     const aa_scene *placed;  /* the same placed at time t, pixel units */
@@ -343,10 +342,11 @@ enum aa_method_flags {
     /* init refuses some scenes (colour, several layers) with AA_EINVAL and
      * a message: the peer rasterizers */
     AA_METHOD_SOME_SCENES = 4,
-    /* the method renders a field scene (aa_scene_field) through its point
-     * function; a method without this flag is refused a field scene by
-     * aa_method_init, rather than rendering the background */
-    AA_METHOD_FIELDS = 8 /* 16: AA_METHOD_DISPLAY, built-in only (core.h, "Displays") */
+    /* renders a field scene (aa_scene_field) through its point function;
+     * without it a field scene is refused by aa_method_init */
+    AA_METHOD_FIELDS = 8, /* 16: AA_METHOD_DISPLAY, built-in only (core.h, "Displays") */
+    /* render runs another program: its time includes that start-up */
+    AA_METHOD_EXTERNAL = 32
 };
 
 typedef struct aa_method_type {
@@ -372,7 +372,6 @@ double aa_filter_support(const aa_filter *f);
 typedef struct aa_rng {
     uint64_t state;
 } aa_rng;
-/* SplitMix64's output function: a bijective 64-bit mixer. */
 static inline uint64_t aa_hash64(uint64_t x)
 {
     x ^= x >> 30;

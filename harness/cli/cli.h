@@ -91,6 +91,7 @@ size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n);
 int cmd_list(int argc, char **argv);
 int cmd_truth(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_export(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_stress(int argc, char **argv);
 int cmd_figures(int argc, char **argv);

@@ -17,6 +17,7 @@ static const struct command {
     {"list", cmd_list, "list patterns, filters and methods"},
     {"truth", cmd_truth, "write the exact reference image of a pattern"},
     {"render", cmd_render, "render a pattern with a method, timed"},
+    {"export", cmd_export, "write a pattern's scene at a size as SVG"},
     {"run", cmd_run, "the benchmark: every method on a suite, measured and plotted"},
     {"check", cmd_check, "rerun the baseline's cases; exit 1 on a regression"},
     {"converge", cmd_converge, "RMSE against samples per pixel, and its slope"},
@@ -57,6 +58,11 @@ int cli_main(int argc, char **argv)
     cli__set_command_line(argc, argv);
     cli_signals_install();
     aa_set_warn(cli_warn, NULL);
+    /* external:renderer=NAME and any other method that runs a program */
+    if (aa_method_add_optional()) {
+        fprintf(stderr, "aabench: %s\n", aa_last_error());
+        return 3;
+    }
     if (argc < 2) {
         usage(stderr);
         return 2;

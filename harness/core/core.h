@@ -202,6 +202,28 @@ int aa_scene_set_field(aa_scene *s, const aa_field_type *type, const double *p, 
 const aa_field_type *aa_scene_field(const aa_scene *s, const double **p, int *n,
                                     double map[4]);
 
+/* ---- SVG (svg.c) ---- */
+
+/* What an SVG of a scene paints. */
+typedef enum aa_svg_paint {
+    AA_SVG_COLOURS = 0, /* the background, then each layer in its colour */
+    AA_SVG_MASK = 1     /* black, then every layer white: one layer's coverage */
+} aa_svg_paint;
+
+/* A placed scene (pixel units) as an SVG document of w x h pixels: viewBox
+ * 0 0 w h, a rectangle of the background colour over the image, then one
+ * <path> per layer in painter's order (the back layer first), with the
+ * layer's fill-rule, lines as L and quadratic arcs as Q, numbers %.17g;
+ * colours as rgb() percentages of the sRGB-encoded linear colour at full
+ * precision (svg.c says why).  `desc` (may be NULL) goes in a <desc>.
+ * *text is malloc'd and NUL-terminated, *len its length.  A field scene is
+ * refused (AA_EINVAL): it has no paths. */
+int aa_scene_svg(const aa_scene *placed, int w, int h, aa_svg_paint paint, const char *desc,
+                 char **text, size_t *len);
+/* The same written to `path` (atomically). */
+int aa_scene_svg_write(const char *path, const aa_scene *placed, int w, int h,
+                       aa_svg_paint paint, const char *desc);
+
 /* ---- the filter table ---- */
 
 extern const aa_filter_type *const aa_filter_types[]; /* NULL-terminated */
@@ -293,6 +315,12 @@ typedef struct aa_method {
 } aa_method;
 
 extern const aa_method_type *const aa_method_types[]; /* built-in, NULL-terminated */
+/* Methods that need an optional program (an external renderer), kept out of
+ * the built-in table that the generic tests render every method of.  The
+ * command adds them at start; a program of one's own may too.  A second
+ * call does nothing. */
+extern const aa_method_type *const aa_method_types_optional[];
+int aa_method_add_optional(void);
 
 /* The method table in use: the built-in methods, then those of loaded
  * plug-ins.  NULL-terminated; valid until the next aa_plugin_load. */

@@ -65,6 +65,16 @@ int aa__method_register(const aa_method_type *const *types, const char *origin)
     return AA_OK;
 }
 
+int aa_method_add_optional(void)
+{
+    table_fill();
+    if (!aa_method_types_optional[0] ||
+        aa_table_find((const void *const *)table,
+                      ((const aa_info *)aa_method_types_optional[0])->name))
+        return AA_OK;
+    return aa__method_register(aa_method_types_optional, "the optional methods");
+}
+
 int aa_method_check(const aa_spec *spec, const aa_filter *f)
 {
     const aa_method_type *type = (const aa_method_type *)spec->info;

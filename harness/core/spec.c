@@ -7,7 +7,10 @@
  * known names, an unknown key lists the accepted keys, a bad value says the
  * accepted range.  Values are doubles in parameter order; a CHOICE value is
  * the index of its word.  Reals may be written as fractions ("4/256"), as
- * patterns/README.md writes its defaults.
+ * patterns/README.md writes its defaults.  A WORD value (a name found at run
+ * time, such as an external renderer's) is the word's number in a table kept
+ * for the life of the process, so that a spec stays an array of doubles:
+ * equal words have equal numbers, and the canonical text prints the word.
  */
 #define _POSIX_C_SOURCE 200809L
 #include "core.h"
@@ -16,6 +19,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,13 +56,72 @@ const aa_info *aa_table_find(const void *const *table, const char *name)
     return NULL;
 }
 
+/* ---- words (AA_PARAM_WORD) ---- */
+
+/* The words met so far, numbered from 1 (0 is the empty word): fixed room,
+ * never freed, only appended to under the lock. */
+#define WORDS_MAX 1024
+static char word_table[WORDS_MAX][AA_PARAM_WORD_MAX + 1];
+static int nwords = 1;
+static pthread_mutex_t words_lock = PTHREAD_MUTEX_INITIALIZER;
+
+/* 1 if `text` is a well-formed word (aabench.h, AA_PARAM_WORD). */
+static int word_valid(const char *text)
+{
+    size_t n = strlen(text);
+    if (n == 0 || n > AA_PARAM_WORD_MAX || !isalnum((unsigned char)text[0]))
+        return 0;
+    for (size_t k = 0; k < n; k++)
+        if (!isalnum((unsigned char)text[k]) && !strchr("._-", text[k]))
+            return 0;
+    return 1;
+}
+
+/* The number of a well-formed word, added to the table if new; -1 when the
+ * table is full. */
+static int word_number(const char *text)
+{
+    pthread_mutex_lock(&words_lock);
+    int found = -1;
+    for (int k = 1; k < nwords && found < 0; k++)
+        if (!strcmp(word_table[k], text))
+            found = k;
+    if (found < 0 && nwords < WORDS_MAX) {
+        snprintf(word_table[nwords], sizeof word_table[nwords], "%s", text);
+        found = nwords++;
+    }
+    pthread_mutex_unlock(&words_lock);
+    return found;
+}
+
+const char *aa_param_word(double value)
+{
+    const char *w = "";
+    pthread_mutex_lock(&words_lock);
+    if (value >= 1 && value < nwords && value == floor(value))
+        w = word_table[(int)value];
+    pthread_mutex_unlock(&words_lock);
+    return w;
+}
+
 void aa_spec_default(const aa_info *info, aa_spec *out)
 {
     size_t n = aa_param_count(info);
     memset(out, 0, sizeof *out);
     out->info = info;
-    for (size_t k = 0; k < n && k < AA_MAX_PARAMS; k++)
-        out->v[k] = info->params[k].def;
+    for (size_t k = 0; k < n && k < AA_MAX_PARAMS; k++) {
+        const aa_param *p = &info->params[k];
+        int w;
+        /* a WORD's default is the word in `choices` (0, the empty word, if
+         * that is malformed or the table is full: the method's check refuses
+         * it) */
+        if (p->kind == AA_PARAM_WORD)
+            out->v[k] = p->choices && word_valid(p->choices) && (w = word_number(p->choices)) > 0
+                            ? w
+                            : 0;
+        else
+            out->v[k] = p->def;
+    }
 }
 
 /* A finite number written as a decimal or as "p/q"; the whole text.  Needs
@@ -139,6 +202,19 @@ static int param_parse(const aa_param *p, const char *text, double *value)
         }
         choice_words(p->choices, what, sizeof what);
         return aa_fail(AA_EINVAL, "%s=%s: accepted values are %s", p->key, aa_echo(text), what);
+    }
+    if (p->kind == AA_PARAM_WORD) {
+        if (!word_valid(text))
+            return aa_fail(AA_EINVAL,
+                           "%s=%s: not a name (expected letters, digits, '.', '_' and '-', "
+                           "starting with a letter or digit, at most %d characters)",
+                           p->key, text, AA_PARAM_WORD_MAX);
+        int w = word_number(text);
+        if (w < 0)
+            return aa_fail(AA_EINVAL, "%s=%s: more than %d different names given", p->key, text,
+                           WORDS_MAX - 1);
+        *value = w;
+        return AA_OK;
     }
     range_text(p, what, sizeof what);
     if (parse_real(text, &v) != 0)
@@ -267,6 +343,9 @@ int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
             const char *stop = strchr(start, '|');
             int wl = stop ? (int)(stop - start) : (int)strlen(start);
             m = snprintf(buf + n, len - n, "%c%s=%.*s", k ? ',' : ':', p->key, wl, start);
+        } else if (p->kind == AA_PARAM_WORD) {
+            m = snprintf(buf + n, len - n, "%c%s=%s", k ? ',' : ':', p->key,
+                         aa_param_word(spec->v[k]));
         } else {
             m = snprintf(buf + n, len - n, "%c%s=%.17g", k ? ',' : ':', p->key, spec->v[k]);
         }

@@ -1,0 +1,277 @@
+/*
+ * agg.cpp: Anti-Grain Geometry's scanline rasterizer as a peer (AGG 2.6,
+ * Debian libagg-dev: rasterizer_scanline_aa with scanline_u8).
+ *
+ * AGG accumulates, like FreeType's smooth rasterizer and Crow's "Left Areas
+ * - Right Areas = Area" (Crow 1976, ch. 3, fig. 3.13), a signed area and a
+ * cover per cell as edges are walked, in 24.8 fixed point (positions
+ * rounded to 1/256 px), and resolves each cell's coverage in one sweep
+ * along the row into 0 .. 255 (its aa_shift of 8; a full cell, 256, is
+ * clamped to 255).  Its gamma is off (gamma_none: the coverage itself).
+ * The fill rule is the layer's (fill_non_zero or fill_even_odd; nonzero
+ * coverage is |winding area| clamped to full, as FreeType's).
+ *
+ * The outline is the placed scene's: one polygon per contour, lines as
+ * line_to_d, each quadratic arc flattened by AGG's own curve3 (curves=div,
+ * AGG's default, is curve3_div's recursive subdivision, which stops where
+ * the arc is within 0.5/scale px of its chord; curves=inc is curve3_inc's
+ * fixed steps, about a quarter of the arc's length times scale), with
+ * `scale` AGG's approximation_scale (its default 1: 0.5 px).  Arcs are
+ * flattened in render, where AGG would flatten them, and only those whose
+ * control triangle meets the band: an arc wholly above or below it is
+ * replaced by its chord, which the clipper drops all the same.
+ *
+ * Our image receives the span's cover / 255 per pixel, mixed between the
+ * background and the layer's grey (peer.h).  The cover is the value AGG's
+ * own gray8 pixel format paints for white at full alpha over black
+ * (lerp(0, 255, cover) = cover), so this is what AGG would draw.
+ *
+ * Bands: BAND rows at a time, each clipped by AGG's clipper in double
+ * precision (rasterizer_sl_clip_dbl: nothing is converted to fixed point
+ * before clipping, so coordinates far outside the image do not overflow;
+ * parts left or right of the box become vertical lines on its edge, which
+ * keeps the winding), bands in parallel, one rasterizer per thread.  A
+ * row's coverage does not depend on its band.  AGG keeps cells in blocks of
+ * 4096 and by default stops adding cells after 1024 blocks, silently; the
+ * cap is raised here to 2^20 - 1 blocks (its 32-bit cell count's limit), so
+ * no cell is dropped short of running out of memory.
+ *
+ * C++ stays in this file: the method's entries have C linkage (agg.h) and
+ * catch every exception (AGG allocates with new), returning a status.  It
+ * is compiled as C++20: AGG shifts negative covers left
+ * (agg_rasterizer_scanline_aa.h, sweep_scanline), which C++17 leaves
+ * undefined and C++20 defines as two's complement.
+ *
+ * Limits: grey scenes of at most one layer and the box filter only
+ * (peer.h); 8-bit coverage (up to 1/510 from rounding alone); positions
+ * rounded to 1/256 px; arcs flattened; the cover and area of a cell are
+ * 32-bit integers (a cell crossed by some 2^15 edges would overflow them).
+ */
+#include "agg.h"
+
+extern "C" {
+#include "peer.h"
+}
+
+#include <cmath>
+#include <cstring>
+#include <new>
+#include <vector>
+
+#include <omp.h>
+
+#pragma GCC diagnostic push
+#if defined(__clang__)
+#pragma clang diagnostic ignored "-Wunknown-warning-option"
+#endif
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wdeprecated-copy"
+#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
+#pragma GCC diagnostic ignored "-Wclass-memaccess"
+/* C++20 deprecates AGG's arithmetic between its enums and with doubles */
+#pragma GCC diagnostic ignored "-Wdeprecated-enum-enum-conversion"
+#pragma GCC diagnostic ignored "-Wdeprecated-enum-float-conversion"
+#include <agg_basics.h>
+#include <agg_curves.h>
+#include <agg_gamma_functions.h>
+#include <agg_rasterizer_scanline_aa.h>
+#include <agg_rasterizer_sl_clip.h>
+#include <agg_scanline_u.h>
+#pragma GCC diagnostic pop
+
+namespace {
+
+const int BAND = 64;                        /* rows per band */
+const unsigned CELL_BLOCKS = (1u << 20) - 1; /* AGG's cap on blocks of 4096 cells */
+
+enum { SCALE, CURVES };
+enum { CURVES_DIV, CURVES_INC };
+
+const aa_param agg_params[] = {
+    {"scale", AA_PARAM_REAL, 1.0, 0.0, 10000.0, 1, nullptr,
+     "AGG's approximation_scale for arcs: div flattens to within 0.5/scale px (AGG's "
+     "default 1)"},
+    {"curves", AA_PARAM_CHOICE, CURVES_DIV, 0, 0, 0, "div|inc",
+     "AGG's arc approximation: div (curve3_div, recursive subdivision, AGG's default) or inc "
+     "(curve3_inc, fixed steps)"},
+    {nullptr, AA_PARAM_END, 0, 0, 0, 0, nullptr, nullptr}};
+
+typedef agg::rasterizer_scanline_aa<agg::rasterizer_sl_clip_dbl> rasterizer;
+
+/* One thread's rasterizer, scanline, arc flattener and band of covers. */
+struct worker {
+    rasterizer ras;
+    agg::scanline_u8 sl;
+    agg::curve3 curve;
+    std::vector<unsigned char> band;
+    worker() : ras(CELL_BLOCKS) {}
+};
+
+struct agg_work {
+    std::vector<worker *> workers;
+    ~agg_work()
+    {
+        for (worker *w : workers)
+            delete w;
+    }
+};
+
+struct agg_state {
+    aa_peer_scene ps;
+    double lut[256];
+    agg_work *work;
+    int nthreads;
+};
+
+/* Fill rows [y0, y0 + rows) of band coverage from the scene's edges. */
+void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, const double *p,
+                int w, int y0, int rows)
+{
+    size_t ne, nc;
+    const aa_edge *e = aa_scene_edges(scene, &ne);
+    const size_t *start = aa_scene_contours(scene, &nc);
+    const double ya = y0, yb = y0 + rows;
+    std::memset(wk.band.data(), 0, (size_t)rows * (size_t)w);
+    rasterizer &ras = wk.ras;
+    ras.reset();
+    ras.gamma(agg::gamma_none());
+    ras.filling_rule(ps.rule == AA_FILL_EVENODD ? agg::fill_even_odd : agg::fill_non_zero);
+    ras.clip_box(0.0, ya, (double)w, yb);
+    wk.curve.approximation_method((int)p[CURVES] == CURVES_INC ? agg::curve_inc : agg::curve_div);
+    wk.curve.approximation_scale(p[SCALE]);
+    for (size_t c = 0; c < nc; c++) {
+        if (start[c] == start[c + 1])
+            continue;
+        ras.move_to_d(e[start[c]].x0, e[start[c]].y0);
+        for (size_t k = start[c]; k < start[c + 1]; k++) {
+            const aa_edge &d = e[k];
+            double top = std::fmin(d.y0, std::fmin(d.cy, d.y1));
+            double bottom = std::fmax(d.y0, std::fmax(d.cy, d.y1));
+            if (!d.quad || bottom < ya || top > yb) {
+                ras.line_to_d(d.x1, d.y1);
+                continue;
+            }
+            wk.curve.init(d.x0, d.y0, d.cx, d.cy, d.x1, d.y1);
+            wk.curve.rewind(0);
+            double x, y;
+            unsigned cmd = wk.curve.vertex(&x, &y); /* the start point: already there */
+            while (!agg::is_stop(cmd = wk.curve.vertex(&x, &y)))
+                ras.line_to_d(x, y);
+        }
+        ras.close_polygon();
+    }
+    if (!ras.rewind_scanlines())
+        return;
+    wk.sl.reset(ras.min_x(), ras.max_x());
+    while (ras.sweep_scanline(wk.sl)) {
+        int y = wk.sl.y();
+        if (y < y0 || y >= y0 + rows)
+            continue;
+        unsigned char *row = wk.band.data() + (size_t)(y - y0) * (size_t)w;
+        unsigned n = wk.sl.num_spans();
+        agg::scanline_u8::const_iterator span = wk.sl.begin();
+        for (; n; n--, ++span) {
+            int x = span->x, len = span->len;
+            const agg::int8u *covers = span->covers;
+            for (int i = 0; i < len; i++, x++)
+                if (x >= 0 && x < w)
+                    row[x] = covers[i];
+        }
+    }
+}
+
+int agg_check(const double *p, const aa_filter *f)
+{
+    (void)p;
+    return aa_peer_check_filter("agg", f);
+}
+
+void agg_release(void *state)
+{
+    agg_state *s = static_cast<agg_state *>(state);
+    delete s->work;
+    s->work = nullptr;
+}
+
+int agg_init(void *state, const double *p, const aa_job *job)
+{
+    (void)p;
+    agg_state *s = static_cast<agg_state *>(state);
+    int st = aa_peer_scene_read("agg", job, &s->ps);
+    if (st)
+        return st;
+    for (int k = 0; k < 256; k++)
+        s->lut[k] = aa_peer_mix(&s->ps, k / 255.0);
+    s->nthreads = job->threads > 0 ? job->threads : 1;
+    try {
+        s->work = new agg_work;
+        for (int k = 0; k < s->nthreads; k++) {
+            s->work->workers.push_back(nullptr);
+            s->work->workers.back() = new worker;
+            s->work->workers.back()->band.resize((size_t)BAND * (size_t)job->w);
+        }
+    } catch (const std::bad_alloc &) {
+        agg_release(s);
+        return aa_fail(AA_ENOMEM, "agg: out of memory for %d rasterizers", s->nthreads);
+    } catch (...) {
+        agg_release(s);
+        return aa_fail(AA_EFAIL, "agg: cannot make its rasterizers");
+    }
+    return AA_OK;
+}
+
+int agg_render(void *state, const double *p, const aa_job *job, aa_image *out,
+               aa_counters *counters)
+{
+    agg_state *s = static_cast<agg_state *>(state);
+    counters->samples = 0;
+    counters->expensive_pixels = 0;
+    int nbands = (job->h + BAND - 1) / BAND, status = AA_OK;
+#pragma omp parallel num_threads(s->nthreads)
+    {
+        worker &wk = *s->work->workers[omp_get_thread_num()];
+#pragma omp for schedule(dynamic, 1)
+        for (int b = 0; b < nbands; b++) {
+            int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
+            if (!s->ps.layers) {
+                for (int j = y0; j < y0 + rows; j++)
+                    aa_peer_fill(out, j, 0, job->w, s->ps.bg);
+                continue;
+            }
+            int st = AA_OK;
+            try {
+                band_cover(wk, job->placed, s->ps, p, job->w, y0, rows);
+            } catch (const std::bad_alloc &) {
+                st = AA_ENOMEM;
+            } catch (...) {
+                st = AA_EFAIL;
+            }
+            if (st) {
+#pragma omp atomic write
+                status = st;
+                continue;
+            }
+            for (int j = 0; j < rows; j++) {
+                const unsigned char *row = wk.band.data() + (size_t)j * (size_t)job->w;
+                double *px = aa_pixel(out, 0, y0 + j);
+                for (int i = 0; i < job->w; i++, px += 3)
+                    px[0] = px[1] = px[2] = s->lut[row[i]];
+            }
+        }
+    }
+    if (status == AA_ENOMEM)
+        return aa_fail(AA_ENOMEM, "agg: out of memory rasterizing");
+    return status ? aa_fail(status, "agg: rasterizing failed") : AA_OK;
+}
+
+} // namespace
+
+extern "C" const aa_method_type aa_method_agg = {
+    {"agg", "peer: Anti-Grain Geometry's scanline rasterizer (8-bit coverage, arcs flattened)",
+     agg_params},
+    sizeof(agg_state),
+    AA_METHOD_SOME_SCENES,
+    agg_check,
+    agg_init,
+    agg_render,
+    agg_release};

@@ -1,0 +1,176 @@
+/*
+ * svg.c: a placed scene written as an SVG document (core.h, "SVG").
+ *
+ * The document is in pixel units: width and height are the image's W and H,
+ * the viewBox is 0 0 W H, and every coordinate is the placed scene's own
+ * (aa_scene_place: pixel (i, j) covers [i, i+1] x [j, j+1]), so an SVG
+ * renderer drawing the document at W x H sees what the methods see.  A
+ * rectangle of the background colour covers the image; then one <path>
+ * per layer, in painter's order: the scene keeps its layers front to back,
+ * so the back layer is written first and the front layer last.  Each path
+ * has the layer's fill rule (fill-rule nonzero or evenodd) and id "layerK"
+ * (K the layer's index in the scene, 0 the front), and each closed contour
+ * of the layer is one subpath "M x y", then "L x y" for a line segment and
+ * "Q cx cy x y" for a quadratic Bezier arc (the scene's own arcs, exactly),
+ * then "Z".  A layer with no contour is a path with an empty d, which draws
+ * nothing.
+ *
+ * Numbers are C-locale %.17g, which reads back to the same double.
+ *
+ * Colours.  SVG colours are sRGB-encoded (SVG 1.1 and CSS: rgb() values are
+ * in the sRGB colour space, as display codes), and renderers composite them
+ * in that encoded space.  A layer's linear colour c is written as
+ * rgb(R%, G%, B%) with each percentage 100 * srgb_encode(c) at full
+ * precision, never rounded to 8 bits: a renderer that honours it shows the
+ * colour the scene means (1 is written 100% exactly, where the formula's
+ * rounding would give 99.999999999999986%).  Colours 0 and 1, which every pattern of paths
+ * here uses (black, white and the primaries), are 0% and 100% under any
+ * encoding, so their meaning does not depend on it.  Percentages below
+ * 1e-4 are written in fixed notation (CSS numbers before CSS Values 3 had
+ * no exponent).
+ *
+ * AA_SVG_MASK paints every layer white over a black background: for a scene
+ * of one layer the rendered image is that layer's coverage of each pixel,
+ * as the renderer computes it.
+ */
+#include "core.h"
+#include "c_numbers_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* One channel of a linear colour as an sRGB percentage. */
+static void put_percent(FILE *f, double linear)
+{
+    static const aa_encode srgb = {AA_ENCODE_SRGB, 0};
+    /* the end points exactly: the formula gives 1 - 1e-16 for 1 */
+    double p = linear >= 1.0 ? 100.0 : 100.0 * aa_encode_value(&srgb, linear);
+    if (p > 0 && p < 1e-4) /* %.17g would write an exponent */
+        fprintf(f, "%.*f%%", 16 - (int)floor(log10(p)), p);
+    else
+        fprintf(f, "%.17g%%", p);
+}
+
+static void put_colour(FILE *f, aa_rgb c)
+{
+    fputs("rgb(", f);
+    for (int k = 0; k < 3; k++) {
+        put_percent(f, c.c[k]);
+        fputs(k < 2 ? "," : ")", f);
+    }
+}
+
+/* Text for element content: & < > escaped. */
+static void put_text(FILE *f, const char *text)
+{
+    for (const char *c = text; *c; c++) {
+        if (*c == '&')
+            fputs("&amp;", f);
+        else if (*c == '<')
+            fputs("&lt;", f);
+        else if (*c == '>')
+            fputs("&gt;", f);
+        else
+            fputc(*c, f);
+    }
+}
+
+/* Layer `layer`'s contours as path data. */
+static void put_layer_data(FILE *f, const aa_scene *s, int layer)
+{
+    size_t ne, nc;
+    const aa_edge *e = aa_scene_edges(s, &ne);
+    const size_t *start = aa_scene_contours(s, &nc);
+    int first = 1;
+    for (size_t c = 0; c < nc; c++) {
+        size_t a = start[c], b = start[c + 1];
+        if (a == b || e[a].layer != layer)
+            continue;
+        fprintf(f, "%sM %.17g %.17g", first ? "" : "\n", e[a].x0, e[a].y0);
+        first = 0;
+        for (size_t k = a; k < b; k++) {
+            if (e[k].quad)
+                fprintf(f, " Q %.17g %.17g %.17g %.17g", e[k].cx, e[k].cy, e[k].x1, e[k].y1);
+            else
+                fprintf(f, " L %.17g %.17g", e[k].x1, e[k].y1);
+        }
+        fputs(" Z", f);
+    }
+}
+
+static void put_document(FILE *f, const aa_scene *s, int w, int h, aa_svg_paint paint,
+                         const char *desc)
+{
+    const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
+    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" "
+               "viewBox=\"0 0 %d %d\">\n", w, h, w, h);
+    if (desc && *desc) {
+        fputs("<desc>", f);
+        put_text(f, desc);
+        fputs("</desc>\n", f);
+    }
+    fprintf(f, "<rect x=\"0\" y=\"0\" width=\"%d\" height=\"%d\" fill=\"", w, h);
+    put_colour(f, paint == AA_SVG_MASK ? black : aa_scene_background(s));
+    fputs("\"/>\n", f);
+    for (int l = aa_scene_layer_count(s) - 1; l >= 0; l--) {
+        fprintf(f, "<path id=\"layer%d\" fill=\"", l);
+        put_colour(f, paint == AA_SVG_MASK ? white : aa_scene_layer_colour(s, l));
+        fprintf(f, "\" fill-rule=\"%s\" d=\"",
+                aa_scene_layer_rule(s, l) == AA_FILL_EVENODD ? "evenodd" : "nonzero");
+        put_layer_data(f, s, l);
+        fputs("\"/>\n", f);
+    }
+    fputs("</svg>\n", f);
+}
+
+int aa_scene_svg(const aa_scene *placed, int w, int h, aa_svg_paint paint, const char *desc,
+                 char **text, size_t *len)
+{
+    *text = NULL;
+    *len = 0;
+    const aa_field_type *field = aa_scene_field(placed, NULL, NULL, NULL);
+    if (field)
+        return aa_fail(AA_EINVAL,
+                       "the scene is the procedural field %s: it has no paths to write as SVG "
+                       "(every pattern of paths can be written)",
+                       field->name);
+    if (w < 1 || h < 1)
+        return aa_fail(AA_EINVAL, "SVG of a %dx%d image", w, h);
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, "SVG");
+    if (st)
+        return st;
+    char *buf = NULL;
+    size_t n = 0;
+    FILE *f = open_memstream(&buf, &n);
+    if (!f) {
+        aa__c_numbers_end(&numbers);
+        return aa_fail(AA_ENOMEM, "out of memory for the SVG");
+    }
+    put_document(f, placed, w, h, paint, desc);
+    int bad = ferror(f);
+    bad |= fclose(f) != 0;
+    aa__c_numbers_end(&numbers);
+    if (bad) {
+        free(buf);
+        return aa_fail(AA_ENOMEM, "out of memory for the SVG");
+    }
+    *text = buf;
+    *len = n;
+    return AA_OK;
+}
+
+int aa_scene_svg_write(const char *path, const aa_scene *placed, int w, int h,
+                       aa_svg_paint paint, const char *desc)
+{
+    char *text;
+    size_t n;
+    int st = aa_scene_svg(placed, w, h, paint, desc, &text, &n);
+    if (st)
+        return st;
+    st = aa_file_write_atomic(path, text, n);
+    free(text);
+    return st;
+}
