@@ -103,9 +103,14 @@
  * count as lying on it.  A pixel with more than CM_MAX_EDGES edges goes to
  * the bands instead; a cluster's crossings are gathered CM_MAX_EVENTS at a
  * time (bounded memory, more passes).  Coordinates beyond 2^30 px lose
- * precision.  Crossings inside a cluster are found pair by pair among
- * pieces whose extents overlap: quadratic in the number of pieces that
- * crowd one cluster.
+ * precision.  Whether a cluster's pieces cross is asked of every pair
+ * whose extents overlap, or, in a cluster of more than AR_CROWD pieces, of
+ * neighbours along x at mid-band only (a row of 65536 arcs 0.01 px apart:
+ * 65535 tests where the pairs were 4e9).  Crossings inside a cluster with
+ * vertices are found pair by pair among pieces whose extents overlap, and
+ * its sub-bands each sweep all its pieces: a cluster crowded with both
+ * vertices and pieces (feibush with 65536 stripes, along its top and
+ * bottom edges) costs their product.
  */
 #include "core.h"
 #include "methods.h"
@@ -597,41 +602,83 @@ static inline double right_end(const ar_seg *s, int lo)
     return s->p->flat ? s->p->xmax - lo : (double)(s->c0 - lo) + s->hi;
 }
 
-/* Does any pair of the cluster (all spanning the band) cross inside it? */
+/* The segs before keys[k] (in order of left end) whose extent reaches
+ * keys[k]'s left end: act[0..*nact) holds, in ascending order, those that
+ * reached the one before; drop those left behind for good (left ends only
+ * grow).  So each seg is tested against the segs overlapping it only, in
+ * the order of a scan over all those before it, not against every one. */
+static void reaching(const ar_row *r, const ar_key *keys, uint32_t *act, size_t *nact,
+                     double left, int lo)
+{
+    const ar_seg *seg = r->wk->seg;
+    size_t keep = 0;
+    for (size_t a = 0; a < *nact; a++)
+        if (right_end(&seg[keys[act[a]].idx], lo) >= left)
+            act[keep++] = act[a];
+    *nact = keep;
+}
+
+/* Does any pair of the cluster (all spanning the band) cross inside it?
+ * Every pair whose extents overlap is tested. */
 static int any_crossing(const ar_row *r, const ar_key *keys, size_t n, int lo)
 {
     const ar_seg *seg = r->wk->seg;
-    double reach = -INFINITY, out[4];
+    double out[4];
+    uint32_t *act = r->wk->act;
+    size_t nact = 0;
     for (size_t k = 0; k < n; k++) {
         const ar_seg *s = &seg[keys[k].idx];
-        double left = keys[k].key;
-        if (reach >= left)
-            for (size_t m = 0; m < k; m++) {
-                const ar_seg *t = &seg[keys[m].idx];
-                if (right_end(t, lo) >= left && pair_crossings(t, s, 0.0, 1.0, out))
-                    return 1;
-            }
-        reach = fmax(reach, right_end(s, lo));
+        reaching(r, keys, act, &nact, keys[k].key, lo);
+        for (size_t a = 0; a < nact; a++)
+            if (pair_crossings(&seg[keys[act[a]].idx], s, 0.0, 1.0, out))
+                return 1;
+        act[nact++] = (uint32_t)k;
     }
     return 0;
 }
 
-/* No vertex, no crossing: one order along x for the whole band. */
-static void cluster_fast(const ar_row *r, const ar_key *in, size_t n, int lo, int hi, int *w,
-                         const double *cin)
+/* keys[0..n) = the cluster's segs (all spanning the band) in their order
+ * along x at mid-band, relative to cell lo: the order of the whole band
+ * when no two cross. */
+static void order_mid(const ar_row *r, const ar_key *in, size_t n, int lo, ar_key *keys)
 {
-    ar_key *keys = r->wk->sub;
-    if (n == 1) {
-        keys[0] = in[0];
-    } else {
-        /* the order along x: at mid-band, relative to cell lo */
-        for (size_t k = 0; k < n; k++) {
-            const ar_seg *s = &r->wk->seg[in[k].idx];
-            keys[k].key = (double)(s->c0 - lo) + u_at(s, tau_of_v(s, 0.5));
-            keys[k].id = in[k].id;
-            keys[k].idx = in[k].idx;
-        }
-        sort_keys(keys, n);
+    for (size_t k = 0; k < n; k++) {
+        const ar_seg *s = &r->wk->seg[in[k].idx];
+        keys[k].key = (double)(s->c0 - lo) + u_at(s, tau_of_v(s, 0.5));
+        keys[k].id = in[k].id;
+        keys[k].idx = in[k].idx;
+    }
+    sort_keys(keys, n);
+}
+
+/* The same question for a crowded cluster, in its order at mid-band
+ * (order_mid): only neighbours are tested.  If two segs cross, the order
+ * changes, and the first change away from mid-band is between two segs
+ * that are neighbours there (a seg between them would meet them at the
+ * same point): n - 1 tests, where the pairs whose extents overlap grow as
+ * the square of the crowd (65536 arcs 0.01 px apart in one row of crow). */
+static int neighbours_cross(const ar_row *r, const ar_key *mid, size_t n)
+{
+    const ar_seg *seg = r->wk->seg;
+    double out[4];
+    for (size_t k = 0; k + 1 < n; k++)
+        if (pair_crossings(&seg[mid[k].idx], &seg[mid[k + 1].idx], 0.0, 1.0, out))
+            return 1;
+    return 0;
+}
+
+/* No vertex, no crossing: one order along x for the whole band (keys, if
+ * not NULL, is it already). */
+static void cluster_fast(const ar_row *r, const ar_key *in, size_t n, int lo, int hi, int *w,
+                         const double *cin, const ar_key *keys)
+{
+    if (!keys) {
+        ar_key *k = r->wk->sub;
+        if (n == 1)
+            k[0] = in[0];
+        else
+            order_mid(r, in, n, lo, k);
+        keys = k;
     }
     sweep(r, keys, n, w, cin, 0.0, 1.0, 1);
     resolve(r, lo, hi, cin);
@@ -670,17 +717,19 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
 {
     const ar_seg *seg = r->wk->seg;
     ev_buf b = {r->wk->ev, 0, y, *ylim};
-    double reach = -INFINITY, out[4];
+    double out[4];
+    uint32_t *act = r->wk->act;
+    size_t nact = 0;
     for (size_t k = 0; k < n; k++) {
         const ar_seg *s = &seg[keys[k].idx];
         add_event(&b, s->va);
         if (!s->p->flat)
             add_event(&b, s->vb);
-        double left = keys[k].key;
-        if (!s->p->flat && reach >= left)
-            for (size_t m = 0; m < k; m++) {
-                const ar_seg *t = &seg[keys[m].idx];
-                if (t->p->flat || right_end(t, lo) < left)
+        reaching(r, keys, act, &nact, keys[k].key, lo);
+        if (!s->p->flat)
+            for (size_t a = 0; a < nact; a++) {
+                const ar_seg *t = &seg[keys[act[a]].idx];
+                if (t->p->flat)
                     continue;
                 double ya = fmax(fmax(s->va, t->va), y), yb = fmin(fmin(s->vb, t->vb), b.lim);
                 if (!(ya < yb))
@@ -689,7 +738,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
                 for (int i = 0; i < c; i++)
                     add_event(&b, out[i]);
             }
-        reach = fmax(reach, right_end(s, lo));
+        act[nact++] = (uint32_t)k;
     }
     qsort(b.v, b.n, sizeof *b.v, cmp_double);
     size_t m = 0;
@@ -804,17 +853,22 @@ static void cluster(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                     const double *cin)
 {
     const ar_seg *seg = r->wk->seg;
-    int j = r->j;
-    for (size_t k = 0; k < n; k++)
-        band_fields(&r->wk->seg[in[k].idx], j);
+    int j = r->j, events = 0, lines = 1;
+    for (size_t k = 0; k < n; k++) {
+        ar_seg *s = &r->wk->seg[in[k].idx];
+        const ar_piece *p = s->p;
+        band_fields(s, j);
+        events |= p->flat || p->y0 > j || p->y1 < j + 1.0;
+        lines &= p->flat || p->line;
+    }
     if (hi >= 0) {
-        int events = 0, lines = 1;
-        for (size_t k = 0; k < n; k++) {
-            const ar_piece *p = seg[in[k].idx].p;
-            events |= p->flat || p->y0 > j || p->y1 < j + 1.0;
-            lines &= p->flat || p->line;
-        }
-        if (!events && n >= 2) {
+        const ar_key *mid = NULL;
+        if (!events && n > AR_CROWD) {
+            ar_key *keys = r->wk->sub;
+            order_mid(r, in, n, lo, keys);
+            events = neighbours_cross(r, keys, n);
+            mid = keys;
+        } else if (!events && n >= 2) {
             ar_key *keys = r->wk->sub;
             order_by_left(r, in, n, lo, keys);
             events = any_crossing(r, keys, n, lo);
@@ -822,7 +876,12 @@ static void cluster(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
         if (!events) {
             int *wf = r->wk->wtmp; /* the sweep moves a copy; w moves below */
             memcpy(wf, w, (size_t)r->S->nl * sizeof *w);
-            cluster_fast(r, in, n, lo, hi, wf, cin);
+            cluster_fast(r, in, n, lo, hi, wf, cin, mid);
+            if (mid) {
+                /* every seg spans the band: the sweep passed them all */
+                memcpy(w, wf, (size_t)r->S->nl * sizeof *w);
+                return;
+            }
         } else if (!(r->integrator == INT_CATMULL && lines &&
                      area_cluster_catmull(r, in, n, lo, hi, w))) {
             cluster_bands(r, in, n, lo, hi, w, cin);
@@ -1102,6 +1161,7 @@ static void state_free(ar_state *S)
         free(wk->wind);
         free(wk->wtmp);
         free(wk->ev);
+        free(wk->act);
         free(wk->cm);
     }
     free(S->workers);
@@ -1193,13 +1253,14 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->wind = line_alloc(nl, sizeof *wk->wind);
     wk->wtmp = line_alloc(nl, sizeof *wk->wtmp);
     wk->ev = line_alloc(CM_MAX_EVENTS, sizeof *wk->ev);
+    wk->act = line_alloc(n, sizeof *wk->act);
     wk->cm = line_alloc(CM_MAX_EDGES + 2, sizeof *wk->cm);
     wk->row = -2;
     if (wk->seg)
         for (size_t k = 0; k < n; k++)
             wk->seg[k].ja = INT_MIN;
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
-        !wk->wind || !wk->wtmp || !wk->ev || !wk->cm)
+        !wk->wind || !wk->wtmp || !wk->ev || !wk->cm || !wk->act)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
                        S->w);
     return AA_OK;

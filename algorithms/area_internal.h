@@ -17,6 +17,9 @@
 #define AR_STREAM 0
 #endif
 
+/* Clusters of more segs than this are tested for crossings by neighbours
+ * along x (area.c, any_crossing). */
+#define AR_CROWD 64
 /* Catmull's integrater works on at most this many edges in a pixel. */
 #define CM_MAX_EDGES 48
 #define CM_MAX_VERTS (CM_MAX_EDGES + 8)
@@ -112,6 +115,7 @@ typedef struct ar_worker {
     double *acc, *cov; /* per cell and channel */
     int *wind, *wtmp;
     double *ev;
+    uint32_t *act; /* segs whose extent reaches the current one */
     cm_level *cm;
     uint64_t expensive;
 } ar_worker;

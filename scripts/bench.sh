@@ -15,6 +15,9 @@ echo "== ground truth (reference image), crow; medians by precision ($timing) ==
 # shellcheck disable=SC2086
 "$build/bench_truth" -p crow -s 1024x1024,4096x4096 -f "box;tent:r=0.5;tent:r=1;gauss" -t 1,2 $timing
 echo
+echo "== pathological scenes: thousands of edges in a pixel (reference and area) =="
+"$build/bench_patho" -t 1,2
+echo
 echo "== methods and peers, crow 1024x1024 box; memory at 4096x4096 =="
 # shellcheck disable=SC2086
 "$build/bench_methods" -p crow -s 1024x1024 -f box $timing -m 4096x4096

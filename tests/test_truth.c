@@ -23,6 +23,7 @@
 #include "scenes.h"
 #include "support.h"
 
+#include <float.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -342,9 +343,10 @@ static void test_crossing_arcs(void **state)
  * accumulation and clipping, not quadrature).  300 seeded scenes; this
  * caught QAGP's extrapolation returning values 2.6e-7 off with bounds of
  * 1e-14, and missing arc-arc breakpoints (2.6e-5). */
-static void test_random_arcs_against_area(void **state)
+static void random_arcs_against_area(int mode)
 {
-    (void)state;
+    aa_filter f;
+    aa_filter_default(&f);
     int bad = 0;
     double worst = 0;
     for (int sc = 0; sc < 300; sc++) {
@@ -364,7 +366,13 @@ static void test_random_arcs_against_area(void **state)
         assert_int_equal(aa_scene_finish(s), AA_OK);
         aa_image ref, img, bound;
         aa_counters c;
-        support_reference(s, &(support_view){.w = 12, .h = 12, .threads = 1}, &ref, &bound, NULL);
+        aa_scene *placed = aa_scene_place(s, 12, 12, 0, 0, 0);
+        assert_non_null(placed);
+        assert_int_equal(aa_image_alloc(&ref, 12, 12, 3), AA_OK);
+        assert_int_equal(aa_image_alloc(&bound, 12, 12, 1), AA_OK);
+        assert_int_equal(aa__truth_render_mode(placed, &f, 1, mode, &ref, &bound, NULL, NULL),
+                         AA_OK);
+        aa_scene_free(placed);
         support_render("area", s, NULL, 12, 12, 1, &img, &c);
         for (int p = 0; p < 144; p++) {
             double d = fabs(ref.v[3 * p] - img.v[3 * p]);
@@ -381,9 +389,16 @@ static void test_random_arcs_against_area(void **state)
         aa_image_free(&bound);
         aa_scene_free(s);
     }
-    print_message("300 random scenes of crossing arcs: max |reference - area| %.2e, %d pixels "
-                  "beyond the reference's bound\n", worst, bad);
+    print_message("300 random scenes of crossing arcs%s: max |reference - area| %.2e, %d pixels "
+                  "beyond the reference's bound\n", mode == AA__TRUTH_CROWD ? " (one piece at a time)" : "",
+                  worst, bad);
     assert_int_equal(bad, 0);
+}
+
+static void test_random_arcs_against_area(void **state)
+{
+    (void)state;
+    random_arcs_against_area(0);
 }
 
 static void test_cache(void **state)
@@ -421,6 +436,206 @@ static void test_cache(void **state)
     assert_int_equal(support_rmtree(dir), 0);
 }
 
+/* ---- crowded pixels: one piece at a time (truth_crowd.c) ---- */
+
+/* A moderately pathological crow, thousands of arcs 1e-5 pattern units
+ * apart (a pixel crossed by all of them: the sum over spans cost the
+ * square of the arcs, 18 s for these 4x4), against tests/oracle.c's closed
+ * form: every pixel within 1e-12, every bound within AA_TRUTH_BOUND, every
+ * integrated pixel taken one piece at a time, 1 and 2 threads identical.
+ * The closed form is of the pattern as defined; the scene's arcs are placed
+ * by sums in double, which drift from it by about 1e-16 per arc (the same
+ * on the sum over spans: 7e-14 here, 6e-13 at 65536 arcs on one pixel). */
+static void check_crowd_box(const char *pattern, int w, int h)
+{
+    aa_image img, one, bound;
+    aa_truth_stats st, st1;
+    oracle_crow p = oracle_params(pattern);
+    reference(pattern, w, h, "box", 2, &img, &bound, &st);
+    reference(pattern, w, h, "box", 1, &one, NULL, &st1);
+    assert_memory_equal(img.v, one.v, sizeof(double) * (size_t)w * (size_t)h * 3);
+    double worst = 0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            double want = oracle_crow_box(&p, w, h, i, j), *px = aa_pixel(&img, i, j);
+            double d = fabs(px[0] - want);
+            worst = fmax(worst, d);
+            if (d > 1e-12 || px[1] != px[0] || px[2] != px[0])
+                fail_msg("%s %dx%d pixel (%d, %d): reference %.17g, closed form %.17g", pattern,
+                         w, h, i, j, px[0], want);
+            assert_true(*aa_pixel(&bound, i, j) <= AA_TRUTH_BOUND);
+        }
+    print_message("%-52s %2dx%-2d box: max |ref - closed form| %.2e, max bound %.2e, %zu of %zu "
+                  "integrated pixels crowded\n",
+                  pattern, w, h, worst, st.max_bound, st.crowded, st.integrated);
+    assert_true(st.crowded > 0); /* pixels at the pattern's edges may hold few arcs */
+    aa_image_free(&img);
+    aa_image_free(&one);
+    aa_image_free(&bound);
+}
+
+static void test_crowd_crow_oracle(void **state)
+{
+    (void)state;
+    check_crowd_box("crow:curves=2048,gap0=1e-5,gap1=1e-5,kmax=0.05", 4, 4);
+    check_crowd_box("crow:curves=2048,gap0=1e-5,gap1=1e-5,kmax=0.05", 16, 16);
+    /* wider and more curved: arcs cross the windows' sides at every height */
+    check_crowd_box("crow:curves=1024,gap0=2e-4,gap1=5e-5,kmax=0.15", 13, 11);
+    check_crowd_box("crow:curves=1024,gap0=2e-4,gap1=5e-5,kmax=-0.3", 9, 12);
+}
+
+/* Every non-uniform pixel one piece at a time against the sum over spans
+ * (AA__TRUTH_QAG), two derivations that share the crossings only: within
+ * the sum of their bounds, on scenes with vertices, horizontal edges,
+ * layers and shared edges, crossing paths, and every filter.  (Not slivers
+ * under the cone: there the sum over spans is off by up to 3e-13 while its
+ * estimate says 5e-15, where a nearly horizontal edge passes the cone's
+ * centre; one piece at a time agrees with a brute-force integration to
+ * 1e-16.) */
+static void test_crowd_against_spans(void **state)
+{
+    (void)state;
+    const char *views[][2] = {
+        {"crow", "box"},
+        {"crow", "tent:r=1"},
+        {"crow", "cone"},
+        {"crow", "gauss:s=0.3"},
+        {"crow:curves=10,kmax=0.5,gap0=0.2,gap1=0.05", "box"},
+        {"feibush", "box"},
+        {"feibush", "cone"},
+        {"star", "tent:r=1"},
+        {"star:spokes=200", "box"},
+        {"catmull:tiles=3", "cone"},
+        {"fence", "cone"},
+        {"dots:n=40,size=0.02", "cone"},
+    };
+    int w = 24, h = 20;
+    for (size_t v = 0; v < sizeof views / sizeof *views; v++) {
+        aa_spec spec;
+        aa_filter f;
+        aa_scene *s, *placed;
+        aa_image a, b, ba, bb;
+        aa_truth_stats sa, sb;
+        assert_int_equal(aa_pattern_parse(views[v][0], &spec), AA_OK);
+        assert_int_equal(aa_filter_parse(views[v][1], &f), AA_OK);
+        assert_int_equal(aa_pattern_scene(&spec, &s), AA_OK);
+        assert_non_null(placed = aa_scene_place(s, w, h, 0, 0, 0));
+        assert_int_equal(aa_image_alloc(&a, w, h, 3), AA_OK);
+        assert_int_equal(aa_image_alloc(&b, w, h, 3), AA_OK);
+        assert_int_equal(aa_image_alloc(&ba, w, h, 1), AA_OK);
+        assert_int_equal(aa_image_alloc(&bb, w, h, 1), AA_OK);
+        assert_int_equal(aa__truth_render_mode(placed, &f, 0, AA__TRUTH_QAG, &a, &ba, &sa, NULL),
+                         AA_OK);
+        assert_int_equal(aa__truth_render_mode(placed, &f, 0, AA__TRUTH_CROWD, &b, &bb, &sb, NULL),
+                         AA_OK);
+        assert_int_equal(sb.crowded, sb.integrated);
+        double worst = 0;
+        for (int j = 0; j < h; j++)
+            for (int i = 0; i < w; i++) {
+                double lim = *aa_pixel(&ba, i, j) + *aa_pixel(&bb, i, j);
+                assert_true(*aa_pixel(&bb, i, j) <= AA_TRUTH_BOUND);
+                for (int ch = 0; ch < 3; ch++) {
+                    double d = fabs(aa_pixel(&a, i, j)[ch] - aa_pixel(&b, i, j)[ch]);
+                    worst = fmax(worst, d);
+                    if (!(d <= lim))
+                        fail_msg("%s %s pixel (%d, %d) channel %d: spans %.17g, pieces %.17g, "
+                                 "bounds %.1e", views[v][0], views[v][1], i, j, ch,
+                                 aa_pixel(&a, i, j)[ch], aa_pixel(&b, i, j)[ch], lim);
+                }
+            }
+        print_message("%-44s %-11s max |spans - pieces| %.2e, bounds %.1e %.1e\n", views[v][0],
+                      views[v][1], worst, sa.max_bound, sb.max_bound);
+        aa_image_free(&a);
+        aa_image_free(&b);
+        aa_image_free(&ba);
+        aa_image_free(&bb);
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+}
+
+/* The random scenes of crossing general arcs again, one piece at a time:
+ * meetings of arcs (found by the sweep as neighbours), turning points,
+ * pieces ending inside pixels. */
+static void test_crowd_random_arcs(void **state)
+{
+    (void)state;
+    random_arcs_against_area(AA__TRUTH_CROWD);
+}
+
+/* The long double Gauss-Kronrod pass against the integrals of monomials,
+ * int_a^b x^k dx = (b^(k+1) - a^(k+1))/(k+1): K21 is exact to degree 31
+ * and G10 to degree 19, so |K21 - G10| is rounding up to degree 19 and not
+ * at degree 20 (where G10's error on [-1, 1] is 2^21 (10!)^4 / (21 (20!)^3)
+ * times the 20th derivative / 20!, about 1.4e-6 here). */
+static long double monomial(long double x, const void *ctx)
+{
+    int k = *(const int *)ctx;
+    long double p = 1;
+    for (int q = 0; q < k; q++)
+        p *= x;
+    return p;
+}
+
+static void test_crowd_rule(void **state)
+{
+    (void)state;
+    const long double ends[3][2] = {{-1, 1}, {0, 3}, {-0.25L, 0.5L}};
+    /* double's epsilon where long double is computed in double (valgrind) */
+    const long double eps = aa_long_double_is_extended() ? LDBL_EPSILON : DBL_EPSILON;
+    for (int e = 0; e < 3; e++)
+        for (int k = 0; k <= 31; k++) {
+            long double a = ends[e][0], b = ends[e][1], r, err, raw, fl, pa = a, pb = b;
+            for (int q = 0; q < k; q++)
+                pa *= a, pb *= b;
+            long double want = (pb - pa) / (k + 1);
+            aa__truth_gk21l(monomial, &k, a, b, &r, &err, &raw, &fl);
+            long double scale = fmaxl(1, fabsl(want));
+            if (!(fabsl(r - want) <= 64 * eps * scale * powl(3, k) / (k + 1)))
+                fail_msg("x^%d on [%Lg, %Lg]: K21 %.21Lg, exact %.21Lg", k, a, b, r, want);
+            if (k <= 19)
+                assert_true(raw <= 64 * eps * scale * powl(3, k));
+            if (e == 0 && k == 20)
+                assert_true(raw > 1e-7); /* G10 is not exact there */
+        }
+}
+
+/* The progress hook: calls with pixels done, non-decreasing, ending with
+ * the total; none once unset. */
+typedef struct progress_log {
+    size_t calls, last, total;
+    int backwards;
+} progress_log;
+
+static void log_progress(void *ctx, size_t done, size_t total)
+{
+    progress_log *p = ctx;
+    p->backwards |= done < p->last;
+    p->calls++;
+    p->last = done;
+    p->total = total;
+}
+
+static void test_progress(void **state)
+{
+    (void)state;
+    progress_log log = {0, 0, 0, 0};
+    aa_image img;
+    aa_truth_stats st;
+    aa_truth_set_progress(log_progress, &log);
+    reference("crow", 64, 48, "box", 2, &img, NULL, &st);
+    aa_truth_set_progress(NULL, NULL);
+    aa_image_free(&img);
+    assert_true(log.calls >= 1);
+    assert_int_equal(log.total, 64 * 48);
+    assert_int_equal(log.last, 64 * 48);
+    assert_false(log.backwards);
+    size_t calls = log.calls;
+    reference("crow", 16, 16, "box", 2, &img, NULL, &st);
+    aa_image_free(&img);
+    assert_int_equal(log.calls, calls);
+}
+
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_crow_box_default),
              cmocka_unit_test(test_crow_box_other),
@@ -433,4 +648,9 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_parabolic_segment),
              cmocka_unit_test(test_crossing_arcs),
              cmocka_unit_test(test_random_arcs_against_area),
-             cmocka_unit_test(test_cache))
+             cmocka_unit_test(test_cache),
+             cmocka_unit_test(test_crowd_crow_oracle),
+             cmocka_unit_test(test_crowd_against_spans),
+             cmocka_unit_test(test_crowd_random_arcs),
+             cmocka_unit_test(test_crowd_rule),
+             cmocka_unit_test(test_progress))

@@ -27,6 +27,29 @@ static void usage(FILE *out)
             "  -q, --quiet          print nothing on success\n");
 }
 
+/* Progress on standard error (a terminal, CI unset: cli_progress_wanted)
+ * once a reference has taken more than two seconds. */
+typedef struct truth_progress {
+    double t0;
+    int shown;
+} truth_progress;
+
+static void show_progress(void *vctx, size_t done, size_t total)
+{
+    truth_progress *p = vctx;
+    double el = aa_now() - p->t0;
+    if (done >= total) {
+        if (p->shown)
+            fprintf(stderr, "\r\033[K");
+        p->shown = 0;
+    } else if (el > 2.0) {
+        fprintf(stderr, "\r\033[Kreference: %zu/%zu pixels (%.0f%%), %.0f s", done, total,
+                100.0 * (double)done / (double)total, el);
+        p->shown = 1;
+    }
+    fflush(stderr);
+}
+
 typedef struct truth_args {
     const char *pattern, *size, *filter, *out, *bound, *cache;
     aa_view view;
@@ -104,6 +127,9 @@ int cmd_truth(int argc, char **argv)
     aa_truth_stats stats;
     int cached = 0;
     double t0 = aa_now();
+    truth_progress prog = {t0, 0};
+    if (!a.quiet && cli_progress_wanted())
+        aa_truth_set_progress(show_progress, &prog);
     if (a.bound) {
         aa_scene *pattern = NULL, *placed = NULL;
         if (!(st = aa_pattern_scene(&a.view.pattern, &pattern)) &&
@@ -119,6 +145,9 @@ int cmd_truth(int argc, char **argv)
         st = aa_reference(&a.view, *a.cache ? a.cache : NULL, a.threads, &img, &stats, &cached);
     }
     double seconds = aa_now() - t0;
+    aa_truth_set_progress(NULL, NULL);
+    if (prog.shown)
+        fprintf(stderr, "\r\033[K");
     /* every output written before any replaces what was there */
     cli_outputs outs = {0};
     const char *tmp;

@@ -152,7 +152,10 @@ aa_scene *aa_scene_place(const aa_scene *s, int w, int h, double t, double vx, d
  * (cross or touch) while both are present: in closed form for lines, a
  * line and an arc, and two arcs whose x is quadratic in y; for two general
  * arcs by bisection on their exact x extents (to 1e-12 relative), which
- * cannot miss a meeting.  Flat pieces meet nothing. */
+ * cannot miss a meeting while its budget of 4096 subintervals lasts (two
+ * arcs running side by side over a long stretch can use it up, and a
+ * meeting is then lost: harness/truth/truth_crowd.c finds theirs from a
+ * quartic instead).  Flat pieces meet nothing. */
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys,
                   int max);
 

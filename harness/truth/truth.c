@@ -90,6 +90,18 @@
  * them are integrated in u = sqrt(R - |v|), as at turning points, where
  * the integrand (about (R - |v|)^(3/2)) becomes smooth.
  *
+ * Crowded windows (more than TRUTH_CROWD local pieces, or more than
+ * TRUTH_MAX_PAIRS of which two cross inside the window) are taken one
+ * piece at a time (truth_crowd.c): the sum over spans is rewritten as the
+ * colour at the window's left side plus, for each piece, its colour jump
+ * times the filter's weight right of it, and a sweep along v over the
+ * window finds where each jump changes; each piece's term is integrated
+ * between its own breakpoints only.  The sum over spans would cost the
+ * breakpoints of all pieces times all pieces at each evaluation: the
+ * square of the pieces (a crow of 65536 arcs 1e-5 apart did not finish
+ * 2 x 2 pixels in two minutes).  The patterns' default views never take
+ * that path; their references are as before it.
+ *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
  * rounding.  Pixels whose window meets no piece are uniform: they take the
@@ -114,12 +126,10 @@
 #include <omp.h>
 #endif
 
-/* QAG is asked for this absolute accuracy per pixel and channel: above its
- * rounding floor (50 eps times the integral of |f|, about 1e-14 here) and
- * well below AA_TRUTH_BOUND. */
-#define TRUTH_EPSABS 2e-13
 /* Pairwise intersections are breakpoints only up to this many local pieces;
- * beyond it the adaptive bisection finds the kinks by itself. */
+ * beyond it a window where pieces cross, and any window of more than
+ * TRUTH_CROWD pieces, is taken one piece at a time (truth_crowd.c), whose
+ * sweep finds every meeting (truth_internal.h, TRUTH_CROWD). */
 #define TRUTH_MAX_PAIRS 48
 
 typedef struct crossing {
@@ -146,6 +156,9 @@ typedef struct worker {
     int box;
     int radial; /* not separable (cone): rows weighed by aa_filter_row_cdf */
     gsl_poly_complex_workspace *poly; /* radial: the circle's crossings */
+    crowd_worker crowd;               /* crowded pixels (truth_crowd.c) */
+    int all_crowd;                    /* every pixel there (AA__TRUTH_CROWD) */
+    size_t crowded;                   /* pixels it took */
 } worker;
 
 static void worker_free(worker *w)
@@ -159,6 +172,7 @@ static void worker_free(worker *w)
     free(w->lp);
     free(w->cross);
     free(w->wind);
+    crowd_free(&w->crowd);
 }
 
 /* On failure the worker is left empty, so worker_free is always safe. */
@@ -249,30 +263,32 @@ static int is_turn(const worker *w, double s)
  * quartic |(x(tau), y(tau)) - centre|^2 - R^2 (a quadratic for a line;
  * GSL's companion matrix, then Newton in long double).  A root that is a
  * little off only leaves the kink inside an interval, where QAG's
- * bisection still finds it. */
-static int add_circle(worker *w, const aa_piece *p)
+ * bisection still finds it.  Writes the heights relative to vc (at most
+ * 4, in the order found) and returns how many. */
+int truth_circle_heights(const aa_piece *p, double uc, double vc, double R,
+                         gsl_poly_complex_workspace *poly, double out[4])
 {
     if (p->kind == AA_PIECE_FLAT)
-        return AA_OK;
-    double lo = fmax(w->vc - w->R, p->y0), hi = fmin(w->vc + w->R, p->y1);
+        return 0;
+    double lo = fmax(vc - R, p->y0), hi = fmin(vc + R, p->y1);
     if (!(lo < hi))
-        return AA_OK;
+        return 0;
     long double ta = lo <= p->y0 ? 0.0 : aa_piece_t_at(p, lo);
     long double tb = hi >= p->y1 ? 1.0 : aa_piece_t_at(p, hi), h = tb - ta;
     if (!(h > 0))
-        return AA_OK;
-    long double X = p->x0 + ta * (p->bx + ta * p->ax) - (long double)w->uc;
-    long double Y = p->y0 + ta * (p->by + ta * p->ay) - (long double)w->vc;
+        return 0;
+    long double X = p->x0 + ta * (p->bx + ta * p->ax) - (long double)uc;
+    long double Y = p->y0 + ta * (p->by + ta * p->ay) - (long double)vc;
     long double bx = h * (p->bx + 2 * ta * p->ax), ax = h * h * p->ax;
-    long double by = h * (p->by + 2 * ta * p->ay), ay = h * h * p->ay, R = w->R;
-    double c[5] = {(double)(X * X + Y * Y - R * R), (double)(2 * (X * bx + Y * by)),
+    long double by = h * (p->by + 2 * ta * p->ay), ay = h * h * p->ay, RR = R;
+    double c[5] = {(double)(X * X + Y * Y - RR * RR), (double)(2 * (X * bx + Y * by)),
                    (double)(bx * bx + by * by + 2 * (X * ax + Y * ay)),
                    (double)(2 * (ax * bx + ay * by)), (double)(ax * ax + ay * ay)};
     double t[4], z[8];
-    int n = 0;
+    int n = 0, m = 0;
     if (c[4] == 0.0) { /* then c[3] = 0 too: a line */
         n = gsl_poly_solve_quadratic(c[2], c[1], c[0], &t[0], &t[1]);
-    } else if (gsl_poly_complex_solve(c, 5, w->poly, z) == GSL_SUCCESS) {
+    } else if (gsl_poly_complex_solve(c, 5, poly, z) == GSL_SUCCESS) {
         for (int k = 0; k < 4; k++)
             if (fabs(z[2 * k + 1]) <= 1e-6 * (1.0 + fabs(z[2 * k])))
                 t[n++] = z[2 * k];
@@ -283,7 +299,7 @@ static int add_circle(worker *w, const aa_piece *p)
             continue;
         for (int it = 0; it < 4; it++) {
             long double x = X + u * (bx + u * ax), y = Y + u * (by + u * ay);
-            long double g = x * x + y * y - R * R;
+            long double g = x * x + y * y - RR * RR;
             long double dg = 2 * (x * (bx + 2 * u * ax) + y * (by + 2 * u * ay));
             if (dg == 0)
                 break;
@@ -291,11 +307,18 @@ static int add_circle(worker *w, const aa_piece *p)
         }
         if (!(u >= 0 && u <= 1))
             continue;
-        int st = add_point(w, (double)(Y + u * (by + u * ay)));
-        if (st)
-            return st;
+        out[m++] = (double)(Y + u * (by + u * ay));
     }
-    return AA_OK;
+    return m;
+}
+
+static int add_circle(worker *w, const aa_piece *p)
+{
+    double ys[4];
+    int n = truth_circle_heights(p, w->uc, w->vc, w->R, w->poly, ys), st = AA_OK;
+    for (int k = 0; k < n && !st; k++)
+        st = add_point(w, ys[k]);
+    return st;
 }
 
 /* Breakpoints of the current pixel, relative to vc, sorted, from -R to R. */
@@ -588,6 +611,14 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     size_t n;
     const aa_piece *const *local = aa_strip_local(w->strip, &n);
     int st;
+    if (n > TRUTH_MAX_PAIRS || w->all_crowd) {
+        st = crowd_pixel(&w->crowd, w->scene, w->strip, w->f, w->uc, w->vc, local, n, grey,
+                         n <= TRUTH_CROWD && !w->all_crowd, value, bound);
+        if (st != CROWD_DECLINED) {
+            w->crowded++;
+            return st;
+        }
+    }
     if ((st = load_local(w, local, n)) || (st = breakpoints(w, local, n)) ||
         (st = reserve_workspace(w, w->npts)))
         return st;
@@ -617,7 +648,7 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
  * ------------------------------------------------------------------------ */
 
 typedef struct row_stats {
-    size_t integrated, filled, fast;
+    size_t integrated, filled, fast, crowded;
     double max_bound;
     int worst_i, worst_j;
 } row_stats;
@@ -692,6 +723,7 @@ static int field_render(const aa_scene *placed, const aa_filter *f, int threads,
     if (stats) {
         stats->integrated = (size_t)out->w * (size_t)out->h;
         stats->filled = 0;
+        stats->crowded = 0;
         stats->max_bound = max_bound;
         stats->worst_i = worst[0];
         stats->worst_j = worst[1];
@@ -699,6 +731,39 @@ static int field_render(const aa_scene *placed, const aa_filter *f, int threads,
     if (nfast)
         *nfast = 0;
     return AA_OK;
+}
+
+/* ---- progress (truth.h, aa_truth_set_progress) ---- */
+
+static aa_truth_progress_fn progress_fn;
+static void *progress_ctx;
+
+void aa_truth_set_progress(aa_truth_progress_fn fn, void *ctx)
+{
+    progress_fn = fn;
+    progress_ctx = ctx;
+}
+
+typedef struct progress {
+    aa_truth_progress_fn fn;
+    void *ctx;
+    size_t done, total;
+    double last;
+} progress;
+
+/* A row of `pixels` is done: tell, one thread at a time, at most ten
+ * times a second. */
+static void progress_row(progress *p, size_t pixels)
+{
+#pragma omp critical(aa_truth_progress)
+    {
+        p->done += pixels;
+        double now = aa_now();
+        if (now - p->last >= 0.1 && p->done < p->total) {
+            p->last = now;
+            p->fn(p->ctx, p->done, p->total);
+        }
+    }
 }
 
 int aa_long_double_is_extended(void)
@@ -719,7 +784,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
     gsl_set_error_handler_off(); /* QAG's status is judged by its error estimate */
     int status = AA_OK;
     char message[1024] = "";
-    row_stats total = {0, 0, 0, 0.0, -1, -1};
+    row_stats total = {0, 0, 0, 0, 0.0, -1, -1};
 #ifdef _OPENMP
     int nthreads = aa_thread_count(threads);
 #else
@@ -735,7 +800,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
      * its error then reached 1.2e-12 on a half-plane at s = 0.07). */
     gauss_plan plan;
     int use_fast = 0;
-    if (f->type == &aa_filter_gauss && mode != AA__TRUTH_QAG && 2.0 * f->radius >= 1.0 &&
+    if (f->type == &aa_filter_gauss && mode == 0 && 2.0 * f->radius >= 1.0 &&
         aa_long_double_is_extended()) {
         if ((status = plan_init(&plan, f)))
             return status;
@@ -750,12 +815,14 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
     if (use_fast)
         rows = nthreads == 1 ? out->h : (out->h + 4 * nthreads - 1) / (4 * nthreads);
     int nblocks = (out->h + rows - 1) / rows;
+    progress prog = {progress_fn, progress_ctx, 0, (size_t)out->w * (size_t)out->h, aa_now()};
 #pragma omp parallel num_threads(nthreads)
     {
         worker w;
         panel_worker fs;
-        row_stats rs = {0, 0, 0, 0.0, -1, -1};
+        row_stats rs = {0, 0, 0, 0, 0.0, -1, -1};
         int st = worker_init(&w, placed, f);
+        w.all_crowd = mode == AA__TRUTH_CROWD;
         memset(&fs, 0, sizeof fs);
         if (!st && use_fast)
             st = fast_init(&fs, &plan, f, placed, out->w);
@@ -763,9 +830,13 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
         for (int blk = 0; blk < nblocks; blk++) {
             fs.valid = 0;
             int j1 = (blk + 1) * rows < out->h ? (blk + 1) * rows : out->h;
-            for (int j = blk * rows; j < j1 && st == AA_OK; j++)
+            for (int j = blk * rows; j < j1 && st == AA_OK; j++) {
                 st = render_row(&w, use_fast ? &fs : NULL, j, out, bound, &rs);
+                if (prog.fn)
+                    progress_row(&prog, (size_t)out->w);
+            }
         }
+        rs.crowded = w.crowded;
         worker_free(&w);
         fast_free(&fs);
 #pragma omp critical(aa_truth_merge)
@@ -778,6 +849,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
             total.integrated += rs.integrated;
             total.filled += rs.filled;
             total.fast += rs.fast;
+            total.crowded += rs.crowded;
             if (rs.max_bound > total.max_bound ||
                 (rs.max_bound == total.max_bound && rs.worst_j >= 0 &&
                  (total.worst_j < 0 || rs.worst_j < total.worst_j))) {
@@ -789,11 +861,14 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
     }
     if (use_fast)
         plan_free(&plan);
+    if (prog.fn && !status)
+        prog.fn(prog.ctx, prog.total, prog.total);
     if (status)
         aa_fail(status, "%s", message);
     if (stats) {
         stats->integrated = total.integrated;
         stats->filled = total.filled;
+        stats->crowded = total.crowded;
         stats->max_bound = total.max_bound;
         stats->worst_i = total.worst_i;
         stats->worst_j = total.worst_j;

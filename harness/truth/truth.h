@@ -16,6 +16,7 @@
 typedef struct aa_truth_stats {
     size_t integrated; /* pixels integrated */
     size_t filled;     /* uniform pixels filled without integration */
+    size_t crowded;    /* of the integrated, those taken one piece at a time */
     double max_bound;  /* largest per-pixel error bound */
     int worst_i, worst_j;
 } aa_truth_stats;
@@ -32,6 +33,16 @@ int aa_long_double_is_extended(void);
  * arguments or memory; a bound above AA_TRUTH_BOUND is reported in stats. */
 int aa_truth_render(const aa_scene *placed, const aa_filter *f, int threads,
                     aa_image *out, aa_image *bound, aa_truth_stats *stats);
+
+/* Progress of the references rendered from now on (aa_truth_render, and so
+ * aa_reference when it computes one): fn(ctx, done, total) with the pixels
+ * done so far, called by whichever rendering thread finishes a row, one
+ * call at a time, at most ten times a second, and once with done == total
+ * at the end.  The library prints nothing: the command line shows it
+ * (cmd_truth.c).  NULL: no calls.  One setting for the process, changed
+ * only between renders. */
+typedef void (*aa_truth_progress_fn)(void *ctx, size_t done, size_t total);
+void aa_truth_set_progress(aa_truth_progress_fn fn, void *ctx);
 
 /* What defines a reference image. */
 typedef struct aa_view {
@@ -54,7 +65,18 @@ int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_ima
  * non-uniform pixel with QAG, as before the fixed rule existed; *nfast
  * (may be NULL) receives the number of pixels the fixed rule took. */
 #define AA__TRUTH_QAG 1
+/* mode AA__TRUTH_CROWD takes every non-uniform pixel one piece at a time
+ * (truth_crowd.c), as crowded pixels are, to check it against the sum
+ * over spans. */
+#define AA__TRUTH_CROWD 2
 int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int threads, int mode,
                           aa_image *out, aa_image *bound, aa_truth_stats *stats, size_t *nfast);
+
+/* Internal (tests): the 21-point Gauss-Kronrod pass in long double that
+ * crowded pixels use: the result, QUADPACK's error estimate, the plain
+ * |K21 - G10| and the rounding floor. */
+void aa__truth_gk21l(long double (*f)(long double, const void *), const void *ctx, long double a,
+                     long double b, long double *result, long double *abserr, long double *raw,
+                     long double *floor);
 
 #endif /* AA_TRUTH_H */

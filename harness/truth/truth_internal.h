@@ -8,6 +8,8 @@
 
 #include "truth.h"
 
+#include <gsl/gsl_poly.h>
+
 /* A local piece in coordinates relative to the pixel centre (uc, vc):
  * y(t) - vc = y0 + t (by + t ay), x(t) - uc = x0 + t (bx + t ax). */
 typedef struct local_piece {
@@ -21,6 +23,69 @@ void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long dou
 long double truth_crossing_part(const local_piece *q, long double s);
 /* qsort order of doubles. */
 int truth_cmp_double(const void *a, const void *b);
+/* Radial filters: the heights (relative to vc, at most 4) where piece p
+ * crosses the circle of radius R around (uc, vc); returns how many. */
+int truth_circle_heights(const aa_piece *p, double uc, double vc, double R,
+                         gsl_poly_complex_workspace *poly, double out[4]);
+
+/* QAG is asked for this absolute accuracy per pixel and channel: above its
+ * rounding floor (50 eps times the integral of |f|, about 1e-14 here) and
+ * well below AA_TRUTH_BOUND. */
+#define TRUTH_EPSABS 2e-13
+
+/* ------------------------------------------------------------------------
+ * Crowded pixels: the outer integral one piece at a time (truth_crowd.c)
+ * ------------------------------------------------------------------------ */
+
+/* Pixels whose window holds more local pieces than this take the crowd
+ * path.  Up to it the sum over spans (truth.c) is integrated as a whole,
+ * with the heights where pieces meet as breakpoints up to TRUTH_MAX_PAIRS
+ * pieces; between the two, a window in which two pieces cross (found by
+ * the crowd path's sweep, which stops there if none do) goes to the crowd
+ * path too: QAG's bisection alone missed such kinks (60 thin crossing
+ * quadrilaterals: 1.7e-8 off at a bound of 1e-14; tests/test_area.c,
+ * test_crowded_crossings).  72 is the most the patterns' default views
+ * reach at 256 x 256 (star's centre under tent, cone and gauss, where the
+ * spokes only meet at their ends): their references are as they were. */
+#define TRUTH_CROWD 72
+
+typedef struct crowd_piece crowd_piece;
+typedef struct crowd_node crowd_node;
+typedef struct crowd_event crowd_event;
+typedef struct crowd_seg crowd_seg;
+
+/* One thread's workspace for crowded pixels: grown as needed, kept from
+ * pixel to pixel (zeroed: empty). */
+typedef struct crowd_worker {
+    crowd_piece *cp;
+    crowd_node *node; /* the order along x, one slot per piece */
+    size_t cap_cp;
+    int *wl; /* the winding numbers left of each piece in the order */
+    crowd_event *heap;
+    size_t nheap, cap_heap;
+    crowd_seg *seg;
+    size_t nseg, cap_seg;
+    double *kink; /* the pieces' own split heights */
+    size_t nkink, cap_kink;
+    int *touched, *meet, *dirty, *scratch, *scratch2;
+    size_t cap_meet, cap_dirty, cap_scratch;
+    long double *xs; /* x of each piece at a batch's height */
+    int *wind;
+    int nl;
+    gsl_poly_complex_workspace *poly;
+} crowd_worker;
+
+void crowd_free(crowd_worker *cw);
+/* crowd_pixel's answer when asked for crossed windows only and no two
+ * pieces cross inside this one (not an aa_status). */
+#define CROWD_DECLINED (-1)
+/* The value (channels) and error bound of pixel (uc, vc), whose window
+ * [-R, R]^2 around the centre holds the strip's n local pieces; if
+ * only_crossed, CROWD_DECLINED (nothing written) unless two of them cross
+ * inside it. */
+int crowd_pixel(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
+                const aa_filter *f, double uc, double vc, const aa_piece *const *local, size_t n,
+                int grey, int only_crossed, double *value, double *bound);
 
 /* ------------------------------------------------------------------------
  * The Gaussian: one fixed rule on panels shared by the rows
