@@ -22,6 +22,8 @@ CXX    := g++
 PKGS      := gsl
 # the peer rasterizers (algorithms/freetype.c, stb.c, cairo.c, agg.cpp)
 PKGS      += freetype2 stb cairo libagg
+# run manifests (harness/bench/shard.c)
+PKGS      += libcjson
 TEST_PKGS := cmocka
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)

@@ -124,6 +124,11 @@ typedef struct aa_row {
      * outside [0, 1] or not finite, crashed or timed out; the note says
      * which.  0 with ok = 0: refused (a result, not a failure). */
     int failed;
+    /* the case's number in the whole run's order (groups, then pattern,
+     * size, filter, method), the same in every shard of it; -1 unknown (a
+     * results file without the column) */
+    long case_index;
+    char host[64]; /* the machine that measured it ("" unknown) */
 } aa_row;
 
 /* A suite is a list of groups; each group is a cross product of patterns,
@@ -205,6 +210,13 @@ typedef struct aa_run_config {
      * stopped */
     int isolate; /* AA_ISOLATE_NONE (0), AA_ISOLATE_PLUGINS or AA_ISOLATE_ALL */
     double case_timeout;
+    /* the cases to run (shards, resumed runs): only[k] non-zero for the
+     * k-th case of the cross product, in pattern, size, filter, method
+     * order; NULL: every case.  A view none of whose cases runs is not
+     * visited (its reference is not made).  case_base is added to k for
+     * the rows' case_index (the group's first case in the whole run). */
+    const unsigned char *only;
+    size_t case_base;
 } aa_run_config;
 #define AA_ISOLATE_NONE 0
 #define AA_ISOLATE_PLUGINS 1 /* the methods of plug-ins only */
@@ -222,6 +234,64 @@ int aa_run_check(const aa_run_config *cfg);
  * (files, memory, an interruption); *rows and *n hold the rows measured
  * until then, whatever the status (NULL and 0 if none). */
 int aa_run(const aa_run_config *cfg, aa_row **rows, size_t *n);
+/* The references aa_run would ask the cache for (every view with a case
+ * to run; for animated runs each frame's), computed and stored into
+ * cfg->cache_dir where missing: *computed and *cached (added to) count
+ * them. */
+int aa_run_warm(const aa_run_config *cfg, size_t *computed, size_t *cached);
+
+/* ---- sharded runs (shard.c) ----
+ *
+ * A run's cases are numbered in the order the whole run takes them
+ * (groups in turn, each in pattern, size, filter, method order).  A shard
+ * K of N (1 <= K <= N) takes the cases a deterministic partition gives it:
+ * each case costs pixels x samples (spp, or n x n, else 1; times the frames
+ * of an animated run and the seeds of a stochastic method), and each view
+ * a shard visits costs its reference (pixels x AA_SHARD_REFERENCE_WEIGHT
+ * per frame) once in that shard; cases are taken from the most costly down
+ * (ties by number), each to the shard whose load then is least (ties: the
+ * lowest K).  The union of the N shards is the whole run, each case once. */
+#define AA_SHARD_REFERENCE_WEIGHT 16
+#define AA_SHARD_MAX 4096
+/* The estimated cost of case k of a group's cross product, and of the
+ * references of its view. */
+uint64_t aa_case_cost(const aa_run_config *cfg, size_t k);
+uint64_t aa_case_reference_cost(const aa_run_config *cfg, size_t k);
+/* The cases of a group's cross product. */
+size_t aa_run_case_count(const aa_run_config *cfg);
+/* Shard `shard` of `nshards` of the ng groups: masks[g] (malloc'd, one byte
+ * per case of group g) marks its cases; *selected counts them, *cost (may
+ * be NULL) is their estimated cost, references included. */
+int aa_shard_plan(const aa_run_config *cfgs, size_t ng, int shard, int nshards,
+                  unsigned char **masks, size_t *selected, uint64_t *cost);
+
+/* A run folder's manifest, run.json: the command (its arguments after
+ * `run`, without those that do not change the results: --out, --resume,
+ * --shard, --cache, --no-cache, -q), the suite, the commit and whether the
+ * tree was dirty, the shard (1 of 1 unsharded), the cases of the whole
+ * run and those of this folder, and the context of the machine (text of a
+ * JSON object).  Written before any case, so an interrupted run can be
+ * resumed and shards merged (cmd_merge.c). */
+typedef struct aa_manifest {
+    int argc;
+    char **argv;
+    char suite[64], commit[64], host[64];
+    int dirty; /* 1, 0, -1 unknown */
+    int shard, shards;
+    size_t cases;
+    size_t *selected;
+    size_t nselected;
+    char *context; /* JSON text, may be NULL */
+} aa_manifest;
+int aa_manifest_write(const char *path, const aa_manifest *m);
+/* Read strictly: a member missing or of the wrong type, or a case outside
+ * the run, is AA_EINVAL naming the file and the member; a file that is not
+ * there, AA_EIO. */
+int aa_manifest_read(const char *path, aa_manifest *m);
+void aa_manifest_free(aa_manifest *m);
+/* Whether an argument of `run` is left out of a manifest's command, and
+ * whether it takes a value (*takes_value). */
+int aa_manifest_skips(const char *arg, int *takes_value);
 
 /* results.csv and results.json: one row per case. */
 int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n);
@@ -248,6 +318,7 @@ typedef struct aa_context {
     char cpu[256];
     int cores, cores_allowed, threads;
     char os[256], kernel[128], machine[64], governor[64];
+    char host[64];         /* the node's name (uname) */
     char gsl[32], oiio[32], freetype[32], cairo[32], stb[64];
     char date[32];         /* UTC, ISO 8601 */
     double load[3];        /* load averages at the start */

@@ -182,6 +182,7 @@ int aa_context_collect(aa_context *c, int argc, const char *const *argv, int thr
     if (uname(&u) == 0) {
         snprintf(c->kernel, sizeof c->kernel, "%.32s %.64s", u.sysname, u.release);
         snprintf(c->machine, sizeof c->machine, "%.63s", u.machine);
+        snprintf(c->host, sizeof c->host, "%.63s", u.nodename);
     }
     file_value("/etc/os-release", "PRETTY_NAME", '=', c->os, sizeof c->os);
     FILE *g = fopen("/sys/devices/system/cpu/cpu0/cpufreq/scaling_governor", "r");
@@ -260,6 +261,8 @@ char *aa_context_json(const aa_context *c, int indent)
     json_str(f, c->kernel);
     fprintf(f, ",\n%*s\"machine\": ", in, "");
     json_str(f, c->machine);
+    fprintf(f, ",\n%*s\"host\": ", in, "");
+    json_str(f, c->host);
     fprintf(f, ",\n%*s\"libraries\": {\"gsl\": ", in, "");
     json_str(f, c->gsl);
     fputs(", \"openimageio\": ", f);

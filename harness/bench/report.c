@@ -159,7 +159,10 @@ static void num(text *t, double v)
     X(rmse_mean, M(if (r->seeds > 1) opt(t, r->rmse_mean)))                                      \
     X(rmse_ci_lo, M(if (r->seeds > 1) opt(t, r->rmse_ci_lo)))                                    \
     X(rmse_ci_hi, M(if (r->seeds > 1) opt(t, r->rmse_ci_hi)))                                    \
-    X(times, S(times_cell(t, r)))
+    X(times, S(times_cell(t, r)))                                                                \
+    X(cpu_times, S(cpu_times_cell(t, r)))                                                        \
+    X(case, if (r->case_index >= 0) put(t, "%ld", r->case_index))                                \
+    X(host, csv_field(t, r->host))
 
 /* timing columns only for rows that ran and were timed */
 #define S(write)                                                                                 \
@@ -187,6 +190,13 @@ static void times_cell(text *t, const aa_row *r)
 {
     for (int k = 0; k < r->timing.n; k++)
         put(t, k ? " %.9g" : "%.9g", r->timing.wall[k]);
+}
+
+/* every render's CPU time, likewise */
+static void cpu_times_cell(text *t, const aa_row *r)
+{
+    for (int k = 0; k < r->timing.n; k++)
+        put(t, k ? " %.9g" : "%.9g", r->timing.cpu[k]);
 }
 
 /* temporal metrics only for animated rows that ran */
@@ -473,6 +483,35 @@ static int read_timing_cell(aa_row *row, const char *h, const char *v)
 {
     int bad = 0;
     aa_timing *t = &row->timing;
+    if (!strcmp(h, "cpu_times")) {
+        char *end;
+        int n = 0;
+        for (const char *p = v; *p;) {
+            if (n == AA_TIMING_MAX_REPS)
+                return 1;
+            errno = 0;
+            double x = strtod(p, &end);
+            if (end == p || errno || !(x >= 0))
+                return 1;
+            t->cpu[n++] = x;
+            p = end;
+            while (*p == ' ')
+                p++;
+        }
+    }
+    if (!strcmp(h, "case") && *v) {
+        char *end;
+        errno = 0;
+        long k = strtol(v, &end, 10);
+        if (*end || errno || k < 0 || !(*v >= '0' && *v <= '9'))
+            return 1;
+        row->case_index = k;
+    }
+    if (!strcmp(h, "host")) {
+        if (strlen(v) >= sizeof row->host)
+            return 1;
+        snprintf(row->host, sizeof row->host, "%s", v);
+    }
     if (!strcmp(h, "times")) {
         char *end;
         t->n = 0;
@@ -889,6 +928,7 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
         aa_row *row = &rows[n];
         memset(row, 0, sizeof *row);
         row->tm.popping = NAN;
+        row->case_index = -1;
         /* ok first: which columns must hold a value depends on it; then
          * whether the row is animated */
         const int f_ok = at[column_named("ok") - csv_columns];

@@ -21,6 +21,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/utsname.h>
 
 static int check_list(const void *list, size_t n, const char *what)
 {
@@ -155,10 +156,22 @@ static int write_images(const aa_run_config *cfg, const char *stem, const aa_ima
     return write_error_map(path, ref, img);
 }
 
+/* The machine's name, for the rows it measures (times are only comparable
+ * on one machine: a merged run keeps each case's). */
+static void host_name(char *buf, size_t len)
+{
+    struct utsname u;
+    if (uname(&u) == 0)
+        snprintf(buf, len, "%.63s", u.nodename);
+    else
+        snprintf(buf, len, "unknown");
+}
+
 static void row_names(aa_row *row, const char *pattern, int w, int h, const char *filter,
                       const char *method, const aa_run_config *cfg)
 {
     memset(row, 0, sizeof *row);
+    host_name(row->host, sizeof row->host);
     snprintf(row->pattern, sizeof row->pattern, "%s", pattern);
     snprintf(row->filter, sizeof row->filter, "%s", filter);
     snprintf(row->method, sizeof row->method, "%s", method);
@@ -499,8 +512,11 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
     if (st)
         return st;
     const double timeout = cfg->case_timeout > 0 ? cfg->case_timeout : AA_CASE_TIMEOUT;
-    size_t total = cfg->npatterns * cfg->nsizes * cfg->nfilters * cfg->nmethods, n = 0;
-    aa_row *rows = calloc(total, sizeof *rows);
+    const size_t nm = cfg->nmethods;
+    size_t all = cfg->npatterns * cfg->nsizes * cfg->nfilters * nm, total = 0, n = 0;
+    for (size_t k = 0; k < all; k++)
+        total += !cfg->only || cfg->only[k];
+    aa_row *rows = calloc(total ? total : 1, sizeof *rows);
     aa_scene *scene = NULL;
     aa_image ref = {0}, img = {0};
     aa_job job = {0};
@@ -533,6 +549,13 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                 break;
             for (size_t jf = 0; jf < cfg->nfilters && !st; jf++) {
                 char stem[1400], ps[512], fs[256], fbuf[sizeof rows->filter];
+                /* the view's first case in the cross product */
+                const size_t first = ((ip * cfg->nsizes + is) * cfg->nfilters + jf) * nm;
+                size_t chosen = 0;
+                for (size_t im = 0; im < nm; im++)
+                    chosen += !cfg->only || cfg->only[first + im];
+                if (!chosen)
+                    continue; /* another shard's view, or done before */
                 const char *filter = shown(cfg->filters[jf].text, &cfg->filters[jf].filter.spec,
                                            fbuf, sizeof fbuf);
                 view.filter = cfg->filters[jf].filter;
@@ -557,6 +580,8 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     const aa_spec *spec = &cfg->methods[im].spec;
                     const char *method = shown(cfg->methods[im].text, spec, mbuf, sizeof mbuf);
                     aa_row *row = &rows[n];
+                    if (cfg->only && !cfg->only[first + im])
+                        continue;
                     snprintf(what, sizeof what, "%s %dx%d %s %s", pattern, view.w, view.h, filter,
                              method);
                     if (cfg->progress && cfg->progress(cfg->ctx, n, total, what)) {
@@ -564,6 +589,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                         break;
                     }
                     row_names(row, pattern, view.w, view.h, filter, method, cfg);
+                    row->case_index = (long)(cfg->case_base + first + im);
                     aa_spec_slug(method, ms, sizeof ms);
                     snprintf(stem, sizeof stem, "%s-%dx%d-%s-%s", ps, view.w, view.h, fs, ms);
                     case_args ca = {cfg, &view, scene, &job, spec, &ref, refs, &img, frames, nt};
@@ -608,5 +634,44 @@ done:
     aa_scene_free(scene);
     *rows_out = rows;
     *n_out = n;
+    return st;
+}
+
+int aa_run_warm(const aa_run_config *cfg, size_t *computed, size_t *cached)
+{
+    int st = aa_run_check(cfg);
+    if (st)
+        return st;
+    const int nt = animated(cfg) ? frame_count(cfg) : 1;
+    const size_t nm = cfg->nmethods;
+    for (size_t ip = 0; ip < cfg->npatterns && !st; ip++)
+        for (size_t is = 0; is < cfg->nsizes && !st; is++)
+            for (size_t jf = 0; jf < cfg->nfilters && !st; jf++) {
+                const size_t first = ((ip * cfg->nsizes + is) * cfg->nfilters + jf) * nm;
+                size_t chosen = 0;
+                for (size_t im = 0; im < nm; im++)
+                    chosen += !cfg->only || cfg->only[first + im];
+                if (!chosen)
+                    continue;
+                /* the references aa_run asks for: the view at t, and for
+                 * animated runs at t + 1, ... too */
+                for (int k = 0; k < nt && !st; k++) {
+                    aa_view view;
+                    aa_image ref = {0};
+                    int hit = 0;
+                    memset(&view, 0, sizeof view);
+                    view.pattern = cfg->patterns[ip].spec;
+                    view.w = cfg->sizes[is].w, view.h = cfg->sizes[is].h;
+                    view.filter = cfg->filters[jf].filter;
+                    view.t = cfg->t + k, view.vx = cfg->vx, view.vy = cfg->vy;
+                    if (cfg->progress && cfg->progress(cfg->ctx, *computed + *cached, 0,
+                                                       "reference"))
+                        st = aa_fail(AA_EFAIL, "interrupted");
+                    if (!st && !(st = aa_reference(&view, cfg->cache_dir, cfg->threads, &ref,
+                                                   NULL, &hit)))
+                        ++*(hit ? cached : computed);
+                    aa_image_free(&ref);
+                }
+            }
     return st;
 }

@@ -79,6 +79,12 @@ static void usage(FILE *out)
             "  --no-isolate      run every case in this process\n"
             "  --case-timeout S  an isolated case taking more than S seconds fails (default\n"
             "                    600)\n"
+            "  --shard K/N       run only the K-th of N parts of the cases (1 <= K <= N),\n"
+            "                    balanced by estimated cost; 'aabench merge' joins the\n"
+            "                    parts' folders into the whole run's results\n"
+            "  --resume DIR      continue the run in DIR (interrupted, or a failed shard)\n"
+            "                    with its own command and commit: the cases in its\n"
+            "                    results are kept, the rest measured\n"
             "\nA case whose method gives an error, a value outside [0, 1] or not finite,\n"
             "crashes or times out is a failed case (ok=0 in results.csv, the reason in its\n"
             "note); the run goes on.  results.csv and results.json are rewritten after every\n"
@@ -104,6 +110,8 @@ typedef struct run_args {
     aa_encode enc;
     double target_ci, budget;
     int seeds;
+    int shard, shards;    /* --shard K/N; 0/0 unsharded */
+    const char *resume;   /* --resume DIR */
 } run_args;
 
 static int push(list *l, const char *v, const char *what)
@@ -114,11 +122,27 @@ static int push(list *l, const char *v, const char *what)
     return AA_OK;
 }
 
+/* --shard K/N: 1 <= K <= N <= AA_SHARD_MAX. */
+static int parse_shard(const char *text, int *k, int *n)
+{
+    char *end, *end2;
+    errno = 0;
+    long a = strtol(text, &end, 10), b = *end == '/' ? strtol(end + 1, &end2, 10) : 0;
+    if (*end != '/' || *end2 || errno || !(*text >= '0' && *text <= '9') ||
+        !(end[1] >= '0' && end[1] <= '9') || b < 1 || b > AA_SHARD_MAX || a < 1 || a > b)
+        return aa_fail(AA_EINVAL,
+                       "--shard \"%s\": expected K/N, the K-th of N parts, 1 <= K <= N <= %d",
+                       aa_echo(text), AA_SHARD_MAX);
+    *k = (int)a, *n = (int)b;
+    return AA_OK;
+}
+
 static int parse(int argc, char **argv, run_args *a)
 {
     enum { O_SUITE = 256, O_REPS, O_OUT, O_THREADS, O_SEED, O_TIME, O_MOTION, O_ENCODE,
            O_PLUGIN, O_NOIMAGES, O_NOPLOTS, O_CACHE, O_NOCACHE, O_LIST, O_FRAMES, O_WINDOW,
-           O_TARGET, O_BUDGET, O_SEEDS, O_ISOLATE, O_NOISOLATE, O_CASE_TIMEOUT };
+           O_TARGET, O_BUDGET, O_SEEDS, O_ISOLATE, O_NOISOLATE, O_CASE_TIMEOUT, O_SHARD,
+           O_RESUME };
     static const struct option opts[] = {
         {"suite", required_argument, 0, O_SUITE}, {"pattern", required_argument, 0, 'p'},
         {"method", required_argument, 0, 'm'},   {"size", required_argument, 0, 's'},
@@ -137,6 +161,8 @@ static int parse(int argc, char **argv, run_args *a)
         {"isolate", no_argument, 0, O_ISOLATE},
         {"no-isolate", no_argument, 0, O_NOISOLATE},
         {"case-timeout", required_argument, 0, O_CASE_TIMEOUT},
+        {"shard", required_argument, 0, O_SHARD},
+        {"resume", required_argument, 0, O_RESUME},
         {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
@@ -177,6 +203,8 @@ static int parse(int argc, char **argv, run_args *a)
         case O_CASE_TIMEOUT:
             st = cli_parse_real("--case-timeout", optarg, 0.001, 1e9, &a->case_timeout);
             break;
+        case O_SHARD: st = parse_shard(optarg, &a->shard, &a->shards); break;
+        case O_RESUME: a->resume = optarg; break;
         case O_LIST:
             for (const aa_suite *s = aa_suites; s->name; s++)
                 printf("%s\t%s\n", s->name, s->summary);
@@ -239,6 +267,7 @@ typedef struct run_ctx {
      * way (copied of them), saved after every case */
     aa_row *all;
     size_t nall, cap, copied;
+    int sort; /* resumed: rows saved in the run's order (case_index) */
 } run_ctx;
 
 static int progress(void *vctx, size_t done, size_t total, const char *what)
@@ -257,9 +286,32 @@ static int progress(void *vctx, size_t done, size_t total, const char *what)
     return interrupted != 0;
 }
 
+static int by_case(const void *a, const void *b)
+{
+    const aa_row *x = a, *y = b;
+    return x->case_index < y->case_index ? -1 : x->case_index > y->case_index;
+}
+
+static int save_rows(run_ctx *ctx, const aa_row *rows, size_t n);
+
 static int save(void *vctx, const aa_row *rows, size_t n)
 {
     run_ctx *ctx = vctx;
+    if (!ctx->sort || n < 2)
+        return save_rows(ctx, rows, n);
+    /* a resumed run's rows, the kept and the new, in the run's order */
+    aa_row *sorted = malloc(n * sizeof *sorted);
+    if (!sorted)
+        return aa_fail(AA_ENOMEM, "out of memory for %zu results", n);
+    memcpy(sorted, rows, n * sizeof *rows);
+    qsort(sorted, n, sizeof *sorted, by_case);
+    int st = save_rows(ctx, sorted, n);
+    free(sorted);
+    return st;
+}
+
+static int save_rows(run_ctx *ctx, const aa_row *rows, size_t n)
+{
     char path[4096];
     int st = aa_pathf(path, sizeof path, "%s/results.csv", ctx->dir);
     if (!st && !(st = aa_rows_write_csv(path, rows, n)) &&
@@ -810,51 +862,225 @@ static int check_before_work(const run_args *a, const aa_run_config *cfgs, size_
     return AA_OK;
 }
 
+/* The run's groups from the options, each checked and set up but for its
+ * output folder; every case numbered (case_base) in the whole run's order.
+ * Everything is checked before any work or any file. */
+static int prepare(run_args *a, const aa_suite *suite, owned *o, aa_run_config *cfgs,
+                   size_t *ng, int *threads, size_t *cases)
+{
+    int st = groups_of(a, suite, o, cfgs, MAX_GROUPS, ng);
+    if (st)
+        return st;
+    *threads = a->threads > 0 ? a->threads : cli_default_threads();
+    const aa_suite_motion *mo = aa_suite_motion_find(suite->name);
+    if (mo && !a->motion_given)
+        a->vx = mo->vx, a->vy = mo->vy;
+    *cases = 0;
+    for (size_t g = 0; g < *ng; g++) {
+        aa_run_config *c = &cfgs[g];
+        c->reps = a->reps;
+        c->target_ci = a->target_ci, c->budget = a->budget, c->seeds = a->seeds;
+        c->threads = *threads;
+        c->temporal = mo != NULL;
+        c->frames = a->frames ? a->frames : mo ? mo->frames : 0;
+        c->window = a->window ? a->window : mo ? mo->window : 0;
+        c->isolate = a->isolate;
+        c->case_timeout = a->case_timeout;
+        c->seed = a->seed;
+        c->t = a->t, c->vx = a->vx, c->vy = a->vy;
+        c->cache_dir = *a->cache ? a->cache : NULL;
+        c->enc = a->enc;
+        c->case_base = *cases;
+        *cases += aa_run_case_count(c);
+        if ((st = aa_run_check(c)))
+            return st;
+    }
+    return check_before_work(a, cfgs, *ng);
+}
+
+/* After the cases: the montage and plots, the table, the warnings; the
+ * exit status.  A shard makes neither montage nor plots: the merge of the
+ * shards does, over the whole run. */
+static int finish_run(const run_args *a, const aa_run_config *cfgs, int threads,
+                      const char *dir, int linked, run_ctx *ctx, int st)
+{
+    char plots[4200];
+    aa_row *all = ctx->all;
+    size_t nall = ctx->nall;
+    if (ctx->sort && nall > 1)
+        qsort(all, nall, sizeof *all, by_case);
+    /* saved after every case already; once more so that a failed group's
+     * rows are on disk whatever it stopped at */
+    if (nall) {
+        int sst = save(ctx, all, nall);
+        if (!st)
+            st = sst;
+    }
+    size_t ran = 0;
+    for (size_t k = 0; k < nall; k++)
+        ran += all[k].ok != 0;
+    if (!st && ran && a->shards <= 1) {
+        if (a->images)
+            st = write_montage(dir, &cfgs[0], all, nall, &a->enc);
+        if (!st && a->plots && !(st = aa_pathf(plots, sizeof plots, "%s/plots", dir))) {
+            if (!(st = aa_plot_error_vs_time(plots, all, nall)))
+                st = write_convergence(plots, a, &cfgs[0], threads, all, nall);
+        }
+    }
+    if (interrupted) {
+        fprintf(stderr, "\naabench run: interrupted; %zu result%s kept in %s (aabench run "
+                        "--resume %s goes on)\n",
+                nall, nall == 1 ? "" : "s", dir, dir);
+        return 130;
+    }
+    if (st) {
+        if (nall)
+            fprintf(stderr, "aabench run: %zu result%s kept in %s/results.csv\n", nall,
+                    nall == 1 ? "" : "s", dir);
+        return cli_fail("run", st);
+    }
+    if (!a->quiet)
+        print_table(all, nall);
+    cli_warn_noisy("run", all, nall);
+    printf("results: %s/results.csv%s\n", dir, linked ? " (results/latest)" : "");
+    if (a->shards > 1)
+        printf("shard %d/%d: %zu case%s; join the shards with aabench merge DIR... --out DIR\n",
+               a->shard, a->shards, nall, nall == 1 ? "" : "s");
+    return report_failed(all, nall);
+}
+
+/* The run's manifest (bench.h, aa_manifest): its command without the
+ * arguments that do not change the results. */
+static int write_manifest(const char *dir, const run_args *a, const aa_context *context,
+                          size_t cases, unsigned char *const *masks, const aa_run_config *cfgs,
+                          size_t ng)
+{
+    aa_manifest m;
+    char path[4200];
+    int argc, st;
+    const char *const *argv;
+    memset(&m, 0, sizeof m);
+    cli_command_line(&argc, &argv);
+    m.argv = calloc((size_t)argc + 1, sizeof *m.argv);
+    m.selected = calloc(cases ? cases : 1, sizeof *m.selected);
+    if (!m.argv || !m.selected) {
+        free(m.argv);
+        free(m.selected);
+        return aa_fail(AA_ENOMEM, "out of memory");
+    }
+    for (int k = 2; k < argc; k++) {
+        int value;
+        if (aa_manifest_skips(argv[k], &value))
+            k += value;
+        else
+            m.argv[m.argc++] = (char *)argv[k];
+    }
+    snprintf(m.suite, sizeof m.suite, "%s", a->suite);
+    snprintf(m.commit, sizeof m.commit, "%s", context->commit);
+    snprintf(m.host, sizeof m.host, "%s", context->host);
+    m.dirty = context->dirty;
+    m.shard = a->shards ? a->shard : 1;
+    m.shards = a->shards ? a->shards : 1;
+    m.cases = cases;
+    for (size_t g = 0; g < ng; g++)
+        for (size_t k = 0; k < aa_run_case_count(&cfgs[g]); k++)
+            if (!masks[g] || masks[g][k])
+                m.selected[m.nselected++] = cfgs[g].case_base + k;
+    m.context = aa_context_json(context, 0);
+    st = m.context ? aa_pathf(path, sizeof path, "%s/run.json", dir)
+                   : aa_fail(AA_ENOMEM, "out of memory");
+    if (!st)
+        st = aa_manifest_write(path, &m);
+    free(m.argv);
+    free(m.selected);
+    free(m.context);
+    return st;
+}
+
+/* A resumed run: the rows of DIR/results.csv kept, and their cases taken
+ * out of the masks (made when the run had none).  A row that is not one of
+ * the folder's cases is refused. */
+static int resume_rows(const char *dir, aa_run_config *cfgs, size_t ng, unsigned char **masks,
+                       run_ctx *ctx)
+{
+    char path[4200];
+    aa_row *rows = NULL;
+    size_t n = 0;
+    int st = aa_pathf(path, sizeof path, "%s/results.csv", dir);
+    if (st || access(path, F_OK) != 0)
+        return st; /* stopped before its first case */
+    if ((st = aa_rows_read_csv(path, &rows, &n)))
+        return st;
+    for (size_t g = 0; g < ng && !st; g++)
+        if (!masks[g]) {
+            size_t c = aa_run_case_count(&cfgs[g]);
+            if (!(masks[g] = malloc(c ? c : 1)))
+                st = aa_fail(AA_ENOMEM, "out of memory");
+            else
+                memset(masks[g], 1, c);
+        }
+    for (size_t k = 0; k < n && !st; k++) {
+        long i = rows[k].case_index;
+        size_t g = 0;
+        while (g < ng && !(i >= 0 && (size_t)i >= cfgs[g].case_base &&
+                           (size_t)i < cfgs[g].case_base + aa_run_case_count(&cfgs[g])))
+            g++;
+        if (g == ng || !masks[g][(size_t)i - cfgs[g].case_base])
+            st = aa_fail(AA_EINVAL,
+                         "%s, line %zu: %s on %s %dx%d %s is not a case this run has left to "
+                         "measure (case %ld: another run's, or given twice)",
+                         path, k + 2, rows[k].method, rows[k].pattern, rows[k].w, rows[k].h,
+                         rows[k].filter, i);
+        else
+            masks[g][(size_t)i - cfgs[g].case_base] = 0;
+    }
+    if (!st && n && !(st = grow(ctx, n))) {
+        memcpy(ctx->all, rows, n * sizeof *rows);
+        ctx->nall = n;
+    }
+    free(rows);
+    return st;
+}
+
 /* Run the suite's cross products (or those given) and write everything. */
 static int run_suite(run_args *a, const aa_suite *suite, owned *o)
 {
     aa_run_config cfgs[MAX_GROUPS];
-    size_t ng;
-    int st = groups_of(a, suite, o, cfgs, MAX_GROUPS, &ng);
+    unsigned char *masks[MAX_GROUPS] = {0};
+    size_t ng, cases, selected = 0;
+    int threads, code = 0;
+    int st = prepare(a, suite, o, cfgs, &ng, &threads, &cases);
     if (st)
         return cli_fail("run", st);
-    int threads = a->threads > 0 ? a->threads : cli_default_threads();
-    char dir[4096], images[4200], plots[4200];
+    if (a->shards > 1 &&
+        (st = aa_shard_plan(cfgs, ng, a->shard, a->shards, masks, &selected, NULL)))
+        return cli_fail("run", st);
+    char dir[4096], images[4200];
     int linked = 0;
-    const aa_suite_motion *mo = aa_suite_motion_find(suite->name);
-    if (mo && !a->motion_given)
-        a->vx = mo->vx, a->vy = mo->vy;
-    for (size_t g = 0; g < ng; g++) {
-        cfgs[g].reps = a->reps;
-        cfgs[g].target_ci = a->target_ci, cfgs[g].budget = a->budget, cfgs[g].seeds = a->seeds;
-        cfgs[g].threads = threads;
-        cfgs[g].temporal = mo != NULL;
-        cfgs[g].frames = a->frames ? a->frames : mo ? mo->frames : 0;
-        cfgs[g].window = a->window ? a->window : mo ? mo->window : 0;
-        cfgs[g].isolate = a->isolate;
-        cfgs[g].case_timeout = a->case_timeout;
-        if ((st = aa_run_check(&cfgs[g])))
-            return cli_fail("run", st);
-    }
-    if ((st = check_before_work(a, cfgs, ng)))
-        return cli_fail("run", st);
     if (a->out) {
-        if ((st = aa_pathf(dir, sizeof dir, "%s", a->out)))
-            return cli_fail("run", st);
-        if ((st = aa_mkdirs(dir)))
-            return cli_fail("run", st);
+        if ((st = aa_pathf(dir, sizeof dir, "%s", a->out)) || (st = aa_mkdirs(dir)))
+            goto fail;
     } else if ((st = make_run_dir(dir, sizeof dir, &linked))) {
-        return cli_fail("run", st);
+        goto fail;
     }
-    if ((st = aa_pathf(images, sizeof images, "%s/images", dir)) ||
-        (st = aa_pathf(plots, sizeof plots, "%s/plots", dir)))
-        return cli_fail("run", st);
+    if ((st = aa_pathf(images, sizeof images, "%s/images", dir)))
+        goto fail;
     aa_context context;
     int argc;
     const char *const *argv;
     cli_command_line(&argc, &argv);
     aa_context_collect(&context, argc, argv, threads);
-    run_ctx ctx = {dir, cli_progress_wanted(), aa_now(), &context, NULL, 0, 0, 0};
+    run_ctx ctx = {dir, cli_progress_wanted(), aa_now(), &context, NULL, 0, 0, 0, 0};
+    if (a->resume) {
+        ctx.sort = 1;
+        if ((st = resume_rows(dir, cfgs, ng, masks, &ctx)))
+            goto fail;
+        if (ctx.nall)
+            fprintf(stderr, "aabench run: resuming %s: %zu case%s kept, measuring the rest\n",
+                    dir, ctx.nall, ctx.nall == 1 ? "" : "s");
+    } else if ((st = write_manifest(dir, a, &context, cases, masks, cfgs, ng))) {
+        goto fail;
+    }
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -864,14 +1090,11 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
     st = AA_OK;
     for (size_t g = 0; g < ng && !st; g++) {
         aa_run_config *c = &cfgs[g];
-        c->seed = a->seed;
-        c->t = a->t, c->vx = a->vx, c->vy = a->vy;
-        c->cache_dir = *a->cache ? a->cache : NULL;
         c->images_dir = a->images ? images : NULL;
-        c->enc = a->enc;
         c->progress = progress;
         c->row_done = row_done;
         c->ctx = &ctx;
+        c->only = masks[g];
         aa_row *rows = NULL;
         size_t n = 0;
         ctx.copied = 0;
@@ -887,72 +1110,222 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         ctx.copied = 0;
         free(rows);
     }
-    aa_row *all = ctx.all;
-    size_t nall = ctx.nall;
-    /* saved after every case already; once more so that a failed group's
-     * rows are on disk whatever it stopped at */
-    if (nall) {
-        int sst = save(&ctx, all, nall);
-        if (!st)
-            st = sst;
+    code = finish_run(a, cfgs, threads, dir, linked, &ctx, st);
+    free(ctx.all);
+    for (size_t g = 0; g < ng; g++)
+        free(masks[g]);
+    return code;
+fail:
+    for (size_t g = 0; g < ng; g++)
+        free(masks[g]);
+    return cli_fail("run", st);
+}
+
+static void run_defaults(run_args *a)
+{
+    memset(a, 0, sizeof *a);
+    a->suite = "default";
+    a->reps = 0; /* by precision */
+    a->images = a->plots = 1;
+    a->seed = 1;
+    a->cache = cli_cache_dir();
+    a->enc.kind = AA_ENCODE_SRGB;
+    a->isolate = AA_ISOLATE_PLUGINS;
+    a->case_timeout = AA_CASE_TIMEOUT;
+}
+
+static const aa_suite *suite_of(const run_args *a)
+{
+    const aa_suite *suite = aa_suite_find(a->suite);
+    if (!suite)
+        fprintf(stderr,
+                "aabench run: unknown suite \"%s\" (quick, default, paper, full, temporal)\n",
+                aa_echo(a->suite));
+    return suite;
+}
+
+/* The arguments of argv[1..] that a manifest keeps, joined by spaces. */
+static void joined(int argc, char *const *argv, int skip, char *buf, size_t len)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int k = 0; k < argc && n + 1 < len; k++) {
+        int value;
+        if (skip && aa_manifest_skips(argv[k], &value)) {
+            k += value;
+            continue;
+        }
+        n += (size_t)snprintf(buf + n, len - n, "%s%s", n ? " " : "", aa_echo(argv[k]));
     }
-    size_t ran = 0;
-    for (size_t k = 0; k < nall; k++)
-        ran += all[k].ok != 0;
-    if (!st && ran) {
-        if (a->images)
-            st = write_montage(dir, &cfgs[0], all, nall, &a->enc);
-        if (!st && a->plots) {
-            if (!(st = aa_plot_error_vs_time(plots, all, nall)))
-                st = write_convergence(plots, a, &cfgs[0], threads, all, nall);
+    if (n >= len && len > 4)
+        memcpy(buf + len - 4, "...", 4);
+}
+
+/* --resume DIR: the run in DIR goes on with its own command (given again,
+ * it must be the same) and only with the commit it was measured at. */
+static int resume(const char *dir, int argc, char **argv)
+{
+    aa_manifest m;
+    char path[4200], given[2048], recorded[2048];
+    int st = aa_pathf(path, sizeof path, "%s/run.json", dir);
+    if (!st && (st = aa_manifest_read(path, &m)) == AA_EIO) {
+        fprintf(stderr, "aabench run: --resume %s: not a run folder (%s)\n", aa_echo(dir),
+                aa_last_error());
+        return 2;
+    }
+    if (st)
+        return cli_fail("run", st == AA_EIO ? AA_EINVAL : st);
+    joined(argc - 1, argv + 1, 1, given, sizeof given);
+    joined(m.argc, m.argv, 0, recorded, sizeof recorded);
+    int other = 0;
+    for (int k = 1; k < argc; k++) {
+        int value;
+        if (aa_manifest_skips(argv[k], &value))
+            k += value;
+        else
+            other = 1;
+    }
+    if (other && strcmp(given, recorded)) {
+        fprintf(stderr, "aabench run: --resume %s: the command differs from the run's: it was "
+                        "\"%s\", now \"%s\" (give no options to take the run's own)\n",
+                aa_echo(dir), recorded, given);
+        aa_manifest_free(&m);
+        return 2;
+    }
+    aa_context now;
+    aa_context_collect(&now, 0, NULL, 1);
+    if (strcmp(now.commit, m.commit) || (m.dirty >= 0 && now.dirty >= 0 && m.dirty != now.dirty)) {
+        fprintf(stderr, "aabench run: --resume %s: the run was measured at commit %s%s, this "
+                        "program is at %s%s: resume it with that commit's aabench, or start a "
+                        "new run\n",
+                aa_echo(dir), m.commit, m.dirty > 0 ? " (dirty)" : "", now.commit,
+                now.dirty > 0 ? " (dirty)" : "");
+        aa_manifest_free(&m);
+        return 2;
+    }
+    /* "run", the run's own arguments, its shard and folder, and the options
+     * given that do not change the results (--cache, -q) */
+    char shard[64];
+    char **args = calloc((size_t)m.argc + (size_t)argc + 8, sizeof *args);
+    if (!args) {
+        aa_manifest_free(&m);
+        return cli_fail("run", aa_fail(AA_ENOMEM, "out of memory"));
+    }
+    int n = 0;
+    args[n++] = "run";
+    for (int k = 0; k < m.argc; k++)
+        args[n++] = m.argv[k];
+    snprintf(shard, sizeof shard, "%d/%d", m.shard, m.shards);
+    if (m.shards > 1)
+        args[n++] = "--shard", args[n++] = shard;
+    args[n++] = "--out", args[n++] = (char *)dir;
+    for (int k = 1; k < argc; k++) {
+        int value;
+        if (aa_manifest_skips(argv[k], &value) && strncmp(argv[k], "--out", 5) &&
+            strncmp(argv[k], "--resume", 8) && strncmp(argv[k], "--shard", 7)) {
+            args[n++] = argv[k];
+            if (value && k + 1 < argc)
+                args[n++] = argv[++k];
+        } else {
+            k += value;
         }
     }
-    if (interrupted) {
-        fprintf(stderr, "\naabench run: interrupted; %zu result%s kept in %s\n", nall,
-                nall == 1 ? "" : "s", dir);
-        free(all);
-        return 130;
+    run_args a;
+    run_defaults(&a);
+    int code = parse(n, args, &a);
+    if (code < 0) {
+        a.resume = dir;
+        const aa_suite *suite = suite_of(&a);
+        owned o = {{0}, 0};
+        code = suite ? run_suite(&a, suite, &o) : 2;
+        owned_free(&o);
     }
-    if (st) {
-        if (nall)
-            fprintf(stderr, "aabench run: %zu result%s kept in %s/results.csv\n", nall,
-                    nall == 1 ? "" : "s", dir);
-        free(all);
-        return cli_fail("run", st);
-    }
-    if (!a->quiet)
-        print_table(all, nall);
-    cli_warn_noisy("run", all, nall);
-    printf("results: %s/results.csv%s\n", dir, linked ? " (results/latest)" : "");
-    int code = report_failed(all, nall);
-    free(all);
+    free(args);
+    aa_manifest_free(&m);
     return code;
 }
 
 int cmd_run(int argc, char **argv)
 {
     run_args a;
-    memset(&a, 0, sizeof a);
-    a.suite = "default";
-    a.reps = 0; /* by precision */
-    a.images = a.plots = 1;
-    a.seed = 1;
-    a.cache = cli_cache_dir();
-    a.enc.kind = AA_ENCODE_SRGB;
-    a.isolate = AA_ISOLATE_PLUGINS;
-    a.case_timeout = AA_CASE_TIMEOUT;
+    run_defaults(&a);
     int code = parse(argc, argv, &a);
     if (code >= 0)
         return code;
-    const aa_suite *suite = aa_suite_find(a.suite);
-    if (!suite) {
-        fprintf(stderr,
-                "aabench run: unknown suite \"%s\" (quick, default, paper, full, temporal)\n",
-                aa_echo(a.suite));
+    if (a.resume)
+        return resume(a.resume, argc, argv);
+    const aa_suite *suite = suite_of(&a);
+    if (!suite)
         return 2;
-    }
     owned o = {{0}, 0};
     code = run_suite(&a, suite, &o);
+    owned_free(&o);
+    return code;
+}
+
+/* ---- for other commands: a run's references, and a merged run ---- */
+
+int cli_run_warm(int argc, char **argv)
+{
+    run_args a;
+    run_defaults(&a);
+    int code = parse(argc, argv, &a);
+    if (code >= 0)
+        return code;
+    const aa_suite *suite = suite_of(&a);
+    if (!suite)
+        return 2;
+    if (!*a.cache) {
+        fprintf(stderr, "aabench truth: --warm needs a cache folder (not --no-cache)\n");
+        return 2;
+    }
+    aa_run_config cfgs[MAX_GROUPS];
+    size_t ng, cases, computed = 0, cached = 0;
+    int threads, st;
+    owned o = {{0}, 0};
+    a.images = 0; /* nothing is written but the cache */
+    st = prepare(&a, suite, &o, cfgs, &ng, &threads, &cases);
+    double t0 = aa_now();
+    for (size_t g = 0; g < ng && !st; g++)
+        st = aa_run_warm(&cfgs[g], &computed, &cached);
+    owned_free(&o);
+    if (st)
+        return cli_fail("truth", st);
+    if (!a.quiet)
+        printf("%zu reference%s of suite %s in %s: %zu computed, %zu already there (%.1f s)\n",
+               computed + cached, computed + cached == 1 ? "" : "s", a.suite, a.cache, computed,
+               cached, aa_now() - t0);
+    return 0;
+}
+
+int cli_run_write_merged(int argc, char **argv, const char *dir, aa_row *rows, size_t n,
+                         int quiet)
+{
+    run_args a;
+    run_defaults(&a);
+    int code = parse(argc, argv, &a);
+    if (code >= 0)
+        return code == 0 ? 2 : code; /* --help or --list-suites: not a run's command */
+    const aa_suite *suite = suite_of(&a);
+    if (!suite)
+        return 2;
+    a.quiet |= quiet;
+    a.shard = a.shards = 0; /* the whole run */
+    aa_run_config cfgs[MAX_GROUPS];
+    size_t ng, cases;
+    int threads;
+    owned o = {{0}, 0};
+    int st = prepare(&a, suite, &o, cfgs, &ng, &threads, &cases);
+    if (!st && cases != n)
+        st = aa_fail(AA_EINVAL, "the run's command has %zu cases, the shards %zu", cases, n);
+    if (st) {
+        owned_free(&o);
+        return cli_fail("merge", st);
+    }
+    aa_context context;
+    aa_context_collect(&context, argc, (const char *const *)argv, threads);
+    run_ctx ctx = {dir, 0, aa_now(), &context, rows, n, n, 0, 1};
+    code = finish_run(&a, cfgs, threads, dir, 0, &ctx, AA_OK);
     owned_free(&o);
     return code;
 }

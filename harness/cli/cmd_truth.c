@@ -24,7 +24,34 @@ static void usage(FILE *out)
             "      --cache DIR      reference cache folder (default results/cache,\n"
             "                       or $AABENCH_CACHE)\n"
             "      --no-cache       neither read nor write the cache\n"
-            "  -q, --quiet          print nothing on success\n");
+            "  -q, --quiet          print nothing on success\n\n"
+            "usage: aabench truth --warm SUITE [run's options: -p, -s, -f, --motion, --cache,\n"
+            "                    --threads, ...]\n\n"
+            "Computes every reference `aabench run --suite SUITE` with those options would\n"
+            "ask the cache for, and stores those missing, so the shards of a run on\n"
+            "several machines sharing the cache folder start from it.\n");
+}
+
+/* --warm SUITE: run's own options, as `run --suite SUITE` takes them. */
+static int warm(int argc, char **argv)
+{
+    char **args = calloc((size_t)argc + 3, sizeof *args);
+    if (!args)
+        return cli_fail("truth", aa_fail(AA_ENOMEM, "out of memory"));
+    int n = 0;
+    args[n++] = "run";
+    for (int k = 1; k < argc; k++) {
+        if (!strcmp(argv[k], "--warm") && k + 1 < argc) {
+            args[n++] = "--suite", args[n++] = argv[++k];
+        } else if (!strncmp(argv[k], "--warm=", 7)) {
+            args[n++] = "--suite", args[n++] = argv[k] + 7;
+        } else {
+            args[n++] = argv[k];
+        }
+    }
+    int code = cli_run_warm(n, args);
+    free(args);
+    return code;
 }
 
 /* Progress on standard error (a terminal, CI unset: cli_progress_wanted)
@@ -108,6 +135,9 @@ static int parse(int argc, char **argv, truth_args *a)
 
 int cmd_truth(int argc, char **argv)
 {
+    for (int k = 1; k < argc; k++)
+        if (!strcmp(argv[k], "--warm") || !strncmp(argv[k], "--warm=", 7))
+            return warm(argc, argv);
     truth_args a;
     memset(&a, 0, sizeof a);
     a.cache = cli_cache_dir();

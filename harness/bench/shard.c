@@ -1,0 +1,370 @@
+/*
+ * shard.c: a run cut into shards by estimated cost, and the manifest
+ * (run.json) that lets shards be merged and interrupted runs resumed.
+ *
+ * The partition must be the same on every machine that computes it: the
+ * costs are integers, and every tie is broken by the case's number or the
+ * shard's, so no floating point or hash order can move a case.  Costs are
+ * estimates (pixels x samples), good enough to balance a sweep whose cases
+ * differ by orders of magnitude; they are not times.
+ *
+ * The manifest is JSON, read and written with cJSON.
+ */
+#include "bench.h"
+
+#include <cJSON.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+size_t aa_run_case_count(const aa_run_config *cfg)
+{
+    return cfg->npatterns * cfg->nsizes * cfg->nfilters * cfg->nmethods;
+}
+
+/* The size index of case k (pattern, size, filter, method order). */
+static size_t size_of_case(const aa_run_config *cfg, size_t k)
+{
+    return (k / (cfg->nmethods * cfg->nfilters)) % cfg->nsizes;
+}
+
+static int animated_run(const aa_run_config *cfg)
+{
+    return cfg->temporal || cfg->vx != 0.0 || cfg->vy != 0.0;
+}
+
+/* A spec's parameter as a whole number, or 0 when it has none. */
+static double param(const aa_spec *spec, const char *key)
+{
+    int i = aa_spec_index(spec->info, key);
+    return i < 0 ? 0.0 : spec->v[i];
+}
+
+uint64_t aa_case_cost(const aa_run_config *cfg, size_t k)
+{
+    const aa_run_size *s = &cfg->sizes[size_of_case(cfg, k)];
+    const aa_spec *m = &cfg->methods[k % cfg->nmethods].spec;
+    const aa_method_type *type = (const aa_method_type *)m->info;
+    double spp = param(m, "spp"), n = param(m, "n");
+    uint64_t samples = spp >= 1 ? (uint64_t)spp : n >= 1 ? (uint64_t)(n * n) : 1;
+    if (type->flags & AA_METHOD_TEMPORAL) {
+        double frames = param(m, "frames");
+        samples *= frames >= 1 ? (uint64_t)frames : 1;
+    }
+    uint64_t cost = (uint64_t)s->w * (uint64_t)s->h * samples;
+    if (animated_run(cfg))
+        cost *= (uint64_t)(cfg->frames > 0 ? cfg->frames : 24);
+    if (cfg->seeds > 1 && (type->flags & AA_METHOD_SEEDED))
+        cost *= (uint64_t)cfg->seeds;
+    return cost;
+}
+
+uint64_t aa_case_reference_cost(const aa_run_config *cfg, size_t k)
+{
+    const aa_run_size *s = &cfg->sizes[size_of_case(cfg, k)];
+    uint64_t cost = (uint64_t)s->w * (uint64_t)s->h * AA_SHARD_REFERENCE_WEIGHT;
+    if (animated_run(cfg))
+        cost *= (uint64_t)(cfg->frames > 0 ? cfg->frames : 24);
+    return cost;
+}
+
+typedef struct plan_case {
+    uint64_t cost, ref;
+    size_t view; /* the view's number in the whole run */
+    size_t index;
+} plan_case;
+
+/* Most costly first; ties by the case's number. */
+static int by_cost(const void *a, const void *b)
+{
+    const plan_case *x = a, *y = b;
+    if (x->cost != y->cost)
+        return x->cost < y->cost ? 1 : -1;
+    return x->index < y->index ? -1 : x->index > y->index;
+}
+
+int aa_shard_plan(const aa_run_config *cfgs, size_t ng, int shard, int nshards,
+                  unsigned char **masks, size_t *selected, uint64_t *cost)
+{
+    *selected = 0;
+    if (cost)
+        *cost = 0;
+    for (size_t g = 0; g < ng; g++)
+        masks[g] = NULL;
+    if (nshards < 1 || nshards > AA_SHARD_MAX || shard < 1 || shard > nshards)
+        return aa_fail(AA_EINVAL, "shard %d/%d out of range (1 <= K <= N <= %d)", shard, nshards,
+                       AA_SHARD_MAX);
+    size_t total = 0, nviews = 0;
+    for (size_t g = 0; g < ng; g++)
+        total += aa_run_case_count(&cfgs[g]);
+    plan_case *pc = calloc(total ? total : 1, sizeof *pc);
+    int *owner = calloc(total ? total : 1, sizeof *owner);
+    uint64_t *load = calloc((size_t)nshards, sizeof *load);
+    int st = AA_OK;
+    if (!pc || !owner || !load) {
+        st = aa_fail(AA_ENOMEM, "out of memory planning %zu cases", total);
+        goto done;
+    }
+    for (size_t g = 0, i = 0; g < ng; g++) {
+        const aa_run_config *c = &cfgs[g];
+        size_t n = aa_run_case_count(c);
+        for (size_t k = 0; k < n; k++, i++) {
+            pc[i].cost = aa_case_cost(c, k);
+            pc[i].ref = aa_case_reference_cost(c, k);
+            pc[i].view = nviews + k / c->nmethods;
+            pc[i].index = i;
+        }
+        nviews += n / (c->nmethods ? c->nmethods : 1);
+    }
+    /* which views each shard already visits: a bit per (shard, view) */
+    size_t words = (nviews + 63) / 64;
+    uint64_t *has = calloc((size_t)nshards * (words ? words : 1), sizeof *has);
+    if (!has) {
+        st = aa_fail(AA_ENOMEM, "out of memory planning %zu views", nviews);
+        goto done;
+    }
+    qsort(pc, total, sizeof *pc, by_cost);
+    for (size_t i = 0; i < total; i++) {
+        int best = 0;
+        uint64_t best_load = 0;
+        for (int s = 0; s < nshards; s++) {
+            const uint64_t *h = has + (size_t)s * words;
+            int visits = (h[pc[i].view / 64] >> (pc[i].view % 64)) & 1;
+            uint64_t l = load[s] + pc[i].cost + (visits ? 0 : pc[i].ref);
+            if (s == 0 || l < best_load)
+                best = s, best_load = l;
+        }
+        load[best] = best_load;
+        has[(size_t)best * words + pc[i].view / 64] |= (uint64_t)1 << (pc[i].view % 64);
+        owner[pc[i].index] = best;
+    }
+    free(has);
+    if (cost)
+        *cost = load[shard - 1];
+    for (size_t g = 0, i = 0; g < ng && !st; g++) {
+        size_t n = aa_run_case_count(&cfgs[g]);
+        if (!(masks[g] = calloc(n ? n : 1, 1))) {
+            st = aa_fail(AA_ENOMEM, "out of memory");
+            break;
+        }
+        for (size_t k = 0; k < n; k++, i++)
+            if (owner[i] == shard - 1) {
+                masks[g][k] = 1;
+                ++*selected;
+            }
+    }
+done:
+    if (st)
+        for (size_t g = 0; g < ng; g++) {
+            free(masks[g]);
+            masks[g] = NULL;
+        }
+    free(pc);
+    free(owner);
+    free(load);
+    return st;
+}
+
+/* ---- the manifest ---- */
+
+int aa_manifest_skips(const char *arg, int *takes_value)
+{
+    static const struct {
+        const char *name;
+        int value;
+    } skip[] = {{"--out", 1},   {"--resume", 1}, {"--shard", 1}, {"--cache", 1},
+                {"--no-cache", 0}, {"-q", 0},    {"--quiet", 0}};
+    *takes_value = 0;
+    for (size_t k = 0; k < sizeof skip / sizeof *skip; k++) {
+        size_t n = strlen(skip[k].name);
+        if (!strncmp(arg, skip[k].name, n) && (arg[n] == '\0' || (arg[n] == '=' && skip[k].value))) {
+            *takes_value = skip[k].value && arg[n] == '\0';
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int aa_manifest_write(const char *path, const aa_manifest *m)
+{
+    cJSON *o = cJSON_CreateObject(), *cmd = cJSON_CreateArray(), *sel = cJSON_CreateArray();
+    int ok = o && cmd && sel;
+    for (int k = 0; ok && k < m->argc; k++)
+        ok = cJSON_AddItemToArray(cmd, cJSON_CreateString(m->argv[k]));
+    for (size_t k = 0; ok && k < m->nselected; k++)
+        ok = cJSON_AddItemToArray(sel, cJSON_CreateNumber((double)m->selected[k]));
+    if (ok) {
+        cJSON_AddItemToObject(o, "command", cmd), cmd = NULL;
+        ok = cJSON_AddStringToObject(o, "suite", m->suite) &&
+             cJSON_AddStringToObject(o, "commit", m->commit) &&
+             (m->dirty < 0 ? cJSON_AddNullToObject(o, "dirty") != NULL
+                           : cJSON_AddBoolToObject(o, "dirty", m->dirty) != NULL) &&
+             cJSON_AddStringToObject(o, "host", m->host) &&
+             cJSON_AddNumberToObject(o, "shard", m->shard) &&
+             cJSON_AddNumberToObject(o, "shards", m->shards) &&
+             cJSON_AddNumberToObject(o, "cases", (double)m->cases);
+    }
+    if (ok) {
+        cJSON_AddItemToObject(o, "selected", sel), sel = NULL;
+        cJSON *ctx = m->context ? cJSON_Parse(m->context) : cJSON_CreateNull();
+        ok = ctx && cJSON_AddItemToObject(o, "context", ctx);
+    }
+    char *text = ok ? cJSON_Print(o) : NULL;
+    cJSON_Delete(o);
+    cJSON_Delete(cmd);
+    cJSON_Delete(sel);
+    if (!text)
+        return aa_fail(AA_ENOMEM, "out of memory writing %s", path);
+    size_t len = strlen(text);
+    text[len] = '\n'; /* overwrites the NUL: a line ends the file */
+    int st = aa_file_write_atomic(path, text, len + 1);
+    free(text);
+    return st;
+}
+
+static int bad(const char *path, const char *member, const char *why)
+{
+    return aa_fail(AA_EINVAL, "%s: \"%s\" %s", path, member, why);
+}
+
+/* A whole number in [lo, hi]. */
+static int whole(const cJSON *v, double lo, double hi)
+{
+    return cJSON_IsNumber(v) && v->valuedouble >= lo && v->valuedouble <= hi &&
+           v->valuedouble == (double)(long long)v->valuedouble;
+}
+
+static int read_text(const char *path, char **out)
+{
+    *out = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return aa_fail(AA_EIO, "cannot read %s: %s", path, strerror(errno));
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    for (size_t k; buf && (k = fread(buf + n, 1, cap - n - 1, f)) > 0;) {
+        n += k;
+        if (n + 1 == cap) {
+            char *p = cap < ((size_t)64 << 20) ? realloc(buf, cap *= 2) : NULL;
+            if (!p) {
+                free(buf);
+                buf = NULL;
+            }
+            buf = p;
+        }
+    }
+    int err = ferror(f);
+    fclose(f);
+    if (!buf)
+        return aa_fail(AA_EINVAL, "%s: too large for a manifest", path);
+    if (err) {
+        free(buf);
+        return aa_fail(AA_EIO, "cannot read %s", path);
+    }
+    buf[n] = '\0';
+    *out = buf;
+    return AA_OK;
+}
+
+int aa_manifest_read(const char *path, aa_manifest *m)
+{
+    memset(m, 0, sizeof *m);
+    char *text;
+    int st = read_text(path, &text);
+    if (st)
+        return st;
+    cJSON *o = cJSON_Parse(text);
+    free(text);
+    if (!cJSON_IsObject(o)) {
+        cJSON_Delete(o);
+        return aa_fail(AA_EINVAL, "%s is not a run's manifest (not a JSON object)", path);
+    }
+    const cJSON *cmd = cJSON_GetObjectItemCaseSensitive(o, "command");
+    const cJSON *sel = cJSON_GetObjectItemCaseSensitive(o, "selected");
+    const cJSON *v;
+    static const char *const strings[] = {"suite", "commit", "host"};
+    char *dst[] = {m->suite, m->commit, m->host};
+    size_t cap[] = {sizeof m->suite, sizeof m->commit, sizeof m->host};
+    if (!cJSON_IsArray(cmd)) {
+        st = bad(path, "command", "is missing or not an array");
+        goto done;
+    }
+    for (int k = 0; k < 3; k++) {
+        v = cJSON_GetObjectItemCaseSensitive(o, strings[k]);
+        if (!cJSON_IsString(v) || strlen(v->valuestring) >= cap[k]) {
+            st = bad(path, strings[k], "is missing, not a string or too long");
+            goto done;
+        }
+        snprintf(dst[k], cap[k], "%s", v->valuestring);
+    }
+    v = cJSON_GetObjectItemCaseSensitive(o, "dirty");
+    m->dirty = cJSON_IsBool(v) ? cJSON_IsTrue(v) : -1;
+    v = cJSON_GetObjectItemCaseSensitive(o, "shards");
+    if (!whole(v, 1, AA_SHARD_MAX)) {
+        st = bad(path, "shards", "is missing or not a count of shards");
+        goto done;
+    }
+    m->shards = (int)v->valuedouble;
+    v = cJSON_GetObjectItemCaseSensitive(o, "shard");
+    if (!whole(v, 1, m->shards)) {
+        st = bad(path, "shard", "is missing or not between 1 and the shards");
+        goto done;
+    }
+    m->shard = (int)v->valuedouble;
+    v = cJSON_GetObjectItemCaseSensitive(o, "cases");
+    if (!whole(v, 0, 1e12)) {
+        st = bad(path, "cases", "is missing or not a count");
+        goto done;
+    }
+    m->cases = (size_t)v->valuedouble;
+    if (!cJSON_IsArray(sel)) {
+        st = bad(path, "selected", "is missing or not an array");
+        goto done;
+    }
+    int nc = cJSON_GetArraySize(cmd), ns = cJSON_GetArraySize(sel);
+    m->argv = calloc((size_t)nc + 1, sizeof *m->argv);
+    m->selected = calloc(ns ? (size_t)ns : 1, sizeof *m->selected);
+    if (!m->argv || !m->selected) {
+        st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+        goto done;
+    }
+    cJSON_ArrayForEach(v, cmd)
+    {
+        if (!cJSON_IsString(v)) {
+            st = bad(path, "command", "holds something other than strings");
+            goto done;
+        }
+        if (!(m->argv[m->argc] = strdup(v->valuestring))) {
+            st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+            goto done;
+        }
+        m->argc++;
+    }
+    cJSON_ArrayForEach(v, sel)
+    {
+        if (!whole(v, 0, (double)m->cases - 1)) {
+            st = bad(path, "selected", "holds something other than a case of the run");
+            goto done;
+        }
+        m->selected[m->nselected++] = (size_t)v->valuedouble;
+    }
+    v = cJSON_GetObjectItemCaseSensitive(o, "context");
+    if (cJSON_IsObject(v) && !(m->context = cJSON_Print(v)))
+        st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+done:
+    cJSON_Delete(o);
+    if (st)
+        aa_manifest_free(m);
+    return st;
+}
+
+void aa_manifest_free(aa_manifest *m)
+{
+    for (int k = 0; m->argv && k < m->argc; k++)
+        free(m->argv[k]);
+    free(m->argv);
+    free(m->selected);
+    free(m->context);
+    memset(m, 0, sizeof *m);
+}
