@@ -166,8 +166,8 @@ static int check_shards(shard *s, int ns, size_t **owner_out)
                                           n ? ", " : "", k, first->shards);
             }
             code = refuse("%zu case%s of the run %s in no folder given: shard%s %s missing",
-                          left, left == 1 ? " is" : "s are", "", strchr(missing, ',') ? "s" : "",
-                          *missing ? missing : "(of another count)");
+                          left, left == 1 ? "" : "s", left == 1 ? "is" : "are",
+                          strchr(missing, ',') ? "s" : "", *missing ? missing : "(of another count)");
         }
     }
     free(planned);
