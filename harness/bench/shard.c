@@ -34,11 +34,12 @@ static int animated_run(const aa_run_config *cfg)
     return cfg->temporal || cfg->vx != 0.0 || cfg->vy != 0.0;
 }
 
-/* A spec's parameter as a whole number, or 0 when it has none. */
+/* A spec's numeric parameter, or 0 when it has none (a choice's value is
+ * the index of its word, not a number). */
 static double param(const aa_spec *spec, const char *key)
 {
     int i = aa_spec_index(spec->info, key);
-    return i < 0 ? 0.0 : spec->v[i];
+    return i < 0 || spec->info->params[i].kind == AA_PARAM_CHOICE ? 0.0 : spec->v[i];
 }
 
 uint64_t aa_case_cost(const aa_run_config *cfg, size_t k)
@@ -49,7 +50,8 @@ uint64_t aa_case_cost(const aa_run_config *cfg, size_t k)
     double spp = param(m, "spp"), n = param(m, "n");
     uint64_t samples = spp >= 1 ? (uint64_t)spp : n >= 1 ? (uint64_t)(n * n) : 1;
     if (type->flags & AA_METHOD_TEMPORAL) {
-        double frames = param(m, "frames");
+        /* the frames it renders for one image: its history, or its frames */
+        double frames = param(m, "history") >= 1 ? param(m, "history") : param(m, "frames");
         samples *= frames >= 1 ? (uint64_t)frames : 1;
     }
     uint64_t cost = (uint64_t)s->w * (uint64_t)s->h * samples;

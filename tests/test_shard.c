@@ -1,0 +1,462 @@
+/*
+ * test_shard.c: sharded runs, their merge, resumed runs and the shared
+ * reference cache.
+ *
+ *  - The partition (harness/bench/shard.c): for 1 to 7 shards every case is
+ *    in exactly one, the same on every call; costs are the documented
+ *    products (pixels x samples), worked out here by hand.
+ *  - The peer of a merged run is the unsharded run of the same command:
+ *    the quick suite run whole, and as 3 shards through GNU parallel
+ *    (scripts/gnu-parallel-run.sh, 2 jobs) then merged, must give the same
+ *    rows (every error, count and note read back equal, bit for bit), the
+ *    same images and the same montage.png, byte for byte.
+ *  - A missing, duplicated or foreign shard is refused (exit 2) naming it,
+ *    and nothing is written.
+ *  - --resume keeps the cases in a run's results (marked here by a host
+ *    name no machine has) and measures only the rest, to the same errors;
+ *    another command or commit is refused saying what differs.
+ *  - truth --warm computes a suite's references once; two processes
+ *    writing the same reference at once leave one whole file, which reads
+ *    back (its checksum verified) as the reference computed afresh.
+ *
+ * Tests run the command ($AABENCH) and the driver from the repository's
+ * top folder, as the Makefile does; no test looks at a time.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "support.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static char dir[4096];
+static char log_text[1 << 16];
+
+/* ---- helpers ---- */
+
+static int aabench(const char *const *args)
+{
+    return support_aabench(args, log_text, sizeof log_text);
+}
+
+/* sh SCRIPT ARGS..., output into log_text; the exit status.  Killed (with
+ * its process group) after SUPPORT_TIMEOUT seconds. */
+static int run_script(const char *const *args)
+{
+    char path[4608];
+    snprintf(path, sizeof path, "%s/script.log", dir);
+    const char *argv[64] = {"sh"};
+    size_t n = 1;
+    for (; args[n - 1] && n < 63; n++)
+        argv[n] = args[n - 1];
+    argv[n] = NULL;
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        setpgid(0, 0);
+        int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(fd, 1);
+        dup2(fd, 2);
+        execvp("sh", (char *const *)argv);
+        _exit(127);
+    }
+    int status = 0, waited = 0;
+    for (int ms = 0; ms < SUPPORT_TIMEOUT * 1000; ms += 20) {
+        if (waitpid(pid, &status, WNOHANG) == pid) {
+            waited = 1;
+            break;
+        }
+        usleep(20000);
+    }
+    if (!waited) {
+        kill(-pid, SIGKILL);
+        waitpid(pid, &status, 0);
+    }
+    support_read_file(path, log_text, sizeof log_text, NULL);
+    if (!waited)
+        fail_msg("%s timed out:\n%s", args[0], log_text);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+static void rows_of(const char *folder, aa_row **rows, size_t *n)
+{
+    char path[4608];
+    snprintf(path, sizeof path, "%s/results.csv", folder);
+    if (aa_rows_read_csv(path, rows, n))
+        fail_msg("%s: %s", path, aa_last_error());
+}
+
+/* Every measured value and every note, not the times: bit for bit. */
+static void same_rows(const aa_row *a, size_t na, const aa_row *b, size_t nb)
+{
+    assert_int_equal(na, nb);
+    for (size_t k = 0; k < na; k++) {
+        const aa_row *x = &a[k], *y = &b[k];
+        assert_string_equal(x->pattern, y->pattern);
+        assert_string_equal(x->filter, y->filter);
+        assert_string_equal(x->method, y->method);
+        assert_string_equal(x->canonical, y->canonical);
+        assert_string_equal(x->note, y->note);
+        assert_int_equal(x->w, y->w);
+        assert_int_equal(x->h, y->h);
+        assert_int_equal(x->ok, y->ok);
+        assert_int_equal(x->case_index, (long)k);
+        assert_int_equal(y->case_index, (long)k);
+        if (memcmp(&x->m, &y->m, sizeof x->m) || x->spp != y->spp ||
+            x->samples != y->samples || x->expensive_pixels != y->expensive_pixels ||
+            x->seeds != y->seeds)
+            fail_msg("%s on %s %dx%d %s: the errors differ (rmse %.17g and %.17g)", x->method,
+                     x->pattern, x->w, x->h, x->filter, x->m.rmse, y->m.rmse);
+        assert_true(*y->host != '\0');
+    }
+}
+
+static void same_file(const char *a, const char *b)
+{
+    static char x[1 << 22], y[1 << 22];
+    size_t nx, ny;
+    support_read_file(a, x, sizeof x, &nx);
+    support_read_file(b, y, sizeof y, &ny);
+    if (nx != ny || memcmp(x, y, nx))
+        fail_msg("%s and %s differ", a, b);
+}
+
+/* Every file of a/images is in b/images, and as many: the PNGs the same
+ * bytes, the EXRs the same values (OpenEXR's header may hold a date). */
+static void same_images(const char *a, const char *b)
+{
+    char da[5632], db[5632], fa[6144], fb[6144];
+    snprintf(da, sizeof da, "%s/images", a);
+    snprintf(db, sizeof db, "%s/images", b);
+    DIR *d = opendir(da);
+    assert_non_null(d);
+    struct dirent *e;
+    int files = 0;
+    while ((e = readdir(d))) {
+        if (e->d_name[0] == '.')
+            continue;
+        snprintf(fa, sizeof fa, "%s/%s", da, e->d_name);
+        snprintf(fb, sizeof fb, "%s/%s", db, e->d_name);
+        if (!strstr(e->d_name, ".exr")) {
+            same_file(fa, fb);
+        } else {
+            aa_image x, y;
+            if (aa_image_read(fa, &x) || aa_image_read(fb, &y))
+                fail_msg("%s", aa_last_error());
+            if (!support_same_image(&x, &y))
+                fail_msg("%s and %s hold different values", fa, fb);
+            aa_image_free(&x);
+            aa_image_free(&y);
+        }
+        files++;
+    }
+    closedir(d);
+    assert_true(files > 0);
+    assert_int_equal(support_count_entries(db, NULL), files);
+}
+
+static int exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
+}
+
+/* ---- the partition ---- */
+
+static void test_partition(void **state)
+{
+    (void)state;
+    static const char *const pnames[] = {"crow", "star"};
+    static const char *const mnames[] = {"point", "supersample:n=4", "jitter:spp=16", "area",
+                                         "taa"};
+    static const aa_run_size sizes[] = {{32, 32}, {256, 128}, {64, 64}};
+    aa_run_spec p[2], m[5];
+    aa_run_filter f[2] = {{.text = "box"}, {.text = "tent:r=1"}};
+    for (int k = 0; k < 2; k++) {
+        p[k].text = pnames[k];
+        assert_int_equal(aa_pattern_parse(pnames[k], &p[k].spec), AA_OK);
+        assert_int_equal(aa_filter_parse(f[k].text, &f[k].filter), AA_OK);
+    }
+    for (int k = 0; k < 5; k++) {
+        m[k].text = mnames[k];
+        assert_int_equal(aa_spec_parse(mnames[k], aa_method_table(), "method", &m[k].spec),
+                         AA_OK);
+    }
+    aa_run_config cfgs[2];
+    memset(cfgs, 0, sizeof cfgs);
+    cfgs[0].patterns = p, cfgs[0].npatterns = 2;
+    cfgs[0].sizes = sizes, cfgs[0].nsizes = 3;
+    cfgs[0].filters = f, cfgs[0].nfilters = 2;
+    cfgs[0].methods = m, cfgs[0].nmethods = 5;
+    cfgs[1] = cfgs[0];
+    cfgs[1].npatterns = 1, cfgs[1].nsizes = 1, cfgs[1].nmethods = 3;
+    cfgs[1].case_base = aa_run_case_count(&cfgs[0]);
+    const size_t n0 = aa_run_case_count(&cfgs[0]), n1 = aa_run_case_count(&cfgs[1]);
+    assert_int_equal(n0, 2 * 3 * 2 * 5);
+    assert_int_equal(n1, 1 * 1 * 2 * 3);
+    /* costs by hand: case 1 is crow 32x32 box supersample:n=4, 16 samples a
+     * pixel; case 5 + 2 = 7 crow 32x32 tent jitter:spp=16; case 10 + 1 is
+     * crow 256x128 box supersample:n=4; taa renders its `history` (64)
+     * frames of one sample; every view's reference costs 16 a pixel */
+    assert_true(aa_case_cost(&cfgs[0], 1) == 32 * 32 * 16);
+    assert_true(aa_case_cost(&cfgs[0], 7) == 32 * 32 * 16);
+    assert_true(aa_case_cost(&cfgs[0], 11) == 256 * 128 * 16);
+    assert_true(aa_case_cost(&cfgs[0], 0) == 32 * 32);
+    assert_true(aa_case_cost(&cfgs[0], 4) == 32 * 32 * 64);
+    assert_true(aa_case_reference_cost(&cfgs[0], 11) == 256 * 128 * AA_SHARD_REFERENCE_WEIGHT);
+    for (int ns = 1; ns <= 7; ns++) {
+        int seen[80] = {0};
+        size_t total = 0;
+        uint64_t most = 0, least = UINT64_MAX;
+        for (int k = 1; k <= ns; k++) {
+            unsigned char *masks[2], *again[2];
+            size_t sel, sel2;
+            uint64_t cost, cost2;
+            assert_int_equal(aa_shard_plan(cfgs, 2, k, ns, masks, &sel, &cost), AA_OK);
+            assert_int_equal(aa_shard_plan(cfgs, 2, k, ns, again, &sel2, &cost2), AA_OK);
+            assert_int_equal(sel, sel2);
+            assert_true(cost == cost2);
+            assert_memory_equal(masks[0], again[0], n0);
+            assert_memory_equal(masks[1], again[1], n1);
+            for (size_t c = 0; c < n0; c++)
+                seen[c] += masks[0][c];
+            for (size_t c = 0; c < n1; c++)
+                seen[n0 + c] += masks[1][c];
+            total += sel;
+            most = cost > most ? cost : most;
+            least = cost < least ? cost : least;
+            for (int g = 0; g < 2; g++)
+                free(masks[g]), free(again[g]);
+        }
+        assert_int_equal(total, n0 + n1);
+        for (size_t c = 0; c < n0 + n1; c++)
+            if (seen[c] != 1)
+                fail_msg("%d shards: case %zu is in %d of them", ns, c, seen[c]);
+        /* balanced: no shard above the least loaded by more than the most
+         * costly case and its reference (taa at 256x128: 64 frames, and 16) */
+        assert_true(most - least <= (64u + 16u) * 256 * 128);
+    }
+    unsigned char *masks[2];
+    size_t sel;
+    assert_int_equal(aa_shard_plan(cfgs, 2, 4, 3, masks, &sel, NULL), AA_EINVAL);
+    assert_int_equal(aa_shard_plan(cfgs, 2, 0, 3, masks, &sel, NULL), AA_EINVAL);
+}
+
+/* ---- sharded through GNU parallel, merged, against the whole run ---- */
+
+#define QUICK "--suite", "quick", "--reps", "1", "--no-plots", "-q", "--threads", "1"
+
+static void test_parallel_merge(void **state)
+{
+    (void)state;
+    char whole[4608], merged[4608], cache[4608], path[5120], path2[5120];
+    snprintf(whole, sizeof whole, "%s/whole", dir);
+    snprintf(merged, sizeof merged, "%s/merged", dir);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    const char *run[] = {"run", QUICK, "--cache", cache, "--out", whole, NULL};
+    if (aabench(run) != 0)
+        fail_msg("the whole run failed:\n%s", log_text);
+    const char *drive[] = {"scripts/gnu-parallel-run.sh", "--jobs", "2", "--shards", "3",
+                           QUICK, "--cache", cache, "--out", merged, NULL};
+    if (run_script(drive) != 0)
+        fail_msg("gnu-parallel-run.sh failed:\n%s", log_text);
+    aa_row *a, *b;
+    size_t na, nb;
+    rows_of(whole, &a, &na);
+    rows_of(merged, &b, &nb);
+    same_rows(a, na, b, nb);
+    free(a);
+    free(b);
+    /* three shards, each with some of the cases */
+    for (int k = 1; k <= 3; k++) {
+        snprintf(path, sizeof path, "%s/shards/%d", merged, k);
+        rows_of(path, &a, &na);
+        assert_true(na > 0 && na < nb);
+        free(a);
+    }
+    snprintf(path, sizeof path, "%s/montage.png", whole);
+    snprintf(path2, sizeof path2, "%s/montage.png", merged);
+    same_file(path, path2);
+    same_images(whole, merged);
+
+    /* refusals, nothing written: a shard missing, given twice, of another
+     * command (another seed), of another commit */
+    char s1[5120], s2[5120], s3[5120], other[4608], out[4608];
+    snprintf(s1, sizeof s1, "%s/shards/1", merged);
+    snprintf(s2, sizeof s2, "%s/shards/2", merged);
+    snprintf(s3, sizeof s3, "%s/shards/3", merged);
+    snprintf(other, sizeof other, "%s/other", dir);
+    snprintf(out, sizeof out, "%s/refused", dir);
+    const char *foreign[] = {"run", QUICK, "--seed", "2", "--cache", cache, "--shard", "2/3",
+                             "--out", other, NULL};
+    assert_int_equal(aabench(foreign), 0);
+    const char *missing[] = {"merge", s1, s3, "--out", out, NULL};
+    assert_int_equal(aabench(missing), 2);
+    assert_non_null(strstr(log_text, "shard 2/3 missing"));
+    const char *twice[] = {"merge", s1, s2, s2, s3, "--out", out, NULL};
+    assert_int_equal(aabench(twice), 2);
+    assert_non_null(strstr(log_text, s2));
+    assert_non_null(strstr(log_text, "given twice"));
+    const char *mixed[] = {"merge", s1, other, s3, "--out", out, NULL};
+    assert_int_equal(aabench(mixed), 2);
+    assert_non_null(strstr(log_text, other));
+    assert_non_null(strstr(log_text, "--seed 2"));
+    assert_false(exists(out));
+    /* a shard of the run whose manifest says another commit */
+    char manifest[5632], text[1 << 16];
+    size_t len;
+    snprintf(manifest, sizeof manifest, "%s/run.json", s2);
+    support_read_file(manifest, text, sizeof text, &len);
+    char *c = strstr(text, "\"commit\":");
+    assert_non_null(c);
+    c = strchr(c + 9, '"');
+    assert_non_null(c);
+    c[1] = c[1] == 'f' ? '0' : 'f';
+    support_write_file(manifest, text, len);
+    const char *committed[] = {"merge", s1, s2, s3, "--out", out, NULL};
+    assert_int_equal(aabench(committed), 2);
+    assert_non_null(strstr(log_text, s2));
+    assert_non_null(strstr(log_text, "commit"));
+    assert_false(exists(out));
+}
+
+/* ---- resumed runs ---- */
+
+#define SMALL "-p", "crow", "-s", "24x16", "-s", "40x40", "-f", "box", "-m", "point", "-m", \
+              "supersample", "-m", "jitter:spp=4", "--reps", "1", "--no-plots", "-q"
+
+static void test_resume(void **state)
+{
+    (void)state;
+    char whole[4608], part[4608], cache[4608], path[5120];
+    snprintf(whole, sizeof whole, "%s/rwhole", dir);
+    snprintf(part, sizeof part, "%s/rpart", dir);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    const char *run[] = {"run", SMALL, "--cache", cache, "--out", whole, NULL};
+    assert_int_equal(aabench(run), 0);
+    const char *run2[] = {"run", SMALL, "--cache", cache, "--out", part, NULL};
+    assert_int_equal(aabench(run2), 0);
+    /* an interrupted run: its first 2 cases only, marked */
+    aa_row *rows, *full;
+    size_t n, nf;
+    rows_of(part, &rows, &n);
+    assert_int_equal(n, 6);
+    for (size_t k = 0; k < 2; k++)
+        snprintf(rows[k].host, sizeof rows[k].host, "kept-by-test");
+    snprintf(path, sizeof path, "%s/results.csv", part);
+    assert_int_equal(aa_rows_write_csv(path, rows, 2), AA_OK);
+    free(rows);
+    const char *resume[] = {"run", "--resume", part, "--cache", cache, "-q", NULL};
+    if (aabench(resume) != 0)
+        fail_msg("resume failed:\n%s", log_text);
+    assert_non_null(strstr(log_text, "2 cases kept"));
+    rows_of(part, &rows, &n);
+    rows_of(whole, &full, &nf);
+    same_rows(full, nf, rows, n);
+    for (size_t k = 0; k < n; k++)
+        assert_int_equal(strcmp(rows[k].host, "kept-by-test") == 0, k < 2);
+    free(rows);
+    free(full);
+    /* the same command given again is taken; another is refused */
+    const char *same[] = {"run", "--resume", part, SMALL, "--cache", cache, NULL};
+    assert_int_equal(aabench(same), 0);
+    const char *changed[] = {"run", "--resume", part, "-p", "crow", "-s", "24x16", NULL};
+    assert_int_equal(aabench(changed), 2);
+    assert_non_null(strstr(log_text, "command differs"));
+    assert_non_null(strstr(log_text, "-s 40x40"));
+    /* another commit */
+    char text[1 << 16];
+    size_t len;
+    snprintf(path, sizeof path, "%s/run.json", part);
+    support_read_file(path, text, sizeof text, &len);
+    char *c = strstr(text, "\"commit\":");
+    assert_non_null(c);
+    c = strchr(c + 9, '"');
+    c[1] = c[1] == 'f' ? '0' : 'f';
+    support_write_file(path, text, len);
+    assert_int_equal(aabench(resume), 2);
+    assert_non_null(strstr(log_text, "commit"));
+    /* not a run folder */
+    const char *nothing[] = {"run", "--resume", cache, NULL};
+    assert_int_equal(aabench(nothing), 2);
+    assert_non_null(strstr(log_text, "not a run folder"));
+}
+
+/* ---- the shared cache ---- */
+
+static void test_warm_and_concurrent_cache(void **state)
+{
+    (void)state;
+    char cache[4608];
+    snprintf(cache, sizeof cache, "%s/warm", dir);
+    const char *warm[] = {"truth", "--warm", "paper", "-s", "24x24", "--cache", cache, NULL};
+    if (aabench(warm) != 0)
+        fail_msg("truth --warm failed:\n%s", log_text);
+    /* paper: crow under box, tent:r=1, tent:r=0.5 and cone */
+    assert_non_null(strstr(log_text, "4 references of suite paper"));
+    assert_non_null(strstr(log_text, "4 computed, 0 already there"));
+    assert_int_equal(aabench(warm), 0);
+    assert_non_null(strstr(log_text, "0 computed, 4 already there"));
+
+    /* two processes computing the same reference into one cache at once */
+    char shared[4608], out[2][5120];
+    snprintf(shared, sizeof shared, "%s/shared", dir);
+    pid_t pid[2];
+    for (int k = 0; k < 2; k++) {
+        snprintf(out[k], sizeof out[k], "%s/t%d.txt", dir, k);
+        if ((pid[k] = fork()) == 0) {
+            int fd = open("/dev/null", O_WRONLY);
+            dup2(fd, 1);
+            dup2(fd, 2);
+            execl(getenv("AABENCH"), "aabench", "truth", "-p", "crow", "-s", "96x64", "-f",
+                  "tent:r=1", "--cache", shared, "-q", "-o", out[k], (char *)NULL);
+            _exit(127);
+        }
+        assert_true(pid[k] > 0);
+    }
+    for (int k = 0; k < 2; k++) {
+        int status;
+        assert_int_equal(waitpid(pid[k], &status, 0), pid[k]);
+        assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    }
+    /* one file, no temporary left, read back verified and equal to the
+     * reference computed without the cache */
+    assert_int_equal(support_count_entries(shared, NULL), 1);
+    aa_view view;
+    memset(&view, 0, sizeof view);
+    assert_int_equal(aa_pattern_parse("crow", &view.pattern), AA_OK);
+    assert_int_equal(aa_filter_parse("tent:r=1", &view.filter), AA_OK);
+    view.w = 96, view.h = 64;
+    aa_image cached, fresh;
+    int hit = 0;
+    assert_int_equal(aa_reference(&view, shared, 1, &cached, NULL, &hit), AA_OK);
+    assert_int_equal(hit, 1);
+    assert_int_equal(aa_reference(&view, NULL, 1, &fresh, NULL, NULL), AA_OK);
+    assert_true(support_same_image(&cached, &fresh));
+    aa_image_free(&cached);
+    aa_image_free(&fresh);
+}
+
+static int setup(void **state)
+{
+    if (!getenv("AABENCH") || support_tmpdir(dir, sizeof dir, "shard") != 0)
+        return -1;
+    *state = dir;
+    return 0;
+}
+
+SUPPORT_MAIN(setup, support_teardown_dir, cmocka_unit_test(test_partition),
+             cmocka_unit_test(test_parallel_merge), cmocka_unit_test(test_resume),
+             cmocka_unit_test(test_warm_and_concurrent_cache))
