@@ -318,6 +318,12 @@ $(SAN_TEST_RUNS): %.run: % $(SAN_BUILD)/aabench $(SAN_PLUGINS)
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  sh scripts/run-tests.sh one $(SAN_BUILD) $*
 
+# The Slurm driver on a single-node Slurm started for the check (root;
+# installs slurm-wlm and munge when missing, SKIP where they cannot run).
+.PHONY: check-slurm
+check-slurm: $(BUILD)/aabench $(BUILD)/tests/test_shard
+	@sh scripts/check-slurm.sh $(BUILD)
+
 # The contract tests every built-in method passes (tests/test_methods.c),
 # run on the methods of a plug-in: make check-plugin PLUGIN=path/to/lib.so
 .PHONY: check-plugin

@@ -33,6 +33,7 @@ shards=""
 sshlogin=""
 out=""
 suite=default
+merge=""
 aabench=${AABENCH:-$root/build/aabench}
 n=$#
 while [ "$n" -gt 0 ]; do
@@ -40,7 +41,7 @@ while [ "$n" -gt 0 ]; do
     shift
     n=$((n - 1))
     case $a in
-    --jobs | --shards | --sshloginfile | --aabench | --out | --suite)
+    --jobs | --shards | --sshloginfile | --aabench | --out | --suite | --cache)
         [ "$n" -gt 0 ] || { echo "gnu-parallel-run.sh: $a needs a value" >&2; exit 2; }
         v=$1
         shift
@@ -52,6 +53,7 @@ while [ "$n" -gt 0 ]; do
         --aabench) aabench=$v ;;
         --out) out=$v ;;
         --suite) suite=$v; set -- "$@" --suite "$v" ;;
+        --cache) merge="$merge --cache $v"; set -- "$@" --cache "$v" ;;
         esac
         ;;
     --shard | --shard=* | --resume | --resume=*)
@@ -99,4 +101,4 @@ if [ -n "$bad" ]; then
 fi
 dirs=$(seq 1 "$shards" | sed "s|^|$out/shards/|")
 # shellcheck disable=SC2086 # one folder a word
-exec "$aabench" merge $dirs --out "$out" $(printf '%s\n' "$@" | grep -qx -- '-q' && echo -q)
+exec "$aabench" merge $dirs --out "$out" $merge $(printf '%s\n' "$@" | grep -qx -- '-q' && echo -q)

@@ -449,6 +449,29 @@ static void test_warm_and_concurrent_cache(void **state)
     aa_image_free(&fresh);
 }
 
+/* ---- two run folders given (scripts/check-slurm.sh) ---- */
+
+/* $AABENCH_COMPARE_RUNS="WHOLE MERGED": the merged run against the whole
+ * one, as test_parallel_merge checks its own. */
+static void test_compare_runs(void **state)
+{
+    (void)state;
+    char whole[4608], merged[4608], a_png[5120], b_png[5120];
+    if (sscanf(getenv("AABENCH_COMPARE_RUNS"), "%4600s %4600s", whole, merged) != 2)
+        fail_msg("AABENCH_COMPARE_RUNS: expected two folders");
+    aa_row *a, *b;
+    size_t na, nb;
+    rows_of(whole, &a, &na);
+    rows_of(merged, &b, &nb);
+    same_rows(a, na, b, nb);
+    free(a);
+    free(b);
+    snprintf(a_png, sizeof a_png, "%s/montage.png", whole);
+    snprintf(b_png, sizeof b_png, "%s/montage.png", merged);
+    same_file(a_png, b_png);
+    same_images(whole, merged);
+}
+
 static int setup(void **state)
 {
     if (!getenv("AABENCH") || support_tmpdir(dir, sizeof dir, "shard") != 0)
@@ -457,6 +480,13 @@ static int setup(void **state)
     return 0;
 }
 
-SUPPORT_MAIN(setup, support_teardown_dir, cmocka_unit_test(test_partition),
-             cmocka_unit_test(test_parallel_merge), cmocka_unit_test(test_resume),
-             cmocka_unit_test(test_warm_and_concurrent_cache))
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_partition), cmocka_unit_test(test_parallel_merge),
+        cmocka_unit_test(test_resume), cmocka_unit_test(test_warm_and_concurrent_cache)};
+    const struct CMUnitTest given[] = {cmocka_unit_test(test_compare_runs)};
+    if (getenv("AABENCH_COMPARE_RUNS"))
+        return cmocka_run_group_tests(given, setup, support_teardown_dir);
+    return cmocka_run_group_tests(tests, setup, support_teardown_dir);
+}
