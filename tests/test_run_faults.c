@@ -151,7 +151,7 @@ static void put_file(const char *path, const char *text, size_t len)
 /* ---- results.csv, read by this file's own reader ---- */
 
 #define MAX_ROWS 16
-#define MAX_COLS 64
+#define MAX_COLS 80
 typedef struct table {
     int nrows, ncols;
     char head[MAX_COLS][64];
