@@ -127,7 +127,7 @@ code=$?
 end=$(date +%s)
 echo "check-slurm: slurm-run.sh exited $code after $((end - start)) s:"
 sed 's/^/  /' "$D/driver.log"
-for f in "$D"/sharded/slurm/*.log; do
+for f in "$D"/sharded/slurm/warm-*.log "$D"/sharded/slurm/shard-*.log; do
     echo "  --- $(basename "$f")"
     sed 's/^/    /' "$f"
 done
