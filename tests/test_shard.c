@@ -388,6 +388,18 @@ static void test_resume(void **state)
     support_write_file(path, text, len);
     assert_int_equal(aabench(resume), 2);
     assert_non_null(strstr(log_text, "commit"));
+    /* bad shards and folders: refused, naming them */
+    static const char *const bad[] = {"0/2", "3/2", "1/0", "a/b", "1/2x", "2", "1/5000"};
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        const char *sharded[] = {"run", SMALL, "--shard", bad[k], "--out", part, NULL};
+        assert_int_equal(aabench(sharded), 2);
+        assert_non_null(strstr(log_text, "--shard"));
+    }
+    const char *no_out[] = {"merge", whole, NULL};
+    assert_int_equal(aabench(no_out), 2);
+    const char *not_run[] = {"merge", cache, "--out", part, NULL};
+    assert_int_equal(aabench(not_run), 2);
+    assert_non_null(strstr(log_text, "is not a run's folder"));
     /* not a run folder */
     const char *nothing[] = {"run", "--resume", cache, NULL};
     assert_int_equal(aabench(nothing), 2);

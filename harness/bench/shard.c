@@ -237,36 +237,33 @@ static int whole(const cJSON *v, double lo, double hi)
            v->valuedouble == (double)(long long)v->valuedouble;
 }
 
+/* A manifest is small: more than this is not one. */
+#define MANIFEST_MAX ((size_t)64 << 20)
+
 static int read_text(const char *path, char **out)
 {
     *out = NULL;
     FILE *f = fopen(path, "rb");
     if (!f)
         return aa_fail(AA_EIO, "cannot read %s: %s", path, strerror(errno));
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap);
-    for (size_t k; buf && (k = fread(buf + n, 1, cap - n - 1, f)) > 0;) {
-        n += k;
-        if (n + 1 == cap) {
-            char *p = cap < ((size_t)64 << 20) ? realloc(buf, cap *= 2) : NULL;
-            if (!p) {
-                free(buf);
-                buf = NULL;
-            }
-            buf = p;
-        }
-    }
-    int err = ferror(f);
+    char *buf = NULL;
+    size_t len = 0, k;
+    FILE *m = open_memstream(&buf, &len);
+    char chunk[65536];
+    int st = m ? AA_OK : aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+    while (!st && (k = fread(chunk, 1, sizeof chunk, f)) > 0)
+        if (fwrite(chunk, 1, k, m) != k || ftell(m) > (long)MANIFEST_MAX)
+            st = aa_fail(AA_EINVAL, "%s: too large for a manifest", path);
+    if (!st && ferror(f))
+        st = aa_fail(AA_EIO, "cannot read %s", path);
     fclose(f);
-    if (!buf)
-        return aa_fail(AA_EINVAL, "%s: too large for a manifest", path);
-    if (err) {
+    if (m && fclose(m) != 0 && !st)
+        st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+    if (st)
         free(buf);
-        return aa_fail(AA_EIO, "cannot read %s", path);
-    }
-    buf[n] = '\0';
-    *out = buf;
-    return AA_OK;
+    else
+        *out = buf;
+    return st;
 }
 
 int aa_manifest_read(const char *path, aa_manifest *m)

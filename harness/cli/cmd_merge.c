@@ -77,10 +77,16 @@ static int refuse(const char *fmt, ...)
     return 2;
 }
 
+/* Where a case's row is: its folder and its row there. */
+typedef struct place {
+    int shard; /* -1: nowhere yet */
+    size_t row;
+} place;
+
 /* Every check before anything is written: the manifests agree, and the
  * rows hold each case of the run exactly once.  *owner (malloc'd) gives
- * each case's shard and row. */
-static int check_shards(shard *s, int ns, size_t **owner_out)
+ * each case's place. */
+static int check_shards(shard *s, int ns, place **owner_out)
 {
     char a[2048], b[2048];
     const aa_manifest *first = &s[0].m;
@@ -111,16 +117,15 @@ static int check_shards(shard *s, int ns, size_t **owner_out)
                               aa_echo(s[j].dir), s[i].dir, m->shard, m->shards);
     }
     size_t cases = first->cases;
-    size_t *owner = malloc((cases ? cases : 1) * sizeof *owner);
+    place *owner = malloc((cases ? cases : 1) * sizeof *owner);
     int *planned = malloc((cases ? cases : 1) * sizeof *planned);
     if (!owner || !planned) {
         free(owner);
         free(planned);
         return cli_fail("merge", aa_fail(AA_ENOMEM, "out of memory for %zu cases", cases));
     }
-    const size_t none = (size_t)-1;
     for (size_t c = 0; c < cases; c++)
-        owner[c] = none, planned[c] = -1;
+        owner[c].shard = -1, planned[c] = -1;
     int code = 0;
     for (int i = 0; i < ns && !code; i++)
         for (size_t k = 0; k < s[i].m.nselected; k++)
@@ -134,21 +139,21 @@ static int check_shards(shard *s, int ns, size_t **owner_out)
                               "run (%ld)",
                               aa_echo(s[i].dir), k + 2, r->method, r->pattern, r->w, r->h,
                               r->filter, c);
-            else if (owner[c] != none)
+            else if (owner[c].shard >= 0)
                 code = refuse("%s on %s %dx%d %s (case %ld) is in both %s and %s: a duplicated "
                               "shard",
                               r->method, r->pattern, r->w, r->h, r->filter, c,
-                              s[owner[c] / (1u << 20)].dir, aa_echo(s[i].dir));
+                              s[owner[c].shard].dir, aa_echo(s[i].dir));
             else
-                owner[c] = (size_t)i * (1u << 20) + k;
+                owner[c].shard = i, owner[c].row = k;
         }
     /* what is missing: a folder that stopped early, or a shard not given */
     for (size_t c = 0; c < cases && !code; c++) {
-        if (owner[c] != none)
+        if (owner[c].shard >= 0)
             continue;
         size_t left = 0;
         for (size_t d = c; d < cases; d++)
-            left += owner[d] == none;
+            left += owner[d].shard < 0;
         if (planned[c] >= 0) {
             const shard *sh = &s[planned[c]];
             code = refuse("%s (shard %d/%d) has not measured all its cases (%zu missing): "
@@ -271,7 +276,7 @@ int cmd_merge(int argc, char **argv)
         else if (access(path, F_OK) == 0 && (st = aa_rows_read_csv(path, &s[i].rows, &s[i].n)))
             code = cli_fail("merge", st == AA_EIO ? AA_EINVAL : st);
     }
-    size_t *owner = NULL;
+    place *owner = NULL;
     if (!code)
         code = check_shards(s, ns, &owner);
     aa_row *rows = NULL;
@@ -279,7 +284,7 @@ int cmd_merge(int argc, char **argv)
     if (!code && !(rows = malloc((n ? n : 1) * sizeof *rows)))
         code = cli_fail("merge", aa_fail(AA_ENOMEM, "out of memory for %zu results", n));
     for (size_t k = 0; !code && k < n; k++)
-        rows[k] = s[owner[k] / (1u << 20)].rows[owner[k] % (1u << 20)];
+        rows[k] = s[owner[k].shard].rows[owner[k].row];
     if (!code && (st = aa_mkdirs(out)))
         code = cli_fail("merge", st);
     for (int i = 0; i < ns && !code; i++)

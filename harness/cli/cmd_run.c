@@ -310,13 +310,16 @@ static int save(void *vctx, const aa_row *rows, size_t n)
     return st;
 }
 
+/* results.json first, results.csv last: a case in results.csv (which
+ * resume, merge, diff and check read) is in results.json too, however the
+ * run is stopped. */
 static int save_rows(run_ctx *ctx, const aa_row *rows, size_t n)
 {
     char path[4096];
-    int st = aa_pathf(path, sizeof path, "%s/results.csv", ctx->dir);
-    if (!st && !(st = aa_rows_write_csv(path, rows, n)) &&
-        !(st = aa_pathf(path, sizeof path, "%s/results.json", ctx->dir)))
-        st = aa_results_write_json(path, ctx->context, rows, n);
+    int st = aa_pathf(path, sizeof path, "%s/results.json", ctx->dir);
+    if (!st && !(st = aa_results_write_json(path, ctx->context, rows, n)) &&
+        !(st = aa_pathf(path, sizeof path, "%s/results.csv", ctx->dir)))
+        st = aa_rows_write_csv(path, rows, n);
     return st;
 }
 
