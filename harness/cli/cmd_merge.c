@@ -300,7 +300,7 @@ int cmd_merge(int argc, char **argv)
         m.selected = malloc((n ? n : 1) * sizeof *m.selected);
         m.nselected = n;
         snprintf(m.host, sizeof m.host, "%s", context.host);
-        m.context = NULL;
+        m.context = aa_context_json(&context, 0); /* the merging machine's */
         for (size_t k = 0; m.selected && k < n; k++)
             m.selected[k] = k;
         if (!m.selected)
@@ -308,6 +308,7 @@ int cmd_merge(int argc, char **argv)
         else if (!(st = aa_pathf(path, sizeof path, "%s/run.json", out)))
             st = aa_manifest_write(path, &m);
         free(m.selected);
+        free(m.context);
         if (st)
             code = cli_fail("merge", st);
     }
