@@ -165,13 +165,19 @@ typedef struct aa_run_config {
      * set, over `frames` frames (times t, t + 1, ...; 0: 24) and an eye
      * window of `window` frames (0: 6) */
     int temporal, frames, window;
+    /* 1: a method that refuses a view (a filter it cannot honour, a scene it
+     * cannot take) gives no row and adds one to *skipped (may be NULL);
+     * 0: it gives a row with ok = 0 and the reason */
+    int skip_refused;
+    size_t *skipped;
 } aa_run_config;
 
 /* Check the config before any work: lists present, sizes within memory,
  * counts in range, each spec of the kind its list holds. */
 int aa_run_check(const aa_run_config *cfg);
 /* Run it: *rows (malloc'd, n rows) in pattern, size, filter, method order.
- * A method that refuses a filter gives a row with ok = 0 and the reason. */
+ * A method that refuses a filter gives a row with ok = 0 and the reason,
+ * or no row with skip_refused. */
 int aa_run(const aa_run_config *cfg, aa_row **rows, size_t *n);
 
 /* results.csv and results.json: one row per case. */

@@ -420,6 +420,11 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     snprintf(stem, sizeof stem, "%s-%dx%d-%s-%s", ps, view.w, view.h, fs, ms);
                     if ((st = run_method(cfg, &view, &job, spec, &ref, &img, stem, row, seconds)))
                         break;
+                    if (!row->ok && cfg->skip_refused) { /* a pair the method refuses */
+                        if (cfg->skipped)
+                            (*cfg->skipped)++;
+                        continue;
+                    }
                     if (nt && row->ok &&
                         (st = run_temporal(cfg, &view, scene, spec, refs, frames, row)))
                         break;

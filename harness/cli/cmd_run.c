@@ -46,7 +46,9 @@ static void usage(FILE *out)
             "Runs every method on every pattern x size x filter, measures error against the\n"
             "exact reference and render time, and writes results.csv, results.json, images/,\n"
             "montage.png and plots/ into results/runs/<UTC time>/ (results/latest links to it)\n"
-            "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n\n"
+            "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n"
+            "A method runs only with the filters and scenes it takes (one line counts the\n"
+            "pairs left out) unless -m and -f are both given.\n\n"
             "  --suite NAME      quick, default (the default), paper, full or temporal\n"
             "                    (--list-suites)\n"
             "  --reps N          renders timed per case (default 5); the median is reported\n"
@@ -623,7 +625,7 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
     sigaction(SIGTERM, &sa, NULL);
 
     aa_row *all = NULL;
-    size_t nall = 0;
+    size_t nall = 0, skipped = 0;
     st = AA_OK;
     for (size_t g = 0; g < ng && !st; g++) {
         aa_run_config *c = &cfgs[g];
@@ -634,6 +636,10 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         c->enc = a->enc;
         c->progress = progress;
         c->ctx = &ctx;
+        /* a suite's cross products pair each method only with the views it
+         * takes; a method and a filter both named are run as asked */
+        c->skip_refused = !(a->m.n && a->f.n);
+        c->skipped = &skipped;
         aa_row *rows;
         size_t n;
         st = aa_run(c, &rows, &n);
@@ -669,6 +675,10 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         free(all);
         return cli_fail("run", st);
     }
+    if (skipped)
+        printf("skipped %zu method and view pair%s the method refuses (a filter or a scene; "
+               "name the method and the filter to run them)\n",
+               skipped, skipped == 1 ? "" : "s");
     if (!a->quiet)
         print_table(all, nall);
     printf("results: %s/results.csv%s\n", dir, linked ? " (results/latest)" : "");
