@@ -23,4 +23,5 @@ const aa_method_type *const aa_method_types[] = {
     &aa_method_crowtable,
     &aa_method_conetable,
     &aa_method_crowtiler,
+    &aa_method_feibushtex,
     NULL};

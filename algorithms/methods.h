@@ -23,6 +23,7 @@ extern const aa_method_type aa_method_cairo;
 extern const aa_method_type aa_method_crowtable;
 extern const aa_method_type aa_method_conetable;
 extern const aa_method_type aa_method_crowtiler;
+extern const aa_method_type aa_method_feibushtex;
 
 /* Point-sample the placed scene at pixel centres offset by (dx, dy)
  * pixels into out (used by point, hexagon and trio). */

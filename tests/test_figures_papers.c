@@ -24,6 +24,10 @@
  *    are the scene's, and v^g with g > 1 darkens every mixed dot, with g < 1
  *    brightens it: Jensen's inequality), so the least lies near 1 and the
  *    fringes grow from g = 1 to g = 2 to g = 4.
+ *  - Feibush et al.'s texture filter (feibushtex): on a quadrilateral of one
+ *    colour it is that colour times the edge filter's share (conetable on
+ *    the quadrilateral in white); on two stripes, a pixel inside a stripe is
+ *    its colour exactly and one on their boundary about half of each.
  *  - The suites: every method family is in `quick` and `default`, each
  *    under a filter it accepts; `full` holds every family under every
  *    filter it accepts and the zone plate; a run of a suite leaves out the
@@ -103,7 +107,8 @@ static void test_papers_methods(void **state)
     key_of("fig-crow-3.17", buf, sizeof buf);
     assert_true(!strncmp(buf, "slivers ", 8));
     assert_non_null(strstr(buf, "down2 point"));
-    assert_non_null(strstr(key_of("fig-feibush-4d", buf, sizeof buf), "method conetable"));
+    assert_non_null(strstr(key_of("fig-feibush-4d", buf, sizeof buf), "method feibushtex"));
+    assert_non_null(strstr(buf, "method conetable"));
     assert_non_null(strstr(buf, "512x512 gauss:s=1"));
     assert_non_null(strstr(key_of("fig-catmull-1", buf, sizeof buf), "method area"));
     /* the colour maps of figs. A.1-A.3: shown v^2, v, v^4 */
@@ -258,6 +263,108 @@ static void test_calibration(void **state)
         assert_true(c.map_fringe[s][1] < c.map_fringe[s][0]);
         assert_true(c.map_fringe[s][0] < c.map_fringe[s][2]);
     }
+}
+
+/* ---- Feibush et al.'s texture filter (feibushtex) ---- */
+
+static void render_into(const char *method, const aa_scene *scene, const char *filter, int w,
+                        aa_image *out)
+{
+    aa_filter f;
+    aa_spec spec;
+    aa_job job;
+    aa_counters c;
+    assert_int_equal(aa_filter_parse(filter, &f), 0);
+    if (aa_method_parse(method, &f, &spec))
+        fail_msg("%s: %s", method, aa_last_error());
+    assert_int_equal(aa_job_init(&job, scene, w, w, 0, 0, 0, &f, 1, 2), 0);
+    assert_int_equal(aa_image_alloc(out, w, w, 3), 0);
+    if (aa_method_run(&spec, &job, 1, out, &c, NULL))
+        fail_msg("%s: %s", method, aa_last_error());
+    aa_job_free(&job);
+}
+
+/* A quadrilateral of one colour: its texture is that colour, so the texture
+ * filter gives it exactly and the pixel is the edge filter's share of it:
+ * feibushtex = colour x conetable on the same quadrilateral in white. */
+static void test_feibushtex_uniform(void **state)
+{
+    (void)state;
+    static const double q[4][2] = {{0.3, 0.2}, {0.8, 0.25}, {0.9, 0.85}, {0.1, 0.7}};
+    const aa_rgb colour = {{0.2, 0.6, 0.4}};
+    aa_scene *s[2];
+    for (int k = 0; k < 2; k++) {
+        s[k] = aa_scene_new((aa_rgb){{0, 0, 0}});
+        assert_int_equal(aa_scene_layer(s[k], k ? (aa_rgb){{1, 1, 1}} : colour,
+                                        AA_FILL_NONZERO),
+                         0);
+        assert_int_equal(aa_scene_move_to(s[k], q[0][0], q[0][1]), 0);
+        for (int c = 1; c < 4; c++)
+            assert_int_equal(aa_scene_line_to(s[k], q[c][0], q[c][1]), 0);
+        assert_int_equal(aa_scene_finish(s[k]), 0);
+    }
+    static const char *const filters[] = {"gauss:s=1", "cone:r=1.5"};
+    for (int f = 0; f < 2; f++) {
+        aa_image tex, edge;
+        render_into("feibushtex", s[0], filters[f], 48, &tex);
+        render_into("conetable", s[1], filters[f], 48, &edge);
+        int inside = 0;
+        for (int p = 0; p < 48 * 48; p++)
+            for (int c = 0; c < 3; c++) {
+                double want = colour.c[c] * edge.v[3 * p + c];
+                if (fabs(tex.v[3 * p + c] - want) > 1e-12)
+                    fail_msg("%s pixel %d channel %d: %.17g, not %.17g", filters[f], p, c,
+                             tex.v[3 * p + c], want);
+                inside += edge.v[3 * p + c] == 1.0 && tex.v[3 * p + c] == colour.c[c];
+            }
+        assert_true(inside > 300); /* the interior exactly the colour */
+        aa_image_free(&tex);
+        aa_image_free(&edge);
+    }
+    aa_scene_free(s[0]);
+    aa_scene_free(s[1]);
+}
+
+/* Two stripes (feibush:stripes=2): a pixel whose mask lies inside one
+ * stripe is that stripe's colour exactly; a pixel on the straight boundary
+ * between them (a projective map keeps lines straight, and the circular
+ * mask is symmetric about any line through its centre) takes about half of
+ * each: green and blue near 1/2, red 1. */
+static void test_feibushtex_stripes(void **state)
+{
+    (void)state;
+    aa_spec ps;
+    aa_scene *scene;
+    assert_int_equal(aa_pattern_parse("feibush:stripes=2", &ps), 0);
+    assert_int_equal(aa_pattern_scene(&ps, &scene), 0);
+    aa_image im;
+    const int w = 128;
+    render_into("feibushtex:texels=512", scene, "gauss:s=1", w, &im);
+    /* the square's homography (patterns/README.md, feibush), its corners
+     * (0.32, 0.18), (0.72, 0.24), (0.97, 0.96), (0.04, 0.90) */
+    const double x0 = 0.32, y0 = 0.18, x1 = 0.72, y1 = 0.24, x2 = 0.97, y2 = 0.96, x3 = 0.04,
+                 y3 = 0.90;
+    double dx1 = x1 - x2, dx2 = x3 - x2, dx3 = x0 - x1 + x2 - x3;
+    double dy1 = y1 - y2, dy2 = y3 - y2, dy3 = y0 - y1 + y2 - y3;
+    double den = dx1 * dy2 - dx2 * dy1;
+    double g = (dx3 * dy2 - dx2 * dy3) / den, h = (dx1 * dy3 - dx3 * dy1) / den;
+    double a = x1 - x0 + g * x1, b = x3 - x0 + h * x3, d = y1 - y0 + g * y1,
+           e = y3 - y0 + h * y3;
+    static const double st[3][2] = {{0.25, 0.5}, {0.75, 0.5}, {0.5, 0.5}};
+    for (int k = 0; k < 3; k++) {
+        double wq = g * st[k][0] + h * st[k][1] + 1;
+        double x = (a * st[k][0] + b * st[k][1] + x0) / wq;
+        double y = (d * st[k][0] + e * st[k][1] + y0) / wq;
+        const double *v = aa_pixel(&im, (int)(x * w), (int)(y * w));
+        if (k == 0)
+            assert_true(v[0] == 1 && v[1] == 0 && v[2] == 0); /* stripe 0: red */
+        else if (k == 1)
+            assert_true(v[0] == 1 && v[1] == 1 && v[2] == 1); /* stripe 1: white */
+        else
+            assert_true(v[0] == 1 && fabs(v[1] - 0.5) < 0.15 && fabs(v[2] - 0.5) < 0.15);
+    }
+    aa_image_free(&im);
+    aa_scene_free(scene);
 }
 
 /* ---- suites ---- */
@@ -423,7 +530,7 @@ static void test_cli_pairs(void **state)
     char csv[700];
     snprintf(csv, sizeof csv, "%s/results.csv", out);
     assert_int_equal(aa_rows_read_csv(csv, &rows, &n), 0);
-    assert_int_equal(n, 15);
+    assert_int_equal(n, 16);
     for (size_t k = 0; k < n; k++)
         assert_true(rows[k].ok);
     free(rows);
@@ -458,6 +565,7 @@ int main(void)
         cmocka_unit_test(test_eye_of_exact),
         cmocka_unit_test(test_calibration),   cmocka_unit_test(test_suites),
         cmocka_unit_test(test_run_pairs),     cmocka_unit_test(test_cli_pairs),
+        cmocka_unit_test(test_feibushtex_uniform), cmocka_unit_test(test_feibushtex_stripes),
     };
     int failed = cmocka_run_group_tests(tests, NULL, NULL);
     char cmd[4200];

@@ -3,7 +3,8 @@
  *
  *   quick    every method family once on crow 128x128, each under a filter
  *            it accepts (box; tent:r=1 for Crow's tables and tiler; gauss
- *            for Feibush's cone table): the regression gate's suite
+ *            for Feibush et al.'s edge and texture filters): the regression
+ *            gate's suite
  *            (results/baseline.csv); a few seconds
  *   default  every family at its main settings on crow 256x256 and
  *            1024x1024: the main job of `make run`
@@ -27,7 +28,7 @@ static const aa_suite_group quick[] = {
      LIST("point", "supersample", "jitter", "hexagon", "trio", "area", "adaptive", "taa",
           "cycle", "freetype", "stb", "cairo")},
     {LIST("crow"), LIST("128x128"), LIST("tent:r=1"), LIST("crowtable", "crowtiler")},
-    {LIST("crow"), LIST("128x128"), LIST("gauss"), LIST("conetable")},
+    {LIST("crow"), LIST("128x128"), LIST("gauss"), LIST("conetable", "feibushtex")},
     {NULL, NULL, NULL, NULL}};
 
 static const aa_suite_group main_suite[] = {
@@ -40,8 +41,10 @@ static const aa_suite_group main_suite[] = {
     /* Crow's pyramid two dots wide (fig. 2.14): his tables and his tiler */
     {LIST("crow"), LIST("256x256", "1024x1024"), LIST("tent:r=1"),
      LIST("crowtable", "crowtable:form=rows", "crowtiler")},
-    /* Feibush et al.'s Gaussian of fig. 4d (s = 1 pixel, mask radius 2 s) */
-    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("gauss:s=1"), LIST("conetable")},
+    /* Feibush et al.'s Gaussian of fig. 4d (s = 1 pixel, mask radius 2 s):
+     * their edge filter, and their texture filter with the edge filter */
+    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("gauss:s=1"),
+     LIST("conetable", "feibushtex")},
     {NULL, NULL, NULL, NULL}};
 
 /* The settings of the figures (figures.c): Crow 1976 figs. 2.10-2.14,
@@ -55,14 +58,14 @@ static const aa_suite_group paper[] = {
     {LIST("star", "slivers"), LIST("256x256"), LIST("box", "tent:r=1"),
      LIST("point", "supersample:n=2", "crowtiler")},
     {LIST("feibush:stripes=200"), LIST("512x512"), LIST("box", "gauss:s=1"),
-     LIST("point", "area", "conetable")},
+     LIST("point", "area", "conetable", "feibushtex:texels=1000")},
     {LIST("crow"), LIST("256x256"), LIST("cone"), LIST("conetable:weight=cone")},
     {NULL, NULL, NULL, NULL}};
 
 /* Every family at its defaults, for the scenes besides crow. */
 #define FAMILIES                                                                               \
     "point", "supersample", "jitter", "hexagon", "trio", "area", "taa", "cycle", "adaptive",   \
-        "freetype", "stb", "cairo", "crowtable", "conetable", "crowtiler"
+        "freetype", "stb", "cairo", "crowtable", "conetable", "crowtiler", "feibushtex"
 
 static const aa_suite_group full[] = {
     {LIST("crow"), LIST("256x256", "1024x1024"),
@@ -78,7 +81,8 @@ static const aa_suite_group full[] = {
           "cycle", "cycle:positions=msaa16", "adaptive", "adaptive:tag=1", "freetype", "stb",
           "cairo", "crowtable", "crowtable:form=rows", "crowtable:res=64", "conetable",
           "conetable:cut=3", "conetable:res=256", "crowtiler", "crowtiler:hidden=scan",
-          "crowtiler:area=exact", "crowtiler:area=exact,hidden=scan")},
+          "crowtiler:area=exact", "crowtiler:area=exact,hidden=scan", "feibushtex",
+          "feibushtex:res=128")},
     {LIST("catmull:tiles=3", "slivers", "star", "feibush", "fence", "dots"), LIST("256x256"),
      LIST("box", "tent:r=1", "gauss", "cone"), LIST(FAMILIES)},
     /* the zone plate has exact integrals for box, tent and gauss, and only
