@@ -443,6 +443,58 @@ static void test_resume(void **state)
     assert_non_null(strstr(log_text, "not a run folder"));
 }
 
+/* ---- pairs a suite leaves out ---- */
+
+/* A suite's groups with the methods given and not the filters: the pairs a
+ * method refuses are skipped, without rows; sharded, they are done too,
+ * and the merge says it skipped as many as the whole run. */
+static void test_refused_pairs(void **state)
+{
+    (void)state;
+    char whole[4608], merged[4608], cache[4608], shard[3][4608];
+    snprintf(whole, sizeof whole, "%s/pwhole", dir);
+    snprintf(merged, sizeof merged, "%s/pmerged", dir);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+#define PAIRS "--suite", "paper", "-p", "crow", "-s", "24x24", "-m", "point", "-m", "area", \
+              "-m", "supersample:n=3", "--reps", "1", "--no-plots", "-q", "--cache", cache
+    const char *run[] = {"run", PAIRS, "--out", whole, NULL};
+    if (aabench(run) != 0)
+        fail_msg("the whole run failed:\n%s", log_text);
+    char said[256];
+    const char *line = strstr(log_text, "skipped ");
+    assert_non_null(line);
+    snprintf(said, sizeof said, "%.*s", (int)strcspn(line, "\n"), line);
+    for (int k = 0; k < 3; k++) {
+        char part[8];
+        snprintf(part, sizeof part, "%d/3", k + 1);
+        snprintf(shard[k], sizeof shard[k], "%s/pshard%d", dir, k + 1);
+        const char *sharded[] = {"run", PAIRS, "--shard", part, "--out", shard[k], NULL};
+        if (aabench(sharded) != 0)
+            fail_msg("shard %s failed:\n%s", part, log_text);
+    }
+    const char *merge[] = {"merge", shard[2], shard[0], shard[1], "--out", merged, "-q",
+                           "--cache", cache, NULL};
+    if (aabench(merge) != 0)
+        fail_msg("merge failed:\n%s", log_text);
+    assert_non_null(strstr(log_text, said));
+    aa_row *a, *b;
+    size_t na, nb;
+    rows_of(whole, &a, &na);
+    rows_of(merged, &b, &nb);
+    /* rows are numbered in the whole run, refused pairs leaving gaps */
+    assert_int_equal(na, nb);
+    for (size_t k = 0; k < na; k++) {
+        assert_int_equal(a[k].case_index, b[k].case_index);
+        assert_string_equal(a[k].method, b[k].method);
+        assert_string_equal(a[k].filter, b[k].filter);
+        assert_true(a[k].ok && b[k].ok);
+        assert_memory_equal(&a[k].m, &b[k].m, sizeof a[k].m);
+    }
+    free(a);
+    free(b);
+#undef PAIRS
+}
+
 /* ---- the shared cache ---- */
 
 static void test_warm_and_concurrent_cache(void **state)
@@ -450,14 +502,18 @@ static void test_warm_and_concurrent_cache(void **state)
     (void)state;
     char cache[4608];
     snprintf(cache, sizeof cache, "%s/warm", dir);
-    const char *warm[] = {"truth", "--warm", "paper", "-s", "24x24", "--cache", cache, NULL};
+    /* patterns, sizes, filters and methods given: one cross product, whose
+     * views are crow at 24x24 and 32x16 under box, tent:r=1 and cone */
+    const char *warm[] = {"truth", "--warm", "paper", "-p", "crow", "-s", "24x24", "-s", "32x16",
+                          "-f", "box", "-f", "tent:r=1", "-f", "cone", "-m", "point",
+                          "--cache", cache, NULL};
     if (aabench(warm) != 0)
         fail_msg("truth --warm failed:\n%s", log_text);
-    /* paper: crow under box, tent:r=1, tent:r=0.5 and cone */
-    assert_non_null(strstr(log_text, "4 references of suite paper"));
-    assert_non_null(strstr(log_text, "4 computed, 0 already there"));
+    assert_non_null(strstr(log_text, "6 references of suite paper"));
+    assert_non_null(strstr(log_text, "6 computed, 0 already there"));
+    assert_int_equal(support_count_entries(cache, NULL), 6);
     assert_int_equal(aabench(warm), 0);
-    assert_non_null(strstr(log_text, "0 computed, 4 already there"));
+    assert_non_null(strstr(log_text, "0 computed, 6 already there"));
 
     /* two processes computing the same reference into one cache at once */
     char shared[4608], out[2][5120];
@@ -533,7 +589,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_partition), cmocka_unit_test(test_parallel_merge),
-        cmocka_unit_test(test_resume), cmocka_unit_test(test_warm_and_concurrent_cache)};
+        cmocka_unit_test(test_resume), cmocka_unit_test(test_refused_pairs),
+        cmocka_unit_test(test_warm_and_concurrent_cache)};
     const struct CMUnitTest given[] = {cmocka_unit_test(test_compare_runs)};
     if (getenv("AABENCH_COMPARE_RUNS"))
         return cmocka_run_group_tests(given, setup, support_teardown_dir);

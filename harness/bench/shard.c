@@ -190,12 +190,15 @@ int aa_manifest_skips(const char *arg, int *takes_value)
 
 int aa_manifest_write(const char *path, const aa_manifest *m)
 {
-    cJSON *o = cJSON_CreateObject(), *cmd = cJSON_CreateArray(), *sel = cJSON_CreateArray();
-    int ok = o && cmd && sel;
+    cJSON *o = cJSON_CreateObject(), *cmd = cJSON_CreateArray(), *sel = cJSON_CreateArray(),
+          *ref = cJSON_CreateArray();
+    int ok = o && cmd && sel && ref;
     for (int k = 0; ok && k < m->argc; k++)
         ok = cJSON_AddItemToArray(cmd, cJSON_CreateString(m->argv[k]));
     for (size_t k = 0; ok && k < m->nselected; k++)
         ok = cJSON_AddItemToArray(sel, cJSON_CreateNumber((double)m->selected[k]));
+    for (size_t k = 0; ok && k < m->nrefused; k++)
+        ok = cJSON_AddItemToArray(ref, cJSON_CreateNumber((double)m->refused[k]));
     if (ok) {
         cJSON_AddItemToObject(o, "command", cmd), cmd = NULL;
         ok = cJSON_AddStringToObject(o, "suite", m->suite) &&
@@ -209,6 +212,7 @@ int aa_manifest_write(const char *path, const aa_manifest *m)
     }
     if (ok) {
         cJSON_AddItemToObject(o, "selected", sel), sel = NULL;
+        cJSON_AddItemToObject(o, "refused", ref), ref = NULL;
         cJSON *ctx = m->context ? cJSON_Parse(m->context) : cJSON_CreateNull();
         ok = ctx && cJSON_AddItemToObject(o, "context", ctx);
     }
@@ -216,6 +220,7 @@ int aa_manifest_write(const char *path, const aa_manifest *m)
     cJSON_Delete(o);
     cJSON_Delete(cmd);
     cJSON_Delete(sel);
+    cJSON_Delete(ref);
     if (!text)
         return aa_fail(AA_ENOMEM, "out of memory writing %s", path);
     size_t len = strlen(text);
@@ -348,6 +353,26 @@ int aa_manifest_read(const char *path, aa_manifest *m)
         }
         m->selected[m->nselected++] = (size_t)v->valuedouble;
     }
+    /* refused: absent before the run's end */
+    const cJSON *ref = cJSON_GetObjectItemCaseSensitive(o, "refused");
+    if (ref && !cJSON_IsArray(ref)) {
+        st = bad(path, "refused", "is not an array");
+        goto done;
+    }
+    int nr = ref ? cJSON_GetArraySize(ref) : 0;
+    if (!(m->refused = calloc(nr ? (size_t)nr : 1, sizeof *m->refused))) {
+        st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+        goto done;
+    }
+    if (ref)
+        cJSON_ArrayForEach(v, ref)
+        {
+            if (!whole(v, 0, (double)m->cases - 1)) {
+                st = bad(path, "refused", "holds something other than a case of the run");
+                goto done;
+            }
+            m->refused[m->nrefused++] = (size_t)v->valuedouble;
+        }
     v = cJSON_GetObjectItemCaseSensitive(o, "context");
     if (cJSON_IsObject(v) && !(m->context = cJSON_Print(v)))
         st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
@@ -364,6 +389,7 @@ void aa_manifest_free(aa_manifest *m)
         free(m->argv[k]);
     free(m->argv);
     free(m->selected);
+    free(m->refused);
     free(m->context);
     memset(m, 0, sizeof *m);
 }

@@ -104,10 +104,11 @@ int cmd_merge(int argc, char **argv);
 /* `run`'s machinery for other commands (cmd_run.c), given `run`'s own
  * arguments (argv[0] "run"): the references of the run's views into the
  * cache (truth --warm); and the end of a run for rows measured elsewhere
- * (merge: rows in the run's order, every case once), written into dir as
+ * (merge: rows in the run's order, every case once, but the `refused`
+ * cases the run skips), written into dir as
  * the run would have (results, montage, plots, table); the exit status. */
 int cli_run_warm(int argc, char **argv);
 int cli_run_write_merged(int argc, char **argv, const char *dir, aa_row *rows, size_t n,
-                         int quiet);
+                         size_t refused, int quiet);
 
 #endif

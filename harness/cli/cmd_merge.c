@@ -80,8 +80,9 @@ static int refuse(const char *fmt, ...)
 /* Where a case's row is: its folder and its row there. */
 typedef struct place {
     int shard; /* -1: nowhere yet */
-    size_t row;
+    size_t row; /* REFUSED: skipped by the run, its method refusing the view */
 } place;
+#define REFUSED ((size_t)-1)
 
 /* Every check before anything is written: the manifests agree, and the
  * rows hold each case of the run exactly once.  *owner (malloc'd) gives
@@ -146,6 +147,16 @@ static int check_shards(shard *s, int ns, place **owner_out)
                               s[owner[c].shard].dir, aa_echo(s[i].dir));
             else
                 owner[c].shard = i, owner[c].row = k;
+        }
+    /* the cases skipped as refused: done, without rows */
+    for (int i = 0; i < ns && !code; i++)
+        for (size_t k = 0; k < s[i].m.nrefused && !code; k++) {
+            size_t c = s[i].m.refused[k];
+            if (owner[c].shard >= 0)
+                code = refuse("case %zu is in both %s and %s: a duplicated shard", c,
+                              s[owner[c].shard].dir, aa_echo(s[i].dir));
+            else
+                owner[c].shard = i, owner[c].row = REFUSED;
         }
     /* what is missing: a folder that stopped early, or a shard not given */
     for (size_t c = 0; c < cases && !code; c++) {
@@ -280,11 +291,17 @@ int cmd_merge(int argc, char **argv)
     if (!code)
         code = check_shards(s, ns, &owner);
     aa_row *rows = NULL;
-    size_t n = code ? 0 : s[0].m.cases;
-    if (!code && !(rows = malloc((n ? n : 1) * sizeof *rows)))
-        code = cli_fail("merge", aa_fail(AA_ENOMEM, "out of memory for %zu results", n));
-    for (size_t k = 0; !code && k < n; k++)
-        rows[k] = s[owner[k].shard].rows[owner[k].row];
+    size_t cases = code ? 0 : s[0].m.cases, n = 0, nrefused = 0;
+    size_t *refused = NULL;
+    if (!code && (!(rows = malloc((cases ? cases : 1) * sizeof *rows)) ||
+                  !(refused = malloc((cases ? cases : 1) * sizeof *refused))))
+        code = cli_fail("merge", aa_fail(AA_ENOMEM, "out of memory for %zu results", cases));
+    for (size_t k = 0; !code && k < cases; k++) {
+        if (owner[k].row == REFUSED)
+            refused[nrefused++] = k;
+        else
+            rows[n++] = s[owner[k].shard].rows[owner[k].row];
+    }
     if (!code && (st = aa_mkdirs(out)))
         code = cli_fail("merge", st);
     for (int i = 0; i < ns && !code; i++)
@@ -297,11 +314,12 @@ int cmd_merge(int argc, char **argv)
         char path[4200];
         aa_context_collect(&context, 0, NULL, 0);
         m.shard = m.shards = 1;
-        m.selected = malloc((n ? n : 1) * sizeof *m.selected);
-        m.nselected = n;
+        m.selected = malloc((cases ? cases : 1) * sizeof *m.selected);
+        m.nselected = cases;
+        m.refused = refused, m.nrefused = nrefused;
         snprintf(m.host, sizeof m.host, "%s", context.host);
         m.context = aa_context_json(&context, 0); /* the merging machine's */
-        for (size_t k = 0; m.selected && k < n; k++)
+        for (size_t k = 0; m.selected && k < cases; k++)
             m.selected[k] = k;
         if (!m.selected)
             st = aa_fail(AA_ENOMEM, "out of memory");
@@ -325,11 +343,12 @@ int cmd_merge(int argc, char **argv)
                 args[na++] = m->argv[k];
             if (cache)
                 args[na++] = "--cache", args[na++] = (char *)cache;
-            code = cli_run_write_merged(na, args, out, rows, n, quiet);
+            code = cli_run_write_merged(na, args, out, rows, n, nrefused, quiet);
             free(args);
         }
     }
     free(rows);
+    free(refused);
     free(owner);
     for (int i = 0; i < ns; i++) {
         aa_manifest_free(&s[i].m);

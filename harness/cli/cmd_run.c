@@ -47,7 +47,9 @@ static void usage(FILE *out)
             "Runs every method on every pattern x size x filter, measures error against the\n"
             "exact reference and render time, and writes results.csv, results.json, images/,\n"
             "montage.png and plots/ into results/runs/<UTC time>/ (results/latest links to it)\n"
-            "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n\n"
+            "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n"
+            "A method runs only with the filters and scenes it takes (one line counts the\n"
+            "pairs left out) unless -m and -f are both given.\n\n"
             "  --suite NAME      quick, default (the default), paper, full or temporal\n"
             "                    (--list-suites)\n"
             "  --target-ci PCT   time each case until the 95%% CI of its median is within\n"
@@ -268,6 +270,7 @@ typedef struct run_ctx {
     aa_row *all;
     size_t nall, cap, copied;
     int sort; /* resumed: rows saved in the run's order (case_index) */
+    size_t skipped; /* cases skipped as refused, this run's whole */
 } run_ctx;
 
 static int progress(void *vctx, size_t done, size_t total, const char *what)
@@ -942,6 +945,10 @@ static int finish_run(const run_args *a, const aa_run_config *cfgs, int threads,
                     nall == 1 ? "" : "s", dir);
         return cli_fail("run", st);
     }
+    if (ctx->skipped)
+        printf("skipped %zu method and view pair%s the method refuses (a filter or a scene; "
+               "name the method and the filter to run them)\n",
+               ctx->skipped, ctx->skipped == 1 ? "" : "s");
     if (!a->quiet)
         print_table(all, nall);
     cli_warn_noisy("run", all, nall);
@@ -1014,6 +1021,12 @@ static int resume_rows(const char *dir, aa_run_config *cfgs, size_t ng, unsigned
         return st; /* stopped before its first case */
     if ((st = aa_rows_read_csv(path, &rows, &n)))
         return st;
+    aa_manifest m;
+    if ((st = aa_pathf(path, sizeof path, "%s/run.json", dir)) ||
+        (st = aa_manifest_read(path, &m))) {
+        free(rows);
+        return st;
+    }
     for (size_t g = 0; g < ng && !st; g++)
         if (!masks[g]) {
             size_t c = aa_run_case_count(&cfgs[g]);
@@ -1037,6 +1050,13 @@ static int resume_rows(const char *dir, aa_run_config *cfgs, size_t ng, unsigned
         else
             masks[g][(size_t)i - cfgs[g].case_base] = 0;
     }
+    /* the cases skipped before as refused are done too */
+    for (size_t k = 0; k < m.nrefused && !st; k++)
+        for (size_t g = 0; g < ng; g++)
+            if (m.refused[k] >= cfgs[g].case_base &&
+                m.refused[k] < cfgs[g].case_base + aa_run_case_count(&cfgs[g]))
+                masks[g][m.refused[k] - cfgs[g].case_base] = 0;
+    aa_manifest_free(&m);
     if (!st && n && !(st = grow(ctx, n))) {
         memcpy(ctx->all, rows, n * sizeof *rows);
         ctx->nall = n;
@@ -1045,11 +1065,44 @@ static int resume_rows(const char *dir, aa_run_config *cfgs, size_t ng, unsigned
     return st;
 }
 
+/* The cases this run skipped as refused, added to those its manifest
+ * holds (a resumed run's earlier ones), so that they count as done for
+ * `merge` and `run --resume`; *total: all of them. */
+static int record_refused(const char *dir, const aa_run_config *cfgs, size_t ng,
+                          unsigned char *const *refused, size_t *total)
+{
+    aa_manifest m;
+    char path[4200];
+    int st = aa_pathf(path, sizeof path, "%s/run.json", dir);
+    *total = 0;
+    if (st || (st = aa_manifest_read(path, &m)))
+        return st;
+    size_t more = 0;
+    for (size_t g = 0; g < ng; g++)
+        for (size_t k = 0; k < aa_run_case_count(&cfgs[g]); k++)
+            more += refused[g][k] != 0;
+    size_t *all = realloc(m.refused, (m.nrefused + more + 1) * sizeof *all);
+    if (!all) {
+        aa_manifest_free(&m);
+        return aa_fail(AA_ENOMEM, "out of memory");
+    }
+    m.refused = all;
+    for (size_t g = 0; g < ng; g++)
+        for (size_t k = 0; k < aa_run_case_count(&cfgs[g]); k++)
+            if (refused[g][k])
+                m.refused[m.nrefused++] = cfgs[g].case_base + k;
+    *total = m.nrefused;
+    if (more)
+        st = aa_manifest_write(path, &m);
+    aa_manifest_free(&m);
+    return st;
+}
+
 /* Run the suite's cross products (or those given) and write everything. */
 static int run_suite(run_args *a, const aa_suite *suite, owned *o)
 {
     aa_run_config cfgs[MAX_GROUPS];
-    unsigned char *masks[MAX_GROUPS] = {0};
+    unsigned char *masks[MAX_GROUPS] = {0}, *refused[MAX_GROUPS] = {0};
     size_t ng, cases, selected = 0;
     int threads, code = 0;
     int st = prepare(a, suite, o, cfgs, &ng, &threads, &cases);
@@ -1068,12 +1121,17 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
     }
     if ((st = aa_pathf(images, sizeof images, "%s/images", dir)))
         goto fail;
+    for (size_t g = 0; g < ng; g++)
+        if (!(refused[g] = calloc(aa_run_case_count(&cfgs[g]) + 1, 1))) {
+            st = aa_fail(AA_ENOMEM, "out of memory");
+            goto fail;
+        }
     aa_context context;
     int argc;
     const char *const *argv;
     cli_command_line(&argc, &argv);
     aa_context_collect(&context, argc, argv, threads);
-    run_ctx ctx = {dir, cli_progress_wanted(), aa_now(), &context, NULL, 0, 0, 0, 0};
+    run_ctx ctx = {dir, cli_progress_wanted(), aa_now(), &context, NULL, 0, 0, 0, 0, 0};
     if (a->resume) {
         ctx.sort = 1;
         if ((st = resume_rows(dir, cfgs, ng, masks, &ctx)))
@@ -1090,6 +1148,7 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 
+    size_t skipped = 0;
     st = AA_OK;
     for (size_t g = 0; g < ng && !st; g++) {
         aa_run_config *c = &cfgs[g];
@@ -1098,6 +1157,11 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         c->row_done = row_done;
         c->ctx = &ctx;
         c->only = masks[g];
+        /* a suite's cross products pair each method only with the views it
+         * takes; a method and a filter both named are run as asked */
+        c->skip_refused = !(a->m.n && a->f.n);
+        c->skipped = &skipped;
+        c->refused = refused[g];
         aa_row *rows = NULL;
         size_t n = 0;
         ctx.copied = 0;
@@ -1113,14 +1177,18 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         ctx.copied = 0;
         free(rows);
     }
+    (void)skipped; /* counted per case in refused[], kept with the manifest */
+    int rst = record_refused(dir, cfgs, ng, refused, &ctx.skipped);
+    if (!st)
+        st = rst;
     code = finish_run(a, cfgs, threads, dir, linked, &ctx, st);
     free(ctx.all);
     for (size_t g = 0; g < ng; g++)
-        free(masks[g]);
+        free(masks[g]), free(refused[g]);
     return code;
 fail:
     for (size_t g = 0; g < ng; g++)
-        free(masks[g]);
+        free(masks[g]), free(refused[g]);
     return cli_fail("run", st);
 }
 
@@ -1302,7 +1370,7 @@ int cli_run_warm(int argc, char **argv)
 }
 
 int cli_run_write_merged(int argc, char **argv, const char *dir, aa_row *rows, size_t n,
-                         int quiet)
+                         size_t refused, int quiet)
 {
     run_args a;
     run_defaults(&a);
@@ -1319,15 +1387,16 @@ int cli_run_write_merged(int argc, char **argv, const char *dir, aa_row *rows, s
     int threads;
     owned o = {{0}, 0};
     int st = prepare(&a, suite, &o, cfgs, &ng, &threads, &cases);
-    if (!st && cases != n)
-        st = aa_fail(AA_EINVAL, "the run's command has %zu cases, the shards %zu", cases, n);
+    if (!st && cases != n + refused)
+        st = aa_fail(AA_EINVAL, "the run's command has %zu cases, the shards %zu", cases,
+                     n + refused);
     if (st) {
         owned_free(&o);
         return cli_fail("merge", st);
     }
     aa_context context;
     aa_context_collect(&context, argc, (const char *const *)argv, threads);
-    run_ctx ctx = {dir, 0, aa_now(), &context, rows, n, n, 0, 1};
+    run_ctx ctx = {dir, 0, aa_now(), &context, rows, n, n, 0, 1, refused};
     code = finish_run(&a, cfgs, threads, dir, 0, &ctx, AA_OK);
     owned_free(&o);
     return code;
