@@ -216,6 +216,9 @@ static void test_partition(void **state)
     assert_true(aa_case_cost(&cfgs[0], 0) == 32 * 32);
     assert_true(aa_case_cost(&cfgs[0], 4) == 32 * 32 * 64);
     assert_true(aa_case_reference_cost(&cfgs[0], 11) == 256 * 128 * AA_SHARD_REFERENCE_WEIGHT);
+    /* point and area refuse the tent (cases 5 and 8): nothing to render */
+    assert_true(aa_case_cost(&cfgs[0], 5) == 0 && aa_case_reference_cost(&cfgs[0], 5) == 0);
+    assert_true(aa_case_cost(&cfgs[0], 8) == 0);
     for (int ns = 1; ns <= 7; ns++) {
         int seen[80] = {0};
         size_t total = 0;

@@ -281,7 +281,8 @@ int aa_run_warm(const aa_run_config *cfg, size_t *computed, size_t *cached);
  * each case costs pixels x samples (spp, or n x n, else 1; times the frames
  * of an animated run and the seeds of a stochastic method), and each view
  * a shard visits costs its reference (pixels x AA_SHARD_REFERENCE_WEIGHT
- * per frame) once in that shard; cases are taken from the most costly down
+ * per frame) once in that shard; a case whose method refuses its filter
+ * costs nothing; cases are taken from the most costly down
  * (ties by number), each to the shard whose load then is least (ties: the
  * lowest K).  The union of the N shards is the whole run, each case once. */
 #define AA_SHARD_REFERENCE_WEIGHT 16

@@ -42,8 +42,19 @@ static double param(const aa_spec *spec, const char *key)
     return i < 0 || spec->info->params[i].kind == AA_PARAM_CHOICE ? 0.0 : spec->v[i];
 }
 
+/* A case whose method refuses its filter costs nothing: the run skips it,
+ * or gives a row saying so, without rendering (or needing the reference). */
+static int refused(const aa_run_config *cfg, size_t k)
+{
+    const aa_spec *m = &cfg->methods[k % cfg->nmethods].spec;
+    const aa_filter *f = &cfg->filters[(k / cfg->nmethods) % cfg->nfilters].filter;
+    return aa_method_check(m, f) != AA_OK;
+}
+
 uint64_t aa_case_cost(const aa_run_config *cfg, size_t k)
 {
+    if (refused(cfg, k))
+        return 0;
     const aa_run_size *s = &cfg->sizes[size_of_case(cfg, k)];
     const aa_spec *m = &cfg->methods[k % cfg->nmethods].spec;
     const aa_method_type *type = (const aa_method_type *)m->info;
@@ -64,6 +75,8 @@ uint64_t aa_case_cost(const aa_run_config *cfg, size_t k)
 
 uint64_t aa_case_reference_cost(const aa_run_config *cfg, size_t k)
 {
+    if (refused(cfg, k))
+        return 0;
     const aa_run_size *s = &cfg->sizes[size_of_case(cfg, k)];
     uint64_t cost = (uint64_t)s->w * (uint64_t)s->h * AA_SHARD_REFERENCE_WEIGHT;
     if (animated_run(cfg))
