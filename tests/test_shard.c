@@ -308,6 +308,9 @@ static void test_parallel_merge(void **state)
     const char *missing[] = {"merge", s1, s3, "--out", out, NULL};
     assert_int_equal(aabench(missing), 2);
     assert_non_null(strstr(log_text, "shard 2/3 missing"));
+    const char *into[] = {"merge", s1, s2, s3, "--out", s2, NULL};
+    assert_int_equal(aabench(into), 2);
+    assert_non_null(strstr(log_text, "is one of the shards' folders"));
     const char *twice[] = {"merge", s1, s2, s2, s3, "--out", out, NULL};
     assert_int_equal(aabench(twice), 2);
     assert_non_null(strstr(log_text, s2));
@@ -468,7 +471,7 @@ static void test_refused_pairs(void **state)
     assert_non_null(line);
     snprintf(said, sizeof said, "%.*s", (int)strcspn(line, "\n"), line);
     for (int k = 0; k < 3; k++) {
-        char part[8];
+        char part[32];
         snprintf(part, sizeof part, "%d/3", k + 1);
         snprintf(shard[k], sizeof shard[k], "%s/pshard%d", dir, k + 1);
         const char *sharded[] = {"run", PAIRS, "--shard", part, "--out", shard[k], NULL};

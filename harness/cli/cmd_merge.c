@@ -16,6 +16,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <limits.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -269,6 +270,14 @@ int cmd_merge(int argc, char **argv)
     }
     if ((st = cli_check_folder("--out", out, strlen("/images/") + 256)))
         return cli_fail("merge", st);
+    /* the merged folder is none of the shards' (their files would be
+     * overwritten) */
+    char real_out[PATH_MAX], real_dir[PATH_MAX];
+    if (realpath(out, real_out))
+        for (int i = optind; i < argc; i++)
+            if (realpath(argv[i], real_dir) && !strcmp(real_out, real_dir))
+                return refuse("--out %s is one of the shards' folders: merge into another",
+                              aa_echo(out));
     shard *s = calloc((size_t)ns, sizeof *s);
     if (!s)
         return cli_fail("merge", aa_fail(AA_ENOMEM, "out of memory"));
