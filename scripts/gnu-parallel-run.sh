@@ -61,7 +61,7 @@ while [ "$n" -gt 0 ]; do
         exit 2
         ;;
     -h | --help)
-        sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'
+        sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'
         exit 0
         ;;
     *) set -- "$@" "$a" ;;

@@ -55,7 +55,7 @@ while [ "$n" -gt 0 ]; do
         exit 2
         ;;
     -h | --help)
-        sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'
+        sed -n "2,21p" "$0" | sed "s/^# \{0,1\}//"
         exit 0
         ;;
     *) set -- "$@" "$a" ;;
