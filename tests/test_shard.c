@@ -415,6 +415,9 @@ static void test_resume(void **state)
     /* the same command given again is taken; another is refused */
     const char *same[] = {"run", "--resume", part, SMALL, "--cache", cache, NULL};
     assert_int_equal(aabench(same), 0);
+    /* and so are options that do not change the results (threads) */
+    const char *threads[] = {"run", "--resume", part, "--threads", "1", "--cache", cache, NULL};
+    assert_int_equal(aabench(threads), 0);
     const char *changed[] = {"run", "--resume", part, "-p", "crow", "-s", "24x16", NULL};
     assert_int_equal(aabench(changed), 2);
     assert_non_null(strstr(log_text, "command differs"));

@@ -301,7 +301,8 @@ int aa_shard_plan(const aa_run_config *cfgs, size_t ng, int shard, int nshards,
 
 /* A run folder's manifest, run.json: the command (its arguments after
  * `run`, without those that do not change the results: --out, --resume,
- * --shard, --cache, --no-cache, -q), the suite, the commit and whether the
+ * --shard, --cache, --no-cache, -q, --threads: images are the same for any
+ * thread count), the suite, the commit and whether the
  * tree was dirty, the shard (1 of 1 unsharded), the cases of the whole
  * run and those of this folder, and the context of the machine (text of a
  * JSON object).  Written before any case, so an interrupted run can be

@@ -188,8 +188,8 @@ int aa_manifest_skips(const char *arg, int *takes_value)
     static const struct {
         const char *name;
         int value;
-    } skip[] = {{"--out", 1},   {"--resume", 1}, {"--shard", 1}, {"--cache", 1},
-                {"--no-cache", 0}, {"-q", 0},    {"--quiet", 0}};
+    } skip[] = {{"--out", 1},      {"--resume", 1}, {"--shard", 1},  {"--cache", 1},
+                {"--no-cache", 0}, {"-q", 0},       {"--quiet", 0}, {"--threads", 1}};
     *takes_value = 0;
     for (size_t k = 0; k < sizeof skip / sizeof *skip; k++) {
         size_t n = strlen(skip[k].name);

@@ -1275,7 +1275,7 @@ static int resume(const char *dir, int argc, char **argv)
         return 2;
     }
     /* "run", the run's own arguments, its shard and folder, and the options
-     * given that do not change the results (--cache, -q) */
+     * given that do not change the results (--cache, -q, --threads) */
     char shard[64];
     char **args = calloc((size_t)m.argc + (size_t)argc + 8, sizeof *args);
     if (!args) {
