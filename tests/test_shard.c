@@ -375,6 +375,50 @@ static void test_parallel_merge(void **state)
     assert_false(exists(out));
 }
 
+/* A shard whose process dies (here a wrapper of the command that exits 3
+ * for shard 2/2) is named by the driver, which merges nothing; resumed, it
+ * finishes and the merge goes through. */
+static void test_driver_stopped_shard(void **state)
+{
+    (void)state;
+    char wrapper[4608], out[4608], cache[4608], s2[5120], text[6000];
+    snprintf(wrapper, sizeof wrapper, "%s/dies.sh", dir);
+    snprintf(out, sizeof out, "%s/stopped", dir);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(s2, sizeof s2, "%s/shards/2", out);
+    int n = snprintf(text, sizeof text,
+                     "#!/bin/sh\ncase \"$*\" in *\"--shard 2/2 \"*) exit 3 ;; esac\n"
+                     "exec '%s' \"$@\"\n",
+                     getenv("AABENCH"));
+    support_write_file(wrapper, text, (size_t)n);
+    assert_int_equal(chmod(wrapper, 0755), 0);
+    const char *drive[] = {"scripts/gnu-parallel-run.sh", "--jobs", "2", "--shards", "2",
+                           "--aabench", wrapper, "-p", "crow", "-s", "24x24", "-f", "box", "-m",
+                           "point", "-m", "area", "-m", "supersample", "--reps", "1", "--no-plots",
+                           "-q", "--cache", cache, "--out", out, NULL};
+    assert_int_equal(run_script(drive), 3);
+    assert_non_null(strstr(log_text, "shard(s) 2/2 did not finish"));
+    assert_non_null(strstr(log_text, "aabench run --resume"));
+    char csv[5120];
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    assert_false(exists(csv));
+    /* the shard died before its manifest: it is run again, not resumed */
+    const char *again[] = {"run", "-p", "crow", "-s", "24x24", "-f", "box", "-m", "point",
+                           "-m", "area", "-m", "supersample", "--reps", "1", "--no-plots", "-q",
+                           "--cache", cache, "--shard", "2/2", "--out", s2, NULL};
+    assert_int_equal(aabench(again), 0);
+    char s1[5120];
+    snprintf(s1, sizeof s1, "%s/shards/1", out);
+    const char *merge[] = {"merge", s1, s2, "--out", out, "-q", NULL};
+    if (aabench(merge) != 0)
+        fail_msg("merge failed:\n%s", log_text);
+    aa_row *rows;
+    size_t nr;
+    rows_of(out, &rows, &nr);
+    assert_int_equal(nr, 3);
+    free(rows);
+}
+
 /* ---- resumed runs ---- */
 
 #define SMALL "-p", "crow", "-s", "24x16", "-s", "40x40", "-f", "box", "-m", "point", "-m", \
@@ -598,6 +642,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_partition), cmocka_unit_test(test_parallel_merge),
+        cmocka_unit_test(test_driver_stopped_shard),
         cmocka_unit_test(test_resume), cmocka_unit_test(test_refused_pairs),
         cmocka_unit_test(test_warm_and_concurrent_cache)};
     const struct CMUnitTest given[] = {cmocka_unit_test(test_compare_runs)};
