@@ -317,8 +317,9 @@ static void test_two_runs_one_folder(void **state)
     assert_non_null(mkdtemp(dir));
     snprintf(cache, sizeof cache, "AABENCH_CACHE=%s/cache", dir);
     for (int round = 0; round < 3; round++) {
-        const char *argv[] = {"run", "-p", "crow", "-s", "16x16", "-m", "point", "-m", "area",
-                              "--reps", "1", "--no-images", "-q", "--out", dir, NULL};
+        const char *argv[] = {"run", "-p", "crow", "-f", "box", "-s", "16x16", "-m", "point",
+                              "-m", "area", "--reps", "1", "--no-images", "-q", "--out", dir,
+                              NULL};
         pid_t a = spawn_cli(argv, cache, NULL), b = spawn_cli(argv, cache, NULL);
         int sa, sb;
         assert_int_equal(waitpid(a, &sa, 0), a);
@@ -368,8 +369,8 @@ static void test_stdout_full(void **state)
     snprintf(csv, sizeof csv, "%s/run/results.csv", dir);
     const char *ta[] = {"truth", "-p", "crow", "-s", "8x8", "--no-cache", "-o", a, NULL};
     const char *tb[] = {"truth", "-p", "star", "-s", "8x8", "--no-cache", "-o", b, NULL};
-    const char *run[] = {"run", "-p",      "crow", "-s",          "8x8", "-m", "point",
-                         "--reps", "1", "--no-images", "--no-plots", "-q", "--out", out, NULL};
+    const char *run[] = {"run", "-p", "crow", "-f", "box", "-s", "8x8", "-m", "point", "--reps",
+                         "1", "--no-images", "--no-plots", "-q", "--out", out, NULL};
     assert_int_equal(run_cli(ta, NULL, NULL), 0);
     assert_int_equal(run_cli(tb, NULL, NULL), 0);
     assert_int_equal(run_cli(run, "AABENCH_CACHE=/tmp/aabench-faults-cache", NULL), 0);
@@ -504,8 +505,9 @@ static void test_plugin_by_name(void **state)
     /* a baseline with the plug-in's method, checked without --plugin */
     snprintf(out, sizeof out, "%s/run", dir);
     snprintf(csv, sizeof csv, "%s/run/results.csv", dir);
-    const char *run[] = {"run", "--plugin", plugin, "-p", "crow", "-s", "8x8", "-m", "centre4",
-                         "--reps", "1", "--no-images", "--no-plots", "-q", "--out", out, NULL};
+    const char *run[] = {"run", "--plugin", plugin, "-p", "crow", "-f", "box", "-s", "8x8",
+                         "-m", "centre4", "--reps", "1", "--no-images", "--no-plots", "-q",
+                         "--out", out, NULL};
     assert_int_equal(run_cli(run, "AABENCH_CACHE=/tmp/aabench-faults-cache", NULL), 0);
     snprintf(cmd, sizeof cmd,
              "AABENCH_CACHE=/tmp/aabench-faults-cache '%s' check --baseline '%s' > '%s/check.txt';"

@@ -545,13 +545,24 @@ static void test_cli_pairs(void **state)
     assert_int_equal(aa_rows_read_csv(csv, &rows, &n), 0);
     assert_int_equal(n, 2);
     free(rows);
-    /* the method and the filter both named: run as asked, refusal shown */
-    const char *named[] = {"run", "-p", "crow", "-s", "16x16", "-m", "point", "-f", "gauss",
-                           "--reps", "1", "--no-images", "--no-plots", "--out", out,
-                           "--threads", "1", "--no-cache", NULL};
+    /* the method and the filters both named: run as asked, the refusal a
+     * row of its own; a method that refuses every filter named is bad
+     * input (exit 2, as `render` says), not a run of refusals */
+    const char *named[] = {"run", "-p", "crow", "-s", "16x16", "-m", "point", "-f", "box",
+                           "-f", "gauss", "--reps", "1", "--no-images", "--no-plots", "--out",
+                           out, "--threads", "1", "--no-cache", NULL};
     assert_int_equal(run(named), 0);
     assert_int_equal(count(output, "skipped"), 0);
     assert_true(count(output, "refused") >= 1);
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), 0);
+    assert_int_equal(n, 2);
+    assert_true(rows[0].ok != rows[1].ok);
+    free(rows);
+    const char *refused[] = {"run", "-p", "crow", "-s", "16x16", "-m", "point", "-f", "gauss",
+                             "--reps", "1", "--no-images", "--no-plots", "--out", out,
+                             "--threads", "1", "--no-cache", NULL};
+    assert_int_equal(run(refused), 2);
+    assert_true(count(output, "point") >= 1);
 }
 
 int main(void)

@@ -377,8 +377,8 @@ static void test_full_disk_run(void **state)
     join(montage, sizeof montage, out, "montage.png");
     join(csv, sizeof csv, out, "results.csv");
     join(plot, sizeof plot, out, "plots/error_vs_time.png");
-    const char *args[] = {"run", "-p", "crow", "-s", "24x24", "-m", "point", "-m", "area",
-                          "--reps", "1", "-q", "--no-cache", "--out", out, NULL};
+    const char *args[] = {"run", "-p", "crow", "-f", "box", "-s", "24x24", "-m", "point", "-m",
+                          "area", "--reps", "1", "-q", "--no-cache", "--out", out, NULL};
     expect_exit(run_cmd(NULL, args), 0, "run");
     size_t mlen, clen, plen;
     unsigned char *m = slurp(montage, &mlen), *c = slurp(csv, &clen), *p = slurp(plot, &plen);
@@ -839,13 +839,14 @@ static void test_run_checks_montage_first(void **state)
     char dir[PATH_MAX], out[PATH_MAX + 32];
     fresh("run-montage", dir, sizeof dir);
     join(out, sizeof out, dir, "run");
-    const char *args[] = {"run", "-p", "crow", "-s", "65536x1", "-m", "point", "--reps", "1",
-                          "--no-plots", "-q", "--out", out, NULL};
+    const char *args[] = {"run", "-p", "crow", "-f", "box", "-s", "65536x1", "-m", "point",
+                          "--reps", "1", "--no-plots", "-q", "--out", out, NULL};
     expect_exit(run_cmd(NULL, args), 2, "run with too wide a montage");
     expect_output("montage", "run with too wide a montage");
     assert_false(exists(out));
-    const char *without[] = {"run", "-p", "crow", "-s", "65536x1", "-m", "point", "--reps", "1",
-                             "--no-plots", "--no-images", "-q", "--out", out, NULL};
+    const char *without[] = {"run", "-p", "crow", "-f", "box", "-s", "65536x1", "-m", "point",
+                             "--reps", "1", "--no-plots", "--no-images", "-q", "--out", out,
+                             NULL};
     expect_exit(run_cmd(NULL, without), 0, "the same run without images");
 }
 

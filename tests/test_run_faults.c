@@ -495,7 +495,7 @@ static void test_rows_kept_when_killed(void **state)
     path_in(so, sizeof so, "killed.out");
     path_in(se, sizeof se, "killed.err");
     /* the hanging method last: the cases before it are all there is */
-    const char *args[] = {"run",  "--plugin", faulty, "-p",          "crow",       "-s",
+    const char *args[] = {"run",  "--plugin", faulty, "-p",          "crow",       "-f", "box", "-s",
                           "16x16", "-m",      "point", "-m",         "area",       "-m",
                           "hang", "--reps",   "1",     "--no-images", "--no-plots", "-q",
                           "--out", out,       NULL};
