@@ -574,21 +574,12 @@ static void test_warm_and_concurrent_cache(void **state)
     pid_t pid[2];
     for (int k = 0; k < 2; k++) {
         snprintf(out[k], sizeof out[k], "%s/t%d.txt", dir, k);
-        if ((pid[k] = fork()) == 0) {
-            int fd = open("/dev/null", O_WRONLY);
-            dup2(fd, 1);
-            dup2(fd, 2);
-            execl(getenv("AABENCH"), "aabench", "truth", "-p", "crow", "-s", "96x64", "-f",
-                  "tent:r=1", "--cache", shared, "-q", "-o", out[k], (char *)NULL);
-            _exit(127);
-        }
-        assert_true(pid[k] > 0);
+        const char *args[] = {"truth", "-p", "crow", "-s", "96x64", "-f", "tent:r=1", "--cache",
+                              shared, "-q", "-o", out[k], NULL};
+        pid[k] = support_aabench_spawn(args, NULL, NULL, NULL);
     }
-    for (int k = 0; k < 2; k++) {
-        int status;
-        assert_int_equal(waitpid(pid[k], &status, 0), pid[k]);
-        assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    }
+    for (int k = 0; k < 2; k++)
+        assert_int_equal(support_wait(pid[k]), 0);
     /* one file, no temporary left, read back verified and equal to the
      * reference computed without the cache */
     assert_int_equal(support_count_entries(shared, NULL), 1);
