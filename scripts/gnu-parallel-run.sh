@@ -84,7 +84,9 @@ case $jobs$shards in *[!0-9]*) echo "gnu-parallel-run.sh: --jobs and --shards ta
 
 mkdir -p "$out/shards"
 # the references once, into the shared cache, before any shard starts
-"$aabench" truth --warm "$suite" "$@" --out "$out" -q
+if ! printf '%s\n' "$@" | grep -qx -- '--no-cache'; then
+    "$aabench" truth --warm "$suite" "$@" --out "$out" -q
+fi
 remote=""
 [ -n "$sshlogin" ] && remote="--sshloginfile $sshlogin --workdir ."
 # shellcheck disable=SC2086 # $remote is words

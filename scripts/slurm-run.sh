@@ -75,12 +75,15 @@ export AABENCH="$aabench" AABENCH_SUITE="$suite" AABENCH_SHARDS="$shards"
 warm=$(sbatch --parsable $sbopts --job-name=aabench-warm --output="$out/slurm/warm-%j.log" \
     "$script" warm "$out" "$@")
 # shellcheck disable=SC2086
+# a failed references job cancels the rest (--kill-on-invalid-dep)
 array=$(sbatch --parsable $sbopts --job-name=aabench-shard --dependency="afterok:$warm" \
+    --kill-on-invalid-dep=yes \
     --array="1-$shards" --output="$out/slurm/shard-%A_%a.log" "$script" shard "$out" "$@")
 merge_cache=""
 [ -n "$cache" ] && merge_cache="--cache $cache"
 # shellcheck disable=SC2086
 merge=$(sbatch --parsable $sbopts --job-name=aabench-merge --dependency="afterany:$array" \
+    --kill-on-invalid-dep=yes \
     --output="$out/slurm/merge-%j.log" "$script" merge "$out" $merge_cache)
 echo "slurm-run.sh: references job $warm, shards job array $array (1-$shards), merge job $merge"
 echo "slurm-run.sh: logs in $out/slurm/, results in $out/results.csv after job $merge"
