@@ -52,8 +52,12 @@ typedef struct ar_piece {
     double byd, ayd; /* by and ay rounded, to find T */
     double k6;       /* (y' x'' - x' y'') / 12, constant along a parabola */
     /* power basis from the control points, extended precision:
-     * x(t) = x0 + t (bx + t ax), y(t) = y0 + t (by + t ay) */
-    long double x0, bx, ax, y0l, by, ay;
+     * x(t) = x0 + t (bx + t (ax + t dx)), y(t) = y0 + t (by + t (ay + t dy)),
+     * dx = dy = 0 but for cubics */
+    long double x0, bx, ax, y0l, by, ay, dx, dy;
+    int cubic;
+    double dyd;           /* dy rounded */
+    const aa_piece *src;  /* the scene's piece (crossings of cubics) */
 } ar_piece;
 
 /* A piece as a worker sees it, one per piece, kept from row to row.
@@ -68,6 +72,10 @@ typedef struct ar_seg {
     const ar_piece *p;
     int ja, c0, mline;
     double U, Va, g, vy, ax, ay;
+    /* a cubic's terms (0 for others): u and v gain tau^3 cx3, tau^3 cy3 */
+    double cx3, cy3;
+    double t0;   /* tau at the piece's top (-T) */
+    double te2;  /* a cubic's second x extremum, after te (infinite if none) */
     double te;   /* tau of the x extremum (infinite if none) */
     double ivy;  /* 1 / vy when ay = 0 */
     double k6;   /* (y' x'' - x' y'') / 12, constant along a parabola */
@@ -151,13 +159,24 @@ static inline const double *colour_of(const ar_state *S, const int *w)
     return S->colour[S->nl];
 }
 
-static inline double u_at(const ar_seg *s, double t) { return s->U + t * (s->g + t * s->ax); }
+static inline double u_at(const ar_seg *s, double t)
+{
+    return s->U + t * (s->g + t * (s->ax + t * s->cx3));
+}
+
+/* A cubic's root of c + tau (k1 + tau (k2 + tau k3)) in [a, b], where it
+ * increases from a non-positive value to a non-negative one: Newton's
+ * method kept in the bracket, bisection where a step would leave it, to
+ * full precision (area.c). */
+double area_cubic_root(double c, double k1, double k2, double k3, double a, double b);
 
 /* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
  * in the cancellation-free form. */
 static inline double solve_v(const ar_seg *s, double v)
 {
     double c = s->V - v;
+    if (s->p->cubic)
+        return area_cubic_root(c, s->vy, s->ay, s->cy3, s->t0, s->tend);
     if (s->ay == 0.0)
         return -c / s->vy;
     double disc = s->vy * s->vy - 4.0 * s->ay * c;

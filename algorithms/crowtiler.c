@@ -228,14 +228,14 @@ static const double gl4_w[4] = {0.34785484513745385737, 0.65214515486254614263,
 static double right_exact(const aa_filter *f, const aa_piece *p, double ya, double yb,
                           double cx, double cy)
 {
-    double ys[16], k[8];
+    double ys[32], k[8];
     int n = 0, nk = f->type->kinks(f->spec.v, k);
     ys[n++] = ya;
     ys[n++] = yb;
     if (cy > ya && cy < yb)
         ys[n++] = cy;
     for (int q = 0; q < nk; q++) {
-        double m[2];
+        double m[3];
         int c = aa_piece_meet_x(p, cx + k[q], m);
         for (int r = 0; r < c; r++)
             if (m[r] > ya && m[r] < yb)
@@ -257,8 +257,9 @@ static double right_exact(const aa_filter *f, const aa_piece *p, double ya, doub
         double h = 0.5 * (tb - ta), m = 0.5 * (ta + tb), part = 0.0;
         for (int g = 0; g < 4; g++) {
             double t = m + h * gl4_x[g];
-            double y = p->y0 + t * (p->by + t * p->ay), x = p->x0 + t * (p->bx + t * p->ax);
-            double dy = p->by + 2.0 * p->ay * t;
+            double y = p->y0 + t * (p->by + t * (p->ay + t * p->dy));
+            double x = p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
+            double dy = p->by + t * (2.0 * p->ay + 3.0 * t * p->dy);
             part += gl4_w[g] * aa_filter_weight(f, y - cy) * (1.0 - aa_filter_cdf(f, x - cx)) * dy;
         }
         sum += h * part;

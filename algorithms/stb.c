@@ -218,9 +218,11 @@ static int stb_init(void *state, const double *p, const aa_job *job)
         for (size_t k = start[c]; k < start[c + 1]; k++) {
             v = &s->v[s->nv++];
             memset(v, 0, sizeof *v);
-            v->type = e[k].quad ? STBTT_vcurve : STBTT_vline;
+            v->type = e[k].quad == 2 ? STBTT_vcubic : e[k].quad ? STBTT_vcurve : STBTT_vline;
             v->x = (float)e[k].x1, v->y = (float)(e[k].y1 + Y_SHIFT);
             v->cx = (float)e[k].cx, v->cy = (float)(e[k].cy + Y_SHIFT);
+            if (e[k].quad == 2)
+                v->cx1 = (float)e[k].c2x, v->cy1 = (float)(e[k].c2y + Y_SHIFT);
         }
     }
     for (int k = 0; k < 256; k++)

@@ -1,15 +1,97 @@
 /*
- * scene_piece.c: the geometry of one piece, a y-monotone line or parabolic
- * arc (aabench.h, aa_piece): its x and parameter at a height, its x extent
- * over a band, where it meets a vertical line, and where two pieces meet.
- * Pure functions of the pieces: no scene is read here.
+ * scene_piece.c: the geometry of one piece, a y-monotone line, parabolic
+ * or cubic arc (aabench.h, aa_piece): its x and parameter at a height, its
+ * x extent over a band, where it meets a vertical line, and where two
+ * pieces meet.  Pure functions of the pieces: no scene is read here.
+ *
+ * Cubics.  The roots of a cubic polynomial in t on an interval are found
+ * robustly, never by the closed form alone: the interval is cut at the
+ * roots of the derivative (GSL's quadratic solver), so that the polynomial
+ * is monotone on each part; a part whose ends differ in sign holds exactly
+ * one root, which is bracketed and polished by Newton's method safeguarded
+ * by bisection until the bracket is two adjacent doubles or the value is
+ * zero: full double precision.  The parameter at a height is such a root
+ * on a y-monotone piece (one part, [0, 1]).
  */
-#include "core.h"
+#include "scene_internal.h"
 
 #include <float.h>
+#include <gsl/gsl_poly.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* ---- roots of cubics ---- */
+
+static inline double poly3(const double c[4], double t)
+{
+    return c[0] + t * (c[1] + t * (c[2] + t * c[3]));
+}
+
+/* The root of the cubic c in [a, b], where fa = c(a) and fb = c(b) differ in
+ * sign and c is monotone: Newton's method kept inside the bracket, bisection
+ * where a step would leave it or shrink it too slowly. */
+double aa__poly3_bracketed(const double c[4], double a, double b, double fa, double fb)
+{
+    if (fa == 0.0)
+        return a;
+    if (fb == 0.0)
+        return b;
+    double sa = fa < 0.0 ? -1.0 : 1.0;
+    double t = a - fa * (b - a) / (fb - fa); /* regula falsi to start */
+    if (!(t > a && t < b))
+        t = 0.5 * (a + b);
+    double prev = b - a;
+    for (int it = 0; it < 200; it++) {
+        double f = poly3(c, t);
+        if (f == 0.0)
+            return t;
+        if ((f < 0.0 ? -1.0 : 1.0) == sa)
+            a = t;
+        else
+            b = t;
+        double m = 0.5 * (a + b);
+        if (!(m > a && m < b))
+            break; /* a and b adjacent doubles */
+        double df = c[1] + t * (2.0 * c[2] + 3.0 * t * c[3]);
+        double next = df != 0.0 ? t - f / df : m;
+        if (!(next > a && next < b) || fabs(next - t) > 0.5 * prev)
+            next = m;
+        prev = fabs(next - t);
+        t = next;
+    }
+    /* the end of the last bracket nearer the root */
+    return fabs(poly3(c, a)) <= fabs(poly3(c, b)) ? a : b;
+}
+
+/* The real roots of c[0] + c[1] t + c[2] t^2 + c[3] t^3 in [lo, hi],
+ * ascending, at most 3 (a cubic that vanishes identically has none). */
+int aa__poly3_roots(const double c[4], double lo, double hi, double *t)
+{
+    double cut[4], r[2];
+    int nc = 0, n = 0;
+    cut[nc++] = lo;
+    int nr = gsl_poly_solve_quadratic(3.0 * c[3], 2.0 * c[2], c[1], &r[0], &r[1]);
+    for (int k = 0; k < nr; k++)
+        if (r[k] > cut[nc - 1] && r[k] < hi)
+            cut[nc++] = r[k];
+    cut[nc++] = hi;
+    double fa = poly3(c, lo);
+    for (int k = 0; k + 1 < nc; k++) {
+        double a = cut[k], b = cut[k + 1], fb = poly3(c, b);
+        double root = NAN;
+        if (fa == 0.0)
+            root = a;
+        else if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0))
+            root = aa__poly3_bracketed(c, a, b, fa, fb);
+        if (root == root && (n == 0 || root > t[n - 1]) && n < 3)
+            t[n++] = root;
+        fa = fb;
+    }
+    if (fa == 0.0 && (n == 0 || hi > t[n - 1]) && n < 3)
+        t[n++] = hi;
+    return n;
+}
 
 /* ---- piece geometry ---- */
 
@@ -20,6 +102,14 @@ double aa_piece_t_at(const aa_piece *p, double y)
         return 0.0;
     if (y >= p->y1)
         return 1.0;
+    if (p->kind == AA_PIECE_CUBIC) {
+        /* the one root of y(t) - y on [0, 1]: y is monotone there */
+        double c[4] = {-d, p->by, p->ay, p->dy};
+        double f1 = poly3(c, 1.0);
+        if (!(f1 > 0.0))
+            return 1.0;
+        return aa__poly3_bracketed(c, 0.0, 1.0, -d, f1);
+    }
     if (p->ay == 0.0) {
         t = d / p->by;
     } else {
@@ -46,6 +136,8 @@ double aa_piece_x_at(const aa_piece *p, double y)
     if (p->kind == AA_PIECE_FLAT)
         return p->x0;
     double t = aa_piece_t_at(p, y);
+    if (p->kind == AA_PIECE_CUBIC)
+        return p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
     return p->x0 + t * (p->bx + t * p->ax);
 }
 
@@ -66,6 +158,18 @@ void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, doub
         return;
     }
     double ta = aa_piece_t_at(p, a), tb = aa_piece_t_at(p, b);
+    if (p->kind == AA_PIECE_CUBIC) {
+        double c[4] = {p->x0, p->bx, p->ax, p->dx}, ts[2];
+        *xmin = fmin(poly3(c, ta), poly3(c, tb));
+        *xmax = fmax(poly3(c, ta), poly3(c, tb));
+        int n = aa__cubic_turns(p->bx, p->ax, p->dx, ts);
+        for (int k = 0; k < n; k++)
+            if (ts[k] > ta && ts[k] < tb) {
+                *xmin = fmin(*xmin, poly3(c, ts[k]));
+                *xmax = fmax(*xmax, poly3(c, ts[k]));
+            }
+        return;
+    }
     double xa = p->x0 + ta * (p->bx + ta * p->ax), xb = p->x0 + tb * (p->bx + tb * p->ax);
     *xmin = fmin(xa, xb);
     *xmax = fmax(xa, xb);
@@ -87,13 +191,32 @@ static double discriminant(double a, double b, double c)
     return (p - q) + (dp - dq);
 }
 
-int aa_piece_meet_x(const aa_piece *p, double x, double ys[2])
+/* The heights of the roots ts[0..n) of a cubic piece (ascending in t, so in
+ * y), strictly inside (y0, y1), distinct. */
+static int heights(const aa_piece *p, const double *ts, int n, double *ys)
 {
-    double ts[2];
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        if (!(ts[k] > 0.0 && ts[k] < 1.0))
+            continue;
+        double y = p->y0 + ts[k] * (p->by + ts[k] * (p->ay + ts[k] * p->dy));
+        if (y > p->y0 && y < p->y1 && (m == 0 || y > ys[m - 1]))
+            ys[m++] = y;
+    }
+    return m;
+}
+
+int aa_piece_meet_x(const aa_piece *p, double x, double ys[3])
+{
+    double ts[3];
     int n = 0;
     if (p->kind == AA_PIECE_FLAT || x < p->xmin || x > p->xmax)
         return 0;
     double c = p->x0 - x;
+    if (p->kind == AA_PIECE_CUBIC) {
+        double k[4] = {c, p->bx, p->ax, p->dx};
+        return heights(p, ts, aa__poly3_roots(k, 0.0, 1.0, ts), ys);
+    }
     if (p->ax == 0.0) {
         if (p->bx != 0.0)
             ts[n++] = -c / p->bx;
@@ -197,7 +320,8 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
     double lo = fmax(fmax(p->y0, q->y0), ya), hi = fmin(fmin(p->y1, q->y1), yb);
     if (!(lo < hi))
         return 0;
-    if (p->ay == 0.0 && q->ay == 0.0) {
+    int cubic = p->kind == AA_PIECE_CUBIC || q->kind == AA_PIECE_CUBIC;
+    if (p->ay == 0.0 && q->ay == 0.0 && !cubic) {
         /* both x quadratic in y: their difference is a quadratic */
         double a0, a1, a2, b0, b1, b2, u[2];
         x_in_u(p, lo, &a0, &a1, &a2);
@@ -211,9 +335,21 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
             ys[m++] = lo + u[k];
         return m;
     }
-    if (p->kind == AA_PIECE_QUAD && q->kind == AA_PIECE_LINE) {
+    if (p->kind != AA_PIECE_LINE && q->kind == AA_PIECE_LINE) {
         const aa_piece *t = p;
         p = q, q = t;
+    }
+    if (p->kind == AA_PIECE_LINE && q->kind == AA_PIECE_CUBIC) {
+        /* cubic q(t) against line p, x = p.x0 + (y - p.y0) s: a cubic in t */
+        double s = p->bx / p->by, ts[3], y[3];
+        double k[4] = {q->x0 - p->x0 - (q->y0 - p->y0) * s, q->bx - s * q->by,
+                       q->ax - s * q->ay, q->dx - s * q->dy};
+        int n = aa__poly3_roots(k, 0.0, 1.0, ts), m = 0;
+        n = heights(q, ts, n, y);
+        for (int j = 0; j < n && m < max; j++)
+            if (y[j] > lo && y[j] < hi)
+                ys[m++] = y[j];
+        return m;
     }
     if (p->kind == AA_PIECE_LINE) {
         /* arc q(t) against line p, x = p.x0 + (y - p.y0) s: a quadratic in t */

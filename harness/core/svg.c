@@ -91,7 +91,10 @@ static void put_layer_data(FILE *f, const aa_scene *s, int layer)
         fprintf(f, "%sM %.17g %.17g", first ? "" : "\n", e[a].x0, e[a].y0);
         first = 0;
         for (size_t k = a; k < b; k++) {
-            if (e[k].quad)
+            if (e[k].quad == 2)
+                fprintf(f, " C %.17g %.17g %.17g %.17g %.17g %.17g", e[k].cx, e[k].cy,
+                        e[k].c2x, e[k].c2y, e[k].x1, e[k].y1);
+            else if (e[k].quad)
                 fprintf(f, " Q %.17g %.17g %.17g %.17g", e[k].cx, e[k].cy, e[k].x1, e[k].y1);
             else
                 fprintf(f, " L %.17g %.17g", e[k].x1, e[k].y1);

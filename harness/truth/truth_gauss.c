@@ -323,6 +323,8 @@ static void mark(const panel_worker *fs, int *diff, int c0, int c1)
  * linear functions of t, so monotone between the piece's ends. */
 static int steep(const aa_piece *p, double lo, double hi)
 {
+    if (p->kind == AA_PIECE_CUBIC)
+        return 1; /* dx/dy is not monotone along a cubic: QAG */
     double ts[2] = {aa_piece_t_at(p, lo), aa_piece_t_at(p, hi)};
     for (int k = 0; k < 2; k++) {
         double dy = p->by + 2.0 * p->ay * ts[k], dx = p->bx + 2.0 * p->ax * ts[k];
@@ -357,7 +359,7 @@ static int may_meet(const band_piece *a, const band_piece *b, double va, double 
     long double hi = fminl(vb, fminl(a->q.y1, b->q.y1));
     if (!(lo < hi))
         return 0;
-    if (a->q.ay != 0 || b->q.ay != 0)
+    if (a->q.ay != 0 || b->q.ay != 0 || a->q.cubic || b->q.cubic)
         return 1;
     long double Xa, Sa, Qa, Xb, Sb, Qb;
     as_quadratic(&a->q, lo, &Xa, &Sa, &Qa);
