@@ -166,11 +166,14 @@ double area_cubic_root(double c, double k1, double k2, double k3, double a, doub
 
 /* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1); for a
  * cubic, inside that part [lo, hi]. */
-static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo, double hi)
+static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo, double hi,
+                                 double ul, double uh)
 {
+    /* the guess: the chord from lo to hi (ul, uh: u there) */
+    double g = uh != ul ? lo + (hi - lo) * ((k - ul) / (uh - ul)) : 0.5 * (lo + hi);
     if (sg > 0.0)
-        return area_cubic_root(s->U - k, s->g, s->ax, s->cx3, lo, hi);
-    return area_cubic_root(k - s->U, -s->g, -s->ax, -s->cx3, lo, hi);
+        return area_cubic_near(s->U - k, s->g, s->ax, s->cx3, lo, hi, g);
+    return area_cubic_near(k - s->U, -s->g, -s->ax, -s->cx3, lo, hi, g);
 }
 
 /* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1). */
@@ -371,8 +374,19 @@ static void expand(ar_seg *a, const ar_piece *p, int ja)
 static inline double line_tau(const ar_seg *a, int m)
 {
     double c = a->Va - m;
-    if (a->p->cubic)
-        return area_cubic_root(c, a->vy, a->ay, a->cy3, a->t0, a->tend);
+    if (a->p->cubic) {
+        /* from the line above's root, one row on by the series of the
+         * inverse: v(t + e) = v + d e + q e^2 gives e = 1/d - q/d^3 */
+        double g = 0.0;
+        if (a->mline == m - 1) {
+            double t = a->tline, d = a->vy + t * (2.0 * a->ay + 3.0 * t * a->cy3);
+            double q = a->ay + 3.0 * t * a->cy3, r = d > 0.0 ? 1.0 / d : 0.0;
+            g = t + r * (1.0 - q * r * r);
+        } else if (a->vy > 0.0) {
+            g = -c / a->vy;
+        }
+        return area_cubic_near(c, a->vy, a->ay, a->cy3, a->t0, a->tend, g);
+    }
     if (a->ay == 0.0)
         return -c * a->ivy;
     double disc = a->vy * a->vy - 4.0 * a->ay * c;
@@ -535,7 +549,7 @@ static void walk(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1
         double tb = t2, ub = u2;
         if (k != kend) {
             ub = right ? k + 1.0 : k;
-            tb = s->p->cubic ? tau_of_u_in(s, ub, right ? 1.0 : -1.0, ta, t2)
+            tb = s->p->cubic ? tau_of_u_in(s, ub, right ? 1.0 : -1.0, ta, t2, ua, u2)
                              : tau_of_u(s, ub, right ? 1.0 : -1.0);
             if (!(tb >= ta))
                 tb = ta;
@@ -932,13 +946,13 @@ static inline const double *single(const ar_row *r, const ar_seg *s, int *w,
     /* two cells: the piece crosses their common side x = c0 + k + 1 */
     double dl, dr, al, ar;
     if (s->ub > s->ua) {
-        double tc = s->p->cubic ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb)
+        double tc = s->p->cubic ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb, s->ua, s->ub)
                                 : tau_of_u(s, k + 1.0, 1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
         al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
         ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
     } else {
-        double tc = s->p->cubic ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb)
+        double tc = s->p->cubic ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb, s->ua, s->ub)
                                 : tau_of_u(s, k + 1.0, -1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
         ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);

@@ -169,14 +169,42 @@ static inline double u_at(const ar_seg *s, double t)
  * method kept in the bracket, bisection where a step would leave it, to
  * full precision (area.c). */
 double area_cubic_root(double c, double k1, double k2, double k3, double a, double b);
+/* The same from a guess near the root: Newton's method alone while its
+ * steps stay in [a, b] and shrink, until the error left after a step,
+ * |f''/(2 f')| step^2, is below 2^-54 of the bracket's width (one or two
+ * steps from a neighbouring band's root); the bracketed search otherwise. */
+static inline double area_cubic_near(double c, double k1, double k2, double k3, double a,
+                                     double b, double guess)
+{
+    double t = guess > a ? (guess < b ? guess : b) : a, last = INFINITY;
+    const double tol = 0x1p-54 * (b - a);
+    for (int it = 0; it < 8; it++) {
+        double f = c + t * (k1 + t * (k2 + t * k3));
+        double df = k1 + t * (2.0 * k2 + 3.0 * t * k3);
+        if (f == 0.0)
+            return t;
+        double step = f / df;
+        if (!(df > 0.0) || !(fabs(step) < 0.5 * last))
+            break;
+        double next = t - step;
+        if (!(next >= a && next <= b))
+            break;
+        if (fabs(k2 + 3.0 * t * k3) * step * step <= tol * df)
+            return next;
+        t = next;
+        last = fabs(step);
+    }
+    return area_cubic_root(c, k1, k2, k3, a, b);
+}
 
 /* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
  * in the cancellation-free form. */
 static inline double solve_v(const ar_seg *s, double v)
 {
     double c = s->V - v;
-    if (s->p->cubic)
-        return area_cubic_root(c, s->vy, s->ay, s->cy3, s->t0, s->tend);
+    if (s->p->cubic) /* from the linear guess */
+        return area_cubic_near(c, s->vy, s->ay, s->cy3, s->t0, s->tend,
+                               s->vy > 0.0 ? -c / s->vy : 0.0);
     if (s->ay == 0.0)
         return -c / s->vy;
     double disc = s->vy * s->vy - 4.0 * s->ay * c;
