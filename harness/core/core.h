@@ -155,8 +155,10 @@ aa_scene *aa_scene_place(const aa_scene *s, int w, int h, double t, double vx, d
  * line and an arc, and two arcs whose x is quadratic in y; a line and a
  * cubic at the roots of a cubic in t (isolated between the roots of its
  * derivative, then bisected and Newton-polished to full precision); for two
- * general arcs (cubics among them) by bisection on their exact x extents
- * (to 1e-12 relative), which
+ * general arcs by bisection on their exact x extents (to 1e-12 relative;
+ * with a cubic, an interval of 1e-6 relative across which the difference
+ * of their x changes sign is polished by Newton's method, safeguarded by
+ * bisection, to full precision), which
  * cannot miss a meeting while its budget of 4096 subintervals lasts (two
  * arcs running side by side over a long stretch can use it up, and a
  * meeting is then lost: harness/truth/truth_crowd.c finds theirs from a

@@ -313,6 +313,79 @@ static void subdivide(meet_ctx *c, double a, double b, int depth)
     subdivide(c, m, b, depth + 1);
 }
 
+/* x of the piece at y and dx/dy there (infinite where it is horizontal). */
+static double x_slope(const aa_piece *p, double y, double *slope)
+{
+    double t = aa_piece_t_at(p, y);
+    double dx = p->bx + t * (2.0 * p->ax + 3.0 * t * p->dx);
+    double dy = p->by + t * (2.0 * p->ay + 3.0 * t * p->dy);
+    *slope = dx / dy;
+    return p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
+}
+
+/* The height in [a, b] where x_p - x_q, of opposite signs fa and fb at a
+ * and b, vanishes: Newton's method on y kept inside the bracket, bisection
+ * where a step would leave it or shrink it too slowly, until the bracket
+ * is two adjacent doubles or the difference is zero. */
+static double polish_meet(const aa_piece *p, const aa_piece *q, double a, double b, double fa)
+{
+    double y = 0.5 * (a + b), prev = b - a;
+    for (int it = 0; it < 200; it++) {
+        double sp, sq, f = x_slope(p, y, &sp) - x_slope(q, y, &sq);
+        if (f == 0.0)
+            return y;
+        if ((f < 0.0) == (fa < 0.0))
+            a = y;
+        else
+            b = y;
+        double m = 0.5 * (a + b);
+        if (!(m > a && m < b))
+            break;
+        double df = sp - sq, next = df != 0.0 && isfinite(df) ? y - f / df : m;
+        if (!(next > a && next < b) || fabs(next - y) > 0.5 * prev)
+            next = m;
+        prev = fabs(next - y);
+        y = next;
+    }
+    return y;
+}
+
+/* Two pieces of which one at least is a cubic: the same bisection on exact
+ * extents, but an interval narrower than 1e-6 of the scale in which the
+ * difference of their x changes sign holds a crossing, which is polished
+ * to full precision (polish_meet); one without a change (a touch, or two
+ * crossings closer than that) is bisected on to 1e-12 and reported by its
+ * middle. */
+static void subdivide_cubic(meet_ctx *c, double a, double b, int depth)
+{
+    double pa, pb, qa, qb;
+    if (c->n >= c->max || --c->budget < 0)
+        return;
+    aa_piece_xrange(c->p, a, b, &pa, &pb);
+    aa_piece_xrange(c->q, a, b, &qa, &qb);
+    double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
+    if (pb < qa - tol || qb < pa - tol)
+        return;
+    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m));
+    if (b - a <= 1e-6 * scale) {
+        double fa = aa_piece_x_at(c->p, a) - aa_piece_x_at(c->q, a);
+        double fb = aa_piece_x_at(c->p, b) - aa_piece_x_at(c->q, b);
+        if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
+            double y = polish_meet(c->p, c->q, a, b, fa);
+            if (c->n == 0 || y - c->ys[c->n - 1] > 1e-12 * scale)
+                c->ys[c->n++] = y;
+            return;
+        }
+    }
+    if (depth >= 60 || b - a <= 1e-12 * scale || !(m > a && m < b)) {
+        if (c->n == 0 || m - c->ys[c->n - 1] > 1e-12 * scale)
+            c->ys[c->n++] = m;
+        return;
+    }
+    subdivide_cubic(c, a, m, depth + 1);
+    subdivide_cubic(c, m, b, depth + 1);
+}
+
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys, int max)
 {
     if (!p->dir || !q->dir || max < 1)
@@ -373,6 +446,9 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
     }
     /* two general arcs (a quartic): bisection on exact extents */
     meet_ctx c = {p, q, ys, 0, max, 4096};
-    subdivide(&c, lo, hi, 0);
+    if (cubic)
+        subdivide_cubic(&c, lo, hi, 0);
+    else
+        subdivide(&c, lo, hi, 0);
     return c.n;
 }
