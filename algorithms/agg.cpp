@@ -12,7 +12,8 @@
  * coverage is |winding area| clamped to full, as FreeType's).
  *
  * The outline is the placed scene's: one polygon per contour, lines as
- * line_to_d, each quadratic arc flattened by AGG's own curve3 (curves=div,
+ * line_to_d, each quadratic arc flattened by AGG's own curve3 and each
+ * cubic one by its curve4, with the same method and scale (curves=div,
  * AGG's default, is curve3_div's recursive subdivision, which stops where
  * the arc is within 0.5/scale px of its chord; curves=inc is curve3_inc's
  * fixed steps, about a quarter of the arc's length times scale), with

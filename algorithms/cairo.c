@@ -4,8 +4,8 @@
  *
  * The scene's one layer is one Cairo path: lines as line_to, each quadratic
  * arc as the cubic Bezier that is the same curve (degree elevation, exact:
- * control points p0 + 2/3 (c - p0) and p1 + 2/3 (c - p1)), every path
- * closed.  Cairo flattens curves to `tolerance` (px, Cairo's default 0.1)
+ * control points p0 + 2/3 (c - p0) and p1 + 2/3 (c - p1)), each cubic arc
+ * as itself (curve_to), every path closed.  Cairo flattens curves to `tolerance` (px, Cairo's default 0.1)
  * and converts the polygon to coverage with the scan converter `aa` selects
  * (CAIRO_ANTIALIAS_BEST, GOOD or FAST: Cairo chooses the grid of each;
  * 1.16's image backend gives BEST and GOOD the same image on crow); the

@@ -15,7 +15,9 @@
  *
  * The outline is the placed scene's: one contour per path, lines as
  * on-curve points, quadratic arcs as a conic control point
- * (FT_CURVE_TAG_CONIC) and an on-curve end; the layer's even-odd rule sets
+ * (FT_CURVE_TAG_CONIC) and an on-curve end, cubic arcs as their two cubic
+ * control points (FT_CURVE_TAG_CUBIC) and an on-curve end (FreeType
+ * flattens them itself); the layer's even-odd rule sets
  * FT_OUTLINE_EVEN_ODD_FILL.  It is built once in init.
  *
  * Tiles.  FreeType 2.12's cell pool is small and fixed; a band of rows that

@@ -3,7 +3,8 @@
  * stb_truetype.h, rasterizer version 2, reached through stbtt_Rasterize).
  *
  * Version 2 flattens curves into lines (stbtt_FlattenCurves: a quadratic is
- * halved until its midpoint lies within `flatness` pixels of its chord's),
+ * halved until its midpoint lies within `flatness` pixels of its chord's; a
+ * cubic arc goes in as STBTT_vcubic, flattened by stb's own cubic test),
  * then computes, for every pixel, the signed area to the right of each
  * line inside it, in single precision, and writes |sum| clamped to 1 as an
  * 8-bit coverage ("exact-area" in its own words: exact for the polygon

@@ -11,7 +11,8 @@
  * has the layer's fill rule (fill-rule nonzero or evenodd) and id "layerK"
  * (K the layer's index in the scene, 0 the front), and each closed contour
  * of the layer is one subpath "M x y", then "L x y" for a line segment and
- * "Q cx cy x y" for a quadratic Bezier arc (the scene's own arcs, exactly),
+ * "Q cx cy x y" for a quadratic Bezier arc and "C c1x c1y c2x c2y x y" for a
+ * cubic one (the scene's own arcs, exactly),
  * then "Z".  A layer with no contour is a path with an empty d, which draws
  * nothing.
  *

@@ -102,6 +102,17 @@
  * 2 x 2 pixels in two minutes).  The patterns' default views never take
  * that path; their references are as before it.
  *
+ * Cubic arcs (AA_PIECE_CUBIC) take the same paths.  Their crossings are
+ * the roots of y(t) = s by Newton's method in long double, safeguarded by
+ * bisection (truth_t_at); their breakpoints are their pieces' ends (the
+ * edges are split at the roots of y'(t)), the sqrt-like turning points
+ * where y' vanishes at an end, up to three crossings of each kink line
+ * (aa_piece_meet_x), the meetings with other pieces (aa_piece_meet: roots
+ * of a cubic against a line, Newton-polished bisection on exact extents
+ * against an arc), and for the cone the crossings of the circle (degree 6,
+ * circle_heights_cubic).  The Gaussian's panels leave pixels with a cubic
+ * to QAG.  Scenes without cubics are computed as before, to the bit.
+ *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
  * rounding.  Pixels whose window meets no piece are uniform: they take the
