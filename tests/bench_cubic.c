@@ -8,9 +8,10 @@
  *    P0 + 2/3 (C - P0), P1 + 2/3 (C - P1)): the same image, cubic pieces;
  *  - waves: 48 white stripes whose sides are S-shaped cubics from top to
  *    bottom (two turning points in x each), black between.
- * For each, the median render time of `point` and `area` with one thread
- * (timed by precision: aa_method_time, --target-ci PCT, default 2, within
- * --budget S, default 1) and their ratio.  A noisy timing is marked *.
+ * For each, the median render time of `point` and `area` with one thread,
+ * the two taking turns (aa_timing_measure: after a warm-up, until both
+ * medians' 95% CIs are within --target-ci PCT, default 2, or --budget S per
+ * method has passed, default 1), and their ratio.  A noisy timing is marked *.
  * Figures are read, not asserted.
  *
  * usage: bench_cubic [-s WxH] [-t THREADS] [--target-ci PCT] [--budget S]
@@ -78,28 +79,55 @@ static aa_scene *waves(void)
     return s;
 }
 
-static int time_one(const char *text, const aa_scene *scene, int w, int h, int threads,
-                    const aa_timing_plan *plan, double *median, int *noisy)
-{
-    aa_filter f;
-    aa_spec spec;
-    aa_job job;
+typedef struct timed {
+    aa_method m;
+    const aa_job *job;
     aa_image out;
     aa_counters c;
-    aa_timing t;
+} timed;
+
+static int render_once(void *ctx)
+{
+    timed *t = ctx;
+    return aa_method_render(&t->m, t->job, &t->out, &t->c);
+}
+
+/* point and area timed taking turns (aa_timing_measure), so that a load
+ * that comes and goes falls on both alike. */
+static int time_pair(const aa_scene *scene, int w, int h, int threads,
+                     const aa_timing_plan *plan, double median[2], int noisy[2])
+{
+    const char *names[2] = {"point", "area"};
+    aa_filter f;
+    aa_job job;
+    timed t[2];
+    memset(t, 0, sizeof t);
     int st = aa_filter_parse("box", &f);
-    if (st || (st = aa_method_parse(text, &f, &spec)))
+    if (st || (st = aa_job_init(&job, scene, w, h, 0.0, 0.0, 0.0, &f, 1, threads)))
         return st;
-    if ((st = aa_job_init(&job, scene, w, h, 0.0, 0.0, 0.0, &f, 1, threads)))
-        return st;
-    if ((st = aa_image_alloc(&out, w, h, 3))) {
-        aa_job_free(&job);
-        return st;
+    for (int k = 0; k < 2 && !st; k++) {
+        aa_spec spec;
+        t[k].job = &job;
+        if (!(st = aa_method_parse(names[k], &f, &spec)) &&
+            !(st = aa_method_init(&t[k].m, &spec, &job)))
+            st = aa_image_alloc(&t[k].out, w, h, 3);
     }
-    st = aa_method_time(&spec, &job, plan, &out, &c, &t);
-    *median = t.stats.median;
-    *noisy = t.noisy != 0;
-    aa_image_free(&out);
+    if (!st) {
+        aa_timed_fn const fn[2] = {render_once, render_once};
+        void *const ctx[2] = {&t[0], &t[1]};
+        const int th[2] = {threads, threads};
+        aa_timing tm[2];
+        st = aa_timing_measure(plan, 2, fn, ctx, th, tm);
+        for (int k = 0; k < 2; k++) {
+            median[k] = tm[k].stats.median;
+            noisy[k] = tm[k].noisy != 0;
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        if (t[k].m.type)
+            aa_method_free(&t[k].m);
+        aa_image_free(&t[k].out);
+    }
     aa_job_free(&job);
     return st;
 }
@@ -144,16 +172,15 @@ int main(int argc, char **argv)
     printf("%-30s %12s %12s %10s\n", "scene", "point ms", "area ms", "area/point");
     int status = 0;
     for (int k = 0; k < 3; k++) {
-        double tp, ta;
-        int np, na;
-        if (time_one("point", scenes[k], w, h, threads, &plan, &tp, &np) ||
-            time_one("area", scenes[k], w, h, threads, &plan, &ta, &na)) {
+        double med[2];
+        int noisy[2];
+        if (time_pair(scenes[k], w, h, threads, &plan, med, noisy)) {
             fprintf(stderr, "bench_cubic: %s: %s\n", names[k], aa_last_error());
             status = 3;
             break;
         }
-        printf("%-30s %11.3f%s %11.3f%s %10.2f\n", names[k], 1e3 * tp, np ? "*" : " ", 1e3 * ta,
-               na ? "*" : " ", ta / tp);
+        printf("%-30s %11.3f%s %11.3f%s %10.2f\n", names[k], 1e3 * med[0], noisy[0] ? "*" : " ",
+               1e3 * med[1], noisy[1] ? "*" : " ", med[1] / med[0]);
     }
     for (int k = 0; k < 3; k++)
         aa_scene_free(scenes[k]);
