@@ -281,14 +281,14 @@ static double right_exact(const aa_filter *f, const aa_piece *p, double ya, doub
 /* ---- edges shared with a polygon in front ---- */
 
 typedef struct tl_key {
-    double k[6];
+    double k[8]; /* ends, control point, a cubic's second (else 0) */
     int layer;
 } tl_key;
 
 static int cmp_key(const void *a, const void *b)
 {
     const tl_key *x = a, *y = b;
-    for (int q = 0; q < 6; q++)
+    for (int q = 0; q < 8; q++)
         if (x->k[q] != y->k[q])
             return x->k[q] < y->k[q] ? -1 : 1;
     return (x->layer > y->layer) - (x->layer < y->layer);
@@ -313,7 +313,8 @@ static int adjacency_make(tl_state *S, const aa_scene *s)
     size_t m = 0;
     for (size_t i = 0; i < n; i++)
         if (p[i].dir)
-            key[m++] = (tl_key){{p[i].y0, p[i].y1, p[i].x0, p[i].x1, p[i].cx, p[i].cy},
+            key[m++] = (tl_key){{p[i].y0, p[i].y1, p[i].x0, p[i].x1, p[i].cx, p[i].cy,
+                                 p[i].c2x, p[i].c2y},
                                 p[i].layer};
     qsort(key, m, sizeof *key, cmp_key);
     for (size_t a = 0; a < m;) {
