@@ -1,6 +1,6 @@
 /*
- * scene_internal.h: the scene's private layout, shared by scene.c and
- * strip.c only.
+ * scene_internal.h: the scene's private layout and the cubic helpers,
+ * shared by scene.c, scene_piece.c and strip.c only.
  */
 #ifndef AA_SCENE_INTERNAL_H
 #define AA_SCENE_INTERNAL_H
