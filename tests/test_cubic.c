@@ -739,6 +739,28 @@ static void test_building(void **state)
     assert_int_equal(aa_scene_bounds(s, &x0, &y0, &x1, &y1), 1);
     assert_true(fabs(x1 - 0.75) < 1e-15 && x0 == 0 && y0 == 0 && y1 == 1);
     aa_scene_free(s);
+    /* clipping to the unit square reads the curve too: x(t) = 0.5 + 3 t (1-t)
+     * (c - 0.5) peaks at 0.5 + 0.75 (c - 0.5), inside for c = 1.1 (0.95)
+     * though its controls are outside, outside for c = 1.3 (1.1): a frame
+     * layer then */
+    const double cs[2] = {1.1, 1.3};
+    for (int k = 0; k < 2; k++) {
+        s = aa_scene_new((aa_rgb){{0, 0, 0}});
+        assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+        assert_int_equal(aa_scene_move_to(s, 0.5, 0.1), AA_OK);
+        assert_int_equal(aa_scene_cubic_to(s, cs[k], 0.3, cs[k], 0.7, 0.5, 0.9), AA_OK);
+        assert_int_equal(aa_scene_clip_unit(s), AA_OK);
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        assert_int_equal(aa_scene_layer_count(s), k ? 2 : 1);
+        /* and the point query: inside at (0.9, 0.5) only when c = 1.3
+         * would reach it, clipped away then by the frame (x > 1 only) */
+        aa_scene_bounds(s, &x0, &y0, &x1, &y1);
+        if (!k)
+            assert_true(fabs(x1 - (0.5 + 0.75 * (cs[k] - 0.5))) < 1e-15);
+        assert_true(aa_scene_colour_at(s, 0.9, 0.5).c[0] == 1.0);
+        assert_true(aa_scene_colour_at(s, 0.97, 0.5).c[0] == (k ? 1.0 : 0.0));
+        aa_scene_free(s);
+    }
 }
 
 int main(void)
