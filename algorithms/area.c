@@ -669,8 +669,8 @@ static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb
         /* a cubic: the scene's own meeting heights (aa_piece_meet: roots
          * of a cubic polynomial against a line, bisection on exact extents
          * against an arc), as band-local heights */
-        double base = j, ys[4];
-        int m = aa_piece_meet(p->p->src, q->p->src, base + ya, base + yb, ys, 4), n = 0;
+        double base = j, ys[9];
+        int m = aa_piece_meet(p->p->src, q->p->src, base + ya, base + yb, ys, 9), n = 0;
         for (int i = 0; i < m; i++) {
             double v = ys[i] - base;
             if (v > ya + CROSS_MARGIN && v < yb - CROSS_MARGIN)
@@ -766,7 +766,7 @@ static void reaching(const ar_row *r, const ar_key *keys, uint32_t *act, size_t 
 static int any_crossing(const ar_row *r, const ar_key *keys, size_t n, int lo)
 {
     const ar_seg *seg = r->wk->seg;
-    double out[4];
+    double out[9]; /* two cubics meet up to 9 times */
     uint32_t *act = r->wk->act;
     size_t nact = 0;
     for (size_t k = 0; k < n; k++) {
@@ -803,7 +803,7 @@ static void order_mid(const ar_row *r, const ar_key *in, size_t n, int lo, ar_ke
 static int neighbours_cross(const ar_row *r, const ar_key *mid, size_t n)
 {
     const ar_seg *seg = r->wk->seg;
-    double out[4];
+    double out[9]; /* two cubics meet up to 9 times */
     for (size_t k = 0; k + 1 < n; k++)
         if (pair_crossings(&seg[mid[k].idx], &seg[mid[k + 1].idx], 0.0, 1.0, r->j, out))
             return 1;
@@ -860,7 +860,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
 {
     const ar_seg *seg = r->wk->seg;
     ev_buf b = {r->wk->ev, 0, y, *ylim};
-    double out[4];
+    double out[9]; /* two cubics meet up to 9 times */
     uint32_t *act = r->wk->act;
     size_t nact = 0;
     for (size_t k = 0; k < n; k++) {

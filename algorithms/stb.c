@@ -142,10 +142,10 @@ static int stb_check_windings(const aa_scene *scene)
     for (size_t a = 0; a < np && !st; a++)
         for (size_t b = a + 1; b < np && by_x[b]->xmin <= by_x[a]->xmax && !st; b++) {
             const aa_piece *p = by_x[a], *q = by_x[b];
-            double ya = fmax(p->y0, q->y0), yb = fmin(p->y1, q->y1), m[4];
+            double ya = fmax(p->y0, q->y0), yb = fmin(p->y1, q->y1), m[9];
             if (!(ya < yb))
                 continue;
-            int nm = aa_piece_meet(p, q, ya, yb, m, 4);
+            int nm = aa_piece_meet(p, q, ya, yb, m, 9); /* two cubics: up to 9 */
             for (int k = 0; k < nm && !st; k++) {
                 if (n == cap) {
                     double *t = realloc(ys, 2 * cap * sizeof *ys);
