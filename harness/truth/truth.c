@@ -110,8 +110,10 @@
  * (aa_piece_meet_x), the meetings with other pieces (aa_piece_meet: roots
  * of a cubic against a line, Newton-polished bisection on exact extents
  * against an arc), and for the cone the crossings of the circle (degree 6,
- * circle_heights_cubic).  The Gaussian's panels leave pixels with a cubic
- * to QAG.  Scenes without cubics are computed as before, to the bit.
+ * circle_heights_cubic).  The Gaussian's panels take a cubic where its
+ * slope stays under FAST_SLOPE (two quadratics in t positive on the
+ * panel's part) and no other piece meets it there (aa_piece_meet); QAG
+ * the rest.  Scenes without cubics are computed as before, to the bit.
  *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the

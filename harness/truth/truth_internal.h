@@ -149,6 +149,7 @@ typedef struct gauss_plan {
  * whose window that extent meets (c0 > c1: none). */
 typedef struct band_piece {
     local_piece q;
+    const aa_piece *p; /* the scene's piece (meetings of cubics) */
     double xmin, xmax;
     int c0, c1;
 } band_piece;
