@@ -55,6 +55,12 @@ double aa__poly3_bracketed(const double c[4], double a, double b, double fa, dou
             break; /* a and b adjacent doubles */
         double df = c[1] + t * (2.0 * c[2] + 3.0 * t * c[3]);
         double next = df != 0.0 ? t - f / df : m;
+        /* converged: the error left after this step, |c''/(2c')| step^2,
+         * below 2^-54 of the root (or of 2^-10 near zero) */
+        if (next > a && next < b && df != 0.0 &&
+            fabs(c[2] + 3.0 * t * c[3]) * (next - t) * (next - t) <=
+                0x1p-54 * fabs(df) * fmax(fabs(next), 0x1p-10))
+            return next;
         if (!(next > a && next < b) || fabs(next - t) > 0.5 * prev)
             next = m;
         prev = fabs(next - t);
@@ -342,6 +348,8 @@ static double polish_meet(const aa_piece *p, const aa_piece *q, double a, double
         if (!(m > a && m < b))
             break;
         double df = sp - sq, next = df != 0.0 && isfinite(df) ? y - f / df : m;
+        if (next > a && next < b && fabs(next - y) <= 4.0 * DBL_EPSILON * fabs(y))
+            return next; /* a step within rounding: converged */
         if (!(next > a && next < b) || fabs(next - y) > 0.5 * prev)
             next = m;
         prev = fabs(next - y);

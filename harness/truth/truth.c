@@ -540,7 +540,9 @@ long double truth_t_at(const local_piece *q, long double s)
     if (q->cubic) {
         /* y(t) - s = t (by + t (ay + t dy)) - d, increasing on [0, 1]:
          * Newton's method kept inside the bracket [a, b], bisection where
-         * a step would leave it, until the bracket cannot shrink */
+         * a step would leave it, until the error left after a step,
+         * |y''/(2y')| step^2, is below 2^-66 (long double's last bit at
+         * t = 1 is 2^-64) or the bracket cannot shrink */
         long double a = 0, b = 1, fb = q->by + q->ay + q->dy - d;
         if (!(d > 0))
             return 0;
@@ -560,7 +562,10 @@ long double truth_t_at(const local_piece *q, long double s)
             if (!(m > a && m < b))
                 break;
             long double df = q->by + t * (2 * q->ay + 3 * t * q->dy);
-            long double next = df > 0 ? t - f / df : m;
+            long double step = df > 0 ? f / df : 0, next = df > 0 ? t - step : m;
+            if (df > 0 && next > a && next < b &&
+                fabsl(q->ay + 3 * t * q->dy) * step * step <= 0x1p-66L * df)
+                return next;
             t = next > a && next < b ? next : m;
         }
         return t;

@@ -68,6 +68,8 @@
 #include "truth.h"
 #include "truth_internal.h"
 
+#include <gsl/gsl_errno.h>
+
 #include <float.h>
 #include <limits.h>
 #include <math.h>
@@ -1395,15 +1397,38 @@ static int own_kinks(crowd *c, crowd_piece *k, const double *kx, int nkx)
          * for the rule's estimate to see on a long interval (a line 1e-3
          * from the centre: an error of 1e-12 against an estimate of 3e-16):
          * that height is a breakpoint, taken in u^4 on both sides, as the
-         * centre is.  D(t) = x^2 + y^2 has D'/2 = c3 t^3 + c2 t^2 + c1 t + c0. */
+         * centre is.  D(t) = x^2 + y^2 has D'/2 = c3 t^3 + c2 t^2 + c1 t + c0
+         * (of degree 5 for a cubic). */
         const local_piece *q = &k->q;
         long double c3 = 2 * (q->ax * q->ax + q->ay * q->ay);
         long double c2 = 3 * (q->ax * q->bx + q->ay * q->by);
         long double c1 = q->bx * q->bx + q->by * q->by + 2 * (q->x0 * q->ax + q->y0 * q->ay);
         long double c0 = q->x0 * q->bx + q->y0 * q->by;
-        double t[3], best = INFINITY;
+        double t[5], best = INFINITY;
         int m = 0;
-        if (c3 != 0)
+        if (q->cubic) {
+            /* a cubic: D'/2 = P . P' of degree 5, by GSL's companion matrix */
+            long double P[2][4] = {{q->x0, q->bx, q->ax, q->dx}, {q->y0, q->by, q->ay, q->dy}};
+            long double e[6] = {0};
+            for (int i = 0; i < 2; i++)
+                for (int a = 0; a < 4; a++)
+                    for (int b = 1; b < 4; b++)
+                        e[a + b - 1] += P[i][a] * b * P[i][b];
+            double ec[6], z[10];
+            int deg = 5;
+            for (int a = 0; a < 6; a++)
+                ec[a] = (double)e[a];
+            while (deg > 0 && ec[deg] == 0.0)
+                deg--;
+            gsl_poly_complex_workspace *ws =
+                deg > 0 ? gsl_poly_complex_workspace_alloc((size_t)deg + 1) : NULL;
+            if (ws && gsl_poly_complex_solve(ec, (size_t)deg + 1, ws, z) == GSL_SUCCESS)
+                for (int a = 0; a < deg; a++)
+                    if (fabs(z[2 * a + 1]) <= 1e-6 * (1.0 + fabs(z[2 * a])))
+                        t[m++] = z[2 * a];
+            if (ws)
+                gsl_poly_complex_workspace_free(ws);
+        } else if (c3 != 0)
             m = gsl_poly_solve_cubic((double)(c2 / c3), (double)(c1 / c3), (double)(c0 / c3), &t[0],
                                      &t[1], &t[2]);
         else if (c2 != 0)
@@ -1414,7 +1439,10 @@ static int own_kinks(crowd *c, crowd_piece *k, const double *kx, int nkx)
             long double u = t[j];
             if (!(u > 0 && u < 1))
                 continue;
-            long double x = q->x0 + u * (q->bx + u * q->ax), y = q->y0 + u * (q->by + u * q->ay);
+            long double x = q->cubic ? q->x0 + u * (q->bx + u * (q->ax + u * q->dx))
+                                     : q->x0 + u * (q->bx + u * q->ax);
+            long double y = q->cubic ? q->y0 + u * (q->by + u * (q->ay + u * q->dy))
+                                     : q->y0 + u * (q->by + u * q->ay);
             double d2 = (double)(x * x + y * y);
             if (d2 < best && d2 < c->R * c->R && y > k->lo && y < k->hi && y != 0) {
                 best = d2;
