@@ -57,7 +57,7 @@ double aa__poly3_bracketed(const double c[4], double a, double b, double fa, dou
         double next = df != 0.0 ? t - f / df : m;
         /* converged: the error left after this step, |c''/(2c')| step^2,
          * below 2^-54 of the root (or of 2^-10 near zero) */
-        if (next > a && next < b && df != 0.0 &&
+        if (next >= a && next <= b && df != 0.0 &&
             fabs(c[2] + 3.0 * t * c[3]) * (next - t) * (next - t) <=
                 0x1p-54 * fabs(df) * fmax(fabs(next), 0x1p-10))
             return next;

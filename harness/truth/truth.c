@@ -548,8 +548,29 @@ long double truth_t_at(const local_piece *q, long double s)
             return 0;
         if (!(fb > 0))
             return 1;
-        t = d / (q->y1 - q->y0);
-        t = t > 0 && t < 1 ? t : 0.5L;
+        /* a start from Newton's method in double, a few fast steps (and
+         * bisection where a step would leave [0, 1]); then long double */
+        double td = (double)(d / (q->y1 - q->y0)), lo = 0.0, hi = 1.0;
+        double dd = (double)d, k1 = (double)q->by, k2 = (double)q->ay, k3 = (double)q->dy;
+        td = td > 0.0 && td < 1.0 ? td : 0.5;
+        for (int it = 0; it < 40; it++) {
+            double f = td * (k1 + td * (k2 + td * k3)) - dd;
+            if (f < 0.0)
+                lo = td;
+            else
+                hi = td;
+            double df = k1 + td * (2.0 * k2 + 3.0 * td * k3);
+            double step = df > 0.0 ? f / df : 1.0;
+            if (fabs(step) <= 0x1p-50) { /* converged, to the last bits */
+                td = fmin(fmax(td - step, lo), hi);
+                break;
+            }
+            double next = td - step;
+            td = next > lo && next < hi ? next : 0.5 * (lo + hi);
+            if (!(hi - lo > 0x1p-50))
+                break;
+        }
+        t = td;
         for (int it = 0; it < 100; it++) {
             long double f = t * (q->by + t * (q->ay + t * q->dy)) - d;
             if (f == 0)
@@ -563,7 +584,7 @@ long double truth_t_at(const local_piece *q, long double s)
                 break;
             long double df = q->by + t * (2 * q->ay + 3 * t * q->dy);
             long double step = df > 0 ? f / df : 0, next = df > 0 ? t - step : m;
-            if (df > 0 && next > a && next < b &&
+            if (df > 0 && next >= a && next <= b &&
                 fabsl(q->ay + 3 * t * q->dy) * step * step <= 0x1p-66L * df)
                 return next;
             t = next > a && next < b ? next : m;
