@@ -379,7 +379,7 @@ static void expand(ar_seg *a, const ar_piece *p, int ja)
         int n = gsl_poly_solve_quadratic(3.0 * a->cx3, 2.0 * a->ax, a->g, &r[0], &r[1]);
         a->te = n > 0 ? r[0] : INFINITY;
         a->te2 = n > 1 && r[1] > r[0] ? r[1] : INFINITY;
-        a->ivy = 0.0;
+        a->ivy = a->vy > 0.0 ? 1.0 / a->vy : 0.0; /* the guesses' 1/d */
         a->k6 = 0.0;
         a->mline = INT_MIN;
         return;
@@ -403,7 +403,7 @@ static inline double line_tau(const ar_seg *a, int m)
          * image does not depend on the threads */
         double g = 0.0;
         if (a->vy > 0.0) {
-            double r1 = 1.0 / a->vy, x = -c * r1;
+            double r1 = a->ivy, x = -c * r1;
             g = x * (1.0 + x * r1 * (-a->ay + x * (2.0 * a->ay * a->ay * r1 - a->cy3)));
         }
         return area_cubic_near(c, a->vy, a->ay, a->cy3, a->t0, a->tend, g);
@@ -523,7 +523,7 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
         double x3 = s->cx3, y3 = s->cy3;
         *dy = d * (y1 + d * (y2 + d * y3));
         double c12 = x1 * y2 - y1 * x2, c13 = x1 * y3 - y1 * x3, c23 = x2 * y3 - y2 * x3;
-        double seg = d * d * d * (c12 / 6.0 + d * (c13 / 4.0 + d * c23 / 10.0));
+        double seg = d * d * d * (c12 * (1.0 / 6.0) + d * (c13 * 0.25 + d * c23 * 0.1));
         return *dy * (1.0 - 0.5 * (ua + ub)) - seg;
     }
     *dy = d * (s->vy + s->ay * (ta + tb));

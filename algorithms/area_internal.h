@@ -77,7 +77,7 @@ typedef struct ar_seg {
     double t0;   /* tau at the piece's top (-T) */
     double te2;  /* a cubic's second x extremum, after te (infinite if none) */
     double te;   /* tau of the x extremum (infinite if none) */
-    double ivy;  /* 1 / vy when ay = 0 */
+    double ivy;  /* 1 / vy when ay = 0, and for a cubic (its guesses) */
     double k6;   /* (y' x'' - x' y'') / 12, constant along a parabola */
     double tend; /* tau at the piece's end */
     /* tau and u on the line y = ja + mline (the bottom of the last band
@@ -203,8 +203,7 @@ static inline double solve_v(const ar_seg *s, double v)
 {
     double c = s->V - v;
     if (s->p->cubic) /* from the linear guess */
-        return area_cubic_near(c, s->vy, s->ay, s->cy3, s->t0, s->tend,
-                               s->vy > 0.0 ? -c / s->vy : 0.0);
+        return area_cubic_near(c, s->vy, s->ay, s->cy3, s->t0, s->tend, -c * s->ivy);
     if (s->ay == 0.0)
         return -c / s->vy;
     double disc = s->vy * s->vy - 4.0 * s->ay * c;
