@@ -63,9 +63,9 @@
  * aa_piece_meet gives (polished to full precision).  The guess for a band
  * line comes from the anchor alone (the series of the inverse), so the
  * image does not depend on the rows a thread did before.  Measured on
- * crow's arcs raised to cubics at 1024x1024, one thread: area/point the
- * same as on crow (1.5 to 1.8 against 1.5 to 1.7 on a loaded machine; in
- * instructions 1.53 against 1.52; tests/bench_cubic.c).
+ * crow's arcs raised to cubics at 1024x1024, one thread: area/point 1.37,
+ * 1.47 on 48 stripes of S-shaped cubics, where crow measured 1.47 to 1.49
+ * in the same runs (tests/bench_cubic.c).
  *
  * Hidden surfaces.  Clusters where pieces cross, or end inside the band
  * (vertices, flat edges), need the per-pixel treatment Catmull describes
