@@ -12,7 +12,8 @@
  * coverage is |winding area| clamped to full, as FreeType's).
  *
  * The outline is the placed scene's: one polygon per contour, lines as
- * line_to_d, each quadratic arc flattened by AGG's own curve3 (curves=div,
+ * line_to_d, each quadratic arc flattened by AGG's own curve3 and each
+ * cubic one by its curve4, with the same method and scale (curves=div,
  * AGG's default, is curve3_div's recursive subdivision, which stops where
  * the arc is within 0.5/scale px of its chord; curves=inc is curve3_inc's
  * fixed steps, about a quarter of the arc's length times scale), with
@@ -103,6 +104,7 @@ struct worker {
     rasterizer ras;
     agg::scanline_u8 sl;
     agg::curve3 curve;
+    agg::curve4 curve4;
     std::vector<unsigned char> band;
     worker() : ras(CELL_BLOCKS) {}
 };
@@ -139,6 +141,8 @@ void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, cons
     ras.clip_box(0.0, ya, (double)w, yb);
     wk.curve.approximation_method((int)p[CURVES] == CURVES_INC ? agg::curve_inc : agg::curve_div);
     wk.curve.approximation_scale(p[SCALE]);
+    wk.curve4.approximation_method((int)p[CURVES] == CURVES_INC ? agg::curve_inc : agg::curve_div);
+    wk.curve4.approximation_scale(p[SCALE]);
     for (size_t c = 0; c < nc; c++) {
         if (start[c] == start[c + 1])
             continue;
@@ -147,13 +151,23 @@ void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, cons
             const aa_edge &d = e[k];
             double top = std::fmin(d.y0, std::fmin(d.cy, d.y1));
             double bottom = std::fmax(d.y0, std::fmax(d.cy, d.y1));
+            if (d.quad == 2) /* the convex hull: the controls too */
+                top = std::fmin(top, d.c2y), bottom = std::fmax(bottom, d.c2y);
             if (!d.quad || bottom < ya || top > yb) {
                 ras.line_to_d(d.x1, d.y1);
                 continue;
             }
+            double x, y;
+            if (d.quad == 2) { /* AGG's curve4 */
+                wk.curve4.init(d.x0, d.y0, d.cx, d.cy, d.c2x, d.c2y, d.x1, d.y1);
+                wk.curve4.rewind(0);
+                unsigned cmd = wk.curve4.vertex(&x, &y); /* the start point */
+                while (!agg::is_stop(cmd = wk.curve4.vertex(&x, &y)))
+                    ras.line_to_d(x, y);
+                continue;
+            }
             wk.curve.init(d.x0, d.y0, d.cx, d.cy, d.x1, d.y1);
             wk.curve.rewind(0);
-            double x, y;
             unsigned cmd = wk.curve.vertex(&x, &y); /* the start point: already there */
             while (!agg::is_stop(cmd = wk.curve.vertex(&x, &y)))
                 ras.line_to_d(x, y);

@@ -52,8 +52,12 @@ typedef struct ar_piece {
     double byd, ayd; /* by and ay rounded, to find T */
     double k6;       /* (y' x'' - x' y'') / 12, constant along a parabola */
     /* power basis from the control points, extended precision:
-     * x(t) = x0 + t (bx + t ax), y(t) = y0 + t (by + t ay) */
-    long double x0, bx, ax, y0l, by, ay;
+     * x(t) = x0 + t (bx + t (ax + t dx)), y(t) = y0 + t (by + t (ay + t dy)),
+     * dx = dy = 0 but for cubics */
+    long double x0, bx, ax, y0l, by, ay, dx, dy;
+    int cubic;
+    double dyd;           /* dy rounded */
+    const aa_piece *src;  /* the scene's piece (crossings of cubics) */
 } ar_piece;
 
 /* A piece as a worker sees it, one per piece, kept from row to row.
@@ -68,8 +72,12 @@ typedef struct ar_seg {
     const ar_piece *p;
     int ja, c0, mline;
     double U, Va, g, vy, ax, ay;
+    /* a cubic's terms (0 for others): u and v gain tau^3 cx3, tau^3 cy3 */
+    double cx3, cy3;
+    double t0;   /* tau at the piece's top (-T) */
+    double te2;  /* a cubic's second x extremum, after te (infinite if none) */
     double te;   /* tau of the x extremum (infinite if none) */
-    double ivy;  /* 1 / vy when ay = 0 */
+    double ivy;  /* 1 / vy when ay = 0, and for a cubic (its guesses) */
     double k6;   /* (y' x'' - x' y'') / 12, constant along a parabola */
     double tend; /* tau at the piece's end */
     /* tau and u on the line y = ja + mline (the bottom of the last band
@@ -151,13 +159,51 @@ static inline const double *colour_of(const ar_state *S, const int *w)
     return S->colour[S->nl];
 }
 
-static inline double u_at(const ar_seg *s, double t) { return s->U + t * (s->g + t * s->ax); }
+static inline double u_at(const ar_seg *s, double t)
+{
+    return s->U + t * (s->g + t * (s->ax + t * s->cx3));
+}
+
+/* A cubic's root of c + tau (k1 + tau (k2 + tau k3)) in [a, b], where it
+ * increases from a non-positive value to a non-negative one: Newton's
+ * method kept in the bracket, bisection where a step would leave it, to
+ * full precision (area.c). */
+double area_cubic_root(double c, double k1, double k2, double k3, double a, double b);
+/* The same from a guess near the root: Newton's method alone while its
+ * steps stay in [a, b] and shrink, until the error left after a step,
+ * |f''/(2 f')| step^2, is below 2^-54 of the bracket's width (one or two
+ * steps from a neighbouring band's root); the bracketed search otherwise. */
+static inline double area_cubic_near(double c, double k1, double k2, double k3, double a,
+                                     double b, double guess)
+{
+    double t = guess > a ? (guess < b ? guess : b) : a, last = INFINITY;
+    const double tol = 0x1p-54 * (b - a);
+    for (int it = 0; it < 8; it++) {
+        double f = c + t * (k1 + t * (k2 + t * k3));
+        double df = k1 + t * (2.0 * k2 + 3.0 * t * k3);
+        if (f == 0.0)
+            return t;
+        double step = f / df;
+        if (!(df > 0.0) || !(fabs(step) < 0.5 * last))
+            break;
+        double next = t - step;
+        if (!(next >= a && next <= b))
+            break;
+        if (fabs(k2 + 3.0 * t * k3) * step * step <= tol * df)
+            return next;
+        t = next;
+        last = fabs(step);
+    }
+    return area_cubic_root(c, k1, k2, k3, a, b);
+}
 
 /* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
  * in the cancellation-free form. */
 static inline double solve_v(const ar_seg *s, double v)
 {
     double c = s->V - v;
+    if (s->p->cubic) /* from the linear guess */
+        return area_cubic_near(c, s->vy, s->ay, s->cy3, s->t0, s->tend, -c * s->ivy);
     if (s->ay == 0.0)
         return -c / s->vy;
     double disc = s->vy * s->vy - 4.0 * s->ay * c;

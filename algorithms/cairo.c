@@ -4,8 +4,8 @@
  *
  * The scene's one layer is one Cairo path: lines as line_to, each quadratic
  * arc as the cubic Bezier that is the same curve (degree elevation, exact:
- * control points p0 + 2/3 (c - p0) and p1 + 2/3 (c - p1)), every path
- * closed.  Cairo flattens curves to `tolerance` (px, Cairo's default 0.1)
+ * control points p0 + 2/3 (c - p0) and p1 + 2/3 (c - p1)), each cubic arc
+ * as itself (curve_to), every path closed.  Cairo flattens curves to `tolerance` (px, Cairo's default 0.1)
  * and converts the polygon to coverage with the scan converter `aa` selects
  * (CAIRO_ANTIALIAS_BEST, GOOD or FAST: Cairo chooses the grid of each;
  * 1.16's image backend gives BEST and GOOD the same image on crow); the
@@ -82,8 +82,9 @@ static int cairo_build_path(cairo_state *s, const aa_scene *scene)
     const aa_edge *e = aa_scene_edges(scene, &nedges);
     const size_t *start = aa_scene_contours(scene, &ncont);
     for (size_t k = 0; k < nedges; k++) {
-        const double c[6] = {e[k].x0, e[k].y0, e[k].cx, e[k].cy, e[k].x1, e[k].y1};
-        for (int q = 0; q < 6; q++)
+        const double c[8] = {e[k].x0, e[k].y0, e[k].cx, e[k].cy, e[k].x1, e[k].y1,
+                             e[k].quad == 2 ? e[k].c2x : 0.0, e[k].quad == 2 ? e[k].c2y : 0.0};
+        for (int q = 0; q < 8; q++)
             if (!(fabs(c[q]) <= CAIRO_MAX_COORD))
                 return aa_fail(AA_EINVAL,
                                "cairo: a coordinate of %.17g px is beyond the %.0f px that "
@@ -98,7 +99,9 @@ static int cairo_build_path(cairo_state *s, const aa_scene *scene)
         cairo_move_to(cr, e[start[c]].x0, e[start[c]].y0);
         for (size_t k = start[c]; k < start[c + 1]; k++) {
             const aa_edge *d = &e[k];
-            if (d->quad)
+            if (d->quad == 2)
+                cairo_curve_to(cr, d->cx, d->cy, d->c2x, d->c2y, d->x1, d->y1);
+            else if (d->quad)
                 cairo_curve_to(cr, d->x0 + 2.0 / 3.0 * (d->cx - d->x0),
                                d->y0 + 2.0 / 3.0 * (d->cy - d->y0),
                                d->x1 + 2.0 / 3.0 * (d->cx - d->x1),

@@ -367,16 +367,20 @@ static void cn_run(void *ctx, const aa_piece *p, double ya, double yb, const dou
     double ta = ya <= p->y0 ? 0.0 : aa_piece_t_at(p, ya);
     double tb = yb >= p->y1 ? 1.0 : aa_piece_t_at(p, yb);
     int n = 1;
-    if (p->kind == AA_PIECE_QUAD) {
-        double dt = tb - ta, ca = hypot(p->ax, p->ay);
+    if (p->kind == AA_PIECE_QUAD || p->kind == AA_PIECE_CUBIC) {
+        /* |P''|/2 <= |a| + 3 |d| over [0, 1] (d = 0 but for cubics) */
+        double dt = tb - ta;
+        double ca = hypot(fabs(p->ax) + 3.0 * fabs(p->dx), fabs(p->ay) + 3.0 * fabs(p->dy));
         double steps = ceil(sqrt(ca * dt * dt / (4.0 * P->tol)));
         n = steps < 1.0 ? 1 : (steps > CN_MAX_STEPS ? CN_MAX_STEPS : (int)steps);
     }
     double sum = 0.0, t = ta;
-    double x0 = p->x0 + t * (p->bx + t * p->ax), y0 = p->y0 + t * (p->by + t * p->ay);
+    double x0 = p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
+    double y0 = p->y0 + t * (p->by + t * (p->ay + t * p->dy));
     for (int k = 1; k <= n; k++) {
         t = k == n ? tb : ta + (tb - ta) * k / n;
-        double x1 = p->x0 + t * (p->bx + t * p->ax), y1 = p->y0 + t * (p->by + t * p->ay);
+        double x1 = p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
+        double y1 = p->y0 + t * (p->by + t * (p->ay + t * p->dy));
         if (use)
             sum += segment_term(P->tab, P->ox, P->oy, x0, y0, x1, y1);
         if (holds && y0 <= P->oy && P->oy < y1 &&

@@ -355,7 +355,7 @@ typedef struct ct_edge {
  * square's left side per piece. */
 static size_t edges_size(size_t npieces)
 {
-    return 2 * npieces * sizeof(ct_edge) + (4 * npieces + 2) * sizeof(double);
+    return 7 * npieces * sizeof(ct_edge) + (6 * npieces + 2) * sizeof(double);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -393,7 +393,7 @@ static void shade_crow(const void *ctx, aa__sampler_worker *wk, int i, int j, do
     size_t nloc, k = 0, nb = 0;
     const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
     ct_edge *e = wk->own;
-    double *ys = (double *)(e + 2 * nloc);
+    double *ys = (double *)(e + 7 * nloc); /* a cubic: up to 7 parts */
     ys[nb++] = top;
     ys[nb++] = bottom;
     for (size_t q = 0; q < nloc; q++) {
@@ -413,7 +413,7 @@ static void shade_crow(const void *ctx, aa__sampler_worker *wk, int i, int j, do
         if (hi < bottom)
             ys[nb++] = hi;
         /* the piece's rows cut where it crosses the square's sides */
-        double cut[6], m[2];
+        double cut[8], m[3];
         int nc = 0;
         cut[nc++] = lo;
         cut[nc++] = hi;

@@ -220,6 +220,15 @@ static const double gl4_x[4] = {-0.86113631159405257522, -0.33998104358485626480
                                 0.33998104358485626480, 0.86113631159405257522};
 static const double gl4_w[4] = {0.34785484513745385737, 0.65214515486254614263,
                                 0.65214515486254614263, 0.34785484513745385737};
+/* Six points for a cubic arc, exact to degree 11: the weight (linear in
+ * y, a cubic in t) times the cdf (quadratic in x, a cubic in t) times
+ * dy/dt (quadratic) is of degree 11. */
+static const double gl6_x[6] = {-0.93246951420315202781, -0.66120938646626451366,
+                                -0.23861918608319690863, 0.23861918608319690863,
+                                0.66120938646626451366,  0.93246951420315202781};
+static const double gl6_w[6] = {0.17132449237917034504, 0.36076157304813860757,
+                                0.46791393457269104739, 0.46791393457269104739,
+                                0.36076157304813860757, 0.17132449237917034504};
 
 /* The exact weight right of piece p over rows [ya, yb] (inside the square
  * of centre (cx, cy)): integral of w(y - cy) (1 - C(x(y) - cx)) dy, by
@@ -228,14 +237,14 @@ static const double gl4_w[4] = {0.34785484513745385737, 0.65214515486254614263,
 static double right_exact(const aa_filter *f, const aa_piece *p, double ya, double yb,
                           double cx, double cy)
 {
-    double ys[16], k[8];
+    double ys[32], k[8];
     int n = 0, nk = f->type->kinks(f->spec.v, k);
     ys[n++] = ya;
     ys[n++] = yb;
     if (cy > ya && cy < yb)
         ys[n++] = cy;
     for (int q = 0; q < nk; q++) {
-        double m[2];
+        double m[3];
         int c = aa_piece_meet_x(p, cx + k[q], m);
         for (int r = 0; r < c; r++)
             if (m[r] > ya && m[r] < yb)
@@ -255,11 +264,14 @@ static double right_exact(const aa_filter *f, const aa_piece *p, double ya, doub
         double ta = ys[s] <= p->y0 ? 0.0 : aa_piece_t_at(p, ys[s]);
         double tb = ys[s + 1] >= p->y1 ? 1.0 : aa_piece_t_at(p, ys[s + 1]);
         double h = 0.5 * (tb - ta), m = 0.5 * (ta + tb), part = 0.0;
-        for (int g = 0; g < 4; g++) {
-            double t = m + h * gl4_x[g];
-            double y = p->y0 + t * (p->by + t * p->ay), x = p->x0 + t * (p->bx + t * p->ax);
-            double dy = p->by + 2.0 * p->ay * t;
-            part += gl4_w[g] * aa_filter_weight(f, y - cy) * (1.0 - aa_filter_cdf(f, x - cx)) * dy;
+        int cubic = p->kind == AA_PIECE_CUBIC, ng = cubic ? 6 : 4;
+        const double *gx = cubic ? gl6_x : gl4_x, *gw = cubic ? gl6_w : gl4_w;
+        for (int g = 0; g < ng; g++) {
+            double t = m + h * gx[g];
+            double y = p->y0 + t * (p->by + t * (p->ay + t * p->dy));
+            double x = p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
+            double dy = p->by + t * (2.0 * p->ay + 3.0 * t * p->dy);
+            part += gw[g] * aa_filter_weight(f, y - cy) * (1.0 - aa_filter_cdf(f, x - cx)) * dy;
         }
         sum += h * part;
     }
@@ -269,14 +281,14 @@ static double right_exact(const aa_filter *f, const aa_piece *p, double ya, doub
 /* ---- edges shared with a polygon in front ---- */
 
 typedef struct tl_key {
-    double k[6];
+    double k[8]; /* ends, control point, a cubic's second (else 0) */
     int layer;
 } tl_key;
 
 static int cmp_key(const void *a, const void *b)
 {
     const tl_key *x = a, *y = b;
-    for (int q = 0; q < 6; q++)
+    for (int q = 0; q < 8; q++)
         if (x->k[q] != y->k[q])
             return x->k[q] < y->k[q] ? -1 : 1;
     return (x->layer > y->layer) - (x->layer < y->layer);
@@ -301,7 +313,8 @@ static int adjacency_make(tl_state *S, const aa_scene *s)
     size_t m = 0;
     for (size_t i = 0; i < n; i++)
         if (p[i].dir)
-            key[m++] = (tl_key){{p[i].y0, p[i].y1, p[i].x0, p[i].x1, p[i].cx, p[i].cy},
+            key[m++] = (tl_key){{p[i].y0, p[i].y1, p[i].x0, p[i].x1, p[i].cx, p[i].cy,
+                                 p[i].c2x, p[i].c2y},
                                 p[i].layer};
     qsort(key, m, sizeof *key, cmp_key);
     for (size_t a = 0; a < m;) {

@@ -15,7 +15,9 @@
  *
  * The outline is the placed scene's: one contour per path, lines as
  * on-curve points, quadratic arcs as a conic control point
- * (FT_CURVE_TAG_CONIC) and an on-curve end; the layer's even-odd rule sets
+ * (FT_CURVE_TAG_CONIC) and an on-curve end, cubic arcs as their two cubic
+ * control points (FT_CURVE_TAG_CUBIC) and an on-curve end (FreeType
+ * flattens them itself); the layer's even-odd rule sets
  * FT_OUTLINE_EVEN_ODD_FILL.  It is built once in init.
  *
  * Tiles.  FreeType 2.12's cell pool is small and fixed; a band of rows that
@@ -98,16 +100,17 @@ static int ft_build_outline(ft_state *s, const aa_scene *scene)
     size_t nedges, ncont;
     const aa_edge *e = aa_scene_edges(scene, &nedges);
     const size_t *start = aa_scene_contours(scene, &ncont);
-    /* at most: a start point, then a control and an end per edge */
-    size_t cap = ncont + 2 * nedges;
+    /* at most: a start point, then two controls and an end per edge */
+    size_t cap = ncont + 3 * nedges;
     if (ncont > 32767 || cap > 32767)
         return aa_fail(AA_EINVAL,
                        "freetype: the scene has %zu paths and up to %zu outline points; "
                        "FreeType's outline takes at most 32767 of each",
                        ncont, cap);
     for (size_t k = 0; k < nedges; k++) {
-        const double c[6] = {e[k].x0, e[k].y0, e[k].cx, e[k].cy, e[k].x1, e[k].y1};
-        for (int q = 0; q < 6; q++)
+        const double c[8] = {e[k].x0, e[k].y0, e[k].cx, e[k].cy, e[k].x1, e[k].y1,
+                             e[k].quad == 2 ? e[k].c2x : 0.0, e[k].quad == 2 ? e[k].c2y : 0.0};
+        for (int q = 0; q < 8; q++)
             if (!(fabs(c[q]) <= FT_MAX_COORD))
                 return aa_fail(AA_EINVAL,
                                "freetype: a coordinate of %.17g px is beyond the %.0f px "
@@ -129,7 +132,12 @@ static int ft_build_outline(ft_state *s, const aa_scene *scene)
         o->points[n] = (FT_Vector){to26_6(e[a].x0), to26_6(e[a].y0)};
         o->tags[n++] = FT_CURVE_TAG_ON;
         for (size_t k = a; k < b; k++) {
-            if (e[k].quad) {
+            if (e[k].quad == 2) { /* FreeType's cubic: two cubic control points */
+                o->points[n] = (FT_Vector){to26_6(e[k].cx), to26_6(e[k].cy)};
+                o->tags[n++] = FT_CURVE_TAG_CUBIC;
+                o->points[n] = (FT_Vector){to26_6(e[k].c2x), to26_6(e[k].c2y)};
+                o->tags[n++] = FT_CURVE_TAG_CUBIC;
+            } else if (e[k].quad) {
                 o->points[n] = (FT_Vector){to26_6(e[k].cx), to26_6(e[k].cy)};
                 o->tags[n++] = FT_CURVE_TAG_CONIC;
             }

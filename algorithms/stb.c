@@ -3,7 +3,8 @@
  * stb_truetype.h, rasterizer version 2, reached through stbtt_Rasterize).
  *
  * Version 2 flattens curves into lines (stbtt_FlattenCurves: a quadratic is
- * halved until its midpoint lies within `flatness` pixels of its chord's),
+ * halved until its midpoint lies within `flatness` pixels of its chord's; a
+ * cubic arc goes in as STBTT_vcubic, flattened by stb's own cubic test),
  * then computes, for every pixel, the signed area to the right of each
  * line inside it, in single precision, and writes |sum| clamped to 1 as an
  * 8-bit coverage ("exact-area" in its own words: exact for the polygon
@@ -141,10 +142,10 @@ static int stb_check_windings(const aa_scene *scene)
     for (size_t a = 0; a < np && !st; a++)
         for (size_t b = a + 1; b < np && by_x[b]->xmin <= by_x[a]->xmax && !st; b++) {
             const aa_piece *p = by_x[a], *q = by_x[b];
-            double ya = fmax(p->y0, q->y0), yb = fmin(p->y1, q->y1), m[4];
+            double ya = fmax(p->y0, q->y0), yb = fmin(p->y1, q->y1), m[9];
             if (!(ya < yb))
                 continue;
-            int nm = aa_piece_meet(p, q, ya, yb, m, 4);
+            int nm = aa_piece_meet(p, q, ya, yb, m, 9); /* two cubics: up to 9 */
             for (int k = 0; k < nm && !st; k++) {
                 if (n == cap) {
                     double *t = realloc(ys, 2 * cap * sizeof *ys);
@@ -218,9 +219,11 @@ static int stb_init(void *state, const double *p, const aa_job *job)
         for (size_t k = start[c]; k < start[c + 1]; k++) {
             v = &s->v[s->nv++];
             memset(v, 0, sizeof *v);
-            v->type = e[k].quad ? STBTT_vcurve : STBTT_vline;
+            v->type = e[k].quad == 2 ? STBTT_vcubic : e[k].quad ? STBTT_vcurve : STBTT_vline;
             v->x = (float)e[k].x1, v->y = (float)(e[k].y1 + Y_SHIFT);
             v->cx = (float)e[k].cx, v->cy = (float)(e[k].cy + Y_SHIFT);
+            if (e[k].quad == 2)
+                v->cx1 = (float)e[k].c2x, v->cy1 = (float)(e[k].c2y + Y_SHIFT);
         }
     }
     for (int k = 0; k < 256; k++)

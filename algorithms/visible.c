@@ -39,7 +39,7 @@ static size_t round_up(size_t n)
  * flat piece's breaks (one per crossing piece, two per other flat piece). */
 static size_t ev_cap(size_t n)
 {
-    return 7 * n + 4;
+    return 9 * n + 4; /* a cubic crosses each side up to 3 times */
 }
 static size_t fx_cap(size_t n)
 {
@@ -318,7 +318,7 @@ void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double
             /* only a piece whose extent holds the side can cross it */
             if (!(xa < side[e] && side[e] < xb))
                 continue;
-            double ys[2];
+            double ys[3];
             int m = aa_piece_meet_x(p, side[e], ys);
             for (int r = 0; r < m; r++)
                 if (ys[r] > lo && ys[r] < hi)

@@ -24,7 +24,7 @@ extern "C" {
 
 /* The interface version a plug-in is built for; the command refuses a
  * plug-in built for another.  Raised whenever a type below changes layout. */
-#define AA_PLUGIN_ABI 1
+#define AA_PLUGIN_ABI 2
 
 /* ------------------------------------------------------------------------
  * Status and errors
@@ -120,37 +120,37 @@ static inline double *aa_pixel(const aa_image *im, int i, int j)
 }
 
 /* ------------------------------------------------------------------------
- * Scenes: opaque layers of closed paths (line segments, quadratic arcs)
+ * Scenes: opaque layers of closed paths (lines, quadratic and cubic arcs)
  * ------------------------------------------------------------------------ */
 
-typedef struct aa_rgb {
-    double c[3];
-} aa_rgb;
+typedef struct aa_rgb { double c[3]; } aa_rgb;
 
 typedef enum aa_fill_rule { AA_FILL_NONZERO = 0, AA_FILL_EVENODD = 1 } aa_fill_rule;
 
-/* One segment of a closed path, as given: a quadratic Bezier arc from
- * (x0,y0) through control point (cx,cy) to (x1,y1); for a line the control
- * point is the midpoint. */
+/* One segment of a closed path, as given: a Bezier arc from (x0,y0) through
+ * control point (cx,cy) (a cubic's first; its second (c2x,c2y)) to (x1,y1);
+ * for a line the control point is the midpoint. */
 typedef struct aa_edge {
     double x0, y0, cx, cy, x1, y1;
-    int quad;  /* 0 line, 1 quadratic arc */
-    int layer;
+    int quad, layer; /* quad: 0 line, 1 quadratic arc, 2 cubic arc */
+    double c2x, c2y;
 } aa_edge;
 
 /* A y-monotone part of an edge, top to bottom (y0 <= y1); it meets line y when
  * y0 <= y < y1 (a vertex counts once, a flat piece never). */
-typedef enum aa_piece_kind { AA_PIECE_LINE, AA_PIECE_QUAD, AA_PIECE_FLAT } aa_piece_kind;
+typedef enum aa_piece_kind {
+    AA_PIECE_LINE, AA_PIECE_QUAD, AA_PIECE_FLAT, AA_PIECE_CUBIC } aa_piece_kind;
 
 typedef struct aa_piece {
     double x0, y0, cx, cy, x1, y1; /* Bezier control points, top to bottom */
     double xmin, xmax;             /* x extent of the whole piece */
-    /* y(t) = y0 + t (by + t ay); x(t) = x0 + t (bx + t ax) */
+    /* y(t) = y0 + t (by + t (ay + t dy)), x(t) likewise; dy = dx = 0 but
+     * for cubics, whose second control point is (c2x, c2y) */
     double ay, by, ax, bx;
     int kind;  /* aa_piece_kind */
     int dir;   /* +1 if the edge runs down (y increasing), -1 up, 0 flat */
-    int layer;
-    int edge;  /* index of the edge it came from */
+    int layer, edge; /* edge: index of the edge it came from */
+    double c2x, c2y, dy, dx;
 } aa_piece;
 
 typedef struct aa_scene aa_scene;
@@ -175,9 +175,9 @@ double aa_piece_x_at(const aa_piece *p, double y);    /* y in [y0, y1] */
 double aa_piece_t_at(const aa_piece *p, double y);    /* parameter at y */
 /* x extent of the part of the piece with y in [ya, yb] (ya <= yb). */
 void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, double *xmax);
-/* The y values (at most 2, ascending) where the piece meets the vertical
- * line x, strictly inside (y0, y1); returns how many. */
-int aa_piece_meet_x(const aa_piece *p, double x, double ys[2]);
+/* The y values (ascending; at most 2, 3 for a cubic) where the piece meets
+ * the vertical line x, strictly inside (y0, y1); returns how many. */
+int aa_piece_meet_x(const aa_piece *p, double x, double ys[3]);
 
 aa_rgb aa_scene_colour_at(const aa_scene *s, double x, double y);
 

@@ -109,3 +109,54 @@ aa_scene *scenes_triangles(uint64_t seed)
     assert_int_equal(aa_scene_finish(s), AA_OK);
     return s;
 }
+
+aa_scene *scenes_cubics(void)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.1, 0.3), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 0.4, -0.05, 0.7, 0.65, 0.9, 0.2), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 1.05, 0.5, 0.6, 0.7, 0.85, 0.55), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 0.6, 0.45, 0.35, 0.75, 0.1, 0.3), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.15, 0.9), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 0.95, 0.55, 0.05, 0.55, 0.85, 0.95), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+aa_scene *scenes_elevated(const aa_scene *src)
+{
+    aa_scene *s = aa_scene_new(aa_scene_background(src));
+    assert_non_null(s);
+    size_t ne, nc;
+    const aa_edge *e = aa_scene_edges(src, &ne);
+    const size_t *start = aa_scene_contours(src, &nc);
+    for (int l = 0; l < aa_scene_layer_count(src); l++) {
+        assert_int_equal(aa_scene_layer(s, aa_scene_layer_colour(src, l),
+                                        aa_scene_layer_rule(src, l)),
+                         AA_OK);
+        for (size_t c = 0; c < nc; c++) {
+            if (start[c] == start[c + 1] || e[start[c]].layer != l)
+                continue;
+            assert_int_equal(aa_scene_move_to(s, e[start[c]].x0, e[start[c]].y0), AA_OK);
+            for (size_t k = start[c]; k < start[c + 1]; k++) {
+                const aa_edge *d = &e[k];
+                int st;
+                if (d->quad)
+                    st = aa_scene_cubic_to(s, d->x0 + 2.0 / 3.0 * (d->cx - d->x0),
+                                           d->y0 + 2.0 / 3.0 * (d->cy - d->y0),
+                                           d->x1 + 2.0 / 3.0 * (d->cx - d->x1),
+                                           d->y1 + 2.0 / 3.0 * (d->cy - d->y1), d->x1, d->y1);
+                else
+                    st = aa_scene_line_to(s, d->x1, d->y1);
+                assert_int_equal(st, AA_OK);
+            }
+            assert_int_equal(aa_scene_close(s), AA_OK);
+        }
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}

@@ -31,6 +31,16 @@ aa_scene *scenes_rects(const double (*r)[4], int n);
  * control point (cx, cy) to (x1, y1) and its chord, finished. */
 aa_scene *scenes_arc_segment(double x0, double y0, double cx, double cy, double x1, double y1);
 
+/* White on black, one nonzero layer inside the unit square, of cubic arcs
+ * only: an S-shaped arc, arcs with turning points in y and in x, and a
+ * second path whose one arc loops over itself (harness/README.md, "Scenes
+ * and their queries"), finished. */
+aa_scene *scenes_cubics(void);
+/* A copy of a finished scene (pattern units) with every quadratic arc
+ * raised to the cubic of the same curve: controls P0 + 2/3 (C - P0) and
+ * P1 + 2/3 (C - P1); lines as they were.  Finished. */
+aa_scene *scenes_elevated(const aa_scene *s);
+
 /* `fg` right of the line through (px, py) with direction angle `angle`
  * (radians) from the vertical (0: the region right of a vertical line), on
  * `bg`: a square of side L with one side on the line, so the line's unit

@@ -15,7 +15,11 @@
  *  - every filter is honoured or refused with a message;
  *  - the counters make sense;
  *  - on the zone plate (a field scene) a method samples the field, or
- *    refuses it if it does not declare AA_METHOD_FIELDS.
+ *    refuses it if it does not declare AA_METHOD_FIELDS;
+ *  - on a scene of cubic arcs (tests/scenes.c, scenes_cubics: turning
+ *    points in x and y, a loop) a method renders the shape: values in
+ *    [0, 1], 1 and 2 threads the same image, and within half the error of
+ *    an image of the background alone from the reference of its filter.
  *
  * Every CHOICE parameter is run with each of its words.  Then the ordering
  * on crow 256x256 box that the methods exist to show: RMSE falls from point
@@ -352,6 +356,44 @@ static void test_point_is_centres(void **state)
     aa_scene_free(s);
 }
 
+/* Cubic arcs: every method takes them (samplers through the crossings,
+ * exact methods through the pieces, peers natively). */
+static void check_cubics(const char *spec, const aa_method_type *type)
+{
+    (void)type;
+    const char *filter = home_filter(spec);
+    if (!filter)
+        return;
+    aa_scene *s = scenes_cubics();
+    aa_image a, ref, empty;
+    double lo, hi;
+    if (render(spec, s, filter, W, H, 7, 1, &a, NULL))
+        fail_msg("%s: cubics: %s", spec, aa_last_error());
+    check_range(spec, "cubics ", &a, &lo, &hi);
+    if (!same_again(spec, s, filter, 7, 2, &a, NULL))
+        fail_msg("%s: cubics: 1 and 2 threads give different images", spec);
+    const support_view v = {.w = W, .h = H, .filter = filter, .threads = 2};
+    support_reference(s, &v, &ref, NULL, NULL);
+    assert_int_equal(aa_image_alloc(&empty, W, H, 3), AA_OK);
+    for (size_t k = 0; k < (size_t)W * H * 3; k++)
+        empty.v[k] = 0.0;
+    double e = support_rmse(&a, &ref), e0 = support_rmse(&empty, &ref);
+    if (!(e <= 0.5 * e0))
+        fail_msg("%s: cubics: RMSE %g against the reference under %s (the background alone: "
+                 "%g)",
+                 spec, e, filter, e0);
+    aa_image_free(&a);
+    aa_image_free(&ref);
+    aa_image_free(&empty);
+    aa_scene_free(s);
+}
+
+static void test_cubics(void **state)
+{
+    (void)state;
+    for_each_spec(check_cubics);
+}
+
 /* The example plug-in's method is in the table and renders like the mean of
  * its four samples. */
 static void test_plugin(void **state)
@@ -401,6 +443,7 @@ SUPPORT_MAIN(setup, NULL,
              cmocka_unit_test(test_uniform_exact),
              cmocka_unit_test(test_range_and_determinism),
              cmocka_unit_test(test_zoneplate),
+             cmocka_unit_test(test_cubics),
              cmocka_unit_test(test_filters),
              cmocka_unit_test(test_bad_parameters),
              cmocka_unit_test(test_point_is_centres),

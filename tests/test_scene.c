@@ -75,7 +75,7 @@ static void test_arc_pieces(void **state)
         double x = aa_piece_x_at(&p[k], 0.75);
         assert_true(fabs(x - (p[k].x0 < 1 ? 0.5 : 1.5)) < 1e-15);
         assert_true(fabs(p[k].y1 - 1.0) < 1e-15);
-        double ys[2];
+        double ys[3];
         /* x = 1/2 on the left piece at y = 3/4 */
         if (p[k].x0 < 1) {
             assert_int_equal(aa_piece_meet_x(&p[k], 0.5, ys), 1);

@@ -91,6 +91,10 @@ static int ev_make(const aa_scene *s, int w, int h, ld sx, ld sy, ev_scene *out)
         ld cx = (ld)w * g->cx + sx, cy = (ld)h * g->cy + sy;
         if (y0 == y1)
             continue;
+        if (g->quad == 2) {
+            free(out->e);
+            return aa_fail(AA_EINVAL, "stress: a cubic arc (only lines and arcs with x quadratic in y)");
+        }
         if (g->quad && fabsl(cy - (y0 + y1) / 2) > 1e-12L * (fabsl(y0) + fabsl(y1) + 1)) {
             free(out->e);
             return aa_fail(AA_EINVAL, "stress: an arc whose control point is not halfway in y");

@@ -133,6 +133,8 @@ int aa_scene_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule);
 int aa_scene_move_to(aa_scene *s, double x, double y);
 int aa_scene_line_to(aa_scene *s, double x, double y);
 int aa_scene_quad_to(aa_scene *s, double cx, double cy, double x, double y);
+/* A cubic Bezier arc from the pen through (c1x,c1y) and (c2x,c2y) to (x,y). */
+int aa_scene_cubic_to(aa_scene *s, double c1x, double c1y, double c2x, double c2y, double x, double y);
 int aa_scene_close(aa_scene *s);
 /* Finish building: split edges into pieces and index them.  Refuses
  * non-finite coordinates.  Queries need a finished scene. */
@@ -150,8 +152,13 @@ aa_scene *aa_scene_place(const aa_scene *s, int w, int h, double t, double vx, d
 
 /* The heights (ascending, at most max) in (ya, yb) where two pieces meet
  * (cross or touch) while both are present: in closed form for lines, a
- * line and an arc, and two arcs whose x is quadratic in y; for two general
- * arcs by bisection on their exact x extents (to 1e-12 relative), which
+ * line and an arc, and two arcs whose x is quadratic in y; a line and a
+ * cubic at the roots of a cubic in t (isolated between the roots of its
+ * derivative, then bisected and Newton-polished to full precision); for two
+ * general arcs by bisection on their exact x extents (to 1e-12 relative;
+ * with a cubic, an interval of 1e-6 relative across which the difference
+ * of their x changes sign is polished by Newton's method, safeguarded by
+ * bisection, to full precision), which
  * cannot miss a meeting while its budget of 4096 subintervals lasts (two
  * arcs running side by side over a long stretch can use it up, and a
  * meeting is then lost: harness/truth/truth_crowd.c finds theirs from a
@@ -216,7 +223,8 @@ typedef enum aa_svg_paint {
 /* A placed scene (pixel units) as an SVG document of w x h pixels: viewBox
  * 0 0 w h, a rectangle of the background colour over the image, then one
  * <path> per layer in painter's order (the back layer first), with the
- * layer's fill-rule, lines as L and quadratic arcs as Q, numbers %.17g;
+ * layer's fill-rule, lines as L, quadratic arcs as Q and cubic arcs as C,
+ * numbers %.17g;
  * colours as rgb() percentages of the sRGB-encoded linear colour at full
  * precision (svg.c says why).  `desc` (may be NULL) goes in a <desc>.
  * *text is malloc'd and NUL-terminated, *len its length.  A field scene is

@@ -2,13 +2,15 @@
  * scene.c: the scene model.
  *
  * A scene is opaque layers, front to back, each an RGB colour, a fill rule
- * (nonzero or even-odd) and closed paths of line segments and quadratic
- * Bezier arcs, over a background colour (harness/README.md, "The three
- * contracts").
+ * (nonzero or even-odd) and closed paths of line segments, quadratic and
+ * cubic Bezier arcs, over a background colour (harness/README.md, "The
+ * three contracts").
  * Finishing a scene splits every edge at its y extrema into y-monotone
  * pieces stored top to bottom, so that a horizontal line meets a piece at
  * most once: x as a function of y is then a single root of a quadratic,
- * taken in the cancellation-free form.
+ * taken in the cancellation-free form, or for a cubic the one root of
+ * y(t) = y in [0, 1], bracketed and polished by Newton's method
+ * (scene_piece.c).
  *
  * Crossing rule: a piece meets the line y when y0 <= y < y1.  A path passing
  * through a vertex is counted once, a path turning at a vertex zero or two
@@ -24,6 +26,7 @@
 #include "scene_internal.h"
 
 #include <float.h>
+#include <gsl/gsl_poly.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -127,6 +130,12 @@ static int check_point(double x, double y)
 
 static int add_edge(aa_scene *s, double cx, double cy, double x, double y, int quad)
 {
+    return aa__add_edge3(s, cx, cy, 0.0, 0.0, x, y, quad);
+}
+
+int aa__add_edge3(aa_scene *s, double cx, double cy, double c2x, double c2y, double x, double y,
+                  int quad)
+{
     int st = grow((void **)&s->edges, &s->capedges, s->nedges + 1, sizeof *s->edges);
     if (st)
         return st;
@@ -139,6 +148,8 @@ static int add_edge(aa_scene *s, double cx, double cy, double x, double y, int q
     e->y1 = y;
     e->quad = quad;
     e->layer = s->current;
+    e->c2x = c2x;
+    e->c2y = c2y;
     s->penx = x;
     s->peny = y;
     return AA_OK;
@@ -182,6 +193,19 @@ int aa_scene_quad_to(aa_scene *s, double cx, double cy, double x, double y)
     if (x == s->penx && y == s->peny && cx == x && cy == y)
         return AA_OK;
     return add_edge(s, cx, cy, x, y, 1);
+}
+
+int aa_scene_cubic_to(aa_scene *s, double c1x, double c1y, double c2x, double c2y, double x, double y)
+{
+    int st = check_building(s);
+    if (st || (st = check_point(c1x, c1y)) || (st = check_point(c2x, c2y)) ||
+        (st = check_point(x, y)))
+        return st;
+    if (!s->open)
+        return aa_fail(AA_EFAIL, "cubic_to without move_to");
+    if (x == s->penx && y == s->peny && c1x == x && c1y == y && c2x == x && c2y == y)
+        return AA_OK;
+    return aa__add_edge3(s, c1x, c1y, c2x, c2y, x, y, 2);
 }
 
 int aa_scene_close(aa_scene *s)
@@ -244,10 +268,27 @@ const aa_field_type *aa_scene_field(const aa_scene *s, const double **p, int *n,
 
 /* ---- pieces ---- */
 
-/* Power basis of a piece from its control points. */
-static void piece_basis(aa_piece *p)
+/* Roots of the derivative k1 + 2 k2 t + 3 k3 t^2 of a cubic's coordinate
+ * strictly inside (0, 1), ascending, distinct (GSL's quadratic solver,
+ * cancellation-free); returns how many. */
+int aa__cubic_turns(double k1, double k2, double k3, double t[2])
 {
-    if (p->kind == AA_PIECE_QUAD) {
+    double r[2];
+    int n = gsl_poly_solve_quadratic(3.0 * k3, 2.0 * k2, k1, &r[0], &r[1]), m = 0;
+    for (int k = 0; k < n; k++)
+        if (r[k] > 0.0 && r[k] < 1.0 && (m == 0 || r[k] > t[m - 1]))
+            t[m++] = r[k];
+    return m;
+}
+
+/* Power basis of a piece from its control points. */
+static void piece_basis(aa_piece *p, int cubic)
+{
+    p->dx = p->dy = 0.0;
+    if (cubic) {
+        aa__cubic_basis(p->y0, p->cy, p->c2y, p->y1, &p->by, &p->ay, &p->dy);
+        aa__cubic_basis(p->x0, p->cx, p->c2x, p->x1, &p->bx, &p->ax, &p->dx);
+    } else if (p->kind == AA_PIECE_QUAD) {
         p->ay = p->y0 - 2.0 * p->cy + p->y1;
         p->by = 2.0 * (p->cy - p->y0);
         p->ax = p->x0 - 2.0 * p->cx + p->x1;
@@ -259,60 +300,118 @@ static void piece_basis(aa_piece *p)
     }
     p->xmin = fmin(p->x0, p->x1);
     p->xmax = fmax(p->x0, p->x1);
-    if (p->kind == AA_PIECE_QUAD && p->ax != 0.0) {
-        double t = -p->bx / (2.0 * p->ax);
+    double ts[2];
+    int n = 0;
+    if (cubic)
+        n = aa__cubic_turns(p->bx, p->ax, p->dx, ts);
+    else if (p->kind == AA_PIECE_QUAD && p->ax != 0.0)
+        ts[n++] = -p->bx / (2.0 * p->ax);
+    for (int k = 0; k < n; k++) {
+        double t = ts[k];
         if (t > 0.0 && t < 1.0) {
-            double x = p->x0 + t * (p->bx + t * p->ax);
+            double x = p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
             p->xmin = fmin(p->xmin, x);
             p->xmax = fmax(p->xmax, x);
         }
     }
 }
 
-/* Store one y-monotone part (x0,y0)-(cx,cy)-(x1,y1) top to bottom. */
-static int add_piece(aa_scene *s, size_t *cap, const double q[6], int quad, int layer,
+/* Store one y-monotone part top to bottom: q holds x0, y0, then the control
+ * point(s), then x1, y1 (quad: 0 line, 1 quadratic, 2 cubic). */
+static int add_piece(aa_scene *s, size_t *cap, const double *q, int quad, int layer,
                      size_t edge)
 {
     int st = grow((void **)&s->pieces, cap, s->npieces + 1, sizeof *s->pieces);
     if (st)
         return st;
     aa_piece *p = &s->pieces[s->npieces++];
-    int down = q[5] >= q[1];
-    const double *a = down ? q : q + 4, *b = down ? q + 4 : q;
+    memset(p, 0, sizeof *p);
+    int cubic = quad == 2, last = cubic ? 6 : 4;
+    int down = q[last + 1] >= q[1];
+    const double *a = down ? q : q + last, *b = down ? q + last : q;
     p->x0 = a[0];
     p->y0 = a[1];
-    p->cx = q[2];
-    p->cy = q[3];
+    if (cubic) { /* the controls swap when the edge runs up */
+        const double *c1 = down ? q + 2 : q + 4, *c2 = down ? q + 4 : q + 2;
+        p->cx = c1[0], p->cy = c1[1], p->c2x = c2[0], p->c2y = c2[1];
+    } else {
+        p->cx = q[2];
+        p->cy = q[3];
+    }
     p->x1 = b[0];
     p->y1 = b[1];
     p->layer = layer;
     p->edge = (int)edge;
-    if (p->y0 == p->y1 && (!quad || p->cy == p->y0)) {
+    if (p->y0 == p->y1 && (!quad || p->cy == p->y0) && (!cubic || p->c2y == p->y0)) {
         p->kind = AA_PIECE_FLAT;
         p->dir = 0;
     } else {
-        p->kind = quad ? AA_PIECE_QUAD : AA_PIECE_LINE;
+        p->kind = cubic ? AA_PIECE_CUBIC : quad ? AA_PIECE_QUAD : AA_PIECE_LINE;
         p->dir = down ? 1 : -1;
         /* Keep the control point inside the y range: it is mathematically,
-         * and clamping removes rounding that could spoil monotonicity. */
-        if (quad)
+         * and clamping removes rounding that could spoil monotonicity.  A
+         * monotone cubic's controls need not lie in its range, but its end
+         * tangents point down: c1y >= y0 and c2y <= y1. */
+        if (cubic) {
+            p->cy = fmax(p->cy, p->y0);
+            p->c2y = fmin(p->c2y, p->y1);
+        } else if (quad) {
             p->cy = fmin(fmax(p->cy, p->y0), p->y1);
+        }
     }
-    piece_basis(p);
+    piece_basis(p, cubic);
     return AA_OK;
 }
 
-/* Split each edge at its y extremum into monotone pieces. */
+/* De Casteljau: the cubic c (x0 y0 c1 c2 x1 y1, eight values) at t into
+ * l and r, the split point's neighbouring controls at its height when it is
+ * a y extremum (`turn`: the tangent is horizontal there). */
+static void split_cubic(const double c[8], double t, int turn, double l[8], double r[8])
+{
+    for (int k = 0; k < 2; k++) {
+        double p0 = c[k], p1 = c[2 + k], p2 = c[4 + k], p3 = c[6 + k];
+        double p01 = p0 + t * (p1 - p0), p12 = p1 + t * (p2 - p1), p23 = p2 + t * (p3 - p2);
+        double p012 = p01 + t * (p12 - p01), p123 = p12 + t * (p23 - p12);
+        double m = p012 + t * (p123 - p012);
+        if (k == 1 && turn)
+            p012 = p123 = m;
+        l[k] = p0, l[2 + k] = p01, l[4 + k] = p012, l[6 + k] = m;
+        r[k] = m, r[2 + k] = p123, r[4 + k] = p23, r[6 + k] = p3;
+    }
+}
+
+/* Split each edge at its y extrema into monotone pieces. */
 static int build_pieces(aa_scene *s)
 {
     size_t cap = 0;
     s->npieces = 0;
     for (size_t k = 0; k < s->nedges; k++) {
         const aa_edge *e = &s->edges[k];
+        int st;
+        if (e->quad == 2) {
+            double c[8] = {e->x0, e->y0, e->cx, e->cy, e->c2x, e->c2y, e->x1, e->y1};
+            double k1, k2, k3, ts[2], l[8], r[8], rest[8];
+            aa__cubic_basis(e->y0, e->cy, e->c2y, e->y1, &k1, &k2, &k3);
+            int n = aa__cubic_turns(k1, k2, k3, ts);
+            memcpy(rest, c, sizeof rest);
+            double done = 0.0;
+            for (int m = 0; m < n; m++) {
+                double t = (ts[m] - done) / (1.0 - done);
+                if (!(t > 0.0 && t < 1.0))
+                    continue;
+                split_cubic(rest, t, 1, l, r);
+                if ((st = add_piece(s, &cap, l, 2, e->layer, k)))
+                    return st;
+                memcpy(rest, r, sizeof rest);
+                done = ts[m];
+            }
+            if ((st = add_piece(s, &cap, rest, 2, e->layer, k)))
+                return st;
+            continue;
+        }
         double q[6] = {e->x0, e->y0, e->cx, e->cy, e->x1, e->y1};
         double den = e->y0 - 2.0 * e->cy + e->y1;
         double t = e->quad && den != 0.0 ? (e->y0 - e->cy) / den : -1.0;
-        int st;
         if (t > 0.0 && t < 1.0) {
             /* de Casteljau at t; the split point is the y extremum, where the
              * tangent is horizontal, so both inner controls share its y. */
@@ -491,6 +590,21 @@ static void curve_extent(double a, double c, double b, int quad, double *lo, dou
     }
 }
 
+/* The same for a cubic's coordinate, controls a, c, d, b. */
+static void cubic_extent(double a, double c, double d, double b, double *lo, double *hi)
+{
+    double k1, k2, k3, ts[2];
+    aa__cubic_basis(a, c, d, b, &k1, &k2, &k3);
+    *lo = fmin(a, b);
+    *hi = fmax(a, b);
+    int n = aa__cubic_turns(k1, k2, k3, ts);
+    for (int k = 0; k < n; k++) {
+        double v = a + ts[k] * (k1 + ts[k] * (k2 + ts[k] * k3));
+        *lo = fmin(*lo, v);
+        *hi = fmax(*hi, v);
+    }
+}
+
 int aa_scene_clip_unit(aa_scene *s)
 {
     int st = check_building(s);
@@ -502,9 +616,15 @@ int aa_scene_clip_unit(aa_scene *s)
     for (size_t k = 0; k < s->nedges; k++) {
         const aa_edge *e = &s->edges[k];
         double lo, hi;
-        curve_extent(e->x0, e->cx, e->x1, e->quad, &lo, &hi);
+        if (e->quad == 2)
+            cubic_extent(e->x0, e->cx, e->c2x, e->x1, &lo, &hi);
+        else
+            curve_extent(e->x0, e->cx, e->x1, e->quad, &lo, &hi);
         x0 = fmin(x0, lo), x1 = fmax(x1, hi);
-        curve_extent(e->y0, e->cy, e->y1, e->quad, &lo, &hi);
+        if (e->quad == 2)
+            cubic_extent(e->y0, e->cy, e->c2y, e->y1, &lo, &hi);
+        else
+            curve_extent(e->y0, e->cy, e->y1, e->quad, &lo, &hi);
         y0 = fmin(y0, lo), y1 = fmax(y1, hi);
     }
     if (x0 >= 0 && y0 >= 0 && x1 <= 1 && y1 <= 1)
@@ -567,12 +687,15 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
             d->x0 = sx * e->x0 + tx, d->y0 = sy * e->y0 + ty;
             d->cx = sx * e->cx + tx, d->cy = sy * e->cy + ty;
             d->x1 = sx * e->x1 + tx, d->y1 = sy * e->y1 + ty;
+            if (e->quad == 2)
+                d->c2x = sx * e->c2x + tx, d->c2y = sy * e->c2y + ty;
             if (!e->quad) { /* keep lines' control points exactly midway */
                 d->cx = 0.5 * (d->x0 + d->x1);
                 d->cy = 0.5 * (d->y0 + d->y1);
             }
             if (!isfinite(d->x0) || !isfinite(d->y0) || !isfinite(d->x1) ||
-                !isfinite(d->y1) || !isfinite(d->cx) || !isfinite(d->cy))
+                !isfinite(d->y1) || !isfinite(d->cx) || !isfinite(d->cy) ||
+                !isfinite(d->c2x) || !isfinite(d->c2y))
                 st = aa_fail(AA_EINVAL, "scene transform overflows");
         }
         if (s->nedges) {

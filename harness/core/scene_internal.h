@@ -1,6 +1,6 @@
 /*
- * scene_internal.h: the scene's private layout, shared by scene.c and
- * strip.c only.
+ * scene_internal.h: the scene's private layout and the cubic helpers,
+ * shared by scene.c, scene_piece.c and strip.c only.
  */
 #ifndef AA_SCENE_INTERNAL_H
 #define AA_SCENE_INTERNAL_H
@@ -46,6 +46,30 @@ struct aa_scene {
  * [ya, yb]; returns the number of visits that returned non-zero. */
 typedef int (*aa__visit)(void *ctx, const aa_piece *p);
 size_t aa__scene_gather(const aa_scene *s, double ya, double yb, aa__visit visit, void *ctx);
+
+/* Append an edge from the pen (quad: 0 line, 1 quadratic, 2 cubic, whose
+ * second control point is (c2x, c2y)). */
+int aa__add_edge3(aa_scene *s, double cx, double cy, double c2x, double c2y, double x, double y,
+                  int quad);
+/* The cubic's power basis from control points a, c, d, b of one coordinate:
+ * v(t) = a + t (k1 + t (k2 + t k3)). */
+static inline void aa__cubic_basis(double a, double c, double d, double b, double *k1,
+                                   double *k2, double *k3)
+{
+    *k1 = 3.0 * (c - a);
+    *k2 = 3.0 * (a - 2.0 * c + d);
+    *k3 = (b - a) + 3.0 * (c - d);
+}
+
+/* The roots of k1 + 2 k2 t + 3 k3 t^2 inside (0, 1), ascending. */
+int aa__cubic_turns(double k1, double k2, double k3, double t[2]);
+
+/* Roots of c[0] + c[1] t + c[2] t^2 + c[3] t^3: the one in [a, b] given
+ * values fa, fb of opposite signs there (c monotone on it), and all of
+ * those in [lo, hi] (ascending, at most 3), polished to full precision
+ * (scene_piece.c). */
+double aa__poly3_bracketed(const double c[4], double a, double b, double fa, double fb);
+int aa__poly3_roots(const double c[4], double lo, double hi, double *t);
 
 aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty,
                               double hint);

@@ -1,15 +1,103 @@
 /*
- * scene_piece.c: the geometry of one piece, a y-monotone line or parabolic
- * arc (aabench.h, aa_piece): its x and parameter at a height, its x extent
- * over a band, where it meets a vertical line, and where two pieces meet.
- * Pure functions of the pieces: no scene is read here.
+ * scene_piece.c: the geometry of one piece, a y-monotone line, parabolic
+ * or cubic arc (aabench.h, aa_piece): its x and parameter at a height, its
+ * x extent over a band, where it meets a vertical line, and where two
+ * pieces meet.  Pure functions of the pieces: no scene is read here.
+ *
+ * Cubics.  The roots of a cubic polynomial in t on an interval are found
+ * robustly, never by the closed form alone: the interval is cut at the
+ * roots of the derivative (GSL's quadratic solver), so that the polynomial
+ * is monotone on each part; a part whose ends differ in sign holds exactly
+ * one root, which is bracketed and polished by Newton's method safeguarded
+ * by bisection until the bracket is two adjacent doubles or the value is
+ * zero: full double precision.  The parameter at a height is such a root
+ * on a y-monotone piece (one part, [0, 1]).
  */
-#include "core.h"
+#include "scene_internal.h"
 
 #include <float.h>
+#include <gsl/gsl_poly.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* ---- roots of cubics ---- */
+
+static inline double poly3(const double c[4], double t)
+{
+    return c[0] + t * (c[1] + t * (c[2] + t * c[3]));
+}
+
+/* The root of the cubic c in [a, b], where fa = c(a) and fb = c(b) differ in
+ * sign and c is monotone: Newton's method kept inside the bracket, bisection
+ * where a step would leave it or shrink it too slowly. */
+double aa__poly3_bracketed(const double c[4], double a, double b, double fa, double fb)
+{
+    if (fa == 0.0)
+        return a;
+    if (fb == 0.0)
+        return b;
+    double sa = fa < 0.0 ? -1.0 : 1.0;
+    double t = a - fa * (b - a) / (fb - fa); /* regula falsi to start */
+    if (!(t > a && t < b))
+        t = 0.5 * (a + b);
+    double prev = b - a;
+    for (int it = 0; it < 200; it++) {
+        double f = poly3(c, t);
+        if (f == 0.0)
+            return t;
+        if ((f < 0.0 ? -1.0 : 1.0) == sa)
+            a = t;
+        else
+            b = t;
+        double m = 0.5 * (a + b);
+        if (!(m > a && m < b))
+            break; /* a and b adjacent doubles */
+        double df = c[1] + t * (2.0 * c[2] + 3.0 * t * c[3]);
+        double next = df != 0.0 ? t - f / df : m;
+        /* converged: the error left after this step, |c''/(2c')| step^2,
+         * below 2^-54 of the root (or of 2^-10 near zero) */
+        if (next >= a && next <= b && df != 0.0 &&
+            fabs(c[2] + 3.0 * t * c[3]) * (next - t) * (next - t) <=
+                0x1p-54 * fabs(df) * fmax(fabs(next), 0x1p-10))
+            return next;
+        if (!(next > a && next < b) || fabs(next - t) > 0.5 * prev)
+            next = m;
+        prev = fabs(next - t);
+        t = next;
+    }
+    /* the end of the last bracket nearer the root */
+    return fabs(poly3(c, a)) <= fabs(poly3(c, b)) ? a : b;
+}
+
+/* The real roots of c[0] + c[1] t + c[2] t^2 + c[3] t^3 in [lo, hi],
+ * ascending, at most 3 (a cubic that vanishes identically has none). */
+int aa__poly3_roots(const double c[4], double lo, double hi, double *t)
+{
+    double cut[4], r[2];
+    int nc = 0, n = 0;
+    cut[nc++] = lo;
+    int nr = gsl_poly_solve_quadratic(3.0 * c[3], 2.0 * c[2], c[1], &r[0], &r[1]);
+    for (int k = 0; k < nr; k++)
+        if (r[k] > cut[nc - 1] && r[k] < hi)
+            cut[nc++] = r[k];
+    cut[nc++] = hi;
+    double fa = poly3(c, lo);
+    for (int k = 0; k + 1 < nc; k++) {
+        double a = cut[k], b = cut[k + 1], fb = poly3(c, b);
+        double root = NAN;
+        if (fa == 0.0)
+            root = a;
+        else if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0))
+            root = aa__poly3_bracketed(c, a, b, fa, fb);
+        if (root == root && (n == 0 || root > t[n - 1]) && n < 3)
+            t[n++] = root;
+        fa = fb;
+    }
+    if (fa == 0.0 && (n == 0 || hi > t[n - 1]) && n < 3)
+        t[n++] = hi;
+    return n;
+}
 
 /* ---- piece geometry ---- */
 
@@ -20,6 +108,14 @@ double aa_piece_t_at(const aa_piece *p, double y)
         return 0.0;
     if (y >= p->y1)
         return 1.0;
+    if (p->kind == AA_PIECE_CUBIC) {
+        /* the one root of y(t) - y on [0, 1]: y is monotone there */
+        double c[4] = {-d, p->by, p->ay, p->dy};
+        double f1 = poly3(c, 1.0);
+        if (!(f1 > 0.0))
+            return 1.0;
+        return aa__poly3_bracketed(c, 0.0, 1.0, -d, f1);
+    }
     if (p->ay == 0.0) {
         t = d / p->by;
     } else {
@@ -46,6 +142,8 @@ double aa_piece_x_at(const aa_piece *p, double y)
     if (p->kind == AA_PIECE_FLAT)
         return p->x0;
     double t = aa_piece_t_at(p, y);
+    if (p->kind == AA_PIECE_CUBIC)
+        return p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
     return p->x0 + t * (p->bx + t * p->ax);
 }
 
@@ -66,6 +164,18 @@ void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, doub
         return;
     }
     double ta = aa_piece_t_at(p, a), tb = aa_piece_t_at(p, b);
+    if (p->kind == AA_PIECE_CUBIC) {
+        double c[4] = {p->x0, p->bx, p->ax, p->dx}, ts[2];
+        *xmin = fmin(poly3(c, ta), poly3(c, tb));
+        *xmax = fmax(poly3(c, ta), poly3(c, tb));
+        int n = aa__cubic_turns(p->bx, p->ax, p->dx, ts);
+        for (int k = 0; k < n; k++)
+            if (ts[k] > ta && ts[k] < tb) {
+                *xmin = fmin(*xmin, poly3(c, ts[k]));
+                *xmax = fmax(*xmax, poly3(c, ts[k]));
+            }
+        return;
+    }
     double xa = p->x0 + ta * (p->bx + ta * p->ax), xb = p->x0 + tb * (p->bx + tb * p->ax);
     *xmin = fmin(xa, xb);
     *xmax = fmax(xa, xb);
@@ -87,13 +197,32 @@ static double discriminant(double a, double b, double c)
     return (p - q) + (dp - dq);
 }
 
-int aa_piece_meet_x(const aa_piece *p, double x, double ys[2])
+/* The heights of the roots ts[0..n) of a cubic piece (ascending in t, so in
+ * y), strictly inside (y0, y1), distinct. */
+static int heights(const aa_piece *p, const double *ts, int n, double *ys)
 {
-    double ts[2];
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        if (!(ts[k] > 0.0 && ts[k] < 1.0))
+            continue;
+        double y = p->y0 + ts[k] * (p->by + ts[k] * (p->ay + ts[k] * p->dy));
+        if (y > p->y0 && y < p->y1 && (m == 0 || y > ys[m - 1]))
+            ys[m++] = y;
+    }
+    return m;
+}
+
+int aa_piece_meet_x(const aa_piece *p, double x, double ys[3])
+{
+    double ts[3];
     int n = 0;
     if (p->kind == AA_PIECE_FLAT || x < p->xmin || x > p->xmax)
         return 0;
     double c = p->x0 - x;
+    if (p->kind == AA_PIECE_CUBIC) {
+        double k[4] = {c, p->bx, p->ax, p->dx};
+        return heights(p, ts, aa__poly3_roots(k, 0.0, 1.0, ts), ys);
+    }
     if (p->ax == 0.0) {
         if (p->bx != 0.0)
             ts[n++] = -c / p->bx;
@@ -190,6 +319,81 @@ static void subdivide(meet_ctx *c, double a, double b, int depth)
     subdivide(c, m, b, depth + 1);
 }
 
+/* x of the piece at y and dx/dy there (infinite where it is horizontal). */
+static double x_slope(const aa_piece *p, double y, double *slope)
+{
+    double t = aa_piece_t_at(p, y);
+    double dx = p->bx + t * (2.0 * p->ax + 3.0 * t * p->dx);
+    double dy = p->by + t * (2.0 * p->ay + 3.0 * t * p->dy);
+    *slope = dx / dy;
+    return p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
+}
+
+/* The height in [a, b] where x_p - x_q, of opposite signs fa and fb at a
+ * and b, vanishes: Newton's method on y kept inside the bracket, bisection
+ * where a step would leave it or shrink it too slowly, until the bracket
+ * is two adjacent doubles or the difference is zero. */
+static double polish_meet(const aa_piece *p, const aa_piece *q, double a, double b, double fa)
+{
+    double y = 0.5 * (a + b), prev = b - a;
+    for (int it = 0; it < 200; it++) {
+        double sp, sq, f = x_slope(p, y, &sp) - x_slope(q, y, &sq);
+        if (f == 0.0)
+            return y;
+        if ((f < 0.0) == (fa < 0.0))
+            a = y;
+        else
+            b = y;
+        double m = 0.5 * (a + b);
+        if (!(m > a && m < b))
+            break;
+        double df = sp - sq, next = df != 0.0 && isfinite(df) ? y - f / df : m;
+        if (next > a && next < b && fabs(next - y) <= 4.0 * DBL_EPSILON * fabs(y))
+            return next; /* a step within rounding: converged */
+        if (!(next > a && next < b) || fabs(next - y) > 0.5 * prev)
+            next = m;
+        prev = fabs(next - y);
+        y = next;
+    }
+    return y;
+}
+
+/* Two pieces of which one at least is a cubic: the same bisection on exact
+ * extents, but an interval narrower than 1e-6 of the scale in which the
+ * difference of their x changes sign holds a crossing, which is polished
+ * to full precision (polish_meet); one without a change (a touch, or two
+ * crossings closer than that) is bisected on to 1e-12 and reported by its
+ * middle. */
+static void subdivide_cubic(meet_ctx *c, double a, double b, int depth)
+{
+    double pa, pb, qa, qb;
+    if (c->n >= c->max || --c->budget < 0)
+        return;
+    aa_piece_xrange(c->p, a, b, &pa, &pb);
+    aa_piece_xrange(c->q, a, b, &qa, &qb);
+    double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
+    if (pb < qa - tol || qb < pa - tol)
+        return;
+    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m));
+    if (b - a <= 1e-6 * scale) {
+        double fa = aa_piece_x_at(c->p, a) - aa_piece_x_at(c->q, a);
+        double fb = aa_piece_x_at(c->p, b) - aa_piece_x_at(c->q, b);
+        if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
+            double y = polish_meet(c->p, c->q, a, b, fa);
+            if (c->n == 0 || y - c->ys[c->n - 1] > 1e-12 * scale)
+                c->ys[c->n++] = y;
+            return;
+        }
+    }
+    if (depth >= 60 || b - a <= 1e-12 * scale || !(m > a && m < b)) {
+        if (c->n == 0 || m - c->ys[c->n - 1] > 1e-12 * scale)
+            c->ys[c->n++] = m;
+        return;
+    }
+    subdivide_cubic(c, a, m, depth + 1);
+    subdivide_cubic(c, m, b, depth + 1);
+}
+
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys, int max)
 {
     if (!p->dir || !q->dir || max < 1)
@@ -197,7 +401,8 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
     double lo = fmax(fmax(p->y0, q->y0), ya), hi = fmin(fmin(p->y1, q->y1), yb);
     if (!(lo < hi))
         return 0;
-    if (p->ay == 0.0 && q->ay == 0.0) {
+    int cubic = p->kind == AA_PIECE_CUBIC || q->kind == AA_PIECE_CUBIC;
+    if (p->ay == 0.0 && q->ay == 0.0 && !cubic) {
         /* both x quadratic in y: their difference is a quadratic */
         double a0, a1, a2, b0, b1, b2, u[2];
         x_in_u(p, lo, &a0, &a1, &a2);
@@ -211,9 +416,21 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
             ys[m++] = lo + u[k];
         return m;
     }
-    if (p->kind == AA_PIECE_QUAD && q->kind == AA_PIECE_LINE) {
+    if (p->kind != AA_PIECE_LINE && q->kind == AA_PIECE_LINE) {
         const aa_piece *t = p;
         p = q, q = t;
+    }
+    if (p->kind == AA_PIECE_LINE && q->kind == AA_PIECE_CUBIC) {
+        /* cubic q(t) against line p, x = p.x0 + (y - p.y0) s: a cubic in t */
+        double s = p->bx / p->by, ts[3], y[3];
+        double k[4] = {q->x0 - p->x0 - (q->y0 - p->y0) * s, q->bx - s * q->by,
+                       q->ax - s * q->ay, q->dx - s * q->dy};
+        int n = aa__poly3_roots(k, 0.0, 1.0, ts), m = 0;
+        n = heights(q, ts, n, y);
+        for (int j = 0; j < n && m < max; j++)
+            if (y[j] > lo && y[j] < hi)
+                ys[m++] = y[j];
+        return m;
     }
     if (p->kind == AA_PIECE_LINE) {
         /* arc q(t) against line p, x = p.x0 + (y - p.y0) s: a quadratic in t */
@@ -237,6 +454,9 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
     }
     /* two general arcs (a quartic): bisection on exact extents */
     meet_ctx c = {p, q, ys, 0, max, 4096};
-    subdivide(&c, lo, hi, 0);
+    if (cubic)
+        subdivide_cubic(&c, lo, hi, 0);
+    else
+        subdivide(&c, lo, hi, 0);
     return c.n;
 }

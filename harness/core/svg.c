@@ -11,7 +11,8 @@
  * has the layer's fill rule (fill-rule nonzero or evenodd) and id "layerK"
  * (K the layer's index in the scene, 0 the front), and each closed contour
  * of the layer is one subpath "M x y", then "L x y" for a line segment and
- * "Q cx cy x y" for a quadratic Bezier arc (the scene's own arcs, exactly),
+ * "Q cx cy x y" for a quadratic Bezier arc and "C c1x c1y c2x c2y x y" for a
+ * cubic one (the scene's own arcs, exactly),
  * then "Z".  A layer with no contour is a path with an empty d, which draws
  * nothing.
  *
@@ -91,7 +92,10 @@ static void put_layer_data(FILE *f, const aa_scene *s, int layer)
         fprintf(f, "%sM %.17g %.17g", first ? "" : "\n", e[a].x0, e[a].y0);
         first = 0;
         for (size_t k = a; k < b; k++) {
-            if (e[k].quad)
+            if (e[k].quad == 2)
+                fprintf(f, " C %.17g %.17g %.17g %.17g %.17g %.17g", e[k].cx, e[k].cy,
+                        e[k].c2x, e[k].c2y, e[k].x1, e[k].y1);
+            else if (e[k].quad)
                 fprintf(f, " Q %.17g %.17g %.17g %.17g", e[k].cx, e[k].cy, e[k].x1, e[k].y1);
             else
                 fprintf(f, " L %.17g %.17g", e[k].x1, e[k].y1);

@@ -68,6 +68,8 @@
 #include "truth.h"
 #include "truth_internal.h"
 
+#include <gsl/gsl_errno.h>
+
 #include <float.h>
 #include <limits.h>
 #include <math.h>
@@ -126,7 +128,7 @@ struct crowd_piece {
     const aa_piece *p;
     local_piece q;  /* relative to the centre */
     double lo, hi;  /* active heights, relative, within [-R, R] */
-    double cross[4]; /* heights where it crosses x = -R or x = R */
+    double cross[6]; /* heights where it crosses x = -R or x = R */
     int ncross;
     int region, slot;
     int ev;          /* this batch: 1 touched, 2 ends */
@@ -341,7 +343,7 @@ static long double peval(const long double *p, int d, long double t)
     return r;
 }
 
-/* The roots in (lo, hi), ascending, at which a polynomial of degree <= 4
+/* The roots in (lo, hi), ascending, at which a polynomial of degree <= 6
  * changes sign: between consecutive extrema (the roots of its derivative,
  * found the same way) it is monotone, and bisection in long double finds
  * each crossing.  A root of even multiplicity (a touch) is not one. */
@@ -352,7 +354,7 @@ static int sign_roots(const long double *p, int d, long double lo, long double h
         d--;
     if (d == 0)
         return 0;
-    long double dp[4], crit[4];
+    long double dp[6], crit[6];
     for (int k = 0; k < d; k++)
         dp[k] = (k + 1) * p[k + 1];
     int m = d > 1 ? sign_roots(dp, d - 1, lo, hi, crit) : 0, n = 0;
@@ -385,16 +387,7 @@ static int sign_roots(const long double *p, int d, long double lo, long double h
 /* The parameter of piece k where it meets line s (clamped to [0, 1]). */
 static long double t_at(const crowd_piece *k, long double s)
 {
-    const local_piece *q = &k->q;
-    long double d = s - q->y0, t;
-    if (q->ay == 0) {
-        t = d / q->by;
-    } else {
-        long double disc = q->by * q->by + 4 * q->ay * d;
-        long double den = q->by + sqrtl(disc > 0 ? disc : 0);
-        t = den > 0 ? 2 * d / den : 0;
-    }
-    return t < 0 ? 0 : (t > 1 ? 1 : t);
+    return truth_t_at(&k->q, s);
 }
 
 static inline long double cross2(long double ax, long double ay, long double bx, long double by)
@@ -406,8 +399,8 @@ static inline long double cross2(long double ax, long double ay, long double bx,
  * parameter) and piece a cross, ascending: a's point P(t) substituted in
  * the implicit equation of b's parabola, E = P - Q0 = u C + u^2 D gives
  * cross(E, D) = u k and cross(E, C) = -u^2 k with k = cross(C, D), so
- * cross(E, D)^2 + k cross(E, C) = 0, a quartic in t, and u = cross(E, D)/k
- * must lie in [0, 1].  aa_piece_meet bisects on the pieces' extents for
+ * cross(E, D)^2 + k cross(E, C) = 0, a quartic in t (of degree 6 when a is
+ * a cubic), and u = cross(E, D)/k must lie in [0, 1].  aa_piece_meet bisects on the pieces' extents for
  * such pairs and can run out of its budget where two arcs run side by
  * side (one of the random scenes of crossing arcs lost a crossing so). */
 static int meet_general(const crowd_piece *a, const crowd_piece *b, double ya, double yb,
@@ -420,26 +413,38 @@ static int meet_general(const crowd_piece *a, const crowd_piece *b, double ya, d
                 a2 = cross2(p->ax, p->ay, q->ax, q->ay);
     long double b0 = cross2(ex, ey, q->bx, q->by), b1 = cross2(p->bx, p->by, q->bx, q->by),
                 b2 = cross2(p->ax, p->ay, q->bx, q->by);
-    long double f[5], r[4];
-    if (k != 0) {
+    /* a's cubic terms (zero but for a cubic) */
+    long double a3 = cross2(p->dx, p->dy, q->ax, q->ay), b3 = cross2(p->dx, p->dy, q->bx, q->by);
+    long double A[4] = {a0, a1, a2, a3}, B[4] = {b0, b1, b2, b3};
+    long double f[7] = {0}, r[6];
+    if (k != 0 && !a->q.cubic) {
         f[0] = a0 * a0 + k * b0;
         f[1] = 2 * a0 * a1 + k * b1;
         f[2] = a1 * a1 + 2 * a0 * a2 + k * b2;
         f[3] = 2 * a1 * a2;
         f[4] = a2 * a2;
+    } else if (k != 0) {
+        for (int i = 0; i < 4; i++) {
+            f[i] += k * B[i];
+            for (int j = 0; j < 4; j++)
+                f[i + j] += A[i] * A[j];
+        }
     } else { /* b straight: cross(E, C) = 0 */
-        f[0] = b0, f[1] = b1, f[2] = b2, f[3] = f[4] = 0;
+        for (int i = 0; i < 4; i++)
+            f[i] = B[i];
     }
     long double ta = t_at(a, ya), tb = t_at(a, yb);
-    int n = sign_roots(f, 4, ta, tb, r), m = 0;
+    int n = sign_roots(f, 6, ta, tb, r), m = 0;
     for (int j = 0; j < n && m < max; j++) {
         long double t = r[j];
         if (k != 0) {
-            long double u = (a0 + t * (a1 + t * a2)) / k;
+            long double u = (a->q.cubic ? a0 + t * (a1 + t * (a2 + t * a3))
+                                        : a0 + t * (a1 + t * a2)) / k;
             if (!(u >= -1e-9L && u <= 1 + 1e-9L))
                 continue;
         }
-        double y = (double)(p->y0 + t * (p->by + t * p->ay));
+        double y = (double)(a->q.cubic ? p->y0 + t * (p->by + t * (p->ay + t * p->dy))
+                                        : p->y0 + t * (p->by + t * p->ay));
         if (y > ya && y < yb && (m == 0 || y > ys[m - 1]))
             ys[m++] = y;
     }
@@ -448,13 +453,18 @@ static int meet_general(const crowd_piece *a, const crowd_piece *b, double ya, d
 
 /* Heights in (ya, yb) where pieces a and b meet, ascending (at most 16):
  * aa_piece_meet's closed forms for lines and arcs whose x is quadratic in
- * y, meet_general for two general arcs. */
+ * y, meet_general for two general arcs and for a cubic against a line or
+ * an arc (a polynomial of degree 6), and aa_piece_meet's bisection on
+ * exact extents for two cubics. */
 static int meet(const crowd *c, const crowd_piece *a, const crowd_piece *b, double ya, double yb,
                 double *ys)
 {
     if (!(ya < yb))
         return 0;
     const aa_piece *p = a->p, *q = b->p;
+    int pc = p->kind == AA_PIECE_CUBIC, qc = q->kind == AA_PIECE_CUBIC;
+    if (pc != qc)
+        return pc ? meet_general(a, b, ya, yb, ys, 16) : meet_general(b, a, ya, yb, ys, 16);
     if (p->kind == AA_PIECE_QUAD && q->kind == AA_PIECE_QUAD && !(p->ay == 0.0 && q->ay == 0.0))
         return q->ay != 0.0 ? meet_general(a, b, ya, yb, ys, 16) : meet_general(b, a, ya, yb, ys, 16);
     int n = aa_piece_meet(p, q, c->vc + ya, c->vc + yb, ys, 16), m = 0;
@@ -1387,15 +1397,38 @@ static int own_kinks(crowd *c, crowd_piece *k, const double *kx, int nkx)
          * for the rule's estimate to see on a long interval (a line 1e-3
          * from the centre: an error of 1e-12 against an estimate of 3e-16):
          * that height is a breakpoint, taken in u^4 on both sides, as the
-         * centre is.  D(t) = x^2 + y^2 has D'/2 = c3 t^3 + c2 t^2 + c1 t + c0. */
+         * centre is.  D(t) = x^2 + y^2 has D'/2 = c3 t^3 + c2 t^2 + c1 t + c0
+         * (of degree 5 for a cubic). */
         const local_piece *q = &k->q;
         long double c3 = 2 * (q->ax * q->ax + q->ay * q->ay);
         long double c2 = 3 * (q->ax * q->bx + q->ay * q->by);
         long double c1 = q->bx * q->bx + q->by * q->by + 2 * (q->x0 * q->ax + q->y0 * q->ay);
         long double c0 = q->x0 * q->bx + q->y0 * q->by;
-        double t[3], best = INFINITY;
+        double t[5], best = INFINITY;
         int m = 0;
-        if (c3 != 0)
+        if (q->cubic) {
+            /* a cubic: D'/2 = P . P' of degree 5, by GSL's companion matrix */
+            long double P[2][4] = {{q->x0, q->bx, q->ax, q->dx}, {q->y0, q->by, q->ay, q->dy}};
+            long double e[6] = {0};
+            for (int i = 0; i < 2; i++)
+                for (int a = 0; a < 4; a++)
+                    for (int b = 1; b < 4; b++)
+                        e[a + b - 1] += P[i][a] * b * P[i][b];
+            double ec[6], z[10];
+            int deg = 5;
+            for (int a = 0; a < 6; a++)
+                ec[a] = (double)e[a];
+            while (deg > 0 && ec[deg] == 0.0)
+                deg--;
+            gsl_poly_complex_workspace *ws =
+                deg > 0 ? gsl_poly_complex_workspace_alloc((size_t)deg + 1) : NULL;
+            if (ws && gsl_poly_complex_solve(ec, (size_t)deg + 1, ws, z) == GSL_SUCCESS)
+                for (int a = 0; a < deg; a++)
+                    if (fabs(z[2 * a + 1]) <= 1e-6 * (1.0 + fabs(z[2 * a])))
+                        t[m++] = z[2 * a];
+            if (ws)
+                gsl_poly_complex_workspace_free(ws);
+        } else if (c3 != 0)
             m = gsl_poly_solve_cubic((double)(c2 / c3), (double)(c1 / c3), (double)(c0 / c3), &t[0],
                                      &t[1], &t[2]);
         else if (c2 != 0)
@@ -1406,7 +1439,10 @@ static int own_kinks(crowd *c, crowd_piece *k, const double *kx, int nkx)
             long double u = t[j];
             if (!(u > 0 && u < 1))
                 continue;
-            long double x = q->x0 + u * (q->bx + u * q->ax), y = q->y0 + u * (q->by + u * q->ay);
+            long double x = q->cubic ? q->x0 + u * (q->bx + u * (q->ax + u * q->dx))
+                                     : q->x0 + u * (q->bx + u * q->ax);
+            long double y = q->cubic ? q->y0 + u * (q->by + u * (q->ay + u * q->dy))
+                                     : q->y0 + u * (q->by + u * q->ay);
             double d2 = (double)(x * x + y * y);
             if (d2 < best && d2 < c->R * c->R && y > k->lo && y < k->hi && y != 0) {
                 best = d2;
@@ -1497,7 +1533,7 @@ int crowd_pixel(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
         q->lo = lo;
         q->hi = hi;
         for (int side = -1; side <= 1; side += 2) {
-            double ys[2];
+            double ys[3];
             int m = aa_piece_meet_x(p, uc + side * R, ys);
             for (int j = 0; j < m; j++)
                 if (ys[j] - vc > lo && ys[j] - vc < hi)
@@ -1507,12 +1543,12 @@ int crowd_pixel(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
         q->region = CP_OFF;
         q->slot = (int)c.np;
         q->seg_a = NAN;
-        if (p->kind == AA_PIECE_QUAD) {
+        if (p->kind == AA_PIECE_QUAD || p->kind == AA_PIECE_CUBIC) {
             double tiny = 1e-12 * (p->y1 - p->y0);
             q->turn_lo = fabs(p->by) <= tiny && lo == p->y0 - vc;
-            q->turn_hi = fabs(p->by + 2.0 * p->ay) <= tiny && hi == p->y1 - vc;
+            q->turn_hi = fabs(p->by + 2.0 * p->ay + 3.0 * p->dy) <= tiny && hi == p->y1 - vc;
         }
-        q->scale = (double)(fabsl(q->q.x0) + fabsl(q->q.bx) + fabsl(q->q.ax)) + R;
+        q->scale = (double)(fabsl(q->q.x0) + fabsl(q->q.bx) + fabsl(q->q.ax) + fabsl(q->q.dx)) + R;
         st = own_kinks(&c, q, kx, nkx);
         c.np++;
     }

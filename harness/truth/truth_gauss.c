@@ -323,6 +323,27 @@ static void mark(const panel_worker *fs, int *diff, int c0, int c1)
  * linear functions of t, so monotone between the piece's ends. */
 static int steep(const aa_piece *p, double lo, double hi)
 {
+    if (p->kind == AA_PIECE_CUBIC) {
+        /* dx/dy is not monotone along a cubic: the slope holds on [ta, tb]
+         * when both FAST_SLOPE y'(t) - x'(t) and FAST_SLOPE y'(t) + x'(t),
+         * quadratics in t, stay positive there: at the ends and at a
+         * minimum inside */
+        double ta = aa_piece_t_at(p, lo), tb = aa_piece_t_at(p, hi);
+        for (int sg = -1; sg <= 1; sg += 2) {
+            double a = FAST_SLOPE * p->by - sg * p->bx;
+            double b = 2.0 * (FAST_SLOPE * p->ay - sg * p->ax);
+            double c = 3.0 * (FAST_SLOPE * p->dy - sg * p->dx);
+            double ga = a + ta * (b + ta * c), gb = a + tb * (b + tb * c);
+            if (!(ga > 0.0) || !(gb > 0.0))
+                return 1;
+            if (c > 0.0) {
+                double tv = -b / (2.0 * c);
+                if (tv > ta && tv < tb && !(a + tv * (b + tv * c) > 0.0))
+                    return 1;
+            }
+        }
+        return 0;
+    }
     double ts[2] = {aa_piece_t_at(p, lo), aa_piece_t_at(p, hi)};
     for (int k = 0; k < 2; k++) {
         double dy = p->by + 2.0 * p->ay * ts[k], dx = p->bx + 2.0 * p->ax * ts[k];
@@ -357,6 +378,12 @@ static int may_meet(const band_piece *a, const band_piece *b, double va, double 
     long double hi = fminl(vb, fminl(a->q.y1, b->q.y1));
     if (!(lo < hi))
         return 0;
+    if (a->q.cubic || b->q.cubic) {
+        /* the scene's meetings: roots of a cubic against a line, bisection
+         * on exact extents (to 1e-12, a touch counted) against an arc */
+        double ys[1];
+        return aa_piece_meet(a->p, b->p, (double)lo, (double)hi, ys, 1) > 0;
+    }
     if (a->q.ay != 0 || b->q.ay != 0)
         return 1;
     long double Xa, Sa, Qa, Xb, Sb, Qb;
@@ -702,6 +729,7 @@ static int fast_panel(panel_worker *fs, long p)
         aa_piece_xrange(q, lo, hi, &b->xmin, &b->xmax);
         column_range(fs, b->xmin, b->xmax, &b->c0, &b->c1);
         truth_set_local(&b->q, q, 0, 0);
+        b->p = q;
         mark(fs, fs->near_diff, b->c0, b->c1);
         if ((q->y0 > va && q->y0 < vb) || (q->y1 > va && q->y1 < vb) || steep(q, lo, hi))
             mark(fs, fs->bad_diff, b->c0, b->c1);

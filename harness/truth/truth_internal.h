@@ -11,16 +11,21 @@
 #include <gsl/gsl_poly.h>
 
 /* A local piece in coordinates relative to the pixel centre (uc, vc):
- * y(t) - vc = y0 + t (by + t ay), x(t) - uc = x0 + t (bx + t ax). */
+ * y(t) - vc = y0 + t (by + t (ay + t dy)), x(t) - uc likewise (dy = dx = 0
+ * but for cubics, `cubic` set). */
 typedef struct local_piece {
-    long double y0, y1, x0, ax, bx, ay, by;
-    int dir, layer;
+    long double y0, y1, x0, ax, bx, ay, by, dx, dy;
+    int dir, layer, cubic;
 } local_piece;
 
 /* The piece p relative to the centre (uc, vc), in extended precision. */
 void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long double vc);
 /* The crossing of q with the line at relative height s, less its x0. */
 long double truth_crossing_part(const local_piece *q, long double s);
+/* The parameter of q where it meets the line at relative height s, in
+ * [0, 1]: the cancellation-free root of a quadratic, or for a cubic the one
+ * root of y(t) = s, bracketed and polished by Newton in long double. */
+long double truth_t_at(const local_piece *q, long double s);
 /* qsort order of doubles. */
 int truth_cmp_double(const void *a, const void *b);
 /* Radial filters: the heights (relative to vc, at most 4) where piece p
@@ -144,6 +149,7 @@ typedef struct gauss_plan {
  * whose window that extent meets (c0 > c1: none). */
 typedef struct band_piece {
     local_piece q;
+    const aa_piece *p; /* the scene's piece (meetings of cubics) */
     double xmin, xmax;
     int c0, c1;
 } band_piece;
