@@ -22,6 +22,9 @@ CXX    := g++
 PKGS      := gsl
 # the peer rasterizers (algorithms/freetype.c, stb.c, cairo.c, agg.cpp)
 PKGS      += freetype2 stb cairo libagg
+# the patterns svg (patterns/svgfile.c: libxml2) and text (patterns/text.c:
+# FreeType and HarfBuzz)
+PKGS      += libxml-2.0 harfbuzz
 TEST_PKGS := cmocka
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
@@ -149,6 +152,9 @@ $(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: $(BUI
 $(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: \
   CPPFLAGS += -DAA_RENDERERS_DIR='"$(CURDIR)/scripts/renderers"' \
               -DAA_RENDERERS_INSTALLED='"$(OIIO_DIR)/renderers"'
+# The shipped SVG scenes, the svg pattern's default file's folder.
+$(BUILD)/obj/patterns/svgfile.o $(SAN_BUILD)/obj/patterns/svgfile.o $(BUILD)/fuzz/obj/patterns/svgfile.o: \
+  CPPFLAGS += -DAA_SVG_DIR='"$(CURDIR)/patterns/svg"'
 # -z defs: the module needs no symbol of the program that loads it.
 $(OIIO_SO): $(patsubst %.cpp,$(BUILD)/obj/%.o,$(OIIO_SRC))
 	@echo '  LD    $@'

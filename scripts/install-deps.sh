@@ -50,6 +50,8 @@ need pc:freetype2 libfreetype-dev
 need pc:stb libstb-dev
 need pc:cairo libcairo2-dev
 need pc:libagg libagg-dev
+need pc:libxml-2.0 libxml2-dev
+need pc:harfbuzz libharfbuzz-dev
 need cmd:gnuplot gnuplot-nox
 need file:/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf fonts-dejavu-core
 if [ -n "$renderers" ]; then

@@ -318,7 +318,7 @@ static int figure_make(size_t k, const char *dir, const char *cache_dir, int thr
         st = aa_filter_parse(f->filter, &view.filter);
     view.w = f->w, view.h = f->h;
     if (!st)
-        st = aa_pattern_scene(&view.pattern, &scene);
+        st = aa_pattern_scene_at(&view.pattern, view.w, view.h, &scene);
     if (!st)
         st = aa_reference(&view, cache_dir, threads, &ref, NULL, NULL);
     for (int p = 0; p < f->npanels && !st; p++) {

@@ -87,8 +87,8 @@ int cmd_export(int argc, char **argv)
         (st = cli_check_output_file(a.out, ".svg")))
         return cli_fail("export", st);
     aa_scene *scene = NULL, *placed = NULL;
-    char ps[1024], desc[1400];
-    if ((st = aa_pattern_scene(&pattern, &scene)) || (st = aa_spec_format(&pattern, ps, sizeof ps)))
+    char ps[4096], desc[4400];
+    if ((st = aa_pattern_scene_at(&pattern, w, h, &scene)) || (st = aa_spec_format(&pattern, ps, sizeof ps)))
         goto done;
     if (aa_scene_field(scene, NULL, NULL, NULL)) {
         st = aa_fail(AA_EINVAL,

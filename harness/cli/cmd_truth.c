@@ -132,7 +132,7 @@ int cmd_truth(int argc, char **argv)
         aa_truth_set_progress(show_progress, &prog);
     if (a.bound) {
         aa_scene *pattern = NULL, *placed = NULL;
-        if (!(st = aa_pattern_scene(&a.view.pattern, &pattern)) &&
+        if (!(st = aa_pattern_scene_at(&a.view.pattern, a.view.w, a.view.h, &pattern)) &&
             !(placed = aa_scene_place(pattern, a.view.w, a.view.h, a.view.t, a.view.vx,
                                       a.view.vy)))
             st = AA_EINVAL;
@@ -166,7 +166,7 @@ int cmd_truth(int argc, char **argv)
     if (st)
         return cli_fail("truth", st);
     if (!a.quiet) {
-        char spec[1024], filter[256];
+        char spec[4096], filter[256];
         aa_spec_format(&a.view.pattern, spec, sizeof spec);
         aa_spec_format(&a.view.filter.spec, filter, sizeof filter);
         if (cached)

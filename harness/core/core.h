@@ -133,6 +133,8 @@ int aa_scene_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule);
 int aa_scene_move_to(aa_scene *s, double x, double y);
 int aa_scene_line_to(aa_scene *s, double x, double y);
 int aa_scene_quad_to(aa_scene *s, double cx, double cy, double x, double y);
+/* A cubic Bezier arc from the current point through control points c1, c2 to (x, y). */
+int aa_scene_cubic_to(aa_scene *s, double c1x, double c1y, double c2x, double c2y, double x, double y);
 int aa_scene_close(aa_scene *s);
 /* Finish building: split edges into pieces and index them.  Refuses
  * non-finite coordinates.  Queries need a finished scene. */
@@ -253,6 +255,19 @@ extern const aa_pattern_type *const aa_pattern_types[]; /* NULL-terminated */
 int aa_pattern_parse(const char *text, aa_spec *out);
 /* Build the finished scene (pattern units) of a parsed pattern spec. */
 int aa_pattern_scene(const aa_spec *spec, aa_scene **out);
+/* The same for a view of w x h pixels.  A pattern drawn at the view's size
+ * (`svg`, `text`: their geometry is in pixels, so the unit square holds a
+ * different part of it at each size) needs it and is refused by
+ * aa_pattern_scene; the others ignore w and h. */
+int aa_pattern_scene_at(const aa_spec *spec, int w, int h, aa_scene **out);
+/* 1 if the pattern is drawn at the view's size (above). */
+int aa_pattern_sized(const aa_spec *spec);
+/* What the cache key of a view adds for the pattern beyond its canonical
+ * text: for a pattern read from files (`svg`, `text`), a line per file with
+ * the hash and length of its bytes, so that a file changed under the same
+ * name is never served an old reference; "" for the others.  Appended to
+ * buf (len bytes, NUL included). */
+int aa_pattern_key(const aa_spec *spec, char *buf, size_t len);
 
 /* ------------------------------------------------------------------------
  * Displays: where a method's dots are shown (Crow 1976, ch. 4, "A temporal

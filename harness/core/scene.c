@@ -184,6 +184,12 @@ int aa_scene_quad_to(aa_scene *s, double cx, double cy, double x, double y)
     return add_edge(s, cx, cy, x, y, 1);
 }
 
+int aa_scene_cubic_to(aa_scene *s, double c1x, double c1y, double c2x, double c2y, double x, double y)
+{
+    (void)s, (void)c1x, (void)c1y, (void)c2x, (void)c2y, (void)x, (void)y;
+    return aa_fail(AA_EINVAL, "cubic Bezier arcs are not supported");
+}
+
 int aa_scene_close(aa_scene *s)
 {
     int st = check_building(s);
