@@ -155,6 +155,8 @@ $(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: \
 # The shipped SVG scenes, the svg pattern's default file's folder.
 $(BUILD)/obj/patterns/svgfile.o $(SAN_BUILD)/obj/patterns/svgfile.o $(BUILD)/fuzz/obj/patterns/svgfile.o: \
   CPPFLAGS += -DAA_SVG_DIR='"$(CURDIR)/patterns/svg"'
+# the tests that read the shipped SVG scenes
+$(BUILD)/tests/test_svg $(SAN_BUILD)/tests/test_svg: CPPFLAGS += -DAA_TEST_SVG_DIR='"$(CURDIR)/patterns/svg"'
 # -z defs: the module needs no symbol of the program that loads it.
 $(OIIO_SO): $(patsubst %.cpp,$(BUILD)/obj/%.o,$(OIIO_SRC))
 	@echo '  LD    $@'

@@ -153,6 +153,8 @@ typedef struct reader {
     long segments;
     const xmlNode *node; /* the element being read, for messages */
     int open;            /* a subpath is open in the sink */
+    int pending;         /* the shape is given to the sink at its first point */
+    style shape;
 } reader;
 
 /* AA_EINVAL naming the element and its line. */
@@ -724,6 +726,11 @@ static int emit_move(reader *r, const mat *m, double x, double y)
     int st;
     if ((st = emit_close(r)) || (st = point(r, m, x, y, &u, &v)) || (st = count_segment(r)))
         return st;
+    if (r->pending) {
+        r->pending = 0;
+        if ((st = r->sink->shape(r->ctx, r->shape.fill, r->shape.rule)))
+            return st;
+    }
     r->open = 1;
     return r->sink->move_to(r->ctx, u, v);
 }
@@ -1075,9 +1082,8 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         return AA_OK; /* a line has no area: without a stroke it draws nothing */
     if (sty.fill_none)
         return AA_OK;
-    if ((st = r->sink->shape(r->ctx, sty.fill, sty.rule)))
-        return st;
-    r->node = node;
+    r->pending = 1; /* a shape that draws nothing is not given */
+    r->shape = sty;
     if (named(node, "rect")) {
         int drawn;
         return rect(r, node, &m, &drawn);
@@ -1190,7 +1196,7 @@ static int declares_entities(const xmlDoc *doc)
 int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
                 const aa_svg_sink *sink, void *ctx, double viewport[2])
 {
-    reader r = {sink, ctx, name, 0, NULL, 0};
+    reader r = {sink, ctx, name, 0, NULL, 0, 0, {{{0, 0, 0}}, 0, AA_FILL_NONZERO}};
     double vp[2] = {0, 0};
     if (w < 1 || h < 1)
         return aa_fail(AA_EINVAL, "%s: a view of %dx%d pixels", name, w, h);

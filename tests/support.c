@@ -87,7 +87,7 @@ void support_pattern_reference(const char *pattern, const support_view *v, aa_im
 {
     aa_spec spec;
     aa_scene *s = NULL;
-    if (aa_pattern_parse(pattern, &spec) || aa_pattern_scene(&spec, &s))
+    if (aa_pattern_parse(pattern, &spec) || aa_pattern_scene_at(&spec, v->w, v->h, &s))
         fail_msg("pattern %s: %s", pattern, aa_last_error());
     support_reference(s, v, out, bound, stats);
     aa_scene_free(s);
