@@ -4,7 +4,7 @@
 #   make test    the same set-up, then every test (plain and under ASan+UBSan),
 #                the test binaries in parallel (one job a core)
 #   make bench   speed measurements (not tests: nothing here asserts a time)
-#   make fuzz    libFuzzer on the spec parsers, image, cache and CSV readers (needs clang)
+#   make fuzz    libFuzzer on the spec parsers, image, cache, CSV and SVG readers (needs clang)
 #   make valgrind  the tests under valgrind memcheck
 #   make install PREFIX=/usr/local
 #
@@ -234,7 +234,7 @@ FUZZ_BUILD   := $(BUILD)/fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_FLAGS   := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g -O1
 FUZZ_TARGETS := $(FUZZ_BUILD)/fuzz_spec $(FUZZ_BUILD)/fuzz_image $(FUZZ_BUILD)/fuzz_cache \
-                $(FUZZ_BUILD)/fuzz_baseline
+                $(FUZZ_BUILD)/fuzz_baseline $(FUZZ_BUILD)/fuzz_svg
 $(FUZZ_BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	@echo '  CLANG $@'
@@ -265,7 +265,7 @@ fuzz:
 	  clang -fopenmp -x c - -o $(FUZZ_BUILD)/omp-probe 2>/dev/null && $(FUZZ_BUILD)/omp-probe || \
 	  { echo "make fuzz needs clang and its OpenMP: apt-get install clang libomp-dev" >&2; exit 2; }
 	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)
-	@for t in spec image cache baseline; do \
+	@for t in spec image cache baseline svg; do \
 	  mkdir -p $(FUZZ_BUILD)/corpus-$$t $(FUZZ_BUILD)/crash-$$t; \
 	  echo "fuzz_$$t: $(FUZZ_SECONDS) s"; \
 	  $(FUZZ_BUILD)/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 \
