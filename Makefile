@@ -153,7 +153,8 @@ $(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: \
   CPPFLAGS += -DAA_RENDERERS_DIR='"$(CURDIR)/scripts/renderers"' \
               -DAA_RENDERERS_INSTALLED='"$(OIIO_DIR)/renderers"'
 # The shipped SVG scenes, the svg pattern's default file's folder.
-$(BUILD)/obj/patterns/svgfile.o $(SAN_BUILD)/obj/patterns/svgfile.o $(BUILD)/fuzz/obj/patterns/svgfile.o: \
+$(BUILD)/obj/patterns/svgfile.o $(SAN_BUILD)/obj/patterns/svgfile.o $(BUILD)/fuzz/obj/patterns/svgfile.o \
+$(BUILD)/obj/harness/bench/suite.o $(SAN_BUILD)/obj/harness/bench/suite.o $(BUILD)/fuzz/obj/harness/bench/suite.o: \
   CPPFLAGS += -DAA_SVG_DIR='"$(CURDIR)/patterns/svg"'
 # the tests that read the shipped SVG scenes
 $(BUILD)/tests/test_svg $(SAN_BUILD)/tests/test_svg: CPPFLAGS += -DAA_TEST_SVG_DIR='"$(CURDIR)/patterns/svg"'

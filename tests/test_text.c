@@ -150,6 +150,43 @@ static void test_kerning(void **state)
     aa_scene_free(s);
 }
 
+/* Contours of a glyph with more than one point (those make paths). */
+static size_t glyph_contours(FT_Face face, FT_UInt glyph)
+{
+    assert_int_equal(FT_Load_Glyph(face, glyph, FT_LOAD_NO_HINTING | FT_LOAD_NO_BITMAP), 0);
+    const FT_Outline *o = &face->glyph->outline;
+    size_t n = 0;
+    for (int k = 0, first = 0; k < o->n_contours; first = o->contours[k++] + 1)
+        n += o->contours[k] > first;
+    return n;
+}
+
+/* "fi" is shaped into DejaVu Sans's ligature (U+FB01, through its GSUB
+ * liga feature): the scene has that glyph's contours, not those of f and i. */
+static void test_ligature(void **state)
+{
+    (void)state;
+    FT_Library lib;
+    FT_Face face;
+    assert_int_equal(FT_Init_FreeType(&lib), 0);
+    assert_int_equal(FT_New_Face(lib, FONT, 0, &face), 0);
+    assert_int_equal(FT_Set_Char_Size(face, 0, 16 * 64, 72, 72), 0);
+    FT_UInt lig = FT_Get_Char_Index(face, 0xFB01);
+    assert_true(lig != 0);
+    size_t want = glyph_contours(face, lig);
+    size_t apart = glyph_contours(face, FT_Get_Char_Index(face, 'f')) +
+                   glyph_contours(face, FT_Get_Char_Index(face, 'i'));
+    FT_Done_FreeType(lib);
+    assert_true(want != apart);
+    aa_scene *s = placed_text("text:string=fi", 32, 24);
+    size_t nc;
+    aa_scene_contours(s, &nc);
+    printf("# fi: %zu contours in the scene, %zu in the ligature, %zu in f and i\n", nc, want,
+           apart);
+    assert_int_equal(nc, want);
+    aa_scene_free(s);
+}
+
 /* Refusals and the default. */
 static void test_command(void **state)
 {
@@ -195,5 +232,6 @@ static void test_reference(void **state)
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_contours_and_bounds),
              cmocka_unit_test(test_kerning),
+             cmocka_unit_test(test_ligature),
              cmocka_unit_test(test_command),
              cmocka_unit_test(test_reference))

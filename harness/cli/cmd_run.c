@@ -48,7 +48,7 @@ static void usage(FILE *out)
             "exact reference and render time, and writes results.csv, results.json, images/,\n"
             "montage.png and plots/ into results/runs/<UTC time>/ (results/latest links to it)\n"
             "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n\n"
-            "  --suite NAME      quick, default (the default), paper, full or temporal\n"
+            "  --suite NAME      quick, default (the default), paper, full, vector or temporal\n"
             "                    (--list-suites)\n"
             "  --target-ci PCT   time each case until the 95%% CI of its median is within\n"
             "                    PCT%% of it (default 2), after one untimed warm-up render\n"
