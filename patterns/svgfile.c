@@ -1401,12 +1401,46 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
             st = aa_scene_close(s);
         }
     }
+    /* shapes front first; a run of consecutive shapes of one colour and
+     * fill rule whose control points' boxes are pairwise disjoint is one
+     * layer (a point is inside at most one of them, so the union under
+     * either rule is the same picture; the reference's cost grows with the
+     * layers) */
+    double (*box)[4] = rec.nshapes ? malloc(rec.nshapes * sizeof *box) : NULL;
+    if (!st && rec.nshapes && !box)
+        st = aa_fail(AA_ENOMEM, "out of memory reading an SVG");
+    for (size_t k = 0; k < rec.nshapes && !st; k++) {
+        const rec_shape *sh = &rec.shapes[k];
+        box[k][0] = box[k][1] = INFINITY, box[k][2] = box[k][3] = -INFINITY;
+        for (size_t i = sh->first; i < sh->first + sh->n; i++) {
+            const rec_op *o = &rec.ops[i];
+            int np = o->op == 0 || o->op == 1 ? 1 : o->op == 2 ? 2 : o->op == 3 ? 3 : 0;
+            for (int q = 0; q < np; q++) {
+                box[k][0] = fmin(box[k][0], o->v[2 * q]), box[k][2] = fmax(box[k][2], o->v[2 * q]);
+                box[k][1] = fmin(box[k][1], o->v[2 * q + 1]);
+                box[k][3] = fmax(box[k][3], o->v[2 * q + 1]);
+            }
+        }
+    }
+    size_t group = 0, group_first = 0; /* shapes in the current layer, the front one */
     for (size_t k = rec.nshapes; k-- > 0 && !st;) {
         const rec_shape *sh = &rec.shapes[k];
         if (!sh->n)
             continue;
-        if ((st = aa_scene_layer(s, sh->colour, sh->rule)))
-            break;
+        int join = group > 0 && group < 256;
+        const rec_shape *front = join ? &rec.shapes[group_first] : NULL;
+        if (join)
+            join = front->rule == sh->rule && !memcmp(&front->colour, &sh->colour, sizeof sh->colour);
+        for (size_t q = k + 1; join && q <= group_first; q++)
+            if (rec.shapes[q].n && !(box[k][2] < box[q][0] || box[q][2] < box[k][0] ||
+                                     box[k][3] < box[q][1] || box[q][3] < box[k][1]))
+                join = 0;
+        if (!join) {
+            if ((st = aa_scene_layer(s, sh->colour, sh->rule)))
+                break;
+            group = 0, group_first = k;
+        }
+        group++;
         for (size_t i = sh->first; i < sh->first + sh->n && !st; i++) {
             const rec_op *o = &rec.ops[i];
             const double *v = o->v;
@@ -1430,6 +1464,7 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
             }
         }
     }
+    free(box);
     free(rec.shapes);
     free(rec.ops);
     return st;

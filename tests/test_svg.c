@@ -455,6 +455,37 @@ static void test_painters_order(void **state)
     aa_image_free(&img);
 }
 
+/* Layers: consecutive shapes of one colour and rule whose boxes are
+ * disjoint share a layer; overlapping ones do not, so that even-odd shapes
+ * painted over each other stay filled where they overlap (two opaque
+ * squares: the overlap is white, where one even-odd layer of both would
+ * leave it black). */
+static void test_layers(void **state)
+{
+    (void)state;
+    char path[4200], spec[4400];
+    snprintf(path, sizeof path, "%s/layers.svg", dir);
+    aa_spec s;
+    aa_scene *sc;
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" fill=\"white\">"
+                    "<rect width=\"1\" height=\"1\"/><rect x=\"2\" width=\"1\" height=\"1\"/>"
+                    "<rect x=\"4\" width=\"1\" height=\"1\"/></svg>");
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    assert_int_equal(aa_pattern_parse(spec, &s), AA_OK);
+    assert_int_equal(aa_pattern_scene_at(&s, 8, 8, &sc), AA_OK);
+    assert_int_equal(aa_scene_layer_count(sc), 1);
+    aa_scene_free(sc);
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" fill=\"white\" fill-rule=\"evenodd\">"
+                    "<rect width=\"2\" height=\"2\"/><rect x=\"1\" y=\"1\" width=\"2\" height=\"2\"/></svg>");
+    assert_int_equal(aa_pattern_scene_at(&s, 4, 4, &sc), AA_OK);
+    assert_int_equal(aa_scene_layer_count(sc), 2);
+    aa_scene_free(sc);
+    aa_image img;
+    support_pattern_reference(spec, &(support_view){.w = 4, .h = 4}, &img, NULL, NULL);
+    assert_true(aa_pixel(&img, 1, 1)[0] == 1 && aa_pixel(&img, 3, 3)[0] == 0);
+    aa_image_free(&img);
+}
+
 /* The key of a view changes with the file's bytes, not its name. */
 static void test_cache_key(void **state)
 {
@@ -614,6 +645,7 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_deep_and_huge),
              cmocka_unit_test(test_rect_reference),
              cmocka_unit_test(test_painters_order),
+             cmocka_unit_test(test_layers),
              cmocka_unit_test(test_cache_key),
              cmocka_unit_test(test_text_values),
              cmocka_unit_test(test_command),
