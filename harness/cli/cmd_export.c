@@ -17,7 +17,7 @@ static void usage(FILE *out)
             "numbers with 17 significant digits; colours as rgb() percentages of the\n"
             "sRGB-encoded linear colour. Field patterns (zoneplate) have no paths and are\n"
             "refused.\n\n"
-            "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"
+            "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"            "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
             "  -s, --size WxH       image size in pixels\n"
             "  -o, --out FILE.svg   the document\n"
             "      --time T         time in frames (default 0)\n"

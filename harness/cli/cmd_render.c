@@ -13,7 +13,7 @@ static void usage(FILE *out)
     fprintf(out,
             "usage: aabench render -p PATTERN -m METHOD -s WxH [-f FILTER] -o OUT [options]\n\n"
             "Renders the pattern with the method and writes the image.\n\n"
-            "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"
+            "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"            "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
             "  -m, --method SPEC    method, e.g. jitter:spp=16,seq=sobol ('aabench list methods -v')\n"
             "  -s, --size WxH       image size in pixels\n"
             "  -f, --filter SPEC    box (default), tent:r=R, gauss:s=S or cone:r=R\n"

@@ -12,7 +12,7 @@ static void usage(FILE *out)
             "usage: aabench truth -p PATTERN -s WxH [-f FILTER] -o OUT [options]\n\n"
             "Writes the reference image: the pattern convolved with the filter at each\n"
             "pixel centre, exact to 1e-12 per pixel (GSL quadrature along y, exact along x).\n\n"
-            "  -p, --pattern SPEC   pattern, e.g. crow or crow:curves=64 ('aabench list patterns')\n"
+            "  -p, --pattern SPEC   pattern, e.g. crow or crow:curves=64 ('aabench list patterns')\n"            "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
             "  -s, --size WxH       image size in pixels\n"
             "  -f, --filter SPEC    box (default), tent:r=R, gauss:s=S or cone:r=R\n"
             "  -o, --out FILE       .exr .tif .pfm (float), .png (8-bit, display encoded), .txt\n"
