@@ -187,6 +187,63 @@ static void test_ligature(void **state)
     aa_scene_free(s);
 }
 
+/* A CFF font (Cantarell, Debian fonts-cantarell): its outlines are cubic
+ * arcs.  While the scene cannot hold cubics the pattern refuses cleanly,
+ * saying so; once it can, the scene has the glyphs' contours and their
+ * exact ink bounds (FreeType's FT_Outline_Get_BBox). */
+#define CFF_FONT "/usr/share/fonts/opentype/cantarell/Cantarell-Regular.otf"
+static void test_cff(void **state)
+{
+    (void)state;
+    FILE *f = fopen(CFF_FONT, "rb");
+    if (!f) {
+        printf("# skipped: no CFF font at %s (apt-get install fonts-cantarell)\n", CFF_FONT);
+        skip();
+    }
+    fclose(f);
+    aa_scene *probe = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(probe);
+    int can = aa_scene_layer(probe, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO) == AA_OK &&
+              aa_scene_move_to(probe, 0, 0) == AA_OK &&
+              aa_scene_cubic_to(probe, 0.1, 0.2, 0.3, 0.2, 0.4, 0) == AA_OK;
+    aa_scene_free(probe);
+    aa_spec s;
+    aa_scene *sc = NULL;
+    assert_int_equal(aa_pattern_parse("text:string=o,ppem=40,font=" CFF_FONT, &s), AA_OK);
+    int st = aa_pattern_scene_at(&s, 64, 64, &sc);
+    if (!can) {
+        assert_int_equal(st, AA_EINVAL);
+        assert_non_null(strstr(aa_last_error(), "cubic"));
+        assert_null(sc);
+        printf("# skipped: aa_scene_cubic_to refuses, and so does the CFF text (%s)\n",
+               aa_last_error());
+        skip();
+    }
+    assert_int_equal(st, AA_OK);
+    FT_Library lib;
+    FT_Face face;
+    assert_int_equal(FT_Init_FreeType(&lib), 0);
+    assert_int_equal(FT_New_Face(lib, CFF_FONT, 0, &face), 0);
+    assert_int_equal(FT_Set_Char_Size(face, 0, 40 * 64, 72, 72), 0);
+    size_t want = glyph_contours(face, FT_Get_Char_Index(face, 'o'));
+    FT_BBox bb;
+    assert_int_equal(FT_Outline_Get_BBox(&face->glyph->outline, &bb), 0);
+    double baseline = 2 + FT_MulFix(face->ascender, face->size->metrics.y_scale) / 64.0;
+    FT_Done_FreeType(lib);
+    aa_scene *p = aa_scene_place(sc, 64, 64, 0, 0, 0);
+    assert_non_null(p);
+    size_t nc;
+    aa_scene_contours(p, &nc);
+    assert_int_equal(nc, want);
+    double x0, y0, x1, y1;
+    aa_scene_bounds(p, &x0, &y0, &x1, &y1);
+    assert_true(fabs(x0 - (2 + bb.xMin / 64.0)) < 1e-9 && fabs(x1 - (2 + bb.xMax / 64.0)) < 1e-9);
+    assert_true(fabs(y0 - (baseline - bb.yMax / 64.0)) < 1e-9 &&
+                fabs(y1 - (baseline - bb.yMin / 64.0)) < 1e-9);
+    aa_scene_free(p);
+    aa_scene_free(sc);
+}
+
 /* Refusals and the default. */
 static void test_command(void **state)
 {
@@ -233,5 +290,6 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_contours_and_bounds),
              cmocka_unit_test(test_kerning),
              cmocka_unit_test(test_ligature),
+             cmocka_unit_test(test_cff),
              cmocka_unit_test(test_command),
              cmocka_unit_test(test_reference))
