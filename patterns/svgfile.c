@@ -53,6 +53,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sys/stat.h>
+
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 
@@ -65,10 +67,25 @@
 
 /* ---- files ---- */
 
+/* AA_EINVAL unless `path` names a regular file (a folder, a device or a
+ * pipe is not a document). */
+static int regular_file(const char *path, const char *what)
+{
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return aa_fail(AA_EINVAL, "%s %s: %s", what, aa_echo(path), strerror(errno));
+    if (!S_ISREG(st.st_mode))
+        return aa_fail(AA_EINVAL, "%s %s is not a regular file", what, aa_echo(path));
+    return AA_OK;
+}
+
 int aa_file_read_all(const char *path, size_t max, const char *what, char **data, size_t *len)
 {
     *data = NULL;
     *len = 0;
+    int rs = regular_file(path, what);
+    if (rs)
+        return rs;
     FILE *f = fopen(path, "rb");
     if (!f)
         return aa_fail(AA_EINVAL, "%s %s: %s", what, aa_echo(path), strerror(errno));
@@ -112,6 +129,9 @@ int aa_file_read_all(const char *path, size_t max, const char *what, char **data
 
 int aa_file_hash(const char *path, unsigned long long *hash, size_t *len)
 {
+    int rs = regular_file(path, "file");
+    if (rs)
+        return rs;
     FILE *f = fopen(path, "rb");
     if (!f)
         return aa_fail(AA_EINVAL, "%s: %s", aa_echo(path), strerror(errno));

@@ -551,6 +551,10 @@ static void test_command(void **state)
     snprintf(spec, sizeof spec, "svg:file=%s/none.svg", dir);
     assert_int_equal(support_aabench(args, out, sizeof out), 2);
     assert_non_null(strstr(out, "none.svg"));
+    /* a folder is not a document */
+    snprintf(spec, sizeof spec, "svg:file=%s", dir);
+    assert_int_equal(support_aabench(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "not a regular file"));
 }
 
 /* aabench export, read back: the same reference to 1e-15, for every
