@@ -558,15 +558,16 @@ static void test_command(void **state)
 }
 
 /* aabench export, read back: the same reference to 1e-15, for every
- * pattern of paths (the exported document is in pixels, viewBox 0 0 W H). */
+ * pattern of paths (the exported document is in pixels, viewBox 0 0 W H),
+ * text and the default SVG scene among them. */
 static void test_export_round_trip(void **state)
 {
     (void)state;
-    static const char *patterns[] = {"crow",    "catmull", "slivers", "star",
-                                     "feibush", "fence",   "dots"};
+    static const char *patterns[] = {"crow",  "catmull", "slivers",      "star", "feibush",
+                                     "fence", "dots",    "text:ppem=12", "svg"};
     for (size_t k = 0; k < sizeof patterns / sizeof patterns[0]; k++) {
         char path[4200], spec[4400], out[4096];
-        snprintf(path, sizeof path, "%s/%s.svg", dir, patterns[k]);
+        snprintf(path, sizeof path, "%s/%.12s.svg", dir, patterns[k]);
         const char *args[] = {"export", "-p", patterns[k], "-s", "64x48", "-o", path, "-q", NULL};
         if (support_aabench(args, out, sizeof out) != 0)
             fail_msg("export %s: %s", patterns[k], out);
