@@ -339,11 +339,13 @@ bench: deps
 	@$(MAKE) --no-print-directory $(BUILD)/aabench $(BENCHES)
 	@TARGET_CI='$(TARGET_CI)' BUDGET='$(BUDGET)' REPS='$(REPS)' sh scripts/bench.sh $(BUILD)
 
-# The seed papers' figures remade into results/figures, then the gallery
-# checked in a headless browser when chromium is present.
+# The seed papers' figures remade into results/figures, their claims
+# measured (results/figures/claims.md), then the gallery checked in a
+# headless browser when chromium is present.
 .PHONY: figures
 figures: $(BUILD)/aabench
 	$(BUILD)/aabench figures
+	$(BUILD)/aabench figures --claims
 	@if command -v chromium >/dev/null 2>&1; then sh scripts/check-gallery.sh results/figures; \
 	else echo "figures: chromium missing, gallery not checked (apt-get install chromium)"; fi
 

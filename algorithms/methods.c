@@ -24,6 +24,7 @@ const aa_method_type *const aa_method_types[] = {
     &aa_method_crowtable,
     &aa_method_conetable,
     &aa_method_crowtiler,
+    &aa_method_feibushtex,
     NULL};
 
 /* Methods that need an optional program (external.c runs an SVG renderer):

@@ -557,7 +557,7 @@ static void test_bad_values_fail_case(void **state)
         snprintf(csv, sizeof csv, "%s/results.csv", out);
         int code = RUN("run", modes[m], "--plugin", faulty, "--plugin", failing, "-p", "crow",
                        "-s", "8x8", "-m", "nanout", "-m", "point", "-m", "over", "-m", "fails",
-                       "--reps", "1", "--no-plots", "-q", "--out", out);
+                       "-f", "box", "--reps", "1", "--no-plots", "-q", "--out", out);
         if (code != 1)
             fail_msg("%s: exit %d, not 1\n%s%s", modes[m], code, out_text, err_text);
         table *t = read_table(csv);
@@ -653,7 +653,7 @@ static void test_isolated_faults(void **state)
     /* plug-in methods are isolated by default */
     int code = RUN("run", "--plugin", faulty, "--plugin", failing, "-p", "crow", "-s", "8x8",
                    "-m", "point", "-m", "crash", "-m", "aborts", "-m", "quits", "-m", "hang",
-                   "-m", "area", "--case-timeout", "2", "--reps", "1", "--no-images",
+                   "-m", "area", "-f", "box", "--case-timeout", "2", "--reps", "1", "--no-images",
                    "--no-plots", "-q", "--out", out);
     if (code != 1)
         fail_msg("exit %d, not 1\n%s%s", code, out_text, err_text);

@@ -66,6 +66,30 @@ int aa_temporal_popping(const aa_image *frames, const aa_image *refs, int n, con
                         const double *cy, size_t ndots, const double *shift, double *out);
 
 /* ------------------------------------------------------------------------
+ * The eye (eye.c): an image shown as uniform pixel squares (black outside)
+ * seen through a Gaussian of s pixels, against the scene seen through the
+ * same Gaussian (from its exact box values in cells 1/4 pixel wide)
+ * ------------------------------------------------------------------------ */
+
+#define AA_EYE_S 2.0   /* the eye of the figures and claims, in pixels */
+#define AA_EYE_CELLS 4 /* the scene seen through cells this many times finer */
+/* out (allocated here) = the eye's image of `in`. */
+int aa_eye_blur(const aa_image *in, double s, aa_image *out);
+/* The scene seen by the eye: its exact box values on a grid AA_EYE_CELLS
+ * times finer (2 above 512 pixels), each cell a square seen through the
+ * Gaussian of s pixels. */
+int aa_eye_truth(const aa_spec *pattern, int w, int h, double t, double vx, double vy,
+                 double s, const char *cache_dir, int threads, aa_image *out);
+/* RMSE of the eye's image of `shown` (displayed intensities) against
+ * `truth` (aa_eye_truth with the same s). */
+int aa_eye_rmse(const aa_image *shown, const aa_image *truth, double s, double *rmse);
+/* The image's own spectral power with |fx| or |fy| above f0 cycles per
+ * pixel, per pixel and channel: near the Nyquist limit (f0 = AA_BEAT_F0)
+ * it beats with the grid of dots into visible fringes. */
+#define AA_BEAT_F0 0.35
+int aa_band_energy(const aa_image *im, double f0, double *out);
+
+/* ------------------------------------------------------------------------
  * Displays (display.c; core.h, "Displays")
  * ------------------------------------------------------------------------ */
 
@@ -205,6 +229,11 @@ typedef struct aa_run_config {
      * stopped */
     int isolate; /* AA_ISOLATE_NONE (0), AA_ISOLATE_PLUGINS or AA_ISOLATE_ALL */
     double case_timeout;
+    /* 1: a method that refuses a view (a filter it cannot honour, a scene it
+     * cannot take) gives no row and adds one to *skipped (may be NULL);
+     * 0: it gives a row with ok = 0 and the reason */
+    int skip_refused;
+    size_t *skipped;
 } aa_run_config;
 #define AA_ISOLATE_NONE 0
 #define AA_ISOLATE_PLUGINS 1 /* the methods of plug-ins only */
@@ -215,12 +244,13 @@ typedef struct aa_run_config {
  * counts in range, each spec of the kind its list holds. */
 int aa_run_check(const aa_run_config *cfg);
 /* Run it: *rows (malloc'd, n rows) in pattern, size, filter, method order.
- * A method that refuses a filter gives a row with ok = 0 and the reason; a
- * method that fails (an error, a value outside [0, 1] or not finite, and
- * when isolated a crash or a time-out) a row with ok = 0 and failed = 1,
- * and the run goes on.  A status only for the harness's own failures
- * (files, memory, an interruption); *rows and *n hold the rows measured
- * until then, whatever the status (NULL and 0 if none). */
+ * A method that refuses a filter or a scene gives a row with ok = 0 and the
+ * reason, or no row with skip_refused; a method that fails (an error, a
+ * value outside [0, 1] or not finite, and when isolated a crash or a
+ * time-out) a row with ok = 0 and failed = 1, and the run goes on.  A
+ * status only for the harness's own failures (files, memory, an
+ * interruption); *rows and *n hold the rows measured until then, whatever
+ * the status (NULL and 0 if none). */
 int aa_run(const aa_run_config *cfg, aa_row **rows, size_t *n);
 
 /* results.csv and results.json: one row per case. */
@@ -339,34 +369,74 @@ int aa_montage_check(size_t n, int columns, int tw, int th, int lines);
 int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n);
 int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *const *names,
                         size_t n, const char *title);
+/* A plot of one's own: `data` saved as DIR/NAME.dat and `script`, which reads
+ * the gnuplot variables `dat` and `out` (setting them to NAME.dat and
+ * NAME.png when unset), saved as NAME.gp and drawn into NAME.png. */
+int aa_plot_script(const char *dir, const char *name, const char *data, const char *script);
 
 /* Published figures (figures.c): the seed papers' comparison figures remade
  * into a folder as NAME.png (labelled panels, aa_montage_write) and NAME.txt
- * (settings, the command that remakes it, and each panel's RMSE and largest
- * error against the exact reference, linear light); aa_figure_index writes
- * index.html showing every figure present in the folder. */
+ * (the paper's figure and claim, what stands in for it, the settings, the
+ * command that remakes it, and each panel's RMSE and largest error against
+ * the exact reference under its filter, and its eye error, linear light);
+ * aa_figure_index writes index.html showing every figure present in the
+ * folder, and the claims table (claims.html) when present. */
 #define AA_FIGURE_PANELS 6
 typedef struct aa_figure_panel {
     char label[128];
+    char filter[128];                /* the filter it is measured under */
     int reference;                   /* 1: the panel is the exact reference */
-    double rmse, max_err;            /* linear light */
+    double rmse, max_err;            /* linear light, against the reference under its filter */
     double rmse_enc, max_err_enc;    /* after the panel's display encoding */
+    double eye_rmse;                 /* what the eye sees (eye.c); NAN for tiny images */
+    double beat;                     /* near-Nyquist energy of what it shows (eye.c); NAN */
     double rgb[3];                   /* the first pixel (1 x 1 figures: its colour) */
 } aa_figure_panel;
 typedef struct aa_figure_result {
     const char *name;
-    int npanels;
+    int npanels;                     /* 0: a measurement, said in summary */
     aa_figure_panel panel[AA_FIGURE_PANELS];
+    char summary[256];
     double seconds;
 } aa_figure_result;
 size_t aa_figure_count(void);
 const char *aa_figure_name(size_t k);  /* NULL past the end */
 int aa_figure_find(const char *name);  /* index, or -1 */
+const char *aa_figure_title(size_t k); /* NULL past the end */
+/* What figure k is made of, as text: its view and, per panel, the kind,
+ * method, filter, encoding and display exponent (two figures with the same
+ * key would be the same picture). */
+int aa_figure_key(size_t k, char *buf, size_t len);
 /* Make figure k in `dir` (which must exist); references come from and go
  * to `cache_dir` (NULL: no cache).  Nothing is left half-written. */
 int aa_figure_make(size_t k, const char *dir, const char *cache_dir, int threads,
                    aa_figure_result *r);
 int aa_figure_index(const char *dir);
+
+/* Crow's colour-map calibration measured (calibration.c; Crow 1976,
+ * appendix, figs. A.1-A.4): the test pattern under the two-dot pyramid,
+ * stored as v by crowtable ([0]) and by the exact reference ([1]), shown
+ * with intensity v^g and seen by the eye (AA_EYE_S): the fringes (standard
+ * deviation of the eye's error over the image's right half) and the eye's
+ * RMSE, for g = 0.5, 0.55, ... 4; the least of each to 0.001; and the
+ * three colour maps of figs. A.1-A.3 (g = 2, 1, 4). */
+#define AA_CALIBRATION_MAX 80
+typedef struct aa_calibration {
+    int n;
+    double g[AA_CALIBRATION_MAX];
+    double fringe[2][AA_CALIBRATION_MAX], eye[2][AA_CALIBRATION_MAX];
+    double gmin_fringe[2], gmin_eye[2];
+    double map_g[3], map_fringe[2][3], map_eye[2][3];
+} aa_calibration;
+int aa_crow_calibration(const char *cache_dir, int threads, aa_calibration *out);
+
+/* The seed papers' quantitative claims measured (claims.c): DIR/claims.md
+ * (a Markdown table: paper, where, claim, setting, measured, reproduced?)
+ * and DIR/claims.html (the same table, for index.html).  Each time ratio
+ * is the median over `reps` pairs of interleaved single renders on one
+ * thread. */
+int aa_claims_make(const char *dir, const char *cache_dir, int threads, int reps,
+                   int (*progress)(void *ctx, const char *what), void *ctx);
 
 /* ------------------------------------------------------------------------
  * The stress suite (stress.c): scenes at the limits of the geometry, the

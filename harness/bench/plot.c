@@ -459,3 +459,36 @@ int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *co
     aa__c_numbers_end(&numbers);
     return st;
 }
+
+static int plot_script(const char *dir, const char *name, const char *data, const char *script)
+{
+    char dat[4096], dat_name[1024], tmp[4096];
+    int st = aa_mkdirs(dir);
+    if (st)
+        return st;
+    snprintf(dat_name, sizeof dat_name, "%s.dat", name);
+    if ((st = aa_pathf(dat, sizeof dat, "%s/%s", dir, dat_name)) ||
+        (st = aa_temp_name(dat, tmp, sizeof tmp)))
+        return st;
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        return aa_fail(AA_EIO, "cannot write %s: %s", dat, strerror(errno));
+    size_t len = strlen(data);
+    int bad = fwrite(data, 1, len, f) != len;
+    if (fclose(f) != 0 || bad) {
+        unlink(tmp);
+        return aa_fail(AA_EIO, "cannot write %s", dat);
+    }
+    return draw(dir, name, script, tmp, dat_name);
+}
+
+int aa_plot_script(const char *dir, const char *name, const char *data, const char *script)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, dir);
+    if (st)
+        return st;
+    st = plot_script(dir, name, data, script);
+    aa__c_numbers_end(&numbers);
+    return st;
+}

@@ -586,6 +586,13 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     }
                     if (st)
                         break;
+                    if (!row->ok && !row->failed && cfg->skip_refused) {
+                        /* a pair the method refuses: no row */
+                        if (cfg->skipped)
+                            (*cfg->skipped)++;
+                        memset(row, 0, sizeof *row);
+                        continue;
+                    }
                     /* images are written here, by this process, whichever ran the case */
                     if (row->ok && cfg->images_dir && (st = write_images(cfg, stem, &ref, &img)))
                         break;

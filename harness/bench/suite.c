@@ -1,18 +1,25 @@
 /*
  * suite.c: the named suites of `aabench run` (README.md, "The benchmark").
  *
- *   quick    every family once on crow 128x128 box: the regression gate's
- *            suite (results/baseline.csv); well under 30 s
+ *   quick    every method family once on crow 128x128, each under a filter
+ *            it accepts (box; tent:r=1 for Crow's tables and tiler; gauss
+ *            for Feibush et al.'s edge and texture filters): the regression
+ *            gate's suite
+ *            (results/baseline.csv); a few seconds
  *   default  every family at its main settings on crow 256x256 and
- *            1024x1024 box: the main job of `make run`
- *   paper    the settings of the seed figures (Crow 1976 figs. 2.10-2.14;
- *            Feibush et al. 1980 fig. 3a, the cone table)
- *   full     every method variant, every filter, both sizes, on crow; the
- *            other seed scenes at 256x256
+ *            1024x1024: the main job of `make run`
+ *   paper    the settings of the seed papers' figures (figures.c)
+ *   full     every method variant under every filter it accepts, on crow
+ *            at both sizes; every family under every filter on the other
+ *            seed scenes and the zone plate at 256x256
  *   vector   what a vector graphics or font rasterizer draws: crow, the SVG
  *            scenes shipped in patterns/svg and text at 12, 16 and 24 ppem,
  *            by area, the sampling methods, the in-process peers and the
- *            external renderers (a renderer not installed is a refused row)
+ *            external renderers (one not installed is left out)
+ *
+ * A suite's groups are cross products; `aabench run` leaves out the pairs a
+ * method refuses (a filter it cannot honour, a scene it cannot take) and
+ * says how many, so a group may list every filter.
  */
 #include "bench.h"
 
@@ -23,7 +30,9 @@
 static const aa_suite_group quick[] = {
     {LIST("crow"), LIST("128x128"), LIST("box"),
      LIST("point", "supersample", "jitter", "hexagon", "trio", "area", "adaptive", "taa",
-          "cycle", "freetype", "stb", "cairo")},
+          "cycle", "freetype", "stb", "cairo", "agg")},
+    {LIST("crow"), LIST("128x128"), LIST("tent:r=1"), LIST("crowtable", "crowtiler")},
+    {LIST("crow"), LIST("128x128"), LIST("gauss"), LIST("conetable", "feibushtex")},
     {NULL, NULL, NULL, NULL}};
 
 static const aa_suite_group main_suite[] = {
@@ -32,44 +41,58 @@ static const aa_suite_group main_suite[] = {
           "supersample:pattern=msaa8", "jitter:spp=16", "jitter:spp=16,seq=random",
           "jitter:spp=16,seq=sobol", "jitter:spp=16,seq=halton", "jitter:spp=64", "hexagon",
           "trio", "trio:variant=sancha", "trio:variant=recursive", "area", "adaptive", "taa",
-          "freetype", "stb", "cairo")},
+          "cycle", "freetype", "stb", "cairo", "agg")},
+    /* Crow's pyramid two dots wide (fig. 2.14): his tables and his tiler */
+    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("tent:r=1"),
+     LIST("crowtable", "crowtable:form=rows", "crowtiler")},
+    /* Feibush et al.'s Gaussian of fig. 4d (s = 1 pixel, mask radius 2 s):
+     * their edge filter, and their texture filter with the edge filter */
+    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("gauss:s=1"),
+     LIST("conetable", "feibushtex")},
     {NULL, NULL, NULL, NULL}};
 
-/* Crow 1976: fig. 2.10 point sampled, 2.11 nine equal samples, 2.12 25
- * unequally weighted samples (tent base two pixels), 2.13 and 2.14 the
- * triangular filters of base one and two pixels (their references are the
- * exact images; sampled approximations beside them). */
+/* The settings of the figures (figures.c): Crow 1976 figs. 2.10-2.14,
+ * 3.14-3.19; Feibush et al. 1980 figs. 4b-4d and the cone table (fig. 3a). */
 static const aa_suite_group paper[] = {
-    {LIST("crow"), LIST("256x256"), LIST("box"),
-     LIST("point", "supersample:n=3", "jitter:spp=16", "area")},
+    {LIST("crow"), LIST("256x256"), LIST("box"), LIST("point", "supersample:n=3", "area")},
     {LIST("crow"), LIST("256x256"), LIST("tent:r=1"),
-     LIST("supersample:n=5", "supersample:n=3", "jitter:spp=64")},
-    {LIST("crow"), LIST("256x256"), LIST("tent:r=0.5"),
-     LIST("supersample:n=5", "jitter:spp=64")},
-    /* Feibush, Levoy and Cook 1980, fig. 2f, 3a: the cone's volumes over
-     * right triangles from a table, against the exact cone reference */
+     LIST("supersample:n=5", "crowtable", "crowtiler")},
+    {LIST("crow"), LIST("256x256"), LIST("tent:r=0.5"), LIST("crowtable", "supersample:n=5")},
+    {LIST("crow"), LIST("512x512"), LIST("box", "tent:r=1"), LIST("point", "crowtiler")},
+    {LIST("star", "slivers"), LIST("256x256"), LIST("box", "tent:r=1"),
+     LIST("point", "supersample:n=2", "crowtiler")},
+    {LIST("feibush:stripes=200"), LIST("512x512"), LIST("box", "gauss:s=1"),
+     LIST("point", "area", "conetable", "feibushtex:texels=1000")},
     {LIST("crow"), LIST("256x256"), LIST("cone"), LIST("conetable:weight=cone")},
     {NULL, NULL, NULL, NULL}};
 
+/* Every family at its defaults, for the scenes besides crow. */
+#define FAMILIES                                                                               \
+    "point", "supersample", "jitter", "hexagon", "trio", "area", "taa", "cycle", "adaptive",   \
+        "freetype", "stb", "cairo", "agg", "crowtable", "conetable", "crowtiler", "feibushtex"
+
 static const aa_suite_group full[] = {
-    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("box"),
-     LIST("point", "supersample:n=2", "supersample:n=3", "supersample:n=4", "supersample:n=8",
-          "supersample:pattern=msaa2", "supersample:pattern=msaa4", "supersample:pattern=msaa8",
-          "supersample:pattern=msaa16", "jitter:spp=4", "jitter:spp=16", "jitter:spp=64",
-          "jitter:spp=256", "jitter:spp=16,seq=random", "jitter:spp=16,seq=sobol",
-          "jitter:spp=16,seq=halton", "jitter:spp=16,seq=niederreiter", "hexagon", "trio",
-          "trio:variant=sancha", "trio:variant=recursive", "area")},
-    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("tent:r=0.5", "tent:r=1", "gauss"),
-     LIST("supersample:n=3", "supersample:n=5", "supersample:pattern=msaa8", "jitter:spp=16",
-          "jitter:spp=64", "jitter:spp=64,seq=sobol")},
-    {LIST("crow"), LIST("256x256", "1024x1024"), LIST("cone"),
-     LIST("conetable:weight=cone", "supersample:n=5", "jitter:spp=64")},
+    {LIST("crow"), LIST("256x256", "1024x1024"),
+     LIST("box", "tent:r=0.5", "tent:r=1", "gauss", "gauss:s=1", "cone", "cone:r=2"),
+     LIST("point", "supersample:n=2", "supersample:n=3", "supersample:n=4", "supersample:n=5",
+          "supersample:n=8", "supersample:pattern=msaa2", "supersample:pattern=msaa4",
+          "supersample:pattern=msaa8", "supersample:pattern=msaa16", "jitter:spp=4",
+          "jitter:spp=16", "jitter:spp=64", "jitter:spp=256", "jitter:spp=16,seq=random",
+          "jitter:spp=16,seq=sobol", "jitter:spp=16,seq=halton",
+          "jitter:spp=16,seq=niederreiter", "jitter:spp=64,seq=sobol", "hexagon",
+          "hexagon:display=fixed", "trio", "trio:variant=halflines", "trio:variant=sancha",
+          "trio:variant=recursive", "area", "area:integrator=bands", "taa", "taa:frames=16",
+          "cycle", "cycle:positions=msaa16", "adaptive", "adaptive:tag=1", "freetype", "stb",
+          "cairo", "agg", "agg:scale=4", "crowtable", "crowtable:form=rows", "crowtable:res=64",
+          "conetable", "conetable:cut=3", "conetable:res=256", "crowtiler",
+          "crowtiler:hidden=scan", "crowtiler:area=exact", "crowtiler:area=exact,hidden=scan",
+          "feibushtex",
+          "feibushtex:res=128")},
     {LIST("catmull:tiles=3", "slivers", "star", "feibush", "fence", "dots"), LIST("256x256"),
-     LIST("box"),
-     LIST("point", "supersample:n=4", "supersample:pattern=msaa8", "jitter:spp=16",
-          "jitter:spp=64", "hexagon", "trio", "area")},
-    {LIST("slivers", "star", "feibush", "fence", "dots"), LIST("256x256"),
-     LIST("tent:r=1", "gauss"), LIST("supersample:n=5", "jitter:spp=64")},
+     LIST("box", "tent:r=1", "gauss", "cone"), LIST(FAMILIES)},
+    /* the zone plate has exact integrals for box, tent and gauss, and only
+     * the methods that sample a field's point function take it */
+    {LIST("zoneplate"), LIST("256x256"), LIST("box", "tent:r=1", "gauss"), LIST(FAMILIES)},
     {NULL, NULL, NULL, NULL}};
 
 /* the shipped SVG scenes (the Makefile sets AA_SVG_DIR to the tree's) */
@@ -91,12 +114,11 @@ static const aa_suite_group vector[] = {
     {NULL, NULL, NULL, NULL}};
 
 const aa_suite aa_suites[] = {
-    {"quick", "every family once on crow 128x128 box (the regression gate)", quick},
-    {"default", "every family at its main settings on crow 256x256 and 1024x1024 box",
-     main_suite},
-    {"paper", "the settings of Crow's figures 2.10-2.14 and Feibush's cone table (fig. 3a)",
-     paper},
-    {"full", "every method variant under every filter", full},
+    {"quick", "every family once on crow 128x128 (the regression gate)", quick},
+    {"default", "every family at its main settings on crow 256x256 and 1024x1024", main_suite},
+    {"paper", "the settings of the seed papers' figures", paper},
+    {"full", "every method variant under every filter it accepts; every scene; the zone plate",
+     full},
     {"vector", "crow, the shipped SVG scenes and text at 12, 16 and 24 ppem: area, sampling, "
                "the peers and the external renderers",
      vector},

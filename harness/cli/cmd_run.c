@@ -47,7 +47,9 @@ static void usage(FILE *out)
             "Runs every method on every pattern x size x filter, measures error against the\n"
             "exact reference and render time, and writes results.csv, results.json, images/,\n"
             "montage.png and plots/ into results/runs/<UTC time>/ (results/latest links to it)\n"
-            "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n\n"
+            "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n"
+            "A method runs only with the filters and scenes it takes (one line counts the\n"
+            "pairs left out) unless -m and -f are both given.\n\n"
             "  --suite NAME      quick, default (the default), paper, full, vector or temporal\n"
             "                    (--list-suites)\n"
             "  --target-ci PCT   time each case until the 95%% CI of its median is within\n"
@@ -884,6 +886,7 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 
+    size_t skipped = 0;
     st = AA_OK;
     for (size_t g = 0; g < ng && !st; g++) {
         aa_run_config *c = &cfgs[g];
@@ -895,6 +898,10 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         c->progress = progress;
         c->row_done = row_done;
         c->ctx = &ctx;
+        /* a suite's cross products pair each method only with the views it
+         * takes; a method and a filter both named are run as asked */
+        c->skip_refused = !(a->m.n && a->f.n);
+        c->skipped = &skipped;
         aa_row *rows = NULL;
         size_t n = 0;
         ctx.copied = 0;
@@ -943,6 +950,10 @@ static int run_suite(run_args *a, const aa_suite *suite, owned *o)
         free(all);
         return cli_fail("run", st);
     }
+    if (skipped)
+        printf("skipped %zu method and view pair%s the method refuses (a filter or a scene; "
+               "name the method and the filter to run them)\n",
+               skipped, skipped == 1 ? "" : "s");
     if (!a->quiet)
         print_table(all, nall);
     cli_warn_noisy("run", all, nall);
