@@ -1403,6 +1403,7 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
     rec.lo[0] = rec.lo[1] = 0;
     rec.hi[0] = rec.hi[1] = 0;
     int st = aa_svg_read_file(aa_param_text(p[SVG_FILE]), w, h, &recording_sink, &rec, vp);
+    const int read_ok = st == AA_OK;
     /* content beyond the viewport: a front layer of the background colour
      * over everything outside it (even-odd of a larger rectangle and the
      * viewport) */
@@ -1485,6 +1486,8 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         }
     }
     free(box);
+    if (st && read_ok) /* the scene's refusal (a cubic arc it cannot hold, say) */
+        st = aa_fail_context(st, "SVG file %s", aa_echo(aa_param_text(p[SVG_FILE])));
     free(rec.shapes);
     free(rec.ops);
     return st;

@@ -165,7 +165,7 @@ int aa__text_build_at(const double *p, int w, int h, aa_scene *s)
         g.ox = penx + pos[k].x_offset;
         g.oy = peny + pos[k].y_offset;
         if (FT_Outline_Decompose(&face->glyph->outline, &funcs, &g))
-            st = g.st ? g.st
+            st = g.st ? aa_fail_context(g.st, "font %s", aa_echo(font))
                       : aa_fail(AA_EINVAL, "pattern text: the outline of glyph %u is malformed",
                                 info[k].codepoint);
         penx += pos[k].x_advance;
