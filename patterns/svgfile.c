@@ -624,8 +624,14 @@ static int tan_deg(reader *r, double deg, double *t)
     double m = fmod(deg, 180.0);
     if (m == 90.0 || m == -90.0)
         return fail_at(r, "a skew of %g degrees is infinite", deg);
-    *t = m == 0 ? 0 : m == 45.0 || m == -135.0 ? 1 : m == -45.0 || m == 135.0 ? -1
-                                                                               : tan(m * (M_PI / 180.0));
+    if (m == 0)
+        *t = 0;
+    else if (m == 45.0 || m == -135.0)
+        *t = 1;
+    else if (m == -45.0 || m == 135.0)
+        *t = -1;
+    else
+        *t = tan(m * (M_PI / 180.0));
     return AA_OK;
 }
 
@@ -1172,7 +1178,8 @@ static int root_map(reader *r, const xmlNode *root, int w, int h, mat *m, double
         int n = sscanf((const char *)t, " %15s %15s", align, mos);
         if (n >= 1 && !strcmp(align, "defer")) /* only for images */
             n = sscanf((const char *)t, " defer %15s %15s", align, mos);
-        static const char *const xs[3] = {"xMin", "xMid", "xMax"}, *const ys[3] = {"YMin", "YMid", "YMax"};
+        static const char *const xs[3] = {"xMin", "xMid", "xMax"};
+        static const char *const ys[3] = {"YMin", "YMid", "YMax"};
         int ok = n >= 1 && (!strcmp(mos, "meet") || !strcmp(mos, "slice"));
         if (ok && !strcmp(align, "none"))
             none = 1;
@@ -1451,7 +1458,8 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         int join = group > 0 && group < 256;
         const rec_shape *front = join ? &rec.shapes[group_first] : NULL;
         if (join)
-            join = front->rule == sh->rule && !memcmp(&front->colour, &sh->colour, sizeof sh->colour);
+            join = front->rule == sh->rule &&
+                   !memcmp(&front->colour, &sh->colour, sizeof sh->colour);
         for (size_t q = k + 1; join && q <= group_first; q++)
             if (rec.shapes[q].n && !(box[k][2] < box[q][0] || box[q][2] < box[k][0] ||
                                      box[k][3] < box[q][1] || box[q][3] < box[k][1]))

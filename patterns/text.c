@@ -74,8 +74,15 @@ typedef struct glyph_ctx {
     int w, h, st;
 } glyph_ctx;
 
-static double gx(const glyph_ctx *g, const FT_Vector *v) { return (g->px + (double)(g->ox + v->x) / 64.0) / g->w; }
-static double gy(const glyph_ctx *g, const FT_Vector *v) { return (g->py - (double)(g->oy + v->y) / 64.0) / g->h; }
+static double gx(const glyph_ctx *g, const FT_Vector *v)
+{
+    return (g->px + (double)(g->ox + v->x) / 64.0) / g->w;
+}
+
+static double gy(const glyph_ctx *g, const FT_Vector *v)
+{
+    return (g->py - (double)(g->oy + v->y) / 64.0) / g->h;
+}
 
 static int cb_move(const FT_Vector *to, void *user)
 {
