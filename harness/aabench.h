@@ -71,8 +71,8 @@ typedef enum aa_param_kind {
      * bytes; the value numbers it (aa_param_text); `choices` holds the
      * default text.  In a spec the bytes ',' and '%' and the control
      * characters are written as "%XX" (two hex digits), so the value ends at
-     * the next ',' like any other; a '%' not followed by two hex digits is
-     * refused.  The canonical text writes them the same way. */
+     * the next ',' like any other; a '%' not followed by two hex digits, and
+     * a control character not so written, are refused.  The canonical text writes them the same way. */
     AA_PARAM_TEXT
 } aa_param_kind;
 

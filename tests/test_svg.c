@@ -520,8 +520,13 @@ static void test_text_values(void **state)
     aa_spec back;
     assert_int_equal(aa_pattern_parse(buf, &back), AA_OK);
     assert_true(back.v[0] == s.v[0]);
+    /* control characters written %XX, and so in the canonical text */
+    assert_int_equal(aa_pattern_parse("svg:file=a%0ab", &s), AA_OK);
+    assert_string_equal(aa_param_text(s.v[0]), "a\nb");
+    assert_int_equal(aa_spec_format(&s, buf, sizeof buf), AA_OK);
+    assert_string_equal(buf, "svg:file=a%0Ab");
     static const char *bad[] = {"svg:file=a%2", "svg:file=a%zz", "svg:file=%00", "svg:file=a,b",
-                                "svg:file="};
+                                "svg:file=", "svg:file=a\nb", "svg:file=a\tb"};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
         if (aa_pattern_parse(bad[k], &s) == AA_OK)
             fail_msg("%s was accepted", bad[k]);

@@ -149,9 +149,9 @@ static int hex_digit(int c)
                                   : -1;
 }
 
-/* A TEXT value as given in a spec, "%XX" decoded into buf; -1 (with a
- * message) for a '%' not followed by two hex digits, a NUL byte or a text
- * longer than AA_PARAM_TEXT_MAX. */
+/* A TEXT value as given in a spec, "%XX" decoded into buf; AA_EINVAL (with
+ * a message) for a '%' not followed by two hex digits, a NUL byte, a control
+ * character not written %XX or a text longer than AA_PARAM_TEXT_MAX. */
 static int text_decode(const aa_param *p, const char *text, char *buf)
 {
     size_t n = 0;
@@ -169,6 +169,9 @@ static int text_decode(const aa_param *p, const char *text, char *buf)
                 return aa_fail(AA_EINVAL, "%s=%s: %%00 (a NUL byte) is not allowed", p->key,
                                aa_echo(text));
             c += 2;
+        } else if (ch < 0x20 || ch == 0x7f) {
+            return aa_fail(AA_EINVAL, "%s=%s: a control character must be written %%XX", p->key,
+                           aa_echo(text));
         }
         if (n >= AA_PARAM_TEXT_MAX)
             return aa_fail(AA_EINVAL, "%s=%s: longer than %d bytes", p->key, aa_echo(text),
