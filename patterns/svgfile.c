@@ -49,6 +49,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,14 +69,16 @@
 /* ---- files ---- */
 
 /* AA_EINVAL unless `path` names a regular file (a folder, a device or a
- * pipe is not a document). */
-static int regular_file(const char *path, const char *what)
+ * pipe is not a document) of at most `max` bytes. */
+static int regular_file(const char *path, const char *what, size_t max)
 {
     struct stat st;
     if (stat(path, &st) != 0)
         return aa_fail(AA_EINVAL, "%s %s: %s", what, aa_echo(path), strerror(errno));
     if (!S_ISREG(st.st_mode))
         return aa_fail(AA_EINVAL, "%s %s is not a regular file", what, aa_echo(path));
+    if ((unsigned long long)st.st_size > (unsigned long long)max)
+        return aa_fail(AA_EINVAL, "%s %s is larger than %zu bytes", what, aa_echo(path), max);
     return AA_OK;
 }
 
@@ -83,7 +86,7 @@ int aa_file_read_all(const char *path, size_t max, const char *what, char **data
 {
     *data = NULL;
     *len = 0;
-    int rs = regular_file(path, what);
+    int rs = regular_file(path, what, max);
     if (rs)
         return rs;
     FILE *f = fopen(path, "rb");
@@ -129,7 +132,7 @@ int aa_file_read_all(const char *path, size_t max, const char *what, char **data
 
 int aa_file_hash(const char *path, unsigned long long *hash, size_t *len)
 {
-    int rs = regular_file(path, "file");
+    int rs = regular_file(path, "file", SIZE_MAX);
     if (rs)
         return rs;
     FILE *f = fopen(path, "rb");

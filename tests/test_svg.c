@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -556,6 +557,17 @@ static void test_command(void **state)
     snprintf(spec, sizeof spec, "svg:file=%s/none.svg", dir);
     assert_int_equal(support_aabench(args, out, sizeof out), 2);
     assert_non_null(strstr(out, "none.svg"));
+    /* a file over 64 MB is refused before it is read (a sparse file) */
+    char big[4300];
+    snprintf(big, sizeof big, "%s/big.svg", dir);
+    FILE *f = fopen(big, "wb");
+    assert_non_null(f);
+    assert_int_equal(ftruncate(fileno(f), (off_t)AA_SVG_MAX_BYTES + 1), 0);
+    fclose(f);
+    snprintf(spec, sizeof spec, "svg:file=%s", big);
+    assert_int_equal(support_aabench(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "larger than"));
+    assert_int_equal(unlink(big), 0);
     /* a folder is not a document */
     snprintf(spec, sizeof spec, "svg:file=%s", dir);
     assert_int_equal(support_aabench(args, out, sizeof out), 2);
