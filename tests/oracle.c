@@ -519,6 +519,17 @@ oracle_poly oracle_poly_intersect(const oracle_poly *p, const oracle_poly *q)
     return out;
 }
 
+void oracle_hexagon_vertex(double r, double angle, int v, double *dx, double *dy)
+{
+    const double pi = 3.14159265358979323846, c = 0.5, s = sqrt(3.0) / 2;
+    double x = r * cos(angle * pi / 180), y = r * sin(angle * pi / 180);
+    for (int k = 0; k < v; k++) {
+        double nx = c * x - s * y, ny = s * x + c * y;
+        x = nx, y = ny;
+    }
+    *dx = x, *dy = y;
+}
+
 oracle_poly oracle_poly_scaled(const oracle_poly *p, double sx, double sy)
 {
     oracle_poly out = *p;

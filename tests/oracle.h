@@ -66,6 +66,14 @@ double oracle_crow_gauss(const oracle_crow *p, int W, int H, int i, int j,
  * derivation is in tests/test_cone.c, which checks it by quadrature). */
 double oracle_cone_cut(double delta);
 
+/* ---- the hexagon display ----
+ *
+ * Vertex v of the hexagon of radius r whose vertex 0 is at `angle` degrees,
+ * worked out independently of hexagon.c: vertex 0 from the angle, then each
+ * next vertex by the rotation matrix [c -s; s c] of 60 degrees (y down, so
+ * positive angles turn clockwise on the screen). */
+void oracle_hexagon_vertex(double r, double angle, int v, double *dx, double *dy);
+
 /* ---- polygons: areas by clipping ----
  *
  * The area of a polygon inside a pixel or another convex polygon, by

@@ -23,12 +23,25 @@
 
 /* ---- rendering ---- */
 
+static void filter_of(const char *filter, aa_filter *f)
+{
+    if (!filter)
+        aa_filter_default(f);
+    else if (aa_filter_parse(filter, f) != AA_OK)
+        fail_msg("filter %s: %s", filter, aa_last_error());
+}
+
 static void view_filter(const support_view *v, aa_filter *f)
 {
-    if (!v->filter)
-        aa_filter_default(f);
-    else if (aa_filter_parse(v->filter, f) != AA_OK)
-        fail_msg("filter %s: %s", v->filter, aa_last_error());
+    filter_of(v->filter, f);
+}
+
+int support_parse_method(const char *method, const char *filter, aa_spec *spec)
+{
+    aa_filter f;
+    aa_spec unused;
+    filter_of(filter, &f);
+    return aa_method_parse(method, &f, spec ? spec : &unused);
 }
 
 int support_render_view(const char *method, const aa_scene *scene, const support_view *v,
@@ -185,6 +198,19 @@ void support_check_rmse_order(const char *what, const aa_scene *scene, const sup
     aa_image_free(&ref);
 }
 
+/* ---- figures ---- */
+
+const char *support_caption_field(const char *caption, int panel, const char *field)
+{
+    char key[32];
+    snprintf(key, sizeof key, "panel %d:", panel);
+    const char *p = strstr(caption, key);
+    assert_non_null(p);
+    p = strstr(p, field);
+    assert_non_null(p);
+    return p + strlen(field);
+}
+
 /* ---- the command under test ---- */
 
 static double now_seconds(void)
@@ -287,6 +313,60 @@ int support_aabench_interrupted(const char *const *args, int interrupt_ms, char 
 int support_aabench(const char *const *args, char *out, size_t cap)
 {
     return support_aabench_interrupted(args, 0, out, cap);
+}
+
+pid_t support_aabench_spawn(const char *const *args, const char *env, const char *out,
+                            const char *err)
+{
+    const char *exe = getenv("AABENCH");
+    if (!exe || !*exe)
+        fail_msg("$AABENCH (the command under test) is not set");
+    const char *argv[64] = {exe};
+    int n = 1;
+    for (; args[n - 1] && n < 63; n++)
+        argv[n] = args[n - 1];
+    argv[n] = NULL;
+    fflush(NULL);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        int fo = open(out ? out : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int fe = open(err ? err : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fo < 0 || fe < 0 || dup2(fo, 1) < 0 || dup2(fe, 2) < 0)
+            _exit(126);
+        if (env && putenv((char *)env) != 0)
+            _exit(126);
+        execv(exe, (char *const *)argv);
+        _exit(127);
+    }
+    return pid;
+}
+
+int support_wait(pid_t pid)
+{
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/* ---- checks in a child process ---- */
+
+void support_in_child(int (*body)(void *arg), void *arg)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        int failed = body(arg);
+        fflush(NULL);
+        _exit(failed);
+    }
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    if (WIFSIGNALED(status))
+        fail_msg("the child was ended by signal %d", WTERMSIG(status));
+    if (WEXITSTATUS(status) != 0)
+        fail_msg("the child's checks failed (above)");
 }
 
 /* ---- temporary folders and files ---- */

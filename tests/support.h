@@ -13,6 +13,8 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <sys/types.h>
 
 /* ---- the test program ---- */
 
@@ -28,6 +30,11 @@
     }
 
 /* ---- rendering ---- */
+
+/* The status of parsing the method spec (aa_method_parse) under the filter
+ * spec `filter` (NULL: the box; a filter that does not parse fails the
+ * test); the spec into *spec (may be NULL). */
+int support_parse_method(const char *method, const char *filter, aa_spec *spec);
 
 /* What to render: a w x h image at time t (frames) moving (vx, vy) pixels a
  * frame, through the filter spec `filter` (NULL: the box).  `seed` and
@@ -91,6 +98,13 @@ double support_check_crow_box(const char *what, const oracle_crow *p, const aa_i
 void support_check_rmse_order(const char *what, const aa_scene *scene, const support_view *v,
                               const char *const *methods, int n);
 
+/* ---- figures ---- */
+
+/* In a figure's caption, what follows the first `field` ("rmse: ") after
+ * "panel N:" for N = `panel` (1-based); fails the test if either is
+ * missing. */
+const char *support_caption_field(const char *caption, int panel, const char *field);
+
 /* ---- the command under test ---- */
 
 /* How long a command may run before it is killed and the test fails:
@@ -109,6 +123,35 @@ void support_check_rmse_order(const char *what, const aa_scene *scene, const sup
 int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
                                 size_t cap);
 int support_aabench(const char *const *args, char *out, size_t cap);
+
+/* Start the command under test with args (as above), `env` ("NAME=value"
+ * or NULL) added to its environment, its standard output into the file
+ * `out` and its error into the file `err` (NULL: /dev/null); returns its
+ * pid without waiting (for tests that signal the command or run several at
+ * once).  Fails the test if $AABENCH is not set or there is no fork. */
+pid_t support_aabench_spawn(const char *const *args, const char *env, const char *out,
+                            const char *err);
+/* Wait for the child pid: its exit status, or 128 + the signal that ended
+ * it. */
+int support_wait(pid_t pid);
+
+/* ---- checks in a child process ---- */
+
+/* Run body(arg) in a forked child, which ends with what it returns: fails
+ * the test if that is not 0 or a signal ends the child.  The body checks
+ * with SUPPORT_CHILD_CHECK, not cmocka: a cmocka assertion in the child
+ * would go on to run the parent's remaining tests there. */
+void support_in_child(int (*body)(void *arg), void *arg);
+
+/* In such a body: on failure, say what and return nonzero. */
+#define SUPPORT_CHILD_CHECK(cond)                                                              \
+    do {                                                                                       \
+        if (!(cond)) {                                                                         \
+            fprintf(stderr, "%s:%d: failed: %s (last error: %s)\n", __FILE__, __LINE__, #cond, \
+                    aa_last_error());                                                          \
+            return 1;                                                                          \
+        }                                                                                      \
+    } while (0)
 
 /* ---- temporary folders and files ---- */
 

@@ -101,19 +101,9 @@ static void render_full(const char *method, const aa_scene *scene, int w, int h,
                         double vx, double vy, int frame_only, uint64_t seed, int threads,
                         aa_image *out, aa_counters *c)
 {
-    aa_filter box;
-    aa_spec spec;
-    aa_job job;
-    aa_counters dummy;
-    aa_filter_default(&box);
-    if (aa_method_parse(method, &box, &spec))
-        fail_msg("%s: %s", method, aa_last_error());
-    assert_int_equal(aa_job_init(&job, scene, w, h, t, vx, vy, &box, seed, threads), AA_OK);
-    job.frame_only = frame_only;
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    if (aa_method_run(&spec, &job, 1, out, c ? c : &dummy, NULL))
-        fail_msg("%s: %s", method, aa_last_error());
-    aa_job_free(&job);
+    const support_view v = {.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .seed = seed,
+                            .threads = threads, .frame_only = frame_only};
+    support_render_must(method, scene, &v, out, c);
 }
 
 static void render(const char *method, const aa_scene *scene, int w, int h, double t,
@@ -122,44 +112,7 @@ static void render(const char *method, const aa_scene *scene, int w, int h, doub
     render_full(method, scene, w, h, t, vx, vy, frame_only, 1, 2, out, NULL);
 }
 
-static double rmse(const aa_image *a, const aa_image *b)
-{
-    double s = 0;
-    size_t n = (size_t)a->w * a->h * 3;
-    for (size_t k = 0; k < n; k++)
-        s += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
-    return sqrt(s / (double)n);
-}
-
-static double max_diff(const aa_image *a, const aa_image *b)
-{
-    double m = 0;
-    size_t n = (size_t)a->w * a->h * 3;
-    for (size_t k = 0; k < n; k++)
-        m = fmax(m, fabs(a->v[k] - b->v[k]));
-    return m;
-}
-
-static int same_image(const aa_image *a, const aa_image *b)
-{
-    return memcmp(a->v, b->v, sizeof(double) * 3 * (size_t)a->w * a->h) == 0;
-}
-
 /* ---- the display, worked out by hand ---- */
-
-/* Vertex v of the hexagon of radius r with vertex 0 at `angle` degrees:
- * vertex 0 from the angle, then turned by 60 degrees v times with the
- * rotation matrix [c -s; s c] (y down: clockwise on the screen). */
-static void vertex(double r, double angle, int v, double *dx, double *dy)
-{
-    const double pi = 3.14159265358979323846, c = 0.5, s = sqrt(3.0) / 2;
-    double x = r * cos(angle * pi / 180), y = r * sin(angle * pi / 180);
-    for (int k = 0; k < v; k++) {
-        double nx = c * x - s * y, ny = s * x + c * y;
-        x = nx, y = ny;
-    }
-    *dx = x, *dy = y;
-}
 
 static double overlap(double a0, double a1, double b0, double b1)
 {
@@ -225,7 +178,8 @@ static void test_display_aligned_rectangle(void **state)
     (void)state;
     const int w = 20, h = 16;
     double dx, dy;
-    vertex(0.3, 20.0, 0, &dx, &dy); /* frame 0 of order 024153 shows vertex 0 */
+    /* frame 0 of order 024153 shows vertex 0 */
+    oracle_hexagon_vertex(0.3, 20.0, 0, &dx, &dy);
     /* dots 5 .. 13 across and 4 .. 10 down are inside, wholly */
     const rect R = {5 + dx, 4 + dy, 14 + dx, 11 + dy};
     aa_scene *s = rect_scene(w, h, R.x0, R.y0, R.x1, R.y1);
@@ -253,7 +207,7 @@ static void test_display_aligned_rectangle(void **state)
            0, &fixed);
     for (int q = 0; q < 3 * w * h; q++)
         assert_true(fixed.v[q] == 0.0 || fixed.v[q] == 1.0);
-    assert_false(same_image(&fixed, &img));
+    assert_false(support_same_image(&fixed, &img));
     aa_image_free(&img);
     aa_image_free(&ref);
     aa_image_free(&fixed);
@@ -273,10 +227,11 @@ static void check_general(const char *method, double t, double vx, double vy, in
     display_ref(s, w, h, vx, vy, n, times, dx, dy, &ref);
     by_hand(&R, vx, vy, w, h, n, times, dx, dy, 0, &eye_hand);
     by_hand(&R, vx, vy, w, h, n, times, dx, dy, 1, &ref_hand);
-    double ei = max_diff(&img, &eye_hand), er = max_diff(&ref, &ref_hand);
+    double ei = support_max_diff(&img, &eye_hand, NULL, NULL);
+    double er = support_max_diff(&ref, &ref_hand, NULL, NULL);
     print_message("%-36s T=%g v=(%g, %g): |image - by hand| %.2e, |reference - by hand| %.2e, "
                   "RMSE %.4f\n",
-                  method, t, vx, vy, ei, er, rmse(&img, &ref));
+                  method, t, vx, vy, ei, er, support_rmse(&img, &ref));
     assert_true(ei <= 1e-14);
     assert_true(er <= 1e-12);
     /* the frames the method reports (aa_method_display): the same times and
@@ -322,7 +277,7 @@ static void test_display_by_hand(void **state)
      * order of them) */
     for (int v = 0; v < 6; v++) {
         t[v] = -v; /* the frames' times; which vertex is at which, the path's */
-        vertex(0.5, 0.0, v, &dx[v], &dy[v]);
+        oracle_hexagon_vertex(0.5, 0.0, v, &dx[v], &dy[v]);
     }
     check_general("hexagon", 0.0, 0, 0, 6, t, dx, dy);
     /* a fixed word, a window of four frames at T = 3.5: frames 3, 2, 1, 0
@@ -330,14 +285,14 @@ static void test_display_by_hand(void **state)
     const char *word = "024153";
     for (int k = 0; k < 4; k++) {
         t[k] = 3.5 - k;
-        vertex(0.4, 10.0, word[(3 - k) % 6] - '0', &dx[k], &dy[k]);
+        oracle_hexagon_vertex(0.4, 10.0, word[(3 - k) % 6] - '0', &dx[k], &dy[k]);
     }
     check_general("hexagon:frames=4,order=024153,radius=0.4,angle=10", 3.5, 0, 0, 4, t, dx, dy);
     /* moving: three frames at T = 2.25, frames 2, 1, 0 of 031425 */
     word = "031425";
     for (int k = 0; k < 3; k++) {
         t[k] = 2.25 - k;
-        vertex(0.5, 0.0, word[2 - k] - '0', &dx[k], &dy[k]);
+        oracle_hexagon_vertex(0.5, 0.0, word[2 - k] - '0', &dx[k], &dy[k]);
     }
     check_general("hexagon:frames=3,order=031425", 2.25, 0.3, -0.2, 3, t, dx, dy);
 }
@@ -352,7 +307,7 @@ static int vertex_shown(const char *method, const aa_scene *s, aa_scene *placed,
     int which = -1;
     for (int v = 0; v < 6; v++) {
         double dx, dy;
-        vertex(0.5, 0.0, v, &dx, &dy);
+        oracle_hexagon_vertex(0.5, 0.0, v, &dx, &dy);
         int all = 1;
         for (int j = 0; j < h && all; j++)
             for (int i = 0; i < w && all; i++) {
@@ -424,7 +379,7 @@ static void test_random_path(void **state)
         assert_int_equal(aa_job_init(&job, s, w, h, n + 0.75, 0, 0, &box, 1, 1), AA_OK);
         job.frame_only = 1;
         assert_int_equal(aa_method_display(&spec, &job, f, &nf), AA_OK);
-        vertex(0.5, 0.0, v, &dx, &dy);
+        oracle_hexagon_vertex(0.5, 0.0, v, &dx, &dy);
         assert_int_equal(nf, 1);
         assert_true(f[0].t == n + 0.75 && fabs(f[0].dx - dx) < 1e-15 &&
                     fabs(f[0].dy - dy) < 1e-15 && f[0].weight == 1.0);
@@ -499,7 +454,7 @@ static void test_run_uses_display_reference(void **state)
     run_one(method, 0, 0, &row);
     for (int k = 0; k < 6; k++) {
         t[k] = -k;
-        vertex(0.5, 0.0, word[(6 - k) % 6] - '0', &dx[k], &dy[k]);
+        oracle_hexagon_vertex(0.5, 0.0, word[(6 - k) % 6] - '0', &dx[k], &dy[k]);
     }
     render(method, s, w, h, 0, 0, 0, 0, &img);
     display_ref(s, w, h, 0, 0, 6, t, dx, dy, &dref);
@@ -507,7 +462,7 @@ static void test_run_uses_display_reference(void **state)
     assert_int_equal(aa_image_alloc(&plain, w, h, 3), AA_OK);
     assert_int_equal(aa_truth_render(placed, &box, 2, &plain, NULL, NULL), AA_OK);
     aa_scene_free(placed);
-    double want = rmse(&img, &dref), other = rmse(&img, &plain);
+    double want = support_rmse(&img, &dref), other = support_rmse(&img, &plain);
     print_message("run, crow 32x32 still: %s RMSE %.6f; against the display reference %.6f, "
                   "the plain one %.6f\n",
                   method, row.m.rmse, want, other);
@@ -523,7 +478,7 @@ static void test_run_uses_display_reference(void **state)
     aa_image frames[8], refs[8];
     for (int k = 0; k < 8; k++) {
         double tk = k, ox, oy;
-        vertex(0.5, 0.0, word[k % 6] - '0', &ox, &oy);
+        oracle_hexagon_vertex(0.5, 0.0, word[k % 6] - '0', &ox, &oy);
         render(method, s, w, h, tk, vx, vy, 1, &frames[k]);
         display_ref(s, w, h, vx, vy, 1, &tk, &ox, &oy, &refs[k]);
     }
@@ -607,6 +562,29 @@ static void test_crow_still_and_moving(void **state)
 
 /* ---- trio ---- */
 
+/* A white polygon (pixel units, see polygon_scene) rendered w x h by trio,
+ * trio's halflines variant and point. */
+typedef struct trio_images {
+    aa_scene *s;
+    aa_image tr, hl, pt;
+} trio_images;
+
+static void trio_render(const double *uv, int n, int w, int h, trio_images *t)
+{
+    t->s = polygon_scene(uv, n, w, h);
+    render("trio", t->s, w, h, 0, 0, 0, 0, &t->tr);
+    render("trio:variant=halflines", t->s, w, h, 0, 0, 0, 0, &t->hl);
+    render("point", t->s, w, h, 0, 0, 0, 0, &t->pt);
+}
+
+static void trio_free(trio_images *t)
+{
+    aa_image_free(&t->tr);
+    aa_image_free(&t->hl);
+    aa_image_free(&t->pt);
+    aa_scene_free(t->s);
+}
+
 static void test_trio_45_degrees(void **state)
 {
     (void)state;
@@ -617,16 +595,13 @@ static void test_trio_45_degrees(void **state)
      * dot (i, i + 1) the same on the other side. */
     const int w = 40;
     const double tri[] = {0, 0.3, (double)w, w + 0.3, 0, (double)w};
-    aa_scene *s = polygon_scene(tri, 3, w, w);
-    aa_image tr, hl, pt;
-    render("trio", s, w, w, 0, 0, 0, 0, &tr);
-    render("trio:variant=halflines", s, w, w, 0, 0, 0, 0, &hl);
-    render("point", s, w, w, 0, 0, 0, 0, &pt);
-    assert_true(same_image(&hl, &pt));
+    trio_images t;
+    trio_render(tri, 3, w, w, &t);
+    assert_true(support_same_image(&t.hl, &t.pt));
     int checked = 0;
     for (int j = 0; j < w; j++)
         for (int i = 0; i < w; i++) {
-            double got = aa_pixel(&tr, i, j)[0], was = aa_pixel(&pt, i, j)[0];
+            double got = aa_pixel(&t.tr, i, j)[0], was = aa_pixel(&t.pt, i, j)[0];
             assert_true(was == (j >= i + 1 ? 1.0 : 0.0));
             if (i < 2 || i > w - 3 || j < 2 || j > w - 3)
                 continue; /* the ends of the edge, at the border */
@@ -642,10 +617,7 @@ static void test_trio_45_degrees(void **state)
     print_message("trio, 45-degree staircase: %d dots take an eighth across the edge\n",
                   checked);
     assert_true(checked >= 2 * (w - 6));
-    aa_image_free(&tr);
-    aa_image_free(&hl);
-    aa_image_free(&pt);
-    aa_scene_free(s);
+    trio_free(&t);
 }
 
 static void test_trio_u_run(void **state)
@@ -662,29 +634,23 @@ static void test_trio_u_run(void **state)
     const int w = 27, h = 10;
     const double uv[] = {-1, 5,  10, 5, 10, 4.3, 17, 4.3,
                          17, 5,  28, 5, 28, 11,  -1, 11};
-    aa_scene *s = polygon_scene(uv, 8, w, h);
-    aa_image tr, hl, pt;
-    render("trio", s, w, h, 0, 0, 0, 0, &tr);
-    render("trio:variant=halflines", s, w, h, 0, 0, 0, 0, &hl);
-    render("point", s, w, h, 0, 0, 0, 0, &pt);
+    trio_images t;
+    trio_render(uv, 8, w, h, &t);
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++) {
             int bump = j == 4 && i >= 10 && i <= 16;
-            double was = aa_pixel(&pt, i, j)[0], got = aa_pixel(&tr, i, j)[0];
+            double was = aa_pixel(&t.pt, i, j)[0], got = aa_pixel(&t.tr, i, j)[0];
             assert_true(was == (j >= 5 || bump ? 1.0 : 0.0));
             double want = bump ? 0.5 : was;
             if (got != want)
                 fail_msg("U run, dot (%d, %d): %.17g, not %g", i, j, got, want);
         }
     /* halflines: two half-lines meeting on the boundary at the middle */
-    double mid = aa_pixel(&hl, 13, 4)[0], end = aa_pixel(&hl, 10, 4)[0];
+    double mid = aa_pixel(&t.hl, 13, 4)[0], end = aa_pixel(&t.hl, 10, 4)[0];
     print_message("trio, U run of 7 dots: every dot 1/2; halflines: end %.4f, middle %.4f\n",
                   end, mid);
     assert_true(mid > 0.9 && end < 0.9);
-    aa_image_free(&tr);
-    aa_image_free(&hl);
-    aa_image_free(&pt);
-    aa_scene_free(s);
+    trio_free(&t);
 }
 
 static void test_trio_open_end(void **state)
@@ -696,23 +662,17 @@ static void test_trio_open_end(void **state)
      * column 1's inside dot keeps 3/4. */
     const int w = 24, h = 16;
     const double uv[] = {0, 0.3, (double)w, 0.3 + w / 2.0, (double)w, h + 5.0, 0, h + 5.0};
-    aa_scene *s = polygon_scene(uv, 4, w, h);
-    aa_image tr, hl, pt;
-    render("trio", s, w, h, 0, 0, 0, 0, &tr);
-    render("trio:variant=halflines", s, w, h, 0, 0, 0, 0, &hl);
-    render("point", s, w, h, 0, 0, 0, 0, &pt);
+    trio_images t;
+    trio_render(uv, 4, w, h, &t);
     for (int j = 0; j < h; j++)
         for (int i = 0; i < 2; i++)
-            assert_true(aa_pixel(&tr, i, j)[0] == aa_pixel(&pt, i, j)[0]);
-    assert_true(aa_pixel(&pt, 1, 1)[0] == 1.0);
-    assert_true(fabs(aa_pixel(&hl, 1, 1)[0] - 0.75) < 1e-15);
+            assert_true(aa_pixel(&t.tr, i, j)[0] == aa_pixel(&t.pt, i, j)[0]);
+    assert_true(aa_pixel(&t.pt, 1, 1)[0] == 1.0);
+    assert_true(fabs(aa_pixel(&t.hl, 1, 1)[0] - 0.75) < 1e-15);
     /* the next run, between two trios, gets fig. 4.3's shares either way */
-    assert_true(fabs(aa_pixel(&tr, 2, 1)[0] - 0.25) < 1e-15);
-    assert_true(fabs(aa_pixel(&tr, 3, 2)[0] - 0.75) < 1e-15);
-    aa_image_free(&tr);
-    aa_image_free(&hl);
-    aa_image_free(&pt);
-    aa_scene_free(s);
+    assert_true(fabs(aa_pixel(&t.tr, 2, 1)[0] - 0.25) < 1e-15);
+    assert_true(fabs(aa_pixel(&t.tr, 3, 2)[0] - 0.75) < 1e-15);
+    trio_free(&t);
 }
 
 /* ---- adaptive ---- */
@@ -725,10 +685,10 @@ static void test_adaptive_default_is_paper(void **state)
     aa_counters ca, cb;
     render_full("adaptive", s, 96, 80, 0, 0, 0, 0, 1, 2, &a, &ca);
     render_full("adaptive:tag=0", s, 96, 80, 0, 0, 0, 0, 1, 2, &b, &cb);
-    assert_true(same_image(&a, &b) && ca.samples == cb.samples);
+    assert_true(support_same_image(&a, &b) && ca.samples == cb.samples);
     aa_image_free(&b);
     render_full("adaptive:tag=1", s, 96, 80, 0, 0, 0, 0, 1, 2, &b, &cb);
-    assert_false(same_image(&a, &b));
+    assert_false(support_same_image(&a, &b));
     aa_image_free(&a);
     aa_image_free(&b);
     aa_scene_free(s);

@@ -33,8 +33,8 @@
  * The command line tests run $AABENCH (scripts/run-tests.sh sets it).
  */
 #include "bench.h"
+#include "support.h"
 
-#include <fcntl.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -43,7 +43,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -93,21 +92,8 @@ static void write_file(const char *path, const char *text, int mode)
 static int render(const char *method, const aa_scene *scene, int w, int h, double t, double vx,
                   double vy, aa_image *out)
 {
-    aa_filter box;
-    aa_spec spec;
-    aa_job job;
-    aa_counters c;
-    aa_filter_default(&box);
-    int st = aa_method_parse(method, &box, &spec);
-    if (st)
-        return st;
-    assert_int_equal(aa_job_init(&job, scene, w, h, t, vx, vy, &box, 1, 2), AA_OK);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    st = aa_method_run(&spec, &job, 1, out, &c, NULL);
-    aa_job_free(&job);
-    if (st)
-        aa_image_free(out);
-    return st;
+    const support_view v = {.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .seed = 1, .threads = 2};
+    return support_render_view(method, scene, &v, out, NULL);
 }
 
 static aa_scene *pattern(const char *text)
@@ -159,64 +145,10 @@ static double coverage_error(const aa_image *img)
     return worst;
 }
 
-static double rmse(const aa_image *a, const aa_image *b)
-{
-    double s = 0;
-    size_t n = (size_t)a->w * a->h * 3;
-    for (size_t k = 0; k < n; k++)
-        s += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
-    return sqrt(s / (double)n);
-}
-
-static double max_err(const aa_image *a, const aa_image *b)
-{
-    double m = 0;
-    size_t n = (size_t)a->w * a->h * 3;
-    for (size_t k = 0; k < n; k++)
-        m = fmax(m, fabs(a->v[k] - b->v[k]));
-    return m;
-}
-
 /* The exact box reference of a scene (pattern units) at w x h. */
 static void reference(const aa_scene *s, int w, int h, aa_image *ref)
 {
-    aa_filter box;
-    aa_filter_default(&box);
-    aa_scene *placed = aa_scene_place(s, w, h, 0, 0, 0);
-    assert_non_null(placed);
-    assert_int_equal(aa_image_alloc(ref, w, h, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &box, 0, ref, NULL, NULL), AA_OK);
-    aa_scene_free(placed);
-}
-
-/* Run $AABENCH with args; stdout and stderr into `log`.  Exit status, or -1
- * if $AABENCH is not set. */
-static int run_cli(const char *const *args, char *log, size_t len)
-{
-    const char *exe = getenv("AABENCH");
-    if (!exe)
-        return -1;
-    char path[4200];
-    snprintf(path, sizeof path, "%s/cli.log", dir);
-    pid_t pid = fork();
-    if (pid == 0) {
-        int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(fd, 1);
-        dup2(fd, 2);
-        const char *argv[32] = {exe};
-        for (int k = 0; args[k] && k < 30; k++)
-            argv[k + 1] = args[k];
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
-    int status;
-    waitpid(pid, &status, 0);
-    FILE *f = fopen(path, "r");
-    size_t n = f ? fread(log, 1, len - 1, f) : 0;
-    log[n] = '\0';
-    if (f)
-        fclose(f);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+    support_reference(s, &(support_view){.w = w, .h = h}, ref, NULL, NULL);
 }
 
 /* ------------------------------------------------------------------------
@@ -545,9 +477,7 @@ static void test_export_cli(void **state)
     snprintf(out, sizeof out, "%s/crow.svg", dir);
     const char *ok[] = {"export", "-p", "crow:curves=4,kmax=0.1,gap1=4/256", "-s", "32x16",
                         "-o", out, NULL};
-    int code = run_cli(ok, log, sizeof log);
-    if (code < 0)
-        skip(); /* no $AABENCH */
+    int code = support_aabench(ok, log, sizeof log);
     if (code != 0)
         fail_msg("export: exit %d: %s", code, log);
     char *text = slurp(out);
@@ -564,13 +494,13 @@ static void test_export_cli(void **state)
     free(text);
     unlink(out);
     const char *field[] = {"export", "-p", "zoneplate", "-s", "32x16", "-o", out, NULL};
-    assert_int_equal(run_cli(field, log, sizeof log), 2);
+    assert_int_equal(support_aabench(field, log, sizeof log), 2);
     assert_non_null(strstr(log, "procedural field"));
     assert_int_equal(access(out, F_OK), -1);
     char png[4200];
     snprintf(png, sizeof png, "%s/crow.png", dir);
     const char *ext[] = {"export", "-p", "crow", "-s", "32x16", "-o", png, NULL};
-    assert_int_equal(run_cli(ext, log, sizeof log), 2);
+    assert_int_equal(support_aabench(ext, log, sizeof log), 2);
     assert_non_null(strstr(log, ".svg"));
 }
 
@@ -914,9 +844,7 @@ static void test_external_run(void **state)
     const char *missing[] = {"run", "-p", "crow", "-s", "4x2", "-m", "external:renderer=missing",
                              "-m", "external:renderer=copy", "--reps", "1", "--no-images",
                              "--no-plots", "--cache", cache, "--out", out, "-q", NULL};
-    int code = run_cli(missing, log, sizeof log);
-    if (code < 0)
-        skip();
+    int code = support_aabench(missing, log, sizeof log);
     if (code != 2)
         fail_msg("run with a missing renderer: exit %d, not 2: %s", code, log);
     assert_non_null(strstr(log, "renderer missing is not available"));
@@ -926,7 +854,7 @@ static void test_external_run(void **state)
     const char *args[] = {"run", "-p", "crow", "-s", "4x2", "-m", "external:renderer=copy",
                           "--reps", "1", "--no-images", "--no-plots", "--cache", cache,
                           "--out", out, "-q", NULL};
-    code = run_cli(args, log, sizeof log);
+    code = support_aabench(args, log, sizeof log);
     if (code != 0)
         fail_msg("run: exit %d: %s", code, log);
     char *text = slurp(csv);
@@ -1001,15 +929,15 @@ static void shipped(const char *name)
     aa_scene *moved = aa_scene_transform(crow, 1, 1, t * vx / w, t * vy / h);
     assert_int_equal(render(spec, crow, w, h, t, vx, vy, &img), AA_OK);
     assert_int_equal(render(spec, moved, w, h, t, 0, 0, &img2), AA_OK);
-    double d = max_err(&img, &img2);
+    double d = support_max_diff(&img, &img2, NULL, NULL);
     if (!(d <= 1.0 / 255 + 1e-12))
         fail_msg("%s: the moving scene and the moved scene differ by %.3e", name, d);
     aa_image ref;
     reference(moved, w, h, &ref);
-    double r = rmse(&img2, &ref);
+    double r = support_rmse(&img2, &ref);
     print_message("%s: crow 64x64 moved: RMSE %.3e, max error %.3e; moving vs moved differ by "
                   "%.3e\n",
-                  name, r, max_err(&img2, &ref), d);
+                  name, r, support_max_diff(&img2, &ref, NULL, NULL), d);
     assert_true(r < 0.1);
     for (size_t k = 0; k < (size_t)w * h * 3; k++)
         assert_true(img.v[k] >= 0 && img.v[k] <= 1);
@@ -1168,9 +1096,9 @@ static void test_agg_measure(void **state)
         for (int m = 0; m < 5; m++) {
             aa_image img;
             assert_int_equal(render(methods[m], s, 256, 256, 0, 0, 0, &img), AA_OK);
-            e[m] = rmse(&img, &ref);
+            e[m] = support_rmse(&img, &ref);
             print_message("%-17s 256x256 %-14s RMSE %.3e  max error %.3e\n", patterns[p],
-                          methods[m], e[m], max_err(&img, &ref));
+                          methods[m], e[m], support_max_diff(&img, &ref, NULL, NULL));
             aa_image_free(&img);
         }
         if (p == 0 && !(e[1] < e[0] / 4))

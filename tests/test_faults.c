@@ -24,7 +24,6 @@
 #include <stddef.h>
 #include <cmocka.h>
 
-#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -235,40 +234,9 @@ static void test_cache_fifo(void **state)
 /* Run $AABENCH with argv (NULL-terminated, without the program), `env`
  * ("NAME=value" or NULL) added, stdout to `out` (or /dev/null), stderr to
  * /dev/null.  The exit status, or 128 + the signal that ended it. */
-static pid_t spawn_cli(const char *const *argv, const char *env, const char *out);
-
 static int run_cli(const char *const *argv, const char *env, const char *out)
 {
-    pid_t pid = spawn_cli(argv, env, out);
-    int status;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-/* The same, started: returns the child's pid. */
-static pid_t spawn_cli(const char *const *argv, const char *env, const char *out)
-{
-    const char *exe = getenv("AABENCH");
-    assert_non_null(exe);
-    const char *args[64] = {exe};
-    int n = 1;
-    for (; argv[n - 1] && n < 63; n++)
-        args[n] = argv[n - 1];
-    args[n] = NULL;
-    fflush(NULL);
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        int fd = open(out ? out : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        int null = open("/dev/null", O_WRONLY);
-        if (fd < 0 || null < 0 || dup2(fd, 1) < 0 || dup2(null, 2) < 0)
-            _exit(126);
-        if (env && putenv((char *)env) != 0)
-            _exit(126);
-        execv(exe, (char *const *)args);
-        _exit(127);
-    }
-    return pid;
+    return support_wait(support_aabench_spawn(argv, env, out, NULL));
 }
 
 static void test_absurd_threads(void **state)
@@ -317,9 +285,11 @@ static void test_two_runs_one_folder(void **state)
     assert_non_null(mkdtemp(dir));
     snprintf(cache, sizeof cache, "AABENCH_CACHE=%s/cache", dir);
     for (int round = 0; round < 3; round++) {
-        const char *argv[] = {"run", "-p", "crow", "-s", "16x16", "-m", "point", "-m", "area",
-                              "--reps", "1", "--no-images", "-q", "--out", dir, NULL};
-        pid_t a = spawn_cli(argv, cache, NULL), b = spawn_cli(argv, cache, NULL);
+        const char *argv[] = {"run", "-p", "crow", "-f", "box", "-s", "16x16", "-m", "point",
+                              "-m", "area", "--reps", "1", "--no-images", "-q", "--out", dir,
+                              NULL};
+        pid_t a = support_aabench_spawn(argv, cache, NULL, NULL);
+        pid_t b = support_aabench_spawn(argv, cache, NULL, NULL);
         int sa, sb;
         assert_int_equal(waitpid(a, &sa, 0), a);
         assert_int_equal(waitpid(b, &sb, 0), b);
@@ -368,8 +338,8 @@ static void test_stdout_full(void **state)
     snprintf(csv, sizeof csv, "%s/run/results.csv", dir);
     const char *ta[] = {"truth", "-p", "crow", "-s", "8x8", "--no-cache", "-o", a, NULL};
     const char *tb[] = {"truth", "-p", "star", "-s", "8x8", "--no-cache", "-o", b, NULL};
-    const char *run[] = {"run", "-p",      "crow", "-s",          "8x8", "-m", "point",
-                         "--reps", "1", "--no-images", "--no-plots", "-q", "--out", out, NULL};
+    const char *run[] = {"run", "-p", "crow", "-f", "box", "-s", "8x8", "-m", "point", "--reps",
+                         "1", "--no-images", "--no-plots", "-q", "--out", out, NULL};
     assert_int_equal(run_cli(ta, NULL, NULL), 0);
     assert_int_equal(run_cli(tb, NULL, NULL), 0);
     assert_int_equal(run_cli(run, "AABENCH_CACHE=/tmp/aabench-faults-cache", NULL), 0);
@@ -473,8 +443,25 @@ static void test_interrupted(void **state)
     snprintf(out, sizeof out, "%s/o.txt", dir);
     const char *argv[] = {"truth", "-p", "crow", "-s", "2048x2048", "-f", "gauss", "--no-cache",
                           "--threads", "1", "-o", out, NULL};
-    pid_t pid = spawn_cli(argv, NULL, NULL);
-    usleep(300 * 1000);
+    pid_t pid = support_aabench_spawn(argv, NULL, NULL, NULL);
+    /* the signal once the command catches it (its SigCgt mask in
+     * /proc/PID/status, proc(5)): a busy machine may take longer than any
+     * fixed delay to get there; then a little into the reference */
+    int caught = 0;
+    for (int tries = 0; tries < 600 && !caught; tries++) {
+        char path[64], line[256];
+        snprintf(path, sizeof path, "/proc/%d/status", (int)pid);
+        FILE *f = fopen(path, "r");
+        while (f && fgets(line, sizeof line, f))
+            if (!strncmp(line, "SigCgt:", 7))
+                caught = (strtoull(line + 7, NULL, 16) >> (SIGTERM - 1)) & 1;
+        if (f)
+            fclose(f);
+        if (!caught)
+            usleep(50 * 1000);
+    }
+    assert_true(caught);
+    usleep(200 * 1000);
     assert_int_equal(kill(pid, SIGTERM), 0);
     int status;
     assert_int_equal(waitpid(pid, &status, 0), pid);
@@ -504,8 +491,9 @@ static void test_plugin_by_name(void **state)
     /* a baseline with the plug-in's method, checked without --plugin */
     snprintf(out, sizeof out, "%s/run", dir);
     snprintf(csv, sizeof csv, "%s/run/results.csv", dir);
-    const char *run[] = {"run", "--plugin", plugin, "-p", "crow", "-s", "8x8", "-m", "centre4",
-                         "--reps", "1", "--no-images", "--no-plots", "-q", "--out", out, NULL};
+    const char *run[] = {"run", "--plugin", plugin, "-p", "crow", "-f", "box", "-s", "8x8",
+                         "-m", "centre4", "--reps", "1", "--no-images", "--no-plots", "-q",
+                         "--out", out, NULL};
     assert_int_equal(run_cli(run, "AABENCH_CACHE=/tmp/aabench-faults-cache", NULL), 0);
     snprintf(cmd, sizeof cmd,
              "AABENCH_CACHE=/tmp/aabench-faults-cache '%s' check --baseline '%s' > '%s/check.txt';"

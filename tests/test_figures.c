@@ -46,13 +46,7 @@ static char *slurp(const char *name)
 /* The "rmse:" value of panel `panel` (1-based) in a caption. */
 static double caption_rmse(const char *text, int panel)
 {
-    char key[32];
-    snprintf(key, sizeof key, "panel %d:", panel);
-    const char *p = strstr(text, key);
-    assert_non_null(p);
-    p = strstr(p, "rmse: ");
-    assert_non_null(p);
-    return strtod(p + 6, NULL);
+    return strtod(support_caption_field(text, panel, "rmse: "), NULL);
 }
 
 /* RMSE of `method` on pattern at w x h (box filter) against the reference,

@@ -35,8 +35,8 @@
  *    the filter are both named.  The command under test is $AABENCH.
  */
 #include "bench.h"
+#include "support.h"
 
-#include <fcntl.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -44,7 +44,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -120,27 +119,17 @@ static void test_papers_methods(void **state)
 
 static char *slurp(const char *name)
 {
-    static char buf[65536];
     char path[4096];
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
+    static char buf[65536];
+    return support_read_file(path, buf, sizeof buf, NULL);
 }
 
 /* The rgb line of panel p (1-based) in a caption. */
 static void caption_rgb(const char *text, int p, double rgb[3])
 {
-    char key[32];
-    snprintf(key, sizeof key, "panel %d:", p);
-    const char *s = strstr(text, key);
-    assert_non_null(s);
-    s = strstr(s, "rgb: ");
-    assert_non_null(s);
-    assert_int_equal(sscanf(s + 5, "%lf %lf %lf", &rgb[0], &rgb[1], &rgb[2]), 3);
+    const char *s = support_caption_field(text, p, "rgb: ");
+    assert_int_equal(sscanf(s, "%lf %lf %lf", &rgb[0], &rgb[1], &rgb[2]), 3);
 }
 
 static void test_catmull_moved(void **state)
@@ -196,25 +185,29 @@ static void test_eye(void **state)
     assert_int_equal(aa_eye_blur(&im, 0, &out), AA_EINVAL);
 }
 
+/* The reference (aa_reference) of crow at 64 x 64 under `filter`, the
+ * pattern into *p. */
+static void crow_reference_64(const char *filter, aa_spec *p, aa_image *out)
+{
+    aa_view v;
+    memset(&v, 0, sizeof v);
+    assert_int_equal(aa_pattern_parse("crow", p), 0);
+    v.pattern = *p;
+    v.w = v.h = 64;
+    assert_int_equal(aa_filter_parse(filter, &v.filter), 0);
+    assert_int_equal(aa_reference(&v, NULL, 2, out, NULL, NULL), 0);
+}
+
 /* The eye's view of the scene (fine box cells seen through the Gaussian)
  * against the exact reference under gauss:s=2 (truth.c's own path). */
 static void test_eye_truth(void **state)
 {
     (void)state;
     aa_spec p;
-    aa_view v;
     aa_image exact, eye;
-    memset(&v, 0, sizeof v);
-    assert_int_equal(aa_pattern_parse("crow", &p), 0);
-    v.pattern = p;
-    v.w = v.h = 64;
-    assert_int_equal(aa_filter_parse("gauss:s=2", &v.filter), 0);
-    assert_int_equal(aa_reference(&v, NULL, 2, &exact, NULL, NULL), 0);
+    crow_reference_64("gauss:s=2", &p, &exact);
     assert_int_equal(aa_eye_truth(&p, 64, 64, 0, 0, 0, 2.0, NULL, 2, &eye), 0);
-    double mx = 0;
-    for (size_t k = 0; k < (size_t)64 * 64 * 3; k++)
-        mx = fmax(mx, fabs(exact.v[k] - eye.v[k]));
-    assert_true(mx < 1e-3);
+    assert_true(support_max_diff(&exact, &eye, NULL, NULL) < 1e-3);
     aa_image_free(&exact);
     aa_image_free(&eye);
 }
@@ -223,15 +216,9 @@ static void test_eye_of_exact(void **state)
 {
     (void)state;
     aa_spec p;
-    aa_view v;
     aa_image box, truth;
     double e;
-    memset(&v, 0, sizeof v);
-    assert_int_equal(aa_pattern_parse("crow", &p), 0);
-    v.pattern = p;
-    v.w = v.h = 64;
-    assert_int_equal(aa_filter_parse("box", &v.filter), 0);
-    assert_int_equal(aa_reference(&v, NULL, 2, &box, NULL, NULL), 0);
+    crow_reference_64("box", &p, &box);
     assert_int_equal(aa_eye_truth(&p, 64, 64, 0, 0, 0, AA_EYE_S, NULL, 2, &truth), 0);
     assert_int_equal(aa_eye_rmse(&box, &truth, AA_EYE_S, &e), 0);
     assert_true(e > 0 && e < 0.02);
@@ -270,18 +257,7 @@ static void test_calibration(void **state)
 static void render_into(const char *method, const aa_scene *scene, const char *filter, int w,
                         aa_image *out)
 {
-    aa_filter f;
-    aa_spec spec;
-    aa_job job;
-    aa_counters c;
-    assert_int_equal(aa_filter_parse(filter, &f), 0);
-    if (aa_method_parse(method, &f, &spec))
-        fail_msg("%s: %s", method, aa_last_error());
-    assert_int_equal(aa_job_init(&job, scene, w, w, 0, 0, 0, &f, 1, 2), 0);
-    assert_int_equal(aa_image_alloc(out, w, w, 3), 0);
-    if (aa_method_run(&spec, &job, 1, out, &c, NULL))
-        fail_msg("%s: %s", method, aa_last_error());
-    aa_job_free(&job);
+    support_render(method, scene, filter, w, w, 2, out, NULL);
 }
 
 /* A quadrilateral of one colour: its texture is that colour, so the texture
@@ -479,30 +455,23 @@ static void test_run_pairs(void **state)
 /* Run $AABENCH with args, its output in `output`; the exit status. */
 static int run(const char *const *args)
 {
-    const char *exe = getenv("AABENCH");
-    if (!exe)
-        skip();
-    char log[512];
-    snprintf(log, sizeof log, "%s/log", dir);
-    pid_t pid = fork();
-    if (pid == 0) {
-        int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(fd, 1);
-        dup2(fd, 2);
-        const char *argv[40] = {exe};
-        for (int k = 0; args[k] && k < 38; k++)
-            argv[k + 1] = args[k];
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
-    int status;
-    waitpid(pid, &status, 0);
-    FILE *f = fopen(log, "r");
-    size_t n = f ? fread(output, 1, sizeof output - 1, f) : 0;
-    output[n] = '\0';
-    if (f)
-        fclose(f);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+    return support_aabench(args, output, sizeof output);
+}
+
+/* `aabench run` with the arguments given (NULL-terminated), then one
+ * repetition on one thread, no images, plots or cache, into out: the exit
+ * status. */
+static int run_once(const char *const *what, const char *out)
+{
+    const char *args[40] = {"run"};
+    int n = 1;
+    while (*what && n < 28)
+        args[n++] = *what++;
+    const char *const rest[] = {"--reps", "1", "--no-images", "--no-plots", "--out", out,
+                                "--threads", "1", "--no-cache", NULL};
+    for (int k = 0; k < 10; k++)
+        args[n++] = rest[k];
+    return run(args);
 }
 
 static int count(const char *text, const char *what)
@@ -519,10 +488,8 @@ static void test_cli_pairs(void **state)
     char out[600];
     snprintf(out, sizeof out, "%s/run", dir);
     /* the quick suite at a tiny size: every family once, none refused */
-    const char *quick[] = {"run", "--suite", "quick", "-s", "16x16", "--reps", "1",
-                           "--no-images", "--no-plots", "--out", out, "--threads", "1",
-                           "--no-cache", NULL};
-    assert_int_equal(run(quick), 0);
+    const char *quick[] = {"--suite", "quick", "-s", "16x16", NULL};
+    assert_int_equal(run_once(quick, out), 0);
     assert_int_equal(count(output, "skipped"), 0);
     assert_int_equal(count(output, "refused"), 0);
     aa_row *rows;
@@ -536,22 +503,28 @@ static void test_cli_pairs(void **state)
     free(rows);
     /* methods named, filters from the default suite: one line for the
      * pairs left out (box: conetable; tent:r=1: both; gauss:s=1: point) */
-    const char *some[] = {"run", "-p", "crow", "-s", "16x16", "-m", "point", "-m", "conetable",
-                          "--reps", "1", "--no-images", "--no-plots", "--out", out,
-                          "--threads", "1", "--no-cache", NULL};
-    assert_int_equal(run(some), 0);
+    const char *some[] = {"-p", "crow", "-s", "16x16", "-m", "point", "-m", "conetable", NULL};
+    assert_int_equal(run_once(some, out), 0);
     assert_int_equal(count(output, "skipped 4 method and view pairs"), 1);
     assert_int_equal(count(output, "refused"), 0);
     assert_int_equal(aa_rows_read_csv(csv, &rows, &n), 0);
     assert_int_equal(n, 2);
     free(rows);
-    /* the method and the filter both named: run as asked, refusal shown */
-    const char *named[] = {"run", "-p", "crow", "-s", "16x16", "-m", "point", "-f", "gauss",
-                           "--reps", "1", "--no-images", "--no-plots", "--out", out,
-                           "--threads", "1", "--no-cache", NULL};
-    assert_int_equal(run(named), 0);
+    /* the method and the filters both named: run as asked, the refusal a
+     * row of its own; a method that refuses every filter named is bad
+     * input (exit 2, as `render` says), not a run of refusals */
+    const char *named[] = {"-p", "crow", "-s", "16x16", "-m", "point", "-f", "box", "-f",
+                           "gauss", NULL};
+    assert_int_equal(run_once(named, out), 0);
     assert_int_equal(count(output, "skipped"), 0);
     assert_true(count(output, "refused") >= 1);
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), 0);
+    assert_int_equal(n, 2);
+    assert_true(rows[0].ok != rows[1].ok);
+    free(rows);
+    const char *refused[] = {"-p", "crow", "-s", "16x16", "-m", "point", "-f", "gauss", NULL};
+    assert_int_equal(run_once(refused, out), 2);
+    assert_true(count(output, "point") >= 1);
 }
 
 int main(void)

@@ -879,62 +879,41 @@ static int module_loaded(void)
     return found;
 }
 
-/* A check inside child(): on failure, say what and return nonzero. */
-#define CHILD_CHECK(cond)                                                                      \
-    do {                                                                                       \
-        if (!(cond)) {                                                                         \
-            fprintf(stderr, "%s:%d: failed: %s (last error: %s)\n", __FILE__, __LINE__, #cond, \
-                    aa_last_error());                                                          \
-            return 1;                                                                          \
-        }                                                                                      \
-    } while (0)
-
 /* Run `body` in a child process, which starts with no module loaded (these
  * tests run first, and run every load in a child) and whose loading stays
  * there.  The child reports through its exit status: a cmocka assertion
  * there would go on to run the parent's remaining tests in the child. */
-static void child(void **state, int (*body)(void **state))
+static void child(void **state, int (*body)(void *state))
 {
     int loaded = module_loaded();
     if (loaded != 0)
         fail_msg("aabench-oiio.so is %s: this test must run before any that reads or "
                  "writes an OpenImageIO format", loaded < 0 ? "maybe loaded" : "loaded");
-    fflush(NULL);
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        int failed = body(state);
-        fflush(NULL);
-        _exit(failed);
-    }
-    int status;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        fail_msg("the child's checks failed (above)");
+    support_in_child(body, state);
 }
 
 /* .txt reads and writes, .pfm writes and looking at extensions load no
  * module; reading .pfm (through OpenImageIO) loads it. */
-static int txt_loads_nothing(void **state)
+static int txt_loads_nothing(void *state)
 {
     char txt[PATH_MAX + 64], pfm[PATH_MAX + 64];
     snprintf(txt, sizeof txt, "%s", in_dir(state, "a.txt"));
     snprintf(pfm, sizeof pfm, "%s", in_dir(state, "a.pfm"));
     aa_image im, back;
-    CHILD_CHECK(aa_image_alloc(&im, 3, 2, 3) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_alloc(&im, 3, 2, 3) == AA_OK);
     fill_distinct(&im, 0.125);
-    CHILD_CHECK(aa_image_write(txt, &im, NULL) == AA_OK);
-    CHILD_CHECK(aa_image_write_txt(txt, &im) == AA_OK);
-    CHILD_CHECK(aa_image_read(txt, &back) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_write(txt, &im, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_write_txt(txt, &im) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_read(txt, &back) == AA_OK);
     aa_image_free(&back);
-    CHILD_CHECK(aa_image_read_txt(txt, &back) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_read_txt(txt, &back) == AA_OK);
     aa_image_free(&back);
-    CHILD_CHECK(aa_image_write(pfm, &im, NULL) == AA_OK);
-    CHILD_CHECK(aa_image_ext_known("x.exr") && aa_image_ext_known("x.png"));
-    CHILD_CHECK(module_loaded() == 0);
-    CHILD_CHECK(aa_image_read(pfm, &back) == AA_OK);
-    CHILD_CHECK(module_loaded() == 1);
-    CHILD_CHECK(back.w == 3 && back.h == 2 && back.c == 3);
+    SUPPORT_CHILD_CHECK(aa_image_write(pfm, &im, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_ext_known("x.exr") && aa_image_ext_known("x.png"));
+    SUPPORT_CHILD_CHECK(module_loaded() == 0);
+    SUPPORT_CHILD_CHECK(aa_image_read(pfm, &back) == AA_OK);
+    SUPPORT_CHILD_CHECK(module_loaded() == 1);
+    SUPPORT_CHILD_CHECK(back.w == 3 && back.h == 2 && back.c == 3);
     aa_image_free(&back);
     aa_image_free(&im);
     return 0;
@@ -948,7 +927,7 @@ static void test_module_on_demand(void **state)
 /* A module that cannot be loaded: the formats that need it are refused with
  * AA_EIO, a message naming the image file, the module looked for and the
  * loader's reason, and no file; the others work as before. */
-static int module_missing(void **state)
+static int module_missing(void *state)
 {
     static const char bogus[] = "/nonexistent/aabench-oiio.so";
     char exr[PATH_MAX + 64], png[PATH_MAX + 64], txt[PATH_MAX + 64], pfm[PATH_MAX + 64];
@@ -956,28 +935,29 @@ static int module_missing(void **state)
     snprintf(png, sizeof png, "%s", in_dir(state, "a.png"));
     snprintf(txt, sizeof txt, "%s", in_dir(state, "a.txt"));
     snprintf(pfm, sizeof pfm, "%s", in_dir(state, "a.pfm"));
-    CHILD_CHECK(setenv("AABENCH_OIIO", bogus, 1) == 0);
+    SUPPORT_CHILD_CHECK(setenv("AABENCH_OIIO", bogus, 1) == 0);
     aa_image im, back;
-    CHILD_CHECK(aa_image_alloc(&im, 2, 2, 3) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_alloc(&im, 2, 2, 3) == AA_OK);
     fill_distinct(&im, 0.001);
     const char *msg = aa_last_error();
     for (int k = 0; k < 2; k++) { /* the second time from what the first found */
-        CHILD_CHECK(aa_image_write(exr, &im, NULL) == AA_EIO);
-        CHILD_CHECK(strstr(msg, exr) == msg && strstr(msg, bogus) && strstr(msg, "AABENCH_OIIO"));
-        CHILD_CHECK(strstr(msg, "No such file") != NULL); /* dlerror() */
-        CHILD_CHECK(!exists(exr));
-        CHILD_CHECK(aa_image_write(png, &im, NULL) == AA_EIO);
-        CHILD_CHECK(strstr(msg, png) == msg && strstr(msg, bogus));
-        CHILD_CHECK(!exists(png));
+        SUPPORT_CHILD_CHECK(aa_image_write(exr, &im, NULL) == AA_EIO);
+        SUPPORT_CHILD_CHECK(strstr(msg, exr) == msg && strstr(msg, bogus) &&
+                            strstr(msg, "AABENCH_OIIO"));
+        SUPPORT_CHILD_CHECK(strstr(msg, "No such file") != NULL); /* dlerror() */
+        SUPPORT_CHILD_CHECK(!exists(exr));
+        SUPPORT_CHILD_CHECK(aa_image_write(png, &im, NULL) == AA_EIO);
+        SUPPORT_CHILD_CHECK(strstr(msg, png) == msg && strstr(msg, bogus));
+        SUPPORT_CHILD_CHECK(!exists(png));
     }
-    CHILD_CHECK(aa_image_write(pfm, &im, NULL) == AA_OK);
-    CHILD_CHECK(aa_image_read(pfm, &back) == AA_EIO);
-    CHILD_CHECK(strstr(msg, pfm) == msg && strstr(msg, bogus));
-    CHILD_CHECK(back.v == NULL);
-    CHILD_CHECK(aa_image_write(txt, &im, NULL) == AA_OK);
-    CHILD_CHECK(aa_image_read(txt, &back) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_write(pfm, &im, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_read(pfm, &back) == AA_EIO);
+    SUPPORT_CHILD_CHECK(strstr(msg, pfm) == msg && strstr(msg, bogus));
+    SUPPORT_CHILD_CHECK(back.v == NULL);
+    SUPPORT_CHILD_CHECK(aa_image_write(txt, &im, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_read(txt, &back) == AA_OK);
     aa_image_free(&back);
-    CHILD_CHECK(module_loaded() == 0);
+    SUPPORT_CHILD_CHECK(module_loaded() == 0);
     aa_image_free(&im);
     return 0;
 }

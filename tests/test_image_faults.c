@@ -33,6 +33,7 @@
 #define _XOPEN_SOURCE 700 /* nftw */
 
 #include "bench.h"
+#include "support.h"
 
 #include <setjmp.h>
 #include <stdarg.h>
@@ -107,6 +108,27 @@ static char *join(char *buf, size_t len, const char *dir, const char *name)
     if (snprintf(buf, len, "%s/%s", dir, name) >= (int)len)
         fail_msg("path too long: %s/%s", dir, name);
     return buf;
+}
+
+/* A fresh folder `name` (see fresh) and the paths of files in it: pairs
+ * of a buffer of PATH_MAX + 32 bytes and a file name, then NULL. */
+static void fresh_files(const char *name, ...)
+{
+    char dir[PATH_MAX];
+    fresh(name, dir, sizeof dir);
+    va_list ap;
+    va_start(ap, name);
+    for (char *buf; (buf = va_arg(ap, char *)) != NULL;)
+        join(buf, PATH_MAX + 32, dir, va_arg(ap, const char *));
+    va_end(ap);
+}
+
+/* dir/STEM.EXT (ext with its dot) into buf. */
+static char *join_ext(char *buf, size_t len, const char *dir, const char *stem, const char *ext)
+{
+    char name[32];
+    snprintf(name, sizeof name, "%s%s", stem, ext);
+    return join(buf, len, dir, name);
 }
 
 static int temporaries;
@@ -258,35 +280,6 @@ static void expect_output(const char *text, const char *what)
         fail_msg("%s: the output lacks \"%s\":\n%s", what, text, output);
 }
 
-/* In a forked child: on failure, say what and return nonzero (a cmocka
- * assertion there would run the parent's remaining tests in the child). */
-#define CHILD_CHECK(cond)                                                                      \
-    do {                                                                                       \
-        if (!(cond)) {                                                                         \
-            fprintf(stderr, "%s:%d: failed: %s (last error: %s)\n", __FILE__, __LINE__, #cond, \
-                    aa_last_error());                                                          \
-            return 1;                                                                          \
-        }                                                                                      \
-    } while (0)
-
-static void in_child(int (*body)(const char *dir), const char *dir)
-{
-    fflush(NULL);
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        int failed = body(dir);
-        fflush(NULL);
-        _exit(failed);
-    }
-    int status;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    if (WIFSIGNALED(status))
-        fail_msg("the child was ended by signal %d", WTERMSIG(status));
-    if (WEXITSTATUS(status) != 0)
-        fail_msg("the child's checks failed (above)");
-}
-
 /* Pseudo-random values in [0, 1) (Numerical Recipes' LCG). */
 static void fill_random(aa_image *im, uint32_t seed)
 {
@@ -322,11 +315,8 @@ static void test_full_disk_truth(void **state)
     char dir[PATH_MAX], path[PATH_MAX + 32], full[PATH_MAX + 32];
     fresh("full-disk-truth", dir, sizeof dir);
     for (size_t f = 0; f < FORMATS_RUN; f++) {
-        char name[32];
-        snprintf(name, sizeof name, "out%s", formats[f]);
-        join(path, sizeof path, dir, name);
-        snprintf(name, sizeof name, "whole%s", formats[f]);
-        join(full, sizeof full, dir, name);
+        join_ext(path, sizeof path, dir, "out", formats[f]);
+        join_ext(full, sizeof full, dir, "whole", formats[f]);
         const char *small[] = {"truth", "-p", "crow", "-s", "16x16", "--no-cache", "-o", path,
                                NULL};
         const char *big[] = {"truth", "-p", "crow", "-s", "96x96", "--no-cache", "-o", path, NULL};
@@ -377,8 +367,8 @@ static void test_full_disk_run(void **state)
     join(montage, sizeof montage, out, "montage.png");
     join(csv, sizeof csv, out, "results.csv");
     join(plot, sizeof plot, out, "plots/error_vs_time.png");
-    const char *args[] = {"run", "-p", "crow", "-s", "24x24", "-m", "point", "-m", "area",
-                          "--reps", "1", "-q", "--no-cache", "--out", out, NULL};
+    const char *args[] = {"run", "-p", "crow", "-f", "box", "-s", "24x24", "-m", "point", "-m",
+                          "area", "--reps", "1", "-q", "--no-cache", "--out", out, NULL};
     expect_exit(run_cmd(NULL, args), 0, "run");
     size_t mlen, clen, plen;
     unsigned char *m = slurp(montage, &mlen), *c = slurp(csv, &clen), *p = slurp(plot, &plen);
@@ -417,14 +407,15 @@ static int montage_tile_get(void *ctx, size_t k, aa_tile *tile)
 
 /* In a child whose files may not grow beyond LIB_ROOM bytes: every writer
  * of the library fails with AA_EIO and leaves what was there. */
-static int library_writers(const char *dir)
+static int library_writers(void *arg)
 {
+    const char *dir = arg;
     char path[PATH_MAX + 64];
     signal(SIGXFSZ, SIG_IGN);
     aa_image im, tiles[2];
-    CHILD_CHECK(aa_image_alloc(&im, 64, 64, 3) == AA_OK);
-    CHILD_CHECK(aa_image_alloc(&tiles[0], 40, 30, 3) == AA_OK);
-    CHILD_CHECK(aa_image_alloc(&tiles[1], 40, 30, 3) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_alloc(&im, 64, 64, 3) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_alloc(&tiles[0], 40, 30, 3) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_alloc(&tiles[1], 40, 30, 3) == AA_OK);
     fill_random(&im, 7);
     fill_random(&tiles[0], 8);
     fill_random(&tiles[1], 9);
@@ -432,39 +423,39 @@ static int library_writers(const char *dir)
     static const char old_text[] = "the previous file\n";
     for (size_t f = 0; f < FORMATS_RUN; f++) {
         snprintf(path, sizeof path, "%s/lib%s", dir, formats[f]);
-        CHILD_CHECK(aa_file_write_atomic(path, old_text, sizeof old_text - 1) == AA_OK);
+        SUPPORT_CHILD_CHECK(aa_file_write_atomic(path, old_text, sizeof old_text - 1) == AA_OK);
     }
     snprintf(path, sizeof path, "%s/montage.png", dir);
-    CHILD_CHECK(aa_file_write_atomic(path, old_text, sizeof old_text - 1) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_file_write_atomic(path, old_text, sizeof old_text - 1) == AA_OK);
     snprintf(path, sizeof path, "%s/atomic.json", dir);
-    CHILD_CHECK(aa_file_write_atomic(path, old_text, sizeof old_text - 1) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_file_write_atomic(path, old_text, sizeof old_text - 1) == AA_OK);
     struct rlimit r = {LIB_ROOM, LIB_ROOM};
-    CHILD_CHECK(setrlimit(RLIMIT_FSIZE, &r) == 0);
+    SUPPORT_CHILD_CHECK(setrlimit(RLIMIT_FSIZE, &r) == 0);
     for (size_t f = 0; f < FORMATS_RUN; f++) {
         snprintf(path, sizeof path, "%s/lib%s", dir, formats[f]);
-        CHILD_CHECK(aa_image_write(path, &im, NULL) == AA_EIO);
-        CHILD_CHECK(strstr(aa_last_error(), path) != NULL);
+        SUPPORT_CHILD_CHECK(aa_image_write(path, &im, NULL) == AA_EIO);
+        SUPPORT_CHILD_CHECK(strstr(aa_last_error(), path) != NULL);
         /* row by row: the failure shows at a row or at the end */
         aa_image_out *out;
-        CHILD_CHECK(aa_image_out_begin(path, im.w, im.h, im.c, NULL, &out) == AA_OK);
+        SUPPORT_CHILD_CHECK(aa_image_out_begin(path, im.w, im.h, im.c, NULL, &out) == AA_OK);
         int st = AA_OK;
         for (int j = 0; j < im.h && st == AA_OK; j++)
             st = aa_image_out_rows(out, aa_pixel(&im, 0, j), 1);
         if (st == AA_OK)
             st = aa_image_out_finish(out);
         else
-            CHILD_CHECK(aa_image_out_finish(out) == st);
-        CHILD_CHECK(st == AA_EIO);
+            SUPPORT_CHILD_CHECK(aa_image_out_finish(out) == st);
+        SUPPORT_CHILD_CHECK(st == AA_EIO);
     }
     aa_tile_source src = {.n = 6, .tw = 40, .th = 30, .lines = 1, .get = montage_tile_get,
                           .ctx = tiles};
     snprintf(path, sizeof path, "%s/montage.png", dir);
-    CHILD_CHECK(aa_montage_stream(path, &src, 3, NULL) == AA_EIO);
+    SUPPORT_CHILD_CHECK(aa_montage_stream(path, &src, 3, NULL) == AA_EIO);
     char big[2 * LIB_ROOM];
     memset(big, 'x', sizeof big);
     snprintf(path, sizeof path, "%s/atomic.json", dir);
-    CHILD_CHECK(aa_file_write_atomic(path, big, sizeof big) == AA_EIO);
-    CHILD_CHECK(strstr(aa_last_error(), strerror(EFBIG)) != NULL);
+    SUPPORT_CHILD_CHECK(aa_file_write_atomic(path, big, sizeof big) == AA_EIO);
+    SUPPORT_CHILD_CHECK(strstr(aa_last_error(), strerror(EFBIG)) != NULL);
     /* everything as it was */
     for (size_t f = 0; f < FORMATS_RUN + 2; f++) {
         if (f < FORMATS_RUN)
@@ -477,7 +468,7 @@ static int library_writers(const char *dir)
         if (in)
             fclose(in);
         back[n] = '\0';
-        CHILD_CHECK(strcmp(back, old_text) == 0);
+        SUPPORT_CHILD_CHECK(strcmp(back, old_text) == 0);
     }
     aa_image_free(&im);
     aa_image_free(&tiles[0]);
@@ -490,7 +481,7 @@ static void test_full_disk_library(void **state)
     (void)state;
     char dir[PATH_MAX];
     fresh("full-disk-library", dir, sizeof dir);
-    in_child(library_writers, dir);
+    support_in_child(library_writers, dir);
     assert_int_equal(temporaries_in(dir), 0);
 }
 
@@ -525,9 +516,7 @@ static void test_full_tmpfs(void **state)
     }
     join(filler, sizeof filler, mnt, "filler");
     for (size_t f = 0; f < FORMATS_RUN; f++) {
-        char name[32];
-        snprintf(name, sizeof name, "out%s", formats[f]);
-        join(path, sizeof path, mnt, name);
+        join_ext(path, sizeof path, mnt, "out", formats[f]);
         const char *small[] = {"truth", "-p", "crow", "-s", "8x8", "--no-cache", "-o", path,
                                NULL};
         const char *big[] = {"truth", "-p", "crow", "-s", "96x96", "--no-cache", "-o", path, NULL};
@@ -558,99 +547,110 @@ static void test_full_tmpfs(void **state)
  * Files cut short, and garbage after a valid header
  * ------------------------------------------------------------------------ */
 
-static void test_cut_short(void **state)
+/* `compare good bad` ends with status 3, naming bad. */
+static void compare_refused(const char *good, const char *bad)
 {
-    (void)state;
-    char dir[PATH_MAX], path[PATH_MAX + 32], cut[PATH_MAX + 32];
-    fresh("cut", dir, sizeof dir);
+    const char *args[] = {"compare", good, bad, NULL};
+    expect_exit(run_cmd(NULL, args), 3, bad);
+    expect_output(bad, bad);
+}
+
+/* For each of the n extensions: a fresh folder `name` holding a w x h x 3
+ * image of fill_random(seed) written to whole.EXT; body gets the folder,
+ * the extension, the file's path and its bytes. */
+typedef void whole_file_body(const char *dir, const char *ext, const char *path,
+                             const unsigned char *whole, size_t n);
+
+static void for_whole_files(const char *name, int w, int h, uint32_t seed,
+                            const char *const *exts, size_t nexts, whole_file_body *body)
+{
+    char dir[PATH_MAX], path[PATH_MAX + 32];
+    fresh(name, dir, sizeof dir);
     aa_image im;
-    assert_int_equal(aa_image_alloc(&im, 37, 23, 3), AA_OK);
-    fill_random(&im, 12345);
-    for (size_t f = 0; f < FORMATS_RUN; f++) {
-        char name[32];
-        snprintf(name, sizeof name, "whole%s", formats[f]);
-        join(path, sizeof path, dir, name);
-        snprintf(name, sizeof name, "cut%s", formats[f]);
-        join(cut, sizeof cut, dir, name);
+    assert_int_equal(aa_image_alloc(&im, w, h, 3), AA_OK);
+    fill_random(&im, seed);
+    for (size_t f = 0; f < nexts; f++) {
+        join_ext(path, sizeof path, dir, "whole", exts[f]);
         assert_int_equal(aa_image_write(path, &im, NULL), AA_OK);
         size_t n;
         unsigned char *whole = slurp(path, &n);
-        /* the whole file reads: the refusals below are about the cuts */
-        aa_image back;
-        assert_int_equal(aa_image_read(path, &back), AA_OK);
-        assert_int_equal(back.w * back.h * back.c, 37 * 23 * 3);
-        aa_image_free(&back);
-        size_t at[] = {0, 1, 7, 8, 33, 100, n / 4, n / 3, n / 2, 2 * n / 3, 3 * n / 4,
-                       n - 100, n - 13, n - 12, n - 8, n - 4, n - 1};
-        for (size_t k = 0; k < sizeof at / sizeof at[0]; k++) {
-            if (at[k] >= n)
-                continue;
-            spill(cut, whole, at[k]);
-            back = (aa_image){1, 1, 1, (double *)&back};
-            int st = aa_image_read(cut, &back);
-            if (st != AA_EIO)
-                fail_msg("%s cut to %zu of %zu bytes: status %d, expected AA_EIO (%s)",
-                         formats[f], at[k], n, st, st ? aa_last_error() : "read");
-            if (strstr(aa_last_error(), cut) == NULL)
-                fail_msg("%s cut to %zu bytes: the message does not name the file: %s",
-                         formats[f], at[k], aa_last_error());
-            assert_null(back.v);
-        }
-        /* and the command: status 3, naming the file */
-        spill(cut, whole, n / 2);
-        const char *args[] = {"compare", path, cut, NULL};
-        expect_exit(run_cmd(NULL, args), 3, cut);
-        expect_output(cut, cut);
+        body(dir, exts[f], path, whole, n);
         free(whole);
     }
     aa_image_free(&im);
 }
 
+static void cut_short(const char *dir, const char *ext, const char *path,
+                      const unsigned char *whole, size_t n)
+{
+    char cut[PATH_MAX + 32];
+    join_ext(cut, sizeof cut, dir, "cut", ext);
+    /* the whole file reads: the refusals below are about the cuts */
+    aa_image back;
+    assert_int_equal(aa_image_read(path, &back), AA_OK);
+    assert_int_equal(back.w * back.h * back.c, 37 * 23 * 3);
+    aa_image_free(&back);
+    size_t at[] = {0, 1, 7, 8, 33, 100, n / 4, n / 3, n / 2, 2 * n / 3, 3 * n / 4,
+                   n - 100, n - 13, n - 12, n - 8, n - 4, n - 1};
+    for (size_t k = 0; k < sizeof at / sizeof at[0]; k++) {
+        if (at[k] >= n)
+            continue;
+        spill(cut, whole, at[k]);
+        back = (aa_image){1, 1, 1, (double *)&back};
+        int st = aa_image_read(cut, &back);
+        if (st != AA_EIO)
+            fail_msg("%s cut to %zu of %zu bytes: status %d, expected AA_EIO (%s)", ext, at[k],
+                     n, st, st ? aa_last_error() : "read");
+        if (strstr(aa_last_error(), cut) == NULL)
+            fail_msg("%s cut to %zu bytes: the message does not name the file: %s", ext, at[k],
+                     aa_last_error());
+        assert_null(back.v);
+    }
+    /* and the command: status 3, naming the file */
+    spill(cut, whole, n / 2);
+    compare_refused(path, cut);
+}
+
+static void test_cut_short(void **state)
+{
+    (void)state;
+    for_whole_files("cut", 37, 23, 12345, formats, FORMATS_RUN, cut_short);
+}
+
+static void garbage_after_header(const char *dir, const char *ext, const char *path,
+                                 const unsigned char *b, size_t n)
+{
+    char bad[PATH_MAX + 32];
+    join_ext(bad, sizeof bad, dir, "bad", ext);
+    /* garbage from `keep` on, but for the last 12 bytes (a PNG's IEND
+     * chunk: the file does not look cut short) */
+    size_t keep[] = {n / 8, n / 4, n / 2};
+    for (size_t k = 0; k < 3; k++) {
+        unsigned char *g = malloc(n);
+        assert_non_null(g);
+        memcpy(g, b, n);
+        uint32_t x = (uint32_t)(2654435761u * (k + 1));
+        for (size_t q = keep[k]; q < n - 12; q++) {
+            x = x * 1664525u + 1013904223u;
+            g[q] = (unsigned char)(x >> 24);
+        }
+        spill(bad, g, n);
+        free(g);
+        aa_image back;
+        int st = aa_image_read(bad, &back);
+        if (st != AA_EIO)
+            fail_msg("%s: garbage after byte %zu of %zu: status %d, expected AA_EIO", ext,
+                     keep[k], n, st);
+        assert_non_null(strstr(aa_last_error(), bad));
+        compare_refused(path, bad);
+    }
+}
+
 static void test_garbage_after_header(void **state)
 {
     (void)state;
-    char dir[PATH_MAX], path[PATH_MAX + 32], bad[PATH_MAX + 32];
-    fresh("garbage", dir, sizeof dir);
-    aa_image im;
-    assert_int_equal(aa_image_alloc(&im, 64, 48, 3), AA_OK);
-    fill_random(&im, 99);
     static const char *const binary[] = {".png", ".exr", ".tif"};
-    for (size_t f = 0; f < 3; f++) {
-        char name[32];
-        snprintf(name, sizeof name, "whole%s", binary[f]);
-        join(path, sizeof path, dir, name);
-        snprintf(name, sizeof name, "bad%s", binary[f]);
-        join(bad, sizeof bad, dir, name);
-        assert_int_equal(aa_image_write(path, &im, NULL), AA_OK);
-        size_t n;
-        unsigned char *b = slurp(path, &n);
-        /* garbage from `keep` on, but for the last 12 bytes (a PNG's IEND
-         * chunk: the file does not look cut short) */
-        size_t keep[] = {n / 8, n / 4, n / 2};
-        for (size_t k = 0; k < 3; k++) {
-            unsigned char *g = malloc(n);
-            assert_non_null(g);
-            memcpy(g, b, n);
-            uint32_t x = (uint32_t)(2654435761u * (k + 1));
-            for (size_t q = keep[k]; q < n - 12; q++) {
-                x = x * 1664525u + 1013904223u;
-                g[q] = (unsigned char)(x >> 24);
-            }
-            spill(bad, g, n);
-            free(g);
-            aa_image back;
-            int st = aa_image_read(bad, &back);
-            if (st != AA_EIO)
-                fail_msg("%s: garbage after byte %zu of %zu: status %d, expected AA_EIO",
-                         binary[f], keep[k], n, st);
-            assert_non_null(strstr(aa_last_error(), bad));
-            const char *args[] = {"compare", path, bad, NULL};
-            expect_exit(run_cmd(NULL, args), 3, bad);
-            expect_output(bad, bad);
-        }
-        free(b);
-    }
-    aa_image_free(&im);
+    for_whole_files("garbage", 64, 48, 99, binary, 3, garbage_after_header);
 }
 
 /* ------------------------------------------------------------------------
@@ -747,10 +747,8 @@ static double compare_need(double w, double h)
 static void test_compare_counts_first(void **state)
 {
     (void)state;
-    char dir[PATH_MAX], huge[PATH_MAX + 32], big[PATH_MAX + 32];
-    fresh("admission", dir, sizeof dir);
-    join(huge, sizeof huge, dir, "huge.tif");
-    join(big, sizeof big, dir, "big.tif");
+    char huge[PATH_MAX + 32], big[PATH_MAX + 32];
+    fresh_files("admission", huge, "huge.tif", big, "big.tif", NULL);
     claim_tiff(huge, 65535, 65535);
     claim_tiff(big, 5000, 5000);
     /* 275 GB: more than half of any machine this runs on */
@@ -782,9 +780,8 @@ static void test_compare_counts_first(void **state)
 static void test_compare_cgroup(void **state)
 {
     (void)state;
-    char dir[PATH_MAX], big[PATH_MAX + 32], cg[256], file[300];
-    fresh("cgroup", dir, sizeof dir);
-    join(big, sizeof big, dir, "big.tif");
+    char big[PATH_MAX + 32], cg[256], file[300];
+    fresh_files("cgroup", big, "big.tif", NULL);
     claim_tiff(big, 4000, 4000); /* needs 1.0 GB */
     /* the roots of a v2 and a v1 memory hierarchy, known by a file only
      * the cgroup file system has */
@@ -839,13 +836,14 @@ static void test_run_checks_montage_first(void **state)
     char dir[PATH_MAX], out[PATH_MAX + 32];
     fresh("run-montage", dir, sizeof dir);
     join(out, sizeof out, dir, "run");
-    const char *args[] = {"run", "-p", "crow", "-s", "65536x1", "-m", "point", "--reps", "1",
-                          "--no-plots", "-q", "--out", out, NULL};
+    const char *args[] = {"run", "-p", "crow", "-f", "box", "-s", "65536x1", "-m", "point",
+                          "--reps", "1", "--no-plots", "-q", "--out", out, NULL};
     expect_exit(run_cmd(NULL, args), 2, "run with too wide a montage");
     expect_output("montage", "run with too wide a montage");
     assert_false(exists(out));
-    const char *without[] = {"run", "-p", "crow", "-s", "65536x1", "-m", "point", "--reps", "1",
-                             "--no-plots", "--no-images", "-q", "--out", out, NULL};
+    const char *without[] = {"run", "-p", "crow", "-f", "box", "-s", "65536x1", "-m", "point",
+                             "--reps", "1", "--no-plots", "--no-images", "-q", "--out", out,
+                             NULL};
     expect_exit(run_cmd(NULL, without), 0, "the same run without images");
 }
 
@@ -897,14 +895,15 @@ static double address_space(void)
     return (double)pages * (double)sysconf(_SC_PAGESIZE);
 }
 
-static int stream_montage(const char *dir)
+static int stream_montage(void *arg)
 {
+    const char *dir = arg;
     char path[PATH_MAX + 64];
     /* OpenImageIO loaded first, so what it takes is in use already */
     snprintf(path, sizeof path, "%s/warm.png", dir);
     aa_image tiny;
-    CHILD_CHECK(aa_image_alloc(&tiny, 2, 2, 3) == AA_OK);
-    CHILD_CHECK(aa_image_write(path, &tiny, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_alloc(&tiny, 2, 2, 3) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_write(path, &tiny, NULL) == AA_OK);
     aa_image_free(&tiny);
     /* 16 tiles of 512 x 512 in 4 columns: held whole, the tiles and the
      * montage are 210 MB; a row at a time, 40 MB.  Allow 120 MB more. */
@@ -913,10 +912,10 @@ static int stream_montage(const char *dir)
                           .put = made_put, .ctx = &t};
     rlim_t room = (rlim_t)(address_space() + (120 << 20));
     struct rlimit r = {room, room};
-    CHILD_CHECK(setrlimit(RLIMIT_AS, &r) == 0);
+    SUPPORT_CHILD_CHECK(setrlimit(RLIMIT_AS, &r) == 0);
     snprintf(path, sizeof path, "%s/montage.pfm", dir);
-    CHILD_CHECK(aa_montage_stream(path, &src, 4, NULL) == AA_OK);
-    CHILD_CHECK(t.most_held == 1 && t.held == 0);
+    SUPPORT_CHILD_CHECK(aa_montage_stream(path, &src, 4, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(t.most_held == 1 && t.held == 0);
     return 0;
 }
 
@@ -930,7 +929,7 @@ static void test_montage_row_at_a_time(void **state)
     }
     char dir[PATH_MAX], path[PATH_MAX + 32];
     fresh("montage", dir, sizeof dir);
-    in_child(stream_montage, dir);
+    support_in_child(stream_montage, dir);
     /* The file, from the layout: W = 4 (512 + 8) + 8, H = 4 (512 + 17 +
      * 8 + 4) + 8; a .pfm holds float samples, rows bottom up after the
      * header "PF\nW H\n-1.0\n" (little-endian). */
@@ -994,11 +993,8 @@ static void no_json_nonfinite(void)
 static void test_compare_nonfinite(void **state)
 {
     (void)state;
-    char dir[PATH_MAX], ref[PATH_MAX + 32], img[PATH_MAX + 32], odd[PATH_MAX + 32];
-    fresh("nonfinite", dir, sizeof dir);
-    join(ref, sizeof ref, dir, "ref.exr");
-    join(img, sizeof img, dir, "img.exr");
-    join(odd, sizeof odd, dir, "odd.exr");
+    char ref[PATH_MAX + 32], img[PATH_MAX + 32], odd[PATH_MAX + 32];
+    fresh_files("nonfinite", ref, "ref.exr", img, "img.exr", odd, "odd.exr", NULL);
     aa_image a, b;
     assert_int_equal(aa_image_alloc(&a, 8, 6, 3), AA_OK);
     assert_int_equal(aa_image_alloc(&b, 8, 6, 3), AA_OK);
@@ -1046,10 +1042,8 @@ static void test_compare_nonfinite(void **state)
 static void test_compare_tiny_difference(void **state)
 {
     (void)state;
-    char dir[PATH_MAX], ref[PATH_MAX + 32], img[PATH_MAX + 32];
-    fresh("tiny", dir, sizeof dir);
-    join(ref, sizeof ref, dir, "ref.txt");
-    join(img, sizeof img, dir, "img.txt");
+    char ref[PATH_MAX + 32], img[PATH_MAX + 32];
+    fresh_files("tiny", ref, "ref.txt", img, "img.txt", NULL);
     char text[512];
     int n = snprintf(text, sizeof text, "# aabench 4 4 1\n");
     for (int j = 0; j < 4; j++)
@@ -1074,10 +1068,8 @@ static void test_compare_tiny_difference(void **state)
 static void test_txt_nan_named(void **state)
 {
     (void)state;
-    char dir[PATH_MAX], ok[PATH_MAX + 32], bad[PATH_MAX + 32];
-    fresh("txt-nan", dir, sizeof dir);
-    join(ok, sizeof ok, dir, "ok.txt");
-    join(bad, sizeof bad, dir, "bad.txt");
+    char ok[PATH_MAX + 32], bad[PATH_MAX + 32];
+    fresh_files("txt-nan", ok, "ok.txt", bad, "bad.txt", NULL);
     static const char good[] = "# aabench 2 1 3\n0 0 0.5 0.25 1\n1 0 0 0 0.125\n";
     static const char nan[] = "# aabench 2 1 3\n0 0 0.5 0.25 1\n1 0 0 0 NaN\n";
     static const char inf[] = "# aabench 2 1 3\n0 0 0.5 -inf 1\n1 0 0 0 0\n";

@@ -56,12 +56,7 @@ static int c_locale(void **state)
 static char *slurp(const char *path)
 {
     static char buf[1 << 16];
-    FILE *f = fopen(path, "r");
-    assert_non_null(f);
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
+    return support_read_file(path, buf, sizeof buf, NULL);
 }
 
 static void test_spec(void **state)

@@ -37,39 +37,21 @@
 static int render(const char *method, const aa_scene *scene, const char *filter, int w, int h,
                   int threads, double t, double vx, double vy, aa_image *out)
 {
-    aa_filter f;
-    aa_spec spec;
-    aa_job job;
-    aa_counters c;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    int st = aa_method_parse(method, &f, &spec);
-    if (st)
-        return st;
-    assert_int_equal(aa_job_init(&job, scene, w, h, t, vx, vy, &f, 1, threads), AA_OK);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    st = aa_method_run(&spec, &job, 1, out, &c, NULL);
-    aa_job_free(&job);
-    if (st)
-        aa_image_free(out);
-    return st;
+    const support_view v = {.w = w, .h = h, .t = t, .vx = vx, .vy = vy, .filter = filter,
+                            .seed = 1, .threads = threads};
+    return support_render_view(method, scene, &v, out, NULL);
 }
 
 static void must_render(const char *method, const aa_scene *scene, const char *filter, int w,
                         int h, aa_image *out)
 {
-    if (render(method, scene, filter, w, h, 2, 0.0, 0.0, 0.0, out))
-        fail_msg("%s -f %s: %s", method, filter, aa_last_error());
+    support_render(method, scene, filter, w, h, 2, out, NULL);
 }
 
 static void reference(const aa_scene *scene, const char *filter, int w, int h, aa_image *out)
 {
-    aa_filter f;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    aa_scene *placed = aa_scene_place(scene, w, h, 0, 0, 0);
-    assert_non_null(placed);
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 2, out, NULL, NULL), AA_OK);
-    aa_scene_free(placed);
+    support_reference(scene, &(support_view){.w = w, .h = h, .filter = filter, .threads = 2},
+                      out, NULL, NULL);
 }
 
 /* RMSE and largest error of img against ref over every channel. */
@@ -88,16 +70,29 @@ static double compare(const aa_image *img, const aa_image *ref, double *worst)
     return sqrt(sum / (double)n);
 }
 
-static void polygon(aa_scene *s, const double *xy, int n)
-{
-    assert_int_equal(aa_scene_move_to(s, xy[0], xy[1]), AA_OK);
-    for (int k = 1; k < n; k++)
-        assert_int_equal(aa_scene_line_to(s, xy[2 * k], xy[2 * k + 1]), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-}
-
 static const aa_rgb RED = {{1, 0, 0}}, GREEN = {{0, 1, 0}}, BLUE = {{0, 0, 1}},
-                    GREY = {{0.5, 0.5, 0.5}};
+                    GREY = {{0.5, 0.5, 0.5}}, BLACK = {{0, 0, 0}};
+
+/* A polygon of n points (x, y pairs) in one colour. */
+typedef struct piece {
+    aa_rgb colour;
+    int n;
+    double xy[10];
+} piece;
+
+/* The pieces over bg, each a layer of its own (nonzero), the first in
+ * front; finished. */
+static aa_scene *pieces_scene(aa_rgb bg, const piece *p, int n)
+{
+    aa_scene *s = aa_scene_new(bg);
+    assert_non_null(s);
+    for (int k = 0; k < n; k++) {
+        assert_int_equal(aa_scene_layer(s, p[k].colour, AA_FILL_NONZERO), AA_OK);
+        scenes_path(s, p[k].xy, p[k].n);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
 
 /* Abutting polygons of different colours over blue: red (front) and green
  * (behind it in the layer order, but they do not overlap) share a slanted
@@ -106,37 +101,19 @@ static const aa_rgb RED = {{1, 0, 0}}, GREEN = {{0, 1, 0}}, BLUE = {{0, 0, 1}},
  * nothing of it may show. */
 static aa_scene *abutting(int hidden)
 {
-    aa_scene *s = aa_scene_new(BLUE);
-    assert_non_null(s);
-    assert_int_equal(aa_scene_layer(s, RED, AA_FILL_NONZERO), AA_OK);
-    const double red[] = {0.31, 0.12, 0.62, 0.83, 0.18, 0.77, 0.12, 0.21};
-    polygon(s, red, 4);
-    assert_int_equal(aa_scene_layer(s, GREEN, AA_FILL_NONZERO), AA_OK);
-    const double green[] = {0.62, 0.83, 0.31, 0.12, 0.86, 0.23, 0.91, 0.71};
-    polygon(s, green, 4);
-    if (hidden) {
-        assert_int_equal(aa_scene_layer(s, GREY, AA_FILL_NONZERO), AA_OK);
-        const double grey[] = {0.22, 0.3, 0.4, 0.4, 0.25, 0.6};
-        polygon(s, grey, 3);
-    }
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    const piece p[] = {{RED, 4, {0.31, 0.12, 0.62, 0.83, 0.18, 0.77, 0.12, 0.21}},
+                       {GREEN, 4, {0.62, 0.83, 0.31, 0.12, 0.86, 0.23, 0.91, 0.71}},
+                       {GREY, 3, {0.22, 0.3, 0.4, 0.4, 0.25, 0.6}}};
+    return pieces_scene(BLUE, p, hidden ? 3 : 2);
 }
 
 /* A green square over black with a red square wholly behind it, 0.1 (several
  * pixels at the sizes used) inside its edges: no red may show anywhere. */
 static aa_scene *occluded(void)
 {
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(s);
-    assert_int_equal(aa_scene_layer(s, GREEN, AA_FILL_NONZERO), AA_OK);
-    const double front[] = {0.15, 0.1, 0.85, 0.17, 0.8, 0.9, 0.1, 0.82};
-    polygon(s, front, 4);
-    assert_int_equal(aa_scene_layer(s, RED, AA_FILL_NONZERO), AA_OK);
-    const double back[] = {0.3, 0.3, 0.65, 0.33, 0.6, 0.7, 0.28, 0.66};
-    polygon(s, back, 4);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    const piece p[] = {{GREEN, 4, {0.15, 0.1, 0.85, 0.17, 0.8, 0.9, 0.1, 0.82}},  /* front */
+                       {RED, 4, {0.3, 0.3, 0.65, 0.33, 0.6, 0.7, 0.28, 0.66}}}; /* back */
+    return pieces_scene(BLACK, p, 2);
 }
 
 static void red_is_zero(const char *method, const char *filter, double tol)
@@ -296,7 +273,7 @@ static aa_scene *half_plane(double px, double py, double angle)
     const double xy[] = {px - L * dx,          py - L * dy,          px + L * dx,
                          py + L * dy,          px + L * dx + L * nx, py + L * dy + L * ny,
                          px - L * dx + L * nx, py - L * dy + L * ny};
-    polygon(s, xy, 4);
+    scenes_path(s, xy, 4);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     return s;
 }
@@ -356,19 +333,11 @@ static void test_crowtable_one_rectangle(void **state)
  * 1 / (2 res), contrast at most 1 per channel. */
 static aa_scene *boxes(void)
 {
-    aa_scene *s = aa_scene_new(BLUE);
-    assert_non_null(s);
-    assert_int_equal(aa_scene_layer(s, RED, AA_FILL_NONZERO), AA_OK);
-    const double red[] = {0.2137, 0.1581, 0.5119, 0.1581, 0.5119, 0.8363, 0.2137, 0.8363};
-    polygon(s, red, 4);
-    assert_int_equal(aa_scene_layer(s, GREEN, AA_FILL_NONZERO), AA_OK);
-    const double green[] = {0.5119, 0.3029, 0.8347, 0.3029, 0.8347, 0.7043, 0.5119, 0.7043};
-    polygon(s, green, 4);
-    assert_int_equal(aa_scene_layer(s, GREY, AA_FILL_NONZERO), AA_OK);
-    const double grey[] = {0.3011, 0.3107, 0.4493, 0.3107, 0.4493, 0.6021, 0.3011, 0.6021};
-    polygon(s, grey, 4);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    const piece p[] = {
+        {RED, 4, {0.2137, 0.1581, 0.5119, 0.1581, 0.5119, 0.8363, 0.2137, 0.8363}},
+        {GREEN, 4, {0.5119, 0.3029, 0.8347, 0.3029, 0.8347, 0.7043, 0.5119, 0.7043}},
+        {GREY, 4, {0.3011, 0.3107, 0.4493, 0.3107, 0.4493, 0.6021, 0.3011, 0.6021}}};
+    return pieces_scene(BLUE, p, 3);
 }
 
 static void rect_scene_within(const char *method, const char *filter, double R, int res)
@@ -457,22 +426,11 @@ static void test_tiler_exact(void **state)
  * pencil line). */
 static aa_scene *two_halves(int adjacent)
 {
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(s);
-    assert_int_equal(aa_scene_layer(s, RED, AA_FILL_NONZERO), AA_OK);
-    const double red[] = {-1.0, -1.0, 0.3, -1.0, 0.7, 2.0, -1.0, 2.0};
-    polygon(s, red, 4);
-    assert_int_equal(aa_scene_layer(s, GREEN, AA_FILL_NONZERO), AA_OK);
-    if (adjacent) {
-        const double green[] = {0.3, -1.0, 2.0, -1.0, 2.0, 2.0, 0.7, 2.0};
-        polygon(s, green, 4);
-    } else {
-        /* the same region, its edge cut at (0.5, 0.5) */
-        const double green[] = {0.3, -1.0, 2.0, -1.0, 2.0, 2.0, 0.7, 2.0, 0.5, 0.5};
-        polygon(s, green, 5);
-    }
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    /* not adjacent: green is the same region, its edge cut at (0.5, 0.5) */
+    const piece p[] = {
+        {RED, 4, {-1.0, -1.0, 0.3, -1.0, 0.7, 2.0, -1.0, 2.0}},
+        {GREEN, adjacent ? 4 : 5, {0.3, -1.0, 2.0, -1.0, 2.0, 2.0, 0.7, 2.0, 0.5, 0.5}}};
+    return pieces_scene(BLACK, p, 2);
 }
 
 static void test_tiler_priority(void **state)

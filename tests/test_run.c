@@ -237,8 +237,8 @@ static void test_interrupted(void **state)
     char out[512], cmd[1200];
     snprintf(out, sizeof out, "%s/interrupted", dir);
     const char *plugin = getenv("AABENCH_PLUGIN");
-    const char *run[] = {"run", "-p", "crow", "-s", "48x48", "-s", "64x64", "-s", "96x96",
-                         "-m", "centre4", "-m", "point", "--plugin", plugin, "--reps", "20",
+    const char *run[] = {"run", "-p", "crow", "-f", "box", "-s", "48x48", "-s", "64x64",
+                         "-s", "96x96", "-m", "centre4", "-m", "point", "--plugin", plugin, "--reps", "20",
                          "--out", out, "--no-cache", "-q", NULL};
     int code = run_cmd(run, 400);
     if (code != 130 && code != 0)

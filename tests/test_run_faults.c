@@ -39,7 +39,6 @@
 #include "support.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <setjmp.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -65,29 +64,6 @@ static char out_text[1 << 16], err_text[1 << 16];
 
 /* ---- running the command ---- */
 
-static pid_t spawn(const char *const *args, const char *out, const char *err)
-{
-    const char *exe = getenv("AABENCH");
-    assert_non_null(exe);
-    const char *argv[64] = {exe};
-    int n = 1;
-    for (; args[n - 1] && n < 63; n++)
-        argv[n] = args[n - 1];
-    argv[n] = NULL;
-    fflush(NULL);
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        int fo = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        int fe = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (fo < 0 || fe < 0 || dup2(fo, 1) < 0 || dup2(fe, 2) < 0)
-            _exit(126);
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
-    return pid;
-}
-
 static void slurp(const char *path, char *buf, size_t len)
 {
     FILE *f = fopen(path, "rb");
@@ -104,12 +80,10 @@ static int run(const char *const *args)
     char out[600], err[600];
     snprintf(out, sizeof out, "%s/stdout", dir);
     snprintf(err, sizeof err, "%s/stderr", dir);
-    pid_t pid = spawn(args, out, err);
-    int status;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
+    int code = support_wait(support_aabench_spawn(args, NULL, out, err));
     slurp(out, out_text, sizeof out_text);
     slurp(err, err_text, sizeof err_text);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return code;
 }
 
 #define RUN(...) run((const char *const[]){__VA_ARGS__, NULL})
@@ -495,11 +469,11 @@ static void test_rows_kept_when_killed(void **state)
     path_in(so, sizeof so, "killed.out");
     path_in(se, sizeof se, "killed.err");
     /* the hanging method last: the cases before it are all there is */
-    const char *args[] = {"run",  "--plugin", faulty, "-p",          "crow",       "-s",
+    const char *args[] = {"run",  "--plugin", faulty, "-p",          "crow",       "-f", "box", "-s",
                           "16x16", "-m",      "point", "-m",         "area",       "-m",
                           "hang", "--reps",   "1",     "--no-images", "--no-plots", "-q",
                           "--out", out,       NULL};
-    pid_t pid = spawn(args, so, se);
+    pid_t pid = support_aabench_spawn(args, NULL, so, se);
     double t0 = aa_now();
     while (count_lines(csv) < 3) {
         int status;
@@ -595,21 +569,41 @@ static void test_bad_values_fail_case(void **state)
 
 /* ---- outputs initialised when refused early ---- */
 
+/* A run of crow at w x h under the box filter with the n (at most 3)
+ * methods given, their specs parsed; the rest of cfg zero. */
+typedef struct crow_run {
+    aa_run_spec p, m[3];
+    aa_run_filter f;
+    aa_run_size size;
+    aa_run_config cfg;
+} crow_run;
+
+static void crow_run_init(crow_run *r, int w, int h, const char *const *methods, int n)
+{
+    memset(r, 0, sizeof *r);
+    r->p.text = "crow";
+    assert_int_equal(aa_pattern_parse(r->p.text, &r->p.spec), AA_OK);
+    for (int k = 0; k < n; k++) {
+        r->m[k].text = methods[k];
+        assert_int_equal(aa_spec_parse(methods[k], aa_method_table(), "method", &r->m[k].spec),
+                         AA_OK);
+    }
+    r->f.text = "box";
+    aa_filter_default(&r->f.filter);
+    r->size = (aa_run_size){w, h};
+    r->cfg.patterns = &r->p, r->cfg.npatterns = 1;
+    r->cfg.sizes = &r->size, r->cfg.nsizes = 1;
+    r->cfg.filters = &r->f, r->cfg.nfilters = 1;
+    r->cfg.methods = r->m, r->cfg.nmethods = (size_t)n;
+}
+
 static void test_outputs_initialised(void **state)
 {
     (void)state;
-    aa_run_spec p = {.text = "crow"}, m = {.text = "point"};
-    aa_run_filter f = {.text = "box"};
-    aa_run_size huge = {65536, 65536};
-    assert_int_equal(aa_pattern_parse("crow", &p.spec), AA_OK);
-    assert_int_equal(aa_spec_parse("point", aa_method_table(), "method", &m.spec), AA_OK);
-    aa_filter_default(&f.filter);
-    aa_run_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.patterns = &p, cfg.npatterns = 1;
-    cfg.sizes = &huge, cfg.nsizes = 1;
-    cfg.filters = &f, cfg.nfilters = 1;
-    cfg.methods = &m, cfg.nmethods = 1;
+    static const char *const point[] = {"point"};
+    crow_run r;
+    crow_run_init(&r, 65536, 65536, point, 1);
+    aa_run_config cfg = r.cfg;
     cfg.reps = 1, cfg.threads = 1;
     aa_row *rows = (aa_row *)(uintptr_t)0xdeadbeef;
     size_t n = 12345;
@@ -717,21 +711,10 @@ static void same_rows(const aa_row *a, const aa_row *b, size_t n)
 static void test_isolated_equal(void **state)
 {
     (void)state;
-    aa_run_spec p = {.text = "crow"};
-    aa_run_spec m[3] = {{.text = "point"}, {.text = "jitter:spp=16"}, {.text = "area"}};
-    aa_run_filter f = {.text = "box"};
-    aa_run_size size = {24, 20};
-    assert_int_equal(aa_pattern_parse(p.text, &p.spec), AA_OK);
-    for (int k = 0; k < 3; k++)
-        assert_int_equal(aa_spec_parse(m[k].text, aa_method_table(), "method", &m[k].spec),
-                         AA_OK);
-    aa_filter_default(&f.filter);
-    aa_run_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.patterns = &p, cfg.npatterns = 1;
-    cfg.sizes = &size, cfg.nsizes = 1;
-    cfg.filters = &f, cfg.nfilters = 1;
-    cfg.methods = m, cfg.nmethods = 3;
+    static const char *const methods[] = {"point", "jitter:spp=16", "area"};
+    crow_run r;
+    crow_run_init(&r, 24, 20, methods, 3);
+    aa_run_config cfg = r.cfg;
     cfg.reps = 1, cfg.threads = 2, cfg.seed = 7;
     cfg.case_timeout = 60;
     /* no cache: this process computes the reference with OpenMP's threads

@@ -77,47 +77,55 @@ static void test_refusals(void **state)
     refused("box:r=1", f, "accepted: none");
 }
 
+/* check(table, info) for every type of the pattern and filter tables. */
+static void for_each_type(void (*check)(const void *const *table, const aa_info *info))
+{
+    const void *const *tables[] = {pattern_table(), filter_table()};
+    for (int t = 0; t < 2; t++)
+        for (size_t k = 0; tables[t][k]; k++)
+            check(tables[t], tables[t][k]);
+}
+
+/* The type's canonical text parses back to the same values. */
+static void round_trip(const void *const *table, const aa_info *info)
+{
+    aa_spec a, b;
+    char text[2048];
+    aa_spec_default(info, &a);
+    assert_int_equal(aa_spec_format(&a, text, sizeof text), AA_OK);
+    assert_int_equal(aa_spec_parse(text, table, "thing", &b), AA_OK);
+    assert_memory_equal(a.v, b.v, sizeof a.v);
+}
+
 static void test_format_round_trip(void **state)
 {
     (void)state;
-    /* every type's canonical text parses back to the same values */
-    const void *const *tables[] = {pattern_table(), filter_table()};
-    for (int t = 0; t < 2; t++) {
-        for (size_t k = 0; tables[t][k]; k++) {
-            const aa_info *info = tables[t][k];
-            aa_spec a, b;
-            char text[2048];
-            aa_spec_default(info, &a);
-            assert_int_equal(aa_spec_format(&a, text, sizeof text), AA_OK);
-            assert_int_equal(aa_spec_parse(text, tables[t], "thing", &b), AA_OK);
-            assert_memory_equal(a.v, b.v, sizeof a.v);
-        }
+    for_each_type(round_trip);
+}
+
+/* The type's parameter table is consistent: defaults inside their ranges,
+ * keys unique, at most AA_MAX_PARAMS, a help text. */
+static void consistent(const void *const *table, const aa_info *info)
+{
+    size_t n = aa_param_count(info);
+    assert_true(n <= AA_MAX_PARAMS);
+    assert_non_null(info->summary);
+    assert_true(aa_table_find(table, info->name) == info);
+    for (size_t q = 0; q < n; q++) {
+        const aa_param *p = &info->params[q];
+        assert_non_null(p->help);
+        assert_int_equal(aa_spec_index(info, p->key), (int)q);
+        if (p->kind != AA_PARAM_CHOICE)
+            assert_true(p->def >= p->min && p->def <= p->max &&
+                        !(p->open_min && p->def == p->min));
     }
 }
 
-/* Every parameter table is consistent: defaults inside their ranges,
- * keys unique, at most AA_MAX_PARAMS, a help text. */
+/* Every parameter table is consistent. */
 static void test_tables(void **state)
 {
     (void)state;
-    const void *const *tables[] = {pattern_table(), filter_table()};
-    for (int t = 0; t < 2; t++) {
-        for (size_t k = 0; tables[t][k]; k++) {
-            const aa_info *info = tables[t][k];
-            size_t n = aa_param_count(info);
-            assert_true(n <= AA_MAX_PARAMS);
-            assert_non_null(info->summary);
-            assert_true(aa_table_find(tables[t], info->name) == info);
-            for (size_t q = 0; q < n; q++) {
-                const aa_param *p = &info->params[q];
-                assert_non_null(p->help);
-                assert_int_equal(aa_spec_index(info, p->key), (int)q);
-                if (p->kind != AA_PARAM_CHOICE)
-                    assert_true(p->def >= p->min && p->def <= p->max &&
-                                !(p->open_min && p->def == p->min));
-            }
-        }
-    }
+    for_each_type(consistent);
 }
 
 static void test_sizes(void **state)

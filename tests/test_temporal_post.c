@@ -128,21 +128,6 @@ static void test_hexagon_eye_is_mean_of_frames(void **state)
     check_eye("hexagon:frames=1,display=fixed", 1, 3.0, 1.0, 0.0);
 }
 
-/* Vertex v of a hexagon of radius r whose vertex 0 is at `angle` degrees,
- * worked out independently of hexagon.c: vertex 0 from the angle, then each
- * next vertex by the rotation matrix [c -s; s c] of 60 degrees (y down, so
- * positive angles turn clockwise on the screen). */
-static void vertex(double r, double angle, int v, double *dx, double *dy)
-{
-    const double pi = 3.14159265358979323846, c = 0.5, s = sqrt(3.0) / 2;
-    double x = r * cos(angle * pi / 180), y = r * sin(angle * pi / 180);
-    for (int k = 0; k < v; k++) {
-        double nx = c * x - s * y, ny = s * x + c * y;
-        x = nx, y = ny;
-    }
-    *dx = x, *dy = y;
-}
-
 static void check_offsets(const char *method, double r, double angle, const char *order)
 {
     const int w = 41, h = 29;
@@ -152,7 +137,7 @@ static void check_offsets(const char *method, double r, double angle, const char
         int n = (int)floor(t), v = order[((n % 6) + 6) % 6] - '0';
         double dx[6], dy[6];
         for (int q = 0; q < 6; q++)
-            vertex(r, angle, q, &dx[q], &dy[q]);
+            oracle_hexagon_vertex(r, angle, q, &dx[q], &dy[q]);
         /* the vertices are those of a regular hexagon of radius r */
         for (int q = 0; q < 6; q++) {
             assert_true(fabs(hypot(dx[q], dy[q]) - r) < 1e-15);
@@ -576,20 +561,14 @@ static void test_refusals(void **state)
     (void)state;
     const char *methods[] = {"hexagon", "trio", "trio:variant=sancha", "trio:variant=recursive"};
     for (int k = 0; k < 4; k++) {
-        aa_filter f;
-        aa_spec spec;
-        assert_int_equal(aa_filter_parse("tent", &f), AA_OK);
-        assert_int_equal(aa_method_parse(methods[k], &f, &spec), AA_EINVAL);
+        assert_int_equal(support_parse_method(methods[k], "tent", NULL), AA_EINVAL);
         assert_non_null(strstr(aa_last_error(), "box reference"));
-        assert_int_equal(aa_filter_parse("gauss", &f), AA_OK);
-        assert_int_equal(aa_method_parse(methods[k], &f, &spec), AA_EINVAL);
+        assert_int_equal(support_parse_method(methods[k], "gauss", NULL), AA_EINVAL);
     }
-    aa_filter box;
-    aa_spec spec;
-    aa_filter_default(&box);
-    assert_int_equal(aa_method_parse("hexagon:order=001122", &box, &spec), AA_EINVAL);
-    assert_int_equal(aa_method_parse("hexagon:frames=0", &box, &spec), AA_EINVAL);
-    assert_int_equal(aa_method_parse("trio:variant=mlaa", &box, &spec), AA_EINVAL);
+    /* and under the box, values these methods do not take */
+    const char *bad[] = {"hexagon:order=001122", "hexagon:frames=0", "trio:variant=mlaa"};
+    for (int k = 0; k < 3; k++)
+        assert_int_equal(support_parse_method(bad[k], NULL, NULL), AA_EINVAL);
 }
 
 SUPPORT_MAIN(NULL, NULL,

@@ -245,12 +245,7 @@ static void fill_row(aa_row *r, const char *method, double rmse, double scale)
 static char *slurp(const char *path)
 {
     static char buf[1 << 16];
-    FILE *f = fopen(path, "r");
-    assert_non_null(f);
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
+    return support_read_file(path, buf, sizeof buf, NULL);
 }
 
 static void test_results_round_trip(void **state)

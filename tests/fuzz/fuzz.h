@@ -19,4 +19,16 @@ int aa_fuzz_svg(const uint8_t *data, size_t size);
 /* libFuzzer's entry point, which it declares in no header of its own. */
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
+/* A target's definition of that entry point, calling fn; nothing where
+ * test_fuzz_regress.c includes the targets (AA_FUZZ_NO_MAIN). */
+#ifdef AA_FUZZ_NO_MAIN
+#define AA_FUZZ_ENTRY(fn)
+#else
+#define AA_FUZZ_ENTRY(fn)                                                                          \
+    int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)                                   \
+    {                                                                                              \
+        return fn(data, size);                                                                     \
+    }
+#endif
+
 #endif

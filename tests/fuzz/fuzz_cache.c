@@ -9,6 +9,7 @@
  * image.
  */
 #include "bench.h"
+#include "fuzz.h"
 
 #include <dirent.h>
 #include <stdint.h>
@@ -16,8 +17,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-int aa_fuzz_cache(const uint8_t *data, size_t size);
 
 static char cache_dir[256], cache_file[600];
 static aa_view view;
@@ -67,10 +66,4 @@ int aa_fuzz_cache(const uint8_t *data, size_t size)
     return 0;
 }
 
-#ifndef AA_FUZZ_NO_MAIN
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
-{
-    return aa_fuzz_cache(data, size);
-}
-#endif
+AA_FUZZ_ENTRY(aa_fuzz_cache)

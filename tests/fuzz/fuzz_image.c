@@ -58,9 +58,4 @@ int aa_fuzz_image(const uint8_t *data, size_t size)
     return 0;
 }
 
-#ifndef AA_FUZZ_NO_MAIN
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
-{
-    return aa_fuzz_image(data, size);
-}
-#endif
+AA_FUZZ_ENTRY(aa_fuzz_image)
