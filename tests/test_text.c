@@ -201,12 +201,7 @@ static void test_cff(void **state)
         skip();
     }
     fclose(f);
-    aa_scene *probe = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(probe);
-    int can = aa_scene_layer(probe, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO) == AA_OK &&
-              aa_scene_move_to(probe, 0, 0) == AA_OK &&
-              aa_scene_cubic_to(probe, 0.1, 0.2, 0.3, 0.2, 0.4, 0) == AA_OK;
-    aa_scene_free(probe);
+    int can = support_scene_holds_cubics();
     aa_spec s;
     aa_scene *sc = NULL;
     assert_int_equal(aa_pattern_parse("text:string=o,ppem=40,font=" CFF_FONT, &s), AA_OK);

@@ -113,9 +113,4 @@ int aa_fuzz_svg(const uint8_t *data, size_t size)
     return 0;
 }
 
-#ifndef AA_FUZZ_NO_MAIN
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
-{
-    return aa_fuzz_svg(data, size);
-}
-#endif
+AA_FUZZ_ENTRY(aa_fuzz_svg)
