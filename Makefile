@@ -4,7 +4,7 @@
 #   make test    the same set-up, then every test (plain and under ASan+UBSan),
 #                the test binaries in parallel (one job a core)
 #   make bench   speed measurements (not tests: nothing here asserts a time)
-#   make fuzz    libFuzzer on the spec parsers, image, cache and CSV readers (needs clang)
+#   make fuzz    libFuzzer on the spec parsers, image, cache, CSV and SVG readers (needs clang)
 #   make valgrind  the tests under valgrind memcheck
 #   make install PREFIX=/usr/local
 #
@@ -24,6 +24,9 @@ PKGS      := gsl
 PKGS      += freetype2 stb cairo libagg
 # run manifests (harness/bench/shard.c)
 PKGS      += libcjson
+# the patterns svg (patterns/svgfile.c: libxml2) and text (patterns/text.c:
+# FreeType and HarfBuzz)
+PKGS      += libxml-2.0 harfbuzz
 TEST_PKGS := cmocka
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
@@ -151,6 +154,12 @@ $(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: $(BUI
 $(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: \
   CPPFLAGS += -DAA_RENDERERS_DIR='"$(CURDIR)/scripts/renderers"' \
               -DAA_RENDERERS_INSTALLED='"$(OIIO_DIR)/renderers"'
+# The shipped SVG scenes, the svg pattern's default file's folder.
+$(BUILD)/obj/patterns/svgfile.o $(SAN_BUILD)/obj/patterns/svgfile.o $(BUILD)/fuzz/obj/patterns/svgfile.o \
+$(BUILD)/obj/harness/bench/suite.o $(SAN_BUILD)/obj/harness/bench/suite.o $(BUILD)/fuzz/obj/harness/bench/suite.o: \
+  CPPFLAGS += -DAA_SVG_DIR='"$(CURDIR)/patterns/svg"'
+# the tests that read the shipped SVG scenes
+$(BUILD)/tests/test_svg $(SAN_BUILD)/tests/test_svg: CPPFLAGS += -DAA_TEST_SVG_DIR='"$(CURDIR)/patterns/svg"'
 # -z defs: the module needs no symbol of the program that loads it.
 $(OIIO_SO): $(patsubst %.cpp,$(BUILD)/obj/%.o,$(OIIO_SRC))
 	@echo '  LD    $@'
@@ -228,7 +237,7 @@ FUZZ_BUILD   := $(BUILD)/fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_FLAGS   := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g -O1
 FUZZ_TARGETS := $(FUZZ_BUILD)/fuzz_spec $(FUZZ_BUILD)/fuzz_image $(FUZZ_BUILD)/fuzz_cache \
-                $(FUZZ_BUILD)/fuzz_baseline
+                $(FUZZ_BUILD)/fuzz_baseline $(FUZZ_BUILD)/fuzz_svg
 $(FUZZ_BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	@echo '  CLANG $@'
@@ -259,7 +268,7 @@ fuzz:
 	  clang -fopenmp -x c - -o $(FUZZ_BUILD)/omp-probe 2>/dev/null && $(FUZZ_BUILD)/omp-probe || \
 	  { echo "make fuzz needs clang and its OpenMP: apt-get install clang libomp-dev" >&2; exit 2; }
 	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)
-	@for t in spec image cache baseline; do \
+	@for t in spec image cache baseline svg; do \
 	  mkdir -p $(FUZZ_BUILD)/corpus-$$t $(FUZZ_BUILD)/crash-$$t; \
 	  echo "fuzz_$$t: $(FUZZ_SECONDS) s"; \
 	  $(FUZZ_BUILD)/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 \

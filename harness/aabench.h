@@ -66,8 +66,17 @@ typedef enum aa_param_kind {
     /* a word naming something found at run time ([A-Za-z0-9._-], at most
      * AA_PARAM_WORD_MAX); the value numbers it (aa_param_word); `choices`
      * holds the default word */
-    AA_PARAM_WORD
+    AA_PARAM_WORD,
+    /* any text (a file's path, a string to draw), at most AA_PARAM_TEXT_MAX
+     * bytes; the value numbers it (aa_param_text); `choices` holds the
+     * default text.  In a spec the bytes ',' and '%' and the control
+     * characters are written as "%XX" (two hex digits), so the value ends at
+     * the next ',' like any other; a '%' not followed by two hex digits, and
+     * a control character not so written, are refused.  The canonical text writes them the same way. */
+    AA_PARAM_TEXT
 } aa_param_kind;
+
+#define AA_PARAM_TEXT_MAX 1024
 
 #define AA_PARAM_WORD_MAX 63
 typedef struct aa_param {
@@ -99,6 +108,8 @@ typedef struct aa_spec {
 int aa_spec_index(const aa_info *info, const char *key);
 /* The word of an AA_PARAM_WORD value ("" for a value that numbers none). */
 const char *aa_param_word(double value);
+/* The text of an AA_PARAM_TEXT value ("" for a value that numbers none). */
+const char *aa_param_text(double value);
 
 /* ------------------------------------------------------------------------
  * Images: W x H x C doubles, row-major, linear light

@@ -52,8 +52,12 @@ need pc:cairo libcairo2-dev
 need pc:libagg libagg-dev
 need pc:libcjson libcjson-dev
 need cmd:parallel parallel
+need pc:libxml-2.0 libxml2-dev
+need pc:harfbuzz libharfbuzz-dev
 need cmd:gnuplot gnuplot-nox
 need file:/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf fonts-dejavu-core
+# a CFF (cubic) font for the text pattern's tests
+need file:/usr/share/fonts/opentype/cantarell/Cantarell-Regular.otf fonts-cantarell
 if [ -n "$renderers" ]; then
     need cmd:rsvg-convert librsvg2-bin
     need cmd:chromium chromium

@@ -100,10 +100,21 @@ void support_pattern_reference(const char *pattern, const support_view *v, aa_im
 {
     aa_spec spec;
     aa_scene *s = NULL;
-    if (aa_pattern_parse(pattern, &spec) || aa_pattern_scene(&spec, &s))
+    if (aa_pattern_parse(pattern, &spec) || aa_pattern_scene_at(&spec, v->w, v->h, &s))
         fail_msg("pattern %s: %s", pattern, aa_last_error());
     support_reference(s, v, out, bound, stats);
     aa_scene_free(s);
+}
+
+int support_scene_holds_cubics(void)
+{
+    aa_scene *probe = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(probe);
+    int can = aa_scene_layer(probe, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO) == AA_OK &&
+              aa_scene_move_to(probe, 0, 0) == AA_OK &&
+              aa_scene_cubic_to(probe, 0.1, 0.2, 0.3, 0.2, 0.4, 0) == AA_OK;
+    aa_scene_free(probe);
+    return can;
 }
 
 /* ---- comparing images ---- */

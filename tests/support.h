@@ -72,6 +72,11 @@ void support_reference(const aa_scene *scene, const support_view *v, aa_image *o
 void support_pattern_reference(const char *pattern, const support_view *v, aa_image *out,
                                aa_image *bound, aa_truth_stats *stats);
 
+/* 1 if the scene model holds cubic Bezier arcs (aa_scene_cubic_to accepts
+ * one), else 0 with the scene's reason in aa_last_error(): tests of cubic
+ * scenes skip until it does. */
+int support_scene_holds_cubics(void);
+
 /* ---- comparing images (same size and channels) ---- */
 
 /* Root mean square of the differences over every value. */

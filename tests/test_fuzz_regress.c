@@ -13,6 +13,7 @@
 #include "fuzz/fuzz_cache.c"
 #include "fuzz/fuzz_image.c"
 #include "fuzz/fuzz_spec.c"
+#include "fuzz/fuzz_svg.c"
 #include "support.h"
 
 #include <dirent.h>
@@ -89,8 +90,21 @@ static void test_baseline_inputs(void **state)
     assert_true(feed("tests/fuzz/regress/baseline", aa_fuzz_baseline) >= 7);
 }
 
+static void test_svg_inputs(void **state)
+{
+    (void)state;
+    assert_true(feed("tests/fuzz/corpus/svg", aa_fuzz_svg) >= 8);
+    feed("tests/fuzz/regress/svg", aa_fuzz_svg);
+    /* and a few made here: cut short, empty, binary */
+    static const char *more[] = {"", "<", "<svg", "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M",
+                                 "\xef\xbb\xbf<svg/>", "<?xml?><svg/>"};
+    for (size_t k = 0; k < sizeof more / sizeof more[0]; k++)
+        aa_fuzz_svg((const uint8_t *)more[k], strlen(more[k]));
+}
+
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_spec_inputs),
              cmocka_unit_test(test_image_inputs),
              cmocka_unit_test(test_cache_inputs),
-             cmocka_unit_test(test_baseline_inputs))
+             cmocka_unit_test(test_baseline_inputs),
+             cmocka_unit_test(test_svg_inputs))

@@ -119,7 +119,7 @@ int aa_crow_calibration(const char *cache_dir, int threads, aa_calibration *out)
     if (!st)
         st = aa_method_parse("crowtable", &tent, &method);
     if (!st)
-        st = aa_pattern_scene(&pattern, &scene);
+        st = aa_pattern_scene_at(&pattern, w, h, &scene);
     if (st)
         return st;
     memset(&view, 0, sizeof view);

@@ -156,7 +156,7 @@ static int image_of(const cx *x, const char *pattern, int w, const char *filter,
     if (!st)
         st = aa_method_parse(method, &f, &ms);
     if (!st)
-        st = aa_pattern_scene(&ps, &scene);
+        st = aa_pattern_scene_at(&ps, w, w, &scene);
     if (st)
         return aa_fail_context(st, "claims: %s on %s", method, pattern);
     if (!(st = aa_job_init(&job, scene, w, w, 0, 0, 0, &f, 1, x->threads))) {
@@ -233,7 +233,7 @@ static int tstate_init(const tcase *c, tstate *t)
     if (!st)
         st = aa_method_parse(c->method, &t->filter, &t->method);
     if (!st)
-        st = aa_pattern_scene(&ps, &t->scene);
+        st = aa_pattern_scene_at(&ps, c->w, c->w, &t->scene);
     if (!st && !(st = aa_job_init(&t->job, t->scene, c->w, c->w, 0, 0, 0, &t->filter, 1, 1))) {
         t->job_made = 1;
         t->job.frame_only = c->frame_only;

@@ -104,7 +104,7 @@ int aa_converge_moving(const aa_spec *pattern, const aa_spec *method, const aa_f
     double *mse = calloc(nspp * (size_t)phases, sizeof *mse);
     if (!mse)
         return aa_fail(AA_ENOMEM, "out of memory");
-    if ((st = aa_pattern_scene(pattern, &scene)) || (st = aa_image_alloc(&img, w, h, 3)))
+    if ((st = aa_pattern_scene_at(pattern, w, h, &scene)) || (st = aa_image_alloc(&img, w, h, 3)))
         goto done;
     for (int k = 0; k < phases && !st; k++) {
         aa_rng rng;

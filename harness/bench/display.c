@@ -116,7 +116,7 @@ int aa_display_reference(const aa_view *view, const aa_display_frame *frames, in
                          int threads, aa_image *out)
 {
     aa_scene *pattern = NULL;
-    int st = aa_pattern_scene(&view->pattern, &pattern);
+    int st = aa_pattern_scene_at(&view->pattern, view->w, view->h, &pattern);
     if (!st)
         st = aa_display_reference_scene(pattern, view->w, view->h, &view->filter, view->vx,
                                         view->vy, frames, n, threads, out);

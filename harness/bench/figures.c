@@ -849,7 +849,7 @@ static int figure_make(size_t k, const char *dir, const char *cache_dir, int thr
     view.w = f->w, view.h = f->h;
     motion_of(f, f->w, &view.t, &view.vx, &view.vy);
     if (!st)
-        st = aa_pattern_scene(&view.pattern, &scene);
+        st = aa_pattern_scene_at(&view.pattern, view.w, view.h, &scene);
     if (!st && f->w >= 16)
         st = aa_eye_truth(&view.pattern, f->w, f->h, view.t, view.vx, view.vy, AA_EYE_S,
                           cache_dir, threads, &eye_truth);

@@ -538,10 +538,18 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                                     sizeof pbuf);
         memset(&view, 0, sizeof view);
         view.pattern = cfg->patterns[ip].spec;
-        if ((st = aa_pattern_scene(&view.pattern, &scene)))
+        /* a pattern drawn at the view's size (svg, text) is built for each size */
+        int sized = aa_pattern_sized(&view.pattern);
+        if (!sized && (st = aa_pattern_scene(&view.pattern, &scene)))
             break;
         for (size_t is = 0; is < cfg->nsizes && !st; is++) {
             view.w = cfg->sizes[is].w, view.h = cfg->sizes[is].h;
+            if (sized) {
+                aa_scene_free(scene);
+                scene = NULL;
+                if ((st = aa_pattern_scene_at(&view.pattern, view.w, view.h, &scene)))
+                    break;
+            }
             if ((st = aa_image_alloc(&img, view.w, view.h, 3)))
                 break;
             if (nt && ((st = aa_size_check(view.w, view.h, 3, 2 * nt + 4)) ||

@@ -12,6 +12,10 @@
  *   full     every method variant under every filter it accepts, on crow
  *            at both sizes; every family under every filter on the other
  *            seed scenes and the zone plate at 256x256
+ *   vector   what a vector graphics or font rasterizer draws: crow, the SVG
+ *            scenes shipped in patterns/svg and text at 12, 16 and 24 ppem,
+ *            by area, the sampling methods, the in-process peers and the
+ *            external renderers (one not installed is left out)
  *
  * A suite's groups are cross products; `aabench run` leaves out the pairs a
  * method refuses (a filter it cannot honour, a scene it cannot take) and
@@ -91,12 +95,33 @@ static const aa_suite_group full[] = {
     {LIST("zoneplate"), LIST("256x256"), LIST("box", "tent:r=1", "gauss"), LIST(FAMILIES)},
     {NULL, NULL, NULL, NULL}};
 
+/* the shipped SVG scenes (the Makefile sets AA_SVG_DIR to the tree's) */
+#ifndef AA_SVG_DIR
+#define AA_SVG_DIR "patterns/svg"
+#endif
+#define VECTOR_METHODS                                                                            \
+    LIST("area", "point", "supersample:n=4", "supersample:pattern=msaa8", "jitter:spp=16",       \
+         "adaptive", "freetype", "stb", "cairo", "agg", "agg:scale=100",                          \
+         "external:renderer=rsvg", "external:renderer=resvg", "external:renderer=chromium")
+
+static const aa_suite_group vector[] = {
+    {LIST("crow", "svg:file=" AA_SVG_DIR "/mono.svg", "svg:file=" AA_SVG_DIR "/shapes.svg",
+          "svg:file=" AA_SVG_DIR "/rules.svg", "svg:file=" AA_SVG_DIR "/curves.svg",
+          "svg:file=" AA_SVG_DIR "/logo.svg"),
+     LIST("256x256"), LIST("box"), VECTOR_METHODS},
+    {LIST("text:ppem=12", "text:ppem=16", "text:ppem=24"), LIST("288x32"), LIST("box"),
+     VECTOR_METHODS},
+    {NULL, NULL, NULL, NULL}};
+
 const aa_suite aa_suites[] = {
     {"quick", "every family once on crow 128x128 (the regression gate)", quick},
     {"default", "every family at its main settings on crow 256x256 and 1024x1024", main_suite},
     {"paper", "the settings of the seed papers' figures", paper},
     {"full", "every method variant under every filter it accepts; every scene; the zone plate",
      full},
+    {"vector", "crow, the shipped SVG scenes and text at 12, 16 and 24 ppem: area, sampling, "
+               "the peers and the external renderers",
+     vector},
     {"temporal", "fence, dots, crow and star moving at sub-pixel speeds: temporal metrics",
      aa_suite_temporal_groups},
     {NULL, NULL, NULL}};

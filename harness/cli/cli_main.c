@@ -35,6 +35,7 @@ static void usage(FILE *out)
     for (const struct command *c = commands; c->name; c++)
         fprintf(out, "  %-8s %s\n", c->name, c->summary);
     fprintf(out, "\nSpecs are NAME or NAME:key=value,... (e.g. crow:curves=64, tent:r=1).\n"
+                 "In a text value (svg:file=PATH, text:string=...) write ',' as %%2C, '%%' as %%25.\n"
                  "'aabench COMMAND --help' describes a command.\n"
                  "Exit status: 0 success, 1 a check failed, 2 bad input or usage,\n"
                  "3 input/output or internal error.\n");

@@ -17,7 +17,7 @@ static void usage(FILE *out)
             "numbers with 17 significant digits; colours as rgb() percentages of the\n"
             "sRGB-encoded linear colour. Field patterns (zoneplate) have no paths and are\n"
             "refused.\n\n"
-            "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"
+            "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"            "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
             "  -s, --size WxH       image size in pixels\n"
             "  -o, --out FILE.svg   the document\n"
             "      --time T         time in frames (default 0)\n"
@@ -87,8 +87,8 @@ int cmd_export(int argc, char **argv)
         (st = cli_check_output_file(a.out, ".svg")))
         return cli_fail("export", st);
     aa_scene *scene = NULL, *placed = NULL;
-    char ps[1024], desc[1400];
-    if ((st = aa_pattern_scene(&pattern, &scene)) || (st = aa_spec_format(&pattern, ps, sizeof ps)))
+    char ps[4096], desc[4400];
+    if ((st = aa_pattern_scene_at(&pattern, w, h, &scene)) || (st = aa_spec_format(&pattern, ps, sizeof ps)))
         goto done;
     if (aa_scene_field(scene, NULL, NULL, NULL)) {
         st = aa_fail(AA_EINVAL,

@@ -23,6 +23,8 @@ static void list_table(const void *const *table, int verbose)
                 printf("    %s=%.*s  (%s)  %s\n", q->key, wl, start, q->choices, q->help);
             } else if (q->kind == AA_PARAM_WORD) {
                 printf("    %s=%s  (a name)  %s\n", q->key, q->choices ? q->choices : "", q->help);
+            } else if (q->kind == AA_PARAM_TEXT) {
+                printf("    %s=%s  (text)  %s\n", q->key, q->choices ? q->choices : "", q->help);
             } else {
                 printf("    %s=%.17g  (%s %.17g to %.17g)  %s\n", q->key, q->def,
                        q->kind == AA_PARAM_INT ? "integer" : (q->open_min ? "real, above" : "real"),

@@ -13,7 +13,7 @@ static void usage(FILE *out)
     fprintf(out,
             "usage: aabench render -p PATTERN -m METHOD -s WxH [-f FILTER] -o OUT [options]\n\n"
             "Renders the pattern with the method and writes the image.\n\n"
-            "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"
+            "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"            "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
             "  -m, --method SPEC    method, e.g. jitter:spp=16,seq=sobol ('aabench list methods -v')\n"
             "  -s, --size WxH       image size in pixels\n"
             "  -f, --filter SPEC    box (default), tent:r=R, gauss:s=S or cone:r=R\n"
@@ -109,7 +109,7 @@ static int write_stats(const char *path, const render_args *a, const aa_spec *pa
                        const aa_spec *method, const aa_filter *f, int w, int h,
                        const aa_timing *timing, const aa_counters *c, int threads)
 {
-    char ps[1024], ms[1024], fs[256];
+    char ps[4096], ms[1024], fs[256];
     double med = timing->stats.median, pixels = (double)w * h;
     aa_spec_format(pattern, ps, sizeof ps);
     aa_spec_format(method, ms, sizeof ms);
@@ -191,7 +191,7 @@ int cmd_render(int argc, char **argv)
     aa_timing_plan plan = {a.reps, a.target_ci, a.budget};
     if (!timing)
         return cli_fail("render", aa_fail(AA_ENOMEM, "out of memory"));
-    if (!(st = aa_pattern_scene(&pattern, &scene)) &&
+    if (!(st = aa_pattern_scene_at(&pattern, w, h, &scene)) &&
         !(st = aa_job_init(&job, scene, w, h, a.t, a.vx, a.vy, &f, a.seed, threads)) &&
         !(st = aa_image_alloc(&img, w, h, 3))) {
         job.frame_only = a.frame_only;

@@ -50,7 +50,7 @@ static void usage(FILE *out)
             "or DIR.  -p, -m, -s, -f may be repeated; given, they replace the suite's lists.\n"
             "A method runs only with the filters and scenes it takes (one line counts the\n"
             "pairs left out) unless -m and -f are both given.\n\n"
-            "  --suite NAME      quick, default (the default), paper, full or temporal\n"
+            "  --suite NAME      quick, default (the default), paper, full, vector or temporal\n"
             "                    (--list-suites)\n"
             "  --target-ci PCT   time each case until the 95%% CI of its median is within\n"
             "                    PCT%% of it (default 2), after one untimed warm-up render\n"
@@ -736,6 +736,27 @@ static int parse_methods(owned *o, const char *const *text, size_t n, aa_run_spe
     return st;
 }
 
+/* A suite's external methods (AA_METHOD_EXTERNAL) whose renderer is not
+ * installed are left out, with a note on standard error: a suite lists
+ * every renderer and runs those this machine has.  Given with -m, such a
+ * method is refused as everywhere else. */
+static size_t drop_missing_external(const char *suite, aa_run_spec *m, size_t n)
+{
+    aa_filter box;
+    aa_filter_default(&box);
+    size_t kept = 0;
+    for (size_t k = 0; k < n; k++) {
+        const aa_method_type *t = (const aa_method_type *)m[k].spec.info;
+        if ((t->flags & AA_METHOD_EXTERNAL) && aa_method_check(&m[k].spec, &box) != AA_OK) {
+            fprintf(stderr, "aabench run: suite %s: leaving out %s: %s\n", suite, m[k].text,
+                    aa_last_error());
+            continue;
+        }
+        m[kept++] = m[k];
+    }
+    return kept;
+}
+
 /* The cross products to run: the suite's groups, with any list given on the
  * command line replacing the groups' own.  The lists given are parsed once,
  * and shared by every group. */
@@ -764,6 +785,8 @@ static int groups_of(const run_args *a, const aa_suite *suite, owned *o, aa_run_
             (!a->f.n && (st = parse_filters(o, g->filters, nf, &f))) ||
             (!a->m.n && (st = parse_methods(o, g->methods, nm, &m))))
             return st;
+        if (!a->m.n)
+            nm = drop_missing_external(suite->name, m, nm);
         memset(c, 0, sizeof *c);
         c->patterns = p, c->npatterns = np;
         c->sizes = s, c->nsizes = ns;

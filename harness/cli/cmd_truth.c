@@ -12,7 +12,7 @@ static void usage(FILE *out)
             "usage: aabench truth -p PATTERN -s WxH [-f FILTER] -o OUT [options]\n\n"
             "Writes the reference image: the pattern convolved with the filter at each\n"
             "pixel centre, exact to 1e-12 per pixel (GSL quadrature along y, exact along x).\n\n"
-            "  -p, --pattern SPEC   pattern, e.g. crow or crow:curves=64 ('aabench list patterns')\n"
+            "  -p, --pattern SPEC   pattern, e.g. crow or crow:curves=64 ('aabench list patterns')\n"            "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
             "  -s, --size WxH       image size in pixels\n"
             "  -f, --filter SPEC    box (default), tent:r=R, gauss:s=S or cone:r=R\n"
             "  -o, --out FILE       .exr .tif .pfm (float), .png (8-bit, display encoded), .txt\n"
@@ -162,7 +162,7 @@ int cmd_truth(int argc, char **argv)
         aa_truth_set_progress(show_progress, &prog);
     if (a.bound) {
         aa_scene *pattern = NULL, *placed = NULL;
-        if (!(st = aa_pattern_scene(&a.view.pattern, &pattern)) &&
+        if (!(st = aa_pattern_scene_at(&a.view.pattern, a.view.w, a.view.h, &pattern)) &&
             !(placed = aa_scene_place(pattern, a.view.w, a.view.h, a.view.t, a.view.vx,
                                       a.view.vy)))
             st = AA_EINVAL;
@@ -196,7 +196,7 @@ int cmd_truth(int argc, char **argv)
     if (st)
         return cli_fail("truth", st);
     if (!a.quiet) {
-        char spec[1024], filter[256];
+        char spec[4096], filter[256];
         aa_spec_format(&a.view.pattern, spec, sizeof spec);
         aa_spec_format(&a.view.filter.spec, filter, sizeof filter);
         if (cached)

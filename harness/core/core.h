@@ -261,6 +261,19 @@ extern const aa_pattern_type *const aa_pattern_types[]; /* NULL-terminated */
 int aa_pattern_parse(const char *text, aa_spec *out);
 /* Build the finished scene (pattern units) of a parsed pattern spec. */
 int aa_pattern_scene(const aa_spec *spec, aa_scene **out);
+/* The same for a view of w x h pixels.  A pattern drawn at the view's size
+ * (`svg`, `text`: their geometry is in pixels, so the unit square holds a
+ * different part of it at each size) needs it and is refused by
+ * aa_pattern_scene; the others ignore w and h. */
+int aa_pattern_scene_at(const aa_spec *spec, int w, int h, aa_scene **out);
+/* 1 if the pattern is drawn at the view's size (above). */
+int aa_pattern_sized(const aa_spec *spec);
+/* What the cache key of a view adds for the pattern beyond its canonical
+ * text: for a pattern read from files (`svg`, `text`), a line per file with
+ * the hash and length of its bytes, so that a file changed under the same
+ * name is never served an old reference; "" for the others.  Appended to
+ * buf (len bytes, NUL included). */
+int aa_pattern_key(const aa_spec *spec, char *buf, size_t len);
 
 /* ------------------------------------------------------------------------
  * Displays: where a method's dots are shown (Crow 1976, ch. 4, "A temporal

@@ -104,6 +104,97 @@ const char *aa_param_word(double value)
     return w;
 }
 
+/* ---- texts (AA_PARAM_TEXT) ---- */
+
+/* The texts met so far, numbered from 1 (0 is the empty text), malloc'd,
+ * never freed (they live as long as the specs that number them), only
+ * appended to under the lock. */
+#define TEXTS_MAX 4096
+static char *text_table[TEXTS_MAX];
+static int ntexts = 1;
+static pthread_mutex_t texts_lock = PTHREAD_MUTEX_INITIALIZER;
+
+/* The number of a text, added to the table if new; -1 when the table is
+ * full or out of memory. */
+static int text_number(const char *text)
+{
+    if (!*text)
+        return 0;
+    pthread_mutex_lock(&texts_lock);
+    int found = -1;
+    for (int k = 1; k < ntexts && found < 0; k++)
+        if (!strcmp(text_table[k], text))
+            found = k;
+    if (found < 0 && ntexts < TEXTS_MAX && (text_table[ntexts] = strdup(text)))
+        found = ntexts++;
+    pthread_mutex_unlock(&texts_lock);
+    return found;
+}
+
+const char *aa_param_text(double value)
+{
+    const char *t = "";
+    pthread_mutex_lock(&texts_lock);
+    if (value >= 1 && value < ntexts && value == floor(value))
+        t = text_table[(int)value];
+    pthread_mutex_unlock(&texts_lock);
+    return t;
+}
+
+static int hex_digit(int c)
+{
+    return c >= '0' && c <= '9' ? c - '0'
+           : c >= 'a' && c <= 'f' ? c - 'a' + 10
+           : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                  : -1;
+}
+
+/* A TEXT value as given in a spec, "%XX" decoded into buf; AA_EINVAL (with
+ * a message) for a '%' not followed by two hex digits, a NUL byte, a control
+ * character not written %XX or a text longer than AA_PARAM_TEXT_MAX. */
+static int text_decode(const aa_param *p, const char *text, char *buf)
+{
+    size_t n = 0;
+    for (const char *c = text; *c; c++) {
+        int ch = (unsigned char)*c;
+        if (ch == '%') {
+            int hi = hex_digit((unsigned char)c[1]), lo = hi < 0 ? -1 : hex_digit((unsigned char)c[2]);
+            if (hi < 0 || lo < 0)
+                return aa_fail(AA_EINVAL,
+                               "%s=%s: '%%' must be followed by two hex digits (write ',' as "
+                               "%%2C and '%%' as %%25)",
+                               p->key, aa_echo(text));
+            ch = hi * 16 + lo;
+            if (ch == 0)
+                return aa_fail(AA_EINVAL, "%s=%s: %%00 (a NUL byte) is not allowed", p->key,
+                               aa_echo(text));
+            c += 2;
+        } else if (ch < 0x20 || ch == 0x7f) {
+            return aa_fail(AA_EINVAL, "%s=%s: a control character must be written %%XX", p->key,
+                           aa_echo(text));
+        }
+        if (n >= AA_PARAM_TEXT_MAX)
+            return aa_fail(AA_EINVAL, "%s=%s: longer than %d bytes", p->key, aa_echo(text),
+                           AA_PARAM_TEXT_MAX);
+        buf[n++] = (char)ch;
+    }
+    buf[n] = '\0';
+    return AA_OK;
+}
+
+/* A text as a spec writes it: ',', '%', control characters and DEL as %XX. */
+static int text_encode(const char *text, char *buf, size_t len)
+{
+    size_t n = 0;
+    for (const unsigned char *c = (const unsigned char *)text; *c; c++) {
+        int m = *c == ',' || *c == '%' || *c < 0x20 || *c == 0x7f
+                    ? snprintf(buf + n, len > n ? len - n : 0, "%%%02X", *c)
+                    : snprintf(buf + n, len > n ? len - n : 0, "%c", *c);
+        n += (size_t)m;
+    }
+    return n < len ? 0 : -1;
+}
+
 void aa_spec_default(const aa_info *info, aa_spec *out)
 {
     size_t n = aa_param_count(info);
@@ -117,6 +208,11 @@ void aa_spec_default(const aa_info *info, aa_spec *out)
          * it) */
         if (p->kind == AA_PARAM_WORD)
             out->v[k] = p->choices && word_valid(p->choices) && (w = word_number(p->choices)) > 0
+                            ? w
+                            : 0;
+        else if (p->kind == AA_PARAM_TEXT)
+            out->v[k] = p->choices && strlen(p->choices) <= AA_PARAM_TEXT_MAX &&
+                                (w = text_number(p->choices)) > 0
                             ? w
                             : 0;
         else
@@ -214,6 +310,17 @@ static int param_parse(const aa_param *p, const char *text, double *value)
             return aa_fail(AA_EINVAL, "%s=%s: more than %d different names given", p->key, text,
                            WORDS_MAX - 1);
         *value = w;
+        return AA_OK;
+    }
+    if (p->kind == AA_PARAM_TEXT) {
+        char buf[AA_PARAM_TEXT_MAX + 1];
+        if (text_decode(p, text, buf))
+            return AA_EINVAL;
+        int t = text_number(buf);
+        if (t < 0)
+            return aa_fail(AA_EINVAL, "%s=%s: more than %d different texts given", p->key,
+                           aa_echo(text), TEXTS_MAX - 1);
+        *value = t;
         return AA_OK;
     }
     range_text(p, what, sizeof what);
@@ -346,6 +453,13 @@ int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
         } else if (p->kind == AA_PARAM_WORD) {
             m = snprintf(buf + n, len - n, "%c%s=%s", k ? ',' : ':', p->key,
                          aa_param_word(spec->v[k]));
+        } else if (p->kind == AA_PARAM_TEXT) {
+            m = snprintf(buf + n, len - n, "%c%s=", k ? ',' : ':', p->key);
+            if (m >= 0 && (size_t)m < len - n &&
+                text_encode(aa_param_text(spec->v[k]), buf + n + m, len - n - (size_t)m))
+                m = (int)(len - n); /* does not fit */
+            else if (m >= 0 && (size_t)m < len - n)
+                m += (int)strlen(buf + n + m);
         } else {
             m = snprintf(buf + n, len - n, "%c%s=%.17g", k ? ',' : ':', p->key, spec->v[k]);
         }

@@ -41,7 +41,7 @@ static int field_key(const aa_view *view, char *buf, size_t len);
  * the same view has the same key in every locale. */
 int aa_view_key(const aa_view *view, char *buf, size_t len)
 {
-    char pattern[1024], filter[256];
+    char pattern[4096], filter[256];
     aa__c_numbers numbers;
     int st;
     if ((st = aa_spec_format(&view->pattern, pattern, sizeof pattern)) ||
@@ -54,8 +54,11 @@ int aa_view_key(const aa_view *view, char *buf, size_t len)
                      view->vy);
     if (n < 0 || (size_t)n >= len)
         st = aa_fail(AA_EFAIL, "view key too long");
-    else
-        st = field_key(view, buf + n, len - (size_t)n);
+    else if (!(st = field_key(view, buf + n, len - (size_t)n))) {
+        /* a pattern read from files adds their contents' hashes */
+        size_t m = strlen(buf);
+        st = aa_pattern_key(&view->pattern, buf + m, len - m);
+    }
     aa__c_numbers_end(&numbers);
     return st;
 }
@@ -69,7 +72,7 @@ static int field_key(const aa_view *view, char *buf, size_t len)
     aa_scene *s = NULL;
     const double *p;
     int np, n, st = AA_OK;
-    if (aa_pattern_scene(&view->pattern, &s) != AA_OK)
+    if (aa_pattern_sized(&view->pattern) || aa_pattern_scene(&view->pattern, &s) != AA_OK)
         return AA_OK;
     const aa_field_type *field = aa_scene_field(s, &p, &np, NULL);
     if (field) {
@@ -282,7 +285,7 @@ static int cache_write(const char *dir, const char *path, const char *key, const
 int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_image *out,
                  aa_truth_stats *stats, int *from_cache)
 {
-    char key[2048], path[4096];
+    char key[8192], path[4096];
     aa_truth_stats local;
     aa_scene *pattern = NULL, *placed = NULL;
     int st;
@@ -304,7 +307,7 @@ int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_ima
         stats->worst_i = stats->worst_j = -1;
         return AA_OK;
     }
-    if ((st = aa_pattern_scene(&view->pattern, &pattern)))
+    if ((st = aa_pattern_scene_at(&view->pattern, view->w, view->h, &pattern)))
         goto fail;
     placed = aa_scene_place(pattern, view->w, view->h, view->t, view->vx, view->vy);
     if (!placed) {

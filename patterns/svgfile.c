@@ -1,0 +1,1524 @@
+/*
+ * svgfile.c: an SVG file as a scene (patterns/README.md, `svg`), and the
+ * reader under it (svgfile.h).
+ *
+ * The document is parsed by libxml2 without network access
+ * (XML_PARSE_NONET), without loading a DTD or substituting entities (no
+ * XML_PARSE_DTDLOAD, no XML_PARSE_NOENT), and a document declaring entities
+ * in an internal DTD subset is refused, so no external entity is ever read
+ * and no entity is expanded.  The tree is walked in document order; each
+ * filled shape becomes one layer of the scene, the last shape in the
+ * document in front (painter's order), in pixel units exactly as a browser
+ * draws the document at one CSS pixel per image pixel:
+ *
+ *   - the viewport is the root <svg>'s width and height in pixels (a number,
+ *     optionally "px"; "100%" or absent: the view's W or H), at the image's
+ *     top left corner; what falls outside it is clipped (the root's overflow
+ *     is hidden), and everything no shape covers is black;
+ *   - a viewBox maps to the viewport by preserveAspectRatio (default
+ *     xMidYMid meet; every alignment, meet, slice and none);
+ *   - transform lists (matrix, translate, scale, rotate with or without a
+ *     centre, skewX, skewY) compose from the root down and are applied to
+ *     every point, control points included, which is exact for Bezier
+ *     arcs under affine maps;
+ *   - <path> with every command but the arc (M L H V Q T C S Z, absolute and
+ *     relative, implicit repeats, the number grammar of SVG paths),
+ *     <rect> without rounded corners, <polygon>, <polyline>, <g>; <line>
+ *     draws nothing without a stroke; <title>, <desc>, <metadata> and
+ *     <defs> (whose content is drawn only when referenced) draw nothing;
+ *   - fill (named colours, #rgb, #rrggbb, rgb() with integers or
+ *     percentages, none, inherit) and fill-rule, as attributes or in a
+ *     style attribute; colours are sRGB and become linear light by the sRGB
+ *     decoding.
+ *
+ * Refused, naming the element and its line: strokes, arcs (the A command,
+ * <circle>, <ellipse>, rounded rectangles), opacity below 1, paint servers
+ * (gradients, patterns: url() fills), text, images, <use>, clip paths,
+ * masks, filters, style sheets, nested <svg>, units other than px, and any
+ * other element of the SVG namespace; elements of other namespaces are not
+ * drawn (as a browser ignores them).  Malformed XML or path data, files
+ * over AA_SVG_MAX_BYTES, nesting deeper than AA_SVG_MAX_DEPTH, more than
+ * AA_SVG_MAX_SEGMENTS path commands, numbers over AA_SVG_MAX_NUMBER and
+ * coordinates over AA_SVG_MAX_COORD pixels are refused too.
+ */
+#include "svgfile.h"
+#include "c_numbers_internal.h"
+#include "patterns.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <sys/stat.h>
+
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+
+#define SVG_NS "http://www.w3.org/2000/svg"
+
+/* the shipped examples (the default file is one), set by the Makefile */
+#ifndef AA_SVG_DIR
+#define AA_SVG_DIR "patterns/svg"
+#endif
+
+/* ---- files ---- */
+
+/* AA_EINVAL unless `path` names a regular file (a folder, a device or a
+ * pipe is not a document) of at most `max` bytes. */
+static int regular_file(const char *path, const char *what, size_t max)
+{
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return aa_fail(AA_EINVAL, "%s %s: %s", what, aa_echo(path), strerror(errno));
+    if (!S_ISREG(st.st_mode))
+        return aa_fail(AA_EINVAL, "%s %s is not a regular file", what, aa_echo(path));
+    if ((unsigned long long)st.st_size > (unsigned long long)max)
+        return aa_fail(AA_EINVAL, "%s %s is larger than %zu bytes", what, aa_echo(path), max);
+    return AA_OK;
+}
+
+int aa_file_read_all(const char *path, size_t max, const char *what, char **data, size_t *len)
+{
+    *data = NULL;
+    *len = 0;
+    int rs = regular_file(path, what, max);
+    if (rs)
+        return rs;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return aa_fail(AA_EINVAL, "%s %s: %s", what, aa_echo(path), strerror(errno));
+    size_t cap = 65536, n = 0;
+    char *buf = malloc(cap + 1);
+    int st = buf ? AA_OK : aa_fail(AA_ENOMEM, "out of memory reading %s", aa_echo(path));
+    while (!st) {
+        if (n == cap) {
+            if (cap > max) {
+                st = aa_fail(AA_EINVAL, "%s %s is larger than %zu bytes", what, aa_echo(path),
+                             max);
+                break;
+            }
+            char *b = realloc(buf, 2 * cap + 1);
+            if (!b) {
+                st = aa_fail(AA_ENOMEM, "out of memory reading %s", aa_echo(path));
+                break;
+            }
+            buf = b, cap *= 2;
+        }
+        size_t got = fread(buf + n, 1, cap - n, f);
+        n += got;
+        if (got == 0) {
+            if (ferror(f))
+                st = aa_fail(AA_EIO, "cannot read %s %s", what, aa_echo(path));
+            break;
+        }
+    }
+    fclose(f);
+    if (!st && n > max)
+        st = aa_fail(AA_EINVAL, "%s %s is larger than %zu bytes", what, aa_echo(path), max);
+    if (st) {
+        free(buf);
+        return st;
+    }
+    buf[n] = '\0';
+    *data = buf;
+    *len = n;
+    return AA_OK;
+}
+
+int aa_file_hash(const char *path, unsigned long long *hash, size_t *len)
+{
+    int rs = regular_file(path, "file", SIZE_MAX);
+    if (rs)
+        return rs;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return aa_fail(AA_EINVAL, "%s: %s", aa_echo(path), strerror(errno));
+    unsigned long long h = 1469598103934665603ull;
+    unsigned char buf[65536];
+    size_t n = 0, got;
+    while ((got = fread(buf, 1, sizeof buf, f)) > 0) {
+        for (size_t k = 0; k < got; k++) {
+            h ^= buf[k];
+            h *= 1099511628211ull;
+        }
+        n += got;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad)
+        return aa_fail(AA_EIO, "cannot read %s", aa_echo(path));
+    *hash = h;
+    *len = n;
+    return AA_OK;
+}
+
+/* ---- the reader's state ---- */
+
+typedef struct mat {
+    double a, b, c, d, e, f; /* x' = a x + c y + e, y' = b x + d y + f */
+} mat;
+
+typedef struct style {
+    aa_rgb fill;
+    int fill_none;
+    aa_fill_rule rule;
+} style;
+
+typedef struct reader {
+    const aa_svg_sink *sink;
+    void *ctx;
+    const char *name;
+    long segments;
+    const xmlNode *node; /* the element being read, for messages */
+    int open;            /* a subpath is open in the sink */
+    int pending;         /* the shape is given to the sink at its first point */
+    style shape;
+} reader;
+
+/* AA_EINVAL naming the element and its line. */
+static int fail_at(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
+static int fail_at(reader *r, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (r->node)
+        return aa_fail(AA_EINVAL, "%s: line %ld: <%s>: %s", r->name, xmlGetLineNo(r->node),
+                       (const char *)r->node->name, msg);
+    return aa_fail(AA_EINVAL, "%s: %s", r->name, msg);
+}
+
+static mat mat_mul(mat m, mat n) /* m then... m * n: apply n first, then m */
+{
+    mat o;
+    o.a = m.a * n.a + m.c * n.b;
+    o.b = m.b * n.a + m.d * n.b;
+    o.c = m.a * n.c + m.c * n.d;
+    o.d = m.b * n.c + m.d * n.d;
+    o.e = m.a * n.e + m.c * n.f + m.e;
+    o.f = m.b * n.e + m.d * n.f + m.f;
+    return o;
+}
+
+static const mat identity = {1, 0, 0, 1, 0, 0};
+
+/* ---- numbers ---- */
+
+static int is_wsp(int c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f'; }
+
+static const char *skip_wsp(const char *s)
+{
+    while (is_wsp((unsigned char)*s))
+        s++;
+    return s;
+}
+
+/* wsp* ","? wsp* */
+static const char *skip_comma_wsp(const char *s)
+{
+    s = skip_wsp(s);
+    if (*s == ',')
+        s = skip_wsp(s + 1);
+    return s;
+}
+
+/* A number of the SVG path grammar at *s: sign? (digits ("." digits?)? |
+ * "." digits) (("e" | "E") sign? digits)?.  0 and *s advanced, or -1 when
+ * there is none; -2 for a number out of range. */
+static int scan_number(const char **s, double *v)
+{
+    const char *p = *s, *start = p;
+    int digits = 0;
+    if (*p == '+' || *p == '-')
+        p++;
+    while (isdigit((unsigned char)*p))
+        p++, digits++;
+    if (*p == '.') {
+        p++;
+        while (isdigit((unsigned char)*p))
+            p++, digits++;
+    }
+    if (!digits)
+        return -1;
+    if (*p == 'e' || *p == 'E') {
+        const char *q = p + 1;
+        if (*q == '+' || *q == '-')
+            q++;
+        if (isdigit((unsigned char)*q)) {
+            while (isdigit((unsigned char)*q))
+                q++;
+            p = q;
+        }
+    }
+    char buf[128];
+    size_t n = (size_t)(p - start);
+    if (n >= sizeof buf) {
+        /* long runs of digits: keep the value's magnitude honest */
+        errno = 0;
+        char *heap = strndup(start, n);
+        if (!heap)
+            return -2;
+        *v = strtod(heap, NULL);
+        free(heap);
+    } else {
+        memcpy(buf, start, n);
+        buf[n] = '\0';
+        *v = strtod(buf, NULL);
+    }
+    *s = p;
+    if (!isfinite(*v) || fabs(*v) > AA_SVG_MAX_NUMBER)
+        return -2;
+    return 0;
+}
+
+/* A whole attribute that is one number, with an optional "px". */
+static int parse_length(reader *r, const char *attr, const char *text, double *v)
+{
+    const char *s = skip_wsp(text);
+    int k = scan_number(&s, v);
+    if (k == -2)
+        return fail_at(r, "%s=\"%s\": the number is out of range (at most %g)", attr,
+                       aa_echo(text), AA_SVG_MAX_NUMBER);
+    if (k < 0)
+        return fail_at(r, "%s=\"%s\" is not a number", attr, aa_echo(text));
+    if (s[0] == 'p' && s[1] == 'x')
+        s += 2;
+    s = skip_wsp(s);
+    if (*s)
+        return fail_at(r, "%s=\"%s\": only plain numbers and px are supported (no %%, em, "
+                          "mm, ...)",
+                       attr, aa_echo(text));
+    return AA_OK;
+}
+
+/* ---- properties: attributes and the style attribute ---- */
+
+/* The value of property `key` for the element: its declaration in the
+ * style attribute wins over the attribute.  Written into buf; 1 if given. */
+static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size_t len, int *st)
+{
+    int found = 0;
+    xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
+    if (css) {
+        const char *s = (const char *)css;
+        size_t klen = strlen(key);
+        while (*s) {
+            const char *end = strchr(s, ';');
+            size_t n = end ? (size_t)(end - s) : strlen(s);
+            const char *colon = memchr(s, ':', n);
+            const char *a = s, *b = colon ? colon : s + n;
+            while (a < b && is_wsp((unsigned char)*a))
+                a++;
+            while (b > a && is_wsp((unsigned char)b[-1]))
+                b--;
+            if (colon && (size_t)(b - a) == klen && !strncmp(a, key, klen)) {
+                const char *v = colon + 1, *ve = s + n;
+                while (v < ve && is_wsp((unsigned char)*v))
+                    v++;
+                while (ve > v && is_wsp((unsigned char)ve[-1]))
+                    ve--;
+                if ((size_t)(ve - v) >= len) {
+                    *st = fail_at(r, "style %s: value too long", key);
+                } else {
+                    memcpy(buf, v, (size_t)(ve - v));
+                    buf[ve - v] = '\0';
+                    found = 1;
+                }
+            }
+            s += n;
+            if (*s == ';')
+                s++;
+        }
+        xmlFree(css);
+        if (found || *st)
+            return found;
+    }
+    xmlChar *v = xmlGetNoNsProp(node, (const xmlChar *)key);
+    if (v) {
+        const char *a = skip_wsp((const char *)v);
+        size_t n = strlen(a);
+        while (n && is_wsp((unsigned char)a[n - 1]))
+            n--;
+        if (n >= len)
+            *st = fail_at(r, "%s: value too long", key);
+        else {
+            memcpy(buf, a, n);
+            buf[n] = '\0';
+            found = 1;
+        }
+        xmlFree(v);
+    }
+    return found;
+}
+
+/* ---- colours ---- */
+
+static const struct {
+    const char *name;
+    unsigned rgb;
+} named_colours[] = {
+    {"aliceblue", 0xf0f8ff},
+    {"antiquewhite", 0xfaebd7},
+    {"aqua", 0x00ffff},
+    {"aquamarine", 0x7fffd4},
+    {"azure", 0xf0ffff},
+    {"beige", 0xf5f5dc},
+    {"bisque", 0xffe4c4},
+    {"black", 0x000000},
+    {"blanchedalmond", 0xffebcd},
+    {"blue", 0x0000ff},
+    {"blueviolet", 0x8a2be2},
+    {"brown", 0xa52a2a},
+    {"burlywood", 0xdeb887},
+    {"cadetblue", 0x5f9ea0},
+    {"chartreuse", 0x7fff00},
+    {"chocolate", 0xd2691e},
+    {"coral", 0xff7f50},
+    {"cornflowerblue", 0x6495ed},
+    {"cornsilk", 0xfff8dc},
+    {"crimson", 0xdc143c},
+    {"cyan", 0x00ffff},
+    {"darkblue", 0x00008b},
+    {"darkcyan", 0x008b8b},
+    {"darkgoldenrod", 0xb8860b},
+    {"darkgray", 0xa9a9a9},
+    {"darkgreen", 0x006400},
+    {"darkgrey", 0xa9a9a9},
+    {"darkkhaki", 0xbdb76b},
+    {"darkmagenta", 0x8b008b},
+    {"darkolivegreen", 0x556b2f},
+    {"darkorange", 0xff8c00},
+    {"darkorchid", 0x9932cc},
+    {"darkred", 0x8b0000},
+    {"darksalmon", 0xe9967a},
+    {"darkseagreen", 0x8fbc8f},
+    {"darkslateblue", 0x483d8b},
+    {"darkslategray", 0x2f4f4f},
+    {"darkslategrey", 0x2f4f4f},
+    {"darkturquoise", 0x00ced1},
+    {"darkviolet", 0x9400d3},
+    {"deeppink", 0xff1493},
+    {"deepskyblue", 0x00bfff},
+    {"dimgray", 0x696969},
+    {"dimgrey", 0x696969},
+    {"dodgerblue", 0x1e90ff},
+    {"firebrick", 0xb22222},
+    {"floralwhite", 0xfffaf0},
+    {"forestgreen", 0x228b22},
+    {"fuchsia", 0xff00ff},
+    {"gainsboro", 0xdcdcdc},
+    {"ghostwhite", 0xf8f8ff},
+    {"gold", 0xffd700},
+    {"goldenrod", 0xdaa520},
+    {"gray", 0x808080},
+    {"grey", 0x808080},
+    {"green", 0x008000},
+    {"greenyellow", 0xadff2f},
+    {"honeydew", 0xf0fff0},
+    {"hotpink", 0xff69b4},
+    {"indianred", 0xcd5c5c},
+    {"indigo", 0x4b0082},
+    {"ivory", 0xfffff0},
+    {"khaki", 0xf0e68c},
+    {"lavender", 0xe6e6fa},
+    {"lavenderblush", 0xfff0f5},
+    {"lawngreen", 0x7cfc00},
+    {"lemonchiffon", 0xfffacd},
+    {"lightblue", 0xadd8e6},
+    {"lightcoral", 0xf08080},
+    {"lightcyan", 0xe0ffff},
+    {"lightgoldenrodyellow", 0xfafad2},
+    {"lightgray", 0xd3d3d3},
+    {"lightgreen", 0x90ee90},
+    {"lightgrey", 0xd3d3d3},
+    {"lightpink", 0xffb6c1},
+    {"lightsalmon", 0xffa07a},
+    {"lightseagreen", 0x20b2aa},
+    {"lightskyblue", 0x87cefa},
+    {"lightslategray", 0x778899},
+    {"lightslategrey", 0x778899},
+    {"lightsteelblue", 0xb0c4de},
+    {"lightyellow", 0xffffe0},
+    {"lime", 0x00ff00},
+    {"limegreen", 0x32cd32},
+    {"linen", 0xfaf0e6},
+    {"magenta", 0xff00ff},
+    {"maroon", 0x800000},
+    {"mediumaquamarine", 0x66cdaa},
+    {"mediumblue", 0x0000cd},
+    {"mediumorchid", 0xba55d3},
+    {"mediumpurple", 0x9370db},
+    {"mediumseagreen", 0x3cb371},
+    {"mediumslateblue", 0x7b68ee},
+    {"mediumspringgreen", 0x00fa9a},
+    {"mediumturquoise", 0x48d1cc},
+    {"mediumvioletred", 0xc71585},
+    {"midnightblue", 0x191970},
+    {"mintcream", 0xf5fffa},
+    {"mistyrose", 0xffe4e1},
+    {"moccasin", 0xffe4b5},
+    {"navajowhite", 0xffdead},
+    {"navy", 0x000080},
+    {"oldlace", 0xfdf5e6},
+    {"olive", 0x808000},
+    {"olivedrab", 0x6b8e23},
+    {"orange", 0xffa500},
+    {"orangered", 0xff4500},
+    {"orchid", 0xda70d6},
+    {"palegoldenrod", 0xeee8aa},
+    {"palegreen", 0x98fb98},
+    {"paleturquoise", 0xafeeee},
+    {"palevioletred", 0xdb7093},
+    {"papayawhip", 0xffefd5},
+    {"peachpuff", 0xffdab9},
+    {"peru", 0xcd853f},
+    {"pink", 0xffc0cb},
+    {"plum", 0xdda0dd},
+    {"powderblue", 0xb0e0e6},
+    {"purple", 0x800080},
+    {"red", 0xff0000},
+    {"rosybrown", 0xbc8f8f},
+    {"royalblue", 0x4169e1},
+    {"saddlebrown", 0x8b4513},
+    {"salmon", 0xfa8072},
+    {"sandybrown", 0xf4a460},
+    {"seagreen", 0x2e8b57},
+    {"seashell", 0xfff5ee},
+    {"sienna", 0xa0522d},
+    {"silver", 0xc0c0c0},
+    {"skyblue", 0x87ceeb},
+    {"slateblue", 0x6a5acd},
+    {"slategray", 0x708090},
+    {"slategrey", 0x708090},
+    {"snow", 0xfffafa},
+    {"springgreen", 0x00ff7f},
+    {"steelblue", 0x4682b4},
+    {"tan", 0xd2b48c},
+    {"teal", 0x008080},
+    {"thistle", 0xd8bfd8},
+    {"tomato", 0xff6347},
+    {"turquoise", 0x40e0d0},
+    {"violet", 0xee82ee},
+    {"wheat", 0xf5deb3},
+    {"white", 0xffffff},
+    {"whitesmoke", 0xf5f5f5},
+    {"yellow", 0xffff00},
+    {"yellowgreen", 0x9acd32},
+};
+
+/* sRGB-encoded v in [0, 1] to linear light. */
+static double srgb_decode(double v)
+{
+    if (v <= 0)
+        return 0;
+    if (v >= 1)
+        return 1;
+    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+}
+
+static int hex(int c)
+{
+    return c >= '0' && c <= '9' ? c - '0'
+           : c >= 'a' && c <= 'f' ? c - 'a' + 10
+           : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                  : -1;
+}
+
+/* A fill value: a colour into *c, or none (*none = 1).  "inherit" is the
+ * caller's. */
+static int parse_paint(reader *r, const char *text, aa_rgb *c, int *none)
+{
+    double v[3];
+    *none = 0;
+    if (!strcmp(text, "none")) {
+        *none = 1;
+        return AA_OK;
+    }
+    if (!strncmp(text, "url(", 4))
+        return fail_at(r, "fill=\"%s\": paint servers (gradients, patterns) are not supported",
+                       aa_echo(text));
+    if (!strcmp(text, "currentColor") || !strcmp(text, "currentcolor"))
+        return fail_at(r, "fill=\"%s\" is not supported (give the colour)", aa_echo(text));
+    size_t n = strlen(text);
+    if (text[0] == '#') {
+        int d[6];
+        if (n != 4 && n != 7) {
+            if (n == 5 || n == 9)
+                return fail_at(r, "fill=\"%s\": colours with alpha (opacity) are not supported",
+                               aa_echo(text));
+            return fail_at(r, "fill=\"%s\" is not a colour (#rgb or #rrggbb)", aa_echo(text));
+        }
+        for (size_t k = 1; k < n; k++)
+            if ((d[k - 1] = hex((unsigned char)text[k])) < 0)
+                return fail_at(r, "fill=\"%s\" is not a colour (#rgb or #rrggbb)",
+                               aa_echo(text));
+        for (int k = 0; k < 3; k++)
+            v[k] = (n == 4 ? d[k] * 17 : d[2 * k] * 16 + d[2 * k + 1]) / 255.0;
+    } else if (!strncmp(text, "rgb(", 4)) {
+        const char *s = text + 4;
+        int pct = -1;
+        for (int k = 0; k < 3; k++) {
+            s = skip_wsp(s);
+            if (k) {
+                if (*s != ',')
+                    goto bad_rgb;
+                s = skip_wsp(s + 1);
+            }
+            if (scan_number(&s, &v[k]))
+                goto bad_rgb;
+            int is_pct = *s == '%';
+            if (pct >= 0 && is_pct != pct)
+                goto bad_rgb; /* all percentages or all numbers */
+            pct = is_pct;
+            s += is_pct;
+            v[k] = is_pct ? v[k] / 100 : v[k] / 255;
+            v[k] = v[k] < 0 ? 0 : v[k] > 1 ? 1 : v[k]; /* CSS clamps */
+        }
+        s = skip_wsp(s);
+        if (*s != ')' || *skip_wsp(s + 1))
+            goto bad_rgb;
+    } else if (!strncmp(text, "rgba(", 5) || !strncmp(text, "hsl", 3)) {
+        return fail_at(r, "fill=\"%s\": only rgb(), #rgb, #rrggbb and named colours are "
+                          "supported (no alpha)",
+                       aa_echo(text));
+    } else {
+        size_t k, count = sizeof named_colours / sizeof named_colours[0];
+        for (k = 0; k < count; k++)
+            if (!strcasecmp(named_colours[k].name, text))
+                break;
+        if (k == count)
+            return fail_at(r, "fill=\"%s\" is not a colour this reader knows", aa_echo(text));
+        unsigned x = named_colours[k].rgb;
+        v[0] = (x >> 16) / 255.0, v[1] = ((x >> 8) & 255) / 255.0, v[2] = (x & 255) / 255.0;
+    }
+    for (int k = 0; k < 3; k++)
+        c->c[k] = srgb_decode(v[k]);
+    return AA_OK;
+bad_rgb:
+    return fail_at(r, "fill=\"%s\" is not rgb(R, G, B) (three numbers or three percentages)",
+                   aa_echo(text));
+}
+
+/* ---- transforms ---- */
+
+/* cos and sin of an angle in degrees, exact at multiples of 90. */
+static void cos_sin_deg(double deg, double *c, double *s)
+{
+    double q = deg / 90.0;
+    if (q == floor(q)) {
+        static const double cs[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+        int k = (int)fmod(fmod(q, 4.0) + 4.0, 4.0);
+        *c = cs[k][0], *s = cs[k][1];
+        return;
+    }
+    double a = deg * (M_PI / 180.0);
+    *c = cos(a), *s = sin(a);
+}
+
+static int tan_deg(reader *r, double deg, double *t)
+{
+    double m = fmod(deg, 180.0);
+    if (m == 90.0 || m == -90.0)
+        return fail_at(r, "a skew of %g degrees is infinite", deg);
+    if (m == 0)
+        *t = 0;
+    else if (m == 45.0 || m == -135.0)
+        *t = 1;
+    else if (m == -45.0 || m == 135.0)
+        *t = -1;
+    else
+        *t = tan(m * (M_PI / 180.0));
+    return AA_OK;
+}
+
+static int parse_transform(reader *r, const char *text, mat *out)
+{
+    static const struct {
+        const char *name;
+        int min, max;
+    } kinds[] = {{"matrix", 6, 6}, {"translate", 1, 2}, {"scale", 1, 2},
+                 {"rotate", 1, 3}, {"skewX", 1, 1},     {"skewY", 1, 1}};
+    mat m = identity;
+    const char *s = skip_wsp(text);
+    while (*s) {
+        size_t kind, nk = sizeof kinds / sizeof kinds[0];
+        for (kind = 0; kind < nk; kind++) {
+            size_t l = strlen(kinds[kind].name);
+            if (!strncmp(s, kinds[kind].name, l) && (s[l] == '(' || is_wsp((unsigned char)s[l]))) {
+                s = skip_wsp(s + l);
+                break;
+            }
+        }
+        if (kind == nk || *s != '(')
+            return fail_at(r, "transform=\"%s\" is malformed (matrix, translate, scale, rotate, "
+                              "skewX or skewY expected)",
+                           aa_echo(text));
+        s = skip_wsp(s + 1);
+        double a[6];
+        int n = 0;
+        while (*s != ')') {
+            if (n == 6)
+                return fail_at(r, "transform=\"%s\": too many numbers", aa_echo(text));
+            int k = scan_number(&s, &a[n]);
+            if (k == -2)
+                return fail_at(r, "transform=\"%s\": a number is out of range", aa_echo(text));
+            if (k)
+                return fail_at(r, "transform=\"%s\" is malformed", aa_echo(text));
+            n++;
+            s = skip_comma_wsp(s);
+        }
+        s++;
+        if (n < kinds[kind].min || n > kinds[kind].max || (kind == 3 && n == 2))
+            return fail_at(r, "transform=\"%s\": %s takes %d%s numbers", aa_echo(text),
+                           kinds[kind].name, kinds[kind].min,
+                           kind == 0 ? "" : kind == 3 ? " or 3" : " or 2");
+        mat t = identity;
+        double c, sn, tn;
+        switch (kind) {
+        case 0:
+            t = (mat){a[0], a[1], a[2], a[3], a[4], a[5]};
+            break;
+        case 1:
+            t.e = a[0], t.f = n > 1 ? a[1] : 0;
+            break;
+        case 2:
+            t.a = a[0], t.d = n > 1 ? a[1] : a[0];
+            break;
+        case 3:
+            cos_sin_deg(a[0], &c, &sn);
+            t = (mat){c, sn, -sn, c, 0, 0};
+            if (n == 3) { /* translate(cx, cy) rotate(a) translate(-cx, -cy) */
+                mat to = {1, 0, 0, 1, a[1], a[2]}, back = {1, 0, 0, 1, -a[1], -a[2]};
+                t = mat_mul(to, mat_mul(t, back));
+            }
+            break;
+        case 4:
+            if (tan_deg(r, a[0], &tn))
+                return AA_EINVAL;
+            t.c = tn;
+            break;
+        default:
+            if (tan_deg(r, a[0], &tn))
+                return AA_EINVAL;
+            t.b = tn;
+            break;
+        }
+        m = mat_mul(m, t);
+        s = skip_comma_wsp(s);
+    }
+    for (int k = 0; k < 6; k++) {
+        double v = ((const double *)&m)[k];
+        if (!isfinite(v) || fabs(v) > AA_SVG_MAX_NUMBER)
+            return fail_at(r, "transform=\"%s\" is out of range", aa_echo(text));
+    }
+    *out = m;
+    return AA_OK;
+}
+
+/* ---- emitting ---- */
+
+static int point(reader *r, const mat *m, double x, double y, double *u, double *v)
+{
+    *u = m->a * x + m->c * y + m->e;
+    *v = m->b * x + m->d * y + m->f;
+    if (!(fabs(*u) <= AA_SVG_MAX_COORD && fabs(*v) <= AA_SVG_MAX_COORD))
+        return fail_at(r, "the point (%g, %g) lands at (%g, %g) pixels, beyond %g", x, y, *u, *v,
+                       AA_SVG_MAX_COORD);
+    return AA_OK;
+}
+
+static int count_segment(reader *r)
+{
+    if (++r->segments > AA_SVG_MAX_SEGMENTS)
+        return fail_at(r, "more than %d path segments in the document", AA_SVG_MAX_SEGMENTS);
+    return AA_OK;
+}
+
+static int emit_close(reader *r)
+{
+    if (!r->open)
+        return AA_OK;
+    r->open = 0;
+    return r->sink->close(r->ctx);
+}
+
+static int emit_move(reader *r, const mat *m, double x, double y)
+{
+    double u, v;
+    int st;
+    if ((st = emit_close(r)) || (st = point(r, m, x, y, &u, &v)) || (st = count_segment(r)))
+        return st;
+    if (r->pending) {
+        r->pending = 0;
+        if ((st = r->sink->shape(r->ctx, r->shape.fill, r->shape.rule)))
+            return st;
+    }
+    r->open = 1;
+    return r->sink->move_to(r->ctx, u, v);
+}
+
+static int emit_line(reader *r, const mat *m, double x, double y)
+{
+    double u, v;
+    int st;
+    if ((st = point(r, m, x, y, &u, &v)) || (st = count_segment(r)))
+        return st;
+    return r->sink->line_to(r->ctx, u, v);
+}
+
+static int emit_quad(reader *r, const mat *m, double cx, double cy, double x, double y)
+{
+    double p[4];
+    int st;
+    if ((st = point(r, m, cx, cy, &p[0], &p[1])) || (st = point(r, m, x, y, &p[2], &p[3])) ||
+        (st = count_segment(r)))
+        return st;
+    return r->sink->quad_to(r->ctx, p[0], p[1], p[2], p[3]);
+}
+
+static int emit_cubic(reader *r, const mat *m, const double q[6])
+{
+    double p[6];
+    int st;
+    for (int k = 0; k < 3; k++)
+        if ((st = point(r, m, q[2 * k], q[2 * k + 1], &p[2 * k], &p[2 * k + 1])))
+            return st;
+    if ((st = count_segment(r)))
+        return st;
+    return r->sink->cubic_to(r->ctx, p[0], p[1], p[2], p[3], p[4], p[5]);
+}
+
+/* ---- path data ---- */
+
+static int path_data(reader *r, const mat *m, const char *d)
+{
+    const char *s = skip_wsp(d);
+    char cmd = 0;
+    double cx = 0, cy = 0, sx = 0, sy = 0; /* current point, subpath start */
+    double qx = 0, qy = 0;                 /* last control point (for S and T) */
+    char last = 0;                         /* the last command, upper case */
+    int st, subpath = 0;                   /* a subpath was begun by M */
+    while (*s) {
+        if (isalpha((unsigned char)*s)) {
+            cmd = *s++;
+            if (!strchr("MmLlHhVvQqTtCcSsZzAa", cmd))
+                return fail_at(r, "d: unknown path command '%c' at offset %ld", cmd,
+                               (long)(s - 1 - d));
+            if (cmd == 'A' || cmd == 'a')
+                return fail_at(r, "d: the arc command %c (elliptical arcs) cannot be held "
+                                  "exactly and is not supported",
+                               cmd);
+            if (!subpath && cmd != 'M' && cmd != 'm')
+                return fail_at(r, "d: path data must begin with M or m");
+            s = skip_wsp(s);
+        } else if (!cmd) {
+            return fail_at(r, "d: path data must begin with M or m");
+        } else if (cmd == 'Z' || cmd == 'z') {
+            return fail_at(r, "d: a number after Z at offset %ld", (long)(s - d));
+        }
+        int up = toupper((unsigned char)cmd), rel = cmd != up;
+        int need = up == 'M' || up == 'L' || up == 'T' ? 2
+                   : up == 'H' || up == 'V'           ? 1
+                   : up == 'Q' || up == 'S'           ? 4
+                   : up == 'C'                        ? 6
+                                                      : 0;
+        double a[6];
+        for (int k = 0; k < need; k++) {
+            if (k)
+                s = skip_comma_wsp(s);
+            int e = scan_number(&s, &a[k]);
+            if (e == -2)
+                return fail_at(r, "d: a number out of range at offset %ld (at most %g)",
+                               (long)(s - d), AA_SVG_MAX_NUMBER);
+            if (e)
+                return fail_at(r, "d: %s at offset %ld (command %c needs %d numbers)",
+                               *s ? "malformed number" : "path data ends too early",
+                               (long)(s - d), cmd, need);
+        }
+        /* after Z, a drawing command starts a new subpath at the start point */
+        if (up != 'M' && up != 'Z' && !r->open && (st = emit_move(r, m, sx, sy)))
+            return st;
+        double ox = rel ? cx : 0, oy = rel ? cy : 0;
+        switch (up) {
+        case 'M':
+            cx = a[0] + ox, cy = a[1] + oy;
+            sx = cx, sy = cy;
+            subpath = 1;
+            if ((st = emit_move(r, m, cx, cy)))
+                return st;
+            cmd = rel ? 'l' : 'L'; /* implicit repeats are lines */
+            break;
+        case 'L':
+            cx = a[0] + ox, cy = a[1] + oy;
+            if ((st = emit_line(r, m, cx, cy)))
+                return st;
+            break;
+        case 'H':
+            cx = a[0] + ox;
+            if ((st = emit_line(r, m, cx, cy)))
+                return st;
+            break;
+        case 'V':
+            cy = a[0] + oy;
+            if ((st = emit_line(r, m, cx, cy)))
+                return st;
+            break;
+        case 'Q':
+        case 'T': {
+            double kx, ky;
+            if (up == 'Q')
+                kx = a[0] + ox, ky = a[1] + oy, a[0] = a[2], a[1] = a[3];
+            else if (last == 'Q' || last == 'T')
+                kx = 2 * cx - qx, ky = 2 * cy - qy;
+            else
+                kx = cx, ky = cy;
+            cx = a[0] + ox, cy = a[1] + oy;
+            qx = kx, qy = ky;
+            if ((st = emit_quad(r, m, kx, ky, cx, cy)))
+                return st;
+            break;
+        }
+        case 'C':
+        case 'S': {
+            double q[6];
+            if (up == 'C') {
+                q[0] = a[0] + ox, q[1] = a[1] + oy, q[2] = a[2] + ox, q[3] = a[3] + oy;
+                q[4] = a[4] + ox, q[5] = a[5] + oy;
+            } else {
+                if (last == 'C' || last == 'S')
+                    q[0] = 2 * cx - qx, q[1] = 2 * cy - qy;
+                else
+                    q[0] = cx, q[1] = cy;
+                q[2] = a[0] + ox, q[3] = a[1] + oy, q[4] = a[2] + ox, q[5] = a[3] + oy;
+            }
+            qx = q[2], qy = q[3];
+            cx = q[4], cy = q[5];
+            if ((st = emit_cubic(r, m, q)))
+                return st;
+            break;
+        }
+        default: /* Z */
+            if ((st = emit_close(r)))
+                return st;
+            cx = sx, cy = sy;
+            break;
+        }
+        last = (char)up;
+        s = skip_comma_wsp(s);
+        if (up == 'Z' && *s == ',')
+            return fail_at(r, "d: a comma after Z at offset %ld", (long)(s - d));
+    }
+    return emit_close(r);
+}
+
+/* ---- elements ---- */
+
+static int attr_length(reader *r, const xmlNode *node, const char *key, double def, double *v)
+{
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)key);
+    if (!t) {
+        *v = def;
+        return AA_OK;
+    }
+    int st = parse_length(r, key, (const char *)t, v);
+    xmlFree(t);
+    return st;
+}
+
+static int rect(reader *r, const xmlNode *node, const mat *m, int *drawn)
+{
+    double x, y, w, h, rx, ry;
+    int st;
+    *drawn = 0;
+    if ((st = attr_length(r, node, "x", 0, &x)) || (st = attr_length(r, node, "y", 0, &y)) ||
+        (st = attr_length(r, node, "width", 0, &w)) ||
+        (st = attr_length(r, node, "height", 0, &h)) ||
+        (st = attr_length(r, node, "rx", 0, &rx)) || (st = attr_length(r, node, "ry", 0, &ry)))
+        return st;
+    if (w < 0 || h < 0)
+        return fail_at(r, "a negative width or height is an error");
+    if (rx > 0 || ry > 0)
+        return fail_at(r, "rounded corners (rx, ry) are elliptical arcs and are not supported");
+    if (w == 0 || h == 0)
+        return AA_OK; /* not drawn */
+    *drawn = 1;
+    if ((st = emit_move(r, m, x, y)) || (st = emit_line(r, m, x + w, y)) ||
+        (st = emit_line(r, m, x + w, y + h)) || (st = emit_line(r, m, x, y + h)))
+        return st;
+    return emit_close(r);
+}
+
+static int poly(reader *r, const xmlNode *node, const mat *m)
+{
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"points");
+    if (!t)
+        return AA_OK;
+    const char *s = skip_wsp((const char *)t);
+    int st = AA_OK, n = 0;
+    double xy[2];
+    while (*s && !st) {
+        int e = scan_number(&s, &xy[n & 1]);
+        if (e)
+            st = fail_at(r, "points: %s at offset %ld",
+                         e == -2 ? "a number out of range" : "malformed number",
+                         (long)(s - (const char *)t));
+        else if (n++ & 1)
+            st = n == 2 ? emit_move(r, m, xy[0], xy[1]) : emit_line(r, m, xy[0], xy[1]);
+        s = skip_comma_wsp(s);
+    }
+    if (!st && (n & 1))
+        st = fail_at(r, "points: an odd number of coordinates (%d)", n);
+    if (!st)
+        st = emit_close(r);
+    xmlFree(t);
+    return st;
+}
+
+static int is_svg(const xmlNode *node)
+{
+    return node->type == XML_ELEMENT_NODE && node->ns && node->ns->href &&
+           !strcmp((const char *)node->ns->href, SVG_NS);
+}
+
+static int named(const xmlNode *node, const char *name)
+{
+    return !strcmp((const char *)node->name, name);
+}
+
+/* The properties every element may set: style into *sty, the element's own
+ * transform into *m; *skip = 1 for display: none. */
+static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int *skip)
+{
+    char v[1024];
+    int st = AA_OK, none;
+    *skip = 0;
+    if (prop(r, node, "display", v, sizeof v, &st) && !strcmp(v, "none")) {
+        *skip = 1;
+        return AA_OK;
+    }
+    if (st)
+        return st;
+    if (prop(r, node, "fill", v, sizeof v, &st) && strcmp(v, "inherit")) {
+        aa_rgb c = {{0, 0, 0}};
+        if ((st = parse_paint(r, v, &c, &none)))
+            return st;
+        sty->fill_none = none;
+        if (!none)
+            sty->fill = c;
+    }
+    if (!st && prop(r, node, "fill-rule", v, sizeof v, &st) && strcmp(v, "inherit")) {
+        if (!strcmp(v, "nonzero"))
+            sty->rule = AA_FILL_NONZERO;
+        else if (!strcmp(v, "evenodd"))
+            sty->rule = AA_FILL_EVENODD;
+        else
+            return fail_at(r, "fill-rule=\"%s\" (nonzero or evenodd)", aa_echo(v));
+    }
+    if (!st && prop(r, node, "stroke", v, sizeof v, &st) && strcmp(v, "none"))
+        return fail_at(r, "stroke=\"%s\": strokes are not supported", aa_echo(v));
+    static const char *const opacities[] = {"opacity", "fill-opacity"};
+    for (int k = 0; k < 2 && !st; k++)
+        if (prop(r, node, opacities[k], v, sizeof v, &st)) {
+            const char *s = v;
+            double o;
+            if (scan_number(&s, &o) || *s || o != 1)
+                return fail_at(r, "%s=\"%s\": opacity is not supported", opacities[k],
+                               aa_echo(v));
+        }
+    static const char *const refused[] = {"clip-path", "mask", "filter"};
+    for (int k = 0; k < 3 && !st; k++)
+        if (prop(r, node, refused[k], v, sizeof v, &st) && strcmp(v, "none"))
+            return fail_at(r, "%s=\"%s\": %s not supported", refused[k], aa_echo(v),
+                           k == 0 ? "clip paths are" : k == 1 ? "masks are" : "filters are");
+    if (!st && prop(r, node, "visibility", v, sizeof v, &st) && strcmp(v, "visible") &&
+        strcmp(v, "inherit"))
+        return fail_at(r, "visibility=\"%s\" is not supported", aa_echo(v));
+    if (st)
+        return st;
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"transform");
+    if (t) {
+        mat own = identity;
+        st = parse_transform(r, (const char *)t, &own);
+        xmlFree(t);
+        if (st)
+            return st;
+        *m = mat_mul(*m, own);
+    }
+    return AA_OK;
+}
+
+static int element(reader *r, const xmlNode *node, style sty, mat m, int depth);
+
+static int children(reader *r, const xmlNode *node, style sty, mat m, int depth)
+{
+    for (const xmlNode *c = node->children; c; c = c->next) {
+        if (c->type != XML_ELEMENT_NODE)
+            continue;
+        int st = element(r, c, sty, m, depth + 1);
+        if (st)
+            return st;
+    }
+    return AA_OK;
+}
+
+static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
+{
+    r->node = node;
+    if (depth > AA_SVG_MAX_DEPTH)
+        return fail_at(r, "elements nested deeper than %d", AA_SVG_MAX_DEPTH);
+    if (!is_svg(node))
+        return AA_OK; /* another namespace: not drawn */
+    static const char *const silent[] = {"title", "desc", "metadata", "defs"};
+    for (int k = 0; k < 4; k++)
+        if (named(node, silent[k]))
+            return AA_OK;
+    int skip, st;
+    if (named(node, "svg"))
+        return fail_at(r, "nested <svg> elements are not supported");
+    int shape = named(node, "path") || named(node, "rect") || named(node, "polygon") ||
+                named(node, "polyline");
+    if (!shape && !named(node, "g") && !named(node, "line")) {
+        static const struct {
+            const char *name, *why;
+        } known[] = {{"circle", "circles are elliptical arcs"},
+                     {"ellipse", "ellipses are elliptical arcs"},
+                     {"text", "text is not supported (the pattern text draws glyphs)"},
+                     {"image", "images are not supported"},
+                     {"use", "<use> is not supported"},
+                     {"clipPath", "clip paths are not supported"},
+                     {"mask", "masks are not supported"},
+                     {"linearGradient", "gradients are not supported"},
+                     {"radialGradient", "gradients are not supported"},
+                     {"pattern", "patterns are not supported"},
+                     {"style", "style sheets are not supported"}};
+        for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
+            if (named(node, known[k].name))
+                return fail_at(r, "%s", known[k].why);
+        return fail_at(r, "this element is not supported");
+    }
+    if ((st = element_props(r, node, &sty, &m, &skip)) || skip)
+        return st;
+    if (named(node, "g"))
+        return children(r, node, sty, m, depth);
+    if (named(node, "line"))
+        return AA_OK; /* a line has no area: without a stroke it draws nothing */
+    if (sty.fill_none)
+        return AA_OK;
+    r->pending = 1; /* a shape that draws nothing is not given */
+    r->shape = sty;
+    if (named(node, "rect")) {
+        int drawn;
+        return rect(r, node, &m, &drawn);
+    }
+    if (named(node, "path")) {
+        xmlChar *d = xmlGetNoNsProp(node, (const xmlChar *)"d");
+        if (!d)
+            return AA_OK;
+        st = path_data(r, &m, (const char *)d);
+        xmlFree(d);
+        return st;
+    }
+    return poly(r, node, &m);
+}
+
+/* The viewport and the root's map from user units to pixels. */
+static int root_map(reader *r, const xmlNode *root, int w, int h, mat *m, double vp[2])
+{
+    double vw = w, vh = h;
+    int st;
+    static const char *const sides[2] = {"width", "height"};
+    for (int k = 0; k < 2; k++) {
+        xmlChar *t = xmlGetNoNsProp(root, (const xmlChar *)sides[k]);
+        if (!t)
+            continue;
+        const char *s = skip_wsp((const char *)t);
+        if (!strcmp(s, "100%") || !strcmp(s, "auto"))
+            st = AA_OK;
+        else
+            st = parse_length(r, sides[k], s, k ? &vh : &vw);
+        xmlFree(t);
+        if (st)
+            return st;
+        if ((k ? vh : vw) <= 0)
+            return fail_at(r, "%s must be positive", sides[k]);
+        if ((k ? vh : vw) > AA_SVG_MAX_COORD)
+            return fail_at(r, "%s is larger than %g", sides[k], AA_SVG_MAX_COORD);
+    }
+    vp[0] = vw, vp[1] = vh;
+    *m = identity;
+    xmlChar *t = xmlGetNoNsProp(root, (const xmlChar *)"viewBox");
+    if (!t)
+        return AA_OK;
+    double b[4];
+    const char *s = skip_wsp((const char *)t);
+    st = AA_OK;
+    for (int k = 0; k < 4 && !st; k++) {
+        if (k)
+            s = skip_comma_wsp(s);
+        if (scan_number(&s, &b[k]))
+            st = fail_at(r, "viewBox=\"%s\" is not four numbers", aa_echo((const char *)t));
+    }
+    if (!st && *skip_wsp(s))
+        st = fail_at(r, "viewBox=\"%s\" is not four numbers", aa_echo((const char *)t));
+    if (!st && (b[2] <= 0 || b[3] <= 0))
+        st = fail_at(r, "viewBox=\"%s\": its width and height must be positive",
+                     aa_echo((const char *)t));
+    xmlFree(t);
+    if (st)
+        return st;
+    double sx = vw / b[2], sy = vh / b[3], ax = 0.5, ay = 0.5;
+    int none = 0, slice = 0;
+    t = xmlGetNoNsProp(root, (const xmlChar *)"preserveAspectRatio");
+    if (t) {
+        char align[16] = "", mos[16] = "meet";
+        int n = sscanf((const char *)t, " %15s %15s", align, mos);
+        if (n >= 1 && !strcmp(align, "defer")) /* only for images */
+            n = sscanf((const char *)t, " defer %15s %15s", align, mos);
+        static const char *const xs[3] = {"xMin", "xMid", "xMax"};
+        static const char *const ys[3] = {"YMin", "YMid", "YMax"};
+        int ok = n >= 1 && (!strcmp(mos, "meet") || !strcmp(mos, "slice"));
+        if (ok && !strcmp(align, "none"))
+            none = 1;
+        else if (ok) {
+            ok = 0;
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    if (!strncmp(align, xs[i], 4) && !strcmp(align + 4, ys[j]))
+                        ax = i / 2.0, ay = j / 2.0, ok = 1;
+        }
+        slice = !strcmp(mos, "slice");
+        if (!ok)
+            st = fail_at(r, "preserveAspectRatio=\"%s\" is malformed", aa_echo((const char *)t));
+        xmlFree(t);
+        if (st)
+            return st;
+    }
+    if (!none) {
+        double k = slice ? fmax(sx, sy) : fmin(sx, sy);
+        sx = sy = k;
+    }
+    m->a = sx, m->d = sy;
+    m->e = -b[0] * sx + (none ? 0 : ax * (vw - b[2] * sx));
+    m->f = -b[1] * sy + (none ? 0 : ay * (vh - b[3] * sy));
+    return AA_OK;
+}
+
+/* 1 if the document declares entities (an internal DTD subset with
+ * declarations). */
+static int declares_entities(const xmlDoc *doc)
+{
+    const xmlDtd *dtd = doc->intSubset;
+    if (!dtd)
+        return 0;
+    for (const xmlNode *c = dtd->children; c; c = c->next)
+        if (c->type == XML_ENTITY_DECL)
+            return 1;
+    return 0;
+}
+
+int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
+                const aa_svg_sink *sink, void *ctx, double viewport[2])
+{
+    reader r = {sink, ctx, name, 0, NULL, 0, 0, {{{0, 0, 0}}, 0, AA_FILL_NONZERO}};
+    double vp[2] = {0, 0};
+    if (w < 1 || h < 1)
+        return aa_fail(AA_EINVAL, "%s: a view of %dx%d pixels", name, w, h);
+    if (len > AA_SVG_MAX_BYTES)
+        return aa_fail(AA_EINVAL, "%s: larger than %u bytes", name, AA_SVG_MAX_BYTES);
+    xmlParserCtxtPtr parser = xmlNewParserCtxt();
+    if (!parser)
+        return aa_fail(AA_ENOMEM, "out of memory parsing %s", name);
+    xmlDocPtr doc = xmlCtxtReadMemory(parser, data, (int)len, NULL, NULL,
+                                      XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING |
+                                          XML_PARSE_NOCDATA);
+    int st = AA_OK;
+    if (!doc) {
+        const xmlError *e = xmlCtxtGetLastError(parser);
+        char msg[256] = "not well-formed XML";
+        if (e && e->message) {
+            snprintf(msg, sizeof msg, "%s", e->message);
+            msg[strcspn(msg, "\n")] = '\0';
+        }
+        st = aa_fail(AA_EINVAL, "%s: line %d: malformed XML: %s", name, e ? e->line : 0, msg);
+        xmlFreeParserCtxt(parser);
+        return st;
+    }
+    xmlFreeParserCtxt(parser);
+    const xmlNode *root = xmlDocGetRootElement(doc);
+    aa__c_numbers numbers;
+    if (declares_entities(doc))
+        st = aa_fail(AA_EINVAL, "%s: entity declarations are not supported", name);
+    else if (!root || !is_svg(root) || !named(root, "svg"))
+        st = aa_fail(AA_EINVAL, "%s: the root element is not <svg> in the SVG namespace (%s)",
+                     name, SVG_NS);
+    else if (!(st = aa__c_numbers_enter(&numbers, "SVG"))) {
+        mat m;
+        style sty = {{{0, 0, 0}}, 0, AA_FILL_NONZERO}; /* initial fill: black */
+        int skip;
+        r.node = root;
+        xmlChar *t = xmlGetNoNsProp(root, (const xmlChar *)"transform");
+        if (t) {
+            xmlFree(t);
+            st = fail_at(&r, "a transform on the root <svg> is not supported");
+        }
+        if (!st && !(st = root_map(&r, root, w, h, &m, vp)) &&
+            !(st = element_props(&r, root, &sty, &m, &skip)) && !skip)
+            st = children(&r, root, sty, m, 1);
+        aa__c_numbers_end(&numbers);
+    }
+    xmlFreeDoc(doc);
+    if (!st && viewport)
+        viewport[0] = vp[0], viewport[1] = vp[1];
+    return st;
+}
+
+int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, void *ctx,
+                     double viewport[2])
+{
+    char *data;
+    size_t len;
+    int st = aa_file_read_all(path, AA_SVG_MAX_BYTES, "SVG file", &data, &len);
+    if (st)
+        return st;
+    char name[256];
+    snprintf(name, sizeof name, "%s", aa_echo(path));
+    st = aa_svg_read(data, len, name, w, h, sink, ctx, viewport);
+    free(data);
+    return st;
+}
+
+/* ------------------------------------------------------------------------
+ * The pattern `svg`: the shapes recorded in document order, then put into
+ * the scene front first (the last shape is the front layer), each point
+ * (u, v) in pixels as (u / W, v / H) in pattern units, which placing maps
+ * back to (u, v) (exactly when W and H are powers of two).
+ * ------------------------------------------------------------------------ */
+
+enum { SVG_FILE };
+
+static const aa_param svg_params[] = {
+    {"file", AA_PARAM_TEXT, 0, 0, 0, 0, AA_SVG_DIR "/shapes.svg",
+     "the SVG file (a path; write ',' as %2C and '%' as %25)"},
+    {0}};
+
+typedef struct rec_op {
+    int op; /* 0 move, 1 line, 2 quad, 3 cubic, 4 close */
+    double v[6];
+} rec_op;
+
+typedef struct rec_shape {
+    aa_rgb colour;
+    aa_fill_rule rule;
+    size_t first, n;
+} rec_shape;
+
+typedef struct recording {
+    rec_shape *shapes;
+    size_t nshapes, capshapes;
+    rec_op *ops;
+    size_t nops, capops;
+    double lo[2], hi[2]; /* the control points' bounds */
+} recording;
+
+static int grow(void **a, size_t *cap, size_t need, size_t size)
+{
+    if (need <= *cap)
+        return AA_OK;
+    size_t c = *cap ? 2 * *cap : 64;
+    while (c < need)
+        c *= 2;
+    void *p = realloc(*a, c * size);
+    if (!p)
+        return aa_fail(AA_ENOMEM, "out of memory reading an SVG");
+    *a = p, *cap = c;
+    return AA_OK;
+}
+
+static int rec_shape_fn(void *ctx, aa_rgb colour, aa_fill_rule rule)
+{
+    recording *r = ctx;
+    int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
+    if (!st)
+        r->shapes[r->nshapes++] = (rec_shape){colour, rule, r->nops, 0};
+    return st;
+}
+
+static int rec_op_add(recording *r, int op, const double *v, int n)
+{
+    int st = grow((void **)&r->ops, &r->capops, r->nops + 1, sizeof *r->ops);
+    if (st)
+        return st;
+    rec_op *o = &r->ops[r->nops++];
+    o->op = op;
+    for (int k = 0; k < n; k++) {
+        o->v[k] = v[k];
+        r->lo[k & 1] = fmin(r->lo[k & 1], v[k]);
+        r->hi[k & 1] = fmax(r->hi[k & 1], v[k]);
+    }
+    r->shapes[r->nshapes - 1].n++;
+    return AA_OK;
+}
+
+static int rec_move(void *ctx, double x, double y)
+{
+    double v[2] = {x, y};
+    return rec_op_add(ctx, 0, v, 2);
+}
+static int rec_line(void *ctx, double x, double y)
+{
+    double v[2] = {x, y};
+    return rec_op_add(ctx, 1, v, 2);
+}
+static int rec_quad(void *ctx, double cx, double cy, double x, double y)
+{
+    double v[4] = {cx, cy, x, y};
+    return rec_op_add(ctx, 2, v, 4);
+}
+static int rec_cubic(void *ctx, double c1x, double c1y, double c2x, double c2y, double x,
+                     double y)
+{
+    double v[6] = {c1x, c1y, c2x, c2y, x, y};
+    return rec_op_add(ctx, 3, v, 6);
+}
+static int rec_close(void *ctx) { return rec_op_add(ctx, 4, NULL, 0); }
+
+static const aa_svg_sink recording_sink = {rec_shape_fn, rec_move, rec_line,
+                                           rec_quad,     rec_cubic, rec_close};
+
+static int svg_check(const double *p)
+{
+    if (!*aa_param_text(p[SVG_FILE]))
+        return aa_fail(AA_EINVAL, "pattern svg needs file=PATH (an SVG file)");
+    return AA_OK;
+}
+
+static int svg_build_unsized(const double *p, aa_scene *s)
+{
+    (void)s;
+    return aa_fail(AA_EINVAL, "pattern svg (%s) is drawn at the view's size: build it with one",
+                   aa_echo(aa_param_text(p[SVG_FILE])));
+}
+
+int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
+{
+    recording rec = {0};
+    double vp[2] = {0, 0};
+    rec.lo[0] = rec.lo[1] = 0;
+    rec.hi[0] = rec.hi[1] = 0;
+    int st = aa_svg_read_file(aa_param_text(p[SVG_FILE]), w, h, &recording_sink, &rec, vp);
+    const int read_ok = st == AA_OK;
+    /* content beyond the viewport: a front layer of the background colour
+     * over everything outside it (even-odd of a larger rectangle and the
+     * viewport) */
+    if (!st && (rec.lo[0] < 0 || rec.lo[1] < 0 || rec.hi[0] > vp[0] || rec.hi[1] > vp[1])) {
+        const aa_rgb black = {{0, 0, 0}};
+        double o[4] = {fmin(rec.lo[0], 0) - 1, fmin(rec.lo[1], 0) - 1,
+                       fmax(rec.hi[0], vp[0]) + 1, fmax(rec.hi[1], vp[1]) + 1};
+        double q[2][4] = {{o[0] / w, o[1] / h, o[2] / w, o[3] / h},
+                          {0, 0, vp[0] / w, vp[1] / h}};
+        st = aa_scene_layer(s, black, AA_FILL_EVENODD);
+        for (int k = 0; k < 2 && !st; k++) {
+            const double *r = q[k];
+            if ((st = aa_scene_move_to(s, r[0], r[1])) || (st = aa_scene_line_to(s, r[2], r[1])) ||
+                (st = aa_scene_line_to(s, r[2], r[3])) || (st = aa_scene_line_to(s, r[0], r[3])))
+                break;
+            st = aa_scene_close(s);
+        }
+    }
+    /* shapes front first; a run of consecutive shapes of one colour and
+     * fill rule whose control points' boxes are pairwise disjoint is one
+     * layer (a point is inside at most one of them, so the union under
+     * either rule is the same picture; the reference's cost grows with the
+     * layers) */
+    double (*box)[4] = rec.nshapes ? malloc(rec.nshapes * sizeof *box) : NULL;
+    if (!st && rec.nshapes && !box)
+        st = aa_fail(AA_ENOMEM, "out of memory reading an SVG");
+    for (size_t k = 0; k < rec.nshapes && !st; k++) {
+        const rec_shape *sh = &rec.shapes[k];
+        box[k][0] = box[k][1] = INFINITY, box[k][2] = box[k][3] = -INFINITY;
+        for (size_t i = sh->first; i < sh->first + sh->n; i++) {
+            const rec_op *o = &rec.ops[i];
+            int np = o->op == 0 || o->op == 1 ? 1 : o->op == 2 ? 2 : o->op == 3 ? 3 : 0;
+            for (int q = 0; q < np; q++) {
+                box[k][0] = fmin(box[k][0], o->v[2 * q]), box[k][2] = fmax(box[k][2], o->v[2 * q]);
+                box[k][1] = fmin(box[k][1], o->v[2 * q + 1]);
+                box[k][3] = fmax(box[k][3], o->v[2 * q + 1]);
+            }
+        }
+    }
+    size_t group = 0, group_first = 0; /* shapes in the current layer, the front one */
+    for (size_t k = rec.nshapes; k-- > 0 && !st;) {
+        const rec_shape *sh = &rec.shapes[k];
+        if (!sh->n)
+            continue;
+        int join = group > 0 && group < 256;
+        const rec_shape *front = join ? &rec.shapes[group_first] : NULL;
+        if (join)
+            join = front->rule == sh->rule &&
+                   !memcmp(&front->colour, &sh->colour, sizeof sh->colour);
+        for (size_t q = k + 1; join && q <= group_first; q++)
+            if (rec.shapes[q].n && !(box[k][2] < box[q][0] || box[q][2] < box[k][0] ||
+                                     box[k][3] < box[q][1] || box[q][3] < box[k][1]))
+                join = 0;
+        if (!join) {
+            if ((st = aa_scene_layer(s, sh->colour, sh->rule)))
+                break;
+            group = 0, group_first = k;
+        }
+        group++;
+        for (size_t i = sh->first; i < sh->first + sh->n && !st; i++) {
+            const rec_op *o = &rec.ops[i];
+            const double *v = o->v;
+            switch (o->op) {
+            case 0:
+                st = aa_scene_move_to(s, v[0] / w, v[1] / h);
+                break;
+            case 1:
+                st = aa_scene_line_to(s, v[0] / w, v[1] / h);
+                break;
+            case 2:
+                st = aa_scene_quad_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h);
+                break;
+            case 3:
+                st = aa_scene_cubic_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h, v[4] / w,
+                                       v[5] / h);
+                break;
+            default:
+                st = aa_scene_close(s);
+                break;
+            }
+        }
+    }
+    free(box);
+    if (st && read_ok) /* the scene's refusal (a cubic arc it cannot hold, say) */
+        st = aa_fail_context(st, "SVG file %s", aa_echo(aa_param_text(p[SVG_FILE])));
+    free(rec.shapes);
+    free(rec.ops);
+    return st;
+}
+
+int aa__svg_key(const double *p, char *buf, size_t len)
+{
+    unsigned long long hash;
+    size_t n;
+    const char *path = aa_param_text(p[SVG_FILE]);
+    int st = aa_file_hash(path, &hash, &n);
+    if (st)
+        return st;
+    if ((size_t)snprintf(buf, len, "file fnv1a %016llx bytes %zu\n", hash, n) >= len)
+        return aa_fail(AA_EFAIL, "view key too long");
+    return AA_OK;
+}
+
+const aa_pattern_type aa_pattern_svg = {
+    {"svg", "an SVG file's filled shapes, in pixels as a browser draws it", svg_params},
+    svg_check,
+    svg_build_unsized,
+    {{0, 0, 0}}};

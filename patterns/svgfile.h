@@ -1,0 +1,59 @@
+/*
+ * svgfile.h: reading an SVG document into paths in pixel units (the
+ * pattern `svg`, patterns/README.md).
+ *
+ * The reader walks the document with libxml2 and gives every shape it draws
+ * to a sink, in document order (painter's order: the first shape is at the
+ * back): `shape` with the shape's fill colour (linear light) and fill rule,
+ * then its subpaths as move/line/quad/cubic/close in absolute pixel units,
+ * every transform and the viewBox mapping applied to the points (exact for
+ * Bezier arcs under affine maps).  Every subpath ends with `close` (a fill
+ * closes it).  Anything the exact model cannot hold is refused with
+ * AA_EINVAL and a message naming the element and its line.
+ */
+#ifndef AA_SVGFILE_H
+#define AA_SVGFILE_H
+
+#include "core.h"
+
+#include <stddef.h>
+
+typedef struct aa_svg_sink {
+    int (*shape)(void *ctx, aa_rgb colour, aa_fill_rule rule);
+    int (*move_to)(void *ctx, double x, double y);
+    int (*line_to)(void *ctx, double x, double y);
+    int (*quad_to)(void *ctx, double cx, double cy, double x, double y);
+    int (*cubic_to)(void *ctx, double c1x, double c1y, double c2x, double c2y, double x,
+                    double y);
+    int (*close)(void *ctx);
+} aa_svg_sink;
+
+/* Limits: larger or deeper documents are refused. */
+#define AA_SVG_MAX_BYTES (64u << 20) /* the file */
+#define AA_SVG_MAX_DEPTH 64          /* nested elements */
+#define AA_SVG_MAX_SEGMENTS 4000000  /* path commands in all */
+#define AA_SVG_MAX_NUMBER 1e9        /* |a number| in the document */
+#define AA_SVG_MAX_COORD 1e7         /* |a coordinate| in pixels, after transforms */
+
+/* Read the document data[0 .. len) (`name` names it in messages) drawn on
+ * a view of w x h pixels: the viewport is the root's width and height, or
+ * the view's where they are absent.  viewport[0..1] (may be NULL) receives
+ * its width and height in pixels; everything outside it is clipped by the
+ * caller.  Returns the first failing status of the sink or of the
+ * document. */
+int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
+                const aa_svg_sink *sink, void *ctx, double viewport[2]);
+
+/* The same for a file (at most AA_SVG_MAX_BYTES). */
+int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, void *ctx,
+                     double viewport[2]);
+
+/* A 64-bit FNV-1a hash of a file's bytes and its length (the cache key of a
+ * pattern read from a file). */
+int aa_file_hash(const char *path, unsigned long long *hash, size_t *len);
+
+/* Read a whole file of at most `max` bytes into a malloc'd buffer (NUL
+ * added); `what` names it in messages ("SVG file"). */
+int aa_file_read_all(const char *path, size_t max, const char *what, char **data, size_t *len);
+
+#endif

@@ -1,0 +1,116 @@
+/*
+ * fuzz_svg.c: libFuzzer target for the SVG reader (patterns/svgfile.c,
+ * `make fuzz`).
+ *
+ * The input is an SVG document read for a 64 x 48 view.  The reader must
+ * return a status and never crash, read out of bounds or leak; what it
+ * gives the sink must be well formed (a shape before its first point, every
+ * segment inside a subpath begun by a move, every subpath closed, finite
+ * coordinates within AA_SVG_MAX_COORD), and the points, put into a scene as
+ * the pattern does, must finish into a scene (cubics are refused by a scene
+ * that cannot hold them, which is a status, not a fault).
+ */
+#include "bench.h"
+#include "fuzz.h"
+#include "svgfile.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct fuzz_sink {
+    aa_scene *s;
+    int shapes, open;
+} fuzz_sink;
+
+static void fuzz_point(double x, double y)
+{
+    if (!(fabs(x) <= AA_SVG_MAX_COORD && fabs(y) <= AA_SVG_MAX_COORD))
+        abort();
+}
+
+static int fz_shape(void *ctx, aa_rgb c, aa_fill_rule rule)
+{
+    fuzz_sink *f = ctx;
+    if (f->open)
+        abort();
+    for (int k = 0; k < 3; k++)
+        if (!(c.c[k] >= 0 && c.c[k] <= 1))
+            abort();
+    f->shapes++;
+    return aa_scene_layer(f->s, c, rule);
+}
+
+static int fz_move(void *ctx, double x, double y)
+{
+    fuzz_sink *f = ctx;
+    if (!f->shapes || f->open)
+        abort();
+    fuzz_point(x, y);
+    f->open = 1;
+    return aa_scene_move_to(f->s, x / 64, y / 48);
+}
+
+static int fz_line(void *ctx, double x, double y)
+{
+    fuzz_sink *f = ctx;
+    if (!f->open)
+        abort();
+    fuzz_point(x, y);
+    return aa_scene_line_to(f->s, x / 64, y / 48);
+}
+
+static int fz_quad(void *ctx, double cx, double cy, double x, double y)
+{
+    fuzz_sink *f = ctx;
+    if (!f->open)
+        abort();
+    fuzz_point(cx, cy);
+    fuzz_point(x, y);
+    return aa_scene_quad_to(f->s, cx / 64, cy / 48, x / 64, y / 48);
+}
+
+static int fz_cubic(void *ctx, double a, double b, double c, double d, double x, double y)
+{
+    fuzz_sink *f = ctx;
+    if (!f->open)
+        abort();
+    fuzz_point(a, b);
+    fuzz_point(c, d);
+    fuzz_point(x, y);
+    return aa_scene_cubic_to(f->s, a / 64, b / 48, c / 64, d / 48, x / 64, y / 48);
+}
+
+static int fz_close(void *ctx)
+{
+    fuzz_sink *f = ctx;
+    if (!f->open)
+        abort();
+    f->open = 0;
+    return aa_scene_close(f->s);
+}
+
+static const aa_svg_sink fuzz_svg_sink = {fz_shape, fz_move, fz_line, fz_quad, fz_cubic, fz_close};
+
+int aa_fuzz_svg(const uint8_t *data, size_t size)
+{
+    fuzz_sink f = {aa_scene_new((aa_rgb){{0, 0, 0}}), 0, 0};
+    if (!f.s)
+        return 0;
+    double vp[2];
+    int st = aa_svg_read((const char *)data, size, "fuzz.svg", 64, 48, &fuzz_svg_sink, &f, vp);
+    if (st == AA_OK) {
+        if (f.open || !(vp[0] > 0 && vp[1] > 0))
+            abort();
+        int fin = aa_scene_finish(f.s);
+        if (fin != AA_OK && fin != AA_EINVAL && fin != AA_ENOMEM)
+            abort();
+    } else if (st != AA_EINVAL && st != AA_ENOMEM) {
+        abort();
+    }
+    aa_scene_free(f.s);
+    return 0;
+}
+
+AA_FUZZ_ENTRY(aa_fuzz_svg)

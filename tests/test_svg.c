@@ -1,0 +1,670 @@
+/*
+ * test_svg.c: the pattern svg (patterns/svgfile.c): the reader's parsed,
+ * transformed absolute coordinates of every path command against values
+ * derived by hand from the SVG specification (SVG 1.1, "Paths" and
+ * "Coordinate systems"), colours, the viewBox mapping, refusals naming the
+ * element and its line, a rectangle whose box reference is known in closed
+ * form, the file's hash in the cache key, and the export round trip.
+ */
+#include "bench.h"
+#include "patterns.h"
+#include "support.h"
+#include "svgfile.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+/* ---- a sink that writes what it is given as text ---- */
+
+typedef struct text_sink {
+    char buf[8192];
+    size_t n;
+} text_sink;
+
+static int put(text_sink *t, const char *fmt, ...) AA_PRINTF(2, 3);
+static int put(text_sink *t, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int m = vsnprintf(t->buf + t->n, sizeof t->buf - t->n, fmt, ap);
+    va_end(ap);
+    assert_true(m >= 0 && (size_t)m < sizeof t->buf - t->n);
+    t->n += (size_t)m;
+    return AA_OK;
+}
+
+static int s_shape(void *ctx, aa_rgb c, aa_fill_rule rule)
+{
+    return put(ctx, "%sfill %.17g %.17g %.17g %s;", ((text_sink *)ctx)->n ? " " : "", c.c[0],
+               c.c[1], c.c[2], rule == AA_FILL_EVENODD ? "evenodd" : "nonzero");
+}
+static int s_move(void *ctx, double x, double y) { return put(ctx, " M %.17g %.17g", x, y); }
+static int s_line(void *ctx, double x, double y) { return put(ctx, " L %.17g %.17g", x, y); }
+static int s_quad(void *ctx, double cx, double cy, double x, double y)
+{
+    return put(ctx, " Q %.17g %.17g %.17g %.17g", cx, cy, x, y);
+}
+static int s_cubic(void *ctx, double a, double b, double c, double d, double x, double y)
+{
+    return put(ctx, " C %.17g %.17g %.17g %.17g %.17g %.17g", a, b, c, d, x, y);
+}
+static int s_close(void *ctx) { return put(ctx, " Z"); }
+
+static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close};
+
+/* Read `doc` on a w x h view; the sink's text, or fail. */
+static const char *read_doc(const char *doc, int w, int h, double vp[2])
+{
+    static text_sink t;
+    t.n = 0;
+    t.buf[0] = '\0';
+    if (aa_svg_read(doc, strlen(doc), "test.svg", w, h, &sink, &t, vp) != AA_OK)
+        fail_msg("%s: %s", doc, aa_last_error());
+    return t.buf;
+}
+
+#define SVG_OPEN "<svg xmlns=\"http://www.w3.org/2000/svg\">"
+#define PATH(d) SVG_OPEN "<path d=\"" d "\"/></svg>"
+
+static void expect(const char *doc, const char *want)
+{
+    const char *got = read_doc(doc, 100, 100, NULL);
+    if (strcmp(got, want))
+        fail_msg("%s\n  got  %s\n  want %s", doc, got, want);
+}
+
+/* The initial fill is black, the rule nonzero (SVG 1.1, "fill" and
+ * "fill-rule": initial values). */
+#define BLACK "fill 0 0 0 nonzero;"
+
+static void test_commands_absolute(void **state)
+{
+    (void)state;
+    expect(PATH("M1 2 L3 4 H5 V6 Q7 8 9 10 C 11 12 13 14 15 16 Z"),
+           BLACK " M 1 2 L 3 4 L 5 4 L 5 6 Q 7 8 9 10 C 11 12 13 14 15 16 Z");
+}
+
+static void test_commands_relative(void **state)
+{
+    (void)state;
+    /* from (1, 2): l3 4 -> (4, 6); h5 -> (9, 6); v6 -> (9, 12);
+     * q1 1 2 2 -> control (10, 13), end (11, 14); c1 1 2 2 3 3 -> (12, 15),
+     * (13, 16), (14, 17); z */
+    expect(PATH("m1 2 l3 4 h5 v6 q1 1 2 2 c1 1 2 2 3 3 z"),
+           BLACK " M 1 2 L 4 6 L 9 6 L 9 12 Q 10 13 11 14 C 12 15 13 16 14 17 Z");
+    /* a second relative m is relative to the start point after z */
+    expect(PATH("m10 10 h5 z m1 1 h2 z"), BLACK " M 10 10 L 15 10 Z M 11 11 L 13 11 Z");
+}
+
+static void test_implicit_repeats(void **state)
+{
+    (void)state;
+    /* pairs after M are lines, after m relative lines; the subpath closes at
+     * the end of the data (a fill closes it) */
+    expect(PATH("M0 0 10 0 10 10z"), BLACK " M 0 0 L 10 0 L 10 10 Z");
+    expect(PATH("m1 1 2 2 3 3"), BLACK " M 1 1 L 3 3 L 6 6 Z");
+    expect(PATH("M0 0 L1 1 2 2 H3 4 V5 6"), BLACK " M 0 0 L 1 1 L 2 2 L 3 2 L 4 2 L 4 5 L 4 6 Z");
+    expect(PATH("M0 0 Q1 1 2 0 3 -1 4 0"), BLACK " M 0 0 Q 1 1 2 0 Q 3 -1 4 0 Z");
+    /* a drawing command after z starts a new subpath at the start point */
+    expect(PATH("M1 1 L2 1 L2 2 Z L 5 5"), BLACK " M 1 1 L 2 1 L 2 2 Z M 1 1 L 5 5 Z");
+}
+
+static void test_reflections(void **state)
+{
+    (void)state;
+    /* T reflects the last control point (10, 0) about the current point
+     * (10, 10): (10, 20); T after no Q takes the current point */
+    expect(PATH("M0 0 Q10 0 10 10 T20 20"), BLACK " M 0 0 Q 10 0 10 10 Q 10 20 20 20 Z");
+    expect(PATH("M0 0 T5 5"), BLACK " M 0 0 Q 0 0 5 5 Z");
+    expect(PATH("M0 0 Q10 0 10 10 t10 10"), BLACK " M 0 0 Q 10 0 10 10 Q 10 20 20 20 Z");
+    /* S reflects the second control point (10, 10) about (10, 0): (10, -10) */
+    expect(PATH("M0 0 C0 10 10 10 10 0 S 20 -10 20 0"),
+           BLACK " M 0 0 C 0 10 10 10 10 0 C 10 -10 20 -10 20 0 Z");
+    expect(PATH("M0 0 C0 10 10 10 10 0 s 10 -10 10 0"),
+           BLACK " M 0 0 C 0 10 10 10 10 0 C 10 -10 20 -10 20 0 Z");
+    /* S after a line: the first control point is the current point */
+    expect(PATH("M0 0 L 1 0 S 2 2 3 0"), BLACK " M 0 0 L 1 0 C 1 0 2 2 3 0 Z");
+    /* T after a cubic does not reflect */
+    expect(PATH("M0 0 C1 1 2 1 3 0 T 5 5"), BLACK " M 0 0 C 1 1 2 1 3 0 Q 3 0 5 5 Z");
+}
+
+static void test_numbers(void **state)
+{
+    (void)state;
+    /* the grammar of SVG path numbers: "1e2-1" is 100 then -1, ".5.5" is
+     * 0.5 then 0.5, "-1-2" is -1 then -2, exponents with signs */
+    expect(PATH("M1e2-1L.5.5-1-2"), BLACK " M 100 -1 L 0.5 0.5 L -1 -2 Z");
+    expect(PATH("M1E+1,-.5e-1 l+2,3"), BLACK " M 10 -0.050000000000000003 L 12 2.9500000000000002 Z");
+    expect(PATH("M 0.5 ,1 , L2\t3\n4 5"), BLACK " M 0.5 1 L 2 3 L 4 5 Z");
+    expect(PATH("M1.5e1.5 0 1"), BLACK " M 15 0.5 L 0 1 Z"); /* 1.5e1 and .5, then a line */
+}
+
+/* A transform per element: the points are mapped by hand. */
+static void test_transforms(void **state)
+{
+    (void)state;
+    /* translate(10,20) scale(2): (x, y) -> (2x + 10, 2y + 20) */
+    expect(SVG_OPEN "<g transform=\"translate(10,20) scale(2)\"><path d=\"M1 1 L2 1 L1 2z\"/></g></svg>",
+           BLACK " M 12 22 L 14 22 L 12 24 Z");
+    /* rotate(90): (x, y) -> (-y, x), exactly */
+    expect(SVG_OPEN "<path transform=\"rotate(90)\" d=\"M1 2 L3 4\"/></svg>",
+           BLACK " M -2 1 L -4 3 Z");
+    /* rotate(90, 10, 10): about (10, 10), (20, 10) -> (10, 20) */
+    expect(SVG_OPEN "<path transform=\"rotate(90 10 10)\" d=\"M20 10 L10 10\"/></svg>",
+           BLACK " M 10 20 L 10 10 Z");
+    /* skewX(45): x' = x + y; skewY(45): y' = y + x; rotate(-180): (-x, -y) */
+    expect(SVG_OPEN "<path transform=\"skewX(45)\" d=\"M1 2 L3 4\"/></svg>", BLACK " M 3 2 L 7 4 Z");
+    expect(SVG_OPEN "<path transform=\"skewY(45)\" d=\"M1 2 L3 4\"/></svg>", BLACK " M 1 3 L 3 7 Z");
+    expect(SVG_OPEN "<path transform=\"rotate(-180)\" d=\"M1 2\"/></svg>", BLACK " M -1 -2 Z");
+    /* matrix(1 2 3 4 5 6): x' = x + 3y + 5, y' = 2x + 4y + 6; (1, 1) -> (9, 12) */
+    expect(SVG_OPEN "<path transform=\"matrix(1 2 3 4 5 6)\" d=\"M1 1 L0 0\"/></svg>",
+           BLACK " M 9 12 L 5 6 Z");
+    /* nested: the outer applies last; rotate(90) of translate(5 0) of (1, 0)
+     * is rotate(90) of (6, 0) = (0, 6) */
+    expect(SVG_OPEN "<g transform=\"rotate(90)\"><g transform=\"translate(5 0)\">"
+                    "<path d=\"M1 0\"/></g></g></svg>",
+           BLACK " M 0 6 Z");
+    /* a list on one element applies right to left: translate(5) scale(3) of
+     * (1, 1) is (8, 3); control points are mapped too */
+    expect(SVG_OPEN "<path transform=\"translate(5) scale(3)\" d=\"M1 1 Q 2 2 3 1 C 0 0 1 1 2 2\"/></svg>",
+           BLACK " M 8 3 Q 11 6 14 3 C 5 0 8 3 11 6 Z");
+}
+
+static void test_shapes(void **state)
+{
+    (void)state;
+    expect(SVG_OPEN "<rect x=\"1\" y=\"2\" width=\"3\" height=\"4\"/></svg>",
+           BLACK " M 1 2 L 4 2 L 4 6 L 1 6 Z");
+    expect(SVG_OPEN "<rect width=\"3px\" height=\"0\"/><rect width=\"2\" height=\"1\"/></svg>",
+           BLACK " M 0 0 L 2 0 L 2 1 L 0 1 Z");
+    expect(SVG_OPEN "<polygon points=\"0,0 1,0 1,1\"/></svg>", BLACK " M 0 0 L 1 0 L 1 1 Z");
+    expect(SVG_OPEN "<polyline points=\"0 0 1 0 1 1\"/></svg>", BLACK " M 0 0 L 1 0 L 1 1 Z");
+    /* no fill, display none, a line without stroke, and other namespaces'
+     * elements draw nothing; title, desc, metadata and defs neither */
+    expect(SVG_OPEN "<rect width=\"1\" height=\"1\" fill=\"none\"/>"
+                    "<g display=\"none\"><circle r=\"1\"/></g><line x2=\"5\" y2=\"5\"/>"
+                    "<x:foo xmlns:x=\"urn:x\"/><title>t</title><desc>d</desc>"
+                    "<defs><linearGradient id=\"g\"/></defs></svg>",
+           "");
+}
+
+static double dec(double v) { return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4); }
+
+static void test_colours(void **state)
+{
+    (void)state;
+    char want[512];
+    /* named, #rgb, #rrggbb, rgb() of integers and of percentages: sRGB
+     * values decoded to linear light (IEC 61966-2-1) */
+    expect(SVG_OPEN "<rect width=\"1\" height=\"1\" fill=\"red\"/></svg>",
+           "fill 1 0 0 nonzero; M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    expect(SVG_OPEN "<rect width=\"1\" height=\"1\" fill=\"#fFf\" fill-rule=\"evenodd\"/></svg>",
+           "fill 1 1 1 evenodd; M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    snprintf(want, sizeof want, "fill 0 0 %.17g nonzero; M 0 0 L 1 0 L 1 1 L 0 1 Z",
+             dec(128 / 255.0)); /* navy is #000080 (CSS Color 3) */
+    expect(SVG_OPEN "<rect width=\"1\" height=\"1\" fill=\"navy\"/></svg>", want);
+    expect(SVG_OPEN "<rect width=\"1\" height=\"1\" fill=\"#000080\"/></svg>", want);
+    expect(SVG_OPEN "<rect width=\"1\" height=\"1\" fill=\"rgb(0, 0, 128)\"/></svg>", want);
+    snprintf(want, sizeof want, "fill 1 0 %.17g nonzero; M 0 0 L 1 0 L 1 1 L 0 1 Z", dec(0.5));
+    expect(SVG_OPEN "<rect width=\"1\" height=\"1\" fill=\"rgb(100%,0%, 50%)\"/></svg>", want);
+    /* inherited from a group; the style attribute wins over the attribute */
+    expect(SVG_OPEN "<g fill=\"lime\" fill-rule=\"evenodd\"><rect width=\"1\" height=\"1\"/>"
+                    "<rect width=\"1\" height=\"1\" fill=\"red\" style=\"fill: blue ;\"/></g></svg>",
+           "fill 0 1 0 evenodd; M 0 0 L 1 0 L 1 1 L 0 1 Z fill 0 0 1 evenodd; M 0 0 L 1 0 L 1 1 L "
+           "0 1 Z");
+}
+
+static void test_viewbox(void **state)
+{
+    (void)state;
+    double vp[2];
+    /* 200 x 100 viewport, viewBox 10 x 10, meet: scale min(20, 10) = 10,
+     * centred in x: offset (200 - 100) / 2 = 50; (1, 1) -> (60, 10) */
+    const char *got = read_doc("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" "
+                               "height=\"100\" viewBox=\"0 0 10 10\"><path d=\"M1 1\"/></svg>",
+                               64, 64, vp);
+    assert_string_equal(got, BLACK " M 60 10 Z");
+    assert_true(vp[0] == 200 && vp[1] == 100);
+    /* slice, aligned at the minimum: scale 20; (1, 1) -> (20, 20) */
+    got = read_doc("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" height=\"100\" "
+                   "viewBox=\"0 0 10 10\" preserveAspectRatio=\"xMinYMin slice\"><path d=\"M1 1\"/></svg>",
+                   64, 64, vp);
+    assert_string_equal(got, BLACK " M 20 20 Z");
+    /* slice at xMaxYMax: scale 20, y offset 100 - 200 = -100: (1, 1) -> (20, -80) */
+    got = read_doc("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" height=\"100\" "
+                   "viewBox=\"0 0 10 10\" preserveAspectRatio=\"xMaxYMax slice\"><path d=\"M1 1\"/></svg>",
+                   64, 64, vp);
+    assert_string_equal(got, BLACK " M 20 -80 Z");
+    /* none: 20 and 10; the viewBox's origin (-1, 2) goes to (0, 0) */
+    got = read_doc("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" height=\"100\" "
+                   "viewBox=\"-1 2 10 10\" preserveAspectRatio=\"none\"><path d=\"M1 3\"/></svg>",
+                   64, 64, vp);
+    assert_string_equal(got, BLACK " M 40 10 Z");
+    /* no width or height: the view's 64 x 32; viewBox 8 x 8 meets at 4,
+     * centred in x: (64 - 32) / 2 = 16; (1, 1) -> (20, 4) */
+    got = read_doc("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0,0,8,8\"><path d=\"M1 1\"/></svg>",
+                   64, 32, vp);
+    assert_string_equal(got, BLACK " M 20 4 Z");
+    assert_true(vp[0] == 64 && vp[1] == 32);
+    /* no viewBox: user units are pixels */
+    got = read_doc("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10px\" height=\"100%\">"
+                   "<path d=\"M1 1\"/></svg>",
+                   64, 32, vp);
+    assert_string_equal(got, BLACK " M 1 1 Z");
+    assert_true(vp[0] == 10 && vp[1] == 32);
+}
+
+/* ---- refusals ---- */
+
+/* `doc` is refused with a message containing each of want[] (NULL-ended). */
+static void refused(const char *doc, const char *want1, const char *want2)
+{
+    text_sink t = {.n = 0};
+    if (aa_svg_read(doc, strlen(doc), "test.svg", 64, 64, &sink, &t, NULL) != AA_EINVAL)
+        fail_msg("accepted: %s", doc);
+    const char *msg = aa_last_error();
+    if ((want1 && !strstr(msg, want1)) || (want2 && !strstr(msg, want2)))
+        fail_msg("%s\n  message: %s\n  wanted: %s / %s", doc, msg, want1, want2 ? want2 : "");
+}
+
+#define L2(x) "<svg xmlns=\"http://www.w3.org/2000/svg\">\n" x "</svg>"
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    refused(L2("<rect width=\"1\" height=\"1\" stroke=\"red\"/>"), "line 2: <rect>", "stroke");
+    refused(L2("<g style=\"stroke:#000\"><rect/></g>"), "line 2: <g>", "stroke");
+    refused(L2("<circle r=\"5\"/>"), "line 2: <circle>", "arcs");
+    refused(L2("<ellipse rx=\"5\" ry=\"2\"/>"), "line 2: <ellipse>", "arcs");
+    refused(L2("\n<path d=\"M0 0 A 5 5 0 0 1 10 10\"/>"), "line 3: <path>", "arc command A");
+    refused(L2("<path d=\"M0 0 a 5 5 0 0 1 10 10\"/>"), "line 2: <path>", "arc command a");
+    refused(L2("<rect width=\"1\" height=\"1\" rx=\"1\"/>"), "<rect>", "rounded");
+    refused(L2("<rect width=\"1\" height=\"1\" opacity=\"0.5\"/>"), "<rect>", "opacity");
+    refused(L2("<rect width=\"1\" height=\"1\" fill-opacity=\".5\"/>"), "<rect>", "opacity");
+    refused(L2("<g opacity=\"0.99\"/>"), "<g>", "opacity");
+    refused(L2("<rect width=\"1\" height=\"1\" fill=\"#f008\"/>"), "<rect>", "alpha");
+    refused(L2("<linearGradient id=\"a\"/>"), "<linearGradient>", "gradients");
+    refused(L2("<rect width=\"1\" height=\"1\" fill=\"url(#a)\"/>"), "<rect>", "paint servers");
+    refused(L2("<text>hi</text>"), "line 2: <text>", "text");
+    refused(L2("<image href=\"x.png\"/>"), "<image>", "images");
+    refused(L2("<clipPath id=\"c\"/>"), "<clipPath>", "clip paths");
+    refused(L2("<rect width=\"1\" height=\"1\" clip-path=\"url(#c)\"/>"), "<rect>", "clip paths");
+    refused(L2("<use href=\"#a\"/>"), "<use>", NULL);
+    refused(L2("<style>rect{fill:red}</style>"), "<style>", "style sheets");
+    refused(L2("<svg/>"), "<svg>", "nested");
+    refused(L2("<blink/>"), "<blink>", "not supported");
+    refused(L2("<rect width=\"10%\" height=\"1\"/>"), "<rect>", "px");
+    refused(L2("<rect width=\"-1\" height=\"1\"/>"), "<rect>", "negative");
+    refused(L2("<rect width=\"1\" height=\"1\" fill=\"bogus\"/>"), "<rect>", "bogus");
+    refused(L2("<polygon points=\"0 0 1\"/>"), "<polygon>", "odd");
+    refused(L2("<path d=\"L 1 1\"/>"), "<path>", "must begin with M");
+    refused(L2("<path d=\"M 1\"/>"), "<path>", "ends too early");
+    refused(L2("<path d=\"M 1 1 L 2 x\"/>"), "<path>", "malformed number");
+    refused(L2("<path d=\"M 1 1 z 3\"/>"), "<path>", "after Z");
+    refused(L2("<path d=\"M 1 1 B 3\"/>"), "<path>", "unknown path command");
+    refused(L2("<path transform=\"spin(3)\" d=\"M0 0\"/>"), "<path>", "transform");
+    refused(L2("<path transform=\"skewX(90)\" d=\"M0 0\"/>"), "<path>", "infinite");
+    /* absurd numbers: beyond AA_SVG_MAX_NUMBER, overflowing a double, and
+     * coordinates that transforms carry beyond AA_SVG_MAX_COORD */
+    refused(L2("<path d=\"M 1e10 0\"/>"), "<path>", "out of range");
+    refused(L2("<path d=\"M 1e400 0\"/>"), "<path>", "out of range");
+    refused(L2("<path transform=\"scale(1e5)\" d=\"M 1e3 0\"/>"), "<path>", "beyond");
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1e300\"/>", "width", NULL);
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 0 1\"/>", "viewBox", "positive");
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\" transform=\"scale(2)\"/>", "<svg>", "transform");
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 1 1\" "
+            "preserveAspectRatio=\"xMidYMed\"/>",
+            "preserveAspectRatio", NULL);
+    /* not SVG, malformed XML */
+    refused("<svg/>", "not <svg> in the SVG namespace", NULL);
+    refused("<html xmlns=\"http://www.w3.org/2000/svg\"/>", "not <svg>", NULL);
+    refused(L2("<rect>"), "malformed XML", "line");
+    refused("", "malformed XML", NULL);
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\"><rect width=\"1\" width=\"2\"/></svg>",
+            "malformed XML", NULL);
+}
+
+/* External and internal entities are never loaded nor expanded: a document
+ * declaring any is refused, whatever it names (a file, the network, a
+ * billion laughs). */
+static void test_entities(void **state)
+{
+    (void)state;
+    refused("<?xml version=\"1.0\"?>\n<!DOCTYPE svg [<!ENTITY x SYSTEM \"file:///etc/passwd\">]>\n"
+            "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"&x;\"/></svg>",
+            "entity", NULL);
+    refused("<?xml version=\"1.0\"?>\n<!DOCTYPE svg [<!ENTITY x SYSTEM \"http://127.0.0.1:9/x\">]>\n"
+            "<svg xmlns=\"http://www.w3.org/2000/svg\">&x;</svg>",
+            "entity", NULL);
+    refused("<!DOCTYPE svg [<!ENTITY a \"aaaaaaaaaa\"><!ENTITY b \"&a;&a;&a;&a;&a;&a;&a;&a;\">]>"
+            "<svg xmlns=\"http://www.w3.org/2000/svg\"><desc>&b;</desc></svg>",
+            "entity", NULL);
+    /* an external DTD is not fetched: the document is read without it */
+    expect("<!DOCTYPE svg PUBLIC \"-//W3C//DTD SVG 1.1//EN\" "
+           "\"http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd\">" PATH("M1 1"),
+           BLACK " M 1 1 Z");
+}
+
+static void test_deep_and_huge(void **state)
+{
+    (void)state;
+    /* nesting deeper than AA_SVG_MAX_DEPTH */
+    size_t cap = 100000, n = 0;
+    char *doc = malloc(cap);
+    assert_non_null(doc);
+    n += (size_t)sprintf(doc + n, "%s", SVG_OPEN);
+    for (int k = 0; k < AA_SVG_MAX_DEPTH + 5; k++)
+        n += (size_t)sprintf(doc + n, "<g>");
+    for (int k = 0; k < AA_SVG_MAX_DEPTH + 5; k++)
+        n += (size_t)sprintf(doc + n, "</g>");
+    sprintf(doc + n, "</svg>");
+    refused(doc, "nested deeper", NULL);
+    /* nesting far past libxml2's own limit is malformed to it */
+    free(doc);
+    cap = 20000 * 7 + 100;
+    doc = malloc(cap);
+    assert_non_null(doc);
+    n = (size_t)sprintf(doc, "%s", SVG_OPEN);
+    for (int k = 0; k < 20000; k++)
+        n += (size_t)sprintf(doc + n, "<g>");
+    refused(doc, "malformed XML", NULL);
+    free(doc);
+    /* a document larger than AA_SVG_MAX_BYTES is refused before parsing */
+    text_sink t = {.n = 0};
+    assert_int_equal(aa_svg_read(SVG_OPEN, (size_t)AA_SVG_MAX_BYTES + 1, "big.svg", 8, 8, &sink,
+                                 &t, NULL),
+                     AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "larger than"));
+}
+
+/* ---- files, scenes and references ---- */
+
+static char dir[4096];
+
+static int setup(void **state)
+{
+    (void)state;
+    return support_tmpdir(dir, sizeof dir, "svg");
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    return support_rmtree(dir);
+}
+
+static void write_svg(const char *path, const char *doc)
+{
+    support_write_file(path, doc, strlen(doc));
+}
+
+/* The exact box coverage of [a, b] x [c, d] in pixel (i, j): the product
+ * of the overlaps of the intervals (closed form). */
+static double overlap(double a, double b, double lo, double hi)
+{
+    double x0 = fmax(a, lo), x1 = fmin(b, hi);
+    return x1 > x0 ? x1 - x0 : 0;
+}
+
+static void test_rect_reference(void **state)
+{
+    (void)state;
+    char path[4200], spec[4400];
+    snprintf(path, sizeof path, "%s/rect.svg", dir);
+    /* viewport 6 x 8 in a view of 8 x 8: the rectangle's part beyond x = 6
+     * is clipped; a white rectangle [1.25, 7.5] x [2.5, 4.25], of which
+     * [1.25, 6] x [2.5, 4.25] shows */
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"6\" height=\"8\">"
+                    "<rect x=\"1.25\" y=\"2.5\" width=\"6.25\" height=\"1.75\" fill=\"white\"/></svg>");
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_image img;
+    support_pattern_reference(spec, &(support_view){.w = 8, .h = 8}, &img, NULL, NULL);
+    for (int j = 0; j < 8; j++)
+        for (int i = 0; i < 8; i++) {
+            double want = overlap(1.25, 6, i, i + 1) * overlap(2.5, 4.25, j, j + 1);
+            for (int c = 0; c < 3; c++)
+                if (fabs(aa_pixel(&img, i, j)[c] - want) > 1e-14)
+                    fail_msg("pixel (%d, %d): %.17g, want %.17g", i, j, aa_pixel(&img, i, j)[c],
+                             want);
+        }
+    aa_image_free(&img);
+}
+
+/* Painter's order: the later shape is in front. */
+static void test_painters_order(void **state)
+{
+    (void)state;
+    char path[4200], spec[4400];
+    snprintf(path, sizeof path, "%s/order.svg", dir);
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\">"
+                    "<rect width=\"4\" height=\"4\" fill=\"red\"/>"
+                    "<rect x=\"2\" width=\"2\" height=\"4\" fill=\"blue\"/></svg>");
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_image img;
+    support_pattern_reference(spec, &(support_view){.w = 4, .h = 4}, &img, NULL, NULL);
+    const double *a = aa_pixel(&img, 1, 1), *b = aa_pixel(&img, 3, 1);
+    assert_true(a[0] == 1 && a[1] == 0 && a[2] == 0);
+    assert_true(b[0] == 0 && b[1] == 0 && b[2] == 1);
+    aa_image_free(&img);
+}
+
+/* Layers: consecutive shapes of one colour and rule whose boxes are
+ * disjoint share a layer; overlapping ones do not, so that even-odd shapes
+ * painted over each other stay filled where they overlap (two opaque
+ * squares: the overlap is white, where one even-odd layer of both would
+ * leave it black). */
+static void test_layers(void **state)
+{
+    (void)state;
+    char path[4200], spec[4400];
+    snprintf(path, sizeof path, "%s/layers.svg", dir);
+    aa_spec s;
+    aa_scene *sc;
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" fill=\"white\">"
+                    "<rect width=\"1\" height=\"1\"/><rect x=\"2\" width=\"1\" height=\"1\"/>"
+                    "<rect x=\"4\" width=\"1\" height=\"1\"/></svg>");
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    assert_int_equal(aa_pattern_parse(spec, &s), AA_OK);
+    assert_int_equal(aa_pattern_scene_at(&s, 8, 8, &sc), AA_OK);
+    assert_int_equal(aa_scene_layer_count(sc), 1);
+    aa_scene_free(sc);
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" fill=\"white\" fill-rule=\"evenodd\">"
+                    "<rect width=\"2\" height=\"2\"/><rect x=\"1\" y=\"1\" width=\"2\" height=\"2\"/></svg>");
+    assert_int_equal(aa_pattern_scene_at(&s, 4, 4, &sc), AA_OK);
+    assert_int_equal(aa_scene_layer_count(sc), 2);
+    aa_scene_free(sc);
+    aa_image img;
+    support_pattern_reference(spec, &(support_view){.w = 4, .h = 4}, &img, NULL, NULL);
+    assert_true(aa_pixel(&img, 1, 1)[0] == 1 && aa_pixel(&img, 3, 3)[0] == 0);
+    aa_image_free(&img);
+}
+
+/* The key of a view changes with the file's bytes, not its name. */
+static void test_cache_key(void **state)
+{
+    (void)state;
+    char path[4200], spec[4400], k1[8192], k2[8192], k3[8192];
+    snprintf(path, sizeof path, "%s/key.svg", dir);
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_view v = {0};
+    v.w = v.h = 8;
+    aa_filter_default(&v.filter);
+    assert_int_equal(aa_pattern_parse(spec, &v.pattern), AA_OK);
+    write_svg(path, PATH("M0 0 L1 0 L1 1"));
+    assert_int_equal(aa_view_key(&v, k1, sizeof k1), AA_OK);
+    assert_int_equal(aa_view_key(&v, k2, sizeof k2), AA_OK);
+    assert_string_equal(k1, k2);
+    write_svg(path, PATH("M0 0 L1 0 L1 2"));
+    assert_int_equal(aa_view_key(&v, k3, sizeof k3), AA_OK);
+    assert_string_not_equal(k1, k3);
+    assert_non_null(strstr(k1, "file fnv1a"));
+}
+
+/* TEXT values: %XX escapes, the canonical text, refusals. */
+static void test_text_values(void **state)
+{
+    (void)state;
+    aa_spec s;
+    char buf[4096];
+    assert_int_equal(aa_pattern_parse("svg:file=a%2Cb%25c d=e", &s), AA_OK);
+    assert_string_equal(aa_param_text(s.v[0]), "a,b%c d=e");
+    assert_int_equal(aa_spec_format(&s, buf, sizeof buf), AA_OK);
+    assert_string_equal(buf, "svg:file=a%2Cb%25c d=e");
+    aa_spec back;
+    assert_int_equal(aa_pattern_parse(buf, &back), AA_OK);
+    assert_true(back.v[0] == s.v[0]);
+    /* control characters written %XX, and so in the canonical text */
+    assert_int_equal(aa_pattern_parse("svg:file=a%0ab", &s), AA_OK);
+    assert_string_equal(aa_param_text(s.v[0]), "a\nb");
+    assert_int_equal(aa_spec_format(&s, buf, sizeof buf), AA_OK);
+    assert_string_equal(buf, "svg:file=a%0Ab");
+    static const char *bad[] = {"svg:file=a%2", "svg:file=a%zz", "svg:file=%00", "svg:file=a,b",
+                                "svg:file=", "svg:file=a\nb", "svg:file=a\tb"};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
+        if (aa_pattern_parse(bad[k], &s) == AA_OK)
+            fail_msg("%s was accepted", bad[k]);
+    /* unsized building is refused with a reason */
+    aa_scene *sc = NULL;
+    assert_int_equal(aa_pattern_parse("svg", &s), AA_OK);
+    assert_int_equal(aa_pattern_scene(&s, &sc), AA_EINVAL);
+    assert_null(sc);
+}
+
+/* The command: a refusal is exit 2 naming the element and the line; the
+ * default file draws. */
+static void test_command(void **state)
+{
+    (void)state;
+    char path[4200], spec[4400], out[8192], png[4200];
+    snprintf(path, sizeof path, "%s/circle.svg", dir);
+    snprintf(png, sizeof png, "%s/out.png", dir);
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\">\n\n<circle r=\"3\"/></svg>");
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    const char *args[] = {"truth", "-p", spec, "-s", "16x16", "-o", png, NULL};
+    assert_int_equal(support_aabench(args, out, sizeof out), 2);
+    if (!strstr(out, "line 3") || !strstr(out, "<circle>"))
+        fail_msg("message: %s", out);
+    const char *def[] = {"truth", "-p", "svg", "-s", "32x32", "-o", png, NULL};
+    assert_int_equal(support_aabench(def, out, sizeof out), 0);
+    snprintf(spec, sizeof spec, "svg:file=%s/none.svg", dir);
+    assert_int_equal(support_aabench(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "none.svg"));
+    /* a file over 64 MB is refused before it is read (a sparse file) */
+    char big[4300];
+    snprintf(big, sizeof big, "%s/big.svg", dir);
+    FILE *f = fopen(big, "wb");
+    assert_non_null(f);
+    assert_int_equal(ftruncate(fileno(f), (off_t)AA_SVG_MAX_BYTES + 1), 0);
+    fclose(f);
+    snprintf(spec, sizeof spec, "svg:file=%s", big);
+    assert_int_equal(support_aabench(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "larger than"));
+    assert_int_equal(unlink(big), 0);
+    /* a folder is not a document */
+    snprintf(spec, sizeof spec, "svg:file=%s", dir);
+    assert_int_equal(support_aabench(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "not a regular file"));
+}
+
+/* aabench export, read back: the same reference to 1e-15, for every
+ * pattern of paths (the exported document is in pixels, viewBox 0 0 W H),
+ * text and the default SVG scene among them. */
+static void test_export_round_trip(void **state)
+{
+    (void)state;
+    static const char *patterns[] = {"crow",  "catmull", "slivers",      "star", "feibush",
+                                     "fence", "dots",    "text:ppem=12", "svg"};
+    for (size_t k = 0; k < sizeof patterns / sizeof patterns[0]; k++) {
+        char path[4200], spec[4400], out[4096];
+        snprintf(path, sizeof path, "%s/%.12s.svg", dir, patterns[k]);
+        const char *args[] = {"export", "-p", patterns[k], "-s", "64x48", "-o", path, "-q", NULL};
+        if (support_aabench(args, out, sizeof out) != 0)
+            fail_msg("export %s: %s", patterns[k], out);
+        snprintf(spec, sizeof spec, "svg:file=%s", path);
+        aa_image a, b;
+        support_view v = {.w = 64, .h = 48};
+        support_pattern_reference(patterns[k], &v, &a, NULL, NULL);
+        support_pattern_reference(spec, &v, &b, NULL, NULL);
+        int wi, wj;
+        double d = support_max_diff(&a, &b, &wi, &wj);
+        printf("# export round trip %s: max difference %.3g\n", patterns[k], d);
+        if (!(d <= 1e-15))
+            fail_msg("%s: max difference %.3g at (%d, %d)", patterns[k], d, wi, wj);
+        aa_image_free(&a);
+        aa_image_free(&b);
+    }
+}
+
+/* Cubic arcs in a scene: a cubic that is a quadratic raised to degree three
+ * (control points P0 + 2/3 (Q - P0) and P2 + 2/3 (Q - P2): the same curve)
+ * has the quadratic's reference.  Live once the scene holds cubics. */
+static void test_cubic_scene(void **state)
+{
+    (void)state;
+    int can = support_scene_holds_cubics();
+    if (!can) {
+        printf("# skipped: aa_scene_cubic_to refuses (%s)\n", aa_last_error());
+        skip();
+    }
+    char pq[4200], pc[4200], sq[4400], sc[4400];
+    snprintf(pq, sizeof pq, "%s/quad.svg", dir);
+    snprintf(pc, sizeof pc, "%s/cubic.svg", dir);
+    /* P0 (3, 12), Q (9, 0), P2 (15, 12): C1 = (7, 4), C2 = (11, 4) */
+    write_svg(pq, PATH("M3 12 Q 9 0 15 12 Z"));
+    write_svg(pc, PATH("M3 12 C 7 4 11 4 15 12 Z"));
+    snprintf(sq, sizeof sq, "svg:file=%s", pq);
+    snprintf(sc, sizeof sc, "svg:file=%s", pc);
+    aa_image a, b;
+    support_view v = {.w = 16, .h = 16};
+    support_pattern_reference(sq, &v, &a, NULL, NULL);
+    support_pattern_reference(sc, &v, &b, NULL, NULL);
+    assert_true(support_max_diff(&a, &b, NULL, NULL) <= 1e-13);
+    aa_image_free(&a);
+    aa_image_free(&b);
+}
+
+/* The shipped scenes read (those with cubics once the scene holds them). */
+static void test_shipped(void **state)
+{
+    (void)state;
+    static const char *files[] = {"shapes.svg", "rules.svg", "curves.svg", "logo.svg"};
+    for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
+        char path[4200];
+        snprintf(path, sizeof path, "%s/%s", AA_TEST_SVG_DIR, files[k]);
+        text_sink t = {.n = 0};
+        if (aa_svg_read_file(path, 64, 64, &sink, &t, NULL) != AA_OK)
+            fail_msg("%s: %s", path, aa_last_error());
+        assert_true(t.n > 0);
+    }
+}
+
+SUPPORT_MAIN(setup, teardown,
+             cmocka_unit_test(test_commands_absolute),
+             cmocka_unit_test(test_commands_relative),
+             cmocka_unit_test(test_implicit_repeats),
+             cmocka_unit_test(test_reflections),
+             cmocka_unit_test(test_numbers),
+             cmocka_unit_test(test_transforms),
+             cmocka_unit_test(test_shapes),
+             cmocka_unit_test(test_colours),
+             cmocka_unit_test(test_viewbox),
+             cmocka_unit_test(test_refusals),
+             cmocka_unit_test(test_entities),
+             cmocka_unit_test(test_deep_and_huge),
+             cmocka_unit_test(test_rect_reference),
+             cmocka_unit_test(test_painters_order),
+             cmocka_unit_test(test_layers),
+             cmocka_unit_test(test_cache_key),
+             cmocka_unit_test(test_text_values),
+             cmocka_unit_test(test_command),
+             cmocka_unit_test(test_export_round_trip),
+             cmocka_unit_test(test_cubic_scene),
+             cmocka_unit_test(test_shipped))
