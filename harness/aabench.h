@@ -63,22 +63,16 @@ typedef enum aa_param_kind {
     AA_PARAM_INT,     /* an integer in [min, max] */
     AA_PARAM_REAL,    /* a finite real in [min, max], or (min, max] if open_min */
     AA_PARAM_CHOICE,  /* one word of `choices` ("a|b|c"); the value is its index */
-    /* a word naming something found at run time ([A-Za-z0-9._-], at most
-     * AA_PARAM_WORD_MAX); the value numbers it (aa_param_word); `choices`
-     * holds the default word */
-    AA_PARAM_WORD,
-    /* any text (a file's path, a string to draw), at most AA_PARAM_TEXT_MAX
-     * bytes; the value numbers it (aa_param_text); `choices` holds the
-     * default text.  In a spec the bytes ',' and '%' and the control
-     * characters are written as "%XX" (two hex digits), so the value ends at
-     * the next ',' like any other; a '%' not followed by two hex digits, and
-     * a control character not so written, are refused.  The canonical text writes them the same way. */
-    AA_PARAM_TEXT
+    AA_PARAM_WORD,    /* a name found at run time ([A-Za-z0-9._-], at most
+                       * AA_PARAM_WORD_MAX); the value numbers it (aa_param_word) */
+    AA_PARAM_TEXT     /* any text (a path, a string), at most AA_PARAM_TEXT_MAX bytes; the
+                       * value numbers it (aa_param_text); in a spec ',', '%' and control
+                       * bytes are written "%XX" (the canonical text too), a bare '%' or
+                       * control byte refused.  WORD and TEXT: `choices` is the default */
 } aa_param_kind;
-
+#define AA_PARAM_WORD_MAX 63
 #define AA_PARAM_TEXT_MAX 1024
 
-#define AA_PARAM_WORD_MAX 63
 typedef struct aa_param {
     const char *key;
     aa_param_kind kind;
@@ -106,9 +100,8 @@ typedef struct aa_spec {
  * parameters in the order of its aa_param list (an index is the position in
  * that list; CHOICE values are word indices).  The index of `key`, or -1. */
 int aa_spec_index(const aa_info *info, const char *key);
-/* The word of an AA_PARAM_WORD value ("" for a value that numbers none). */
+/* The word or text an AA_PARAM_WORD or AA_PARAM_TEXT value numbers ("" if none). */
 const char *aa_param_word(double value);
-/* The text of an AA_PARAM_TEXT value ("" for a value that numbers none). */
 const char *aa_param_text(double value);
 
 /* ------------------------------------------------------------------------
@@ -240,10 +233,7 @@ double aa_strip_next_entry(const aa_strip *st);
 int aa_strip_uniform_run(const aa_strip *st, int i, int w, double r, double y, int *wind,
                          aa_rgb *colour);
 
-typedef struct aa_span {
-    double x0, x1;
-    aa_rgb colour;
-} aa_span;
+typedef struct aa_span { double x0, x1; aa_rgb colour; } aa_span;
 
 /* The spans of one colour along line y in the window (at most local + 1). */
 size_t aa_strip_spans(aa_strip *st, double y, aa_span *out, size_t cap);
@@ -380,9 +370,7 @@ double aa_filter_support(const aa_filter *f);
 
 /* Counter-based random streams, one per (seed, pixel, frame), so an image
  * does not depend on how pixels are shared among threads. */
-typedef struct aa_rng {
-    uint64_t state;
-} aa_rng;
+typedef struct aa_rng { uint64_t state; } aa_rng;
 static inline uint64_t aa_hash64(uint64_t x)
 {
     x ^= x >> 30;
