@@ -464,6 +464,37 @@ static int convert(const external_state *s, const double *p, const char *name, c
     return AA_OK;
 }
 
+/* An adapter that can time its renderer's own drawing (in-process, start-up
+ * left out) says so in its last line: "render-seconds: D[.D...]", plain
+ * decimal digits (read by hand: whatever the locale).  1 and *seconds if
+ * the line is one. */
+static int own_seconds(const char *line, double *seconds)
+{
+    static const char key[] = "render-seconds: ";
+    if (strncmp(line, key, sizeof key - 1))
+        return 0;
+    const char *c = line + sizeof key - 1;
+    double v = 0, scale = 1;
+    int digits = 0, point = 0;
+    for (; *c; c++) {
+        if (*c == '.' && !point) {
+            point = 1;
+        } else if (*c >= '0' && *c <= '9' && digits < 30) {
+            digits++;
+            if (point)
+                v += (scale /= 10) * (*c - '0');
+            else
+                v = 10 * v + (*c - '0');
+        } else {
+            return 0;
+        }
+    }
+    if (!digits)
+        return 0;
+    *seconds = v;
+    return 1;
+}
+
 static int external_render(void *state, const double *p, const aa_job *job, aa_image *out,
                            aa_counters *counters)
 {
@@ -485,6 +516,9 @@ static int external_render(void *state, const double *p, const aa_job *job, aa_i
     if (status)
         return aa_fail(AA_EIO, "renderer %s failed (exit status %d): %s", name, status,
                        *tail ? tail : "(it said nothing)");
+    double seconds;
+    if (own_seconds(tail, &seconds))
+        aa_method_report_seconds(seconds);
     aa_image im = {0};
     if ((st = aa_image_read(s->png, &im)))
         return aa_fail_context(st, "renderer %s's image", name);
@@ -500,7 +534,7 @@ static int external_render(void *state, const double *p, const aa_job *job, aa_i
 const aa_method_type aa_method_external = {
     {"external",
      "an SVG renderer run as a program through an adapter (librsvg, Chromium, resvg, or one's "
-     "own): time includes its start-up",
+     "own): time is its own drawing where the adapter reports it, else its whole process",
      external_params},
     sizeof(external_state),
     AA_METHOD_SOME_SCENES | AA_METHOD_EXTERNAL,

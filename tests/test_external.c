@@ -575,6 +575,20 @@ static void put_adapters(void)
     snprintf(path, sizeof path, "%s/late", dir);
     write_file(path, "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\necho 'late: gone' >&2\nexit 2\n",
                0755);
+    /* the copy adapter that times its own drawing, and one whose time line
+     * is not in the protocol's form (an exponent) */
+    snprintf(path, sizeof path, "%s/timed", dir);
+    snprintf(text, sizeof text,
+             "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\ncp '%s' \"$4\"\n"
+             "echo 'render-seconds: 0.125'\n",
+             fake_png);
+    write_file(path, text, 0755);
+    snprintf(path, sizeof path, "%s/badtime", dir);
+    snprintf(text, sizeof text,
+             "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\ncp '%s' \"$4\"\n"
+             "echo 'render-seconds: 1e-3'\n",
+             fake_png);
+    write_file(path, text, 0755);
     /* not executable: no adapter */
     snprintf(path, sizeof path, "%s/plain", dir);
     write_file(path, "#!/bin/sh\nexit 0\n", 0644);
@@ -832,7 +846,8 @@ static void test_external_failures(void **state)
 
 /* In a run: a missing renderer named with -m is bad input (exit 2, the
  * package to install named, nothing written); a working one's row says its
- * time includes the renderer's start-up. */
+ * time includes the renderer's start-up, unless its adapter reports the
+ * renderer's own time. */
 static void test_external_run(void **state)
 {
     (void)state;
@@ -861,6 +876,26 @@ static void test_external_run(void **state)
     assert_non_null(text);
     assert_non_null(strstr(text, "its start-up included"));
     free(text);
+    /* an adapter that reports its renderer's own time: that is every
+     * render's time (exactly the 0.125 s it said, however long the process
+     * took), and the row says so; a line not in the protocol's form is not
+     * taken */
+    const char *timed[] = {"run", "-p", "crow", "-s", "4x2", "-m", "external:renderer=timed",
+                           "-m", "external:renderer=badtime", "--reps", "3", "--no-images",
+                           "--no-plots", "--cache", cache, "--out", out, "-q", NULL};
+    code = support_aabench(timed, log, sizeof log);
+    if (code != 0)
+        fail_msg("run: exit %d: %s", code, log);
+    aa_row *rows;
+    size_t n;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    assert_int_equal(n, 2);
+    assert_true(rows[0].seconds == 0.125 && rows[0].seconds_min == 0.125 &&
+                rows[0].seconds_max == 0.125);
+    assert_non_null(strstr(rows[0].note, "own drawing, timed in its process"));
+    assert_true(rows[1].seconds > 0 && rows[1].seconds != 0.125);
+    assert_non_null(strstr(rows[1].note, "its start-up included"));
+    free(rows);
 }
 
 /* ------------------------------------------------------------------------

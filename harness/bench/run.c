@@ -303,8 +303,11 @@ static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_jo
     row->expensive_fraction = (double)c.expensive_pixels / pixels;
     row->ok = 1;
     if (((const aa_method_type *)spec->info)->flags & AA_METHOD_EXTERNAL)
-        snprintf(row->note, sizeof row->note,
-                 "time is the renderer's whole process, its start-up included");
+        snprintf(row->note, sizeof row->note, "%s",
+                 row->timing.n && row->timing.reported == row->timing.n
+                     ? "time is the renderer's own drawing, timed in its process by its "
+                       "adapter (start-up, reading and writing left out)"
+                     : "time is the renderer's whole process, its start-up included");
     st = run_seeds(cfg, job, spec, shown ? &dref : ref, img, row);
     aa_image_free(&dref);
     return st;

@@ -462,7 +462,14 @@ typedef struct aa_timing {
     double cpu_share;     /* total CPU time / total wall time of the renders */
     double elapsed;       /* seconds from the warm-up's start to the last render's end */
     unsigned noisy;       /* AA_NOISY_* */
+    int reported;         /* renders whose time the method reported (below) */
 } aa_timing;
+
+/* For a built-in method that runs another program (AA_METHOD_EXTERNAL) and
+ * is told that program's own render time: called from its render, it makes
+ * that the render's wall and CPU time in aa_timing_measure (this thread's
+ * next timed render only).  Seconds, finite and >= 0. */
+void aa_method_report_seconds(double seconds);
 
 /* Time `k` functions taking turns (fn[i](ctx[i]) renders once; threads[i]
  * is its thread count), each warmed up once, until each meets the plan's
