@@ -93,17 +93,20 @@ BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
 # make -j runs them side by side and every test runs; the pass's summary
 # then prints the failed ones and "N passed, N failed" and fails if any did.
 # The longest start first, so that they do not run on alone at the end.
-SLOW_TESTS := test_cli test_truth_gauss test_tables test_peers test_oracle test_patterns
+SLOW_TESTS := test_image_faults test_shard test_truth_gauss test_external test_figures_papers \
+              test_prefilters test_cli test_cubic test_faults test_run_faults test_tables \
+              test_peers test_oracle test_patterns
 ordered = $(foreach t,$(SLOW_TESTS),$(filter $(1)/tests/$(t),$(2))) \
           $(filter-out $(addprefix $(1)/tests/,$(SLOW_TESTS)),$(2))
 TEST_RUNS     := $(addsuffix .run,$(call ordered,$(BUILD),$(TESTS)))
 SAN_TEST_RUNS := $(addsuffix .run,$(call ordered,$(SAN_BUILD),$(SAN_TESTS)))
-# A pass runs with one job a core (TEST_JOBS), unless make was given -j.
-TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+# A pass runs with one job a core and one more (TEST_JOBS: many tests wait on
+# the command they start), unless make was given -j.
+TEST_JOBS ?= $(shell echo $$(( $$(nproc 2>/dev/null || echo 1) + 1 )))
 TEST_J     = $(if $(findstring -j,$(MAKEFLAGS)),,-j$(TEST_JOBS))
 
 .PHONY: all deps run test check-tests check-tests-san check-gate baseline bench install clean \
-        fuzz valgrind FORCE check-tests-pass check-tests-san-pass $(TEST_RUNS) $(SAN_TEST_RUNS)
+        fuzz valgrind FORCE check-tests-pass check-tests-san-pass check-tests-both $(TEST_RUNS) $(SAN_TEST_RUNS)
 .DEFAULT_GOAL := all
 
 all: $(BUILD)/aabench $(LIB) $(OIIO_SO)
@@ -294,9 +297,11 @@ run: deps
 	@$(MAKE) --no-print-directory all
 	@sh scripts/run.sh
 
+# both passes in one make: the sanitizer build and its tests fill the
+# cores while plain tests wait on their child processes, and no pass waits
+# alone for its last test
 test: deps
-	@$(MAKE) --no-print-directory check-tests
-	@$(MAKE) --no-print-directory check-tests-san
+	@$(MAKE) --no-print-directory $(TEST_J) check-tests-both
 	@$(MAKE) --no-print-directory check-gate
 
 # The regression gate: the quick suite against results/baseline.csv.
@@ -316,6 +321,11 @@ check-tests-pass: $(TEST_RUNS)
 
 $(TEST_RUNS): %.run: % $(BUILD)/aabench $(PLUGINS)
 	@sh scripts/run-tests.sh one $(BUILD) $*
+
+check-tests-both: $(TEST_RUNS) $(SAN_TEST_RUNS)
+	@echo "plain:"; sh scripts/run-tests.sh summary $(TESTS); plain=$$?; \
+	echo "under AddressSanitizer and UndefinedBehaviorSanitizer:"; \
+	sh scripts/run-tests.sh summary $(SAN_TESTS) && exit $$plain
 
 check-tests-san:
 	@$(MAKE) --no-print-directory $(TEST_J) check-tests-san-pass
