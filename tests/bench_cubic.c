@@ -22,6 +22,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+
+/* The scene finished when st is AA_OK; else freed, NULL. */
+static aa_scene *finished(aa_scene *s, int st)
+{
+    if (!st)
+        st = aa_scene_finish(s);
+    if (st) {
+        aa_scene_free(s);
+        return NULL;
+    }
+    return s;
+}
+
 static aa_scene *elevated(const aa_scene *src)
 {
     aa_scene *s = aa_scene_new(aa_scene_background(src));
@@ -48,13 +61,7 @@ static aa_scene *elevated(const aa_scene *src)
                 st = aa_scene_close(s);
         }
     }
-    if (!st)
-        st = aa_scene_finish(s);
-    if (st) {
-        aa_scene_free(s);
-        return NULL;
-    }
-    return s;
+    return finished(s, st);
 }
 
 static aa_scene *waves(void)
@@ -70,13 +77,7 @@ static aa_scene *waves(void)
             break;
         st = aa_scene_close(s);
     }
-    if (!st)
-        st = aa_scene_finish(s);
-    if (st) {
-        aa_scene_free(s);
-        return NULL;
-    }
-    return s;
+    return finished(s, st);
 }
 
 typedef struct timed {

@@ -127,7 +127,7 @@ aa_scene *scenes_cubics(void)
     return s;
 }
 
-aa_scene *scenes_elevated(const aa_scene *src)
+aa_scene *scenes_rebuild(const aa_scene *src, int swap, scenes_edge_fn edge)
 {
     aa_scene *s = aa_scene_new(aa_scene_background(src));
     assert_non_null(s);
@@ -141,22 +141,31 @@ aa_scene *scenes_elevated(const aa_scene *src)
         for (size_t c = 0; c < nc; c++) {
             if (start[c] == start[c + 1] || e[start[c]].layer != l)
                 continue;
-            assert_int_equal(aa_scene_move_to(s, e[start[c]].x0, e[start[c]].y0), AA_OK);
-            for (size_t k = start[c]; k < start[c + 1]; k++) {
-                const aa_edge *d = &e[k];
-                int st;
-                if (d->quad)
-                    st = aa_scene_cubic_to(s, d->x0 + 2.0 / 3.0 * (d->cx - d->x0),
-                                           d->y0 + 2.0 / 3.0 * (d->cy - d->y0),
-                                           d->x1 + 2.0 / 3.0 * (d->cx - d->x1),
-                                           d->y1 + 2.0 / 3.0 * (d->cy - d->y1), d->x1, d->y1);
-                else
-                    st = aa_scene_line_to(s, d->x1, d->y1);
-                assert_int_equal(st, AA_OK);
-            }
+            const aa_edge *first = &e[start[c]];
+            assert_int_equal(swap ? aa_scene_move_to(s, first->y0, first->x0)
+                                  : aa_scene_move_to(s, first->x0, first->y0),
+                             AA_OK);
+            for (size_t k = start[c]; k < start[c + 1]; k++)
+                assert_int_equal(edge(s, &e[k]), AA_OK);
             assert_int_equal(aa_scene_close(s), AA_OK);
         }
     }
     assert_int_equal(aa_scene_finish(s), AA_OK);
     return s;
+}
+
+/* A quadratic arc as the cubic of the same curve (degree elevation). */
+static int elevated_edge(aa_scene *s, const aa_edge *d)
+{
+    if (!d->quad)
+        return aa_scene_line_to(s, d->x1, d->y1);
+    return aa_scene_cubic_to(s, d->x0 + 2.0 / 3.0 * (d->cx - d->x0),
+                             d->y0 + 2.0 / 3.0 * (d->cy - d->y0),
+                             d->x1 + 2.0 / 3.0 * (d->cx - d->x1),
+                             d->y1 + 2.0 / 3.0 * (d->cy - d->y1), d->x1, d->y1);
+}
+
+aa_scene *scenes_elevated(const aa_scene *src)
+{
+    return scenes_rebuild(src, 0, elevated_edge);
 }

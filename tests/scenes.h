@@ -31,6 +31,12 @@ aa_scene *scenes_rects(const double (*r)[4], int n);
  * control point (cx, cy) to (x1, y1) and its chord, finished. */
 aa_scene *scenes_arc_segment(double x0, double y0, double cx, double cy, double x1, double y1);
 
+/* A copy of a finished scene, layer by layer and contour by contour: each
+ * contour's first point moved to (with x and y swapped when `swap`), each
+ * edge added by `edge` (its status checked), closed, finished. */
+typedef int (*scenes_edge_fn)(aa_scene *s, const aa_edge *e);
+aa_scene *scenes_rebuild(const aa_scene *src, int swap, scenes_edge_fn edge);
+
 /* White on black, one nonzero layer inside the unit square, of cubic arcs
  * only: an S-shaped arc, arcs with turning points in y and in x, and a
  * second path whose one arc loops over itself (harness/README.md, "Scenes

@@ -374,34 +374,16 @@ static void test_elevated_every_method(void **state)
 }
 
 /* The scene mirrored in the diagonal (x and y swapped), finished. */
+static int transposed_edge(aa_scene *s, const aa_edge *d)
+{
+    return d->quad == 2 ? aa_scene_cubic_to(s, d->cy, d->cx, d->c2y, d->c2x, d->y1, d->x1)
+           : d->quad    ? aa_scene_quad_to(s, d->cy, d->cx, d->y1, d->x1)
+                        : aa_scene_line_to(s, d->y1, d->x1);
+}
+
 static aa_scene *transposed(const aa_scene *src)
 {
-    aa_scene *s = aa_scene_new(aa_scene_background(src));
-    assert_non_null(s);
-    size_t ne, nc;
-    const aa_edge *e = aa_scene_edges(src, &ne);
-    const size_t *start = aa_scene_contours(src, &nc);
-    for (int l = 0; l < aa_scene_layer_count(src); l++) {
-        assert_int_equal(aa_scene_layer(s, aa_scene_layer_colour(src, l),
-                                        aa_scene_layer_rule(src, l)),
-                         AA_OK);
-        for (size_t c = 0; c < nc; c++) {
-            if (start[c] == start[c + 1] || e[start[c]].layer != l)
-                continue;
-            assert_int_equal(aa_scene_move_to(s, e[start[c]].y0, e[start[c]].x0), AA_OK);
-            for (size_t k = start[c]; k < start[c + 1]; k++) {
-                const aa_edge *d = &e[k];
-                int st = d->quad == 2 ? aa_scene_cubic_to(s, d->cy, d->cx, d->c2y, d->c2x, d->y1,
-                                                          d->x1)
-                         : d->quad    ? aa_scene_quad_to(s, d->cy, d->cx, d->y1, d->x1)
-                                      : aa_scene_line_to(s, d->y1, d->x1);
-                assert_int_equal(st, AA_OK);
-            }
-            assert_int_equal(aa_scene_close(s), AA_OK);
-        }
-    }
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    return s;
+    return scenes_rebuild(src, 1, transposed_edge);
 }
 
 /* The Gaussian is symmetric in x and y: the reference of a scene of cubics
