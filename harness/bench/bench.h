@@ -88,6 +88,16 @@ int aa_eye_rmse(const aa_image *shown, const aa_image *truth, double s, double *
  * it beats with the grid of dots into visible fringes. */
 #define AA_BEAT_F0 0.35
 int aa_band_energy(const aa_image *im, double f0, double *out);
+/* The 2-D DFT in place of w x h complex values (z interleaved re, im, row
+ * by row): the rows, then the columns, by GSL's mixed-radix FFT
+ * (metrics.c). */
+int aa_fft2(double *z, int w, int h);
+/* The frequency of DFT index k of n, in cycles per pixel, folded to
+ * [0, 1/2]. */
+static inline double aa_fft_freq(int k, int n)
+{
+    return (k <= n / 2 ? k : n - k) / (double)n;
+}
 
 /* ------------------------------------------------------------------------
  * Displays (display.c; core.h, "Displays")

@@ -33,7 +33,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_fft_complex.h>
 
 #define EYE_REACH 6.0
 
@@ -192,31 +191,21 @@ int aa_band_energy(const aa_image *im, double f0, double *out)
     int w = im->w, h = im->h, c = im->c;
     size_t n = (size_t)w * h;
     double *z = malloc(2 * n * sizeof *z);
-    gsl_fft_complex_wavetable *tw = gsl_fft_complex_wavetable_alloc((size_t)w);
-    gsl_fft_complex_wavetable *th = gsl_fft_complex_wavetable_alloc((size_t)h);
-    gsl_fft_complex_workspace *ws = gsl_fft_complex_workspace_alloc((size_t)w);
-    gsl_fft_complex_workspace *wh = gsl_fft_complex_workspace_alloc((size_t)h);
+    if (!z)
+        return aa_fail(AA_ENOMEM, "out of memory for the spectrum of %dx%d", w, h);
     int st = AA_OK;
     double band = 0;
-    if (!z || !tw || !th || !ws || !wh)
-        st = aa_fail(AA_ENOMEM, "out of memory for the spectrum of %dx%d", w, h);
     for (int ch = 0; ch < c && !st; ch++) {
         for (size_t p = 0; p < n; p++) {
             z[2 * p] = im->v[p * (size_t)c + (size_t)ch];
             z[2 * p + 1] = 0;
         }
-        for (int j = 0; j < h && !st; j++)
-            if (gsl_fft_complex_forward(z + 2 * (size_t)j * w, 1, (size_t)w, tw, ws))
-                st = aa_fail(AA_EFAIL, "FFT of row %d failed", j);
-        for (int i = 0; i < w && !st; i++)
-            if (gsl_fft_complex_forward(z + 2 * (size_t)i, (size_t)w, (size_t)h, th, wh))
-                st = aa_fail(AA_EFAIL, "FFT of column %d failed", i);
+        st = aa_fft2(z, w, h);
         for (int j = 0; j < h && !st; j++) {
-            double fy = fabs((j <= h / 2 ? j : j - h) / (double)h);
+            double fy = aa_fft_freq(j, h);
             for (int i = 0; i < w; i++) {
-                double fx = fabs((i <= w / 2 ? i : i - w) / (double)w);
                 size_t p = (size_t)j * w + i;
-                if (fx > f0 || fy > f0)
+                if (aa_fft_freq(i, w) > f0 || fy > f0)
                     band += z[2 * p] * z[2 * p] + z[2 * p + 1] * z[2 * p + 1];
             }
         }
@@ -224,13 +213,5 @@ int aa_band_energy(const aa_image *im, double f0, double *out)
     if (!st)
         *out = band / ((double)n * n) / c;
     free(z);
-    if (tw)
-        gsl_fft_complex_wavetable_free(tw);
-    if (th)
-        gsl_fft_complex_wavetable_free(th);
-    if (ws)
-        gsl_fft_complex_workspace_free(ws);
-    if (wh)
-        gsl_fft_complex_workspace_free(wh);
     return st;
 }

@@ -107,22 +107,41 @@ static void pointwise(const aa_image *ref, const aa_image *img, const aa_encode 
         *psnr = nonfinite_differ ? NAN : INFINITY;
 }
 
-/* FFT of the channel-mean error; energies per pixel. */
-static int spectrum(const aa_image *ref, const aa_image *img, aa_metrics *m)
+int aa_fft2(double *z, int w, int h)
 {
-    int w = ref->w, h = ref->h, c = ref->c;
-    size_t n = (size_t)w * h;
-    double *z = malloc(2 * n * sizeof *z);
     gsl_fft_complex_wavetable *tw = gsl_fft_complex_wavetable_alloc((size_t)w);
     gsl_fft_complex_wavetable *th = gsl_fft_complex_wavetable_alloc((size_t)h);
     /* GSL wants a workspace of each transform's own length */
     gsl_fft_complex_workspace *ws = gsl_fft_complex_workspace_alloc((size_t)w);
     gsl_fft_complex_workspace *wh = gsl_fft_complex_workspace_alloc((size_t)h);
     int st = AA_OK;
-    if (!z || !tw || !th || !ws || !wh) {
-        st = aa_fail(AA_ENOMEM, "out of memory for the error spectrum of %dx%d", w, h);
-        goto done;
-    }
+    if (!tw || !th || !ws || !wh)
+        st = aa_fail(AA_ENOMEM, "out of memory for the spectrum of %dx%d", w, h);
+    for (int j = 0; j < h && !st; j++)
+        if (gsl_fft_complex_forward(z + 2 * (size_t)j * w, 1, (size_t)w, tw, ws))
+            st = aa_fail(AA_EFAIL, "FFT of row %d failed", j);
+    for (int i = 0; i < w && !st; i++)
+        if (gsl_fft_complex_forward(z + 2 * (size_t)i, (size_t)w, (size_t)h, th, wh))
+            st = aa_fail(AA_EFAIL, "FFT of column %d failed", i);
+    if (tw)
+        gsl_fft_complex_wavetable_free(tw);
+    if (th)
+        gsl_fft_complex_wavetable_free(th);
+    if (ws)
+        gsl_fft_complex_workspace_free(ws);
+    if (wh)
+        gsl_fft_complex_workspace_free(wh);
+    return st;
+}
+
+/* FFT of the channel-mean error; energies per pixel. */
+static int spectrum(const aa_image *ref, const aa_image *img, aa_metrics *m)
+{
+    int w = ref->w, h = ref->h, c = ref->c;
+    size_t n = (size_t)w * h;
+    double *z = malloc(2 * n * sizeof *z);
+    if (!z)
+        return aa_fail(AA_ENOMEM, "out of memory for the error spectrum of %dx%d", w, h);
     for (size_t p = 0; p < n; p++) {
         double e = 0;
         if (!m->nonfinite || pixel_finite(ref, img, p))
@@ -131,18 +150,12 @@ static int spectrum(const aa_image *ref, const aa_image *img, aa_metrics *m)
         z[2 * p] = e / c;
         z[2 * p + 1] = 0;
     }
-    for (int j = 0; j < h && !st; j++)
-        if (gsl_fft_complex_forward(z + 2 * (size_t)j * w, 1, (size_t)w, tw, ws))
-            st = aa_fail(AA_EFAIL, "FFT of row %d failed", j);
-    for (int i = 0; i < w && !st; i++)
-        if (gsl_fft_complex_forward(z + 2 * (size_t)i, (size_t)w, (size_t)h, th, wh))
-            st = aa_fail(AA_EFAIL, "FFT of column %d failed", i);
+    int st = aa_fft2(z, w, h);
     double low = 0, high = 0;
     for (int j = 0; j < h && !st; j++) {
-        /* frequency in cycles per pixel, folded to [0, 1/2] */
-        double fy = fabs((j <= h / 2 ? j : j - h) / (double)h);
+        double fy = aa_fft_freq(j, h);
         for (int i = 0; i < w; i++) {
-            double fx = fabs((i <= w / 2 ? i : i - w) / (double)w);
+            double fx = aa_fft_freq(i, w);
             size_t p = (size_t)j * w + i;
             double power = z[2 * p] * z[2 * p] + z[2 * p + 1] * z[2 * p + 1];
             if (fx < 0.25 && fy < 0.25)
@@ -155,16 +168,7 @@ static int spectrum(const aa_image *ref, const aa_image *img, aa_metrics *m)
     m->alias_low = low / ((double)n * n);
     m->alias_high = high / ((double)n * n);
     m->alias_total = m->alias_low + m->alias_high;
-done:
     free(z);
-    if (tw)
-        gsl_fft_complex_wavetable_free(tw);
-    if (th)
-        gsl_fft_complex_wavetable_free(th);
-    if (ws)
-        gsl_fft_complex_workspace_free(ws);
-    if (wh)
-        gsl_fft_complex_workspace_free(wh);
     return st;
 }
 
