@@ -58,13 +58,6 @@ const aa_info *aa_table_find(const void *const *table, const char *name)
 
 /* ---- words (AA_PARAM_WORD) ---- */
 
-/* The words met so far, numbered from 1 (0 is the empty word): fixed room,
- * never freed, only appended to under the lock. */
-#define WORDS_MAX 1024
-static char word_table[WORDS_MAX][AA_PARAM_WORD_MAX + 1];
-static int nwords = 1;
-static pthread_mutex_t words_lock = PTHREAD_MUTEX_INITIALIZER;
-
 /* 1 if `text` is a well-formed word (aabench.h, AA_PARAM_WORD). */
 static int word_valid(const char *text)
 {
@@ -77,38 +70,11 @@ static int word_valid(const char *text)
     return 1;
 }
 
-/* The number of a well-formed word, added to the table if new; -1 when the
- * table is full. */
-static int word_number(const char *text)
-{
-    pthread_mutex_lock(&words_lock);
-    int found = -1;
-    for (int k = 1; k < nwords && found < 0; k++)
-        if (!strcmp(word_table[k], text))
-            found = k;
-    if (found < 0 && nwords < WORDS_MAX) {
-        snprintf(word_table[nwords], sizeof word_table[nwords], "%s", text);
-        found = nwords++;
-    }
-    pthread_mutex_unlock(&words_lock);
-    return found;
-}
+/* ---- the words and texts of specs (AA_PARAM_WORD, AA_PARAM_TEXT) ---- */
 
-const char *aa_param_word(double value)
-{
-    const char *w = "";
-    pthread_mutex_lock(&words_lock);
-    if (value >= 1 && value < nwords && value == floor(value))
-        w = word_table[(int)value];
-    pthread_mutex_unlock(&words_lock);
-    return w;
-}
-
-/* ---- texts (AA_PARAM_TEXT) ---- */
-
-/* The texts met so far, numbered from 1 (0 is the empty text), malloc'd,
- * never freed (they live as long as the specs that number them), only
- * appended to under the lock. */
+/* The words and texts met so far, in one table, numbered from 1 (0 is the
+ * empty text), malloc'd, never freed (they live as long as the specs that
+ * number them), only appended to under the lock. */
 #define TEXTS_MAX 4096
 static char *text_table[TEXTS_MAX];
 static int ntexts = 1;
@@ -139,6 +105,11 @@ const char *aa_param_text(double value)
         t = text_table[(int)value];
     pthread_mutex_unlock(&texts_lock);
     return t;
+}
+
+const char *aa_param_word(double value)
+{
+    return aa_param_text(value);
 }
 
 static int hex_digit(int c)
@@ -207,7 +178,7 @@ void aa_spec_default(const aa_info *info, aa_spec *out)
          * that is malformed or the table is full: the method's check refuses
          * it) */
         if (p->kind == AA_PARAM_WORD)
-            out->v[k] = p->choices && word_valid(p->choices) && (w = word_number(p->choices)) > 0
+            out->v[k] = p->choices && word_valid(p->choices) && (w = text_number(p->choices)) > 0
                             ? w
                             : 0;
         else if (p->kind == AA_PARAM_TEXT)
@@ -305,10 +276,10 @@ static int param_parse(const aa_param *p, const char *text, double *value)
                            "%s=%s: not a name (expected letters, digits, '.', '_' and '-', "
                            "starting with a letter or digit, at most %d characters)",
                            p->key, text, AA_PARAM_WORD_MAX);
-        int w = word_number(text);
+        int w = text_number(text);
         if (w < 0)
-            return aa_fail(AA_EINVAL, "%s=%s: more than %d different names given", p->key, text,
-                           WORDS_MAX - 1);
+            return aa_fail(AA_EINVAL, "%s=%s: more than %d different names and texts given",
+                           p->key, text, TEXTS_MAX - 1);
         *value = w;
         return AA_OK;
     }
@@ -318,8 +289,8 @@ static int param_parse(const aa_param *p, const char *text, double *value)
             return AA_EINVAL;
         int t = text_number(buf);
         if (t < 0)
-            return aa_fail(AA_EINVAL, "%s=%s: more than %d different texts given", p->key,
-                           aa_echo(text), TEXTS_MAX - 1);
+            return aa_fail(AA_EINVAL, "%s=%s: more than %d different names and texts given",
+                           p->key, aa_echo(text), TEXTS_MAX - 1);
         *value = t;
         return AA_OK;
     }
