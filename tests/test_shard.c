@@ -337,7 +337,10 @@ static void test_parallel_merge(void **state)
     assert_non_null(strstr(log_text, "has not measured all its cases (1 missing)"));
     assert_non_null(strstr(log_text, "aabench run --resume"));
     assert_false(exists(out));
-    const char *resume[] = {"run", "--resume", s2, "--cache", cache, "-q", NULL};
+    /* --threads is no part of the command (the manifest leaves it out):
+     * one thread, as the shards ran */
+    const char *resume[] = {"run", "--resume", s2, "--cache", cache, "-q", "--threads", "1",
+                            NULL};
     if (aabench(resume) != 0)
         fail_msg("resuming shard 2 failed:\n%s", log_text);
     assert_non_null(strstr(log_text, "kept, measuring the rest"));
@@ -380,7 +383,9 @@ static void test_parallel_merge(void **state)
 
 /* A shard whose process dies (here a wrapper of the command that exits 3
  * for shard 2/2) is named by the driver, which merges nothing; resumed, it
- * finishes and the merge goes through. */
+ * finishes and the merge goes through.  The run writes no images and uses
+ * one thread: what is checked is the driver's report and the merged rows
+ * (test_parallel_merge checks merged images and montage). */
 static void test_driver_stopped_shard(void **state)
 {
     (void)state;
@@ -398,7 +403,8 @@ static void test_driver_stopped_shard(void **state)
     const char *drive[] = {"scripts/gnu-parallel-run.sh", "--jobs", "2", "--shards", "2",
                            "--aabench", wrapper, "-p", "crow", "-s", "24x24", "-f", "box", "-m",
                            "point", "-m", "area", "-m", "supersample", "--reps", "1", "--no-plots",
-                           "-q", "--cache", cache, "--out", out, NULL};
+                           "--no-images", "--threads", "1", "-q", "--cache", cache, "--out", out,
+                           NULL};
     assert_int_equal(run_script(drive), 3);
     assert_non_null(strstr(log_text, "shard(s) 2/2 did not finish"));
     assert_non_null(strstr(log_text, "aabench run --resume"));
@@ -407,8 +413,9 @@ static void test_driver_stopped_shard(void **state)
     assert_false(exists(csv));
     /* the shard died before its manifest: it is run again, not resumed */
     const char *again[] = {"run", "-p", "crow", "-s", "24x24", "-f", "box", "-m", "point",
-                           "-m", "area", "-m", "supersample", "--reps", "1", "--no-plots", "-q",
-                           "--cache", cache, "--shard", "2/2", "--out", s2, NULL};
+                           "-m", "area", "-m", "supersample", "--reps", "1", "--no-plots",
+                           "--no-images", "--threads", "1", "-q", "--cache", cache, "--shard",
+                           "2/2", "--out", s2, NULL};
     assert_int_equal(aabench(again), 0);
     char s1[5120];
     snprintf(s1, sizeof s1, "%s/shards/1", out);
@@ -424,8 +431,11 @@ static void test_driver_stopped_shard(void **state)
 
 /* ---- resumed runs ---- */
 
+/* no images and one thread: the case checks the rows kept and measured and
+ * the commands refused (--threads is no part of a run's command) */
 #define SMALL "-p", "crow", "-s", "24x16", "-s", "40x40", "-f", "box", "-m", "point", "-m", \
-              "supersample", "-m", "jitter:spp=4", "--reps", "1", "--no-plots", "-q"
+              "supersample", "-m", "jitter:spp=4", "--reps", "1", "--no-plots", "--no-images", \
+              "--threads", "1", "-q"
 
 static void test_resume(void **state)
 {
@@ -448,7 +458,8 @@ static void test_resume(void **state)
     snprintf(path, sizeof path, "%s/results.csv", part);
     assert_int_equal(aa_rows_write_csv(path, rows, 2), AA_OK);
     free(rows);
-    const char *resume[] = {"run", "--resume", part, "--cache", cache, "-q", NULL};
+    const char *resume[] = {"run", "--resume", part, "--cache", cache, "-q", "--threads", "1",
+                            NULL};
     if (aabench(resume) != 0)
         fail_msg("resume failed:\n%s", log_text);
     assert_non_null(strstr(log_text, "2 cases kept"));
@@ -503,7 +514,9 @@ static void test_resume(void **state)
 
 /* A suite's groups with the methods given and not the filters: the pairs a
  * method refuses are skipped, without rows; sharded, they are done too,
- * and the merge says it skipped as many as the whole run. */
+ * and the merge says it skipped as many as the whole run.  No images, one
+ * thread and a small view: the rows and the count of pairs skipped are
+ * what is checked, the same at any size. */
 static void test_refused_pairs(void **state)
 {
     (void)state;
@@ -511,8 +524,9 @@ static void test_refused_pairs(void **state)
     snprintf(whole, sizeof whole, "%s/pwhole", dir);
     snprintf(merged, sizeof merged, "%s/pmerged", dir);
     snprintf(cache, sizeof cache, "%s/cache", dir);
-#define PAIRS "--suite", "paper", "-p", "crow", "-s", "24x24", "-m", "point", "-m", "area", \
-              "-m", "supersample:n=3", "--reps", "1", "--no-plots", "-q", "--cache", cache
+#define PAIRS "--suite", "paper", "-p", "crow", "-s", "12x12", "-m", "point", "-m", "area", \
+              "-m", "supersample:n=3", "--reps", "1", "--no-plots", "--no-images", "--threads", \
+              "1", "-q", "--cache", cache
     const char *run[] = {"run", PAIRS, "--out", whole, NULL};
     if (aabench(run) != 0)
         fail_msg("the whole run failed:\n%s", log_text);
@@ -559,10 +573,11 @@ static void test_warm_and_concurrent_cache(void **state)
     char cache[4608];
     snprintf(cache, sizeof cache, "%s/warm", dir);
     /* patterns, sizes, filters and methods given: one cross product, whose
-     * views are crow at 24x24 and 32x16 under box, tent:r=1 and cone */
-    const char *warm[] = {"truth", "--warm", "paper", "-p", "crow", "-s", "24x24", "-s", "32x16",
+     * views are crow at 12x12 and 16x8 under box, tent:r=1 and cone (small:
+     * what is checked is which references are computed and which found) */
+    const char *warm[] = {"truth", "--warm", "paper", "-p", "crow", "-s", "12x12", "-s", "16x8",
                           "-f", "box", "-f", "tent:r=1", "-f", "cone", "-m", "point",
-                          "--cache", cache, NULL};
+                          "--cache", cache, "--threads", "1", NULL};
     if (aabench(warm) != 0)
         fail_msg("truth --warm failed:\n%s", log_text);
     assert_non_null(strstr(log_text, "6 references of suite paper"));
