@@ -232,21 +232,22 @@ static void test_cone_hidden_adds_nothing(void **state)
  * edges; catmull: a hidden red rectangle, green and blue abutting; slivers:
  * a front layer of black clipping triangles at the square's edge) within
  * the target of 5e-3 RMSE (measured 64x64, gauss:s=1, cut=4, res=256:
- * about 1e-4, and 3e-5 to 1.2e-4 at 32x32; compositing layers gave 0.12,
- * 0.034 and 0.018 at 128x128).  The Gaussian's view is 32x32: its
+ * about 1e-4, and 6e-5 to 1.1e-4 at 24x24; compositing layers gave 0.12,
+ * 0.034 and 0.018 at 128x128).  The Gaussian's view is 24x24: its
  * reference takes QAG on most pixels of these patterns (edges meeting,
  * steeper than 1) and cost some 20 s at 64x64.  The size is not what is
- * checked: feibush's stripes and the slivers still lie more than a pixel
- * apart, catmull's tiles are 8 pixels, every shared edge crosses pixels,
- * and a wrong compositing, a share of the contrast off on each pixel along
- * a shared edge, weighs more in the RMSE of fewer pixels, not less. */
+ * checked: every layer and shared edge of the patterns is still in view,
+ * each mask (4 pixels in radius at cut=4) holds more edges and layers
+ * than at 64x64, not fewer, and a wrong compositing, a share of the
+ * contrast off on each pixel along a shared edge, weighs more in the RMSE
+ * of fewer pixels, not less. */
 static void test_cone_patterns(void **state)
 {
     (void)state;
     const char *names[] = {"feibush", "catmull:tiles=4", "slivers", "star"};
     const char *filters[] = {"gauss:s=1", "cone"};
     const char *methods[] = {"conetable:cut=4,res=256", "conetable:res=256"};
-    const int sizes[] = {32, 64};
+    const int sizes[] = {24, 64};
     for (int k = 0; k < 4; k++)
         for (int f = 0; f < 2; f++) {
             aa_scene *s = scenes_pattern(names[k]);
