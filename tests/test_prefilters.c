@@ -243,7 +243,7 @@ static void test_cone_hidden_adds_nothing(void **state)
  * each mask (4 pixels in radius at cut=4) holds more edges and layers
  * than at 64x64, not fewer, and a wrong compositing, a share of the
  * contrast off on each pixel along a shared edge, weighs more in the RMSE
- * of fewer pixels, not less. */
+ * of fewer pixels, not less.  The cone's reference is cheap: 64x64. */
 static void test_cone_patterns(void **state)
 {
     (void)state;
