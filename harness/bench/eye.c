@@ -71,15 +71,20 @@ int aa_eye_blur(const aa_image *in, double s, aa_image *out)
                     acc += k[q - i + r] * in->v[((size_t)j * w + q) * c + ch];
                 tmp[((size_t)j * w + i) * c + ch] = acc;
             }
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++)
-            for (int ch = 0; ch < c; ch++) {
-                double acc = 0;
-                int lo = j - r < 0 ? 0 : j - r, hi = j + r >= h ? h - 1 : j + r;
-                for (int q = lo; q <= hi; q++)
-                    acc += k[q - j + r] * tmp[((size_t)q * w + i) * c + ch];
-                out->v[((size_t)j * w + i) * c + ch] = acc;
-            }
+    /* the columns a row at a time (the rows they read are contiguous); each
+     * value is still its terms summed from the top down, as above */
+    const size_t row = (size_t)w * c;
+    for (int j = 0; j < h; j++) {
+        double *o = out->v + (size_t)j * row;
+        int lo = j - r < 0 ? 0 : j - r, hi = j + r >= h ? h - 1 : j + r;
+        for (size_t x = 0; x < row; x++)
+            o[x] = 0;
+        for (int q = lo; q <= hi; q++) {
+            const double kq = k[q - j + r], *t = tmp + (size_t)q * row;
+            for (size_t x = 0; x < row; x++)
+                o[x] += kq * t[x];
+        }
+    }
     free(k);
     free(tmp);
     return AA_OK;
