@@ -80,24 +80,45 @@ static int measure(const aa_image *v, const aa_image *truth, double g, aa_image 
     return AA_OK;
 }
 
-/* The least of one measure (which = 0 fringe, 1 eye) near grid point k. */
-static int refine(const aa_image *v, const aa_image *truth, aa_image *shown, const double *g,
-                  int n, const double *val, int which, double *gmin)
+/* The grid point where val is least (the first of equals). */
+static int least_at(const double *val, int n)
 {
     int k = 0;
     for (int q = 1; q < n; q++)
         if (val[q] < val[k])
             k = q;
-    double lo = g[k > 0 ? k - 1 : k], hi = g[k < n - 1 ? k + 1 : k], best = INFINITY;
-    *gmin = g[k];
-    for (double x = lo; x <= hi + 1e-12; x += 0.001) {
-        double f, e;
-        int st = measure(v, truth, x, shown, &f, &e);
-        if (st)
-            return st;
-        double y = which ? e : f;
-        if (y < best)
-            best = y, *gmin = x;
+    return k;
+}
+
+/* The least of each measure (fringe, eye) on the finer grid between the
+ * grid points beside its least grid point.  Each measure gives both, so
+ * where the two least grid points are the same (as on crow: both near
+ * g = 1), one walk of the finer grid serves both. */
+static int refine(const aa_image *v, const aa_image *truth, aa_image *shown, const double *g,
+                  int n, const double *fringe, const double *eye, double *gmin_fringe,
+                  double *gmin_eye)
+{
+    const int k[2] = {least_at(fringe, n), least_at(eye, n)};
+    double *gmin[2] = {gmin_fringe, gmin_eye};
+    for (int which = 0; which < 2; which++) {
+        if (which == 1 && k[1] == k[0])
+            break; /* walked with the fringe's */
+        const int both = which == 0 && k[1] == k[0];
+        double lo = g[k[which] > 0 ? k[which] - 1 : k[which]];
+        double hi = g[k[which] < n - 1 ? k[which] + 1 : k[which]];
+        double best[2] = {INFINITY, INFINITY};
+        *gmin[which] = g[k[which]];
+        if (both)
+            *gmin[1] = g[k[1]];
+        for (double x = lo; x <= hi + 1e-12; x += 0.001) {
+            double y[2];
+            int st = measure(v, truth, x, shown, &y[0], &y[1]);
+            if (st)
+                return st;
+            for (int m = 0; m < 2; m++)
+                if ((m == which || both) && y[m] < best[m])
+                    best[m] = y[m], *gmin[m] = x;
+        }
     }
     return AA_OK;
 }
@@ -146,12 +167,9 @@ int aa_crow_calibration(const char *cache_dir, int threads, aa_calibration *out)
         for (int s = 0; s < 2 && !st; s++)
             st = measure(&img[s], &truth, g, &shown, &out->fringe[s][q], &out->eye[s][q]);
     }
-    for (int s = 0; s < 2 && !st; s++) {
-        if (!(st = refine(&img[s], &truth, &shown, out->g, out->n, out->fringe[s], 0,
-                          &out->gmin_fringe[s])))
-            st = refine(&img[s], &truth, &shown, out->g, out->n, out->eye[s], 1,
-                        &out->gmin_eye[s]);
-    }
+    for (int s = 0; s < 2 && !st; s++)
+        st = refine(&img[s], &truth, &shown, out->g, out->n, out->fringe[s], out->eye[s],
+                    &out->gmin_fringe[s], &out->gmin_eye[s]);
     /* the three maps of figs. A.1-A.3 */
     static const double maps[3] = {2, 1, 4};
     for (int m = 0; m < 3 && !st; m++) {
