@@ -230,6 +230,35 @@ static void test_gate(void **state)
     free(rows);
 }
 
+/* The montage's reference (and the convergence plots') go where the run's
+ * other references go: nowhere with --no-cache, into --cache DIR when
+ * given, never into the default cache ($AABENCH_CACHE here) instead. */
+static void test_cache_options(void **state)
+{
+    (void)state;
+    char env[400], def[300], mine[300], out[300], log[300], cmd[700];
+    snprintf(def, sizeof def, "%s/default-cache", dir);
+    snprintf(mine, sizeof mine, "%s/my-cache", dir);
+    snprintf(out, sizeof out, "%s/cache-run", dir);
+    snprintf(log, sizeof log, "%s/cache-run.log", dir);
+    snprintf(env, sizeof env, "AABENCH_CACHE=%s", def);
+    const char *none[] = {"run", "-p", "crow", "-f", "box", "-s", "24x24", "-m", "point",
+                          "--reps", "1", "--no-plots", "-q", "--no-cache", "--out", out, NULL};
+    assert_int_equal(support_wait(support_aabench_spawn(none, env, log, log)), 0);
+    snprintf(cmd, sizeof cmd, "%s/montage.png", out);
+    assert_int_equal(access(cmd, F_OK), 0); /* the montage was made */
+    if (access(def, F_OK) == 0)
+        fail_msg("run --no-cache wrote the cache %s", def);
+    const char *given[] = {"run", "-p", "crow", "-f", "box", "-s", "24x24", "-m", "point",
+                           "--reps", "1", "--no-plots", "-q", "--cache", mine, "--out", out, NULL};
+    assert_int_equal(support_wait(support_aabench_spawn(given, env, log, log)), 0);
+    if (access(def, F_OK) == 0)
+        fail_msg("run --cache %s wrote the default cache %s", mine, def);
+    snprintf(cmd, sizeof cmd, "test -n \"$(find %s -name 'ref-*.bin' | head -1)\"", mine);
+    if (system(cmd) != 0)
+        fail_msg("run --cache %s left no reference there", mine);
+}
+
 /* Interrupt a run part-way: exit 130, and nothing half-written. */
 static void test_interrupted(void **state)
 {
@@ -291,4 +320,5 @@ static int setup(void **state)
 SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_reports_parse_back),
              cmocka_unit_test(test_gate),
+             cmocka_unit_test(test_cache_options),
              cmocka_unit_test(test_interrupted))

@@ -378,6 +378,7 @@ static int montage_columns(size_t n, int w)
  * run. */
 typedef struct montage_source {
     const char *dir;
+    const char *cache; /* the run's reference cache (NULL: --no-cache) */
     const aa_row *rows;
     size_t row[MONTAGE_TILES]; /* tile k > 0 is rows[row[k]] */
     aa_view view;
@@ -390,7 +391,7 @@ static int montage_get(void *vctx, size_t k, aa_tile *tile)
     montage_source *s = vctx;
     int st;
     if (k == 0) {
-        if ((st = aa_reference(&s->view, cli_cache_dir(), 0, &s->im, NULL, NULL)))
+        if ((st = aa_reference(&s->view, s->cache, 0, &s->im, NULL, NULL)))
             return st;
         snprintf(s->labels[0], 128, "reference (%.100s)", s->rows[0].filter);
         snprintf(s->labels[1], 128, "exact");
@@ -428,7 +429,7 @@ static int write_montage(const char *dir, const aa_run_config *first, const aa_r
         return AA_OK;
     montage_source s;
     memset(&s, 0, sizeof s);
-    s.dir = dir, s.rows = rows;
+    s.dir = dir, s.rows = rows, s.cache = first->cache_dir;
     int st;
     s.view.pattern = first->patterns[0].spec;
     s.view.filter = first->filters[0].filter;
@@ -521,7 +522,7 @@ static int write_convergence(const char *dir, const run_args *a, const aa_run_co
         if (seen)
             continue;
         if ((st = aa_converge(pspec, mspec, f, 128, 128, spp, 5, 4, a->seed, threads,
-                              cli_cache_dir(), &conv[n])) == AA_OK)
+                              first->cache_dir, &conv[n])) == AA_OK)
             names[n++] = &first->methods[k];
         else if (st != AA_EINVAL)
             return st;
