@@ -294,25 +294,38 @@ typedef struct meet_ctx {
     int n, max, budget;
 } meet_ctx;
 
-/* Bisect [a, b] while the two pieces' exact x extents there overlap: an
- * interval holding a meeting always overlaps, so none is missed; an
- * interval narrower than the resolution is reported by its middle. */
-static void subdivide(meet_ctx *c, double a, double b, int depth)
+/* 1 if [a, b] is still worth bisecting: room and budget are left and the
+ * two pieces' exact x extents there overlap (an interval holding a meeting
+ * always overlaps, so none is missed). */
+static int extents_meet(meet_ctx *c, double a, double b)
 {
     double pa, pb, qa, qb;
     if (c->n >= c->max || --c->budget < 0)
-        return;
+        return 0;
     aa_piece_xrange(c->p, a, b, &pa, &pb);
     aa_piece_xrange(c->q, a, b, &qa, &qb);
     /* a margin of rounding: a meeting at an end of the interval must not
      * look disjoint in both halves */
     double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
-    if (pb < qa - tol || qb < pa - tol)
+    return !(pb < qa - tol || qb < pa - tol);
+}
+
+/* A meeting at height y, unless it is within the resolution of the last. */
+static void record_meet(meet_ctx *c, double y, double scale)
+{
+    if (c->n == 0 || y - c->ys[c->n - 1] > 1e-12 * scale)
+        c->ys[c->n++] = y;
+}
+
+/* Bisect [a, b] while the extents meet; an interval narrower than the
+ * resolution is reported by its middle. */
+static void subdivide(meet_ctx *c, double a, double b, int depth)
+{
+    if (!extents_meet(c, a, b))
         return;
-    double m = 0.5 * (a + b);
-    if (depth >= 60 || b - a <= 1e-12 * fmax(1.0, fabs(m)) || !(m > a && m < b)) {
-        if (c->n == 0 || m - c->ys[c->n - 1] > 1e-12 * fmax(1.0, fabs(m)))
-            c->ys[c->n++] = m;
+    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m));
+    if (depth >= 60 || b - a <= 1e-12 * scale || !(m > a && m < b)) {
+        record_meet(c, m, scale);
         return;
     }
     subdivide(c, a, m, depth + 1);
@@ -366,28 +379,19 @@ static double polish_meet(const aa_piece *p, const aa_piece *q, double a, double
  * middle. */
 static void subdivide_cubic(meet_ctx *c, double a, double b, int depth)
 {
-    double pa, pb, qa, qb;
-    if (c->n >= c->max || --c->budget < 0)
-        return;
-    aa_piece_xrange(c->p, a, b, &pa, &pb);
-    aa_piece_xrange(c->q, a, b, &qa, &qb);
-    double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
-    if (pb < qa - tol || qb < pa - tol)
+    if (!extents_meet(c, a, b))
         return;
     double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m));
     if (b - a <= 1e-6 * scale) {
         double fa = aa_piece_x_at(c->p, a) - aa_piece_x_at(c->q, a);
         double fb = aa_piece_x_at(c->p, b) - aa_piece_x_at(c->q, b);
         if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
-            double y = polish_meet(c->p, c->q, a, b, fa);
-            if (c->n == 0 || y - c->ys[c->n - 1] > 1e-12 * scale)
-                c->ys[c->n++] = y;
+            record_meet(c, polish_meet(c->p, c->q, a, b, fa), scale);
             return;
         }
     }
     if (depth >= 60 || b - a <= 1e-12 * scale || !(m > a && m < b)) {
-        if (c->n == 0 || m - c->ys[c->n - 1] > 1e-12 * scale)
-            c->ys[c->n++] = m;
+        record_meet(c, m, scale);
         return;
     }
     subdivide_cubic(c, a, m, depth + 1);
