@@ -90,6 +90,18 @@
  * them are integrated in u = sqrt(R - |v|), as at turning points, where
  * the integrand (about (R - |v|)^(3/2)) becomes smooth.
  *
+ * A colour scene's pixel is integrated channel by channel, each with its
+ * own QAG and its own error estimate, but the channels share the costly
+ * part of the integrand: the winding numbers, the crossings and their
+ * order at a height s are the same for the three.  Each evaluation computes
+ * the three channels' sums in one pass (each with the operations it would
+ * take alone) and keeps them in a per-thread memo keyed by the exact bits
+ * of s; the second and third channels' QAG visit the same heights, unless
+ * their bisection differs, and take the values from it.  A height not in
+ * the memo is computed afresh, so every channel's value and estimate are
+ * those of integrating it alone, to the bit.  The fixed rule's panels and
+ * crowded windows already carry the three channels together.
+ *
  * Crowded windows (more than TRUTH_CROWD local pieces, or more than
  * TRUTH_MAX_PAIRS of which two cross inside the window) are taken one
  * piece at a time (truth_crowd.c): the sum over spans is rewritten as the
@@ -127,6 +139,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -150,6 +163,28 @@ typedef struct crossing {
     int dir, layer;
 } crossing;
 
+/* The inner integrals of the three channels at one height s (exact bits),
+ * valid while gen is the memo's current generation. */
+typedef struct memo_slot {
+    uint64_t key;
+    unsigned gen;
+    double v[3];
+} memo_slot;
+
+/* Heights the first channel's QAG evaluated in the current pixel, with all
+ * three channels' values: the other channels' QAG visits the same heights
+ * and looks them up.  Open addressing (linear probing) in a power of two
+ * of slots, grown up to MEMO_MAX_SLOTS; a new generation per pixel empties
+ * it without clearing. */
+typedef struct memo {
+    memo_slot *slot;
+    size_t cap, used;
+    unsigned gen;
+} memo;
+
+#define MEMO_MIN_SLOTS ((size_t)1 << 10)
+#define MEMO_MAX_SLOTS ((size_t)1 << 16)
+
 typedef struct worker {
     const aa_scene *scene;
     const aa_filter *f;
@@ -166,6 +201,8 @@ typedef struct worker {
     int *wind;
     double uc, vc, R;
     int channel;
+    int shared; /* colour pixel: the channels share each height's crossings */
+    memo memo;
     int box;
     int radial; /* not separable (cone): rows weighed by aa_filter_row_cdf */
     gsl_poly_complex_workspace *poly; /* radial: the circle's crossings */
@@ -185,6 +222,7 @@ static void worker_free(worker *w)
     free(w->lp);
     free(w->cross);
     free(w->wind);
+    free(w->memo.slot);
     crowd_free(&w->crowd);
 }
 
@@ -616,15 +654,20 @@ static long double crossing_at(const local_piece *q, long double s)
     return q->x0 + truth_crossing_part(q, s);
 }
 
-/* The inner integral along u at height s = v - vc, for one channel, times
- * w(s) (for a radial filter, the rows' own integrals).  Coordinates are
- * relative to the pixel centre; the window is [-R, R]. */
-static double integrand(double s, void *params)
+/* The inner integral along u at height s = v - vc, times w(s) (for a
+ * radial filter, the rows' own integrals), of channels 0 to nch - 1 into
+ * out (nch is 1 for a grey scene).  Each channel's sum takes the same
+ * operations in the same order whether it is computed alone or with the
+ * others.  Coordinates are relative to the pixel centre; the window is
+ * [-R, R]. */
+static inline void inner_sums(worker *w, double s, int nch, double *out)
 {
-    worker *w = params;
     double ws = w->box || w->radial ? 1.0 : aa_filter_weight(w->f, s);
-    if (ws == 0.0)
-        return 0.0;
+    if (ws == 0.0) {
+        for (int ch = 0; ch < nch; ch++)
+            out[ch] = 0.0;
+        return;
+    }
     double R = w->R;
     size_t nc = 0;
     aa_strip_winding_left(w->strip, w->vc + s, w->wind);
@@ -649,23 +692,106 @@ static double integrand(double s, void *params)
         w->cross[at].dir = q->dir;
         w->cross[at].layer = q->layer;
     }
-    double sum = 0.0, cur = -R, fcur = 0.0;
+    double sum[3] = {0.0, 0.0, 0.0}, cur = -R, fcur = 0.0;
     for (size_t k = 0; k <= nc; k++) {
         double next = k < nc ? w->cross[k].x : R;
         if (next > cur) {
-            double c = aa_scene_colour_of(w->scene, w->wind).c[w->channel];
+            aa_rgb col = aa_scene_colour_of(w->scene, w->wind);
             double fnext = w->box      ? next
                            : w->radial ? aa_filter_row_cdf(w->f, s, next)
                                        : aa_filter_cdf(w->f, next);
-            if (c != 0.0)
-                sum += c * (w->box ? next - cur : fnext - fcur);
+            for (int ch = 0; ch < nch; ch++) {
+                double c = col.c[ch];
+                if (c != 0.0)
+                    sum[ch] += c * (w->box ? next - cur : fnext - fcur);
+            }
             cur = next;
             fcur = fnext;
         }
         if (k < nc)
             w->wind[w->cross[k].layer] += w->cross[k].dir;
     }
-    return ws * sum;
+    for (int ch = 0; ch < nch; ch++)
+        out[ch] = ws * sum[ch];
+}
+
+static size_t memo_home(uint64_t key, size_t cap)
+{
+    return (size_t)((key * UINT64_C(0x9E3779B97F4A7C15)) >> 32) & (cap - 1);
+}
+
+/* The slot of key in the current generation, or the empty slot where it
+ * would go. */
+static memo_slot *memo_find(const memo *m, uint64_t key)
+{
+    size_t k = memo_home(key, m->cap);
+    while (m->slot[k].gen == m->gen && m->slot[k].key != key)
+        k = (k + 1) & (m->cap - 1);
+    return &m->slot[k];
+}
+
+/* Room for one more entry at a load of at most a half: the table doubled
+ * (the current generation's entries moved) up to MEMO_MAX_SLOTS; 0 if
+ * there is none (full, or no memory: the value is then not stored). */
+static int memo_room(memo *m)
+{
+    if (2 * (m->used + 1) <= m->cap)
+        return 1;
+    if (m->cap >= MEMO_MAX_SLOTS)
+        return 0;
+    size_t cap = m->cap ? 2 * m->cap : MEMO_MIN_SLOTS;
+    memo_slot *slot = calloc(cap, sizeof *slot);
+    if (!slot)
+        return 0;
+    memo old = *m;
+    m->slot = slot;
+    m->cap = cap;
+    for (size_t k = 0; k < old.cap; k++)
+        if (old.slot[k].gen == old.gen)
+            *memo_find(m, old.slot[k].key) = old.slot[k];
+    free(old.slot);
+    return 1;
+}
+
+/* Empty the memo for a new pixel. */
+static void memo_next(memo *m)
+{
+    m->used = 0;
+    if (++m->gen == 0) { /* wrapped: generation 0 marks empty slots */
+        if (m->slot)
+            memset(m->slot, 0, m->cap * sizeof *m->slot);
+        m->gen = 1;
+    }
+}
+
+/* The integrand of QAG: channel w->channel's inner integral at height s.
+ * In a colour pixel every evaluation computes the three channels in one
+ * pass and keeps them in the memo, where the later channels find them. */
+static double integrand(double s, void *params)
+{
+    worker *w = params;
+    double v[3];
+    if (!w->shared) {
+        inner_sums(w, s, 1, v);
+        return v[0];
+    }
+    uint64_t key;
+    memcpy(&key, &s, sizeof key);
+    memo *m = &w->memo;
+    if (m->used) {
+        const memo_slot *e = memo_find(m, key);
+        if (e->gen == m->gen)
+            return e->v[w->channel];
+    }
+    inner_sums(w, s, 3, v);
+    if (memo_room(m)) {
+        memo_slot *e = memo_find(m, key);
+        e->key = key;
+        e->gen = m->gen;
+        memcpy(e->v, v, sizeof e->v);
+        m->used++;
+    }
+    return v[w->channel];
 }
 
 /* The integrand near a turning point e, in u with s = e + sign u^2: the
@@ -761,6 +887,9 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
         (st = reserve_workspace(w, w->npts)))
         return st;
     double worst = 0.0;
+    w->shared = !grey;
+    if (w->shared)
+        memo_next(&w->memo);
     for (int ch = 0; ch < (grey ? 1 : 3); ch++) {
         double result = 0.0, abserr = 0.0;
         w->channel = ch;
