@@ -14,12 +14,24 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/uio.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
 #include <cmocka.h>
+
+#include "cli.h"
+#include "oiio.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#endif
+
+extern char **environ;
 
 /* ---- rendering ---- */
 
@@ -231,6 +243,510 @@ static double now_seconds(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* The command server (support.h says what it is for).  The test and the
+ * server talk through a SOCK_SEQPACKET socket pair: a request is one
+ * message (srv_head, then the folder, the arguments and the environment as
+ * NUL-ended strings) with the two output descriptors attached; the server
+ * answers SRV_START (the child's pid, or an errno) at once and SRV_EXIT
+ * (its wait status) when the child ends. */
+
+#define SRV_MSG 65536 /* the largest request */
+#define SRV_LIVE 128  /* children of the server a test may have at once */
+
+enum { SRV_START = 1, SRV_EXIT = 2 };
+
+typedef struct srv_head {
+    unsigned long long fsize; /* RLIMIT_FSIZE for the child; 0: unchanged */
+    unsigned umask;
+    int nargs, nenv;
+} srv_head;
+
+typedef struct srv_reply {
+    int type;
+    pid_t pid;
+    int value; /* SRV_START: 0 or the fork's errno; SRV_EXIT: the wait status */
+} srv_reply;
+
+/* The test's side. */
+static int srv_fd = -1;   /* its end of the socket; -1: no server */
+static pid_t srv_owner;   /* the process that started it (a fork of the test may not use it) */
+static pid_t srv_pid;     /* the server */
+static char **srv_env;    /* the environment the server has (a copy) */
+static struct rlimit srv_lim[RLIM_NLIMITS];
+static sigset_t srv_mask; /* the signal mask it has */
+static int srv_ignored[NSIG]; /* the signals it ignores */
+static struct {
+    pid_t pid;
+    int ended, status;
+} srv_kids[SRV_LIVE];
+
+/* Variables that libraries read as they load, or that the command reads
+ * once (the image module), so that a child of the server would not see a
+ * change the test made after the server started. */
+static int srv_startup_name(const char *entry)
+{
+    static const char *const prefixes[] = {"LD_",    "OMP_",           "GOMP_",         "KMP_",
+                                           "ASAN_",  "UBSAN_",         "LSAN_",         "MSAN_",
+                                           "TSAN_",  "MALLOC_",        "GLIBC_TUNABLES", "AABENCH_OIIO",
+                                           "OIIO_",  "OPENIMAGEIO_",   "OPENEXR_",      "AABENCH_TEST_EXEC"};
+    for (size_t k = 0; k < sizeof prefixes / sizeof *prefixes; k++)
+        if (strncmp(entry, prefixes[k], strlen(prefixes[k])) == 0)
+            return 1;
+    return 0;
+}
+
+/* The entry NAME=... of env (NULL-ended) whose name is that of `entry`. */
+static const char *srv_env_find(char *const *env, const char *entry)
+{
+    size_t len = strcspn(entry, "=");
+    for (; env && *env; env++)
+        if (strncmp(*env, entry, len) == 0 && (*env)[len] == '=')
+            return *env;
+    return NULL;
+}
+
+/* The value `entry` has in the environment of the child: `extra` (one
+ * NAME=value) over environ. */
+static const char *srv_env_now(const char *entry, const char *extra)
+{
+    size_t len = strcspn(entry, "=");
+    if (extra && strncmp(extra, entry, len) == 0 && extra[len] == '=')
+        return extra;
+    return srv_env_find(environ, entry);
+}
+
+static int srv_same_entry(const char *a, const char *b)
+{
+    return (a == NULL && b == NULL) || (a != NULL && b != NULL && strcmp(a, b) == 0);
+}
+
+/* 1 if a child of the server would start as the command exec'd now would
+ * (with `extra` added to the environment). */
+static int srv_usable(const char *extra)
+{
+    if (srv_fd < 0 || getpid() != srv_owner)
+        return 0;
+    for (char **e = srv_env; *e; e++)
+        if (srv_startup_name(*e) && !srv_same_entry(*e, srv_env_now(*e, extra)))
+            return 0;
+    for (char **e = environ; e && *e; e++)
+        if (srv_startup_name(*e) && !srv_same_entry(srv_env_now(*e, extra), srv_env_find(srv_env, *e)))
+            return 0;
+    if (extra && srv_startup_name(extra) && !srv_same_entry(extra, srv_env_find(srv_env, extra)))
+        return 0;
+    for (int r = 0; r < RLIM_NLIMITS; r++) {
+        struct rlimit now;
+        if (getrlimit(r, &now) != 0 || now.rlim_cur != srv_lim[r].rlim_cur ||
+            now.rlim_max != srv_lim[r].rlim_max)
+            return 0;
+    }
+    sigset_t mask;
+    if (sigprocmask(SIG_BLOCK, NULL, &mask) != 0)
+        return 0;
+    for (int sig = 1; sig < NSIG; sig++) {
+        struct sigaction a;
+        if (sigismember(&mask, sig) != sigismember(&srv_mask, sig))
+            return 0;
+        if (sigaction(sig, NULL, &a) == 0 && (a.sa_handler == SIG_IGN) != srv_ignored[sig])
+            return 0;
+    }
+    return 1;
+}
+
+/* ---- the server's side ---- */
+
+static int srv_sock = -1;             /* the server's end */
+static int srv_chld[2] = {-1, -1};    /* SIGCHLD's self-pipe */
+static int srv_loaded[2] = {-1, -1};  /* children say here that they loaded the module */
+
+static void srv_on_chld(int sig)
+{
+    (void)sig;
+    int saved = errno;
+    if (write(srv_chld[1], "c", 1) < 0) {
+        /* full: a wake-up is pending anyway */
+    }
+    errno = saved;
+}
+
+/* At a child's end: if the OpenImageIO module is in its memory, say so
+ * through `report`. */
+static void srv_say_loaded(int report)
+{
+    FILE *f = fopen("/proc/self/maps", "r");
+    char line[4096];
+    int loaded = 0;
+    while (f && !loaded && fgets(line, sizeof line, f))
+        loaded = strstr(line, "/" AA__OIIO_MODULE) != NULL;
+    if (f)
+        fclose(f);
+    if (loaded && write(report, "m", 1) < 0) {
+        /* the server will load it after another child */
+    }
+}
+
+/* The child: becomes the command with the request in buf. */
+static void srv_child(char *buf, int out, int err, int report) __attribute__((noreturn));
+static void srv_child(char *buf, int out, int err, int report)
+{
+    close(srv_sock);
+    close(srv_chld[0]);
+    close(srv_chld[1]);
+    close(srv_loaded[0]);
+    signal(SIGCHLD, SIG_DFL);
+    srv_head h;
+    memcpy(&h, buf, sizeof h);
+    char *p = buf + sizeof h, *cwd = p;
+    p += strlen(p) + 1;
+    char **argv = calloc((size_t)h.nargs + 1, sizeof *argv);
+    if (argv == NULL)
+        _exit(126);
+    for (int k = 0; k < h.nargs; k++, p += strlen(p) + 1)
+        argv[k] = p;
+    clearenv();
+    for (int k = 0; k < h.nenv; k++, p += strlen(p) + 1)
+        if (putenv(p) != 0)
+            _exit(126);
+    if (chdir(cwd) != 0)
+        _exit(126);
+    umask((mode_t)h.umask);
+    if (h.fsize > 0) {
+        struct rlimit r = {(rlim_t)h.fsize, (rlim_t)h.fsize};
+        signal(SIGXFSZ, SIG_IGN);
+        if (setrlimit(RLIMIT_FSIZE, &r) != 0)
+            _exit(126);
+    }
+    if (dup2(out, 1) < 0 || dup2(err, 2) < 0)
+        _exit(126);
+    if (out > 2)
+        close(out);
+    if (err > 2 && err != out)
+        close(err);
+    if (report < 0)
+        close(srv_loaded[1]);
+    int code = cli_main(h.nargs, argv);
+    if (report >= 0)
+        srv_say_loaded(report);
+    /* The end of main() but the libraries' exit handlers: those of the
+     * module's libraries would wait for threads that the server has and
+     * a fork does not (the project registers none).  Under ASan, the leak
+     * check that ends a program. */
+    fflush(NULL);
+#if defined(__SANITIZE_ADDRESS__)
+    __lsan_do_leak_check();
+#endif
+    _exit(code);
+}
+
+static void srv_send(srv_reply r)
+{
+    while (send(srv_sock, &r, sizeof r, MSG_NOSIGNAL) < 0 && errno == EINTR)
+        ;
+}
+
+/* The server's loop; ends when the test does. */
+static void srv_serve(void) __attribute__((noreturn));
+static void srv_serve(void)
+{
+    char *buf = malloc(SRV_MSG);
+    struct sigaction a;
+    memset(&a, 0, sizeof a);
+    a.sa_handler = srv_on_chld;
+    a.sa_flags = SA_RESTART | SA_NOCLDSTOP;
+    sigemptyset(&a.sa_mask);
+    if (buf == NULL || pipe(srv_chld) != 0 || pipe(srv_loaded) != 0 ||
+        sigaction(SIGCHLD, &a, NULL) != 0)
+        _exit(1);
+    for (int k = 0; k < 2; k++) {
+        fcntl(srv_chld[k], F_SETFL, O_NONBLOCK);
+        fcntl(srv_loaded[k], F_SETFL, O_NONBLOCK);
+    }
+    int loaded = 0, wanted = 0;
+    for (;;) {
+        struct pollfd p[3] = {{srv_sock, POLLIN, 0}, {srv_chld[0], POLLIN, 0}, {srv_loaded[0], POLLIN, 0}};
+        if (poll(p, 3, -1) < 0) {
+            if (errno == EINTR)
+                continue;
+            _exit(1);
+        }
+        char drain[64];
+        while (read(srv_chld[0], drain, sizeof drain) > 0)
+            ;
+        while (read(srv_loaded[0], drain, sizeof drain) > 0)
+            wanted = 1;
+        int status;
+        pid_t pid;
+        while ((pid = waitpid(-1, &status, WNOHANG)) > 0)
+            srv_send((srv_reply){SRV_EXIT, pid, status});
+        if (!(p[0].revents & (POLLIN | POLLHUP | POLLERR)))
+            continue;
+        int fds[2] = {-1, -1};
+        char ctl[CMSG_SPACE(sizeof fds)];
+        struct iovec iov = {buf, SRV_MSG};
+        struct msghdr m = {.msg_iov = &iov, .msg_iovlen = 1, .msg_control = ctl,
+                           .msg_controllen = sizeof ctl};
+        ssize_t n = recvmsg(srv_sock, &m, MSG_CMSG_CLOEXEC);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            _exit(0); /* the test has ended */
+        struct cmsghdr *c = CMSG_FIRSTHDR(&m);
+        if (c == NULL || c->cmsg_type != SCM_RIGHTS || c->cmsg_len != CMSG_LEN(sizeof fds) ||
+            (size_t)n < sizeof(srv_head)) {
+            srv_send((srv_reply){SRV_START, -1, EPROTO});
+            continue;
+        }
+        memcpy(fds, CMSG_DATA(c), sizeof fds);
+        if (wanted && !loaded) {
+            /* no file opened: the module and its libraries only */
+            aa__oiio("the command server");
+            loaded = 1;
+        }
+        fflush(NULL);
+        pid = fork();
+        if (pid == 0)
+            srv_child(buf, fds[0], fds[1], loaded ? -1 : srv_loaded[1]);
+        int e = pid < 0 ? errno : 0;
+        close(fds[0]);
+        close(fds[1]);
+        srv_send((srv_reply){SRV_START, pid, e});
+    }
+}
+
+void support_start_server(void)
+{
+    const char *flag = getenv("AABENCH_TEST_EXEC");
+    const char *exe = getenv("AABENCH");
+    if ((flag && strcmp(flag, "1") == 0) || exe == NULL || *exe == '\0')
+        return;
+    /* only for the command built beside this program (build/tests/ and
+     * build/aabench): the same objects */
+    char self[PATH_MAX], sibling[PATH_MAX + 16], a[PATH_MAX], b[PATH_MAX];
+    ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (len <= 0)
+        return;
+    self[len] = '\0';
+    char *slash = strrchr(self, '/');
+    if (slash == NULL)
+        return;
+    *slash = '\0';
+    snprintf(sibling, sizeof sibling, "%s/../aabench", self);
+    if (realpath(sibling, a) == NULL || realpath(exe, b) == NULL || strcmp(a, b) != 0)
+        return;
+    int sv[2];
+    if (socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, sv) != 0)
+        return;
+    size_t n = 0;
+    while (environ && environ[n])
+        n++;
+    srv_env = calloc(n + 1, sizeof *srv_env);
+    if (srv_env == NULL) {
+        close(sv[0]);
+        close(sv[1]);
+        return;
+    }
+    for (size_t k = 0; k < n; k++)
+        if ((srv_env[k] = strdup(environ[k])) == NULL)
+            abort();
+    for (int r = 0; r < RLIM_NLIMITS; r++)
+        getrlimit(r, &srv_lim[r]);
+    sigprocmask(SIG_BLOCK, NULL, &srv_mask);
+    for (int sig = 1; sig < NSIG; sig++) {
+        struct sigaction act;
+        srv_ignored[sig] = sigaction(sig, NULL, &act) == 0 && act.sa_handler == SIG_IGN;
+    }
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(sv[0]);
+        close(sv[1]);
+        return;
+    }
+    if (pid == 0) {
+        close(sv[0]);
+        srv_sock = sv[1];
+        srv_serve();
+    }
+    close(sv[1]);
+    srv_fd = sv[0];
+    srv_owner = getpid();
+    srv_pid = pid;
+}
+
+/* Take one reply into srv_kids (blocking unless `nohang`): 1 if one came,
+ * 0 if none is waiting; fails the test if the server is gone. */
+static int srv_take(int nohang)
+{
+    srv_reply r;
+    ssize_t n;
+    while ((n = recv(srv_fd, &r, sizeof r, nohang ? MSG_DONTWAIT : 0)) < 0 && errno == EINTR)
+        ;
+    if (n < 0 && nohang && (errno == EAGAIN || errno == EWOULDBLOCK))
+        return 0;
+    if (n != (ssize_t)sizeof r)
+        fail_msg("the command server (pid %d) is gone: %s", (int)srv_pid,
+                 n < 0 ? strerror(errno) : "no reply");
+    if (r.type == SRV_EXIT)
+        for (int k = 0; k < SRV_LIVE; k++)
+            if (srv_kids[k].pid == r.pid && !srv_kids[k].ended) {
+                srv_kids[k].ended = 1;
+                srv_kids[k].status = r.value;
+                return 1;
+            }
+    if (r.type == SRV_START) {
+        int k = 0;
+        while (k < SRV_LIVE && srv_kids[k].pid != 0)
+            k++;
+        if (r.pid < 0)
+            fail_msg("the command server cannot fork: %s", strerror(r.value));
+        if (k == SRV_LIVE)
+            fail_msg("more than %d starts of the command at once", SRV_LIVE);
+        srv_kids[k].pid = r.pid;
+        srv_kids[k].ended = 0;
+    }
+    return 1;
+}
+
+static int srv_kid(pid_t pid)
+{
+    for (int k = 0; k < SRV_LIVE; k++)
+        if (srv_kids[k].pid == pid && pid > 0)
+            return k;
+    return -1;
+}
+
+/* Append s and its NUL to buf at *at; 0 if it does not fit. */
+static int srv_put(char *buf, size_t *at, const char *s)
+{
+    size_t len = strlen(s) + 1;
+    if (*at + len > SRV_MSG)
+        return 0;
+    memcpy(buf + *at, s, len);
+    *at += len;
+    return 1;
+}
+
+/* A child of the server running argv (argv[0] the program) with `extra`
+ * added to the environment; -1 if the server cannot be used for it. */
+static pid_t srv_start(const char *const *argv, const char *extra, int out, int err,
+                       unsigned long long fsize)
+{
+    if (!srv_usable(extra))
+        return -1;
+    /* A plug-in may end a process with exit(), whose handlers would wait
+     * for threads of the image module's libraries that a fork of the
+     * server, where the module is loaded, does not have: a command that
+     * loads one (--plugin, or --resume of a run that may name one) is
+     * exec'd. */
+    for (int k = 1; argv[k]; k++)
+        if (strncmp(argv[k], "--plugin", 8) == 0 || strncmp(argv[k], "--resume", 8) == 0)
+            return -1;
+    static char buf[SRV_MSG];
+    char cwd[PATH_MAX];
+    if (getcwd(cwd, sizeof cwd) == NULL)
+        return -1;
+    srv_head h = {fsize, 0, 0, 0};
+    mode_t mask = umask(0);
+    umask(mask);
+    h.umask = (unsigned)mask;
+    size_t at = sizeof h;
+    int ok = srv_put(buf, &at, cwd);
+    for (; ok && argv[h.nargs]; h.nargs++)
+        ok = srv_put(buf, &at, argv[h.nargs]);
+    for (char **e = environ; ok && e && *e; e++) {
+        if (srv_env_now(*e, extra) != *e)
+            continue; /* replaced by extra */
+        ok = srv_put(buf, &at, *e);
+        h.nenv++;
+    }
+    if (ok && extra) {
+        ok = srv_put(buf, &at, extra);
+        h.nenv++;
+    }
+    if (!ok)
+        return -1; /* too long for one request: exec */
+    memcpy(buf, &h, sizeof h);
+    int fds[2] = {out, err};
+    char ctl[CMSG_SPACE(sizeof fds)];
+    memset(ctl, 0, sizeof ctl);
+    struct iovec iov = {buf, at};
+    struct msghdr m = {.msg_iov = &iov, .msg_iovlen = 1, .msg_control = ctl,
+                       .msg_controllen = sizeof ctl};
+    struct cmsghdr *c = CMSG_FIRSTHDR(&m);
+    c->cmsg_level = SOL_SOCKET;
+    c->cmsg_type = SCM_RIGHTS;
+    c->cmsg_len = CMSG_LEN(sizeof fds);
+    memcpy(CMSG_DATA(c), fds, sizeof fds);
+    ssize_t n;
+    while ((n = sendmsg(srv_fd, &m, MSG_NOSIGNAL)) < 0 && errno == EINTR)
+        ;
+    if (n != (ssize_t)at)
+        fail_msg("cannot send a start to the command server: %s", strerror(errno));
+    /* replies for earlier children may come first */
+    for (;;) {
+        srv_reply r;
+        while ((n = recv(srv_fd, &r, sizeof r, MSG_PEEK)) < 0 && errno == EINTR)
+            ;
+        if (n == (ssize_t)sizeof r && r.type == SRV_START) {
+            srv_take(0);
+            return r.pid;
+        }
+        srv_take(0);
+    }
+}
+
+/* The command exec'd in a fork of this process. */
+static pid_t exec_start(const char *const *argv, const char *extra, int out, int err,
+                        unsigned long long fsize)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        if (dup2(out, 1) < 0 || dup2(err, 2) < 0)
+            _exit(126);
+        if (out > 2)
+            close(out);
+        if (err > 2 && err != out)
+            close(err);
+        if (extra && putenv((char *)extra) != 0)
+            _exit(126);
+        if (fsize > 0) {
+            struct rlimit r = {(rlim_t)fsize, (rlim_t)fsize};
+            signal(SIGXFSZ, SIG_IGN);
+            if (setrlimit(RLIMIT_FSIZE, &r) != 0)
+                _exit(126);
+        }
+        execv(argv[0], (char *const *)argv);
+        _exit(127);
+    }
+    return pid;
+}
+
+/* Start argv (argv[0] the program) one way or the other. */
+static pid_t command_start(const char *const *argv, const char *extra, int out, int err,
+                           unsigned long long fsize)
+{
+    pid_t pid = srv_start(argv, extra, out, err, fsize);
+    if (pid < 0)
+        pid = exec_start(argv, extra, out, err, fsize);
+    if (pid < 0)
+        fail_msg("cannot start %s: %s", argv[0], strerror(errno));
+    return pid;
+}
+
+pid_t support_waitpid(pid_t pid, int *status, int options)
+{
+    int k = srv_fd >= 0 && getpid() == srv_owner ? srv_kid(pid) : -1;
+    if (k < 0)
+        return waitpid(pid, status, options);
+    while (!srv_kids[k].ended)
+        if (!srv_take(options & WNOHANG))
+            return 0;
+    *status = srv_kids[k].status;
+    srv_kids[k].pid = 0;
+    return pid;
+}
+
 int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
                                 size_t cap)
 {
@@ -239,8 +755,6 @@ int support_aabench_interrupted(const char *const *args, int interrupt_ms, char 
         fail_msg("$AABENCH (the command under test) is not set");
     const char *limit_text = getenv("AABENCH_TEST_TIMEOUT");
     double limit = limit_text && atof(limit_text) > 0 ? atof(limit_text) : SUPPORT_TIMEOUT;
-    /* everything the child needs is made before fork: the test may have
-     * threads, so the child only calls what is safe after fork */
     size_t n = 0;
     while (args[n])
         n++;
@@ -252,21 +766,9 @@ int support_aabench_interrupted(const char *const *args, int interrupt_ms, char 
     assert_int_equal(pipe(fds), 0);
     fcntl(fds[0], F_SETFD, FD_CLOEXEC);
     double start = now_seconds();
-    pid_t pid = fork();
-    if (pid == 0) {
-        dup2(fds[1], 1);
-        dup2(fds[1], 2);
-        if (fds[1] > 2)
-            close(fds[1]);
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
+    pid_t pid = command_start(argv, NULL, fds[1], fds[1], 0);
     close(fds[1]);
     free(argv);
-    if (pid < 0) {
-        close(fds[0]);
-        fail_msg("cannot start %s: %s", exe, strerror(errno));
-    }
     size_t len = 0;
     int open_pipe = 1, interrupted = interrupt_ms <= 0, status = 0, done = 0, timed_out = 0;
     while (!done) {
@@ -274,7 +776,7 @@ int support_aabench_interrupted(const char *const *args, int interrupt_ms, char 
         if (t >= limit) {
             timed_out = 1;
             kill(pid, SIGKILL);
-            waitpid(pid, &status, 0);
+            support_waitpid(pid, &status, 0);
             break;
         }
         if (!interrupted && t * 1000.0 >= interrupt_ms) {
@@ -287,7 +789,7 @@ int support_aabench_interrupted(const char *const *args, int interrupt_ms, char 
         int wait_ms = (int)ceil(1000.0 * (next - t));
         if (!open_pipe) {
             /* the output is closed: wait for the exit, a little at a time */
-            pid_t r = waitpid(pid, &status, WNOHANG);
+            pid_t r = support_waitpid(pid, &status, WNOHANG);
             if (r == pid)
                 done = 1;
             else
@@ -326,8 +828,8 @@ int support_aabench(const char *const *args, char *out, size_t cap)
     return support_aabench_interrupted(args, 0, out, cap);
 }
 
-pid_t support_aabench_spawn(const char *const *args, const char *env, const char *out,
-                            const char *err)
+pid_t support_aabench_start(const char *const *args, const char *env, int fd_out, int fd_err,
+                            unsigned long long fsize)
 {
     const char *exe = getenv("AABENCH");
     if (!exe || !*exe)
@@ -337,26 +839,27 @@ pid_t support_aabench_spawn(const char *const *args, const char *env, const char
     for (; args[n - 1] && n < 63; n++)
         argv[n] = args[n - 1];
     argv[n] = NULL;
-    fflush(NULL);
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        int fo = open(out ? out : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        int fe = open(err ? err : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (fo < 0 || fe < 0 || dup2(fo, 1) < 0 || dup2(fe, 2) < 0)
-            _exit(126);
-        if (env && putenv((char *)env) != 0)
-            _exit(126);
-        execv(exe, (char *const *)argv);
-        _exit(127);
-    }
+    return command_start(argv, env, fd_out, fd_err, fsize);
+}
+
+pid_t support_aabench_spawn(const char *const *args, const char *env, const char *out,
+                            const char *err)
+{
+    int fo = open(out ? out : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    int fe = open(err ? err : "/dev/null", O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fo < 0 || fe < 0)
+        fail_msg("cannot open %s: %s", fo < 0 ? (out ? out : "/dev/null") : (err ? err : "/dev/null"),
+                 strerror(errno));
+    pid_t pid = support_aabench_start(args, env, fo, fe, 0);
+    close(fo);
+    close(fe);
     return pid;
 }
 
 int support_wait(pid_t pid)
 {
     int status;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_int_equal(support_waitpid(pid, &status, 0), pid);
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 

@@ -19,15 +19,23 @@
 /* ---- the test program ---- */
 
 /* A test program's main (expanded after the tests, where cmocka.h is
- * included): the cmocka tests given (cmocka_unit_test(name), ...) run as
- * one group with the group set-up and tear-down (NULL: none); the exit
- * status is the number of tests that failed. */
+ * included): the command server first (support_start_server), then the
+ * cmocka tests given (cmocka_unit_test(name), ...) run as one group with
+ * the group set-up and tear-down (NULL: none); the exit status is the
+ * number of tests that failed. */
 #define SUPPORT_MAIN(setup, teardown, ...)                                                         \
     int main(void)                                                                                 \
     {                                                                                              \
+        support_start_server();                                                                    \
         const struct CMUnitTest tests[] = {__VA_ARGS__};                                           \
         return cmocka_run_group_tests(tests, setup, teardown);                                     \
     }
+
+/* Fork the command server (see "the command under test" below), first
+ * thing in main, while this process has one thread and has run nothing.
+ * Without it, or when it cannot start, every start of the command is an
+ * exec. */
+void support_start_server(void);
 
 /* ---- rendering ---- */
 
@@ -122,9 +130,29 @@ const char *support_caption_field(const char *caption, int panel, const char *fi
  * be NULL to discard them).  Returns the exit status, or 128 + the signal
  * that ended it.  interrupt_ms > 0 sends SIGINT that many milliseconds
  * after the start.  Fails the test if $AABENCH is not set, the command
- * cannot be started, or it runs past the time-out.  Every test starts the
- * command through here (a child process: its exit status, its signals and
- * its start-up are part of what is tested). */
+ * cannot be started, or it runs past the time-out.
+ *
+ * Every start of the command is a child process of its own: its exit
+ * status, its signals, its files and its output are the command's.  It is
+ * one of two kinds.  Where the command server runs (support_start_server)
+ * and $AABENCH is the command built beside this test program, the child is
+ * a fork of the server that calls cli_main(), the function the command's
+ * main() is, with the arguments, the environment, the folder and the umask
+ * the test has at that moment.  The server is a copy of the test program
+ * made before any test ran: one thread, no OpenMP threads, no image file
+ * opened.  Once one of its children has loaded the OpenImageIO module
+ * (which costs about 0.4 s of CPU a start, nearly 1 s under ASan, for its
+ * ~250 libraries), the server loads it too, without opening a file or
+ * starting a thread, so the children after it start with it in place.
+ * Otherwise, and whenever a child of the server could differ from the
+ * command exec'd at that moment, the command is exec'd: the test changed a
+ * resource limit, the signal mask, ignores a signal, or changed a variable
+ * that libraries read as they load (LD_*, OMP_*, GOMP_*, ASAN_OPTIONS and
+ * the other sanitizers', MALLOC_*, GLIBC_TUNABLES, AABENCH_OIIO and
+ * OpenImageIO's); or $AABENCH_TEST_EXEC is set to 1.  The command's own
+ * start-up (main.c, the loader, the module's lookup) is tested by the
+ * tests that exec it on purpose (test_cli, the limits of
+ * test_image_faults). */
 int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
                                 size_t cap);
 int support_aabench(const char *const *args, char *out, size_t cap);
@@ -136,6 +164,20 @@ int support_aabench(const char *const *args, char *out, size_t cap);
  * once).  Fails the test if $AABENCH is not set or there is no fork. */
 pid_t support_aabench_spawn(const char *const *args, const char *env, const char *out,
                             const char *err);
+
+/* As support_aabench_spawn, with standard output and error into the open
+ * descriptors fd_out and fd_err (kept open here), and, if fsize > 0,
+ * RLIMIT_FSIZE set to fsize with SIGXFSZ ignored (a full disk without
+ * root). */
+pid_t support_aabench_start(const char *const *args, const char *env, int fd_out, int fd_err,
+                            unsigned long long fsize);
+
+/* waitpid() for a pid from support_aabench_spawn or support_aabench_start
+ * (options 0 or WNOHANG): pid with its wait status in *status once it has
+ * ended, 0 with WNOHANG while it runs, -1 with errno on error.  Any other
+ * pid is passed to waitpid(). */
+pid_t support_waitpid(pid_t pid, int *status, int options);
+
 /* Wait for the child pid: its exit status, or 128 + the signal that ended
  * it. */
 int support_wait(pid_t pid);

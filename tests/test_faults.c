@@ -291,8 +291,8 @@ static void test_two_runs_one_folder(void **state)
         pid_t a = support_aabench_spawn(argv, cache, NULL, NULL);
         pid_t b = support_aabench_spawn(argv, cache, NULL, NULL);
         int sa, sb;
-        assert_int_equal(waitpid(a, &sa, 0), a);
-        assert_int_equal(waitpid(b, &sb, 0), b);
+        assert_int_equal(support_waitpid(a, &sa, 0), a);
+        assert_int_equal(support_waitpid(b, &sb, 0), b);
         assert_true(WIFEXITED(sa) && WEXITSTATUS(sa) == 0);
         assert_true(WIFEXITED(sb) && WEXITSTATUS(sb) == 0);
     }
@@ -478,7 +478,7 @@ static void test_interrupted(void **state)
     usleep(200 * 1000);
     assert_int_equal(kill(pid, SIGTERM), 0);
     int status;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_int_equal(support_waitpid(pid, &status, 0), pid);
     assert_true(WIFEXITED(status));
     assert_int_equal(WEXITSTATUS(status), 130);
     assert_int_equal(access(out, F_OK), -1);

@@ -477,11 +477,11 @@ static void test_rows_kept_when_killed(void **state)
     double t0 = aa_now();
     while (count_lines(csv) < 3) {
         int status;
-        if (waitpid(pid, &status, WNOHANG) == pid)
+        if (support_waitpid(pid, &status, WNOHANG) == pid)
             fail_msg("the run ended before it was killed");
         if (aa_now() - t0 > 90) {
             kill(pid, SIGKILL);
-            waitpid(pid, &status, 0);
+            support_waitpid(pid, &status, 0);
             fail_msg("after 90 s results.csv holds %d lines, not the 2 cases before the hang",
                      count_lines(csv));
         }
@@ -490,7 +490,7 @@ static void test_rows_kept_when_killed(void **state)
     }
     int status;
     assert_int_equal(kill(pid, SIGKILL), 0);
-    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_int_equal(support_waitpid(pid, &status, 0), pid);
     assert_true(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
     table *t = read_table(csv);
     assert_non_null(t);

@@ -649,6 +649,7 @@ static int setup(void **state)
 
 int main(void)
 {
+    support_start_server();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_partition), cmocka_unit_test(test_parallel_merge),
         cmocka_unit_test(test_driver_stopped_shard),
