@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -267,17 +268,22 @@ typedef struct srv_reply {
     int value; /* SRV_START: 0 or the fork's errno; SRV_EXIT: the wait status */
 } srv_reply;
 
-/* The test's side. */
-static int srv_fd = -1;   /* its end of the socket; -1: no server */
-static pid_t srv_owner;   /* the process that started it (a fork of the test may not use it) */
-static pid_t srv_pid;     /* the server */
+/* The test's side: two servers, one that never loads the image module
+ * (a child of one with the module loaded pays for it at its end, under
+ * LeakSanitizer, whose check scans the module's ~250 libraries: a tenth of
+ * a second), and one that loads it at its first request, for the starts
+ * that will read or write an image (srv_wants_images). */
+enum { SRV_BARE, SRV_IMAGES, SRV_N };
+static int srv_fd[SRV_N] = {-1, -1}; /* the ends of the sockets; -1: no server */
+static pid_t srv_owner;   /* the process that started them (a fork of the test may not use them) */
+static pid_t srv_pid[SRV_N];
 static char **srv_env;    /* the environment the server has (a copy) */
 static struct rlimit srv_lim[RLIM_NLIMITS];
 static sigset_t srv_mask; /* the signal mask it has */
 static int srv_ignored[NSIG]; /* the signals it ignores */
 static struct {
     pid_t pid;
-    int ended, status;
+    int server, ended, status;
 } srv_kids[SRV_LIVE];
 
 /* Variables that libraries read as they load, or that the command reads
@@ -324,7 +330,7 @@ static int srv_same_entry(const char *a, const char *b)
  * (with `extra` added to the environment). */
 static int srv_usable(const char *extra)
 {
-    if (srv_fd < 0 || getpid() != srv_owner)
+    if (srv_fd[0] < 0 || getpid() != srv_owner)
         return 0;
     for (char **e = srv_env; *e; e++)
         if (srv_startup_name(*e) && !srv_same_entry(*e, srv_env_now(*e, extra)))
@@ -357,7 +363,6 @@ static int srv_usable(const char *extra)
 
 static int srv_sock = -1;             /* the server's end */
 static int srv_chld[2] = {-1, -1};    /* SIGCHLD's self-pipe */
-static int srv_loaded[2] = {-1, -1};  /* children say here that they loaded the module */
 
 static void srv_on_chld(int sig)
 {
@@ -369,30 +374,13 @@ static void srv_on_chld(int sig)
     errno = saved;
 }
 
-/* At a child's end: if the OpenImageIO module is in its memory, say so
- * through `report`. */
-static void srv_say_loaded(int report)
-{
-    FILE *f = fopen("/proc/self/maps", "r");
-    char line[4096];
-    int loaded = 0;
-    while (f && !loaded && fgets(line, sizeof line, f))
-        loaded = strstr(line, "/" AA__OIIO_MODULE) != NULL;
-    if (f)
-        fclose(f);
-    if (loaded && write(report, "m", 1) < 0) {
-        /* the server will load it after another child */
-    }
-}
-
 /* The child: becomes the command with the request in buf. */
-static void srv_child(char *buf, int out, int err, int report) __attribute__((noreturn));
-static void srv_child(char *buf, int out, int err, int report)
+static void srv_child(char *buf, int out, int err) __attribute__((noreturn));
+static void srv_child(char *buf, int out, int err)
 {
     close(srv_sock);
     close(srv_chld[0]);
     close(srv_chld[1]);
-    close(srv_loaded[0]);
     signal(SIGCHLD, SIG_DFL);
     srv_head h;
     memcpy(&h, buf, sizeof h);
@@ -422,11 +410,7 @@ static void srv_child(char *buf, int out, int err, int report)
         close(out);
     if (err > 2 && err != out)
         close(err);
-    if (report < 0)
-        close(srv_loaded[1]);
     int code = cli_main(h.nargs, argv);
-    if (report >= 0)
-        srv_say_loaded(report);
     /* The end of main() but the libraries' exit handlers: those of the
      * module's libraries would wait for threads that the server has and
      * a fork does not (the project registers none).  Under ASan, the leak
@@ -444,9 +428,10 @@ static void srv_send(srv_reply r)
         ;
 }
 
-/* The server's loop; ends when the test does. */
-static void srv_serve(void) __attribute__((noreturn));
-static void srv_serve(void)
+/* The server's loop; ends when the test does.  With `images`, the image
+ * module is loaded before the first child. */
+static void srv_serve(int images) __attribute__((noreturn));
+static void srv_serve(int images)
 {
     char *buf = malloc(SRV_MSG);
     struct sigaction a;
@@ -454,17 +439,14 @@ static void srv_serve(void)
     a.sa_handler = srv_on_chld;
     a.sa_flags = SA_RESTART | SA_NOCLDSTOP;
     sigemptyset(&a.sa_mask);
-    if (buf == NULL || pipe(srv_chld) != 0 || pipe(srv_loaded) != 0 ||
-        sigaction(SIGCHLD, &a, NULL) != 0)
+    if (buf == NULL || pipe(srv_chld) != 0 || sigaction(SIGCHLD, &a, NULL) != 0)
         _exit(1);
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < 2; k++)
         fcntl(srv_chld[k], F_SETFL, O_NONBLOCK);
-        fcntl(srv_loaded[k], F_SETFL, O_NONBLOCK);
-    }
-    int loaded = 0, wanted = 0;
+    int loaded = 0;
     for (;;) {
-        struct pollfd p[3] = {{srv_sock, POLLIN, 0}, {srv_chld[0], POLLIN, 0}, {srv_loaded[0], POLLIN, 0}};
-        if (poll(p, 3, -1) < 0) {
+        struct pollfd p[2] = {{srv_sock, POLLIN, 0}, {srv_chld[0], POLLIN, 0}};
+        if (poll(p, 2, -1) < 0) {
             if (errno == EINTR)
                 continue;
             _exit(1);
@@ -472,8 +454,6 @@ static void srv_serve(void)
         char drain[64];
         while (read(srv_chld[0], drain, sizeof drain) > 0)
             ;
-        while (read(srv_loaded[0], drain, sizeof drain) > 0)
-            wanted = 1;
         int status;
         pid_t pid;
         while ((pid = waitpid(-1, &status, WNOHANG)) > 0)
@@ -497,7 +477,7 @@ static void srv_serve(void)
             continue;
         }
         memcpy(fds, CMSG_DATA(c), sizeof fds);
-        if (wanted && !loaded) {
+        if (images && !loaded) {
             /* no file opened: the module and its libraries only */
             aa__oiio("the command server");
             loaded = 1;
@@ -505,7 +485,7 @@ static void srv_serve(void)
         fflush(NULL);
         pid = fork();
         if (pid == 0)
-            srv_child(buf, fds[0], fds[1], loaded ? -1 : srv_loaded[1]);
+            srv_child(buf, fds[0], fds[1]);
         int e = pid < 0 ? errno : 0;
         close(fds[0]);
         close(fds[1]);
@@ -515,6 +495,14 @@ static void srv_serve(void)
 
 void support_start_server(void)
 {
+#if defined(__SANITIZE_ADDRESS__)
+    /* Not under ASan: LeakSanitizer, at a child's end, would look for the
+     * threads that the image module's libraries started in the server and
+     * a fork does not have ("was not suspended. False leaks are
+     * possible"), and a fork of a sanitized server was measured to cost
+     * more than the exec it spares. */
+    return;
+#endif
     const char *flag = getenv("AABENCH_TEST_EXEC");
     const char *exe = getenv("AABENCH");
     if ((flag && strcmp(flag, "1") == 0) || exe == NULL || *exe == '\0')
@@ -533,18 +521,12 @@ void support_start_server(void)
     snprintf(sibling, sizeof sibling, "%s/../aabench", self);
     if (realpath(sibling, a) == NULL || realpath(exe, b) == NULL || strcmp(a, b) != 0)
         return;
-    int sv[2];
-    if (socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, sv) != 0)
-        return;
     size_t n = 0;
     while (environ && environ[n])
         n++;
     srv_env = calloc(n + 1, sizeof *srv_env);
-    if (srv_env == NULL) {
-        close(sv[0]);
-        close(sv[1]);
+    if (srv_env == NULL)
         return;
-    }
     for (size_t k = 0; k < n; k++)
         if ((srv_env[k] = strdup(environ[k])) == NULL)
             abort();
@@ -555,40 +537,60 @@ void support_start_server(void)
         struct sigaction act;
         srv_ignored[sig] = sigaction(sig, NULL, &act) == 0 && act.sa_handler == SIG_IGN;
     }
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid < 0) {
-        close(sv[0]);
+    for (int which = 0; which < SRV_N; which++) {
+        int sv[2];
+        if (socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, sv) != 0)
+            break;
+        fflush(NULL);
+        pid_t pid = fork();
+        if (pid < 0) {
+            close(sv[0]);
+            close(sv[1]);
+            break;
+        }
+        if (pid == 0) {
+            for (int other = 0; other < which; other++)
+                close(srv_fd[other]);
+            close(sv[0]);
+            srv_sock = sv[1];
+            srv_serve(which == SRV_IMAGES);
+        }
         close(sv[1]);
+        srv_fd[which] = sv[0];
+        srv_pid[which] = pid;
+    }
+    if (srv_fd[SRV_N - 1] < 0) { /* both or none */
+        for (int which = 0; which < SRV_N; which++)
+            if (srv_fd[which] >= 0)
+                close(srv_fd[which]);
+        srv_fd[0] = srv_fd[1] = -1;
         return;
     }
-    if (pid == 0) {
-        close(sv[0]);
-        srv_sock = sv[1];
-        srv_serve();
-    }
-    close(sv[1]);
-    srv_fd = sv[0];
     srv_owner = getpid();
-    srv_pid = pid;
+}
+
+int support_server_running(void)
+{
+    return srv_fd[0] >= 0 && getpid() == srv_owner;
 }
 
 /* Take one reply into srv_kids (blocking unless `nohang`): 1 if one came,
  * 0 if none is waiting; fails the test if the server is gone. */
-static int srv_take(int nohang)
+static int srv_take(int which, int nohang)
 {
     srv_reply r;
     ssize_t n;
-    while ((n = recv(srv_fd, &r, sizeof r, nohang ? MSG_DONTWAIT : 0)) < 0 && errno == EINTR)
+    while ((n = recv(srv_fd[which], &r, sizeof r, nohang ? MSG_DONTWAIT : 0)) < 0 &&
+           errno == EINTR)
         ;
     if (n < 0 && nohang && (errno == EAGAIN || errno == EWOULDBLOCK))
         return 0;
     if (n != (ssize_t)sizeof r)
-        fail_msg("the command server (pid %d) is gone: %s", (int)srv_pid,
+        fail_msg("the command server (pid %d) is gone: %s", (int)srv_pid[which],
                  n < 0 ? strerror(errno) : "no reply");
     if (r.type == SRV_EXIT)
         for (int k = 0; k < SRV_LIVE; k++)
-            if (srv_kids[k].pid == r.pid && !srv_kids[k].ended) {
+            if (srv_kids[k].pid == r.pid && srv_kids[k].server == which && !srv_kids[k].ended) {
                 srv_kids[k].ended = 1;
                 srv_kids[k].status = r.value;
                 return 1;
@@ -602,6 +604,7 @@ static int srv_take(int nohang)
         if (k == SRV_LIVE)
             fail_msg("more than %d starts of the command at once", SRV_LIVE);
         srv_kids[k].pid = r.pid;
+        srv_kids[k].server = which;
         srv_kids[k].ended = 0;
     }
     return 1;
@@ -624,6 +627,29 @@ static int srv_put(char *buf, size_t *at, const char *s)
     memcpy(buf + *at, s, len);
     *at += len;
     return 1;
+}
+
+/* 1 if the command argv will likely read or write an image through the
+ * module: an argument names such a file (a .pfm is written without it,
+ * read with it), or the subcommand makes a montage or figures unless told
+ * not to.  A wrong guess costs time, nothing else. */
+static int srv_wants_images(const char *const *argv)
+{
+    static const char *const ext[] = {".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg", ".hdr"};
+    static const char *const makers[] = {"run", "merge", "figures", "converge"};
+    int maker = 0, none = 0;
+    for (size_t k = 0; argv[1] && k < sizeof makers / sizeof *makers; k++)
+        maker |= strcmp(argv[1], makers[k]) == 0;
+    for (int k = 1; argv[k]; k++) {
+        const char *dot = strrchr(argv[k], '.');
+        none |= strcmp(argv[k], "--no-images") == 0;
+        for (size_t e = 0; dot && e < sizeof ext / sizeof *ext; e++)
+            if (strcasecmp(dot, ext[e]) == 0)
+                return 1;
+        if (dot && strcasecmp(dot, ".pfm") == 0 && strcmp(argv[k - 1], "-o") != 0)
+            return 1;
+    }
+    return maker && !none;
 }
 
 /* A child of the server running argv (argv[0] the program) with `extra`
@@ -678,20 +704,21 @@ static pid_t srv_start(const char *const *argv, const char *extra, int out, int 
     c->cmsg_len = CMSG_LEN(sizeof fds);
     memcpy(CMSG_DATA(c), fds, sizeof fds);
     ssize_t n;
-    while ((n = sendmsg(srv_fd, &m, MSG_NOSIGNAL)) < 0 && errno == EINTR)
+    int which = srv_wants_images(argv) ? SRV_IMAGES : SRV_BARE;
+    while ((n = sendmsg(srv_fd[which], &m, MSG_NOSIGNAL)) < 0 && errno == EINTR)
         ;
     if (n != (ssize_t)at)
         fail_msg("cannot send a start to the command server: %s", strerror(errno));
     /* replies for earlier children may come first */
     for (;;) {
         srv_reply r;
-        while ((n = recv(srv_fd, &r, sizeof r, MSG_PEEK)) < 0 && errno == EINTR)
+        while ((n = recv(srv_fd[which], &r, sizeof r, MSG_PEEK)) < 0 && errno == EINTR)
             ;
         if (n == (ssize_t)sizeof r && r.type == SRV_START) {
-            srv_take(0);
+            srv_take(which, 0);
             return r.pid;
         }
-        srv_take(0);
+        srv_take(which, 0);
     }
 }
 
@@ -736,11 +763,11 @@ static pid_t command_start(const char *const *argv, const char *extra, int out, 
 
 pid_t support_waitpid(pid_t pid, int *status, int options)
 {
-    int k = srv_fd >= 0 && getpid() == srv_owner ? srv_kid(pid) : -1;
+    int k = support_server_running() ? srv_kid(pid) : -1;
     if (k < 0)
         return waitpid(pid, status, options);
     while (!srv_kids[k].ended)
-        if (!srv_take(options & WNOHANG))
+        if (!srv_take(srv_kids[k].server, options & WNOHANG))
             return 0;
     *status = srv_kids[k].status;
     srv_kids[k].pid = 0;

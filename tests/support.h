@@ -36,6 +36,8 @@
  * Without it, or when it cannot start, every start of the command is an
  * exec. */
 void support_start_server(void);
+/* 1 if this process has a command server to start the command with. */
+int support_server_running(void);
 
 /* ---- rendering ---- */
 
@@ -134,25 +136,33 @@ const char *support_caption_field(const char *caption, int panel, const char *fi
  *
  * Every start of the command is a child process of its own: its exit
  * status, its signals, its files and its output are the command's.  It is
- * one of two kinds.  Where the command server runs (support_start_server)
+ * one of two kinds.  Where the command servers run (support_start_server)
  * and $AABENCH is the command built beside this test program, the child is
- * a fork of the server that calls cli_main(), the function the command's
+ * a fork of a server that calls cli_main(), the function the command's
  * main() is, with the arguments, the environment, the folder and the umask
- * the test has at that moment.  The server is a copy of the test program
+ * the test has at that moment.  A server is a copy of the test program
  * made before any test ran: one thread, no OpenMP threads, no image file
- * opened.  Once one of its children has loaded the OpenImageIO module
- * (which costs about 0.4 s of CPU a start, nearly 1 s under ASan, for its
- * ~250 libraries), the server loads it too, without opening a file or
- * starting a thread, so the children after it start with it in place.
+ * opened.  Of the two, one loads the OpenImageIO module before its first
+ * child (without opening a file) and takes the starts that name an image
+ * file or make a montage (a wrong guess costs time only): loading the
+ * module's ~250 libraries costs about 0.4 s of CPU a start.  Under ASan
+ * there are no servers and every start is exec'd: LeakSanitizer, at a
+ * child's end, would look for the threads the libraries started in the
+ * server, which a fork does not have, and a fork of a sanitized server
+ * costs more than the exec it spares.
  * Otherwise, and whenever a child of the server could differ from the
  * command exec'd at that moment, the command is exec'd: the test changed a
  * resource limit, the signal mask, ignores a signal, or changed a variable
  * that libraries read as they load (LD_*, OMP_*, GOMP_*, ASAN_OPTIONS and
  * the other sanitizers', MALLOC_*, GLIBC_TUNABLES, AABENCH_OIIO and
- * OpenImageIO's); or $AABENCH_TEST_EXEC is set to 1.  The command's own
- * start-up (main.c, the loader, the module's lookup) is tested by the
- * tests that exec it on purpose (test_cli, the limits of
- * test_image_faults). */
+ * OpenImageIO's); the command loads a plug-in (--plugin, or --resume of a
+ * run that may have one: a plug-in may call exit(), whose handlers would
+ * wait for threads of the module's libraries that a fork does not have);
+ * or $AABENCH_TEST_EXEC is 1 when the test program starts, or is set or
+ * changed afterwards.  The command's own start-up (main.c, the loader, the
+ * module's lookup and its trial under a memory limit) is tested by the
+ * starts that exec: test_cli checks that both kinds give the same statuses,
+ * output and files, and test_image_faults execs under its limits. */
 int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
                                 size_t cap);
 int support_aabench(const char *const *args, char *out, size_t cap);

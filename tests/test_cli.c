@@ -4,8 +4,9 @@
  * bad input gets exit status 2 and a message naming the problem and what is
  * accepted, an unwritable output 3, and a refused command writes nothing.
  * The command under test is $AABENCH (set by the Makefile), run by
- * tests/support.c; one test runs the command line in-process instead
- * (cli_main, in a child).
+ * tests/support.c (a fork of its command server, or exec); one test checks
+ * that the two give the same statuses, output and files, one runs the
+ * command line in-process (cli_main, in a child of this process).
  */
 #include "bench.h"
 #include "support.h"
@@ -291,6 +292,68 @@ static void test_cli_main(void **state)
     folder_clean();
 }
 
+/* A start through the command server (a fork running cli_main) and an exec
+ * of the binary give the same exit status, output and files: the success
+ * of a listing and of writing images (PNG and EXR, through the image
+ * module, which the server loads before its first image start), and
+ * refusals.  Under ASan every start is exec'd (support.h). */
+static void test_server_same_as_exec(void **state)
+{
+    (void)state;
+    if (!support_server_running()) {
+        print_message("skipped: no command server ($AABENCH is not the command built beside "
+                      "this test, AABENCH_TEST_EXEC=1, or under ASan)\n");
+        skip();
+    }
+    char png[2][300], exr[2][300];
+    static char said[2][8192];
+    for (int how = 0; how < 2; how++) {
+        snprintf(png[how], sizeof png[how], "%s/same-%d.png", dir, how);
+        snprintf(exr[how], sizeof exr[how], "%s/same-%d.exr", dir, how);
+    }
+    for (int c = 0; c < 5; c++) {
+        int status[2];
+        for (int how = 0; how < 2; how++) {
+            /* a start-up variable changed: support.c execs */
+            if (how == 1)
+                assert_int_equal(setenv("AABENCH_TEST_EXEC", "1", 1), 0);
+            const char *list[] = {"list", "patterns", NULL};
+            const char *truth_png[] = {"truth", "-p", "crow", "-s", "12x8", "--no-cache", "-q",
+                                       "-o", png[how], NULL};
+            const char *truth_exr[] = {"truth", "-p", "feibush", "-s", "12x8", "-f", "gauss",
+                                       "--no-cache", "-q", "-o", exr[how], NULL};
+            const char *bad_size[] = {"render", "-p", "crow", "-m", "point", "-s", "12xx8",
+                                      "-o", png[how], NULL};
+            const char *missing[] = {"compare", "/nonexistent/a.png", "/nonexistent/b.png", NULL};
+            const char *const *args[] = {list, truth_png, truth_exr, bad_size, missing};
+            status[how] = support_aabench(args[c], said[how], sizeof said[how]);
+            if (how == 1)
+                assert_int_equal(unsetenv("AABENCH_TEST_EXEC"), 0);
+        }
+        if (status[0] != status[1] || strcmp(said[0], said[1]) != 0)
+            fail_msg("case %d: the server's start gave status %d and \"%s\", exec %d and \"%s\"",
+                     c, status[0], said[0], status[1], said[1]);
+    }
+    /* the PNGs to the byte; the EXRs hold the time they were written
+     * (capDate): their pixels */
+    size_t n0, n1;
+    static char a[1 << 16], b[1 << 16];
+    assert_non_null(support_read_file(png[0], a, sizeof a, &n0));
+    assert_non_null(support_read_file(png[1], b, sizeof b, &n1));
+    assert_true(n0 > 0 && n0 == n1);
+    assert_memory_equal(a, b, n0);
+    aa_image im[2];
+    for (int how = 0; how < 2; how++)
+        assert_int_equal(aa_image_read(exr[how], &im[how]), AA_OK);
+    assert_true(support_same_image(&im[0], &im[1]));
+    for (int how = 0; how < 2; how++) {
+        aa_image_free(&im[how]);
+        assert_int_equal(unlink(png[how]), 0);
+        assert_int_equal(unlink(exr[how]), 0);
+    }
+    folder_clean();
+}
+
 static void test_render(void **state)
 {
     (void)state;
@@ -366,5 +429,6 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_refusals_everywhere),
              cmocka_unit_test(test_success),
              cmocka_unit_test(test_cli_main),
+             cmocka_unit_test(test_server_same_as_exec),
              cmocka_unit_test(test_render),
              cmocka_unit_test(test_cache))
