@@ -636,6 +636,33 @@ static void test_outputs_initialised(void **state)
 
 /* ---- isolation ---- */
 
+/* A method that calls exit() in its child after the run has written an
+ * image (so the image module's libraries, and their exit handlers, are in
+ * the parent the child is a copy of): the case fails with its exit status
+ * and the run goes on.  Those handlers once ran in the child, waited for
+ * threads it does not have, and the run stopped with the case lost. */
+static void test_exit_after_images(void **state)
+{
+    (void)state;
+    char failing[1200], out[600], csv[700];
+    plugin("plugin_failing", failing, sizeof failing);
+    path_in(out, sizeof out, "exit-after-images");
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    int code = RUN("run", "--plugin", failing, "-p", "crow", "-s", "8x8", "-m", "point", "-m",
+                   "quits", "-m", "area", "-f", "box", "--case-timeout", "60", "--reps", "1",
+                   "--no-plots", "-q", "--no-cache", "--out", out);
+    if (code != 1)
+        fail_msg("exit %d, not 1\n%s%s", code, out_text, err_text);
+    table *t = read_table(csv);
+    assert_non_null(t);
+    assert_int_equal(t->nrows, 3);
+    assert_string_equal(cell(t, 1, "method"), "quits");
+    assert_string_equal(cell(t, 1, "ok"), "0");
+    assert_string_equal(cell(t, 1, "note"), "failed: ended (exit status 3) without reporting its result");
+    assert_string_equal(cell(t, 2, "ok"), "1");
+    expect_in(err_text, "1 of 3 cases failed: quits on crow 8x8 box", "summary");
+}
+
 static void test_isolated_faults(void **state)
 {
     (void)state;
@@ -893,6 +920,7 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_bad_values_fail_case),
              cmocka_unit_test(test_outputs_initialised),
              cmocka_unit_test(test_isolated_faults),
+             cmocka_unit_test(test_exit_after_images),
              cmocka_unit_test(test_isolated_equal),
              cmocka_unit_test(test_checked_before_work),
              cmocka_unit_test(test_messages))

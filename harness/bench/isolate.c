@@ -74,9 +74,21 @@ static int write_all(int fd, const void *data, size_t len)
     return 0;
 }
 
+/* A method that calls exit() in the child ends it here, with its status
+ * and nothing else: the handlers that the parent's libraries registered
+ * (the image module's bring some) would run in a process that has none of
+ * their threads, and wait for them, or act for the parent. */
+static void end_at_exit(int status, void *unused)
+{
+    (void)unused;
+    _exit(status);
+}
+
 static void child(int fd, aa__case_fn fn, void *arg, aa_row *row, aa_image *img, int threads,
                   pid_t parent)
 {
+    /* registered last, so run first */
+    on_exit(end_at_exit, NULL);
 #ifdef __linux__
     prctl(PR_SET_PDEATHSIG, SIGKILL);
 #endif
