@@ -257,7 +257,8 @@ static void test_success(void **state)
 /* The command line without exec: cli_main() in a forked child of this
  * process, its standard output into a file.  The child must not count on
  * OpenMP state from here (fork copies no threads of libgomp's pool); this
- * process runs no parallel region, the other tests exec the command. */
+ * process runs no parallel region; the other tests start the command as
+ * every test does (tests/support.h). */
 static void test_cli_main(void **state)
 {
     (void)state;
