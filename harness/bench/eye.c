@@ -61,19 +61,31 @@ int aa_eye_blur(const aa_image *in, double s, aa_image *out)
     }
     for (int d = 0; d <= 2 * r; d++)
         k[d] /= sum;
-    /* rows, then columns; outside the image is 0 */
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++)
-            for (int ch = 0; ch < c; ch++) {
-                double acc = 0;
-                int lo = i - r < 0 ? 0 : i - r, hi = i + r >= w ? w - 1 : i + r;
-                for (int q = lo; q <= hi; q++)
-                    acc += k[q - i + r] * in->v[((size_t)j * w + q) * c + ch];
-                tmp[((size_t)j * w + i) * c + ch] = acc;
-            }
-    /* the columns a row at a time (the rows they read are contiguous); each
-     * value is still its terms summed from the top down, as above */
+    /* rows, then columns; outside the image is 0.  A row's values a term
+     * at a time: term d (the pixel d to the right, the kernel's k[d + r])
+     * added to every value that has it, d from -r up, so each value is its
+     * terms summed from the left as a loop over its own window would, and
+     * the reads are contiguous. */
     const size_t row = (size_t)w * c;
+    for (int j = 0; j < h; j++) {
+        const double *in_row = in->v + (size_t)j * row;
+        double *t = tmp + (size_t)j * row;
+        for (size_t x = 0; x < row; x++)
+            t[x] = 0;
+        for (int d = -r; d <= r; d++) {
+            /* the pixels i with 0 <= i + d < w */
+            int i0 = d < 0 ? -d : 0, i1 = d > 0 ? w - d : w;
+            if (i0 >= i1)
+                continue;
+            const double kd = k[d + r], *src = in_row + (size_t)(i0 + d) * c;
+            double *dst = t + (size_t)i0 * c;
+            const size_t n = (size_t)(i1 - i0) * c;
+            for (size_t x = 0; x < n; x++)
+                dst[x] += kd * src[x];
+        }
+    }
+    /* the columns a row at a time in the same way: each value is its terms
+     * summed from the top down */
     for (int j = 0; j < h; j++) {
         double *o = out->v + (size_t)j * row;
         int lo = j - r < 0 ? 0 : j - r, hi = j + r >= h ? h - 1 : j + r;
