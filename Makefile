@@ -44,8 +44,14 @@ WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototy
 HARNESS  := harness/core harness/truth harness/bench harness/cli
 # -MMD -MP: each object records the headers it read (build/**/*.d)
 CPPFLAGS := -MMD -MP -D_DEFAULT_SOURCE -Iharness $(addprefix -I,$(HARNESS)) -Ipatterns -Ialgorithms
-CFLAGS   := -std=c11 -O2 -g $(WARN) -fopenmp -fPIC
-CXXFLAGS := -std=c++17 -O2 -g -Wall -Wextra -Werror -fPIC
+# -fno-semantic-interposition: the library's code is built -fPIC (for the
+# tests' shared library and plug-ins' use of it), which otherwise lets a
+# call from one of its functions to another global one go through the PLT
+# and never be inlined, in case another module replaced it; none does.
+# Inlined, the reference's integrand (truth.c) takes 15-25% less time, to
+# the same bits.
+CFLAGS   := -std=c11 -O2 -g -fno-semantic-interposition $(WARN) -fopenmp -fPIC
+CXXFLAGS := -std=c++17 -O2 -g -fno-semantic-interposition -Wall -Wextra -Werror -fPIC
 # -lstdc++: the AGG peer (algorithms/agg.cpp) is C++ inside the library
 LDLIBS    = $(PKG_LIBS) -lstdc++ -lm -ldl -fopenmp
 
