@@ -775,25 +775,14 @@ pid_t support_waitpid(pid_t pid, int *status, int options)
 int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
                                 size_t cap)
 {
-    const char *exe = getenv("AABENCH");
-    if (!exe || !*exe)
-        fail_msg("$AABENCH (the command under test) is not set");
     const char *limit_text = getenv("AABENCH_TEST_TIMEOUT");
     double limit = limit_text && atof(limit_text) > 0 ? atof(limit_text) : SUPPORT_TIMEOUT;
-    size_t n = 0;
-    while (args[n])
-        n++;
-    const char **argv = calloc(n + 2, sizeof *argv);
-    assert_non_null(argv);
-    argv[0] = exe;
-    memcpy(argv + 1, args, n * sizeof *argv);
     int fds[2];
     assert_int_equal(pipe(fds), 0);
     fcntl(fds[0], F_SETFD, FD_CLOEXEC);
     double start = now_seconds();
-    pid_t pid = command_start(argv, NULL, fds[1], fds[1], 0);
+    pid_t pid = support_aabench_start(args, NULL, fds[1], fds[1], 0);
     close(fds[1]);
-    free(argv);
     size_t len = 0;
     int open_pipe = 1, interrupted = interrupt_ms <= 0, status = 0, done = 0, timed_out = 0;
     while (!done) {
@@ -843,8 +832,8 @@ int support_aabench_interrupted(const char *const *args, int interrupt_ms, char 
     if (out && cap > 0)
         out[len] = '\0';
     if (timed_out)
-        fail_msg("%s %s ... ran past %g s (AABENCH_TEST_TIMEOUT) and was killed; output: %s", exe,
-                 n ? args[0] : "", limit, out ? out : "");
+        fail_msg("%s %s ... ran past %g s (AABENCH_TEST_TIMEOUT) and was killed; output: %s",
+                 getenv("AABENCH"), args[0] ? args[0] : "", limit, out ? out : "");
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
@@ -859,12 +848,16 @@ pid_t support_aabench_start(const char *const *args, const char *env, int fd_out
     const char *exe = getenv("AABENCH");
     if (!exe || !*exe)
         fail_msg("$AABENCH (the command under test) is not set");
-    const char *argv[64] = {exe};
-    int n = 1;
-    for (; args[n - 1] && n < 63; n++)
-        argv[n] = args[n - 1];
-    argv[n] = NULL;
-    return command_start(argv, env, fd_out, fd_err, fsize);
+    size_t n = 0;
+    while (args[n])
+        n++;
+    const char **argv = calloc(n + 2, sizeof *argv);
+    assert_non_null(argv);
+    argv[0] = exe;
+    memcpy(argv + 1, args, n * sizeof *argv);
+    pid_t pid = command_start(argv, env, fd_out, fd_err, fsize);
+    free(argv);
+    return pid;
 }
 
 pid_t support_aabench_spawn(const char *const *args, const char *env, const char *out,

@@ -227,6 +227,12 @@ static int run_cmd(const limits *lim, const char *const *args)
     if (lim == NULL || (lim->as == 0 && lim->data == 0 && lim->cgroup_procs == NULL)) {
         pid = support_aabench_start(args, NULL, fds[1], fds[1], lim ? lim->fsize : 0);
     } else {
+        const char *argv[40] = {exe};
+        size_t n = 0;
+        for (; args[n]; n++) {
+            assert_true(n + 2 < sizeof argv / sizeof *argv);
+            argv[n + 1] = args[n];
+        }
         fflush(NULL);
         pid = fork();
         assert_true(pid >= 0);
@@ -244,9 +250,6 @@ static int run_cmd(const limits *lim, const char *const *args)
             set_limit(RLIMIT_FSIZE, lim->fsize);
             set_limit(RLIMIT_AS, lim->as);
             set_limit(RLIMIT_DATA, lim->data);
-            const char *argv[40] = {exe};
-            for (int k = 0; args[k] && k < 38; k++)
-                argv[k + 1] = args[k];
             execv(exe, (char *const *)argv);
             _exit(127);
         }
