@@ -1,11 +1,15 @@
 /*
  * support.c: helpers shared by the tests (support.h).
  */
+#define _GNU_SOURCE /* dl_iterate_phdr, RTLD_NOLOAD */
+
 #include "support.h"
 
 #include <dirent.h>
+#include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <link.h>
 #include <math.h>
 #include <poll.h>
 #include <setjmp.h>
@@ -30,6 +34,9 @@
 
 #if defined(__SANITIZE_ADDRESS__)
 #include <sanitizer/lsan_interface.h>
+#define SANITIZED 1
+#else
+#define SANITIZED 0
 #endif
 
 extern char **environ;
@@ -273,9 +280,25 @@ typedef struct srv_reply {
  * write an image (srv_wants_images): a fork of a process with the module's
  * ~250 libraries mapped copies their page tables, and its end unmaps them
  * (all starts from the one server: test_shard 9.2 core-s, test_cli 4.4,
- * test_run 2.0; shared out: 8.3, 3.9, 1.8). */
+ * test_run 2.0; shared out: 8.3, 3.9, 1.8).
+ *
+ * Under ASan, none, or the image server alone for a test that asks
+ * (SUPPORT_MAIN_IMAGES).  A sanitized start that does not load the module
+ * costs about 0.1 s, most of it LeakSanitizer's check at the end, which a
+ * fork pays as well, and in a fork of the image server that check walks
+ * the memory of the module's libraries too: forks of the bare server were
+ * measured to cost more than the execs (test_cli 15.2 -> 19.8 core-s,
+ * test_shard 21.9 -> 26.2), and so were forks of the image server for
+ * every start that names an image file or makes a montage (test_cli 14.0
+ * -> 30.2: most of its starts are refused before any image is read),
+ * while a sanitized start that loads the module costs about 1 s, which
+ * the fork spares where the starts do load it (test_image_faults alone:
+ * 32.4-41.0 core-s, median 34.8 of five runs, against 23.8-37.5, median
+ * 27.9 of six; beside another test the two overlap). */
 enum { SRV_BARE, SRV_IMAGES, SRV_N };
+static int srv_wanted[SRV_N];
 static int srv_fd[SRV_N] = {-1, -1}; /* the ends of the sockets; -1: no server */
+static int srv_refused[SRV_N]; /* the server said it cannot start commands: exec them */
 static pid_t srv_owner;   /* the process that started them (a fork of the test may not use them) */
 static pid_t srv_pid[SRV_N];
 static char **srv_env;    /* the environment the server has (a copy) */
@@ -331,7 +354,7 @@ static int srv_same_entry(const char *a, const char *b)
  * (with `extra` added to the environment). */
 static int srv_usable(const char *extra)
 {
-    if (srv_fd[0] < 0 || getpid() != srv_owner)
+    if (!support_server_running())
         return 0;
     for (char **e = srv_env; *e; e++)
         if (srv_startup_name(*e) && !srv_same_entry(*e, srv_env_now(*e, extra)))
@@ -431,6 +454,51 @@ static void srv_child(char *buf, int out, int err)
     _exit(code);
 }
 
+/* The threads this process has (1 if it cannot tell). */
+static int srv_threads(void)
+{
+    DIR *d = opendir("/proc/self/task");
+    int n = 0;
+    if (d == NULL)
+        return 1;
+    for (struct dirent *e; (e = readdir(d)) != NULL;)
+        n += e->d_name[0] != '.';
+    closedir(d);
+    return n > 0 ? n : 1;
+}
+
+static int srv_find_log4cplus(struct dl_phdr_info *info, size_t size, void *data)
+{
+    (void)size;
+    if (strstr(info->dlpi_name, "liblog4cplus") == NULL)
+        return 0;
+    snprintf(data, PATH_MAX, "%s", info->dlpi_name);
+    return 1;
+}
+
+/* Stop the threads that the image module's libraries start as they load,
+ * so that the server, whose forks become commands, has only its own
+ * thread.  A fork has none of the others: under ASan, LeakSanitizer's
+ * check at a child's end would warn on the command's standard error that
+ * each "was not suspended. False leaks are possible".  On Debian 12 they
+ * are the four of log4cplus's pool (OpenImageIO's DICOM reader links
+ * DCMTK, which logs through log4cplus), which log4cplus::
+ * shutdownThreadPool() joins; it has no C name. */
+static void srv_stop_library_threads(void)
+{
+    char path[PATH_MAX] = "";
+    if (dl_iterate_phdr(srv_find_log4cplus, path) == 0)
+        return;
+    void *lib = dlopen(path, RTLD_NOW | RTLD_NOLOAD);
+    if (lib == NULL)
+        return;
+    void (*stop)(void);
+    *(void **)&stop = dlsym(lib, "_ZN9log4cplus18shutdownThreadPoolEv");
+    if (stop != NULL)
+        stop();
+    dlclose(lib);
+}
+
 static void srv_send(srv_reply r)
 {
     while (send(srv_sock, &r, sizeof r, MSG_NOSIGNAL) < 0 && errno == EINTR)
@@ -452,7 +520,7 @@ static void srv_serve(int images)
         _exit(1);
     for (int k = 0; k < 2; k++)
         fcntl(srv_chld[k], F_SETFL, O_NONBLOCK);
-    int loaded = 0;
+    int loaded = 0, refuse = 0;
     for (;;) {
         struct pollfd p[2] = {{srv_sock, POLLIN, 0}, {srv_chld[0], POLLIN, 0}};
         if (poll(p, 2, -1) < 0) {
@@ -489,7 +557,17 @@ static void srv_serve(int images)
         if (images && !loaded) {
             /* no file opened: the module and its libraries only */
             aa__oiio("the command server");
+            srv_stop_library_threads();
+            /* under ASan, threads left would be LeakSanitizer's warnings in
+             * every child's output: the commands are exec'd instead */
+            refuse = SANITIZED && srv_threads() > 1;
             loaded = 1;
+        }
+        if (refuse) {
+            close(fds[0]);
+            close(fds[1]);
+            srv_send((srv_reply){SRV_START, -1, ENOTSUP});
+            continue;
         }
         fflush(NULL);
         pid = fork();
@@ -504,14 +582,15 @@ static void srv_serve(int images)
 
 void support_start_server(void)
 {
-#if defined(__SANITIZE_ADDRESS__)
-    /* Not under ASan: LeakSanitizer, at a child's end, would look for the
-     * threads that the image module's libraries started in the server and
-     * a fork does not have ("was not suspended. False leaks are
-     * possible"), and a fork of a sanitized server was measured to cost
-     * more than the exec it spares. */
-    return;
-#endif
+    support_start_servers(0);
+}
+
+void support_start_servers(int images_under_asan)
+{
+    srv_wanted[SRV_BARE] = !SANITIZED;
+    srv_wanted[SRV_IMAGES] = !SANITIZED || images_under_asan;
+    if (!srv_wanted[SRV_IMAGES])
+        return;
     const char *flag = getenv("AABENCH_TEST_EXEC");
     const char *exe = getenv("AABENCH");
     if ((flag && strcmp(flag, "1") == 0) || exe == NULL || *exe == '\0')
@@ -548,6 +627,8 @@ void support_start_server(void)
     }
     for (int which = 0; which < SRV_N; which++) {
         int sv[2];
+        if (!srv_wanted[which])
+            continue;
         if (socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, sv) != 0)
             break;
         fflush(NULL);
@@ -559,7 +640,8 @@ void support_start_server(void)
         }
         if (pid == 0) {
             for (int other = 0; other < which; other++)
-                close(srv_fd[other]);
+                if (srv_fd[other] >= 0)
+                    close(srv_fd[other]);
             close(sv[0]);
             srv_sock = sv[1];
             srv_serve(which == SRV_IMAGES);
@@ -568,19 +650,20 @@ void support_start_server(void)
         srv_fd[which] = sv[0];
         srv_pid[which] = pid;
     }
-    if (srv_fd[SRV_N - 1] < 0) { /* both or none */
-        for (int which = 0; which < SRV_N; which++)
-            if (srv_fd[which] >= 0)
-                close(srv_fd[which]);
-        srv_fd[0] = srv_fd[1] = -1;
-        return;
-    }
+    for (int which = 0; which < SRV_N; which++)
+        if (srv_wanted[which] && srv_fd[which] < 0) { /* all wanted or none */
+            for (int k = 0; k < SRV_N; k++)
+                if (srv_fd[k] >= 0)
+                    close(srv_fd[k]);
+            srv_fd[0] = srv_fd[1] = -1;
+            return;
+        }
     srv_owner = getpid();
 }
 
 int support_server_running(void)
 {
-    return srv_fd[0] >= 0 && getpid() == srv_owner;
+    return srv_fd[SRV_IMAGES] >= 0 && getpid() == srv_owner;
 }
 
 /* Take one reply into srv_kids (blocking unless `nohang`): 1 if one came,
@@ -666,7 +749,8 @@ static int srv_wants_images(const char *const *argv)
 static pid_t srv_start(const char *const *argv, const char *extra, int out, int err,
                        unsigned long long fsize)
 {
-    if (!srv_usable(extra))
+    int which = srv_wants_images(argv) ? SRV_IMAGES : SRV_BARE;
+    if (!srv_usable(extra) || srv_fd[which] < 0 || srv_refused[which])
         return -1;
     /* A plug-in may end a process with exit(), whose handlers would wait
      * for threads of the image module's libraries that a fork of the
@@ -713,7 +797,6 @@ static pid_t srv_start(const char *const *argv, const char *extra, int out, int 
     c->cmsg_len = CMSG_LEN(sizeof fds);
     memcpy(CMSG_DATA(c), fds, sizeof fds);
     ssize_t n;
-    int which = srv_wants_images(argv) ? SRV_IMAGES : SRV_BARE;
     while ((n = sendmsg(srv_fd[which], &m, MSG_NOSIGNAL)) < 0 && errno == EINTR)
         ;
     if (n != (ssize_t)at)
@@ -723,6 +806,13 @@ static pid_t srv_start(const char *const *argv, const char *extra, int out, int 
         srv_reply r;
         while ((n = recv(srv_fd[which], &r, sizeof r, MSG_PEEK)) < 0 && errno == EINTR)
             ;
+        if (n == (ssize_t)sizeof r && r.type == SRV_START && r.pid < 0 && r.value == ENOTSUP) {
+            /* it will not start commands: exec this one and the next */
+            while (recv(srv_fd[which], &r, sizeof r, 0) < 0 && errno == EINTR)
+                ;
+            srv_refused[which] = 1;
+            return -1;
+        }
         if (n == (ssize_t)sizeof r && r.type == SRV_START) {
             srv_take(which, 0);
             return r.pid;

@@ -30,12 +30,28 @@
         const struct CMUnitTest tests[] = {__VA_ARGS__};                                           \
         return cmocka_run_group_tests(tests, setup, teardown);                                     \
     }
+/* The same for a test whose starts of the command mostly read or write
+ * image files: under ASan too, those starts are forks of a server that has
+ * loaded the image module (support_start_servers). */
+#define SUPPORT_MAIN_IMAGES(setup, teardown, ...)                                                  \
+    int main(void)                                                                                 \
+    {                                                                                              \
+        support_start_servers(1);                                                                  \
+        const struct CMUnitTest tests[] = {__VA_ARGS__};                                           \
+        return cmocka_run_group_tests(tests, setup, teardown);                                     \
+    }
 
 /* Fork the command server (see "the command under test" below), first
  * thing in main, while this process has one thread and has run nothing.
  * Without it, or when it cannot start, every start of the command is an
- * exec. */
+ * exec.  Under ASan there is none: a fork of a sanitized process costs
+ * more than the exec it would spare. */
 void support_start_server(void);
+/* The same; with images_under_asan, under ASan the server for the starts
+ * that name an image file runs all the same (each spares loading the image
+ * module, about 1 s, but a start refused before it reads or writes an
+ * image costs about four times an exec). */
+void support_start_servers(int images_under_asan);
 /* 1 if this process has a command server to start the command with. */
 int support_server_running(void);
 
@@ -145,11 +161,13 @@ const char *support_caption_field(const char *caption, int panel, const char *fi
  * opened.  Of the two, one loads the OpenImageIO module before its first
  * child (without opening a file) and takes the starts that name an image
  * file or make a montage (a wrong guess costs time only): loading the
- * module's ~250 libraries costs about 0.4 s of CPU a start.  Under ASan
- * there are no servers and every start is exec'd: LeakSanitizer, at a
- * child's end, would look for the threads the libraries started in the
- * server, which a fork does not have, and a fork of a sanitized server
- * costs more than the exec it spares.
+ * module's ~250 libraries costs about 0.4 s of CPU a start.  The server
+ * stops the threads that those libraries start as they load (log4cplus's
+ * pool), so that it has one thread when it forks.  Under ASan every start
+ * is exec'd, but those that name an image file in a test that asks for the
+ * image server (SUPPORT_MAIN_IMAGES): a fork of a sanitized process, and
+ * LeakSanitizer's check at its end, cost more than the exec they spare
+ * unless the exec would load the module.
  * Otherwise, and whenever a child of the server could differ from the
  * command exec'd at that moment, the command is exec'd: the test changed a
  * resource limit, the signal mask, ignores a signal, or changed a variable
