@@ -97,18 +97,17 @@ int aa_eye_blur(const aa_image *in, double s, aa_image *out)
     for (int j = 0; j < h; j++) {
         const double *in_row = in->v + (size_t)j * row;
         double *t = tmp + (size_t)j * row;
-        size_t x = 0;
-        while (x < row) {
+        for (size_t x = 0; x < row;) {
             if (x >= in0 && x + 4 <= in1) {
                 sum4(k, in_row + x - in0, c, 2 * r + 1, t + x);
                 x += 4;
-                continue;
+            } else {
+                /* the pixel i of value x: its terms d with 0 <= i + d < w */
+                const int i = (int)(x / (size_t)c);
+                const int d0 = i < r ? -i : -r, d1 = w - 1 - i < r ? w - 1 - i : r;
+                t[x] = sum1(k + d0 + r, in_row + x + (ptrdiff_t)d0 * c, c, d1 - d0 + 1);
+                x++;
             }
-            /* the pixel i of value x: its terms d with 0 <= i + d < w */
-            const int i = (int)(x / (size_t)c);
-            const int d0 = i < r ? -i : -r, d1 = w - 1 - i < r ? w - 1 - i : r;
-            t[x] = sum1(k + d0 + r, in_row + x + (ptrdiff_t)d0 * c, c, d1 - d0 + 1);
-            x++;
         }
     }
     for (int j = 0; j < h; j++) {
