@@ -10,6 +10,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <link.h>
+#include <locale.h>
 #include <math.h>
 #include <poll.h>
 #include <setjmp.h>
@@ -20,6 +21,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/resource.h>
+#include <sys/mman.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/uio.h>
@@ -300,6 +302,8 @@ static int srv_wanted[SRV_N];
 static int srv_fd[SRV_N] = {-1, -1}; /* the ends of the sockets; -1: no server */
 static int srv_refused[SRV_N]; /* the server said it cannot start commands: exec them */
 static pid_t srv_owner;   /* the process that started them (a fork of the test may not use them) */
+static pid_t snap_owner;  /* the process whose start-up srv_env and the rest describe */
+static char snap_locale[256]; /* its locale (LC_ALL) */
 static pid_t srv_pid[SRV_N];
 static char **srv_env;    /* the environment the server has (a copy) */
 static struct rlimit srv_lim[RLIM_NLIMITS];
@@ -350,11 +354,14 @@ static int srv_same_entry(const char *a, const char *b)
     return (a == NULL && b == NULL) || (a != NULL && b != NULL && strcmp(a, b) == 0);
 }
 
-/* 1 if a child of the server would start as the command exec'd now would
- * (with `extra` added to the environment). */
-static int srv_usable(const char *extra)
+/* 1 if a process that starts as this test program did (the snapshot taken
+ * by support_start_servers) runs the command as the command exec'd now
+ * would (with `extra` added to the environment): the variables read at
+ * start-up, the resource limits, the signal mask and the ignored signals
+ * are as they were. */
+static int srv_same_start(const char *extra)
 {
-    if (!support_server_running())
+    if (srv_env == NULL || getpid() != snap_owner)
         return 0;
     for (char **e = srv_env; *e; e++)
         if (srv_startup_name(*e) && !srv_same_entry(*e, srv_env_now(*e, extra)))
@@ -381,6 +388,12 @@ static int srv_usable(const char *extra)
             return 0;
     }
     return 1;
+}
+
+/* 1 if a child of the server would start as the command exec'd now would. */
+static int srv_usable(const char *extra)
+{
+    return support_server_running() && srv_same_start(extra);
 }
 
 /* ---- the server's side ---- */
@@ -589,8 +602,6 @@ void support_start_servers(int images_under_asan)
 {
     srv_wanted[SRV_BARE] = !SANITIZED;
     srv_wanted[SRV_IMAGES] = !SANITIZED || images_under_asan;
-    if (!srv_wanted[SRV_IMAGES])
-        return;
     const char *flag = getenv("AABENCH_TEST_EXEC");
     const char *exe = getenv("AABENCH");
     if ((flag && strcmp(flag, "1") == 0) || exe == NULL || *exe == '\0')
@@ -625,6 +636,11 @@ void support_start_servers(int images_under_asan)
         struct sigaction act;
         srv_ignored[sig] = sigaction(sig, NULL, &act) == 0 && act.sa_handler == SIG_IGN;
     }
+    snap_owner = getpid();
+    const char *locale = setlocale(LC_ALL, NULL);
+    snprintf(snap_locale, sizeof snap_locale, "%s", locale ? locale : "");
+    if (!srv_wanted[SRV_IMAGES])
+        return;
     for (int which = 0; which < SRV_N; which++) {
         int sv[2];
         if (!srv_wanted[which])
@@ -744,6 +760,16 @@ static int srv_wants_images(const char *const *argv)
     return maker && !none;
 }
 
+/* 1 if the command argv may load a plug-in: --plugin, or --resume of a
+ * run that may name one. */
+static int may_load_plugin(const char *const *argv)
+{
+    for (int k = 1; argv[k]; k++)
+        if (strncmp(argv[k], "--plugin", 8) == 0 || strncmp(argv[k], "--resume", 8) == 0)
+            return 1;
+    return 0;
+}
+
 /* A child of the server running argv (argv[0] the program) with `extra`
  * added to the environment; -1 if the server cannot be used for it. */
 static pid_t srv_start(const char *const *argv, const char *extra, int out, int err,
@@ -755,11 +781,9 @@ static pid_t srv_start(const char *const *argv, const char *extra, int out, int 
     /* A plug-in may end a process with exit(), whose handlers would wait
      * for threads of the image module's libraries that a fork of the
      * server, where the module is loaded, does not have: a command that
-     * loads one (--plugin, or --resume of a run that may name one) is
-     * exec'd. */
-    for (int k = 1; argv[k]; k++)
-        if (strncmp(argv[k], "--plugin", 8) == 0 || strncmp(argv[k], "--resume", 8) == 0)
-            return -1;
+     * loads one is exec'd. */
+    if (may_load_plugin(argv))
+        return -1;
     static char buf[SRV_MSG];
     char cwd[PATH_MAX];
     if (getcwd(cwd, sizeof cwd) == NULL)
@@ -862,11 +886,170 @@ pid_t support_waitpid(pid_t pid, int *status, int options)
     return pid;
 }
 
+/* $AABENCH and args (NULL-ended), in a NULL-ended array to free(). */
+static const char **command_argv(const char *const *args)
+{
+    const char *exe = getenv("AABENCH");
+    if (!exe || !*exe)
+        fail_msg("$AABENCH (the command under test) is not set");
+    size_t n = 0;
+    while (args[n])
+        n++;
+    const char **argv = calloc(n + 2, sizeof *argv);
+    assert_non_null(argv);
+    argv[0] = exe;
+    memcpy(argv + 1, args, n * sizeof *argv);
+    return argv;
+}
+
+/* ---- under ASan: the command in this process ---- */
+
+/* Under ASan a start of the command that the test waits for is a call of
+ * cli_main() in the test's own process, where nothing could differ from
+ * the command exec'd (srv_same_start, no plug-in): a sanitized exec costs
+ * about 0.1 s (the runtime's start, the loader, LeakSanitizer's check at
+ * the end) and 1 s more when the command loads the image module, which
+ * here is loaded once.  AddressSanitizer and UndefinedBehaviorSanitizer
+ * watch the command as they watch the test, and LeakSanitizer's check at
+ * the test's end finds what a command lost.  What the command changes in
+ * the process is put back: its standard output and error (into a file of
+ * its own here), the signal handlers and mask, the warning handler, the
+ * folder and the umask.  The plain build runs every start as a process of
+ * its own (a fork of the server, or an exec), and test_cli compares both
+ * kinds, so a difference that this path made would show there. */
+
+static int inproc_err = -1; /* the test's standard error while a command runs */
+
+static void inproc_on_alarm(int sig)
+{
+    (void)sig;
+    static const char msg[] = "\nthe command, run in the test's process, ran past the time-out "
+                              "(AABENCH_TEST_TIMEOUT): the test is ended\n";
+    if (write(inproc_err, msg, sizeof msg - 1) < 0) {
+        /* nothing more to say it with */
+    }
+    _exit(124);
+}
+
+/* 1 if t is one of the NULL-ended types. */
+static int inproc_type_in(const void *t, const aa_method_type *const *types)
+{
+    for (size_t k = 0; types[k]; k++)
+        if (t == (const void *)types[k])
+            return 1;
+    return 0;
+}
+
+/* 1 if argv (argv[0] the program) may run in this process: besides the
+ * start-up, the method table holds the command's own methods only (not
+ * those of a plug-in the test loaded) and the locale is the one the test
+ * started with. */
+static int inproc_usable(const char *const *argv)
+{
+    if (!SANITIZED || !srv_same_start(NULL) || may_load_plugin(argv))
+        return 0;
+    for (const void *const *t = aa_method_table(); *t; t++)
+        if (!inproc_type_in(*t, aa_method_types) && !inproc_type_in(*t, aa_method_types_optional))
+            return 0;
+    const char *locale = setlocale(LC_ALL, NULL);
+    return locale && strcmp(locale, snap_locale) == 0;
+}
+
+const char *support_start_kind(void)
+{
+    static const char *const none[] = {"aabench", NULL};
+    if (inproc_usable(none))
+        return "a call of cli_main() in the test's process";
+    return support_server_running() ? "a fork of the command server" : NULL;
+}
+
+/* Run argv in this process with its output (standard output and error, as
+ * through one pipe) into out (cap bytes with the NUL); its exit status. */
+static int inproc_run(const char *const *argv, char *out, size_t cap, double limit)
+{
+    int n = 0;
+    while (argv[n])
+        n++;
+    char **args = calloc((size_t)n + 1, sizeof *args);
+    assert_non_null(args);
+    memcpy(args, argv, (size_t)n * sizeof *args);
+    int fd = memfd_create("aabench-output", MFD_CLOEXEC);
+    if (fd < 0)
+        fail_msg("memfd_create: %s", strerror(errno));
+    char cwd[PATH_MAX];
+    assert_non_null(getcwd(cwd, sizeof cwd));
+    mode_t mask = umask(0);
+    umask(mask);
+    sigset_t blocked;
+    sigprocmask(SIG_SETMASK, NULL, &blocked);
+    static struct sigaction handlers[NSIG];
+    for (int sig = 1; sig < NSIG; sig++)
+        sigaction(sig, NULL, &handlers[sig]);
+    void *warn_ctx;
+    aa_warn_fn warn = aa_get_warn(&warn_ctx);
+
+    fflush(NULL);
+    int saved_out = fcntl(1, F_DUPFD_CLOEXEC, 3), saved_err = fcntl(2, F_DUPFD_CLOEXEC, 3);
+    if (saved_out < 0 || saved_err < 0 || dup2(fd, 1) < 0 || dup2(fd, 2) < 0)
+        fail_msg("cannot send the command's output to a file: %s", strerror(errno));
+    inproc_err = saved_err;
+    struct sigaction al;
+    memset(&al, 0, sizeof al);
+    al.sa_handler = inproc_on_alarm;
+    sigemptyset(&al.sa_mask);
+    sigaction(SIGALRM, &al, NULL);
+    alarm((unsigned)ceil(limit));
+    int code = cli_main(n, args);
+    alarm(0);
+    fflush(NULL);
+    clearerr(stdout);
+    clearerr(stderr);
+    if (dup2(saved_out, 1) < 0 || dup2(saved_err, 2) < 0)
+        abort();
+    close(saved_out);
+    close(saved_err);
+    inproc_err = -1;
+
+    for (int sig = 1; sig < NSIG; sig++)
+        sigaction(sig, &handlers[sig], NULL);
+    sigprocmask(SIG_SETMASK, &blocked, NULL);
+    aa_set_warn(warn, warn_ctx);
+    umask(mask);
+    char now[PATH_MAX];
+    if (getcwd(now, sizeof now) == NULL || strcmp(now, cwd) != 0)
+        assert_int_equal(chdir(cwd), 0);
+    free(args);
+
+    size_t len = 0;
+    if (out && cap > 0) {
+        ssize_t got;
+        while (len < cap - 1 &&
+               (got = pread(fd, out + len, cap - 1 - len, (off_t)len)) != 0) {
+            if (got < 0 && errno == EINTR)
+                continue;
+            assert_true(got > 0);
+            len += (size_t)got;
+        }
+        out[len] = '\0';
+    }
+    close(fd);
+    return code;
+}
+
 int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
                                 size_t cap)
 {
     const char *limit_text = getenv("AABENCH_TEST_TIMEOUT");
     double limit = limit_text && atof(limit_text) > 0 ? atof(limit_text) : SUPPORT_TIMEOUT;
+    if (interrupt_ms <= 0) {
+        const char **argv = command_argv(args);
+        int code = -1;
+        if (inproc_usable(argv))
+            code = inproc_run(argv, out, cap, limit);
+        free(argv);
+        if (code >= 0)
+            return code;
+    }
     int fds[2];
     assert_int_equal(pipe(fds), 0);
     fcntl(fds[0], F_SETFD, FD_CLOEXEC);
@@ -935,16 +1118,7 @@ int support_aabench(const char *const *args, char *out, size_t cap)
 pid_t support_aabench_start(const char *const *args, const char *env, int fd_out, int fd_err,
                             unsigned long long fsize)
 {
-    const char *exe = getenv("AABENCH");
-    if (!exe || !*exe)
-        fail_msg("$AABENCH (the command under test) is not set");
-    size_t n = 0;
-    while (args[n])
-        n++;
-    const char **argv = calloc(n + 2, sizeof *argv);
-    assert_non_null(argv);
-    argv[0] = exe;
-    memcpy(argv + 1, args, n * sizeof *argv);
+    const char **argv = command_argv(args);
     pid_t pid = command_start(argv, env, fd_out, fd_err, fsize);
     free(argv);
     return pid;

@@ -150,9 +150,9 @@ const char *support_caption_field(const char *caption, int panel, const char *fi
  * after the start.  Fails the test if $AABENCH is not set, the command
  * cannot be started, or it runs past the time-out.
  *
- * Every start of the command is a child process of its own: its exit
- * status, its signals, its files and its output are the command's.  It is
- * one of two kinds.  Where the command servers run (support_start_server)
+ * In the plain build every start of the command is a child process of its
+ * own: its exit status, its signals, its files and its output are the
+ * command's.  It is one of two kinds.  Where the command servers run (support_start_server)
  * and $AABENCH is the command built beside this test program, the child is
  * a fork of a server that calls cli_main(), the function the command's
  * main() is, with the arguments, the environment, the folder and the umask
@@ -163,11 +163,17 @@ const char *support_caption_field(const char *caption, int panel, const char *fi
  * file or make a montage (a wrong guess costs time only): loading the
  * module's ~250 libraries costs about 0.4 s of CPU a start.  The server
  * stops the threads that those libraries start as they load (log4cplus's
- * pool), so that it has one thread when it forks.  Under ASan every start
- * is exec'd, but those that name an image file in a test that asks for the
- * image server (SUPPORT_MAIN_IMAGES): a fork of a sanitized process, and
- * LeakSanitizer's check at its end, cost more than the exec they spare
- * unless the exec would load the module.
+ * pool), so that it has one thread when it forks.  Under ASan there is no
+ * bare server (a fork of a sanitized process, and LeakSanitizer's check at
+ * its end, cost more than the exec they spare), and a start that the test
+ * waits for (support_aabench) is a call of cli_main() in the test's own
+ * process, with its output into a file of its own and the signal
+ * handlers, mask, warning handler, folder and umask put back after it:
+ * the image module is then loaded once, not once a start (about 1 s under
+ * ASan), and LeakSanitizer's check at the test's end covers the commands;
+ * not while the test has loaded a plug-in or changed the locale.  The
+ * starts it does not wait for are exec'd, but those that name an image
+ * file in a test that asks for the image server (SUPPORT_MAIN_IMAGES).
  * Otherwise, and whenever a child of the server could differ from the
  * command exec'd at that moment, the command is exec'd: the test changed a
  * resource limit, the signal mask, ignores a signal, or changed a variable
@@ -179,10 +185,14 @@ const char *support_caption_field(const char *caption, int panel, const char *fi
  * or $AABENCH_TEST_EXEC is 1 when the test program starts, or is set or
  * changed afterwards.  The command's own start-up (main.c, the loader, the
  * module's lookup and its trial under a memory limit) is tested by the
- * starts that exec: test_cli checks that both kinds give the same statuses,
- * output and files, and test_image_faults execs under its limits. */
+ * starts that exec: test_cli checks that the other kinds give the same
+ * statuses, output and files, and test_image_faults execs under its
+ * limits. */
 int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
                                 size_t cap);
+/* What a start of the command that the test waits for is now, when it is
+ * not an exec (a text for messages); NULL: an exec. */
+const char *support_start_kind(void);
 int support_aabench(const char *const *args, char *out, size_t cap);
 
 /* Start the command under test with args (as above), `env` ("NAME=value"

@@ -4,13 +4,15 @@
  * bad input gets exit status 2 and a message naming the problem and what is
  * accepted, an unwritable output 3, and a refused command writes nothing.
  * The command under test is $AABENCH (set by the Makefile), run by
- * tests/support.c (a fork of its command server, or exec); one test checks
- * that the two give the same statuses, output and files, one runs the
- * command line in-process (cli_main, in a child of this process).
+ * tests/support.c (a fork of its command server, or exec; under ASan a
+ * call of cli_main() in this process); one test checks that these give
+ * the same statuses, output and files as an exec, one runs the command
+ * line in-process (cli_main, in a child of this process).
  */
 #include "bench.h"
 #include "support.h"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -293,26 +295,46 @@ static void test_cli_main(void **state)
     folder_clean();
 }
 
-/* A start through the command server (a fork running cli_main) and an exec
- * of the binary give the same exit status, output and files: the success
- * of a listing and of writing images (PNG and EXR, through the image
- * module, which the server loads before its first image start), and
- * refusals.  Under ASan every start is exec'd (support.h). */
-static void test_server_same_as_exec(void **state)
+/* A start that is not an exec (a fork of the command server, or under ASan
+ * a call of cli_main() in this process) and an exec of the binary give the
+ * same exit status, output and files: the success of a listing and of
+ * writing images (PNG and EXR, through the image module, which the server
+ * loads before its first image start), a warning beside the output, and
+ * refusals. */
+static void test_start_same_as_exec(void **state)
 {
     (void)state;
-    if (!support_server_running()) {
-        print_message("skipped: no command server ($AABENCH is not the command built beside "
-                      "this test, AABENCH_TEST_EXEC=1, or under ASan)\n");
+    const char *kind = support_start_kind();
+    if (kind == NULL) {
+        print_message("skipped: every start is an exec ($AABENCH is not the command built "
+                      "beside this test, or AABENCH_TEST_EXEC=1)\n");
         skip();
     }
-    char png[2][300], exr[2][300];
+    print_message("%s against an exec\n", kind);
+    char png[2][300], exr[2][300], cache[300], entry[600];
     static char said[2][8192];
     for (int how = 0; how < 2; how++) {
         snprintf(png[how], sizeof png[how], "%s/same-%d.png", dir, how);
         snprintf(exr[how], sizeof exr[how], "%s/same-%d.exr", dir, how);
     }
-    for (int c = 0; c < 5; c++) {
+    /* a reference cache whose entry for crow 12x8 is a folder: each truth
+     * of it warns (and recomputes) */
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    const char *fill[] = {"truth", "-p", "crow", "-s", "12x8", "-q", "--cache", cache,
+                          "-o", png[0], NULL};
+    assert_int_equal(run(fill), 0);
+    DIR *d = opendir(cache);
+    assert_non_null(d);
+    struct dirent *e;
+    entry[0] = '\0';
+    while ((e = readdir(d)) != NULL)
+        if (strncmp(e->d_name, "ref-", 4) == 0)
+            snprintf(entry, sizeof entry, "%s/%s", cache, e->d_name);
+    closedir(d);
+    assert_true(entry[0] != '\0');
+    assert_int_equal(unlink(entry), 0);
+    assert_int_equal(mkdir(entry, 0755), 0);
+    for (int c = 0; c < 6; c++) {
         int status[2];
         for (int how = 0; how < 2; how++) {
             /* a start-up variable changed: support.c execs */
@@ -326,15 +348,21 @@ static void test_server_same_as_exec(void **state)
             const char *bad_size[] = {"render", "-p", "crow", "-m", "point", "-s", "12xx8",
                                       "-o", png[how], NULL};
             const char *missing[] = {"compare", "/nonexistent/a.png", "/nonexistent/b.png", NULL};
-            const char *const *args[] = {list, truth_png, truth_exr, bad_size, missing};
+            const char *warned[] = {"truth", "-p", "crow", "-s", "12x8", "-q", "--cache", cache,
+                                    "-o", png[how], NULL};
+            const char *const *args[] = {list, truth_png, truth_exr, bad_size, missing, warned};
             status[how] = support_aabench(args[c], said[how], sizeof said[how]);
             if (how == 1)
                 assert_int_equal(unsetenv("AABENCH_TEST_EXEC"), 0);
         }
         if (status[0] != status[1] || strcmp(said[0], said[1]) != 0)
-            fail_msg("case %d: the server's start gave status %d and \"%s\", exec %d and \"%s\"",
-                     c, status[0], said[0], status[1], said[1]);
+            fail_msg("case %d: %s gave status %d and \"%s\", an exec %d and \"%s\"", c, kind,
+                     status[0], said[0], status[1], said[1]);
+        if (c == 5 && !strstr(said[0], "is not a regular file"))
+            fail_msg("no warning from a cache entry that is a folder: \"%s\"", said[0]);
     }
+    assert_int_equal(rmdir(entry), 0);
+    assert_int_equal(rmdir(cache), 0);
     /* the PNGs to the byte; the EXRs hold the time they were written
      * (capDate): their pixels */
     size_t n0, n1;
@@ -430,6 +458,6 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_refusals_everywhere),
              cmocka_unit_test(test_success),
              cmocka_unit_test(test_cli_main),
-             cmocka_unit_test(test_server_same_as_exec),
+             cmocka_unit_test(test_start_same_as_exec),
              cmocka_unit_test(test_render),
              cmocka_unit_test(test_cache))

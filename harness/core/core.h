@@ -24,6 +24,9 @@ int aa_exit_code(int status);
  * The command line installs one that prints to stderr. */
 typedef void (*aa_warn_fn)(const char *message, void *ctx);
 void aa_set_warn(aa_warn_fn fn, void *ctx);
+/* The handler installed now (NULL: none), its context into *ctx (may be
+ * NULL): to put it back after a change. */
+aa_warn_fn aa_get_warn(void **ctx);
 void aa_warn(const char *fmt, ...) AA_PRINTF(1, 2);
 /* An input as messages quote it: control characters escaped, and past 96
  * characters only the first 64 and "...(N characters)".  The text lives in

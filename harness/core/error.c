@@ -144,6 +144,13 @@ void aa_set_warn(aa_warn_fn fn, void *ctx)
     warn_ctx = ctx;
 }
 
+aa_warn_fn aa_get_warn(void **ctx)
+{
+    if (ctx)
+        *ctx = warn_ctx;
+    return warn_fn;
+}
+
 void aa_warn(const char *fmt, ...)
 {
     aa_warn_fn fn = warn_fn;
