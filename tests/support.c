@@ -914,18 +914,18 @@ static const char **command_argv(const char *const *args)
  * the test's end finds what a command lost.  What the command changes in
  * the process is put back: its standard output and error (into a file of
  * its own here), the signal handlers and mask, the warning handler, the
- * folder and the umask.  The plain build runs every start as a process of
- * its own (a fork of the server, or an exec), and test_cli compares both
- * kinds, so a difference that this path made would show there. */
+ * folder and the umask.  SIGALRM ends the test if the command runs past
+ * the time-out.  The plain build runs every start as a process of its own
+ * (a fork of the server, or an exec), and test_cli compares each kind
+ * with an exec, so a difference that this path made would show there. */
 
-static int inproc_err = -1; /* the test's standard error while a command runs */
+static int inproc_err = -1;    /* the test's standard error while a command runs */
+static char inproc_late[1024]; /* what SIGALRM says then */
 
 static void inproc_on_alarm(int sig)
 {
     (void)sig;
-    static const char msg[] = "\nthe command, run in the test's process, ran past the time-out "
-                              "(AABENCH_TEST_TIMEOUT): the test is ended\n";
-    if (write(inproc_err, msg, sizeof msg - 1) < 0) {
+    if (write(inproc_err, inproc_late, strlen(inproc_late)) < 0) {
         /* nothing more to say it with */
     }
     _exit(124);
@@ -988,11 +988,17 @@ static int inproc_run(const char *const *argv, char *out, size_t cap, double lim
     void *warn_ctx;
     aa_warn_fn warn = aa_get_warn(&warn_ctx);
 
+    unsigned pending = alarm(0); /* the test's own alarm, put back after */
+    double start = now_seconds();
     fflush(NULL);
     int saved_out = fcntl(1, F_DUPFD_CLOEXEC, 3), saved_err = fcntl(2, F_DUPFD_CLOEXEC, 3);
     if (saved_out < 0 || saved_err < 0 || dup2(fd, 1) < 0 || dup2(fd, 2) < 0)
         fail_msg("cannot send the command's output to a file: %s", strerror(errno));
     inproc_err = saved_err;
+    snprintf(inproc_late, sizeof inproc_late,
+             "\n%s %s ... (run in the test's process) ran past %g s (AABENCH_TEST_TIMEOUT): the "
+             "test is ended\n",
+             argv[0], argv[1] ? argv[1] : "", limit);
     struct sigaction al;
     memset(&al, 0, sizeof al);
     al.sa_handler = inproc_on_alarm;
@@ -1013,6 +1019,10 @@ static int inproc_run(const char *const *argv, char *out, size_t cap, double lim
     for (int sig = 1; sig < NSIG; sig++)
         sigaction(sig, &handlers[sig], NULL);
     sigprocmask(SIG_SETMASK, &blocked, NULL);
+    if (pending) {
+        double left = pending - (now_seconds() - start);
+        alarm(left >= 1 ? (unsigned)left : 1);
+    }
     aa_set_warn(warn, warn_ctx);
     umask(mask);
     char now[PATH_MAX];
