@@ -305,7 +305,7 @@ static pid_t srv_owner;   /* the process that started them (a fork of the test m
 static pid_t snap_owner;  /* the process whose start-up srv_env and the rest describe */
 static char snap_locale[256]; /* its locale (LC_ALL) */
 static pid_t srv_pid[SRV_N];
-static char **srv_env;    /* the environment the server has (a copy) */
+static char **srv_env;    /* the environment at the test's start, which the servers have (a copy) */
 static struct rlimit srv_lim[RLIM_NLIMITS];
 static sigset_t srv_mask; /* the signal mask it has */
 static int srv_ignored[NSIG]; /* the signals it ignores */
