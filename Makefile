@@ -105,9 +105,9 @@ BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
 # make -j runs them side by side and every test runs; the pass's summary
 # then prints the failed ones and "N passed, N failed" and fails if any did.
 # The longest start first, so that they do not run on alone at the end.
-SLOW_TESTS := test_image_faults test_shard test_truth_gauss test_external test_figures_papers \
-              test_prefilters test_cli test_cubic test_faults test_run_faults test_tables \
-              test_peers test_oracle test_patterns
+SLOW_TESTS := test_image_faults test_shard test_truth_gauss test_run_faults test_figures_papers \
+              test_truth test_prefilters test_cubic test_faults test_run test_external test_cone \
+              test_cli test_oracle test_patterns test_temporal_post test_image test_crow_methods
 ordered = $(foreach t,$(SLOW_TESTS),$(filter $(1)/tests/$(t),$(2))) \
           $(filter-out $(addprefix $(1)/tests/,$(SLOW_TESTS)),$(2))
 TEST_RUNS     := $(addsuffix .run,$(call ordered,$(BUILD),$(TESTS)))
