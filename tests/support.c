@@ -285,7 +285,8 @@ typedef struct srv_reply {
  * test_run 2.0; shared out: 8.3, 3.9, 1.8).
  *
  * Under ASan, none, or the image server alone for a test that asks
- * (SUPPORT_MAIN_IMAGES).  A sanitized start that does not load the module
+ * (support_start_servers(1)), for the starts that the test does not wait
+ * for (those it waits for are calls of cli_main() in its own process).  A sanitized start that does not load the module
  * costs about 0.1 s, most of it LeakSanitizer's check at the end, which a
  * fork pays as well, and in a fork of the image server that check walks
  * the memory of the module's libraries too: forks of the bare server were
@@ -1046,25 +1047,23 @@ static int inproc_run(const char *const *argv, char *out, size_t cap, double lim
     return code;
 }
 
-int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
-                                size_t cap)
+/* support_aabench_interrupted, with the wait status. */
+static int aabench_wait_status(const char *const *args, int interrupt_ms, char *out, size_t cap)
 {
     const char *limit_text = getenv("AABENCH_TEST_TIMEOUT");
     double limit = limit_text && atof(limit_text) > 0 ? atof(limit_text) : SUPPORT_TIMEOUT;
-    if (interrupt_ms <= 0) {
-        const char **argv = command_argv(args);
-        int code = -1;
-        if (inproc_usable(argv))
-            code = inproc_run(argv, out, cap, limit);
+    const char **argv = command_argv(args);
+    if (interrupt_ms <= 0 && inproc_usable(argv)) {
+        int code = inproc_run(argv, out, cap, limit);
         free(argv);
-        if (code >= 0)
-            return code;
+        return code << 8; /* the wait status of exit(code) */
     }
     int fds[2];
     assert_int_equal(pipe(fds), 0);
     fcntl(fds[0], F_SETFD, FD_CLOEXEC);
     double start = now_seconds();
-    pid_t pid = support_aabench_start(args, NULL, fds[1], fds[1], 0);
+    pid_t pid = command_start(argv, NULL, fds[1], fds[1], 0);
+    free(argv);
     close(fds[1]);
     size_t len = 0;
     int open_pipe = 1, interrupted = interrupt_ms <= 0, status = 0, done = 0, timed_out = 0;
@@ -1117,7 +1116,19 @@ int support_aabench_interrupted(const char *const *args, int interrupt_ms, char 
     if (timed_out)
         fail_msg("%s %s ... ran past %g s (AABENCH_TEST_TIMEOUT) and was killed; output: %s",
                  getenv("AABENCH"), args[0] ? args[0] : "", limit, out ? out : "");
+    return status;
+}
+
+int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
+                                size_t cap)
+{
+    int status = aabench_wait_status(args, interrupt_ms, out, cap);
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+int support_aabench_wait_status(const char *const *args, char *out, size_t cap)
+{
+    return aabench_wait_status(args, 0, out, cap);
 }
 
 int support_aabench(const char *const *args, char *out, size_t cap)
@@ -1239,6 +1250,24 @@ char *support_read_file(const char *path, char *buf, size_t cap, size_t *len)
     if (len)
         *len = n;
     return buf;
+}
+
+void support_cache_file(const char *dir, char *path, size_t len)
+{
+    DIR *d = opendir(dir);
+    if (d == NULL)
+        fail_msg("cannot read the cache folder %s: %s", dir, strerror(errno));
+    int found = 0;
+    for (struct dirent *e; (e = readdir(d)) != NULL;) {
+        size_t n = strlen(e->d_name);
+        if (strncmp(e->d_name, "ref-", 4) == 0 && n > 8 && strcmp(e->d_name + n - 4, ".bin") == 0) {
+            snprintf(path, len, "%s/%s", dir, e->d_name);
+            found++;
+        }
+    }
+    closedir(d);
+    if (found != 1)
+        fail_msg("%d reference cache files in %s, expected one", found, dir);
 }
 
 int support_count_entries(const char *dir, const char *except)

@@ -30,27 +30,20 @@
         const struct CMUnitTest tests[] = {__VA_ARGS__};                                           \
         return cmocka_run_group_tests(tests, setup, teardown);                                     \
     }
-/* The same for a test whose starts of the command mostly read or write
- * image files: under ASan too, those starts are forks of a server that has
- * loaded the image module (support_start_servers). */
-#define SUPPORT_MAIN_IMAGES(setup, teardown, ...)                                                  \
-    int main(void)                                                                                 \
-    {                                                                                              \
-        support_start_servers(1);                                                                  \
-        const struct CMUnitTest tests[] = {__VA_ARGS__};                                           \
-        return cmocka_run_group_tests(tests, setup, teardown);                                     \
-    }
 
 /* Fork the command server (see "the command under test" below), first
- * thing in main, while this process has one thread and has run nothing.
- * Without it, or when it cannot start, every start of the command is an
- * exec.  Under ASan there is none: a fork of a sanitized process costs
- * more than the exec it would spare. */
+ * thing in main, while this process has one thread and has run nothing,
+ * and note how the test started (its start-up variables, limits, signal
+ * mask and locale), which the starts that are not an exec must match.
+ * Without it every start of the command is an exec.  Under ASan there is
+ * no server: a fork of a sanitized process costs more than the exec it
+ * would spare. */
 void support_start_server(void);
 /* The same; with images_under_asan, under ASan the server for the starts
- * that name an image file runs all the same (each spares loading the image
- * module, about 1 s, but a start refused before it reads or writes an
- * image costs about four times an exec). */
+ * that name an image file runs all the same, for those that the test does
+ * not wait for (each spares loading the image module, about 1 s, but a
+ * start refused before it reads or writes an image costs about four times
+ * an exec). */
 void support_start_servers(int images_under_asan);
 /* 1 if this process has a command server to start the command with. */
 int support_server_running(void);
@@ -173,7 +166,7 @@ const char *support_caption_field(const char *caption, int panel, const char *fi
  * ASan), and LeakSanitizer's check at the test's end covers the commands;
  * not while the test has loaded a plug-in or changed the locale.  The
  * starts it does not wait for are exec'd, but those that name an image
- * file in a test that asks for the image server (SUPPORT_MAIN_IMAGES).
+ * file in a test that asks for the image server (support_start_servers).
  * Otherwise, and whenever a child of the server could differ from the
  * command exec'd at that moment, the command is exec'd: the test changed a
  * resource limit, the signal mask, ignores a signal, or changed a variable
@@ -194,6 +187,8 @@ int support_aabench_interrupted(const char *const *args, int interrupt_ms, char 
  * not an exec (a text for messages); NULL: an exec. */
 const char *support_start_kind(void);
 int support_aabench(const char *const *args, char *out, size_t cap);
+/* support_aabench with the wait status (WIFEXITED, WTERMSIG...). */
+int support_aabench_wait_status(const char *const *args, char *out, size_t cap);
 
 /* Start the command under test with args (as above), `env` ("NAME=value"
  * or NULL) added to its environment, its standard output into the file
@@ -255,6 +250,9 @@ char *support_read_file(const char *path, char *buf, size_t cap, size_t *len);
 /* The entries of a folder besides ".", ".." and `except` (may be NULL);
  * -1 if it cannot be read. */
 int support_count_entries(const char *dir, const char *except);
+/* The path of the one reference cache file (ref-*.bin) in the cache folder
+ * dir into path; fails the test if there is none or more than one. */
+void support_cache_file(const char *dir, char *path, size_t len);
 /* A cmocka group tear-down for a group whose set-up made a temporary
  * folder and put its path in *state: removes it. */
 int support_teardown_dir(void **state);

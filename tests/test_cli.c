@@ -12,7 +12,6 @@
 #include "bench.h"
 #include "support.h"
 
-#include <dirent.h>
 #include <fcntl.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -323,15 +322,7 @@ static void test_start_same_as_exec(void **state)
     const char *fill[] = {"truth", "-p", "crow", "-s", "12x8", "-q", "--cache", cache,
                           "-o", png[0], NULL};
     assert_int_equal(run(fill), 0);
-    DIR *d = opendir(cache);
-    assert_non_null(d);
-    struct dirent *e;
-    entry[0] = '\0';
-    while ((e = readdir(d)) != NULL)
-        if (strncmp(e->d_name, "ref-", 4) == 0)
-            snprintf(entry, sizeof entry, "%s/%s", cache, e->d_name);
-    closedir(d);
-    assert_true(entry[0] != '\0');
+    support_cache_file(cache, entry, sizeof entry);
     assert_int_equal(unlink(entry), 0);
     assert_int_equal(mkdir(entry, 0755), 0);
     for (int c = 0; c < 6; c++) {

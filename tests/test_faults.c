@@ -51,17 +51,6 @@ static void make_view(aa_view *v, const char *pattern, int w, int h)
 }
 
 /* The one cache file of `dir` into path. */
-static void cache_file(const char *dir, char *path, size_t len)
-{
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "ls %s/ref-*.bin", dir);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    assert_non_null(fgets(path, (int)len, p));
-    path[strcspn(path, "\n")] = '\0';
-    pclose(p);
-}
-
 static long file_size(const char *path)
 {
     struct stat sb;
@@ -130,7 +119,7 @@ static void test_cache_damage(void **state)
     aa_image first;
     assert_int_equal(aa_reference(&v, dir, 1, &first, NULL, &hit), AA_OK);
     aa_image_free(&first);
-    cache_file(dir, path, sizeof path);
+    support_cache_file(dir, path, sizeof path);
     snprintf(save, sizeof save, "%s.good", path);
     copy_file(path, save);
     long size = file_size(path);
@@ -177,8 +166,8 @@ static void test_cache_pasted(void **state)
     aa_image_free(&img);
     assert_int_equal(aa_reference(&b, sub_b, 1, &img, NULL, NULL), AA_OK);
     aa_image_free(&img);
-    cache_file(sub_a, path_a, sizeof path_a);
-    cache_file(sub_b, path_b, sizeof path_b);
+    support_cache_file(sub_a, path_a, sizeof path_a);
+    support_cache_file(sub_b, path_b, sizeof path_b);
     size_t pixels = (size_t)20 * 20 * 3 * sizeof(double);
     long size_a = file_size(path_a), size_b = file_size(path_b);
     FILE *fb = fopen(path_b, "rb"), *fa = fopen(path_a, "r+b");
@@ -219,7 +208,7 @@ static void test_cache_fifo(void **state)
     assert_int_equal(aa_reference(&v, NULL, 1, &fresh, NULL, NULL), AA_OK);
     assert_int_equal(aa_reference(&v, dir, 1, &img, NULL, NULL), AA_OK);
     aa_image_free(&img);
-    cache_file(dir, path, sizeof path);
+    support_cache_file(dir, path, sizeof path);
     assert_int_equal(unlink(path), 0);
     assert_int_equal(mkfifo(path, 0644), 0);
     signal(SIGALRM, on_alarm);

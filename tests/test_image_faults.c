@@ -221,13 +221,8 @@ static int run_cmd(const limits *lim, const char *const *args)
     const char *exe = getenv("AABENCH");
     if (exe == NULL || *exe == '\0')
         fail_msg("AABENCH is not set (scripts/run-tests.sh sets it)");
-    if (lim == NULL) {
-        /* as every test starts it (support_aabench), which says 128 + N
-         * for signal N (the command's own statuses are 0 to 3, and 130
-         * after SIGINT): back to a wait status */
-        int code = support_aabench(args, output, sizeof output);
-        return code > 128 && code != 130 ? code - 128 : code << 8;
-    }
+    if (lim == NULL)
+        return support_aabench_wait_status(args, output, sizeof output);
     int fds[2];
     assert_int_equal(pipe(fds), 0);
     fcntl(fds[0], F_SETFD, FD_CLOEXEC);
