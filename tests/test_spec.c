@@ -40,6 +40,13 @@ static void test_values(void **state)
     assert_true(s.v[0] == 0.5);
     assert_int_equal(aa_spec_parse("gauss:s=1e0", filter_table(), "filter", &s), AA_OK);
     assert_true(s.v[0] == 1.0);
+    /* the decimal forms: a leading point, a sign, an exponent with its sign */
+    assert_int_equal(aa_spec_parse("tent:r=.25", filter_table(), "filter", &s), AA_OK);
+    assert_true(s.v[0] == 0.25);
+    assert_int_equal(aa_spec_parse("gauss:s=+2.5E-1", filter_table(), "filter", &s), AA_OK);
+    assert_true(s.v[0] == 0.25);
+    assert_int_equal(aa_spec_parse("crow:gap1=3./2e+1", pattern_table(), "pattern", &s), AA_OK);
+    assert_true(s.v[3] == 3.0 / 20.0);
 }
 
 static void refused(const char *text, const void *const *table, const char *needle)
@@ -68,6 +75,13 @@ static void test_refusals(void **state)
     refused("crow:kmax=inf", p, "not a number");
     refused("crow:kmax=-inf", p, "not a number");
     refused("crow:kmax=0x", p, "not a number");
+    /* decimal only: strtod would read these as 16, 0.5 and infinity */
+    refused("crow:curves=0x10", p, "not a number");
+    refused("crow:kmax=0x1p-1", p, "not a number");
+    refused("crow:kmax=infinity", p, "not a number");
+    refused("crow:kmax=.", p, "not a number");
+    refused("crow:kmax=1e", p, "not a number");
+    refused("crow:gap0=1/0x2", p, "not a number");
     refused("crow:kmax= 1", p, "not a number");
     refused("crow:gap0=1/0", p, "not a number");
     refused("crow:curves=4,curves=6", p, "twice");

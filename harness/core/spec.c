@@ -191,26 +191,59 @@ void aa_spec_default(const aa_info *info, aa_spec *out)
     }
 }
 
+/* The length of the decimal number at s: [+-] digits [. digits] [e [+-] digits],
+ * with digits on at least one side of the point; 0 where there is none.  strtod
+ * alone would also take hexadecimal ("0x10" is 16), "inf" and "nan". */
+static size_t decimal_length(const char *s)
+{
+    size_t n = 0, digits = 0;
+    if (s[n] == '+' || s[n] == '-')
+        n++;
+    for (; isdigit((unsigned char)s[n]); n++)
+        digits++;
+    if (s[n] == '.')
+        for (n++; isdigit((unsigned char)s[n]); n++)
+            digits++;
+    if (digits == 0)
+        return 0;
+    if (s[n] == 'e' || s[n] == 'E') {
+        size_t e = n + 1;
+        if (s[e] == '+' || s[e] == '-')
+            e++;
+        if (isdigit((unsigned char)s[e])) {
+            while (isdigit((unsigned char)s[e]))
+                e++;
+            n = e;
+        }
+    }
+    return n;
+}
+
+/* A decimal number with its length checked, read with strtod. */
+static int parse_decimal(const char *text, double *value, const char **end)
+{
+    size_t n = decimal_length(text);
+    char *stop;
+    if (n == 0)
+        return -1;
+    errno = 0;
+    *value = strtod(text, &stop);
+    if (stop != text + n || errno == ERANGE)
+        return -1;
+    *end = stop;
+    return 0;
+}
+
 /* A finite number written as a decimal or as "p/q"; the whole text.  Needs
  * C-locale numbers (aa__c_numbers). */
 static int parse_real(const char *text, double *value)
 {
-    char *end;
+    const char *end;
     double num, den = 1.0;
-    if (!*text || isspace((unsigned char)*text))
+    if (parse_decimal(text, &num, &end) != 0)
         return -1;
-    errno = 0;
-    num = strtod(text, &end);
-    if (end == text || errno == ERANGE)
+    if (*end == '/' && (parse_decimal(end + 1, &den, &end) != 0 || den == 0.0))
         return -1;
-    if (*end == '/') {
-        const char *d = end + 1;
-        if (!*d || isspace((unsigned char)*d))
-            return -1;
-        den = strtod(d, &end);
-        if (end == d || errno == ERANGE || den == 0.0)
-            return -1;
-    }
     if (*end)
         return -1;
     *value = num / den;
