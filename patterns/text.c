@@ -49,10 +49,55 @@ static const aa_param text_params[] = {
      "the baseline, pixels from the top (0: 2 plus the font's ascender)"},
     {0}};
 
+/* The code point of the well-formed UTF-8 sequence at s (RFC 3629: the
+ * shortest form, no surrogate, at most U+10FFFF) and its length in *len; -1
+ * where the bytes there are not one. */
+static long utf8_code_point(const unsigned char *s, int *len)
+{
+    static const long least[] = {0, 0, 0x80, 0x800, 0x10000};
+    int n = s[0] < 0x80 ? 1 : s[0] >= 0xc2 && s[0] < 0xe0 ? 2 : s[0] >= 0xe0 && s[0] < 0xf0 ? 3
+                              : s[0] >= 0xf0 && s[0] < 0xf5                                ? 4
+                                                                                           : 0;
+    if (n == 0)
+        return -1;
+    long c = n == 1 ? s[0] : s[0] & (0x7f >> n);
+    for (int k = 1; k < n; k++) {
+        if ((s[k] & 0xc0) != 0x80)
+            return -1;
+        c = c << 6 | (s[k] & 0x3f);
+    }
+    if (c < least[n] || c > 0x10ffff || (c >= 0xd800 && c <= 0xdfff))
+        return -1;
+    *len = n;
+    return c;
+}
+
+/* The string is UTF-8 without control characters (C0, DEL, C1), which no
+ * font draws and HarfBuzz would shape as missing glyphs. */
+static int check_string(const char *text)
+{
+    const unsigned char *s = (const unsigned char *)text;
+    for (size_t at = 0; s[at];) {
+        int len;
+        long c = utf8_code_point(s + at, &len);
+        if (c < 0)
+            return aa_fail(AA_EINVAL, "pattern text: string is not UTF-8 (byte %zu is 0x%02x)",
+                           at + 1, s[at]);
+        if (c < 0x20 || (c >= 0x7f && c < 0xa0))
+            return aa_fail(AA_EINVAL,
+                           "pattern text: string has the control character U+%04lX at byte %zu",
+                           c, at + 1);
+        at += (size_t)len;
+    }
+    return AA_OK;
+}
+
 static int text_check(const double *p)
 {
     if (!*aa_param_text(p[STRING]))
         return aa_fail(AA_EINVAL, "pattern text: string is empty (nothing to draw)");
+    if (check_string(aa_param_text(p[STRING])))
+        return AA_EINVAL;
     if (!*aa_param_text(p[FONT]))
         return aa_fail(AA_EINVAL, "pattern text: font is empty (a font file is needed)");
     return AA_OK;

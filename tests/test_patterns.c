@@ -35,6 +35,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <cmocka.h>
 #include <gsl/gsl_integration.h>
@@ -371,6 +372,28 @@ static void test_refusals(void **state)
         if (aa_pattern_parse(bad[k], &spec) == AA_OK)
             fail_msg("%s was accepted", bad[k]);
     }
+    /* text strings: RFC 3629's well-formed UTF-8 without control characters
+     * (%XX is a byte of the value) */
+    static const char *bad_text[][2] = {
+        {"text:string=a%FFb", "not UTF-8 (byte 2 is 0xff)"},
+        {"text:string=%C0%AF", "not UTF-8 (byte 1 is 0xc0)"},       /* overlong '/' */
+        {"text:string=%E0%80%AF", "not UTF-8 (byte 1 is 0xe0)"},    /* overlong '/' */
+        {"text:string=%ED%A0%80", "not UTF-8 (byte 1 is 0xed)"},    /* surrogate D800 */
+        {"text:string=%F4%90%80%80", "not UTF-8 (byte 1 is 0xf4)"}, /* U+110000 */
+        {"text:string=ab%C3", "not UTF-8 (byte 3 is 0xc3)"},        /* cut short */
+        {"text:string=a%0Ab", "control character U+000A at byte 2"},
+        {"text:string=%7F", "control character U+007F at byte 1"},
+        {"text:string=x%C2%85", "control character U+0085 at byte 2"}};
+    for (size_t k = 0; k < sizeof bad_text / sizeof bad_text[0]; k++)
+        if (aa_pattern_parse(bad_text[k][0], &spec) != AA_EINVAL ||
+            !strstr(aa_last_error(), bad_text[k][1]))
+            fail_msg("%s: \"%s\", expected \"%s\"", bad_text[k][0], aa_last_error(),
+                     bad_text[k][1]);
+    /* two-, three- and four-byte characters at the ends of their ranges */
+    assert_int_equal(aa_pattern_parse("text:string=%C2%A0%DF%BF%E0%A0%80%EF%BF%BD%F0%90%80%80"
+                                      "%F4%8F%BF%BF",
+                                      &spec),
+                     AA_OK);
     /* the limits themselves are accepted */
     assert_int_equal(aa_pattern_parse("fence:period=7.62939453125e-06", &spec), AA_OK);
     assert_int_equal(aa_pattern_parse("slivers:count=3,tilt=80,hmin=0,hmax=0", &spec), AA_OK);
