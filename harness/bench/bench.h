@@ -493,6 +493,10 @@ size_t aa_figure_count(void);
 const char *aa_figure_name(size_t k);  /* NULL past the end */
 int aa_figure_find(const char *name);  /* index, or -1 */
 const char *aa_figure_title(size_t k); /* NULL past the end */
+/* Figure k's row checked: its texts, size and panels present, its
+ * pattern, filters, methods and encodings parsing (AA_EINVAL naming the
+ * figure, the panel and the spec). */
+int aa_figure_check(size_t k);
 /* What figure k is made of, as text: its view and, per panel, the kind,
  * method, filter, encoding and display exponent (two figures with the same
  * key would be the same picture). */
@@ -527,6 +531,11 @@ int aa_crow_calibration(const char *cache_dir, int threads, aa_calibration *out)
  * thread. */
 int aa_claims_make(const char *dir, const char *cache_dir, int threads, int reps,
                    int (*progress)(void *ctx, const char *what), void *ctx);
+/* The claims table (claims.c): how many claims, and claim k's row checked
+ * (its texts present, every pattern, filter and method spec it names
+ * parsing, its lists of one length); AA_EINVAL names the claim and spec. */
+size_t aa_claim_count(void);
+int aa_claim_check(size_t k);
 
 /* ------------------------------------------------------------------------
  * The stress suite (stress.c): scenes at the limits of the geometry, the
