@@ -380,8 +380,13 @@ int aa_context_collect(aa_context *c, int argc, const char *const *argv, int thr
 char *aa_context_json(const aa_context *c, int indent);
 /* results.json as {"context": ..., "results": [rows]} (ctx NULL: null). */
 int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row *rows, size_t n);
-/* A row's timing as JSON members, each ", \"key\": value" (malloc'd). */
+/* A row's timing, noise and seeds as JSON members to follow an object's
+ * others: ", " and the members as cJSON prints them compactly, or "" for
+ * a row without (malloc'd; NULL: out of memory). */
 char *aa_row_timing_json(const aa_row *r);
+/* The columns of results.csv in the order written, the one table the
+ * writer and the reader share: column k's name, NULL past the end. */
+const char *aa_results_column(size_t k);
 
 /* Comparing two runs (diff.c), case by case. */
 #define AA_ERROR_ABS_TOLERANCE 1e-12
