@@ -42,13 +42,10 @@ typedef struct cx {
     void *pctx;
 } cx;
 
-
-/* A timed pair: the time of b over the time of a, labelled in the text. */
-typedef struct tcase tcase;
-typedef struct tpair tpair;
-
-typedef struct claim claim;
-typedef struct claim_row claim_row;
+typedef struct tcase tcase;         /* a method timed on a view */
+typedef struct tpair tpair;         /* the time of one case over another's */
+typedef struct claim claim;         /* a claim's measured text and verdict */
+typedef struct claim_row claim_row; /* a claim of the table */
 
 /* A claim: a row of the table below.  Its texts say who claims what,
  * where, and on what setting it is measured; its specs, what it is
@@ -1011,20 +1008,19 @@ size_t aa_claim_count(void)
     return NCLAIMS;
 }
 
-/* One spec of claim k parsed (method: under `filter`). */
+/* One spec of claim k parsed: a pattern (filter NULL) or a method under
+ * `filter`. */
 static int check_spec(size_t k, const char *what, const char *text, const char *filter)
 {
     aa_spec spec;
     aa_filter f;
     int st;
-    if (!text)
-        return aa_fail(AA_EINVAL, "claim %zu (%s): a %s is missing", k + 1, claims[k].paper,
-                       what);
+    if (!text || (!strcmp(what, "method") && !filter))
+        return aa_fail(AA_EINVAL, "claim %zu (%s): a %s %s is missing", k + 1, claims[k].paper,
+                       what, text ? "filter" : "spec");
     if (!strcmp(what, "pattern"))
         st = aa_pattern_parse(text, &spec);
-    else if (!strcmp(what, "filter"))
-        st = aa_filter_parse(text, &f);
-    else if (!(st = check_spec(k, "filter", filter, NULL)) && !(st = aa_filter_parse(filter, &f)))
+    else if (!(st = aa_filter_parse(filter, &f)))
         st = aa_method_parse(text, &f, &spec);
     return st ? aa_fail_context(st, "claim %zu (%s): %s %s", k + 1, claims[k].paper, what, text)
               : AA_OK;

@@ -685,8 +685,9 @@ int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row 
 
 /* A results CSV read back (a baseline above all) is checked as strictly as
  * a spec: the regression gate must never pass on a row it cannot trust.
- * The header names known columns, each once, the required ones present; a
- * UTF-8 byte-order mark before it is skipped.  Every row has as many fields
+ * The header names columns of the writer's table, each once, the required
+ * ones present (the timing's columns, which older files lack, are read as
+ * they are); a UTF-8 byte-order mark before it is skipped.  Every row has as many fields
  * as the header; numbers are plain C-locale decimals, finite and within
  * what the column can hold ("inf" only for a PSNR); sizes are WxH with
  * nothing after; patterns and filters parse as specs; a row with ok = 1
