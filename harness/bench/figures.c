@@ -857,6 +857,81 @@ static int reference_of(const fig_def *f, const aa_view *base, const char *text,
     return AA_OK;
 }
 
+/* A panel's image: the reference itself, the method at twice the size
+ * averaged down, or the method (allocated here). */
+static int panel_image(const fig_def *f, const fig_panel *fp, const aa_scene *scene,
+                       const aa_image *ref, const aa_filter *filter, int threads, aa_image *img)
+{
+    int st;
+    if (fp->kind == P_REFERENCE) {
+        if (!(st = aa_image_alloc(img, ref->w, ref->h, 3)))
+            memcpy(img->v, ref->v, sizeof(double) * 3 * (size_t)ref->w * (size_t)ref->h);
+        return st;
+    }
+    if (fp->kind == P_DOWN2) {
+        aa_image big = {0};
+        st = render_method(f, scene, filter, fp->method, 2 * f->w, 2 * f->h, threads, &big);
+        if (!st)
+            st = down2(&big, img);
+        aa_image_free(&big);
+        return st;
+    }
+    return render_method(f, scene, filter, fp->method, f->w, f->h, threads, img);
+}
+
+/* A panel's errors against the reference (and, encoded, against it
+ * encoded the same way); for a view of 16 pixels or more, what an eye sees
+ * of what the panel shows and its beat energy. */
+static int panel_measure(const fig_def *f, const fig_panel *fp, const char *ftext,
+                         const aa_image *ref, const aa_image *img, const aa_image *eye_truth,
+                         aa_figure_panel *q)
+{
+    aa_metrics met;
+    aa_encode enc = {AA_ENCODE_SRGB, 2.2};
+    int st;
+    if (fp->kind == P_ENCODED && (st = aa_encode_parse(fp->enc, &enc)))
+        return st;
+    if ((st = aa_metrics_compute(ref, img, &enc, &met)))
+        return st;
+    snprintf(q->label, sizeof q->label, "%s", fp->label);
+    snprintf(q->filter, sizeof q->filter, "%s", ftext);
+    q->reference = fp->kind == P_REFERENCE;
+    q->rmse = met.rmse, q->max_err = met.max_err;
+    q->rmse_enc = met.rmse_enc, q->max_err_enc = met.max_err_enc;
+    q->eye_rmse = q->beat = NAN;
+    for (int c = 0; c < 3; c++)
+        q->rgb[c] = img->v[c];
+    if (f->w < 16)
+        return AA_OK;
+    aa_image shown;
+    if ((st = aa_image_alloc(&shown, f->w, f->h, 3)))
+        return st;
+    for (size_t v = 0; v < (size_t)f->w * f->h * 3; v++)
+        shown.v[v] = shown_value(fp, &enc, img->v[v]);
+    st = aa_eye_rmse(&shown, eye_truth, AA_EYE_S, &q->eye_rmse);
+    if (!st)
+        st = aa_band_energy(&shown, AA_BEAT_F0, &q->beat);
+    aa_image_free(&shown);
+    return st;
+}
+
+/* A panel's three label lines (the third may be empty). */
+static void panel_labels(const fig_def *f, const fig_panel *fp, const aa_figure_panel *q,
+                         const char *ftext, char labels[3][128])
+{
+    snprintf(labels[0], 128, "%s", fp->label);
+    if (f->magnify)
+        snprintf(labels[1], 128, "RGB %.3f %.3f %.3f", q->rgb[0], q->rgb[1], q->rgb[2]);
+    else if (fp->kind == P_REFERENCE)
+        snprintf(labels[1], 128, "%s, exact", ftext);
+    else
+        snprintf(labels[1], 128, "RMSE %.3g  max %.3g", q->rmse, q->max_err);
+    if (f->magnify && fp->kind != P_REFERENCE)
+        snprintf(labels[2], 128, "RMSE %.3g", q->rmse);
+    else if (!f->magnify)
+        snprintf(labels[2], 128, "eye %.3g  beat %.2g", q->eye_rmse, q->beat);
+}
+
 static int figure_make(size_t k, const char *dir, const char *cache_dir, int threads,
                        aa_figure_result *r)
 {
@@ -894,71 +969,17 @@ static int figure_make(size_t k, const char *dir, const char *cache_dir, int thr
                           cache_dir, threads, &eye_truth);
     for (int p = 0; p < f->npanels && !st; p++) {
         const fig_panel *fp = &f->panel[p];
-        aa_figure_panel *q = &r->panel[p];
-        int at = 0;
         const char *ftext = fp->filter ? fp->filter : f->filter;
-        if ((st = reference_of(f, &view, ftext, cache_dir, threads, &refs, &at)))
+        int at = 0;
+        if ((st = reference_of(f, &view, ftext, cache_dir, threads, &refs, &at)) ||
+            (st = panel_image(f, fp, scene, &refs.ref[at], &refs.filter[at], threads,
+                              &imgs[p])) ||
+            (st = panel_measure(f, fp, ftext, &refs.ref[at], &imgs[p], &eye_truth,
+                                &r->panel[p])) ||
+            (st = make_tile(f, fp, &imgs[p], &tiles[p])))
             break;
-        const aa_image *ref = &refs.ref[at];
-        const aa_filter *filter = &refs.filter[at];
-        if (fp->kind == P_REFERENCE) {
-            if (!(st = aa_image_alloc(&imgs[p], ref->w, ref->h, 3)))
-                memcpy(imgs[p].v, ref->v, sizeof(double) * 3 * (size_t)ref->w * (size_t)ref->h);
-        } else if (fp->kind == P_DOWN2) {
-            aa_image big = {0};
-            st = render_method(f, scene, filter, fp->method, 2 * f->w, 2 * f->h, threads, &big);
-            if (!st)
-                st = down2(&big, &imgs[p]);
-            aa_image_free(&big);
-        } else {
-            st = render_method(f, scene, filter, fp->method, f->w, f->h, threads, &imgs[p]);
-        }
-        if (st)
-            break;
-        aa_metrics met;
-        aa_encode enc = {AA_ENCODE_SRGB, 2.2};
-        if (fp->kind == P_ENCODED && (st = aa_encode_parse(fp->enc, &enc)))
-            break;
-        if ((st = aa_metrics_compute(ref, &imgs[p], &enc, &met)))
-            break;
-        snprintf(q->label, sizeof q->label, "%s", fp->label);
-        snprintf(q->filter, sizeof q->filter, "%s", ftext);
-        q->reference = fp->kind == P_REFERENCE;
-        q->rmse = met.rmse, q->max_err = met.max_err;
-        q->rmse_enc = met.rmse_enc, q->max_err_enc = met.max_err_enc;
-        q->eye_rmse = q->beat = NAN;
-        for (int c = 0; c < 3; c++)
-            q->rgb[c] = imgs[p].v[c];
-        if (f->w >= 16) {
-            aa_image shown;
-            if ((st = aa_image_alloc(&shown, f->w, f->h, 3)))
-                break;
-            for (size_t v = 0; v < (size_t)f->w * f->h * 3; v++)
-                shown.v[v] = shown_value(fp, &enc, imgs[p].v[v]);
-            st = aa_eye_rmse(&shown, &eye_truth, AA_EYE_S, &q->eye_rmse);
-            if (!st)
-                st = aa_band_energy(&shown, AA_BEAT_F0, &q->beat);
-            aa_image_free(&shown);
-            if (st)
-                break;
-        }
-        if ((st = make_tile(f, fp, &imgs[p], &tiles[p])))
-            break;
+        panel_labels(f, fp, &r->panel[p], ftext, labels[p]);
         tl[p].image = &tiles[p];
-        snprintf(labels[p][0], sizeof labels[p][0], "%s", fp->label);
-        if (f->magnify)
-            snprintf(labels[p][1], sizeof labels[p][1], "RGB %.3f %.3f %.3f", q->rgb[0],
-                     q->rgb[1], q->rgb[2]);
-        else if (fp->kind == P_REFERENCE)
-            snprintf(labels[p][1], sizeof labels[p][1], "%s, exact", ftext);
-        else
-            snprintf(labels[p][1], sizeof labels[p][1], "RMSE %.3g  max %.3g", q->rmse,
-                     q->max_err);
-        if (f->magnify && fp->kind != P_REFERENCE)
-            snprintf(labels[p][2], sizeof labels[p][2], "RMSE %.3g", q->rmse);
-        else if (!f->magnify)
-            snprintf(labels[p][2], sizeof labels[p][2], "eye %.3g  beat %.2g", q->eye_rmse,
-                     q->beat);
         tl[p].label[0] = labels[p][0];
         tl[p].label[1] = labels[p][1];
         tl[p].label[2] = labels[p][2][0] ? labels[p][2] : NULL;
