@@ -2,6 +2,9 @@
  * test_figures_papers.c: the seed papers' figures and claims (figures.c,
  * eye.c, calibration.c) and the suites (suite.c, the run's pairing).
  *
+ *  - The tables: every figure's row and every claim's row names specs that
+ *    parse (its pattern, filters, methods, encodings, timed pairs), lists
+ *    of one length and a measure; a row past the end is refused.
  *  - The figures: every title dates Crow's thesis 1976 (never 1977); no
  *    two figures are the same picture (aa_figure_key); the figures Crow,
  *    Catmull and Feibush et al. made with a method of their own are made
@@ -50,6 +53,22 @@
 
 static char dir[] = "/tmp/aabench-figp-XXXXXX";
 static char output[65536];
+
+static void test_tables(void **state)
+{
+    (void)state;
+    assert_true(aa_figure_count() > 0);
+    for (size_t k = 0; k < aa_figure_count(); k++)
+        if (aa_figure_check(k) != AA_OK)
+            fail_msg("%s", aa_last_error());
+    assert_int_equal(aa_figure_check(aa_figure_count()), AA_EINVAL);
+    assert_true(aa_claim_count() > 0);
+    for (size_t k = 0; k < aa_claim_count(); k++)
+        if (aa_claim_check(k) != AA_OK)
+            fail_msg("%s", aa_last_error());
+    assert_int_equal(aa_claim_check(aa_claim_count()), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "no claim"));
+}
 
 static void test_titles_1976(void **state)
 {
@@ -543,6 +562,7 @@ int main(void)
     if (!mkdtemp(dir))
         return 1;
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_tables),
         cmocka_unit_test(test_titles_1976),   cmocka_unit_test(test_figures_differ),
         cmocka_unit_test(test_papers_methods), cmocka_unit_test(test_catmull_moved),
         cmocka_unit_test(test_eye),           cmocka_unit_test(test_eye_truth),

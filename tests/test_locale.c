@@ -119,10 +119,10 @@ static void test_csv_json(void **state)
     free(back);
     assert_int_equal(aa_rows_write_json(json, &row, 1), AA_OK);
     t = slurp(json);
-    assert_non_null(strstr(t, "\"rmse\": 0.125,"));
-    assert_non_null(strstr(t, "\"psnr\": 18.0625,"));
-    assert_non_null(strstr(t, "\"render_seconds\": 0.001953125,"));
-    assert_non_null(strstr(t, "\"time\": 0.5, \"motion\": [0.25, -1.5]"));
+    assert_non_null(strstr(t, "\"rmse\":0.125,"));
+    assert_non_null(strstr(t, "\"psnr\":18.0625,"));
+    assert_non_null(strstr(t, "\"render_seconds\":0.001953125,"));
+    assert_non_null(strstr(t, "\"time\":0.5,\"motion\":[0.25,-1.5]"));
 }
 
 static void test_view_key(void **state)

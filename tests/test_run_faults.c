@@ -503,8 +503,8 @@ static void test_rows_kept_when_killed(void **state)
     assert_true(strtod(cell(t, 1, "rmse"), NULL) < 1e-12);
     char text[1 << 14];
     slurp(json, text, sizeof text);
-    expect_in(text, "\"method\": \"point\"", "results.json");
-    expect_in(text, "\"method\": \"area\"", "results.json");
+    expect_in(text, "\"method\":\"point\"", "results.json");
+    expect_in(text, "\"method\":\"area\"", "results.json");
     /* the isolated case (its command line is the run's) died with the run */
     char cmd[900];
     /* "kille[d]": a pattern the shell running pgrep does not match */

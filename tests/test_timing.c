@@ -289,8 +289,8 @@ static void test_results_round_trip(void **state)
                           "\"kernel\": ", "\"gsl\": ", "\"openimageio\": ", "\"freetype\": ",
                           "\"cairo\": ", "\"stb\": ", "\"date\": ", "\"load\": [",
                           "\"command\": [\"aabench\", \"run\", \"--seeds\", \"3\"]",
-                          "\"results\": [", "\"times\": [0.001, 0.00101,",
-                          "\"noisy\": true, \"noise\": \"outliers+busy\"", "\"seeds\": 3"};
+                          "\"results\": [", "\"times\":[0.001,0.00101,",
+                          "\"noisy\":true,\"noise\":\"outliers+busy\"", "\"seeds\":3"};
     for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
         if (!strstr(t, keys[k]))
             fail_msg("results.json lacks %s", keys[k]);

@@ -380,8 +380,13 @@ int aa_context_collect(aa_context *c, int argc, const char *const *argv, int thr
 char *aa_context_json(const aa_context *c, int indent);
 /* results.json as {"context": ..., "results": [rows]} (ctx NULL: null). */
 int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row *rows, size_t n);
-/* A row's timing as JSON members, each ", \"key\": value" (malloc'd). */
+/* A row's timing, noise and seeds as JSON members to follow an object's
+ * others: ", " and the members as cJSON prints them compactly, or "" for
+ * a row without (malloc'd; NULL: out of memory). */
 char *aa_row_timing_json(const aa_row *r);
+/* The columns of results.csv in the order written, the one table the
+ * writer and the reader share: column k's name, NULL past the end. */
+const char *aa_results_column(size_t k);
 
 /* Comparing two runs (diff.c), case by case. */
 #define AA_ERROR_ABS_TOLERANCE 1e-12
@@ -493,6 +498,10 @@ size_t aa_figure_count(void);
 const char *aa_figure_name(size_t k);  /* NULL past the end */
 int aa_figure_find(const char *name);  /* index, or -1 */
 const char *aa_figure_title(size_t k); /* NULL past the end */
+/* Figure k's row checked: its texts, size and panels present, its
+ * pattern, filters, methods and encodings parsing (AA_EINVAL naming the
+ * figure, the panel and the spec). */
+int aa_figure_check(size_t k);
 /* What figure k is made of, as text: its view and, per panel, the kind,
  * method, filter, encoding and display exponent (two figures with the same
  * key would be the same picture). */
@@ -527,6 +536,11 @@ int aa_crow_calibration(const char *cache_dir, int threads, aa_calibration *out)
  * thread. */
 int aa_claims_make(const char *dir, const char *cache_dir, int threads, int reps,
                    int (*progress)(void *ctx, const char *what), void *ctx);
+/* The claims table (claims.c): how many claims, and claim k's row checked
+ * (its texts present, every pattern, filter and method spec it names
+ * parsing, its lists of one length); AA_EINVAL names the claim and spec. */
+size_t aa_claim_count(void);
+int aa_claim_check(size_t k);
 
 /* ------------------------------------------------------------------------
  * The stress suite (stress.c): scenes at the limits of the geometry, the

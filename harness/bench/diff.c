@@ -1,5 +1,5 @@
 /*
- * diff.c: two runs compared case by case, and a row's timing as JSON.
+ * diff.c: two runs compared case by case.
  *
  * Errors are exact, so a change in them is judged by the regression gate's
  * rule: worse when the RMSE or the largest error exceeds the old one by
@@ -84,76 +84,4 @@ int aa_results_load(const char *path, aa_row **rows, size_t *n)
         }
     }
     return aa_rows_read_csv(csv, rows, n);
-}
-
-static void member(FILE *f, const char *key, double v)
-{
-    fprintf(f, ", \"%s\": ", key);
-    if (isfinite(v))
-        fprintf(f, "%.9g", v);
-    else
-        fputs("null", f);
-}
-
-char *aa_row_timing_json(const aa_row *r)
-{
-    char *text = NULL;
-    size_t len = 0;
-    FILE *f = open_memstream(&text, &len);
-    if (!f)
-        return NULL;
-    const aa_timing *t = &r->timing;
-    if (r->ok && t->n > 0) {
-        const aa_time_stats *s = &t->stats;
-        fputs(", \"timing\": {\"times\": [", f);
-        for (int k = 0; k < t->n; k++)
-            fprintf(f, "%s%.9g", k ? ", " : "", t->wall[k]);
-        fputs("], \"cpu_times\": [", f);
-        for (int k = 0; k < t->n; k++)
-            fprintf(f, "%s%.9g", k ? ", " : "", t->cpu[k]);
-        fprintf(f, "], \"n\": %d, \"fixed\": %s", t->n, t->fixed ? "true" : "false");
-        member(f, "median", s->median);
-        member(f, "mean", s->mean);
-        member(f, "sd", s->sd);
-        member(f, "mad", s->mad);
-        member(f, "min", s->min);
-        member(f, "max", s->max);
-        fputs(", \"ci\": [", f);
-        if (isfinite(s->ci_lo))
-            fprintf(f, "%.9g, %.9g]", s->ci_lo, s->ci_hi);
-        else
-            fputs("null, null]", f);
-        member(f, "ci_level", s->ci_level);
-        member(f, "ci_relative", t->ci_rel);
-        member(f, "target_ci", t->target_ci);
-        fprintf(f, ", \"target_met\": %s, \"outliers\": %zu", t->target_met ? "true" : "false",
-                s->outliers);
-        member(f, "cpu_median", t->cpu_median);
-        member(f, "cpu_share", t->cpu_share);
-        member(f, "load_before", t->load_before);
-        member(f, "load_after", t->load_after);
-        member(f, "others_cores", t->others_cores);
-        member(f, "steal", t->steal);
-        member(f, "elapsed", t->elapsed);
-        fputs("}", f);
-    }
-    if (r->ok) {
-        char why[128];
-        aa_noisy_text(t->noisy, why, sizeof why);
-        fprintf(f, ", \"noisy\": %s, \"noise\": \"%s\"", t->noisy ? "true" : "false", why);
-        fprintf(f, ", \"seeds\": %d", r->seeds > 0 ? r->seeds : 1);
-        if (r->seeds > 1) {
-            member(f, "rmse_mean", r->rmse_mean);
-            fputs(", \"rmse_ci\": [", f);
-            if (isfinite(r->rmse_ci_lo))
-                fprintf(f, "%.9g, %.9g]", r->rmse_ci_lo, r->rmse_ci_hi);
-            else
-                fputs("null, null]", f);
-        }
-    }
-    if (fclose(f) != 0) {
-        free(text);
-        return NULL;
-    }
-    return text;
 }

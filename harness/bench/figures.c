@@ -59,8 +59,6 @@ typedef struct fig_panel {
 #define ENC(m, l, e) {P_ENCODED, m, l, NULL, e, 0}
 #define MAP(m, l, g) {P_MAP, m, l, NULL, NULL, g}
 
-enum { FIG_PANELS = 0, FIG_CALIBRATION };
-
 typedef struct fig_def {
     const char *name;
     const char *title;
@@ -74,8 +72,14 @@ typedef struct fig_def {
     int magnify;        /* a 1 x 1 view shown as a swatch this many pixels a side */
     int columns, npanels;
     fig_panel panel[AA_FIGURE_PANELS];
-    int special;
+    /* NULL: the panels above; else the figure's own measure, which writes
+     * DIR/NAME.* itself (fig. A.4's calibration) */
+    int (*make)(const struct fig_def *f, const char *dir, const char *cache_dir, int threads,
+                aa_figure_result *r);
 } fig_def;
+
+static int figure_calibration(const fig_def *f, const char *dir, const char *cache_dir,
+                              int threads, aa_figure_result *r);
 
 /* Page numbers of Crow 1976 are those of the thesis' table of contents. */
 static const fig_def figures[] = {
@@ -89,7 +93,7 @@ static const fig_def figures[] = {
      "patterns, \"much easier to detect than jaggedness along a single edge\"; toward the right, "
      "where the detail is too fine to be resolved, \"similar patterns are caused by improper "
      "summing\". No number is given; the eye_rmse below measures the moire an eye sees.",
-     NULL, "crow", 256, 256, "box", 0, 0, 0, 1, 1, {M("point", "point sampling")}, 0},
+     NULL, "crow", 256, 256, "box", 0, 0, 0, 1, 1, {M("point", "point sampling")}, NULL},
     {"fig-crow-2.11",
      "Crow (1976) fig. 2.11: nine equally weighted samples per dot (3 x 3 supersampling, box)",
      "Crow 1976, ch. 2, \"Evaluating convolutional filters\" (pp. 37-41), fig. 2.11: \"The "
@@ -99,7 +103,7 @@ static const fig_def figures[] = {
      "Against fig. 2.10 the moire should weaken; the eye_rmse below is comparable across figs. "
      "2.10-2.14 (the claims table ranks them).",
      NULL, "crow", 256, 256, "box", 0, 0, 0, 1, 1, {M("supersample:n=3", "3 x 3 samples, box")},
-     0},
+     NULL},
     {"fig-crow-2.12",
      "Crow (1976) fig. 2.12: 25 unequally weighted samples per dot (5 x 5 supersampling under "
      "the two-dot pyramid)",
@@ -112,7 +116,7 @@ static const fig_def figures[] = {
      "weighted by the pyramid (tent:r=1), the filter of fig. 2.14 and of his tiler, whose "
      "exact reference the panel is measured against.",
      "crow", 256, 256, "tent:r=1", 0, 0, 0, 1, 1,
-     {M("supersample:n=5", "5 x 5 samples, pyramid")}, 0},
+     {M("supersample:n=5", "5 x 5 samples, pyramid")}, NULL},
     {"fig-crow-2.13",
      "Crow (1976) fig. 2.13: the pyramid of base one dot by Crow's table method, beside the "
      "exact reference and 5 x 5 supersampling",
@@ -131,7 +135,7 @@ static const fig_def figures[] = {
      256, 256, "tent:r=0.5", 0, 0, 0, 3, 3,
      {M("crowtable", "Crow's tables"), REF("exact reference"),
       M("supersample:n=5", "5 x 5 samples")},
-     0},
+     NULL},
     {"fig-crow-2.14",
      "Crow (1976) fig. 2.14: the pyramid of base two dots by Crow's table method, beside the "
      "exact reference and 5 x 5 supersampling",
@@ -149,7 +153,7 @@ static const fig_def figures[] = {
      256, 256, "tent:r=1", 0, 0, 0, 3, 3,
      {M("crowtable", "Crow's tables"), REF("exact reference"),
       M("supersample:n=5", "5 x 5 samples (fig. 2.12)")},
-     0},
+     NULL},
     {"fig-crow-3.14",
      "Crow (1976) fig. 3.14: the filtering tiler beside a conventional tiler, 256 by 256",
      "Crow 1976, ch. 3, \"Implementation of a tiler\" (pp. 66-71), fig. 3.14: \"A 256 by 256 "
@@ -168,7 +172,7 @@ static const fig_def figures[] = {
      "star", 256, 256, "box", 0, 0, 0, 2, 2,
      {MF("crowtiler", "filtering tiler (tent:r=1)", "tent:r=1"),
       M("point", "conventional tiler (box)")},
-     0},
+     NULL},
     {"fig-crow-3.15",
      "Crow (1976) fig. 3.15: the filtering tiler beside a conventional tiler at doubled "
      "resolution, four dots averaged into one",
@@ -186,7 +190,7 @@ static const fig_def figures[] = {
      "box", 0, 0, 0, 2, 2,
      {MF("crowtiler", "filtering tiler (tent:r=1)", "tent:r=1"),
       D2("point", "doubled resolution (box)")},
-     0},
+     NULL},
     {"fig-crow-3.16",
      "Crow (1976) fig. 3.16: the filtering, conventional and doubled-resolution tilers together",
      "Crow 1976, ch. 3, \"Implementation of a tiler\" (pp. 66-71), fig. 3.16: \"Images from the "
@@ -199,7 +203,7 @@ static const fig_def figures[] = {
      "box", 0, 0, 0, 3, 3,
      {MF("crowtiler", "filtering tiler (tent:r=1)", "tent:r=1"),
       M("point", "conventional tiler (box)"), D2("point", "doubled resolution (box)")},
-     0},
+     NULL},
     {"fig-crow-3.17",
      "Crow (1976) fig. 3.17: the three tilers on slender, nearly horizontal triangles",
      "Crow 1976, ch. 3, \"Implementation of a tiler\" (pp. 66-71), fig. 3.17: \"The three "
@@ -216,7 +220,7 @@ static const fig_def figures[] = {
      "slivers", 256, 256, "box", 0, 0, 0, 3, 3,
      {MF("crowtiler", "filtering tiler (tent:r=1)", "tent:r=1"),
       M("point", "conventional tiler (box)"), D2("point", "doubled resolution (box)")},
-     0},
+     NULL},
     {"fig-crow-3.18", "Crow (1976) fig. 3.18: the non-filtered test pattern (conventional tiler)",
      "Crow 1976, ch. 3 (after the summary, pp. 71-75), fig. 3.18: \"The non-filtered test "
      "pattern\", the test pattern of ch. 2 through the conventional tiler, as the pair of fig. "
@@ -227,7 +231,7 @@ static const fig_def figures[] = {
      "are made here at the 512 by 512 of his frame buffer (appendix, pp. 88-92), not at fig. "
      "2.10's 256 by 256, which would repeat fig. 2.10. At this size the bands are 16 dots "
      "apart at the left and reach the Nyquist limit only at the right.",
-     "crow", 512, 512, "box", 0, 0, 0, 1, 1, {M("point", "non-filtered (point)")}, 0},
+     "crow", 512, 512, "box", 0, 0, 0, 1, 1, {M("point", "non-filtered (point)")}, NULL},
     {"fig-crow-3.19", "Crow (1976) fig. 3.19: the filtered test pattern (filtering tiler)",
      "Crow 1976, ch. 3 (after the summary, pp. 71-75), fig. 3.19: \"The filtered test pattern\", "
      "by his filtering tiler (figs. 3.12-3.13, two-dot pyramid). Made here with the same "
@@ -235,7 +239,7 @@ static const fig_def figures[] = {
      "With fig. 3.18: the filtering tiler removes the moire and staircases of the non-filtered "
      "pattern. No number is given (eye_rmse; the tiler's rmse is its tables' error).",
      "As fig. 3.18: 512 by 512, the size of Crow's frame buffer.", "crow", 512, 512, "tent:r=1",
-     0, 0, 0, 2, 2, {M("crowtiler", "filtering tiler"), REF("exact reference")}, 0},
+     0, 0, 0, 2, 2, {M("crowtiler", "filtering tiler"), REF("exact reference")}, NULL},
     {"fig-crow-A.1",
      "Crow (1976) fig. A.1: the test pattern and a grey scale with a linear colour map",
      "Crow 1976, appendix, \"Grey scale compensation\" (pp. 88-92), fig. A.1: \"Test pattern "
@@ -250,7 +254,7 @@ static const fig_def figures[] = {
      "Crow's monitor and its square law are modelled: the panel's pixels hold the intensity "
      "his screen would show, v^2, and the PNG encodes that intensity for this screen.",
      "crow", 256, 256, "tent:r=1", 0, 0, 0, 1, 1,
-     {MAP("crowtable", "linear map: shown v^2", 2)}, 0},
+     {MAP("crowtable", "linear map: shown v^2", 2)}, NULL},
     {"fig-crow-A.2",
      "Crow (1976) fig. A.2: the test pattern and a grey scale with a convex upward colour map",
      "Crow 1976, appendix (pp. 88-92), fig. A.2: \"Test pattern and grey scale with convex "
@@ -262,7 +266,7 @@ static const fig_def figures[] = {
      "Crow does not give the curve's shape: v^(1/2) stands in for \"convex upward\", so that on "
      "his square-law monitor the shown intensity is v.",
      "crow", 256, 256, "tent:r=1", 0, 0, 0, 1, 1,
-     {MAP("crowtable", "convex map: shown v", 1)}, 0},
+     {MAP("crowtable", "convex map: shown v", 1)}, NULL},
     {"fig-crow-A.3",
      "Crow (1976) fig. A.3: the test pattern and a grey scale with a concave upward colour map",
      "Crow 1976, appendix (pp. 88-92), fig. A.3: \"Test pattern and grey scale with concave "
@@ -274,7 +278,7 @@ static const fig_def figures[] = {
      "Crow does not give the curve's shape: v^2 stands in for \"concave upward\" (shown "
      "intensity v^4 on his square-law monitor).",
      "crow", 256, 256, "tent:r=1", 0, 0, 0, 1, 1,
-     {MAP("crowtable", "concave map: shown v^4", 4)}, 0},
+     {MAP("crowtable", "concave map: shown v^4", 4)}, NULL},
     {"fig-crow-A.4",
      "Crow (1976) fig. A.4, as a measurement: the grey scale's intensity under the three maps, "
      "and the moire an eye sees against the display's response exponent",
@@ -291,7 +295,7 @@ static const fig_def figures[] = {
      "Photometer readings of a real monitor cannot be remade: the left plot draws the three "
      "maps' shown intensity v^g (g = 2, 1, 4) and its square root; the right plot replaces the "
      "subjective adjustment by the measured fringes.",
-     "crow", 256, 256, "tent:r=1", 0, 0, 0, 1, 0, {{0}}, FIG_CALIBRATION},
+     "crow", 256, 256, "tent:r=1", 0, 0, 0, 1, 0, {{0}}, figure_calibration},
     {"fig-crow-A-encodings",
      "Display encodings (an extra to Crow's appendix): the exact area image encoded linear, "
      "sRGB and with the square law, each beside a grey ramp encoded the same way",
@@ -303,7 +307,7 @@ static const fig_def figures[] = {
      NULL, "crow", 256, 256, "box", 0, 0, 0, 3, 3,
      {ENC("area", "area, linear", "linear"), ENC("area", "area, sRGB", "srgb"),
       ENC("area", "area, gamma 2 (square law)", "gamma:2")},
-     0},
+     NULL},
     {"fig-catmull-1",
      "Catmull (1978) fig. 1: the colour of one pixel holding a hidden red, green and blue in "
      "front, by each method (64 x 64 swatches of the 1 x 1 image)",
@@ -324,7 +328,7 @@ static const fig_def figures[] = {
      {M("point", "point"), M("supersample:n=4", "supersample:n=4"),
       M("jitter:spp=16", "jitter:spp=16"), M("area", "area (Catmull)"),
       REF("exact reference")},
-     0},
+     NULL},
     {"fig-feibush-4b", "Feibush, Levoy and Cook (1980) fig. 4b: no filter, 512 x 512",
      "Feibush, Levoy and Cook 1980, sec. 3 (\"Examples\"), fig. 4b: \"No filter\": a polygon "
      "textured with red and white stripes in perspective, computed at 512 x 512. Made here "
@@ -336,7 +340,7 @@ static const fig_def figures[] = {
      "near and beyond the Nyquist limit, where their moire shows. The paper does not give its "
      "number of stripes.",
      "feibush:stripes=200", 512, 512, "box", 0, 0, 0, 1, 1, {M("point", "no filter (point)")},
-     0},
+     NULL},
     {"fig-feibush-4c",
      "Feibush, Levoy and Cook (1980) fig. 4c: unweighted filter (exact area), 512 x 512",
      "Feibush, Levoy and Cook 1980, sec. 3, fig. 4c: \"an unweighted filter with a square "
@@ -346,7 +350,7 @@ static const fig_def figures[] = {
      "Moire is still evident in the center of the polygon.\" (eye_rmse against figs. 4b and "
      "4d.)",
      "As fig. 4b: 200 stripes of the scene stand in for the texture.", "feibush:stripes=200",
-     512, 512, "box", 0, 0, 0, 1, 1, {M("area", "unweighted (area)")}, 0},
+     512, 512, "box", 0, 0, 0, 1, 1, {M("area", "unweighted (area)")}, NULL},
     {"fig-feibush-4d",
      "Feibush, Levoy and Cook (1980) fig. 4d: Gaussian filter (s = 1 pixel, mask radius 2 s) "
      "by their texture and edge filters, beside the exact reference, 512 x 512",
@@ -367,7 +371,7 @@ static const fig_def figures[] = {
      "feibush:stripes=200", 512, 512, "gauss:s=1", 0, 0, 0, 3, 3,
      {M("feibushtex:texels=1000", "texture filter (feibushtex)"),
       M("conetable", "edge filter alone (conetable)"), REF("exact reference")},
-     0},
+     NULL},
 };
 
 #define NFIG (sizeof figures / sizeof figures[0])
@@ -398,7 +402,7 @@ int aa_figure_key(size_t k, char *buf, size_t len)
         return st;
     size_t n = (size_t)snprintf(buf, len, "%s %dx%d %s moved %.17g,%.17g x%d%s", f->pattern,
                                 f->w, f->h, f->filter, f->sx, f->sy, f->magnify,
-                                f->special == FIG_CALIBRATION ? " calibration" : "");
+                                f->make ? " calibration" : "");
     static const char *const kind[] = {"method", "reference", "down2", "encoded", "map"};
     for (int p = 0; p < f->npanels && n < len; p++) {
         const fig_panel *q = &f->panel[p];
@@ -416,6 +420,41 @@ int aa_figure_find(const char *name)
         if (strcmp(figures[k].name, name) == 0)
             return (int)k;
     return -1;
+}
+
+int aa_figure_check(size_t k)
+{
+    if (k >= NFIG)
+        return aa_fail(AA_EINVAL, "no figure %zu (there are %zu)", k, NFIG);
+    const fig_def *f = &figures[k];
+    aa_spec spec;
+    aa_filter filter;
+    aa_encode enc;
+    if (!f->title || !f->paper || !f->claim)
+        return aa_fail(AA_EINVAL, "%s: a text is missing", f->name);
+    if (f->w < 1 || f->h < 1 || f->npanels < 0 || f->npanels > AA_FIGURE_PANELS)
+        return aa_fail(AA_EINVAL, "%s: size %dx%d, %d panels", f->name, f->w, f->h, f->npanels);
+    if (!f->make && (f->npanels < 1 || f->columns < 1))
+        return aa_fail(AA_EINVAL, "%s: no panels and no measure of its own", f->name);
+    int st = aa_pattern_parse(f->pattern, &spec);
+    if (st)
+        return aa_fail_context(st, "%s: pattern %s", f->name, f->pattern);
+    for (int p = 0; p < f->npanels; p++) {
+        const fig_panel *q = &f->panel[p];
+        const char *ftext = q->filter ? q->filter : f->filter;
+        if (!q->label)
+            return aa_fail(AA_EINVAL, "%s: panel %d has no label", f->name, p + 1);
+        if ((st = aa_filter_parse(ftext, &filter)))
+            return aa_fail_context(st, "%s: panel %d: filter %s", f->name, p + 1, ftext);
+        if (q->kind != P_REFERENCE && (!q->method || (st = aa_method_parse(q->method, &filter,
+                                                                            &spec))))
+            return q->method ? aa_fail_context(st, "%s: panel %d: method %s", f->name, p + 1,
+                                               q->method)
+                             : aa_fail(AA_EINVAL, "%s: panel %d has no method", f->name, p + 1);
+        if (q->kind == P_ENCODED && (!q->enc || (st = aa_encode_parse(q->enc, &enc))))
+            return aa_fail(AA_EINVAL, "%s: panel %d: no encoding it can show", f->name, p + 1);
+    }
+    return AA_OK;
 }
 
 /* sRGB decoding (IEC 61966-2-1): a value to display as `e` is stored as
@@ -818,6 +857,81 @@ static int reference_of(const fig_def *f, const aa_view *base, const char *text,
     return AA_OK;
 }
 
+/* A panel's image: the reference itself, the method at twice the size
+ * averaged down, or the method (allocated here). */
+static int panel_image(const fig_def *f, const fig_panel *fp, const aa_scene *scene,
+                       const aa_image *ref, const aa_filter *filter, int threads, aa_image *img)
+{
+    int st;
+    if (fp->kind == P_REFERENCE) {
+        if (!(st = aa_image_alloc(img, ref->w, ref->h, 3)))
+            memcpy(img->v, ref->v, sizeof(double) * 3 * (size_t)ref->w * (size_t)ref->h);
+        return st;
+    }
+    if (fp->kind == P_DOWN2) {
+        aa_image big = {0};
+        st = render_method(f, scene, filter, fp->method, 2 * f->w, 2 * f->h, threads, &big);
+        if (!st)
+            st = down2(&big, img);
+        aa_image_free(&big);
+        return st;
+    }
+    return render_method(f, scene, filter, fp->method, f->w, f->h, threads, img);
+}
+
+/* A panel's errors against the reference (and, encoded, against it
+ * encoded the same way); for a view of 16 pixels or more, what an eye sees
+ * of what the panel shows and its beat energy. */
+static int panel_measure(const fig_def *f, const fig_panel *fp, const char *ftext,
+                         const aa_image *ref, const aa_image *img, const aa_image *eye_truth,
+                         aa_figure_panel *q)
+{
+    aa_metrics met;
+    aa_encode enc = {AA_ENCODE_SRGB, 2.2};
+    int st;
+    if (fp->kind == P_ENCODED && (st = aa_encode_parse(fp->enc, &enc)))
+        return st;
+    if ((st = aa_metrics_compute(ref, img, &enc, &met)))
+        return st;
+    snprintf(q->label, sizeof q->label, "%s", fp->label);
+    snprintf(q->filter, sizeof q->filter, "%s", ftext);
+    q->reference = fp->kind == P_REFERENCE;
+    q->rmse = met.rmse, q->max_err = met.max_err;
+    q->rmse_enc = met.rmse_enc, q->max_err_enc = met.max_err_enc;
+    q->eye_rmse = q->beat = NAN;
+    for (int c = 0; c < 3; c++)
+        q->rgb[c] = img->v[c];
+    if (f->w < 16)
+        return AA_OK;
+    aa_image shown;
+    if ((st = aa_image_alloc(&shown, f->w, f->h, 3)))
+        return st;
+    for (size_t v = 0; v < (size_t)f->w * f->h * 3; v++)
+        shown.v[v] = shown_value(fp, &enc, img->v[v]);
+    st = aa_eye_rmse(&shown, eye_truth, AA_EYE_S, &q->eye_rmse);
+    if (!st)
+        st = aa_band_energy(&shown, AA_BEAT_F0, &q->beat);
+    aa_image_free(&shown);
+    return st;
+}
+
+/* A panel's three label lines (the third may be empty). */
+static void panel_labels(const fig_def *f, const fig_panel *fp, const aa_figure_panel *q,
+                         const char *ftext, char labels[3][128])
+{
+    snprintf(labels[0], 128, "%s", fp->label);
+    if (f->magnify)
+        snprintf(labels[1], 128, "RGB %.3f %.3f %.3f", q->rgb[0], q->rgb[1], q->rgb[2]);
+    else if (fp->kind == P_REFERENCE)
+        snprintf(labels[1], 128, "%s, exact", ftext);
+    else
+        snprintf(labels[1], 128, "RMSE %.3g  max %.3g", q->rmse, q->max_err);
+    if (f->magnify && fp->kind != P_REFERENCE)
+        snprintf(labels[2], 128, "RMSE %.3g", q->rmse);
+    else if (!f->magnify)
+        snprintf(labels[2], 128, "eye %.3g  beat %.2g", q->eye_rmse, q->beat);
+}
+
 static int figure_make(size_t k, const char *dir, const char *cache_dir, int threads,
                        aa_figure_result *r)
 {
@@ -828,8 +942,8 @@ static int figure_make(size_t k, const char *dir, const char *cache_dir, int thr
     r->name = f->name;
     r->npanels = f->npanels;
     double t0 = aa_now();
-    if (f->special == FIG_CALIBRATION) {
-        int st = figure_calibration(f, dir, cache_dir, threads, r);
+    if (f->make) {
+        int st = f->make(f, dir, cache_dir, threads, r);
         r->seconds = aa_now() - t0;
         return st;
     }
@@ -855,71 +969,17 @@ static int figure_make(size_t k, const char *dir, const char *cache_dir, int thr
                           cache_dir, threads, &eye_truth);
     for (int p = 0; p < f->npanels && !st; p++) {
         const fig_panel *fp = &f->panel[p];
-        aa_figure_panel *q = &r->panel[p];
-        int at = 0;
         const char *ftext = fp->filter ? fp->filter : f->filter;
-        if ((st = reference_of(f, &view, ftext, cache_dir, threads, &refs, &at)))
+        int at = 0;
+        if ((st = reference_of(f, &view, ftext, cache_dir, threads, &refs, &at)) ||
+            (st = panel_image(f, fp, scene, &refs.ref[at], &refs.filter[at], threads,
+                              &imgs[p])) ||
+            (st = panel_measure(f, fp, ftext, &refs.ref[at], &imgs[p], &eye_truth,
+                                &r->panel[p])) ||
+            (st = make_tile(f, fp, &imgs[p], &tiles[p])))
             break;
-        const aa_image *ref = &refs.ref[at];
-        const aa_filter *filter = &refs.filter[at];
-        if (fp->kind == P_REFERENCE) {
-            if (!(st = aa_image_alloc(&imgs[p], ref->w, ref->h, 3)))
-                memcpy(imgs[p].v, ref->v, sizeof(double) * 3 * (size_t)ref->w * (size_t)ref->h);
-        } else if (fp->kind == P_DOWN2) {
-            aa_image big = {0};
-            st = render_method(f, scene, filter, fp->method, 2 * f->w, 2 * f->h, threads, &big);
-            if (!st)
-                st = down2(&big, &imgs[p]);
-            aa_image_free(&big);
-        } else {
-            st = render_method(f, scene, filter, fp->method, f->w, f->h, threads, &imgs[p]);
-        }
-        if (st)
-            break;
-        aa_metrics met;
-        aa_encode enc = {AA_ENCODE_SRGB, 2.2};
-        if (fp->kind == P_ENCODED && (st = aa_encode_parse(fp->enc, &enc)))
-            break;
-        if ((st = aa_metrics_compute(ref, &imgs[p], &enc, &met)))
-            break;
-        snprintf(q->label, sizeof q->label, "%s", fp->label);
-        snprintf(q->filter, sizeof q->filter, "%s", ftext);
-        q->reference = fp->kind == P_REFERENCE;
-        q->rmse = met.rmse, q->max_err = met.max_err;
-        q->rmse_enc = met.rmse_enc, q->max_err_enc = met.max_err_enc;
-        q->eye_rmse = q->beat = NAN;
-        for (int c = 0; c < 3; c++)
-            q->rgb[c] = imgs[p].v[c];
-        if (f->w >= 16) {
-            aa_image shown;
-            if ((st = aa_image_alloc(&shown, f->w, f->h, 3)))
-                break;
-            for (size_t v = 0; v < (size_t)f->w * f->h * 3; v++)
-                shown.v[v] = shown_value(fp, &enc, imgs[p].v[v]);
-            st = aa_eye_rmse(&shown, &eye_truth, AA_EYE_S, &q->eye_rmse);
-            if (!st)
-                st = aa_band_energy(&shown, AA_BEAT_F0, &q->beat);
-            aa_image_free(&shown);
-            if (st)
-                break;
-        }
-        if ((st = make_tile(f, fp, &imgs[p], &tiles[p])))
-            break;
+        panel_labels(f, fp, &r->panel[p], ftext, labels[p]);
         tl[p].image = &tiles[p];
-        snprintf(labels[p][0], sizeof labels[p][0], "%s", fp->label);
-        if (f->magnify)
-            snprintf(labels[p][1], sizeof labels[p][1], "RGB %.3f %.3f %.3f", q->rgb[0],
-                     q->rgb[1], q->rgb[2]);
-        else if (fp->kind == P_REFERENCE)
-            snprintf(labels[p][1], sizeof labels[p][1], "%s, exact", ftext);
-        else
-            snprintf(labels[p][1], sizeof labels[p][1], "RMSE %.3g  max %.3g", q->rmse,
-                     q->max_err);
-        if (f->magnify && fp->kind != P_REFERENCE)
-            snprintf(labels[p][2], sizeof labels[p][2], "RMSE %.3g", q->rmse);
-        else if (!f->magnify)
-            snprintf(labels[p][2], sizeof labels[p][2], "eye %.3g  beat %.2g", q->eye_rmse,
-                     q->beat);
         tl[p].label[0] = labels[p][0];
         tl[p].label[1] = labels[p][1];
         tl[p].label[2] = labels[p][2][0] ? labels[p][2] : NULL;

@@ -7,9 +7,16 @@
  * empty measurements and its reason in `note`.  Both files are written
  * atomically.  Numbers are C-locale text ('.' as the decimal point), read
  * and written so whatever LC_NUMERIC the program has set.
+ *
+ * The CSV's columns are one table, `columns`: each column's name, how its
+ * cell is written and read, and when a row holds a value in it; the writer
+ * and the reader both walk it, so they cannot disagree on a column.
+ * results.json is built with cJSON, a row a line.
  */
 #include "bench.h"
 #include "c_numbers_internal.h"
+
+#include <cJSON.h>
 
 #include <errno.h>
 #include <math.h>
@@ -89,88 +96,6 @@ static void num(text *t, double v)
         put(t, "%.9g", v);
 }
 
-/* The columns, in order; each writes one value of a row. */
-#define COLUMNS(X)                                                                               \
-    X(pattern, csv_field(t, r->pattern))                                                         \
-    X(size, put(t, "%dx%d", r->w, r->h))                                                         \
-    X(filter, csv_field(t, r->filter))                                                           \
-    X(method, csv_field(t, r->method))                                                           \
-    X(canonical, csv_field(t, r->canonical))                                                     \
-    X(spp, M(num(t, r->spp)))                                                                    \
-    X(rmse, M(num(t, r->m.rmse)))                                                                \
-    X(mae, M(num(t, r->m.mae)))                                                                  \
-    X(max_err, M(num(t, r->m.max_err)))                                                          \
-    X(max_i, M(put(t, "%d", r->m.max_at[0])))                                                    \
-    X(max_j, M(put(t, "%d", r->m.max_at[1])))                                                    \
-    X(psnr, M(num(t, r->m.psnr)))                                                                \
-    X(rmse_enc, M(num(t, r->m.rmse_enc)))                                                        \
-    X(mae_enc, M(num(t, r->m.mae_enc)))                                                          \
-    X(max_err_enc, M(num(t, r->m.max_err_enc)))                                                  \
-    X(psnr_enc, M(num(t, r->m.psnr_enc)))                                                        \
-    X(alias_total, M(num(t, r->m.alias_total)))                                                  \
-    X(alias_low, M(num(t, r->m.alias_low)))                                                      \
-    X(alias_high, M(num(t, r->m.alias_high)))                                                    \
-    X(ssim, M(num(t, r->m.ssim)))                                                                \
-    X(render_seconds, M(num(t, r->seconds)))                                                     \
-    X(render_seconds_min, M(num(t, r->seconds_min)))                                             \
-    X(render_seconds_max, M(num(t, r->seconds_max)))                                             \
-    X(ns_per_pixel, M(num(t, r->ns_per_pixel)))                                                  \
-    X(ns_per_sample, M(num(t, r->ns_per_sample)))                                                \
-    X(samples, M(put(t, "%llu", (unsigned long long)r->samples)))                                \
-    X(expensive_pixels, M(put(t, "%llu", (unsigned long long)r->expensive_pixels)))              \
-    X(expensive_fraction, M(num(t, r->expensive_fraction)))                                      \
-    X(frames, T(put(t, "%d", r->tm.frames)))                                                    \
-    X(window, T(put(t, "%d", r->tm.window)))                                                    \
-    X(eye_rmse, T(num(t, r->tm.eye_rmse)))                                                      \
-    X(flicker_mean, T(num(t, r->tm.flicker_mean)))                                              \
-    X(flicker_max, T(num(t, r->tm.flicker_max)))                                                \
-    X(conservation, T(num(t, r->tm.conservation)))                                              \
-    X(popping, T(if (isfinite(r->tm.popping)) num(t, r->tm.popping)))                           \
-    X(threads, put(t, "%d", r->threads))                                                         \
-    X(reps, put(t, "%d", r->reps))                                                               \
-    X(seed, put(t, "%llu", (unsigned long long)r->seed))                                         \
-    X(time, num(t, r->t))                                                                        \
-    X(vx, num(t, r->vx))                                                                         \
-    X(vy, num(t, r->vy))                                                                         \
-    X(ok, put(t, "%d", r->ok))                                                                   \
-    X(note, csv_field(t, r->note))                                                               \
-    TIMING_COLUMNS(X)
-
-/* The timing by precision's columns (core.h, "timing and its statistics"),
- * after the older ones: a reader of older files finds them missing. */
-#define TIMING_COLUMNS(X)                                                                        \
-    X(render_seconds_mean, S(opt(t, r->timing.stats.mean)))                                      \
-    X(render_seconds_sd, S(opt(t, r->timing.stats.sd)))                                          \
-    X(render_seconds_mad, S(opt(t, r->timing.stats.mad)))                                        \
-    X(render_seconds_ci_lo, S(opt(t, r->timing.stats.ci_lo)))                                    \
-    X(render_seconds_ci_hi, S(opt(t, r->timing.stats.ci_hi)))                                    \
-    X(ci_level, S(opt(t, r->timing.stats.ci_level)))                                             \
-    X(target_ci, S(opt(t, r->timing.target_ci)))                                                 \
-    X(outliers, S(put(t, "%zu", r->timing.stats.outliers)))                                      \
-    X(cpu_seconds, S(opt(t, r->timing.cpu_median)))                                              \
-    X(cpu_share, S(opt(t, r->timing.cpu_share)))                                                 \
-    X(load_before, S(opt(t, r->timing.load_before)))                                             \
-    X(load_after, S(opt(t, r->timing.load_after)))                                               \
-    X(others_cores, S(opt(t, r->timing.others_cores)))                                           \
-    X(steal, S(opt(t, r->timing.steal)))                                                         \
-    X(noisy, M(put(t, "%d", r->timing.noisy != 0)))                                              \
-    X(noise, M(noise_cell(t, r)))                                                                \
-    X(seeds, M(put(t, "%d", r->seeds > 0 ? r->seeds : 1)))                                       \
-    X(rmse_mean, M(if (r->seeds > 1) opt(t, r->rmse_mean)))                                      \
-    X(rmse_ci_lo, M(if (r->seeds > 1) opt(t, r->rmse_ci_lo)))                                    \
-    X(rmse_ci_hi, M(if (r->seeds > 1) opt(t, r->rmse_ci_hi)))                                    \
-    X(times, S(times_cell(t, r)))                                                                \
-    X(cpu_times, S(cpu_times_cell(t, r)))                                                        \
-    X(case, if (r->case_index >= 0) put(t, "%ld", r->case_index))                                \
-    X(host, csv_field(t, r->host))
-
-/* timing columns only for rows that ran and were timed */
-#define S(write)                                                                                 \
-    do {                                                                                         \
-        if (r->ok && r->timing.n > 0)                                                            \
-            write;                                                                               \
-    } while (0)
-
 /* a number, or an empty cell when it is not finite (no interval, unknown) */
 static void opt(text *t, double v)
 {
@@ -178,243 +103,215 @@ static void opt(text *t, double v)
         put(t, "%.9g", v);
 }
 
-static void noise_cell(text *t, const aa_row *r)
+/* ---- the columns: one table for the writer and the reader ---- */
+
+/* How a cell is written and read: text (a pattern and a filter must
+ * parse as specs), WxH, a real number within [lo, hi] (hi = INFINITY
+ * lets "inf" in), a count or a seed (0 to 2^64-1), an int within [lo, hi],
+ * 0 or 1; or by the column's own functions (the timing's columns: read
+ * as they are, never refused for being empty or present). */
+enum { K_TEXT, K_SPEC_PATTERN, K_SPEC_FILTER, K_SIZE, K_REAL, K_COUNT, K_INT, K_SEED, K_OK, K_OWN };
+/* When a column holds a value: always; in rows with ok = 1; in rows with
+ * ok = 1 that are animated (temporal metrics), where it may also be empty
+ * (popping: only `dots` has it); text that may be empty; in rows with
+ * ok = 1 that were timed. */
+enum { G_ALWAYS, G_MEASURE, G_TEMPORAL, G_TEMPORAL_OPTIONAL, G_OPTIONAL, G_TIMED };
+
+typedef struct column column;
+struct column {
+    const char *name;
+    int kind, group, required; /* required: a results file must have it */
+    size_t off, size;          /* where in aa_row; the size of a text */
+    double lo, hi;
+    /* K_OWN: write the cell; read it back (NULL: not read, the row's
+     * statistics are recomputed from its times), non-zero if malformed */
+    void (*write)(text *t, const aa_row *r, const column *c);
+    int (*read)(aa_row *row, const column *c, const char *v);
+};
+
+static double field_num(const char *s, int *bad)
 {
+    char *end;
+    if (!*s)
+        return NAN;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (*end)
+        *bad = 1;
+    return v;
+}
+
+static double *real_at(aa_row *row, const column *c)
+{
+    return (double *)(void *)((char *)row + c->off);
+}
+
+static double real_of(const aa_row *r, const column *c)
+{
+    double v;
+    memcpy(&v, (const char *)r + c->off, sizeof v);
+    return v;
+}
+
+/* "noisy" read as 1: a reason is taken from "noise", else "ci" */
+#define NOISY_MARKED (1u << 31)
+
+static void opt_cell(text *t, const aa_row *r, const column *c)
+{
+    opt(t, real_of(r, c));
+}
+
+/* a number of several seeds' statistics (rmse_mean, rmse_ci_*) */
+static void seeds_real_cell(text *t, const aa_row *r, const column *c)
+{
+    if (r->seeds > 1)
+        opt(t, real_of(r, c));
+}
+
+static int read_real(aa_row *row, const column *c, const char *v)
+{
+    int bad = 0;
+    if (*v)
+        *real_at(row, c) = field_num(v, &bad);
+    return bad;
+}
+
+static void outliers_cell(text *t, const aa_row *r, const column *c)
+{
+    (void)c;
+    put(t, "%zu", r->timing.stats.outliers);
+}
+
+static void noisy_cell(text *t, const aa_row *r, const column *c)
+{
+    (void)c;
+    put(t, "%d", r->timing.noisy != 0);
+}
+
+static int read_noisy(aa_row *row, const column *c, const char *v)
+{
+    (void)c;
+    if (!strcmp(v, "1"))
+        row->timing.noisy |= NOISY_MARKED;
+    return 0;
+}
+
+static void noise_cell(text *t, const aa_row *r, const column *c)
+{
+    (void)c;
     char why[128];
     aa_noisy_text(r->timing.noisy, why, sizeof why);
     put(t, "%s", why);
 }
 
-/* every render's time, separated by spaces */
-static void times_cell(text *t, const aa_row *r)
+static int read_noise(aa_row *row, const column *c, const char *v)
 {
+    (void)c;
+    row->timing.noisy |= aa_noisy_parse(v);
+    return 0;
+}
+
+static void seeds_cell(text *t, const aa_row *r, const column *c)
+{
+    (void)c;
+    put(t, "%d", r->seeds > 0 ? r->seeds : 1);
+}
+
+static int read_seeds(aa_row *row, const column *c, const char *v)
+{
+    (void)c;
+    if (*v)
+        row->seeds = atoi(v);
+    return 0;
+}
+
+/* every render's wall or CPU time, separated by spaces */
+static void times_cell(text *t, const aa_row *r, const column *c)
+{
+    const double *v = !strcmp(c->name, "times") ? r->timing.wall : r->timing.cpu;
     for (int k = 0; k < r->timing.n; k++)
-        put(t, k ? " %.9g" : "%.9g", r->timing.wall[k]);
+        put(t, k ? " %.9g" : "%.9g", v[k]);
 }
 
-/* every render's CPU time, likewise */
-static void cpu_times_cell(text *t, const aa_row *r)
+/* times: the count of renders too; cpu_times: as many, after them */
+static int read_times(aa_row *row, const column *c, const char *v)
 {
-    for (int k = 0; k < r->timing.n; k++)
-        put(t, k ? " %.9g" : "%.9g", r->timing.cpu[k]);
-}
-
-/* temporal metrics only for animated rows that ran */
-#define T(write)                                                                                 \
-    do {                                                                                         \
-        if (r->ok && r->temporal)                                                                \
-            write;                                                                               \
-    } while (0)
-
-/* measurements only for rows that ran */
-#define M(write)                                                                                 \
-    do {                                                                                         \
-        if (r->ok)                                                                               \
-            write;                                                                               \
-    } while (0)
-
-static int write_csv(const char *path, const aa_row *rows, size_t n)
-{
-    text tb = {0}, *t = &tb;
-    int first = 1;
-#define HEAD(name, write) put(t, "%s%s", first ? "" : ",", #name), first = 0;
-    COLUMNS(HEAD)
-#undef HEAD
-    put(t, "\n");
-    for (size_t k = 0; k < n; k++) {
-        const aa_row *r = &rows[k];
-        first = 1;
-#define CELL(name, write)                                                                        \
-    if (!first)                                                                                  \
-        put(t, ",");                                                                             \
-    first = 0;                                                                                   \
-    write;
-        COLUMNS(CELL)
-#undef CELL
-        put(t, "\n");
+    aa_timing *t = &row->timing;
+    int wall = !strcmp(c->name, "times"), n = 0;
+    double *dst = wall ? t->wall : t->cpu;
+    char *end;
+    for (const char *p = v; *p;) {
+        if (n == AA_TIMING_MAX_REPS)
+            return 1;
+        errno = 0;
+        double x = strtod(p, &end);
+        if (end == p || errno || !(x >= 0))
+            return 1;
+        dst[n++] = x;
+        p = end;
+        while (*p == ' ')
+            p++;
     }
-    return finish(t, path);
+    if (wall)
+        t->n = n;
+    return 0;
 }
 
-static void json_string(text *t, const char *v)
+static void case_cell(text *t, const aa_row *r, const column *c)
 {
-    put(t, "\"");
-    for (const unsigned char *c = (const unsigned char *)v; *c; c++) {
-        if (*c == '"' || *c == '\\')
-            put(t, "\\%c", *c);
-        else if (*c < 0x20)
-            put(t, "\\u%04x", *c);
-        else
-            put(t, "%c", *c);
-    }
-    put(t, "\"");
+    (void)c;
+    if (r->case_index >= 0)
+        put(t, "%ld", r->case_index);
 }
 
-static void json_num(text *t, double v)
+static int read_case(aa_row *row, const column *c, const char *v)
 {
-    if (isfinite(v))
-        put(t, "%.9g", v);
-    else
-        put(t, "null");
+    (void)c;
+    if (!*v)
+        return 0;
+    char *end;
+    errno = 0;
+    long k = strtol(v, &end, 10);
+    if (*end || errno || k < 0 || !(*v >= '0' && *v <= '9'))
+        return 1;
+    row->case_index = k;
+    return 0;
 }
 
-static int write_json(const char *path, const aa_context *ctx, const aa_row *rows, size_t n)
+static void host_cell(text *t, const aa_row *r, const column *c)
 {
-    text tb = {0}, *t = &tb;
-    char *cj = ctx ? aa_context_json(ctx, 2) : NULL;
-    if (ctx && !cj)
-        t->failed = 1;
-    put(t, "{\n  \"context\": %s,\n  \"results\": [\n", cj ? cj : "null");
-    free(cj);
-    for (size_t k = 0; k < n; k++) {
-        const aa_row *r = &rows[k];
-        put(t, "  {\"pattern\": ");
-        json_string(t, r->pattern);
-        put(t, ", \"size\": \"%dx%d\", \"filter\": ", r->w, r->h);
-        json_string(t, r->filter);
-        put(t, ", \"method\": ");
-        json_string(t, r->method);
-        put(t, ", \"canonical\": ");
-        json_string(t, r->canonical);
-        put(t, ", \"ok\": %s", r->ok ? "true" : "false");
-        if (r->ok) {
-            const struct {
-                const char *key;
-                double v;
-            } f[] = {{"spp", r->spp},
-                     {"rmse", r->m.rmse},
-                     {"mae", r->m.mae},
-                     {"max_err", r->m.max_err},
-                     {"psnr", r->m.psnr},
-                     {"rmse_enc", r->m.rmse_enc},
-                     {"mae_enc", r->m.mae_enc},
-                     {"max_err_enc", r->m.max_err_enc},
-                     {"psnr_enc", r->m.psnr_enc},
-                     {"alias_total", r->m.alias_total},
-                     {"alias_low", r->m.alias_low},
-                     {"alias_high", r->m.alias_high},
-                     {"ssim", r->m.ssim},
-                     {"render_seconds", r->seconds},
-                     {"render_seconds_min", r->seconds_min},
-                     {"render_seconds_max", r->seconds_max},
-                     {"ns_per_pixel", r->ns_per_pixel},
-                     {"ns_per_sample", r->ns_per_sample},
-                     {"expensive_fraction", r->expensive_fraction}};
-            for (size_t q = 0; q < sizeof f / sizeof *f; q++) {
-                put(t, ", \"%s\": ", f[q].key);
-                json_num(t, f[q].v);
-            }
-            put(t, ", \"max_at\": [%d, %d, %d], \"samples\": %llu, \"expensive_pixels\": %llu",
-                r->m.max_at[0], r->m.max_at[1], r->m.max_at[2], (unsigned long long)r->samples,
-                (unsigned long long)r->expensive_pixels);
-            if (r->temporal) {
-                put(t, ", \"temporal\": {\"frames\": %d, \"window\": %d", r->tm.frames,
-                    r->tm.window);
-                const struct {
-                    const char *key;
-                    double v;
-                } g[] = {{"eye_rmse", r->tm.eye_rmse},
-                         {"flicker_mean", r->tm.flicker_mean},
-                         {"flicker_max", r->tm.flicker_max},
-                         {"conservation", r->tm.conservation},
-                         {"popping", r->tm.popping}};
-                for (size_t q = 0; q < sizeof g / sizeof *g; q++) {
-                    put(t, ", \"%s\": ", g[q].key);
-                    json_num(t, g[q].v);
-                }
-                put(t, "}");
-            }
-        }
-        put(t, ", \"threads\": %d, \"reps\": %d, \"seed\": %llu, \"time\": ", r->threads, r->reps,
-            (unsigned long long)r->seed);
-        json_num(t, r->t);
-        put(t, ", \"motion\": [");
-        json_num(t, r->vx);
-        put(t, ", ");
-        json_num(t, r->vy);
-        put(t, "], \"note\": ");
-        json_string(t, r->note);
-        char *timing = aa_row_timing_json(r);
-        if (!timing)
-            t->failed = 1;
-        put(t, "%s}%s\n", timing ? timing : "", k + 1 < n ? "," : "");
-        free(timing);
-    }
-    put(t, "]\n}\n");
-    return finish(t, path);
+    (void)c;
+    csv_field(t, r->host);
 }
 
-int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n)
+static int read_host(aa_row *row, const column *c, const char *v)
 {
-    aa__c_numbers numbers;
-    int st = aa__c_numbers_enter(&numbers, path);
-    if (st)
-        return st;
-    st = write_csv(path, rows, n);
-    aa__c_numbers_end(&numbers);
-    return st;
+    (void)c;
+    if (strlen(v) >= sizeof row->host)
+        return 1;
+    snprintf(row->host, sizeof row->host, "%s", v);
+    return 0;
 }
-
-int aa_rows_write_json(const char *path, const aa_row *rows, size_t n)
-{
-    return aa_results_write_json(path, NULL, rows, n);
-}
-
-int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row *rows, size_t n)
-{
-    aa__c_numbers numbers;
-    int st = aa__c_numbers_enter(&numbers, path);
-    if (st)
-        return st;
-    st = write_json(path, ctx, rows, n);
-    aa__c_numbers_end(&numbers);
-    return st;
-}
-
-/* A results CSV read back (a baseline above all) is checked as strictly as
- * a spec: the regression gate must never pass on a row it cannot trust.
- * The header names known columns, each once, the required ones present; a
- * UTF-8 byte-order mark before it is skipped.  Every row has as many fields
- * as the header; numbers are plain C-locale decimals, finite and within
- * what the column can hold ("inf" only for a PSNR); sizes are WxH with
- * nothing after; patterns and filters parse as specs; a row with ok = 1
- * has every measurement and a row with ok = 0 none, but its reason in the
- * note.  Anything else is refused (AA_EINVAL) naming the file, the line
- * and the column; a file that has no header at all is not a results file
- * (AA_EIO). */
-
-#define CSV_MAX_BYTES ((size_t)256 << 20)
-#define CSV_MAX_FIELDS 256
-
-/* the columns the writer writes: a header may name only these */
-#define NAME(name, write) #name,
-static const char *const csv_known[] = {COLUMNS(NAME) NULL};
-#undef NAME
-
-enum { K_TEXT, K_SPEC_PATTERN, K_SPEC_FILTER, K_SIZE, K_REAL, K_COUNT, K_INT, K_SEED, K_OK };
-/* when a column holds a value: always; in rows with ok = 1; in rows with
- * ok = 1 that are animated (temporal metrics), where it may also be empty
- * (popping: only `dots` has it); text that may be empty */
-enum { G_ALWAYS, G_MEASURE, G_TEMPORAL, G_TEMPORAL_OPTIONAL, G_OPTIONAL };
 
 #define MEMBER_SIZE(m) sizeof(((aa_row *)0)->m)
-typedef struct csv_column {
-    const char *name;
-    int kind, group, required;
-    size_t off, size;
-    double lo, hi; /* K_REAL, K_INT: the range; hi = INFINITY lets "inf" in */
-} csv_column;
+#define TEXT(n, g, req) {#n, K_TEXT, g, req, offsetof(aa_row, n), MEMBER_SIZE(n), 0, 0, NULL, NULL}
+#define REAL(n, m, g, req, lo, hi) {#n, K_REAL, g, req, offsetof(aa_row, m), 0, lo, hi, NULL, NULL}
+#define INT(n, m, g, req, lo, hi) {#n, K_INT, g, req, offsetof(aa_row, m), 0, lo, hi, NULL, NULL}
+#define COUNT(n, m) {#n, K_COUNT, G_MEASURE, 0, offsetof(aa_row, m), 0, 0, 0, NULL, NULL}
+/* a timed row's number, read back as it is, or recomputed from the times */
+#define TIMED(n, m) {#n, K_OWN, G_TIMED, 0, offsetof(aa_row, m), 0, 0, 0, opt_cell, read_real}
+#define DERIVED(n, m) {#n, K_OWN, G_TIMED, 0, offsetof(aa_row, m), 0, 0, 0, opt_cell, NULL}
+#define OWN(n, g, write, read) {#n, K_OWN, g, 0, 0, 0, 0, 0, write, read}
 
-#define TEXT(n, g, req) {#n, K_TEXT, g, req, offsetof(aa_row, n), MEMBER_SIZE(n), 0, 0}
-#define REAL(n, m, g, req, lo, hi) {#n, K_REAL, g, req, offsetof(aa_row, m), 0, lo, hi}
-#define INT(n, m, g, req, lo, hi) {#n, K_INT, g, req, offsetof(aa_row, m), 0, lo, hi}
-#define COUNT(n, m) {#n, K_COUNT, G_MEASURE, 0, offsetof(aa_row, m), 0, 0, 0}
-
-static const csv_column csv_columns[] = {
+/* The columns of results.csv, in the order written.  The timing by
+ * precision's columns (core.h, "timing and its statistics") come after
+ * the older ones: a reader of older files finds them missing. */
+static const column columns[] = {
     {"pattern", K_SPEC_PATTERN, G_ALWAYS, 1, offsetof(aa_row, pattern), MEMBER_SIZE(pattern), 0,
-     0},
-    {"size", K_SIZE, G_ALWAYS, 1, 0, 0, 0, 0},
-    {"filter", K_SPEC_FILTER, G_ALWAYS, 1, offsetof(aa_row, filter), MEMBER_SIZE(filter), 0, 0},
+     0, NULL, NULL},
+    {"size", K_SIZE, G_ALWAYS, 1, 0, 0, 0, 0, NULL, NULL},
+    {"filter", K_SPEC_FILTER, G_ALWAYS, 1, offsetof(aa_row, filter), MEMBER_SIZE(filter), 0, 0,
+     NULL, NULL},
     TEXT(method, G_ALWAYS, 1),
     TEXT(canonical, G_OPTIONAL, 0),
     REAL(spp, spp, G_MEASURE, 0, 0, DBL_MAX),
@@ -449,100 +346,358 @@ static const csv_column csv_columns[] = {
     REAL(popping, tm.popping, G_TEMPORAL_OPTIONAL, 0, 0, 1),
     INT(threads, threads, G_ALWAYS, 0, 1, AA_MAX_THREADS),
     INT(reps, reps, G_ALWAYS, 0, 1, 1000),
-    {"seed", K_SEED, G_ALWAYS, 1, offsetof(aa_row, seed), 0, 0, 0},
+    {"seed", K_SEED, G_ALWAYS, 1, offsetof(aa_row, seed), 0, 0, 0, NULL, NULL},
     REAL(time, t, G_ALWAYS, 1, -1e9, 1e9),
     REAL(vx, vx, G_ALWAYS, 1, -1e6, 1e6),
     REAL(vy, vy, G_ALWAYS, 1, -1e6, 1e6),
-    {"ok", K_OK, G_ALWAYS, 1, offsetof(aa_row, ok), 0, 0, 0},
+    {"ok", K_OK, G_ALWAYS, 1, offsetof(aa_row, ok), 0, 0, 0, NULL, NULL},
     TEXT(note, G_OPTIONAL, 0),
+    DERIVED(render_seconds_mean, timing.stats.mean),
+    DERIVED(render_seconds_sd, timing.stats.sd),
+    DERIVED(render_seconds_mad, timing.stats.mad),
+    DERIVED(render_seconds_ci_lo, timing.stats.ci_lo),
+    DERIVED(render_seconds_ci_hi, timing.stats.ci_hi),
+    DERIVED(ci_level, timing.stats.ci_level),
+    TIMED(target_ci, timing.target_ci),
+    OWN(outliers, G_TIMED, outliers_cell, NULL),
+    TIMED(cpu_seconds, timing.cpu_median),
+    TIMED(cpu_share, timing.cpu_share),
+    TIMED(load_before, timing.load_before),
+    TIMED(load_after, timing.load_after),
+    TIMED(others_cores, timing.others_cores),
+    TIMED(steal, timing.steal),
+    OWN(noisy, G_MEASURE, noisy_cell, read_noisy),
+    OWN(noise, G_MEASURE, noise_cell, read_noise),
+    OWN(seeds, G_MEASURE, seeds_cell, read_seeds),
+    {"rmse_mean", K_OWN, G_MEASURE, 0, offsetof(aa_row, rmse_mean), 0, 0, 0, seeds_real_cell,
+     read_real},
+    {"rmse_ci_lo", K_OWN, G_MEASURE, 0, offsetof(aa_row, rmse_ci_lo), 0, 0, 0, seeds_real_cell,
+     read_real},
+    {"rmse_ci_hi", K_OWN, G_MEASURE, 0, offsetof(aa_row, rmse_ci_hi), 0, 0, 0, seeds_real_cell,
+     read_real},
+    OWN(times, G_TIMED, times_cell, read_times),
+    OWN(cpu_times, G_TIMED, times_cell, read_times),
+    OWN(case, G_ALWAYS, case_cell, read_case),
+    OWN(host, G_ALWAYS, host_cell, read_host),
 };
 #undef TEXT
 #undef REAL
 #undef INT
 #undef COUNT
-#define NCOLUMNS (sizeof csv_columns / sizeof *csv_columns)
+#undef TIMED
+#undef DERIVED
+#undef OWN
+#define NCOLUMNS (sizeof columns / sizeof *columns)
 
-static double field_num(const char *s, int *bad)
+const char *aa_results_column(size_t k)
 {
-    char *end;
-    if (!*s)
-        return NAN;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (*end)
-        *bad = 1;
-    return v;
+    return k < NCOLUMNS ? columns[k].name : NULL;
 }
 
-/* "noisy" read as 1: a reason is taken from "noise", else "ci" */
-#define NOISY_MARKED (1u << 31)
-
-/* The timing columns (absent from older files: a row then has no times,
- * timing.n = 0, and one seed).  Returns non-zero if a cell is malformed. */
-static int read_timing_cell(aa_row *row, const char *h, const char *v)
+/* Whether a row holds a value in the column (else its cell is empty). */
+static int holds(const column *c, const aa_row *r)
 {
-    int bad = 0;
-    aa_timing *t = &row->timing;
-    if (!strcmp(h, "cpu_times")) {
-        char *end;
-        int n = 0;
-        for (const char *p = v; *p;) {
-            if (n == AA_TIMING_MAX_REPS)
-                return 1;
-            errno = 0;
-            double x = strtod(p, &end);
-            if (end == p || errno || !(x >= 0))
-                return 1;
-            t->cpu[n++] = x;
-            p = end;
-            while (*p == ' ')
-                p++;
-        }
+    switch (c->group) {
+    case G_MEASURE: return r->ok;
+    case G_TEMPORAL:
+    case G_TEMPORAL_OPTIONAL: return r->ok && r->temporal;
+    case G_TIMED: return r->ok && r->timing.n > 0;
+    default: return 1;
     }
-    if (!strcmp(h, "case") && *v) {
-        char *end;
-        errno = 0;
-        long k = strtol(v, &end, 10);
-        if (*end || errno || k < 0 || !(*v >= '0' && *v <= '9'))
-            return 1;
-        row->case_index = k;
-    }
-    if (!strcmp(h, "host")) {
-        if (strlen(v) >= sizeof row->host)
-            return 1;
-        snprintf(row->host, sizeof row->host, "%s", v);
-    }
-    if (!strcmp(h, "times")) {
-        char *end;
-        t->n = 0;
-        for (const char *p = v; *p;) {
-            if (t->n == AA_TIMING_MAX_REPS)
-                return 1;
-            errno = 0;
-            double x = strtod(p, &end);
-            if (end == p || errno || !(x >= 0))
-                return 1;
-            t->wall[t->n++] = x;
-            p = end;
-            while (*p == ' ')
-                p++;
-        }
-    }
-    if (!strcmp(h, "noise"))
-        t->noisy |= aa_noisy_parse(v);
-    if (!strcmp(h, "noisy") && !strcmp(v, "1"))
-        t->noisy |= NOISY_MARKED;
-    if (!strcmp(h, "seeds") && *v)
-        row->seeds = atoi(v);
-#define TNUM(name, dst) if (!strcmp(h, name) && *v) dst = field_num(v, &bad);
-    TNUM("target_ci", t->target_ci) TNUM("cpu_seconds", t->cpu_median)
-    TNUM("cpu_share", t->cpu_share) TNUM("load_before", t->load_before)
-    TNUM("load_after", t->load_after) TNUM("others_cores", t->others_cores)
-    TNUM("steal", t->steal) TNUM("rmse_mean", row->rmse_mean)
-    TNUM("rmse_ci_lo", row->rmse_ci_lo) TNUM("rmse_ci_hi", row->rmse_ci_hi)
-#undef TNUM
-    return bad;
 }
+
+static void write_cell(text *t, const aa_row *r, const column *c)
+{
+    const char *at = (const char *)r + c->off;
+    int i;
+    uint64_t u;
+    if (!holds(c, r))
+        return;
+    switch (c->kind) {
+    case K_TEXT:
+    case K_SPEC_PATTERN:
+    case K_SPEC_FILTER: csv_field(t, at); break;
+    case K_SIZE: put(t, "%dx%d", r->w, r->h); break;
+    case K_REAL:
+        /* a value that may be missing is written only when there is one */
+        if (c->group == G_TEMPORAL_OPTIONAL)
+            opt(t, real_of(r, c));
+        else
+            num(t, real_of(r, c));
+        break;
+    case K_INT:
+    case K_OK:
+        memcpy(&i, at, sizeof i);
+        put(t, "%d", i);
+        break;
+    case K_COUNT:
+    case K_SEED:
+        memcpy(&u, at, sizeof u);
+        put(t, "%llu", (unsigned long long)u);
+        break;
+    case K_OWN: c->write(t, r, c); break;
+    }
+}
+
+static int write_csv(const char *path, const aa_row *rows, size_t n)
+{
+    text tb = {0}, *t = &tb;
+    for (size_t c = 0; c < NCOLUMNS; c++)
+        put(t, "%s%s", c ? "," : "", columns[c].name);
+    put(t, "\n");
+    for (size_t k = 0; k < n; k++) {
+        for (size_t c = 0; c < NCOLUMNS; c++) {
+            if (c)
+                put(t, ",");
+            write_cell(t, &rows[k], &columns[c]);
+        }
+        put(t, "\n");
+    }
+    return finish(t, path);
+}
+
+/* ---- results.json, through cJSON ---- */
+
+/* Numbers are written as in results.csv, with nine significant digits
+ * (cJSON would write up to 17), counts and seeds whole (2^64 - 1 is no
+ * double); what is not finite is null. */
+static cJSON *json_num(double v)
+{
+    if (!isfinite(v))
+        return cJSON_CreateNull();
+    char b[40];
+    snprintf(b, sizeof b, "%.9g", v);
+    return cJSON_CreateRaw(b);
+}
+
+static int add(cJSON *o, const char *key, cJSON *v)
+{
+    if (!v)
+        return 0;
+    if (!cJSON_AddItemToObject(o, key, v)) {
+        cJSON_Delete(v);
+        return 0;
+    }
+    return 1;
+}
+
+static int add_num(cJSON *o, const char *key, double v)
+{
+    return add(o, key, json_num(v));
+}
+
+static int add_count(cJSON *o, const char *key, uint64_t v)
+{
+    char b[24];
+    snprintf(b, sizeof b, "%llu", (unsigned long long)v);
+    return add(o, key, cJSON_CreateRaw(b));
+}
+
+/* An array of n numbers; an interval [lo, hi] is [null, null] unless lo
+ * is finite. */
+static cJSON *json_nums(const double *v, int n)
+{
+    cJSON *a = cJSON_CreateArray();
+    for (int k = 0; a && k < n; k++)
+        if (!cJSON_AddItemToArray(a, json_num(v[k]))) {
+            cJSON_Delete(a);
+            return NULL;
+        }
+    return a;
+}
+
+static cJSON *json_interval(double lo, double hi)
+{
+    double v[2] = {lo, isfinite(lo) ? hi : NAN};
+    return json_nums(v, 2);
+}
+
+/* A row's timing, its noise and its seeds into o. */
+static int timing_members(cJSON *o, const aa_row *r)
+{
+    const aa_timing *t = &r->timing;
+    int ok = 1;
+    if (r->ok && t->n > 0) {
+        const aa_time_stats *s = &t->stats;
+        cJSON *j = cJSON_CreateObject();
+        ok = add(o, "timing", j) && add(j, "times", json_nums(t->wall, t->n)) &&
+             add(j, "cpu_times", json_nums(t->cpu, t->n)) &&
+             add(j, "n", cJSON_CreateNumber(t->n)) && add(j, "fixed", cJSON_CreateBool(t->fixed)) &&
+             add_num(j, "median", s->median) && add_num(j, "mean", s->mean) &&
+             add_num(j, "sd", s->sd) && add_num(j, "mad", s->mad) && add_num(j, "min", s->min) &&
+             add_num(j, "max", s->max) && add(j, "ci", json_interval(s->ci_lo, s->ci_hi)) &&
+             add_num(j, "ci_level", s->ci_level) && add_num(j, "ci_relative", t->ci_rel) &&
+             add_num(j, "target_ci", t->target_ci) &&
+             add(j, "target_met", cJSON_CreateBool(t->target_met)) &&
+             add_count(j, "outliers", s->outliers) && add_num(j, "cpu_median", t->cpu_median) &&
+             add_num(j, "cpu_share", t->cpu_share) && add_num(j, "load_before", t->load_before) &&
+             add_num(j, "load_after", t->load_after) &&
+             add_num(j, "others_cores", t->others_cores) && add_num(j, "steal", t->steal) &&
+             add_num(j, "elapsed", t->elapsed);
+    }
+    if (ok && r->ok) {
+        char why[128];
+        aa_noisy_text(t->noisy, why, sizeof why);
+        ok = add(o, "noisy", cJSON_CreateBool(t->noisy != 0)) &&
+             add(o, "noise", cJSON_CreateString(why)) &&
+             add(o, "seeds", cJSON_CreateNumber(r->seeds > 0 ? r->seeds : 1));
+        if (ok && r->seeds > 1)
+            ok = add_num(o, "rmse_mean", r->rmse_mean) &&
+                 add(o, "rmse_ci", json_interval(r->rmse_ci_lo, r->rmse_ci_hi));
+    }
+    return ok;
+}
+
+char *aa_row_timing_json(const aa_row *r)
+{
+    cJSON *o = cJSON_CreateObject();
+    char *json = o && timing_members(o, r) ? cJSON_PrintUnformatted(o) : NULL;
+    cJSON_Delete(o);
+    if (!json)
+        return NULL;
+    /* "{...}" as members after those of the caller: ", ..." */
+    size_t len = strlen(json);
+    char *out = malloc(len + 2);
+    if (out) {
+        if (len > 2)
+            snprintf(out, len + 2, ", %.*s", (int)(len - 2), json + 1);
+        else
+            out[0] = '\0';
+    }
+    cJSON_free(json);
+    return out;
+}
+
+/* A row of results.json. */
+static cJSON *row_json(const aa_row *r)
+{
+    cJSON *o = cJSON_CreateObject();
+    char size[32];
+    snprintf(size, sizeof size, "%dx%d", r->w, r->h);
+    int ok = o && add(o, "pattern", cJSON_CreateString(r->pattern)) &&
+             add(o, "size", cJSON_CreateString(size)) &&
+             add(o, "filter", cJSON_CreateString(r->filter)) &&
+             add(o, "method", cJSON_CreateString(r->method)) &&
+             add(o, "canonical", cJSON_CreateString(r->canonical)) &&
+             add(o, "ok", cJSON_CreateBool(r->ok));
+    if (ok && r->ok) {
+        const struct {
+            const char *key;
+            double v;
+        } f[] = {{"spp", r->spp},
+                 {"rmse", r->m.rmse},
+                 {"mae", r->m.mae},
+                 {"max_err", r->m.max_err},
+                 {"psnr", r->m.psnr},
+                 {"rmse_enc", r->m.rmse_enc},
+                 {"mae_enc", r->m.mae_enc},
+                 {"max_err_enc", r->m.max_err_enc},
+                 {"psnr_enc", r->m.psnr_enc},
+                 {"alias_total", r->m.alias_total},
+                 {"alias_low", r->m.alias_low},
+                 {"alias_high", r->m.alias_high},
+                 {"ssim", r->m.ssim},
+                 {"render_seconds", r->seconds},
+                 {"render_seconds_min", r->seconds_min},
+                 {"render_seconds_max", r->seconds_max},
+                 {"ns_per_pixel", r->ns_per_pixel},
+                 {"ns_per_sample", r->ns_per_sample},
+                 {"expensive_fraction", r->expensive_fraction}};
+        for (size_t q = 0; ok && q < sizeof f / sizeof *f; q++)
+            ok = add_num(o, f[q].key, f[q].v);
+        ok = ok && add(o, "max_at", cJSON_CreateIntArray(r->m.max_at, 3)) &&
+             add_count(o, "samples", r->samples) &&
+             add_count(o, "expensive_pixels", r->expensive_pixels);
+        if (ok && r->temporal) {
+            cJSON *tm = cJSON_CreateObject();
+            ok = add(o, "temporal", tm) && add(tm, "frames", cJSON_CreateNumber(r->tm.frames)) &&
+                 add(tm, "window", cJSON_CreateNumber(r->tm.window)) &&
+                 add_num(tm, "eye_rmse", r->tm.eye_rmse) &&
+                 add_num(tm, "flicker_mean", r->tm.flicker_mean) &&
+                 add_num(tm, "flicker_max", r->tm.flicker_max) &&
+                 add_num(tm, "conservation", r->tm.conservation) &&
+                 add_num(tm, "popping", r->tm.popping);
+        }
+    }
+    double motion[2] = {r->vx, r->vy};
+    ok = ok && add(o, "threads", cJSON_CreateNumber(r->threads)) &&
+         add(o, "reps", cJSON_CreateNumber(r->reps)) && add_count(o, "seed", r->seed) &&
+         add_num(o, "time", r->t) && add(o, "motion", json_nums(motion, 2)) &&
+         add(o, "note", cJSON_CreateString(r->note)) && timing_members(o, r);
+    if (!ok) {
+        cJSON_Delete(o);
+        return NULL;
+    }
+    return o;
+}
+
+/* {"context": ..., "results": [...]}: the context as aa_context_json
+ * gives it, then one row a line (cJSON's compact print), so that a run's
+ * rows can be read and compared line by line. */
+static int write_json(const char *path, const aa_context *ctx, const aa_row *rows, size_t n)
+{
+    text tb = {0}, *t = &tb;
+    char *cj = ctx ? aa_context_json(ctx, 2) : NULL;
+    if (ctx && !cj)
+        t->failed = 1;
+    put(t, "{\n  \"context\": %s,\n  \"results\": [\n", cj ? cj : "null");
+    free(cj);
+    for (size_t k = 0; k < n && !t->failed; k++) {
+        cJSON *o = row_json(&rows[k]);
+        char *row = o ? cJSON_PrintUnformatted(o) : NULL;
+        cJSON_Delete(o);
+        if (!row)
+            t->failed = 1;
+        else
+            put(t, "  %s%s\n", row, k + 1 < n ? "," : "");
+        cJSON_free(row);
+    }
+    put(t, "]\n}\n");
+    return finish(t, path);
+}
+
+int aa_rows_write_csv(const char *path, const aa_row *rows, size_t n)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, path);
+    if (st)
+        return st;
+    st = write_csv(path, rows, n);
+    aa__c_numbers_end(&numbers);
+    return st;
+}
+
+int aa_rows_write_json(const char *path, const aa_row *rows, size_t n)
+{
+    return aa_results_write_json(path, NULL, rows, n);
+}
+
+int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row *rows, size_t n)
+{
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, path);
+    if (st)
+        return st;
+    st = write_json(path, ctx, rows, n);
+    aa__c_numbers_end(&numbers);
+    return st;
+}
+
+/* A results CSV read back (a baseline above all) is checked as strictly as
+ * a spec: the regression gate must never pass on a row it cannot trust.
+ * The header names columns of the writer's table, each once, the required
+ * ones present (the timing's columns, which older files lack, are read as
+ * they are); a UTF-8 byte-order mark before it is skipped.  Every row has as many fields
+ * as the header; numbers are plain C-locale decimals, finite and within
+ * what the column can hold ("inf" only for a PSNR); sizes are WxH with
+ * nothing after; patterns and filters parse as specs; a row with ok = 1
+ * has every measurement and a row with ok = 0 none, but its reason in the
+ * note.  Anything else is refused (AA_EINVAL) naming the file, the line
+ * and the column; a file that has no header at all is not a results file
+ * (AA_EIO). */
+
+#define CSV_MAX_BYTES ((size_t)256 << 20)
+#define CSV_MAX_FIELDS 256
 
 /* A row read back: its statistics from its times (when the file has them). */
 static void settle_timing(aa_row *row)
@@ -734,7 +889,7 @@ static int plain_count(const char *v, uint64_t *out)
 }
 
 /* One field into the row. */
-static int csv_value(const csv *p, int f, const csv_column *col, const char *v, aa_row *row)
+static int csv_value(const csv *p, int f, const column *col, const char *v, aa_row *row)
 {
     char *dst = (char *)row + col->off;
     switch (col->kind) {
@@ -810,11 +965,11 @@ static int csv_value(const csv *p, int f, const csv_column *col, const char *v, 
     return aa_fail(AA_EFAIL, "csv_value: unknown kind");
 }
 
-static const csv_column *column_named(const char *name)
+static const column *column_named(const char *name)
 {
     for (size_t k = 0; k < NCOLUMNS; k++)
-        if (!strcmp(csv_columns[k].name, name))
-            return &csv_columns[k];
+        if (!strcmp(columns[k].name, name))
+            return &columns[k];
     return NULL;
 }
 
@@ -824,7 +979,7 @@ static const csv_column *column_named(const char *name)
  * the mae, is still a baseline.) */
 static int csv_row_check(const csv *p, const int *at, aa_row *row)
 {
-#define AT(name) (column_named(name) ? at[column_named(name) - csv_columns] : -1)
+#define AT(name) (column_named(name) ? at[column_named(name) - columns] : -1)
     if (!row->ok) {
         int f = AT("note");
         if (f < 0 || !*row->note)
@@ -885,10 +1040,7 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
     }
     p.head = head;
     for (int f = 0; f < nh; f++) {
-        int known = 0;
-        for (size_t k = 0; csv_known[k]; k++)
-            known |= !strcmp(csv_known[k], head[f]);
-        if (!known) {
+        if (!column_named(head[f])) {
             st = csv_fail(&p, f, "unknown column \"%s\"", aa_echo(head[f]));
             goto done;
         }
@@ -898,14 +1050,14 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
                               g + 1, f + 1);
                 goto done;
             }
-        const csv_column *col = column_named(head[f]);
+        const column *col = column_named(head[f]);
         if (col)
-            at[col - csv_columns] = f;
+            at[col - columns] = f;
     }
     for (size_t k = 0; k < NCOLUMNS; k++)
-        if (csv_columns[k].required && at[k] < 0) {
+        if (columns[k].required && at[k] < 0) {
             st = aa_fail(AA_EINVAL, "%s:%zu: no column \"%s\", which a results file must have",
-                         aa_echo(name), p.fline[0], csv_columns[k].name);
+                         aa_echo(name), p.fline[0], columns[k].name);
             goto done;
         }
     for (;;) {
@@ -931,18 +1083,24 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
         row->case_index = -1;
         /* ok first: which columns must hold a value depends on it; then
          * whether the row is animated */
-        const int f_ok = at[column_named("ok") - csv_columns];
+        const int f_ok = at[column_named("ok") - columns];
         if ((st = csv_value(&p, f_ok, column_named("ok"), field_text(&p, f_ok), row)))
             break;
-        const csv_column *eye = column_named("eye_rmse");
-        row->temporal = row->ok && at[eye - csv_columns] >= 0 &&
-                        *field_text(&p, at[eye - csv_columns]);
+        const column *eye = column_named("eye_rmse");
+        row->temporal = row->ok && at[eye - columns] >= 0 &&
+                        *field_text(&p, at[eye - columns]);
         for (size_t k = 0; k < NCOLUMNS && !st; k++) {
-            const csv_column *col = &csv_columns[k];
+            const column *col = &columns[k];
             int f = at[k];
             if (f < 0 || col->kind == K_OK)
                 continue;
             const char *v = field_text(&p, f);
+            /* the timing's columns (older files have none): read as they are */
+            if (col->kind == K_OWN) {
+                if (col->read && col->read(row, col, v))
+                    st = csv_fail(&p, f, "malformed timing value \"%s\"", aa_echo(v));
+                continue;
+            }
             /* 1: must hold a value, 0: must be empty, -1: either */
             int want = col->group == G_ALWAYS              ? 1
                        : col->group == G_MEASURE           ? row->ok
@@ -963,10 +1121,6 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
             else if (*v || col->kind == K_TEXT)
                 st = csv_value(&p, f, col, v, row);
         }
-        /* the timing columns (older files have none): read as they are */
-        for (int f = 0; f < nh && !st; f++)
-            if (!column_named(head[f]) && read_timing_cell(row, head[f], field_text(&p, f)))
-                st = csv_fail(&p, f, "malformed timing value \"%s\"", aa_echo(field_text(&p, f)));
         if (!st)
             settle_timing(row);
         if (st || (st = csv_row_check(&p, at, row)))
