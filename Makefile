@@ -363,6 +363,15 @@ $(SAN_TEST_RUNS): %.run: % $(SAN_BUILD)/aabench $(SAN_PLUGINS)
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  sh scripts/run-tests.sh one $(SAN_BUILD) $*
 
+# No link-level cycle between the files (scripts/check-cycles.sh, nm over
+# the objects: a file uses what another defines, and back), after the
+# script's self-test on two tiny objects made to form a cycle.
+.PHONY: check check-cycles
+check: check-cycles
+check-cycles: $(BUILD)/aabench
+	@sh scripts/check-cycles.sh --self-test
+	@sh scripts/check-cycles.sh $(BUILD)
+
 # The Slurm driver on a single-node Slurm started for the check (root;
 # installs slurm-wlm and munge when missing, SKIP where they cannot run).
 .PHONY: check-slurm
