@@ -23,10 +23,10 @@
 static const aa_method_type *table[TABLE_MAX + 1];
 static size_t table_n;
 
-#define NO_METHODS                                                                              \
-    "no method types are registered: the built-in ones register when the library starts, "    \
-    "or by aa_method_add_builtin() in a program that links libaabench.a and calls no method " \
-    "directly"
+#define NO_METHODS                                                                             \
+    "no method types are registered: the built-in ones register themselves when "            \
+    "algorithms/methods.c is linked in; a program linked with libaabench.a that names none " \
+    "of its symbols calls aa_method_add_builtin() first"
 
 const void *const *aa_method_table(void)
 {
