@@ -543,6 +543,24 @@ void aa_temp_cleanup(void);
 /* Monotonic clock in seconds. */
 double aa_now(void);
 
+/* ---- where the data is (paths.c) ---- */
+
+/* The root of the source tree the running program was built in (the
+ * folder holding harness/aabench.h and patterns/svg), found at run time
+ * from the program's file or the library's, up to three folders above it;
+ * NULL when it runs from elsewhere (installed). */
+const char *aa_source_tree(void);
+/* The folder of the shipped SVG scenes: $AABENCH_SVG_DIR if set; else the
+ * source tree's patterns/svg; else share/aabench/svg beside the program's
+ * bin/ folder; else the install prefix's (PREFIX/share/aabench/svg). */
+const char *aa_svg_dir(void);
+/* The reference cache's default folder: $AABENCH_CACHE if set; else, run
+ * from a source tree with the current folder inside it, results/cache
+ * (relative at the tree's root, the root's below it); else
+ * $XDG_CACHE_HOME/aabench, or ~/.cache/aabench ($HOME); results/cache when
+ * neither is set.  The text is valid until the thread's next call. */
+const char *aa_cache_dir_default(void);
+
 #ifdef __cplusplus
 }
 #endif
