@@ -375,6 +375,13 @@ check-cycles: $(BUILD)/aabench
 	@sh scripts/check-cycles.sh --self-test
 	@sh scripts/check-cycles.sh $(BUILD)
 
+# make install into a staging folder, then the installed command run from
+# outside the tree: it finds its SVG scenes under its prefix and caches
+# references in $XDG_CACHE_HOME/aabench (scripts/check-install.sh).
+.PHONY: check-install
+check-install: all
+	@sh scripts/check-install.sh $(BUILD)
+
 # The Slurm driver on a single-node Slurm started for the check (root;
 # installs slurm-wlm and munge when missing, SKIP where they cannot run).
 .PHONY: check-slurm
