@@ -44,6 +44,9 @@ WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototy
 HARNESS  := harness/core harness/truth harness/bench harness/cli
 # -MMD -MP: each object records the headers it read (build/**/*.d)
 CPPFLAGS := -MMD -MP -D_DEFAULT_SOURCE -Iharness $(addprefix -I,$(HARNESS)) -Ipatterns -Ialgorithms
+# no path of this tree in the objects (debug information, __FILE__): the
+# program finds its data at run time (harness/core/paths.c)
+CPPFLAGS += -ffile-prefix-map=$(CURDIR)=.
 # -fno-semantic-interposition: the library's code is built -fPIC (for the
 # tests' shared library and plug-ins' use of it), which otherwise lets a
 # call from one of its functions to another global one go through the PLT
@@ -158,23 +161,23 @@ $(BUILD_INFO): FORCE
 	@sh scripts/build-info.sh > $@.tmp && { cmp -s $@.tmp $@ || mv $@.tmp $@; }; rm -f $@.tmp
 CONTEXT_O := harness/bench/context.o
 $(BUILD)/obj/$(CONTEXT_O) $(SAN_BUILD)/obj/$(CONTEXT_O) $(BUILD)/fuzz/obj/$(CONTEXT_O): $(BUILD_INFO)
-$(BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"' \
+$(BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO -I$(BUILD) \
   -DAA_BUILD_FLAGS='"$(CFLAGS)"'
-$(SAN_BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"' \
+$(SAN_BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO -I$(BUILD) \
   -DAA_BUILD_FLAGS='"$(CFLAGS) -O1 $(SAN)"'
-$(BUILD)/fuzz/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO='"$(CURDIR)/$(BUILD_INFO)"'
-# The external method's renderer adapters: this tree's scripts/renderers,
-# then their copy that `make install` puts in $(OIIO_DIR)/renderers.
+$(BUILD)/fuzz/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO -I$(BUILD)
+# The external method's renderer adapters: the source tree's
+# scripts/renderers (found at run time), then their copy that `make install`
+# puts in $(OIIO_DIR)/renderers.
 $(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: $(BUILD)/oiio-dir
 $(BUILD)/obj/algorithms/external.o $(SAN_BUILD)/obj/algorithms/external.o: \
-  CPPFLAGS += -DAA_RENDERERS_DIR='"$(CURDIR)/scripts/renderers"' \
-              -DAA_RENDERERS_INSTALLED='"$(OIIO_DIR)/renderers"'
-# The shipped SVG scenes, the svg pattern's default file's folder.
-$(BUILD)/obj/patterns/svgfile.o $(SAN_BUILD)/obj/patterns/svgfile.o $(BUILD)/fuzz/obj/patterns/svgfile.o \
-$(BUILD)/obj/harness/bench/suite.o $(SAN_BUILD)/obj/harness/bench/suite.o $(BUILD)/fuzz/obj/harness/bench/suite.o: \
-  CPPFLAGS += -DAA_SVG_DIR='"$(CURDIR)/patterns/svg"'
-# the tests that read the shipped SVG scenes
-$(BUILD)/tests/test_svg $(SAN_BUILD)/tests/test_svg: CPPFLAGS += -DAA_TEST_SVG_DIR='"$(CURDIR)/patterns/svg"'
+  CPPFLAGS += -DAA_RENDERERS_INSTALLED='"$(OIIO_DIR)/renderers"'
+# The installed data (the SVG scenes in DATA_DIR/svg), for a program that
+# runs neither from this tree nor from PREFIX/bin (harness/core/paths.c).
+DATA_DIR := $(PREFIX)/share/aabench
+$(BUILD)/obj/harness/core/paths.o $(SAN_BUILD)/obj/harness/core/paths.o: $(BUILD)/oiio-dir
+$(BUILD)/obj/harness/core/paths.o $(SAN_BUILD)/obj/harness/core/paths.o: \
+  CPPFLAGS += -DAA_DATA_DIR='"$(DATA_DIR)"'
 # -z defs: the module needs no symbol of the program that loads it.
 $(OIIO_SO): $(patsubst %.cpp,$(BUILD)/obj/%.o,$(OIIO_SRC))
 	@echo '  LD    $@'
@@ -363,6 +366,22 @@ $(SAN_TEST_RUNS): %.run: % $(SAN_BUILD)/aabench $(SAN_PLUGINS)
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  sh scripts/run-tests.sh one $(SAN_BUILD) $*
 
+# No link-level cycle between the files (scripts/check-cycles.sh, nm over
+# the objects: a file uses what another defines, and back), after the
+# script's self-test on two tiny objects made to form a cycle.
+.PHONY: check check-cycles
+check: check-cycles
+check-cycles: $(BUILD)/aabench
+	@sh scripts/check-cycles.sh --self-test
+	@sh scripts/check-cycles.sh $(BUILD)
+
+# make install into a staging folder, then the installed command run from
+# outside the tree: it finds its SVG scenes under its prefix and caches
+# references in $XDG_CACHE_HOME/aabench (scripts/check-install.sh).
+.PHONY: check-install
+check-install: all
+	@sh scripts/check-install.sh $(BUILD)
+
 # The Slurm driver on a single-node Slurm started for the check (root;
 # installs slurm-wlm and munge when missing, SKIP where they cannot run).
 .PHONY: check-slurm
@@ -410,6 +429,8 @@ install: all
 	install -m 755 scripts/renderers/rsvg scripts/renderers/chromium scripts/renderers/resvg \
 	  $(DESTDIR)$(OIIO_DIR)/renderers/
 	install -m 644 scripts/renderers/resvg.js scripts/renderers/README.md $(DESTDIR)$(OIIO_DIR)/renderers/
+	install -d $(DESTDIR)$(DATA_DIR)/svg
+	install -m 644 patterns/svg/*.svg $(DESTDIR)$(DATA_DIR)/svg/
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
 	install -m 644 $(PUBLIC_HEADERS) $(DESTDIR)$(PREFIX)/include/aabench/
 	sed -e 's|@prefix@|$(PREFIX)|' -e 's|@version@|$(AA_VERSION)|' harness/aabench.pc.in >$(BUILD)/aabench.pc

@@ -158,33 +158,6 @@ static const aa_param area_params[] = {
  * Small helpers
  * ------------------------------------------------------------------------ */
 
-double area_cubic_root(double c, double k1, double k2, double k3, double a, double b)
-{
-    double fa = c + a * (k1 + a * (k2 + a * k3)), fb = c + b * (k1 + b * (k2 + b * k3));
-    if (!(fa < 0.0))
-        return a;
-    if (!(fb > 0.0))
-        return b;
-    double t = a - fa * (b - a) / (fb - fa);
-    for (int it = 0; it < 100; it++) {
-        if (!(t > a && t < b))
-            t = 0.5 * (a + b);
-        double f = c + t * (k1 + t * (k2 + t * k3));
-        if (f == 0.0)
-            return t;
-        if (f < 0.0)
-            a = t;
-        else
-            b = t;
-        double m = 0.5 * (a + b);
-        if (!(m > a && m < b))
-            break;
-        double df = k1 + t * (2.0 * k2 + 3.0 * t * k3);
-        t = df > 0.0 ? t - f / df : m;
-    }
-    return t > a && t < b ? t : 0.5 * (a + b);
-}
-
 /* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1); for a
  * cubic, inside that part [lo, hi]. */
 static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo, double hi,

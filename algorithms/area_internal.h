@@ -167,8 +167,33 @@ static inline double u_at(const ar_seg *s, double t)
 /* A cubic's root of c + tau (k1 + tau (k2 + tau k3)) in [a, b], where it
  * increases from a non-positive value to a non-negative one: Newton's
  * method kept in the bracket, bisection where a step would leave it, to
- * full precision (area.c). */
-double area_cubic_root(double c, double k1, double k2, double k3, double a, double b);
+ * full precision. */
+static inline double area_cubic_root(double c, double k1, double k2, double k3, double a, double b)
+{
+    double fa = c + a * (k1 + a * (k2 + a * k3)), fb = c + b * (k1 + b * (k2 + b * k3));
+    if (!(fa < 0.0))
+        return a;
+    if (!(fb > 0.0))
+        return b;
+    double t = a - fa * (b - a) / (fb - fa);
+    for (int it = 0; it < 100; it++) {
+        if (!(t > a && t < b))
+            t = 0.5 * (a + b);
+        double f = c + t * (k1 + t * (k2 + t * k3));
+        if (f == 0.0)
+            return t;
+        if (f < 0.0)
+            a = t;
+        else
+            b = t;
+        double m = 0.5 * (a + b);
+        if (!(m > a && m < b))
+            break;
+        double df = k1 + t * (2.0 * k2 + 3.0 * t * k3);
+        t = df > 0.0 ? t - f / df : m;
+    }
+    return t > a && t < b ? t : 0.5 * (a + b);
+}
 /* The same from a guess near the root: Newton's method alone while its
  * steps stay in [a, b] and shrink, until the error left after a step,
  * |f''/(2 f')| step^2, is below 2^-54 of the bracket's width (one or two

@@ -3,8 +3,8 @@
  * eye's image the mean of a window of frames: Crow's temporal scheme (1976,
  * ch. 4, fig. 4.1, algorithms/hexagon.c) with the hexagon's six vertices
  * replaced by the Direct3D/Vulkan msaa positions (algorithms/README.md,
- * "Standard multisample positions"; the same table as supersample's
- * pattern=msaaN).
+ * "Standard multisample positions"; supersample.c's table, aa_msaa_positions,
+ * which its pattern=msaaN samples).
  *
  * Frame n (an integer, negative allowed; the scene at time T - k for frame
  * floor(T) - k) samples each pixel at its centre moved by position
@@ -47,28 +47,17 @@ static const aa_param cycle_params[] = {
      "frames the eye integrates, ending at --time (0: one cycle of the positions)"},
     {0}};
 
-/* In 1/16 pixel from the centre, y down (algorithms/README.md). */
-static const signed char msaa2[][2] = {{4, 4}, {-4, -4}};
-static const signed char msaa4[][2] = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
-static const signed char msaa8[][2] = {{1, -3}, {-1, 3}, {5, 1},  {-3, -5},
-                                       {-5, 5}, {-7, -1}, {3, 7}, {7, -7}};
-static const signed char msaa16[][2] = {{1, 1},  {-1, -3}, {-3, 2}, {4, -1}, {-5, -2}, {2, 5},
-                                        {5, 3},  {3, -5},  {-2, 6}, {0, -7}, {-4, -6}, {-6, 4},
-                                        {-8, 0}, {7, -4},  {6, 7},  {-7, -8}};
-
 typedef struct cycle_state {
     aa__frames fs;
     double dx[CYCLE_MAX_FRAMES], dy[CYCLE_MAX_FRAMES], wt[CYCLE_MAX_FRAMES];
 } cycle_state;
 
+/* positions=msaaN, N = 2, 4, 8, 16: the standard multisample positions
+ * (supersample.c), in 1/16 pixel from the centre, y down */
 static const signed char (*positions(const double *p, int *m))[2]
 {
-    switch ((int)p[P_POSITIONS]) {
-    case 0: *m = 2; return msaa2;
-    case 1: *m = 4; return msaa4;
-    case 2: *m = 8; return msaa8;
-    default: *m = 16; return msaa16;
-    }
+    *m = 2 << (int)p[P_POSITIONS];
+    return aa_msaa_positions(*m);
 }
 
 static int window(const double *p)

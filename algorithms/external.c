@@ -13,8 +13,9 @@
  * exiting 0 on success, 2 when the renderer is missing (a refusal) and
  * anything else on failure, with its message last on stderr.  Adapters are
  * looked for in each folder of $AABENCH_RENDERERS (colon-separated), then in
- * the source tree's scripts/renderers/ (AA_RENDERERS_DIR) and in the
- * installed copy (AA_RENDERERS_INSTALLED); the first executable file of the
+ * the scripts/renderers/ of the source tree the program runs from
+ * (aa_source_tree) and in the installed copy (AA_RENDERERS_INSTALLED, the
+ * install prefix's); the first executable file of the
  * name is the one run.  scripts/renderers/README.md describes the shipped
  * adapters (rsvg, chromium, resvg) and how to add one.
  *
@@ -79,11 +80,7 @@
 
 extern char **environ;
 
-/* The source tree's adapters and their installed copy (given by the
- * Makefile). */
-#ifndef AA_RENDERERS_DIR
-#define AA_RENDERERS_DIR "scripts/renderers"
-#endif
+/* The adapters' installed copy (given by the Makefile from PREFIX). */
 #ifndef AA_RENDERERS_INSTALLED
 #define AA_RENDERERS_INSTALLED "/usr/local/lib/aabench/renderers"
 #endif
@@ -119,6 +116,14 @@ static int executable_file(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode) && access(path, X_OK) == 0;
 }
 
+/* The source tree's scripts/renderers into dir; 0 when the program does
+ * not run from a source tree (or the path does not fit). */
+static int tree_dir(char *dir, size_t len)
+{
+    const char *tree = aa_source_tree();
+    return tree && aa_pathf(dir, len, "%s/scripts/renderers", tree) == AA_OK;
+}
+
 /* Call fn(dir, ctx) for each folder adapters are looked for in, in order;
  * stops when fn returns nonzero and returns that. */
 static int each_dir(int (*fn)(const char *dir, void *ctx), void *ctx)
@@ -138,7 +143,7 @@ static int each_dir(int (*fn)(const char *dir, void *ctx), void *ctx)
             p += n + (p[n] == ':');
         }
     }
-    if ((r = fn(AA_RENDERERS_DIR, ctx)))
+    if (tree_dir(dir, sizeof dir) && (r = fn(dir, ctx)))
         return r;
     return fn(AA_RENDERERS_INSTALLED, ctx);
 }
@@ -209,11 +214,13 @@ static int adapter_find(const char *name, char *path)
     list_ctx l = {known, sizeof known, 0};
     each_dir(list_in, &l);
     const char *env = getenv("AABENCH_RENDERERS");
+    char tree[PATH_MAX];
+    int in_tree = tree_dir(tree, sizeof tree);
     return aa_fail(AA_EINVAL,
-                   "no renderer adapter \"%s\" (looked in %s%s%s and %s; adapters "
+                   "no renderer adapter \"%s\" (looked in %s%s%s%s%s; adapters "
                    "found: %s); an adapter is an executable there taking SVG W H OUT.png",
-                   name, env ? env : "", env ? ", " : "", AA_RENDERERS_DIR, AA_RENDERERS_INSTALLED,
-                   *known ? known : "none");
+                   name, env ? env : "", env ? ", " : "", in_tree ? tree : "",
+                   in_tree ? " and " : "", AA_RENDERERS_INSTALLED, *known ? known : "none");
 }
 
 /* ---- running a program ---- */

@@ -28,6 +28,12 @@ extern const aa_method_type aa_method_feibushtex;
 /* runs an SVG renderer: in aa_method_types_optional, not the built-in table */
 extern const aa_method_type aa_method_external;
 
+/* The standard multisample positions of `count` samples (2, 4, 8 or 16;
+ * NULL for another count), in 1/16 pixel from the pixel's centre, y down
+ * (algorithms/README.md, "Standard multisample positions"; supersample.c):
+ * supersample's pattern=msaaN and cycle's positions=msaaN. */
+const signed char (*aa_msaa_positions(int count))[2];
+
 /* Point-sample the placed scene at pixel centres offset by (dx, dy)
  * pixels into out (used by point, hexagon and trio). */
 int aa_point_sample(const aa_scene *placed, double dx, double dy, int threads, aa_image *out);

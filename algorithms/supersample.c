@@ -76,7 +76,7 @@ static const aa_param supersample_params[] = {
 
 /* The standard multisample positions in 1/16 pixel from the centre, y down
  * (the Direct3D and Vulkan standard sample patterns: algorithms/README.md,
- * "Standard multisample positions"). */
+ * "Standard multisample positions"); cycle.c visits them too. */
 static const signed char msaa2[][2] = {{4, 4}, {-4, -4}};
 static const signed char msaa4[][2] = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
 static const signed char msaa8[][2] = {{1, -3}, {-1, 3}, {5, 1},  {-3, -5},
@@ -85,14 +85,22 @@ static const signed char msaa16[][2] = {{1, 1},   {-1, -3}, {-3, 2}, {4, -1}, {-
                                         {5, 3},   {3, -5},  {-2, 6}, {0, -7}, {-4, -6}, {-6, 4},
                                         {-8, 0},  {7, -4},  {6, 7},  {-7, -8}};
 
+const signed char (*aa_msaa_positions(int count))[2]
+{
+    switch (count) {
+    case 2: return msaa2;
+    case 4: return msaa4;
+    case 8: return msaa8;
+    case 16: return msaa16;
+    default: return NULL;
+    }
+}
+
+/* pattern=msaaN: N = 2, 4, 8, 16 */
 static const signed char (*msaa_positions(int pattern, int *count))[2]
 {
-    switch (pattern) {
-    case PAT_MSAA2: *count = 2; return msaa2;
-    case PAT_MSAA4: *count = 4; return msaa4;
-    case PAT_MSAA8: *count = 8; return msaa8;
-    default: *count = 16; return msaa16;
-    }
+    *count = 2 << (pattern - PAT_MSAA2);
+    return aa_msaa_positions(*count);
 }
 
 /* Where the samples of a pixel lie and what they weigh. */

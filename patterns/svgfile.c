@@ -61,10 +61,6 @@
 
 #define SVG_NS "http://www.w3.org/2000/svg"
 
-/* the shipped examples (the default file is one), set by the Makefile */
-#ifndef AA_SVG_DIR
-#define AA_SVG_DIR "patterns/svg"
-#endif
 
 /* ---- files ---- */
 
@@ -1303,8 +1299,20 @@ int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, vo
 
 enum { SVG_FILE };
 
+/* The default file: the shipped shapes.svg, in the folder of the shipped
+ * scenes (aa_svg_dir: the source tree's, or the install prefix's), set
+ * when the library starts, since a parameter's default is read before any
+ * call here.  Empty if the path is too long: svg_check refuses it then. */
+static char default_file[AA_PARAM_TEXT_MAX + 1];
+
+__attribute__((constructor)) static void default_file_set(void)
+{
+    if (aa_pathf(default_file, sizeof default_file, "%s/shapes.svg", aa_svg_dir()))
+        default_file[0] = '\0';
+}
+
 static const aa_param svg_params[] = {
-    {"file", AA_PARAM_TEXT, 0, 0, 0, 0, AA_SVG_DIR "/shapes.svg",
+    {"file", AA_PARAM_TEXT, 0, 0, 0, 0, default_file,
      "the SVG file (a path; write ',' as %2C and '%' as %25)"},
     {0}};
 

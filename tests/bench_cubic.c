@@ -135,6 +135,11 @@ static int time_pair(const aa_scene *scene, int w, int h, int threads,
 
 int main(int argc, char **argv)
 {
+    /* statically linked: register the built-in methods (core.h) */
+    if (aa_method_add_builtin()) {
+        fprintf(stderr, "%s\n", aa_last_error());
+        return 1;
+    }
     int w = 1024, h = 1024, threads = 1;
     aa_timing_plan plan = {0, 0.0, 0.0};
     for (int k = 1; k < argc; k++) {

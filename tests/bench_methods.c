@@ -189,6 +189,11 @@ static long child_peak_kb(const char *spec, const char *pattern, const char *siz
 
 int main(int argc, char **argv)
 {
+    /* statically linked: register the built-in methods (core.h) */
+    if (aa_method_add_builtin()) {
+        fprintf(stderr, "%s\n", aa_last_error());
+        return 1;
+    }
     const char *pattern = "crow", *size = "1024x1024", *filter = "box", *msize = "4096x4096";
     int reps = 0, first = 1;
     aa_timing_plan plan = {0};

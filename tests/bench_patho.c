@@ -104,6 +104,11 @@ static int run(int k, int threads, int reps)
 
 int main(int argc, char **argv)
 {
+    /* statically linked: register the built-in methods (core.h) */
+    if (aa_method_add_builtin()) {
+        fprintf(stderr, "%s\n", aa_last_error());
+        return 1;
+    }
     const char *threads = "1,2", *which = NULL;
     int reps = 1;
     for (int k = 1; k + 1 < argc; k += 2) {

@@ -638,7 +638,7 @@ static void test_shipped(void **state)
     static const char *files[] = {"shapes.svg", "rules.svg", "curves.svg", "logo.svg"};
     for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
         char path[4200];
-        snprintf(path, sizeof path, "%s/%s", AA_TEST_SVG_DIR, files[k]);
+        snprintf(path, sizeof path, "%s/%s", aa_svg_dir(), files[k]);
         text_sink t = {.n = 0};
         if (aa_svg_read_file(path, 64, 64, &sink, &t, NULL) != AA_OK)
             fail_msg("%s: %s", path, aa_last_error());

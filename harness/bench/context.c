@@ -29,7 +29,7 @@
 #include <unistd.h>
 
 #ifdef AA_BUILD_INFO
-#include AA_BUILD_INFO
+#include "build-info.h" /* the build folder's, written by scripts/build-info.sh */
 #endif
 #ifndef AA_BUILD_COMMIT
 #define AA_BUILD_COMMIT "unknown"

@@ -33,6 +33,7 @@
 #include <math.h>
 #include <poll.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,9 +46,24 @@
 #ifdef __linux__
 #include <sys/prctl.h>
 #endif
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+
+/* The row of a case that failed (isolate_internal.h). */
+void aa__row_failed(aa_row *row, const char *fmt, ...)
+{
+    char why[sizeof row->note];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    row->ok = 0;
+    row->failed = 1;
+    row->temporal = 0;
+    snprintf(row->note, sizeof row->note, "failed: %.*s", (int)(sizeof row->note - 9), why);
+}
 
 #define REPORT_MAGIC 0x61616273636173ULL /* "aabscas" */
 

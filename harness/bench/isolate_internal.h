@@ -1,6 +1,6 @@
 /*
- * isolate_internal.h: running one case of a run in a child process
- * (isolate.c), internal to harness/bench.
+ * isolate_internal.h: running one case of a run in a child process, and
+ * a case's failed row (isolate.c), internal to harness/bench.
  */
 #ifndef AA_ISOLATE_INTERNAL_H
 #define AA_ISOLATE_INTERNAL_H
@@ -8,7 +8,7 @@
 #include "bench.h"
 
 /* Mark a row failed: ok = 0, failed = 1, the note "failed: " and the
- * reason (run.c). */
+ * reason. */
 void aa__row_failed(aa_row *row, const char *fmt, ...) AA_PRINTF(2, 3);
 
 /* A case: fills *row (and the image it was given); a status only for the

@@ -17,7 +17,6 @@
 #include "isolate_internal.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -186,19 +185,6 @@ static void row_names(aa_row *row, const char *pattern, int w, int h, const char
 static void row_refused(aa_row *row)
 {
     snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
-}
-
-void aa__row_failed(aa_row *row, const char *fmt, ...)
-{
-    char why[sizeof row->note];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(why, sizeof why, fmt, ap);
-    va_end(ap);
-    row->ok = 0;
-    row->failed = 1;
-    row->temporal = 0;
-    snprintf(row->note, sizeof row->note, "failed: %.*s", (int)(sizeof row->note - 9), why);
 }
 
 /* An image of the method with values outside [0, 1] or not finite fails

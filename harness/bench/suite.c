@@ -95,20 +95,53 @@ static const aa_suite_group full[] = {
     {LIST("zoneplate"), LIST("256x256"), LIST("box", "tent:r=1", "gauss"), LIST(FAMILIES)},
     {NULL, NULL, NULL, NULL}};
 
-/* the shipped SVG scenes (the Makefile sets AA_SVG_DIR to the tree's) */
-#ifndef AA_SVG_DIR
-#define AA_SVG_DIR "patterns/svg"
-#endif
+/* The shipped SVG scenes as pattern specs, "svg:file=DIR/NAME" with DIR
+ * the folder aa_svg_dir finds (the source tree's or the install prefix's),
+ * made when the library starts; a spec too long to make is left "svg:file="
+ * (refused by the pattern when the suite runs). */
+static const char *const svg_names[] = {"mono.svg", "shapes.svg", "rules.svg", "curves.svg",
+                                        "logo.svg"};
+#define NSVG (sizeof svg_names / sizeof svg_names[0])
+static char svg_spec[NSVG][AA_PARAM_TEXT_MAX + 32];
+static const char *vector_patterns[] = {"crow",      svg_spec[0], svg_spec[1], svg_spec[2],
+                                        svg_spec[3], svg_spec[4], NULL};
+
+/* text into a spec's text value: ',' as %2C and '%' as %25 */
+static int spec_text(char *buf, size_t len, const char *text)
+{
+    size_t n = 0;
+    for (const char *c = text; *c; c++) {
+        const char *put = *c == ',' ? "%2C" : *c == '%' ? "%25" : NULL;
+        size_t m = put ? 3 : 1;
+        if (n + m >= len)
+            return 0;
+        memcpy(buf + n, put ? put : c, m);
+        n += m;
+    }
+    buf[n] = '\0';
+    return 1;
+}
+
+__attribute__((constructor)) static void svg_specs_make(void)
+{
+    static const char prefix[] = "svg:file=";
+    char path[AA_PARAM_TEXT_MAX + 1];
+    for (size_t k = 0; k < NSVG; k++) {
+        memcpy(svg_spec[k], prefix, sizeof prefix);
+        if (aa_pathf(path, sizeof path, "%s/%s", aa_svg_dir(), svg_names[k]) == AA_OK &&
+            !spec_text(svg_spec[k] + sizeof prefix - 1, sizeof svg_spec[k] - (sizeof prefix - 1),
+                       path))
+            svg_spec[k][sizeof prefix - 1] = '\0';
+    }
+}
+
 #define VECTOR_METHODS                                                                            \
     LIST("area", "point", "supersample:n=4", "supersample:pattern=msaa8", "jitter:spp=16",       \
          "adaptive", "freetype", "stb", "cairo", "agg", "agg:scale=100",                          \
          "external:renderer=rsvg", "external:renderer=resvg", "external:renderer=chromium")
 
 static const aa_suite_group vector[] = {
-    {LIST("crow", "svg:file=" AA_SVG_DIR "/mono.svg", "svg:file=" AA_SVG_DIR "/shapes.svg",
-          "svg:file=" AA_SVG_DIR "/rules.svg", "svg:file=" AA_SVG_DIR "/curves.svg",
-          "svg:file=" AA_SVG_DIR "/logo.svg"),
-     LIST("256x256"), LIST("box"), VECTOR_METHODS},
+    {vector_patterns, LIST("256x256"), LIST("box"), VECTOR_METHODS},
     {LIST("text:ppem=12", "text:ppem=16", "text:ppem=24"), LIST("288x32"), LIST("box"),
      VECTOR_METHODS},
     {NULL, NULL, NULL, NULL}};

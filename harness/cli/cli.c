@@ -232,8 +232,7 @@ void cli_json_string(const char *text, char *buf, size_t len)
 
 const char *cli_cache_dir(void)
 {
-    const char *env = getenv("AABENCH_CACHE");
-    return env && *env ? env : "results/cache";
+    return aa_cache_dir_default();
 }
 
 int cli_progress_wanted(void)

@@ -68,7 +68,8 @@ void cli_discard(cli_outputs *o);
 int cli_default_threads(void);
 /* `text` as a JSON string literal (quoted, escaped) into buf. */
 void cli_json_string(const char *text, char *buf, size_t len);
-/* Default cache folder: $AABENCH_CACHE, else results/cache. */
+/* Default cache folder (aa_cache_dir_default): $AABENCH_CACHE, else
+ * results/cache inside the source tree, else $XDG_CACHE_HOME/aabench. */
 const char *cli_cache_dir(void);
 /* 1 if stderr is a terminal and CI is not set: progress may be shown. */
 int cli_progress_wanted(void);

@@ -15,6 +15,7 @@
 #define AA_C_NUMBERS_INTERNAL_H
 
 #include <locale.h>
+#include <stddef.h>
 
 typedef struct aa__c_numbers {
     locale_t saved; /* the thread's locale before begin */
@@ -26,7 +27,24 @@ typedef struct aa__c_numbers {
 int aa__c_numbers_begin(aa__c_numbers *n);
 void aa__c_numbers_end(aa__c_numbers *n);
 
-/* aa__c_numbers_begin that records the failure for `what` (AA_ENOMEM). */
+/* aa__c_numbers_begin that records the failure for `what` (AA_ENOMEM;
+ * error.c). */
 int aa__c_numbers_enter(aa__c_numbers *n, const char *what);
+
+static inline int aa__is_digit(char ch)
+{
+    return ch >= '0' && ch <= '9';
+}
+
+typedef enum aa__number_result {
+    AA__NUMBER_OK,
+    AA__NUMBER_MALFORMED,
+    AA__NUMBER_NOT_FINITE
+} aa__number_result;
+
+/* The finite number spelled by s[0, len), which is followed by a character
+ * that cannot continue a number (blank or NUL): plain decimal syntax only.
+ * Needs aa__c_numbers. */
+aa__number_result aa__parse_number(const char *s, size_t len, double *v);
 
 #endif

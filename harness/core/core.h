@@ -341,17 +341,31 @@ typedef struct aa_method {
     void *state;
 } aa_method;
 
-extern const aa_method_type *const aa_method_types[]; /* built-in, NULL-terminated */
+/* The method table in use: the method types registered, in the order
+ * registered (the built-in ones, then the optional ones and those of
+ * loaded plug-ins).  NULL-terminated; valid until the next registration.
+ * Empty, it warns once: the built-in methods were not linked in. */
+const void *const *aa_method_table(void);
+/* Add method types (NULL-terminated) to the table in use; `origin` names
+ * them in messages (a plug-in's path).  Refuses a type without a name,
+ * summary or render, a name already in the table, more than AA_MAX_PARAMS
+ * parameters, and a table that would grow past its limit; on refusal
+ * nothing is added. */
+int aa_method_register(const aa_method_type *const *types, const char *origin);
+
+/* The built-in method types (algorithms/methods.c), NULL-terminated. */
+extern const aa_method_type *const aa_method_types[];
+/* Register them: done when the library starts (a constructor in
+ * methods.c), so a program need not.  A program that links libaabench.a
+ * and refers to nothing of the methods' own does not link methods.c in,
+ * and calls this first.  A second call does nothing. */
+int aa_method_add_builtin(void);
 /* Methods that need an optional program (an external renderer), kept out of
  * the built-in table that the generic tests render every method of.  The
  * command adds them at start; a program of one's own may too.  A second
- * call does nothing. */
+ * call does nothing.  Defined in algorithms/methods.c. */
 extern const aa_method_type *const aa_method_types_optional[];
 int aa_method_add_optional(void);
-
-/* The method table in use: the built-in methods, then those of loaded
- * plug-ins.  NULL-terminated; valid until the next aa_plugin_load. */
-const void *const *aa_method_table(void);
 /* Parse a method spec and check it against the filter. */
 int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out);
 /* Check a parsed method spec against a filter (the method's own check). */
@@ -528,6 +542,24 @@ void aa_temp_cleanup(void);
 
 /* Monotonic clock in seconds. */
 double aa_now(void);
+
+/* ---- where the data is (paths.c) ---- */
+
+/* The root of the source tree the running program was built in (the
+ * folder holding harness/aabench.h and patterns/svg), found at run time
+ * from the program's file or the library's, up to three folders above it;
+ * NULL when it runs from elsewhere (installed). */
+const char *aa_source_tree(void);
+/* The folder of the shipped SVG scenes: $AABENCH_SVG_DIR if set; else the
+ * source tree's patterns/svg; else share/aabench/svg beside the program's
+ * bin/ folder; else the install prefix's (PREFIX/share/aabench/svg). */
+const char *aa_svg_dir(void);
+/* The reference cache's default folder: $AABENCH_CACHE if set; else, run
+ * from a source tree with the current folder inside it, results/cache
+ * (relative at the tree's root, the root's below it); else
+ * $XDG_CACHE_HOME/aabench, or ~/.cache/aabench ($HOME); results/cache when
+ * neither is set.  The text is valid until the thread's next call. */
+const char *aa_cache_dir_default(void);
 
 #ifdef __cplusplus
 }

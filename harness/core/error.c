@@ -13,6 +13,7 @@
 #include "core.h"
 #include "c_numbers_internal.h"
 
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -113,6 +114,14 @@ int aa_fail(int status, const char *fmt, ...)
         snprintf(last_error, sizeof last_error, "out of memory formatting an error: %s", fmt);
     }
     return status;
+}
+
+/* Here, not in c_numbers.c, which records no error (aa_fail uses it). */
+int aa__c_numbers_enter(aa__c_numbers *n, const char *what)
+{
+    if (aa__c_numbers_begin(n))
+        return aa_fail(AA_ENOMEM, "%s: cannot make the C locale: %s", what, strerror(errno));
+    return AA_OK;
 }
 
 int aa_fail_context(int status, const char *fmt, ...)

@@ -55,104 +55,10 @@
 /* Room for the message of a writer's failure, kept for later calls. */
 #define AA_IMAGE_OUT_WHY 1024
 
-/* ------------------------------------------------------------------------
- * Images in memory
- * ------------------------------------------------------------------------ */
-
-/* w * h * c doubles, if that many bytes can be addressed. */
-static int image_count(int w, int h, int c, size_t *n)
-{
-    size_t pixels = (size_t)w * (size_t)h; /* both <= INT_MAX: no overflow */
-    if ((size_t)c > SIZE_MAX / sizeof(double) / pixels)
-        return 0;
-    *n = pixels * (size_t)c;
-    return 1;
-}
-
-int aa_image_alloc(aa_image *im, int w, int h, int c)
-{
-    if (im == NULL)
-        return aa_fail(AA_EINVAL, "aa_image_alloc: no image");
-    *im = (aa_image){0};
-    if (w <= 0 || h <= 0 || c <= 0)
-        return aa_fail(AA_EINVAL, "image %d x %d x %d: sizes must be positive", w, h, c);
-    size_t n;
-    if (!image_count(w, h, c, &n))
-        return aa_fail(AA_EINVAL, "image %d x %d x %d: too large to address on this machine", w,
-                       h, c);
-    /* Zeroed, so methods that accumulate can start from the image. */
-    double *v = calloc(n, sizeof *v);
-    if (v == NULL)
-        return aa_fail(AA_ENOMEM, "image %d x %d x %d: out of memory (%zu bytes)", w, h, c,
-                       n * sizeof *v);
-    *im = (aa_image){.w = w, .h = h, .c = c, .v = v};
-    return AA_OK;
-}
-
-void aa_image_free(aa_image *im)
-{
-    if (im == NULL)
-        return;
-    free(im->v);
-    *im = (aa_image){0};
-}
-
 /* Number of values in an image that passed check_image. */
 static size_t image_values(const aa_image *im)
 {
     return (size_t)im->w * (size_t)im->h * (size_t)im->c;
-}
-
-/* ------------------------------------------------------------------------
- * Numbers as text
- * ------------------------------------------------------------------------ */
-
-/* Skip digits; how many there were. */
-static size_t skip_digits(const char **p, const char *end)
-{
-    const char *start = *p;
-    while (*p < end && aa__is_digit(**p))
-        (*p)++;
-    return (size_t)(*p - start);
-}
-
-/* Plain decimal syntax, [+-]d[.d][(e|E)[+-]d] with at least one digit in
- * the mantissa.  strtod would also take hex floats, "inf", "nan" and
- * leading blanks, none of which %.17g of a finite value writes. */
-static int decimal_syntax(const char *s, size_t len)
-{
-    const char *p = s, *end = s + len;
-    if (p < end && (*p == '+' || *p == '-'))
-        p++;
-    size_t digits = skip_digits(&p, end);
-    if (p < end && *p == '.') {
-        p++;
-        digits += skip_digits(&p, end);
-    }
-    if (digits == 0)
-        return 0;
-    if (p < end && (*p == 'e' || *p == 'E')) {
-        p++;
-        if (p < end && (*p == '+' || *p == '-'))
-            p++;
-        if (skip_digits(&p, end) == 0)
-            return 0;
-    }
-    return p == end;
-}
-
-aa__number_result aa__parse_number(const char *s, size_t len, double *v)
-{
-    if (!decimal_syntax(s, len))
-        return AA__NUMBER_MALFORMED;
-    char *end;
-    /* ERANGE is no reason to refuse: an underflow is still the correctly
-     * rounded value (5e-324 is one), and an overflow is caught as not
-     * finite just below. */
-    *v = strtod(s, &end);
-    if (end != s + len)
-        return AA__NUMBER_MALFORMED;
-    return isfinite(*v) ? AA__NUMBER_OK : AA__NUMBER_NOT_FINITE;
 }
 
 /* ------------------------------------------------------------------------

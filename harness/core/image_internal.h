@@ -18,21 +18,6 @@
 /* Numbers in files and specs are C-locale text (c_numbers_internal.h). */
 #include "c_numbers_internal.h"
 
-static inline int aa__is_digit(char ch)
-{
-    return ch >= '0' && ch <= '9';
-}
-
-typedef enum aa__number_result {
-    AA__NUMBER_OK,
-    AA__NUMBER_MALFORMED,
-    AA__NUMBER_NOT_FINITE
-} aa__number_result;
-
-/* The finite number spelled by s[0, len), which is followed by a character
- * that cannot continue a number (blank or NUL).  Needs aa__c_numbers. */
-aa__number_result aa__parse_number(const char *s, size_t len, double *v);
-
 /* The .txt format (image_txt.c): the header line, then rows y0 .. y0 +
  * rows - 1 of a W-wide image of C channels (v holds just those rows).
  * Both return -1 with errno set on a write error. */

@@ -6,7 +6,6 @@
  * sizes its own instance, as gsl_rng_alloc does for a gsl_rng_type.
  */
 #include "core.h"
-#include "method_internal.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -18,30 +17,29 @@
 
 #define TABLE_MAX 256
 
+/* The table starts empty: the method types are registered into it, the
+ * built-in ones when the library starts (aa_method_add_builtin,
+ * algorithms/methods.c), then the optional ones and plug-ins'. */
 static const aa_method_type *table[TABLE_MAX + 1];
 static size_t table_n;
 
-static void table_fill(void)
-{
-    if (table_n)
-        return;
-    while (aa_method_types[table_n] && table_n < TABLE_MAX) {
-        table[table_n] = aa_method_types[table_n];
-        table_n++;
-    }
-    table[table_n] = NULL;
-}
+#define NO_METHODS                                                                             \
+    "no method types are registered: the built-in ones register themselves when "            \
+    "algorithms/methods.c is linked in; a program linked with libaabench.a that names none " \
+    "of its symbols calls aa_method_add_builtin() first"
 
 const void *const *aa_method_table(void)
 {
-    table_fill();
+    static int warned;
+    if (!table_n && !warned) {
+        warned = 1;
+        aa_warn("%s", NO_METHODS);
+    }
     return (const void *const *)table;
 }
 
-/* Called by the plug-in loader (method_internal.h). */
-int aa__method_register(const aa_method_type *const *types, const char *origin)
+int aa_method_register(const aa_method_type *const *types, const char *origin)
 {
-    table_fill();
     size_t n = 0;
     for (; types[n]; n++) {
         const aa_method_type *t = types[n];
@@ -65,16 +63,6 @@ int aa__method_register(const aa_method_type *const *types, const char *origin)
     return AA_OK;
 }
 
-int aa_method_add_optional(void)
-{
-    table_fill();
-    if (!aa_method_types_optional[0] ||
-        aa_table_find((const void *const *)table,
-                      ((const aa_info *)aa_method_types_optional[0])->name))
-        return AA_OK;
-    return aa__method_register(aa_method_types_optional, "the optional methods");
-}
-
 int aa_method_check(const aa_spec *spec, const aa_filter *f)
 {
     const aa_method_type *type = (const aa_method_type *)spec->info;
@@ -86,6 +74,8 @@ int aa_method_check(const aa_spec *spec, const aa_filter *f)
 
 int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out)
 {
+    if (!table_n)
+        return aa_fail(AA_EINVAL, "method \"%s\": %s", aa_echo(text), NO_METHODS);
     int st = aa_spec_parse(text, aa_method_table(), "method", out);
     return st ? st : aa_method_check(out, f);
 }

@@ -8,7 +8,6 @@
  * (its type structs are in the table).
  */
 #include "core.h"
-#include "method_internal.h"
 
 #include <dlfcn.h>
 #include <string.h>
@@ -45,7 +44,7 @@ int aa_plugin_load(const char *path)
         return aa_fail(AA_EINVAL, "plug-in %s was built for interface %d, this is %d",
                        aa_echo(path), got, AA_PLUGIN_ABI);
     }
-    int st = aa__method_register(types, path);
+    int st = aa_method_register(types, path);
     if (st)
         dlclose(lib);
     return st;

@@ -61,7 +61,8 @@ static inline void aa__cubic_basis(double a, double c, double d, double b, doubl
     *k3 = (b - a) + 3.0 * (c - d);
 }
 
-/* The roots of k1 + 2 k2 t + 3 k3 t^2 inside (0, 1), ascending. */
+/* The roots of k1 + 2 k2 t + 3 k3 t^2 inside (0, 1), ascending
+ * (scene_piece.c). */
 int aa__cubic_turns(double k1, double k2, double k3, double t[2]);
 
 /* Roots of c[0] + c[1] t + c[2] t^2 + c[3] t^3: the one in [a, b] given

@@ -23,6 +23,19 @@
 
 /* ---- roots of cubics ---- */
 
+/* Roots of the derivative k1 + 2 k2 t + 3 k3 t^2 of a cubic's coordinate
+ * strictly inside (0, 1), ascending, distinct (GSL's quadratic solver,
+ * cancellation-free); returns how many. */
+int aa__cubic_turns(double k1, double k2, double k3, double t[2])
+{
+    double r[2];
+    int n = gsl_poly_solve_quadratic(3.0 * k3, 2.0 * k2, k1, &r[0], &r[1]), m = 0;
+    for (int k = 0; k < n; k++)
+        if (r[k] > 0.0 && r[k] < 1.0 && (m == 0 || r[k] > t[m - 1]))
+            t[m++] = r[k];
+    return m;
+}
+
 static inline double poly3(const double c[4], double t)
 {
     return c[0] + t * (c[1] + t * (c[2] + t * c[3]));

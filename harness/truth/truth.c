@@ -286,12 +286,6 @@ static int add_intersections(worker *w, const aa_piece *p, const aa_piece *q)
     return st;
 }
 
-int truth_cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : (x > y);
-}
-
 /* Remember a turning point s (relative) inside [-R, R]. */
 static void note_turn(worker *w, double s)
 {
@@ -305,120 +299,6 @@ static int is_turn(const worker *w, double s)
         if (w->sing[k] == s)
             return 1;
     return 0;
-}
-
-/* The same for a cubic piece: |P(tau) - centre|^2 - R^2 is of degree 6
- * (GSL's companion matrix in a workspace of its own, then Newton in long
- * double); the part of the piece in the disc's rows is t = ta + h tau. */
-static int circle_heights_cubic(const aa_piece *p, long double ta, long double h, double uc,
-                                double vc, double R, double out[4])
-{
-    /* Taylor coefficients of x and y in tau: X + tau (b + tau (a + tau d)) */
-    long double c3[2] = {p->dx, p->dy}, c2[2] = {p->ax, p->ay}, c1[2] = {p->bx, p->by};
-    long double c0[2] = {p->x0 - (long double)uc, p->y0 - (long double)vc};
-    long double k[2][4];
-    for (int i = 0; i < 2; i++) {
-        k[i][0] = c0[i] + ta * (c1[i] + ta * (c2[i] + ta * c3[i]));
-        k[i][1] = h * (c1[i] + ta * (2 * c2[i] + 3 * ta * c3[i]));
-        k[i][2] = h * h * (c2[i] + 3 * ta * c3[i]);
-        k[i][3] = h * h * h * c3[i];
-    }
-    long double g[7] = {0};
-    for (int i = 0; i < 2; i++)
-        for (int a = 0; a < 4; a++)
-            for (int b = 0; b < 4; b++)
-                g[a + b] += k[i][a] * k[i][b];
-    g[0] -= (long double)R * R;
-    double c[7], z[12], t[6];
-    int deg = 6, n = 0, m = 0;
-    for (int a = 0; a < 7; a++)
-        c[a] = (double)g[a];
-    while (deg > 0 && c[deg] == 0.0)
-        deg--;
-    if (deg < 1)
-        return 0;
-    gsl_poly_complex_workspace *ws = gsl_poly_complex_workspace_alloc((size_t)deg + 1);
-    if (ws && gsl_poly_complex_solve(c, (size_t)deg + 1, ws, z) == GSL_SUCCESS)
-        for (int a = 0; a < deg; a++)
-            if (fabs(z[2 * a + 1]) <= 1e-6 * (1.0 + fabs(z[2 * a])))
-                t[n++] = z[2 * a];
-    if (ws)
-        gsl_poly_complex_workspace_free(ws);
-    for (int a = 0; a < n && m < 4; a++) {
-        long double u = t[a];
-        if (!(u > -0.01 && u < 1.01))
-            continue;
-        for (int it = 0; it < 6; it++) {
-            long double f = g[6], df = 0;
-            for (int b = 5; b >= 0; b--)
-                df = df * u + f, f = f * u + g[b];
-            if (df == 0)
-                break;
-            u -= f / df;
-        }
-        if (!(u >= 0 && u <= 1))
-            continue;
-        out[m++] = (double)(k[1][0] + u * (k[1][1] + u * (k[1][2] + u * k[1][3])));
-    }
-    return m;
-}
-
-/* Radial filter: heights where piece p crosses the circle of radius R
- * around (uc, vc).  The piece's part in the disc's rows is taken as
- * t = ta + (tb - ta) tau, tau in [0, 1], so that the coefficients are of
- * the order of R; the crossings are the real roots in [0, 1] of the
- * quartic |(x(tau), y(tau)) - centre|^2 - R^2 (a quadratic for a line;
- * GSL's companion matrix, then Newton in long double).  A root that is a
- * little off only leaves the kink inside an interval, where QAG's
- * bisection still finds it.  Writes the heights relative to vc (at most
- * 4, in the order found) and returns how many. */
-int truth_circle_heights(const aa_piece *p, double uc, double vc, double R,
-                         gsl_poly_complex_workspace *poly, double out[4])
-{
-    if (p->kind == AA_PIECE_FLAT)
-        return 0;
-    double lo = fmax(vc - R, p->y0), hi = fmin(vc + R, p->y1);
-    if (!(lo < hi))
-        return 0;
-    long double ta = lo <= p->y0 ? 0.0 : aa_piece_t_at(p, lo);
-    long double tb = hi >= p->y1 ? 1.0 : aa_piece_t_at(p, hi), h = tb - ta;
-    if (!(h > 0))
-        return 0;
-    if (p->kind == AA_PIECE_CUBIC)
-        return circle_heights_cubic(p, ta, h, uc, vc, R, out);
-    long double X = p->x0 + ta * (p->bx + ta * p->ax) - (long double)uc;
-    long double Y = p->y0 + ta * (p->by + ta * p->ay) - (long double)vc;
-    long double bx = h * (p->bx + 2 * ta * p->ax), ax = h * h * p->ax;
-    long double by = h * (p->by + 2 * ta * p->ay), ay = h * h * p->ay, RR = R;
-    double c[5] = {(double)(X * X + Y * Y - RR * RR), (double)(2 * (X * bx + Y * by)),
-                   (double)(bx * bx + by * by + 2 * (X * ax + Y * ay)),
-                   (double)(2 * (ax * bx + ay * by)), (double)(ax * ax + ay * ay)};
-    double t[4], z[8];
-    int n = 0, m = 0;
-    if (c[4] == 0.0) { /* then c[3] = 0 too: a line */
-        n = gsl_poly_solve_quadratic(c[2], c[1], c[0], &t[0], &t[1]);
-    } else if (gsl_poly_complex_solve(c, 5, poly, z) == GSL_SUCCESS) {
-        for (int k = 0; k < 4; k++)
-            if (fabs(z[2 * k + 1]) <= 1e-6 * (1.0 + fabs(z[2 * k])))
-                t[n++] = z[2 * k];
-    }
-    for (int k = 0; k < n; k++) {
-        long double u = t[k];
-        if (!(u > -0.01 && u < 1.01))
-            continue;
-        for (int it = 0; it < 4; it++) {
-            long double x = X + u * (bx + u * ax), y = Y + u * (by + u * ay);
-            long double g = x * x + y * y - RR * RR;
-            long double dg = 2 * (x * (bx + 2 * u * ax) + y * (by + 2 * u * ay));
-            if (dg == 0)
-                break;
-            u -= g / dg;
-        }
-        if (!(u >= 0 && u <= 1))
-            continue;
-        out[m++] = (double)(Y + u * (by + u * ay));
-    }
-    return m;
 }
 
 static int add_circle(worker *w, const aa_piece *p)
@@ -520,31 +400,6 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
     return AA_OK;
 }
 
-/* Piece p in extended precision relative to (uc, vc). */
-void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long double vc)
-{
-    long double x0 = p->x0, cx = p->cx, x1 = p->x1;
-    long double y0 = p->y0, cy = p->cy, y1 = p->y1;
-    q->y0 = y0 - vc;
-    q->y1 = y1 - vc;
-    q->x0 = x0 - uc;
-    q->dx = q->dy = 0;
-    q->cubic = p->kind == AA_PIECE_CUBIC;
-    if (q->cubic) {
-        long double c1x = cx, c1y = cy, c2x = p->c2x, c2y = p->c2y;
-        q->bx = 3 * (c1x - x0), q->ax = 3 * (x0 - 2 * c1x + c2x), q->dx = (x1 - x0) + 3 * (c1x - c2x);
-        q->by = 3 * (c1y - y0), q->ay = 3 * (y0 - 2 * c1y + c2y), q->dy = (y1 - y0) + 3 * (c1y - c2y);
-    } else if (p->kind == AA_PIECE_QUAD) {
-        q->ax = x0 - 2 * cx + x1, q->bx = 2 * (cx - x0);
-        q->ay = y0 - 2 * cy + y1, q->by = 2 * (cy - y0);
-    } else {
-        q->ax = 0, q->bx = x1 - x0;
-        q->ay = 0, q->by = y1 - y0;
-    }
-    q->dir = p->dir;
-    q->layer = p->layer;
-}
-
 /* Set up the local pieces of the current window relative to (uc, vc). */
 static int load_local(worker *w, const aa_piece *const *local, size_t n)
 {
@@ -568,84 +423,6 @@ static int load_local(worker *w, const aa_piece *const *local, size_t n)
         truth_set_local(&w->lp[w->nlp++], p, w->uc, w->vc);
     }
     return AA_OK;
-}
-
-/* x(t) - x0 where the piece meets the line at height s (relative to the
- * same origin as q->y0; the piece active there). */
-long double truth_t_at(const local_piece *q, long double s)
-{
-    long double d = s - q->y0, t;
-    if (q->cubic) {
-        /* y(t) - s = t (by + t (ay + t dy)) - d, increasing on [0, 1]:
-         * Newton's method kept inside the bracket [a, b], bisection where
-         * a step would leave it, until the error left after a step,
-         * |y''/(2y')| step^2, is below 2^-66 (long double's last bit at
-         * t = 1 is 2^-64) or the bracket cannot shrink */
-        long double a = 0, b = 1, fb = q->by + q->ay + q->dy - d;
-        if (!(d > 0))
-            return 0;
-        if (!(fb > 0))
-            return 1;
-        /* a start from Newton's method in double, a few fast steps (and
-         * bisection where a step would leave [0, 1]); then long double */
-        double td = (double)(d / (q->y1 - q->y0)), lo = 0.0, hi = 1.0;
-        double dd = (double)d, k1 = (double)q->by, k2 = (double)q->ay, k3 = (double)q->dy;
-        td = td > 0.0 && td < 1.0 ? td : 0.5;
-        for (int it = 0; it < 40; it++) {
-            double f = td * (k1 + td * (k2 + td * k3)) - dd;
-            if (f < 0.0)
-                lo = td;
-            else
-                hi = td;
-            double df = k1 + td * (2.0 * k2 + 3.0 * td * k3);
-            double step = df > 0.0 ? f / df : 1.0;
-            if (fabs(step) <= 0x1p-50) { /* converged, to the last bits */
-                td = fmin(fmax(td - step, lo), hi);
-                break;
-            }
-            double next = td - step;
-            td = next > lo && next < hi ? next : 0.5 * (lo + hi);
-            if (!(hi - lo > 0x1p-50))
-                break;
-        }
-        t = td;
-        for (int it = 0; it < 100; it++) {
-            long double f = t * (q->by + t * (q->ay + t * q->dy)) - d;
-            if (f == 0)
-                return t;
-            if (f < 0)
-                a = t;
-            else
-                b = t;
-            long double m = 0.5L * (a + b);
-            if (!(m > a && m < b))
-                break;
-            long double df = q->by + t * (2 * q->ay + 3 * t * q->dy);
-            long double step = df > 0 ? f / df : 0, next = df > 0 ? t - step : m;
-            if (df > 0 && next >= a && next <= b &&
-                fabsl(q->ay + 3 * t * q->dy) * step * step <= 0x1p-66L * df)
-                return next;
-            t = next > a && next < b ? next : m;
-        }
-        return t;
-    }
-    if (q->ay == 0) {
-        t = d / q->by;
-    } else {
-        /* the cancellation-free root of ay t^2 + by t - d = 0 (by >= 0) */
-        long double disc = q->by * q->by + 4 * q->ay * d;
-        long double den = q->by + sqrtl(disc > 0 ? disc : 0);
-        t = den > 0 ? 2 * d / den : 0;
-    }
-    return t < 0 ? 0 : (t > 1 ? 1 : t);
-}
-
-long double truth_crossing_part(const local_piece *q, long double s)
-{
-    long double t = truth_t_at(q, s);
-    if (q->cubic)
-        return t * (q->bx + t * (q->ax + t * q->dx));
-    return t * (q->bx + t * q->ax);
 }
 
 /* x - uc where the piece meets the line at height s = y - vc (active). */
@@ -1031,12 +808,6 @@ static void progress_row(progress *p, size_t pixels)
             p->fn(p->ctx, p->done, p->total);
         }
     }
-}
-
-int aa_long_double_is_extended(void)
-{
-    volatile long double one = 1.0L, tiny = 0x1p-60L;
-    return one + tiny != one;
 }
 
 int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int threads, int mode,

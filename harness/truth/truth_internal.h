@@ -1,7 +1,8 @@
 /*
- * truth_internal.h: what the two integration paths of the reference share
- * (truth.c: QAG and the image; truth_gauss.c: the Gaussian's fixed rule on
- * panels).  Private to harness/truth.
+ * truth_internal.h: what the integration paths of the reference share
+ * (truth.c: QAG and the image; truth_crowd.c: crowded pixels;
+ * truth_gauss.c: the Gaussian's fixed rule on panels; their local pieces
+ * in truth_local.c).  Private to harness/truth.
  */
 #ifndef AA_TRUTH_INTERNAL_H
 #define AA_TRUTH_INTERNAL_H
@@ -20,12 +21,19 @@ typedef struct local_piece {
 
 /* The piece p relative to the centre (uc, vc), in extended precision. */
 void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long double vc);
-/* The crossing of q with the line at relative height s, less its x0. */
-long double truth_crossing_part(const local_piece *q, long double s);
 /* The parameter of q where it meets the line at relative height s, in
  * [0, 1]: the cancellation-free root of a quadratic, or for a cubic the one
  * root of y(t) = s, bracketed and polished by Newton in long double. */
 long double truth_t_at(const local_piece *q, long double s);
+/* The crossing of q with the line at relative height s, less its x0
+ * (inline: the integrand's inner loop). */
+static inline long double truth_crossing_part(const local_piece *q, long double s)
+{
+    long double t = truth_t_at(q, s);
+    if (q->cubic)
+        return t * (q->bx + t * (q->ax + t * q->dx));
+    return t * (q->bx + t * q->ax);
+}
 /* qsort order of doubles. */
 int truth_cmp_double(const void *a, const void *b);
 /* Radial filters: the heights (relative to vc, at most 4) where piece p

@@ -16,6 +16,9 @@
 
 int aa_fuzz_spec(const uint8_t *data, size_t size)
 {
+    /* statically linked: register the built-in methods (core.h) */
+    if (aa_method_add_builtin())
+        abort();
     char *text = malloc(size + 1);
     if (!text)
         return 0;
