@@ -550,5 +550,7 @@ const char *aa_stress_name(size_t k);
 /* Run case k; a status for failures to run (memory), not for failed checks. */
 int aa_stress_run_case(size_t k, int threads, aa_stress_result *r);
 
+/* The run folder as a library object: runfolder.h. */
+#include "runfolder.h"
 
 #endif /* AA_BENCH_H */

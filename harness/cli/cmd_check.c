@@ -170,21 +170,21 @@ int cmd_check(int argc, char **argv)
     while ((c = getopt_long(argc, argv, ":vh", opts, NULL)) != -1) {
         switch (c) {
         case O_BASELINE: baseline = optarg; break;
-        case O_TOL: st = cli_parse_real("--tolerance", optarg, 0, 1, &tol); break;
+        case O_TOL: st = aa_parse_real("--tolerance", optarg, 0, 1, &tol); break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
-        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &threads); break;
+        case O_THREADS: st = aa_parse_int("--threads", optarg, 1, 1024, &threads); break;
         case O_CACHE: cache = optarg; break;
         case O_NOCACHE: cache = ""; break;
         case 'v': verbose = 1; break;
         case O_ISOLATE: isolate = AA_ISOLATE_ALL; break;
         case O_NOISOLATE: isolate = AA_ISOLATE_NONE; break;
         case O_CASE_TIMEOUT:
-            st = cli_parse_real("--case-timeout", optarg, 0.001, 1e9, &timeout);
+            st = aa_parse_real("--case-timeout", optarg, 0.001, 1e9, &timeout);
             break;
-        case O_SLOWER: st = cli_parse_real("--fail-slower", optarg, 0, 1e6, &times.slower); break;
-        case O_TARGET: st = cli_parse_target(optarg, &times.plan.target_ci); break;
-        case O_BUDGET: st = cli_parse_budget(optarg, &times.plan.budget); break;
-        case O_REPS: st = cli_parse_int("--reps", optarg, 1, 1000, &times.plan.reps); break;
+        case O_SLOWER: st = aa_parse_real("--fail-slower", optarg, 0, 1e6, &times.slower); break;
+        case O_TARGET: st = aa_parse_target(optarg, &times.plan.target_ci); break;
+        case O_BUDGET: st = aa_parse_budget(optarg, &times.plan.budget); break;
+        case O_REPS: st = aa_parse_int("--reps", optarg, 1, 1000, &times.plan.reps); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("check", c, argv);
         }
@@ -195,7 +195,7 @@ int cmd_check(int argc, char **argv)
         fprintf(stderr, "aabench check: unexpected argument \"%s\"\n", aa_echo(argv[optind]));
         return 2;
     }
-    if (*cache && (st = cli_check_folder("--cache", cache, 64)))
+    if (*cache && (st = aa_folder_check("--cache", cache, 64)))
         return cli_fail("check", st);
     aa_row *base = NULL;
     size_t nb = 0;
@@ -207,7 +207,7 @@ int cmd_check(int argc, char **argv)
         return 2;
     }
     if (threads <= 0)
-        threads = cli_default_threads();
+        threads = aa_default_threads();
     int *done = calloc(nb, sizeof *done);
     aa_run_spec *methods = malloc(nb * sizeof *methods);
     size_t *which = malloc(nb * sizeof *which);

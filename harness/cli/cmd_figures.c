@@ -82,7 +82,7 @@ int cmd_figures(int argc, char **argv)
     const size_t n = aa_figure_count();
     unsigned char want[NMAX];
     const char *dir = "results/figures";
-    int c, st = AA_OK, threads = cli_default_threads(), quiet = 0, claims = 0, only = 0;
+    int c, st = AA_OK, threads = aa_default_threads(), quiet = 0, claims = 0, only = 0;
     int reps = 31;
     if (n > NMAX)
         return cli_fail("figures", aa_fail(AA_EFAIL, "too many figures"));
@@ -95,9 +95,9 @@ int cmd_figures(int argc, char **argv)
             st = parse_only(optarg, want, n);
             only = 1;
             break;
-        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &threads); break;
+        case O_THREADS: st = aa_parse_int("--threads", optarg, 1, 1024, &threads); break;
         case O_CLAIMS: claims = 1; break;
-        case O_REPS: st = cli_parse_int("--reps", optarg, 1, 1000, &reps); break;
+        case O_REPS: st = aa_parse_int("--reps", optarg, 1, 1000, &reps); break;
         case 'q': quiet = 1; break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("figures", c, argv);

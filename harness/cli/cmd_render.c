@@ -74,17 +74,17 @@ static int parse(int argc, char **argv, render_args *a)
         case 'f': a->filter = optarg; break;
         case 'o': a->out = optarg; break;
         case 'q': a->quiet = 1; break;
-        case O_SEED: st = cli_parse_seed(optarg, &a->seed); break;
-        case O_TIME: st = cli_parse_real("--time", optarg, -1e9, 1e9, &a->t); break;
-        case O_MOTION: st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy); break;
+        case O_SEED: st = aa_parse_seed(optarg, &a->seed); break;
+        case O_TIME: st = aa_parse_real("--time", optarg, -1e9, 1e9, &a->t); break;
+        case O_MOTION: st = aa_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy); break;
         case O_FRAME: a->frame_only = 1; break;
-        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &a->threads); break;
-        case O_REPS: st = cli_parse_int("--reps", optarg, 1, 1000, &a->reps); break;
+        case O_THREADS: st = aa_parse_int("--threads", optarg, 1, 1024, &a->threads); break;
+        case O_REPS: st = aa_parse_int("--reps", optarg, 1, 1000, &a->reps); break;
         case O_STATS: a->stats = optarg; break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
         case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
-        case O_TARGET: st = cli_parse_target(optarg, &a->target_ci); break;
-        case O_BUDGET: st = cli_parse_budget(optarg, &a->budget); break;
+        case O_TARGET: st = aa_parse_target(optarg, &a->target_ci); break;
+        case O_BUDGET: st = aa_parse_budget(optarg, &a->budget); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("render", c, argv);
         }
@@ -182,7 +182,7 @@ int cmd_render(int argc, char **argv)
         (st = aa_method_parse(a.method, &f, &method)) || (st = cli_check_output(a.out)) ||
         (a.stats && (st = cli_check_output_file(a.stats, ".json"))))
         return cli_fail("render", st);
-    int threads = a.threads > 0 ? a.threads : cli_default_threads();
+    int threads = a.threads > 0 ? a.threads : aa_default_threads();
     aa_scene *scene = NULL;
     aa_job job = {0};
     aa_image img = {0};
