@@ -136,6 +136,11 @@ int aa_parse_pair(const char *name, const char *text, double lo, double hi, doub
     return st ? st : aa_parse_real(name, comma + 1, lo, hi, b);
 }
 
+int aa_parse_threads(const char *text, int *out)
+{
+    return aa_parse_int("--threads", text, 1, 1024, out);
+}
+
 int aa_parse_target(const char *text, double *out)
 {
     double pct;
@@ -274,7 +279,7 @@ int aa_plan_parse(int argc, char *const *argv, aa_plan *plan, aa_run_options *op
         case 'f': st = push(plan->filters, &plan->nfilters, optarg, "filters"); break;
         case O_REPS: st = aa_parse_int("--reps", optarg, 1, 1000, &plan->reps); break;
         case O_OUT: opt->out = optarg; break;
-        case O_THREADS: st = aa_parse_int("--threads", optarg, 1, 1024, &opt->threads); break;
+        case O_THREADS: st = aa_parse_threads(optarg, &opt->threads); break;
         case O_SEED: st = aa_parse_seed(optarg, &plan->seed); break;
         case O_TIME: st = aa_parse_real("--time", optarg, -1e9, 1e9, &plan->t); break;
         case O_MOTION:

@@ -168,7 +168,9 @@ int aa_parse_int(const char *name, const char *text, long lo, long hi, int *out)
 int aa_parse_seed(const char *text, uint64_t *out);
 int aa_parse_pair(const char *name, const char *text, double lo, double hi, double *a,
                   double *b);
-/* --target-ci PCT (0.01 to 50, a fraction out) and --budget S. */
+/* --threads N (1 to 1024), --target-ci PCT (0.01 to 50, a fraction out)
+ * and --budget S. */
+int aa_parse_threads(const char *text, int *out);
 int aa_parse_target(const char *text, double *out);
 int aa_parse_budget(const char *text, double *out);
 

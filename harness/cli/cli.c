@@ -40,6 +40,15 @@ int cli_bad_usage(const char *cmd, int status)
     return aa_exit_code(status);
 }
 
+int cli_out_threads(int c, const char *arg, const char **out, int *threads)
+{
+    if (c == CLI_O_OUT) {
+        *out = arg;
+        return AA_OK;
+    }
+    return aa_parse_threads(arg, threads);
+}
+
 void cli_getopt_reset(void)
 {
     optind = 0; /* glibc: full reinitialisation */

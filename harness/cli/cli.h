@@ -29,6 +29,15 @@ int cli_bad_option(const char *cmd, int c, char *const argv[]);
 /* Report a bad option found by the library's parser (aa_plan_parse): the
  * message and a pointer to --help; exit status 2. */
 int cli_bad_usage(const char *cmd, int status);
+/* --out DIR and --threads N, read one way by every command that takes
+ * them: their entries of a getopt_long table, and their values (c is
+ * CLI_O_OUT or CLI_O_THREADS; the pointer of the other may be NULL).
+ * `run` reads them through the library's aa_plan_parse, which checks
+ * --threads with the same aa_parse_threads. */
+enum { CLI_O_OUT = 0x4000, CLI_O_THREADS };
+#define CLI_OPTION_OUT {"out", required_argument, 0, CLI_O_OUT}
+#define CLI_OPTION_THREADS {"threads", required_argument, 0, CLI_O_THREADS}
+int cli_out_threads(int c, const char *arg, const char **out, int *threads);
 /* Reset getopt before a subcommand parses its arguments. */
 void cli_getopt_reset(void);
 

@@ -35,21 +35,20 @@ static void usage(FILE *out)
 
 int cmd_merge(int argc, char **argv)
 {
-    enum { O_OUT = 256, O_CACHE };
-    static const struct option opts[] = {{"out", required_argument, 0, O_OUT},
+    enum { O_CACHE = 256 };
+    static const struct option opts[] = {CLI_OPTION_OUT,
                                          {"cache", required_argument, 0, O_CACHE},
                                          {"quiet", no_argument, 0, 'q'},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     aa_run_options opt;
     const char *cache_words[2];
-    int quiet = 0, c, st;
+    int quiet = 0, c, st = AA_OK;
     aa_run_options_default(&opt);
     opt.cache = cli_cache_dir();
     cli_getopt_reset();
     while ((c = getopt_long(argc, argv, ":qh", opts, NULL)) != -1) {
         switch (c) {
-        case O_OUT: opt.out = optarg; break;
         case O_CACHE:
             /* recorded after the run's command in the results' context */
             opt.cache = cache_words[1] = optarg;
@@ -57,9 +56,12 @@ int cmd_merge(int argc, char **argv)
             opt.argc = 2, opt.argv = cache_words;
             break;
         case 'q': quiet = 1; break;
+        case CLI_O_OUT: st = cli_out_threads(c, optarg, &opt.out, NULL); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("merge", c, argv);
         }
+        if (st)
+            return cli_fail("merge", st);
     }
     int ns = argc - optind;
     if (ns < 1 || !opt.out) {

@@ -112,12 +112,12 @@ typedef struct truth_args {
 /* Returns -1 to go on, or the exit code to stop with. */
 static int parse(int argc, char **argv, truth_args *a)
 {
-    enum { O_TIME = 256, O_MOTION, O_THREADS, O_ENCODE, O_BOUND, O_CACHE, O_NOCACHE };
+    enum { O_TIME = 256, O_MOTION, O_ENCODE, O_BOUND, O_CACHE, O_NOCACHE };
     static const struct option opts[] = {
         {"pattern", required_argument, 0, 'p'}, {"size", required_argument, 0, 's'},
         {"filter", required_argument, 0, 'f'},  {"out", required_argument, 0, 'o'},
         {"time", required_argument, 0, O_TIME}, {"motion", required_argument, 0, O_MOTION},
-        {"threads", required_argument, 0, O_THREADS},
+        CLI_OPTION_THREADS,
         {"encode", required_argument, 0, O_ENCODE},
         {"bound", required_argument, 0, O_BOUND}, {"cache", required_argument, 0, O_CACHE},
         {"no-cache", no_argument, 0, O_NOCACHE}, {"quiet", no_argument, 0, 'q'},
@@ -135,11 +135,11 @@ static int parse(int argc, char **argv, truth_args *a)
         case O_MOTION:
             st = aa_parse_pair("--motion", optarg, -1e6, 1e6, &a->view.vx, &a->view.vy);
             break;
-        case O_THREADS: st = aa_parse_int("--threads", optarg, 1, 1024, &a->threads); break;
         case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
         case O_BOUND: a->bound = optarg; break;
         case O_CACHE: a->cache = optarg; break;
         case O_NOCACHE: a->cache = ""; break;
+        case CLI_O_THREADS: st = cli_out_threads(c, optarg, NULL, &a->threads); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("truth", c, argv);
         }
