@@ -1,15 +1,15 @@
 /*
- * cmd_run.c: `aabench run`: the benchmark's main job.
+ * cmd_run.c: `aabench run`: the benchmark's main job, a thin client of the
+ * library's run folder (harness/bench/runfolder.h).
  *
- * Runs a suite (or the patterns, sizes, filters and methods given) and writes
- * into results/runs/<UTC time>/ (results/latest points there) or --out DIR:
- * results.csv and results.json (rewritten after every case, atomically, so
- * an interrupted run keeps what it measured and no file is half-written),
- * images/ (EXR values, PNG for eyes, error maps), montage.png (the first
- * view's reference and methods side by side, labelled with name and RMSE),
- * plots/error_vs_time.png and plots/convergence.png.  At the end a table on
- * the terminal sorted by error; a progress bar on standard error while it
- * runs, when that is a terminal and CI is not set.
+ * Reads the options (aa_plan_parse: the plan and the run's options), makes
+ * or opens (--resume) the run folder, runs it and finishes it; what is its
+ * own: the usage, the signal handlers (the first SIGINT or SIGTERM stops
+ * after the case under way, through the library's interrupt hook; a second
+ * quits at once), the progress bar on standard error (a terminal, CI
+ * unset), the check that a resumed command is the run's, and the table at
+ * the end sorted by error, with the failed cases named.  `merge` prints its
+ * merged run with the same report (cli_run_report).
  */
 #include "cli.h"
 
