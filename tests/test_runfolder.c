@@ -241,6 +241,8 @@ static void test_shards_merged(void **state)
     assert_int_equal(aa_runfolder_merge(dirs, 3, &opt, &rf), AA_OK);
     const aa_row *rows = aa_runfolder_rows(rf, &n);
     rows_equal("the merged shards", rows, n, whole, nwhole);
+    /* a merged run has run: it measures nothing again */
+    assert_int_equal(aa_runfolder_run(rf), AA_EINVAL);
     assert_int_equal(aa_runfolder_finish(rf), AA_OK);
     aa_runfolder_free(rf);
     csv_equal("the merged results.csv", merged);

@@ -56,7 +56,7 @@ struct aa_runfolder {
     unsigned char *masks[MAX_GROUPS];   /* the cases to run; NULL: all */
     unsigned char *refused[MAX_GROUPS]; /* the cases skipped as refused */
     char dir[4096], images[4200];
-    int linked, sort, stopped, merged;
+    int linked, sort, stopped, ran; /* ran: run, or made by a merge */
     aa_context context;
     const char **context_argv; /* a merge's */
     /* the words the plan came from (open, merge) or was made into */
@@ -1220,6 +1220,10 @@ int aa_runfolder_open(const char *dir, const aa_run_options *opt, aa_runfolder *
 int aa_runfolder_run(aa_runfolder *rf)
 {
     int st = AA_OK;
+    if (rf->ran)
+        return aa_fail(AA_EINVAL, "%s: the run folder has run (open it again to resume it)",
+                       rf->dir);
+    rf->ran = 1;
     for (size_t g = 0; g < rf->ng && !st; g++) {
         aa_run_config *c = &rf->cfgs[g];
         c->images_dir = rf->opt.images ? rf->images : NULL;
@@ -1578,6 +1582,7 @@ static int merged_run(aa_runfolder *rf, merge_shard *s, const place *owner, size
         argv[argc++] = opt->argv[k];
     aa_context_collect(&rf->context, argc, argv, rf->threads);
     rf->sort = 1;
+    rf->ran = 1;
     rf->skipped = *nrefused;
     return aa_pathf(rf->dir, sizeof rf->dir, "%s", opt->out);
 }

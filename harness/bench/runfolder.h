@@ -117,7 +117,8 @@ int aa_manifest_same_commit(const aa_manifest *m);
  * resumed run's in case order); then the cases skipped as refused added
  * to the manifest.  AA_EFAIL "interrupted" when the interrupt hook
  * stopped it (aa_runfolder_interrupted); the rows measured are kept and
- * saved whatever the status. */
+ * saved whatever the status.  Once per object (a merged one has run):
+ * open the folder again to go on. */
 int aa_runfolder_run(aa_runfolder *rf);
 /* montage.png, plots/error_vs_time.png and plots/convergence.png (as the
  * options ask), if any case ran; nothing for a shard (the merge does). */
