@@ -4,11 +4,13 @@
  *  - results.csv and results.json parse back (the CSV through the library's
  *    reader, the JSON through a strict validator written here), with the
  *    values of the rows that made them;
- *  - `aabench check` passes on a baseline made from its own run, fails
+ *  - `aabench check` passes on a baseline made from its own run (made
+ *    through the library's run folder in this process), fails
  *    (exit 1, naming the offender) when a baseline error is made smaller
  *    than what the method achieves, and when a baseline method is missing;
- *  - an interrupted `aabench run` leaves no half-written or temporary file:
- *    everything in its folder is complete and parses.
+ *  - a run's references go to the cache given, and only there;
+ *  - an `aabench run` interrupted by a signal leaves no half-written or
+ *    temporary file: everything in its folder is complete and parses.
  */
 #include "bench.h"
 #include "support.h"
@@ -36,6 +38,26 @@ static char output[16384];
 static int run_cmd(const char *const *args, int interrupt_after_ms)
 {
     return support_aabench_interrupted(args, interrupt_after_ms, output, sizeof output);
+}
+
+/* `run ARGS...` through the library's run folder in this process, as the
+ * command does but for its printing; the status, the message in output. */
+static int lib_run(const char *const *args)
+{
+    int argc = 0, asked;
+    while (args[argc])
+        argc++;
+    aa_plan plan;
+    aa_run_options opt;
+    aa_runfolder *rf = NULL;
+    aa_plan_default(&plan);
+    aa_run_options_default(&opt);
+    int st = aa_plan_parse(argc, (char *const *)args, &plan, &opt, &asked);
+    if (!st && !(st = aa_runfolder_create(&plan, &opt, &rf)) && !(st = aa_runfolder_run(rf)))
+        st = aa_runfolder_finish(rf);
+    aa_runfolder_free(rf);
+    snprintf(output, sizeof output, "%s", st ? aa_last_error() : "");
+    return st;
 }
 
 /* ---- a strict JSON validator (RFC 8259 grammar) ---- */
@@ -194,10 +216,12 @@ static void test_gate(void **state)
     snprintf(out, sizeof out, "%s/gate", dir);
     snprintf(csv, sizeof csv, "%s/gate/results.csv", dir);
     const char *plugin = getenv("AABENCH_PLUGIN");
+    /* in this process, which has loaded the plug-in (setup) */
     const char *run[] = {"run", "-p", "crow", "-s", "32x24", "-f", "box", "-m", "point", "-m",
-                         "centre4", "--plugin", plugin, "--reps", "1", "--no-images",
-                         "--no-plots", "--out", out, "-q", NULL};
-    assert_int_equal(run_cmd(run, 0), 0);
+                         "centre4", "--reps", "1", "--no-images", "--no-plots", "--out", out,
+                         "-q", NULL};
+    if (lib_run(run) != AA_OK)
+        fail_msg("the run: %s", output);
     const char *check[] = {"check", "--baseline", csv, "--plugin", plugin, NULL};
     if (run_cmd(check, 0) != 0)
         fail_msg("check fails on its own baseline: %s", output);
@@ -231,32 +255,40 @@ static void test_gate(void **state)
 }
 
 /* The montage's reference (and the convergence plots') go where the run's
- * other references go: nowhere with --no-cache, into --cache DIR when
- * given, never into the default cache ($AABENCH_CACHE here) instead. */
+ * other references go: nowhere without a cache, into the cache given
+ * when one is, nowhere else. */
 static void test_cache_options(void **state)
 {
     (void)state;
-    char env[400], def[300], mine[300], out[300], log[300], cmd[700];
-    snprintf(def, sizeof def, "%s/default-cache", dir);
+    char mine[300], out[300], cmd[900];
     snprintf(mine, sizeof mine, "%s/my-cache", dir);
     snprintf(out, sizeof out, "%s/cache-run", dir);
-    snprintf(log, sizeof log, "%s/cache-run.log", dir);
-    snprintf(env, sizeof env, "AABENCH_CACHE=%s", def);
     const char *none[] = {"run", "-p", "crow", "-f", "box", "-s", "24x24", "-m", "point",
                           "--reps", "1", "--no-plots", "-q", "--no-cache", "--out", out, NULL};
-    assert_int_equal(support_wait(support_aabench_spawn(none, env, log, log)), 0);
+    assert_int_equal(lib_run(none), AA_OK);
     snprintf(cmd, sizeof cmd, "%s/montage.png", out);
     assert_int_equal(access(cmd, F_OK), 0); /* the montage was made */
-    if (access(def, F_OK) == 0)
-        fail_msg("run --no-cache wrote the cache %s", def);
+    snprintf(cmd, sizeof cmd, "test -z \"$(find %s -name 'ref-*.bin' | head -1)\"", dir);
+    if (system(cmd) != 0)
+        fail_msg("run --no-cache wrote a reference under %s", dir);
     const char *given[] = {"run", "-p", "crow", "-f", "box", "-s", "24x24", "-m", "point",
                            "--reps", "1", "--no-plots", "-q", "--cache", mine, "--out", out, NULL};
-    assert_int_equal(support_wait(support_aabench_spawn(given, env, log, log)), 0);
-    if (access(def, F_OK) == 0)
-        fail_msg("run --cache %s wrote the default cache %s", mine, def);
+    assert_int_equal(lib_run(given), AA_OK);
     snprintf(cmd, sizeof cmd, "test -n \"$(find %s -name 'ref-*.bin' | head -1)\"", mine);
     if (system(cmd) != 0)
         fail_msg("run --cache %s left no reference there", mine);
+    snprintf(cmd, sizeof cmd,
+             "test -z \"$(find %s -name 'ref-*.bin' -not -path '%s/*' | head -1)\"", dir, mine);
+    if (system(cmd) != 0)
+        fail_msg("run --cache %s wrote a reference elsewhere", mine);
+    /* the command's default cache is $AABENCH_CACHE: --cache replaces it */
+    char env[400], def[300], log[300];
+    snprintf(def, sizeof def, "%s/default-cache", dir);
+    snprintf(env, sizeof env, "AABENCH_CACHE=%s", def);
+    snprintf(log, sizeof log, "%s/cache-run.log", dir);
+    assert_int_equal(support_wait(support_aabench_spawn(given, env, log, log)), 0);
+    if (access(def, F_OK) == 0)
+        fail_msg("run --cache %s wrote the default cache %s", mine, def);
 }
 
 /* Interrupt a run part-way: exit 130, and nothing half-written. */

@@ -19,8 +19,12 @@
  *    writing the same reference at once leave one whole file, which reads
  *    back (its checksum verified) as the reference computed afresh.
  *
- * Tests run the command ($AABENCH) and the driver from the repository's
- * top folder, as the Makefile does; no test looks at a time.
+ * Runs, resumes, merges and warms go through the library's run folder in
+ * this process (lib(): what the command does, but its printing); the
+ * command ($AABENCH) is started for what only it does (the driver's
+ * shards, a resumed command checked against the run's, its messages,
+ * two processes at once), from the repository's top folder as the
+ * Makefile does.  No test looks at a time.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -28,6 +32,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "bench.h"
 #include "support.h"
 
 #include <dirent.h>
@@ -173,6 +178,85 @@ static int exists(const char *path)
     return stat(path, &sb) == 0;
 }
 
+/* ---- the library in this process, as the command does ---- */
+
+/* What the last lib() call's run folder said: the rows it kept from
+ * before, the cases skipped as refused, references computed and found. */
+static size_t lib_kept, lib_refused, lib_computed, lib_cached;
+
+static int lib_fail(int st)
+{
+    snprintf(log_text, sizeof log_text, "%s", aa_last_error());
+    return aa_exit_code(st);
+}
+
+/* `run [--resume DIR] ...`, `merge DIR... --out DIR [-q] [--cache DIR]` or
+ * `truth --warm SUITE ...` through the library's run folder in this
+ * process (runfolder.h), as the command does but for its printing: the
+ * exit status the command gives (1 when a case failed), the library's
+ * message in log_text.  What only the command does (its messages, its
+ * check of a resumed command) is tested through the command. */
+static int lib(const char *const *args)
+{
+    int argc = 0, asked, st;
+    while (args[argc])
+        argc++;
+    aa_plan plan;
+    aa_run_options opt;
+    aa_runfolder *rf = NULL;
+    aa_plan_default(&plan);
+    aa_run_options_default(&opt);
+    opt.cache = "results/cache";
+    log_text[0] = '\0';
+    lib_kept = lib_refused = lib_computed = lib_cached = 0;
+    if (!strcmp(args[0], "merge")) {
+        const char *dirs[16];
+        size_t n = 0;
+        for (int k = 1; k < argc; k++) {
+            if (!strcmp(args[k], "--out") && k + 1 < argc)
+                opt.out = args[++k];
+            else if (!strcmp(args[k], "--cache") && k + 1 < argc)
+                opt.cache = args[++k];
+            else if (strcmp(args[k], "-q") && n < 16)
+                dirs[n++] = args[k];
+        }
+        assert_non_null(opt.out);
+        st = aa_runfolder_merge(dirs, n, &opt, &rf);
+    } else {
+        const char *words[128] = {"run"};
+        int n = 1;
+        for (int k = 1; k < argc && n < 127; k++)
+            if (!strcmp(args[k], "--warm"))
+                words[n++] = "--suite";
+            else if (strcmp(args[k], "truth"))
+                words[n++] = args[k];
+        if ((st = aa_plan_parse(n, (char *const *)words, &plan, &opt, &asked)))
+            return lib_fail(st);
+        assert_int_equal(asked, 0);
+        if (!strcmp(args[0], "truth")) {
+            st = aa_runfolder_warm(&plan, &opt, &lib_computed, &lib_cached);
+            return st ? lib_fail(st) : 0;
+        }
+        st = opt.resume ? aa_runfolder_open(opt.resume, &opt, &rf)
+                        : aa_runfolder_create(&plan, &opt, &rf);
+        if (!st)
+            st = aa_runfolder_run(rf);
+    }
+    if (!st)
+        st = aa_runfolder_finish(rf);
+    int code = st ? lib_fail(st) : 0;
+    if (rf) {
+        size_t n;
+        const aa_row *rows = aa_runfolder_rows(rf, &n);
+        for (size_t k = 0; k < n && !code; k++)
+            code = rows[k].failed != 0;
+        lib_kept = aa_runfolder_kept(rf);
+        lib_refused = aa_runfolder_refused(rf);
+    }
+    aa_runfolder_free(rf);
+    return code;
+}
+
 /* ---- the partition ---- */
 
 static void test_partition(void **state)
@@ -272,7 +356,7 @@ static void test_parallel_merge(void **state)
     snprintf(merged, sizeof merged, "%s/merged", dir);
     snprintf(cache, sizeof cache, "%s/cache", dir);
     const char *run[] = {"run", QUICK, "--cache", cache, "--out", whole, NULL};
-    if (aabench(run) != 0)
+    if (lib(run) != 0)
         fail_msg("the whole run failed:\n%s", log_text);
     const char *drive[] = {"scripts/gnu-parallel-run.sh", "--jobs", "2", "--shards", "3",
                            QUICK, "--cache", cache, "--out", merged, NULL};
@@ -307,19 +391,19 @@ static void test_parallel_merge(void **state)
     snprintf(out, sizeof out, "%s/refused", dir);
     const char *foreign[] = {"run", QUICK, "--seed", "2", "--cache", cache, "--shard", "2/3",
                              "--out", other, NULL};
-    assert_int_equal(aabench(foreign), 0);
+    assert_int_equal(lib(foreign), 0);
     const char *missing[] = {"merge", s1, s3, "--out", out, NULL};
-    assert_int_equal(aabench(missing), 2);
+    assert_int_equal(lib(missing), 2);
     assert_non_null(strstr(log_text, "shard 2/3 missing"));
     const char *into[] = {"merge", s1, s2, s3, "--out", s2, NULL};
-    assert_int_equal(aabench(into), 2);
+    assert_int_equal(lib(into), 2);
     assert_non_null(strstr(log_text, "is one of the shards' folders"));
     const char *twice[] = {"merge", s1, s2, s2, s3, "--out", out, NULL};
-    assert_int_equal(aabench(twice), 2);
+    assert_int_equal(lib(twice), 2);
     assert_non_null(strstr(log_text, s2));
     assert_non_null(strstr(log_text, "given twice"));
     const char *mixed[] = {"merge", s1, other, s3, "--out", out, NULL};
-    assert_int_equal(aabench(mixed), 2);
+    assert_int_equal(lib(mixed), 2);
     assert_non_null(strstr(log_text, other));
     assert_non_null(strstr(log_text, "--seed 2"));
     assert_false(exists(out));
@@ -333,7 +417,7 @@ static void test_parallel_merge(void **state)
     snprintf(csv2, sizeof csv2, "%s/results.csv", s2);
     assert_int_equal(aa_rows_write_csv(csv2, rows, nr - 1), AA_OK);
     const char *stopped[] = {"merge", s1, s2, s3, "--out", out, NULL};
-    assert_int_equal(aabench(stopped), 2);
+    assert_int_equal(lib(stopped), 2);
     assert_non_null(strstr(log_text, "has not measured all its cases (1 missing)"));
     assert_non_null(strstr(log_text, "aabench run --resume"));
     assert_false(exists(out));
@@ -341,9 +425,9 @@ static void test_parallel_merge(void **state)
      * one thread, as the shards ran */
     const char *resume[] = {"run", "--resume", s2, "--cache", cache, "-q", "--threads", "1",
                             NULL};
-    if (aabench(resume) != 0)
+    if (lib(resume) != 0)
         fail_msg("resuming shard 2 failed:\n%s", log_text);
-    assert_non_null(strstr(log_text, "kept, measuring the rest"));
+    assert_int_equal(lib_kept, nr - 1);
     aa_row *back;
     size_t nback;
     rows_of(s2, &back, &nback);
@@ -355,7 +439,7 @@ static void test_parallel_merge(void **state)
     free(back);
     snprintf(again, sizeof again, "%s/again", dir);
     const char *remerge[] = {"merge", s3, s2, s1, "--out", again, "-q", NULL};
-    if (aabench(remerge) != 0)
+    if (lib(remerge) != 0)
         fail_msg("merge after resume failed:\n%s", log_text);
     rows_of(whole, &a, &na);
     rows_of(again, &b, &nb);
@@ -375,7 +459,7 @@ static void test_parallel_merge(void **state)
     c[1] = c[1] == 'f' ? '0' : 'f';
     support_write_file(manifest, text, len);
     const char *committed[] = {"merge", s1, s2, s3, "--out", out, NULL};
-    assert_int_equal(aabench(committed), 2);
+    assert_int_equal(lib(committed), 2);
     assert_non_null(strstr(log_text, s2));
     assert_non_null(strstr(log_text, "commit"));
     assert_false(exists(out));
@@ -416,11 +500,11 @@ static void test_driver_stopped_shard(void **state)
                            "-m", "area", "-m", "supersample", "--reps", "1", "--no-plots",
                            "--no-images", "--threads", "1", "-q", "--cache", cache, "--shard",
                            "2/2", "--out", s2, NULL};
-    assert_int_equal(aabench(again), 0);
+    assert_int_equal(lib(again), 0);
     char s1[5120];
     snprintf(s1, sizeof s1, "%s/shards/1", out);
     const char *merge[] = {"merge", s1, s2, "--out", out, "-q", NULL};
-    if (aabench(merge) != 0)
+    if (lib(merge) != 0)
         fail_msg("merge failed:\n%s", log_text);
     aa_row *rows;
     size_t nr;
@@ -445,9 +529,9 @@ static void test_resume(void **state)
     snprintf(part, sizeof part, "%s/rpart", dir);
     snprintf(cache, sizeof cache, "%s/cache", dir);
     const char *run[] = {"run", SMALL, "--cache", cache, "--out", whole, NULL};
-    assert_int_equal(aabench(run), 0);
+    assert_int_equal(lib(run), 0);
     const char *run2[] = {"run", SMALL, "--cache", cache, "--out", part, NULL};
-    assert_int_equal(aabench(run2), 0);
+    assert_int_equal(lib(run2), 0);
     /* an interrupted run: its first 2 cases only, marked */
     aa_row *rows, *full;
     size_t n, nf;
@@ -460,9 +544,9 @@ static void test_resume(void **state)
     free(rows);
     const char *resume[] = {"run", "--resume", part, "--cache", cache, "-q", "--threads", "1",
                             NULL};
-    if (aabench(resume) != 0)
+    if (lib(resume) != 0)
         fail_msg("resume failed:\n%s", log_text);
-    assert_non_null(strstr(log_text, "2 cases kept"));
+    assert_int_equal(lib_kept, 2);
     rows_of(part, &rows, &n);
     rows_of(whole, &full, &nf);
     same_rows(full, nf, rows, n);
@@ -475,7 +559,7 @@ static void test_resume(void **state)
     assert_int_equal(aabench(same), 0);
     /* and so are options that do not change the results (threads) */
     const char *threads[] = {"run", "--resume", part, "--threads", "1", "--cache", cache, NULL};
-    assert_int_equal(aabench(threads), 0);
+    assert_int_equal(lib(threads), 0);
     const char *changed[] = {"run", "--resume", part, "-p", "crow", "-s", "24x16", NULL};
     assert_int_equal(aabench(changed), 2);
     assert_non_null(strstr(log_text, "command differs"));
@@ -490,19 +574,22 @@ static void test_resume(void **state)
     c = strchr(c + 9, '"');
     c[1] = c[1] == 'f' ? '0' : 'f';
     support_write_file(path, text, len);
-    assert_int_equal(aabench(resume), 2);
+    assert_int_equal(lib(resume), 2);
     assert_non_null(strstr(log_text, "commit"));
+    /* the command says which option it was given */
+    assert_int_equal(aabench(resume), 2);
+    assert_non_null(strstr(log_text, "--resume"));
     /* bad shards and folders: refused, naming them */
     static const char *const bad[] = {"0/2", "3/2", "1/0", "a/b", "1/2x", "2", "1/5000"};
     for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
         const char *sharded[] = {"run", SMALL, "--shard", bad[k], "--out", part, NULL};
-        assert_int_equal(aabench(sharded), 2);
+        assert_int_equal(lib(sharded), 2);
         assert_non_null(strstr(log_text, "--shard"));
     }
     const char *no_out[] = {"merge", whole, NULL};
     assert_int_equal(aabench(no_out), 2);
     const char *not_run[] = {"merge", cache, "--out", part, NULL};
-    assert_int_equal(aabench(not_run), 2);
+    assert_int_equal(lib(not_run), 2);
     assert_non_null(strstr(log_text, "is not a run's folder"));
     /* not a run folder */
     const char *nothing[] = {"run", "--resume", cache, NULL};
@@ -528,25 +615,23 @@ static void test_refused_pairs(void **state)
               "-m", "supersample:n=3", "--reps", "1", "--no-plots", "--no-images", "--threads", \
               "1", "-q", "--cache", cache
     const char *run[] = {"run", PAIRS, "--out", whole, NULL};
-    if (aabench(run) != 0)
+    if (lib(run) != 0)
         fail_msg("the whole run failed:\n%s", log_text);
-    char said[256];
-    const char *line = strstr(log_text, "skipped ");
-    assert_non_null(line);
-    snprintf(said, sizeof said, "%.*s", (int)strcspn(line, "\n"), line);
+    size_t skipped = lib_refused;
+    assert_true(skipped > 0);
     for (int k = 0; k < 3; k++) {
         char part[32];
         snprintf(part, sizeof part, "%d/3", k + 1);
         snprintf(shard[k], sizeof shard[k], "%s/pshard%d", dir, k + 1);
         const char *sharded[] = {"run", PAIRS, "--shard", part, "--out", shard[k], NULL};
-        if (aabench(sharded) != 0)
+        if (lib(sharded) != 0)
             fail_msg("shard %s failed:\n%s", part, log_text);
     }
     const char *merge[] = {"merge", shard[2], shard[0], shard[1], "--out", merged, "-q",
                            "--cache", cache, NULL};
-    if (aabench(merge) != 0)
+    if (lib(merge) != 0)
         fail_msg("merge failed:\n%s", log_text);
-    assert_non_null(strstr(log_text, said));
+    assert_int_equal(lib_refused, skipped);
     aa_row *a, *b;
     size_t na, nb;
     rows_of(whole, &a, &na);
@@ -578,12 +663,15 @@ static void test_warm_and_concurrent_cache(void **state)
     const char *warm[] = {"truth", "--warm", "paper", "-p", "crow", "-s", "12x12", "-s", "16x8",
                           "-f", "box", "-f", "tent:r=1", "-f", "cone", "-m", "point",
                           "--cache", cache, "--threads", "1", NULL};
-    if (aabench(warm) != 0)
+    if (lib(warm) != 0)
         fail_msg("truth --warm failed:\n%s", log_text);
-    assert_non_null(strstr(log_text, "6 references of suite paper"));
-    assert_non_null(strstr(log_text, "6 computed, 0 already there"));
+    assert_true(lib_computed == 6 && lib_cached == 0);
     assert_int_equal(support_count_entries(cache, NULL), 6);
+    assert_int_equal(lib(warm), 0);
+    assert_true(lib_computed == 0 && lib_cached == 6);
+    /* the command says so */
     assert_int_equal(aabench(warm), 0);
+    assert_non_null(strstr(log_text, "6 references of suite paper"));
     assert_non_null(strstr(log_text, "0 computed, 6 already there"));
 
     /* two processes computing the same reference into one cache at once */

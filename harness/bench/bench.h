@@ -316,7 +316,7 @@ int aa_shard_plan(const aa_run_config *cfgs, size_t ng, int shard, int nshards,
  * tree was dirty, the shard (1 of 1 unsharded), the cases of the whole
  * run and those of this folder, and the context of the machine (text of a
  * JSON object).  Written before any case, so an interrupted run can be
- * resumed and shards merged (cmd_merge.c). */
+ * resumed and shards merged (runfolder.c). */
 typedef struct aa_manifest {
     int argc;
     char **argv;
@@ -564,5 +564,7 @@ const char *aa_stress_name(size_t k);
 /* Run case k; a status for failures to run (memory), not for failed checks. */
 int aa_stress_run_case(size_t k, int threads, aa_stress_result *r);
 
+/* The run folder as a library object: runfolder.h. */
+#include "runfolder.h"
 
 #endif /* AA_BENCH_H */

@@ -2,7 +2,6 @@
  * cli.c: helpers shared by the subcommands.
  */
 #include "cli.h"
-#include "c_numbers_internal.h"
 
 #include <signal.h>
 
@@ -35,75 +34,25 @@ int cli_bad_option(const char *cmd, int c, char *const argv[])
     return 2;
 }
 
+int cli_bad_usage(const char *cmd, int status)
+{
+    fprintf(stderr, "aabench %s: %s\nTry 'aabench %s --help'.\n", cmd, aa_last_error(), cmd);
+    return aa_exit_code(status);
+}
+
+int cli_out_threads(int c, const char *arg, const char **out, int *threads)
+{
+    if (c == CLI_O_OUT) {
+        *out = arg;
+        return AA_OK;
+    }
+    return aa_parse_threads(arg, threads);
+}
+
 void cli_getopt_reset(void)
 {
     optind = 0; /* glibc: full reinitialisation */
     opterr = 0;
-}
-
-/* C-locale numbers ('.' as the decimal point) whatever the locale. */
-int cli_parse_real(const char *name, const char *text, double lo, double hi, double *out)
-{
-    char *end;
-    aa__c_numbers numbers;
-    int st = aa__c_numbers_enter(&numbers, name);
-    if (st)
-        return st;
-    errno = 0;
-    double v = strtod(text, &end);
-    int range = errno == ERANGE;
-    aa__c_numbers_end(&numbers);
-    if (end == text || *end || range || !isfinite(v))
-        return aa_fail(AA_EINVAL, "%s \"%s\" is not a finite number", name, aa_echo(text));
-    if (v < lo || v > hi)
-        return aa_fail(AA_EINVAL, "%s %s is out of range (%g to %g)", name, aa_echo(text), lo,
-                       hi);
-    *out = v;
-    return AA_OK;
-}
-
-int cli_parse_int(const char *name, const char *text, long lo, long hi, int *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    /* digits too many for a long are a number out of range, not malformed */
-    if (end != text && !*end && errno == ERANGE)
-        return aa_fail(AA_EINVAL, "%s %s is out of range (%ld to %ld)", name, aa_echo(text), lo,
-                       hi);
-    if (end == text || *end || errno == ERANGE)
-        return aa_fail(AA_EINVAL, "%s \"%s\" is not a whole number", name, aa_echo(text));
-    if (v < lo || v > hi)
-        return aa_fail(AA_EINVAL, "%s %s is out of range (%ld to %ld)", name, aa_echo(text), lo,
-                       hi);
-    *out = (int)v;
-    return AA_OK;
-}
-
-int cli_parse_seed(const char *text, uint64_t *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(text, &end, 10);
-    if (end == text || *end || errno == ERANGE || text[0] == '-' || text[0] == ' ' ||
-        text[0] == '+')
-        return aa_fail(AA_EINVAL, "--seed \"%s\" is not a whole number from 0 to 2^64-1",
-                       aa_echo(text));
-    *out = v;
-    return AA_OK;
-}
-
-int cli_parse_pair(const char *name, const char *text, double lo, double hi, double *a,
-                   double *b)
-{
-    char buf[256];
-    const char *comma = strchr(text, ',');
-    if (!comma || strlen(text) >= sizeof buf)
-        return aa_fail(AA_EINVAL, "%s \"%s\" is not two numbers X,Y", name, aa_echo(text));
-    memcpy(buf, text, (size_t)(comma - text));
-    buf[comma - text] = '\0';
-    int st = cli_parse_real(name, buf, lo, hi, a);
-    return st ? st : cli_parse_real(name, comma + 1, lo, hi, b);
 }
 
 /* The folder of `path` exists and can be written. */
@@ -164,47 +113,6 @@ int cli_check_output_file(const char *path, const char *ext)
     if (n <= e || strcmp(path + n - e, ext) != 0)
         return aa_fail(AA_EINVAL, "output \"%s\" must end in %s", aa_echo(path), ext);
     return check_folder(path);
-}
-
-int cli_check_folder(const char *what, const char *path, size_t room)
-{
-    if (!path || !*path)
-        return aa_fail(AA_EINVAL, "%s: no folder given", what);
-    size_t n = strlen(path), max = CLI_PATH_MAX - 1 - room;
-    if (n > max)
-        return aa_fail(AA_EINVAL,
-                       "%s \"%s\": a folder name of %zu characters is too long (at most %zu, so "
-                       "that the files in it have names within %d)",
-                       what, aa_echo(path), n, max, CLI_PATH_MAX - 1);
-    char *prefix = malloc(n + 1);
-    if (!prefix)
-        return aa_fail(AA_ENOMEM, "out of memory");
-    int st = AA_OK;
-    /* each component within NAME_MAX, and each one that exists a folder */
-    for (size_t start = 0, k = 0; k <= n && !st; k++) {
-        if (k < n && path[k] != '/')
-            continue;
-        if (k - start > NAME_MAX)
-            st = aa_fail(AA_EINVAL, "%s \"%s\": the name %s is longer than %d characters", what,
-                         aa_echo(path), aa_echo(path + start), NAME_MAX);
-        start = k + 1;
-        if (st || k == 0)
-            continue;
-        memcpy(prefix, path, k);
-        prefix[k] = '\0';
-        struct stat sb;
-        if (stat(prefix, &sb) == 0 && !S_ISDIR(sb.st_mode))
-            st = aa_fail(AA_EIO, "%s \"%s\": %s is not a folder but a %s", what, aa_echo(path),
-                         aa_echo(prefix), S_ISREG(sb.st_mode) ? "file" : "special file");
-    }
-    free(prefix);
-    return st;
-}
-
-int cli_default_threads(void)
-{
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n > 0 ? (int)(n > 1024 ? 1024 : n) : 1;
 }
 
 void cli_json_string(const char *text, char *buf, size_t len)
@@ -313,20 +221,6 @@ void cli_command_line(int *argc, const char *const **argv)
 {
     *argc = whole_argc;
     *argv = whole_argv;
-}
-
-int cli_parse_target(const char *text, double *out)
-{
-    double pct;
-    int st = cli_parse_real("--target-ci", text, 0.01, 50, &pct);
-    if (!st)
-        *out = pct / 100;
-    return st;
-}
-
-int cli_parse_budget(const char *text, double *out)
-{
-    return cli_parse_real("--budget", text, 0.001, 3600, out);
 }
 
 void cli_time_text(const aa_row *r, char *buf, size_t len)

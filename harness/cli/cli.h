@@ -26,25 +26,26 @@ void cli_warn(const char *message, void *ctx);
 int cli_fail(const char *cmd, int status);
 /* Report a getopt failure (unknown option or missing argument). */
 int cli_bad_option(const char *cmd, int c, char *const argv[]);
+/* Report a bad option found by the library's parser (aa_plan_parse): the
+ * message and a pointer to --help; exit status 2. */
+int cli_bad_usage(const char *cmd, int status);
+/* --out DIR and --threads N, read one way by every command that takes
+ * them: their entries of a getopt_long table, and their values (c is
+ * CLI_O_OUT or CLI_O_THREADS; the pointer of the other may be NULL).
+ * `run` reads them through the library's aa_plan_parse, which checks
+ * --threads with the same aa_parse_threads. */
+enum { CLI_O_OUT = 0x4000, CLI_O_THREADS };
+#define CLI_OPTION_OUT {"out", required_argument, 0, CLI_O_OUT}
+#define CLI_OPTION_THREADS {"threads", required_argument, 0, CLI_O_THREADS}
+int cli_out_threads(int c, const char *arg, const char **out, int *threads);
 /* Reset getopt before a subcommand parses its arguments. */
 void cli_getopt_reset(void);
 
-int cli_parse_real(const char *name, const char *text, double lo, double hi, double *out);
-int cli_parse_int(const char *name, const char *text, long lo, long hi, int *out);
-int cli_parse_seed(const char *text, uint64_t *out);
-int cli_parse_pair(const char *name, const char *text, double lo, double hi, double *a,
-                   double *b);
 /* The output file: a known image extension and a folder that exists and
  * can be written, checked before any work. */
 int cli_check_output(const char *path);
 /* A non-image output with a required extension (".json", ".csv"). */
 int cli_check_output_file(const char *path, const char *ext);
-/* A folder to write into (made if missing), checked before any work: its
- * name and each of its components short enough, with `room` characters
- * left for the names of the files written under it, and nothing in the
- * way that is not a folder.  `what` names it in messages ("--out"). */
-#define CLI_PATH_MAX 4096
-int cli_check_folder(const char *what, const char *path, size_t room);
 /* SIGINT and SIGTERM: remove the temporary files still on disk and exit
  * with status 130 (installed first thing by cli_main; `run` installs its
  * own, which lets the case under way finish). */
@@ -64,8 +65,6 @@ int cli_stage(cli_outputs *o, const char *path, const char **tmp);
 int cli_commit(cli_outputs *o);
 void cli_discard(cli_outputs *o);
 
-/* The number of threads to use by default: all cores. */
-int cli_default_threads(void);
 /* `text` as a JSON string literal (quoted, escaped) into buf. */
 void cli_json_string(const char *text, char *buf, size_t len);
 /* Default cache folder (aa_cache_dir_default): $AABENCH_CACHE, else
@@ -78,10 +77,6 @@ int cli_progress_wanted(void);
  * results' context. */
 void cli_command_line(int *argc, const char *const **argv);
 void cli__set_command_line(int argc, char **argv); /* by cli_main */
-/* Timing options shared by run, render and check: --target-ci PCT (a
- * percentage, 0.01 to 50, returned as a fraction) and --budget S. */
-int cli_parse_target(const char *text, double *out);
-int cli_parse_budget(const char *text, double *out);
 /* The median render time in ms with its CI's relative half-width and a
  * mark for a noisy measurement: "12.345 +-1.2%", "12.345 +-9.9% *". */
 void cli_time_text(const aa_row *r, char *buf, size_t len);
@@ -102,14 +97,12 @@ int cmd_converge(int argc, char **argv);
 int cmd_diff(int argc, char **argv);
 int cmd_merge(int argc, char **argv);
 
-/* `run`'s machinery for other commands (cmd_run.c), given `run`'s own
- * arguments (argv[0] "run"): the references of the run's views into the
- * cache (truth --warm); and the end of a run for rows measured elsewhere
- * (merge: rows in the run's order, every case once, but the `refused`
- * cases the run skips), written into dir as
- * the run would have (results, montage, plots, table); the exit status. */
-int cli_run_warm(int argc, char **argv);
-int cli_run_write_merged(int argc, char **argv, const char *dir, aa_row *rows, size_t n,
-                         size_t refused, int quiet);
+/* `run`'s printing, for `merge` and `truth --warm` too (cmd_run.c): a note
+ * of the library's (a suite's method left out) on standard error; after
+ * the cases, the interruption or the error, the table (unless quiet), the
+ * noisy timings, where the results are, the failed cases; the exit
+ * status. */
+void cli_run_note(void *hook, const char *message);
+int cli_run_report(aa_runfolder *rf, int quiet, int status);
 
 #endif

@@ -147,11 +147,11 @@ static void time_summary(const time_report *t)
 
 int cmd_check(int argc, char **argv)
 {
-    enum { O_BASELINE = 256, O_TOL, O_PLUGIN, O_THREADS, O_CACHE, O_NOCACHE,
+    enum { O_BASELINE = 256, O_TOL, O_PLUGIN, O_CACHE, O_NOCACHE,
            O_ISOLATE, O_NOISOLATE, O_CASE_TIMEOUT, O_SLOWER, O_TARGET, O_BUDGET, O_REPS };
     static const struct option opts[] = {
         {"baseline", required_argument, 0, O_BASELINE}, {"tolerance", required_argument, 0, O_TOL},
-        {"plugin", required_argument, 0, O_PLUGIN},   {"threads", required_argument, 0, O_THREADS},
+        {"plugin", required_argument, 0, O_PLUGIN},   CLI_OPTION_THREADS,
         {"cache", required_argument, 0, O_CACHE},     {"no-cache", no_argument, 0, O_NOCACHE},
         {"verbose", no_argument, 0, 'v'},             {"help", no_argument, 0, 'h'},
         {"isolate", no_argument, 0, O_ISOLATE},
@@ -170,21 +170,21 @@ int cmd_check(int argc, char **argv)
     while ((c = getopt_long(argc, argv, ":vh", opts, NULL)) != -1) {
         switch (c) {
         case O_BASELINE: baseline = optarg; break;
-        case O_TOL: st = cli_parse_real("--tolerance", optarg, 0, 1, &tol); break;
+        case O_TOL: st = aa_parse_real("--tolerance", optarg, 0, 1, &tol); break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
-        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &threads); break;
         case O_CACHE: cache = optarg; break;
         case O_NOCACHE: cache = ""; break;
         case 'v': verbose = 1; break;
         case O_ISOLATE: isolate = AA_ISOLATE_ALL; break;
         case O_NOISOLATE: isolate = AA_ISOLATE_NONE; break;
         case O_CASE_TIMEOUT:
-            st = cli_parse_real("--case-timeout", optarg, 0.001, 1e9, &timeout);
+            st = aa_parse_real("--case-timeout", optarg, 0.001, 1e9, &timeout);
             break;
-        case O_SLOWER: st = cli_parse_real("--fail-slower", optarg, 0, 1e6, &times.slower); break;
-        case O_TARGET: st = cli_parse_target(optarg, &times.plan.target_ci); break;
-        case O_BUDGET: st = cli_parse_budget(optarg, &times.plan.budget); break;
-        case O_REPS: st = cli_parse_int("--reps", optarg, 1, 1000, &times.plan.reps); break;
+        case O_SLOWER: st = aa_parse_real("--fail-slower", optarg, 0, 1e6, &times.slower); break;
+        case O_TARGET: st = aa_parse_target(optarg, &times.plan.target_ci); break;
+        case O_BUDGET: st = aa_parse_budget(optarg, &times.plan.budget); break;
+        case O_REPS: st = aa_parse_int("--reps", optarg, 1, 1000, &times.plan.reps); break;
+        case CLI_O_THREADS: st = cli_out_threads(c, optarg, NULL, &threads); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("check", c, argv);
         }
@@ -195,7 +195,7 @@ int cmd_check(int argc, char **argv)
         fprintf(stderr, "aabench check: unexpected argument \"%s\"\n", aa_echo(argv[optind]));
         return 2;
     }
-    if (*cache && (st = cli_check_folder("--cache", cache, 64)))
+    if (*cache && (st = aa_folder_check("--cache", cache, 64)))
         return cli_fail("check", st);
     aa_row *base = NULL;
     size_t nb = 0;
@@ -207,7 +207,7 @@ int cmd_check(int argc, char **argv)
         return 2;
     }
     if (threads <= 0)
-        threads = cli_default_threads();
+        threads = aa_default_threads();
     int *done = calloc(nb, sizeof *done);
     aa_run_spec *methods = malloc(nb * sizeof *methods);
     size_t *which = malloc(nb * sizeof *which);

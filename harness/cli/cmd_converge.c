@@ -23,14 +23,14 @@ static void usage(FILE *out)
 
 int cmd_converge(int argc, char **argv)
 {
-    enum { O_SPP = 256, O_PHASES, O_SEED, O_THREADS, O_OUT, O_CACHE, O_NOCACHE, O_PLUGIN,
+    enum { O_SPP = 256, O_PHASES, O_SEED, O_CACHE, O_NOCACHE, O_PLUGIN,
            O_TIME, O_MOTION };
     static const struct option opts[] = {
         {"pattern", required_argument, 0, 'p'}, {"method", required_argument, 0, 'm'},
         {"size", required_argument, 0, 's'},    {"filter", required_argument, 0, 'f'},
         {"spp", required_argument, 0, O_SPP},   {"phases", required_argument, 0, O_PHASES},
-        {"seed", required_argument, 0, O_SEED}, {"threads", required_argument, 0, O_THREADS},
-        {"out", required_argument, 0, O_OUT},   {"cache", required_argument, 0, O_CACHE},
+        {"seed", required_argument, 0, O_SEED}, CLI_OPTION_THREADS,
+        CLI_OPTION_OUT,   {"cache", required_argument, 0, O_CACHE},
         {"no-cache", no_argument, 0, O_NOCACHE}, {"plugin", required_argument, 0, O_PLUGIN},
         {"time", required_argument, 0, O_TIME}, {"motion", required_argument, 0, O_MOTION},
         {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
@@ -47,15 +47,15 @@ int cmd_converge(int argc, char **argv)
         case 's': size = optarg; break;
         case 'f': filter = optarg; break;
         case O_SPP: spps = optarg; break;
-        case O_PHASES: st = cli_parse_int("--phases", optarg, 1, 1024, &phases); break;
-        case O_SEED: st = cli_parse_seed(optarg, &seed); break;
-        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &threads); break;
-        case O_OUT: out = optarg; break;
+        case O_PHASES: st = aa_parse_int("--phases", optarg, 1, 1024, &phases); break;
+        case O_SEED: st = aa_parse_seed(optarg, &seed); break;
         case O_CACHE: cache = optarg; break;
         case O_NOCACHE: cache = ""; break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
-        case O_TIME: st = cli_parse_real("--time", optarg, -1e9, 1e9, &tm); break;
-        case O_MOTION: st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &vx, &vy); break;
+        case O_TIME: st = aa_parse_real("--time", optarg, -1e9, 1e9, &tm); break;
+        case O_MOTION: st = aa_parse_pair("--motion", optarg, -1e6, 1e6, &vx, &vy); break;
+        case CLI_O_OUT:
+        case CLI_O_THREADS: st = cli_out_threads(c, optarg, &out, &threads); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("converge", c, argv);
         }
@@ -75,7 +75,7 @@ int cmd_converge(int argc, char **argv)
     for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
         if (n == 64)
             return aa_fail(AA_EINVAL, "more than 64 spp values"), cli_fail("converge", AA_EINVAL);
-        if ((st = cli_parse_int("--spp value", t, 1, 1 << 20, &spp[n++])))
+        if ((st = aa_parse_int("--spp value", t, 1, 1 << 20, &spp[n++])))
             return cli_fail("converge", st);
     }
     aa_spec pspec, mspec;
@@ -86,7 +86,7 @@ int cmd_converge(int argc, char **argv)
         (st = filter ? aa_filter_parse(filter, &f) : (aa_filter_default(&f), AA_OK)) ||
         (st = aa_method_parse(method, &f, &mspec)) ||
         (st = aa_converge_moving(&pspec, &mspec, &f, w, h, tm, vx, vy, spp, n, phases, seed,
-                          threads > 0 ? threads : cli_default_threads(), *cache ? cache : NULL,
+                          threads > 0 ? threads : aa_default_threads(), *cache ? cache : NULL,
                           &conv)))
         return cli_fail("converge", st);
     printf("# %s on %s %s %s, %d phases\n# spp rmse rmse_sd seconds\n", method, pattern, size,

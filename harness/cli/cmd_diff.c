@@ -66,8 +66,8 @@ int cmd_diff(int argc, char **argv)
     cli_getopt_reset();
     while ((c = getopt_long(argc, argv, ":vh", opts, NULL)) != -1) {
         switch (c) {
-        case O_TOL: st = cli_parse_real("--tolerance", optarg, 0, 1, &tol); break;
-        case O_SLOWER: st = cli_parse_real("--fail-slower", optarg, 0, 1e6, &slower); break;
+        case O_TOL: st = aa_parse_real("--tolerance", optarg, 0, 1, &tol); break;
+        case O_SLOWER: st = aa_parse_real("--fail-slower", optarg, 0, 1e6, &slower); break;
         case 'v': verbose = 1; break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("diff", c, argv);

@@ -53,8 +53,8 @@ static int parse(int argc, char **argv, export_args *a)
         case 's': a->size = optarg; break;
         case 'o': a->out = optarg; break;
         case 'q': a->quiet = 1; break;
-        case O_TIME: st = cli_parse_real("--time", optarg, -1e9, 1e9, &a->t); break;
-        case O_MOTION: st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy); break;
+        case O_TIME: st = aa_parse_real("--time", optarg, -1e9, 1e9, &a->t); break;
+        case O_MOTION: st = aa_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy); break;
         case O_MASK: a->mask = 1; break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("export", c, argv);

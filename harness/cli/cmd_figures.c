@@ -69,10 +69,10 @@ static int claims_progress(void *ctx, const char *what)
 
 int cmd_figures(int argc, char **argv)
 {
-    enum { O_OUT = 256, O_ONLY, O_THREADS, O_CLAIMS, O_REPS };
-    static const struct option opts[] = {{"out", required_argument, 0, O_OUT},
+    enum { O_ONLY = 256, O_CLAIMS, O_REPS };
+    static const struct option opts[] = {CLI_OPTION_OUT,
                                          {"only", required_argument, 0, O_ONLY},
-                                         {"threads", required_argument, 0, O_THREADS},
+                                         CLI_OPTION_THREADS,
                                          {"claims", no_argument, 0, O_CLAIMS},
                                          {"reps", required_argument, 0, O_REPS},
                                          {"quiet", no_argument, 0, 'q'},
@@ -82,7 +82,7 @@ int cmd_figures(int argc, char **argv)
     const size_t n = aa_figure_count();
     unsigned char want[NMAX];
     const char *dir = "results/figures";
-    int c, st = AA_OK, threads = cli_default_threads(), quiet = 0, claims = 0, only = 0;
+    int c, st = AA_OK, threads = aa_default_threads(), quiet = 0, claims = 0, only = 0;
     int reps = 31;
     if (n > NMAX)
         return cli_fail("figures", aa_fail(AA_EFAIL, "too many figures"));
@@ -90,15 +90,15 @@ int cmd_figures(int argc, char **argv)
     cli_getopt_reset();
     while (!st && (c = getopt_long(argc, argv, ":hq", opts, NULL)) != -1) {
         switch (c) {
-        case O_OUT: dir = optarg; break;
         case O_ONLY:
             st = parse_only(optarg, want, n);
             only = 1;
             break;
-        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &threads); break;
         case O_CLAIMS: claims = 1; break;
-        case O_REPS: st = cli_parse_int("--reps", optarg, 1, 1000, &reps); break;
+        case O_REPS: st = aa_parse_int("--reps", optarg, 1, 1000, &reps); break;
         case 'q': quiet = 1; break;
+        case CLI_O_OUT:
+        case CLI_O_THREADS: st = cli_out_threads(c, optarg, &dir, &threads); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("figures", c, argv);
         }

@@ -50,14 +50,14 @@ typedef struct render_args {
 /* Returns -1 to go on, or the exit code to stop with. */
 static int parse(int argc, char **argv, render_args *a)
 {
-    enum { O_SEED = 256, O_TIME, O_MOTION, O_FRAME, O_THREADS, O_REPS, O_STATS, O_PLUGIN,
+    enum { O_SEED = 256, O_TIME, O_MOTION, O_FRAME, O_REPS, O_STATS, O_PLUGIN,
            O_ENCODE, O_TARGET, O_BUDGET };
     static const struct option opts[] = {
         {"pattern", required_argument, 0, 'p'}, {"method", required_argument, 0, 'm'},
         {"size", required_argument, 0, 's'},    {"filter", required_argument, 0, 'f'},
         {"out", required_argument, 0, 'o'},     {"seed", required_argument, 0, O_SEED},
         {"time", required_argument, 0, O_TIME}, {"motion", required_argument, 0, O_MOTION},
-        {"frame-only", no_argument, 0, O_FRAME}, {"threads", required_argument, 0, O_THREADS},
+        {"frame-only", no_argument, 0, O_FRAME}, CLI_OPTION_THREADS,
         {"reps", required_argument, 0, O_REPS}, {"stats", required_argument, 0, O_STATS},
         {"plugin", required_argument, 0, O_PLUGIN}, {"encode", required_argument, 0, O_ENCODE},
         {"quiet", no_argument, 0, 'q'},         {"help", no_argument, 0, 'h'},
@@ -74,17 +74,17 @@ static int parse(int argc, char **argv, render_args *a)
         case 'f': a->filter = optarg; break;
         case 'o': a->out = optarg; break;
         case 'q': a->quiet = 1; break;
-        case O_SEED: st = cli_parse_seed(optarg, &a->seed); break;
-        case O_TIME: st = cli_parse_real("--time", optarg, -1e9, 1e9, &a->t); break;
-        case O_MOTION: st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy); break;
+        case O_SEED: st = aa_parse_seed(optarg, &a->seed); break;
+        case O_TIME: st = aa_parse_real("--time", optarg, -1e9, 1e9, &a->t); break;
+        case O_MOTION: st = aa_parse_pair("--motion", optarg, -1e6, 1e6, &a->vx, &a->vy); break;
         case O_FRAME: a->frame_only = 1; break;
-        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &a->threads); break;
-        case O_REPS: st = cli_parse_int("--reps", optarg, 1, 1000, &a->reps); break;
+        case O_REPS: st = aa_parse_int("--reps", optarg, 1, 1000, &a->reps); break;
         case O_STATS: a->stats = optarg; break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
         case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
-        case O_TARGET: st = cli_parse_target(optarg, &a->target_ci); break;
-        case O_BUDGET: st = cli_parse_budget(optarg, &a->budget); break;
+        case O_TARGET: st = aa_parse_target(optarg, &a->target_ci); break;
+        case O_BUDGET: st = aa_parse_budget(optarg, &a->budget); break;
+        case CLI_O_THREADS: st = cli_out_threads(c, optarg, NULL, &a->threads); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("render", c, argv);
         }
@@ -182,7 +182,7 @@ int cmd_render(int argc, char **argv)
         (st = aa_method_parse(a.method, &f, &method)) || (st = cli_check_output(a.out)) ||
         (a.stats && (st = cli_check_output_file(a.stats, ".json"))))
         return cli_fail("render", st);
-    int threads = a.threads > 0 ? a.threads : cli_default_threads();
+    int threads = a.threads > 0 ? a.threads : aa_default_threads();
     aa_scene *scene = NULL;
     aa_job job = {0};
     aa_image img = {0};

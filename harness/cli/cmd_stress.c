@@ -35,7 +35,7 @@ static int parse_only(const char *text, unsigned char *want, size_t n)
     memset(want, 0, n);
     for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
         int k;
-        if (cli_parse_int("--only", tok, 1, (long)n, &k))
+        if (aa_parse_int("--only", tok, 1, (long)n, &k))
             return AA_EINVAL;
         want[k - 1] = 1;
     }
@@ -44,10 +44,10 @@ static int parse_only(const char *text, unsigned char *want, size_t n)
 
 int cmd_stress(int argc, char **argv)
 {
-    enum { O_OUT = 256, O_ONLY, O_THREADS };
-    static const struct option opts[] = {{"out", required_argument, 0, O_OUT},
+    enum { O_ONLY = 256 };
+    static const struct option opts[] = {CLI_OPTION_OUT,
                                          {"only", required_argument, 0, O_ONLY},
-                                         {"threads", required_argument, 0, O_THREADS},
+                                         CLI_OPTION_THREADS,
                                          {"quiet", no_argument, 0, 'q'},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
@@ -55,7 +55,7 @@ int cmd_stress(int argc, char **argv)
     unsigned char *want = malloc(n);
     aa_stress_result *res = calloc(n, sizeof *res);
     const char *dir = "results/stress";
-    int c, st = AA_OK, threads = cli_default_threads(), quiet = 0, code = 0;
+    int c, st = AA_OK, threads = aa_default_threads(), quiet = 0, code = 0;
     if (!want || !res) {
         free(want);
         free(res);
@@ -65,10 +65,10 @@ int cmd_stress(int argc, char **argv)
     cli_getopt_reset();
     while (!st && (c = getopt_long(argc, argv, ":hq", opts, NULL)) != -1) {
         switch (c) {
-        case O_OUT: dir = optarg; break;
         case O_ONLY: st = parse_only(optarg, want, n); break;
-        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &threads); break;
         case 'q': quiet = 1; break;
+        case CLI_O_OUT:
+        case CLI_O_THREADS: st = cli_out_threads(c, optarg, &dir, &threads); break;
         case 'h':
             usage(stdout);
             free(want);

@@ -49,9 +49,34 @@ static int warm(int argc, char **argv)
             args[n++] = argv[k];
         }
     }
-    int code = cli_run_warm(n, args);
+    aa_plan plan;
+    aa_run_options opt;
+    int asked, st;
+    size_t computed = 0, cached = 0;
+    aa_plan_default(&plan);
+    aa_run_options_default(&opt);
+    opt.cache = cli_cache_dir();
+    st = aa_plan_parse(n, args, &plan, &opt, &asked);
     free(args);
-    return code;
+    if (st)
+        return asked == '?' ? cli_bad_usage("truth", st) : cli_fail("truth", st);
+    if (asked == 'h' || asked == 'l') {
+        usage(stdout);
+        return 0;
+    }
+    if (!*opt.cache) {
+        fprintf(stderr, "aabench truth: --warm needs a cache folder (not --no-cache)\n");
+        return 2;
+    }
+    opt.note = cli_run_note;
+    double t0 = aa_now();
+    if ((st = aa_runfolder_warm(&plan, &opt, &computed, &cached)))
+        return cli_fail("truth", st);
+    if (!opt.quiet)
+        printf("%zu reference%s of suite %s in %s: %zu computed, %zu already there (%.1f s)\n",
+               computed + cached, computed + cached == 1 ? "" : "s", plan.suite, opt.cache,
+               computed, cached, aa_now() - t0);
+    return 0;
 }
 
 /* Progress on standard error (a terminal, CI unset: cli_progress_wanted)
@@ -87,12 +112,12 @@ typedef struct truth_args {
 /* Returns -1 to go on, or the exit code to stop with. */
 static int parse(int argc, char **argv, truth_args *a)
 {
-    enum { O_TIME = 256, O_MOTION, O_THREADS, O_ENCODE, O_BOUND, O_CACHE, O_NOCACHE };
+    enum { O_TIME = 256, O_MOTION, O_ENCODE, O_BOUND, O_CACHE, O_NOCACHE };
     static const struct option opts[] = {
         {"pattern", required_argument, 0, 'p'}, {"size", required_argument, 0, 's'},
         {"filter", required_argument, 0, 'f'},  {"out", required_argument, 0, 'o'},
         {"time", required_argument, 0, O_TIME}, {"motion", required_argument, 0, O_MOTION},
-        {"threads", required_argument, 0, O_THREADS},
+        CLI_OPTION_THREADS,
         {"encode", required_argument, 0, O_ENCODE},
         {"bound", required_argument, 0, O_BOUND}, {"cache", required_argument, 0, O_CACHE},
         {"no-cache", no_argument, 0, O_NOCACHE}, {"quiet", no_argument, 0, 'q'},
@@ -106,15 +131,15 @@ static int parse(int argc, char **argv, truth_args *a)
         case 'f': a->filter = optarg; break;
         case 'o': a->out = optarg; break;
         case 'q': a->quiet = 1; break;
-        case O_TIME: st = cli_parse_real("--time", optarg, -1e9, 1e9, &a->view.t); break;
+        case O_TIME: st = aa_parse_real("--time", optarg, -1e9, 1e9, &a->view.t); break;
         case O_MOTION:
-            st = cli_parse_pair("--motion", optarg, -1e6, 1e6, &a->view.vx, &a->view.vy);
+            st = aa_parse_pair("--motion", optarg, -1e6, 1e6, &a->view.vx, &a->view.vy);
             break;
-        case O_THREADS: st = cli_parse_int("--threads", optarg, 1, 1024, &a->threads); break;
         case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
         case O_BOUND: a->bound = optarg; break;
         case O_CACHE: a->cache = optarg; break;
         case O_NOCACHE: a->cache = ""; break;
+        case CLI_O_THREADS: st = cli_out_threads(c, optarg, NULL, &a->threads); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("truth", c, argv);
         }

@@ -1,0 +1,1654 @@
+/*
+ * runfolder.c: a run folder as a library object (runfolder.h).
+ *
+ * A run's cases are its suite's cross products (or the lists given), each
+ * numbered in the whole run's order.  create checks the whole plan before
+ * anything is written, makes the folder and writes the manifest (run.json:
+ * shard.c's aa_manifest) before any case; run measures the cases left and
+ * saves results.json then results.csv after every case (atomically, so an
+ * interrupted or killed run keeps what it measured and no file is half
+ * written); open reads a folder back to resume it; merge joins the
+ * folders of a run's shards; finish draws the montage (the first view's
+ * reference and methods side by side, labelled with name and RMSE), the
+ * error-against-time plot and the convergence of the sampling methods.
+ * The run's command is recorded in the manifest as the words of `aabench
+ * run` (aa_plan_parse reads them back): resume and merge rebuild the plan
+ * from it.
+ */
+#include "bench.h"
+#include "c_numbers_internal.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <getopt.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define MAX_GROUPS 16
+#define MAX_WORDS (8 * AA_PLAN_MAX + 64)
+
+/* The arrays of parsed lists, freed together with the run folder. */
+typedef struct owned {
+    void *v[4 * (MAX_GROUPS + 1)];
+    size_t n;
+} owned;
+
+static void owned_free(owned *o)
+{
+    while (o->n)
+        free(o->v[--o->n]);
+}
+
+struct aa_runfolder {
+    aa_plan plan;
+    aa_run_options opt;
+    aa_run_config cfgs[MAX_GROUPS];
+    size_t ng, cases;
+    int threads;
+    owned o;
+    unsigned char *masks[MAX_GROUPS];   /* the cases to run; NULL: all */
+    unsigned char *refused[MAX_GROUPS]; /* the cases skipped as refused */
+    char dir[4096], images[4200];
+    int linked, sort, stopped, ran; /* ran: run, or made by a merge */
+    aa_context context;
+    const char **context_argv; /* a merge's */
+    /* the words the plan came from (open, merge) or was made into */
+    aa_manifest manifest;
+    int have_manifest;
+    char *words[MAX_WORDS];
+    int nwords;
+    /* every row so far: those of the groups run (nall) and of the one under
+     * way (copied of them) */
+    aa_row *all;
+    size_t nall, cap, copied, kept, skipped;
+};
+
+/* ---- option values ---- */
+
+int aa_parse_real(const char *name, const char *text, double lo, double hi, double *out)
+{
+    char *end;
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, name);
+    if (st)
+        return st;
+    errno = 0;
+    double v = strtod(text, &end);
+    int range = errno == ERANGE;
+    aa__c_numbers_end(&numbers);
+    if (end == text || *end || range || !isfinite(v))
+        return aa_fail(AA_EINVAL, "%s \"%s\" is not a finite number", name, aa_echo(text));
+    if (v < lo || v > hi)
+        return aa_fail(AA_EINVAL, "%s %s is out of range (%g to %g)", name, aa_echo(text), lo,
+                       hi);
+    *out = v;
+    return AA_OK;
+}
+
+int aa_parse_int(const char *name, const char *text, long lo, long hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    /* digits too many for a long are a number out of range, not malformed */
+    if (end != text && !*end && errno == ERANGE)
+        return aa_fail(AA_EINVAL, "%s %s is out of range (%ld to %ld)", name, aa_echo(text), lo,
+                       hi);
+    if (end == text || *end || errno == ERANGE)
+        return aa_fail(AA_EINVAL, "%s \"%s\" is not a whole number", name, aa_echo(text));
+    if (v < lo || v > hi)
+        return aa_fail(AA_EINVAL, "%s %s is out of range (%ld to %ld)", name, aa_echo(text), lo,
+                       hi);
+    *out = (int)v;
+    return AA_OK;
+}
+
+int aa_parse_seed(const char *text, uint64_t *out)
+{
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (end == text || *end || errno == ERANGE || text[0] == '-' || text[0] == ' ' ||
+        text[0] == '+')
+        return aa_fail(AA_EINVAL, "--seed \"%s\" is not a whole number from 0 to 2^64-1",
+                       aa_echo(text));
+    *out = v;
+    return AA_OK;
+}
+
+int aa_parse_pair(const char *name, const char *text, double lo, double hi, double *a,
+                  double *b)
+{
+    char buf[256];
+    const char *comma = strchr(text, ',');
+    if (!comma || strlen(text) >= sizeof buf)
+        return aa_fail(AA_EINVAL, "%s \"%s\" is not two numbers X,Y", name, aa_echo(text));
+    memcpy(buf, text, (size_t)(comma - text));
+    buf[comma - text] = '\0';
+    int st = aa_parse_real(name, buf, lo, hi, a);
+    return st ? st : aa_parse_real(name, comma + 1, lo, hi, b);
+}
+
+int aa_parse_threads(const char *text, int *out)
+{
+    return aa_parse_int("--threads", text, 1, 1024, out);
+}
+
+int aa_parse_target(const char *text, double *out)
+{
+    double pct;
+    int st = aa_parse_real("--target-ci", text, 0.01, 50, &pct);
+    if (!st)
+        *out = pct / 100;
+    return st;
+}
+
+int aa_parse_budget(const char *text, double *out)
+{
+    return aa_parse_real("--budget", text, 0.001, 3600, out);
+}
+
+int aa_folder_check(const char *what, const char *path, size_t room)
+{
+    if (!path || !*path)
+        return aa_fail(AA_EINVAL, "%s: no folder given", what);
+    size_t n = strlen(path), max = AA_PATH_MAX - 1 - room;
+    if (n > max)
+        return aa_fail(AA_EINVAL,
+                       "%s \"%s\": a folder name of %zu characters is too long (at most %zu, so "
+                       "that the files in it have names within %d)",
+                       what, aa_echo(path), n, max, AA_PATH_MAX - 1);
+    char *prefix = malloc(n + 1);
+    if (!prefix)
+        return aa_fail(AA_ENOMEM, "out of memory");
+    int st = AA_OK;
+    /* each component within NAME_MAX, and each one that exists a folder */
+    for (size_t start = 0, k = 0; k <= n && !st; k++) {
+        if (k < n && path[k] != '/')
+            continue;
+        if (k - start > NAME_MAX)
+            st = aa_fail(AA_EINVAL, "%s \"%s\": the name %s is longer than %d characters", what,
+                         aa_echo(path), aa_echo(path + start), NAME_MAX);
+        start = k + 1;
+        if (st || k == 0)
+            continue;
+        memcpy(prefix, path, k);
+        prefix[k] = '\0';
+        struct stat sb;
+        if (stat(prefix, &sb) == 0 && !S_ISDIR(sb.st_mode))
+            st = aa_fail(AA_EIO, "%s \"%s\": %s is not a folder but a %s", what, aa_echo(path),
+                         aa_echo(prefix), S_ISREG(sb.st_mode) ? "file" : "special file");
+    }
+    free(prefix);
+    return st;
+}
+
+int aa_default_threads(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n > 0 ? (int)(n > 1024 ? 1024 : n) : 1;
+}
+
+/* ---- the plan and its words ---- */
+
+void aa_plan_default(aa_plan *plan)
+{
+    memset(plan, 0, sizeof *plan);
+    plan->suite = "default";
+    plan->seed = 1;
+    plan->enc.kind = AA_ENCODE_SRGB;
+}
+
+void aa_run_options_default(aa_run_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->images = opt->plots = 1;
+    opt->isolate = AA_ISOLATE_PLUGINS;
+    opt->case_timeout = AA_CASE_TIMEOUT;
+}
+
+static int push(const char **v, size_t *n, const char *item, const char *what)
+{
+    if (*n == AA_PLAN_MAX)
+        return aa_fail(AA_EINVAL, "more than %d %s given", AA_PLAN_MAX, what);
+    v[(*n)++] = item;
+    return AA_OK;
+}
+
+/* --shard K/N: 1 <= K <= N <= AA_SHARD_MAX. */
+static int parse_shard(const char *text, int *k, int *n)
+{
+    char *end, *end2;
+    errno = 0;
+    long a = strtol(text, &end, 10), b = *end == '/' ? strtol(end + 1, &end2, 10) : 0;
+    if (*end != '/' || *end2 || errno || !(*text >= '0' && *text <= '9') ||
+        !(end[1] >= '0' && end[1] <= '9') || b < 1 || b > AA_SHARD_MAX || a < 1 || a > b)
+        return aa_fail(AA_EINVAL,
+                       "--shard \"%s\": expected K/N, the K-th of N parts, 1 <= K <= N <= %d",
+                       aa_echo(text), AA_SHARD_MAX);
+    *k = (int)a, *n = (int)b;
+    return AA_OK;
+}
+
+int aa_plan_parse(int argc, char *const *argv, aa_plan *plan, aa_run_options *opt, int *asked)
+{
+    enum { O_SUITE = 256, O_REPS, O_OUT, O_THREADS, O_SEED, O_TIME, O_MOTION, O_ENCODE,
+           O_PLUGIN, O_NOIMAGES, O_NOPLOTS, O_CACHE, O_NOCACHE, O_LIST, O_FRAMES, O_WINDOW,
+           O_TARGET, O_BUDGET, O_SEEDS, O_ISOLATE, O_NOISOLATE, O_CASE_TIMEOUT, O_SHARD,
+           O_RESUME };
+    static const struct option opts[] = {
+        {"suite", required_argument, 0, O_SUITE}, {"pattern", required_argument, 0, 'p'},
+        {"method", required_argument, 0, 'm'},   {"size", required_argument, 0, 's'},
+        {"filter", required_argument, 0, 'f'},   {"reps", required_argument, 0, O_REPS},
+        {"out", required_argument, 0, O_OUT},    {"threads", required_argument, 0, O_THREADS},
+        {"seed", required_argument, 0, O_SEED},  {"time", required_argument, 0, O_TIME},
+        {"motion", required_argument, 0, O_MOTION}, {"encode", required_argument, 0, O_ENCODE},
+        {"plugin", required_argument, 0, O_PLUGIN}, {"no-images", no_argument, 0, O_NOIMAGES},
+        {"no-plots", no_argument, 0, O_NOPLOTS}, {"cache", required_argument, 0, O_CACHE},
+        {"no-cache", no_argument, 0, O_NOCACHE}, {"list-suites", no_argument, 0, O_LIST},
+        {"quiet", no_argument, 0, 'q'},          {"help", no_argument, 0, 'h'},
+        {"frames", required_argument, 0, O_FRAMES}, {"window", required_argument, 0, O_WINDOW},
+        {"target-ci", required_argument, 0, O_TARGET},
+        {"budget", required_argument, 0, O_BUDGET},
+        {"seeds", required_argument, 0, O_SEEDS},
+        {"isolate", no_argument, 0, O_ISOLATE},
+        {"no-isolate", no_argument, 0, O_NOISOLATE},
+        {"case-timeout", required_argument, 0, O_CASE_TIMEOUT},
+        {"shard", required_argument, 0, O_SHARD},
+        {"resume", required_argument, 0, O_RESUME},
+        {0, 0, 0, 0}};
+    int c, st = AA_OK;
+    *asked = 0;
+    plan->argc = argc > 0 ? argc - 1 : 0;
+    plan->argv = argc > 0 ? (const char *const *)argv + 1 : NULL;
+    optind = 0; /* glibc: full reinitialisation */
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, ":p:m:s:f:qh", opts, NULL)) != -1) {
+        switch (c) {
+        case O_SUITE: plan->suite = optarg; break;
+        case 'p': st = push(plan->patterns, &plan->npatterns, optarg, "patterns"); break;
+        case 'm': st = push(plan->methods, &plan->nmethods, optarg, "methods"); break;
+        case 's': st = push(plan->sizes, &plan->nsizes, optarg, "sizes"); break;
+        case 'f': st = push(plan->filters, &plan->nfilters, optarg, "filters"); break;
+        case O_REPS: st = aa_parse_int("--reps", optarg, 1, 1000, &plan->reps); break;
+        case O_OUT: opt->out = optarg; break;
+        case O_THREADS: st = aa_parse_threads(optarg, &opt->threads); break;
+        case O_SEED: st = aa_parse_seed(optarg, &plan->seed); break;
+        case O_TIME: st = aa_parse_real("--time", optarg, -1e9, 1e9, &plan->t); break;
+        case O_MOTION:
+            st = aa_parse_pair("--motion", optarg, -1e6, 1e6, &plan->vx, &plan->vy);
+            plan->motion_given = 1;
+            break;
+        case O_FRAMES:
+            st = aa_parse_int("--frames", optarg, 2, AA_TEMPORAL_MAX_FRAMES, &plan->frames);
+            break;
+        case O_WINDOW:
+            st = aa_parse_int("--window", optarg, 1, AA_TEMPORAL_MAX_FRAMES, &plan->window);
+            break;
+        case O_ENCODE: st = aa_encode_parse(optarg, &plan->enc); break;
+        case O_TARGET: st = aa_parse_target(optarg, &plan->target_ci); break;
+        case O_BUDGET: st = aa_parse_budget(optarg, &plan->budget); break;
+        case O_SEEDS: st = aa_parse_int("--seeds", optarg, 1, 1000, &plan->seeds); break;
+        case O_PLUGIN: st = aa_plugin_load(optarg); break;
+        case O_NOIMAGES: opt->images = 0; break;
+        case O_NOPLOTS: opt->plots = 0; break;
+        case O_CACHE: opt->cache = optarg; break;
+        case O_NOCACHE: opt->cache = ""; break;
+        case 'q': opt->quiet = 1; break;
+        case O_ISOLATE: opt->isolate = AA_ISOLATE_ALL; break;
+        case O_NOISOLATE: opt->isolate = AA_ISOLATE_NONE; break;
+        case O_CASE_TIMEOUT:
+            st = aa_parse_real("--case-timeout", optarg, 0.001, 1e9, &opt->case_timeout);
+            break;
+        case O_SHARD: st = parse_shard(optarg, &plan->shard, &plan->shards); break;
+        case O_RESUME: opt->resume = optarg; break;
+        case O_LIST: *asked = 'l'; return AA_OK;
+        case 'h': *asked = 'h'; return AA_OK;
+        default: {
+            const char *arg = argv[optind - 1];
+            *asked = '?';
+            if (c == ':')
+                return aa_fail(AA_EINVAL, "option %s needs a value", aa_echo(arg));
+            if (optopt)
+                return aa_fail(AA_EINVAL, "unknown option -%s",
+                               aa_echo((char[]){(char)optopt, 0}));
+            return aa_fail(AA_EINVAL, "unknown option %s", aa_echo(arg));
+        }
+        }
+        if (st)
+            return st;
+    }
+    if (optind < argc)
+        return aa_fail(AA_EINVAL, "unexpected argument \"%s\"", aa_echo(argv[optind]));
+    return AA_OK;
+}
+
+/* A word made by the run folder (freed with it). */
+static int word(aa_runfolder *rf, const char *fmt, ...) AA_PRINTF(2, 3);
+static int word(aa_runfolder *rf, const char *fmt, ...)
+{
+    char buf[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    if (n < 0 || (size_t)n >= sizeof buf)
+        return aa_fail(AA_EINVAL, "a word of the run's command is too long: %.60s...", buf);
+    char *w = rf->nwords < MAX_WORDS ? strdup(buf) : NULL;
+    if (!w)
+        return aa_fail(AA_ENOMEM, "out of memory");
+    rf->words[rf->nwords++] = w;
+    return AA_OK;
+}
+
+/* The words of a plan given without them: what aa_plan_parse reads back
+ * as the same plan and recorded options. */
+static int make_words(aa_runfolder *rf)
+{
+    const aa_plan *p = &rf->plan;
+    const aa_run_options *o = &rf->opt;
+    const struct {
+        const char *flag;
+        const char *const *v;
+        size_t n;
+    } lists[] = {{"-p", p->patterns, p->npatterns},
+                 {"-s", p->sizes, p->nsizes},
+                 {"-f", p->filters, p->nfilters},
+                 {"-m", p->methods, p->nmethods}};
+    int st = word(rf, "--suite=%s", p->suite);
+    for (size_t l = 0; l < 4; l++)
+        for (size_t k = 0; k < lists[l].n && !st; k++)
+            st = word(rf, "%s%s", lists[l].flag, lists[l].v[k]);
+    if (!st && p->reps)
+        st = word(rf, "--reps=%d", p->reps);
+    if (!st && p->target_ci)
+        st = word(rf, "--target-ci=%.17g", p->target_ci * 100);
+    if (!st && p->budget)
+        st = word(rf, "--budget=%.17g", p->budget);
+    if (!st && p->seeds)
+        st = word(rf, "--seeds=%d", p->seeds);
+    if (!st && p->seed != 1)
+        st = word(rf, "--seed=%llu", (unsigned long long)p->seed);
+    if (!st && p->t)
+        st = word(rf, "--time=%.17g", p->t);
+    if (!st && p->motion_given)
+        st = word(rf, "--motion=%.17g,%.17g", p->vx, p->vy);
+    if (!st && p->frames)
+        st = word(rf, "--frames=%d", p->frames);
+    if (!st && p->window)
+        st = word(rf, "--window=%d", p->window);
+    if (!st && p->enc.kind == AA_ENCODE_LINEAR)
+        st = word(rf, "--encode=linear");
+    if (!st && p->enc.kind == AA_ENCODE_GAMMA)
+        st = word(rf, "--encode=gamma:%.17g", p->enc.gamma);
+    if (!st && !o->images)
+        st = word(rf, "--no-images");
+    if (!st && !o->plots)
+        st = word(rf, "--no-plots");
+    if (!st && o->isolate != AA_ISOLATE_PLUGINS)
+        st = word(rf, o->isolate == AA_ISOLATE_ALL ? "--isolate" : "--no-isolate");
+    if (!st && o->case_timeout != AA_CASE_TIMEOUT)
+        st = word(rf, "--case-timeout=%.17g", o->case_timeout);
+    return st;
+}
+
+/* ---- the folder ---- */
+
+static int make_run_dir(char *dir, size_t len, int *linked)
+{
+    char stamp[64];
+    time_t now = time(NULL);
+    struct tm tm;
+    gmtime_r(&now, &tm);
+    strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", &tm);
+    int st = aa_mkdirs("results/runs");
+    if (st)
+        return st;
+    for (int k = 1; k < 100; k++) {
+        if (k == 1)
+            snprintf(dir, len, "results/runs/%s", stamp);
+        else
+            snprintf(dir, len, "results/runs/%s-%d", stamp, k);
+        if (mkdir(dir, 0755) == 0) {
+            /* results/latest -> runs/<stamp>, replaced atomically */
+            char tmp[256];
+            snprintf(tmp, sizeof tmp, "results/.latest.%ld", (long)getpid());
+            unlink(tmp);
+            *linked = symlink(dir + strlen("results/"), tmp) == 0 &&
+                      rename(tmp, "results/latest") == 0;
+            if (!*linked)
+                unlink(tmp);
+            return AA_OK;
+        }
+        if (errno != EEXIST)
+            return aa_fail(AA_EIO, "cannot make %s: %s", dir, strerror(errno));
+    }
+    return aa_fail(AA_EIO, "cannot make a run folder under results/runs");
+}
+
+/* ---- progress and saving ---- */
+
+static int progress(void *vrf, size_t done, size_t total, const char *what)
+{
+    aa_runfolder *rf = vrf;
+    if (rf->opt.progress)
+        rf->opt.progress(rf->opt.hook, done, total, what);
+    if (rf->opt.interrupted && rf->opt.interrupted(rf->opt.hook))
+        rf->stopped = 1;
+    return rf->stopped;
+}
+
+static int by_case(const void *a, const void *b)
+{
+    const aa_row *x = a, *y = b;
+    return x->case_index < y->case_index ? -1 : x->case_index > y->case_index;
+}
+
+/* results.json first, results.csv last: a case in results.csv (which
+ * resume, merge, diff and check read) is in results.json too, however the
+ * run is stopped. */
+static int save_rows(aa_runfolder *rf, const aa_row *rows, size_t n)
+{
+    char path[4200];
+    int st = aa_pathf(path, sizeof path, "%s/results.json", rf->dir);
+    if (!st && !(st = aa_results_write_json(path, &rf->context, rows, n)) &&
+        !(st = aa_pathf(path, sizeof path, "%s/results.csv", rf->dir)))
+        st = aa_rows_write_csv(path, rows, n);
+    return st;
+}
+
+static int save(aa_runfolder *rf, const aa_row *rows, size_t n)
+{
+    if (!rf->sort || n < 2)
+        return save_rows(rf, rows, n);
+    /* a resumed run's rows, the kept and the new, in the run's order */
+    aa_row *sorted = malloc(n * sizeof *sorted);
+    if (!sorted)
+        return aa_fail(AA_ENOMEM, "out of memory for %zu results", n);
+    memcpy(sorted, rows, n * sizeof *rows);
+    qsort(sorted, n, sizeof *sorted, by_case);
+    int st = save_rows(rf, sorted, n);
+    free(sorted);
+    return st;
+}
+
+/* Room in rf->all for `more` rows after those kept. */
+static int grow(aa_runfolder *rf, size_t more)
+{
+    size_t need = rf->nall + more;
+    if (need <= rf->cap)
+        return AA_OK;
+    size_t cap = rf->cap ? rf->cap : 64;
+    while (cap < need)
+        cap *= 2;
+    aa_row *p = realloc(rf->all, cap * sizeof *p);
+    if (!p)
+        return aa_fail(AA_ENOMEM, "out of memory for %zu results", need);
+    rf->all = p;
+    rf->cap = cap;
+    return AA_OK;
+}
+
+/* After every case (aa_run_config.row_done): the rows of the earlier
+ * groups and the group's so far, written out, so that a run that is
+ * killed, or fails, keeps every case it measured. */
+static int row_done(void *vrf, const aa_row *rows, size_t n)
+{
+    aa_runfolder *rf = vrf;
+    int st = grow(rf, n);
+    if (st)
+        return st;
+    memcpy(rf->all + rf->nall + rf->copied, rows + rf->copied, (n - rf->copied) * sizeof *rows);
+    rf->copied = n;
+    return save(rf, rf->all, rf->nall + n);
+}
+
+/* ---- what runs after the cases ---- */
+
+/* montage.png: the first view's reference and every method, side by side. */
+
+#define MONTAGE_TILES 64
+#define MONTAGE_LINES 2
+
+/* Its columns, for n tiles of width w. */
+static int montage_columns(size_t n, int w)
+{
+    if (w <= 160)
+        return n <= 6 ? (int)n : 6;
+    return n <= 4 ? (int)n : (n <= 9 ? 3 : 4);
+}
+
+/* Its tiles, each read when the montage asks for it and freed once copied:
+ * the reference (from the cache), then each method's EXR written by the
+ * run. */
+typedef struct montage_source {
+    const char *dir;
+    const char *cache; /* the run's reference cache (NULL: --no-cache) */
+    const aa_row *rows;
+    size_t row[MONTAGE_TILES]; /* tile k > 0 is rows[row[k]] */
+    aa_view view;
+    aa_image im;
+    char labels[MONTAGE_LINES][128];
+} montage_source;
+
+static int montage_get(void *vctx, size_t k, aa_tile *tile)
+{
+    montage_source *s = vctx;
+    int st;
+    if (k == 0) {
+        if ((st = aa_reference(&s->view, s->cache, 0, &s->im, NULL, NULL)))
+            return st;
+        snprintf(s->labels[0], 128, "reference (%.100s)", s->rows[0].filter);
+        snprintf(s->labels[1], 128, "exact");
+    } else {
+        const aa_row *r = &s->rows[s->row[k]];
+        char path[4096], ps[512], fs[256], ms[512];
+        aa_spec_slug(r->pattern, ps, sizeof ps);
+        aa_spec_slug(r->filter, fs, sizeof fs);
+        aa_spec_slug(r->method, ms, sizeof ms);
+        /* the EXR written by the run holds the values */
+        if ((st = aa_pathf(path, sizeof path, "%s/images/%s-%dx%d-%s-%s.exr", s->dir, ps, r->w,
+                           r->h, fs, ms)) ||
+            (st = aa_image_read(path, &s->im)))
+            return st;
+        snprintf(s->labels[0], 128, "%.120s", r->method);
+        snprintf(s->labels[1], 128, "RMSE %.3g", r->m.rmse);
+    }
+    tile->image = &s->im;
+    tile->label[0] = s->labels[0];
+    tile->label[1] = s->labels[1];
+    tile->label[2] = NULL;
+    return AA_OK;
+}
+
+static void montage_put(void *vctx, size_t k)
+{
+    (void)k;
+    aa_image_free(&((montage_source *)vctx)->im);
+}
+
+static int write_montage(const char *dir, const aa_run_config *first, const aa_row *rows,
+                         size_t n, const aa_encode *enc)
+{
+    if (n == 0)
+        return AA_OK;
+    montage_source s;
+    memset(&s, 0, sizeof s);
+    s.dir = dir, s.rows = rows, s.cache = first->cache_dir;
+    int st;
+    s.view.pattern = first->patterns[0].spec;
+    s.view.filter = first->filters[0].filter;
+    s.view.w = rows[0].w, s.view.h = rows[0].h;
+    s.view.t = rows[0].t, s.view.vx = rows[0].vx, s.view.vy = rows[0].vy;
+    size_t nt = 1;
+    for (size_t k = 0; k < n && nt < MONTAGE_TILES; k++)
+        if (rows[k].ok && !strcmp(rows[k].pattern, rows[0].pattern) &&
+            !strcmp(rows[k].filter, rows[0].filter) && rows[k].w == rows[0].w &&
+            rows[k].h == rows[0].h)
+            s.row[nt++] = k;
+    aa_tile_source src = {.n = nt, .tw = rows[0].w, .th = rows[0].h, .lines = MONTAGE_LINES,
+                          .get = montage_get, .put = montage_put, .ctx = &s};
+    char path[4096];
+    if (!(st = aa_pathf(path, sizeof path, "%s/montage.png", dir)))
+        st = aa_montage_stream(path, &src, montage_columns(nt, rows[0].w), enc);
+    aa_image_free(&s.im);
+    return st;
+}
+
+/* A method spec without its spp= or n= pair, to name a convergence curve
+ * (which varies that count). */
+static void without_count(const char *spec, char *buf, size_t len)
+{
+    const char *colon = strchr(spec, ':');
+    size_t n = colon ? (size_t)(colon - spec) : strlen(spec);
+    snprintf(buf, len, "%.*s", (int)n, spec);
+    if (!colon)
+        return;
+    char rest[512];
+    snprintf(rest, sizeof rest, "%s", colon + 1);
+    int first = 1;
+    for (char *pair = strtok(rest, ","); pair; pair = strtok(NULL, ",")) {
+        if (!strncmp(pair, "spp=", 4) || !strncmp(pair, "n=", 2))
+            continue;
+        size_t used = strlen(buf);
+        snprintf(buf + used, len - used, "%c%s", first ? ':' : ',', pair);
+        first = 0;
+    }
+}
+
+/* Convergence of the sampling methods among those run, on the first
+ * pattern at 128x128 under the first filter. */
+/* Whether the convergence, which runs in this process, may run a method:
+ * not one that failed a case, nor one from a plug-in the run isolated. */
+static int trusted(const aa_runfolder *rf, const aa_run_spec *m, const aa_row *rows, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (rows[k].failed && !strcmp(rows[k].method, m->text))
+            return 0;
+    if (rf->opt.isolate == AA_ISOLATE_NONE)
+        return 1;
+    for (size_t k = 0; aa_method_types[k]; k++)
+        if (&aa_method_types[k]->info == m->spec.info)
+            return 1;
+    return 0;
+}
+
+static int write_convergence(const char *dir, const aa_runfolder *rf, const aa_run_config *first,
+                             int threads, const aa_row *rows, size_t nrows)
+{
+    const aa_run_spec *names[16];
+    aa_convergence conv[16];
+    size_t n = 0;
+    const aa_spec *pspec = &first->patterns[0].spec;
+    const aa_filter *f = &first->filters[0].filter;
+    const char *pattern = first->patterns[0].text, *filter = first->filters[0].text;
+    int st;
+    static const int spp[] = {1, 4, 16, 64, 256};
+    for (size_t k = 0; k < first->nmethods && n < 16; k++) {
+        const aa_spec *mspec = &first->methods[k].spec;
+        if (!trusted(rf, &first->methods[k], rows, nrows) || aa_method_check(mspec, f) ||
+            (aa_spec_index(mspec->info, "spp") < 0 && aa_spec_index(mspec->info, "n") < 0))
+            continue;
+        /* one curve per method family variant: skip a spec that differs
+         * from an earlier one only in its sample count */
+        int seen = 0;
+        for (size_t q = 0; q < n && !seen; q++) {
+            const aa_spec *other = &names[q]->spec;
+            if (other->info == mspec->info) {
+                int same = 1;
+                for (size_t p = 0; p < aa_param_count(mspec->info); p++) {
+                    const char *key = mspec->info->params[p].key;
+                    if (strcmp(key, "spp") && strcmp(key, "n") && other->v[p] != mspec->v[p])
+                        same = 0;
+                }
+                seen = same;
+            }
+        }
+        if (seen)
+            continue;
+        if ((st = aa_converge(pspec, mspec, f, 128, 128, spp, 5, 4, rf->plan.seed, threads,
+                              first->cache_dir, &conv[n])) == AA_OK)
+            names[n++] = &first->methods[k];
+        else if (st != AA_EINVAL)
+            return st;
+    }
+    if (n == 0)
+        return AA_OK;
+    char title[1024], labels[16][256];
+    const char *shown[16];
+    for (size_t k = 0; k < n; k++) {
+        without_count(names[k]->text, labels[k], sizeof labels[k]);
+        shown[k] = labels[k];
+    }
+    snprintf(title, sizeof title, "Convergence on %s 128x128 %s, 4 random sub-pixel shifts",
+             pattern, filter);
+    return aa_plot_convergence(dir, conv, shown, n, title);
+}
+
+
+static void *own(owned *o, size_t n, size_t size)
+{
+    void *p = o->n < sizeof o->v / sizeof o->v[0] ? calloc(n ? n : 1, size) : NULL;
+    if (p)
+        o->v[o->n++] = p;
+    return p;
+}
+
+static size_t count(const char *const *v)
+{
+    size_t n = 0;
+    while (v[n])
+        n++;
+    return n;
+}
+
+/* Each list is parsed where it comes in, and keeps the text it was given
+ * as, for the results' columns and the image names. */
+static int parse_patterns(owned *o, const char *const *text, size_t n, aa_run_spec **out)
+{
+    aa_run_spec *v = *out = own(o, n, sizeof *v);
+    int st = v ? AA_OK : aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t k = 0; k < n && !st; k++) {
+        v[k].text = text[k];
+        st = aa_pattern_parse(text[k], &v[k].spec);
+    }
+    return st;
+}
+
+static int parse_sizes(owned *o, const char *const *text, size_t n, aa_run_size **out)
+{
+    aa_run_size *v = *out = own(o, n, sizeof *v);
+    int st = v ? AA_OK : aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t k = 0; k < n && !st; k++)
+        if (!(st = aa_size_parse(text[k], &v[k].w, &v[k].h)))
+            st = aa_size_check(v[k].w, v[k].h, 3, 4);
+    return st;
+}
+
+static int parse_filters(owned *o, const char *const *text, size_t n, aa_run_filter **out)
+{
+    aa_run_filter *v = *out = own(o, n, sizeof *v);
+    int st = v ? AA_OK : aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t k = 0; k < n && !st; k++) {
+        v[k].text = text[k];
+        st = aa_filter_parse(text[k], &v[k].filter);
+    }
+    return st;
+}
+
+/* Whether a method accepts each filter is a result of the run, not a parse
+ * error: only the spec is parsed here. */
+static int parse_methods(owned *o, const char *const *text, size_t n, aa_run_spec **out)
+{
+    aa_run_spec *v = *out = own(o, n, sizeof *v);
+    int st = v ? AA_OK : aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t k = 0; k < n && !st; k++) {
+        v[k].text = text[k];
+        st = aa_spec_parse(text[k], aa_method_table(), "method", &v[k].spec);
+    }
+    return st;
+}
+
+/* A suite's external methods (AA_METHOD_EXTERNAL) whose renderer is not
+ * installed are left out, with a note on standard error: a suite lists
+ * every renderer and runs those this machine has.  Given with -m, such a
+ * method is refused as everywhere else. */
+static size_t drop_missing_external(const char *suite, aa_run_spec *m, size_t n,
+                                    const aa_run_options *opt)
+{
+    aa_filter box;
+    aa_filter_default(&box);
+    size_t kept = 0;
+    for (size_t k = 0; k < n; k++) {
+        const aa_method_type *t = (const aa_method_type *)m[k].spec.info;
+        if ((t->flags & AA_METHOD_EXTERNAL) && aa_method_check(&m[k].spec, &box) != AA_OK) {
+            if (opt->note) {
+                char note[2048];
+                snprintf(note, sizeof note, "suite %s: leaving out %s: %s", suite, m[k].text,
+                         aa_last_error());
+                opt->note(opt->hook, note);
+            }
+            continue;
+        }
+        m[kept++] = m[k];
+    }
+    return kept;
+}
+
+/* The cross products to run: the suite's groups, with any list given on the
+ * command line replacing the groups' own.  The lists given are parsed once,
+ * and shared by every group. */
+static int groups_of(const aa_plan *a, const aa_suite *suite, owned *o, const aa_run_options *opt,
+                     aa_run_config *cfgs,
+                     size_t max, size_t *ng)
+{
+    aa_run_spec *gp = NULL, *gm = NULL;
+    aa_run_size *gs = NULL;
+    aa_run_filter *gf = NULL;
+    int st = AA_OK;
+    *ng = 0;
+    if ((a->npatterns && (st = parse_patterns(o, a->patterns, a->npatterns, &gp))) ||
+        (a->nsizes && (st = parse_sizes(o, a->sizes, a->nsizes, &gs))) ||
+        (a->nfilters && (st = parse_filters(o, a->filters, a->nfilters, &gf))) ||
+        (a->nmethods && (st = parse_methods(o, a->methods, a->nmethods, &gm))))
+        return st;
+    for (const aa_suite_group *g = suite->groups; g->patterns && *ng < max; g++) {
+        aa_run_config *c = &cfgs[(*ng)++];
+        aa_run_spec *p = gp, *m = gm;
+        aa_run_size *s = gs;
+        aa_run_filter *f = gf;
+        size_t np = a->npatterns ? a->npatterns : count(g->patterns), ns = a->nsizes ? a->nsizes : count(g->sizes),
+               nf = a->nfilters ? a->nfilters : count(g->filters), nm = a->nmethods ? a->nmethods : count(g->methods);
+        if ((!a->npatterns && (st = parse_patterns(o, g->patterns, np, &p))) ||
+            (!a->nsizes && (st = parse_sizes(o, g->sizes, ns, &s))) ||
+            (!a->nfilters && (st = parse_filters(o, g->filters, nf, &f))) ||
+            (!a->nmethods && (st = parse_methods(o, g->methods, nm, &m))))
+            return st;
+        if (!a->nmethods)
+            nm = drop_missing_external(suite->name, m, nm, opt);
+        memset(c, 0, sizeof *c);
+        c->patterns = p, c->npatterns = np;
+        c->sizes = s, c->nsizes = ns;
+        c->filters = f, c->nfilters = nf;
+        c->methods = m, c->nmethods = nm;
+        if (a->npatterns && a->nsizes && a->nfilters && a->nmethods)
+            break; /* everything given: one cross product */
+    }
+    return AA_OK;
+}
+
+/* Everything checked before any work or any file: every method runs some
+ * case (a spec every filter of the run refuses, such as jitter:spp=15, is
+ * bad input, as `render` says), the images' names fit, the montage can be
+ * made, and the folders can be. */
+static int check_before_work(const aa_run_options *a, const aa_run_config *cfgs, size_t ng)
+{
+    int st;
+    for (size_t g = 0; g < ng; g++)
+        for (size_t m = 0; m < cfgs[g].nmethods; m++) {
+            const aa_run_spec *spec = &cfgs[g].methods[m];
+            int runs = 0;
+            char why[1024] = "";
+            /* the same method text in any group, under any of its filters */
+            for (size_t h = 0; h < ng && !runs; h++)
+                for (size_t q = 0; q < cfgs[h].nmethods && !runs; q++) {
+                    const aa_run_spec *other = &cfgs[h].methods[q];
+                    if (other != spec && strcmp(other->text, spec->text))
+                        continue;
+                    for (size_t f = 0; f < cfgs[h].nfilters && !runs; f++) {
+                        if (!aa_method_check(&other->spec, &cfgs[h].filters[f].filter))
+                            runs = 1;
+                        else if (!*why)
+                            snprintf(why, sizeof why, "%s", aa_last_error());
+                    }
+                }
+            if (!runs)
+                return aa_fail(AA_EINVAL, "%s (and so under every filter of the run)", why);
+        }
+    if (a->images) {
+        /* images/PATTERN-WxH-FILTER-METHOD-error.png within NAME_MAX */
+        for (size_t g = 0; g < ng; g++)
+            for (size_t p = 0; p < cfgs[g].npatterns; p++)
+                for (size_t s = 0; s < cfgs[g].nsizes; s++)
+                    for (size_t f = 0; f < cfgs[g].nfilters; f++)
+                        for (size_t m = 0; m < cfgs[g].nmethods; m++) {
+                            char wh[64];
+                            snprintf(wh, sizeof wh, "-%dx%d-", cfgs[g].sizes[s].w,
+                                     cfgs[g].sizes[s].h);
+                            size_t len = strlen(cfgs[g].patterns[p].text) + strlen(wh) +
+                                         strlen(cfgs[g].filters[f].text) + 1 +
+                                         strlen(cfgs[g].methods[m].text) +
+                                         strlen("-reference-error.png");
+                            if (len > NAME_MAX)
+                                return aa_fail(
+                                    AA_EINVAL,
+                                    "the image names of %s on %s %s would be %zu characters "
+                                    "long, more than a file name can be (%d): shorter specs, or "
+                                    "--no-images",
+                                    aa_echo(cfgs[g].methods[m].text),
+                                    aa_echo(cfgs[g].patterns[p].text),
+                                    aa_echo(cfgs[g].filters[f].text), len, NAME_MAX);
+                        }
+        /* the montage: the first view's reference and up to 63 methods */
+        size_t most = cfgs[0].nmethods < 63 ? cfgs[0].nmethods + 1 : 64;
+        for (size_t nt = 1; nt <= most; nt++)
+            if ((st = aa_montage_check(nt, montage_columns(nt, cfgs[0].sizes[0].w),
+                                       cfgs[0].sizes[0].w, cfgs[0].sizes[0].h, MONTAGE_LINES)))
+                return aa_fail_context(st, "montage.png (or use --no-images)");
+    }
+    /* the output folder, with room for images/NAME under it */
+    if (a->out && (st = aa_folder_check("--out", a->out, strlen("/images/") + NAME_MAX)))
+        return st;
+    if (a->cache && *a->cache && (st = aa_folder_check("--cache", a->cache, 64)))
+        return st;
+    return AA_OK;
+}
+
+
+/* The run's groups from the plan and options, each checked and set up but
+ * for its output folder; every case numbered (case_base) in the whole
+ * run's order.  Everything is checked before any work or any file. */
+static int prepare(aa_runfolder *rf)
+{
+    const aa_plan *a = &rf->plan;
+    const aa_suite *suite = aa_suite_find(a->suite ? a->suite : "default");
+    if (!suite)
+        return aa_fail(AA_EINVAL, "unknown suite \"%s\" (quick, default, paper, full, temporal)",
+                       aa_echo(a->suite));
+    int st = groups_of(a, suite, &rf->o, &rf->opt, rf->cfgs, MAX_GROUPS, &rf->ng);
+    if (st)
+        return st;
+    rf->threads = rf->opt.threads > 0 ? rf->opt.threads : aa_default_threads();
+    const aa_suite_motion *mo = aa_suite_motion_find(suite->name);
+    double vx = a->vx, vy = a->vy;
+    if (mo && !a->motion_given)
+        vx = mo->vx, vy = mo->vy;
+    rf->cases = 0;
+    for (size_t g = 0; g < rf->ng; g++) {
+        aa_run_config *c = &rf->cfgs[g];
+        c->reps = a->reps;
+        c->target_ci = a->target_ci, c->budget = a->budget, c->seeds = a->seeds;
+        c->threads = rf->threads;
+        c->temporal = mo != NULL;
+        c->frames = a->frames ? a->frames : mo ? mo->frames : 0;
+        c->window = a->window ? a->window : mo ? mo->window : 0;
+        c->isolate = rf->opt.isolate;
+        c->case_timeout = rf->opt.case_timeout;
+        c->seed = a->seed;
+        c->t = a->t, c->vx = vx, c->vy = vy;
+        c->cache_dir = rf->opt.cache && *rf->opt.cache ? rf->opt.cache : NULL;
+        c->enc = a->enc;
+        c->case_base = rf->cases;
+        rf->cases += aa_run_case_count(c);
+        if ((st = aa_run_check(c)))
+            return st;
+    }
+    return check_before_work(&rf->opt, rf->cfgs, rf->ng);
+}
+
+/* The run's manifest (aa_manifest): its command without the words that
+ * do not change the results. */
+static int write_manifest(aa_runfolder *rf)
+{
+    aa_manifest m;
+    char path[4200];
+    int argc = rf->plan.argc, st = AA_OK;
+    const char *const *argv = rf->plan.argv;
+    if (!argv) {
+        if ((st = make_words(rf)))
+            return st;
+        argc = rf->nwords, argv = (const char *const *)rf->words;
+    }
+    memset(&m, 0, sizeof m);
+    m.argv = calloc((size_t)argc + 1, sizeof *m.argv);
+    m.selected = calloc(rf->cases ? rf->cases : 1, sizeof *m.selected);
+    if (!m.argv || !m.selected) {
+        free(m.argv);
+        free(m.selected);
+        return aa_fail(AA_ENOMEM, "out of memory");
+    }
+    for (int k = 0; k < argc; k++) {
+        int value;
+        if (aa_manifest_skips(argv[k], &value))
+            k += value;
+        else
+            m.argv[m.argc++] = (char *)argv[k];
+    }
+    snprintf(m.suite, sizeof m.suite, "%s", rf->plan.suite);
+    snprintf(m.commit, sizeof m.commit, "%s", rf->context.commit);
+    snprintf(m.host, sizeof m.host, "%s", rf->context.host);
+    m.dirty = rf->context.dirty;
+    m.shard = rf->plan.shards ? rf->plan.shard : 1;
+    m.shards = rf->plan.shards ? rf->plan.shards : 1;
+    m.cases = rf->cases;
+    for (size_t g = 0; g < rf->ng; g++)
+        for (size_t k = 0; k < aa_run_case_count(&rf->cfgs[g]); k++)
+            if (!rf->masks[g] || rf->masks[g][k])
+                m.selected[m.nselected++] = rf->cfgs[g].case_base + k;
+    m.context = aa_context_json(&rf->context, 0);
+    st = m.context ? aa_pathf(path, sizeof path, "%s/run.json", rf->dir)
+                   : aa_fail(AA_ENOMEM, "out of memory");
+    if (!st)
+        st = aa_manifest_write(path, &m);
+    free(m.argv);
+    free(m.selected);
+    free(m.context);
+    return st;
+}
+
+/* A resumed run: the rows of its results.csv kept, and their cases taken
+ * out of the masks (made when the run had none).  A row that is not one of
+ * the folder's cases is refused. */
+static int resume_rows(aa_runfolder *rf)
+{
+    char path[4200];
+    aa_row *rows = NULL;
+    size_t n = 0, ng = rf->ng;
+    aa_run_config *cfgs = rf->cfgs;
+    unsigned char **masks = rf->masks;
+    int st = aa_pathf(path, sizeof path, "%s/results.csv", rf->dir);
+    if (st || access(path, F_OK) != 0)
+        return st; /* stopped before its first case */
+    if ((st = aa_rows_read_csv(path, &rows, &n)))
+        return st;
+    const aa_manifest *m = &rf->manifest;
+    for (size_t g = 0; g < ng && !st; g++)
+        if (!masks[g]) {
+            size_t c = aa_run_case_count(&cfgs[g]);
+            if (!(masks[g] = malloc(c ? c : 1)))
+                st = aa_fail(AA_ENOMEM, "out of memory");
+            else
+                memset(masks[g], 1, c);
+        }
+    for (size_t k = 0; k < n && !st; k++) {
+        long i = rows[k].case_index;
+        size_t g = 0;
+        while (g < ng && !(i >= 0 && (size_t)i >= cfgs[g].case_base &&
+                           (size_t)i < cfgs[g].case_base + aa_run_case_count(&cfgs[g])))
+            g++;
+        if (g == ng || !masks[g][(size_t)i - cfgs[g].case_base])
+            st = aa_fail(AA_EINVAL,
+                         "%s, line %zu: %s on %s %dx%d %s is not a case this run has left to "
+                         "measure (case %ld: another run's, or given twice)",
+                         path, k + 2, rows[k].method, rows[k].pattern, rows[k].w, rows[k].h,
+                         rows[k].filter, i);
+        else
+            masks[g][(size_t)i - cfgs[g].case_base] = 0;
+    }
+    /* the cases skipped before as refused are done too */
+    for (size_t k = 0; k < m->nrefused && !st; k++)
+        for (size_t g = 0; g < ng; g++)
+            if (m->refused[k] >= cfgs[g].case_base &&
+                m->refused[k] < cfgs[g].case_base + aa_run_case_count(&cfgs[g]))
+                masks[g][m->refused[k] - cfgs[g].case_base] = 0;
+    if (!st && n && !(st = grow(rf, n))) {
+        memcpy(rf->all, rows, n * sizeof *rows);
+        rf->nall = rf->kept = n;
+    }
+    free(rows);
+    return st;
+}
+
+/* The cases this run skipped as refused, added to those its manifest
+ * holds (a resumed run's earlier ones), so that they count as done for a
+ * merge and a resume; rf->skipped: all of them. */
+static int record_refused(aa_runfolder *rf)
+{
+    aa_manifest m;
+    char path[4200];
+    int st = aa_pathf(path, sizeof path, "%s/run.json", rf->dir);
+    rf->skipped = 0;
+    if (st || (st = aa_manifest_read(path, &m)))
+        return st;
+    size_t more = 0;
+    for (size_t g = 0; g < rf->ng; g++)
+        for (size_t k = 0; k < aa_run_case_count(&rf->cfgs[g]); k++)
+            more += rf->refused[g][k] != 0;
+    size_t *all = realloc(m.refused, (m.nrefused + more + 1) * sizeof *all);
+    if (!all) {
+        aa_manifest_free(&m);
+        return aa_fail(AA_ENOMEM, "out of memory");
+    }
+    m.refused = all;
+    for (size_t g = 0; g < rf->ng; g++)
+        for (size_t k = 0; k < aa_run_case_count(&rf->cfgs[g]); k++)
+            if (rf->refused[g][k])
+                m.refused[m.nrefused++] = rf->cfgs[g].case_base + k;
+    rf->skipped = m.nrefused;
+    if (more)
+        st = aa_manifest_write(path, &m);
+    aa_manifest_free(&m);
+    return st;
+}
+
+/* ---- the object ---- */
+
+void aa_runfolder_free(aa_runfolder *rf)
+{
+    if (!rf)
+        return;
+    for (size_t g = 0; g < MAX_GROUPS; g++)
+        free(rf->masks[g]), free(rf->refused[g]);
+    owned_free(&rf->o);
+    for (int k = 0; k < rf->nwords; k++)
+        free(rf->words[k]);
+    if (rf->have_manifest)
+        aa_manifest_free(&rf->manifest);
+    free(rf->context_argv);
+    free(rf->all);
+    free(rf);
+}
+
+/* The hooks and the caller's settings of `opt` that a folder's own
+ * command leaves to the caller. */
+static void callers_options(aa_run_options *to, const aa_run_options *opt)
+{
+    to->cache = opt->cache;
+    to->threads = opt->threads;
+    to->quiet = opt->quiet;
+    to->argc = opt->argc, to->argv = opt->argv;
+    to->progress = opt->progress, to->interrupted = opt->interrupted, to->note = opt->note;
+    to->hook = opt->hook;
+}
+
+/* The plan from the words of a manifest's command ("run" and them), the
+ * caller's settings kept. */
+static int plan_of_manifest(aa_runfolder *rf, const char *path, const aa_run_options *opt)
+{
+    const aa_manifest *m = &rf->manifest;
+    char **args = calloc((size_t)m->argc + 2, sizeof *args);
+    if (!args)
+        return aa_fail(AA_ENOMEM, "out of memory");
+    args[0] = "run";
+    for (int k = 0; k < m->argc; k++)
+        args[k + 1] = m->argv[k];
+    aa_plan_default(&rf->plan);
+    aa_run_options_default(&rf->opt);
+    int asked, st = aa_plan_parse(m->argc + 1, args, &rf->plan, &rf->opt, &asked);
+    free(args);
+    if (!st && asked)
+        st = aa_fail(AA_EINVAL, "its command is not a run's");
+    if (st)
+        return aa_fail_context(st, "%s", path);
+    /* the words are the manifest's, kept with the run folder */
+    rf->plan.argc = m->argc;
+    rf->plan.argv = (const char *const *)m->argv;
+    callers_options(&rf->opt, opt);
+    rf->opt.resume = NULL;
+    return AA_OK;
+}
+
+/* Everything but the manifest: the plan checked, the folder made, the
+ * cases of the shard chosen, the context collected. */
+static int set_up(aa_runfolder *rf)
+{
+    int st = prepare(rf);
+    size_t selected;
+    if (!st && rf->plan.shards > 1)
+        st = aa_shard_plan(rf->cfgs, rf->ng, rf->plan.shard, rf->plan.shards, rf->masks,
+                           &selected, NULL);
+    if (st)
+        return st;
+    if (rf->opt.out) {
+        if ((st = aa_pathf(rf->dir, sizeof rf->dir, "%s", rf->opt.out)) ||
+            (st = aa_mkdirs(rf->dir)))
+            return st;
+    } else if ((st = make_run_dir(rf->dir, sizeof rf->dir, &rf->linked))) {
+        return st;
+    }
+    if ((st = aa_pathf(rf->images, sizeof rf->images, "%s/images", rf->dir)))
+        return st;
+    for (size_t g = 0; g < rf->ng; g++)
+        if (!(rf->refused[g] = calloc(aa_run_case_count(&rf->cfgs[g]) + 1, 1)))
+            return aa_fail(AA_ENOMEM, "out of memory");
+    aa_context_collect(&rf->context, rf->opt.argc, rf->opt.argv, rf->threads);
+    return AA_OK;
+}
+
+int aa_runfolder_create(const aa_plan *plan, const aa_run_options *opt, aa_runfolder **out)
+{
+    aa_runfolder *rf = calloc(1, sizeof *rf);
+    *out = NULL;
+    if (!rf)
+        return aa_fail(AA_ENOMEM, "out of memory");
+    rf->plan = *plan;
+    rf->opt = *opt;
+    int st = set_up(rf);
+    if (!st)
+        st = write_manifest(rf);
+    if (st)
+        aa_runfolder_free(rf);
+    else
+        *out = rf;
+    return st;
+}
+
+/* The commit of this program and of the manifest's run agree. */
+static int same_commit(const aa_manifest *m)
+{
+    aa_context now;
+    aa_context_collect(&now, 0, NULL, 1);
+    if (strcmp(now.commit, m->commit) || (m->dirty >= 0 && now.dirty >= 0 && m->dirty != now.dirty))
+        return aa_fail(AA_EINVAL,
+                       "the run was measured at commit %s%s, this program is at %s%s: resume it "
+                       "with that commit's aabench, or start a new run",
+                       m->commit, m->dirty > 0 ? " (dirty)" : "", now.commit,
+                       now.dirty > 0 ? " (dirty)" : "");
+    return AA_OK;
+}
+
+int aa_manifest_same_commit(const aa_manifest *m)
+{
+    return same_commit(m);
+}
+
+int aa_runfolder_open(const char *dir, const aa_run_options *opt, aa_runfolder **out)
+{
+    char path[4200];
+    aa_runfolder *rf = calloc(1, sizeof *rf);
+    *out = NULL;
+    if (!rf)
+        return aa_fail(AA_ENOMEM, "out of memory");
+    int st = aa_pathf(path, sizeof path, "%s/run.json", dir);
+    if (!st && !(st = aa_manifest_read(path, &rf->manifest))) {
+        rf->have_manifest = 1;
+        if ((st = same_commit(&rf->manifest)))
+            aa_fail_context(st, "%s", aa_echo(dir));
+    }
+    if (!st && !(st = plan_of_manifest(rf, path, opt))) {
+        rf->plan.shard = rf->manifest.shard;
+        rf->plan.shards = rf->manifest.shards > 1 ? rf->manifest.shards : 0;
+        rf->opt.out = dir;
+        rf->sort = 1;
+        if (!(st = set_up(rf)))
+            st = resume_rows(rf);
+    }
+    if (st)
+        aa_runfolder_free(rf);
+    else
+        *out = rf;
+    return st;
+}
+
+int aa_runfolder_run(aa_runfolder *rf)
+{
+    int st = AA_OK;
+    if (rf->ran)
+        return aa_fail(AA_EINVAL, "%s: the run folder has run (open it again to resume it)",
+                       rf->dir);
+    rf->ran = 1;
+    for (size_t g = 0; g < rf->ng && !st; g++) {
+        aa_run_config *c = &rf->cfgs[g];
+        c->images_dir = rf->opt.images ? rf->images : NULL;
+        c->progress = progress;
+        c->row_done = row_done;
+        c->ctx = rf;
+        c->only = rf->masks[g];
+        /* a suite's cross products pair each method only with the views it
+         * takes; a method and a filter both named are run as asked */
+        c->skip_refused = !(rf->plan.nmethods && rf->plan.nfilters);
+        c->skipped = NULL;
+        c->refused = rf->refused[g];
+        aa_row *rows = NULL;
+        size_t n = 0;
+        rf->copied = 0;
+        st = aa_run(c, &rows, &n);
+        /* the rows aa_run returns, whatever its status */
+        int gst = grow(rf, n);
+        if (!gst && n) {
+            memcpy(rf->all + rf->nall, rows, n * sizeof *rows);
+            rf->nall += n;
+        } else if (!st) {
+            st = gst;
+        }
+        rf->copied = 0;
+        free(rows);
+    }
+    int rst = record_refused(rf);
+    if (!st)
+        st = rst;
+    if (rf->sort && rf->nall > 1)
+        qsort(rf->all, rf->nall, sizeof *rf->all, by_case);
+    /* saved after every case already; once more so that a failed group's
+     * rows are on disk whatever it stopped at */
+    if (rf->nall) {
+        int sst = save(rf, rf->all, rf->nall);
+        if (!st)
+            st = sst;
+    }
+    return st;
+}
+
+int aa_runfolder_finish(aa_runfolder *rf)
+{
+    char plots[4200];
+    size_t ran = 0;
+    int st = AA_OK;
+    for (size_t k = 0; k < rf->nall; k++)
+        ran += rf->all[k].ok != 0;
+    if (!ran || rf->plan.shards > 1)
+        return AA_OK;
+    if (rf->opt.images)
+        st = write_montage(rf->dir, &rf->cfgs[0], rf->all, rf->nall, &rf->plan.enc);
+    if (!st && rf->opt.plots && !(st = aa_pathf(plots, sizeof plots, "%s/plots", rf->dir)) &&
+        !(st = aa_plot_error_vs_time(plots, rf->all, rf->nall)))
+        st = write_convergence(plots, rf, &rf->cfgs[0], rf->threads, rf->all, rf->nall);
+    return st;
+}
+
+const char *aa_runfolder_dir(const aa_runfolder *rf) { return rf->dir; }
+size_t aa_runfolder_kept(const aa_runfolder *rf) { return rf->kept; }
+size_t aa_runfolder_refused(const aa_runfolder *rf) { return rf->skipped; }
+int aa_runfolder_linked(const aa_runfolder *rf) { return rf->linked; }
+int aa_runfolder_interrupted(const aa_runfolder *rf) { return rf->stopped; }
+
+const aa_row *aa_runfolder_rows(const aa_runfolder *rf, size_t *n)
+{
+    *n = rf->nall;
+    return rf->all;
+}
+
+void aa_runfolder_shard(const aa_runfolder *rf, int *k, int *n)
+{
+    *k = rf->plan.shards > 1 ? rf->plan.shard : 1;
+    *n = rf->plan.shards > 1 ? rf->plan.shards : 1;
+}
+
+int aa_runfolder_warm(const aa_plan *plan, const aa_run_options *opt, size_t *computed,
+                      size_t *cached)
+{
+    if (!opt->cache || !*opt->cache)
+        return aa_fail(AA_EINVAL, "no cache folder to warm");
+    aa_runfolder *rf = calloc(1, sizeof *rf);
+    if (!rf)
+        return aa_fail(AA_ENOMEM, "out of memory");
+    rf->plan = *plan;
+    rf->opt = *opt;
+    rf->opt.images = 0; /* nothing is written but the cache */
+    int st = prepare(rf);
+    for (size_t g = 0; g < rf->ng && !st; g++)
+        st = aa_run_warm(&rf->cfgs[g], computed, cached);
+    aa_runfolder_free(rf);
+    return st;
+}
+
+/* ---- merging shards ---- */
+
+typedef struct merge_shard {
+    const char *dir;
+    aa_manifest m;
+    aa_row *rows;
+    size_t n;
+} merge_shard;
+
+/* The arguments of a manifest's command, joined for messages. */
+static void command_text(const aa_manifest *m, char *buf, size_t len)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int k = 0; k < m->argc && n + 1 < len; k++)
+        n += (size_t)snprintf(buf + n, len - n, "%s%s", k ? " " : "", m->argv[k]);
+}
+
+static int same_command(const aa_manifest *a, const aa_manifest *b)
+{
+    if (a->argc != b->argc)
+        return 0;
+    for (int k = 0; k < a->argc; k++)
+        if (strcmp(a->argv[k], b->argv[k]))
+            return 0;
+    return 1;
+}
+
+/* Where a case's row is: its folder and its row there. */
+typedef struct place {
+    int shard; /* -1: nowhere yet */
+    size_t row; /* REFUSED: skipped by the run, its method refusing the view */
+} place;
+#define REFUSED ((size_t)-1)
+
+/* Every check before anything is written: the manifests agree, and the
+ * rows hold each case of the run exactly once.  *owner (malloc'd) gives
+ * each case's place. */
+static int check_shards(merge_shard *s, int ns, place **owner_out)
+{
+    char a[2048], b[2048];
+    const aa_manifest *first = &s[0].m;
+    *owner_out = NULL;
+    for (int i = 1; i < ns; i++) {
+        const aa_manifest *m = &s[i].m;
+        if (!same_command(m, first)) {
+            command_text(first, a, sizeof a);
+            command_text(m, b, sizeof b);
+            return aa_fail(AA_EINVAL, "%s is not a shard of the run of %s: its command is \"%s\", not "
+                          "\"%s\"",
+                          aa_echo(s[i].dir), s[0].dir, b, a);
+        }
+        if (strcmp(m->suite, first->suite))
+            return aa_fail(AA_EINVAL, "%s is not a shard of the run of %s: its suite is %s, not %s",
+                          aa_echo(s[i].dir), s[0].dir, m->suite, first->suite);
+        if (strcmp(m->commit, first->commit) || m->dirty != first->dirty)
+            return aa_fail(AA_EINVAL, "%s is not a shard of the run of %s: it was measured at commit "
+                          "%s%s, not %s%s",
+                          aa_echo(s[i].dir), s[0].dir, m->commit, m->dirty > 0 ? " (dirty)" : "",
+                          first->commit, first->dirty > 0 ? " (dirty)" : "");
+        if (m->cases != first->cases)
+            return aa_fail(AA_EINVAL, "%s is not a shard of the run of %s: %zu cases, not %zu",
+                          aa_echo(s[i].dir), s[0].dir, m->cases, first->cases);
+        for (int j = 0; j < i; j++)
+            if (s[j].m.shards == m->shards && s[j].m.shard == m->shard)
+                return aa_fail(AA_EINVAL, "%s and %s are both shard %d/%d: a shard given twice",
+                              aa_echo(s[j].dir), s[i].dir, m->shard, m->shards);
+    }
+    size_t cases = first->cases;
+    place *owner = malloc((cases ? cases : 1) * sizeof *owner);
+    int *planned = malloc((cases ? cases : 1) * sizeof *planned);
+    if (!owner || !planned) {
+        free(owner);
+        free(planned);
+        return aa_fail(AA_ENOMEM, "out of memory for %zu cases", cases);
+    }
+    for (size_t c = 0; c < cases; c++)
+        owner[c].shard = -1, planned[c] = -1;
+    int code = 0;
+    for (int i = 0; i < ns && !code; i++)
+        for (size_t k = 0; k < s[i].m.nselected; k++)
+            planned[s[i].m.selected[k]] = i;
+    for (int i = 0; i < ns && !code; i++)
+        for (size_t k = 0; k < s[i].n && !code; k++) {
+            const aa_row *r = &s[i].rows[k];
+            long c = r->case_index;
+            if (c < 0 || (size_t)c >= cases)
+                code = aa_fail(AA_EINVAL, "%s/results.csv, line %zu: %s on %s %dx%d %s has no case of the "
+                              "run (%ld)",
+                              aa_echo(s[i].dir), k + 2, r->method, r->pattern, r->w, r->h,
+                              r->filter, c);
+            else if (owner[c].shard >= 0)
+                code = aa_fail(AA_EINVAL, "%s on %s %dx%d %s (case %ld) is in both %s and %s: a duplicated "
+                              "shard",
+                              r->method, r->pattern, r->w, r->h, r->filter, c,
+                              s[owner[c].shard].dir, aa_echo(s[i].dir));
+            else
+                owner[c].shard = i, owner[c].row = k;
+        }
+    /* the cases skipped as refused: done, without rows */
+    for (int i = 0; i < ns && !code; i++)
+        for (size_t k = 0; k < s[i].m.nrefused && !code; k++) {
+            size_t c = s[i].m.refused[k];
+            if (owner[c].shard >= 0)
+                code = aa_fail(AA_EINVAL, "case %zu is in both %s and %s: a duplicated shard", c,
+                              s[owner[c].shard].dir, aa_echo(s[i].dir));
+            else
+                owner[c].shard = i, owner[c].row = REFUSED;
+        }
+    /* what is missing: a folder that stopped early, or a shard not given */
+    for (size_t c = 0; c < cases && !code; c++) {
+        if (owner[c].shard >= 0)
+            continue;
+        size_t left = 0;
+        for (size_t d = c; d < cases; d++)
+            left += owner[d].shard < 0;
+        if (planned[c] >= 0) {
+            const merge_shard *sh = &s[planned[c]];
+            code = aa_fail(AA_EINVAL, "%s (shard %d/%d) has not measured all its cases (%zu missing): "
+                          "resume it with aabench run --resume %s",
+                          aa_echo(sh->dir), sh->m.shard, sh->m.shards, left, sh->dir);
+        } else {
+            char missing[1024] = "";
+            size_t n = 0;
+            for (int k = 1; k <= first->shards && n + 1 < sizeof missing; k++) {
+                int given = 0;
+                for (int i = 0; i < ns; i++)
+                    given |= s[i].m.shards == first->shards && s[i].m.shard == k;
+                if (!given)
+                    n += (size_t)snprintf(missing + n, sizeof missing - n, "%s%d/%d",
+                                          n ? ", " : "", k, first->shards);
+            }
+            code = aa_fail(AA_EINVAL, "%zu case%s of the run %s in no folder given: shard%s %s missing",
+                          left, left == 1 ? "" : "s", left == 1 ? "is" : "are",
+                          strchr(missing, ',') ? "s" : "", *missing ? missing : "(of another count)");
+        }
+    }
+    free(planned);
+    if (code)
+        free(owner);
+    else
+        *owner_out = owner;
+    return code;
+}
+
+/* images/ of each shard into the merged folder's (the references each
+ * shard wrote for its views are the same files). */
+static int copy_images(const char *from, const char *to)
+{
+    char src[4200], dst[4200];
+    int st = aa_pathf(src, sizeof src, "%s/images", from);
+    if (st)
+        return st;
+    DIR *d = opendir(src);
+    if (!d)
+        return errno == ENOENT ? AA_OK : aa_fail(AA_EIO, "cannot read %s: %s", src, strerror(errno));
+    if ((st = aa_pathf(dst, sizeof dst, "%s/images", to)) || (st = aa_mkdirs(dst))) {
+        closedir(d);
+        return st;
+    }
+    struct dirent *e;
+    while (!st && (e = readdir(d))) {
+        if (e->d_name[0] == '.')
+            continue; /* ., .. and temporary files */
+        char a[4200], b[4200];
+        if ((st = aa_pathf(a, sizeof a, "%s/%s", src, e->d_name)) ||
+            (st = aa_pathf(b, sizeof b, "%s/%s", dst, e->d_name)))
+            break;
+        FILE *f = fopen(a, "rb");
+        if (!f) {
+            st = aa_fail(AA_EIO, "cannot read %s: %s", a, strerror(errno));
+            break;
+        }
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *m = open_memstream(&buf, &len);
+        char chunk[65536];
+        size_t k;
+        while (m && (k = fread(chunk, 1, sizeof chunk, f)) > 0)
+            if (fwrite(chunk, 1, k, m) != k)
+                break;
+        int bad = ferror(f);
+        fclose(f);
+        if (!m || fclose(m) != 0 || bad)
+            st = aa_fail(AA_EIO, "cannot read %s", a);
+        else
+            st = aa_file_write_atomic(b, buf, len);
+        free(buf);
+    }
+    closedir(d);
+    return st;
+}
+
+/* The merged folder's manifest: the whole run, one part, measured by the
+ * shards' commit and written on this machine. */
+static int write_merged_manifest(const char *out, const aa_manifest *first, size_t cases,
+                                 size_t *refused, size_t nrefused)
+{
+    aa_manifest m = *first;
+    aa_context context;
+    char path[4200];
+    int st;
+    aa_context_collect(&context, 0, NULL, 0);
+    m.shard = m.shards = 1;
+    m.selected = malloc((cases ? cases : 1) * sizeof *m.selected);
+    m.nselected = cases;
+    m.refused = refused, m.nrefused = nrefused;
+    snprintf(m.host, sizeof m.host, "%s", context.host);
+    m.context = aa_context_json(&context, 0); /* the merging machine's */
+    for (size_t k = 0; m.selected && k < cases; k++)
+        m.selected[k] = k;
+    if (!m.selected)
+        st = aa_fail(AA_ENOMEM, "out of memory");
+    else if (!(st = aa_pathf(path, sizeof path, "%s/run.json", out)))
+        st = aa_manifest_write(path, &m);
+    free(m.selected);
+    free(m.context);
+    return st;
+}
+
+/* The merged run's plan (the first shard's command), checked against the
+ * shards' cases; its rows in the run's order. */
+static int merged_run(aa_runfolder *rf, merge_shard *s, const place *owner, size_t cases,
+                      size_t **refused, size_t *nrefused, const aa_run_options *opt)
+{
+    char path[4200];
+    int st = aa_pathf(path, sizeof path, "%s/run.json", s[0].dir);
+    rf->manifest = s[0].m; /* its words are the plan's */
+    rf->have_manifest = 1;
+    memset(&s[0].m, 0, sizeof s[0].m);
+    if (!st)
+        st = plan_of_manifest(rf, path, opt);
+    if (st)
+        return st;
+    rf->opt.out = opt->out;
+    rf->plan.shard = rf->plan.shards = 0; /* the whole run */
+    if ((st = prepare(rf)))
+        return st;
+    if (!(rf->all = malloc((cases ? cases : 1) * sizeof *rf->all)) ||
+        !(*refused = malloc((cases ? cases : 1) * sizeof **refused)))
+        return aa_fail(AA_ENOMEM, "out of memory for %zu results", cases);
+    rf->cap = cases ? cases : 1;
+    for (size_t k = 0; k < cases; k++) {
+        if (owner[k].row == REFUSED)
+            (*refused)[(*nrefused)++] = k;
+        else
+            rf->all[rf->nall++] = s[owner[k].shard].rows[owner[k].row];
+    }
+    if (rf->cases != rf->nall + *nrefused)
+        return aa_fail(AA_EINVAL, "the run's command has %zu cases, the shards %zu", rf->cases,
+                       rf->nall + *nrefused);
+    /* the context's command: "run", the run's words, the caller's */
+    const char **argv = calloc((size_t)rf->manifest.argc + (size_t)opt->argc + 2, sizeof *argv);
+    if (!(rf->context_argv = argv))
+        return aa_fail(AA_ENOMEM, "out of memory");
+    int argc = 0;
+    argv[argc++] = "run";
+    for (int k = 0; k < rf->manifest.argc; k++)
+        argv[argc++] = rf->manifest.argv[k];
+    for (int k = 0; k < opt->argc; k++)
+        argv[argc++] = opt->argv[k];
+    aa_context_collect(&rf->context, argc, argv, rf->threads);
+    rf->sort = 1;
+    rf->ran = 1;
+    rf->skipped = *nrefused;
+    return aa_pathf(rf->dir, sizeof rf->dir, "%s", opt->out);
+}
+
+int aa_runfolder_merge(const char *const *dirs, size_t ndirs, const aa_run_options *opt,
+                       aa_runfolder **out)
+{
+    *out = NULL;
+    int ns = (int)ndirs, st;
+    if (ndirs < 1 || ndirs > INT_MAX)
+        return aa_fail(AA_EINVAL, "no shard's folder given");
+    if ((st = aa_folder_check("--out", opt->out, strlen("/images/") + 256)))
+        return st;
+    /* the merged folder is none of the shards' (their files would be
+     * overwritten) */
+    char real_out[PATH_MAX], real_dir[PATH_MAX];
+    if (realpath(opt->out, real_out))
+        for (int i = 0; i < ns; i++)
+            if (realpath(dirs[i], real_dir) && !strcmp(real_out, real_dir))
+                return aa_fail(AA_EINVAL,
+                               "--out %s is one of the shards' folders: merge into another",
+                               aa_echo(opt->out));
+    merge_shard *s = calloc((size_t)ns, sizeof *s);
+    aa_runfolder *rf = calloc(1, sizeof *rf);
+    if (!s || !rf) {
+        free(s);
+        free(rf);
+        return aa_fail(AA_ENOMEM, "out of memory");
+    }
+    for (int i = 0; i < ns && !st; i++) {
+        char path[4200];
+        s[i].dir = dirs[i];
+        if ((st = aa_pathf(path, sizeof path, "%s/run.json", s[i].dir)))
+            break;
+        if ((st = aa_manifest_read(path, &s[i].m)) == AA_EIO)
+            st = aa_fail(AA_EINVAL, "%s is not a run's folder: %s", aa_echo(s[i].dir),
+                         aa_last_error());
+        else if (!st && !(st = aa_pathf(path, sizeof path, "%s/results.csv", s[i].dir)) &&
+                 access(path, F_OK) == 0 &&
+                 (st = aa_rows_read_csv(path, &s[i].rows, &s[i].n)) == AA_EIO)
+            st = AA_EINVAL;
+    }
+    place *owner = NULL;
+    size_t *refused = NULL, nrefused = 0, cases = 0;
+    if (!st && !(st = check_shards(s, ns, &owner))) {
+        cases = s[0].m.cases;
+        st = merged_run(rf, s, owner, cases, &refused, &nrefused, opt);
+    }
+    if (!st)
+        st = aa_mkdirs(opt->out);
+    for (int i = 0; i < ns && !st; i++)
+        st = copy_images(s[i].dir, opt->out);
+    if (!st)
+        st = write_merged_manifest(opt->out, &rf->manifest, cases, refused, nrefused);
+    if (!st && rf->nall)
+        st = save(rf, rf->all, rf->nall);
+    free(refused);
+    free(owner);
+    for (int i = 0; i < ns; i++) {
+        aa_manifest_free(&s[i].m);
+        free(s[i].rows);
+    }
+    free(s);
+    if (st)
+        aa_runfolder_free(rf);
+    else
+        *out = rf;
+    return st;
+}
