@@ -19,34 +19,15 @@
 /* ---- the test program ---- */
 
 /* A test program's main (expanded after the tests, where cmocka.h is
- * included): the command server first (support_start_server), then the
- * cmocka tests given (cmocka_unit_test(name), ...) run as one group with
- * the group set-up and tear-down (NULL: none); the exit status is the
- * number of tests that failed. */
+ * included): the cmocka tests given (cmocka_unit_test(name), ...) run as
+ * one group with the group set-up and tear-down (NULL: none); the exit
+ * status is the number of tests that failed. */
 #define SUPPORT_MAIN(setup, teardown, ...)                                                         \
     int main(void)                                                                                 \
     {                                                                                              \
-        support_start_server();                                                                    \
         const struct CMUnitTest tests[] = {__VA_ARGS__};                                           \
         return cmocka_run_group_tests(tests, setup, teardown);                                     \
     }
-
-/* Fork the command server (see "the command under test" below), first
- * thing in main, while this process has one thread and has run nothing,
- * and note how the test started (its start-up variables, limits, signal
- * mask and locale), which the starts that are not an exec must match.
- * Without it every start of the command is an exec.  Under ASan there is
- * no server: a fork of a sanitized process costs more than the exec it
- * would spare. */
-void support_start_server(void);
-/* The same; with images_under_asan, under ASan the server for the starts
- * that name an image file runs all the same, for those that the test does
- * not wait for (each spares loading the image module, about 1 s, but a
- * start refused before it reads or writes an image costs about four times
- * an exec). */
-void support_start_servers(int images_under_asan);
-/* 1 if this process has a command server to start the command with. */
-int support_server_running(void);
 
 /* ---- rendering ---- */
 
@@ -131,61 +112,21 @@ const char *support_caption_field(const char *caption, int panel, const char *fi
 
 /* ---- the command under test ---- */
 
-/* How long a command may run before it is killed and the test fails:
- * SUPPORT_TIMEOUT seconds, or $AABENCH_TEST_TIMEOUT. */
+/* Seconds a command may run before it is killed, or $AABENCH_TEST_TIMEOUT. */
 #define SUPPORT_TIMEOUT 300
 
-/* Run the command under test ($AABENCH, set by the Makefile) with args
- * (NULL-terminated, without the program name), its standard output and
- * error captured together into out (cap bytes with the final NUL; out may
- * be NULL to discard them).  Returns the exit status, or 128 + the signal
- * that ended it.  interrupt_ms > 0 sends SIGINT that many milliseconds
- * after the start.  Fails the test if $AABENCH is not set, the command
- * cannot be started, or it runs past the time-out.
- *
- * In the plain build every start of the command is a child process of its
- * own: its exit status, its signals, its files and its output are the
- * command's.  It is one of two kinds.  Where the command servers run (support_start_server)
- * and $AABENCH is the command built beside this test program, the child is
- * a fork of a server that calls cli_main(), the function the command's
- * main() is, with the arguments, the environment, the folder and the umask
- * the test has at that moment.  A server is a copy of the test program
- * made before any test ran: one thread, no OpenMP threads, no image file
- * opened.  Of the two, one loads the OpenImageIO module before its first
- * child (without opening a file) and takes the starts that name an image
- * file or make a montage (a wrong guess costs time only): loading the
- * module's ~250 libraries costs about 0.4 s of CPU a start.  The server
- * stops the threads that those libraries start as they load (log4cplus's
- * pool), so that it has one thread when it forks.  Under ASan there is no
- * bare server (a fork of a sanitized process, and LeakSanitizer's check at
- * its end, cost more than the exec they spare), and a start that the test
- * waits for (support_aabench) is a call of cli_main() in the test's own
- * process, with its output into a file of its own and the signal
- * handlers, mask, warning handler, folder and umask put back after it:
- * the image module is then loaded once, not once a start (about 1 s under
- * ASan), and LeakSanitizer's check at the test's end covers the commands;
- * not while the test has loaded a plug-in or changed the locale.  The
- * starts it does not wait for are exec'd, but those that name an image
- * file in a test that asks for the image server (support_start_servers).
- * Otherwise, and whenever a child of the server could differ from the
- * command exec'd at that moment, the command is exec'd: the test changed a
- * resource limit, the signal mask, ignores a signal, or changed a variable
- * that libraries read as they load (LD_*, OMP_*, GOMP_*, ASAN_OPTIONS and
- * the other sanitizers', MALLOC_*, GLIBC_TUNABLES, AABENCH_OIIO and
- * OpenImageIO's); the command loads a plug-in (--plugin, or --resume of a
- * run that may have one: a plug-in may call exit(), whose handlers would
- * wait for threads of the module's libraries that a fork does not have);
- * or $AABENCH_TEST_EXEC is 1 when the test program starts, or is set or
- * changed afterwards.  The command's own start-up (main.c, the loader, the
- * module's lookup and its trial under a memory limit) is tested by the
- * starts that exec: test_cli checks that the other kinds give the same
- * statuses, output and files, and test_image_faults execs under its
- * limits. */
+/* Run the command under test ($AABENCH, set by scripts/run-tests.sh) with
+ * args (NULL-terminated, without the program name): fork and exec, its
+ * standard output and error captured together into out (cap bytes with the
+ * final NUL; out may be NULL to discard them).  Returns the exit status, or
+ * 128 + the signal that ended it.  interrupt_ms > 0 sends SIGINT that many
+ * milliseconds after the start.  Fails the test if $AABENCH is not set, the
+ * command cannot be started, or it runs past the time-out (then killed).
+ * Every start is an exec of the binary: under ASan it is a sanitized
+ * process of its own (about 0.1 s a start, most of it LeakSanitizer's
+ * check at its end), so a test starts it only for what the binary does. */
 int support_aabench_interrupted(const char *const *args, int interrupt_ms, char *out,
                                 size_t cap);
-/* What a start of the command that the test waits for is now, when it is
- * not an exec (a text for messages); NULL: an exec. */
-const char *support_start_kind(void);
 int support_aabench(const char *const *args, char *out, size_t cap);
 /* support_aabench with the wait status (WIFEXITED, WTERMSIG...). */
 int support_aabench_wait_status(const char *const *args, char *out, size_t cap);
@@ -197,7 +138,6 @@ int support_aabench_wait_status(const char *const *args, char *out, size_t cap);
  * once).  Fails the test if $AABENCH is not set or there is no fork. */
 pid_t support_aabench_spawn(const char *const *args, const char *env, const char *out,
                             const char *err);
-
 /* As support_aabench_spawn, with standard output and error into the open
  * descriptors fd_out and fd_err (kept open here), and, if fsize > 0,
  * RLIMIT_FSIZE set to fsize with SIGXFSZ ignored (a full disk without
@@ -205,14 +145,9 @@ pid_t support_aabench_spawn(const char *const *args, const char *env, const char
 pid_t support_aabench_start(const char *const *args, const char *env, int fd_out, int fd_err,
                             unsigned long long fsize);
 
-/* waitpid() for a pid from support_aabench_spawn or support_aabench_start
- * (options 0 or WNOHANG): pid with its wait status in *status once it has
- * ended, 0 with WNOHANG while it runs, -1 with errno on error.  Any other
- * pid is passed to waitpid(). */
+/* waitpid(), again when a signal interrupts it. */
 pid_t support_waitpid(pid_t pid, int *status, int options);
-
-/* Wait for the child pid: its exit status, or 128 + the signal that ended
- * it. */
+/* Wait for the child pid: its exit status, or 128 + the signal that ended it. */
 int support_wait(pid_t pid);
 
 /* ---- checks in a child process ---- */

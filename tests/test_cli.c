@@ -3,16 +3,15 @@
  * line"):
  * bad input gets exit status 2 and a message naming the problem and what is
  * accepted, an unwritable output 3, and a refused command writes nothing.
- * The command under test is $AABENCH (set by the Makefile), run by
- * tests/support.c (a fork of its command server, or exec; under ASan a
- * call of cli_main() in this process); one test checks that these give
- * the same statuses, output and files as an exec, one runs the command
- * line in-process (cli_main, in a child of this process).
+ * The command under test is $AABENCH (set by scripts/run-tests.sh), exec'd
+ * by tests/support.c.  The refusals whose message is the library's (the
+ * pattern, filter, method and size specs, the image readers) are checked
+ * on the library here, each kind also once through the command for its
+ * exit status; the command's own options through the command.
  */
 #include "bench.h"
 #include "support.h"
 
-#include <fcntl.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -20,12 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmocka.h>
-
-#include "cli.h"
 
 static char dir[200];
 static char output[8192];
@@ -54,6 +50,82 @@ static void expect(int code, const char *needle, const char *const *args)
 
 static char out_exr[256], out_txt[256];
 
+/* The library refuses with `code` and a message holding needle. */
+static void lib_refused(int st, int code, const char *needle, const char *what)
+{
+    if (st != code || !strstr(aa_last_error(), needle))
+        fail_msg("%s: status %d (expected %d), \"%s\" (expected \"%s\")", what, st, code,
+                 st ? aa_last_error() : "", needle);
+}
+
+/* A pattern spec, parsed and made into a scene of 8 x 8 pixels. */
+static int pattern_status(const char *text)
+{
+    aa_spec spec;
+    aa_scene *scene = NULL;
+    int st = aa_pattern_parse(text, &spec);
+    if (st == AA_OK)
+        st = aa_pattern_scene_at(&spec, 8, 8, &scene);
+    aa_scene_free(scene);
+    return st;
+}
+
+/* The specs' refusals come from the library: status AA_EINVAL (exit 2)
+ * and a message naming the problem and what is accepted. */
+static void test_spec_refusals(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *spec, *needle;
+    } patterns[] = {
+        {"nosuch", "unknown pattern \"nosuch\" (known: crow"},
+        {"crow:bogus=1", "no parameter \"bogus\" (accepted: curves, kmax, gap0, gap1)"},
+        {"crow:curves=3", "must be even"},
+        {"crow:kmax=5", "touch"},
+        {"crow:kmax=nan", "kmax=nan: not a number"},
+        {"crow:kmax=inf", "kmax=inf: not a number"},
+        {"crow:curves=1000000", "out of range (expected an integer from 2 to 65536)"},
+        {"star:spokes=5000", "from 1 to 4096"},
+        {"fence:period=1e-6", "gives 500000 bars; at most 65536"},
+        {"fence:duty=0", "duty=0: out of range"},
+        {"dots:n=257", "from 1 to 256"},
+        {"catmull:tiles=0", "from 1 to 256"},
+        {"slivers:hmin=0.01,hmax=0.001", "hmin=0.01 must not exceed hmax=0.001"},
+        {"slivers:count=100000", "from 1 to 65536"},
+        {"feibush:stripes=70000", "from 1 to 65536"},
+        {"zoneplate:k=0", "k=0: out of range"},
+        {"crow:kmax=0.1,kmax=0.2", "kmax given twice"},
+    };
+    for (size_t k = 0; k < sizeof patterns / sizeof *patterns; k++)
+        lib_refused(pattern_status(patterns[k].spec), AA_EINVAL, patterns[k].needle,
+                    patterns[k].spec);
+    static const struct {
+        const char *spec, *needle;
+    } filters[] = {
+        {"tent:r=-1", "r=-1: out of range"},
+        {"lanczos", "unknown filter \"lanczos\" (known: box, tent, gauss, cone)"},
+        {"cone:r=0", "r=0: out of range"},
+        {"cone:r=nan", "r=nan: not a number"},
+        {"cone:r=8.5", "r=8.5: out of range"},
+        {"tent:r=inf", "r=inf: not a number"},
+    };
+    aa_filter f;
+    for (size_t k = 0; k < sizeof filters / sizeof *filters; k++)
+        lib_refused(aa_filter_parse(filters[k].spec, &f), AA_EINVAL, filters[k].needle,
+                    filters[k].spec);
+    static const char *const sizes[][2] = {
+        {"256", "is not WxH"}, {"axb", "is not WxH"}, {"0x5", "each side must be from 1 to 65536"},
+        {"0x0", "each side must be from 1 to 65536"},
+        {"99999x99999", "each side must be from 1 to 65536"}};
+    int w, h;
+    for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++)
+        lib_refused(aa_size_parse(sizes[k][0], &w, &h), AA_EINVAL, sizes[k][1], sizes[k][0]);
+    lib_refused(support_parse_method("nosuch", NULL, NULL), AA_EINVAL,
+                "unknown method \"nosuch\" (known: point", "method nosuch");
+    lib_refused(support_parse_method("point", "tent", NULL), AA_EINVAL, "no prefilter",
+                "point under tent");
+}
+
 static void test_refusals(void **state)
 {
     (void)state;
@@ -63,37 +135,18 @@ static void test_refusals(void **state)
         const char *a[] = {__VA_ARGS__, NULL};                                                 \
         expect(code, needle, a);                                                               \
     } while (0)
+    /* a refusal of each spec's parser, as the command reports it */
     T(2, "unknown pattern \"nosuch\" (known: crow", "truth", "-p", "nosuch", "-s", "8x8", "-o", o);
-    T(2, "no parameter \"bogus\" (accepted: curves, kmax, gap0, gap1)", "truth", "-p",
-      "crow:bogus=1", "-s", "8x8", "-o", o);
     T(2, "must be even", "truth", "-p", "crow:curves=3", "-s", "8x8", "-o", o);
-    T(2, "touch", "truth", "-p", "crow:kmax=5", "-s", "8x8", "-o", o);
-    T(2, "kmax=nan: not a number", "truth", "-p", "crow:kmax=nan", "-s", "8x8", "-o", o);
-    T(2, "kmax=inf: not a number", "truth", "-p", "crow:kmax=inf", "-s", "8x8", "-o", o);
-    T(2, "out of range (expected an integer from 2 to 65536)", "truth", "-p",
-      "crow:curves=1000000", "-s", "8x8", "-o", o);
-    T(2, "from 1 to 4096", "truth", "-p", "star:spokes=5000", "-s", "8x8", "-o", o);
-    T(2, "gives 500000 bars; at most 65536", "truth", "-p", "fence:period=1e-6", "-s", "8x8",
-      "-o", o);
-    T(2, "duty=0: out of range", "truth", "-p", "fence:duty=0", "-s", "8x8", "-o", o);
-    T(2, "from 1 to 256", "truth", "-p", "dots:n=257", "-s", "8x8", "-o", o);
-    T(2, "from 1 to 256", "truth", "-p", "catmull:tiles=0", "-s", "8x8", "-o", o);
-    T(2, "hmin=0.01 must not exceed hmax=0.001", "truth", "-p", "slivers:hmin=0.01,hmax=0.001",
-      "-s", "8x8", "-o", o);
-    T(2, "from 1 to 65536", "truth", "-p", "slivers:count=100000", "-s", "8x8", "-o", o);
-    T(2, "from 1 to 65536", "truth", "-p", "feibush:stripes=70000", "-s", "8x8", "-o", o);
     T(2, "is not WxH", "truth", "-p", "crow", "-s", "256", "-o", o);
-    T(2, "is not WxH", "truth", "-p", "crow", "-s", "axb", "-o", o);
-    T(2, "each side must be from 1 to 65536", "truth", "-p", "crow", "-s", "0x5", "-o", o);
-    T(2, "GB", "truth", "-p", "crow", "-s", "65536x65536", "-o", o);
-    T(2, "r=-1: out of range", "truth", "-p", "crow", "-s", "8x8", "-f", "tent:r=-1", "-o", o);
     T(2, "unknown filter \"lanczos\" (known: box, tent, gauss, cone)", "truth", "-p",
       "crow", "-s", "8x8", "-f", "lanczos", "-o", o);
-    T(2, "r=0: out of range", "truth", "-p", "crow", "-s", "8x8", "-f", "cone:r=0", "-o", o);
-    T(2, "r=nan: not a number", "truth", "-p", "crow", "-s", "8x8", "-f", "cone:r=nan", "-o",
+    T(2, "unknown method \"nosuch\" (known: point", "render", "-p", "crow", "-m", "nosuch", "-s",
+      "8x8", "-o", o);
+    T(2, "no prefilter", "render", "-p", "crow", "-m", "point", "-f", "tent", "-s", "8x8", "-o",
       o);
-    T(2, "r=8.5: out of range", "truth", "-p", "crow", "-s", "8x8", "-f", "cone:r=8.5", "-o",
-      o);
+    /* the command's own */
+    T(2, "GB", "truth", "-p", "crow", "-s", "65536x65536", "-o", o);
     T(2, "unknown image type", "truth", "-p", "crow", "-s", "8x8", "-o", "x.bmp");
     T(2, "are required", "truth", "-p", "crow", "-s", "8x8");
     T(2, "unknown option", "truth", "--frobnicate", "-p", "crow", "-s", "8x8", "-o", o);
@@ -105,10 +158,6 @@ static void test_refusals(void **state)
     T(2, "not two numbers", "truth", "-p", "crow", "-s", "8x8", "-o", o, "--motion", "1");
     T(3, "does not exist", "truth", "-p", "crow", "-s", "8x8", "-o",
       "/nonexistent-aabench/x.exr");
-    T(2, "unknown method \"nosuch\" (known: point", "render", "-p", "crow", "-m", "nosuch", "-s",
-      "8x8", "-o", o);
-    T(2, "no prefilter", "render", "-p", "crow", "-m", "point", "-f", "tent", "-s", "8x8", "-o",
-      o);
     T(2, "--reps 0 is out of range", "render", "-p", "crow", "-m", "point", "-s", "8x8", "-o",
       o, "--reps", "0");
     T(2, "--seed \"-1\" is not a whole number", "render", "-p", "crow", "-m", "point", "-s",
@@ -120,7 +169,6 @@ static void test_refusals(void **state)
       "-m", "point", "-s", "8x8", "-o", o);
     T(2, "area renders scenes of paths only, and pattern zoneplate is a procedural field",
       "render", "-p", "zoneplate", "-m", "area", "-s", "8x8", "-o", o);
-    T(2, "k=0: out of range", "truth", "-p", "zoneplate:k=0", "-s", "8x8", "-o", o);
     T(2, "unknown command", "frobnicate");
     T(2, "unknown list", "list", "methods-and-more");
 #undef T
@@ -162,37 +210,39 @@ static void test_refusals_everywhere(void **state)
         /* a real .exr cut short */
         char full[300];
         snprintf(full, sizeof full, "%s/full.exr", in);
-        const char *a[] = {"truth", "-p", "crow", "-s", "8x8", "-o", full, "--no-cache", NULL};
-        assert_int_equal(run(a), 0);
+        aa_image im;
+        assert_int_equal(aa_image_alloc(&im, 8, 8, 3), AA_OK);
+        assert_int_equal(aa_image_write(full, &im, NULL), AA_OK);
+        aa_image_free(&im);
         FILE *f = fopen(full, "rb");
         char head[100];
         assert_int_equal(fread(head, 1, sizeof head, f), sizeof head);
         fclose(f);
         support_write_file(trunc, head, sizeof head);
     }
-    /* compare: corrupt and unreadable images */
+    /* corrupt and unreadable images: the readers' refusals (AA_EIO, exit
+     * 3), one of them through compare */
+    const char *const unread[][2] = {
+        {shortf, "the file ends before pixel"}, {badnum, "malformed number"},
+        {nanf, "malformed number 'nan'"},      {huge, "sides must be in [1, 65536]"},
+        {empty, "empty file"},                 {folder, "cannot read"},
+        {trunc, "cannot read"},                {pfm, "cannot read"},
+        {"/nonexistent-aabench.exr", "cannot read"}};
+    for (size_t k = 0; k < sizeof unread / sizeof *unread; k++) {
+        aa_image im;
+        lib_refused(aa_image_read(unread[k][0], &im), AA_EIO, unread[k][1], unread[k][0]);
+    }
     T(3, "the file ends before pixel", "compare", ok, shortf);
-    T(3, "malformed number", "compare", ok, badnum);
-    T(3, "malformed number 'nan'", "compare", ok, nanf);
-    T(3, "sides must be in [1, 65536]", "compare", ok, huge);
-    T(3, "empty file", "compare", ok, empty);
-    T(3, "cannot read", "compare", ok, folder);
-    T(3, "cannot read", "compare", ok, trunc);
-    T(3, "cannot read", "compare", ok, pfm);
     T(3, "cannot read", "compare", ok, "/nonexistent-aabench.exr");
     T(2, "needs two image files", "compare", ok);
     T(2, "is not a number in [1, 4]", "compare", ok, ok, "--encode", "gamma:nan");
     /* run */
     T(2, "unknown pattern \"nosuch\"", "run", "-p", "nosuch", "-q", "--out", dir);
     T(2, "unknown method \"nosuch\"", "run", "-m", "nosuch", "-q", "--out", dir);
-    T(2, "each side must be from 1 to 65536", "run", "-s", "0x0", "-q", "--out", dir);
     T(2, "unknown suite \"nosuch\"", "run", "--suite", "nosuch", "-q", "--out", dir);
     T(2, "--reps 0 is out of range", "run", "--reps", "0", "-q", "--out", dir);
     T(2, "is not a finite number", "run", "-p", "crow", "-m", "point", "-s", "8x8", "--motion",
       "nan,0", "-q", "--out", dir);
-    T(2, "r=inf: not a number", "run", "-p", "crow", "-m", "point", "-s", "8x8", "-f",
-      "tent:r=inf", "-q", "--out", dir);
-    T(2, "kmax given twice", "run", "-p", "crow:kmax=0.1,kmax=0.2", "-q", "--out", dir);
     T(3, "is not a folder", "run", "-p", "crow", "-m", "point", "-s", "8x8", "-q", "--out", sub);
     /* converge */
     T(2, "is not a whole number", "converge", "-p", "crow", "-m", "jitter", "-s", "8x8", "--spp",
@@ -203,8 +253,6 @@ static void test_refusals_everywhere(void **state)
       "1,4,16", "--out", dir);
     T(2, "--phases 0 is out of range", "converge", "-p", "crow", "-m", "jitter", "-s", "8x8",
       "--spp", "1,4,16", "--phases", "0", "--out", dir);
-    T(2, "each side must be from 1 to 65536", "converge", "-p", "crow", "-m", "jitter", "-s",
-      "99999x99999", "--spp", "1,4,16", "--out", dir);
     /* converge measures before it draws into --out: one thread (the
      * default, every core, spends more in OpenMP's waits than in the
      * measuring) */
@@ -253,125 +301,6 @@ static void test_success(void **state)
     assert_true(im.w == 8 && im.h == 4 && im.c == 3);
     aa_image_free(&im);
     unlink(out_txt);
-}
-
-/* The command line without exec: cli_main() in a forked child of this
- * process, its standard output into a file.  The child must not count on
- * OpenMP state from here (fork copies no threads of libgomp's pool); this
- * process runs no parallel region; the other tests start the command as
- * every test does (tests/support.h). */
-static void test_cli_main(void **state)
-{
-    (void)state;
-    char log[4096];
-    snprintf(log, sizeof log, "%s/log", dir);
-    fflush(NULL);
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (fd < 0 || dup2(fd, 1) < 0)
-            _exit(126);
-        close(fd);
-        char a0[] = "aabench", a1[] = "list", a2[] = "patterns";
-        char *argv[] = {a0, a1, a2, NULL};
-        int code = cli_main(3, argv);
-        fflush(NULL);
-        _exit(code);
-    }
-    int status;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 0);
-    FILE *f = fopen(log, "r");
-    assert_non_null(f);
-    size_t n = fread(output, 1, sizeof output - 1, f);
-    output[n] = '\0';
-    fclose(f);
-    if (!strstr(output, "crow\t") || !strstr(output, "zoneplate\t"))
-        fail_msg("cli_main list patterns: \"%s\"", output);
-    assert_int_equal(unlink(log), 0);
-    folder_clean();
-}
-
-/* A start that is not an exec (a fork of the command server, or under ASan
- * a call of cli_main() in this process) and an exec of the binary give the
- * same exit status, output and files: the success of a listing and of
- * writing images (PNG and EXR, through the image module, which the server
- * loads before its first image start), a warning beside the output, and
- * refusals. */
-static void test_start_same_as_exec(void **state)
-{
-    (void)state;
-    const char *kind = support_start_kind();
-    if (kind == NULL) {
-        print_message("skipped: every start is an exec ($AABENCH is not the command built "
-                      "beside this test, or AABENCH_TEST_EXEC=1)\n");
-        skip();
-    }
-    print_message("%s against an exec\n", kind);
-    char png[2][300], exr[2][300], cache[300], entry[600];
-    static char said[2][8192];
-    for (int how = 0; how < 2; how++) {
-        snprintf(png[how], sizeof png[how], "%s/same-%d.png", dir, how);
-        snprintf(exr[how], sizeof exr[how], "%s/same-%d.exr", dir, how);
-    }
-    /* a reference cache whose entry for crow 12x8 is a folder: each truth
-     * of it warns (and recomputes) */
-    snprintf(cache, sizeof cache, "%s/cache", dir);
-    const char *fill[] = {"truth", "-p", "crow", "-s", "12x8", "-q", "--cache", cache,
-                          "-o", png[0], NULL};
-    assert_int_equal(run(fill), 0);
-    support_cache_file(cache, entry, sizeof entry);
-    assert_int_equal(unlink(entry), 0);
-    assert_int_equal(mkdir(entry, 0755), 0);
-    for (int c = 0; c < 6; c++) {
-        int status[2];
-        for (int how = 0; how < 2; how++) {
-            /* a start-up variable changed: support.c execs */
-            if (how == 1)
-                assert_int_equal(setenv("AABENCH_TEST_EXEC", "1", 1), 0);
-            const char *list[] = {"list", "patterns", NULL};
-            const char *truth_png[] = {"truth", "-p", "crow", "-s", "12x8", "--no-cache", "-q",
-                                       "-o", png[how], NULL};
-            const char *truth_exr[] = {"truth", "-p", "feibush", "-s", "12x8", "-f", "gauss",
-                                       "--no-cache", "-q", "-o", exr[how], NULL};
-            const char *bad_size[] = {"render", "-p", "crow", "-m", "point", "-s", "12xx8",
-                                      "-o", png[how], NULL};
-            const char *missing[] = {"compare", "/nonexistent/a.png", "/nonexistent/b.png", NULL};
-            const char *warned[] = {"truth", "-p", "crow", "-s", "12x8", "-q", "--cache", cache,
-                                    "-o", png[how], NULL};
-            const char *const *args[] = {list, truth_png, truth_exr, bad_size, missing, warned};
-            status[how] = support_aabench(args[c], said[how], sizeof said[how]);
-            if (how == 1)
-                assert_int_equal(unsetenv("AABENCH_TEST_EXEC"), 0);
-        }
-        if (status[0] != status[1] || strcmp(said[0], said[1]) != 0)
-            fail_msg("case %d: %s gave status %d and \"%s\", an exec %d and \"%s\"", c, kind,
-                     status[0], said[0], status[1], said[1]);
-        if (c == 5 && !strstr(said[0], "is not a regular file"))
-            fail_msg("no warning from a cache entry that is a folder: \"%s\"", said[0]);
-    }
-    assert_int_equal(rmdir(entry), 0);
-    assert_int_equal(rmdir(cache), 0);
-    /* the PNGs to the byte; the EXRs hold the time they were written
-     * (capDate): their pixels */
-    size_t n0, n1;
-    static char a[1 << 16], b[1 << 16];
-    assert_non_null(support_read_file(png[0], a, sizeof a, &n0));
-    assert_non_null(support_read_file(png[1], b, sizeof b, &n1));
-    assert_true(n0 > 0 && n0 == n1);
-    assert_memory_equal(a, b, n0);
-    aa_image im[2];
-    for (int how = 0; how < 2; how++)
-        assert_int_equal(aa_image_read(exr[how], &im[how]), AA_OK);
-    assert_true(support_same_image(&im[0], &im[1]));
-    for (int how = 0; how < 2; how++) {
-        aa_image_free(&im[how]);
-        assert_int_equal(unlink(png[how]), 0);
-        assert_int_equal(unlink(exr[how]), 0);
-    }
-    folder_clean();
 }
 
 static void test_render(void **state)
@@ -445,10 +374,9 @@ static int setup(void **state)
 }
 
 SUPPORT_MAIN(setup, support_teardown_dir,
+             cmocka_unit_test(test_spec_refusals),
              cmocka_unit_test(test_refusals),
              cmocka_unit_test(test_refusals_everywhere),
              cmocka_unit_test(test_success),
-             cmocka_unit_test(test_cli_main),
-             cmocka_unit_test(test_start_same_as_exec),
              cmocka_unit_test(test_render),
              cmocka_unit_test(test_cache))

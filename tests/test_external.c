@@ -1230,7 +1230,6 @@ static int teardown(void **state)
 
 int main(void)
 {
-    support_start_server();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_svg_crow),
         cmocka_unit_test(test_svg_star),

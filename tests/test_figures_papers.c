@@ -558,7 +558,6 @@ static void test_cli_pairs(void **state)
 
 int main(void)
 {
-    support_start_server();
     if (!mkdtemp(dir))
         return 1;
     const struct CMUnitTest tests[] = {

@@ -1135,7 +1135,6 @@ static void test_txt_nan_named(void **state)
 
 int main(void)
 {
-    support_start_servers(1);
     const struct CMUnitTest tests[] = {
         /* first, before this process writes an EXR itself: a child forked
          * after that hangs in its own EXR write (OpenEXR's thread pool is

@@ -737,7 +737,6 @@ static int setup(void **state)
 
 int main(void)
 {
-    support_start_server();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_partition), cmocka_unit_test(test_parallel_merge),
         cmocka_unit_test(test_driver_stopped_shard),
