@@ -1,8 +1,9 @@
 # aabench: build, test, run, bench, install.
 #
 #   make run     install missing Debian packages, build, run the main benchmark
-#   make test    the same set-up, then every test (plain and under ASan+UBSan),
-#                the test binaries in parallel (one job a core)
+#   make check   the quick tier of the tests (plain build), in parallel
+#   make test    the same set-up as run, then every test (plain and under
+#                ASan+UBSan) and the regression gate: what CI runs
 #   make bench   speed measurements (not tests: nothing here asserts a time)
 #   make fuzz    libFuzzer on the spec parsers, image, cache, CSV and SVG readers (needs clang)
 #   make valgrind  the tests under valgrind memcheck
@@ -63,10 +64,24 @@ LDLIBS    = $(PKG_LIBS) -lstdc++ -lm -ldl -fopenmp
 SAN       := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all -g1
 SAN_BUILD := $(BUILD)/san
 
+# Each build states its compilers and flags, BUILD_CC, _CXX, _CFLAGS (C),
+# _CXXFLAGS (C++), _ALGO_CXXFLAGS (the C++ methods) and _TEST_CFLAGS (what a
+# test program adds); compile_rules below makes its rules from them.
+PLAIN_CC            := $(CC)
+PLAIN_CXX           := $(CXX)
+PLAIN_CFLAGS        := $(CFLAGS)
+PLAIN_CXXFLAGS      := $(CXXFLAGS)
+PLAIN_ALGO_CXXFLAGS  = $(ALGO_CXXFLAGS)
+# a test's own code with line tables only (enough for a failure's stack)
+PLAIN_TEST_CFLAGS   := -g1
+SAN_CC              := $(CC)
+SAN_CXX             := $(CXX)
+SAN_CFLAGS          := $(CFLAGS) -O1 $(SAN)
+SAN_CXXFLAGS        := $(CXXFLAGS) -O1 $(SAN)
+SAN_ALGO_CXXFLAGS    = $(ALGO_CXXFLAGS) -O1 $(SAN)
+SAN_TEST_CFLAGS     :=
+
 CLI_SRC  := $(wildcard harness/cli/*.c)
-# the command line but main.c, for tests that call cli_main() in-process
-# (in the tests' shared library, below)
-CLI_LIB_SRC := $(filter-out harness/cli/main.c,$(CLI_SRC))
 LIB_CSRC := $(wildcard harness/core/*.c harness/truth/*.c harness/bench/*.c) \
             $(wildcard patterns/*.c) $(wildcard algorithms/*.c)
 # C++ methods (agg.cpp), linked into the library; no exception leaves them.
@@ -87,18 +102,30 @@ endef
 
 LIB      := $(BUILD)/libaabench.a
 SAN_LIB  := $(SAN_BUILD)/libaabench.a
-# The tests link the library's objects and the command line's (CLI_LIB_SRC)
-# as one shared library beside the build's libaabench.a, found at run time
-# through the tests' rpath $ORIGIN/.. (they are in BUILD/tests/).
+# The tests link the library's objects as one shared library beside the
+# build's libaabench.a, found at run time through the tests' rpath
+# $ORIGIN/.. (they are in BUILD/tests/).
 TEST_SO     := $(BUILD)/libaabench-test.so
 SAN_TEST_SO := $(SAN_BUILD)/libaabench-test.so
 OIIO_SO     := $(BUILD)/aabench-oiio.so
 SAN_OIIO_SO := $(SAN_BUILD)/aabench-oiio.so
-TESTS     := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
 PLUGINS   := $(patsubst tests/%.c,$(BUILD)/tests/%.so,$(PLUGIN_SRC))
 SAN_PLUGINS := $(patsubst tests/%.c,$(SAN_BUILD)/tests/%.so,$(PLUGIN_SRC))
-SAN_TESTS := $(patsubst tests/%.c,$(SAN_BUILD)/tests/%,$(TEST_SRC))
 BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
+
+# Two tiers of tests.  A test file of the full tier, the slow and
+# exhaustive ones, says so in a line of its own near its top:
+#     /* tier: full */
+# `make check` runs the others (the quick tier), in the plain build;
+# `make test` runs every test in both builds.  A pass starts the full
+# tier's tests first, the longest as a rule, so that none runs on alone at
+# the end.
+FULL_SRC  := $(shell grep -l '^/\* tier: full \*/' $(TEST_SRC) /dev/null)
+QUICK_SRC := $(filter-out $(FULL_SRC),$(TEST_SRC))
+tests_in   = $(patsubst tests/%.c,$(1)/tests/%,$(FULL_SRC) $(QUICK_SRC))
+TESTS       := $(call tests_in,$(BUILD))
+QUICK_TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(QUICK_SRC))
+SAN_TESTS   := $(call tests_in,$(SAN_BUILD))
 
 # keep the objects of test helpers between runs
 .PRECIOUS: $(BUILD)/obj/%.o $(SAN_BUILD)/obj/%.o
@@ -107,21 +134,17 @@ BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
 # writes NAME.log and NAME.result beside the binary and never fails, so that
 # make -j runs them side by side and every test runs; the pass's summary
 # then prints the failed ones and "N passed, N failed" and fails if any did.
-# The longest start first, so that they do not run on alone at the end.
-SLOW_TESTS := test_image_faults test_shard test_truth_gauss test_run_faults test_figures_papers \
-              test_truth test_prefilters test_cubic test_faults test_run test_external test_cone \
-              test_cli test_oracle test_patterns test_temporal_post test_image test_crow_methods
-ordered = $(foreach t,$(SLOW_TESTS),$(filter $(1)/tests/$(t),$(2))) \
-          $(filter-out $(addprefix $(1)/tests/,$(SLOW_TESTS)),$(2))
-TEST_RUNS     := $(addsuffix .run,$(call ordered,$(BUILD),$(TESTS)))
-SAN_TEST_RUNS := $(addsuffix .run,$(call ordered,$(SAN_BUILD),$(SAN_TESTS)))
+TEST_RUNS       := $(addsuffix .run,$(TESTS))
+QUICK_TEST_RUNS := $(addsuffix .run,$(QUICK_TESTS))
+SAN_TEST_RUNS   := $(addsuffix .run,$(SAN_TESTS))
 # A pass runs with one job a core and one more (TEST_JOBS: many tests wait on
 # the command they start), unless make was given -j.
 TEST_JOBS ?= $(shell echo $$(( $$(nproc 2>/dev/null || echo 1) + 1 )))
 TEST_J     = $(if $(findstring -j,$(MAKEFLAGS)),,-j$(TEST_JOBS))
 
-.PHONY: all deps run test check-tests check-tests-san check-gate baseline bench install clean \
-        fuzz valgrind FORCE check-tests-pass check-tests-san-pass check-tests-both $(TEST_RUNS) $(SAN_TEST_RUNS)
+.PHONY: all deps run test check check-tests check-tests-quick check-tests-san check-gate baseline \
+        bench install clean fuzz valgrind FORCE check-tests-pass check-tests-quick-pass \
+        check-tests-san-pass check-tests-both $(TEST_RUNS) $(SAN_TEST_RUNS)
 .DEFAULT_GOAL := all
 
 all: $(BUILD)/aabench $(LIB) $(OIIO_SO)
@@ -129,19 +152,75 @@ all: $(BUILD)/aabench $(LIB) $(OIIO_SO)
 deps:
 	@sh scripts/install-deps.sh
 
-# ---- plain build ----
-$(BUILD)/obj/%.o: %.c
-	@mkdir -p $(dir $@)
-	@echo '  CC    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) -c $< -o $@
-$(BUILD)/obj/%.o: %.cpp
-	@mkdir -p $(dir $@)
-	@echo '  CXX   $@'
-	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(OIIO_CFLAGS) -c $< -o $@
-$(BUILD)/obj/algorithms/%.o: algorithms/%.cpp
-	@mkdir -p $(dir $@)
-	@echo '  CXX   $@'
-	$(Q)$(CXX) $(CPPFLAGS) $(ALGO_CXXFLAGS) $(PKG_CFLAGS) -c $< -o $@
+# ---- the builds: plain ($(BUILD)), sanitizer ($(SAN_BUILD)), fuzz ----
+# $(call compile_rules,FOLDER,BUILD): the rules that compile the objects
+# of build folder FOLDER with BUILD's compilers and flags (see PLAIN_CC).
+define compile_rules
+$(1)/obj/%.o: %.c
+	@mkdir -p $$(dir $$@)
+	@echo '  CC    $$@'
+	$$(Q)$$($(2)_CC) $$(CPPFLAGS) $$($(2)_CFLAGS) $$(PKG_CFLAGS) -c $$< -o $$@
+$(1)/obj/%.o: %.cpp
+	@mkdir -p $$(dir $$@)
+	@echo '  CXX   $$@'
+	$$(Q)$$($(2)_CXX) $$(CPPFLAGS) $$($(2)_CXXFLAGS) $$(OIIO_CFLAGS) -c $$< -o $$@
+$(1)/obj/algorithms/%.o: algorithms/%.cpp
+	@mkdir -p $$(dir $$@)
+	@echo '  CXX   $$@'
+	$$(Q)$$($(2)_CXX) $$(CPPFLAGS) $$($(2)_ALGO_CXXFLAGS) $$(PKG_CFLAGS) -c $$< -o $$@
+endef
+
+# -z defs (the module and the tests' library): they need no symbol of the
+# program that loads them.  The tests' library is the library's objects
+# (the same as in libaabench.a, all built -fPIC); a plug-in a test loads
+# resolves the library's functions in it, as it does in the command.  Its
+# soname is what a test records, so each build's tests find their own
+# through the rpath.
+TEST_SO_FLAGS = -shared -Wl,-soname,libaabench-test.so -Wl,-z,defs
+# The command exports the whole library, so plug-ins can call it.
+WHOLE = -rdynamic -Wl,--whole-archive $(1) -Wl,--no-whole-archive
+# A test links its own source, the test helpers' objects and the tests'
+# library, which it finds in the folder above its own at run time (rpath
+# $ORIGIN/..); its .d file adds the headers and included sources it read as
+# prerequisites, which are no inputs.  It relinks when the library changes.
+# --allow-shlib-undefined: the link does not check the library's own
+# references again in the libraries it needs (-z defs did when it was
+# made), which takes a plain test's link about a third of its time.
+# Linked with gold where binutils has it: half the CPU of a test's compile
+# and link (0.45 s a test, measured on test_spec and test_cli, both builds).
+TEST_LDFLAGS := -Wl,-rpath,'$$ORIGIN/..' -Wl,--allow-shlib-undefined \
+                $(if $(shell command -v ld.gold 2>/dev/null),-fuse-ld=gold)
+
+# $(call build_rules,FOLDER,BUILD): the library, the command, the image
+# module, the tests and the plug-ins of build folder FOLDER.
+define build_rules
+$(call compile_rules,$(1),$(2))
+$(1)/aabench-oiio.so: $(patsubst %.cpp,$(1)/obj/%.o,$(OIIO_SRC))
+	@echo '  LD    $$@'
+	$$(Q)$$($(2)_CXX) $$($(2)_CXXFLAGS) -shared -Wl,-z,defs $$^ -o $$@ $$(OIIO_LIBS)
+$(1)/libaabench.a: $(call objs,$(1))
+	@rm -f $$@
+	@echo '  AR    $$@'
+	$$(Q)ar rcs $$@ $$^
+$(1)/aabench: $(patsubst %.c,$(1)/obj/%.o,$(CLI_SRC)) $(1)/libaabench.a | $(1)/aabench-oiio.so
+	@echo '  LD    $$@'
+	$$(Q)$$($(2)_CC) $$($(2)_CFLAGS) $$(filter %.o,$$^) $$(call WHOLE,$(1)/libaabench.a) -o $$@ $$(LDLIBS)
+$(1)/libaabench-test.so: $(call objs,$(1))
+	@echo '  LD    $$@'
+	$$(Q)$$($(2)_CC) $$($(2)_CFLAGS) $$(TEST_SO_FLAGS) $$^ -o $$@ $$(LDLIBS)
+$(1)/tests/%: tests/%.c $(patsubst %.c,$(1)/obj/%.o,$(TEST_AUX)) $(1)/libaabench-test.so | $(1)/aabench-oiio.so
+	@mkdir -p $$(dir $$@)
+	@echo '  LD    $$@'
+	$$(Q)$$($(2)_CC) $$(CPPFLAGS) $$($(2)_CFLAGS) $$($(2)_TEST_CFLAGS) -Itests $$(PKG_CFLAGS) $$< $$(filter %.o %.so,$$^) $$(TEST_LDFLAGS) -o $$@ $$(LDLIBS) $$(TEST_LIBS)
+$(1)/tests/%.so: tests/%.c harness/aabench.h
+	@mkdir -p $$(dir $$@)
+	@echo '  LD    $$@'
+	$$(Q)$$($(2)_CC) $$(CPPFLAGS) $$($(2)_CFLAGS) -shared $$< -o $$@
+endef
+$(eval $(call build_rules,$(BUILD),PLAIN))
+$(eval $(call build_rules,$(SAN_BUILD),SAN))
+
+# Flags of single objects.
 # The module's install folder is compiled into image.o, which is remade when
 # PREFIX changes (the file $(BUILD)/oiio-dir holds the last one).
 $(BUILD)/oiio-dir: FORCE
@@ -162,9 +241,9 @@ $(BUILD_INFO): FORCE
 CONTEXT_O := harness/bench/context.o
 $(BUILD)/obj/$(CONTEXT_O) $(SAN_BUILD)/obj/$(CONTEXT_O) $(BUILD)/fuzz/obj/$(CONTEXT_O): $(BUILD_INFO)
 $(BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO -I$(BUILD) \
-  -DAA_BUILD_FLAGS='"$(CFLAGS)"'
+  -DAA_BUILD_FLAGS='"$(PLAIN_CFLAGS)"'
 $(SAN_BUILD)/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO -I$(BUILD) \
-  -DAA_BUILD_FLAGS='"$(CFLAGS) -O1 $(SAN)"'
+  -DAA_BUILD_FLAGS='"$(SAN_CFLAGS)"'
 $(BUILD)/fuzz/obj/$(CONTEXT_O): CPPFLAGS += -DAA_BUILD_INFO -I$(BUILD)
 # The external method's renderer adapters: the source tree's
 # scripts/renderers (found at run time), then their copy that `make install`
@@ -178,87 +257,9 @@ DATA_DIR := $(PREFIX)/share/aabench
 $(BUILD)/obj/harness/core/paths.o $(SAN_BUILD)/obj/harness/core/paths.o: $(BUILD)/oiio-dir
 $(BUILD)/obj/harness/core/paths.o $(SAN_BUILD)/obj/harness/core/paths.o: \
   CPPFLAGS += -DAA_DATA_DIR='"$(DATA_DIR)"'
-# -z defs: the module needs no symbol of the program that loads it.
-$(OIIO_SO): $(patsubst %.cpp,$(BUILD)/obj/%.o,$(OIIO_SRC))
-	@echo '  LD    $@'
-	$(Q)$(CXX) $(CXXFLAGS) -shared -Wl,-z,defs $^ -o $@ $(OIIO_LIBS)
-$(LIB): $(call objs,$(BUILD))
-	@rm -f $@
-	@echo '  AR    $@'
-	$(Q)ar rcs $@ $^
-# The command exports the whole library, so plug-ins can call it.
-WHOLE = -rdynamic -Wl,--whole-archive $(1) -Wl,--no-whole-archive
-$(BUILD)/aabench: $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_SRC)) $(LIB) | $(OIIO_SO)
-	@echo '  LD    $@'
-	$(Q)$(CC) $(CFLAGS) $(filter %.o,$^) $(call WHOLE,$(LIB)) -o $@ $(LDLIBS)
-# The tests' shared library: the library's objects (the same as in $(LIB),
-# all built -fPIC) and the command line's but main.c.  A plug-in a test
-# loads resolves the library's functions in it, as it does in the command.
-# -z defs: it needs no symbol of the program that loads it.  Its soname is
-# what a test records, so each build's tests find their own through the rpath.
-TEST_SO_FLAGS = -shared -Wl,-soname,libaabench-test.so -Wl,-z,defs
-$(TEST_SO): $(call objs,$(BUILD)) $(patsubst %.c,$(BUILD)/obj/%.o,$(CLI_LIB_SRC))
-	@echo '  LD    $@'
-	$(Q)$(CC) $(CFLAGS) $(TEST_SO_FLAGS) $^ -o $@ $(LDLIBS)
-# A test links its own source, the test helpers' objects and $(TEST_SO),
-# which it finds in the folder above its own at run time (rpath $ORIGIN/..);
-# its .d file adds the headers and included sources it read as
-# prerequisites, which are no inputs.  It relinks when $(TEST_SO) changes.
-# --allow-shlib-undefined: the link does not check $(TEST_SO)'s own
-# references again in the libraries it needs (-z defs did when it was
-# made), which takes a plain test's link about a third of its time.
-# Its own code with line tables only (-g1: enough for a failure's stack).
-# Linked with gold where binutils has it: half the CPU of a test's compile
-# and link (0.45 s a test, measured on test_spec and test_cli, both builds).
-TEST_LDFLAGS := -Wl,-rpath,'$$ORIGIN/..' -Wl,--allow-shlib-undefined \
-                $(if $(shell command -v ld.gold 2>/dev/null),-fuse-ld=gold)
-$(BUILD)/tests/%: tests/%.c $(patsubst %.c,$(BUILD)/obj/%.o,$(TEST_AUX)) $(TEST_SO) | $(OIIO_SO)
-	@mkdir -p $(dir $@)
-	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -g1 -Itests $(PKG_CFLAGS) $< $(filter %.o %.so,$^) $(TEST_LDFLAGS) -o $@ $(LDLIBS) $(TEST_LIBS)
-$(BUILD)/tests/%.so: tests/%.c harness/aabench.h
-	@mkdir -p $(dir $@)
-	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -shared $< -o $@
 $(BUILD)/bench_%: tests/bench_%.c $(LIB) | $(OIIO_SO)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) $< $(LIB) -o $@ $(LDLIBS)
-
-# ---- sanitizer build ----
-$(SAN_BUILD)/obj/%.o: %.c
-	@mkdir -p $(dir $@)
-	@echo '  CC    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) $(PKG_CFLAGS) -c $< -o $@
-$(SAN_BUILD)/obj/%.o: %.cpp
-	@mkdir -p $(dir $@)
-	@echo '  CXX   $@'
-	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) -O1 $(SAN) $(OIIO_CFLAGS) -c $< -o $@
-$(SAN_BUILD)/obj/algorithms/%.o: algorithms/%.cpp
-	@mkdir -p $(dir $@)
-	@echo '  CXX   $@'
-	$(Q)$(CXX) $(CPPFLAGS) $(ALGO_CXXFLAGS) -O1 $(SAN) $(PKG_CFLAGS) -c $< -o $@
-$(SAN_OIIO_SO): $(patsubst %.cpp,$(SAN_BUILD)/obj/%.o,$(OIIO_SRC))
-	@echo '  LD    $@'
-	$(Q)$(CXX) $(CXXFLAGS) -O1 $(SAN) -shared -Wl,-z,defs $^ -o $@ $(OIIO_LIBS)
-$(SAN_LIB): $(call objs,$(SAN_BUILD))
-	@rm -f $@
-	@echo '  AR    $@'
-	$(Q)ar rcs $@ $^
-# the tests' shared library, with the same sanitizers as the objects in it
-$(SAN_TEST_SO): $(call objs,$(SAN_BUILD)) $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_LIB_SRC))
-	@echo '  LD    $@'
-	$(Q)$(CC) $(CFLAGS) -O1 $(SAN) $(TEST_SO_FLAGS) $^ -o $@ $(LDLIBS)
-$(SAN_BUILD)/aabench: $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(CLI_SRC)) $(SAN_LIB) | $(SAN_OIIO_SO)
-	@echo '  LD    $@'
-	$(Q)$(CC) $(CFLAGS) $(SAN) $(filter %.o,$^) $(call WHOLE,$(SAN_LIB)) -o $@ $(LDLIBS)
-$(SAN_BUILD)/tests/%: tests/%.c $(patsubst %.c,$(SAN_BUILD)/obj/%.o,$(TEST_AUX)) $(SAN_TEST_SO) | $(SAN_OIIO_SO)
-	@mkdir -p $(dir $@)
-	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -Itests $(PKG_CFLAGS) $< $(filter %.o %.so,$^) $(TEST_LDFLAGS) -o $@ $(LDLIBS) $(TEST_LIBS)
-$(SAN_BUILD)/tests/%.so: tests/%.c harness/aabench.h
-	@mkdir -p $(dir $@)
-	@echo '  LD    $@'
-	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -O1 $(SAN) -shared $< -o $@
 
 # ---- fuzzing (libFuzzer; clang, not part of `make test`) ----
 # The library is built again with clang into build/fuzz, instrumented for
@@ -270,18 +271,12 @@ FUZZ_SECONDS ?= 60
 FUZZ_FLAGS   := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g -O1
 FUZZ_TARGETS := $(FUZZ_BUILD)/fuzz_spec $(FUZZ_BUILD)/fuzz_image $(FUZZ_BUILD)/fuzz_cache \
                 $(FUZZ_BUILD)/fuzz_baseline $(FUZZ_BUILD)/fuzz_svg
-$(FUZZ_BUILD)/obj/%.o: %.c
-	@mkdir -p $(dir $@)
-	@echo '  CLANG $@'
-	$(Q)clang $(CPPFLAGS) -std=c11 $(WARN) -Wno-pass-failed -fPIC -fopenmp $(FUZZ_FLAGS) $(PKG_CFLAGS) -c $< -o $@
-$(FUZZ_BUILD)/obj/%.o: %.cpp
-	@mkdir -p $(dir $@)
-	@echo '  CLANG $@'
-	$(Q)clang++ $(CPPFLAGS) -std=c++17 -Wall -Wextra -Werror -fPIC $(FUZZ_FLAGS) $(OIIO_CFLAGS) -c $< -o $@
-$(FUZZ_BUILD)/obj/algorithms/%.o: algorithms/%.cpp
-	@mkdir -p $(dir $@)
-	@echo '  CLANG $@'
-	$(Q)clang++ $(CPPFLAGS) -std=c++20 -Wall -Wextra -Werror -fPIC -fopenmp $(FUZZ_FLAGS) $(PKG_CFLAGS) -c $< -o $@
+FUZZ_CC            := clang
+FUZZ_CXX           := clang++
+FUZZ_CFLAGS        := -std=c11 $(WARN) -Wno-pass-failed -fPIC -fopenmp $(FUZZ_FLAGS)
+FUZZ_CXXFLAGS      := -std=c++17 -Wall -Wextra -Werror -fPIC $(FUZZ_FLAGS)
+FUZZ_ALGO_CXXFLAGS := -std=c++20 -Wall -Wextra -Werror -fPIC -fopenmp $(FUZZ_FLAGS)
+$(eval $(call compile_rules,$(FUZZ_BUILD),FUZZ))
 $(FUZZ_BUILD)/obj/harness/core/image.o: CPPFLAGS += -DAA_OIIO_STATIC
 $(FUZZ_BUILD)/libaabench.a: $(call objs,$(FUZZ_BUILD)) $(patsubst %.cpp,$(FUZZ_BUILD)/obj/%.o,$(OIIO_SRC))
 	@rm -f $@
@@ -342,6 +337,18 @@ baseline: $(BUILD)/aabench
 	$(BUILD)/aabench run --suite quick --no-images --no-plots -q --out $(BUILD)/baseline-run
 	cp $(BUILD)/baseline-run/results.csv results/baseline.csv
 
+# make check: the quick checks, for every change (under a minute once
+# built): the quick tier of the tests, plain build.  Each check is a
+# prerequisite of `check`.
+check: check-tests-quick
+
+check-tests-quick:
+	@$(MAKE) --no-print-directory $(TEST_J) check-tests-quick-pass
+
+check-tests-quick-pass: $(QUICK_TEST_RUNS)
+	@sh scripts/run-tests.sh summary $(QUICK_TESTS)
+
+# every plain test, both tiers
 check-tests:
 	@$(MAKE) --no-print-directory $(TEST_J) check-tests-pass
 
@@ -351,7 +358,9 @@ check-tests-pass: $(TEST_RUNS)
 $(TEST_RUNS): %.run: % $(BUILD)/aabench $(PLUGINS)
 	@sh scripts/run-tests.sh one $(BUILD) $*
 
-check-tests-both: $(TEST_RUNS) $(SAN_TEST_RUNS)
+# the full tier of both builds first (see FULL_SRC)
+check-tests-both: $(foreach t,$(FULL_SRC:tests/%.c=%),$(SAN_BUILD)/tests/$(t).run $(BUILD)/tests/$(t).run) \
+                  $(SAN_TEST_RUNS) $(TEST_RUNS)
 	@echo "plain:"; sh scripts/run-tests.sh summary $(TESTS); plain=$$?; \
 	echo "under AddressSanitizer and UndefinedBehaviorSanitizer:"; \
 	sh scripts/run-tests.sh summary $(SAN_TESTS) && exit $$plain
