@@ -13,6 +13,7 @@
  *    fall-back path) and crow against the QAG-only computation, within the
  *    two bounds; thread counts 1, 2, 3 bit-identical.
  */
+/* tier: full */
 #include "bench.h"
 #include "truth_internal.h"
 #include "scenes.h"
