@@ -292,7 +292,18 @@ static void test_refusals_cli(void **state)
     char dir[256], out[300];
     assert_int_equal(support_tmpdir(dir, sizeof dir, "peers"), 0);
     snprintf(out, sizeof out, "%s/x.pfm", dir);
+    /* the scene of several layers, refused by each peer's library code;
+     * the command for one peer */
+    aa_spec spec;
+    aa_scene *layered = NULL;
+    assert_int_equal(aa_pattern_parse("crow:curves=2,gap0=1.5", &spec), AA_OK);
+    assert_int_equal(aa_pattern_scene_at(&spec, 32, 32, &layered), AA_OK);
     for (int k = 0; k < 3; k++) {
+        aa_image img;
+        assert_int_equal(render(peers[k], layered, "box", 32, 32, 1, &img), AA_EINVAL);
+    }
+    aa_scene_free(layered);
+    for (int k = 0; k < 1; k++) {
         assert_int_equal(run_cli(peers[k], "crow:curves=2,gap0=1.5", "box", out), 2);
         assert_int_equal(run_cli(peers[k], "crow", "tent:r=1", out), 2);
         assert_int_equal(access(out, F_OK), -1); /* nothing written */

@@ -387,9 +387,24 @@ static void test_cone_weight_half_plane(void **state)
     table_half_planes("conetable:weight=cone,res=%d", "cone:r=2", cone_table_bound);
 }
 
-/* ---- refusals through the command line ---- */
+/* ---- refusals ---- */
 
+/* The library refuses the method under the filter (AA_EINVAL), with a
+ * message holding `words`. */
 static void refused(const char *method, const char *filter, const char *words)
+{
+    aa_filter f;
+    aa_spec spec;
+    int st = aa_filter_parse(filter, &f);
+    if (st == AA_OK)
+        st = aa_method_parse(method, &f, &spec);
+    if (st != AA_EINVAL || !strstr(aa_last_error(), words))
+        fail_msg("%s -f %s: status %d, \"%s\" (expected %d and \"%s\")", method, filter, st,
+                 st ? aa_last_error() : "", AA_EINVAL, words);
+}
+
+/* The same through the command: exit 2, the message, nothing written. */
+static void refused_cli(const char *method, const char *filter, const char *words)
 {
     char out[4096];
     const char *args[] = {"render", "-p", "crow", "-s", "8x8", "-m", method, "-f", filter,
@@ -427,6 +442,7 @@ static void test_refusals(void **state)
         {"crowtable", "separable filter"}, {"area", "box"}, {"point", "box"}, {"trio", "box"}};
     for (size_t k = 0; k < sizeof separable / sizeof *separable; k++)
         refused(separable[k][0], "cone", separable[k][1]);
+    refused_cli(limits[0][0], limits[0][1], limits[0][2]);
 }
 
 SUPPORT_MAIN(NULL, free_crow_refs,
