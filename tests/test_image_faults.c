@@ -3,16 +3,16 @@
  *
  *  - A full disk: every writer (the formats through OpenImageIO, .txt,
  *    .pfm, montages written a row at a time, aa_file_write_atomic, and the
- *    command that uses them) fails with AA_EIO, exit status 3, leaves the
+ *    commands `truth` and `run`) fails with AA_EIO, exit status 3, leaves the
  *    previous file byte for byte and no temporary file (".aa-...").  A full
  *    disk is made without root with RLIMIT_FSIZE and SIGXFSZ ignored, in a
  *    child: writes past the limit fail with EFBIG, as they would with
  *    ENOSPC; limits just below the whole file's size reach the last write
  *    and the close.  Where tmpfs can be mounted, a really full one too.
  *  - Files cut short, or holding garbage after a valid header, are refused
- *    (AA_EIO, exit status 3) naming the file, at every length tried: the
+ *    naming the file: by the library (AA_EIO) at every length tried, the
  *    TIFF reader's true return for missing strips and a PNG whose IEND
- *    chunk is missing included.
+ *    chunk is missing included; by `compare` (exit status 3) once.
  *  - Loading and using OpenImageIO under an address-space limit
  *    (RLIMIT_AS) ends with a message and status 2 or 3, never a signal,
  *    whatever the limit.
@@ -1172,9 +1172,9 @@ static void test_txt_nan_named(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        /* first, before this process writes an EXR itself: a child forked
-         * after that hangs in its own EXR write (OpenEXR's thread pool is
-         * not there in the child) */
+        /* the two whose children write EXRs first, before this process
+         * writes one itself: a child forked after that hangs in its own EXR
+         * write (OpenEXR's thread pool is not there in the child) */
         cmocka_unit_test(test_full_disk_library),
         cmocka_unit_test(test_full_disk_truth),
         cmocka_unit_test(test_full_disk_run),
