@@ -117,15 +117,18 @@ BENCHES   := $(patsubst tests/%.c,$(BUILD)/%,$(BENCH_SRC))
 # exhaustive ones, says so in a line of its own near its top:
 #     /* tier: full */
 # `make check` runs the others (the quick tier), in the plain build;
-# `make test` runs every test in both builds.  A pass starts the full
-# tier's tests first, the longest as a rule, so that none runs on alone at
-# the end.
+# `make test` runs every test in both builds.
 FULL_SRC  := $(shell grep -l '^/\* tier: full \*/' $(TEST_SRC) /dev/null)
 QUICK_SRC := $(filter-out $(FULL_SRC),$(TEST_SRC))
-tests_in   = $(patsubst tests/%.c,$(1)/tests/%,$(FULL_SRC) $(QUICK_SRC))
-TESTS       := $(call tests_in,$(BUILD))
-QUICK_TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(QUICK_SRC))
-SAN_TESTS   := $(call tests_in,$(SAN_BUILD))
+tests_in   = $(patsubst tests/%.c,$(1)/tests/%,$(2))
+TESTS       := $(call tests_in,$(BUILD),$(FULL_SRC) $(QUICK_SRC))
+QUICK_TESTS := $(call tests_in,$(BUILD),$(QUICK_SRC))
+SAN_TESTS   := $(call tests_in,$(SAN_BUILD),$(FULL_SRC) $(QUICK_SRC))
+# A pass starts its tests in the order of their last run's times, the
+# longest first, so that none runs on alone at the end; those not run yet
+# (a clean build) first of all, the full tier's (the longest as a rule)
+# before the others, of both builds (scripts/run-tests.sh order).
+runs_in_order = $(addsuffix .run,$(shell sh scripts/run-tests.sh order $(1)))
 
 # keep the objects of test helpers between runs
 .PRECIOUS: $(BUILD)/obj/%.o $(SAN_BUILD)/obj/%.o
@@ -135,7 +138,6 @@ SAN_TESTS   := $(call tests_in,$(SAN_BUILD))
 # make -j runs them side by side and every test runs; the pass's summary
 # then prints the failed ones and "N passed, N failed" and fails if any did.
 TEST_RUNS       := $(addsuffix .run,$(TESTS))
-QUICK_TEST_RUNS := $(addsuffix .run,$(QUICK_TESTS))
 SAN_TEST_RUNS   := $(addsuffix .run,$(SAN_TESTS))
 # A pass runs with one job a core and one more (TEST_JOBS: many tests wait on
 # the command they start), unless make was given -j.
@@ -345,22 +347,22 @@ check: check-tests-quick
 check-tests-quick:
 	@$(MAKE) --no-print-directory $(TEST_J) check-tests-quick-pass
 
-check-tests-quick-pass: $(QUICK_TEST_RUNS)
+check-tests-quick-pass: $(call runs_in_order,$(QUICK_TESTS))
 	@sh scripts/run-tests.sh summary $(QUICK_TESTS)
 
 # every plain test, both tiers
 check-tests:
 	@$(MAKE) --no-print-directory $(TEST_J) check-tests-pass
 
-check-tests-pass: $(TEST_RUNS)
+check-tests-pass: $(call runs_in_order,$(TESTS))
 	@sh scripts/run-tests.sh summary $(TESTS)
 
 $(TEST_RUNS): %.run: % $(BUILD)/aabench $(PLUGINS)
 	@sh scripts/run-tests.sh one $(BUILD) $*
 
-# the full tier of both builds first (see FULL_SRC)
-check-tests-both: $(foreach t,$(FULL_SRC:tests/%.c=%),$(SAN_BUILD)/tests/$(t).run $(BUILD)/tests/$(t).run) \
-                  $(SAN_TEST_RUNS) $(TEST_RUNS)
+check-tests-both: $(call runs_in_order,$(call tests_in,$(SAN_BUILD),$(FULL_SRC)) \
+                  $(call tests_in,$(BUILD),$(FULL_SRC)) $(call tests_in,$(SAN_BUILD),$(QUICK_SRC)) \
+                  $(QUICK_TESTS))
 	@echo "plain:"; sh scripts/run-tests.sh summary $(TESTS); plain=$$?; \
 	echo "under AddressSanitizer and UndefinedBehaviorSanitizer:"; \
 	sh scripts/run-tests.sh summary $(SAN_TESTS) && exit $$plain
@@ -368,7 +370,7 @@ check-tests-both: $(foreach t,$(FULL_SRC:tests/%.c=%),$(SAN_BUILD)/tests/$(t).ru
 check-tests-san:
 	@$(MAKE) --no-print-directory $(TEST_J) check-tests-san-pass
 
-check-tests-san-pass: $(SAN_TEST_RUNS)
+check-tests-san-pass: $(call runs_in_order,$(SAN_TESTS))
 	@sh scripts/run-tests.sh summary $(SAN_TESTS)
 
 $(SAN_TEST_RUNS): %.run: % $(SAN_BUILD)/aabench $(SAN_PLUGINS)

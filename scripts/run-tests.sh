@@ -10,9 +10,12 @@
 #                                    failed" as the last line; exits 1 if
 #                                    any failed or did not run
 #   run-tests.sh BUILD TEST...       both, one test after the other
+#   run-tests.sh order TEST...       the tests, the longest in their last
+#                                    run (TEST.result) first; those not run
+#                                    yet before all, in the order given
 #
 # The Makefile runs `one` for each test as its own target, so that make -j
-# runs them in parallel, then `summary`.  The tests find the command under
+# runs them in parallel, in the order `order` gives, then `summary`.  The tests find the command under
 # test through $AABENCH and the example plug-in through $AABENCH_PLUGIN.
 # AABENCH_VALGRIND=1 (make valgrind): each test under memcheck; errors and
 # definite or indirect leaks fail it.
@@ -73,7 +76,20 @@ summary() {
     [ "$failed" -eq 0 ]
 }
 
+order() {
+    n=0
+    for t in "$@"; do
+        n=$((n + 1))
+        seconds=$(cut -d' ' -f2 "$t.result" 2>/dev/null)
+        echo "${seconds:-1e9} $n $t"
+    done | sort -k1,1gr -k2,2n | cut -d' ' -f3
+}
+
 case "${1:-}" in
+order)
+    shift
+    order "$@"
+    ;;
 one)
     shift
     one "$@"
