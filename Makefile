@@ -1,7 +1,8 @@
 # aabench: build, test, run, bench, install.
 #
 #   make run     install missing Debian packages, build, run the main benchmark
-#   make check   the quick tier of the tests (plain build), in parallel
+#   make check   the quick checks: the quick tier of the tests (plain build,
+#                in parallel) and no link-level cycle between files
 #   make test    the same set-up as run, then every test (plain and under
 #                ASan+UBSan) and the regression gate: what CI runs
 #   make bench   speed measurements (not tests: nothing here asserts a time)
@@ -340,8 +341,8 @@ baseline: $(BUILD)/aabench
 	cp $(BUILD)/baseline-run/results.csv results/baseline.csv
 
 # make check: the quick checks, for every change (under a minute once
-# built): the quick tier of the tests, plain build.  Each check is a
-# prerequisite of `check`.
+# built): the quick tier of the tests, plain build, and the link-level
+# cycles (check-cycles, below).  Each check is a prerequisite of `check`.
 check: check-tests-quick
 
 check-tests-quick:
