@@ -4,7 +4,7 @@
 # the 95% CI of the median is within TARGET_CI percent (default 2) or BUDGET
 # seconds (default 1) have passed, at least 5; REPS=N times exactly instead.
 # make bench TARGET_CI=1 BUDGET=3 passes them through.  Timings marked * are
-# noisy (README, "A quiet measurement").
+# noisy (harness/bench/README.md, "A quiet measurement").
 set -eu
 build=$1
 timing="--target-ci ${TARGET_CI:-2} --budget ${BUDGET:-1}"

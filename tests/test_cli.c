@@ -1,6 +1,6 @@
 /*
- * test_cli.c: the `aabench` command's contract (harness/README.md, "Command
- * line"):
+ * test_cli.c: the `aabench` command's contract (harness/cli/README.md, "Bad
+ * input and exit status"):
  * bad input gets exit status 2 and a message naming the problem and what is
  * accepted, an unwritable output 3, and a refused command writes nothing.
  * The command under test is $AABENCH (set by scripts/run-tests.sh), exec'd

@@ -112,7 +112,7 @@ static void check_1d(const char *ftext, double a, double c)
                  ftext, a, c, creal(g), cimag(g), re, im, er, ei, bound);
     /* the tent's Fresnel form (2 a |c| r > 3 with a small) subtracts terms
      * of size |c|/(a r^2): its bound grows there, past 1e-12 for a < 0.02
-     * and |c| > 100 (README, "Zone plate") */
+     * and |c| > 100 (patterns/README.md, `zoneplate`) */
     assert_true(bound < (f.type == &aa_filter_tent ? 1e-11 : 1e-13));
 }
 

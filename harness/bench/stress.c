@@ -25,7 +25,7 @@
  * the check is the closed-form white area of crow.c's header, which a 1x1
  * image and the sum of an 8x8 image must equal.
  *
- * Bounds (documented in README.md): the reference within 1e-12 of the
+ * Bounds (harness/bench/README.md, "Stress"): the reference within 1e-12 of the
  * evaluation (the ground truth's own bar) plus, for a scene moved by s
  * pixels, 1e-15 s (placing a scene rounds its coordinates to double, whose
  * spacing at 1e6 is 1.2e-10; the evaluation places in long double);

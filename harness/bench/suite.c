@@ -1,5 +1,5 @@
 /*
- * suite.c: the named suites of `aabench run` (README.md, "The benchmark").
+ * suite.c: the named suites of `aabench run` (harness/bench/README.md, "Runs and suites").
  *
  *   quick    every method family once on crow 128x128, each under a filter
  *            it accepts (box; tent:r=1 for Crow's tables and tiler; gauss

@@ -245,7 +245,7 @@ size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n)
             "the results; 'ci': the CI target was not met, 'outliers': many renders beyond 3 "
             "MADs, 'busy': other processes used the cores, 'steal': the hypervisor took "
             "time, 'preempted': wall time well above CPU time). Compare them with care, and see "
-            "the README's \"A quiet measurement\":\n",
+            "\"A quiet measurement\" in harness/bench/README.md:\n",
             cmd, noisy, n);
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = &rows[k];

@@ -11,14 +11,17 @@ static void usage(FILE *out)
     fprintf(out,
             "usage: aabench converge -p PATTERN -m METHOD -s WxH --spp 1,4,16,... [--phases K]\n"
             "                        [-f FILTER] [--time T] [--motion VX,VY] [--seed N]\n"
-            "                        [--threads N] [--out DIR]\n\n"
+            "                        [--threads N] [--out DIR] [--cache DIR | --no-cache]\n"
+            "                        [--plugin LIB.so]...\n\n"
             "Measures the RMSE of METHOD at each samples-per-pixel count over K random\n"
             "sub-pixel shifts of the scene (default 8), fits the slope of log RMSE against\n"
             "log spp by least squares and prints it on the last line as 'slope S +- E'.\n"
             "The method's spp parameter is set (or n, for an n x n grid: spp must be squares).\n"
             "--time T and --motion VX,VY place the scene at time T (frames) moving VX,VY\n"
             "pixels per frame, the shifts added; the reference is that frame's.\n"
-            "With --out DIR, also draws DIR/convergence.png.\n");
+            "With --out DIR, also draws DIR/convergence.png.  References are cached in\n"
+            "--cache DIR (default $AABENCH_CACHE, else results/cache in the source tree,\n"
+            "else $XDG_CACHE_HOME/aabench); --plugin loads methods from a shared library.\n");
 }
 
 int cmd_converge(int argc, char **argv)

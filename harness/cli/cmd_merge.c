@@ -27,7 +27,8 @@ static void usage(FILE *out)
             "same command, suite and commit and hold every case exactly once.\n\n"
             "  --out DIR        the merged run's folder\n"
             "  --cache DIR      reference cache for the montage and plots (default\n"
-            "                   results/cache, or $AABENCH_CACHE)\n"
+            "                   $AABENCH_CACHE, else results/cache in the source tree,\n"
+            "                   else $XDG_CACHE_HOME/aabench)\n"
             "  -q, --quiet      no table at the end\n\n"
             "Exit status: 0 done, 1 some cases failed (as in run), 2 a shard missing,\n"
             "duplicated or of another run, or bad usage, 3 input/output error.\n");

@@ -243,7 +243,7 @@ int cmd_render(int argc, char **argv)
         char why[128];
         aa_noisy_text(timing->noisy, why, sizeof why);
         fprintf(stderr, "aabench render: warning: the timing is noisy (%s): other processes used "
-                        "%.2f cores; see the README's \"A quiet measurement\"\n",
+                        "%.2f cores; see \"A quiet measurement\" in harness/bench/README.md\n",
                 why, timing->others_cores);
     }
     free(timing);

@@ -2,8 +2,8 @@
  * image.c: images in memory and in files.
  *
  * Inside, an image is linear light in doubles (harness/README.md,
- * "Principles").  Files are chosen by extension (harness/README.md, "Command
- * line"):
+ * "Principles").  Files are chosen by extension (harness/cli/README.md, "Image
+ * files"):
  *
  *   .exr .tif .tiff .pfm  32-bit float, linear, the image's own channels;
  *   .png                  8 bits, display encoded (sRGB unless told), for eyes;
