@@ -15,8 +15,7 @@
 #include <stdio.h>
 
 /* The whole command line: argv[0] the program, argv[1] the subcommand;
- * returns the exit status (cli_main.c).  main.c calls it; tests call it in
- * a forked child, without exec (tests/test_cli.c). */
+ * returns the exit status (cli_main.c).  main.c calls it. */
 int cli_main(int argc, char **argv);
 
 /* The library's warning handler (aa_set_warn): "aabench: warning: MSG" on

@@ -1,7 +1,6 @@
 /*
  * cli_main.c: the `aabench` command line: finds the subcommand and runs it.
- * main.c only calls cli_main(); the tests link this and the cmd_*.c files
- * to run the command line in a child process without exec.
+ * main.c only calls cli_main().
  */
 #include "cli.h"
 #include "c_numbers_internal.h"
