@@ -274,8 +274,8 @@ int cli_warn_parallelism(const char *cmd, const aa_row *rows, size_t n)
     fprintf(stderr,
             "aabench %s: warning: the methods ran with different effective parallelism (CPU "
             "time / wall time), %.2f for %s on %s %dx%d %s (%d thread%s) to %.2f for %s on %s "
-            "%dx%d %s (%d thread%s), %.1fx apart (more than %.1fx): their times are not a fair "
-            "comparison; give each the same --threads\n",
+            "%dx%d %s (%d thread%s), %.1fx apart (more than %.1fx): their wall times are not a "
+            "fair comparison as they stand (see the thr and cpu ms columns)\n",
             cmd, rows[lo].timing.cpu_share, rows[lo].method, rows[lo].pattern, rows[lo].w,
             rows[lo].h, rows[lo].filter, rows[lo].threads, rows[lo].threads == 1 ? "" : "s",
             rows[hi].timing.cpu_share, rows[hi].method, rows[hi].pattern, rows[hi].w, rows[hi].h,
