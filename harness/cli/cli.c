@@ -252,14 +252,16 @@ size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n)
         const aa_row *r = &rows[k];
         if (!r->ok || !r->timing.noisy)
             continue;
-        char why[128], ci[64];
+        char why[128], ci[64], others[32] = "an unknown number of";
         aa_noisy_text(r->timing.noisy, why, sizeof why);
         aa_timing_ci_text(&r->timing, ci, sizeof ci);
+        if (isfinite(r->timing.others_cores))
+            snprintf(others, sizeof others, "%.2f", r->timing.others_cores);
         fprintf(stderr, "  %s on %s %dx%d %s, %d thread%s: %s (%s%s, %zu outliers of %d, "
-                        "others used %.2f cores)\n",
+                        "others used %s cores)\n",
                 r->method, r->pattern, r->w, r->h, r->filter, r->threads,
                 r->threads == 1 ? "" : "s", why, isfinite(r->timing.ci_rel) ? "CI " : "", ci,
-                r->timing.stats.outliers, r->timing.n, r->timing.others_cores);
+                r->timing.stats.outliers, r->timing.n, others);
     }
     return noisy;
 }
