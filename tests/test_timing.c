@@ -28,6 +28,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -159,6 +161,199 @@ static void test_noisy_text(void **state)
     assert_string_equal(buf, "outliers+steal+preempted");
 }
 
+static char dir[] = "/tmp/aabench-timing-XXXXXX";
+
+/* A timing of the given render times under a 2% target, by precision,
+ * on a quiet machine: one thread that got all its wall time in CPU. */
+static void synthetic(aa_timing *t, const double *x, int n)
+{
+    memset(t, 0, sizeof *t);
+    t->n = n, t->threads = 1, t->target_ci = 0.02, t->cpu_share = 1.0;
+    memcpy(t->wall, x, (size_t)n * sizeof *x);
+    memcpy(t->cpu, x, (size_t)n * sizeof *x);
+    aa_time_stats_compute(x, (size_t)n, &t->stats);
+    t->ci_rel = isfinite(t->stats.ci_lo) ? (t->stats.ci_hi - t->stats.ci_lo) / 2 / t->stats.median
+                                         : NAN;
+    t->target_met = t->ci_rel <= t->target_ci;
+}
+
+/* Noisy by effect, not by count. */
+static void test_outliers_by_effect(void **state)
+{
+    (void)state;
+    aa_timing *t = malloc(sizeof *t);
+    assert_non_null(t);
+    /* 1.000, 1.001, ..., 1.009 and two outliers, 5 and 6: one render in six.
+     * Median (1.005 + 1.006) / 2 = 1.0055; the interval of 12 is
+     * [x(3), x(10)] = [1.002, 1.009], half-width 0.0035 / 1.0055 = 0.35%,
+     * within 2%.  The absolute deviations' median is (0.0025 + 0.0035) / 2
+     * = 0.003, 3 MADs 3 x 1.4826 x 0.003 = 0.0133: only 5 and 6 lie beyond.
+     * Without them the median is 1.0045, 0.1% from 1.0055: not noisy. */
+    const double one_in_six[] = {1.003, 5.0,   1.000, 1.009, 1.001, 1.007,
+                                 1.002, 1.008, 6.0,   1.004, 1.005, 1.006};
+    synthetic(t, one_in_six, 12);
+    assert_int_equal(t->stats.outliers, 2);
+    assert_true(fabs(aa_time_stats_outlier_shift(one_in_six, 12) - 0.001 / 1.0045) < 1e-12);
+    aa_timing_judge(t, 0.04, 2);
+    if (t->noisy) {
+        char why[64];
+        aa_noisy_text(t->noisy, why, sizeof why);
+        fail_msg("one outlier in six that leaves the median marked noisy: %s", why);
+    }
+    /* 1.00, 1.02, ..., 1.14 and four outliers 5, 6, 7, 8: the median of all
+     * (x(6) + x(7)) / 2 = (1.10 + 1.12) / 2 = 1.11; deviations' median
+     * (0.07 + 0.09) / 2 = 0.08, 3 MADs 0.356, so the four are outliers;
+     * without them the median is (1.06 + 1.08) / 2 = 1.07, 0.04 / 1.07 =
+     * 3.7% away: beyond the 2% target */
+    const double moving[] = {1.00, 5.0, 1.02, 1.04, 6.0, 1.06, 1.08, 7.0, 1.10, 1.12, 8.0, 1.14};
+    synthetic(t, moving, 12);
+    assert_int_equal(t->stats.outliers, 4);
+    assert_true(fabs(aa_time_stats_outlier_shift(moving, 12) - 0.04 / 1.07) < 1e-12);
+    aa_timing_judge(t, 0.04, 2);
+    assert_true(t->noisy & AA_NOISY_OUTLIERS);
+    /* none: no shift */
+    const double calm[] = {1, 2, 3, 4, 5, 6};
+    assert_true(aa_time_stats_outlier_shift(calm, 6) == 0);
+    free(t);
+}
+
+/* The machine's accounting from made counters: 100 ticks a second, 2
+ * cores. */
+static void test_machine_use(void **state)
+{
+    (void)state;
+    aa_machine_sample a = {.wall = 10, .load = 2.2, .own = 3, .have_stat = 1,
+                           .busy = 1000, .steal = 0, .total = 4000};
+    aa_machine_sample b = a;
+    double others, steal, allowance;
+    /* one second, 1395 busy ticks (13.95 cores' worth) and none of it ours:
+     * clamped to the 2 cores there are; the ticks' error 2 x 2 / 100 / 1 =
+     * 0.04 cores */
+    b.wall = 11, b.busy = a.busy + 1395, b.total = a.total + 1395;
+    aa_machine_use(&a, &b, 100, 2, 1, &others, &steal, &allowance);
+    assert_true(others == 2 && steal == 0 && fabs(allowance - 0.04) < 1e-12);
+    aa_timing *t = malloc(sizeof *t);
+    assert_non_null(t);
+    const double x[] = {1, 1, 1, 1, 1, 1};
+    synthetic(t, x, 6);
+    t->others_cores = others;
+    aa_timing_judge(t, allowance, 2);
+    assert_int_equal(t->noisy, AA_NOISY_BUSY);
+    /* 150 busy ticks, 1.5 s of them ours and our children's (an external
+     * renderer's program): nobody else */
+    b.busy = a.busy + 150, b.own = a.own + 1.5;
+    aa_machine_use(&a, &b, 100, 2, 1, &others, &steal, &allowance);
+    assert_true(others == 0);
+    /* more CPU of ours than the ticks show (their rounding): 0, not less */
+    b.busy = a.busy + 100, b.own = a.own + 1.9;
+    aa_machine_use(&a, &b, 100, 2, 1, &others, &steal, &allowance);
+    assert_true(others == 0);
+    /* 10 ms: the ticks' error is 4 cores, too much; the lower load
+     * average, 3.0, less our 2 threads: 1 core, beyond the load's 0.5 */
+    b = a;
+    a.load = 3.5, b.load = 3.0, b.wall = a.wall + 0.01, b.busy = a.busy + 7;
+    aa_machine_use(&a, &b, 100, 2, 2, &others, &steal, &allowance);
+    assert_true(others == 1 && allowance == AA_TIMING_BUSY_LOAD);
+    t->others_cores = others;
+    aa_timing_judge(t, allowance, 2);
+    assert_int_equal(t->noisy, AA_NOISY_BUSY);
+    /* the same window with the load of our own threads alone: quiet */
+    a.load = b.load = 2.2;
+    aa_machine_use(&a, &b, 100, 2, 2, &others, &steal, &allowance);
+    assert_true(fabs(others - 0.2) < 1e-12);
+    t->others_cores = others;
+    aa_timing_judge(t, allowance, 2);
+    assert_int_equal(t->noisy, 0);
+    /* a load of 30: still at most the 2 cores */
+    a.load = b.load = 30;
+    aa_machine_use(&a, &b, 100, 2, 2, &others, &steal, &allowance);
+    assert_true(others == 2);
+    free(t);
+}
+
+/* Fewer renders than an interval needs: said so.  Five renders cover at
+ * most 1 - 2 / 2^5 = 93.75% of the median, six 1 - 2 / 2^6 = 96.9%. */
+static void test_ci_text(void **state)
+{
+    (void)state;
+    aa_timing *t = calloc(1, sizeof *t);
+    assert_non_null(t);
+    char buf[64];
+    const double x[] = {1.0, 1.1, 0.9, 1.05, 0.95, 1.0};
+    synthetic(t, x, 5);
+    aa_timing_ci_text(t, buf, sizeof buf);
+    assert_string_equal(buf, "CI needs 6 renders");
+    /* six: [x(1), x(6)] = [0.9, 1.1] about the median 1.0, +-10% */
+    synthetic(t, x, 6);
+    aa_timing_ci_text(t, buf, sizeof buf);
+    assert_string_equal(buf, "+-10.0%");
+    free(t);
+}
+
+/* Methods in one table that ran with different effective parallelism. */
+static void test_parallelism(void **state)
+{
+    (void)state;
+    aa_row *r = calloc(4, sizeof *r);
+    assert_non_null(r);
+    /* a plug-in's one thread all CPU (1.0), a 2-thread method waiting at its
+     * barriers (0.4), one at 0.9, and a failed case of 0.1 that is not
+     * counted: 1.0 / 0.4 = 2.5 apart */
+    const double share[] = {1.0, 0.4, 0.9, 0.1};
+    for (int k = 0; k < 4; k++) {
+        r[k].ok = k < 3, r[k].threads = k == 1 ? 2 : 1;
+        r[k].timing.n = 10, r[k].timing.cpu_share = share[k];
+    }
+    size_t lo, hi;
+    double ratio = aa_rows_parallelism(r, 4, &lo, &hi);
+    assert_true(lo == 1 && hi == 0 && fabs(ratio - 2.5) < 1e-12);
+    assert_true(ratio > AA_PARALLELISM_FACTOR);
+    /* 1.0 and 0.9 alone: 1.11 apart, fair */
+    r[1].timing.cpu_share = NAN; /* an old file's row, without the column */
+    ratio = aa_rows_parallelism(r, 4, &lo, &hi);
+    assert_true(lo == 2 && hi == 0 && fabs(ratio - 1.0 / 0.9) < 1e-12);
+    assert_false(ratio > AA_PARALLELISM_FACTOR);
+    /* one row: nothing to compare */
+    assert_true(aa_rows_parallelism(r, 1, &lo, &hi) == 1.0);
+    free(r);
+}
+
+/* A warning printed after what precedes it on standard output, through a
+ * pipe (where standard output is buffered): a fixed count of 6 renders
+ * judged against a 0.01% target is noisy unless all six take the same
+ * time to 0.02%. */
+static void test_warning_order(void **state)
+{
+    (void)state;
+    if (!getenv("AABENCH"))
+        skip();
+    static char out[1 << 16];
+    char png[160], run[160];
+    snprintf(png, sizeof png, "%s/order.png", dir);
+    snprintf(run, sizeof run, "%s/order-run", dir);
+    const char *render[] = {"render", "-p", "crow", "-m", "point", "-s", "96x96",
+                            "--threads", "1", "--reps", "6", "--target-ci", "0.01",
+                            "-o", png, NULL};
+    assert_int_equal(support_aabench(render, out, sizeof out), 0);
+    const char *wrote = strstr(out, "wrote "), *warning = strstr(out, "warning: the timing");
+    assert_non_null(wrote);
+    if (warning && warning < wrote)
+        fail_msg("the warning came before the line it follows:\n%s", out);
+    const char *runs[] = {"run", "-p", "crow", "-m", "point", "-m", "area", "-s", "48x48",
+                          "-f", "box", "--threads", "1", "--reps", "6", "--target-ci", "0.01",
+                          "--no-images", "--no-plots", "--no-cache", "--out", run, NULL};
+    int st = support_aabench(runs, out, sizeof out);
+    assert_true(st == 0);
+    /* the table's two rows, each whole on its line, then the warnings */
+    const char *point = strstr(out, "\npoint "), *area = strstr(out, "\narea ");
+    warning = strstr(out, "aabench run: warning: ");
+    assert_true(point && area);
+    if (warning && (warning < point || warning < area || warning[-1] != '\n'))
+        fail_msg("the warning came inside the table:\n%s", out);
+    if (!warning)
+        print_message("(no timing was noisy: the order was not put to the test)\n");
+}
+
 /* ---- the repetition rule: counts, never times ---- */
 
 static int calls;
@@ -172,6 +367,58 @@ static int fail_third(void *ctx)
 {
     (void)ctx;
     return ++calls == 3 ? AA_EFAIL : AA_OK;
+}
+
+/* A render whose work is done by a child process, as an external
+ * renderer's: the child spins a fixed count of steps, then writes its own
+ * CPU time (its process clock) into a pipe before exiting; the render
+ * waits for it. */
+static double child_cpu;
+static int child_render(void *ctx)
+{
+    (void)ctx;
+    int fds[2];
+    if (pipe(fds))
+        return AA_EFAIL;
+    pid_t pid = fork();
+    if (pid < 0)
+        return AA_EFAIL;
+    if (pid == 0) {
+        volatile double x = 0;
+        for (long k = 0; k < 20000000; k++)
+            x += 1e-9 * (double)k;
+        struct timespec t;
+        clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+        double cpu = (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+        _exit(write(fds[1], &cpu, sizeof cpu) == (ssize_t)sizeof cpu ? 0 : 1);
+    }
+    close(fds[1]);
+    ssize_t got = read(fds[0], &child_cpu, sizeof child_cpu);
+    close(fds[0]);
+    int ws;
+    while (waitpid(pid, &ws, 0) < 0)
+        ;
+    return got == (ssize_t)sizeof child_cpu && WIFEXITED(ws) && !WEXITSTATUS(ws) ? AA_OK
+                                                                                 : AA_EFAIL;
+}
+
+/* The child's CPU is the render's (RUSAGE_CHILDREN), not nothing: at least
+ * what the child's own clock read before it wrote, less 1% for the
+ * microseconds getrusage rounds to. */
+static void test_child_cpu(void **state)
+{
+    (void)state;
+    aa_timing *t = malloc(sizeof *t);
+    assert_non_null(t);
+    aa_timed_fn fn = child_render;
+    void *ctx = NULL;
+    int one = 1;
+    aa_timing_plan plan = {.reps = 2};
+    assert_int_equal(aa_timing_measure(&plan, 1, &fn, &ctx, &one, t), AA_OK);
+    assert_true(child_cpu > 0);
+    if (!(t->cpu[1] >= 0.99 * child_cpu - 1e-5))
+        fail_msg("the render's CPU time %g s leaves out its child's %g s", t->cpu[1], child_cpu);
+    free(t);
 }
 
 static void test_measure_counts(void **state)
@@ -221,8 +468,6 @@ static void test_measure_counts(void **state)
 }
 
 /* ---- results files, comparisons and the diff command ---- */
-
-static char dir[] = "/tmp/aabench-timing-XXXXXX";
 
 static void fill_row(aa_row *r, const char *method, double rmse, double scale)
 {
@@ -422,6 +667,12 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_mann_whitney_r_example),
              cmocka_unit_test(test_mann_whitney_ties),
              cmocka_unit_test(test_noisy_text),
+             cmocka_unit_test(test_outliers_by_effect),
+             cmocka_unit_test(test_machine_use),
+             cmocka_unit_test(test_ci_text),
+             cmocka_unit_test(test_parallelism),
+             cmocka_unit_test(test_warning_order),
+             cmocka_unit_test(test_child_cpu),
              cmocka_unit_test(test_measure_counts),
              cmocka_unit_test(test_results_round_trip),
              cmocka_unit_test(test_old_results),

@@ -354,6 +354,15 @@ int aa_rows_read_csv(const char *path, aa_row **rows, size_t *n);
 int aa_rows_parse_csv(const char *name, const char *data, size_t len, aa_row **rows,
                       size_t *n);
 
+/* Fair comparisons: methods in one table should have run with the same
+ * effective parallelism, a render's CPU time over its wall time (the
+ * timing's cpu_share).  The rows measured ok with a share (threads > 0,
+ * renders timed) of least and most, into *least and *most, and the ratio
+ * of the most to the least; 1 with fewer than two such rows.  A ratio above
+ * AA_PARALLELISM_FACTOR is worth a warning. */
+#define AA_PARALLELISM_FACTOR 1.5
+double aa_rows_parallelism(const aa_row *rows, size_t n, size_t *least, size_t *most);
+
 /* What a results file says of the run that made it (context.c): the
  * commit (git, run in the program's checkout; else the one it was built
  * from), the compiler and its flags, the CPU, cores, threads, OS and

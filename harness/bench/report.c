@@ -699,6 +699,22 @@ int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row 
 #define CSV_MAX_BYTES ((size_t)256 << 20)
 #define CSV_MAX_FIELDS 256
 
+double aa_rows_parallelism(const aa_row *rows, size_t n, size_t *least, size_t *most)
+{
+    size_t lo = n, hi = n;
+    for (size_t k = 0; k < n; k++) {
+        const aa_timing *t = &rows[k].timing;
+        if (!rows[k].ok || t->n <= 0 || !(t->cpu_share > 0) || !isfinite(t->cpu_share))
+            continue;
+        if (lo == n || t->cpu_share < rows[lo].timing.cpu_share)
+            lo = k;
+        if (hi == n || t->cpu_share > rows[hi].timing.cpu_share)
+            hi = k;
+    }
+    *least = lo, *most = hi;
+    return lo == n || lo == hi ? 1.0 : rows[hi].timing.cpu_share / rows[lo].timing.cpu_share;
+}
+
 /* A row read back: its statistics from its times (when the file has them). */
 static void settle_timing(aa_row *row)
 {

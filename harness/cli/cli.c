@@ -226,11 +226,10 @@ void cli_command_line(int *argc, const char *const **argv)
 void cli_time_text(const aa_row *r, char *buf, size_t len)
 {
     const aa_timing *t = &r->timing;
-    if (t->n > 0 && isfinite(t->ci_rel))
-        snprintf(buf, len, "%.3f +-%.1f%%%s", r->seconds * 1e3, 100 * t->ci_rel,
-                 t->noisy ? " *" : "");
-    else
-        snprintf(buf, len, "%.3f +-?%s", r->seconds * 1e3, t->noisy ? " *" : "");
+    char ci[64] = "";
+    if (t->n > 0)
+        aa_timing_ci_text(t, ci, sizeof ci);
+    snprintf(buf, len, "%.3f%s%s%s", r->seconds * 1e3, *ci ? " " : "", ci, t->noisy ? " *" : "");
 }
 
 size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n)
@@ -240,24 +239,49 @@ size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n)
         noisy += rows[k].ok && rows[k].timing.noisy;
     if (!noisy)
         return 0;
+    fflush(stdout); /* after the table, not inside it */
     fprintf(stderr,
             "aabench %s: warning: %zu of %zu timings are noisy (marked * and noisy = 1 in "
-            "the results; 'ci': the CI target was not met, 'outliers': many renders beyond 3 "
-            "MADs, 'busy': other processes used the cores, 'steal': the hypervisor took "
-            "time, 'preempted': wall time well above CPU time). Compare them with care, and see "
-            "\"A quiet measurement\" in harness/bench/README.md:\n",
+            "the results; 'ci': the CI target was not met, 'outliers': renders beyond 3 "
+            "MADs moved the median by more than the target, 'busy': other processes used the "
+            "cores, 'steal': the hypervisor took time, 'preempted': wall time well above CPU "
+            "time). Compare them with care, and see \"A quiet measurement\" in "
+            "harness/bench/README.md:\n",
             cmd, noisy, n);
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = &rows[k];
         if (!r->ok || !r->timing.noisy)
             continue;
-        char why[128];
+        char why[128], ci[64], others[32] = "an unknown number of";
         aa_noisy_text(r->timing.noisy, why, sizeof why);
-        fprintf(stderr, "  %s on %s %dx%d %s, %d thread%s: %s (CI +-%.1f%%, %zu outliers of %d, "
-                        "others used %.2f cores)\n",
+        aa_timing_ci_text(&r->timing, ci, sizeof ci);
+        if (isfinite(r->timing.others_cores))
+            snprintf(others, sizeof others, "%.2f", r->timing.others_cores);
+        fprintf(stderr, "  %s on %s %dx%d %s, %d thread%s: %s (%s%s, %zu outliers of %d, "
+                        "others used %s cores)\n",
                 r->method, r->pattern, r->w, r->h, r->filter, r->threads,
-                r->threads == 1 ? "" : "s", why, 100 * r->timing.ci_rel, r->timing.stats.outliers,
-                r->timing.n, r->timing.others_cores);
+                r->threads == 1 ? "" : "s", why, isfinite(r->timing.ci_rel) ? "CI " : "", ci,
+                r->timing.stats.outliers, r->timing.n, others);
     }
     return noisy;
+}
+
+int cli_warn_parallelism(const char *cmd, const aa_row *rows, size_t n)
+{
+    size_t lo, hi;
+    double ratio = aa_rows_parallelism(rows, n, &lo, &hi);
+    if (!(ratio > AA_PARALLELISM_FACTOR))
+        return 0;
+    fflush(stdout);
+    fprintf(stderr,
+            "aabench %s: warning: the methods ran with different effective parallelism (CPU "
+            "time / wall time), %.2f for %s on %s %dx%d %s (%d thread%s) to %.2f for %s on %s "
+            "%dx%d %s (%d thread%s), %.1fx apart (more than %.1fx): their wall times are not a "
+            "fair comparison as they stand (see the thr and cpu ms columns)\n",
+            cmd, rows[lo].timing.cpu_share, rows[lo].method, rows[lo].pattern, rows[lo].w,
+            rows[lo].h, rows[lo].filter, rows[lo].threads, rows[lo].threads == 1 ? "" : "s",
+            rows[hi].timing.cpu_share, rows[hi].method, rows[hi].pattern, rows[hi].w, rows[hi].h,
+            rows[hi].filter, rows[hi].threads, rows[hi].threads == 1 ? "" : "s", ratio,
+            AA_PARALLELISM_FACTOR);
+    return 1;
 }

@@ -77,11 +77,16 @@ int cli_progress_wanted(void);
 void cli_command_line(int *argc, const char *const **argv);
 void cli__set_command_line(int argc, char **argv); /* by cli_main */
 /* The median render time in ms with its CI's relative half-width and a
- * mark for a noisy measurement: "12.345 +-1.2%", "12.345 +-9.9% *". */
+ * mark for a noisy measurement: "12.345 +-1.2%", "12.345 +-9.9% *",
+ * "12.345 CI needs 6 renders" (aa_timing_ci_text); "12.345" with no times. */
 void cli_time_text(const aa_row *r, char *buf, size_t len);
 /* On stderr, a warning naming each case whose timing is marked noisy, with
  * the reasons; returns their count. */
 size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n);
+/* On stderr, a warning when the rows' effective parallelism (CPU time /
+ * wall time) differs by more than AA_PARALLELISM_FACTOR (aa_rows_parallelism),
+ * naming the two ends; 1 if warned.  Standard output is flushed first. */
+int cli_warn_parallelism(const char *cmd, const aa_row *rows, size_t n);
 
 int cmd_list(int argc, char **argv);
 int cmd_truth(int argc, char **argv);

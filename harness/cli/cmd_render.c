@@ -233,6 +233,11 @@ int cmd_render(int argc, char **argv)
         aa_spec_format(&method, ms, sizeof ms);
         if (isfinite(timing->ci_rel))
             snprintf(ci, sizeof ci, " +-%.1f%% (95%% CI)", 100 * timing->ci_rel);
+        else if (timing->n > 0) {
+            snprintf(ci, sizeof ci, " (");
+            aa_timing_ci_text(timing, ci + 2, sizeof ci - 3);
+            strcat(ci, ")");
+        }
         printf("wrote %s: %s, %dx%d, median %.4f s%s over %d render%s, %llu samples, %llu "
                "expensive pixels\n",
                a.out, ms, w, h, timing->stats.median, ci, timing->n, timing->n > 1 ? "s" : "",
@@ -240,6 +245,7 @@ int cmd_render(int argc, char **argv)
                (unsigned long long)counters.expensive_pixels);
     }
     if (timing->noisy) {
+        fflush(stdout); /* after the line above */
         char why[128];
         aa_noisy_text(timing->noisy, why, sizeof why);
         fprintf(stderr, "aabench render: warning: the timing is noisy (%s): other processes used "

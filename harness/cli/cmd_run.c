@@ -218,8 +218,9 @@ static void print_table(const aa_row *rows, size_t n)
     for (size_t k = 0; k < n; k++)
         temporal |= rows[k].temporal;
     qsort(order, n, sizeof *order, temporal ? cmp_eye : cmp_rmse);
-    printf("%-30s %-10s %-12s %-10s %10s %9s %8s %-20s %9s %6s\n", "method", "pattern", "size",
-           "filter", "rmse", "max_err", "psnr", "ms, median +-CI", "ns/px", "exp%");
+    printf("%-30s %-10s %-12s %-10s %10s %9s %8s %-27s %3s %9s %9s %6s\n", "method", "pattern",
+           "size", "filter", "rmse", "max_err", "psnr", "ms, median +-CI", "thr", "cpu ms",
+           "ns/px", "exp%");
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = order[k];
         char size[32];
@@ -231,9 +232,12 @@ static void print_table(const aa_row *rows, size_t n)
         }
         char ms[64];
         cli_time_text(r, ms, sizeof ms);
-        printf("%-30.30s %-10.10s %-12s %-10.10s %10.3e %9.2e %8.2f %-20s %9.2f %6.1f\n",
+        char cpu[32] = "-"; /* the median render's CPU time, the threads' sum */
+        if (r->timing.n > 0 && isfinite(r->timing.cpu_median))
+            snprintf(cpu, sizeof cpu, "%.3f", r->timing.cpu_median * 1e3);
+        printf("%-30.30s %-10.10s %-12s %-10.10s %10.3e %9.2e %8.2f %-27s %3d %9s %9.2f %6.1f\n",
                r->method, r->pattern, size, r->filter, r->m.rmse, r->m.max_err, r->m.psnr, ms,
-               r->ns_per_pixel, 100 * r->expensive_fraction);
+               r->threads, cpu, r->ns_per_pixel, 100 * r->expensive_fraction);
     }
     if (temporal) {
         printf("\n");
@@ -297,6 +301,7 @@ int cli_run_report(aa_runfolder *rf, int quiet, int st)
     if (!quiet)
         print_table(all, nall);
     cli_warn_noisy("run", all, nall);
+    cli_warn_parallelism("run", all, nall);
     printf("results: %s/results.csv%s\n", dir, aa_runfolder_linked(rf) ? " (results/latest)" : "");
     if (shards > 1)
         printf("shard %d/%d: %zu case%s; join the shards with aabench merge DIR... --out DIR\n",

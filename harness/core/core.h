@@ -400,15 +400,24 @@ int aa_method_display(const aa_spec *spec, const aa_job *job, aa_display_frame *
  * monotonic clock and its CPU time on the calling thread's clock (one
  * thread) or the process's (several), so preemption shows as wall time well
  * above CPU time.  Around the renders the load average and /proc/stat are
- * read, to see whether other processes used the cores meanwhile. */
+ * read, to see whether other processes used the cores meanwhile.  The
+ * statistics are taken from the wall times alone; CPU time (the children's
+ * too: an external renderer's program) only tells contention. */
 #define AA_TIMING_MAX_REPS 1000
 #define AA_TIMING_MIN_REPS 5
 #define AA_TIMING_TARGET 0.02  /* default target_ci: 2% */
 #define AA_TIMING_BUDGET 1.0   /* default budget, seconds */
-/* Outliers are "many" above this fraction of the repetitions. */
-#define AA_TIMING_MANY_OUTLIERS 0.10
+/* The fewest renders that give a 95% interval of the median: 5 cover at
+ * most 1 - 2/32 (aa_median_ci_ranks). */
+#define AA_TIMING_CI_MIN_REPS 6
 /* Other processes "used the cores" above this many cores on average. */
 #define AA_TIMING_BUSY_CORES 0.10
+/* /proc/stat counts whole ticks (two a core of error over a window): a
+ * window whose error is this many cores or more is too short for it, and
+ * the load average around it, less the process's own threads, is read
+ * instead, with this many cores of allowance. */
+#define AA_TIMING_STAT_WINDOW 0.25
+#define AA_TIMING_BUSY_LOAD 0.5
 /* One thread "was preempted" when its CPU time is below this share of its
  * wall time. */
 #define AA_TIMING_CPU_SHARE 0.95
@@ -434,6 +443,9 @@ typedef struct aa_time_stats {
     size_t outliers;
 } aa_time_stats;
 int aa_time_stats_compute(const double *x, size_t n, aa_time_stats *s);
+/* How far the outliers move the median: |median of all - median of those
+ * within 3 mad| / the latter; 0 without outliers. */
+double aa_time_stats_outlier_shift(const double *x, size_t n);
 /* The 1-based ranks lo, hi of the order statistics that bound the median
  * with coverage at least `level` (0 < level < 1), and that coverage;
  * AA_EINVAL if n is too small for any. */
@@ -452,7 +464,7 @@ int aa_mann_whitney(const double *x, size_t nx, const double *y, size_t ny, doub
 /* Why a measurement is marked noisy (aa_timing.noisy). */
 enum {
     AA_NOISY_CI = 1,        /* the CI target was not met */
-    AA_NOISY_OUTLIERS = 2,  /* more than AA_TIMING_MANY_OUTLIERS of the renders */
+    AA_NOISY_OUTLIERS = 2,  /* outliers moved the median by more than the target */
     AA_NOISY_BUSY = 4,      /* other processes used the cores */
     AA_NOISY_STEAL = 8,     /* the hypervisor took more than 1% of the cores' time */
     AA_NOISY_PREEMPTED = 16 /* one thread: CPU time below 95% of wall time */
@@ -474,13 +486,36 @@ typedef struct aa_timing {
     int target_met;
     /* the machine around the timed renders */
     double load_before, load_after; /* 1-minute load average (NaN: unknown) */
-    double others_cores;  /* other processes' mean busy cores (NaN: unknown) */
+    double others_cores;  /* other processes' mean busy cores, 0 to the cores (NaN: unknown) */
     double steal;         /* share of the cores' time stolen (NaN: unknown) */
     double cpu_share;     /* total CPU time / total wall time of the renders */
     double elapsed;       /* seconds from the warm-up's start to the last render's end */
     unsigned noisy;       /* AA_NOISY_* */
     int reported;         /* renders whose time the method reported (below) */
 } aa_timing;
+
+/* The median's interval as text: "+-1.2%", "CI needs 6 renders" with
+ * fewer renders than an interval needs, "no CI" otherwise. */
+void aa_timing_ci_text(const aa_timing *t, char *buf, size_t len);
+
+/* The machine read before and after a measurement. */
+typedef struct aa_machine_sample {
+    double wall, load, own; /* seconds; 1-minute load; this process's and its children's CPU */
+    int have_stat;
+    unsigned long long busy, steal, total; /* /proc/stat's ticks over every core */
+} aa_machine_sample;
+/* Other processes' mean busy cores between two samples (clamped to [0,
+ * cores]), the stolen share of the cores' time, and the allowance in cores
+ * a busy verdict must clear: from /proc/stat's busy ticks less the
+ * process's own CPU when the window holds enough ticks
+ * (AA_TIMING_STAT_WINDOW), else from the lower load average less
+ * `threads`.  NaN where unknown. */
+void aa_machine_use(const aa_machine_sample *a, const aa_machine_sample *b, long hz, long cores,
+                    int threads, double *others, double *steal, double *allowance);
+/* Set t->noisy from its times, target and machine figures (ci, outliers,
+ * others_cores, steal, cpu_share, threads): by effect, the target missed
+ * or outliers that move the median beyond it, and by contention. */
+void aa_timing_judge(aa_timing *t, double allowance, long cores);
 
 /* For a built-in method that runs another program (AA_METHOD_EXTERNAL) and
  * is told that program's own render time: called from its render, it makes

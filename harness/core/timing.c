@@ -87,6 +87,38 @@ int aa_time_stats_compute(const double *x, size_t n, aa_time_stats *s)
     return AA_OK;
 }
 
+double aa_time_stats_outlier_shift(const double *x, size_t n)
+{
+    aa_time_stats s;
+    if (n == 0 || aa_time_stats_compute(x, n, &s) || s.outliers == 0 || !(s.median > 0))
+        return 0.0;
+    double *kept = malloc(n * sizeof *kept);
+    if (!kept)
+        return NAN;
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++)
+        if (!(fabs(x[k] - s.median) > 3 * s.mad))
+            kept[m++] = x[k];
+    double shift = 0.0;
+    if (m) {
+        gsl_sort(kept, 1, m);
+        double median = gsl_stats_median_from_sorted_data(kept, 1, m);
+        shift = fabs(s.median - median) / median;
+    }
+    free(kept);
+    return shift;
+}
+
+void aa_timing_ci_text(const aa_timing *t, char *buf, size_t len)
+{
+    if (t->n > 0 && isfinite(t->ci_rel))
+        snprintf(buf, len, "+-%.1f%%", 100 * t->ci_rel);
+    else if (t->n < AA_TIMING_CI_MIN_REPS)
+        snprintf(buf, len, "CI needs %d renders", AA_TIMING_CI_MIN_REPS);
+    else
+        snprintf(buf, len, "no CI");
+}
+
 int aa_mean_ci(const double *x, size_t n, double level, double *mean, double *lo, double *hi)
 {
     if (n < 2 || !(level > 0 && level < 1))
@@ -184,13 +216,20 @@ unsigned aa_noisy_parse(const char *text)
 
 /* ---- the machine around a measurement ---- */
 
-typedef struct snapshot {
-    double wall, load, own; /* seconds; 1-minute load; this process's CPU seconds */
-    int have_stat;
-    unsigned long long busy, steal, total; /* ticks over every core */
-} snapshot;
+/* This process's CPU seconds and its waited-for children's (an external
+ * renderer's program runs in a child). */
+static double own_cpu(void)
+{
+    struct rusage self, kids;
+    if (getrusage(RUSAGE_SELF, &self) || getrusage(RUSAGE_CHILDREN, &kids))
+        return NAN;
+    return (double)self.ru_utime.tv_sec + 1e-6 * (double)self.ru_utime.tv_usec +
+           (double)self.ru_stime.tv_sec + 1e-6 * (double)self.ru_stime.tv_usec +
+           (double)kids.ru_utime.tv_sec + 1e-6 * (double)kids.ru_utime.tv_usec +
+           (double)kids.ru_stime.tv_sec + 1e-6 * (double)kids.ru_stime.tv_usec;
+}
 
-static void take_snapshot(snapshot *s)
+static void take_snapshot(aa_machine_sample *s)
 {
     memset(s, 0, sizeof *s);
     s->load = NAN;
@@ -214,38 +253,70 @@ static void take_snapshot(snapshot *s)
             s->have_stat = 1;
         }
     }
-    struct rusage ru;
-    if (getrusage(RUSAGE_SELF, &ru) == 0)
-        s->own = (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec +
-                 (double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec;
+    s->own = own_cpu();
     s->wall = aa_now();
 }
 
-/* Other processes' busy cores and the stolen share between two snapshots;
- * *allowance is the error of /proc/stat's tick counts over that window, in
- * cores (two ticks per core). */
-static void machine_use(const snapshot *a, const snapshot *b, double *others, double *steal,
-                        double *allowance)
+void aa_machine_use(const aa_machine_sample *a, const aa_machine_sample *b, long hz, long cores,
+                    int threads, double *others, double *steal, double *allowance)
 {
     *others = *steal = *allowance = NAN;
     double dt = b->wall - a->wall;
-    long hz = sysconf(_SC_CLK_TCK);
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    if (!a->have_stat || !b->have_stat || !(dt > 0) || hz <= 0 || cores <= 0)
+    if (!(dt > 0) || hz <= 0 || cores <= 0)
         return;
-    double busy = (double)(b->busy - a->busy) / (double)hz, own = b->own - a->own;
-    *others = fmax(0.0, (busy - own) / dt);
-    unsigned long long total = b->total - a->total;
-    *steal = total ? (double)(b->steal - a->steal) / (double)total : 0.0;
-    *allowance = 2.0 * (double)cores / (double)hz / dt;
+    double window = 2.0 * (double)cores / (double)hz / dt; /* the ticks' error, in cores */
+    if (a->have_stat && b->have_stat && b->busy >= a->busy && b->total >= a->total) {
+        unsigned long long total = b->total - a->total;
+        *steal = total ? (double)(b->steal - a->steal) / (double)total : 0.0;
+        if (window < AA_TIMING_STAT_WINDOW) {
+            double busy = (double)(b->busy - a->busy) / (double)hz, own = b->own - a->own;
+            if (isfinite(own)) {
+                *others = fmin((double)cores, fmax(0.0, (busy - own) / dt));
+                *allowance = window;
+                return;
+            }
+        }
+    }
+    /* too short a window for the ticks, or no /proc/stat: the load average
+     * around it, less this process's own threads */
+    double load = fmin(a->load, b->load);
+    if (isfinite(load)) {
+        *others = fmin((double)cores, fmax(0.0, load - (double)(threads > 0 ? threads : 1)));
+        *allowance = AA_TIMING_BUSY_LOAD;
+    }
 }
 
+/* A render's CPU time so far: the calling thread's clock for one thread,
+ * the process's for several, plus the children waited for. */
 static double cpu_now(int threads)
 {
     struct timespec t;
-    if (clock_gettime(threads == 1 ? CLOCK_THREAD_CPUTIME_ID : CLOCK_PROCESS_CPUTIME_ID, &t))
+    struct rusage kids;
+    if (clock_gettime(threads == 1 ? CLOCK_THREAD_CPUTIME_ID : CLOCK_PROCESS_CPUTIME_ID, &t) ||
+        getrusage(RUSAGE_CHILDREN, &kids))
         return NAN;
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec + (double)kids.ru_utime.tv_sec +
+           1e-6 * (double)kids.ru_utime.tv_usec + (double)kids.ru_stime.tv_sec +
+           1e-6 * (double)kids.ru_stime.tv_usec;
+}
+
+void aa_timing_judge(aa_timing *t, double allowance, long cores)
+{
+    t->noisy = 0;
+    /* the target counts when it was the rule, or when a fixed count still
+     * gave an interval to judge */
+    if (!t->target_met && (!t->fixed || isfinite(t->ci_rel)))
+        t->noisy |= AA_NOISY_CI;
+    /* outliers by their effect: they move the median beyond the target */
+    if (t->stats.outliers && t->n > 0 &&
+        aa_time_stats_outlier_shift(t->wall, (size_t)t->n) > t->target_ci)
+        t->noisy |= AA_NOISY_OUTLIERS;
+    if (t->others_cores > AA_TIMING_BUSY_CORES + (isfinite(allowance) ? allowance : 0))
+        t->noisy |= AA_NOISY_BUSY;
+    if (t->steal > 0.01 && cores > 0 && t->steal * (double)cores > allowance)
+        t->noisy |= AA_NOISY_STEAL;
+    if (t->threads == 1 && t->cpu_share < AA_TIMING_CPU_SHARE)
+        t->noisy |= AA_NOISY_PREEMPTED;
 }
 
 /* ---- measuring ---- */
@@ -297,7 +368,7 @@ int aa_timing_measure(const aa_timing_plan *plan, size_t k, aa_timed_fn const *f
         out[i].target_ci = target;
         out[i].budget = budget / (double)k;
     }
-    snapshot before, after;
+    aa_machine_sample before, after;
     take_snapshot(&before);
     int st = AA_OK;
     for (size_t i = 0; i < k && !st; i++)
@@ -333,7 +404,12 @@ int aa_timing_measure(const aa_timing_plan *plan, size_t k, aa_timed_fn const *f
     if (st)
         return st;
     double others, steal, allowance;
-    machine_use(&before, &after, &others, &steal, &allowance);
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    int most = 1;
+    for (size_t i = 0; i < k; i++)
+        most = out[i].threads > most ? out[i].threads : most;
+    aa_machine_use(&before, &after, sysconf(_SC_CLK_TCK), cores, most, &others, &steal,
+                   &allowance);
     for (size_t i = 0; i < k; i++) {
         aa_timing *t = &out[i];
         settle(t);
@@ -348,18 +424,7 @@ int aa_timing_measure(const aa_timing_plan *plan, size_t k, aa_timed_fn const *f
         t->others_cores = others;
         t->steal = steal;
         t->elapsed = after.wall - before.wall;
-        /* the target counts when it was the rule, or when a fixed count
-         * still gave an interval to judge */
-        if (!t->target_met && (!t->fixed || isfinite(t->ci_rel)))
-            t->noisy |= AA_NOISY_CI;
-        if ((double)t->stats.outliers > AA_TIMING_MANY_OUTLIERS * (double)t->n)
-            t->noisy |= AA_NOISY_OUTLIERS;
-        if (others > AA_TIMING_BUSY_CORES + allowance)
-            t->noisy |= AA_NOISY_BUSY;
-        if (steal > 0.01 && steal * (double)sysconf(_SC_NPROCESSORS_ONLN) > allowance)
-            t->noisy |= AA_NOISY_STEAL;
-        if (t->threads == 1 && t->cpu_share < AA_TIMING_CPU_SHARE)
-            t->noisy |= AA_NOISY_PREEMPTED;
+        aa_timing_judge(t, allowance, cores);
     }
     return AA_OK;
 }
