@@ -353,6 +353,12 @@ int aa_rows_read_csv(const char *path, aa_row **rows, size_t *n);
 /* The same from `len` bytes in memory; `name` names them in messages. */
 int aa_rows_parse_csv(const char *name, const char *data, size_t len, aa_row **rows,
                       size_t *n);
+/* A results.json read back as strictly (report.c): the case, ok, the note,
+ * a row's errors and its repetition times; anything malformed is refused
+ * (AA_EINVAL) naming the file, the row and the member. */
+int aa_rows_read_json(const char *path, aa_row **rows, size_t *n);
+int aa_rows_parse_json(const char *name, const char *data, size_t len, aa_row **rows,
+                       size_t *n);
 
 /* What a results file says of the run that made it (context.c): the
  * commit (git, run in the program's checkout; else the one it was built
@@ -401,13 +407,22 @@ typedef struct aa_case_change {
     double u, z, p;     /* of now against before (z > 0: slower) */
     int significant;    /* tested and p < AA_TIME_ALPHA */
     int noisy;          /* either measurement was marked noisy */
+    const char *regression; /* aa_case_verdict's: NULL when the case passes */
 } aa_case_change;
+/* The gates' one rule (`check` and `diff`), a case of OLD (the baseline)
+ * against NOW, the same case run again (NULL: missing from the new run):
+ * NULL when it passes, else why not, with the figures in detail (may be
+ * NULL).  It fails when it is missing, now fails, now refuses a case that
+ * ran, now runs a case recorded as refused, or its RMSE or largest error
+ * exceeds the old one by more than tol relative plus 1e-12.
+ * *confirmed is 1 when both refused the case (it passes). */
+const char *aa_case_verdict(const aa_row *old, const aa_row *now, double tol, char *detail,
+                            size_t len, int *confirmed);
 /* The same case: pattern, size, filter, method, time, motion, seed. */
 int aa_case_same(const aa_row *a, const aa_row *b);
 int aa_case_compare(const aa_row *old, const aa_row *now, double tol, aa_case_change *c);
-/* A run folder (its results.csv) or a results file (.csv; for a .json the
- * results.csv beside it, which holds the same rows and every repetition's
- * time) read as rows. */
+/* A run folder (its results.csv) or a results file (a .json read as JSON,
+ * aa_rows_read_json; any other as CSV) read as rows. */
 int aa_results_load(const char *path, aa_row **rows, size_t *n);
 
 /* Convergence: RMSE against samples per pixel over `phases` random sub-pixel

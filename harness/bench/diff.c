@@ -1,9 +1,11 @@
 /*
  * diff.c: two runs compared case by case.
  *
- * Errors are exact, so a change in them is judged by the regression gate's
- * rule: worse when the RMSE or the largest error exceeds the old one by
- * more than the relative tolerance plus 1e-12.  Times are samples, so a
+ * Errors are exact, so a change in them is judged by one rule for both
+ * gates, `check` and `diff` (aa_case_verdict): worse when the RMSE or the
+ * largest error exceeds the old one by more than the relative tolerance
+ * plus 1e-12; a case that ran and is now refused, fails, or is missing, or
+ * one refused before that now runs, fails too.  Times are samples, so a
  * change in them is judged by the Mann-Whitney U test on the two runs'
  * repetition times (aa_mann_whitney, normal approximation with the tie
  * correction), which assumes nothing of their distribution; the effect
@@ -30,12 +32,54 @@ static int worse(double now, double old, double tol)
     return now > old * (1.0 + tol) + AA_ERROR_ABS_TOLERANCE;
 }
 
+const char *aa_case_verdict(const aa_row *old, const aa_row *now, double tol, char *detail,
+                            size_t len, int *confirmed)
+{
+    char scratch[8];
+    if (!detail)
+        detail = scratch, len = sizeof scratch;
+    *confirmed = 0;
+    detail[0] = '\0';
+    if (!now) {
+        snprintf(detail, len, "%s", old->ok ? "it ran" : "the baseline records it as refused");
+        return "missing: the case is no longer run";
+    }
+    if (now->failed) {
+        snprintf(detail, len, "%s", now->note);
+        return "now fails";
+    }
+    if (!old->ok && now->ok) {
+        snprintf(detail, len,
+                 "the baseline records it as not run (%s); it now runs (rmse %.9g): remake the "
+                 "baseline to gate it",
+                 old->note, now->m.rmse);
+        return "now runs a case its baseline records as refused";
+    }
+    if (!old->ok) {
+        *confirmed = 1; /* refused then, refused now */
+        return NULL;
+    }
+    if (!now->ok) {
+        snprintf(detail, len, "%s", now->note);
+        return "now refused";
+    }
+    if (worse(now->m.rmse, old->m.rmse, tol) || worse(now->m.max_err, old->m.max_err, tol)) {
+        snprintf(detail, len, "rmse %.9g (baseline %.9g, %+.3f%%), max_err %.9g (baseline %.9g)",
+                 now->m.rmse, old->m.rmse, 100 * (now->m.rmse / old->m.rmse - 1),
+                 now->m.max_err, old->m.max_err);
+        return "error above its baseline";
+    }
+    return NULL;
+}
+
 int aa_case_compare(const aa_row *old, const aa_row *now, double tol, aa_case_change *c)
 {
+    int confirmed;
     memset(c, 0, sizeof *c);
     c->old = old;
     c->now = now;
     c->rmse_change = c->time_ratio = c->u = c->z = c->p = NAN;
+    c->regression = aa_case_verdict(old, now, tol, NULL, 0, &confirmed);
     if (old->ok && !now->ok) {
         c->refused = 1;
         return AA_OK;
@@ -73,15 +117,9 @@ int aa_results_load(const char *path, aa_row **rows, size_t *n)
             return st;
     } else {
         size_t len = strlen(path);
-        if (len >= 5 && !strcmp(path + len - 5, ".json")) {
-            const char *slash = strrchr(path, '/');
-            int st = aa_pathf(csv, sizeof csv, "%.*sresults.csv",
-                              slash ? (int)(slash - path + 1) : 0, path);
-            if (st)
-                return st;
-        } else {
-            snprintf(csv, sizeof csv, "%s", path);
-        }
+        if (len >= 5 && !strcmp(path + len - 5, ".json"))
+            return aa_rows_read_json(path, rows, n);
+        return aa_rows_read_csv(path, rows, n);
     }
     return aa_rows_read_csv(csv, rows, n);
 }

@@ -1,0 +1,180 @@
+/*
+ * test_gates.c: the gates cannot be fooled: `diff` reads the results file
+ * it is given (a results.json as JSON, never the results.csv beside it),
+ * and `check` and `diff` judge a case by one rule (aa_case_verdict), a case
+ * missing from the new run failing both.
+ */
+#include "bench.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+static char dir[] = "/tmp/aabench-gates-XXXXXX";
+
+/* A measured row of crow 16x8 box: rmse, its largest error twice that,
+ * ten repetition times of `scale` seconds and a little more. */
+static void fill_row(aa_row *r, const char *method, double rmse, double scale)
+{
+    memset(r, 0, sizeof *r);
+    snprintf(r->pattern, sizeof r->pattern, "crow");
+    snprintf(r->filter, sizeof r->filter, "box");
+    snprintf(r->method, sizeof r->method, "%s", method);
+    snprintf(r->canonical, sizeof r->canonical, "%s", method);
+    r->w = 16, r->h = 8, r->seed = 1, r->threads = 1, r->ok = 1, r->case_index = -1;
+    r->m.rmse = rmse, r->m.max_err = 2 * rmse;
+    aa_timing *t = &r->timing;
+    t->n = 10, t->threads = 1, t->target_ci = 0.02;
+    for (int k = 0; k < 10; k++)
+        t->wall[k] = t->cpu[k] = scale * (1.0 + 0.01 * k);
+    aa_time_stats_compute(t->wall, 10, &t->stats);
+    r->seconds = t->stats.median, r->reps = 10, r->seeds = 1;
+}
+
+static void put_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
+static int diff(const char *a, const char *b, char *out, size_t cap)
+{
+    const char *args[] = {"diff", a, b, NULL};
+    return support_aabench(args, out, cap);
+}
+
+/* results.json written, read back as JSON: the same cases, errors and
+ * times; its own numbers, not those of a results.csv beside it. */
+static void test_json_read_back(void **state)
+{
+    (void)state;
+    aa_row r[2], *back;
+    size_t n;
+    char json[256], csv[256];
+    fill_row(&r[0], "point", 0.25, 1e-3);
+    fill_row(&r[1], "jitter:spp=4", 0.125, 2e-3);
+    r[1].ok = 0, r[1].m.rmse = r[1].m.max_err = 0;
+    snprintf(r[1].note, sizeof r[1].note, "refused: the filter");
+    snprintf(json, sizeof json, "%s/rt/results.json", dir);
+    snprintf(csv, sizeof csv, "%s/rt/results.csv", dir);
+    char sub[128];
+    snprintf(sub, sizeof sub, "%s/rt", dir);
+    assert_int_equal(aa_mkdirs(sub), AA_OK);
+    assert_int_equal(aa_results_write_json(json, NULL, r, 2), AA_OK);
+    /* a results.csv beside it with other numbers: never read */
+    r[0].m.rmse = 0.5;
+    assert_int_equal(aa_rows_write_csv(csv, r, 1), AA_OK);
+    assert_int_equal(aa_results_load(json, &back, &n), AA_OK);
+    assert_int_equal(n, 2);
+    assert_string_equal(back[0].method, "point");
+    assert_true(back[0].ok && back[0].m.rmse == 0.25 && back[0].m.max_err == 0.5);
+    assert_int_equal(back[0].timing.n, 10);
+    assert_true(back[0].timing.wall[9] == 1e-3 * 1.09);
+    assert_true(back[0].w == 16 && back[0].h == 8 && back[0].seed == 1);
+    assert_true(!back[1].ok && !strcmp(back[1].note, "refused: the filter"));
+    free(back);
+}
+
+/* diff OLD.json NEW.json: a NEW whose errors are tenfold is a regression
+ * (exit 1) although the results.csv beside it equals OLD; a NEW that is
+ * not a results file is refused (exit 2) naming it. */
+static void test_diff_reads_json(void **state)
+{
+    (void)state;
+    aa_row r[2];
+    char a[256], b[256], bcsv[256], bad[256], sub[2][128], out[8192];
+    for (int k = 0; k < 2; k++) {
+        snprintf(sub[k], sizeof sub[k], "%s/j%d", dir, k);
+        assert_int_equal(aa_mkdirs(sub[k]), AA_OK);
+    }
+    snprintf(a, sizeof a, "%s/results.json", sub[0]);
+    snprintf(b, sizeof b, "%s/results.json", sub[1]);
+    snprintf(bcsv, sizeof bcsv, "%s/results.csv", sub[1]);
+    snprintf(bad, sizeof bad, "%s/bad.json", dir);
+    fill_row(&r[0], "point", 0.025, 1e-3);
+    fill_row(&r[1], "area", 0.0125, 2e-3);
+    assert_int_equal(aa_results_write_json(a, NULL, r, 2), AA_OK);
+    assert_int_equal(aa_rows_write_csv(bcsv, r, 2), AA_OK);
+    assert_int_equal(diff(a, a, out, sizeof out), 0);
+    r[0].m.rmse *= 10, r[0].m.max_err *= 10;
+    r[1].m.rmse *= 10, r[1].m.max_err *= 10;
+    assert_int_equal(aa_results_write_json(b, NULL, r, 2), AA_OK);
+    int st = diff(a, b, out, sizeof out);
+    if (st != 1 || !strstr(out, "2 regressions"))
+        fail_msg("diff of a tenfold NEW: exit %d: %s", st, out);
+    put_file(bad, "{\"context\": null, \"results\": [{\"pattern\": \"crow\"}]}\n");
+    st = diff(a, bad, out, sizeof out);
+    if (st != 2 || !strstr(out, "bad.json") || !strstr(out, "\"size\""))
+        fail_msg("diff of a malformed NEW: exit %d: %s", st, out);
+    put_file(bad, "garbage\n");
+    st = diff(a, bad, out, sizeof out);
+    if (st != 2 || !strstr(out, "not JSON"))
+        fail_msg("diff of garbage: exit %d: %s", st, out);
+}
+
+/* One rule: a case of OLD missing from NEW fails `diff` as it fails
+ * `check` (exit 1, named); a case only in NEW does not. */
+static void test_diff_missing_case(void **state)
+{
+    (void)state;
+    aa_row r[2];
+    char a[128], b[128], out[8192];
+    snprintf(a, sizeof a, "%s/m-old.csv", dir);
+    snprintf(b, sizeof b, "%s/m-new.csv", dir);
+    fill_row(&r[0], "point", 0.25, 1e-3);
+    fill_row(&r[1], "area", 0.125, 2e-3);
+    assert_int_equal(aa_rows_write_csv(a, r, 2), AA_OK);
+    assert_int_equal(aa_rows_write_csv(b, r, 1), AA_OK);
+    int st = diff(a, b, out, sizeof out);
+    if (st != 1 || !strstr(out, "REGRESSION area on crow 16x8 box: missing"))
+        fail_msg("diff with a case missing from NEW: exit %d: %s", st, out);
+    st = diff(b, a, out, sizeof out);
+    if (st != 0)
+        fail_msg("diff with a case only in NEW: exit %d: %s", st, out);
+}
+
+/* The rule itself, against figures derived by hand: tolerance 1e-3 on
+ * 0.25 allows up to 0.25025 + 1e-12. */
+static void test_verdict_rule(void **state)
+{
+    (void)state;
+    aa_row o, r;
+    int confirmed;
+    char detail[256];
+    fill_row(&o, "point", 0.25, 1e-3);
+    r = o;
+    assert_null(aa_case_verdict(&o, &r, 1e-3, detail, sizeof detail, &confirmed));
+    r.m.rmse = 0.25025;
+    assert_null(aa_case_verdict(&o, &r, 1e-3, detail, sizeof detail, &confirmed));
+    r.m.rmse = 0.2503;
+    assert_non_null(aa_case_verdict(&o, &r, 1e-3, detail, sizeof detail, &confirmed));
+    assert_non_null(aa_case_verdict(&o, NULL, 1e-3, detail, sizeof detail, &confirmed));
+    r = o, r.ok = 0;
+    assert_non_null(aa_case_verdict(&o, &r, 1e-3, detail, sizeof detail, &confirmed));
+    o.ok = 0;
+    assert_null(aa_case_verdict(&o, &r, 1e-3, detail, sizeof detail, &confirmed));
+    assert_int_equal(confirmed, 1);
+    r.failed = 1;
+    assert_non_null(aa_case_verdict(&o, &r, 1e-3, detail, sizeof detail, &confirmed));
+}
+
+static int setup(void **state)
+{
+    *state = dir;
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+SUPPORT_MAIN(setup, support_teardown_dir,
+             cmocka_unit_test(test_json_read_back),
+             cmocka_unit_test(test_diff_reads_json),
+             cmocka_unit_test(test_diff_missing_case),
+             cmocka_unit_test(test_verdict_rule))
