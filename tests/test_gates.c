@@ -2,7 +2,8 @@
  * test_gates.c: the gates cannot be fooled: `diff` reads the results file
  * it is given (a results.json as JSON, never the results.csv beside it),
  * and `check` and `diff` judge a case by one rule (aa_case_verdict), a case
- * missing from the new run failing both.
+ * missing from the new run failing both; `merge` checks each shard's rows
+ * against their cases and each shard's cases against the run's plan.
  */
 #include "bench.h"
 #include "support.h"
@@ -14,6 +15,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -167,6 +170,102 @@ static void test_verdict_rule(void **state)
     assert_non_null(aa_case_verdict(&o, &r, 1e-3, detail, sizeof detail, &confirmed));
 }
 
+
+/* ---- merge trusts no shard ---- */
+
+#define SHARD_RUN "run", "-p", "crow", "-s", "24x16", "-s", "16x16", "-f", "box", "-m", "point", \
+                  "-m", "area", "--reps", "1", "--no-plots", "--no-images", "--threads", "1", "-q"
+
+static void sh(const char *fmt, const char *a, const char *b)
+{
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, fmt, a, b);
+    int st = system(cmd);
+    assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 0);
+}
+
+static int merge(const char *s1, const char *s2, const char *out, char *text, size_t cap)
+{
+    const char *args[] = {"merge", s1, s2, "--out", out, "-q", NULL};
+    return support_aabench(args, text, cap);
+}
+
+/* A shard's results.csv rewritten with row `k` changed by `edit`. */
+static void edit_rows(const char *shard, void (*edit)(aa_row *r))
+{
+    char csv[512];
+    aa_row *rows;
+    size_t n;
+    snprintf(csv, sizeof csv, "%s/results.csv", shard);
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    assert_true(n >= 1);
+    edit(&rows[0]);
+    assert_int_equal(aa_rows_write_csv(csv, rows, n), AA_OK);
+    free(rows);
+}
+
+static void other_method(aa_row *r)
+{
+    snprintf(r->method, sizeof r->method, "%s", strcmp(r->method, "point") ? "point" : "area");
+}
+
+static void other_canonical(aa_row *r)
+{
+    snprintf(r->canonical, sizeof r->canonical, "%s",
+             strcmp(r->method, "point") ? "point" : "area");
+}
+
+static void test_merge_checks_rows(void **state)
+{
+    (void)state;
+    char cache[256], s[2][256], t[256], out[256], text[8192];
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(t, sizeof t, "%s/tampered", dir);
+    snprintf(out, sizeof out, "%s/merged", dir);
+    for (int k = 0; k < 2; k++) {
+        char shard[8];
+        snprintf(s[k], sizeof s[k], "%s/shard%d", dir, k + 1);
+        snprintf(shard, sizeof shard, "%d/2", k + 1);
+        const char *args[] = {SHARD_RUN, "--cache", cache, "--shard", shard, "--out", s[k], NULL};
+        if (support_aabench(args, text, sizeof text) != 0)
+            fail_msg("shard %s: %s", shard, text);
+    }
+    if (merge(s[0], s[1], out, text, sizeof text) != 0)
+        fail_msg("merge of two true shards: %s", text);
+    /* a shard with rows: the first whose results.csv is there */
+    char csv[512];
+    snprintf(csv, sizeof csv, "%s/results.csv", s[0]);
+    const char *src = access(csv, F_OK) == 0 ? s[0] : s[1], *other = src == s[0] ? s[1] : s[0];
+    void (*edits[])(aa_row *) = {other_method, other_canonical};
+    for (size_t e = 0; e < sizeof edits / sizeof *edits; e++) {
+        sh("rm -rf '%s'%s", t, "");
+        sh("cp -R '%s' '%s'", src, t);
+        edit_rows(t, edits[e]);
+        sh("rm -rf '%s'%s", out, "");
+        int st = merge(t, other, out, text, sizeof text);
+        if (st != 2 || !strstr(text, "is not its case"))
+            fail_msg("merge of a shard whose row %s was edited: exit %d: %s",
+                     e ? "canonical name" : "method", st, text);
+        snprintf(csv, sizeof csv, "%s/results.csv", out);
+        assert_int_equal(access(csv, F_OK), -1);
+    }
+    /* a manifest whose cases are not its shard's */
+    sh("rm -rf '%s'%s", t, "");
+    sh("cp -R '%s' '%s'", src, t);
+    char path[512];
+    aa_manifest m;
+    snprintf(path, sizeof path, "%s/run.json", t);
+    assert_int_equal(aa_manifest_read(path, &m), AA_OK);
+    assert_true(m.nselected >= 1);
+    m.nselected--;
+    assert_int_equal(aa_manifest_write(path, &m), AA_OK);
+    aa_manifest_free(&m);
+    sh("rm -rf '%s'%s", out, "");
+    int st = merge(t, other, out, text, sizeof text);
+    if (st != 2 || !strstr(text, "an edited manifest"))
+        fail_msg("merge of a shard whose manifest was edited: exit %d: %s", st, text);
+}
+
 static int setup(void **state)
 {
     *state = dir;
@@ -177,4 +276,5 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_json_read_back),
              cmocka_unit_test(test_diff_reads_json),
              cmocka_unit_test(test_diff_missing_case),
-             cmocka_unit_test(test_verdict_rule))
+             cmocka_unit_test(test_verdict_rule),
+             cmocka_unit_test(test_merge_checks_rows))

@@ -1539,10 +1539,95 @@ static int write_merged_manifest(const char *out, const aa_manifest *first, size
     return st;
 }
 
+/* The text a run gives a spec in its rows (run.c): as given, else its
+ * canonical text. */
+static void spec_shown(const char *text, const aa_spec *spec, char *buf, size_t len)
+{
+    if (text)
+        snprintf(buf, len, "%s", text);
+    else if (aa_spec_format(spec, buf, len))
+        snprintf(buf, len, "%s", spec->info->name);
+}
+
+/* A shard's row is the case it claims, case c of the run: the pattern,
+ * size, filter and method of that case (the run's order: group, then
+ * pattern, size, filter, method), its time, motion and seed, and a
+ * canonical name that is the method's (a row may lack it only when it did
+ * not run). */
+static int row_is_case(const aa_runfolder *rf, const merge_shard *sh, const aa_row *r, size_t c)
+{
+    size_t g = 0;
+    while (g < rf->ng && !(c >= rf->cfgs[g].case_base &&
+                           c < rf->cfgs[g].case_base + aa_run_case_count(&rf->cfgs[g])))
+        g++;
+    if (g == rf->ng)
+        return aa_fail(AA_EINVAL, "%s/results.csv: case %zu is not one of the run's",
+                       aa_echo(sh->dir), c);
+    const aa_run_config *cfg = &rf->cfgs[g];
+    size_t k = c - cfg->case_base, nm = cfg->nmethods, nf = cfg->nfilters, nz = cfg->nsizes;
+    const aa_run_spec *m = &cfg->methods[k % nm];
+    const aa_run_filter *f = &cfg->filters[(k / nm) % nf];
+    const aa_run_size *z = &cfg->sizes[(k / (nm * nf)) % nz];
+    const aa_run_spec *p = &cfg->patterns[k / (nm * nf * nz)];
+    char pattern[sizeof r->pattern], filter[sizeof r->filter], method[sizeof r->method];
+    char canonical[sizeof r->canonical], why[640] = "";
+    spec_shown(p->text, &p->spec, pattern, sizeof pattern);
+    spec_shown(f->text, &f->filter.spec, filter, sizeof filter);
+    spec_shown(m->text, &m->spec, method, sizeof method);
+    if (aa_spec_format(&m->spec, canonical, sizeof canonical))
+        canonical[0] = '\0';
+    if (strcmp(r->pattern, pattern) || strcmp(r->filter, filter) || strcmp(r->method, method) ||
+        r->w != z->w || r->h != z->h)
+        snprintf(why, sizeof why, "case %zu of the run is %.120s on %.120s %dx%d %.60s", c,
+                 method, pattern, z->w, z->h, filter);
+    else if ((r->ok || *r->canonical) && strcmp(r->canonical, canonical))
+        snprintf(why, sizeof why, "its canonical name \"%.100s\" is not the method's, \"%.100s\"",
+                 r->canonical, canonical);
+    else if (r->t != cfg->t || r->vx != cfg->vx || r->vy != cfg->vy || r->seed != cfg->seed)
+        snprintf(why, sizeof why,
+                 "its time, motion or seed (%g, %g %g, %llu) is not the run's (%g, %g %g, %llu)",
+                 r->t, r->vx, r->vy, (unsigned long long)r->seed, cfg->t, cfg->vx, cfg->vy,
+                 (unsigned long long)cfg->seed);
+    if (!*why)
+        return AA_OK;
+    return aa_fail(AA_EINVAL, "%s/results.csv: the row of %s on %s %dx%d %s (case %zu) is not its "
+                   "case: %s",
+                   aa_echo(sh->dir), aa_echo(r->method), aa_echo(r->pattern), r->w, r->h,
+                   aa_echo(r->filter), c, why);
+}
+
+/* A shard holds the cases the run's plan gives its shard K/N, no more, no
+ * fewer: its manifest's count and selection are those aa_shard_plan makes
+ * of the run's command. */
+static int shard_is_planned(const aa_runfolder *rf, const char *dir, const aa_manifest *m)
+{
+    unsigned char *masks[MAX_GROUPS] = {0};
+    size_t selected = 0;
+    int st = aa_shard_plan(rf->cfgs, rf->ng, m->shard, m->shards, masks, &selected, NULL);
+    if (st)
+        return aa_fail_context(st, "%s/run.json", aa_echo(dir));
+    int bad = selected != m->nselected;
+    for (size_t k = 0; k < m->nselected && !bad; k++) {
+        size_t c = m->selected[k], g = 0;
+        while (g < rf->ng && !(c >= rf->cfgs[g].case_base &&
+                               c < rf->cfgs[g].case_base + aa_run_case_count(&rf->cfgs[g])))
+            g++;
+        bad = g == rf->ng || !masks[g][c - rf->cfgs[g].case_base];
+    }
+    for (size_t g = 0; g < rf->ng; g++)
+        free(masks[g]);
+    if (bad)
+        return aa_fail(AA_EINVAL, "%s/run.json: its cases (%zu) are not those of shard %d/%d of "
+                       "the run (%zu): an edited manifest",
+                       aa_echo(dir), m->nselected, m->shard, m->shards, selected);
+    return AA_OK;
+}
+
 /* The merged run's plan (the first shard's command), checked against the
- * shards' cases; its rows in the run's order. */
-static int merged_run(aa_runfolder *rf, merge_shard *s, const place *owner, size_t cases,
-                      size_t **refused, size_t *nrefused, const aa_run_options *opt)
+ * shards' cases and each row against its case; its rows in the run's
+ * order. */
+static int merged_run(aa_runfolder *rf, merge_shard *s, int ns, const place *owner,
+                      size_t cases, size_t **refused, size_t *nrefused, const aa_run_options *opt)
 {
     char path[4200];
     int st = aa_pathf(path, sizeof path, "%s/run.json", s[0].dir);
@@ -1557,6 +1642,16 @@ static int merged_run(aa_runfolder *rf, merge_shard *s, const place *owner, size
     rf->plan.shard = rf->plan.shards = 0; /* the whole run */
     if ((st = prepare(rf)))
         return st;
+    if (rf->cases != cases)
+        return aa_fail(AA_EINVAL, "the run's command has %zu cases, its shards' manifests %zu",
+                       rf->cases, cases);
+    for (int i = 0; i < ns; i++)
+        if ((st = shard_is_planned(rf, s[i].dir, i ? &s[i].m : &rf->manifest)))
+            return st;
+    for (size_t k = 0; k < cases; k++)
+        if (owner[k].row != REFUSED &&
+            (st = row_is_case(rf, &s[owner[k].shard], &s[owner[k].shard].rows[owner[k].row], k)))
+            return st;
     if (!(rf->all = malloc((cases ? cases : 1) * sizeof *rf->all)) ||
         !(*refused = malloc((cases ? cases : 1) * sizeof **refused)))
         return aa_fail(AA_ENOMEM, "out of memory for %zu results", cases);
@@ -1629,7 +1724,7 @@ int aa_runfolder_merge(const char *const *dirs, size_t ndirs, const aa_run_optio
     size_t *refused = NULL, nrefused = 0, cases = 0;
     if (!st && !(st = check_shards(s, ns, &owner))) {
         cases = s[0].m.cases;
-        st = merged_run(rf, s, owner, cases, &refused, &nrefused, opt);
+        st = merged_run(rf, s, ns, owner, cases, &refused, &nrefused, opt);
     }
     if (!st)
         st = aa_mkdirs(opt->out);
