@@ -266,6 +266,70 @@ static void test_merge_checks_rows(void **state)
         fail_msg("merge of a shard whose manifest was edited: exit %d: %s", st, text);
 }
 
+/* ---- input files by their hash ---- */
+
+static void write_svg(const char *path, const char *width)
+{
+    char text[512];
+    snprintf(text, sizeof text,
+             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"16\" height=\"16\">"
+             "<rect x=\"2\" y=\"3\" width=\"%s\" height=\"7.25\" fill=\"white\"/></svg>\n",
+             width);
+    put_file(path, text);
+}
+
+/* A run of an SVG file records the file's hash in each row; once the file
+ * changes, `check` against that baseline, `run --resume` of its folder and
+ * `merge` of shards made before and after are refused (exit 2), naming the
+ * pattern's file. */
+static void test_changed_input_file(void **state)
+{
+    (void)state;
+    char svg[256], pattern[300], cache[256], run[256], csv[300], s1[256], s2[256], out[256];
+    char text[8192];
+    snprintf(svg, sizeof svg, "%s/scene.svg", dir);
+    snprintf(pattern, sizeof pattern, "svg:file=%s", svg);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(run, sizeof run, "%s/svgrun", dir);
+    snprintf(csv, sizeof csv, "%s/results.csv", run);
+    snprintf(s1, sizeof s1, "%s/svg1", dir);
+    snprintf(s2, sizeof s2, "%s/svg2", dir);
+    snprintf(out, sizeof out, "%s/svgmerged", dir);
+    write_svg(svg, "9.5");
+#define SVG_RUN "run", "-p", pattern, "-s", "16x16", "-s", "24x24", "-f", "box", "-m", "point", \
+                "--reps", "1", "--no-images", "--no-plots", "--threads", "1", "-q", "--cache", cache
+    const char *whole[] = {SVG_RUN, "--out", run, NULL};
+    const char *first[] = {SVG_RUN, "--shard", "1/2", "--out", s1, NULL};
+    const char *second[] = {SVG_RUN, "--shard", "2/2", "--out", s2, NULL};
+    const char *check[] = {"check", "--baseline", csv, "--cache", cache, NULL};
+    const char *resume[] = {"run", "--resume", run, "--cache", cache, "-q", NULL};
+    const char *join[] = {"merge", s1, s2, "--out", out, "-q", NULL};
+    if (support_aabench(whole, text, sizeof text) || support_aabench(first, text, sizeof text))
+        fail_msg("run of %s: %s", pattern, text);
+    aa_row *rows;
+    size_t n;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    assert_int_equal(n, 2);
+    assert_non_null(strstr(rows[0].inputs, "fnv1a"));
+    free(rows);
+    if (support_aabench(check, text, sizeof text) != 0)
+        fail_msg("check against its own baseline: %s", text);
+    /* the file changes: a different scene under the same name */
+    write_svg(svg, "10.5");
+    int st = support_aabench(check, text, sizeof text);
+    if (st != 2 || !strstr(text, svg) || !strstr(text, "has changed"))
+        fail_msg("check after the file changed: exit %d: %s", st, text);
+    st = support_aabench(resume, text, sizeof text);
+    if (st != 2 || !strstr(text, svg) || !strstr(text, "has changed"))
+        fail_msg("resume after the file changed: exit %d: %s", st, text);
+    if (support_aabench(second, text, sizeof text) != 0)
+        fail_msg("shard 2/2: %s", text);
+    st = support_aabench(join, text, sizeof text);
+    if (st != 2 || !strstr(text, svg) || !strstr(text, "different files"))
+        fail_msg("merge of shards of two files: exit %d: %s", st, text);
+#undef SVG_RUN
+}
+
 static int setup(void **state)
 {
     *state = dir;
@@ -277,4 +341,5 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_diff_reads_json),
              cmocka_unit_test(test_diff_missing_case),
              cmocka_unit_test(test_verdict_rule),
-             cmocka_unit_test(test_merge_checks_rows))
+             cmocka_unit_test(test_merge_checks_rows),
+             cmocka_unit_test(test_changed_input_file))

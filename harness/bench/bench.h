@@ -163,6 +163,9 @@ typedef struct aa_row {
      * results file without the column) */
     long case_index;
     char host[64]; /* the machine that measured it ("" unknown) */
+    /* the input files the case was made from, by their hash and length
+     * (aa_pattern_inputs): "" when none or unknown (an older file) */
+    char inputs[256];
 } aa_row;
 
 /* A suite is a list of groups; each group is a cross product of patterns,
@@ -418,6 +421,16 @@ typedef struct aa_case_change {
  * *confirmed is 1 when both refused the case (it passes). */
 const char *aa_case_verdict(const aa_row *old, const aa_row *now, double tol, char *detail,
                             size_t len, int *confirmed);
+/* The input files of a pattern (`svg`'s file, `text`'s font) by their
+ * hash and length, as the reference cache keys them (aa_pattern_key), on
+ * one line: "" for a pattern that reads none.  Rows record it (the
+ * `inputs` column), and `check`, `merge` and `run --resume` refuse rows
+ * whose files have changed (aa_inputs_check). */
+int aa_pattern_inputs(const aa_spec *pattern, char *buf, size_t len);
+/* A row's recorded inputs against its pattern's files now: AA_OK when
+ * they agree or the row records none; else AA_EINVAL naming the pattern's
+ * file, `what` (the file the row was read from) and both hashes. */
+int aa_inputs_check(const char *what, const aa_row *r);
 /* The same case: pattern, size, filter, method, time, motion, seed. */
 int aa_case_same(const aa_row *a, const aa_row *b);
 int aa_case_compare(const aa_row *old, const aa_row *now, double tol, aa_case_change *c);

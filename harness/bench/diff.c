@@ -123,3 +123,47 @@ int aa_results_load(const char *path, aa_row **rows, size_t *n)
     }
     return aa_rows_read_csv(csv, rows, n);
 }
+
+int aa_pattern_inputs(const aa_spec *pattern, char *buf, size_t len)
+{
+    char key[512];
+    int st = aa_pattern_key(pattern, key, sizeof key);
+    if (len)
+        buf[0] = '\0';
+    if (st)
+        return st;
+    /* its lines joined by "; " */
+    size_t n = 0, k = 0, end = strlen(key);
+    while (end && key[end - 1] == '\n')
+        key[--end] = '\0';
+    for (; k < end && n + 3 < len; k++) {
+        if (key[k] == '\n') {
+            buf[n++] = ';', buf[n++] = ' ';
+        } else {
+            buf[n++] = key[k];
+        }
+    }
+    if (k < end)
+        return aa_fail(AA_EFAIL, "the inputs of a pattern: more than %zu characters", len - 1);
+    buf[n] = '\0';
+    return AA_OK;
+}
+
+int aa_inputs_check(const char *what, const aa_row *r)
+{
+    aa_spec spec;
+    char now[sizeof r->inputs];
+    if (!*r->inputs)
+        return AA_OK;
+    int st = aa_pattern_parse(r->pattern, &spec);
+    if (!st)
+        st = aa_pattern_inputs(&spec, now, sizeof now);
+    if (st)
+        return aa_fail_context(st, "%s: the input files of %s", aa_echo(what), aa_echo(r->pattern));
+    if (strcmp(now, r->inputs))
+        return aa_fail(AA_EINVAL,
+                       "%s: the file of %s has changed since its rows were measured (then %s, "
+                       "now %s): its results are of another scene",
+                       aa_echo(what), aa_echo(r->pattern), r->inputs, *now ? now : "none");
+    return AA_OK;
+}

@@ -379,6 +379,7 @@ static const column columns[] = {
     OWN(cpu_times, G_TIMED, times_cell, read_times),
     OWN(case, G_ALWAYS, case_cell, read_case),
     OWN(host, G_ALWAYS, host_cell, read_host),
+    TEXT(inputs, G_OPTIONAL, 0),
 };
 #undef TEXT
 #undef REAL
@@ -579,6 +580,7 @@ static cJSON *row_json(const aa_row *r)
              add(o, "filter", cJSON_CreateString(r->filter)) &&
              add(o, "method", cJSON_CreateString(r->method)) &&
              add(o, "canonical", cJSON_CreateString(r->canonical)) &&
+             add(o, "inputs", cJSON_CreateString(r->inputs)) &&
              add(o, "ok", cJSON_CreateBool(r->ok));
     if (ok && r->ok) {
         const struct {
@@ -1292,6 +1294,7 @@ static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
         (st = json_text(name, k, o, "filter", row->filter, sizeof row->filter, 0)) ||
         (st = json_text(name, k, o, "method", row->method, sizeof row->method, 0)) ||
         (st = json_text(name, k, o, "canonical", row->canonical, sizeof row->canonical, 1)) ||
+        (st = json_text(name, k, o, "inputs", row->inputs, sizeof row->inputs, 1)) ||
         (st = json_text(name, k, o, "note", row->note, sizeof row->note, 0)))
         return st;
     aa_spec spec;

@@ -1007,6 +1007,11 @@ static int resume_rows(aa_runfolder *rf)
             else
                 memset(masks[g], 1, c);
         }
+    /* a pattern read from files: the files its kept rows were made from */
+    for (size_t k = 0; k < n && !st; k++)
+        if (!k || strcmp(rows[k].pattern, rows[k - 1].pattern) ||
+            strcmp(rows[k].inputs, rows[k - 1].inputs))
+            st = aa_inputs_check(path, &rows[k]);
     for (size_t k = 0; k < n && !st; k++) {
         long i = rows[k].case_index;
         size_t g = 0;
@@ -1652,6 +1657,25 @@ static int merged_run(aa_runfolder *rf, merge_shard *s, int ns, const place *own
         if (owner[k].row != REFUSED &&
             (st = row_is_case(rf, &s[owner[k].shard], &s[owner[k].shard].rows[owner[k].row], k)))
             return st;
+    /* the shards were made from the same input files (an SVG, a font) */
+    for (int i = 0; i < ns; i++)
+        for (size_t k = 0; k < s[i].n; k++) {
+            const aa_row *r = &s[i].rows[k];
+            for (int j = 0; j <= i; j++)
+                for (size_t q = 0; q < (j < i ? s[j].n : k); q++)
+                    if (!strcmp(s[j].rows[q].pattern, r->pattern)) {
+                        if (strcmp(s[j].rows[q].inputs, r->inputs))
+                            return aa_fail(AA_EINVAL,
+                                           "%s and %s were made from different files of %s "
+                                           "(%s; %s): shards of two scenes",
+                                           aa_echo(s[j].dir), aa_echo(s[i].dir),
+                                           aa_echo(r->pattern),
+                                           *s[j].rows[q].inputs ? s[j].rows[q].inputs : "none",
+                                           *r->inputs ? r->inputs : "none");
+                        goto next_row; /* the first row of its pattern decides */
+                    }
+        next_row:;
+        }
     if (!(rf->all = malloc((cases ? cases : 1) * sizeof *rf->all)) ||
         !(*refused = malloc((cases ? cases : 1) * sizeof **refused)))
         return aa_fail(AA_ENOMEM, "out of memory for %zu results", cases);

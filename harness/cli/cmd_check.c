@@ -16,7 +16,8 @@
  * own (--no-isolate to turn that off), so that a crash or a hang is a failed
  * case.  The baseline is read strictly (aa_rows_read_csv) and every view is
  * checked before any is run: a bad baseline is refused (exit 2), never
- * half-checked.
+ * half-checked, and so is one made from input files (an SVG, a font) that
+ * have changed since (its `inputs` column, aa_inputs_check).
  */
 #include "cli.h"
 
@@ -213,6 +214,11 @@ int cmd_check(int argc, char **argv)
         v->wh = (aa_run_size){base[k].w, base[k].h};
         if ((st = aa_pattern_parse(base[k].pattern, &v->pattern.spec)) ||
             (st = aa_filter_parse(base[k].filter, &v->filter.filter)))
+            break;
+        /* a pattern read from files: the files the baseline was made from */
+        for (size_t q = 0; q < v->nm && !st; q++)
+            st = aa_inputs_check(baseline, &base[which[v->at + q]]);
+        if (st)
             break;
         nv++;
     }
