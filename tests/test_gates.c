@@ -204,6 +204,27 @@ static void edit_rows(const char *shard, void (*edit)(aa_row *r))
     free(rows);
 }
 
+/* The shard's manifest made to record its results.csv as it now is (a
+ * shard whose own run wrote the row so). */
+static void resum(const char *shard)
+{
+    char path[512], csv[512];
+    aa_manifest m;
+    snprintf(path, sizeof path, "%s/run.json", shard);
+    snprintf(csv, sizeof csv, "%s/results.csv", shard);
+    assert_int_equal(aa_manifest_read(path, &m), AA_OK);
+    assert_true(m.summed);
+    int found = 0;
+    for (size_t k = 0; k < m.nsums; k++)
+        if (!strcmp(m.sums[k].name, "results.csv")) {
+            assert_int_equal(aa_file_checksum(csv, m.sums[k].sum), AA_OK);
+            found = 1;
+        }
+    assert_true(found);
+    assert_int_equal(aa_manifest_write(path, &m), AA_OK);
+    aa_manifest_free(&m);
+}
+
 static void other_method(aa_row *r)
 {
     snprintf(r->method, sizeof r->method, "%s", strcmp(r->method, "point") ? "point" : "area");
@@ -242,7 +263,13 @@ static void test_merge_checks_rows(void **state)
         sh("cp -R '%s' '%s'", src, t);
         edit_rows(t, edits[e]);
         sh("rm -rf '%s'%s", out, "");
+        /* edited after its run: its checksum tells */
         int st = merge(t, other, out, text, sizeof text);
+        if (st != 2 || !strstr(text, "edited or damaged"))
+            fail_msg("merge of a shard whose results.csv was edited: exit %d: %s", st, text);
+        /* written so by its run: the row is not its case */
+        resum(t);
+        st = merge(t, other, out, text, sizeof text);
         if (st != 2 || !strstr(text, "is not its case"))
             fail_msg("merge of a shard whose row %s was edited: exit %d: %s",
                      e ? "canonical name" : "method", st, text);
@@ -330,6 +357,53 @@ static void test_changed_input_file(void **state)
 #undef SVG_RUN
 }
 
+/* Images: each checked against the checksum its shard recorded; one
+ * changed, added or removed is refused, naming it, and nothing written. */
+static void test_merge_checks_images(void **state)
+{
+    (void)state;
+    char cache[256], s[2][256], t[256], out[256], text[8192], img[512], csv[512];
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(t, sizeof t, "%s/itampered", dir);
+    snprintf(out, sizeof out, "%s/imerged", dir);
+    for (int k = 0; k < 2; k++) {
+        char shard[8];
+        snprintf(s[k], sizeof s[k], "%s/ishard%d", dir, k + 1);
+        snprintf(shard, sizeof shard, "%d/2", k + 1);
+        const char *args[] = {"run", "-p", "crow", "-s", "16x16", "-s", "8x8", "-f", "box",
+                              "-m", "point", "--reps", "1", "--no-plots", "--threads", "1",
+                              "-q", "--cache", cache, "--shard", shard, "--out", s[k], NULL};
+        if (support_aabench(args, text, sizeof text) != 0)
+            fail_msg("shard %s: %s", shard, text);
+    }
+    if (merge(s[0], s[1], out, text, sizeof text) != 0)
+        fail_msg("merge of two true shards: %s", text);
+    snprintf(csv, sizeof csv, "%s/results.csv", s[0]);
+    const char *src = access(csv, F_OK) == 0 ? s[0] : s[1], *other = src == s[0] ? s[1] : s[0];
+    const char *steps[] = {
+        /* one byte of an image changed (the last: a PNG's end, a PFM's data) */
+        "f=$(ls '%s'/images/* | head -1) && printf 'x' | dd of=\"$f\" bs=1 seek=$(($(wc -c < \"$f\") - 1)) conv=notrunc 2>/dev/null%s",
+        /* an image added */
+        "cp \"$(ls '%s'/images/* | head -1)\" '%s'/images/extra.png",
+        /* an image removed */
+        "rm \"$(ls '%s'/images/* | head -1)\"%s"};
+    const char *expect[] = {"is not the image its run wrote", "its run wrote no such image",
+                            "images its run wrote are missing"};
+    for (size_t k = 0; k < 3; k++) {
+        sh("rm -rf '%s' '%s'", t, out);
+        sh("cp -R '%s' '%s'", src, t);
+        if (k == 1)
+            sh(steps[k], t, t);
+        else
+            sh(steps[k], t, "");
+        int st = merge(t, other, out, text, sizeof text);
+        if (st != 2 || !strstr(text, expect[k]))
+            fail_msg("merge, step %zu: exit %d: %s", k, st, text);
+        snprintf(img, sizeof img, "%s/images", out);
+        assert_int_equal(access(img, F_OK), -1);
+    }
+}
+
 static int setup(void **state)
 {
     *state = dir;
@@ -342,4 +416,5 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_diff_missing_case),
              cmocka_unit_test(test_verdict_rule),
              cmocka_unit_test(test_merge_checks_rows),
+             cmocka_unit_test(test_merge_checks_images),
              cmocka_unit_test(test_changed_input_file))

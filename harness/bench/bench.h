@@ -334,7 +334,22 @@ typedef struct aa_manifest {
     size_t *refused;
     size_t nrefused;
     char *context; /* JSON text, may be NULL */
+    /* the folder's files when its run ended (results.csv and images/...,
+     * by path within the folder) with their checksums, "fnv1a HASH bytes
+     * N" (aa_file_checksum): what a merge checks each shard's files
+     * against; summed = 0 while the run has not ended */
+    int summed;
+    size_t nsums;
+    struct aa_manifest_sum {
+        char *name;
+        char sum[64];
+    } *sums;
 } aa_manifest;
+/* A file's checksum as a manifest records it: "fnv1a %016llx bytes %zu"
+ * (64-bit FNV-1a of its bytes, and their count) into sum (64 bytes); of
+ * bytes in memory with aa_bytes_checksum. */
+int aa_file_checksum(const char *path, char sum[64]);
+void aa_bytes_checksum(const void *data, size_t n, char sum[64]);
 int aa_manifest_write(const char *path, const aa_manifest *m);
 /* Read strictly: a member missing or of the wrong type, or a case outside
  * the run, is AA_EINVAL naming the file and the member; a file that is not

@@ -1073,6 +1073,68 @@ static int record_refused(aa_runfolder *rf)
     return st;
 }
 
+/* The folder's files as the run leaves them (results.csv and images/),
+ * each with its checksum, recorded in its manifest when the run ended
+ * (`ended`), so that a merge can tell a shard's files from edited or
+ * damaged ones; a run that stopped records none. */
+static int record_checksums(aa_runfolder *rf, int ended)
+{
+    aa_manifest m;
+    char path[4200], images[4200];
+    int st = aa_pathf(path, sizeof path, "%s/run.json", rf->dir);
+    if (st || (st = aa_manifest_read(path, &m)))
+        return st;
+    for (size_t k = 0; k < m.nsums; k++)
+        free(m.sums[k].name);
+    m.nsums = 0, m.summed = 0;
+    size_t cap = 1;
+    DIR *d = NULL;
+    if (ended) {
+        if (!(st = aa_pathf(images, sizeof images, "%s/images", rf->dir)) &&
+            !(d = opendir(images)) && errno != ENOENT)
+            st = aa_fail(AA_EIO, "cannot read %s: %s", images, strerror(errno));
+        struct dirent *e;
+        while (!st && d && (e = readdir(d)))
+            cap += e->d_name[0] != '.';
+        if (d)
+            rewinddir(d);
+        struct aa_manifest_sum *sums = st ? NULL : realloc(m.sums, cap * sizeof *sums);
+        if (!st && !sums)
+            st = aa_fail(AA_ENOMEM, "out of memory");
+        if (sums)
+            m.sums = sums, m.summed = 1;
+        char file[4200];
+        if (!st && !(st = aa_pathf(file, sizeof file, "%s/results.csv", rf->dir)) &&
+            access(file, F_OK) == 0 && !(st = aa_file_checksum(file, m.sums[0].sum))) {
+            if (!(m.sums[0].name = strdup("results.csv")))
+                st = aa_fail(AA_ENOMEM, "out of memory");
+            else
+                m.nsums = 1;
+        }
+        while (!st && d && (e = readdir(d)) && m.nsums < cap) {
+            if (e->d_name[0] == '.')
+                continue; /* ., .. and temporary files */
+            struct aa_manifest_sum *x = &m.sums[m.nsums];
+            if ((st = aa_pathf(file, sizeof file, "%s/%s", images, e->d_name)) ||
+                (st = aa_file_checksum(file, x->sum)))
+                break;
+            size_t len = strlen(e->d_name) + sizeof "images/";
+            if (!(x->name = malloc(len))) {
+                st = aa_fail(AA_ENOMEM, "out of memory");
+                break;
+            }
+            snprintf(x->name, len, "images/%s", e->d_name);
+            m.nsums++;
+        }
+        if (d)
+            closedir(d);
+    }
+    if (!st)
+        st = aa_manifest_write(path, &m);
+    aa_manifest_free(&m);
+    return st;
+}
+
 /* ---- the object ---- */
 
 void aa_runfolder_free(aa_runfolder *rf)
@@ -1268,6 +1330,9 @@ int aa_runfolder_run(aa_runfolder *rf)
         if (!st)
             st = sst;
     }
+    int cst = record_checksums(rf, !st);
+    if (!st)
+        st = cst;
     return st;
 }
 
@@ -1332,6 +1397,78 @@ typedef struct merge_shard {
     aa_row *rows;
     size_t n;
 } merge_shard;
+
+/* The checksum a shard's manifest records for a file of its folder (NULL:
+ * none). */
+static const char *sum_of(const aa_manifest *m, const char *name)
+{
+    for (size_t k = 0; k < m->nsums; k++)
+        if (!strcmp(m->sums[k].name, name))
+            return m->sums[k].sum;
+    return NULL;
+}
+
+/* A shard's files are those its run left: results.csv and every image
+ * with the checksum its manifest records, no image more or fewer; checked
+ * before anything is written. */
+static int shard_files_check(const merge_shard *sh)
+{
+    const aa_manifest *m = &sh->m;
+    char path[4200], images[4200], sum[64];
+    if (!m->summed)
+        return aa_fail(AA_EINVAL,
+                       "%s/run.json records no checksums of its files: its run has not ended "
+                       "(resume it with aabench run --resume %s)",
+                       aa_echo(sh->dir), aa_echo(sh->dir));
+    int st = aa_pathf(path, sizeof path, "%s/results.csv", sh->dir);
+    if (st)
+        return st;
+    const char *want = sum_of(m, "results.csv");
+    int there = access(path, F_OK) == 0;
+    if (there != (want != NULL))
+        return aa_fail(AA_EINVAL, "%s: %s", aa_echo(path),
+                       there ? "its run wrote none (a file added after it ended)"
+                             : "missing, though its run wrote it");
+    if (there && ((st = aa_file_checksum(path, sum)) || strcmp(sum, want)))
+        return st ? st
+                  : aa_fail(AA_EINVAL,
+                            "%s is not the file its run wrote (%s, the run recorded %s): edited "
+                            "or damaged",
+                            aa_echo(path), sum, want);
+    if ((st = aa_pathf(images, sizeof images, "%s/images", sh->dir)))
+        return st;
+    size_t seen = 0, listed = 0;
+    for (size_t k = 0; k < m->nsums; k++)
+        listed += !strncmp(m->sums[k].name, "images/", 7);
+    DIR *d = opendir(images);
+    if (!d && errno != ENOENT)
+        return aa_fail(AA_EIO, "cannot read %s: %s", images, strerror(errno));
+    struct dirent *e;
+    while (!st && d && (e = readdir(d))) {
+        if (e->d_name[0] == '.')
+            continue;
+        char name[512];
+        snprintf(name, sizeof name, "images/%.500s", e->d_name);
+        want = sum_of(m, name);
+        if ((st = aa_pathf(path, sizeof path, "%s/%s", images, e->d_name)))
+            break;
+        if (!want)
+            st = aa_fail(AA_EINVAL, "%s: its run wrote no such image (a file added after it ended)",
+                         aa_echo(path));
+        else if (!(st = aa_file_checksum(path, sum)) && strcmp(sum, want))
+            st = aa_fail(AA_EINVAL,
+                         "%s is not the image its run wrote (%s, the run recorded %s): edited or "
+                         "damaged",
+                         aa_echo(path), sum, want);
+        seen++;
+    }
+    if (d)
+        closedir(d);
+    if (!st && seen != listed)
+        st = aa_fail(AA_EINVAL, "%s: %zu of the %zu images its run wrote are missing",
+                     aa_echo(images), listed - seen, listed);
+    return st;
+}
 
 /* The arguments of a manifest's command, joined for messages. */
 static void command_text(const aa_manifest *m, char *buf, size_t len)
@@ -1524,6 +1661,7 @@ static int write_merged_manifest(const char *out, const aa_manifest *first, size
 {
     aa_manifest m = *first;
     aa_context context;
+    m.summed = 0, m.nsums = 0, m.sums = NULL; /* the shards' files, not this folder's */
     char path[4200];
     int st;
     aa_context_collect(&context, 0, NULL, 0);
@@ -1746,7 +1884,10 @@ int aa_runfolder_merge(const char *const *dirs, size_t ndirs, const aa_run_optio
     }
     place *owner = NULL;
     size_t *refused = NULL, nrefused = 0, cases = 0;
-    if (!st && !(st = check_shards(s, ns, &owner))) {
+    if (!st && !(st = check_shards(s, ns, &owner)))
+        for (int i = 0; i < ns && !st; i++)
+            st = shard_files_check(&s[i]);
+    if (!st) {
         cases = s[0].m.cases;
         st = merged_run(rf, s, ns, owner, cases, &refused, &nrefused, opt);
     }
