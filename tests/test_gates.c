@@ -404,6 +404,47 @@ static void test_merge_checks_images(void **state)
     }
 }
 
+/* A plug-in is recorded by its file's hash too: a baseline of its method
+ * is refused by `check` (exit 2, naming the plug-in) once the file loaded
+ * under the same name is another. */
+static void test_changed_plugin(void **state)
+{
+    (void)state;
+    const char *exe = getenv("AABENCH");
+    assert_non_null(exe);
+    const char *slash = strrchr(exe, '/');
+    assert_non_null(slash);
+    char so[512], lib[256], cache[256], run[256], csv[300], text[8192];
+    snprintf(so, sizeof so, "%.*s/tests/plugin_example.so", (int)(slash - exe), exe);
+    snprintf(lib, sizeof lib, "%s/centre4.so", dir);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(run, sizeof run, "%s/pluginrun", dir);
+    snprintf(csv, sizeof csv, "%s/results.csv", run);
+    sh("cp '%s' '%s'", so, lib);
+    const char *args[] = {"run", "--plugin", lib, "-p", "crow", "-s", "16x16", "-f", "box",
+                          "-m", "centre4", "-m", "point", "--reps", "1", "--no-images",
+                          "--no-plots", "--threads", "1", "-q", "--cache", cache, "--out", run,
+                          NULL};
+    const char *check[] = {"check", "--plugin", lib, "--baseline", csv, "--cache", cache, NULL};
+    if (support_aabench(args, text, sizeof text) != 0)
+        fail_msg("run of a plug-in's method: %s", text);
+    aa_row *rows;
+    size_t n;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    assert_int_equal(n, 2);
+    for (size_t k = 0; k < n; k++)
+        assert_int_equal(strstr(rows[k].inputs, "plugin fnv1a") != NULL,
+                         !strcmp(rows[k].method, "centre4"));
+    free(rows);
+    if (support_aabench(check, text, sizeof text) != 0)
+        fail_msg("check against its own baseline: %s", text);
+    /* another file under the same name: one byte more (still loadable) */
+    sh("printf x >> '%s'%s", lib, "");
+    int st = support_aabench(check, text, sizeof text);
+    if (st != 2 || !strstr(text, "the plug-in") || !strstr(text, "centre4.so"))
+        fail_msg("check after the plug-in changed: exit %d: %s", st, text);
+}
+
 static int setup(void **state)
 {
     *state = dir;
@@ -417,4 +458,5 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_verdict_rule),
              cmocka_unit_test(test_merge_checks_rows),
              cmocka_unit_test(test_merge_checks_images),
-             cmocka_unit_test(test_changed_input_file))
+             cmocka_unit_test(test_changed_input_file),
+             cmocka_unit_test(test_changed_plugin))

@@ -438,13 +438,17 @@ const char *aa_case_verdict(const aa_row *old, const aa_row *now, double tol, ch
                             size_t len, int *confirmed);
 /* The input files of a pattern (`svg`'s file, `text`'s font) by their
  * hash and length, as the reference cache keys them (aa_pattern_key), on
- * one line: "" for a pattern that reads none.  Rows record it (the
- * `inputs` column), and `check`, `merge` and `run --resume` refuse rows
+ * one line: "" for a pattern that reads none.  Rows record it with the
+ * method's plug-in (aa_case_inputs: the `inputs` column), and `check`, `merge` and `run --resume` refuse rows
  * whose files have changed (aa_inputs_check). */
 int aa_pattern_inputs(const aa_spec *pattern, char *buf, size_t len);
-/* A row's recorded inputs against its pattern's files now: AA_OK when
- * they agree or the row records none; else AA_EINVAL naming the pattern's
- * file, `what` (the file the row was read from) and both hashes. */
+/* A case's inputs: its pattern's, then, for a method of a plug-in, the
+ * plug-in file's checksum ("plugin fnv1a HASH bytes N", aa_method_file). */
+int aa_case_inputs(const aa_spec *pattern, const aa_spec *method, char *buf, size_t len);
+/* A row's recorded inputs against its files now: AA_OK when they agree or
+ * the row records none; else AA_EINVAL naming the file that changed (the
+ * pattern's or the plug-in), `what` (the file the row was read from) and
+ * both records. */
 int aa_inputs_check(const char *what, const aa_row *r);
 /* The same case: pattern, size, filter, method, time, motion, seed. */
 int aa_case_same(const aa_row *a, const aa_row *b);

@@ -149,21 +149,49 @@ int aa_pattern_inputs(const aa_spec *pattern, char *buf, size_t len)
     return AA_OK;
 }
 
+int aa_case_inputs(const aa_spec *pattern, const aa_spec *method, char *buf, size_t len)
+{
+    int st = aa_pattern_inputs(pattern, buf, len);
+    const char *file = method ? aa_method_file((const aa_method_type *)method->info) : NULL;
+    if (st || !file)
+        return st;
+    char sum[64];
+    if ((st = aa_file_checksum(file, sum)))
+        return aa_fail_context(st, "the plug-in of %s", method->info->name);
+    size_t n = strlen(buf);
+    if ((size_t)snprintf(buf + n, len - n, "%splugin %s", n ? "; " : "", sum) >= len - n)
+        return aa_fail(AA_EFAIL, "the inputs of a case: more than %zu characters", len - 1);
+    return AA_OK;
+}
+
 int aa_inputs_check(const char *what, const aa_row *r)
 {
-    aa_spec spec;
-    char now[sizeof r->inputs];
+    aa_spec pattern, method;
+    char now[sizeof r->inputs], part[sizeof r->inputs];
     if (!*r->inputs)
         return AA_OK;
-    int st = aa_pattern_parse(r->pattern, &spec);
+    int st = aa_pattern_parse(r->pattern, &pattern);
     if (!st)
-        st = aa_pattern_inputs(&spec, now, sizeof now);
+        st = aa_spec_parse(r->method, aa_method_table(), "method", &method);
+    if (!st)
+        st = aa_case_inputs(&pattern, &method, now, sizeof now);
+    if (!st)
+        st = aa_pattern_inputs(&pattern, part, sizeof part);
     if (st)
-        return aa_fail_context(st, "%s: the input files of %s", aa_echo(what), aa_echo(r->pattern));
-    if (strcmp(now, r->inputs))
-        return aa_fail(AA_EINVAL,
-                       "%s: the file of %s has changed since its rows were measured (then %s, "
-                       "now %s): its results are of another scene",
-                       aa_echo(what), aa_echo(r->pattern), r->inputs, *now ? now : "none");
-    return AA_OK;
+        return aa_fail_context(st, "%s: the input files of %s on %s", aa_echo(what),
+                               aa_echo(r->method), aa_echo(r->pattern));
+    if (!strcmp(now, r->inputs))
+        return AA_OK;
+    /* which file: the pattern's, else the plug-in's */
+    const char *plugin = aa_method_file((const aa_method_type *)method.info);
+    int pattern_same = *part ? !strncmp(r->inputs, part, strlen(part)) : !strncmp(r->inputs, "plugin ", 7);
+    char which[1200];
+    if (!pattern_same || !plugin)
+        snprintf(which, sizeof which, "the file of %s", r->pattern);
+    else
+        snprintf(which, sizeof which, "the plug-in %s of %s", plugin, r->method);
+    return aa_fail(AA_EINVAL,
+                   "%s: %s has changed since its rows were measured (then %s, now %s): its "
+                   "results are of another scene or method",
+                   aa_echo(what), aa_echo(which), r->inputs, *now ? now : "none");
 }

@@ -1795,19 +1795,21 @@ static int merged_run(aa_runfolder *rf, merge_shard *s, int ns, const place *own
         if (owner[k].row != REFUSED &&
             (st = row_is_case(rf, &s[owner[k].shard], &s[owner[k].shard].rows[owner[k].row], k)))
             return st;
-    /* the shards were made from the same input files (an SVG, a font) */
+    /* the shards were made from the same input files (an SVG, a font, a
+     * plug-in) */
     for (int i = 0; i < ns; i++)
         for (size_t k = 0; k < s[i].n; k++) {
             const aa_row *r = &s[i].rows[k];
             for (int j = 0; j <= i; j++)
                 for (size_t q = 0; q < (j < i ? s[j].n : k); q++)
-                    if (!strcmp(s[j].rows[q].pattern, r->pattern)) {
+                    if (!strcmp(s[j].rows[q].pattern, r->pattern) &&
+                        !strcmp(s[j].rows[q].method, r->method)) {
                         if (strcmp(s[j].rows[q].inputs, r->inputs))
                             return aa_fail(AA_EINVAL,
                                            "%s and %s were made from different files of %s "
-                                           "(%s; %s): shards of two scenes",
+                                           "on %s (%s; %s): shards of two scenes or methods",
                                            aa_echo(s[j].dir), aa_echo(s[i].dir),
-                                           aa_echo(r->pattern),
+                                           aa_echo(r->method), aa_echo(r->pattern),
                                            *s[j].rows[q].inputs ? s[j].rows[q].inputs : "none",
                                            *r->inputs ? r->inputs : "none");
                         goto next_row; /* the first row of its pattern decides */
