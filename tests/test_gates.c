@@ -445,6 +445,45 @@ static void test_changed_plugin(void **state)
         fail_msg("check after the plug-in changed: exit %d: %s", st, text);
 }
 
+/* An external method's adapter is recorded by its file's hash: once the
+ * adapter changes, `check` of its baseline is refused (exit 2), naming it. */
+static void test_changed_adapter(void **state)
+{
+    (void)state;
+    char ren[256], adapter[300], png[256], cache[256], run[256], csv[300], text[8192];
+    snprintf(ren, sizeof ren, "%s/renderers", dir);
+    snprintf(adapter, sizeof adapter, "%s/mine", ren);
+    snprintf(png, sizeof png, "%s/crow16.png", dir);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(run, sizeof run, "%s/adapterrun", dir);
+    snprintf(csv, sizeof csv, "%s/results.csv", run);
+    assert_int_equal(aa_mkdirs(ren), AA_OK);
+    const char *image[] = {"render", "-p", "crow", "-s", "16x16", "-f", "box", "-m", "point",
+                           "-o", png, NULL};
+    if (support_aabench(image, text, sizeof text) != 0)
+        fail_msg("render: %s", text);
+    /* an adapter that "draws" the PNG made above */
+    char script[600];
+    snprintf(script, sizeof script, "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\ncp '%s' \"$4\"\n",
+             png);
+    put_file(adapter, script);
+    sh("chmod +x '%s'%s", adapter, "");
+    assert_int_equal(setenv("AABENCH_RENDERERS", ren, 1), 0);
+    const char *args[] = {"run", "-p", "crow", "-s", "16x16", "-f", "box", "-m",
+                          "external:renderer=mine", "--reps", "1", "--no-images", "--no-plots",
+                          "-q", "--cache", cache, "--out", run, NULL};
+    const char *check[] = {"check", "--baseline", csv, "--cache", cache, NULL};
+    if (support_aabench(args, text, sizeof text) != 0)
+        fail_msg("run of an external method: %s", text);
+    if (support_aabench(check, text, sizeof text) != 0)
+        fail_msg("check against its own baseline: %s", text);
+    sh("echo '# changed' >> '%s'%s", adapter, "");
+    int st = support_aabench(check, text, sizeof text);
+    unsetenv("AABENCH_RENDERERS");
+    if (st != 2 || !strstr(text, "the adapter") || !strstr(text, adapter))
+        fail_msg("check after the adapter changed: exit %d: %s", st, text);
+}
+
 static int setup(void **state)
 {
     *state = dir;
@@ -459,4 +498,5 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_merge_checks_rows),
              cmocka_unit_test(test_merge_checks_images),
              cmocka_unit_test(test_changed_input_file),
-             cmocka_unit_test(test_changed_plugin))
+             cmocka_unit_test(test_changed_plugin),
+             cmocka_unit_test(test_changed_adapter))

@@ -12,8 +12,10 @@
  * reported is the ratio of the medians.
  */
 #include "bench.h"
+#include "methods.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -149,17 +151,40 @@ int aa_pattern_inputs(const aa_spec *pattern, char *buf, size_t len)
     return AA_OK;
 }
 
+/* The method's part of a case's inputs: a plug-in's library, or the
+ * adapter an external method runs, by checksum ("" for neither); *file:
+ * that file (NULL for neither). */
+static int method_inputs(const aa_spec *method, char *buf, size_t len, const char **file,
+                         char adapter[PATH_MAX])
+{
+    char sum[64];
+    const char *kind = "plugin";
+    buf[0] = '\0';
+    *file = aa_method_file((const aa_method_type *)method->info);
+    if (!*file && method->info == &aa_method_external.info) {
+        /* none found: no file (the method refuses the case itself) */
+        if (aa_external_adapter(method, adapter))
+            return AA_OK;
+        *file = adapter, kind = "adapter";
+    }
+    if (!*file)
+        return AA_OK;
+    int st = aa_file_checksum(*file, sum);
+    if (st)
+        return aa_fail_context(st, "the %s of %s", kind, method->info->name);
+    snprintf(buf, len, "%s %s", kind, sum);
+    return AA_OK;
+}
+
 int aa_case_inputs(const aa_spec *pattern, const aa_spec *method, char *buf, size_t len)
 {
+    char part[128], adapter[PATH_MAX];
+    const char *file;
     int st = aa_pattern_inputs(pattern, buf, len);
-    const char *file = method ? aa_method_file((const aa_method_type *)method->info) : NULL;
-    if (st || !file)
+    if (st || !method || (st = method_inputs(method, part, sizeof part, &file, adapter)) || !*part)
         return st;
-    char sum[64];
-    if ((st = aa_file_checksum(file, sum)))
-        return aa_fail_context(st, "the plug-in of %s", method->info->name);
     size_t n = strlen(buf);
-    if ((size_t)snprintf(buf + n, len - n, "%splugin %s", n ? "; " : "", sum) >= len - n)
+    if ((size_t)snprintf(buf + n, len - n, "%s%s", n ? "; " : "", part) >= len - n)
         return aa_fail(AA_EFAIL, "the inputs of a case: more than %zu characters", len - 1);
     return AA_OK;
 }
@@ -167,7 +192,8 @@ int aa_case_inputs(const aa_spec *pattern, const aa_spec *method, char *buf, siz
 int aa_inputs_check(const char *what, const aa_row *r)
 {
     aa_spec pattern, method;
-    char now[sizeof r->inputs], part[sizeof r->inputs];
+    char now[sizeof r->inputs], part[sizeof r->inputs], mpart[128], adapter[PATH_MAX];
+    const char *file = NULL;
     if (!*r->inputs)
         return AA_OK;
     int st = aa_pattern_parse(r->pattern, &pattern);
@@ -177,19 +203,25 @@ int aa_inputs_check(const char *what, const aa_row *r)
         st = aa_case_inputs(&pattern, &method, now, sizeof now);
     if (!st)
         st = aa_pattern_inputs(&pattern, part, sizeof part);
+    if (!st)
+        st = method_inputs(&method, mpart, sizeof mpart, &file, adapter);
     if (st)
         return aa_fail_context(st, "%s: the input files of %s on %s", aa_echo(what),
                                aa_echo(r->method), aa_echo(r->pattern));
     if (!strcmp(now, r->inputs))
         return AA_OK;
-    /* which file: the pattern's, else the plug-in's */
-    const char *plugin = aa_method_file((const aa_method_type *)method.info);
-    int pattern_same = *part ? !strncmp(r->inputs, part, strlen(part)) : !strncmp(r->inputs, "plugin ", 7);
+    /* which file: the pattern's, else the method's */
+    size_t pl = strlen(part);
+    int pattern_same = !strncmp(r->inputs, part, pl) &&
+                       (r->inputs[pl] == '\0' || (pl ? r->inputs[pl] == ';' : 1));
     char which[1200];
-    if (!pattern_same || !plugin)
+    if (pattern_same && !file)
+        snprintf(which, sizeof which, "the file %s ran (no longer found)", r->method);
+    else if (!pattern_same || !file)
         snprintf(which, sizeof which, "the file of %s", r->pattern);
     else
-        snprintf(which, sizeof which, "the plug-in %s of %s", plugin, r->method);
+        snprintf(which, sizeof which, "the %s %s of %s", mpart[0] == 'p' ? "plug-in" : "adapter",
+                 file, r->method);
     return aa_fail(AA_EINVAL,
                    "%s: %s has changed since its rows were measured (then %s, now %s): its "
                    "results are of another scene or method",
