@@ -344,6 +344,13 @@ typedef struct aa_manifest {
         char *name;
         char sum[64];
     } *sums;
+    /* the run's input files (aa_case_inputs), by what reads them:
+     * "pattern SPEC" or "method SPEC", and their record; those that read
+     * none are left out */
+    size_t ninputs;
+    struct aa_manifest_input {
+        char *what, *inputs;
+    } *inputs;
 } aa_manifest;
 /* A file's checksum as a manifest records it: "fnv1a %016llx bytes %zu"
  * (64-bit FNV-1a of its bytes, and their count) into sum (64 bytes); of
@@ -430,7 +437,9 @@ typedef struct aa_case_change {
 /* The gates' one rule (`check` and `diff`), a case of OLD (the baseline)
  * against NOW, the same case run again (NULL: missing from the new run):
  * NULL when it passes, else why not, with the figures in detail (may be
- * NULL).  It fails when it is missing, now fails, now refuses a case that
+ * NULL).  It fails when it is missing, was made from other input files
+ * (both record them, aa_case_inputs, and they differ), now fails, now
+ * refuses a case that
  * ran, now runs a case recorded as refused, or its RMSE or largest error
  * exceeds the old one by more than tol relative plus 1e-12.
  * *confirmed is 1 when both refused the case (it passes). */
@@ -442,8 +451,10 @@ const char *aa_case_verdict(const aa_row *old, const aa_row *now, double tol, ch
  * method's plug-in (aa_case_inputs: the `inputs` column), and `check`, `merge` and `run --resume` refuse rows
  * whose files have changed (aa_inputs_check). */
 int aa_pattern_inputs(const aa_spec *pattern, char *buf, size_t len);
-/* A case's inputs: its pattern's, then, for a method of a plug-in, the
- * plug-in file's checksum ("plugin fnv1a HASH bytes N", aa_method_file). */
+/* A case's inputs: its pattern's (pattern may be NULL), then, for a
+ * method of a plug-in, the plug-in file's checksum ("plugin fnv1a HASH
+ * bytes N", aa_method_file), or for `external` its adapter's ("adapter
+ * ..."); method may be NULL. */
 int aa_case_inputs(const aa_spec *pattern, const aa_spec *method, char *buf, size_t len);
 /* A row's recorded inputs against its files now: AA_OK when they agree or
  * the row records none; else AA_EINVAL naming the file that changed (the

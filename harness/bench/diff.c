@@ -46,6 +46,10 @@ const char *aa_case_verdict(const aa_row *old, const aa_row *now, double tol, ch
         snprintf(detail, len, "%s", old->ok ? "it ran" : "the baseline records it as refused");
         return "missing: the case is no longer run";
     }
+    if (*old->inputs && *now->inputs && strcmp(old->inputs, now->inputs)) {
+        snprintf(detail, len, "then %s, now %s", old->inputs, now->inputs);
+        return "made from other input files";
+    }
     if (now->failed) {
         snprintf(detail, len, "%s", now->note);
         return "now fails";
@@ -180,7 +184,9 @@ int aa_case_inputs(const aa_spec *pattern, const aa_spec *method, char *buf, siz
 {
     char part[128], adapter[PATH_MAX];
     const char *file;
-    int st = aa_pattern_inputs(pattern, buf, len);
+    int st = pattern ? aa_pattern_inputs(pattern, buf, len) : AA_OK;
+    if (!pattern && len)
+        buf[0] = '\0';
     if (st || !method || (st = method_inputs(method, part, sizeof part, &file, adapter)) || !*part)
         return st;
     size_t n = strlen(buf);

@@ -935,6 +935,67 @@ static int prepare(aa_runfolder *rf)
 
 /* The run's manifest (aa_manifest): its command without the words that
  * do not change the results. */
+/* The run's input files (aa_manifest.inputs) as they are now: each
+ * pattern and method of its groups that reads any, once. */
+static void inputs_free(aa_manifest *m)
+{
+    for (size_t k = 0; k < m->ninputs; k++) {
+        free(m->inputs[k].what);
+        free(m->inputs[k].inputs);
+    }
+    free(m->inputs);
+    m->inputs = NULL, m->ninputs = 0;
+}
+
+static int add_input(aa_manifest *m, size_t cap, const char *kind, const char *text,
+                     const aa_spec *spec, const aa_spec *pattern, const aa_spec *method)
+{
+    char what[1200], buf[sizeof ((aa_row *)0)->inputs];
+    if (text)
+        snprintf(what, sizeof what, "%s %s", kind, text);
+    else {
+        int n = snprintf(what, sizeof what, "%s ", kind);
+        if (aa_spec_format(spec, what + n, sizeof what - (size_t)n))
+            snprintf(what + n, sizeof what - (size_t)n, "%s", spec->info->name);
+    }
+    for (size_t k = 0; k < m->ninputs; k++)
+        if (!strcmp(m->inputs[k].what, what))
+            return AA_OK;
+    int st = aa_case_inputs(pattern, method, buf, sizeof buf);
+    if (st || !*buf || m->ninputs == cap)
+        return st;
+    struct aa_manifest_input *in = &m->inputs[m->ninputs];
+    if (!(in->what = strdup(what)) || !(in->inputs = strdup(buf))) {
+        free(in->what);
+        return aa_fail(AA_ENOMEM, "out of memory");
+    }
+    m->ninputs++;
+    return AA_OK;
+}
+
+static int run_inputs(const aa_runfolder *rf, aa_manifest *m)
+{
+    size_t cap = 0;
+    int st = AA_OK;
+    m->inputs = NULL, m->ninputs = 0;
+    for (size_t g = 0; g < rf->ng; g++)
+        cap += rf->cfgs[g].npatterns + rf->cfgs[g].nmethods;
+    if (!(m->inputs = calloc(cap ? cap : 1, sizeof *m->inputs)))
+        return aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t g = 0; g < rf->ng && !st; g++) {
+        const aa_run_config *c = &rf->cfgs[g];
+        for (size_t k = 0; k < c->npatterns && !st; k++)
+            st = add_input(m, cap, "pattern", c->patterns[k].text, &c->patterns[k].spec,
+                           &c->patterns[k].spec, NULL);
+        for (size_t k = 0; k < c->nmethods && !st; k++)
+            st = add_input(m, cap, "method", c->methods[k].text, &c->methods[k].spec, NULL,
+                           &c->methods[k].spec);
+    }
+    if (st)
+        inputs_free(m);
+    return st;
+}
+
 static int write_manifest(aa_runfolder *rf)
 {
     aa_manifest m;
@@ -976,7 +1037,10 @@ static int write_manifest(aa_runfolder *rf)
     st = m.context ? aa_pathf(path, sizeof path, "%s/run.json", rf->dir)
                    : aa_fail(AA_ENOMEM, "out of memory");
     if (!st)
+        st = run_inputs(rf, &m);
+    if (!st)
         st = aa_manifest_write(path, &m);
+    inputs_free(&m);
     free(m.argv);
     free(m.selected);
     free(m.context);
@@ -993,7 +1057,28 @@ static int resume_rows(aa_runfolder *rf)
     size_t n = 0, ng = rf->ng;
     aa_run_config *cfgs = rf->cfgs;
     unsigned char **masks = rf->masks;
-    int st = aa_pathf(path, sizeof path, "%s/results.csv", rf->dir);
+    /* the files the run was started on (its manifest), as they are now */
+    aa_manifest now = {0};
+    int st = run_inputs(rf, &now);
+    if (!st) {
+        for (size_t k = 0; k < rf->manifest.ninputs && !st; k++) {
+            const char *is = "none";
+            for (size_t q = 0; q < now.ninputs; q++)
+                if (!strcmp(now.inputs[q].what, rf->manifest.inputs[k].what))
+                    is = now.inputs[q].inputs;
+            if (strcmp(is, rf->manifest.inputs[k].inputs))
+                st = aa_fail(AA_EINVAL,
+                             "%s/run.json: the files of the %s have changed since the run "
+                             "started (then %s, now %s): resume it with the same files, or "
+                             "start it anew",
+                             aa_echo(rf->dir), aa_echo(rf->manifest.inputs[k].what),
+                             rf->manifest.inputs[k].inputs, is);
+        }
+        inputs_free(&now);
+    }
+    if (st)
+        return st;
+    st = aa_pathf(path, sizeof path, "%s/results.csv", rf->dir);
     if (st || access(path, F_OK) != 0)
         return st; /* stopped before its first case */
     if ((st = aa_rows_read_csv(path, &rows, &n)))
@@ -1524,6 +1609,16 @@ static int check_shards(merge_shard *s, int ns, place **owner_out)
         if (m->cases != first->cases)
             return aa_fail(AA_EINVAL, "%s is not a shard of the run of %s: %zu cases, not %zu",
                           aa_echo(s[i].dir), s[0].dir, m->cases, first->cases);
+        for (size_t k = 0; k < first->ninputs || k < m->ninputs; k++) {
+            const struct aa_manifest_input *x = k < first->ninputs ? &first->inputs[k] : NULL,
+                                           *y = k < m->ninputs ? &m->inputs[k] : NULL;
+            if (!x || !y || strcmp(x->what, y->what) || strcmp(x->inputs, y->inputs))
+                return aa_fail(AA_EINVAL,
+                               "%s is not a shard of the run of %s: the files of the %s differ "
+                               "(%s; %s): shards of two scenes or methods",
+                               aa_echo(s[i].dir), s[0].dir, (x ? x : y)->what,
+                               x ? x->inputs : "none", y ? y->inputs : "none");
+        }
         for (int j = 0; j < i; j++)
             if (s[j].m.shards == m->shards && s[j].m.shard == m->shard)
                 return aa_fail(AA_EINVAL, "%s and %s are both shard %d/%d: a shard given twice",

@@ -266,6 +266,12 @@ int aa_manifest_write(const char *path, const aa_manifest *m)
         cJSON *ctx = m->context ? cJSON_Parse(m->context) : cJSON_CreateNull();
         ok = ctx && cJSON_AddItemToObject(o, "context", ctx);
     }
+    if (ok && m->ninputs) {
+        cJSON *in = cJSON_AddObjectToObject(o, "inputs");
+        ok = in != NULL;
+        for (size_t k = 0; ok && k < m->ninputs; k++)
+            ok = cJSON_AddStringToObject(in, m->inputs[k].what, m->inputs[k].inputs) != NULL;
+    }
     if (ok && m->summed) {
         cJSON *sums = cJSON_AddObjectToObject(o, "checksums");
         ok = sums != NULL;
@@ -434,6 +440,37 @@ int aa_manifest_read(const char *path, aa_manifest *m)
         st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
         goto done;
     }
+    /* inputs: absent for a run that reads no files (and in older ones) */
+    v = cJSON_GetObjectItemCaseSensitive(o, "inputs");
+    if (v) {
+        const cJSON *x;
+        if (!cJSON_IsObject(v)) {
+            st = bad(path, "inputs", "is not an object");
+            goto done;
+        }
+        int nin = cJSON_GetArraySize(v);
+        if (!(m->inputs = calloc(nin ? (size_t)nin : 1, sizeof *m->inputs))) {
+            st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+            goto done;
+        }
+        cJSON_ArrayForEach(x, v)
+        {
+            if (!cJSON_IsString(x) || !x->string ||
+                (strncmp(x->string, "pattern ", 8) && strncmp(x->string, "method ", 7))) {
+                st = bad(path, "inputs", "holds something other than a pattern's or a method's "
+                                         "files");
+                goto done;
+            }
+            struct aa_manifest_input *in = &m->inputs[m->ninputs];
+            in->what = strdup(x->string);
+            in->inputs = strdup(x->valuestring);
+            m->ninputs++;
+            if (!in->what || !in->inputs) {
+                st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+                goto done;
+            }
+        }
+    }
     /* checksums: absent before the run's end */
     v = cJSON_GetObjectItemCaseSensitive(o, "checksums");
     if (v) {
@@ -481,5 +518,10 @@ void aa_manifest_free(aa_manifest *m)
     for (size_t k = 0; m->sums && k < m->nsums; k++)
         free(m->sums[k].name);
     free(m->sums);
+    for (size_t k = 0; m->inputs && k < m->ninputs; k++) {
+        free(m->inputs[k].what);
+        free(m->inputs[k].inputs);
+    }
+    free(m->inputs);
     memset(m, 0, sizeof *m);
 }
