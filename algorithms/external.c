@@ -549,3 +549,10 @@ const aa_method_type aa_method_external = {
     external_init,
     external_render,
     external_release};
+
+int aa_external_adapter(const aa_spec *spec, char *path)
+{
+    if (spec->info != &aa_method_external.info)
+        return aa_fail(AA_EINVAL, "%s is not the external method", spec->info->name);
+    return adapter_find(aa_param_word(spec->v[RENDERER]), path);
+}

@@ -27,6 +27,9 @@ extern const aa_method_type aa_method_crowtiler;
 extern const aa_method_type aa_method_feibushtex;
 /* runs an SVG renderer: in aa_method_types_optional, not the built-in table */
 extern const aa_method_type aa_method_external;
+/* The adapter file a spec of `external` runs (PATH_MAX bytes), as its
+ * init finds it; AA_EINVAL when there is none. */
+int aa_external_adapter(const aa_spec *spec, char *path);
 
 /* The standard multisample positions of `count` samples (2, 4, 8 or 16;
  * NULL for another count), in 1/16 pixel from the pixel's centre, y down

@@ -163,6 +163,9 @@ typedef struct aa_row {
      * results file without the column) */
     long case_index;
     char host[64]; /* the machine that measured it ("" unknown) */
+    /* the input files the case was made from, by their hash and length
+     * (aa_pattern_inputs): "" when none or unknown (an older file) */
+    char inputs[256];
 } aa_row;
 
 /* A suite is a list of groups; each group is a cross product of patterns,
@@ -331,7 +334,29 @@ typedef struct aa_manifest {
     size_t *refused;
     size_t nrefused;
     char *context; /* JSON text, may be NULL */
+    /* the folder's files when its run ended (results.csv and images/...,
+     * by path within the folder) with their checksums, "fnv1a HASH bytes
+     * N" (aa_file_checksum): what a merge checks each shard's files
+     * against; summed = 0 while the run has not ended */
+    int summed;
+    size_t nsums;
+    struct aa_manifest_sum {
+        char *name;
+        char sum[64];
+    } *sums;
+    /* the run's input files (aa_case_inputs), by what reads them:
+     * "pattern SPEC" or "method SPEC", and their record; those that read
+     * none are left out */
+    size_t ninputs;
+    struct aa_manifest_input {
+        char *what, *inputs;
+    } *inputs;
 } aa_manifest;
+/* A file's checksum as a manifest records it: "fnv1a %016llx bytes %zu"
+ * (64-bit FNV-1a of its bytes, and their count) into sum (64 bytes); of
+ * bytes in memory with aa_bytes_checksum. */
+int aa_file_checksum(const char *path, char sum[64]);
+void aa_bytes_checksum(const void *data, size_t n, char sum[64]);
 int aa_manifest_write(const char *path, const aa_manifest *m);
 /* Read strictly: a member missing or of the wrong type, or a case outside
  * the run, is AA_EINVAL naming the file and the member; a file that is not
@@ -353,6 +378,12 @@ int aa_rows_read_csv(const char *path, aa_row **rows, size_t *n);
 /* The same from `len` bytes in memory; `name` names them in messages. */
 int aa_rows_parse_csv(const char *name, const char *data, size_t len, aa_row **rows,
                       size_t *n);
+/* A results.json read back as strictly (report.c): the case, ok, the note,
+ * a row's errors and its repetition times; anything malformed is refused
+ * (AA_EINVAL) naming the file, the row and the member. */
+int aa_rows_read_json(const char *path, aa_row **rows, size_t *n);
+int aa_rows_parse_json(const char *name, const char *data, size_t len, aa_row **rows,
+                       size_t *n);
 
 /* Fair comparisons: methods in one table should have run with the same
  * effective parallelism, a render's CPU time over its wall time (the
@@ -410,13 +441,40 @@ typedef struct aa_case_change {
     double u, z, p;     /* of now against before (z > 0: slower) */
     int significant;    /* tested and p < AA_TIME_ALPHA */
     int noisy;          /* either measurement was marked noisy */
+    const char *regression; /* aa_case_verdict's: NULL when the case passes */
 } aa_case_change;
+/* The gates' one rule (`check` and `diff`), a case of OLD (the baseline)
+ * against NOW, the same case run again (NULL: missing from the new run):
+ * NULL when it passes, else why not, with the figures in detail (may be
+ * NULL).  It fails when it is missing, was made from other input files
+ * (both record them, aa_case_inputs, and they differ), now fails, now
+ * refuses a case that
+ * ran, now runs a case recorded as refused, or its RMSE or largest error
+ * exceeds the old one by more than tol relative plus 1e-12.
+ * *confirmed is 1 when both refused the case (it passes). */
+const char *aa_case_verdict(const aa_row *old, const aa_row *now, double tol, char *detail,
+                            size_t len, int *confirmed);
+/* The input files of a pattern (`svg`'s file, `text`'s font) by their
+ * hash and length, as the reference cache keys them (aa_pattern_key), on
+ * one line: "" for a pattern that reads none.  Rows record it with the
+ * method's plug-in (aa_case_inputs: the `inputs` column), and `check`, `merge` and `run --resume` refuse rows
+ * whose files have changed (aa_inputs_check). */
+int aa_pattern_inputs(const aa_spec *pattern, char *buf, size_t len);
+/* A case's inputs: its pattern's (pattern may be NULL), then, for a
+ * method of a plug-in, the plug-in file's checksum ("plugin fnv1a HASH
+ * bytes N", aa_method_file), or for `external` its adapter's ("adapter
+ * ..."); method may be NULL. */
+int aa_case_inputs(const aa_spec *pattern, const aa_spec *method, char *buf, size_t len);
+/* A row's recorded inputs against its files now: AA_OK when they agree or
+ * the row records none; else AA_EINVAL naming the file that changed (the
+ * pattern's or the plug-in), `what` (the file the row was read from) and
+ * both records. */
+int aa_inputs_check(const char *what, const aa_row *r);
 /* The same case: pattern, size, filter, method, time, motion, seed. */
 int aa_case_same(const aa_row *a, const aa_row *b);
 int aa_case_compare(const aa_row *old, const aa_row *now, double tol, aa_case_change *c);
-/* A run folder (its results.csv) or a results file (.csv; for a .json the
- * results.csv beside it, which holds the same rows and every repetition's
- * time) read as rows. */
+/* A run folder (its results.csv) or a results file (a .json read as JSON,
+ * aa_rows_read_json; any other as CSV) read as rows. */
 int aa_results_load(const char *path, aa_row **rows, size_t *n);
 
 /* Convergence: RMSE against samples per pixel over `phases` random sub-pixel

@@ -379,6 +379,7 @@ static const column columns[] = {
     OWN(cpu_times, G_TIMED, times_cell, read_times),
     OWN(case, G_ALWAYS, case_cell, read_case),
     OWN(host, G_ALWAYS, host_cell, read_host),
+    TEXT(inputs, G_OPTIONAL, 0),
 };
 #undef TEXT
 #undef REAL
@@ -579,6 +580,7 @@ static cJSON *row_json(const aa_row *r)
              add(o, "filter", cJSON_CreateString(r->filter)) &&
              add(o, "method", cJSON_CreateString(r->method)) &&
              add(o, "canonical", cJSON_CreateString(r->canonical)) &&
+             add(o, "inputs", cJSON_CreateString(r->inputs)) &&
              add(o, "ok", cJSON_CreateBool(r->ok));
     if (ok && r->ok) {
         const struct {
@@ -1170,9 +1172,10 @@ int aa_rows_parse_csv(const char *name, const char *data, size_t len, aa_row **r
     return st;
 }
 
-int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
+/* The whole of a results file, at most CSV_MAX_BYTES (malloc'd, *n bytes). */
+static int read_whole(const char *path, char **out, size_t *n_out)
 {
-    *rows_out = NULL;
+    *out = NULL;
     *n_out = 0;
     FILE *f = fopen(path, "rb");
     if (!f)
@@ -1204,8 +1207,261 @@ int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
         }
     }
     fclose(f);
+    if (st) {
+        free(data);
+        return st;
+    }
+    *out = data;
+    *n_out = n;
+    return AA_OK;
+}
+
+int aa_rows_read_csv(const char *path, aa_row **rows_out, size_t *n_out)
+{
+    *rows_out = NULL;
+    *n_out = 0;
+    char *data;
+    size_t n;
+    int st = read_whole(path, &data, &n);
     if (!st)
         st = aa_rows_parse_csv(path, data ? data : "", n, rows_out, n_out);
+    free(data);
+    return st;
+}
+
+/* ---- results.json read back ----
+ *
+ * As strictly as the CSV: {"context": ..., "results": [rows]}, each row
+ * with the members row_json writes that a comparison needs (the case, ok,
+ * the note, and for a row with ok = true its errors), of the types it
+ * writes them; the timing's members are read when present.  Anything else
+ * is refused (AA_EINVAL) naming the file, the row and the member. */
+
+static int json_fail(const char *name, size_t k, const char *key, const char *fmt, ...)
+    AA_PRINTF(4, 5);
+static int json_fail(const char *name, size_t k, const char *key, const char *fmt, ...)
+{
+    char why[768];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    return aa_fail(AA_EINVAL, "%s: result %zu, \"%s\": %s", aa_echo(name), k + 1, key, why);
+}
+
+/* A member that must be there, of the given type (cJSON_String, ...). */
+static const cJSON *json_member(const char *name, size_t k, const cJSON *o, const char *key,
+                                int type, int *st)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    if (*st)
+        return NULL;
+    if (!v || !(v->type & type)) {
+        *st = json_fail(name, k, key, "%s",
+                        !v ? "missing" : "of the wrong type");
+        return NULL;
+    }
+    return v;
+}
+
+static int json_text(const char *name, size_t k, const cJSON *o, const char *key, char *dst,
+                     size_t size, int optional)
+{
+    int st = AA_OK;
+    if (optional && !cJSON_GetObjectItemCaseSensitive(o, key))
+        return AA_OK;
+    const cJSON *v = json_member(name, k, o, key, cJSON_String, &st);
+    if (st)
+        return st;
+    if (strlen(v->valuestring) >= size)
+        return json_fail(name, k, key, "longer than the %zu characters it can have", size - 1);
+    snprintf(dst, size, "%s", v->valuestring);
+    return AA_OK;
+}
+
+static int json_real(const char *name, size_t k, const cJSON *o, const char *key, double lo,
+                     double hi, int optional, double *dst)
+{
+    int st = AA_OK;
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    if (optional && (!v || cJSON_IsNull(v)))
+        return AA_OK;
+    v = json_member(name, k, o, key, cJSON_Number, &st);
+    if (st)
+        return st;
+    if (!(v->valuedouble >= lo && v->valuedouble <= hi))
+        return json_fail(name, k, key, "%g is out of range (%g to %g)", v->valuedouble, lo, hi);
+    *dst = v->valuedouble;
+    return AA_OK;
+}
+
+static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
+{
+    int st = AA_OK;
+    char size[32] = "";
+    memset(row, 0, sizeof *row);
+    row->tm.popping = NAN;
+    row->case_index = -1;
+    row->m.rmse = row->m.max_err = row->seconds = NAN;
+    if (!cJSON_IsObject(o))
+        return json_fail(name, k, "results", "a row is not an object");
+    if ((st = json_text(name, k, o, "pattern", row->pattern, sizeof row->pattern, 0)) ||
+        (st = json_text(name, k, o, "size", size, sizeof size, 0)) ||
+        (st = json_text(name, k, o, "filter", row->filter, sizeof row->filter, 0)) ||
+        (st = json_text(name, k, o, "method", row->method, sizeof row->method, 0)) ||
+        (st = json_text(name, k, o, "canonical", row->canonical, sizeof row->canonical, 1)) ||
+        (st = json_text(name, k, o, "inputs", row->inputs, sizeof row->inputs, 1)) ||
+        (st = json_text(name, k, o, "note", row->note, sizeof row->note, 0)))
+        return st;
+    aa_spec spec;
+    aa_filter filter;
+    const char *bad = aa_pattern_parse(row->pattern, &spec)  ? "pattern"
+                      : aa_filter_parse(row->filter, &filter) ? "filter"
+                      : aa_size_parse(size, &row->w, &row->h) ? "size"
+                                                              : NULL;
+    if (bad) {
+        char why[1024];
+        snprintf(why, sizeof why, "%s", aa_last_error());
+        return json_fail(name, k, bad, "%s", why);
+    }
+    const cJSON *ok = json_member(name, k, o, "ok", cJSON_True | cJSON_False, &st);
+    if (st)
+        return st;
+    row->ok = cJSON_IsTrue(ok);
+    if (!row->ok && !*row->note)
+        return json_fail(name, k, "note",
+                         "a row with ok=false (refused or failed) must give its reason");
+    /* the seed: a whole number that a double holds exactly */
+    double seed = 0, threads = 1, reps = 1, seeds = 1;
+    if ((st = json_real(name, k, o, "seed", 0, 9007199254740992.0, 0, &seed)))
+        return st;
+    if (seed != floor(seed))
+        return json_fail(name, k, "seed", "not a whole number");
+    row->seed = (uint64_t)seed;
+    if ((st = json_real(name, k, o, "time", -1e9, 1e9, 0, &row->t)) ||
+        (st = json_real(name, k, o, "threads", 1, AA_MAX_THREADS, 1, &threads)) ||
+        (st = json_real(name, k, o, "reps", 1, 1000, 1, &reps)))
+        return st;
+    row->threads = (int)threads, row->reps = (int)reps;
+    const cJSON *motion = json_member(name, k, o, "motion", cJSON_Array, &st);
+    if (st)
+        return st;
+    if (cJSON_GetArraySize(motion) != 2 || !cJSON_IsNumber(cJSON_GetArrayItem(motion, 0)) ||
+        !cJSON_IsNumber(cJSON_GetArrayItem(motion, 1)))
+        return json_fail(name, k, "motion", "not two numbers");
+    row->vx = cJSON_GetArrayItem(motion, 0)->valuedouble;
+    row->vy = cJSON_GetArrayItem(motion, 1)->valuedouble;
+    if (!row->ok)
+        return AA_OK;
+    if ((st = json_real(name, k, o, "rmse", 0, 1, 0, &row->m.rmse)) ||
+        (st = json_real(name, k, o, "max_err", 0, 1, 0, &row->m.max_err)) ||
+        (st = json_real(name, k, o, "mae", 0, 1, 1, &row->m.mae)) ||
+        (st = json_real(name, k, o, "render_seconds", 0, DBL_MAX, 1, &row->seconds)) ||
+        (st = json_real(name, k, o, "spp", 0, DBL_MAX, 1, &row->spp)) ||
+        (st = json_real(name, k, o, "seeds", 1, 1e9, 1, &seeds)))
+        return st;
+    row->seeds = (int)seeds;
+    const cJSON *noisy = cJSON_GetObjectItemCaseSensitive(o, "noisy");
+    const cJSON *noise = cJSON_GetObjectItemCaseSensitive(o, "noise");
+    if (noisy && !cJSON_IsBool(noisy))
+        return json_fail(name, k, "noisy", "not true or false");
+    if (cJSON_IsTrue(noisy)) {
+        row->timing.noisy = cJSON_IsString(noise) ? aa_noisy_parse(noise->valuestring) : 0;
+        row->timing.noisy |= NOISY_MARKED;
+    }
+    const cJSON *timing = cJSON_GetObjectItemCaseSensitive(o, "timing");
+    if (timing) {
+        if (!cJSON_IsObject(timing))
+            return json_fail(name, k, "timing", "not an object");
+        const char *keys[2] = {"times", "cpu_times"};
+        for (int w = 0; w < 2; w++) {
+            const cJSON *a = cJSON_GetObjectItemCaseSensitive(timing, keys[w]), *x;
+            if (!a && w)
+                continue;
+            if (!cJSON_IsArray(a) || cJSON_GetArraySize(a) > AA_TIMING_MAX_REPS)
+                return json_fail(name, k, keys[w], "not an array of at most %d times",
+                                 AA_TIMING_MAX_REPS);
+            int n = 0;
+            cJSON_ArrayForEach(x, a)
+            {
+                if (!cJSON_IsNumber(x) || !(x->valuedouble >= 0))
+                    return json_fail(name, k, keys[w], "time %d is not a number of seconds",
+                                     n + 1);
+                (w ? row->timing.cpu : row->timing.wall)[n++] = x->valuedouble;
+            }
+            if (!w)
+                row->timing.n = n;
+        }
+    }
+    return AA_OK;
+}
+
+static int parse_json(const char *name, const char *data, size_t len, aa_row **rows_out,
+                      size_t *n_out)
+{
+    cJSON *doc = cJSON_ParseWithLength(data, len);
+    if (!doc)
+        return aa_fail(AA_EINVAL, "%s: not JSON (malformed near byte %zu)", aa_echo(name),
+                       cJSON_GetErrorPtr() && cJSON_GetErrorPtr() >= data
+                           ? (size_t)(cJSON_GetErrorPtr() - data)
+                           : (size_t)0);
+    const cJSON *res = cJSON_GetObjectItemCaseSensitive(doc, "results");
+    int st = AA_OK;
+    aa_row *rows = NULL;
+    size_t n = 0;
+    if (!cJSON_IsObject(doc) || !cJSON_IsArray(res)) {
+        st = aa_fail(AA_EINVAL,
+                     "%s: not a results file: a results.json is an object whose \"results\" is "
+                     "an array of rows",
+                     aa_echo(name));
+    } else {
+        size_t count = (size_t)cJSON_GetArraySize(res);
+        rows = malloc((count ? count : 1) * sizeof *rows);
+        if (!rows)
+            st = aa_fail(AA_ENOMEM, "out of memory reading %s", aa_echo(name));
+        const cJSON *o;
+        cJSON_ArrayForEach(o, res)
+        {
+            if (st || (st = json_row(name, n, o, &rows[n])))
+                break;
+            settle_timing(&rows[n]);
+            n++;
+        }
+    }
+    cJSON_Delete(doc);
+    if (st) {
+        free(rows);
+        rows = NULL;
+        n = 0;
+    }
+    *rows_out = rows;
+    *n_out = n;
+    return st;
+}
+
+int aa_rows_parse_json(const char *name, const char *data, size_t len, aa_row **rows_out,
+                       size_t *n_out)
+{
+    *rows_out = NULL;
+    *n_out = 0;
+    aa__c_numbers numbers;
+    int st = aa__c_numbers_enter(&numbers, name);
+    if (st)
+        return st;
+    st = parse_json(name, data, len, rows_out, n_out);
+    aa__c_numbers_end(&numbers);
+    return st;
+}
+
+int aa_rows_read_json(const char *path, aa_row **rows_out, size_t *n_out)
+{
+    *rows_out = NULL;
+    *n_out = 0;
+    char *data;
+    size_t n;
+    int st = read_whole(path, &data, &n);
+    if (!st)
+        st = aa_rows_parse_json(path, data ? data : "", n, rows_out, n_out);
     free(data);
     return st;
 }

@@ -586,6 +586,9 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                         break;
                     }
                     row_names(row, pattern, view.w, view.h, filter, method, cfg);
+                    if ((st = aa_case_inputs(&cfg->patterns[ip].spec, spec, row->inputs,
+                                             sizeof row->inputs)))
+                        break;
                     row->case_index = (long)(cfg->case_base + first + im);
                     aa_spec_slug(method, ms, sizeof ms);
                     snprintf(stem, sizeof stem, "%s-%dx%d-%s-%s", ps, view.w, view.h, fs, ms);

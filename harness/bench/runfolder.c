@@ -935,6 +935,67 @@ static int prepare(aa_runfolder *rf)
 
 /* The run's manifest (aa_manifest): its command without the words that
  * do not change the results. */
+/* The run's input files (aa_manifest.inputs) as they are now: each
+ * pattern and method of its groups that reads any, once. */
+static void inputs_free(aa_manifest *m)
+{
+    for (size_t k = 0; k < m->ninputs; k++) {
+        free(m->inputs[k].what);
+        free(m->inputs[k].inputs);
+    }
+    free(m->inputs);
+    m->inputs = NULL, m->ninputs = 0;
+}
+
+static int add_input(aa_manifest *m, size_t cap, const char *kind, const char *text,
+                     const aa_spec *spec, const aa_spec *pattern, const aa_spec *method)
+{
+    char what[1200], buf[sizeof ((aa_row *)0)->inputs];
+    if (text)
+        snprintf(what, sizeof what, "%s %s", kind, text);
+    else {
+        int n = snprintf(what, sizeof what, "%s ", kind);
+        if (aa_spec_format(spec, what + n, sizeof what - (size_t)n))
+            snprintf(what + n, sizeof what - (size_t)n, "%s", spec->info->name);
+    }
+    for (size_t k = 0; k < m->ninputs; k++)
+        if (!strcmp(m->inputs[k].what, what))
+            return AA_OK;
+    int st = aa_case_inputs(pattern, method, buf, sizeof buf);
+    if (st || !*buf || m->ninputs == cap)
+        return st;
+    struct aa_manifest_input *in = &m->inputs[m->ninputs];
+    if (!(in->what = strdup(what)) || !(in->inputs = strdup(buf))) {
+        free(in->what);
+        return aa_fail(AA_ENOMEM, "out of memory");
+    }
+    m->ninputs++;
+    return AA_OK;
+}
+
+static int run_inputs(const aa_runfolder *rf, aa_manifest *m)
+{
+    size_t cap = 0;
+    int st = AA_OK;
+    m->inputs = NULL, m->ninputs = 0;
+    for (size_t g = 0; g < rf->ng; g++)
+        cap += rf->cfgs[g].npatterns + rf->cfgs[g].nmethods;
+    if (!(m->inputs = calloc(cap ? cap : 1, sizeof *m->inputs)))
+        return aa_fail(AA_ENOMEM, "out of memory");
+    for (size_t g = 0; g < rf->ng && !st; g++) {
+        const aa_run_config *c = &rf->cfgs[g];
+        for (size_t k = 0; k < c->npatterns && !st; k++)
+            st = add_input(m, cap, "pattern", c->patterns[k].text, &c->patterns[k].spec,
+                           &c->patterns[k].spec, NULL);
+        for (size_t k = 0; k < c->nmethods && !st; k++)
+            st = add_input(m, cap, "method", c->methods[k].text, &c->methods[k].spec, NULL,
+                           &c->methods[k].spec);
+    }
+    if (st)
+        inputs_free(m);
+    return st;
+}
+
 static int write_manifest(aa_runfolder *rf)
 {
     aa_manifest m;
@@ -976,7 +1037,10 @@ static int write_manifest(aa_runfolder *rf)
     st = m.context ? aa_pathf(path, sizeof path, "%s/run.json", rf->dir)
                    : aa_fail(AA_ENOMEM, "out of memory");
     if (!st)
+        st = run_inputs(rf, &m);
+    if (!st)
         st = aa_manifest_write(path, &m);
+    inputs_free(&m);
     free(m.argv);
     free(m.selected);
     free(m.context);
@@ -993,7 +1057,28 @@ static int resume_rows(aa_runfolder *rf)
     size_t n = 0, ng = rf->ng;
     aa_run_config *cfgs = rf->cfgs;
     unsigned char **masks = rf->masks;
-    int st = aa_pathf(path, sizeof path, "%s/results.csv", rf->dir);
+    /* the files the run was started on (its manifest), as they are now */
+    aa_manifest now = {0};
+    int st = run_inputs(rf, &now);
+    if (!st) {
+        for (size_t k = 0; k < rf->manifest.ninputs && !st; k++) {
+            const char *is = "none";
+            for (size_t q = 0; q < now.ninputs; q++)
+                if (!strcmp(now.inputs[q].what, rf->manifest.inputs[k].what))
+                    is = now.inputs[q].inputs;
+            if (strcmp(is, rf->manifest.inputs[k].inputs))
+                st = aa_fail(AA_EINVAL,
+                             "%s/run.json: the files of the %s have changed since the run "
+                             "started (then %s, now %s): resume it with the same files, or "
+                             "start it anew",
+                             aa_echo(rf->dir), aa_echo(rf->manifest.inputs[k].what),
+                             rf->manifest.inputs[k].inputs, is);
+        }
+        inputs_free(&now);
+    }
+    if (st)
+        return st;
+    st = aa_pathf(path, sizeof path, "%s/results.csv", rf->dir);
     if (st || access(path, F_OK) != 0)
         return st; /* stopped before its first case */
     if ((st = aa_rows_read_csv(path, &rows, &n)))
@@ -1007,6 +1092,11 @@ static int resume_rows(aa_runfolder *rf)
             else
                 memset(masks[g], 1, c);
         }
+    /* a pattern read from files: the files its kept rows were made from */
+    for (size_t k = 0; k < n && !st; k++)
+        if (!k || strcmp(rows[k].pattern, rows[k - 1].pattern) ||
+            strcmp(rows[k].inputs, rows[k - 1].inputs))
+            st = aa_inputs_check(path, &rows[k]);
     for (size_t k = 0; k < n && !st; k++) {
         long i = rows[k].case_index;
         size_t g = 0;
@@ -1063,6 +1153,68 @@ static int record_refused(aa_runfolder *rf)
                 m.refused[m.nrefused++] = rf->cfgs[g].case_base + k;
     rf->skipped = m.nrefused;
     if (more)
+        st = aa_manifest_write(path, &m);
+    aa_manifest_free(&m);
+    return st;
+}
+
+/* The folder's files as the run leaves them (results.csv and images/),
+ * each with its checksum, recorded in its manifest when the run ended
+ * (`ended`), so that a merge can tell a shard's files from edited or
+ * damaged ones; a run that stopped records none. */
+static int record_checksums(aa_runfolder *rf, int ended)
+{
+    aa_manifest m;
+    char path[4200], images[4200];
+    int st = aa_pathf(path, sizeof path, "%s/run.json", rf->dir);
+    if (st || (st = aa_manifest_read(path, &m)))
+        return st;
+    for (size_t k = 0; k < m.nsums; k++)
+        free(m.sums[k].name);
+    m.nsums = 0, m.summed = 0;
+    size_t cap = 1;
+    DIR *d = NULL;
+    if (ended) {
+        if (!(st = aa_pathf(images, sizeof images, "%s/images", rf->dir)) &&
+            !(d = opendir(images)) && errno != ENOENT)
+            st = aa_fail(AA_EIO, "cannot read %s: %s", images, strerror(errno));
+        struct dirent *e;
+        while (!st && d && (e = readdir(d)))
+            cap += e->d_name[0] != '.';
+        if (d)
+            rewinddir(d);
+        struct aa_manifest_sum *sums = st ? NULL : realloc(m.sums, cap * sizeof *sums);
+        if (!st && !sums)
+            st = aa_fail(AA_ENOMEM, "out of memory");
+        if (sums)
+            m.sums = sums, m.summed = 1;
+        char file[4200];
+        if (!st && !(st = aa_pathf(file, sizeof file, "%s/results.csv", rf->dir)) &&
+            access(file, F_OK) == 0 && !(st = aa_file_checksum(file, m.sums[0].sum))) {
+            if (!(m.sums[0].name = strdup("results.csv")))
+                st = aa_fail(AA_ENOMEM, "out of memory");
+            else
+                m.nsums = 1;
+        }
+        while (!st && d && (e = readdir(d)) && m.nsums < cap) {
+            if (e->d_name[0] == '.')
+                continue; /* ., .. and temporary files */
+            struct aa_manifest_sum *x = &m.sums[m.nsums];
+            if ((st = aa_pathf(file, sizeof file, "%s/%s", images, e->d_name)) ||
+                (st = aa_file_checksum(file, x->sum)))
+                break;
+            size_t len = strlen(e->d_name) + sizeof "images/";
+            if (!(x->name = malloc(len))) {
+                st = aa_fail(AA_ENOMEM, "out of memory");
+                break;
+            }
+            snprintf(x->name, len, "images/%s", e->d_name);
+            m.nsums++;
+        }
+        if (d)
+            closedir(d);
+    }
+    if (!st)
         st = aa_manifest_write(path, &m);
     aa_manifest_free(&m);
     return st;
@@ -1263,6 +1415,9 @@ int aa_runfolder_run(aa_runfolder *rf)
         if (!st)
             st = sst;
     }
+    int cst = record_checksums(rf, !st);
+    if (!st)
+        st = cst;
     return st;
 }
 
@@ -1328,6 +1483,78 @@ typedef struct merge_shard {
     size_t n;
 } merge_shard;
 
+/* The checksum a shard's manifest records for a file of its folder (NULL:
+ * none). */
+static const char *sum_of(const aa_manifest *m, const char *name)
+{
+    for (size_t k = 0; k < m->nsums; k++)
+        if (!strcmp(m->sums[k].name, name))
+            return m->sums[k].sum;
+    return NULL;
+}
+
+/* A shard's files are those its run left: results.csv and every image
+ * with the checksum its manifest records, no image more or fewer; checked
+ * before anything is written. */
+static int shard_files_check(const merge_shard *sh)
+{
+    const aa_manifest *m = &sh->m;
+    char path[4200], images[4200], sum[64];
+    if (!m->summed)
+        return aa_fail(AA_EINVAL,
+                       "%s/run.json records no checksums of its files: its run has not ended "
+                       "(resume it with aabench run --resume %s)",
+                       aa_echo(sh->dir), aa_echo(sh->dir));
+    int st = aa_pathf(path, sizeof path, "%s/results.csv", sh->dir);
+    if (st)
+        return st;
+    const char *want = sum_of(m, "results.csv");
+    int there = access(path, F_OK) == 0;
+    if (there != (want != NULL))
+        return aa_fail(AA_EINVAL, "%s: %s", aa_echo(path),
+                       there ? "its run wrote none (a file added after it ended)"
+                             : "missing, though its run wrote it");
+    if (there && ((st = aa_file_checksum(path, sum)) || strcmp(sum, want)))
+        return st ? st
+                  : aa_fail(AA_EINVAL,
+                            "%s is not the file its run wrote (%s, the run recorded %s): edited "
+                            "or damaged",
+                            aa_echo(path), sum, want);
+    if ((st = aa_pathf(images, sizeof images, "%s/images", sh->dir)))
+        return st;
+    size_t seen = 0, listed = 0;
+    for (size_t k = 0; k < m->nsums; k++)
+        listed += !strncmp(m->sums[k].name, "images/", 7);
+    DIR *d = opendir(images);
+    if (!d && errno != ENOENT)
+        return aa_fail(AA_EIO, "cannot read %s: %s", images, strerror(errno));
+    struct dirent *e;
+    while (!st && d && (e = readdir(d))) {
+        if (e->d_name[0] == '.')
+            continue;
+        char name[512];
+        snprintf(name, sizeof name, "images/%.500s", e->d_name);
+        want = sum_of(m, name);
+        if ((st = aa_pathf(path, sizeof path, "%s/%s", images, e->d_name)))
+            break;
+        if (!want)
+            st = aa_fail(AA_EINVAL, "%s: its run wrote no such image (a file added after it ended)",
+                         aa_echo(path));
+        else if (!(st = aa_file_checksum(path, sum)) && strcmp(sum, want))
+            st = aa_fail(AA_EINVAL,
+                         "%s is not the image its run wrote (%s, the run recorded %s): edited or "
+                         "damaged",
+                         aa_echo(path), sum, want);
+        seen++;
+    }
+    if (d)
+        closedir(d);
+    if (!st && seen != listed)
+        st = aa_fail(AA_EINVAL, "%s: %zu of the %zu images its run wrote are missing",
+                     aa_echo(images), listed - seen, listed);
+    return st;
+}
+
 /* The arguments of a manifest's command, joined for messages. */
 static void command_text(const aa_manifest *m, char *buf, size_t len)
 {
@@ -1382,6 +1609,16 @@ static int check_shards(merge_shard *s, int ns, place **owner_out)
         if (m->cases != first->cases)
             return aa_fail(AA_EINVAL, "%s is not a shard of the run of %s: %zu cases, not %zu",
                           aa_echo(s[i].dir), s[0].dir, m->cases, first->cases);
+        for (size_t k = 0; k < first->ninputs || k < m->ninputs; k++) {
+            const struct aa_manifest_input *x = k < first->ninputs ? &first->inputs[k] : NULL,
+                                           *y = k < m->ninputs ? &m->inputs[k] : NULL;
+            if (!x || !y || strcmp(x->what, y->what) || strcmp(x->inputs, y->inputs))
+                return aa_fail(AA_EINVAL,
+                               "%s is not a shard of the run of %s: the files of the %s differ "
+                               "(%s; %s): shards of two scenes or methods",
+                               aa_echo(s[i].dir), s[0].dir, (x ? x : y)->what,
+                               x ? x->inputs : "none", y ? y->inputs : "none");
+        }
         for (int j = 0; j < i; j++)
             if (s[j].m.shards == m->shards && s[j].m.shard == m->shard)
                 return aa_fail(AA_EINVAL, "%s and %s are both shard %d/%d: a shard given twice",
@@ -1519,6 +1756,7 @@ static int write_merged_manifest(const char *out, const aa_manifest *first, size
 {
     aa_manifest m = *first;
     aa_context context;
+    m.summed = 0, m.nsums = 0, m.sums = NULL; /* the shards' files, not this folder's */
     char path[4200];
     int st;
     aa_context_collect(&context, 0, NULL, 0);
@@ -1539,10 +1777,95 @@ static int write_merged_manifest(const char *out, const aa_manifest *first, size
     return st;
 }
 
+/* The text a run gives a spec in its rows (run.c): as given, else its
+ * canonical text. */
+static void spec_shown(const char *text, const aa_spec *spec, char *buf, size_t len)
+{
+    if (text)
+        snprintf(buf, len, "%s", text);
+    else if (aa_spec_format(spec, buf, len))
+        snprintf(buf, len, "%s", spec->info->name);
+}
+
+/* A shard's row is the case it claims, case c of the run: the pattern,
+ * size, filter and method of that case (the run's order: group, then
+ * pattern, size, filter, method), its time, motion and seed, and a
+ * canonical name that is the method's (a row may lack it only when it did
+ * not run). */
+static int row_is_case(const aa_runfolder *rf, const merge_shard *sh, const aa_row *r, size_t c)
+{
+    size_t g = 0;
+    while (g < rf->ng && !(c >= rf->cfgs[g].case_base &&
+                           c < rf->cfgs[g].case_base + aa_run_case_count(&rf->cfgs[g])))
+        g++;
+    if (g == rf->ng)
+        return aa_fail(AA_EINVAL, "%s/results.csv: case %zu is not one of the run's",
+                       aa_echo(sh->dir), c);
+    const aa_run_config *cfg = &rf->cfgs[g];
+    size_t k = c - cfg->case_base, nm = cfg->nmethods, nf = cfg->nfilters, nz = cfg->nsizes;
+    const aa_run_spec *m = &cfg->methods[k % nm];
+    const aa_run_filter *f = &cfg->filters[(k / nm) % nf];
+    const aa_run_size *z = &cfg->sizes[(k / (nm * nf)) % nz];
+    const aa_run_spec *p = &cfg->patterns[k / (nm * nf * nz)];
+    char pattern[sizeof r->pattern], filter[sizeof r->filter], method[sizeof r->method];
+    char canonical[sizeof r->canonical], why[640] = "";
+    spec_shown(p->text, &p->spec, pattern, sizeof pattern);
+    spec_shown(f->text, &f->filter.spec, filter, sizeof filter);
+    spec_shown(m->text, &m->spec, method, sizeof method);
+    if (aa_spec_format(&m->spec, canonical, sizeof canonical))
+        canonical[0] = '\0';
+    if (strcmp(r->pattern, pattern) || strcmp(r->filter, filter) || strcmp(r->method, method) ||
+        r->w != z->w || r->h != z->h)
+        snprintf(why, sizeof why, "case %zu of the run is %.120s on %.120s %dx%d %.60s", c,
+                 method, pattern, z->w, z->h, filter);
+    else if ((r->ok || *r->canonical) && strcmp(r->canonical, canonical))
+        snprintf(why, sizeof why, "its canonical name \"%.100s\" is not the method's, \"%.100s\"",
+                 r->canonical, canonical);
+    else if (r->t != cfg->t || r->vx != cfg->vx || r->vy != cfg->vy || r->seed != cfg->seed)
+        snprintf(why, sizeof why,
+                 "its time, motion or seed (%g, %g %g, %llu) is not the run's (%g, %g %g, %llu)",
+                 r->t, r->vx, r->vy, (unsigned long long)r->seed, cfg->t, cfg->vx, cfg->vy,
+                 (unsigned long long)cfg->seed);
+    if (!*why)
+        return AA_OK;
+    return aa_fail(AA_EINVAL, "%s/results.csv: the row of %s on %s %dx%d %s (case %zu) is not its "
+                   "case: %s",
+                   aa_echo(sh->dir), aa_echo(r->method), aa_echo(r->pattern), r->w, r->h,
+                   aa_echo(r->filter), c, why);
+}
+
+/* A shard holds the cases the run's plan gives its shard K/N, no more, no
+ * fewer: its manifest's count and selection are those aa_shard_plan makes
+ * of the run's command. */
+static int shard_is_planned(const aa_runfolder *rf, const char *dir, const aa_manifest *m)
+{
+    unsigned char *masks[MAX_GROUPS] = {0};
+    size_t selected = 0;
+    int st = aa_shard_plan(rf->cfgs, rf->ng, m->shard, m->shards, masks, &selected, NULL);
+    if (st)
+        return aa_fail_context(st, "%s/run.json", aa_echo(dir));
+    int bad = selected != m->nselected;
+    for (size_t k = 0; k < m->nselected && !bad; k++) {
+        size_t c = m->selected[k], g = 0;
+        while (g < rf->ng && !(c >= rf->cfgs[g].case_base &&
+                               c < rf->cfgs[g].case_base + aa_run_case_count(&rf->cfgs[g])))
+            g++;
+        bad = g == rf->ng || !masks[g][c - rf->cfgs[g].case_base];
+    }
+    for (size_t g = 0; g < rf->ng; g++)
+        free(masks[g]);
+    if (bad)
+        return aa_fail(AA_EINVAL, "%s/run.json: its cases (%zu) are not those of shard %d/%d of "
+                       "the run (%zu): an edited manifest",
+                       aa_echo(dir), m->nselected, m->shard, m->shards, selected);
+    return AA_OK;
+}
+
 /* The merged run's plan (the first shard's command), checked against the
- * shards' cases; its rows in the run's order. */
-static int merged_run(aa_runfolder *rf, merge_shard *s, const place *owner, size_t cases,
-                      size_t **refused, size_t *nrefused, const aa_run_options *opt)
+ * shards' cases and each row against its case; its rows in the run's
+ * order. */
+static int merged_run(aa_runfolder *rf, merge_shard *s, int ns, const place *owner,
+                      size_t cases, size_t **refused, size_t *nrefused, const aa_run_options *opt)
 {
     char path[4200];
     int st = aa_pathf(path, sizeof path, "%s/run.json", s[0].dir);
@@ -1557,6 +1880,37 @@ static int merged_run(aa_runfolder *rf, merge_shard *s, const place *owner, size
     rf->plan.shard = rf->plan.shards = 0; /* the whole run */
     if ((st = prepare(rf)))
         return st;
+    if (rf->cases != cases)
+        return aa_fail(AA_EINVAL, "the run's command has %zu cases, its shards' manifests %zu",
+                       rf->cases, cases);
+    for (int i = 0; i < ns; i++)
+        if ((st = shard_is_planned(rf, s[i].dir, i ? &s[i].m : &rf->manifest)))
+            return st;
+    for (size_t k = 0; k < cases; k++)
+        if (owner[k].row != REFUSED &&
+            (st = row_is_case(rf, &s[owner[k].shard], &s[owner[k].shard].rows[owner[k].row], k)))
+            return st;
+    /* the shards were made from the same input files (an SVG, a font, a
+     * plug-in) */
+    for (int i = 0; i < ns; i++)
+        for (size_t k = 0; k < s[i].n; k++) {
+            const aa_row *r = &s[i].rows[k];
+            for (int j = 0; j <= i; j++)
+                for (size_t q = 0; q < (j < i ? s[j].n : k); q++)
+                    if (!strcmp(s[j].rows[q].pattern, r->pattern) &&
+                        !strcmp(s[j].rows[q].method, r->method)) {
+                        if (strcmp(s[j].rows[q].inputs, r->inputs))
+                            return aa_fail(AA_EINVAL,
+                                           "%s and %s were made from different files of %s "
+                                           "on %s (%s; %s): shards of two scenes or methods",
+                                           aa_echo(s[j].dir), aa_echo(s[i].dir),
+                                           aa_echo(r->method), aa_echo(r->pattern),
+                                           *s[j].rows[q].inputs ? s[j].rows[q].inputs : "none",
+                                           *r->inputs ? r->inputs : "none");
+                        goto next_row; /* the first row of its pattern decides */
+                    }
+        next_row:;
+        }
     if (!(rf->all = malloc((cases ? cases : 1) * sizeof *rf->all)) ||
         !(*refused = malloc((cases ? cases : 1) * sizeof **refused)))
         return aa_fail(AA_ENOMEM, "out of memory for %zu results", cases);
@@ -1627,9 +1981,12 @@ int aa_runfolder_merge(const char *const *dirs, size_t ndirs, const aa_run_optio
     }
     place *owner = NULL;
     size_t *refused = NULL, nrefused = 0, cases = 0;
-    if (!st && !(st = check_shards(s, ns, &owner))) {
+    if (!st && !(st = check_shards(s, ns, &owner)))
+        for (int i = 0; i < ns && !st; i++)
+            st = shard_files_check(&s[i]);
+    if (!st) {
         cases = s[0].m.cases;
-        st = merged_run(rf, s, owner, cases, &refused, &nrefused, opt);
+        st = merged_run(rf, s, ns, owner, cases, &refused, &nrefused, opt);
     }
     if (!st)
         st = aa_mkdirs(opt->out);

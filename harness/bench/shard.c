@@ -201,6 +201,43 @@ int aa_manifest_skips(const char *arg, int *takes_value)
     return 0;
 }
 
+/* ---- checksums ---- */
+
+#define FNV_START 0xcbf29ce484222325ull
+static uint64_t fnv1a(const void *data, size_t n, uint64_t h)
+{
+    const unsigned char *b = data;
+    for (size_t k = 0; k < n; k++)
+        h = (h ^ b[k]) * 0x100000001b3ull;
+    return h;
+}
+
+void aa_bytes_checksum(const void *data, size_t n, char sum[64])
+{
+    snprintf(sum, 64, "fnv1a %016llx bytes %zu", (unsigned long long)fnv1a(data, n, FNV_START),
+             n);
+}
+
+int aa_file_checksum(const char *path, char sum[64])
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return aa_fail(AA_EIO, "cannot read %s: %s", aa_echo(path), strerror(errno));
+    unsigned char chunk[65536];
+    uint64_t h = FNV_START;
+    size_t n = 0, k;
+    while ((k = fread(chunk, 1, sizeof chunk, f)) > 0) {
+        h = fnv1a(chunk, k, h);
+        n += k;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad)
+        return aa_fail(AA_EIO, "cannot read %s", aa_echo(path));
+    snprintf(sum, 64, "fnv1a %016llx bytes %zu", (unsigned long long)h, n);
+    return AA_OK;
+}
+
 int aa_manifest_write(const char *path, const aa_manifest *m)
 {
     cJSON *o = cJSON_CreateObject(), *cmd = cJSON_CreateArray(), *sel = cJSON_CreateArray(),
@@ -228,6 +265,18 @@ int aa_manifest_write(const char *path, const aa_manifest *m)
         cJSON_AddItemToObject(o, "refused", ref), ref = NULL;
         cJSON *ctx = m->context ? cJSON_Parse(m->context) : cJSON_CreateNull();
         ok = ctx && cJSON_AddItemToObject(o, "context", ctx);
+    }
+    if (ok && m->ninputs) {
+        cJSON *in = cJSON_AddObjectToObject(o, "inputs");
+        ok = in != NULL;
+        for (size_t k = 0; ok && k < m->ninputs; k++)
+            ok = cJSON_AddStringToObject(in, m->inputs[k].what, m->inputs[k].inputs) != NULL;
+    }
+    if (ok && m->summed) {
+        cJSON *sums = cJSON_AddObjectToObject(o, "checksums");
+        ok = sums != NULL;
+        for (size_t k = 0; ok && k < m->nsums; k++)
+            ok = cJSON_AddStringToObject(sums, m->sums[k].name, m->sums[k].sum) != NULL;
     }
     char *text = ok ? cJSON_Print(o) : NULL;
     cJSON_Delete(o);
@@ -387,8 +436,70 @@ int aa_manifest_read(const char *path, aa_manifest *m)
             m->refused[m->nrefused++] = (size_t)v->valuedouble;
         }
     v = cJSON_GetObjectItemCaseSensitive(o, "context");
-    if (cJSON_IsObject(v) && !(m->context = cJSON_Print(v)))
+    if (cJSON_IsObject(v) && !(m->context = cJSON_Print(v))) {
         st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+        goto done;
+    }
+    /* inputs: absent for a run that reads no files (and in older ones) */
+    v = cJSON_GetObjectItemCaseSensitive(o, "inputs");
+    if (v) {
+        const cJSON *x;
+        if (!cJSON_IsObject(v)) {
+            st = bad(path, "inputs", "is not an object");
+            goto done;
+        }
+        int nin = cJSON_GetArraySize(v);
+        if (!(m->inputs = calloc(nin ? (size_t)nin : 1, sizeof *m->inputs))) {
+            st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+            goto done;
+        }
+        cJSON_ArrayForEach(x, v)
+        {
+            if (!cJSON_IsString(x) || !x->string ||
+                (strncmp(x->string, "pattern ", 8) && strncmp(x->string, "method ", 7))) {
+                st = bad(path, "inputs", "holds something other than a pattern's or a method's "
+                                         "files");
+                goto done;
+            }
+            struct aa_manifest_input *in = &m->inputs[m->ninputs];
+            in->what = strdup(x->string);
+            in->inputs = strdup(x->valuestring);
+            m->ninputs++;
+            if (!in->what || !in->inputs) {
+                st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+                goto done;
+            }
+        }
+    }
+    /* checksums: absent before the run's end */
+    v = cJSON_GetObjectItemCaseSensitive(o, "checksums");
+    if (v) {
+        const cJSON *x;
+        if (!cJSON_IsObject(v)) {
+            st = bad(path, "checksums", "is not an object");
+            goto done;
+        }
+        int nsum = cJSON_GetArraySize(v);
+        if (!(m->sums = calloc(nsum ? (size_t)nsum : 1, sizeof *m->sums))) {
+            st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+            goto done;
+        }
+        m->summed = 1;
+        cJSON_ArrayForEach(x, v)
+        {
+            if (!cJSON_IsString(x) || strlen(x->valuestring) >= sizeof m->sums->sum ||
+                !x->string || !*x->string || strstr(x->string, "..")) {
+                st = bad(path, "checksums", "holds something other than a file's checksum");
+                goto done;
+            }
+            if (!(m->sums[m->nsums].name = strdup(x->string))) {
+                st = aa_fail(AA_ENOMEM, "out of memory reading %s", path);
+                goto done;
+            }
+            snprintf(m->sums[m->nsums].sum, sizeof m->sums->sum, "%s", x->valuestring);
+            m->nsums++;
+        }
+    }
 done:
     cJSON_Delete(o);
     if (st)
@@ -404,5 +515,13 @@ void aa_manifest_free(aa_manifest *m)
     free(m->selected);
     free(m->refused);
     free(m->context);
+    for (size_t k = 0; m->sums && k < m->nsums; k++)
+        free(m->sums[k].name);
+    free(m->sums);
+    for (size_t k = 0; m->inputs && k < m->ninputs; k++) {
+        free(m->inputs[k].what);
+        free(m->inputs[k].inputs);
+    }
+    free(m->inputs);
     memset(m, 0, sizeof *m);
 }

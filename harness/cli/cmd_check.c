@@ -16,7 +16,8 @@
  * own (--no-isolate to turn that off), so that a crash or a hang is a failed
  * case.  The baseline is read strictly (aa_rows_read_csv) and every view is
  * checked before any is run: a bad baseline is refused (exit 2), never
- * half-checked.
+ * half-checked, and so is one made from input files (an SVG, a font) that
+ * have changed since (its `inputs` column, aa_inputs_check).
  */
 #include "cli.h"
 
@@ -25,7 +26,6 @@
 #include <string.h>
 
 #define DEFAULT_TOLERANCE 1e-3
-#define ABS_TOLERANCE 1e-12
 
 static void usage(FILE *out)
 {
@@ -58,11 +58,6 @@ static int same_view(const aa_row *a, const aa_row *b)
            a->h == b->h && a->t == b->t && a->vx == b->vx && a->vy == b->vy && a->seed == b->seed;
 }
 
-static int worse(double now, double base, double tol)
-{
-    return now > base * (1.0 + tol) + ABS_TOLERANCE;
-}
-
 /* The baseline's cases on one view: its methods that exist (parsed), and
  * their rows. */
 typedef struct view {
@@ -72,41 +67,6 @@ typedef struct view {
     aa_run_filter filter;
     aa_run_size wh;
 } view;
-
-/* One baseline row against its rerun: NULL if it passes, else why not
- * (detail filled). */
-static const char *verdict(const aa_row *b, const aa_row *r, double tol, char *detail,
-                           size_t len, int *confirmed)
-{
-    *confirmed = 0;
-    detail[0] = '\0';
-    if (r->failed) {
-        snprintf(detail, len, "%s", r->note);
-        return "now fails";
-    }
-    if (!b->ok && r->ok) {
-        snprintf(detail, len,
-                 "the baseline records it as not run (%s); it now runs (rmse %.9g): remake the "
-                 "baseline to gate it",
-                 b->note, r->m.rmse);
-        return "now runs a case its baseline records as refused";
-    }
-    if (!b->ok) {
-        *confirmed = 1; /* refused then, refused now */
-        return NULL;
-    }
-    if (!r->ok) {
-        snprintf(detail, len, "%s", r->note);
-        return "now refused";
-    }
-    if (worse(r->m.rmse, b->m.rmse, tol) || worse(r->m.max_err, b->m.max_err, tol)) {
-        snprintf(detail, len, "rmse %.9g (baseline %.9g, %+.3f%%), max_err %.9g (baseline %.9g)",
-                 r->m.rmse, b->m.rmse, 100 * (r->m.rmse / b->m.rmse - 1), r->m.max_err,
-                 b->m.max_err);
-        return "error above its baseline";
-    }
-    return NULL;
-}
 
 /* Time changes against the baseline: reported; gated with --fail-slower. */
 typedef struct time_report {
@@ -255,6 +215,11 @@ int cmd_check(int argc, char **argv)
         if ((st = aa_pattern_parse(base[k].pattern, &v->pattern.spec)) ||
             (st = aa_filter_parse(base[k].filter, &v->filter.filter)))
             break;
+        /* a pattern read from files: the files the baseline was made from */
+        for (size_t q = 0; q < v->nm && !st; q++)
+            st = aa_inputs_check(baseline, &base[which[v->at + q]]);
+        if (st)
+            break;
         nv++;
     }
     aa_run_config *cfgs = st ? NULL : calloc(nv ? nv : 1, sizeof *cfgs);
@@ -296,7 +261,7 @@ int cmd_check(int argc, char **argv)
             char detail[1200];
             int ok_refused;
             checked++;
-            const char *why = verdict(b, r, tol, detail, sizeof detail, &ok_refused);
+            const char *why = aa_case_verdict(b, r, tol, detail, sizeof detail, &ok_refused);
             if (!why && !ok_refused && (st = time_change(&times, b, r, verbose)))
                 break;
             if (why) {

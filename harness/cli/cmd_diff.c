@@ -1,15 +1,16 @@
 /*
  * cmd_diff.c: `aabench diff OLD NEW`: two runs compared case by case.
  *
- * OLD and NEW are run folders or results files (results.csv; a
- * results.json is read through the results.csv beside it).  Per case of
- * both: the error change, judged as the regression gate judges it (worse
- * beyond the relative tolerance plus 1e-12 is a regression), and the time
+ * OLD and NEW are run folders or results files (results.csv, or a
+ * results.json read as JSON).  Per case of both: the error change, judged
+ * by the one rule of both gates (aa_case_verdict, as `check` judges it:
+ * worse beyond the relative tolerance plus 1e-12, now refused or failing,
+ * or missing from NEW, is a regression), and the time
  * change, the ratio of the medians with the Mann-Whitney U test's p-value on
  * the two runs' repetition times (significant below 0.05).  The table is
  * sorted by effect: error regressions first, then the largest slow-downs
- * down to the largest speed-ups.  Exit 1 when an error got worse (or a case
- * that ran is now refused) and, with --fail-slower PCT, when a time got
+ * down to the largest speed-ups.  Exit 1 on a regression (a case of OLD
+ * missing from NEW included) and, with --fail-slower PCT, when a time got
  * significantly slower by more than PCT%; 0 otherwise.
  */
 #include "cli.h"
@@ -24,7 +25,8 @@ static void usage(FILE *out)
             "usage: aabench diff OLD NEW [--tolerance REL] [--fail-slower PCT] [-v]\n\n"
             "Compares two runs (run folders or their results.csv / results.json) case by\n"
             "case: the error change (worse beyond REL relative, default 0.001, plus 1e-12, is\n"
-            "a regression) and the time change (ratio of the medians; Mann-Whitney U on the\n"
+            "a regression, as is a case now refused, failing or missing from NEW: the rule\n"
+            "of 'aabench check') and the time change (ratio of the medians; Mann-Whitney U on the\n"
             "repetition times, significant at p < 0.05). Sorted by effect.\n\n"
             "  --tolerance REL     relative tolerance on the errors (0 to 1)\n"
             "  --fail-slower PCT   also exit 1 when a time is significantly slower by more\n"
@@ -36,7 +38,7 @@ static void usage(FILE *out)
 static int cmp_change(const void *a, const void *b)
 {
     const aa_case_change *x = a, *y = b;
-    int rx = x->error_worse || x->refused, ry = y->error_worse || y->refused;
+    int rx = x->regression != NULL, ry = y->regression != NULL;
     if (rx != ry)
         return ry - rx;
     double tx = isfinite(x->time_ratio) ? x->time_ratio : 1.0;
@@ -89,7 +91,7 @@ int cmd_diff(int argc, char **argv)
     }
     aa_case_change *ch = calloc(no ? no : 1, sizeof *ch);
     int *matched = calloc(nn ? nn : 1, sizeof *matched);
-    size_t n = 0, only_old = 0;
+    size_t n = 0, only_old = 0, missing = 0;
     if (!ch || !matched)
         st = aa_fail(AA_ENOMEM, "out of memory");
     for (size_t k = 0; k < no && !st; k++) {
@@ -97,10 +99,16 @@ int cmd_diff(int argc, char **argv)
         while (q < nn && (matched[q] || !aa_case_same(&old[k], &now[q])))
             q++;
         if (q == nn) {
+            /* the gates' rule: a case missing from NEW fails */
+            char detail[64];
+            int confirmed;
+            const char *why = aa_case_verdict(&old[k], NULL, tol, detail, sizeof detail,
+                                              &confirmed);
             only_old++;
-            if (verbose)
-                printf("only in %s: %s on %s %dx%d %s\n", old_path, old[k].method, old[k].pattern,
-                       old[k].w, old[k].h, old[k].filter);
+            missing += why != NULL;
+            if (why)
+                printf("REGRESSION %s on %s %dx%d %s: %s (%s in %s)\n", old[k].method,
+                       old[k].pattern, old[k].w, old[k].h, old[k].filter, why, detail, old_path);
             continue;
         }
         matched[q] = 1;
@@ -136,10 +144,9 @@ int cmd_diff(int argc, char **argv)
             snprintf(ratio, sizeof ratio, "%+.1f%%", 100 * (x->time_ratio - 1));
         if (x->tested)
             snprintf(p, sizeof p, "%.2g", x->p);
-        if (x->refused || x->error_worse) {
+        if (x->regression) {
             worse++;
-            snprintf(verdict, sizeof verdict, "%s", x->refused ? "REGRESSION: now refused"
-                                                                : "REGRESSION: error worse");
+            snprintf(verdict, sizeof verdict, "REGRESSION: %s", x->regression);
         } else if (!x->tested) {
             untested += isfinite(x->time_ratio);
             snprintf(verdict, sizeof verdict, "%s", isfinite(x->time_ratio)
@@ -167,7 +174,8 @@ int cmd_diff(int argc, char **argv)
         printf("%-30.30s %-18.18s %10.3e %9s %16s %16s %8s %8s  %s\n", o->method, view,
                r->ok ? r->m.rmse : o->m.rmse, rc, om, nm, ratio, p, verdict);
     }
-    printf("diff: %zu cases compared (%zu only in OLD, %zu only in NEW): %zu error "
+    worse += missing;
+    printf("diff: %zu cases compared (%zu only in OLD, %zu only in NEW): %zu "
            "regression%s; time: %zu significantly slower, %zu faster (Mann-Whitney U, p < %g), "
            "%zu not tested; %zu noisy\n",
            n, only_old, only_new, worse, worse == 1 ? "" : "s", slow, fast, AA_TIME_ALPHA,

@@ -5,7 +5,11 @@
  * Every folder's manifest (run.json) must name the same command, suite and
  * commit, and together their results must hold every case of the run
  * exactly once; a missing, duplicated or foreign shard is refused (exit 2)
- * naming it, before anything is written.  Then the rows, in the run's
+ * naming it, before anything is written, and so is a shard whose cases are
+ * not those the run's plan gives it or a row that is not its case (its
+ * pattern, size, filter, method, canonical name, time, motion or seed), or
+ * whose results.csv or images are not the files its run wrote: each
+ * checked against the checksum its run.json records when its run ended.  Then the rows, in the run's
  * order, are written as the unsharded run writes them (the library's
  * aa_runfolder_merge and aa_runfolder_finish: results.csv and .json,
  * montage, plots; cmd_run.c's table); each row keeps the host

@@ -352,6 +352,10 @@ const void *const *aa_method_table(void);
  * parameters, and a table that would grow past its limit; on refusal
  * nothing is added. */
 int aa_method_register(const aa_method_type *const *types, const char *origin);
+/* The plug-in file registered types were loaded from (aa_plugin_load
+ * records it), and a type's: NULL for a built-in one. */
+int aa_method_set_file(const aa_method_type *const *types, const char *path);
+const char *aa_method_file(const aa_method_type *type);
 
 /* The built-in method types (algorithms/methods.c), NULL-terminated. */
 extern const aa_method_type *const aa_method_types[];

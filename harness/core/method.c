@@ -22,6 +22,8 @@
  * algorithms/methods.c), then the optional ones and plug-ins'. */
 static const aa_method_type *table[TABLE_MAX + 1];
 static size_t table_n;
+/* the plug-in file each entry of the table was loaded from (NULL: built in) */
+static char *files[TABLE_MAX + 1];
 
 #define NO_METHODS                                                                             \
     "no method types are registered: the built-in ones register themselves when "            \
@@ -61,6 +63,23 @@ int aa_method_register(const aa_method_type *const *types, const char *origin)
         table[table_n++] = types[k];
     table[table_n] = NULL;
     return AA_OK;
+}
+
+int aa_method_set_file(const aa_method_type *const *types, const char *path)
+{
+    for (size_t n = 0; types[n]; n++)
+        for (size_t k = 0; k < table_n; k++)
+            if (table[k] == types[n] && !files[k] && !(files[k] = strdup(path)))
+                return aa_fail(AA_ENOMEM, "out of memory");
+    return AA_OK;
+}
+
+const char *aa_method_file(const aa_method_type *type)
+{
+    for (size_t k = 0; k < table_n; k++)
+        if (table[k] == type)
+            return files[k];
+    return NULL;
 }
 
 int aa_method_check(const aa_spec *spec, const aa_filter *f)

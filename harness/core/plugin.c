@@ -47,5 +47,7 @@ int aa_plugin_load(const char *path)
     int st = aa_method_register(types, path);
     if (st)
         dlclose(lib);
+    else
+        st = aa_method_set_file(types, path);
     return st;
 }
