@@ -629,8 +629,8 @@ static int convert(const external_state *s, const double *p, const char *name, c
 
 /* An adapter that can time its renderer's own drawing (in-process, start-up
  * left out) says so in its last line: "render-seconds: D[.D...]", plain
- * decimal digits (read by hand: whatever the locale).  1 and *seconds if
- * the line is one. */
+ * decimal digits (read by hand: whatever the locale), in (0, 1e6] (others
+ * are refused with a warning).  1 and *seconds if the line is one. */
 static int own_seconds(const char *line, double *seconds)
 {
     static const char key[] = "render-seconds: ";
@@ -681,8 +681,14 @@ static int external_render(void *state, const double *p, const aa_job *job, aa_i
         return aa_fail(AA_EIO, "renderer %s failed (exit status %d): %s", name, status,
                        *tail ? tail : "(it said nothing)");
     double seconds;
-    if (own_seconds(tail, &seconds))
-        aa_method_report_seconds(seconds);
+    if (own_seconds(tail, &seconds)) {
+        if (seconds > 0 && seconds <= 1e6)
+            aa_method_report_seconds(seconds);
+        else
+            aa_warn("renderer %s: \"%s\" is no time (outside (0, 1e6] s): the render is timed "
+                    "by its whole process instead",
+                    name, tail);
+    }
     aa_image im = {0};
     if ((st = aa_image_read(s->png, &im)))
         return aa_fail_context(st, "renderer %s's image", name);
