@@ -561,6 +561,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                 view.t = cfg->t, view.vx = cfg->vx, view.vy = cfg->vy;
                 aa_spec_slug(pattern, ps, sizeof ps);
                 aa_spec_slug(filter, fs, sizeof fs);
+                aa_case_estimate_warn(cfg, &view, scene, first); /* before a case of minutes */
                 if (cfg->progress && cfg->progress(cfg->ctx, n, total, "reference")) {
                     st = aa_fail(AA_EFAIL, "interrupted");
                     break;
