@@ -201,6 +201,11 @@ int cmd_render(int argc, char **argv)
         !(st = aa_job_init(&job, scene, w, h, a.t, a.vx, a.vy, &f, a.seed, threads)) &&
         !(st = aa_image_alloc(&img, w, h, 3))) {
         job.frame_only = a.frame_only;
+        double cost = aa_case_estimate(job.placed, w, h, &method);
+        if (cost > AA_COST_LIMIT)
+            aa_warn("estimated cost %.2g, past the limit %.0g (harness/bench/cost.c): the render "
+                    "may run for minutes",
+                    cost, AA_COST_LIMIT);
         st = aa_method_time(&method, &job, &plan, &img, &counters, timing);
     }
     int at[3];
