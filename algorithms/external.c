@@ -56,8 +56,8 @@
  * --case-timeout, render's; 600 s without one); then what it wrote is read
  * without waiting for a process it left behind holding its output, and its
  * group is killed, so nothing it started outlives it.  An adapter past the
- * limit is killed with its group and the render fails with "timed out
- * after S s"; SIGINT, SIGTERM or SIGHUP while it runs kill its group and
+ * limit is sent SIGTERM with its group, SIGKILL half a second later, and
+ * the render fails with "timed out after S s"; SIGINT, SIGTERM or SIGHUP while it runs kill its group and
  * remove the temporary folder before the program's own handling.
  *
  * Limits: the box filter only; 8-bit values; whatever the renderer does
@@ -241,6 +241,7 @@ static int adapter_find(const char *name, char *path)
  * (aa_external_time_limit: a run for each case, `render` for its renders);
  * without one, each program gets its own DEFAULT_LIMIT seconds. */
 #define DEFAULT_LIMIT 600.0
+#define TERM_GRACE 0.5 /* s between SIGTERM and SIGKILL at the limit */
 static double limit_seconds, limit_at; /* limit_at 0: none set */
 
 void aa_external_time_limit(double seconds)
@@ -411,6 +412,21 @@ static int run_program(char *const argv[], const char *const files[3], int *stat
         int ms = pidfd < 0 ? 1 : left > 3600.0 ? 3600 * 1000 : (int)ceil(left * 1000);
         if (poll(p, 2, ms) > 0 && !eof && (p[0].revents & (POLLIN | POLLHUP | POLLERR)))
             eof = drain(fd[0], keep, &kept);
+    }
+    if (timed_out) {
+        /* asked to end first (an adapter's own clean-up runs), for at most
+         * TERM_GRACE s */
+        kill(-pid, SIGTERM);
+        const double end = aa_now() + TERM_GRACE;
+        for (double left; (left = end - aa_now()) > 0;) {
+            siginfo_t si;
+            si.si_pid = 0;
+            if (waitid(P_PID, (id_t)pid, &si, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+                si.si_pid == pid)
+                break;
+            struct pollfd p = {pidfd, POLLIN, 0};
+            poll(&p, 1, pidfd < 0 ? 1 : (int)ceil(left * 1000));
+        }
     }
     if (!eof)
         drain(fd[0], keep, &kept);

@@ -1008,7 +1008,8 @@ static int folders_left(const char *tmp)
     return n;
 }
 
-static char tmp_dir[160], hang_pid[160], linger_pid[160], linger_mark[160], slow_pid[160];
+static char tmp_dir[160], hang_pid[160], linger_pid[160], linger_mark[160], slow_pid[160],
+    tidy_pid[160];
 
 static void put_hanging_adapters(void)
 {
@@ -1019,6 +1020,7 @@ static void put_hanging_adapters(void)
     snprintf(linger_pid, sizeof linger_pid, "%s/linger.pid", dir);
     snprintf(linger_mark, sizeof linger_mark, "%s/linger.mark", dir);
     snprintf(slow_pid, sizeof slow_pid, "%s/slow.pid", dir);
+    snprintf(tidy_pid, sizeof tidy_pid, "%s/tidy.pid", dir);
     /* never ends, with a child of its own */
     snprintf(path, sizeof path, "%s/hang", dir);
     snprintf(text, sizeof text,
@@ -1041,10 +1043,21 @@ static void put_hanging_adapters(void)
              "cp '%s' \"$4\"\n",
              slow_pid, fake_png);
     write_file(path, text, 0755);
+    /* makes a folder of its own, which it removes when asked to end
+     * (SIGTERM) but not when killed */
+    snprintf(path, sizeof path, "%s/tidy", dir);
+    snprintf(text, sizeof text,
+             "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\n"
+             "t=$(mktemp -d \"$TMPDIR/aabench-external-tidy-XXXXXX\")\n"
+             "trap 'rm -rf \"$t\"' EXIT\ntrap 'exit 143' TERM\necho $$ > '%s'\n"
+             "sleep 100 &\nwait\n",
+             tidy_pid);
+    write_file(path, text, 0755);
 }
 
-/* In the library: an adapter past the limit is killed with its children,
- * its folder removed, the render failed with "timed out after S s"; one
+/* In the library: an adapter past the limit is ended with its children
+ * (asked first: one that cleans up on SIGTERM removes its own folder), the
+ * method's folder removed, the render failed with "timed out after S s"; one
  * that leaves a child holding its output is not waited for (its image is
  * taken as soon as it ends) and the child is ended. */
 static void test_external_time_limit(void **state)
@@ -1057,9 +1070,9 @@ static void test_external_time_limit(void **state)
     setenv("TMPDIR", tmp_dir, 1);
     aa_scene *s = pattern("crow");
     aa_image img;
-    static const char *const slow[] = {"hang", "slow"};
-    const char *const pids[] = {hang_pid, slow_pid};
-    for (int k = 0; k < 2; k++) {
+    static const char *const slow[] = {"hang", "slow", "tidy"};
+    const char *const pids[] = {hang_pid, slow_pid, tidy_pid};
+    for (int k = 0; k < 3; k++) {
         char spec[64];
         snprintf(spec, sizeof spec, "external:renderer=%s", slow[k]);
         unlink(pids[k]);
