@@ -51,6 +51,15 @@
  * AA_METHOD_EXTERNAL, and a run's row says so in its note.  The renderer's
  * own threads are its own: the image does not depend on job->threads.
  *
+ * Processes.  Each adapter runs in a process group of its own, and is
+ * waited for until the time limit (aa_external_time_limit: a run's
+ * --case-timeout, render's; 600 s without one); then what it wrote is read
+ * without waiting for a process it left behind holding its output, and its
+ * group is killed, so nothing it started outlives it.  An adapter past the
+ * limit is sent SIGTERM with its group, SIGKILL half a second later, and
+ * the render fails with "timed out after S s"; SIGINT, SIGTERM or SIGHUP while it runs kill its group and
+ * remove the temporary folder before the program's own handling.
+ *
  * Limits: the box filter only; 8-bit values; whatever the renderer does
  * with coordinates (floats in Skia and resvg, 24.8 fixed point in Cairo
  * under librsvg); a renderer missing is a refusal (exit status 2) naming
@@ -68,11 +77,14 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <math.h>
+#include <poll.h>
+#include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -225,11 +237,112 @@ static int adapter_find(const char *name, char *path)
 
 /* ---- running a program ---- */
 
-/* Run argv (argv[0] a path) with standard input from /dev/null and its
- * standard output and error into a pipe, of which the last TAIL characters'
- * last non-empty line is kept in `tail`.  *status: the exit status, or 128
- * plus the signal that ended it. */
-static int run_program(char *const argv[], int *status, char tail[TAIL + 1])
+/* How long an adapter may run.  A caller sets a limit for what follows
+ * (aa_external_time_limit: a run for each case, `render` for its renders);
+ * without one, each program gets its own DEFAULT_LIMIT seconds. */
+#define DEFAULT_LIMIT 600.0
+#define TERM_GRACE 0.5 /* s between SIGTERM and SIGKILL at the limit */
+static double limit_seconds, limit_at; /* limit_at 0: none set */
+
+void aa_external_time_limit(double seconds)
+{
+    limit_seconds = seconds > 0 ? seconds : 0;
+    limit_at = seconds > 0 ? aa_now() + seconds : 0;
+}
+
+/* The adapter under way, for the signal handlers: its process group (0 if
+ * none), and the files and folder to remove if the process is ended. */
+static volatile sig_atomic_t running_group, interrupted_by;
+static const char *volatile running_files[3];
+static struct sigaction old_actions[3];
+static const int caught[3] = {SIGINT, SIGTERM, SIGHUP};
+
+/* A signal while an adapter runs: its group killed and our files removed
+ * (both async-signal-safe), then whatever the program would have done. */
+static void on_signal(int sig)
+{
+    int e = errno;
+    if (running_group > 0)
+        kill(-(pid_t)running_group, SIGKILL);
+    interrupted_by = sig;
+    for (int k = 0; k < 3; k++)
+        if (caught[k] == sig) {
+            if (running_files[0]) {
+                unlink(running_files[0]);
+                unlink(running_files[1]);
+                rmdir(running_files[2]);
+            }
+            const struct sigaction *old = &old_actions[k];
+            if (old->sa_flags & SA_SIGINFO) {
+                old->sa_sigaction(sig, NULL, NULL);
+            } else if (old->sa_handler == SIG_DFL) {
+                sigaction(sig, old, NULL);
+                raise(sig); /* delivered when this handler returns */
+            } else if (old->sa_handler != SIG_IGN) {
+                old->sa_handler(sig);
+            }
+        }
+    errno = e;
+}
+
+static void catch_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    for (int k = 0; k < 3; k++)
+        sigaddset(&sa.sa_mask, caught[k]);
+    interrupted_by = 0;
+    for (int k = 0; k < 3; k++)
+        sigaction(caught[k], &sa, &old_actions[k]);
+}
+
+static void release_signals(void)
+{
+    for (int k = 0; k < 3; k++) {
+        struct sigaction now;
+        /* a handler that put the old action back already (SIG_DFL) */
+        if (sigaction(caught[k], NULL, &now) == 0 && now.sa_handler == on_signal)
+            sigaction(caught[k], &old_actions[k], NULL);
+    }
+    running_group = 0;
+}
+
+/* Append what fd holds now (without waiting) to keep, of which the last
+ * TAIL characters are kept; 1 at the end of the file. */
+static int drain(int fd, char *keep, size_t *kept)
+{
+    char buf[4096];
+    for (;;) {
+        ssize_t n = read(fd, buf, sizeof buf);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0)
+            return errno != EAGAIN && errno != EWOULDBLOCK;
+        if (n == 0)
+            return 1;
+        for (ssize_t k = 0; k < n; k++) {
+            if (*kept == 2 * TAIL) { /* keep the last TAIL */
+                memmove(keep, keep + TAIL, TAIL);
+                *kept = TAIL;
+            }
+            keep[(*kept)++] = buf[k];
+        }
+    }
+}
+
+/* Run argv (argv[0] a path) in a process group of its own, with standard
+ * input from /dev/null and its standard output and error into a pipe, of
+ * which the last TAIL characters' last non-empty line is kept in `tail`.
+ * It is waited for until the time limit; then what it wrote is read
+ * (without waiting for a process it left behind holding the pipe), and its
+ * group is killed, so that nothing it started outlives it.  `files`: the
+ * two files and the folder to remove if a signal ends the program (NULL:
+ * none).  *status: the exit status, or 128 plus the signal that ended
+ * it. */
+static int run_program(char *const argv[], const char *const files[3], int *status,
+                       char tail[TAIL + 1])
 {
     int fd[2];
     tail[0] = '\0';
@@ -237,44 +350,103 @@ static int run_program(char *const argv[], int *status, char tail[TAIL + 1])
         return aa_fail(AA_EIO, "cannot make a pipe: %s", strerror(errno));
     fcntl(fd[0], F_SETFD, FD_CLOEXEC);
     fcntl(fd[1], F_SETFD, FD_CLOEXEC);
+    fcntl(fd[0], F_SETFL, fcntl(fd[0], F_GETFL) | O_NONBLOCK);
+    const double seconds = limit_at > 0 ? limit_seconds : DEFAULT_LIMIT;
+    const double deadline = limit_at > 0 ? limit_at : aa_now() + DEFAULT_LIMIT;
     posix_spawn_file_actions_t fa;
+    posix_spawnattr_t attr;
     pid_t pid;
     int err = posix_spawn_file_actions_init(&fa);
+    if (!err && (err = posix_spawnattr_init(&attr)))
+        posix_spawn_file_actions_destroy(&fa);
+    if (!err)
+        err = posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    if (!err)
+        err = posix_spawnattr_setpgroup(&attr, 0);
     if (!err)
         err = posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
     if (!err)
         err = posix_spawn_file_actions_adddup2(&fa, fd[1], 1);
     if (!err)
         err = posix_spawn_file_actions_adddup2(&fa, fd[1], 2);
-    if (!err)
-        err = posix_spawn(&pid, argv[0], &fa, NULL, argv, environ);
+    if (!err) {
+        for (int k = 0; k < 3; k++)
+            running_files[k] = files ? files[k] : NULL;
+        catch_signals();
+        err = posix_spawn(&pid, argv[0], &fa, &attr, argv, environ);
+        if (!err)
+            running_group = pid;
+        else
+            release_signals();
+    }
     posix_spawn_file_actions_destroy(&fa);
+    posix_spawnattr_destroy(&attr);
     close(fd[1]);
     if (err) {
         close(fd[0]);
         return aa_fail(AA_EIO, "cannot run %s: %s", argv[0], strerror(err));
     }
-    char buf[4096], keep[2 * TAIL + 1];
+    /* its end, seen without reaping it (so that its group's number is not
+     * reused before the group is killed) */
+    int pidfd = -1;
+#ifdef SYS_pidfd_open
+    pidfd = (int)syscall(SYS_pidfd_open, pid, 0);
+#endif
+    char keep[2 * TAIL + 1];
     size_t kept = 0;
+    int eof = 0, timed_out = 0;
     for (;;) {
-        ssize_t n = read(fd[0], buf, sizeof buf);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0)
+        siginfo_t si;
+        si.si_pid = 0;
+        if (waitid(P_PID, (id_t)pid, &si, WEXITED | WNOHANG | WNOWAIT) == 0 && si.si_pid == pid)
             break;
-        for (ssize_t k = 0; k < n; k++) {
-            if (kept == 2 * TAIL) { /* keep the last TAIL */
-                memmove(keep, keep + TAIL, TAIL);
-                kept = TAIL;
-            }
-            keep[kept++] = buf[k];
+        if (interrupted_by)
+            break;
+        double left = deadline - aa_now();
+        if (left <= 0) {
+            timed_out = 1;
+            break;
+        }
+        struct pollfd p[2] = {{eof ? -1 : fd[0], POLLIN, 0}, {pidfd, POLLIN, 0}};
+        /* without a pidfd, its end is looked for every millisecond */
+        int ms = pidfd < 0 ? 1 : left > 3600.0 ? 3600 * 1000 : (int)ceil(left * 1000);
+        if (poll(p, 2, ms) > 0 && !eof && (p[0].revents & (POLLIN | POLLHUP | POLLERR)))
+            eof = drain(fd[0], keep, &kept);
+    }
+    if (timed_out) {
+        /* asked to end first (an adapter's own clean-up runs), for at most
+         * TERM_GRACE s */
+        kill(-pid, SIGTERM);
+        const double end = aa_now() + TERM_GRACE;
+        for (double left; (left = end - aa_now()) > 0;) {
+            siginfo_t si;
+            si.si_pid = 0;
+            if (waitid(P_PID, (id_t)pid, &si, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+                si.si_pid == pid)
+                break;
+            struct pollfd p = {pidfd, POLLIN, 0};
+            poll(&p, 1, pidfd < 0 ? 1 : (int)ceil(left * 1000));
         }
     }
+    if (!eof)
+        drain(fd[0], keep, &kept);
+    kill(-pid, SIGKILL);
+    int ws = 0;
+    while (waitpid(pid, &ws, 0) < 0 && errno == EINTR)
+        ;
+    int sig = interrupted_by;
+    release_signals();
+    for (int k = 0; k < 3; k++)
+        running_files[k] = NULL;
     close(fd[0]);
-    int ws;
-    while (waitpid(pid, &ws, 0) < 0)
-        if (errno != EINTR)
-            return aa_fail(AA_EIO, "waiting for %s: %s", argv[0], strerror(errno));
+    if (pidfd >= 0)
+        close(pidfd);
+    if (timed_out)
+        return aa_fail(AA_EIO, "%s timed out after %g s (killed, with what it started)", argv[0],
+                       seconds);
+    if (sig)
+        return aa_fail(AA_EIO, "%s interrupted (signal %d): killed, with what it started",
+                       argv[0], sig);
     *status = WIFEXITED(ws) ? WEXITSTATUS(ws) : WIFSIGNALED(ws) ? 128 + WTERMSIG(ws) : 255;
     /* the last non-empty line */
     keep[kept] = '\0';
@@ -296,7 +468,7 @@ static int adapter_check(const char *name, const char *path)
     char tail[TAIL + 1], arg[] = "--check", prog[PATH_MAX];
     snprintf(prog, sizeof prog, "%s", path);
     char *argv[] = {prog, arg, NULL};
-    int status, st = run_program(argv, &status, tail);
+    int status, st = run_program(argv, NULL, &status, tail);
     if (st)
         return st;
     if (status == 0)
@@ -473,8 +645,8 @@ static int convert(const external_state *s, const double *p, const char *name, c
 
 /* An adapter that can time its renderer's own drawing (in-process, start-up
  * left out) says so in its last line: "render-seconds: D[.D...]", plain
- * decimal digits (read by hand: whatever the locale).  1 and *seconds if
- * the line is one. */
+ * decimal digits (read by hand: whatever the locale), in (0, 1e6] (others
+ * are refused with a warning).  1 and *seconds if the line is one. */
 static int own_seconds(const char *line, double *seconds)
 {
     static const char key[] = "render-seconds: ";
@@ -515,8 +687,9 @@ static int external_render(void *state, const double *p, const aa_job *job, aa_i
     char *argv[] = {s->adapter, s->svg, w, h, s->png, NULL};
     int status, st;
     unlink(s->png);
-    if ((st = run_program(argv, &status, tail)))
-        return st;
+    const char *files[3] = {s->svg, s->png, s->dir};
+    if ((st = run_program(argv, files, &status, tail)))
+        return aa_fail_context(st, "renderer %s", name);
     if (status == 2)
         return aa_fail(AA_EINVAL, "renderer %s refused: %s", name,
                        *tail ? tail : "(it said nothing)");
@@ -524,8 +697,14 @@ static int external_render(void *state, const double *p, const aa_job *job, aa_i
         return aa_fail(AA_EIO, "renderer %s failed (exit status %d): %s", name, status,
                        *tail ? tail : "(it said nothing)");
     double seconds;
-    if (own_seconds(tail, &seconds))
-        aa_method_report_seconds(seconds);
+    if (own_seconds(tail, &seconds)) {
+        if (seconds > 0 && seconds <= 1e6)
+            aa_method_report_seconds(seconds);
+        else
+            aa_warn("renderer %s: \"%s\" is no time (outside (0, 1e6] s): the render is timed "
+                    "by its whole process instead",
+                    name, tail);
+    }
     aa_image im = {0};
     if ((st = aa_image_read(s->png, &im)))
         return aa_fail_context(st, "renderer %s's image", name);

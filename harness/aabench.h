@@ -321,6 +321,8 @@ static inline double aa_filter_row_cdf(const aa_filter *f, double v, double u)
  *     };
  * ------------------------------------------------------------------------ */
 
+/* A render's counters.  Counts below 2^63 (a negative count stored here is
+ * not) and at most W x H expensive pixels, else the render fails. */
 typedef struct aa_counters {
     uint64_t samples;          /* point evaluations of the scene */
     uint64_t expensive_pixels; /* pixels that took more than the cheap path */

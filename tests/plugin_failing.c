@@ -1,7 +1,9 @@
 /*
  * plugin_failing.c: methods that fail in the ways plugin_faulty.c does
  * not, for tests/test_run_faults.c: one whose render returns an error, one
- * that aborts (SIGABRT) and one that ends the process (exit status 3).
+ * that aborts (SIGABRT) and one that ends the process (exit status 3); and
+ * ones that break the contract otherwise: a status no aa_status has (42),
+ * a negative count of samples, more expensive pixels than the image has.
  * Built like any plug-in, against aabench.h alone.
  */
 #include "aabench.h"
@@ -38,5 +40,49 @@ static const aa_method_type aborts = {
 static const aa_method_type quits = {
     .info = {"quits", "fault test: render ends the process", no_params}, .render = quits_render};
 
+/* Grey 1/2, with the counters of `bad` (0, 1, 2: see below). */
+static void grey(const aa_job *job, aa_image *out, aa_counters *counters, int bad)
+{
+    for (int k = 0; k < job->w * job->h * 3; k++)
+        out->v[k] = 0.5;
+    counters->samples = bad == 1 ? (uint64_t)-5 : (uint64_t)job->w * job->h;
+    counters->expensive_pixels = bad == 2 ? (uint64_t)job->w * job->h + 1 : 0;
+}
+
+static int odd_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                      aa_counters *counters)
+{
+    (void)state, (void)p;
+    grey(job, out, counters, 0);
+    return 42;
+}
+
+static int negative_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                           aa_counters *counters)
+{
+    (void)state, (void)p;
+    grey(job, out, counters, 1);
+    return AA_OK;
+}
+
+static int over_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                       aa_counters *counters)
+{
+    (void)state, (void)p;
+    grey(job, out, counters, 2);
+    return AA_OK;
+}
+
+static const aa_method_type odd = {
+    .info = {"oddstatus", "fault test: render returns the status 42", no_params},
+    .render = odd_render};
+static const aa_method_type negative = {
+    .info = {"negcount", "fault test: render counts -5 samples", no_params},
+    .render = negative_render};
+static const aa_method_type over = {
+    .info = {"overcount", "fault test: render counts W x H + 1 expensive pixels", no_params},
+    .render = over_render};
+
 const int aa_plugin_abi = AA_PLUGIN_ABI;
-const aa_method_type *const aa_plugin_methods[] = {&fails, &aborts, &quits, NULL};
+const aa_method_type *const aa_plugin_methods[] = {&fails, &aborts,   &quits, &odd,
+                                                   &negative, &over, NULL};

@@ -35,14 +35,17 @@
 #include "bench.h"
 #include "support.h"
 
+#include <dirent.h>
 #include <math.h>
 #include <setjmp.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -589,6 +592,19 @@ static void put_adapters(void)
              "echo 'render-seconds: 1e-3'\n",
              fake_png);
     write_file(path, text, 0755);
+    /* times outside (0, 1e6] s: refused with a warning */
+    snprintf(path, sizeof path, "%s/zerotime", dir);
+    snprintf(text, sizeof text,
+             "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\ncp '%s' \"$4\"\n"
+             "echo 'render-seconds: 0.000'\n",
+             fake_png);
+    write_file(path, text, 0755);
+    snprintf(path, sizeof path, "%s/hugetime", dir);
+    snprintf(text, sizeof text,
+             "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\ncp '%s' \"$4\"\n"
+             "echo 'render-seconds: 1000000.5'\n",
+             fake_png);
+    write_file(path, text, 0755);
     /* not executable: no adapter */
     snprintf(path, sizeof path, "%s/plain", dir);
     write_file(path, "#!/bin/sh\nexit 0\n", 0644);
@@ -897,6 +913,274 @@ static void test_external_run(void **state)
     free(rows);
 }
 
+/* An adapter's time of 0 or past 1e6 s is not taken: a warning names it,
+ * and the row's time is the whole process. */
+static void test_external_bad_seconds(void **state)
+{
+    (void)state;
+    const int codes[4 * 2 * 3] = {0};
+    put_png(4, 2, 3, codes);
+    char out[4200], cache[4200], csv[4300], log[8192];
+    snprintf(out, sizeof out, "%s/badseconds", dir);
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    const char *args[] = {"run", "-p", "crow", "-s", "4x2", "-m", "external:renderer=zerotime",
+                          "-m", "external:renderer=hugetime", "--reps", "1", "--no-images",
+                          "--no-plots", "--cache", cache, "--out", out, "-q", NULL};
+    int code = support_aabench(args, log, sizeof log);
+    if (code != 0)
+        fail_msg("run: exit %d: %s", code, log);
+    if (!strstr(log, "\"render-seconds: 0.000\" is no time (outside (0, 1e6] s)") ||
+        !strstr(log, "\"render-seconds: 1000000.5\" is no time"))
+        fail_msg("no warning naming the times: %s", log);
+    aa_row *rows;
+    size_t n;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    assert_int_equal(n, 2);
+    for (size_t k = 0; k < n; k++) {
+        assert_non_null(strstr(rows[k].note, "its start-up included"));
+        assert_true(rows[k].seconds > 0 && rows[k].seconds < 1e6);
+    }
+    free(rows);
+}
+
+/* ------------------------------------------------------------------------
+ * adapters that hang, leave a child behind, or outlast the time limit
+ * ------------------------------------------------------------------------ */
+
+/* Processes of process group g still running (a zombie has ended: it only
+ * waits for a parent that may never reap it), from /proc. */
+static int group_running(long g)
+{
+    DIR *d = opendir("/proc");
+    assert_non_null(d);
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        char path[300], buf[1024];
+        if (e->d_name[0] < '0' || e->d_name[0] > '9')
+            continue;
+        snprintf(path, sizeof path, "/proc/%s/stat", e->d_name);
+        FILE *f = fopen(path, "r");
+        if (!f)
+            continue;
+        size_t k = fread(buf, 1, sizeof buf - 1, f);
+        fclose(f);
+        buf[k] = '\0';
+        /* pid (comm) state ppid pgrp ...: comm may hold spaces */
+        const char *c = strrchr(buf, ')');
+        char state;
+        long ppid, pgrp;
+        if (g && c && sscanf(c + 1, " %c %ld %ld", &state, &ppid, &pgrp) == 3 && pgrp == g &&
+            state != 'Z' && state != 'X')
+            n++;
+    }
+    closedir(d);
+    return n;
+}
+
+/* group_running(g) once it is 0, or after 10 s: a process sent SIGKILL
+ * ends when it is next scheduled, not when kill() returns. */
+static int group_left(long g)
+{
+    int n = group_running(g);
+    for (int k = 0; k < 1000 && n; k++) {
+        struct timespec ts = {0, 10 * 1000 * 1000};
+        nanosleep(&ts, NULL);
+        n = group_running(g);
+    }
+    return n;
+}
+
+/* The number in the file an adapter wrote ($$: its pid, so its group); 0
+ * if it wrote none (on a loaded machine, killed at its limit before its
+ * shell got that far: there is then no group of its to look for). */
+static long pid_in(const char *path)
+{
+    if (access(path, F_OK)) {
+        print_message("%s: not written (the adapter was killed before)\n", path);
+        return 0;
+    }
+    char *text = slurp(path);
+    long v = strtol(text, NULL, 10);
+    free(text);
+    assert_true(v > 1);
+    return v;
+}
+
+/* The external method's temporary folders left in `tmp`. */
+static int folders_left(const char *tmp)
+{
+    DIR *d = opendir(tmp);
+    assert_non_null(d);
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)))
+        n += !strncmp(e->d_name, "aabench-external-", 17);
+    closedir(d);
+    return n;
+}
+
+static char tmp_dir[160], hang_pid[160], linger_pid[160], linger_mark[160], slow_pid[160],
+    tidy_pid[160];
+
+static void put_hanging_adapters(void)
+{
+    char path[256], text[1024];
+    snprintf(tmp_dir, sizeof tmp_dir, "%s/tmp", dir);
+    assert_int_equal(mkdir(tmp_dir, 0755), 0);
+    snprintf(hang_pid, sizeof hang_pid, "%s/hang.pid", dir);
+    snprintf(linger_pid, sizeof linger_pid, "%s/linger.pid", dir);
+    snprintf(linger_mark, sizeof linger_mark, "%s/linger.mark", dir);
+    snprintf(slow_pid, sizeof slow_pid, "%s/slow.pid", dir);
+    snprintf(tidy_pid, sizeof tidy_pid, "%s/tidy.pid", dir);
+    /* never ends, with a child of its own */
+    snprintf(path, sizeof path, "%s/hang", dir);
+    snprintf(text, sizeof text,
+             "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\nsleep 1000 &\necho $$ > '%s.new'\n"
+             "mv '%s.new' '%s'\nwhile :; do :; done\n",
+             hang_pid, hang_pid, hang_pid);
+    write_file(path, text, 0755);
+    /* draws, and leaves a child behind holding its output, which would
+     * mark a file ten seconds later */
+    snprintf(path, sizeof path, "%s/linger", dir);
+    snprintf(text, sizeof text,
+             "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\necho $$ > '%s'\n"
+             "(sleep 10; touch '%s') &\ncp '%s' \"$4\"\n",
+             linger_pid, linger_mark, fake_png);
+    write_file(path, text, 0755);
+    /* would draw, after sleeping past any limit the tests set */
+    snprintf(path, sizeof path, "%s/slow", dir);
+    snprintf(text, sizeof text,
+             "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\necho $$ > '%s'\nsleep 100\n"
+             "cp '%s' \"$4\"\n",
+             slow_pid, fake_png);
+    write_file(path, text, 0755);
+    /* makes a folder of its own, which it removes when asked to end
+     * (SIGTERM) but not when killed */
+    snprintf(path, sizeof path, "%s/tidy", dir);
+    snprintf(text, sizeof text,
+             "#!/bin/sh\n[ \"$1\" = --check ] && exit 0\n"
+             "t=$(mktemp -d \"$TMPDIR/aabench-external-tidy-XXXXXX\")\n"
+             "trap 'rm -rf \"$t\"' EXIT\ntrap 'exit 143' TERM\necho $$ > '%s'\n"
+             "sleep 100 &\nwait\n",
+             tidy_pid);
+    write_file(path, text, 0755);
+}
+
+/* In the library: an adapter past the limit is ended with its children
+ * (asked first: one that cleans up on SIGTERM removes its own folder), the
+ * method's folder removed, the render failed with "timed out after S s"; one
+ * that leaves a child holding its output is not waited for (its image is
+ * taken as soon as it ends) and the child is ended. */
+static void test_external_time_limit(void **state)
+{
+    (void)state;
+    put_hanging_adapters();
+    const int codes[8] = {0, 64, 128, 255, 255, 191, 1, 0};
+    put_png(4, 2, 1, codes);
+    char *saved = getenv("TMPDIR") ? strdup(getenv("TMPDIR")) : NULL;
+    setenv("TMPDIR", tmp_dir, 1);
+    aa_scene *s = pattern("crow");
+    aa_image img;
+    static const char *const slow[] = {"hang", "slow", "tidy"};
+    const char *const pids[] = {hang_pid, slow_pid, tidy_pid};
+    for (int k = 0; k < 3; k++) {
+        char spec[64];
+        snprintf(spec, sizeof spec, "external:renderer=%s", slow[k]);
+        unlink(pids[k]);
+        aa_external_time_limit(2);
+        int st = render(spec, s, 4, 2, 0, 0, 0, &img);
+        if (st != AA_EIO || !strstr(aa_last_error(), "timed out after 2 s"))
+            fail_msg("%s past its limit: status %d, \"%s\"", slow[k], st, aa_last_error());
+        long g = pid_in(pids[k]);
+        if (group_left(g))
+            fail_msg("%s: %d processes of its group still running", slow[k], group_left(g));
+        assert_int_equal(folders_left(tmp_dir), 0);
+    }
+    aa_external_time_limit(0);
+    if (render("external:renderer=linger", s, 4, 2, 0, 0, 0, &img))
+        fail_msg("linger: %s", aa_last_error());
+    /* its child was ended before it could mark the file, not waited for */
+    assert_int_equal(access(linger_mark, F_OK), -1);
+    assert_int_equal(group_left(pid_in(linger_pid)), 0);
+    assert_true(img.v[3 * 2] == 128 / 255.0);
+    aa_image_free(&img);
+    assert_int_equal(folders_left(tmp_dir), 0);
+    aa_scene_free(s);
+    if (saved)
+        setenv("TMPDIR", saved, 1);
+    else
+        unsetenv("TMPDIR");
+    free(saved);
+}
+
+/* The command: render --case-timeout S (exit 3, the message), run
+ * --case-timeout S (a failed row), an interrupted render (exit 130): each
+ * leaves no process of the adapter's group running and no folder. */
+static void test_external_time_limit_cli(void **state)
+{
+    (void)state;
+    const int codes[8] = {0};
+    put_png(4, 2, 1, codes);
+    char out[300], run[300], csv[320], log[8192], env[200];
+    snprintf(out, sizeof out, "%s/limit.png", dir);
+    snprintf(run, sizeof run, "%s/limit-run", dir);
+    snprintf(csv, sizeof csv, "%s/results.csv", run);
+    snprintf(env, sizeof env, "TMPDIR=%s", tmp_dir);
+    char *saved = getenv("TMPDIR") ? strdup(getenv("TMPDIR")) : NULL;
+    setenv("TMPDIR", tmp_dir, 1);
+    unlink(hang_pid);
+    const char *render_args[] = {"render", "-p", "crow", "-s", "4x2", "-m",
+                                 "external:renderer=hang", "--reps", "1", "--case-timeout",
+                                 "2", "-o", out, NULL};
+    int code = support_aabench(render_args, log, sizeof log);
+    if (code != 3 || !strstr(log, "timed out after 2 s"))
+        fail_msg("render past its --case-timeout: exit %d: %s", code, log);
+    assert_int_equal(group_left(pid_in(hang_pid)), 0);
+    assert_int_equal(folders_left(tmp_dir), 0);
+    assert_int_equal(access(out, F_OK), -1);
+    unlink(slow_pid);
+    const char *run_args[] = {"run", "-p", "crow", "-s", "4x2", "-m", "external:renderer=slow",
+                              "--reps", "1", "--case-timeout", "2", "--no-images",
+                              "--no-plots", "--out", run, "-q", NULL};
+    code = support_aabench(run_args, log, sizeof log);
+    if (code != 1)
+        fail_msg("run past its --case-timeout: exit %d, not 1: %s", code, log);
+    char *text = slurp(csv);
+    if (!strstr(text, "timed out after 2 s"))
+        fail_msg("the row does not say it timed out: %s", text);
+    free(text);
+    assert_int_equal(group_left(pid_in(slow_pid)), 0);
+    assert_int_equal(folders_left(tmp_dir), 0);
+    /* interrupted while the adapter runs */
+    unlink(hang_pid);
+    const char *long_args[] = {"render", "-p", "crow", "-s", "4x2", "-m",
+                               "external:renderer=hang", "--reps", "1", "-o", out, NULL};
+    char err[300];
+    snprintf(err, sizeof err, "%s/limit.err", dir);
+    pid_t pid = support_aabench_spawn(long_args, env, NULL, err);
+    for (int k = 0; k < 60000 && access(hang_pid, F_OK); k++) {
+        struct timespec ts = {0, 1000 * 1000};
+        nanosleep(&ts, NULL);
+    }
+    assert_int_equal(access(hang_pid, F_OK), 0);
+    assert_int_equal(kill(pid, SIGINT), 0);
+    code = support_wait(pid);
+    assert_int_equal(code, 130);
+    long g = pid_in(hang_pid);
+    if (group_left(g)) {
+        kill(-(pid_t)g, SIGKILL);
+        fail_msg("an interrupted render left its adapter running");
+    }
+    assert_int_equal(folders_left(tmp_dir), 0);
+    if (saved)
+        setenv("TMPDIR", saved, 1);
+    else
+        unsetenv("TMPDIR");
+    free(saved);
+}
+
 /* ------------------------------------------------------------------------
  * the shipped adapters, when their renderer is installed
  * ------------------------------------------------------------------------ */
@@ -1049,9 +1333,28 @@ static void test_chromium(void **state)
         setenv("AABENCH_CHROMIUM", script, 1);
     }
     shipped("chromium");
+    /* heights where headless Chromium paints only the top H - 87 rows of
+     * its window (88 to about 150): a uniform colour in every pixel */
+    static const int sizes[][2] = {{128, 128}, {100, 100}, {90, 88}};
+    const double xy[] = {-3, -3, 200, -3, 200, 200, -3, 200};
+    const aa_rgb colour = {{0, 1, 1}};
+    aa_scene *u = polygon_scene((aa_rgb){{0, 0, 0}}, colour, AA_FILL_NONZERO, 1, 1, xy, 4);
+    for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++) {
+        aa_image img;
+        int w = sizes[k][0], h = sizes[k][1];
+        if (render("external:renderer=chromium", u, w, h, 0, 0, 0, &img))
+            fail_msg("chromium at %dx%d: %s", w, h, aa_last_error());
+        for (int p = 0; p < w * h; p++)
+            for (int c = 0; c < 3; c++)
+                if (img.v[3 * p + c] != colour.c[c])
+                    fail_msg("chromium at %dx%d: pixel (%d, %d) channel %d is %.17g, not %g", w,
+                             h, p % w, p / w, c, img.v[3 * p + c], colour.c[c]);
+        aa_image_free(&img);
+    }
+    aa_scene_free(u);
     int kept = support_count_entries(memo, NULL);
     if (kept > 0) /* the script and a PNG, a size and a page a start */
-        print_message("chromium: the browser started %d times for 6 renders\n", (kept - 1) / 3);
+        print_message("chromium: the browser started %d times for 9 renders\n", (kept - 1) / 3);
     /* as it was (a failure above leaves it set: no later test runs it) */
     if (saved)
         setenv("AABENCH_CHROMIUM", saved, 1);
@@ -1244,6 +1547,9 @@ int main(void)
         cmocka_unit_test(test_external_colours),
         cmocka_unit_test(test_external_failures),
         cmocka_unit_test(test_external_run),
+        cmocka_unit_test(test_external_bad_seconds),
+        cmocka_unit_test(test_external_time_limit),
+        cmocka_unit_test(test_external_time_limit_cli),
         cmocka_unit_test(test_rsvg),
         cmocka_unit_test(test_resvg),
         cmocka_unit_test(test_chromium),

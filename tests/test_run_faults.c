@@ -15,6 +15,8 @@
  *  - A method's NaN, 1.5 or error is a failed case (ok=0, the first bad
  *    pixel and the count in the note), the run goes on and exits 1 naming
  *    the failed cases; in process and isolated alike.
+ *  - A method's unknown status is named with its number, and impossible
+ *    counters (negative, more expensive pixels than pixels) fail the case.
  *  - aa_run and the CSV reader give NULL and 0 when they refuse early, and
  *    `check` with a baseline row that cannot run (65536x65536) says so
  *    instead of freeing an uninitialised pointer.
@@ -605,6 +607,40 @@ static void test_bad_values_fail_case(void **state)
     }
 }
 
+/* ---- the method contract ---- */
+
+/* A render that returns a status no aa_status has is named with its number;
+ * one that counts a negative number of samples (-5 stored in the unsigned
+ * counter) or more expensive pixels than the image has (65 of 8x8) fails
+ * its case: tests/plugin_failing.c's methods, in process and isolated. */
+static void test_contract_faults(void **state)
+{
+    (void)state;
+    char out[600], csv[700];
+    static const char *const modes[] = {"--no-isolate", "--isolate"};
+    for (int m = 0; m < 2; m++) {
+        snprintf(out, sizeof out, "%s/contract%d", dir, m);
+        snprintf(csv, sizeof csv, "%s/results.csv", out);
+        int code = LIB("run", modes[m], "-p", "crow", "-s", "8x8", "-m", "oddstatus", "-m",
+                       "negcount", "-m", "overcount", "-m", "point", "-f", "box", "--reps", "1",
+                       "--no-plots", "--no-images", "-q", "--out", out);
+        if (code != 1)
+            fail_msg("%s: exit %d, not 1\n%s%s", modes[m], code, out_text, err_text);
+        table *t = read_table(csv);
+        assert_non_null(t);
+        assert_int_equal(t->nrows, 4);
+        static const char *const note[] = {
+            "failed: method oddstatus: its render returned the unknown status 42 (the statuses "
+            "are 0 to 5, aabench.h)",
+            "failed: method negcount counted a negative number of samples (-5)",
+            "failed: method overcount counted 65 expensive pixels in an image of 64", ""};
+        for (int r = 0; r < 4; r++) {
+            assert_string_equal(cell(t, r, "ok"), r == 3 ? "1" : "0");
+            assert_string_equal(cell(t, r, "note"), note[r]);
+        }
+    }
+}
+
 /* ---- outputs initialised when refused early ---- */
 
 /* A run of crow at w x h under the box filter with the n (at most 3)
@@ -964,6 +1000,7 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_baseline_refusal_recorded),
              cmocka_unit_test(test_rows_kept_when_killed),
              cmocka_unit_test(test_bad_values_fail_case),
+             cmocka_unit_test(test_contract_faults),
              cmocka_unit_test(test_outputs_initialised),
              cmocka_unit_test(test_isolated_faults),
              cmocka_unit_test(test_exit_after_images),

@@ -268,6 +268,18 @@ typedef struct aa_run_config {
 #define AA_ISOLATE_ALL 2
 #define AA_CASE_TIMEOUT 600.0
 
+/* A case's estimated cost before it runs (cost.c): W H S + the sum over
+ * pixel rows of the square of the number of the placed scene's pieces
+ * crossing the row, S the method's samples per pixel (spp, n^2 for n, else
+ * 1).  A run warns (aa_warn) before a view whose case is past
+ * AA_COST_LIMIT, naming the case. */
+#define AA_COST_LIMIT 1e11
+double aa_case_estimate(const aa_scene *placed, int w, int h, const aa_spec *method);
+/* The warning for each chosen method of the view (cases first .. first +
+ * nmethods - 1 of cfg's cross product) past the limit. */
+void aa_case_estimate_warn(const aa_run_config *cfg, const aa_view *view, const aa_scene *scene,
+                       size_t first);
+
 /* Check the config before any work: lists present, sizes within memory,
  * counts in range, each spec of the kind its list holds. */
 int aa_run_check(const aa_run_config *cfg);

@@ -8,8 +8,9 @@
  * run writes images, the image) through a pipe, then ends with _exit.  The
  * parent waits up to the time-out; a child killed by a signal, one that
  * ends without a whole report, or one that runs out of time (killed with
- * SIGKILL) gives a failed row: "crashed (signal 11)", "timed out after
- * 600 s".  Everything the child needs (the reference, the scene, the job)
+ * SIGKILL, a second after the time-out, which the external method's
+ * renderers end at: aa_external_time_limit) gives a failed row: "crashed
+ * (signal 11)", "timed out after 600 s".  Everything the child needs (the reference, the scene, the job)
  * is in its copy of the parent's memory; it writes no file, so a child
  * killed halfway leaves nothing behind, and the parent writes the images.
  *
@@ -212,7 +213,10 @@ int aa__case_isolated(aa__case_fn fn, void *arg, aa_row *row, aa_image *img, dou
     }
     close(fds[1]);
     report *r = malloc(sizeof *r);
-    const double deadline = aa_now() + timeout;
+    /* a second's grace: a case whose method ends the programs it started at
+     * the time-out (the external method) reports that itself, its folder
+     * removed; a child still running then is killed */
+    const double deadline = aa_now() + timeout + 1.0;
     int whole = r ? receive(fds[0], r, img, deadline) : 0;
     close(fds[0]);
     /* the child ends now, or by the deadline (one that closed its end of

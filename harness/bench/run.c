@@ -454,12 +454,14 @@ typedef struct case_args {
     const aa_image *ref, *refs;
     aa_image *img, *frames;
     int nt;
+    double timeout;
 } case_args;
 
 /* One case: the method on the view, and for animated runs its frames. */
 static int run_case(void *arg, aa_row *row)
 {
     const case_args *a = arg;
+    aa_external_time_limit(a->timeout); /* renderers it runs end with the case */
     int st = run_method(a->cfg, a->view, a->job, a->spec, a->ref, a->img, row);
     if (!st && a->nt && row->ok)
         st = run_temporal(a->cfg, a->view, a->scene, a->spec, a->refs, a->frames, row);
@@ -559,6 +561,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                 view.t = cfg->t, view.vx = cfg->vx, view.vy = cfg->vy;
                 aa_spec_slug(pattern, ps, sizeof ps);
                 aa_spec_slug(filter, fs, sizeof fs);
+                aa_case_estimate_warn(cfg, &view, scene, first); /* before a case of minutes */
                 if (cfg->progress && cfg->progress(cfg->ctx, n, total, "reference")) {
                     st = aa_fail(AA_EFAIL, "interrupted");
                     break;
@@ -592,7 +595,8 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     row->case_index = (long)(cfg->case_base + first + im);
                     aa_spec_slug(method, ms, sizeof ms);
                     snprintf(stem, sizeof stem, "%s-%dx%d-%s-%s", ps, view.w, view.h, fs, ms);
-                    case_args ca = {cfg, &view, scene, &job, spec, &ref, refs, &img, frames, nt};
+                    case_args ca = {cfg,  &view, scene,  &job, spec,  &ref,
+                                   refs, &img,  frames, nt,   timeout};
                     if (!isolated(cfg, spec)) {
                         st = run_case(&ca, row);
                     } else {

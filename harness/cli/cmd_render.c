@@ -31,6 +31,9 @@ static void usage(FILE *out)
             "      --stats FILE     write timing (every render's time and their statistics),\n"
             "                       counters and the context (commit, machine) as JSON\n"
             "      --plugin LIB.so  load methods from a shared library (repeatable)\n"
+            "      --case-timeout S an external renderer still running S seconds after the\n"
+            "                       start is killed, with what it started, and the render\n"
+            "                       fails (default 600)\n"
             "      --encode E       .png encoding: srgb (default), linear or gamma:G\n"
             "  -q, --quiet          print nothing on success\n\n"
             "Outputs are written only when all of them can be. Exit status: 0 done, 1 the\n"
@@ -44,14 +47,14 @@ typedef struct render_args {
     uint64_t seed;
     int threads, reps, frame_only, quiet;
     aa_encode enc;
-    double target_ci, budget;
+    double target_ci, budget, timeout;
 } render_args;
 
 /* Returns -1 to go on, or the exit code to stop with. */
 static int parse(int argc, char **argv, render_args *a)
 {
     enum { O_SEED = 256, O_TIME, O_MOTION, O_FRAME, O_REPS, O_STATS, O_PLUGIN,
-           O_ENCODE, O_TARGET, O_BUDGET };
+           O_ENCODE, O_TARGET, O_BUDGET, O_TIMEOUT };
     static const struct option opts[] = {
         {"pattern", required_argument, 0, 'p'}, {"method", required_argument, 0, 'm'},
         {"size", required_argument, 0, 's'},    {"filter", required_argument, 0, 'f'},
@@ -63,6 +66,7 @@ static int parse(int argc, char **argv, render_args *a)
         {"quiet", no_argument, 0, 'q'},         {"help", no_argument, 0, 'h'},
         {"target-ci", required_argument, 0, O_TARGET},
         {"budget", required_argument, 0, O_BUDGET},
+        {"case-timeout", required_argument, 0, O_TIMEOUT},
         {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
@@ -84,6 +88,7 @@ static int parse(int argc, char **argv, render_args *a)
         case O_ENCODE: st = aa_encode_parse(optarg, &a->enc); break;
         case O_TARGET: st = aa_parse_target(optarg, &a->target_ci); break;
         case O_BUDGET: st = aa_parse_budget(optarg, &a->budget); break;
+        case O_TIMEOUT: st = aa_parse_real("--case-timeout", optarg, 0.001, 1e9, &a->timeout); break;
         case CLI_O_THREADS: st = cli_out_threads(c, optarg, NULL, &a->threads); break;
         case 'h': usage(stdout); return 0;
         default: return cli_bad_option("render", c, argv);
@@ -176,6 +181,7 @@ int cmd_render(int argc, char **argv)
     aa_spec pattern, method;
     aa_filter f;
     int w, h;
+    aa_external_time_limit(a.timeout); /* from here: the adapter's --check too */
     if ((st = aa_pattern_parse(a.pattern, &pattern)) || (st = aa_size_parse(a.size, &w, &h)) ||
         (st = aa_size_check(w, h, 3, 2)) ||
         (st = a.filter ? aa_filter_parse(a.filter, &f) : (aa_filter_default(&f), AA_OK)) ||
@@ -195,6 +201,11 @@ int cmd_render(int argc, char **argv)
         !(st = aa_job_init(&job, scene, w, h, a.t, a.vx, a.vy, &f, a.seed, threads)) &&
         !(st = aa_image_alloc(&img, w, h, 3))) {
         job.frame_only = a.frame_only;
+        double cost = aa_case_estimate(job.placed, w, h, &method);
+        if (cost > AA_COST_LIMIT)
+            aa_warn("estimated cost %.2g, past the limit %.0g (harness/bench/cost.c): the render "
+                    "may run for minutes",
+                    cost, AA_COST_LIMIT);
         st = aa_method_time(&method, &job, &plan, &img, &counters, timing);
     }
     int at[3];

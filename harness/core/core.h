@@ -370,6 +370,13 @@ int aa_method_add_builtin(void);
  * call does nothing.  Defined in algorithms/methods.c. */
 extern const aa_method_type *const aa_method_types_optional[];
 int aa_method_add_optional(void);
+/* The time limit of the programs the external method runs: each one it
+ * starts from now on is killed, with what it started, when `seconds` have
+ * passed since this call, and its render fails with "timed out after S s".
+ * A run calls it as each case starts, `render` once.  Without a call, or
+ * after one with 0, each program gets 600 s of its own.  Defined in
+ * algorithms/external.c. */
+void aa_external_time_limit(double seconds);
 /* Parse a method spec and check it against the filter. */
 int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out);
 /* Check a parsed method spec against a filter (the method's own check). */

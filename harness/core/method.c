@@ -82,12 +82,24 @@ const char *aa_method_file(const aa_method_type *type)
     return NULL;
 }
 
+/* A method's failure with the context of what failed; a status outside the
+ * contract's (aa_status) is named with its number and becomes AA_EFAIL. */
+static int method_failed(const aa_method_type *type, const char *what, int st)
+{
+    if (st < AA_OK || st > AA_EFAIL)
+        return aa_fail(AA_EFAIL,
+                       "method %s: its %s returned the unknown status %d (the statuses are 0 "
+                       "to %d, aabench.h)",
+                       type->info.name, what, st, AA_EFAIL);
+    return aa_fail_context(st, "method %s", type->info.name);
+}
+
 int aa_method_check(const aa_spec *spec, const aa_filter *f)
 {
     const aa_method_type *type = (const aa_method_type *)spec->info;
     int st;
     if (type->check && (st = type->check(spec->v, f)))
-        return aa_fail_context(st, "method %s", type->info.name);
+        return method_failed(type, "check", st);
     return AA_OK;
 }
 
@@ -126,7 +138,7 @@ int aa_method_init(aa_method *m, const aa_spec *spec, const aa_job *job)
         return aa_fail(AA_ENOMEM, "out of memory for method %s", type->info.name);
     if (type->init && (st = type->init(m->state, spec->v, job))) {
         aa_method_free(m);
-        return aa_fail_context(st, "method %s", type->info.name);
+        return method_failed(type, "init", st);
     }
     return AA_OK;
 }
@@ -140,7 +152,22 @@ int aa_method_render(aa_method *m, const aa_job *job, aa_image *out, aa_counters
         return st;
     memset(counters, 0, sizeof *counters);
     st = m->type->render(m->state, m->spec.v, job, out, counters);
-    return st ? aa_fail_context(st, "method %s", m->type->info.name) : AA_OK;
+    if (st)
+        return method_failed(m->type, "render", st);
+    /* counts no render can give: negative ones written into the unsigned
+     * counters, more expensive pixels than the image has */
+    const uint64_t pixels = (uint64_t)job->w * (uint64_t)job->h, neg = UINT64_C(1) << 63;
+    if (counters->samples >= neg || counters->expensive_pixels >= neg)
+        return aa_fail(AA_EFAIL, "method %s counted a negative number of %s (%lld)",
+                       m->type->info.name,
+                       counters->samples >= neg ? "samples" : "expensive pixels",
+                       (long long)(counters->samples >= neg ? counters->samples
+                                                            : counters->expensive_pixels));
+    if (counters->expensive_pixels > pixels)
+        return aa_fail(AA_EFAIL, "method %s counted %llu expensive pixels in an image of %llu",
+                       m->type->info.name, (unsigned long long)counters->expensive_pixels,
+                       (unsigned long long)pixels);
+    return AA_OK;
 }
 
 void aa_method_free(aa_method *m)
