@@ -46,7 +46,7 @@ void cli_getopt_reset(void);
 int cli_check_output(const char *path);
 /* A non-image output with a required extension (".json", ".csv"). */
 int cli_check_output_file(const char *path, const char *ext);
-/* SIGINT and SIGTERM: remove the temporary files still on disk and exit
+/* SIGINT, SIGTERM and SIGHUP: remove the temporary files still on disk and exit
  * with status 130 (installed first thing by cli_main; `run` installs its
  * own, which lets the case under way finish). */
 void cli_signals_install(void);

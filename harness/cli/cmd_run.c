@@ -4,8 +4,8 @@
  *
  * Reads the options (aa_plan_parse: the plan and the run's options), makes
  * or opens (--resume) the run folder, runs it and finishes it; what is its
- * own: the usage, the signal handlers (the first SIGINT or SIGTERM stops
- * after the case under way, through the library's interrupt hook; a second
+ * own: the usage, the signal handlers (the first SIGINT, SIGTERM or SIGHUP
+ * stops after the case under way, through the library's interrupt hook; a second
  * quits at once), the progress bar on standard error (a terminal, CI
  * unset), the check that a resumed command is the run's, and the table at
  * the end sorted by error, with the failed cases named.  `merge` prints its
@@ -26,8 +26,10 @@ static volatile sig_atomic_t interrupted;
 static void on_signal(int sig)
 {
     static const char msg[] = "\naabench run: stopping after this case (again to quit now)\n";
-    if (interrupted)
+    if (interrupted) {
+        aa_temp_cleanup(); /* the files being written: none is left half-written */
         _exit(130);
+    }
     interrupted = sig;
     ssize_t w = write(2, msg, sizeof msg - 1);
     (void)w;
@@ -384,6 +386,14 @@ int cmd_run(int argc, char **argv)
     cli_command_line(&opt.argc, &opt.argv);
     opt.progress = progress, opt.interrupted = stop_asked, opt.note = cli_run_note;
     opt.hook = &b;
+    /* SIGINT, SIGTERM and SIGHUP (the terminal closed) alike: the run
+     * stops after the case under way, its rows kept */
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
     aa_runfolder *rf;
     st = opt.resume ? aa_runfolder_open(opt.resume, &opt, &rf)
                     : aa_runfolder_create(&plan, &opt, &rf);
@@ -393,11 +403,6 @@ int cmd_run(int argc, char **argv)
     if (kept)
         fprintf(stderr, "aabench run: resuming %s: %zu case%s kept, measuring the rest\n",
                 aa_runfolder_dir(rf), kept, kept == 1 ? "" : "s");
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
     st = aa_runfolder_run(rf);
     if (!st)
         st = aa_runfolder_finish(rf);
