@@ -8,7 +8,8 @@
  *    through the library's run folder in this process), fails
  *    (exit 1, naming the offender) when a baseline error is made smaller
  *    than what the method achieves, and when a baseline method is missing;
- *  - a run's references go to the cache given, and only there;
+ *  - a run's references go to the cache given, and only there; one that
+ *    cannot be written is said once;
  *  - an `aabench run` interrupted by a signal (SIGINT, SIGHUP) leaves no
  *    half-written or temporary file: everything in its folder is complete
  *    and parses; resuming a killed run removes the temporary files it left;
@@ -293,6 +294,23 @@ static void test_cache_options(void **state)
         fail_msg("run --cache %s wrote the default cache %s", mine, def);
 }
 
+/* A reference cache that cannot be written is said once, whatever the
+ * number of references, and the run goes on without it. */
+static void test_cache_unusable(void **state)
+{
+    (void)state;
+    char out[300];
+    snprintf(out, sizeof out, "%s/no-cache-run", dir);
+    /* /proc takes no new folder, even from root */
+    const char *run[] = {"run", "-p", "crow", "-f", "box", "-s", "24x24", "-s", "32x32",
+                         "-s", "40x40", "-m", "point", "--reps", "1", "--no-plots", "-q",
+                         "--cache", "/proc/aabench-none/cache", "--out", out, NULL};
+    assert_int_equal(run_cmd(run, 0), 0);
+    const char *first = strstr(output, "warning: the reference cache /proc/aabench-none/cache");
+    if (!first || strstr(first + 1, "warning"))
+        fail_msg("expected one warning about the cache, got: %s", output);
+}
+
 /* Interrupt a run part-way: exit 130, and nothing half-written. */
 static void test_interrupted(void **state)
 {
@@ -484,6 +502,7 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_reports_parse_back),
              cmocka_unit_test(test_gate),
              cmocka_unit_test(test_cache_options),
+             cmocka_unit_test(test_cache_unusable),
              cmocka_unit_test(test_interrupted),
              cmocka_unit_test(test_ignored_options),
              cmocka_unit_test(test_resume_removes_stale),

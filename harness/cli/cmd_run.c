@@ -399,6 +399,7 @@ int cmd_run(int argc, char **argv)
                     : aa_runfolder_create(&plan, &opt, &rf);
     if (st)
         return cli_fail("run", st);
+    cli_cache_usable("run", opt.cache);
     size_t kept = aa_runfolder_kept(rf);
     if (kept)
         fprintf(stderr, "aabench run: resuming %s: %zu case%s kept, measuring the rest\n",
