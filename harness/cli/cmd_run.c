@@ -361,6 +361,31 @@ static int resume_check(const char *dir, int argc, char **argv)
     return code;
 }
 
+/* Without -f, the filters the run takes are its suite's: say which, once,
+ * each named once. */
+static void say_filters(const aa_plan *plan)
+{
+    const aa_suite *suite = aa_suite_find(plan->suite ? plan->suite : "default");
+    if (plan->nfilters || !suite)
+        return;
+    const char *seen[64];
+    size_t n = 0;
+    for (const aa_suite_group *g = suite->groups; g->patterns; g++)
+        for (const char *const *f = g->filters; f && *f && n < 64; f++) {
+            size_t k = 0;
+            while (k < n && strcmp(seen[k], *f))
+                k++;
+            if (k == n)
+                seen[n++] = *f;
+        }
+    if (!n)
+        return;
+    fprintf(stderr, "aabench run: no -f given: the filters of suite %s,", suite->name);
+    for (size_t k = 0; k < n; k++)
+        fprintf(stderr, "%s %s", k ? "," : "", seen[k]);
+    fprintf(stderr, " (-f FILTER to choose)\n");
+}
+
 int cmd_run(int argc, char **argv)
 {
     aa_plan plan;
@@ -382,6 +407,8 @@ int cmd_run(int argc, char **argv)
     }
     if (opt.resume && (code = resume_check(opt.resume, argc, argv)) >= 0)
         return code;
+    if (!opt.resume)
+        say_filters(&plan);
     bar b = {cli_progress_wanted(), aa_now()};
     cli_command_line(&opt.argc, &opt.argv);
     opt.progress = progress, opt.interrupted = stop_asked, opt.note = cli_run_note;
