@@ -13,7 +13,8 @@
  *  - an `aabench run` interrupted by a signal (SIGINT, SIGHUP) leaves no
  *    half-written or temporary file: everything in its folder is complete
  *    and parses; resuming a killed run removes the temporary files it left;
- *  - options that would be ignored are refused.
+ *  - options that would be ignored are refused;
+ *  - the results table tells apart names that differ late.
  */
 #include "bench.h"
 #include "support.h"
@@ -311,6 +312,35 @@ static void test_cache_unusable(void **state)
         fail_msg("expected one warning about the cache, got: %s", output);
 }
 
+/* The results table never cuts two names to the same text: the pattern
+ * column (10 wide) widens to tell crow:kmax=0.3 from crow:kmax=0.35. */
+static void test_table_names(void **state)
+{
+    (void)state;
+    char out[300];
+    snprintf(out, sizeof out, "%s/names-run", dir);
+    const char *run[] = {"run", "-p", "crow:kmax=0.3", "-p", "crow:kmax=0.35", "-f", "box",
+                         "-s", "8x8", "-m", "point", "--reps", "1", "--no-plots",
+                         "--no-images", "--no-cache", "--out", out, NULL};
+    assert_int_equal(run_cmd(run, 0), 0);
+    int seen[2] = {0, 0};
+    for (const char *line = output; *line;) {
+        size_t len = strcspn(line, "\n");
+        const char *next = line[len] ? line + len + 1 : line + len;
+        if (strncmp(line, "point ", 6)) { /* the table's rows start with the method */
+            line = next;
+            continue;
+        }
+        char row[1024];
+        snprintf(row, sizeof row, "%.*s", (int)len, line);
+        seen[0] |= strstr(row, " crow:kmax=0.3 ") != NULL;
+        seen[1] |= strstr(row, " crow:kmax=0.35 ") != NULL;
+        line = next;
+    }
+    if (!seen[0] || !seen[1])
+        fail_msg("the table does not tell the patterns apart:\n%s", output);
+}
+
 /* Interrupt a run part-way: exit 130, and nothing half-written. */
 static void test_interrupted(void **state)
 {
@@ -503,6 +533,7 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_gate),
              cmocka_unit_test(test_cache_options),
              cmocka_unit_test(test_cache_unusable),
+             cmocka_unit_test(test_table_names),
              cmocka_unit_test(test_interrupted),
              cmocka_unit_test(test_ignored_options),
              cmocka_unit_test(test_resume_removes_stale),
