@@ -17,6 +17,7 @@
  */
 #include "bench.h"
 #include "c_numbers_internal.h"
+#include "oiio.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -643,6 +644,13 @@ static int write_montage(const char *dir, const aa_run_config *first, const aa_r
     if (!(st = aa_pathf(path, sizeof path, "%s/montage.png", dir)))
         st = aa_montage_stream(path, &src, montage_columns(nt, rows[0].w), enc);
     aa_image_free(&s.im);
+    /* everything was checked before the work: what fails now (the memory
+     * it needs, under a limit) is the machine's, not the input's */
+    if (st == AA_EINVAL) {
+        char why[1024];
+        snprintf(why, sizeof why, "%s", aa_last_error());
+        st = aa_fail(AA_ENOMEM, "%s", why);
+    }
     return st;
 }
 
@@ -920,6 +928,16 @@ static int check_before_work(const aa_run_options *a, const aa_run_config *cfgs,
                                     aa_echo(cfgs[g].patterns[p].text),
                                     aa_echo(cfgs[g].filters[f].text), len, NAME_MAX);
                         }
+        /* The image module, loaded now (the images and the montage need it):
+         * the address space it takes is in use for the checks below, as it
+         * will be when the montage is drawn.  And with it, each view's
+         * images (reference, image, error map, the metrics' planes). */
+        if (!aa__oiio("montage.png"))
+            return AA_EIO;
+        for (size_t g = 0; g < ng; g++)
+            for (size_t s = 0; s < cfgs[g].nsizes; s++)
+                if ((st = aa_size_check(cfgs[g].sizes[s].w, cfgs[g].sizes[s].h, 3, 4)))
+                    return st;
         /* the montage: the first view's reference and up to 63 methods */
         size_t most = cfgs[0].nmethods < 63 ? cfgs[0].nmethods + 1 : 64;
         for (size_t nt = 1; nt <= most; nt++)
