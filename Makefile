@@ -401,7 +401,7 @@ check-slurm: $(BUILD)/aabench $(BUILD)/tests/test_shard
 	@sh scripts/check-slurm.sh $(BUILD)
 
 # The contract tests every built-in method passes (tests/test_methods.c),
-# run on the methods of a plug-in: make check-plugin PLUGIN=path/to/lib.so
+# run on the methods of a plug-in, named first: make check-plugin PLUGIN=path/to/lib.so
 .PHONY: check-plugin
 check-plugin: $(BUILD)/tests/test_methods
 	@test -n "$(PLUGIN)" || { echo "usage: make check-plugin PLUGIN=lib.so" >&2; exit 2; }

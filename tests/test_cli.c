@@ -324,6 +324,23 @@ static void test_render(void **state)
             fail_msg("stats lack %s: %s", keys[k], json);
     unlink(stats);
     unlink(out_txt);
+    /* with no timing option: rendered once, and said so; no timing, no
+     * warning about it */
+    const char *once[] = {"render", "-p", "crow", "-m", "point", "-s", "16x8", "-o", out_txt,
+                          NULL};
+    assert_int_equal(run(once), 0);
+    if (!strstr(output, "rendered once in ") || strstr(output, "median") ||
+        strstr(output, "warning"))
+        fail_msg("render without a timing option: %s", output);
+    assert_int_equal(access(out_txt, F_OK), 0);
+    unlink(out_txt);
+    /* --budget asks for the timing: a median over renders */
+    const char *budget[] = {"render", "-p", "crow", "-m", "point", "-s", "16x8", "-o", out_txt,
+                            "--budget", "0.05", NULL};
+    assert_int_equal(run(budget), 0);
+    if (!strstr(output, "median ") || !strstr(output, " renders"))
+        fail_msg("render --budget: %s", output);
+    unlink(out_txt);
     /* a plug-in's method through the command line */
     const char *plugin = getenv("AABENCH_PLUGIN");
     const char *list[] = {"list", "methods", "--plugin", plugin, NULL};
@@ -334,6 +351,28 @@ static void test_render(void **state)
     assert_int_equal(run(prender), 0);
     assert_int_equal(access(out_txt, F_OK), 0);
     unlink(out_txt);
+}
+
+/* `run` without -f says which filters it takes: its suite's (the quick
+ * suite's are box, tent:r=1 and gauss, harness/bench/README.md) */
+static void test_run_filters(void **state)
+{
+    (void)state;
+    char out[300];
+    snprintf(out, sizeof out, "%s/run-filters", dir);
+    const char *args[] = {"run", "--suite", "quick", "-p", "crow", "-s", "8x8", "-m", "point",
+                          "--reps", "1", "-q", "--no-plots", "--no-images", "--no-cache",
+                          "--out", out, NULL};
+    assert_int_equal(run(args), 0);
+    if (!strstr(output, "no -f given: the filters of suite quick, box, tent:r=1, gauss ("))
+        fail_msg("run without -f: %s", output);
+    /* given, nothing to say */
+    const char *given[] = {"run", "--suite", "quick", "-p", "crow", "-s", "8x8", "-m", "point",
+                           "-f", "box", "--reps", "1", "-q", "--no-plots", "--no-images",
+                           "--no-cache", "--out", out, NULL};
+    assert_int_equal(run(given), 0);
+    assert_null(strstr(output, "no -f given"));
+    assert_int_equal(support_rmtree(out), 0);
 }
 
 static void test_cache(void **state)
@@ -379,4 +418,5 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_refusals_everywhere),
              cmocka_unit_test(test_success),
              cmocka_unit_test(test_render),
+             cmocka_unit_test(test_run_filters),
              cmocka_unit_test(test_cache))

@@ -492,7 +492,7 @@ static void test_export_cli(void **state)
     for (size_t q = 0; q < doc.path[0].n; q++)
         quads += doc.path[0].cmd[q].op == 'Q';
     assert_int_equal(quads, 3); /* the last arc is straight */
-    assert_non_null(strstr(text, "crow:curves=4,kmax=0.10000000000000001,"));
+    assert_non_null(strstr(text, "crow:curves=4,kmax=0.1,"));
     svg_free(&doc);
     free(text);
     unlink(out);

@@ -448,6 +448,34 @@ static void test_rmse_order(void **state)
     aa_scene_free(s);
 }
 
+/* The names of the methods the plug-in added, joined by ", ". */
+static size_t plugin_names(char *buf, size_t len)
+{
+    const void *const *table = aa_method_table();
+    size_t n = 0, used = 0;
+    buf[0] = '\0';
+    for (size_t k = builtin_count; table[k]; k++, n++) {
+        int m = snprintf(buf + used, len - used, "%s%s", n ? ", " : "",
+                         ((const aa_info *)table[k])->name);
+        if (m < 0 || (size_t)m >= len - used)
+            break;
+        used += (size_t)m;
+    }
+    return n;
+}
+
+/* make check-plugin names the methods it tests: the example plug-in's
+ * only method is centre4 (tests/plugin_example.c). */
+static void test_plugin_names(void **state)
+{
+    (void)state;
+    if (getenv("AABENCH_PLUGIN_ONLY"))
+        skip(); /* another plug-in than the example */
+    char names[4096];
+    assert_int_equal(plugin_names(names, sizeof names), 1);
+    assert_string_equal(names, "centre4");
+}
+
 static int setup(void **state)
 {
     (void)state;
@@ -459,6 +487,15 @@ static int setup(void **state)
         fprintf(stderr, "test_methods: cannot load the example plug-in $AABENCH_PLUGIN: %s\n",
                 plugin ? aa_last_error() : "not set");
         return -1;
+    }
+    if (getenv("AABENCH_PLUGIN_ONLY")) {
+        char names[4096];
+        if (!plugin_names(names, sizeof names)) {
+            fprintf(stderr, "check-plugin: %s adds no method\n", plugin);
+            return -1;
+        }
+        printf("check-plugin: testing the methods of %s: %s\n", plugin, names);
+        fflush(stdout);
     }
     return 0;
 }
@@ -472,4 +509,5 @@ SUPPORT_MAIN(setup, NULL,
              cmocka_unit_test(test_bad_parameters),
              cmocka_unit_test(test_point_is_centres),
              cmocka_unit_test(test_plugin),
+             cmocka_unit_test(test_plugin_names),
              cmocka_unit_test(test_rmse_order))

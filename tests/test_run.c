@@ -8,9 +8,13 @@
  *    through the library's run folder in this process), fails
  *    (exit 1, naming the offender) when a baseline error is made smaller
  *    than what the method achieves, and when a baseline method is missing;
- *  - a run's references go to the cache given, and only there;
- *  - an `aabench run` interrupted by a signal leaves no half-written or
- *    temporary file: everything in its folder is complete and parses.
+ *  - a run's references go to the cache given, and only there; one that
+ *    cannot be written is said once;
+ *  - an `aabench run` interrupted by a signal (SIGINT, SIGHUP) leaves no
+ *    half-written or temporary file: everything in its folder is complete
+ *    and parses; resuming a killed run removes the temporary files it left;
+ *  - options that would be ignored are refused;
+ *  - the results table tells apart names that differ late.
  */
 #include "bench.h"
 #include "support.h"
@@ -291,6 +295,52 @@ static void test_cache_options(void **state)
         fail_msg("run --cache %s wrote the default cache %s", mine, def);
 }
 
+/* A reference cache that cannot be written is said once, whatever the
+ * number of references, and the run goes on without it. */
+static void test_cache_unusable(void **state)
+{
+    (void)state;
+    char out[300];
+    snprintf(out, sizeof out, "%s/no-cache-run", dir);
+    /* /proc takes no new folder, even from root */
+    const char *run[] = {"run", "-p", "crow", "-f", "box", "-s", "24x24", "-s", "32x32",
+                         "-s", "40x40", "-m", "point", "--reps", "1", "--no-plots", "-q",
+                         "--cache", "/proc/aabench-none/cache", "--out", out, NULL};
+    assert_int_equal(run_cmd(run, 0), 0);
+    const char *first = strstr(output, "warning: the reference cache /proc/aabench-none/cache");
+    if (!first || strstr(first + 1, "warning"))
+        fail_msg("expected one warning about the cache, got: %s", output);
+}
+
+/* The results table never cuts two names to the same text: the pattern
+ * column (10 wide) widens to tell crow:kmax=0.3 from crow:kmax=0.35. */
+static void test_table_names(void **state)
+{
+    (void)state;
+    char out[300];
+    snprintf(out, sizeof out, "%s/names-run", dir);
+    const char *run[] = {"run", "-p", "crow:kmax=0.3", "-p", "crow:kmax=0.35", "-f", "box",
+                         "-s", "8x8", "-m", "point", "--reps", "1", "--no-plots",
+                         "--no-images", "--no-cache", "--out", out, NULL};
+    assert_int_equal(run_cmd(run, 0), 0);
+    int seen[2] = {0, 0};
+    for (const char *line = output; *line;) {
+        size_t len = strcspn(line, "\n");
+        const char *next = line[len] ? line + len + 1 : line + len;
+        if (strncmp(line, "point ", 6)) { /* the table's rows start with the method */
+            line = next;
+            continue;
+        }
+        char row[1024];
+        snprintf(row, sizeof row, "%.*s", (int)len, line);
+        seen[0] |= strstr(row, " crow:kmax=0.3 ") != NULL;
+        seen[1] |= strstr(row, " crow:kmax=0.35 ") != NULL;
+        line = next;
+    }
+    if (!seen[0] || !seen[1])
+        fail_msg("the table does not tell the patterns apart:\n%s", output);
+}
+
 /* Interrupt a run part-way: exit 130, and nothing half-written. */
 static void test_interrupted(void **state)
 {
@@ -340,6 +390,135 @@ static void test_interrupted(void **state)
     print_message("interrupted run: exit %d, %d image files, all complete\n", code, files);
 }
 
+/* Options that would be ignored are refused, naming what is ignored:
+ * --out and --shard beside --resume, a value given twice in a list (sizes
+ * compared as sizes). */
+static void test_ignored_options(void **state)
+{
+    (void)state;
+    const struct {
+        const char *args[12], *needle;
+    } bad[] = {
+        {{"run", "--resume", "a", "--out", "b"}, "--out b would be ignored"},
+        {{"run", "--resume", "a", "--shard", "1/2"}, "--shard would be ignored"},
+        {{"run", "-s", "24x24", "-s", "32x32", "-s", "24x24"}, "-s 24x24 is given twice"},
+        {{"run", "-s", "024x24", "-s", "24x024"}, "-s 024x24 is given twice (-s 24x024)"},
+        {{"run", "-m", "point", "-m", "point"}, "-m point is given twice"},
+        {{"run", "-p", "crow", "-p", "crow"}, "-p crow is given twice"},
+        {{"run", "-f", "box", "-f", "tent", "-f", "box"}, "-f box is given twice"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        int argc = 0, asked;
+        while (bad[k].args[argc])
+            argc++;
+        aa_plan plan;
+        aa_run_options opt;
+        aa_plan_default(&plan);
+        aa_run_options_default(&opt);
+        int st = aa_plan_parse(argc, (char *const *)bad[k].args, &plan, &opt, &asked);
+        if (st != AA_EINVAL || !strstr(aa_last_error(), bad[k].needle))
+            fail_msg("case %zu: status %d, \"%s\", expected \"%s\"", k, st, aa_last_error(),
+                     bad[k].needle);
+    }
+    /* what is not ignored is taken: --out naming the resumed folder itself,
+     * different values */
+    const char *good[] = {"run", "--resume", "a", "--out", "a", "-s", "24x24", "-s", "24x32",
+                          "-m", "point", "-m", "point:", NULL};
+    aa_plan plan;
+    aa_run_options opt;
+    int asked;
+    aa_plan_default(&plan);
+    aa_run_options_default(&opt);
+    assert_int_equal(aa_plan_parse(13, (char *const *)good, &plan, &opt, &asked), AA_OK);
+    /* and the command says so, with exit status 2 */
+    const char *cmd[] = {"run", "-s", "24x24", "-s", "24x24", "-p", "crow", NULL};
+    assert_int_equal(run_cmd(cmd, 0), 2);
+    if (!strstr(output, "-s 24x24 is given twice"))
+        fail_msg("no reason given: %s", output);
+}
+
+/* Temporary files (aa_temp_name's .aa-PID-N.ext) left by a run killed
+ * outright are removed when it is resumed; those of a process still
+ * running, and other hidden files, are kept. */
+static void test_resume_removes_stale(void **state)
+{
+    (void)state;
+    char out[300], path[600];
+    snprintf(out, sizeof out, "%s/stale", dir);
+    const char *run[] = {"run", "-p", "crow", "-f", "box", "-s", "24x24", "-m", "point",
+                         "--reps", "1", "--no-plots", "-q", "--no-cache", "--out", out, NULL};
+    assert_int_equal(lib_run(run), AA_OK);
+    pid_t dead = fork();
+    assert_true(dead >= 0);
+    if (dead == 0)
+        _exit(0);
+    int status;
+    assert_int_equal(waitpid(dead, &status, 0), dead);
+    const char *stale[] = {"%s/.aa-%ld-3.csv", "%s/images/.aa-%ld-17.exr", "%s/.aa-%ld-4"};
+    const char *kept[] = {"%s/.aa-%ld-5.csv", "%s/.keep-%ld"};
+    for (size_t k = 0; k < 3; k++) {
+        snprintf(path, sizeof path, stale[k], out, (long)dead);
+        assert_int_equal(aa_file_write_atomic(path, "x", 1), AA_OK);
+    }
+    for (size_t k = 0; k < 2; k++) {
+        snprintf(path, sizeof path, kept[k], out, (long)getpid());
+        assert_int_equal(aa_file_write_atomic(path, "x", 1), AA_OK);
+    }
+    aa_run_options opt;
+    aa_run_options_default(&opt);
+    opt.cache = "";
+    aa_runfolder *rf = NULL;
+    assert_int_equal(aa_runfolder_open(out, &opt, &rf), AA_OK);
+    aa_runfolder_free(rf);
+    for (size_t k = 0; k < 3; k++) {
+        snprintf(path, sizeof path, stale[k], out, (long)dead);
+        if (access(path, F_OK) == 0)
+            fail_msg("%s left after --resume", path);
+    }
+    for (size_t k = 0; k < 2; k++) {
+        snprintf(path, sizeof path, kept[k], out, (long)getpid());
+        if (access(path, F_OK) != 0)
+            fail_msg("%s removed", path);
+        unlink(path);
+    }
+}
+
+/* SIGHUP (the terminal closed) ends a run as SIGINT and SIGTERM do: after
+ * the case under way, the rows kept, no temporary file, a message, 130. */
+static void test_hangup(void **state)
+{
+    (void)state;
+    char out[300], log[400], csv[400], cmd[900];
+    snprintf(out, sizeof out, "%s/hangup", dir);
+    snprintf(log, sizeof log, "%s/hangup.log", dir);
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    const char *run[] = {"run", "-p", "crow", "-f", "box", "-s", "64x64", "-s", "128x128",
+                         "-s", "192x192", "-s", "256x256", "-m", "point", "-m",
+                         "supersample:n=6", "--reps", "30", "--out", out, "--no-cache", "-q",
+                         NULL};
+    pid_t pid = support_aabench_spawn(run, NULL, log, log);
+    /* once the first case is saved */
+    for (int k = 0; k < 6000 && access(csv, F_OK) != 0; k++)
+        usleep(5000);
+    kill(pid, SIGHUP);
+    int code = support_wait(pid);
+    FILE *f = fopen(log, "r");
+    size_t n = f ? fread(output, 1, sizeof output - 1, f) : 0;
+    output[n] = '\0';
+    if (f)
+        fclose(f);
+    if (code != 130 || !strstr(output, "interrupted"))
+        fail_msg("run after SIGHUP: exit %d, output: %s", code, output);
+    aa_row *rows;
+    size_t nrows;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &nrows), AA_OK);
+    free(rows);
+    assert_true(nrows >= 1 && nrows < 8);
+    snprintf(cmd, sizeof cmd, "test -z \"$(find %s -name '.*' ! -name '.' | head -1)\"", out);
+    if (system(cmd) != 0)
+        fail_msg("temporary files left in %s", out);
+}
+
 static int setup(void **state)
 {
     const char *plugin = getenv("AABENCH_PLUGIN");
@@ -353,4 +532,9 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_reports_parse_back),
              cmocka_unit_test(test_gate),
              cmocka_unit_test(test_cache_options),
-             cmocka_unit_test(test_interrupted))
+             cmocka_unit_test(test_cache_unusable),
+             cmocka_unit_test(test_table_names),
+             cmocka_unit_test(test_interrupted),
+             cmocka_unit_test(test_ignored_options),
+             cmocka_unit_test(test_resume_removes_stale),
+             cmocka_unit_test(test_hangup))

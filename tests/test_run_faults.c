@@ -25,6 +25,8 @@
  *    2 s") in `run` and in `check`; isolated rows of real methods (point,
  *    jitter, area) equal in-process rows bit for bit, after the process has
  *    used OpenMP (libgomp is not fork-safe unless its threads are released).
+ *  - The montage drawn after the cases under a memory limit it cannot fit:
+ *    exit status 3 (resources), not 2 (input), the rows kept.
  *  - Checks before work: -s 1x65536 (the montage), -m jitter:spp=15, an
  *    --out of 100 kB or with a 300-character name, a file in place of a
  *    folder: refused, nothing created; long inputs are shortened in
@@ -53,6 +55,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -932,6 +935,64 @@ static void test_checked_before_work(void **state)
     assert_int_equal(entries(sub), 1);
 }
 
+/* The address space this process has mapped (VmSize), in bytes; 0 unknown. */
+static double address_space(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    double kb = 0;
+    while (f && fgets(line, sizeof line, f))
+        if (!strncmp(line, "VmSize:", 7))
+            kb = atof(line + 7);
+    if (f)
+        fclose(f);
+    return kb * 1024;
+}
+
+/* After every case has run, the montage under a memory limit it cannot
+ * fit: a failure of the machine's resources (AA_ENOMEM, exit status 3),
+ * not of the input (2); the rows are kept.  The cases run here, the
+ * montage in a child (the limit stays there; the montage is refused before
+ * it renders anything, so the child never starts OpenMP threads, which
+ * are not fork-safe). */
+static int montage_memory_body(void *arg)
+{
+    aa_runfolder *rf = arg;
+    /* 64 kB left: the montage's band of 2 tiles of 64x64 needs more */
+    double vm = address_space();
+    SUPPORT_CHILD_CHECK(vm > 0);
+    struct rlimit r = {(rlim_t)vm + 65536, (rlim_t)vm + 65536};
+    SUPPORT_CHILD_CHECK(setrlimit(RLIMIT_AS, &r) == 0);
+    int st = aa_runfolder_finish(rf);
+    SUPPORT_CHILD_CHECK(st == AA_ENOMEM && aa_exit_code(st) == 3);
+    SUPPORT_CHILD_CHECK(strstr(aa_last_error(), "montage") != NULL);
+    size_t n;
+    aa_runfolder_rows(rf, &n);
+    SUPPORT_CHILD_CHECK(n == 2);
+    return 0;
+}
+
+static void test_montage_memory(void **state)
+{
+    (void)state;
+    char out[600];
+    path_in(out, sizeof out, "montage-memory");
+    const char *args[] = {"run", "-p", "crow", "-s", "64x64", "-f", "box", "-m", "point",
+                          "-m", "area", "--reps", "1", "--no-plots", "-q", "--no-cache",
+                          "--out", out, NULL};
+    aa_plan plan;
+    aa_run_options opt;
+    aa_runfolder *rf = NULL;
+    int asked;
+    aa_plan_default(&plan);
+    aa_run_options_default(&opt);
+    assert_int_equal(aa_plan_parse(18, (char *const *)args, &plan, &opt, &asked), AA_OK);
+    assert_int_equal(aa_runfolder_create(&plan, &opt, &rf), AA_OK);
+    assert_int_equal(aa_runfolder_run(rf), AA_OK);
+    support_in_child(montage_memory_body, rf);
+    aa_runfolder_free(rf);
+}
+
 /* A message quoting an input of any length keeps its start and its end
  * (the reason), on one line; an echoed input is cut at a character, or at
  * a byte when none starts near (the fuzz target found 0xaf bytes read past
@@ -1006,4 +1067,5 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_exit_after_images),
              cmocka_unit_test(test_isolated_equal),
              cmocka_unit_test(test_checked_before_work),
+             cmocka_unit_test(test_montage_memory),
              cmocka_unit_test(test_messages))

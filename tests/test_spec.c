@@ -117,6 +117,38 @@ static void test_format_round_trip(void **state)
     for_each_type(round_trip);
 }
 
+/* Numbers print in the shortest form that reads back to the same double
+ * (the forms below are Python's repr of the same doubles), and the
+ * reference cache's key keeps %.17g, so the cache's names do not change. */
+static void test_format_shortest(void **state)
+{
+    (void)state;
+    aa_spec s;
+    char buf[512];
+    assert_int_equal(aa_spec_parse("crow", pattern_table(), "pattern", &s), AA_OK);
+    assert_int_equal(aa_spec_format(&s, buf, sizeof buf), AA_OK);
+    assert_non_null(strstr(buf, ",kmax=0.6,"));
+    assert_non_null(strstr(buf, ",gap0=0.015625,"));
+    assert_int_equal(aa_spec_format_key(&s, buf, sizeof buf), AA_OK);
+    assert_non_null(strstr(buf, ",kmax=0.59999999999999998,"));
+    const struct {
+        const char *in, *out;
+    } cases[] = {{"gauss:s=1/3", "gauss:s=0.3333333333333333"},
+                 {"gauss:s=0.1", "gauss:s=0.1"},
+                 {"gauss:s=2", "gauss:s=2"},
+                 {"gauss:s=5e-2", "gauss:s=0.05"},
+                 {"gauss:s=0.30000000000000004", "gauss:s=0.30000000000000004"},
+                 {"gauss:s=7.123456789", "gauss:s=7.123456789"}};
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        assert_int_equal(aa_spec_parse(cases[k].in, filter_table(), "filter", &s), AA_OK);
+        assert_int_equal(aa_spec_format(&s, buf, sizeof buf), AA_OK);
+        assert_string_equal(buf, cases[k].out);
+    }
+    /* cut short: refused, never a shorter number */
+    assert_int_equal(aa_spec_parse("gauss:s=1/3", filter_table(), "filter", &s), AA_OK);
+    assert_int_equal(aa_spec_format(&s, buf, strlen("gauss:s=0.333") + 1), AA_EFAIL);
+}
+
 /* The type's parameter table is consistent: defaults inside their ranges,
  * keys unique, at most AA_MAX_PARAMS, a help text. */
 static void consistent(const void *const *table, const aa_info *info)
@@ -165,5 +197,6 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_values),
              cmocka_unit_test(test_refusals),
              cmocka_unit_test(test_format_round_trip),
+             cmocka_unit_test(test_format_shortest),
              cmocka_unit_test(test_tables),
              cmocka_unit_test(test_sizes))

@@ -17,10 +17,12 @@
  */
 #include "bench.h"
 #include "c_numbers_internal.h"
+#include "oiio.h"
 
 #include <dirent.h>
 #include <errno.h>
 #include <getopt.h>
+#include <signal.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
@@ -237,6 +239,49 @@ static int parse_shard(const char *text, int *k, int *n)
     return AA_OK;
 }
 
+/* A value given twice in one list (-p, -m, -s, -f): each case would run
+ * twice, or once with its rows doubled.  Sizes are compared as sizes
+ * (what aa_size_parse reads), the others as text. */
+static int repeated(const char *const *v, size_t n, const char *flag, int sizes)
+{
+    for (size_t a = 0; a < n; a++)
+        for (size_t b = a + 1; b < n; b++) {
+            int wa, ha, wb, hb;
+            int same = sizes && !aa_size_parse(v[a], &wa, &ha) && !aa_size_parse(v[b], &wb, &hb)
+                           ? wa == wb && ha == hb
+                           : !strcmp(v[a], v[b]);
+            if (same)
+                return aa_fail(AA_EINVAL,
+                               "%s %s is given twice (%s %s): give each value once, "
+                               "every case runs once",
+                               flag, aa_echo(v[a]), flag, aa_echo(v[b]));
+        }
+    return AA_OK;
+}
+
+/* Options that would be ignored are refused: a resumed run goes on in its
+ * own folder with its own shard, and a list names each value once. */
+static int ignored_options(const aa_plan *plan, const aa_run_options *opt)
+{
+    int st;
+    if (opt->resume && opt->out && strcmp(opt->resume, opt->out))
+        return aa_fail(AA_EINVAL,
+                       "--resume %s goes on in that folder: --out %s would be ignored (leave "
+                       "--out out)",
+                       aa_echo(opt->resume), aa_echo(opt->out));
+    if (opt->resume && plan->shards)
+        return aa_fail(AA_EINVAL,
+                       "--resume %s goes on with the run's own shard: --shard would be ignored "
+                       "(leave --shard out)",
+                       aa_echo(opt->resume));
+    if ((st = repeated(plan->patterns, plan->npatterns, "-p", 0)) ||
+        (st = repeated(plan->methods, plan->nmethods, "-m", 0)) ||
+        (st = repeated(plan->sizes, plan->nsizes, "-s", 1)) ||
+        (st = repeated(plan->filters, plan->nfilters, "-f", 0)))
+        return st;
+    return AA_OK;
+}
+
 int aa_plan_parse(int argc, char *const *argv, aa_plan *plan, aa_run_options *opt, int *asked)
 {
     enum { O_SUITE = 256, O_REPS, O_OUT, O_THREADS, O_SEED, O_TIME, O_MOTION, O_ENCODE,
@@ -327,7 +372,7 @@ int aa_plan_parse(int argc, char *const *argv, aa_plan *plan, aa_run_options *op
     }
     if (optind < argc)
         return aa_fail(AA_EINVAL, "unexpected argument \"%s\"", aa_echo(argv[optind]));
-    return AA_OK;
+    return ignored_options(plan, opt);
 }
 
 /* A word made by the run folder (freed with it). */
@@ -599,6 +644,13 @@ static int write_montage(const char *dir, const aa_run_config *first, const aa_r
     if (!(st = aa_pathf(path, sizeof path, "%s/montage.png", dir)))
         st = aa_montage_stream(path, &src, montage_columns(nt, rows[0].w), enc);
     aa_image_free(&s.im);
+    /* everything was checked before the work: what fails now (the memory
+     * it needs, under a limit) is the machine's, not the input's */
+    if (st == AA_EINVAL) {
+        char why[1024];
+        snprintf(why, sizeof why, "%s", aa_last_error());
+        st = aa_fail(AA_ENOMEM, "%s", why);
+    }
     return st;
 }
 
@@ -876,6 +928,16 @@ static int check_before_work(const aa_run_options *a, const aa_run_config *cfgs,
                                     aa_echo(cfgs[g].patterns[p].text),
                                     aa_echo(cfgs[g].filters[f].text), len, NAME_MAX);
                         }
+        /* The image module, loaded now (the images and the montage need it):
+         * the address space it takes is in use for the checks below, as it
+         * will be when the montage is drawn.  And with it, each view's
+         * images (reference, image, error map, the metrics' planes). */
+        if (!aa__oiio("montage.png"))
+            return AA_EIO;
+        for (size_t g = 0; g < ng; g++)
+            for (size_t s = 0; s < cfgs[g].nsizes; s++)
+                if ((st = aa_size_check(cfgs[g].sizes[s].w, cfgs[g].sizes[s].h, 3, 4)))
+                    return st;
         /* the montage: the first view's reference and up to 63 methods */
         size_t most = cfgs[0].nmethods < 63 ? cfgs[0].nmethods + 1 : 64;
         for (size_t nt = 1; nt <= most; nt++)
@@ -1341,6 +1403,53 @@ int aa_manifest_same_commit(const aa_manifest *m)
     return same_commit(m);
 }
 
+/* A temporary file's name (aa_temp_name: ".aa-PID-N" and an extension)
+ * whose writer is no longer running: left by a run that was killed. */
+static int stale_temporary(const char *name)
+{
+    const char *c = name;
+    if (strncmp(c, ".aa-", 4))
+        return 0;
+    c += 4;
+    long pid = 0;
+    if (!(*c >= '0' && *c <= '9'))
+        return 0;
+    while (*c >= '0' && *c <= '9' && pid < 1L << 30)
+        pid = pid * 10 + (*c++ - '0');
+    if (*c++ != '-' || !(*c >= '0' && *c <= '9'))
+        return 0;
+    while (*c >= '0' && *c <= '9')
+        c++;
+    if (*c && *c != '.')
+        return 0;
+    return pid > 0 && pid < 1L << 30 && kill((pid_t)pid, 0) != 0 && errno == ESRCH;
+}
+
+/* Remove the stale temporary files in `dir` and the folders right under
+ * it (images/, plots/), regular files only; symbolic links are not
+ * followed.  Returns how many were removed. */
+static size_t remove_stale(const char *dir, int depth)
+{
+    DIR *d = opendir(dir);
+    size_t removed = 0;
+    if (!d)
+        return 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        char path[4400];
+        struct stat sb;
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
+            aa_pathf(path, sizeof path, "%s/%s", dir, e->d_name) || lstat(path, &sb))
+            continue;
+        if (S_ISDIR(sb.st_mode) && depth == 0)
+            removed += remove_stale(path, 1);
+        else if (S_ISREG(sb.st_mode) && stale_temporary(e->d_name) && unlink(path) == 0)
+            removed++;
+    }
+    closedir(d);
+    return removed;
+}
+
 int aa_runfolder_open(const char *dir, const aa_run_options *opt, aa_runfolder **out)
 {
     char path[4200];
@@ -1359,8 +1468,17 @@ int aa_runfolder_open(const char *dir, const aa_run_options *opt, aa_runfolder *
         rf->plan.shards = rf->manifest.shards > 1 ? rf->manifest.shards : 0;
         rf->opt.out = dir;
         rf->sort = 1;
-        if (!(st = set_up(rf)))
+        if (!(st = set_up(rf))) {
+            /* a run killed outright (SIGKILL) leaves its temporary files */
+            size_t stale = remove_stale(rf->dir, 0);
+            if (stale && rf->opt.note) {
+                char msg[160];
+                snprintf(msg, sizeof msg, "removed %zu temporary file%s left by a run that was "
+                         "killed", stale, stale == 1 ? "" : "s");
+                rf->opt.note(rf->opt.hook, msg);
+            }
             st = resume_rows(rf);
+        }
     }
     if (st)
         aa_runfolder_free(rf);

@@ -143,6 +143,29 @@ const char *cli_cache_dir(void)
     return aa_cache_dir_default();
 }
 
+void cli_cache_usable(const char *cmd, const char *dir)
+{
+    if (!dir || !*dir)
+        return;
+    char probe[4200], tmp[4400];
+    int st = aa_mkdirs(dir);
+    if (!st && !(st = aa_pathf(probe, sizeof probe, "%s/probe", dir)) &&
+        !(st = aa_temp_name(probe, tmp, sizeof tmp))) {
+        int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0)
+            st = aa_fail(AA_EIO, "cannot create a file in it: %s", strerror(errno));
+        else {
+            close(fd);
+            unlink(tmp);
+        }
+    }
+    if (st)
+        fprintf(stderr,
+                "aabench %s: warning: the reference cache %s cannot be written (%s): every "
+                "reference not in it is computed and not kept\n",
+                cmd, aa_echo(dir), aa_last_error());
+}
+
 int cli_progress_wanted(void)
 {
     const char *ci = getenv("CI");
@@ -170,6 +193,7 @@ void cli_signals_install(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
 }
 
 int cli_stage(cli_outputs *o, const char *path, const char **tmp)

@@ -45,7 +45,11 @@ void cli_getopt_reset(void);
 int cli_check_output(const char *path);
 /* A non-image output with a required extension (".json", ".csv"). */
 int cli_check_output_file(const char *path, const char *ext);
-/* SIGINT and SIGTERM: remove the temporary files still on disk and exit
+/* A reference cache that cannot be written (a folder that cannot be made,
+ * or created in) is said once, on standard error, before the work; the
+ * references are then computed and not kept, with no word each. */
+void cli_cache_usable(const char *cmd, const char *dir);
+/* SIGINT, SIGTERM and SIGHUP: remove the temporary files still on disk and exit
  * with status 130 (installed first thing by cli_main; `run` installs its
  * own, which lets the case under way finish). */
 void cli_signals_install(void);

@@ -157,6 +157,7 @@ int cmd_check(int argc, char **argv)
     }
     if (*cache && (st = aa_folder_check("--cache", cache, 64)))
         return cli_fail("check", st);
+    cli_cache_usable("check", cache);
     aa_row *base = NULL;
     size_t nb = 0;
     if ((st = aa_rows_read_csv(baseline, &base, &nb)))

@@ -1,5 +1,7 @@
 /*
- * cmd_render.c: `aabench render`: one method on one pattern, timed.
+ * cmd_render.c: `aabench render`: one method on one pattern, rendered once,
+ * or timed when a timing option (--reps, --budget, --target-ci, --stats)
+ * asks for it.
  */
 #include "cli.h"
 
@@ -12,7 +14,8 @@ static void usage(FILE *out)
 {
     fprintf(out,
             "usage: aabench render -p PATTERN -m METHOD -s WxH [-f FILTER] -o OUT [options]\n\n"
-            "Renders the pattern with the method and writes the image.\n\n"
+            "Renders the pattern with the method once and writes the image; times it only\n"
+            "when --reps, --budget, --target-ci or --stats is given.\n\n"
             "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"            "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
             "  -m, --method SPEC    method, e.g. jitter:spp=16,seq=sobol ('aabench list methods -v')\n"
             "  -s, --size WxH       image size in pixels\n"
@@ -24,12 +27,13 @@ static void usage(FILE *out)
             "      --frame-only     temporal methods: the single frame at T, not the eye's image\n"
             "      --threads N      threads (default: all cores); the image does not depend on it\n"
             "      --target-ci PCT  time until the 95%% CI of the median is within PCT%% of it\n"
-            "                       (default 2), after one untimed warm-up render\n"
-            "      --budget S       or until S seconds of renders have passed (default 1);\n"
+            "                       (2 when timed), after one untimed warm-up render\n"
+            "      --budget S       or until S seconds of renders have passed (1 when timed);\n"
             "                       at least 5 renders either way\n"
             "      --reps N         exactly N timed renders instead (overrides both)\n"
-            "      --stats FILE     write timing (every render's time and their statistics),\n"
-            "                       counters and the context (commit, machine) as JSON\n"
+            "      --stats FILE     time it, and write the timing (every render's time and\n"
+            "                       their statistics), counters and the context (commit,\n"
+            "                       machine) as JSON\n"
             "      --plugin LIB.so  load methods from a shared library (repeatable)\n"
             "      --case-timeout S an external renderer still running S seconds after the\n"
             "                       start is killed, with what it started, and the render\n"
@@ -195,6 +199,9 @@ int cmd_render(int argc, char **argv)
     aa_counters counters;
     aa_timing *timing = calloc(1, sizeof *timing);
     aa_timing_plan plan = {a.reps, a.target_ci, a.budget};
+    /* timed only when asked: otherwise one render, and its time */
+    int timed = a.reps > 0 || a.target_ci > 0 || a.budget > 0 || a.stats;
+    double once = 0.0;
     if (!timing)
         return cli_fail("render", aa_fail(AA_ENOMEM, "out of memory"));
     if (!(st = aa_pattern_scene_at(&pattern, w, h, &scene)) &&
@@ -206,7 +213,8 @@ int cmd_render(int argc, char **argv)
             aa_warn("estimated cost %.2g, past the limit %.0g (harness/bench/cost.c): the render "
                     "may run for minutes",
                     cost, AA_COST_LIMIT);
-        st = aa_method_time(&method, &job, &plan, &img, &counters, timing);
+        st = timed ? aa_method_time(&method, &job, &plan, &img, &counters, timing)
+                   : aa_method_run(&method, &job, 1, &img, &counters, &once);
     }
     int at[3];
     double bad_value = 0.0;
@@ -239,7 +247,14 @@ int cmd_render(int argc, char **argv)
         free(timing);
         return cli_fail("render", st);
     }
-    if (!a.quiet) {
+    if (!a.quiet && !timed) {
+        char ms[1024];
+        aa_spec_format(&method, ms, sizeof ms);
+        printf("wrote %s: %s, %dx%d, rendered once in %.4f s (not timed: --reps, --budget or "
+               "--target-ci times it), %llu samples, %llu expensive pixels\n",
+               a.out, ms, w, h, once, (unsigned long long)counters.samples,
+               (unsigned long long)counters.expensive_pixels);
+    } else if (!a.quiet) {
         char ms[1024], ci[64] = "";
         aa_spec_format(&method, ms, sizeof ms);
         if (isfinite(timing->ci_rel))
@@ -255,7 +270,7 @@ int cmd_render(int argc, char **argv)
                (unsigned long long)counters.samples,
                (unsigned long long)counters.expensive_pixels);
     }
-    if (timing->noisy) {
+    if (timed && timing->noisy) {
         fflush(stdout); /* after the line above */
         char why[128];
         aa_noisy_text(timing->noisy, why, sizeof why);

@@ -4,8 +4,8 @@
  *
  * Reads the options (aa_plan_parse: the plan and the run's options), makes
  * or opens (--resume) the run folder, runs it and finishes it; what is its
- * own: the usage, the signal handlers (the first SIGINT or SIGTERM stops
- * after the case under way, through the library's interrupt hook; a second
+ * own: the usage, the signal handlers (the first SIGINT, SIGTERM or SIGHUP
+ * stops after the case under way, through the library's interrupt hook; a second
  * quits at once), the progress bar on standard error (a terminal, CI
  * unset), the check that a resumed command is the run's, and the table at
  * the end sorted by error, with the failed cases named.  `merge` prints its
@@ -26,8 +26,10 @@ static volatile sig_atomic_t interrupted;
 static void on_signal(int sig)
 {
     static const char msg[] = "\naabench run: stopping after this case (again to quit now)\n";
-    if (interrupted)
+    if (interrupted) {
+        aa_temp_cleanup(); /* the files being written: none is left half-written */
         _exit(130);
+    }
     interrupted = sig;
     ssize_t w = write(2, msg, sizeof msg - 1);
     (void)w;
@@ -127,6 +129,51 @@ void cli_run_note(void *hook, const char *message)
 
 /* ---- the table ---- */
 
+/* A name column's width: `least`, cut there, or wider where two different
+ * names would be cut to the same text (crow:curves=8 and crow:curves=9 at
+ * 10): one past their longest common start.  Sorted, the longest common
+ * start of any two is that of two neighbours. */
+typedef const char *(*row_name)(const aa_row *);
+static const char *pattern_of(const aa_row *r) { return r->pattern; }
+static const char *method_of(const aa_row *r) { return r->method; }
+static const char *filter_of(const aa_row *r) { return r->filter; }
+
+static int by_text(const void *a, const void *b)
+{
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+static int name_width(const aa_row *const *order, size_t n, row_name name, int least)
+{
+    const char **v = malloc((n ? n : 1) * sizeof *v);
+    size_t width = (size_t)least;
+    if (!v)
+        return 255; /* never cut */
+    for (size_t k = 0; k < n; k++)
+        v[k] = name(order[k]);
+    qsort(v, n, sizeof *v, by_text);
+    for (size_t k = 1; k < n; k++) {
+        size_t c = 0;
+        while (v[k - 1][c] && v[k - 1][c] == v[k][c])
+            c++;
+        if (v[k - 1][c] != v[k][c] && c + 1 > width)
+            width = c + 1;
+    }
+    free(v);
+    return width > 255 ? 255 : (int)width;
+}
+
+typedef struct widths {
+    int method, pattern, filter;
+} widths;
+
+static widths widths_of(const aa_row *const *order, size_t n)
+{
+    widths w = {name_width(order, n, method_of, 30), name_width(order, n, pattern_of, 10),
+                name_width(order, n, filter_of, 10)};
+    return w;
+}
+
 static int cmp_rmse(const void *a, const void *b)
 {
     const aa_row *x = *(const aa_row *const *)a, *y = *(const aa_row *const *)b;
@@ -155,19 +202,21 @@ static int cmp_eye(const void *a, const void *b)
  * floor), and the least flicker. */
 static void print_temporal(const aa_row **order, size_t n)
 {
-    printf("%-30s %-10s %-9s %10s %10s %10s %10s %8s %6s\n", "method", "pattern", "size",
-           "rmse", "eye_rmse", "flicker", "flick_max", "conserv", "pop");
+    widths c = widths_of(order, n);
+    printf("%-*s %-*s %-9s %10s %10s %10s %10s %8s %6s\n", c.method, "method", c.pattern,
+           "pattern", "size", "rmse", "eye_rmse", "flicker", "flick_max", "conserv", "pop");
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = order[k];
         char size[32];
         snprintf(size, sizeof size, "%dx%d", r->w, r->h);
         if (!r->ok || !r->temporal) {
-            printf("%-30.30s %-10.10s %-9s %s\n", r->method, r->pattern, size, r->note);
+            printf("%-*.*s %-*.*s %-9s %s\n", c.method, c.method, r->method, c.pattern,
+                   c.pattern, r->pattern, size, r->note);
             continue;
         }
-        printf("%-30.30s %-10.10s %-9s %10.3e %10.3e %10.3e %10.3e %8.2e", r->method, r->pattern,
-               size, r->m.rmse, r->tm.eye_rmse, r->tm.flicker_mean, r->tm.flicker_max,
-               r->tm.conservation);
+        printf("%-*.*s %-*.*s %-9s %10.3e %10.3e %10.3e %10.3e %8.2e", c.method, c.method,
+               r->method, c.pattern, c.pattern, r->pattern, size, r->m.rmse, r->tm.eye_rmse,
+               r->tm.flicker_mean, r->tm.flicker_max, r->tm.conservation);
         if (isfinite(r->tm.popping))
             printf(" %6.3f", r->tm.popping);
         printf("\n");
@@ -187,14 +236,16 @@ static void print_temporal(const aa_row **order, size_t n)
                 calm = r;
         }
         if (best)
-            printf("  %-10.10s %s (eye_rmse %.3e); %s (flicker %.3e)\n", order[k]->pattern,
-                   best->method, best->tm.eye_rmse, calm->method, calm->tm.flicker_mean);
+            printf("  %-*.*s %s (eye_rmse %.3e); %s (flicker %.3e)\n", c.pattern, c.pattern,
+                   order[k]->pattern, best->method, best->tm.eye_rmse, calm->method,
+                   calm->tm.flicker_mean);
     }
 }
 
 /* --seeds N: the stochastic methods' mean RMSE over the seeds. */
 static void print_seeds(const aa_row **order, size_t n)
 {
+    widths c = widths_of(order, n);
     int header = 0;
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = order[k];
@@ -202,8 +253,9 @@ static void print_seeds(const aa_row **order, size_t n)
             continue;
         if (!header++)
             printf("\nover %d seeds (stochastic methods): mean RMSE and its 95%% CI\n", r->seeds);
-        printf("  %-30.30s %-10.10s %4dx%-5d %-10.10s %.4e [%.4e, %.4e]\n", r->method, r->pattern,
-               r->w, r->h, r->filter, r->rmse_mean, r->rmse_ci_lo, r->rmse_ci_hi);
+        printf("  %-*.*s %-*.*s %4dx%-5d %-*.*s %.4e [%.4e, %.4e]\n", c.method, c.method,
+               r->method, c.pattern, c.pattern, r->pattern, r->w, r->h, c.filter, c.filter,
+               r->filter, r->rmse_mean, r->rmse_ci_lo, r->rmse_ci_hi);
     }
 }
 
@@ -218,16 +270,18 @@ static void print_table(const aa_row *rows, size_t n)
     for (size_t k = 0; k < n; k++)
         temporal |= rows[k].temporal;
     qsort(order, n, sizeof *order, temporal ? cmp_eye : cmp_rmse);
-    printf("%-30s %-10s %-12s %-10s %10s %9s %8s %-27s %3s %9s %9s %6s\n", "method", "pattern",
-           "size", "filter", "rmse", "max_err", "psnr", "ms, median +-CI", "thr", "cpu ms",
+    widths c = widths_of(order, n);
+    printf("%-*s %-*s %-12s %-*s %10s %9s %8s %-27s %3s %9s %9s %6s\n", c.method, "method",
+           c.pattern, "pattern", "size", c.filter, "filter", "rmse", "max_err", "psnr",
+           "ms, median +-CI", "thr", "cpu ms",
            "ns/px", "exp%");
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = order[k];
         char size[32];
         snprintf(size, sizeof size, "%dx%d", r->w, r->h);
         if (!r->ok) {
-            printf("%-30.30s %-10.10s %-12s %-10.10s %s\n", r->method, r->pattern, size, r->filter,
-                   r->note);
+            printf("%-*.*s %-*.*s %-12s %-*.*s %s\n", c.method, c.method, r->method, c.pattern,
+                   c.pattern, r->pattern, size, c.filter, c.filter, r->filter, r->note);
             continue;
         }
         char ms[64];
@@ -235,9 +289,10 @@ static void print_table(const aa_row *rows, size_t n)
         char cpu[32] = "-"; /* the median render's CPU time, the threads' sum */
         if (r->timing.n > 0 && isfinite(r->timing.cpu_median))
             snprintf(cpu, sizeof cpu, "%.3f", r->timing.cpu_median * 1e3);
-        printf("%-30.30s %-10.10s %-12s %-10.10s %10.3e %9.2e %8.2f %-27s %3d %9s %9.2f %6.1f\n",
-               r->method, r->pattern, size, r->filter, r->m.rmse, r->m.max_err, r->m.psnr, ms,
-               r->threads, cpu, r->ns_per_pixel, 100 * r->expensive_fraction);
+        printf("%-*.*s %-*.*s %-12s %-*.*s %10.3e %9.2e %8.2f %-27s %3d %9s %9.2f %6.1f\n",
+               c.method, c.method, r->method, c.pattern, c.pattern, r->pattern, size, c.filter,
+               c.filter, r->filter, r->m.rmse, r->m.max_err, r->m.psnr, ms, r->threads, cpu,
+               r->ns_per_pixel, 100 * r->expensive_fraction);
     }
     if (temporal) {
         printf("\n");
@@ -364,6 +419,31 @@ static int resume_check(const char *dir, int argc, char **argv)
     return code;
 }
 
+/* Without -f, the filters the run takes are its suite's: say which, once,
+ * each named once. */
+static void say_filters(const aa_plan *plan)
+{
+    const aa_suite *suite = aa_suite_find(plan->suite ? plan->suite : "default");
+    if (plan->nfilters || !suite)
+        return;
+    const char *seen[64];
+    size_t n = 0;
+    for (const aa_suite_group *g = suite->groups; g->patterns; g++)
+        for (const char *const *f = g->filters; f && *f && n < 64; f++) {
+            size_t k = 0;
+            while (k < n && strcmp(seen[k], *f))
+                k++;
+            if (k == n)
+                seen[n++] = *f;
+        }
+    if (!n)
+        return;
+    fprintf(stderr, "aabench run: no -f given: the filters of suite %s,", suite->name);
+    for (size_t k = 0; k < n; k++)
+        fprintf(stderr, "%s %s", k ? "," : "", seen[k]);
+    fprintf(stderr, " (-f FILTER to choose)\n");
+}
+
 int cmd_run(int argc, char **argv)
 {
     aa_plan plan;
@@ -385,24 +465,30 @@ int cmd_run(int argc, char **argv)
     }
     if (opt.resume && (code = resume_check(opt.resume, argc, argv)) >= 0)
         return code;
+    if (!opt.resume)
+        say_filters(&plan);
     bar b = {cli_progress_wanted(), aa_now()};
     cli_command_line(&opt.argc, &opt.argv);
     opt.progress = progress, opt.interrupted = stop_asked, opt.note = cli_run_note;
     opt.hook = &b;
-    aa_runfolder *rf;
-    st = opt.resume ? aa_runfolder_open(opt.resume, &opt, &rf)
-                    : aa_runfolder_create(&plan, &opt, &rf);
-    if (st)
-        return cli_fail("run", st);
-    size_t kept = aa_runfolder_kept(rf);
-    if (kept)
-        fprintf(stderr, "aabench run: resuming %s: %zu case%s kept, measuring the rest\n",
-                aa_runfolder_dir(rf), kept, kept == 1 ? "" : "s");
+    /* SIGINT, SIGTERM and SIGHUP (the terminal closed) alike: the run
+     * stops after the case under way, its rows kept */
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
+    aa_runfolder *rf;
+    st = opt.resume ? aa_runfolder_open(opt.resume, &opt, &rf)
+                    : aa_runfolder_create(&plan, &opt, &rf);
+    if (st)
+        return cli_fail("run", st);
+    cli_cache_usable("run", opt.cache);
+    size_t kept = aa_runfolder_kept(rf);
+    if (kept)
+        fprintf(stderr, "aabench run: resuming %s: %zu case%s kept, measuring the rest\n",
+                aa_runfolder_dir(rf), kept, kept == 1 ? "" : "s");
     st = aa_runfolder_run(rf);
     if (!st)
         st = aa_runfolder_finish(rf);

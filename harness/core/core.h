@@ -43,8 +43,12 @@ int aa_spec_parse(const char *text, const void *const *table, const char *what,
                   aa_spec *out);
 /* The spec with every parameter at its default. */
 void aa_spec_default(const aa_info *info, aa_spec *out);
-/* Canonical text: "name:key=value,..." with every parameter, %.17g. */
+/* Canonical text: "name:key=value,..." with every parameter, each number
+ * in the shortest form that reads back to the same double (0.6). */
 int aa_spec_format(const aa_spec *spec, char *buf, size_t len);
+/* The same with every number %.17g: the reference cache's keys, whose
+ * names (hashes) must not change. */
+int aa_spec_format_key(const aa_spec *spec, char *buf, size_t len);
 /* Index of parameter `key`, or -1. */
 /* A file-name-safe form of a spec: letters, digits, '.' and '-' kept, every
  * other character '_'. */

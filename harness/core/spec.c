@@ -435,7 +435,22 @@ int aa_spec_parse(const char *text, const void *const *table, const char *what,
     return colon ? parse_pairs(colon + 1, info, what, out) : AA_OK;
 }
 
-int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
+/* The shortest %.Ng (N from 1 to 17) that reads back to the same double:
+ * 0.6, not 0.59999999999999998.  In the C locale (the caller's
+ * aa__c_numbers_enter), so strtod reads what snprintf wrote. */
+static int shortest(char *buf, size_t len, double v)
+{
+    char t[40];
+    int m = 0;
+    for (int digits = 1; digits <= 17; digits++) {
+        m = snprintf(t, sizeof t, "%.*g", digits, v);
+        if (strtod(t, NULL) == v)
+            break;
+    }
+    return snprintf(buf, len, "%s", t) < 0 ? -1 : m;
+}
+
+static int spec_format(const aa_spec *spec, char *buf, size_t len, int exact)
 {
     const aa_info *info = spec->info;
     size_t count = aa_param_count(info);
@@ -465,7 +480,12 @@ int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
             else if (m >= 0 && (size_t)m < len - n)
                 m += (int)strlen(buf + n + m);
         } else {
-            m = snprintf(buf + n, len - n, "%c%s=%.17g", k ? ',' : ':', p->key, spec->v[k]);
+            m = snprintf(buf + n, len - n, "%c%s=", k ? ',' : ':', p->key);
+            if (m >= 0 && (size_t)m < len - n) {
+                int v = exact ? snprintf(buf + n + m, len - n - (size_t)m, "%.17g", spec->v[k])
+                              : shortest(buf + n + m, len - n - (size_t)m, spec->v[k]);
+                m = v < 0 ? v : m + v;
+            }
         }
         if (m < 0)
             break;
@@ -475,6 +495,16 @@ int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
     if (n >= len)
         return aa_fail(AA_EFAIL, "spec of %s does not fit in %zu characters", info->name, len);
     return AA_OK;
+}
+
+int aa_spec_format(const aa_spec *spec, char *buf, size_t len)
+{
+    return spec_format(spec, buf, len, 0);
+}
+
+int aa_spec_format_key(const aa_spec *spec, char *buf, size_t len)
+{
+    return spec_format(spec, buf, len, 1);
 }
 
 /* ---- sizes ---- */

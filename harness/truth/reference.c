@@ -44,8 +44,8 @@ int aa_view_key(const aa_view *view, char *buf, size_t len)
     char pattern[4096], filter[256];
     aa__c_numbers numbers;
     int st;
-    if ((st = aa_spec_format(&view->pattern, pattern, sizeof pattern)) ||
-        (st = aa_spec_format(&view->filter.spec, filter, sizeof filter)) ||
+    if ((st = aa_spec_format_key(&view->pattern, pattern, sizeof pattern)) ||
+        (st = aa_spec_format_key(&view->filter.spec, filter, sizeof filter)) ||
         (st = aa__c_numbers_enter(&numbers, "view key")))
         return st;
     int n = snprintf(buf, len, "truth %d\npattern %s\nsize %dx%d\nfilter %s\ntime %.17g\n"
