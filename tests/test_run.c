@@ -307,8 +307,9 @@ static void test_cache_unusable(void **state)
                          "-s", "40x40", "-m", "point", "--reps", "1", "--no-plots", "-q",
                          "--cache", "/proc/aabench-none/cache", "--out", out, NULL};
     assert_int_equal(run_cmd(run, 0), 0);
+    /* (a warning of noisy timings may follow on a busy machine) */
     const char *first = strstr(output, "warning: the reference cache /proc/aabench-none/cache");
-    if (!first || strstr(first + 1, "warning"))
+    if (!first || strstr(first + 20, "reference cache"))
         fail_msg("expected one warning about the cache, got: %s", output);
 }
 
