@@ -91,6 +91,9 @@ static int write_all(int fd, const void *data, size_t len)
     return 0;
 }
 
+/* Seconds past a case's time-out before its child is killed. */
+#define ISOLATE_GRACE 3.0
+
 /* A method that calls exit() in the child ends it here, with its status
  * and nothing else: the handlers that the parent's libraries registered
  * (the image module's bring some) would run in a process that has none of
@@ -213,10 +216,12 @@ int aa__case_isolated(aa__case_fn fn, void *arg, aa_row *row, aa_image *img, dou
     }
     close(fds[1]);
     report *r = malloc(sizeof *r);
-    /* a second's grace: a case whose method ends the programs it started at
-     * the time-out (the external method) reports that itself, its folder
-     * removed; a child still running then is killed */
-    const double deadline = aa_now() + timeout + 1.0;
+    /* a grace of ISOLATE_GRACE s: a case whose method ends the programs it
+     * started at the time-out (the external method: SIGTERM, half a second,
+     * SIGKILL, its folder removed) reports that itself, which on a loaded
+     * machine takes more than a second; a child still running then is
+     * killed, and what it started is left */
+    const double deadline = aa_now() + timeout + ISOLATE_GRACE;
     int whole = r ? receive(fds[0], r, img, deadline) : 0;
     close(fds[0]);
     /* the child ends now, or by the deadline (one that closed its end of
