@@ -145,15 +145,20 @@ SAN_TEST_RUNS   := $(addsuffix .run,$(SAN_TESTS))
 TEST_JOBS ?= $(shell echo $$(( $$(nproc 2>/dev/null || echo 1) + 1 )))
 TEST_J     = $(if $(findstring -j,$(MAKEFLAGS)),,-j$(TEST_JOBS))
 
-.PHONY: all deps run test check check-tests check-tests-quick check-tests-san check-gate baseline \
+.PHONY: all deps deps-test run test check check-tests check-tests-quick check-tests-san check-gate baseline \
         bench install clean fuzz valgrind FORCE check-tests-pass check-tests-quick-pass \
         check-tests-san-pass check-tests-both $(TEST_RUNS) $(SAN_TEST_RUNS)
 .DEFAULT_GOAL := all
 
 all: $(BUILD)/aabench $(LIB) $(OIIO_SO)
 
+# deps: what building and `make run` need; deps-test: that and the locale
+# the tests run under (de_DE.UTF-8)
 deps:
 	@sh scripts/install-deps.sh
+
+deps-test:
+	@sh scripts/install-deps.sh --locale
 
 # ---- the builds: plain ($(BUILD)), sanitizer ($(SAN_BUILD)), fuzz ----
 # $(call compile_rules,FOLDER,BUILD): the rules that compile the objects
@@ -327,7 +332,7 @@ run: deps
 # both passes in one make: the sanitizer build and its tests fill the
 # cores while plain tests wait on their child processes, and no pass waits
 # alone for its last test
-test: deps
+test: deps-test
 	@$(MAKE) --no-print-directory $(TEST_J) check-tests-both
 	@$(MAKE) --no-print-directory check-gate
 

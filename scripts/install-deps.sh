@@ -1,8 +1,11 @@
 #!/bin/sh
 # install-deps.sh: install the Debian packages aabench needs that are missing,
-# and generate the locale its tests use.
+# and, with --locale, generate the locale its tests use.
 #
-#   sh scripts/install-deps.sh [--with-renderers]
+#   sh scripts/install-deps.sh [--locale] [--with-renderers]
+#
+# --locale (or AABENCH_INSTALL_LOCALE=1) also generates de_DE.UTF-8, which
+# only the tests need (`make test` passes it; `make run` does not).
 #
 # Each need is checked the cheapest way (pkg-config module, command, header);
 # only what is missing is installed, so a second run is a no-op.  Installing
@@ -16,13 +19,16 @@
 set -eu
 
 renderers=${AABENCH_INSTALL_RENDERERS:-}
+locale=${AABENCH_INSTALL_LOCALE:-}
 for arg in "$@"; do
     case $arg in
     --with-renderers) renderers=1 ;;
-    *) echo "usage: sh scripts/install-deps.sh [--with-renderers]" >&2; exit 2 ;;
+    --locale) locale=1 ;;
+    *) echo "usage: sh scripts/install-deps.sh [--locale] [--with-renderers]" >&2; exit 2 ;;
     esac
 done
 [ "$renderers" = 0 ] && renderers=""
+[ "$locale" = 0 ] && locale=""
 root=$(cd "$(dirname "$0")/.." && pwd)
 # the resvg binding's version and folder (scripts/renderers/resvg looks there)
 RESVG_JS=@resvg/resvg-js@2.6.2
@@ -73,7 +79,7 @@ have_locale() {
     locale -a 2>/dev/null | grep -qix 'de_DE\.utf-\{0,1\}8'
 }
 need_locale=""
-if ! have_locale; then
+if [ -n "$locale" ] && ! have_locale; then
     need_locale=1
     need file:/usr/sbin/locale-gen locales
 fi

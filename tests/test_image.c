@@ -545,6 +545,37 @@ static void test_float_round_trips(void **state)
     assert_int_equal(entries(((fixture *)*state)->dir), 5); /* a.exr a.tif a.TIFF a.EXR a.pfm */
 }
 
+/* A smooth float image (a product of slow sines, each value a float, so
+ * every bit of it must come back) written as .exr: read back bit for bit,
+ * and compressed: the file is smaller than its pixels alone uncompressed
+ * (w * h * c * 4 bytes of binary32), let alone with the header. */
+static void test_exr_compressed(void **state)
+{
+    const char *path = in_dir(state, "smooth.exr");
+    enum { W = 128, H = 96, C = 3 };
+    aa_image im, back;
+    assert_int_equal(aa_image_alloc(&im, W, H, C), AA_OK);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            for (int c = 0; c < C; c++) {
+                volatile float f = (float)(0.5 + 0.4 * sin(x / 17.0 + c) * cos(y / 23.0));
+                im.v[((size_t)y * W + x) * C + c] = f;
+            }
+    assert_int_equal(aa_image_write(path, &im, NULL), AA_OK);
+    assert_int_equal(aa_image_read(path, &back), AA_OK);
+    assert_same_bits(&im, &back);
+    struct stat st;
+    assert_int_equal(stat(path, &st), 0);
+    const long long raw = (long long)W * H * C * 4;
+    if (st.st_size >= raw / 2)
+        print_error("smooth.exr: %lld bytes, the pixels uncompressed %lld\n",
+                    (long long)st.st_size, raw);
+    assert_true(st.st_size < raw / 2);
+    aa_image_free(&back);
+    aa_image_free(&im);
+    assert_int_equal(unlink(path), 0);
+}
+
 /* 2 x 2 x 1 as a PFM holds it, by hand from the format's definition (Paul
  * Debevec, "PFM Portable Float Map", pauldebevec.com/Research/HDR/PFM):
  * "Pf" for one channel, width and height, a negative scale for
@@ -986,6 +1017,7 @@ SUPPORT_MAIN(NULL, NULL,
              TEST(test_txt_refuses_non_finite),
              TEST(test_txt_locale),
              TEST(test_float_round_trips),
+             TEST(test_exr_compressed),
              TEST(test_pfm_known),
              TEST(test_png_srgb),
              TEST(test_png_other_encodings),

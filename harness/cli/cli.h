@@ -104,6 +104,7 @@ int cmd_check(int argc, char **argv);
 int cmd_converge(int argc, char **argv);
 int cmd_diff(int argc, char **argv);
 int cmd_merge(int argc, char **argv);
+int cmd_prune(int argc, char **argv);
 
 /* `run`'s printing, for `merge` and `truth --warm` too (cmd_run.c): a note
  * of the library's (a suite's method left out) on standard error; after

@@ -25,6 +25,7 @@ static const struct command {
     {"figures", cmd_figures, "the seed papers' comparison figures remade, with a gallery"},
     {"diff", cmd_diff, "two runs compared: error changes, and time changes with significance"},
     {"merge", cmd_merge, "join the folders of a run's shards into the whole run's results"},
+    {"prune", cmd_prune, "remove the oldest run folders, keeping the N newest"},
     {NULL, NULL, NULL}};
 
 static void usage(FILE *out)
