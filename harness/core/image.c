@@ -649,7 +649,8 @@ static int pfm_complete(const char *path)
         for (; *s >= '0' && *s <= '9' && digits < 10; s++, digits++)
             side[k] = side[k] * 10 + (*s - '0');
         if (digits == 0 || digits == 10 || side[k] < 1 || !*s || !strchr(" \t\r\n", *s))
-            return aa_fail(AA_EIO, "%s: the PFM header does not give a width and a height",
+            return aa_fail(AA_EIO,
+                           "%s: cannot read: the PFM header does not give a width and a height",
                            path);
     }
     while (*s && strchr(" \t\r\n", *s))
@@ -657,19 +658,21 @@ static int pfm_complete(const char *path)
     size_t len = strcspn(s, " \t\r\n");
     char word[64];
     if (len == 0 || len >= sizeof word || !s[len])
-        return aa_fail(AA_EIO, "%s: the PFM header does not give a scale", path);
+        return aa_fail(AA_EIO, "%s: cannot read: the PFM header does not give a scale", path);
     memcpy(word, s, len);
     word[len] = '\0';
     char *end;
     double scale = strtod(word, &end);
     if (*end || !isfinite(scale) || scale == 0)
-        return aa_fail(AA_EIO, "%s: the PFM scale %s is not a nonzero number (its sign "
-                       "gives the byte order)", path, word);
+        return aa_fail(AA_EIO,
+                       "%s: cannot read: the PFM scale %s is not a nonzero number (its "
+                       "sign gives the byte order)", path, word);
     double header = (double)(s + len + 1 - head);
     double want = header + 4.0 * (double)side[0] * (double)side[1] * (head[1] == 'F' ? 3 : 1);
     if ((double)size != want)
-        return aa_fail(AA_EIO, "%s: the PFM file holds %.0f bytes where its header calls for "
-                       "%.0f (%s)", path, (double)size, want,
+        return aa_fail(AA_EIO,
+                       "%s: cannot read: the PFM file holds %.0f bytes where its header "
+                       "calls for %.0f (%s)", path, (double)size, want,
                        (double)size < want ? "cut short" : "bytes after the samples");
     return AA_OK;
 }
