@@ -34,7 +34,8 @@
  * Refused, naming the element and its line: strokes, arcs (the A command,
  * <circle>, <ellipse>, rounded rectangles), opacity below 1, paint servers
  * (gradients, patterns: url() fills), text, images, <use>, clip paths,
- * masks, filters, style sheets, nested <svg>, units other than px, and any
+ * masks, filters, style sheets, nested <svg>, units other than px, any
+ * attribute or style property not implemented (see css_known), and any
  * other element of the SVG namespace; elements of other namespaces are not
  * drawn (as a browser ignores them).  Malformed XML or path data, files
  * over AA_SVG_MAX_BYTES, nesting deeper than AA_SVG_MAX_DEPTH, more than
@@ -53,6 +54,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include <sys/stat.h>
 
@@ -296,6 +298,87 @@ static int parse_length(reader *r, const char *attr, const char *text, double *v
 
 /* ---- properties: attributes and the style attribute ---- */
 
+/* The properties the reader implements, and those that cannot change a
+ * filled shape's outline or colour as it is drawn here (a stroke's width,
+ * joins or dashes, since every stroke but none is refused).  Any other
+ * presentation attribute or style property is refused: skipped, it would
+ * draw another picture (transform in a style, transform-origin, blending,
+ * markers, conditional processing...).  CSS names and keywords are matched
+ * without regard to case; attribute names are XML and keep theirs. */
+static const char *const css_known[] = {
+    "display",          "fill",           "fill-rule",       "stroke",
+    "opacity",          "fill-opacity",   "clip-path",       "mask",
+    "filter",           "visibility",     "stroke-width",    "stroke-opacity",
+    "stroke-linecap",   "stroke-linejoin", "stroke-miterlimit", "stroke-dasharray",
+    "stroke-dashoffset"};
+
+/* The attributes, beyond the properties, each element reads. */
+static int attr_known(const xmlNode *node, const char *name)
+{
+    static const struct {
+        const char *element, *attrs[8];
+    } own[] = {{"svg", {"width", "height", "viewBox", "preserveAspectRatio", "version",
+                        "baseProfile", "x", "y"}},
+               {"rect", {"x", "y", "width", "height", "rx", "ry"}},
+               {"path", {"d"}},
+               {"polygon", {"points"}},
+               {"polyline", {"points"}},
+               {"line", {"x1", "y1", "x2", "y2"}}};
+    static const char *const any[] = {"id", "class", "style", "transform"};
+    for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
+        if (!strcmp(name, any[k]))
+            return 1;
+    for (size_t k = 0; k < sizeof css_known / sizeof css_known[0]; k++)
+        if (!strcmp(name, css_known[k]))
+            return 1;
+    for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
+        if (!strcmp((const char *)node->name, own[k].element))
+            for (size_t j = 0; j < 8 && own[k].attrs[j]; j++)
+                if (!strcmp(name, own[k].attrs[j]))
+                    return 1;
+    return 0;
+}
+
+/* Refuse every attribute (of no namespace: others are not SVG's) and every
+ * style declaration the reader does not know, and !important. */
+static int check_props(reader *r, const xmlNode *node)
+{
+    for (const xmlAttr *a = node->properties; a; a = a->next)
+        if (!a->ns && !attr_known(node, (const char *)a->name))
+            return fail_at(r, "the attribute %s is not supported", aa_echo((const char *)a->name));
+    xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
+    int st = AA_OK;
+    for (const char *s = css ? (const char *)css : ""; *s && !st;) {
+        const char *end = strchr(s, ';');
+        size_t n = end ? (size_t)(end - s) : strlen(s);
+        const char *colon = memchr(s, ':', n);
+        const char *a = s, *b = colon ? colon : s + n;
+        while (a < b && is_wsp((unsigned char)*a))
+            a++;
+        while (b > a && is_wsp((unsigned char)b[-1]))
+            b--;
+        char name[64];
+        snprintf(name, sizeof name, "%.*s", (int)(b - a), a);
+        if (!colon && a != b)
+            st = fail_at(r, "style: \"%s\" is not a declaration (name: value)", aa_echo(name));
+        else if (colon) {
+            size_t k = 0, count = sizeof css_known / sizeof css_known[0];
+            while (k < count && (strlen(css_known[k]) != (size_t)(b - a) ||
+                                 strncasecmp(css_known[k], a, (size_t)(b - a))))
+                k++;
+            if (k == count)
+                st = fail_at(r, "the style property %s is not supported", aa_echo(name));
+            else if (memchr(colon, '!', n - (size_t)(colon - s)))
+                st = fail_at(r, "style %s: !important is not supported", aa_echo(name));
+        }
+        s += n;
+        if (*s == ';')
+            s++;
+    }
+    xmlFree(css);
+    return st;
+}
+
 /* The value of property `key` for the element: its declaration in the
  * style attribute wins over the attribute.  Written into buf; 1 if given. */
 static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size_t len, int *st)
@@ -314,7 +397,7 @@ static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size
                 a++;
             while (b > a && is_wsp((unsigned char)b[-1]))
                 b--;
-            if (colon && (size_t)(b - a) == klen && !strncmp(a, key, klen)) {
+            if (colon && (size_t)(b - a) == klen && !strncasecmp(a, key, klen)) {
                 const char *v = colon + 1, *ve = s + n;
                 while (v < ve && is_wsp((unsigned char)*v))
                     v++;
@@ -533,14 +616,14 @@ static int parse_paint(reader *r, const char *text, aa_rgb *c, int *none)
 {
     double v[3];
     *none = 0;
-    if (!strcmp(text, "none")) {
+    if (!strcasecmp(text, "none")) {
         *none = 1;
         return AA_OK;
     }
-    if (!strncmp(text, "url(", 4))
+    if (!strncasecmp(text, "url(", 4))
         return fail_at(r, "fill=\"%s\": paint servers (gradients, patterns) are not supported",
                        aa_echo(text));
-    if (!strcmp(text, "currentColor") || !strcmp(text, "currentcolor"))
+    if (!strcasecmp(text, "currentColor"))
         return fail_at(r, "fill=\"%s\" is not supported (give the colour)", aa_echo(text));
     size_t n = strlen(text);
     if (text[0] == '#') {
@@ -557,7 +640,7 @@ static int parse_paint(reader *r, const char *text, aa_rgb *c, int *none)
                                aa_echo(text));
         for (int k = 0; k < 3; k++)
             v[k] = (n == 4 ? d[k] * 17 : d[2 * k] * 16 + d[2 * k + 1]) / 255.0;
-    } else if (!strncmp(text, "rgb(", 4)) {
+    } else if (!strncasecmp(text, "rgb(", 4)) {
         const char *s = text + 4;
         int pct = -1;
         for (int k = 0; k < 3; k++) {
@@ -580,7 +663,7 @@ static int parse_paint(reader *r, const char *text, aa_rgb *c, int *none)
         s = skip_wsp(s);
         if (*s != ')' || *skip_wsp(s + 1))
             goto bad_rgb;
-    } else if (!strncmp(text, "rgba(", 5) || !strncmp(text, "hsl", 3)) {
+    } else if (!strncasecmp(text, "rgba(", 5) || !strncasecmp(text, "hsl", 3)) {
         return fail_at(r, "fill=\"%s\": only rgb(), #rgb, #rrggbb and named colours are "
                           "supported (no alpha)",
                        aa_echo(text));
@@ -995,13 +1078,15 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     char v[1024];
     int st = AA_OK, none;
     *skip = 0;
-    if (prop(r, node, "display", v, sizeof v, &st) && !strcmp(v, "none")) {
+    if ((st = check_props(r, node)))
+        return st;
+    if (prop(r, node, "display", v, sizeof v, &st) && !strcasecmp(v, "none")) {
         *skip = 1;
         return AA_OK;
     }
     if (st)
         return st;
-    if (prop(r, node, "fill", v, sizeof v, &st) && strcmp(v, "inherit")) {
+    if (prop(r, node, "fill", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
         aa_rgb c = {{0, 0, 0}};
         if ((st = parse_paint(r, v, &c, &none)))
             return st;
@@ -1009,15 +1094,15 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
         if (!none)
             sty->fill = c;
     }
-    if (!st && prop(r, node, "fill-rule", v, sizeof v, &st) && strcmp(v, "inherit")) {
-        if (!strcmp(v, "nonzero"))
+    if (!st && prop(r, node, "fill-rule", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
+        if (!strcasecmp(v, "nonzero"))
             sty->rule = AA_FILL_NONZERO;
-        else if (!strcmp(v, "evenodd"))
+        else if (!strcasecmp(v, "evenodd"))
             sty->rule = AA_FILL_EVENODD;
         else
             return fail_at(r, "fill-rule=\"%s\" (nonzero or evenodd)", aa_echo(v));
     }
-    if (!st && prop(r, node, "stroke", v, sizeof v, &st) && strcmp(v, "none"))
+    if (!st && prop(r, node, "stroke", v, sizeof v, &st) && strcasecmp(v, "none"))
         return fail_at(r, "stroke=\"%s\": strokes are not supported", aa_echo(v));
     static const char *const opacities[] = {"opacity", "fill-opacity"};
     for (int k = 0; k < 2 && !st; k++)
@@ -1030,11 +1115,11 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
         }
     static const char *const refused[] = {"clip-path", "mask", "filter"};
     for (int k = 0; k < 3 && !st; k++)
-        if (prop(r, node, refused[k], v, sizeof v, &st) && strcmp(v, "none"))
+        if (prop(r, node, refused[k], v, sizeof v, &st) && strcasecmp(v, "none"))
             return fail_at(r, "%s=\"%s\": %s not supported", refused[k], aa_echo(v),
                            k == 0 ? "clip paths are" : k == 1 ? "masks are" : "filters are");
-    if (!st && prop(r, node, "visibility", v, sizeof v, &st) && strcmp(v, "visible") &&
-        strcmp(v, "inherit"))
+    if (!st && prop(r, node, "visibility", v, sizeof v, &st) && strcasecmp(v, "visible") &&
+        strcasecmp(v, "inherit"))
         return fail_at(r, "visibility=\"%s\" is not supported", aa_echo(v));
     if (st)
         return st;

@@ -606,6 +606,57 @@ static void test_pfm_known(void **state)
     aa_image_free(&im);
 }
 
+/* A PFM's scale gives the byte order by its sign: 0, NaN or infinity is
+ * none, and the samples are exactly W x H x C floats after the header (the
+ * format's definition, as above).  Files breaking either are refused
+ * (damaged: AA_EIO, naming the file) by reading and by the header's sizes;
+ * a big-endian file (positive scale) of the right size is still read. */
+static void test_pfm_damaged(void **state)
+{
+    static const char samples[] = "\x00\x00\x40\x40" "\x00\x00\x80\x40"
+                                  "\x00\x00\x80\x3f" "\x00\x00\x00\x40";
+    const struct {
+        const char *name, *header, *tail, *says;
+    } bad[] = {{"nan.pfm", "Pf\n2 2\nnan\n", "", "scale nan"},
+               {"negnan.pfm", "Pf\n2 2\n-nan\n", "", "scale -nan"},
+               {"zero.pfm", "Pf\n2 2\n0.0\n", "", "scale 0.0"},
+               {"negzero.pfm", "Pf\n2 2\n-0\n", "", "scale -0"},
+               {"inf.pfm", "Pf\n2 2\n-inf\n", "", "scale -inf"},
+               {"word.pfm", "Pf\n2 2\n-1x\n", "", "scale -1x"},
+               {"trailing.pfm", "Pf\n2 2\n-1.0\n", "x", "bytes after the samples"},
+               {"twice.pfm", "Pf\n2 2\n-1.0\n", "\x00\x00\x40\x40", "bytes after"},
+               {"short.pfm", "PF\n2 2\n-1.0\n", "", "cut short"}};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        char buf[128];
+        size_t hl = strlen(bad[k].header), tl = strlen(bad[k].tail);
+        if (!strcmp(bad[k].name, "twice.pfm"))
+            tl = 4;
+        memcpy(buf, bad[k].header, hl);
+        memcpy(buf + hl, samples, 16);
+        memcpy(buf + hl + 16, bad[k].tail, tl);
+        const char *path = in_dir(state, bad[k].name);
+        support_write_file(path, buf, hl + 16 + tl);
+        aa_image im = {0};
+        assert_refused(aa_image_read(path, &im), AA_EIO, bad[k].name, 0);
+        assert_non_null(strstr(aa_last_error(), bad[k].says));
+        assert_null(im.v);
+        int w, h, c;
+        assert_refused(aa_image_file_size(path, &w, &h, &c), AA_EIO, bad[k].name, 0);
+        assert_non_null(strstr(aa_last_error(), bad[k].says));
+    }
+    /* Big-endian, the same values: 3 4 / 1 2 bottom up. */
+    static const char be[] = "Pf\n2 2\n1.0\n"
+                             "\x40\x40\x00\x00" "\x40\x80\x00\x00"
+                             "\x3f\x80\x00\x00" "\x40\x00\x00\x00";
+    const char *path = in_dir(state, "be.pfm");
+    support_write_file(path, be, sizeof be - 1);
+    aa_image im;
+    assert_int_equal(aa_image_read(path, &im), AA_OK);
+    const double want[] = {1, 2, 3, 4};
+    assert_memory_equal(im.v, want, sizeof want);
+    aa_image_free(&im);
+}
+
 /* ------------------------------------------------------------------------
  * 8-bit files: .png
  * ------------------------------------------------------------------------ */
@@ -1019,6 +1070,7 @@ SUPPORT_MAIN(NULL, NULL,
              TEST(test_float_round_trips),
              TEST(test_exr_compressed),
              TEST(test_pfm_known),
+             TEST(test_pfm_damaged),
              TEST(test_png_srgb),
              TEST(test_png_other_encodings),
              TEST(test_channels_refused),

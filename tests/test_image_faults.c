@@ -1126,6 +1126,67 @@ static void test_compare_nonfinite(void **state)
     aa_image_free(&b);
 }
 
+/* When no pixel can be compared (every one holds a NaN or an infinity in
+ * either image) there is no figure: the library gives NaN for each, the
+ * command n/a (null in JSON) and exit status 1, never the "identical"
+ * ssim 1 and alias 0 of images compared nowhere. */
+static void test_compare_all_nonfinite(void **state)
+{
+    (void)state;
+    aa_image a, b;
+    assert_int_equal(aa_image_alloc(&a, 12, 12, 3), AA_OK);
+    assert_int_equal(aa_image_alloc(&b, 12, 12, 3), AA_OK);
+    for (size_t k = 0; k < 12 * 12 * 3; k++)
+        a.v[k] = 0.5, b.v[k] = NAN;
+    aa_pixel(&b, 4, 4)[0] = 0.5; /* still a NaN in the pixel's other channels */
+    aa_metrics m;
+    assert_int_equal(aa_metrics_compare(&a, &b, NULL, &m), AA_OK);
+    assert_true(m.nonfinite == 144);
+    const double v[] = {m.rmse,     m.mae,         m.max_err,   m.psnr,      m.rmse_enc,
+                        m.mae_enc,  m.max_err_enc, m.psnr_enc,  m.alias_total,
+                        m.alias_low, m.alias_high, m.ssim};
+    for (size_t k = 0; k < sizeof v / sizeof v[0]; k++)
+        if (!isnan(v[k]))
+            fail_msg("figure %zu is %g where no pixel can be compared", k, v[k]);
+    assert_true(m.max_at[0] == -1 && m.max_at[1] == -1 && m.max_at[2] == -1);
+    aa_image_free(&a);
+    aa_image_free(&b);
+
+    /* The command, on PFM files written here ("Pf\nW H\n-1.0\n" then
+     * little-endian floats): 2 x 1 pixels of 0.5, and of NaN. */
+    char ref[PATH_MAX + 32], img[PATH_MAX + 32];
+    fresh_files("allnan", ref, "ref.pfm", img, "nan.pfm", NULL);
+    unsigned char half[] = {0x00, 0x00, 0x00, 0x3f}, nan[] = {0x00, 0x00, 0xc0, 0x7f};
+    char buf[64];
+    size_t hl = (size_t)snprintf(buf, sizeof buf, "Pf\n2 1\n-1.0\n");
+    memcpy(buf + hl, half, 4), memcpy(buf + hl + 4, half, 4);
+    support_write_file(ref, buf, hl + 8);
+    memcpy(buf + hl, nan, 4), memcpy(buf + hl + 4, nan, 4);
+    support_write_file(img, buf, hl + 8);
+    const char *text[] = {"compare", ref, img, NULL};
+    expect_exit(run_cmd(NULL, text), 1, "compare of an all-NaN image");
+    expect_output("ssim         n/a", "compare of an all-NaN image");
+    expect_output("alias_total  n/a", "compare of an all-NaN image");
+    expect_output("rmse         n/a", "compare of an all-NaN image");
+    if (strstr(output, "1.000000") || strstr(output, "e+00"))
+        fail_msg("a figure where none can be compared:\n%s", output);
+    const char *json[] = {"compare", ref, img, "--json", NULL};
+    expect_exit(run_cmd(NULL, json), 1, "compare --json of an all-NaN image");
+    no_json_nonfinite();
+    static const char *const keys[] = {"rmse", "mae", "max_err", "psnr", "rmse_enc", "mae_enc",
+                                       "max_err_enc", "psnr_enc", "alias_total", "alias_low",
+                                       "alias_high", "ssim"};
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
+        if (!isnan(json_value(keys[k])))
+            fail_msg("%s is not null:\n%s", keys[k], output);
+    assert_true(json_value("nonfinite") == 2);
+    /* One comparable pixel is enough for figures, and exit 0. */
+    memcpy(buf + hl, half, 4);
+    support_write_file(img, buf, hl + 8);
+    expect_exit(run_cmd(NULL, json), 0, "compare --json, one pixel comparable");
+    assert_true(json_value("rmse") == 0 && json_value("nonfinite") == 1);
+}
+
 /* Images that differ by 1e-170 (whose square underflows) are not
  * identical: rmse = 1e-170 / sqrt(16), psnr = -20 log10 of that. */
 static void test_compare_tiny_difference(void **state)
@@ -1196,6 +1257,7 @@ int main(void)
         cmocka_unit_test(test_run_checks_montage_first),
         cmocka_unit_test(test_montage_row_at_a_time),
         cmocka_unit_test(test_compare_nonfinite),
+        cmocka_unit_test(test_compare_all_nonfinite),
         cmocka_unit_test(test_compare_tiny_difference),
         cmocka_unit_test(test_txt_nan_named),
     };

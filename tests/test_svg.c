@@ -660,11 +660,73 @@ static void test_cubic_scene(void **state)
     aa_image_free(&b);
 }
 
+/* Every presentation attribute or style property the reader does not
+ * implement is refused, named with its line: skipped, each would change
+ * the picture (SVG 2 and CSS: transform in a style, transform-origin,
+ * transform-box, mix-blend-mode, markers, conditional processing).  CSS
+ * property names and keywords match in any case; attribute names are XML
+ * names and match exactly, so an upper-case attribute is refused too. */
+#define R1 "<rect width=\"4\" height=\"4\" "
+static void test_unknown_properties(void **state)
+{
+    (void)state;
+    refused(L2(R1 "style=\"transform: scale(2)\"/>"), "line 2: <rect>", "transform");
+    refused(L2(R1 "transform-origin=\"2 2\"/>"), "line 2: <rect>", "transform-origin");
+    refused(L2(R1 "style=\"transform-box: fill-box\"/>"), "line 2: <rect>", "transform-box");
+    refused(L2("<g mix-blend-mode=\"multiply\">" R1 "/></g>"), "line 2: <g>", "mix-blend-mode");
+    refused(L2("<path d=\"M0 0 L4 0 L4 4z\" marker-start=\"url(#m)\"/>"), "line 2: <path>",
+            "marker-start");
+    refused(L2("<path d=\"M0 0 L4 0 L4 4z\" style=\"marker: url(#m)\"/>"), "line 2: <path>",
+            "marker");
+    refused(L2("<path d=\"M0 0 L4 0 L4 4z\" marker-mid=\"url(#m)\"/>"), "<path>", "marker-mid");
+    refused(L2("<path d=\"M0 0 L4 0 L4 4z\" marker-end=\"url(#m)\"/>"), "<path>", "marker-end");
+    refused(L2(R1 "style=\"display: none !important\"/>"), "line 2: <rect>", "!important");
+    refused(L2(R1 "style=\"fill: red!important\"/>"), "<rect>", "!important");
+    refused(L2(R1 "FILL=\"white\"/>"), "line 2: <rect>", "FILL");
+    refused(L2("\n" R1 "systemLanguage=\"fr\"/>"), "line 3: <rect>", "systemLanguage");
+    refused(L2(R1 "requiredExtensions=\"http://example.org/x\"/>"), "<rect>",
+            "requiredExtensions");
+    refused(L2("<g requiredFeatures=\"\">" R1 "/></g>"), "<g>", "requiredFeatures");
+    refused(L2(R1 "shape-rendering=\"crispEdges\"/>"), "<rect>", "shape-rendering");
+    refused(L2(R1 "style=\"fill: red; bogus\"/>"), "<rect>", "bogus");
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\" zoomAndPan=\"x\"/>", "<svg>",
+            "zoomAndPan");
+    refused(L2("<path d=\"M0 0 L4 0 L4 4z\" points=\"0 0\"/>"), "<path>", "points");
+    /* Case: CSS names and keywords in any case; the results equal the
+     * lower-case forms' (white is #ffffff: 1 1 1 in linear light). */
+    expect(SVG_OPEN "<path style=\"FILL: WHITE; Fill-Rule: EvenOdd\" d=\"M0 0 L1 0 L0 1z\"/>"
+                    "</svg>",
+           "fill 1 1 1 evenodd; M 0 0 L 1 0 L 0 1 Z");
+    expect(SVG_OPEN "<path fill=\"NONE\" d=\"M0 0 L1 0 L0 1z\"/>"
+                    "<path display=\"None\" d=\"M0 0 L1 0 L0 1z\"/>"
+                    "<path style=\"DISPLAY:NONE\" d=\"M0 0 L1 0 L0 1z\"/></svg>",
+           "");
+    expect(SVG_OPEN "<path fill=\"RGB(100%, 100%, 100%)\" stroke=\"None\" d=\"M0 0 L1 0 L0 1z\"/>"
+                    "</svg>",
+           "fill 1 1 1 nonzero; M 0 0 L 1 0 L 0 1 Z");
+    /* What is accepted without effect on a filled shape: ids, classes (no
+     * style sheet is read), stroke properties without a stroke, attributes
+     * of other namespaces. */
+    expect(SVG_OPEN "<g id=\"a\" class=\"b\" xmlns:x=\"urn:x\" x:y=\"1\" xml:space=\"preserve\">"
+                    "<path stroke-width=\"3\" style=\"stroke-linejoin: round;\""
+                    " d=\"M0 0 L1 0 L0 1z\"/>"
+                    "</g></svg>",
+           BLACK " M 0 0 L 1 0 L 0 1 Z");
+    /* Through the pattern: parse and build refuse, naming the property. */
+    char path[4200], spec[4400];
+    snprintf(path, sizeof path, "%s/blend.svg", dir);
+    write_svg(path, L2(R1 "mix-blend-mode=\"screen\"/>"));
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    svg_refused(spec, "mix-blend-mode");
+    svg_refused(spec, "line 2");
+    assert_int_equal(unlink(path), 0);
+}
+
 /* The shipped scenes read (those with cubics once the scene holds them). */
 static void test_shipped(void **state)
 {
     (void)state;
-    static const char *files[] = {"shapes.svg", "rules.svg", "curves.svg", "logo.svg"};
+    static const char *files[] = {"shapes.svg", "rules.svg", "curves.svg", "logo.svg", "mono.svg"};
     for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s", aa_svg_dir(), files[k]);
@@ -696,4 +758,5 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_command),
              cmocka_unit_test(test_export_round_trip),
              cmocka_unit_test(test_cubic_scene),
+             cmocka_unit_test(test_unknown_properties),
              cmocka_unit_test(test_shipped))

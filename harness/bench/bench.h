@@ -27,7 +27,7 @@ typedef struct aa_metrics {
      * aa_metrics_compare takes such images): left out of everything above.
      * psnr is infinite only for identical images (the same NaN or infinity
      * in both counts as the same); NaN if they differ only where a value is
-     * not finite. */
+     * not finite.  Every figure is NaN when every pixel is left out. */
     size_t nonfinite;
 } aa_metrics;
 

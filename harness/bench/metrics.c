@@ -22,7 +22,7 @@
  * that makes one has failed); aa_metrics_compare, for image files, counts
  * the pixels where either image holds one instead, and leaves them out:
  * of the pointwise errors, and of the spectrum and SSIM as if both images
- * were 0 there.
+ * were 0 there.  When no pixel is left, every figure is NaN (none).
  */
 #include "bench.h"
 
@@ -258,6 +258,13 @@ static int metrics(const aa_image *ref, const aa_image *img, const aa_encode *en
                            isfinite(ref->v[k]) ? img->v[k] : ref->v[k]);
         }
         m->nonfinite++;
+    }
+    if (m->nonfinite == pixels) { /* nothing to compare: no figure at all */
+        m->rmse = m->mae = m->max_err = m->psnr = NAN;
+        m->rmse_enc = m->mae_enc = m->max_err_enc = m->psnr_enc = NAN;
+        m->alias_total = m->alias_low = m->alias_high = m->ssim = NAN;
+        m->max_at[0] = m->max_at[1] = m->max_at[2] = -1;
+        return AA_OK;
     }
     pointwise(ref, img, NULL, m->nonfinite, differ, &m->rmse, &m->mae, &m->max_err, m->max_at,
               &m->psnr);

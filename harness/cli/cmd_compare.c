@@ -14,11 +14,14 @@ static void usage(FILE *out)
                  ".exr .tif .png .pfm .txt): rmse, mae, max_err and where, psnr, in linear\n"
                  "light and after display encoding; the error spectrum's power in total, below\n"
                  "1/4 cycle per pixel (moire) and above; SSIM on the encoded luma.  Pixels\n"
-                 "holding NaN or infinity in either image are counted (nonfinite) and left out.\n"
-                 "Sizes and the memory needed are checked from the headers before any pixel\n"
-                 "is read.\n\n"
+                 "holding NaN or infinity in either image are counted (nonfinite) and left out;\n"
+                 "when every pixel is left out there is no figure: each is n/a (null in JSON)\n"
+                 "and the exit status is 1.  Sizes and the memory needed are checked from the\n"
+                 "headers before any pixel is read.\n\n"
                  "      --encode E   display encoding: srgb (default), linear or gamma:G\n"
-                 "      --json       print one JSON object instead of lines\n");
+                 "      --json       print one JSON object instead of lines\n\n"
+                 "Exit status: 0 compared, 1 no pixel could be compared, 2 bad input or\n"
+                 "usage, 3 input/output error.\n");
 }
 
 /* A JSON number, or null for NaN and infinities (JSON has neither). */
@@ -91,6 +94,8 @@ int cmd_compare(int argc, char **argv)
         aa_image_free(&img);
         return cli_fail("compare", st);
     }
+    /* No pixel to compare: every figure is NaN, none is printed. */
+    int none = m.nonfinite == (size_t)ref.w * (size_t)ref.h;
     if (json) {
         /* JSON has no NaN and no infinity: those are null.  Identical
          * images keep their PSNR of 999 (infinite); images that differ only
@@ -114,6 +119,14 @@ int cmd_compare(int argc, char **argv)
                 printf(", \"max_at\": [%d, %d, %d]", m.max_at[0], m.max_at[1], m.max_at[2]);
         }
         printf(", \"nonfinite\": %zu}\n", m.nonfinite);
+    } else if (none) {
+        printf("size         %dx%dx%d\n", ref.w, ref.h, ref.c);
+        static const char *const names[] = {"rmse", "mae", "max_err", "psnr", "alias_total",
+                                            "ssim"};
+        for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+            printf("%-12s n/a\n", names[k]);
+        printf("nonfinite    %zu pixel%s: every pixel holds NaN or infinity in either image, "
+               "none can be compared\n", m.nonfinite, m.nonfinite == 1 ? "" : "s");
     } else {
         printf("size         %dx%dx%d\n"
                "rmse         %.6e   (encoded %.6e)\n"
@@ -131,5 +144,8 @@ int cmd_compare(int argc, char **argv)
     }
     aa_image_free(&ref);
     aa_image_free(&img);
-    return 0;
+    if (none)
+        fprintf(stderr, "aabench compare: no pixel can be compared (in every one, either "
+                        "image holds a value that is not finite)\n");
+    return none ? 1 : 0;
 }

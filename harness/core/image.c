@@ -618,11 +618,72 @@ int aa_png_complete(const char *path)
     return AA_OK;
 }
 
+/* A PFM (Debevec's portable float map) is "PF" (3 channels) or "Pf" (1),
+ * white space, the width, white space, the height, white space, the scale
+ * (its sign the byte order: never 0, NaN or infinite), one white-space
+ * character, then exactly width x height x channels 4-byte floats.
+ * OpenImageIO takes a NaN or zero scale and ignores bytes after the
+ * samples: such files are refused here, before it reads them, as damaged.
+ * A file that cannot be read here, or does not start as a PFM, is left to
+ * its reader. */
+static int pfm_complete(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return AA_OK;
+    char head[128];
+    size_t n = fread(head, 1, sizeof head - 1, f);
+    head[n] = '\0';
+    off_t size = fseeko(f, 0, SEEK_END) == 0 ? ftello(f) : -1;
+    int failed = ferror(f) || size < 0;
+    fclose(f);
+    if (failed || n < 3 || head[0] != 'P' || (head[1] != 'F' && head[1] != 'f') ||
+        !strchr(" \t\r\n", head[2]))
+        return AA_OK;
+    const char *s = head + 2;
+    long side[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        while (*s && strchr(" \t\r\n", *s))
+            s++;
+        int digits = 0;
+        for (; *s >= '0' && *s <= '9' && digits < 10; s++, digits++)
+            side[k] = side[k] * 10 + (*s - '0');
+        if (digits == 0 || digits == 10 || side[k] < 1 || !*s || !strchr(" \t\r\n", *s))
+            return aa_fail(AA_EIO,
+                           "%s: cannot read: the PFM header does not give a width and a height",
+                           path);
+    }
+    while (*s && strchr(" \t\r\n", *s))
+        s++;
+    size_t len = strcspn(s, " \t\r\n");
+    char word[64];
+    if (len == 0 || len >= sizeof word || !s[len])
+        return aa_fail(AA_EIO, "%s: cannot read: the PFM header does not give a scale", path);
+    memcpy(word, s, len);
+    word[len] = '\0';
+    char *end;
+    double scale = strtod(word, &end);
+    if (*end || !isfinite(scale) || scale == 0)
+        return aa_fail(AA_EIO,
+                       "%s: cannot read: the PFM scale %s is not a nonzero number (its "
+                       "sign gives the byte order)", path, word);
+    double header = (double)(s + len + 1 - head);
+    double want = header + 4.0 * (double)side[0] * (double)side[1] * (head[1] == 'F' ? 3 : 1);
+    if ((double)size != want)
+        return aa_fail(AA_EIO,
+                       "%s: cannot read: the PFM file holds %.0f bytes where its header "
+                       "calls for %.0f (%s)", path, (double)size, want,
+                       (double)size < want ? "cut short" : "bytes after the samples");
+    return AA_OK;
+}
+
 static int read_oiio(const char *path, aa_image *im)
 {
     /* Before OpenImageIO reads it: its PNG reader, given a file that ends
      * early, leaks what libpng's error jump skips, and libpng prints. */
     int status = aa_png_complete(path);
+    if (status == AA_OK)
+        status = pfm_complete(path);
     if (status != AA_OK)
         return status;
     const aa__oiio_api *oiio = aa__oiio(path);
@@ -658,12 +719,15 @@ int aa_image_file_size(const char *path, int *w, int *h, int *c)
         return unknown_format(path);
     if (f->kind == FORMAT_TXT)
         return aa__txt_info(path, w, h, c);
+    int status = pfm_complete(path);
+    if (status != AA_OK)
+        return status;
     const aa__oiio_api *oiio = aa__oiio(path);
     if (oiio == NULL)
         return AA_EIO;
     aa__oiio_in *in;
     aa__oiio_info info;
-    int status = oiio->open(path, &in, &info);
+    status = oiio->open(path, &in, &info);
     if (status != AA_OK)
         return status;
     oiio->close(in);
