@@ -3,11 +3,15 @@
  * not, for tests/test_run_faults.c: one whose render returns an error, one
  * that aborts (SIGABRT) and one that ends the process (exit status 3); and
  * ones that break the contract otherwise: a status no aa_status has (42),
- * a negative count of samples, more expensive pixels than the image has.
+ * a negative count of samples, more expensive pixels than the image has;
+ * and ones that harm the process they run in: one that calls exit(0),
+ * one that leaves the rounding mode upward, one that writes 16 values past
+ * the end of its image.
  * Built like any plug-in, against aabench.h alone.
  */
 #include "aabench.h"
 
+#include <fenv.h>
 #include <stdlib.h>
 
 static const aa_param no_params[] = {{0}};
@@ -83,6 +87,44 @@ static const aa_method_type over = {
     .info = {"overcount", "fault test: render counts W x H + 1 expensive pixels", no_params},
     .render = over_render};
 
+static int callsexit_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                            aa_counters *counters)
+{
+    (void)state, (void)p, (void)job, (void)out, (void)counters;
+    exit(0);
+}
+
+static int rounding_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                           aa_counters *counters)
+{
+    (void)state, (void)p;
+    grey(job, out, counters, 0);
+    fesetround(FE_UPWARD);
+    return AA_OK;
+}
+
+static int overrun_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                          aa_counters *counters)
+{
+    (void)state, (void)p;
+    grey(job, out, counters, 0);
+    volatile double *v = out->v;
+    for (int k = 0; k < 16; k++)
+        v[job->w * job->h * 3 + k] = 0.25;
+    return AA_OK;
+}
+
+static const aa_method_type callsexit = {
+    .info = {"callsexit", "fault test: render calls exit(0)", no_params},
+    .render = callsexit_render};
+static const aa_method_type rounding = {
+    .info = {"rounding", "fault test: render leaves the rounding mode upward", no_params},
+    .render = rounding_render};
+static const aa_method_type overrun = {
+    .info = {"overrun", "fault test: render writes 16 values past its image", no_params},
+    .render = overrun_render};
+
 const int aa_plugin_abi = AA_PLUGIN_ABI;
 const aa_method_type *const aa_plugin_methods[] = {&fails, &aborts,   &quits, &odd,
-                                                   &negative, &over, NULL};
+                                                   &negative, &over, &callsexit, &rounding,
+                                                   &overrun,  NULL};

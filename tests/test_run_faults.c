@@ -15,6 +15,10 @@
  *  - A method's NaN, 1.5 or error is a failed case (ok=0, the first bad
  *    pixel and the count in the note), the run goes on and exits 1 naming
  *    the failed cases; in process and isolated alike.
+ *  - In process, a method's exit() ends the run with status 3 and a
+ *    message (the rows before it kept), a write past its image fails its
+ *    case, and a rounding mode it changes is restored: the next row is the
+ *    one of a run without it.
  *  - A method's unknown status is named with its number, and impossible
  *    counters (negative, more expensive pixels than pixels) fail the case.
  *  - aa_run and the CSV reader give NULL and 0 when they refuse early, and
@@ -48,6 +52,7 @@
 #include "support.h"
 
 #include <errno.h>
+#include <fenv.h>
 #include <setjmp.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -644,6 +649,86 @@ static void test_contract_faults(void **state)
     }
 }
 
+/* ---- methods that harm the process they run in ---- */
+
+/* A method that calls exit(0) in process: the run ends with status 3 and
+ * says so, never 0 with the cases after it lost; the row before it is
+ * kept.  Through the command, which exit() ends. */
+static void test_exit_in_process(void **state)
+{
+    (void)state;
+    char failing[1200], out[600], csv[700];
+    plugin("plugin_failing", failing, sizeof failing);
+    path_in(out, sizeof out, "exit-in-process");
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    int code = RUN("run", "--no-isolate", "--plugin", failing, "-p", "crow", "-s", "8x8", "-m",
+                   "point", "-m", "callsexit", "-m", "area", "-f", "box", "--reps", "1",
+                   "--threads", "1", "--no-plots", "--no-images", "-q", "--out", out);
+    if (code != 3)
+        fail_msg("exit %d, not 3\n%s%s", code, out_text, err_text);
+    expect_in(err_text, "method callsexit called exit() during its render", "message");
+    table *t = read_table(csv);
+    assert_non_null(t);
+    assert_int_equal(t->nrows, 1);
+    assert_string_equal(cell(t, 0, "method"), "point");
+}
+
+/* The rmse of `method` on crow 8x8 box in process (one thread), after the
+ * method `before` (NULL: none), into buf; the run's table in *tp. */
+static void rmse_after(const char *before, const char *method, const char *name, char *buf,
+                       size_t len, table **tp)
+{
+    char out[600], csv[700];
+    path_in(out, sizeof out, name);
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    if (before)
+        LIB("run", "--no-isolate", "-p", "crow", "-s", "8x8", "-m", before, "-m", method, "-f",
+            "box", "--reps", "1", "--threads", "1", "--no-plots", "--no-images", "-q", "--out",
+            out);
+    else
+        LIB("run", "--no-isolate", "-p", "crow", "-s", "8x8", "-m", method, "-f", "box",
+            "--reps", "1", "--threads", "1", "--no-plots", "--no-images", "-q", "--out", out);
+    table *t = read_table(csv);
+    assert_non_null(t);
+    assert_int_equal(t->nrows, before ? 2 : 1);
+    assert_string_equal(cell(t, t->nrows - 1, "method"), method);
+    assert_string_equal(cell(t, t->nrows - 1, "ok"), "1");
+    snprintf(buf, len, "%s", cell(t, t->nrows - 1, "rmse"));
+    *tp = t;
+}
+
+/* A method that leaves the rounding mode upward: the next row's error is
+ * the one of a run without it, bit for bit, and its own row says so. */
+static void test_rounding_restored(void **state)
+{
+    (void)state;
+    char plain[128], after[128];
+    table *t;
+    rmse_after(NULL, "jitter", "rounding-plain", plain, sizeof plain, &t);
+    rmse_after("rounding", "jitter", "rounding-after", after, sizeof after, &t);
+    int round = fegetround();
+    fesetround(FE_TONEAREST); /* for the tests after, whatever happened */
+    assert_string_equal(after, plain);
+    assert_int_equal(round, FE_TONEAREST);
+    assert_string_equal(cell(t, 0, "ok"), "1");
+    expect_in(cell(t, 0, "note"), "changed the rounding mode", "rounding's note");
+}
+
+/* A method that writes 16 values past the end of its image: its case
+ * failed, saying so, and the next row is the one of a run without it. */
+static void test_overrun_fails_case(void **state)
+{
+    (void)state;
+    char plain[128], after[128];
+    table *t;
+    rmse_after(NULL, "point", "overrun-plain", plain, sizeof plain, &t);
+    rmse_after("overrun", "point", "overrun-after", after, sizeof after, &t);
+    assert_string_equal(cell(t, 0, "ok"), "0");
+    assert_string_equal(cell(t, 0, "note"), "failed: wrote past its image (8 x 8 x 3)");
+    assert_string_equal(cell(t, 0, "rmse"), "");
+    assert_string_equal(after, plain);
+}
+
 /* ---- outputs initialised when refused early ---- */
 
 /* A run of crow at w x h under the box filter with the n (at most 3)
@@ -1062,6 +1147,9 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_rows_kept_when_killed),
              cmocka_unit_test(test_bad_values_fail_case),
              cmocka_unit_test(test_contract_faults),
+             cmocka_unit_test(test_exit_in_process),
+             cmocka_unit_test(test_rounding_restored),
+             cmocka_unit_test(test_overrun_fails_case),
              cmocka_unit_test(test_outputs_initialised),
              cmocka_unit_test(test_isolated_faults),
              cmocka_unit_test(test_exit_after_images),

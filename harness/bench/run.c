@@ -12,15 +12,23 @@
  * long suite is refused at once.  A method that fails a case (an error, a
  * value outside [0, 1] or not finite, and when the case is isolated a crash
  * or a time-out: isolate.c) gives a failed row, and the run goes on.
+ * A case run in this process (not isolated) is guarded too: the method's
+ * exit() ends the run with status 3 and a message, never 0 with cases
+ * lost; its image has guard zones either side, so a write past it fails
+ * the case before the row is kept; and the floating-point environment is
+ * restored after it, so a changed rounding mode cannot change later rows.
  */
 #include "bench.h"
 #include "isolate_internal.h"
 
+#include <fenv.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/utsname.h>
+#include <unistd.h>
 
 static int check_list(const void *list, size_t n, const char *what)
 {
@@ -468,6 +476,87 @@ static int run_case(void *arg, aa_row *row)
     return st;
 }
 
+/* ---- a case in this process, guarded ---- */
+
+/* The method whose case runs in this process now, for the exit handler. */
+static char running[sizeof ((aa_row *)0)->method];
+static volatile sig_atomic_t in_case;
+
+/* exit() called while a method runs in this process: the rows kept so far
+ * are whole (each is written after its case), the case is lost, so the run
+ * ends with status 3, nothing more flushed or written. */
+static void exit_during_case(void)
+{
+    if (!in_case)
+        return;
+    char msg[sizeof running + 96];
+    int n = snprintf(msg, sizeof msg, "aabench: method %s called exit() during its render\n",
+                     running);
+    if (n > 0) {
+        ssize_t w = write(STDERR_FILENO, msg, (size_t)n < sizeof msg ? (size_t)n : sizeof msg - 1);
+        (void)w;
+    }
+    _exit(3);
+}
+
+/* Guard zones either side of the image a method writes, in doubles (4 KiB
+ * each), filled with a pattern no render leaves by chance. */
+#define GUARD 512
+static const unsigned char guard_byte = 0xa5;
+
+/* run_case in this process: into a copy of the image between guard zones,
+ * with exit() caught and the floating-point environment restored after. */
+static int run_case_here(case_args *ca, aa_row *row)
+{
+    static int registered;
+    if (!registered) {
+        if (atexit(exit_during_case))
+            return aa_fail(AA_ENOMEM, "cannot register the exit handler of the run");
+        registered = 1;
+    }
+    aa_image *img = ca->img;
+    size_t n = (size_t)img->w * (size_t)img->h * (size_t)img->c; /* allocated, so it fits */
+    double *buf = malloc((n + 2 * GUARD) * sizeof *buf);
+    if (!buf)
+        return aa_fail(AA_ENOMEM, "image %d x %d x %d: out of memory for its guarded copy",
+                       img->w, img->h, img->c);
+    unsigned char pattern[GUARD * sizeof *buf];
+    memset(pattern, guard_byte, sizeof pattern);
+    memcpy(buf, pattern, sizeof pattern);
+    memcpy(buf + GUARD + n, pattern, sizeof pattern);
+    memcpy(buf + GUARD, img->v, n * sizeof *buf);
+    aa_image guarded = *img;
+    guarded.v = buf + GUARD;
+    case_args a = *ca;
+    a.img = &guarded;
+
+    fenv_t env;
+    int saved = !fegetenv(&env);
+    int round = fegetround();
+    snprintf(running, sizeof running, "%s", row->method);
+    in_case = 1;
+    int st = run_case(&a, row);
+    in_case = 0;
+    int changed = fegetround() != round;
+    if (saved)
+        fesetenv(&env);
+
+    if (memcmp(buf, pattern, sizeof pattern) || memcmp(buf + GUARD + n, pattern, sizeof pattern)) {
+        /* what it wrote may be anywhere: the case failed, whatever it gave */
+        aa__row_failed(row, "wrote past its image (%d x %d x %d)", img->w, img->h, img->c);
+        st = AA_OK;
+    } else {
+        memcpy(img->v, guarded.v, n * sizeof *buf);
+        if (!st && changed) {
+            size_t len = strlen(row->note);
+            snprintf(row->note + len, sizeof row->note - len, "%s%s", len ? "; " : "",
+                     "changed the rounding mode (restored after it)");
+        }
+    }
+    free(buf);
+    return st;
+}
+
 /* Whether a method's cases run in a child of their own. */
 static int isolated(const aa_run_config *cfg, const aa_spec *spec)
 {
@@ -598,7 +687,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     case_args ca = {cfg,  &view, scene,  &job, spec,  &ref,
                                    refs, &img,  frames, nt,   timeout};
                     if (!isolated(cfg, spec)) {
-                        st = run_case(&ca, row);
+                        st = run_case_here(&ca, row);
                     } else {
                         st = aa__case_isolated(run_case, &ca, row, cfg->images_dir ? &img : NULL,
                                                timeout, cfg->threads);
