@@ -32,6 +32,7 @@
  *
  * The command line tests run $AABENCH (scripts/run-tests.sh sets it).
  */
+/* tier: full */
 #include "bench.h"
 #include "support.h"
 
