@@ -24,7 +24,7 @@ extern "C" {
 
 /* The interface version a plug-in is built for; the command refuses a
  * plug-in built for another.  Raised whenever a type below changes layout. */
-#define AA_PLUGIN_ABI 2
+#define AA_PLUGIN_ABI 3
 
 /* ------------------------------------------------------------------------
  * Status and errors
@@ -133,17 +133,24 @@ typedef enum aa_fill_rule { AA_FILL_NONZERO = 0, AA_FILL_EVENODD = 1 } aa_fill_r
 
 /* One segment of a closed path, as given: a Bezier arc from (x0,y0) through
  * control point (cx,cy) (a cubic's first; its second (c2x,c2y)) to (x1,y1);
- * for a line the control point is the midpoint. */
+ * for a line the control point is the midpoint.  An elliptical arc
+ * (quad == 3, aa_scene_arc_to) is the points
+ *     (cx + ux cos t + vx sin t,  cy + uy cos t + vy sin t)
+ * for t from t0 to t1 (either way, |t1 - t0| <= 2 pi): (cx, cy) is the
+ * ellipse's centre, u and v two conjugate semi-diameters (for a circle of
+ * radius r, (r, 0) and (0, r)); (x0, y0) and (x1, y1) are its ends exactly
+ * as given, and c2x, c2y are 0. */
 typedef struct aa_edge {
     double x0, y0, cx, cy, x1, y1;
-    int quad, layer; /* quad: 0 line, 1 quadratic arc, 2 cubic arc */
+    int quad, layer; /* quad: 0 line, 1 quadratic arc, 2 cubic arc, 3 elliptical arc */
     double c2x, c2y;
+    double ux, uy, vx, vy, t0, t1; /* elliptical arcs only */
 } aa_edge;
 
 /* A y-monotone part of an edge, top to bottom (y0 <= y1); it meets line y when
  * y0 <= y < y1 (a vertex counts once, a flat piece never). */
 typedef enum aa_piece_kind {
-    AA_PIECE_LINE, AA_PIECE_QUAD, AA_PIECE_FLAT, AA_PIECE_CUBIC } aa_piece_kind;
+    AA_PIECE_LINE, AA_PIECE_QUAD, AA_PIECE_FLAT, AA_PIECE_CUBIC, AA_PIECE_CONIC } aa_piece_kind;
 
 typedef struct aa_piece {
     double x0, y0, cx, cy, x1, y1; /* Bezier control points, top to bottom */
@@ -155,6 +162,16 @@ typedef struct aa_piece {
     int dir;   /* +1 if the edge runs down (y increasing), -1 up, 0 flat */
     int layer, edge; /* edge: index of the edge it came from */
     double c2x, c2y, dy, dx;
+    /* AA_PIECE_CONIC, a y-monotone arc of an ellipse, in its angle s:
+     *     y(s) = ey - er cos s,   x(s) = ex + ea cos s + eb sin s,
+     * s from s0 (the top, y0) to s1 (the bottom, y1), 0 <= s0 < s1 <= pi,
+     * so y increases with s; er > 0 is the ellipse's half height and ey its
+     * centre's height, so that on the piece
+     *     x(y) = ex + ea c + eb sqrt(1 - c^2),   c = (ey - y)/er.
+     * (x0, y0) and (x1, y1) are the edge's ends exactly where the piece
+     * ends at one; cx, cy, c2x, c2y, ax, bx, ay, by, dx, dy are 0; xmin,
+     * xmax its extent.  aa_piece_t_at gives (s - s0)/(s1 - s0). */
+    double ex, ey, er, ea, eb, s0, s1;
 } aa_piece;
 
 typedef struct aa_scene aa_scene;

@@ -142,6 +142,15 @@ int aa_scene_line_to(aa_scene *s, double x, double y);
 int aa_scene_quad_to(aa_scene *s, double cx, double cy, double x, double y);
 /* A cubic Bezier arc from the pen through (c1x,c1y) and (c2x,c2y) to (x,y). */
 int aa_scene_cubic_to(aa_scene *s, double c1x, double c1y, double c2x, double c2y, double x, double y);
+/* An elliptical arc from the pen to (x, y): the points
+ * (cx + ux cos t + vx sin t, cy + uy cos t + vy sin t), t from t0 to t1
+ * (aa_edge).  The pen must be the point for t0 and (x, y) the point for t1,
+ * each within 1e-9 of the ellipse's size (|u| + |v|); the edge starts and
+ * ends at exactly the pen and (x, y), so paths close exactly.  Refused:
+ * non-finite numbers, |t1 - t0| > 2 pi (beyond rounding), u and v parallel
+ * (a degenerate ellipse: draw its lines instead).  t0 == t1 adds nothing. */
+int aa_scene_arc_to(aa_scene *s, double cx, double cy, double ux, double uy, double vx,
+                    double vy, double t0, double t1, double x, double y);
 int aa_scene_close(aa_scene *s);
 /* Finish building: split edges into pieces and index them.  Refuses
  * non-finite coordinates.  Queries need a finished scene. */

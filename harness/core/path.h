@@ -1,0 +1,97 @@
+/*
+ * path.h: paths as drawn (before filling or stroking), the SVG arc's
+ * endpoint parametrisation, and the stroke outline (SVG 2, "Stroke shape").
+ *
+ * A path is subpaths of lines, quadratic and cubic Bezier arcs and
+ * elliptical arcs (in centre form, aa_edge), open or closed, in its own
+ * (user) coordinates.  A fill gives it to a scene through an affine map; a
+ * stroke first becomes its outline, in the same user coordinates, and the
+ * outline goes through the map: a non-uniform map transforms the outline,
+ * not the width, as SVG says.
+ */
+#ifndef AA_PATH_H
+#define AA_PATH_H
+
+#include "core.h"
+
+#include <stddef.h>
+
+typedef enum aa_path_op {
+    AA_PATH_MOVE,  /* p[0..1]: the new subpath's start */
+    AA_PATH_LINE,  /* p[0..1]: end */
+    AA_PATH_QUAD,  /* p[0..3]: control, end */
+    AA_PATH_CUBIC, /* p[0..5]: control 1, control 2, end */
+    AA_PATH_ARC,   /* p[0..7]: cx cy ux uy vx vy t0 t1 (aa_edge); p[8..9]: end */
+    AA_PATH_CLOSE  /* back to the subpath's start (a line if it is elsewhere) */
+} aa_path_op;
+
+typedef struct aa_path_seg {
+    aa_path_op op;
+    double p[10];
+} aa_path_seg;
+
+typedef struct aa_path {
+    aa_path_seg *seg;
+    size_t n, cap;
+    double penx, peny, startx, starty; /* while building */
+    int open;                          /* a subpath has begun */
+} aa_path;
+
+/* An empty path ({0} is one too). */
+void aa_path_init(aa_path *p);
+void aa_path_free(aa_path *p);
+int aa_path_move_to(aa_path *p, double x, double y);
+int aa_path_line_to(aa_path *p, double x, double y);
+int aa_path_quad_to(aa_path *p, double cx, double cy, double x, double y);
+int aa_path_cubic_to(aa_path *p, double c1x, double c1y, double c2x, double c2y, double x,
+                     double y);
+/* As aa_scene_arc_to, same checks. */
+int aa_path_arc_to(aa_path *p, double cx, double cy, double ux, double uy, double vx, double vy,
+                   double t0, double t1, double x, double y);
+int aa_path_close(aa_path *p);
+
+/* The SVG arc command from (x0, y0) to (x1, y1) with radii rx, ry, x-axis
+ * rotation phi (degrees) and the two flags, by the SVG implementation notes
+ * (SVG 1.1 F.6.5, F.6.6; SVG 2 "Elliptical arc implementation notes"):
+ * radii made positive, scaled up when too small for the ends; returns
+ * 0 (an arc: c[0..7] = cx cy ux uy vx vy t0 t1 as aa_edge, from (x0, y0)
+ * to (x1, y1)), 1 (a line: a radius is zero) or 2 (nothing: the ends are
+ * equal).  Non-finite input: AA_EINVAL (negative). */
+int aa_arc_endpoints(double x0, double y0, double rx, double ry, double phi, int large,
+                     int sweep, double x1, double y1, double c[8]);
+
+/* Give every segment of `path` to a scene, each point mapped by the affine
+ * map m (x' = m0 x + m2 y + m4, y' = m1 x + m3 y + m5; NULL: identity):
+ * every subpath is closed (a fill closes it).  An elliptical arc maps to
+ * an elliptical arc (centre and semi-diameters mapped). */
+int aa_path_fill(const aa_path *path, const double m[6], aa_scene *s);
+
+typedef enum aa_line_join {
+    AA_JOIN_MITER = 0, AA_JOIN_ROUND, AA_JOIN_BEVEL
+} aa_line_join;
+typedef enum aa_line_cap { AA_CAP_BUTT = 0, AA_CAP_ROUND, AA_CAP_SQUARE } aa_line_cap;
+
+typedef struct aa_stroke_style {
+    double width;      /* > 0 */
+    aa_line_join join; /* SVG's default miter */
+    aa_line_cap cap;   /* SVG's default butt */
+    double miterlimit; /* >= 1; SVG's default 4 */
+    const double *dash; /* NULL or ndash >= 1 lengths >= 0, not all 0 (an odd
+                         * count repeats, as SVG says) */
+    size_t ndash;
+    double dashoffset;
+} aa_stroke_style;
+
+/* SVG's defaults: width 1, miter, butt, limit 4, no dashes. */
+void aa_stroke_style_default(aa_stroke_style *st);
+
+/* The stroke of `in` as closed contours appended to `out`, in the same
+ * coordinates, such that the stroke's shape (SVG 2, "Stroke shape") is
+ * exactly the set of points of non-zero winding number of `out`: every
+ * contour is simple and turns the same way, so their union is what the
+ * non-zero rule fills.  Lines and circular arcs stroke exactly to lines and
+ * circular arcs.  What cannot be stroked exactly yet is refused with
+ * AA_EINVAL naming it (Bezier arcs; elliptical arcs that are not circles). */
+int aa_stroke_outline(const aa_path *in, const aa_stroke_style *style, aa_path *out);
+
+#endif
