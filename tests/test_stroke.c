@@ -623,7 +623,7 @@ static void test_round_fixed(void **state)
         must(aa_stroke_outline(&p, &st, &out));
         int nc = check_orientation(&out);
         within c = {&p, 0.15};
-        int n = compare_points_near(&out, -0.4, -0.4, 3.6, 3.6, 20000, within_h, &c, "fixed path",
+        int n = compare_points_near(&out, -0.4, -0.4, 3.6, 3.6, 8000, within_h, &c, "fixed path",
                                     &p, 0.15);
         check_seen("fixed path");
         print_message("fixed path (%s): %d contours, %d points agree\n",
@@ -659,7 +659,7 @@ static void test_round_random(void **state)
 {
     (void)state;
     int total = 0;
-    for (int i = 0; i < 60; i++) {
+    for (int i = 0; i < 45; i++) {
         aa_path p = {0};
         random_path(&p, i % 3 == 0);
         aa_stroke_style st;
@@ -670,7 +670,7 @@ static void test_round_random(void **state)
         within c = {&p, 0.5 * st.width};
         char what[64];
         snprintf(what, sizeof what, "random path %d", i);
-        total += compare_points_near(&out, -0.6, -0.6, 1.6, 1.6, 1500, within_h, &c, what, &p,
+        total += compare_points_near(&out, -0.6, -0.6, 1.6, 1.6, 1000, within_h, &c, what, &p,
                                      c.h);
         aa_path_free(&out);
         aa_path_free(&p);
@@ -780,7 +780,7 @@ static void test_round_dashes(void **state)
         within c = {&dashes, 0.5 * st.width};
         char what[64];
         snprintf(what, sizeof what, "dashed path %d", i);
-        total += compare_points_near(&out, -0.5, -0.5, 1.5, 1.5, 1500, within_h, &c, what,
+        total += compare_points_near(&out, -0.5, -0.5, 1.5, 1.5, 1000, within_h, &c, what,
                                      &dashes, c.h);
         aa_path_free(&dashes);
         aa_path_free(&out);
@@ -1003,7 +1003,7 @@ static void test_shape_random(void **state)
         sh.join = st.join, sh.cap = st.cap, sh.out = &out;
         char what[64];
         snprintf(what, sizeof what, "random path %d (join %d cap %d)", i, i % 3, (i / 3) % 3);
-        total += compare_points_near(&out, -0.6, -0.6, 1.6, 1.6, 1500, in_shape, &sh, what, &p,
+        total += compare_points_near(&out, -0.6, -0.6, 1.6, 1.6, 1000, in_shape, &sh, what, &p,
                                      sh.h);
         aa_path_free(&out);
         aa_path_free(&p);
@@ -1034,7 +1034,7 @@ static void test_arc_butt(void **state)
         shape_of(&p, &sh);
         sh.h = 0.5 * st.width, sh.limit = st.miterlimit;
         sh.join = st.join, sh.cap = st.cap, sh.out = &out;
-        total += compare_points_near(&out, -0.5, -0.5, 1.5, 1.5, 1500, in_shape, &sh, "butt arc",
+        total += compare_points_near(&out, -0.5, -0.5, 1.5, 1.5, 1000, in_shape, &sh, "butt arc",
                                      &p, sh.h);
         aa_path_free(&out);
         aa_path_free(&p);
