@@ -38,7 +38,9 @@
  * Choices where SVG leaves room, or where this differs from a renderer:
  *  - zero-length segments are dropped before joins: a join is between the
  *    neighbouring segments of non-zero length (SVG 2 takes a zero-length
- *    segment's direction from its neighbours, which comes to the same);
+ *    segment's direction from its neighbours, which comes to the same); a
+ *    line whose ends differ by rounding only (1e-14 of their magnitude)
+ *    counts as of zero length;
  *  - a subpath with segments but no length (M p L p, M p Z) is drawn as its
  *    caps at p in the direction of the x axis: a disk for round, an
  *    axis-aligned square of side 2h for square, nothing for butt; a subpath
@@ -572,11 +574,16 @@ static int circle_piece(const aa_path_seg *g, size_t k, double px, double py, pi
     return AA_OK;
 }
 
+/* A line; of length 0 (dropped) when its ends differ by rounding only, 1e-14
+ * of their magnitude or less: its direction would be noise, and its joins
+ * with it (a line closing a full circle whose end was computed, say). */
 static int line_piece(double x0, double y0, double x1, double y1, piece *p)
 {
     memset(p, 0, sizeof *p);
     p->x0 = x0, p->y0 = y0, p->x1 = x1, p->y1 = y1;
     p->len = hypot(x1 - x0, y1 - y0);
+    if (p->len <= 1e-14 * (fabs(x0) + fabs(y0) + fabs(x1) + fabs(y1)))
+        p->len = 0;
     if (p->len > 0) {
         p->dx = (x1 - x0) / p->len;
         p->dy = (y1 - y0) / p->len;
@@ -651,7 +658,7 @@ static int outline(const aa_path *in, const aa_stroke_style *style, aa_path *out
                 line_piece(px, py, sx, sy, &p);
                 if (!isfinite(p.len))
                     return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
-                if ((st = pieces_push(ps, &p)))
+                if (p.len > 0 && (st = pieces_push(ps, &p)))
                     break;
             }
             st = flush(out, ps, 1, 1, sx, sy, style, h, tmp);
