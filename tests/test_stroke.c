@@ -1417,6 +1417,7 @@ static void test_refused(void **state)
     assert_int_equal(aa_stroke_outline(&p, &bad, &out), AA_EINVAL);
     bad = st, bad.dash = neg, bad.ndash = 1, bad.dashoffset = INFINITY;
     assert_int_equal(aa_stroke_outline(&p, &bad, &out), AA_EINVAL);
+    assert_int_equal(aa_stroke_outline(&p, &st, &p), AA_EINVAL);
     /* a pattern far too fine for the path */
     const double fine[1] = {1e-9};
     bad = st, bad.dash = fine, bad.ndash = 1;

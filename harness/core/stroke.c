@@ -680,6 +680,8 @@ int aa_stroke_outline(const aa_path *in, const aa_stroke_style *style, aa_path *
     int st = check_style(style);
     if (st)
         return st;
+    if (in == out)
+        return aa_fail(AA_EINVAL, "stroke: the outline cannot replace its own path");
     aa_path keep = *out;
     pieces ps = {0}, tmp = {0};
     st = outline(in, style, out, &ps, &tmp);
