@@ -58,7 +58,6 @@
  */
 #include "path.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
