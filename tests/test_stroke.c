@@ -11,7 +11,8 @@
  *    (the polygon of the offset lines' meeting points, by the shoelace
  *    formula here), a closed square ((s + w)^2 - (s - w)^2 with miters,
  *    less four triangles with bevels), and dashes on a line (their lengths
- *    counted by hand, also with a negative offset and an odd list);
+ *    counted by hand, also with a negative offset and an odd list; on a
+ *    closed square, a dash through its start joined there);
  *  - areas of strokes with arcs, the same way, once the reference gives a
  *    disk its area (until then they skip, saying so): round caps, circles
  *    and half circles wider and narrower than the stroke, a round join,
@@ -495,6 +496,37 @@ static void test_dashes_line(void **state)
     st.ndash = 1;
     st.dashoffset = 0;
     expect_area("dashes, odd list", &p, &st, w * 0.3);
+    aa_path_free(&p);
+}
+
+/* Dashes on the closed square of test_closed_square (from its corner
+ * (0.25, 0.25), perimeter 2), w = 0.1, miter joins, butt caps:
+ *  - [1.5, 0.5] offset 0.25: the pattern is on from 0 to 1.25 and from
+ *    1.75 to 2, which meet at the start: one dash from (0.25, 0.5) round
+ *    three corners to (0.5, 0.75), 1.5 long with three right-angle miters:
+ *    w 1.5 (as in test_corner: each miter fills the square the rectangles
+ *    miss outside and they overlap in one inside);
+ *  - [3, 1]: on over the whole square: the closed square, 0.36 - 0.16. */
+static void test_dashes_closed(void **state)
+{
+    (void)state;
+    aa_path p = {0};
+    must(aa_path_move_to(&p, 0.25, 0.25));
+    must(aa_path_line_to(&p, 0.75, 0.25));
+    must(aa_path_line_to(&p, 0.75, 0.75));
+    must(aa_path_line_to(&p, 0.25, 0.75));
+    must(aa_path_close(&p));
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 0.1;
+    const double d1[2] = {1.5, 0.5}, d2[2] = {3, 1};
+    st.dash = d1;
+    st.ndash = 2;
+    st.dashoffset = 0.25;
+    expect_area("dash through a closed start", &p, &st, 0.1 * 1.5);
+    st.dash = d2;
+    st.dashoffset = 0;
+    expect_area("dash over a closed square", &p, &st, 0.36 - 0.16);
     aa_path_free(&p);
 }
 
@@ -1442,7 +1474,7 @@ static void test_default_style(void **state)
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_default_style), cmocka_unit_test(test_line_caps),
              cmocka_unit_test(test_corner), cmocka_unit_test(test_sharp_turn),
              cmocka_unit_test(test_closed_square), cmocka_unit_test(test_dashes_line),
-             cmocka_unit_test(test_arc_areas),
+             cmocka_unit_test(test_dashes_closed), cmocka_unit_test(test_arc_areas),
              cmocka_unit_test(test_round_fixed), cmocka_unit_test(test_round_random),
              cmocka_unit_test(test_round_dashes), cmocka_unit_test(test_arc_butt),
              cmocka_unit_test(test_shape_random), cmocka_unit_test(test_closing_rounding),

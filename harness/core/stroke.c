@@ -50,9 +50,10 @@
  *    for lines and circular arcs, r |t1 - t0|), an odd list repeated, the
  *    offset taken modulo the pattern's length (a negative one too); each
  *    dash is an open run with caps at both ends and joins at the vertices
- *    strictly inside it, also on a closed subpath (the dash through its
- *    start is two dashes); a dash of zero length is its caps in the path's
- *    direction there.
+ *    strictly inside it; on a closed subpath the start is such a vertex: a
+ *    dash through it (from 0 and to the length) is one dash, joined there,
+ *    and a dash over the whole subpath leaves it closed; a dash of zero
+ *    length is its caps in the path's direction there.
  * Refused (AA_EINVAL, naming it): Bezier arcs and elliptical arcs that are
  * not circles, whose offset curves are not lines or circles.
  */
@@ -443,6 +444,29 @@ static int stroke_run(aa_path *out, const piece *p, size_t n, int closed,
 /* The most dashes one subpath may have. */
 #define DASH_MAX 10000
 
+/* The parts of the subpath's pieces from arc length a to b (a < b),
+ * appended to dst. */
+static int collect(const piece *p, size_t n, double a, double b, pieces *dst)
+{
+    double s = 0;
+    for (size_t k = 0; k < n; k++) {
+        double e = s + p[k].len;
+        double lo = fmax(a, s) - s, hi = fmin(b, e) - s;
+        if (k == n - 1 && b >= e)
+            hi = p[k].len;
+        if (hi > lo) {
+            piece q = lo <= 0 && hi >= p[k].len
+                          ? p[k]
+                          : piece_part(&p[k], fmax(lo, 0), fmin(hi, p[k].len));
+            int st = pieces_push(dst, &q);
+            if (st)
+                return st;
+        }
+        s = e;
+    }
+    return AA_OK;
+}
+
 /* The dash from arc length a to b (a <= b) of the subpath's pieces. */
 static int stroke_dash(aa_path *out, const piece *p, size_t n, double a, double b,
                        const aa_stroke_style *style, double h, pieces *tmp)
@@ -464,25 +488,16 @@ static int stroke_dash(aa_path *out, const piece *p, size_t n, double a, double 
         int st = stroke_cap(out, x, y, d, style, h);
         return st ? st : stroke_cap(out, x, y, back, style, h);
     }
-    for (size_t k = 0; k < n; k++) {
-        double e = s + p[k].len;
-        double lo = fmax(a, s) - s, hi = fmin(b, e) - s;
-        if (k == n - 1 && b >= e)
-            hi = p[k].len;
-        if (hi > lo) {
-            piece q = lo <= 0 && hi >= p[k].len ? p[k] : piece_part(&p[k], fmax(lo, 0), fmin(hi, p[k].len));
-            int st = pieces_push(tmp, &q);
-            if (st)
-                return st;
-        }
-        s = e;
-    }
-    return stroke_run(out, tmp->p, tmp->n, 0, style, h);
+    int st = collect(p, n, a, b, tmp);
+    return st ? st : stroke_run(out, tmp->p, tmp->n, 0, style, h);
 }
 
-/* The dashes of one subpath (SVG 2, "dash positions"). */
-static int stroke_dashed(aa_path *out, const piece *p, size_t n, const aa_stroke_style *style,
-                         double h, pieces *tmp)
+/* The dashes of one subpath (SVG 2, "dash positions").  On a closed
+ * subpath a dash that runs through its start (one from 0 and one to its
+ * length) is one dash, joined there; a dash over all of it is the closed
+ * subpath. */
+static int stroke_dashed(aa_path *out, const piece *p, size_t n, int closed,
+                         const aa_stroke_style *style, double h, pieces *tmp)
 {
     size_t m = style->ndash % 2 ? 2 * style->ndash : style->ndash;
     const double *d = style->dash;
@@ -505,18 +520,33 @@ static int stroke_dashed(aa_path *out, const piece *p, size_t n, const aa_stroke
         i = (i + 1) % m;
     }
     double s = 0, rem = fmax(d[i % style->ndash] - fmax(pos, 0), 0);
+    double head = -1; /* closed: the end of the dash from 0, held back */
     int st = AA_OK;
     for (long guard = 0; guard < 4L * DASH_MAX && !st; guard++) {
-        double e = s + rem;
-        /* a dash from s to e; one of length 0 also at the very end */
-        if (i % 2 == 0 && (s < total || (rem == 0 && s == total)))
-            st = stroke_dash(out, p, n, s, fmin(e, total), style, h, tmp);
+        double e = s + rem, b = fmin(e, total);
+        /* a dash from s to b; one of length 0 also at the very end */
+        if (i % 2 == 0 && (s < total || (rem == 0 && s == total))) {
+            if (closed && s == 0 && b > 0 && head < 0) {
+                if (b == total)
+                    return stroke_run(out, p, n, 1, style, h);
+                head = b;
+            } else if (closed && head > 0 && b == total && s < total) {
+                tmp->n = 0;
+                if (!(st = collect(p, n, s, total, tmp)) && !(st = collect(p, n, 0, head, tmp)))
+                    st = stroke_run(out, tmp->p, tmp->n, 0, style, h);
+                head = -1;
+            } else {
+                st = stroke_dash(out, p, n, s, b, style, h, tmp);
+            }
+        }
         if (e > total)
             break;
         s = e;
         i = (i + 1) % m;
         rem = d[i % style->ndash];
     }
+    if (!st && head > 0)
+        st = stroke_dash(out, p, n, 0, head, style, h, tmp);
     return st;
 }
 
@@ -600,7 +630,7 @@ static int flush(aa_path *out, pieces *ps, int drawn, int closed, double px, dou
         if (drawn)
             st = stroke_dot(out, px, py, style, h);
     } else if (style->ndash > 0) {
-        st = stroke_dashed(out, ps->p, ps->n, style, h, tmp);
+        st = stroke_dashed(out, ps->p, ps->n, closed, style, h, tmp);
     } else {
         st = stroke_run(out, ps->p, ps->n, closed, style, h);
     }
