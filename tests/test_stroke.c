@@ -405,9 +405,13 @@ static void test_sharp_turn(void **state)
     d2[0] /= l2, d2[1] /= l2;
     /* left normals (-dy, dx); the turn is to the left, the outer side right */
     double n1[2] = {-d1[1], d1[0]}, n2[2] = {-d2[1], d2[0]};
-    double oa[2] = {a[0] - h * n1[0], a[1] - h * n1[1]}, ob1[2] = {b[0] - h * n1[0], b[1] - h * n1[1]};
-    double ob2[2] = {b[0] - h * n2[0], b[1] - h * n2[1]}, oc[2] = {c[0] - h * n2[0], c[1] - h * n2[1]};
-    double ia[2] = {a[0] + h * n1[0], a[1] + h * n1[1]}, ic[2] = {c[0] + h * n2[0], c[1] + h * n2[1]};
+    /* o: outer (right) offset points, i: inner (left) */
+    double oa[2] = {a[0] - h * n1[0], a[1] - h * n1[1]};
+    double ob1[2] = {b[0] - h * n1[0], b[1] - h * n1[1]};
+    double ob2[2] = {b[0] - h * n2[0], b[1] - h * n2[1]};
+    double oc[2] = {c[0] - h * n2[0], c[1] - h * n2[1]};
+    double ia[2] = {a[0] + h * n1[0], a[1] + h * n1[1]};
+    double ic[2] = {c[0] + h * n2[0], c[1] + h * n2[1]};
     double m[2], in[2];
     meet(oa, d1, oc, d2, m);
     meet(ia, d1, ic, d2, in);

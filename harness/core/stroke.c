@@ -22,12 +22,13 @@
  *    angle between the segments; 1/sin(theta/2) = 2/|nA + nB|) is at most
  *    the limit, the quadrilateral P A M B with the tip
  *    M = P + 2h (nA + nB)/|nA + nB|^2 where the outer edges' tangent lines
- *    meet, else the bevel; round the circular sector of radius h about P
- *    from A to B (the points of the disk about P in the directions between
- *    the outer normals; the rest of the disk is inside the segments'
- *    regions wherever it is within h of the path elsewhere, so a round join
- *    with round caps makes the stroke exactly the points within h of the
- *    path).  A straight vertex (d_in = d_out) has no join; a reversal
+ *    meet (at an arc too: its tangent line, not the `arcs` join), else the
+ *    bevel; round the circular sector of radius h about P from A to B.
+ *    With round joins and round caps every point within h of the path is
+ *    covered (its nearest point on the path is inside a segment, on whose
+ *    normal it lies, or a vertex or an end, in whose outward cone it
+ *    lies), so the stroke is then exactly those points, as tests check.
+ *    A straight vertex (d_in = d_out) has no join; a reversal
  *    (d_out = -d_in) has an empty bevel and miter (the ratio is infinite)
  *    and a half disk ahead of the vertex as its round join;
  *  - caps at the ends of an open subpath or a dash, in the outward
@@ -55,7 +56,8 @@
  *    and a dash over the whole subpath leaves it closed; a dash of zero
  *    length is its caps in the path's direction there.
  * Refused (AA_EINVAL, naming it): Bezier arcs and elliptical arcs that are
- * not circles, whose offset curves are not lines or circles.
+ * not circles, whose offset curves are not lines or circles; a subpath of
+ * more than DASH_MAX (10000) dashes.
  */
 #include "path.h"
 
@@ -146,7 +148,8 @@ static double c_area(const contour *c)
             double ax, ay, bx, by;
             arc_point(cx, cy, e->ux, e->uy, e->vx, e->vy, e->t0, &ax, &ay);
             arc_point(cx, cy, e->ux, e->uy, e->vx, e->vy, e->t1, &bx, &by);
-            a += cx * (by - ay) - cy * (bx - ax) + (e->ux * e->vy - e->uy * e->vx) * (e->t1 - e->t0);
+            double uv = e->ux * e->vy - e->uy * e->vx;
+            a += cx * (by - ay) - cy * (bx - ax) + uv * (e->t1 - e->t0);
             /* the gap from the pen to the arc's own start (rounding) */
             a += px * ay - py * ax;
             px = bx, py = by;
