@@ -29,7 +29,8 @@
  *    (radius < w/2, the normal crossing the centre), arcs of both turning
  *    senses and of more than half a turn, and random paths of lines and
  *    arcs, open and closed; dashed paths against the distance to their
- *    dashes (laid out here by arc length);
+ *    dashes (laid out here by arc length), and against the shape of those
+ *    dashes with every join and cap;
  *  - the outline filled into a scene (aa_path_fill, also through a shear
  *    that makes its circles ellipses): the scene's point query agrees with
  *    the stroke shape at the point's preimage;
@@ -816,7 +817,7 @@ static void test_round_random(void **state)
         aa_path_free(&p);
     }
     check_seen("random round strokes");
-        print_message("random round strokes: %d points agree\n", total);
+    print_message("random round strokes: %d points agree\n", total);
 }
 
 /* The dashes of a path laid out here: the parts of it from arc length a to
@@ -867,6 +868,40 @@ static void dash_part(const aa_path *p, double a, double b, aa_path *part)
     }
 }
 
+/* The dashes of an open path laid out here by arc length: dash k of the
+ * pattern's repetition q runs from q period + its place in the pattern -
+ * the offset; each becomes a subpath of `dashes` (dash_part). */
+static void lay_dashes(const aa_path *p, const aa_stroke_style *st, aa_path *dashes)
+{
+    double len = 0, px = 0, py = 0;
+    for (size_t k = 0; k < p->n; k++) {
+        const aa_path_seg *g = &p->seg[k];
+        if (g->op == AA_PATH_MOVE)
+            px = g->p[0], py = g->p[1];
+        else if (g->op == AA_PATH_LINE)
+            len += hypot(g->p[0] - px, g->p[1] - py), px = g->p[0], py = g->p[1];
+        else
+            len += hypot(g->p[2], g->p[3]) * fabs(g->p[7] - g->p[6]), px = g->p[8],
+                py = g->p[9];
+    }
+    double pat[6];
+    int m = st->ndash % 2 ? 2 * (int)st->ndash : (int)st->ndash;
+    double period = 0;
+    for (int k = 0; k < m; k++)
+        period += pat[k] = st->dash[k % st->ndash];
+    for (double q = floor((st->dashoffset - period) / period);
+         q * period - st->dashoffset <= len; q++) {
+        double at = q * period - st->dashoffset;
+        for (int k = 0; k < m; k++) {
+            double a = at, b = at + pat[k];
+            at = b;
+            if (k % 2 || b < 0 || a > len || (a == b && (a < 0 || a >= len)))
+                continue;
+            dash_part(p, fmax(a, 0), fmin(b, len), dashes);
+        }
+    }
+}
+
 /* Dashed random open paths, round joins and caps: the stroke is the points
  * within h of the dashes, each the part of the path between the ends of an
  * "on" entry of the pattern repeated from the offset. */
@@ -886,37 +921,8 @@ static void test_round_dashes(void **state)
         aa_path out = {0};
         must(aa_stroke_outline(&p, &st, &out));
         check_orientation(&out);
-        /* the dashes by hand */
-        double len = 0, px = 0, py = 0;
-        for (size_t k = 0; k < p.n; k++) {
-            const aa_path_seg *g = &p.seg[k];
-            if (g->op == AA_PATH_MOVE)
-                px = g->p[0], py = g->p[1];
-            else if (g->op == AA_PATH_LINE)
-                len += hypot(g->p[0] - px, g->p[1] - py), px = g->p[0], py = g->p[1];
-            else
-                len += hypot(g->p[2], g->p[3]) * fabs(g->p[7] - g->p[6]), px = g->p[8],
-                    py = g->p[9];
-        }
-        double pat[6];
-        int m = st.ndash % 2 ? 2 * (int)st.ndash : (int)st.ndash;
-        double period = 0;
-        for (int k = 0; k < m; k++)
-            period += pat[k] = dash[k % st.ndash];
         aa_path dashes = {0};
-        /* dash j of the pattern's repetition q starts at q period + its
-         * place in the pattern - the offset */
-        for (double q = floor((st.dashoffset - period) / period); q * period - st.dashoffset <= len;
-             q++) {
-            double at = q * period - st.dashoffset;
-            for (int k = 0; k < m; k++) {
-                double a = at, b = at + pat[k];
-                at = b;
-                if (k % 2 || b < 0 || a > len || (a == b && (a < 0 || a >= len)))
-                    continue;
-                dash_part(&p, fmax(a, 0), fmin(b, len), &dashes);
-            }
-        }
+        lay_dashes(&p, &st, &dashes);
         within c = {&dashes, 0.5 * st.width};
         char what[64];
         snprintf(what, sizeof what, "dashed path %d", i);
@@ -927,7 +933,7 @@ static void test_round_dashes(void **state)
         aa_path_free(&p);
     }
     check_seen("dashed round strokes");
-        print_message("dashed round strokes: %d points agree\n", total);
+    print_message("dashed round strokes: %d points agree\n", total);
 }
 
 /* ---- point membership, every join and cap ---- */
@@ -950,8 +956,8 @@ typedef struct seg {
 } seg;
 
 typedef struct shape {
-    seg s[64];
-    int n, first[16], count[16], closed[16], nsub;
+    seg s[1024];
+    int n, first[256], count[256], closed[256], nsub;
     double h, limit;
     int join, cap;
     const aa_path *out; /* the outline: margins are distances to its edges */
@@ -977,6 +983,7 @@ static void shape_of(const aa_path *p, shape *sh)
         const aa_path_seg *g = &p->seg[k];
         seg t = {0};
         if (g->op == AA_PATH_MOVE) {
+            assert_true(sh->nsub < 256);
             sx = px = g->p[0], sy = py = g->p[1];
             sh->first[sh->nsub] = sh->n, sh->count[sh->nsub] = 0, sh->closed[sh->nsub] = 0;
             sh->nsub++;
@@ -998,7 +1005,7 @@ static void shape_of(const aa_path *p, shape *sh)
         if (!t.arc && t.len <= 1e-14 * (fabs(t.x0) + fabs(t.y0) + fabs(t.x1) + fabs(t.y1)))
             t.len = 0;
         if (t.len > 0) {
-            assert_true(sh->n < 64);
+            assert_true(sh->n < 1024);
             sh->s[sh->n++] = t;
             sh->count[sh->nsub - 1]++;
         }
@@ -1152,7 +1159,48 @@ static void test_shape_random(void **state)
         aa_path_free(&p);
     }
     check_seen("random strokes, every join");
-        print_message("random strokes, every join and cap: %d points agree\n", total);
+    print_message("random strokes, every join and cap: %d points agree\n", total);
+}
+
+/* Dashed random open paths, every join and cap: the shape of the dashes
+ * laid out here (lay_dashes), each an open subpath with its own caps and
+ * the joins inside it. */
+static void test_shape_dashes(void **state)
+{
+    (void)state;
+    int total = 0;
+    static shape sh;
+    for (int i = 0; i < 36; i++) {
+        aa_path p = {0};
+        random_path(&p, 0);
+        aa_stroke_style st;
+        aa_stroke_style_default(&st);
+        st.width = uniform(0.02, 0.1);
+        st.join = (aa_line_join)(i % 3);
+        st.cap = (aa_line_cap)((i / 3) % 3);
+        st.miterlimit = uniform(1, 6);
+        double dash[3] = {uniform(0.05, 0.4), uniform(0.15, 0.3), uniform(0.01, 0.2)};
+        st.dash = dash;
+        st.ndash = 2 + (i % 2);
+        st.dashoffset = uniform(-1, 1);
+        aa_path out = {0};
+        must(aa_stroke_outline(&p, &st, &out));
+        check_orientation(&out);
+        aa_path dashes = {0};
+        lay_dashes(&p, &st, &dashes);
+        shape_of(&dashes, &sh);
+        sh.h = 0.5 * st.width, sh.limit = st.miterlimit;
+        sh.join = st.join, sh.cap = st.cap, sh.out = &out;
+        char what[64];
+        snprintf(what, sizeof what, "dashed path %d (join %d cap %d)", i, i % 3, (i / 3) % 3);
+        total += compare_points_near(&out, -0.6, -0.6, 1.6, 1.6, 1000, in_shape, &sh, what,
+                                     &dashes, sh.h);
+        aa_path_free(&dashes);
+        aa_path_free(&out);
+        aa_path_free(&p);
+    }
+    check_seen("dashed strokes, every join");
+    print_message("dashed strokes, every join and cap: %d points agree\n", total);
 }
 
 /* Single arcs with butt caps: the normals' sweep alone, tight arcs
@@ -1183,7 +1231,7 @@ static void test_arc_butt(void **state)
         aa_path_free(&p);
     }
     check_seen("butt arcs");
-        print_message("butt arcs: %d points agree\n", total);
+    print_message("butt arcs: %d points agree\n", total);
 }
 
 /* A full circle whose end, computed by cos and sin, misses its start by
@@ -1481,7 +1529,8 @@ SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_default_style), cmocka_unit_test(
              cmocka_unit_test(test_dashes_closed), cmocka_unit_test(test_arc_areas),
              cmocka_unit_test(test_round_fixed), cmocka_unit_test(test_round_random),
              cmocka_unit_test(test_round_dashes), cmocka_unit_test(test_arc_butt),
-             cmocka_unit_test(test_shape_random), cmocka_unit_test(test_closing_rounding),
+             cmocka_unit_test(test_shape_random), cmocka_unit_test(test_shape_dashes),
+             cmocka_unit_test(test_closing_rounding),
              cmocka_unit_test(test_scene_points),
              cmocka_unit_test(test_zero_length),
              cmocka_unit_test(test_refused))
