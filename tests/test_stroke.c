@@ -1421,6 +1421,20 @@ static void test_zero_length(void **state)
     compare_points(&out, 0, 0, 1, 1, 2000, in_square, &sq, "dot, square");
     check_seen("dot, square");
     aa_path_free(&out);
+    /* dashed: drawn when the pattern starts in a dash, not in a gap */
+    const double dash[2] = {0.1, 0.2};
+    st.dash = dash;
+    st.ndash = 2;
+    st.dashoffset = 0.05;
+    must(aa_stroke_outline(&p, &st, &out));
+    assert_true(out.n > 0);
+    aa_path_free(&out);
+    st.dashoffset = 0.15;
+    must(aa_stroke_outline(&p, &st, &out));
+    assert_int_equal(out.n, 0);
+    st.dash = NULL;
+    st.ndash = 0;
+    st.dashoffset = 0;
     aa_path_free(&p);
     /* M p Z is a dot too; a lone move is nothing */
     must(aa_path_move_to(&p, 0.5, 0.5));

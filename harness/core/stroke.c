@@ -44,8 +44,9 @@
  *    counts as of zero length;
  *  - a subpath with segments but no length (M p L p, M p Z) is drawn as its
  *    caps at p in the direction of the x axis: a disk for round, an
- *    axis-aligned square of side 2h for square, nothing for butt; a subpath
- *    that is only a move_to draws nothing (SVG 1.1, "a subpath consisting
+ *    axis-aligned square of side 2h for square, nothing for butt (nor when
+ *    a dash pattern starts in a gap); a subpath that is only a move_to
+ *    draws nothing (SVG 1.1, "a subpath consisting
  *    of a single moveto shall not be stroked");
  *  - dashes are laid along each subpath from its start by arc length (exact
  *    for lines and circular arcs, r |t1 - t0|), an odd list repeated, the
@@ -495,6 +496,34 @@ static int stroke_dash(aa_path *out, const piece *p, size_t n, double a, double 
     return st ? st : stroke_run(out, tmp->p, tmp->n, 0, style, h);
 }
 
+/* Where in the pattern (m entries, of total length `period`) a subpath
+ * starts: the entry's index (even: a dash), *pos how far into it. */
+static size_t dash_phase(const aa_stroke_style *style, double period, double *pos)
+{
+    size_t m = style->ndash % 2 ? 2 * style->ndash : style->ndash;
+    const double *d = style->dash;
+    double p = fmod(style->dashoffset, period);
+    if (p < 0)
+        p += period;
+    size_t i = 0;
+    for (size_t guard = 0; guard < 2 * m && p > 0 && p >= d[i % style->ndash]; guard++) {
+        p -= d[i % style->ndash];
+        i = (i + 1) % m;
+    }
+    *pos = p;
+    return i;
+}
+
+/* 1 if the pattern is in a dash where a subpath starts. */
+static int dash_on_at_start(const aa_stroke_style *style)
+{
+    size_t m = style->ndash % 2 ? 2 * style->ndash : style->ndash;
+    double period = 0, pos;
+    for (size_t i = 0; i < m; i++)
+        period += style->dash[i % style->ndash];
+    return dash_phase(style, period, &pos) % 2 == 0;
+}
+
 /* The dashes of one subpath (SVG 2, "dash positions").  On a closed
  * subpath a dash that runs through its start (one from 0 and one to its
  * length) is one dash, joined there; a dash over all of it is the closed
@@ -513,15 +542,8 @@ static int stroke_dashed(aa_path *out, const piece *p, size_t n, int closed,
         return aa_fail(AA_EINVAL, "stroke: the dash pattern (period %g) makes more than %d dashes "
                                   "on a subpath of length %g",
                        period, DASH_MAX, total);
-    /* where in the pattern the subpath starts */
-    double pos = fmod(style->dashoffset, period);
-    if (pos < 0)
-        pos += period;
-    size_t i = 0;
-    for (size_t guard = 0; guard < 2 * m && pos > 0 && pos >= d[i % style->ndash]; guard++) {
-        pos -= d[i % style->ndash];
-        i = (i + 1) % m;
-    }
+    double pos;
+    size_t i = dash_phase(style, period, &pos);
     double s = 0, rem = fmax(d[i % style->ndash] - fmax(pos, 0), 0);
     double head = -1; /* closed: the end of the dash from 0, held back */
     int st = AA_OK;
@@ -630,7 +652,8 @@ static int flush(aa_path *out, pieces *ps, int drawn, int closed, double px, dou
 {
     int st = AA_OK;
     if (ps->n == 0) {
-        if (drawn)
+        /* with dashes, only if the pattern starts in a dash */
+        if (drawn && (style->ndash == 0 || dash_on_at_start(style)))
             st = stroke_dot(out, px, py, style, h);
     } else if (style->ndash > 0) {
         st = stroke_dashed(out, ps->p, ps->n, closed, style, h, tmp);
