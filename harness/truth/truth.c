@@ -342,15 +342,14 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
             break;
         if (p->kind == AA_PIECE_FLAT)
             continue;
-        if (p->kind == AA_PIECE_QUAD || p->kind == AA_PIECE_CUBIC) {
-            /* an end where dy/dt = 0 (an arc's turning point in y, where
-             * edges are split): there x - x_end grows like sqrt(y - y_end) */
-            double tiny = 1e-12 * (p->y1 - p->y0);
-            if (fabs(p->by) <= tiny)
-                note_turn(w, p->y0 - w->vc);
-            if (fabs(p->by + 2.0 * p->ay + 3.0 * p->dy) <= tiny)
-                note_turn(w, p->y1 - w->vc);
-        }
+        /* an end where dy/dt = 0 (an arc's turning point in y, where
+         * edges are split): there x - x_end grows like sqrt(y - y_end) */
+        int tlo, thi;
+        truth_turns(p, &tlo, &thi);
+        if (tlo)
+            note_turn(w, p->y0 - w->vc);
+        if (thi)
+            note_turn(w, p->y1 - w->vc);
         if (w->radial) {
             /* where the piece crosses the disc's rim: a span's end leaves
              * the chord there (the row integral has no kink in u inside) */
