@@ -251,25 +251,32 @@ static double check_pixels(const char *what, const aa_scene *s, int w, int h, in
 
 /* The sum of the reference over the image against `area`, within the sum
  * of the bounds. */
-static void check_sum(const char *what, const aa_scene *s, int w, int h, const char *filter,
-                      double area)
+static void check_sum_mode(const char *what, const aa_scene *s, int w, int h,
+                           const char *filter, int mode, double area)
 {
     aa_image img, bound;
     aa_truth_stats st;
-    ref(s, w, h, filter, 0, &img, &bound, &st);
+    ref(s, w, h, filter, mode, &img, &bound, &st);
     long double sum = 0, bsum = 0;
     for (int k = 0; k < w * h; k++) {
         sum += img.v[3 * k];
         bsum += bound.v[k];
     }
     double e = fabs((double)(sum - area));
-    print_message("%-40s %dx%d %-12s sum - area %.2e (sum of bounds %.2e, max %.2e)\n", what, w,
-                  h, filter, e, (double)bsum, st.max_bound);
+    print_message("%-40s %dx%d %-12s%s sum - area %.2e (sum of bounds %.2e, max %.2e)\n", what,
+                  w, h, filter, mode == AA__TRUTH_CROWD ? " (crowd)" : "", e, (double)bsum,
+                  st.max_bound);
     assert_true(st.max_bound <= AA_TRUTH_BOUND);
     if (!(e <= bsum + 1e-13))
-        fail_msg("%s %s: sum %.17g, area %.17g", what, filter, (double)sum, area);
+        fail_msg("%s %s mode %d: sum %.17g, area %.17g", what, filter, mode, (double)sum, area);
     aa_image_free(&img);
     aa_image_free(&bound);
+}
+
+static void check_sum(const char *what, const aa_scene *s, int w, int h, const char *filter,
+                      double area)
+{
+    check_sum_mode(what, s, w, h, filter, 0, area);
 }
 
 /* ---- tests ---- */
@@ -346,6 +353,16 @@ static void test_tiny(void **state)
     disk d2 = {10.1, 10.9, a, 0, 0, 0, 0};
     check_pixels("tiny circle across four pixels", s, 16, 16, 0, &d2, &b);
     check_sum("tiny circle across four pixels", s, 16, 16, "tent:r=1", M_PI * a * a);
+    aa_scene_free(s);
+    /* radius 1e-3 on a pixel centre: its extremes lie on the sides of the
+     * neighbours' windows (the crowd path once kept the colour inside it
+     * on a neighbour's left side below it: 1 off) */
+    s = disk_scene(8.5, 8.5, 1e-3);
+    for (int mode = 0; mode <= AA__TRUTH_CROWD; mode++) {
+        check_sum_mode("circle r = 1e-3 on a pixel centre", s, 16, 16, "tent:r=1", mode,
+                       M_PI * 1e-6);
+        check_sum_mode("circle r = 1e-3 on a pixel centre", s, 16, 16, "box", mode, M_PI * 1e-6);
+    }
     aa_scene_free(s);
 }
 
@@ -425,6 +442,72 @@ static void test_huge(void **state)
     check_sum("circle r = 1e4, a cap", s, 64, 64, "box",
               (double)disk_rect(cx, cy, r, 0, 64, 0, 64));
     aa_scene_free(s);
+}
+
+/* Arcs that start and end away from the ellipse's extremes, and arcs that
+ * meet: a pie slice (the arc from angle t0 to t1 and two radii: area
+ * r^2 (t1 - t0) / 2), a circular segment (the arc and its chord: r^2 (th -
+ * sin th) / 2 for the angle th it spans), and two circles of radius r,
+ * centres d apart, crossing: their lens has area 2 r^2 acos(d / (2 r)) -
+ * (d / 2) sqrt(4 r^2 - d^2), so nonzero covers 2 pi r^2 - lens and
+ * even-odd 2 pi r^2 - 2 lens.  Sums under the box and the tent of radius
+ * 1; the crowd path per pixel against the default. */
+static void test_slices_and_meetings(void **state)
+{
+    (void)state;
+    const double cx = 20.3, cy = 19.6, r = 11.7, t0 = 0.37, t1 = 2.9;
+    aa_scene *s = new_scene(AA_FILL_NONZERO);
+    assert_int_equal(aa_scene_move_to(s, cx, cy), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, cx + r * cos(t0), cy + r * sin(t0)), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, cx, cy, r, 0, 0, r, t0, t1, cx + r * cos(t1),
+                                     cy + r * sin(t1)), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    check_sum("pie slice", s, 40, 40, "box", r * r * (t1 - t0) / 2);
+    check_sum("pie slice", s, 40, 40, "tent:r=1", r * r * (t1 - t0) / 2);
+    aa_scene_free(s);
+    /* the segment of the arc from -1.1 to 1.9 (y up and down, x both ways) */
+    const double a0 = -1.1, a1 = 1.9;
+    s = new_scene(AA_FILL_NONZERO);
+    assert_int_equal(aa_scene_move_to(s, cx + r * cos(a0), cy + r * sin(a0)), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, cx, cy, r, 0, 0, r, a0, a1, cx + r * cos(a1),
+                                     cy + r * sin(a1)), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    check_sum("circular segment", s, 40, 40, "box", r * r * ((a1 - a0) - sin(a1 - a0)) / 2);
+    aa_scene_free(s);
+    const double rr = 8, d = 6.3, lens = 2 * rr * rr * acos(d / (2 * rr)) -
+                                         d / 2 * sqrt(4 * rr * rr - d * d);
+    for (int nonzero = 0; nonzero <= 1; nonzero++) {
+        s = new_scene(nonzero ? AA_FILL_NONZERO : AA_FILL_EVENODD);
+        add_ellipse(s, 20.2, 20.7, rr, 0, 0, rr, 0);
+        add_ellipse(s, 20.2 + d * 0.6, 20.7 + d * 0.8, rr, 0, 0, rr, 0);
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        double area = 2 * M_PI * rr * rr - (nonzero ? 1 : 2) * lens;
+        const char *what = nonzero ? "two circles crossing, nonzero" : "two circles crossing, even-odd";
+        check_sum(what, s, 44, 44, "box", area);
+        check_sum(what, s, 44, 44, "tent:r=1", area);
+        aa_image a, b, ba, bb;
+        aa_truth_stats sa, sb;
+        ref(s, 44, 44, "cone:r=1", 0, &a, &ba, &sa);
+        ref(s, 44, 44, "cone:r=1", AA__TRUTH_CROWD, &b, &bb, &sb);
+        double worst = 0;
+        for (int p = 0; p < 44 * 44; p++) {
+            double e = fabs(a.v[3 * p] - b.v[3 * p]);
+            worst = fmax(worst, e);
+            if (!(e <= ba.v[p] + bb.v[p]))
+                fail_msg("%s pixel %d: default %.17g, crowd %.17g", what, p, a.v[3 * p],
+                         b.v[3 * p]);
+        }
+        print_message("%-40s cone: max |default - crowd| %.2e, bounds %.1e %.1e\n", what, worst,
+                      sa.max_bound, sb.max_bound);
+        assert_true(sa.max_bound <= AA_TRUTH_BOUND && sb.max_bound <= AA_TRUTH_BOUND);
+        aa_image_free(&a);
+        aa_image_free(&b);
+        aa_image_free(&ba);
+        aa_image_free(&bb);
+        aa_scene_free(s);
+    }
 }
 
 /* The QAG path against the default (the Gaussian's panels, which send
@@ -557,6 +640,7 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_annulus),
              cmocka_unit_test(test_ellipse),
              cmocka_unit_test(test_huge),
+             cmocka_unit_test(test_slices_and_meetings),
              cmocka_unit_test(test_paths_agree),
              cmocka_unit_test(test_near_centre),
              cmocka_unit_test(test_circle_heights))

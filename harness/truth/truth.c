@@ -127,6 +127,35 @@
  * panel's part) and no other piece meets it there (aa_piece_meet); QAG
  * the rest.  Scenes without cubics are computed as before, to the bit.
  *
+ * Conic pieces (AA_PIECE_CONIC, arcs of ellipses split at their extremes
+ * in y) take the same paths.  A crossing comes from the piece's own angle
+ * form in long double: at height s, c = (ey - s)/er and
+ *     x = ex + ea c + eb sqrt((1 - c)(1 + c)),
+ * with 1 - c = (s - top)/er and 1 + c = (bot - s)/er each taken directly
+ * as the distance to the ellipse's top (ey - er) or bottom (ey + er), so
+ * that next to a turning point, where the square root is ill-conditioned
+ * in s (but the integral is not), the small factor carries no rounding of
+ * c (truth_internal.h, truth_conic_part).  Their breakpoints are their
+ * pieces' ends (the ends of the arc and its extremes in y: an end within
+ * 0.01 of angle 0 or pi is a turning point and its half interval is
+ * integrated in u = sqrt(|v - v_end|), which is harmless where x is smooth
+ * there), their crossings of the kink lines (aa_piece_meet_x: the angle
+ * from an acos), their meetings with other pieces (aa_piece_meet), and for
+ * the cone their crossings of the circle of radius R: with the angle
+ * a = am + 2 atan(t) over the part of the piece in the disc's rows, the
+ * piece is a rational quadratic (qx(t), qy(t))/(1 + t^2), t in [-1, 1],
+ * and the crossings are the sign changes of the quartic qx^2 + qy^2 -
+ * R^2 (1 + t^2)^2, isolated between the roots of its derivatives and
+ * bisected in long double (truth_sign_roots).  In a crowded window the
+ * cone's breakpoint where a conic piece passes closest to the centre is a
+ * sign change of the quintic w (Q . Q') - 2 t (Q . Q) (w = 1 + t^2, Q the
+ * numerators), and any pair with a conic meets as aa_piece_meet finds.
+ * The Gaussian's panels send every column near a conic piece to QAG.
+ * Checked against closed forms per pixel (a disk's area in a pixel's
+ * square, 5e-16 at most; a circle of radius 1e4, 2e-15) and as sums
+ * (areas under box, tent and a Gaussian whose translates sum to 1), the
+ * filters' masses within a radius for centred disks (tests/test_conic.c).
+ *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
  * rounding.  Pixels whose window meets no piece are uniform: they take the

@@ -309,6 +309,22 @@ static inline long double x_at(const crowd_piece *k, long double s)
     return k->q.x0 + truth_crossing_part(&k->q, s);
 }
 
+/* x at height s where piece k begins or ends (or enters or leaves the
+ * window's rows): the scene's own point at the piece's ends.  A conic
+ * piece's crossing there can be off by much more than the rounding of
+ * the coordinates: at a turning point the end's height is the extreme's
+ * rounded, and under the square root that rounding moves x by
+ * sqrt(2 er 1e-16) (3e-9 px for a circle of radius 1e-3, more than
+ * CROWD_SIDE). */
+static long double end_x(const crowd *c, const crowd_piece *k, double s)
+{
+    if (s == k->lo && k->lo == k->p->y0 - c->vc)
+        return (long double)k->p->x0 - c->uc;
+    if (s == k->hi && k->hi == k->p->y1 - c->vc)
+        return (long double)k->p->x1 - c->uc;
+    return x_at(k, s);
+}
+
 static int region_at(const crowd *c, const crowd_piece *k, double s)
 {
     long double x = x_at(k, s);
@@ -924,7 +940,7 @@ static int sweep(crowd *c)
                     cw->touched[nt++] = e.a;
                 p->ev = e.type == EV_END ? 2 : (p->ev ? p->ev : 1);
                 if (e.type != EV_CROSS) {
-                    long double x = x_at(p, h) + R;
+                    long double x = end_x(c, p, h) + R;
                     if (x <= CROWD_SIDE && x >= -CROWD_SIDE)
                         need_w = 1; /* a vertex on the left side */
                 }
