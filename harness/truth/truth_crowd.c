@@ -1333,103 +1333,6 @@ static double max_abs3(const double *v)
 
 /* ---- the pixel ---- */
 
-/* Radial filters: the height (relative, inside (k->lo, k->hi), not 0) where
- * piece k passes closest to the centre inside the disc, into k->near (left
- * NaN if none).  D(t) = x^2 + y^2 has D'/2 = c3 t^3 + c2 t^2 + c1 t + c0
- * (of degree 5 for a cubic). */
-static void nearest_arc(const crowd *c, crowd_piece *k)
-{
-    const local_piece *q = &k->q;
-    long double c3 = 2 * (q->ax * q->ax + q->ay * q->ay);
-    long double c2 = 3 * (q->ax * q->bx + q->ay * q->by);
-    long double c1 = q->bx * q->bx + q->by * q->by + 2 * (q->x0 * q->ax + q->y0 * q->ay);
-    long double c0 = q->x0 * q->bx + q->y0 * q->by;
-    double t[5], best = INFINITY;
-    int m = 0;
-    if (q->cubic) {
-        /* a cubic: D'/2 = P . P' of degree 5, by GSL's companion matrix */
-        long double P[2][4] = {{q->x0, q->bx, q->ax, q->dx}, {q->y0, q->by, q->ay, q->dy}};
-        long double e[6] = {0};
-        for (int i = 0; i < 2; i++)
-            for (int a = 0; a < 4; a++)
-                for (int b = 1; b < 4; b++)
-                    e[a + b - 1] += P[i][a] * b * P[i][b];
-        double ec[6], z[10];
-        int deg = 5;
-        for (int a = 0; a < 6; a++)
-            ec[a] = (double)e[a];
-        while (deg > 0 && ec[deg] == 0.0)
-            deg--;
-        gsl_poly_complex_workspace *ws =
-            deg > 0 ? gsl_poly_complex_workspace_alloc((size_t)deg + 1) : NULL;
-        if (ws && gsl_poly_complex_solve(ec, (size_t)deg + 1, ws, z) == GSL_SUCCESS)
-            for (int a = 0; a < deg; a++)
-                if (fabs(z[2 * a + 1]) <= 1e-6 * (1.0 + fabs(z[2 * a])))
-                    t[m++] = z[2 * a];
-        if (ws)
-            gsl_poly_complex_workspace_free(ws);
-    } else if (c3 != 0)
-        m = gsl_poly_solve_cubic((double)(c2 / c3), (double)(c1 / c3), (double)(c0 / c3), &t[0],
-                                 &t[1], &t[2]);
-    else if (c2 != 0)
-        m = gsl_poly_solve_quadratic((double)c2, (double)c1, (double)c0, &t[0], &t[1]);
-    else if (c1 != 0)
-        t[m++] = (double)(-c0 / c1);
-    for (int j = 0; j < m; j++) {
-        long double u = t[j];
-        if (!(u > 0 && u < 1))
-            continue;
-        long double x = q->cubic ? q->x0 + u * (q->bx + u * (q->ax + u * q->dx))
-                                 : q->x0 + u * (q->bx + u * q->ax);
-        long double y = q->cubic ? q->y0 + u * (q->by + u * (q->ay + u * q->dy))
-                                 : q->y0 + u * (q->by + u * q->ay);
-        double d2 = (double)(x * x + y * y);
-        if (d2 < best && d2 < c->R * c->R && y > k->lo && y < k->hi && y != 0) {
-            best = d2;
-            k->near = (double)y;
-        }
-    }
-}
-
-/* The same for a conic piece, as the rational quadratic P(t) = Q(t)/w(t),
- * w = 1 + t^2, of truth_conic_rational over the piece's rows: P . P' =
- * Q . (Q' w - 2 t Q) / w^3, so D' vanishes where the quintic
- *     g(t) = w (Q . Q') - 2 t (Q . Q)
- * does; its sign changes on [-T, T] are D's minima and maxima. */
-static void nearest_conic(const crowd *c, crowd_piece *k)
-{
-    conic_rational cr;
-    if (!truth_conic_rational(&k->q, k->lo, k->hi, &cr))
-        return;
-    const long double *Q[2] = {cr.qx, cr.qy};
-    long double qq[5] = {0}, qd[4] = {0}, g[6] = {0}, t[5];
-    for (int i = 0; i < 2; i++)
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) {
-                qq[a + b] += Q[i][a] * Q[i][b];
-                if (b > 0)
-                    qd[a + b - 1] += Q[i][a] * b * Q[i][b];
-            }
-    for (int a = 0; a < 4; a++) {
-        g[a] += qd[a];     /* Q . Q' */
-        g[a + 2] += qd[a]; /* t^2 Q . Q' */
-    }
-    for (int a = 0; a < 5; a++)
-        g[a + 1] -= 2 * qq[a];
-    int m = truth_sign_roots(g, 5, -cr.T, cr.T, t);
-    double best = INFINITY;
-    for (int j = 0; j < m; j++) {
-        long double u = t[j], w = 1 + u * u;
-        long double x = (cr.qx[0] + u * (cr.qx[1] + u * cr.qx[2])) / w;
-        long double y = (cr.qy[0] + u * (cr.qy[1] + u * cr.qy[2])) / w;
-        double d2 = (double)(x * x + y * y);
-        if (d2 < best && d2 < c->R * c->R && y > k->lo && y < k->hi && y != 0) {
-            best = d2;
-            k->near = (double)y;
-        }
-    }
-}
-
 /* Piece k's own breakpoints in (lo, hi): where it crosses the lines x at
  * which the filter's cdf has a kink inside the window (tent: 0), for the
  * Gaussian the lines x = m s, for a radial filter the circle of radius R. */
@@ -1462,11 +1365,8 @@ static int own_kinks(crowd *c, crowd_piece *k, const double *kx, int nkx)
          * for the rule's estimate to see on a long interval (a line 1e-3
          * from the centre: an error of 1e-12 against an estimate of 3e-16):
          * that height is a breakpoint, taken in u^4 on both sides, as the
-         * centre is (nearest_arc, nearest_conic). */
-        if (k->q.conic)
-            nearest_conic(c, k);
-        else
-            nearest_arc(c, k);
+         * centre is (truth_nearest_height). */
+        k->near = truth_nearest_height(&k->q, k->lo, k->hi, c->R);
         if (k->near == k->near)
             cw->kink[cw->nkink++] = k->near;
     }

@@ -84,6 +84,12 @@ int truth_cmp_double(const void *a, const void *b);
 int truth_circle_heights(const aa_piece *p, double uc, double vc, double R,
                          gsl_poly_complex_workspace *poly, double out[4]);
 
+/* Radial filters: the height (relative, inside (lo, hi), not 0) where the
+ * local piece q passes closest to the pixel's centre, if it does so inside
+ * the circle of radius R; NaN if not.  There the inner integral changes on
+ * the scale of that distance (the row integral is singular at the centre). */
+double truth_nearest_height(const local_piece *q, double lo, double hi, double R);
+
 /* QAG is asked for this absolute accuracy per pixel and channel: above its
  * rounding floor (50 eps times the integral of |f|, about 1e-14 here) and
  * well below AA_TRUTH_BOUND. */
