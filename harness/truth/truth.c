@@ -157,11 +157,18 @@
  * cone's breakpoint where a conic piece passes closest to the centre is a
  * sign change of the quintic w (Q . Q') - 2 t (Q . Q) (w = 1 + t^2, Q the
  * numerators), and any pair with a conic meets as aa_piece_meet finds.
- * The Gaussian's panels send every column near a conic piece to QAG.
- * Checked against closed forms per pixel (a disk's area in a pixel's
- * square, 5e-16 at most; a circle of radius 1e4, 2e-15) and as sums
- * (areas under box, tent and a Gaussian whose translates sum to 1), the
- * filters' masses within a radius for centred disks (tests/test_conic.c).
+ * The Gaussian's panels send every column near a conic piece to QAG.  At
+ * a turning end the piece's height is the extreme's rounded, and under the
+ * square root that rounding moves the crossing there by up to sqrt(2 er
+ * 1e-16) (3e-9 px at er = 1e-3; its integral is 1e-16 of that): the crowd
+ * path, which looks for vertices on the window's left side to 1e-9, takes
+ * a piece's end from the scene's own point (it once kept the colour inside
+ * a circle of radius 1e-3 below it: 1 off).  Checked against closed forms
+ * per pixel (a disk's area in a pixel's square: 5.6e-16 at most; a circle
+ * of radius 1e4, 2e-15), as sums (areas under box, tent and a Gaussian
+ * whose translates sum to 1; 119 random slices of ellipses), the filters'
+ * masses within a radius for centred disks, and the three paths against
+ * each other (tests/test_conic.c).
  *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
