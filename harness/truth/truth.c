@@ -734,13 +734,21 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     if (grey)
         value[1] = value[2] = value[0];
     /* Rounding: relative crossings are within a few ulps of R (long double
-     * arithmetic, then one rounding to double); each moves the inner
-     * integral by at most that times the filter's peak (for the cone, the
-     * integral over v of the largest weight of a row, 3 / (pi R)). */
+     * arithmetic, then one rounding to double), and within a few long
+     * double epsilons of the size of the piece's numbers (truth_piece_scale:
+     * 1e-14 px on a circle of radius 1e6 whose centre is 1e6 px away); each
+     * moves the inner integral by at most that times the filter's peak (for
+     * the cone, the integral over v of the largest weight of a row,
+     * 3 / (pi R)). */
     double peak = w->box      ? 1.0
                   : w->radial ? aa_filter_weight2(w->f, 0.0, 0.0) * w->R
                               : aa_filter_weight(w->f, 0.0);
-    *bound = worst + w->f->lost + 8.0 * DBL_EPSILON * fmax(w->R, 1.0) * peak * (double)n;
+    double scale = 0.0;
+    for (size_t k = 0; k < w->nlp; k++)
+        scale += truth_piece_scale(&w->lp[k]);
+    long double leps = aa_long_double_is_extended() ? LDBL_EPSILON : DBL_EPSILON;
+    *bound = worst + w->f->lost + 8.0 * DBL_EPSILON * fmax(w->R, 1.0) * peak * (double)n +
+             (double)(8 * leps) * scale * peak;
     return AA_OK;
 }
 

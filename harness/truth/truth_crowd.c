@@ -1465,8 +1465,7 @@ int crowd_pixel(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
         truth_turns(p, &tlo, &thi);
         q->turn_lo = tlo && lo == p->y0 - vc;
         q->turn_hi = thi && hi == p->y1 - vc;
-        q->scale = (double)(fabsl(q->q.x0) + fabsl(q->q.bx) + fabsl(q->q.ax) + fabsl(q->q.dx) +
-                            fabsl(q->q.ea) + fabsl(q->q.eb)) + R;
+        q->scale = truth_piece_scale(&q->q) + R;
         st = own_kinks(&c, q, kx, nkx);
         c.np++;
     }

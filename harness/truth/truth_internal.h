@@ -84,6 +84,10 @@ int truth_cmp_double(const void *a, const void *b);
 int truth_circle_heights(const aa_piece *p, double uc, double vc, double R,
                          gsl_poly_complex_workspace *poly, double out[4]);
 
+/* The size of q's numbers, |x0| + |bx| + |ax| + |dx| + |ea| + |eb|: its
+ * crossing in long double is off by a few long double epsilons of it (the
+ * sum of terms that large cancels to a crossing near the centre). */
+double truth_piece_scale(const local_piece *q);
 /* Radial filters: the height (relative, inside (lo, hi), not 0) where the
  * local piece q passes closest to the pixel's centre, if it does so inside
  * the circle of radius R; NaN if not.  There the inner integral changes on

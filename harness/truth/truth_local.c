@@ -257,6 +257,12 @@ double truth_nearest_height(const local_piece *q, double lo, double hi, double R
     return q->conic ? nearest_conic(q, lo, hi, R) : nearest_poly(q, lo, hi, R);
 }
 
+double truth_piece_scale(const local_piece *q)
+{
+    return (double)(fabsl(q->x0) + fabsl(q->bx) + fabsl(q->ax) + fabsl(q->dx) + fabsl(q->ea) +
+                    fabsl(q->eb));
+}
+
 /* Piece p in extended precision relative to (uc, vc). */
 void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long double vc)
 {
