@@ -55,7 +55,8 @@
  * theta, where the chord's square root at v = -R, R is smooth, and in u^4
  * next to its centre (v = 0) and next to each piece's closest approach to
  * it, where each term is singular on the scale of that distance; its
- * terms are bisected on the plain |K21 - G10| (see adapt).  The bound is
+ * terms are bisected on the plain |K21 - G10| (see adapt), as are those of
+ * pieces that turn at an end, under every filter.  The bound is
  * the sum of the estimates weighed by the jumps, plus rounding: for the
  * box, the crossings in long double (16 ulps of the piece's size), for
  * other filters also their cdf and weight in double (4 eps of the filter's
@@ -1208,14 +1209,19 @@ static long double term_fn(long double u, const void *ctx)
  * term is singular on the scale of its piece's distance from it (the
  * branch points of sqrt(x^2 + v^2)): a line 1e-3 from the centre was off
  * by 9e-14 with a scaled estimate of 7e-15.  Bisecting on the plain one is
- * what the other filters' terms, smooth or polynomial, do not need. */
+ * what the other filters' terms, smooth or polynomial, do not need, but
+ * for a piece that turns at an end: a breakpoint just past the turning
+ * point (a kink line crossing an ellipse 4e-5 below its top) leaves the
+ * square root's branch point just outside the next interval, where the
+ * scaled estimate said 7.6e-15 of an error of 2.5e-14 (Gaussian, s =
+ * 0.5). */
 static void adapt(const term *t, long double a, long double b, long double eps, int *parts,
                   long double *res, long double *err)
 {
     long double r, e, raw, fl, m = 0.5L * (a + b);
     aa__truth_gk21l(term_fn, t, a, b, &r, &e, &raw, &fl);
-    if (t->theta)
-        e = raw; /* see below */
+    if (t->theta || (t->k && (t->k->turn_lo || t->k->turn_hi)))
+        e = raw; /* see above */
     if (e <= eps || e <= fl || *parts <= 0 || !(m > a && m < b)) {
         *res += r;
         *err += e > fl ? e : fl;
