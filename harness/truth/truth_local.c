@@ -2,8 +2,12 @@
  * truth_local.c: the pieces of a pixel's window in extended precision,
  * which the three integration paths of the reference share (truth.c,
  * truth_crowd.c, truth_gauss.c; truth_internal.h): a piece relative to the
- * pixel's centre, where it meets a line, where it crosses a circle (radial
- * filters); and whether long double is wider than double here.
+ * pixel's centre (a conic piece in its angle form), where it meets a line,
+ * where it crosses a circle and where it passes closest to the centre
+ * (radial filters), which of its ends turn, the size of its numbers; a
+ * conic piece as a rational quadratic in the tangent of the half angle;
+ * the sign changes of a polynomial; and whether long double is wider than
+ * double here.
  */
 #include "truth_internal.h"
 
@@ -70,7 +74,6 @@ int truth_sign_roots(const long double *p, int d, long double lo, long double hi
     }
     return n;
 }
-
 
 /* A conic end counts as a turning point within this angle of the
  * ellipse's extreme (0 or pi): there x - x_end ~ sqrt(|y - y_end|), and
