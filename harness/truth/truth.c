@@ -88,7 +88,14 @@
  * chord there and the integrand's second derivative jumps), and v = +-R,
  * where the chord closes like sqrt(R - |v|): the half intervals next to
  * them are integrated in u = sqrt(R - |v|), as at turning points, where
- * the integrand (about (R - |v|)^(3/2)) becomes smooth.
+ * the integrand (about (R - |v|)^(3/2)) becomes smooth.  The height where
+ * a piece passes closest to the centre, inside the disc, is a breakpoint
+ * too, integrated in the square root of the distance to it on both sides
+ * (truth_nearest_height): the row integral is singular at the centre, so
+ * a piece passing at a distance d makes the inner integral change on the
+ * scale d, which QAG's estimate does not see (a nearly horizontal line
+ * 1e-4 from the centre came out 7.6e-13 off against an estimate of
+ * 1.2e-14; with the breakpoint, 1e-15).
  *
  * A colour scene's pixel is integrated channel by channel, each with its
  * own QAG and its own error estimate, but the channels share the costly
@@ -126,6 +133,42 @@
  * slope stays under FAST_SLOPE (two quadratics in t positive on the
  * panel's part) and no other piece meets it there (aa_piece_meet); QAG
  * the rest.  Scenes without cubics are computed as before, to the bit.
+ *
+ * Conic pieces (AA_PIECE_CONIC, arcs of ellipses split at their extremes
+ * in y) take the same paths.  A crossing comes from the piece's own angle
+ * form in long double: at height s, c = (ey - s)/er and
+ *     x = ex + ea c + eb sqrt((1 - c)(1 + c)),
+ * with 1 - c = (s - top)/er and 1 + c = (bot - s)/er each taken directly
+ * as the distance to the ellipse's top (ey - er) or bottom (ey + er), so
+ * that next to a turning point, where the square root is ill-conditioned
+ * in s (but the integral is not), the small factor carries no rounding of
+ * c (truth_internal.h, truth_conic_part).  Their breakpoints are their
+ * pieces' ends (the ends of the arc and its extremes in y: an end within
+ * 0.01 of angle 0 or pi is a turning point and its half interval is
+ * integrated in u = sqrt(|v - v_end|), which is harmless where x is smooth
+ * there), their crossings of the kink lines (aa_piece_meet_x: the angle
+ * from an acos), their meetings with other pieces (aa_piece_meet), and for
+ * the cone their crossings of the circle of radius R: with the angle
+ * a = am + 2 atan(t) over the part of the piece in the disc's rows, the
+ * piece is a rational quadratic (qx(t), qy(t))/(1 + t^2), t in [-1, 1],
+ * and the crossings are the sign changes of the quartic qx^2 + qy^2 -
+ * R^2 (1 + t^2)^2, isolated between the roots of its derivatives and
+ * bisected in long double (truth_sign_roots).  In a crowded window the
+ * cone's breakpoint where a conic piece passes closest to the centre is a
+ * sign change of the quintic w (Q . Q') - 2 t (Q . Q) (w = 1 + t^2, Q the
+ * numerators), and any pair with a conic meets as aa_piece_meet finds.
+ * The Gaussian's panels send every column near a conic piece to QAG.  At
+ * a turning end the piece's height is the extreme's rounded, and under the
+ * square root that rounding moves the crossing there by up to sqrt(2 er
+ * 1e-16) (3e-9 px at er = 1e-3; its integral is 1e-16 of that): the crowd
+ * path, which looks for vertices on the window's left side to 1e-9, takes
+ * a piece's end from the scene's own point (it once kept the colour inside
+ * a circle of radius 1e-3 below it: 1 off).  Checked against closed forms
+ * per pixel (a disk's area in a pixel's square: 5.6e-16 at most; a circle
+ * of radius 1e4, 2e-15), as sums (areas under box, tent and a Gaussian
+ * whose translates sum to 1; 119 random slices of ellipses), the filters'
+ * masses within a radius for centred disks, and the three paths against
+ * each other (tests/test_conic.c).
  *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
@@ -342,15 +385,14 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
             break;
         if (p->kind == AA_PIECE_FLAT)
             continue;
-        if (p->kind == AA_PIECE_QUAD || p->kind == AA_PIECE_CUBIC) {
-            /* an end where dy/dt = 0 (an arc's turning point in y, where
-             * edges are split): there x - x_end grows like sqrt(y - y_end) */
-            double tiny = 1e-12 * (p->y1 - p->y0);
-            if (fabs(p->by) <= tiny)
-                note_turn(w, p->y0 - w->vc);
-            if (fabs(p->by + 2.0 * p->ay + 3.0 * p->dy) <= tiny)
-                note_turn(w, p->y1 - w->vc);
-        }
+        /* an end where dy/dt = 0 (an arc's turning point in y, where
+         * edges are split): there x - x_end grows like sqrt(y - y_end) */
+        int tlo, thi;
+        truth_turns(p, &tlo, &thi);
+        if (tlo)
+            note_turn(w, p->y0 - w->vc);
+        if (thi)
+            note_turn(w, p->y1 - w->vc);
         if (w->radial) {
             /* where the piece crosses the disc's rim: a span's end leaves
              * the chord there (the row integral has no kink in u inside) */
@@ -381,6 +423,21 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
         if (n <= TRUTH_MAX_PAIRS)
             for (size_t q = k + 1; q < n && !st; q++)
                 st = add_intersections(w, p, local[q]);
+    }
+    /* Radial filters: where a piece passes closest to the centre, the row
+     * integral (singular at the centre) makes the inner integral change on
+     * the scale of that distance, too fast for QAG's estimate to see: a
+     * nearly horizontal line 1e-4 from the centre came out 7.6e-13 off
+     * with an estimate of 1.2e-14.  That height is a breakpoint, integrated
+     * in the square root of the distance to it on both sides. */
+    for (size_t k = 0; w->radial && k < w->nlp && !st; k++) {
+        const local_piece *q = &w->lp[k];
+        double near = truth_nearest_height(q, fmax((double)q->y0, -w->R),
+                                           fmin((double)q->y1, w->R), w->R);
+        if (near == near) {
+            note_turn(w, near);
+            st = add_point(w, near);
+        }
     }
     if (st)
         return st;
@@ -677,13 +734,21 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     if (grey)
         value[1] = value[2] = value[0];
     /* Rounding: relative crossings are within a few ulps of R (long double
-     * arithmetic, then one rounding to double); each moves the inner
-     * integral by at most that times the filter's peak (for the cone, the
-     * integral over v of the largest weight of a row, 3 / (pi R)). */
+     * arithmetic, then one rounding to double), and within a few long
+     * double epsilons of the size of the piece's numbers (truth_piece_scale:
+     * 1e-14 px on a circle of radius 1e6 whose centre is 1e6 px away); each
+     * moves the inner integral by at most that times the filter's peak (for
+     * the cone, the integral over v of the largest weight of a row,
+     * 3 / (pi R)). */
     double peak = w->box      ? 1.0
                   : w->radial ? aa_filter_weight2(w->f, 0.0, 0.0) * w->R
                               : aa_filter_weight(w->f, 0.0);
-    *bound = worst + w->f->lost + 8.0 * DBL_EPSILON * fmax(w->R, 1.0) * peak * (double)n;
+    double scale = 0.0;
+    for (size_t k = 0; k < w->nlp; k++)
+        scale += truth_piece_scale(&w->lp[k]);
+    long double leps = aa_long_double_is_extended() ? LDBL_EPSILON : DBL_EPSILON;
+    *bound = worst + w->f->lost + 8.0 * DBL_EPSILON * fmax(w->R, 1.0) * peak * (double)n +
+             (double)(8 * leps) * scale * peak;
     return AA_OK;
 }
 

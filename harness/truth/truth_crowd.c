@@ -55,7 +55,8 @@
  * theta, where the chord's square root at v = -R, R is smooth, and in u^4
  * next to its centre (v = 0) and next to each piece's closest approach to
  * it, where each term is singular on the scale of that distance; its
- * terms are bisected on the plain |K21 - G10| (see adapt).  The bound is
+ * terms are bisected on the plain |K21 - G10| (see adapt), as are those of
+ * pieces that turn at an end, under every filter.  The bound is
  * the sum of the estimates weighed by the jumps, plus rounding: for the
  * box, the crossings in long double (16 ulps of the piece's size), for
  * other filters also their cdf and weight in double (4 eps of the filter's
@@ -309,6 +310,22 @@ static inline long double x_at(const crowd_piece *k, long double s)
     return k->q.x0 + truth_crossing_part(&k->q, s);
 }
 
+/* x at height s where piece k begins or ends (or enters or leaves the
+ * window's rows): the scene's own point at the piece's ends.  A conic
+ * piece's crossing there can be off by much more than the rounding of
+ * the coordinates: at a turning point the end's height is the extreme's
+ * rounded, and under the square root that rounding moves x by
+ * sqrt(2 er 1e-16) (3e-9 px for a circle of radius 1e-3, more than
+ * CROWD_SIDE). */
+static long double end_x(const crowd *c, const crowd_piece *k, double s)
+{
+    if (s == k->lo && k->lo == k->p->y0 - c->vc)
+        return (long double)k->p->x0 - c->uc;
+    if (s == k->hi && k->hi == k->p->y1 - c->vc)
+        return (long double)k->p->x1 - c->uc;
+    return x_at(k, s);
+}
+
 static int region_at(const crowd *c, const crowd_piece *k, double s)
 {
     long double x = x_at(k, s);
@@ -334,55 +351,6 @@ static double margin(const crowd *c)
 }
 
 /* ---- where two pieces cross ---- */
-
-static long double peval(const long double *p, int d, long double t)
-{
-    long double r = p[d];
-    for (int k = d - 1; k >= 0; k--)
-        r = r * t + p[k];
-    return r;
-}
-
-/* The roots in (lo, hi), ascending, at which a polynomial of degree <= 6
- * changes sign: between consecutive extrema (the roots of its derivative,
- * found the same way) it is monotone, and bisection in long double finds
- * each crossing.  A root of even multiplicity (a touch) is not one. */
-static int sign_roots(const long double *p, int d, long double lo, long double hi,
-                      long double *r)
-{
-    while (d > 0 && p[d] == 0)
-        d--;
-    if (d == 0)
-        return 0;
-    long double dp[6], crit[6];
-    for (int k = 0; k < d; k++)
-        dp[k] = (k + 1) * p[k + 1];
-    int m = d > 1 ? sign_roots(dp, d - 1, lo, hi, crit) : 0, n = 0;
-    long double a = lo, fa = peval(p, d, lo);
-    for (int k = 0; k <= m; k++) {
-        long double b = k < m ? crit[k] : hi, fb = peval(p, d, b);
-        if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) {
-            long double x = a, y = b, fx = fa;
-            for (int it = 0; it < 128; it++) {
-                long double mid = 0.5L * (x + y);
-                if (!(mid > x && mid < y))
-                    break;
-                long double fm = peval(p, d, mid);
-                if (fm == 0) {
-                    x = y = mid;
-                    break;
-                }
-                if ((fm < 0) == (fx < 0))
-                    x = mid, fx = fm;
-                else
-                    y = mid;
-            }
-            r[n++] = 0.5L * (x + y);
-        }
-        a = b, fa = fb;
-    }
-    return n;
-}
 
 /* The parameter of piece k where it meets line s (clamped to [0, 1]). */
 static long double t_at(const crowd_piece *k, long double s)
@@ -434,7 +402,7 @@ static int meet_general(const crowd_piece *a, const crowd_piece *b, double ya, d
             f[i] = B[i];
     }
     long double ta = t_at(a, ya), tb = t_at(a, yb);
-    int n = sign_roots(f, 6, ta, tb, r), m = 0;
+    int n = truth_sign_roots(f, 6, ta, tb, r), m = 0;
     for (int j = 0; j < n && m < max; j++) {
         long double t = r[j];
         if (k != 0) {
@@ -454,8 +422,8 @@ static int meet_general(const crowd_piece *a, const crowd_piece *b, double ya, d
 /* Heights in (ya, yb) where pieces a and b meet, ascending (at most 16):
  * aa_piece_meet's closed forms for lines and arcs whose x is quadratic in
  * y, meet_general for two general arcs and for a cubic against a line or
- * an arc (a polynomial of degree 6), and aa_piece_meet's bisection on
- * exact extents for two cubics. */
+ * an arc (a polynomial of degree 6), and aa_piece_meet for two cubics
+ * (bisection on exact extents) and for any pair with a conic piece. */
 static int meet(const crowd *c, const crowd_piece *a, const crowd_piece *b, double ya, double yb,
                 double *ys)
 {
@@ -463,7 +431,8 @@ static int meet(const crowd *c, const crowd_piece *a, const crowd_piece *b, doub
         return 0;
     const aa_piece *p = a->p, *q = b->p;
     int pc = p->kind == AA_PIECE_CUBIC, qc = q->kind == AA_PIECE_CUBIC;
-    if (pc != qc)
+    int conic = p->kind == AA_PIECE_CONIC || q->kind == AA_PIECE_CONIC;
+    if (pc != qc && !conic)
         return pc ? meet_general(a, b, ya, yb, ys, 16) : meet_general(b, a, ya, yb, ys, 16);
     if (p->kind == AA_PIECE_QUAD && q->kind == AA_PIECE_QUAD && !(p->ay == 0.0 && q->ay == 0.0))
         return q->ay != 0.0 ? meet_general(a, b, ya, yb, ys, 16) : meet_general(b, a, ya, yb, ys, 16);
@@ -972,7 +941,7 @@ static int sweep(crowd *c)
                     cw->touched[nt++] = e.a;
                 p->ev = e.type == EV_END ? 2 : (p->ev ? p->ev : 1);
                 if (e.type != EV_CROSS) {
-                    long double x = x_at(p, h) + R;
+                    long double x = end_x(c, p, h) + R;
                     if (x <= CROWD_SIDE && x >= -CROWD_SIDE)
                         need_w = 1; /* a vertex on the left side */
                 }
@@ -1240,14 +1209,19 @@ static long double term_fn(long double u, const void *ctx)
  * term is singular on the scale of its piece's distance from it (the
  * branch points of sqrt(x^2 + v^2)): a line 1e-3 from the centre was off
  * by 9e-14 with a scaled estimate of 7e-15.  Bisecting on the plain one is
- * what the other filters' terms, smooth or polynomial, do not need. */
+ * what the other filters' terms, smooth or polynomial, do not need, but
+ * for a piece that turns at an end: a breakpoint just past the turning
+ * point (a kink line crossing an ellipse 4e-5 below its top) leaves the
+ * square root's branch point just outside the next interval, where the
+ * scaled estimate said 7.6e-15 of an error of 2.5e-14 (Gaussian, s =
+ * 0.5). */
 static void adapt(const term *t, long double a, long double b, long double eps, int *parts,
                   long double *res, long double *err)
 {
     long double r, e, raw, fl, m = 0.5L * (a + b);
     aa__truth_gk21l(term_fn, t, a, b, &r, &e, &raw, &fl);
-    if (t->theta)
-        e = raw; /* see below */
+    if (t->theta || (t->k && (t->k->turn_lo || t->k->turn_hi)))
+        e = raw; /* see above */
     if (e <= eps || e <= fl || *parts <= 0 || !(m > a && m < b)) {
         *res += r;
         *err += e > fl ? e : fl;
@@ -1397,58 +1371,8 @@ static int own_kinks(crowd *c, crowd_piece *k, const double *kx, int nkx)
          * for the rule's estimate to see on a long interval (a line 1e-3
          * from the centre: an error of 1e-12 against an estimate of 3e-16):
          * that height is a breakpoint, taken in u^4 on both sides, as the
-         * centre is.  D(t) = x^2 + y^2 has D'/2 = c3 t^3 + c2 t^2 + c1 t + c0
-         * (of degree 5 for a cubic). */
-        const local_piece *q = &k->q;
-        long double c3 = 2 * (q->ax * q->ax + q->ay * q->ay);
-        long double c2 = 3 * (q->ax * q->bx + q->ay * q->by);
-        long double c1 = q->bx * q->bx + q->by * q->by + 2 * (q->x0 * q->ax + q->y0 * q->ay);
-        long double c0 = q->x0 * q->bx + q->y0 * q->by;
-        double t[5], best = INFINITY;
-        int m = 0;
-        if (q->cubic) {
-            /* a cubic: D'/2 = P . P' of degree 5, by GSL's companion matrix */
-            long double P[2][4] = {{q->x0, q->bx, q->ax, q->dx}, {q->y0, q->by, q->ay, q->dy}};
-            long double e[6] = {0};
-            for (int i = 0; i < 2; i++)
-                for (int a = 0; a < 4; a++)
-                    for (int b = 1; b < 4; b++)
-                        e[a + b - 1] += P[i][a] * b * P[i][b];
-            double ec[6], z[10];
-            int deg = 5;
-            for (int a = 0; a < 6; a++)
-                ec[a] = (double)e[a];
-            while (deg > 0 && ec[deg] == 0.0)
-                deg--;
-            gsl_poly_complex_workspace *ws =
-                deg > 0 ? gsl_poly_complex_workspace_alloc((size_t)deg + 1) : NULL;
-            if (ws && gsl_poly_complex_solve(ec, (size_t)deg + 1, ws, z) == GSL_SUCCESS)
-                for (int a = 0; a < deg; a++)
-                    if (fabs(z[2 * a + 1]) <= 1e-6 * (1.0 + fabs(z[2 * a])))
-                        t[m++] = z[2 * a];
-            if (ws)
-                gsl_poly_complex_workspace_free(ws);
-        } else if (c3 != 0)
-            m = gsl_poly_solve_cubic((double)(c2 / c3), (double)(c1 / c3), (double)(c0 / c3), &t[0],
-                                     &t[1], &t[2]);
-        else if (c2 != 0)
-            m = gsl_poly_solve_quadratic((double)c2, (double)c1, (double)c0, &t[0], &t[1]);
-        else if (c1 != 0)
-            t[m++] = (double)(-c0 / c1);
-        for (int j = 0; j < m; j++) {
-            long double u = t[j];
-            if (!(u > 0 && u < 1))
-                continue;
-            long double x = q->cubic ? q->x0 + u * (q->bx + u * (q->ax + u * q->dx))
-                                     : q->x0 + u * (q->bx + u * q->ax);
-            long double y = q->cubic ? q->y0 + u * (q->by + u * (q->ay + u * q->dy))
-                                     : q->y0 + u * (q->by + u * q->ay);
-            double d2 = (double)(x * x + y * y);
-            if (d2 < best && d2 < c->R * c->R && y > k->lo && y < k->hi && y != 0) {
-                best = d2;
-                k->near = (double)y;
-            }
-        }
+         * centre is (truth_nearest_height). */
+        k->near = truth_nearest_height(&k->q, k->lo, k->hi, c->R);
         if (k->near == k->near)
             cw->kink[cw->nkink++] = k->near;
     }
@@ -1543,12 +1467,11 @@ int crowd_pixel(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
         q->region = CP_OFF;
         q->slot = (int)c.np;
         q->seg_a = NAN;
-        if (p->kind == AA_PIECE_QUAD || p->kind == AA_PIECE_CUBIC) {
-            double tiny = 1e-12 * (p->y1 - p->y0);
-            q->turn_lo = fabs(p->by) <= tiny && lo == p->y0 - vc;
-            q->turn_hi = fabs(p->by + 2.0 * p->ay + 3.0 * p->dy) <= tiny && hi == p->y1 - vc;
-        }
-        q->scale = (double)(fabsl(q->q.x0) + fabsl(q->q.bx) + fabsl(q->q.ax) + fabsl(q->q.dx)) + R;
+        int tlo, thi;
+        truth_turns(p, &tlo, &thi);
+        q->turn_lo = tlo && lo == p->y0 - vc;
+        q->turn_hi = thi && hi == p->y1 - vc;
+        q->scale = truth_piece_scale(&q->q) + R;
         st = own_kinks(&c, q, kx, nkx);
         c.np++;
     }

@@ -378,9 +378,10 @@ static int may_meet(const band_piece *a, const band_piece *b, double va, double 
     long double hi = fminl(vb, fminl(a->q.y1, b->q.y1));
     if (!(lo < hi))
         return 0;
-    if (a->q.cubic || b->q.cubic) {
+    if (a->q.cubic || b->q.cubic || a->q.conic || b->q.conic) {
         /* the scene's meetings: roots of a cubic against a line, bisection
-         * on exact extents (to 1e-12, a touch counted) against an arc */
+         * on exact extents (to 1e-12, a touch counted) against an arc; a
+         * conic's (its own columns are QAG's already) */
         double ys[1];
         return aa_piece_meet(a->p, b->p, (double)lo, (double)hi, ys, 1) > 0;
     }
@@ -711,7 +712,9 @@ static int fast_panel(panel_worker *fs, long p)
     memset(fs->bad_diff, 0, ((size_t)w + 1) * sizeof *fs->bad_diff);
     /* The inner integral G of a column is analytic on the panel unless a
      * piece near it ends inside, is flat inside, is steep, or meets
-     * another; those columns are marked for QAG. */
+     * another; those columns are marked for QAG, and so are the columns
+     * near a conic piece (the rule's estimate is not trusted with its
+     * square roots). */
     size_t nb = 0;
     double reach = 0.0; /* widest extent of a piece that is not marked */
     for (size_t k = 0; k < n; k++) {
@@ -731,7 +734,8 @@ static int fast_panel(panel_worker *fs, long p)
         truth_set_local(&b->q, q, 0, 0);
         b->p = q;
         mark(fs, fs->near_diff, b->c0, b->c1);
-        if ((q->y0 > va && q->y0 < vb) || (q->y1 > va && q->y1 < vb) || steep(q, lo, hi))
+        if (q->kind == AA_PIECE_CONIC || (q->y0 > va && q->y0 < vb) ||
+            (q->y1 > va && q->y1 < vb) || steep(q, lo, hi))
             mark(fs, fs->bad_diff, b->c0, b->c1);
         else
             reach = fmax(reach, b->xmax - b->xmin);

@@ -10,36 +10,89 @@
 #include "truth.h"
 
 #include <gsl/gsl_poly.h>
+#include <math.h>
 
 /* A local piece in coordinates relative to the pixel centre (uc, vc):
  * y(t) - vc = y0 + t (by + t (ay + t dy)), x(t) - uc likewise (dy = dx = 0
- * but for cubics, `cubic` set). */
+ * but for cubics, `cubic` set).  A conic piece (`conic` set; ax .. dy are
+ * 0) is, in its angle a from a0 to a1 (the piece's s0, s1),
+ *     y(a) - vc = ey - er cos a,   x(a) - uc = x0 + ea cos a + eb sin a,
+ * x0 being the ellipse centre's x, and top = ey - er, bot = ey + er the
+ * heights of its extremes: at height s, with c = cos a = (ey - s)/er,
+ *     1 - c = (s - top)/er,  1 + c = (bot - s)/er,
+ * each a difference of nearby numbers taken directly, so that next to a
+ * turning point, where x moves like the square root of the height, the
+ * small factor under the root carries no rounding of c's. */
 typedef struct local_piece {
     long double y0, y1, x0, ax, bx, ay, by, dx, dy;
-    int dir, layer, cubic;
+    long double ey, er, ea, eb, top, bot, a0, a1;
+    int dir, layer, cubic, conic;
 } local_piece;
 
 /* The piece p relative to the centre (uc, vc), in extended precision. */
 void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long double vc);
 /* The parameter of q where it meets the line at relative height s, in
  * [0, 1]: the cancellation-free root of a quadratic, or for a cubic the one
- * root of y(t) = s, bracketed and polished by Newton in long double. */
+ * root of y(t) = s, bracketed and polished by Newton in long double; for a
+ * conic (a - a0)/(a1 - a0), a its angle there. */
 long double truth_t_at(const local_piece *q, long double s);
+/* A conic's crossing at relative height s, less its x0 (the centre's x):
+ * ea c + eb sqrt((1 - c)(1 + c)), the factors as above (clamped at 0 a
+ * rounding outside the ellipse's rows). */
+static inline long double truth_conic_part(const local_piece *q, long double s)
+{
+    long double lo = (s - q->top) / q->er, hi = (q->bot - s) / q->er;
+    long double c = (q->ey - s) / q->er, r = lo * hi;
+    return q->ea * c + q->eb * sqrtl(r > 0 ? r : 0);
+}
 /* The crossing of q with the line at relative height s, less its x0
  * (inline: the integrand's inner loop). */
 static inline long double truth_crossing_part(const local_piece *q, long double s)
 {
+    if (q->conic)
+        return truth_conic_part(q, s);
     long double t = truth_t_at(q, s);
     if (q->cubic)
         return t * (q->bx + t * (q->ax + t * q->dx));
     return t * (q->bx + t * q->ax);
 }
+/* Whether piece p turns at its top (*lo) and bottom (*hi): an end where
+ * dy/dt = 0, where x - x_end grows like sqrt(|y - y_end|) (quadratic and
+ * cubic arcs split at the roots of y'; conic pieces ending at an extreme of
+ * the ellipse, angle 0 or pi). */
+void truth_turns(const aa_piece *p, int *lo, int *hi);
+/* The roots in (lo, hi), ascending, at which the polynomial p[0] + p[1] x
+ * + ... + p[d] x^d (d <= 6) changes sign, by bisection in long double
+ * between the roots of its derivative (found the same way); a root of even
+ * multiplicity (a touch) is not one.  Returns how many (at most d). */
+int truth_sign_roots(const long double *p, int d, long double lo, long double hi,
+                     long double *r);
+/* A conic piece's part in the rows [lo, hi] (relative heights, inside the
+ * piece's) as a rational quadratic: with the angle a = am + 2 atan(t),
+ * t in [-T, T] (T = tan((a_hi - a_lo)/4) <= 1),
+ *     x - uc = (qx[0] + qx[1] t + qx[2] t^2) / (1 + t^2), y - vc likewise
+ * (qy).  Returns 0 if the part is empty. */
+typedef struct conic_rational {
+    long double qx[3], qy[3], T, am;
+} conic_rational;
+int truth_conic_rational(const local_piece *q, long double lo, long double hi,
+                         conic_rational *r);
 /* qsort order of doubles. */
 int truth_cmp_double(const void *a, const void *b);
 /* Radial filters: the heights (relative to vc, at most 4) where piece p
  * crosses the circle of radius R around (uc, vc); returns how many. */
 int truth_circle_heights(const aa_piece *p, double uc, double vc, double R,
                          gsl_poly_complex_workspace *poly, double out[4]);
+
+/* The size of q's numbers, |x0| + |bx| + |ax| + |dx| + |ea| + |eb|: its
+ * crossing in long double is off by a few long double epsilons of it (the
+ * sum of terms that large cancels to a crossing near the centre). */
+double truth_piece_scale(const local_piece *q);
+/* Radial filters: the height (relative, inside (lo, hi), not 0) where the
+ * local piece q passes closest to the pixel's centre, if it does so inside
+ * the circle of radius R; NaN if not.  There the inner integral changes on
+ * the scale of that distance (the row integral is singular at the centre). */
+double truth_nearest_height(const local_piece *q, double lo, double hi, double R);
 
 /* QAG is asked for this absolute accuracy per pixel and channel: above its
  * rounding floor (50 eps times the integral of |f|, about 1e-14 here) and

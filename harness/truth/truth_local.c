@@ -2,8 +2,12 @@
  * truth_local.c: the pieces of a pixel's window in extended precision,
  * which the three integration paths of the reference share (truth.c,
  * truth_crowd.c, truth_gauss.c; truth_internal.h): a piece relative to the
- * pixel's centre, where it meets a line, where it crosses a circle (radial
- * filters); and whether long double is wider than double here.
+ * pixel's centre (a conic piece in its angle form), where it meets a line,
+ * where it crosses a circle and where it passes closest to the centre
+ * (radial filters), which of its ends turn, the size of its numbers; a
+ * conic piece as a rational quadratic in the tangent of the half angle;
+ * the sign changes of a polynomial; and whether long double is wider than
+ * double here.
  */
 #include "truth_internal.h"
 
@@ -23,6 +27,245 @@ int truth_cmp_double(const void *a, const void *b)
     return x < y ? -1 : (x > y);
 }
 
+static long double peval(const long double *p, int d, long double t)
+{
+    long double r = p[d];
+    for (int k = d - 1; k >= 0; k--)
+        r = r * t + p[k];
+    return r;
+}
+
+/* truth_sign_roots: between consecutive extrema (the roots of its
+ * derivative, found the same way) the polynomial is monotone, and
+ * bisection in long double finds each crossing. */
+int truth_sign_roots(const long double *p, int d, long double lo, long double hi,
+                     long double *r)
+{
+    while (d > 0 && p[d] == 0)
+        d--;
+    if (d == 0)
+        return 0;
+    long double dp[6], crit[6];
+    for (int k = 0; k < d; k++)
+        dp[k] = (k + 1) * p[k + 1];
+    int m = d > 1 ? truth_sign_roots(dp, d - 1, lo, hi, crit) : 0, n = 0;
+    long double a = lo, fa = peval(p, d, lo);
+    for (int k = 0; k <= m; k++) {
+        long double b = k < m ? crit[k] : hi, fb = peval(p, d, b);
+        if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) {
+            long double x = a, y = b, fx = fa;
+            for (int it = 0; it < 128; it++) {
+                long double mid = 0.5L * (x + y);
+                if (!(mid > x && mid < y))
+                    break;
+                long double fm = peval(p, d, mid);
+                if (fm == 0) {
+                    x = y = mid;
+                    break;
+                }
+                if ((fm < 0) == (fx < 0))
+                    x = mid, fx = fm;
+                else
+                    y = mid;
+            }
+            r[n++] = 0.5L * (x + y);
+        }
+        a = b, fa = fb;
+    }
+    return n;
+}
+
+/* A conic end counts as a turning point within this angle of the
+ * ellipse's extreme (0 or pi): there x - x_end ~ sqrt(|y - y_end|), and
+ * near it nearly so; integrating in u = sqrt(|v - v_end|) is harmless
+ * where x is smooth in v (x(v_end + u^2) is then smooth in u). */
+#define TURN_ANGLE 1e-2
+
+void truth_turns(const aa_piece *p, int *lo, int *hi)
+{
+    *lo = *hi = 0;
+    if (p->kind == AA_PIECE_QUAD || p->kind == AA_PIECE_CUBIC) {
+        double tiny = 1e-12 * (p->y1 - p->y0);
+        *lo = fabs(p->by) <= tiny;
+        *hi = fabs(p->by + 2.0 * p->ay + 3.0 * p->dy) <= tiny;
+    } else if (p->kind == AA_PIECE_CONIC) {
+        *lo = p->s0 <= TURN_ANGLE;
+        *hi = p->s1 >= M_PI - TURN_ANGLE;
+    }
+}
+
+/* The angle of conic q at relative height s (inside its rows): a =
+ * 2 atan(sqrt((1 - c)/(1 + c))), the two factors taken directly. */
+static long double conic_angle(const local_piece *q, long double s)
+{
+    long double lo = s - q->top, hi = q->bot - s;
+    return 2 * atan2l(sqrtl(lo > 0 ? lo : 0), sqrtl(hi > 0 ? hi : 0));
+}
+
+/* With a = am + phi and t = tan(phi/2), w = 1 + t^2:
+ *     w cos a = C (1 - t^2) - 2 S t,   w sin a = S (1 - t^2) + 2 C t
+ * (C = cos am, S = sin am), so
+ *     w (x0 + ea cos a + eb sin a) = (x0 + ea C + eb S) + 2 (eb C - ea S) t
+ *                                    + (x0 - ea C - eb S) t^2,
+ *     w (ey - er cos a) = (ey - er C) + 2 er S t + (ey + er C) t^2.
+ * |phi| <= (a_hi - a_lo)/2 <= pi/2, so |t| <= 1. */
+int truth_conic_rational(const local_piece *q, long double lo, long double hi,
+                         conic_rational *r)
+{
+    lo = lo > q->y0 ? lo : q->y0;
+    hi = hi < q->y1 ? hi : q->y1;
+    if (!(lo < hi))
+        return 0;
+    long double al = lo <= q->y0 ? q->a0 : conic_angle(q, lo);
+    long double ah = hi >= q->y1 ? q->a1 : conic_angle(q, hi);
+    if (!(al < ah))
+        return 0;
+    long double am = 0.5L * (al + ah), C = cosl(am), S = sinl(am);
+    long double ec = q->ea * C + q->eb * S, ez = q->er * C;
+    r->am = am;
+    r->T = tanl(0.25L * (ah - al));
+    r->qx[0] = q->x0 + ec;
+    r->qx[1] = 2 * (q->eb * C - q->ea * S);
+    r->qx[2] = q->x0 - ec;
+    r->qy[0] = q->ey - ez;
+    r->qy[1] = 2 * q->er * S;
+    r->qy[2] = q->ey + ez;
+    return 1;
+}
+
+/* A conic piece: |(x, y) - centre|^2 = R^2 times (1 + t^2)^2 is
+ *     qx(t)^2 + qy(t)^2 - R^2 (1 + t^2)^2 = 0,
+ * a quartic in t on [-T, T] (truth_conic_rational over the disc's rows),
+ * whose sign changes truth_sign_roots brackets and bisects; the heights
+ * are qy(t)/(1 + t^2).  A touch (a double root) is no kink. */
+static int circle_heights_conic(const aa_piece *p, double uc, double vc, double R,
+                                double out[4])
+{
+    local_piece q;
+    conic_rational cr;
+    truth_set_local(&q, p, uc, vc);
+    if (!truth_conic_rational(&q, -(long double)R, (long double)R, &cr))
+        return 0;
+    long double f[5] = {0}, RR = (long double)R * R, t[4];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            f[i + j] += cr.qx[i] * cr.qx[j] + cr.qy[i] * cr.qy[j];
+    f[0] -= RR, f[2] -= 2 * RR, f[4] -= RR;
+    int n = truth_sign_roots(f, 4, -cr.T, cr.T, t);
+    for (int k = 0; k < n; k++)
+        out[k] = (double)((cr.qy[0] + t[k] * (cr.qy[1] + t[k] * cr.qy[2])) / (1 + t[k] * t[k]));
+    return n;
+}
+
+/* truth_nearest_height for a line, a quadratic or a cubic: D(t) = x^2 +
+ * y^2 has D'/2 = c3 t^3 + c2 t^2 + c1 t + c0 (of degree 5 for a cubic). */
+static double nearest_poly(const local_piece *q, double lo, double hi, double R)
+{
+    double near = NAN;
+    long double c3 = 2 * (q->ax * q->ax + q->ay * q->ay);
+    long double c2 = 3 * (q->ax * q->bx + q->ay * q->by);
+    long double c1 = q->bx * q->bx + q->by * q->by + 2 * (q->x0 * q->ax + q->y0 * q->ay);
+    long double c0 = q->x0 * q->bx + q->y0 * q->by;
+    double t[5], best = INFINITY;
+    int m = 0;
+    if (q->cubic) {
+        /* a cubic: D'/2 = P . P' of degree 5, by GSL's companion matrix */
+        long double P[2][4] = {{q->x0, q->bx, q->ax, q->dx}, {q->y0, q->by, q->ay, q->dy}};
+        long double e[6] = {0};
+        for (int i = 0; i < 2; i++)
+            for (int a = 0; a < 4; a++)
+                for (int b = 1; b < 4; b++)
+                    e[a + b - 1] += P[i][a] * b * P[i][b];
+        double ec[6], z[10];
+        int deg = 5;
+        for (int a = 0; a < 6; a++)
+            ec[a] = (double)e[a];
+        while (deg > 0 && ec[deg] == 0.0)
+            deg--;
+        gsl_poly_complex_workspace *ws =
+            deg > 0 ? gsl_poly_complex_workspace_alloc((size_t)deg + 1) : NULL;
+        if (ws && gsl_poly_complex_solve(ec, (size_t)deg + 1, ws, z) == GSL_SUCCESS)
+            for (int a = 0; a < deg; a++)
+                if (fabs(z[2 * a + 1]) <= 1e-6 * (1.0 + fabs(z[2 * a])))
+                    t[m++] = z[2 * a];
+        if (ws)
+            gsl_poly_complex_workspace_free(ws);
+    } else if (c3 != 0)
+        m = gsl_poly_solve_cubic((double)(c2 / c3), (double)(c1 / c3), (double)(c0 / c3), &t[0],
+                                 &t[1], &t[2]);
+    else if (c2 != 0)
+        m = gsl_poly_solve_quadratic((double)c2, (double)c1, (double)c0, &t[0], &t[1]);
+    else if (c1 != 0)
+        t[m++] = (double)(-c0 / c1);
+    for (int j = 0; j < m; j++) {
+        long double u = t[j];
+        if (!(u > 0 && u < 1))
+            continue;
+        long double x = q->cubic ? q->x0 + u * (q->bx + u * (q->ax + u * q->dx))
+                                 : q->x0 + u * (q->bx + u * q->ax);
+        long double y = q->cubic ? q->y0 + u * (q->by + u * (q->ay + u * q->dy))
+                                 : q->y0 + u * (q->by + u * q->ay);
+        double d2 = (double)(x * x + y * y);
+        if (d2 < best && d2 < R * R && y > lo && y < hi && y != 0) {
+            best = d2;
+            near = (double)y;
+        }
+    }
+    return near;
+}
+
+/* The same for a conic piece, as the rational quadratic P(t) = Q(t)/w(t),
+ * w = 1 + t^2, of truth_conic_rational over the piece's rows: P . P' =
+ * Q . (Q' w - 2 t Q) / w^3, so D' vanishes where the quintic
+ *     g(t) = w (Q . Q') - 2 t (Q . Q)
+ * does; its sign changes on [-T, T] are D's minima and maxima. */
+static double nearest_conic(const local_piece *q, double lo, double hi, double R)
+{
+    conic_rational cr;
+    double near = NAN;
+    if (!truth_conic_rational(q, lo, hi, &cr))
+        return near;
+    const long double *Q[2] = {cr.qx, cr.qy};
+    long double qq[5] = {0}, qd[4] = {0}, g[6] = {0}, t[5];
+    for (int i = 0; i < 2; i++)
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) {
+                qq[a + b] += Q[i][a] * Q[i][b];
+                if (b > 0)
+                    qd[a + b - 1] += Q[i][a] * b * Q[i][b];
+            }
+    for (int a = 0; a < 4; a++) {
+        g[a] += qd[a];     /* Q . Q' */
+        g[a + 2] += qd[a]; /* t^2 Q . Q' */
+    }
+    for (int a = 0; a < 5; a++)
+        g[a + 1] -= 2 * qq[a];
+    int m = truth_sign_roots(g, 5, -cr.T, cr.T, t);
+    double best = INFINITY;
+    for (int j = 0; j < m; j++) {
+        long double u = t[j], w = 1 + u * u;
+        long double x = (cr.qx[0] + u * (cr.qx[1] + u * cr.qx[2])) / w;
+        long double y = (cr.qy[0] + u * (cr.qy[1] + u * cr.qy[2])) / w;
+        double d2 = (double)(x * x + y * y);
+        if (d2 < best && d2 < R * R && y > lo && y < hi && y != 0) {
+            best = d2;
+            near = (double)y;
+        }
+    }
+    return near;
+}
+
+double truth_nearest_height(const local_piece *q, double lo, double hi, double R)
+{
+    return q->conic ? nearest_conic(q, lo, hi, R) : nearest_poly(q, lo, hi, R);
+}
+
+double truth_piece_scale(const local_piece *q)
+{
+    return (double)(fabsl(q->x0) + fabsl(q->bx) + fabsl(q->ax) + fabsl(q->dx) + fabsl(q->ea) +
+                    fabsl(q->eb));
+}
+
 /* Piece p in extended precision relative to (uc, vc). */
 void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long double vc)
 {
@@ -33,7 +276,22 @@ void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long dou
     q->x0 = x0 - uc;
     q->dx = q->dy = 0;
     q->cubic = p->kind == AA_PIECE_CUBIC;
-    if (q->cubic) {
+    q->conic = p->kind == AA_PIECE_CONIC;
+    q->ey = q->er = q->ea = q->eb = q->top = q->bot = q->a0 = q->a1 = 0;
+    if (q->conic) {
+        /* the centre's coordinates relative to (uc, vc): exact in long
+         * double unless they are 2^11 times apart */
+        q->ax = q->bx = q->ay = q->by = 0;
+        q->x0 = p->ex - uc;
+        q->ey = p->ey - vc;
+        q->er = p->er;
+        q->ea = p->ea;
+        q->eb = p->eb;
+        q->top = q->ey - q->er;
+        q->bot = q->ey + q->er;
+        q->a0 = p->s0;
+        q->a1 = p->s1;
+    } else if (q->cubic) {
         long double c1x = cx, c1y = cy, c2x = p->c2x, c2y = p->c2y;
         q->bx = 3 * (c1x - x0), q->ax = 3 * (x0 - 2 * c1x + c2x), q->dx = (x1 - x0) + 3 * (c1x - c2x);
         q->by = 3 * (c1y - y0), q->ay = 3 * (y0 - 2 * c1y + c2y), q->dy = (y1 - y0) + 3 * (c1y - c2y);
@@ -53,6 +311,10 @@ void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long dou
 long double truth_t_at(const local_piece *q, long double s)
 {
     long double d = s - q->y0, t;
+    if (q->conic) {
+        t = (conic_angle(q, s) - q->a0) / (q->a1 - q->a0);
+        return t < 0 ? 0 : (t > 1 ? 1 : t);
+    }
     if (q->cubic) {
         /* y(t) - s = t (by + t (ay + t dy)) - d, increasing on [0, 1]:
          * Newton's method kept inside the bracket [a, b], bisection where
@@ -188,6 +450,8 @@ int truth_circle_heights(const aa_piece *p, double uc, double vc, double R,
 {
     if (p->kind == AA_PIECE_FLAT)
         return 0;
+    if (p->kind == AA_PIECE_CONIC)
+        return circle_heights_conic(p, uc, vc, R, out);
     double lo = fmax(vc - R, p->y0), hi = fmin(vc + R, p->y1);
     if (!(lo < hi))
         return 0;
