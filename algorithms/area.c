@@ -159,12 +159,15 @@ static const aa_param area_params[] = {
  * ------------------------------------------------------------------------ */
 
 /* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1); for a
- * cubic, inside that part [lo, hi]. */
+ * cubic or a conic, inside that part [lo, hi]. */
 static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo, double hi,
                                  double ul, double uh)
 {
     /* the guess: the chord from lo to hi (ul, uh: u there) */
     double g = uh != ul ? lo + (hi - lo) * ((k - ul) / (uh - ul)) : 0.5 * (lo + hi);
+    if (s->p->conic)
+        return sg > 0.0 ? area_conic_near(s->U - k, s->g, s->ax, lo, hi, g)
+                        : area_conic_near(k - s->U, -s->g, -s->ax, lo, hi, g);
     if (sg > 0.0)
         return area_cubic_near(s->U - k, s->g, s->ax, s->cx3, lo, hi, g);
     return area_cubic_near(k - s->U, -s->g, -s->ax, -s->cx3, lo, hi, g);
@@ -292,10 +295,99 @@ static int poly_roots(const double *c, int d, double *r)
  * A piece in the band
  * ------------------------------------------------------------------------ */
 
+/* d - sin d without cancellation: its series below 1 (the first term left
+ * out, d^19/19!, is below 2^-54 of the sum there). */
+static inline double d_minus_sin(double d)
+{
+    if (fabs(d) >= 1.0)
+        return d - sin(d);
+    double z = d * d;
+    return d * z * (1.0 / 6.0) *
+           (1.0 - z / 20.0 *
+                      (1.0 - z / 42.0 *
+                                 (1.0 - z / 72.0 *
+                                            (1.0 - z / 110.0 *
+                                                       (1.0 - z / 156.0 *
+                                                                  (1.0 - z / 210.0 *
+                                                                             (1.0 - z / 272.0 *
+                                                                                        (1.0 - z / 342.0))))))));
+}
+
+/* A conic's angle s where y(s) = y, in closed form (aabench.h: y = ey -
+ * er cos s): 2 asin(sqrt((1 - c)/2)) near the top, pi - 2 asin(sqrt((1 +
+ * c)/2)) past the middle, with 1 -+ c from differences in extended
+ * precision, so no bits are lost at the ellipse's top and bottom. */
+static double conic_s_at(const aa_piece *q, double y)
+{
+    long double top = ((long double)y - ((long double)q->ey - q->er)) / q->er;
+    if (top <= 1.0L) {
+        double h = (double)(0.5L * top);
+        return 2.0 * asin(sqrt(h > 0.0 ? h : 0.0));
+    }
+    double h = (double)(0.5L * (((long double)q->ey + q->er) - y) / q->er);
+    return M_PI - 2.0 * asin(sqrt(h > 0.0 ? (h < 1.0 ? h : 1.0) : 0.0));
+}
+
+/* A conic about its point on line y = ja (or its top, if lower): the
+ * ellipse there in extended precision, then (ar_seg) u(tau) = U + g sin
+ * tau + ax (1 - cos tau), v likewise, tau = s - ang, from
+ * cos(ang + tau) = cos ang - (1 - cos tau) cos ang - sin tau sin ang.  The
+ * x extremum: x'(s) = eb cos s - ea sin s = 0 at s = atan2(eb, ea) (mod pi). */
+static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
+{
+    const aa_piece *q = p->src;
+    double A = q->s0;
+    if (p->y0 < ja) { /* A need not solve y(A) = ja exactly: Va keeps the rest */
+        A = conic_s_at(q, ja);
+        A = A < q->s0 ? q->s0 : (A > q->s1 ? q->s1 : A);
+    }
+    long double cA = cosl(A), sA = sinl(A), ea = q->ea, eb = q->eb, er = q->er;
+    long double X = q->ex + (ea * cA + eb * sA), Y = ((long double)q->ey - ja) - er * cA;
+    double c0 = floor((double)X);
+    c0 = c0 < -CELL_LIMIT ? -CELL_LIMIT : (c0 > CELL_LIMIT ? CELL_LIMIT : c0);
+    a->p = p;
+    a->ja = ja;
+    a->c0 = (int)c0;
+    a->U = (double)(X - c0);
+    a->Va = (double)Y;
+    a->g = (double)(eb * cA - ea * sA);
+    a->vy = (double)(er * sA);
+    a->ax = (double)-(ea * cA + eb * sA);
+    a->ay = (double)(er * cA);
+    a->cx3 = a->cy3 = 0.0;
+    a->ang = A;
+    double sh = sin(0.5 * A), ch = cos(0.5 * A);
+    a->kT = 2.0 * sh * sh, a->kB = 2.0 * ch * ch;
+    a->ivy = 1.0 / q->er;
+    a->k6 = p->k6;
+    a->t0 = q->s0 - A;
+    a->tend = q->s1 - A;
+    if (p->y1 < ja + ANCHOR_ROWS + 1.0) {
+        /* the end within this anchor's rows: s1 - A cancels, so one Newton
+         * step puts v(tend) on y1 to the last bits (none where the ellipse
+         * turns there, or if y1 is off the ellipse by more than rounding) */
+        double S, H, t = a->tend;
+        conic_sh(t, &S, &H);
+        double f = (a->Va - (p->y1 - ja)) + (a->vy * S + a->ay * H);
+        double df = a->vy * (1.0 - H) + a->ay * S;
+        if (df > 0.0 && fabs(f) <= 1e-9 * df)
+            a->tend = t - f / df;
+    }
+    double se = atan2(q->eb, q->ea);
+    se = se < 0.0 ? se + M_PI : se;
+    a->te = se - A;
+    a->te2 = INFINITY;
+    a->mline = INT_MIN;
+}
+
 /* Expand piece p about its point on line y = ja (or its top, if lower),
  * in extended precision from its control points. */
 static void expand(ar_seg *a, const ar_piece *p, int ja)
 {
+    if (p->conic) {
+        expand_conic(a, p, ja);
+        return;
+    }
     long double T, X, Y;
     if (p->y0 >= ja) {
         T = 0.0L;
@@ -368,6 +460,8 @@ static void expand(ar_seg *a, const ar_piece *p, int ja)
 static inline double line_tau(const ar_seg *a, int m)
 {
     double c = a->Va - m;
+    if (a->p->conic)
+        return conic_solve_v(a, c);
     if (a->p->cubic) {
         /* the guess: the series of the inverse about the anchor,
          * v(tau) - Va = d tau + q tau^2 + r tau^3 = h gives
@@ -483,6 +577,17 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
                                double *dy)
 {
     double d = tb - ta;
+    if (s->p->conic) {
+        /* the chord's height in the difference form, 2 sin(d/2) (vy cos m +
+         * ay sin m) at the middle m; the elliptic segment between chord
+         * and arc: the ellipse is the image of the unit circle under
+         * (ea eb; -er 0), of determinant eb er, and the circle's segment
+         * over an angle d is (d - sin d)/2, on the left of the arc's
+         * direction when eb er > 0 (header) */
+        double m = 0.5 * (ta + tb), sd = sin(0.5 * d);
+        *dy = 2.0 * sd * (s->vy * cos(m) + s->ay * sin(m));
+        return *dy * (1.0 - 0.5 * (ua + ub)) + s->k6 * d_minus_sin(d);
+    }
     if (s->p->cubic) {
         /* Taylor coefficients at ta: (x', y'), (x'', y'')/2, the cubic's
          * terms; the area between the arc and its chord is, by Green's
@@ -543,8 +648,9 @@ static void walk(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1
         double tb = t2, ub = u2;
         if (k != kend) {
             ub = right ? k + 1.0 : k;
-            tb = s->p->cubic ? tau_of_u_in(s, ub, right ? 1.0 : -1.0, ta, t2, ua, u2)
-                             : tau_of_u(s, ub, right ? 1.0 : -1.0);
+            tb = s->p->cubic || s->p->conic
+                     ? tau_of_u_in(s, ub, right ? 1.0 : -1.0, ta, t2, ua, u2)
+                     : tau_of_u(s, ub, right ? 1.0 : -1.0);
             if (!(tb >= ta))
                 tb = ta;
             if (tb > t2)
@@ -638,10 +744,11 @@ static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const d
 static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb, int j,
                           double *out)
 {
-    if (p->p->cubic || q->p->cubic) {
-        /* a cubic: the scene's own meeting heights (aa_piece_meet: roots
-         * of a cubic polynomial against a line, bisection on exact extents
-         * against an arc), as band-local heights */
+    if (p->p->cubic || q->p->cubic || p->p->conic || q->p->conic) {
+        /* a cubic or a conic: the scene's own meeting heights
+         * (aa_piece_meet: roots of a cubic polynomial against a line,
+         * bisection on exact extents against an arc), as band-local
+         * heights */
         double base = j, ys[9];
         int m = aa_piece_meet(p->p->src, q->p->src, base + ya, base + yb, ys, 9), n = 0;
         for (int i = 0; i < m; i++) {
@@ -940,14 +1047,16 @@ static inline const double *single(const ar_row *r, const ar_seg *s, int *w,
     /* two cells: the piece crosses their common side x = c0 + k + 1 */
     double dl, dr, al, ar;
     if (s->ub > s->ua) {
-        double tc = s->p->cubic ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb, s->ua, s->ub)
-                                : tau_of_u(s, k + 1.0, 1.0);
+        double tc = s->p->cubic || s->p->conic
+                        ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb, s->ua, s->ub)
+                        : tau_of_u(s, k + 1.0, 1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
         al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
         ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
     } else {
-        double tc = s->p->cubic ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb, s->ua, s->ub)
-                                : tau_of_u(s, k + 1.0, -1.0);
+        double tc = s->p->cubic || s->p->conic
+                        ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb, s->ua, s->ub)
+                        : tau_of_u(s, k + 1.0, -1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
         ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
         al = part_area(s, tc, s->tb, 1.0, s->ub - k, &dl);
@@ -1304,8 +1413,9 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
         ar_piece *q = &S->piece[k];
         long double x0 = p->x0, cx = p->cx, x1 = p->x1, y0 = p->y0, cy = p->cy, y1 = p->y1;
         q->flat = p->kind == AA_PIECE_FLAT;
-        q->line = p->kind != AA_PIECE_QUAD && p->kind != AA_PIECE_CUBIC;
+        q->line = p->kind == AA_PIECE_LINE || p->kind == AA_PIECE_FLAT;
         q->cubic = p->kind == AA_PIECE_CUBIC;
+        q->conic = p->kind == AA_PIECE_CONIC;
         q->src = p;
         q->x0 = x0, q->y0l = y0;
         q->dx = q->dy = 0;
@@ -1328,6 +1438,8 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
         /* y'(t) x'' - x'(t) y'' = (by + 2 ay t) 2 ax - (bx + 2 ax t) 2 ay
          * = 2 (by ax - bx ay) for every t */
         q->k6 = (double)((q->by * q->ax - q->bx * q->ay) / 6.0L);
+        if (q->conic) /* the elliptic segment's factor (part_area) */
+            q->k6 = -0.5 * p->eb * p->er;
         q->dir = p->dir;
         q->layer = p->layer;
         q->id = (uint32_t)k;
