@@ -547,6 +547,22 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
         s->lo = ue < s->lo ? ue : s->lo;
         s->hi = ue > s->hi ? ue : s->hi;
     }
+    if (p->conic) {
+        /* a conic's ends come from its angle, off its exact end points
+         * (x0, y1, x1, y1) by rounding: where two pieces meet on a cell's
+         * side, each end could fall in another cell, and the clusters
+         * would not be linked; the extent holds the exact ends too */
+        if (p->y0 >= j) {
+            double e = (double)(p->x0 - s->c0);
+            s->lo = e < s->lo ? e : s->lo;
+            s->hi = e > s->hi ? e : s->hi;
+        }
+        if (p->y1 <= j + 1.0) {
+            double e = p->src->x1 - s->c0;
+            s->lo = e < s->lo ? e : s->lo;
+            s->hi = e > s->hi ? e : s->hi;
+        }
+    }
     int lo = s->c0 + icell(s->lo), hi = s->c0 + icell(s->hi);
     if (lo >= W)
         return 0;
