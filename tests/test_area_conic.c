@@ -261,6 +261,9 @@ static void test_disk(void **state)
     check_shape("disk", &disk, 1, 0, 64, 64);
     check_shape("disk", &disk, 1, 0, 61, 47);
     check_shape("disk", &disk, 1, 0, 5, 3);
+    /* centred on a pixel corner: its pieces meet on cells' sides */
+    const ellipse centred = {0.5, 0.5, 0.42, 0, 0, 0.42};
+    check_shape("disk on a pixel corner", &centred, 1, 0, 64, 64);
 }
 
 static void test_rotated_ellipse(void **state)
