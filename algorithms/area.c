@@ -67,6 +67,48 @@
  * 1.47 on 48 stripes of S-shaped cubics, where crow measured 1.47 to 1.49
  * in the same runs (tests/bench_cubic.c).
  *
+ * Conic pieces (arcs of ellipses, AA_PIECE_CONIC: y = ey - er cos s,
+ * x = ex + ea cos s + eb sin s, s rising from s0 to s1 in [0, pi]) the
+ * same way, in the angle s: about its point at s = A on the anchor line,
+ * in extended precision, with tau = s - A, a piece is exactly
+ *
+ *     u = U + g sin tau + ax (1 - cos tau),  v = Va + vy sin tau + ay (1 - cos tau),
+ *
+ * (g, vy) = P'(A) and (ax, ay) = -(P(A) - centre) (from cos(A + tau) =
+ * cos A - cos A (1 - cos tau) - sin A sin tau), every term small near the
+ * anchor: the difference form of the Taylor series above.  The ellipse is
+ * the image of the unit circle under the map (ea eb; -er 0), of
+ * determinant eb er, and a circle's segment between chord and arc over an
+ * angle d is (d - sin d)/2, so the area right of a part from tau_a to
+ * tau_a + d in a cell is
+ *
+ *     dy (1 - (u_a + u_b)/2) - eb er (d - sin d)/2,
+ *
+ * dy = 2 sin(d/2) (vy cos m + ay sin m) at the middle m (no cancellation),
+ * d - sin d by its series below d = 1 (the first term dropped is below
+ * 2^-54 of the sum): the segment lies left of the arc's direction when
+ * eb er > 0, as for the parabola (d^3 (x' y'' - y' x'')/12 is the limit).
+ * x turns at most once on a piece, where x'(s) = eb cos s - ea sin s
+ * vanishes, s = atan2(eb, ea) mod pi: the part is split there, as a
+ * parabola's.  The angle on a band line comes from the closed form s =
+ * 2 asin(sqrt((1 - c)/2)), c = cos s, with 1 - c = (y - (ey - er))/er in
+ * extended precision (pi minus the same from 1 + c past the middle, so
+ * nothing is lost at the ellipse's top and bottom), and on a cell side
+ * from the chord; each is then polished by Newton's method in the
+ * anchor's form (s - A cancels; the polish restores the bits), kept in
+ * its bracket, with area_cubic_near's stopping rule (area_conic_near).
+ * Where a conic meets another piece in a cluster the band is cut at the
+ * heights aa_piece_meet gives, as for cubics.  A conic's ends come from
+ * its angle, off its exact end points by rounding, so its extent in a
+ * band also holds those points: pieces that meet on a cell's side (a
+ * circle centred on a pixel corner) then link their clusters.  Measured
+ * (tests/test_area_conic.c): disks, a turned ellipse, an annulus, half
+ * disks and a disk behind a square within 5e-15 a pixel of the closed form
+ * (the disc inside a polygon), a disk of radius 1500 px at 4096 px within
+ * 9e-15.  The sines and cosines cost: area/point 5.0 on 200 concentric
+ * circles at 1024x1024, 8.4 on 256 small disks, 12.6 on 64 crossing
+ * ellipses (tests/bench_conic.c, one thread; crow 1.6 in the same runs).
+ *
  * Hidden surfaces.  Clusters where pieces cross, or end inside the band
  * (vertices, flat edges), need the per-pixel treatment Catmull describes
  * ("A correct solution for this filter requires a hidden-surface algorithm
@@ -111,7 +153,8 @@
  *
  * Known answers (tests/test_area.c): Catmull's fig. 1 pixel is
  * (0, 0.25, 0.5); `crow` 256x256 equals the box reference within 1e-9 (in
- * practice 2e-15; 2e-14 at 4096 px wide).
+ * practice 2e-15; 2e-14 at 4096 px wide).  Conics: tests/test_area_conic.c
+ * (above).
  *
  * Limits.  The box filter only: tent and gauss are refused.  Results carry
  * rounding, about 1e-15 per pixel at 256 px and 1e-14 at 4096 px, and are
@@ -549,7 +592,7 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
     }
     if (p->conic) {
         /* a conic's ends come from its angle, off its exact end points
-         * (x0, y1, x1, y1) by rounding: where two pieces meet on a cell's
+         * (x0, y0) and (x1, y1) by rounding: where two pieces meet on a cell's
          * side, each end could fall in another cell, and the clusters
          * would not be linked; the extent holds the exact ends too */
         if (p->y0 >= j) {
