@@ -69,45 +69,42 @@
  *
  * Conic pieces (arcs of ellipses, AA_PIECE_CONIC: y = ey - er cos s,
  * x = ex + ea cos s + eb sin s, s rising from s0 to s1 in [0, pi]) the
- * same way, in the angle s: about its point at s = A on the anchor line,
- * in extended precision, with tau = s - A, a piece is exactly
+ * same way, in the half-angle tangent about an anchor: the ellipse at
+ * s = A, the middle angle of the piece's part in the anchor's rows, in
+ * extended precision, and with tau = s - A, q = tan(tau/2) (|q| <= 1 on
+ * those rows), sin tau = 2q/(1 + q^2) and 1 - cos tau = 2q^2/(1 + q^2):
  *
- *     u = U + g sin tau + ax (1 - cos tau),  v = Va + vy sin tau + ay (1 - cos tau),
+ *     u = U + 2q (g + ax q)/(1 + q^2),   v = Va + 2q (vy + ay q)/(1 + q^2),
  *
  * (g, vy) = P'(A) and (ax, ay) = -(P(A) - centre) (from cos(A + tau) =
  * cos A - cos A (1 - cos tau) - sin A sin tau), every term small near the
- * anchor: the difference form of the Taylor series above.  The ellipse is
- * the image of the unit circle under the map (ea eb; -er 0), of
- * determinant eb er, and a circle's segment between chord and arc over an
- * angle d is (d - sin d)/2, so the area right of a part from tau_a to
- * tau_a + d in a cell is
+ * anchor, no trigonometry per row.  A band line or a cell side is then met
+ * where a quadratic in q vanishes ((c + 2 ay) q^2 + 2 vy q + c for
+ * v = Va - c), solved in the form without cancellation as a parabola's.
+ * The ellipse is the image of the unit circle under the map (ea eb;
+ * -er 0), of determinant eb er, and a circle's segment between chord and
+ * arc over an angle d is (d - sin d)/2, so the area right of a part from
+ * q_a to q_b in a cell is
  *
  *     dy (1 - (u_a + u_b)/2) - eb er (d - sin d)/2,
  *
- * dy = 2 sin(d/2) (vy cos m + ay sin m) at the middle m (no cancellation),
- * d - sin d by its series below d = 1 (the first term dropped is below
- * 2^-54 of the sum): the segment lies left of the arc's direction when
- * eb er > 0, as for the parabola (d^3 (x' y'' - y' x'')/12 is the limit).
- * x turns at most once on a piece, where x'(s) = eb cos s - ea sin s
- * vanishes, s = atan2(eb, ea) mod pi: the part is split there, as a
- * parabola's.  The angle on a band line comes from the closed form s =
- * 2 asin(sqrt((1 - c)/2)), c = cos s, with 1 - c = (y - (ey - er))/er in
- * extended precision (pi minus the same from 1 + c past the middle, so
- * nothing is lost at the ellipse's top and bottom), and on a cell side
- * from the chord; each is then polished by Newton's method in the
- * anchor's form (s - A cancels; the polish restores the bits), kept in
- * its bracket, with area_cubic_near's stopping rule (area_conic_near).
- * Where a conic meets another piece in a cluster the band is cut at the
- * heights aa_piece_meet gives, as for cubics.  A conic's ends come from
- * its angle, off its exact end points by rounding, so its extent in a
- * band also holds those points: pieces that meet on a cell's side (a
- * circle centred on a pixel corner) then link their clusters.  Measured
- * (tests/test_area_conic.c): disks, a turned ellipse, an annulus, half
- * disks and a disk behind a square within 5e-15 a pixel of the closed form
- * (the disc inside a polygon), a disk of radius 1500 px at 4096 px within
- * 9e-15.  The sines and cosines cost: area/point 5.0 on 200 concentric
- * circles at 1024x1024, 8.4 on 256 small disks, 12.6 on 64 crossing
- * ellipses (tests/bench_conic.c, one thread; crow 1.6 in the same runs).
+ * with d = 2 atan p, p = (q_b - q_a)/(1 + q_a q_b), d - sin d =
+ * 4p^3/3 - 8p^5/5 + ... (its series below p = 1/8), and the chord's
+ * height dy = 2 (q_b - q_a) (vy (1 - q_a q_b) + ay (q_a + q_b)) /
+ * ((1 + q_a^2)(1 + q_b^2)): no cancellation.  The segment lies left of the
+ * arc's direction when eb er > 0, as for the parabola (whose d^3 (x' y'' -
+ * y' x'')/12 is its limit).  x turns at most once on a piece, where
+ * g q^2 - 2 ax q - g = 0 (the root of modulus <= 1): the part is split
+ * there, as a parabola's.  Where a conic meets another piece in a cluster
+ * the band is cut at the heights aa_piece_meet gives, as for cubics.  A
+ * conic's ends come from its angle, off its exact end points by rounding,
+ * so its extent in a band also holds those points: pieces that meet on a
+ * cell's side (a circle centred on a pixel corner) then link their
+ * clusters.  Measured (tests/test_area_conic.c): disks, a turned ellipse,
+ * an annulus, half disks and a disk behind a square within 4e-15 a pixel
+ * of the closed form (the disc inside a polygon), a disk of radius
+ * 1500 px at 4096 px within 1e-14.  Speed: see tests/bench_conic.c and
+ * algorithms/README.md ("Exact coverage").
  *
  * Hidden surfaces.  Clusters where pieces cross, or end inside the band
  * (vertices, flat edges), need the per-pixel treatment Catmull describes
@@ -202,24 +199,31 @@ static const aa_param area_params[] = {
  * ------------------------------------------------------------------------ */
 
 /* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1); for a
- * cubic or a conic, inside that part [lo, hi]. */
+ * cubic, inside that part [lo, hi]. */
 static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo, double hi,
                                  double ul, double uh)
 {
     /* the guess: the chord from lo to hi (ul, uh: u there) */
     double g = uh != ul ? lo + (hi - lo) * ((k - ul) / (uh - ul)) : 0.5 * (lo + hi);
-    if (s->p->conic)
-        return sg > 0.0 ? area_conic_near(s->U - k, s->g, s->ax, lo, hi, g)
-                        : area_conic_near(k - s->U, -s->g, -s->ax, lo, hi, g);
     if (sg > 0.0)
         return area_cubic_near(s->U - k, s->g, s->ax, s->cx3, lo, hi, g);
     return area_cubic_near(k - s->U, -s->g, -s->ax, -s->cx3, lo, hi, g);
 }
 
-/* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1). */
+/* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1).  For
+ * a conic, q where u(q) = k: (K + 2 ax) q^2 + 2 g q + K = 0 (K = U - k),
+ * whose derivative there has the sign of u' (u (1 + q^2) - k (1 + q^2) has
+ * derivative u' (1 + q^2) where u = k). */
 static inline double tau_of_u(const ar_seg *s, double k, double sg)
 {
     double c = s->U - k, g = s->g;
+    if (s->p->conic) {
+        double a = c + 2.0 * s->ax, disc = g * g - c * a, q = sqrt(disc > 0.0 ? disc : 0.0);
+        double den = g + sg * q;
+        if ((sg * g > 0.0 || a == 0.0) && den != 0.0)
+            return -c / den;
+        return a != 0.0 ? (-g + sg * q) / a : 0.0;
+    }
     double disc = g * g - 4.0 * s->ax * c, q = sqrt(disc > 0.0 ? disc : 0.0);
     if (sg * g > 0.0 || s->ax == 0.0)
         return -2.0 * c / (g + sg * q);
@@ -338,22 +342,26 @@ static int poly_roots(const double *c, int d, double *r)
  * A piece in the band
  * ------------------------------------------------------------------------ */
 
-/* d - sin d without cancellation: its series below 1 (the first term left
- * out, d^19/19!, is below 2^-54 of the sum there). */
-static inline double d_minus_sin(double d)
+/* d - sin d for the angle d = 2 atan p, without cancellation: with
+ * 2 atan p = 2 (p - p^3/3 + ...) and sin d = 2p/(1 + p^2) = 2 (p - p^3 +
+ * ...), d - sin d = sum over k >= 1 of (-1)^(k+1) 4k/(2k+1) p^(2k+1); its
+ * first ten terms below |p| = 1/8 (the next is below 2^-59 of the sum),
+ * the difference itself above (where it loses at most 7 bits of a
+ * segment below 1 px^2 in a cell). */
+static inline double d_minus_sin_half(double p)
 {
-    if (fabs(d) >= 1.0)
-        return d - sin(d);
-    double z = d * d;
-    return d * z * (1.0 / 6.0) *
-           (1.0 - z / 20.0 *
-                      (1.0 - z / 42.0 *
-                                 (1.0 - z / 72.0 *
-                                            (1.0 - z / 110.0 *
-                                                       (1.0 - z / 156.0 *
-                                                                  (1.0 - z / 210.0 *
-                                                                             (1.0 - z / 272.0 *
-                                                                                        (1.0 - z / 342.0))))))));
+    if (fabs(p) >= 0.125)
+        return 2.0 * atan(p) - 2.0 / (p + 1.0 / p);
+    double z = p * p;
+    return p * z *
+           (4.0 / 3 -
+            z * (8.0 / 5 -
+                 z * (12.0 / 7 -
+                      z * (16.0 / 9 -
+                           z * (20.0 / 11 -
+                                z * (24.0 / 13 -
+                                     z * (28.0 / 15 -
+                                          z * (32.0 / 17 - z * (36.0 / 19 - z * (40.0 / 21))))))))));
 }
 
 /* A conic's angle s where y(s) = y, in closed form (aabench.h: y = ey -
@@ -371,19 +379,23 @@ static double conic_s_at(const aa_piece *q, double y)
     return M_PI - 2.0 * asin(sqrt(h > 0.0 ? (h < 1.0 ? h : 1.0) : 0.0));
 }
 
-/* A conic about its point on line y = ja (or its top, if lower): the
- * ellipse there in extended precision, then (ar_seg) u(tau) = U + g sin
- * tau + ax (1 - cos tau), v likewise, tau = s - ang, from
- * cos(ang + tau) = cos ang - (1 - cos tau) cos ang - sin tau sin ang.  The
- * x extremum: x'(s) = eb cos s - ea sin s = 0 at s = atan2(eb, ea) (mod pi). */
+/* A conic about its point at the middle angle of its part in the anchor's
+ * rows [ja, ja + ANCHOR_ROWS + 1] (so that |s - ang| <= pi/2 there, |q| <=
+ * 1): the ellipse there in extended precision, then (ar_seg) u and v as
+ * rational functions of q = tan((s - ang)/2), from cos(ang + tau) =
+ * cos ang - cos ang (1 - cos tau) - sin ang sin tau and the like.  Its
+ * ends' q by the band lines' closed form.  The x extremum: u'(q) = 0 where
+ * g q^2 - 2 ax q - g = 0, the root of modulus <= 1 (the other is the same
+ * point of the ellipse's other half turn, tau + pi). */
 static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
 {
     const aa_piece *q = p->src;
-    double A = q->s0;
-    if (p->y0 < ja) { /* A need not solve y(A) = ja exactly: Va keeps the rest */
-        A = conic_s_at(q, ja);
-        A = A < q->s0 ? q->s0 : (A > q->s1 ? q->s1 : A);
-    }
+    double ylo = ja, yhi = ja + ANCHOR_ROWS + 1.0;
+    double sa = p->y0 >= ylo ? q->s0 : conic_s_at(q, ylo);
+    double sb = p->y1 <= yhi ? q->s1 : conic_s_at(q, yhi);
+    sa = sa < q->s0 ? q->s0 : (sa > q->s1 ? q->s1 : sa);
+    sb = sb < sa ? sa : (sb > q->s1 ? q->s1 : sb);
+    double A = 0.5 * (sa + sb);
     long double cA = cosl(A), sA = sinl(A), ea = q->ea, eb = q->eb, er = q->er;
     long double X = q->ex + (ea * cA + eb * sA), Y = ((long double)q->ey - ja) - er * cA;
     double c0 = floor((double)X);
@@ -398,27 +410,12 @@ static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
     a->ax = (double)-(ea * cA + eb * sA);
     a->ay = (double)(er * cA);
     a->cx3 = a->cy3 = 0.0;
-    a->ang = A;
-    double sh = sin(0.5 * A), ch = cos(0.5 * A);
-    a->kT = 2.0 * sh * sh, a->kB = 2.0 * ch * ch;
-    a->ivy = 1.0 / q->er;
+    a->ivy = 0.0;
     a->k6 = p->k6;
-    a->t0 = q->s0 - A;
-    a->tend = q->s1 - A;
-    if (p->y1 < ja + ANCHOR_ROWS + 1.0) {
-        /* the end within this anchor's rows: s1 - A cancels, so one Newton
-         * step puts v(tend) on y1 to the last bits (none where the ellipse
-         * turns there, or if y1 is off the ellipse by more than rounding) */
-        double S, H, t = a->tend;
-        conic_sh(t, &S, &H);
-        double f = (a->Va - (p->y1 - ja)) + (a->vy * S + a->ay * H);
-        double df = a->vy * (1.0 - H) + a->ay * S;
-        if (df > 0.0 && fabs(f) <= 1e-9 * df)
-            a->tend = t - f / df;
-    }
-    double se = atan2(q->eb, q->ea);
-    se = se < 0.0 ? se + M_PI : se;
-    a->te = se - A;
+    a->t0 = p->y0 >= ylo ? conic_q_of_v(a, a->Va - (p->y0 - ja)) : -INFINITY;
+    a->tend = p->y1 <= yhi ? conic_q_of_v(a, a->Va - (p->y1 - ja)) : INFINITY;
+    double R = hypot(a->g, a->ax);
+    a->te = R > 0.0 ? -a->g / (a->ax + copysign(R, a->ax)) : INFINITY;
     a->te2 = INFINITY;
     a->mline = INT_MIN;
 }
@@ -504,7 +501,7 @@ static inline double line_tau(const ar_seg *a, int m)
 {
     double c = a->Va - m;
     if (a->p->conic)
-        return conic_solve_v(a, c);
+        return conic_q_of_v(a, c);
     if (a->p->cubic) {
         /* the guess: the series of the inverse about the anchor,
          * v(tau) - Va = d tau + q tau^2 + r tau^3 = h gives
@@ -559,7 +556,7 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
         expand(s, p, ja);
     double ta, tb, ua, ub;
     if (p->y0 >= j)
-        ta = 0.0, ua = s->U;
+        ta = p->conic ? s->t0 : 0.0, ua = p->conic ? u_at(s, ta) : s->U;
     else if (s->mline == m)
         ta = s->tline, ua = s->uline;
     else
@@ -637,15 +634,18 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
 {
     double d = tb - ta;
     if (s->p->conic) {
-        /* the chord's height in the difference form, 2 sin(d/2) (vy cos m +
-         * ay sin m) at the middle m; the elliptic segment between chord
+        /* from q: the angle d = 2 atan(pq), pq = (tb - ta)/(1 + ta tb)
+         * (tan of a difference of half angles), and the chord's height
+         * v(tb) - v(ta) = 2 d (vy (1 - ta tb) + ay (ta + tb)) / ((1 + ta^2)
+         * (1 + tb^2)), no cancellation; the elliptic segment between chord
          * and arc: the ellipse is the image of the unit circle under
          * (ea eb; -er 0), of determinant eb er, and the circle's segment
          * over an angle d is (d - sin d)/2, on the left of the arc's
          * direction when eb er > 0 (header) */
-        double m = 0.5 * (ta + tb), sd = sin(0.5 * d);
-        *dy = 2.0 * sd * (s->vy * cos(m) + s->ay * sin(m));
-        return *dy * (1.0 - 0.5 * (ua + ub)) + s->k6 * d_minus_sin(d);
+        double pq = d / (1.0 + ta * tb);
+        *dy = 2.0 * d * (s->vy * (1.0 - ta * tb) + s->ay * (ta + tb)) /
+              ((1.0 + ta * ta) * (1.0 + tb * tb));
+        return *dy * (1.0 - 0.5 * (ua + ub)) + s->k6 * d_minus_sin_half(pq);
     }
     if (s->p->cubic) {
         /* Taylor coefficients at ta: (x', y'), (x'', y'')/2, the cubic's
@@ -707,9 +707,8 @@ static void walk(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1
         double tb = t2, ub = u2;
         if (k != kend) {
             ub = right ? k + 1.0 : k;
-            tb = s->p->cubic || s->p->conic
-                     ? tau_of_u_in(s, ub, right ? 1.0 : -1.0, ta, t2, ua, u2)
-                     : tau_of_u(s, ub, right ? 1.0 : -1.0);
+            tb = s->p->cubic ? tau_of_u_in(s, ub, right ? 1.0 : -1.0, ta, t2, ua, u2)
+                             : tau_of_u(s, ub, right ? 1.0 : -1.0);
             if (!(tb >= ta))
                 tb = ta;
             if (tb > t2)
@@ -1106,16 +1105,14 @@ static inline const double *single(const ar_row *r, const ar_seg *s, int *w,
     /* two cells: the piece crosses their common side x = c0 + k + 1 */
     double dl, dr, al, ar;
     if (s->ub > s->ua) {
-        double tc = s->p->cubic || s->p->conic
-                        ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb, s->ua, s->ub)
-                        : tau_of_u(s, k + 1.0, 1.0);
+        double tc = s->p->cubic ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb, s->ua, s->ub)
+                                : tau_of_u(s, k + 1.0, 1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
         al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
         ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
     } else {
-        double tc = s->p->cubic || s->p->conic
-                        ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb, s->ua, s->ub)
-                        : tau_of_u(s, k + 1.0, -1.0);
+        double tc = s->p->cubic ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb, s->ua, s->ub)
+                                : tau_of_u(s, k + 1.0, -1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
         ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
         al = part_area(s, tc, s->tb, 1.0, s->ub - k, &dl);

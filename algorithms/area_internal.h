@@ -81,12 +81,12 @@ typedef struct ar_seg {
     double ivy;  /* 1 / vy when ay = 0, and for a cubic (its guesses) */
     double k6;   /* (y' x'' - x' y'') / 12, constant along a parabola */
     double tend; /* tau at the piece's end */
-    /* A conic (aa_piece, AA_PIECE_CONIC) in its angle: tau = s - ang, and
-     * u(tau) = U + g sin tau + ax (1 - cos tau), v(tau) = Va + vy sin tau +
-     * ay (1 - cos tau) (the ellipse about its point at s = ang: ax =
-     * -(x - ex), ay = er cos ang); k6 = -eb er / 2, ivy = 1 / er; kT, kB:
-     * 1 - cos ang and 1 + cos ang, without cancellation */
-    double ang, kT, kB;
+    /* A conic (aa_piece, AA_PIECE_CONIC): its "tau" is q = tan((s - ang)/2),
+     * the half-angle tangent about its point at s = ang, and
+     * u = U + 2 q (g + ax q)/(1 + q^2), v = Va + 2 q (vy + ay q)/(1 + q^2)
+     * (from sin tau and 1 - cos tau; (g, vy) = P'(ang), (ax, ay) =
+     * -(P(ang) - centre)); k6 = -eb er / 2; t0, tend: q at the piece's
+     * ends where they lie in the anchor's rows (else -+infinity) */
     /* tau and u on the line y = ja + mline (the bottom of the last band
      * rendered): the next band's top, without solving again */
     double tline, uline;
@@ -166,21 +166,10 @@ static inline const double *colour_of(const ar_state *S, const int *w)
     return S->colour[S->nl];
 }
 
-/* sin t and 1 - cos t, the latter without cancellation. */
-static inline void conic_sh(double t, double *S, double *H)
-{
-    double sh = sin(0.5 * t), ch = cos(0.5 * t);
-    *S = 2.0 * sh * ch;
-    *H = 2.0 * sh * sh;
-}
-
 static inline double u_at(const ar_seg *s, double t)
 {
-    if (s->p->conic) {
-        double S, H;
-        conic_sh(t, &S, &H);
-        return s->U + (s->g * S + s->ax * H);
-    }
+    if (s->p->conic) /* sin tau = 2q/(1 + q^2), 1 - cos tau = 2q^2/(1 + q^2) */
+        return s->U + 2.0 * t * (s->g + s->ax * t) / (1.0 + t * t);
     return s->U + t * (s->g + t * (s->ax + t * s->cx3));
 }
 
@@ -242,87 +231,16 @@ static inline double area_cubic_near(double c, double k1, double k2, double k3, 
     return area_cubic_root(c, k1, k2, k3, a, b);
 }
 
-/* A conic's root of f(tau) = c + k1 sin tau + k2 (1 - cos tau) in [a, b],
- * where it increases from a non-positive value to a non-negative one (an
- * x-monotone part, or v on a piece): Newton's method kept in the bracket,
- * bisection where a step would leave it, to full precision. */
-static inline double area_conic_root(double c, double k1, double k2, double a, double b)
+/* A conic's q where v(q) - v(0) = -c (c = V - v, or Va - m for a band
+ * line): v = Va + 2 q (vy + ay q)/(1 + q^2) gives the quadratic
+ * (c + 2 ay) q^2 + 2 vy q + c = 0, whose root on the rising branch (through
+ * q = 0 at c = 0; vy = er sin ang >= 0) is taken in the form without
+ * cancellation, as a parabola's. */
+static inline double conic_q_of_v(const ar_seg *s, double c)
 {
-    double S, H;
-    conic_sh(a, &S, &H);
-    double fa = c + (k1 * S + k2 * H);
-    conic_sh(b, &S, &H);
-    double fb = c + (k1 * S + k2 * H);
-    if (!(fa < 0.0))
-        return a;
-    if (!(fb > 0.0))
-        return b;
-    double t = a - fa * (b - a) / (fb - fa);
-    for (int it = 0; it < 100; it++) {
-        if (!(t > a && t < b))
-            t = 0.5 * (a + b);
-        conic_sh(t, &S, &H);
-        double f = c + (k1 * S + k2 * H);
-        if (f == 0.0)
-            return t;
-        if (f < 0.0)
-            a = t;
-        else
-            b = t;
-        double m = 0.5 * (a + b);
-        if (!(m > a && m < b))
-            break;
-        double df = k1 * (1.0 - H) + k2 * S;
-        t = df > 0.0 ? t - f / df : m;
-    }
-    return t > a && t < b ? t : 0.5 * (a + b);
-}
-/* The same from a guess near the root (area_cubic_near's rule: Newton alone
- * while its steps stay in [a, b] and shrink, until the error left after a
- * step, |f''/(2 f')| step^2, is below 2^-54 of the bracket; else the
- * bracketed search).  f' = k1 cos tau + k2 sin tau, f'' = k2 cos tau -
- * k1 sin tau. */
-static inline double area_conic_near(double c, double k1, double k2, double a, double b,
-                                     double guess)
-{
-    double t = guess > a ? (guess < b ? guess : b) : a, last = INFINITY;
-    const double tol = 0x1p-54 * (b - a);
-    for (int it = 0; it < 8; it++) {
-        double S, H;
-        conic_sh(t, &S, &H);
-        double f = c + (k1 * S + k2 * H), C = 1.0 - H;
-        double df = k1 * C + k2 * S;
-        if (f == 0.0)
-            return t;
-        double step = f / df;
-        if (!(df > 0.0) || !(fabs(step) < 0.5 * last))
-            break;
-        double next = t - step;
-        if (!(next >= a && next <= b))
-            break;
-        if (fabs(k2 * C - k1 * S) * step * step <= tol * df)
-            return next;
-        t = next;
-        last = fabs(step);
-    }
-    return area_conic_root(c, k1, k2, a, b);
-}
-
-/* A conic's tau where v(tau) - v(0) = -c (c = V - v, or Va - m for a band
- * line): from the closed form s = 2 asin(sqrt((1 - cos s)/2)) (or pi minus
- * that from 1 + cos s past the middle), accurate at the ellipse's top and
- * bottom, with 1 - cos s = kT - c/er, then polished in the anchor's form
- * (s - ang cancels: the polish restores the bits). */
-static inline double conic_solve_v(const ar_seg *s, double c)
-{
-    double q = -c * s->ivy, top = s->kT + q, sv;
-    if (top <= 1.0) {
-        sv = 2.0 * asin(sqrt(top > 0.0 ? 0.5 * top : 0.0));
-    } else {
-        double bot = s->kB - q;
-        sv = M_PI - 2.0 * asin(sqrt(bot > 0.0 ? (bot < 2.0 ? 0.5 * bot : 1.0) : 0.0));
-    }
-    return area_conic_near(c, s->vy, s->ay, s->t0, s->tend, sv - s->ang);
+    double disc = s->vy * s->vy - c * (c + 2.0 * s->ay);
+    double den = s->vy + sqrt(disc > 0.0 ? disc : 0.0);
+    return den > 0.0 ? -c / den : 0.0;
 }
 
 /* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
@@ -331,7 +249,7 @@ static inline double solve_v(const ar_seg *s, double v)
 {
     double c = s->V - v;
     if (s->p->conic)
-        return conic_solve_v(s, c);
+        return conic_q_of_v(s, c);
     if (s->p->cubic) /* from the linear guess */
         return area_cubic_near(c, s->vy, s->ay, s->cy3, s->t0, s->tend, -c * s->ivy);
     if (s->ay == 0.0)
