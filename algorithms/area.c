@@ -793,6 +793,16 @@ static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const d
  * Crossings of two pieces
  * ------------------------------------------------------------------------ */
 
+/* 1 if conic pieces p and q are arcs of one ellipse: the same centre,
+ * height and ea, and eb the same up to its sign (s -> -s draws the other
+ * half).  An ellipse does not cross itself: its arcs meet at most at their
+ * ends (the vertices, cut there already), so no meeting need be sought. */
+static inline int same_ellipse(const aa_piece *p, const aa_piece *q)
+{
+    return p->ex == q->ex && p->ey == q->ey && p->er == q->er && p->ea == q->ea &&
+           fabs(p->eb) == fabs(q->eb);
+}
+
 /* Heights v in (ya, yb), away from its ends, where segs p and q cross.
  * Both are reparametrised over [ya, yb] as P(s) = Pa + s B + s^2 A in
  * coordinates relative to p's cell; the crossings are where P meets q's
@@ -802,6 +812,8 @@ static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const d
 static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb, int j,
                           double *out)
 {
+    if (p->p->conic && q->p->conic && same_ellipse(p->p->src, q->p->src))
+        return 0;
     if (p->p->cubic || q->p->cubic || p->p->conic || q->p->conic) {
         /* a cubic or a conic: the scene's own meeting heights
          * (aa_piece_meet: roots of a cubic polynomial against a line,
