@@ -806,6 +806,54 @@ static inline int same_ellipse(const aa_piece *p, const aa_piece *q)
            fabs(p->eb) == fabs(q->eb);
 }
 
+/* Heights v in (ya, yb), away from its ends, where conic segs p and q (of
+ * two ellipses) cross: p is N(q)/W(q) in its half-angle tangent q (N
+ * quadratic, W = 1 + q^2), q's ellipse is the unit circle under (ea eb;
+ * -er 0) about its centre, so with D = N - C W the points of p on it have
+ * A^2 + B^2 = W^2, A = (er Dx + ea Dy)/(eb er) (= W sin s), B = -Dy/er
+ * (= W cos s): a quartic in q, taken over p's range in the band (shifted
+ * to (0, 1)) and its sign changes found by poly_roots.  A root is on q's
+ * piece when sin s >= 0 (the half of q's ellipse that the piece is part
+ * of; the other half has the same heights).  0 and nothing found if q's
+ * ellipse is flat (eb = 0). */
+static int conic_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb, double *out)
+{
+    const aa_piece *Q = q->p->src;
+    double ea = Q->ea, eb = Q->eb, er = Q->er;
+    double qa = tau_of_v(p, ya), qb = tau_of_v(p, yb), h = qb - qa;
+    if (!(h > 0.0) || eb == 0.0)
+        return 0;
+    /* q's centre in p's cell and band: U + ax = ex - c0, V + ay = ey - j */
+    double cx = ((double)q->c0 - (double)p->c0) + (q->U + q->ax), cy = q->V + q->ay;
+    double dx[3] = {p->U - cx, 2.0 * p->g, (p->U - cx) + 2.0 * p->ax};
+    double dy[3] = {p->V - cy, 2.0 * p->vy, (p->V - cy) + 2.0 * p->ay};
+    double a[3], b[3], ieb = 1.0 / (eb * er);
+    for (int k = 0; k < 3; k++) {
+        a[k] = (er * dx[k] + ea * dy[k]) * ieb;
+        b[k] = -dy[k] / er;
+    }
+    double c[5] = {a[0] * a[0] + b[0] * b[0] - 1.0, 2.0 * (a[0] * a[1] + b[0] * b[1]),
+                   a[1] * a[1] + b[1] * b[1] + 2.0 * (a[0] * a[2] + b[0] * b[2]) - 2.0,
+                   2.0 * (a[1] * a[2] + b[1] * b[2]), a[2] * a[2] + b[2] * b[2] - 1.0};
+    /* q = qa + h sigma: the Taylor shift to qa, then the scale */
+    for (int i = 0; i < 4; i++)
+        for (int k = 3; k >= i; k--)
+            c[k] += qa * c[k + 1];
+    for (int k = 1; k <= 4; k++)
+        c[k] *= pow(h, k);
+    double r[4];
+    int m = poly_roots(c, 4, r), n = 0;
+    for (int i = 0; i < m; i++) {
+        double t = qa + h * r[i], w = 1.0 + t * t;
+        if (!(a[0] + t * (a[1] + t * a[2]) >= -1e-9 * w))
+            continue; /* on the other half of q's ellipse */
+        double v = p->V + 2.0 * t * (p->vy + p->ay * t) / w;
+        if (v > ya + CROSS_MARGIN && v < yb - CROSS_MARGIN)
+            out[n++] = v;
+    }
+    return n;
+}
+
 /* Heights v in (ya, yb), away from its ends, where segs p and q cross.
  * Both are reparametrised over [ya, yb] as P(s) = Pa + s B + s^2 A in
  * coordinates relative to p's cell; the crossings are where P meets q's
@@ -815,8 +863,12 @@ static inline int same_ellipse(const aa_piece *p, const aa_piece *q)
 static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb, int j,
                           double *out)
 {
-    if (p->p->conic && q->p->conic && same_ellipse(p->p->src, q->p->src))
-        return 0;
+    if (p->p->conic && q->p->conic) {
+        if (same_ellipse(p->p->src, q->p->src))
+            return 0;
+        if (q->p->src->eb != 0.0)
+            return conic_crossings(p, q, ya, yb, out);
+    }
     if (p->p->cubic || q->p->cubic || p->p->conic || q->p->conic) {
         /* a cubic or a conic: the scene's own meeting heights
          * (aa_piece_meet: roots of a cubic polynomial against a line,
