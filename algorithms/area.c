@@ -96,7 +96,11 @@
  * y' x'')/12 is its limit).  x turns at most once on a piece, where
  * g q^2 - 2 ax q - g = 0 (the root of modulus <= 1): the part is split
  * there, as a parabola's.  Where a conic meets another piece in a cluster
- * the band is cut at the heights aa_piece_meet gives, as for cubics.  A
+ * the band is cut at the heights aa_piece_meet gives, as for cubics, but
+ * for two conics: one, N(q)/(1 + q^2), put into the other's implicit
+ * equation gives a quartic in q whose sign changes over the band
+ * poly_roots finds (conic_crossings); arcs of one ellipse meet only at
+ * their ends and are not asked (same_ellipse).  A
  * conic's ends come from its angle, off its exact end points by rounding,
  * so its extent in a band also holds those points: pieces that meet on a
  * cell's side (a circle centred on a pixel corner) then link their
@@ -104,10 +108,13 @@
  * an annulus, half disks and a disk behind a square within 4e-15 a pixel
  * of the closed form (the disc inside a polygon), a disk of radius
  * 1500 px at 4096 px within 1e-14, two crossing disks within 3.4e-15 of
- * Green's theorem.  Arcs of one ellipse meet only at their ends, so the
- * crossings of two of them are not sought (same_ellipse); other pairs go
- * to aa_piece_meet, which dominates the cost where ellipses cross.  Speed:
- * tests/bench_conic.c and algorithms/README.md ("Exact coverage").
+ * Green's theorem, pie slices within 3.2e-15, 200 random ellipses within
+ * 5.4e-15; the quartic's crossings agreed with aa_piece_meet's in number
+ * on every pair of 64 crossing ellipses at 1024x1024 and within 1.3e-12 px
+ * in height (a cut's error costs its square).  Speed, area/point at
+ * 1024x1024, one thread (tests/bench_conic.c): 2.1 on 200 concentric
+ * circles, 2.2 on 256 disks, 2.8 on 64 crossing ellipses, crow 1.5 in the
+ * same runs.
  *
  * Hidden surfaces.  Clusters where pieces cross, or end inside the band
  * (vertices, flat edges), need the per-pixel treatment Catmull describes
