@@ -181,7 +181,13 @@
  * vertices are found pair by pair among pieces whose extents overlap, and
  * its sub-bands each sweep all its pieces: a cluster crowded with both
  * vertices and pieces (feibush with 65536 stripes, along its top and
- * bottom edges) costs their product.
+ * bottom edges) costs their product.  Two conics' crossings are the sign
+ * changes of a quartic: where two ellipses touch without crossing they are
+ * not split (as for parabolas); a root on the other half of the second
+ * ellipse is told apart by the sign of its sin s with a margin of 1e-9
+ * (such roots lie near that ellipse's top or bottom, a piece's end).  Two
+ * pieces of one ellipse drawn twice (coincident arcs) have no order to
+ * keep and are not split.
  */
 #include "core.h"
 #include "methods.h"
