@@ -56,8 +56,9 @@ typedef struct ar_piece {
      * dx = dy = 0 but for cubics */
     long double x0, bx, ax, y0l, by, ay, dx, dy;
     int cubic;
+    int conic;            /* an arc of an ellipse: its fields are src's */
     double dyd;           /* dy rounded */
-    const aa_piece *src;  /* the scene's piece (crossings of cubics) */
+    const aa_piece *src;  /* the scene's piece (crossings of cubics and conics) */
 } ar_piece;
 
 /* A piece as a worker sees it, one per piece, kept from row to row.
@@ -80,6 +81,12 @@ typedef struct ar_seg {
     double ivy;  /* 1 / vy when ay = 0, and for a cubic (its guesses) */
     double k6;   /* (y' x'' - x' y'') / 12, constant along a parabola */
     double tend; /* tau at the piece's end */
+    /* A conic (aa_piece, AA_PIECE_CONIC): its "tau" is q = tan((s - ang)/2),
+     * the half-angle tangent about its point at s = ang, and
+     * u = U + 2 q (g + ax q)/(1 + q^2), v = Va + 2 q (vy + ay q)/(1 + q^2)
+     * (from sin tau and 1 - cos tau; (g, vy) = P'(ang), (ax, ay) =
+     * -(P(ang) - centre)); k6 = -eb er / 2; t0, tend: q at the piece's
+     * ends where they lie in the anchor's rows (else -+infinity) */
     /* tau and u on the line y = ja + mline (the bottom of the last band
      * rendered): the next band's top, without solving again */
     double tline, uline;
@@ -161,6 +168,8 @@ static inline const double *colour_of(const ar_state *S, const int *w)
 
 static inline double u_at(const ar_seg *s, double t)
 {
+    if (s->p->conic) /* sin tau = 2q/(1 + q^2), 1 - cos tau = 2q^2/(1 + q^2) */
+        return s->U + 2.0 * t * (s->g + s->ax * t) / (1.0 + t * t);
     return s->U + t * (s->g + t * (s->ax + t * s->cx3));
 }
 
@@ -222,11 +231,25 @@ static inline double area_cubic_near(double c, double k1, double k2, double k3, 
     return area_cubic_root(c, k1, k2, k3, a, b);
 }
 
+/* A conic's q where v(q) - v(0) = -c (c = V - v, or Va - m for a band
+ * line): v = Va + 2 q (vy + ay q)/(1 + q^2) gives the quadratic
+ * (c + 2 ay) q^2 + 2 vy q + c = 0, whose root on the rising branch (through
+ * q = 0 at c = 0; vy = er sin ang >= 0) is taken in the form without
+ * cancellation, as a parabola's. */
+static inline double conic_q_of_v(const ar_seg *s, double c)
+{
+    double disc = s->vy * s->vy - c * (c + 2.0 * s->ay);
+    double den = s->vy + sqrt(disc > 0.0 ? disc : 0.0);
+    return den > 0.0 ? -c / den : 0.0;
+}
+
 /* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
  * in the cancellation-free form. */
 static inline double solve_v(const ar_seg *s, double v)
 {
     double c = s->V - v;
+    if (s->p->conic)
+        return conic_q_of_v(s, c);
     if (s->p->cubic) /* from the linear guess */
         return area_cubic_near(c, s->vy, s->ay, s->cy3, s->t0, s->tend, -c * s->ivy);
     if (s->ay == 0.0)

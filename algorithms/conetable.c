@@ -43,7 +43,12 @@
  *    (|a| dt^2 / (4 n^2) is the largest gap of a parabola's chord); the
  *    area moved is at most 2/3 tol per pixel of chord, so the error of a
  *    pixel is at most (2/3) tol L wmax, L the flattened length inside the
- *    mask and wmax the largest weight (tests measure it).
+ *    mask and wmax the largest weight (tests measure it).  A conic piece
+ *    (an arc of an ellipse) the same in its parameter t (its angle scaled
+ *    to [0, 1]), with |a| replaced by a bound on |P''|/2 (visible.h,
+ *    aa__piece_bend); the segment between a chord and an elliptic arc
+ *    within tol of it is at most pi/4 tol per pixel of chord (a half
+ *    disc's share), so there the bound is (pi/4) tol L wmax.
  *  - Layers: Feibush et al. remove the hidden surfaces first (sec. 2.3, a
  *    polygon subdivision algorithm after Weiler: "the visible portions of
  *    all the polygons", the display polygons) and add each display
@@ -367,20 +372,18 @@ static void cn_run(void *ctx, const aa_piece *p, double ya, double yb, const dou
     double ta = ya <= p->y0 ? 0.0 : aa_piece_t_at(p, ya);
     double tb = yb >= p->y1 ? 1.0 : aa_piece_t_at(p, yb);
     int n = 1;
-    if (p->kind == AA_PIECE_QUAD || p->kind == AA_PIECE_CUBIC) {
-        /* |P''|/2 <= |a| + 3 |d| over [0, 1] (d = 0 but for cubics) */
+    if (p->kind == AA_PIECE_QUAD || p->kind == AA_PIECE_CUBIC || p->kind == AA_PIECE_CONIC) {
+        /* |P''|/2 over [0, 1] is at most aa__piece_bend (visible.h) */
         double dt = tb - ta;
-        double ca = hypot(fabs(p->ax) + 3.0 * fabs(p->dx), fabs(p->ay) + 3.0 * fabs(p->dy));
+        double ca = aa__piece_bend(p);
         double steps = ceil(sqrt(ca * dt * dt / (4.0 * P->tol)));
         n = steps < 1.0 ? 1 : (steps > CN_MAX_STEPS ? CN_MAX_STEPS : (int)steps);
     }
-    double sum = 0.0, t = ta;
-    double x0 = p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
-    double y0 = p->y0 + t * (p->by + t * (p->ay + t * p->dy));
+    double sum = 0.0, t = ta, x0, y0, x1, y1, dydt;
+    aa__piece_point(p, t, &x0, &y0, &dydt);
     for (int k = 1; k <= n; k++) {
         t = k == n ? tb : ta + (tb - ta) * k / n;
-        double x1 = p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
-        double y1 = p->y0 + t * (p->by + t * (p->ay + t * p->dy));
+        aa__piece_point(p, t, &x1, &y1, &dydt);
         if (use)
             sum += segment_term(P->tab, P->ox, P->oy, x0, y0, x1, y1);
         if (holds && y0 <= P->oy && P->oy < y1 &&

@@ -85,7 +85,11 @@
  *    y = cy or x = cx - 1, cx, cx + 1 the integrand is a polynomial of
  *    degree at most 7 in t (3 for a line), which 4-point Gauss-Legendre
  *    integrates exactly: the method is exact to rounding wherever the
- *    hidden surfaces are (hidden=scan).  The colour left of the square
+ *    hidden surfaces are (hidden=scan).  A conic piece (an arc of an
+ *    ellipse) gives a trigonometric polynomial of degree 4 in its angle,
+ *    taken by 8-point Gauss-Legendre on parts of at most 0.5 radian: not
+ *    exact, but within 6e-19 of the integrand's largest value per part
+ *    (right_conic).  The colour left of the square
  *    takes the exact weight of its rows, C(yb - cy) - C(ya - cy).
  *
  * Error analysis (per pixel and unit of contrast, against the exact tent
@@ -229,6 +233,41 @@ static const double gl6_x[6] = {-0.93246951420315202781, -0.66120938646626451366
 static const double gl6_w[6] = {0.17132449237917034504, 0.36076157304813860757,
                                 0.46791393457269104739, 0.46791393457269104739,
                                 0.36076157304813860757, 0.17132449237917034504};
+/* Eight points for a conic piece, in its angle s: the weight (linear in
+ * y = ey - er cos s) times the cdf (quadratic in x = ex + ea cos s + eb
+ * sin s) times dy/ds = er sin s is a trigonometric polynomial of degree 4,
+ * not a polynomial, so the rule is not exact; on parts of at most
+ * CONIC_STEP radians its error, h^17 (8!)^4 / (17 (16!)^3) max |f^(16)|
+ * with |f^(16)| <= 4^16 max |f|, is below 6e-19 max |f| (the scene's
+ * rounding is larger). */
+static const double gl8_x[4] = {0.18343464249564980494, 0.52553240991632898582,
+                                0.79666647741362673959, 0.96028985649753623168};
+static const double gl8_w[4] = {0.36268378337836198297, 0.31370664587788728734,
+                                0.22238103445337447054, 0.10122853629037625915};
+#define CONIC_STEP 0.5
+
+/* The conic piece p's part of right_exact between parameters ta and tb. */
+static double right_conic(const aa_filter *f, const aa_piece *p, double ta, double tb,
+                          double cx, double cy)
+{
+    double w = p->s1 - p->s0, sa = p->s0 + ta * w, sb = p->s0 + tb * w;
+    int parts = (int)ceil((sb - sa) / CONIC_STEP);
+    parts = parts < 1 ? 1 : parts;
+    double sum = 0.0;
+    for (int k = 0; k < parts; k++) {
+        double a = sa + (sb - sa) * k / parts, b = k + 1 == parts ? sb : sa + (sb - sa) * (k + 1) / parts;
+        double h = 0.5 * (b - a), m = 0.5 * (a + b), part = 0.0;
+        for (int g = 0; g < 8; g++) {
+            double s = m + h * (g < 4 ? -gl8_x[3 - g] : gl8_x[g - 4]);
+            double c = cos(s), sn = sin(s);
+            double x = p->ex + (p->ea * c + p->eb * sn), y = p->ey - p->er * c;
+            part += (g < 4 ? gl8_w[3 - g] : gl8_w[g - 4]) * aa_filter_weight(f, y - cy) *
+                    (1.0 - aa_filter_cdf(f, x - cx)) * p->er * sn;
+        }
+        sum += h * part;
+    }
+    return sum;
+}
 
 /* The exact weight right of piece p over rows [ya, yb] (inside the square
  * of centre (cx, cy)): integral of w(y - cy) (1 - C(x(y) - cx)) dy, by
@@ -263,6 +302,10 @@ static double right_exact(const aa_filter *f, const aa_piece *p, double ya, doub
             continue;
         double ta = ys[s] <= p->y0 ? 0.0 : aa_piece_t_at(p, ys[s]);
         double tb = ys[s + 1] >= p->y1 ? 1.0 : aa_piece_t_at(p, ys[s + 1]);
+        if (p->kind == AA_PIECE_CONIC) {
+            sum += right_conic(f, p, ta, tb, cx, cy);
+            continue;
+        }
         double h = 0.5 * (tb - ta), m = 0.5 * (ta + tb), part = 0.0;
         int cubic = p->kind == AA_PIECE_CUBIC, ng = cubic ? 6 : 4;
         const double *gx = cubic ? gl6_x : gl4_x, *gw = cubic ? gl6_w : gl4_w;

@@ -465,7 +465,8 @@ static void shade_simple(const jt_row *R, aa__sampler_worker *wk, const jt_pixel
     memset(sub, 0, (size_t)spp);
     for (int q = 0; q < np; q++) {
         const aa_piece *p = pcs[q];
-        if (p->ay == 0.0 && p->by > 0.0 && p->kind != AA_PIECE_CUBIC) {
+        if (p->ay == 0.0 && p->by > 0.0 &&
+            (p->kind == AA_PIECE_LINE || p->kind == AA_PIECE_QUAD)) {
             /* a line, or an arc whose y is linear in t (crow's): with
              * t = d/by (d = y - y0) the power basis of aabench.h is
              * x = x0 + d (bx/by + d ax/by^2), no division per sample.  It
@@ -552,7 +553,8 @@ static void shade_stratified_box(const jt_row *R, aa__sampler_worker *wk,
     int general = 0;
     for (int q = 0; q < np; q++) {
         const aa_piece *p = pcs[q];
-        if (p->ay == 0.0 && p->by > 0.0 && p->kind != AA_PIECE_CUBIC) {
+        if (p->ay == 0.0 && p->by > 0.0 &&
+            (p->kind == AA_PIECE_LINE || p->kind == AA_PIECE_QUAD)) {
             /* x = x0 + d (b + d c) with d measured from the window's corner */
             ex[q] = p->x0 - x0, ey[q] = p->y0 - y0;
             eb[q] = p->bx / p->by, ec[q] = p->ax / (p->by * p->by);

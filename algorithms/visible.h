@@ -70,6 +70,7 @@
 
 #include "aabench.h"
 
+#include <math.h>
 #include <stddef.h>
 
 typedef struct aa__vis_sink {
@@ -118,5 +119,36 @@ void aa__vis_bind(aa__vis *v, const aa_scene *s, int dims, void *block);
  * holds [xl, xr]), reported to the sink. */
 void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double ya, double yb,
                     const aa__vis_sink *sink);
+
+/* The point of piece p (not flat) at its parameter t in [0, 1] (the t of
+ * aa_piece_t_at), and dy/dt there: the power basis of aabench.h, or for a
+ * conic its ellipse at angle s = s0 + t (s1 - s0). */
+static inline void aa__piece_point(const aa_piece *p, double t, double *x, double *y,
+                                   double *dydt)
+{
+    if (p->kind == AA_PIECE_CONIC) {
+        double w = p->s1 - p->s0, s = p->s0 + t * w, c = cos(s), sn = sin(s);
+        *x = p->ex + (p->ea * c + p->eb * sn);
+        *y = p->ey - p->er * c;
+        *dydt = p->er * sn * w;
+        return;
+    }
+    *x = p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
+    *y = p->y0 + t * (p->by + t * (p->ay + t * p->dy));
+    *dydt = p->by + t * (2.0 * p->ay + 3.0 * t * p->dy);
+}
+
+/* A bound on |P''(t)|/2 over the piece in its parameter t (for flattening
+ * within a tolerance): |a| + 3 |d| for the power basis (d = 0 but for
+ * cubics); for a conic (s1 - s0)^2 (|(ea, eb)| + er)/2, since P''(s) =
+ * -(ea cos s + eb sin s, -er cos s). */
+static inline double aa__piece_bend(const aa_piece *p)
+{
+    if (p->kind == AA_PIECE_CONIC) {
+        double w = p->s1 - p->s0;
+        return 0.5 * w * w * (hypot(p->ea, p->eb) + p->er);
+    }
+    return hypot(fabs(p->ax) + 3.0 * fabs(p->dx), fabs(p->ay) + 3.0 * fabs(p->dy));
+}
 
 #endif

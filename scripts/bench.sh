@@ -25,3 +25,6 @@ echo
 echo "== cubic arcs: area against point, crow as cubics and waves 1024x1024 box =="
 # shellcheck disable=SC2086
 "$build/bench_cubic" -s 1024x1024 --target-ci ${TARGET_CI:-2} --budget ${BUDGET:-1}
+echo
+echo "== elliptical arcs: area against point, rings, disks and ellipses 1024x1024 box (5 renders each) =="
+"$build/bench_conic" -s 1024x1024 --reps "${REPS:-5}"
