@@ -34,8 +34,8 @@
 
 /* A scene of arcs in pattern units: a circle of two halves, a slanted
  * ellipse in one whole turn with t decreasing, a mirrored ellipse
- * (det [u v] < 0) in three arcs, and a pie slice (an arc of 250 degrees
- * and two lines). */
+ * (det [u v] < 0) in three arcs, an ellipse along the axes whose u points
+ * to -x (a turn), and a pie slice (an arc of 250 degrees and two lines). */
 static aa_scene *arc_scene(void)
 {
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
@@ -49,6 +49,7 @@ static aa_scene *arc_scene(void)
         {{0.25, 0.25, 0.2, 0.0, 0.0, 0.2}, {0.0, M_PI, 2 * M_PI}, 2},
         {{0.7, 0.3, 0.2, 0.07, 0.04, 0.15}, {0.3, 0.3 - 2 * M_PI}, 1},
         {{0.3, 0.7, 0.18, 0.02, 0.05, -0.15}, {-1.0, 0.5, 2.0, 2 * M_PI - 1.0}, 3},
+        {{0.5, 0.5, -0.08, 0.0, 0.0, 0.06}, {0.4, 0.4 + 2 * M_PI}, 1},
     };
     for (size_t k = 0; k < sizeof ells / sizeof ells[0]; k++) {
         const double *c = ells[k].c, *t = ells[k].t;
@@ -240,11 +241,11 @@ static void test_export_arcs(void **state)
         assert_int_equal(next_command(&r), 'Z');
     }
     assert_int_equal(next_command(&r), '"');
-    /* 2 + 1 + 3 + 1 arcs, in pieces of at most 90 degrees: 2 x 2 (half
-     * turns), 4 (a turn), 1 + 1 + 3 (1.5, 1.5 and 3.28 radians), 3 (250
-     * degrees) */
-    assert_int_equal(arcs, 7);
-    assert_int_equal(commands, 4 + 4 + 5 + 3);
+    /* 2 + 1 + 3 + 1 + 1 arcs, in pieces of at most 90 degrees: 2 x 2 (half
+     * turns), 4 (a turn), 1 + 1 + 3 (1.5, 1.5 and 3.28 radians), 4 (a
+     * turn), 3 (250 degrees) */
+    assert_int_equal(arcs, 8);
+    assert_int_equal(commands, 4 + 4 + 5 + 4 + 3);
     print_message("%d arcs written as %d A commands, each on its arc to 1e-12\n", arcs,
                   commands);
     free(text);

@@ -34,7 +34,11 @@
  * R(theta) and a sign of q only turn or mirror the unit circle, so the
  * ellipse is c + R(phi) diag(p, |q|) (unit circle): rx = p along the
  * direction phi, ry = |q|, taken as |det M|/rx (no cancellation for a thin
- * ellipse).  The large-arc flag is |t1 - t0| > pi; the sweep flag is 1 when
+ * ellipse).  When u and v are perpendicular (u . v = 0 exactly, every
+ * circle and every ellipse with its axes along x and y) they are the
+ * axes themselves: rx = |u|, ry = |v|, phi the direction of u, taken
+ * modulo 180 degrees into (-90, 90], so that an ellipse along the axes
+ * is written with its radii exactly and phi = 0.  The large-arc flag is |t1 - t0| > pi; the sweep flag is 1 when
  * the arc turns the way of increasing angle in the document's own
  * coordinates (x right, y down), the sign of the cross product of (P - c)
  * and P', which is det M (t1 - t0).  The arc is written as n equal pieces
@@ -110,10 +114,20 @@ static void put_text(FILE *f, const char *text)
 static void put_arc(FILE *f, const aa_edge *e)
 {
     double a = e->ux, b = e->vx, c = e->uy, d = e->vy;
-    double E = (a + d) / 2, F = (a - d) / 2, G = (c + b) / 2, H = (c - b) / 2;
-    double rx = hypot(E, H) + hypot(F, G);
-    double det = a * d - b * c, ry = fabs(det) / rx;
-    double phi = (atan2(H, E) + atan2(G, F)) / 2 * (180.0 / M_PI);
+    double det = a * d - b * c, rx, ry, phi;
+    if (a * b + c * d == 0.0) { /* u, v perpendicular: they are the axes */
+        rx = hypot(a, c), ry = hypot(b, d);
+        phi = atan2(c, a) * (180.0 / M_PI);
+        /* the same ellipse turned half a turn: phi in (-90, 90], 0 for u
+         * along either way of the x axis, so its cosine and sine are
+         * exact */
+        phi = phi > 90.0 ? phi - 180.0 : phi <= -90.0 ? phi + 180.0 : phi;
+    } else {
+        double E = (a + d) / 2, F = (a - d) / 2, G = (c + b) / 2, H = (c - b) / 2;
+        rx = hypot(E, H) + hypot(F, G);
+        ry = fabs(det) / rx;
+        phi = (atan2(H, E) + atan2(G, F)) / 2 * (180.0 / M_PI);
+    }
     double dt = e->t1 - e->t0;
     int n = (int)ceil(fabs(dt) / (M_PI / 2) - 1e-9); /* a hair over 90: rounding */
     n = n < 1 ? 1 : n > 4 ? 4 : n;
