@@ -86,12 +86,19 @@ static void cairo_release(void *state)
  * to t1 under the transformation (ux uy vx vy cx cy), which maps (cos t,
  * sin t) to (cx + ux cos t + vx sin t, cy + uy cos t + vy sin t) (the
  * matrix is xx yx xy yy x0 y0: x' = xx x + xy y + x0, y' = yx x + yy y +
- * y0).  u and v are never parallel, so the matrix is invertible.  Cairo's
+ * y0).  u and v are never parallel, so the matrix is invertible (but for
+ * underflow).  Cairo's
  * arc adds a line from the pen to the arc's start, the pen itself up to
  * rounding; a line to the edge's exact end after it keeps the path on the
  * scene's points. */
 static void cairo_put_arc(cairo_t *cr, const aa_edge *d)
 {
+    /* an ellipse so small that det [u v] underflows (below 1e-150 px or
+     * so) is its chord: Cairo refuses a matrix of determinant 0 */
+    if (!(fabs(d->ux * d->vy - d->vx * d->uy) > 0.0)) {
+        cairo_line_to(cr, d->x1, d->y1);
+        return;
+    }
     cairo_matrix_t m;
     cairo_matrix_init(&m, d->ux, d->uy, d->vx, d->vy, d->cx, d->cy);
     cairo_save(cr);
