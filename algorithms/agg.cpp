@@ -17,7 +17,12 @@
  * AGG's default, is curve3_div's recursive subdivision, which stops where
  * the arc is within 0.5/scale px of its chord; curves=inc is curve3_inc's
  * fixed steps, about a quarter of the arc's length times scale), with
- * `scale` AGG's approximation_scale (its default 1: 0.5 px).  Arcs are
+ * `scale` AGG's approximation_scale (its default 1: 0.5 px).  Each
+ * elliptical arc is AGG's own arc generator (agg::arc, the one its
+ * ellipses and rounded shapes use) on the unit circle, its vertices mapped
+ * by the affine map (agg::trans_affine) that takes the circle to the
+ * ellipse, with the approximation scale times the map's Frobenius norm:
+ * chords within 0.125/scale px of the ellipse (put_arc).  Arcs are
  * flattened in render, where AGG would flatten them, and only those whose
  * control triangle meets the band: an arc wholly above or below it is
  * replaced by its chord, which the clipper drops all the same.
@@ -72,12 +77,14 @@ extern "C" {
 /* C++20 deprecates AGG's arithmetic between its enums and with doubles */
 #pragma GCC diagnostic ignored "-Wdeprecated-enum-enum-conversion"
 #pragma GCC diagnostic ignored "-Wdeprecated-enum-float-conversion"
+#include <agg_arc.h>
 #include <agg_basics.h>
 #include <agg_curves.h>
 #include <agg_gamma_functions.h>
 #include <agg_rasterizer_scanline_aa.h>
 #include <agg_rasterizer_sl_clip.h>
 #include <agg_scanline_u.h>
+#include <agg_trans_affine.h>
 #pragma GCC diagnostic pop
 
 namespace {
@@ -90,8 +97,8 @@ enum { CURVES_DIV, CURVES_INC };
 
 const aa_param agg_params[] = {
     {"scale", AA_PARAM_REAL, 1.0, 0.0, 10000.0, 1, nullptr,
-     "AGG's approximation_scale for arcs: div flattens to within 0.5/scale px (AGG's "
-     "default 1)"},
+     "AGG's approximation_scale for arcs: div flattens to within 0.5/scale px, elliptical "
+     "arcs to within 0.125/scale px (AGG's default 1)"},
     {"curves", AA_PARAM_CHOICE, CURVES_DIV, 0, 0, 0, "div|inc",
      "AGG's arc approximation: div (curve3_div, recursive subdivision, AGG's default) or inc "
      "(curve3_inc, fixed steps)"},
@@ -99,12 +106,13 @@ const aa_param agg_params[] = {
 
 typedef agg::rasterizer_scanline_aa<agg::rasterizer_sl_clip_dbl> rasterizer;
 
-/* One thread's rasterizer, scanline, arc flattener and band of covers. */
+/* One thread's rasterizer, scanline, arc flatteners and band of covers. */
 struct worker {
     rasterizer ras;
     agg::scanline_u8 sl;
     agg::curve3 curve;
     agg::curve4 curve4;
+    agg::arc ellipse;
     std::vector<unsigned char> band;
     worker() : ras(CELL_BLOCKS) {}
 };
@@ -124,6 +132,38 @@ struct agg_state {
     agg_work *work;
     int nthreads;
 };
+
+/* Elliptical arc edge d as AGG draws an ellipse under a transformation:
+ * its own arc generator (agg::arc) on the unit circle from t0 to t1,
+ * counter-clockwise in the angle (increasing) if t1 > t0, each vertex
+ * mapped by the affine map (agg::trans_affine: x' = sx x + shx y + tx,
+ * y' = shy x + sy y + ty, constructed as sx shy shx sy tx ty) that takes
+ * (cos t, sin t) to (cx + ux cos t + vx sin t, cy + uy cos t + vy sin t).
+ * agg::arc steps the angle by da = 2 acos(r/(r + 0.125/scale)) (r = 1
+ * here), so each chord is within 0.125/scale of the circle; the map
+ * stretches no distance by more than its Frobenius norm
+ * F = sqrt(|u|^2 + |v|^2), so with the approximation scale `scale` F the
+ * chords are within 0.125/scale px of the ellipse (and inside it).  The
+ * first vertex is the pen and the last is replaced by the edge's exact
+ * end. */
+void put_arc(worker &wk, const aa_edge &d, double scale)
+{
+    const agg::trans_affine m(d.ux, d.uy, d.vx, d.vy, d.cx, d.cy);
+    double f = std::hypot(std::hypot(d.ux, d.uy), std::hypot(d.vx, d.vy));
+    wk.ellipse.init(0.0, 0.0, 1.0, 1.0, d.t0, d.t1, d.t1 >= d.t0);
+    wk.ellipse.approximation_scale(scale * f);
+    wk.ellipse.rewind(0);
+    double x, y, px = 0.0, py = 0.0;
+    unsigned cmd = wk.ellipse.vertex(&x, &y); /* the start: the pen */
+    int pending = 0;
+    while (!agg::is_stop(cmd = wk.ellipse.vertex(&x, &y))) {
+        if (pending)
+            wk.ras.line_to_d(px, py);
+        m.transform(&x, &y);
+        px = x, py = y, pending = 1;
+    }
+    wk.ras.line_to_d(d.x1, d.y1);
+}
 
 /* Fill rows [y0, y0 + rows) of band coverage from the scene's edges. */
 void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, const double *p,
@@ -153,8 +193,16 @@ void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, cons
             double bottom = std::fmax(d.y0, std::fmax(d.cy, d.y1));
             if (d.quad == 2) /* the convex hull: the controls too */
                 top = std::fmin(top, d.c2y), bottom = std::fmax(bottom, d.c2y);
+            if (d.quad == 3) { /* the whole ellipse, centre +- its half height */
+                double h = std::hypot(d.uy, d.vy);
+                top = d.cy - h, bottom = d.cy + h;
+            }
             if (!d.quad || bottom < ya || top > yb) {
                 ras.line_to_d(d.x1, d.y1);
+                continue;
+            }
+            if (d.quad == 3) {
+                put_arc(wk, d, p[SCALE]);
                 continue;
             }
             double x, y;

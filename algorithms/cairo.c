@@ -5,7 +5,14 @@
  * The scene's one layer is one Cairo path: lines as line_to, each quadratic
  * arc as the cubic Bezier that is the same curve (degree elevation, exact:
  * control points p0 + 2/3 (c - p0) and p1 + 2/3 (c - p1)), each cubic arc
- * as itself (curve_to), every path closed.  Cairo flattens curves to `tolerance` (px, Cairo's default 0.1)
+ * as itself (curve_to), each elliptical arc as Cairo's own arc (cairo_arc
+ * or cairo_arc_negative of the unit circle under the affine map that takes
+ * it to the ellipse, cairo_put_arc: Cairo replaces it by cubics of at most
+ * 180 degrees each, as many as its table of the cubic's error for the
+ * transformed circle's major axis needs to stay within `tolerance`, so
+ * 90-degree pieces or shorter for radii above 0.1/0.0185 = 5.4 px at the
+ * default), every path closed.  Cairo flattens
+ * curves to `tolerance` (px, Cairo's default 0.1)
  * and converts the polygon to coverage with the scan converter `aa` selects
  * (CAIRO_ANTIALIAS_BEST, GOOD or FAST: Cairo chooses the grid of each;
  * 1.16's image backend gives BEST and GOOD the same image on crow); the
@@ -75,31 +82,77 @@ static void cairo_release(void *state)
     s->surf = NULL, s->path = NULL, s->nsurf = 0;
 }
 
-/* The scene's path, built on a scratch context and copied out. */
-static int cairo_build_path(cairo_state *s, const aa_scene *scene)
+/* Elliptical arc edge d in Cairo's own way: the unit circle's arc from t0
+ * to t1 under the transformation (ux uy vx vy cx cy), which maps (cos t,
+ * sin t) to (cx + ux cos t + vx sin t, cy + uy cos t + vy sin t) (the
+ * matrix is xx yx xy yy x0 y0: x' = xx x + xy y + x0, y' = yx x + yy y +
+ * y0).  u and v are never parallel, so the matrix is invertible (but for
+ * underflow).  Cairo's
+ * arc adds a line from the pen to the arc's start, the pen itself up to
+ * rounding; a line to the edge's exact end after it keeps the path on the
+ * scene's points. */
+static void cairo_put_arc(cairo_t *cr, const aa_edge *d)
+{
+    /* an ellipse so small that det [u v] underflows (below 1e-150 px or
+     * so) is its chord: Cairo refuses a matrix of determinant 0 */
+    if (!(fabs(d->ux * d->vy - d->vx * d->uy) > 0.0)) {
+        cairo_line_to(cr, d->x1, d->y1);
+        return;
+    }
+    cairo_matrix_t m;
+    cairo_matrix_init(&m, d->ux, d->uy, d->vx, d->vy, d->cx, d->cy);
+    cairo_save(cr);
+    cairo_transform(cr, &m);
+    if (d->t1 >= d->t0)
+        cairo_arc(cr, 0.0, 0.0, 1.0, d->t0, d->t1);
+    else
+        cairo_arc_negative(cr, 0.0, 0.0, 1.0, d->t0, d->t1);
+    cairo_restore(cr);
+    cairo_line_to(cr, d->x1, d->y1);
+}
+
+/* The largest |coordinate| edge k reaches, px (its controls, or for an
+ * elliptical arc its whole ellipse). */
+static double cairo_edge_reach(const aa_edge *e)
+{
+    double r = fmax(fmax(fabs(e->x0), fabs(e->y0)), fmax(fabs(e->x1), fabs(e->y1)));
+    if (e->quad == 3) {
+        double hx, hy;
+        aa_peer_arc_extent(e, &hx, &hy);
+        return fmax(r, fmax(fabs(e->cx) + hx, fabs(e->cy) + hy));
+    }
+    r = fmax(r, fmax(fabs(e->cx), fabs(e->cy)));
+    return e->quad == 2 ? fmax(r, fmax(fabs(e->c2x), fabs(e->c2y))) : r;
+}
+
+/* The scene's path, built on a scratch context and copied out.  Arcs are
+ * turned into Cairo's cubics here, so the scratch context has the
+ * method's tolerance. */
+static int cairo_build_path(cairo_state *s, const aa_scene *scene, double tolerance)
 {
     size_t nedges, ncont;
     const aa_edge *e = aa_scene_edges(scene, &nedges);
     const size_t *start = aa_scene_contours(scene, &ncont);
     for (size_t k = 0; k < nedges; k++) {
-        const double c[8] = {e[k].x0, e[k].y0, e[k].cx, e[k].cy, e[k].x1, e[k].y1,
-                             e[k].quad == 2 ? e[k].c2x : 0.0, e[k].quad == 2 ? e[k].c2y : 0.0};
-        for (int q = 0; q < 8; q++)
-            if (!(fabs(c[q]) <= CAIRO_MAX_COORD))
-                return aa_fail(AA_EINVAL,
-                               "cairo: a coordinate of %.17g px is beyond the %.0f px that "
-                               "Cairo's 24.8 fixed point keeps",
-                               c[q], CAIRO_MAX_COORD);
+        double r = cairo_edge_reach(&e[k]);
+        if (!(r <= CAIRO_MAX_COORD))
+            return aa_fail(AA_EINVAL,
+                           "cairo: a coordinate of %.17g px is beyond the %.0f px that "
+                           "Cairo's 24.8 fixed point keeps",
+                           r, CAIRO_MAX_COORD);
     }
     cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
     cairo_t *cr = cairo_create(scratch);
+    cairo_set_tolerance(cr, tolerance);
     for (size_t c = 0; c < ncont; c++) {
         if (start[c] == start[c + 1])
             continue;
         cairo_move_to(cr, e[start[c]].x0, e[start[c]].y0);
         for (size_t k = start[c]; k < start[c + 1]; k++) {
             const aa_edge *d = &e[k];
-            if (d->quad == 2)
+            if (d->quad == 3)
+                cairo_put_arc(cr, d);
+            else if (d->quad == 2)
                 cairo_curve_to(cr, d->cx, d->cy, d->c2x, d->c2y, d->x1, d->y1);
             else if (d->quad)
                 cairo_curve_to(cr, d->x0 + 2.0 / 3.0 * (d->cx - d->x0),
@@ -123,11 +176,10 @@ static int cairo_build_path(cairo_state *s, const aa_scene *scene)
 
 static int cairo_init(void *state, const double *p, const aa_job *job)
 {
-    (void)p;
     cairo_state *s = state;
     int st = aa_peer_scene_read("cairo", job, &s->ps);
     if (!st)
-        st = cairo_build_path(s, job->placed);
+        st = cairo_build_path(s, job->placed, p[TOLERANCE]);
     if (!st) {
         s->nsurf = job->threads > 0 ? job->threads : 1;
         s->surf = calloc((size_t)s->nsurf, sizeof *s->surf);

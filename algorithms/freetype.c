@@ -17,7 +17,10 @@
  * on-curve points, quadratic arcs as a conic control point
  * (FT_CURVE_TAG_CONIC) and an on-curve end, cubic arcs as their two cubic
  * control points (FT_CURVE_TAG_CUBIC) and an on-curve end (FreeType
- * flattens them itself); the layer's even-odd rule sets
+ * flattens them itself); FreeType's outlines have no elliptical arcs, so
+ * each is given as at most four cubics of at most 90 degrees each
+ * (aa_peer_arc_cubics, peer.h: within 2.7e-4 of the ellipse's longer
+ * semi-axis, outside it), flattened in turn; the layer's even-odd rule sets
  * FT_OUTLINE_EVEN_ODD_FILL.  It is built once in init.
  *
  * Tiles.  FreeType 2.12's cell pool is small and fixed; a band of rows that
@@ -95,66 +98,94 @@ static void ft_release(void *state)
 
 static FT_Pos to26_6(double v) { return (FT_Pos)lround(v * 64.0); }
 
+/* Points an edge adds after its start: controls and the end. */
+static size_t ft_edge_points(const aa_edge *e)
+{
+    if (e->quad == 3) {
+        double c[AA_PEER_ARC_CUBICS][6];
+        return 3 * (size_t)aa_peer_arc_cubics(e, c);
+    }
+    return e->quad == 2 ? 3 : e->quad ? 2 : 1;
+}
+
+/* Append point (x, y) px with `tag`, refusing coordinates beyond 26.6's
+ * range here. */
+static int ft_put(FT_Outline *o, int *n, double x, double y, char tag)
+{
+    if (!(fabs(x) <= FT_MAX_COORD && fabs(y) <= FT_MAX_COORD))
+        return aa_fail(AA_EINVAL,
+                       "freetype: a point (%.17g, %.17g) px is beyond the %.0f px that 26.6 "
+                       "fixed point keeps here",
+                       x, y, FT_MAX_COORD);
+    o->points[*n] = (FT_Vector){to26_6(x), to26_6(y)};
+    o->tags[(*n)++] = tag;
+    return AA_OK;
+}
+
+/* Edge e's controls (FreeType's conic or cubic tags) and its end, the end
+ * left out when it is the contour's first point again (the contour closes
+ * itself). */
+static int ft_put_edge(FT_Outline *o, int *n, int first, const aa_edge *e, int last)
+{
+    int st = AA_OK;
+    double c[AA_PEER_ARC_CUBICS][6];
+    if (e->quad == 3) { /* cubics (peer.h): FreeType's outline has no arcs */
+        int m = aa_peer_arc_cubics(e, c);
+        for (int q = 0; q + 1 < m && !st; q++)
+            if (!(st = ft_put(o, n, c[q][0], c[q][1], FT_CURVE_TAG_CUBIC)) &&
+                !(st = ft_put(o, n, c[q][2], c[q][3], FT_CURVE_TAG_CUBIC)))
+                st = ft_put(o, n, c[q][4], c[q][5], FT_CURVE_TAG_ON);
+        if (!st && !(st = ft_put(o, n, c[m - 1][0], c[m - 1][1], FT_CURVE_TAG_CUBIC)))
+            st = ft_put(o, n, c[m - 1][2], c[m - 1][3], FT_CURVE_TAG_CUBIC);
+    } else if (e->quad == 2) { /* FreeType's cubic: two cubic control points */
+        if (!(st = ft_put(o, n, e->cx, e->cy, FT_CURVE_TAG_CUBIC)))
+            st = ft_put(o, n, e->c2x, e->c2y, FT_CURVE_TAG_CUBIC);
+    } else if (e->quad) {
+        st = ft_put(o, n, e->cx, e->cy, FT_CURVE_TAG_CONIC);
+    }
+    if (st)
+        return st;
+    FT_Vector end = {to26_6(e->x1), to26_6(e->y1)};
+    if (last && end.x == o->points[first].x && end.y == o->points[first].y)
+        return AA_OK;
+    return ft_put(o, n, e->x1, e->y1, FT_CURVE_TAG_ON);
+}
+
 static int ft_build_outline(ft_state *s, const aa_scene *scene)
 {
     size_t nedges, ncont;
     const aa_edge *e = aa_scene_edges(scene, &nedges);
     const size_t *start = aa_scene_contours(scene, &ncont);
-    /* at most: a start point, then two controls and an end per edge */
-    size_t cap = ncont + 3 * nedges;
+    /* at most: a start point, then each edge's controls and end */
+    size_t cap = ncont;
+    for (size_t k = 0; k < nedges && cap <= 32767; k++)
+        cap += ft_edge_points(&e[k]);
     if (ncont > 32767 || cap > 32767)
         return aa_fail(AA_EINVAL,
-                       "freetype: the scene has %zu paths and up to %zu outline points; "
-                       "FreeType's outline takes at most 32767 of each",
+                       "freetype: the scene has %zu paths and more than 32767 outline points "
+                       "(%zu so far); FreeType's outline takes at most 32767 of each",
                        ncont, cap);
-    for (size_t k = 0; k < nedges; k++) {
-        const double c[8] = {e[k].x0, e[k].y0, e[k].cx, e[k].cy, e[k].x1, e[k].y1,
-                             e[k].quad == 2 ? e[k].c2x : 0.0, e[k].quad == 2 ? e[k].c2y : 0.0};
-        for (int q = 0; q < 8; q++)
-            if (!(fabs(c[q]) <= FT_MAX_COORD))
-                return aa_fail(AA_EINVAL,
-                               "freetype: a coordinate of %.17g px is beyond the %.0f px "
-                               "that 26.6 fixed point keeps here",
-                               c[q], FT_MAX_COORD);
-    }
     FT_Outline *o = &s->outline;
     o->points = malloc((cap ? cap : 1) * sizeof *o->points);
     o->tags = malloc(cap ? cap : 1);
     o->contours = malloc((ncont ? ncont : 1) * sizeof *o->contours);
     if (!o->points || !o->tags || !o->contours)
         return aa_fail(AA_ENOMEM, "freetype: out of memory for the outline");
-    int n = 0, nc = 0;
-    for (size_t c = 0; c < ncont; c++) {
+    int n = 0, nc = 0, st = AA_OK;
+    for (size_t c = 0; c < ncont && !st; c++) {
         size_t a = start[c], b = start[c + 1];
         if (a == b)
             continue;
         int first = n;
-        o->points[n] = (FT_Vector){to26_6(e[a].x0), to26_6(e[a].y0)};
-        o->tags[n++] = FT_CURVE_TAG_ON;
-        for (size_t k = a; k < b; k++) {
-            if (e[k].quad == 2) { /* FreeType's cubic: two cubic control points */
-                o->points[n] = (FT_Vector){to26_6(e[k].cx), to26_6(e[k].cy)};
-                o->tags[n++] = FT_CURVE_TAG_CUBIC;
-                o->points[n] = (FT_Vector){to26_6(e[k].c2x), to26_6(e[k].c2y)};
-                o->tags[n++] = FT_CURVE_TAG_CUBIC;
-            } else if (e[k].quad) {
-                o->points[n] = (FT_Vector){to26_6(e[k].cx), to26_6(e[k].cy)};
-                o->tags[n++] = FT_CURVE_TAG_CONIC;
-            }
-            FT_Vector end = {to26_6(e[k].x1), to26_6(e[k].y1)};
-            /* the closing point is the first point again: the contour closes
-             * itself */
-            if (k + 1 == b && end.x == o->points[first].x && end.y == o->points[first].y)
-                break;
-            o->points[n] = end;
-            o->tags[n++] = FT_CURVE_TAG_ON;
-        }
+        st = ft_put(o, &n, e[a].x0, e[a].y0, FT_CURVE_TAG_ON);
+        for (size_t k = a; k < b && !st; k++)
+            st = ft_put_edge(o, &n, first, &e[k], k + 1 == b);
         o->contours[nc++] = (short)(n - 1);
     }
     o->n_points = (short)n;
     o->n_contours = (short)nc;
     o->flags = s->ps.rule == AA_FILL_EVENODD ? FT_OUTLINE_EVEN_ODD_FILL : FT_OUTLINE_NONE;
-    return AA_OK;
+    return st;
 }
 
 static int ft_init(void *state, const double *p, const aa_job *job)

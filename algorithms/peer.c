@@ -3,6 +3,8 @@
  */
 #include "peer.h"
 
+#include <math.h>
+
 int aa_peer_check_filter(const char *name, const aa_filter *f)
 {
     if (!aa_filter_is_box(f))
@@ -39,4 +41,64 @@ void aa_peer_fill(aa_image *out, int j, int i0, int i1, double v)
     double *px = aa_pixel(out, 0, j) + 3 * (size_t)i0;
     for (int i = i0; i < i1; i++, px += 3)
         px[0] = px[1] = px[2] = v;
+}
+
+/*
+ * The cubic of a piece of angle h = b - a of the arc
+ * P(t) = c + u cos t + v sin t, whose tangent is P'(t) = -u sin t + v cos t:
+ *     P(a),  P(a) + k P'(a),  P(b) - k P'(b),  P(b),   k = 4/3 tan(h/4).
+ * The ellipse is the image of the unit circle under the affine map
+ * x -> c + [u v] x, and an affine map takes a Bezier arc to the arc of the
+ * mapped control points, so it is enough to fit the circle.  Take the unit
+ * circle's arc from -theta to theta (theta = h/2): by symmetry the cubic
+ * with controls at distance k along the two end tangents is symmetric
+ * about the x axis, and asking its midpoint B(1/2) = (P0 + 3 P1 + 3 P2 +
+ * P3)/8 to lie on the circle gives, in x,
+ *     (2 cos theta + 6 (cos theta + k sin theta)) / 8 = 1,
+ *     k = 4 (1 - cos theta) / (3 sin theta) = 4/3 tan(theta/2) = 4/3 tan(h/4).
+ * Its error: |B(t)|^2 - 1 is a polynomial of degree 6 with double roots at
+ * t = 0 and 1 (on the circle and tangent there) and at t = 1/2 (on the
+ * circle, and symmetric), so it is C t^2 (1-t)^2 (2t-1)^2 with C = |A|^2/4,
+ * A = P3 - P0 + 3 (P1 - P2) the cubic's leading coefficient.  Here
+ * A = (0, 6 k cos theta - 4 sin theta) = (0, -8 s^3/(1 + s^2)),
+ * s = tan(theta/2), and the maximum of t^2 (1-t)^2 (2t-1)^2 is 1/108
+ * (at t (1-t) = 1/6), so
+ *     max |B|^2 - 1 = 4 s^6 / (27 (1 + s^2)^2)
+ *                   = (4/27) sin^6(h/4) / cos^2(h/4)   (>= 0: outside),
+ * 5.4513e-4 for h = 90 degrees: the radius grows by at most 2.7253e-4.
+ * Mapped by [u v], the cubic stays between the ellipse and the ellipse
+ * scaled by 1 + e about its centre.
+ */
+int aa_peer_arc_cubics(const aa_edge *e, double c[AA_PEER_ARC_CUBICS][6])
+{
+    double dt = e->t1 - e->t0;
+    /* |dt| <= 2 pi up to rounding: a last piece a hair over 90 degrees
+     * from that rounding is kept rather than made a fifth */
+    int n = (int)ceil(fabs(dt) / (M_PI / 2) - 1e-9);
+    if (n < 1)
+        n = 1;
+    if (n > AA_PEER_ARC_CUBICS)
+        n = AA_PEER_ARC_CUBICS;
+    double h = dt / n, k = 4.0 / 3.0 * tan(h / 4.0);
+    double ca = cos(e->t0), sa = sin(e->t0);
+    double px = e->x0, py = e->y0;
+    for (int q = 0; q < n; q++) {
+        double b = q + 1 == n ? e->t1 : e->t0 + (q + 1) * h;
+        double cb = cos(b), sb = sin(b);
+        double qx = q + 1 == n ? e->x1 : e->cx + e->ux * cb + e->vx * sb;
+        double qy = q + 1 == n ? e->y1 : e->cy + e->uy * cb + e->vy * sb;
+        c[q][0] = px + k * (-e->ux * sa + e->vx * ca);
+        c[q][1] = py + k * (-e->uy * sa + e->vy * ca);
+        c[q][2] = qx - k * (-e->ux * sb + e->vx * cb);
+        c[q][3] = qy - k * (-e->uy * sb + e->vy * cb);
+        c[q][4] = qx, c[q][5] = qy;
+        px = qx, py = qy, ca = cb, sa = sb;
+    }
+    return n;
+}
+
+void aa_peer_arc_extent(const aa_edge *e, double *hx, double *hy)
+{
+    *hx = hypot(e->ux, e->vx);
+    *hy = hypot(e->uy, e->vy);
 }

@@ -33,4 +33,21 @@ static inline double aa_peer_mix(const aa_peer_scene *ps, double a)
 /* Fill pixels [i0, i1) of row j of a W x H x 3 image with grey v. */
 void aa_peer_fill(aa_image *out, int j, int i0, int i1, double v);
 
+/* An elliptical arc edge (quad == 3) as cubic Bezier arcs, for the peers
+ * whose outlines have no arcs (freetype.c, stb.c): the arc split into n
+ * equal pieces of at most 90 degrees of its angle t (n = 1 .. 4), each the
+ * standard cubic along the tangents (peer.c derives it).  Piece k is
+ * c[k] = c1x c1y c2x c2y x y, from the previous piece's end (the first
+ * from the edge's (x0, y0)); the last ends at exactly (x1, y1).  Every
+ * cubic lies between the ellipse and the ellipse scaled by 1 + e about its
+ * centre, e = sqrt(1 + (4/27) sin^6(h/4) / cos^2(h/4)) - 1 for a piece of
+ * angle h: at most 2.7253e-4 (h = 90 degrees), so within 2.7253e-4 times
+ * the longer semi-axis outside the ellipse.  Returns n. */
+#define AA_PEER_ARC_CUBICS 4
+int aa_peer_arc_cubics(const aa_edge *e, double c[AA_PEER_ARC_CUBICS][6]);
+/* The half extents of edge e's whole ellipse about its centre, in x and in
+ * y: sqrt(ux^2 + vx^2) and sqrt(uy^2 + vy^2) (the maxima of ux cos t +
+ * vx sin t and of uy cos t + vy sin t). */
+void aa_peer_arc_extent(const aa_edge *e, double *hx, double *hy);
+
 #endif

@@ -4,7 +4,13 @@
  *
  * Version 2 flattens curves into lines (stbtt_FlattenCurves: a quadratic is
  * halved until its midpoint lies within `flatness` pixels of its chord's; a
- * cubic arc goes in as STBTT_vcubic, flattened by stb's own cubic test),
+ * cubic arc goes in as STBTT_vcubic, flattened by stb's own cubic test:
+ * split until the control polygon is at most `flatness` longer than the
+ * chord in the sense long^2 - chord^2 <= flatness^2, which keeps the
+ * polygon, and so the curve, within flatness/2 of the chord; an elliptical
+ * arc, which stb's outlines do not have, goes in as at most four cubics of
+ * at most 90 degrees each, aa_peer_arc_cubics, peer.h: within 2.7e-4 of
+ * the ellipse's longer semi-axis, outside it),
  * then computes, for every pixel, the signed area to the right of each
  * line inside it, in single precision, and writes |sum| clamped to 1 as an
  * 8-bit coverage ("exact-area" in its own words: exact for the polygon
@@ -187,6 +193,20 @@ static int stb_check_windings(const aa_scene *scene)
     return st;
 }
 
+/* Append a vertex of `type` ending at (x, y) px, with its control point
+ * ctl[0..1] (vcurve) or points ctl[0..3] (vcubic), moved Y_SHIFT down. */
+static void stb_vertex(stb_state *s, unsigned char type, double x, double y, const double *ctl)
+{
+    stbtt_vertex *v = &s->v[s->nv++];
+    memset(v, 0, sizeof *v);
+    v->type = type;
+    v->x = (float)x, v->y = (float)(y + Y_SHIFT);
+    if (type == STBTT_vcurve || type == STBTT_vcubic)
+        v->cx = (float)ctl[0], v->cy = (float)(ctl[1] + Y_SHIFT);
+    if (type == STBTT_vcubic)
+        v->cx1 = (float)ctl[2], v->cy1 = (float)(ctl[3] + Y_SHIFT);
+}
+
 static int stb_init(void *state, const double *p, const aa_job *job)
 {
     (void)p;
@@ -197,10 +217,14 @@ static int stb_init(void *state, const double *p, const aa_job *job)
     size_t nedges, ncont;
     const aa_edge *e = aa_scene_edges(job->placed, &nedges);
     const size_t *start = aa_scene_contours(job->placed, &ncont);
-    if (!st && ncont + nedges > (size_t)INT32_MAX / 2)
+    /* a move per contour, a vertex per edge, up to 4 for an arc */
+    size_t nv = ncont;
+    for (size_t k = 0; k < nedges; k++)
+        nv += e[k].quad == 3 ? AA_PEER_ARC_CUBICS : 1;
+    if (!st && nv > (size_t)INT32_MAX / 2)
         st = aa_fail(AA_EINVAL, "stb: %zu edges are more than stbtt_Rasterize counts", nedges);
     if (!st) {
-        s->v = malloc((ncont + nedges + 1) * sizeof *s->v);
+        s->v = malloc((nv + 1) * sizeof *s->v);
         s->nbuf = job->threads > 0 ? job->threads : 1;
         s->buf = calloc((size_t)s->nbuf, sizeof *s->buf);
         if (!s->v || !s->buf)
@@ -212,18 +236,23 @@ static int stb_init(void *state, const double *p, const aa_job *job)
     for (size_t c = 0; c < ncont && !st; c++) {
         if (start[c] == start[c + 1])
             continue;
-        stbtt_vertex *v = &s->v[s->nv++];
-        memset(v, 0, sizeof *v);
-        v->type = STBTT_vmove;
-        v->x = (float)e[start[c]].x0, v->y = (float)(e[start[c]].y0 + Y_SHIFT);
+        stb_vertex(s, STBTT_vmove, e[start[c]].x0, e[start[c]].y0, NULL);
         for (size_t k = start[c]; k < start[c + 1]; k++) {
-            v = &s->v[s->nv++];
-            memset(v, 0, sizeof *v);
-            v->type = e[k].quad == 2 ? STBTT_vcubic : e[k].quad ? STBTT_vcurve : STBTT_vline;
-            v->x = (float)e[k].x1, v->y = (float)(e[k].y1 + Y_SHIFT);
-            v->cx = (float)e[k].cx, v->cy = (float)(e[k].cy + Y_SHIFT);
-            if (e[k].quad == 2)
-                v->cx1 = (float)e[k].c2x, v->cy1 = (float)(e[k].c2y + Y_SHIFT);
+            const aa_edge *d = &e[k];
+            if (d->quad == 3) { /* cubics (peer.h): stb's outlines have no arcs */
+                double cub[AA_PEER_ARC_CUBICS][6];
+                int m = aa_peer_arc_cubics(d, cub);
+                for (int q = 0; q < m; q++)
+                    stb_vertex(s, STBTT_vcubic, cub[q][4], cub[q][5], cub[q]);
+            } else if (d->quad == 2) {
+                const double ctl[4] = {d->cx, d->cy, d->c2x, d->c2y};
+                stb_vertex(s, STBTT_vcubic, d->x1, d->y1, ctl);
+            } else if (d->quad) {
+                const double ctl[2] = {d->cx, d->cy};
+                stb_vertex(s, STBTT_vcurve, d->x1, d->y1, ctl);
+            } else {
+                stb_vertex(s, STBTT_vline, d->x1, d->y1, NULL);
+            }
         }
     }
     for (int k = 0; k < 256; k++)

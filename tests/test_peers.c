@@ -1,5 +1,5 @@
 /*
- * test_peers.c: the peer rasterizers (freetype, stb, cairo) on scenes whose
+ * test_peers.c: the peer rasterizers (freetype, stb, cairo, agg) on scenes whose
  * coverage is known in closed form, and their refusals.
  *
  * Known answers, independent of the code under test:
@@ -27,8 +27,11 @@
  *    (dx/dy) is integrated by sub-rows, an error up to b/rows per pixel.
  * The crow band's sum carries flattening: each peer's bound is its
  * tolerance (px) times the arcs' length (2 arcs of about H px) over W H.
+ * Elliptical arcs (each peer draws them its own way): see "elliptical
+ * arcs" below.
  */
 #include "bench.h"
+#include "peer.h"
 #include "scenes.h"
 #include "support.h"
 
@@ -223,6 +226,278 @@ static void test_crow_band_area(void **state)
     aa_scene_free(s);
 }
 
+/* ---- elliptical arcs ----
+ *
+ * Each peer approximates an arc its own way (algorithms/README.md): the
+ * outline it fills, P, lies between the ellipse E shrunk and grown about
+ * its centre, (1 - s_in) E and (1 + s_out) E.  For a convex E containing the
+ * disc of radius smin (its shorter semi-axis) about its centre,
+ * (1 - s) E + s smin B is inside E, so a polygon within d px inside the
+ * ellipse lies outside (1 - d/smin) E; likewise a curve within d px
+ * outside lies inside (1 + d/smin) E; and the cubics of
+ * aa_peer_arc_cubics lie inside (1 + e) E, e = 2.7253e-4 (peer.h, derived
+ * in peer.c; here taken as the bound it is, not recomputed).
+ *   - FreeType flattens a cubic until both controls are within 1/6 px per
+ *     coordinate of the chord's trisection points (ftgrays.c,
+ *     gray_render_cubic: |2 P0 - 3 P1 + P3| <= ONE_PIXEL/2), so the curve is
+ *     within (3/4)(1/6) sqrt 2 = 0.177 px of its chord; positions rounded
+ *     to 1/64 px (0.011 px): d_in = 0.19, d_out = 0.02 px beyond e;
+ *   - stb splits a cubic until long^2 - chord^2 <= flatness^2 (control
+ *     polygon length `long`), which keeps it within flatness/2 of the chord
+ *     (a polygon through a point h off the chord is at least
+ *     sqrt(chord^2 + 4 h^2) long); floats: 1e-4 px;
+ *   - Cairo's arc is cubics within `tolerance` of the circle, flattened
+ *     within `tolerance`: d_in = d_out = tolerance + 1/256 (24.8);
+ *   - AGG's arc is chords within 0.125/scale px of the ellipse, inside it
+ *     (agg.cpp, put_arc): d_in = 0.125/scale + 1/256, d_out = 1/256.
+ * Known answers, independent of the peers: the area of E is pi |det M|
+ * (M = [u v]), so area(P) lies in [pi |det M| (1 - s_in)^2,
+ * pi |det M| (1 + s_out)^2]; a pixel wholly inside (1 - s_in) E is wholly
+ * inside P (value exactly 1), one wholly outside (1 + s_out) E wholly
+ * outside (exactly 0); the others ("band" pixels) are off the exact
+ * coverage of P by at most q each (8-bit rounding; Cairo's best scan
+ * converter also samples 15 sub-rows a pixel: 1/15).  So the band pixels'
+ * sum is area(P) minus the inside pixels' count, within their number
+ * times q.  A peer that drops an arc, draws it on the wrong side or maps
+ * it by the transposed matrix misses by whole pixels. */
+
+typedef struct arc_case {
+    const char *spec;
+    double d_in, d_out, e, q; /* px, px, relative, per band pixel */
+} arc_case;
+
+static const arc_case arc_cases[] = {
+    {"freetype", 0.19, 0.02, 2.7253e-4, 2.0 / 255},
+    {"stb", 0.35 / 2 + 1e-4, 1e-4, 2.7253e-4, 1.0 / 255},
+    {"stb:flatness=0.02", 0.01 + 1e-4, 1e-4, 2.7253e-4, 1.0 / 255},
+    {"cairo", 0.1 + 1.0 / 256, 0.1 + 1.0 / 256, 0.0, 1.0 / 255 + 1.0 / 15},
+    {"cairo:tolerance=0.01", 0.01 + 1.0 / 256, 0.01 + 1.0 / 256, 0.0, 1.0 / 255 + 1.0 / 15},
+    {"agg", 0.125 + 1.0 / 256, 1.0 / 256, 0.0, 1.0 / 255},
+    {"agg:scale=16", 0.125 / 16 + 1.0 / 256, 1.0 / 256, 0.0, 1.0 / 255},
+};
+#define NARC (sizeof arc_cases / sizeof arc_cases[0])
+
+#define AW 128 /* the ellipse images: AW x AW */
+
+/* An ellipse c + M (cos t, sin t) in pattern units, M = [u v]. */
+typedef struct ellipse {
+    double cx, cy, ux, uy, vx, vy;
+} ellipse;
+
+static double ell_x(const ellipse *e, double t) { return e->cx + e->ux * cos(t) + e->vx * sin(t); }
+static double ell_y(const ellipse *e, double t) { return e->cy + e->uy * cos(t) + e->vy * sin(t); }
+
+/* A white ellipse on black drawn as arcs at the angles t[0] .. t[n] (one
+ * closed path; t[n] - t[0] = +-2 pi). */
+static aa_scene *ellipse_scene(const ellipse *e, const double *t, int n, aa_fill_rule rule)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, rule), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, ell_x(e, t[0]), ell_y(e, t[0])), AA_OK);
+    for (int k = 0; k < n; k++) {
+        double x = k + 1 == n ? ell_x(e, t[0]) : ell_x(e, t[k + 1]);
+        double y = k + 1 == n ? ell_y(e, t[0]) : ell_y(e, t[k + 1]);
+        int st = aa_scene_arc_to(s, e->cx, e->cy, e->ux, e->uy, e->vx, e->vy, t[k], t[k + 1],
+                                 x, y);
+        if (st)
+            fail_msg("aa_scene_arc_to: %s", aa_last_error());
+    }
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+/* The ellipse in pixels: |M^-1 (p - c)|, the "radius" of point p (1 on
+ * the ellipse). */
+typedef struct ellipse_px {
+    double cx, cy, a, b, c, d; /* centre; M^-1 = [[a, b], [c, d]] */
+    double det, smin;          /* det M, shorter semi-axis (px) */
+} ellipse_px;
+
+static ellipse_px ellipse_pixels(const ellipse *e)
+{
+    ellipse_px p;
+    double ux = AW * e->ux, uy = AW * e->uy, vx = AW * e->vx, vy = AW * e->vy;
+    p.cx = AW * e->cx, p.cy = AW * e->cy;
+    p.det = ux * vy - vx * uy;
+    p.a = vy / p.det, p.b = -vx / p.det, p.c = -uy / p.det, p.d = ux / p.det;
+    /* singular values: the square roots of the eigenvalues of M^T M */
+    double tr = ux * ux + uy * uy + vx * vx + vy * vy;
+    p.smin = sqrt((tr - sqrt(tr * tr - 4 * p.det * p.det)) / 2);
+    return p;
+}
+
+/* Point (x, y) px in the unit circle's coordinates. */
+static void to_circle(const ellipse_px *p, double x, double y, double *X, double *Y)
+{
+    *X = p->a * (x - p->cx) + p->b * (y - p->cy);
+    *Y = p->c * (x - p->cx) + p->d * (y - p->cy);
+}
+
+/* Distance from the origin to segment (x0, y0) - (x1, y1). */
+static double seg_dist(double x0, double y0, double x1, double y1)
+{
+    double dx = x1 - x0, dy = y1 - y0, l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? -(x0 * dx + y0 * dy) / l2 : 0.0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    return hypot(x0 + t * dx, y0 + t * dy);
+}
+
+/* Pixel (i, j) against the ellipse scaled by `scale`: +1 wholly inside,
+ * -1 wholly outside, 0 neither.  In the circle's coordinates the pixel is
+ * a parallelogram; it is inside the disc of radius `scale` when its four
+ * corners are (both convex), outside when the origin is outside it and
+ * farther than `scale` from its four sides. */
+static int pixel_side(const ellipse_px *p, int i, int j, double scale)
+{
+    double X[4], Y[4];
+    const int ci[4] = {0, 1, 1, 0}, cj[4] = {0, 0, 1, 1};
+    int inside = 1, origin_in = 1, sign = 0;
+    double dmin = INFINITY;
+    for (int k = 0; k < 4; k++)
+        to_circle(p, i + ci[k], j + cj[k], &X[k], &Y[k]);
+    for (int k = 0; k < 4; k++) {
+        int l = (k + 1) % 4;
+        inside &= hypot(X[k], Y[k]) < scale;
+        dmin = fmin(dmin, seg_dist(X[k], Y[k], X[l], Y[l]));
+        double cross = X[k] * Y[l] - Y[k] * X[l]; /* origin's side of edge k */
+        int sg = cross > 0 ? 1 : cross < 0 ? -1 : 0;
+        if (sg && sign && sg != sign)
+            origin_in = 0;
+        if (sg)
+            sign = sg;
+    }
+    if (inside)
+        return 1;
+    return !origin_in && dmin > scale ? -1 : 0;
+}
+
+static void check_ellipse(const ellipse *e, const double *t, int n, aa_fill_rule rule,
+                          const char *name)
+{
+    aa_scene *s = ellipse_scene(e, t, n, rule);
+    ellipse_px p = ellipse_pixels(e);
+    for (size_t k = 0; k < NARC; k++) {
+        const arc_case *c = &arc_cases[k];
+        double s_in = c->d_in / p.smin, s_out = c->e + c->d_out / p.smin;
+        aa_image img;
+        support_render(c->spec, s, "box", AW, AW, 2, &img, NULL);
+        int nin = 0, nband = 0, bad = 0;
+        double band_sum = 0.0;
+        for (int j = 0; j < AW; j++)
+            for (int i = 0; i < AW; i++) {
+                double v = aa_pixel(&img, i, j)[0];
+                if (pixel_side(&p, i, j, 1.0 - s_in) > 0) {
+                    nin++;
+                    bad += v != 1.0;
+                } else if (pixel_side(&p, i, j, 1.0 + s_out) < 0) {
+                    bad += v != 0.0;
+                } else {
+                    nband++;
+                    band_sum += v;
+                }
+            }
+        double a_lo = M_PI * fabs(p.det) * (1 - s_in) * (1 - s_in) - nin - nband * c->q;
+        double a_hi = M_PI * fabs(p.det) * (1 + s_out) * (1 + s_out) - nin + nband * c->q;
+        print_message("%-10s %-22s area %.4f px^2 (ellipse %.4f), band sum %.4f in [%.4f, "
+                      "%.4f], %d band pixels, %d wrong inside or outside\n",
+                      name, c->spec, support_channel_mean(&img, 0) * AW * AW,
+                      M_PI * fabs(p.det), band_sum, a_lo, a_hi, nband, bad);
+        if (bad)
+            fail_msg("%s %s: %d pixels wholly inside or outside are not 1 or 0", name,
+                     c->spec, bad);
+        if (!(band_sum >= a_lo && band_sum <= a_hi))
+            fail_msg("%s %s: the band pixels sum to %.6f, outside [%.6f, %.6f]", name,
+                     c->spec, band_sum, a_lo, a_hi);
+        aa_image_free(&img);
+    }
+    aa_scene_free(s);
+}
+
+/* aa_peer_arc_cubics on its own: ends exact, pieces of equal angle at most
+ * 90 degrees, every point of every cubic, mapped back to the unit circle
+ * by M^-1, at a radius in [1, 1 + e(h)] with e(h) = sqrt(1 + (4/27)
+ * sin^6(h/4)/cos^2(h/4)) - 1 (Dokken and Daehlen 1990, as Cairo's arc
+ * code quotes it), which a quarter turn reaches: its maximum 2.7253e-4 is
+ * attained near t = 0.21 of each piece. */
+static void test_arc_cubics(void **state)
+{
+    (void)state;
+    const struct {
+        double c[6], t0, t1;
+        int n;
+    } arcs[] = {
+        {{3.0, -2.0, 40.0, 0.0, 0.0, 40.0}, 0.0, 2 * M_PI, 4},
+        {{3.0, -2.0, 30.0, 10.0, 5.0, -25.0}, 0.3, 0.3 - 2 * M_PI, 4},
+        {{0.5, 0.25, 7.0, 1.0, -2.0, 9.0}, 1.0, 2.0, 1},
+        {{0.5, 0.25, 7.0, 1.0, -2.0, 9.0}, -1.0, 2.5, 3},
+    };
+    for (size_t k = 0; k < sizeof arcs / sizeof arcs[0]; k++) {
+        aa_edge e = {0};
+        const double *c = arcs[k].c;
+        e.quad = 3, e.cx = c[0], e.cy = c[1], e.ux = c[2], e.uy = c[3], e.vx = c[4], e.vy = c[5];
+        e.t0 = arcs[k].t0, e.t1 = arcs[k].t1;
+        e.x0 = e.cx + e.ux * cos(e.t0) + e.vx * sin(e.t0);
+        e.y0 = e.cy + e.uy * cos(e.t0) + e.vy * sin(e.t0);
+        e.x1 = e.cx + e.ux * cos(e.t1) + e.vx * sin(e.t1) + 1e-13; /* exactly as given */
+        e.y1 = e.cy + e.uy * cos(e.t1) + e.vy * sin(e.t1);
+        double cub[AA_PEER_ARC_CUBICS][6];
+        int n = aa_peer_arc_cubics(&e, cub);
+        assert_int_equal(n, arcs[k].n);
+        assert_true(cub[n - 1][4] == e.x1 && cub[n - 1][5] == e.y1);
+        double h = (e.t1 - e.t0) / n;
+        double want = sqrt(1 + 4.0 / 27 * pow(sin(h / 4), 6) / pow(cos(h / 4), 2)) - 1;
+        double det = e.ux * e.vy - e.vx * e.uy, lo = INFINITY, hi = -INFINITY;
+        double px = e.x0, py = e.y0;
+        for (int q = 0; q < n; q++) {
+            for (int s = 0; s <= 1000; s++) {
+                double t = s / 1000.0, a = (1 - t) * (1 - t) * (1 - t), b = 3 * t * (1 - t) * (1 - t);
+                double cc = 3 * t * t * (1 - t), d = t * t * t;
+                double x = a * px + b * cub[q][0] + cc * cub[q][2] + d * cub[q][4] - e.cx;
+                double y = a * py + b * cub[q][1] + cc * cub[q][3] + d * cub[q][5] - e.cy;
+                double X = (e.vy * x - e.vx * y) / det, Y = (-e.uy * x + e.ux * y) / det;
+                double r = hypot(X, Y) - 1;
+                lo = fmin(lo, r), hi = fmax(hi, r);
+            }
+            px = cub[q][4], py = cub[q][5];
+        }
+        print_message("arc %zu: %d cubics, radius error in [%.3e, %.6e], closed form %.6e\n",
+                      k, n, lo, hi, want);
+        assert_true(lo >= -1e-12);
+        assert_true(hi <= want * (1 + 1e-6) + 1e-12 && hi >= want * 0.999);
+    }
+}
+
+/* A disc of two half arcs (t increasing), nonzero. */
+static void test_arc_disc(void **state)
+{
+    (void)state;
+    const ellipse e = {0.5 + 3.0 / 1024, 0.5 - 5.0 / 1024, 0.39, 0.0, 0.0, 0.39};
+    const double t[] = {0.0, M_PI, 2 * M_PI};
+    check_ellipse(&e, t, 2, AA_FILL_NONZERO, "disc");
+}
+
+/* A slanted ellipse of conjugate (not perpendicular) semi-diameters, one
+ * arc of a whole turn with t decreasing, even-odd: the transposed matrix
+ * draws another ellipse, which the inside and outside pixels catch. */
+static void test_arc_ellipse_turn(void **state)
+{
+    (void)state;
+    const ellipse e = {0.52, 0.47, 0.3, 0.1, 0.05, 0.25};
+    const double t[] = {0.3, 0.3 - 2 * M_PI};
+    check_ellipse(&e, t, 1, AA_FILL_EVENODD, "turn");
+}
+
+/* The same ellipse as three arcs of uneven angles, one of 5 degrees. */
+static void test_arc_ellipse_pieces(void **state)
+{
+    (void)state;
+    const ellipse e = {0.47, 0.52, -0.12, 0.28, 0.31, 0.02};
+    const double t[] = {1.0, 3.5, 3.5 + 5 * M_PI / 180, 1.0 + 2 * M_PI};
+    check_ellipse(&e, t, 3, AA_FILL_NONZERO, "pieces");
+}
+
 /* The library refuses a colour scene and an even-odd scene stb cannot fill. */
 static void test_refusals_library(void **state)
 {
@@ -319,5 +594,9 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_half_plane),
              cmocka_unit_test(test_crow_band_area),
              cmocka_unit_test(test_many_edges),
+             cmocka_unit_test(test_arc_cubics),
+             cmocka_unit_test(test_arc_disc),
+             cmocka_unit_test(test_arc_ellipse_turn),
+             cmocka_unit_test(test_arc_ellipse_pieces),
              cmocka_unit_test(test_refusals_library),
              cmocka_unit_test(test_refusals_cli))

@@ -239,8 +239,9 @@ typedef enum aa_svg_paint {
 /* A placed scene (pixel units) as an SVG document of w x h pixels: viewBox
  * 0 0 w h, a rectangle of the background colour over the image, then one
  * <path> per layer in painter's order (the back layer first), with the
- * layer's fill-rule, lines as L, quadratic arcs as Q and cubic arcs as C,
- * numbers %.17g;
+ * layer's fill-rule, lines as L, quadratic arcs as Q, cubic arcs as C and
+ * elliptical arcs as A, in pieces of at most 90 degrees (svg.c), numbers
+ * %.17g;
  * colours as rgb() percentages of the sRGB-encoded linear colour at full
  * precision (svg.c says why).  `desc` (may be NULL) goes in a <desc>.
  * *text is malloc'd and NUL-terminated, *len its length.  A field scene is

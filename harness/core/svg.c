@@ -12,11 +12,43 @@
  * (K the layer's index in the scene, 0 the front), and each closed contour
  * of the layer is one subpath "M x y", then "L x y" for a line segment and
  * "Q cx cy x y" for a quadratic Bezier arc and "C c1x c1y c2x c2y x y" for a
- * cubic one (the scene's own arcs, exactly),
- * then "Z".  A layer with no contour is a path with an empty d, which draws
+ * cubic one (the scene's own arcs, exactly), "A rx ry phi large sweep x y"
+ * for each piece of an elliptical arc (below), then "Z".  A layer with no contour is a path with an empty d, which draws
  * nothing.
  *
  * Numbers are C-locale %.17g, which reads back to the same double.
+ *
+ * Elliptical arcs.  The scene keeps an arc in centre form, the points
+ * c + M (cos t, sin t) for t from t0 to t1 with M = [u v] (columns u, v,
+ * two conjugate semi-diameters); SVG's A command gives the ellipse by its
+ * principal radii rx, ry and the rotation phi of its x axis, and the arc by
+ * its ends and two flags (SVG 1.1 F.6.2).  The principal axes are M's
+ * singular vectors: write M = R(phi) diag(p, q) R(theta) with R(a) the
+ * rotation by a; multiplying out, with M = [[a, b], [c, d]] (a = ux,
+ * b = vx, c = uy, d = vy),
+ *     a + d = (p + q) cos(phi + theta),   c - b = (p + q) sin(phi + theta),
+ *     a - d = (p - q) cos(phi - theta),   c + b = (p - q) sin(phi - theta),
+ * so with E = (a + d)/2, H = (c - b)/2, F = (a - d)/2, G = (c + b)/2:
+ *     p + q = 2 hypot(E, H),  p - q = 2 hypot(F, G),
+ *     phi = (atan2(H, E) + atan2(G, F))/2.
+ * R(theta) and a sign of q only turn or mirror the unit circle, so the
+ * ellipse is c + R(phi) diag(p, |q|) (unit circle): rx = p along the
+ * direction phi, ry = |q|, taken as |det M|/rx (no cancellation for a thin
+ * ellipse).  When u and v are perpendicular (u . v = 0 exactly, every
+ * circle and every ellipse with its axes along x and y) they are the
+ * axes themselves: rx = |u|, ry = |v|, phi the direction of u, taken
+ * modulo 180 degrees into (-90, 90], so that an ellipse along the axes
+ * is written with its radii exactly and phi = 0.  The large-arc flag is |t1 - t0| > pi; the sweep flag is 1 when
+ * the arc turns the way of increasing angle in the document's own
+ * coordinates (x right, y down), the sign of the cross product of (P - c)
+ * and P', which is det M (t1 - t0).  The arc is written as n equal pieces
+ * of at most 90 degrees of t (n = 1 .. 4), each its own A command: an SVG
+ * arc with equal ends draws nothing, so a full turn must be split anyway,
+ * and a reader recovers an arc's centre through a square root
+ * (SVG 1.1 F.6.5, step 3) whose radicand falls to zero, and loses half its
+ * digits, as the arc nears a half turn; at 90 degrees the radicand is 1
+ * for a circle.  Pieces end at c + M (cos t, sin t) at their t, the last
+ * at the edge's own end.
  *
  * Colours.  SVG colours are sRGB-encoded (SVG 1.1 and CSS: rgb() values are
  * in the sRGB colour space, as display codes), and renderers composite them
@@ -78,6 +110,37 @@ static void put_text(FILE *f, const char *text)
     }
 }
 
+/* Elliptical arc edge e (quad == 3) as A commands (see the header). */
+static void put_arc(FILE *f, const aa_edge *e)
+{
+    double a = e->ux, b = e->vx, c = e->uy, d = e->vy;
+    double det = a * d - b * c, rx, ry, phi;
+    if (a * b + c * d == 0.0) { /* u, v perpendicular: they are the axes */
+        rx = hypot(a, c), ry = hypot(b, d);
+        phi = atan2(c, a) * (180.0 / M_PI);
+        /* the same ellipse turned half a turn: phi in (-90, 90], 0 for u
+         * along either way of the x axis, so its cosine and sine are
+         * exact */
+        phi = phi > 90.0 ? phi - 180.0 : phi <= -90.0 ? phi + 180.0 : phi;
+    } else {
+        double E = (a + d) / 2, F = (a - d) / 2, G = (c + b) / 2, H = (c - b) / 2;
+        rx = hypot(E, H) + hypot(F, G);
+        ry = fabs(det) / rx;
+        phi = (atan2(H, E) + atan2(G, F)) / 2 * (180.0 / M_PI);
+    }
+    double dt = e->t1 - e->t0;
+    int n = (int)ceil(fabs(dt) / (M_PI / 2) - 1e-9); /* a hair over 90: rounding */
+    n = n < 1 ? 1 : n > 4 ? 4 : n;
+    double h = dt / n;
+    int large = fabs(h) > M_PI, sweep = det * h > 0;
+    for (int k = 1; k <= n; k++) {
+        double t = e->t0 + k * h;
+        double x = k == n ? e->x1 : e->cx + a * cos(t) + b * sin(t);
+        double y = k == n ? e->y1 : e->cy + c * cos(t) + d * sin(t);
+        fprintf(f, " A %.17g %.17g %.17g %d %d %.17g %.17g", rx, ry, phi, large, sweep, x, y);
+    }
+}
+
 /* Layer `layer`'s contours as path data. */
 static void put_layer_data(FILE *f, const aa_scene *s, int layer)
 {
@@ -92,7 +155,9 @@ static void put_layer_data(FILE *f, const aa_scene *s, int layer)
         fprintf(f, "%sM %.17g %.17g", first ? "" : "\n", e[a].x0, e[a].y0);
         first = 0;
         for (size_t k = a; k < b; k++) {
-            if (e[k].quad == 2)
+            if (e[k].quad == 3)
+                put_arc(f, &e[k]);
+            else if (e[k].quad == 2)
                 fprintf(f, " C %.17g %.17g %.17g %.17g %.17g %.17g", e[k].cx, e[k].cy,
                         e[k].c2x, e[k].c2y, e[k].x1, e[k].y1);
             else if (e[k].quad)
