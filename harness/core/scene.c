@@ -3,7 +3,7 @@
  *
  * A scene is opaque layers, front to back, each an RGB colour, a fill rule
  * (nonzero or even-odd) and closed paths of line segments, quadratic and
- * cubic Bezier arcs, over a background colour (harness/README.md, "The
+ * cubic Bezier arcs and elliptical arcs, over a background colour (harness/README.md, "The
  * three contracts").
  * Finishing a scene splits every edge at its y extrema into y-monotone
  * pieces stored top to bottom, so that a horizontal line meets a piece at
@@ -149,6 +149,7 @@ int aa__add_edge3(aa_scene *s, double cx, double cy, double c2x, double c2y, dou
     e->layer = s->current;
     e->c2x = c2x;
     e->c2y = c2y;
+    e->ux = e->uy = e->vx = e->vy = e->t0 = e->t1 = 0.0;
     s->penx = x;
     s->peny = y;
     return AA_OK;
@@ -205,6 +206,66 @@ int aa_scene_cubic_to(aa_scene *s, double c1x, double c1y, double c2x, double c2
     if (x == s->penx && y == s->peny && c1x == x && c1y == y && c2x == x && c2y == y)
         return AA_OK;
     return aa__add_edge3(s, c1x, c1y, c2x, c2y, x, y, 2);
+}
+
+/* The point of the ellipse (c, u, v) at angle t. */
+static void ellipse_point(const double *e, double t, double *x, double *y)
+{
+    double ct = cos(t), st = sin(t);
+    *x = e[0] + e[2] * ct + e[4] * st;
+    *y = e[1] + e[3] * ct + e[5] * st;
+}
+
+int aa__arc_check(double px, double py, double cx, double cy, double ux, double uy, double vx,
+                  double vy, double t0, double t1, double x, double y)
+{
+    const double e[6] = {cx, cy, ux, uy, vx, vy};
+    for (int k = 0; k < 6; k++)
+        if (!isfinite(e[k]))
+            return aa_fail(AA_EINVAL, "elliptical arc: centre or semi-diameter is not finite");
+    if (!isfinite(t0) || !isfinite(t1) || !isfinite(x) || !isfinite(y))
+        return aa_fail(AA_EINVAL, "elliptical arc: angle or end point is not finite");
+    double size = hypot(ux, uy) + hypot(vx, vy);
+    double cross = ux * vy - uy * vx;
+    if (!(fabs(cross) > 1e-12 * size * size))
+        return aa_fail(AA_EINVAL,
+                       "elliptical arc: semi-diameters (%g, %g) and (%g, %g) are parallel "
+                       "(a degenerate ellipse)",
+                       ux, uy, vx, vy);
+    if (!(fabs(t1 - t0) <= 2.0 * M_PI * (1.0 + 1e-12)))
+        return aa_fail(AA_EINVAL, "elliptical arc: sweeps %g radians, more than 2 pi", t1 - t0);
+    double ax, ay, bx, by, tol = 1e-9 * size;
+    ellipse_point(e, t0, &ax, &ay);
+    ellipse_point(e, t1, &bx, &by);
+    if (!(hypot(ax - px, ay - py) <= tol))
+        return aa_fail(AA_EINVAL,
+                       "elliptical arc: starts at (%.17g, %.17g), not at the pen (%.17g, %.17g)",
+                       ax, ay, px, py);
+    if (!(hypot(bx - x, by - y) <= tol))
+        return aa_fail(AA_EINVAL,
+                       "elliptical arc: ends at (%.17g, %.17g), not at the end point given "
+                       "(%.17g, %.17g)",
+                       bx, by, x, y);
+    return AA_OK;
+}
+
+int aa_scene_arc_to(aa_scene *s, double cx, double cy, double ux, double uy, double vx,
+                    double vy, double t0, double t1, double x, double y)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (!s->open)
+        return aa_fail(AA_EFAIL, "arc_to without move_to");
+    if ((st = aa__arc_check(s->penx, s->peny, cx, cy, ux, uy, vx, vy, t0, t1, x, y)))
+        return st;
+    if (t0 == t1)
+        return AA_OK;
+    if ((st = aa__add_edge3(s, cx, cy, 0.0, 0.0, x, y, 3)))
+        return st;
+    aa_edge *e = &s->edges[s->nedges - 1];
+    e->ux = ux, e->uy = uy, e->vx = vx, e->vy = vy, e->t0 = t0, e->t1 = t1;
+    return AA_OK;
 }
 
 int aa_scene_close(aa_scene *s)
@@ -366,6 +427,97 @@ static void split_cubic(const double c[8], double t, int turn, double l[8], doub
     }
 }
 
+/* Elliptical arcs.  With y(t) = cy + uy cos t + vy sin t = cy + R cos(t - phi)
+ * (R = |(uy, vy)|, phi = atan2(vy, uy)), y turns where t - phi is a multiple
+ * of pi.  On a part where psi = t - phi (reduced to [0, 2 pi)) lies in
+ * [0, pi], y falls as t grows and s = pi - psi; in [pi, 2 pi] it rises and
+ * s = psi - pi; either way y = cy - R cos s with s in [0, pi] growing
+ * downwards (aabench.h, aa_piece), and substituting t = phi + pi -+ s in
+ * x(t) = cx + ux cos t + vx sin t gives x = cx + ea cos s + eb sin s with
+ *     ea = -(ux cos phi + vx sin phi),  eb = -+(ux sin phi - vx cos phi).
+ * Where a part ends at a turn, its end is the turn's exact point
+ * (cy -+ R, cx +- ea), shared by the parts on either side; where it ends
+ * at the edge's end, the end is the edge's own point, so contours close
+ * exactly. */
+static int add_conic_piece(aa_scene *s, size_t *cap, const aa_edge *e, size_t edge, double ta,
+                           double tb, const double *pa, const double *pb)
+{
+    int st = grow((void **)&s->pieces, cap, s->npieces + 1, sizeof *s->pieces);
+    if (st)
+        return st;
+    double R = hypot(e->uy, e->vy), phi = atan2(e->vy, e->uy);
+    double cp = cos(phi), sp = sin(phi);
+    double psi = 0.5 * (ta + tb) - phi;
+    psi -= 2.0 * M_PI * floor(psi / (2.0 * M_PI));
+    int falls = psi < M_PI; /* y falls as t grows */
+    double shift = 0.5 * (ta + tb) - phi - psi; /* the multiple of 2 pi taken off */
+    double psa = ta - phi - shift, psb = tb - phi - shift;
+    double sa = falls ? M_PI - psa : psa - M_PI, sb = falls ? M_PI - psb : psb - M_PI;
+    aa_piece *p = &s->pieces[s->npieces++];
+    memset(p, 0, sizeof *p);
+    p->ex = e->cx;
+    p->ey = e->cy;
+    p->er = R;
+    p->ea = -(e->ux * cp + e->vx * sp);
+    p->eb = falls ? -(e->ux * sp - e->vx * cp) : e->ux * sp - e->vx * cp;
+    /* top: the end with the smaller s */
+    const double *top = sa <= sb ? pa : pb, *bot = sa <= sb ? pb : pa;
+    p->s0 = fmax(0.0, fmin(sa, sb));
+    p->s1 = fmin(M_PI, fmax(sa, sb));
+    p->x0 = top[0], p->y0 = top[1];
+    p->x1 = bot[0], p->y1 = bot[1];
+    p->layer = e->layer;
+    p->edge = (int)edge;
+    /* the edge runs down here when t and s grow together (y rises with t)
+     * and t runs forwards, or both the other way */
+    int forwards = e->t1 > e->t0;
+    if (!(p->y1 > p->y0) || !(p->s1 > p->s0)) {
+        p->kind = AA_PIECE_FLAT;
+        p->dir = 0;
+        p->xmin = fmin(p->x0, p->x1);
+        p->xmax = fmax(p->x0, p->x1);
+        return AA_OK;
+    }
+    p->kind = AA_PIECE_CONIC;
+    p->dir = (!falls) == forwards ? 1 : -1;
+    aa__conic_xrange(p, p->s0, p->s1, &p->xmin, &p->xmax);
+    return AA_OK;
+}
+
+/* Split an elliptical arc edge at its y turns into conic pieces. */
+static int build_conic(aa_scene *s, size_t *cap, const aa_edge *e, size_t k)
+{
+    double lo = fmin(e->t0, e->t1), hi = fmax(e->t0, e->t1);
+    double R = hypot(e->uy, e->vy), phi = atan2(e->vy, e->uy);
+    double cp = cos(phi), sp = sin(phi), ea = -(e->ux * cp + e->vx * sp);
+    /* the ends in the order of t */
+    double first[2] = {e->x0, e->y0}, last[2] = {e->x1, e->y1};
+    if (e->t0 > e->t1) {
+        first[0] = e->x1, first[1] = e->y1;
+        last[0] = e->x0, last[1] = e->y0;
+    }
+    double prev_t = lo, prev[2] = {first[0], first[1]};
+    /* turns: t = phi + j pi inside (lo, hi) */
+    double j = ceil((lo - phi) / M_PI);
+    for (;; j += 1.0) {
+        double t = phi + j * M_PI;
+        if (!(t < hi))
+            break;
+        if (!(t > lo))
+            continue;
+        /* j even: psi = 0 mod 2 pi, y = cy + R (bottom), x = cx - ea
+         * (s = pi); j odd: the top, y = cy - R, x = cx + ea (s = 0) */
+        int even = fmod(fabs(j), 2.0) == 0.0;
+        double at[2] = {even ? e->cx - ea : e->cx + ea, even ? e->cy + R : e->cy - R};
+        int st = add_conic_piece(s, cap, e, k, prev_t, t, prev, at);
+        if (st)
+            return st;
+        prev_t = t;
+        prev[0] = at[0], prev[1] = at[1];
+    }
+    return add_conic_piece(s, cap, e, k, prev_t, hi, prev, last);
+}
+
 /* Split each edge at its y extrema into monotone pieces. */
 static int build_pieces(aa_scene *s)
 {
@@ -374,6 +526,11 @@ static int build_pieces(aa_scene *s)
     for (size_t k = 0; k < s->nedges; k++) {
         const aa_edge *e = &s->edges[k];
         int st;
+        if (e->quad == 3) {
+            if ((st = build_conic(s, &cap, e, k)))
+                return st;
+            continue;
+        }
         if (e->quad == 2) {
             double c[8] = {e->x0, e->y0, e->cx, e->cy, e->c2x, e->c2y, e->x1, e->y1};
             double k1, k2, k3, ts[2], l[8], r[8], rest[8];
@@ -591,6 +748,22 @@ static void cubic_extent(double a, double c, double d, double b, double *lo, dou
     }
 }
 
+/* The extent of one coordinate c + u cos t + v sin t = c + R cos(t - a) of
+ * an elliptical arc edge over its t range: its ends and the turns at
+ * t = a + j pi between. */
+static void arc_extent(double c, double u, double v, double end0, double end1, double t0,
+                       double t1, double *lo, double *hi)
+{
+    double a = atan2(v, u), R = hypot(u, v), tl = fmin(t0, t1), th = fmax(t0, t1);
+    *lo = fmin(end0, end1);
+    *hi = fmax(end0, end1);
+    for (double j = ceil((tl - a) / M_PI); a + j * M_PI < th; j += 1.0) {
+        double v2 = fmod(fabs(j), 2.0) == 0.0 ? c + R : c - R;
+        *lo = fmin(*lo, v2);
+        *hi = fmax(*hi, v2);
+    }
+}
+
 int aa_scene_clip_unit(aa_scene *s)
 {
     int st = check_building(s);
@@ -602,6 +775,13 @@ int aa_scene_clip_unit(aa_scene *s)
     for (size_t k = 0; k < s->nedges; k++) {
         const aa_edge *e = &s->edges[k];
         double lo, hi;
+        if (e->quad == 3) {
+            arc_extent(e->cx, e->ux, e->vx, e->x0, e->x1, e->t0, e->t1, &lo, &hi);
+            x0 = fmin(x0, lo), x1 = fmax(x1, hi);
+            arc_extent(e->cy, e->uy, e->vy, e->y0, e->y1, e->t0, e->t1, &lo, &hi);
+            y0 = fmin(y0, lo), y1 = fmax(y1, hi);
+            continue;
+        }
         if (e->quad == 2)
             cubic_extent(e->x0, e->cx, e->c2x, e->x1, &lo, &hi);
         else
@@ -675,13 +855,16 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
             d->x1 = sx * e->x1 + tx, d->y1 = sy * e->y1 + ty;
             if (e->quad == 2)
                 d->c2x = sx * e->c2x + tx, d->c2y = sy * e->c2y + ty;
+            if (e->quad == 3) /* centre mapped above, semi-diameters scaled */
+                d->ux = sx * e->ux, d->uy = sy * e->uy, d->vx = sx * e->vx, d->vy = sy * e->vy;
             if (!e->quad) { /* keep lines' control points exactly midway */
                 d->cx = 0.5 * (d->x0 + d->x1);
                 d->cy = 0.5 * (d->y0 + d->y1);
             }
             if (!isfinite(d->x0) || !isfinite(d->y0) || !isfinite(d->x1) ||
                 !isfinite(d->y1) || !isfinite(d->cx) || !isfinite(d->cy) ||
-                !isfinite(d->c2x) || !isfinite(d->c2y))
+                !isfinite(d->c2x) || !isfinite(d->c2y) || !isfinite(d->ux) ||
+                !isfinite(d->uy) || !isfinite(d->vx) || !isfinite(d->vy))
                 st = aa_fail(AA_EINVAL, "scene transform overflows");
         }
         if (s->nedges) {

@@ -72,6 +72,16 @@ int aa__cubic_turns(double k1, double k2, double k3, double t[2]);
 double aa__poly3_bracketed(const double c[4], double a, double b, double fa, double fb);
 int aa__poly3_roots(const double c[4], double lo, double hi, double *t);
 
+/* A conic piece's x extent for s in [sa, sb] (within [s0, s1]): its ends
+ * (the piece's own end points at s0 and s1) and the x turns between
+ * (scene_piece.c). */
+void aa__conic_xrange(const aa_piece *p, double sa, double sb, double *xmin, double *xmax);
+/* The angle s of a conic piece at height y (clamped to [s0, s1]). */
+double aa__conic_s_at(const aa_piece *p, double y);
+/* aa_scene_arc_to's checks of an arc from the pen (px, py) (scene.c). */
+int aa__arc_check(double px, double py, double cx, double cy, double ux, double uy, double vx,
+                  double vy, double t0, double t1, double x, double y);
+
 aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty,
                               double hint);
 

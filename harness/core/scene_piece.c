@@ -112,6 +112,101 @@ int aa__poly3_roots(const double c[4], double lo, double hi, double *t)
     return n;
 }
 
+/* ---- conic pieces ----
+ *
+ * y = ey - er cos s, x = ex + ea cos s + eb sin s, s in [s0, s1] within
+ * [0, pi] (aabench.h, aa_piece).  At a height y, with dt = y - (ey - er) and
+ * db = (ey + er) - y its distances to the ellipse's top and bottom,
+ *     cos s = (db - dt)/(2 er),   sin s = sqrt(dt db)/er,
+ * both without cancellation near either end, and
+ *     s = 2 asin(sqrt(dt/(2 er)))  (from sin^2(s/2) = (1 - cos s)/2),
+ * or pi less the same in db, whichever is smaller.  x turns where
+ * dx/ds = -ea sin s + eb cos s vanishes: x = ex + R cos(s - alpha),
+ * R = |(ea, eb)|, alpha = atan2(eb, ea), a maximum ex + R at s = alpha and
+ * a minimum ex - R at alpha + pi. */
+
+static void conic_cs(const aa_piece *p, double y, double *c, double *sn)
+{
+    double dt = fmax(y - (p->ey - p->er), 0.0), db = fmax((p->ey + p->er) - y, 0.0);
+    *c = fmin(1.0, fmax(-1.0, (db - dt) / (2.0 * p->er)));
+    *sn = fmin(1.0, sqrt(dt * db) / p->er);
+}
+
+double aa__conic_s_at(const aa_piece *p, double y)
+{
+    if (!(y > p->y0))
+        return p->s0;
+    if (!(y < p->y1))
+        return p->s1;
+    double dt = fmax(y - (p->ey - p->er), 0.0), db = fmax((p->ey + p->er) - y, 0.0);
+    double s = dt <= db ? 2.0 * asin(fmin(1.0, sqrt(dt / (2.0 * p->er))))
+                        : M_PI - 2.0 * asin(fmin(1.0, sqrt(db / (2.0 * p->er))));
+    return fmin(fmax(s, p->s0), p->s1);
+}
+
+static double conic_x_at(const aa_piece *p, double y)
+{
+    if (!(y > p->y0))
+        return p->x0;
+    if (!(y < p->y1))
+        return p->x1;
+    double c, sn;
+    conic_cs(p, y, &c, &sn);
+    return p->ex + p->ea * c + p->eb * sn;
+}
+
+/* The extent over [sa, sb] given x at its ends. */
+static void conic_range(const aa_piece *p, double sa, double xa, double sb, double xb,
+                        double *xmin, double *xmax)
+{
+    *xmin = fmin(xa, xb);
+    *xmax = fmax(xa, xb);
+    double R = hypot(p->ea, p->eb), alpha = atan2(p->eb, p->ea);
+    if (alpha > sa && alpha < sb)
+        *xmax = fmax(*xmax, p->ex + R);
+    if (alpha + M_PI > sa && alpha + M_PI < sb)
+        *xmin = fmin(*xmin, p->ex - R);
+}
+
+void aa__conic_xrange(const aa_piece *p, double sa, double sb, double *xmin, double *xmax)
+{
+    double xa = sa <= p->s0 ? p->x0 : p->ex + p->ea * cos(sa) + p->eb * sin(sa);
+    double xb = sb >= p->s1 ? p->x1 : p->ex + p->ea * cos(sb) + p->eb * sin(sb);
+    conic_range(p, sa, xa, sb, xb, xmin, xmax);
+}
+
+/* Heights strictly inside (y0, y1) where the conic piece meets the
+ * vertical line x: R cos(s - alpha) = x - ex. */
+static int conic_meet_x(const aa_piece *p, double x, double ys[3])
+{
+    double R = hypot(p->ea, p->eb), alpha = atan2(p->eb, p->ea);
+    if (!(R > 0.0) || fabs(x - p->ex) > R)
+        return 0;
+    double d = acos(fmin(1.0, fmax(-1.0, (x - p->ex) / R)));
+    double cand[6] = {alpha + d, alpha - d, alpha + d - 2.0 * M_PI,
+                      alpha - d + 2.0 * M_PI, alpha + d + 2.0 * M_PI, alpha - d - 2.0 * M_PI};
+    int m = 0;
+    for (int k = 0; k < 6 && m < 2; k++) {
+        double sv = cand[k];
+        if (!(sv > p->s0 && sv < p->s1))
+            continue;
+        double y = p->ey - p->er * cos(sv);
+        if (!(y > p->y0 && y < p->y1))
+            continue;
+        int dup = 0;
+        for (int j = 0; j < m; j++)
+            dup |= ys[j] == y;
+        if (!dup)
+            ys[m++] = y;
+    }
+    if (m == 2 && ys[0] > ys[1]) {
+        double t = ys[0];
+        ys[0] = ys[1];
+        ys[1] = t;
+    }
+    return m;
+}
+
 /* ---- piece geometry ---- */
 
 double aa_piece_t_at(const aa_piece *p, double y)
@@ -121,6 +216,8 @@ double aa_piece_t_at(const aa_piece *p, double y)
         return 0.0;
     if (y >= p->y1)
         return 1.0;
+    if (p->kind == AA_PIECE_CONIC)
+        return (aa__conic_s_at(p, y) - p->s0) / (p->s1 - p->s0);
     if (p->kind == AA_PIECE_CUBIC) {
         /* the one root of y(t) - y on [0, 1]: y is monotone there */
         double c[4] = {-d, p->by, p->ay, p->dy};
@@ -154,6 +251,8 @@ double aa_piece_x_at(const aa_piece *p, double y)
     }
     if (p->kind == AA_PIECE_FLAT)
         return p->x0;
+    if (p->kind == AA_PIECE_CONIC)
+        return conic_x_at(p, y);
     double t = aa_piece_t_at(p, y);
     if (p->kind == AA_PIECE_CUBIC)
         return p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
@@ -174,6 +273,11 @@ void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, doub
         double xa = aa_piece_x_at(p, a), xb = aa_piece_x_at(p, b);
         *xmin = fmin(xa, xb);
         *xmax = fmax(xa, xb);
+        return;
+    }
+    if (p->kind == AA_PIECE_CONIC) {
+        conic_range(p, aa__conic_s_at(p, a), conic_x_at(p, a), aa__conic_s_at(p, b),
+                    conic_x_at(p, b), xmin, xmax);
         return;
     }
     double ta = aa_piece_t_at(p, a), tb = aa_piece_t_at(p, b);
@@ -232,6 +336,8 @@ int aa_piece_meet_x(const aa_piece *p, double x, double ys[3])
     if (p->kind == AA_PIECE_FLAT || x < p->xmin || x > p->xmax)
         return 0;
     double c = p->x0 - x;
+    if (p->kind == AA_PIECE_CONIC)
+        return conic_meet_x(p, x, ys);
     if (p->kind == AA_PIECE_CUBIC) {
         double k[4] = {c, p->bx, p->ax, p->dx};
         return heights(p, ts, aa__poly3_roots(k, 0.0, 1.0, ts), ys);
@@ -301,6 +407,45 @@ static int quadratic_roots(double a, double b, double c, double len, double *u)
     return m;
 }
 
+/* A line p, x = x0 + (y - y0) m, against a conic piece q: in q's c = cos s,
+ * y = ey - er c, the line is x = K + M c (K = x0 + (ey - y0) m, M = -er m),
+ * so eb sin s = g + h c with g = K - ex, h = M - ea; squared,
+ *     (h^2 + eb^2) c^2 + 2 g h c + (g^2 - eb^2) = 0,
+ * whose roots are meetings where g + h c has the sign of eb (sin s >= 0). */
+static int line_conic(const aa_piece *p, const aa_piece *q, double lo, double hi, double *ys,
+                      int max)
+{
+    double m = p->bx / p->by;
+    double g = p->x0 + (q->ey - p->y0) * m - q->ex, h = -q->er * m - q->ea;
+    double a = h * h + q->eb * q->eb, b = 2.0 * g * h, c = (g - q->eb) * (g + q->eb);
+    double r[2], y[2];
+    int n = 0, k2 = 0;
+    if (a == 0.0)
+        return 0;
+    double d = discriminant(a, b, c);
+    if (d < 0.0)
+        return 0;
+    double hh = -0.5 * (b + copysign(sqrt(d), b));
+    if (hh != 0.0)
+        r[n++] = c / hh;
+    r[n++] = hh / a;
+    for (int k = 0; k < n; k++) {
+        double side = g + h * r[k];
+        if (side * q->eb < 0.0 && fabs(side) > 1e-12 * (fabs(g) + fabs(h) + fabs(q->eb)))
+            continue; /* the root of the squared equation only */
+        double v = q->ey - q->er * r[k];
+        if (v > lo && v < hi && (k2 == 0 || v != y[0]))
+            y[k2++] = v;
+    }
+    if (k2 == 2 && y[0] > y[1]) {
+        double t = y[0];
+        y[0] = y[1], y[1] = t;
+    }
+    for (int k = 0; k < k2 && k < max; k++)
+        ys[k] = y[k];
+    return k2 < max ? k2 : max;
+}
+
 typedef struct meet_ctx {
     const aa_piece *p, *q;
     double *ys;
@@ -348,6 +493,12 @@ static void subdivide(meet_ctx *c, double a, double b, int depth)
 /* x of the piece at y and dx/dy there (infinite where it is horizontal). */
 static double x_slope(const aa_piece *p, double y, double *slope)
 {
+    if (p->kind == AA_PIECE_CONIC) {
+        double c, sn;
+        conic_cs(p, y, &c, &sn);
+        *slope = (p->eb * c - p->ea * sn) / (p->er * sn);
+        return conic_x_at(p, y);
+    }
     double t = aa_piece_t_at(p, y);
     double dx = p->bx + t * (2.0 * p->ax + 3.0 * t * p->dx);
     double dy = p->by + t * (2.0 * p->ay + 3.0 * t * p->dy);
@@ -418,7 +569,8 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
     double lo = fmax(fmax(p->y0, q->y0), ya), hi = fmin(fmin(p->y1, q->y1), yb);
     if (!(lo < hi))
         return 0;
-    int cubic = p->kind == AA_PIECE_CUBIC || q->kind == AA_PIECE_CUBIC;
+    int conic = p->kind == AA_PIECE_CONIC || q->kind == AA_PIECE_CONIC;
+    int cubic = p->kind == AA_PIECE_CUBIC || q->kind == AA_PIECE_CUBIC || conic;
     if (p->ay == 0.0 && q->ay == 0.0 && !cubic) {
         /* both x quadratic in y: their difference is a quadratic */
         double a0, a1, a2, b0, b1, b2, u[2];
@@ -437,6 +589,8 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
         const aa_piece *t = p;
         p = q, q = t;
     }
+    if (p->kind == AA_PIECE_LINE && q->kind == AA_PIECE_CONIC)
+        return line_conic(p, q, lo, hi, ys, max);
     if (p->kind == AA_PIECE_LINE && q->kind == AA_PIECE_CUBIC) {
         /* cubic q(t) against line p, x = p.x0 + (y - p.y0) s: a cubic in t */
         double s = p->bx / p->by, ts[3], y[3];
