@@ -173,6 +173,7 @@ typedef struct style {
     int stroke_none;
     double stroke_width;
     aa_line_join join;
+    const char *join_other; /* a join of SVG 2 not drawn (miter-clip, arcs), or NULL */
     aa_line_cap cap;
     double miterlimit;
     double dash[AA_SVG_MAX_DASHES];
@@ -1367,6 +1368,9 @@ static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *s
 {
     if (sty->stroke_opacity != 1)
         return fail_at(r, "stroke-opacity below 1: opacity is not supported");
+    if (sty->join_other)
+        return fail_at(r, "stroke-linejoin=\"%s\" is not supported (miter, round or bevel)",
+                       sty->join_other);
     aa_stroke_style ss;
     aa_stroke_style_default(&ss);
     ss.width = sty->stroke_width;
@@ -1482,7 +1486,7 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
 {
     char v[1024];
     int st = AA_OK, k = 0;
-    static const char *const joins[] = {"miter", "round", "bevel"};
+    static const char *const joins[] = {"miter", "round", "bevel", "miter-clip", "arcs"};
     static const char *const caps[] = {"butt", "round", "square"};
     static const aa_line_join join_of[] = {AA_JOIN_MITER, AA_JOIN_ROUND, AA_JOIN_BEVEL};
     static const aa_line_cap cap_of[] = {AA_CAP_BUTT, AA_CAP_ROUND, AA_CAP_SQUARE};
@@ -1494,10 +1498,10 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
             return fail_at(r, "stroke-width=\"%s\": a negative width is an error", aa_echo(v));
     }
     if (!st && GIVEN("stroke-linejoin")) {
-        if ((st = keyword(r, "stroke-linejoin", v, joins, 3, &k,
-                          "miter, round or bevel; not miter-clip or arcs")))
+        if ((st = keyword(r, "stroke-linejoin", v, joins, 5, &k, "miter, round or bevel")))
             return st;
-        sty->join = join_of[k];
+        sty->join = k < 3 ? join_of[k] : AA_JOIN_MITER;
+        sty->join_other = k < 3 ? NULL : joins[k];
     }
     if (!st && GIVEN("stroke-linecap")) {
         if ((st = keyword(r, "stroke-linecap", v, caps, 3, &k, "butt, round or square")))
