@@ -332,6 +332,8 @@ static int attr_known(const xmlNode *node, const char *name)
     } own[] = {{"svg", {"width", "height", "viewBox", "preserveAspectRatio", "version",
                         "baseProfile", "x", "y"}},
                {"rect", {"x", "y", "width", "height", "rx", "ry"}},
+               {"circle", {"cx", "cy", "r"}},
+               {"ellipse", {"cx", "cy", "rx", "ry"}},
                {"path", {"d"}},
                {"polygon", {"points"}},
                {"polyline", {"points"}},
