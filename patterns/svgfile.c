@@ -7,7 +7,7 @@
  * XML_PARSE_DTDLOAD, no XML_PARSE_NOENT), and a document declaring entities
  * in an internal DTD subset is refused, so no external entity is ever read
  * and no entity is expanded.  The tree is walked in document order; each
- * filled shape becomes one layer of the scene, the last shape in the
+ * fill and each stroke becomes one layer of the scene, the last shape in the
  * document in front (painter's order), in pixel units exactly as a browser
  * draws the document at one CSS pixel per image pixel:
  *
@@ -20,27 +20,37 @@
  *   - transform lists (matrix, translate, scale, rotate with or without a
  *     centre, skewX, skewY) compose from the root down and are applied to
  *     every point, control points included, which is exact for Bezier
- *     arcs under affine maps;
- *   - <path> with every command but the arc (M L H V Q T C S Z, absolute and
- *     relative, implicit repeats, the number grammar of SVG paths),
- *     <rect> without rounded corners, <polygon>, <polyline>, <g>; <line>
- *     draws nothing without a stroke; <title>, <desc>, <metadata> and
+ *     arcs under affine maps; an elliptical arc's centre maps as a point
+ *     and its semi-diameters as vectors, which is exact too;
+ *   - every shape is first a path in its user units (path.h): <path> with
+ *     every command (M L H V Q T C S A Z, absolute and relative, implicit
+ *     repeats, the number grammar of SVG paths; the arc command by SVG's
+ *     implementation notes, aa_arc_endpoints), <rect> with rounded corners
+ *     by SVG 2's rules for rx and ry, <circle>, <ellipse>, <line>,
+ *     <polygon>, <polyline>, in <g>; <title>, <desc>, <metadata> and
  *     <defs> (whose content is drawn only when referenced) draw nothing;
  *   - fill (named colours, #rgb, #rrggbb, rgb() with integers or
  *     percentages, none, inherit) and fill-rule, as attributes or in a
  *     style attribute; colours are sRGB and become linear light by the sRGB
- *     decoding.
+ *     decoding; the fill closes every subpath (a line has none);
+ *   - stroke (a colour or none), stroke-width, stroke-linejoin,
+ *     stroke-linecap, stroke-miterlimit, stroke-dasharray and
+ *     stroke-dashoffset: the stroke is the path's outline in user units
+ *     (aa_stroke_outline), a shape of its own after the fill, nonzero.
  *
- * Refused, naming the element and its line: strokes, arcs (the A command,
- * <circle>, <ellipse>, rounded rectangles), opacity below 1, paint servers
- * (gradients, patterns: url() fills), text, images, <use>, clip paths,
- * masks, filters, style sheets, nested <svg>, units other than px, any
- * attribute or style property not implemented (see css_known), and any
- * other element of the SVG namespace; elements of other namespaces are not
- * drawn (as a browser ignores them).  Malformed XML or path data, files
- * over AA_SVG_MAX_BYTES, nesting deeper than AA_SVG_MAX_DEPTH, more than
- * AA_SVG_MAX_SEGMENTS path commands, numbers over AA_SVG_MAX_NUMBER and
- * coordinates over AA_SVG_MAX_COORD pixels are refused too.
+ * Refused, naming the element and its line: strokes aa_stroke_outline
+ * cannot draw exactly (Bezier arcs, arcs of ellipses that are not
+ * circles), the joins miter-clip and arcs, opacity below 1 (opacity,
+ * fill-opacity, stroke-opacity), paint servers (gradients, patterns:
+ * url() paints), text, images, <use>, clip paths, masks, filters, style
+ * sheets, nested <svg>, units other than px, negative sizes, radii, widths
+ * and dashes, any attribute or style property not implemented (see
+ * css_known), and any other element of the SVG namespace; elements of
+ * other namespaces are not drawn (as a browser ignores them).  Malformed
+ * XML or path data, files over AA_SVG_MAX_BYTES, nesting deeper than
+ * AA_SVG_MAX_DEPTH, more than AA_SVG_MAX_SEGMENTS path segments (strokes'
+ * outlines counted), numbers over AA_SVG_MAX_NUMBER and coordinates over
+ * AA_SVG_MAX_COORD pixels are refused too.
  */
 #include "svgfile.h"
 #include "c_numbers_internal.h"
@@ -310,13 +320,11 @@ static int parse_length(reader *r, const char *attr, const char *text, double *v
 
 /* ---- properties: attributes and the style attribute ---- */
 
-/* The properties the reader implements, and those that cannot change a
- * filled shape's outline or colour as it is drawn here (a stroke's width,
- * joins or dashes, since every stroke but none is refused).  Any other
- * presentation attribute or style property is refused: skipped, it would
- * draw another picture (transform in a style, transform-origin, blending,
- * markers, conditional processing...).  CSS names and keywords are matched
- * without regard to case; attribute names are XML and keep theirs. */
+/* The properties the reader implements.  Any other presentation attribute
+ * or style property is refused: skipped, it would draw another picture
+ * (transform in a style, transform-origin, blending, markers, conditional
+ * processing...).  CSS names and keywords are matched without regard to
+ * case; attribute names are XML and keep theirs. */
 static const char *const css_known[] = {
     "display",          "fill",           "fill-rule",       "stroke",
     "opacity",          "fill-opacity",   "clip-path",       "mask",
@@ -2101,7 +2109,8 @@ int aa__svg_key(const double *p, char *buf, size_t len)
 }
 
 const aa_pattern_type aa_pattern_svg = {
-    {"svg", "an SVG file's filled shapes, in pixels as a browser draws it", svg_params},
+    {"svg", "an SVG file's filled and stroked shapes, in pixels as a browser draws it",
+     svg_params},
     svg_check,
     svg_build_unsized,
     {{0, 0, 0}}};

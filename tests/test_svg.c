@@ -1034,7 +1034,8 @@ static void test_unknown_properties(void **state)
 static void test_shipped(void **state)
 {
     (void)state;
-    static const char *files[] = {"shapes.svg", "rules.svg", "curves.svg", "logo.svg", "mono.svg"};
+    static const char *files[] = {"shapes.svg", "rules.svg", "curves.svg", "logo.svg",
+                                  "mono.svg",   "arcs.svg",  "strokes.svg"};
     for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s", aa_svg_dir(), files[k]);
