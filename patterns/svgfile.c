@@ -1249,7 +1249,9 @@ static int point(reader *r, const mat *m, double x, double y, double *u, double 
  * singular map flattens the ellipse onto a segment of a line through the
  * arc's ends; a fill bounds the same region with the line from end to end
  * (no point off that line is crossed between them), which is given
- * instead.  The whole ellipse must lie within AA_SVG_MAX_COORD. */
+ * instead.  A map that nearly flattens it (the scene's test of parallel
+ * semi-diameters, core.h) is refused.  The whole ellipse must lie within
+ * AA_SVG_MAX_COORD. */
 static int give_arc(reader *r, const mat *m, const double a[10])
 {
     double c[2], e[2];
@@ -1259,8 +1261,13 @@ static int give_arc(reader *r, const mat *m, const double a[10])
         return st;
     const double ux = m->a * a[2] + m->c * a[3], uy = m->b * a[2] + m->d * a[3];
     const double vx = m->a * a[4] + m->c * a[5], vy = m->b * a[4] + m->d * a[5];
-    if (ux * vy - uy * vx == 0)
+    const double cross = ux * vy - uy * vx, size = hypot(ux, uy) + hypot(vx, vy);
+    if (cross == 0)
         return r->sink->line_to(r->ctx, e[0], e[1]);
+    if (!(fabs(cross) > 1e-12 * size * size))
+        return fail_at(r, "the transform flattens an elliptical arc almost to a line (its "
+                          "semi-diameters are parallel within 1e-12), which the scene "
+                          "cannot hold");
     /* the ellipse's box: c +- (hypot(ux, vx), hypot(uy, vy)) */
     if (!(fabs(c[0]) + hypot(ux, vx) <= AA_SVG_MAX_COORD &&
           fabs(c[1]) + hypot(uy, vy) <= AA_SVG_MAX_COORD))
@@ -1376,7 +1383,7 @@ static double length_bound(const aa_path *p)
  * through m to the sink as a shape of the stroke's colour, nonzero. */
 static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty)
 {
-    if (sty->stroke_opacity != 1)
+    if (!(sty->stroke_opacity >= 1)) /* CSS clamps values above 1 to 1 */
         return fail_at(r, "stroke-opacity below 1: opacity is not supported");
     if (sty->join_other)
         return fail_at(r, "stroke-linejoin=\"%s\" is not supported (miter, round or bevel)",

@@ -202,6 +202,9 @@ static void test_shapes(void **state)
            "");
 }
 
+static void refused(const char *doc, const char *want1, const char *want2);
+#define L2(x) "<svg xmlns=\"http://www.w3.org/2000/svg\">\n" x "</svg>"
+
 /* ---- shapes, arcs and strokes ---- */
 
 /* A sink that keeps what it is given: ops as letters (s shape, M L Q C A
@@ -375,6 +378,13 @@ static void test_basic_arcs(void **state)
         "sMAAAAZ");
     for (int q = 0; q < 4; q++)
         check_arc(g, 2 + q, 2, 3, 2, 3, 0, 0, 0, 0);
+    /* a singular map flattens the circle onto the x axis: the quarters are
+     * the lines between their ends (which bound the same, empty, region);
+     * a map that nearly flattens it is refused */
+    expect(SVG_OPEN "<circle transform=\"scale(1 0)\" r=\"5\"/></svg>",
+           BLACK " M 5 0 L 0 0 L -5 0 L 0 0 L 5 0 Z");
+    refused(L2("<circle transform=\"scale(1 1e-14)\" r=\"5\"/>"), "line 2: <circle>",
+            "flattens");
     free(g);
 }
 
@@ -556,8 +566,6 @@ static void refused(const char *doc, const char *want1, const char *want2)
     if ((want1 && !strstr(msg, want1)) || (want2 && !strstr(msg, want2)))
         fail_msg("%s\n  message: %s\n  wanted: %s / %s", doc, msg, want1, want2 ? want2 : "");
 }
-
-#define L2(x) "<svg xmlns=\"http://www.w3.org/2000/svg\">\n" x "</svg>"
 
 static void test_refusals(void **state)
 {
