@@ -1416,8 +1416,8 @@ static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *s
     aa_path out;
     aa_path_init(&out);
     int st = aa_stroke_outline(p, &ss, &out);
-    if (st)
-        st = at_element(r, aa_fail_context(st, "the stroke"));
+    if (st) /* the message begins "stroke: " */
+        st = at_element(r, st);
     if (!st)
         st = count_segments(r, out.n);
     if (!st)
