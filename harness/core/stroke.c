@@ -1,0 +1,690 @@
+/*
+ * stroke.c: the stroke outline of a path (path.h, aa_stroke_outline): the
+ * SVG 2 stroke shape ("Stroke shape", with stroke-linejoin, -linecap,
+ * -miterlimit and dashing) of a path of lines and circular arcs, exactly,
+ * as a union of simple closed contours of lines and circular arcs that all
+ * turn the same way (positive signed area), so that the non-zero rule
+ * fills exactly their union.
+ *
+ * The pieces of the union, h = width / 2:
+ *  - a line segment: its rectangle, the segment swept by the normal of
+ *    length 2h centred on it;
+ *  - a circular arc of radius r from t0 to t1: the region swept by the same
+ *    normal, the annular sector of radii r - h .. r + h; when h > r the
+ *    normal passes through the centre, and the region is the sector of
+ *    radius r + h plus the opposite sector (angles t + pi) of radius h - r.
+ *    Arcs are cut into parts of at most a quarter turn, so that every
+ *    contour is simple;
+ *  - a join at a vertex inside a subpath, between the tangent directions
+ *    d_in and d_out there, on the outer side of the turn, whose outer
+ *    offset points are A = P + h nA and B = P + h nB: bevel the triangle
+ *    P A B; miter, when the miter length ratio 1/sin(theta/2) (theta the
+ *    angle between the segments; 1/sin(theta/2) = 2/|nA + nB|) is at most
+ *    the limit, the quadrilateral P A M B with the tip
+ *    M = P + 2h (nA + nB)/|nA + nB|^2 where the outer edges' tangent lines
+ *    meet, else the bevel; round the circular sector of radius h about P
+ *    from A to B (the points of the disk about P in the directions between
+ *    the outer normals; the rest of the disk is inside the segments'
+ *    regions wherever it is within h of the path elsewhere, so a round join
+ *    with round caps makes the stroke exactly the points within h of the
+ *    path).  A straight vertex (d_in = d_out) has no join; a reversal
+ *    (d_out = -d_in) has an empty bevel and miter (the ratio is infinite)
+ *    and a half disk ahead of the vertex as its round join;
+ *  - caps at the ends of an open subpath or a dash, in the outward
+ *    direction d: butt nothing, square the rectangle of length h beyond the
+ *    end, round the half disk beyond it;
+ *  - a closed subpath joins its last segment to its first instead of caps.
+ *
+ * Choices where SVG leaves room, or where this differs from a renderer:
+ *  - zero-length segments are dropped before joins: a join is between the
+ *    neighbouring segments of non-zero length (SVG 2 takes a zero-length
+ *    segment's direction from its neighbours, which comes to the same);
+ *  - a subpath with segments but no length (M p L p, M p Z) is drawn as its
+ *    caps at p in the direction of the x axis: a disk for round, an
+ *    axis-aligned square of side 2h for square, nothing for butt; a subpath
+ *    that is only a move_to draws nothing (SVG 1.1, "a subpath consisting
+ *    of a single moveto shall not be stroked");
+ *  - dashes are laid along each subpath from its start by arc length (exact
+ *    for lines and circular arcs, r |t1 - t0|), an odd list repeated, the
+ *    offset taken modulo the pattern's length (a negative one too); each
+ *    dash is an open run with caps at both ends and joins at the vertices
+ *    strictly inside it, also on a closed subpath (the dash through its
+ *    start is two dashes); a dash of zero length is its caps in the path's
+ *    direction there.
+ * Refused (AA_EINVAL, naming it): Bezier arcs and elliptical arcs that are
+ * not circles, whose offset curves are not lines or circles.
+ */
+#include "path.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void aa_stroke_style_default(aa_stroke_style *st)
+{
+    memset(st, 0, sizeof *st);
+    st->width = 1;
+    st->join = AA_JOIN_MITER;
+    st->cap = AA_CAP_BUTT;
+    st->miterlimit = 4;
+    st->dash = NULL;
+    st->ndash = 0;
+    st->dashoffset = 0;
+}
+
+/* ---- contours: built, oriented, appended ---- */
+
+/* One element of a contour: a line or an arc (c + u cos t + v sin t, t from
+ * t0 to t1) to (x, y). */
+typedef struct elem {
+    int arc;
+    double x, y;
+    double cx, cy, ux, uy, vx, vy, t0, t1;
+} elem;
+
+#define CONTOUR_MAX 8
+
+typedef struct contour {
+    double sx, sy;
+    int n;
+    elem e[CONTOUR_MAX];
+} contour;
+
+static void c_begin(contour *c, double x, double y)
+{
+    c->sx = x;
+    c->sy = y;
+    c->n = 0;
+}
+
+static void c_line(contour *c, double x, double y)
+{
+    elem *e = &c->e[c->n++];
+    memset(e, 0, sizeof *e);
+    e->x = x;
+    e->y = y;
+}
+
+static void arc_point(double cx, double cy, double ux, double uy, double vx, double vy, double t,
+                      double *x, double *y)
+{
+    double ct = cos(t), st = sin(t);
+    *x = cx + ux * ct + vx * st;
+    *y = cy + uy * ct + vy * st;
+}
+
+/* An arc element; it ends at its point for t1. */
+static void c_arc(contour *c, double cx, double cy, double ux, double uy, double vx, double vy,
+                  double t0, double t1)
+{
+    elem *e = &c->e[c->n++];
+    e->arc = 1;
+    e->cx = cx, e->cy = cy, e->ux = ux, e->uy = uy, e->vx = vx, e->vy = vy;
+    e->t0 = t0, e->t1 = t1;
+    arc_point(cx, cy, ux, uy, vx, vy, t1, &e->x, &e->y);
+}
+
+/*
+ * The signed area (1/2) integral of (x dy - y dx) around the contour, about
+ * its start (to keep rounding relative to its size).  A line from a to b
+ * gives (a x b)/2.  An arc P(t) = c + u cos t + v sin t gives
+ *     (1/2) integral of P x P' dt,  P' = -u sin t + v cos t,
+ *     P x P' = c x P' + (u x v)(cos^2 t + sin^2 t),
+ * so (1/2) [c x (P(t1) - P(t0)) + (u x v)(t1 - t0)].
+ */
+static double c_area(const contour *c)
+{
+    double a = 0, px = 0, py = 0; /* the pen, relative to the start */
+    for (int k = 0; k < c->n; k++) {
+        const elem *e = &c->e[k];
+        double x = e->x - c->sx, y = e->y - c->sy;
+        if (e->arc) {
+            double cx = e->cx - c->sx, cy = e->cy - c->sy;
+            double ax, ay, bx, by;
+            arc_point(cx, cy, e->ux, e->uy, e->vx, e->vy, e->t0, &ax, &ay);
+            arc_point(cx, cy, e->ux, e->uy, e->vx, e->vy, e->t1, &bx, &by);
+            a += cx * (by - ay) - cy * (bx - ax) + (e->ux * e->vy - e->uy * e->vx) * (e->t1 - e->t0);
+            /* the gap from the pen to the arc's own start (rounding) */
+            a += px * ay - py * ax;
+            px = bx, py = by;
+            a += px * y - py * x;
+        } else {
+            a += px * y - py * x;
+        }
+        px = x, py = y;
+    }
+    /* the closing line back to the start (0, 0) adds nothing */
+    return 0.5 * a;
+}
+
+static int emit_elem(aa_path *out, const elem *e, double x, double y, int reversed)
+{
+    if (!e->arc)
+        return aa_path_line_to(out, x, y);
+    return aa_path_arc_to(out, e->cx, e->cy, e->ux, e->uy, e->vx, e->vy,
+                          reversed ? e->t1 : e->t0, reversed ? e->t0 : e->t1, x, y);
+}
+
+/* Append the contour turning the positive way: reversed if its signed area
+ * is negative; nothing if it is empty (zero area). */
+static int c_emit(aa_path *out, const contour *c)
+{
+    double a = c_area(c);
+    if (!isfinite(a))
+        return aa_fail(AA_EINVAL, "stroke: the outline is out of range (not finite)");
+    if (a == 0 || c->n == 0)
+        return AA_OK;
+    int st = aa_path_move_to(out, c->sx, c->sy);
+    if (a > 0) {
+        for (int k = 0; k < c->n && !st; k++)
+            st = emit_elem(out, &c->e[k], c->e[k].x, c->e[k].y, 0);
+    } else {
+        /* backwards: the closing line first, then each element from its
+         * end to its start (the end of the one before, or the start) */
+        const elem *last = &c->e[c->n - 1];
+        if (last->x != c->sx || last->y != c->sy)
+            st = aa_path_line_to(out, last->x, last->y);
+        for (int k = c->n - 1; k >= 0 && !st; k--) {
+            double x = k > 0 ? c->e[k - 1].x : c->sx, y = k > 0 ? c->e[k - 1].y : c->sy;
+            st = emit_elem(out, &c->e[k], x, y, 1);
+        }
+    }
+    return st ? st : aa_path_close(out);
+}
+
+/* A convex polygon of up to 4 points. */
+static int emit_polygon(aa_path *out, const double *xy, int n)
+{
+    contour c;
+    c_begin(&c, xy[0], xy[1]);
+    for (int k = 1; k < n; k++)
+        c_line(&c, xy[2 * k], xy[2 * k + 1]);
+    return c_emit(out, &c);
+}
+
+/* ---- pieces: the segments of non-zero length ---- */
+
+typedef struct piece {
+    int arc;
+    double x0, y0, x1, y1;                 /* ends */
+    double dx, dy;                         /* lines: the unit direction */
+    double cx, cy, ux, uy, vx, vy, t0, t1; /* arcs: a circle, |u| = |v| = r */
+    double r, len;
+} piece;
+
+typedef struct pieces {
+    piece *p;
+    size_t n, cap;
+} pieces;
+
+static int pieces_push(pieces *ps, const piece *p)
+{
+    if (ps->n == ps->cap) {
+        size_t cap = ps->cap ? 2 * ps->cap : 16;
+        piece *q = realloc(ps->p, cap * sizeof *q);
+        if (!q)
+            return aa_fail(AA_EFAIL, "out of memory for a stroke of %zu segments", cap);
+        ps->p = q;
+        ps->cap = cap;
+    }
+    ps->p[ps->n++] = *p;
+    return AA_OK;
+}
+
+/* The unit tangent of a piece at its start or end, in the direction of
+ * travel: a line's is the whole segment's (a short part of it may have
+ * equal ends after rounding); an arc's never vanishes (u, v not parallel). */
+static void piece_tangent(const piece *p, int at_end, double d[2])
+{
+    if (!p->arc) {
+        d[0] = p->dx;
+        d[1] = p->dy;
+        return;
+    }
+    double t = at_end ? p->t1 : p->t0, sg = p->t1 > p->t0 ? 1.0 : -1.0;
+    double x = sg * (-p->ux * sin(t) + p->vx * cos(t));
+    double y = sg * (-p->uy * sin(t) + p->vy * cos(t));
+    double l = hypot(x, y);
+    d[0] = x / l;
+    d[1] = y / l;
+}
+
+/* The part of a piece from arc length a to b (0 <= a < b <= len), ends
+ * exact where they are the piece's. */
+static piece piece_part(const piece *p, double a, double b)
+{
+    piece q = *p;
+    double fa = a / p->len, fb = b / p->len;
+    if (!p->arc) {
+        if (a > 0)
+            q.x0 = p->x0 + fa * (p->x1 - p->x0), q.y0 = p->y0 + fa * (p->y1 - p->y0);
+        if (b < p->len)
+            q.x1 = p->x0 + fb * (p->x1 - p->x0), q.y1 = p->y0 + fb * (p->y1 - p->y0);
+    } else {
+        double dt = p->t1 - p->t0;
+        if (a > 0) {
+            q.t0 = p->t0 + fa * dt;
+            arc_point(p->cx, p->cy, p->ux, p->uy, p->vx, p->vy, q.t0, &q.x0, &q.y0);
+        }
+        if (b < p->len) {
+            q.t1 = p->t0 + fb * dt;
+            arc_point(p->cx, p->cy, p->ux, p->uy, p->vx, p->vy, q.t1, &q.x1, &q.y1);
+        }
+    }
+    q.len = b - a;
+    return q;
+}
+
+/* ---- the shapes ---- */
+
+static int stroke_line(aa_path *out, const piece *p, double h)
+{
+    double nx = -p->dy * h, ny = p->dx * h;
+    const double xy[8] = {p->x0 + nx, p->y0 + ny, p->x1 + nx, p->y1 + ny,
+                          p->x1 - nx, p->y1 - ny, p->x0 - nx, p->y0 - ny};
+    return emit_polygon(out, xy, 4);
+}
+
+/* The region swept by the normal of length 2h on the arc part [a, b]. */
+static int stroke_arc_part(aa_path *out, const piece *p, double a, double b, double h)
+{
+    double lu = hypot(p->ux, p->uy), lv = hypot(p->vx, p->vy);
+    double R = p->r + h, rho = p->r - h;
+    contour c;
+    /* outer arc, radius R */
+    double oux = p->ux * (R / lu), ouy = p->uy * (R / lu);
+    double ovx = p->vx * (R / lv), ovy = p->vy * (R / lv);
+    double x, y;
+    arc_point(p->cx, p->cy, oux, ouy, ovx, ovy, a, &x, &y);
+    c_begin(&c, x, y);
+    c_arc(&c, p->cx, p->cy, oux, ouy, ovx, ovy, a, b);
+    if (rho > 0) {
+        double iux = p->ux * (rho / lu), iuy = p->uy * (rho / lu);
+        double ivx = p->vx * (rho / lv), ivy = p->vy * (rho / lv);
+        arc_point(p->cx, p->cy, iux, iuy, ivx, ivy, b, &x, &y);
+        c_line(&c, x, y);
+        c_arc(&c, p->cx, p->cy, iux, iuy, ivx, ivy, b, a);
+        return c_emit(out, &c);
+    }
+    c_line(&c, p->cx, p->cy);
+    int st = c_emit(out, &c);
+    if (st || rho == 0)
+        return st;
+    /* h > r: the opposite sector, radius h - r, at the angles t + pi */
+    double k = -rho;
+    double qux = -p->ux * (k / lu), quy = -p->uy * (k / lu);
+    double qvx = -p->vx * (k / lv), qvy = -p->vy * (k / lv);
+    c_begin(&c, p->cx, p->cy);
+    arc_point(p->cx, p->cy, qux, quy, qvx, qvy, a, &x, &y);
+    c_line(&c, x, y);
+    c_arc(&c, p->cx, p->cy, qux, quy, qvx, qvy, a, b);
+    return c_emit(out, &c);
+}
+
+static int stroke_arc(aa_path *out, const piece *p, double h)
+{
+    double dt = p->t1 - p->t0;
+    int parts = (int)ceil(fabs(dt) / (0.5 * M_PI));
+    if (parts < 1)
+        parts = 1;
+    if (parts > 4)
+        parts = 4;
+    int st = AA_OK;
+    for (int k = 0; k < parts && !st; k++) {
+        double a = k == 0 ? p->t0 : p->t0 + dt * k / parts;
+        double b = k == parts - 1 ? p->t1 : p->t0 + dt * (k + 1) / parts;
+        st = stroke_arc_part(out, p, a, b, h);
+    }
+    return st;
+}
+
+static int stroke_piece(aa_path *out, const piece *p, double h)
+{
+    return p->arc ? stroke_arc(out, p, h) : stroke_line(out, p, h);
+}
+
+/* The join at P between unit directions din and dout. */
+static int stroke_join(aa_path *out, double px, double py, const double din[2],
+                       const double dout[2], const aa_stroke_style *style, double h)
+{
+    double cr = din[0] * dout[1] - din[1] * dout[0];
+    double dot = din[0] * dout[0] + din[1] * dout[1];
+    if (cr == 0 && dot > 0)
+        return AA_OK; /* straight on */
+    /* the outer side: right of the travel for a left turn (cr > 0), else
+     * left (a reversal, cr = 0, counts as a right turn) */
+    double sg = cr > 0 ? -1.0 : 1.0;
+    double nax = -sg * din[1], nay = sg * din[0];
+    double nbx = -sg * dout[1], nby = sg * dout[0];
+    double ax = px + h * nax, ay = py + h * nay, bx = px + h * nbx, by = py + h * nby;
+    if (style->join == AA_JOIN_ROUND) {
+        /* P + h (cos t nA + sin t din), t from 0 to the turn alpha, ends
+         * at P + h nB (the turn of din to dout is that of nA to nB) */
+        double alpha = atan2(fabs(cr), dot);
+        contour c;
+        c_begin(&c, px, py);
+        c_line(&c, ax, ay);
+        c_arc(&c, px, py, h * nax, h * nay, h * din[0], h * din[1], 0, alpha);
+        return c_emit(out, &c);
+    }
+    double sx = nax + nbx, sy = nay + nby, s2 = sx * sx + sy * sy;
+    if (style->join == AA_JOIN_MITER && s2 > 0 && 2.0 <= style->miterlimit * sqrt(s2)) {
+        const double xy[8] = {px, py, ax, ay, px + 2 * h * sx / s2, py + 2 * h * sy / s2, bx, by};
+        return emit_polygon(out, xy, 4);
+    }
+    if (s2 == 0)
+        return AA_OK; /* a reversal: an empty bevel */
+    const double xy[6] = {px, py, ax, ay, bx, by};
+    return emit_polygon(out, xy, 3);
+}
+
+/* The cap at P with outward unit direction d. */
+static int stroke_cap(aa_path *out, double px, double py, const double d[2],
+                      const aa_stroke_style *style, double h)
+{
+    double nx = -d[1] * h, ny = d[0] * h, ex = d[0] * h, ey = d[1] * h;
+    if (style->cap == AA_CAP_SQUARE) {
+        const double xy[8] = {px + nx, py + ny, px + nx + ex, py + ny + ey,
+                              px - nx + ex, py - ny + ey, px - nx, py - ny};
+        return emit_polygon(out, xy, 4);
+    }
+    if (style->cap == AA_CAP_ROUND) {
+        /* P + h (cos t n + sin t d), t from 0 to pi: the half disk ahead */
+        contour c;
+        c_begin(&c, px + nx, py + ny);
+        c_arc(&c, px, py, nx, ny, ex, ey, 0, M_PI);
+        return c_emit(out, &c);
+    }
+    return AA_OK;
+}
+
+/* A subpath of no length at P: its caps in the x axis's direction. */
+static int stroke_dot(aa_path *out, double px, double py, const aa_stroke_style *style, double h)
+{
+    const double right[2] = {1, 0}, left[2] = {-1, 0};
+    int st = stroke_cap(out, px, py, right, style, h);
+    return st ? st : stroke_cap(out, px, py, left, style, h);
+}
+
+/* A run of pieces (a subpath or a dash): every piece, the joins between
+ * them, and caps at its ends or the join that closes it. */
+static int stroke_run(aa_path *out, const piece *p, size_t n, int closed,
+                      const aa_stroke_style *style, double h)
+{
+    int st = AA_OK;
+    double din[2], dout[2];
+    for (size_t i = 0; i < n && !st; i++) {
+        st = stroke_piece(out, &p[i], h);
+        if (!st && i > 0) {
+            piece_tangent(&p[i - 1], 1, din);
+            piece_tangent(&p[i], 0, dout);
+            st = stroke_join(out, p[i].x0, p[i].y0, din, dout, style, h);
+        }
+    }
+    if (st || n == 0)
+        return st;
+    if (closed) {
+        piece_tangent(&p[n - 1], 1, din);
+        piece_tangent(&p[0], 0, dout);
+        return stroke_join(out, p[0].x0, p[0].y0, din, dout, style, h);
+    }
+    piece_tangent(&p[0], 0, dout);
+    const double back[2] = {-dout[0], -dout[1]};
+    if ((st = stroke_cap(out, p[0].x0, p[0].y0, back, style, h)))
+        return st;
+    piece_tangent(&p[n - 1], 1, din);
+    return stroke_cap(out, p[n - 1].x1, p[n - 1].y1, din, style, h);
+}
+
+/* ---- dashes ---- */
+
+/* The most dashes one subpath may have. */
+#define DASH_MAX 100000
+
+/* The dash from arc length a to b (a <= b) of the subpath's pieces. */
+static int stroke_dash(aa_path *out, const piece *p, size_t n, double a, double b,
+                       const aa_stroke_style *style, double h, pieces *tmp)
+{
+    tmp->n = 0;
+    double s = 0;
+    if (a == b) {
+        /* caps only, in the direction of the path at a */
+        size_t k = 0;
+        while (k + 1 < n && s + p[k].len <= a)
+            s += p[k++].len;
+        double f = fmin(fmax(a - s, 0), p[k].len), d[2];
+        piece q = p[k];
+        if (f > 0 && f < p[k].len)
+            q = piece_part(&p[k], 0, f);
+        piece_tangent(&q, f > 0, d);
+        double x = f > 0 ? q.x1 : q.x0, y = f > 0 ? q.y1 : q.y0;
+        const double back[2] = {-d[0], -d[1]};
+        int st = stroke_cap(out, x, y, d, style, h);
+        return st ? st : stroke_cap(out, x, y, back, style, h);
+    }
+    for (size_t k = 0; k < n; k++) {
+        double e = s + p[k].len;
+        double lo = fmax(a, s) - s, hi = fmin(b, e) - s;
+        if (k == n - 1 && b >= e)
+            hi = p[k].len;
+        if (hi > lo) {
+            piece q = lo <= 0 && hi >= p[k].len ? p[k] : piece_part(&p[k], fmax(lo, 0), fmin(hi, p[k].len));
+            int st = pieces_push(tmp, &q);
+            if (st)
+                return st;
+        }
+        s = e;
+    }
+    return stroke_run(out, tmp->p, tmp->n, 0, style, h);
+}
+
+/* The dashes of one subpath (SVG 2, "dash positions"). */
+static int stroke_dashed(aa_path *out, const piece *p, size_t n, const aa_stroke_style *style,
+                         double h, pieces *tmp)
+{
+    size_t m = style->ndash % 2 ? 2 * style->ndash : style->ndash;
+    const double *d = style->dash;
+    double period = 0, total = 0;
+    for (size_t i = 0; i < m; i++)
+        period += d[i % style->ndash];
+    for (size_t i = 0; i < n; i++)
+        total += p[i].len;
+    if (total / period * (double)m > DASH_MAX)
+        return aa_fail(AA_EINVAL, "stroke: the dash pattern (period %g) makes more than %d dashes "
+                                  "on a subpath of length %g",
+                       period, DASH_MAX, total);
+    /* where in the pattern the subpath starts */
+    double pos = fmod(style->dashoffset, period);
+    if (pos < 0)
+        pos += period;
+    size_t i = 0;
+    for (size_t guard = 0; guard < 2 * m && pos > 0 && pos >= d[i % style->ndash]; guard++) {
+        pos -= d[i % style->ndash];
+        i = (i + 1) % m;
+    }
+    double s = 0, rem = fmax(d[i % style->ndash] - fmax(pos, 0), 0);
+    int st = AA_OK;
+    for (long guard = 0; guard < 4L * DASH_MAX && !st; guard++) {
+        double e = s + rem;
+        /* a dash from s to e; one of length 0 also at the very end */
+        if (i % 2 == 0 && (s < total || (rem == 0 && s == total)))
+            st = stroke_dash(out, p, n, s, fmin(e, total), style, h, tmp);
+        if (e > total)
+            break;
+        s = e;
+        i = (i + 1) % m;
+        rem = d[i % style->ndash];
+    }
+    return st;
+}
+
+/* ---- the path ---- */
+
+static int check_style(const aa_stroke_style *st)
+{
+    if (!(st->width > 0) || !isfinite(st->width))
+        return aa_fail(AA_EINVAL, "stroke: width %g is not a positive number", st->width);
+    if ((int)st->join < AA_JOIN_MITER || (int)st->join > AA_JOIN_BEVEL)
+        return aa_fail(AA_EINVAL, "stroke: unknown line join %d", (int)st->join);
+    if ((int)st->cap < AA_CAP_BUTT || (int)st->cap > AA_CAP_SQUARE)
+        return aa_fail(AA_EINVAL, "stroke: unknown line cap %d", (int)st->cap);
+    if (!(st->miterlimit >= 1) || !isfinite(st->miterlimit))
+        return aa_fail(AA_EINVAL, "stroke: miter limit %g is not a number >= 1", st->miterlimit);
+    if (!isfinite(st->dashoffset))
+        return aa_fail(AA_EINVAL, "stroke: dash offset %g is not finite", st->dashoffset);
+    if (st->ndash > 0) {
+        if (!st->dash)
+            return aa_fail(AA_EINVAL, "stroke: %zu dash lengths but no array", st->ndash);
+        double sum = 0;
+        for (size_t i = 0; i < st->ndash; i++) {
+            if (!(st->dash[i] >= 0) || !isfinite(st->dash[i]))
+                return aa_fail(AA_EINVAL, "stroke: dash length %zu (%g) is not a finite number "
+                                          ">= 0",
+                               i, st->dash[i]);
+            sum += st->dash[i];
+        }
+        if (!(sum > 0) || !isfinite(sum))
+            return aa_fail(AA_EINVAL, "stroke: the dash lengths add up to %g, not a positive "
+                                      "finite length",
+                           sum);
+    }
+    return AA_OK;
+}
+
+/* A circle's arc: |u| = |v| and u . v = 0 to 1e-12 relative. */
+static int circle_piece(const aa_path_seg *g, size_t k, double px, double py, piece *p)
+{
+    const double *v = g->p;
+    double lu = hypot(v[2], v[3]), lv = hypot(v[4], v[5]);
+    if (fabs(lu - lv) > 1e-12 * (lu + lv) || fabs(v[2] * v[4] + v[3] * v[5]) > 1e-12 * lu * lv)
+        return aa_fail(AA_EINVAL, "stroke: segment %zu is an elliptical arc that is not a circle "
+                                  "(|u| %g, |v| %g): its offset curves are not circles, so its "
+                                  "stroke cannot be drawn exactly yet",
+                       k, lu, lv);
+    memset(p, 0, sizeof *p);
+    p->arc = 1;
+    p->x0 = px, p->y0 = py, p->x1 = v[8], p->y1 = v[9];
+    p->cx = v[0], p->cy = v[1], p->ux = v[2], p->uy = v[3], p->vx = v[4], p->vy = v[5];
+    p->t0 = v[6], p->t1 = v[7];
+    p->r = 0.5 * (lu + lv);
+    p->len = p->r * fabs(p->t1 - p->t0);
+    return AA_OK;
+}
+
+static int line_piece(double x0, double y0, double x1, double y1, piece *p)
+{
+    memset(p, 0, sizeof *p);
+    p->x0 = x0, p->y0 = y0, p->x1 = x1, p->y1 = y1;
+    p->len = hypot(x1 - x0, y1 - y0);
+    if (p->len > 0) {
+        p->dx = (x1 - x0) / p->len;
+        p->dy = (y1 - y0) / p->len;
+    }
+    return AA_OK;
+}
+
+/* One subpath done: its pieces (of non-zero length) stroked or dashed, or
+ * its dot if it has segments but no length. */
+static int flush(aa_path *out, pieces *ps, int drawn, int closed, double px, double py,
+                 const aa_stroke_style *style, double h, pieces *tmp)
+{
+    int st = AA_OK;
+    if (ps->n == 0) {
+        if (drawn)
+            st = stroke_dot(out, px, py, style, h);
+    } else if (style->ndash > 0) {
+        st = stroke_dashed(out, ps->p, ps->n, style, h, tmp);
+    } else {
+        st = stroke_run(out, ps->p, ps->n, closed, style, h);
+    }
+    ps->n = 0;
+    return st;
+}
+
+static int outline(const aa_path *in, const aa_stroke_style *style, aa_path *out, pieces *ps,
+                   pieces *tmp)
+{
+    double h = 0.5 * style->width;
+    double sx = 0, sy = 0, px = 0, py = 0;
+    int drawn = 0, started = 0, st = AA_OK;
+    for (size_t k = 0; k < in->n && !st; k++) {
+        const aa_path_seg *g = &in->seg[k];
+        piece p = {0};
+        switch (g->op) {
+        case AA_PATH_MOVE:
+            if (started && (st = flush(out, ps, drawn, 0, sx, sy, style, h, tmp)))
+                break;
+            sx = px = g->p[0];
+            sy = py = g->p[1];
+            started = 1;
+            drawn = 0;
+            break;
+        case AA_PATH_LINE:
+        case AA_PATH_ARC:
+            if (!started)
+                return aa_fail(AA_EINVAL, "stroke: segment %zu comes before any move", k);
+            if (g->op == AA_PATH_LINE) {
+                line_piece(px, py, g->p[0], g->p[1], &p);
+                px = g->p[0], py = g->p[1];
+            } else {
+                if ((st = circle_piece(g, k, px, py, &p)))
+                    break;
+                px = g->p[8], py = g->p[9];
+            }
+            drawn = 1;
+            if (p.len > 0 && isfinite(p.len))
+                st = pieces_push(ps, &p);
+            else if (!isfinite(p.len))
+                st = aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
+            break;
+        case AA_PATH_QUAD:
+        case AA_PATH_CUBIC:
+            return aa_fail(AA_EINVAL, "stroke: segment %zu is a %s Bezier arc, whose offset "
+                                      "curves are not lines or circles, so its stroke cannot "
+                                      "be drawn exactly yet",
+                           k, g->op == AA_PATH_QUAD ? "quadratic" : "cubic");
+        case AA_PATH_CLOSE:
+            if (!started)
+                return aa_fail(AA_EINVAL, "stroke: segment %zu closes before any move", k);
+            if (px != sx || py != sy) {
+                line_piece(px, py, sx, sy, &p);
+                if (!isfinite(p.len))
+                    return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
+                if ((st = pieces_push(ps, &p)))
+                    break;
+            }
+            st = flush(out, ps, 1, 1, sx, sy, style, h, tmp);
+            px = sx, py = sy;
+            drawn = 0;
+            /* a segment after it starts again from the start (SVG) */
+            break;
+        default:
+            return aa_fail(AA_EINVAL, "stroke: segment %zu: unknown operation %d", k, (int)g->op);
+        }
+    }
+    if (!st && started)
+        st = flush(out, ps, drawn, 0, sx, sy, style, h, tmp);
+    return st;
+}
+
+int aa_stroke_outline(const aa_path *in, const aa_stroke_style *style, aa_path *out)
+{
+    int st = check_style(style);
+    if (st)
+        return st;
+    aa_path keep = *out;
+    pieces ps = {0}, tmp = {0};
+    st = outline(in, style, out, &ps, &tmp);
+    free(ps.p);
+    free(tmp.p);
+    if (st) {
+        /* leave `out` as it was: its segments so far (its array may have
+         * moved) */
+        out->n = keep.n;
+        out->penx = keep.penx, out->peny = keep.peny;
+        out->startx = keep.startx, out->starty = keep.starty;
+        out->open = keep.open;
+    }
+    return st;
+}
