@@ -25,7 +25,7 @@
 /* ---- a sink that writes what it is given as text ---- */
 
 typedef struct text_sink {
-    char buf[8192];
+    char buf[65536];
     size_t n;
 } text_sink;
 
