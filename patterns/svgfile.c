@@ -1395,16 +1395,20 @@ static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *s
     ss.cap = sty->cap;
     ss.miterlimit = sty->miterlimit;
     if (sty->ndash) {
-        /* each subpath starts the pattern again: per subpath at most
-         * (its length / the period + 1) periods of ndash dashes (twice as
-         * many values in a period when their count is odd) */
-        double period = 0, subpaths = 0;
+        /* the pattern's period P is the sum of its values, twice that for
+         * an odd count (repeated: 2 n values), of which every other one is
+         * a dash; each subpath starts the pattern again, so a subpath of
+         * length L has at most (L / P + 2) periods (one begun early by the
+         * offset, one cut at the end) */
+        double sum = 0, subpaths = 0;
         for (size_t k = 0; k < sty->ndash; k++)
-            period += sty->dash[k];
+            sum += sty->dash[k];
         for (size_t k = 0; k < p->n; k++)
             subpaths += p->seg[k].op == AA_PATH_MOVE;
-        const double n = (double)sty->ndash * (sty->ndash & 1 ? 2 : 1);
-        const double dashes = n * (length_bound(p) / period + subpaths);
+        const int odd = sty->ndash & 1;
+        const double period = odd ? 2 * sum : sum, per_period = odd ? (double)sty->ndash
+                                                                     : sty->ndash / 2.0;
+        const double dashes = per_period * (length_bound(p) / period + 2 * subpaths);
         if (!(dashes <= MAX_DASHES_DRAWN))
             return fail_at(r, "stroke-dasharray: the stroke would have about %.3g dashes, more "
                               "than %d",
