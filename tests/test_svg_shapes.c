@@ -140,6 +140,77 @@ static void test_scene_points(void **state)
     aa_scene_free(sc);
 }
 
+/* Strokes at points, by SVG 2's stroke shape: a line's stroke of width w
+ * is the points within w/2 of it (butt caps: between the normals at its
+ * ends; round caps add the disks of radius w/2 at the ends); a circle's
+ * is the ring between radii r - w/2 and r + w/2; a miter join fills the
+ * corner's square, a bevel cuts it along the line between the offset
+ * corners; dashes "4 2" along a line cover the lengths [0, 4], [6, 10], ... */
+static void test_stroke_points(void **state)
+{
+    (void)state;
+    const double ax = 4, ay = 10.5, len = hypot(23, 9.5), dx = 23 / len, dy = 9.5 / len;
+    static const char *const caps[2] = {"butt", "round"};
+    for (int c = 0; c < 2; c++) {
+        char body[512];
+        snprintf(body, sizeof body,
+                 "<line x1=\"4\" y1=\"10.5\" x2=\"27\" y2=\"20\" stroke=\"white\" "
+                 "stroke-width=\"3\" stroke-linecap=\"%s\"/>",
+                 caps[c]);
+        aa_scene *sc = scene_of(caps[c], body);
+        /* (s, o): s along the line from its start, o across it */
+#define AT(s, o) white_at(sc, ax + (s) * dx - (o) * dy, ay + (s) * dy + (o) * dx)
+        for (int j = 1; j < 20; j++) {
+            double s = len * j / 20;
+            assert_int_equal(AT(s, 1.45), 1);
+            assert_int_equal(AT(s, -1.45), 1);
+            assert_int_equal(AT(s, 1.55), 0);
+            assert_int_equal(AT(s, -1.55), 0);
+        }
+        assert_int_equal(AT(-0.1, 0), c == 1);
+        assert_int_equal(AT(len + 0.1, 1), c == 1);
+        assert_int_equal(AT(-1.45, 0), c == 1);
+        assert_int_equal(AT(-1.55, 0), 0);
+        assert_int_equal(AT(len + 1.0, 1.0), c == 1); /* sqrt 2 < 1.5 from the end */
+        assert_int_equal(AT(len + 1.1, 1.1), 0);
+#undef AT
+        aa_scene_free(sc);
+    }
+    aa_scene *sc = scene_of("ring", "<circle cx=\"15.5\" cy=\"16.25\" r=\"9\" fill=\"none\" "
+                                    "stroke=\"white\" stroke-width=\"3\"/>");
+    check_ellipse(sc, 15.5, 16.25, 10.5, 10.5, 0, "the ring's outside");
+    for (int j = 0; j < 64; j++) {
+        double t = 2 * M_PI * (j + 0.5) / 64, c = cos(t), s = sin(t);
+        assert_int_equal(white_at(sc, 15.5 + 7.45 * c, 16.25 + 7.45 * s), 0);
+        assert_int_equal(white_at(sc, 15.5 + 7.6 * c, 16.25 + 7.6 * s), 1);
+    }
+    aa_scene_free(sc);
+    /* the rectangle [6, 24] x [7, 21] stroked 2 wide: its top left corner
+     * (6, 7); mitered, the corner square [5, 6] x [6, 7] is filled; with
+     * bevels it is cut along x + y = 12 */
+    sc = scene_of("miter", "<rect x=\"6\" y=\"7\" width=\"18\" height=\"14\" fill=\"none\" "
+                           "stroke=\"white\" stroke-width=\"2\"/>");
+    assert_int_equal(white_at(sc, 5.05, 6.05), 1);
+    assert_int_equal(white_at(sc, 4.95, 6.05), 0);
+    assert_int_equal(white_at(sc, 7.5, 8.5), 0); /* inside, no fill */
+    assert_int_equal(white_at(sc, 6.9, 12), 1);
+    aa_scene_free(sc);
+    sc = scene_of("bevel", "<rect x=\"6\" y=\"7\" width=\"18\" height=\"14\" fill=\"none\" "
+                           "stroke=\"white\" stroke-width=\"2\" stroke-linejoin=\"bevel\"/>");
+    assert_int_equal(white_at(sc, 5.05, 6.05), 0);
+    assert_int_equal(white_at(sc, 5.6, 6.5), 1);
+    aa_scene_free(sc);
+    sc = scene_of("dashes", "<line x1=\"6\" y1=\"16\" x2=\"26\" y2=\"16\" stroke=\"white\" "
+                            "stroke-width=\"2\" stroke-dasharray=\"4 2\"/>");
+    static const double xs[] = {6.1, 9.9, 12.1, 15.9, 18.1, 21.9, 24.1, 25.9};
+    static const double gaps[] = {5.9, 10.1, 11.9, 16.1, 17.9, 22.1, 23.9, 26.1};
+    for (int j = 0; j < 8; j++) {
+        assert_int_equal(white_at(sc, xs[j], 16.5), 1);
+        assert_int_equal(white_at(sc, gaps[j], 16.5), 0);
+    }
+    aa_scene_free(sc);
+}
+
 /* ---- areas through the box reference ---- */
 
 /* The sum of the box reference of `body` over the view (the area of the
@@ -186,34 +257,54 @@ static void test_fill_areas(void **state)
     check_area("small radii", "<path d=\"M 6 16 A 2 1 0 0 1 26 16 Z\"/>", M_PI * 10 * 5 / 2);
 }
 
-/* Strokes (SVG 2, "Stroke shape"): a line of length L stroked w wide
- * with butt caps is a w x L rectangle; round caps add a disk of diameter w
- * (two half disks); a rectangle's stroke with miter joins (right angles,
- * miter length sqrt 2 w below the limit 4 w) is the box grown by w/2 less
- * the box shrunk by w/2; a circle's stroke is the ring between radii
- * r +- w/2, pi ((r + w/2)^2 - (r - w/2)^2) = 2 pi r w; dashes "4 2" along
- * a line of 20 cover [0, 4], [6, 10], [12, 16], [18, 20]: 14 w. */
+/* Strokes of lines (SVG 2, "Stroke shape"): a line of length L stroked w
+ * wide with butt caps is a w x L rectangle; a rectangle's stroke with
+ * miter joins (right angles, miter length sqrt 2 w below the limit 4 w) is
+ * the box grown by w/2 less the box shrunk by w/2; bevels cut from each
+ * corner half of its w/2 x w/2 square; dashes "4 2" along a line of 20
+ * cover [0, 4], [6, 10], [12, 16], [18, 20]: 14 w. */
 static void test_stroke_areas(void **state)
 {
     (void)state;
     check_area("line", "<line x1=\"4\" y1=\"10.5\" x2=\"27\" y2=\"20\" stroke=\"white\" "
                        "stroke-width=\"3\"/>",
                3 * hypot(23, 9.5));
-    check_area("round caps", "<line x1=\"6\" y1=\"10.5\" x2=\"25\" y2=\"20\" stroke=\"white\" "
-                             "stroke-width=\"3\" stroke-linecap=\"round\"/>",
-               3 * hypot(19, 9.5) + M_PI * 1.5 * 1.5);
     check_area("stroked rect", "<rect x=\"6\" y=\"7\" width=\"18\" height=\"14\" fill=\"none\" "
                                "stroke=\"white\" stroke-width=\"2\"/>",
                20 * 16 - 16 * 12);
-    check_area("ring", "<circle cx=\"15.5\" cy=\"16.25\" r=\"9\" fill=\"none\" stroke=\"white\" "
-                       "stroke-width=\"3\"/>",
-               2 * M_PI * 9 * 3);
+    check_area("bevelled rect", "<rect x=\"6\" y=\"7\" width=\"18\" height=\"14\" "
+                                "fill=\"none\" stroke=\"white\" stroke-width=\"2\" "
+                                "stroke-linejoin=\"bevel\"/>",
+               20 * 16 - 16 * 12 - 4 * 0.5);
     check_area("dashes", "<line x1=\"6\" y1=\"16\" x2=\"26\" y2=\"16\" stroke=\"white\" "
                          "stroke-width=\"2\" stroke-dasharray=\"4 2\"/>",
                14 * 2);
 }
 
+/* Strokes with circular arcs: round caps add to a butt line's w L a disk
+ * of diameter w (two half disks); a circle's stroke is the ring between
+ * radii r +- w/2, pi ((r + w/2)^2 - (r - w/2)^2) = 2 pi r w; a rounded
+ * rectangle's stroke (round corners of radius r, the stroke w) is the
+ * grown rounded box less the shrunk one: (W + w)(H + w) - (4 - pi)
+ * (r + w/2)^2 - ((W - w)(H - w) - (4 - pi)(r - w/2)^2). */
+static void test_stroke_arc_areas(void **state)
+{
+    (void)state;
+    check_area("round caps", "<line x1=\"6\" y1=\"10.5\" x2=\"25\" y2=\"20\" stroke=\"white\" "
+                             "stroke-width=\"3\" stroke-linecap=\"round\"/>",
+               3 * hypot(19, 9.5) + M_PI * 1.5 * 1.5);
+    check_area("ring", "<circle cx=\"15.5\" cy=\"16.25\" r=\"9\" fill=\"none\" stroke=\"white\" "
+                       "stroke-width=\"3\"/>",
+               2 * M_PI * 9 * 3);
+    check_area("stroked rounded rect",
+               "<rect x=\"5\" y=\"6\" width=\"22\" height=\"18\" rx=\"4\" fill=\"none\" "
+               "stroke=\"white\" stroke-width=\"2\"/>",
+               24 * 20 - (4 - M_PI) * 25 - (20 * 16 - (4 - M_PI) * 9));
+}
+
 SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_scene_points),
+             cmocka_unit_test(test_stroke_points),
              cmocka_unit_test(test_fill_areas),
-             cmocka_unit_test(test_stroke_areas))
+             cmocka_unit_test(test_stroke_areas),
+             cmocka_unit_test(test_stroke_arc_areas))
