@@ -6,7 +6,7 @@
 #   make test    the same set-up as run, then every test (plain and under
 #                ASan+UBSan) and the regression gate: what CI runs
 #   make bench   speed measurements (not tests: nothing here asserts a time)
-#   make fuzz    libFuzzer on the spec parsers, image, cache, CSV and SVG readers (needs clang)
+#   make fuzz    libFuzzer on the spec parsers, image, cache, CSV and SVG readers, the stroker (needs clang)
 #   make valgrind  the tests under valgrind memcheck
 #   make install PREFIX=/usr/local
 #
@@ -278,7 +278,7 @@ FUZZ_BUILD   := $(BUILD)/fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_FLAGS   := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g -O1
 FUZZ_TARGETS := $(FUZZ_BUILD)/fuzz_spec $(FUZZ_BUILD)/fuzz_image $(FUZZ_BUILD)/fuzz_cache \
-                $(FUZZ_BUILD)/fuzz_baseline $(FUZZ_BUILD)/fuzz_svg
+                $(FUZZ_BUILD)/fuzz_baseline $(FUZZ_BUILD)/fuzz_svg $(FUZZ_BUILD)/fuzz_stroke
 FUZZ_CC            := clang
 FUZZ_CXX           := clang++
 FUZZ_CFLAGS        := -std=c11 $(WARN) -Wno-pass-failed -fPIC -fopenmp $(FUZZ_FLAGS)
@@ -303,7 +303,7 @@ fuzz:
 	  clang -fopenmp -x c - -o $(FUZZ_BUILD)/omp-probe 2>/dev/null && $(FUZZ_BUILD)/omp-probe || \
 	  { echo "make fuzz needs clang and its OpenMP: apt-get install clang libomp-dev" >&2; exit 2; }
 	@$(MAKE) --no-print-directory $(FUZZ_TARGETS)
-	@for t in spec image cache baseline svg; do \
+	@for t in spec image cache baseline svg stroke; do \
 	  mkdir -p $(FUZZ_BUILD)/corpus-$$t $(FUZZ_BUILD)/crash-$$t; \
 	  echo "fuzz_$$t: $(FUZZ_SECONDS) s"; \
 	  $(FUZZ_BUILD)/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 \

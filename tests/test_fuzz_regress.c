@@ -3,7 +3,7 @@
  * once crashed them (tests/fuzz/corpus/, tests/fuzz/regress/), run through
  * the same code as `make fuzz` on every `make test` (plain and under
  * ASan+UBSan): the spec parsers, the image readers, the reference cache's
- * reader and the results CSV reader.  The targets abort on a broken
+ * reader, the results CSV reader and the stroker.  The targets abort on a broken
  * invariant (a spec whose canonical text parses differently, an image that
  * does not read back as written, a wrong reference served, a baseline row
  * the gate cannot trust accepted); the sanitizers catch the rest.
@@ -13,6 +13,7 @@
 #include "fuzz/fuzz_cache.c"
 #include "fuzz/fuzz_image.c"
 #include "fuzz/fuzz_spec.c"
+#include "fuzz/fuzz_stroke.c"
 #include "fuzz/fuzz_svg.c"
 #include "support.h"
 
@@ -102,9 +103,23 @@ static void test_svg_inputs(void **state)
         aa_fuzz_svg((const uint8_t *)more[k], strlen(more[k]));
 }
 
+static void test_stroke_inputs(void **state)
+{
+    (void)state;
+    assert_true(feed("tests/fuzz/corpus/stroke", aa_fuzz_stroke) >= 8);
+    feed("tests/fuzz/regress/stroke", aa_fuzz_stroke);
+    /* and a few made here: empty, one byte, all ones */
+    uint8_t ones[300];
+    memset(ones, 0xff, sizeof ones);
+    aa_fuzz_stroke(ones, 0);
+    aa_fuzz_stroke(ones, 1);
+    aa_fuzz_stroke(ones, sizeof ones);
+}
+
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_spec_inputs),
              cmocka_unit_test(test_image_inputs),
              cmocka_unit_test(test_cache_inputs),
              cmocka_unit_test(test_baseline_inputs),
-             cmocka_unit_test(test_svg_inputs))
+             cmocka_unit_test(test_svg_inputs),
+             cmocka_unit_test(test_stroke_inputs))

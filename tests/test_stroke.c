@@ -25,6 +25,9 @@
  *    senses and of more than half a turn, and random paths of lines and
  *    arcs, open and closed; dashed paths against the distance to their
  *    dashes (laid out here by arc length);
+ *  - the outline filled into a scene (aa_path_fill, also through a shear
+ *    that makes its circles ellipses): the scene's point query agrees with
+ *    the stroke shape at the point's preimage;
  *  - orientation: every contour of every outline here has positive signed
  *    area (Simpson's rule on x dy - y dx, 64 steps an arc); every winding
  *    number is >= 0;
@@ -623,7 +626,7 @@ static void test_round_fixed(void **state)
         must(aa_stroke_outline(&p, &st, &out));
         int nc = check_orientation(&out);
         within c = {&p, 0.15};
-        int n = compare_points_near(&out, -0.4, -0.4, 3.6, 3.6, 20000, within_h, &c, "fixed path",
+        int n = compare_points_near(&out, -0.4, -0.4, 3.6, 3.6, 8000, within_h, &c, "fixed path",
                                     &p, 0.15);
         check_seen("fixed path");
         print_message("fixed path (%s): %d contours, %d points agree\n",
@@ -659,7 +662,7 @@ static void test_round_random(void **state)
 {
     (void)state;
     int total = 0;
-    for (int i = 0; i < 60; i++) {
+    for (int i = 0; i < 45; i++) {
         aa_path p = {0};
         random_path(&p, i % 3 == 0);
         aa_stroke_style st;
@@ -670,7 +673,7 @@ static void test_round_random(void **state)
         within c = {&p, 0.5 * st.width};
         char what[64];
         snprintf(what, sizeof what, "random path %d", i);
-        total += compare_points_near(&out, -0.6, -0.6, 1.6, 1.6, 1500, within_h, &c, what, &p,
+        total += compare_points_near(&out, -0.6, -0.6, 1.6, 1.6, 1000, within_h, &c, what, &p,
                                      c.h);
         aa_path_free(&out);
         aa_path_free(&p);
@@ -780,7 +783,7 @@ static void test_round_dashes(void **state)
         within c = {&dashes, 0.5 * st.width};
         char what[64];
         snprintf(what, sizeof what, "dashed path %d", i);
-        total += compare_points_near(&out, -0.5, -0.5, 1.5, 1.5, 1500, within_h, &c, what,
+        total += compare_points_near(&out, -0.5, -0.5, 1.5, 1.5, 1000, within_h, &c, what,
                                      &dashes, c.h);
         aa_path_free(&dashes);
         aa_path_free(&out);
@@ -1003,7 +1006,7 @@ static void test_shape_random(void **state)
         sh.join = st.join, sh.cap = st.cap, sh.out = &out;
         char what[64];
         snprintf(what, sizeof what, "random path %d (join %d cap %d)", i, i % 3, (i / 3) % 3);
-        total += compare_points_near(&out, -0.6, -0.6, 1.6, 1.6, 1500, in_shape, &sh, what, &p,
+        total += compare_points_near(&out, -0.6, -0.6, 1.6, 1.6, 1000, in_shape, &sh, what, &p,
                                      sh.h);
         aa_path_free(&out);
         aa_path_free(&p);
@@ -1034,13 +1037,106 @@ static void test_arc_butt(void **state)
         shape_of(&p, &sh);
         sh.h = 0.5 * st.width, sh.limit = st.miterlimit;
         sh.join = st.join, sh.cap = st.cap, sh.out = &out;
-        total += compare_points_near(&out, -0.5, -0.5, 1.5, 1.5, 1500, in_shape, &sh, "butt arc",
+        total += compare_points_near(&out, -0.5, -0.5, 1.5, 1.5, 1000, in_shape, &sh, "butt arc",
                                      &p, sh.h);
         aa_path_free(&out);
         aa_path_free(&p);
     }
     check_seen("butt arcs");
         print_message("butt arcs: %d points agree\n", total);
+}
+
+/* ---- through a scene ---- */
+
+typedef struct mapped {
+    const aa_scene *scene;
+    double inv[6]; /* the map's inverse */
+    shape *sh;
+} mapped;
+
+/* The scene's colour at (x, y) against the stroke shape at the point's
+ * preimage; the margin is the preimage's distance to the outline, scaled
+ * by the map's least stretch (here at least 0.5). */
+static int compare_scene(const mapped *m, double x, double y, int *agree)
+{
+    double px = m->inv[0] * x + m->inv[2] * y + m->inv[4];
+    double py = m->inv[1] * x + m->inv[3] * y + m->inv[5];
+    double margin;
+    int want = in_shape(m->sh, px, py, &margin);
+    if (margin * 0.5 < 1e-9)
+        return 0;
+    aa_rgb c = aa_scene_colour_at(m->scene, x, y);
+    int got = c.c[0] == 1;
+    if (got != want)
+        fail_msg("scene at (%.17g, %.17g) (preimage (%.17g, %.17g)): %s, the shape says %s",
+                 x, y, px, py, got ? "inside" : "outside", want ? "inside" : "outside");
+    *agree += 1;
+    return want;
+}
+
+/* The outline filled into a scene through an affine map (a shear: its
+ * circles become ellipses): the scene's point query (aa_scene_colour_at)
+ * agrees with the stroke shape at the preimage, for random paths, every
+ * join and cap. */
+static void test_scene_points(void **state)
+{
+    (void)state;
+    static shape sh;
+    /* x' = 0.9 x + 0.3 y + 0.05, y' = 0.1 x + 0.8 y + 0.1; det 0.69 */
+    const double m[6] = {0.9, 0.1, 0.3, 0.8, 0.05, 0.1};
+    double det = m[0] * m[3] - m[1] * m[2];
+    mapped q = {.sh = &sh};
+    int agree = 0;
+    long in = 0;
+    for (int i = 0; i < 24; i++) {
+        aa_path p = {0};
+        random_path(&p, i % 3 == 0);
+        aa_stroke_style st;
+        aa_stroke_style_default(&st);
+        st.width = uniform(0.02, 0.3);
+        st.join = (aa_line_join)(i % 3);
+        st.cap = (aa_line_cap)((i / 3) % 3);
+        st.miterlimit = uniform(1, 6);
+        aa_path out = {0};
+        must(aa_stroke_outline(&p, &st, &out));
+        shape_of(&p, &sh);
+        sh.h = 0.5 * st.width, sh.limit = st.miterlimit;
+        sh.join = st.join, sh.cap = st.cap, sh.out = &out;
+        aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+        assert_non_null(s);
+        must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO));
+        must(aa_path_fill(&out, i % 2 ? m : NULL, s));
+        must(aa_scene_finish(s));
+        q.scene = s;
+        /* every other path through the map, the rest as they are */
+        if (!(i % 2)) {
+            q.inv[0] = 1, q.inv[1] = 0, q.inv[2] = 0, q.inv[3] = 1, q.inv[4] = 0, q.inv[5] = 0;
+        } else {
+            q.inv[0] = m[3] / det, q.inv[1] = -m[1] / det, q.inv[2] = -m[2] / det;
+            q.inv[3] = m[0] / det;
+            q.inv[4] = -(q.inv[0] * m[4] + q.inv[2] * m[5]);
+            q.inv[5] = -(q.inv[1] * m[4] + q.inv[3] * m[5]);
+        }
+        for (int k = 0; k < 600; k++) {
+            double x, y;
+            if (k % 2) {
+                near_point(&p, sh.h, &x, &y);
+                if (i % 2) {
+                    double tx = m[0] * x + m[2] * y + m[4];
+                    y = m[1] * x + m[3] * y + m[5];
+                    x = tx;
+                }
+            } else {
+                x = uniform(-0.6, 1.6), y = uniform(-0.6, 1.6);
+            }
+            in += compare_scene(&q, x, y, &agree);
+        }
+        aa_scene_free(s);
+        aa_path_free(&out);
+        aa_path_free(&p);
+    }
+    print_message("scene point queries: %d points agree, %ld inside\n", agree, in);
+    assert_true(in > 100 && agree - in > 100);
 }
 
 /* ---- degenerate subpaths, refusals ---- */
@@ -1188,5 +1284,6 @@ SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_default_style), cmocka_unit_test(
              cmocka_unit_test(test_closed_square), cmocka_unit_test(test_dashes_line),
              cmocka_unit_test(test_round_fixed), cmocka_unit_test(test_round_random),
              cmocka_unit_test(test_round_dashes), cmocka_unit_test(test_arc_butt),
-             cmocka_unit_test(test_shape_random), cmocka_unit_test(test_zero_length),
+             cmocka_unit_test(test_shape_random), cmocka_unit_test(test_scene_points),
+             cmocka_unit_test(test_zero_length),
              cmocka_unit_test(test_refused))

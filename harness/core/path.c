@@ -44,7 +44,8 @@ static int push(aa_path *p, aa_path_op op, const double *v, int n)
     aa_path_seg *s = &p->seg[p->n++];
     memset(s, 0, sizeof *s);
     s->op = op;
-    memcpy(s->p, v, (size_t)n * sizeof *v);
+    if (n > 0)
+        memcpy(s->p, v, (size_t)n * sizeof *v);
     return AA_OK;
 }
 

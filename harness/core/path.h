@@ -48,6 +48,8 @@ int aa_path_cubic_to(aa_path *p, double c1x, double c1y, double c2x, double c2y,
 /* As aa_scene_arc_to, same checks. */
 int aa_path_arc_to(aa_path *p, double cx, double cy, double ux, double uy, double vx, double vy,
                    double t0, double t1, double x, double y);
+/* A segment drawn after a close starts at the closed subpath's start (SVG's
+ * implicit move_to); drawing before any move_to is refused. */
 int aa_path_close(aa_path *p);
 
 /* The SVG arc command from (x0, y0) to (x1, y1) with radii rx, ry, x-axis
@@ -91,7 +93,10 @@ void aa_stroke_style_default(aa_stroke_style *st);
  * contour is simple and turns the same way, so their union is what the
  * non-zero rule fills.  Lines and circular arcs stroke exactly to lines and
  * circular arcs.  What cannot be stroked exactly yet is refused with
- * AA_EINVAL naming it (Bezier arcs; elliptical arcs that are not circles). */
+ * AA_EINVAL naming it (Bezier arcs; elliptical arcs that are not circles),
+ * and so is a subpath of more than 10000 dashes.  stroke.c says what it
+ * chose where SVG leaves room (zero-length subpaths and segments, dashes on
+ * closed subpaths).  On failure `out` is as it was. */
 int aa_stroke_outline(const aa_path *in, const aa_stroke_style *style, aa_path *out);
 
 #endif

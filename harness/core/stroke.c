@@ -440,7 +440,7 @@ static int stroke_run(aa_path *out, const piece *p, size_t n, int closed,
 /* ---- dashes ---- */
 
 /* The most dashes one subpath may have. */
-#define DASH_MAX 100000
+#define DASH_MAX 10000
 
 /* The dash from arc length a to b (a <= b) of the subpath's pieces. */
 static int stroke_dash(aa_path *out, const piece *p, size_t n, double a, double b,
@@ -490,7 +490,7 @@ static int stroke_dashed(aa_path *out, const piece *p, size_t n, const aa_stroke
         period += d[i % style->ndash];
     for (size_t i = 0; i < n; i++)
         total += p[i].len;
-    if (total / period * (double)m > DASH_MAX)
+    if (total / period * (0.5 * (double)m) > DASH_MAX)
         return aa_fail(AA_EINVAL, "stroke: the dash pattern (period %g) makes more than %d dashes "
                                   "on a subpath of length %g",
                        period, DASH_MAX, total);
