@@ -18,7 +18,9 @@
  *    beyond 2 pi refused; after close the next segment starts at the
  *    closed subpath's start (SVG's implicit move_to).
  *  - aa_path_fill: a square through a shear and scale: the box reference of
- *    the filled white shape sums to |det| times its area in pixels.
+ *    the filled white shape sums to |det| times its area in pixels; a
+ *    circle's arcs through the same map become the scene's elliptical arc
+ *    edges with the centre mapped and u, v by the linear part (by hand).
  */
 #include "path.h"
 #include "support.h"
@@ -213,6 +215,43 @@ static void test_fill_map(void **state)
     aa_path_free(&p);
 }
 
+/* Half the unit circle about (0.5, 0.5), radius 0.25, closed by its
+ * diameter, through the map of test_fill_map: the arc edge has centre
+ * (1.5 0.5 + 0.5 0.5 - 0.2, 0.2 0.5 + 1.2 0.5 - 0.1) = (0.8, 0.6),
+ * u = L (0.25, 0) = (0.375, 0.05), v = L (0, 0.25) = (0.125, 0.3), the same
+ * angles, and ends at the mapped end. */
+static void test_fill_arc(void **state)
+{
+    (void)state;
+    aa_path p = {0};
+    assert_int_equal(aa_path_move_to(&p, 0.75, 0.5), AA_OK);
+    assert_int_equal(aa_path_arc_to(&p, 0.5, 0.5, 0.25, 0, 0, 0.25, 0, M_PI, 0.25, 0.5), AA_OK);
+    assert_int_equal(aa_path_close(&p), AA_OK);
+    const double m[6] = {1.5, 0.2, 0.5, 1.2, -0.2, -0.1};
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_path_fill(&p, m, s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    size_t n;
+    const aa_edge *e = aa_scene_edges(s, &n);
+    int arcs = 0;
+    for (size_t k = 0; k < n; k++) {
+        if (e[k].quad != 3)
+            continue;
+        arcs++;
+        assert_true(fabs(e[k].cx - 0.8) < 1e-15 && fabs(e[k].cy - 0.6) < 1e-15);
+        assert_true(fabs(e[k].ux - 0.375) < 1e-15 && fabs(e[k].uy - 0.05) < 1e-15);
+        assert_true(fabs(e[k].vx - 0.125) < 1e-15 && fabs(e[k].vy - 0.3) < 1e-15);
+        assert_true(e[k].t0 == 0 && e[k].t1 == M_PI);
+        assert_true(fabs(e[k].x1 - (1.5 * 0.25 + 0.5 * 0.5 - 0.2)) < 1e-15);
+        assert_true(fabs(e[k].y1 - (0.2 * 0.25 + 1.2 * 0.5 - 0.1)) < 1e-15);
+    }
+    assert_int_equal(arcs, 1);
+    aa_scene_free(s);
+    aa_path_free(&p);
+}
+
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_endpoints_special),
              cmocka_unit_test(test_endpoints_random), cmocka_unit_test(test_builder),
-             cmocka_unit_test(test_fill_map))
+             cmocka_unit_test(test_fill_map), cmocka_unit_test(test_fill_arc))

@@ -5,7 +5,6 @@
  */
 #include "path.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -134,7 +133,7 @@ int aa_path_arc_to(aa_path *p, double cx, double cy, double ux, double uy, doubl
     if (st)
         return st;
     const double twopi = 2.0 * M_PI;
-    if (fabs(t1 - t0) > twopi * (1.0 + 4.0 * DBL_EPSILON))
+    if (!(fabs(t1 - t0) <= twopi * (1.0 + 1e-12)))
         return aa_fail(AA_EINVAL, "path arc_to: the sweep %.17g is more than 2 pi", t1 - t0);
     double size = hypot(ux, uy) + hypot(vx, vy);
     double cross = ux * vy - uy * vx;

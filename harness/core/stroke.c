@@ -22,12 +22,13 @@
  *    angle between the segments; 1/sin(theta/2) = 2/|nA + nB|) is at most
  *    the limit, the quadrilateral P A M B with the tip
  *    M = P + 2h (nA + nB)/|nA + nB|^2 where the outer edges' tangent lines
- *    meet, else the bevel; round the circular sector of radius h about P
- *    from A to B (the points of the disk about P in the directions between
- *    the outer normals; the rest of the disk is inside the segments'
- *    regions wherever it is within h of the path elsewhere, so a round join
- *    with round caps makes the stroke exactly the points within h of the
- *    path).  A straight vertex (d_in = d_out) has no join; a reversal
+ *    meet (at an arc too: its tangent line, not the `arcs` join), else the
+ *    bevel; round the circular sector of radius h about P from A to B.
+ *    With round joins and round caps every point within h of the path is
+ *    covered (its nearest point on the path is inside a segment, on whose
+ *    normal it lies, or a vertex or an end, in whose outward cone it
+ *    lies), so the stroke is then exactly those points, as tests check.
+ *    A straight vertex (d_in = d_out) has no join; a reversal
  *    (d_out = -d_in) has an empty bevel and miter (the ratio is infinite)
  *    and a half disk ahead of the vertex as its round join;
  *  - caps at the ends of an open subpath or a dash, in the outward
@@ -38,25 +39,29 @@
  * Choices where SVG leaves room, or where this differs from a renderer:
  *  - zero-length segments are dropped before joins: a join is between the
  *    neighbouring segments of non-zero length (SVG 2 takes a zero-length
- *    segment's direction from its neighbours, which comes to the same);
+ *    segment's direction from its neighbours, which comes to the same); a
+ *    line whose ends differ by rounding only (1e-14 of their magnitude)
+ *    counts as of zero length;
  *  - a subpath with segments but no length (M p L p, M p Z) is drawn as its
  *    caps at p in the direction of the x axis: a disk for round, an
- *    axis-aligned square of side 2h for square, nothing for butt; a subpath
- *    that is only a move_to draws nothing (SVG 1.1, "a subpath consisting
+ *    axis-aligned square of side 2h for square, nothing for butt (nor when
+ *    a dash pattern starts in a gap); a subpath that is only a move_to
+ *    draws nothing (SVG 1.1, "a subpath consisting
  *    of a single moveto shall not be stroked");
  *  - dashes are laid along each subpath from its start by arc length (exact
  *    for lines and circular arcs, r |t1 - t0|), an odd list repeated, the
  *    offset taken modulo the pattern's length (a negative one too); each
  *    dash is an open run with caps at both ends and joins at the vertices
- *    strictly inside it, also on a closed subpath (the dash through its
- *    start is two dashes); a dash of zero length is its caps in the path's
- *    direction there.
+ *    strictly inside it; on a closed subpath the start is such a vertex: a
+ *    dash through it (from 0 and to the length) is one dash, joined there,
+ *    and a dash over the whole subpath leaves it closed; a dash of zero
+ *    length is its caps in the path's direction there.
  * Refused (AA_EINVAL, naming it): Bezier arcs and elliptical arcs that are
- * not circles, whose offset curves are not lines or circles.
+ * not circles, whose offset curves are not lines or circles; a subpath of
+ * more than DASH_MAX (10000) dashes.
  */
 #include "path.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -144,7 +149,8 @@ static double c_area(const contour *c)
             double ax, ay, bx, by;
             arc_point(cx, cy, e->ux, e->uy, e->vx, e->vy, e->t0, &ax, &ay);
             arc_point(cx, cy, e->ux, e->uy, e->vx, e->vy, e->t1, &bx, &by);
-            a += cx * (by - ay) - cy * (bx - ax) + (e->ux * e->vy - e->uy * e->vx) * (e->t1 - e->t0);
+            double uv = e->ux * e->vy - e->uy * e->vx;
+            a += cx * (by - ay) - cy * (bx - ax) + uv * (e->t1 - e->t0);
             /* the gap from the pen to the arc's own start (rounding) */
             a += px * ay - py * ax;
             px = bx, py = by;
@@ -442,6 +448,29 @@ static int stroke_run(aa_path *out, const piece *p, size_t n, int closed,
 /* The most dashes one subpath may have. */
 #define DASH_MAX 10000
 
+/* The parts of the subpath's pieces from arc length a to b (a < b),
+ * appended to dst. */
+static int collect(const piece *p, size_t n, double a, double b, pieces *dst)
+{
+    double s = 0;
+    for (size_t k = 0; k < n; k++) {
+        double e = s + p[k].len;
+        double lo = fmax(a, s) - s, hi = fmin(b, e) - s;
+        if (k == n - 1 && b >= e)
+            hi = p[k].len;
+        if (hi > lo) {
+            piece q = lo <= 0 && hi >= p[k].len
+                          ? p[k]
+                          : piece_part(&p[k], fmax(lo, 0), fmin(hi, p[k].len));
+            int st = pieces_push(dst, &q);
+            if (st)
+                return st;
+        }
+        s = e;
+    }
+    return AA_OK;
+}
+
 /* The dash from arc length a to b (a <= b) of the subpath's pieces. */
 static int stroke_dash(aa_path *out, const piece *p, size_t n, double a, double b,
                        const aa_stroke_style *style, double h, pieces *tmp)
@@ -463,25 +492,44 @@ static int stroke_dash(aa_path *out, const piece *p, size_t n, double a, double 
         int st = stroke_cap(out, x, y, d, style, h);
         return st ? st : stroke_cap(out, x, y, back, style, h);
     }
-    for (size_t k = 0; k < n; k++) {
-        double e = s + p[k].len;
-        double lo = fmax(a, s) - s, hi = fmin(b, e) - s;
-        if (k == n - 1 && b >= e)
-            hi = p[k].len;
-        if (hi > lo) {
-            piece q = lo <= 0 && hi >= p[k].len ? p[k] : piece_part(&p[k], fmax(lo, 0), fmin(hi, p[k].len));
-            int st = pieces_push(tmp, &q);
-            if (st)
-                return st;
-        }
-        s = e;
-    }
-    return stroke_run(out, tmp->p, tmp->n, 0, style, h);
+    int st = collect(p, n, a, b, tmp);
+    return st ? st : stroke_run(out, tmp->p, tmp->n, 0, style, h);
 }
 
-/* The dashes of one subpath (SVG 2, "dash positions"). */
-static int stroke_dashed(aa_path *out, const piece *p, size_t n, const aa_stroke_style *style,
-                         double h, pieces *tmp)
+/* Where in the pattern (m entries, of total length `period`) a subpath
+ * starts: the entry's index (even: a dash), *pos how far into it. */
+static size_t dash_phase(const aa_stroke_style *style, double period, double *pos)
+{
+    size_t m = style->ndash % 2 ? 2 * style->ndash : style->ndash;
+    const double *d = style->dash;
+    double p = fmod(style->dashoffset, period);
+    if (p < 0)
+        p += period;
+    size_t i = 0;
+    for (size_t guard = 0; guard < 2 * m && p > 0 && p >= d[i % style->ndash]; guard++) {
+        p -= d[i % style->ndash];
+        i = (i + 1) % m;
+    }
+    *pos = p;
+    return i;
+}
+
+/* 1 if the pattern is in a dash where a subpath starts. */
+static int dash_on_at_start(const aa_stroke_style *style)
+{
+    size_t m = style->ndash % 2 ? 2 * style->ndash : style->ndash;
+    double period = 0, pos;
+    for (size_t i = 0; i < m; i++)
+        period += style->dash[i % style->ndash];
+    return dash_phase(style, period, &pos) % 2 == 0;
+}
+
+/* The dashes of one subpath (SVG 2, "dash positions").  On a closed
+ * subpath a dash that runs through its start (one from 0 and one to its
+ * length) is one dash, joined there; a dash over all of it is the closed
+ * subpath. */
+static int stroke_dashed(aa_path *out, const piece *p, size_t n, int closed,
+                         const aa_stroke_style *style, double h, pieces *tmp)
 {
     size_t m = style->ndash % 2 ? 2 * style->ndash : style->ndash;
     const double *d = style->dash;
@@ -494,28 +542,36 @@ static int stroke_dashed(aa_path *out, const piece *p, size_t n, const aa_stroke
         return aa_fail(AA_EINVAL, "stroke: the dash pattern (period %g) makes more than %d dashes "
                                   "on a subpath of length %g",
                        period, DASH_MAX, total);
-    /* where in the pattern the subpath starts */
-    double pos = fmod(style->dashoffset, period);
-    if (pos < 0)
-        pos += period;
-    size_t i = 0;
-    for (size_t guard = 0; guard < 2 * m && pos > 0 && pos >= d[i % style->ndash]; guard++) {
-        pos -= d[i % style->ndash];
-        i = (i + 1) % m;
-    }
+    double pos;
+    size_t i = dash_phase(style, period, &pos);
     double s = 0, rem = fmax(d[i % style->ndash] - fmax(pos, 0), 0);
+    double head = -1; /* closed: the end of the dash from 0, held back */
     int st = AA_OK;
     for (long guard = 0; guard < 4L * DASH_MAX && !st; guard++) {
-        double e = s + rem;
-        /* a dash from s to e; one of length 0 also at the very end */
-        if (i % 2 == 0 && (s < total || (rem == 0 && s == total)))
-            st = stroke_dash(out, p, n, s, fmin(e, total), style, h, tmp);
+        double e = s + rem, b = fmin(e, total);
+        /* a dash from s to b; one of length 0 also at the very end */
+        if (i % 2 == 0 && (s < total || (rem == 0 && s == total))) {
+            if (closed && s == 0 && b > 0 && head < 0) {
+                if (b == total)
+                    return stroke_run(out, p, n, 1, style, h);
+                head = b;
+            } else if (closed && head > 0 && b == total && s < total) {
+                tmp->n = 0;
+                if (!(st = collect(p, n, s, total, tmp)) && !(st = collect(p, n, 0, head, tmp)))
+                    st = stroke_run(out, tmp->p, tmp->n, 0, style, h);
+                head = -1;
+            } else {
+                st = stroke_dash(out, p, n, s, b, style, h, tmp);
+            }
+        }
         if (e > total)
             break;
         s = e;
         i = (i + 1) % m;
         rem = d[i % style->ndash];
     }
+    if (!st && head > 0)
+        st = stroke_dash(out, p, n, 0, head, style, h, tmp);
     return st;
 }
 
@@ -572,11 +628,16 @@ static int circle_piece(const aa_path_seg *g, size_t k, double px, double py, pi
     return AA_OK;
 }
 
+/* A line; of length 0 (dropped) when its ends differ by rounding only, 1e-14
+ * of their magnitude or less: its direction would be noise, and its joins
+ * with it (a line closing a full circle whose end was computed, say). */
 static int line_piece(double x0, double y0, double x1, double y1, piece *p)
 {
     memset(p, 0, sizeof *p);
     p->x0 = x0, p->y0 = y0, p->x1 = x1, p->y1 = y1;
     p->len = hypot(x1 - x0, y1 - y0);
+    if (p->len <= 1e-14 * (fabs(x0) + fabs(y0) + fabs(x1) + fabs(y1)))
+        p->len = 0;
     if (p->len > 0) {
         p->dx = (x1 - x0) / p->len;
         p->dy = (y1 - y0) / p->len;
@@ -591,10 +652,11 @@ static int flush(aa_path *out, pieces *ps, int drawn, int closed, double px, dou
 {
     int st = AA_OK;
     if (ps->n == 0) {
-        if (drawn)
+        /* with dashes, only if the pattern starts in a dash */
+        if (drawn && (style->ndash == 0 || dash_on_at_start(style)))
             st = stroke_dot(out, px, py, style, h);
     } else if (style->ndash > 0) {
-        st = stroke_dashed(out, ps->p, ps->n, style, h, tmp);
+        st = stroke_dashed(out, ps->p, ps->n, closed, style, h, tmp);
     } else {
         st = stroke_run(out, ps->p, ps->n, closed, style, h);
     }
@@ -651,7 +713,7 @@ static int outline(const aa_path *in, const aa_stroke_style *style, aa_path *out
                 line_piece(px, py, sx, sy, &p);
                 if (!isfinite(p.len))
                     return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
-                if ((st = pieces_push(ps, &p)))
+                if (p.len > 0 && (st = pieces_push(ps, &p)))
                     break;
             }
             st = flush(out, ps, 1, 1, sx, sy, style, h, tmp);
@@ -673,6 +735,8 @@ int aa_stroke_outline(const aa_path *in, const aa_stroke_style *style, aa_path *
     int st = check_style(style);
     if (st)
         return st;
+    if (in == out)
+        return aa_fail(AA_EINVAL, "stroke: the outline cannot replace its own path");
     aa_path keep = *out;
     pieces ps = {0}, tmp = {0};
     st = outline(in, style, out, &ps, &tmp);
