@@ -7,7 +7,7 @@
  * XML_PARSE_DTDLOAD, no XML_PARSE_NOENT), and a document declaring entities
  * in an internal DTD subset is refused, so no external entity is ever read
  * and no entity is expanded.  The tree is walked in document order; each
- * filled shape becomes one layer of the scene, the last shape in the
+ * fill and each stroke becomes one layer of the scene, the last shape in the
  * document in front (painter's order), in pixel units exactly as a browser
  * draws the document at one CSS pixel per image pixel:
  *
@@ -20,30 +20,41 @@
  *   - transform lists (matrix, translate, scale, rotate with or without a
  *     centre, skewX, skewY) compose from the root down and are applied to
  *     every point, control points included, which is exact for Bezier
- *     arcs under affine maps;
- *   - <path> with every command but the arc (M L H V Q T C S Z, absolute and
- *     relative, implicit repeats, the number grammar of SVG paths),
- *     <rect> without rounded corners, <polygon>, <polyline>, <g>; <line>
- *     draws nothing without a stroke; <title>, <desc>, <metadata> and
+ *     arcs under affine maps; an elliptical arc's centre maps as a point
+ *     and its semi-diameters as vectors, which is exact too;
+ *   - every shape is first a path in its user units (path.h): <path> with
+ *     every command (M L H V Q T C S A Z, absolute and relative, implicit
+ *     repeats, the number grammar of SVG paths; the arc command by SVG's
+ *     implementation notes, aa_arc_endpoints), <rect> with rounded corners
+ *     by SVG 2's rules for rx and ry, <circle>, <ellipse>, <line>,
+ *     <polygon>, <polyline>, in <g>; <title>, <desc>, <metadata> and
  *     <defs> (whose content is drawn only when referenced) draw nothing;
  *   - fill (named colours, #rgb, #rrggbb, rgb() with integers or
  *     percentages, none, inherit) and fill-rule, as attributes or in a
  *     style attribute; colours are sRGB and become linear light by the sRGB
- *     decoding.
+ *     decoding; the fill closes every subpath (a line has none);
+ *   - stroke (a colour or none), stroke-width, stroke-linejoin,
+ *     stroke-linecap, stroke-miterlimit, stroke-dasharray and
+ *     stroke-dashoffset: the stroke is the path's outline in user units
+ *     (aa_stroke_outline), a shape of its own after the fill, nonzero.
  *
- * Refused, naming the element and its line: strokes, arcs (the A command,
- * <circle>, <ellipse>, rounded rectangles), opacity below 1, paint servers
- * (gradients, patterns: url() fills), text, images, <use>, clip paths,
- * masks, filters, style sheets, nested <svg>, units other than px, any
- * attribute or style property not implemented (see css_known), and any
- * other element of the SVG namespace; elements of other namespaces are not
- * drawn (as a browser ignores them).  Malformed XML or path data, files
- * over AA_SVG_MAX_BYTES, nesting deeper than AA_SVG_MAX_DEPTH, more than
- * AA_SVG_MAX_SEGMENTS path commands, numbers over AA_SVG_MAX_NUMBER and
- * coordinates over AA_SVG_MAX_COORD pixels are refused too.
+ * Refused, naming the element and its line: strokes aa_stroke_outline
+ * cannot draw exactly (Bezier arcs, arcs of ellipses that are not
+ * circles), the joins miter-clip and arcs, opacity below 1 (opacity,
+ * fill-opacity, stroke-opacity), paint servers (gradients, patterns:
+ * url() paints), text, images, <use>, clip paths, masks, filters, style
+ * sheets, nested <svg>, units other than px, negative sizes, radii, widths
+ * and dashes, any attribute or style property not implemented (see
+ * css_known), and any other element of the SVG namespace; elements of
+ * other namespaces are not drawn (as a browser ignores them).  Malformed
+ * XML or path data, files over AA_SVG_MAX_BYTES, nesting deeper than
+ * AA_SVG_MAX_DEPTH, more than AA_SVG_MAX_SEGMENTS path segments (strokes'
+ * outlines counted), numbers over AA_SVG_MAX_NUMBER and coordinates over
+ * AA_SVG_MAX_COORD pixels are refused too.
  */
 #include "svgfile.h"
 #include "c_numbers_internal.h"
+#include "path.h"
 #include "patterns.h"
 
 #include <ctype.h>
@@ -161,10 +172,24 @@ typedef struct mat {
     double a, b, c, d, e, f; /* x' = a x + c y + e, y' = b x + d y + f */
 } mat;
 
+/* The inherited paint properties (SVG 2's initial values in the root's
+ * style: fill black, nonzero, no stroke, width 1, miter joins of limit 4,
+ * butt caps, no dashes). */
 typedef struct style {
     aa_rgb fill;
     int fill_none;
     aa_fill_rule rule;
+    aa_rgb stroke;
+    int stroke_none;
+    double stroke_width;
+    aa_line_join join;
+    const char *join_other; /* a join of SVG 2 not drawn (miter-clip, arcs), or NULL */
+    aa_line_cap cap;
+    double miterlimit;
+    double dash[AA_SVG_MAX_DASHES];
+    size_t ndash; /* 0: none */
+    double dashoffset;
+    double stroke_opacity; /* NaN: not a number (refused when a stroke is drawn) */
 } style;
 
 typedef struct reader {
@@ -173,9 +198,6 @@ typedef struct reader {
     const char *name;
     long segments;
     const xmlNode *node; /* the element being read, for messages */
-    int open;            /* a subpath is open in the sink */
-    int pending;         /* the shape is given to the sink at its first point */
-    style shape;
 } reader;
 
 /* AA_EINVAL naming the element and its line. */
@@ -298,13 +320,11 @@ static int parse_length(reader *r, const char *attr, const char *text, double *v
 
 /* ---- properties: attributes and the style attribute ---- */
 
-/* The properties the reader implements, and those that cannot change a
- * filled shape's outline or colour as it is drawn here (a stroke's width,
- * joins or dashes, since every stroke but none is refused).  Any other
- * presentation attribute or style property is refused: skipped, it would
- * draw another picture (transform in a style, transform-origin, blending,
- * markers, conditional processing...).  CSS names and keywords are matched
- * without regard to case; attribute names are XML and keep theirs. */
+/* The properties the reader implements.  Any other presentation attribute
+ * or style property is refused: skipped, it would draw another picture
+ * (transform in a style, transform-origin, blending, markers, conditional
+ * processing...).  CSS names and keywords are matched without regard to
+ * case; attribute names are XML and keep theirs. */
 static const char *const css_known[] = {
     "display",          "fill",           "fill-rule",       "stroke",
     "opacity",          "fill-opacity",   "clip-path",       "mask",
@@ -320,6 +340,8 @@ static int attr_known(const xmlNode *node, const char *name)
     } own[] = {{"svg", {"width", "height", "viewBox", "preserveAspectRatio", "version",
                         "baseProfile", "x", "y"}},
                {"rect", {"x", "y", "width", "height", "rx", "ry"}},
+               {"circle", {"cx", "cy", "r"}},
+               {"ellipse", {"cx", "cy", "rx", "ry"}},
                {"path", {"d"}},
                {"polygon", {"points"}},
                {"polyline", {"points"}},
@@ -610,9 +632,9 @@ static int hex(int c)
                                   : -1;
 }
 
-/* A fill value: a colour into *c, or none (*none = 1).  "inherit" is the
- * caller's. */
-static int parse_paint(reader *r, const char *text, aa_rgb *c, int *none)
+/* A paint value (of the property `what`, fill or stroke): a colour into
+ * *c, or none (*none = 1).  "inherit" is the caller's. */
+static int parse_paint(reader *r, const char *what, const char *text, aa_rgb *c, int *none)
 {
     double v[3];
     *none = 0;
@@ -621,23 +643,23 @@ static int parse_paint(reader *r, const char *text, aa_rgb *c, int *none)
         return AA_OK;
     }
     if (!strncasecmp(text, "url(", 4))
-        return fail_at(r, "fill=\"%s\": paint servers (gradients, patterns) are not supported",
-                       aa_echo(text));
+        return fail_at(r, "%s=\"%s\": paint servers (gradients, patterns) are not supported",
+                       what, aa_echo(text));
     if (!strcasecmp(text, "currentColor"))
-        return fail_at(r, "fill=\"%s\" is not supported (give the colour)", aa_echo(text));
+        return fail_at(r, "%s=\"%s\" is not supported (give the colour)", what, aa_echo(text));
     size_t n = strlen(text);
     if (text[0] == '#') {
         int d[6];
         if (n != 4 && n != 7) {
             if (n == 5 || n == 9)
-                return fail_at(r, "fill=\"%s\": colours with alpha (opacity) are not supported",
-                               aa_echo(text));
-            return fail_at(r, "fill=\"%s\" is not a colour (#rgb or #rrggbb)", aa_echo(text));
+                return fail_at(r, "%s=\"%s\": colours with alpha (opacity) are not supported",
+                               what, aa_echo(text));
+            return fail_at(r, "%s=\"%s\" is not a colour (#rgb or #rrggbb)", what, aa_echo(text));
         }
         for (size_t k = 1; k < n; k++)
             if ((d[k - 1] = hex((unsigned char)text[k])) < 0)
-                return fail_at(r, "fill=\"%s\" is not a colour (#rgb or #rrggbb)",
-                               aa_echo(text));
+                return fail_at(r, "%s=\"%s\" is not a colour (#rgb or #rrggbb)",
+                               what, aa_echo(text));
         for (int k = 0; k < 3; k++)
             v[k] = (n == 4 ? d[k] * 17 : d[2 * k] * 16 + d[2 * k + 1]) / 255.0;
     } else if (!strncasecmp(text, "rgb(", 4)) {
@@ -664,16 +686,16 @@ static int parse_paint(reader *r, const char *text, aa_rgb *c, int *none)
         if (*s != ')' || *skip_wsp(s + 1))
             goto bad_rgb;
     } else if (!strncasecmp(text, "rgba(", 5) || !strncasecmp(text, "hsl", 3)) {
-        return fail_at(r, "fill=\"%s\": only rgb(), #rgb, #rrggbb and named colours are "
+        return fail_at(r, "%s=\"%s\": only rgb(), #rgb, #rrggbb and named colours are "
                           "supported (no alpha)",
-                       aa_echo(text));
+                       what, aa_echo(text));
     } else {
         size_t k, count = sizeof named_colours / sizeof named_colours[0];
         for (k = 0; k < count; k++)
             if (!strcasecmp(named_colours[k].name, text))
                 break;
         if (k == count)
-            return fail_at(r, "fill=\"%s\" is not a colour this reader knows", aa_echo(text));
+            return fail_at(r, "%s=\"%s\" is not a colour this reader knows", what, aa_echo(text));
         unsigned x = named_colours[k].rgb;
         v[0] = (x >> 16) / 255.0, v[1] = ((x >> 8) & 255) / 255.0, v[2] = (x & 255) / 255.0;
     }
@@ -681,8 +703,8 @@ static int parse_paint(reader *r, const char *text, aa_rgb *c, int *none)
         c->c[k] = srgb_decode(v[k]);
     return AA_OK;
 bad_rgb:
-    return fail_at(r, "fill=\"%s\" is not rgb(R, G, B) (three numbers or three percentages)",
-                   aa_echo(text));
+    return fail_at(r, "%s=\"%s\" is not rgb(R, G, B) (three numbers or three percentages)",
+                   what, aa_echo(text));
 }
 
 /* ---- transforms ---- */
@@ -801,82 +823,96 @@ static int parse_transform(reader *r, const char *text, mat *out)
     return AA_OK;
 }
 
-/* ---- emitting ---- */
+/* ---- paths in user units ---- */
 
-static int point(reader *r, const mat *m, double x, double y, double *u, double *v)
+static int is_svg(const xmlNode *node)
 {
-    *u = m->a * x + m->c * y + m->e;
-    *v = m->b * x + m->d * y + m->f;
-    if (!(fabs(*u) <= AA_SVG_MAX_COORD && fabs(*v) <= AA_SVG_MAX_COORD))
-        return fail_at(r, "the point (%g, %g) lands at (%g, %g) pixels, beyond %g", x, y, *u, *v,
-                       AA_SVG_MAX_COORD);
-    return AA_OK;
+    return node->type == XML_ELEMENT_NODE && node->ns && node->ns->href &&
+           !strcmp((const char *)node->ns->href, SVG_NS);
 }
 
-static int count_segment(reader *r)
+static int named(const xmlNode *node, const char *name)
 {
-    if (++r->segments > AA_SVG_MAX_SEGMENTS)
+    return !strcmp((const char *)node->name, name);
+}
+
+
+/* The element and its line before a message of the path or stroke code,
+ * which knows no element. */
+static int at_element(reader *r, int st)
+{
+    if (st && r->node)
+        return aa_fail_context(st, "%s: line %ld: <%s>", r->name, xmlGetLineNo(r->node),
+                               (const char *)r->node->name);
+    return st;
+}
+
+static int count_segments(reader *r, size_t n)
+{
+    if (n > (size_t)AA_SVG_MAX_SEGMENTS || (r->segments += (long)n) > AA_SVG_MAX_SEGMENTS)
         return fail_at(r, "more than %d path segments in the document", AA_SVG_MAX_SEGMENTS);
     return AA_OK;
 }
 
-static int emit_close(reader *r)
+/* Segments appended to a path in user units, each counted. */
+static int p_move(reader *r, aa_path *p, double x, double y)
 {
-    if (!r->open)
-        return AA_OK;
-    r->open = 0;
-    return r->sink->close(r->ctx);
+    int st = count_segments(r, 1);
+    return st ? st : at_element(r, aa_path_move_to(p, x, y));
+}
+static int p_line(reader *r, aa_path *p, double x, double y)
+{
+    int st = count_segments(r, 1);
+    return st ? st : at_element(r, aa_path_line_to(p, x, y));
+}
+static int p_quad(reader *r, aa_path *p, double cx, double cy, double x, double y)
+{
+    int st = count_segments(r, 1);
+    return st ? st : at_element(r, aa_path_quad_to(p, cx, cy, x, y));
+}
+static int p_cubic(reader *r, aa_path *p, const double q[6])
+{
+    int st = count_segments(r, 1);
+    return st ? st : at_element(r, aa_path_cubic_to(p, q[0], q[1], q[2], q[3], q[4], q[5]));
+}
+/* c: cx cy ux uy vx vy t0 t1, as aa_edge */
+static int p_arc(reader *r, aa_path *p, const double c[8], double x, double y)
+{
+    int st = count_segments(r, 1);
+    return st ? st
+              : at_element(r, aa_path_arc_to(p, c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7],
+                                             x, y));
+}
+static int p_close(reader *r, aa_path *p)
+{
+    int st = count_segments(r, 1);
+    return st ? st : at_element(r, aa_path_close(p));
 }
 
-static int emit_move(reader *r, const mat *m, double x, double y)
+/* The quarter of the ellipse of centre (cx, cy) and radii rx, ry along the
+ * axes from angle q pi/2 to (q + 1) pi/2 (q = 0: from (cx + rx, cy) to
+ * (cx, cy + ry), the way of increasing y first), to the end (x, y). */
+static int p_quarter(reader *r, aa_path *p, double cx, double cy, double rx, double ry, int q,
+                     double x, double y)
 {
-    double u, v;
-    int st;
-    if ((st = emit_close(r)) || (st = point(r, m, x, y, &u, &v)) || (st = count_segment(r)))
-        return st;
-    if (r->pending) {
-        r->pending = 0;
-        if ((st = r->sink->shape(r->ctx, r->shape.fill, r->shape.rule)))
-            return st;
-    }
-    r->open = 1;
-    return r->sink->move_to(r->ctx, u, v);
-}
-
-static int emit_line(reader *r, const mat *m, double x, double y)
-{
-    double u, v;
-    int st;
-    if ((st = point(r, m, x, y, &u, &v)) || (st = count_segment(r)))
-        return st;
-    return r->sink->line_to(r->ctx, u, v);
-}
-
-static int emit_quad(reader *r, const mat *m, double cx, double cy, double x, double y)
-{
-    double p[4];
-    int st;
-    if ((st = point(r, m, cx, cy, &p[0], &p[1])) || (st = point(r, m, x, y, &p[2], &p[3])) ||
-        (st = count_segment(r)))
-        return st;
-    return r->sink->quad_to(r->ctx, p[0], p[1], p[2], p[3]);
-}
-
-static int emit_cubic(reader *r, const mat *m, const double q[6])
-{
-    double p[6];
-    int st;
-    for (int k = 0; k < 3; k++)
-        if ((st = point(r, m, q[2 * k], q[2 * k + 1], &p[2 * k], &p[2 * k + 1])))
-            return st;
-    if ((st = count_segment(r)))
-        return st;
-    return r->sink->cubic_to(r->ctx, p[0], p[1], p[2], p[3], p[4], p[5]);
+    const double c[8] = {cx, cy, rx, 0, 0, ry, q * (M_PI / 2), (q + 1) * (M_PI / 2)};
+    return p_arc(r, p, c, x, y);
 }
 
 /* ---- path data ---- */
 
-static int path_data(reader *r, const mat *m, const char *d)
+/* A flag of the arc command: one character, 0 or 1 (SVG 2's path grammar:
+ * "a1 1 0 00 1 1" has the flags 0 and 0). */
+static int scan_flag(const char **s, double *v)
+{
+    if (**s != '0' && **s != '1')
+        return -1;
+    *v = **s - '0';
+    (*s)++;
+    return 0;
+}
+
+static int path_data(reader *r, aa_path *p, const char *d)
 {
     const char *s = skip_wsp(d);
     char cmd = 0;
@@ -884,16 +920,13 @@ static int path_data(reader *r, const mat *m, const char *d)
     double qx = 0, qy = 0;                 /* last control point (for S and T) */
     char last = 0;                         /* the last command, upper case */
     int st, subpath = 0;                   /* a subpath was begun by M */
+    int open = 0;                          /* a subpath is open (not ended by Z) */
     while (*s) {
         if (isalpha((unsigned char)*s)) {
             cmd = *s++;
             if (!strchr("MmLlHhVvQqTtCcSsZzAa", cmd))
                 return fail_at(r, "d: unknown path command '%c' at offset %ld", cmd,
                                (long)(s - 1 - d));
-            if (cmd == 'A' || cmd == 'a')
-                return fail_at(r, "d: the arc command %c (elliptical arcs) cannot be held "
-                                  "exactly and is not supported",
-                               cmd);
             if (!subpath && cmd != 'M' && cmd != 'm')
                 return fail_at(r, "d: path data must begin with M or m");
             s = skip_wsp(s);
@@ -907,11 +940,19 @@ static int path_data(reader *r, const mat *m, const char *d)
                    : up == 'H' || up == 'V'           ? 1
                    : up == 'Q' || up == 'S'           ? 4
                    : up == 'C'                        ? 6
+                   : up == 'A'                        ? 7
                                                       : 0;
-        double a[6];
+        double a[7];
         for (int k = 0; k < need; k++) {
             if (k)
                 s = skip_comma_wsp(s);
+            if (up == 'A' && (k == 3 || k == 4)) {
+                if (scan_flag(&s, &a[k]))
+                    return fail_at(r, "d: %s at offset %ld (the arc's %s flag is 0 or 1)",
+                                   *s ? "malformed flag" : "path data ends too early",
+                                   (long)(s - d), k == 3 ? "large-arc" : "sweep");
+                continue;
+            }
             int e = scan_number(&s, &a[k]);
             if (e == -2)
                 return fail_at(r, "d: a number out of range at offset %ld (at most %g)",
@@ -922,31 +963,34 @@ static int path_data(reader *r, const mat *m, const char *d)
                                (long)(s - d), cmd, need);
         }
         /* after Z, a drawing command starts a new subpath at the start point */
-        if (up != 'M' && up != 'Z' && !r->open && (st = emit_move(r, m, sx, sy)))
-            return st;
+        if (up != 'M' && up != 'Z' && !open) {
+            if ((st = p_move(r, p, sx, sy)))
+                return st;
+            open = 1;
+        }
         double ox = rel ? cx : 0, oy = rel ? cy : 0;
         switch (up) {
         case 'M':
             cx = a[0] + ox, cy = a[1] + oy;
             sx = cx, sy = cy;
-            subpath = 1;
-            if ((st = emit_move(r, m, cx, cy)))
+            subpath = open = 1;
+            if ((st = p_move(r, p, cx, cy)))
                 return st;
             cmd = rel ? 'l' : 'L'; /* implicit repeats are lines */
             break;
         case 'L':
             cx = a[0] + ox, cy = a[1] + oy;
-            if ((st = emit_line(r, m, cx, cy)))
+            if ((st = p_line(r, p, cx, cy)))
                 return st;
             break;
         case 'H':
             cx = a[0] + ox;
-            if ((st = emit_line(r, m, cx, cy)))
+            if ((st = p_line(r, p, cx, cy)))
                 return st;
             break;
         case 'V':
             cy = a[0] + oy;
-            if ((st = emit_line(r, m, cx, cy)))
+            if ((st = p_line(r, p, cx, cy)))
                 return st;
             break;
         case 'Q':
@@ -960,7 +1004,7 @@ static int path_data(reader *r, const mat *m, const char *d)
                 kx = cx, ky = cy;
             cx = a[0] + ox, cy = a[1] + oy;
             qx = kx, qy = ky;
-            if ((st = emit_quad(r, m, kx, ky, cx, cy)))
+            if ((st = p_quad(r, p, kx, ky, cx, cy)))
                 return st;
             break;
         }
@@ -979,13 +1023,33 @@ static int path_data(reader *r, const mat *m, const char *d)
             }
             qx = q[2], qy = q[3];
             cx = q[4], cy = q[5];
-            if ((st = emit_cubic(r, m, q)))
+            if ((st = p_cubic(r, p, q)))
                 return st;
             break;
         }
-        default: /* Z */
-            if ((st = emit_close(r)))
+        case 'A': {
+            /* rx ry x-axis-rotation large-arc-flag sweep-flag x y: the
+             * implementation notes' conversion (aa_arc_endpoints) gives an
+             * arc, a line (a zero radius) or nothing (equal ends) */
+            double x = a[5] + ox, y = a[6] + oy, c[8];
+            int k = aa_arc_endpoints(cx, cy, a[0], a[1], a[2], a[3] != 0, a[4] != 0, x, y, c);
+            if (k < 0)
+                return at_element(r, AA_EINVAL);
+            if (k == 0)
+                st = p_arc(r, p, c, x, y);
+            else if (k == 1)
+                st = p_line(r, p, x, y);
+            else
+                st = AA_OK;
+            if (st)
                 return st;
+            cx = x, cy = y;
+            break;
+        }
+        default: /* Z */
+            if (open && (st = p_close(r, p)))
+                return st;
+            open = 0;
             cx = sx, cy = sy;
             break;
         }
@@ -994,10 +1058,10 @@ static int path_data(reader *r, const mat *m, const char *d)
         if (up == 'Z' && *s == ',')
             return fail_at(r, "d: a comma after Z at offset %ld", (long)(s - d));
     }
-    return emit_close(r);
+    return AA_OK;
 }
 
-/* ---- elements ---- */
+/* ---- elements as paths ---- */
 
 static int attr_length(reader *r, const xmlNode *node, const char *key, double def, double *v)
 {
@@ -1011,30 +1075,117 @@ static int attr_length(reader *r, const xmlNode *node, const char *key, double d
     return st;
 }
 
-static int rect(reader *r, const xmlNode *node, const mat *m, int *drawn)
+/* A radius rx or ry of <rect> or <ellipse>: a length, or auto (also when
+ * absent: *is_auto = 1); a negative value is an error (SVG 1.1; SVG 2
+ * calls it invalid), refused. */
+static int attr_radius(reader *r, const xmlNode *node, const char *key, double *v, int *is_auto)
+{
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)key);
+    int st = AA_OK;
+    *v = 0;
+    *is_auto = !t || !strcasecmp(skip_wsp((const char *)t), "auto");
+    if (!*is_auto && !(st = parse_length(r, key, (const char *)t, v)) && *v < 0)
+        st = fail_at(r, "a negative %s is an error", key);
+    xmlFree(t);
+    return st;
+}
+
+/* <rect>: SVG 2's used radii (neither given: square corners; one given:
+ * both take it; then each clamped to half the width or height) and its
+ * path: from (x + rx, y) along the top, each corner a quarter of the
+ * ellipse of radii rx, ry, closed.  Nothing if the width or height is 0. */
+static int rect(reader *r, const xmlNode *node, aa_path *p)
 {
     double x, y, w, h, rx, ry;
-    int st;
-    *drawn = 0;
+    int st, ax, ay;
     if ((st = attr_length(r, node, "x", 0, &x)) || (st = attr_length(r, node, "y", 0, &y)) ||
         (st = attr_length(r, node, "width", 0, &w)) ||
         (st = attr_length(r, node, "height", 0, &h)) ||
-        (st = attr_length(r, node, "rx", 0, &rx)) || (st = attr_length(r, node, "ry", 0, &ry)))
+        (st = attr_radius(r, node, "rx", &rx, &ax)) || (st = attr_radius(r, node, "ry", &ry, &ay)))
         return st;
     if (w < 0 || h < 0)
         return fail_at(r, "a negative width or height is an error");
-    if (rx > 0 || ry > 0)
-        return fail_at(r, "rounded corners (rx, ry) are elliptical arcs and are not supported");
     if (w == 0 || h == 0)
         return AA_OK; /* not drawn */
-    *drawn = 1;
-    if ((st = emit_move(r, m, x, y)) || (st = emit_line(r, m, x + w, y)) ||
-        (st = emit_line(r, m, x + w, y + h)) || (st = emit_line(r, m, x, y + h)))
+    if (ax && !ay)
+        rx = ry;
+    else if (ay && !ax)
+        ry = rx;
+    rx = fmin(rx, w / 2), ry = fmin(ry, h / 2);
+    if (rx == 0 || ry == 0) {
+        if ((st = p_move(r, p, x, y)) || (st = p_line(r, p, x + w, y)) ||
+            (st = p_line(r, p, x + w, y + h)) || (st = p_line(r, p, x, y + h)))
+            return st;
+        return p_close(r, p);
+    }
+    /* the corners' centres; a side of length 0 (a radius of half the
+     * width or height) is left out */
+    const double x0 = x + rx, x1 = x + w - rx, y0 = y + ry, y1 = y + h - ry;
+    if ((st = p_move(r, p, x0, y)) || (x1 > x0 && (st = p_line(r, p, x1, y))) ||
+        (st = p_quarter(r, p, x1, y0, rx, ry, -1, x + w, y0)) ||
+        (y1 > y0 && (st = p_line(r, p, x + w, y1))) ||
+        (st = p_quarter(r, p, x1, y1, rx, ry, 0, x1, y + h)) ||
+        (x1 > x0 && (st = p_line(r, p, x0, y + h))) ||
+        (st = p_quarter(r, p, x0, y1, rx, ry, 1, x, y1)) ||
+        (y1 > y0 && (st = p_line(r, p, x, y0))) ||
+        (st = p_quarter(r, p, x0, y0, rx, ry, 2, x0, y)))
         return st;
-    return emit_close(r);
+    return p_close(r, p);
 }
 
-static int poly(reader *r, const xmlNode *node, const mat *m)
+/* <circle> and <ellipse>: SVG 2's path, from (cx + rx, cy) through
+ * (cx, cy + ry), (cx - rx, cy) and (cx, cy - ry), four quarter arcs,
+ * closed.  An ellipse's auto radius is the other one.  A radius of 0
+ * disables rendering; a negative one is an error, refused. */
+static int ellipse(reader *r, const xmlNode *node, aa_path *p)
+{
+    double cx, cy, rx, ry;
+    int st, ax = 0, ay = 0;
+    if ((st = attr_length(r, node, "cx", 0, &cx)) || (st = attr_length(r, node, "cy", 0, &cy)))
+        return st;
+    if (named(node, "circle")) {
+        if ((st = attr_length(r, node, "r", 0, &rx)))
+            return st;
+        if (rx < 0)
+            return fail_at(r, "a negative r is an error");
+        ry = rx;
+    } else {
+        if ((st = attr_radius(r, node, "rx", &rx, &ax)) ||
+            (st = attr_radius(r, node, "ry", &ry, &ay)))
+            return st;
+        if (ax)
+            rx = ry;
+        if (ay)
+            ry = rx;
+    }
+    if (rx == 0 || ry == 0)
+        return AA_OK; /* not drawn */
+    if ((st = p_move(r, p, cx + rx, cy)) ||
+        (st = p_quarter(r, p, cx, cy, rx, ry, 0, cx, cy + ry)) ||
+        (st = p_quarter(r, p, cx, cy, rx, ry, 1, cx - rx, cy)) ||
+        (st = p_quarter(r, p, cx, cy, rx, ry, 2, cx, cy - ry)) ||
+        (st = p_quarter(r, p, cx, cy, rx, ry, 3, cx + rx, cy)))
+        return st;
+    return p_close(r, p);
+}
+
+/* <line>: from (x1, y1) to (x2, y2), open (only a stroke draws it). */
+static int line(reader *r, const xmlNode *node, aa_path *p)
+{
+    double v[4];
+    static const char *const keys[4] = {"x1", "y1", "x2", "y2"};
+    for (int k = 0; k < 4; k++) {
+        int st = attr_length(r, node, keys[k], 0, &v[k]);
+        if (st)
+            return st;
+    }
+    int st = p_move(r, p, v[0], v[1]);
+    return st ? st : p_line(r, p, v[2], v[3]);
+}
+
+/* <polygon> (closed) and <polyline> (open: a fill closes it, a stroke
+ * does not). */
+static int poly(reader *r, const xmlNode *node, aa_path *p)
 {
     xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"points");
     if (!t)
@@ -1049,26 +1200,349 @@ static int poly(reader *r, const xmlNode *node, const mat *m)
                          e == -2 ? "a number out of range" : "malformed number",
                          (long)(s - (const char *)t));
         else if (n++ & 1)
-            st = n == 2 ? emit_move(r, m, xy[0], xy[1]) : emit_line(r, m, xy[0], xy[1]);
+            st = n == 2 ? p_move(r, p, xy[0], xy[1]) : p_line(r, p, xy[0], xy[1]);
         s = skip_comma_wsp(s);
     }
     if (!st && (n & 1))
         st = fail_at(r, "points: an odd number of coordinates (%d)", n);
-    if (!st)
-        st = emit_close(r);
+    if (!st && n && named(node, "polygon"))
+        st = p_close(r, p);
     xmlFree(t);
     return st;
 }
 
-static int is_svg(const xmlNode *node)
+/* The element's shape as a path in its user units. */
+static int shape_path(reader *r, const xmlNode *node, aa_path *p)
 {
-    return node->type == XML_ELEMENT_NODE && node->ns && node->ns->href &&
-           !strcmp((const char *)node->ns->href, SVG_NS);
+    if (named(node, "path")) {
+        xmlChar *d = xmlGetNoNsProp(node, (const xmlChar *)"d");
+        if (!d)
+            return AA_OK;
+        int st = path_data(r, p, (const char *)d);
+        xmlFree(d);
+        return st;
+    }
+    if (named(node, "rect"))
+        return rect(r, node, p);
+    if (named(node, "circle") || named(node, "ellipse"))
+        return ellipse(r, node, p);
+    if (named(node, "line"))
+        return line(r, node, p);
+    return poly(r, node, p);
 }
 
-static int named(const xmlNode *node, const char *name)
+/* ---- giving paths to the sink ---- */
+
+static int point(reader *r, const mat *m, double x, double y, double *u, double *v)
 {
-    return !strcmp((const char *)node->name, name);
+    *u = m->a * x + m->c * y + m->e;
+    *v = m->b * x + m->d * y + m->f;
+    if (!(fabs(*u) <= AA_SVG_MAX_COORD && fabs(*v) <= AA_SVG_MAX_COORD))
+        return fail_at(r, "the point (%g, %g) lands at (%g, %g) pixels, beyond %g", x, y, *u, *v,
+                       AA_SVG_MAX_COORD);
+    return AA_OK;
+}
+
+/* An elliptical arc (a[0..7] as aa_edge, a[8..9] its end) through m: the
+ * image of the points c + u cos t + v sin t under an affine map is
+ * m(c) + L u cos t + L v sin t (L its linear part), the same t.  A
+ * singular map flattens the ellipse onto a segment of a line through the
+ * arc's ends; a fill bounds the same region with the line from end to end
+ * (no point off that line is crossed between them), which is given
+ * instead.  A map that nearly flattens it (the scene's test of parallel
+ * semi-diameters, core.h) is refused.  The whole ellipse must lie within
+ * AA_SVG_MAX_COORD. */
+static int give_arc(reader *r, const mat *m, const double a[10])
+{
+    double c[2], e[2];
+    int st;
+    if ((st = point(r, m, a[0], a[1], &c[0], &c[1])) ||
+        (st = point(r, m, a[8], a[9], &e[0], &e[1])))
+        return st;
+    const double ux = m->a * a[2] + m->c * a[3], uy = m->b * a[2] + m->d * a[3];
+    const double vx = m->a * a[4] + m->c * a[5], vy = m->b * a[4] + m->d * a[5];
+    const double cross = ux * vy - uy * vx, size = hypot(ux, uy) + hypot(vx, vy);
+    if (cross == 0)
+        return r->sink->line_to(r->ctx, e[0], e[1]);
+    if (!(fabs(cross) > 1e-12 * size * size))
+        return fail_at(r, "the transform flattens an elliptical arc almost to a line (its "
+                          "semi-diameters are parallel within 1e-12), which the scene "
+                          "cannot hold");
+    /* the ellipse's box: c +- (hypot(ux, vx), hypot(uy, vy)) */
+    if (!(fabs(c[0]) + hypot(ux, vx) <= AA_SVG_MAX_COORD &&
+          fabs(c[1]) + hypot(uy, vy) <= AA_SVG_MAX_COORD))
+        return fail_at(r, "an elliptical arc's ellipse (centre (%g, %g) pixels) reaches "
+                          "beyond %g pixels",
+                       c[0], c[1], AA_SVG_MAX_COORD);
+    return r->sink->arc_to(r->ctx, c[0], c[1], ux, uy, vx, vy, a[6], a[7], e[0], e[1]);
+}
+
+/* A path in user units through m to the sink as one shape of colour
+ * `colour` and rule `rule`, every subpath closed (a fill closes it); a
+ * path without segments gives nothing. */
+static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
+                     aa_fill_rule rule)
+{
+    int st = AA_OK, open = 0;
+    double sx = 0, sy = 0; /* the subpath's start, user units */
+    const aa_svg_sink *k = r->sink;
+    if (p->n && (st = k->shape(r->ctx, colour, rule)))
+        return st;
+    for (size_t i = 0; i < p->n && !st; i++) {
+        const aa_path_seg *g = &p->seg[i];
+        double q[6];
+        if (g->op == AA_PATH_CLOSE) {
+            if (open)
+                st = k->close(r->ctx);
+            open = 0;
+            continue;
+        }
+        if (g->op == AA_PATH_MOVE || !open) { /* a segment after a close: from the start */
+            if (g->op == AA_PATH_MOVE)
+                sx = g->p[0], sy = g->p[1];
+            if ((open && (st = k->close(r->ctx))) || (st = point(r, m, sx, sy, &q[0], &q[1])) ||
+                (st = k->move_to(r->ctx, q[0], q[1])))
+                break;
+            open = 1;
+            if (g->op == AA_PATH_MOVE)
+                continue;
+        }
+        switch (g->op) {
+        case AA_PATH_LINE:
+            if (!(st = point(r, m, g->p[0], g->p[1], &q[0], &q[1])))
+                st = k->line_to(r->ctx, q[0], q[1]);
+            break;
+        case AA_PATH_QUAD:
+            if (!(st = point(r, m, g->p[0], g->p[1], &q[0], &q[1])) &&
+                !(st = point(r, m, g->p[2], g->p[3], &q[2], &q[3])))
+                st = k->quad_to(r->ctx, q[0], q[1], q[2], q[3]);
+            break;
+        case AA_PATH_CUBIC:
+            for (int j = 0; j < 3 && !st; j++)
+                st = point(r, m, g->p[2 * j], g->p[2 * j + 1], &q[2 * j], &q[2 * j + 1]);
+            if (!st)
+                st = k->cubic_to(r->ctx, q[0], q[1], q[2], q[3], q[4], q[5]);
+            break;
+        case AA_PATH_ARC:
+            st = give_arc(r, m, g->p);
+            break;
+        default:
+            st = aa_fail(AA_EFAIL, "%s: a path segment of unknown kind %d", r->name,
+                         (int)g->op);
+            break;
+        }
+    }
+    if (!st && open)
+        st = k->close(r->ctx);
+    return st;
+}
+
+/* An upper bound of a path's length: lines exactly, Bezier arcs by their
+ * control polygons (a Bezier arc is no longer than its control polygon),
+ * elliptical arcs by (|u| + |v|) |t1 - t0| (the speed |-u sin t + v cos t|
+ * is at most |u| + |v|). */
+static double length_bound(const aa_path *p)
+{
+    double len = 0, px = 0, py = 0, sx = 0, sy = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        const aa_path_seg *g = &p->seg[i];
+        const double *q = g->p;
+        switch (g->op) {
+        case AA_PATH_MOVE:
+            sx = px = q[0], sy = py = q[1];
+            break;
+        case AA_PATH_LINE:
+            len += hypot(q[0] - px, q[1] - py), px = q[0], py = q[1];
+            break;
+        case AA_PATH_QUAD:
+            len += hypot(q[0] - px, q[1] - py) + hypot(q[2] - q[0], q[3] - q[1]);
+            px = q[2], py = q[3];
+            break;
+        case AA_PATH_CUBIC:
+            len += hypot(q[0] - px, q[1] - py) + hypot(q[2] - q[0], q[3] - q[1]) +
+                   hypot(q[4] - q[2], q[5] - q[3]);
+            px = q[4], py = q[5];
+            break;
+        case AA_PATH_ARC:
+            len += (hypot(q[2], q[3]) + hypot(q[4], q[5])) * fabs(q[7] - q[6]);
+            px = q[8], py = q[9];
+            break;
+        default:
+            len += hypot(sx - px, sy - py), px = sx, py = sy;
+            break;
+        }
+    }
+    return len;
+}
+
+/* At most this many dashes in a stroke (each is a contour of several
+ * segments in the outline). */
+#define MAX_DASHES_DRAWN (AA_SVG_MAX_SEGMENTS / 8)
+
+/* The element's stroke: its outline (aa_stroke_outline, in user units)
+ * through m to the sink as a shape of the stroke's colour, nonzero. */
+static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty)
+{
+    if (!(sty->stroke_opacity >= 1)) /* CSS clamps values above 1 to 1 */
+        return fail_at(r, "stroke-opacity below 1: opacity is not supported");
+    if (sty->join_other)
+        return fail_at(r, "stroke-linejoin=\"%s\" is not supported (miter, round or bevel)",
+                       sty->join_other);
+    aa_stroke_style ss;
+    aa_stroke_style_default(&ss);
+    ss.width = sty->stroke_width;
+    ss.join = sty->join;
+    ss.cap = sty->cap;
+    ss.miterlimit = sty->miterlimit;
+    if (sty->ndash) {
+        /* the pattern's period P is the sum of its values, twice that for
+         * an odd count (repeated: 2 n values), of which every other one is
+         * a dash; each subpath starts the pattern again, so a subpath of
+         * length L has at most (L / P + 2) periods (one begun early by the
+         * offset, one cut at the end) */
+        double sum = 0, subpaths = 0;
+        for (size_t k = 0; k < sty->ndash; k++)
+            sum += sty->dash[k];
+        for (size_t k = 0; k < p->n; k++)
+            subpaths += p->seg[k].op == AA_PATH_MOVE;
+        const int odd = sty->ndash & 1;
+        const double period = odd ? 2 * sum : sum, per_period = odd ? (double)sty->ndash
+                                                                     : sty->ndash / 2.0;
+        const double dashes = per_period * (length_bound(p) / period + 2 * subpaths);
+        if (!(dashes <= MAX_DASHES_DRAWN))
+            return fail_at(r, "stroke-dasharray: the stroke would have about %.3g dashes, more "
+                              "than %d",
+                           dashes, MAX_DASHES_DRAWN);
+        ss.dash = sty->dash;
+        ss.ndash = sty->ndash;
+        ss.dashoffset = sty->dashoffset;
+    }
+    aa_path out;
+    aa_path_init(&out);
+    int st = aa_stroke_outline(p, &ss, &out);
+    if (st) /* the message begins "stroke: " */
+        st = at_element(r, st);
+    if (!st)
+        st = count_segments(r, out.n);
+    if (!st)
+        st = give_path(r, &out, m, sty->stroke, AA_FILL_NONZERO);
+    aa_path_free(&out);
+    return st;
+}
+
+/* ---- elements ---- */
+
+/* SVG 2's initial values of the paint properties. */
+static void initial_style(style *sty)
+{
+    memset(sty, 0, sizeof *sty);
+    sty->rule = AA_FILL_NONZERO;
+    sty->stroke_none = 1;
+    sty->stroke_width = 1;
+    sty->join = AA_JOIN_MITER;
+    sty->cap = AA_CAP_BUTT;
+    sty->miterlimit = 4;
+    sty->stroke_opacity = 1;
+}
+
+/* A keyword value of `key` among names[0 .. n) (CSS: any case): its index
+ * into *out. */
+static int keyword(reader *r, const char *key, const char *v, const char *const *names, int n,
+                   int *out, const char *expect)
+{
+    for (int k = 0; k < n; k++)
+        if (!strcasecmp(v, names[k])) {
+            *out = k;
+            return AA_OK;
+        }
+    return fail_at(r, "%s=\"%s\" is not supported (%s)", key, aa_echo(v), expect);
+}
+
+/* A whole value that is one number (no unit): 0, or -1. */
+static int plain_number(const char *v, double *x)
+{
+    const char *s = v;
+    return scan_number(&s, x) || *skip_wsp(s) ? -1 : 0;
+}
+
+/* stroke-dasharray: none, or lengths separated by commas or white space;
+ * a negative value is an error (refused), all zero is none (SVG 2). */
+static int parse_dasharray(reader *r, const char *v, style *sty)
+{
+    if (!strcasecmp(v, "none")) {
+        sty->ndash = 0;
+        return AA_OK;
+    }
+    size_t n = 0;
+    double sum = 0;
+    const char *s = v;
+    while (*s) {
+        if (n == AA_SVG_MAX_DASHES)
+            return fail_at(r, "stroke-dasharray=\"%s\": more than %d values", aa_echo(v),
+                           AA_SVG_MAX_DASHES);
+        double x;
+        int e = scan_number(&s, &x);
+        if (!e && s[0] == 'p' && s[1] == 'x')
+            s += 2;
+        if (e || (*s && !is_wsp((unsigned char)*s) && *s != ','))
+            return fail_at(r, "stroke-dasharray=\"%s\": only plain numbers and px are "
+                              "supported (no %%, em, mm, ...)",
+                           aa_echo(v));
+        if (x < 0)
+            return fail_at(r, "stroke-dasharray=\"%s\": a negative value is an error",
+                           aa_echo(v));
+        sty->dash[n++] = x;
+        sum += x;
+        s = skip_comma_wsp(s);
+    }
+    if (!n)
+        return fail_at(r, "stroke-dasharray=\"%s\" is empty", aa_echo(v));
+    sty->ndash = sum > 0 ? n : 0;
+    return AA_OK;
+}
+
+/* The stroke properties but the paint (inherited: a value of inherit
+ * keeps the parent's). */
+static int stroke_props(reader *r, const xmlNode *node, style *sty)
+{
+    char v[1024];
+    int st = AA_OK, k = 0;
+    static const char *const joins[] = {"miter", "round", "bevel", "miter-clip", "arcs"};
+    static const char *const caps[] = {"butt", "round", "square"};
+    static const aa_line_join join_of[] = {AA_JOIN_MITER, AA_JOIN_ROUND, AA_JOIN_BEVEL};
+    static const aa_line_cap cap_of[] = {AA_CAP_BUTT, AA_CAP_ROUND, AA_CAP_SQUARE};
+#define GIVEN(key) (prop(r, node, key, v, sizeof v, &st) && strcasecmp(v, "inherit"))
+    if (GIVEN("stroke-width")) {
+        if ((st = parse_length(r, "stroke-width", v, &sty->stroke_width)))
+            return st;
+        if (sty->stroke_width < 0)
+            return fail_at(r, "stroke-width=\"%s\": a negative width is an error", aa_echo(v));
+    }
+    if (!st && GIVEN("stroke-linejoin")) {
+        if ((st = keyword(r, "stroke-linejoin", v, joins, 5, &k, "miter, round or bevel")))
+            return st;
+        sty->join = k < 3 ? join_of[k] : AA_JOIN_MITER;
+        sty->join_other = k < 3 ? NULL : joins[k];
+    }
+    if (!st && GIVEN("stroke-linecap")) {
+        if ((st = keyword(r, "stroke-linecap", v, caps, 3, &k, "butt, round or square")))
+            return st;
+        sty->cap = cap_of[k];
+    }
+    if (!st && GIVEN("stroke-miterlimit")) {
+        if (plain_number(v, &sty->miterlimit) || !(sty->miterlimit >= 1))
+            return fail_at(r, "stroke-miterlimit=\"%s\" is not a number of at least 1",
+                           aa_echo(v));
+    }
+    if (!st && GIVEN("stroke-dasharray") && (st = parse_dasharray(r, v, sty)))
+        return st;
+    if (!st && GIVEN("stroke-dashoffset") &&
+        (st = parse_length(r, "stroke-dashoffset", v, &sty->dashoffset)))
+        return st;
+    if (!st && GIVEN("stroke-opacity") && plain_number(v, &sty->stroke_opacity))
+        sty->stroke_opacity = NAN;
+#undef GIVEN
+    return st;
 }
 
 /* The properties every element may set: style into *sty, the element's own
@@ -1086,15 +1560,18 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     }
     if (st)
         return st;
-    if (prop(r, node, "fill", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
-        aa_rgb c = {{0, 0, 0}};
-        if ((st = parse_paint(r, v, &c, &none)))
+    static const char *const paints[2] = {"fill", "stroke"};
+    for (int k = 0; k < 2; k++)
+        if (prop(r, node, paints[k], v, sizeof v, &st) && strcasecmp(v, "inherit")) {
+            aa_rgb c = {{0, 0, 0}};
+            if ((st = parse_paint(r, paints[k], v, &c, &none)))
+                return st;
+            *(k ? &sty->stroke_none : &sty->fill_none) = none;
+            if (!none)
+                *(k ? &sty->stroke : &sty->fill) = c;
+        } else if (st)
             return st;
-        sty->fill_none = none;
-        if (!none)
-            sty->fill = c;
-    }
-    if (!st && prop(r, node, "fill-rule", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
+    if (prop(r, node, "fill-rule", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
         if (!strcasecmp(v, "nonzero"))
             sty->rule = AA_FILL_NONZERO;
         else if (!strcasecmp(v, "evenodd"))
@@ -1102,8 +1579,8 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
         else
             return fail_at(r, "fill-rule=\"%s\" (nonzero or evenodd)", aa_echo(v));
     }
-    if (!st && prop(r, node, "stroke", v, sizeof v, &st) && strcasecmp(v, "none"))
-        return fail_at(r, "stroke=\"%s\": strokes are not supported", aa_echo(v));
+    if (!st)
+        st = stroke_props(r, node, sty);
     static const char *const opacities[] = {"opacity", "fill-opacity"};
     for (int k = 0; k < 2 && !st; k++)
         if (prop(r, node, opacities[k], v, sizeof v, &st)) {
@@ -1163,14 +1640,15 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     int skip, st;
     if (named(node, "svg"))
         return fail_at(r, "nested <svg> elements are not supported");
-    int shape = named(node, "path") || named(node, "rect") || named(node, "polygon") ||
-                named(node, "polyline");
-    if (!shape && !named(node, "g") && !named(node, "line")) {
+    static const char *const shapes[] = {"path",    "rect",    "circle",  "ellipse",
+                                         "line",    "polygon", "polyline"};
+    int shape = 0;
+    for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+        shape |= named(node, shapes[k]);
+    if (!shape && !named(node, "g")) {
         static const struct {
             const char *name, *why;
-        } known[] = {{"circle", "circles are elliptical arcs"},
-                     {"ellipse", "ellipses are elliptical arcs"},
-                     {"text", "text is not supported (the pattern text draws glyphs)"},
+        } known[] = {{"text", "text is not supported (the pattern text draws glyphs)"},
                      {"image", "images are not supported"},
                      {"use", "<use> is not supported"},
                      {"clipPath", "clip paths are not supported"},
@@ -1188,25 +1666,21 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         return st;
     if (named(node, "g"))
         return children(r, node, sty, m, depth);
-    if (named(node, "line"))
-        return AA_OK; /* a line has no area: without a stroke it draws nothing */
-    if (sty.fill_none)
+    /* a line has no area: only its stroke draws */
+    const int fill = !sty.fill_none && !named(node, "line");
+    const int stroke = !sty.stroke_none && sty.stroke_width > 0;
+    if (!fill && !stroke)
         return AA_OK;
-    r->pending = 1; /* a shape that draws nothing is not given */
-    r->shape = sty;
-    if (named(node, "rect")) {
-        int drawn;
-        return rect(r, node, &m, &drawn);
-    }
-    if (named(node, "path")) {
-        xmlChar *d = xmlGetNoNsProp(node, (const xmlChar *)"d");
-        if (!d)
-            return AA_OK;
-        st = path_data(r, &m, (const char *)d);
-        xmlFree(d);
-        return st;
-    }
-    return poly(r, node, &m);
+    aa_path p;
+    aa_path_init(&p);
+    st = shape_path(r, node, &p);
+    /* SVG's paint order: the fill, then the stroke over it */
+    if (!st && fill)
+        st = give_path(r, &p, &m, sty.fill, sty.rule);
+    if (!st && stroke)
+        st = give_stroke(r, &p, &m, &sty);
+    aa_path_free(&p);
+    return st;
 }
 
 /* The viewport and the root's map from user units to pixels. */
@@ -1307,7 +1781,7 @@ static int declares_entities(const xmlDoc *doc)
 int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
                 const aa_svg_sink *sink, void *ctx, double viewport[2])
 {
-    reader r = {sink, ctx, name, 0, NULL, 0, 0, {{{0, 0, 0}}, 0, AA_FILL_NONZERO}};
+    reader r = {sink, ctx, name, 0, NULL};
     double vp[2] = {0, 0};
     if (w < 1 || h < 1)
         return aa_fail(AA_EINVAL, "%s: a view of %dx%d pixels", name, w, h);
@@ -1341,7 +1815,8 @@ int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
                      name, SVG_NS);
     else if (!(st = aa__c_numbers_enter(&numbers, "SVG"))) {
         mat m;
-        style sty = {{{0, 0, 0}}, 0, AA_FILL_NONZERO}; /* initial fill: black */
+        style sty;
+        initial_style(&sty);
         int skip;
         r.node = root;
         xmlChar *t = xmlGetNoNsProp(root, (const xmlChar *)"transform");
@@ -1402,8 +1877,8 @@ static const aa_param svg_params[] = {
     {0}};
 
 typedef struct rec_op {
-    int op; /* 0 move, 1 line, 2 quad, 3 cubic, 4 close */
-    double v[6];
+    int op; /* 0 move, 1 line, 2 quad, 3 cubic, 4 close, 5 elliptical arc */
+    double v[10];
 } rec_op;
 
 typedef struct rec_shape {
@@ -1417,7 +1892,7 @@ typedef struct recording {
     size_t nshapes, capshapes;
     rec_op *ops;
     size_t nops, capops;
-    double lo[2], hi[2]; /* the control points' bounds */
+    double lo[2], hi[2]; /* the bounds of every op's box (op_box) */
 } recording;
 
 static int grow(void **a, size_t *cap, size_t need, size_t size)
@@ -1443,6 +1918,28 @@ static int rec_shape_fn(void *ctx, aa_rgb colour, aa_fill_rule rule)
     return st;
 }
 
+/* A box (x0 y0 x1 y1) holding what the op draws: its points and control
+ * points (a Bezier arc lies in their hull), for an elliptical arc its
+ * end and the whole ellipse's box, centre +- (hypot(ux, vx), hypot(uy, vy))
+ * (the extremes of cx + ux cos t + vx sin t over t).  0 for a close. */
+static int op_box(const rec_op *o, double box[4])
+{
+    const double *v = o->v;
+    box[0] = box[1] = INFINITY, box[2] = box[3] = -INFINITY;
+    int np = o->op == 0 || o->op == 1 ? 1 : o->op == 2 ? 2 : o->op == 3 ? 3 : 0;
+    if (o->op == 5) {
+        const double hx = hypot(v[2], v[4]), hy = hypot(v[3], v[5]);
+        box[0] = fmin(v[0] - hx, v[8]), box[2] = fmax(v[0] + hx, v[8]);
+        box[1] = fmin(v[1] - hy, v[9]), box[3] = fmax(v[1] + hy, v[9]);
+        return 1;
+    }
+    for (int q = 0; q < np; q++) {
+        box[0] = fmin(box[0], v[2 * q]), box[2] = fmax(box[2], v[2 * q]);
+        box[1] = fmin(box[1], v[2 * q + 1]), box[3] = fmax(box[3], v[2 * q + 1]);
+    }
+    return np > 0;
+}
+
 static int rec_op_add(recording *r, int op, const double *v, int n)
 {
     int st = grow((void **)&r->ops, &r->capops, r->nops + 1, sizeof *r->ops);
@@ -1450,11 +1947,14 @@ static int rec_op_add(recording *r, int op, const double *v, int n)
         return st;
     rec_op *o = &r->ops[r->nops++];
     o->op = op;
-    for (int k = 0; k < n; k++) {
+    for (int k = 0; k < n; k++)
         o->v[k] = v[k];
-        r->lo[k & 1] = fmin(r->lo[k & 1], v[k]);
-        r->hi[k & 1] = fmax(r->hi[k & 1], v[k]);
-    }
+    double box[4];
+    if (op_box(o, box))
+        for (int k = 0; k < 2; k++) {
+            r->lo[k] = fmin(r->lo[k], box[k]);
+            r->hi[k] = fmax(r->hi[k], box[k + 2]);
+        }
     r->shapes[r->nshapes - 1].n++;
     return AA_OK;
 }
@@ -1481,9 +1981,15 @@ static int rec_cubic(void *ctx, double c1x, double c1y, double c2x, double c2y, 
     return rec_op_add(ctx, 3, v, 6);
 }
 static int rec_close(void *ctx) { return rec_op_add(ctx, 4, NULL, 0); }
+static int rec_arc(void *ctx, double cx, double cy, double ux, double uy, double vx, double vy,
+                   double t0, double t1, double x, double y)
+{
+    double v[10] = {cx, cy, ux, uy, vx, vy, t0, t1, x, y};
+    return rec_op_add(ctx, 5, v, 10);
+}
 
-static const aa_svg_sink recording_sink = {rec_shape_fn, rec_move, rec_line,
-                                           rec_quad,     rec_cubic, rec_close};
+static const aa_svg_sink recording_sink = {rec_shape_fn, rec_move,  rec_line, rec_quad,
+                                           rec_cubic,    rec_close, rec_arc};
 
 static int svg_check(const double *p)
 {
@@ -1526,7 +2032,7 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         }
     }
     /* shapes front first; a run of consecutive shapes of one colour and
-     * fill rule whose control points' boxes are pairwise disjoint is one
+     * fill rule whose boxes (op_box) are pairwise disjoint is one
      * layer (a point is inside at most one of them, so the union under
      * either rule is the same picture; the reference's cost grows with the
      * layers) */
@@ -1537,13 +2043,12 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         const rec_shape *sh = &rec.shapes[k];
         box[k][0] = box[k][1] = INFINITY, box[k][2] = box[k][3] = -INFINITY;
         for (size_t i = sh->first; i < sh->first + sh->n; i++) {
-            const rec_op *o = &rec.ops[i];
-            int np = o->op == 0 || o->op == 1 ? 1 : o->op == 2 ? 2 : o->op == 3 ? 3 : 0;
-            for (int q = 0; q < np; q++) {
-                box[k][0] = fmin(box[k][0], o->v[2 * q]), box[k][2] = fmax(box[k][2], o->v[2 * q]);
-                box[k][1] = fmin(box[k][1], o->v[2 * q + 1]);
-                box[k][3] = fmax(box[k][3], o->v[2 * q + 1]);
-            }
+            double b[4];
+            if (op_box(&rec.ops[i], b))
+                for (int q = 0; q < 2; q++) {
+                    box[k][q] = fmin(box[k][q], b[q]);
+                    box[k][q + 2] = fmax(box[k][q + 2], b[q + 2]);
+                }
         }
     }
     size_t group = 0, group_first = 0; /* shapes in the current layer, the front one */
@@ -1583,6 +2088,10 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
                 st = aa_scene_cubic_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h, v[4] / w,
                                        v[5] / h);
                 break;
+            case 5: /* (x, y) -> (x / W, y / H) is linear: the semi-diameters scale too */
+                st = aa_scene_arc_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h, v[4] / w,
+                                     v[5] / h, v[6], v[7], v[8] / w, v[9] / h);
+                break;
             default:
                 st = aa_scene_close(s);
                 break;
@@ -1611,7 +2120,8 @@ int aa__svg_key(const double *p, char *buf, size_t len)
 }
 
 const aa_pattern_type aa_pattern_svg = {
-    {"svg", "an SVG file's filled shapes, in pixels as a browser draws it", svg_params},
+    {"svg", "an SVG file's filled and stroked shapes, in pixels as a browser draws it",
+     svg_params},
     svg_check,
     svg_build_unsized,
     {{0, 0, 0}}};

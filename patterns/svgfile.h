@@ -5,11 +5,15 @@
  * The reader walks the document with libxml2 and gives every shape it draws
  * to a sink, in document order (painter's order: the first shape is at the
  * back): `shape` with the shape's fill colour (linear light) and fill rule,
- * then its subpaths as move/line/quad/cubic/close in absolute pixel units,
- * every transform and the viewBox mapping applied to the points (exact for
- * Bezier arcs under affine maps).  Every subpath ends with `close` (a fill
- * closes it).  Anything the exact model cannot hold is refused with
- * AA_EINVAL and a message naming the element and its line.
+ * then its subpaths as move/line/quad/cubic/arc/close in absolute pixel
+ * units, every transform and the viewBox mapping applied to the points
+ * (exact for Bezier arcs under affine maps; an elliptical arc's centre is
+ * mapped as a point and its semi-diameters as vectors, which is exact
+ * too).  An element with a stroke gives a second shape after its fill:
+ * the stroke's outline, of the stroke's colour, nonzero.  Every subpath
+ * ends with `close` (a fill closes it).  Anything the exact model cannot
+ * hold is refused with AA_EINVAL and a message naming the element and its
+ * line.
  */
 #ifndef AA_SVGFILE_H
 #define AA_SVGFILE_H
@@ -26,6 +30,11 @@ typedef struct aa_svg_sink {
     int (*cubic_to)(void *ctx, double c1x, double c1y, double c2x, double c2y, double x,
                     double y);
     int (*close)(void *ctx);
+    /* An elliptical arc from the pen to (x, y), in centre form as
+     * aa_scene_arc_to takes it: the points (cx + ux cos t + vx sin t,
+     * cy + uy cos t + vy sin t), t from t0 to t1. */
+    int (*arc_to)(void *ctx, double cx, double cy, double ux, double uy, double vx, double vy,
+                  double t0, double t1, double x, double y);
 } aa_svg_sink;
 
 /* Limits: larger or deeper documents are refused. */
@@ -34,6 +43,7 @@ typedef struct aa_svg_sink {
 #define AA_SVG_MAX_SEGMENTS 4000000  /* path commands in all */
 #define AA_SVG_MAX_NUMBER 1e9        /* |a number| in the document */
 #define AA_SVG_MAX_COORD 1e7         /* |a coordinate| in pixels, after transforms */
+#define AA_SVG_MAX_DASHES 64         /* values in a stroke-dasharray */
 
 /* Read the document data[0 .. len) (`name` names it in messages) drawn on
  * a view of w x h pixels: the viewport is the root's width and height, or

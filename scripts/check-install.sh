@@ -56,7 +56,7 @@ elif ! grep -qF "file=$svg/shapes.svg " "$tmp/list.log"; then
     fail "the svg pattern's default file is not $svg/shapes.svg:"
     grep -F 'file=' "$tmp/list.log" >&2
 fi
-for f in mono shapes rules curves logo; do
+for f in mono shapes rules curves logo arcs strokes; do
     [ -f "$svg/$f.svg" ] || fail "$svg/$f.svg was not installed"
 done
 

@@ -25,7 +25,7 @@
 /* ---- a sink that writes what it is given as text ---- */
 
 typedef struct text_sink {
-    char buf[8192];
+    char buf[65536];
     size_t n;
 } text_sink;
 
@@ -57,8 +57,14 @@ static int s_cubic(void *ctx, double a, double b, double c, double d, double x, 
     return put(ctx, " C %.17g %.17g %.17g %.17g %.17g %.17g", a, b, c, d, x, y);
 }
 static int s_close(void *ctx) { return put(ctx, " Z"); }
+static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double vx, double vy,
+                 double t0, double t1, double x, double y)
+{
+    return put(ctx, " A %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g", cx, cy, ux,
+               uy, vx, vy, t0, t1, x, y);
+}
 
-static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close};
+static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc};
 
 /* Read `doc` on a w x h view; the sink's text, or fail. */
 static const char *read_doc(const char *doc, int w, int h, double vp[2])
@@ -196,6 +202,289 @@ static void test_shapes(void **state)
            "");
 }
 
+static void refused(const char *doc, const char *want1, const char *want2);
+#define L2(x) "<svg xmlns=\"http://www.w3.org/2000/svg\">\n" x "</svg>"
+
+/* ---- shapes, arcs and strokes ---- */
+
+/* A sink that keeps what it is given: ops as letters (s shape, M L Q C A
+ * Z) with their numbers (A: cx cy ux uy vx vy t0 t1 x y). */
+#define GEO_MAX 512
+typedef struct geo_sink {
+    int n;
+    char op[GEO_MAX];
+    double v[GEO_MAX][10];
+} geo_sink;
+
+static int g_add(geo_sink *g, char op, int n, const double *v)
+{
+    assert_true(g->n < GEO_MAX);
+    g->op[g->n] = op;
+    for (int k = 0; k < n; k++)
+        g->v[g->n][k] = v[k];
+    g->n++;
+    return AA_OK;
+}
+static int g_shape(void *ctx, aa_rgb c, aa_fill_rule rule)
+{
+    double v[4] = {c.c[0], c.c[1], c.c[2], rule};
+    return g_add(ctx, 's', 4, v);
+}
+static int g_move(void *ctx, double x, double y) { return g_add(ctx, 'M', 2, (double[]){x, y}); }
+static int g_line(void *ctx, double x, double y) { return g_add(ctx, 'L', 2, (double[]){x, y}); }
+static int g_quad(void *ctx, double cx, double cy, double x, double y)
+{
+    return g_add(ctx, 'Q', 4, (double[]){cx, cy, x, y});
+}
+static int g_cubic(void *ctx, double a, double b, double c, double d, double x, double y)
+{
+    return g_add(ctx, 'C', 6, (double[]){a, b, c, d, x, y});
+}
+static int g_close(void *ctx) { return g_add(ctx, 'Z', 0, NULL); }
+static int g_arc(void *ctx, double cx, double cy, double ux, double uy, double vx, double vy,
+                 double t0, double t1, double x, double y)
+{
+    return g_add(ctx, 'A', 10, (double[]){cx, cy, ux, uy, vx, vy, t0, t1, x, y});
+}
+static const aa_svg_sink geo = {g_shape, g_move, g_line, g_quad, g_cubic, g_close, g_arc};
+
+/* The ops' letters of `doc` read on a 100 x 100 view into *g. */
+static const char *geo_read(const char *doc, geo_sink *g)
+{
+    static char ops[GEO_MAX + 1];
+    g->n = 0;
+    if (aa_svg_read(doc, strlen(doc), "test.svg", 100, 100, &geo, g, NULL) != AA_OK)
+        fail_msg("%s: %s", doc, aa_last_error());
+    memcpy(ops, g->op, (size_t)g->n);
+    ops[g->n] = '\0';
+    return ops;
+}
+
+static void near(double got, double want, const char *what)
+{
+    if (!(fabs(got - want) <= 1e-12 * fmax(1, fabs(want))))
+        fail_msg("%s: %.17g, want %.17g", what, got, want);
+}
+
+/* The arc's point at t: c + u cos t + v sin t. */
+static void arc_at(const double *a, double t, double *x, double *y)
+{
+    *x = a[0] + a[2] * cos(t) + a[4] * sin(t);
+    *y = a[1] + a[3] * cos(t) + a[5] * sin(t);
+}
+
+/* Op k of g is an arc from (x0, y0) of the ellipse of centre (cx, cy) with
+ * the axes (rx along the direction of angle phi, ry across it): its ends
+ * are where the previous op ended and its own end, every point of it is
+ * on that ellipse, and it passes through (mx, my) (its point at the mean
+ * of t0 and t1 is compared when `mid` is set: for a circle the parameter
+ * is proportional to the length, so that is the arc's midpoint). */
+static void check_arc(const geo_sink *g, int k, double cx, double cy, double rx, double ry,
+                      double phi, double mx, double my, int mid)
+{
+    assert_true(k > 0 && g->op[k] == 'A');
+    const double *a = g->v[k], *prev = g->v[k - 1];
+    int pn = g->op[k - 1] == 'M' || g->op[k - 1] == 'L' ? 0 : g->op[k - 1] == 'A' ? 8 : -1;
+    assert_true(pn >= 0);
+    double x, y;
+    arc_at(a, a[6], &x, &y);
+    near(x, prev[pn], "arc start x");
+    near(y, prev[pn + 1], "arc start y");
+    arc_at(a, a[7], &x, &y);
+    near(x, a[8], "arc end x");
+    near(y, a[9], "arc end y");
+    near(a[0], cx, "centre x");
+    near(a[1], cy, "centre y");
+    /* on the ellipse: in its axes' frame (x/rx)^2 + (y/ry)^2 = 1 */
+    const double c = cos(phi), s = sin(phi);
+    for (int q = 0; q <= 8; q++) {
+        arc_at(a, a[6] + (a[7] - a[6]) * q / 8, &x, &y);
+        double ex = ((x - cx) * c + (y - cy) * s) / rx, ey = (-(x - cx) * s + (y - cy) * c) / ry;
+        near(ex * ex + ey * ey, 1, "on the ellipse");
+    }
+    if (mid) {
+        arc_at(a, (a[6] + a[7]) / 2, &x, &y);
+        near(x, mx, "arc's middle x");
+        near(y, my, "arc's middle y");
+    }
+}
+
+/* Circles, ellipses and rounded rectangles: SVG 2's equivalent paths
+ * ("Basic shapes": from (cx + rx, cy) four quarter arcs to (cx, cy + ry),
+ * (cx - rx, cy), (cx, cy - ry) and back; a rectangle from (x + rx, y)
+ * clockwise with quarter arcs at the corners). */
+static void test_basic_arcs(void **state)
+{
+    (void)state;
+    static geo_sink store; /* large: not on the stack */
+    geo_sink *g = &store;
+    const double h = sqrt(0.5);
+    assert_string_equal(geo_read(SVG_OPEN "<circle cx=\"5\" cy=\"6\" r=\"2\"/></svg>", g),
+                        "sMAAAAZ");
+    near(g->v[1][0], 7, "start x");
+    near(g->v[1][1], 6, "start y");
+    /* quarter q from angle q pi/2: its middle at angle (q + 1/2) pi/2 */
+    static const double ends[4][2] = {{5, 8}, {3, 6}, {5, 4}, {7, 6}};
+    static const double mids[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+    for (int q = 0; q < 4; q++) {
+        check_arc(g, 2 + q, 5, 6, 2, 2, 0, 5 + 2 * h * mids[q][0], 6 + 2 * h * mids[q][1], 1);
+        near(g->v[2 + q][8], ends[q][0], "end x");
+        near(g->v[2 + q][9], ends[q][1], "end y");
+    }
+    /* an ellipse; rx auto is ry; a zero radius or none draws nothing */
+    assert_string_equal(geo_read(SVG_OPEN "<ellipse cx=\"10\" rx=\"4\" ry=\"1\"/></svg>", g),
+                        "sMAAAAZ");
+    for (int q = 0; q < 4; q++)
+        check_arc(g, 2 + q, 10, 0, 4, 1, 0, 0, 0, 0);
+    near(g->v[3][8], 6, "ellipse's left end");
+    assert_string_equal(geo_read(SVG_OPEN "<ellipse rx=\"auto\" ry=\"3\"/></svg>", g), "sMAAAAZ");
+    check_arc(g, 2, 0, 0, 3, 3, 0, 3 * h, 3 * h, 1);
+    assert_string_equal(geo_read(SVG_OPEN "<circle r=\"0\"/><ellipse ry=\"0\" "
+                                          "rx=\"3\"/><ellipse/></svg>",
+                                 g),
+                        "");
+    /* a rounded rectangle [1, 11] x [2, 8], rx 3 and ry 2: top side from
+     * (4, 2) to (8, 2), the top right corner about (8, 4), ... */
+    assert_string_equal(
+        geo_read(SVG_OPEN "<rect x=\"1\" y=\"2\" width=\"10\" height=\"6\" rx=\"3\" ry=\"2\"/></svg>",
+                 g),
+        "sMLALALALAZ");
+    near(g->v[1][0], 4, "rect start");
+    near(g->v[2][0], 8, "top side");
+    check_arc(g, 3, 8, 4, 3, 2, 0, 0, 0, 0);
+    check_arc(g, 5, 8, 6, 3, 2, 0, 0, 0, 0);
+    check_arc(g, 7, 4, 6, 3, 2, 0, 0, 0, 0);
+    check_arc(g, 9, 4, 4, 3, 2, 0, 0, 0, 0);
+    near(g->v[4][1], 6, "right side");
+    near(g->v[9][8], 4, "back to the start x");
+    near(g->v[9][9], 2, "back to the start y");
+    /* one radius given: the other equals it; each clamped to half the side
+     * (SVG 2: rx 30 -> ry 30, then rx 5 and ry 3): the sides vanish */
+    assert_string_equal(
+        geo_read(SVG_OPEN "<rect width=\"10\" height=\"6\" rx=\"30\"/></svg>", g), "sMAAAAZ");
+    check_arc(g, 2, 5, 3, 5, 3, 0, 0, 0, 0);
+    assert_string_equal(
+        geo_read(SVG_OPEN "<rect width=\"10\" height=\"6\" ry=\"1\"/></svg>", g), "sMLALALALAZ");
+    check_arc(g, 3, 9, 1, 1, 1, 0, 9 + h, 1 - h, 1);
+    /* rx 0 (or ry 0) gives square corners */
+    assert_string_equal(
+        geo_read(SVG_OPEN "<rect width=\"10\" height=\"6\" rx=\"0\" ry=\"2\"/></svg>", g),
+        "sMLLLZ");
+    /* under a transform: the centre maps as a point, the semi-diameters as
+     * vectors; scale(2, 3) of the circle of radius 1 at (1, 1) is the
+     * ellipse of radii 2, 3 at (2, 3) */
+    assert_string_equal(
+        geo_read(SVG_OPEN "<circle transform=\"scale(2 3)\" cx=\"1\" cy=\"1\" r=\"1\"/></svg>", g),
+        "sMAAAAZ");
+    for (int q = 0; q < 4; q++)
+        check_arc(g, 2 + q, 2, 3, 2, 3, 0, 0, 0, 0);
+    /* a singular map flattens the circle onto the x axis: the quarters are
+     * the lines between their ends (which bound the same, empty, region);
+     * a map that nearly flattens it is refused */
+    expect(SVG_OPEN "<circle transform=\"scale(1 0)\" r=\"5\"/></svg>",
+           BLACK " M 5 0 L 0 0 L -5 0 L 0 0 L 5 0 Z");
+    refused(L2("<circle transform=\"scale(1 1e-14)\" r=\"5\"/>"), "line 2: <circle>",
+            "flattens");
+}
+
+/* The arc command (SVG 2, "The elliptical arc curve commands" and the
+ * implementation notes): centres and midpoints worked out by hand. */
+static void test_arc_command(void **state)
+{
+    (void)state;
+    static geo_sink store; /* large: not on the stack */
+    geo_sink *g = &store;
+    const double h = sqrt(0.5);
+    /* (0, 0) to (10, 0), radius 5, sweep 1 (angles increasing: from the
+     * angle pi through 3 pi / 2, the point (5, -5)): the upper half */
+    assert_string_equal(geo_read(PATH("M0 0 A 5 5 0 0 1 10 0"), g), "sMAZ");
+    check_arc(g, 2, 5, 0, 5, 5, 0, 5, -5, 1);
+    /* sweep 0: the lower half, through (5, 5) */
+    geo_read(PATH("M0 0 A 5 5 0 1 0 10 0"), g);
+    check_arc(g, 2, 5, 0, 5, 5, 0, 5, 5, 1);
+    /* radii too small: scaled up until they reach (implementation notes,
+     * F.6.6): 1 -> 5, the same half circle */
+    geo_read(PATH("M0 0 A 1 1 0 0 1 10 0"), g);
+    check_arc(g, 2, 5, 0, 5, 5, 0, 5, -5, 1);
+    /* an ellipse 2 x 1 scaled by 5/2 to 5 x 2.5: the half through (5, -2.5) */
+    geo_read(PATH("M0 0 A 2 1 0 0 1 10 0"), g);
+    check_arc(g, 2, 5, 0, 5, 2.5, 0, 0, 0, 0);
+    /* flags without separators: "a1 1 0 00 1 1" is rx 1, ry 1, rotation 0,
+     * large 0, sweep 0, to (1, 1) relative: of the two unit circles through
+     * (0, 0) and (1, 1) (centres (1, 0) and (0, 1)), the one whose short arc
+     * goes from (0, 0) to (1, 1) with decreasing angle is centred at
+     * (1, 0) (from pi to pi / 2), through (1 - h, h) */
+    assert_string_equal(geo_read(PATH("M0 0 a1 1 0 00 1 1"), g), "sMAZ");
+    check_arc(g, 2, 1, 0, 1, 1, 0, 1 - h, h, 1);
+    geo_read(PATH("M0 0a1,1,0,0,0,1,1"), g);
+    check_arc(g, 2, 1, 0, 1, 1, 0, 1 - h, h, 1);
+    /* the large arc of the same: centre (0, 1), through (-h, 1 + h)... with
+     * sweep 0 the large arc from (0, 0) to (1, 1) turns with decreasing
+     * angle about (0, 1): from -pi / 2 down to -2 pi, through its middle
+     * at -5 pi / 4, (-h, 1 + h) */
+    geo_read(PATH("M0 0 a1 1 0 10 1 1"), g);
+    check_arc(g, 2, 0, 1, 1, 1, 0, -h, 1 + h, 1);
+    /* relative, and implicit repeats: two half circles */
+    assert_string_equal(geo_read(PATH("m0 0 a5 5 0 0 1 10 0 5 5 0 0 1 10 0"), g), "sMAAZ");
+    check_arc(g, 2, 5, 0, 5, 5, 0, 5, -5, 1);
+    check_arc(g, 3, 15, 0, 5, 5, 0, 15, -5, 1);
+    /* the rotation: rx 4 along the angle 90 degrees (the y axis), ry 2 across:
+     * from (0, 0) to (0, 8) the half ellipse about (0, 4), through (2, 4)
+     * with sweep 1 (from the top, angles increasing turn to the right) */
+    geo_read(PATH("M 0 0 A 4 2 90 0 1 0 8"), g);
+    check_arc(g, 2, 0, 4, 4, 2, M_PI / 2, 0, 0, 0);
+    double x, y;
+    const double *a = g->v[2];
+    arc_at(a, (a[6] + a[7]) / 2, &x, &y);
+    assert_true(x > 1); /* the right half */
+    /* negative radii are made positive; a zero radius is a line; equal ends
+     * draw nothing */
+    geo_read(PATH("M0 0 A -5 -5 0 0 1 10 0"), g);
+    check_arc(g, 2, 5, 0, 5, 5, 0, 5, -5, 1);
+    expect(PATH("M0 0 A 0 5 0 0 1 10 0"), BLACK " M 0 0 L 10 0 Z");
+    expect(PATH("M1 1 A 5 5 0 0 1 1 1 L 2 2"), BLACK " M 1 1 L 2 2 Z");
+    /* after an arc, S and T do not reflect */
+    expect(PATH("M0 0 A 0 5 0 0 1 10 0 T 20 0"), BLACK " M 0 0 L 10 0 Q 10 0 20 0 Z");
+}
+
+/* Strokes: the outline is a second shape after the fill, of the stroke's
+ * colour, nonzero; every stroke property parsed. */
+static void test_stroke_props(void **state)
+{
+    (void)state;
+    static geo_sink store; /* large: not on the stack */
+    geo_sink *g = &store;
+    /* a white fill and a red stroke: two shapes, the fill first */
+    const char *ops = geo_read(SVG_OPEN "<rect x=\"2\" y=\"2\" width=\"4\" height=\"4\" "
+                                        "fill=\"white\" stroke=\"red\"/></svg>",
+                               g);
+    assert_true(ops[0] == 's' && strchr(ops + 1, 's'));
+    int second = (int)(strchr(ops + 1, 's') - ops);
+    assert_true(g->v[0][0] == 1 && g->v[0][1] == 1 && g->v[0][2] == 1);
+    assert_true(g->v[second][0] == 1 && g->v[second][1] == 0 && g->v[second][2] == 0);
+    assert_true(g->v[second][3] == AA_FILL_NONZERO);
+    /* a line: a stroke only; fill none: a stroke only; stroke none, or a
+     * width of 0: none */
+    ops = geo_read(SVG_OPEN "<line x2=\"5\" stroke=\"white\"/></svg>", g);
+    assert_true(ops[0] == 's' && !strchr(ops + 1, 's'));
+    ops = geo_read(SVG_OPEN "<circle r=\"3\" fill=\"none\" stroke=\"white\"/></svg>", g);
+    assert_true(ops[0] == 's' && !strchr(ops + 1, 's'));
+    assert_string_equal(geo_read(SVG_OPEN "<line x2=\"5\" stroke=\"none\"/>"
+                                          "<line x2=\"5\" stroke=\"red\" stroke-width=\"0\"/>"
+                                          "<g stroke=\"red\"><line x2=\"5\" stroke=\"NONE\"/></g>"
+                                          "</svg>",
+                                 g),
+                        "");
+    /* every property, as attributes and in styles, in any case, inherited */
+    ops = geo_read(SVG_OPEN "<g stroke=\"white\" style=\"stroke-linejoin: ROUND; "
+                            "stroke-linecap: Square\" stroke-miterlimit=\"10\">"
+                            "<polyline points=\"0 0 10 0 10 10\" fill=\"none\" "
+                            "stroke-width=\"2px\" style=\"stroke-dasharray: 3, 1 2; "
+                            "stroke-dashoffset: 1.5px\" stroke-opacity=\"1\"/></g></svg>",
+                   g);
+    assert_true(ops[0] == 's');
+}
+
 static double dec(double v) { return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4); }
 
 static void test_colours(void **state)
@@ -275,18 +564,42 @@ static void refused(const char *doc, const char *want1, const char *want2)
         fail_msg("%s\n  message: %s\n  wanted: %s / %s", doc, msg, want1, want2 ? want2 : "");
 }
 
-#define L2(x) "<svg xmlns=\"http://www.w3.org/2000/svg\">\n" x "</svg>"
-
 static void test_refusals(void **state)
 {
     (void)state;
-    refused(L2("<rect width=\"1\" height=\"1\" stroke=\"red\"/>"), "line 2: <rect>", "stroke");
-    refused(L2("<g style=\"stroke:#000\"><rect/></g>"), "line 2: <g>", "stroke");
-    refused(L2("<circle r=\"5\"/>"), "line 2: <circle>", "arcs");
-    refused(L2("<ellipse rx=\"5\" ry=\"2\"/>"), "line 2: <ellipse>", "arcs");
-    refused(L2("\n<path d=\"M0 0 A 5 5 0 0 1 10 10\"/>"), "line 3: <path>", "arc command A");
-    refused(L2("<path d=\"M0 0 a 5 5 0 0 1 10 10\"/>"), "line 2: <path>", "arc command a");
-    refused(L2("<rect width=\"1\" height=\"1\" rx=\"1\"/>"), "<rect>", "rounded");
+    /* shapes, arcs and strokes: invalid values, and what cannot be
+     * stroked exactly yet (Bezier arcs, arcs of ellipses that are not
+     * circles), or painted (stroke opacity) */
+    refused(L2("<circle r=\"-1\"/>"), "line 2: <circle>", "negative r");
+    refused(L2("<ellipse rx=\"1\" ry=\"-2\"/>"), "line 2: <ellipse>", "negative ry");
+    refused(L2("<rect width=\"1\" height=\"1\" rx=\"-1\"/>"), "<rect>", "negative rx");
+    refused(L2("<circle r=\"10%\"/>"), "<circle>", "px");
+    refused(L2("\n<path d=\"M0 0 A 5 5 0 2 1 10 10\"/>"), "line 3: <path>", "large-arc flag");
+    refused(L2("<path d=\"M0 0 a 5 5 0 0 x 10 10\"/>"), "line 2: <path>", "sweep flag");
+    refused(L2("<path d=\"M0 0 a 5 5 0 0\"/>"), "<path>", "ends too early");
+    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-opacity=\"0.5\"/>"), "line 2: <line>",
+            "stroke-opacity");
+    refused(L2("<g stroke-opacity=\"50%\"><line x2=\"5\" stroke=\"red\"/></g>"),
+            "line 2: <line>", "stroke-opacity");
+    refused(L2("<line x2=\"5\" stroke=\"url(#g)\"/>"), "<line>", "paint servers");
+    refused(L2("<line x2=\"5\" stroke=\"#f008\"/>"), "<line>", "alpha");
+    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"10%\"/>"), "<line>", "px");
+    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"-1\"/>"), "<line>", "negative");
+    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-linejoin=\"miter-clip\"/>"), "<line>",
+            "stroke-linejoin");
+    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-linejoin=\"arcs\"/>"), "<line>",
+            "stroke-linejoin");
+    refused(L2("<line x2=\"5\" style=\"stroke-linecap: flat\"/>"), "<line>", "stroke-linecap");
+    refused(L2("<line x2=\"5\" stroke-miterlimit=\"0.5\"/>"), "<line>", "stroke-miterlimit");
+    refused(L2("<line x2=\"5\" stroke-dasharray=\"1 -2\"/>"), "<line>", "negative");
+    refused(L2("<line x2=\"5\" stroke-dasharray=\"1 2%\"/>"), "<line>", "stroke-dasharray");
+    refused(L2("<line x2=\"5\" stroke-dashoffset=\"1em\"/>"), "<line>", "stroke-dashoffset");
+    refused(L2("\n\n<path stroke=\"red\" d=\"M0 0 Q 5 5 10 0\"/>"), "line 4: <path>", "stroke");
+    refused(L2("<path stroke=\"red\" d=\"M0 0 C 5 5 6 6 10 0\"/>"), "line 2: <path>", "stroke");
+    refused(L2("<ellipse rx=\"5\" ry=\"2\" stroke=\"red\"/>"), "line 2: <ellipse>", "stroke");
+    /* a dash pattern finer than the limits allow */
+    refused(L2("<line x2=\"100000\" stroke=\"red\" stroke-dasharray=\"0.001\"/>"), "<line>",
+            "dashes");
     refused(L2("<rect width=\"1\" height=\"1\" opacity=\"0.5\"/>"), "<rect>", "opacity");
     refused(L2("<rect width=\"1\" height=\"1\" fill-opacity=\".5\"/>"), "<rect>", "opacity");
     refused(L2("<g opacity=\"0.99\"/>"), "<g>", "opacity");
@@ -575,11 +888,11 @@ static void test_command(void **state)
 
     snprintf(path, sizeof path, "%s/circle.svg", dir);
     snprintf(txt, sizeof txt, "%s/out.txt", dir);
-    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\">\n\n<circle r=\"3\"/></svg>");
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\">\n\n<use href=\"#a\"/></svg>");
     snprintf(spec, sizeof spec, "svg:file=%s", path);
     const char *args[] = {"truth", "-p", spec, "-s", "16x16", "-o", txt, NULL};
     assert_int_equal(support_aabench(args, out, sizeof out), 2);
-    if (!strstr(out, "line 3") || !strstr(out, "<circle>"))
+    if (!strstr(out, "line 3") || !strstr(out, "<use>"))
         fail_msg("message: %s", out);
     const char *def[] = {"truth", "-p", "svg", "-s", "32x32", "-o", txt, NULL};
     assert_int_equal(support_aabench(def, out, sizeof out), 0);
@@ -726,7 +1039,8 @@ static void test_unknown_properties(void **state)
 static void test_shipped(void **state)
 {
     (void)state;
-    static const char *files[] = {"shapes.svg", "rules.svg", "curves.svg", "logo.svg", "mono.svg"};
+    static const char *files[] = {"shapes.svg", "rules.svg", "curves.svg", "logo.svg",
+                                  "mono.svg",   "arcs.svg",  "strokes.svg"};
     for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s", aa_svg_dir(), files[k]);
@@ -745,6 +1059,9 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_numbers),
              cmocka_unit_test(test_transforms),
              cmocka_unit_test(test_shapes),
+             cmocka_unit_test(test_basic_arcs),
+             cmocka_unit_test(test_arc_command),
+             cmocka_unit_test(test_stroke_props),
              cmocka_unit_test(test_colours),
              cmocka_unit_test(test_viewbox),
              cmocka_unit_test(test_refusals),

@@ -6,7 +6,8 @@
  * return a status and never crash, read out of bounds or leak; what it
  * gives the sink must be well formed (a shape before its first point, every
  * segment inside a subpath begun by a move, every subpath closed, finite
- * coordinates within AA_SVG_MAX_COORD), and the points, put into a scene as
+ * coordinates within AA_SVG_MAX_COORD, elliptical arcs whose whole ellipse
+ * is within it), and the points, put into a scene as
  * the pattern does, must finish into a scene (cubics are refused by a scene
  * that cannot hold them, which is a status, not a fault).
  */
@@ -91,7 +92,25 @@ static int fz_close(void *ctx)
     return aa_scene_close(f->s);
 }
 
-static const aa_svg_sink fuzz_svg_sink = {fz_shape, fz_move, fz_line, fz_quad, fz_cubic, fz_close};
+/* An elliptical arc: its centre and end within the limits, its
+ * semi-diameters finite and its ellipse within the limits too. */
+static int fz_arc(void *ctx, double cx, double cy, double ux, double uy, double vx, double vy,
+                  double t0, double t1, double x, double y)
+{
+    fuzz_sink *f = ctx;
+    if (!f->open)
+        abort();
+    fuzz_point(cx, cy);
+    fuzz_point(x, y);
+    fuzz_point(fabs(cx) + hypot(ux, vx), fabs(cy) + hypot(uy, vy));
+    if (!isfinite(t0) || !isfinite(t1))
+        abort();
+    return aa_scene_arc_to(f->s, cx / 64, cy / 48, ux / 64, uy / 48, vx / 64, vy / 48, t0, t1,
+                           x / 64, y / 48);
+}
+
+static const aa_svg_sink fuzz_svg_sink = {fz_shape, fz_move, fz_line,  fz_quad,
+                                          fz_cubic, fz_close, fz_arc};
 
 int aa_fuzz_svg(const uint8_t *data, size_t size)
 {
