@@ -256,10 +256,8 @@ static void test_stroke_areas(void **state)
                14 * 2);
 }
 
-/* The areas of shapes with elliptical arcs need the reference of conic
- * pieces (harness/truth); until it is in the tree they are left out of the
- * build: -DAA_TEST_CONIC_REFERENCE builds them. */
-#ifdef AA_TEST_CONIC_REFERENCE
+/* The areas of shapes with elliptical arcs, through the reference of conic
+ * pieces (harness/truth). */
 
 /* Fills with elliptical arcs: pi r^2; pi a b; a rounded rectangle is its
  * box less four corners, each a square rx ry less a quarter ellipse
@@ -309,9 +307,6 @@ static void test_stroke_arc_areas(void **state)
 
 #define CONIC_AREA_TESTS                                                                       \
     , cmocka_unit_test(test_fill_areas), cmocka_unit_test(test_stroke_arc_areas)
-#else
-#define CONIC_AREA_TESTS
-#endif
 
 SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_scene_points),
