@@ -1032,12 +1032,12 @@ static int path_data(reader *r, aa_path *p, const char *d)
              * implementation notes' conversion (aa_arc_endpoints) gives an
              * arc, a line (a zero radius) or nothing (equal ends) */
             double x = a[5] + ox, y = a[6] + oy, c[8];
-            int k = aa_arc_endpoints(cx, cy, a[0], a[1], a[2], a[3] != 0, a[4] != 0, x, y, c);
-            if (k < 0)
+            aa_arc_kind k;
+            if (aa_arc_endpoints(cx, cy, a[0], a[1], a[2], a[3] != 0, a[4] != 0, x, y, c, &k))
                 return at_element(r, AA_EINVAL);
-            if (k == 0)
+            if (k == AA_ARC_CURVE)
                 st = p_arc(r, p, c, x, y);
-            else if (k == 1)
+            else if (k == AA_ARC_LINE)
                 st = p_line(r, p, x, y);
             else
                 st = AA_OK;

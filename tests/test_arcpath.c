@@ -54,12 +54,20 @@ static void test_endpoints_special(void **state)
 {
     (void)state;
     double c[8];
-    assert_int_equal(aa_arc_endpoints(1, 2, 3, 4, 0, 0, 0, 1, 2, c), 2);
-    assert_int_equal(aa_arc_endpoints(1, 2, 0, 4, 0, 0, 0, 5, 2, c), 1);
-    assert_int_equal(aa_arc_endpoints(1, 2, 3, 0, 0, 1, 1, 5, 2, c), 1);
-    assert_int_equal(aa_arc_endpoints(1, 2, 3, 4, NAN, 0, 0, 5, 2, c), AA_EINVAL);
-    assert_int_equal(aa_arc_endpoints(1, 2, INFINITY, 4, 0, 0, 0, 5, 2, c), AA_EINVAL);
-    assert_int_equal(aa_arc_endpoints(1, NAN, 3, 4, 0, 0, 0, 5, 2, c), AA_EINVAL);
+    aa_arc_kind kind = AA_ARC_CURVE;
+    /* F.6.2: equal ends draw nothing, a zero radius a line; a non-finite
+     * number is an error, told apart from both */
+    assert_int_equal(aa_arc_endpoints(1, 2, 3, 4, 0, 0, 0, 1, 2, c, &kind), AA_OK);
+    assert_int_equal(kind, AA_ARC_NONE);
+    assert_int_equal(aa_arc_endpoints(1, 2, 0, 4, 0, 0, 0, 5, 2, c, &kind), AA_OK);
+    assert_int_equal(kind, AA_ARC_LINE);
+    kind = AA_ARC_CURVE;
+    assert_int_equal(aa_arc_endpoints(1, 2, 3, 0, 0, 1, 1, 5, 2, c, &kind), AA_OK);
+    assert_int_equal(kind, AA_ARC_LINE);
+    assert_int_equal(aa_arc_endpoints(1, 2, 3, 4, NAN, 0, 0, 5, 2, c, &kind), AA_EINVAL);
+    assert_int_equal(aa_arc_endpoints(1, 2, INFINITY, 4, 0, 0, 0, 5, 2, c, &kind), AA_EINVAL);
+    assert_int_equal(aa_arc_endpoints(1, NAN, 3, 4, 0, 0, 0, 5, 2, c, &kind), AA_EINVAL);
+    assert_int_equal(aa_arc_endpoints(1, 2, 3, 4, 0, 0, 0, 1, NAN, c, &kind), AA_EINVAL);
 
     /* Radius 1 from (1, 0) to (0, 1): the centre is (0, 0) or (1, 1).  The
      * sweep flag 1 is the direction of increasing angle.  By hand:
@@ -75,8 +83,9 @@ static void test_endpoints_special(void **state)
                  {0, 0, 1, 1, -M_PI / 2, -M_PI / 2},
                  {1, 0, 0, 0, 0, -1.5 * M_PI}};
     for (int k = 0; k < 4; k++) {
-        assert_int_equal(aa_arc_endpoints(1, 0, 1, -1, 0, hand[k].large, hand[k].sweep, 0, 1, c),
-                         0);
+        assert_int_equal(
+            aa_arc_endpoints(1, 0, 1, -1, 0, hand[k].large, hand[k].sweep, 0, 1, c, &kind), AA_OK);
+        assert_int_equal(kind, AA_ARC_CURVE);
         assert_true(fabs(c[0] - hand[k].cx) < 1e-15 && fabs(c[1] - hand[k].cy) < 1e-15);
         assert_true(fabs(c[2] - 1) < 1e-15 && fabs(c[3]) < 1e-15);
         assert_true(fabs(c[4]) < 1e-15 && fabs(c[5] - 1) < 1e-15);
@@ -86,7 +95,7 @@ static void test_endpoints_special(void **state)
 
     /* Radii too small: (0,0) to (4,0) with radius 1 is scaled to radius 2
      * about the midpoint (2, 0), half a circle. */
-    assert_int_equal(aa_arc_endpoints(0, 0, 1, 1, 0, 1, 1, 4, 0, c), 0);
+    assert_int_equal(aa_arc_endpoints(0, 0, 1, 1, 0, 1, 1, 4, 0, c, &kind), AA_OK);
     assert_true(fabs(c[0] - 2) < 1e-15 && fabs(c[1]) < 1e-15);
     assert_true(fabs(hypot(c[2], c[3]) - 2) < 1e-15 && fabs(hypot(c[4], c[5]) - 2) < 1e-15);
     assert_true(fabs(fabs(c[7] - c[6]) - M_PI) < 1e-15);
@@ -107,7 +116,9 @@ static void test_endpoints_random(void **state)
         double phi = uniform(-720, 720);
         int large = i & 1, sweep = (i >> 1) & 1;
         double c[8];
-        assert_int_equal(aa_arc_endpoints(x0, y0, rx, ry, phi, large, sweep, x1, y1, c), 0);
+        aa_arc_kind kind;
+        assert_int_equal(aa_arc_endpoints(x0, y0, rx, ry, phi, large, sweep, x1, y1, c, &kind), AA_OK);
+        assert_int_equal(kind, AA_ARC_CURVE);
         double size = hypot(c[2], c[3]) + hypot(c[4], c[5]);
         double ax, ay, bx, by;
         ellipse_at(c, c[6], &ax, &ay);

@@ -220,16 +220,19 @@ static void degrees_cos_sin(double phi, double *c, double *s)
  * theta1 + dtheta.
  */
 int aa_arc_endpoints(double x0, double y0, double rx, double ry, double phi, int large,
-                     int sweep, double x1, double y1, double c[8])
+                     int sweep, double x1, double y1, double c[8], aa_arc_kind *kind)
 {
+    *kind = AA_ARC_NONE;
     if (!finite2(x0, y0) || !finite2(x1, y1) || !finite2(rx, ry) || !isfinite(phi))
         return aa_fail(AA_EINVAL, "SVG arc: a number is not finite");
     if (x0 == x1 && y0 == y1)
-        return 2; /* F.6.2: the ends are equal, nothing is drawn */
+        return AA_OK; /* F.6.2: the ends are equal, nothing is drawn */
     rx = fabs(rx);
     ry = fabs(ry);
-    if (rx == 0 || ry == 0)
-        return 1; /* F.6.2: a straight line */
+    if (rx == 0 || ry == 0) {
+        *kind = AA_ARC_LINE; /* F.6.2: a straight line */
+        return AA_OK;
+    }
     double cp, sp;
     degrees_cos_sin(phi, &cp, &sp);
     double hx = 0.5 * (x0 - x1), hy = 0.5 * (y0 - y1);
@@ -271,7 +274,8 @@ int aa_arc_endpoints(double x0, double y0, double rx, double ry, double phi, int
             return aa_fail(AA_EINVAL, "SVG arc from (%g, %g) to (%g, %g) radii (%g, %g): the "
                                       "ellipse is out of range",
                            x0, y0, x1, y1, rx, ry);
-    return 0;
+    *kind = AA_ARC_CURVE;
+    return AA_OK;
 }
 
 /* ---- filling ---- */

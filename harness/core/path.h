@@ -55,12 +55,14 @@ int aa_path_close(aa_path *p);
 /* The SVG arc command from (x0, y0) to (x1, y1) with radii rx, ry, x-axis
  * rotation phi (degrees) and the two flags, by the SVG implementation notes
  * (SVG 1.1 F.6.5, F.6.6; SVG 2 "Elliptical arc implementation notes"):
- * radii made positive, scaled up when too small for the ends; returns
- * 0 (an arc: c[0..7] = cx cy ux uy vx vy t0 t1 as aa_edge, from (x0, y0)
- * to (x1, y1)), 1 (a line: a radius is zero) or 2 (nothing: the ends are
- * equal).  Non-finite input: AA_EINVAL (negative). */
+ * radii made positive, scaled up when too small for the ends.  *kind is
+ * AA_ARC_CURVE (c[0..7] = cx cy ux uy vx vy t0 t1 as aa_edge, from (x0, y0)
+ * to (x1, y1)), AA_ARC_LINE (a radius is zero: a straight line) or
+ * AA_ARC_NONE (the ends are equal: nothing is drawn).  Returns AA_OK, or
+ * AA_EINVAL for non-finite input (*kind then AA_ARC_NONE). */
+typedef enum aa_arc_kind { AA_ARC_CURVE = 0, AA_ARC_LINE, AA_ARC_NONE } aa_arc_kind;
 int aa_arc_endpoints(double x0, double y0, double rx, double ry, double phi, int large,
-                     int sweep, double x1, double y1, double c[8]);
+                     int sweep, double x1, double y1, double c[8], aa_arc_kind *kind);
 
 /* Give every segment of `path` to a scene, each point mapped by the affine
  * map m (x' = m0 x + m2 y + m4, y' = m1 x + m3 y + m5; NULL: identity):

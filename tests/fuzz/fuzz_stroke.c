@@ -61,14 +61,14 @@ static void check_arc_endpoints(reader *r)
     double x0 = number(r), y0 = number(r), rx = number(r), ry = number(r), phi = number(r);
     unsigned f = byte(r);
     double x1 = number(r), y1 = number(r), c[8];
-    int st = aa_arc_endpoints(x0, y0, rx, ry, phi * 90, f & 1, (f >> 1) & 1, x1, y1, c);
-    if (st < 0)
-        abort(); /* the numbers are finite */
-    if (st == 2 && !(x0 == x1 && y0 == y1))
+    aa_arc_kind st;
+    if (aa_arc_endpoints(x0, y0, rx, ry, phi * 90, f & 1, (f >> 1) & 1, x1, y1, c, &st))
+        return; /* finite numbers whose ellipse overflows: refused, as said */
+    if ((st == AA_ARC_NONE) != (x0 == x1 && y0 == y1))
         abort();
-    if (st == 1 && !(rx == 0 || ry == 0))
+    if (st == AA_ARC_LINE && !(rx == 0 || ry == 0))
         abort();
-    if (st != 0)
+    if (st != AA_ARC_CURVE)
         return;
     double size = hypot(c[2], c[3]) + hypot(c[4], c[5]);
     double tol = 1e-9 * (size + fabs(x0) + fabs(y0) + fabs(x1) + fabs(y1));
@@ -115,10 +115,12 @@ static void read_path(reader *r, aa_path *p)
             double x = number(r), y = number(r), c[8];
             if (!p->open)
                 break;
-            int st = aa_arc_endpoints(p->penx, p->peny, rx, ry, phi, f & 1, (f >> 1) & 1, x, y, c);
-            if (st == 0)
+            aa_arc_kind st;
+            if (aa_arc_endpoints(p->penx, p->peny, rx, ry, phi, f & 1, (f >> 1) & 1, x, y, c, &st))
+                break;
+            if (st == AA_ARC_CURVE)
                 aa_path_arc_to(p, c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], x, y);
-            else if (st == 1)
+            else if (st == AA_ARC_LINE)
                 aa_path_line_to(p, x, y);
             break;
         }
