@@ -65,7 +65,7 @@
  * image does not depend on the rows a thread did before.  Measured on
  * crow's arcs raised to cubics at 1024x1024, one thread: area/point 1.37,
  * 1.47 on 48 stripes of S-shaped cubics, where crow measured 1.47 to 1.49
- * in the same runs (tests/bench_cubic.c).
+ * in the same runs (tests/bench_curves.c).
  *
  * Conic pieces (arcs of ellipses, AA_PIECE_CONIC: y = ey - er cos s,
  * x = ex + ea cos s + eb sin s, s rising from s0 to s1 in [0, pi]) the
@@ -112,7 +112,7 @@
  * 5.4e-15; the quartic's crossings agreed with aa_piece_meet's in number
  * on every pair of 64 crossing ellipses at 1024x1024 and within 1.3e-12 px
  * in height (a cut's error costs its square).  Speed, area/point at
- * 1024x1024, one thread (tests/bench_conic.c): 2.1 on 200 concentric
+ * 1024x1024, one thread (tests/bench_curves.c): 2.1 on 200 concentric
  * circles, 2.2 on 256 disks, 2.8 on 64 crossing ellipses, crow 1.5 in the
  * same runs.
  *

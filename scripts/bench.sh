@@ -22,9 +22,6 @@ echo "== methods and peers, crow 1024x1024 box; memory at 4096x4096 =="
 # shellcheck disable=SC2086
 "$build/bench_methods" -p crow -s 1024x1024 -f box $timing -m 4096x4096
 echo
-echo "== cubic arcs: area against point, crow as cubics and waves 1024x1024 box =="
+echo "== curves: area against point on parabolas, cubic and elliptical arcs 1024x1024 box =="
 # shellcheck disable=SC2086
-"$build/bench_cubic" -s 1024x1024 --target-ci ${TARGET_CI:-2} --budget ${BUDGET:-1}
-echo
-echo "== elliptical arcs: area against point, rings, disks and ellipses 1024x1024 box (5 renders each) =="
-"$build/bench_conic" -s 1024x1024 --reps "${REPS:-5}"
+"$build/bench_curves" -s 1024x1024 --target-ci ${TARGET_CI:-2} --budget ${BUDGET:-1} ${REPS:+--reps "$REPS"}

@@ -1,27 +1,36 @@
 /*
- * bench_cubic.c: speed of `area` against `point` on scenes of cubic arcs
- * (`make bench`), beside the same on crow's parabolas.
+ * bench_curves.c: speed of `area` against `point` on scenes of curved
+ * edges (`make bench`): crow's parabolas, cubic arcs and elliptical arcs.
  *
  * Scenes, W x H (default 1024x1024), box filter:
  *  - crow: the pattern (96 parabolic arcs);
  *  - crow as cubics: the same curves, each arc raised to a cubic (controls
  *    P0 + 2/3 (C - P0), P1 + 2/3 (C - P1)): the same image, cubic pieces;
  *  - waves: 48 white stripes whose sides are S-shaped cubics from top to
- *    bottom (two turning points in x each), black between.
+ *    bottom (two turning points in x each), black between;
+ *  - rings: 200 concentric circles in one even-odd layer, radii 0.002 to
+ *    0.45 of the image (alternate white and black rings);
+ *  - disks: a grid of 16 x 16 disks, radius 0.4 of their cell, each a
+ *    circle of two half arcs;
+ *  - ellipses: 64 ellipses turned by 0 to 180 degrees, overlapping, in
+ *    one nonzero layer (pieces that cross).
  * For each, the median render time of `point` and `area` with one thread,
- * the two taking turns (aa_timing_measure: after a warm-up, until both
- * medians' 95% CIs are within --target-ci PCT, default 2, or --budget S per
- * method has passed, default 1), and their ratio.  A noisy timing is marked *.
- * Figures are read, not asserted.
+ * the two taking turns (aa_timing_measure: after a warm-up, exactly --reps
+ * renders each, or with --reps 0 (the default) until both medians' 95% CIs
+ * are within --target-ci PCT, default 2, or --budget S per method has
+ * passed, default 1), and their ratio.  A noisy timing is marked *.
+ * --scenes cubic|conic|all picks the scenes (crow is in every set, for
+ * comparison).  Figures are read, not asserted.
  *
- * usage: bench_cubic [-s WxH] [-t THREADS] [--target-ci PCT] [--budget S]
+ * usage: bench_curves [-s WxH] [-t THREADS] [--reps N] [--target-ci PCT]
+ *                     [--budget S] [--scenes cubic|conic|all]
  */
 #include "bench.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
 
 /* The scene finished when st is AA_OK; else freed, NULL. */
 static aa_scene *finished(aa_scene *s, int st)
@@ -76,6 +85,51 @@ static aa_scene *waves(void)
             (st = aa_scene_cubic_to(s, x + w - a, 2.0 / 3.0, x + w + a, 1.0 / 3.0, x + w, 0.0)))
             break;
         st = aa_scene_close(s);
+    }
+    return finished(s, st);
+}
+
+/* The closed ellipse of centre c and semi-diameters u, v: two half arcs. */
+static int ellipse(aa_scene *s, double cx, double cy, double ux, double uy, double vx, double vy)
+{
+    int st;
+    if ((st = aa_scene_move_to(s, cx + ux, cy + uy)) ||
+        (st = aa_scene_arc_to(s, cx, cy, ux, uy, vx, vy, 0.0, M_PI, cx - ux, cy - uy)) ||
+        (st = aa_scene_arc_to(s, cx, cy, ux, uy, vx, vy, M_PI, 2.0 * M_PI, cx + ux, cy + uy)))
+        return st;
+    return aa_scene_close(s);
+}
+
+static aa_scene *rings(void)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    int st = s ? aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_EVENODD) : AA_ENOMEM;
+    for (int k = 0; k < 200 && !st; k++) {
+        double r = 0.002 + (0.45 - 0.002) * k / 199.0;
+        st = ellipse(s, 0.5, 0.5, r, 0.0, 0.0, r);
+    }
+    return finished(s, st);
+}
+
+static aa_scene *disks(void)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    int st = s ? aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO) : AA_ENOMEM;
+    for (int k = 0; k < 256 && !st; k++) {
+        double cell = 1.0 / 16.0, r = 0.4 * cell;
+        st = ellipse(s, (k % 16 + 0.5) * cell, (k / 16 + 0.5) * cell, r, 0.0, 0.0, r);
+    }
+    return finished(s, st);
+}
+
+static aa_scene *ellipses(void)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    int st = s ? aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO) : AA_ENOMEM;
+    for (int k = 0; k < 64 && !st; k++) {
+        double a = M_PI * k / 64.0, c = cos(a), sn = sin(a);
+        double cx = 0.5 + 0.2 * cos(3.0 * a), cy = 0.5 + 0.2 * sin(2.0 * a);
+        st = ellipse(s, cx, cy, 0.2 * c, 0.2 * sn, -0.05 * sn, 0.05 * c);
     }
     return finished(s, st);
 }
@@ -140,55 +194,82 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s\n", aa_last_error());
         return 1;
     }
-    int w = 1024, h = 1024, threads = 1;
+    int w = 1024, h = 1024, threads = 1, cubic = 1, conic = 1;
     aa_timing_plan plan = {0, 0.0, 0.0};
     for (int k = 1; k < argc; k++) {
         if (!strcmp(argv[k], "-s") && k + 1 < argc && sscanf(argv[k + 1], "%dx%d", &w, &h) == 2)
             k++;
         else if (!strcmp(argv[k], "-t") && k + 1 < argc)
             threads = atoi(argv[++k]);
+        else if (!strcmp(argv[k], "--reps") && k + 1 < argc)
+            plan.reps = atoi(argv[++k]);
         else if (!strcmp(argv[k], "--target-ci") && k + 1 < argc)
             plan.target_ci = atof(argv[++k]) / 100.0;
         else if (!strcmp(argv[k], "--budget") && k + 1 < argc)
             plan.budget = atof(argv[++k]);
-        else {
-            fprintf(stderr, "usage: bench_cubic [-s WxH] [-t THREADS] [--target-ci PCT] "
-                            "[--budget S]\n");
+        else if (!strcmp(argv[k], "--scenes") && k + 1 < argc) {
+            const char *v = argv[++k];
+            cubic = !strcmp(v, "cubic") || !strcmp(v, "all");
+            conic = !strcmp(v, "conic") || !strcmp(v, "all");
+            if (!cubic && !conic) {
+                fprintf(stderr, "bench_curves: --scenes takes cubic, conic or all, not '%s'\n", v);
+                return 2;
+            }
+        } else {
+            fprintf(stderr, "usage: bench_curves [-s WxH] [-t THREADS] [--reps N] "
+                            "[--target-ci PCT] [--budget S] [--scenes cubic|conic|all]\n");
             return 2;
         }
     }
-    if (w < 1 || h < 1 || threads < 1) {
-        fprintf(stderr, "bench_cubic: bad size or thread count\n");
+    if (w < 1 || h < 1 || threads < 1 || plan.reps < 0 || plan.target_ci < 0 || plan.budget < 0) {
+        fprintf(stderr, "bench_curves: bad size, thread count, repetitions, target or budget\n");
         return 2;
     }
     aa_spec crow_spec;
     aa_scene *crow = NULL;
     if (aa_pattern_parse("crow", &crow_spec) || aa_pattern_scene(&crow_spec, &crow)) {
-        fprintf(stderr, "bench_cubic: %s\n", aa_last_error());
+        fprintf(stderr, "bench_curves: %s\n", aa_last_error());
         return 3;
     }
-    aa_scene *scenes[3] = {crow, elevated(crow), waves()};
-    const char *names[3] = {"crow (parabolas)", "crow as cubics", "waves (48 stripes of cubics)"};
-    if (!scenes[1] || !scenes[2]) {
-        fprintf(stderr, "bench_cubic: %s\n", aa_last_error());
-        return 3;
-    }
-    printf("%dx%d box, %d thread%s; medians by precision\n", w, h, threads,
-           threads > 1 ? "s" : "");
-    printf("%-30s %12s %12s %10s\n", "scene", "point ms", "area ms", "area/point");
+    enum { N = 6 };
+    aa_scene *scenes[N] = {crow,
+                           cubic ? elevated(crow) : NULL,
+                           cubic ? waves() : NULL,
+                           conic ? rings() : NULL,
+                           conic ? disks() : NULL,
+                           conic ? ellipses() : NULL};
+    const char *names[N] = {"crow (parabolas)",
+                            "crow as cubics",
+                            "waves (48 stripes of cubics)",
+                            "rings (200 circles, even-odd)",
+                            "disks (16 x 16)",
+                            "ellipses (64 turned, crossing)"};
+    const int wanted[N] = {1, cubic, cubic, conic, conic, conic};
     int status = 0;
-    for (int k = 0; k < 3; k++) {
+    for (int k = 1; k < N; k++)
+        if (wanted[k] && !scenes[k]) {
+            fprintf(stderr, "bench_curves: %s: %s\n", names[k], aa_last_error());
+            status = 3;
+        }
+    if (!status) {
+        printf("%dx%d box, %d thread%s; medians of %s\n", w, h, threads, threads > 1 ? "s" : "",
+               plan.reps ? "a fixed count" : "renders by precision");
+        printf("%-32s %12s %12s %10s\n", "scene", "point ms", "area ms", "area/point");
+    }
+    for (int k = 0; k < N && !status; k++) {
         double med[2];
         int noisy[2];
+        if (!wanted[k])
+            continue;
         if (time_pair(scenes[k], w, h, threads, &plan, med, noisy)) {
-            fprintf(stderr, "bench_cubic: %s: %s\n", names[k], aa_last_error());
+            fprintf(stderr, "bench_curves: %s: %s\n", names[k], aa_last_error());
             status = 3;
             break;
         }
-        printf("%-30s %11.3f%s %11.3f%s %10.2f\n", names[k], 1e3 * med[0], noisy[0] ? "*" : " ",
+        printf("%-32s %11.3f%s %11.3f%s %10.2f\n", names[k], 1e3 * med[0], noisy[0] ? "*" : " ",
                1e3 * med[1], noisy[1] ? "*" : " ", med[1] / med[0]);
     }
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < N; k++)
         aa_scene_free(scenes[k]);
     return status;
 }
