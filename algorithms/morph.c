@@ -49,15 +49,21 @@
  *    column, computed exactly here (morph_area).  On a straight edge whose
  *    staircase's turns have their middles on the edge, this is the exact
  *    box-filtered image (tests/test_postaa.c).
- * 4. Blending.
- *    mlaa: each pixel sums the shares its four sides give it (scaled to at
- *    most 1; Reshetov blends the horizontal and vertical passes without
- *    saying how they combine), each share taken of the colour across that
- *    side; results clamped to the range of the colours blended.
- *    smaa: the paper's neighbourhood blending: the pixel blends along rows
- *    or along columns, whichever direction has the larger share, by the two
- *    shares of that direction, as the paper's two bilinear fetches do: the
- *    fetch toward each side at its share, weighted by the shares.
+ * 4. Blending.  Each pixel blends along rows (with the pixels above and
+ *    below) or along columns, whichever direction gives it the larger share
+ *    (rows on a tie).  This is SMAA's neighbourhood blending (sec. 2.4).
+ *    Reshetov blends the horizontal and vertical passes without saying how
+ *    they combine; summing them would count twice the corner that a
+ *    one-pixel step of a staircase cuts, since the row run beside the step
+ *    and the column run of the step itself both draw it (a run one pixel
+ *    long with turns to both sides is the 45-degree line through that
+ *    corner), so mlaa takes one direction too, a choice.
+ *    mlaa: the pixel takes each of the two shares of its direction of the
+ *    colour across that side (scaled to sum to at most 1).
+ *    smaa: as the paper's two bilinear fetches: the fetch toward each side
+ *    at its share, the two weighted by the shares (each side share^2 /
+ *    (sum of both)).
+ *    Results are clamped to the range of the colours blended.
  * 5. Search length.  mlaa: whole runs (Reshetov's CPU algorithm scans each
  *    line).  smaa: each edge pixel searches at most `search` pixels each way
  *    (the high preset's 16 steps of two pixels reach 32); a run longer than
@@ -472,21 +478,20 @@ static uint64_t blend(const morph_state *s, int smaa, int threads, aa_image *out
                 y[0] = x[0], y[1] = x[1], y[2] = x[2];
                 continue;
             }
-            double wt[4];
+            /* one direction: rows (the lines above and below) unless a
+             * column line's share is larger */
+            double wt[4] = {0, 0, 0, 0};
+            const int a = fmax(sh[0], sh[1]) >= fmax(sh[2], sh[3]) ? 0 : 2;
+            const double sum = sh[a] + sh[a + 1];
             if (smaa) {
-                /* one direction; the two fetches at their shares, weighted
-                 * by the shares: share^2 / (sum of the two) of each side */
-                int rowsdir = fmax(sh[0], sh[1]) > fmax(sh[2], sh[3]);
-                int a = rowsdir ? 0 : 2;
-                double sum = sh[a] + sh[a + 1];
-                memset(wt, 0, sizeof wt);
+                /* the two fetches at their shares, weighted by the shares:
+                 * share^2 / (sum of the two) of each side */
                 wt[a] = sh[a] * sh[a] / sum;
                 wt[a + 1] = sh[a + 1] * sh[a + 1] / sum;
             } else {
-                double sum = sh[0] + sh[1] + sh[2] + sh[3];
-                double k = sum > 1.0 ? 1.0 / sum : 1.0;
-                for (int q = 0; q < 4; q++)
-                    wt[q] = sh[q] * k;
+                const double k = sum > 1.0 ? 1.0 / sum : 1.0;
+                wt[a] = sh[a] * k;
+                wt[a + 1] = sh[a + 1] * k;
             }
             for (int c = 0; c < 3; c++) {
                 double v = x[c], lo = v, hi = v;
