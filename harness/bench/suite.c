@@ -29,8 +29,8 @@
 
 static const aa_suite_group quick[] = {
     {LIST("crow"), LIST("128x128"), LIST("box"),
-     LIST("point", "supersample", "jitter", "hexagon", "trio", "area", "adaptive", "taa",
-          "cycle", "freetype", "stb", "cairo", "agg")},
+     LIST("point", "supersample", "jitter", "hexagon", "trio", "mlaa", "fxaa", "smaa", "area",
+          "adaptive", "taa", "cycle", "freetype", "stb", "cairo", "agg")},
     {LIST("crow"), LIST("128x128"), LIST("tent:r=1"), LIST("crowtable", "crowtiler")},
     {LIST("crow"), LIST("128x128"), LIST("gauss"), LIST("conetable", "feibushtex")},
     {NULL, NULL, NULL, NULL}};
