@@ -18,7 +18,7 @@
  *    holds only the scene's flat colours, so any value below their smallest
  *    contrast finds every edge, and edges between colours of equal luma are
  *    found).
- *    smaa: the paper's luma edges (sec. 2.1): luma Y = 0.2126 R + 0.7152 G
+ *    smaa: the paper's luma edge detection: luma Y = 0.2126 R + 0.7152 G
  *    + 0.0722 B (Rec. 709 weights), an edge where |dY| >= `threshold`
  *    (0.1, its high preset), then its local contrast adaptation: an edge is
  *    kept only if its contrast is at least 1/`adapt` (adapt = 2, the
@@ -33,25 +33,24 @@
  *    turn across the line, to the near side (row above, column left) or the
  *    far side: Reshetov's "secondary edge", SMAA's "crossing edge".  Two
  *    turns to opposite sides make a Z, to the same side a U, one an L
- *    (Reshetov, sec. 2, fig. 3).  A turn to both sides at once (a cross of
- *    four regions) is taken as no turn: both papers leave it open.
- * 3. The reconstructed edge (Reshetov, fig. 4; SMAA's area texture, sec.
- *    2.2).  Z and U shapes are split at the run's middle into two L shapes;
- *    each L's edge is the half-line from the middle of its turn (half a
- *    pixel off the boundary line, at the run's end) to the boundary line at
- *    the run's middle.  A lone L (the other end open: the end of an edge,
- *    the image border) gets its half-line only, as the half of a split
- *    shape: the paper draws an L's line to "the end of the primary edge",
- *    which for a split shape is the middle, and SMAA's texture does the
- *    same for its one-ended patterns.  A pixel beside the run takes the
- *    colour across the line in proportion to the part of its square beyond
- *    the reconstructed edge: the area of a trapezoid (or triangle) in its
- *    column, computed exactly here (morph_area).  On a straight edge whose
+ *    (Reshetov's pattern detection).  A turn to both sides at once (a
+ *    cross of four regions) is taken as no turn here (a choice).
+ * 3. The reconstructed edge (Reshetov's blending weights; SMAA's area
+ *    texture).  Z and U shapes are split at the run's middle into two L
+ *    shapes; each L's edge is the half-line from the middle of its turn
+ *    (half a pixel off the boundary line, at the run's end) to the boundary
+ *    line at the run's middle.  A lone L (the other end open: the end of an
+ *    edge, the image border) gets its half-line only, as the half of a
+ *    split shape would (a choice; SMAA's texture does the same for its
+ *    one-ended patterns).  A pixel beside the run takes the colour across
+ *    the line in proportion to the part of its square beyond the
+ *    reconstructed edge: the area of a trapezoid (or triangle) in its
+ *    column, computed exactly here (aa_morph_area).  On a straight edge whose
  *    staircase's turns have their middles on the edge, this is the exact
  *    box-filtered image (tests/test_postaa.c).
  * 4. Blending.  Each pixel blends along rows (with the pixels above and
  *    below) or along columns, whichever direction gives it the larger share
- *    (rows on a tie).  This is SMAA's neighbourhood blending (sec. 2.4).
+ *    (rows on a tie).  This is SMAA's neighbourhood blending pass.
  *    Reshetov blends the horizontal and vertical passes without saying how
  *    they combine; summing them would count twice the corner that a
  *    one-pixel step of a staircase cuts, since the row run beside the step
@@ -69,23 +68,23 @@
  *    (the high preset's 16 steps of two pixels reach 32); a run longer than
  *    that is read as ending there with no turn (open), as the paper's
  *    search that stops at its limit does.
- * 6. Area texture (SMAA, sec. 2.2 and its supplement): the area of step 3
+ * 6. Area texture (SMAA's pattern classification): the area of step 3
  *    for each pattern (the turn at each end: none, near, far, both) and the
  *    distances to the two ends, precomputed in init for distances 0 ..
- *    `search` from the definition (morph_area), and read per pixel.  The
+ *    `search` from the definition (aa_morph_area), and read per pixel.  The
  *    paper stores it as a texture with square-root-spaced distances because
  *    a GPU fetches it bilinearly; here it is a table of exact values.  The
  *    paper's search texture only decodes which of two edges a bilinear
  *    fetch saw, so the search advances two pixels a step; here the search
  *    reads the edges themselves, which is what the texture encodes.
- * 7. Sharp corners (SMAA, sec. 2.2, "sharp geometric features"): where the
+ * 7. Sharp corners (SMAA's "sharp geometric features"): where the
  *    turn at the end nearer the pixel continues beyond the pixel's row (the
  *    boundary runs on straight across: a corner of a shape, not a step of a
- *    staircase), the pixel's share is scaled by `rounding` (0.25, the
- *    paper's 25%; 1 blends as MLAA).  With both ends equally near, each
- *    counts half.
+ *    staircase), the pixel's share is scaled by `rounding` (0.25, SMAA's
+ *    default corner rounding of 25%; 1 blends as MLAA).  With both ends
+ *    equally near, each counts half.
  *
- * Variant: `smaa` here has no diagonal patterns (SMAA, sec. 2.3: lines of
+ * Variant: `smaa` here has no diagonal patterns (SMAA's diagonal lines:
  * slope near 45 degrees searched along diagonals, up to 8 steps in the high
  * preset, with their own area texture): staircases of one-pixel runs are
  * left as MLAA leaves them.  Nor the temporal and multisample modes (T2x,
@@ -158,7 +157,7 @@ static const aa_param smaa_params[] = {
     {"search", AA_PARAM_INT, 32, 1, 256, 0, NULL,
      "pixels searched each way along a line for its ends (high preset: 32)"},
     {"rounding", AA_PARAM_REAL, 0.25, 0.0, 1.0, 0, NULL,
-     "share kept at sharp corners (0.25: the paper's 25%; 1: as MLAA)"},
+     "share kept at sharp corners (0.25: SMAA's default 25%; 1: as MLAA)"},
     {0}};
 
 /* ---- state ---- */
