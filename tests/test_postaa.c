@@ -15,6 +15,9 @@
  *    mlaa and smaa leave it as it is; fxaa's sub-pixel term blurs it by
  *    0.75 (smoothstep(1/3))^2 = 0.0504, from the whitepaper's formula,
  *    and with subpix=0 leaves it;
+ *  - a square on pixel boundaries: its corner pixels lose MLAA's
+ *    half-line trapezoids (7/16, then 5/16), and a quarter of those under
+ *    SMAA's sharp-corner rule (7/64, 5/64), worked out by hand;
  *  - fxaa on a flat image is the identity; every image stays within the
  *    range of the scene's colours;
  *  - on star and crow each is below point sampling in RMSE against the
@@ -209,6 +212,57 @@ static void test_aligned_edges(void **state)
                   0.75 * (7.0 / 27.0) * (7.0 / 27.0));
 }
 
+/* ---- corners of a square ---- */
+
+static void test_square_corners(void **state)
+{
+    (void)state;
+    /* A white square [4, 12] x [4, 12] on black, 16 x 16, on pixel
+     * boundaries: point sampling is exact, but each side is a run of 8
+     * whose ends turn the same way (a U): MLAA's half-lines fall from 1/2
+     * at the corner to 0 at the side's middle (x = 8), so the corner pixel
+     * [4, 5] loses the trapezoid (1/2 + 3/8) / 2 = 7/16 of its white and
+     * the next one [5, 6] (3/8 + 1/4) / 2 = 5/16 (one direction: the row
+     * line and the column line give the corner pixel 7/16 each, and it
+     * blends with one of them).  SMAA sees that the turn goes on straight
+     * past the pixel's row (the square's left side): a sharp corner, the
+     * share kept at 1/4: 7/64 and 5/64. */
+    const double sq[] = {4 / 16.0, 4 / 16.0, 12 / 16.0, 4 / 16.0,
+                         12 / 16.0, 12 / 16.0, 4 / 16.0, 12 / 16.0};
+    const aa_rgb white = {{1, 1, 1}}, black = {{0, 0, 0}};
+    aa_scene *s = scenes_polygon(sq, 4, white, black, AA_FILL_NONZERO);
+    static const struct {
+        const char *method;
+        double corner, next;
+    } want[] = {{"mlaa", 1 - 7.0 / 16, 1 - 5.0 / 16},
+                {"smaa", 1 - 7.0 / 64, 1 - 5.0 / 64},
+                {"smaa:rounding=1", 1 - 7.0 / 16, 1 - 5.0 / 16}};
+    for (int m = 0; m < 3; m++) {
+        aa_image img;
+        support_render(want[m].method, s, NULL, 16, 16, 1, &img, NULL);
+        /* the four corners alike, and the pixel beside each along a side */
+        const int corners[4][4] = {{4, 4, 5, 4}, {11, 4, 10, 4}, {4, 11, 4, 10}, {11, 11, 11, 10}};
+        for (int k = 0; k < 4; k++) {
+            double c = aa_pixel(&img, corners[k][0], corners[k][1])[0];
+            double n = aa_pixel(&img, corners[k][2], corners[k][3])[0];
+            if (fabs(c - want[m].corner) > 1e-12 || fabs(n - want[m].next) > 1e-12)
+                fail_msg("%s, corner %d: %.15g and %.15g beside it, by hand %.15g and %.15g",
+                         want[m].method, k, c, n, want[m].corner, want[m].next);
+        }
+        /* outside the square nothing changes: the black pixels take no
+         * share (each turn lies on the square's side of the line) */
+        for (int j = 0; j < 16; j++)
+            for (int i = 0; i < 16; i++)
+                if ((i < 4 || i >= 12 || j < 4 || j >= 12) && aa_pixel(&img, i, j)[0] != 0.0)
+                    fail_msg("%s: outside pixel (%d, %d) is %.15g", want[m].method, i, j,
+                             aa_pixel(&img, i, j)[0]);
+        aa_image_free(&img);
+    }
+    aa_scene_free(s);
+    print_message("square corners: mlaa %.4f, smaa %.4f (rounding 1/4)\n", 1 - 7.0 / 16,
+                  1 - 7.0 / 64);
+}
+
 /* ---- flat images, range ---- */
 
 static void test_flat_and_range(void **state)
@@ -274,5 +328,6 @@ static void test_refuse_prefilter(void **state)
 }
 
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_area_table), cmocka_unit_test(test_slope_exact),
-             cmocka_unit_test(test_aligned_edges), cmocka_unit_test(test_flat_and_range),
+             cmocka_unit_test(test_aligned_edges), cmocka_unit_test(test_square_corners),
+             cmocka_unit_test(test_flat_and_range),
              cmocka_unit_test(test_below_point), cmocka_unit_test(test_refuse_prefilter))
