@@ -93,6 +93,12 @@
  * Counters: samples = pixels (one point sample each); expensive_pixels =
  * pixels beside at least one edge.
  *
+ * Cost.  Every pixel is visited in each pass (edges, the row lines, the
+ * column lines, blending), and the column lines walk the image down its
+ * columns; nothing skips empty stretches as trio does, so on scenes with
+ * few edges these cost about four times trio (1.2 against 0.3 ms on the
+ * SVG scenes at 256x256, one thread).
+ *
  * Limits.  What point sampling lost (thin objects between centres, moire)
  * cannot come back; a 45-degree staircase is left as sampled; the edge's
  * position inside a pixel is unknown, so reconstructed lines go through the
