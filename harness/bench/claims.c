@@ -1,5 +1,6 @@
 /*
- * claims.c: the seed papers' quantitative claims, measured
+ * claims.c: the papers' quantitative claims (the seed papers', and those of
+ * the post-processes that descend from Crow's), measured
  * (`aabench figures --claims`: DIR/claims.md and DIR/claims.html).
  *
  * Each claim is quoted with where it is made (paper, section, pages from
