@@ -14,6 +14,15 @@ extern const aa_method_type aa_method_jitter;
 extern const aa_display_method_type aa_method_hexagon_display;
 #define aa_method_hexagon (aa_method_hexagon_display.method)
 extern const aa_method_type aa_method_trio;
+extern const aa_method_type aa_method_mlaa;
+extern const aa_method_type aa_method_fxaa;
+extern const aa_method_type aa_method_smaa;
+/* The shares of the pixels beside a run of a morphological method (morph.c,
+ * step 3; SMAA's area table): the turn at the run's left and right ends
+ * (0 none, 1 toward the near pixel's side, 2 the far side, 3 both) and the
+ * pixel's distances to them; share[0] of the far colour goes to the near
+ * pixel, share[1] of the near colour to the far pixel. */
+void aa_morph_area(int e_left, int e_right, int d_left, int d_right, double share[2]);
 extern const aa_method_type aa_method_area;
 extern const aa_method_type aa_method_taa;
 extern const aa_method_type aa_method_cycle;

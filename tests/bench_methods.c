@@ -203,7 +203,8 @@ int main(int argc, char **argv)
         "point", "area", "freetype", "stb", "stb:flatness=0.01", "cairo",
         "cairo:aa=best,tolerance=0.01", "jitter:spp=16", "jitter:spp=16,seq=sobol",
         "jitter:spp=64", "supersample:n=3", "supersample:n=4", "supersample:pattern=msaa8",
-        "hexagon", "trio", "trio:variant=sancha", "trio:variant=recursive", "reference"};
+        "hexagon", "trio", "trio:variant=sancha", "trio:variant=recursive", "mlaa", "fxaa",
+        "smaa", "reference"};
     while (first + 1 < argc && argv[first][0] == '-') {
         const char *o = argv[first], *v = argv[first + 1];
         if (!strcmp(o, "-p")) pattern = v;

@@ -29,8 +29,8 @@
 
 static const aa_suite_group quick[] = {
     {LIST("crow"), LIST("128x128"), LIST("box"),
-     LIST("point", "supersample", "jitter", "hexagon", "trio", "area", "adaptive", "taa",
-          "cycle", "freetype", "stb", "cairo", "agg")},
+     LIST("point", "supersample", "jitter", "hexagon", "trio", "mlaa", "fxaa", "smaa", "area",
+          "adaptive", "taa", "cycle", "freetype", "stb", "cairo", "agg")},
     {LIST("crow"), LIST("128x128"), LIST("tent:r=1"), LIST("crowtable", "crowtiler")},
     {LIST("crow"), LIST("128x128"), LIST("gauss"), LIST("conetable", "feibushtex")},
     {NULL, NULL, NULL, NULL}};
@@ -40,8 +40,8 @@ static const aa_suite_group main_suite[] = {
      LIST("point", "supersample:n=3", "supersample:n=4", "supersample:pattern=msaa4",
           "supersample:pattern=msaa8", "jitter:spp=16", "jitter:spp=16,seq=random",
           "jitter:spp=16,seq=sobol", "jitter:spp=16,seq=halton", "jitter:spp=64", "hexagon",
-          "trio", "trio:variant=sancha", "trio:variant=recursive", "area", "adaptive", "taa",
-          "cycle", "freetype", "stb", "cairo", "agg")},
+          "trio", "trio:variant=sancha", "trio:variant=recursive", "mlaa", "fxaa", "smaa",
+          "area", "adaptive", "taa", "cycle", "freetype", "stb", "cairo", "agg")},
     /* Crow's pyramid two dots wide (fig. 2.14): his tables and his tiler */
     {LIST("crow"), LIST("256x256", "1024x1024"), LIST("tent:r=1"),
      LIST("crowtable", "crowtable:form=rows", "crowtiler")},
@@ -68,8 +68,9 @@ static const aa_suite_group paper[] = {
 
 /* Every family at its defaults, for the scenes besides crow. */
 #define FAMILIES                                                                               \
-    "point", "supersample", "jitter", "hexagon", "trio", "area", "taa", "cycle", "adaptive",   \
-        "freetype", "stb", "cairo", "agg", "crowtable", "conetable", "crowtiler", "feibushtex"
+    "point", "supersample", "jitter", "hexagon", "trio", "mlaa", "fxaa", "smaa", "area", "taa", \
+        "cycle", "adaptive", "freetype", "stb", "cairo", "agg", "crowtable", "conetable",          \
+        "crowtiler", "feibushtex"
 
 static const aa_suite_group full[] = {
     {LIST("crow"), LIST("256x256", "1024x1024"),
@@ -81,7 +82,8 @@ static const aa_suite_group full[] = {
           "jitter:spp=16,seq=sobol", "jitter:spp=16,seq=halton",
           "jitter:spp=16,seq=niederreiter", "jitter:spp=64,seq=sobol", "hexagon",
           "hexagon:display=fixed", "trio", "trio:variant=halflines", "trio:variant=sancha",
-          "trio:variant=recursive", "area", "area:integrator=bands", "taa", "taa:frames=16",
+          "trio:variant=recursive", "mlaa", "fxaa", "smaa", "smaa:rounding=1",
+          "area", "area:integrator=bands", "taa", "taa:frames=16",
           "cycle", "cycle:positions=msaa16", "adaptive", "adaptive:tag=1", "freetype", "stb",
           "cairo", "agg", "agg:scale=4", "crowtable", "crowtable:form=rows", "crowtable:res=64",
           "conetable", "conetable:cut=3", "conetable:res=256", "crowtiler",
@@ -137,6 +139,7 @@ __attribute__((constructor)) static void svg_specs_make(void)
 
 #define VECTOR_METHODS                                                                            \
     LIST("area", "point", "supersample:n=4", "supersample:pattern=msaa8", "jitter:spp=16",       \
+         "trio", "mlaa", "fxaa", "smaa",                                                          \
          "adaptive", "freetype", "stb", "cairo", "agg", "agg:scale=100",                          \
          "external:renderer=rsvg", "external:renderer=resvg", "external:renderer=chromium")
 

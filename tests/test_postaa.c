@@ -1,0 +1,333 @@
+/*
+ * test_postaa.c: the post-processes of today's real-time renderers, mlaa
+ * (Reshetov 2009), fxaa (FXAA 3.11 quality) and smaa (SMAA 1x), against
+ * known answers:
+ *  - the reconstructed edge's areas (SMAA's area table, aa_morph_area)
+ *    against trapezoids and triangles worked out by hand for Z, U and L
+ *    shapes;
+ *  - a straight edge of slope 1/4 placed so that its point-sampled
+ *    staircase turns with its middles on the edge (the case where the
+ *    papers' reconstruction is the edge itself): mlaa and smaa give the
+ *    exact box-filtered image away from the image border, the coverage of
+ *    each pixel by the half-plane computed here by hand geometry, in
+ *    colour, along rows and (transposed) along columns;
+ *  - an edge along pixel boundaries: point sampling is exact there, and
+ *    mlaa and smaa leave it as it is; fxaa's sub-pixel term blurs it by
+ *    0.75 (smoothstep(1/3))^2 = 0.0504, from the whitepaper's formula,
+ *    and with subpix=0 leaves it;
+ *  - a square on pixel boundaries: its corner pixels lose MLAA's
+ *    half-line trapezoids (7/16, then 5/16), and a quarter of those under
+ *    SMAA's sharp-corner rule (7/64, 5/64), worked out by hand;
+ *  - fxaa on a flat image is the identity; every image stays within the
+ *    range of the scene's colours;
+ *  - on star and crow each is below point sampling in RMSE against the
+ *    exact box reference (the papers' claim that they improve on the
+ *    aliased image);
+ *  - they refuse a prefilter.
+ */
+#include "bench.h"
+#include "methods.h"
+#include "scenes.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include <cmocka.h>
+
+static const char *const posts[] = {"mlaa", "fxaa", "smaa"};
+
+/* ---- the area table ---- */
+
+static void check_area(int el, int er, int dl, int dr, double near, double far)
+{
+    double sh[2];
+    aa_morph_area(el, er, dl, dr, sh);
+    if (fabs(sh[0] - near) > 1e-15 || fabs(sh[1] - far) > 1e-15)
+        fail_msg("area(%d, %d, %d, %d) = (%.17g, %.17g), by hand (%.17g, %.17g)", el, er, dl,
+                 dr, sh[0], sh[1], near, far);
+}
+
+static void test_area_table(void **state)
+{
+    (void)state;
+    /* turns: 1 toward the near pixel (+1/2), 2 toward the far one (-1/2).
+     * Z of length 4 (far at the left, near at the right): the half-lines go
+     * from -1/2 at x = 0 to 0 at x = 2 and on to +1/2 at x = 4.  Pixel
+     * [0, 1]: a trapezoid of heights 1/2 and 1/4 on the far side, 3/8;
+     * [1, 2]: a triangle of height 1/4, 1/8; [2, 3] the same on the near
+     * side; [3, 4] 3/8 near. */
+    check_area(2, 1, 0, 3, 0.0, 0.375);
+    check_area(2, 1, 1, 2, 0.0, 0.125);
+    check_area(2, 1, 2, 1, 0.125, 0.0);
+    check_area(2, 1, 3, 0, 0.375, 0.0);
+    /* U of length 3 (near at both ends): the middle pixel [1, 2] holds two
+     * triangles of base 1/2 under half-lines that fall 1/2 over 3/2: height
+     * 1/6 each, 1/24 + 1/24 = 1/12; an end pixel a trapezoid 1/2 to 1/6:
+     * 1/3 */
+    check_area(1, 1, 1, 1, 1.0 / 12.0, 0.0);
+    check_area(1, 1, 0, 2, 1.0 / 3.0, 0.0);
+    /* L of length 5 (near turn at the left, open right): the half-line from
+     * 1/2 at 0 to 0 at 5/2: pixel [0, 1] 1/2 to 3/10, 2/5; pixel [2, 3] the
+     * triangle from 1/10 at 2 to 0 at 5/2, 1/40; the right half nothing */
+    check_area(1, 0, 0, 4, 0.4, 0.0);
+    check_area(1, 0, 2, 2, 0.025, 0.0);
+    check_area(1, 0, 3, 1, 0.0, 0.0);
+    /* a run one pixel long between opposite turns: the 45-degree line
+     * through the turns' middles, 1/8 each side */
+    check_area(1, 2, 0, 0, 0.125, 0.125);
+    /* a turn to both sides, or none, draws nothing */
+    check_area(3, 0, 0, 5, 0.0, 0.0);
+    check_area(0, 0, 2, 2, 0.0, 0.0);
+    /* long: Z over 65 pixels, the pixel at the left end: heights 1/2 and
+     * 1/2 (1 - 1/32.5) */
+    check_area(2, 1, 0, 64, 0.0, 0.5 * (0.5 + 0.5 * (1.0 - 1.0 / 32.5)));
+}
+
+/* ---- a straight edge through the middles of its staircase's turns ---- */
+
+/* The part of pixel (i, j) below the line y = y0 + x / k (y down): the
+ * integral over the pixel's columns of clamp(j + 1 - y(x), 0, 1), which is
+ * piecewise linear with kinks where y(x) = j or j + 1. */
+static double below_line(int i, int j, double y0, double k)
+{
+    double xs[4] = {i, i + 1.0, 0, 0};
+    int n = 2;
+    for (int q = 0; q < 2; q++) {
+        double x = (j + q - y0) * k;
+        if (x > i && x < i + 1)
+            xs[n++] = x;
+    }
+    for (int a = 0; a < n; a++) /* sort the few points */
+        for (int b = a + 1; b < n; b++)
+            if (xs[b] < xs[a]) {
+                double t = xs[a];
+                xs[a] = xs[b], xs[b] = t;
+            }
+    double area = 0.0;
+    for (int a = 0; a + 1 < n; a++) {
+        double f0 = j + 1 - (y0 + xs[a] / k), f1 = j + 1 - (y0 + xs[a + 1] / k);
+        f0 = f0 < 0 ? 0 : (f0 > 1 ? 1 : f0);
+        f1 = f1 < 0 ? 0 : (f1 > 1 ? 1 : f1);
+        area += 0.5 * (f0 + f1) * (xs[a + 1] - xs[a]);
+    }
+    return area;
+}
+
+static void test_slope_exact(void **state)
+{
+    (void)state;
+    /* The line y = 4 + x/4 in a 32 x 16 image crosses the pixel centres'
+     * heights j + 1/2 at x = 4 j - 14, on pixel boundaries: the turns of its
+     * staircase are centred on it.  Inside below it, outside above;
+     * transposed (x = 4 + y/4), the same along columns. */
+    const int w = 32, h = 16;
+    const aa_rgb in = {{1.0, 0.8, 0.2}}, out = {{0.1, 0.2, 0.6}};
+    for (int tr = 0; tr < 2; tr++) {
+        const int W = tr ? h : w, H = tr ? w : h; /* the image */
+        double p[4][2] = {{0, 4}, {32, 12}, {32, 16}, {0, 16}};
+        double xy[8];
+        for (int k = 0; k < 4; k++) {
+            double x = tr ? p[k][1] : p[k][0], y = tr ? p[k][0] : p[k][1];
+            xy[2 * k] = x / W, xy[2 * k + 1] = y / H;
+        }
+        aa_scene *s = scenes_polygon(xy, 4, in, out, AA_FILL_NONZERO);
+        for (int m = 0; m < 3; m += 2) { /* mlaa, smaa */
+            aa_image img;
+            support_render(posts[m], s, NULL, W, H, 2, &img, NULL);
+            double worst = 0.0;
+            /* columns 4 .. 27 along the line: away from the runs that end
+             * at the image border (open ends, drawn by half) */
+            for (int u = 4; u < 28; u++)
+                for (int v = 0; v < h; v++) {
+                    double c = below_line(u, v, 4.0, 4.0);
+                    const double *px = tr ? aa_pixel(&img, v, u) : aa_pixel(&img, u, v);
+                    for (int ch = 0; ch < 3; ch++) {
+                        double want = out.c[ch] + c * (in.c[ch] - out.c[ch]);
+                        double e = fabs(px[ch] - want);
+                        worst = e > worst ? e : worst;
+                        if (e > 1e-12)
+                            fail_msg("%s%s: pixel (%d, %d) channel %d is %.15g, the "
+                                     "half-plane's box value %.15g",
+                                     posts[m], tr ? " (transposed)" : "", tr ? v : u,
+                                     tr ? u : v, ch, px[ch], want);
+                    }
+                }
+            print_message("%s%s, slope 1/4 through the turns' middles: largest error %.1e\n",
+                          posts[m], tr ? " (along columns)" : "", worst);
+            aa_image_free(&img);
+        }
+        aa_scene_free(s);
+    }
+}
+
+/* ---- edges along pixel boundaries ---- */
+
+static void test_aligned_edges(void **state)
+{
+    (void)state;
+    /* white where x < 10 (a vertical edge), then where y < 7 (a
+     * horizontal one), across the whole image */
+    const int w = 24, h = 16;
+    const double vert[] = {0, 0, 10.0 / w, 0, 10.0 / w, 1, 0, 1};
+    const double horz[] = {0, 0, 1, 0, 1, 7.0 / h, 0, 7.0 / h};
+    const aa_rgb white = {{1, 1, 1}}, black = {{0, 0, 0}};
+    for (int k = 0; k < 2; k++) {
+        aa_scene *s = scenes_polygon(k ? horz : vert, 4, white, black, AA_FILL_NONZERO);
+        aa_image pt, img;
+        support_render("point", s, NULL, w, h, 1, &pt, NULL);
+        for (int m = 0; m < 3; m++) {
+            const char *spec = m == 1 ? "fxaa:subpix=0" : posts[m];
+            support_render(spec, s, NULL, w, h, 1, &img, NULL);
+            if (!support_same_image(&pt, &img))
+                fail_msg("%s changed a %s edge on pixel boundaries", spec,
+                         k ? "horizontal" : "vertical");
+            aa_image_free(&img);
+        }
+        /* fxaa's sub-pixel term: each pixel beside the edge sees the mean
+         * of its neighbours (2 (3 + 0) + (2 + 0)) / 12 = 2/3 against its 1 (or
+         * 1/3 against 0): |difference| / range 1/3, smoothstep 7/27, squared
+         * times subpix 3/4: it takes 0.75 (7/27)^2 of the other side */
+        const double sub = 0.75 * (7.0 / 27.0) * (7.0 / 27.0);
+        support_render("fxaa", s, NULL, w, h, 1, &img, NULL);
+        for (int j = 0; j < h; j++)
+            for (int i = 0; i < w; i++) {
+                int pos = k ? j : i, edge = k ? 7 : 10;
+                double want = pos == edge - 1 ? 1.0 - sub
+                              : pos == edge   ? sub
+                                              : (pos < edge ? 1.0 : 0.0);
+                double got = aa_pixel(&img, i, j)[0];
+                if (fabs(got - want) > 1e-12)
+                    fail_msg("fxaa, %s edge: pixel (%d, %d) is %.15g, want %.15g",
+                             k ? "horizontal" : "vertical", i, j, got, want);
+            }
+        aa_image_free(&img);
+        aa_image_free(&pt);
+        aa_scene_free(s);
+    }
+    print_message("aligned edges: mlaa, smaa, fxaa:subpix=0 unchanged; fxaa blurs by %.4f\n",
+                  0.75 * (7.0 / 27.0) * (7.0 / 27.0));
+}
+
+/* ---- corners of a square ---- */
+
+static void test_square_corners(void **state)
+{
+    (void)state;
+    /* A white square [4, 12] x [4, 12] on black, 16 x 16, on pixel
+     * boundaries: point sampling is exact, but each side is a run of 8
+     * whose ends turn the same way (a U): MLAA's half-lines fall from 1/2
+     * at the corner to 0 at the side's middle (x = 8), so the corner pixel
+     * [4, 5] loses the trapezoid (1/2 + 3/8) / 2 = 7/16 of its white and
+     * the next one [5, 6] (3/8 + 1/4) / 2 = 5/16 (one direction: the row
+     * line and the column line give the corner pixel 7/16 each, and it
+     * blends with one of them).  SMAA sees that the turn goes on straight
+     * past the pixel's row (the square's left side): a sharp corner, the
+     * share kept at 1/4: 7/64 and 5/64. */
+    const double sq[] = {4 / 16.0, 4 / 16.0, 12 / 16.0, 4 / 16.0,
+                         12 / 16.0, 12 / 16.0, 4 / 16.0, 12 / 16.0};
+    const aa_rgb white = {{1, 1, 1}}, black = {{0, 0, 0}};
+    aa_scene *s = scenes_polygon(sq, 4, white, black, AA_FILL_NONZERO);
+    static const struct {
+        const char *method;
+        double corner, next;
+    } want[] = {{"mlaa", 1 - 7.0 / 16, 1 - 5.0 / 16},
+                {"smaa", 1 - 7.0 / 64, 1 - 5.0 / 64},
+                {"smaa:rounding=1", 1 - 7.0 / 16, 1 - 5.0 / 16}};
+    for (int m = 0; m < 3; m++) {
+        aa_image img;
+        support_render(want[m].method, s, NULL, 16, 16, 1, &img, NULL);
+        /* the four corners alike, and the pixel beside each along a side */
+        const int corners[4][4] = {{4, 4, 5, 4}, {11, 4, 10, 4}, {4, 11, 4, 10}, {11, 11, 11, 10}};
+        for (int k = 0; k < 4; k++) {
+            double c = aa_pixel(&img, corners[k][0], corners[k][1])[0];
+            double n = aa_pixel(&img, corners[k][2], corners[k][3])[0];
+            if (fabs(c - want[m].corner) > 1e-12 || fabs(n - want[m].next) > 1e-12)
+                fail_msg("%s, corner %d: %.15g and %.15g beside it, by hand %.15g and %.15g",
+                         want[m].method, k, c, n, want[m].corner, want[m].next);
+        }
+        /* outside the square nothing changes: the black pixels take no
+         * share (each turn lies on the square's side of the line) */
+        for (int j = 0; j < 16; j++)
+            for (int i = 0; i < 16; i++)
+                if ((i < 4 || i >= 12 || j < 4 || j >= 12) && aa_pixel(&img, i, j)[0] != 0.0)
+                    fail_msg("%s: outside pixel (%d, %d) is %.15g", want[m].method, i, j,
+                             aa_pixel(&img, i, j)[0]);
+        aa_image_free(&img);
+    }
+    aa_scene_free(s);
+    print_message("square corners: mlaa %.4f, smaa %.4f (rounding 1/4)\n", 1 - 7.0 / 16,
+                  1 - 7.0 / 64);
+}
+
+/* ---- flat images, range ---- */
+
+static void test_flat_and_range(void **state)
+{
+    (void)state;
+    /* a rectangle covering the whole image: flat */
+    const double all[] = {-1, -1, 2, -1, 2, 2, -1, 2};
+    const aa_rgb c = {{0.3, 0.6, 0.9}}, bg = {{0, 0, 0}};
+    aa_scene *flat = scenes_polygon(all, 4, c, bg, AA_FILL_NONZERO);
+    for (int m = 0; m < 3; m++) {
+        aa_image img;
+        support_render(posts[m], flat, NULL, 17, 13, 1, &img, NULL);
+        for (int j = 0; j < 13; j++)
+            for (int i = 0; i < 17; i++)
+                for (int ch = 0; ch < 3; ch++)
+                    assert_true(aa_pixel(&img, i, j)[ch] == c.c[ch]);
+        aa_image_free(&img);
+    }
+    aa_scene_free(flat);
+    /* star and crow: every value within [0, 1], the scenes' colours */
+    const char *const scenes[] = {"star", "crow"};
+    for (int k = 0; k < 2; k++) {
+        aa_scene *s = scenes_pattern(scenes[k]);
+        for (int m = 0; m < 3; m++) {
+            aa_image img;
+            support_render(posts[m], s, NULL, 96, 96, 2, &img, NULL);
+            for (size_t q = 0; q < (size_t)96 * 96 * 3; q++)
+                if (!(img.v[q] >= 0.0 && img.v[q] <= 1.0))
+                    fail_msg("%s on %s: value %.17g outside [0, 1]", posts[m], scenes[k],
+                             img.v[q]);
+            aa_image_free(&img);
+        }
+        aa_scene_free(s);
+    }
+}
+
+/* ---- below point sampling ---- */
+
+static void test_below_point(void **state)
+{
+    (void)state;
+    const char *const scenes[] = {"star", "crow"};
+    const support_view v = {128, 128, 0, 0, 0, NULL, 1, 2, 0};
+    for (int k = 0; k < 2; k++) {
+        aa_scene *s = scenes_pattern(scenes[k]);
+        for (int m = 0; m < 3; m++) {
+            const char *const order[] = {"point", posts[m]};
+            char what[64];
+            snprintf(what, sizeof what, "%s on %s", posts[m], scenes[k]);
+            support_check_rmse_order(what, s, &v, order, 2);
+        }
+        aa_scene_free(s);
+    }
+}
+
+static void test_refuse_prefilter(void **state)
+{
+    (void)state;
+    for (int m = 0; m < 3; m++) {
+        assert_int_equal(support_parse_method(posts[m], "tent:r=1", NULL), AA_EINVAL);
+        assert_int_equal(support_parse_method(posts[m], NULL, NULL), AA_OK);
+    }
+}
+
+SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_area_table), cmocka_unit_test(test_slope_exact),
+             cmocka_unit_test(test_aligned_edges), cmocka_unit_test(test_square_corners),
+             cmocka_unit_test(test_flat_and_range),
+             cmocka_unit_test(test_below_point), cmocka_unit_test(test_refuse_prefilter))
