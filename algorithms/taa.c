@@ -33,10 +33,13 @@
  *    pixel's vector is (vx, vy): the talk's dilation of the velocity (the
  *    nearest depth in 3 x 3) has nothing to do.  The history of pixel
  *    centre c is read at c - v.
- *  - The history's sampling filter: bilinear (`sample=bilinear`, the
- *    default; it blurs a little at each resampling) or Catmull-Rom
- *    (`sample=catmull`, the 4 x 4 cubic with a = -1/2; sharper, it may
- *    overshoot, which the clamp then bounds).  Taps outside the image are
+ *  - The history's sampling filter: Catmull-Rom (`sample=catmull`, the
+ *    default: the 4 x 4 cubic with a = -1/2; it may overshoot, which the
+ *    clamp then bounds) or bilinear (`sample=bilinear`), which blurs at
+ *    every resampling, and the blur adds up over the frames the history
+ *    remembers: on crow 128x128 moving (0.37, 0.11) px a frame, frame 30's
+ *    RMSE is 0.220 with Catmull-Rom and 0.243 bilinear (point 0.253); on
+ *    the star 0.091 and 0.134 (point 0.146).  Taps outside the image are
  *    read at its nearest edge pixel (a GPU's clamp-to-edge).  With no
  *    motion the history is read at the centres as it is.
  *  - Disocclusion: the scene moves as one, so nothing is uncovered inside
@@ -85,13 +88,16 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #define TAA_MAX_HISTORY 1024
 
 enum { P_FRAMES, P_ALPHA, P_HISTORY, P_REPROJECT, P_CLAMP, P_SAMPLE };
 enum { REPROJECT_MOTION, REPROJECT_NONE };
 enum { CLAMP_YCOCG, CLAMP_CLIP, CLAMP_NONE };
-enum { SAMPLE_BILINEAR, SAMPLE_CATMULL };
+enum { SAMPLE_CATMULL, SAMPLE_BILINEAR };
 
 static const aa_param taa_params[] = {
     {"frames", AA_PARAM_CHOICE, 0, 0, 0, 0, "8|16",
@@ -106,14 +112,14 @@ static const aa_param taa_params[] = {
     {"clamp", AA_PARAM_CHOICE, CLAMP_YCOCG, 0, 0, 0, "ycocg|clip|none",
      "limit the history to the YCoCg box of the current 3x3 neighbourhood: per component, "
      "toward its centre, or not at all"},
-    {"sample", AA_PARAM_CHOICE, SAMPLE_BILINEAR, 0, 0, 0, "bilinear|catmull",
+    {"sample", AA_PARAM_CHOICE, SAMPLE_CATMULL, 0, 0, 0, "catmull|bilinear",
      "filter reading the reprojected history"},
     {0}};
 
 typedef struct taa_state {
     aa__frames fs;
     double dx[TAA_MAX_HISTORY], dy[TAA_MAX_HISTORY], wt[TAA_MAX_HISTORY];
-    double *buf; /* three images: current frame, history, next history */
+    double *buf; /* two images (history, next history), then each thread's band */
     size_t cap;  /* doubles in buf */
 } taa_state;
 
@@ -129,27 +135,6 @@ static int taa_check(const double *p, const aa_filter *f)
         return aa_fail(AA_EINVAL, "taa samples points and has no prefilter; it is measured "
                                   "against the box reference (use -f box)");
     return AA_OK;
-}
-
-static int buffers(taa_state *s, const aa_job *job)
-{
-    size_t need = 3 * 3 * (size_t)job->w * (size_t)job->h;
-    if (need <= s->cap)
-        return AA_OK;
-    free(s->buf);
-    s->cap = 0;
-    if (!(s->buf = malloc(need * sizeof *s->buf)))
-        return aa_fail(AA_ENOMEM, "out of memory for taa's history (%dx%d)", job->w, job->h);
-    memset(s->buf, 0, need * sizeof *s->buf); /* touched here, not in the timed render */
-    s->cap = need;
-    return AA_OK;
-}
-
-static int taa_init(void *state, const double *p, const aa_job *job)
-{
-    taa_state *s = state;
-    int st = aa__frames_ready(&s->fs, job, (int)p[P_HISTORY]);
-    return st ? st : plain(p) ? AA_OK : buffers(s, job);
 }
 
 static inline int clampi(int v, int lo, int hi)
@@ -201,9 +186,10 @@ static void read_history(const double *hist, int w, int h, double gx, double gy,
         }
 }
 
-/* Limit hv (RGB) to the YCoCg box of cur's 3 x 3 neighbourhood of (i, j)
- * (the pixels inside the image).  It is changed only when outside. */
-static void limit(const double *cur, int w, int h, int i, int j, int mode, double hv[3])
+/* Limit hv (RGB) to the YCoCg box of the current frame's 3 x 3
+ * neighbourhood of (i, j) (the pixels inside the image); cur holds the
+ * frame's rows from c0 on.  hv is changed only when outside. */
+static void limit(const double *cur, int c0, int w, int h, int i, int j, int mode, double hv[3])
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int b = j - 1; b <= j + 1; b++)
@@ -211,7 +197,7 @@ static void limit(const double *cur, int w, int h, int i, int j, int mode, doubl
             if (a < 0 || b < 0 || a >= w || b >= h)
                 continue;
             double y[3];
-            aa__ycocg_from_rgb(cur + 3 * ((size_t)b * (size_t)w + (size_t)a), y);
+            aa__ycocg_from_rgb(cur + 3 * ((size_t)(b - c0) * (size_t)w + (size_t)a), y);
             for (int c = 0; c < 3; c++)
                 lo[c] = fmin(lo[c], y[c]), hi[c] = fmax(hi[c], y[c]);
         }
@@ -238,70 +224,125 @@ static void limit(const double *cur, int w, int h, int i, int j, int mode, doubl
     aa__rgb_from_ycocg(y, hv);
 }
 
-/* The reprojected history's pixel rows [j] into next, from hist and cur. */
-static void resolve_row(const double *hist, const double *cur, double *next, int w, int h,
-                        int j, double vx, double vy, int moving, int mode, int cubic,
-                        double alpha)
+/* What a frame's resolve reads. */
+typedef struct taa_frame {
+    const double *hist; /* the previous output, w x h */
+    double *next;       /* this frame's output */
+    int w, h, moving, mode, cubic;
+    double vx, vy, alpha;
+} taa_frame;
+
+/* Row j of the frame's output from the history and the current frame (its
+ * rows from c0 on in cur). */
+static void resolve_row(const taa_frame *F, const double *cur, int c0, int j)
 {
+    const int w = F->w, h = F->h;
     for (int i = 0; i < w; i++) {
         const size_t q = 3 * ((size_t)j * (size_t)w + (size_t)i);
-        double hv[3];
-        const double *x = cur + q;
-        if (!moving) {
-            hv[0] = hist[q], hv[1] = hist[q + 1], hv[2] = hist[q + 2];
+        const double *x = cur + 3 * ((size_t)(j - c0) * (size_t)w + (size_t)i);
+        double hv[3], *o = F->next + q;
+        if (!F->moving) {
+            hv[0] = F->hist[q], hv[1] = F->hist[q + 1], hv[2] = F->hist[q + 2];
         } else {
-            const double px = i + 0.5 - vx, py = j + 0.5 - vy; /* where it was */
+            const double px = i + 0.5 - F->vx, py = j + 0.5 - F->vy; /* where it was */
             if (!(px >= 0.0 && px <= w && py >= 0.0 && py <= h)) {
                 /* entered the image: no history */
-                next[q] = x[0], next[q + 1] = x[1], next[q + 2] = x[2];
+                o[0] = x[0], o[1] = x[1], o[2] = x[2];
                 continue;
             }
-            read_history(hist, w, h, px - 0.5, py - 0.5, cubic, hv);
+            read_history(F->hist, w, h, px - 0.5, py - 0.5, F->cubic, hv);
         }
-        if (mode != CLAMP_NONE)
-            limit(cur, w, h, i, j, mode, hv);
+        if (F->mode != CLAMP_NONE)
+            limit(cur, c0, w, h, i, j, F->mode, hv);
         for (int c = 0; c < 3; c++)
-            next[q + (size_t)c] = hv[c] + (x[c] - hv[c]) * alpha;
+            o[c] = hv[c] + (x[c] - hv[c]) * F->alpha;
     }
 }
 
+/* Rows of the current frame a thread keeps: its block and one row either
+ * side. */
+static size_t band_rows(int h, int threads)
+{
+    return (size_t)((h + threads - 1) / threads) + 2;
+}
+
+static int buffers(taa_state *s, const aa_job *job)
+{
+    const int threads = job->threads > 0 ? job->threads : 1;
+    size_t row = 3 * (size_t)job->w;
+    size_t need = 2 * row * (size_t)job->h + (size_t)threads * band_rows(job->h, threads) * row;
+    if (need <= s->cap)
+        return AA_OK;
+    free(s->buf);
+    s->cap = 0;
+    if (!(s->buf = malloc(need * sizeof *s->buf)))
+        return aa_fail(AA_ENOMEM, "out of memory for taa's history (%dx%d)", job->w, job->h);
+    memset(s->buf, 0, need * sizeof *s->buf); /* touched here, not in the timed render */
+    s->cap = need;
+    return AA_OK;
+}
+
+static int taa_init(void *state, const double *p, const aa_job *job)
+{
+    taa_state *s = state;
+    int st = aa__frames_ready(&s->fs, job, (int)p[P_HISTORY]);
+    return st ? st : plain(p) ? AA_OK : buffers(s, job);
+}
+
+/* Each thread takes a fixed block of rows through every frame: it samples
+ * its rows of the frame and one more either side (the clamp's
+ * neighbourhood) into a band of its own, and resolves its rows from the
+ * shared previous output into the other of two images; one barrier per
+ * frame.  A pixel's value does not depend on the block it falls in. */
 static int render_karis(taa_state *s, const double *p, const aa_job *job, int n, aa_image *out,
                         aa_counters *counters)
 {
     int st = buffers(s, job);
     if (st)
         return st;
-    const int w = job->w, h = job->h;
-    const size_t len = 3 * (size_t)w * (size_t)h;
-    const int moving = (int)p[P_REPROJECT] == REPROJECT_MOTION &&
-                       (job->vx != 0.0 || job->vy != 0.0);
-    const int mode = (int)p[P_CLAMP], cubic = (int)p[P_SAMPLE] == SAMPLE_CATMULL;
-    const double alpha = p[P_ALPHA];
-    double *cur = s->buf, *hist = s->buf + len, *next = s->buf + 2 * len;
+    const int w = job->w, h = job->h, threads = job->threads > 0 ? job->threads : 1;
+    const size_t len = 3 * (size_t)w * (size_t)h, brows = band_rows(h, threads);
+    double *img[2] = {s->buf, s->buf + len}, *bands = s->buf + 2 * len;
+    const taa_frame base = {NULL,
+                            NULL,
+                            w,
+                            h,
+                            (int)p[P_REPROJECT] == REPROJECT_MOTION &&
+                                (job->vx != 0.0 || job->vy != 0.0),
+                            (int)p[P_CLAMP],
+                            (int)p[P_SAMPLE] == SAMPLE_CATMULL,
+                            job->vx,
+                            job->vy,
+                            p[P_ALPHA]};
     int status = AA_OK;
-#pragma omp parallel num_threads(job->threads)
+#pragma omp parallel num_threads(threads)
     {
+        int me = 0, team = 1;
+#ifdef _OPENMP
+        me = omp_get_thread_num(), team = omp_get_num_threads();
+#endif
+        const int a = (int)((long long)h * me / team), b = (int)((long long)h * (me + 1) / team);
+        const int c0 = a > 0 ? a - 1 : 0, c1 = b < h ? b + 1 : h;
+        double *cur = bands + (size_t)me * brows * 3 * (size_t)w;
         aa_point_ws ws;
         /* every frame's scene has the same pieces: one workspace serves all */
         int bad = aa_point_ws_init(&ws, s->fs.placed[0]);
-        for (int k = n - 1; k >= 0; k--) { /* oldest first */
-            double *into = k == n - 1 ? hist : cur;
-#pragma omp for schedule(static)
-            for (int j = 0; j < h; j++)
-                if (!bad)
+        for (int step = 0; step < n; step++) { /* oldest first */
+            const int k = n - 1 - step;
+            if (!bad && step == 0) {
+                for (int j = a; j < b; j++)
                     aa_point_row(s->fs.placed[k], &ws, s->dx[k], j + 0.5 + s->dy[k],
-                                 into + 3 * (size_t)j * (size_t)w, w);
-            if (k == n - 1)
-                continue;
-#pragma omp for schedule(static)
-            for (int j = 0; j < h; j++)
-                resolve_row(hist, cur, next, w, h, j, job->vx, job->vy, moving, mode, cubic,
-                            alpha);
-#pragma omp single
-            {
-                double *t = hist;
-                hist = next, next = t;
+                                 img[0] + 3 * (size_t)j * (size_t)w, w);
+            } else if (!bad) {
+                for (int j = c0; j < c1; j++)
+                    aa_point_row(s->fs.placed[k], &ws, s->dx[k], j + 0.5 + s->dy[k],
+                                 cur + 3 * (size_t)(j - c0) * (size_t)w, w);
+                taa_frame F = base;
+                F.hist = img[(step - 1) & 1], F.next = img[step & 1];
+                for (int j = a; j < b; j++)
+                    resolve_row(&F, cur, c0, j);
             }
+#pragma omp barrier
         }
         if (!bad)
             aa_point_ws_free(&ws);
@@ -312,9 +353,10 @@ static int render_karis(taa_state *s, const double *p, const aa_job *job, int n,
     }
     if (status)
         return aa_fail(status, "out of memory while sampling the frames");
+    const double *last = img[(n - 1) & 1];
     for (int j = 0; j < h; j++)
-        memcpy(aa_pixel(out, 0, j), hist + 3 * (size_t)j * (size_t)w,
-               3 * (size_t)w * sizeof *hist);
+        memcpy(aa_pixel(out, 0, j), last + 3 * (size_t)j * (size_t)w,
+               3 * (size_t)w * sizeof *last);
     counters->samples = (uint64_t)n * (uint64_t)w * (uint64_t)h;
     counters->expensive_pixels = 0;
     return AA_OK;

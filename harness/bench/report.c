@@ -343,6 +343,7 @@ static const column columns[] = {
     REAL(flicker_mean, tm.flicker_mean, G_TEMPORAL, 0, 0, 1),
     REAL(flicker_max, tm.flicker_max, G_TEMPORAL, 0, 0, 1),
     REAL(conservation, tm.conservation, G_TEMPORAL, 0, 0, DBL_MAX),
+    REAL(lag, tm.lag, G_TEMPORAL, 0, -DBL_MAX, DBL_MAX),
     REAL(popping, tm.popping, G_TEMPORAL_OPTIONAL, 0, 0, 1),
     INT(threads, threads, G_ALWAYS, 0, 1, AA_MAX_THREADS),
     INT(reps, reps, G_ALWAYS, 0, 1, 1000),
@@ -618,6 +619,7 @@ static cJSON *row_json(const aa_row *r)
                  add_num(tm, "flicker_mean", r->tm.flicker_mean) &&
                  add_num(tm, "flicker_max", r->tm.flicker_max) &&
                  add_num(tm, "conservation", r->tm.conservation) &&
+                 add_num(tm, "lag", r->tm.lag) &&
                  add_num(tm, "popping", r->tm.popping);
         }
     }
