@@ -40,7 +40,9 @@
  *    remembers: on crow 128x128 moving (0.37, 0.11) px a frame, frame 30's
  *    RMSE is 0.220 with Catmull-Rom and 0.243 bilinear (point 0.253); on
  *    the star 0.091 and 0.134 (point 0.146).  Taps outside the image are
- *    read at its nearest edge pixel (a GPU's clamp-to-edge).  With no
+ *    read at its nearest edge pixel (a GPU's clamp-to-edge).  The blend's
+ *    result is kept in [0, 1], a colour's range (with `clamp=none` the
+ *    cubic's overshoot would leave it).  With no
  *    motion the history is read at the centres as it is.
  *  - Disocclusion: the scene moves as one, so nothing is uncovered inside
  *    the image; content entering at the borders, whose position one frame
@@ -187,19 +189,21 @@ static void read_history(const double *hist, int w, int h, double gx, double gy,
 }
 
 /* Limit hv (RGB) to the YCoCg box of the current frame's 3 x 3
- * neighbourhood of (i, j) (the pixels inside the image); cur holds the
- * frame's rows from c0 on.  hv is changed only when outside. */
-static void limit(const double *cur, int c0, int w, int h, int i, int j, int mode, double hv[3])
+ * neighbourhood of (i, j) (the pixels inside the image); ycur holds the
+ * frame's rows from c0 on in YCoCg.  hv is changed only when outside. */
+static void limit(const double *ycur, int c0, int w, int h, int i, int j, int mode,
+                  double hv[3])
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int b = j - 1; b <= j + 1; b++)
-        for (int a = i - 1; a <= i + 1; a++) {
-            if (a < 0 || b < 0 || a >= w || b >= h)
-                continue;
-            double y[3];
-            aa__ycocg_from_rgb(cur + 3 * ((size_t)(b - c0) * (size_t)w + (size_t)a), y);
-            for (int c = 0; c < 3; c++)
-                lo[c] = fmin(lo[c], y[c]), hi[c] = fmax(hi[c], y[c]);
+    const int a0 = i > 0 ? i - 1 : 0, a1 = i + 1 < w ? i + 1 : w - 1;
+    const int b0 = j > 0 ? j - 1 : 0, b1 = j + 1 < h ? j + 1 : h - 1;
+    for (int b = b0; b <= b1; b++)
+        for (int a = a0; a <= a1; a++) {
+            const double *y = ycur + 3 * ((size_t)(b - c0) * (size_t)w + (size_t)a);
+            for (int c = 0; c < 3; c++) {
+                lo[c] = y[c] < lo[c] ? y[c] : lo[c];
+                hi[c] = y[c] > hi[c] ? y[c] : hi[c];
+            }
         }
     double y[3];
     aa__ycocg_from_rgb(hv, y);
@@ -210,7 +214,7 @@ static void limit(const double *cur, int c0, int w, int h, int i, int j, int mod
         return;
     if (mode == CLAMP_YCOCG) {
         for (int c = 0; c < 3; c++)
-            y[c] = fmin(fmax(y[c], lo[c]), hi[c]);
+            y[c] = y[c] < lo[c] ? lo[c] : y[c] > hi[c] ? hi[c] : y[c];
     } else { /* clip: the point of the segment centre -> y nearest y inside the box */
         double m[3], e[3], d[3], t = 1.0;
         for (int c = 0; c < 3; c++) {
@@ -233,8 +237,8 @@ typedef struct taa_frame {
 } taa_frame;
 
 /* Row j of the frame's output from the history and the current frame (its
- * rows from c0 on in cur). */
-static void resolve_row(const taa_frame *F, const double *cur, int c0, int j)
+ * rows from c0 on in cur, and in YCoCg in ycur). */
+static void resolve_row(const taa_frame *F, const double *cur, const double *ycur, int c0, int j)
 {
     const int w = F->w, h = F->h;
     for (int i = 0; i < w; i++) {
@@ -253,14 +257,18 @@ static void resolve_row(const taa_frame *F, const double *cur, int c0, int j)
             read_history(F->hist, w, h, px - 0.5, py - 0.5, F->cubic, hv);
         }
         if (F->mode != CLAMP_NONE)
-            limit(cur, c0, w, h, i, j, F->mode, hv);
-        for (int c = 0; c < 3; c++)
-            o[c] = hv[c] + (x[c] - hv[c]) * F->alpha;
+            limit(ycur, c0, w, h, i, j, F->mode, hv);
+        /* a colour's range: Catmull-Rom overshoots where nothing clamps it,
+         * and YCoCg's round trip rounds */
+        for (int c = 0; c < 3; c++) {
+            double v = hv[c] + (x[c] - hv[c]) * F->alpha;
+            o[c] = v < 0.0 ? 0.0 : v > 1.0 ? 1.0 : v;
+        }
     }
 }
 
-/* Rows of the current frame a thread keeps: its block and one row either
- * side. */
+/* Rows of the current frame a thread keeps (in RGB, then in YCoCg): its
+ * block and one row either side. */
 static size_t band_rows(int h, int threads)
 {
     return (size_t)((h + threads - 1) / threads) + 2;
@@ -270,7 +278,8 @@ static int buffers(taa_state *s, const aa_job *job)
 {
     const int threads = job->threads > 0 ? job->threads : 1;
     size_t row = 3 * (size_t)job->w;
-    size_t need = 2 * row * (size_t)job->h + (size_t)threads * band_rows(job->h, threads) * row;
+    size_t need =
+        2 * row * (size_t)job->h + 2 * (size_t)threads * band_rows(job->h, threads) * row;
     if (need <= s->cap)
         return AA_OK;
     free(s->buf);
@@ -323,7 +332,8 @@ static int render_karis(taa_state *s, const double *p, const aa_job *job, int n,
 #endif
         const int a = (int)((long long)h * me / team), b = (int)((long long)h * (me + 1) / team);
         const int c0 = a > 0 ? a - 1 : 0, c1 = b < h ? b + 1 : h;
-        double *cur = bands + (size_t)me * brows * 3 * (size_t)w;
+        double *cur = bands + 2 * (size_t)me * brows * 3 * (size_t)w,
+               *ycur = cur + brows * 3 * (size_t)w;
         aa_point_ws ws;
         /* every frame's scene has the same pieces: one workspace serves all */
         int bad = aa_point_ws_init(&ws, s->fs.placed[0]);
@@ -337,10 +347,13 @@ static int render_karis(taa_state *s, const double *p, const aa_job *job, int n,
                 for (int j = c0; j < c1; j++)
                     aa_point_row(s->fs.placed[k], &ws, s->dx[k], j + 0.5 + s->dy[k],
                                  cur + 3 * (size_t)(j - c0) * (size_t)w, w);
+                if (base.mode != CLAMP_NONE)
+                    for (size_t q = 0; q < (size_t)(c1 - c0) * (size_t)w; q++)
+                        aa__ycocg_from_rgb(cur + 3 * q, ycur + 3 * q);
                 taa_frame F = base;
                 F.hist = img[(step - 1) & 1], F.next = img[step & 1];
                 for (int j = a; j < b; j++)
-                    resolve_row(&F, cur, c0, j);
+                    resolve_row(&F, cur, ycur, c0, j);
             }
 #pragma omp barrier
         }

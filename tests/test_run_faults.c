@@ -259,7 +259,7 @@ static const char *const columns[] = {
     "alias_low", "alias_high", "ssim", "render_seconds", "render_seconds_min",
     "render_seconds_max", "ns_per_pixel", "ns_per_sample", "samples", "expensive_pixels",
     "expensive_fraction", "frames", "window", "eye_rmse", "flicker_mean", "flicker_max",
-    "conservation", "lag", "popping", "threads", "reps", "seed", "time", "vx", "vy", "ok", "note",
+    "conservation", "popping", "threads", "reps", "seed", "time", "vx", "vy", "ok", "note",
     NULL};
 
 /* A row that ran, for `method` on crow 16x16 `filter`: errors at their

@@ -343,7 +343,6 @@ static const column columns[] = {
     REAL(flicker_mean, tm.flicker_mean, G_TEMPORAL, 0, 0, 1),
     REAL(flicker_max, tm.flicker_max, G_TEMPORAL, 0, 0, 1),
     REAL(conservation, tm.conservation, G_TEMPORAL, 0, 0, DBL_MAX),
-    REAL(lag, tm.lag, G_TEMPORAL, 0, -DBL_MAX, DBL_MAX),
     REAL(popping, tm.popping, G_TEMPORAL_OPTIONAL, 0, 0, 1),
     INT(threads, threads, G_ALWAYS, 0, 1, AA_MAX_THREADS),
     INT(reps, reps, G_ALWAYS, 0, 1, 1000),
@@ -381,6 +380,8 @@ static const column columns[] = {
     OWN(case, G_ALWAYS, case_cell, read_case),
     OWN(host, G_ALWAYS, host_cell, read_host),
     TEXT(inputs, G_OPTIONAL, 0),
+    /* added after the columns above: older files lack it */
+    REAL(lag, tm.lag, G_TEMPORAL_OPTIONAL, 0, -DBL_MAX, DBL_MAX),
 };
 #undef TEXT
 #undef REAL
@@ -1099,7 +1100,7 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
         }
         aa_row *row = &rows[n];
         memset(row, 0, sizeof *row);
-        row->tm.popping = NAN;
+        row->tm.popping = row->tm.lag = NAN;
         row->case_index = -1;
         /* ok first: which columns must hold a value depends on it; then
          * whether the row is animated */
@@ -1302,7 +1303,7 @@ static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
     int st = AA_OK;
     char size[32] = "";
     memset(row, 0, sizeof *row);
-    row->tm.popping = NAN;
+    row->tm.popping = row->tm.lag = NAN;
     row->case_index = -1;
     row->m.rmse = row->m.max_err = row->seconds = NAN;
     if (!cJSON_IsObject(o))
