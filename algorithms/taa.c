@@ -22,7 +22,8 @@
  *    and the image converges under motion instead of smearing.
  *    `clamp=clip` clips the history toward the box's centre along the
  *    line joining them instead, the talk's refinement (the colour keeps
- *    its hue where a clamp per component would change it).
+ *    its hue where a clamp per component would change it);
+ *    on a grey scene the two agree, the box being flat in Co and Cg).
  *  - The exponential history h <- h + alpha (x - h), alpha 0.1 by default
  *    (`alpha`).
  *
