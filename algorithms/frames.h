@@ -59,6 +59,23 @@ int aa__frames_render_screen(aa__frames *fs, const aa_job *job, int n, const dou
 /* The radical inverse of i in base b (Halton's sequence): 0, 1/2, 1/4, ...
  * for b = 2. */
 double aa__radical_inverse(uint64_t i, unsigned b);
+/* YCoCg (Malvar and Sullivan's transform, used by taa's neighbourhood
+ * clamp): Y = R/4 + G/2 + B/4, Co = R/2 - B/2, Cg = -R/4 + G/2 - B/4, and
+ * back R = Y + Co - Cg, G = Y + Cg, B = Y - Co - Cg.  Grey (v, v, v) is
+ * (v, 0, 0). */
+static inline void aa__ycocg_from_rgb(const double rgb[3], double y[3])
+{
+    y[0] = 0.25 * rgb[0] + 0.5 * rgb[1] + 0.25 * rgb[2];
+    y[1] = 0.5 * rgb[0] - 0.5 * rgb[2];
+    y[2] = -0.25 * rgb[0] + 0.5 * rgb[1] - 0.25 * rgb[2];
+}
+static inline void aa__rgb_from_ycocg(const double y[3], double rgb[3])
+{
+    const double t = y[0] - y[2];
+    rgb[0] = t + y[1];
+    rgb[1] = y[0] + y[2];
+    rgb[2] = t - y[1];
+}
 /* n mod m in 0 .. m-1 for any n. */
 static inline int aa__mod(long long n, int m)
 {

@@ -26,6 +26,17 @@
  *    spp = 2^m every scrambled pixel set is a (0,m,2)-net.  GSL's Halton
  *    starts at index 1 (1/2, 1/3); for spp = 2^a 3^b its points fall one
  *    in each 2^-a x 3^-b box.
+ *  - bluenoise: the first spp points of the Sobol sequence (as above,
+ *    unscrambled) moved, modulo 1, by a shift per pixel: in x and in y the
+ *    ranks of two 64 x 64 void-and-cluster masks (Ulichney 1993,
+ *    algorithms/bluenoise.c; made in init from the seed) at the pixel,
+ *    (rank + 1/2)/4096, the masks tiled over the image from an origin
+ *    moved per frame by a hash of the seed and the frame (none at frame
+ *    0).  A shift modulo 1 (Cranley-Patterson) keeps each pixel's set
+ *    evenly spread but not a net; what it buys is that neighbouring
+ *    pixels' offsets differ as blue noise, so their errors anticorrelate
+ *    and the error image's power leaves the low frequencies
+ *    (tests/test_bluenoise.c; algorithms/README.md, "Blue noise").
  *
  * Weights and value.  Sample s at offset (dx, dy) from the centre weighs
  * w(dx) w(dy) (1 for the box; for the cone, which is not separable, its
@@ -87,8 +98,10 @@
  * the net property.  With a filter other than the box the ratio estimator
  * adds a bias of order 1/spp, and the Gaussian is truncated at 3s.  Each
  * pixel is scrambled independently, so neighbouring pixels' samples are
- * not stratified against each other (no blue noise).
+ * not stratified against each other (no blue noise) but with
+ * seq=bluenoise, whose two masks take about 0.09 s to make in init.
  */
+#include "bluenoise.h"
 #include "methods.h"
 #include "sampling.h"
 
@@ -103,15 +116,16 @@
 #define GOLDEN 0x9e3779b97f4a7c15ull
 
 enum { P_SPP, P_SEQ };
-enum { SEQ_STRATIFIED, SEQ_RANDOM, SEQ_SOBOL, SEQ_HALTON, SEQ_NIEDERREITER };
+enum { SEQ_STRATIFIED, SEQ_RANDOM, SEQ_SOBOL, SEQ_HALTON, SEQ_NIEDERREITER, SEQ_BLUENOISE };
 
 static const aa_param jitter_params[] = {
     {"spp", AA_PARAM_INT, 16, 1, JT_MAX_SPP, 0, NULL,
      "samples per pixel (a square k^2 for seq=stratified)"},
     {"seq", AA_PARAM_CHOICE, SEQ_STRATIFIED, 0, 0, 0,
-     "stratified|random|sobol|halton|niederreiter",
-     "positions: one per cell of a k x k grid, independent uniform, or an Owen-scrambled "
-     "quasi-random sequence (gsl_qrng)"},
+     "stratified|random|sobol|halton|niederreiter|bluenoise",
+     "positions: one per cell of a k x k grid, independent uniform, an Owen-scrambled "
+     "quasi-random sequence (gsl_qrng), or Sobol points shifted per pixel by "
+     "void-and-cluster masks"},
     {0}};
 
 static int square_side(int n)
@@ -278,6 +292,9 @@ typedef struct jt_state {
     double cell_r;       /* the support radius the table is for */
     double cell_scale;   /* pixels per unit of 32 random bits: span / k 2^-32 */
     size_t nflips;       /* 64-bit words of node bits: 2^d2 bits */
+    double *bx, *by;     /* bluenoise: the first spp Sobol points */
+    uint32_t *mask;      /* bluenoise: two rank masks, x's then y's */
+    uint64_t mask_seed;  /* the seed they were made from */
     aa__sampler sampler; /* workers; own scratch: a jt_scratch */
 } jt_state;
 
@@ -402,16 +419,41 @@ static inline void cell_point(const jt_state *S, int n, uint64_t r, double *dx, 
     *dy = S->cell[2 * n + 1] + (double)(uint32_t)r * S->cell_scale;
 }
 
+/* Blue noise: the Sobol points moved by the pixel's shift modulo 1 (a
+ * Cranley-Patterson rotation), the shift in x and in y the ranks of two
+ * void-and-cluster masks at the pixel, (rank + 1/2)/side^2, the masks
+ * tiled over the image from an origin moved per frame (by a hash of the
+ * seed and the frame; none at frame 0). */
+static void bluenoise_points(const jt_state *S, const jt_scratch *sc, uint64_t seed,
+                             uint64_t frame, int i, int j)
+{
+    const int side = AA__BLUENOISE_SIDE;
+    const double n = (double)side * side;
+    uint64_t o = frame ? aa_hash64(seed ^ aa_hash64(frame)) : 0;
+    const size_t x = (size_t)(((uint64_t)i + (o & 0xffff)) % side),
+                 y = (size_t)(((uint64_t)j + ((o >> 16) & 0xffff)) % side);
+    const size_t q = y * side + x;
+    const double sx = (S->mask[q] + 0.5) / n, sy = (S->mask[q + (size_t)side * side] + 0.5) / n;
+    for (int k = 0; k < S->spp; k++) {
+        double u = S->bx[k] + sx, v = S->by[k] + sy;
+        sc->u[k] = u >= 1.0 ? u - 1.0 : u;
+        sc->v[k] = v >= 1.0 ? v - 1.0 : v;
+    }
+}
+
 /* The pixel's points into sc->u, sc->v, in pixels from the window's corner
- * (span = 2r). */
-static void positions(const jt_state *S, const jt_scratch *sc, aa_rng *rng, double span)
+ * (span = 2r); pixel (i, j) of frame `frame`. */
+static void positions(const jt_state *S, const jt_scratch *sc, aa_rng *rng, double span,
+                      uint64_t seed, uint64_t frame, int i, int j)
 {
     if (S->seq == SEQ_STRATIFIED) {
         for (int n = 0; n < S->spp; n++)
             cell_point(S, n, aa_rng_next(rng), &sc->u[n], &sc->v[n]);
         return;
     }
-    if (S->seq >= SEQ_SOBOL) {
+    if (S->seq == SEQ_BLUENOISE) {
+        bluenoise_points(S, sc, seed, frame, i, j);
+    } else if (S->seq >= SEQ_SOBOL) {
         scramble_points(S, sc, rng);
     } else {
         for (int n = 0; n < S->spp; n++) {
@@ -613,7 +655,7 @@ static void shade(const void *ctx, aa__sampler_worker *wk, int i, int j, double 
         shade_stratified_box(R, wk, &pix, pcs, np, &rng, px);
         return;
     }
-    positions(R->S, &R->sc, &rng, 2.0 * pix.r);
+    positions(R->S, &R->sc, &rng, 2.0 * pix.r, R->job->seed, R->frame, i, j);
     if (np >= 0)
         shade_simple(R, wk, &pix, pcs, np, px);
     else
@@ -637,6 +679,33 @@ static int prepare(jt_state *S, const aa_job *job)
     return aa__sampler_ready(&S->sampler, job, scratch_layout(S, &o_flips, &o_sub));
 }
 
+/* Blue noise: the first spp points of the Sobol sequence (as seq=sobol's,
+ * unscrambled) and two masks, of seeds made from the job's. */
+static int bluenoise_make(jt_state *S, uint64_t seed)
+{
+    const size_t n = (size_t)AA__BLUENOISE_SIDE * AA__BLUENOISE_SIDE;
+    if (!S->bx) {
+        S->bx = malloc(2 * (size_t)S->spp * sizeof *S->bx);
+        S->mask = malloc(2 * n * sizeof *S->mask);
+        if (!S->bx || !S->mask)
+            return aa_fail(AA_ENOMEM, "out of memory for blue-noise masks");
+        S->by = S->bx + S->spp;
+        int st = points_fetch(SEQ_SOBOL, S->spp, S->bx, S->by);
+        if (st)
+            return st;
+    } else if (S->mask_seed == seed) {
+        return AA_OK;
+    }
+    for (int a = 0; a < 2; a++) {
+        int st = aa__bluenoise_mask(AA__BLUENOISE_SIDE, AA__BLUENOISE_SIGMA,
+                                    aa_hash64(seed * 2 + (uint64_t)a + 1), S->mask + a * n);
+        if (st)
+            return st;
+    }
+    S->mask_seed = seed;
+    return AA_OK;
+}
+
 static int jitter_init(void *state, const double *p, const aa_job *job)
 {
     jt_state *S = state;
@@ -648,7 +717,11 @@ static int jitter_init(void *state, const double *p, const aa_job *job)
             return aa_fail(AA_ENOMEM, "out of memory for %d cells", S->spp);
         cells_make(S, aa_filter_support(&job->filter));
     }
-    if (S->seq >= SEQ_SOBOL) {
+    if (S->seq == SEQ_BLUENOISE) {
+        int st = bluenoise_make(S, job->seed);
+        if (st)
+            return st;
+    } else if (S->seq >= SEQ_SOBOL) {
         int st = points_make(&S->pts, S->seq, S->spp);
         if (st)
             return st;
@@ -667,6 +740,8 @@ static int jitter_render(void *state, const double *p, const aa_job *job, aa_ima
         return st;
     if (S->cell && S->cell_r != aa_filter_support(&job->filter))
         cells_make(S, aa_filter_support(&job->filter));
+    if (S->seq == SEQ_BLUENOISE && (st = bluenoise_make(S, job->seed)))
+        return st;
     const jt_row R = {S, job, aa_frame_index(job->t), aa_filter_support(&job->filter), {0}};
     return aa__sampler_render(&S->sampler, job, out, render_row, &R, counters);
 }
@@ -678,6 +753,10 @@ static void jitter_release(void *state)
     points_free(&S->pts);
     free(S->cell);
     S->cell = NULL;
+    free(S->bx);
+    free(S->mask);
+    S->bx = S->by = NULL;
+    S->mask = NULL;
 }
 
 const aa_method_type aa_method_jitter = {

@@ -1,6 +1,6 @@
 /*
- * test_temporal.c: motion and time (harness/bench/temporal.c, algorithms/taa.c,
- * algorithms/cycle.c, and --time/--motion in every method).
+ * test_temporal.c: motion and time (harness/bench/temporal.c, algorithms/taa.c's
+ * plain variant, algorithms/cycle.c, and --time/--motion in every method).
  *
  *  - the metrics on hand-computed sequences: a constant offset c between
  *    frames and references gives flicker 0 and eye_rmse c; an offset
@@ -19,7 +19,8 @@
  *    than 10%;
  *  - crow moving slowly: the hexagon's eye image (mean of 6 frames) is
  *    nearer the integrated reference than point's;
- *  - taa on a still scene: every pixel is the closed-form steady state, the
+ *  - taa's plain history (reproject=none,clamp=none) on a still scene of
+ *    crow, thin features included: every pixel is the closed-form steady state, the
  *    weighted mean of the `frames` Halton offsets with weight
  *    alpha (1-alpha)^j / (1 - (1-alpha)^frames) for lag j (derived from
  *    h <- h + alpha (x - h) summed as a geometric series), computed here
@@ -316,7 +317,8 @@ static void test_taa_still(void **state)
     aa_scene *s = scenes_pattern("crow"), *placed = aa_scene_place(s, w, h, 0, 0, 0);
     aa_image img, form, mean;
     /* 0.9^511 ~ 4e-24: the start of the history is gone */
-    assert_int_equal(render("taa:history=512", s, w, h, 5.5, 0, 0, 0, &img), AA_OK);
+    assert_int_equal(render("taa:reproject=none,clamp=none,history=512", s, w, h, 5.5, 0, 0, 0,
+                            &img), AA_OK);
     taa_closed_form(placed, w, h, 5, 8, 0.1, &form);
     double d = support_max_diff(&img, &form, NULL, NULL);
     print_message("taa still: largest difference from the closed form %.3e\n", d);
@@ -327,8 +329,9 @@ static void test_taa_still(void **state)
      * same formula at alpha -> 0 is the plain mean) */
     taa_closed_form(placed, w, h, 5, 8, 1e-9, &mean);
     double last = INFINITY;
-    const char *specs[] = {"taa:alpha=0.3,history=512", "taa:alpha=0.1,history=512",
-                           "taa:alpha=0.02,history=1024"};
+    const char *specs[] = {"taa:reproject=none,clamp=none,alpha=0.3,history=512",
+                           "taa:reproject=none,clamp=none,alpha=0.1,history=512",
+                           "taa:reproject=none,clamp=none,alpha=0.02,history=1024"};
     for (int k = 0; k < 3; k++) {
         assert_int_equal(render(specs[k], s, w, h, 5, 0, 0, 0, &img), AA_OK);
         double e = support_rmse(&img, &mean);

@@ -47,13 +47,16 @@ double aa_metrics_bytes(int w, int h);
  * window of `window` frames (eye's image: the frames' mean, against the
  * references' mean), flicker (per channel and pixel, the population
  * standard deviation over time of frame minus reference; its mean and max),
- * conservation ((max - min)/mean of the total intensity over the frames). */
+ * conservation ((max - min)/mean of the total intensity over the frames),
+ * lag (the delay in frames that best explains the error along the scene's
+ * own change: the ghosting of a history). */
 #define AA_TEMPORAL_MAX_FRAMES 256
 typedef struct aa_temporal {
     int frames, window;
     double eye_rmse;
     double flicker_mean, flicker_max;
     double conservation;
+    double lag;     /* frames behind the scene, least squares (temporal.c) */
     double popping; /* NAN unless measured (aa_temporal_popping) */
 } aa_temporal;
 int aa_temporal_compute(const aa_image *frames, const aa_image *refs, int n, int window,

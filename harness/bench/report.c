@@ -380,6 +380,8 @@ static const column columns[] = {
     OWN(case, G_ALWAYS, case_cell, read_case),
     OWN(host, G_ALWAYS, host_cell, read_host),
     TEXT(inputs, G_OPTIONAL, 0),
+    /* added after the columns above: older files lack it */
+    REAL(lag, tm.lag, G_TEMPORAL_OPTIONAL, 0, -DBL_MAX, DBL_MAX),
 };
 #undef TEXT
 #undef REAL
@@ -618,6 +620,7 @@ static cJSON *row_json(const aa_row *r)
                  add_num(tm, "flicker_mean", r->tm.flicker_mean) &&
                  add_num(tm, "flicker_max", r->tm.flicker_max) &&
                  add_num(tm, "conservation", r->tm.conservation) &&
+                 add_num(tm, "lag", r->tm.lag) &&
                  add_num(tm, "popping", r->tm.popping);
         }
     }
@@ -1097,7 +1100,7 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
         }
         aa_row *row = &rows[n];
         memset(row, 0, sizeof *row);
-        row->tm.popping = NAN;
+        row->tm.popping = row->tm.lag = NAN;
         row->case_index = -1;
         /* ok first: which columns must hold a value depends on it; then
          * whether the row is animated */
@@ -1300,7 +1303,7 @@ static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
     int st = AA_OK;
     char size[32] = "";
     memset(row, 0, sizeof *row);
-    row->tm.popping = NAN;
+    row->tm.popping = row->tm.lag = NAN;
     row->case_index = -1;
     row->m.rmse = row->m.max_err = row->seconds = NAN;
     if (!cJSON_IsObject(o))

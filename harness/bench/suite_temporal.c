@@ -12,9 +12,13 @@
  * Crow's hexagon at its defaults (the screen display, the random path) and
  * swept in radius and in the order of its vertices (024153 the default of
  * earlier versions), and its fixed display (the model of earlier
- * versions), taa (Halton(2,3) jitter with an exponential history, 8 and
- * 16 frames), and cycle (the msaa8 and msaa16 positions one per frame).
- * Which offsets the eye prefers is read off eye_rmse and flicker; `aabench
+ * versions), taa (after Karis 2014: Halton(2,3) jitter, reprojection by
+ * the scene's motion, YCoCg neighbourhood clamp, exponential history; 8
+ * and 16 frames, the bilinear history, the clip toward the box's centre,
+ * and the plain history of earlier versions, reproject=none,clamp=none),
+ * and cycle (the msaa8 and msaa16 positions one per frame).
+ * Which offsets the eye prefers is read off eye_rmse and flicker, a
+ * history's trail off lag; `aabench
  * run` prints the best per pattern after the table.
  */
 #include "bench.h"
@@ -29,7 +33,8 @@ const aa_suite_group aa_suite_temporal_groups[] = {
           "hexagon:radius=0.25", "hexagon:radius=0.35", "hexagon:radius=0.7",
           "hexagon:order=012345", "hexagon:order=031425", "hexagon:order=024135",
           "hexagon:order=024153", "hexagon:display=fixed,order=024153", "taa",
-          "taa:frames=16", "cycle:positions=msaa8", "cycle:positions=msaa16")},
+          "taa:frames=16", "taa:sample=bilinear", "taa:clamp=clip",
+          "taa:reproject=none,clamp=none", "cycle:positions=msaa8", "cycle:positions=msaa16")},
     {NULL, NULL, NULL, NULL}};
 
 static const aa_suite_motion motions[] = {{"temporal", 0.37, 0.11, 24, 6}, {NULL, 0, 0, 0, 0}};

@@ -25,6 +25,19 @@
  *    the mean of its channels; conservation is (max - min)/mean of it over
  *    the frames (0 when every frame is black).  Area sampling keeps it
  *    constant while the scene stays in the image (Catmull 1978).
+ *  - lag: how many frames the frames run behind the scene, the ghosting
+ *    or smearing a history causes.  With e_k = frame k - reference k and
+ *    d_k = reference k - reference k-1 (the scene's own change, k >= 1),
+ *
+ *        lag = - sum_k sum_q e_k(q) d_k(q) / sum_k sum_q d_k(q)^2
+ *
+ *    over every channel q of every pixel: the least-squares d in
+ *    e_k = -d d_k, so frames that show the reference d frames late where
+ *    it changes linearly (frame k = reference k - d d_k) give d, an error
+ *    unrelated to the change gives about 0, and an exponential history
+ *    h <- h + alpha (x - h) that follows nothing (no reprojection) gives
+ *    up to (1 - alpha)/alpha, its mean age.  0 when the references never
+ *    change (nothing can lag).  It can be negative (frames ahead).
  *  - popping (dots): the value of a dot in a frame is the sum over the
  *    pixels whose centre lies within 1.5 pixels (in x and in y) of the dot's
  *    centre at that frame's time, of the mean of the channels.  A dot pops
@@ -114,6 +127,16 @@ int aa_temporal_compute(const aa_image *frames, const aa_image *refs, int n, int
     }
     out->flicker_mean = fsum / (double)len;
     out->flicker_max = fbig;
+
+    /* lag: the least-squares delay of the error along the scene's change */
+    double num = 0.0, den = 0.0;
+    for (int k = 1; k < n; k++)
+        for (size_t q = 0; q < len; q++) {
+            double d = refs[k].v[q] - refs[k - 1].v[q];
+            num += (frames[k].v[q] - refs[k].v[q]) * d;
+            den += d * d;
+        }
+    out->lag = den > 0.0 ? -num / den : 0.0;
 
     /* conservation */
     double lo = INFINITY, hi = -INFINITY, mean = 0.0;

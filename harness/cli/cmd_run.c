@@ -203,8 +203,9 @@ static int cmp_eye(const void *a, const void *b)
 static void print_temporal(const aa_row **order, size_t n)
 {
     widths c = widths_of(order, n);
-    printf("%-*s %-*s %-9s %10s %10s %10s %10s %8s %6s\n", c.method, "method", c.pattern,
-           "pattern", "size", "rmse", "eye_rmse", "flicker", "flick_max", "conserv", "pop");
+    printf("%-*s %-*s %-9s %10s %10s %10s %10s %8s %6s %6s\n", c.method, "method", c.pattern,
+           "pattern", "size", "rmse", "eye_rmse", "flicker", "flick_max", "conserv", "lag",
+           "pop");
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = order[k];
         char size[32];
@@ -214,9 +215,10 @@ static void print_temporal(const aa_row **order, size_t n)
                    c.pattern, r->pattern, size, r->note);
             continue;
         }
-        printf("%-*.*s %-*.*s %-9s %10.3e %10.3e %10.3e %10.3e %8.2e", c.method, c.method,
-               r->method, c.pattern, c.pattern, r->pattern, size, r->m.rmse, r->tm.eye_rmse,
-               r->tm.flicker_mean, r->tm.flicker_max, r->tm.conservation);
+        printf("%-*.*s %-*.*s %-9s %10.3e %10.3e %10.3e %10.3e %8.2e %6.2f", c.method,
+               c.method, r->method, c.pattern, c.pattern, r->pattern, size, r->m.rmse,
+               r->tm.eye_rmse, r->tm.flicker_mean, r->tm.flicker_max, r->tm.conservation,
+               r->tm.lag);
         if (isfinite(r->tm.popping))
             printf(" %6.3f", r->tm.popping);
         printf("\n");
