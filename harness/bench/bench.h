@@ -23,6 +23,11 @@ typedef struct aa_metrics {
      * and y (moire), and the rest up to the Nyquist frequency */
     double alias_total, alias_low, alias_high;
     double ssim; /* on the display-encoded luma */
+    /* LDR-FLIP's mean (flip.c) at AA_FLIP_PPD, as the encoded images are
+     * shown; the RMSE over the edge pixels (edges.c), NaN when not taken
+     * (aa_metrics_edges sets it) or when there is no edge pixel */
+    double flip, edge_rmse;
+    size_t edge_pixels;
     /* pixels where either image holds a NaN or an infinity (only
      * aa_metrics_compare takes such images): left out of everything above.
      * psnr is infinite only for identical images (the same NaN or infinity
@@ -41,6 +46,36 @@ int aa_metrics_compare(const aa_image *ref, const aa_image *img, const aa_encode
                        aa_metrics *m);
 /* The bytes aa_metrics_compute takes beyond the two images, at most. */
 double aa_metrics_bytes(int w, int h);
+/* m->edge_rmse and m->edge_pixels over the pixels whose support of radius r
+ * meets an edge of the placed scene (edges.c); placed NULL: the pixels of
+ * ref that differ from a 4-neighbour (image files without their scene). */
+int aa_metrics_edges(const aa_scene *placed, double r, const aa_image *ref, const aa_image *img,
+                     aa_metrics *m);
+
+/* FLIP (flip.c): Andersson et al. 2020, LDR-FLIP.  Pixels per degree of a
+ * display `width` metres wide of `pixels` pixels seen from `distance`
+ * metres; AA_FLIP_PPD the paper's default, a 0.7 m wide 3840-pixel monitor
+ * at 0.7 m (67.02). */
+double aa_flip_ppd(double distance, double width, int pixels);
+#define AA_FLIP_PPD (0.7 * (3840 / 0.7) * 3.14159265358979323846 / 180.0)
+/* The colour pipeline's cmax: the Hunt-adjusted HyAB distance of pure green
+ * and pure blue, raised to qc = 0.7. */
+double aa_flip_cmax(void);
+/* The mean FLIP of img against ref (same size; grey or RGB, linear light,
+ * shown through `enc`, NULL sRGB) at ppd pixels per degree; map (may be
+ * NULL) receives the per-pixel values, w x h x 1, in [0, 1]. */
+int aa_flip(const aa_image *ref, const aa_image *img, const aa_encode *enc, double ppd,
+            double *mean, aa_image *map);
+double aa_flip_bytes(int w, int h);
+/* Edge pixels (edges.c): mask[j w + i] = 1 when the open square of
+ * half-side r about the pixel's centre meets a piece of the placed scene;
+ * from an image alone: when the pixel differs from a 4-neighbour. */
+int aa_edge_mask(const aa_scene *placed, double r, int w, int h, unsigned char *mask);
+int aa_edge_mask_of_image(const aa_image *ref, unsigned char *mask);
+/* The RMSE over the mask's pixels (finite in both), every channel; NaN
+ * when none; count (may be NULL) the pixels taken. */
+int aa_edge_rmse(const aa_image *ref, const aa_image *img, const unsigned char *mask,
+                 double *rmse, size_t *count);
 
 /* Temporal metrics of n displayed frames at times t0, t0 + 1, ... against
  * the references at the same times (temporal.c): eye_rmse over every
