@@ -277,8 +277,10 @@ static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_jo
     }
     if (bad_image(row, img, "gave "))
         return AA_OK;
-    if (!(st = aa_display_view_reference(view, spec, job, cfg->threads, &dref, &shown)))
-        st = aa_metrics_compute(shown ? &dref : ref, img, &cfg->enc, &row->m);
+    if (!(st = aa_display_view_reference(view, spec, job, cfg->threads, &dref, &shown)) &&
+        !(st = aa_metrics_compute(shown ? &dref : ref, img, &cfg->enc, &row->m)))
+        st = aa_metrics_edges(job->placed, aa_filter_support(&job->filter), shown ? &dref : ref,
+                              img, &row->m);
     if (st) {
         aa_image_free(&dref);
         return aa_fail_context(st, "%s on %s %dx%d %s", row->method, row->pattern, row->w,
