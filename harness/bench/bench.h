@@ -573,6 +573,34 @@ int aa_montage_stream(const char *path, const aa_tile_source *src, int columns,
 double aa_montage_bytes(size_t n, int columns, int tw, int th, int lines);
 int aa_montage_check(size_t n, int columns, int tw, int th, int lines);
 
+/* Pictures of the error (errmap.c).  Colour maps, t to sRGB codes in
+ * [0, 1]: magma (t in [0, 1]) and Moreland's diverging cool to warm (t in
+ * [-1, 1], 0 a light grey). */
+void aa_colormap_magma(double t, double rgb[3]);
+void aa_colormap_diverging(double t, double rgb[3]);
+/* x rounded up to 1, 2 or 5 times a power of ten (1 for x <= 0). */
+double aa_nice_scale(double x);
+/* The scale of the signed error map (errmap.c): the nice scale of the
+ * 99.5th percentile of the non-zero |errors| (0 for identical images);
+ * *largest (may be NULL) the largest. */
+double aa_error_scale(const aa_image *ref, const aa_image *img, double *largest);
+/* The signed error map of img against ref (largest channel error, its
+ * sign kept) on the diverging map, auto-scaled (aa_error_scale, into
+ * *scale, may be NULL), with a colour bar
+ * and the caption (may be NULL) above: an image of sRGB codes (write it
+ * with the linear encoding). */
+int aa_error_picture(const aa_image *ref, const aa_image *img, const char *caption,
+                     aa_image *out, double *scale);
+/* FLIP's map (w x h x 1, aa_flip) on magma, 0 to 1, with its colour bar. */
+int aa_flip_picture(const aa_image *map, const char *caption, aa_image *out);
+/* The k x k window (k at most the sides) of largest squared error: its
+ * top left corner. */
+int aa_worst_window(const aa_image *ref, const aa_image *img, int k, int *x0, int *y0);
+/* The worst 32 x 32 window zoomed: reference, image, signed error and
+ * FLIP side by side, labelled; sRGB codes; its corner in *wx, *wy. */
+int aa_worst_picture(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                     aa_image *out, int *wx, int *wy);
+
 /* Plots with gnuplot into `dir`: error_vs_time.{dat,gp,png} (log-log, each
  * view's Pareto front marked) and convergence.{dat,gp,png}. */
 int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n);
