@@ -601,6 +601,11 @@ int aa_worst_window(const aa_image *ref, const aa_image *img, int k, int *x0, in
 int aa_worst_picture(const aa_image *ref, const aa_image *img, const aa_encode *enc,
                      aa_image *out, int *wx, int *wy);
 
+/* The run folder's report, DIR/index.html (runreport.c): each view's
+ * table, montage, error maps and worst regions, and the plots, those
+ * present in DIR. */
+int aa_run_report(const char *dir, const aa_row *rows, size_t n);
+
 /* Plots with gnuplot into `dir`: error_vs_time.{dat,gp,png} (log-log, each
  * view's Pareto front marked) and convergence.{dat,gp,png}. */
 int aa_plot_error_vs_time(const char *dir, const aa_row *rows, size_t n);

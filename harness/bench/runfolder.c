@@ -1614,6 +1614,8 @@ int aa_runfolder_finish(aa_runfolder *rf)
     if (!st && rf->opt.plots && !(st = aa_pathf(plots, sizeof plots, "%s/plots", rf->dir)) &&
         !(st = aa_plot_error_vs_time(plots, rf->all, rf->nall)))
         st = write_convergence(plots, rf, &rf->cfgs[0], rf->threads, rf->all, rf->nall);
+    if (!st)
+        st = aa_run_report(rf->dir, rf->all, rf->nall);
     return st;
 }
 
