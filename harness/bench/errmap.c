@@ -331,6 +331,15 @@ double aa_error_scale(const aa_image *ref, const aa_image *img, double *largest)
     return mx > 0 ? aa_nice_scale(fmax(s, 1e-6)) : 0;
 }
 
+int aa_error_picture_check(int w, int h)
+{
+    double pw = w > MIN_W ? w : MIN_W, ph = (double)h + TEXT_H + PAD + BAR_H + 2 + TEXT_H;
+    if (pw > AA_MAX_SIDE || ph > AA_MAX_SIDE)
+        return aa_fail(AA_EINVAL, "the error map of a %dx%d image would be %.0fx%.0f pixels: a "
+                       "side is above %d", w, h, pw, ph, AA_MAX_SIDE);
+    return aa_size_check((int)pw, (int)ph, 3, 2);
+}
+
 int aa_error_picture(const aa_image *ref, const aa_image *img, const char *caption,
                      aa_image *out, double *scale)
 {

@@ -993,9 +993,13 @@ static int check_before_work(const aa_run_options *a, const aa_run_config *cfgs,
         if (!aa__oiio("montage.png"))
             return AA_EIO;
         for (size_t g = 0; g < ng; g++)
-            for (size_t s = 0; s < cfgs[g].nsizes; s++)
+            for (size_t s = 0; s < cfgs[g].nsizes; s++) {
                 if ((st = aa_size_check(cfgs[g].sizes[s].w, cfgs[g].sizes[s].h, 3, 4)))
                     return st;
+                if ((st = aa_error_picture_check(cfgs[g].sizes[s].w, cfgs[g].sizes[s].h)))
+                    return aa_fail_context(st, "-s %dx%d (or use --no-images)",
+                                           cfgs[g].sizes[s].w, cfgs[g].sizes[s].h);
+            }
         /* the montage: the first view's reference and up to 63 methods */
         size_t most = cfgs[0].nmethods < 63 ? cfgs[0].nmethods + 1 : 64;
         for (size_t nt = 1; nt <= most; nt++)
