@@ -564,7 +564,7 @@ static int row_done(void *vrf, const aa_row *rows, size_t n)
  * (tiles are copied, never resampled), and its labels say so. */
 
 #define MONTAGE_TILES 64
-#define MONTAGE_LINES 2
+#define MONTAGE_LINES 3
 #define MONTAGE_SIDE 256
 
 /* Its columns, for n tiles of width w. */
@@ -597,10 +597,11 @@ static int montage_get(void *vctx, size_t k, aa_tile *tile)
         if ((st = aa_reference(&s->view, s->cache, 0, &s->im, NULL, NULL)))
             return st;
         snprintf(s->labels[0], 128, "reference (%.100s)", s->rows[s->row[1]].filter);
+        snprintf(s->labels[1], 128, "exact");
         if (s->tw < s->view.w || s->th < s->view.h)
-            snprintf(s->labels[1], 128, "exact; centre %dx%d", s->tw, s->th);
+            snprintf(s->labels[2], 128, "centre %dx%d", s->tw, s->th);
         else
-            snprintf(s->labels[1], 128, "exact");
+            s->labels[2][0] = '\0';
     } else {
         const aa_row *r = &s->rows[s->row[k]];
         char path[4096], ps[512], fs[256], ms[512];
@@ -613,7 +614,8 @@ static int montage_get(void *vctx, size_t k, aa_tile *tile)
             (st = aa_image_read(path, &s->im)))
             return st;
         snprintf(s->labels[0], 128, "%.120s", r->method);
-        snprintf(s->labels[1], 128, "RMSE %.3g, FLIP %.3g", r->m.rmse, r->m.flip);
+        snprintf(s->labels[1], 128, "RMSE %.3g", r->m.rmse);
+        snprintf(s->labels[2], 128, "FLIP %.3g", r->m.flip);
     }
     if (s->tw < s->im.w || s->th < s->im.h) {
         if ((st = aa_image_alloc(&s->crop, s->tw, s->th, s->im.c)))
@@ -627,7 +629,7 @@ static int montage_get(void *vctx, size_t k, aa_tile *tile)
     }
     tile->label[0] = s->labels[0];
     tile->label[1] = s->labels[1];
-    tile->label[2] = NULL;
+    tile->label[2] = s->labels[2][0] ? s->labels[2] : NULL;
     return AA_OK;
 }
 
