@@ -63,7 +63,8 @@ double aa_flip_ppd(double distance, double width, int pixels);
 double aa_flip_cmax(void);
 /* The mean FLIP of img against ref (same size; grey or RGB, linear light,
  * shown through `enc`, NULL sRGB) at ppd pixels per degree; map (may be
- * NULL) receives the per-pixel values, w x h x 1, in [0, 1]. */
+ * NULL) receives the per-pixel values, w x h x 1, in [0, 1].  Fewer
+ * than 3 channels: grey (the first); more: RGB (the first three). */
 int aa_flip(const aa_image *ref, const aa_image *img, const aa_encode *enc, double ppd,
             double *mean, aa_image *map);
 double aa_flip_bytes(int w, int h);

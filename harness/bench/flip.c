@@ -45,7 +45,8 @@
  *  - the 2-D kernel is the paper's s(x) at the distance sqrt(x^2 + y^2),
  *    separable per Gaussian term; the derivative kernels are separable:
  *    the derivative across, the Gaussian (sum 1) along;
- *  - a grey image (one channel) is shown as grey.
+ *  - an image of fewer than 3 channels is shown as grey (its first
+ *    channel), one of more as RGB (its first three).
  */
 #include "bench.h"
 
@@ -130,29 +131,30 @@ static double colour_error(double d, double cmax)
     return fmin(1.0, PT + (e - PC * cmax) / (cmax - PC * cmax) * (1.0 - PT));
 }
 
-/* out = ky (rows) after kx (columns) applied to src, clamped at the border;
- * kernels of 2 r + 1 taps, centred. */
+/* One line of n values (stride apart) convolved with k (2 r + 1 taps,
+ * centred), clamped at its ends: through line, n + 2 r values. */
+static void convolve_line(const double *src, size_t stride, int n, const double *k, int r,
+                          double *line, double *dst)
+{
+    for (int q = -r; q < n + r; q++)
+        line[q + r] = src[(size_t)(q < 0 ? 0 : q >= n ? n - 1 : q) * stride];
+    for (int i = 0; i < n; i++) {
+        double s = 0;
+        for (int d = 0; d <= 2 * r; d++)
+            s += k[d] * line[i + d];
+        dst[(size_t)i * stride] = s;
+    }
+}
+
+/* out = ky (down the columns) after kx (along the rows) applied to src,
+ * clamped at the border; line holds max(w, h) + 2 r values. */
 static void convolve(const double *src, double *dst, double *tmp, int w, int h, const double *kx,
-                     const double *ky, int r)
+                     const double *ky, int r, double *line)
 {
     for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) {
-            double s = 0;
-            for (int d = -r; d <= r; d++) {
-                int x = i + d < 0 ? 0 : i + d >= w ? w - 1 : i + d;
-                s += kx[d + r] * src[(size_t)j * w + x];
-            }
-            tmp[(size_t)j * w + i] = s;
-        }
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) {
-            double s = 0;
-            for (int d = -r; d <= r; d++) {
-                int y = j + d < 0 ? 0 : j + d >= h ? h - 1 : j + d;
-                s += ky[d + r] * tmp[(size_t)y * w + i];
-            }
-            dst[(size_t)j * w + i] = s;
-        }
+        convolve_line(src + (size_t)j * w, 1, w, kx, r, line, tmp + (size_t)j * w);
+    for (int i = 0; i < w; i++)
+        convolve_line(tmp + i, (size_t)w, h, ky, r, line, dst + i);
 }
 
 /* The displayed linear RGB of pixel p. */
@@ -174,7 +176,7 @@ typedef struct flip_work {
     double *csf[3][2]; /* per channel, per Gaussian term: 1-D kernel (2 rc + 1) */
     double cw[3][2];   /* its weight in the normalised 2-D kernel */
     double *g, *gd, *gdd; /* feature kernels (2 rf + 1) */
-    double *chan[3], *acc, *tmp, *y;
+    double *chan[3], *acc, *tmp, *y, *line;
 } flip_work;
 
 static const double CSF[3][4] = {{1, 0.0047, 0, 1e-5}, {1, 0.0053, 0, 1e-5},
@@ -201,6 +203,8 @@ static int work_init(flip_work *fw, int w, int h, double ppd)
     ok &= (fw->acc = malloc(n * sizeof(double))) != NULL;
     ok &= (fw->tmp = malloc(n * sizeof(double))) != NULL;
     ok &= (fw->y = malloc(n * sizeof(double))) != NULL;
+    int r = fw->rc > fw->rf ? fw->rc : fw->rf;
+    ok &= (fw->line = malloc(((size_t)(w > h ? w : h) + 2 * (size_t)r) * sizeof(double))) != NULL;
     if (!ok)
         return aa_fail(AA_ENOMEM, "out of memory for FLIP of %dx%d", w, h);
     for (int c = 0; c < 3; c++) {
@@ -252,7 +256,7 @@ static void work_free(flip_work *fw)
         free(fw->chan[c]);
     }
     free(fw->g), free(fw->gd), free(fw->gdd);
-    free(fw->acc), free(fw->tmp), free(fw->y);
+    free(fw->acc), free(fw->tmp), free(fw->y), free(fw->line);
 }
 
 /* One image: its filtered, Hunt-adjusted Lab (lab, 3 per pixel) and its
@@ -282,7 +286,7 @@ static void prepare(flip_work *fw, const aa_image *im, const aa_encode *enc, dou
             if (fw->cw[c][t] == 0)
                 continue;
             convolve(fw->chan[c], fw->acc, fw->tmp, fw->w, fw->h, fw->csf[c][t], fw->csf[c][t],
-                     fw->rc);
+                     fw->rc, fw->line);
             for (size_t p = 0; p < n; p++)
                 lab[3 * p + (size_t)c] += fw->cw[c][t] * fw->acc[p];
         }
@@ -297,12 +301,12 @@ static void prepare(flip_work *fw, const aa_image *im, const aa_encode *enc, dou
         rgb_to_hunt_lab(rgb, lab + 3 * p);
     }
     /* features: x responses into chan[0], chan[1]; y ones into acc, chan[2] */
-    convolve(fw->y, fw->chan[0], fw->tmp, fw->w, fw->h, fw->gd, fw->g, fw->rf);
-    convolve(fw->y, fw->acc, fw->tmp, fw->w, fw->h, fw->g, fw->gd, fw->rf);
+    convolve(fw->y, fw->chan[0], fw->tmp, fw->w, fw->h, fw->gd, fw->g, fw->rf, fw->line);
+    convolve(fw->y, fw->acc, fw->tmp, fw->w, fw->h, fw->g, fw->gd, fw->rf, fw->line);
     for (size_t p = 0; p < n; p++)
         feat[2 * p] = hypot(fw->chan[0][p], fw->acc[p]);
-    convolve(fw->y, fw->chan[1], fw->tmp, fw->w, fw->h, fw->gdd, fw->g, fw->rf);
-    convolve(fw->y, fw->chan[2], fw->tmp, fw->w, fw->h, fw->g, fw->gdd, fw->rf);
+    convolve(fw->y, fw->chan[1], fw->tmp, fw->w, fw->h, fw->gdd, fw->g, fw->rf, fw->line);
+    convolve(fw->y, fw->chan[2], fw->tmp, fw->w, fw->h, fw->g, fw->gdd, fw->rf, fw->line);
     for (size_t p = 0; p < n; p++)
         feat[2 * p + 1] = hypot(fw->chan[1][p], fw->chan[2][p]);
 }
@@ -315,9 +319,6 @@ int aa_flip(const aa_image *ref, const aa_image *img, const aa_encode *enc, doub
                        ref->w, ref->h, ref->c, img->w, img->h, img->c);
     if (!(ppd > 0) || !isfinite(ppd))
         return aa_fail(AA_EINVAL, "FLIP: %g pixels per degree, not a positive number", ppd);
-    if (ref->c != 1 && ref->c < 3)
-        return aa_fail(AA_EINVAL, "FLIP of %d-channel images: grey (1) or RGB (3 or more) only",
-                       ref->c);
     size_t n = (size_t)ref->w * ref->h;
     flip_work fw;
     int st = work_init(&fw, ref->w, ref->h, ppd);

@@ -331,8 +331,6 @@ static const column columns[] = {
     REAL(alias_low, m.alias_low, G_MEASURE, 0, 0, DBL_MAX),
     REAL(alias_high, m.alias_high, G_MEASURE, 0, 0, DBL_MAX),
     REAL(ssim, m.ssim, G_MEASURE, 0, -1, 1),
-    REAL(flip, m.flip, G_MEASURE_OPTIONAL, 0, 0, 1),
-    REAL(edge_rmse, m.edge_rmse, G_MEASURE_OPTIONAL, 0, 0, 1),
     REAL(render_seconds, seconds, G_MEASURE, 0, 0, DBL_MAX),
     REAL(render_seconds_min, seconds_min, G_MEASURE, 0, 0, DBL_MAX),
     REAL(render_seconds_max, seconds_max, G_MEASURE, 0, 0, DBL_MAX),
@@ -384,6 +382,9 @@ static const column columns[] = {
     OWN(case, G_ALWAYS, case_cell, read_case),
     OWN(host, G_ALWAYS, host_cell, read_host),
     TEXT(inputs, G_OPTIONAL, 0),
+    /* the perceptual and edge errors, after the older columns */
+    REAL(flip, m.flip, G_MEASURE_OPTIONAL, 0, 0, 1),
+    REAL(edge_rmse, m.edge_rmse, G_MEASURE_OPTIONAL, 0, 0, 1),
 };
 #undef TEXT
 #undef REAL
