@@ -18,7 +18,8 @@
  *    are), growing with the colour difference, and the 1-pixel shift of an
  *    edge seen only near the edge, less than a larger shift; and the CSF's
  *    point: a fine checkerboard against its mean grey differs less the
- *    farther away it is seen (more pixels per degree).
+ *    farther away it is seen (more pixels per degree);
+ *  - the gate: a FLIP or edge RMSE above its baseline's is a regression.
  */
 #include "bench.h"
 #include "support.h"
@@ -205,6 +206,29 @@ static void test_in_metrics(void **state)
     aa_image_free(&b);
 }
 
+/* The regression gate (aa_case_verdict, as `check` and `diff` judge):
+ * a FLIP or an edge RMSE above its baseline's is a regression, as an RMSE
+ * is; a baseline without them (older files: NaN) judges neither. */
+static void test_gate(void **state)
+{
+    (void)state;
+    aa_row old, now;
+    memset(&old, 0, sizeof old);
+    old.ok = 1;
+    old.m.rmse = 0.1, old.m.max_err = 0.5, old.m.flip = 0.05, old.m.edge_rmse = 0.2;
+    now = old;
+    char detail[512];
+    int confirmed;
+    assert_null(aa_case_verdict(&old, &now, 1e-3, detail, sizeof detail, &confirmed));
+    now.m.flip = 0.06;
+    assert_non_null(aa_case_verdict(&old, &now, 1e-3, detail, sizeof detail, &confirmed));
+    assert_non_null(strstr(detail, "flip 0.06"));
+    now.m.flip = 0.05, now.m.edge_rmse = 0.25;
+    assert_non_null(aa_case_verdict(&old, &now, 1e-3, detail, sizeof detail, &confirmed));
+    old.m.edge_rmse = old.m.flip = NAN;
+    assert_null(aa_case_verdict(&old, &now, 1e-3, detail, sizeof detail, &confirmed));
+}
+
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_viewing_and_cmax),
              cmocka_unit_test(test_flat_colours),
@@ -212,4 +236,5 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_monotone),
              cmocka_unit_test(test_shift),
              cmocka_unit_test(test_viewing_distance),
-             cmocka_unit_test(test_in_metrics))
+             cmocka_unit_test(test_in_metrics),
+             cmocka_unit_test(test_gate))
