@@ -2,8 +2,9 @@
  * edges.c: the error over the edge pixels only.
  *
  * A large flat background, which every method fills exactly, dilutes the
- * RMSE over the whole image: the same staircase on a 1024x1024 view scores
- * four times better than on a 256x256 one.  The edge RMSE is the RMSE
+ * RMSE over the whole image: point sampling crow scores 0.18 at 256x256
+ * and 0.090 at 1024x1024, the same staircases over four times the pixels,
+ * and 0.28 and 0.27 over the edge pixels.  The edge RMSE is the RMSE
  * (linear light, every channel) over the pixels whose filter support meets
  * an edge of the scene, the only pixels where antialiasing has anything to
  * do.  The set is computed from the placed scene's geometry, not from the
