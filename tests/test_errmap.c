@@ -107,19 +107,26 @@ static void test_pictures(void **state)
     aa_pixel(&img, 7, 5)[1] += 0.1;
     assert_int_equal(aa_error_picture(&ref, &img, NULL, &pic, &s), AA_OK);
     assert_true(fabs(s - 0.1) < 1e-12);
-    assert_int_equal(pic.w, 220); /* room for the bar's labels */
-    int x0 = (220 - w) / 2;
+    /* 40x30 is shown 4 times larger (256 / 40 = 6, at most 4), 160x120, in a
+     * picture of 220 for the bar's labels */
+    assert_int_equal(aa_error_picture_zoom(w, h), 4);
+    assert_int_equal(pic.w, 220);
+    int x0 = (220 - 4 * w) / 2;
     double warm[3], mid[3];
     aa_colormap_diverging(1, warm);
     aa_colormap_diverging(0, mid);
-    near_rgb(aa_pixel(&pic, x0 + 7, 5), warm[0], warm[1], warm[2], 1e-12);
-    near_rgb(aa_pixel(&pic, x0 + 8, 5), mid[0], mid[1], mid[2], 1e-12);
+    near_rgb(aa_pixel(&pic, x0 + 4 * 7, 4 * 5), warm[0], warm[1], warm[2], 1e-12);
+    near_rgb(aa_pixel(&pic, x0 + 4 * 7 + 3, 4 * 5 + 3), warm[0], warm[1], warm[2], 1e-12);
+    near_rgb(aa_pixel(&pic, x0 + 4 * 8, 4 * 5), mid[0], mid[1], mid[2], 1e-12);
     near_rgb(aa_pixel(&pic, x0, 0), mid[0], mid[1], mid[2], 1e-12);
     aa_image_free(&pic);
     /* identical: scale 0, every pixel the middle */
     assert_int_equal(aa_error_picture(&ref, &ref, NULL, &pic, &s), AA_OK);
     assert_true(s == 0);
-    near_rgb(aa_pixel(&pic, x0 + 7, 5), mid[0], mid[1], mid[2], 1e-12);
+    near_rgb(aa_pixel(&pic, x0 + 4 * 7, 4 * 5), mid[0], mid[1], mid[2], 1e-12);
+    assert_int_equal(aa_error_picture_zoom(1024, 1024), 1);
+    assert_int_equal(aa_error_picture_zoom(288, 32), 1);
+    assert_int_equal(aa_error_picture_zoom(128, 128), 2);
     aa_image_free(&pic);
     /* the worst 4x4 window is the bad block */
     for (int j = 9; j < 13; j++)

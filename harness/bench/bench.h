@@ -593,8 +593,10 @@ double aa_error_scale(const aa_image *ref, const aa_image *img, double *largest)
 int aa_error_picture(const aa_image *ref, const aa_image *img, const char *caption,
                      aa_image *out, double *scale);
 /* Whether the error map of a w x h image can be made (its sides, its
- * memory): AA_EINVAL with a message if not. */
+ * memory): AA_EINVAL with a message if not; its zoom (1 to 4: small
+ * images are shown larger). */
 int aa_error_picture_check(int w, int h);
+int aa_error_picture_zoom(int w, int h);
 /* FLIP's map (w x h x 1, aa_flip) on magma, 0 to 1, with its colour bar. */
 int aa_flip_picture(const aa_image *map, const char *caption, aa_image *out);
 /* The k x k window (k at most the sides) of largest squared error: its

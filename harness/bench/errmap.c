@@ -21,7 +21,8 @@
  *    errors clipped (and never below 1e-6: rounding is shown as no error),
  *    so every map is auto-scaled and says its scale; a
  *    colour bar under the map with its ends (<= and >= where they clip) and
- *    middle labelled.  The unsigned map (FLIP's values) uses magma
+ *    middle labelled; an image smaller than 256 pixels is shown zoomed
+ *    (nearest neighbour, at most 4 times), its caption saying so.  The unsigned map (FLIP's values) uses magma
  *    from 0 to 1, fixed (FLIP is already in [0, 1]).
  *  - The worst region: the k x k window (k = min(32, w, h)) of largest
  *    squared error (a summed-area table), shown zoomed (nearest neighbour,
@@ -331,9 +332,19 @@ double aa_error_scale(const aa_image *ref, const aa_image *img, double *largest)
     return mx > 0 ? aa_nice_scale(fmax(s, 1e-6)) : 0;
 }
 
+/* The error map's zoom: small images are shown larger (nearest neighbour),
+ * up to 256 pixels and 4 times. */
+int aa_error_picture_zoom(int w, int h)
+{
+    int side = w > h ? w : h, z = side > 0 ? 256 / side : 1;
+    return z < 1 ? 1 : z > 4 ? 4 : z;
+}
+
 int aa_error_picture_check(int w, int h)
 {
-    double pw = w > MIN_W ? w : MIN_W, ph = (double)h + TEXT_H + PAD + BAR_H + 2 + TEXT_H;
+    int z = aa_error_picture_zoom(w, h);
+    double zw = (double)w * z, zh = (double)h * z;
+    double pw = zw > MIN_W ? zw : MIN_W, ph = zh + TEXT_H + PAD + BAR_H + 2 + TEXT_H;
     if (pw > AA_MAX_SIDE || ph > AA_MAX_SIDE)
         return aa_fail(AA_EINVAL, "the error map of a %dx%d image would be %.0fx%.0f pixels: a "
                        "side is above %d", w, h, pw, ph, AA_MAX_SIDE);
@@ -352,22 +363,32 @@ int aa_error_picture(const aa_image *ref, const aa_image *img, const char *capti
         *scale = s;
     if (s == 0)
         s = 1;
-    int pw = w > MIN_W ? w : MIN_W;
+    int z = aa_error_picture_zoom(w, h), zw = w * z, zh = h * z;
+    int pw = zw > MIN_W ? zw : MIN_W;
     int top = caption ? TEXT_H : 0;
-    int st = aa_image_alloc(out, pw, top + h + PAD + BAR_H + 2 + TEXT_H, 3);
+    int st = aa_image_alloc(out, pw, top + zh + PAD + BAR_H + 2 + TEXT_H, 3);
     if (st)
         return st;
     fill(out, 0.12);
-    int x0 = (pw - w) / 2;
+    int x0 = (pw - zw) / 2;
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++) {
             double rgb[3];
             aa_colormap_diverging(signed_error(ref, img, i, j) / s, rgb);
-            put(out, x0 + i, top + j, rgb);
+            for (int dj = 0; dj < z; dj++)
+                for (int di = 0; di < z; di++)
+                    put(out, x0 + i * z + di, top + j * z + dj, rgb);
         }
-    if (caption && (st = text(out, 2, 1, caption)))
-        return st;
-    return colour_bar(out, 4, top + h + PAD, pw - 8, mx > s ? 2 : 1, s);
+    if (caption) {
+        char line[160];
+        if (z > 1)
+            snprintf(line, sizeof line, "%.120s, x%d", caption, z);
+        else
+            snprintf(line, sizeof line, "%.120s", caption);
+        if ((st = text(out, 2, 1, line)))
+            return st;
+    }
+    return colour_bar(out, 4, top + zh + PAD, pw - 8, mx > s ? 2 : 1, s);
 }
 
 int aa_flip_picture(const aa_image *map, const char *caption, aa_image *out)
