@@ -589,7 +589,7 @@ double aa_error_scale(const aa_image *ref, const aa_image *img, double *largest)
  * sign kept) on the diverging map, auto-scaled (aa_error_scale, into
  * *scale, may be NULL), with a colour bar
  * and the caption (may be NULL) above: an image of sRGB codes (write it
- * with the linear encoding). */
+ * with aa_picture_write). */
 int aa_error_picture(const aa_image *ref, const aa_image *img, const char *caption,
                      aa_image *out, double *scale);
 /* Whether the error map of a w x h image can be made (its sides, its
@@ -597,6 +597,9 @@ int aa_error_picture(const aa_image *ref, const aa_image *img, const char *capti
  * images are shown larger). */
 int aa_error_picture_check(int w, int h);
 int aa_error_picture_zoom(int w, int h);
+/* Write a picture of sRGB codes (the above) as an sRGB PNG; the picture's
+ * values are made linear on the way. */
+int aa_picture_write(const char *path, aa_image *pic);
 /* FLIP's map (w x h x 1, aa_flip) on magma, 0 to 1, with its colour bar. */
 int aa_flip_picture(const aa_image *map, const char *caption, aa_image *out);
 /* The k x k window (k at most the sides) of largest squared error: its

@@ -340,6 +340,16 @@ int aa_error_picture_zoom(int w, int h)
     return z < 1 ? 1 : z > 4 ? 4 : z;
 }
 
+int aa_picture_write(const char *path, aa_image *pic)
+{
+    /* the codes back to linear values, written sRGB-encoded and tagged so
+     * (a file tagged linear would be brightened again by a browser) */
+    for (size_t k = 0; k < (size_t)pic->w * pic->h * (size_t)pic->c; k++)
+        pic->v[k] = srgb_decode(pic->v[k]);
+    aa_encode srgb = {AA_ENCODE_SRGB, 0};
+    return aa_image_write(path, pic, &srgb);
+}
+
 int aa_error_picture_check(int w, int h)
 {
     int z = aa_error_picture_zoom(w, h);

@@ -128,15 +128,14 @@ static int write_error_map(const char *path, const char *worst, const aa_image *
                            const aa_image *img, const aa_encode *enc)
 {
     aa_image pic;
-    aa_encode linear = {AA_ENCODE_LINEAR, 0};
     int st = aa_error_picture(ref, img, "image - reference (linear)", &pic, NULL);
     if (st)
         return st;
-    st = aa_image_write(path, &pic, &linear);
+    st = aa_picture_write(path, &pic);
     aa_image_free(&pic);
     if (st || (st = aa_worst_picture(ref, img, enc, &pic, NULL, NULL)))
         return st;
-    st = aa_image_write(worst, &pic, &linear);
+    st = aa_picture_write(worst, &pic);
     aa_image_free(&pic);
     return st;
 }

@@ -113,7 +113,6 @@ static int pictures(const char *output, const aa_image *ref, const aa_image *img
 {
     char stem[4096], path[4200];
     snprintf(stem, sizeof stem, "%s", stem_of(output));
-    aa_encode linear = {AA_ENCODE_LINEAR, 0};
     aa_image pic = {0}, map = {0}, a = {0}, b = {0};
     double flip;
     int st;
@@ -127,18 +126,18 @@ static int pictures(const char *output, const aa_image *ref, const aa_image *img
     }
     snprintf(path, sizeof path, "%s.png", stem);
     if ((st = aa_error_picture(&a, &b, "image - reference (linear)", &pic, NULL)) ||
-        (st = aa_image_write(path, &pic, &linear)))
+        (st = aa_picture_write(path, &pic)))
         goto done;
     aa_image_free(&pic);
     snprintf(path, sizeof path, "%s-flip.png", stem);
     if ((st = aa_flip(&a, &b, enc, AA_FLIP_PPD, &flip, &map)) ||
         (st = aa_flip_picture(&map, "FLIP (67 pixels per degree)", &pic)) ||
-        (st = aa_image_write(path, &pic, &linear)))
+        (st = aa_picture_write(path, &pic)))
         goto done;
     aa_image_free(&pic);
     snprintf(path, sizeof path, "%s-worst.png", stem);
     if (!(st = aa_worst_picture(&a, &b, enc, &pic, NULL, NULL)))
-        st = aa_image_write(path, &pic, &linear);
+        st = aa_picture_write(path, &pic);
 done:
     aa_image_free(&pic);
     aa_image_free(&map);
