@@ -429,6 +429,15 @@ figures: $(BUILD)/aabench
 	@if command -v chromium >/dev/null 2>&1; then sh scripts/check-gallery.sh results/figures; \
 	else echo "figures: chromium missing, gallery not checked (apt-get install chromium)"; fi
 
+# A run's report (its index.html: tables, montages, error maps, plots) seen
+# by headless Chromium, as the gallery is: the quick suite, one render a case.
+.PHONY: check-report
+check-report: $(BUILD)/aabench
+	rm -rf $(BUILD)/report-run
+	$(BUILD)/aabench run --suite quick --reps 1 -q --out $(BUILD)/report-run
+	@if command -v chromium >/dev/null 2>&1; then sh scripts/check-gallery.sh $(BUILD)/report-run; \
+	else echo "check-report: chromium missing, report not checked (apt-get install chromium)"; fi
+
 # make install [PREFIX=/usr/local] [DESTDIR=staging]: the command, the
 # library, and for plug-in authors the public headers (PUBLIC_HEADERS, into
 # PREFIX/include/aabench/) and aabench.pc (from harness/aabench.pc.in), so that

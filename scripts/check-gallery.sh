@@ -1,12 +1,12 @@
 #!/bin/sh
-# check-gallery.sh DIR: the gallery DIR/index.html (aabench figures) seen by
-# a browser.  Takes a headless Chromium screenshot of the page and checks it
+# check-gallery.sh DIR: the gallery DIR/index.html (aabench figures, or a run
+# folder's report) seen by a browser.  Takes a headless Chromium screenshot of the page and checks it
 # is not blank, then dumps the page's DOM and checks every <img> names a
 # file present in DIR.  Installs nothing: without chromium it says how to
 # get it and exits 2.  Exit 0 if the page passes, 1 if not.
 set -u
 if [ $# -ne 1 ] || [ ! -f "$1/index.html" ]; then
-    echo "usage: check-gallery.sh DIR (a folder holding index.html, from aabench figures)" >&2
+    echo "usage: check-gallery.sh DIR (a folder holding index.html, from aabench figures or run)" >&2
     exit 2
 fi
 if ! command -v chromium >/dev/null 2>&1; then

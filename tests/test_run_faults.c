@@ -947,11 +947,12 @@ static void test_checked_before_work(void **state)
     assert_int_equal(mkdir(sub, 0755), 0);
     snprintf(out, sizeof out, "%s/out", sub);
 
-    /* a montage too tall: refused before the run, not after it */
+    /* error maps too tall (the map, its bar and labels): refused before
+     * the run, not after it (a montage shows at most 256x256 of a view) */
     assert_int_equal(LIB("run", "-s", "1x65536", "-p", "crow", "-m", "point", "--reps", "1",
                          "-q", "--out", out),
                      2);
-    expect_in(err_text, "montage", "-s 1x65536");
+    expect_in(err_text, "error map", "-s 1x65536");
     assert_false(exists(out));
 
     /* a method spec every filter refuses, as render refuses it */

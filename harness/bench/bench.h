@@ -23,6 +23,11 @@ typedef struct aa_metrics {
      * and y (moire), and the rest up to the Nyquist frequency */
     double alias_total, alias_low, alias_high;
     double ssim; /* on the display-encoded luma */
+    /* LDR-FLIP's mean (flip.c) at AA_FLIP_PPD, as the encoded images are
+     * shown; the RMSE over the edge pixels (edges.c), NaN when not taken
+     * (aa_metrics_edges sets it) or when there is no edge pixel */
+    double flip, edge_rmse;
+    size_t edge_pixels;
     /* pixels where either image holds a NaN or an infinity (only
      * aa_metrics_compare takes such images): left out of everything above.
      * psnr is infinite only for identical images (the same NaN or infinity
@@ -41,6 +46,37 @@ int aa_metrics_compare(const aa_image *ref, const aa_image *img, const aa_encode
                        aa_metrics *m);
 /* The bytes aa_metrics_compute takes beyond the two images, at most. */
 double aa_metrics_bytes(int w, int h);
+/* m->edge_rmse and m->edge_pixels over the pixels whose support of radius r
+ * meets an edge of the placed scene (edges.c); placed NULL: the pixels of
+ * ref that differ from a 4-neighbour (image files without their scene). */
+int aa_metrics_edges(const aa_scene *placed, double r, const aa_image *ref, const aa_image *img,
+                     aa_metrics *m);
+
+/* FLIP (flip.c): Andersson et al. 2020, LDR-FLIP.  Pixels per degree of a
+ * display `width` metres wide of `pixels` pixels seen from `distance`
+ * metres; AA_FLIP_PPD the paper's default, a 0.7 m wide 3840-pixel monitor
+ * at 0.7 m (67.02). */
+double aa_flip_ppd(double distance, double width, int pixels);
+#define AA_FLIP_PPD (0.7 * (3840 / 0.7) * 3.14159265358979323846 / 180.0)
+/* The colour pipeline's cmax: the Hunt-adjusted HyAB distance of pure green
+ * and pure blue, raised to qc = 0.7. */
+double aa_flip_cmax(void);
+/* The mean FLIP of img against ref (same size; grey or RGB, linear light,
+ * shown through `enc`, NULL sRGB) at ppd pixels per degree; map (may be
+ * NULL) receives the per-pixel values, w x h x 1, in [0, 1].  Fewer
+ * than 3 channels: grey (the first); more: RGB (the first three). */
+int aa_flip(const aa_image *ref, const aa_image *img, const aa_encode *enc, double ppd,
+            double *mean, aa_image *map);
+double aa_flip_bytes(int w, int h);
+/* Edge pixels (edges.c): mask[j w + i] = 1 when the open square of
+ * half-side r about the pixel's centre meets a piece of the placed scene;
+ * from an image alone: when the pixel differs from a 4-neighbour. */
+int aa_edge_mask(const aa_scene *placed, double r, int w, int h, unsigned char *mask);
+int aa_edge_mask_of_image(const aa_image *ref, unsigned char *mask);
+/* The RMSE over the mask's pixels (finite in both), every channel; NaN
+ * when none; count (may be NULL) the pixels taken. */
+int aa_edge_rmse(const aa_image *ref, const aa_image *img, const unsigned char *mask,
+                 double *rmse, size_t *count);
 
 /* Temporal metrics of n displayed frames at times t0, t0 + 1, ... against
  * the references at the same times (temporal.c): eye_rmse over every
@@ -540,6 +576,47 @@ int aa_montage_stream(const char *path, const aa_tile_source *src, int columns,
  * limits, before any work (AA_EINVAL with a message). */
 double aa_montage_bytes(size_t n, int columns, int tw, int th, int lines);
 int aa_montage_check(size_t n, int columns, int tw, int th, int lines);
+
+/* Pictures of the error (errmap.c).  Colour maps, t to sRGB codes in
+ * [0, 1]: magma (t in [0, 1]) and Moreland's diverging cool to warm (t in
+ * [-1, 1], 0 a light grey). */
+void aa_colormap_magma(double t, double rgb[3]);
+void aa_colormap_diverging(double t, double rgb[3]);
+/* x rounded up to 1, 2 or 5 times a power of ten (1 for x <= 0). */
+double aa_nice_scale(double x);
+/* The scale of the signed error map (errmap.c): the nice scale of the
+ * 99.5th percentile of the non-zero |errors| (0 for identical images);
+ * *largest (may be NULL) the largest. */
+double aa_error_scale(const aa_image *ref, const aa_image *img, double *largest);
+/* The signed error map of img against ref (largest channel error, its
+ * sign kept) on the diverging map, auto-scaled (aa_error_scale, into
+ * *scale, may be NULL), with a colour bar
+ * and the caption (may be NULL) above: an image of sRGB codes (write it
+ * with aa_picture_write). */
+int aa_error_picture(const aa_image *ref, const aa_image *img, const char *caption,
+                     aa_image *out, double *scale);
+/* Whether the error map of a w x h image can be made (its sides, its
+ * memory): AA_EINVAL with a message if not; its zoom (1 to 4: small
+ * images are shown larger). */
+int aa_error_picture_check(int w, int h);
+int aa_error_picture_zoom(int w, int h);
+/* Write a picture of sRGB codes (the above) as an sRGB PNG; the picture's
+ * values are made linear on the way. */
+int aa_picture_write(const char *path, aa_image *pic);
+/* FLIP's map (w x h x 1, aa_flip) on magma, 0 to 1, with its colour bar. */
+int aa_flip_picture(const aa_image *map, const char *caption, aa_image *out);
+/* The k x k window (k at most the sides) of largest squared error: its
+ * top left corner. */
+int aa_worst_window(const aa_image *ref, const aa_image *img, int k, int *x0, int *y0);
+/* The worst 32 x 32 window zoomed: reference, image, signed error and
+ * FLIP side by side, labelled; sRGB codes; its corner in *wx, *wy. */
+int aa_worst_picture(const aa_image *ref, const aa_image *img, const aa_encode *enc,
+                     aa_image *out, int *wx, int *wy);
+
+/* The run folder's report, DIR/index.html (runreport.c): each view's
+ * table, montage, error maps and worst regions, and the plots, those
+ * present in DIR. */
+int aa_run_report(const char *dir, const aa_row *rows, size_t n);
 
 /* Plots with gnuplot into `dir`: error_vs_time.{dat,gp,png} (log-log, each
  * view's Pareto front marked) and convergence.{dat,gp,png}. */

@@ -34,6 +34,13 @@ static int worse(double now, double old, double tol)
     return now > old * (1.0 + tol) + AA_ERROR_ABS_TOLERANCE;
 }
 
+/* The same for a figure a row may lack (a baseline older than FLIP and
+ * the edge RMSE, a view without edges): judged only when both have it. */
+static int worse_opt(double now, double old, double tol)
+{
+    return isfinite(now) && isfinite(old) && worse(now, old, tol);
+}
+
 const char *aa_case_verdict(const aa_row *old, const aa_row *now, double tol, char *detail,
                             size_t len, int *confirmed)
 {
@@ -75,6 +82,12 @@ const char *aa_case_verdict(const aa_row *old, const aa_row *now, double tol, ch
                  now->m.max_err, old->m.max_err);
         return "error above its baseline";
     }
+    if (worse_opt(now->m.edge_rmse, old->m.edge_rmse, tol) ||
+        worse_opt(now->m.flip, old->m.flip, tol)) {
+        snprintf(detail, len, "edge_rmse %.9g (baseline %.9g), flip %.9g (baseline %.9g)",
+                 now->m.edge_rmse, old->m.edge_rmse, now->m.flip, old->m.flip);
+        return "error above its baseline";
+    }
     return NULL;
 }
 
@@ -93,7 +106,9 @@ int aa_case_compare(const aa_row *old, const aa_row *now, double tol, aa_case_ch
     if (!old->ok || !now->ok)
         return AA_OK;
     c->error_worse = worse(now->m.rmse, old->m.rmse, tol) ||
-                     worse(now->m.max_err, old->m.max_err, tol);
+                     worse(now->m.max_err, old->m.max_err, tol) ||
+                     worse_opt(now->m.edge_rmse, old->m.edge_rmse, tol) ||
+                     worse_opt(now->m.flip, old->m.flip, tol);
     c->rmse_change = old->m.rmse > 0 ? now->m.rmse / old->m.rmse - 1 : 0.0;
     if (old->seconds > 0 && now->seconds > 0)
         c->time_ratio = now->seconds / old->seconds;

@@ -231,6 +231,46 @@ static int ssim(const aa_image *ref, const aa_image *img, const aa_encode *enc,
     return AA_OK;
 }
 
+/* FLIP, the pixels left out (not finite in either image) set to 0 in both
+ * copies when there are any. */
+static int flip(const aa_image *ref, const aa_image *img, const aa_encode *enc, aa_metrics *m)
+{
+    if (!m->nonfinite)
+        return aa_flip(ref, img, enc, AA_FLIP_PPD, &m->flip, NULL);
+    aa_image a, b;
+    int st = aa_image_alloc(&a, ref->w, ref->h, ref->c);
+    if (st)
+        return st;
+    if ((st = aa_image_alloc(&b, ref->w, ref->h, ref->c))) {
+        aa_image_free(&a);
+        return st;
+    }
+    size_t pixels = (size_t)ref->w * ref->h, c = (size_t)ref->c;
+    for (size_t p = 0; p < pixels; p++) {
+        int keep = pixel_finite(ref, img, p);
+        for (size_t k = p * c; k < (p + 1) * c; k++)
+            a.v[k] = keep ? ref->v[k] : 0, b.v[k] = keep ? img->v[k] : 0;
+    }
+    st = aa_flip(&a, &b, enc, AA_FLIP_PPD, &m->flip, NULL);
+    aa_image_free(&a);
+    aa_image_free(&b);
+    return st;
+}
+
+int aa_metrics_edges(const aa_scene *placed, double r, const aa_image *ref, const aa_image *img,
+                     aa_metrics *m)
+{
+    unsigned char *mask = malloc((size_t)ref->w * ref->h);
+    if (!mask)
+        return aa_fail(AA_ENOMEM, "out of memory for the edge pixels of %dx%d", ref->w, ref->h);
+    int st = placed ? aa_edge_mask(placed, r, ref->w, ref->h, mask)
+                    : aa_edge_mask_of_image(ref, mask);
+    if (!st)
+        st = aa_edge_rmse(ref, img, mask, &m->edge_rmse, &m->edge_pixels);
+    free(mask);
+    return st;
+}
+
 static int metrics(const aa_image *ref, const aa_image *img, const aa_encode *enc,
                    int count_nonfinite, aa_metrics *m)
 {
@@ -259,6 +299,7 @@ static int metrics(const aa_image *ref, const aa_image *img, const aa_encode *en
         }
         m->nonfinite++;
     }
+    m->edge_rmse = m->flip = NAN;
     if (m->nonfinite == pixels) { /* nothing to compare: no figure at all */
         m->rmse = m->mae = m->max_err = m->psnr = NAN;
         m->rmse_enc = m->mae_enc = m->max_err_enc = m->psnr_enc = NAN;
@@ -273,7 +314,9 @@ static int metrics(const aa_image *ref, const aa_image *img, const aa_encode *en
               where, &m->psnr_enc);
     gsl_set_error_handler_off();
     int st = spectrum(ref, img, m);
-    return st ? st : ssim(ref, img, enc, m->nonfinite, &m->ssim);
+    if (!st)
+        st = ssim(ref, img, enc, m->nonfinite, &m->ssim);
+    return st ? st : flip(ref, img, enc, m);
 }
 
 int aa_metrics_compute(const aa_image *ref, const aa_image *img, const aa_encode *enc,
@@ -292,5 +335,7 @@ double aa_metrics_bytes(int w, int h)
 {
     /* the spectrum's complex image (freed before SSIM's two lumas, as
      * large), and GSL's tables and workspaces for a row and a column */
-    return 2.0 * w * h * sizeof(double) + 64.0 * ((double)w + h);
+    double spectrum = 2.0 * w * h * sizeof(double) + 64.0 * ((double)w + h);
+    double flip = aa_flip_bytes(w, h) + 2.0 * w * h * 3 * sizeof(double);
+    return spectrum > flip ? spectrum : flip;
 }

@@ -114,8 +114,10 @@ enum { K_TEXT, K_SPEC_PATTERN, K_SPEC_FILTER, K_SIZE, K_REAL, K_COUNT, K_INT, K_
 /* When a column holds a value: always; in rows with ok = 1; in rows with
  * ok = 1 that are animated (temporal metrics), where it may also be empty
  * (popping: only `dots` has it); text that may be empty; in rows with
- * ok = 1 that were timed. */
-enum { G_ALWAYS, G_MEASURE, G_TEMPORAL, G_TEMPORAL_OPTIONAL, G_OPTIONAL, G_TIMED };
+ * ok = 1 that were timed; in rows with ok = 1, where it may be empty (no
+ * value: the edge RMSE of a view without edges, older files). */
+enum { G_ALWAYS, G_MEASURE, G_TEMPORAL, G_TEMPORAL_OPTIONAL, G_OPTIONAL, G_TIMED,
+       G_MEASURE_OPTIONAL };
 
 typedef struct column column;
 struct column {
@@ -382,6 +384,9 @@ static const column columns[] = {
     TEXT(inputs, G_OPTIONAL, 0),
     /* added after the columns above: older files lack it */
     REAL(lag, tm.lag, G_TEMPORAL_OPTIONAL, 0, -DBL_MAX, DBL_MAX),
+    /* the perceptual and edge errors */
+    REAL(flip, m.flip, G_MEASURE_OPTIONAL, 0, 0, 1),
+    REAL(edge_rmse, m.edge_rmse, G_MEASURE_OPTIONAL, 0, 0, 1),
 };
 #undef TEXT
 #undef REAL
@@ -401,7 +406,8 @@ const char *aa_results_column(size_t k)
 static int holds(const column *c, const aa_row *r)
 {
     switch (c->group) {
-    case G_MEASURE: return r->ok;
+    case G_MEASURE:
+    case G_MEASURE_OPTIONAL: return r->ok;
     case G_TEMPORAL:
     case G_TEMPORAL_OPTIONAL: return r->ok && r->temporal;
     case G_TIMED: return r->ok && r->timing.n > 0;
@@ -423,7 +429,7 @@ static void write_cell(text *t, const aa_row *r, const column *c)
     case K_SIZE: put(t, "%dx%d", r->w, r->h); break;
     case K_REAL:
         /* a value that may be missing is written only when there is one */
-        if (c->group == G_TEMPORAL_OPTIONAL)
+        if (c->group == G_TEMPORAL_OPTIONAL || c->group == G_MEASURE_OPTIONAL)
             opt(t, real_of(r, c));
         else
             num(t, real_of(r, c));
@@ -601,6 +607,8 @@ static cJSON *row_json(const aa_row *r)
                  {"alias_low", r->m.alias_low},
                  {"alias_high", r->m.alias_high},
                  {"ssim", r->m.ssim},
+                 {"flip", r->m.flip},
+                 {"edge_rmse", r->m.edge_rmse},
                  {"render_seconds", r->seconds},
                  {"render_seconds_min", r->seconds_min},
                  {"render_seconds_max", r->seconds_max},
@@ -1101,6 +1109,7 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
         aa_row *row = &rows[n];
         memset(row, 0, sizeof *row);
         row->tm.popping = row->tm.lag = NAN;
+        row->m.flip = row->m.edge_rmse = NAN;
         row->case_index = -1;
         /* ok first: which columns must hold a value depends on it; then
          * whether the row is animated */
@@ -1127,6 +1136,7 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
                        : col->group == G_MEASURE           ? row->ok
                        : col->group == G_TEMPORAL          ? row->temporal
                        : col->group == G_TEMPORAL_OPTIONAL ? (row->temporal ? -1 : 0)
+                       : col->group == G_MEASURE_OPTIONAL  ? (row->ok ? -1 : 0)
                                                            : -1;
             if (want == 1 && !*v)
                 st = csv_fail(&p, f, "empty, and %s", col->group == G_ALWAYS
@@ -1306,6 +1316,7 @@ static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
     row->tm.popping = row->tm.lag = NAN;
     row->case_index = -1;
     row->m.rmse = row->m.max_err = row->seconds = NAN;
+    row->m.flip = row->m.edge_rmse = NAN;
     if (!cJSON_IsObject(o))
         return json_fail(name, k, "results", "a row is not an object");
     if ((st = json_text(name, k, o, "pattern", row->pattern, sizeof row->pattern, 0)) ||
@@ -1359,6 +1370,8 @@ static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
     if ((st = json_real(name, k, o, "rmse", 0, 1, 0, &row->m.rmse)) ||
         (st = json_real(name, k, o, "max_err", 0, 1, 0, &row->m.max_err)) ||
         (st = json_real(name, k, o, "mae", 0, 1, 1, &row->m.mae)) ||
+        (st = json_real(name, k, o, "flip", 0, 1, 1, &row->m.flip)) ||
+        (st = json_real(name, k, o, "edge_rmse", 0, 1, 1, &row->m.edge_rmse)) ||
         (st = json_real(name, k, o, "render_seconds", 0, DBL_MAX, 1, &row->seconds)) ||
         (st = json_real(name, k, o, "spp", 0, DBL_MAX, 1, &row->spp)) ||
         (st = json_real(name, k, o, "seeds", 1, 1e9, 1, &seeds)))

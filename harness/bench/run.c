@@ -122,27 +122,21 @@ void aa_spec_slug(const char *text, char *buf, size_t len)
     buf[n] = '\0';
 }
 
-/* |error| per pixel (largest channel) on a fixed scale: 0 black, 0.5 and
- * above white, through red and yellow, so maps compare across methods. */
-static int write_error_map(const char *path, const aa_image *ref, const aa_image *img)
+/* The error map (signed, auto-scaled, with its colour bar) and the worst
+ * region zoomed (errmap.c), as sRGB codes. */
+static int write_error_map(const char *path, const char *worst, const aa_image *ref,
+                           const aa_image *img, const aa_encode *enc)
 {
-    aa_image map;
-    int st = aa_image_alloc(&map, ref->w, ref->h, 3);
+    aa_image pic;
+    int st = aa_error_picture(ref, img, "image - reference (linear)", &pic, NULL);
     if (st)
         return st;
-    size_t n = (size_t)ref->w * ref->h;
-    for (size_t p = 0; p < n; p++) {
-        double e = 0;
-        for (int c = 0; c < ref->c; c++)
-            e = fmax(e, fabs(img->v[3 * p + c] - ref->v[3 * p + c]));
-        double v = fmin(1.0, e / 0.5);
-        map.v[3 * p] = fmin(1.0, 3 * v);
-        map.v[3 * p + 1] = fmin(1.0, fmax(0.0, 3 * v - 1));
-        map.v[3 * p + 2] = fmin(1.0, fmax(0.0, 3 * v - 2));
-    }
-    aa_encode linear = {AA_ENCODE_LINEAR, 0};
-    st = aa_image_write(path, &map, &linear);
-    aa_image_free(&map);
+    st = aa_picture_write(path, &pic);
+    aa_image_free(&pic);
+    if (st || (st = aa_worst_picture(ref, img, enc, &pic, NULL, NULL)))
+        return st;
+    st = aa_picture_write(worst, &pic);
+    aa_image_free(&pic);
     return st;
 }
 
@@ -158,9 +152,11 @@ static int write_images(const aa_run_config *cfg, const char *stem, const aa_ima
         return st;
     if (!ref)
         return AA_OK;
-    if ((st = aa_pathf(path, sizeof path, "%s/%s-error.png", cfg->images_dir, stem)))
+    char worst[4096];
+    if ((st = aa_pathf(path, sizeof path, "%s/%s-error.png", cfg->images_dir, stem)) ||
+        (st = aa_pathf(worst, sizeof worst, "%s/%s-worst.png", cfg->images_dir, stem)))
         return st;
-    return write_error_map(path, ref, img);
+    return write_error_map(path, worst, ref, img, &cfg->enc);
 }
 
 /* The machine's name, for the rows it measures (times are only comparable
@@ -277,8 +273,10 @@ static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_jo
     }
     if (bad_image(row, img, "gave "))
         return AA_OK;
-    if (!(st = aa_display_view_reference(view, spec, job, cfg->threads, &dref, &shown)))
-        st = aa_metrics_compute(shown ? &dref : ref, img, &cfg->enc, &row->m);
+    if (!(st = aa_display_view_reference(view, spec, job, cfg->threads, &dref, &shown)) &&
+        !(st = aa_metrics_compute(shown ? &dref : ref, img, &cfg->enc, &row->m)))
+        st = aa_metrics_edges(job->placed, aa_filter_support(&job->filter), shown ? &dref : ref,
+                              img, &row->m);
     if (st) {
         aa_image_free(&dref);
         return aa_fail_context(st, "%s on %s %dx%d %s", row->method, row->pattern, row->w,

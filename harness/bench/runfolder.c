@@ -557,10 +557,15 @@ static int row_done(void *vrf, const aa_row *rows, size_t n)
 
 /* ---- what runs after the cases ---- */
 
-/* montage.png: the first view's reference and every method, side by side. */
+/* The montages: for each view (pattern, size, filter) of the run, its
+ * reference and every method that ran on it, side by side:
+ * montage.png the first view's, montage-PATTERN-WxH-FILTER.png each other's.  A
+ * view larger than MONTAGE_SIDE shows its central MONTAGE_SIDE square
+ * (tiles are copied, never resampled), and its labels say so. */
 
 #define MONTAGE_TILES 64
-#define MONTAGE_LINES 2
+#define MONTAGE_LINES 3
+#define MONTAGE_SIDE 256
 
 /* Its columns, for n tiles of width w. */
 static int montage_columns(size_t n, int w)
@@ -572,14 +577,15 @@ static int montage_columns(size_t n, int w)
 
 /* Its tiles, each read when the montage asks for it and freed once copied:
  * the reference (from the cache), then each method's EXR written by the
- * run. */
+ * run; cropped to the window (x0, y0, tw, th). */
 typedef struct montage_source {
     const char *dir;
     const char *cache; /* the run's reference cache (NULL: --no-cache) */
     const aa_row *rows;
     size_t row[MONTAGE_TILES]; /* tile k > 0 is rows[row[k]] */
     aa_view view;
-    aa_image im;
+    int x0, y0, tw, th;
+    aa_image im, crop;
     char labels[MONTAGE_LINES][128];
 } montage_source;
 
@@ -590,8 +596,12 @@ static int montage_get(void *vctx, size_t k, aa_tile *tile)
     if (k == 0) {
         if ((st = aa_reference(&s->view, s->cache, 0, &s->im, NULL, NULL)))
             return st;
-        snprintf(s->labels[0], 128, "reference (%.100s)", s->rows[0].filter);
+        snprintf(s->labels[0], 128, "reference (%.100s)", s->rows[s->row[1]].filter);
         snprintf(s->labels[1], 128, "exact");
+        if (s->tw < s->view.w || s->th < s->view.h)
+            snprintf(s->labels[2], 128, "centre %dx%d", s->tw, s->th);
+        else
+            s->labels[2][0] = '\0';
     } else {
         const aa_row *r = &s->rows[s->row[k]];
         char path[4096], ps[512], fs[256], ms[512];
@@ -605,11 +615,21 @@ static int montage_get(void *vctx, size_t k, aa_tile *tile)
             return st;
         snprintf(s->labels[0], 128, "%.120s", r->method);
         snprintf(s->labels[1], 128, "RMSE %.3g", r->m.rmse);
+        snprintf(s->labels[2], 128, "FLIP %.3g", r->m.flip);
     }
-    tile->image = &s->im;
+    if (s->tw < s->im.w || s->th < s->im.h) {
+        if ((st = aa_image_alloc(&s->crop, s->tw, s->th, s->im.c)))
+            return st;
+        for (int j = 0; j < s->th; j++)
+            memcpy(aa_pixel(&s->crop, 0, j), aa_pixel(&s->im, s->x0, s->y0 + j),
+                   sizeof(double) * (size_t)s->im.c * (size_t)s->tw);
+        tile->image = &s->crop;
+    } else {
+        tile->image = &s->im;
+    }
     tile->label[0] = s->labels[0];
     tile->label[1] = s->labels[1];
-    tile->label[2] = NULL;
+    tile->label[2] = s->labels[2][0] ? s->labels[2] : NULL;
     return AA_OK;
 }
 
@@ -617,33 +637,73 @@ static void montage_put(void *vctx, size_t k)
 {
     (void)k;
     aa_image_free(&((montage_source *)vctx)->im);
+    aa_image_free(&((montage_source *)vctx)->crop);
+}
+
+/* 1 if rows a and b are of the same view. */
+static int same_view(const aa_row *a, const aa_row *b)
+{
+    return !strcmp(a->pattern, b->pattern) && !strcmp(a->filter, b->filter) && a->w == b->w &&
+           a->h == b->h;
+}
+
+/* The montage file of the view of row r. */
+static int montage_path(char *path, size_t len, const char *dir, const aa_row *r)
+{
+    char ps[512], fs[256];
+    aa_spec_slug(r->pattern, ps, sizeof ps);
+    aa_spec_slug(r->filter, fs, sizeof fs);
+    return aa_pathf(path, len, "%s/montage-%s-%dx%d-%s.png", dir, ps, r->w, r->h, fs);
+}
+
+static int write_view_montage(const char *dir, const char *cache, const aa_row *rows, size_t n,
+                              size_t first, const aa_encode *enc, const char *path)
+{
+    montage_source s;
+    memset(&s, 0, sizeof s);
+    s.dir = dir, s.rows = rows, s.cache = cache;
+    const aa_row *r0 = &rows[first];
+    int st;
+    if ((st = aa_pattern_parse(r0->pattern, &s.view.pattern)) ||
+        (st = aa_filter_parse(r0->filter, &s.view.filter)))
+        return st;
+    s.view.w = r0->w, s.view.h = r0->h;
+    s.view.t = r0->t, s.view.vx = r0->vx, s.view.vy = r0->vy;
+    s.tw = r0->w < MONTAGE_SIDE ? r0->w : MONTAGE_SIDE;
+    s.th = r0->h < MONTAGE_SIDE ? r0->h : MONTAGE_SIDE;
+    s.x0 = (r0->w - s.tw) / 2, s.y0 = (r0->h - s.th) / 2;
+    size_t nt = 1;
+    for (size_t k = first; k < n && nt < MONTAGE_TILES; k++)
+        if (rows[k].ok && same_view(&rows[k], r0) && rows[k].t == r0->t)
+            s.row[nt++] = k;
+    aa_tile_source src = {.n = nt, .tw = s.tw, .th = s.th, .lines = MONTAGE_LINES,
+                          .get = montage_get, .put = montage_put, .ctx = &s};
+    st = aa_montage_stream(path, &src, montage_columns(nt, s.tw), enc);
+    aa_image_free(&s.im);
+    aa_image_free(&s.crop);
+    return st;
 }
 
 static int write_montage(const char *dir, const aa_run_config *first, const aa_row *rows,
                          size_t n, const aa_encode *enc)
 {
-    if (n == 0)
-        return AA_OK;
-    montage_source s;
-    memset(&s, 0, sizeof s);
-    s.dir = dir, s.rows = rows, s.cache = first->cache_dir;
-    int st;
-    s.view.pattern = first->patterns[0].spec;
-    s.view.filter = first->filters[0].filter;
-    s.view.w = rows[0].w, s.view.h = rows[0].h;
-    s.view.t = rows[0].t, s.view.vx = rows[0].vx, s.view.vy = rows[0].vy;
-    size_t nt = 1;
-    for (size_t k = 0; k < n && nt < MONTAGE_TILES; k++)
-        if (rows[k].ok && !strcmp(rows[k].pattern, rows[0].pattern) &&
-            !strcmp(rows[k].filter, rows[0].filter) && rows[k].w == rows[0].w &&
-            rows[k].h == rows[0].h)
-            s.row[nt++] = k;
-    aa_tile_source src = {.n = nt, .tw = rows[0].w, .th = rows[0].h, .lines = MONTAGE_LINES,
-                          .get = montage_get, .put = montage_put, .ctx = &s};
+    int st = AA_OK;
     char path[4096];
-    if (!(st = aa_pathf(path, sizeof path, "%s/montage.png", dir)))
-        st = aa_montage_stream(path, &src, montage_columns(nt, rows[0].w), enc);
-    aa_image_free(&s.im);
+    for (size_t k = 0; k < n && !st; k++) {
+        if (!rows[k].ok)
+            continue;
+        size_t q = 0;
+        while (q < k && !(rows[q].ok && same_view(&rows[q], &rows[k])))
+            q++;
+        if (q < k) /* drawn with an earlier row of its view */
+            continue;
+        int is_first = 1;
+        for (q = 0; q < k; q++)
+            is_first &= !rows[q].ok;
+        if (!(st = is_first ? aa_pathf(path, sizeof path, "%s/montage.png", dir)
+                            : montage_path(path, sizeof path, dir, &rows[k])))
+            st = write_view_montage(dir, first->cache_dir, rows, n, k, enc, path);
+    }
     /* everything was checked before the work: what fails now (the memory
      * it needs, under a limit) is the machine's, not the input's */
     if (st == AA_EINVAL) {
@@ -935,14 +995,21 @@ static int check_before_work(const aa_run_options *a, const aa_run_config *cfgs,
         if (!aa__oiio("montage.png"))
             return AA_EIO;
         for (size_t g = 0; g < ng; g++)
-            for (size_t s = 0; s < cfgs[g].nsizes; s++)
+            for (size_t s = 0; s < cfgs[g].nsizes; s++) {
                 if ((st = aa_size_check(cfgs[g].sizes[s].w, cfgs[g].sizes[s].h, 3, 4)))
                     return st;
+                if ((st = aa_error_picture_check(cfgs[g].sizes[s].w, cfgs[g].sizes[s].h)))
+                    return aa_fail_context(st, "-s %dx%d (or use --no-images)",
+                                           cfgs[g].sizes[s].w, cfgs[g].sizes[s].h);
+            }
         /* the montage: the first view's reference and up to 63 methods */
         size_t most = cfgs[0].nmethods < 63 ? cfgs[0].nmethods + 1 : 64;
         for (size_t nt = 1; nt <= most; nt++)
-            if ((st = aa_montage_check(nt, montage_columns(nt, cfgs[0].sizes[0].w),
-                                       cfgs[0].sizes[0].w, cfgs[0].sizes[0].h, MONTAGE_LINES)))
+            if ((st = aa_montage_check(
+                     nt, montage_columns(nt, cfgs[0].sizes[0].w),
+                     cfgs[0].sizes[0].w < MONTAGE_SIDE ? cfgs[0].sizes[0].w : MONTAGE_SIDE,
+                     cfgs[0].sizes[0].h < MONTAGE_SIDE ? cfgs[0].sizes[0].h : MONTAGE_SIDE,
+                     MONTAGE_LINES)))
                 return aa_fail_context(st, "montage.png (or use --no-images)");
     }
     /* the output folder, with room for images/NAME under it */
@@ -1553,6 +1620,8 @@ int aa_runfolder_finish(aa_runfolder *rf)
     if (!st && rf->opt.plots && !(st = aa_pathf(plots, sizeof plots, "%s/plots", rf->dir)) &&
         !(st = aa_plot_error_vs_time(plots, rf->all, rf->nall)))
         st = write_convergence(plots, rf, &rf->cfgs[0], rf->threads, rf->all, rf->nall);
+    if (!st)
+        st = aa_run_report(rf->dir, rf->all, rf->nall);
     return st;
 }
 
