@@ -44,6 +44,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 
 #include <cmocka.h>
@@ -258,6 +259,7 @@ static void check_value(const char *what, const char *filter, int i, int j, doub
 static void test_half_planes_separable(void **state)
 {
     (void)state;
+    gsl_set_error_handler_off(); /* the quadratures are judged by their estimates */
     const int w = 14, h = 10;
     const double x0 = 6.37, y0 = 4.71;
     for (const char *const *f = separable; *f; f++)
@@ -301,6 +303,7 @@ static void test_half_planes_separable(void **state)
 static void test_half_planes_radial(void **state)
 {
     (void)state;
+    gsl_set_error_handler_off();
     const int w = 12, h = 9;
     const double px = 5.83, py = 4.27, angles[] = {0.0, 0.41, 2.3};
     for (const char *const *f = radial_specs; *f; f++) {
