@@ -60,9 +60,12 @@ typedef struct wpiece {
 /* Mitchell and Netravali (1988), eq. 8. */
 static int mitchell_pieces(double B, double C, wpiece *p)
 {
-    p[0] = (wpiece){0, 1, {(6 - 2 * B) / 6, 0, (-18 + 12 * B + 6 * C) / 6, (12 - 9 * B - 6 * C) / 6}};
-    p[1] = (wpiece){1, 2, {(8 * B + 24 * C) / 6, (-12 * B - 48 * C) / 6, (6 * B + 30 * C) / 6,
-                           (-B - 6 * C) / 6}};
+    p[0] =
+        (wpiece){0, 1, {(6 - 2 * B) / 6, 0, (-18 + 12 * B + 6 * C) / 6, (12 - 9 * B - 6 * C) / 6}};
+    p[1] = (wpiece){
+        1,
+        2,
+        {(8 * B + 24 * C) / 6, (-12 * B - 48 * C) / 6, (6 * B + 30 * C) / 6, (-B - 6 * C) / 6}};
     return 2;
 }
 
@@ -141,9 +144,9 @@ static double cdf_of(const char *spec, double t, double *err)
     return t < 0 ? 0.5 - m : 0.5 + m;
 }
 
-static const char *const separable[] = {"bspline:order=2", "bspline",  "mitchell",
-                                        "mitchell:b=0.5,c=0.75", "catrom", "lanczos:a=2",
-                                        "lanczos:a=3", NULL};
+static const char *const separable[] = {"bspline:order=2",       "bspline", "mitchell",
+                                        "mitchell:b=0.5,c=0.75", "catrom",  "lanczos:a=2",
+                                        "lanczos:a=3",           NULL};
 
 /* ---- the radial filters as defined, by quadrature ---- */
 
@@ -159,8 +162,10 @@ static double radial_w(const radial *r, double u, double v)
     if (d >= rc)
         return 0;
     if (r->cone)
-        return (1 - d / r->s) / (2 * M_PI * r->s * r->s * (0.5 * r->k * r->k - r->k * r->k * r->k / 3));
-    return exp(-0.5 * d * d / (r->s * r->s)) / (2 * M_PI * r->s * r->s * (1 - exp(-0.5 * r->k * r->k)));
+        return (1 - d / r->s) /
+               (2 * M_PI * r->s * r->s * (0.5 * r->k * r->k - r->k * r->k * r->k / 3));
+    return exp(-0.5 * d * d / (r->s * r->s)) /
+           (2 * M_PI * r->s * r->s * (1 - exp(-0.5 * r->k * r->k)));
 }
 
 static double radial_row(double y, void *pr)
@@ -347,14 +352,16 @@ static void test_centred_disks(void **state)
             if (a >= rc)
                 want = 1;
             else if (r.cone)
-                want = (a * a / 2 - a * a * a / (3 * r.s)) / (rc * rc / 2 - rc * rc * rc / (3 * r.s));
+                want =
+                    (a * a / 2 - a * a * a / (3 * r.s)) / (rc * rc / 2 - rc * rc * rc / (3 * r.s));
             else
                 want = -expm1(-0.5 * a * a / (r.s * r.s)) / -expm1(-0.5 * r.k * r.k);
             aa_scene *s = aa_scene_new(black);
             assert_non_null(s);
             assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
             assert_int_equal(aa_scene_move_to(s, cx + a, cy), AA_OK);
-            assert_int_equal(aa_scene_arc_to(s, cx, cy, a, 0, 0, a, 0, 2 * M_PI, cx + a, cy), AA_OK);
+            assert_int_equal(aa_scene_arc_to(s, cx, cy, a, 0, 0, a, 0, 2 * M_PI, cx + a, cy),
+                             AA_OK);
             assert_int_equal(aa_scene_close(s), AA_OK);
             assert_int_equal(aa_scene_finish(s), AA_OK);
             aa_image img, bound;
@@ -382,9 +389,8 @@ static void test_abutting_squares(void **state)
         rects[k][0] = x, rects[k][1] = y, rects[k][2] = x + 5.5, rects[k][3] = y + 5.5;
     }
     aa_scene *s = scenes_rects(rects, 9);
-    const char *const all[] = {"bspline:order=2", "bspline",         "mitchell",
-                               "catrom",          "lanczos:a=2",     "gauss:s=1,cut=2",
-                               "cone:r=2,cut=0.5", NULL};
+    const char *const all[] = {"bspline:order=2", "bspline",         "mitchell",         "catrom",
+                               "lanczos:a=2",     "gauss:s=1,cut=2", "cone:r=2,cut=0.5", NULL};
     for (const char *const *f = all; *f; f++) {
         aa_filter filt;
         assert_int_equal(aa_filter_parse(*f, &filt), AA_OK);
@@ -414,8 +420,8 @@ static void test_abutting_squares(void **state)
 /* The image sums to the shape's area where the translates sum to 1. */
 static void check_sum(const char *what, const aa_scene *s, int w, int h, double area)
 {
-    const char *const pu[] = {"bspline:order=2", "bspline", "mitchell", "mitchell:b=0.5,c=0.75",
-                              "mitchell:b=0,c=1", "catrom", NULL};
+    const char *const pu[] = {"bspline:order=2",  "bspline", "mitchell", "mitchell:b=0.5,c=0.75",
+                              "mitchell:b=0,c=1", "catrom",  NULL};
     for (const char *const *f = pu; *f; f++) {
         aa_image img, bound;
         ref(s, w, h, *f, 0, &img, &bound);
@@ -426,8 +432,8 @@ static void check_sum(const char *what, const aa_scene *s, int w, int h, double 
         }
         double d = fabs(sum - area);
         if (!(d <= bsum + 1e-13))
-            fail_msg("%s under %s: sum %.17g, area %.17g (bounds sum to %.2e)", what, *f, sum,
-                     area, bsum);
+            fail_msg("%s under %s: sum %.17g, area %.17g (bounds sum to %.2e)", what, *f, sum, area,
+                     bsum);
         print_message("%s under %-22s: sum - area %.2e (bounds %.2e)\n", what, *f, sum - area,
                       bsum);
         aa_image_free(&img);
@@ -440,13 +446,15 @@ static void test_sums(void **state)
     (void)state;
     const double tri[] = {3.2, 2.7, 17.9, 4.1, 8.3, 15.6};
     aa_scene *s = scenes_polygon(tri, 3, white, black, AA_FILL_NONZERO);
-    double area = 0.5 * fabs((tri[2] - tri[0]) * (tri[5] - tri[1]) - (tri[4] - tri[0]) * (tri[3] - tri[1]));
+    double area =
+        0.5 * fabs((tri[2] - tri[0]) * (tri[5] - tri[1]) - (tri[4] - tri[0]) * (tri[3] - tri[1]));
     check_sum("triangle", s, 22, 20, area);
     aa_scene_free(s);
     /* a parabolic segment: 2/3 of its control triangle */
     const double p0[2] = {3.1, 14.2}, c[2] = {9.4, -1.3}, p1[2] = {16.7, 13.3};
     s = scenes_arc_segment(p0[0], p0[1], c[0], c[1], p1[0], p1[1]);
-    area = 2.0 / 3 * 0.5 * fabs((c[0] - p0[0]) * (p1[1] - p0[1]) - (p1[0] - p0[0]) * (c[1] - p0[1]));
+    area =
+        2.0 / 3 * 0.5 * fabs((c[0] - p0[0]) * (p1[1] - p0[1]) - (p1[0] - p0[0]) * (c[1] - p0[1]));
     check_sum("parabolic segment", s, 21, 18, area);
     aa_scene_free(s);
 }
@@ -462,8 +470,7 @@ static void check_same(const char *fa, const char *fb, double extra)
     for (int k = 0; k < 32 * 32; k++) {
         double d = fabs(a.v[3 * k] - b.v[3 * k]);
         if (!(d <= ba.v[k] + bb.v[k] + extra))
-            fail_msg("crow 32x32, pixel %d: %s %.17g, %s %.17g", k, fa, a.v[3 * k], fb,
-                     b.v[3 * k]);
+            fail_msg("crow 32x32, pixel %d: %s %.17g, %s %.17g", k, fa, a.v[3 * k], fb, b.v[3 * k]);
         worst = fmax(worst, d);
     }
     print_message("crow 32x32: %s against %s: max difference %.2e\n", fa, fb, worst);

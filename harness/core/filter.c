@@ -620,6 +620,6 @@ void aa_filter_range(const aa_filter *f, double *lo, double *hi)
         n *= 1.001;
     }
     double N = 2.0 * n * (1.0 + n);
-    *lo = -N;
+    *lo = N > 0.0 ? -N : 0.0;
     *hi = 1.0 + N;
 }
