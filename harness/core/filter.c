@@ -2,7 +2,7 @@
  * filter.c: the reconstruction filters of patterns/README.md ("Filters"), in
  * pixel units.
  *
- * Every filter is separable, w(u) w(v), with a 1-D weight normalised to
+ * The separable filters are w(u) w(v), with a 1-D weight normalised to
  * integral 1, so exact methods and the ground truth need only the 1-D
  * weight and its integral (the cdf): the integral of the filter over a span
  * [x0, x1] of constant colour along a line is cdf(x1 - uc) - cdf(x0 - uc).
@@ -39,9 +39,9 @@
  * values in [0, 1] can take values in [-N, 1 + N], N the 2-D negative mass
  * (aa_filter_range).
  *
- * and one radial filter that is not separable (added to the three separable
- * ones: Feibush, Levoy and Cook 1980, fig. 2f and 3a, the cone their
- * circular filter table is drawn for):
+ * The radial filters are not separable: the cone (Feibush, Levoy and Cook
+ * 1980, fig. 2f and 3a, the cone their circular filter table is drawn
+ * for), and the truncated filters below:
  *
  *   cone:r=R   3 / (pi R^2) max(0, 1 - sqrt(u^2 + v^2) / R)   (volume 1)
  *
