@@ -86,10 +86,12 @@
  *    weight=gauss: exp(-r^2 / (2 s^2)) with s from -f gauss:s=S,
  *    cut off at Rc = cut s (cut=, default 2, Feibush et al.'s radius) and
  *    normalised by the volume inside the mask, so uniform regions are
- *    exact.  It is measured against the untruncated, separable Gaussian
- *    reference (the 2-D Gaussian is both), so the error includes the
- *    truncation: exp(-cut^2 / 2) of the volume lies outside the mask
- *    (13.5 % at cut = 2, 1.1 % at 3, 3.4e-4 at 4).
+ *    exact.  Under -f gauss:s=S,cut=K the mask is the filter's (K; cut=
+ *    left out or equal) and the reference is that truncated Gaussian:
+ *    no truncation error.  Under the untruncated -f gauss:s=S the error
+ *    includes the truncation: exp(-cut^2 / 2) of the volume lies outside
+ *    the mask (13.5 % at cut = 2, 1.1 % at 3, 3.4e-4 at 4).  The
+ *    truncated cone (-f cone:cut=K, K < 1) is refused.
  *    weight=cone (their fig. 2f, 3a): 1 - r / Rc with the mask radius
  *    Rc = R from -f cone:r=R, normalised by its volume pi Rc^2 / 3, which
  *    is all inside the mask: it is measured against the exact cone
@@ -218,10 +220,28 @@ typedef struct cn_render {
     double tol;
 } cn_render;
 
+/* The mask's radius in units of s: the filter's own under -f
+ * gauss:s=S,cut=K (the reference is then the same truncated Gaussian),
+ * else cut=. */
+static double mask_cut(const double *p, const aa_filter *f)
+{
+    return f->type == &aa_filter_gauss_mask ? f->spec.v[1] : p[P_CUT];
+}
+
 static int conetable_check(const double *p, const aa_filter *f)
 {
     int weight = (int)p[P_WEIGHT];
-    if (f->type != &aa_filter_gauss && f->type != &aa_filter_cone)
+    int gauss = f->type == &aa_filter_gauss || f->type == &aa_filter_gauss_mask;
+    if (f->type == &aa_filter_gauss_mask && p[P_CUT] != CN_DEFAULT_CUT &&
+        p[P_CUT] != f->spec.v[1])
+        return aa_fail(AA_EINVAL, "conetable: cut=%g differs from the filter's mask cut=%g: "
+                                  "leave cut out (the filter's mask is taken)",
+                       p[P_CUT], f->spec.v[1]);
+    if (f->type == &aa_filter_cone && f->spec.v[1] != 1.0)
+        return aa_fail(AA_EINVAL, "conetable forms the whole cone; the truncated cone (cut=%g) "
+                                  "has no table here",
+                       f->spec.v[1]);
+    if (!gauss && f->type != &aa_filter_cone)
         return aa_fail(AA_EINVAL, "conetable weighs a circular mask with a radial weight and "
                                   "is measured against -f gauss:s=S or -f cone:r=R; %s is a "
                                   "separable square filter it cannot form",
@@ -230,7 +250,7 @@ static int conetable_check(const double *p, const aa_filter *f)
         return aa_fail(AA_EINVAL, "conetable: weight=cone is measured against the cone "
                                   "reference: use -f cone:r=R (or weight=gauss with -f %s)",
                        f->type->info.name);
-    if (weight == W_GAUSS && f->type != &aa_filter_gauss)
+    if (weight == W_GAUSS && !gauss)
         return aa_fail(AA_EINVAL, "conetable: weight=gauss is measured against the Gaussian "
                                   "reference: use -f gauss:s=S (or weight=cone with -f %s)",
                        f->type->info.name);
@@ -277,7 +297,7 @@ static double cell_integral(double lo, double hi, double k, double e0)
 static int table_make(cn_table *tab, const double *p, const aa_filter *f)
 {
     int n = (int)p[P_RES];
-    double cut = p[P_CUT];
+    double cut = mask_cut(p, f);
     double *d = malloc((size_t)(n + 1) * (size_t)(n + 1) * sizeof *d);
     if (!d)
         return aa_fail(AA_ENOMEM, "out of memory for a %d x %d table", n + 1, n + 1);

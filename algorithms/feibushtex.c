@@ -25,7 +25,9 @@
  *    background's.
  *  - The weight: a Gaussian over a circular mask of radius cut x s
  *    ("radius equal to twice the standard deviation", fig. 4d: cut=2) under
- *    -f gauss:s=S, or the cone of radius r (fig. 2f) under -f cone:r=R.
+ *    -f gauss:s=S, or the filter's own mask under -f gauss:s=S,cut=K (the
+ *    truncated Gaussian, the reference it is then measured against), or
+ *    the cone of radius r (fig. 2f) under -f cone:r=R.
  *
  * What is chosen here.
  *  - The textured polygon and its texture.  A scene here is polygons and
@@ -59,8 +61,10 @@
  * the polygon reaches (share above 0).
  *
  * Error analysis.  Against the exact reference of the view under the same
- * filter: the mask's truncation of the Gaussian (the Gaussian's mass beyond
- * 2 s, about 14 %, is dropped and the rest renormalised, as in conetable),
+ * filter: under the untruncated -f gauss:s=S the mask's truncation of the
+ * Gaussian (the Gaussian's mass beyond 2 s, about 14 %, is dropped and the
+ * rest renormalised, as in conetable; none under -f gauss:s=S,cut=K, the
+ * truncated reference),
  * the table's nearest-value weights (a step of 2 cut s / res), the texture
  * points standing for the areas between them (a point per 1/texels of
  * texture space; their weighted mean is not the integral of the texture
@@ -112,7 +116,17 @@ typedef struct ft_state {
 
 static int feibushtex_check(const double *p, const aa_filter *f)
 {
-    if (f->type != &aa_filter_gauss && f->type != &aa_filter_cone)
+    if (f->type == &aa_filter_gauss_mask && p[P_CUT] != FT_DEFAULT_CUT &&
+        p[P_CUT] != f->spec.v[1])
+        return aa_fail(AA_EINVAL, "feibushtex: cut=%g differs from the filter's mask cut=%g: "
+                                  "leave cut out (the filter's mask is taken)",
+                       p[P_CUT], f->spec.v[1]);
+    if (f->type == &aa_filter_cone && f->spec.v[1] != 1.0)
+        return aa_fail(AA_EINVAL, "feibushtex forms the whole cone; the truncated cone (cut=%g) "
+                                  "is not one of its weights",
+                       f->spec.v[1]);
+    if (f->type != &aa_filter_gauss && f->type != &aa_filter_gauss_mask &&
+        f->type != &aa_filter_cone)
         return aa_fail(AA_EINVAL, "feibushtex weighs a circular mask with a radial weight and "
                                   "is measured against -f gauss:s=S or -f cone:r=R; %s is a "
                                   "separable square filter it cannot form",
@@ -318,7 +332,8 @@ static int feibushtex_init(void *state, const double *p, const aa_job *job)
         }
     /* the two-dimensional table of the weight over the mask's square */
     const aa_filter *f = &job->filter;
-    s->rc = f->type == &aa_filter_cone ? f->spec.v[0] : p[P_CUT] * f->spec.v[0];
+    double cut = f->type == &aa_filter_gauss_mask ? f->spec.v[1] : p[P_CUT];
+    s->rc = f->type == &aa_filter_cone ? f->spec.v[0] : cut * f->spec.v[0];
     s->res = (int)p[P_RES];
     if (!(s->table = malloc((size_t)s->res * s->res * sizeof *s->table)))
         return aa_fail(AA_ENOMEM, "feibushtex: out of memory for the table");
@@ -345,7 +360,7 @@ static int feibushtex_init(void *state, const double *p, const aa_job *job)
     if (f->type == &aa_filter_cone)
         snprintf(text, sizeof text, "conetable");
     else
-        snprintf(text, sizeof text, "conetable:cut=%.17g", p[P_CUT]);
+        snprintf(text, sizeof text, "conetable:cut=%.17g", cut);
     if ((st = aa_method_parse(text, f, &spec)) ||
         (st = aa_job_init(&s->ejob, s->poly, job->w, job->h, job->t, job->vx, job->vy, f,
                           job->seed, job->threads)))

@@ -136,7 +136,18 @@ static int square_side(int n)
 
 static int jitter_check(const double *p, const aa_filter *f)
 {
-    (void)f; /* every filter is sampled over aa_filter_support, by its 2-D weight */
+    /* every filter is sampled over aa_filter_support, by its 2-D weight,
+     * and the weighted sum divided by the sum of the weights: with
+     * negative lobes (mitchell, catrom, lanczos) that sum of random
+     * weights can come near 0 (values of -40 were seen), so those are
+     * refused; supersample's regular grid takes them */
+    double lo, hi;
+    aa_filter_range(f, &lo, &hi);
+    if (lo < 0.0)
+        return aa_fail(AA_EINVAL, "jitter divides by the sum of its samples' weights, which "
+                                  "under %s (negative lobes) can come near 0: use a filter "
+                                  "without negative lobes, or supersample",
+                       f->type->info.name);
     int spp = (int)p[P_SPP];
     if ((int)p[P_SEQ] == SEQ_STRATIFIED && !square_side(spp)) {
         int k = (int)floor(sqrt((double)spp));

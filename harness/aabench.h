@@ -258,9 +258,12 @@ size_t aa_strip_spans(aa_strip *st, double y, aa_span *out, size_t cap);
 /* ------------------------------------------------------------------------
  * Filters: normalised weights in pixel units (patterns/README.md, "Filters")
  *
- * box, tent and gauss are separable, w(u) w(v): `weight` and `cdf` are the
- * 1-D weight and its integral.  cone is radial: its `weight` and `cdf` are
- * NULL and it gives the 2-D weight and the integral of a row instead.  A
+ * box, tent, gauss, bspline, mitchell, catrom and lanczos are separable,
+ * w(u) w(v): `weight` and `cdf` are the 1-D weight and its integral.  cone
+ * and the Gaussian in a circular mask (gauss with cut > 0, whose type is
+ * aa_filter_gauss_mask, not aa_filter_gauss) are radial: their `weight`
+ * and `cdf` are NULL and they give the 2-D weight and the integral of a
+ * row instead.  A
  * method's check refuses a filter it cannot form (aa_filter_is_separable);
  * aa_filter_weight2 and aa_filter_row_cdf serve every filter.
  * ------------------------------------------------------------------------ */
@@ -291,7 +294,13 @@ typedef struct aa_filter {
 } aa_filter;
 
 extern const aa_filter_type aa_filter_box, aa_filter_tent, aa_filter_gauss, aa_filter_cone;
+extern const aa_filter_type aa_filter_gauss_mask, aa_filter_bspline, aa_filter_mitchell,
+    aa_filter_catrom, aa_filter_lanczos;
 int aa_filter_is_box(const aa_filter *f);
+/* The values a filtered image of values in [0, 1] can take: [0, 1], or
+ * wider by the filter's negative mass for filters with negative lobes
+ * (mitchell with c > 0, catrom, lanczos), rounded outwards. */
+void aa_filter_range(const aa_filter *f, double *lo, double *hi);
 static inline int aa_filter_is_separable(const aa_filter *f)
 {
     return f->type->weight != NULL;

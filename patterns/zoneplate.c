@@ -60,6 +60,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #ifndef CMPLX
@@ -326,8 +327,11 @@ int aa__zoneplate_1d(const aa_filter *f, double a_hi, double a_lo, double c_hi, 
         else
             *g = tent ? tent_fresnel(R, a, c, &err) : box_fresnel(a, c, &err);
     } else {
-        return aa_fail(AA_EINVAL, "zone plate: no exact integral for filter %s",
-                       f->type->info.name);
+        /* (gauss with cut > 0 is the Gaussian in a mask: its own type) */
+        char text[256];
+        if (aa_spec_format(&f->spec, text, sizeof text))
+            snprintf(text, sizeof text, "%s", f->type->info.name);
+        return aa_fail(AA_EINVAL, "zone plate: no exact integral for filter %s", text);
     }
     if (bound)
         *bound = err;

@@ -137,7 +137,7 @@ static void test_view_key(void **state)
     v.w = 16, v.h = 8;
     v.t = 2.5, v.vx = 0.25, v.vy = -0.5;
     assert_int_equal(aa_view_key(&v, key, sizeof key), AA_OK);
-    assert_non_null(strstr(key, "\nsize 16x8\nfilter gauss:s=0.75\ntime 2.5\n"
+    assert_non_null(strstr(key, "\nsize 16x8\nfilter gauss:s=0.75,cut=0\ntime 2.5\n"
                                 "motion 0.25,-0.5\n"));
     assert_non_null(strstr(key, "period=0.125"));
 }

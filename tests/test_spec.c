@@ -133,12 +133,12 @@ static void test_format_shortest(void **state)
     assert_non_null(strstr(buf, ",kmax=0.59999999999999998,"));
     const struct {
         const char *in, *out;
-    } cases[] = {{"gauss:s=1/3", "gauss:s=0.3333333333333333"},
-                 {"gauss:s=0.1", "gauss:s=0.1"},
-                 {"gauss:s=2", "gauss:s=2"},
-                 {"gauss:s=5e-2", "gauss:s=0.05"},
-                 {"gauss:s=0.30000000000000004", "gauss:s=0.30000000000000004"},
-                 {"gauss:s=7.123456789", "gauss:s=7.123456789"}};
+    } cases[] = {{"gauss:s=1/3", "gauss:s=0.3333333333333333,cut=0"},
+                 {"gauss:s=0.1", "gauss:s=0.1,cut=0"},
+                 {"gauss:s=2", "gauss:s=2,cut=0"},
+                 {"gauss:s=5e-2", "gauss:s=0.05,cut=0"},
+                 {"gauss:s=0.30000000000000004", "gauss:s=0.30000000000000004,cut=0"},
+                 {"gauss:s=7.123456789,cut=2", "gauss:s=7.123456789,cut=2"}};
     for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
         assert_int_equal(aa_spec_parse(cases[k].in, filter_table(), "filter", &s), AA_OK);
         assert_int_equal(aa_spec_format(&s, buf, sizeof buf), AA_OK);

@@ -91,7 +91,9 @@ int aa_run_check(const aa_run_config *cfg)
         const aa_filter *f = &cfg->filters[k].filter;
         if ((st = check_type(f->spec.info, (const void *const *)aa_filter_types, "filter")))
             return st;
-        if (f->spec.info != &f->type->info)
+        /* (a gauss spec with cut > 0 takes the type aa_filter_gauss_mask,
+         * whose name and parameters are gauss's) */
+        if (strcmp(f->spec.info->name, f->type->info.name) != 0)
             return aa_fail(AA_EINVAL, "filter %s: its spec is of another filter",
                            f->type->info.name);
     }
@@ -191,18 +193,20 @@ static void row_refused(aa_row *row)
     snprintf(row->note, sizeof row->note, "refused: %s", aa_last_error());
 }
 
-/* An image of the method with values outside [0, 1] or not finite fails
- * its case: 1 if so (the row says where). */
-static int bad_image(aa_row *row, const aa_image *img, const char *what)
+/* An image of the method with values outside [0, 1] (wider under a filter
+ * with negative lobes: aa_method_value_range) or not finite fails its
+ * case: 1 if so (the row says where). */
+static int bad_image(aa_row *row, const aa_image *img, const aa_filter *f, const char *what)
 {
     int at[3];
-    double v = 0;
-    size_t bad = aa_image_bad_values(img, at, &v);
+    double v = 0, lo, hi;
+    aa_method_value_range(f, &lo, &hi);
+    size_t bad = aa_image_bad_values(img, lo, hi, at, &v);
     if (bad)
         aa__row_failed(row,
-                       "%s%zu value%s outside [0, 1] or not finite, the first %.17g at pixel "
-                       "(%d, %d) channel %d",
-                       what, bad, bad == 1 ? "" : "s", v, at[0], at[1], at[2]);
+                       "%s%zu value%s outside [%.6g, %.6g] or not finite, the first %.17g at "
+                       "pixel (%d, %d) channel %d",
+                       what, bad, bad == 1 ? "" : "s", lo, hi, v, at[0], at[1], at[2]);
     return bad != 0;
 }
 
@@ -271,7 +275,7 @@ static int run_method(const aa_run_config *cfg, const aa_view *view, const aa_jo
         aa__row_failed(row, "%s", aa_last_error());
         return AA_OK;
     }
-    if (bad_image(row, img, "gave "))
+    if (bad_image(row, img, &job->filter, "gave "))
         return AA_OK;
     if (!(st = aa_display_view_reference(view, spec, job, cfg->threads, &dref, &shown)) &&
         !(st = aa_metrics_compute(shown ? &dref : ref, img, &cfg->enc, &row->m)))
@@ -397,7 +401,7 @@ static int run_temporal(const aa_run_config *cfg, const aa_view *view, const aa_
             st = AA_OK;
             goto out;
         }
-        if (bad_image(row, &frames[k], what)) {
+        if (bad_image(row, &frames[k], &view->filter, what)) {
             aa_job_free(&job);
             goto out;
         }

@@ -217,15 +217,16 @@ int cmd_render(int argc, char **argv)
                    : aa_method_run(&method, &job, 1, &img, &counters, &once);
     }
     int at[3];
-    double bad_value = 0.0;
-    size_t bad = st ? 0 : aa_image_bad_values(&img, at, &bad_value);
+    double bad_value = 0.0, lo, hi;
+    aa_method_value_range(&f, &lo, &hi);
+    size_t bad = st ? 0 : aa_image_bad_values(&img, lo, hi, at, &bad_value);
     if (bad) {
         char ms[1024];
         aa_spec_format(&method, ms, sizeof ms);
         st = aa_fail(AA_ECHECK,
-                     "method %s gave %zu value%s outside [0, 1] or not finite, the first %.17g at "
-                     "pixel (%d, %d) channel %d: nothing written",
-                     ms, bad, bad == 1 ? "" : "s", bad_value, at[0], at[1], at[2]);
+                     "method %s gave %zu value%s outside [%.6g, %.6g] or not finite, the first "
+                     "%.17g at pixel (%d, %d) channel %d: nothing written",
+                     ms, bad, bad == 1 ? "" : "s", lo, hi, bad_value, at[0], at[1], at[2]);
     }
     /* every output written before any replaces what was there */
     cli_outputs outs = {0};

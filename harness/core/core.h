@@ -568,11 +568,16 @@ int aa_method_time(const aa_spec *spec, const aa_job *job, const aa_timing_plan 
  * already there is refused. */
 int aa_plugin_load(const char *path);
 
-/* Values of a method's image outside [0, 1] or not finite: their count
+/* The values a method's image under filter f may hold: [0, 1] for filters
+ * without negative lobes; for the others aa_filter_range's [-N, 1 + N]
+ * widened to [-2N, 1 + 2N], as a method that samples or tabulates the
+ * weight may reach a little past the exact extremes. */
+void aa_method_value_range(const aa_filter *f, double *lo, double *hi);
+/* Values of a method's image outside [lo, hi] or not finite: their count
  * (0 if none), and the first one's pixel and channel in at[0..2] (i, j,
  * channel) and value in *value.  A method's image with any is a failed
  * render, never a result. */
-size_t aa_image_bad_values(const aa_image *im, int at[3], double *value);
+size_t aa_image_bad_values(const aa_image *im, double lo, double hi, int at[3], double *value);
 
 /* The threads to use for a `threads` argument: itself if positive, else
  * OpenMP's default (OMP_NUM_THREADS, or the cores) clamped to at most four

@@ -268,12 +268,19 @@ int aa_thread_count(int threads)
 #endif
 }
 
-size_t aa_image_bad_values(const aa_image *im, int at[3], double *value)
+void aa_method_value_range(const aa_filter *f, double *lo, double *hi)
+{
+    aa_filter_range(f, lo, hi);
+    *lo *= 2.0;
+    *hi = 1.0 + 2.0 * (*hi - 1.0);
+}
+
+size_t aa_image_bad_values(const aa_image *im, double lo, double hi, int at[3], double *value)
 {
     size_t n = (size_t)im->w * (size_t)im->h * (size_t)im->c, bad = 0;
     for (size_t k = 0; k < n; k++) {
         double v = im->v[k];
-        if (v >= 0.0 && v <= 1.0) /* false for NaN */
+        if (v >= lo && v <= hi) /* false for NaN */
             continue;
         if (bad++ == 0) {
             size_t px = k / (size_t)im->c;

@@ -152,8 +152,8 @@ static size_t read_bytes(int fd, void *buf, size_t n)
  * against its checksum before its key is compared, so a damaged key warns
  * like damaged pixels, while a whole file of another view (a hash
  * collision) is a quiet miss. */
-static int cache_read(const char *path, const char *key, int w, int h, aa_image *out,
-                      double *max_bound)
+static int cache_read(const char *path, const char *key, int w, int h, const aa_filter *f,
+                      aa_image *out, double *max_bound)
 {
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)
@@ -235,11 +235,14 @@ static int cache_read(const char *path, const char *key, int w, int h, aa_image 
         why = "inconsistent with its key";
         goto done;
     }
-    /* a reference is within [0, 1] up to its own rounding (a pixel of 0
-     * under the tent can come out -1e-17) */
+    /* a reference is within [0, 1] (wider by the negative lobes of its
+     * filter, aa_filter_range) up to its own rounding (a pixel of 0 under
+     * the tent can come out -1e-17) */
+    double lo, hi;
+    aa_filter_range(f, &lo, &hi);
     for (size_t k = 0; k < count; k++)
-        if (!(out->v[k] >= -1e-9 && out->v[k] <= 1.0 + 1e-9)) {
-            why = "holding a value outside [0, 1]";
+        if (!(out->v[k] >= lo - 1e-9 && out->v[k] <= hi + 1e-9)) {
+            why = "holding a value outside the range of its filter";
             goto done;
         }
     hit = 1;
@@ -303,7 +306,7 @@ int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_ima
         return st;
     if ((st = aa_image_alloc(out, view->w, view->h, 3)))
         return st;
-    if (cache_dir && cache_read(path, key, view->w, view->h, out, &stats->max_bound)) {
+    if (cache_dir && cache_read(path, key, view->w, view->h, &view->filter, out, &stats->max_bound)) {
         if (from_cache)
             *from_cache = 1;
         stats->worst_i = stats->worst_j = -1;

@@ -1,0 +1,506 @@
+/*
+ * test_filter_truth.c: the reference under the B-splines, Mitchell-Netravali,
+ * Catmull-Rom, Lanczos, the Gaussian in a circular mask and the truncated
+ * cone (patterns/README.md, "Filters"), against answers derived here from
+ * the filters' definitions, not from harness/core/filter.c:
+ *
+ *  - a half-plane bounded by a vertical or a horizontal line: the pixel's
+ *    value is the filter's 1-D mass on the white side, from the weights as
+ *    published (Mitchell and Netravali 1988, eq. 8; the B-splines' pieces)
+ *    integrated term by term here, and for Lanczos by GSL's quadrature of
+ *    sinc(t) sinc(t / a) normalised by its own quadrature of the whole;
+ *  - for the radial filters a half-plane at any angle: the mass beyond the
+ *    line's distance, by nested quadrature of the weight written here
+ *    (the outer integral in x = Rc sin theta, smooth at the mask's wall);
+ *    and a disk centred on a pixel centre: the mass within its radius a in
+ *    closed form, (1 - exp(-a^2 / (2 s^2))) / (1 - exp(-K^2 / 2)) for the
+ *    Gaussian in a mask of radius K s, (a^2 / 2 - a^3 / (3 r)) /
+ *    (Rc^2 / 2 - Rc^3 / (3 r)) for the cone of radius r cut at Rc;
+ *  - a white square made of 16 abutting squares is exactly 1 wherever the
+ *    filter's support lies inside it (the inner edges cross those pixels);
+ *  - the translates of the B-splines and of every Mitchell-Netravali cubic
+ *    by the pixel grid sum to 1, so a white shape inside the image sums to
+ *    its area (a triangle by the shoelace formula, a parabolic segment 2/3
+ *    of its control triangle, Archimedes);
+ *  - the Gaussian in a mask of radius 9 s equals the untruncated Gaussian
+ *    (a different path: radial rows against the separable fixed rule) to
+ *    their bounds and the mass beyond the mask, exp(-81 / 2);
+ *    mitchell:b=1,c=0 equals the cubic B-spline.
+ * Every pixel is within its bound plus the answer's rounding (1e-15, or
+ * the quadrature's estimate) and every bound is at most AA_TRUTH_BOUND;
+ * the half-planes again through the one-piece-at-a-time path
+ * (AA__TRUTH_CROWD).  Filters with negative lobes give values below 0
+ * next to an edge, inside the range aa_filter_range states.
+ */
+#include "bench.h"
+#include "scenes.h"
+#include "support.h"
+#include "truth_internal.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+
+#include <cmocka.h>
+
+static const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
+
+/* ---- the filters as published, 1-D, for x = |t| ---- */
+
+typedef struct wpiece {
+    double a, b, c[4]; /* the weight on [a, b): c0 + c1 x + c2 x^2 + c3 x^3 */
+} wpiece;
+
+/* Mitchell and Netravali (1988), eq. 8. */
+static int mitchell_pieces(double B, double C, wpiece *p)
+{
+    p[0] =
+        (wpiece){0, 1, {(6 - 2 * B) / 6, 0, (-18 + 12 * B + 6 * C) / 6, (12 - 9 * B - 6 * C) / 6}};
+    p[1] = (wpiece){
+        1,
+        2,
+        {(8 * B + 24 * C) / 6, (-12 * B - 48 * C) / 6, (6 * B + 30 * C) / 6, (-B - 6 * C) / 6}};
+    return 2;
+}
+
+/* The quadratic B-spline: 3/4 - x^2, then (x - 3/2)^2 / 2. */
+static int bspline2_pieces(wpiece *p)
+{
+    p[0] = (wpiece){0, 0.5, {0.75, 0, -1, 0}};
+    p[1] = (wpiece){0.5, 1.5, {9.0 / 8, -1.5, 0.5, 0}};
+    return 2;
+}
+
+/* The integral of the pieces from 0 to x (x >= 0), term by term. */
+static double pieces_mass(const wpiece *p, int n, double x)
+{
+    double m = 0;
+    for (int k = 0; k < n; k++) {
+        double hi = fmin(p[k].b, x), lo = p[k].a;
+        if (hi <= lo)
+            continue;
+        for (int d = 0; d < 4; d++)
+            m += p[k].c[d] * (pow(hi, d + 1) - pow(lo, d + 1)) / (d + 1);
+    }
+    return m;
+}
+
+/* Lanczos: GSL's QAG of sinc(t) sinc(t / a) from 0 to x, piece by piece
+ * between the integers. */
+static double lanczos_w(double t, void *pa)
+{
+    double a = *(double *)pa, x = M_PI * t, y = x / a;
+    return (x == 0 ? 1 : sin(x) / x) * (y == 0 ? 1 : sin(y) / y);
+}
+
+static double lanczos_mass0(double a, double x, double *err)
+{
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200);
+    gsl_function F = {lanczos_w, &a};
+    double m = 0;
+    *err = 0;
+    for (double lo = 0; lo < fmin(x, a); lo += 1) {
+        double r, e, hi = fmin(fmin(lo + 1, x), a);
+        gsl_integration_qag(&F, lo, hi, 1e-17, 1e-15, 200, GSL_INTEG_GAUSS61, ws, &r, &e);
+        m += r;
+        *err += e;
+    }
+    gsl_integration_workspace_free(ws);
+    return m;
+}
+
+/* The 1-D cdf of a separable filter named by spec, derived above: *err is
+ * the derivation's own error. */
+static double cdf_of(const char *spec, double t, double *err)
+{
+    wpiece p[2];
+    int n = 0;
+    *err = 2e-15; /* the rounding of the monomials, up to 16 c3 on [1, 2] */
+    double B = 1.0 / 3, C = 1.0 / 3;
+    if (!strcmp(spec, "bspline:order=2")) {
+        n = bspline2_pieces(p);
+    } else if (!strcmp(spec, "bspline")) {
+        n = mitchell_pieces(1, 0, p);
+    } else if (!strcmp(spec, "catrom")) {
+        n = mitchell_pieces(0, 0.5, p);
+    } else if (!strncmp(spec, "mitchell", 8)) {
+        if (spec[8] == ':')
+            assert_int_equal(sscanf(spec, "mitchell:b=%lf,c=%lf", &B, &C), 2);
+        n = mitchell_pieces(B, C, p);
+    } else {
+        double a = spec[10] == '2' ? 2 : 3, e1, e2;
+        assert_true(!strncmp(spec, "lanczos:a=", 10));
+        double whole = lanczos_mass0(a, a, &e1), part = lanczos_mass0(a, fabs(t), &e2);
+        *err = (e1 + e2) / whole + 1e-15;
+        return t < 0 ? 0.5 - 0.5 * part / whole : 0.5 + 0.5 * part / whole;
+    }
+    double m = pieces_mass(p, n, fabs(t));
+    return t < 0 ? 0.5 - m : 0.5 + m;
+}
+
+static const char *const separable[] = {"bspline:order=2",       "bspline", "mitchell",
+                                        "mitchell:b=0.5,c=0.75", "catrom",  "lanczos:a=2",
+                                        "lanczos:a=3",           NULL};
+
+/* ---- the radial filters as defined, by quadrature ---- */
+
+typedef struct radial {
+    int cone;
+    double s, k; /* Gaussian: s and the mask K s; cone: r = s and the mask K r */
+    double x;    /* the row (outer variable) */
+} radial;
+
+static double radial_w(const radial *r, double u, double v)
+{
+    double rc = r->s * r->k, d = hypot(u, v);
+    if (d >= rc)
+        return 0;
+    if (r->cone)
+        return (1 - d / r->s) /
+               (2 * M_PI * r->s * r->s * (0.5 * r->k * r->k - r->k * r->k * r->k / 3));
+    return exp(-0.5 * d * d / (r->s * r->s)) /
+           (2 * M_PI * r->s * r->s * (1 - exp(-0.5 * r->k * r->k)));
+}
+
+static double radial_row(double y, void *pr)
+{
+    const radial *r = pr;
+    return radial_w(r, r->x, y);
+}
+
+/* The mass of the row at x, 2 int_0^c w(x, y) dy. */
+static double radial_marginal(radial *r, double x, gsl_integration_workspace *ws)
+{
+    double rc = r->s * r->k;
+    if (fabs(x) >= rc)
+        return 0;
+    r->x = x;
+    gsl_function F = {radial_row, r};
+    double res, err;
+    gsl_integration_qag(&F, 0, sqrt(rc * rc - x * x), 1e-16, 1e-14, 200, GSL_INTEG_GAUSS61, ws,
+                        &res, &err);
+    return 2 * res;
+}
+
+typedef struct outer {
+    radial *r;
+    gsl_integration_workspace *ws;
+} outer;
+
+static double outer_fn(double th, void *po)
+{
+    outer *o = po;
+    double rc = o->r->s * o->r->k;
+    return radial_marginal(o->r, rc * sin(th), o->ws) * rc * cos(th);
+}
+
+/* The mass of {x > d}: the outer integral in x = Rc sin theta. */
+static double radial_beyond(radial r, double d)
+{
+    double rc = r.s * r.k;
+    if (d >= rc)
+        return 0;
+    if (d <= -rc)
+        return 1;
+    if (d < 0)
+        return 1 - radial_beyond(r, -d);
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200),
+                              *ws2 = gsl_integration_workspace_alloc(200);
+    outer o = {&r, ws2};
+    gsl_function F = {outer_fn, &o};
+    double res, err;
+    gsl_integration_qag(&F, asin(d / rc), M_PI_2, 1e-15, 1e-13, 200, GSL_INTEG_GAUSS61, ws, &res,
+                        &err);
+    gsl_integration_workspace_free(ws);
+    gsl_integration_workspace_free(ws2);
+    return res;
+}
+
+static radial radial_of(const char *spec)
+{
+    aa_filter f;
+    assert_int_equal(aa_filter_parse(spec, &f), AA_OK);
+    assert_false(aa_filter_is_separable(&f));
+    radial r = {f.type == &aa_filter_cone, f.spec.v[0], f.spec.v[1], 0};
+    return r;
+}
+
+static const char *const radial_specs[] = {"gauss:s=1,cut=2", "gauss:s=0.6,cut=3.5",
+                                           "cone:r=2,cut=0.5", "cone:r=1.2,cut=0.9", NULL};
+
+/* ---- references ---- */
+
+static void ref(const aa_scene *s, int w, int h, const char *filter, int mode, aa_image *img,
+                aa_image *bound)
+{
+    aa_filter f;
+    aa_truth_stats st;
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    assert_int_equal(aa_image_alloc(img, w, h, 3), AA_OK);
+    assert_int_equal(aa_image_alloc(bound, w, h, 1), AA_OK);
+    if (aa__truth_render_mode(s, &f, 0, mode, img, bound, &st, NULL))
+        fail_msg("reference under %s: %s", filter, aa_last_error());
+    assert_true(st.max_bound <= AA_TRUTH_BOUND);
+}
+
+static void check_value(const char *what, const char *filter, int i, int j, double got, double b,
+                        double want, double err, double *worst)
+{
+    double d = fabs(got - want);
+    if (!(d <= b + err))
+        fail_msg("%s under %s, pixel (%d, %d): reference %.17g, expected %.17g (bound %.2e, "
+                 "answer's error %.2e)",
+                 what, filter, i, j, got, want, b, err);
+    *worst = fmax(*worst, d);
+}
+
+/* Vertical and horizontal half-planes, white right of x0 and above y0. */
+static void test_half_planes_separable(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off(); /* the quadratures are judged by their estimates */
+    const int w = 14, h = 10;
+    const double x0 = 6.37, y0 = 4.71;
+    for (const char *const *f = separable; *f; f++)
+        for (int mode = 0; mode <= AA__TRUTH_CROWD; mode += AA__TRUTH_CROWD) {
+            double worst = 0, lo = 0, hi = 0, rlo, rhi;
+            aa_filter filt;
+            assert_int_equal(aa_filter_parse(*f, &filt), AA_OK);
+            aa_filter_range(&filt, &rlo, &rhi);
+            for (int vertical = 0; vertical < 2; vertical++) {
+                aa_scene *s = vertical ? scenes_half_plane_of(x0, 0, 0, 100, white, black)
+                                       : scenes_half_plane_of(0, y0, M_PI_2, 100, white, black);
+                aa_image img, bound;
+                ref(s, w, h, *f, mode, &img, &bound);
+                for (int j = 0; j < h; j++)
+                    for (int i = 0; i < w; i++) {
+                        double err, want = vertical ? 1 - cdf_of(*f, x0 - (i + 0.5), &err)
+                                                    : cdf_of(*f, y0 - (j + 0.5), &err);
+                        double got = aa_pixel(&img, i, j)[0];
+                        check_value(vertical ? "vertical half-plane" : "horizontal half-plane", *f,
+                                    i, j, got, *aa_pixel(&bound, i, j), want, err, &worst);
+                        lo = fmin(lo, got);
+                        hi = fmax(hi, got);
+                    }
+                aa_image_free(&img);
+                aa_image_free(&bound);
+                aa_scene_free(s);
+            }
+            /* the negative lobes show, inside the range the filter states */
+            assert_true(lo >= rlo && hi <= rhi);
+            if (rlo < 0)
+                assert_true(lo < -1e-3 && hi > 1 + 1e-3);
+            else
+                assert_true(lo >= -1e-15 && hi <= 1 + 1e-15);
+            print_message("half-planes %-22s mode %d: max |ref - closed form| %.2e, values in "
+                          "[%.4f, %.4f], range [%.4f, %.4f]\n",
+                          *f, mode, worst, lo, hi, rlo, rhi);
+        }
+}
+
+/* Half-planes at three angles under the radial filters. */
+static void test_half_planes_radial(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off();
+    const int w = 12, h = 9;
+    const double px = 5.83, py = 4.27, angles[] = {0.0, 0.41, 2.3};
+    for (const char *const *f = radial_specs; *f; f++) {
+        radial r = radial_of(*f);
+        for (int mode = 0; mode <= AA__TRUTH_CROWD; mode += AA__TRUTH_CROWD) {
+            double worst = 0;
+            for (int q = 0; q < 3; q++) {
+                double an = angles[q], nx = cos(an), ny = -sin(an);
+                aa_scene *s = scenes_half_plane_of(px, py, an, 100, white, black);
+                aa_image img, bound;
+                ref(s, w, h, *f, mode, &img, &bound);
+                for (int j = 0; j < h; j++)
+                    for (int i = (j * 3) % 2; i < w; i += 2) {
+                        /* the centre's signed distance into the white side */
+                        double d = (i + 0.5 - px) * nx + (j + 0.5 - py) * ny;
+                        double want = radial_beyond(r, -d);
+                        check_value("half-plane", *f, i, j, aa_pixel(&img, i, j)[0],
+                                    *aa_pixel(&bound, i, j), want, 1e-14, &worst);
+                    }
+                aa_image_free(&img);
+                aa_image_free(&bound);
+                aa_scene_free(s);
+            }
+            print_message("half-planes %-22s mode %d: max |ref - quadrature| %.2e\n", *f, mode,
+                          worst);
+        }
+    }
+}
+
+/* A disk of radius a centred on pixel (6, 5)'s centre. */
+static void test_centred_disks(void **state)
+{
+    (void)state;
+    const double cx = 6.5, cy = 5.5;
+    for (const char *const *f = radial_specs; *f; f++) {
+        radial r = radial_of(*f);
+        double rc = r.s * r.k;
+        const double frac[] = {0.3, 0.77, 1.4};
+        for (int q = 0; q < 3; q++) {
+            double a = frac[q] * rc, want;
+            if (a >= rc)
+                want = 1;
+            else if (r.cone)
+                want =
+                    (a * a / 2 - a * a * a / (3 * r.s)) / (rc * rc / 2 - rc * rc * rc / (3 * r.s));
+            else
+                want = -expm1(-0.5 * a * a / (r.s * r.s)) / -expm1(-0.5 * r.k * r.k);
+            aa_scene *s = aa_scene_new(black);
+            assert_non_null(s);
+            assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
+            assert_int_equal(aa_scene_move_to(s, cx + a, cy), AA_OK);
+            assert_int_equal(aa_scene_arc_to(s, cx, cy, a, 0, 0, a, 0, 2 * M_PI, cx + a, cy),
+                             AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+            assert_int_equal(aa_scene_finish(s), AA_OK);
+            aa_image img, bound;
+            double worst = 0;
+            ref(s, 13, 11, *f, 0, &img, &bound);
+            check_value("centred disk", *f, 6, 5, aa_pixel(&img, 6, 5)[0], *aa_pixel(&bound, 6, 5),
+                        want, 1e-15, &worst);
+            print_message("disk of radius %.3f under %-20s: %.17f, error %.2e\n", a, *f,
+                          aa_pixel(&img, 6, 5)[0], worst);
+            aa_image_free(&img);
+            aa_image_free(&bound);
+            aa_scene_free(s);
+        }
+    }
+}
+
+/* 3 x 3 abutting squares of side 5.5 from (2.3, 1.7): 1 wherever the
+ * support is inside, 0 wherever it is outside. */
+static void test_abutting_squares(void **state)
+{
+    (void)state;
+    double rects[9][4];
+    for (int k = 0; k < 9; k++) {
+        double x = 2.3 + 5.5 * (k % 3), y = 1.7 + 5.5 * (k / 3);
+        rects[k][0] = x, rects[k][1] = y, rects[k][2] = x + 5.5, rects[k][3] = y + 5.5;
+    }
+    aa_scene *s = scenes_rects(rects, 9);
+    const char *const all[] = {"bspline:order=2", "bspline",         "mitchell",         "catrom",
+                               "lanczos:a=2",     "gauss:s=1,cut=2", "cone:r=2,cut=0.5", NULL};
+    for (const char *const *f = all; *f; f++) {
+        aa_filter filt;
+        assert_int_equal(aa_filter_parse(*f, &filt), AA_OK);
+        double R = filt.radius, worst = 0;
+        int inside = 0;
+        aa_image img, bound;
+        ref(s, 21, 20, *f, 0, &img, &bound);
+        for (int j = 0; j < 20; j++)
+            for (int i = 0; i < 21; i++) {
+                double u = i + 0.5, v = j + 0.5;
+                int in = u - R > 2.3 && u + R < 18.8 && v - R > 1.7 && v + R < 18.2;
+                int out = u + R < 2.3 || u - R > 18.8 || v + R < 1.7 || v - R > 18.2;
+                if (in || out)
+                    check_value("abutting squares", *f, i, j, aa_pixel(&img, i, j)[0],
+                                *aa_pixel(&bound, i, j), in ? 1 : 0, 1e-15, &worst);
+                inside += in;
+            }
+        assert_true(inside >= 64);
+        print_message("abutting squares under %-18s: %d pixels inside, max |ref - 1| %.2e\n", *f,
+                      inside, worst);
+        aa_image_free(&img);
+        aa_image_free(&bound);
+    }
+    aa_scene_free(s);
+}
+
+/* The image sums to the shape's area where the translates sum to 1. */
+static void check_sum(const char *what, const aa_scene *s, int w, int h, double area)
+{
+    const char *const pu[] = {"bspline:order=2",  "bspline", "mitchell", "mitchell:b=0.5,c=0.75",
+                              "mitchell:b=0,c=1", "catrom",  NULL};
+    for (const char *const *f = pu; *f; f++) {
+        aa_image img, bound;
+        ref(s, w, h, *f, 0, &img, &bound);
+        double sum = 0, bsum = 0;
+        for (int k = 0; k < w * h; k++) {
+            sum += img.v[3 * k];
+            bsum += bound.v[k];
+        }
+        double d = fabs(sum - area);
+        if (!(d <= bsum + 1e-13))
+            fail_msg("%s under %s: sum %.17g, area %.17g (bounds sum to %.2e)", what, *f, sum, area,
+                     bsum);
+        print_message("%s under %-22s: sum - area %.2e (bounds %.2e)\n", what, *f, sum - area,
+                      bsum);
+        aa_image_free(&img);
+        aa_image_free(&bound);
+    }
+}
+
+static void test_sums(void **state)
+{
+    (void)state;
+    const double tri[] = {3.2, 2.7, 17.9, 4.1, 8.3, 15.6};
+    aa_scene *s = scenes_polygon(tri, 3, white, black, AA_FILL_NONZERO);
+    double area =
+        0.5 * fabs((tri[2] - tri[0]) * (tri[5] - tri[1]) - (tri[4] - tri[0]) * (tri[3] - tri[1]));
+    check_sum("triangle", s, 22, 20, area);
+    aa_scene_free(s);
+    /* a parabolic segment: 2/3 of its control triangle */
+    const double p0[2] = {3.1, 14.2}, c[2] = {9.4, -1.3}, p1[2] = {16.7, 13.3};
+    s = scenes_arc_segment(p0[0], p0[1], c[0], c[1], p1[0], p1[1]);
+    area =
+        2.0 / 3 * 0.5 * fabs((c[0] - p0[0]) * (p1[1] - p0[1]) - (p1[0] - p0[0]) * (c[1] - p0[1]));
+    check_sum("parabolic segment", s, 21, 18, area);
+    aa_scene_free(s);
+}
+
+/* Two paths to the same values, on a parabolic segment and a triangle. */
+static void check_same(const char *fa, const char *fb, double extra)
+{
+    const double tri[] = {3.2, 2.7, 17.9, 4.1, 8.3, 15.6};
+    aa_scene *scenes[2] = {scenes_arc_segment(3.1, 14.2, 9.4, -1.3, 16.7, 13.3),
+                           scenes_polygon(tri, 3, white, black, AA_FILL_NONZERO)};
+    double worst = 0;
+    for (int q = 0; q < 2; q++) {
+        aa_image a, b, ba, bb;
+        ref(scenes[q], 21, 18, fa, 0, &a, &ba);
+        ref(scenes[q], 21, 18, fb, 0, &b, &bb);
+        for (int k = 0; k < 21 * 18; k++) {
+            double d = fabs(a.v[3 * k] - b.v[3 * k]);
+            if (!(d <= ba.v[k] + bb.v[k] + extra))
+                fail_msg("scene %d, pixel %d: %s %.17g, %s %.17g", q, k, fa, a.v[3 * k], fb,
+                         b.v[3 * k]);
+            worst = fmax(worst, d);
+        }
+        aa_image_free(&a);
+        aa_image_free(&b);
+        aa_image_free(&ba);
+        aa_image_free(&bb);
+        aa_scene_free(scenes[q]);
+    }
+    print_message("%s against %s: max difference %.2e\n", fa, fb, worst);
+}
+
+static void test_same_filters(void **state)
+{
+    (void)state;
+    check_same("gauss:s=0.7,cut=9", "gauss:s=0.7", exp(-40.5) + 1e-15);
+    check_same("mitchell:b=1,c=0", "bspline", 1e-15);
+    check_same("mitchell:b=0,c=0.5", "catrom", 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_half_planes_separable),
+                                       cmocka_unit_test(test_half_planes_radial),
+                                       cmocka_unit_test(test_centred_disks),
+                                       cmocka_unit_test(test_abutting_squares),
+                                       cmocka_unit_test(test_sums),
+                                       cmocka_unit_test(test_same_filters)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
