@@ -1126,7 +1126,12 @@ int aa_figure_index(const char *dir)
         char *frag = aa_pathf(cpath, sizeof cpath, "%s/claims.html", dir) ? NULL : slurp(cpath);
         fputs("<section id=\"claims\">\n<h1>Published claims, measured</h1>\n", m);
         if (frag) {
-            fputs(frag, m);
+            /* claims.html is a page of its own: its body only */
+            char *from = strstr(frag, "<body>"), *to = from ? strstr(from, "</body>") : NULL;
+            if (from && to)
+                fwrite(from + 6, 1, (size_t)(to - from - 6), m);
+            else
+                fputs(frag, m);
             free(frag);
         }
         fputs("</section>\n", m);
