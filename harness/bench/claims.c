@@ -4,19 +4,26 @@
  *
  * Each claim is quoted with where it is made (paper, section, pages from
  * the paper's own table of contents where it has one), measured on the
- * same setting as far as this benchmark has it, and judged: "yes" when the
- * measurement agrees with the claim as stated, "no" when it does not (the
- * numbers say by how much), "partly" when one part holds and another not.
+ * same setting as far as this benchmark has it (the paper's own setting
+ * where it names one: a single edge, small objects, exact areas for hidden
+ * surfaces; scenes moved OFF pixel off the grid where alignment would
+ * favour a method), and judged from margins fixed before measuring: "yes"
+ * when the numbers agree with the claim as stated, "no" when they do not,
+ * "partly" when one part or case holds and another not, "inconclusive"
+ * when an interval holds the margin or errors tie, "not comparable" when
+ * the setting cannot decide the claim; each verdict with a one-line reason.
  * Each claim is a row of the table `claims` (its texts, the specs it is
  * measured on, and its measure: the generic time sweep or a small function
  * of its own); aa_claim_check checks a row's specs.
  *
  * How things are measured.
- *  - Times: `aa_run` on one thread, the median of `reps` renders after one
- *    untimed init, into an image touched beforehand (only the render is
- *    timed).  Ratios are taken between methods of the same run.  The machine
- *    is shared, so single times are noisy; medians of several renders, and
- *    ratios rather than times, are what is quoted.
+ *  - Times: the interleaved ratio.  The two cases render in turns on one
+ *    thread (aa_timing_measure, a fixed count of `reps` turns, each render
+ *    after an untimed init, both warmed up once), so a slow spell of the
+ *    shared machine falls on both; each turn gives a ratio, and the median
+ *    of the ratios and its distribution-free 95% interval are quoted.  A
+ *    claim's band is judged by the interval (aa_claim_band_verdict), never
+ *    by one time.
  *  - Errors: RMSE against the exact reference under the method's filter
  *    (a method without a prefilter: the box), linear light; the error
  *    energy above 1/4 cycle per pixel (staircases and noise) and below it
@@ -1615,8 +1622,9 @@ static int write_claims(const char *dir, const claim *c, int n, int reps)
     static const char intro[] =
         "Made by `aabench figures --claims` (harness/bench/claims.c). Times: one thread, "
         "each ratio the median over %d pairs of single renders of the two cases (each after "
-        "an untimed init), taken alternately a b, b a, ...; the machine was shared with other "
-        "work, so single times are noisy and only such ratios are quoted. Errors: "
+        "an untimed init), taken in turns a b, a b, ... (aa_timing_measure), both warmed up "
+        "once; the machine was shared with other work, so single times are noisy and only "
+        "such ratios are quoted. Errors: "
         "RMSE against the exact reference under the method's filter (point sampling and its "
         "post-processes: the box), linear light; \"eye RMSE\": what an eye of s = %g pixels "
         "sees of the image shown as pixel squares against what it sees of the scene itself "

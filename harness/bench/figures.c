@@ -328,11 +328,11 @@ static const fig_def figures[] = {
      "Its centre lies on the corner of green and blue, so a single point sample's colour "
      "would depend on which side an edge's points are taken, which no result may depend on "
      "(patterns/README.md, \"Boundaries\"): point sampling is left out. The regular grids' "
-     "samples (at 1/4, 3/4 and at 1/8 ... 7/8) miss every edge, so they are exact here; the "
-     "jittered samples are not.",
+     "samples (at 1/4, 3/4 and at 1/8 ... 7/8) miss every edge, so they are exact here; 16 "
+     "independent random samples (jitter, seq=random) are not.",
      "catmull", 1, 1, "box", 0, 0, 64, 5, 5,
      {M("supersample:n=2", "supersample:n=2"), M("supersample:n=4", "supersample:n=4"),
-      M("jitter:spp=16", "jitter:spp=16"), M("area", "area (Catmull)"),
+      M("jitter:spp=16,seq=random", "jitter:spp=16,seq=random"), M("area", "area (Catmull)"),
       REF("exact reference")},
      NULL},
     {"fig-feibush-4b", "Feibush, Levoy and Cook (1980) fig. 4b: no filter, 512 x 512",
