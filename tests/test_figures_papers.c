@@ -11,10 +11,10 @@
  *    with it (crowtable under Crow's pyramids for figs. 2.13-2.14, crowtiler
  *    for the tiler's figs. 3.14-3.17 and 3.19, area for Catmull's fig. 1,
  *    conetable at 512 x 512 for Feibush's fig. 4d).
- *  - Catmull's pixel, moved 1/16 pixel right and down: the caption's
- *    exact value is (0, 1/4, (15/16)(7/16)) and the point sample, at
- *    (7/16, 7/16) of the unmoved scene, sees green: known answers from
- *    the rectangles' areas, worked out by hand.
+ *  - Catmull's pixel as he draws it: the caption's exact value and his
+ *    integrater's are his split (0, 1/4, 1/2), and the 2 x 2 grid, whose
+ *    samples miss every edge, gives it too: known answers from the
+ *    rectangles' areas, worked out by hand.
  *  - The eye: a white pixel on black seen through a Gaussian of s pixels
  *    has, at its own centre, (erf(1/(2 s sqrt 2)))^2 (the integral of the
  *    normal density over the pixel, squared), a uniform image stays
@@ -151,7 +151,7 @@ static void caption_rgb(const char *text, int p, double rgb[3])
     assert_int_equal(sscanf(s, "%lf %lf %lf", &rgb[0], &rgb[1], &rgb[2]), 3);
 }
 
-static void test_catmull_moved(void **state)
+static void test_catmull_split(void **state)
 {
     (void)state;
     int k = aa_figure_find("fig-catmull-1");
@@ -159,22 +159,21 @@ static void test_catmull_moved(void **state)
     assert_int_equal(aa_figure_make((size_t)k, dir, NULL, 1, &r), 0);
     const char *cap = slurp("fig-catmull-1.txt");
     assert_non_null(strstr(cap, "claim: \"The correct integration would be 25% green"));
-    double ref[3], pt[3], area[3];
+    double ref[3], ss2[3], area[3];
     caption_rgb(cap, 5, ref);  /* the exact reference */
-    caption_rgb(cap, 1, pt);   /* point */
+    caption_rgb(cap, 1, ss2);  /* supersample:n=2 */
     caption_rgb(cap, 4, area); /* Catmull's integrater */
-    /* green [1/16, 9/16]^2 inside the pixel: 1/4; blue [1/16, 1] x [9/16, 1] */
+    /* Catmull's split: green [0, 1/2]^2 is 1/4, blue [0, 1] x [1/2, 1] is
+     * 1/2, the red behind them none */
     assert_true(fabs(ref[0]) < 1e-6);
     assert_true(fabs(ref[1] - 0.25) < 1e-6);
-    assert_true(fabs(ref[2] - 105.0 / 256) < 1e-6);
-    /* the centre sees the unmoved scene at (7/16, 7/16): inside the green */
-    assert_true(pt[0] == 0 && pt[1] == 1 && pt[2] == 0);
+    assert_true(fabs(ref[2] - 0.5) < 1e-6);
     for (int c = 0; c < 3; c++)
         assert_true(fabs(area[c] - ref[c]) < 1e-6);
     assert_true(r.panel[3].rmse < 1e-12);
-    /* point's RMSE: sqrt((0 + (3/4)^2 + (105/256)^2)/3) */
-    double want = sqrt((0.75 * 0.75 + (105.0 / 256) * (105.0 / 256)) / 3);
-    assert_true(fabs(r.panel[0].rmse - want) < 1e-12);
+    /* the 2 x 2 grid's samples (1/4, 1/4) green, (3/4, 1/4) black, (1/4,
+     * 3/4) and (3/4, 3/4) blue: the split exactly */
+    assert_true(ss2[0] == 0 && fabs(ss2[1] - 0.25) < 1e-12 && fabs(ss2[2] - 0.5) < 1e-12);
 }
 
 static void test_eye(void **state)
@@ -563,7 +562,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_tables),
         cmocka_unit_test(test_titles_1976),   cmocka_unit_test(test_figures_differ),
-        cmocka_unit_test(test_papers_methods), cmocka_unit_test(test_catmull_moved),
+        cmocka_unit_test(test_papers_methods), cmocka_unit_test(test_catmull_split),
         cmocka_unit_test(test_eye),           cmocka_unit_test(test_eye_truth),
         cmocka_unit_test(test_eye_of_exact),
         cmocka_unit_test(test_calibration),   cmocka_unit_test(test_suites),

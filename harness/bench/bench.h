@@ -689,10 +689,10 @@ typedef struct aa_calibration {
 int aa_crow_calibration(const char *cache_dir, int threads, aa_calibration *out);
 
 /* The seed papers' quantitative claims measured (claims.c): DIR/claims.md
- * (a Markdown table: paper, where, claim, setting, measured, reproduced?)
- * and DIR/claims.html (the same table, for index.html).  Each time ratio
- * is the median over `reps` pairs of interleaved single renders on one
- * thread. */
+ * (a Markdown table: paper, where, claim, setting, measured, verdict and
+ * its reason) and DIR/claims.html (the same, a page of its own whose body
+ * index.html shows).  Each time ratio is the median over `reps` pairs of
+ * interleaved single renders on one thread, with its 95% interval. */
 int aa_claims_make(const char *dir, const char *cache_dir, int threads, int reps,
                    int (*progress)(void *ctx, const char *what), void *ctx);
 /* The claims table (claims.c): how many claims, and claim k's row checked
@@ -700,6 +700,19 @@ int aa_claims_make(const char *dir, const char *cache_dir, int threads, int reps
  * parsing, its lists of one length); AA_EINVAL names the claim and spec. */
 size_t aa_claim_count(void);
 int aa_claim_check(size_t k);
+/* The claims' verdicts (claims.c), each from numbers and a margin fixed
+ * before measuring.  A ratio measured with its confidence interval
+ * [ci_lo, ci_hi] against the band [lo, hi] a claim allows: "yes" when the
+ * interval lies inside the band, "no" when it lies wholly outside,
+ * "inconclusive" when it holds an end of the band (or is not a number). */
+const char *aa_claim_band_verdict(double ci_lo, double ci_hi, double lo, double hi);
+/* Two errors (smaller is better) compared with a relative margin: -1 when
+ * a < b (1 - margin), 1 when b < a (1 - margin), 0 (a tie) otherwise. */
+int aa_claim_compare(double a, double b, double margin);
+/* A claim made of several cases, from the cases' verdicts: "yes" when all
+ * hold, "no" when none does, "partly" when some hold and some do not,
+ * "inconclusive" otherwise (some undecided and no such mix). */
+const char *aa_claim_tally(int yes, int no, int undecided);
 
 /* ------------------------------------------------------------------------
  * The stress suite (stress.c): scenes at the limits of the geometry, the
