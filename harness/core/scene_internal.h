@@ -6,6 +6,7 @@
 #define AA_SCENE_INTERNAL_H
 
 #include "core.h"
+#include "path.h"
 
 struct aa_scene {
     aa_rgb background;
@@ -40,7 +41,19 @@ struct aa_scene {
     double fparam[AA_FIELD_MAX_PARAMS];
     int fnparam;
     double fmap[4]; /* sx, sy, tx, ty: the field's (x, y) is at (sx x + tx, sy y + ty) */
+
+    /* stroke sources (aa_scene_stroke), in the order of their layers */
+    aa_stroke_source *strokes;
+    size_t nstrokes, capstrokes;
 };
+
+/* scene_stroke.c: free the sources; copy s's into t with their maps
+ * composed with x' = sx x + tx, y' = sy y + ty; renumber them after a
+ * front layer was inserted (clip to the unit square). */
+void aa__scene_strokes_free(aa_scene *s);
+int aa__scene_strokes_copy(const aa_scene *s, aa_scene *t, double sx, double sy, double tx,
+                           double ty);
+void aa__scene_strokes_shift(aa_scene *s, int by);
 
 /* Call visit(ctx, piece) once for every piece whose closed y range meets
  * [ya, yb]; returns the number of visits that returned non-zero. */
