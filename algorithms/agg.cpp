@@ -48,14 +48,24 @@
  * (agg_rasterizer_scanline_aa.h, sweep_scanline), which C++17 leaves
  * undefined and C++20 defines as two's complement.
  *
- * Limits: grey scenes of at most one layer and the box filter only
- * (peer.h); 8-bit coverage (up to 1/510 from rounding alone); positions
+ * Strokes: a layer kept as a stroke (aa_scene_stroke) is stroked by AGG
+ * from its source (band_strokes): the path in user units (curves by
+ * conv_curve, arcs by agg::arc), conv_dash for its dashes, conv_stroke
+ * with its width, join, cap and miter limit, then conv_transform by its
+ * map, as AGG's own SVG viewer does; the flattening and the round joins'
+ * and caps' polygons use the approximation scale times the map's
+ * Frobenius norm, so their tolerance holds in pixels.  Several strokes of
+ * one grey are painted OVER each other (peer.h).
+ *
+ * Limits: grey scenes of at most one layer, or of strokes of one grey,
+ * and the box filter only (peer.h); at most 32 dash lengths; 8-bit coverage (up to 1/510 from rounding alone); positions
  * rounded to 1/256 px; arcs flattened; the cover and area of a cell are
  * 32-bit integers (a cell crossed by some 2^15 edges would overflow them).
  */
 #include "agg.h"
 
 extern "C" {
+#include "path.h"
 #include "peer.h"
 }
 
@@ -79,8 +89,13 @@ extern "C" {
 #pragma GCC diagnostic ignored "-Wdeprecated-enum-float-conversion"
 #include <agg_arc.h>
 #include <agg_basics.h>
+#include <agg_conv_curve.h>
+#include <agg_conv_dash.h>
+#include <agg_conv_stroke.h>
+#include <agg_conv_transform.h>
 #include <agg_curves.h>
 #include <agg_gamma_functions.h>
+#include <agg_path_storage.h>
 #include <agg_rasterizer_scanline_aa.h>
 #include <agg_rasterizer_sl_clip.h>
 #include <agg_scanline_u.h>
@@ -165,10 +180,163 @@ void put_arc(worker &wk, const aa_edge &d, double scale)
     wk.ras.line_to_d(d.x1, d.y1);
 }
 
+/* AGG's dash generator holds at most this many lengths (vcgen_dash). */
+const size_t AGG_MAX_DASHES = 32;
+
+/* The coverage AGG's rasterizer holds, painted OVER rows [y0, y0 + rows)
+ * of the band: a + c - a c in 0 .. 255 (a painted over nothing, a = 0, is
+ * c itself). */
+void sweep_over(worker &wk, int w, int y0, int rows)
+{
+    rasterizer &ras = wk.ras;
+    if (!ras.rewind_scanlines())
+        return;
+    wk.sl.reset(ras.min_x(), ras.max_x());
+    while (ras.sweep_scanline(wk.sl)) {
+        int y = wk.sl.y();
+        if (y < y0 || y >= y0 + rows)
+            continue;
+        unsigned char *row = wk.band.data() + (size_t)(y - y0) * (size_t)w;
+        unsigned n = wk.sl.num_spans();
+        agg::scanline_u8::const_iterator span = wk.sl.begin();
+        for (; n; n--, ++span) {
+            int x = span->x, len = span->len;
+            const agg::int8u *covers = span->covers;
+            for (int i = 0; i < len; i++, x++)
+                if (x >= 0 && x < w) {
+                    unsigned a = row[x], c = covers[i];
+                    row[x] = (unsigned char)(c + (a * (255 - c) + 127) / 255);
+                }
+        }
+    }
+}
+
+/* A stroke source's path in its user units as an AGG path: lines,
+ * quadratic and cubic arcs as AGG's curve3 and curve4 commands (flattened
+ * by conv_curve), each circular or elliptical arc as agg::arc's chords of
+ * the unit circle mapped to the ellipse (as put_arc, the scale given in
+ * user units), its last vertex the arc's exact end. */
+void source_path(agg::path_storage &path, const aa_stroke_source &src, double scale)
+{
+    double px = 0.0, py = 0.0;
+    for (size_t k = 0; k < src.path.n; k++) {
+        const aa_path_seg &g = src.path.seg[k];
+        const double *q = g.p;
+        switch (g.op) {
+        case AA_PATH_MOVE:
+            path.move_to(q[0], q[1]);
+            px = q[0], py = q[1];
+            break;
+        case AA_PATH_LINE:
+            path.line_to(q[0], q[1]);
+            px = q[0], py = q[1];
+            break;
+        case AA_PATH_QUAD:
+            path.curve3(q[0], q[1], q[2], q[3]);
+            px = q[2], py = q[3];
+            break;
+        case AA_PATH_CUBIC:
+            path.curve4(q[0], q[1], q[2], q[3], q[4], q[5]);
+            px = q[4], py = q[5];
+            break;
+        case AA_PATH_ARC: {
+            const agg::trans_affine m(q[2], q[3], q[4], q[5], q[0], q[1]);
+            double f = std::hypot(std::hypot(q[2], q[3]), std::hypot(q[4], q[5]));
+            agg::arc a(0.0, 0.0, 1.0, 1.0, q[6], q[7], q[7] >= q[6]);
+            a.approximation_scale(scale * f);
+            a.rewind(0);
+            double x, y, lx = 0.0, ly = 0.0;
+            unsigned cmd = a.vertex(&x, &y); /* the start: the pen */
+            int pending = 0;
+            while (!agg::is_stop(cmd = a.vertex(&x, &y))) {
+                if (pending)
+                    path.line_to(lx, ly);
+                m.transform(&x, &y);
+                lx = x, ly = y, pending = 1;
+            }
+            path.line_to(q[8], q[9]);
+            px = q[8], py = q[9];
+            break;
+        }
+        default:
+            path.close_polygon();
+            break;
+        }
+    }
+    (void)px, (void)py;
+}
+
+/* The stroke of `src` (its flattened path, dashed or not) into the
+ * rasterizer: conv_stroke in user units with the source's width, join,
+ * cap and miter limit, then conv_transform by the source's map, so that a
+ * non-uniform map transforms the outline as SVG says.  SVG's miter is
+ * AGG's miter_join_revert (a bevel past the limit; AGG's miter_join would
+ * cut the miter off at the limit instead). */
+template <class Src>
+void add_stroke(rasterizer &ras, Src &in, const aa_stroke_source &src, double scale)
+{
+    static const agg::line_join_e joins[] = {agg::miter_join_revert, agg::round_join,
+                                             agg::bevel_join};
+    static const agg::line_cap_e caps[] = {agg::butt_cap, agg::round_cap, agg::square_cap};
+    agg::conv_stroke<Src> stroke(in);
+    stroke.width(src.style.width);
+    stroke.line_join(joins[src.style.join]);
+    stroke.line_cap(caps[src.style.cap]);
+    stroke.miter_limit(src.style.miterlimit);
+    stroke.approximation_scale(scale);
+    agg::trans_affine m(src.m[0], src.m[1], src.m[2], src.m[3], src.m[4], src.m[5]);
+    agg::conv_transform<agg::conv_stroke<Src>> mapped(stroke, m);
+    ras.add_path(mapped);
+}
+
+/* Rows [y0, y0 + rows) of the band: each stroke of the scene by AGG's
+ * stroker, painted OVER the others.  Curves are flattened in user units
+ * to AGG's tolerance divided by the map's largest stretch (its Frobenius
+ * norm bounds it), so within it in pixels. */
+void band_strokes(worker &wk, const aa_scene *scene, const double *p, int w, int y0, int rows)
+{
+    size_t nsrc;
+    const aa_stroke_source *src = aa_scene_stroke_sources(scene, &nsrc);
+    std::memset(wk.band.data(), 0, (size_t)rows * (size_t)w);
+    for (size_t k = 0; k < nsrc; k++) {
+        const aa_stroke_source &a = src[k];
+        const double norm = std::hypot(std::hypot(a.m[0], a.m[1]), std::hypot(a.m[2], a.m[3]));
+        const double scale = p[SCALE] * norm;
+        rasterizer &ras = wk.ras;
+        ras.reset();
+        ras.gamma(agg::gamma_none());
+        ras.filling_rule(agg::fill_non_zero);
+        ras.clip_box(0.0, (double)y0, (double)w, (double)(y0 + rows));
+        agg::path_storage path;
+        source_path(path, a, scale);
+        agg::conv_curve<agg::path_storage> curved(path);
+        curved.approximation_method((int)p[CURVES] == CURVES_INC ? agg::curve_inc
+                                                                 : agg::curve_div);
+        curved.approximation_scale(scale);
+        if (a.style.ndash) {
+            /* an odd count repeats (SVG), so AGG gets it twice */
+            agg::conv_dash<agg::conv_curve<agg::path_storage>> dashed(curved);
+            const size_t n = a.style.ndash % 2 ? 2 * a.style.ndash : a.style.ndash;
+            for (size_t i = 0; i + 1 < n; i += 2)
+                dashed.add_dash(a.style.dash[i % a.style.ndash],
+                                a.style.dash[(i + 1) % a.style.ndash]);
+            dashed.dash_start(a.style.dashoffset);
+            add_stroke(ras, dashed, a, scale);
+        } else {
+            add_stroke(ras, curved, a, scale);
+        }
+        sweep_over(wk, w, y0, rows);
+    }
+}
+
 /* Fill rows [y0, y0 + rows) of band coverage from the scene's edges. */
 void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, const double *p,
                 int w, int y0, int rows)
 {
+    if (ps.strokes) {
+        band_strokes(wk, scene, p, w, y0, rows);
+        return;
+    }
     size_t ne, nc;
     const aa_edge *e = aa_scene_edges(scene, &ne);
     const size_t *start = aa_scene_contours(scene, &nc);
@@ -222,24 +390,7 @@ void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, cons
         }
         ras.close_polygon();
     }
-    if (!ras.rewind_scanlines())
-        return;
-    wk.sl.reset(ras.min_x(), ras.max_x());
-    while (ras.sweep_scanline(wk.sl)) {
-        int y = wk.sl.y();
-        if (y < y0 || y >= y0 + rows)
-            continue;
-        unsigned char *row = wk.band.data() + (size_t)(y - y0) * (size_t)w;
-        unsigned n = wk.sl.num_spans();
-        agg::scanline_u8::const_iterator span = wk.sl.begin();
-        for (; n; n--, ++span) {
-            int x = span->x, len = span->len;
-            const agg::int8u *covers = span->covers;
-            for (int i = 0; i < len; i++, x++)
-                if (x >= 0 && x < w)
-                    row[x] = covers[i];
-        }
-    }
+    sweep_over(wk, w, y0, rows);
 }
 
 int agg_check(const double *p, const aa_filter *f)
@@ -262,6 +413,16 @@ int agg_init(void *state, const double *p, const aa_job *job)
     int st = aa_peer_scene_read("agg", job, &s->ps);
     if (st)
         return st;
+    size_t nsrc;
+    const aa_stroke_source *src = aa_scene_stroke_sources(job->placed, &nsrc);
+    for (size_t k = 0; k < nsrc; k++) {
+        size_t n = src[k].style.ndash % 2 ? 2 * src[k].style.ndash : src[k].style.ndash;
+        if (n > AGG_MAX_DASHES)
+            return aa_fail(AA_EINVAL,
+                           "agg: a stroke's dash pattern has %zu lengths (an odd count is "
+                           "repeated), more than the %zu AGG's dash generator holds",
+                           n, AGG_MAX_DASHES);
+    }
     for (int k = 0; k < 256; k++)
         s->lut[k] = aa_peer_mix(&s->ps, k / 255.0);
     s->nthreads = job->threads > 0 ? job->threads : 1;

@@ -27,7 +27,14 @@
  * by row (the translation is by whole pixels, exact in its 24.8 fixed
  * point).
  *
- * Limits: grey scenes of at most one layer and the box filter only; 8-bit
+ * Strokes: a layer kept as a stroke (aa_scene_stroke) is stroked by Cairo
+ * itself from its source (cairo_stroke_source: the path under the
+ * source's map, cairo_stroke with its width, join, cap, miter limit and
+ * dashes), not filled from our outline; several strokes of one grey are
+ * painted in turn, OVER each other (peer.h).
+ *
+ * Limits: grey scenes of at most one layer, or of strokes of one grey,
+ * and the box filter only; 8-bit
  * coverage (up to 1/510 from rounding); positions in 24.8 fixed point
  * (1/256 px) and coordinates within Cairo's fixed-point range (about
  * 2^23 px, larger scenes are refused); curves flattened; fast (no
@@ -35,6 +42,7 @@
  */
 #include "methods.h"
 #include "peer.h"
+#include "path.h"
 
 #include <math.h>
 #include <omp.h>
@@ -174,6 +182,72 @@ static int cairo_build_path(cairo_state *s, const aa_scene *scene, double tolera
     return st;
 }
 
+/* A stroke source stroked by Cairo's stroker: the path built in user
+ * units under the source's map (cairo_transform), so that Cairo strokes it
+ * in user space as SVG says (a non-uniform map transforms the pen), with
+ * the source's width, join, cap, miter limit and dashes; quadratic arcs
+ * degree-elevated as above, cubic arcs as themselves, circular and
+ * elliptical arcs by Cairo's arc (cairo_put_arc).  Cairo's stroker offsets
+ * the flattened path (its polygon within `tolerance` of the curve) and
+ * draws round joins and caps as polygons within the tolerance. */
+static void cairo_stroke_source(cairo_t *cr, const aa_stroke_source *src)
+{
+    static const cairo_line_join_t joins[] = {CAIRO_LINE_JOIN_MITER, CAIRO_LINE_JOIN_ROUND,
+                                              CAIRO_LINE_JOIN_BEVEL};
+    static const cairo_line_cap_t caps[] = {CAIRO_LINE_CAP_BUTT, CAIRO_LINE_CAP_ROUND,
+                                            CAIRO_LINE_CAP_SQUARE};
+    const double *m = src->m;
+    cairo_matrix_t cm;
+    cairo_matrix_init(&cm, m[0], m[1], m[2], m[3], m[4], m[5]);
+    cairo_save(cr);
+    cairo_transform(cr, &cm);
+    cairo_new_path(cr);
+    double px = 0, py = 0;
+    for (size_t k = 0; k < src->path.n; k++) {
+        const aa_path_seg *g = &src->path.seg[k];
+        const double *q = g->p;
+        switch (g->op) {
+        case AA_PATH_MOVE:
+            cairo_move_to(cr, q[0], q[1]);
+            px = q[0], py = q[1];
+            break;
+        case AA_PATH_LINE:
+            cairo_line_to(cr, q[0], q[1]);
+            px = q[0], py = q[1];
+            break;
+        case AA_PATH_QUAD:
+            cairo_curve_to(cr, px + 2.0 / 3.0 * (q[0] - px), py + 2.0 / 3.0 * (q[1] - py),
+                           q[2] + 2.0 / 3.0 * (q[0] - q[2]), q[3] + 2.0 / 3.0 * (q[1] - q[3]),
+                           q[2], q[3]);
+            px = q[2], py = q[3];
+            break;
+        case AA_PATH_CUBIC:
+            cairo_curve_to(cr, q[0], q[1], q[2], q[3], q[4], q[5]);
+            px = q[4], py = q[5];
+            break;
+        case AA_PATH_ARC: {
+            aa_edge d = {0};
+            d.x0 = px, d.y0 = py, d.cx = q[0], d.cy = q[1], d.ux = q[2], d.uy = q[3];
+            d.vx = q[4], d.vy = q[5], d.t0 = q[6], d.t1 = q[7], d.x1 = q[8], d.y1 = q[9];
+            d.quad = 3;
+            cairo_put_arc(cr, &d);
+            px = q[8], py = q[9];
+            break;
+        }
+        default:
+            cairo_close_path(cr);
+            break;
+        }
+    }
+    cairo_set_line_width(cr, src->style.width);
+    cairo_set_line_join(cr, joins[src->style.join]);
+    cairo_set_line_cap(cr, caps[src->style.cap]);
+    cairo_set_miter_limit(cr, src->style.miterlimit);
+    cairo_set_dash(cr, src->style.dash, (int)src->style.ndash, src->style.dashoffset);
+    cairo_stroke(cr); /* with the map still the CTM: the pen is in user units */
+    cairo_restore(cr);
+}
+
 static int cairo_init(void *state, const double *p, const aa_job *job)
 {
     cairo_state *s = state;
@@ -230,9 +304,17 @@ static int cairo_render(void *state, const double *p, const aa_job *job, aa_imag
             cairo_set_fill_rule(cr, s->ps.rule == AA_FILL_EVENODD ? CAIRO_FILL_RULE_EVEN_ODD
                                                                   : CAIRO_FILL_RULE_WINDING);
             cairo_translate(cr, 0.0, -(double)y0);
-            cairo_append_path(cr, s->path);
             cairo_set_source_rgba(cr, 0, 0, 0, 1);
-            cairo_fill(cr);
+            if (s->ps.strokes) {
+                /* each stroke from its source, painted OVER the others */
+                size_t nsrc;
+                const aa_stroke_source *src = aa_scene_stroke_sources(job->placed, &nsrc);
+                for (size_t k = 0; k < nsrc; k++)
+                    cairo_stroke_source(cr, &src[k]);
+            } else {
+                cairo_append_path(cr, s->path);
+                cairo_fill(cr);
+            }
             if (cairo_status(cr)) {
 #pragma omp atomic write
                 status = AA_EFAIL;

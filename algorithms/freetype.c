@@ -36,8 +36,22 @@
  * in parallel, one FT_Library per thread (FreeType's rule: a library is not
  * shared between threads).
  *
- * Limits: grey scenes of at most one layer and the box filter only
- * (peer.h); 8-bit coverage (an error of up to 1/510 from rounding alone);
+ * Strokes (aa_scene_stroke): FreeType's stroker (FT_Stroker, ftstroke.c)
+ * works in the outline's pixel space with one radius and has no dashes.
+ * When every stroke of the scene is undashed and mapped by a similarity
+ * (a rotation or reflection times a scale k: then stroking the mapped path
+ * with width k w is the mapped stroke, as SVG defines it), each source's
+ * path is mapped to pixels and given to FT_Stroker (lines, conics, cubics,
+ * arcs as aa_peer_arc_cubics' cubics; FT_STROKER_LINEJOIN_MITER_FIXED for
+ * SVG's miter, a bevel past the limit), which offsets each curve by
+ * cubics it fits itself, draws round joins and caps as arcs of cubics, and
+ * the outlines of all strokes, wound alike, are rendered as one non-zero
+ * outline.  Otherwise (a dashed stroke, or a non-uniform or sheared map,
+ * which FT_Stroker cannot draw) the scene's exact outlines are filled as
+ * any outline, stated here rather than approximated otherwise.
+ *
+ * Limits: grey scenes of at most one layer, or of strokes of one grey
+ * (peer.h), and the box filter only; 8-bit coverage (an error of up to 1/510 from rounding alone);
  * positions rounded to 1/64 px; arcs flattened; at most 32767 points and
  * contours (FT_Outline counts in shorts) and coordinates within 2^17 px:
  * larger scenes are refused.  Nonzero coverage is |accumulated area|
@@ -45,6 +59,7 @@
  * overlap inside a pixel.
  */
 #include "methods.h"
+#include "path.h"
 #include "peer.h"
 
 #include <math.h>
@@ -54,6 +69,7 @@
 #include <ft2build.h>
 #include FT_FREETYPE_H
 #include FT_OUTLINE_H
+#include FT_STROKER_H
 
 #define BAND 32            /* rows per parallel band */
 #define FT_MAX_COORD 131072.0 /* px: the smooth rasterizer fails beyond about 2^18 */
@@ -188,12 +204,194 @@ static int ft_build_outline(ft_state *s, const aa_scene *scene)
     return st;
 }
 
+/* ---- strokes by FT_Stroker ---- */
+
+/* FT_Stroker works in the outline's (device) space with one radius: it
+ * strokes a source exactly as SVG asks only when the source's map is a
+ * similarity (its columns orthogonal and of equal length: a rotation or
+ * reflection times a scale k), where the stroke of the mapped path with
+ * width k w is the mapped stroke; and it has no dashes. */
+static int ft_strokable(const aa_stroke_source *a)
+{
+    const double *m = a->m;
+    const double c0 = m[0] * m[0] + m[1] * m[1], c1 = m[2] * m[2] + m[3] * m[3];
+    const double dot = m[0] * m[2] + m[1] * m[3];
+    return a->style.ndash == 0 && fabs(c0 - c1) <= 1e-12 * (c0 + c1) &&
+           fabs(dot) <= 1e-12 * (c0 + c1);
+}
+
+static FT_Vector ft_map(const double *m, double x, double y)
+{
+    return (FT_Vector){to26_6(m[0] * x + m[2] * y + m[4]), to26_6(m[1] * x + m[3] * y + m[5])};
+}
+
+/* The source's path, mapped to pixels, given to the stroker: lines,
+ * conics, cubics, each circular arc as the cubics of aa_peer_arc_cubics
+ * (peer.h: at most 90 degrees each, within 2.7e-4 of the radius). */
+static FT_Error ft_stroke_path(FT_Stroker k, const aa_stroke_source *a)
+{
+    const double *m = a->m;
+    FT_Error err = 0;
+    int open = 0;
+    double px = 0, py = 0;
+    for (size_t i = 0; i < a->path.n && !err; i++) {
+        const aa_path_seg *g = &a->path.seg[i];
+        const double *q = g->p;
+        if (g->op == AA_PATH_MOVE) {
+            if (open)
+                err = FT_Stroker_EndSubPath(k);
+            /* open unless the subpath ends with a close */
+            size_t j = i + 1;
+            while (j < a->path.n && a->path.seg[j].op != AA_PATH_MOVE &&
+                   a->path.seg[j].op != AA_PATH_CLOSE)
+                j++;
+            int closed = j < a->path.n && a->path.seg[j].op == AA_PATH_CLOSE;
+            FT_Vector v = ft_map(m, q[0], q[1]);
+            if (!err)
+                err = FT_Stroker_BeginSubPath(k, &v, !closed);
+            open = 1, px = q[0], py = q[1];
+            continue;
+        }
+        if (g->op == AA_PATH_CLOSE) {
+            err = FT_Stroker_EndSubPath(k); /* draws the line back to the start */
+            open = 0;
+            continue;
+        }
+        if (g->op == AA_PATH_LINE) {
+            FT_Vector v = ft_map(m, q[0], q[1]);
+            err = FT_Stroker_LineTo(k, &v);
+            px = q[0], py = q[1];
+        } else if (g->op == AA_PATH_QUAD) {
+            FT_Vector c = ft_map(m, q[0], q[1]), v = ft_map(m, q[2], q[3]);
+            err = FT_Stroker_ConicTo(k, &c, &v);
+            px = q[2], py = q[3];
+        } else if (g->op == AA_PATH_CUBIC) {
+            FT_Vector c1 = ft_map(m, q[0], q[1]), c2 = ft_map(m, q[2], q[3]);
+            FT_Vector v = ft_map(m, q[4], q[5]);
+            err = FT_Stroker_CubicTo(k, &c1, &c2, &v);
+            px = q[4], py = q[5];
+        } else { /* an arc, mapped to pixels as aa_path_fill maps it */
+            aa_edge e = {0};
+            e.x0 = m[0] * px + m[2] * py + m[4], e.y0 = m[1] * px + m[3] * py + m[5];
+            e.cx = m[0] * q[0] + m[2] * q[1] + m[4], e.cy = m[1] * q[0] + m[3] * q[1] + m[5];
+            e.ux = m[0] * q[2] + m[2] * q[3], e.uy = m[1] * q[2] + m[3] * q[3];
+            e.vx = m[0] * q[4] + m[2] * q[5], e.vy = m[1] * q[4] + m[3] * q[5];
+            e.t0 = q[6], e.t1 = q[7], e.quad = 3;
+            e.x1 = m[0] * q[8] + m[2] * q[9] + m[4], e.y1 = m[1] * q[8] + m[3] * q[9] + m[5];
+            double c[AA_PEER_ARC_CUBICS][6];
+            int n = aa_peer_arc_cubics(&e, c);
+            for (int r = 0; r < n && !err; r++) {
+                FT_Vector c1 = {to26_6(c[r][0]), to26_6(c[r][1])};
+                FT_Vector c2 = {to26_6(c[r][2]), to26_6(c[r][3])};
+                FT_Vector v = {to26_6(c[r][4]), to26_6(c[r][5])};
+                err = FT_Stroker_CubicTo(k, &c1, &c2, &v);
+            }
+            px = q[8], py = q[9];
+        }
+    }
+    if (open && !err)
+        err = FT_Stroker_EndSubPath(k);
+    return err;
+}
+
+/* Append `add` to s->outline (grown), its orientation made `*want`'s (the
+ * first stroke's): FT_Stroker's borders of one stroke wind one way (a
+ * closed subpath's inner border the other way round inside it), so with
+ * every stroke wound alike no two strokes' windings cancel under the
+ * non-zero rule. */
+static int ft_append(ft_state *s, FT_Outline *add, FT_Orientation *want)
+{
+    FT_Outline *o = &s->outline;
+    FT_Orientation got = FT_Outline_Get_Orientation(add);
+    if (*want == FT_ORIENTATION_NONE)
+        *want = got;
+    else if (got != FT_ORIENTATION_NONE && got != *want)
+        FT_Outline_Reverse(add);
+    const int np = o->n_points + add->n_points, nc = o->n_contours + add->n_contours;
+    if (np > 32767 || nc > 32767)
+        return aa_fail(AA_EINVAL, "freetype: the strokes' outlines have more than 32767 points "
+                                  "or contours, which FreeType's outline cannot hold");
+    FT_Vector *pts = realloc(o->points, (size_t)(np ? np : 1) * sizeof *pts);
+    if (pts)
+        o->points = pts;
+    char *tags = realloc(o->tags, (size_t)(np ? np : 1));
+    if (tags)
+        o->tags = tags;
+    short *cont = realloc(o->contours, (size_t)(nc ? nc : 1) * sizeof *cont);
+    if (cont)
+        o->contours = cont;
+    if (!pts || !tags || !cont)
+        return aa_fail(AA_ENOMEM, "freetype: out of memory for the strokes' outline");
+    memcpy(o->points + o->n_points, add->points, (size_t)add->n_points * sizeof *pts);
+    memcpy(o->tags + o->n_points, add->tags, (size_t)add->n_points);
+    for (int c = 0; c < add->n_contours; c++)
+        o->contours[o->n_contours + c] = (short)(add->contours[c] + o->n_points);
+    o->n_points = (short)np;
+    o->n_contours = (short)nc;
+    return AA_OK;
+}
+
+/* The outline of every stroke by FT_Stroker (radius k w/2 in 26.6, SVG's
+ * joins: MITER_FIXED is the miter that becomes a bevel past the limit,
+ * PostScript's and SVG's), one non-zero outline. */
+static int ft_stroke_outline(ft_state *s, const aa_scene *scene, FT_Library lib)
+{
+    static const FT_Stroker_LineJoin joins[] = {FT_STROKER_LINEJOIN_MITER_FIXED,
+                                                FT_STROKER_LINEJOIN_ROUND,
+                                                FT_STROKER_LINEJOIN_BEVEL};
+    static const FT_Stroker_LineCap caps[] = {FT_STROKER_LINECAP_BUTT, FT_STROKER_LINECAP_ROUND,
+                                              FT_STROKER_LINECAP_SQUARE};
+    size_t nsrc;
+    const aa_stroke_source *src = aa_scene_stroke_sources(scene, &nsrc);
+    FT_Orientation want = FT_ORIENTATION_NONE;
+    FT_Stroker k;
+    if (FT_Stroker_New(lib, &k))
+        return aa_fail(AA_ENOMEM, "freetype: FT_Stroker_New failed");
+    memset(&s->outline, 0, sizeof s->outline);
+    int st = AA_OK;
+    for (size_t i = 0; i < nsrc && !st; i++) {
+        const aa_stroke_source *a = &src[i];
+        const double *m = a->m;
+        const double scale = sqrt(fabs(m[0] * m[3] - m[1] * m[2]));
+        FT_Stroker_Set(k, to26_6(a->style.width * scale / 2), caps[a->style.cap],
+                       joins[a->style.join], (FT_Fixed)lround(a->style.miterlimit * 65536.0));
+        FT_UInt np, nc;
+        FT_Outline out;
+        if (ft_stroke_path(k, a) || FT_Stroker_GetCounts(k, &np, &nc))
+            st = aa_fail(AA_EFAIL, "freetype: FT_Stroker failed on stroke %zu", i);
+        else if (np > 32767 || nc > 32767)
+            st = aa_fail(AA_EINVAL, "freetype: a stroke's outline has more than 32767 points");
+        else if (FT_Outline_New(lib, np, nc, &out))
+            st = aa_fail(AA_ENOMEM, "freetype: out of memory for a stroke's outline");
+        else {
+            out.n_points = out.n_contours = 0;
+            FT_Stroker_Export(k, &out);
+            st = ft_append(s, &out, &want);
+            FT_Outline_Done(lib, &out);
+        }
+        FT_Stroker_Rewind(k);
+    }
+    FT_Stroker_Done(k);
+    s->outline.flags = FT_OUTLINE_NONE; /* non-zero */
+    return st;
+}
+
 static int ft_init(void *state, const double *p, const aa_job *job)
 {
     (void)p;
     ft_state *s = state;
     int st = aa_peer_scene_read("freetype", job, &s->ps);
-    if (!st)
+    /* strokes: FT_Stroker when it can draw every one of them as SVG says,
+     * else the scene's exact outlines filled (freetype.c's header) */
+    int stroker = 0;
+    if (!st && s->ps.strokes) {
+        size_t nsrc;
+        const aa_stroke_source *src = aa_scene_stroke_sources(job->placed, &nsrc);
+        stroker = 1;
+        for (size_t k = 0; k < nsrc; k++)
+            stroker &= ft_strokable(&src[k]);
+    }
+    if (!st && !stroker)
         st = ft_build_outline(s, job->placed);
     if (!st) {
         s->nlib = job->threads > 0 ? job->threads : 1;
@@ -208,6 +406,8 @@ static int ft_init(void *state, const double *p, const aa_job *job)
             if (FT_Init_FreeType(&s->lib[k]))
                 st = aa_fail(AA_EFAIL, "freetype: FT_Init_FreeType failed");
     }
+    if (!st && stroker)
+        st = ft_stroke_outline(s, job->placed, s->lib[0]);
     if (st)
         ft_release(s);
     return st;

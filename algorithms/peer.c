@@ -2,6 +2,7 @@
  * peer.c: the checks and helpers the peer rasterizers share (peer.h).
  */
 #include "peer.h"
+#include "path.h"
 
 #include <math.h>
 
@@ -24,11 +25,32 @@ int aa_peer_scene_read(const char *name, const aa_job *job, aa_peer_scene *ps)
                        "colour with equal R, G and B), and this scene has colour",
                        name);
     int n = aa_scene_layer_count(s);
-    if (n > 1)
-        return aa_fail(AA_EINVAL,
-                       "%s fills one layer: it accepts scenes of at most one layer, and this "
-                       "scene has %d",
-                       name, n);
+    ps->strokes = n > 0 && aa_scene_layer_stroked(s, 0) >= 0;
+    if (n > 1) {
+        /* several layers: only strokes of one grey, all mapped the same
+         * way round (peer.h) */
+        size_t nsrc;
+        const aa_stroke_source *src = aa_scene_stroke_sources(s, &nsrc);
+        int sign = 0;
+        for (int l = 0; l < n; l++) {
+            int k = aa_scene_layer_stroked(s, l);
+            if (k < 0 || aa_scene_layer_colour(s, l).c[0] != aa_scene_layer_colour(s, 0).c[0])
+                return aa_fail(AA_EINVAL,
+                               "%s fills one layer: it accepts scenes of one layer, or of "
+                               "several strokes of one grey, and this scene has %d layers "
+                               "(layer %d is %s)",
+                               name, n, l, k < 0 ? "a fill" : "of another grey");
+            const double *m = src[k].m;
+            int sg = m[0] * m[3] - m[1] * m[2] > 0 ? 1 : -1;
+            if (sign && sg != sign)
+                return aa_fail(AA_EINVAL,
+                               "%s: the strokes of this scene are mapped some mirrored and "
+                               "some not, so their outlines' windings could cancel in one "
+                               "outline",
+                               name);
+            sign = sg;
+        }
+    }
     ps->layers = n;
     ps->bg = aa_scene_background(s).c[0];
     ps->fg = n ? aa_scene_layer_colour(s, 0).c[0] : ps->bg;

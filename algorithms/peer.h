@@ -7,6 +7,17 @@
  * coverage of exactly 0 or 1 gives the colour exactly.  They take grey
  * scenes of at most one layer and the box filter only: anything else is
  * refused with a message (status AA_EINVAL, exit status 2 from the command).
+ *
+ * Strokes (aa_scene_stroke): a scene of several layers is taken when every
+ * layer is a stroke of the same grey and every stroke's map turns the same
+ * way (the sign of its determinant).  Layers of one colour painted over
+ * each other show their union, so the coverage is the union's: the peers
+ * with a stroker of their own (cairo.c, agg.cpp) stroke each source and
+ * composite the coverages (OVER: a + b - a b, what painting them in turn
+ * gives); the others (freetype.c, stb.c) fill the scene's exact outlines
+ * of all the layers as one non-zero outline, which is the union because
+ * every outline's contours turn the same way (aa_stroke_outline), and a
+ * map turns them all alike, so no winding cancels.
  */
 #ifndef AA_PEER_H
 #define AA_PEER_H
@@ -16,8 +27,9 @@
 /* The one layer of a peer's scene. */
 typedef struct aa_peer_scene {
     double bg, fg;     /* grey levels of the background and of the layer */
-    int layers;        /* 0 (background only) or 1 */
-    aa_fill_rule rule; /* the layer's rule (nonzero if no layer) */
+    int layers;        /* 0 (background only), 1, or more (all strokes, above) */
+    aa_fill_rule rule; /* the layer's rule (nonzero if no layer; strokes: nonzero) */
+    int strokes;       /* 1 if the layers are strokes (aa_scene_stroke) */
 } aa_peer_scene;
 
 /* Refuse a filter other than box (`name` is the method, for the message). */

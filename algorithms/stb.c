@@ -35,7 +35,17 @@
  * its thread's BAND x W bytes, so memory is O(width) per thread and bands
  * run in parallel.  Rows do not depend on the band they are in.
  *
- * Limits: grey scenes of at most one layer and the box filter only; 8-bit
+ * Strokes (aa_scene_stroke): stb_truetype has no stroker, so a stroke is
+ * drawn from the scene's exact outline of it (aa_stroke_outline: lines and
+ * circular arcs), filled as any outline, its arcs as the cubics above;
+ * several strokes of one grey are one non-zero outline, their contours all
+ * wound alike (peer.h).  The outline's pieces overlap (a rectangle per
+ * segment, a sector or triangle per join), and stb's coverage, their
+ * accumulated area clamped to 1, is too large in a pixel that two of them
+ * share in part.
+ *
+ * Limits: grey scenes of at most one layer, or of strokes of one grey, and
+ * the box filter only; 8-bit
  * coverage (up to 1/510 from rounding); single-precision geometry (at
  * 4096 px a coordinate's last bit is 2.4e-4 px); curves flattened; nonzero
  * coverage is |accumulated area| clamped to 1, which under-estimates where

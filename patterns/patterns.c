@@ -18,6 +18,7 @@ const aa_pattern_type *const aa_pattern_types[] = {
     &aa_pattern_fence,
     &aa_pattern_dots,
     &aa_pattern_rings,
+    &aa_pattern_strokes,
     &aa_pattern_zoneplate,
     &aa_pattern_svg,
     &aa_pattern_text,

@@ -14,6 +14,7 @@ extern const aa_pattern_type aa_pattern_feibush;
 extern const aa_pattern_type aa_pattern_fence;
 extern const aa_pattern_type aa_pattern_dots;
 extern const aa_pattern_type aa_pattern_rings;
+extern const aa_pattern_type aa_pattern_strokes;
 extern const aa_pattern_type aa_pattern_zoneplate;
 extern const aa_pattern_type aa_pattern_svg;
 extern const aa_pattern_type aa_pattern_text;

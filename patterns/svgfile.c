@@ -36,7 +36,10 @@
  *   - stroke (a colour or none), stroke-width, stroke-linejoin,
  *     stroke-linecap, stroke-miterlimit, stroke-dasharray and
  *     stroke-dashoffset: the stroke is the path's outline in user units
- *     (aa_stroke_outline), a shape of its own after the fill, nonzero.
+ *     (aa_stroke_outline), a shape of its own after the fill, nonzero; the
+ *     pattern keeps it as a stroke (aa_scene_stroke: a layer of its own
+ *     with its source, so that peers stroke it themselves and `export`
+ *     writes it as a stroke).
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (Bezier arcs, arcs of ellipses that are not
@@ -1426,6 +1429,10 @@ static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *s
         st = count_segments(r, out.n);
     if (!st)
         st = give_path(r, &out, m, sty->stroke, AA_FILL_NONZERO);
+    if (!st && out.n && r->sink->stroke) {
+        const double mm[6] = {m->a, m->b, m->c, m->d, m->e, m->f};
+        st = r->sink->stroke(r->ctx, p, &ss, mm);
+    }
     aa_path_free(&out);
     return st;
 }
@@ -1885,11 +1892,22 @@ typedef struct rec_shape {
     aa_rgb colour;
     aa_fill_rule rule;
     size_t first, n;
+    long stroke; /* its source in the recording's strokes, or -1 for a fill */
 } rec_shape;
+
+/* A stroke's source as the reader gave it (its own copies). */
+typedef struct rec_stroke {
+    aa_path path;
+    aa_stroke_style style;
+    double dash[AA_SVG_MAX_DASHES];
+    double m[6];
+} rec_stroke;
 
 typedef struct recording {
     rec_shape *shapes;
     size_t nshapes, capshapes;
+    rec_stroke *strokes;
+    size_t nstrokes, capstrokes;
     rec_op *ops;
     size_t nops, capops;
     double lo[2], hi[2]; /* the bounds of every op's box (op_box) */
@@ -1914,8 +1932,34 @@ static int rec_shape_fn(void *ctx, aa_rgb colour, aa_fill_rule rule)
     recording *r = ctx;
     int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
     if (!st)
-        r->shapes[r->nshapes++] = (rec_shape){colour, rule, r->nops, 0};
+        r->shapes[r->nshapes++] = (rec_shape){colour, rule, r->nops, 0, -1};
     return st;
+}
+
+/* The source of the stroke whose outline was the last shape. */
+static int rec_stroke_fn(void *ctx, const aa_path *path, const aa_stroke_style *ss,
+                         const double m[6])
+{
+    recording *r = ctx;
+    if (!r->nshapes || ss->ndash > AA_SVG_MAX_DASHES)
+        return aa_fail(AA_EFAIL, "a stroke's source without its outline");
+    int st = grow((void **)&r->strokes, &r->capstrokes, r->nstrokes + 1, sizeof *r->strokes);
+    if (st)
+        return st;
+    rec_stroke *k = &r->strokes[r->nstrokes];
+    memset(k, 0, sizeof *k);
+    if (path->n && !(k->path.seg = malloc(path->n * sizeof *path->seg)))
+        return aa_fail(AA_ENOMEM, "out of memory reading an SVG");
+    if (path->n)
+        memcpy(k->path.seg, path->seg, path->n * sizeof *path->seg);
+    k->path.n = k->path.cap = path->n;
+    k->style = *ss;
+    if (ss->ndash)
+        memcpy(k->dash, ss->dash, ss->ndash * sizeof *ss->dash);
+    k->style.dash = ss->ndash ? k->dash : NULL;
+    memcpy(k->m, m, sizeof k->m);
+    r->shapes[r->nshapes - 1].stroke = (long)r->nstrokes++;
+    return AA_OK;
 }
 
 /* A box (x0 y0 x1 y1) holding what the op draws: its points and control
@@ -1989,7 +2033,7 @@ static int rec_arc(void *ctx, double cx, double cy, double ux, double uy, double
 }
 
 static const aa_svg_sink recording_sink = {rec_shape_fn, rec_move,  rec_line, rec_quad,
-                                           rec_cubic,    rec_close, rec_arc};
+                                           rec_cubic,    rec_close, rec_arc,  rec_stroke_fn};
 
 static int svg_check(const double *p)
 {
@@ -2056,7 +2100,18 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         const rec_shape *sh = &rec.shapes[k];
         if (!sh->n)
             continue;
-        int join = group > 0 && group < 256;
+        if (sh->stroke >= 0) {
+            /* a stroke is a layer of its own, its source kept with it: the
+             * outline again, from the source, mapped to the unit square
+             * (x / W, y / H after the reader's map) */
+            const rec_stroke *ks = &rec.strokes[sh->stroke];
+            const double m[6] = {ks->m[0] / w, ks->m[1] / h, ks->m[2] / w,
+                                 ks->m[3] / h, ks->m[4] / w, ks->m[5] / h};
+            st = aa_scene_stroke(s, &ks->path, &ks->style, m, sh->colour);
+            group = 0;
+            continue;
+        }
+        int join = group > 0 && group < 256 && rec.shapes[group_first].stroke < 0;
         const rec_shape *front = join ? &rec.shapes[group_first] : NULL;
         if (join)
             join = front->rule == sh->rule &&
@@ -2103,6 +2158,9 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         st = aa_fail_context(st, "SVG file %s", aa_echo(aa_param_text(p[SVG_FILE])));
     free(rec.shapes);
     free(rec.ops);
+    for (size_t k = 0; k < rec.nstrokes; k++)
+        aa_path_free(&rec.strokes[k].path);
+    free(rec.strokes);
     return st;
 }
 

@@ -10,7 +10,8 @@
  * (exact for Bezier arcs under affine maps; an elliptical arc's centre is
  * mapped as a point and its semi-diameters as vectors, which is exact
  * too).  An element with a stroke gives a second shape after its fill:
- * the stroke's outline, of the stroke's colour, nonzero.  Every subpath
+ * the stroke's outline, of the stroke's colour, nonzero, then its source
+ * to `stroke` (if the sink has one).  Every subpath
  * ends with `close` (a fill closes it).  Anything the exact model cannot
  * hold is refused with AA_EINVAL and a message naming the element and its
  * line.
@@ -19,6 +20,7 @@
 #define AA_SVGFILE_H
 
 #include "core.h"
+#include "path.h"
 
 #include <stddef.h>
 
@@ -35,6 +37,14 @@ typedef struct aa_svg_sink {
      * cy + uy cos t + vy sin t), t from t0 to t1. */
     int (*arc_to)(void *ctx, double cx, double cy, double ux, double uy, double vx, double vy,
                   double t0, double t1, double x, double y);
+    /* Optional (NULL: not told).  Called right after a stroke's outline
+     * was given as a shape (never for a stroke with an empty outline):
+     * what that shape strokes, the path in its user units, the style (its
+     * dashes valid during the call only) and the map m from user units to
+     * pixels (x' = m0 x + m2 y + m4, y' = m1 x + m3 y + m5), so that the
+     * sink can keep the stroke as a stroke (aa_scene_stroke). */
+    int (*stroke)(void *ctx, const aa_path *path, const aa_stroke_style *style,
+                  const double m[6]);
 } aa_svg_sink;
 
 /* Limits: larger or deeper documents are refused. */

@@ -16,6 +16,10 @@
  *            scenes shipped in patterns/svg and text at 12, 16 and 24 ppem,
  *            by area, the sampling methods, the in-process peers and the
  *            external renderers (one not installed is left out)
+ *   strokes  strokes and conics: the `strokes` pattern, `rings`, the shipped
+ *            strokes.svg and arcs.svg, by area, point, supersampling, the
+ *            peers (cairo and agg with their own strokers) and the external
+ *            renderers
  *
  * A suite's groups are cross products; `aabench run` leaves out the pairs a
  * method refuses (a filter it cannot honour, a scene it cannot take) and
@@ -104,7 +108,7 @@ static const aa_suite_group full[] = {
  * made when the library starts; a spec too long to make is left "svg:file="
  * (refused by the pattern when the suite runs). */
 static const char *const svg_names[] = {"mono.svg", "shapes.svg", "rules.svg", "curves.svg",
-                                        "logo.svg"};
+                                        "logo.svg", "strokes.svg", "arcs.svg"};
 #define NSVG (sizeof svg_names / sizeof svg_names[0])
 static char svg_spec[NSVG][AA_PARAM_TEXT_MAX + 32];
 static const char *vector_patterns[] = {"crow",      svg_spec[0], svg_spec[1], svg_spec[2],
@@ -145,6 +149,20 @@ __attribute__((constructor)) static void svg_specs_make(void)
          "adaptive", "freetype", "stb", "cairo", "agg", "agg:scale=100",                          \
          "external:renderer=rsvg", "external:renderer=resvg", "external:renderer=chromium")
 
+/* Strokes and conics: the `strokes` pattern (every join and cap, kept as
+ * strokes, which cairo and agg stroke themselves), the conic moire `rings`,
+ * and the shipped strokes.svg and arcs.svg (colour: the peers leave them
+ * out). */
+static const char *stroke_patterns[] = {"strokes", "rings", svg_spec[5], svg_spec[6], NULL};
+
+#define STROKE_METHODS                                                                            \
+    LIST("area", "point", "supersample:n=4", "freetype", "stb", "cairo", "agg",                  \
+         "external:renderer=rsvg", "external:renderer=resvg", "external:renderer=chromium")
+
+static const aa_suite_group strokes[] = {
+    {stroke_patterns, LIST("256x256"), LIST("box"), STROKE_METHODS},
+    {NULL, NULL, NULL, NULL}};
+
 static const aa_suite_group vector[] = {
     {vector_patterns, LIST("256x256"), LIST("box"), VECTOR_METHODS},
     {LIST("text:ppem=12", "text:ppem=16", "text:ppem=24"), LIST("288x32"), LIST("box"),
@@ -160,6 +178,9 @@ const aa_suite aa_suites[] = {
     {"vector", "crow, the shipped SVG scenes and text at 12, 16 and 24 ppem: area, sampling, "
                "the peers and the external renderers",
      vector},
+    {"strokes", "strokes and conics: the strokes pattern, rings, strokes.svg and arcs.svg: "
+                "area, sampling, the peers' own strokers and the external renderers",
+     strokes},
     {"temporal", "fence, dots, crow and star moving at sub-pixel speeds: temporal metrics",
      aa_suite_temporal_groups},
     {NULL, NULL, NULL}};

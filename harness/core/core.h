@@ -243,7 +243,9 @@ typedef enum aa_svg_paint {
  * elliptical arcs as A, in pieces of at most 90 degrees (svg.c), numbers
  * %.17g;
  * colours as rgb() percentages of the sRGB-encoded linear colour at full
- * precision (svg.c says why).  `desc` (may be NULL) goes in a <desc>.
+ * precision (svg.c says why).  A layer kept as a stroke (aa_scene_stroke)
+ * is written as the stroke: its source's path, fill="none", the stroke's
+ * properties and the source's map as transform="matrix(...)".  `desc` (may be NULL) goes in a <desc>.
  * *text is malloc'd and NUL-terminated, *len its length.  A field scene is
  * refused (AA_EINVAL): it has no paths. */
 int aa_scene_svg(const aa_scene *placed, int w, int h, aa_svg_paint paint, const char *desc,

@@ -101,4 +101,41 @@ void aa_stroke_style_default(aa_stroke_style *st);
  * closed subpaths).  On failure `out` is as it was. */
 int aa_stroke_outline(const aa_path *in, const aa_stroke_style *style, aa_path *out);
 
+/* ---- strokes in the scene model (scene_stroke.c) ----
+ *
+ * A stroke layer is drawn by its exact outline, and the scene keeps what
+ * was stroked, so that a renderer with a stroker of its own (a peer) can
+ * stroke the path itself and `export` can write it as an SVG stroke.  The
+ * outline in the scene and the source always say the same thing: every
+ * operation on the scene (transform, place, clip to the unit square) keeps
+ * the source with it, its map composed and its layer renumbered. */
+typedef struct aa_stroke_source {
+    aa_path path;          /* the path stroked, in its own (user) units */
+    aa_stroke_style style; /* style.dash points to the source's own copy */
+    double m[6];           /* user units to the scene's: x' = m0 x + m2 y + m4,
+                            * y' = m1 x + m3 y + m5 */
+    int layer;             /* the layer holding its outline */
+} aa_stroke_source;
+
+/* Add a front layer of `colour`, non-zero rule, holding the exact outline
+ * of `path` stroked with `st` (aa_stroke_outline, in user units) mapped by
+ * m (NULL: the identity), and keep a copy of path, style (its dashes
+ * included) and map as the layer's stroke source.  What the outline
+ * refuses (Bezier arcs and non-circular arcs until they stroke exactly)
+ * is refused here with its message; on any failure the scene is as it
+ * was. */
+int aa_scene_stroke(aa_scene *s, const aa_path *path, const aa_stroke_style *st,
+                    const double m[6], aa_rgb colour);
+/* The scene's stroke sources, by ascending layer; *n their count. */
+const aa_stroke_source *aa_scene_stroke_sources(const aa_scene *s, size_t *n);
+/* The index of the source stroked into `layer`, or -1 for a filled layer. */
+int aa_scene_layer_stroked(const aa_scene *s, int layer);
+/* A 64-bit hash (FNV-1a) of everything the scene draws and says: the
+ * background, the layers' colours and rules, every edge and contour, the
+ * stroke sources (path, style, dashes, map, layer) and a field with its
+ * parameters and map.  Two scenes that differ in any of them, a stroke's
+ * style alone included (a peer strokes from it), hash differently but for
+ * a collision. */
+unsigned long long aa_scene_hash(const aa_scene *s);
+
 #endif

@@ -78,6 +78,7 @@ void aa_scene_free(aa_scene *s)
     free(s->pieces);
     free(s->bin_start);
     free(s->bin_items);
+    aa__scene_strokes_free(s);
     free(s);
 }
 
@@ -807,6 +808,7 @@ int aa_scene_clip_unit(aa_scene *s)
     s->rule[0] = AA_FILL_EVENODD;
     for (size_t k = 0; k < s->nedges; k++)
         s->edges[k].layer++;
+    aa__scene_strokes_shift(s, 1);
     s->current = 0;
     x0 -= 1, y0 -= 1, x1 += 1, y1 += 1;
     double rect[2][4] = {{x0, y0, x1, y1}, {0, 0, 1, 1}};
@@ -873,6 +875,8 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
             memcpy(t->contour, s->contour, s->ncontours * sizeof *t->contour);
         }
     }
+    if (!st)
+        st = aa__scene_strokes_copy(s, t, sx, sy, tx, ty);
     if (!st && s->field) {
         /* compose the map: the field's point goes to s's, then through this one */
         t->field = s->field;

@@ -6,6 +6,7 @@
 #define AA_SCENE_INTERNAL_H
 
 #include "core.h"
+#include "path.h"
 
 struct aa_scene {
     aa_rgb background;
@@ -40,7 +41,24 @@ struct aa_scene {
     double fparam[AA_FIELD_MAX_PARAMS];
     int fnparam;
     double fmap[4]; /* sx, sy, tx, ty: the field's (x, y) is at (sx x + tx, sy y + ty) */
+
+    /* stroke sources (aa_scene_stroke), in the order of their layers */
+    aa_stroke_source *strokes;
+    size_t nstrokes, capstrokes;
 };
+
+/* scene_source.c: free the sources; copy s's into t with their maps
+ * composed with x' = sx x + tx, y' = sy y + ty; renumber them after a
+ * front layer was inserted (clip to the unit square). */
+void aa__scene_strokes_free(aa_scene *s);
+int aa__scene_strokes_copy(const aa_scene *s, aa_scene *t, double sx, double sy, double tx,
+                           double ty);
+void aa__scene_strokes_shift(aa_scene *s, int by);
+/* Room for `need` sources; a copy of path, style (its dashes) and map as
+ * the source of `layer` into *d (on failure *d is empty). */
+int aa__scene_strokes_reserve(aa_scene *s, size_t need);
+int aa__stroke_source_copy(aa_stroke_source *d, const aa_path *path, const aa_stroke_style *st,
+                           const double m[6], int layer);
 
 /* Call visit(ctx, piece) once for every piece whose closed y range meets
  * [ya, yb]; returns the number of visits that returned non-zero. */

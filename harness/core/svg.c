@@ -62,12 +62,24 @@
  * 1e-4 are written in fixed notation (CSS numbers before CSS Values 3 had
  * no exponent).
  *
+ * Strokes.  A layer the scene keeps as a stroke (aa_scene_stroke) is
+ * written as the stroke, not as its outline: a <path> of the source's path
+ * in its own user units (subpaths open or closed as given, arcs as the A
+ * pieces above) with fill="none", the stroke's colour, stroke-width,
+ * stroke-linejoin, stroke-linecap, stroke-miterlimit, stroke-dasharray and
+ * stroke-dashoffset when it is dashed, and the source's map (user units to
+ * pixels) as transform="matrix(a b c d e f)" (SVG's order: x' = a x + c y
+ * + e, y' = b x + d y + f), so that a renderer strokes it with its own
+ * stroker in user space as SVG says, and the project's reader gives the
+ * same stroke back.
+ *
  * AA_SVG_MASK paints every layer white over a black background: for a scene
  * of one layer the rendered image is that layer's coverage of each pixel,
  * as the renderer computes it.
  */
 #include "core.h"
 #include "c_numbers_internal.h"
+#include "path.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -169,6 +181,77 @@ static void put_layer_data(FILE *f, const aa_scene *s, int layer)
     }
 }
 
+/* A stroke source's path in its own user units: every subpath as given,
+ * open or closed (Z only where the path closes it), arcs as A pieces. */
+static void put_source_data(FILE *f, const aa_path *p)
+{
+    double px = 0, py = 0;
+    for (size_t k = 0; k < p->n; k++) {
+        const aa_path_seg *g = &p->seg[k];
+        const double *q = g->p;
+        const char *sep = k ? " " : "";
+        switch (g->op) {
+        case AA_PATH_MOVE:
+            fprintf(f, "%sM %.17g %.17g", sep, q[0], q[1]);
+            px = q[0], py = q[1];
+            break;
+        case AA_PATH_LINE:
+            fprintf(f, "%sL %.17g %.17g", sep, q[0], q[1]);
+            px = q[0], py = q[1];
+            break;
+        case AA_PATH_QUAD:
+            fprintf(f, "%sQ %.17g %.17g %.17g %.17g", sep, q[0], q[1], q[2], q[3]);
+            px = q[2], py = q[3];
+            break;
+        case AA_PATH_CUBIC:
+            fprintf(f, "%sC %.17g %.17g %.17g %.17g %.17g %.17g", sep, q[0], q[1], q[2], q[3],
+                    q[4], q[5]);
+            px = q[4], py = q[5];
+            break;
+        case AA_PATH_ARC: {
+            aa_edge e = {0};
+            e.x0 = px, e.y0 = py, e.cx = q[0], e.cy = q[1];
+            e.ux = q[2], e.uy = q[3], e.vx = q[4], e.vy = q[5], e.t0 = q[6], e.t1 = q[7];
+            e.x1 = q[8], e.y1 = q[9], e.quad = 3;
+            put_arc(f, &e); /* begins with its own space */
+            px = q[8], py = q[9];
+            break;
+        }
+        default:
+            fprintf(f, "%sZ", sep);
+            break;
+        }
+    }
+}
+
+/* Layer l drawn by its stroke source: the path in user units with the
+ * stroke's properties and the source's map as the path's transform, so
+ * that a renderer strokes it itself, as SVG says (the width in user
+ * units, a non-uniform map transforming the outline). */
+static void put_stroke(FILE *f, const aa_stroke_source *src, int l, aa_rgb colour)
+{
+    static const char *const joins[] = {"miter", "round", "bevel"};
+    static const char *const caps[] = {"butt", "round", "square"};
+    const aa_stroke_style *st = &src->style;
+    fprintf(f, "<path id=\"layer%d\" fill=\"none\" stroke=\"", l);
+    put_colour(f, colour);
+    fprintf(f, "\" stroke-width=\"%.17g\" stroke-linejoin=\"%s\" stroke-linecap=\"%s\" "
+               "stroke-miterlimit=\"%.17g\"",
+            st->width, joins[st->join], caps[st->cap], st->miterlimit);
+    if (st->ndash) {
+        fputs(" stroke-dasharray=\"", f);
+        for (size_t k = 0; k < st->ndash; k++)
+            fprintf(f, "%s%.17g", k ? " " : "", st->dash[k]);
+        fprintf(f, "\" stroke-dashoffset=\"%.17g\"", st->dashoffset);
+    }
+    fputs(" transform=\"matrix(", f);
+    for (int k = 0; k < 6; k++)
+        fprintf(f, "%s%.17g", k ? " " : "", src->m[k]);
+    fputs(")\" d=\"", f);
+    put_source_data(f, &src->path);
+    fputs("\"/>\n", f);
+}
+
 static void put_document(FILE *f, const aa_scene *s, int w, int h, aa_svg_paint paint,
                          const char *desc)
 {
@@ -183,7 +266,15 @@ static void put_document(FILE *f, const aa_scene *s, int w, int h, aa_svg_paint 
     fprintf(f, "<rect x=\"0\" y=\"0\" width=\"%d\" height=\"%d\" fill=\"", w, h);
     put_colour(f, paint == AA_SVG_MASK ? black : aa_scene_background(s));
     fputs("\"/>\n", f);
+    size_t nsrc;
+    const aa_stroke_source *src = aa_scene_stroke_sources(s, &nsrc);
     for (int l = aa_scene_layer_count(s) - 1; l >= 0; l--) {
+        int k = aa_scene_layer_stroked(s, l);
+        if (k >= 0) {
+            put_stroke(f, &src[k], l,
+                       paint == AA_SVG_MASK ? white : aa_scene_layer_colour(s, l));
+            continue;
+        }
         fprintf(f, "<path id=\"layer%d\" fill=\"", l);
         put_colour(f, paint == AA_SVG_MASK ? white : aa_scene_layer_colour(s, l));
         fprintf(f, "\" fill-rule=\"%s\" d=\"",

@@ -110,7 +110,7 @@ static int fz_arc(void *ctx, double cx, double cy, double ux, double uy, double 
 }
 
 static const aa_svg_sink fuzz_svg_sink = {fz_shape, fz_move, fz_line,  fz_quad,
-                                          fz_cubic, fz_close, fz_arc};
+                                          fz_cubic, fz_close, fz_arc,  NULL};
 
 int aa_fuzz_svg(const uint8_t *data, size_t size)
 {
