@@ -29,6 +29,14 @@ int aa_peer_scene_read(const char *name, const aa_job *job, aa_peer_scene *ps)
                        "%s fills one layer: it accepts scenes of at most one layer, and this "
                        "scene has %d",
                        name, n);
+    size_t ne;
+    const aa_edge *e = aa_scene_edges(s, &ne);
+    for (size_t k = 0; k < ne; k++)
+        if (e[k].quad == 4)
+            return aa_fail(AA_EINVAL,
+                           "%s draws outlines of lines, Bezier arcs and elliptical arcs: this "
+                           "scene has the exact offset curves of a stroke, which it cannot take",
+                           name);
     ps->layers = n;
     ps->bg = aa_scene_background(s).c[0];
     ps->fg = n ? aa_scene_layer_colour(s, 0).c[0] : ps->bg;
