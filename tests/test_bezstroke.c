@@ -8,7 +8,9 @@
  *    normals do not cross); the arc length here by GSL's QAG (61-point
  *    Gauss-Kronrod, 1e-15 relative), the area by the box reference
  *    (aa_truth_render) of the outline filled into a scene, summed (a white
- *    shape's box reference sums to its area); to 1e-12;
+ *    shape's box reference sums to its area); to 1e-12; and butt dashes on
+ *    such an arc: width x the dashes' total length, laid out here from the
+ *    arc length;
  *  - a point-in-stroke oracle at random points (seeded), against the
  *    scene's own point query (aa_scene_colour_at: the non-zero winding of
  *    the outline's pieces): for butt caps and one arc, p is in the stroke
@@ -138,6 +140,47 @@ static void test_tube(void **state)
     const double s_curve[8] = {0.15, 0.2, 0.9, 0.25, 0.1, 0.75, 0.85, 0.8};
     tube("gentle S, w 0.05", gentle, 0.05, 64);
     tube("S across, w 0.02", s_curve, 0.02, 64);
+}
+
+/* Dashes by arc length: butt dashes on a gentle arc (curvature radius over
+ * h) are tubes, so the stroke's area is w times the dashes' total length,
+ * counted here from the arc length L (QAG): a pattern (on, off) with
+ * offset o covers, of [0, L], the parts of [j P - o, j P - o + on]. */
+static void test_dashes(void **state)
+{
+    (void)state;
+    const double c[8] = {0.1, 0.5, 0.3, 0.2, 0.7, 0.8, 0.9, 0.45};
+    const double dash[2][3] = {{0.07, 0.03, 0.0}, {0.11, 0.05, 0.04}};
+    double L = arc_length(c), w = 0.02;
+    for (int k = 0; k < 2; k++) {
+        double on = dash[k][0], off = dash[k][1], o = dash[k][2], P = on + off, total = 0;
+        for (int j = 0; j * P - o < L; j++) {
+            double a = fmax(j * P - o, 0), b = fmin(j * P - o + on, L);
+            if (b > a)
+                total += b - a;
+        }
+        aa_path p = {0};
+        aa_stroke_style st;
+        aa_stroke_style_default(&st);
+        st.width = w;
+        st.dash = dash[k];
+        st.ndash = 2;
+        st.dashoffset = o;
+        must(aa_path_move_to(&p, c[0], c[1]));
+        must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
+        aa_scene *s = outline_scene(&p, &st, NULL);
+        support_view v = {.w = 64, .h = 64, .threads = 1};
+        aa_image im;
+        support_reference(s, &v, &im, NULL, NULL);
+        double got = support_channel_mean(&im, 0), want = w * total;
+        print_message("dashes %g %g offset %g: area %.15f, want %.15f (%.1e)\n", on, off, o,
+                      got, want, got - want);
+        if (!(fabs(got - want) < 1e-12))
+            fail_msg("dashes: area %.17g, want %.17g", got, want);
+        aa_image_free(&im);
+        aa_scene_free(s);
+        aa_path_free(&p);
+    }
 }
 
 /* ---- the point-in-stroke oracle ---- */
@@ -325,6 +368,7 @@ static void test_cusp_refused(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_tube),
+                                       cmocka_unit_test(test_dashes),
                                        cmocka_unit_test(test_oracle_butt),
                                        cmocka_unit_test(test_oracle_round),
                                        cmocka_unit_test(test_quadratic),
