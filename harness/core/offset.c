@@ -57,6 +57,32 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
         *dy = m[1] * qx + m[3] * qy;
 }
 
+/* aa__offset_eval in double: the solver's first steps. */
+static void eval_d(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
+                   double *dy)
+{
+    const double *b = oc->b, *m = oc->m;
+    double bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+    double by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+    double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+    double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+    double L = sqrt(ux * ux + uy * uy), c = ux * vy - uy * vx, px, py, qx, qy;
+    if (!oc->evolute) {
+        double f = 1 - oc->d * c / (L * L * L);
+        px = bx - oc->d * uy / L, py = by + oc->d * ux / L;
+        qx = ux * f, qy = uy * f;
+    } else {
+        double cp = ux * 6 * b[7] - uy * 6 * b[3], dot = ux * vx + uy * vy, L2 = L * L;
+        double r = L2 * L / c, rp = L * (3 * dot * c - L2 * cp) / (c * c);
+        px = bx - r * uy / L, py = by + r * ux / L;
+        qx = -rp * uy / L, qy = rp * ux / L;
+    }
+    *x = m[0] * px + m[2] * py + m[4];
+    *y = m[1] * px + m[3] * py + m[5];
+    *dx = m[0] * qx + m[2] * qy;
+    *dy = m[1] * qx + m[3] * qy;
+}
+
 void aa_offset_point(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
                      double *dy)
 {
@@ -114,34 +140,68 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
                              long double fa, long double target)
 {
     /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
-     * (either may be 0).  Newton from the secant-free middle, kept inside
-     * the bracket; bisection where a step leaves it or shrinks it too
-     * slowly; until the bracket is two adjacent numbers or f vanishes. */
-    long double a = ta, b = tb, t = 0.5L * (ta + tb), prev = fabsl(tb - ta);
-    int neg = fa < 0;
+     * (either may be 0).  Newton's method in double from where the chord
+     * meets the target, kept inside the bracket, bisection where a step
+     * leaves it or shrinks it too slowly, until a step is within 1e-15;
+     * then Newton in long double, still bracketed, until a step is within
+     * rounding or the bracket is two adjacent numbers. */
     if (fa == 0)
         return ta;
-    for (int it = 0; it < 200; it++) {
-        long double x, y, dx, dy;
-        aa__offset_eval(oc, t, &x, &y, &dx, &dy);
-        long double f = (coord ? y : x) - target, df = coord ? dy : dx;
+    int neg = fa < 0;
+    double a = (double)ta, b = (double)tb, t = 0.5 * (a + b), prev = fabs(b - a);
+    double tgt = (double)target, x, y, dx, dy;
+    eval_d(oc, b, &x, &y, &dx, &dy);
+    double fb = (coord ? y : x) - tgt;
+    if ((fb < 0) != neg && fb != (double)fa) {
+        double r = (double)fa / ((double)fa - fb);
+        if (r > 0.01 && r < 0.99)
+            t = a + r * (b - a);
+    }
+    for (int it = 0; it < 100; it++) {
+        eval_d(oc, t, &x, &y, &dx, &dy);
+        double f = (coord ? y : x) - tgt, df = coord ? dy : dx;
         if (f == 0)
-            return t;
+            break;
         if ((f < 0) == neg)
             a = t;
         else
             b = t;
-        long double mid = 0.5L * (a + b);
+        double mid = 0.5 * (a + b);
         if (!(mid != a && mid != b))
             break;
-        long double next = df != 0 && isfinite(df) ? t - f / df : mid;
+        double next = df != 0 && isfinite(df) ? t - f / df : mid;
         int inside = a < b ? (next > a && next < b) : (next < a && next > b);
-        if (inside && fabsl(next - t) <= 4 * LDBL_EPSILON * fabsl(t) + 1e-30L)
-            return next;
-        if (!inside || fabsl(next - t) > 0.5L * prev)
+        if (inside && fabs(next - t) <= 1e-15 * fabs(t) + 1e-300) {
+            t = next;
+            break;
+        }
+        if (!inside || fabs(next - t) > 0.5 * prev)
             next = mid;
-        prev = fabsl(next - t);
+        prev = fabs(next - t);
         t = next;
     }
-    return 0.5L * (a + b);
+    /* long double: the bracket is [a, b] (as double) or what is left */
+    long double la = a, lb = b, lt = t;
+    for (int it = 0; it < 8; it++) {
+        long double X, Y, DX, DY;
+        aa__offset_eval(oc, lt, &X, &Y, &DX, &DY);
+        long double f = (coord ? Y : X) - target, df = coord ? DY : DX;
+        if (f == 0)
+            return lt;
+        if ((f < 0) == neg)
+            la = lt;
+        else
+            lb = lt;
+        long double mid = 0.5L * (la + lb);
+        if (!(mid != la && mid != lb))
+            break;
+        long double next = df != 0 && isfinite(df) ? lt - f / df : mid;
+        int inside = la < lb ? (next > la && next < lb) : (next < la && next > lb);
+        if (!inside)
+            next = mid;
+        else if (fabsl(next - lt) <= 4 * LDBL_EPSILON * fabsl(lt) + 1e-30L)
+            return next;
+        lt = next;
+    }
+    return lt;
 }

@@ -612,6 +612,15 @@ static int stroke_bez(aa_path *out, const piece *p, double h)
             continue;
         double kh = bez_curvature(p->b, 0.5 * (u + v)) * h;
         if (kh <= 1 && kh >= -1) {
+            /* consecutive parts without folds are one region: the cuts at
+             * the curvature's extremes matter to the evolute only */
+            while (k + 2 < n) {
+                double w = cut[k + 2], kw = bez_curvature(p->b, 0.5 * (v + w)) * h;
+                if (!(kw <= 1 && kw >= -1))
+                    break;
+                v = w;
+                k++;
+            }
             st = bez_region(out, p->b, u, v, minus, plus, 1);
         } else {
             st = bez_region(out, p->b, u, v, minus, ev, kh > 1);
