@@ -139,6 +139,12 @@ int aa__offset_turns(const aa_offset_curve *oc, int coord, double lo, double hi,
 long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double ta, long double tb,
                              long double fa, long double target)
 {
+    return aa__offset_solve_from(oc, coord, ta, tb, fa, target, NAN);
+}
+
+long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
+                                  long double tb, long double fa, long double target, double guess)
+{
     /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
      * (either may be 0).  Newton's method in double from where the chord
      * meets the target, kept inside the bracket, bisection where a step
@@ -152,7 +158,9 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
     double tgt = (double)target, x, y, dx, dy;
     eval_d(oc, b, &x, &y, &dx, &dy);
     double fb = (coord ? y : x) - tgt;
-    if ((fb < 0) != neg && fb != (double)fa) {
+    if (a < b ? (guess > a && guess < b) : (guess < a && guess > b)) {
+        t = guess; /* a caller's start: the last root on a nearby line */
+    } else if ((fb < 0) != neg && fb != (double)fa) {
         double r = (double)fa / ((double)fa - fb);
         if (r > 0.01 && r < 0.99)
             t = a + r * (b - a);

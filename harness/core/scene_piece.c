@@ -525,6 +525,9 @@ typedef struct meet_ctx {
     const aa_piece *p, *q;
     double *ys;
     int n, max, budget;
+    /* offset pairs: the pieces share their end point at lo (at hi) */
+    double lo, hi;
+    int lo_shared, hi_shared;
 } meet_ctx;
 
 /* 1 if [a, b] is still worth bisecting: room and budget are left and the
@@ -634,6 +637,11 @@ static void subdivide_cubic(meet_ctx *c, double a, double b, int depth)
             record_meet(c, polish_meet(c->p, c->q, a, b, fa), scale);
             return;
         }
+        /* a common end point of both pieces at the interval's end, and no
+         * crossing after it this close: the end itself (a breakpoint
+         * already), not bisected on to 1e-12 */
+        if ((a == c->lo && c->lo_shared) || (b == c->hi && c->hi_shared))
+            return;
     }
     if (depth >= 60 || b - a <= 1e-12 * scale || !(m > a && m < b)) {
         record_meet(c, m, scale);
@@ -672,7 +680,12 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
         p = q, q = t;
     }
     if (p->kind == AA_PIECE_OFFSET || q->kind == AA_PIECE_OFFSET) {
-        meet_ctx c = {p, q, ys, 0, max, 4096};
+        meet_ctx c = {p, q, ys, 0, max, 4096, lo, hi, 0, 0};
+        /* pieces of one outline meet end to end at its vertices */
+        c.lo_shared = (lo == p->y0 || lo == p->y1) && (lo == q->y0 || lo == q->y1) &&
+                      aa_piece_x_at(p, lo) == aa_piece_x_at(q, lo);
+        c.hi_shared = (hi == p->y0 || hi == p->y1) && (hi == q->y0 || hi == q->y1) &&
+                      aa_piece_x_at(p, hi) == aa_piece_x_at(q, hi);
         subdivide_cubic(&c, lo, hi, 0);
         return c.n;
     }
@@ -711,7 +724,7 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
         return m < max ? m : max;
     }
     /* two general arcs (a quartic): bisection on exact extents */
-    meet_ctx c = {p, q, ys, 0, max, 4096};
+    meet_ctx c = {p, q, ys, 0, max, 4096, lo, hi, 0, 0};
     if (cubic)
         subdivide_cubic(&c, lo, hi, 0);
     else

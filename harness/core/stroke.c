@@ -76,7 +76,8 @@
  * offsets, the evolute (exact pieces: aa_offset_curve, AA_PATH_OFFSET) and
  * normal lines; joins and caps are as for lines, with the arcs' end
  * tangents.  Dashes along Bezier arcs by arc length: 16-point
- * Gauss-Legendre on halves until two levels agree to 1e-14, and Newton's
+ * Gauss-Legendre on halves until two levels agree to 1e-15 of the whole
+ * (at most 2048 splits), and Newton's
  * method (kept in a bracket) for the parameter at a length.
  * Refused (AA_EINVAL, naming it): a Bezier arc whose speed |B'| vanishes
  * (within 1e-9 of its size) somewhere on it, a cusp or a control point on
@@ -1002,7 +1003,8 @@ static int bez_piece(const aa_path_seg *g, size_t k, double px, double py, piece
 }
 
 /* Arc length of b from t0 to t1: 16-point Gauss-Legendre on halves until
- * two levels agree to 1e-14 (|B'| is analytic where it does not vanish). */
+ * two levels agree to 1e-15 of the whole (|B'| is analytic where it does
+ * not vanish). */
 static double gl16(const double *b, double a, double c)
 {
     static const double x[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
@@ -1022,17 +1024,23 @@ static double gl16(const double *b, double a, double c)
     return r * s;
 }
 
-static double bez_length_rec(const double *b, double a, double c, double whole, int depth)
+/* Adaptive: halves until two levels agree to tol (absolute, halved with
+ * each split), at most `*budget` splits in all (then the finer level). */
+static double bez_length_rec(const double *b, double a, double c, double whole, double tol,
+                             int *budget)
 {
     double m = 0.5 * (a + c), l = gl16(b, a, m), r = gl16(b, m, c);
-    if (depth >= 30 || fabs(l + r - whole) <= 1e-14 * fabs(l + r))
+    if (fabs(l + r - whole) <= tol || --*budget < 0 || !(m > a && m < c))
         return l + r;
-    return bez_length_rec(b, a, m, l, depth + 1) + bez_length_rec(b, m, c, r, depth + 1);
+    return bez_length_rec(b, a, m, l, 0.5 * tol, budget) +
+           bez_length_rec(b, m, c, r, 0.5 * tol, budget);
 }
 
 static double bez_length(const double *b, double t0, double t1)
 {
-    return bez_length_rec(b, t0, t1, gl16(b, t0, t1), 0);
+    double whole = gl16(b, t0, t1);
+    int budget = 2048;
+    return bez_length_rec(b, t0, t1, whole, 1e-15 * fabs(whole), &budget);
 }
 
 /* The parameter of Bezier piece p at arc length s from its start (0 < s <

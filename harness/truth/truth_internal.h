@@ -34,6 +34,7 @@ typedef struct local_piece {
     int offset;
     const aa_piece *src;
     long double uc, vc, oscale;
+    double hint; /* the parameter of the last crossing (NaN: none): the next one's start */
 } local_piece;
 
 /* The piece p relative to the centre (uc, vc), in extended precision. */

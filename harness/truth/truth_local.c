@@ -110,7 +110,10 @@ long double truth_offset_part(const local_piece *q, long double s)
     if (!(s < q->y1))
         return p->x1 - q->uc;
     long double y = q->vc + s, x, yy;
-    long double t = aa__offset_solve(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y);
+    long double t = aa__offset_solve_from(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y,
+                                          q->hint);
+    /* q belongs to the calling thread's window (not const there) */
+    ((local_piece *)q)->hint = (double)t;
     aa__offset_eval(&p->oc, t, &x, &yy, NULL, NULL);
     return x - q->uc;
 }
@@ -400,7 +403,7 @@ void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long dou
     q->conic = p->kind == AA_PIECE_CONIC;
     q->offset = p->kind == AA_PIECE_OFFSET;
     q->src = p;
-    q->uc = uc, q->vc = vc, q->oscale = 0;
+    q->uc = uc, q->vc = vc, q->oscale = 0, q->hint = NAN;
     if (q->offset) {
         q->x0 = q->ax = q->bx = q->ay = q->by = 0;
         q->ey = q->er = q->ea = q->eb = q->top = q->bot = q->a0 = q->a1 = 0;
