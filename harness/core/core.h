@@ -647,6 +647,9 @@ int aa__offset_turns(const aa_offset_curve *oc, int coord, double lo, double hi,
  * precision. */
 long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double ta, long double tb,
                              long double fa, long double target);
+/* The same in double only, to about 1e-15 (the scene's double queries). */
+double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, double tb, double fa,
+                          double target);
 /* The same started from guess (inside the bracket; NaN: none). */
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
                                   long double tb, long double fa, long double target, double guess);

@@ -142,26 +142,19 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
     return aa__offset_solve_from(oc, coord, ta, tb, fa, target, NAN);
 }
 
-long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
-                                  long double tb, long double fa, long double target, double guess)
+/* The double phase of aa__offset_solve_from: the root to about 1e-15,
+ * the bracket left in *pa, *pb. */
+static double solve_double(const aa_offset_curve *oc, int coord, double a, double b, double fa,
+                           double tgt, double guess, double *pa, double *pb)
 {
-    /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
-     * (either may be 0).  Newton's method in double from where the chord
-     * meets the target, kept inside the bracket, bisection where a step
-     * leaves it or shrinks it too slowly, until a step is within 1e-15;
-     * then Newton in long double, still bracketed, until a step is within
-     * rounding or the bracket is two adjacent numbers. */
-    if (fa == 0)
-        return ta;
     int neg = fa < 0;
-    double a = (double)ta, b = (double)tb, t = 0.5 * (a + b), prev = fabs(b - a);
-    double tgt = (double)target, x, y, dx, dy;
+    double t = 0.5 * (a + b), prev = fabs(b - a), x, y, dx, dy;
     eval_d(oc, b, &x, &y, &dx, &dy);
     double fb = (coord ? y : x) - tgt;
     if (a < b ? (guess > a && guess < b) : (guess < a && guess > b)) {
         t = guess; /* a caller's start: the last root on a nearby line */
-    } else if ((fb < 0) != neg && fb != (double)fa) {
-        double r = (double)fa / ((double)fa - fb);
+    } else if ((fb < 0) != neg && fb != fa) {
+        double r = fa / (fa - fb);
         if (r > 0.01 && r < 0.99)
             t = a + r * (b - a);
     }
@@ -188,6 +181,35 @@ long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long dou
         prev = fabs(next - t);
         t = next;
     }
+    *pa = a, *pb = b;
+    return t;
+}
+
+double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, double tb, double fa,
+                          double target)
+{
+    double a, b;
+    if (fa == 0)
+        return ta;
+    return solve_double(oc, coord, ta, tb, fa, target, NAN, &a, &b);
+}
+
+long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
+                                  long double tb, long double fa, long double target, double guess)
+{
+    /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
+     * (either may be 0).  Newton's method in double from the guess or
+     * where the chord meets the target, kept inside the bracket, bisection
+     * where a step leaves it or shrinks it too slowly, until a step is
+     * within 1e-15; then Newton in long double, still bracketed: a step
+     * within 1e-13 is the last (the error after it is of the order of its
+     * square), else on until the bracket is two adjacent numbers. */
+    if (fa == 0)
+        return ta;
+    int neg = fa < 0;
+    double a, b;
+    double t = solve_double(oc, coord, (double)ta, (double)tb, (double)fa, (double)target, guess,
+                            &a, &b);
     /* long double: the bracket is [a, b] (as double) or what is left */
     long double la = a, lb = b, lt = t;
     for (int it = 0; it < 8; it++) {
@@ -204,10 +226,10 @@ long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long dou
         if (!(mid != la && mid != lb))
             break;
         long double next = df != 0 && isfinite(df) ? lt - f / df : mid;
-        int inside = la < lb ? (next > la && next < lb) : (next < la && next > lb);
+        int inside = la < lb ? (next >= la && next <= lb) : (next <= la && next >= lb);
         if (!inside)
             next = mid;
-        else if (fabsl(next - lt) <= 4 * LDBL_EPSILON * fabsl(lt) + 1e-30L)
+        else if (fabsl(next - lt) <= 1e-13L * fabsl(lt) + 1e-30L)
             return next;
         lt = next;
     }

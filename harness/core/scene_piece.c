@@ -216,7 +216,7 @@ static double offset_t_at(const aa_piece *p, double y)
         return p->ot0;
     if (!(y < p->y1))
         return p->ot1;
-    return (double)aa__offset_solve(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y);
+    return aa__offset_solve_d(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y);
 }
 
 static double offset_x(const aa_piece *p, double t)
@@ -263,9 +263,8 @@ static int offset_meet_x(const aa_piece *p, double x, double ys[3])
         double fa = offset_x(p, ts[k]) - x, fb = offset_x(p, ts[k + 1]) - x;
         if (!((fa < 0 && fb > 0) || (fa > 0 && fb < 0)))
             continue;
-        long double t = aa__offset_solve(&p->oc, 0, ts[k], ts[k + 1], fa, x), X, Y;
-        aa__offset_eval(&p->oc, t, &X, &Y, NULL, NULL);
-        double y = (double)Y;
+        double t = aa__offset_solve_d(&p->oc, 0, ts[k], ts[k + 1], fa, x), X, y;
+        aa_offset_point(&p->oc, t, &X, &y, NULL, NULL);
         if (y > p->y0 && y < p->y1 && (m == 0 || y > ys[m - 1]))
             ys[m++] = y;
     }
