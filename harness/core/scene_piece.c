@@ -650,6 +650,56 @@ static void subdivide_cubic(meet_ctx *c, double a, double b, int depth)
     subdivide_cubic(c, m, b, depth + 1);
 }
 
+/* Pairs with an offset piece: subdivide_cubic with each offset piece's
+ * parameters at the interval's ends carried down (one root-finding per
+ * piece and split, not four). */
+static double param_at(const aa_piece *p, double y)
+{
+    return p->kind == AA_PIECE_OFFSET ? offset_t_at(p, y) : 0.0;
+}
+
+static void range_at(const aa_piece *p, double a, double b, double ta, double tb, double *lo,
+                     double *hi)
+{
+    if (p->kind == AA_PIECE_OFFSET)
+        offset_range(p, ta, tb, lo, hi);
+    else
+        aa_piece_xrange(p, a, b, lo, hi);
+}
+
+static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2],
+                             const double tq[2], int depth)
+{
+    double pa, pb, qa, qb;
+    if (c->n >= c->max || --c->budget < 0)
+        return;
+    range_at(c->p, a, b, tp[0], tp[1], &pa, &pb);
+    range_at(c->q, a, b, tq[0], tq[1], &qa, &qb);
+    double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
+    if (pb < qa - tol || qb < pa - tol)
+        return;
+    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m));
+    if (b - a <= 1e-6 * scale) {
+        double fa = aa_piece_x_at(c->p, a) - aa_piece_x_at(c->q, a);
+        double fb = aa_piece_x_at(c->p, b) - aa_piece_x_at(c->q, b);
+        if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
+            record_meet(c, polish_meet(c->p, c->q, a, b, fa), scale);
+            return;
+        }
+        if ((a == c->lo && c->lo_shared) || (b == c->hi && c->hi_shared))
+            return;
+    }
+    if (depth >= 60 || b - a <= 1e-12 * scale || !(m > a && m < b)) {
+        record_meet(c, m, scale);
+        return;
+    }
+    double pm = param_at(c->p, m), qm = param_at(c->q, m);
+    const double lp[2] = {tp[0], pm}, rp[2] = {pm, tp[1]};
+    const double lq[2] = {tq[0], qm}, rq[2] = {qm, tq[1]};
+    subdivide_offset(c, a, m, lp, lq, depth + 1);
+    subdivide_offset(c, m, b, rp, rq, depth + 1);
+}
+
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys, int max)
 {
     if (!p->dir || !q->dir || max < 1)
@@ -685,7 +735,9 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
                       aa_piece_x_at(p, lo) == aa_piece_x_at(q, lo);
         c.hi_shared = (hi == p->y0 || hi == p->y1) && (hi == q->y0 || hi == q->y1) &&
                       aa_piece_x_at(p, hi) == aa_piece_x_at(q, hi);
-        subdivide_cubic(&c, lo, hi, 0);
+        const double tp[2] = {param_at(p, lo), param_at(p, hi)};
+        const double tq[2] = {param_at(q, lo), param_at(q, hi)};
+        subdivide_offset(&c, lo, hi, tp, tq, 0);
         return c.n;
     }
     if (p->kind == AA_PIECE_LINE && q->kind == AA_PIECE_CONIC)
