@@ -1541,6 +1541,10 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
     const aa_piece *pc = aa_scene_pieces(scene, &n);
     if (n >= UINT32_MAX)
         return aa_fail(AA_EINVAL, "area: %zu pieces, more than it indexes", n);
+    for (size_t k = 0; k < n; k++)
+        if (pc[k].kind == AA_PIECE_OFFSET)
+            return aa_fail(AA_EINVAL, "area: the scene has offset curves of Bezier arcs (a "
+                                      "stroke), whose cell areas it does not integrate yet");
     if (n && !(S->piece = calloc(n, sizeof *S->piece)))
         return aa_fail(AA_ENOMEM, "out of memory for %zu pieces", n);
     S->npieces = n;

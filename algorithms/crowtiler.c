@@ -307,13 +307,13 @@ static double right_exact(const aa_filter *f, const aa_piece *p, double ya, doub
             continue;
         }
         double h = 0.5 * (tb - ta), m = 0.5 * (ta + tb), part = 0.0;
-        int cubic = p->kind == AA_PIECE_CUBIC, ng = cubic ? 6 : 4;
+        /* offset pieces (not polynomials): the 6-point rule, not exact */
+        int cubic = p->kind == AA_PIECE_CUBIC || p->kind == AA_PIECE_OFFSET, ng = cubic ? 6 : 4;
         const double *gx = cubic ? gl6_x : gl4_x, *gw = cubic ? gl6_w : gl4_w;
         for (int g = 0; g < ng; g++) {
             double t = m + h * gx[g];
-            double y = p->y0 + t * (p->by + t * (p->ay + t * p->dy));
-            double x = p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
-            double dy = p->by + t * (2.0 * p->ay + 3.0 * t * p->dy);
+            double x, y, dy;
+            aa__piece_point(p, t, &x, &y, &dy);
             part += gw[g] * aa_filter_weight(f, y - cy) * (1.0 - aa_filter_cdf(f, x - cx)) * dy;
         }
         sum += h * part;

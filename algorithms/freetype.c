@@ -391,6 +391,8 @@ static int ft_init(void *state, const double *p, const aa_job *job)
         for (size_t k = 0; k < nsrc; k++)
             stroker &= ft_strokable(&src[k]);
     }
+    if (!st && !stroker && s->ps.strokes)
+        st = aa_peer_refuse_offsets("freetype", job->placed);
     if (!st && !stroker)
         st = ft_build_outline(s, job->placed);
     if (!st) {

@@ -51,10 +51,33 @@ int aa_peer_scene_read(const char *name, const aa_job *job, aa_peer_scene *ps)
             sign = sg;
         }
     }
+    /* the exact offset curves of a Bezier arc's stroke (edge quad 4): no
+     * peer's outline has them; a peer that strokes the source itself
+     * (ps->strokes) draws the stroke from its path, and one that fills the
+     * outline refuses it (aa_peer_refuse_offsets) */
+    if (!ps->strokes) {
+        int st = aa_peer_refuse_offsets(name, s);
+        if (st)
+            return st;
+    }
     ps->layers = n;
     ps->bg = aa_scene_background(s).c[0];
     ps->fg = n ? aa_scene_layer_colour(s, 0).c[0] : ps->bg;
     ps->rule = n ? aa_scene_layer_rule(s, 0) : AA_FILL_NONZERO;
+    return AA_OK;
+}
+
+int aa_peer_refuse_offsets(const char *name, const aa_scene *s)
+{
+    size_t ne;
+    const aa_edge *e = aa_scene_edges(s, &ne);
+    for (size_t k = 0; k < ne; k++)
+        if (e[k].quad == 4)
+            return aa_fail(AA_EINVAL,
+                           "%s fills outlines of lines, Bezier arcs and elliptical arcs: this "
+                           "scene's outline has the exact offset curves of a Bezier arc's "
+                           "stroke (layer %d), which it cannot take",
+                           name, e[k].layer);
     return AA_OK;
 }
 

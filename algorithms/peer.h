@@ -37,6 +37,9 @@ int aa_peer_check_filter(const char *name, const aa_filter *f);
 /* Read the placed scene of the job, refusing colour scenes and several
  * layers. */
 int aa_peer_scene_read(const char *name, const aa_job *job, aa_peer_scene *ps);
+/* Refuse a scene whose outline has the exact offset curves of a Bezier
+ * arc's stroke (edge quad 4), for the peers that fill the outline. */
+int aa_peer_refuse_offsets(const char *name, const aa_scene *s);
 /* The grey value of coverage a. */
 static inline double aa_peer_mix(const aa_peer_scene *ps, double a)
 {

@@ -222,6 +222,8 @@ static int stb_init(void *state, const double *p, const aa_job *job)
     (void)p;
     stb_state *s = state;
     int st = aa_peer_scene_read("stb", job, &s->ps);
+    if (!st) /* stb fills the strokes' exact outlines too (above) */
+        st = aa_peer_refuse_offsets("stb", job->placed);
     if (!st && s->ps.layers && s->ps.rule == AA_FILL_EVENODD)
         st = stb_check_windings(job->placed);
     size_t nedges, ncont;

@@ -126,6 +126,12 @@ void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double
 static inline void aa__piece_point(const aa_piece *p, double t, double *x, double *y,
                                    double *dydt)
 {
+    if (p->kind == AA_PIECE_OFFSET) {
+        double w = p->ot1 - p->ot0, dx, dy;
+        aa_offset_point(&p->oc, p->ot0 + t * w, x, y, &dx, &dy);
+        *dydt = dy * w;
+        return;
+    }
     if (p->kind == AA_PIECE_CONIC) {
         double w = p->s1 - p->s0, s = p->s0 + t * w, c = cos(s), sn = sin(s);
         *x = p->ex + (p->ea * c + p->eb * sn);
@@ -144,6 +150,18 @@ static inline void aa__piece_point(const aa_piece *p, double t, double *x, doubl
  * -(ea cos s + eb sin s, -er cos s). */
 static inline double aa__piece_bend(const aa_piece *p)
 {
+    if (p->kind == AA_PIECE_OFFSET) {
+        /* no closed form: twice the largest second difference of 16
+         * steps, |P''|/2 ~ |P(t-e) - 2 P(t) + P(t+e)|/(2 e^2) (an estimate
+         * for a flattening tolerance, not a bound) */
+        double best = 0, px[17], py[17], w = p->ot1 - p->ot0;
+        for (int k = 0; k <= 16; k++)
+            aa_offset_point(&p->oc, p->ot0 + w * k / 16.0, &px[k], &py[k], NULL, NULL);
+        for (int k = 1; k < 16; k++)
+            best = fmax(best, hypot(px[k - 1] - 2 * px[k] + px[k + 1],
+                                    py[k - 1] - 2 * py[k] + py[k + 1]));
+        return 256.0 * best; /* |P''|/2 ~ 128 best, doubled */
+    }
     if (p->kind == AA_PIECE_CONIC) {
         double w = p->s1 - p->s0;
         return 0.5 * w * w * (hypot(p->ea, p->eb) + p->er);

@@ -24,7 +24,7 @@ extern "C" {
 
 /* The interface version a plug-in is built for; the command refuses a
  * plug-in built for another.  Raised whenever a type below changes layout. */
-#define AA_PLUGIN_ABI 3
+#define AA_PLUGIN_ABI 4
 
 /* ------------------------------------------------------------------------
  * Status and errors
@@ -140,17 +140,35 @@ typedef enum aa_fill_rule { AA_FILL_NONZERO = 0, AA_FILL_EVENODD = 1 } aa_fill_r
  * ellipse's centre, u and v two conjugate semi-diameters (for a circle of
  * radius r, (r, 0) and (0, r)); (x0, y0) and (x1, y1) are its ends exactly
  * as given, and c2x, c2y are 0. */
+/* A curve at a signed distance along the unit normal of a cubic Bezier arc
+ * (an offset curve), or at its centres of curvature (its evolute), mapped
+ * by an affine map: the exact boundaries of a Bezier arc's stroke
+ * (path.h).  With B(t) = (b[0] + t (b[1] + t (b[2] + t b[3])), b[4] + t
+ * (b[5] + t (b[6] + t b[7]))) in the path's own coordinates, N(t) its unit
+ * normal (-B'y, B'x)/|B'| and k(t) = (B' x B'')/|B'|^3 its signed curvature,
+ * the curve is m(B(t) + d N(t)), or m(B(t) + N(t)/k(t)) for the evolute,
+ * m(x, y) = (m[0] x + m[2] y + m[4], m[1] x + m[3] y + m[5]).  Its
+ * derivative is m(B') (1 - d k), or m(N) (1/k)': offset_eval (core.h). */
+typedef struct aa_offset_curve {
+    double b[8], m[6], d;
+    int evolute;
+} aa_offset_curve;
+
 typedef struct aa_edge {
     double x0, y0, cx, cy, x1, y1;
-    int quad, layer; /* quad: 0 line, 1 quadratic arc, 2 cubic arc, 3 elliptical arc */
+    /* quad: 0 line, 1 quadratic arc, 2 cubic arc, 3 elliptical arc, 4 offset
+     * curve (oc, its parameter from t0 to t1; (x0, y0) and (x1, y1) its ends) */
+    int quad, layer;
     double c2x, c2y;
-    double ux, uy, vx, vy, t0, t1; /* elliptical arcs only */
+    double ux, uy, vx, vy, t0, t1; /* elliptical arcs and offset curves only */
+    aa_offset_curve oc;            /* offset curves only */
 } aa_edge;
 
 /* A y-monotone part of an edge, top to bottom (y0 <= y1); it meets line y when
  * y0 <= y < y1 (a vertex counts once, a flat piece never). */
 typedef enum aa_piece_kind {
-    AA_PIECE_LINE, AA_PIECE_QUAD, AA_PIECE_FLAT, AA_PIECE_CUBIC, AA_PIECE_CONIC } aa_piece_kind;
+    AA_PIECE_LINE, AA_PIECE_QUAD, AA_PIECE_FLAT, AA_PIECE_CUBIC, AA_PIECE_CONIC,
+    AA_PIECE_OFFSET } aa_piece_kind;
 
 typedef struct aa_piece {
     double x0, y0, cx, cy, x1, y1; /* Bezier control points, top to bottom */
@@ -172,6 +190,14 @@ typedef struct aa_piece {
      * ends at one; cx, cy, c2x, c2y, ax, bx, ay, by, dx, dy are 0; xmin,
      * xmax its extent.  aa_piece_t_at gives (s - s0)/(s1 - s0). */
     double ex, ey, er, ea, eb, s0, s1;
+    /* AA_PIECE_OFFSET, a y-monotone part of an offset curve or evolute (oc,
+     * aa_offset_curve) from its parameter ot0 (the top, y0) to ot1 (the
+     * bottom, y1; ot1 < ot0 where the curve runs up): no fold, cusp or
+     * extreme of y inside.  x(y) is the root of y(t) = y, found by Newton's
+     * method safeguarded by bisection; aa_piece_t_at gives
+     * (t - ot0)/(ot1 - ot0).  The power-basis fields are 0. */
+    aa_offset_curve oc;
+    double ot0, ot1;
 } aa_piece;
 
 typedef struct aa_scene aa_scene;
@@ -192,6 +218,10 @@ int aa_scene_is_grey(const aa_scene *s);
  * numbers `wind` (one per layer), or the background. */
 aa_rgb aa_scene_colour_of(const aa_scene *s, const int *wind);
 
+/* The point of an offset curve at parameter t, and its derivative (either
+ * pointer NULL: not wanted) (aa_offset_curve). */
+void aa_offset_point(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
+                     double *dy);
 double aa_piece_x_at(const aa_piece *p, double y);    /* y in [y0, y1] */
 double aa_piece_t_at(const aa_piece *p, double y);    /* parameter at y */
 /* x extent of the part of the piece with y in [ya, yb] (ya <= yb). */

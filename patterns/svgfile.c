@@ -42,8 +42,8 @@
  *     writes it as a stroke).
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
- * cannot draw exactly (Bezier arcs, arcs of ellipses that are not
- * circles), the joins miter-clip and arcs, opacity below 1 (opacity,
+ * cannot draw exactly (Bezier arcs with a cusp, arcs of ellipses that are
+ * not circles), the joins miter-clip and arcs, opacity below 1 (opacity,
  * fill-opacity, stroke-opacity), paint servers (gradients, patterns:
  * url() paints), text, images, <use>, clip paths, masks, filters, style
  * sheets, nested <svg>, units other than px, negative sizes, radii, widths

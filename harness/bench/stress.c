@@ -89,10 +89,12 @@ static int ev_make(const aa_scene *s, int w, int h, ld sx, ld sy, ev_scene *out)
         ld x0 = (ld)w * g->x0 + sx, y0 = (ld)h * g->y0 + sy;
         ld x1 = (ld)w * g->x1 + sx, y1 = (ld)h * g->y1 + sy;
         ld cx = (ld)w * g->cx + sx, cy = (ld)h * g->cy + sy;
-        if (g->quad == 2 || g->quad == 3) {
+        if (g->quad >= 2) {
             free(out->e);
             return aa_fail(AA_EINVAL, "stress: %s (only lines and arcs with x quadratic in y)",
-                           g->quad == 2 ? "a cubic arc" : "an elliptical arc");
+                           g->quad == 2   ? "a cubic arc"
+                           : g->quad == 3 ? "an elliptical arc"
+                                          : "an offset curve");
         }
         if (y0 == y1)
             continue;

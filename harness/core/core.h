@@ -151,6 +151,15 @@ int aa_scene_cubic_to(aa_scene *s, double c1x, double c1y, double c2x, double c2
  * (a degenerate ellipse: draw its lines instead).  t0 == t1 adds nothing. */
 int aa_scene_arc_to(aa_scene *s, double cx, double cy, double ux, double uy, double vx,
                     double vy, double t0, double t1, double x, double y);
+/* An offset curve or evolute of a Bezier arc (aa_offset_curve, in this
+ * scene's coordinates through its map) from the pen to (x, y), its
+ * parameter from t0 to t1 (in [0, 1]); the pen and (x, y) must be its
+ * points there within 1e-9 of their size.  Meant for stroke outlines
+ * (path.h): the curve must have no fold (an offset: d k != 1) nor extreme
+ * of the curvature (an evolute) strictly inside, and B' != 0 on it.
+ * t0 == t1 adds nothing. */
+int aa_scene_offset_to(aa_scene *s, const aa_offset_curve *oc, double t0, double t1, double x,
+                       double y);
 int aa_scene_close(aa_scene *s);
 /* Finish building: split edges into pieces and index them.  Refuses
  * non-finite coordinates.  Queries need a finished scene. */
@@ -627,6 +636,30 @@ const char *aa_svg_dir(void);
  * $XDG_CACHE_HOME/aabench, or ~/.cache/aabench ($HOME); results/cache when
  * neither is set.  The text is valid until the thread's next call. */
 const char *aa_cache_dir_default(void);
+
+/* ---- offset curves of Bezier arcs (offset.c; aabench.h, aa_offset_curve) ---- */
+
+/* The point (x, y) of oc at t and its derivative (dx, dy; either NULL: not
+ * wanted), in long double. */
+void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
+                     long double *dx, long double *dy);
+/* The parameters in (lo, hi) (ascending, at most 2) where coordinate coord
+ * (0 x, 1 y) of oc turns, on a part without folds (an offset) or extremes
+ * of the curvature (an evolute): in closed form. */
+int aa__offset_turns(const aa_offset_curve *oc, int coord, double lo, double hi, double t[2]);
+/* The parameter between ta and tb (either order) where coordinate coord of
+ * oc equals target, given that it is monotone there and fa (its value at
+ * ta less target) has the other sign than at tb: Newton's method kept in
+ * the bracket, bisection where a step leaves it; to full long double
+ * precision. */
+long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double ta, long double tb,
+                             long double fa, long double target);
+/* The same in double only, to about 1e-15 (the scene's double queries). */
+double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, double tb, double fa,
+                          double target);
+/* The same started from guess (inside the bracket; NaN: none). */
+long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
+                                  long double tb, long double fa, long double target, double guess);
 
 #ifdef __cplusplus
 }

@@ -269,6 +269,45 @@ int aa_scene_arc_to(aa_scene *s, double cx, double cy, double ux, double uy, dou
     return AA_OK;
 }
 
+int aa_scene_offset_to(aa_scene *s, const aa_offset_curve *oc, double t0, double t1, double x,
+                       double y)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (!s->open)
+        return aa_fail(AA_EFAIL, "offset_to without move_to");
+    for (int k = 0; k < 8; k++)
+        if (!isfinite(oc->b[k]))
+            return aa_fail(AA_EINVAL, "offset_to: the Bezier arc is not finite");
+    for (int k = 0; k < 6; k++)
+        if (!isfinite(oc->m[k]))
+            return aa_fail(AA_EINVAL, "offset_to: the map is not finite");
+    if (!isfinite(oc->d) || !isfinite(t0) || !isfinite(t1) || !isfinite(x) || !isfinite(y) ||
+        t0 < 0 || t0 > 1 || t1 < 0 || t1 > 1)
+        return aa_fail(AA_EINVAL, "offset_to: distance %g, parameters %g .. %g or end (%g, %g) "
+                                  "out of range",
+                       oc->d, t0, t1, x, y);
+    if (t0 == t1)
+        return AA_OK;
+    double a[2], b[2];
+    aa_offset_point(oc, t0, &a[0], &a[1], NULL, NULL);
+    aa_offset_point(oc, t1, &b[0], &b[1], NULL, NULL);
+    double scale = fabs(a[0]) + fabs(a[1]) + fabs(b[0]) + fabs(b[1]) + hypot(a[0] - b[0], a[1] - b[1]);
+    if (!(hypot(a[0] - s->penx, a[1] - s->peny) <= 1e-9 * scale) ||
+        !(hypot(b[0] - x, b[1] - y) <= 1e-9 * scale))
+        return aa_fail(AA_EINVAL, "offset_to: the curve runs from (%g, %g) to (%g, %g), not from "
+                                  "the pen (%g, %g) to (%g, %g)",
+                       a[0], a[1], b[0], b[1], s->penx, s->peny, x, y);
+    if ((st = aa__add_edge3(s, 0.0, 0.0, 0.0, 0.0, x, y, 4)))
+        return st;
+    aa_edge *e = &s->edges[s->nedges - 1];
+    e->cx = 0.5 * (e->x0 + e->x1), e->cy = 0.5 * (e->y0 + e->y1);
+    e->t0 = t0, e->t1 = t1;
+    e->oc = *oc;
+    return AA_OK;
+}
+
 int aa_scene_close(aa_scene *s)
 {
     int st = check_building(s);
@@ -519,6 +558,67 @@ static int build_conic(aa_scene *s, size_t *cap, const aa_edge *e, size_t k)
     return add_conic_piece(s, cap, e, k, prev_t, hi, prev, last);
 }
 
+/* One y-monotone part of offset edge e from parameter ta (point pa) to tb
+ * (point pb), in the edge's order. */
+static int add_offset_piece(aa_scene *s, size_t *cap, const aa_edge *e, size_t edge, double ta,
+                            double tb, const double *pa, const double *pb)
+{
+    int st = grow((void **)&s->pieces, cap, s->npieces + 1, sizeof *s->pieces);
+    if (st)
+        return st;
+    aa_piece *p = &s->pieces[s->npieces++];
+    memset(p, 0, sizeof *p);
+    int down = pb[1] >= pa[1];
+    const double *top = down ? pa : pb, *bot = down ? pb : pa;
+    p->x0 = top[0], p->y0 = top[1], p->x1 = bot[0], p->y1 = bot[1];
+    p->cx = 0.5 * (p->x0 + p->x1), p->cy = 0.5 * (p->y0 + p->y1);
+    p->layer = e->layer;
+    p->edge = (int)edge;
+    p->oc = e->oc;
+    p->ot0 = down ? ta : tb;
+    p->ot1 = down ? tb : ta;
+    if (!(p->y1 > p->y0)) {
+        p->kind = AA_PIECE_FLAT;
+        p->dir = 0;
+        p->xmin = fmin(p->x0, p->x1);
+        p->xmax = fmax(p->x0, p->x1);
+        return AA_OK;
+    }
+    p->kind = AA_PIECE_OFFSET;
+    p->dir = down ? 1 : -1;
+    p->xmin = fmin(p->x0, p->x1);
+    p->xmax = fmax(p->x0, p->x1);
+    double ts[2];
+    int n = aa__offset_turns(&p->oc, 0, fmin(ta, tb), fmax(ta, tb), ts);
+    for (int j = 0; j < n; j++) {
+        double x, y;
+        aa_offset_point(&p->oc, ts[j], &x, &y, NULL, NULL);
+        p->xmin = fmin(p->xmin, x);
+        p->xmax = fmax(p->xmax, x);
+    }
+    return AA_OK;
+}
+
+/* Split an offset edge at its y turns (closed form: aa__offset_turns). */
+static int build_offset(aa_scene *s, size_t *cap, const aa_edge *e, size_t k)
+{
+    double lo = fmin(e->t0, e->t1), hi = fmax(e->t0, e->t1), ts[2];
+    int n = aa__offset_turns(&e->oc, 1, lo, hi, ts);
+    int fwd = e->t1 > e->t0;
+    double prev_t = e->t0, prev[2] = {e->x0, e->y0};
+    for (int j = 0; j < n; j++) {
+        double t = fwd ? ts[j] : ts[n - 1 - j], at[2];
+        aa_offset_point(&e->oc, t, &at[0], &at[1], NULL, NULL);
+        int st = add_offset_piece(s, cap, e, k, prev_t, t, prev, at);
+        if (st)
+            return st;
+        prev_t = t;
+        prev[0] = at[0], prev[1] = at[1];
+    }
+    const double last[2] = {e->x1, e->y1};
+    return add_offset_piece(s, cap, e, k, prev_t, e->t1, prev, last);
+}
+
 /* Split each edge at its y extrema into monotone pieces. */
 static int build_pieces(aa_scene *s)
 {
@@ -529,6 +629,11 @@ static int build_pieces(aa_scene *s)
         int st;
         if (e->quad == 3) {
             if ((st = build_conic(s, &cap, e, k)))
+                return st;
+            continue;
+        }
+        if (e->quad == 4) {
+            if ((st = build_offset(s, &cap, e, k)))
                 return st;
             continue;
         }
@@ -776,6 +881,20 @@ int aa_scene_clip_unit(aa_scene *s)
     for (size_t k = 0; k < s->nedges; k++) {
         const aa_edge *e = &s->edges[k];
         double lo, hi;
+        if (e->quad == 4) {
+            double ts[2], t0 = fmin(e->t0, e->t1), t1 = fmax(e->t0, e->t1);
+            x0 = fmin(x0, fmin(e->x0, e->x1)), x1 = fmax(x1, fmax(e->x0, e->x1));
+            y0 = fmin(y0, fmin(e->y0, e->y1)), y1 = fmax(y1, fmax(e->y0, e->y1));
+            for (int c = 0; c < 2; c++) {
+                int n = aa__offset_turns(&e->oc, c, t0, t1, ts);
+                for (int j = 0; j < n; j++) {
+                    double x, y;
+                    aa_offset_point(&e->oc, ts[j], &x, &y, NULL, NULL);
+                    x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+                }
+            }
+            continue;
+        }
         if (e->quad == 3) {
             arc_extent(e->cx, e->ux, e->vx, e->x0, e->x1, e->t0, e->t1, &lo, &hi);
             x0 = fmin(x0, lo), x1 = fmax(x1, hi);
@@ -859,7 +978,13 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
                 d->c2x = sx * e->c2x + tx, d->c2y = sy * e->c2y + ty;
             if (e->quad == 3) /* centre mapped above, semi-diameters scaled */
                 d->ux = sx * e->ux, d->uy = sy * e->uy, d->vx = sx * e->vx, d->vy = sy * e->vy;
-            if (!e->quad) { /* keep lines' control points exactly midway */
+            if (e->quad == 4) { /* compose the curve's map with this one */
+                double *m = d->oc.m;
+                const double *o = e->oc.m;
+                m[0] = sx * o[0], m[2] = sx * o[2], m[4] = sx * o[4] + tx;
+                m[1] = sy * o[1], m[3] = sy * o[3], m[5] = sy * o[5] + ty;
+            }
+            if (!e->quad || e->quad == 4) { /* keep lines' control points exactly midway */
                 d->cx = 0.5 * (d->x0 + d->x1);
                 d->cy = 0.5 * (d->y0 + d->y1);
             }

@@ -207,6 +207,70 @@ static int conic_meet_x(const aa_piece *p, double x, double ys[3])
     return m;
 }
 
+/* ---- offset pieces ---- */
+
+/* The parameter of offset piece p at height y (inside its rows). */
+static double offset_t_at(const aa_piece *p, double y)
+{
+    if (!(y > p->y0))
+        return p->ot0;
+    if (!(y < p->y1))
+        return p->ot1;
+    return aa__offset_solve_d(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y);
+}
+
+static double offset_x(const aa_piece *p, double t)
+{
+    if (t == p->ot0)
+        return p->x0;
+    if (t == p->ot1)
+        return p->x1;
+    double x, y;
+    aa_offset_point(&p->oc, t, &x, &y, NULL, NULL);
+    return x;
+}
+
+/* x extent between parameters ta and tb of p: the ends and the x turns
+ * between (closed form). */
+static void offset_range(const aa_piece *p, double ta, double tb, double *xmin, double *xmax)
+{
+    double lo = fmin(ta, tb), hi = fmax(ta, tb), ts[2], xa = offset_x(p, ta), xb = offset_x(p, tb);
+    *xmin = fmin(xa, xb);
+    *xmax = fmax(xa, xb);
+    int n = aa__offset_turns(&p->oc, 0, lo, hi, ts);
+    for (int k = 0; k < n; k++) {
+        double x = offset_x(p, ts[k]);
+        *xmin = fmin(*xmin, x);
+        *xmax = fmax(*xmax, x);
+    }
+}
+
+/* The heights where p meets the vertical line x: on each part between its
+ * x turns, x is monotone and the root is solved for. */
+static int offset_meet_x(const aa_piece *p, double x, double ys[3])
+{
+    double lo = fmin(p->ot0, p->ot1), hi = fmax(p->ot0, p->ot1), ts[4];
+    int n = aa__offset_turns(&p->oc, 0, lo, hi, ts + 1), m = 0;
+    /* in the order of y: from ot0 */
+    if (p->ot0 > p->ot1) {
+        double t = ts[1];
+        if (n == 2)
+            ts[1] = ts[2], ts[2] = t;
+    }
+    ts[0] = p->ot0;
+    ts[n + 1] = p->ot1;
+    for (int k = 0; k <= n && m < 3; k++) {
+        double fa = offset_x(p, ts[k]) - x, fb = offset_x(p, ts[k + 1]) - x;
+        if (!((fa < 0 && fb > 0) || (fa > 0 && fb < 0)))
+            continue;
+        double t = aa__offset_solve_d(&p->oc, 0, ts[k], ts[k + 1], fa, x), X, y;
+        aa_offset_point(&p->oc, t, &X, &y, NULL, NULL);
+        if (y > p->y0 && y < p->y1 && (m == 0 || y > ys[m - 1]))
+            ys[m++] = y;
+    }
+    return m;
+}
+
 /* ---- piece geometry ---- */
 
 double aa_piece_t_at(const aa_piece *p, double y)
@@ -218,6 +282,8 @@ double aa_piece_t_at(const aa_piece *p, double y)
         return 1.0;
     if (p->kind == AA_PIECE_CONIC)
         return (aa__conic_s_at(p, y) - p->s0) / (p->s1 - p->s0);
+    if (p->kind == AA_PIECE_OFFSET)
+        return (offset_t_at(p, y) - p->ot0) / (p->ot1 - p->ot0);
     if (p->kind == AA_PIECE_CUBIC) {
         /* the one root of y(t) - y on [0, 1]: y is monotone there */
         double c[4] = {-d, p->by, p->ay, p->dy};
@@ -253,6 +319,8 @@ double aa_piece_x_at(const aa_piece *p, double y)
         return p->x0;
     if (p->kind == AA_PIECE_CONIC)
         return conic_x_at(p, y);
+    if (p->kind == AA_PIECE_OFFSET)
+        return offset_x(p, offset_t_at(p, y));
     double t = aa_piece_t_at(p, y);
     if (p->kind == AA_PIECE_CUBIC)
         return p->x0 + t * (p->bx + t * (p->ax + t * p->dx));
@@ -278,6 +346,10 @@ void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, doub
     if (p->kind == AA_PIECE_CONIC) {
         conic_range(p, aa__conic_s_at(p, a), conic_x_at(p, a), aa__conic_s_at(p, b),
                     conic_x_at(p, b), xmin, xmax);
+        return;
+    }
+    if (p->kind == AA_PIECE_OFFSET) {
+        offset_range(p, offset_t_at(p, a), offset_t_at(p, b), xmin, xmax);
         return;
     }
     double ta = aa_piece_t_at(p, a), tb = aa_piece_t_at(p, b);
@@ -338,6 +410,8 @@ int aa_piece_meet_x(const aa_piece *p, double x, double ys[3])
     double c = p->x0 - x;
     if (p->kind == AA_PIECE_CONIC)
         return conic_meet_x(p, x, ys);
+    if (p->kind == AA_PIECE_OFFSET)
+        return offset_meet_x(p, x, ys);
     if (p->kind == AA_PIECE_CUBIC) {
         double k[4] = {c, p->bx, p->ax, p->dx};
         return heights(p, ts, aa__poly3_roots(k, 0.0, 1.0, ts), ys);
@@ -450,6 +524,9 @@ typedef struct meet_ctx {
     const aa_piece *p, *q;
     double *ys;
     int n, max, budget;
+    /* offset pairs: the pieces share their end point at lo (at hi) */
+    double lo, hi;
+    int lo_shared, hi_shared;
 } meet_ctx;
 
 /* 1 if [a, b] is still worth bisecting: room and budget are left and the
@@ -498,6 +575,12 @@ static double x_slope(const aa_piece *p, double y, double *slope)
         conic_cs(p, y, &c, &sn);
         *slope = (p->eb * c - p->ea * sn) / (p->er * sn);
         return conic_x_at(p, y);
+    }
+    if (p->kind == AA_PIECE_OFFSET) {
+        double t = offset_t_at(p, y), x, yy, dx, dy;
+        aa_offset_point(&p->oc, t, &x, &yy, &dx, &dy);
+        *slope = dx / dy;
+        return offset_x(p, t);
     }
     double t = aa_piece_t_at(p, y);
     double dx = p->bx + t * (2.0 * p->ax + 3.0 * t * p->dx);
@@ -553,6 +636,11 @@ static void subdivide_cubic(meet_ctx *c, double a, double b, int depth)
             record_meet(c, polish_meet(c->p, c->q, a, b, fa), scale);
             return;
         }
+        /* a common end point of both pieces at the interval's end, and no
+         * crossing after it this close: the end itself (a breakpoint
+         * already), not bisected on to 1e-12 */
+        if ((a == c->lo && c->lo_shared) || (b == c->hi && c->hi_shared))
+            return;
     }
     if (depth >= 60 || b - a <= 1e-12 * scale || !(m > a && m < b)) {
         record_meet(c, m, scale);
@@ -560,6 +648,56 @@ static void subdivide_cubic(meet_ctx *c, double a, double b, int depth)
     }
     subdivide_cubic(c, a, m, depth + 1);
     subdivide_cubic(c, m, b, depth + 1);
+}
+
+/* Pairs with an offset piece: subdivide_cubic with each offset piece's
+ * parameters at the interval's ends carried down (one root-finding per
+ * piece and split, not four). */
+static double param_at(const aa_piece *p, double y)
+{
+    return p->kind == AA_PIECE_OFFSET ? offset_t_at(p, y) : 0.0;
+}
+
+static void range_at(const aa_piece *p, double a, double b, double ta, double tb, double *lo,
+                     double *hi)
+{
+    if (p->kind == AA_PIECE_OFFSET)
+        offset_range(p, ta, tb, lo, hi);
+    else
+        aa_piece_xrange(p, a, b, lo, hi);
+}
+
+static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2],
+                             const double tq[2], int depth)
+{
+    double pa, pb, qa, qb;
+    if (c->n >= c->max || --c->budget < 0)
+        return;
+    range_at(c->p, a, b, tp[0], tp[1], &pa, &pb);
+    range_at(c->q, a, b, tq[0], tq[1], &qa, &qb);
+    double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
+    if (pb < qa - tol || qb < pa - tol)
+        return;
+    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m));
+    if (b - a <= 1e-6 * scale) {
+        double fa = aa_piece_x_at(c->p, a) - aa_piece_x_at(c->q, a);
+        double fb = aa_piece_x_at(c->p, b) - aa_piece_x_at(c->q, b);
+        if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
+            record_meet(c, polish_meet(c->p, c->q, a, b, fa), scale);
+            return;
+        }
+        if ((a == c->lo && c->lo_shared) || (b == c->hi && c->hi_shared))
+            return;
+    }
+    if (depth >= 60 || b - a <= 1e-12 * scale || !(m > a && m < b)) {
+        record_meet(c, m, scale);
+        return;
+    }
+    double pm = param_at(c->p, m), qm = param_at(c->q, m);
+    const double lp[2] = {tp[0], pm}, rp[2] = {pm, tp[1]};
+    const double lq[2] = {tq[0], qm}, rq[2] = {qm, tq[1]};
+    subdivide_offset(c, a, m, lp, lq, depth + 1);
+    subdivide_offset(c, m, b, rp, rq, depth + 1);
 }
 
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys, int max)
@@ -570,7 +708,8 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
     if (!(lo < hi))
         return 0;
     int conic = p->kind == AA_PIECE_CONIC || q->kind == AA_PIECE_CONIC;
-    int cubic = p->kind == AA_PIECE_CUBIC || q->kind == AA_PIECE_CUBIC || conic;
+    int cubic = p->kind == AA_PIECE_CUBIC || q->kind == AA_PIECE_CUBIC || conic ||
+                p->kind == AA_PIECE_OFFSET || q->kind == AA_PIECE_OFFSET;
     if (p->ay == 0.0 && q->ay == 0.0 && !cubic) {
         /* both x quadratic in y: their difference is a quadratic */
         double a0, a1, a2, b0, b1, b2, u[2];
@@ -588,6 +727,18 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
     if (p->kind != AA_PIECE_LINE && q->kind == AA_PIECE_LINE) {
         const aa_piece *t = p;
         p = q, q = t;
+    }
+    if (p->kind == AA_PIECE_OFFSET || q->kind == AA_PIECE_OFFSET) {
+        meet_ctx c = {p, q, ys, 0, max, 4096, lo, hi, 0, 0};
+        /* pieces of one outline meet end to end at its vertices */
+        c.lo_shared = (lo == p->y0 || lo == p->y1) && (lo == q->y0 || lo == q->y1) &&
+                      aa_piece_x_at(p, lo) == aa_piece_x_at(q, lo);
+        c.hi_shared = (hi == p->y0 || hi == p->y1) && (hi == q->y0 || hi == q->y1) &&
+                      aa_piece_x_at(p, hi) == aa_piece_x_at(q, hi);
+        const double tp[2] = {param_at(p, lo), param_at(p, hi)};
+        const double tq[2] = {param_at(q, lo), param_at(q, hi)};
+        subdivide_offset(&c, lo, hi, tp, tq, 0);
+        return c.n;
     }
     if (p->kind == AA_PIECE_LINE && q->kind == AA_PIECE_CONIC)
         return line_conic(p, q, lo, hi, ys, max);
@@ -624,7 +775,7 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
         return m < max ? m : max;
     }
     /* two general arcs (a quartic): bisection on exact extents */
-    meet_ctx c = {p, q, ys, 0, max, 4096};
+    meet_ctx c = {p, q, ys, 0, max, 4096, lo, hi, 0, 0};
     if (cubic)
         subdivide_cubic(&c, lo, hi, 0);
     else

@@ -1,7 +1,8 @@
 /*
  * stroke.c: the stroke outline of a path (path.h, aa_stroke_outline): the
  * SVG 2 stroke shape ("Stroke shape", with stroke-linejoin, -linecap,
- * -miterlimit and dashing) of a path of lines and circular arcs, exactly,
+ * -miterlimit and dashing) of a path of lines, circular arcs and Bezier
+ * arcs (the last below), exactly,
  * as a union of simple closed contours of lines and circular arcs that all
  * turn the same way (positive signed area), so that the non-zero rule
  * fills exactly their union.
@@ -56,9 +57,34 @@
  *    dash through it (from 0 and to the length) is one dash, joined there,
  *    and a dash over the whole subpath leaves it closed; a dash of zero
  *    length is its caps in the path's direction there.
- * Refused (AA_EINVAL, naming it): Bezier arcs and elliptical arcs that are
- * not circles, whose offset curves are not lines or circles; a subpath of
- * more than DASH_MAX (10000) dashes.
+ *
+ * Bezier arcs (quadratics raised to cubics, exactly, in the power basis):
+ * the region swept by the normal of length 2h is the image of
+ * [t0, t1] x [-h, h] under F(t, s) = B(t) + s N(t), whose Jacobian is
+ * |B'| (1 - s k(t)) (N the unit normal (-B'y, B'x)/|B'|, k the signed
+ * curvature B' x B'' / |B'|^3).  By the degree of a map, the winding
+ * number about p of the image of the boundary of a region where the
+ * Jacobian has one sign, taken the positive way in (t, s) where it is
+ * positive and the other way where it is negative, is the number of
+ * preimages of p in the region: at least 0.  So the arc is cut where
+ * |k| h = 1 and at the extremes of k (a polynomial of degree 6 in t, its
+ * sign changes isolated between those of its derivatives), and each part
+ * is one region between the offsets at -h and h where |k| h <= 1, or two,
+ * split at the evolute s = 1/k, where the offset folds: the non-zero union
+ * of these contours is exactly the swept region, however the offsets fold
+ * or loop, and none of them need be simple.  Their boundaries are the
+ * offsets, the evolute (exact pieces: aa_offset_curve, AA_PATH_OFFSET) and
+ * normal lines; joins and caps are as for lines, with the arcs' end
+ * tangents.  Dashes along Bezier arcs by arc length: 16-point
+ * Gauss-Legendre on halves until two levels agree to 1e-15 of the whole
+ * (at most 2048 splits), and Newton's
+ * method (kept in a bracket) for the parameter at a length.
+ * Refused (AA_EINVAL, naming it): a Bezier arc whose speed |B'| vanishes
+ * (within 1e-9 of its size) somewhere on it, a cusp or a control point on
+ * an end, where the normal is undefined (SVG 2 takes an end's direction
+ * from the next distinct control point; not done here); elliptical arcs
+ * that are not circles, whose offset curves are not lines or circles; a
+ * subpath of more than DASH_MAX (10000) dashes.
  */
 #include "path.h"
 
@@ -212,7 +238,8 @@ static int emit_polygon(aa_path *out, const double *xy, int n)
 /* ---- pieces: the segments of non-zero length ---- */
 
 typedef struct piece {
-    int arc;
+    int arc, bez;                          /* bez: a Bezier arc, b, t from t0 to t1 */
+    double b[8];                           /* its power basis (aa_offset_curve) */
     double x0, y0, x1, y1;                 /* ends */
     double dx, dy;                         /* lines: the unit direction */
     double cx, cy, ux, uy, vx, vy, t0, t1; /* arcs: a circle, |u| = |v| = r */
@@ -243,6 +270,14 @@ static int pieces_push(pieces *ps, const piece *p)
  * equal ends after rounding); an arc's never vanishes (u, v not parallel). */
 static void piece_tangent(const piece *p, int at_end, double d[2])
 {
+    if (p->bez) {
+        double t = at_end ? p->t1 : p->t0;
+        double x = p->b[1] + t * (2 * p->b[2] + 3 * t * p->b[3]);
+        double y = p->b[5] + t * (2 * p->b[6] + 3 * t * p->b[7]), l = hypot(x, y);
+        d[0] = x / l;
+        d[1] = y / l;
+        return;
+    }
     if (!p->arc) {
         d[0] = p->dx;
         d[1] = p->dy;
@@ -258,11 +293,25 @@ static void piece_tangent(const piece *p, int at_end, double d[2])
 
 /* The part of a piece from arc length a to b (0 <= a < b <= len), ends
  * exact where they are the piece's. */
+static double bez_length(const double *b, double t0, double t1);
+static double bez_t_at(const piece *p, double s);
+
 static piece piece_part(const piece *p, double a, double b)
 {
     piece q = *p;
     double fa = a / p->len, fb = b / p->len;
-    if (!p->arc) {
+    if (p->bez) {
+        if (a > 0) {
+            q.t0 = bez_t_at(p, a);
+            q.x0 = p->b[0] + q.t0 * (p->b[1] + q.t0 * (p->b[2] + q.t0 * p->b[3]));
+            q.y0 = p->b[4] + q.t0 * (p->b[5] + q.t0 * (p->b[6] + q.t0 * p->b[7]));
+        }
+        if (b < p->len) {
+            q.t1 = bez_t_at(p, b);
+            q.x1 = p->b[0] + q.t1 * (p->b[1] + q.t1 * (p->b[2] + q.t1 * p->b[3]));
+            q.y1 = p->b[4] + q.t1 * (p->b[5] + q.t1 * (p->b[6] + q.t1 * p->b[7]));
+        }
+    } else if (!p->arc) {
         if (a > 0)
             q.x0 = p->x0 + fa * (p->x1 - p->x0), q.y0 = p->y0 + fa * (p->y1 - p->y0);
         if (b < p->len)
@@ -345,8 +394,248 @@ static int stroke_arc(aa_path *out, const piece *p, double h)
     return st;
 }
 
+/* ---- Bezier arcs ---- */
+
+/* Polynomials in t, coefficients from the constant term, degree < PDEG. */
+#define PDEG 8
+
+static void pmul(const double *a, int na, const double *b, int nb, double *c)
+{
+    for (int k = 0; k < na + nb - 1; k++)
+        c[k] = 0;
+    for (int i = 0; i < na; i++)
+        for (int j = 0; j < nb; j++)
+            c[i + j] += a[i] * b[j];
+}
+
+static double peval(const double *p, int n, double t)
+{
+    double r = 0;
+    for (int k = n - 1; k >= 0; k--)
+        r = r * t + p[k];
+    return r;
+}
+
+/* The roots in (lo, hi), ascending, where p (n coefficients) changes sign:
+ * between the roots of its derivative (found the same way) it is
+ * monotone, and bisection finds each to full precision. */
+static int sign_roots(const double *p, int n, double lo, double hi, double *r)
+{
+    while (n > 0 && p[n - 1] == 0)
+        n--;
+    if (n <= 1)
+        return 0;
+    double dp[PDEG], crit[PDEG];
+    for (int k = 0; k + 1 < n; k++)
+        dp[k] = (k + 1) * p[k + 1];
+    int m = n > 2 ? sign_roots(dp, n - 1, lo, hi, crit) : 0, cnt = 0;
+    double a = lo, fa = peval(p, n, lo);
+    for (int k = 0; k <= m; k++) {
+        double b = k < m ? crit[k] : hi, fb = peval(p, n, b);
+        if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) {
+            double x = a, y = b, fx = fa;
+            for (int it = 0; it < 200; it++) {
+                double mid = 0.5 * (x + y);
+                if (!(mid > x && mid < y))
+                    break;
+                double fm = peval(p, n, mid);
+                if (fm == 0) {
+                    x = y = mid;
+                    break;
+                }
+                if ((fm < 0) == (fx < 0))
+                    x = mid, fx = fm;
+                else
+                    y = mid;
+            }
+            r[cnt++] = 0.5 * (x + y);
+        }
+        a = b, fa = fb;
+    }
+    return cnt;
+}
+
+/* B' x B'' of the arc with power basis b, and its curvature at t. */
+static double bez_curvature(const double *b, double t)
+{
+    double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+    double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+    double L = hypot(ux, uy);
+    return (ux * vy - uy * vx) / (L * L * L);
+}
+
+/* The extremes of the curvature in (lo, hi): the roots of
+ * c' |B'|^2 - 3 c (B' . B''), c = B' x B'' (degree 6 at most). */
+static int bez_curvature_turns(const double *b, double lo, double hi, double *r)
+{
+    const double ux[3] = {b[1], 2 * b[2], 3 * b[3]}, uy[3] = {b[5], 2 * b[6], 3 * b[7]};
+    const double vx[2] = {2 * b[2], 6 * b[3]}, vy[2] = {2 * b[6], 6 * b[7]};
+    const double wx[1] = {6 * b[3]}, wy[1] = {6 * b[7]};
+    double c[PDEG] = {0}, cp[PDEG] = {0}, l2[PDEG] = {0}, dot[PDEG] = {0}, t1[PDEG], t2[PDEG];
+    double g[PDEG] = {0};
+    pmul(ux, 3, vy, 2, t1), pmul(uy, 3, vx, 2, t2);
+    for (int k = 0; k < 4; k++)
+        c[k] = t1[k] - t2[k];
+    pmul(ux, 3, wy, 1, t1), pmul(uy, 3, wx, 1, t2);
+    for (int k = 0; k < 3; k++)
+        cp[k] = t1[k] - t2[k];
+    pmul(ux, 3, ux, 3, t1), pmul(uy, 3, uy, 3, t2);
+    for (int k = 0; k < 5; k++)
+        l2[k] = t1[k] + t2[k];
+    pmul(ux, 3, vx, 2, t1), pmul(uy, 3, vy, 2, t2);
+    for (int k = 0; k < 4; k++)
+        dot[k] = t1[k] + t2[k];
+    pmul(cp, 3, l2, 5, t1);
+    pmul(c, 4, dot, 4, t2);
+    for (int k = 0; k < 7; k++)
+        g[k] = t1[k] - 3 * t2[k];
+    return sign_roots(g, 7, lo, hi, r);
+}
+
+/* The point of arc b at t at distance s along its normal (s = NAN: at its
+ * centre of curvature, the evolute). */
+static void bez_point(const double *b, double t, int evolute, double d, double *x, double *y)
+{
+    aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, d, evolute};
+    memcpy(oc.b, b, sizeof oc.b);
+    aa_offset_point(&oc, t, x, y, NULL, NULL);
+}
+
+/* One boundary of a region: the offset at d, or the evolute. */
+typedef struct side {
+    int evolute;
+    double d;
+} side;
+
+/* The region {B(t) + s N(t): u <= t <= v, s between side lo and side hi}
+ * with the Jacobian |B'| (1 - s k) of one sign (positive: pos), as a
+ * contour turning the positive way: the boundary in (t, s) taken
+ * counterclockwise where the Jacobian is positive, clockwise where it is
+ * negative, so that its winding number about a point is the number of the
+ * point's preimages in the region (the degree of the map). */
+static int bez_region(aa_path *out, const double *b, double u, double v, side lo, side hi, int pos)
+{
+    aa_offset_curve cl = {{0}, {1, 0, 0, 1, 0, 0}, lo.d, lo.evolute}, ch = cl;
+    memcpy(cl.b, b, sizeof cl.b);
+    ch.d = hi.d, ch.evolute = hi.evolute;
+    memcpy(ch.b, b, sizeof ch.b);
+    double lu[2], lv[2], hu[2], hv[2];
+    bez_point(b, u, lo.evolute, lo.d, &lu[0], &lu[1]);
+    bez_point(b, v, lo.evolute, lo.d, &lv[0], &lv[1]);
+    bez_point(b, u, hi.evolute, hi.d, &hu[0], &hu[1]);
+    bez_point(b, v, hi.evolute, hi.d, &hv[0], &hv[1]);
+    int st = aa_path_move_to(out, lu[0], lu[1]);
+    if (pos) {
+        if (!st)
+            st = aa_path_offset_to(out, &cl, u, v, lv[0], lv[1]);
+        if (!st)
+            st = aa_path_line_to(out, hv[0], hv[1]);
+        if (!st)
+            st = aa_path_offset_to(out, &ch, v, u, hu[0], hu[1]);
+    } else {
+        if (!st)
+            st = aa_path_line_to(out, hu[0], hu[1]);
+        if (!st)
+            st = aa_path_offset_to(out, &ch, u, v, hv[0], hv[1]);
+        if (!st)
+            st = aa_path_line_to(out, lv[0], lv[1]);
+        if (!st)
+            st = aa_path_offset_to(out, &cl, v, u, lu[0], lu[1]);
+    }
+    return st ? st : aa_path_close(out);
+}
+
+/* The region swept by the normal of length 2h on a Bezier arc (SVG 2's
+ * union of the normal segments), as contours whose union under the
+ * non-zero rule is exactly that region, folds of the offsets included.
+ * F(t, s) = B(t) + s N(t) on [t0, t1] x [-h, h] has Jacobian
+ * |B'| (1 - s k(t)): the parameter is cut where |k| h = 1 and, for the
+ * evolute's sake, at the extremes of k (between them k is monotone, so
+ * each of k = 1/h and k = -1/h has at most one root there, bisected).  On a
+ * part where |k| h <= 1 the Jacobian is positive on the whole strip: one
+ * region between the offsets at -h and h.  Where k h > 1 it changes sign
+ * at s = 1/k, the evolute: two regions, [-h, 1/k] (positive) and [1/k, h]
+ * (negative); where k h < -1 the same with the signs swapped.  Each region
+ * contributes its number of preimages of a point, at least 0, so the
+ * winding number of all of them is positive exactly on the image. */
+static int stroke_bez(aa_path *out, const piece *p, double h)
+{
+    double cut[32], turns[8];
+    int n = 0, nt = bez_curvature_turns(p->b, p->t0, p->t1, turns);
+    double knots[10];
+    int nk = 0;
+    knots[nk++] = p->t0;
+    for (int k = 0; k < nt; k++)
+        knots[nk++] = turns[k];
+    knots[nk++] = p->t1;
+    cut[n++] = p->t0;
+    for (int k = 0; k + 1 < nk; k++) {
+        double a = knots[k], bnd = knots[k + 1], roots[2];
+        int nr = 0;
+        for (int sg = -1; sg <= 1; sg += 2) {
+            double target = sg / h, fa = bez_curvature(p->b, a) - target;
+            double fb = bez_curvature(p->b, bnd) - target;
+            if (!((fa < 0 && fb > 0) || (fa > 0 && fb < 0)))
+                continue;
+            double x = a, y = bnd;
+            for (int it = 0; it < 200; it++) {
+                double mid = 0.5 * (x + y);
+                if (!(mid > x && mid < y))
+                    break;
+                double fm = bez_curvature(p->b, mid) - target;
+                if ((fm < 0) == (fa < 0))
+                    x = mid;
+                else
+                    y = mid;
+            }
+            roots[nr++] = 0.5 * (x + y);
+        }
+        /* k is monotone here: k = 1/h and k = -1/h come in either order */
+        if (nr == 2 && roots[0] > roots[1]) {
+            double tmp = roots[0];
+            roots[0] = roots[1], roots[1] = tmp;
+        }
+        for (int j = 0; j < nr; j++)
+            if (n < 30 && roots[j] > cut[n - 1])
+                cut[n++] = roots[j];
+        if (k + 1 < nk - 1 && n < 30 && knots[k + 1] > cut[n - 1])
+            cut[n++] = knots[k + 1];
+    }
+    if (p->t1 > cut[n - 1])
+        cut[n++] = p->t1;
+    else
+        cut[n - 1] = p->t1;
+    int st = AA_OK;
+    const side minus = {0, -h}, plus = {0, h}, ev = {1, 0};
+    for (int k = 0; k + 1 < n && !st; k++) {
+        double u = cut[k], v = cut[k + 1];
+        if (!(v > u))
+            continue;
+        double kh = bez_curvature(p->b, 0.5 * (u + v)) * h;
+        if (kh <= 1 && kh >= -1) {
+            /* consecutive parts without folds are one region: the cuts at
+             * the curvature's extremes matter to the evolute only */
+            while (k + 2 < n) {
+                double w = cut[k + 2], kw = bez_curvature(p->b, 0.5 * (v + w)) * h;
+                if (!(kw <= 1 && kw >= -1))
+                    break;
+                v = w;
+                k++;
+            }
+            st = bez_region(out, p->b, u, v, minus, plus, 1);
+        } else {
+            st = bez_region(out, p->b, u, v, minus, ev, kh > 1);
+            if (!st)
+                st = bez_region(out, p->b, u, v, ev, plus, kh < -1);
+        }
+    }
+    return st;
+}
+
 static int stroke_piece(aa_path *out, const piece *p, double h)
 {
+    if (p->bez)
+        return stroke_bez(out, p, h);
     return p->arc ? stroke_arc(out, p, h) : stroke_line(out, p, h);
 }
 
@@ -645,6 +934,141 @@ static int line_piece(double x0, double y0, double x1, double y1, piece *p)
     return AA_OK;
 }
 
+/* A Bezier arc from (px, py) in power basis.  Its speed |B'| must not
+ * vanish on [0, 1] (a cusp, or an end whose control point is on it, has
+ * no normal there): refused, within 1e-9 of the arc's size.  A straight
+ * arc (control points on a line) is stroked as it is, its offsets lines in
+ * effect.  Its length is by Gauss-Legendre quadrature (bez_length). */
+static double bez_length(const double *b, double t0, double t1);
+
+static int bez_piece(const aa_path_seg *g, size_t k, double px, double py, piece *p)
+{
+    memset(p, 0, sizeof *p);
+    const double *v = g->p;
+    double *b = p->b;
+    p->bez = 1;
+    p->x0 = px, p->y0 = py;
+    if (g->op == AA_PATH_QUAD) {
+        p->x1 = v[2], p->y1 = v[3];
+        for (int c = 0; c < 2; c++) {
+            double a = c ? py : px, q = v[c], e = v[2 + c];
+            b[4 * c] = a, b[4 * c + 1] = 2 * (q - a), b[4 * c + 2] = a - 2 * q + e;
+            b[4 * c + 3] = 0;
+        }
+    } else {
+        p->x1 = v[4], p->y1 = v[5];
+        for (int c = 0; c < 2; c++) {
+            double a = c ? py : px, q = v[c], r = v[2 + c], e = v[4 + c];
+            b[4 * c] = a, b[4 * c + 1] = 3 * (q - a), b[4 * c + 2] = 3 * (a - 2 * q + r);
+            b[4 * c + 3] = (e - a) + 3 * (q - r);
+        }
+    }
+    p->t0 = 0, p->t1 = 1;
+    double size = 0, lo = INFINITY;
+    for (int j = 1; j < 8; j++)
+        if (j != 4)
+            size += fabs(b[j]);
+    if (!isfinite(size))
+        return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
+    if (size == 0)
+        return AA_OK; /* all its points equal: of length 0 */
+    /* the least speed: |B'|^2 is a quartic; sampled densely and refined by
+     * the roots of its derivative would be exact, but a cusp makes both
+     * coordinates' quadratics share a root, which this finds as well */
+    for (int j = 0; j <= 1024; j++) {
+        double t = j / 1024.0;
+        double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+        lo = fmin(lo, hypot(ux, uy));
+    }
+    double r[4];
+    const double qx[3] = {b[1], 2 * b[2], 3 * b[3]}, qy[3] = {b[5], 2 * b[6], 3 * b[7]};
+    double l2[5];
+    double t1[5], t2[5];
+    pmul(qx, 3, qx, 3, t1), pmul(qy, 3, qy, 3, t2);
+    for (int j = 0; j < 5; j++)
+        l2[j] = t1[j] + t2[j];
+    double dl[4] = {l2[1], 2 * l2[2], 3 * l2[3], 4 * l2[4]};
+    int nr = sign_roots(dl, 4, 0, 1, r);
+    for (int j = 0; j < nr; j++)
+        lo = fmin(lo, sqrt(fmax(peval(l2, 5, r[j]), 0)));
+    if (!(lo > 1e-9 * size))
+        return aa_fail(AA_EINVAL, "stroke: segment %zu is a Bezier arc whose direction is "
+                                  "undefined somewhere (a cusp, or a control point on an end: "
+                                  "speed %g): its stroke is not drawn",
+                       k, lo);
+    p->len = bez_length(b, 0, 1);
+    if (!isfinite(p->len))
+        return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
+    return AA_OK;
+}
+
+/* Arc length of b from t0 to t1: 16-point Gauss-Legendre on halves until
+ * two levels agree to 1e-15 of the whole (|B'| is analytic where it does
+ * not vanish). */
+static double gl16(const double *b, double a, double c)
+{
+    static const double x[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
+                                0.6178762444026438, 0.7554044083550030, 0.8656312023878318,
+                                0.9445750230732326, 0.9894009349916499};
+    static const double w[8] = {0.1894506104550685, 0.1826034150449236, 0.1691565193950025,
+                                0.1495959888165767, 0.1246289712555339, 0.0951585116824928,
+                                0.0622535239386479, 0.0271524594117541};
+    double m = 0.5 * (a + c), r = 0.5 * (c - a), s = 0;
+    for (int k = 0; k < 8; k++)
+        for (int sg = -1; sg <= 1; sg += 2) {
+            double t = m + sg * r * x[k];
+            double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]);
+            double uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+            s += w[k] * hypot(ux, uy);
+        }
+    return r * s;
+}
+
+/* Adaptive: halves until two levels agree to tol (absolute, halved with
+ * each split), at most `*budget` splits in all (then the finer level). */
+static double bez_length_rec(const double *b, double a, double c, double whole, double tol,
+                             int *budget)
+{
+    double m = 0.5 * (a + c), l = gl16(b, a, m), r = gl16(b, m, c);
+    if (fabs(l + r - whole) <= tol || --*budget < 0 || !(m > a && m < c))
+        return l + r;
+    return bez_length_rec(b, a, m, l, 0.5 * tol, budget) +
+           bez_length_rec(b, m, c, r, 0.5 * tol, budget);
+}
+
+static double bez_length(const double *b, double t0, double t1)
+{
+    double whole = gl16(b, t0, t1);
+    int budget = 2048;
+    return bez_length_rec(b, t0, t1, whole, 1e-15 * fabs(whole), &budget);
+}
+
+/* The parameter of Bezier piece p at arc length s from its start (0 < s <
+ * len): Newton's method on the length (its derivative the speed), kept in
+ * a bracket and bisected where a step leaves it, to 1e-15 of the length. */
+static double bez_t_at(const piece *p, double s)
+{
+    double lo = p->t0, hi = p->t1, t = p->t0 + (p->t1 - p->t0) * (s / p->len);
+    for (int it = 0; it < 100; it++) {
+        double f = bez_length(p->b, p->t0, t) - s;
+        if (fabs(f) <= 1e-15 * p->len)
+            break;
+        if (f < 0)
+            lo = t;
+        else
+            hi = t;
+        double ux = p->b[1] + t * (2 * p->b[2] + 3 * t * p->b[3]);
+        double uy = p->b[5] + t * (2 * p->b[6] + 3 * t * p->b[7]);
+        double next = t - f / hypot(ux, uy);
+        if (!(next > lo && next < hi))
+            next = 0.5 * (lo + hi);
+        if (next == t)
+            break;
+        t = next;
+    }
+    return t;
+}
+
 /* One subpath done: its pieces (of non-zero length) stroked or dashed, or
  * its dot if it has segments but no length. */
 static int flush(aa_path *out, pieces *ps, int drawn, int closed, double px, double py,
@@ -702,10 +1126,16 @@ static int outline(const aa_path *in, const aa_stroke_style *style, aa_path *out
             break;
         case AA_PATH_QUAD:
         case AA_PATH_CUBIC:
-            return aa_fail(AA_EINVAL, "stroke: segment %zu is a %s Bezier arc, whose offset "
-                                      "curves are not lines or circles, so its stroke cannot "
-                                      "be drawn exactly yet",
-                           k, g->op == AA_PATH_QUAD ? "quadratic" : "cubic");
+            if (!started)
+                return aa_fail(AA_EINVAL, "stroke: segment %zu comes before any move", k);
+            if ((st = bez_piece(g, k, px, py, &p)))
+                break;
+            px = g->op == AA_PATH_QUAD ? g->p[2] : g->p[4];
+            py = g->op == AA_PATH_QUAD ? g->p[3] : g->p[5];
+            drawn = 1;
+            if (p.len > 0)
+                st = pieces_push(ps, &p);
+            break;
         case AA_PATH_CLOSE:
             if (!started)
                 return aa_fail(AA_EINVAL, "stroke: segment %zu closes before any move", k);

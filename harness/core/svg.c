@@ -298,6 +298,16 @@ int aa_scene_svg(const aa_scene *placed, int w, int h, aa_svg_paint paint, const
                        field->name);
     if (w < 1 || h < 1)
         return aa_fail(AA_EINVAL, "SVG of a %dx%d image", w, h);
+    size_t ne;
+    const aa_edge *e = aa_scene_edges(placed, &ne);
+    /* a stroke's layer is written as the stroke (its source), so only a
+     * layer of offset curves that is not one cannot be written */
+    for (size_t k = 0; k < ne; k++)
+        if (e[k].quad == 4 && aa_scene_layer_stroked(placed, e[k].layer) < 0)
+            return aa_fail(AA_EINVAL, "the scene has the exact offset curves of a stroke "
+                                      "(edge %zu) in a layer that is not kept as a stroke, "
+                                      "which SVG path data cannot write",
+                           k);
     aa__c_numbers numbers;
     int st = aa__c_numbers_enter(&numbers, "SVG");
     if (st)

@@ -431,7 +431,8 @@ static int meet(const crowd *c, const crowd_piece *a, const crowd_piece *b, doub
         return 0;
     const aa_piece *p = a->p, *q = b->p;
     int pc = p->kind == AA_PIECE_CUBIC, qc = q->kind == AA_PIECE_CUBIC;
-    int conic = p->kind == AA_PIECE_CONIC || q->kind == AA_PIECE_CONIC;
+    int conic = p->kind == AA_PIECE_CONIC || q->kind == AA_PIECE_CONIC ||
+                p->kind == AA_PIECE_OFFSET || q->kind == AA_PIECE_OFFSET;
     if (pc != qc && !conic)
         return pc ? meet_general(a, b, ya, yb, ys, 16) : meet_general(b, a, ya, yb, ys, 16);
     if (p->kind == AA_PIECE_QUAD && q->kind == AA_PIECE_QUAD && !(p->ay == 0.0 && q->ay == 0.0))

@@ -378,7 +378,7 @@ static int may_meet(const band_piece *a, const band_piece *b, double va, double 
     long double hi = fminl(vb, fminl(a->q.y1, b->q.y1));
     if (!(lo < hi))
         return 0;
-    if (a->q.cubic || b->q.cubic || a->q.conic || b->q.conic) {
+    if (a->q.cubic || b->q.cubic || a->q.conic || b->q.conic || a->q.offset || b->q.offset) {
         /* the scene's meetings: roots of a cubic against a line, bisection
          * on exact extents (to 1e-12, a touch counted) against an arc; a
          * conic's (its own columns are QAG's already) */
@@ -734,7 +734,8 @@ static int fast_panel(panel_worker *fs, long p)
         truth_set_local(&b->q, q, 0, 0);
         b->p = q;
         mark(fs, fs->near_diff, b->c0, b->c1);
-        if (q->kind == AA_PIECE_CONIC || (q->y0 > va && q->y0 < vb) ||
+        if (q->kind == AA_PIECE_CONIC || q->kind == AA_PIECE_OFFSET ||
+            (q->y0 > va && q->y0 < vb) ||
             (q->y1 > va && q->y1 < vb) || steep(q, lo, hi))
             mark(fs, fs->bad_diff, b->c0, b->c1);
         else

@@ -27,6 +27,14 @@ typedef struct local_piece {
     long double y0, y1, x0, ax, bx, ay, by, dx, dy;
     long double ey, er, ea, eb, top, bot, a0, a1;
     int dir, layer, cubic, conic;
+    /* An offset piece (`offset` set; x0 .. dy are 0 but y0, y1): its
+     * crossing is solved for on the scene's piece src in long double
+     * (aa__offset_solve) at the absolute height vc + s, less uc; oscale is
+     * the size of its absolute coordinates (the crossing's rounding). */
+    int offset;
+    const aa_piece *src;
+    long double uc, vc, oscale;
+    double hint; /* the parameter of the last crossing (NaN: none): the next one's start */
 } local_piece;
 
 /* The piece p relative to the centre (uc, vc), in extended precision. */
@@ -47,10 +55,13 @@ static inline long double truth_conic_part(const local_piece *q, long double s)
 }
 /* The crossing of q with the line at relative height s, less its x0
  * (inline: the integrand's inner loop). */
+long double truth_offset_part(const local_piece *q, long double s);
 static inline long double truth_crossing_part(const local_piece *q, long double s)
 {
     if (q->conic)
         return truth_conic_part(q, s);
+    if (q->offset)
+        return truth_offset_part(q, s);
     long double t = truth_t_at(q, s);
     if (q->cubic)
         return t * (q->bx + t * (q->ax + t * q->dx));

@@ -91,7 +91,127 @@ void truth_turns(const aa_piece *p, int *lo, int *hi)
     } else if (p->kind == AA_PIECE_CONIC) {
         *lo = p->s0 <= TURN_ANGLE;
         *hi = p->s1 >= M_PI - TURN_ANGLE;
+    } else if (p->kind == AA_PIECE_OFFSET) {
+        /* an end at a y turn, a fold of the offset or a cusp of the
+         * evolute: dy/dt vanishes there (to rounding) */
+        double x, y, dx, dy, slope = (p->y1 - p->y0) / fabs(p->ot1 - p->ot0);
+        aa_offset_point(&p->oc, p->ot0, &x, &y, &dx, &dy);
+        *lo = fabs(dy) <= 1e-6 * slope;
+        aa_offset_point(&p->oc, p->ot1, &x, &y, &dx, &dy);
+        *hi = fabs(dy) <= 1e-6 * slope;
     }
+}
+
+long double truth_offset_part(const local_piece *q, long double s)
+{
+    const aa_piece *p = q->src;
+    if (!(s > q->y0))
+        return p->x0 - q->uc;
+    if (!(s < q->y1))
+        return p->x1 - q->uc;
+    long double y = q->vc + s, x, yy;
+    long double t = aa__offset_solve_from(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y,
+                                          q->hint);
+    /* q belongs to the calling thread's window (not const there) */
+    ((local_piece *)q)->hint = (double)t;
+    aa__offset_eval(&p->oc, t, &x, &yy, NULL, NULL);
+    return x - q->uc;
+}
+
+/* An offset piece's point at parameter t relative to (uc, vc). */
+static void offset_local(const local_piece *q, long double t, long double *x, long double *y)
+{
+    aa__offset_eval(&q->src->oc, t, x, y, NULL, NULL);
+    *x -= q->uc;
+    *y -= q->vc;
+}
+
+/* An offset piece's part in the rows [lo, hi] (relative): its parameters. */
+static int offset_span(const local_piece *q, double lo, double hi, long double *ta,
+                       long double *tb)
+{
+    const aa_piece *p = q->src;
+    long double a = fmaxl(lo, q->y0), b = fminl(hi, q->y1);
+    if (!(a < b))
+        return 0;
+    *ta = a <= q->y0 ? p->ot0
+                     : aa__offset_solve(&p->oc, 1, p->ot0, p->ot1, p->y0 - (q->vc + a), q->vc + a);
+    *tb = b >= q->y1 ? p->ot1
+                     : aa__offset_solve(&p->oc, 1, p->ot0, p->ot1, p->y0 - (q->vc + b), q->vc + b);
+    return 1;
+}
+
+#define OFFSET_SAMPLES 64
+
+/* Radial filters on an offset piece: the heights where it crosses the
+ * circle of radius R, by the sign changes of |P|^2 - R^2 at OFFSET_SAMPLES
+ * points of its part in the disc's rows, each bisected in long double.  A
+ * pair of crossings closer than the sampling is missed; the kink is then
+ * left inside an interval, where QAG's bisection still finds it. */
+static int circle_heights_offset(const local_piece *q, double R, double out[4])
+{
+    long double ta, tb;
+    if (!offset_span(q, -R, R, &ta, &tb))
+        return 0;
+    int m = 0;
+    long double x, y, pt = ta;
+    offset_local(q, ta, &x, &y);
+    long double pf = x * x + y * y - (long double)R * R;
+    for (int k = 1; k <= OFFSET_SAMPLES && m < 4; k++) {
+        long double t = ta + (tb - ta) * k / OFFSET_SAMPLES;
+        offset_local(q, t, &x, &y);
+        long double f = x * x + y * y - (long double)R * R;
+        if ((pf < 0 && f > 0) || (pf > 0 && f < 0)) {
+            long double a = pt, b = t, fa = pf;
+            for (int it = 0; it < 80; it++) {
+                long double mid = 0.5L * (a + b), fm;
+                offset_local(q, mid, &x, &y);
+                fm = x * x + y * y - (long double)R * R;
+                if ((fm < 0) == (fa < 0))
+                    a = mid, fa = fm;
+                else
+                    b = mid;
+            }
+            offset_local(q, 0.5L * (a + b), &x, &y);
+            out[m++] = (double)y;
+        }
+        pt = t, pf = f;
+    }
+    return m;
+}
+
+/* The height where an offset piece passes closest to the centre inside
+ * (lo, hi) and within R: the least of |P|^2 at OFFSET_SAMPLES points,
+ * refined by golden-section search between its neighbours. */
+static double nearest_offset(const local_piece *q, double lo, double hi, double R)
+{
+    long double ta, tb, x, y;
+    if (!offset_span(q, lo, hi, &ta, &tb))
+        return NAN;
+    int best = 0;
+    long double bd = INFINITY;
+    for (int k = 0; k <= OFFSET_SAMPLES; k++) {
+        offset_local(q, ta + (tb - ta) * k / OFFSET_SAMPLES, &x, &y);
+        long double d = x * x + y * y;
+        if (d < bd)
+            bd = d, best = k;
+    }
+    long double a = ta + (tb - ta) * (best > 0 ? best - 1 : 0) / OFFSET_SAMPLES;
+    long double b = ta + (tb - ta) * (best < OFFSET_SAMPLES ? best + 1 : best) / OFFSET_SAMPLES;
+    const long double g = 0.6180339887498948482L;
+    for (int it = 0; it < 100; it++) {
+        long double c = b - g * (b - a), d = a + g * (b - a), xc, yc, xd, yd;
+        offset_local(q, c, &xc, &yc);
+        offset_local(q, d, &xd, &yd);
+        if (xc * xc + yc * yc < xd * xd + yd * yd)
+            b = d;
+        else
+            a = c;
+    }
+    offset_local(q, 0.5L * (a + b), &x, &y);
+    if (!(x * x + y * y < (long double)R * R) || !(y > lo && y < hi) || y == 0)
+        return NAN;
+    return (double)y;
 }
 
 /* The angle of conic q at relative height s (inside its rows): a =
@@ -257,11 +377,15 @@ static double nearest_conic(const local_piece *q, double lo, double hi, double R
 
 double truth_nearest_height(const local_piece *q, double lo, double hi, double R)
 {
+    if (q->offset)
+        return nearest_offset(q, lo, hi, R);
     return q->conic ? nearest_conic(q, lo, hi, R) : nearest_poly(q, lo, hi, R);
 }
 
 double truth_piece_scale(const local_piece *q)
 {
+    if (q->offset)
+        return (double)q->oscale;
     return (double)(fabsl(q->x0) + fabsl(q->bx) + fabsl(q->ax) + fabsl(q->dx) + fabsl(q->ea) +
                     fabsl(q->eb));
 }
@@ -277,6 +401,19 @@ void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long dou
     q->dx = q->dy = 0;
     q->cubic = p->kind == AA_PIECE_CUBIC;
     q->conic = p->kind == AA_PIECE_CONIC;
+    q->offset = p->kind == AA_PIECE_OFFSET;
+    q->src = p;
+    q->uc = uc, q->vc = vc, q->oscale = 0, q->hint = NAN;
+    if (q->offset) {
+        q->x0 = q->ax = q->bx = q->ay = q->by = 0;
+        q->ey = q->er = q->ea = q->eb = q->top = q->bot = q->a0 = q->a1 = 0;
+        /* its crossing in long double is off by a few epsilons of the
+         * absolute coordinates, and by the root's (Newton's last step) */
+        q->oscale = fabsl(uc) + fabs(p->xmin) + fabs(p->xmax) + fabs(p->y0) + fabs(p->y1);
+        q->dir = p->dir;
+        q->layer = p->layer;
+        return;
+    }
     q->ey = q->er = q->ea = q->eb = q->top = q->bot = q->a0 = q->a1 = 0;
     if (q->conic) {
         /* the centre's coordinates relative to (uc, vc): exact in long
@@ -311,6 +448,16 @@ void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long dou
 long double truth_t_at(const local_piece *q, long double s)
 {
     long double d = s - q->y0, t;
+    if (q->offset) {
+        const aa_piece *p = q->src;
+        if (!(d > 0))
+            return 0;
+        if (!(s < q->y1))
+            return 1;
+        long double y = q->vc + s;
+        t = aa__offset_solve(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y);
+        return (t - p->ot0) / ((long double)p->ot1 - p->ot0);
+    }
     if (q->conic) {
         t = (conic_angle(q, s) - q->a0) / (q->a1 - q->a0);
         return t < 0 ? 0 : (t > 1 ? 1 : t);
@@ -452,6 +599,11 @@ int truth_circle_heights(const aa_piece *p, double uc, double vc, double R,
         return 0;
     if (p->kind == AA_PIECE_CONIC)
         return circle_heights_conic(p, uc, vc, R, out);
+    if (p->kind == AA_PIECE_OFFSET) {
+        local_piece q;
+        truth_set_local(&q, p, uc, vc);
+        return circle_heights_offset(&q, R, out);
+    }
     double lo = fmax(vc - R, p->y0), hi = fmin(vc + R, p->y1);
     if (!(lo < hi))
         return 0;

@@ -4,7 +4,8 @@
  *
  * The input is read as a stroke style and then a path: a byte chooses each
  * command (move, line, a circle's arc, an SVG arc through
- * aa_arc_endpoints, close, a repeat of the pen: a zero-length line) and
+ * aa_arc_endpoints, close, a repeat of the pen: a zero-length line, a
+ * quadratic or a cubic Bezier arc) and
  * the bytes after it its numbers, each a 16-bit mantissa scaled by a power
  * of two from 2^-24 to 2^24, or one of 0, 1, -1.  What the builder refuses
  * is skipped.  Then:
@@ -13,10 +14,13 @@
  *    the ends' magnitude), with |t1 - t0| <= 2 pi;
  *  - aa_stroke_outline: refused only with AA_EINVAL (and a message), and
  *    then `out` as it was; accepted, every number of the outline is
- *    finite, every contour is a move, lines and arcs and a close, and each
- *    has positive signed area (its exact value, (1/2) integral of
- *    x dy - y dx, with rounding allowed for relative to the contour's
- *    size): the contours all turn the same way.
+ *    finite, every contour is a move, lines, arcs and offset curves and a
+ *    close, and each without offset curves has positive signed area (its
+ *    exact value, (1/2) integral of x dy - y dx, with rounding allowed for
+ *    relative to the contour's size): the contours all turn the same way;
+ *    an offset curve starts at the pen and ends at its end (to 1e-9); the
+ *    outline fills into a scene (aa_path_fill, aa_scene_finish) unless a
+ *    number overflows there.
  * A broken invariant aborts.
  */
 #include "path.h"
@@ -86,7 +90,7 @@ static void check_arc_endpoints(reader *r)
 static void read_path(reader *r, aa_path *p)
 {
     while (r->n > 0 && p->n < 64) {
-        unsigned op = byte(r) % 6;
+        unsigned op = byte(r) % 8;
         switch (op) {
         case 0:
             aa_path_move_to(p, number(r), number(r));
@@ -127,6 +131,18 @@ static void read_path(reader *r, aa_path *p)
         case 4:
             aa_path_close(p);
             break;
+        case 6: {
+            double cx = number(r), cy = number(r);
+            aa_path_quad_to(p, cx, cy, number(r), number(r));
+            break;
+        }
+        case 7: {
+            double c[6];
+            for (int k = 0; k < 6; k++)
+                c[k] = number(r);
+            aa_path_cubic_to(p, c[0], c[1], c[2], c[3], c[4], c[5]);
+            break;
+        }
         default:
             if (p->open)
                 aa_path_line_to(p, p->penx, p->peny);
@@ -151,10 +167,10 @@ static void arc_point(const double *c, double t, double *x, double *y)
 static void check_outline(const aa_path *out)
 {
     double sx = 0, sy = 0, px = 0, py = 0, a = 0, size = 0, mag = 0;
-    int open = 0;
+    int open = 0, offset = 0;
     for (size_t k = 0; k < out->n; k++) {
         const aa_path_seg *g = &out->seg[k];
-        for (int i = 0; i < 10; i++)
+        for (int i = 0; i < 14; i++)
             if (!isfinite(g->p[i]))
                 abort();
         switch (g->op) {
@@ -190,12 +206,35 @@ static void check_outline(const aa_path *out)
             mag = fmax(mag, fmax(fabs(c[0]), fabs(c[1])) + hypot(c[2], c[3]) + hypot(c[4], c[5]));
             break;
         }
+        case AA_PATH_OFFSET: {
+            /* a Bezier arc's offset or evolute: its ends are its points */
+            if (!open)
+                abort();
+            const double *c = g->p;
+            aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, c[8], c[9] != 0};
+            memcpy(oc.b, c, sizeof oc.b);
+            double x0, y0, x1, y1, scale = 0;
+            aa_offset_point(&oc, c[10], &x0, &y0, NULL, NULL);
+            aa_offset_point(&oc, c[11], &x1, &y1, NULL, NULL);
+            scale = fabs(x0) + fabs(y0) + fabs(x1) + fabs(y1) + hypot(x1 - x0, y1 - y0);
+            if (!(hypot(x0 - px, y0 - py) <= 1e-9 * scale) ||
+                !(hypot(x1 - c[12], y1 - c[13]) <= 1e-9 * scale))
+                abort();
+            px = c[12], py = c[13];
+            offset = 1;
+            break;
+        }
         case AA_PATH_CLOSE:
             if (!open)
                 abort();
             open = 0;
-            if (!(a > -1e-13 * size * (size + mag)))
+            /* a contour with offset curves winds about each point a
+             * non-negative number of times, its signed area not checked
+             * here (it is the area of its region: positive where the
+             * Jacobian is, negative where it is not) */
+            if (!offset && !(a > -1e-13 * size * (size + mag)))
                 abort();
+            offset = 0;
             break;
         default:
             abort();
@@ -237,6 +276,14 @@ int aa_fuzz_stroke(const uint8_t *data, size_t size)
             abort();
     } else {
         check_outline(&out);
+        /* the outline fills into a scene, which checks it again */
+        aa_scene *sc = aa_scene_new((aa_rgb){{0, 0, 0}});
+        if (sc && (aa_scene_layer(sc, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO) ||
+                   aa_path_fill(&out, NULL, sc) || aa_scene_finish(sc)) &&
+            aa_last_error()[0] && !strstr(aa_last_error(), "not finite") &&
+            !strstr(aa_last_error(), "memory"))
+            abort();
+        aa_scene_free(sc);
     }
     aa_path_free(&p);
     aa_path_free(&out);

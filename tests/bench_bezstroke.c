@@ -1,0 +1,165 @@
+/*
+ * bench_bezstroke.c: speed of strokes of Bezier arcs (`make bench`): the
+ * stroker, the box reference of the stroke, and `point`, on a path of
+ * 1,000 cubic segments (20 wavy subpaths of 50 smooth cubics across the
+ * square, stroked 2.5 px wide at 1024 px with round joins and caps; some
+ * segments tight enough that their offsets fold).
+ *
+ * Prints, for W x H (default 1024x1024) with one thread: the time to
+ * stroke the path (median of 5), the number of pieces of the scene, the
+ * box reference's time (median of -r REPS renders, default 3, after none
+ * untimed: each is seconds long) with its largest bound, and `point`'s
+ * median (of 5).  `area` does not integrate offset pieces yet (it refuses
+ * them).  Figures are read, not asserted.
+ *
+ * usage: bench_bezstroke [-s WxH] [-r REPS]
+ */
+#include "bench.h"
+#include "path.h"
+#include "truth.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* 20 subpaths of 50 cubics each: a wave across the square whose
+ * amplitude and wavelength change from subpath to subpath; consecutive
+ * cubics share tangents (smooth) but for every seventh (a corner). */
+static int build(aa_path *p)
+{
+    int st = AA_OK;
+    for (int r = 0; r < 20 && !st; r++) {
+        double y = (r + 0.5) / 20.0, a = 0.004 + 0.0015 * r, dx = 0.9 / 50.0;
+        double x = 0.05;
+        st = aa_path_move_to(p, x, y);
+        for (int k = 0; k < 50 && !st; k++) {
+            double s = (k % 2 ? -1.0 : 1.0) * a * (1.0 + 0.5 * sin(0.7 * k + r));
+            double kink = k % 7 == 6 ? 0.3 * dx : 0.0;
+            st = aa_path_cubic_to(p, x + dx / 3.0 + kink, y + s, x + 2.0 * dx / 3.0, y + s,
+                                  x + dx, y);
+            x += dx;
+        }
+    }
+    return st;
+}
+
+int main(int argc, char **argv)
+{
+    int w = 1024, h = 1024, reps = 3;
+    for (int k = 1; k < argc; k++) {
+        if (!strcmp(argv[k], "-s") && k + 1 < argc && sscanf(argv[k + 1], "%dx%d", &w, &h) == 2)
+            k++;
+        else if (!strcmp(argv[k], "-r") && k + 1 < argc)
+            reps = atoi(argv[++k]);
+        else {
+            fprintf(stderr, "usage: bench_bezstroke [-s WxH] [-r REPS]\n");
+            return 2;
+        }
+    }
+    if (w < 1 || h < 1 || reps < 1 || reps > 100) {
+        fprintf(stderr, "bench_bezstroke: bad size or repetitions\n");
+        return 2;
+    }
+    if (aa_method_add_builtin()) {
+        fprintf(stderr, "%s\n", aa_last_error());
+        return 1;
+    }
+    aa_path path = {0}, out = {0};
+    aa_stroke_style style;
+    aa_stroke_style_default(&style);
+    style.width = 2.5 / w;
+    style.join = AA_JOIN_ROUND;
+    style.cap = AA_CAP_ROUND;
+    double t_stroke[5];
+    int st = build(&path);
+    for (int k = 0; k < 5 && !st; k++) {
+        out.n = 0;
+        double t0 = aa_now();
+        st = aa_stroke_outline(&path, &style, &out);
+        t_stroke[k] = aa_now() - t0;
+    }
+    aa_scene *s = st ? NULL : aa_scene_new((aa_rgb){{0, 0, 0}});
+    if (!st && !s)
+        st = AA_ENOMEM;
+    if (!st && !(st = aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO)) &&
+        !(st = aa_path_fill(&out, NULL, s)))
+        st = aa_scene_finish(s);
+    aa_scene *placed = st ? NULL : aa_scene_place(s, w, h, 0, 0, 0);
+    if (st || !placed) {
+        fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+        return 3;
+    }
+    size_t npieces, noff = 0;
+    const aa_piece *pc = aa_scene_pieces(placed, &npieces);
+    for (size_t k = 0; k < npieces; k++)
+        noff += pc[k].kind == AA_PIECE_OFFSET;
+    printf("%dx%d box, 1 thread: 1000 cubic segments stroked %.2f px wide, round joins and "
+           "caps\n",
+           w, h, style.width * w);
+    printf("stroke outline      %10.3f ms (median of 5), %zu path segments\n",
+           1e3 * median(t_stroke, 5), out.n);
+    printf("scene               %zu pieces, %zu of them offset pieces\n", npieces, noff);
+    aa_filter f;
+    aa_image im, bound;
+    if (aa_filter_parse("box", &f) || aa_image_alloc(&im, w, h, 3) ||
+        aa_image_alloc(&bound, w, h, 1)) {
+        fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+        return 3;
+    }
+    double t_ref[100], worst = 0;
+    aa_truth_stats stats;
+    for (int k = 0; k < reps; k++) {
+        double t0 = aa_now();
+        if (aa_truth_render(placed, &f, 1, &im, &bound, &stats)) {
+            fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+            return 3;
+        }
+        t_ref[k] = aa_now() - t0;
+    }
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            worst = fmax(worst, aa_pixel(&bound, i, j)[0]);
+    printf("box reference       %10.3f ms (median of %d), largest bound %.1e\n",
+           1e3 * median(t_ref, reps), reps, worst);
+    aa_job job;
+    aa_spec spec;
+    aa_method m;
+    aa_counters c;
+    double t_point[5];
+    if (aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1) ||
+        aa_method_parse("point", &f, &spec) || aa_method_init(&m, &spec, &job)) {
+        fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+        return 3;
+    }
+    for (int k = 0; k < 5; k++) {
+        double t0 = aa_now();
+        if (aa_method_render(&m, &job, &im, &c)) {
+            fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+            return 3;
+        }
+        t_point[k] = aa_now() - t0;
+    }
+    printf("point               %10.3f ms (median of 5)\n", 1e3 * median(t_point, 5));
+    aa_method_free(&m);
+    aa_job_free(&job);
+    aa_image_free(&im);
+    aa_image_free(&bound);
+    aa_scene_free(placed);
+    aa_scene_free(s);
+    aa_path_free(&path);
+    aa_path_free(&out);
+    return 0;
+}

@@ -1,0 +1,377 @@
+/*
+ * test_bezstroke.c: strokes of Bezier arcs (harness/core/stroke.c, offset
+ * curves and evolutes as exact pieces: harness/core/offset.c, AA_PIECE_OFFSET)
+ * against answers derived here, independently of the code under test.
+ *
+ *  - the tube formula: a butt-capped arc whose curvature radius exceeds
+ *    half the width everywhere sweeps an area of width x arc length (the
+ *    normals do not cross); the arc length here by GSL's QAG (61-point
+ *    Gauss-Kronrod, 1e-15 relative), the area by the box reference
+ *    (aa_truth_render) of the outline filled into a scene, summed (a white
+ *    shape's box reference sums to its area); to 1e-12; and butt dashes on
+ *    such an arc: width x the dashes' total length, laid out here from the
+ *    arc length;
+ *  - a point-in-stroke oracle at random points (seeded), against the
+ *    scene's own point query (aa_scene_colour_at: the non-zero winding of
+ *    the outline's pieces): for butt caps and one arc, p is in the stroke
+ *    iff some t in [0, 1] has p - B(t) perpendicular to B'(t) with
+ *    |p - B(t)| <= h (SVG 2's union of the normal segments), the t's found
+ *    here as the sign changes of (p - B) . B' at 4000 samples, bisected;
+ *    with round joins and caps on a path of several arcs, p is in the
+ *    stroke iff its distance to the path is at most h (the nearest point
+ *    is inside a segment, on whose normal it lies, or a vertex or an end,
+ *    in whose join or cap it lies), the distance found the same way.
+ *    Tight arcs whose offsets fold (curvature radius under h), loops,
+ *    quadratics, and a map that shears the outline; points within 1e-7 of
+ *    the boundary skipped;
+ *  - a cusp (B' = 0 inside) is refused, naming it.
+ */
+#include "path.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+
+static void must(int st)
+{
+    if (st)
+        fail_msg("status %d: %s", st, aa_last_error());
+}
+
+/* A cubic in control points c (x0 y0 x1 y1 x2 y2 x3 y3). */
+static void bez(const double *c, double t, double *x, double *y, double *dx, double *dy)
+{
+    double s = 1 - t;
+    for (int k = 0; k < 2; k++) {
+        double p0 = c[k], p1 = c[2 + k], p2 = c[4 + k], p3 = c[6 + k];
+        double v = s * s * s * p0 + 3 * s * s * t * p1 + 3 * s * t * t * p2 + t * t * t * p3;
+        double d = 3 * (s * s * (p1 - p0) + 2 * s * t * (p2 - p1) + t * t * (p3 - p2));
+        if (k == 0)
+            *x = v, *dx = d;
+        else
+            *y = v, *dy = d;
+    }
+}
+
+static double speed(double t, void *c)
+{
+    double x, y, dx, dy;
+    bez(c, t, &x, &y, &dx, &dy);
+    return hypot(dx, dy);
+}
+
+static double arc_length(const double *c)
+{
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+    gsl_function f = {speed, (void *)c};
+    double r = NAN, err;
+    gsl_set_error_handler_off();
+    int st = gsl_integration_qag(&f, 0, 1, 1e-13, 0, 1000, GSL_INTEG_GAUSS61, w, &r, &err);
+    if (st || !(err < 1e-13))
+        fail_msg("arc length: QAG status %d, estimate %g", st, err);
+    gsl_integration_workspace_free(w);
+    return r;
+}
+
+/* Curvature of c at t. */
+static double curvature(const double *c, double t)
+{
+    double x, y, dx, dy, e = 1e-6, ax, ay, bx, by;
+    bez(c, t, &x, &y, &dx, &dy);
+    bez(c, t + e, &x, &y, &ax, &ay);
+    bez(c, t - e, &x, &y, &bx, &by);
+    double ddx = (ax - bx) / (2 * e), ddy = (ay - by) / (2 * e), l = hypot(dx, dy);
+    return (dx * ddy - dy * ddx) / (l * l * l);
+}
+
+static aa_scene *outline_scene(const aa_path *in, const aa_stroke_style *st, const double *m)
+{
+    aa_path out = {0};
+    must(aa_stroke_outline(in, st, &out));
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO));
+    must(aa_path_fill(&out, m, s));
+    must(aa_scene_finish(s));
+    aa_path_free(&out);
+    return s;
+}
+
+/* ---- the tube formula ---- */
+
+static void tube(const char *what, const double *c, double w, int n)
+{
+    /* the formula needs the curvature radius above w/2 everywhere */
+    for (int k = 0; k <= 1000; k++)
+        assert_true(fabs(curvature(c, k / 1000.0)) * 0.5 * w < 0.99);
+    aa_path p = {0};
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = w;
+    must(aa_path_move_to(&p, c[0], c[1]));
+    must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
+    aa_scene *s = outline_scene(&p, &st, NULL);
+    support_view v = {.w = n, .h = n, .threads = 1};
+    aa_image im;
+    support_reference(s, &v, &im, NULL, NULL);
+    double got = support_channel_mean(&im, 0), want = w * arc_length(c);
+    print_message("%-24s area %.15f, want %.15f (%.1e)\n", what, got, want, got - want);
+    if (!(fabs(got - want) < 1e-12))
+        fail_msg("%s: area %.17g, want %.17g", what, got, want);
+    aa_image_free(&im);
+    aa_scene_free(s);
+    aa_path_free(&p);
+}
+
+static void test_tube(void **state)
+{
+    (void)state;
+    const double gentle[8] = {0.1, 0.5, 0.3, 0.2, 0.7, 0.8, 0.9, 0.45};
+    const double s_curve[8] = {0.15, 0.2, 0.9, 0.25, 0.1, 0.75, 0.85, 0.8};
+    tube("gentle S, w 0.05", gentle, 0.05, 64);
+    tube("S across, w 0.02", s_curve, 0.02, 64);
+}
+
+/* Dashes by arc length: butt dashes on a gentle arc (curvature radius over
+ * h) are tubes, so the stroke's area is w times the dashes' total length,
+ * counted here from the arc length L (QAG): a pattern (on, off) with
+ * offset o covers, of [0, L], the parts of [j P - o, j P - o + on]. */
+static void test_dashes(void **state)
+{
+    (void)state;
+    const double c[8] = {0.1, 0.5, 0.3, 0.2, 0.7, 0.8, 0.9, 0.45};
+    const double dash[2][3] = {{0.07, 0.03, 0.0}, {0.11, 0.05, 0.04}};
+    double L = arc_length(c), w = 0.02;
+    for (int k = 0; k < 2; k++) {
+        double on = dash[k][0], off = dash[k][1], o = dash[k][2], P = on + off, total = 0;
+        for (int j = 0; j * P - o < L; j++) {
+            double a = fmax(j * P - o, 0), b = fmin(j * P - o + on, L);
+            if (b > a)
+                total += b - a;
+        }
+        aa_path p = {0};
+        aa_stroke_style st;
+        aa_stroke_style_default(&st);
+        st.width = w;
+        st.dash = dash[k];
+        st.ndash = 2;
+        st.dashoffset = o;
+        must(aa_path_move_to(&p, c[0], c[1]));
+        must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
+        aa_scene *s = outline_scene(&p, &st, NULL);
+        support_view v = {.w = 64, .h = 64, .threads = 1};
+        aa_image im;
+        support_reference(s, &v, &im, NULL, NULL);
+        double got = support_channel_mean(&im, 0), want = w * total;
+        print_message("dashes %g %g offset %g: area %.15f, want %.15f (%.1e)\n", on, off, o,
+                      got, want, got - want);
+        if (!(fabs(got - want) < 1e-12))
+            fail_msg("dashes: area %.17g, want %.17g", got, want);
+        aa_image_free(&im);
+        aa_scene_free(s);
+        aa_path_free(&p);
+    }
+}
+
+/* ---- the point-in-stroke oracle ---- */
+
+static uint64_t rng = 0x9e3779b97f4a7c15ull;
+static double rnd(void)
+{
+    rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
+    return (double)(rng >> 11) * 0x1p-53;
+}
+
+/* The distances from p to c at the t where p - B(t) is perpendicular to
+ * B'(t) (sign changes of g(t) = (p - B) . B' at 4000 samples, bisected),
+ * and the ends' too when `ends`; the least of them (butt: only the
+ * perpendicular feet, *edge set if p is within tol of an end's normal
+ * line's end region, where the oracle is unsure). */
+static double feet(const double *c, double px, double py, int ends, double h, int *unsure)
+{
+    double best = INFINITY, x, y, dx, dy;
+    int n = 4000;
+    bez(c, 0, &x, &y, &dx, &dy);
+    double pg = (px - x) * dx + (py - y) * dy, pt = 0;
+    if (ends)
+        best = fmin(best, hypot(px - x, py - y));
+    else if (fabs(pg) / hypot(dx, dy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)
+        *unsure = 1;
+    for (int k = 1; k <= n; k++) {
+        double t = (double)k / n;
+        bez(c, t, &x, &y, &dx, &dy);
+        double g = (px - x) * dx + (py - y) * dy;
+        if ((pg < 0 && g >= 0) || (pg > 0 && g <= 0)) {
+            double a = pt, b = t, ga = pg;
+            for (int it = 0; it < 60; it++) {
+                double m = 0.5 * (a + b), gm;
+                bez(c, m, &x, &y, &dx, &dy);
+                gm = (px - x) * dx + (py - y) * dy;
+                if ((gm < 0) == (ga < 0))
+                    a = m, ga = gm;
+                else
+                    b = m;
+            }
+            bez(c, 0.5 * (a + b), &x, &y, &dx, &dy);
+            best = fmin(best, hypot(px - x, py - y));
+        }
+        pg = g, pt = t;
+    }
+    bez(c, 1, &x, &y, &dx, &dy);
+    if (ends)
+        best = fmin(best, hypot(px - x, py - y));
+    else if (fabs(pg) / hypot(dx, dy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)
+        *unsure = 1;
+    return best;
+}
+
+/* Path of nc cubics (control points chained: 2 + 6 nc numbers), stroked at
+ * width w (butt and one cubic, or round joins and caps), the outline
+ * filled through map m (NULL: none; the oracle at the preimage). */
+static void oracle(const char *what, const double *cs, int nc, double w, int round, const double *m,
+                   int npts)
+{
+    aa_path p = {0};
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = w;
+    if (round)
+        st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    must(aa_path_move_to(&p, cs[0], cs[1]));
+    for (int k = 0; k < nc; k++) {
+        const double *q = cs + 2 + 6 * k;
+        must(aa_path_cubic_to(&p, q[0], q[1], q[2], q[3], q[4], q[5]));
+    }
+    aa_scene *s = outline_scene(&p, &st, m);
+    double h = 0.5 * w, x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (int k = 0; k < 2 + 6 * nc; k += 2) {
+        x0 = fmin(x0, cs[k]), x1 = fmax(x1, cs[k]);
+        y0 = fmin(y0, cs[k + 1]), y1 = fmax(y1, cs[k + 1]);
+    }
+    x0 -= 2 * h, y0 -= 2 * h, x1 += 2 * h, y1 += 2 * h;
+    int tested = 0, inside = 0, wrong = 0;
+    for (int i = 0; i < npts; i++) {
+        double px = x0 + (x1 - x0) * rnd(), py = y0 + (y1 - y0) * rnd(), d = INFINITY;
+        int unsure = 0;
+        for (int k = 0; k < nc; k++) {
+            double c[8] = {cs[6 * k], cs[6 * k + 1]};
+            memcpy(c + 2, cs + 2 + 6 * k, 6 * sizeof *c);
+            d = fmin(d, feet(c, px, py, round, h, &unsure));
+        }
+        if (unsure || fabs(d - h) < 1e-7)
+            continue;
+        double qx = px, qy = py;
+        if (m)
+            qx = m[0] * px + m[2] * py + m[4], qy = m[1] * px + m[3] * py + m[5];
+        int want = d <= h, got = aa_scene_colour_at(s, qx, qy).c[0] > 0.5;
+        tested++;
+        inside += want;
+        if (want != got && wrong++ < 5)
+            print_message("%s: (%.17g, %.17g) distance %.17g, h %g: stroke says %d\n", what,
+                          px, py, d, h, got);
+    }
+    print_message("%-30s %d points (%d inside), %d wrong\n", what, tested, inside, wrong);
+    assert_int_equal(wrong, 0);
+    assert_true(inside > tested / 20 && inside < tested);
+    aa_scene_free(s);
+    aa_path_free(&p);
+}
+
+static void test_oracle_butt(void **state)
+{
+    (void)state;
+    const double gentle[8] = {0.1, 0.5, 0.3, 0.2, 0.7, 0.8, 0.9, 0.45};
+    const double tight[8] = {0.2, 0.2, 0.9, 0.3, 0.9, 0.7, 0.25, 0.75};
+    const double loop[8] = {0.2, 0.8, 0.9, 0.1, 0.1, 0.1, 0.8, 0.8};
+    const double hook[8] = {0.1, 0.9, 0.1, 0.1, 0.9, 0.1, 0.55, 0.5};
+    oracle("gentle, w 0.05", gentle, 1, 0.05, 0, NULL, 3000);
+    oracle("gentle, w 0.6 (folds)", gentle, 1, 0.6, 0, NULL, 3000);
+    oracle("tight, w 0.3 (folds)", tight, 1, 0.3, 0, NULL, 3000);
+    oracle("tight, w 1.0 (folds)", tight, 1, 1.0, 0, NULL, 3000);
+    oracle("loop, w 0.12", loop, 1, 0.12, 0, NULL, 3000);
+    oracle("loop, w 0.5 (folds)", loop, 1, 0.5, 0, NULL, 3000);
+    oracle("hook, w 0.4 (folds)", hook, 1, 0.4, 0, NULL, 3000);
+    const double shear[6] = {1.5, 0.2, 0.7, 0.9, 0.1, -0.05};
+    oracle("tight, w 0.3, sheared", tight, 1, 0.3, 0, shear, 3000);
+}
+
+static void test_oracle_round(void **state)
+{
+    (void)state;
+    const double path[20] = {0.1, 0.5, 0.3, 0.1,  0.5, 0.1,  0.6, 0.4, 0.7, 0.9,
+                             0.2, 0.6, 0.5, 0.5, 0.95, 0.2, 0.9, 0.8, 0.6, 0.85};
+    oracle("3 cubics, round, w 0.08", path, 3, 0.08, 1, NULL, 3000);
+    oracle("3 cubics, round, w 0.4", path, 3, 0.4, 1, NULL, 3000);
+    for (int r = 0; r < 6; r++) {
+        double cs[14];
+        for (int k = 0; k < 14; k++)
+            cs[k] = 0.1 + 0.8 * rnd();
+        char name[64];
+        double w = 0.02 + 0.4 * rnd();
+        snprintf(name, sizeof name, "random pair %d, w %.3f", r, w);
+        oracle(name, cs, 2, w, 1, NULL, 2000);
+    }
+}
+
+static void test_quadratic(void **state)
+{
+    (void)state;
+    /* a quadratic is its cubic with controls at 2/3 of the way to its control point */
+    aa_path p = {0}, q = {0};
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 0.3;
+    must(aa_path_move_to(&p, 0.1, 0.8));
+    must(aa_path_quad_to(&p, 0.5, 0.0, 0.9, 0.8));
+    must(aa_path_move_to(&q, 0.1, 0.8));
+    must(aa_path_cubic_to(&q, 0.1 + 2.0 / 3 * 0.4, 0.8 - 2.0 / 3 * 0.8, 0.9 - 2.0 / 3 * 0.4,
+                          0.8 - 2.0 / 3 * 0.8, 0.9, 0.8));
+    aa_scene *a = outline_scene(&p, &st, NULL), *b = outline_scene(&q, &st, NULL);
+    int differ = 0;
+    for (int i = 0; i < 4000; i++) {
+        double x = rnd(), y = rnd();
+        differ += aa_scene_colour_at(a, x, y).c[0] != aa_scene_colour_at(b, x, y).c[0];
+    }
+    /* points within rounding of the boundary may differ: none at random */
+    assert_int_equal(differ, 0);
+    aa_scene_free(a);
+    aa_scene_free(b);
+    aa_path_free(&p);
+    aa_path_free(&q);
+}
+
+static void test_cusp_refused(void **state)
+{
+    (void)state;
+    aa_path p = {0}, out = {0};
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    /* B'(1/2) = 0: (1/4)(1, 1) + (1/2)(-1, 0) + (1/4)(1, -1) */
+    must(aa_path_move_to(&p, 0, 0));
+    must(aa_path_cubic_to(&p, 1, 1, 0, 1, 1, 0));
+    assert_int_equal(aa_stroke_outline(&p, &st, &out), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "cusp"));
+    assert_int_equal(out.n, 0);
+    aa_path_free(&p);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_tube),
+                                       cmocka_unit_test(test_dashes),
+                                       cmocka_unit_test(test_oracle_butt),
+                                       cmocka_unit_test(test_oracle_round),
+                                       cmocka_unit_test(test_quadratic),
+                                       cmocka_unit_test(test_cusp_refused)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
