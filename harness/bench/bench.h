@@ -8,6 +8,8 @@
 
 #include "truth.h"
 
+#include <stdio.h>
+
 /* ------------------------------------------------------------------------
  * Metrics: an image against its reference
  * ------------------------------------------------------------------------ */
@@ -627,6 +629,10 @@ int aa_plot_convergence(const char *dir, const aa_convergence *c, const char *co
  * the gnuplot variables `dat` and `out` (setting them to NAME.dat and
  * NAME.png when unset), saved as NAME.gp and drawn into NAME.png. */
 int aa_plot_script(const char *dir, const char *name, const char *data, const char *script);
+
+/* s written as HTML text (<, >, & and " escaped): the gallery, the claims
+ * page and the run report share it. */
+void aa_html_escape(FILE *out, const char *s);
 
 /* Published figures (figures.c): the seed papers' comparison figures remade
  * into a folder as NAME.png (labelled panels, aa_montage_write) and NAME.txt

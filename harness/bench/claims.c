@@ -1775,18 +1775,6 @@ static void md_cell(FILE *f, const char *s)
             fputc(*s, f);
 }
 
-static void html_cell(FILE *f, const char *s)
-{
-    for (; *s; s++) {
-        switch (*s) {
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '&': fputs("&amp;", f); break;
-        default: fputc(*s, f);
-        }
-    }
-}
-
 static int write_text(const char *dir, const char *name, const char *text, size_t len)
 {
     char path[4096];
@@ -1862,20 +1850,20 @@ static int write_claims(const char *dir, const claim *c, int n, int reps)
         md_cell(m, c[k].reason);
         fputs(" |\n", m);
         fprintf(h, "<tr><td>%d</td><td>", k + 1);
-        html_cell(h, c[k].row->paper);
+        aa_html_escape(h, c[k].row->paper);
         fputs(", ", h);
-        html_cell(h, c[k].row->where);
+        aa_html_escape(h, c[k].row->where);
         fputs("</td><td>", h);
-        html_cell(h, c[k].row->claim);
+        aa_html_escape(h, c[k].row->claim);
         fputs("</td><td>", h);
-        html_cell(h, c[k].row->setting);
+        aa_html_escape(h, c[k].row->setting);
         fputs("</td><td>", h);
-        html_cell(h, c[k].measured);
+        aa_html_escape(h, c[k].measured);
         fputs("</td><td class=\"v-", h);
         for (const char *v = c[k].verdict; *v; v++)
             fputc(*v == ' ' ? '-' : *v, h);
         fprintf(h, "\"><b>%s</b>: ", c[k].verdict);
-        html_cell(h, c[k].reason);
+        aa_html_escape(h, c[k].reason);
         fputs("</td></tr>\n", h);
     }
     fputs("</table>\n</body>\n</html>\n", h);

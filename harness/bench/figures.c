@@ -579,7 +579,7 @@ static int make_tile(const fig_def *f, const fig_panel *p, const aa_image *im, a
     return AA_OK;
 }
 
-static void html_escape(FILE *out, const char *s)
+void aa_html_escape(FILE *out, const char *s)
 {
     for (; *s; s++) {
         switch (*s) {
@@ -1111,15 +1111,15 @@ int aa_figure_index(const char *dir)
             continue;
         char *cap = slurp(txt);
         fprintf(m, "<figure id=\"%s\">\n<img src=\"%s.png\" alt=\"", f->name, f->name);
-        html_escape(m, f->title);
+        aa_html_escape(m, f->title);
         fprintf(m, "\">\n<figcaption>\n<h2>%s</h2>\n<p>", f->name);
-        html_escape(m, f->title);
+        aa_html_escape(m, f->title);
         fputs("</p>\n<p class=\"claim\">Claim: ", m);
-        html_escape(m, f->claim);
+        aa_html_escape(m, f->claim);
         fputs("</p>\n", m);
         if (cap) {
             fputs("<pre>", m);
-            html_escape(m, cap);
+            aa_html_escape(m, cap);
             fputs("</pre>\n", m);
             free(cap);
         }

@@ -16,19 +16,6 @@
 #include <string.h>
 #include <unistd.h>
 
-static void esc(FILE *out, const char *s)
-{
-    for (; *s; s++) {
-        switch (*s) {
-        case '<': fputs("&lt;", out); break;
-        case '>': fputs("&gt;", out); break;
-        case '&': fputs("&amp;", out); break;
-        case '"': fputs("&quot;", out); break;
-        default: fputc(*s, out);
-        }
-    }
-}
-
 static int present(const char *dir, const char *rel)
 {
     char path[4600];
@@ -90,20 +77,20 @@ static void view_section(FILE *m, const char *dir, const aa_row *rows, size_t n,
     aa_spec_slug(r0->pattern, ps, sizeof ps);
     aa_spec_slug(r0->filter, fs, sizeof fs);
     fprintf(m, "<section id=\"%s-%dx%d-%s\">\n<h2>", ps, r0->w, r0->h, fs);
-    esc(m, r0->pattern);
+    aa_html_escape(m, r0->pattern);
     fprintf(m, " %dx%d, ", r0->w, r0->h);
-    esc(m, r0->filter);
+    aa_html_escape(m, r0->filter);
     fputs("</h2>\n<table>\n<tr><th>method</th><th>rmse</th><th>edge_rmse</th><th>max_err</th>"
           "<th>flip</th><th>ssim</th><th>psnr dB</th><th>ms (median)</th></tr>\n",
           m);
     for (size_t q = 0; q < k; q++) {
         const aa_row *r = &rows[idx[q]];
         fputs("<tr><td>", m);
-        esc(m, r->method);
+        aa_html_escape(m, r->method);
         fputs("</td>", m);
         if (!r->ok) {
             fputs("<td colspan=\"7\" class=\"note\">", m);
-            esc(m, r->note);
+            aa_html_escape(m, r->note);
             fputs("</td></tr>\n", m);
             continue;
         }
@@ -146,7 +133,7 @@ static void view_section(FILE *m, const char *dir, const aa_row *rows, size_t n,
                   "largest squared error, zoomed: reference, image, error and FLIP.</p>\n",
                   m);
         fputs("<div class=\"case\"><h4>", m);
-        esc(m, r->method);
+        aa_html_escape(m, r->method);
         fputs("</h4>", m);
         if (e)
             fprintf(m, "<img src=\"%s\" alt=\"error map\">", rel);
@@ -190,7 +177,7 @@ int aa_run_report(const char *dir, const aa_row *rows, size_t n)
           m);
     const char *base = strrchr(dir, '/');
     fputs("<p>Folder <code>", m);
-    esc(m, base && base[1] ? base + 1 : dir);
+    aa_html_escape(m, base && base[1] ? base + 1 : dir);
     fputs("</code>: results.csv and results.json hold every number below. Errors are against "
           "the exact reference of the same pattern, size and filter: <b>rmse</b> and "
           "<b>max_err</b> over every channel of every pixel in linear light; <b>edge_rmse</b> "
@@ -210,9 +197,9 @@ int aa_run_report(const char *dir, const aa_row *rows, size_t n)
         aa_spec_slug(rows[k].pattern, ps, sizeof ps);
         aa_spec_slug(rows[k].filter, fs, sizeof fs);
         fprintf(m, "<a href=\"#%s-%dx%d-%s\">", ps, rows[k].w, rows[k].h, fs);
-        esc(m, rows[k].pattern);
+        aa_html_escape(m, rows[k].pattern);
         fprintf(m, " %dx%d ", rows[k].w, rows[k].h);
-        esc(m, rows[k].filter);
+        aa_html_escape(m, rows[k].filter);
         fputs("</a>", m);
     }
     if (present(dir, "plots/error_vs_time.png"))
