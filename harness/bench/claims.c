@@ -1817,7 +1817,7 @@ static int write_claims(const char *dir, const claim *c, int n, int reps)
     fprintf(m, "\n\n| # | paper, where | claim | setting | measured | verdict |\n"
                "|---|---|---|---|---|---|\n");
     fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-          "<title>aabench: the seed papers' claims, measured</title>\n</head>\n<body>\n"
+          "<title>aabench: the papers' claims, measured</title>\n</head>\n<body>\n"
           "<style>\n"
           ".claims { border-collapse: collapse; font: 13px sans-serif; }\n"
           ".claims td, .claims th { border: 1px solid #999; padding: 4px; "
@@ -1829,7 +1829,7 @@ static int write_claims(const char *dir, const claim *c, int n, int reps)
           ".claims td.v-no { background: #ffc7ce; }\n"
           ".claims td.v-inconclusive { background: #dde4ee; }\n"
           ".claims td.v-not-comparable { background: #e4e4e4; }\n"
-          "</style>\n<h1>The seed papers' claims, measured</h1>\n<h2>How</h2>\n<p>",
+          "</style>\n<h1>The papers' claims, measured</h1>\n<h2>How</h2>\n<p>",
           h);
     fprintf(h, intro, reps, AA_EYE_S);
     fputs("</p>\n<h2>Claims</h2>\n<table class=\"claims\">\n<tr><th>#</th><th>paper, where</th>"
