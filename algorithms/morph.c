@@ -100,12 +100,14 @@
  * SVG scenes at 256x256, one thread).
  *
  * Limits.  What point sampling lost (thin objects between centres, moire)
- * cannot come back; a 45-degree staircase is left as sampled; the edge's
- * position inside a pixel is unknown, so reconstructed lines go through the
- * middles of the turns and can be half a pixel off; shapes narrower than
- * two pixels are read as U shapes and smeared; corners of shapes are
- * rounded (mlaa fully, smaa by `rounding`); the search is per frame, so in
- * motion the blend moves with the staircase.  Measured against the box
+ * cannot come back; a 45-degree staircase is read as the 45-degree line
+ * through its turns' middles (exact for that edge, tests/test_postaa.c),
+ * wherever the edge lies; the edge's position inside a pixel is unknown,
+ * so reconstructed lines go through the middles of the turns and can be
+ * half a pixel off; shapes narrower than two pixels are read as U shapes
+ * and smeared; corners of shapes are rounded (mlaa fully, smaa by
+ * `rounding`); the search is per frame, so in motion the blend moves with
+ * the staircase.  Measured against the box
  * reference; box only.
  */
 #include "methods.h"

@@ -5,12 +5,13 @@
  *  - the reconstructed edge's areas (SMAA's area table, aa_morph_area)
  *    against trapezoids and triangles worked out by hand for Z, U and L
  *    shapes;
- *  - a straight edge of slope 1/4 placed so that its point-sampled
- *    staircase turns with its middles on the edge (the case where the
- *    papers' reconstruction is the edge itself): mlaa and smaa give the
- *    exact box-filtered image away from the image border, the coverage of
- *    each pixel by the half-plane computed here by hand geometry, in
- *    colour, along rows and (transposed) along columns;
+ *  - straight edges of slope 1/4, 1/2 (26.6 degrees) and 1 (45 degrees)
+ *    placed so that their point-sampled staircases turn with their middles
+ *    on the edge (the case where the papers' reconstruction is the edge
+ *    itself): mlaa and smaa give the exact box-filtered image away from
+ *    the image border, the coverage of each pixel by the half-plane
+ *    computed here by hand geometry, in colour, along rows and
+ *    (transposed) along columns;
  *  - an edge along pixel boundaries: point sampling is exact there, and
  *    mlaa and smaa leave it as it is; fxaa's sub-pixel term blurs it by
  *    0.75 (smoothstep(1/3))^2 = 0.0504, from the whitepaper's formula,
@@ -120,48 +121,57 @@ static double below_line(int i, int j, double y0, double k)
 static void test_slope_exact(void **state)
 {
     (void)state;
-    /* The line y = 4 + x/4 in a 32 x 16 image crosses the pixel centres'
-     * heights j + 1/2 at x = 4 j - 14, on pixel boundaries: the turns of its
-     * staircase are centred on it.  Inside below it, outside above;
-     * transposed (x = 4 + y/4), the same along columns. */
-    const int w = 32, h = 16;
+    /* The line y = y0 + x/k crosses the pixel centres' heights j + 1/2 at
+     * x = k (j + 1/2 - y0), on pixel boundaries for these y0: the turns of
+     * its staircase are centred on it.  Slope 1/4 (runs of 4), 1/2 (26.6
+     * degrees, runs of 2) and 1 (45 degrees, runs of 1 between opposite
+     * turns, the 45-degree line through their middles).  Inside below it,
+     * outside above; transposed (x = y0 + y/k), the same along columns. */
+    static const struct {
+        double k, y0;
+        int w, h;
+    } lines[] = {{4, 4, 32, 16}, {2, 4, 32, 24}, {1, 4.5, 32, 40}};
     const aa_rgb in = {{1.0, 0.8, 0.2}}, out = {{0.1, 0.2, 0.6}};
-    for (int tr = 0; tr < 2; tr++) {
-        const int W = tr ? h : w, H = tr ? w : h; /* the image */
-        double p[4][2] = {{0, 4}, {32, 12}, {32, 16}, {0, 16}};
-        double xy[8];
-        for (int k = 0; k < 4; k++) {
-            double x = tr ? p[k][1] : p[k][0], y = tr ? p[k][0] : p[k][1];
-            xy[2 * k] = x / W, xy[2 * k + 1] = y / H;
-        }
-        aa_scene *s = scenes_polygon(xy, 4, in, out, AA_FILL_NONZERO);
-        for (int m = 0; m < 3; m += 2) { /* mlaa, smaa */
-            aa_image img;
-            support_render(posts[m], s, NULL, W, H, 2, &img, NULL);
-            double worst = 0.0;
-            /* columns 4 .. 27 along the line: away from the runs that end
-             * at the image border (open ends, drawn by half) */
-            for (int u = 4; u < 28; u++)
-                for (int v = 0; v < h; v++) {
-                    double c = below_line(u, v, 4.0, 4.0);
-                    const double *px = tr ? aa_pixel(&img, v, u) : aa_pixel(&img, u, v);
-                    for (int ch = 0; ch < 3; ch++) {
-                        double want = out.c[ch] + c * (in.c[ch] - out.c[ch]);
-                        double e = fabs(px[ch] - want);
-                        worst = e > worst ? e : worst;
-                        if (e > 1e-12)
-                            fail_msg("%s%s: pixel (%d, %d) channel %d is %.15g, the "
-                                     "half-plane's box value %.15g",
-                                     posts[m], tr ? " (transposed)" : "", tr ? v : u,
-                                     tr ? u : v, ch, px[ch], want);
+    for (size_t q = 0; q < sizeof lines / sizeof *lines; q++)
+        for (int tr = 0; tr < 2; tr++) {
+            const double k = lines[q].k, y0 = lines[q].y0;
+            const int w = lines[q].w, h = lines[q].h;
+            const int W = tr ? h : w, H = tr ? w : h; /* the image */
+            double p[4][2] = {{0, y0}, {w, y0 + w / k}, {w, h}, {0, h}};
+            double xy[8];
+            for (int c = 0; c < 4; c++) {
+                double x = tr ? p[c][1] : p[c][0], y = tr ? p[c][0] : p[c][1];
+                xy[2 * c] = x / W, xy[2 * c + 1] = y / H;
+            }
+            aa_scene *s = scenes_polygon(xy, 4, in, out, AA_FILL_NONZERO);
+            for (int m = 0; m < 3; m += 2) { /* mlaa, smaa */
+                aa_image img;
+                support_render(posts[m], s, NULL, W, H, 2, &img, NULL);
+                double worst = 0.0;
+                /* columns 4 .. w-5 along the line: away from the runs that
+                 * end at the image border (open ends, drawn by half) */
+                for (int u = 4; u < w - 4; u++)
+                    for (int v = 0; v < h; v++) {
+                        double c = below_line(u, v, y0, k);
+                        const double *px = tr ? aa_pixel(&img, v, u) : aa_pixel(&img, u, v);
+                        for (int ch = 0; ch < 3; ch++) {
+                            double want = out.c[ch] + c * (in.c[ch] - out.c[ch]);
+                            double e = fabs(px[ch] - want);
+                            worst = e > worst ? e : worst;
+                            if (e > 1e-12)
+                                fail_msg("%s%s, slope 1/%g: pixel (%d, %d) channel %d is "
+                                         "%.15g, the half-plane's box value %.15g",
+                                         posts[m], tr ? " (transposed)" : "", k, tr ? v : u,
+                                         tr ? u : v, ch, px[ch], want);
+                        }
                     }
-                }
-            print_message("%s%s, slope 1/4 through the turns' middles: largest error %.1e\n",
-                          posts[m], tr ? " (along columns)" : "", worst);
-            aa_image_free(&img);
+                print_message("%s%s, slope 1/%g through the turns' middles: largest error "
+                              "%.1e\n",
+                              posts[m], tr ? " (along columns)" : "", k, worst);
+                aa_image_free(&img);
+            }
+            aa_scene_free(s);
         }
-        aa_scene_free(s);
-    }
 }
 
 /* ---- edges along pixel boundaries ---- */

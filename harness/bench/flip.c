@@ -2,51 +2,71 @@
  * flip.c: LDR-FLIP, the perceived difference of two images flipped between
  * on a display (Andersson, Nilsson, Akenine-Moller, Oskarsson, Astrom and
  * Fairchild 2020, "FLIP: A Difference Evaluator for Alternating Images",
- * Proc. ACM Comput. Graph. Interact. Tech. 3(2), article 15), from the
- * paper's definitions:
+ * Proc. ACM Comput. Graph. Interact. Tech. 3(2), article 15), step by step
+ * as the paper defines it, with its erratum (its publication page: on p. 10,
+ * the achromatic channel is divided by 116, not 100).  Every constant below
+ * is the paper's and the same in the authors' published implementations
+ * (their 2020 C++ release and their NumPy version).
  *
- *  - viewing condition: pixels per degree, ppd = d (n / w) pi / 180 for a
+ *  - Viewing condition: pixels per degree ppd = d (n / w) pi / 180 for a
  *    monitor w metres wide of n pixels seen from d metres; the paper's
- *    default, d = w = 0.7 m and n = 3840, is 67.02 (AA_FLIP_PPD);
- *  - colour pipeline: each image (linear sRGB primaries, D65) to XYZ, to
- *    the opponent space YyCxCz (Yy = 116 Y/Yn - 16, Cx = 500 (X/Xn -
- *    Y/Yn), Cz = 200 (Y/Yn - Z/Zn)); each channel convolved with its
- *    contrast sensitivity function, in the spatial domain the sum of
- *    Gaussians  s(x) = a1 sqrt(pi/b1) exp(-pi^2 x^2/b1) + a2 sqrt(pi/b2)
- *    exp(-pi^2 x^2/b2)  (x the distance in degrees) with, achromatic,
- *    (a1, b1, a2, b2) = (1, 0.0047, 0, 1e-5), red-green (1, 0.0053, 0,
- *    1e-5), blue-yellow (34.1, 0.04, 13.5, 0.025); the kernel radius
- *    ceil(3 sqrt(bmax / (2 pi^2)) ppd) pixels (bmax = 0.04, one radius for
- *    all three) and the kernel normalised to sum 1.  Back to linear RGB,
- *    clamped to [0, 1], then CIELAB (white: RGB (1, 1, 1)), the Hunt
- *    adjustment a* <- 0.01 L* a*, b* <- 0.01 L* b*, and the HyAB distance
- *    |dL*| + sqrt(da*^2 + db*^2), raised to qc = 0.7; cmax is that of
- *    pure green against pure blue (the largest in the RGB cube); the error
- *    is mapped to [0, 1] linearly to pt = 0.95 at pc cmax (pc = 0.4), then
- *    linearly from pt to 1 at cmax;
- *  - feature pipeline, on Y/Yn = (Yy + 16)/116 of the unfiltered images
- *    (the erratum's division by 116): edges by the first derivative of a
+ *    default, d = w = 0.7 m and n = 3840, is 67.02 (AA_FLIP_PPD).
+ *  - Colour pipeline, spatial filtering: each image's linear RGB (sRGB
+ *    primaries) to XYZ, to the opponent space YyCxCz against the display's
+ *    white, RGB (1, 1, 1), that is D65: Yy = 116 Y/Yn - 16, Cx = 500 (X/Xn -
+ *    Y/Yn), Cz = 200 (Y/Yn - Z/Zn).  Each channel is convolved with its
+ *    contrast sensitivity function, the sum of two Gaussians in frequency,
+ *    A(f) = a1 e^(-b1 f^2) + a2 e^(-b2 f^2), in space S(x) = a1 sqrt(pi/b1)
+ *    e^(-pi^2 x^2/b1) + a2 sqrt(pi/b2) e^(-pi^2 x^2/b2), x the distance in
+ *    degrees (pixels / ppd); (a1, b1, a2, b2) = (1, 0.0047, 0, 1e-5)
+ *    achromatic, (1, 0.0053, 0, 1e-5) red-green, (34.1, 0.04, 13.5, 0.025)
+ *    blue-yellow.  The kernel is S on the (2 r + 1)^2 pixels around the
+ *    centre, r = ceil(3 sqrt(bmax / (2 pi^2)) ppd) with bmax = 0.04 the
+ *    largest b of all three (r = 10 at 67 ppd), normalised to sum 1.
+ *  - Colour pipeline, perceptually uniform space: the filtered image back
+ *    to linear RGB, clamped to [0, 1], to CIELAB (the same white; CIE 15's
+ *    f with its exact 6/29), then the Hunt adjustment a* <- 0.01 L* a*,
+ *    b* <- 0.01 L* b*.
+ *  - Colour metric: HyAB, |dL*| + sqrt(da*^2 + db*^2), raised to qc = 0.7;
+ *    cmax, the largest such difference, is green's against blue's (41.28);
+ *    the error is mapped to [0, pt] linearly up to pc cmax, then linearly
+ *    to [pt, 1] up to cmax, pc = 0.4, pt = 0.95: dEc in [0, 1].
+ *  - Feature pipeline, on the unfiltered achromatic channel normalised to
+ *    [0, 1], (Yy + 16) / 116 = Y/Yn: edges by the first derivative of a
  *    Gaussian, points by its second, sigma = w/2 ppd pixels with w = 0.082
- *    degrees, radius ceil(3 sigma); each derivative kernel normalised so
- *    that its positive weights sum to 1 and its negative ones to -1; the
- *    feature difference dEf = (max(| |e_r| - |e_t| |, | |p_r| - |p_t| |)
- *    / sqrt 2)^qf, qf = 0.5, |.| the magnitude of the (x, y) responses;
- *  - combination: FLIP = dEc^(1 - dEf) per pixel, in [0, 1].
+ *    degrees (2.75 pixels at 67 ppd), radius ceil(3 sigma); the x kernels
+ *    are -x g(x, y) and (x^2/sigma^2 - 1) g(x, y), each normalised so that
+ *    its positive weights sum to 1 and its negative ones to -1, the y
+ *    kernels their transposes; the feature difference is dEf =
+ *    (max(| |e_r| - |e_t| |, | |p_r| - |p_t| |) / sqrt 2)^qf, qf = 0.5, |.|
+ *    the magnitude of the (x, y) responses, in [0, 1].
+ *  - Final difference: FLIP = dEc^(1 - dEf) per pixel, in [0, 1].
  *
- * Where the paper leaves room, decided here:
- *  - the images given are linear light; what the display shows is their
- *    encoding `enc` (sRGB by default), which the display decodes as sRGB:
- *    the sRGB-encoded images are compared as such, the others through the
- *    same display (Crow's square law, gamma:2, shows darker);
- *  - the single number is the mean over the pixels (the authors' later
- *    advice, in place of the paper's weighted median);
+ * Variants, where this file chooses otherwise than the paper:
+ *  - the single number is the mean over the pixels, not the paper's
+ *    weighted median of its pooling: the authors' later advice on the
+ *    paper's publication page, and a figure every pixel counts in;
+ *  - the images given are linear light and the display decodes sRGB: an
+ *    sRGB-encoded image is compared as such (the paper's case); one under
+ *    another encoding `enc` is compared as the same display shows its codes
+ *    (Crow's square law, gamma:2, shows darker).  An image of fewer than 3
+ *    channels is shown as grey (its first channel), one of more as RGB.
+ *
+ * Where the paper leaves room, decided here (as the authors' code does
+ * unless said):
  *  - the filters reach past the image's border by its edge pixels
- *    (clamped coordinates);
- *  - the 2-D kernel is the paper's s(x) at the distance sqrt(x^2 + y^2),
- *    separable per Gaussian term; the derivative kernels are separable:
- *    the derivative across, the Gaussian (sum 1) along;
- *  - an image of fewer than 3 channels is shown as grey (its first
- *    channel), one of more as RGB (its first three).
+ *    (clamped coordinates, the authors' replicated border);
+ *  - the sRGB matrix is IEC 61966-2-1's to 7 digits (the authors write it
+ *    as ratios that differ by 1e-4); CIELAB's f has the exact 6/29 (the
+ *    authors' 2020 release rounded it to 0.008856 and 7.787);
+ *  - the 2-D kernels are applied as sums of separable ones, which they
+ *    are: S at the distance sqrt(x^2 + y^2) is, per Gaussian term, a
+ *    product of 1-D Gaussians, and the derivative kernels the derivative
+ *    across times the Gaussian along (normalising each factor normalises
+ *    the product); tests/test_flip.c evaluates the 2-D definitions tap by
+ *    tap and agrees to rounding;
+ *  - dEc is kept at most 1, which nothing reaches but green against blue
+ *    (the paper's cmax is the largest difference in the RGB cube).
  */
 #include "bench.h"
 
