@@ -7,12 +7,15 @@
  * fork(): the child renders, measures and sends back its row (and, when the
  * run writes images, the image) through a pipe, then ends with _exit.  The
  * parent waits up to the time-out; a child killed by a signal, one that
- * ends without a whole report, or one that runs out of time (killed with
- * SIGKILL, a second after the time-out, which the external method's
- * renderers end at: aa_external_time_limit) gives a failed row: "crashed
- * (signal 11)", "timed out after 600 s".  Everything the child needs (the reference, the scene, the job)
- * is in its copy of the parent's memory; it writes no file, so a child
- * killed halfway leaves nothing behind, and the parent writes the images.
+ * ends without a whole report, or one that runs out of time gives a failed
+ * row: "crashed (signal 11)", "timed out after 600 s".  A child still
+ * running ISOLATE_GRACE s after the time-out (the external method's
+ * renderers end at the time-out itself: aa_external_time_limit) is sent
+ * SIGTERM, which ends a renderer it started with its folder (external.c's
+ * handler), and SIGKILL ISOLATE_TERM s later.  Everything the child needs
+ * (the reference, the scene, the job) is in its copy of the parent's
+ * memory; it writes no file of its own, so a child killed halfway leaves
+ * nothing behind, and the parent writes the images.
  *
  * OpenMP: GCC's libgomp is not fork-safe once its thread pool exists (the
  * child would wait forever for threads that were not copied), and the
@@ -93,6 +96,11 @@ static int write_all(int fd, const void *data, size_t len)
 
 /* Seconds past a case's time-out before its child is killed. */
 #define ISOLATE_GRACE 3.0
+/* s between SIGTERM and SIGKILL for a child past its deadline: the
+ * external method's handler of SIGTERM kills its renderer's group and
+ * removes its folder at once (a few system calls), which even a loaded
+ * machine schedules within this */
+#define ISOLATE_TERM 2.0
 
 /* A method that calls exit() in the child ends it here, with its status
  * and nothing else: the handlers that the parent's libraries registered
@@ -112,6 +120,10 @@ static void child(int fd, aa__case_fn fn, void *arg, aa_row *row, aa_image *img,
 #ifdef __linux__
     prctl(PR_SET_PDEATHSIG, SIGKILL);
 #endif
+    /* SIGTERM from the parent past the deadline ends the child (after the
+     * external method's own handler, while a renderer runs), not a handler
+     * of the parent's that would go on with the run */
+    signal(SIGTERM, SIG_DFL);
     if (getppid() != parent)
         _exit(120); /* the parent died before prctl */
 #ifdef _OPENMP
@@ -240,9 +252,25 @@ int aa__case_isolated(aa__case_fn fn, void *arg, aa_row *row, aa_image *img, dou
     if (done <= 0) {
         if (whole >= 0 && aa_now() >= deadline)
             whole = -1;
-        kill(pid, SIGKILL);
-        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-            ;
+        /* SIGTERM first: a renderer the child started is ended with its
+         * folder (external.c's handler); SIGKILL if the child outlives
+         * ISOLATE_TERM */
+        kill(pid, SIGTERM);
+        const double term_end = aa_now() + ISOLATE_TERM;
+        for (;;) {
+            done = waitpid(pid, &status, WNOHANG);
+            if (done < 0 && errno == EINTR)
+                continue;
+            if (done != 0 || aa_now() >= term_end)
+                break;
+            struct timespec ts = {0, 5 * 1000 * 1000};
+            nanosleep(&ts, NULL);
+        }
+        if (done <= 0) {
+            kill(pid, SIGKILL);
+            while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+                ;
+        }
     }
     int st = AA_OK;
     if (!r) {
