@@ -1567,6 +1567,131 @@ static int feibush_sizes(const cx *x, const claim_row *d, claim *c)
     return AA_OK;
 }
 
+/* The RMSE over the pixels of a class (mask[o] non-zero), every channel. */
+static double class_rmse(const aa_image *img, const aa_image *ref, const unsigned char *mask,
+                         int *count)
+{
+    double sum = 0;
+    int n = 0;
+    for (size_t o = 0; o < (size_t)img->w * (size_t)img->h; o++) {
+        if (!mask[o])
+            continue;
+        for (int ch = 0; ch < 3; ch++) {
+            double e = img->v[3 * o + ch] - ref->v[3 * o + ch];
+            sum += e * e;
+        }
+        n++;
+    }
+    *count = n;
+    return n ? sqrt(sum / (3.0 * n)) : NAN;
+}
+
+/* Feibush et al.'s fig. 4e: on feibush:stripes=M (the square's corners,
+ * in pattern units, those of patterns/feibush.c; its left edge from
+ * corner 3 to corner 0), the error of each method (methods[k]) against the
+ * exact reference over the dots along the polygon's left edge (the edge
+ * filter's work) and over the dots inside the square along the stripes
+ * (the texture filter's); equivalent when both are under half a step of
+ * their 8-bit channels, 1/510 (fixed beforehand). */
+static int feibush_edges(const cx *x, const claim_row *d, claim *c)
+{
+    static const double c0[2] = {0.32, 0.18}, c3[2] = {0.04, 0.90};
+    const int w = d->size, nm = count_of(d->methods);
+    const double step = 1.0 / 510;
+    aa_image ref = {0};
+    unsigned char *edge = calloc((size_t)w * (size_t)w, 1),
+                  *stripe = calloc((size_t)w * (size_t)w, 1);
+    int st = edge && stripe ? reference_of(x, d->patterns[0], w, d->filter, &ref)
+                            : aa_fail(AA_ENOMEM, "out of memory");
+    double ex = (c0[0] - c3[0]) * w, ey = (c0[1] - c3[1]) * w, len = hypot(ex, ey);
+    for (int j = 0; j < w && !st; j++)
+        for (int i = 0; i < w; i++) {
+            size_t o = (size_t)j * (size_t)w + (size_t)i;
+            double r = ref.v[3 * o], g = ref.v[3 * o + 1];
+            double px = i + 0.5 - c3[0] * w, py = j + 0.5 - c3[1] * w;
+            double along = (px * ex + py * ey) / len, across = (px * ey - py * ex) / len;
+            edge[o] = r > 1e-9 && r < 1 - 1e-9 && fabs(across) < 3 && along > 4 && along < len - 4;
+            stripe[o] = r > 1 - 1e-12 && g > 1e-9 && g < 1 - 1e-9;
+        }
+    double first[2] = {NAN, NAN};
+    add(c, "RMSE over the dots along the left edge / along the stripes inside:");
+    for (int k = 0; k < nm && !st; k++) {
+        aa_image img = {0};
+        st = image_at(x, d->patterns[0], w, d->filter, d->methods[k], 0, &img, NULL, NULL, NULL,
+                      NULL);
+        if (!st) {
+            int ne, ns;
+            double re = class_rmse(&img, &ref, edge, &ne), rs = class_rmse(&img, &ref, stripe, &ns);
+            add(c, "%s %s %.1e / %.1e (%d and %d dots)", k ? ";" : "", d->labels[k], re, rs, ne,
+                ns);
+            if (k == 0)
+                first[0] = re, first[1] = rs;
+        }
+        aa_image_free(&img);
+    }
+    aa_image_free(&ref);
+    free(edge);
+    free(stripe);
+    if (st)
+        return st;
+    add(c, ". Equivalent taken as both under half a step of 8 bits, %.1e.", step);
+    int edge_ok = first[0] < step, stripe_ok = first[1] < step;
+    because(c, edge_ok && stripe_ok ? "yes" : "no",
+            "their system errs by %.1e along the polygon's edge and %.1e along the stripes: %s",
+            first[0], first[1],
+            edge_ok && stripe_ok ? "both under half an 8-bit step"
+            : edge_ok || stripe_ok ? "one under half an 8-bit step, the other not"
+                                   : "neither under half an 8-bit step");
+    return AA_OK;
+}
+
+/* Ramos and Borges' difficult cases (sec. 6), one scene each: the
+ * polygons of each case are the only green of its scene, so what the
+ * method misses of them is its green channel's error.  A case fails as the
+ * paper says (the polygon ignored) when adaptive (methods[0]) misses at
+ * least 90% of the green (its green RMSE within TIE of that of no green at
+ * all); methods[1], [2] beside. */
+static int rb_cases(const cx *x, const claim_row *d, claim *c)
+{
+    const int np = count_of(d->patterns);
+    int ignored = 0;
+    add(c, "green RMSE against the reference / the reference's own green RMS:");
+    for (int k = 0; k < np; k++) {
+        aa_image ref = {0};
+        int st = reference_of(x, d->patterns[k], d->size, "box", &ref);
+        double g0 = 0, share[3];
+        const size_t n = (size_t)d->size * (size_t)d->size;
+        for (size_t o = 0; o < n && !st; o++)
+            g0 += ref.v[3 * o + 1] * ref.v[3 * o + 1];
+        g0 = sqrt(g0 / (double)n);
+        for (int q = 0; q < 3 && !st; q++) {
+            aa_image img = {0};
+            st = image_at(x, d->patterns[k], d->size, d->filter, d->methods[q], 0, &img, NULL,
+                          NULL, NULL, NULL);
+            double e = 0;
+            for (size_t o = 0; o < n && !st; o++) {
+                double v = img.v[3 * o + 1] - ref.v[3 * o + 1];
+                e += v * v;
+            }
+            share[q] = sqrt(e / (double)n) / g0;
+            aa_image_free(&img);
+        }
+        aa_image_free(&ref);
+        if (st)
+            return st;
+        const char *name = strrchr(d->patterns[k], '/');
+        add(c, "%s %s: %s %.2f, %s %.2f, %s %.2f", k ? ";" : "", name ? name + 1 : d->patterns[k],
+            d->labels[0], share[0], d->labels[1], share[1], d->labels[2], share[2]);
+        ignored += share[0] >= 1 - TIE;
+    }
+    add(c, ". A share of 1 is the green missed wholly; \"ignored\" taken as at least %.2f.",
+        1 - TIE);
+    because(c, aa_claim_tally(ignored, np - ignored, 0),
+            "adaptive ignores the case's polygons on %d of %d scenes, as the paper says", ignored,
+            np);
+    return AA_OK;
+}
+
 /* ---- the claims ---- */
 
 #define PAIR(p, w, f, ma, mb, label) {{p, w, f, ma, 0}, {p, w, f, mb, 0}, label}
@@ -1978,6 +2103,51 @@ static const claim_row claims[] = {
         .methods = LIST("conetable", "conetable", "conetable", "conetable", "conetable",
                         "conetable"),
         .measure = feibush_sizes,
+    },
+    {
+        .paper = "Feibush, Levoy and Cook 1980",
+        .where = "sec. 3 (\"Examples\"), fig. 4e",
+        .claim = "\"In the hardware magnification shown in Figure 4e, the polygon is inclined "
+            "slightly more than in Figures 4b-d to enhance the visibility of the filtering. "
+            "Notice that the filtering along the left edge of the polygon is equivalent to "
+            "the filtering along the stripes of the texture.\"",
+        .setting = "feibush:stripes=200 at 512x512 under their Gaussian (gauss:s=1,cut=2), the "
+            "setting of fig. 4d (fig-feibush-4d; the more inclined polygon of 4e is not "
+            "given): their texture filter with their edge filter (feibushtex:texels=1000, "
+            "every texture point inside one stripe) and the edge filter alone on the "
+            "stripes as polygons (conetable) beside; RMSE against the exact reference over "
+            "the dots along the polygon's left edge (within 3 pixels of it, 4 pixels from "
+            "its ends) and over the dots inside the square whose mask meets a stripe's "
+            "edge.",
+        .patterns = LIST("feibush:stripes=200"), .size = 512, .filter = "gauss:s=1,cut=2",
+        .methods = LIST("feibushtex:texels=1000", "conetable"),
+        .labels = LIST("texture and edge filters", "edge filter alone"),
+        .measure = feibush_edges,
+    },
+    {
+        .paper = "Ramos and Borges",
+        .where = "sec. 6 (\"Casos particulares\"), cases a-d, fig. 4 (\"Casos desfavoráveis\")",
+        .claim = "\"Esse algoritmo apresenta alguns casos difíceis, como mostrado na figura 4\": "
+            "(a) polygons smaller than a pixel and wholly inside it, \"o algoritmo não tomará "
+            "conhecimento destes polígonos\"; (b) polygons with vertices inside the pixel and "
+            "all their edges on one border, \"o algoritmo ignorará o polígono\"; (c) more "
+            "than one edge of different polygons on one border, \"O processo de busca "
+            "binária detectará apenas uma variação por borda, e um dos polígonos será "
+            "ignorado\"; (d) a very thin polygon across a pixel, \"o algoritmo pode falhar\".",
+        .setting = "one 32x32 scene per case, box (patterns/svg/rb-inside.svg, rb-border.svg, "
+            "rb-twoedges.svg, rb-thin.svg: the case's polygons placed against the pixel "
+            "corners as the case needs, and the only green of the scene): adaptive (the "
+            "paper's method, tag=0) against the exact reference, the share of the "
+            "polygons' green it misses (its green RMSE over the reference's green RMS); "
+            "adaptive:tag=1 (tagged pixels subdivided, an extension) and supersample:n=3 "
+            "beside.",
+        .patterns = LIST("svg:file=patterns/svg/rb-inside.svg",
+                         "svg:file=patterns/svg/rb-border.svg",
+                         "svg:file=patterns/svg/rb-twoedges.svg",
+                         "svg:file=patterns/svg/rb-thin.svg"),
+        .size = 32, .filter = "box",
+        .methods = LIST("adaptive", "adaptive:tag=1", "supersample:n=3"),
+        .labels = LIST("adaptive", "tag=1", "n=3"), .measure = rb_cases,
     },
     {
         .paper = "Reshetov 2009",
