@@ -62,6 +62,17 @@
  *    (visible.c).  So a pixel is the colour left of the square plus, per
  *    visible part of an edge, its rectangle times the change of colour
  *    across it.
+ *  - Hidden surfaces, hidden=zbuffer: his z-buffer without the extensions
+ *    he proposes (ch. 3, "Comparison of three basic hidden-surface
+ *    techniques", fig. 3.7; "Implementation of a z-buffer algorithm"): the
+ *    polygons "written in any order", here the worst one, front to back,
+ *    so that every surface lies behind what is already stored.  A dot
+ *    holds one intensity and one depth: the first layer whose weighted area
+ *    reaches it is blended with the background there and stores its depth;
+ *    a layer written later lies behind that depth and "no new information
+ *    is stored", so "the blending information for the first surface has
+ *    been lost" along every edge in front of another surface (no
+ *    adjacent-polygon rule: a z-buffer knows nothing of other polygons).
  *
  * What is chosen here.
  *  - The polygons are the scene's layers: a layer's paths are written as
@@ -118,6 +129,10 @@
  *    (7.4e-2 without the adjacent-polygon rule); catmull:tiles=4 1.7e-2,
  *    1.1e-1; slivers 2.8e-3, 7.4e-2 (the front layer that clips them at
  *    the square's edge); star and crow, one layer, exact.
+ *  - hidden=zbuffer: as hidden=priority where a dot is reached by one
+ *    layer; where a layer in front reaches it, the whole contrast between
+ *    the background and the surface behind it, times the share of the
+ *    front layer's weight it does not cover.
  *
  * Known answers (tests/test_prefilters.c): area=exact with hidden=scan
  * matches the exact tent:r=1 reference (aa_truth_render) within 1e-12 on
@@ -151,15 +166,16 @@
 
 enum { P_AREA, P_HIDDEN, P_RES };
 enum { AREA_TABLE, AREA_EXACT };
-enum { HIDDEN_PRIORITY, HIDDEN_SCAN };
+enum { HIDDEN_PRIORITY, HIDDEN_SCAN, HIDDEN_ZBUFFER };
 
 static const aa_param crowtiler_params[] = {
     {"area", AA_PARAM_CHOICE, AREA_TABLE, 0, 0, 0, "table|exact",
      "the weighted area right of an edge: one rectangle from Crow's partial-sum tables, or "
      "exact (a variant)"},
-    {"hidden", AA_PARAM_CHOICE, HIDDEN_PRIORITY, 0, 0, 0, "priority|scan",
+    {"hidden", AA_PARAM_CHOICE, HIDDEN_PRIORITY, 0, 0, 0, "priority|scan|zbuffer",
      "hidden surfaces: layers blended back to front with Crow's adjacent-polygon rule "
-     "(z-priority), or each visible edge between its two surfaces (scanning)"},
+     "(z-priority), each visible edge between its two surfaces (scanning), or layers "
+     "written front to back into a z-buffer that keeps no blending information"},
     {"res", AA_PARAM_INT, TL_DEFAULT_RES, 1, TL_MAX_RES, 0, NULL,
      "area=table: table entries per pixel"},
     {0}};
@@ -384,8 +400,8 @@ typedef struct tl_pixel {
     const tl_render *R;
     double cx, cy, xl, top;
     double acc[3]; /* hidden=scan */
-    double *cov;   /* hidden=priority: per layer */
-    double *val;   /* hidden=priority: per layer */
+    double *cov;   /* hidden=priority, zbuffer: per layer */
+    double *val;   /* hidden=priority, zbuffer: per layer */
 } tl_pixel;
 
 static double rows_weight(const tl_pixel *P, double ya, double yb)
@@ -401,20 +417,22 @@ static inline int covered(const aa_scene *s, int layer, const int *wind)
     return aa_scene_layer_rule(s, layer) == AA_FILL_EVENODD ? (w & 1) : (w != 0);
 }
 
-/* hidden=priority: what each layer paints under a winding.  A layer written
- * before an abutting layer in front (adj) overwrites the pixels it would
- * blend along their shared edge: it is painted across that edge, over the
- * front layer's region too, up to the front layer's other edges, and the
- * front layer then blends with it alone. */
+/* hidden=priority, zbuffer: what each layer paints under a winding.  With
+ * priority, a layer written before an abutting layer in front (adj)
+ * overwrites the pixels it would blend along their shared edge: it is
+ * painted across that edge, over the front layer's region too, up to the
+ * front layer's other edges, and the front layer then blends with it
+ * alone.  The z-buffer has no such rule. */
 static void tl_values(void *ctx, const int *wind, double *out)
 {
     const tl_pixel *P = ctx;
     const tl_state *S = P->R->S;
     const aa_scene *s = P->R->scene;
     int nl = S->nl;
+    const int adjacent = P->R->hidden == HIDDEN_PRIORITY;
     for (int l = 0; l < nl; l++) {
         int c = covered(s, l, wind);
-        for (int m = 0; m < l && !c; m++)
+        for (int m = 0; m < l && !c && adjacent; m++)
             c = S->adj[(size_t)l * nl + m] && covered(s, m, wind);
         out[l] = c;
     }
@@ -487,8 +505,25 @@ static void shade(const void *ctx, aa__sampler_worker *wk, int i, int j, double 
             px[ch] = clamp01(P.acc[ch]);
         return;
     }
-    /* back to front, each layer blended into the buffer by its coverage */
     aa_rgb buf = aa_scene_background(s);
+    if (R->hidden == HIDDEN_ZBUFFER) {
+        /* front to back: the first layer to reach the dot is blended with
+         * the background and stores its depth there; every later layer
+         * lies behind that depth and is not written */
+        for (int l = 0; l < nl; l++) {
+            double a = clamp01(cov[l]);
+            if (!(a > 0.0))
+                continue;
+            aa_rgb c = aa_scene_layer_colour(s, l);
+            for (int ch = 0; ch < 3; ch++)
+                buf.c[ch] += a * (c.c[ch] - buf.c[ch]);
+            break;
+        }
+        for (int ch = 0; ch < 3; ch++)
+            px[ch] = clamp01(buf.c[ch]);
+        return;
+    }
+    /* back to front, each layer blended into the buffer by its coverage */
     for (int l = nl - 1; l >= 0; l--) {
         double a = clamp01(cov[l]);
         aa_rgb c = aa_scene_layer_colour(s, l);

@@ -476,6 +476,45 @@ static void test_tiler_priority(void **state)
     red_is_zero("crowtiler:area=exact,hidden=scan", "tent:r=1", 0.0);
 }
 
+/* The z-buffer written front to back: red, in front, is blended with the
+ * black background wherever its weighted area a reaches a dot, and green,
+ * behind, is then not written there (its blending information lost): red
+ * a, green 0, where the exact picture has green 1 - a; where red does not
+ * reach, green alone, exactly.  A scene of one layer is the z-priority
+ * image bit for bit. */
+static void test_tiler_zbuffer(void **state)
+{
+    (void)state;
+    aa_scene *s = two_halves(1);
+    aa_image img, ref;
+    reference(s, "tent:r=1", 32, 32, &ref);
+    must_render("crowtiler:area=exact,hidden=zbuffer", s, "tent:r=1", 32, 32, &img);
+    int lost = 0;
+    for (int j = 0; j < 32; j++)
+        for (int i = 0; i < 32; i++) {
+            const double *v = aa_pixel(&img, i, j), *r = aa_pixel(&ref, i, j);
+            double a = r[0], green = a > 1e-12 ? 0.0 : r[1];
+            lost += a > 1e-12 && r[1] > 1e-12;
+            if (!(fabs(v[0] - a) <= 1e-12 && fabs(v[1] - green) <= 1e-12 && v[2] == 0.0))
+                fail_msg("zbuffer pixel (%d, %d): %.6f %.6f %.6f, expected %.6f %.6f 0", i, j,
+                         v[0], v[1], v[2], a, green);
+        }
+    print_message("crowtiler:area=exact,hidden=zbuffer on two halves: %d dots lose green\n",
+                  lost);
+    assert_true(lost >= 32); /* the shared edge crosses every row */
+    aa_image_free(&img);
+    aa_image_free(&ref);
+    aa_scene_free(s);
+    aa_scene *crow = scenes_pattern("crow");
+    aa_image z, p;
+    must_render("crowtiler:hidden=zbuffer", crow, "tent:r=1", 48, 48, &z);
+    must_render("crowtiler", crow, "tent:r=1", 48, 48, &p);
+    assert_memory_equal(z.v, p.v, sizeof(double) * 48 * 48 * 3);
+    aa_image_free(&z);
+    aa_image_free(&p);
+    aa_scene_free(crow);
+}
+
 static void test_tiler_tables(void **state)
 {
     (void)state;
@@ -513,7 +552,7 @@ static void test_tiler_generic(void **state)
 {
     (void)state;
     const char *specs[] = {"crowtiler", "crowtiler:hidden=scan", "crowtiler:area=exact",
-                           "crowtiler:area=exact,hidden=scan"};
+                           "crowtiler:area=exact,hidden=scan", "crowtiler:hidden=zbuffer"};
     aa_rgb colour = {{0.3, 0.5, 0.7}};
     aa_scene *u = aa_scene_new(colour);
     assert_int_equal(aa_scene_finish(u), AA_OK);
@@ -522,7 +561,7 @@ static void test_tiler_generic(void **state)
      * binary, so the two placed scenes are the same bit for bit */
     aa_scene *moved = aa_scene_transform(crow, 1.0, 1.0, 2.0 * 0.375 / 64, 2.0 * -0.25 / 64);
     assert_non_null(moved);
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < 5; k++) {
         aa_image a, b, c;
         assert_int_equal(render(specs[k], u, "tent:r=1", 41, 29, 1, 0, 0, 0, &a), AA_OK);
         for (int p = 0; p < 41 * 29 * 3; p++)
@@ -570,7 +609,7 @@ static void test_tiler_refusals(void **state)
     refused("crowtiler", "tent:r=2", "tent:r=1");
     refused("crowtiler", "cone", "tent:r=1");
     refused("crowtiler:area=exact,res=8", "tent:r=1", "leave res out");
-    refused("crowtiler:hidden=zbuffer", "tent:r=1", "hidden");
+    refused("crowtiler:hidden=depth", "tent:r=1", "hidden");
     refused("crowtable:form=exact", "tent:r=1", "form");
 }
 
@@ -582,6 +621,7 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_crowtable_layers),
              cmocka_unit_test(test_tiler_exact),
              cmocka_unit_test(test_tiler_priority),
+             cmocka_unit_test(test_tiler_zbuffer),
              cmocka_unit_test(test_tiler_tables),
              cmocka_unit_test(test_tiler_generic),
              cmocka_unit_test(test_tiler_refusals))

@@ -1318,6 +1318,380 @@ static int crow_colour_map(const cx *x, const claim_row *d, claim *c)
     return AA_OK;
 }
 
+/* The point image of a scene under the best optical blur chosen by eye:
+ * the blurred image (the eye's Gaussian of s from 0.25 to 1.5 pixel) that
+ * an eye of AA_EYE_S sees closest to the scene; its eye RMSE, the s that
+ * gives it, and its RMSE against the box reference. */
+static int best_blur_eye(const cx *x, const char *scene, int w, double *best, double *best_s,
+                         double *rmse)
+{
+    aa_image pimg = {0}, truth = {0}, ref = {0};
+    aa_spec ps;
+    *best = INFINITY, *best_s = 0, *rmse = NAN;
+    int st = image_of(x, scene, w, "box", "point", &pimg, NULL, NULL);
+    if (!st && !(st = aa_pattern_parse(scene, &ps)))
+        st = aa_eye_truth(&ps, w, w, 0, 0, 0, AA_EYE_S, x->cache, x->threads, &truth);
+    if (!st)
+        st = reference_of(x, scene, w, "box", &ref);
+    for (double s = 0.25; s <= 1.5 + 1e-9 && !st; s += 0.05) {
+        aa_image b;
+        aa_metrics bm;
+        double e;
+        if ((st = aa_eye_blur(&pimg, s, &b)))
+            break;
+        if (!(st = aa_eye_rmse(&b, &truth, AA_EYE_S, &e)) && e < *best) {
+            *best = e, *best_s = s;
+            if (!(st = aa_metrics_compute(&ref, &b, NULL, &bm)))
+                *rmse = bm.rmse;
+        }
+        aa_image_free(&b);
+    }
+    aa_image_free(&pimg);
+    aa_image_free(&truth);
+    aa_image_free(&ref);
+    return st;
+}
+
+/* Sancha's compromise (methods[1]) against the best optical blur of the
+ * point image (methods[0]) by what the eye sees; a scene counts for the
+ * claim when the compromise's eye RMSE is below the blur's by more than
+ * TIE, against it when above by more than TIE. */
+static int crow_sancha(const cx *x, const claim_row *d, claim *c)
+{
+    const int np = count_of(d->patterns);
+    int better = 0, worse = 0;
+    add(c, "eye RMSE (RMSE against the box reference):");
+    for (int k = 0; k < np; k++) {
+        const char *scene = d->patterns[k];
+        double es, ep, eb, sb, rb;
+        aa_metrics ms, mp;
+        aa_image img = {0};
+        int st = image_of(x, scene, d->size, d->filter, d->methods[1], &img, &es, &ms);
+        aa_image_free(&img);
+        if (!st)
+            st = image_of(x, scene, d->size, d->filter, d->methods[0], &img, &ep, &mp);
+        aa_image_free(&img);
+        if (!st)
+            st = best_blur_eye(x, scene, d->size, &eb, &sb, &rb);
+        if (st)
+            return st;
+        int v = aa_claim_compare(es, eb, TIE);
+        better += v < 0, worse += v > 0;
+        add(c, "%s %s: point %.4f (%.4f), sancha %.4f (%.4f), best blur %.4f (%.4f, s = %.2f)",
+            k ? ";" : "", scene, ep, mp.rmse, es, ms.rmse, eb, rb, sb);
+    }
+    add(c, ". Sancha's compromise is below the best blur by eye on %d of %d scenes, above it on "
+           "%d (within %.0f%% a tie).",
+        better, np, worse, 100 * TIE);
+    because(c, aa_claim_tally(better, worse, np - better - worse),
+            "by eye the compromise beats the best optical blur on %d of %d scenes, loses on %d, "
+            "ties on %d",
+            better, np, worse, np - better - worse);
+    return AA_OK;
+}
+
+/* The reference of a view placed `off` pixels right and down, as
+ * image_at places it. */
+static int reference_at(const cx *x, const char *pattern, int w, const char *filter, double off,
+                        aa_image *out)
+{
+    aa_view view;
+    memset(&view, 0, sizeof view);
+    view.w = view.h = w;
+    view.t = off, view.vx = view.vy = off != 0 ? 1 : 0;
+    int st = aa_pattern_parse(pattern, &view.pattern);
+    if (!st)
+        st = aa_filter_parse(filter, &view.filter);
+    if (!st)
+        st = aa_reference(&view, x->cache, x->threads, out, NULL, NULL);
+    return st;
+}
+
+/* The dots of img off from ref by more than e in some channel. */
+static int dots_above(const aa_image *img, const aa_image *ref, double e)
+{
+    int n = 0;
+    for (size_t o = 0; o < (size_t)img->w * (size_t)img->h; o++)
+        for (int ch = 0; ch < 3; ch++)
+            if (fabs(img->v[3 * o + ch] - ref->v[3 * o + ch]) > e) {
+                n++;
+                break;
+            }
+    return n;
+}
+
+/* Crow's z-buffer: the tiler with exact areas writing front to back into a
+ * z-buffer (methods[0]), in the z-priority order (methods[1]) and by the
+ * scanning algorithm (methods[2]), the scenes placed OFF off the grid:
+ * the largest error against the reference and the dots off by more than
+ * a tenth of full scale (visible, fixed beforehand). */
+static int crow_zbuffer(const cx *x, const claim_row *d, claim *c)
+{
+    const int np = count_of(d->patterns);
+    int lost = 0, worse = 0;
+    for (int k = 0; k < np; k++) {
+        const char *scene = d->patterns[k];
+        aa_image ref = {0};
+        double worst[3];
+        int seen[3];
+        int st = reference_at(x, scene, d->size, d->filter, OFF, &ref);
+        for (int q = 0; q < 3 && !st; q++) {
+            aa_image img = {0};
+            aa_metrics m;
+            st = image_at(x, scene, d->size, d->filter, d->methods[q], OFF, &img, NULL,
+                          d->filter, &m, NULL);
+            if (!st)
+                worst[q] = m.max_err, seen[q] = dots_above(&img, &ref, 0.1);
+            aa_image_free(&img);
+        }
+        aa_image_free(&ref);
+        if (st)
+            return st;
+        add(c, "%s%s: largest error z-buffer %.3f, priority %.3f, scan %.1e; dots off by more "
+               "than 0.1: %d, %d, %d",
+            k ? "; " : "", scene, worst[0], worst[1], worst[2], seen[0], seen[1], seen[2]);
+        lost += worst[0] > 0.1 && worst[2] < 0.01;
+        worse += seen[0] >= 2 * seen[1] && seen[0] > 0;
+    }
+    add(c, ". Scenes moved %.1f pixel right and down. A dot off by more than 0.1 (a tenth of "
+           "full scale) counts as visible; \"many more problems\" taken as at least twice the "
+           "z-priority's visible dots.",
+        OFF);
+    /* each scene a case of each part: the loss seen, and the more problems */
+    because(c, aa_claim_tally(lost + worse, 2 * np - lost - worse, 0),
+            "the z-buffer shows visible errors where the scanning algorithm has none on %d of %d "
+            "scenes, and at least twice the z-priority's visible dots on %d",
+            lost, np, worse);
+    return AA_OK;
+}
+
+/* Catmull's thin line (patterns/svg/thinline.svg: ends THIN_X0, THIN_X1 of
+ * the unit square): at 128, 256 and 512 pixels, the share of the columns
+ * the line crosses where point sampling (methods[0]) shows nothing, and
+ * what an eye seeing the picture from the same distance (s = 1, 2, 4
+ * pixels) sees of point and area (methods[1]) against the line. */
+#define THIN_X0 0.03
+#define THIN_X1 0.97
+static int catmull_thin(const cx *x, const claim_row *d, claim *c)
+{
+    static const int sizes[] = {128, 256, 512};
+    const char *pat = d->patterns[0];
+    double gaps[3], ep[3], ea[3];
+    aa_spec ps;
+    int st = aa_pattern_parse(pat, &ps);
+    for (int k = 0; k < 3 && !st; k++) {
+        const int w = sizes[k];
+        const double s = w / 128.0;
+        aa_image pt = {0}, ar = {0}, truth = {0};
+        st = image_at(x, pat, w, d->filter, d->methods[0], 0, &pt, NULL, NULL, NULL, NULL);
+        if (!st)
+            st = image_at(x, pat, w, d->filter, d->methods[1], 0, &ar, NULL, NULL, NULL, NULL);
+        if (!st)
+            st = aa_eye_truth(&ps, w, w, 0, 0, 0, s, x->cache, x->threads, &truth);
+        if (!st)
+            st = aa_eye_rmse(&pt, &truth, s, &ep[k]);
+        if (!st)
+            st = aa_eye_rmse(&ar, &truth, s, &ea[k]);
+        if (!st) {
+            /* the columns wholly inside the line's span, two pixels in */
+            int i0 = (int)ceil(THIN_X0 * w) + 2, i1 = (int)floor(THIN_X1 * w) - 2, dark = 0;
+            for (int i = i0; i < i1; i++) {
+                double most = 0;
+                for (int j = 0; j < w; j++)
+                    most = fmax(most, pt.v[((size_t)j * (size_t)w + (size_t)i) * 3]);
+                dark += most == 0;
+            }
+            gaps[k] = (double)dark / (double)(i1 - i0);
+        }
+        aa_image_free(&pt);
+        aa_image_free(&ar);
+        aa_image_free(&truth);
+        if (!st)
+            add(c, "%s%dx%d (eye s = %g): point dark in %.0f%% of the line's columns; eye RMSE "
+                   "point %.5f, area %.5f",
+                k ? "; " : "", w, w, s, 100 * gaps[k], ep[k], ea[k]);
+    }
+    if (st)
+        return st;
+    int dotted = gaps[0] >= 0.25 && gaps[1] >= 0.25 && gaps[2] >= 0.25;
+    int nice = ea[2] <= ea[0] / 2;
+    int wrong = 1;
+    for (int k = 0; k < 3; k++)
+        wrong = wrong && aa_claim_compare(ep[k], ea[k], TIE) > 0;
+    add(c, ". From 128 to 512 area's eye RMSE falls %.1f times, point's %.1f times. Dotted taken "
+           "as a quarter of the columns dark or more; a nice line as area's eye RMSE falling "
+           "at least 2 times; point wrong as its eye RMSE above area's by more than %.0f%% at "
+           "every size.",
+        ea[0] / ea[2], ep[0] / ep[2], 100 * TIE);
+    because(c, aa_claim_tally(dotted + nice + wrong, 3 - dotted - nice - wrong, 0),
+            "point leaves %.0f%% to %.0f%% of the columns dark (%s); area's eye error falls "
+            "%.1f times (%s); point's eye error is %s area's at every size (%.0f times at 512)",
+            100 * fmin(gaps[0], fmin(gaps[1], gaps[2])),
+            100 * fmax(gaps[0], fmax(gaps[1], gaps[2])), dotted ? "dotted" : "not dotted",
+            ea[0] / ea[2], nice ? "a nice line" : "not a nice line",
+            wrong ? "above" : "not always above", ep[2] / ea[2]);
+    return AA_OK;
+}
+#undef THIN_X0
+#undef THIN_X1
+
+/* Feibush et al.'s one table per filter shape: their edge filter
+ * (methods[k], each under filters[k]: one shape at several sizes) against
+ * the exact reference under the same filter, on each scene.  The table
+ * serves every size when each RMSE is under half a step of their 8-bit
+ * channels, 1/510 (fixed beforehand). */
+static int feibush_sizes(const cx *x, const claim_row *d, claim *c)
+{
+    const int np = count_of(d->patterns), nm = count_of(d->methods);
+    const double step = 1.0 / 510;
+    int in = 0, n = 0;
+    double most = 0;
+    add(c, "RMSE (largest error) against the exact reference:");
+    for (int k = 0; k < np; k++)
+        for (int q = 0; q < nm; q++, n++) {
+            aa_metrics m;
+            int st = metrics_at(x, d->patterns[k], d->size, filter_of(d, q), d->methods[q], 0,
+                                filter_of(d, q), &m, NULL, NULL);
+            if (st)
+                return st;
+            in += m.rmse < step;
+            most = fmax(most, m.rmse);
+            add(c, "%s %s %s %.1e (%.1e)", n ? ";" : "", d->patterns[k], filter_of(d, q),
+                m.rmse, m.max_err);
+        }
+    add(c, ". Half a step of 8 bits: %.1e.", step);
+    because(c, in == n ? "yes" : in ? "partly" : "no",
+            "%d of %d RMSEs under half an 8-bit step (largest %.1e), the same table read at "
+            "every size",
+            in, n, most);
+    return AA_OK;
+}
+
+/* The RMSE over the pixels of a class (mask[o] non-zero), every channel. */
+static double class_rmse(const aa_image *img, const aa_image *ref, const unsigned char *mask,
+                         int *count)
+{
+    double sum = 0;
+    int n = 0;
+    for (size_t o = 0; o < (size_t)img->w * (size_t)img->h; o++) {
+        if (!mask[o])
+            continue;
+        for (int ch = 0; ch < 3; ch++) {
+            double e = img->v[3 * o + ch] - ref->v[3 * o + ch];
+            sum += e * e;
+        }
+        n++;
+    }
+    *count = n;
+    return n ? sqrt(sum / (3.0 * n)) : NAN;
+}
+
+/* Feibush et al.'s fig. 4e: on feibush:stripes=M (the square's corners,
+ * in pattern units, those of patterns/feibush.c; its left edge from
+ * corner 3 to corner 0), the error of each method (methods[k]) against the
+ * exact reference over the dots along the polygon's left edge (the edge
+ * filter's work) and over the dots inside the square along the stripes
+ * (the texture filter's); equivalent when both are under half a step of
+ * their 8-bit channels, 1/510 (fixed beforehand). */
+static int feibush_edges(const cx *x, const claim_row *d, claim *c)
+{
+    static const double c0[2] = {0.32, 0.18}, c3[2] = {0.04, 0.90};
+    const int w = d->size, nm = count_of(d->methods);
+    const double step = 1.0 / 510;
+    aa_image ref = {0};
+    unsigned char *edge = calloc((size_t)w * (size_t)w, 1),
+                  *stripe = calloc((size_t)w * (size_t)w, 1);
+    int st = edge && stripe ? reference_of(x, d->patterns[0], w, d->filter, &ref)
+                            : aa_fail(AA_ENOMEM, "out of memory");
+    double ex = (c0[0] - c3[0]) * w, ey = (c0[1] - c3[1]) * w, len = hypot(ex, ey);
+    for (int j = 0; j < w && !st; j++)
+        for (int i = 0; i < w; i++) {
+            size_t o = (size_t)j * (size_t)w + (size_t)i;
+            double r = ref.v[3 * o], g = ref.v[3 * o + 1];
+            double px = i + 0.5 - c3[0] * w, py = j + 0.5 - c3[1] * w;
+            double along = (px * ex + py * ey) / len, across = (px * ey - py * ex) / len;
+            edge[o] = r > 1e-9 && r < 1 - 1e-9 && fabs(across) < 3 && along > 4 && along < len - 4;
+            stripe[o] = r > 1 - 1e-12 && g > 1e-9 && g < 1 - 1e-9;
+        }
+    double first[2] = {NAN, NAN};
+    add(c, "RMSE over the dots along the left edge / along the stripes inside:");
+    for (int k = 0; k < nm && !st; k++) {
+        aa_image img = {0};
+        st = image_at(x, d->patterns[0], w, d->filter, d->methods[k], 0, &img, NULL, NULL, NULL,
+                      NULL);
+        if (!st) {
+            int ne, ns;
+            double re = class_rmse(&img, &ref, edge, &ne), rs = class_rmse(&img, &ref, stripe, &ns);
+            add(c, "%s %s %.1e / %.1e (%d and %d dots)", k ? ";" : "", d->labels[k], re, rs, ne,
+                ns);
+            if (k == 0)
+                first[0] = re, first[1] = rs;
+        }
+        aa_image_free(&img);
+    }
+    aa_image_free(&ref);
+    free(edge);
+    free(stripe);
+    if (st)
+        return st;
+    add(c, ". Equivalent taken as both under half a step of 8 bits, %.1e.", step);
+    int edge_ok = first[0] < step, stripe_ok = first[1] < step;
+    because(c, edge_ok && stripe_ok ? "yes" : "no",
+            "their system errs by %.1e along the polygon's edge and %.1e along the stripes: %s",
+            first[0], first[1],
+            edge_ok && stripe_ok ? "both under half an 8-bit step"
+            : edge_ok || stripe_ok ? "one under half an 8-bit step, the other not"
+                                   : "neither under half an 8-bit step");
+    return AA_OK;
+}
+
+/* Ramos and Borges' difficult cases (sec. 6), one scene each: the
+ * polygons of each case are the only green of its scene, so what the
+ * method misses of them is its green channel's error.  A case fails as the
+ * paper says (the polygon ignored) when adaptive (methods[0]) misses at
+ * least 90% of the green (its green RMSE within TIE of that of no green at
+ * all); methods[1], [2] beside. */
+static int rb_cases(const cx *x, const claim_row *d, claim *c)
+{
+    const int np = count_of(d->patterns);
+    int ignored = 0;
+    add(c, "green RMSE against the reference / the reference's own green RMS:");
+    for (int k = 0; k < np; k++) {
+        aa_image ref = {0};
+        int st = reference_of(x, d->patterns[k], d->size, "box", &ref);
+        double g0 = 0, share[3];
+        const size_t n = (size_t)d->size * (size_t)d->size;
+        for (size_t o = 0; o < n && !st; o++)
+            g0 += ref.v[3 * o + 1] * ref.v[3 * o + 1];
+        g0 = sqrt(g0 / (double)n);
+        for (int q = 0; q < 3 && !st; q++) {
+            aa_image img = {0};
+            st = image_at(x, d->patterns[k], d->size, d->filter, d->methods[q], 0, &img, NULL,
+                          NULL, NULL, NULL);
+            double e = 0;
+            for (size_t o = 0; o < n && !st; o++) {
+                double v = img.v[3 * o + 1] - ref.v[3 * o + 1];
+                e += v * v;
+            }
+            share[q] = sqrt(e / (double)n) / g0;
+            aa_image_free(&img);
+        }
+        aa_image_free(&ref);
+        if (st)
+            return st;
+        const char *name = strrchr(d->patterns[k], '/');
+        add(c, "%s %s: %s %.2f, %s %.2f, %s %.2f", k ? ";" : "", name ? name + 1 : d->patterns[k],
+            d->labels[0], share[0], d->labels[1], share[1], d->labels[2], share[2]);
+        ignored += share[0] >= 1 - TIE;
+    }
+    add(c, ". A share of 1 is the green missed wholly; \"ignored\" taken as at least %.2f.",
+        1 - TIE);
+    because(c, aa_claim_tally(ignored, np - ignored, 0),
+            "adaptive ignores the case's polygons on %d of %d scenes, as the paper says", ignored,
+            np);
+    return AA_OK;
+}
+
 /* ---- the claims ---- */
 
 #define PAIR(p, w, f, ma, mb, label) {{p, w, f, ma, 0}, {p, w, f, mb, 0}, label}
@@ -1652,6 +2026,128 @@ static const claim_row claims[] = {
         .patterns = LIST("dots"), .size = 128, .filters = LIST("box", "tent:r=1", "box"),
         .methods = LIST("point", "crowtiler", "area"),
         .labels = LIST("point", "tiler", "area"), .measure = crow_twinkle,
+    },
+    {
+        .paper = "Crow 1976",
+        .where = "ch. 4, \"Processing the completed image\", pp. 81-84",
+        .claim = "\"The simplest of these schemes was suggested by T. L. Sancha [...] and is "
+            "based on the fact that staircase effects are most noticeable on high-contrast "
+            "edges. [...] Whenever the intensity of neighboring dots differs by more than a "
+            "preset amount, one of them is changed to a compromise intensity. [...] This "
+            "scheme provides a way of selectively blurring the image which may yield more "
+            "pleasing results than optical blurring.\"",
+        .setting = "trio:variant=sancha (threshold 1/8, the upper-left dot of a pair changed) "
+            "against the point image blurred optically (each dot a square seen through a "
+            "Gaussian, s from 0.25 to 1.5 pixel, the s an eye sees best), star, crow, "
+            "slivers and dots at 256x256: eye RMSE (an eye of s = 2 pixels against the "
+            "scene seen by the same eye), the RMSE against the box reference beside; "
+            "errors within 10% a tie.",
+        .patterns = LIST("star", "crow", "slivers", "dots"), .size = 256, .filter = "box",
+        .methods = LIST("point", "trio:variant=sancha"), .measure = crow_sancha,
+    },
+    {
+        .paper = "Crow 1976",
+        .where = "ch. 3, \"Comparison of three basic hidden-surface techniques\", pp. 49-56, "
+            "fig. 3.7",
+        .claim = "The z-buffer \"causes many more problems than need be dealt with in the "
+            "z-priority algorithms. [...] a host of new problems arise when the new surface "
+            "lies partially behind what has already been stored [Fig. 3.7]. In this case the "
+            "blending information for the first surface has been lost and there is thus no "
+            "way to smooth the resulting edge.\" \"In the worst case, the z-buffer loses the "
+            "necessary blending information\".",
+        .setting = "crowtiler with exact weighted areas (area=exact, so that the hidden "
+            "surfaces alone err) as a z-buffer written front to back, the worst order "
+            "(hidden=zbuffer: a dot keeps the first surface to reach it), in the z-priority "
+            "order with his adjacent-polygon rule (hidden=priority) and by his scanning "
+            "algorithm (hidden=scan), tent:r=1, 256x256, scenes of overlapping and abutting "
+            "layers (feibush, catmull:tiles=4) moved 0.3 pixel right and down: the largest "
+            "error against the exact reference and the dots off by more than 0.1.",
+        .patterns = LIST("feibush", "catmull:tiles=4"), .size = 256, .filter = "tent:r=1",
+        .methods = LIST("crowtiler:area=exact,hidden=zbuffer", "crowtiler:area=exact",
+                        "crowtiler:area=exact,hidden=scan"),
+        .measure = crow_zbuffer,
+    },
+    {
+        .paper = "Catmull 1978",
+        .where = "\"Anti-aliasing\"",
+        .claim = "\"Point sampling of an unfiltered object is never correct at any resolution. "
+            "It is frequently thought that the symptoms of aliasing will not be noticeable if "
+            "the resolution is high enough. Unfortunately, this is not true.\" [...] \"A "
+            "line that is much thinner than a pixel will appear dotted using point sampling "
+            "and jagged using area sampling. As the resolution is increased, point sampling "
+            "will still produce dots but area sampling will produce a nice line.\"",
+        .setting = "patterns/svg/thinline.svg (a white line on black 0.1 pixel tall at "
+            "128x128, its ends and slope 0.415 off the grid; the document scales with the "
+            "view) at 128x128, 256x256 and 512x512 (0.1 to 0.4 pixel), box: point and area; "
+            "the share of the line's columns point leaves dark, and the eye RMSE seen from "
+            "the same distance (an eye of s = 1, 2, 4 pixels: 1/128 of the picture) against "
+            "the line seen by the same eye.",
+        .patterns = LIST("svg:file=patterns/svg/thinline.svg"), .size = 128, .filter = "box",
+        .methods = LIST("point", "area"), .measure = catmull_thin,
+    },
+    {
+        .paper = "Feibush, Levoy and Cook 1980",
+        .where = "sec. 2.5 (\"Edge filtering\"), fig. 3f",
+        .claim = "\"Each filter shape needs only one lookup table, regardless of the filter's "
+            "absolute size. The filter size can be changed by scaling the indices to the "
+            "lookup table.\"",
+        .setting = "their edge filter (conetable: one table per shape, indexed by the distance "
+            "to the edge's line over the mask's radius and an angle, 64 x 64 intervals) "
+            "with the Gaussian in its mask of radius 2 s (gauss:s=S,cut=2, s = 0.5, 1, 2 "
+            "pixels) and with the cone (cone:r=R, R = 1, 2, 4 pixels), feibush and crow at "
+            "256x256: RMSE and largest error against the exact reference under the same "
+            "filter.",
+        .patterns = LIST("feibush", "crow"), .size = 256,
+        .filters = LIST("gauss:s=0.5,cut=2", "gauss:s=1,cut=2", "gauss:s=2,cut=2", "cone:r=1",
+                        "cone:r=2", "cone:r=4"),
+        .methods = LIST("conetable", "conetable", "conetable", "conetable", "conetable",
+                        "conetable"),
+        .measure = feibush_sizes,
+    },
+    {
+        .paper = "Feibush, Levoy and Cook 1980",
+        .where = "sec. 3 (\"Examples\"), fig. 4e",
+        .claim = "\"In the hardware magnification shown in Figure 4e, the polygon is inclined "
+            "slightly more than in Figures 4b-d to enhance the visibility of the filtering. "
+            "Notice that the filtering along the left edge of the polygon is equivalent to "
+            "the filtering along the stripes of the texture.\"",
+        .setting = "feibush:stripes=200 at 512x512 under their Gaussian (gauss:s=1,cut=2), the "
+            "setting of fig. 4d (fig-feibush-4d; the more inclined polygon of 4e is not "
+            "given): their texture filter with their edge filter (feibushtex:texels=1000, "
+            "every texture point inside one stripe) and the edge filter alone on the "
+            "stripes as polygons (conetable) beside; RMSE against the exact reference over "
+            "the dots along the polygon's left edge (within 3 pixels of it, 4 pixels from "
+            "its ends) and over the dots inside the square whose mask meets a stripe's "
+            "edge.",
+        .patterns = LIST("feibush:stripes=200"), .size = 512, .filter = "gauss:s=1,cut=2",
+        .methods = LIST("feibushtex:texels=1000", "conetable"),
+        .labels = LIST("texture and edge filters", "edge filter alone"),
+        .measure = feibush_edges,
+    },
+    {
+        .paper = "Ramos and Borges",
+        .where = "sec. 6 (\"Casos particulares\"), cases a-d, fig. 4 (\"Casos desfavoráveis\")",
+        .claim = "\"Esse algoritmo apresenta alguns casos difíceis, como mostrado na figura 4\": "
+            "(a) polygons smaller than a pixel and wholly inside it, \"o algoritmo não tomará "
+            "conhecimento destes polígonos\"; (b) polygons with vertices inside the pixel and "
+            "all their edges on one border, \"o algoritmo ignorará o polígono\"; (c) more "
+            "than one edge of different polygons on one border, \"O processo de busca "
+            "binária detectará apenas uma variação por borda, e um dos polígonos será "
+            "ignorado\"; (d) a very thin polygon across a pixel, \"o algoritmo pode falhar\".",
+        .setting = "one 32x32 scene per case, box (patterns/svg/rb-inside.svg, rb-border.svg, "
+            "rb-twoedges.svg, rb-thin.svg: the case's polygons placed against the pixel "
+            "corners as the case needs, and the only green of the scene): adaptive (the "
+            "paper's method, tag=0) against the exact reference, the share of the "
+            "polygons' green it misses (its green RMSE over the reference's green RMS); "
+            "adaptive:tag=1 (tagged pixels subdivided, an extension) and supersample:n=3 "
+            "beside.",
+        .patterns = LIST("svg:file=patterns/svg/rb-inside.svg",
+                         "svg:file=patterns/svg/rb-border.svg",
+                         "svg:file=patterns/svg/rb-twoedges.svg",
+                         "svg:file=patterns/svg/rb-thin.svg"),
+        .size = 32, .filter = "box",
+        .methods = LIST("adaptive", "adaptive:tag=1", "supersample:n=3"),
+        .labels = LIST("adaptive", "tag=1", "n=3"), .measure = rb_cases,
     },
     {
         .paper = "Reshetov 2009",
