@@ -171,6 +171,18 @@ static void test_refusals(void **state)
       "-m", "point", "-s", "8x8", "-o", o);
     T(2, "area renders scenes of paths only, and pattern zoneplate is a procedural field",
       "render", "-p", "zoneplate", "-m", "area", "-s", "8x8", "-o", o);
+    /* an option of one value given two: the first would be ignored */
+    T(2, "-s is given twice (-s 8x8, then -s 16x16): the first would be ignored", "render",
+      "-p", "crow", "-m", "point", "-s", "8x8", "-o", o, "-s", "16x16");
+    T(2, "-p is given twice (-p crow, then -p star)", "truth", "-p", "crow", "-s", "8x8", "-o",
+      o, "--pattern=star");
+    T(2, "--threads is given twice (--threads 1, then --threads 2)", "truth", "-p", "crow",
+      "-s", "8x8", "-o", o, "--threads", "1", "--threads", "2");
+    T(2, "-o is given twice", "export", "-p", "crow", "-s", "8x8", "-o", "a.svg", "-o", "b.svg");
+    T(2, "--keep is given twice (--keep 1, then --keep 2)", "prune", "--keep", "1", "--keep",
+      "2");
+    T(2, "--tolerance is given twice", "diff", "a", "b", "--tolerance", "0.1", "--tolerance",
+      "0.2");
     T(2, "unknown command", "frobnicate");
     T(2, "unknown list", "list", "methods-and-more");
 #undef T
@@ -296,7 +308,9 @@ static void test_success(void **state)
     const char *help[] = {"truth", "--help", NULL};
     assert_int_equal(run(help), 0);
     assert_non_null(strstr(output, "usage: aabench truth"));
-    const char *truth[] = {"truth", "-p", "crow", "-s", "8x4", "-o", out_txt, "--no-cache", NULL};
+    /* a value given again is the same value: nothing ignored, taken */
+    const char *truth[] = {"truth", "-p",         "crow",       "-s", "8x4", "-o",
+                           out_txt, "--no-cache", "--size=8x4", NULL};
     assert_int_equal(run(truth), 0);
     aa_image im;
     assert_int_equal(aa_image_read_txt(out_txt, &im), AA_OK);

@@ -43,7 +43,10 @@ int cmd_converge(int argc, char **argv)
     uint64_t seed = 1;
     double tm = 0.0, vx = 0.0, vy = 0.0;
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":p:m:s:f:h", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, (const int[]){O_PLUGIN, 0})))
+            return cli_fail("converge", st);
         switch (c) {
         case 'p': pattern = optarg; break;
         case 'm': method = optarg; break;

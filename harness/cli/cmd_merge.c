@@ -52,7 +52,10 @@ int cmd_merge(int argc, char **argv)
     aa_run_options_default(&opt);
     opt.cache = cli_cache_dir();
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":qh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, NULL)))
+            return cli_fail("merge", st);
         switch (c) {
         case O_CACHE:
             /* recorded after the run's command in the results' context */

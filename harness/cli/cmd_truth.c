@@ -125,7 +125,10 @@ static int parse(int argc, char **argv, truth_args *a)
         {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":p:s:f:o:qh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, NULL)))
+            return cli_fail("truth", st);
         switch (c) {
         case 'p': a->pattern = optarg; break;
         case 's': a->size = optarg; break;
