@@ -417,6 +417,36 @@ static void test_cache(void **state)
     assert_int_equal(unlink(out_txt), 0);
 }
 
+/* A cache that cannot be written (/proc takes no new folder, even from
+ * root) is said once, and the image is made all the same; truth --warm,
+ * whose work is to fill it, fails with status 3 and says nothing made. */
+static void test_cache_unusable(void **state)
+{
+    (void)state;
+    const char *cache = "/proc/aabench-none/cache";
+    const char *warning = "warning: the reference cache /proc/aabench-none/cache cannot be written";
+    const char *truth[] = {"truth", "-p", "crow", "-s", "16x8", "-o", out_txt, "--cache", cache,
+                           NULL};
+    const char *converge[] = {"converge", "-p", "crow", "-m", "jitter", "-s", "8x8", "--spp",
+                              "1,4,16", "--threads", "1", "--cache", cache, NULL};
+    const char *const *cmds[] = {truth, converge};
+    for (size_t k = 0; k < 2; k++) {
+        assert_int_equal(run(cmds[k]), 0);
+        const char *first = strstr(output, warning);
+        if (!first || strstr(first + strlen(warning), "reference cache"))
+            fail_msg("aabench %s: expected one warning about the cache, got: %s", cmds[k][0],
+                     output);
+    }
+    aa_image im;
+    assert_int_equal(aa_image_read_txt(out_txt, &im), AA_OK);
+    aa_image_free(&im);
+    assert_int_equal(unlink(out_txt), 0);
+    const char *warm[] = {"truth", "--warm", "quick", "-p", "crow", "-s", "8x8", "--cache", cache,
+                          NULL};
+    expect(3, "--warm: the reference cache /proc/aabench-none/cache cannot be written", warm);
+    assert_null(strstr(output, "computed"));
+}
+
 static int setup(void **state)
 {
     if (!getenv("AABENCH") || !getenv("AABENCH_PLUGIN") ||
@@ -435,4 +465,5 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_success),
              cmocka_unit_test(test_render),
              cmocka_unit_test(test_run_filters),
-             cmocka_unit_test(test_cache))
+             cmocka_unit_test(test_cache),
+             cmocka_unit_test(test_cache_unusable))

@@ -91,6 +91,7 @@ int cmd_converge(int argc, char **argv)
         (st = aa_size_check(w, h, 3, 3)) ||
         (st = filter ? aa_filter_parse(filter, &f) : (aa_filter_default(&f), AA_OK)) ||
         (st = aa_method_parse(method, &f, &mspec)) ||
+        (cli_cache_usable("converge", cache), 0) ||
         (st = aa_converge_moving(&pspec, &mspec, &f, w, h, tm, vx, vy, spp, n, phases, seed,
                           threads > 0 ? threads : aa_default_threads(), *cache ? cache : NULL,
                           &conv)))

@@ -77,6 +77,7 @@ int cmd_merge(int argc, char **argv)
         return 2;
     }
     opt.note = cli_run_note;
+    cli_cache_usable("merge", opt.cache);
     aa_runfolder *rf;
     if ((st = aa_runfolder_merge((const char *const *)argv + optind, (size_t)ns, &opt, &rf)))
         return cli_fail("merge", st);
