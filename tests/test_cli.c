@@ -171,6 +171,18 @@ static void test_refusals(void **state)
       "-m", "point", "-s", "8x8", "-o", o);
     T(2, "area renders scenes of paths only, and pattern zoneplate is a procedural field",
       "render", "-p", "zoneplate", "-m", "area", "-s", "8x8", "-o", o);
+    /* an option of one value given two: the first would be ignored */
+    T(2, "-s is given twice (-s 8x8, then -s 16x16): the first would be ignored", "render",
+      "-p", "crow", "-m", "point", "-s", "8x8", "-o", o, "-s", "16x16");
+    T(2, "-p is given twice (-p crow, then -p star)", "truth", "-p", "crow", "-s", "8x8", "-o",
+      o, "--pattern=star");
+    T(2, "--threads is given twice (--threads 1, then --threads 2)", "truth", "-p", "crow",
+      "-s", "8x8", "-o", o, "--threads", "1", "--threads", "2");
+    T(2, "-o is given twice", "export", "-p", "crow", "-s", "8x8", "-o", "a.svg", "-o", "b.svg");
+    T(2, "--keep is given twice (--keep 1, then --keep 2)", "prune", "--keep", "1", "--keep",
+      "2");
+    T(2, "--tolerance is given twice", "diff", "a", "b", "--tolerance", "0.1", "--tolerance",
+      "0.2");
     T(2, "unknown command", "frobnicate");
     T(2, "unknown list", "list", "methods-and-more");
 #undef T
@@ -296,7 +308,9 @@ static void test_success(void **state)
     const char *help[] = {"truth", "--help", NULL};
     assert_int_equal(run(help), 0);
     assert_non_null(strstr(output, "usage: aabench truth"));
-    const char *truth[] = {"truth", "-p", "crow", "-s", "8x4", "-o", out_txt, "--no-cache", NULL};
+    /* a value given again is the same value: nothing ignored, taken */
+    const char *truth[] = {"truth", "-p",         "crow",       "-s", "8x4", "-o",
+                           out_txt, "--no-cache", "--size=8x4", NULL};
     assert_int_equal(run(truth), 0);
     aa_image im;
     assert_int_equal(aa_image_read_txt(out_txt, &im), AA_OK);
@@ -403,6 +417,36 @@ static void test_cache(void **state)
     assert_int_equal(unlink(out_txt), 0);
 }
 
+/* A cache that cannot be written (/proc takes no new folder, even from
+ * root) is said once, and the image is made all the same; truth --warm,
+ * whose work is to fill it, fails with status 3 and says nothing made. */
+static void test_cache_unusable(void **state)
+{
+    (void)state;
+    const char *cache = "/proc/aabench-none/cache";
+    const char *warning = "warning: the reference cache /proc/aabench-none/cache cannot be written";
+    const char *truth[] = {"truth", "-p", "crow", "-s", "16x8", "-o", out_txt, "--cache", cache,
+                           NULL};
+    const char *converge[] = {"converge", "-p", "crow", "-m", "jitter", "-s", "8x8", "--spp",
+                              "1,4,16", "--threads", "1", "--cache", cache, NULL};
+    const char *const *cmds[] = {truth, converge};
+    for (size_t k = 0; k < 2; k++) {
+        assert_int_equal(run(cmds[k]), 0);
+        const char *first = strstr(output, warning);
+        if (!first || strstr(first + strlen(warning), "reference cache"))
+            fail_msg("aabench %s: expected one warning about the cache, got: %s", cmds[k][0],
+                     output);
+    }
+    aa_image im;
+    assert_int_equal(aa_image_read_txt(out_txt, &im), AA_OK);
+    aa_image_free(&im);
+    assert_int_equal(unlink(out_txt), 0);
+    const char *warm[] = {"truth", "--warm", "quick", "-p", "crow", "-s", "8x8", "--cache", cache,
+                          NULL};
+    expect(3, "--warm: the reference cache /proc/aabench-none/cache cannot be written", warm);
+    assert_null(strstr(output, "computed"));
+}
+
 static int setup(void **state)
 {
     if (!getenv("AABENCH") || !getenv("AABENCH_PLUGIN") ||
@@ -421,4 +465,5 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_success),
              cmocka_unit_test(test_render),
              cmocka_unit_test(test_run_filters),
-             cmocka_unit_test(test_cache))
+             cmocka_unit_test(test_cache),
+             cmocka_unit_test(test_cache_unusable))

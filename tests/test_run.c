@@ -407,6 +407,11 @@ static void test_ignored_options(void **state)
         {{"run", "-m", "point", "-m", "point"}, "-m point is given twice"},
         {{"run", "-p", "crow", "-p", "crow"}, "-p crow is given twice"},
         {{"run", "-f", "box", "-f", "tent", "-f", "box"}, "-f box is given twice"},
+        /* an option of one value given two: the first would be ignored */
+        {{"run", "--out", "a", "--out", "b"}, "--out is given twice (--out a, then --out b)"},
+        {{"run", "--budget", "1", "--reps", "3", "--budget=2"},
+         "--budget is given twice (--budget 1, then --budget 2)"},
+        {{"run", "--suite", "quick", "--suite", "default"}, "--suite is given twice"},
     };
     for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
         int argc = 0, asked;
@@ -422,15 +427,17 @@ static void test_ignored_options(void **state)
                      bad[k].needle);
     }
     /* what is not ignored is taken: --out naming the resumed folder itself,
-     * different values */
+     * different values in a list, one value given again (truth --warm S
+     * beside --suite S, as the shard drivers give it), plug-ins */
     const char *good[] = {"run", "--resume", "a", "--out", "a", "-s", "24x24", "-s", "24x32",
-                          "-m", "point", "-m", "point:", NULL};
+                          "-m", "point", "-m", "point:", "--out", "a", "--suite", "quick",
+                          "--suite=quick", NULL};
     aa_plan plan;
     aa_run_options opt;
     int asked;
     aa_plan_default(&plan);
     aa_run_options_default(&opt);
-    assert_int_equal(aa_plan_parse(13, (char *const *)good, &plan, &opt, &asked), AA_OK);
+    assert_int_equal(aa_plan_parse(18, (char *const *)good, &plan, &opt, &asked), AA_OK);
     /* and the command says so, with exit status 2 */
     const char *cmd[] = {"run", "-s", "24x24", "-s", "24x24", "-p", "crow", NULL};
     assert_int_equal(run_cmd(cmd, 0), 2);

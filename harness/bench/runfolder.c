@@ -19,6 +19,7 @@
 #include "c_numbers_internal.h"
 #include "oiio.h"
 
+#include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
 #include <getopt.h>
@@ -109,6 +110,39 @@ int aa_parse_int(const char *name, const char *text, long lo, long hi, int *out)
         return aa_fail(AA_EINVAL, "%s %s is out of range (%ld to %ld)", name, aa_echo(text), lo,
                        hi);
     *out = (int)v;
+    return AA_OK;
+}
+
+int aa_option_once(aa_options_seen *seen, int code, const char *value,
+                   const struct option *opts, const int *lists)
+{
+    const struct option *o = opts;
+    while (o->name && o->val != code)
+        o++;
+    if (!o->name || o->has_arg == no_argument || !value)
+        return AA_OK;
+    for (const int *l = lists; l && *l; l++)
+        if (*l == code)
+            return AA_OK;
+    for (int k = 0; k < seen->n; k++) {
+        /* the same value again leaves nothing ignored (truth --warm S
+         * beside --suite S, as the shard drivers give it) */
+        if (seen->code[k] != code || !strcmp(seen->value[k], value))
+            continue;
+        char name[64];
+        if (code > 0 && code < 128 && isalnum(code))
+            snprintf(name, sizeof name, "-%c", code);
+        else
+            snprintf(name, sizeof name, "--%s", o->name);
+        return aa_fail(AA_EINVAL,
+                       "%s is given twice (%s %s, then %s %s): the first would be ignored; "
+                       "give it once",
+                       name, name, aa_echo(seen->value[k]), name, aa_echo(value));
+    }
+    if (seen->n < (int)(sizeof seen->code / sizeof seen->code[0])) {
+        seen->code[seen->n] = code;
+        seen->value[seen->n++] = value;
+    }
     return AA_OK;
 }
 
@@ -315,7 +349,12 @@ int aa_plan_parse(int argc, char *const *argv, aa_plan *plan, aa_run_options *op
     plan->argv = argc > 0 ? (const char *const *)argv + 1 : NULL;
     optind = 0; /* glibc: full reinitialisation */
     opterr = 0;
+    /* -p, -m, -s, -f and --plugin take a value each time; the rest one */
+    static const int lists[] = {'p', 'm', 's', 'f', O_PLUGIN, 0};
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":p:m:s:f:qh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, lists)))
+            return st;
         switch (c) {
         case O_SUITE: plan->suite = optarg; break;
         case 'p': st = push(plan->patterns, &plan->npatterns, optarg, "patterns"); break;

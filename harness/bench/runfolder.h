@@ -175,4 +175,19 @@ int aa_parse_threads(const char *text, int *out);
 int aa_parse_target(const char *text, double *out);
 int aa_parse_budget(const char *text, double *out);
 
+/* An option that takes one value, given twice with different values, would
+ * leave the first ignored: refused, naming the option and both values.  `seen` starts
+ * zeroed and holds the values given so far; `code` is what getopt_long
+ * returned and `opts` its table.  Options without a value (flags), codes
+ * not in the table and `lists` (codes ending in 0: -p in run, --plugin)
+ * pass. */
+struct option;
+typedef struct aa_options_seen {
+    int n;
+    int code[64];
+    const char *value[64];
+} aa_options_seen;
+int aa_option_once(aa_options_seen *seen, int code, const char *value,
+                   const struct option *opts, const int *lists);
+
 #endif /* AA_RUNFOLDER_H */

@@ -143,10 +143,8 @@ const char *cli_cache_dir(void)
     return aa_cache_dir_default();
 }
 
-void cli_cache_usable(const char *cmd, const char *dir)
+int cli_cache_writable(const char *dir)
 {
-    if (!dir || !*dir)
-        return;
     char probe[4200], tmp[4400];
     int st = aa_mkdirs(dir);
     if (!st && !(st = aa_pathf(probe, sizeof probe, "%s/probe", dir)) &&
@@ -159,7 +157,12 @@ void cli_cache_usable(const char *cmd, const char *dir)
             unlink(tmp);
         }
     }
-    if (st)
+    return st;
+}
+
+void cli_cache_usable(const char *cmd, const char *dir)
+{
+    if (dir && *dir && cli_cache_writable(dir))
         fprintf(stderr,
                 "aabench %s: warning: the reference cache %s cannot be written (%s): every "
                 "reference not in it is computed and not kept\n",

@@ -49,6 +49,9 @@ int cli_check_output_file(const char *path, const char *ext);
  * or created in) is said once, on standard error, before the work; the
  * references are then computed and not kept, with no word each. */
 void cli_cache_usable(const char *cmd, const char *dir);
+/* The probe of cli_cache_usable: the folder made if missing and a file
+ * created in it and removed; else the status, the reason in aa_last_error. */
+int cli_cache_writable(const char *dir);
 /* SIGINT, SIGTERM and SIGHUP: remove the temporary files still on disk and exit
  * with status 130 (installed first thing by cli_main; `run` installs its
  * own, which lets the case under way finish). */

@@ -127,7 +127,10 @@ int cmd_check(int argc, char **argv)
     int c, st = AA_OK, threads = 0, verbose = 0, isolate = AA_ISOLATE_PLUGINS;
     time_report times = {.slower = -1};
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":vh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, (const int[]){O_PLUGIN, 0})))
+            return cli_fail("check", st);
         switch (c) {
         case O_BASELINE: baseline = optarg; break;
         case O_TOL: st = aa_parse_real("--tolerance", optarg, 0, 1, &tol); break;

@@ -160,7 +160,10 @@ int cmd_compare(int argc, char **argv)
     int c, st, json = 0;
     const char *output = NULL, *pattern = NULL, *filter = NULL;
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":ho:p:f:", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, NULL)))
+            return cli_fail("compare", st);
         if (c == 'o') {
             output = optarg;
         } else if (c == 'p') {

@@ -43,7 +43,10 @@ int cmd_converge(int argc, char **argv)
     uint64_t seed = 1;
     double tm = 0.0, vx = 0.0, vy = 0.0;
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":p:m:s:f:h", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, (const int[]){O_PLUGIN, 0})))
+            return cli_fail("converge", st);
         switch (c) {
         case 'p': pattern = optarg; break;
         case 'm': method = optarg; break;
@@ -88,6 +91,7 @@ int cmd_converge(int argc, char **argv)
         (st = aa_size_check(w, h, 3, 3)) ||
         (st = filter ? aa_filter_parse(filter, &f) : (aa_filter_default(&f), AA_OK)) ||
         (st = aa_method_parse(method, &f, &mspec)) ||
+        (cli_cache_usable("converge", cache), 0) ||
         (st = aa_converge_moving(&pspec, &mspec, &f, w, h, tm, vx, vy, spp, n, phases, seed,
                           threads > 0 ? threads : aa_default_threads(), *cache ? cache : NULL,
                           &conv)))

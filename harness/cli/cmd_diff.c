@@ -66,7 +66,10 @@ int cmd_diff(int argc, char **argv)
     double tol = 1e-3, slower = -1;
     int c, st = AA_OK, verbose = 0;
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":vh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, NULL)))
+            return cli_fail("diff", st);
         switch (c) {
         case O_TOL: st = aa_parse_real("--tolerance", optarg, 0, 1, &tol); break;
         case O_SLOWER: st = aa_parse_real("--fail-slower", optarg, 0, 1e6, &slower); break;

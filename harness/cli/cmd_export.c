@@ -51,7 +51,10 @@ static int parse(int argc, char **argv, export_args *a)
         {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":p:s:o:qh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, NULL)))
+            return cli_fail("export", st);
         switch (c) {
         case 'p': a->pattern = optarg; break;
         case 's': a->size = optarg; break;

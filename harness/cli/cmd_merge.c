@@ -52,7 +52,10 @@ int cmd_merge(int argc, char **argv)
     aa_run_options_default(&opt);
     opt.cache = cli_cache_dir();
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":qh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, NULL)))
+            return cli_fail("merge", st);
         switch (c) {
         case O_CACHE:
             /* recorded after the run's command in the results' context */
@@ -74,6 +77,7 @@ int cmd_merge(int argc, char **argv)
         return 2;
     }
     opt.note = cli_run_note;
+    cli_cache_usable("merge", opt.cache);
     aa_runfolder *rf;
     if ((st = aa_runfolder_merge((const char *const *)argv + optind, (size_t)ns, &opt, &rf)))
         return cli_fail("merge", st);

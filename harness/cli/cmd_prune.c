@@ -37,7 +37,10 @@ int cmd_prune(int argc, char **argv)
     int c, st = AA_OK, keep = -1, dry = 0;
     const char *results = "results";
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":nh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, NULL)))
+            return cli_fail("prune", st);
         switch (c) {
         case O_KEEP: st = aa_parse_int("--keep", optarg, 0, 1000000, &keep); break;
         case O_RESULTS: results = optarg; break;

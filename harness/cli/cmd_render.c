@@ -74,7 +74,10 @@ static int parse(int argc, char **argv, render_args *a)
         {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":p:m:s:f:o:qh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, (const int[]){O_PLUGIN, 0})))
+            return cli_fail("render", st);
         switch (c) {
         case 'p': a->pattern = optarg; break;
         case 'm': a->method = optarg; break;

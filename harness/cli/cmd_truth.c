@@ -69,6 +69,12 @@ static int warm(int argc, char **argv)
         fprintf(stderr, "aabench truth: --warm needs a cache folder (not --no-cache)\n");
         return 2;
     }
+    /* the cache is what it makes: one it cannot write is a failure */
+    if ((st = cli_cache_writable(opt.cache))) {
+        fprintf(stderr, "aabench truth: --warm: the reference cache %s cannot be written (%s)\n",
+                aa_echo(opt.cache), aa_last_error());
+        return aa_exit_code(st);
+    }
     opt.note = cli_run_note;
     double t0 = aa_now();
     if ((st = aa_runfolder_warm(&plan, &opt, &computed, &cached)))
@@ -125,7 +131,10 @@ static int parse(int argc, char **argv, truth_args *a)
         {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
     int c, st = AA_OK;
     cli_getopt_reset();
+    aa_options_seen seen = {0};
     while ((c = getopt_long(argc, argv, ":p:s:f:o:qh", opts, NULL)) != -1) {
+        if ((st = aa_option_once(&seen, c, optarg, opts, NULL)))
+            return cli_fail("truth", st);
         switch (c) {
         case 'p': a->pattern = optarg; break;
         case 's': a->size = optarg; break;
@@ -178,6 +187,8 @@ int cmd_truth(int argc, char **argv)
                        : (aa_filter_default(&a.view.filter), AA_OK)) ||
         (st = cli_check_output(a.out)) || (a.bound && (st = cli_check_output(a.bound))))
         return cli_fail("truth", st);
+    if (!a.bound)
+        cli_cache_usable("truth", a.cache);
 
     aa_image img = {0}, bound = {0};
     aa_truth_stats stats;

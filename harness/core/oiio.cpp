@@ -306,9 +306,13 @@ static int start_output(const char *path, const char *format, int w, int h, int 
     else
         tag_encoding(spec, gamma);
     /* OpenEXR's ZIP compression is lossless: the floats read back bit for
-     * bit, in a run's images/ at a fraction of the size. */
+     * bit, in a run's images/ at a fraction of the size.  At zlib's level 6
+     * rather than OpenEXR's default 4: a sampled image (few distinct values)
+     * takes half the bytes, and the default suite's 66 .exr files 28.6 MB
+     * instead of 35.1, written in about the same time; level 9 takes 10
+     * times as long for 8% less. */
     if (!std::strcmp(format, "exr"))
-        spec.attribute("compression", "zip");
+        spec.attribute("compression", "zip:6");
     OIIO::Filesystem::IOProxy *proxy = out->io.get();
     spec.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
     bool ok = out->file->open(path, spec);
