@@ -169,3 +169,33 @@ aa_scene *scenes_elevated(const aa_scene *src)
 {
     return scenes_rebuild(src, 0, elevated_edge);
 }
+
+/* The radical inverse of i in base b, written from its definition (the
+ * digits of i mirrored about the point), apart from the library's. */
+static double radical_inverse(unsigned i, unsigned b)
+{
+    double r = 0, f = 1.0 / b;
+    for (; i; i /= b, f /= b)
+        r += (i % b) * f;
+    return r;
+}
+
+void scenes_history_steady(const aa_scene *placed, int w, int h, int frame, int m,
+                           double alpha, aa_image *out)
+{
+    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
+    double norm = 1.0 - pow(1.0 - alpha, m);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            double *px = aa_pixel(out, i, j);
+            px[0] = px[1] = px[2] = 0;
+            for (int lag = 0; lag < m; lag++) {
+                unsigned q = (unsigned)(((frame - lag) % m + m) % m);
+                aa_rgb c = aa_scene_colour_at(placed, i + radical_inverse(q, 2),
+                                              j + radical_inverse(q, 3));
+                double wt = alpha * pow(1.0 - alpha, lag) / norm;
+                for (int ch = 0; ch < 3; ch++)
+                    px[ch] += wt * c.c[ch];
+            }
+        }
+}

@@ -62,4 +62,12 @@ aa_scene *scenes_half_plane(double px, double py, double angle);
  * frame tells its sample positions apart. */
 aa_scene *scenes_triangles(uint64_t seed);
 
+/* The steady state of the exponential history h <- h + alpha (x_n - h)
+ * of point samples x_n of the placed scene at pixel + Halton(2, 3) index
+ * (n mod m), n = frame, as the sum over lag j < m of
+ * alpha (1-alpha)^j / (1 - (1-alpha)^m) x_(n-j): temporal antialiasing
+ * without reprojection, in closed form (out allocated). */
+void scenes_history_steady(const aa_scene *placed, int w, int h, int frame, int m,
+                           double alpha, aa_image *out);
+
 #endif

@@ -163,37 +163,6 @@ static void reference(const aa_scene *s, int w, int h, double t, double vx, doub
     support_reference(s, &v, out, NULL, NULL);
 }
 
-static double radical_inverse(unsigned i, unsigned b)
-{
-    double r = 0, f = 1.0 / b;
-    for (; i; i /= b, f /= b)
-        r += (i % b) * f;
-    return r;
-}
-
-/* h <- h + alpha (x_n - h) with x_n periodic of period m, in its steady
- * state: sum over lag j < m of alpha (1-alpha)^j / (1 - (1-alpha)^m)
- * x_(n-j), x_n the colour at offset Halton(n mod m). */
-static void closed_form(const aa_scene *placed, int w, int h, int frame, int m, double alpha,
-                        aa_image *out)
-{
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    double norm = 1.0 - pow(1.0 - alpha, m);
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) {
-            double *px = aa_pixel(out, i, j);
-            px[0] = px[1] = px[2] = 0;
-            for (int lag = 0; lag < m; lag++) {
-                unsigned q = (unsigned)(((frame - lag) % m + m) % m);
-                aa_rgb c = aa_scene_colour_at(placed, i + radical_inverse(q, 2),
-                                              j + radical_inverse(q, 3));
-                double wt = alpha * pow(1.0 - alpha, lag) / norm;
-                for (int ch = 0; ch < 3; ch++)
-                    px[ch] += wt * c.c[ch];
-            }
-        }
-}
-
 static void test_still_edges(void **state)
 {
     (void)state;
@@ -202,7 +171,7 @@ static void test_still_edges(void **state)
     aa_image img, form, ref, pt;
     const char *specs[] = {"taa:history=512", "taa:history=512,clamp=clip",
                            "taa:history=512,sample=bilinear"};
-    closed_form(placed, w, h, 5, 8, 0.1, &form);
+    scenes_history_steady(placed, w, h, 5, 8, 0.1, &form);
     for (int k = 0; k < 3; k++) {
         render(specs[k], s, w, h, 5.5, 0, 0, &img);
         double d = support_max_diff(&img, &form, NULL, NULL);

@@ -279,37 +279,6 @@ static void test_hexagon_eye_beats_point(void **state)
 
 /* ---- taa and cycle on a still scene ---- */
 
-static double radical_inverse(unsigned i, unsigned b)
-{
-    double r = 0, f = 1.0 / b;
-    for (; i; i /= b, f /= b)
-        r += (i % b) * f;
-    return r;
-}
-
-/* The steady state of h <- h + alpha (x_n - h) with x_n periodic of period
- * m: h = sum_j alpha (1-alpha)^j x_(n-j) = sum over lag j < m of
- * alpha (1-alpha)^j / (1 - (1-alpha)^m) x_(n-j). */
-static void taa_closed_form(const aa_scene *placed, int w, int h, int frame, int m,
-                            double alpha, aa_image *out)
-{
-    assert_int_equal(aa_image_alloc(out, w, h, 3), AA_OK);
-    double norm = 1.0 - pow(1.0 - alpha, m);
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) {
-            double *px = aa_pixel(out, i, j);
-            px[0] = px[1] = px[2] = 0;
-            for (int lag = 0; lag < m; lag++) {
-                unsigned q = (unsigned)(((frame - lag) % m + m) % m);
-                aa_rgb c = aa_scene_colour_at(placed, i + radical_inverse(q, 2),
-                                              j + radical_inverse(q, 3));
-                double wt = alpha * pow(1.0 - alpha, lag) / norm;
-                for (int ch = 0; ch < 3; ch++)
-                    px[ch] += wt * c.c[ch];
-            }
-        }
-}
-
 static void test_taa_still(void **state)
 {
     (void)state;
@@ -319,7 +288,7 @@ static void test_taa_still(void **state)
     /* 0.9^511 ~ 4e-24: the start of the history is gone */
     assert_int_equal(render("taa:reproject=none,clamp=none,history=512", s, w, h, 5.5, 0, 0, 0,
                             &img), AA_OK);
-    taa_closed_form(placed, w, h, 5, 8, 0.1, &form);
+    scenes_history_steady(placed, w, h, 5, 8, 0.1, &form);
     double d = support_max_diff(&img, &form, NULL, NULL);
     print_message("taa still: largest difference from the closed form %.3e\n", d);
     assert_true(d < 1e-12);
@@ -327,7 +296,7 @@ static void test_taa_still(void **state)
     aa_image_free(&form);
     /* toward the equal-weight mean of the 8 offsets as alpha falls (the
      * same formula at alpha -> 0 is the plain mean) */
-    taa_closed_form(placed, w, h, 5, 8, 1e-9, &mean);
+    scenes_history_steady(placed, w, h, 5, 8, 1e-9, &mean);
     double last = INFINITY;
     const char *specs[] = {"taa:reproject=none,clamp=none,alpha=0.3,history=512",
                            "taa:reproject=none,clamp=none,alpha=0.1,history=512",
