@@ -1329,6 +1329,19 @@ static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
         case AA_PATH_ARC:
             st = give_arc(r, m, g->p);
             break;
+        case AA_PATH_OFFSET:
+            /* an exact offset curve of a Bezier arc's stroke: the sink has
+             * no such segment; one that keeps strokes as strokes (`stroke`,
+             * told next) draws it from the source, and is given the
+             * segment's end here; one that does not cannot draw it */
+            if (!k->stroke)
+                st = aa_fail(AA_EINVAL,
+                             "%s: the stroke of a Bezier arc has exact offset curves, which "
+                             "this reader's sink cannot take (it keeps no strokes)",
+                             r->name);
+            else if (!(st = point(r, m, g->p[12], g->p[13], &q[0], &q[1])))
+                st = k->line_to(r->ctx, q[0], q[1]);
+            break;
         default:
             st = aa_fail(AA_EFAIL, "%s: a path segment of unknown kind %d", r->name,
                          (int)g->op);

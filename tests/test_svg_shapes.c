@@ -305,8 +305,33 @@ static void test_stroke_arc_areas(void **state)
                24 * 20 - (4 - M_PI) * 25 - (20 * 16 - (4 - M_PI) * 9));
 }
 
+/* Strokes of Bezier arcs, read from SVG: the quadratic from (0, 0) through
+ * (X/2, 0) to (X, a X^2) is the parabola y = a x^2 (x = X t, y = a X^2
+ * t^2), whose curvature radius (1 + 4 a^2 x^2)^(3/2) / (2 a) is at least
+ * 1/(2a) = 20 > w/2 = 1.5, so that its butt-capped stroke is a tube of
+ * area w L (the tube formula), with the arc length in closed form
+ * L = [x/2 sqrt(1 + 4 a^2 x^2) + asinh(2 a x)/(4 a)] from 0 to X; the
+ * cubic with the same curve (degree elevated: controls at 1/3 and 2/3 of
+ * the way to the quadratic's control) has the same stroke. */
+static void test_stroke_bezier_areas(void **state)
+{
+    (void)state;
+    const double a = 1.0 / 40, X = 20, w = 3;
+    const double L = X / 2 * sqrt(1 + 4 * a * a * X * X) + asinh(2 * a * X) / (4 * a);
+    check_area("stroked parabola",
+               "<path transform=\"translate(5 4)\" d=\"M 0 0 Q 10 0 20 10\" fill=\"none\" "
+               "stroke=\"white\" stroke-width=\"3\"/>",
+               w * L);
+    check_area("stroked parabola as a cubic",
+               "<path transform=\"translate(5 4)\" d=\"M 0 0 C 6.6666666666666667 0 "
+               "13.333333333333333 3.3333333333333333 20 10\" fill=\"none\" stroke=\"white\" "
+               "stroke-width=\"3\"/>",
+               w * L);
+}
+
 #define CONIC_AREA_TESTS                                                                       \
-    , cmocka_unit_test(test_fill_areas), cmocka_unit_test(test_stroke_arc_areas)
+    , cmocka_unit_test(test_fill_areas), cmocka_unit_test(test_stroke_arc_areas),             \
+        cmocka_unit_test(test_stroke_bezier_areas)
 
 SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_scene_points),
