@@ -4,7 +4,8 @@
  *
  * The reader walks the document with libxml2 and gives every shape it draws
  * to a sink, in document order (painter's order: the first shape is at the
- * back): `shape` with the shape's fill colour (linear light) and fill rule,
+ * back): `shape` with the shape's fill colour (linear light) and fill rule
+ * (then `alpha` when it is translucent),
  * then its subpaths as move/line/quad/cubic/arc/close in absolute pixel
  * units, every transform and the viewBox mapping applied to the points
  * (exact for Bezier arcs under affine maps; an elliptical arc's centre is
@@ -45,6 +46,16 @@ typedef struct aa_svg_sink {
      * sink can keep the stroke as a stroke (aa_scene_stroke). */
     int (*stroke)(void *ctx, const aa_path *path, const aa_stroke_style *style,
                   const double m[6]);
+    /* Optional (NULL: a document that needs them is refused).  `alpha` is
+     * called right after `shape` when the shape's alpha is below 1 (its
+     * paint's alpha times its fill- or stroke-opacity, times the element's
+     * opacity when that is its one painted shape); `group_begin` and
+     * `group_end` enclose, in document order, shapes composited as a whole
+     * with an opacity below 1 (a <g>, or an element with both a fill and a
+     * stroke). */
+    int (*alpha)(void *ctx, double alpha);
+    int (*group_begin)(void *ctx, double opacity);
+    int (*group_end)(void *ctx);
 } aa_svg_sink;
 
 /* Limits: larger or deeper documents are refused. */
