@@ -124,7 +124,8 @@ static inline double *aa_pixel(const aa_image *im, int i, int j)
 }
 
 /* ------------------------------------------------------------------------
- * Scenes: opaque layers of closed paths (lines, quadratic and cubic arcs)
+ * Scenes: layers of closed paths (lines, quadratic and cubic arcs), opaque
+ * or translucent (aa_scene_is_opaque, aa_scene_colour_of)
  * ------------------------------------------------------------------------ */
 
 typedef struct aa_rgb { double c[3]; } aa_rgb;

@@ -29,10 +29,17 @@
  *     by SVG 2's rules for rx and ry, <circle>, <ellipse>, <line>,
  *     <polygon>, <polyline>, in <g>; <title>, <desc>, <metadata> and
  *     <defs> (whose content is drawn only when referenced) draw nothing;
- *   - fill (named colours, #rgb, #rrggbb, rgb() with integers or
- *     percentages, none, inherit) and fill-rule, as attributes or in a
- *     style attribute; colours are sRGB and become linear light by the sRGB
- *     decoding; the fill closes every subpath (a line has none);
+ *   - fill and fill-rule, as attributes or in a style attribute; colours
+ *     as CSS Color 4 writes them (names, transparent, currentColor, hex
+ *     with or without alpha, rgb()/rgba() and hsl()/hsla() in the legacy
+ *     and the modern forms; parse_colour) are sRGB and become linear light
+ *     by the sRGB decoding; the fill closes every subpath (a line has
+ *     none);
+ *   - fill-opacity, stroke-opacity, the colours' alphas and opacity: a
+ *     shape's alpha (`alpha` to the sink), or, for opacity on a group or
+ *     on an element with both a fill and a stroke, a group composited as a
+ *     whole (`group_begin`, `group_end`); color, paint-order, visibility
+ *     and display;
  *   - stroke (a colour or none), stroke-width, stroke-linejoin,
  *     stroke-linecap, stroke-miterlimit, stroke-dasharray and
  *     stroke-dashoffset: the stroke is the path's outline in user units
@@ -43,8 +50,8 @@
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (Bezier arcs with a cusp, arcs of ellipses that are
- * not circles), the joins miter-clip and arcs, opacity below 1 (opacity,
- * fill-opacity, stroke-opacity), paint servers (gradients, patterns:
+ * not circles), the joins miter-clip and arcs, color-interpolation:
+ * linearRGB (compositing in linear light), paint servers (gradients, patterns:
  * url() paints), text, images, <use>, clip paths, masks, filters, style
  * sheets, nested <svg>, units other than px, negative sizes, radii, widths
  * and dashes, any attribute or style property not implemented (see

@@ -119,7 +119,9 @@ static const cell cells[] = {
      "stroke-opacity=\"0.25\"/>",
      {{8, 20, {0.25, 0.25, 1}}, {20, 20, {0, 0, 1}}},
      2, ""},
-    /* currentColor inherited as the keyword: each element's own color */
+    /* currentColor inherited as the keyword: each element's own color
+     * (resvg paints the top one red, the colour of the <g> that set the
+     * fill: wrong by CSS Color 4, "currentcolor") */
     {"currentColor",
      "<g color=\"red\" fill=\"currentColor\"><rect x=\"4\" y=\"4\" width=\"32\" "
      "height=\"14\" color=\"lime\"/><rect x=\"4\" y=\"22\" width=\"32\" height=\"14\"/></g>",
@@ -144,7 +146,8 @@ static const cell cells[] = {
      {{10, 10, {0, 0.5, 0}}, {30, 10, {0, 0, 0.5}}, {10, 30, {0, 1, 1}}, {30, 30, {1, 0.5, 0}}},
      4, ""},
     /* the hue as an angle (CSS Color 4, <hue> = <number> | <angle>): half
-     * a turn and 180 degrees are cyan, 200 grad too, 0 rad red */
+     * a turn and 180 degrees are cyan, 200 grad too, 0 rad red (resvg
+     * draws them black: it takes no angle unit) */
     {"hue angles",
      "<rect width=\"20\" height=\"20\" fill=\"hsl(0.5turn 100% 50%)\"/>"
      "<rect x=\"20\" width=\"20\" height=\"20\" fill=\"hsl(180deg, 100%, 50%)\"/>"
@@ -153,7 +156,8 @@ static const cell cells[] = {
      {{10, 10, {0, 1, 1}}, {30, 10, {0, 1, 1}}, {10, 30, {0, 1, 1}}, {30, 30, {1, 0, 0}}},
      4, "resvg"},
     /* the modern form's alpha after "/": (1, 0.5, 0) at 0.5, blue at
-     * 0.25, lime at 0.75, and mixed numbers and percentages */
+     * 0.25, lime at 0.75, blue at 0.5 (resvg draws them black: it takes
+     * no "/") */
     {"modern alpha",
      "<rect width=\"20\" height=\"20\" fill=\"rgb(100% 50% 0% / 0.5)\"/>"
      "<rect x=\"20\" width=\"20\" height=\"20\" fill=\"hsl(240 100% 50% / 25%)\"/>"
@@ -164,7 +168,8 @@ static const cell cells[] = {
     /* the modern form takes numbers and percentages mixed (CSS Color 4
      * since the working group's resolution of 2023): numbers for hsl()'s
      * saturation and lightness read as percentages, yellow and 40% grey;
-     * rgb(50% 255 0) */
+     * rgb(50% 255 0) (resvg draws the hsl() white, librsvg all three
+     * black: both older than the resolution) */
     {"modern numbers and percentages",
      "<rect width=\"40\" height=\"14\" fill=\"hsl(60 100 50)\"/>"
      "<rect y=\"14\" width=\"40\" height=\"13\" fill=\"hsl(0 0 40)\"/>"
