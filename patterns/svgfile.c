@@ -1937,12 +1937,14 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
 }
 
 /* The viewport and the root's map from user units to pixels. */
-static int root_map(reader *r, const xmlNode *root, int w, int h, mat *m, double vp[2])
+static int root_map(reader *r, const xmlNode *root, double w, double h, mat *m, double vp[2],
+                    int given[2])
 {
     double vw = w, vh = h;
     int st;
     static const char *const sides[2] = {"width", "height"};
     for (int k = 0; k < 2; k++) {
+        given[k] = 0;
         xmlChar *t = xmlGetNoNsProp(root, (const xmlChar *)sides[k]);
         if (!t)
             continue;
@@ -1950,7 +1952,7 @@ static int root_map(reader *r, const xmlNode *root, int w, int h, mat *m, double
         if (!strcmp(s, "100%") || !strcmp(s, "auto"))
             st = AA_OK;
         else
-            st = parse_length(r, sides[k], s, k ? &vh : &vw);
+            st = parse_length(r, sides[k], s, k ? &vh : &vw), given[k] = 1;
         xmlFree(t);
         if (st)
             return st;
@@ -2034,10 +2036,22 @@ static int declares_entities(const xmlDoc *doc)
 int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
                 const aa_svg_sink *sink, void *ctx, double viewport[2])
 {
+    return aa_svg_read_at(data, len, name, w, h, 1, sink, ctx, viewport);
+}
+
+int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h, double scale,
+                   const aa_svg_sink *sink, void *ctx, double viewport[2])
+{
     reader r = {sink, ctx, name, 0, NULL};
     double vp[2] = {0, 0};
+    int given[2] = {0, 0};
+    if (!sink) /* the size only: the view does not matter */
+        w = h = 1;
     if (w < 1 || h < 1)
         return aa_fail(AA_EINVAL, "%s: a view of %dx%d pixels", name, w, h);
+    if (!(scale >= AA_SVG_MIN_SCALE && scale <= AA_SVG_MAX_SCALE))
+        return aa_fail(AA_EINVAL, "%s: scale %g is outside [%g, %g]", name, scale,
+                       AA_SVG_MIN_SCALE, AA_SVG_MAX_SCALE);
     if (len > AA_SVG_MAX_BYTES)
         return aa_fail(AA_EINVAL, "%s: larger than %u bytes", name, AA_SVG_MAX_BYTES);
     xmlParserCtxtPtr parser = xmlNewParserCtxt();
@@ -2078,9 +2092,18 @@ int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
             st = fail_at(&r, "a transform on the root <svg> is not supported");
         }
         double opacity = 1;
-        if (!st && !(st = root_map(&r, root, w, h, &m, vp)) &&
-            !(st = element_props(&r, root, &sty, &m, &skip, &opacity)) && !skip &&
-            opacity > 0) {
+        /* at `scale` pixels a CSS pixel: the document laid out in a view of
+         * (w, h) / scale CSS pixels, then everything scaled */
+        if (!st && !(st = root_map(&r, root, w / scale, h / scale, &m, vp, given))) {
+            const mat zoom = {scale, 0, 0, scale, 0, 0};
+            m = mat_mul(zoom, m);
+            vp[0] *= scale, vp[1] *= scale;
+            if (!sink && !(given[0] && given[1]))
+                st = fail_at(&r, "the root has no size of its own (width and height in px): "
+                                 "give the view's size");
+        }
+        if (!st && sink && !(st = element_props(&r, root, &sty, &m, &skip, &opacity)) &&
+            !skip && opacity > 0) {
             /* the root's opacity: its content as a group */
             if (opacity < 1)
                 st = group_begin(&r, opacity);
@@ -2100,6 +2123,12 @@ int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
 int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, void *ctx,
                      double viewport[2])
 {
+    return aa_svg_read_file_at(path, w, h, 1, sink, ctx, viewport);
+}
+
+int aa_svg_read_file_at(const char *path, int w, int h, double scale, const aa_svg_sink *sink,
+                        void *ctx, double viewport[2])
+{
     char *data;
     size_t len;
     int st = aa_file_read_all(path, AA_SVG_MAX_BYTES, "SVG file", &data, &len);
@@ -2107,7 +2136,7 @@ int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, vo
         return st;
     char name[256];
     snprintf(name, sizeof name, "%s", aa_echo(path));
-    st = aa_svg_read(data, len, name, w, h, sink, ctx, viewport);
+    st = aa_svg_read_at(data, len, name, w, h, scale, sink, ctx, viewport);
     free(data);
     return st;
 }
@@ -2119,7 +2148,7 @@ int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, vo
  * back to (u, v) (exactly when W and H are powers of two).
  * ------------------------------------------------------------------------ */
 
-enum { SVG_FILE };
+enum { SVG_FILE, SVG_SCALE };
 
 /* The default file: the shipped shapes.svg, in the folder of the shipped
  * scenes (aa_svg_dir: the source tree's, or the install prefix's), set
@@ -2136,6 +2165,9 @@ __attribute__((constructor)) static void default_file_set(void)
 static const aa_param svg_params[] = {
     {"file", AA_PARAM_TEXT, 0, 0, 0, 0, default_file,
      "the SVG file (a path; write ',' as %2C and '%' as %25)"},
+    {"scale", AA_PARAM_REAL, 1, AA_SVG_MIN_SCALE, AA_SVG_MAX_SCALE, 0, NULL,
+     "image pixels per CSS pixel (as rsvg-convert -z); without -s the image is the file's "
+     "own size times this"},
     {0}};
 
 typedef struct rec_op {
@@ -2346,7 +2378,8 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
     double vp[2] = {0, 0};
     rec.lo[0] = rec.lo[1] = 0;
     rec.hi[0] = rec.hi[1] = 0;
-    int st = aa_svg_read_file(aa_param_text(p[SVG_FILE]), w, h, &recording_sink, &rec, vp);
+    int st = aa_svg_read_file_at(aa_param_text(p[SVG_FILE]), w, h, p[SVG_SCALE],
+                                 &recording_sink, &rec, vp);
     const int read_ok = st == AA_OK;
     /* content beyond the viewport: a front layer of the background colour
      * over everything outside it (even-odd of a larger rectangle and the
@@ -2461,6 +2494,21 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         aa_path_free(&rec.strokes[k].path);
     free(rec.strokes);
     return st;
+}
+
+int aa__svg_own_size(const double *p, int *w, int *h)
+{
+    double vp[2];
+    int st = aa_svg_read_file_at(aa_param_text(p[SVG_FILE]), 1, 1, p[SVG_SCALE], NULL, NULL, vp);
+    if (st)
+        return st;
+    /* whole pixels, up to rounding of the product */
+    const double fw = ceil(vp[0] * (1 - 1e-12)), fh = ceil(vp[1] * (1 - 1e-12));
+    if (!(fw >= 1 && fh >= 1 && fw <= AA_MAX_SIDE && fh <= AA_MAX_SIDE))
+        return aa_fail(AA_EINVAL, "SVG file %s: its own size times %g is %gx%g pixels",
+                       aa_echo(aa_param_text(p[SVG_FILE])), p[SVG_SCALE], vp[0], vp[1]);
+    *w = (int)fw, *h = (int)fh;
+    return AA_OK;
 }
 
 int aa__svg_key(const double *p, char *buf, size_t len)

@@ -79,6 +79,19 @@ int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
 int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, void *ctx,
                      double viewport[2]);
 
+/* The same drawn at `scale` image pixels per CSS pixel (rsvg-convert's
+ * zoom): the document is laid out in a view of (w, h) / scale CSS pixels
+ * and everything, the viewport included, scaled by `scale`.  With sink
+ * NULL only the viewport is found (w and h unused): the root's own width
+ * and height in px times the scale, refused when either is absent or a
+ * percentage. */
+#define AA_SVG_MIN_SCALE (1.0 / 64)
+#define AA_SVG_MAX_SCALE 64.0
+int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h, double scale,
+                   const aa_svg_sink *sink, void *ctx, double viewport[2]);
+int aa_svg_read_file_at(const char *path, int w, int h, double scale, const aa_svg_sink *sink,
+                        void *ctx, double viewport[2]);
+
 /* A 64-bit FNV-1a hash of a file's bytes and its length (the cache key of a
  * pattern read from a file). */
 int aa_file_hash(const char *path, unsigned long long *hash, size_t *len);

@@ -321,6 +321,10 @@ int aa_pattern_scene(const aa_spec *spec, aa_scene **out);
 int aa_pattern_scene_at(const aa_spec *spec, int w, int h, aa_scene **out);
 /* 1 if the pattern is drawn at the view's size (above). */
 int aa_pattern_sized(const aa_spec *spec);
+/* The image size a pattern drawn at the view's size has of its own (svg:
+ * the file's width and height times its scale), or AA_EINVAL saying -s is
+ * needed. */
+int aa_pattern_own_size(const aa_spec *spec, int *w, int *h);
 /* What the cache key of a view adds for the pattern beyond its canonical
  * text: for a pattern read from files (`svg`, `text`), a line per file with
  * the hash and length of its bytes, so that a file changed under the same
