@@ -1696,6 +1696,11 @@ static int refuse_field(const aa_job *job)
                                   "pattern %s is a procedural field without edges (its exact "
                                   "values are the reference itself): use a sampling method",
                        field->name);
+    /* its colour of a winding (colour_of) is the front-most layer's, and
+     * Catmull's integrater splits on the front-most layer alone */
+    if (!aa_scene_is_opaque(job->placed))
+        return aa_fail(AA_EINVAL, "area takes opaque layers only: this scene has translucent "
+                                  "layers (opacity below 1), which it does not composite");
     return AA_OK;
 }
 

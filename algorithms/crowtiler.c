@@ -554,6 +554,10 @@ static int prepare(tl_state *S, const double *p, const aa_job *job)
 static int crowtiler_init(void *state, const double *p, const aa_job *job)
 {
     tl_state *S = state;
+    if ((int)p[P_HIDDEN] == HIDDEN_PRIORITY && !aa_scene_is_opaque(job->placed))
+        return aa_fail(AA_EINVAL, "crowtiler:hidden=priority blends opaque layers by their "
+                                  "areas: this scene has translucent layers (opacity below "
+                                  "1); hidden=scan takes them");
     int st = table_make(S, p, &job->filter);
     S->adj_of = NULL; /* the adjacency is made again for this job's scene */
     return st ? st : prepare(S, p, job);

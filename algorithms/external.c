@@ -545,6 +545,11 @@ static int external_init(void *state, const double *p, const aa_job *job)
     int n = aa_scene_layer_count(scene), st;
     if ((st = adapter_find(name, s->adapter)))
         return st;
+    /* the mask and the colour mapping read coverage, not composited colour */
+    if (!aa_scene_is_opaque(scene))
+        return aa_fail(AA_EINVAL, "external maps a renderer's coverage back to the layers' "
+                                  "colours: this scene has translucent layers (opacity below "
+                                  "1), which it does not take");
     s->mask = n <= 1;
     s->bg = aa_scene_background(scene);
     s->fg = n ? aa_scene_layer_colour(scene, 0) : s->bg;

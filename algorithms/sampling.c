@@ -108,13 +108,14 @@ void aa__sampler_by_subsets(aa__sampler_worker *wk, const aa_scene *s, double y,
     double a0 = 0, a1 = 0, a2 = 0, total = 0;
     aa_rgb first = {{0, 0, 0}};
     int uniform = 1, any = 0;
-    /* One layer (crow): a subset's colour is the layer's where its rule
+    /* One opaque layer (crow): a subset's colour is the layer's where its rule
      * holds for the winding left of the window plus the subset's
      * directions, else the background (aa_scene_colour_of, without copying
      * winding arrays per subset). */
     aa_rgb one[2];
     int evenodd = 0;
-    if (nl == 1) {
+    const int single = nl == 1 && aa_scene_is_opaque(s);
+    if (single) {
         one[0] = aa_scene_background(s), one[1] = aa_scene_layer_colour(s, 0);
         evenodd = aa_scene_layer_rule(s, 0) == AA_FILL_EVENODD;
     }
@@ -122,7 +123,7 @@ void aa__sampler_by_subsets(aa__sampler_worker *wk, const aa_scene *s, double y,
         if (!(wsum[m] > 0.0)) /* no sample */
             continue;
         aa_rgb c;
-        if (nl == 1) {
+        if (single) {
             int w = wk->wind[0];
             for (int q = 0; q < np; q++)
                 w += (m >> q & 1u) ? pcs[q]->dir : 0;

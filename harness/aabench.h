@@ -24,7 +24,7 @@ extern "C" {
 
 /* The interface version a plug-in is built for; the command refuses a
  * plug-in built for another.  Raised whenever a type below changes layout. */
-#define AA_PLUGIN_ABI 4
+#define AA_PLUGIN_ABI 5
 
 /* ------------------------------------------------------------------------
  * Status and errors
@@ -124,7 +124,8 @@ static inline double *aa_pixel(const aa_image *im, int i, int j)
 }
 
 /* ------------------------------------------------------------------------
- * Scenes: opaque layers of closed paths (lines, quadratic and cubic arcs)
+ * Scenes: layers of closed paths (lines, quadratic and cubic arcs), opaque
+ * or translucent (aa_scene_is_opaque, aa_scene_colour_of)
  * ------------------------------------------------------------------------ */
 
 typedef struct aa_rgb { double c[3]; } aa_rgb;
@@ -214,8 +215,16 @@ const aa_piece *aa_scene_pieces(const aa_scene *s, size_t *n);
 int aa_scene_bounds(const aa_scene *s, double *x0, double *y0, double *x1, double *y1);
 /* 1 if every colour (layers and background) is grey. */
 int aa_scene_is_grey(const aa_scene *s);
-/* The colour of the front-most layer whose fill rule holds for the winding
- * numbers `wind` (one per layer), or the background. */
+/* 1 if every layer is opaque (alpha 1, in no group of opacity): the colour
+ * at a point is then the front-most covering layer's colour.  0 for a
+ * scene with translucent layers, whose colour at a point is the covering
+ * layers composited (aa_scene_colour_of); a method that draws from the
+ * layers' colours itself must refuse such a scene. */
+int aa_scene_is_opaque(const aa_scene *s);
+/* The colour at a point whose winding numbers are `wind` (one per layer):
+ * in an opaque scene the front-most layer's whose fill rule holds, or the
+ * background; otherwise the covering layers composited back to front in
+ * sRGB-encoded values, decoded to linear light (patterns/README.md). */
 aa_rgb aa_scene_colour_of(const aa_scene *s, const int *wind);
 
 /* The point of an offset curve at parameter t, and its derivative (either

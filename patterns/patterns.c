@@ -29,8 +29,9 @@ static const struct {
     const aa_pattern_type *type;
     int (*build_at)(const double *p, int w, int h, aa_scene *s);
     int (*key)(const double *p, char *buf, size_t len);
-} sized[] = {{&aa_pattern_svg, aa__svg_build_at, aa__svg_key},
-             {&aa_pattern_text, aa__text_build_at, aa__text_key}};
+    int (*own_size)(const double *p, int *w, int *h); /* NULL: none */
+} sized[] = {{&aa_pattern_svg, aa__svg_build_at, aa__svg_key, aa__svg_own_size},
+             {&aa_pattern_text, aa__text_build_at, aa__text_key, NULL}};
 
 static int sized_index(const aa_spec *spec)
 {
@@ -41,6 +42,16 @@ static int sized_index(const aa_spec *spec)
 }
 
 int aa_pattern_sized(const aa_spec *spec) { return sized_index(spec) >= 0; }
+
+int aa_pattern_own_size(const aa_spec *spec, int *w, int *h)
+{
+    int k = sized_index(spec);
+    if (k < 0 || !sized[k].own_size)
+        return aa_fail(AA_EINVAL, "pattern %s has no size of its own: give the image's size "
+                                  "(-s WxH)",
+                       spec->info->name);
+    return sized[k].own_size(spec->v, w, h);
+}
 
 int aa_pattern_key(const aa_spec *spec, char *buf, size_t len)
 {

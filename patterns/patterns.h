@@ -24,6 +24,7 @@ extern const aa_pattern_type aa_pattern_text;
  * view's cache key (aa_pattern_key). */
 int aa__svg_build_at(const double *p, int w, int h, aa_scene *s);
 int aa__svg_key(const double *p, char *buf, size_t len);
+int aa__svg_own_size(const double *p, int *w, int *h);
 int aa__text_build_at(const double *p, int w, int h, aa_scene *s);
 int aa__text_key(const double *p, char *buf, size_t len);
 

@@ -29,10 +29,17 @@
  *     by SVG 2's rules for rx and ry, <circle>, <ellipse>, <line>,
  *     <polygon>, <polyline>, in <g>; <title>, <desc>, <metadata> and
  *     <defs> (whose content is drawn only when referenced) draw nothing;
- *   - fill (named colours, #rgb, #rrggbb, rgb() with integers or
- *     percentages, none, inherit) and fill-rule, as attributes or in a
- *     style attribute; colours are sRGB and become linear light by the sRGB
- *     decoding; the fill closes every subpath (a line has none);
+ *   - fill and fill-rule, as attributes or in a style attribute; colours
+ *     as CSS Color 4 writes them (names, transparent, currentColor, hex
+ *     with or without alpha, rgb()/rgba() and hsl()/hsla() in the legacy
+ *     and the modern forms; parse_colour) are sRGB and become linear light
+ *     by the sRGB decoding; the fill closes every subpath (a line has
+ *     none);
+ *   - fill-opacity, stroke-opacity, the colours' alphas and opacity: a
+ *     shape's alpha (`alpha` to the sink), or, for opacity on a group or
+ *     on an element with both a fill and a stroke, a group composited as a
+ *     whole (`group_begin`, `group_end`); color, paint-order, visibility
+ *     and display;
  *   - stroke (a colour or none), stroke-width, stroke-linejoin,
  *     stroke-linecap, stroke-miterlimit, stroke-dasharray and
  *     stroke-dashoffset: the stroke is the path's outline in user units
@@ -43,8 +50,8 @@
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (Bezier arcs with a cusp, arcs of ellipses that are
- * not circles), the joins miter-clip and arcs, opacity below 1 (opacity,
- * fill-opacity, stroke-opacity), paint servers (gradients, patterns:
+ * not circles), the joins miter-clip and arcs, color-interpolation:
+ * linearRGB (compositing in linear light), paint servers (gradients, patterns:
  * url() paints), text, images, <use>, clip paths, masks, filters, style
  * sheets, nested <svg>, units other than px, negative sizes, radii, widths
  * and dashes, any attribute or style property not implemented (see
@@ -175,14 +182,21 @@ typedef struct mat {
     double a, b, c, d, e, f; /* x' = a x + c y + e, y' = b x + d y + f */
 } mat;
 
+/* A colour: sRGB-encoded channels in [0, 1] and an alpha, or the keyword
+ * currentColor (resolved where it is used, CSS Color 4 "currentcolor"). */
+typedef struct css_colour {
+    double v[3], alpha;
+    int current;
+} css_colour;
+
 /* The inherited paint properties (SVG 2's initial values in the root's
  * style: fill black, nonzero, no stroke, width 1, miter joins of limit 4,
- * butt caps, no dashes). */
+ * butt caps, no dashes, opacities 1, color black, fill under the stroke,
+ * visible). */
 typedef struct style {
-    aa_rgb fill;
+    css_colour fill, stroke, color; /* the paints, and the property color */
     int fill_none;
     aa_fill_rule rule;
-    aa_rgb stroke;
     int stroke_none;
     double stroke_width;
     aa_line_join join;
@@ -192,7 +206,9 @@ typedef struct style {
     double dash[AA_SVG_MAX_DASHES];
     size_t ndash; /* 0: none */
     double dashoffset;
-    double stroke_opacity; /* NaN: not a number (refused when a stroke is drawn) */
+    double fill_opacity, stroke_opacity; /* clamped to [0, 1] */
+    int stroke_first;                     /* paint-order: the stroke under the fill */
+    int visible;                          /* visibility: visible */
 } style;
 
 typedef struct reader {
@@ -333,7 +349,7 @@ static const char *const css_known[] = {
     "opacity",          "fill-opacity",   "clip-path",       "mask",
     "filter",           "visibility",     "stroke-width",    "stroke-opacity",
     "stroke-linecap",   "stroke-linejoin", "stroke-miterlimit", "stroke-dasharray",
-    "stroke-dashoffset"};
+    "stroke-dashoffset", "color",         "paint-order",     "color-interpolation"};
 
 /* The attributes, beyond the properties, each element reads. */
 static int attr_known(const xmlNode *node, const char *name)
@@ -635,11 +651,175 @@ static int hex(int c)
                                   : -1;
 }
 
+/* The arguments of a colour function after its "(": up to four numbers,
+ * each with its unit ('%', an angle's, or none), in the legacy form
+ * (commas between all of them) or the modern one (white space, the alpha
+ * after "/"); CSS Color 4, "rgb()" and "hsl()".  *n their count, *slash
+ * whether an alpha was given in either form.  -1 on a syntax error. */
+static int colour_args(const char *s, double x[4], char unit[4][5], int *n, int *legacy)
+{
+    *n = 0;
+    *legacy = -1;
+    s = skip_wsp(s);
+    for (;;) {
+        if (*n == 4)
+            return -1;
+        if (scan_number(&s, &x[*n]))
+            return -1;
+        size_t u = 0;
+        while (u < 4 && (isalpha((unsigned char)*s) || *s == '%'))
+            unit[*n][u++] = (char)tolower((unsigned char)*s++);
+        if (isalpha((unsigned char)*s) || *s == '%')
+            return -1;
+        unit[*n][u] = '\0';
+        (*n)++;
+        s = skip_wsp(s);
+        if (*s == ')')
+            return *skip_wsp(s + 1) ? -1 : 0;
+        if (*s == ',') {
+            if (*legacy == 0)
+                return -1;
+            *legacy = 1;
+            s = skip_wsp(s + 1);
+        } else if (*s == '/') {
+            if (*legacy == 1 || *n != 3)
+                return -1;
+            *legacy = 0;
+            s = skip_wsp(s + 1);
+        } else {
+            if (*legacy == 1)
+                return -1;
+            *legacy = 0;
+        }
+    }
+}
+
+/* An <alpha-value> (a number, or a percentage), clamped to [0, 1]. */
+static int alpha_value(double x, const char *unit, double *a)
+{
+    if (*unit && strcmp(unit, "%"))
+        return -1;
+    *a = *unit ? x / 100 : x;
+    *a = *a < 0 ? 0 : *a > 1 ? 1 : *a;
+    return 0;
+}
+
+/* HSL to sRGB (CSS Color 4, "Converting HSL colors to sRGB"): with hue h
+ * in degrees, s and l in [0, 1], channel n (0, 8, 4 for red, green and
+ * blue) is l - a max(-1, min(k - 3, 9 - k, 1)), k = (n + h/30) mod 12,
+ * a = s min(l, 1 - l). */
+static void hsl_to_rgb(double h, double sat, double l, double v[3])
+{
+    static const double n[3] = {0, 8, 4};
+    h = fmod(h, 360);
+    if (h < 0)
+        h += 360;
+    const double a = sat * fmin(l, 1 - l);
+    for (int c = 0; c < 3; c++) {
+        double k = fmod(n[c] + h / 30, 12);
+        v[c] = l - a * fmax(-1, fmin(fmin(k - 3, 9 - k), 1));
+    }
+}
+
+/* A colour value of the property `what` (CSS Color 4): a name (any case),
+ * transparent, currentColor, #rgb, #rgba, #rrggbb, #rrggbbaa, rgb() and
+ * rgba() (numbers or percentages, an alpha), hsl() and hsla() (a hue in
+ * degrees or an angle, percentages, an alpha); legacy (commas) or modern
+ * (white space, "/ alpha") forms. */
+static int parse_colour(reader *r, const char *what, const char *text, css_colour *c)
+{
+    c->alpha = 1;
+    c->current = 0;
+    size_t n = strlen(text);
+    if (!strcasecmp(text, "currentColor")) {
+        c->current = 1;
+        c->v[0] = c->v[1] = c->v[2] = 0;
+        return AA_OK;
+    }
+    if (!strcasecmp(text, "transparent")) { /* rgb(0 0 0 / 0) */
+        c->v[0] = c->v[1] = c->v[2] = 0;
+        c->alpha = 0;
+        return AA_OK;
+    }
+    if (text[0] == '#') {
+        int d[8];
+        if (n != 4 && n != 5 && n != 7 && n != 9)
+            goto bad_hex;
+        for (size_t k = 1; k < n; k++)
+            if ((d[k - 1] = hex((unsigned char)text[k])) < 0)
+                goto bad_hex;
+        const int shorthand = n <= 5;
+        for (int k = 0; k < 3; k++)
+            c->v[k] = (shorthand ? d[k] * 17 : d[2 * k] * 16 + d[2 * k + 1]) / 255.0;
+        if (n == 5)
+            c->alpha = d[3] * 17 / 255.0;
+        if (n == 9)
+            c->alpha = (d[6] * 16 + d[7]) / 255.0;
+        return AA_OK;
+    }
+    const int rgb = !strncasecmp(text, "rgb(", 4) || !strncasecmp(text, "rgba(", 5);
+    const int hsl = !strncasecmp(text, "hsl(", 4) || !strncasecmp(text, "hsla(", 5);
+    if (rgb || hsl) {
+        double x[4];
+        char unit[4][5];
+        int m, legacy;
+        if (colour_args(strchr(text, '(') + 1, x, unit, &m, &legacy) || m < 3)
+            goto bad_function;
+        if (m == 4 && alpha_value(x[3], unit[3], &c->alpha))
+            goto bad_function;
+        if (rgb) {
+            /* legacy: all numbers or all percentages; modern: either each */
+            for (int k = 0; k < 3; k++) {
+                if ((*unit[k] && strcmp(unit[k], "%")) ||
+                    (legacy == 1 && strcmp(unit[k], unit[0])))
+                    goto bad_function;
+                double v = *unit[k] ? x[k] / 100 : x[k] / 255;
+                c->v[k] = v < 0 ? 0 : v > 1 ? 1 : v; /* CSS clamps */
+            }
+            return AA_OK;
+        }
+        static const struct {
+            const char *name;
+            double deg;
+        } angles[] = {{"", 1}, {"deg", 1}, {"rad", 180 / M_PI}, {"grad", 0.9}, {"turn", 360}};
+        size_t a = 0, na = sizeof angles / sizeof angles[0];
+        while (a < na && strcmp(unit[0], angles[a].name))
+            a++;
+        if (a == na)
+            goto bad_function;
+        double sl[2];
+        for (int k = 1; k < 3; k++) {
+            /* legacy: percentages; modern: percentages or numbers (0 to 100) */
+            if ((legacy == 1 && strcmp(unit[k], "%")) || (*unit[k] && strcmp(unit[k], "%")))
+                goto bad_function;
+            double v = x[k] / 100;
+            sl[k - 1] = v < 0 ? 0 : v > 1 ? 1 : v;
+        }
+        hsl_to_rgb(x[0] * angles[a].deg, sl[0], sl[1], c->v);
+        return AA_OK;
+    }
+    size_t k, count = sizeof named_colours / sizeof named_colours[0];
+    for (k = 0; k < count; k++)
+        if (!strcasecmp(named_colours[k].name, text))
+            break;
+    if (k == count)
+        return fail_at(r, "%s=\"%s\" is not a colour this reader knows", what, aa_echo(text));
+    unsigned x = named_colours[k].rgb;
+    c->v[0] = (x >> 16) / 255.0, c->v[1] = ((x >> 8) & 255) / 255.0, c->v[2] = (x & 255) / 255.0;
+    return AA_OK;
+bad_hex:
+    return fail_at(r, "%s=\"%s\" is not a colour (#rgb, #rgba, #rrggbb or #rrggbbaa)", what,
+                   aa_echo(text));
+bad_function:
+    return fail_at(r, "%s=\"%s\" is not a colour (rgb(), rgba(), hsl() or hsla() as CSS "
+                      "Color 4 writes them)",
+                   what, aa_echo(text));
+}
+
 /* A paint value (of the property `what`, fill or stroke): a colour into
  * *c, or none (*none = 1).  "inherit" is the caller's. */
-static int parse_paint(reader *r, const char *what, const char *text, aa_rgb *c, int *none)
+static int parse_paint(reader *r, const char *what, const char *text, css_colour *c, int *none)
 {
-    double v[3];
     *none = 0;
     if (!strcasecmp(text, "none")) {
         *none = 1;
@@ -648,66 +828,7 @@ static int parse_paint(reader *r, const char *what, const char *text, aa_rgb *c,
     if (!strncasecmp(text, "url(", 4))
         return fail_at(r, "%s=\"%s\": paint servers (gradients, patterns) are not supported",
                        what, aa_echo(text));
-    if (!strcasecmp(text, "currentColor"))
-        return fail_at(r, "%s=\"%s\" is not supported (give the colour)", what, aa_echo(text));
-    size_t n = strlen(text);
-    if (text[0] == '#') {
-        int d[6];
-        if (n != 4 && n != 7) {
-            if (n == 5 || n == 9)
-                return fail_at(r, "%s=\"%s\": colours with alpha (opacity) are not supported",
-                               what, aa_echo(text));
-            return fail_at(r, "%s=\"%s\" is not a colour (#rgb or #rrggbb)", what, aa_echo(text));
-        }
-        for (size_t k = 1; k < n; k++)
-            if ((d[k - 1] = hex((unsigned char)text[k])) < 0)
-                return fail_at(r, "%s=\"%s\" is not a colour (#rgb or #rrggbb)",
-                               what, aa_echo(text));
-        for (int k = 0; k < 3; k++)
-            v[k] = (n == 4 ? d[k] * 17 : d[2 * k] * 16 + d[2 * k + 1]) / 255.0;
-    } else if (!strncasecmp(text, "rgb(", 4)) {
-        const char *s = text + 4;
-        int pct = -1;
-        for (int k = 0; k < 3; k++) {
-            s = skip_wsp(s);
-            if (k) {
-                if (*s != ',')
-                    goto bad_rgb;
-                s = skip_wsp(s + 1);
-            }
-            if (scan_number(&s, &v[k]))
-                goto bad_rgb;
-            int is_pct = *s == '%';
-            if (pct >= 0 && is_pct != pct)
-                goto bad_rgb; /* all percentages or all numbers */
-            pct = is_pct;
-            s += is_pct;
-            v[k] = is_pct ? v[k] / 100 : v[k] / 255;
-            v[k] = v[k] < 0 ? 0 : v[k] > 1 ? 1 : v[k]; /* CSS clamps */
-        }
-        s = skip_wsp(s);
-        if (*s != ')' || *skip_wsp(s + 1))
-            goto bad_rgb;
-    } else if (!strncasecmp(text, "rgba(", 5) || !strncasecmp(text, "hsl", 3)) {
-        return fail_at(r, "%s=\"%s\": only rgb(), #rgb, #rrggbb and named colours are "
-                          "supported (no alpha)",
-                       what, aa_echo(text));
-    } else {
-        size_t k, count = sizeof named_colours / sizeof named_colours[0];
-        for (k = 0; k < count; k++)
-            if (!strcasecmp(named_colours[k].name, text))
-                break;
-        if (k == count)
-            return fail_at(r, "%s=\"%s\" is not a colour this reader knows", what, aa_echo(text));
-        unsigned x = named_colours[k].rgb;
-        v[0] = (x >> 16) / 255.0, v[1] = ((x >> 8) & 255) / 255.0, v[2] = (x & 255) / 255.0;
-    }
-    for (int k = 0; k < 3; k++)
-        c->c[k] = srgb_decode(v[k]);
-    return AA_OK;
-bad_rgb:
-    return fail_at(r, "%s=\"%s\" is not rgb(R, G, B) (three numbers or three percentages)",
-                   what, aa_echo(text));
+    return parse_colour(r, what, text, c);
 }
 
 /* ---- transforms ---- */
@@ -1284,12 +1405,16 @@ static int give_arc(reader *r, const mat *m, const double a[10])
  * `colour` and rule `rule`, every subpath closed (a fill closes it); a
  * path without segments gives nothing. */
 static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
-                     aa_fill_rule rule)
+                     aa_fill_rule rule, double alpha)
 {
     int st = AA_OK, open = 0;
     double sx = 0, sy = 0; /* the subpath's start, user units */
     const aa_svg_sink *k = r->sink;
+    if (p->n && alpha < 1 && !k->alpha)
+        return fail_at(r, "a translucent shape (alpha %g) is not taken here", alpha);
     if (p->n && (st = k->shape(r->ctx, colour, rule)))
+        return st;
+    if (p->n && alpha < 1 && (st = k->alpha(r->ctx, alpha)))
         return st;
     for (size_t i = 0; i < p->n && !st; i++) {
         const aa_path_seg *g = &p->seg[i];
@@ -1397,10 +1522,9 @@ static double length_bound(const aa_path *p)
 
 /* The element's stroke: its outline (aa_stroke_outline, in user units)
  * through m to the sink as a shape of the stroke's colour, nonzero. */
-static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty)
+static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty,
+                       aa_rgb colour, double alpha)
 {
-    if (!(sty->stroke_opacity >= 1)) /* CSS clamps values above 1 to 1 */
-        return fail_at(r, "stroke-opacity below 1: opacity is not supported");
     if (sty->join_other)
         return fail_at(r, "stroke-linejoin=\"%s\" is not supported (miter, round or bevel)",
                        sty->join_other);
@@ -1441,7 +1565,7 @@ static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *s
     if (!st)
         st = count_segments(r, out.n);
     if (!st)
-        st = give_path(r, &out, m, sty->stroke, AA_FILL_NONZERO);
+        st = give_path(r, &out, m, colour, AA_FILL_NONZERO, alpha);
     if (!st && out.n && r->sink->stroke) {
         const double mm[6] = {m->a, m->b, m->c, m->d, m->e, m->f};
         st = r->sink->stroke(r->ctx, p, &ss, mm);
@@ -1462,7 +1586,9 @@ static void initial_style(style *sty)
     sty->join = AA_JOIN_MITER;
     sty->cap = AA_CAP_BUTT;
     sty->miterlimit = 4;
-    sty->stroke_opacity = 1;
+    sty->fill.alpha = sty->stroke.alpha = sty->color.alpha = 1;
+    sty->fill_opacity = sty->stroke_opacity = 1;
+    sty->visible = 1;
 }
 
 /* A keyword value of `key` among names[0 .. n) (CSS: any case): its index
@@ -1559,19 +1685,69 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
     if (!st && GIVEN("stroke-dashoffset") &&
         (st = parse_length(r, "stroke-dashoffset", v, &sty->dashoffset)))
         return st;
-    if (!st && GIVEN("stroke-opacity") && plain_number(v, &sty->stroke_opacity))
-        sty->stroke_opacity = NAN;
 #undef GIVEN
     return st;
 }
 
+/* An <alpha-value> of the property `key`: a number or a percentage,
+ * clamped to [0, 1] (CSS Color 4; SVG 2's opacity properties). */
+static int parse_opacity(reader *r, const char *key, const char *v, double *o)
+{
+    const char *s = v;
+    if (scan_number(&s, o))
+        return fail_at(r, "%s=\"%s\" is not a number or a percentage", key, aa_echo(v));
+    if (*s == '%')
+        *o /= 100, s++;
+    if (*skip_wsp(s))
+        return fail_at(r, "%s=\"%s\" is not a number or a percentage", key, aa_echo(v));
+    *o = *o < 0 ? 0 : *o > 1 ? 1 : *o;
+    return AA_OK;
+}
+
+/* paint-order (SVG 2, "Controlling paint operation order"): normal, or
+ * fill, stroke and markers in any order, each at most once, the ones left
+ * out following in their normal order; *stroke_first when the stroke is
+ * painted before the fill. */
+static int parse_paint_order(reader *r, const char *v, int *stroke_first)
+{
+    if (!strcasecmp(v, "normal")) {
+        *stroke_first = 0;
+        return AA_OK;
+    }
+    static const char *const names[3] = {"fill", "stroke", "markers"};
+    int seen[3] = {0, 0, 0}, order = 0, first = -1;
+    for (const char *s = skip_wsp(v); *s; s = skip_wsp(s)) {
+        size_t n = 0;
+        while (s[n] && !is_wsp((unsigned char)s[n]))
+            n++;
+        int k = 0;
+        while (k < 3 && !(strlen(names[k]) == n && !strncasecmp(s, names[k], n)))
+            k++;
+        if (k == 3 || seen[k])
+            return fail_at(r, "paint-order=\"%s\" is not normal or fill, stroke and markers "
+                              "each at most once",
+                           aa_echo(v));
+        seen[k] = ++order;
+        if (k < 2 && first < 0)
+            first = k;
+        s += n;
+    }
+    if (!order)
+        return fail_at(r, "paint-order=\"%s\" is empty", aa_echo(v));
+    *stroke_first = first == 1;
+    return AA_OK;
+}
+
 /* The properties every element may set: style into *sty, the element's own
- * transform into *m; *skip = 1 for display: none. */
-static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int *skip)
+ * transform into *m, its opacity (not inherited) into *opacity; *skip = 1
+ * for display: none. */
+static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int *skip,
+                         double *opacity)
 {
     char v[1024];
     int st = AA_OK, none;
     *skip = 0;
+    *opacity = 1;
     if ((st = check_props(r, node)))
         return st;
     if (prop(r, node, "display", v, sizeof v, &st) && !strcasecmp(v, "none")) {
@@ -1580,10 +1756,19 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     }
     if (st)
         return st;
+    if (prop(r, node, "color", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
+        css_colour c;
+        if ((st = parse_colour(r, "color", v, &c)))
+            return st;
+        if (!c.current) /* color: currentColor is color: inherit */
+            sty->color = c;
+    }
+    if (st)
+        return st;
     static const char *const paints[2] = {"fill", "stroke"};
     for (int k = 0; k < 2; k++)
         if (prop(r, node, paints[k], v, sizeof v, &st) && strcasecmp(v, "inherit")) {
-            aa_rgb c = {{0, 0, 0}};
+            css_colour c = {{0, 0, 0}, 1, 0};
             if ((st = parse_paint(r, paints[k], v, &c, &none)))
                 return st;
             *(k ? &sty->stroke_none : &sty->fill_none) = none;
@@ -1601,23 +1786,37 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     }
     if (!st)
         st = stroke_props(r, node, sty);
-    static const char *const opacities[] = {"opacity", "fill-opacity"};
-    for (int k = 0; k < 2 && !st; k++)
-        if (prop(r, node, opacities[k], v, sizeof v, &st)) {
-            const char *s = v;
-            double o;
-            if (scan_number(&s, &o) || *s || o != 1)
-                return fail_at(r, "%s=\"%s\": opacity is not supported", opacities[k],
-                               aa_echo(v));
+    static const char *const opacities[] = {"opacity", "fill-opacity", "stroke-opacity"};
+    double *const to[3] = {opacity, &sty->fill_opacity, &sty->stroke_opacity};
+    for (int k = 0; k < 3 && !st; k++)
+        if (prop(r, node, opacities[k], v, sizeof v, &st) && !st) {
+            if (!strcasecmp(v, "inherit")) {
+                if (k == 0)
+                    return fail_at(r, "opacity=\"inherit\" is not supported");
+                continue; /* the inherited properties keep the parent's */
+            }
+            st = parse_opacity(r, opacities[k], v, to[k]);
         }
+    if (!st && prop(r, node, "paint-order", v, sizeof v, &st) && strcasecmp(v, "inherit"))
+        st = parse_paint_order(r, v, &sty->stroke_first);
+    if (!st && prop(r, node, "color-interpolation", v, sizeof v, &st) &&
+        strcasecmp(v, "inherit") && strcasecmp(v, "auto") && strcasecmp(v, "sRGB"))
+        return fail_at(r, "color-interpolation=\"%s\" is not supported (compositing in "
+                          "linear light; auto or sRGB)",
+                       aa_echo(v));
     static const char *const refused[] = {"clip-path", "mask", "filter"};
     for (int k = 0; k < 3 && !st; k++)
         if (prop(r, node, refused[k], v, sizeof v, &st) && strcasecmp(v, "none"))
             return fail_at(r, "%s=\"%s\": %s not supported", refused[k], aa_echo(v),
                            k == 0 ? "clip paths are" : k == 1 ? "masks are" : "filters are");
-    if (!st && prop(r, node, "visibility", v, sizeof v, &st) && strcasecmp(v, "visible") &&
-        strcasecmp(v, "inherit"))
-        return fail_at(r, "visibility=\"%s\" is not supported", aa_echo(v));
+    if (!st && prop(r, node, "visibility", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
+        if (!strcasecmp(v, "visible"))
+            sty->visible = 1;
+        else if (!strcasecmp(v, "hidden") || !strcasecmp(v, "collapse"))
+            sty->visible = 0;
+        else
+            return fail_at(r, "visibility=\"%s\" (visible, hidden or collapse)", aa_echo(v));
+    }
     if (st)
         return st;
     xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"transform");
@@ -1630,6 +1829,26 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
         *m = mat_mul(*m, own);
     }
     return AA_OK;
+}
+
+/* A paint's colour in linear light and its alpha (currentColor: the
+ * element's color). */
+static aa_rgb paint_rgb(const style *sty, const css_colour *c, double *alpha)
+{
+    const css_colour *u = c->current ? &sty->color : c;
+    aa_rgb out;
+    for (int k = 0; k < 3; k++)
+        out.c[k] = srgb_decode(u->v[k]);
+    *alpha = u->alpha;
+    return out;
+}
+
+/* A group composited as a whole with opacity o around what draw gives. */
+static int group_begin(reader *r, double o)
+{
+    if (!r->sink->group_begin || !r->sink->group_end)
+        return fail_at(r, "opacity %g on a group is not taken here", o);
+    return r->sink->group_begin(r->ctx, o);
 }
 
 static int element(reader *r, const xmlNode *node, style sty, mat m, int depth);
@@ -1682,34 +1901,63 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
                 return fail_at(r, "%s", known[k].why);
         return fail_at(r, "this element is not supported");
     }
-    if ((st = element_props(r, node, &sty, &m, &skip)) || skip)
+    double opacity;
+    if ((st = element_props(r, node, &sty, &m, &skip, &opacity)) || skip || opacity == 0)
         return st;
-    if (named(node, "g"))
-        return children(r, node, sty, m, depth);
-    /* a line has no area: only its stroke draws */
-    const int fill = !sty.fill_none && !named(node, "line");
-    const int stroke = !sty.stroke_none && sty.stroke_width > 0;
+    if (named(node, "g")) {
+        /* a group of opacity below 1 is composited as a whole (SVG 2,
+         * "Group opacity": its content drawn on its own, then over what is
+         * below at that opacity) */
+        if (opacity < 1 && (st = group_begin(r, opacity)))
+            return st;
+        if (!(st = children(r, node, sty, m, depth)) && opacity < 1) {
+            r->node = node;
+            st = r->sink->group_end(r->ctx);
+        }
+        return st;
+    }
+    double fa, sa;
+    const aa_rgb fc = paint_rgb(&sty, &sty.fill, &fa), sc = paint_rgb(&sty, &sty.stroke, &sa);
+    fa *= sty.fill_opacity, sa *= sty.stroke_opacity;
+    /* a line has no area: only its stroke draws; a hidden element or a
+     * paint of alpha 0 draws nothing */
+    const int fill = !sty.fill_none && !named(node, "line") && sty.visible && fa > 0;
+    const int stroke = !sty.stroke_none && sty.stroke_width > 0 && sty.visible && sa > 0;
     if (!fill && !stroke)
         return AA_OK;
+    /* the element's opacity: its one painted shape's alpha, or both
+     * composited as a group */
+    const int grouped = fill && stroke && opacity < 1;
+    if (!grouped)
+        fa *= opacity, sa *= opacity;
     aa_path p;
     aa_path_init(&p);
     st = shape_path(r, node, &p);
-    /* SVG's paint order: the fill, then the stroke over it */
-    if (!st && fill)
-        st = give_path(r, &p, &m, sty.fill, sty.rule);
-    if (!st && stroke)
-        st = give_stroke(r, &p, &m, &sty);
+    if (!st && grouped)
+        st = group_begin(r, opacity);
+    /* paint-order: the fill, then the stroke over it, unless the stroke is
+     * first */
+    for (int k = 0; k < 2 && !st; k++) {
+        if (k == sty.stroke_first && fill)
+            st = give_path(r, &p, &m, fc, sty.rule, fa);
+        else if (k != sty.stroke_first && stroke)
+            st = give_stroke(r, &p, &m, &sty, sc, sa);
+    }
+    if (!st && grouped)
+        st = r->sink->group_end(r->ctx);
     aa_path_free(&p);
     return st;
 }
 
 /* The viewport and the root's map from user units to pixels. */
-static int root_map(reader *r, const xmlNode *root, int w, int h, mat *m, double vp[2])
+static int root_map(reader *r, const xmlNode *root, double w, double h, mat *m, double vp[2],
+                    int given[2])
 {
     double vw = w, vh = h;
     int st;
     static const char *const sides[2] = {"width", "height"};
     for (int k = 0; k < 2; k++) {
+        given[k] = 0;
         xmlChar *t = xmlGetNoNsProp(root, (const xmlChar *)sides[k]);
         if (!t)
             continue;
@@ -1717,7 +1965,7 @@ static int root_map(reader *r, const xmlNode *root, int w, int h, mat *m, double
         if (!strcmp(s, "100%") || !strcmp(s, "auto"))
             st = AA_OK;
         else
-            st = parse_length(r, sides[k], s, k ? &vh : &vw);
+            st = parse_length(r, sides[k], s, k ? &vh : &vw), given[k] = 1;
         xmlFree(t);
         if (st)
             return st;
@@ -1801,10 +2049,22 @@ static int declares_entities(const xmlDoc *doc)
 int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
                 const aa_svg_sink *sink, void *ctx, double viewport[2])
 {
+    return aa_svg_read_at(data, len, name, w, h, 1, sink, ctx, viewport);
+}
+
+int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h, double scale,
+                   const aa_svg_sink *sink, void *ctx, double viewport[2])
+{
     reader r = {sink, ctx, name, 0, NULL};
     double vp[2] = {0, 0};
+    int given[2] = {0, 0};
+    if (!sink) /* the size only: the view does not matter */
+        w = h = 1;
     if (w < 1 || h < 1)
         return aa_fail(AA_EINVAL, "%s: a view of %dx%d pixels", name, w, h);
+    if (!(scale >= AA_SVG_MIN_SCALE && scale <= AA_SVG_MAX_SCALE))
+        return aa_fail(AA_EINVAL, "%s: scale %g is outside [%g, %g]", name, scale,
+                       AA_SVG_MIN_SCALE, AA_SVG_MAX_SCALE);
     if (len > AA_SVG_MAX_BYTES)
         return aa_fail(AA_EINVAL, "%s: larger than %u bytes", name, AA_SVG_MAX_BYTES);
     xmlParserCtxtPtr parser = xmlNewParserCtxt();
@@ -1844,9 +2104,27 @@ int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
             xmlFree(t);
             st = fail_at(&r, "a transform on the root <svg> is not supported");
         }
-        if (!st && !(st = root_map(&r, root, w, h, &m, vp)) &&
-            !(st = element_props(&r, root, &sty, &m, &skip)) && !skip)
-            st = children(&r, root, sty, m, 1);
+        double opacity = 1;
+        /* at `scale` pixels a CSS pixel: the document laid out in a view of
+         * (w, h) / scale CSS pixels, then everything scaled */
+        if (!st && !(st = root_map(&r, root, w / scale, h / scale, &m, vp, given))) {
+            const mat zoom = {scale, 0, 0, scale, 0, 0};
+            m = mat_mul(zoom, m);
+            vp[0] *= scale, vp[1] *= scale;
+            if (!sink && !(given[0] && given[1]))
+                st = fail_at(&r, "the root has no size of its own (width and height in px): "
+                                 "give the view's size");
+        }
+        if (!st && sink && !(st = element_props(&r, root, &sty, &m, &skip, &opacity)) &&
+            !skip && opacity > 0) {
+            /* the root's opacity: its content as a group */
+            if (opacity < 1)
+                st = group_begin(&r, opacity);
+            if (!st)
+                st = children(&r, root, sty, m, 1);
+            if (!st && opacity < 1)
+                st = r.sink->group_end(r.ctx);
+        }
         aa__c_numbers_end(&numbers);
     }
     xmlFreeDoc(doc);
@@ -1858,6 +2136,12 @@ int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
 int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, void *ctx,
                      double viewport[2])
 {
+    return aa_svg_read_file_at(path, w, h, 1, sink, ctx, viewport);
+}
+
+int aa_svg_read_file_at(const char *path, int w, int h, double scale, const aa_svg_sink *sink,
+                        void *ctx, double viewport[2])
+{
     char *data;
     size_t len;
     int st = aa_file_read_all(path, AA_SVG_MAX_BYTES, "SVG file", &data, &len);
@@ -1865,7 +2149,7 @@ int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, vo
         return st;
     char name[256];
     snprintf(name, sizeof name, "%s", aa_echo(path));
-    st = aa_svg_read(data, len, name, w, h, sink, ctx, viewport);
+    st = aa_svg_read_at(data, len, name, w, h, scale, sink, ctx, viewport);
     free(data);
     return st;
 }
@@ -1877,7 +2161,7 @@ int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, vo
  * back to (u, v) (exactly when W and H are powers of two).
  * ------------------------------------------------------------------------ */
 
-enum { SVG_FILE };
+enum { SVG_FILE, SVG_SCALE };
 
 /* The default file: the shipped shapes.svg, in the folder of the shipped
  * scenes (aa_svg_dir: the source tree's, or the install prefix's), set
@@ -1894,6 +2178,9 @@ __attribute__((constructor)) static void default_file_set(void)
 static const aa_param svg_params[] = {
     {"file", AA_PARAM_TEXT, 0, 0, 0, 0, default_file,
      "the SVG file (a path; write ',' as %2C and '%' as %25)"},
+    {"scale", AA_PARAM_REAL, 1, AA_SVG_MIN_SCALE, AA_SVG_MAX_SCALE, 0, NULL,
+     "image pixels per CSS pixel (as rsvg-convert -z); without -s the image is the file's "
+     "own size times this"},
     {0}};
 
 typedef struct rec_op {
@@ -1906,6 +2193,8 @@ typedef struct rec_shape {
     aa_fill_rule rule;
     size_t first, n;
     long stroke; /* its source in the recording's strokes, or -1 for a fill */
+    double alpha;
+    int group;   /* 0 a shape; +1 a group's beginning, -1 its end (of opacity alpha) */
 } rec_shape;
 
 /* A stroke's source as the reader gave it (its own copies). */
@@ -1945,8 +2234,41 @@ static int rec_shape_fn(void *ctx, aa_rgb colour, aa_fill_rule rule)
     recording *r = ctx;
     int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
     if (!st)
-        r->shapes[r->nshapes++] = (rec_shape){colour, rule, r->nops, 0, -1};
+        r->shapes[r->nshapes++] = (rec_shape){colour, rule, r->nops, 0, -1, 1.0, 0};
     return st;
+}
+
+static int rec_alpha_fn(void *ctx, double alpha)
+{
+    recording *r = ctx;
+    r->shapes[r->nshapes - 1].alpha = alpha;
+    return AA_OK;
+}
+
+/* A group's beginning and end as marks among the shapes, each with the
+ * group's opacity (the scene is built front first: from the end). */
+static int rec_group(recording *r, int mark, double opacity)
+{
+    int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
+    if (!st)
+        r->shapes[r->nshapes++] =
+            (rec_shape){{{0, 0, 0}}, AA_FILL_NONZERO, r->nops, 0, -1, opacity, mark};
+    return st;
+}
+
+static int rec_group_begin(void *ctx, double opacity) { return rec_group(ctx, 1, opacity); }
+
+static int rec_group_end(void *ctx)
+{
+    recording *r = ctx;
+    /* the opacity of the group this ends: the last beginning not yet ended */
+    int open = 0;
+    for (size_t k = r->nshapes; k-- > 0;) {
+        open += r->shapes[k].group;
+        if (open > 0)
+            return rec_group(r, -1, r->shapes[k].alpha);
+    }
+    return aa_fail(AA_EFAIL, "a group's end without its beginning");
 }
 
 /* The source of the stroke whose outline was the last shape. */
@@ -2045,8 +2367,9 @@ static int rec_arc(void *ctx, double cx, double cy, double ux, double uy, double
     return rec_op_add(ctx, 5, v, 10);
 }
 
-static const aa_svg_sink recording_sink = {rec_shape_fn, rec_move,  rec_line, rec_quad,
-                                           rec_cubic,    rec_close, rec_arc,  rec_stroke_fn};
+static const aa_svg_sink recording_sink = {
+    rec_shape_fn, rec_move, rec_line, rec_quad, rec_cubic, rec_close, rec_arc, rec_stroke_fn,
+    rec_alpha_fn, rec_group_begin, rec_group_end};
 
 static int svg_check(const double *p)
 {
@@ -2068,7 +2391,8 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
     double vp[2] = {0, 0};
     rec.lo[0] = rec.lo[1] = 0;
     rec.hi[0] = rec.hi[1] = 0;
-    int st = aa_svg_read_file(aa_param_text(p[SVG_FILE]), w, h, &recording_sink, &rec, vp);
+    int st = aa_svg_read_file_at(aa_param_text(p[SVG_FILE]), w, h, p[SVG_SCALE],
+                                 &recording_sink, &rec, vp);
     const int read_ok = st == AA_OK;
     /* content beyond the viewport: a front layer of the background colour
      * over everything outside it (even-odd of a larger rectangle and the
@@ -2111,6 +2435,11 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
     size_t group = 0, group_first = 0; /* shapes in the current layer, the front one */
     for (size_t k = rec.nshapes; k-- > 0 && !st;) {
         const rec_shape *sh = &rec.shapes[k];
+        if (sh->group) { /* front first: a group's end opens it */
+            st = sh->group < 0 ? aa_scene_group_begin(s, sh->alpha) : aa_scene_group_end(s);
+            group = 0;
+            continue;
+        }
         if (!sh->n)
             continue;
         if (sh->stroke >= 0) {
@@ -2121,20 +2450,23 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
             const double m[6] = {ks->m[0] / w, ks->m[1] / h, ks->m[2] / w,
                                  ks->m[3] / h, ks->m[4] / w, ks->m[5] / h};
             st = aa_scene_stroke(s, &ks->path, &ks->style, m, sh->colour);
+            if (!st && sh->alpha < 1)
+                st = aa_scene_set_alpha(s, sh->alpha);
             group = 0;
             continue;
         }
         int join = group > 0 && group < 256 && rec.shapes[group_first].stroke < 0;
         const rec_shape *front = join ? &rec.shapes[group_first] : NULL;
         if (join)
-            join = front->rule == sh->rule &&
+            join = front->rule == sh->rule && front->alpha == sh->alpha &&
                    !memcmp(&front->colour, &sh->colour, sizeof sh->colour);
         for (size_t q = k + 1; join && q <= group_first; q++)
             if (rec.shapes[q].n && !(box[k][2] < box[q][0] || box[q][2] < box[k][0] ||
                                      box[k][3] < box[q][1] || box[q][3] < box[k][1]))
                 join = 0;
         if (!join) {
-            if ((st = aa_scene_layer(s, sh->colour, sh->rule)))
+            if ((st = aa_scene_layer(s, sh->colour, sh->rule)) ||
+                (sh->alpha < 1 && (st = aa_scene_set_alpha(s, sh->alpha))))
                 break;
             group = 0, group_first = k;
         }
@@ -2175,6 +2507,21 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         aa_path_free(&rec.strokes[k].path);
     free(rec.strokes);
     return st;
+}
+
+int aa__svg_own_size(const double *p, int *w, int *h)
+{
+    double vp[2];
+    int st = aa_svg_read_file_at(aa_param_text(p[SVG_FILE]), 1, 1, p[SVG_SCALE], NULL, NULL, vp);
+    if (st)
+        return st;
+    /* whole pixels, up to rounding of the product */
+    const double fw = ceil(vp[0] * (1 - 1e-12)), fh = ceil(vp[1] * (1 - 1e-12));
+    if (!(fw >= 1 && fh >= 1 && fw <= AA_MAX_SIDE && fh <= AA_MAX_SIDE))
+        return aa_fail(AA_EINVAL, "SVG file %s: its own size times %g is %gx%g pixels",
+                       aa_echo(aa_param_text(p[SVG_FILE])), p[SVG_SCALE], vp[0], vp[1]);
+    *w = (int)fw, *h = (int)fh;
+    return AA_OK;
 }
 
 int aa__svg_key(const double *p, char *buf, size_t len)

@@ -4,7 +4,8 @@
  *
  * The reader walks the document with libxml2 and gives every shape it draws
  * to a sink, in document order (painter's order: the first shape is at the
- * back): `shape` with the shape's fill colour (linear light) and fill rule,
+ * back): `shape` with the shape's fill colour (linear light) and fill rule
+ * (then `alpha` when it is translucent),
  * then its subpaths as move/line/quad/cubic/arc/close in absolute pixel
  * units, every transform and the viewBox mapping applied to the points
  * (exact for Bezier arcs under affine maps; an elliptical arc's centre is
@@ -45,6 +46,16 @@ typedef struct aa_svg_sink {
      * sink can keep the stroke as a stroke (aa_scene_stroke). */
     int (*stroke)(void *ctx, const aa_path *path, const aa_stroke_style *style,
                   const double m[6]);
+    /* Optional (NULL: a document that needs them is refused).  `alpha` is
+     * called right after `shape` when the shape's alpha is below 1 (its
+     * paint's alpha times its fill- or stroke-opacity, times the element's
+     * opacity when that is its one painted shape); `group_begin` and
+     * `group_end` enclose, in document order, shapes composited as a whole
+     * with an opacity below 1 (a <g>, or an element with both a fill and a
+     * stroke). */
+    int (*alpha)(void *ctx, double alpha);
+    int (*group_begin)(void *ctx, double opacity);
+    int (*group_end)(void *ctx);
 } aa_svg_sink;
 
 /* Limits: larger or deeper documents are refused. */
@@ -67,6 +78,19 @@ int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
 /* The same for a file (at most AA_SVG_MAX_BYTES). */
 int aa_svg_read_file(const char *path, int w, int h, const aa_svg_sink *sink, void *ctx,
                      double viewport[2]);
+
+/* The same drawn at `scale` image pixels per CSS pixel (rsvg-convert's
+ * zoom): the document is laid out in a view of (w, h) / scale CSS pixels
+ * and everything, the viewport included, scaled by `scale`.  With sink
+ * NULL only the viewport is found (w and h unused): the root's own width
+ * and height in px times the scale, refused when either is absent or a
+ * percentage. */
+#define AA_SVG_MIN_SCALE (1.0 / 64)
+#define AA_SVG_MAX_SCALE 64.0
+int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h, double scale,
+                   const aa_svg_sink *sink, void *ctx, double viewport[2]);
+int aa_svg_read_file_at(const char *path, int w, int h, double scale, const aa_svg_sink *sink,
+                        void *ctx, double viewport[2]);
 
 /* A 64-bit FNV-1a hash of a file's bytes and its length (the cache key of a
  * pattern read from a file). */

@@ -74,7 +74,7 @@ static void test_svg_dir(void **state)
     char text[PATH_MAX + 64], expect[PATH_MAX + 128];
     assert_int_equal(aa_pattern_parse("svg", &spec), AA_OK);
     assert_int_equal(aa_spec_format(&spec, text, sizeof text), AA_OK);
-    snprintf(expect, sizeof expect, "svg:file=%s/shapes.svg", want);
+    snprintf(expect, sizeof expect, "svg:file=%s/shapes.svg,scale=1", want);
     assert_string_equal(text, expect);
 
     /* the vector suite's first group: crow, then the five shipped scenes */

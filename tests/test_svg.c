@@ -64,7 +64,8 @@ static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double v
                uy, vx, vy, t0, t1, x, y);
 }
 
-static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc, NULL};
+static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc,
+                                 NULL,    NULL,   NULL,   NULL};
 
 /* Read `doc` on a w x h view; the sink's text, or fail. */
 static const char *read_doc(const char *doc, int w, int h, double vp[2])
@@ -246,7 +247,8 @@ static int g_arc(void *ctx, double cx, double cy, double ux, double uy, double v
 {
     return g_add(ctx, 'A', 10, (double[]){cx, cy, ux, uy, vx, vy, t0, t1, x, y});
 }
-static const aa_svg_sink geo = {g_shape, g_move, g_line, g_quad, g_cubic, g_close, g_arc, NULL};
+static const aa_svg_sink geo = {g_shape, g_move, g_line, g_quad, g_cubic, g_close, g_arc,
+                                NULL,    NULL,   NULL,   NULL};
 
 /* The ops' letters of `doc` read on a 100 x 100 view into *g. */
 static const char *geo_read(const char *doc, geo_sink *g)
@@ -577,12 +579,16 @@ static void test_refusals(void **state)
     refused(L2("\n<path d=\"M0 0 A 5 5 0 2 1 10 10\"/>"), "line 3: <path>", "large-arc flag");
     refused(L2("<path d=\"M0 0 a 5 5 0 0 x 10 10\"/>"), "line 2: <path>", "sweep flag");
     refused(L2("<path d=\"M0 0 a 5 5 0 0\"/>"), "<path>", "ends too early");
-    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-opacity=\"0.5\"/>"), "line 2: <line>",
+    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-opacity=\"half\"/>"), "line 2: <line>",
             "stroke-opacity");
-    refused(L2("<g stroke-opacity=\"50%\"><line x2=\"5\" stroke=\"red\"/></g>"),
-            "line 2: <line>", "stroke-opacity");
+    refused(L2("<g stroke-opacity=\"50% 1\"><line x2=\"5\" stroke=\"red\"/></g>"),
+            "line 2: <g>", "stroke-opacity");
+    /* a sink without `alpha` takes no translucent shape (test_opacity.c
+     * reads them through the pattern's) */
+    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-opacity=\"0.5\"/>"), "line 2: <line>",
+            "translucent");
     refused(L2("<line x2=\"5\" stroke=\"url(#g)\"/>"), "<line>", "paint servers");
-    refused(L2("<line x2=\"5\" stroke=\"#f008\"/>"), "<line>", "alpha");
+    refused(L2("<line x2=\"5\" stroke=\"#f00z\"/>"), "<line>", "#rgba");
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"10%\"/>"), "<line>", "px");
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"-1\"/>"), "<line>", "negative");
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-linejoin=\"miter-clip\"/>"), "<line>",
@@ -601,8 +607,11 @@ static void test_refusals(void **state)
     /* a dash pattern finer than the limits allow */
     refused(L2("<line x2=\"100000\" stroke=\"red\" stroke-dasharray=\"0.001\"/>"), "<line>",
             "dashes");
-    refused(L2("<rect width=\"1\" height=\"1\" opacity=\"0.5\"/>"), "<rect>", "opacity");
-    refused(L2("<rect width=\"1\" height=\"1\" fill-opacity=\".5\"/>"), "<rect>", "opacity");
+    refused(L2("<rect width=\"1\" height=\"1\" opacity=\"inherit\"/>"), "<rect>", "opacity");
+    refused(L2("<rect width=\"1\" height=\"1\" fill-opacity=\".\"/>"), "<rect>", "opacity");
+    refused(L2("<rect width=\"1\" height=\"1\" color-interpolation=\"linearRGB\"/>"), "<rect>",
+            "linear light");
+    /* nor a group of an opacity */
     refused(L2("<g opacity=\"0.99\"/>"), "<g>", "opacity");
     refused(L2("<rect width=\"1\" height=\"1\" fill=\"#f008\"/>"), "<rect>", "alpha");
     refused(L2("<linearGradient id=\"a\"/>"), "<linearGradient>", "gradients");
@@ -831,7 +840,7 @@ static void test_text_values(void **state)
     assert_int_equal(aa_pattern_parse("svg:file=a%2Cb%25c d=e", &s), AA_OK);
     assert_string_equal(aa_param_text(s.v[0]), "a,b%c d=e");
     assert_int_equal(aa_spec_format(&s, buf, sizeof buf), AA_OK);
-    assert_string_equal(buf, "svg:file=a%2Cb%25c d=e");
+    assert_string_equal(buf, "svg:file=a%2Cb%25c d=e,scale=1");
     aa_spec back;
     assert_int_equal(aa_pattern_parse(buf, &back), AA_OK);
     assert_true(back.v[0] == s.v[0]);
@@ -839,7 +848,7 @@ static void test_text_values(void **state)
     assert_int_equal(aa_pattern_parse("svg:file=a%0ab", &s), AA_OK);
     assert_string_equal(aa_param_text(s.v[0]), "a\nb");
     assert_int_equal(aa_spec_format(&s, buf, sizeof buf), AA_OK);
-    assert_string_equal(buf, "svg:file=a%0Ab");
+    assert_string_equal(buf, "svg:file=a%0Ab,scale=1");
     static const char *bad[] = {"svg:file=a%2", "svg:file=a%zz", "svg:file=%00", "svg:file=a,b",
                                 "svg:file=", "svg:file=a\nb", "svg:file=a\tb"};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
@@ -897,6 +906,84 @@ static void test_command(void **state)
         fail_msg("message: %s", out);
     const char *def[] = {"truth", "-p", "svg", "-s", "32x32", "-o", txt, NULL};
     assert_int_equal(support_aabench(def, out, sizeof out), 0);
+}
+
+/* svg:file=PATH,scale=S draws the document at S pixels a CSS pixel, as
+ * rsvg-convert -z does, and without -s the image is the file's own size
+ * times S (rounded up to whole pixels).  Known answers: a white
+ * rectangle's box reference sums to its area times S^2 (clipped to the
+ * viewport, itself scaled); a viewBox scales the same way. */
+static void test_scale(void **state)
+{
+    (void)state;
+    char path[4200], spec[4400], out[8192], txt[4200];
+    snprintf(path, sizeof path, "%s/scaled.svg", dir);
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"20\" height=\"10.5\">"
+                    "<rect x=\"2.25\" y=\"1.5\" width=\"10\" height=\"5\" fill=\"white\"/>"
+                    "<rect x=\"15\" y=\"8\" width=\"10\" height=\"10\" fill=\"white\"/></svg>");
+    static const struct {
+        double scale;
+        int w, h;
+    } cases[] = {{1, 20, 11}, {2, 40, 21}, {1.5, 30, 16}, {0.25, 5, 3}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        const double S = cases[k].scale;
+        snprintf(spec, sizeof spec, "svg:file=%s,scale=%g", path, S);
+        aa_spec ps;
+        int w, h;
+        assert_int_equal(aa_pattern_parse(spec, &ps), AA_OK);
+        if (aa_pattern_own_size(&ps, &w, &h))
+            fail_msg("%s: %s", spec, aa_last_error());
+        assert_int_equal(w, cases[k].w);
+        assert_int_equal(h, cases[k].h);
+        /* the first rectangle, and the second cut by the viewport at
+         * (20, 10.5): 5 x 2.5 */
+        support_view v = {w, h, 0, 0, 0, NULL, 1, 1, 0};
+        aa_image ref;
+        support_pattern_reference(spec, &v, &ref, NULL, NULL);
+        const double want = (50 + 12.5) * S * S;
+        const double got = support_channel_mean(&ref, 0) * w * h;
+        if (!(fabs(got - want) <= 1e-12 * want))
+            fail_msg("%s: the box reference sums to %.17g, not %.17g", spec, got, want);
+        aa_image_free(&ref);
+    }
+    /* a viewBox: 100 user units in 10 CSS px, at 3 pixels a CSS pixel */
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\" "
+                    "viewBox=\"0 0 100 100\"><rect width=\"50\" height=\"30\" fill=\"white\"/>"
+                    "</svg>");
+    snprintf(spec, sizeof spec, "svg:file=%s,scale=3", path);
+    snprintf(txt, sizeof txt, "%s/scaled.txt", dir);
+    const char *args[] = {"truth", "-p", spec, "-o", txt, NULL};
+    assert_int_equal(support_aabench(args, out, sizeof out), 0);
+    if (!strstr(out, " 30x30 box"))
+        fail_msg("without -s: %s", out);
+    aa_image img;
+    assert_int_equal(aa_image_read_txt(txt, &img), AA_OK);
+    assert_int_equal(img.w, 30);
+    const double got = support_channel_mean(&img, 0) * 30 * 30;
+    if (!(fabs(got - 15 * 9) <= 1e-12 * 135))
+        fail_msg("viewBox at scale 3: sum %.17g, not 135", got);
+    aa_image_free(&img);
+    /* -s still wins: the document in the view's top left corner */
+    const char *sized[] = {"truth", "-p", spec, "-s", "64x48", "-o", txt, NULL};
+    assert_int_equal(support_aabench(sized, out, sizeof out), 0);
+    assert_non_null(strstr(out, " 64x48 box"));
+    /* no size of its own: -s is needed, and said so */
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100%\" height=\"8\">"
+                    "<rect width=\"3\" height=\"3\"/></svg>");
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    assert_int_equal(support_aabench(args, out, sizeof out), 2);
+    if (!strstr(out, "no size of its own"))
+        fail_msg("message: %s", out);
+    const char *crow[] = {"render", "-p", "crow", "-m", "point", "-o", txt, NULL};
+    assert_int_equal(support_aabench(crow, out, sizeof out), 2);
+    if (!strstr(out, "-s WxH"))
+        fail_msg("message: %s", out);
+    /* the scale's range */
+    aa_spec ps;
+    snprintf(spec, sizeof spec, "svg:file=%s,scale=0", path);
+    assert_int_equal(aa_pattern_parse(spec, &ps), AA_EINVAL);
+    snprintf(spec, sizeof spec, "svg:file=%s,scale=65", path);
+    assert_int_equal(aa_pattern_parse(spec, &ps), AA_EINVAL);
 }
 
 /* Export, read back: the same reference to 1e-15, for every pattern of
@@ -1073,7 +1160,7 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_layers),
              cmocka_unit_test(test_cache_key),
              cmocka_unit_test(test_text_values),
-             cmocka_unit_test(test_command),
+             cmocka_unit_test(test_command), cmocka_unit_test(test_scale),
              cmocka_unit_test(test_export_round_trip),
              cmocka_unit_test(test_cubic_scene),
              cmocka_unit_test(test_unknown_properties),

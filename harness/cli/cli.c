@@ -96,6 +96,11 @@ static int check_folder(const char *path)
     return AA_OK;
 }
 
+int cli_view_size(const char *size, const aa_spec *pattern, int *w, int *h)
+{
+    return size ? aa_size_parse(size, w, h) : aa_pattern_own_size(pattern, w, h);
+}
+
 int cli_check_output(const char *path)
 {
     if (!path || !*path)

@@ -43,6 +43,9 @@ void cli_getopt_reset(void);
 /* The output file: a known image extension and a folder that exists and
  * can be written, checked before any work. */
 int cli_check_output(const char *path);
+/* The view's size: -s WxH when given (size not NULL), else the pattern's
+ * own size (aa_pattern_own_size: an svg file's size times its scale). */
+int cli_view_size(const char *size, const aa_spec *pattern, int *w, int *h);
 /* A non-image output with a required extension (".json", ".csv"). */
 int cli_check_output_file(const char *path, const char *ext);
 /* A reference cache that cannot be written (a folder that cannot be made,

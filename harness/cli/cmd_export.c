@@ -10,7 +10,7 @@
 static void usage(FILE *out)
 {
     fprintf(out,
-            "usage: aabench export -p PATTERN -s WxH -o OUT.svg [options]\n\n"
+            "usage: aabench export -p PATTERN [-s WxH] -o OUT.svg [options]\n\n"
             "Writes the pattern's scene placed on a WxH image as SVG: width and height W and\n"
             "H, viewBox 0 0 W H, a rectangle of the background, one <path> per layer (the\n"
             "back layer first) with its fill-rule, lines as L, quadratic arcs as Q, cubic\n"
@@ -22,7 +22,8 @@ static void usage(FILE *out)
             "and are refused.\n\n"
             "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"
             "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
-            "  -s, --size WxH       image size in pixels\n"
+            "  -s, --size WxH       image size in pixels (default: an svg file's own size times\n"
+            "                       its scale)\n"
             "  -o, --out FILE.svg   the document\n"
             "      --time T         time in frames (default 0)\n"
             "      --motion VX,VY   motion in pixels per frame (default 0,0)\n"
@@ -73,8 +74,8 @@ static int parse(int argc, char **argv, export_args *a)
         fprintf(stderr, "aabench export: unexpected argument \"%s\"\n", argv[optind]);
         return 2;
     }
-    if (!a->pattern || !a->size || !a->out) {
-        fprintf(stderr, "aabench export: -p PATTERN, -s WxH and -o OUT.svg are required\n");
+    if (!a->pattern || !a->out) {
+        fprintf(stderr, "aabench export: -p PATTERN and -o OUT.svg are required\n");
         usage(stderr);
         return 2;
     }
@@ -90,7 +91,7 @@ int cmd_export(int argc, char **argv)
         return code;
     aa_spec pattern;
     int w, h;
-    if ((st = aa_pattern_parse(a.pattern, &pattern)) || (st = aa_size_parse(a.size, &w, &h)) ||
+    if ((st = aa_pattern_parse(a.pattern, &pattern)) || (st = cli_view_size(a.size, &pattern, &w, &h)) ||
         (st = cli_check_output_file(a.out, ".svg")))
         return cli_fail("export", st);
     aa_scene *scene = NULL, *placed = NULL;

@@ -13,12 +13,13 @@
 static void usage(FILE *out)
 {
     fprintf(out,
-            "usage: aabench render -p PATTERN -m METHOD -s WxH [-f FILTER] -o OUT [options]\n\n"
+            "usage: aabench render -p PATTERN -m METHOD [-s WxH] [-f FILTER] -o OUT [options]\n\n"
             "Renders the pattern with the method once and writes the image; times it only\n"
             "when --reps, --budget, --target-ci or --stats is given.\n\n"
             "  -p, --pattern SPEC   pattern, e.g. crow ('aabench list patterns')\n"            "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
             "  -m, --method SPEC    method, e.g. jitter:spp=16,seq=sobol ('aabench list methods -v')\n"
-            "  -s, --size WxH       image size in pixels\n"
+            "  -s, --size WxH       image size in pixels (default: an svg file's own size times\n"
+            "                       its scale)\n"
             "  -f, --filter SPEC    box (default), tent:r=R, gauss:s=S or cone:r=R\n"
             "  -o, --out FILE       .exr .tif .pfm (float), .png (8-bit, display encoded), .txt\n"
             "      --seed N         seed of the random streams (default 1)\n"
@@ -107,8 +108,8 @@ static int parse(int argc, char **argv, render_args *a)
         fprintf(stderr, "aabench render: unexpected argument \"%s\"\n", aa_echo(argv[optind]));
         return 2;
     }
-    if (!a->pattern || !a->method || !a->size || !a->out) {
-        fprintf(stderr, "aabench render: -p PATTERN, -m METHOD, -s WxH and -o OUT are required\n");
+    if (!a->pattern || !a->method || !a->out) {
+        fprintf(stderr, "aabench render: -p PATTERN, -m METHOD and -o OUT are required\n");
         usage(stderr);
         return 2;
     }
@@ -189,7 +190,7 @@ int cmd_render(int argc, char **argv)
     aa_filter f;
     int w, h;
     aa_external_time_limit(a.timeout); /* from here: the adapter's --check too */
-    if ((st = aa_pattern_parse(a.pattern, &pattern)) || (st = aa_size_parse(a.size, &w, &h)) ||
+    if ((st = aa_pattern_parse(a.pattern, &pattern)) || (st = cli_view_size(a.size, &pattern, &w, &h)) ||
         (st = aa_size_check(w, h, 3, 2)) ||
         (st = a.filter ? aa_filter_parse(a.filter, &f) : (aa_filter_default(&f), AA_OK)) ||
         (st = aa_method_parse(a.method, &f, &method)) || (st = cli_check_output(a.out)) ||

@@ -9,11 +9,12 @@
 static void usage(FILE *out)
 {
     fprintf(out,
-            "usage: aabench truth -p PATTERN -s WxH [-f FILTER] -o OUT [options]\n\n"
+            "usage: aabench truth -p PATTERN [-s WxH] [-f FILTER] -o OUT [options]\n\n"
             "Writes the reference image: the pattern convolved with the filter at each\n"
             "pixel centre, exact to 1e-12 per pixel (GSL quadrature along y, exact along x).\n\n"
             "  -p, --pattern SPEC   pattern, e.g. crow or crow:curves=64 ('aabench list patterns')\n"            "                       or svg:file=scene.svg or text:ppem=12 (drawn in pixels)\n"
-            "  -s, --size WxH       image size in pixels\n"
+            "  -s, --size WxH       image size in pixels (default: an svg file's own size times\n"
+            "                       its scale)\n"
             "  -f, --filter SPEC    box (default), tent:r=R, gauss:s=S or cone:r=R\n"
             "  -o, --out FILE       .exr .tif .pfm (float), .png (8-bit, display encoded), .txt\n"
             "      --time T         time in frames (default 0)\n"
@@ -160,8 +161,8 @@ static int parse(int argc, char **argv, truth_args *a)
         fprintf(stderr, "aabench truth: unexpected argument \"%s\"\n", aa_echo(argv[optind]));
         return 2;
     }
-    if (!a->pattern || !a->size || !a->out) {
-        fprintf(stderr, "aabench truth: -p PATTERN, -s WxH and -o OUT are required\n");
+    if (!a->pattern || !a->out) {
+        fprintf(stderr, "aabench truth: -p PATTERN and -o OUT are required\n");
         usage(stderr);
         return 2;
     }
@@ -181,7 +182,7 @@ int cmd_truth(int argc, char **argv)
     if (code >= 0)
         return code;
     if ((st = aa_pattern_parse(a.pattern, &a.view.pattern)) ||
-        (st = aa_size_parse(a.size, &a.view.w, &a.view.h)) ||
+        (st = cli_view_size(a.size, &a.view.pattern, &a.view.w, &a.view.h)) ||
         (st = aa_size_check(a.view.w, a.view.h, 4, 2)) ||
         (st = a.filter ? aa_filter_parse(a.filter, &a.view.filter)
                        : (aa_filter_default(&a.view.filter), AA_OK)) ||

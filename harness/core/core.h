@@ -169,6 +169,31 @@ int aa_scene_finish(aa_scene *s);
  * outside the unit square every pattern is its background). */
 int aa_scene_clip_unit(aa_scene *s);
 
+/* Translucency (patterns/README.md, "Coordinates and pixel values"): a
+ * layer has an alpha (1 unless set), and layers may be gathered in groups,
+ * each composited as a whole with its opacity, as SVG's `opacity` on a
+ * group.  The colour at a point is then the layers covering it composited
+ * back to front (painter's order) in sRGB-encoded values, source over,
+ * each group first composited on its own over transparent, and the result
+ * decoded to linear light.  A layer of alpha 1 outside every group hides
+ * what is behind it, as an opaque layer always did. */
+/* The alpha (in [0, 1]) of the layer added last. */
+int aa_scene_set_alpha(aa_scene *s, double alpha);
+/* Layers added from now until the matching end belong to a new group of
+ * opacity in [0, 1], inside the group open now (at most
+ * AA_SCENE_MAX_GROUP_DEPTH deep).  Layers go front to back, so a group is
+ * begun at its front layer. */
+#define AA_SCENE_MAX_GROUP_DEPTH 64
+int aa_scene_group_begin(aa_scene *s, double opacity);
+int aa_scene_group_end(aa_scene *s);
+/* What export needs: the alpha and innermost group of a layer (-1: none), a
+ * group's parent (-1: none) and opacity. */
+double aa_scene_layer_alpha(const aa_scene *s, int layer);
+int aa_scene_layer_group(const aa_scene *s, int layer);
+int aa_scene_group_count(const aa_scene *s);
+int aa_scene_group_parent(const aa_scene *s, int group);
+double aa_scene_group_opacity(const aa_scene *s, int group);
+
 /* A finished copy mapped by x' = sx x + tx, y' = sy y + ty (sx, sy > 0). */
 aa_scene *aa_scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty);
 /* The scene placed on a W x H image at time t (frames) moving (vx, vy)
@@ -296,6 +321,10 @@ int aa_pattern_scene(const aa_spec *spec, aa_scene **out);
 int aa_pattern_scene_at(const aa_spec *spec, int w, int h, aa_scene **out);
 /* 1 if the pattern is drawn at the view's size (above). */
 int aa_pattern_sized(const aa_spec *spec);
+/* The image size a pattern drawn at the view's size has of its own (svg:
+ * the file's width and height times its scale), or AA_EINVAL saying -s is
+ * needed. */
+int aa_pattern_own_size(const aa_spec *spec, int *w, int *h);
 /* What the cache key of a view adds for the pattern beyond its canonical
  * text: for a pattern read from files (`svg`, `text`), a line per file with
  * the hash and length of its bytes, so that a file changed under the same

@@ -16,7 +16,11 @@
  * through a vertex is counted once, a path turning at a vertex zero or two
  * times, and a horizontal piece never; so winding numbers along any line are
  * exact for closed paths.  The colour at a point is that of the front-most
- * layer whose fill rule holds for its winding number.
+ * layer whose fill rule holds for its winding number, when that layer is
+ * opaque; layers of alpha below 1 and groups of opacity below 1 are
+ * composited in painter's order in sRGB-encoded values (SVG and CSS:
+ * browsers composite in the encoded values) and the result decoded to
+ * linear light (colour_composite).
  *
  * Pieces are indexed in bins along y (each piece listed in every bin it
  * overlaps), so the queries touch only the pieces near the line or
@@ -64,6 +68,7 @@ aa_scene *aa_scene_new(aa_rgb background)
         return NULL;
     }
     s->background = background;
+    s->open_group = -1;
     return s;
 }
 
@@ -73,6 +78,10 @@ void aa_scene_free(aa_scene *s)
         return;
     free(s->colour);
     free(s->rule);
+    free(s->alpha);
+    free(s->encoded);
+    free(s->group);
+    free(s->groups);
     free(s->edges);
     free(s->contour);
     free(s->pieces);
@@ -80,6 +89,26 @@ void aa_scene_free(aa_scene *s)
     free(s->bin_items);
     aa__scene_strokes_free(s);
     free(s);
+}
+
+/* sRGB's transfer functions (IEC 61966-2-1): the encoding of a linear
+ * value, and its inverse. */
+static double srgb_encode(double v)
+{
+    if (!(v > 0.0))
+        return 0.0;
+    if (v >= 1.0)
+        return 1.0;
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
+
+static double srgb_decode(double v)
+{
+    if (!(v > 0.0))
+        return 0.0;
+    if (v >= 1.0)
+        return 1.0;
+    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
 }
 
 static int check_colour(aa_rgb c)
@@ -114,10 +143,75 @@ int aa_scene_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule)
     cap = s->caplayers;
     if ((st = grow((void **)&s->rule, &cap, (size_t)s->nlayers + 1, sizeof *s->rule)))
         return st;
+    cap = s->caplayers;
+    if ((st = grow((void **)&s->alpha, &cap, (size_t)s->nlayers + 1, sizeof *s->alpha)))
+        return st;
+    cap = s->caplayers;
+    if ((st = grow((void **)&s->encoded, &cap, (size_t)s->nlayers + 1, sizeof *s->encoded)))
+        return st;
+    cap = s->caplayers;
+    if ((st = grow((void **)&s->group, &cap, (size_t)s->nlayers + 1, sizeof *s->group)))
+        return st;
     s->caplayers = cap;
     s->colour[s->nlayers] = colour;
     s->rule[s->nlayers] = rule;
+    s->alpha[s->nlayers] = 1.0;
+    for (int k = 0; k < 3; k++)
+        s->encoded[s->nlayers].c[k] = srgb_encode(colour.c[k]);
+    s->group[s->nlayers] = s->open_group;
+    s->translucent |= s->open_group >= 0;
     s->current = s->nlayers++;
+    return AA_OK;
+}
+
+int aa_scene_set_alpha(aa_scene *s, double alpha)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (!s->nlayers)
+        return aa_fail(AA_EINVAL, "alpha without a layer");
+    if (!(alpha >= 0.0 && alpha <= 1.0))
+        return aa_fail(AA_EINVAL, "alpha %g is outside [0, 1]", alpha);
+    s->alpha[s->nlayers - 1] = alpha;
+    s->translucent |= alpha < 1.0;
+    return AA_OK;
+}
+
+static int group_depth(const aa_scene *s, int g)
+{
+    int d = 0;
+    for (; g >= 0; g = s->groups[g].parent)
+        d++;
+    return d;
+}
+
+int aa_scene_group_begin(aa_scene *s, double opacity)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (!(opacity >= 0.0 && opacity <= 1.0))
+        return aa_fail(AA_EINVAL, "group opacity %g is outside [0, 1]", opacity);
+    if (group_depth(s, s->open_group) >= AA_SCENE_MAX_GROUP_DEPTH)
+        return aa_fail(AA_EINVAL, "groups nested deeper than %d", AA_SCENE_MAX_GROUP_DEPTH);
+    size_t cap = (size_t)s->capgroups;
+    if ((st = grow((void **)&s->groups, &cap, (size_t)s->ngroups + 1, sizeof *s->groups)))
+        return st;
+    s->capgroups = (int)cap;
+    s->groups[s->ngroups] = (aa_scene_group){s->open_group, opacity};
+    s->open_group = s->ngroups++;
+    return AA_OK;
+}
+
+int aa_scene_group_end(aa_scene *s)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (s->open_group < 0)
+        return aa_fail(AA_EINVAL, "group end without a group");
+    s->open_group = s->groups[s->open_group].parent;
     return AA_OK;
 }
 
@@ -816,6 +910,8 @@ int aa_scene_finish(aa_scene *s)
     int st = check_building(s);
     if (st || (st = check_colour(s->background)))
         return st;
+    if (s->open_group >= 0)
+        return aa_fail(AA_EINVAL, "a group of the scene is not ended");
     if (s->open && (st = aa_scene_close(s)))
         return st;
     /* Pattern units: about 256 bins over the unit square. */
@@ -923,8 +1019,15 @@ int aa_scene_clip_unit(aa_scene *s)
     aa_rgb colour = s->colour[front];
     memmove(s->colour + 1, s->colour, (size_t)front * sizeof *s->colour);
     memmove(s->rule + 1, s->rule, (size_t)front * sizeof *s->rule);
+    memmove(s->alpha + 1, s->alpha, (size_t)front * sizeof *s->alpha);
+    memmove(s->encoded + 1, s->encoded, (size_t)front * sizeof *s->encoded);
+    memmove(s->group + 1, s->group, (size_t)front * sizeof *s->group);
     s->colour[0] = colour;
     s->rule[0] = AA_FILL_EVENODD;
+    s->alpha[0] = 1.0;
+    s->group[0] = -1;
+    for (int k = 0; k < 3; k++)
+        s->encoded[0].c[k] = srgb_encode(colour.c[k]);
     for (size_t k = 0; k < s->nedges; k++)
         s->edges[k].layer++;
     aa__scene_strokes_shift(s, 1);
@@ -959,6 +1062,18 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
     int st = AA_OK;
     for (int l = 0; l < s->nlayers && !st; l++)
         st = aa_scene_layer(t, s->colour[l], s->rule[l]);
+    if (!st && s->ngroups) {
+        size_t cap = 0;
+        if (!(st = grow((void **)&t->groups, &cap, (size_t)s->ngroups, sizeof *t->groups))) {
+            memcpy(t->groups, s->groups, (size_t)s->ngroups * sizeof *t->groups);
+            t->ngroups = t->capgroups = s->ngroups;
+        }
+    }
+    if (!st && s->nlayers) {
+        memcpy(t->alpha, s->alpha, (size_t)s->nlayers * sizeof *t->alpha);
+        memcpy(t->group, s->group, (size_t)s->nlayers * sizeof *t->group);
+        t->translucent = s->translucent;
+    }
     if (!st && s->nedges) {
         t->edges = malloc(s->nedges * sizeof *t->edges);
         t->contour = malloc((s->ncontours + 1) * sizeof *t->contour);
@@ -1075,13 +1190,90 @@ int aa_scene_bounds(const aa_scene *s, double *x0, double *y0, double *x1, doubl
     return s->has_bounds;
 }
 
+int aa_scene_is_opaque(const aa_scene *s) { return !s->translucent; }
+double aa_scene_layer_alpha(const aa_scene *s, int layer) { return s->alpha[layer]; }
+int aa_scene_layer_group(const aa_scene *s, int layer) { return s->group[layer]; }
+int aa_scene_group_count(const aa_scene *s) { return s->ngroups; }
+int aa_scene_group_parent(const aa_scene *s, int group) { return s->groups[group].parent; }
+double aa_scene_group_opacity(const aa_scene *s, int group) { return s->groups[group].opacity; }
+
+static int covers(const aa_scene *s, const int *wind, int l)
+{
+    return s->rule[l] == AA_FILL_EVENODD ? (wind[l] & 1) : wind[l] != 0;
+}
+
+/* An accumulator of premultiplied encoded colour p and alpha a. */
+typedef struct premul { double p[3], a; } premul;
+
+/* The layers covering a point, `first` the front-most of them (not solid),
+ * composited back to front from the front-most solid one behind it (alpha
+ * 1, in no group) or the background: each layer source over the innermost
+ * open group's accumulator, each group (opened at its back-most covering
+ * layer) composited over its parent with its opacity when the next layer
+ * lies outside it (W3C Compositing and Blending Level 1, "source-over";
+ * group opacity as SVG 2's `opacity`: the group's result times the
+ * opacity, then source over). */
+static aa_rgb colour_composite(const aa_scene *s, const int *wind, int first)
+{
+    int base = first + 1;
+    while (base < s->nlayers && !(covers(s, wind, base) && s->group[base] < 0 &&
+                                  s->alpha[base] == 1.0))
+        base++;
+    premul acc[AA_SCENE_MAX_GROUP_DEPTH + 1];
+    int gid[AA_SCENE_MAX_GROUP_DEPTH + 1], depth = 0;
+    aa_rgb bc = base < s->nlayers ? s->encoded[base] : s->background;
+    for (int k = 0; k < 3; k++)
+        acc[0].p[k] = base < s->nlayers ? bc.c[k] : srgb_encode(bc.c[k]);
+    acc[0].a = 1.0;
+    gid[0] = -1;
+    for (int l = base - 1; l >= first; l--) {
+        if (!covers(s, wind, l))
+            continue;
+        /* the layer's groups, outermost first */
+        int chain[AA_SCENE_MAX_GROUP_DEPTH], n = 0;
+        for (int g = s->group[l]; g >= 0; g = s->groups[g].parent)
+            chain[n++] = g;
+        int keep = 0; /* groups open now that hold the layer */
+        while (keep < depth && keep < n && gid[keep + 1] == chain[n - 1 - keep])
+            keep++;
+        for (; depth > keep; depth--) { /* close the groups left */
+            const double o = s->groups[gid[depth]].opacity, oa = o * acc[depth].a;
+            premul *d = &acc[depth - 1];
+            for (int k = 0; k < 3; k++)
+                d->p[k] = o * acc[depth].p[k] + (1.0 - oa) * d->p[k];
+            d->a = oa + (1.0 - oa) * d->a;
+        }
+        for (; depth < n; depth++) { /* open the layer's own */
+            gid[depth + 1] = chain[n - 1 - depth];
+            acc[depth + 1] = (premul){{0.0, 0.0, 0.0}, 0.0};
+        }
+        const double a = s->alpha[l];
+        premul *d = &acc[depth];
+        for (int k = 0; k < 3; k++)
+            d->p[k] = a * s->encoded[l].c[k] + (1.0 - a) * d->p[k];
+        d->a = a + (1.0 - a) * d->a;
+    }
+    for (; depth > 0; depth--) {
+        const double o = s->groups[gid[depth]].opacity, oa = o * acc[depth].a;
+        premul *d = &acc[depth - 1];
+        for (int k = 0; k < 3; k++)
+            d->p[k] = o * acc[depth].p[k] + (1.0 - oa) * d->p[k];
+        d->a = oa + (1.0 - oa) * d->a;
+    }
+    aa_rgb c;
+    for (int k = 0; k < 3; k++)
+        c.c[k] = srgb_decode(acc[0].p[k]);
+    return c;
+}
+
 aa_rgb aa_scene_colour_of(const aa_scene *s, const int *wind)
 {
-    for (int l = 0; l < s->nlayers; l++) {
-        int inside = s->rule[l] == AA_FILL_EVENODD ? (wind[l] & 1) : wind[l] != 0;
-        if (inside)
-            return s->colour[l];
-    }
+    for (int l = 0; l < s->nlayers; l++)
+        if (covers(s, wind, l)) {
+            if (s->alpha[l] == 1.0 && s->group[l] < 0)
+                return s->colour[l];
+            return colour_composite(s, wind, l);
+        }
     return s->background;
 }
 

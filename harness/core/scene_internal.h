@@ -8,12 +8,24 @@
 #include "core.h"
 #include "path.h"
 
+typedef struct aa_scene_group {
+    int parent;
+    double opacity;
+} aa_scene_group;
+
 struct aa_scene {
     aa_rgb background;
     int nlayers, current;
     size_t caplayers;
     aa_rgb *colour;
     aa_fill_rule *rule;
+    /* translucency (aa_scene_set_alpha, aa_scene_group_begin): per layer
+     * its alpha, its colour sRGB-encoded, and its innermost group (-1: none) */
+    double *alpha;
+    aa_rgb *encoded;
+    int *group;
+    aa_scene_group *groups;
+    int ngroups, capgroups, open_group, translucent;
 
     aa_edge *edges;
     size_t nedges, capedges;

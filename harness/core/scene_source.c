@@ -163,6 +163,17 @@ unsigned long long aa_scene_hash(const aa_scene *s)
             put_double(&z, s->colour[l].c[k]);
         put_int(&z, s->rule[l]);
     }
+    if (s->translucent) { /* opaque scenes keep the hash they always had */
+        for (int l = 0; l < s->nlayers; l++) {
+            put_double(&z, s->alpha[l]);
+            put_int(&z, s->group[l]);
+        }
+        put_int(&z, s->ngroups);
+        for (int g = 0; g < s->ngroups; g++) {
+            put_int(&z, s->groups[g].parent);
+            put_double(&z, s->groups[g].opacity);
+        }
+    }
     put_int(&z, (long long)s->nedges);
     for (size_t k = 0; k < s->nedges; k++) {
         const aa_edge *e = &s->edges[k];

@@ -228,13 +228,16 @@ static void put_source_data(FILE *f, const aa_path *p)
  * stroke's properties and the source's map as the path's transform, so
  * that a renderer strokes it itself, as SVG says (the width in user
  * units, a non-uniform map transforming the outline). */
-static void put_stroke(FILE *f, const aa_stroke_source *src, int l, aa_rgb colour)
+static void put_stroke(FILE *f, const aa_stroke_source *src, int l, aa_rgb colour,
+                       double alpha)
 {
     static const char *const joins[] = {"miter", "round", "bevel"};
     static const char *const caps[] = {"butt", "round", "square"};
     const aa_stroke_style *st = &src->style;
     fprintf(f, "<path id=\"layer%d\" fill=\"none\" stroke=\"", l);
     put_colour(f, colour);
+    if (alpha < 1)
+        fprintf(f, "\" stroke-opacity=\"%.17g", alpha);
     fprintf(f, "\" stroke-width=\"%.17g\" stroke-linejoin=\"%s\" stroke-linecap=\"%s\" "
                "stroke-miterlimit=\"%.17g\"",
             st->width, joins[st->join], caps[st->cap], st->miterlimit);
@@ -268,20 +271,43 @@ static void put_document(FILE *f, const aa_scene *s, int w, int h, aa_svg_paint 
     fputs("\"/>\n", f);
     size_t nsrc;
     const aa_stroke_source *src = aa_scene_stroke_sources(s, &nsrc);
+    /* translucency as SVG writes it (the mask is coverage only): a layer's
+     * alpha as its fill-opacity or stroke-opacity, each group a <g> with
+     * its opacity around its layers, opened and closed as the layers go
+     * back to front */
+    const int mask = paint == AA_SVG_MASK;
+    int open[AA_SCENE_MAX_GROUP_DEPTH], depth = 0;
     for (int l = aa_scene_layer_count(s) - 1; l >= 0; l--) {
+        int chain[AA_SCENE_MAX_GROUP_DEPTH], n = 0;
+        for (int g = mask ? -1 : aa_scene_layer_group(s, l); g >= 0;
+             g = aa_scene_group_parent(s, g))
+            chain[n++] = g;
+        int keep = 0;
+        while (keep < depth && keep < n && open[keep] == chain[n - 1 - keep])
+            keep++;
+        for (; depth > keep; depth--)
+            fputs("</g>\n", f);
+        for (; depth < n; depth++) {
+            open[depth] = chain[n - 1 - depth];
+            fprintf(f, "<g opacity=\"%.17g\">\n", aa_scene_group_opacity(s, open[depth]));
+        }
+        const double alpha = mask ? 1 : aa_scene_layer_alpha(s, l);
         int k = aa_scene_layer_stroked(s, l);
         if (k >= 0) {
-            put_stroke(f, &src[k], l,
-                       paint == AA_SVG_MASK ? white : aa_scene_layer_colour(s, l));
+            put_stroke(f, &src[k], l, mask ? white : aa_scene_layer_colour(s, l), alpha);
             continue;
         }
         fprintf(f, "<path id=\"layer%d\" fill=\"", l);
-        put_colour(f, paint == AA_SVG_MASK ? white : aa_scene_layer_colour(s, l));
+        put_colour(f, mask ? white : aa_scene_layer_colour(s, l));
+        if (alpha < 1)
+            fprintf(f, "\" fill-opacity=\"%.17g", alpha);
         fprintf(f, "\" fill-rule=\"%s\" d=\"",
                 aa_scene_layer_rule(s, l) == AA_FILL_EVENODD ? "evenodd" : "nonzero");
         put_layer_data(f, s, l);
         fputs("\"/>\n", f);
     }
+    for (; depth > 0; depth--)
+        fputs("</g>\n", f);
     fputs("</svg>\n", f);
 }
 

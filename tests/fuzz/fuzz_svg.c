@@ -7,7 +7,8 @@
  * gives the sink must be well formed (a shape before its first point, every
  * segment inside a subpath begun by a move, every subpath closed, finite
  * coordinates within AA_SVG_MAX_COORD, elliptical arcs whose whole ellipse
- * is within it), and the points, put into a scene as
+ * is within it, alphas and group opacities in [0, 1), an alpha right after
+ * its shape, groups balanced and never inside a subpath), and the points, put into a scene as
  * the pattern does, must finish into a scene (cubics are refused by a scene
  * that cannot hold them, which is a status, not a fault).
  */
@@ -22,7 +23,7 @@
 
 typedef struct fuzz_sink {
     aa_scene *s;
-    int shapes, open;
+    int shapes, open, groups, fresh; /* fresh: a shape with no point yet */
 } fuzz_sink;
 
 static void fuzz_point(double x, double y)
@@ -40,7 +41,36 @@ static int fz_shape(void *ctx, aa_rgb c, aa_fill_rule rule)
         if (!(c.c[k] >= 0 && c.c[k] <= 1))
             abort();
     f->shapes++;
+    f->fresh = 1;
     return aa_scene_layer(f->s, c, rule);
+}
+
+static int fz_alpha(void *ctx, double a)
+{
+    fuzz_sink *f = ctx;
+    if (!f->fresh || !(a >= 0 && a < 1))
+        abort();
+    return aa_scene_set_alpha(f->s, a);
+}
+
+static int fz_group_begin(void *ctx, double o)
+{
+    fuzz_sink *f = ctx;
+    if (f->open || !(o >= 0 && o < 1))
+        abort();
+    f->groups++;
+    f->fresh = 0;
+    return aa_scene_group_begin(f->s, o);
+}
+
+static int fz_group_end(void *ctx)
+{
+    fuzz_sink *f = ctx;
+    if (f->open || f->groups < 1)
+        abort();
+    f->groups--;
+    f->fresh = 0;
+    return aa_scene_group_end(f->s);
 }
 
 static int fz_move(void *ctx, double x, double y)
@@ -50,6 +80,7 @@ static int fz_move(void *ctx, double x, double y)
         abort();
     fuzz_point(x, y);
     f->open = 1;
+    f->fresh = 0;
     return aa_scene_move_to(f->s, x / 64, y / 48);
 }
 
@@ -109,18 +140,19 @@ static int fz_arc(void *ctx, double cx, double cy, double ux, double uy, double 
                            x / 64, y / 48);
 }
 
-static const aa_svg_sink fuzz_svg_sink = {fz_shape, fz_move, fz_line,  fz_quad,
-                                          fz_cubic, fz_close, fz_arc,  NULL};
+static const aa_svg_sink fuzz_svg_sink = {fz_shape, fz_move,  fz_line,        fz_quad,
+                                          fz_cubic, fz_close, fz_arc,         NULL,
+                                          fz_alpha, fz_group_begin, fz_group_end};
 
 int aa_fuzz_svg(const uint8_t *data, size_t size)
 {
-    fuzz_sink f = {aa_scene_new((aa_rgb){{0, 0, 0}}), 0, 0};
+    fuzz_sink f = {aa_scene_new((aa_rgb){{0, 0, 0}}), 0, 0, 0, 0};
     if (!f.s)
         return 0;
     double vp[2];
     int st = aa_svg_read((const char *)data, size, "fuzz.svg", 64, 48, &fuzz_svg_sink, &f, vp);
     if (st == AA_OK) {
-        if (f.open || !(vp[0] > 0 && vp[1] > 0))
+        if (f.open || f.groups || !(vp[0] > 0 && vp[1] > 0))
             abort();
         int fin = aa_scene_finish(f.s);
         if (fin != AA_OK && fin != AA_EINVAL && fin != AA_ENOMEM)

@@ -1,0 +1,369 @@
+/*
+ * test_paint_renderers.c: translucent paint, paint order, currentColor,
+ * visibility and CSS colours as browsers draw them: the exact box
+ * reference of the pattern svg against headless Chromium and resvg (and
+ * librsvg) drawing the same document, colour by colour away from edges.
+ *
+ * The scene is one document of small cells, each one feature (the table
+ * `cells` says which, and what each cell's colours are by CSS Color 4 and
+ * SVG 2, worked by hand in its comment); each renderer draws it once.
+ * Antialiasing aside, the renderers and the reference must show the same
+ * colours in the same places: compared on the pixels whose 3 x 3
+ * neighbourhood is of one colour in the reference, in sRGB-encoded values
+ * (the renderers' 8-bit codes), within 2/255 (a code of rounding in the
+ * renderer's own compositing and one of its output).  The reference's
+ * colours in those pixels are checked first against the hand-worked
+ * values, so the renderers are held to the specification, not to the
+ * code under test.  Where a renderer draws a cell otherwise, the table
+ * names the renderer and says who is wrong: that cell must still differ
+ * (so the note stays true), and every other cell must agree.
+ *
+ * The renderers are run through their adapters (scripts/renderers/),
+ * skipped with a message when not installed (sh scripts/install-deps.sh
+ * --with-renderers), and in the plain build only: their pictures do not
+ * depend on how aabench was built.
+ */
+/* tier: full */
+#include "bench.h"
+#include "core.h"
+#include "patterns.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#define CELL 40
+#define COLS 4
+#define ROWS 4
+#define W (CELL * COLS)
+#define H (CELL * ROWS)
+
+static char dir[4096];
+
+static int setup(void **state)
+{
+    (void)state;
+    return support_tmpdir(dir, sizeof dir, "paintrender");
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    return support_rmtree(dir);
+}
+
+/* sRGB's encoding (IEC 61966-2-1), written out here. */
+static double enc(double v)
+{
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+}
+
+/* A cell: its content (in cell coordinates, 0 to 40), and points of it
+ * with their encoded colour by the specifications.  `differs` names the
+ * renderers that draw it otherwise (space-separated), or "". */
+typedef struct cell {
+    const char *what, *body;
+    struct {
+        int x, y;
+        double c[3];
+    } at[4];
+    int nat;
+    const char *differs;
+} cell;
+
+static const cell cells[] = {
+    /* 0.5 white over black: 0.5 */
+    {"fill-opacity", "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"white\" "
+                     "fill-opacity=\"0.5\"/>",
+     {{20, 20, {0.5, 0.5, 0.5}}},
+     1, ""},
+    /* white at 0.5 (A), then red at 0.6 (B): B over A is
+     * (0.6 + 0.4 x 0.5, 0.4 x 0.5, 0.4 x 0.5) */
+    {"two translucent rectangles",
+     "<rect x=\"4\" y=\"4\" width=\"22\" height=\"22\" fill=\"white\" opacity=\"0.5\"/>"
+     "<rect x=\"14\" y=\"14\" width=\"22\" height=\"22\" fill=\"rgba(255, 0, 0, 0.6)\"/>",
+     {{8, 8, {0.5, 0.5, 0.5}}, {20, 20, {0.8, 0.2, 0.2}}, {32, 32, {0.6, 0, 0}}},
+     3, ""},
+    /* a group of 0.5 over grey 0.2: inside it red hides blue; then
+     * 0.5 g + 0.5 x 0.2 */
+    {"group opacity",
+     "<rect width=\"40\" height=\"40\" fill=\"rgb(20%, 20%, 20%)\"/><g opacity=\"0.5\">"
+     "<rect x=\"4\" y=\"4\" width=\"22\" height=\"22\" fill=\"blue\"/>"
+     "<rect x=\"14\" y=\"14\" width=\"22\" height=\"22\" fill=\"red\"/></g>",
+     {{8, 8, {0.1, 0.1, 0.6}}, {20, 20, {0.6, 0.1, 0.1}}, {2, 2, {0.2, 0.2, 0.2}}},
+     3, ""},
+    /* fill and stroke under one opacity: a group, the stroke's inner
+     * half hiding the fill: 0.5 white on the stroke, 0.5 blue inside */
+    {"opacity of a fill and a stroke",
+     "<rect x=\"10\" y=\"10\" width=\"20\" height=\"20\" fill=\"blue\" stroke=\"white\" "
+     "stroke-width=\"8\" opacity=\"0.5\"/>",
+     {{12, 20, {0.5, 0.5, 0.5}}, {20, 20, {0, 0, 0.5}}, {7, 20, {0.5, 0.5, 0.5}}},
+     3, ""},
+    /* paint-order: stroke: the fill over the stroke's inner half */
+    {"paint-order",
+     "<rect x=\"10\" y=\"10\" width=\"20\" height=\"20\" fill=\"blue\" stroke=\"white\" "
+     "stroke-width=\"8\" paint-order=\"stroke\"/>",
+     {{12, 20, {0, 0, 1}}, {7, 20, {1, 1, 1}}},
+     2, ""},
+    /* a stroke at 0.25 over blue: (0.25, 0.25, 1) */
+    {"stroke-opacity",
+     "<rect width=\"40\" height=\"40\" fill=\"blue\"/><rect x=\"8\" y=\"8\" width=\"24\" "
+     "height=\"24\" fill=\"none\" stroke=\"white\" stroke-width=\"8\" "
+     "stroke-opacity=\"0.25\"/>",
+     {{8, 20, {0.25, 0.25, 1}}, {20, 20, {0, 0, 1}}},
+     2, ""},
+    /* currentColor inherited as the keyword: each element's own color
+     * (resvg paints the top one red, the colour of the <g> that set the
+     * fill: wrong by CSS Color 4, "currentcolor") */
+    {"currentColor",
+     "<g color=\"red\" fill=\"currentColor\"><rect x=\"4\" y=\"4\" width=\"32\" "
+     "height=\"14\" color=\"lime\"/><rect x=\"4\" y=\"22\" width=\"32\" height=\"14\"/></g>",
+     {{20, 10, {0, 1, 0}}, {20, 30, {1, 0, 0}}},
+     2, "resvg"},
+    /* visibility: hidden inherited, visible again on a child; display:
+     * none hides its subtree whatever the children say */
+    {"visibility and display",
+     "<g fill=\"white\" visibility=\"hidden\"><rect x=\"4\" y=\"4\" width=\"14\" "
+     "height=\"32\"/><rect x=\"22\" y=\"4\" width=\"14\" height=\"14\" "
+     "visibility=\"visible\"/></g><g display=\"none\"><rect x=\"22\" y=\"22\" width=\"14\" "
+     "height=\"14\" fill=\"white\" display=\"inline\"/></g>",
+     {{10, 20, {0, 0, 0}}, {28, 10, {1, 1, 1}}, {28, 28, {0, 0, 0}}},
+     3, ""},
+    /* hsl() in the legacy form and the modern one without units: (0,
+     * 0.5, 0); blue at 0.5; 180 degrees is cyan; 30 degrees (1, 0.5, 0) */
+    {"hsl",
+     "<rect width=\"20\" height=\"20\" fill=\"hsl(120, 100%, 25%)\"/>"
+     "<rect x=\"20\" width=\"20\" height=\"20\" fill=\"hsla(240, 100%, 50%, 0.5)\"/>"
+     "<rect y=\"20\" width=\"20\" height=\"20\" fill=\"hsl(180 100% 50%)\"/>"
+     "<rect x=\"20\" y=\"20\" width=\"20\" height=\"20\" fill=\"HSL(30, 100%, 50%)\"/>",
+     {{10, 10, {0, 0.5, 0}}, {30, 10, {0, 0, 0.5}}, {10, 30, {0, 1, 1}}, {30, 30, {1, 0.5, 0}}},
+     4, ""},
+    /* the hue as an angle (CSS Color 4, <hue> = <number> | <angle>): half
+     * a turn and 180 degrees are cyan, 200 grad too, 0 rad red (resvg
+     * draws them black: it takes no angle unit) */
+    {"hue angles",
+     "<rect width=\"20\" height=\"20\" fill=\"hsl(0.5turn 100% 50%)\"/>"
+     "<rect x=\"20\" width=\"20\" height=\"20\" fill=\"hsl(180deg, 100%, 50%)\"/>"
+     "<rect y=\"20\" width=\"20\" height=\"20\" fill=\"hsl(200grad 100% 50%)\"/>"
+     "<rect x=\"20\" y=\"20\" width=\"20\" height=\"20\" fill=\"hsl(0rad 100% 50%)\"/>",
+     {{10, 10, {0, 1, 1}}, {30, 10, {0, 1, 1}}, {10, 30, {0, 1, 1}}, {30, 30, {1, 0, 0}}},
+     4, "resvg"},
+    /* the modern form's alpha after "/": (1, 0.5, 0) at 0.5, blue at
+     * 0.25, lime at 0.75, blue at 0.5 (resvg draws them black: it takes
+     * no "/") */
+    {"modern alpha",
+     "<rect width=\"20\" height=\"20\" fill=\"rgb(100% 50% 0% / 0.5)\"/>"
+     "<rect x=\"20\" width=\"20\" height=\"20\" fill=\"hsl(240 100% 50% / 25%)\"/>"
+     "<rect y=\"20\" width=\"20\" height=\"20\" fill=\"rgba(0 255 0 / 0.75)\"/>"
+     "<rect x=\"20\" y=\"20\" width=\"20\" height=\"20\" fill=\"rgb(0 0 255 / 50%)\"/>",
+     {{10, 10, {0.5, 0.25, 0}}, {30, 10, {0, 0, 0.25}}, {10, 30, {0, 0.75, 0}}, {30, 30, {0, 0, 0.5}}},
+     4, "resvg"},
+    /* the modern form takes numbers and percentages mixed (CSS Color 4
+     * since the working group's resolution of 2023): numbers for hsl()'s
+     * saturation and lightness read as percentages, yellow and 40% grey;
+     * rgb(50% 255 0) (resvg draws the hsl() white, librsvg all three
+     * black: both older than the resolution) */
+    {"modern numbers and percentages",
+     "<rect width=\"40\" height=\"14\" fill=\"hsl(60 100 50)\"/>"
+     "<rect y=\"14\" width=\"40\" height=\"13\" fill=\"hsl(0 0 40)\"/>"
+     "<rect y=\"27\" width=\"40\" height=\"13\" fill=\"rgb(50% 255 0)\"/>",
+     {{20, 7, {1, 1, 0}}, {20, 20, {0.4, 0.4, 0.4}}, {20, 33, {0.5, 1, 0}}},
+     3, "resvg rsvg"},
+    /* alpha in hex and in rgba(): #f008 red at 136/255, #00ff0080 lime at
+     * 128/255, (1, 0.5, 0) at 0.5, transparent over white */
+    {"alpha in colours",
+     "<rect width=\"20\" height=\"20\" fill=\"#f008\"/>"
+     "<rect x=\"20\" width=\"20\" height=\"20\" fill=\"#00ff0080\"/>"
+     "<rect y=\"20\" width=\"20\" height=\"20\" fill=\"rgba(100%, 50%, 0%, 0.5)\"/>"
+     "<rect x=\"20\" y=\"20\" width=\"20\" height=\"20\" fill=\"white\"/>"
+     "<rect x=\"20\" y=\"20\" width=\"20\" height=\"20\" fill=\"transparent\"/>",
+     {{10, 10, {136 / 255.0, 0, 0}},
+      {30, 10, {0, 128 / 255.0, 0}},
+      {10, 30, {0.5, 0.25, 0}},
+      {30, 30, {1, 1, 1}}},
+     4, ""},
+    /* nested groups multiply (0.25); a translucent layer inside a group
+     * is composited inside it (0.5 x 0.5) */
+    {"nested groups",
+     "<g opacity=\"0.5\"><g opacity=\"0.5\"><rect x=\"4\" y=\"4\" width=\"14\" height=\"32\" "
+     "fill=\"white\"/></g><rect x=\"22\" y=\"4\" width=\"14\" height=\"32\" fill=\"white\" "
+     "fill-opacity=\"0.5\"/></g>",
+     {{10, 20, {0.25, 0.25, 0.25}}, {28, 20, {0.25, 0.25, 0.25}}},
+     2, ""},
+    /* names in any case, rgb() clamped, currentColor in a stroke */
+    {"names and clamping",
+     "<rect width=\"20\" height=\"40\" fill=\"DarkOrange\"/>"
+     "<rect x=\"20\" width=\"20\" height=\"20\" fill=\"rgb(300, -20, 51)\"/>"
+     "<rect x=\"24\" y=\"24\" width=\"12\" height=\"12\" fill=\"none\" stroke=\"currentColor\" "
+     "stroke-width=\"8\" color=\"#ABCDEF\"/>",
+     {{10, 20, {1, 140 / 255.0, 0}}, {30, 10, {1, 0, 0.2}}, {22, 30, {0xab / 255.0, 0xcd / 255.0, 0xef / 255.0}}},
+     3, ""},
+};
+#define NCELLS (sizeof cells / sizeof cells[0])
+
+/* The document of every cell, and its box reference. */
+static void document(char *path, size_t len, aa_image *ref)
+{
+    static char doc[1 << 15];
+    size_t n = (size_t)snprintf(doc, sizeof doc,
+                                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" "
+                                "height=\"%d\">\n<rect width=\"%d\" height=\"%d\"/>\n",
+                                W, H, W, H);
+    for (size_t k = 0; k < NCELLS; k++)
+        n += (size_t)snprintf(doc + n, sizeof doc - n,
+                              "<g transform=\"translate(%d %d)\">%s</g>\n",
+                              (int)(k % COLS) * CELL, (int)(k / COLS) * CELL, cells[k].body);
+    n += (size_t)snprintf(doc + n, sizeof doc - n, "</svg>\n");
+    assert_true(n < sizeof doc);
+    snprintf(path, len, "%s/paint.svg", dir);
+    support_write_file(path, doc, n);
+    char spec[4200];
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    support_view v = {W, H, 0, 0, 0, NULL, 1, 0, 0};
+    support_pattern_reference(spec, &v, ref, NULL, NULL);
+}
+
+/* 1 if the reference is of one colour (to 1e-12, its bound) on pixel
+ * (i, j)'s 3 x 3 neighbourhood inside the view. */
+static int flat(const aa_image *ref, int i, int j)
+{
+    if (i < 1 || j < 1 || i > W - 2 || j > H - 2)
+        return 0;
+    for (int dj = -1; dj <= 1; dj++)
+        for (int di = -1; di <= 1; di++)
+            for (int k = 0; k < 3; k++)
+                if (!(fabs(aa_pixel(ref, i + di, j + dj)[k] - aa_pixel(ref, i, j)[k]) <= 1e-12))
+                    return 0;
+    return 1;
+}
+
+/* The reference holds the hand-worked colours. */
+static void test_reference(void **state)
+{
+    (void)state;
+    char path[4200];
+    aa_image ref;
+    document(path, sizeof path, &ref);
+    for (size_t k = 0; k < NCELLS; k++)
+        for (int a = 0; a < cells[k].nat; a++) {
+            int i = (int)(k % COLS) * CELL + cells[k].at[a].x;
+            int j = (int)(k / COLS) * CELL + cells[k].at[a].y;
+            if (!flat(&ref, i, j))
+                fail_msg("%s: point (%d, %d) is not inside a region", cells[k].what,
+                         cells[k].at[a].x, cells[k].at[a].y);
+            for (int c = 0; c < 3; c++) {
+                double got = enc(aa_pixel(&ref, i, j)[c]), want = cells[k].at[a].c[c];
+                if (!(fabs(got - want) <= 1e-12))
+                    fail_msg("%s: (%d, %d) channel %d is %.15g encoded, not %.15g",
+                             cells[k].what, cells[k].at[a].x, cells[k].at[a].y, c, got, want);
+            }
+        }
+    aa_image_free(&ref);
+}
+
+/* The largest encoded difference on the flat pixels of cell k. */
+static double cell_error(const aa_image *ref, const aa_image *img, size_t k, int *wi, int *wj)
+{
+    double worst = 0;
+    int x0 = (int)(k % COLS) * CELL, y0 = (int)(k / COLS) * CELL;
+    for (int j = y0; j < y0 + CELL; j++)
+        for (int i = x0; i < x0 + CELL; i++) {
+            if (!flat(ref, i, j))
+                continue;
+            for (int c = 0; c < 3; c++) {
+                double d = fabs(enc(aa_pixel(ref, i, j)[c]) - enc(aa_pixel(img, i, j)[c]));
+                if (d > worst)
+                    worst = d, *wi = i - x0, *wj = j - y0;
+            }
+        }
+    return worst;
+}
+
+static int names(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *s = strstr(list, name); s; s = strstr(s + 1, name))
+        if ((s == list || s[-1] == ' ') && (s[n] == '\0' || s[n] == ' '))
+            return 1;
+    return 0;
+}
+
+static void renderer(const char *name)
+{
+#if defined(__SANITIZE_ADDRESS__)
+    print_message("%s: tested in the plain build\n", name);
+    skip();
+#endif
+    const char *tree = aa_source_tree();
+    if (!tree) {
+        print_message("%s skipped: no source tree (its adapters)\n", name);
+        skip();
+    }
+    char adapter[4200], cmd[13000], path[4200], png[4300];
+    snprintf(adapter, sizeof adapter, "%s/scripts/renderers/%s", tree, name);
+    assert_null(strchr(adapter, '\''));
+    assert_null(strchr(dir, '\''));
+    snprintf(cmd, sizeof cmd, "'%s' --check >/dev/null 2>&1", adapter);
+    if (system(cmd) != 0) {
+        print_message("%s skipped: not installed (sh scripts/install-deps.sh "
+                      "--with-renderers)\n",
+                      name);
+        skip();
+    }
+    aa_image ref, img;
+    document(path, sizeof path, &ref);
+    snprintf(png, sizeof png, "%s/%s.png", dir, name);
+    snprintf(cmd, sizeof cmd, "'%s' '%s' %d %d '%s' >/dev/null", adapter, path, W, H, png);
+    if (system(cmd) != 0)
+        fail_msg("%s failed on %s", name, path);
+    if (aa_image_read(png, &img))
+        fail_msg("%s", aa_last_error());
+    assert_int_equal(img.w, W);
+    assert_int_equal(img.h, H);
+    int bad = 0;
+    for (size_t k = 0; k < NCELLS; k++) {
+        int i = 0, j = 0;
+        double e = cell_error(&ref, &img, k, &i, &j);
+        const int agrees = e <= 2.0 / 255 + 1e-9, known = names(cells[k].differs, name);
+        print_message("%s, %s: largest difference %.1f/255 at (%d, %d)%s\n", name,
+                      cells[k].what, e * 255, i, j,
+                      agrees ? "" : known ? " (the renderer is wrong: noted)" : " DIFFERS");
+        if (agrees == known) {
+            print_message("%s, %s: %s\n", name, cells[k].what,
+                          known ? "agrees, but the table says it differs" : "differs");
+            bad++;
+        }
+    }
+    aa_image_free(&img);
+    aa_image_free(&ref);
+    if (bad)
+        fail_msg("%s: %d cells not as the table says", name, bad);
+}
+
+static void test_chromium(void **state)
+{
+    (void)state;
+    renderer("chromium");
+}
+
+static void test_resvg(void **state)
+{
+    (void)state;
+    renderer("resvg");
+}
+
+static void test_rsvg(void **state)
+{
+    (void)state;
+    renderer("rsvg");
+}
+
+SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_reference), cmocka_unit_test(test_chromium),
+             cmocka_unit_test(test_resvg), cmocka_unit_test(test_rsvg))
