@@ -347,7 +347,10 @@ static double right_of(const an_state *S, const aa_piece *p, double ya, double y
         double yk = cy + pp->k[q], m[3];
         if (yk > ya && yk < yb)
             ys[n++] = yk;
-        int c = aa_piece_meet_x(p, cx + pp->k[q], m);
+        double xk = cx + pp->k[q];
+        if (!(xk > p->xmin && xk < p->xmax)) /* the piece's extent misses the line */
+            continue;
+        int c = aa_piece_meet_x(p, xk, m);
         for (int r = 0; r < c; r++)
             if (m[r] > ya && m[r] < yb)
                 ys[n++] = m[r];
