@@ -104,8 +104,8 @@
  * (gauss, lanczos) and the radial ones (cone, gauss:cut: the paper's radial
  * polynomial filters are not done); elliptical arcs (the paper's rational
  * quadratic closed form is not done) and offset curves (stroked Bezier arcs,
- * not polynomials); field scenes (no edges).  Linear colour gradients (the
- * paper's sec. on gradients) are not in the scene model.
+ * not polynomials); field scenes (no edges).  The paper also fills with
+ * linear colour gradients, which the scene model does not hold.
  *
  * Cost: per pixel whose support meets an edge, the visible parts (sorting
  * each band's pieces along x and one meeting test per neighbouring pair)

@@ -9,7 +9,7 @@
  * one untimed init and warm-up each, renders until every 95% CI of the
  * median is within --target-ci PCT (default 2) or the budget, --budget S
  * per case (default 1), has passed, or exactly -r N).  Printed: the median
- * in ms, its CI's relative half-width and the spread (min and max of the
+ * in ms, its CI's relative half-width, the renders timed and the spread (min and max of the
  * timed renders), a star on a noisy timing, and the ratio of each median to
  * area's.  Then the targets of Manson and Schaefer's claim as this project
  * states them: analytic under tent:r=1 within 2x area's box time, under
@@ -116,12 +116,14 @@ int main(int argc, char **argv)
     }
     printf("%s %dx%d, one thread; medians in ms (95%% CI half-width, min .. max of %s)\n",
            pattern, w, h, "the timed renders");
-    printf("%-18s %-16s %12s %8s %22s %10s\n", "method", "filter", "median ms", "CI", "spread ms",
-           "x area");
+    printf("%-18s %-16s %12s %20s %4s %22s %10s\n", "method", "filter", "median ms", "CI",
+           "n", "spread ms", "x area");
     for (int k = 0; k < N; k++) {
         const aa_time_stats *s = &t[k].stats;
-        printf("%-18s %-16s %11.3f%s %7.1f%% %10.3f .. %9.3f %9.2fx\n", cs[k].method,
-               cs[k].filter, s->median * 1e3, noisy(&t[k]) ? "*" : " ", 100 * t[k].ci_rel,
+        char ci[64];
+        aa_timing_ci_text(&t[k], ci, sizeof ci);
+        printf("%-18s %-16s %11.3f%s %20s %4d %10.3f .. %9.3f %9.2fx\n", cs[k].method,
+               cs[k].filter, s->median * 1e3, noisy(&t[k]) ? "*" : " ", ci, t[k].n,
                s->min * 1e3, s->max * 1e3, s->median / t[AREA].stats.median);
     }
     const int tgt[2] = {TENT, BSPLINE3};
