@@ -502,7 +502,7 @@ const aa_method_type aa_method_analytic = {
      "degree (Manson and Schaefer 2013)",
      analytic_params},
     sizeof(an_state),
-    0,
+    AA_METHOD_SOME_SCENES, /* elliptical arcs and offset curves: refused at init */
     analytic_check,
     analytic_init,
     analytic_render,
