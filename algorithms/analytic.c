@@ -52,12 +52,14 @@
  *     quadratic         2     4       6          8
  *     cubic             3     6       9         12
  *
- * (The paper writes the expanded polynomial of each pair out; the Gauss
- * rule of the right degree is the same integral evaluated from the
- * integrand's values, chosen here because a cubic's power basis composed
- * with the quartic W cancels: coefficients up to 4^4 times the values.
- * The nodes and weights are the roots of the Legendre polynomial P_m,
- * found by Newton's method in long double at init, for m up to 12.)
+ * (The paper gives closed-form expressions, the polynomial integrated term
+ * by term; the Gauss rule of the right degree is the same integral,
+ * evaluated from the integrand's values: a variant in the means, chosen
+ * because an expanded power basis can have coefficients far larger than
+ * the integrand's values and lose digits to cancellation, while the Gauss
+ * sum's weights are positive.  The nodes and weights are the roots of the
+ * Legendre polynomial P_m and 2 / ((1 - x^2) P_m'(x)^2), found by Newton's
+ * method in long double at init, for m up to 12.)
  * The filters' pieces are their definitions in patterns/README.md,
  * "Filters", written per cell about the cell's left knot here (the method
  * reads neither the harness's filter functions nor the reference): on
