@@ -31,6 +31,7 @@ const aa_method_type *const aa_method_types[] = {
     &aa_method_conetable,
     &aa_method_crowtiler,
     &aa_method_feibushtex,
+    &aa_method_analytic,
     NULL};
 
 /* Methods that need an optional program (external.c runs an SVG renderer):

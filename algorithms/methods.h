@@ -33,6 +33,7 @@ extern const aa_method_type aa_method_cairo;
 extern const aa_method_type aa_method_crowtable;
 extern const aa_method_type aa_method_conetable;
 extern const aa_method_type aa_method_crowtiler;
+extern const aa_method_type aa_method_analytic;
 extern const aa_method_type aa_method_feibushtex;
 /* runs an SVG renderer: in aa_method_types_optional, not the built-in table */
 extern const aa_method_type aa_method_external;

@@ -25,3 +25,7 @@ echo
 echo "== curves: area against point on parabolas, cubic and elliptical arcs 1024x1024 box =="
 # shellcheck disable=SC2086
 "$build/bench_curves" -s 1024x1024 --target-ci ${TARGET_CI:-2} --budget ${BUDGET:-1} ${REPS:+--reps "$REPS"}
+echo
+echo "== analytic under its filters against area under the box, crow 1024x1024, one thread =="
+# shellcheck disable=SC2086
+"$build/bench_analytic" -p crow -s 1024x1024 $timing

@@ -2,7 +2,8 @@
  * suite.c: the named suites of `aabench run` (harness/bench/README.md, "Runs and suites").
  *
  *   quick    every method family once on crow 128x128, each under a filter
- *            it accepts (box; tent:r=1 for Crow's tables and tiler; gauss
+ *            it accepts (box; tent:r=1 for Crow's tables and tiler and for
+ *            analytic; gauss
  *            for Feibush et al.'s edge and texture filters): the regression
  *            gate's suite
  *            (results/baseline.csv); a few seconds
@@ -35,7 +36,7 @@ static const aa_suite_group quick[] = {
     {LIST("crow"), LIST("128x128"), LIST("box"),
      LIST("point", "supersample", "jitter", "hexagon", "trio", "mlaa", "fxaa", "smaa", "area",
           "adaptive", "taa", "cycle", "freetype", "stb", "cairo", "agg")},
-    {LIST("crow"), LIST("128x128"), LIST("tent:r=1"), LIST("crowtable", "crowtiler")},
+    {LIST("crow"), LIST("128x128"), LIST("tent:r=1"), LIST("crowtable", "crowtiler", "analytic")},
     {LIST("crow"), LIST("128x128"), LIST("gauss"), LIST("conetable", "feibushtex")},
     {NULL, NULL, NULL, NULL}};
 
@@ -46,9 +47,10 @@ static const aa_suite_group main_suite[] = {
           "jitter:spp=16,seq=sobol", "jitter:spp=16,seq=halton", "jitter:spp=64", "hexagon",
           "trio", "trio:variant=sancha", "trio:variant=recursive", "mlaa", "fxaa", "smaa",
           "area", "adaptive", "taa", "cycle", "freetype", "stb", "cairo", "agg")},
-    /* Crow's pyramid two dots wide (fig. 2.14): his tables and his tiler */
+    /* Crow's pyramid two dots wide (fig. 2.14): his tables and his tiler;
+     * Manson and Schaefer's analytic rasterization, exact under it */
     {LIST("crow"), LIST("256x256", "1024x1024"), LIST("tent:r=1"),
-     LIST("crowtable", "crowtable:form=rows", "crowtiler")},
+     LIST("crowtable", "crowtable:form=rows", "crowtiler", "analytic")},
     /* Feibush et al.'s Gaussian of fig. 4d (s = 1 pixel, mask radius 2 s):
      * their edge filter, and their texture filter with the edge filter */
     {LIST("crow"), LIST("256x256", "1024x1024"), LIST("gauss:s=1"),
@@ -74,7 +76,7 @@ static const aa_suite_group paper[] = {
 #define FAMILIES                                                                               \
     "point", "supersample", "jitter", "hexagon", "trio", "mlaa", "fxaa", "smaa", "area", "taa", \
         "cycle", "adaptive", "freetype", "stb", "cairo", "agg", "crowtable", "conetable",          \
-        "crowtiler", "feibushtex"
+        "crowtiler", "feibushtex", "analytic"
 
 static const aa_suite_group full[] = {
     {LIST("crow"), LIST("256x256", "1024x1024"),
@@ -95,7 +97,10 @@ static const aa_suite_group full[] = {
           "conetable", "conetable:cut=3", "conetable:res=256", "crowtiler",
           "crowtiler:hidden=scan", "crowtiler:area=exact", "crowtiler:area=exact,hidden=scan",
           "feibushtex",
-          "feibushtex:res=128")},
+          "feibushtex:res=128", "analytic")},
+    /* analytic under the polynomial filters beyond the tent */
+    {LIST("crow"), LIST("256x256", "1024x1024"),
+     LIST("bspline:order=2", "bspline:order=3", "mitchell", "catrom"), LIST("analytic")},
     {LIST("catmull:tiles=3", "slivers", "star", "feibush", "fence", "dots"), LIST("256x256"),
      LIST("box", "tent:r=1", "gauss", "cone"), LIST(FAMILIES)},
     /* the zone plate has exact integrals for box, tent and gauss, and only

@@ -1,0 +1,242 @@
+/*
+ * test_analytic.c: `analytic`, the analytic rasterization of Manson and
+ * Schaefer 2013 under the separable piecewise polynomial filters.
+ *
+ * Known answers, none from the method itself:
+ *  - the exact reference of the harness's separate truth path
+ *    (aa_truth_render, its own quadrature of the filter over the scene's
+ *    rows), within 1e-12 per pixel, on crow (quadratic arcs), crow with its
+ *    arcs raised to cubics, the cubic scene of scenes.c, star, slivers,
+ *    catmull, feibush (several layers), the shipped SVG scenes with quadratic
+ *    and cubic arcs and abutting or coincident paths, and two overlapping
+ *    layers built here (a self-crossing even-odd cubic path in front of a
+ *    nonzero path of two crossing loops of quadratic arcs), under every filter the
+ *    method takes;
+ *  - closed forms: a white region on black filtered by a filter whose
+ *    integer translates sum to 1 (box, tent:r=1, the B-splines,
+ *    Mitchell-Netravali for any B and C, Catmull-Rom) sums, over an image
+ *    holding its whole filtered support, to its area: a parabolic segment is
+ *    2/3 of its control triangle (Archimedes), and the region under
+ *    y = x^3 over [0, 1], the cubic Bezier (0,0) (1/3,0) (2/3,0) (1,1),
+ *    has area 1/4, scaled;
+ *  - refusals by name: filters that are not piecewise polynomial or not
+ *    separable, elliptical arcs.
+ */
+#include "bench.h"
+#include "scenes.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+static const char *const filters[] = {"box",         "tent:r=1", "tent:r=0.65", "bspline:order=2",
+                                      "bspline:order=3", "mitchell", "mitchell:b=0.2,c=0.7",
+                                      "catrom",      NULL};
+
+/* The quick tier takes every filter on crow and one filter a scene (in
+ * turn) elsewhere, at smaller sizes; test_analytic_full.c, of the full tier,
+ * is this file with ANALYTIC_ALL set: every scene under every filter. */
+#ifndef ANALYTIC_ALL
+#define ANALYTIC_ALL 0
+#endif
+#define NFILTERS 8
+
+/* The largest difference between analytic and the reference on a scene
+ * (pattern units) at w x h under every filter (all = 1) or under one, in
+ * turn from call to call (quick tier); fails over 1e-12.  sized: the scene
+ * is drawn at the view's size (svg), w x h is its size in every tier. */
+static void against_reference(const char *what, const aa_scene *s, int w, int h, int all,
+                              int sized)
+{
+    static int turn;
+    if (!ANALYTIC_ALL && !all && !sized) { /* smaller (a scene drawn at its size stays) */
+        int q = 3 * w / 4;
+        h = h * q / w;
+        w = q;
+    }
+    for (int fi = 0; fi < NFILTERS; fi++) {
+        const char *const *f = &filters[fi];
+        if (!ANALYTIC_ALL && !all && fi != turn % NFILTERS)
+            continue;
+        aa_image a, r;
+        support_render("analytic", s, *f, w, h, 2, &a, NULL);
+        support_reference(s, &(support_view){.w = w, .h = h, .filter = *f, .threads = 1}, &r,
+                          NULL, NULL);
+        double worst = 0.0;
+        size_t n = (size_t)w * h * 3;
+        for (size_t k = 0; k < n; k++) {
+            double d = fabs(a.v[k] - r.v[k]);
+            if (!(d <= 1e-12))
+                fail_msg("%s %dx%d under %s: pixel %zu channel %zu: analytic %.17g, reference "
+                         "%.17g",
+                         what, w, h, *f, k / 3 % (size_t)w, k % 3, a.v[k], r.v[k]);
+            worst = fmax(worst, d);
+        }
+        print_message("%-24s %-22s largest difference %.1e\n", what, *f, worst);
+        aa_image_free(&a);
+        aa_image_free(&r);
+    }
+    turn++;
+}
+
+static void test_patterns(void **state)
+{
+    (void)state;
+    const char *const specs[] = {"crow", "star", "slivers", "catmull:tiles=4", "feibush", NULL};
+    for (const char *const *p = specs; *p; p++) {
+        aa_scene *s = scenes_pattern(*p);
+        int crow = !strcmp(*p, "crow");
+        against_reference(*p, s, crow ? 32 : 24, crow ? 30 : 24, crow, 0);
+        aa_scene_free(s);
+    }
+}
+
+static void test_cubics(void **state)
+{
+    (void)state;
+    aa_scene *crow = scenes_pattern("crow");
+    aa_scene *up = scenes_elevated(crow);
+    against_reference("crow raised to cubics", up, 32, 32, 0, 0);
+    aa_scene *c = scenes_cubics();
+    against_reference("cubic arcs", c, 26, 22, 0, 0);
+    aa_scene_free(c);
+    aa_scene_free(up);
+    aa_scene_free(crow);
+}
+
+static void test_svg(void **state)
+{
+    (void)state;
+    const char *const files[] = {"curves", "shapes", "logo", "mono", "abut", "coincident", NULL};
+    for (const char *const *f = files; *f; f++) {
+        char spec[128];
+        snprintf(spec, sizeof spec, "svg:file=patterns/svg/%s.svg", *f);
+        aa_spec ps;
+        aa_scene *s = NULL;
+        /* drawn at the view's size */
+        int n = ANALYTIC_ALL ? 28 : 20;
+        if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, n, n, &s))
+            fail_msg("pattern %s: %s", spec, aa_last_error());
+        against_reference(*f, s, n, n, 0, 1);
+        aa_scene_free(s);
+    }
+}
+
+/* A self-crossing even-odd path of cubic arcs in front of a nonzero path of
+ * two crossing loops of quadratic arcs (wound twice where they overlap), in
+ * colours apart in every channel. */
+static void test_overlapping_layers(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new((aa_rgb){{0.1, 0.2, 0.3}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.9, 0.05, 0.6}}, AA_FILL_EVENODD), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.15, 0.2), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 0.9, 0.1, 0.1, 0.9, 0.85, 0.8), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 0.95, 0.3, 0.3, 0.95, 0.15, 0.2), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.3, 0.8, 0.15}}, AA_FILL_NONZERO), AA_OK);
+    for (int turn = 0; turn < 2; turn++) {
+        double d = 0.037 * turn; /* the second turn moved: the two cross */
+        assert_int_equal(aa_scene_move_to(s, 0.3 + d, 0.55 + d), AA_OK);
+        assert_int_equal(aa_scene_quad_to(s, 0.5 + d, 0.1 + d, 0.72 + d, 0.5 + d), AA_OK);
+        assert_int_equal(aa_scene_quad_to(s, 0.55 + d, 0.95 + d, 0.3 + d, 0.55 + d), AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    against_reference("overlapping layers", s, 27, 25, 0, 0);
+    aa_scene_free(s);
+}
+
+/* The image of a white region sums to its area (header), w x h pixels. */
+static void check_sum(const char *what, const aa_scene *s, int w, int h, double area)
+{
+    const char *const pu[] = {"box",      "tent:r=1", "bspline:order=2",      "bspline:order=3",
+                              "mitchell", "catrom",   "mitchell:b=0.5,c=0.75", NULL};
+    for (const char *const *f = pu; *f; f++) {
+        aa_image img;
+        support_render("analytic", s, *f, w, h, 1, &img, NULL);
+        double sum = 0.0;
+        for (int k = 0; k < w * h; k++)
+            sum += img.v[3 * k];
+        if (!(fabs(sum - area) <= 1e-12 * area))
+            fail_msg("%s under %s: sum %.17g, area %.17g", what, *f, sum, area);
+        print_message("%s under %-22s: sum - area %.1e\n", what, *f, sum - area);
+        aa_image_free(&img);
+    }
+}
+
+static void test_sums(void **state)
+{
+    (void)state;
+    int w = 23, h = 19;
+    /* a parabolic segment, pattern units inside [0.2, 0.8]^2 */
+    const double p0[2] = {0.21, 0.74}, c[2] = {0.47, 0.22}, p1[2] = {0.78, 0.69};
+    aa_scene *s = scenes_arc_segment(p0[0], p0[1], c[0], c[1], p1[0], p1[1]);
+    double tri = 0.5 * fabs((c[0] - p0[0]) * (p1[1] - p0[1]) - (p1[0] - p0[0]) * (c[1] - p0[1]));
+    check_sum("parabolic segment", s, w, h, 2.0 / 3.0 * tri * w * h);
+    aa_scene_free(s);
+    /* under y = x^3 on [0, 1], placed at (0.25, 0.75) scaled by (0.5, -0.5):
+     * the cubic (0,0) (1/3,0) (2/3,0) (1,1), then down and back */
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.25, 0.75), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 0.25 + 0.5 / 3, 0.75, 0.25 + 1.0 / 3, 0.75, 0.75, 0.25),
+                     AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.75, 0.75), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    check_sum("under y = x^3", s, w, h, 0.25 * 0.5 * 0.5 * w * h);
+    aa_scene_free(s);
+}
+
+static void refused_filter(const char *filter, const char *words)
+{
+    aa_filter f;
+    aa_spec spec;
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    int st = aa_method_parse("analytic", &f, &spec);
+    if (st != AA_EINVAL || !strstr(aa_last_error(), words))
+        fail_msg("analytic -f %s: status %d, \"%s\" (expected %d and \"%s\")", filter, st,
+                 aa_last_error(), AA_EINVAL, words);
+}
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    refused_filter("gauss", "gauss is not one");
+    refused_filter("lanczos", "lanczos is not one");
+    refused_filter("cone", "cone is not one");
+    refused_filter("gauss:s=1,cut=2", "is not one");
+    /* an elliptical arc: refused at the render, by name */
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.8, 0.5), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, 0.5, 0.5, 0.3, 0.0, 0.0, 0.2, 0.0, M_PI, 0.2, 0.5), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_image out;
+    int st = support_render_view("analytic", s, &(support_view){.w = 8, .h = 8, .filter = "tent",
+                                                                 .seed = 1, .threads = 1},
+                                 &out, NULL);
+    if (st != AA_EINVAL || !strstr(aa_last_error(), "elliptical arcs"))
+        fail_msg("an ellipse: status %d, \"%s\"", st, aa_last_error());
+    aa_scene_free(s);
+}
+
+SUPPORT_MAIN(NULL, NULL,
+             cmocka_unit_test(test_patterns),
+             cmocka_unit_test(test_cubics),
+             cmocka_unit_test(test_svg),
+             cmocka_unit_test(test_overlapping_layers),
+             cmocka_unit_test(test_sums),
+             cmocka_unit_test(test_refusals))

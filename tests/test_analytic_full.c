@@ -1,0 +1,7 @@
+/* tier: full */
+/*
+ * test_analytic_full.c: test_analytic.c with every scene under every
+ * filter, at the larger sizes (its header says what is checked).
+ */
+#define ANALYTIC_ALL 1
+#include "test_analytic.c"
