@@ -138,11 +138,15 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point is about 50 to 100 (2.6 s against
- * 25 ms on a shared machine): 84% of area's time is aa_piece_meet's
- * bisection on exact extents, on pairs of nearly parallel offset pieces at
- * the joins (their boxes overlap down to small intervals), the quadrature
- * 2%.
+ * (tests/bench_bezstroke.c), area/point was 8.0 in the quietest run here
+ * (area 334 ms, point 41.5 ms; 6 to 8 in others, the shared machine's load
+ * at 5 to 15), 4.2 by perf's samples of the two renders: about 40% of
+ * area's time is aa_piece_meet (the pieces of a stroke's overlapping
+ * contours cross near every join; pairs running side by side are decided
+ * by their slopes, scene_piece.c), a fifth the parts' end points and
+ * quadrature (part_area), the rest the band lines' and cell sides'
+ * parameters (Newton on the curve).  Not yet within the factor of 2 of
+ * other scenes.
  *
  * Hidden surfaces.  Clusters where pieces cross, or end inside the band
  * (vertices, flat edges), need the per-pixel treatment Catmull describes

@@ -658,6 +658,17 @@ static double param_at(const aa_piece *p, double y)
     return p->kind == AA_PIECE_OFFSET ? offset_t_at(p, y) : 0.0;
 }
 
+/* The parameter at height y in (a, b) of an offset piece whose parameters
+ * at a and b are t[0] and t[1]: solved in that bracket, not the piece's. */
+static double param_within(const aa_piece *p, double y, double a, const double t[2])
+{
+    if (p->kind != AA_PIECE_OFFSET)
+        return 0.0;
+    if (!(y > p->y0) || !(y < p->y1) || t[0] == t[1])
+        return offset_t_at(p, y);
+    return aa__offset_solve_d(&p->oc, 1, t[0], t[1], a - y, y);
+}
+
 static void range_at(const aa_piece *p, double a, double b, double ta, double tb, double *lo,
                      double *hi)
 {
@@ -827,7 +838,7 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
         record_meet(c, m, scale);
         return;
     }
-    double pm = param_at(c->p, m), qm = param_at(c->q, m);
+    double pm = param_within(c->p, m, a, tp), qm = param_within(c->q, m, a, tq);
     const double lp[2] = {tp[0], pm}, rp[2] = {pm, tp[1]};
     const double lq[2] = {tq[0], qm}, rq[2] = {qm, tq[1]};
     subdivide_offset(c, a, m, lp, lq, depth + 1);
