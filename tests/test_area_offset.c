@@ -13,7 +13,12 @@
  *    not cross), the arc length by GSL's QAG (61-point Gauss-Kronrod,
  *    1e-13); `area`'s image summed (a white shape's box image sums to its
  *    area), to 1e-12, and the same on dashes laid out here from the arc
- *    length.
+ *    length;
+ *  - the meetings `area` cuts its bands at (aa_piece_meet, whose pairs
+ *    running side by side are decided by their slopes): every sign change
+ *    of x_p - x_q seen at 400 heights over two pieces' common height, on
+ *    every pair of a stroke's pieces with an offset piece, holds a meeting
+ *    aa_piece_meet reports (ends shared by the two pieces aside).
  */
 #include "path.h"
 #include "support.h"
@@ -206,9 +211,82 @@ static void test_tube(void **state)
     tube("S across, w 0.02, dashes", s_curve, 0.02, dash, 0.04, 128);
 }
 
+/* ---- meetings against sampled sign changes ---- */
+
+static int meetings(const char *what, const double *cs, int nc, const aa_stroke_style *st)
+{
+    aa_scene *s = stroke_scene(cs, nc, st, NULL);
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    int pairs = 0, changes = 0, missed = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = i + 1; k < n; k++) {
+            const aa_piece *p = &pc[i], *q = &pc[k];
+            if (!p->dir || !q->dir ||
+                (p->kind != AA_PIECE_OFFSET && q->kind != AA_PIECE_OFFSET))
+                continue;
+            double lo = fmax(p->y0, q->y0), hi = fmin(p->y1, q->y1), ys[16];
+            if (!(lo < hi) || p->xmax < q->xmin || q->xmax < p->xmin)
+                continue;
+            pairs++;
+            int m = aa_piece_meet(p, q, lo, hi, ys, 16);
+            double prev = NAN, yprev = lo;
+            for (int j = 1; j < 400; j++) { /* inner heights: shared ends aside */
+                double y = lo + (hi - lo) * j / 400.0;
+                double d = aa_piece_x_at(p, y) - aa_piece_x_at(q, y);
+                if (fabs(d) < 1e-9) {
+                    prev = NAN; /* too near a meeting to tell its side */
+                    continue;
+                }
+                if (prev == prev && (prev < 0) != (d < 0)) {
+                    changes++;
+                    int found = 0;
+                    for (int r = 0; r < m; r++)
+                        found |= ys[r] >= yprev - 1e-9 && ys[r] <= y + 1e-9;
+                    if (!found && missed++ < 5)
+                        print_message("%s: pieces %zu, %zu change sides in [%.17g, %.17g], "
+                                      "not met\n",
+                                      what, i, k, yprev, y);
+                }
+                prev = d, yprev = y;
+            }
+        }
+    print_message("%-34s %d pairs, %d sign changes sampled, %d not met\n", what, pairs,
+                  changes, missed);
+    assert_int_equal(missed, 0);
+    aa_scene_free(s);
+    return changes;
+}
+
+static void test_meetings(void **state)
+{
+    (void)state;
+    const double three[20] = {0.1, 0.5, 0.3, 0.1,  0.5, 0.1,  0.6, 0.4, 0.7, 0.9,
+                              0.2, 0.6, 0.5, 0.5, 0.95, 0.2, 0.9, 0.8, 0.6, 0.85};
+    const double tight[8] = {0.2, 0.2, 0.9, 0.3, 0.9, 0.7, 0.25, 0.75};
+    /* smooth joins: the offsets of consecutive arcs run side by side */
+    const double wave[20] = {0.05, 0.5, 0.15, 0.45, 0.25, 0.45, 0.35, 0.5, 0.45, 0.55,
+                             0.55, 0.55, 0.65, 0.5, 0.75, 0.45, 0.85, 0.45, 0.95, 0.5};
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    int changes = 0;
+    st.width = 0.08;
+    changes += meetings("3 arcs, round, w 0.08", three, 3, &st);
+    st.width = 0.01;
+    changes += meetings("wave, round, w 0.01", wave, 3, &st);
+    st.width = 0.06;
+    changes += meetings("wave, round, w 0.06", wave, 3, &st);
+    st.join = AA_JOIN_MITER, st.cap = AA_CAP_BUTT;
+    st.width = 0.3;
+    changes += meetings("tight, w 0.3 (folds)", tight, 1, &st);
+    assert_true(changes > 0); /* the oracle saw crossings */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
-                                       cmocka_unit_test(test_tube)};
+                                       cmocka_unit_test(test_tube),
+                                       cmocka_unit_test(test_meetings)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

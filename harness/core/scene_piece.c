@@ -753,8 +753,9 @@ static int slope_range(const aa_piece *p, double a, double b, const double t[2],
  * theorem):
  *  - D' of one sign (D strictly monotone): no meeting if D(a) and D(b) are
  *    of one sign beyond tol (APART), exactly one if of opposite signs
- *    beyond tol (ONE: *at its bracket's lower end's D), else a meeting at
- *    the end where |D| <= tol (AT_A, AT_B);
+ *    beyond tol (ONE: *fa is D(a)), else a meeting at the end where
+ *    |D| <= tol (AT_A, AT_B) if the meeting is then within res of it (it
+ *    is within tol/min |D'|), else UNKNOWN;
  *  - else D lies above both D(a) + slo (y - a) and D(b) - shi (b - y) (for
  *    D > 0 at both ends), whose larger is least where they cross (clamped
  *    to [a, b]): no meeting if that least value exceeds tol (APART).
@@ -765,7 +766,7 @@ static int slope_range(const aa_piece *p, double a, double b, const double t[2],
  * piece turning horizontal) or nothing is proven. */
 enum { UNKNOWN, APART, ONE, AT_A, AT_B };
 static int slopes_say(const aa_piece *p, const aa_piece *q, double a, double b,
-                      const double tp[2], const double tq[2], double tol, double *fa)
+                      const double tp[2], const double tq[2], double tol, double res, double *fa)
 {
     double plo, phi, qlo, qhi;
     if (!slope_range(p, a, b, tp, &plo, &phi) || !slope_range(q, a, b, tq, &qlo, &qhi))
@@ -783,6 +784,11 @@ static int slopes_say(const aa_piece *p, const aa_piece *q, double a, double b,
             return APART;
         if ((da < -tol && db > tol) || (da > tol && db < -tol))
             return ONE;
+        /* an end within tol: |D'| >= g, so a meeting is within tol/g of
+         * it; said to be there only if that is within the resolution */
+        double g = slo > 0.0 ? slo : -shi;
+        if (!(tol <= res * g))
+            return UNKNOWN;
         return fabs(da) <= fabs(db) ? AT_A : AT_B;
     }
     if (!((da > tol && db > tol) || (da < -tol && db < -tol)))
@@ -807,7 +813,7 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
     if (pb < qa - tol || qb < pa - tol)
         return;
     double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m)), da;
-    switch (slopes_say(c->p, c->q, a, b, tp, tq, tol, &da)) {
+    switch (slopes_say(c->p, c->q, a, b, tp, tq, tol, 1e-12 * scale, &da)) {
     case APART:
         return;
     case ONE:
