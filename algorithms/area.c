@@ -138,8 +138,8 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point was 8.0 in the quietest run here
- * (area 334 ms, point 41.5 ms; 6 to 8 in others, the shared machine's load
+ * (tests/bench_bezstroke.c), area/point was 7.7 in the last run here
+ * (area 259 ms, point 34 ms; 6 to 8 in others, the shared machine's load
  * at 5 to 15), 4.2 by perf's samples of the two renders: about 40% of
  * area's time is aa_piece_meet (the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
