@@ -1628,8 +1628,8 @@ static void state_free(ar_state *S)
 }
 
 /* An offset piece: tau = sg t rising down it, its x turns in tau, its
- * panels appended to S->pan (q->pan holds their index until all are made,
- * the array moving as it grows). */
+ * panels appended to S->pan (q->pan is set when all are made: the array
+ * moves as it grows). */
 static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
 {
     q->offset = 1;
@@ -1655,7 +1655,7 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
     memcpy(all + S->npan, pan, np * sizeof *pan);
     free(pan);
     S->pan = all;
-    q->pan = (const ar_panel *)(uintptr_t)S->npan;
+    q->pan0 = S->npan;
     q->npan = np;
     q->quad = &S->quad;
     S->npan += np;
@@ -1714,7 +1714,7 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
     }
     for (size_t k = 0; k < n; k++)
         if (S->piece[k].offset)
-            S->piece[k].pan = S->pan + (uintptr_t)S->piece[k].pan;
+            S->piece[k].pan = S->pan + S->piece[k].pan0;
     if (n)
         qsort(S->piece, n, sizeof *S->piece, cmp_piece);
     return AA_OK;

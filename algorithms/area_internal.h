@@ -87,7 +87,7 @@ typedef struct ar_piece {
     int offset;
     double sg, ote, ote2;
     const ar_panel *pan;
-    size_t npan;
+    size_t pan0, npan; /* pan0: the first panel's index in the state's */
     const ar_quad *quad;
 } ar_piece;
 
