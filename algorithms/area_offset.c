@@ -48,9 +48,10 @@
  * slack R - h), so its bound is at most the panel's, and the fewest points
  * of AR_QUAD_RULES whose bound is within AR_QUAD_TOL are used (on the
  * 1,000 stroked cubics of tests/bench_bezstroke.c at 1024 px: 4 points for
- * 19% of the shares, 6 for 50%, 8 for 22%, 11 for 8%, 16 for 1%).  The bound holds up to the
- * rounding of the bound's own terms (a relative 1e-12 margin is added) and
- * of the sum itself (about 1e-16 of the integrand's size times h).
+ * 19% of the shares, 6 for 50%, 8 for 22%, 11 for 8%, 16 for 1%).  The
+ * bound holds up to the rounding of the bound's own terms (a relative
+ * 1e-12 margin is added) and of the sum itself (about 1e-16 of the
+ * integrand's size times h).
  *
  * Refused (AA_EINVAL): a piece whose panels would be narrower than 1e-12 of
  * its parameter range (B' or c within rounding of 0 on it; the stroker
