@@ -38,6 +38,27 @@
 #define ANCHOR_ROWS 16
 /* Integer range of cell origins. */
 #define CELL_LIMIT 1073741824.0
+/* Offset pieces (area_offset.c): the largest error bound of the quadrature
+ * of one part's share of a panel (px^2), the panels' order, and the number
+ * of Gauss-Legendre rules tried. */
+#define AR_QUAD_TOL 1e-15
+#define AR_QUAD_NMAX 16
+#define AR_QUAD_RULES 5
+
+/* Gauss-Legendre rules on [-1, 1]: rule r has n[r] points x, w from at[r]. */
+typedef struct ar_quad {
+    int n[AR_QUAD_RULES], at[AR_QUAD_RULES];
+    double x[64], w[64];
+} ar_quad;
+
+/* A panel of an offset piece's parameter (area_offset.c): [a, b], its
+ * middle m; on the disc |t - m| <= R the quadrature's integrand is at most
+ * M (px^2, with the map's factor); bx, by: B's Taylor coefficients about m
+ * (B(m + s) - B(m) = s (b1 + s (b2 + s b3)), [0] = 0). */
+typedef struct ar_panel {
+    double a, b, m, R, M;
+    double bx[4], by[4];
+} ar_panel;
 
 /* ------------------------------------------------------------------------
  * Pieces, as the method reads them (shared, read-only)
@@ -59,6 +80,15 @@ typedef struct ar_piece {
     int conic;            /* an arc of an ellipse: its fields are src's */
     double dyd;           /* dy rounded */
     const aa_piece *src;  /* the scene's piece (crossings of cubics and conics) */
+    /* An offset piece (AA_PIECE_OFFSET): its "tau" is sg t (t the curve's
+     * parameter, sg = +-1 so that tau rises down the piece); te, te2: tau
+     * where x turns (ascending, infinite if none); its panels (npan of
+     * them, state-owned) and the rules (area_offset.c) */
+    int offset;
+    double sg, ote, ote2;
+    const ar_panel *pan;
+    size_t pan0, npan; /* pan0: the first panel's index in the state's */
+    const ar_quad *quad;
 } ar_piece;
 
 /* A piece as a worker sees it, one per piece, kept from row to row.
@@ -144,6 +174,9 @@ typedef struct ar_state {
     double (*colour)[3]; /* per layer, then the background */
     int *evenodd;
     ar_worker *workers;
+    ar_panel *pan; /* the offset pieces' panels */
+    size_t npan;
+    ar_quad quad;
 } ar_state;
 
 /* Row context passed through the cluster functions. */
@@ -166,8 +199,23 @@ static inline const double *colour_of(const ar_state *S, const int *w)
     return S->colour[S->nl];
 }
 
+/* An offset piece's point at tau, relative to the cell c0 and to the
+ * line y = -V (extended precision, then rounded). */
+static inline void offset_uv(const ar_seg *s, double t, double *u, double *v)
+{
+    long double X, Y;
+    aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
+    *u = (double)(X - s->c0);
+    *v = (double)(Y + s->V);
+}
+
 static inline double u_at(const ar_seg *s, double t)
 {
+    if (s->p->offset) {
+        long double X, Y;
+        aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
+        return (double)(X - s->c0);
+    }
     if (s->p->conic) /* sin tau = 2q/(1 + q^2), 1 - cos tau = 2q^2/(1 + q^2) */
         return s->U + 2.0 * t * (s->g + s->ax * t) / (1.0 + t * t);
     return s->U + t * (s->g + t * (s->ax + t * s->cx3));
@@ -243,11 +291,23 @@ static inline double conic_q_of_v(const ar_seg *s, double c)
     return den > 0.0 ? -c / den : 0.0;
 }
 
+/* An offset piece's tau where coordinate coord (0 x, 1 y) is target,
+ * between taus a and b, fa: its value at a less target (its sign). */
+static inline double offset_tau(const ar_seg *s, int coord, double a, double b, double fa,
+                                double target)
+{
+    double sg = s->p->sg;
+    return sg * (double)aa__offset_solve_from(&s->p->src->oc, coord, sg * a, sg * b, fa, target,
+                                              NAN);
+}
+
 /* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
  * in the cancellation-free form. */
 static inline double solve_v(const ar_seg *s, double v)
 {
     double c = s->V - v;
+    if (s->p->offset) /* y = v - V, between the band's ends */
+        return offset_tau(s, 1, s->ta, s->tb, s->va - v, v - s->V);
     if (s->p->conic)
         return conic_q_of_v(s, c);
     if (s->p->cubic) /* from the linear guess */
@@ -301,5 +361,14 @@ static inline void store_px(const ar_row *r, double *px, const double *v)
  * declines (too many edges, or arcs) and the bands must do it. */
 int area_cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                            const int *w);
+
+/* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
+ * (*out to be freed); 1/2 the integral of (P - P(ta)) x P' from t = ta to
+ * tb, the segment between the part and its chord, in px^2 (with its
+ * proven bound, AR_QUAD_TOL per panel it meets). */
+int area_quad_init(ar_quad *q);
+int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel **out,
+                       size_t *n);
+double area_offset_segment(const ar_piece *pc, double ta, double tb);
 
 #endif /* AA_AREA_INTERNAL_H */

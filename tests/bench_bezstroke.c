@@ -8,9 +8,9 @@
  * Prints, for W x H (default 1024x1024) with one thread: the time to
  * stroke the path (median of 5), the number of pieces of the scene, the
  * box reference's time (median of -r REPS renders, default 3, after none
- * untimed: each is seconds long) with its largest bound, and `point`'s
- * median (of 5).  `area` does not integrate offset pieces yet (it refuses
- * them).  Figures are read, not asserted.
+ * untimed: each is seconds long; -r 0: none) with its largest bound, and `point`'s
+ * median (of 5), `area`'s median (of 5) and area/point.  Figures are read,
+ * not asserted.
  *
  * usage: bench_bezstroke [-s WxH] [-r REPS]
  */
@@ -69,7 +69,7 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if (w < 1 || h < 1 || reps < 1 || reps > 100) {
+    if (w < 1 || h < 1 || reps < 0 || reps > 100) {
         fprintf(stderr, "bench_bezstroke: bad size or repetitions\n");
         return 2;
     }
@@ -132,28 +132,37 @@ int main(int argc, char **argv)
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++)
             worst = fmax(worst, aa_pixel(&bound, i, j)[0]);
-    printf("box reference       %10.3f ms (median of %d), largest bound %.1e\n",
-           1e3 * median(t_ref, reps), reps, worst);
+    if (reps)
+        printf("box reference       %10.3f ms (median of %d), largest bound %.1e\n",
+               1e3 * median(t_ref, reps), reps, worst);
     aa_job job;
     aa_spec spec;
     aa_method m;
     aa_counters c;
-    double t_point[5];
-    if (aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1) ||
-        aa_method_parse("point", &f, &spec) || aa_method_init(&m, &spec, &job)) {
+    double t_m[2][5];
+    const char *names[2] = {"point", "area"};
+    if (aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1)) {
         fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
         return 3;
     }
-    for (int k = 0; k < 5; k++) {
-        double t0 = aa_now();
-        if (aa_method_render(&m, &job, &im, &c)) {
+    for (int q = 0; q < 2; q++) {
+        if (aa_method_parse(names[q], &f, &spec) || aa_method_init(&m, &spec, &job)) {
             fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
             return 3;
         }
-        t_point[k] = aa_now() - t0;
+        for (int k = 0; k < 5; k++) {
+            double t0 = aa_now();
+            if (aa_method_render(&m, &job, &im, &c)) {
+                fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+                return 3;
+            }
+            t_m[q][k] = aa_now() - t0;
+        }
+        aa_method_free(&m);
+        printf("%-19s %10.3f ms (median of 5, %.3f .. %.3f)\n", names[q],
+               1e3 * median(t_m[q], 5), 1e3 * t_m[q][0], 1e3 * t_m[q][4]);
     }
-    printf("point               %10.3f ms (median of 5)\n", 1e3 * median(t_point, 5));
-    aa_method_free(&m);
+    printf("area/point          %10.2f\n", median(t_m[1], 5) / median(t_m[0], 5));
     aa_job_free(&job);
     aa_image_free(&im);
     aa_image_free(&bound);

@@ -212,7 +212,10 @@ aa_scene *aa_scene_place(const aa_scene *s, int w, int h, double t, double vx, d
  * cannot miss a meeting while its budget of 4096 subintervals lasts (two
  * arcs running side by side over a long stretch can use it up, and a
  * meeting is then lost: harness/truth/truth_crowd.c finds theirs from a
- * quartic instead).  Flat pieces meet nothing. */
+ * quartic instead).  With an offset piece, each interval is first decided
+ * by the two pieces' slope ranges where both are bounded (scene_piece.c,
+ * slopes_say): pieces running side by side are then told apart at once
+ * instead of using up the budget.  Flat pieces meet nothing. */
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys,
                   int max);
 

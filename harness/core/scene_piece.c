@@ -658,6 +658,17 @@ static double param_at(const aa_piece *p, double y)
     return p->kind == AA_PIECE_OFFSET ? offset_t_at(p, y) : 0.0;
 }
 
+/* The parameter at height y in (a, b) of an offset piece whose parameters
+ * at a and b are t[0] and t[1]: solved in that bracket, not the piece's. */
+static double param_within(const aa_piece *p, double y, double a, const double t[2])
+{
+    if (p->kind != AA_PIECE_OFFSET)
+        return 0.0;
+    if (!(y > p->y0) || !(y < p->y1) || t[0] == t[1])
+        return offset_t_at(p, y);
+    return aa__offset_solve_d(&p->oc, 1, t[0], t[1], a - y, y);
+}
+
 static void range_at(const aa_piece *p, double a, double b, double ta, double tb, double *lo,
                      double *hi)
 {
@@ -665,6 +676,129 @@ static void range_at(const aa_piece *p, double a, double b, double ta, double tb
         offset_range(p, ta, tb, lo, hi);
     else
         aa_piece_xrange(p, a, b, lo, hi);
+}
+
+/* The range [*lo, *hi] of A/C between t = ta and tb, A and C quadratics
+ * (coefficients ascending): at the ends and where A'C - AC' (a quadratic)
+ * vanishes; 0 if C vanishes on [ta, tb]. */
+static int ratio_range(const double *A, const double *C, double ta, double tb, double *lo,
+                       double *hi)
+{
+    double t0 = fmin(ta, tb), len = fabs(tb - ta), r[2];
+    /* about t0: A(t0 + u), C(t0 + u) */
+    double c0 = C[0] + t0 * (C[1] + t0 * C[2]), c1 = C[1] + 2.0 * t0 * C[2], c2 = C[2];
+    double a0 = A[0] + t0 * (A[1] + t0 * A[2]), a1 = A[1] + 2.0 * t0 * A[2], a2 = A[2];
+    double cend = c0 + len * (c1 + len * c2);
+    if (!(c0 != 0.0 && cend != 0.0 && (c0 > 0.0) == (cend > 0.0)) ||
+        quadratic_roots(c2, c1, c0, len, r) > 0)
+        return 0;
+    double s0 = a0 / c0, s1 = (a0 + len * (a1 + len * a2)) / cend;
+    *lo = fmin(s0, s1), *hi = fmax(s0, s1);
+    int n = quadratic_roots(a2 * c1 - a1 * c2, 2.0 * (a2 * c0 - a0 * c2), a1 * c0 - a0 * c1, len,
+                            r);
+    for (int k = 0; k < n; k++) {
+        double sk = (a0 + r[k] * (a1 + r[k] * a2)) / (c0 + r[k] * (c1 + r[k] * c2));
+        *lo = fmin(*lo, sk), *hi = fmax(*hi, sk);
+    }
+    return 1;
+}
+
+/* The range [*lo, *hi] of dx/dy along p over heights [a, b] (t: an offset
+ * piece's parameters there).  A line's slope; a Bezier piece's x'/y', a
+ * ratio of quadratics in its t; on an offset piece P' is m(B') (1 - d k),
+ * on an evolute m(N) (1/k)', so dx/dy is the ratio of the rows of m
+ * applied to B' (or to N |B'| = (-B'y, B'x)), quadratics in t; on a conic
+ * -ea/er + (eb/er) cot s, monotone in s.  0 where it is not bounded (the
+ * piece turns horizontal on [a, b]). */
+static int slope_range(const aa_piece *p, double a, double b, const double t[2], double *lo,
+                       double *hi)
+{
+    int ok = 0;
+    if (p->kind == AA_PIECE_LINE) {
+        *lo = *hi = (p->x1 - p->x0) / (p->y1 - p->y0);
+        ok = 1;
+    } else if (p->kind == AA_PIECE_CONIC) {
+        double sa = aa__conic_s_at(p, a), sb = aa__conic_s_at(p, b);
+        if (!(sa > 0.0 && sb < M_PI && p->er > 0.0))
+            return 0;
+        double ka = -p->ea / p->er + p->eb / (p->er * tan(sa));
+        double kb = -p->ea / p->er + p->eb / (p->er * tan(sb));
+        *lo = fmin(ka, kb), *hi = fmax(ka, kb);
+        ok = 1;
+    } else if (p->kind == AA_PIECE_OFFSET) {
+        const double *c = p->oc.b, *m = p->oc.m;
+        double ux[3] = {c[1], 2.0 * c[2], 3.0 * c[3]}, uy[3] = {c[5], 2.0 * c[6], 3.0 * c[7]};
+        double A[3], C[3];
+        for (int k = 0; k < 3; k++) {
+            double vx = p->oc.evolute ? -uy[k] : ux[k], vy = p->oc.evolute ? ux[k] : uy[k];
+            A[k] = m[0] * vx + m[2] * vy;
+            C[k] = m[1] * vx + m[3] * vy;
+        }
+        ok = ratio_range(A, C, t[0], t[1], lo, hi);
+    } else if (p->kind == AA_PIECE_QUAD || p->kind == AA_PIECE_CUBIC) {
+        double A[3] = {p->bx, 2.0 * p->ax, 3.0 * p->dx}, C[3] = {p->by, 2.0 * p->ay, 3.0 * p->dy};
+        ok = ratio_range(A, C, aa_piece_t_at(p, a), aa_piece_t_at(p, b), lo, hi);
+    }
+    if (!ok)
+        return 0;
+    /* the rounding of the quotients, of the roots and of the parameters */
+    double e = 1e-9 * (fabs(*lo) + fabs(*hi)) + 1e-300;
+    *lo -= e, *hi += e;
+    return isfinite(*lo) && isfinite(*hi);
+}
+
+/* What the slopes tell of p and q on [a, b] (tp, tq their parameters at a
+ * and b), with D = x_p - x_q, D' = dx_p/dy - dx_q/dy within [slo, shi]
+ * (slope_range) and tol the rounding margin of x (by the mean value
+ * theorem):
+ *  - D' of one sign (D strictly monotone): no meeting if D(a) and D(b) are
+ *    of one sign beyond tol (APART), exactly one if of opposite signs
+ *    beyond tol (ONE: *fa is D(a)), else a meeting at the end where
+ *    |D| <= tol (AT_A, AT_B) if the meeting is then within res of it (it
+ *    is within tol/min |D'|), else UNKNOWN;
+ *  - else D lies above both D(a) + slo (y - a) and D(b) - shi (b - y) (for
+ *    D > 0 at both ends), whose larger is least where they cross (clamped
+ *    to [a, b]): no meeting if that least value exceeds tol (APART).
+ * For two pieces that run side by side (offsets of consecutive arcs near
+ * their join, a normal line and the offset it ends) this ends the
+ * bisection at once, where their boxes in x overlap down to a small
+ * fraction of their distance.  UNKNOWN where a slope is not bounded (a
+ * piece turning horizontal) or nothing is proven. */
+enum { UNKNOWN, APART, ONE, AT_A, AT_B };
+static int slopes_say(const aa_piece *p, const aa_piece *q, double a, double b,
+                      const double tp[2], const double tq[2], double tol, double res, double *fa)
+{
+    double plo, phi, qlo, qhi;
+    if (!slope_range(p, a, b, tp, &plo, &phi) || !slope_range(q, a, b, tq, &qlo, &qhi))
+        return UNKNOWN;
+    double xp[2], xq[2];
+    for (int k = 0; k < 2; k++) {
+        double y = k ? b : a;
+        xp[k] = p->kind == AA_PIECE_OFFSET ? offset_x(p, tp[k]) : aa_piece_x_at(p, y);
+        xq[k] = q->kind == AA_PIECE_OFFSET ? offset_x(q, tq[k]) : aa_piece_x_at(q, y);
+    }
+    double da = xp[0] - xq[0], db = xp[1] - xq[1], slo = plo - qhi, shi = phi - qlo;
+    *fa = da;
+    if (slo > 0.0 || shi < 0.0) {
+        if ((da > tol && db > tol) || (da < -tol && db < -tol))
+            return APART;
+        if ((da < -tol && db > tol) || (da > tol && db < -tol))
+            return ONE;
+        /* an end within tol: |D'| >= g, so a meeting is within tol/g of
+         * it; said to be there only if that is within the resolution */
+        double g = slo > 0.0 ? slo : -shi;
+        if (!(tol <= res * g))
+            return UNKNOWN;
+        return fabs(da) <= fabs(db) ? AT_A : AT_B;
+    }
+    if (!((da > tol && db > tol) || (da < -tol && db < -tol)))
+        return UNKNOWN;
+    if (da < 0.0) { /* D -> -D */
+        double t = slo;
+        da = -da, db = -db, slo = -shi, shi = -t;
+    }
+    double h = b - a, u = fmin(fmax((db - da - shi * h) / (slo - shi), 0.0), h);
+    return fmax(da + slo * u, db - shi * (h - u)) > tol ? APART : UNKNOWN;
 }
 
 static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2],
@@ -678,7 +812,24 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
     double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
     if (pb < qa - tol || qb < pa - tol)
         return;
-    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m));
+    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m)), da;
+    switch (slopes_say(c->p, c->q, a, b, tp, tq, tol, 1e-12 * scale, &da)) {
+    case APART:
+        return;
+    case ONE:
+        record_meet(c, polish_meet(c->p, c->q, a, b, da), scale);
+        return;
+    case AT_A: /* within rounding of a: a shared end, or a meeting there */
+        if (!(a == c->lo && c->lo_shared))
+            record_meet(c, a, scale);
+        return;
+    case AT_B:
+        if (!(b == c->hi && c->hi_shared))
+            record_meet(c, b, scale);
+        return;
+    default:
+        break;
+    }
     if (b - a <= 1e-6 * scale) {
         double fa = aa_piece_x_at(c->p, a) - aa_piece_x_at(c->q, a);
         double fb = aa_piece_x_at(c->p, b) - aa_piece_x_at(c->q, b);
@@ -693,7 +844,7 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
         record_meet(c, m, scale);
         return;
     }
-    double pm = param_at(c->p, m), qm = param_at(c->q, m);
+    double pm = param_within(c->p, m, a, tp), qm = param_within(c->q, m, a, tq);
     const double lp[2] = {tp[0], pm}, rp[2] = {pm, tp[1]};
     const double lq[2] = {tq[0], qm}, rq[2] = {qm, tq[1]};
     subdivide_offset(c, a, m, lp, lq, depth + 1);
