@@ -346,9 +346,14 @@ static void test_every_pattern(void **state)
     static const char *filters[] = {"box", "tent:r=1", "gauss"};
     for (const aa_pattern_type *const *t = aa_pattern_types; *t; t++)
         for (size_t k = 0; k < 3; k++) {
+            /* rings at its default of 64 circles crowds 40 x 28 pixels
+             * with conic pieces: seconds under the Gaussian; 16 circles
+             * take every path of the reference all the same */
+            const char *spec = strcmp((*t)->info.name, "rings") ? (*t)->info.name
+                                                                : "rings:rings=16";
             aa_image img;
             double bound;
-            reference((*t)->info.name, 40, 28, filters[k], &img, &bound);
+            reference(spec, 40, 28, filters[k], &img, &bound);
             assert_true(bound <= AA_TRUTH_BOUND);
             for (size_t q = 0; q < (size_t)3 * img.w * img.h; q++)
                 assert_true(img.v[q] >= -1e-12 && img.v[q] <= 1 + 1e-12);
