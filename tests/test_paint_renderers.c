@@ -1,6 +1,7 @@
 /*
  * test_paint_renderers.c: translucent paint, paint order, currentColor,
- * visibility and CSS colours as browsers draw them: the exact box
+ * visibility, CSS colours and strokes (joins, caps, a Bezier arc's exact
+ * offsets, dashes) as browsers draw them: the exact box
  * reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -41,7 +42,7 @@
 
 #define CELL 40
 #define COLS 4
-#define ROWS 4
+#define ROWS 5
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
@@ -205,6 +206,43 @@ static const cell cells[] = {
      "stroke-width=\"8\" color=\"#ABCDEF\"/>",
      {{10, 20, {1, 140 / 255.0, 0}}, {30, 10, {1, 0, 0.2}}, {22, 30, {0xab / 255.0, 0xcd / 255.0, 0xef / 255.0}}},
      3, ""},
+    /* strokes (SVG 2, "Stroke shape"), white 8 wide on the black ground:
+     * a right-angled miter join (miter length sqrt 2 x 8, under the limit
+     * 4 x 8) fills the corner square [4, 12]^2 of the path's corner (8, 8),
+     * so pixel (5, 5) is white; the inside of the angle is black; the
+     * vertical leg covers x in [4, 12] */
+    {"miter join",
+     "<polyline points=\"8,34 8,8 34,8\" fill=\"none\" stroke=\"white\" "
+     "stroke-width=\"8\"/>",
+     {{5, 5, {1, 1, 1}}, {20, 20, {0, 0, 0}}, {8, 20, {1, 1, 1}}},
+     3, ""},
+    /* round join and caps: the join is the disk of radius 4 about (8, 8),
+     * so pixels [2, 5]^2 (at least 4.24 from it) are black where a miter
+     * would be white at [4, 5]; the round cap at (34, 8) reaches pixel
+     * (35, 7), whose 3 x 3 pixels lie within 3.61 of the end */
+    {"round join and caps",
+     "<polyline points=\"8,34 8,8 34,8\" fill=\"none\" stroke=\"white\" "
+     "stroke-width=\"8\" stroke-linejoin=\"round\" stroke-linecap=\"round\"/>",
+     {{3, 3, {0, 0, 0}}, {35, 7, {1, 1, 1}}, {8, 20, {1, 1, 1}}},
+     3, ""},
+    /* a stroked cubic Bezier arc, 6 wide (its exact offset curves in the
+     * reference): B(1/2) = (20, 10.5) with a horizontal tangent and
+     * curvature radius 1296/156 = 8.3 > 3, so pixels [18, 21] x [9, 12]
+     * are inside; B(0.1) = (6.62, 22.98), unit normal (0.91, 0.41): pixels
+     * [5, 8] x [21, 24] lie within 1.1 of it across the curve; the arch's
+     * inside at (19, 19) is black */
+    {"stroked cubic",
+     "<path d=\"M 4 30 C 12 4 28 4 36 30\" fill=\"none\" stroke=\"white\" "
+     "stroke-width=\"6\"/>",
+     {{19, 10, {1, 1, 1}}, {6, 22, {1, 1, 1}}, {19, 19, {0, 0, 0}}},
+     3, ""},
+    /* dashes "8 4" along the line from (4, 20) to (36, 20), 6 wide: dashes
+     * over x in [4, 12], [16, 24], [28, 36], gaps [12, 16], [24, 28] */
+    {"dashes",
+     "<line x1=\"4\" y1=\"20\" x2=\"36\" y2=\"20\" stroke=\"white\" "
+     "stroke-width=\"6\" stroke-dasharray=\"8 4\"/>",
+     {{7, 19, {1, 1, 1}}, {13, 19, {0, 0, 0}}, {19, 19, {1, 1, 1}}, {25, 19, {0, 0, 0}}},
+     4, ""},
 };
 #define NCELLS (sizeof cells / sizeof cells[0])
 
