@@ -25,7 +25,12 @@
  *  - the Gaussian in a mask of radius 9 s equals the untruncated Gaussian
  *    (a different path: radial rows against the separable fixed rule) to
  *    their bounds and the mass beyond the mask, exp(-81 / 2);
- *    mitchell:b=1,c=0 equals the cubic B-spline.
+ *    mitchell:b=1,c=0 equals the cubic B-spline;
+ *  - the tip of a looping cubic arc, which turns 0.0044 above a kink's
+ *    breakpoint, under box, tent and mitchell:b=0.2,c=0.7: by Green's
+ *    theorem the integral along the arc of the cdf in x times the weight
+ *    in y, a polynomial between the knots' crossings that Gauss-Legendre
+ *    integrates exactly; and the transposed scene, pixel by pixel.
  * Every pixel is within its bound plus the answer's rounding (1e-15, or
  * the quadrature's estimate) and every bound is at most AA_TRUTH_BOUND;
  * the half-planes again through the one-piece-at-a-time path
@@ -494,6 +499,187 @@ static void test_same_filters(void **state)
     check_same("mitchell:b=0,c=0.5", "catrom", 0);
 }
 
+/* ---- the tip of a looping cubic ---- */
+
+/* The 1-D weight of spec at t, derived as above (box, tent:r=1 and the
+ * Mitchell-Netravali cubics). */
+static double weight_of(const char *spec, double t)
+{
+    double x = fabs(t), B, C;
+    if (!strcmp(spec, "box"))
+        return x < 0.5 ? 1 : 0;
+    if (!strcmp(spec, "tent:r=1"))
+        return x < 1 ? 1 - x : 0;
+    assert_int_equal(sscanf(spec, "mitchell:b=%lf,c=%lf", &B, &C), 2);
+    wpiece p[2];
+    mitchell_pieces(B, C, p);
+    for (int k = 0; k < 2; k++)
+        if (x >= p[k].a && x < p[k].b)
+            return p[k].c[0] + x * (p[k].c[1] + x * (p[k].c[2] + x * p[k].c[3]));
+    return 0;
+}
+
+/* Its cdf: the box's and the tent's by hand, the cubics' as cdf_of. */
+static double tip_cdf(const char *spec, double t)
+{
+    double err;
+    if (!strcmp(spec, "box"))
+        return fmin(fmax(t + 0.5, 0), 1);
+    if (!strcmp(spec, "tent:r=1"))
+        return t <= -1  ? 0
+               : t >= 1 ? 1
+               : t < 0  ? 0.5 * (1 + t) * (1 + t)
+                        : 1 - 0.5 * (1 - t) * (1 - t);
+    return cdf_of(spec, t, &err);
+}
+
+/* A looping cubic arc, closed by its chord (SVG path "M 2.55 12.6 C 16.15
+ * 7.7 0.85 7.7 14.45 13.3 Z"; x and y swapped when `swap`): its loop's
+ * tip turns (dy/dt = 0) at y = 9.008, 0.0044 above the height where the
+ * arc crosses x = 8.5, a kink of Mitchell's filter 1 from the centre of
+ * pixel (7, 7), whose window [5.5, 9.5]^2 holds only the tip. */
+static const double loop_cubic[8] = {2.55, 12.6, 16.15, 7.7, 0.85, 7.7, 14.45, 13.3};
+
+static aa_scene *loop_scene(int swap)
+{
+    const double *c = loop_cubic;
+    int a = swap, b = !swap;
+    aa_scene *s = aa_scene_new(black);
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, c[a], c[b]), AA_OK);
+    assert_int_equal(
+        aa_scene_cubic_to(s, c[2 + a], c[2 + b], c[4 + a], c[4 + b], c[6 + a], c[6 + b]), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static void loop_at(double t, double *x, double *y, double *dy)
+{
+    const double *c = loop_cubic;
+    double u = 1 - t, b[4] = {u * u * u, 3 * u * u * t, 3 * u * t * t, t * t * t};
+    *x = b[0] * c[0] + b[1] * c[2] + b[2] * c[4] + b[3] * c[6];
+    *y = b[0] * c[1] + b[1] * c[3] + b[2] * c[5] + b[3] * c[7];
+    *dy = 3 * (u * u * (c[3] - c[1]) + 2 * u * t * (c[5] - c[3]) + t * t * (c[7] - c[5]));
+}
+
+typedef struct tip {
+    const char *spec;
+    double uc, vc;
+} tip;
+
+/* Green's theorem: the filtered tip is minus the integral along the arc
+ * of W(x - uc) w(y - vc) dy, W the cdf: the chord lies outside the
+ * window's rows, and the arc reaches the tip from the right and leaves it
+ * to the left (its loop crosses itself below the window), clockwise round
+ * it: winding -1, white under the nonzero rule. */
+static double tip_integrand(double t, void *pt)
+{
+    const tip *p = pt;
+    double x, y, dy;
+    loop_at(t, &x, &y, &dy);
+    return tip_cdf(p->spec, x - p->uc) * weight_of(p->spec, y - p->vc) * dy;
+}
+
+/* Where x - uc or y - vc crosses k / 2 (k = -4 .. 4: every filter's knots
+ * here), by a scan in steps of 1e-3 (no two are closer on this arc) and
+ * bisection; the integrand is a polynomial of degree 23 at most between
+ * them, which 12-point Gauss-Legendre integrates exactly. */
+static double tip_value(const char *spec, double uc, double vc)
+{
+    double cut[64] = {0};
+    int n = 1;
+    for (int axis = 0; axis < 2; axis++)
+        for (int k = -4; k <= 4; k++) {
+            double level = (axis ? vc : uc) + 0.5 * k;
+            for (int s = 0; s < 1000; s++) {
+                double a = s / 1000.0, b = (s + 1) / 1000.0, xa, ya, xb, yb, d;
+                loop_at(a, &xa, &ya, &d);
+                loop_at(b, &xb, &yb, &d);
+                double fa = (axis ? ya : xa) - level, fb = (axis ? yb : xb) - level;
+                if (!((fa < 0) != (fb < 0)))
+                    continue;
+                for (int it = 0; it < 200 && b - a > 1e-17; it++) {
+                    double m = 0.5 * (a + b), xm, ym;
+                    loop_at(m, &xm, &ym, &d);
+                    if (((axis ? ym : xm) - level < 0) == (fa < 0))
+                        a = m;
+                    else
+                        b = m;
+                }
+                assert_true(n < 63);
+                cut[n++] = 0.5 * (a + b);
+            }
+        }
+    cut[n++] = 1;
+    qsort(cut, (size_t)n, sizeof *cut, truth_cmp_double);
+    gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(12);
+    assert_non_null(gl);
+    tip p = {spec, uc, vc};
+    gsl_function F = {tip_integrand, &p};
+    double sum = 0;
+    for (int k = 0; k + 1 < n; k++)
+        sum += gsl_integration_glfixed(&F, cut[k], cut[k + 1], gl);
+    gsl_integration_glfixed_table_free(gl);
+    return -sum;
+}
+
+/* One filter and path: every pixel whose window sees only the loop
+ * against the closed form, in the scene and its transpose, and the two
+ * images against each other, within their bounds. */
+static void check_loop(const aa_scene *s, const aa_scene *st, const char *f, int mode)
+{
+    aa_image a, ba, b, bb;
+    aa_filter filt;
+    assert_int_equal(aa_filter_parse(f, &filt), AA_OK);
+    ref(s, 17, 14, f, mode, &a, &ba);
+    ref(st, 14, 17, f, mode, &b, &bb);
+    double worst = 0, tip77 = 0;
+    /* rows whose window ends above the loop's crossing (y = 9.687) */
+    for (int j = 0; j + 0.5 + filt.radius <= 9.68; j++)
+        for (int i = 0; i < 17; i++) {
+            double want = tip_value(f, i + 0.5, j + 0.5);
+            if (i == 7 && j == 7)
+                tip77 = want;
+            check_value("loop tip", f, i, j, aa_pixel(&a, i, j)[0], *aa_pixel(&ba, i, j), want,
+                        1e-15, &worst);
+            check_value("transposed loop tip", f, j, i, aa_pixel(&b, j, i)[0],
+                        *aa_pixel(&bb, j, i), want, 1e-15, &worst);
+        }
+    for (int j = 0; j < 14; j++)
+        for (int i = 0; i < 17; i++) {
+            double d = fabs(aa_pixel(&a, i, j)[0] - aa_pixel(&b, j, i)[0]);
+            if (!(d <= *aa_pixel(&ba, i, j) + *aa_pixel(&bb, j, i) + 1e-15))
+                fail_msg("loop under %s, pixel (%d, %d): %.17g, transposed %.17g", f, i, j,
+                         aa_pixel(&a, i, j)[0], aa_pixel(&b, j, i)[0]);
+            worst = fmax(worst, d);
+        }
+    print_message("loop tip %-22s mode %d: pixel (7, 7) %.17g, max difference %.2e\n", f, mode,
+                  tip77, worst);
+    aa_image_free(&a);
+    aa_image_free(&ba);
+    aa_image_free(&b);
+    aa_image_free(&bb);
+}
+
+/* The tip against its closed form and the transposed scene (where it
+ * turns in x, a different path), also one piece at a time
+ * (AA__TRUTH_CROWD): a turning point just outside an interval between
+ * breakpoints. */
+static void test_loop_tip(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off();
+    const char *const specs[] = {"mitchell:b=0.2,c=0.7", "box", "tent:r=1", NULL};
+    aa_scene *s = loop_scene(0), *st = loop_scene(1);
+    for (const char *const *f = specs; *f; f++)
+        for (int mode = 0; mode <= AA__TRUTH_CROWD; mode += AA__TRUTH_CROWD)
+            check_loop(s, st, *f, mode);
+    aa_scene_free(s);
+    aa_scene_free(st);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_half_planes_separable),
@@ -501,6 +687,7 @@ int main(void)
                                        cmocka_unit_test(test_centred_disks),
                                        cmocka_unit_test(test_abutting_squares),
                                        cmocka_unit_test(test_sums),
-                                       cmocka_unit_test(test_same_filters)};
+                                       cmocka_unit_test(test_same_filters),
+                                       cmocka_unit_test(test_loop_tip)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
