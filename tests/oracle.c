@@ -50,6 +50,8 @@
 #include "oracle.h"
 
 #include <float.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -555,4 +557,50 @@ double oracle_poly_area_in_rect(const oracle_poly *p, double x0, double y0, doub
     q = oracle_poly_clip(&q, 0, -1, -y0);
     q = oracle_poly_clip(&q, 0, 1, y1);
     return oracle_poly_area(&q);
+}
+
+/* ---- cubic Bezier arcs ---- */
+
+void oracle_cubic_at(const double c[8], double t, double *x, double *y, double *dx, double *dy)
+{
+    double s = 1 - t, v[2], d[2];
+    for (int k = 0; k < 2; k++) {
+        double p0 = c[k], p1 = c[2 + k], p2 = c[4 + k], p3 = c[6 + k];
+        v[k] = s * s * s * p0 + 3 * s * s * t * p1 + 3 * s * t * t * p2 + t * t * t * p3;
+        d[k] = 3 * (s * s * (p1 - p0) + 2 * s * t * (p2 - p1) + t * t * (p3 - p2));
+    }
+    *x = v[0], *y = v[1], *dx = d[0], *dy = d[1];
+}
+
+double oracle_cubic_curvature(const double c[8], double t)
+{
+    double s = 1 - t, d[2], e[2];
+    for (int k = 0; k < 2; k++) {
+        d[k] = 3 * (s * s * (c[2 + k] - c[k]) + 2 * s * t * (c[4 + k] - c[2 + k]) +
+                    t * t * (c[6 + k] - c[4 + k]));
+        e[k] = 6 * (s * (c[4 + k] - 2 * c[2 + k] + c[k]) + t * (c[6 + k] - 2 * c[4 + k] + c[2 + k]));
+    }
+    double l = hypot(d[0], d[1]);
+    return (d[0] * e[1] - d[1] * e[0]) / (l * l * l);
+}
+
+static double cubic_speed(double t, void *p)
+{
+    double x, y, dx, dy;
+    oracle_cubic_at(p, t, &x, &y, &dx, &dy);
+    return hypot(dx, dy);
+}
+
+double oracle_cubic_length(const double c[8], double a, double b)
+{
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+    if (!w)
+        return NAN;
+    gsl_function f = {cubic_speed, (void *)c};
+    double r = NAN, err = INFINITY;
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    int st = gsl_integration_qag(&f, a, b, 1e-13, 0, 1000, GSL_INTEG_GAUSS61, w, &r, &err);
+    gsl_set_error_handler(old);
+    gsl_integration_workspace_free(w);
+    return st || !(err < 1e-13) ? NAN : r;
 }

@@ -1,6 +1,7 @@
 /*
  * oracle.h - an independent second derivation of the `crow` reference image,
- * the cut cone's volume, and polygon areas by clipping (at the end).
+ * the cut cone's volume, polygon areas by clipping, and cubic Bezier arcs'
+ * points, curvature and arc length (at the end).
  *
  * The harness computes reference values of Crow's parabolic moire pattern by
  * its own quadrature; the tests compare it with this file's values, which are
@@ -100,5 +101,15 @@ oracle_poly oracle_poly_scaled(const oracle_poly *p, double sx, double sy);
 double oracle_poly_area(const oracle_poly *p);
 /* The area of p inside the rectangle [x0, x1] x [y0, y1]. */
 double oracle_poly_area_in_rect(const oracle_poly *p, double x0, double y0, double x1, double y1);
+
+/* ---- cubic Bezier arcs, control points c = x0 y0 x1 y1 x2 y2 x3 y3 ---- */
+
+/* The point B(t) and its derivative B'(t), from the Bernstein form. */
+void oracle_cubic_at(const double c[8], double t, double *x, double *y, double *dx, double *dy);
+/* The signed curvature (x' y'' - y' x'') / |B'|^3 at t. */
+double oracle_cubic_curvature(const double c[8], double t);
+/* The arc length from t = a to b, by GSL's adaptive Gauss-Kronrod (61
+ * points) of |B'(t)| to 1e-13 relative; NAN if it cannot say so. */
+double oracle_cubic_length(const double c[8], double a, double b);
 
 #endif

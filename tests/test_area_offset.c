@@ -21,6 +21,7 @@
  *    aa_piece_meet reports (ends shared by the two pieces aside).
  */
 #include "path.h"
+#include "oracle.h"
 #include "support.h"
 
 #include <math.h>
@@ -33,50 +34,11 @@
 #include <string.h>
 
 #include <cmocka.h>
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_integration.h>
 
 static void must(int st)
 {
     if (st)
         fail_msg("status %d: %s", st, aa_last_error());
-}
-
-/* The speed |B'(t)| of the cubic with control points c (x0 y0 .. x3 y3). */
-static double speed(double t, void *p)
-{
-    const double *c = p;
-    double s = 1 - t, d[2];
-    for (int k = 0; k < 2; k++)
-        d[k] = 3 * (s * s * (c[2 + k] - c[k]) + 2 * s * t * (c[4 + k] - c[2 + k]) +
-                    t * t * (c[6 + k] - c[4 + k]));
-    return hypot(d[0], d[1]);
-}
-
-static double arc_length(const double *c, double a, double b)
-{
-    gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
-    gsl_function f = {speed, (void *)c};
-    double r = NAN, err;
-    gsl_set_error_handler_off();
-    int st = gsl_integration_qag(&f, a, b, 1e-13, 0, 1000, GSL_INTEG_GAUSS61, w, &r, &err);
-    if (st || !(err < 1e-13))
-        fail_msg("arc length: QAG status %d, estimate %g", st, err);
-    gsl_integration_workspace_free(w);
-    return r;
-}
-
-/* The curvature of c at t, from its control points. */
-static double curvature(const double *c, double t)
-{
-    double s = 1 - t, d[2], e[2];
-    for (int k = 0; k < 2; k++) {
-        d[k] = 3 * (s * s * (c[2 + k] - c[k]) + 2 * s * t * (c[4 + k] - c[2 + k]) +
-                    t * t * (c[6 + k] - c[4 + k]));
-        e[k] = 6 * (s * (c[4 + k] - 2 * c[2 + k] + c[k]) + t * (c[6 + k] - 2 * c[4 + k] + c[2 + k]));
-    }
-    double l = hypot(d[0], d[1]);
-    return (d[0] * e[1] - d[1] * e[0]) / (l * l * l);
 }
 
 /* The stroke of nc chained cubics cs (2 + 6 nc numbers), filled white on
@@ -172,8 +134,8 @@ static void tube(const char *what, const double *c, double w, const double *dash
                  int n)
 {
     for (int k = 0; k <= 1000; k++) /* the curvature radius above w/2 */
-        assert_true(fabs(curvature(c, k / 1000.0)) * 0.5 * w < 0.99);
-    double L = arc_length(c, 0, 1), len = L;
+        assert_true(fabs(oracle_cubic_curvature(c, k / 1000.0)) * 0.5 * w < 0.99);
+    double L = oracle_cubic_length(c, 0, 1), len = L;
     aa_stroke_style st;
     aa_stroke_style_default(&st);
     st.width = w;

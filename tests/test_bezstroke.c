@@ -27,6 +27,7 @@
  *  - a cusp (B' = 0 inside) is refused, naming it.
  */
 #include "path.h"
+#include "oracle.h"
 #include "support.h"
 
 #include <math.h>
@@ -39,59 +40,11 @@
 #include <string.h>
 
 #include <cmocka.h>
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_integration.h>
 
 static void must(int st)
 {
     if (st)
         fail_msg("status %d: %s", st, aa_last_error());
-}
-
-/* A cubic in control points c (x0 y0 x1 y1 x2 y2 x3 y3). */
-static void bez(const double *c, double t, double *x, double *y, double *dx, double *dy)
-{
-    double s = 1 - t;
-    for (int k = 0; k < 2; k++) {
-        double p0 = c[k], p1 = c[2 + k], p2 = c[4 + k], p3 = c[6 + k];
-        double v = s * s * s * p0 + 3 * s * s * t * p1 + 3 * s * t * t * p2 + t * t * t * p3;
-        double d = 3 * (s * s * (p1 - p0) + 2 * s * t * (p2 - p1) + t * t * (p3 - p2));
-        if (k == 0)
-            *x = v, *dx = d;
-        else
-            *y = v, *dy = d;
-    }
-}
-
-static double speed(double t, void *c)
-{
-    double x, y, dx, dy;
-    bez(c, t, &x, &y, &dx, &dy);
-    return hypot(dx, dy);
-}
-
-static double arc_length(const double *c)
-{
-    gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
-    gsl_function f = {speed, (void *)c};
-    double r = NAN, err;
-    gsl_set_error_handler_off();
-    int st = gsl_integration_qag(&f, 0, 1, 1e-13, 0, 1000, GSL_INTEG_GAUSS61, w, &r, &err);
-    if (st || !(err < 1e-13))
-        fail_msg("arc length: QAG status %d, estimate %g", st, err);
-    gsl_integration_workspace_free(w);
-    return r;
-}
-
-/* Curvature of c at t. */
-static double curvature(const double *c, double t)
-{
-    double x, y, dx, dy, e = 1e-6, ax, ay, bx, by;
-    bez(c, t, &x, &y, &dx, &dy);
-    bez(c, t + e, &x, &y, &ax, &ay);
-    bez(c, t - e, &x, &y, &bx, &by);
-    double ddx = (ax - bx) / (2 * e), ddy = (ay - by) / (2 * e), l = hypot(dx, dy);
-    return (dx * ddy - dy * ddx) / (l * l * l);
 }
 
 static aa_scene *outline_scene(const aa_path *in, const aa_stroke_style *st, const double *m)
@@ -113,7 +66,7 @@ static void tube(const char *what, const double *c, double w, int n)
 {
     /* the formula needs the curvature radius above w/2 everywhere */
     for (int k = 0; k <= 1000; k++)
-        assert_true(fabs(curvature(c, k / 1000.0)) * 0.5 * w < 0.99);
+        assert_true(fabs(oracle_cubic_curvature(c, k / 1000.0)) * 0.5 * w < 0.99);
     aa_path p = {0};
     aa_stroke_style st;
     aa_stroke_style_default(&st);
@@ -124,7 +77,7 @@ static void tube(const char *what, const double *c, double w, int n)
     support_view v = {.w = n, .h = n, .threads = 1};
     aa_image im;
     support_reference(s, &v, &im, NULL, NULL);
-    double got = support_channel_mean(&im, 0), want = w * arc_length(c);
+    double got = support_channel_mean(&im, 0), want = w * oracle_cubic_length(c, 0, 1);
     print_message("%-24s area %.15f, want %.15f (%.1e)\n", what, got, want, got - want);
     if (!(fabs(got - want) < 1e-12))
         fail_msg("%s: area %.17g, want %.17g", what, got, want);
@@ -151,7 +104,7 @@ static void test_dashes(void **state)
     (void)state;
     const double c[8] = {0.1, 0.5, 0.3, 0.2, 0.7, 0.8, 0.9, 0.45};
     const double dash[2][3] = {{0.07, 0.03, 0.0}, {0.11, 0.05, 0.04}};
-    double L = arc_length(c), w = 0.02;
+    double L = oracle_cubic_length(c, 0, 1), w = 0.02;
     for (int k = 0; k < 2; k++) {
         double on = dash[k][0], off = dash[k][1], o = dash[k][2], P = on + off, total = 0;
         for (int j = 0; j * P - o < L; j++) {
@@ -201,7 +154,7 @@ static double feet(const double *c, double px, double py, int ends, double h, in
 {
     double best = INFINITY, x, y, dx, dy;
     int n = 4000;
-    bez(c, 0, &x, &y, &dx, &dy);
+    oracle_cubic_at(c, 0, &x, &y, &dx, &dy);
     double pg = (px - x) * dx + (py - y) * dy, pt = 0;
     if (ends)
         best = fmin(best, hypot(px - x, py - y));
@@ -209,25 +162,25 @@ static double feet(const double *c, double px, double py, int ends, double h, in
         *unsure = 1;
     for (int k = 1; k <= n; k++) {
         double t = (double)k / n;
-        bez(c, t, &x, &y, &dx, &dy);
+        oracle_cubic_at(c, t, &x, &y, &dx, &dy);
         double g = (px - x) * dx + (py - y) * dy;
         if ((pg < 0 && g >= 0) || (pg > 0 && g <= 0)) {
             double a = pt, b = t, ga = pg;
             for (int it = 0; it < 60; it++) {
                 double m = 0.5 * (a + b), gm;
-                bez(c, m, &x, &y, &dx, &dy);
+                oracle_cubic_at(c, m, &x, &y, &dx, &dy);
                 gm = (px - x) * dx + (py - y) * dy;
                 if ((gm < 0) == (ga < 0))
                     a = m, ga = gm;
                 else
                     b = m;
             }
-            bez(c, 0.5 * (a + b), &x, &y, &dx, &dy);
+            oracle_cubic_at(c, 0.5 * (a + b), &x, &y, &dx, &dy);
             best = fmin(best, hypot(px - x, py - y));
         }
         pg = g, pt = t;
     }
-    bez(c, 1, &x, &y, &dx, &dy);
+    oracle_cubic_at(c, 1, &x, &y, &dx, &dy);
     if (ends)
         best = fmin(best, hypot(px - x, py - y));
     else if (fabs(pg) / hypot(dx, dy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)

@@ -8,6 +8,7 @@
  * here).
  */
 #include "path.h"
+#include "oracle.h"
 #include "support.h"
 
 #include <math.h>
@@ -20,48 +21,11 @@
 #include <string.h>
 
 #include <cmocka.h>
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_integration.h>
 
 static void must(int st)
 {
     if (st)
         fail_msg("status %d: %s", st, aa_last_error());
-}
-
-/* A cubic in control points c (x0 y0 x1 y1 x2 y2 x3 y3). */
-static void bez(const double *c, double t, double *x, double *y, double *dx, double *dy)
-{
-    double s = 1 - t;
-    for (int k = 0; k < 2; k++) {
-        double p0 = c[k], p1 = c[2 + k], p2 = c[4 + k], p3 = c[6 + k];
-        double v = s * s * s * p0 + 3 * s * s * t * p1 + 3 * s * t * t * p2 + t * t * t * p3;
-        double d = 3 * (s * s * (p1 - p0) + 2 * s * t * (p2 - p1) + t * t * (p3 - p2));
-        if (k == 0)
-            *x = v, *dx = d;
-        else
-            *y = v, *dy = d;
-    }
-}
-
-static double speed(double t, void *c)
-{
-    double x, y, dx, dy;
-    bez(c, t, &x, &y, &dx, &dy);
-    return hypot(dx, dy);
-}
-
-static double arc_length(const double *c)
-{
-    gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
-    gsl_function f = {speed, (void *)c};
-    double r = NAN, err;
-    gsl_set_error_handler_off();
-    int st = gsl_integration_qag(&f, 0, 1, 1e-13, 0, 1000, GSL_INTEG_GAUSS61, w, &r, &err);
-    if (st || !(err < 1e-13))
-        fail_msg("arc length: QAG status %d, estimate %g", st, err);
-    gsl_integration_workspace_free(w);
-    return r;
 }
 
 static aa_scene *outline_scene(const aa_path *in, const aa_stroke_style *st, const double *m)
@@ -89,7 +53,7 @@ static void test_filters(void **state)
 {
     (void)state;
     const double c[8] = {0.25, 0.5, 0.35, 0.35, 0.65, 0.65, 0.75, 0.5};
-    double w = 0.04, want = w * arc_length(c);
+    double w = 0.04, want = w * oracle_cubic_length(c, 0, 1);
     aa_path p = {0};
     aa_stroke_style st;
     aa_stroke_style_default(&st);
