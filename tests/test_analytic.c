@@ -10,8 +10,12 @@
  *    catmull, feibush (several layers), the shipped SVG scenes with quadratic
  *    and cubic arcs and abutting or coincident paths, and two overlapping
  *    layers built here (a self-crossing even-odd cubic path in front of a
- *    nonzero path of two crossing loops of quadratic arcs), under every filter the
- *    method takes;
+ *    nonzero path of two crossing loops of quadratic arcs), that layer
+ *    with loops sharing their end points (tangent at one) and with a loop
+ *    traced twice, under every filter the method takes;
+ *  - no meeting between two arcs leaving a common end point with a common
+ *    control point: at equal parameters their heights agree and their x
+ *    differ by t^2 times the difference of their other ends;
  *  - closed forms: a white region on black filtered by a filter whose
  *    integer translates sum to 1 (box, tent:r=1, the B-splines,
  *    Mitchell-Netravali for any B and C, Catmull-Rom) sums, over an image
@@ -155,6 +159,68 @@ static void test_overlapping_layers(void **state)
     aa_scene_free(s);
 }
 
+/* The nonzero layer of test_overlapping_layers with loops that share end
+ * points: the second starts 0.013 to the right of the first, its first arc's
+ * control 0.013 lower, and both arcs of each loop end at the other loop's
+ * ends, (0.72, 0.5) and its own start.  The second arcs leave (0.72, 0.5)
+ * through the same control point (0.55, 0.95): at equal parameters t their
+ * heights are equal and their x differ by t^2 (0.313 - 0.3), so they meet
+ * only at that end, tangent there, and stay within rounding of each other
+ * for a while below it.  Then a loop traced twice: every piece twice, the
+ * same curve, which no meeting separates (it winds 2 inside). */
+static void add_loop(aa_scene *s, double x0, double cy, double x1)
+{
+    assert_int_equal(aa_scene_move_to(s, x0, 0.55), AA_OK);
+    assert_int_equal(aa_scene_quad_to(s, 0.5, cy, 0.72, 0.5), AA_OK);
+    assert_int_equal(aa_scene_quad_to(s, 0.55, 0.95, x1, 0.55), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+}
+
+/* The meetings aa_piece_meet reports between the two pieces leaving
+ * (0.72, 0.5) downward, of which there are exactly two. */
+static int meetings_below_shared_end(const aa_scene *s)
+{
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(s, &n), *p = NULL, *q = NULL;
+    for (size_t k = 0; k < n; k++)
+        if (pc[k].kind == AA_PIECE_QUAD && pc[k].x0 == 0.72 && pc[k].y0 == 0.5) {
+            assert_null(q);
+            if (!p)
+                p = &pc[k];
+            else
+                q = &pc[k];
+        }
+    assert_non_null(q);
+    double ys[16];
+    return aa_piece_meet(p, q, 0.5, 1.0, ys, 16);
+}
+
+static void test_shared_ends(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new((aa_rgb){{0.1, 0.2, 0.3}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.3, 0.8, 0.15}}, AA_FILL_NONZERO), AA_OK);
+    add_loop(s, 0.3, 0.1, 0.3);
+    add_loop(s, 0.313, 0.113, 0.313);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    /* first the meetings, so that a search that cannot part the pieces
+     * fails here instead of rendering for minutes */
+    assert_int_equal(meetings_below_shared_end(s), 0);
+    against_reference("loops sharing end points", s, 27, 25, 1, 0);
+    aa_scene_free(s);
+
+    s = aa_scene_new((aa_rgb){{0.1, 0.2, 0.3}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.3, 0.8, 0.15}}, AA_FILL_NONZERO), AA_OK);
+    add_loop(s, 0.3, 0.1, 0.3);
+    add_loop(s, 0.3, 0.1, 0.3);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    assert_int_equal(meetings_below_shared_end(s), 0);
+    against_reference("a loop traced twice", s, 27, 25, 1, 0);
+    aa_scene_free(s);
+}
+
 /* The image of a white region sums to its area (header), w x h pixels. */
 static void check_sum(const char *what, const aa_scene *s, int w, int h, double area)
 {
@@ -238,5 +304,6 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_cubics),
              cmocka_unit_test(test_svg),
              cmocka_unit_test(test_overlapping_layers),
+             cmocka_unit_test(test_shared_ends),
              cmocka_unit_test(test_sums),
              cmocka_unit_test(test_refusals))

@@ -851,6 +851,29 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
     subdivide_offset(c, m, b, rp, rq, depth + 1);
 }
 
+/* 1 if p and q are the same curve over the same heights (a path tracing an
+ * arc twice): their x agree at every height, so no meeting separates them,
+ * and their windings simply add wherever they lie. */
+static int same_curve(const aa_piece *p, const aa_piece *q)
+{
+    if (p->kind != q->kind || p->y0 != q->y0 || p->y1 != q->y1 || p->x0 != q->x0 ||
+        p->x1 != q->x1)
+        return 0;
+    switch (p->kind) {
+    case AA_PIECE_LINE:
+        return 1;
+    case AA_PIECE_QUAD:
+        return p->cx == q->cx && p->cy == q->cy;
+    case AA_PIECE_CUBIC:
+        return p->cx == q->cx && p->cy == q->cy && p->c2x == q->c2x && p->c2y == q->c2y;
+    case AA_PIECE_CONIC:
+        return p->ex == q->ex && p->ey == q->ey && p->er == q->er && p->ea == q->ea &&
+               p->eb == q->eb;
+    default:
+        return 0;
+    }
+}
+
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys, int max)
 {
     if (!p->dir || !q->dir || max < 1)
@@ -879,13 +902,15 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
         const aa_piece *t = p;
         p = q, q = t;
     }
+    if (same_curve(p, q))
+        return 0; /* they meet everywhere: no meeting isolates them */
+    meet_ctx c = {p, q, ys, 0, max, 4096, lo, hi, 0, 0};
+    /* pieces of one outline meet end to end at its vertices */
+    c.lo_shared = (lo == p->y0 || lo == p->y1) && (lo == q->y0 || lo == q->y1) &&
+                  aa_piece_x_at(p, lo) == aa_piece_x_at(q, lo);
+    c.hi_shared = (hi == p->y0 || hi == p->y1) && (hi == q->y0 || hi == q->y1) &&
+                  aa_piece_x_at(p, hi) == aa_piece_x_at(q, hi);
     if (p->kind == AA_PIECE_OFFSET || q->kind == AA_PIECE_OFFSET) {
-        meet_ctx c = {p, q, ys, 0, max, 4096, lo, hi, 0, 0};
-        /* pieces of one outline meet end to end at its vertices */
-        c.lo_shared = (lo == p->y0 || lo == p->y1) && (lo == q->y0 || lo == q->y1) &&
-                      aa_piece_x_at(p, lo) == aa_piece_x_at(q, lo);
-        c.hi_shared = (hi == p->y0 || hi == p->y1) && (hi == q->y0 || hi == q->y1) &&
-                      aa_piece_x_at(p, hi) == aa_piece_x_at(q, hi);
         const double tp[2] = {param_at(p, lo), param_at(p, hi)};
         const double tq[2] = {param_at(q, lo), param_at(q, hi)};
         subdivide_offset(&c, lo, hi, tp, tq, 0);
@@ -909,8 +934,8 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
         /* arc q(t) against line p, x = p.x0 + (y - p.y0) s: a quadratic in t */
         double s = p->bx / p->by, ts[2];
         double a = q->ax - s * q->ay, b = q->bx - s * q->by;
-        double c = q->x0 - p->x0 - (q->y0 - p->y0) * s;
-        int n = quadratic_roots(a, b, c, 1.0, ts), m = 0;
+        double k0 = q->x0 - p->x0 - (q->y0 - p->y0) * s;
+        int n = quadratic_roots(a, b, k0, 1.0, ts), m = 0;
         double y[2];
         for (int k = 0; k < n; k++) {
             double v = q->y0 + ts[k] * (q->by + ts[k] * q->ay);
@@ -925,9 +950,14 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
             ys[k] = y[k];
         return m < max ? m : max;
     }
-    /* two general arcs (a quartic): bisection on exact extents */
-    meet_ctx c = {p, q, ys, 0, max, 4096, lo, hi, 0, 0};
-    if (cubic)
+    /* two general arcs (a quartic): bisection on exact extents; but arcs
+     * that leave a common end point tangent to each other run side by side
+     * near it, within rounding in x over a band of heights whose boxes in
+     * x always overlap: the slopes' test of offset pairs parts them */
+    if (c.lo_shared || c.hi_shared) {
+        const double t0[2] = {0.0, 0.0};
+        subdivide_offset(&c, lo, hi, t0, t0, 0);
+    } else if (cubic)
         subdivide_cubic(&c, lo, hi, 0);
     else
         subdivide(&c, lo, hi, 0);
