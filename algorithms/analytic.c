@@ -357,13 +357,7 @@ static double right_of(const an_state *S, const aa_piece *p, double ya, double y
             if (m[r] > ya && m[r] < yb)
                 ys[n++] = m[r];
     }
-    for (int a = 1; a < n; a++) { /* a handful: insertion sort */
-        double v = ys[a];
-        int b = a;
-        while (b > 0 && ys[b - 1] > v)
-            ys[b] = ys[b - 1], b--;
-        ys[b] = v;
-    }
+    aa__vis_sort(ys, (size_t)n);
     int m = curve_degree(p) * (pp->deg + 1);
     const double *gx = S->gx[m], *gw = S->gw[m];
     double sum = 0.0;

@@ -305,13 +305,7 @@ static double right_exact(const aa_filter *f, const aa_piece *p, double ya, doub
             if (m[r] > ya && m[r] < yb)
                 ys[n++] = m[r];
     }
-    for (int a = 1; a < n; a++) { /* a handful: insertion sort */
-        double v = ys[a];
-        int b = a;
-        while (b > 0 && ys[b - 1] > v)
-            ys[b] = ys[b - 1], b--;
-        ys[b] = v;
-    }
+    aa__vis_sort(ys, (size_t)n);
     double sum = 0.0;
     for (int s = 0; s + 1 < n; s++) {
         if (!(ys[s] < ys[s + 1]))

@@ -114,8 +114,7 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* A few heights per pixel, usually: insertion sort, qsort past a handful. */
-static void sort_doubles(double *v, size_t n)
+void aa__vis_sort(double *v, size_t n)
 {
     if (n > 32) {
         qsort(v, n, sizeof *v, cmp_double);
@@ -242,7 +241,7 @@ static void flat_parts(aa__vis *v, const aa_strip *st, const aa_piece *const *lo
             if (x[k] > a && x[k] < b)
                 v->fx[nx++] = x[k];
     }
-    sort_doubles(v->fx, nx);
+    aa__vis_sort(v->fx, nx);
     for (size_t k = 0; k + 1 < nx; k++) {
         double xa = v->fx[k], xb = v->fx[k + 1];
         if (!(xa < xb))
@@ -327,7 +326,7 @@ void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double
     }
     v->ev[ne++] = ya;
     v->ev[ne++] = yb;
-    sort_doubles(v->ev, ne);
+    aa__vis_sort(v->ev, ne);
     for (size_t e = 0; e + 1 < ne; e++) {
         double e0 = v->ev[e], e1 = v->ev[e + 1];
         if (!(e0 < e1))

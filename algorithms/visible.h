@@ -169,4 +169,8 @@ static inline double aa__piece_bend(const aa_piece *p)
     return hypot(fabs(p->ax) + 3.0 * fabs(p->dx), fabs(p->ay) + 3.0 * fabs(p->dy));
 }
 
+/* Sort n heights ascending: a few per pixel, usually (insertion sort;
+ * qsort past a handful). */
+void aa__vis_sort(double *v, size_t n);
+
 #endif

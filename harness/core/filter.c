@@ -259,14 +259,17 @@ static double cone_row_cdf(const double *p, double v, double u)
     return r * cone_norm(r, k) * (cone_g(x, y) + cone_g(c, y));
 }
 
-static double cone_radius(const double *p, double tail, double *lost)
+/* The radial filters in a mask (the cone, the Gaussian with cut > 0): the
+ * mask's radius is p[0] p[1] (r cut, s cut), nothing lost outside it, and
+ * the kinks of a row or column at its edges and centre. */
+static double mask_radius(const double *p, double tail, double *lost)
 {
     (void)tail;
     *lost = 0.0;
     return p[0] * p[1];
 }
 
-static int cone_kinks(const double *p, double *t)
+static int mask_kinks(const double *p, double *t)
 {
     double rc = p[0] * p[1];
     t[0] = -rc;
@@ -282,8 +285,8 @@ const aa_filter_type aa_filter_cone = {
      cone_params},
     NULL,
     NULL,
-    cone_radius, /* r cut, nothing lost */
-    cone_kinks,  /* -r cut, 0, r cut */
+    mask_radius, /* r cut, nothing lost */
+    mask_kinks,  /* -r cut, 0, r cut */
     cone_weight2,
     cone_row_cdf};
 
@@ -314,22 +317,6 @@ static double gmask_row_cdf(const double *p, double v, double u)
            (erf(x * q) + erf(c * q));
 }
 
-static double gmask_radius(const double *p, double tail, double *lost)
-{
-    (void)tail;
-    *lost = 0.0;
-    return p[0] * p[1];
-}
-
-static int gmask_kinks(const double *p, double *t)
-{
-    double rc = p[0] * p[1];
-    t[0] = -rc;
-    t[1] = 0.0;
-    t[2] = rc;
-    return 3;
-}
-
 /* Not in the registry: a `gauss` spec with cut > 0 takes this type (its
  * name and parameters are the Gaussian's, so its text is the same). */
 const aa_filter_type aa_filter_gauss_mask = {
@@ -337,8 +324,8 @@ const aa_filter_type aa_filter_gauss_mask = {
      gauss_params},
     NULL,
     NULL,
-    gmask_radius,
-    gmask_kinks,
+    mask_radius,
+    mask_kinks,
     gmask_weight2,
     gmask_row_cdf};
 
