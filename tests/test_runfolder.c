@@ -13,7 +13,10 @@
  *  - the exact method's image of a white triangle (an SVG) box-filtered
  *    sums to the triangle's area by the shoelace formula, and its error
  *    against the reference is zero to rounding;
- *  - the words made for a plan given without them read back as that plan.
+ *  - the words made for a plan given without them read back as that plan;
+ *  - images: by default those of the views of at most 512x512 pixels and
+ *    of the run's smallest size, all of them with --images all, and the
+ *    choice kept in the run's words.
  */
 #include "bench.h"
 #include "support.h"
@@ -325,7 +328,7 @@ static void test_words_read_back(void **state)
     plan.target_ci = 0.013;
     plan.motion_given = 1, plan.vx = 0.25, plan.vy = -0.5;
     small_options(&opt, "words", out, sizeof out);
-    opt.images = 0;
+    opt.images = AA_IMAGES_NONE;
     opt.isolate = AA_ISOLATE_NONE;
     assert_int_equal(aa_runfolder_create(&plan, &opt, &rf), AA_OK);
     aa_runfolder_free(rf);
@@ -354,7 +357,7 @@ static void test_words_read_back(void **state)
     /* a percentage in the words: the fraction to the last bit or two */
     assert_true(fabs(back.target_ci - plan.target_ci) <= 1e-15);
     assert_true(back.motion_given && back.vx == 0.25 && back.vy == -0.5);
-    assert_int_equal(oback.images, 0);
+    assert_int_equal(oback.images, AA_IMAGES_NONE);
     assert_int_equal(oback.plots, 0);
     assert_int_equal(oback.isolate, AA_ISOLATE_NONE);
     free(args);
@@ -366,6 +369,107 @@ static void test_words_read_back(void **state)
     assert_int_equal(asked, '?');
     assert_int_equal(aa_plan_parse(2, stray, &back, &oback, &asked), AA_EINVAL);
     assert_non_null(strstr(aa_last_error(), "unexpected argument"));
+}
+
+
+/* 1 if DIR/images/NAME exists. */
+static int has_image(const char *folder, const char *name)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/images/%s", folder, name);
+    return access(path, F_OK) == 0;
+}
+
+/* Which views' images a run writes (AA_IMAGES_*): star at 8x8 and at
+ * 520x520 (270,400 pixels, over 512 x 512 = 262,144). */
+static void test_images_by_size(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *out;
+        int images, sizes; /* sizes: 2 both, 1 the large one only */
+        int large;         /* the large view's images expected */
+    } runs[] = {{"img-small", AA_IMAGES_SMALL, 2, 0},
+                {"img-all", AA_IMAGES_ALL, 2, 1},
+                {"img-large-only", AA_IMAGES_SMALL, 1, 1}};
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+        aa_plan plan;
+        aa_run_options opt;
+        aa_runfolder *rf;
+        char out[300], path[400];
+        aa_plan_default(&plan);
+        plan.patterns[plan.npatterns++] = "star";
+        if (runs[k].sizes == 2)
+            plan.sizes[plan.nsizes++] = "8x8";
+        plan.sizes[plan.nsizes++] = "520x520";
+        plan.filters[plan.nfilters++] = "box";
+        plan.methods[plan.nmethods++] = "point";
+        plan.reps = 1;
+        small_options(&opt, runs[k].out, out, sizeof out);
+        opt.images = runs[k].images;
+        if (aa_runfolder_create(&plan, &opt, &rf) || aa_runfolder_run(rf) ||
+            aa_runfolder_finish(rf))
+            fail_msg("%s: %s", runs[k].out, aa_last_error());
+        /* what the command prints from: 512 x 512, or the smallest view's
+         * pixels where that is larger, or no limit */
+        long most = runs[k].images == AA_IMAGES_ALL ? 0 : runs[k].sizes == 2 ? 262144 : 270400;
+        assert_int_equal(aa_runfolder_images_max(rf), most);
+        aa_runfolder_free(rf);
+        if (runs[k].sizes == 2) {
+            assert_int_equal(has_image(out, "star-8x8-box-point.exr"), 1);
+            assert_int_equal(has_image(out, "star-8x8-box-point-error.png"), 1);
+        }
+        assert_int_equal(has_image(out, "star-520x520-box-point.exr"), runs[k].large);
+        assert_int_equal(has_image(out, "star-520x520-box-point.png"), runs[k].large);
+        assert_int_equal(has_image(out, "star-520x520-box-reference.exr"), runs[k].large);
+        /* the large view's montage (montage.png is the first view's) */
+        snprintf(path, sizeof path, "%s/%s", out,
+                 runs[k].sizes == 2 ? "montage-star-520x520-box.png" : "montage.png");
+        assert_int_equal(access(path, F_OK) == 0, runs[k].large);
+        /* the report says where a view has none */
+        snprintf(path, sizeof path, "%s/index.html", out);
+        FILE *f = fopen(path, "r");
+        assert_non_null(f);
+        char page[65536];
+        size_t got = fread(page, 1, sizeof page - 1, f);
+        fclose(f);
+        page[got] = '\0';
+        assert_int_equal(strstr(page, "No images of this view") != NULL, !runs[k].large);
+    }
+    /* the choice in the run's words, and the options that contradict */
+    aa_plan back;
+    aa_run_options oback;
+    int asked;
+    char *all[] = {"run", "--images=all", NULL}, *none[] = {"run", "--images", "none", NULL},
+         *both[] = {"run", "--no-images", "--images", "all", NULL},
+         *bad[] = {"run", "--images", "some", NULL};
+    aa_plan_default(&back);
+    aa_run_options_default(&oback);
+    assert_int_equal(oback.images, AA_IMAGES_SMALL);
+    assert_int_equal(aa_plan_parse(2, all, &back, &oback, &asked), AA_OK);
+    assert_int_equal(oback.images, AA_IMAGES_ALL);
+    aa_plan_default(&back);
+    aa_run_options_default(&oback);
+    assert_int_equal(aa_plan_parse(3, none, &back, &oback, &asked), AA_OK);
+    assert_int_equal(oback.images, AA_IMAGES_NONE);
+    aa_plan_default(&back);
+    aa_run_options_default(&oback);
+    assert_int_equal(aa_plan_parse(4, both, &back, &oback, &asked), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "--no-images"));
+    aa_plan_default(&back);
+    aa_run_options_default(&oback);
+    assert_int_equal(aa_plan_parse(3, bad, &back, &oback, &asked), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "none, small or all"));
+    /* the words of a run with --images all read back as it */
+    aa_manifest m;
+    char path[400];
+    snprintf(path, sizeof path, "%s/img-all/run.json", dir);
+    assert_int_equal(aa_manifest_read(path, &m), AA_OK);
+    int found = 0;
+    for (int k = 0; k < m.argc; k++)
+        found += !strcmp(m.argv[k], "--images=all");
+    assert_int_equal(found, 1);
+    aa_manifest_free(&m);
 }
 
 static int setup(void **state)
@@ -396,6 +500,7 @@ int main(void)
         cmocka_unit_test(test_shards_merged),
         cmocka_unit_test(test_triangle_area),
         cmocka_unit_test(test_words_read_back),
+        cmocka_unit_test(test_images_by_size),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

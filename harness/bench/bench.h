@@ -264,6 +264,9 @@ typedef struct aa_run_config {
     double t, vx, vy;
     const char *cache_dir;  /* NULL: no cache */
     const char *images_dir; /* NULL: no images written */
+    /* images are written for views of at most this many pixels (0: every
+     * view) */
+    long images_max;
     aa_encode enc;
     /* called before each case (may be NULL); returning non-zero stops */
     int (*progress)(void *ctx, size_t done, size_t total, const char *what);

@@ -634,6 +634,9 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
             }
             if ((st = aa_image_alloc(&img, view.w, view.h, 3)))
                 break;
+            const char *images_dir = cfg->images_dir;
+            if (cfg->images_max && (long)view.w * view.h > cfg->images_max)
+                images_dir = NULL;
             if (nt && ((st = aa_size_check(view.w, view.h, 3, 2 * nt + 4)) ||
                        (st = alloc_images(frames, nt, view.w, view.h))))
                 break;
@@ -664,7 +667,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                 if (nt && (st = temporal_refs(cfg, &view, refs)))
                     break;
                 snprintf(stem, sizeof stem, "%s-%dx%d-%s-reference", ps, view.w, view.h, fs);
-                if (cfg->images_dir && (st = write_images(cfg, stem, NULL, &ref)))
+                if (images_dir && (st = write_images(cfg, stem, NULL, &ref)))
                     break;
                 for (size_t im = 0; im < cfg->nmethods && !st; im++) {
                     char what[1400], ms[512], mbuf[sizeof rows->method];
@@ -691,7 +694,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     if (!isolated(cfg, spec)) {
                         st = run_case_here(&ca, row);
                     } else {
-                        st = aa__case_isolated(run_case, &ca, row, cfg->images_dir ? &img : NULL,
+                        st = aa__case_isolated(run_case, &ca, row, images_dir ? &img : NULL,
                                                timeout, cfg->threads);
                         if (!st && row->failed && !*row->canonical &&
                             aa_spec_format(spec, row->canonical, sizeof row->canonical))
@@ -709,7 +712,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                         continue;
                     }
                     /* images are written here, by this process, whichever ran the case */
-                    if (row->ok && cfg->images_dir && (st = write_images(cfg, stem, &ref, &img)))
+                    if (row->ok && images_dir && (st = write_images(cfg, stem, &ref, &img)))
                         break;
                     n++;
                     if (cfg->row_done && (st = cfg->row_done(cfg->ctx, rows, n)))

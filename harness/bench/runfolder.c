@@ -245,7 +245,8 @@ void aa_plan_default(aa_plan *plan)
 void aa_run_options_default(aa_run_options *opt)
 {
     memset(opt, 0, sizeof *opt);
-    opt->images = opt->plots = 1;
+    opt->images = AA_IMAGES_SMALL;
+    opt->plots = 1;
     opt->isolate = AA_ISOLATE_PLUGINS;
     opt->case_timeout = AA_CASE_TIMEOUT;
 }
@@ -321,7 +322,7 @@ int aa_plan_parse(int argc, char *const *argv, aa_plan *plan, aa_run_options *op
     enum { O_SUITE = 256, O_REPS, O_OUT, O_THREADS, O_SEED, O_TIME, O_MOTION, O_ENCODE,
            O_PLUGIN, O_NOIMAGES, O_NOPLOTS, O_CACHE, O_NOCACHE, O_LIST, O_FRAMES, O_WINDOW,
            O_TARGET, O_BUDGET, O_SEEDS, O_ISOLATE, O_NOISOLATE, O_CASE_TIMEOUT, O_SHARD,
-           O_RESUME };
+           O_RESUME, O_IMAGES };
     static const struct option opts[] = {
         {"suite", required_argument, 0, O_SUITE}, {"pattern", required_argument, 0, 'p'},
         {"method", required_argument, 0, 'm'},   {"size", required_argument, 0, 's'},
@@ -342,6 +343,7 @@ int aa_plan_parse(int argc, char *const *argv, aa_plan *plan, aa_run_options *op
         {"case-timeout", required_argument, 0, O_CASE_TIMEOUT},
         {"shard", required_argument, 0, O_SHARD},
         {"resume", required_argument, 0, O_RESUME},
+        {"images", required_argument, 0, O_IMAGES},
         {0, 0, 0, 0}};
     int c, st = AA_OK;
     *asked = 0;
@@ -352,6 +354,7 @@ int aa_plan_parse(int argc, char *const *argv, aa_plan *plan, aa_run_options *op
     /* -p, -m, -s, -f and --plugin take a value each time; the rest one */
     static const int lists[] = {'p', 'm', 's', 'f', O_PLUGIN, 0};
     aa_options_seen seen = {0};
+    int images_given = 0;
     while ((c = getopt_long(argc, argv, ":p:m:s:f:qh", opts, NULL)) != -1) {
         if ((st = aa_option_once(&seen, c, optarg, opts, lists)))
             return st;
@@ -381,7 +384,22 @@ int aa_plan_parse(int argc, char *const *argv, aa_plan *plan, aa_run_options *op
         case O_BUDGET: st = aa_parse_budget(optarg, &plan->budget); break;
         case O_SEEDS: st = aa_parse_int("--seeds", optarg, 1, 1000, &plan->seeds); break;
         case O_PLUGIN: st = aa_plugin_load(optarg); break;
-        case O_NOIMAGES: opt->images = 0; break;
+        case O_NOIMAGES:
+        case O_IMAGES: {
+            int which = AA_IMAGES_NONE;
+            if (c == O_IMAGES && !strcmp(optarg, "small"))
+                which = AA_IMAGES_SMALL;
+            else if (c == O_IMAGES && !strcmp(optarg, "all"))
+                which = AA_IMAGES_ALL;
+            else if (c == O_IMAGES && strcmp(optarg, "none"))
+                st = aa_fail(AA_EINVAL, "--images %s: none, small or all", aa_echo(optarg));
+            if (!st && images_given && which != opt->images)
+                st = aa_fail(AA_EINVAL, "--images and --no-images say different things: "
+                                        "give one");
+            opt->images = which;
+            images_given = 1;
+            break;
+        }
         case O_NOPLOTS: opt->plots = 0; break;
         case O_CACHE: opt->cache = optarg; break;
         case O_NOCACHE: opt->cache = ""; break;
@@ -472,8 +490,8 @@ static int make_words(aa_runfolder *rf)
         st = word(rf, "--encode=linear");
     if (!st && p->enc.kind == AA_ENCODE_GAMMA)
         st = word(rf, "--encode=gamma:%.17g", p->enc.gamma);
-    if (!st && !o->images)
-        st = word(rf, "--no-images");
+    if (!st && o->images != AA_IMAGES_SMALL)
+        st = word(rf, o->images == AA_IMAGES_NONE ? "--no-images" : "--images=all");
     if (!st && !o->plots)
         st = word(rf, "--no-plots");
     if (!st && o->isolate != AA_ISOLATE_PLUGINS)
@@ -723,8 +741,24 @@ static int write_view_montage(const char *dir, const char *cache, const aa_row *
     return st;
 }
 
+/* The most pixels of a view whose images are written (0: any view's): for
+ * AA_IMAGES_SMALL the larger of AA_IMAGES_SIDE squared and the run's
+ * smallest view, so that every run has some. */
+static long images_max(int images, const aa_run_config *cfgs, size_t ng)
+{
+    if (images != AA_IMAGES_SMALL)
+        return 0;
+    long least = LONG_MAX;
+    for (size_t g = 0; g < ng; g++)
+        for (size_t s = 0; s < cfgs[g].nsizes; s++)
+            if ((long)cfgs[g].sizes[s].w * cfgs[g].sizes[s].h < least)
+                least = (long)cfgs[g].sizes[s].w * cfgs[g].sizes[s].h;
+    long most = (long)AA_IMAGES_SIDE * AA_IMAGES_SIDE;
+    return least > most && least < LONG_MAX ? least : most;
+}
+
 static int write_montage(const char *dir, const aa_run_config *first, const aa_row *rows,
-                         size_t n, const aa_encode *enc)
+                         size_t n, long max, const aa_encode *enc)
 {
     int st = AA_OK;
     char path[4096];
@@ -739,6 +773,8 @@ static int write_montage(const char *dir, const aa_run_config *first, const aa_r
         int is_first = 1;
         for (q = 0; q < k; q++)
             is_first &= !rows[q].ok;
+        if (max && (long)rows[k].w * rows[k].h > max)
+            continue; /* no images of this view */
         if (!(st = is_first ? aa_pathf(path, sizeof path, "%s/montage.png", dir)
                             : montage_path(path, sizeof path, dir, &rows[k])))
             st = write_view_montage(dir, first->cache_dir, rows, n, k, enc, path);
@@ -1033,8 +1069,11 @@ static int check_before_work(const aa_run_options *a, const aa_run_config *cfgs,
          * images (reference, image, error map, the metrics' planes). */
         if (!aa__oiio("montage.png"))
             return AA_EIO;
+        long max = images_max(a->images, cfgs, ng);
         for (size_t g = 0; g < ng; g++)
             for (size_t s = 0; s < cfgs[g].nsizes; s++) {
+                if (max && (long)cfgs[g].sizes[s].w * cfgs[g].sizes[s].h > max)
+                    continue; /* no images of this size */
                 if ((st = aa_size_check(cfgs[g].sizes[s].w, cfgs[g].sizes[s].h, 3, 4)))
                     return st;
                 if ((st = aa_error_picture_check(cfgs[g].sizes[s].w, cfgs[g].sizes[s].h)))
@@ -1603,6 +1642,7 @@ int aa_runfolder_run(aa_runfolder *rf)
     for (size_t g = 0; g < rf->ng && !st; g++) {
         aa_run_config *c = &rf->cfgs[g];
         c->images_dir = rf->opt.images ? rf->images : NULL;
+        c->images_max = images_max(rf->opt.images, rf->cfgs, rf->ng);
         c->progress = progress;
         c->row_done = row_done;
         c->ctx = rf;
@@ -1655,7 +1695,8 @@ int aa_runfolder_finish(aa_runfolder *rf)
     if (!ran || rf->plan.shards > 1)
         return AA_OK;
     if (rf->opt.images)
-        st = write_montage(rf->dir, &rf->cfgs[0], rf->all, rf->nall, &rf->plan.enc);
+        st = write_montage(rf->dir, &rf->cfgs[0], rf->all, rf->nall,
+                           images_max(rf->opt.images, rf->cfgs, rf->ng), &rf->plan.enc);
     if (!st && rf->opt.plots && !(st = aa_pathf(plots, sizeof plots, "%s/plots", rf->dir)) &&
         !(st = aa_plot_error_vs_time(plots, rf->all, rf->nall)))
         st = write_convergence(plots, rf, &rf->cfgs[0], rf->threads, rf->all, rf->nall);
@@ -1668,6 +1709,10 @@ const char *aa_runfolder_dir(const aa_runfolder *rf) { return rf->dir; }
 size_t aa_runfolder_kept(const aa_runfolder *rf) { return rf->kept; }
 size_t aa_runfolder_refused(const aa_runfolder *rf) { return rf->skipped; }
 int aa_runfolder_linked(const aa_runfolder *rf) { return rf->linked; }
+long aa_runfolder_images_max(const aa_runfolder *rf)
+{
+    return images_max(rf->opt.images, rf->cfgs, rf->ng);
+}
 int aa_runfolder_interrupted(const aa_runfolder *rf) { return rf->stopped; }
 
 const aa_row *aa_runfolder_rows(const aa_runfolder *rf, size_t *n)

@@ -61,12 +61,20 @@ typedef struct aa_plan {
     const char *const *argv;
 } aa_plan;
 
+/* Which views' images a run writes (images/, the montages): none, those of
+ * the run's smallest size and of every size up to AA_IMAGES_SIDE squared
+ * pixels (a view of 1024x1024 takes about 1.6 MB of images, lossless), or
+ * every view's. */
+enum { AA_IMAGES_NONE, AA_IMAGES_SMALL, AA_IMAGES_ALL };
+#define AA_IMAGES_SIDE 512
+
 /* How and where.  The hooks may be NULL; `hook` is given to each. */
 typedef struct aa_run_options {
     const char *out;   /* the folder; NULL: results/runs/<UTC time>, results/latest */
     const char *cache; /* reference cache folder; NULL or "": none */
     int threads;       /* 0: all cores */
-    int images, plots; /* images/ and montage.png; plots/ (1, 1) */
+    /* images/ and the montages: AA_IMAGES_* (AA_IMAGES_SMALL); plots/ (1) */
+    int images, plots;
     int quiet;         /* for the caller (no table): the library prints nothing */
     const char *resume; /* for the caller: aa_plan_parse's --resume DIR */
     int isolate;       /* AA_ISOLATE_* (AA_ISOLATE_PLUGINS) */
@@ -144,6 +152,9 @@ const aa_row *aa_runfolder_rows(const aa_runfolder *rf, size_t *n);
 size_t aa_runfolder_kept(const aa_runfolder *rf);
 size_t aa_runfolder_refused(const aa_runfolder *rf);
 int aa_runfolder_linked(const aa_runfolder *rf);
+/* The most pixels of a view whose images the run writes (0: every view's;
+ * its views with none: no images at all). */
+long aa_runfolder_images_max(const aa_runfolder *rf);
 void aa_runfolder_shard(const aa_runfolder *rf, int *k, int *n);
 int aa_runfolder_interrupted(const aa_runfolder *rf);
 

@@ -110,7 +110,8 @@ static void view_section(FILE *m, const char *dir, const aa_row *rows, size_t n,
         snprintf(rel, sizeof rel, "montage.png");
     else
         snprintf(rel, sizeof rel, "montage-%s-%dx%d-%s.png", ps, r0->w, r0->h, fs);
-    if (present(dir, rel)) {
+    int montage = present(dir, rel);
+    if (montage) {
         fputs("<h3>Montage</h3>\n<p class=\"small\">The exact reference first, then each method "
               "(views larger than 256x256: their centre), pixel for pixel.</p>\n",
               m);
@@ -141,6 +142,14 @@ static void view_section(FILE *m, const char *dir, const aa_row *rows, size_t n,
             fprintf(m, "<img src=\"%s\" alt=\"worst region\">", worst);
         fputs("</div>\n", m);
     }
+    size_t ran = 0;
+    for (size_t q = 0; q < k; q++)
+        ran += rows[idx[q]].ok != 0;
+    if (ran && !header && !montage)
+        fputs("<p class=\"small\">No images of this view: a run writes those of views up to "
+              "512x512 pixels and of its smallest size (<code>aabench run --images all</code>: "
+              "every view's; <code>--no-images</code>: none).</p>\n",
+              m);
     fputs("</section>\n", m);
 }
 

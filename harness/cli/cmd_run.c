@@ -67,7 +67,10 @@ static void usage(FILE *out)
             "  --encode E        display encoding of PNGs and of the *_enc metrics: srgb\n"
             "                    (default), linear or gamma:G (gamma:2 is Crow's square law)\n"
             "  --plugin LIB.so   load methods from a shared library (repeatable)\n"
-            "  --no-images       do not write images/ and montage.png\n"
+            "  --images WHICH    which views' images/ and montages to write: small (the\n"
+            "                    default: sizes up to 512x512 and the run's smallest),\n"
+            "                    all, or none\n"
+            "  --no-images       --images none\n"
             "  --no-plots        do not draw plots/ (no convergence either)\n"
             "  --cache DIR       reference cache (default $AABENCH_CACHE, else\n"
             "                    results/cache in the source tree, else\n"
@@ -362,6 +365,27 @@ int cli_run_report(aa_runfolder *rf, int quiet, int st)
     cli_warn_noisy("run", all, nall);
     cli_warn_parallelism("run", all, nall);
     printf("results: %s/results.csv%s\n", dir, aa_runfolder_linked(rf) ? " (results/latest)" : "");
+    /* the sizes whose views have no images (--images small) */
+    long most = aa_runfolder_images_max(rf);
+    char sizes[256] = "";
+    size_t used = 0, large = 0;
+    for (size_t k = 0; most && k < nall; k++) {
+        size_t q = 0;
+        while (q < k && !(all[q].w == all[k].w && all[q].h == all[k].h))
+            q++;
+        if (q < k || (long)all[k].w * all[k].h <= most)
+            continue;
+        if (used < sizeof sizes) {
+            int c = snprintf(sizes + used, sizeof sizes - used, "%s%dx%d", large ? ", " : "",
+                             all[k].w, all[k].h);
+            used += c > 0 ? (size_t)c : 0;
+        }
+        large++;
+    }
+    if (large)
+        printf("images: none of the views at %s, over %ld pixels (--images all writes "
+               "them)\n",
+               sizes, most);
     if (shards > 1)
         printf("shard %d/%d: %zu case%s; join the shards with aabench merge DIR... --out DIR\n",
                shard, shards, nall, nall == 1 ? "" : "s");
