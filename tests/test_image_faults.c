@@ -752,9 +752,9 @@ static void test_address_space_limit(void **state)
      * constructors (std::bad_alloc, std::system_error for a thread) or
      * fatally in glibc, depending on the megabyte.  An 8x8 image: it is the
      * loading that is tested, and an image of 64x64 doubles or less is
-     * nothing beside steps of 20 MB (the same limits refuse here). */
+     * nothing beside steps of 44 MB (the same limits refuse here). */
     int refused = 0;
-    for (rlim_t mb = 400; mb <= 620; mb += 20) {
+    for (rlim_t mb = 400; mb <= 620; mb += 44) {
         limits lim = {.as = mb << 20};
         int st = run_cmd(&lim, args);
         char what[64];

@@ -6,7 +6,7 @@
  *    in exactly one, the same on every call; costs are the documented
  *    products (pixels x samples), worked out here by hand.
  *  - The peer of a merged run is the unsharded run of the same command:
- *    the quick suite run whole, and as 3 shards through GNU parallel
+ *    nine cases of the quick suite run whole, and as 3 shards through GNU parallel
  *    (scripts/gnu-parallel-run.sh, 2 jobs) then merged, must give the same
  *    rows (every error, count and note read back equal, bit for bit), the
  *    same images and the same montage.png, byte for byte.
@@ -343,10 +343,14 @@ static void test_partition(void **state)
 
 /* ---- sharded through GNU parallel, merged, against the whole run ---- */
 
-/* the quick suite's cases at a smaller size (the split and the merge do not
- * depend on it) */
+/* the quick suite's three views (box, tent, Gaussian) at a smaller size,
+ * with three methods each takes: nine cases over three references (the
+ * split and the merge depend on neither the size nor which methods; each
+ * case costs its images and metrics, several times more under the
+ * sanitizers) */
 #define QUICK                                                                                  \
-    "--suite", "quick", "-s", "48x48", "--reps", "1", "--no-plots", "-q", "--threads", "1"
+    "--suite", "quick", "-s", "48x48", "-m", "supersample:n=2", "-m", "crowtable", "-m",       \
+        "jitter:spp=4", "--reps", "1", "--no-plots", "-q", "--threads", "1"
 
 static void test_parallel_merge(void **state)
 {
