@@ -33,8 +33,12 @@
  * dashes), not filled from our outline; several strokes of one grey are
  * painted in turn, OVER each other (peer.h).
  *
- * Limits: grey scenes of at most one layer, or of strokes of one grey,
- * and the box filter only; 8-bit
+ * Painted: a scene of colour, of several layers or translucent is painted
+ * layer by layer, Cairo's coverage of each composited over the layers
+ * behind (cairo_init_painted): layers sharing an edge show the background
+ * through their seam, as every renderer that uses coverage as alpha.
+ *
+ * Limits: the box filter only; 8-bit
  * coverage (up to 1/510 from rounding); positions in 24.8 fixed point
  * (1/256 px) and coordinates within Cairo's fixed-point range (about
  * 2^23 px, larger scenes are refused); curves flattened; fast (no
@@ -70,6 +74,10 @@ typedef struct cairo_state {
     cairo_surface_t **surf; /* one BAND x W A8 surface per thread */
     int nsurf;
     double lut[256];
+    /* painted (scenes of colour, several layers or translucency): each
+     * layer's path (NULL for a stroke, stroked from its source) */
+    int painted, nlayers;
+    cairo_path_t **lpath;
 } cairo_state;
 
 static int cairo_check(const double *p, const aa_filter *f)
@@ -87,7 +95,11 @@ static void cairo_release(void *state)
     free(s->surf);
     if (s->path)
         cairo_path_destroy(s->path);
-    s->surf = NULL, s->path = NULL, s->nsurf = 0;
+    for (int l = 0; s->lpath && l < s->nlayers; l++)
+        if (s->lpath[l])
+            cairo_path_destroy(s->lpath[l]);
+    free(s->lpath);
+    s->surf = NULL, s->path = NULL, s->nsurf = 0, s->lpath = NULL, s->nlayers = 0;
 }
 
 /* Elliptical arc edge d in Cairo's own way: the unit circle's arc from t0
@@ -133,10 +145,11 @@ static double cairo_edge_reach(const aa_edge *e)
     return e->quad == 2 ? fmax(r, fmax(fabs(e->c2x), fabs(e->c2y))) : r;
 }
 
-/* The scene's path, built on a scratch context and copied out.  Arcs are
- * turned into Cairo's cubics here, so the scratch context has the
- * method's tolerance. */
-static int cairo_build_path(cairo_state *s, const aa_scene *scene, double tolerance)
+/* The path of layer `layer`'s contours (-1: every contour), built on a
+ * scratch context and copied out into *out.  Arcs are turned into Cairo's
+ * cubics here, so the scratch context has the method's tolerance. */
+static int cairo_build_path(cairo_path_t **out, const aa_scene *scene, int layer,
+                            double tolerance)
 {
     size_t nedges, ncont;
     const aa_edge *e = aa_scene_edges(scene, &nedges);
@@ -153,7 +166,7 @@ static int cairo_build_path(cairo_state *s, const aa_scene *scene, double tolera
     cairo_t *cr = cairo_create(scratch);
     cairo_set_tolerance(cr, tolerance);
     for (size_t c = 0; c < ncont; c++) {
-        if (start[c] == start[c + 1])
+        if (start[c] == start[c + 1] || (layer >= 0 && e[start[c]].layer != layer))
             continue;
         cairo_move_to(cr, e[start[c]].x0, e[start[c]].y0);
         for (size_t k = start[c]; k < start[c + 1]; k++) {
@@ -172,8 +185,8 @@ static int cairo_build_path(cairo_state *s, const aa_scene *scene, double tolera
         }
         cairo_close_path(cr);
     }
-    s->path = cairo_copy_path(cr);
-    int st = cairo_status(cr) || !s->path || s->path->status
+    *out = cairo_copy_path(cr);
+    int st = cairo_status(cr) || !*out || (*out)->status
                  ? aa_fail(AA_ENOMEM, "cairo: cannot build the path (%s)",
                            cairo_status_to_string(cairo_status(cr)))
                  : AA_OK;
@@ -248,12 +261,52 @@ static void cairo_stroke_source(cairo_t *cr, const aa_stroke_source *src)
     cairo_restore(cr);
 }
 
+/* A scene the one-layer grey fill refuses (colour, several layers,
+ * translucency) is painted layer by layer: Cairo's coverage of each layer
+ * (its path filled with its rule, or its stroke stroked from the source)
+ * on the A8 surface, composited here over the layers behind in linear
+ * light, each layer's inside the scene's own colour there
+ * (cairo_layered_band).  Each layer's coverage is its alpha: where layers
+ * share an edge the background shows through their seam (conflation),
+ * which the exact reference does not have; everything else is what the
+ * one-layer fill measures (Cairo's coverage).  A layer filled from offset
+ * curves (edge quad 4: no Cairo path holds them) and groups of opacity (a
+ * group's coverage is not any one layer's) are refused. */
+static int cairo_init_painted(cairo_state *s, const aa_scene *scene, double tolerance)
+{
+    size_t ne;
+    const aa_edge *e = aa_scene_edges(scene, &ne);
+    for (size_t k = 0; k < ne; k++)
+        if (e[k].quad == 4 && aa_scene_layer_stroked(scene, e[k].layer) < 0)
+            return aa_fail(AA_EINVAL,
+                           "cairo: layer %d is filled from the exact offset curves of a "
+                           "Bezier arc's stroke, which a Cairo path cannot hold",
+                           e[k].layer);
+    if (aa_scene_group_count(scene) > 0)
+        return aa_fail(AA_EINVAL, "cairo: this scene has groups of opacity (SVG's opacity on a "
+                                  "group or on a shape with a fill and a stroke), which its "
+                                  "layer by layer painting does not draw");
+    s->nlayers = aa_scene_layer_count(scene);
+    if (s->nlayers && !(s->lpath = calloc((size_t)s->nlayers, sizeof *s->lpath)))
+        return aa_fail(AA_ENOMEM, "cairo: out of memory");
+    int st = AA_OK;
+    for (int l = 0; l < s->nlayers && !st; l++)
+        if (aa_scene_layer_stroked(scene, l) < 0)
+            st = cairo_build_path(&s->lpath[l], scene, l, tolerance);
+    s->painted = 1;
+    return st;
+}
+
 static int cairo_init(void *state, const double *p, const aa_job *job)
 {
     cairo_state *s = state;
     int st = aa_peer_scene_read("cairo", job, &s->ps);
-    if (!st)
-        st = cairo_build_path(s, job->placed, p[TOLERANCE]);
+    if (st == AA_EINVAL &&
+        (!aa_scene_is_grey(job->placed) || !aa_scene_is_opaque(job->placed) ||
+         aa_scene_layer_count(job->placed) > 1))
+        st = cairo_init_painted(s, job->placed, p[TOLERANCE]);
+    else if (!st)
+        st = cairo_build_path(&s->path, job->placed, -1, p[TOLERANCE]);
     if (!st) {
         s->nsurf = job->threads > 0 ? job->threads : 1;
         s->surf = calloc((size_t)s->nsurf, sizeof *s->surf);
@@ -266,10 +319,84 @@ static int cairo_init(void *state, const double *p, const aa_job *job)
                              BAND);
         }
     }
-    for (int k = 0; k < 256; k++)
+    for (int k = 0; k < 256 && !s->painted; k++)
         s->lut[k] = aa_peer_mix(&s->ps, k / 255.0);
     if (st)
         cairo_release(s);
+    return st;
+}
+
+/* A linear colour channel as Cairo takes it: sRGB-encoded. */
+static double cairo_encoded(double linear)
+{
+    const aa_encode srgb = {AA_ENCODE_SRGB, 0};
+    return aa_encode_value(&srgb, linear);
+}
+
+/* Painted mode's band y0 .. y0 + rows - 1 into out (cairo_init_painted):
+ * the background, then each layer back to front, its coverage from Cairo
+ * on the band's A8 surface composited over what is below in linear light,
+ * its inside the scene's colour there (a layer of alpha 1 its colour; a
+ * translucent one its colour over what is below in sRGB-encoded values,
+ * as the scene composites). */
+static int cairo_layered_band(const cairo_state *s, cairo_surface_t *surf, const double *p,
+                              const aa_job *job, aa_image *out, int y0, int rows)
+{
+    static const cairo_antialias_t modes[] = {CAIRO_ANTIALIAS_BEST, CAIRO_ANTIALIAS_GOOD,
+                                              CAIRO_ANTIALIAS_FAST};
+    const aa_scene *scene = job->placed;
+    aa_rgb bg = aa_scene_background(scene);
+    for (int j = y0; j < y0 + rows; j++)
+        for (int i = 0; i < job->w; i++)
+            memcpy(aa_pixel(out, i, j), bg.c, sizeof bg.c);
+    size_t nsrc;
+    const aa_stroke_source *src = aa_scene_stroke_sources(scene, &nsrc);
+    int st = AA_OK;
+    for (int l = s->nlayers - 1; l >= 0 && !st; l--) {
+        cairo_surface_flush(surf);
+        unsigned char *data = cairo_image_surface_get_data(surf);
+        int stride = cairo_image_surface_get_stride(surf);
+        memset(data, 0, (size_t)stride * BAND);
+        cairo_surface_mark_dirty(surf);
+        cairo_t *cr = cairo_create(surf);
+        cairo_set_antialias(cr, modes[(int)p[AA]]);
+        cairo_set_tolerance(cr, p[TOLERANCE]);
+        cairo_translate(cr, 0.0, -(double)y0);
+        cairo_set_source_rgba(cr, 0, 0, 0, 1);
+        int k = aa_scene_layer_stroked(scene, l);
+        if (k >= 0 && (size_t)k < nsrc) {
+            cairo_stroke_source(cr, &src[k]);
+        } else if (s->lpath[l]) {
+            cairo_set_fill_rule(cr, aa_scene_layer_rule(scene, l) == AA_FILL_EVENODD
+                                        ? CAIRO_FILL_RULE_EVEN_ODD
+                                        : CAIRO_FILL_RULE_WINDING);
+            cairo_append_path(cr, s->lpath[l]);
+            cairo_fill(cr);
+        }
+        if (cairo_status(cr))
+            st = AA_EFAIL;
+        cairo_destroy(cr);
+        cairo_surface_flush(surf);
+        const aa_rgb c = aa_scene_layer_colour(scene, l);
+        const double alpha = aa_scene_layer_alpha(scene, l);
+        double e[3];
+        for (int q = 0; q < 3; q++)
+            e[q] = alpha * cairo_encoded(c.c[q]);
+        for (int j = 0; j < rows; j++) {
+            const unsigned char *row = data + (size_t)j * stride;
+            for (int i = 0; i < job->w; i++) {
+                if (!row[i])
+                    continue;
+                double a = row[i] / 255.0, *px = aa_pixel(out, i, y0 + j);
+                for (int q = 0; q < 3; q++) {
+                    double inside = alpha == 1.0 ? c.c[q]
+                                                 : aa_srgb_decode(e[q] + (1.0 - alpha) *
+                                                                             cairo_encoded(px[q]));
+                    px[q] = a * inside + (1.0 - a) * px[q];
+                }
+            }
+        }
+    }
     return st;
 }
 
@@ -288,6 +415,13 @@ static int cairo_render(void *state, const double *p, const aa_job *job, aa_imag
 #pragma omp for schedule(dynamic, 1)
         for (int b = 0; b < nbands; b++) {
             int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
+            if (s->painted) {
+                if (cairo_layered_band(s, surf, p, job, out, y0, rows)) {
+#pragma omp atomic write
+                    status = AA_EFAIL;
+                }
+                continue;
+            }
             if (!s->ps.layers) {
                 for (int j = y0; j < y0 + rows; j++)
                     aa_peer_fill(out, j, 0, job->w, s->ps.bg);

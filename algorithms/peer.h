@@ -6,7 +6,8 @@
  * one filled layer; the pixel is then (1 - a) background + a colour, so a
  * coverage of exactly 0 or 1 gives the colour exactly.  They take grey
  * scenes of at most one layer and the box filter only: anything else is
- * refused with a message (status AA_EINVAL, exit status 2 from the command).
+ * refused with a message (status AA_EINVAL, exit status 2 from the command);
+ * cairo.c paints the scenes refused here itself (its "painted" mode).
  *
  * Strokes (aa_scene_stroke): a scene of several layers is taken when every
  * layer is a stroke of the same grey and every stroke's map turns the same

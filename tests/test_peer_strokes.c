@@ -128,7 +128,8 @@ static void test_dashed_sheared(void **state)
     aa_path_free(&p);
 }
 
-/* A fill beside a stroke, and strokes of two greys: refused, saying why. */
+/* A fill beside a stroke, and strokes of two greys: refused, saying why, but
+ * by Cairo, which paints them layer by layer. */
 static void test_refusals(void **state)
 {
     (void)state;
@@ -155,6 +156,16 @@ static void test_refusals(void **state)
         for (size_t k = 0; k < NPEERS; k++) {
             aa_image img;
             const support_view v = {.w = 32, .h = 32, .seed = 1, .threads = 1};
+            if (!strncmp(peers[k], "cairo", 5)) {
+                /* Cairo paints the layers one by one (cairo.c, painted):
+                 * its coverage, as on the scenes above */
+                double rmse, maxe, mean, ref_mean;
+                measure(peers[k], s, 64, 64, &rmse, &maxe, &mean, &ref_mean);
+                print_message("%-16s painted: rmse %.3e, mean %.6f (reference %.6f)\n",
+                              peers[k], rmse, mean, ref_mean);
+                assert_true(rmse < 0.01 && fabs(mean - ref_mean) < 0.02 * ref_mean);
+                continue;
+            }
             assert_int_equal(support_render_view(peers[k], s, &v, &img, NULL), AA_EINVAL);
             assert_non_null(strstr(aa_last_error(), c == 0 ? "a fill" : "another grey"));
         }

@@ -92,6 +92,8 @@ typedef struct aa_encode {
 /* "srgb", "linear" or "gamma:G" (G in [1, 4]). */
 int aa_encode_parse(const char *text, aa_encode *out);
 double aa_encode_value(const aa_encode *e, double linear);
+/* The sRGB decoding (IEC 61966-2-1) of an encoded value in [0, 1]. */
+double aa_srgb_decode(double encoded);
 /* Known image file extension (".exr", ".tif", ".tiff", ".png", ".pfm",
  * ".txt")?  1 if yes. */
 int aa_image_ext_known(const char *path);

@@ -102,7 +102,7 @@ static double srgb_encode(double v)
     return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
 }
 
-static double srgb_decode(double v)
+double aa_srgb_decode(double v)
 {
     if (!(v > 0.0))
         return 0.0;
@@ -1262,7 +1262,7 @@ static aa_rgb colour_composite(const aa_scene *s, const int *wind, int first)
     }
     aa_rgb c;
     for (int k = 0; k < 3; k++)
-        c.c[k] = srgb_decode(acc[0].p[k]);
+        c.c[k] = aa_srgb_decode(acc[0].p[k]);
     return c;
 }
 
