@@ -211,7 +211,7 @@ static void check_outline(const aa_path *out)
             if (!open)
                 abort();
             const double *c = g->p;
-            aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, c[8], c[9] != 0};
+            aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, c[8], c[9] != 0, (int)c[14]};
             memcpy(oc.b, c, sizeof oc.b);
             double x0, y0, x1, y1, scale = 0;
             aa_offset_point(&oc, c[10], &x0, &y0, NULL, NULL);
