@@ -600,10 +600,10 @@ static void test_refusals(void **state)
     refused(L2("<line x2=\"5\" stroke-dasharray=\"1 -2\"/>"), "<line>", "negative");
     refused(L2("<line x2=\"5\" stroke-dasharray=\"1 2%\"/>"), "<line>", "stroke-dasharray");
     refused(L2("<line x2=\"5\" stroke-dashoffset=\"1em\"/>"), "<line>", "stroke-dashoffset");
-    /* a stroked Bezier arc with a cusp (its direction vanishes at t = 1/2) */
-    refused(L2("\n\n<path stroke=\"red\" d=\"M0 0 C 10 10 0 10 10 0\"/>"), "line 4: <path>",
-            "cusp");
-    refused(L2("<ellipse rx=\"5\" ry=\"2\" stroke=\"red\"/>"), "line 2: <ellipse>", "stroke");
+    /* a stroked Bezier arc nearly with a cusp (its speed 1e-10 of its size
+     * near t = 1/2, neither 0 to rounding nor clear of it) */
+    refused(L2("\n\n<path stroke=\"red\" d=\"M0 0 C 10 10 0.000000001 10 10 0\"/>"),
+            "line 4: <path>", "cusp");
     /* a dash pattern finer than the limits allow */
     refused(L2("<line x2=\"100000\" stroke=\"red\" stroke-dasharray=\"0.001\"/>"), "<line>",
             "dashes");
