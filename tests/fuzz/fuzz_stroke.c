@@ -112,8 +112,8 @@ static void read_path(reader *r, aa_path *p)
             break;
         }
         case 3: {
-            /* an SVG arc with equal radii (a circle) or not (refused by
-             * the stroker) */
+            /* an SVG arc with equal radii (a circle) or not (an ellipse,
+             * whose offsets are offset curves) */
             double rx = number(r), ry = byte(r) & 1 ? rx : number(r), phi = number(r) * 90;
             unsigned f = byte(r);
             double x = number(r), y = number(r), c[8];
@@ -170,7 +170,7 @@ static void check_outline(const aa_path *out)
     int open = 0, offset = 0;
     for (size_t k = 0; k < out->n; k++) {
         const aa_path_seg *g = &out->seg[k];
-        for (int i = 0; i < 14; i++)
+        for (int i = 0; i < 15; i++)
             if (!isfinite(g->p[i]))
                 abort();
         switch (g->op) {
