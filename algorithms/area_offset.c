@@ -49,6 +49,16 @@
  * every factor as the Taylor sums do for a cubic (complex vectors: |a . b|
  * <= |a| |b|), L^2 from below by |v'|^2 less the bound on the difference.
  *
+ * A cubic whose B' vanishes at an end te (a cusp split off, a control
+ * point on an end) has, next to te, the factored form B' = (t - te) Q of
+ * offset.c (aa__offset_stop), in which the integrand is analytic through
+ * te: with sg the sign of t - te on the curve, X = Q x Q' (constant) and
+ * perp(Q) x Q = -|Q|^2, Q . perp(Q) = 0,
+ *  - offset: f = ((B - Pa) x Q - d sg |Q|) (t - te - d sg X/|Q|^3);
+ *  - evolute: f = ((B - Pa) . Q) (|Q|^2 + 3 (t - te) (Q . Q'))/X;
+ * bounded on the disc by the Taylor sums of B - B(m), Q (linear) and |Q|^2
+ * (|Q|^2 from below), |t - te| by |m - te| + R.
+ *
  * Panels.  A piece's parameter range is cut in halves until on each panel
  * some rho of a fixed list gives a bound of at most AR_QUAD_TOL with
  * AR_QUAD_NMAX points; the panel keeps its disc (m, R) and M.  A part
@@ -222,6 +232,42 @@ static double panel_M_ellipse(const aa_offset_curve *oc, const double *up, const
     return 3.0 * dot * (Bd + A) * Uu / J;
 }
 
+/* panel_M for a cubic in the factored form about te (q: Q's
+ * coefficients, aa__offset_stop). */
+static double panel_M_stop(const aa_offset_curve *oc, const double *bx, const double *by,
+                           double m, double te, const double *q, double h, double R)
+{
+    double Qx[2] = {q[0] + q[1] * m, q[1]}, Qy[2] = {q[2] + q[3] * m, q[3]};
+    double Q2[3], t1[3], G[5], t2[5];
+    pmul(Qx, 2, Qx, 2, Q2);
+    pmul(Qy, 2, Qy, 2, t1);
+    for (int k = 0; k < 3; k++)
+        Q2[k] += t1[k];
+    double X = fabs(Qx[0] * q[3] - Qy[0] * q[1]), sd = fabs(m - te) + R;
+    double Qmax = sqrt(pabs(Q2, 3, 0, R)), Bdh = hypot(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
+    if (!oc->evolute) {
+        double lo = plow(Q2, 3, R), d = fabs(oc->d);
+        if (!(lo > 0.0))
+            return INFINITY;
+        pmul(bx, 4, Qy, 2, G); /* (B - B(m)) x Q */
+        pmul(by, 4, Qx, 2, t2);
+        for (int k = 0; k < 5; k++)
+            G[k] -= t2[k];
+        return (pabs(G, 5, 0, R) + (Bdh + d) * Qmax + d * Qmax) *
+               (sd + d * X / (lo * sqrt(lo)));
+    }
+    if (!(X > 0.0))
+        return INFINITY;
+    pmul(bx, 4, Qx, 2, G); /* (B - B(m)) . Q */
+    pmul(by, 4, Qy, 2, t2);
+    for (int k = 0; k < 5; k++)
+        G[k] += t2[k];
+    double QQ[2] = {Qx[0] * q[1] + Qy[0] * q[3], q[1] * q[1] + q[3] * q[3]};
+    /* |Ea - B(m)|: |B(ta) - B(m)| + |ta - te| |Q(ta)|^2/|X| on the panel */
+    double A = Bdh + (fabs(m - te) + h) * pabs(Q2, 3, 0, h) / X;
+    return (pabs(G, 5, 0, R) + A * Qmax) * (pabs(Q2, 3, 0, R) + 3 * sd * pabs(QQ, 2, 0, R)) / X;
+}
+
 /* The ellipse's semi-diameters at m: u' = B(m) - c, v' = B'(m). */
 static void ellipse_at(const aa_offset_curve *oc, double m, double *up, double *vp)
 {
@@ -248,7 +294,8 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
     static const double rhos[] = {1.25, 1.5, 2, 3, 4, 6, 8, 12, 16, 32, 64, 128};
     double m = 0.5 * (a + b), h = 0.5 * (b - a), bx[4] = {0}, by[4] = {0};
     int ell = oc->base == AA_OFFSET_ELLIPSE;
-    double up[2], vp[2];
+    double up[2], vp[2], te, q[4];
+    int stop = aa__offset_stop(oc, m, &te, q);
     if (ell) {
         ellipse_at(oc, m, up, vp);
         bx[1] = up[0], by[1] = up[1], bx[2] = vp[0], by[2] = vp[1];
@@ -259,8 +306,10 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
     const double logtol = log(AR_QUAD_TOL), nmax = AR_QUAD_NMAX;
     for (size_t k = 0; k < sizeof rhos / sizeof *rhos; k++) {
         double rho = rhos[k], R = 0.5 * h * (rho + 1.0 / rho);
-        double M = (ell ? panel_M_ellipse(oc, up, vp, h, R) : panel_M(oc, bx, by, h, R)) * det2 *
-                   (1.0 + 1e-12);
+        double M = (ell    ? panel_M_ellipse(oc, up, vp, h, R)
+                    : stop ? panel_M_stop(oc, bx, by, m, te, q, h, R)
+                           : panel_M(oc, bx, by, h, R)) *
+                   det2 * (1.0 + 1e-12);
         if (!(M < INFINITY))
             break; /* larger discs only hold more */
         double e = log_factor(h, M, rho) - 2.0 * nmax * log(rho);
@@ -326,6 +375,17 @@ static void rel_point(const aa_offset_curve *oc, const ar_panel *p, double t, do
         *y = by[1] * c1 + by[2] * sn + r * ux / L;
         return;
     }
+    double te, q[4];
+    if (aa__offset_stop(oc, p->m, &te, q)) {
+        /* the factored form: P = B + d sg perp(Q)/|Q|, E = B + (t - te)
+         * |Q|^2 perp(Q)/X */
+        double Qx = q[0] + q[1] * t, Qy = q[2] + q[3] * t, q2 = Qx * Qx + Qy * Qy;
+        double r = oc->evolute ? (t - te) * q2 / (Qx * q[3] - Qy * q[1])
+                               : oc->d * (te == 0 ? 1 : -1) / sqrt(q2);
+        *x = s * (bx[1] + s * (bx[2] + s * bx[3])) - r * Qy;
+        *y = s * (by[1] + s * (by[2] + s * by[3])) + r * Qx;
+        return;
+    }
     double ux = bx[1] + s * (2 * bx[2] + 3 * s * bx[3]);
     double uy = by[1] + s * (2 * by[2] + 3 * s * by[3]);
     double L = sqrt(ux * ux + uy * uy), r = oc->d;
@@ -373,6 +433,25 @@ static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
             } else {
                 double vx = -(bx[1] * cs + bx[2] * sn), vy = -(by[1] * cs + by[2] * sn);
                 f = 3 * (ux * vx + uy * vy) * (Dx * ux + Dy * uy) / J;
+            }
+            sum += q->w[q->at[r] + i] * f;
+        }
+        return 0.5 * h * sum;
+    }
+    double te, qs[4];
+    if (aa__offset_stop(oc, p->m, &te, qs)) {
+        double sg = te == 0 ? 1 : -1;
+        for (int i = 0; i < q->n[r]; i++) {
+            double t = mm + h * q->x[q->at[r] + i], s = t - p->m;
+            double Dx = s * (bx[1] + s * (bx[2] + s * bx[3])) - ax;
+            double Dy = s * (by[1] + s * (by[2] + s * by[3])) - ay;
+            double Qx = qs[0] + qs[1] * t, Qy = qs[2] + qs[3] * t, q2 = Qx * Qx + Qy * Qy;
+            double X = Qx * qs[3] - Qy * qs[1], f;
+            if (!oc->evolute) {
+                double lq = sqrt(q2);
+                f = (Dx * Qy - Dy * Qx - d * sg * lq) * (t - te - d * sg * X / (q2 * lq));
+            } else {
+                f = (Dx * Qx + Dy * Qy) * (q2 + 3 * (t - te) * (Qx * qs[1] + Qy * qs[3])) / X;
             }
             sum += q->w[q->at[r] + i] * f;
         }

@@ -679,6 +679,11 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
  * (0 x, 1 y) of oc turns, on a part without folds (an offset) or extremes
  * of the curvature (an evolute): in closed form. */
 int aa__offset_turns(const aa_offset_curve *oc, int coord, double lo, double hi, double t[2]);
+/* 1 if t is on the half of [0, 1] next to an end te of a cubic where B'
+ * vanishes (within 1e-12 of the sum of its coefficients' magnitudes), there
+ * evaluated in the factored form B' = (t - te) Q, Q(t) = (q[0] + q[1] t,
+ * q[2] + q[3] t) (offset.c, header). */
+int aa__offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4]);
 /* The parameter between ta and tb (either order) where coordinate coord of
  * oc equals target, given that it is monotone there and fa (its value at
  * ta less target) has the other sign than at tb: Newton's method kept in

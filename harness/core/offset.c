@@ -21,18 +21,22 @@
  * Everything is evaluated in long double.
  *
  * A cubic whose B' vanishes at an end te (a control point on its end
- * point; the stroker splits a cusp into two such arcs; |B'| within 1e-12
- * of the sum of the coefficients' magnitudes and t within 1e-9 of the
- * end, so that the rounding of B' at the cusp counts as 0) has there the
- * limits from inside [0, 1]: with B' = B''(te) (t - te) + B''' (t - te)^2/2
- * the tangent is s B''(te)/|B''(te)| (s = 1 at t = 0, -1 at t = 1), or
- * B'''/|B'''| where B''(te) = 0 (SVG 2 takes the direction to the next
- * distinct control point: the same); c = (3/2) (t - te)^2 X, X = B''(te) x
- * B''', so k ~ 3 X/(2 |B''|^3 |t - te|) is unbounded where X != 0: the
- * offset's derivative B' (1 - d k) tends to -(3/2) d X T/|B''|^2, the
- * evolute E = B + N/k tends to B itself, with E' = (1/k)' N, (1/k)' ->
- * (2/3) |B''|^3 s/X.  Where X = 0 the arc is straight
- * near te: k = 0, P' -> 0.
+ * point; the stroker splits a cusp into two such arcs; |B'(te)| within
+ * 1e-12 of the sum of the coefficients' magnitudes, so that the rounding
+ * of B' at a cusp counts as 0: aa__offset_stop) is evaluated on the half of
+ * [0, 1] next to te in the factored form B' = (t - te) Q, Q = B''(te) +
+ * (t - te) Q' (Q' = 3 b3; the remainder B'(te) dropped), where B' itself
+ * would lose its direction to rounding near te: with s = t - te, sg its
+ * sign on the curve (1 for te = 0, -1 for te = 1) and X = Q x Q' (a
+ * constant), L = |s| |Q|, N = sg perp(Q)/|Q| (perp(a) = (-ay, ax)),
+ * k = X/(|s| |Q|^3), so
+ *  - the offset P = B + d N has P' = s Q - d sg X Q/|Q|^3;
+ *  - the evolute E = B + N/k = B + s |Q|^2 perp(Q)/X has
+ *    E' = (|Q|^2 + 3 s (Q . Q')) perp(Q)/X,
+ * all finite at te: the normal there is the limit of those beside it (SVG
+ * 2: the direction to the next distinct control point), the evolute meets
+ * the curve.  Where Q vanishes too (B''(te) = 0) the arc is straight near
+ * te: N = perp(Q')/|Q'|, k = 0.
  */
 #include "core.h"
 
@@ -83,15 +87,61 @@ static void base_eval_d(const aa_offset_curve *oc, double t, double B[2], double
     B3[0] = 6 * b[3], B3[1] = 6 * b[7];
 }
 
-/* 1 if the cubic's speed L at t is that of an end where B' vanishes (see
- * the header). */
-static int at_stop(const aa_offset_curve *oc, double t, double L)
+int aa__offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4])
 {
-    if (oc->base != AA_OFFSET_CUBIC || (t > 1e-9 && t < 1 - 1e-9))
+    if (oc->base != AA_OFFSET_CUBIC)
         return 0;
     const double *b = oc->b;
     double scale = fabs(b[1]) + fabs(b[2]) + fabs(b[3]) + fabs(b[5]) + fabs(b[6]) + fabs(b[7]);
-    return L <= 1e-12 * scale;
+    if (t < 0.5) {
+        double tol = 1e-12 * scale;
+        if (!(b[1] * b[1] + b[5] * b[5] <= tol * tol))
+            return 0;
+        *te = 0;
+        q[0] = 2 * b[2], q[2] = 2 * b[6];
+    } else {
+        double ex = b[1] + (2 * b[2] + 3 * b[3]), ey = b[5] + (2 * b[6] + 3 * b[7]);
+        double tol = 1e-12 * scale;
+        if (!(ex * ex + ey * ey <= tol * tol))
+            return 0;
+        *te = 1;
+        q[0] = 2 * b[2] + 3 * b[3], q[2] = 2 * b[6] + 3 * b[7];
+    }
+    q[1] = 3 * b[3], q[3] = 3 * b[7];
+    return 1;
+}
+
+/* The point and derivative (unmapped) of a cubic's offset or evolute in
+ * the factored form about te (see the header). */
+static void stop_eval(const aa_offset_curve *oc, long double t, double te, const double *q,
+                      long double *px, long double *py, long double *qx, long double *qy)
+{
+    const double *b = oc->b;
+    long double bx = b[0] + t * (b[1] + t * (b[2] + t * (long double)b[3]));
+    long double by = b[4] + t * (b[5] + t * (b[6] + t * (long double)b[7]));
+    long double s = t - te, sg = te == 0 ? 1 : -1;
+    long double Qx = q[0] + q[1] * t, Qy = q[2] + q[3] * t, q2 = Qx * Qx + Qy * Qy;
+    long double X = Qx * (long double)q[3] - Qy * (long double)q[1];
+    if (q2 == 0 || X == 0) {
+        /* straight near te: N along perp(Q) (or perp(Q') where Q = 0), k = 0 */
+        long double nx = q2 == 0 ? q[1] : sg * Qx, ny = q2 == 0 ? q[3] : sg * Qy;
+        long double l = sqrtl(nx * nx + ny * ny);
+        *px = bx - (oc->evolute ? 0 : oc->d) * ny / l;
+        *py = by + (oc->evolute ? 0 : oc->d) * nx / l;
+        *qx = s * Qx, *qy = s * Qy;
+        return;
+    }
+    long double lq = sqrtl(q2);
+    if (!oc->evolute) {
+        long double f = oc->d * sg * X / (q2 * lq);
+        *px = bx - oc->d * sg * Qy / lq;
+        *py = by + oc->d * sg * Qx / lq;
+        *qx = (s - f) * Qx, *qy = (s - f) * Qy;
+    } else {
+        long double r = s * q2 / X, g = (q2 + 3 * s * (Qx * q[1] + Qy * q[3])) / X;
+        *px = bx - r * Qy, *py = by + r * Qx;
+        *qx = -g * Qy, *qy = g * Qx;
+    }
 }
 
 void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
@@ -103,24 +153,9 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
     long double ux = U[0], uy = U[1], vx = V[0], vy = V[1];
     long double L = sqrtl(ux * ux + uy * uy), c = ux * vy - uy * vx;
     long double px, py, qx, qy; /* the point and its derivative, unmapped */
-    if (at_stop(oc, (double)t, (double)L)) {
-        /* an end where B' = 0: the limits (see the header) */
-        long double s = t < 0.5L ? 1 : -1, tx = s * vx, ty = s * vy;
-        long double X = vx * W[1] - vy * W[0], l2 = vx * vx + vy * vy;
-        if (l2 == 0)
-            tx = W[0], ty = W[1];
-        long double l = sqrtl(tx * tx + ty * ty);
-        tx /= l, ty /= l;
-        if (!oc->evolute) {
-            px = B[0] - oc->d * ty;
-            py = B[1] + oc->d * tx;
-            long double f = l2 > 0 ? -1.5L * oc->d * X / l2 : 0;
-            qx = f * tx, qy = f * ty;
-        } else {
-            long double rp = X != 0 ? (2.0L / 3) * l2 * sqrtl(l2) * s / X : 0;
-            px = B[0], py = B[1];
-            qx = -rp * ty, qy = rp * tx;
-        }
+    double te, q[4];
+    if (aa__offset_stop(oc, (double)t, &te, q)) {
+        stop_eval(oc, t, te, q, &px, &py, &qx, &qy);
     } else if (!oc->evolute) {
         long double k = c / (L * L * L), f = 1 - oc->d * k;
         px = B[0] - oc->d * uy / L;
@@ -153,8 +188,9 @@ static void eval_d(const aa_offset_curve *oc, double t, double *x, double *y, do
     base_eval_d(oc, t, B, U, V, W);
     double ux = U[0], uy = U[1], vx = V[0], vy = V[1];
     double L = sqrt(ux * ux + uy * uy), c = ux * vy - uy * vx, px, py, qx, qy;
-    if (at_stop(oc, t, L)) {
-        long double X, Y, DX, DY; /* an end where B' = 0: the limits */
+    double te, q[4];
+    if (aa__offset_stop(oc, t, &te, q)) {
+        long double X, Y, DX, DY; /* near an end where B' = 0: factored */
         aa__offset_eval(oc, t, &X, &Y, &DX, &DY);
         *x = (double)X, *y = (double)Y, *dx = (double)DX, *dy = (double)DY;
         return;

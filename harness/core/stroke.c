@@ -297,30 +297,19 @@ static void bez_d1(const piece *p, double t, double *x, double *y)
     *y = b[5] + t * (2 * b[6] + 3 * t * b[7]);
 }
 
-/* 1 if a cubic piece's speed L at t is that of an end where B' vanishes (a
- * control point on it, or a cusp split off): L within 1e-12 of the sum of
- * the coefficients' magnitudes and t within 1e-9 of 0 or 1, as offset.c
- * takes it. */
-static int bez_stop(const piece *p, double t, double L)
+/* On the half of [0, 1] next to an end te of a cubic piece where B'
+ * vanishes (a control point on it, or a cusp split off):
+ * aa__offset_stop's factored form B' = (t - te) Q, in which the direction
+ * sg Q/|Q| (sg = 1 for te = 0, -1 for te = 1) and the curvature
+ * X/(|t - te| |Q|^3), X = Q x Q', keep their precision near te; at te the
+ * direction is that of B''(te) (or B''' where it is 0: SVG 2 takes the
+ * direction to the next distinct control point, the same) and the
+ * curvature is infinite of the sign of X (0 where X = 0: straight). */
+static int bez_stop(const piece *p, double t, double *te, double q[4])
 {
-    if (p->base != AA_OFFSET_CUBIC || (t > 1e-9 && t < 1 - 1e-9))
-        return 0;
-    const double *b = p->b;
-    return L <= 1e-12 * (fabs(b[1]) + fabs(b[2]) + fabs(b[3]) + fabs(b[5]) + fabs(b[6]) +
-                         fabs(b[7]));
-}
-
-/* The direction at such an end: the limit of B'/|B'| from inside [0, 1],
- * B''(te) at the start and -B''(te) at the end, or B''' where B''(te) = 0
- * (SVG 2, "path directionality": the direction to the next distinct
- * control point; the same). */
-static void bez_stop_dir(const piece *p, double t, double *x, double *y)
-{
-    const double *b = p->b;
-    double s = t < 0.5 ? 1 : -1;
-    *x = s * (2 * b[2] + 6 * t * b[3]), *y = s * (2 * b[6] + 6 * t * b[7]);
-    if (*x == 0 && *y == 0)
-        *x = b[3], *y = b[7];
+    aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, 0, 0, p->base};
+    memcpy(oc.b, p->b, sizeof oc.b);
+    return aa__offset_stop(&oc, t, te, q);
 }
 
 /* The unit tangent of a piece at its start or end, in the direction of
@@ -329,13 +318,15 @@ static void bez_stop_dir(const piece *p, double t, double *x, double *y)
 static void piece_tangent(const piece *p, int at_end, double d[2])
 {
     if (p->bez) {
-        double t = at_end ? p->t1 : p->t0, x, y;
+        double t = at_end ? p->t1 : p->t0, x, y, te, q[4];
         bez_d1(p, t, &x, &y);
-        double l = hypot(x, y);
-        if (bez_stop(p, t, l)) {
-            bez_stop_dir(p, t, &x, &y);
-            l = hypot(x, y);
+        if (bez_stop(p, t, &te, q)) {
+            double sg = te == 0 ? 1 : -1;
+            x = sg * (q[0] + q[1] * t), y = sg * (q[2] + q[3] * t);
+            if (x == 0 && y == 0)
+                x = q[1], y = q[3];
         }
+        double l = hypot(x, y);
         d[0] = x / l;
         d[1] = y / l;
         return;
@@ -516,18 +507,20 @@ static int sign_roots(const double *p, int n, double lo, double hi, double *r)
 }
 
 /* The curvature of curve piece p at t: B' x B'' / |B'|^3 (the ellipse's
- * B' x B'' is u x v); at a cubic's end where B' vanishes its limit, of the
- * sign of X = B''(te) x B''' (c = (3/2) (t - te)^2 X there), infinite, or 0
- * where X = 0 (straight there). */
+ * B' x B'' is u x v); near a cubic's end where B' vanishes by the factored
+ * form (bez_stop). */
 static double bez_curvature(const piece *p, double t)
 {
     const double *b = p->b;
-    double ux, uy, c;
-    bez_d1(p, t, &ux, &uy);
-    if (bez_stop(p, t, hypot(ux, uy))) {
-        double X = (2 * b[2] + 6 * t * b[3]) * 6 * b[7] - (2 * b[6] + 6 * t * b[7]) * 6 * b[3];
-        return X == 0 ? 0.0 : copysign(INFINITY, X);
+    double ux, uy, c, te, q[4];
+    if (bez_stop(p, t, &te, q)) {
+        double Qx = q[0] + q[1] * t, Qy = q[2] + q[3] * t, l = hypot(Qx, Qy);
+        double X = Qx * q[3] - Qy * q[1], s = fabs(t - te);
+        if (X == 0 || l == 0)
+            return 0.0;
+        return s == 0 ? copysign(INFINITY, X) : X / (s * l * l * l);
     }
+    bez_d1(p, t, &ux, &uy);
     if (p->base == AA_OFFSET_ELLIPSE) {
         c = b[2] * b[5] - b[3] * b[4];
     } else {
