@@ -151,13 +151,14 @@ int aa_scene_cubic_to(aa_scene *s, double c1x, double c1y, double c2x, double c2
  * (a degenerate ellipse: draw its lines instead).  t0 == t1 adds nothing. */
 int aa_scene_arc_to(aa_scene *s, double cx, double cy, double ux, double uy, double vx,
                     double vy, double t0, double t1, double x, double y);
-/* An offset curve or evolute of a Bezier arc (aa_offset_curve, in this
- * scene's coordinates through its map) from the pen to (x, y), its
- * parameter from t0 to t1 (in [0, 1]); the pen and (x, y) must be its
- * points there within 1e-9 of their size.  Meant for stroke outlines
- * (path.h): the curve must have no fold (an offset: d k != 1) nor extreme
- * of the curvature (an evolute) strictly inside, and B' != 0 on it.
- * t0 == t1 adds nothing. */
+/* An offset curve or evolute of a Bezier arc or an ellipse
+ * (aa_offset_curve, in this scene's coordinates through its map) from the
+ * pen to (x, y), its parameter from t0 to t1 (in [0, 1] for a cubic; angles
+ * at most 2 pi apart for an ellipse); the pen and (x, y) must be its points
+ * there within 1e-9 of their size.  Meant for stroke outlines (path.h): the
+ * curve must have no fold (an offset: d k != 1) nor extreme of the
+ * curvature (an evolute) strictly inside, and B' != 0 on it but at an end
+ * (aa__offset_stop).  t0 == t1 adds nothing. */
 int aa_scene_offset_to(aa_scene *s, const aa_offset_curve *oc, double t0, double t1, double x,
                        double y);
 int aa_scene_close(aa_scene *s);
@@ -669,7 +670,7 @@ const char *aa_svg_dir(void);
  * neither is set.  The text is valid until the thread's next call. */
 const char *aa_cache_dir_default(void);
 
-/* ---- offset curves of Bezier arcs (offset.c; aabench.h, aa_offset_curve) ---- */
+/* ---- offset curves of Bezier arcs and ellipses (offset.c; aabench.h, aa_offset_curve) ---- */
 
 /* The point (x, y) of oc at t and its derivative (dx, dy; either NULL: not
  * wanted), in long double. */

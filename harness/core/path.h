@@ -108,8 +108,9 @@ void aa_stroke_style_default(aa_stroke_style *st);
  * circular arcs stroke exactly to lines and circular arcs; quadratic and
  * cubic Bezier arcs and elliptical arcs that are not circles to their
  * offset curves and evolutes (AA_PATH_OFFSET, exact pieces: stroke.c says
- * how).  What cannot be stroked exactly is refused with AA_EINVAL naming
- * it (a Bezier arc with a cusp or a control point on an end), and so is a
+ * how), cusps included.  What cannot be stroked exactly is refused with
+ * AA_EINVAL naming it (a Bezier arc nearly with a cusp: its speed within
+ * 1e-9 of its size but not 0 to rounding), and so is a
  * subpath of more than 10000 dashes.  stroke.c says what it
  * chose where SVG leaves room (zero-length subpaths and segments, dashes on
  * closed subpaths).  On failure `out` is as it was. */

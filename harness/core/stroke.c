@@ -82,11 +82,15 @@
  * Gauss-Legendre on halves until two levels agree to 1e-15 of the whole
  * (at most 2048 splits), and Newton's
  * method (kept in a bracket) for the parameter at a length.
- * Refused (AA_EINVAL, naming it): a Bezier arc whose speed |B'| vanishes
- * (within 1e-9 of its size) somewhere on it, a cusp or a control point on
- * an end, where the normal is undefined (SVG 2 takes an end's direction
- * from the next distinct control point; not done here); a subpath of more
- * than DASH_MAX (10000) dashes.
+ * Where a Bezier arc's speed |B'| vanishes (bez_piece) the normal is the
+ * limit of those beside it: at an end whose control point is on it (SVG 2
+ * takes the direction from the next distinct control point: the same), and
+ * at a cusp inside, where the arc is split into arcs of their own with no
+ * join between them (SVG 2 joins segments only at their boundaries, so
+ * nothing is drawn ahead of the cusp's tip; Chromium, resvg and librsvg
+ * draw a disk there).  Refused (AA_EINVAL, naming it): a Bezier arc whose
+ * speed comes within 1e-9 of its size without being 0 to rounding (1e-12),
+ * nearly a cusp; a subpath of more than DASH_MAX (10000) dashes.
  */
 #include "path.h"
 
