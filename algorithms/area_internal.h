@@ -54,7 +54,10 @@ typedef struct ar_quad {
 /* A panel of an offset piece's parameter (area_offset.c): [a, b], its
  * middle m; on the disc |t - m| <= R the quadrature's integrand is at most
  * M (px^2, with the map's factor); bx, by: B's Taylor coefficients about m
- * (B(m + s) - B(m) = s (b1 + s (b2 + s b3)), [0] = 0). */
+ * (B(m + s) - B(m) = s (b1 + s (b2 + s b3)), [0] = 0); for the offsets of
+ * an ellipse (AA_OFFSET_ELLIPSE) its semi-diameters at m instead, u' =
+ * (bx[1], by[1]) and v' = (bx[2], by[2]): B(m + s) - B(m) = u' (cos s - 1)
+ * + v' sin s. */
 typedef struct ar_panel {
     double a, b, m, R, M;
     double bx[4], by[4];

@@ -1,7 +1,8 @@
 /*
  * area_offset.c: the exact area method's (area.c) integral over a part of
- * an offset curve or evolute of a Bezier arc (AA_PIECE_OFFSET,
- * aa_offset_curve): the segment between the part and its chord,
+ * an offset curve or evolute of a Bezier arc or an ellipse
+ * (AA_PIECE_OFFSET, aa_offset_curve): the segment between the part and its
+ * chord,
  *
  *     seg = 1/2 integral of (P(t) - P(ta)) x P'(t) dt  from ta to tb,
  *
@@ -35,6 +36,28 @@
  * c, D x B' (offsets) or B'.B'', c', D . B' (evolutes) about m, with |Pa -
  * B(m)| bounded by sum_{k>=1} |B_k| h^k plus |d| (or the largest |r| on the
  * part, L^3/|c| bounded the same way).
+ *
+ * The ellipse B = c + u cos t + v sin t (AA_OFFSET_ELLIPSE) is not a
+ * polynomial: about m, with u' = B(m) - c, v' = B'(m) and s = t - m,
+ * B - B(m) = u' (cos s - 1) + v' sin s, B' = -u' sin s + v' cos s,
+ * B'' = -(u' cos s + v' sin s), c = u x v = J is constant and c' = 0, so
+ *  - offset: (B - B(m)) x B' = J (1 - cos s), and f as above;
+ *  - evolute: f = 3 (B'.B'') (D . B')/J;
+ *  - L^2 - |v'|^2 = (|u'|^2 - |v'|^2) sin^2 s - 2 (u'.v') sin s cos s.
+ * On the disc |s| <= R, |cos s| <= cosh R, |sin s| <= sinh R and
+ * |cos s - 1| <= cosh R - 1 (term by term in their series), which bound
+ * every factor as the Taylor sums do for a cubic (complex vectors: |a . b|
+ * <= |a| |b|), L^2 from below by |v'|^2 less the bound on the difference.
+ *
+ * A cubic whose B' vanishes at an end te (a cusp split off, a control
+ * point on an end) has, next to te, the factored form B' = (t - te) Q of
+ * offset.c (aa__offset_stop), in which the integrand is analytic through
+ * te: with sg the sign of t - te on the curve, X = Q x Q' (constant) and
+ * perp(Q) x Q = -|Q|^2, Q . perp(Q) = 0,
+ *  - offset: f = ((B - Pa) x Q - d sg |Q|) (t - te - d sg X/|Q|^3);
+ *  - evolute: f = ((B - Pa) . Q) (|Q|^2 + 3 (t - te) (Q . Q'))/X;
+ * bounded on the disc by the Taylor sums of B - B(m), Q (linear) and |Q|^2
+ * (|Q|^2 from below), |t - te| by |m - te| + R.
  *
  * Panels.  A piece's parameter range is cut in halves until on each panel
  * some rho of a fixed list gives a bound of at most AR_QUAD_TOL with
@@ -183,6 +206,77 @@ static double panel_M(const aa_offset_curve *oc, const double *bx, const double 
            (pabs(G, 6, 0, R) + A * Uu) / (cl * cl);
 }
 
+/* panel_M for the ellipse: u', v' its semi-diameters at m (B(m) - c and
+ * B'(m)). */
+static double panel_M_ellipse(const aa_offset_curve *oc, const double *up, const double *vp,
+                              double h, double R)
+{
+    double ch = cosh(R), sh = sinh(R);
+    double uu = up[0] * up[0] + up[1] * up[1], vv = vp[0] * vp[0] + vp[1] * vp[1];
+    double uv = fabs(up[0] * vp[0] + up[1] * vp[1]), J = fabs(up[0] * vp[1] - up[1] * vp[0]);
+    double lu = sqrt(uu), lv = sqrt(vv);
+    double Bd = lu * (ch - 1.0) + lv * sh; /* |B - B(m)| on the disc */
+    double Uu = lu * sh + lv * ch;         /* |B'| */
+    double dL = fabs(uu - vv) * sh * sh + 2.0 * uv * sh * ch, lo = vv - dL, hi = vv + dL;
+    /* on the real panel (|s| <= h) */
+    double Bdh = lu * (1.0 - cos(fmin(h, M_PI))) + lv * sin(fmin(h, 0.5 * M_PI));
+    double dLh = fabs(uu - vv) * fmin(sinh(h) * sinh(h), 1.0) + 2.0 * uv * sinh(h) * cosh(h);
+    if (!(lo > 0.0) || !(J > 0.0))
+        return INFINITY;
+    if (!oc->evolute) {
+        double d = fabs(oc->d), A = Bdh + d;
+        return (J * (ch - 1.0) + A * Uu + d * sqrt(hi)) * (1.0 + d * J / (lo * sqrt(lo)));
+    }
+    double L2h = vv + dLh, A = Bdh + L2h * sqrt(L2h) / J;
+    double dot = fabs(uu - vv) * sh * ch + uv * (sh * sh + ch * ch); /* |B'.B''| */
+    return 3.0 * dot * (Bd + A) * Uu / J;
+}
+
+/* panel_M for a cubic in the factored form about te (q: Q's
+ * coefficients, aa__offset_stop). */
+static double panel_M_stop(const aa_offset_curve *oc, const double *bx, const double *by,
+                           double m, double te, const double *q, double h, double R)
+{
+    double Qx[2] = {q[0] + q[1] * m, q[1]}, Qy[2] = {q[2] + q[3] * m, q[3]};
+    double Q2[3], t1[3], G[5], t2[5];
+    pmul(Qx, 2, Qx, 2, Q2);
+    pmul(Qy, 2, Qy, 2, t1);
+    for (int k = 0; k < 3; k++)
+        Q2[k] += t1[k];
+    double X = fabs(Qx[0] * q[3] - Qy[0] * q[1]), sd = fabs(m - te) + R;
+    double Qmax = sqrt(pabs(Q2, 3, 0, R)), Bdh = hypot(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
+    if (!oc->evolute) {
+        double lo = plow(Q2, 3, R), d = fabs(oc->d);
+        if (!(lo > 0.0))
+            return INFINITY;
+        pmul(bx, 4, Qy, 2, G); /* (B - B(m)) x Q */
+        pmul(by, 4, Qx, 2, t2);
+        for (int k = 0; k < 5; k++)
+            G[k] -= t2[k];
+        return (pabs(G, 5, 0, R) + (Bdh + d) * Qmax + d * Qmax) *
+               (sd + d * X / (lo * sqrt(lo)));
+    }
+    if (!(X > 0.0))
+        return INFINITY;
+    pmul(bx, 4, Qx, 2, G); /* (B - B(m)) . Q */
+    pmul(by, 4, Qy, 2, t2);
+    for (int k = 0; k < 5; k++)
+        G[k] += t2[k];
+    double QQ[2] = {Qx[0] * q[1] + Qy[0] * q[3], q[1] * q[1] + q[3] * q[3]};
+    /* |Ea - B(m)|: |B(ta) - B(m)| + |ta - te| |Q(ta)|^2/|X| on the panel */
+    double A = Bdh + (fabs(m - te) + h) * pabs(Q2, 3, 0, h) / X;
+    return (pabs(G, 5, 0, R) + A * Qmax) * (pabs(Q2, 3, 0, R) + 3 * sd * pabs(QQ, 2, 0, R)) / X;
+}
+
+/* The ellipse's semi-diameters at m: u' = B(m) - c, v' = B'(m). */
+static void ellipse_at(const aa_offset_curve *oc, double m, double *up, double *vp)
+{
+    const double *b = oc->b;
+    double cm = cos(m), sm = sin(m);
+    up[0] = b[2] * cm + b[4] * sm, up[1] = b[3] * cm + b[5] * sm;
+    vp[0] = -b[2] * sm + b[4] * cm, vp[1] = -b[3] * sm + b[5] * cm;
+}
+
 /* log of the n-point bound's factor without rho^-2n: h 64 M/(15 (1 - rho^-2)) */
 static double log_factor(double h, double M, double rho)
 {
@@ -198,13 +292,24 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
                       int depth, panel_buf *out)
 {
     static const double rhos[] = {1.25, 1.5, 2, 3, 4, 6, 8, 12, 16, 32, 64, 128};
-    double m = 0.5 * (a + b), h = 0.5 * (b - a), bx[4], by[4];
-    taylor(oc, m, bx, by);
+    double m = 0.5 * (a + b), h = 0.5 * (b - a), bx[4] = {0}, by[4] = {0};
+    int ell = oc->base == AA_OFFSET_ELLIPSE;
+    double up[2], vp[2], te, q[4];
+    int stop = aa__offset_stop(oc, m, &te, q);
+    if (ell) {
+        ellipse_at(oc, m, up, vp);
+        bx[1] = up[0], by[1] = up[1], bx[2] = vp[0], by[2] = vp[1];
+    } else {
+        taylor(oc, m, bx, by);
+    }
     double best = INFINITY, bR = 0, bM = 0;
     const double logtol = log(AR_QUAD_TOL), nmax = AR_QUAD_NMAX;
     for (size_t k = 0; k < sizeof rhos / sizeof *rhos; k++) {
         double rho = rhos[k], R = 0.5 * h * (rho + 1.0 / rho);
-        double M = panel_M(oc, bx, by, h, R) * det2 * (1.0 + 1e-12);
+        double M = (ell    ? panel_M_ellipse(oc, up, vp, h, R)
+                    : stop ? panel_M_stop(oc, bx, by, m, te, q, h, R)
+                           : panel_M(oc, bx, by, h, R)) *
+                   det2 * (1.0 + 1e-12);
         if (!(M < INFINITY))
             break; /* larger discs only hold more */
         double e = log_factor(h, M, rho) - 2.0 * nmax * log(rho);
@@ -227,7 +332,8 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
     }
     if (depth >= 60 || b - a <= 1e-12 * width || !(m > a && m < b))
         return aa_fail(AA_EINVAL,
-                       "area: an offset curve of a Bezier arc near t = %.17g whose quadrature "
+                       "area: an offset curve of a Bezier arc or ellipse near t = %.17g whose "
+                       "quadrature "
                        "bound (%g px^2) it cannot meet (its speed or curvature within rounding "
                        "of 0 there)",
                        m, AR_QUAD_TOL);
@@ -258,6 +364,28 @@ static void rel_point(const aa_offset_curve *oc, const ar_panel *p, double t, do
 {
     double s = t - p->m;
     const double *bx = p->bx, *by = p->by;
+    if (oc->base == AA_OFFSET_ELLIPSE) {
+        /* B - B(m) = u' (cos s - 1) + v' sin s, cos s - 1 = -2 sin^2(s/2) */
+        double h2 = sin(0.5 * s), c1 = -2.0 * h2 * h2, sn = sin(s);
+        double ux = -bx[1] * sn + bx[2] * (1.0 + c1), uy = -by[1] * sn + by[2] * (1.0 + c1);
+        double L = sqrt(ux * ux + uy * uy), r = oc->d;
+        if (oc->evolute)
+            r = L * L * L / (bx[1] * by[2] - by[1] * bx[2]);
+        *x = bx[1] * c1 + bx[2] * sn - r * uy / L;
+        *y = by[1] * c1 + by[2] * sn + r * ux / L;
+        return;
+    }
+    double te, q[4];
+    if (aa__offset_stop(oc, p->m, &te, q)) {
+        /* the factored form: P = B + d sg perp(Q)/|Q|, E = B + (t - te)
+         * |Q|^2 perp(Q)/X */
+        double Qx = q[0] + q[1] * t, Qy = q[2] + q[3] * t, q2 = Qx * Qx + Qy * Qy;
+        double r = oc->evolute ? (t - te) * q2 / (Qx * q[3] - Qy * q[1])
+                               : oc->d * (te == 0 ? 1 : -1) / sqrt(q2);
+        *x = s * (bx[1] + s * (bx[2] + s * bx[3])) - r * Qy;
+        *y = s * (by[1] + s * (by[2] + s * by[3])) + r * Qx;
+        return;
+    }
     double ux = bx[1] + s * (2 * bx[2] + 3 * s * bx[3]);
     double uy = by[1] + s * (2 * by[2] + 3 * s * by[3]);
     double L = sqrt(ux * ux + uy * uy), r = oc->d;
@@ -291,6 +419,44 @@ static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
     rel_point(oc, p, al, &ax, &ay);
     const double *bx = p->bx, *by = p->by, d = oc->d;
     double sum = 0.0;
+    if (oc->base == AA_OFFSET_ELLIPSE) {
+        double J = bx[1] * by[2] - by[1] * bx[2];
+        for (int i = 0; i < q->n[r]; i++) {
+            double s = mm + h * q->x[q->at[r] + i] - p->m;
+            double h2 = sin(0.5 * s), c1 = -2.0 * h2 * h2, sn = sin(s), cs = 1.0 + c1;
+            double ux = -bx[1] * sn + bx[2] * cs, uy = -by[1] * sn + by[2] * cs;
+            double Dx = bx[1] * c1 + bx[2] * sn - ax, Dy = by[1] * c1 + by[2] * sn - ay;
+            double L2 = ux * ux + uy * uy, f;
+            if (!oc->evolute) {
+                double L = sqrt(L2);
+                f = (Dx * uy - Dy * ux - d * L) * (1.0 - d * J / (L2 * L));
+            } else {
+                double vx = -(bx[1] * cs + bx[2] * sn), vy = -(by[1] * cs + by[2] * sn);
+                f = 3 * (ux * vx + uy * vy) * (Dx * ux + Dy * uy) / J;
+            }
+            sum += q->w[q->at[r] + i] * f;
+        }
+        return 0.5 * h * sum;
+    }
+    double te, qs[4];
+    if (aa__offset_stop(oc, p->m, &te, qs)) {
+        double sg = te == 0 ? 1 : -1;
+        for (int i = 0; i < q->n[r]; i++) {
+            double t = mm + h * q->x[q->at[r] + i], s = t - p->m;
+            double Dx = s * (bx[1] + s * (bx[2] + s * bx[3])) - ax;
+            double Dy = s * (by[1] + s * (by[2] + s * by[3])) - ay;
+            double Qx = qs[0] + qs[1] * t, Qy = qs[2] + qs[3] * t, q2 = Qx * Qx + Qy * Qy;
+            double X = Qx * qs[3] - Qy * qs[1], f;
+            if (!oc->evolute) {
+                double lq = sqrt(q2);
+                f = (Dx * Qy - Dy * Qx - d * sg * lq) * (t - te - d * sg * X / (q2 * lq));
+            } else {
+                f = (Dx * Qx + Dy * Qy) * (q2 + 3 * (t - te) * (Qx * qs[1] + Qy * qs[3])) / X;
+            }
+            sum += q->w[q->at[r] + i] * f;
+        }
+        return 0.5 * h * sum;
+    }
     for (int i = 0; i < q->n[r]; i++) {
         double s = mm + h * q->x[q->at[r] + i] - p->m;
         double ux = bx[1] + s * (2 * bx[2] + 3 * s * bx[3]);
@@ -331,7 +497,7 @@ double area_offset_segment(const ar_piece *pc, double ta, double tb)
     } else {
         /* shares joined by the polygon of their ends about P(lo), the
          * ends relative to the first panel's B(m) (a cubic's Taylor form
-         * is exact everywhere) */
+         * and an ellipse's form about m are exact everywhere) */
         const ar_panel *p0 = &pan[k];
         double x0, y0, xa, ya, xb, yb;
         rel_point(&pc->src->oc, p0, lo, &x0, &y0);

@@ -24,7 +24,7 @@ extern "C" {
 
 /* The interface version a plug-in is built for; the command refuses a
  * plug-in built for another.  Raised whenever a type below changes layout. */
-#define AA_PLUGIN_ABI 5
+#define AA_PLUGIN_ABI 6
 
 /* ------------------------------------------------------------------------
  * Status and errors
@@ -142,17 +142,26 @@ typedef enum aa_fill_rule { AA_FILL_NONZERO = 0, AA_FILL_EVENODD = 1 } aa_fill_r
  * radius r, (r, 0) and (0, r)); (x0, y0) and (x1, y1) are its ends exactly
  * as given, and c2x, c2y are 0. */
 /* A curve at a signed distance along the unit normal of a cubic Bezier arc
- * (an offset curve), or at its centres of curvature (its evolute), mapped
- * by an affine map: the exact boundaries of a Bezier arc's stroke
- * (path.h).  With B(t) = (b[0] + t (b[1] + t (b[2] + t b[3])), b[4] + t
- * (b[5] + t (b[6] + t b[7]))) in the path's own coordinates, N(t) its unit
- * normal (-B'y, B'x)/|B'| and k(t) = (B' x B'')/|B'|^3 its signed curvature,
- * the curve is m(B(t) + d N(t)), or m(B(t) + N(t)/k(t)) for the evolute,
- * m(x, y) = (m[0] x + m[2] y + m[4], m[1] x + m[3] y + m[5]).  Its
- * derivative is m(B') (1 - d k), or m(N) (1/k)': offset_eval (core.h). */
+ * or of an ellipse (an offset curve), or at its centres of curvature (its
+ * evolute), mapped by an affine map: the exact boundaries of the stroke of
+ * a Bezier arc or an elliptical arc (path.h).  The base curve B(t), in the
+ * path's own coordinates, is
+ *  - base AA_OFFSET_CUBIC (0): the cubic B(t) = (b[0] + t (b[1] + t (b[2]
+ *    + t b[3])), b[4] + t (b[5] + t (b[6] + t b[7]))), t in [0, 1];
+ *  - base AA_OFFSET_ELLIPSE (1): the ellipse B(t) = c + u cos t + v sin t
+ *    with c = (b[0], b[1]), u = (b[2], b[3]), v = (b[4], b[5]) two
+ *    conjugate semi-diameters (u x v != 0; b[6] = b[7] = 0), t an angle
+ *    (a curve's range of t at most 2 pi long).
+ * With N(t) its unit normal (-B'y, B'x)/|B'| and k(t) = (B' x B'')/|B'|^3
+ * its signed curvature, the curve is m(B(t) + d N(t)), or m(B(t) +
+ * N(t)/k(t)) for the evolute, m(x, y) = (m[0] x + m[2] y + m[4], m[1] x +
+ * m[3] y + m[5]).  Its derivative is m(B') (1 - d k), or m(N) (1/k)':
+ * offset_eval (core.h). */
+enum { AA_OFFSET_CUBIC = 0, AA_OFFSET_ELLIPSE = 1 };
 typedef struct aa_offset_curve {
     double b[8], m[6], d;
     int evolute;
+    int base; /* AA_OFFSET_CUBIC or AA_OFFSET_ELLIPSE */
 } aa_offset_curve;
 
 typedef struct aa_edge {

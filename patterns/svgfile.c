@@ -49,8 +49,8 @@
  *     writes it as a stroke).
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
- * cannot draw exactly (Bezier arcs with a cusp, arcs of ellipses that are
- * not circles), the joins miter-clip and arcs, color-interpolation:
+ * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
+ * rounding of 0), the joins miter-clip and arcs, color-interpolation:
  * linearRGB (compositing in linear light), paint servers (gradients, patterns:
  * url() paints), text, images, <use>, clip paths, masks, filters, style
  * sheets, nested <svg>, units other than px, negative sizes, radii, widths

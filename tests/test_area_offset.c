@@ -6,7 +6,8 @@
  *  - the box reference (harness/truth, its own integration of the same
  *    pieces: scanline crossings, then QAG over y), to 1e-12 per pixel, on
  *    a gentle arc, tight arcs whose offsets fold, a loop, a hook, three
- *    arcs with round joins and caps at two widths, dashes, and a shear;
+ *    arcs with round joins and caps at two widths, dashes, a shear, and
+ *    cusps (inside, and a control point on the start);
  *    with both integrators, and the same image on one thread and on two;
  *  - the tube formula: a butt-capped arc whose curvature radius exceeds
  *    half the width everywhere covers width x arc length (the normals do
@@ -126,6 +127,19 @@ static void test_reference(void **state)
     st.width = 0.03;
     st.dash = dash, st.ndash = 2;
     against_reference("3 arcs, miter, square dashes", three, 3, &st, NULL, 64);
+    /* cusps: B'(1/2) = 0 inside; a first control point on the start */
+    const double cusp[8] = {0.2, 0.25, 0.8, 0.85, 0.2, 0.85, 0.8, 0.25};
+    const double stop[8] = {0.2, 0.8, 0.2, 0.8, 0.9, 0.7, 0.6, 0.2};
+    aa_stroke_style_default(&st);
+    st.width = 0.1;
+    against_reference("cusp, w 0.1", cusp, 1, &st, NULL, 64);
+    st.width = 0.3;
+    against_reference("cusp, w 0.3, sheared", cusp, 1, &st, shear, 48);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    st.dash = dash, st.ndash = 2;
+    against_reference("cusp, round dashes, w 0.05", cusp, 1, &st, NULL, 64);
+    st.dash = NULL, st.ndash = 0, st.width = 0.4;
+    against_reference("P1 = P0, round, w 0.4", stop, 1, &st, NULL, 48);
 }
 
 /* ---- the tube formula ---- */

@@ -1,7 +1,7 @@
 /*
  * test_paint_renderers.c: translucent paint, paint order, currentColor,
  * visibility, CSS colours and strokes (joins, caps, a Bezier arc's exact
- * offsets, dashes) as browsers draw them: the exact box
+ * offsets, dashes, ellipses, a cusp) as browsers draw them: the exact box
  * reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -42,7 +42,7 @@
 
 #define CELL 40
 #define COLS 4
-#define ROWS 5
+#define ROWS 6
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
@@ -243,6 +243,57 @@ static const cell cells[] = {
      "stroke-width=\"6\" stroke-dasharray=\"8 4\"/>",
      {{7, 19, {1, 1, 1}}, {13, 19, {0, 0, 0}}, {19, 19, {1, 1, 1}}, {25, 19, {0, 0, 0}}},
      4, ""},
+    /* The next four: a closed smooth path's stroke is the points within h
+     * of it (each lies on the normal at its nearest point); the colours
+     * below by the distance from 13 x 13 points over each pixel's 3 x 3
+     * neighbourhood to the curve, found by sampling it at 20,000 points
+     * (4,000 a side or corner for the rect, through the inverse of its
+     * transform), every one within h - 0.05 (white) or beyond h + 0.05
+     * (black); worked outside the code under test.
+     * An ellipse of semi-axes 16 and 8, 6 wide (curvature radii 4 to 32,
+     * over h = 3: no fold): the distances are at most 2.06 on pixels (20,
+     * 12), (4, 20) and (20, 28), at least 5.9 at the centre (20, 20) */
+    {"stroked ellipse",
+     "<ellipse cx=\"20\" cy=\"20\" rx=\"16\" ry=\"8\" fill=\"none\" stroke=\"white\" "
+     "stroke-width=\"6\"/>",
+     {{20, 12, {1, 1, 1}}, {20, 20, {0, 0, 0}}, {4, 20, {1, 1, 1}}, {20, 28, {1, 1, 1}}},
+     4, ""},
+    /* semi-axes 16 and 3, 10 wide: the curvature radius at the ends is
+     * 9/16, under h = 5, so the inner offset folds; distances at most 3.0
+     * at the centre (20, 20), 3.5 at (2, 20), 2.6 at (10, 20); at least 6
+     * at (20, 30) */
+    {"thick stroke on a thin ellipse",
+     "<ellipse cx=\"20\" cy=\"20\" rx=\"16\" ry=\"3\" fill=\"none\" stroke=\"white\" "
+     "stroke-width=\"10\"/>",
+     {{20, 20, {1, 1, 1}}, {20, 30, {0, 0, 0}}, {2, 20, {1, 1, 1}}, {10, 20, {1, 1, 1}}},
+     4, ""},
+    /* a rect with corners of radii 10 and 4, 4 wide, stretched by 1.5
+     * down after stroking (SVG: the stroke is made in user units): in
+     * user units the distances are at most 1.33 at pixel (20, 6), 1.78 at
+     * (6, 8) in a corner, at least 8.6 at (20, 20) */
+    {"rounded rect rx != ry, stretched",
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"21\" rx=\"10\" ry=\"4\" fill=\"none\" "
+     "stroke=\"white\" stroke-width=\"4\" transform=\"scale(1 1.5)\"/>",
+     {{20, 6, {1, 1, 1}}, {20, 20, {0, 0, 0}}, {6, 8, {1, 1, 1}}},
+     3, ""},
+    /* a cubic with a cusp at B(1/2) = (20, 25), arriving straight down
+     * ((6,4) (34,32) (6,32) (34,4): B' = 28 (3 (1 - 2t)^2, 3 (1 - 2t)) at
+     * scale 1), 10 wide: the stroke is the union of the normal segments
+     * (SVG 2; no join inside a segment), found by the feet of p on
+     * B'/(1 - 2t) (test_bezstroke.c, test_cusp): pixel (20, 27), below
+     * the tip and within 5 of it, is on no normal segment, so black, as
+     * (20, 33) is; (20, 22) and (12, 12) are within 1.8 and 3.0 of their
+     * feet, white.  Chromium, resvg and librsvg all draw a disk of radius h
+     * about the cusp (a round end there, like a round join), so pixels
+     * below the tip such as (16, 27) white: wrong by SVG 2, whose stroke
+     * shape is the union of the normal segments, with joins only at
+     * segment boundaries (PDF's stroke says the same: points where
+     * segments happen to meet receive no special treatment) */
+    {"cusp",
+     "<path d=\"M 6 4 C 34 32 6 32 34 4\" fill=\"none\" stroke=\"white\" "
+     "stroke-width=\"10\"/>",
+     {{20, 27, {0, 0, 0}}, {20, 22, {1, 1, 1}}, {12, 12, {1, 1, 1}}, {20, 33, {0, 0, 0}}},
+     4, "chromium resvg rsvg"},
 };
 #define NCELLS (sizeof cells / sizeof cells[0])
 

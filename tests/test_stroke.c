@@ -38,8 +38,9 @@
  *    area (Simpson's rule on x dy - y dx, 64 steps an arc); every winding
  *    number is >= 0;
  *  - subpaths of no length (a disk, an axis-aligned square, nothing), a
- *    lone move (nothing), and what is refused: a Bezier arc with a cusp, elliptical arcs
- *    that are not circles, bad styles; `out` is left as it was.
+ *    lone move (nothing), and what is refused: a Bezier arc nearly with a cusp, bad styles;
+ *    `out` is left as it was (elliptical arcs that are not circles:
+ *    test_ellipse_stroke.c).
  */
 #include "path.h"
 #include "support.h"
@@ -1441,20 +1442,13 @@ static void test_refused(void **state)
     must(aa_path_close(&out));
     size_t keep = out.n;
 
-    /* a cubic with a cusp (B'(1/2) = 0; Bezier strokes: test_bezstroke.c) */
+    /* a cubic nearly with a cusp (|B'(1/2)| 1e-10 of its size; cusps:
+     * test_bezstroke.c) */
     must(aa_path_move_to(&p, 0, 0));
     must(aa_path_line_to(&p, 1, 0));
-    must(aa_path_cubic_to(&p, 2, 1, 1, 1, 2, 0));
+    must(aa_path_cubic_to(&p, 2, 1, 1 + 1e-10, 1, 2, 0));
     assert_int_equal(aa_stroke_outline(&p, &st, &out), AA_EINVAL);
     assert_non_null(strstr(aa_last_error(), "cusp"));
-    assert_int_equal(out.n, keep);
-    aa_path_free(&p);
-
-    /* an ellipse 2 x 1 */
-    must(aa_path_move_to(&p, 2, 0));
-    must(aa_path_arc_to(&p, 0, 0, 2, 0, 0, 1, 0, M_PI / 2, 0, 1));
-    assert_int_equal(aa_stroke_outline(&p, &st, &out), AA_EINVAL);
-    assert_non_null(strstr(aa_last_error(), "not a circle"));
     assert_int_equal(out.n, keep);
     aa_path_free(&p);
 

@@ -153,13 +153,14 @@ int aa_scene_cubic_to(aa_scene *s, double c1x, double c1y, double c2x, double c2
  * (a degenerate ellipse: draw its lines instead).  t0 == t1 adds nothing. */
 int aa_scene_arc_to(aa_scene *s, double cx, double cy, double ux, double uy, double vx,
                     double vy, double t0, double t1, double x, double y);
-/* An offset curve or evolute of a Bezier arc (aa_offset_curve, in this
- * scene's coordinates through its map) from the pen to (x, y), its
- * parameter from t0 to t1 (in [0, 1]); the pen and (x, y) must be its
- * points there within 1e-9 of their size.  Meant for stroke outlines
- * (path.h): the curve must have no fold (an offset: d k != 1) nor extreme
- * of the curvature (an evolute) strictly inside, and B' != 0 on it.
- * t0 == t1 adds nothing. */
+/* An offset curve or evolute of a Bezier arc or an ellipse
+ * (aa_offset_curve, in this scene's coordinates through its map) from the
+ * pen to (x, y), its parameter from t0 to t1 (in [0, 1] for a cubic; angles
+ * at most 2 pi apart for an ellipse); the pen and (x, y) must be its points
+ * there within 1e-9 of their size.  Meant for stroke outlines (path.h): the
+ * curve must have no fold (an offset: d k != 1) nor extreme of the
+ * curvature (an evolute) strictly inside, and B' != 0 on it but at an end
+ * (aa__offset_stop).  t0 == t1 adds nothing. */
 int aa_scene_offset_to(aa_scene *s, const aa_offset_curve *oc, double t0, double t1, double x,
                        double y);
 int aa_scene_close(aa_scene *s);
@@ -671,7 +672,7 @@ const char *aa_svg_dir(void);
  * neither is set.  The text is valid until the thread's next call. */
 const char *aa_cache_dir_default(void);
 
-/* ---- offset curves of Bezier arcs (offset.c; aabench.h, aa_offset_curve) ---- */
+/* ---- offset curves of Bezier arcs and ellipses (offset.c; aabench.h, aa_offset_curve) ---- */
 
 /* The point (x, y) of oc at t and its derivative (dx, dy; either NULL: not
  * wanted), in long double. */
@@ -681,6 +682,11 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
  * (0 x, 1 y) of oc turns, on a part without folds (an offset) or extremes
  * of the curvature (an evolute): in closed form. */
 int aa__offset_turns(const aa_offset_curve *oc, int coord, double lo, double hi, double t[2]);
+/* 1 if t is on the half of [0, 1] next to an end te of a cubic where B'
+ * vanishes (within 1e-12 of the sum of its coefficients' magnitudes), there
+ * evaluated in the factored form B' = (t - te) Q, Q(t) = (q[0] + q[1] t,
+ * q[2] + q[3] t) (offset.c, header). */
+int aa__offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4]);
 /* The parameter between ta and tb (either order) where coordinate coord of
  * oc equals target, given that it is monotone there and fa (its value at
  * ta less target) has the other sign than at tb: Newton's method kept in

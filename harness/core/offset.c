@@ -1,51 +1,173 @@
 /*
- * offset.c: offset curves and evolutes of cubic Bezier arcs (aabench.h,
- * aa_offset_curve), the exact boundaries of a Bezier arc's stroke: their
- * points and derivatives, the turns of either coordinate, and the one root
- * of a coordinate on a part where it is monotone.
+ * offset.c: offset curves and evolutes of cubic Bezier arcs and of ellipses
+ * (aabench.h, aa_offset_curve), the exact boundaries of the stroke of a
+ * Bezier arc or an elliptical arc: their points and derivatives, the turns
+ * of either coordinate, and the one root of a coordinate on a part where it
+ * is monotone.
  *
  * With B' = B'(t), B'' and B''' its derivatives, L = |B'|, the unit normal
  * N = (-B'y, B'x)/L and the curvature k = c/L^3, c = B' x B'':
  *  - the offset P = B + d N has P' = B' (1 - d k) (N' = -k L T, T = B'/L):
  *    parallel to B', vanishing only where d k = 1 (a fold of the offset);
  *  - the evolute E = B + N/k = B + N L^3/c has E' = (1/k)' N, with
- *        (1/k)' = L (3 (B' . B'') c - L^2 c') / c^2,  c' = B' x B''',
+ *        (1/k)' = L (3 (B' . B'') c - L^2 c')/c^2,  c' = B' x B''',
  *    which vanishes at the extremes of the curvature (cusps of E).
  * So on a part without folds (offsets) or curvature extremes (evolutes) the
- * turns of a coordinate of m(P) are those of m(B') (a quadratic in t), and
- * of m(E) those of m(N) L (a quadratic), in closed form.  Everything is
- * evaluated in long double.
+ * turns of a coordinate of m(P) are those of m(B'), and of m(E) those of
+ * m(N) L, in closed form: for a cubic B' is a quadratic in t; for the
+ * ellipse B = c + u cos t + v sin t, B' = -u sin t + v cos t, B'' = -(B -
+ * c), B''' = -B', so c = u x v is constant, c' = 0, and a coordinate of
+ * m(B') or m(N) L is a cos t + b sin t, zero at atan2(b, a) + pi/2 + k pi.
+ * Everything is evaluated in long double.
+ *
+ * A cubic whose B' vanishes at an end te (a control point on its end
+ * point; the stroker splits a cusp into two such arcs; |B'(te)| within
+ * 1e-12 of the sum of the coefficients' magnitudes, so that the rounding
+ * of B' at a cusp counts as 0: aa__offset_stop) is evaluated on the half of
+ * [0, 1] next to te in the factored form B' = (t - te) Q, Q = B''(te) +
+ * (t - te) Q' (Q' = 3 b3; the remainder B'(te) dropped), where B' itself
+ * would lose its direction to rounding near te: with s = t - te, sg its
+ * sign on the curve (1 for te = 0, -1 for te = 1) and X = Q x Q' (a
+ * constant), L = |s| |Q|, N = sg perp(Q)/|Q| (perp(a) = (-ay, ax)),
+ * k = X/(|s| |Q|^3), so
+ *  - the offset P = B + d N has P' = s Q - d sg X Q/|Q|^3;
+ *  - the evolute E = B + N/k = B + s |Q|^2 perp(Q)/X has
+ *    E' = (|Q|^2 + 3 s (Q . Q')) perp(Q)/X,
+ * all finite at te: the normal there is the limit of those beside it (SVG
+ * 2: the direction to the next distinct control point), the evolute meets
+ * the curve.  Where Q vanishes too (B''(te) = 0) the arc is straight near
+ * te: N = perp(Q')/|Q'|, k = 0.
  */
 #include "core.h"
 
 #include <float.h>
 #include <math.h>
 
+/* B, B', B'', B''' (x in [0], y in [1]) of the base curve at t. */
+static void base_eval(const aa_offset_curve *oc, long double t, long double B[2],
+                      long double B1[2], long double B2[2], long double B3[2])
+{
+    const double *b = oc->b;
+    if (oc->base == AA_OFFSET_ELLIPSE) {
+        long double ct = cosl(t), st = sinl(t);
+        long double px = b[2] * ct + b[4] * st, py = b[3] * ct + b[5] * st; /* B - c */
+        B[0] = b[0] + px, B[1] = b[1] + py;
+        B1[0] = -b[2] * st + b[4] * ct, B1[1] = -b[3] * st + b[5] * ct;
+        B2[0] = -px, B2[1] = -py;
+        B3[0] = -B1[0], B3[1] = -B1[1];
+        return;
+    }
+    B[0] = b[0] + t * (b[1] + t * (b[2] + t * (long double)b[3]));
+    B[1] = b[4] + t * (b[5] + t * (b[6] + t * (long double)b[7]));
+    B1[0] = b[1] + t * (2 * b[2] + 3 * t * (long double)b[3]);
+    B1[1] = b[5] + t * (2 * b[6] + 3 * t * (long double)b[7]);
+    B2[0] = 2 * b[2] + 6 * t * (long double)b[3];
+    B2[1] = 2 * b[6] + 6 * t * (long double)b[7];
+    B3[0] = 6 * (long double)b[3], B3[1] = 6 * (long double)b[7];
+}
+
+/* base_eval in double: the solver's first steps. */
+static void base_eval_d(const aa_offset_curve *oc, double t, double B[2], double B1[2],
+                        double B2[2], double B3[2])
+{
+    const double *b = oc->b;
+    if (oc->base == AA_OFFSET_ELLIPSE) {
+        double ct = cos(t), st = sin(t);
+        double px = b[2] * ct + b[4] * st, py = b[3] * ct + b[5] * st;
+        B[0] = b[0] + px, B[1] = b[1] + py;
+        B1[0] = -b[2] * st + b[4] * ct, B1[1] = -b[3] * st + b[5] * ct;
+        B2[0] = -px, B2[1] = -py;
+        B3[0] = -B1[0], B3[1] = -B1[1];
+        return;
+    }
+    B[0] = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+    B[1] = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+    B1[0] = b[1] + t * (2 * b[2] + 3 * t * b[3]), B1[1] = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+    B2[0] = 2 * b[2] + 6 * t * b[3], B2[1] = 2 * b[6] + 6 * t * b[7];
+    B3[0] = 6 * b[3], B3[1] = 6 * b[7];
+}
+
+int aa__offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4])
+{
+    if (oc->base != AA_OFFSET_CUBIC)
+        return 0;
+    const double *b = oc->b;
+    double scale = fabs(b[1]) + fabs(b[2]) + fabs(b[3]) + fabs(b[5]) + fabs(b[6]) + fabs(b[7]);
+    if (t < 0.5) {
+        double tol = 1e-12 * scale;
+        if (!(b[1] * b[1] + b[5] * b[5] <= tol * tol))
+            return 0;
+        *te = 0;
+        q[0] = 2 * b[2], q[2] = 2 * b[6];
+    } else {
+        double ex = b[1] + (2 * b[2] + 3 * b[3]), ey = b[5] + (2 * b[6] + 3 * b[7]);
+        double tol = 1e-12 * scale;
+        if (!(ex * ex + ey * ey <= tol * tol))
+            return 0;
+        *te = 1;
+        q[0] = 2 * b[2] + 3 * b[3], q[2] = 2 * b[6] + 3 * b[7];
+    }
+    q[1] = 3 * b[3], q[3] = 3 * b[7];
+    return 1;
+}
+
+/* The point and derivative (unmapped) of a cubic's offset or evolute in
+ * the factored form about te (see the header). */
+static void stop_eval(const aa_offset_curve *oc, long double t, double te, const double *q,
+                      long double *px, long double *py, long double *qx, long double *qy)
+{
+    const double *b = oc->b;
+    long double bx = b[0] + t * (b[1] + t * (b[2] + t * (long double)b[3]));
+    long double by = b[4] + t * (b[5] + t * (b[6] + t * (long double)b[7]));
+    long double s = t - te, sg = te == 0 ? 1 : -1;
+    long double Qx = q[0] + q[1] * t, Qy = q[2] + q[3] * t, q2 = Qx * Qx + Qy * Qy;
+    long double X = Qx * (long double)q[3] - Qy * (long double)q[1];
+    if (q2 == 0 || X == 0) {
+        /* straight near te: N along perp(Q) (or perp(Q') where Q = 0), k = 0 */
+        long double nx = q2 == 0 ? q[1] : sg * Qx, ny = q2 == 0 ? q[3] : sg * Qy;
+        long double l = sqrtl(nx * nx + ny * ny);
+        *px = bx - (oc->evolute ? 0 : oc->d) * ny / l;
+        *py = by + (oc->evolute ? 0 : oc->d) * nx / l;
+        *qx = s * Qx, *qy = s * Qy;
+        return;
+    }
+    long double lq = sqrtl(q2);
+    if (!oc->evolute) {
+        long double f = oc->d * sg * X / (q2 * lq);
+        *px = bx - oc->d * sg * Qy / lq;
+        *py = by + oc->d * sg * Qx / lq;
+        *qx = (s - f) * Qx, *qy = (s - f) * Qy;
+    } else {
+        long double r = s * q2 / X, g = (q2 + 3 * s * (Qx * q[1] + Qy * q[3])) / X;
+        *px = bx - r * Qy, *py = by + r * Qx;
+        *qx = -g * Qy, *qy = g * Qx;
+    }
+}
+
 void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
                      long double *dx, long double *dy)
 {
-    const double *b = oc->b, *m = oc->m;
-    long double bx = b[0] + t * (b[1] + t * (b[2] + t * (long double)b[3]));
-    long double by = b[4] + t * (b[5] + t * (b[6] + t * (long double)b[7]));
-    long double ux = b[1] + t * (2 * b[2] + 3 * t * (long double)b[3]);
-    long double uy = b[5] + t * (2 * b[6] + 3 * t * (long double)b[7]);
-    long double vx = 2 * b[2] + 6 * t * (long double)b[3];
-    long double vy = 2 * b[6] + 6 * t * (long double)b[7];
+    const double *m = oc->m;
+    long double B[2], U[2], V[2], W[2];
+    base_eval(oc, t, B, U, V, W);
+    long double ux = U[0], uy = U[1], vx = V[0], vy = V[1];
     long double L = sqrtl(ux * ux + uy * uy), c = ux * vy - uy * vx;
     long double px, py, qx, qy; /* the point and its derivative, unmapped */
-    if (!oc->evolute) {
+    double te, q[4];
+    if (aa__offset_stop(oc, (double)t, &te, q)) {
+        stop_eval(oc, t, te, q, &px, &py, &qx, &qy);
+    } else if (!oc->evolute) {
         long double k = c / (L * L * L), f = 1 - oc->d * k;
-        px = bx - oc->d * uy / L;
-        py = by + oc->d * ux / L;
+        px = B[0] - oc->d * uy / L;
+        py = B[1] + oc->d * ux / L;
         qx = ux * f;
         qy = uy * f;
     } else {
-        long double wx = 6 * (long double)b[3], wy = 6 * (long double)b[7];
-        long double cp = ux * wy - uy * wx, dot = ux * vx + uy * vy, L2 = L * L;
+        long double cp = ux * W[1] - uy * W[0], dot = ux * vx + uy * vy, L2 = L * L;
         long double r = L2 * L / c; /* 1/k */
         long double rp = L * (3 * dot * c - L2 * cp) / (c * c);
-        px = bx - r * uy / L;
-        py = by + r * ux / L;
+        px = B[0] - r * uy / L;
+        py = B[1] + r * ux / L;
         qx = -rp * uy / L;
         qy = rp * ux / L;
     }
@@ -61,20 +183,26 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
 static void eval_d(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
                    double *dy)
 {
-    const double *b = oc->b, *m = oc->m;
-    double bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
-    double by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
-    double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
-    double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+    const double *m = oc->m;
+    double B[2], U[2], V[2], W[2];
+    base_eval_d(oc, t, B, U, V, W);
+    double ux = U[0], uy = U[1], vx = V[0], vy = V[1];
     double L = sqrt(ux * ux + uy * uy), c = ux * vy - uy * vx, px, py, qx, qy;
+    double te, q[4];
+    if (aa__offset_stop(oc, t, &te, q)) {
+        long double X, Y, DX, DY; /* near an end where B' = 0: factored */
+        aa__offset_eval(oc, t, &X, &Y, &DX, &DY);
+        *x = (double)X, *y = (double)Y, *dx = (double)DX, *dy = (double)DY;
+        return;
+    }
     if (!oc->evolute) {
         double f = 1 - oc->d * c / (L * L * L);
-        px = bx - oc->d * uy / L, py = by + oc->d * ux / L;
+        px = B[0] - oc->d * uy / L, py = B[1] + oc->d * ux / L;
         qx = ux * f, qy = uy * f;
     } else {
-        double cp = ux * 6 * b[7] - uy * 6 * b[3], dot = ux * vx + uy * vy, L2 = L * L;
+        double cp = ux * W[1] - uy * W[0], dot = ux * vx + uy * vy, L2 = L * L;
         double r = L2 * L / c, rp = L * (3 * dot * c - L2 * cp) / (c * c);
-        px = bx - r * uy / L, py = by + r * ux / L;
+        px = B[0] - r * uy / L, py = B[1] + r * ux / L;
         qx = -rp * uy / L, qy = rp * ux / L;
     }
     *x = m[0] * px + m[2] * py + m[4];
@@ -122,11 +250,36 @@ static int quad_roots(double a, double b, double c, double lo, double hi, double
     return m;
 }
 
+/* Zeros of a cos t + b sin t in (lo, hi), ascending (at most 2: the range
+ * is at most 2 pi long): a cos t + b sin t = r cos(t - phi), phi =
+ * atan2(b, a), zero at phi + pi/2 + k pi. */
+static int trig_roots(double a, double b, double lo, double hi, double *t)
+{
+    if (a == 0 && b == 0)
+        return 0;
+    double z = atan2(b, a) + 0.5 * M_PI;
+    double k = ceil((lo - z) / M_PI);
+    int m = 0;
+    for (int j = -1; j < 3 && m < 2; j++) {
+        double r = z + (k + j) * M_PI;
+        if (r > lo && r < hi && (m == 0 || r > t[m - 1]))
+            t[m++] = r;
+    }
+    return m;
+}
+
 int aa__offset_turns(const aa_offset_curve *oc, int coord, double lo, double hi, double t[2])
 {
     const double *b = oc->b;
     /* the row of m for this coordinate: m(v)_coord = ra vx + rb vy */
     double ra = oc->m[coord], rb = oc->m[2 + coord];
+    if (oc->base == AA_OFFSET_ELLIPSE) {
+        /* B' = v cos t - u sin t, N L = (-B'y, B'x) */
+        if (!oc->evolute) /* ra B'x + rb B'y */
+            return trig_roots(ra * b[4] + rb * b[5], -(ra * b[2] + rb * b[3]), lo, hi, t);
+        /* rb B'x - ra B'y */
+        return trig_roots(rb * b[4] - ra * b[5], -(rb * b[2] - ra * b[3]), lo, hi, t);
+    }
     /* B' = (b1 + 2 b2 t + 3 b3 t^2, b5 + 2 b6 t + 3 b7 t^2) */
     if (!oc->evolute) /* ra B'x + rb B'y */
         return quad_roots(ra * b[1] + rb * b[5], 2 * (ra * b[2] + rb * b[6]),

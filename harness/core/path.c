@@ -165,16 +165,17 @@ int aa_path_arc_to(aa_path *p, double cx, double cy, double ux, double uy, doubl
 int aa_path_offset_to(aa_path *p, const aa_offset_curve *oc, double t0, double t1, double x,
                       double y)
 {
-    double v[14];
+    double v[15];
     memcpy(v, oc->b, 8 * sizeof *v);
     v[8] = oc->d, v[9] = oc->evolute ? 1 : 0, v[10] = t0, v[11] = t1, v[12] = x, v[13] = y;
-    for (int k = 0; k < 14; k++)
+    v[14] = oc->base;
+    for (int k = 0; k < 15; k++)
         if (!isfinite(v[k]))
             return aa_fail(AA_EINVAL, "path offset_to: a number is not finite");
     int st = need_pen(p, "offset_to");
     if (st)
         return st;
-    if ((st = push(p, AA_PATH_OFFSET, v, 14)))
+    if ((st = push(p, AA_PATH_OFFSET, v, 15)))
         return st;
     p->penx = x;
     p->peny = y;
@@ -360,7 +361,7 @@ int aa_path_fill(const aa_path *path, const double m[6], aa_scene *s)
             st = aa_scene_arc_to(s, ax, ay, ux, uy, vx, vy, p[6], p[7], x, y);
             break;
         case AA_PATH_OFFSET: {
-            aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, p[8], p[9] != 0};
+            aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, p[8], p[9] != 0, (int)p[14]};
             memcpy(oc.b, p, sizeof oc.b);
             if (m)
                 memcpy(oc.m, m, sizeof oc.m);

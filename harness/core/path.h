@@ -24,14 +24,15 @@ typedef enum aa_path_op {
     AA_PATH_ARC,   /* p[0..7]: cx cy ux uy vx vy t0 t1 (aa_edge); p[8..9]: end */
     AA_PATH_CLOSE, /* back to the subpath's start (a line if it is elsewhere) */
     /* p[0..7]: b, p[8]: d, p[9]: 1 for the evolute (aa_offset_curve, its map
-     * the identity); p[10..11]: t0 t1; p[12..13]: end.  Stroke outlines
-     * only (aa_stroke_outline): aa_path_fill takes them, nothing else */
+     * the identity); p[10..11]: t0 t1; p[12..13]: end; p[14]: its base
+     * (AA_OFFSET_CUBIC or AA_OFFSET_ELLIPSE).  Stroke outlines only
+     * (aa_stroke_outline): aa_path_fill takes them, nothing else */
     AA_PATH_OFFSET
 } aa_path_op;
 
 typedef struct aa_path_seg {
     aa_path_op op;
-    double p[14];
+    double p[15];
 } aa_path_seg;
 
 typedef struct aa_path {
@@ -52,7 +53,7 @@ int aa_path_cubic_to(aa_path *p, double c1x, double c1y, double c2x, double c2y,
 /* As aa_scene_arc_to, same checks. */
 int aa_path_arc_to(aa_path *p, double cx, double cy, double ux, double uy, double vx, double vy,
                    double t0, double t1, double x, double y);
-/* An offset curve or evolute of a Bezier arc (aa_offset_curve; its map is
+/* An offset curve or evolute of a Bezier arc or an ellipse (aa_offset_curve; its map is
  * ignored: the path's own coordinates) from the pen to (x, y), its
  * parameter from t0 to t1, as aa_scene_offset_to checks it. */
 int aa_path_offset_to(aa_path *p, const aa_offset_curve *oc, double t0, double t1, double x,
@@ -105,10 +106,11 @@ void aa_stroke_style_default(aa_stroke_style *st);
  * contours of lines, arcs, joins and caps are simple and turn the positive
  * way), so their union is what the non-zero rule fills.  Lines and
  * circular arcs stroke exactly to lines and circular arcs; quadratic and
- * cubic Bezier arcs to their offset curves and evolutes (AA_PATH_OFFSET,
- * exact pieces: stroke.c says how).  What cannot be stroked exactly is
- * refused with AA_EINVAL naming it (a Bezier arc with a cusp or a control
- * point on an end; elliptical arcs that are not circles), and so is a
+ * cubic Bezier arcs and elliptical arcs that are not circles to their
+ * offset curves and evolutes (AA_PATH_OFFSET, exact pieces: stroke.c says
+ * how), cusps included.  What cannot be stroked exactly is refused with
+ * AA_EINVAL naming it (a Bezier arc nearly with a cusp: its speed within
+ * 1e-9 of its size but not 0 to rounding), and so is a
  * subpath of more than 10000 dashes.  stroke.c says what it
  * chose where SVG leaves room (zero-length subpaths and segments, dashes on
  * closed subpaths).  On failure `out` is as it was. */

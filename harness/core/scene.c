@@ -373,15 +373,27 @@ int aa_scene_offset_to(aa_scene *s, const aa_offset_curve *oc, double t0, double
         return aa_fail(AA_EFAIL, "offset_to without move_to");
     for (int k = 0; k < 8; k++)
         if (!isfinite(oc->b[k]))
-            return aa_fail(AA_EINVAL, "offset_to: the Bezier arc is not finite");
+            return aa_fail(AA_EINVAL, "offset_to: the base curve is not finite");
     for (int k = 0; k < 6; k++)
         if (!isfinite(oc->m[k]))
             return aa_fail(AA_EINVAL, "offset_to: the map is not finite");
+    if (oc->base != AA_OFFSET_CUBIC && oc->base != AA_OFFSET_ELLIPSE)
+        return aa_fail(AA_EINVAL, "offset_to: unknown base curve %d", oc->base);
+    int ell = oc->base == AA_OFFSET_ELLIPSE;
     if (!isfinite(oc->d) || !isfinite(t0) || !isfinite(t1) || !isfinite(x) || !isfinite(y) ||
-        t0 < 0 || t0 > 1 || t1 < 0 || t1 > 1)
+        (!ell && (t0 < 0 || t0 > 1 || t1 < 0 || t1 > 1)) ||
+        (ell && !(fabs(t1 - t0) <= 2.0 * M_PI * (1.0 + 1e-12))))
         return aa_fail(AA_EINVAL, "offset_to: distance %g, parameters %g .. %g or end (%g, %g) "
                                   "out of range",
                        oc->d, t0, t1, x, y);
+    if (ell) {
+        double lu = hypot(oc->b[2], oc->b[3]), lv = hypot(oc->b[4], oc->b[5]);
+        double cross = oc->b[2] * oc->b[5] - oc->b[3] * oc->b[4];
+        if (!(fabs(cross) > 1e-12 * (lu + lv) * (lu + lv)) || oc->b[6] != 0 || oc->b[7] != 0)
+            return aa_fail(AA_EINVAL, "offset_to: the ellipse's semi-diameters (%g, %g) and "
+                                      "(%g, %g) are parallel, or b[6], b[7] are not 0",
+                           oc->b[2], oc->b[3], oc->b[4], oc->b[5]);
+    }
     if (t0 == t1)
         return AA_OK;
     double a[2], b[2];

@@ -707,7 +707,10 @@ static int ratio_range(const double *A, const double *C, double ta, double tb, d
  * piece's parameters there).  A line's slope; a Bezier piece's x'/y', a
  * ratio of quadratics in its t; on an offset piece P' is m(B') (1 - d k),
  * on an evolute m(N) (1/k)', so dx/dy is the ratio of the rows of m
- * applied to B' (or to N |B'| = (-B'y, B'x)), quadratics in t; on a conic
+ * applied to B' (or to N |B'| = (-B'y, B'x)), quadratics in t (for the
+ * offsets of an ellipse, B' = v cos t - u sin t: a ratio of two forms
+ * a cos t + b sin t, monotone in t where the lower has no zero, its
+ * derivative's numerator the constant a2 c1 - a1 c2); on a conic
  * -ea/er + (eb/er) cot s, monotone in s.  0 where it is not bounded (the
  * piece turns horizontal on [a, b]). */
 static int slope_range(const aa_piece *p, double a, double b, const double t[2], double *lo,
@@ -723,6 +726,25 @@ static int slope_range(const aa_piece *p, double a, double b, const double t[2],
             return 0;
         double ka = -p->ea / p->er + p->eb / (p->er * tan(sa));
         double kb = -p->ea / p->er + p->eb / (p->er * tan(sb));
+        *lo = fmin(ka, kb), *hi = fmax(ka, kb);
+        ok = 1;
+    } else if (p->kind == AA_PIECE_OFFSET && p->oc.base == AA_OFFSET_ELLIPSE) {
+        const double *c = p->oc.b, *m = p->oc.m;
+        /* the direction's cos t and sin t coefficients: B' = v cos t - u sin t */
+        double ex[2] = {c[4], -c[2]}, ey[2] = {c[5], -c[3]}, A[2], C[2];
+        for (int k = 0; k < 2; k++) {
+            double vx = p->oc.evolute ? -ey[k] : ex[k], vy = p->oc.evolute ? ex[k] : ey[k];
+            A[k] = m[0] * vx + m[2] * vy;
+            C[k] = m[1] * vx + m[3] * vy;
+        }
+        double ta = fmin(t[0], t[1]), tb = fmax(t[0], t[1]);
+        double ca = C[0] * cos(ta) + C[1] * sin(ta), cb = C[0] * cos(tb) + C[1] * sin(tb);
+        /* C's zeros are pi apart: none inside if its ends agree in sign on
+         * a range shorter than pi */
+        if (!(tb - ta < M_PI && ((ca > 0.0 && cb > 0.0) || (ca < 0.0 && cb < 0.0))))
+            return 0;
+        double ka = (A[0] * cos(ta) + A[1] * sin(ta)) / ca;
+        double kb = (A[0] * cos(tb) + A[1] * sin(tb)) / cb;
         *lo = fmin(ka, kb), *hi = fmax(ka, kb);
         ok = 1;
     } else if (p->kind == AA_PIECE_OFFSET) {

@@ -183,6 +183,17 @@ unsigned long long aa_scene_hash(const aa_scene *s)
             put_double(&z, v[i]);
         put_int(&z, e->quad);
         put_int(&z, e->layer);
+        if (e->quad == 4 && e->oc.base != AA_OFFSET_CUBIC) {
+            /* the offset curves of an ellipse (those of cubics were
+             * hashed by their ends alone, and keep their hash) */
+            put_int(&z, e->oc.base);
+            put_int(&z, e->oc.evolute);
+            put_double(&z, e->oc.d);
+            for (int i = 0; i < 8; i++)
+                put_double(&z, e->oc.b[i]);
+            for (int i = 0; i < 6; i++)
+                put_double(&z, e->oc.m[i]);
+        }
     }
     put_int(&z, (long long)s->ncontours);
     for (size_t k = 0; k < s->ncontours; k++)

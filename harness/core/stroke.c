@@ -1,8 +1,8 @@
 /*
  * stroke.c: the stroke outline of a path (path.h, aa_stroke_outline): the
  * SVG 2 stroke shape ("Stroke shape", with stroke-linejoin, -linecap,
- * -miterlimit and dashing) of a path of lines, circular arcs and Bezier
- * arcs (the last below), exactly,
+ * -miterlimit and dashing) of a path of lines, elliptical arcs and Bezier
+ * arcs (those and the arcs that are not circles below), exactly,
  * as a union of simple closed contours of lines and circular arcs that all
  * turn the same way (positive signed area), so that the non-zero rule
  * fills exactly their union.
@@ -58,9 +58,11 @@
  *    and a dash over the whole subpath leaves it closed; a dash of zero
  *    length is its caps in the path's direction there.
  *
- * Bezier arcs (quadratics raised to cubics, exactly, in the power basis):
- * the region swept by the normal of length 2h is the image of
- * [t0, t1] x [-h, h] under F(t, s) = B(t) + s N(t), whose Jacobian is
+ * Bezier arcs (quadratics raised to cubics, exactly, in the power basis)
+ * and elliptical arcs that are not circles (the ellipse B(t) = c + u cos t
+ * + v sin t, its parameter made increasing; curvature (u x v)/|B'|^3, its
+ * extremes where B' . B'' = 0, a quarter turn apart): the region swept
+ * by the normal of length 2h is the image of [t0, t1] x [-h, h] under F(t, s) = B(t) + s N(t), whose Jacobian is
  * |B'| (1 - s k(t)) (N the unit normal (-B'y, B'x)/|B'|, k the signed
  * curvature B' x B'' / |B'|^3).  By the degree of a map, the winding
  * number about p of the image of the boundary of a region where the
@@ -73,18 +75,22 @@
  * split at the evolute s = 1/k, where the offset folds: the non-zero union
  * of these contours is exactly the swept region, however the offsets fold
  * or loop, and none of them need be simple.  Their boundaries are the
- * offsets, the evolute (exact pieces: aa_offset_curve, AA_PATH_OFFSET) and
- * normal lines; joins and caps are as for lines, with the arcs' end
- * tangents.  Dashes along Bezier arcs by arc length: 16-point
+ * offsets, the evolute (exact pieces: aa_offset_curve, AA_PATH_OFFSET, on
+ * the base curve AA_OFFSET_CUBIC or AA_OFFSET_ELLIPSE) and normal lines;
+ * joins and caps are as for lines, with the arcs' end tangents.  Dashes
+ * along Bezier and elliptical arcs by arc length: 16-point
  * Gauss-Legendre on halves until two levels agree to 1e-15 of the whole
  * (at most 2048 splits), and Newton's
  * method (kept in a bracket) for the parameter at a length.
- * Refused (AA_EINVAL, naming it): a Bezier arc whose speed |B'| vanishes
- * (within 1e-9 of its size) somewhere on it, a cusp or a control point on
- * an end, where the normal is undefined (SVG 2 takes an end's direction
- * from the next distinct control point; not done here); elliptical arcs
- * that are not circles, whose offset curves are not lines or circles; a
- * subpath of more than DASH_MAX (10000) dashes.
+ * Where a Bezier arc's speed |B'| vanishes (bez_piece) the normal is the
+ * limit of those beside it: at an end whose control point is on it (SVG 2
+ * takes the direction from the next distinct control point: the same), and
+ * at a cusp inside, where the arc is split into arcs of their own with no
+ * join between them (SVG 2 joins segments only at their boundaries, so
+ * nothing is drawn ahead of the cusp's tip; Chromium, resvg and librsvg
+ * draw a disk there).  Refused (AA_EINVAL, naming it): a Bezier arc whose
+ * speed comes within 1e-9 of its size without being 0 to rounding (1e-12),
+ * nearly a cusp; a subpath of more than DASH_MAX (10000) dashes.
  */
 #include "path.h"
 
@@ -238,8 +244,10 @@ static int emit_polygon(aa_path *out, const double *xy, int n)
 /* ---- pieces: the segments of non-zero length ---- */
 
 typedef struct piece {
-    int arc, bez;                          /* bez: a Bezier arc, b, t from t0 to t1 */
-    double b[8];                           /* its power basis (aa_offset_curve) */
+    int arc, bez;                          /* bez: a curve b (base), t from t0 < t1 */
+    int nojoin;                            /* after a cusp: no join with the piece before */
+    int base;                              /* AA_OFFSET_CUBIC or AA_OFFSET_ELLIPSE */
+    double b[8];                           /* its power basis or c, u, v (aa_offset_curve) */
     double x0, y0, x1, y1;                 /* ends */
     double dx, dy;                         /* lines: the unit direction */
     double cx, cy, ux, uy, vx, vy, t0, t1; /* arcs: a circle, |u| = |v| = r */
@@ -265,15 +273,64 @@ static int pieces_push(pieces *ps, const piece *p)
     return AA_OK;
 }
 
+/* B(t) and B'(t) of a curve piece (bez): a cubic in power basis, or the
+ * ellipse c + u cos t + v sin t. */
+static void bez_pt(const piece *p, double t, double *x, double *y)
+{
+    const double *b = p->b;
+    if (p->base == AA_OFFSET_ELLIPSE) {
+        double ct = cos(t), st = sin(t);
+        *x = b[0] + b[2] * ct + b[4] * st;
+        *y = b[1] + b[3] * ct + b[5] * st;
+        return;
+    }
+    *x = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+    *y = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+}
+
+static void bez_d1(const piece *p, double t, double *x, double *y)
+{
+    const double *b = p->b;
+    if (p->base == AA_OFFSET_ELLIPSE) {
+        double ct = cos(t), st = sin(t);
+        *x = -b[2] * st + b[4] * ct;
+        *y = -b[3] * st + b[5] * ct;
+        return;
+    }
+    *x = b[1] + t * (2 * b[2] + 3 * t * b[3]);
+    *y = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+}
+
+/* On the half of [0, 1] next to an end te of a cubic piece where B'
+ * vanishes (a control point on it, or a cusp split off):
+ * aa__offset_stop's factored form B' = (t - te) Q, in which the direction
+ * sg Q/|Q| (sg = 1 for te = 0, -1 for te = 1) and the curvature
+ * X/(|t - te| |Q|^3), X = Q x Q', keep their precision near te; at te the
+ * direction is that of B''(te) (or B''' where it is 0: SVG 2 takes the
+ * direction to the next distinct control point, the same) and the
+ * curvature is infinite of the sign of X (0 where X = 0: straight). */
+static int bez_stop(const piece *p, double t, double *te, double q[4])
+{
+    aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, 0, 0, p->base};
+    memcpy(oc.b, p->b, sizeof oc.b);
+    return aa__offset_stop(&oc, t, te, q);
+}
+
 /* The unit tangent of a piece at its start or end, in the direction of
  * travel: a line's is the whole segment's (a short part of it may have
  * equal ends after rounding); an arc's never vanishes (u, v not parallel). */
 static void piece_tangent(const piece *p, int at_end, double d[2])
 {
     if (p->bez) {
-        double t = at_end ? p->t1 : p->t0;
-        double x = p->b[1] + t * (2 * p->b[2] + 3 * t * p->b[3]);
-        double y = p->b[5] + t * (2 * p->b[6] + 3 * t * p->b[7]), l = hypot(x, y);
+        double t = at_end ? p->t1 : p->t0, x, y, te, q[4];
+        bez_d1(p, t, &x, &y);
+        if (bez_stop(p, t, &te, q)) {
+            double sg = te == 0 ? 1 : -1;
+            x = sg * (q[0] + q[1] * t), y = sg * (q[2] + q[3] * t);
+            if (x == 0 && y == 0)
+                x = q[1], y = q[3];
+        }
+        double l = hypot(x, y);
         d[0] = x / l;
         d[1] = y / l;
         return;
@@ -293,7 +350,7 @@ static void piece_tangent(const piece *p, int at_end, double d[2])
 
 /* The part of a piece from arc length a to b (0 <= a < b <= len), ends
  * exact where they are the piece's. */
-static double bez_length(const double *b, double t0, double t1);
+static double bez_length(const piece *p, double t0, double t1);
 static double bez_t_at(const piece *p, double s);
 
 static piece piece_part(const piece *p, double a, double b)
@@ -303,13 +360,11 @@ static piece piece_part(const piece *p, double a, double b)
     if (p->bez) {
         if (a > 0) {
             q.t0 = bez_t_at(p, a);
-            q.x0 = p->b[0] + q.t0 * (p->b[1] + q.t0 * (p->b[2] + q.t0 * p->b[3]));
-            q.y0 = p->b[4] + q.t0 * (p->b[5] + q.t0 * (p->b[6] + q.t0 * p->b[7]));
+            bez_pt(p, q.t0, &q.x0, &q.y0);
         }
         if (b < p->len) {
             q.t1 = bez_t_at(p, b);
-            q.x1 = p->b[0] + q.t1 * (p->b[1] + q.t1 * (p->b[2] + q.t1 * p->b[3]));
-            q.y1 = p->b[4] + q.t1 * (p->b[5] + q.t1 * (p->b[6] + q.t1 * p->b[7]));
+            bez_pt(p, q.t1, &q.x1, &q.y1);
         }
     } else if (!p->arc) {
         if (a > 0)
@@ -455,19 +510,55 @@ static int sign_roots(const double *p, int n, double lo, double hi, double *r)
     return cnt;
 }
 
-/* B' x B'' of the arc with power basis b, and its curvature at t. */
-static double bez_curvature(const double *b, double t)
+/* The curvature of curve piece p at t: B' x B'' / |B'|^3 (the ellipse's
+ * B' x B'' is u x v); near a cubic's end where B' vanishes by the factored
+ * form (bez_stop). */
+static double bez_curvature(const piece *p, double t)
 {
-    double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
-    double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+    const double *b = p->b;
+    double ux, uy, c, te, q[4];
+    if (bez_stop(p, t, &te, q)) {
+        double Qx = q[0] + q[1] * t, Qy = q[2] + q[3] * t, l = hypot(Qx, Qy);
+        double X = Qx * q[3] - Qy * q[1], s = fabs(t - te);
+        if (X == 0 || l == 0)
+            return 0.0;
+        return s == 0 ? copysign(INFINITY, X) : X / (s * l * l * l);
+    }
+    bez_d1(p, t, &ux, &uy);
+    if (p->base == AA_OFFSET_ELLIPSE) {
+        c = b[2] * b[5] - b[3] * b[4];
+    } else {
+        double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+        c = ux * vy - uy * vx;
+    }
     double L = hypot(ux, uy);
-    return (ux * vy - uy * vx) / (L * L * L);
+    return c / (L * L * L);
 }
 
-/* The extremes of the curvature in (lo, hi): the roots of
- * c' |B'|^2 - 3 c (B' . B''), c = B' x B'' (degree 6 at most). */
-static int bez_curvature_turns(const double *b, double lo, double hi, double *r)
+/* The extremes of the curvature in (lo, hi), ascending: the roots of
+ * c' |B'|^2 - 3 c (B' . B''), c = B' x B'' (degree 6 at most); on the
+ * ellipse c' = 0 and B' . B'' = (|u|^2 - |v|^2) sin t cos t + (u . v)
+ * (sin^2 t - cos^2 t) = a cos 2t + b sin 2t, a = -(u . v), b = (|u|^2 -
+ * |v|^2)/2, zero at 2t = atan2(b, a) + pi/2 + k pi (a quarter turn apart;
+ * at most 5 on a range of 2 pi). */
+static int bez_curvature_turns(const piece *p, double lo, double hi, double *r)
 {
+    const double *b = p->b;
+    if (p->base == AA_OFFSET_ELLIPSE) {
+        double a = -(b[2] * b[4] + b[3] * b[5]);
+        double bb = 0.5 * ((b[2] * b[2] + b[3] * b[3]) - (b[4] * b[4] + b[5] * b[5]));
+        if (a == 0 && bb == 0)
+            return 0;
+        double z = 0.5 * (atan2(bb, a) + 0.5 * M_PI), q = 0.5 * M_PI;
+        double k = ceil((lo - z) / q);
+        int n = 0;
+        for (int j = -1; j < 7 && n < 6; j++) {
+            double t = z + (k + j) * q;
+            if (t > lo && t < hi && (n == 0 || t > r[n - 1]))
+                r[n++] = t;
+        }
+        return n;
+    }
     const double ux[3] = {b[1], 2 * b[2], 3 * b[3]}, uy[3] = {b[5], 2 * b[6], 3 * b[7]};
     const double vx[2] = {2 * b[2], 6 * b[3]}, vy[2] = {2 * b[6], 6 * b[7]};
     const double wx[1] = {6 * b[3]}, wy[1] = {6 * b[7]};
@@ -492,12 +583,12 @@ static int bez_curvature_turns(const double *b, double lo, double hi, double *r)
     return sign_roots(g, 7, lo, hi, r);
 }
 
-/* The point of arc b at t at distance s along its normal (s = NAN: at its
- * centre of curvature, the evolute). */
-static void bez_point(const double *b, double t, int evolute, double d, double *x, double *y)
+/* The point of curve piece p at t at distance d along its normal (evolute:
+ * at its centre of curvature). */
+static void bez_point(const piece *p, double t, int evolute, double d, double *x, double *y)
 {
-    aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, d, evolute};
-    memcpy(oc.b, b, sizeof oc.b);
+    aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, d, evolute, p->base};
+    memcpy(oc.b, p->b, sizeof oc.b);
     aa_offset_point(&oc, t, x, y, NULL, NULL);
 }
 
@@ -513,17 +604,18 @@ typedef struct side {
  * counterclockwise where the Jacobian is positive, clockwise where it is
  * negative, so that its winding number about a point is the number of the
  * point's preimages in the region (the degree of the map). */
-static int bez_region(aa_path *out, const double *b, double u, double v, side lo, side hi, int pos)
+static int bez_region(aa_path *out, const piece *p, double u, double v, side lo, side hi,
+                      int pos)
 {
-    aa_offset_curve cl = {{0}, {1, 0, 0, 1, 0, 0}, lo.d, lo.evolute}, ch = cl;
-    memcpy(cl.b, b, sizeof cl.b);
+    aa_offset_curve cl = {{0}, {1, 0, 0, 1, 0, 0}, lo.d, lo.evolute, p->base}, ch = cl;
+    memcpy(cl.b, p->b, sizeof cl.b);
     ch.d = hi.d, ch.evolute = hi.evolute;
-    memcpy(ch.b, b, sizeof ch.b);
+    memcpy(ch.b, p->b, sizeof ch.b);
     double lu[2], lv[2], hu[2], hv[2];
-    bez_point(b, u, lo.evolute, lo.d, &lu[0], &lu[1]);
-    bez_point(b, v, lo.evolute, lo.d, &lv[0], &lv[1]);
-    bez_point(b, u, hi.evolute, hi.d, &hu[0], &hu[1]);
-    bez_point(b, v, hi.evolute, hi.d, &hv[0], &hv[1]);
+    bez_point(p, u, lo.evolute, lo.d, &lu[0], &lu[1]);
+    bez_point(p, v, lo.evolute, lo.d, &lv[0], &lv[1]);
+    bez_point(p, u, hi.evolute, hi.d, &hu[0], &hu[1]);
+    bez_point(p, v, hi.evolute, hi.d, &hv[0], &hv[1]);
     int st = aa_path_move_to(out, lu[0], lu[1]);
     if (pos) {
         if (!st)
@@ -561,7 +653,7 @@ static int bez_region(aa_path *out, const double *b, double u, double v, side lo
 static int stroke_bez(aa_path *out, const piece *p, double h)
 {
     double cut[32], turns[8];
-    int n = 0, nt = bez_curvature_turns(p->b, p->t0, p->t1, turns);
+    int n = 0, nt = bez_curvature_turns(p, p->t0, p->t1, turns);
     double knots[10];
     int nk = 0;
     knots[nk++] = p->t0;
@@ -573,8 +665,8 @@ static int stroke_bez(aa_path *out, const piece *p, double h)
         double a = knots[k], bnd = knots[k + 1], roots[2];
         int nr = 0;
         for (int sg = -1; sg <= 1; sg += 2) {
-            double target = sg / h, fa = bez_curvature(p->b, a) - target;
-            double fb = bez_curvature(p->b, bnd) - target;
+            double target = sg / h, fa = bez_curvature(p, a) - target;
+            double fb = bez_curvature(p, bnd) - target;
             if (!((fa < 0 && fb > 0) || (fa > 0 && fb < 0)))
                 continue;
             double x = a, y = bnd;
@@ -582,7 +674,7 @@ static int stroke_bez(aa_path *out, const piece *p, double h)
                 double mid = 0.5 * (x + y);
                 if (!(mid > x && mid < y))
                     break;
-                double fm = bez_curvature(p->b, mid) - target;
+                double fm = bez_curvature(p, mid) - target;
                 if ((fm < 0) == (fa < 0))
                     x = mid;
                 else
@@ -611,22 +703,22 @@ static int stroke_bez(aa_path *out, const piece *p, double h)
         double u = cut[k], v = cut[k + 1];
         if (!(v > u))
             continue;
-        double kh = bez_curvature(p->b, 0.5 * (u + v)) * h;
+        double kh = bez_curvature(p, 0.5 * (u + v)) * h;
         if (kh <= 1 && kh >= -1) {
             /* consecutive parts without folds are one region: the cuts at
              * the curvature's extremes matter to the evolute only */
             while (k + 2 < n) {
-                double w = cut[k + 2], kw = bez_curvature(p->b, 0.5 * (v + w)) * h;
+                double w = cut[k + 2], kw = bez_curvature(p, 0.5 * (v + w)) * h;
                 if (!(kw <= 1 && kw >= -1))
                     break;
                 v = w;
                 k++;
             }
-            st = bez_region(out, p->b, u, v, minus, plus, 1);
+            st = bez_region(out, p, u, v, minus, plus, 1);
         } else {
-            st = bez_region(out, p->b, u, v, minus, ev, kh > 1);
+            st = bez_region(out, p, u, v, minus, ev, kh > 1);
             if (!st)
-                st = bez_region(out, p->b, u, v, ev, plus, kh < -1);
+                st = bez_region(out, p, u, v, ev, plus, kh < -1);
         }
     }
     return st;
@@ -711,7 +803,7 @@ static int stroke_run(aa_path *out, const piece *p, size_t n, int closed,
     double din[2], dout[2];
     for (size_t i = 0; i < n && !st; i++) {
         st = stroke_piece(out, &p[i], h);
-        if (!st && i > 0) {
+        if (!st && i > 0 && !p[i].nojoin) {
             piece_tangent(&p[i - 1], 1, din);
             piece_tangent(&p[i], 0, dout);
             st = stroke_join(out, p[i].x0, p[i].y0, din, dout, style, h);
@@ -897,16 +989,31 @@ static int check_style(const aa_stroke_style *st)
     return AA_OK;
 }
 
-/* A circle's arc: |u| = |v| and u . v = 0 to 1e-12 relative. */
+static double bez_length(const piece *p, double t0, double t1);
+
+/* An elliptical arc: a circle's (|u| = |v| and u . v = 0 to 1e-12
+ * relative) is a circular arc, whose offsets are circles; any other is a
+ * curve piece on the ellipse B(t) = c + u cos t + v sin t, its parameter
+ * made increasing (t -> -t, v -> -v where the arc runs backwards), its
+ * length by Gauss-Legendre quadrature (bez_length). */
 static int circle_piece(const aa_path_seg *g, size_t k, double px, double py, piece *p)
 {
     const double *v = g->p;
     double lu = hypot(v[2], v[3]), lv = hypot(v[4], v[5]);
-    if (fabs(lu - lv) > 1e-12 * (lu + lv) || fabs(v[2] * v[4] + v[3] * v[5]) > 1e-12 * lu * lv)
-        return aa_fail(AA_EINVAL, "stroke: segment %zu is an elliptical arc that is not a circle "
-                                  "(|u| %g, |v| %g): its offset curves are not circles, so its "
-                                  "stroke cannot be drawn exactly yet",
-                       k, lu, lv);
+    if (fabs(lu - lv) > 1e-12 * (lu + lv) || fabs(v[2] * v[4] + v[3] * v[5]) > 1e-12 * lu * lv) {
+        memset(p, 0, sizeof *p);
+        int back = v[7] < v[6];
+        p->bez = 1;
+        p->base = AA_OFFSET_ELLIPSE;
+        p->x0 = px, p->y0 = py, p->x1 = v[8], p->y1 = v[9];
+        p->b[0] = v[0], p->b[1] = v[1], p->b[2] = v[2], p->b[3] = v[3];
+        p->b[4] = back ? -v[4] : v[4], p->b[5] = back ? -v[5] : v[5];
+        p->t0 = back ? -v[6] : v[6], p->t1 = back ? -v[7] : v[7];
+        p->len = bez_length(p, p->t0, p->t1);
+        if (!isfinite(p->len))
+            return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
+        return AA_OK;
+    }
     memset(p, 0, sizeof *p);
     p->arc = 1;
     p->x0 = px, p->y0 = py, p->x1 = v[8], p->y1 = v[9];
@@ -934,37 +1041,51 @@ static int line_piece(double x0, double y0, double x1, double y1, piece *p)
     return AA_OK;
 }
 
-/* A Bezier arc from (px, py) in power basis.  Its speed |B'| must not
- * vanish on [0, 1] (a cusp, or an end whose control point is on it, has
- * no normal there): refused, within 1e-9 of the arc's size.  A straight
- * arc (control points on a line) is stroked as it is, its offsets lines in
- * effect.  Its length is by Gauss-Legendre quadrature (bez_length). */
-static double bez_length(const double *b, double t0, double t1);
+/* A Bezier arc from (px, py) in power basis, as up to three pieces (*n of
+ * them; none if all its points are equal).  Where its speed |B'| vanishes
+ * the normal is the limit of the normals on either side (SVG 2 takes the
+ * direction of the path there from the next distinct control point, or,
+ * inside a segment, from the curve itself; the normal line is the same
+ * from both sides): at an end (a control point on it) the piece keeps it
+ * (bez_stop); inside, at a cusp (B'x and B'y share a root; on a straight
+ * arc, where it turns back), the arc is split there into arcs of their
+ * own (power bases by the Taylor shift B(ta + (tb - ta) s), the speed at
+ * the start of one after the cut set to exactly 0), the later one joined
+ * to the earlier with no join, since SVG 2 joins segments only at their
+ * boundaries: the stroke there is the union of the normals alone.  A zero
+ * of the speed is taken within 1e-12 of the arc's size (the sum of its
+ * coefficients' magnitudes); a speed within 1e-9 of it but not 1e-12 is
+ * refused, naming it (nearly a cusp: the speed's zero is not known to be
+ * one).  A straight arc is stroked as it is, its offsets lines in effect.
+ * Lengths are by Gauss-Legendre quadrature (bez_length). */
+static double bez_length(const piece *p, double t0, double t1);
 
-static int bez_piece(const aa_path_seg *g, size_t k, double px, double py, piece *p)
+static int bez_piece(const aa_path_seg *g, size_t k, double px, double py, piece out[3], int *n)
 {
-    memset(p, 0, sizeof *p);
+    piece whole;
+    memset(&whole, 0, sizeof whole);
+    *n = 0;
     const double *v = g->p;
-    double *b = p->b;
-    p->bez = 1;
-    p->x0 = px, p->y0 = py;
+    double *b = whole.b;
+    whole.bez = 1;
+    whole.x0 = px, whole.y0 = py;
     if (g->op == AA_PATH_QUAD) {
-        p->x1 = v[2], p->y1 = v[3];
+        whole.x1 = v[2], whole.y1 = v[3];
         for (int c = 0; c < 2; c++) {
             double a = c ? py : px, q = v[c], e = v[2 + c];
             b[4 * c] = a, b[4 * c + 1] = 2 * (q - a), b[4 * c + 2] = a - 2 * q + e;
             b[4 * c + 3] = 0;
         }
     } else {
-        p->x1 = v[4], p->y1 = v[5];
+        whole.x1 = v[4], whole.y1 = v[5];
         for (int c = 0; c < 2; c++) {
             double a = c ? py : px, q = v[c], r = v[2 + c], e = v[4 + c];
             b[4 * c] = a, b[4 * c + 1] = 3 * (q - a), b[4 * c + 2] = 3 * (a - 2 * q + r);
             b[4 * c + 3] = (e - a) + 3 * (q - r);
         }
     }
-    p->t0 = 0, p->t1 = 1;
-    double size = 0, lo = INFINITY;
+    whole.t0 = 0, whole.t1 = 1;
+    double size = 0;
     for (int j = 1; j < 8; j++)
         if (j != 4)
             size += fabs(b[j]);
@@ -972,40 +1093,68 @@ static int bez_piece(const aa_path_seg *g, size_t k, double px, double py, piece
         return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
     if (size == 0)
         return AA_OK; /* all its points equal: of length 0 */
-    /* the least speed: |B'|^2 is a quartic; sampled densely and refined by
-     * the roots of its derivative would be exact, but a cusp makes both
-     * coordinates' quadratics share a root, which this finds as well */
-    for (int j = 0; j <= 1024; j++) {
-        double t = j / 1024.0;
-        double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
-        lo = fmin(lo, hypot(ux, uy));
-    }
-    double r[4];
+    /* the speed's least values: at the ends and where |B'|^2 (a quartic)
+     * turns; a cusp is a double zero of |B'|^2, a sign change of its
+     * derivative */
     const double qx[3] = {b[1], 2 * b[2], 3 * b[3]}, qy[3] = {b[5], 2 * b[6], 3 * b[7]};
-    double l2[5];
-    double t1[5], t2[5];
+    double l2[5], t1[5], t2[5], r[4], cut[4];
     pmul(qx, 3, qx, 3, t1), pmul(qy, 3, qy, 3, t2);
     for (int j = 0; j < 5; j++)
         l2[j] = t1[j] + t2[j];
     double dl[4] = {l2[1], 2 * l2[2], 3 * l2[3], 4 * l2[4]};
-    int nr = sign_roots(dl, 4, 0, 1, r);
+    int nr = sign_roots(dl, 4, 0, 1, r), ncut = 0;
+    double cand[6] = {0, 1};
     for (int j = 0; j < nr; j++)
-        lo = fmin(lo, sqrt(fmax(peval(l2, 5, r[j]), 0)));
-    if (!(lo > 1e-9 * size))
-        return aa_fail(AA_EINVAL, "stroke: segment %zu is a Bezier arc whose direction is "
-                                  "undefined somewhere (a cusp, or a control point on an end: "
-                                  "speed %g): its stroke is not drawn",
-                       k, lo);
-    p->len = bez_length(b, 0, 1);
-    if (!isfinite(p->len))
-        return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
+        cand[2 + j] = r[j];
+    for (int j = 0; j < nr + 2; j++) {
+        double ux, uy;
+        bez_d1(&whole, cand[j], &ux, &uy);
+        double sp = hypot(ux, uy);
+        if (sp > 1e-12 * size && sp <= 1e-9 * size)
+            return aa_fail(AA_EINVAL, "stroke: segment %zu is a Bezier arc whose speed nearly "
+                                      "vanishes at t = %.17g (%g, within 1e-9 of its size but "
+                                      "not 1e-12): too near a cusp to be drawn exactly",
+                           k, cand[j], sp);
+        if (j >= 2 && sp <= 1e-12 * size && ncut < 2)
+            cut[ncut++] = cand[j];
+    }
+    double ends[4] = {0};
+    ends[ncut + 1] = 1;
+    for (int j = 0; j < ncut; j++)
+        ends[j + 1] = cut[j];
+    for (int j = 0; j <= ncut; j++) {
+        piece *p = &out[*n];
+        *p = whole;
+        if (ncut > 0) {
+            /* B(ta + h s) = c0 + s (h B'(ta)) + s^2 (h^2 (b2 + 3 b3 ta)) + s^3 h^3 b3 */
+            double ta = ends[j], h = ends[j + 1] - ta;
+            for (int c = 0; c < 2; c++) {
+                const double *w = b + 4 * c;
+                double *o = p->b + 4 * c;
+                o[0] = w[0] + ta * (w[1] + ta * (w[2] + ta * w[3]));
+                o[1] = j > 0 ? 0.0 : h * (w[1] + ta * (2 * w[2] + 3 * ta * w[3]));
+                o[2] = h * h * (w[2] + 3 * ta * w[3]);
+                o[3] = h * h * h * w[3];
+            }
+            if (j > 0) {
+                p->nojoin = 1;
+                p->x0 = out[*n - 1].x1, p->y0 = out[*n - 1].y1;
+            }
+            if (j < ncut)
+                bez_pt(&whole, ends[j + 1], &p->x1, &p->y1);
+        }
+        p->len = bez_length(p, 0, 1);
+        if (!isfinite(p->len))
+            return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
+        ++*n;
+    }
     return AA_OK;
 }
 
 /* Arc length of b from t0 to t1: 16-point Gauss-Legendre on halves until
  * two levels agree to 1e-15 of the whole (|B'| is analytic where it does
  * not vanish). */
-static double gl16(const double *b, double a, double c)
+static double gl16(const piece *p, double a, double c)
 {
     static const double x[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
                                 0.6178762444026438, 0.7554044083550030, 0.8656312023878318,
@@ -1016,9 +1165,8 @@ static double gl16(const double *b, double a, double c)
     double m = 0.5 * (a + c), r = 0.5 * (c - a), s = 0;
     for (int k = 0; k < 8; k++)
         for (int sg = -1; sg <= 1; sg += 2) {
-            double t = m + sg * r * x[k];
-            double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]);
-            double uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+            double ux, uy;
+            bez_d1(p, m + sg * r * x[k], &ux, &uy);
             s += w[k] * hypot(ux, uy);
         }
     return r * s;
@@ -1026,21 +1174,21 @@ static double gl16(const double *b, double a, double c)
 
 /* Adaptive: halves until two levels agree to tol (absolute, halved with
  * each split), at most `*budget` splits in all (then the finer level). */
-static double bez_length_rec(const double *b, double a, double c, double whole, double tol,
+static double bez_length_rec(const piece *p, double a, double c, double whole, double tol,
                              int *budget)
 {
-    double m = 0.5 * (a + c), l = gl16(b, a, m), r = gl16(b, m, c);
+    double m = 0.5 * (a + c), l = gl16(p, a, m), r = gl16(p, m, c);
     if (fabs(l + r - whole) <= tol || --*budget < 0 || !(m > a && m < c))
         return l + r;
-    return bez_length_rec(b, a, m, l, 0.5 * tol, budget) +
-           bez_length_rec(b, m, c, r, 0.5 * tol, budget);
+    return bez_length_rec(p, a, m, l, 0.5 * tol, budget) +
+           bez_length_rec(p, m, c, r, 0.5 * tol, budget);
 }
 
-static double bez_length(const double *b, double t0, double t1)
+static double bez_length(const piece *p, double t0, double t1)
 {
-    double whole = gl16(b, t0, t1);
+    double whole = gl16(p, t0, t1);
     int budget = 2048;
-    return bez_length_rec(b, t0, t1, whole, 1e-15 * fabs(whole), &budget);
+    return bez_length_rec(p, t0, t1, whole, 1e-15 * fabs(whole), &budget);
 }
 
 /* The parameter of Bezier piece p at arc length s from its start (0 < s <
@@ -1050,15 +1198,15 @@ static double bez_t_at(const piece *p, double s)
 {
     double lo = p->t0, hi = p->t1, t = p->t0 + (p->t1 - p->t0) * (s / p->len);
     for (int it = 0; it < 100; it++) {
-        double f = bez_length(p->b, p->t0, t) - s;
+        double f = bez_length(p, p->t0, t) - s;
         if (fabs(f) <= 1e-15 * p->len)
             break;
         if (f < 0)
             lo = t;
         else
             hi = t;
-        double ux = p->b[1] + t * (2 * p->b[2] + 3 * t * p->b[3]);
-        double uy = p->b[5] + t * (2 * p->b[6] + 3 * t * p->b[7]);
+        double ux, uy;
+        bez_d1(p, t, &ux, &uy);
         double next = t - f / hypot(ux, uy);
         if (!(next > lo && next < hi))
             next = 0.5 * (lo + hi);
@@ -1125,17 +1273,21 @@ static int outline(const aa_path *in, const aa_stroke_style *style, aa_path *out
                 st = aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
             break;
         case AA_PATH_QUAD:
-        case AA_PATH_CUBIC:
+        case AA_PATH_CUBIC: {
             if (!started)
                 return aa_fail(AA_EINVAL, "stroke: segment %zu comes before any move", k);
-            if ((st = bez_piece(g, k, px, py, &p)))
+            piece parts[3];
+            int np;
+            if ((st = bez_piece(g, k, px, py, parts, &np)))
                 break;
             px = g->op == AA_PATH_QUAD ? g->p[2] : g->p[4];
             py = g->op == AA_PATH_QUAD ? g->p[3] : g->p[5];
             drawn = 1;
-            if (p.len > 0)
-                st = pieces_push(ps, &p);
+            for (int j = 0; j < np && !st; j++)
+                if (parts[j].len > 0)
+                    st = pieces_push(ps, &parts[j]);
             break;
+        }
         case AA_PATH_CLOSE:
             if (!started)
                 return aa_fail(AA_EINVAL, "stroke: segment %zu closes before any move", k);

@@ -112,8 +112,8 @@ static void read_path(reader *r, aa_path *p)
             break;
         }
         case 3: {
-            /* an SVG arc with equal radii (a circle) or not (refused by
-             * the stroker) */
+            /* an SVG arc with equal radii (a circle) or not (an ellipse,
+             * whose offsets are offset curves) */
             double rx = number(r), ry = byte(r) & 1 ? rx : number(r), phi = number(r) * 90;
             unsigned f = byte(r);
             double x = number(r), y = number(r), c[8];
@@ -170,7 +170,7 @@ static void check_outline(const aa_path *out)
     int open = 0, offset = 0;
     for (size_t k = 0; k < out->n; k++) {
         const aa_path_seg *g = &out->seg[k];
-        for (int i = 0; i < 14; i++)
+        for (int i = 0; i < 15; i++)
             if (!isfinite(g->p[i]))
                 abort();
         switch (g->op) {
@@ -211,7 +211,7 @@ static void check_outline(const aa_path *out)
             if (!open)
                 abort();
             const double *c = g->p;
-            aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, c[8], c[9] != 0};
+            aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, c[8], c[9] != 0, (int)c[14]};
             memcpy(oc.b, c, sizeof oc.b);
             double x0, y0, x1, y1, scale = 0;
             aa_offset_point(&oc, c[10], &x0, &y0, NULL, NULL);
