@@ -1,7 +1,7 @@
 /*
  * test_paint_renderers.c: translucent paint, paint order, currentColor,
- * visibility, CSS colours and strokes (joins, caps, a Bezier arc's exact
- * offsets, dashes) as browsers draw them: the exact box
+ * visibility, CSS colours, strokes (joins, caps, a Bezier arc's exact
+ * offsets, dashes) and clip paths as browsers draw them: the exact box
  * reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -42,7 +42,7 @@
 
 #define CELL 40
 #define COLS 4
-#define ROWS 5
+#define ROWS 8
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
@@ -243,6 +243,109 @@ static const cell cells[] = {
      "stroke-width=\"6\" stroke-dasharray=\"8 4\"/>",
      {{7, 19, {1, 1, 1}}, {13, 19, {0, 0, 0}}, {19, 19, {1, 1, 1}}, {25, 19, {0, 0, 0}}},
      4, ""},
+    /* Clip paths (CSS Masking 1).  A white square [4, 36]^2 clipped by the
+     * disk of radius 12 at (20, 20): white at its centre, black at (6, 6)
+     * (distance 19.8 from it) */
+    {"clip-path",
+     "<clipPath id=\"k1\"><circle cx=\"20\" cy=\"20\" r=\"12\"/></clipPath>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"white\" "
+     "clip-path=\"url(#k1)\"/>",
+     {{20, 20, {1, 1, 1}}, {6, 6, {0, 0, 0}}},
+     2, ""},
+    /* clip-rule evenodd: a red cell clipped by one path of the squares
+     * [4, 24]^2 and [16, 36]^2: red in either alone, black where they
+     * overlap (winding 2, even) */
+    {"clip-rule evenodd",
+     "<clipPath id=\"k2\"><path clip-rule=\"evenodd\" "
+     "d=\"M4 4 H24 V24 H4 Z M16 16 H36 V36 H16 Z\"/></clipPath>"
+     "<rect width=\"40\" height=\"40\" fill=\"red\" clip-path=\"url(#k2)\"/>",
+     {{8, 8, {1, 0, 0}}, {20, 20, {0, 0, 0}}, {32, 32, {1, 0, 0}}},
+     3, ""},
+    /* clipPathUnits objectBoundingBox: the ellipse of semi-axes 16 and 8 at
+     * (20, 20) has the box [4, 36] x [12, 28]; x in [0.5, 1] of it is its
+     * right half: white at (28, 20), black at (12, 20) */
+    {"clipPathUnits objectBoundingBox",
+     "<clipPath id=\"k3\" clipPathUnits=\"objectBoundingBox\"><rect x=\"0.5\" "
+     "width=\"0.5\" height=\"1\"/></clipPath>"
+     "<ellipse cx=\"20\" cy=\"20\" rx=\"16\" ry=\"8\" fill=\"white\" "
+     "clip-path=\"url(#k3)\"/>",
+     {{28, 20, {1, 1, 1}}, {12, 20, {0, 0, 0}}},
+     2, ""},
+    /* a clipPath clipped in turn: the disk of radius 10 at (14, 20) within
+     * the disk of radius 10 at (26, 20): white at (20, 20) (6 from each),
+     * black at (8, 20) and (32, 20) (in one disk only).  librsvg ignores
+     * the clip-path of the clipPath and draws the whole first disk, where
+     * CSS Masking 1 ("The clipPath element": clip-path applies to it, the
+     * clip's region intersected with the referenced one) and SVG 1.1
+     * (14.3.5) say otherwise; Chromium and resvg draw the lens */
+    {"clip path of a clip path",
+     "<clipPath id=\"k4b\"><circle cx=\"26\" cy=\"20\" r=\"10\"/></clipPath>"
+     "<clipPath id=\"k4\" clip-path=\"url(#k4b)\"><circle cx=\"14\" cy=\"20\" r=\"10\"/>"
+     "</clipPath><rect width=\"40\" height=\"40\" fill=\"white\" "
+     "clip-path=\"url(#k4)\"/>",
+     {{20, 20, {1, 1, 1}}, {8, 20, {0, 0, 0}}, {32, 20, {0, 0, 0}}},
+     3, "rsvg"},
+    /* a group of opacity 0.5 clipped by the disk of radius 12: white at
+     * 0.5 over black, 0.5 encoded, inside; black outside */
+    {"clip-path on a group with opacity",
+     "<clipPath id=\"k5\"><circle cx=\"20\" cy=\"20\" r=\"12\"/></clipPath>"
+     "<g opacity=\"0.5\" clip-path=\"url(#k5)\"><rect width=\"40\" height=\"40\" "
+     "fill=\"white\"/></g>",
+     {{20, 20, {0.5, 0.5, 0.5}}, {3, 3, {0, 0, 0}}},
+     2, ""},
+    /* a member with its own clip-path: x < 20 within the disk of radius
+     * 14 at (20, 20), and the disk of radius 4 at (32, 20): white at
+     * (12, 20) and (32, 20); black at (12, 4) (17.9 from the centre) and
+     * (26, 20) (right of x = 20, 6 from the small disk).  librsvg ignores
+     * the child's clip-path (the whole rectangle x < 20 clips), where SVG
+     * 1.1 (14.3.5: a child of a clipPath may have clip-path) and CSS
+     * Masking 1 say otherwise; Chromium and resvg apply it */
+    {"clipPath child with its own clip-path",
+     "<clipPath id=\"k6d\"><circle cx=\"20\" cy=\"20\" r=\"14\"/></clipPath>"
+     "<clipPath id=\"k6\"><rect width=\"20\" height=\"40\" clip-path=\"url(#k6d)\"/>"
+     "<circle cx=\"32\" cy=\"20\" r=\"4\"/></clipPath>"
+     "<rect width=\"40\" height=\"40\" fill=\"white\" clip-path=\"url(#k6)\"/>",
+     {{12, 20, {1, 1, 1}}, {32, 20, {1, 1, 1}}, {12, 4, {0, 0, 0}}, {26, 20, {0, 0, 0}}},
+     4, "rsvg"},
+    /* a reference to no element is as if clip-path were not given (SVG
+     * 1.1's clip-path: a reference that is not valid is "treated as if it
+     * hadn't been specified"): the square drawn whole */
+    {"clip-path to no element",
+     "<rect x=\"10\" y=\"10\" width=\"20\" height=\"20\" fill=\"white\" "
+     "clip-path=\"url(#k7none)\"/>",
+     {{20, 20, {1, 1, 1}}, {4, 4, {0, 0, 0}}},
+     2, ""},
+    /* so is a reference to an element that is not a clipPath (the same;
+     * the web-platform test css-masking/clip-path-svg-content/
+     * clip-path-invalid-reference.svg draws its square): the red square
+     * and the white one drawn whole.  resvg draws nothing of the white
+     * square: it treats the reference as an error that hides the element,
+     * which the specification does not say (Chromium and librsvg draw
+     * it) */
+    {"clip-path to a rectangle",
+     "<rect id=\"k8r\" x=\"2\" y=\"2\" width=\"8\" height=\"8\" fill=\"red\"/>"
+     "<rect x=\"14\" y=\"14\" width=\"20\" height=\"20\" fill=\"white\" "
+     "clip-path=\"url(#k8r)\"/>",
+     {{6, 6, {1, 0, 0}}, {24, 24, {1, 1, 1}}, {12, 12, {0, 0, 0}}},
+     3, "resvg"},
+    /* the clipPath's transform, translate(10 0), moves its child x in
+     * [0, 10] to [10, 20]; a hidden child adds nothing: white at (15, 20),
+     * black at (5, 20) and (30, 20) */
+    {"clipPath transform and a hidden child",
+     "<clipPath id=\"k9t\" transform=\"translate(10 0)\"><rect width=\"10\" "
+     "height=\"40\"/><rect width=\"40\" height=\"40\" visibility=\"hidden\"/>"
+     "</clipPath><rect width=\"40\" height=\"40\" fill=\"white\" "
+     "clip-path=\"url(#k9t)\"/>",
+     {{15, 20, {1, 1, 1}}, {5, 20, {0, 0, 0}}, {30, 20, {0, 0, 0}}},
+     3, ""},
+    /* a stroke clipped: the line across at y = 20, 8 wide, clipped by
+     * x < 20: white at (10, 20), black at (30, 20) */
+    {"clipped stroke",
+     "<clipPath id=\"k10\"><rect width=\"20\" height=\"40\"/></clipPath>"
+     "<line x1=\"2\" y1=\"20\" x2=\"38\" y2=\"20\" stroke=\"white\" "
+     "stroke-width=\"8\" clip-path=\"url(#k10)\"/>",
+     {{10, 20, {1, 1, 1}}, {30, 20, {0, 0, 0}}},
+     2, ""},
 };
 #define NCELLS (sizeof cells / sizeof cells[0])
 
