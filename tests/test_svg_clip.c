@@ -220,6 +220,39 @@ static void test_scene_model(void **state)
     aa_scene_free(s);
 }
 
+/* Clipping to the unit square puts a front layer before the clips'
+ * members: the clips must still gate what they gated.  A white square
+ * [1/2, 3/2] x [0, 1] gated by the disk of radius 1/2 at (1, 1/2) (both
+ * reaching outside the unit square): white inside the disk left of x = 1,
+ * black right of it (outside the square) and outside the disk. */
+static void test_clip_unit(void **state)
+{
+    (void)state;
+    const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
+    aa_scene *s = aa_scene_new(black);
+    int clip;
+    assert_int_equal(aa_scene_clip_begin(s, -1), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 1.5, 0.5), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, 1, 0.5, 0.5, 0, 0, 0.5, 0, 2 * M_PI, 1.5, 0.5), AA_OK);
+    assert_int_equal(aa_scene_clip_end(s, &clip), AA_OK);
+    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_set_clip(s, clip), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.5, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1.5, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1.5, 1), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.5, 1), AA_OK);
+    assert_int_equal(aa_scene_clip_unit(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    assert_int_equal(aa_scene_layer_count(s), 3);
+    assert_int_equal(aa_scene_layer_clip_member(s, 1), clip);
+    assert_int_equal(aa_scene_layer_clip(s, 2), clip);
+    assert_true(aa_scene_colour_at(s, 0.9, 0.5).c[0] == 1.0);
+    assert_true(aa_scene_colour_at(s, 1.2, 0.5).c[0] == 0.0);
+    assert_true(aa_scene_colour_at(s, 0.55, 0.1).c[0] == 0.0);
+    aa_scene_free(s);
+}
+
 /* ---- the reader ---- */
 
 /* A disk of radius 20 at (32, 32) clipped by the rectangle [0, 32] x
@@ -509,7 +542,8 @@ static void test_export_round_trip(void **state)
     aa_scene_free(sc);
 }
 
-SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_scene_model), cmocka_unit_test(test_half_disk),
+SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_scene_model),
+             cmocka_unit_test(test_clip_unit), cmocka_unit_test(test_half_disk),
              cmocka_unit_test(test_small_disk), cmocka_unit_test(test_clip_rule),
              cmocka_unit_test(test_bounding_box), cmocka_unit_test(test_clip_of_clip),
              cmocka_unit_test(test_group_opacity), cmocka_unit_test(test_invalid_references),
