@@ -57,9 +57,10 @@
  * url() paints), text, images, <use>, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <use> and other non-shapes in a clipPath, references to clip
- * paths forming a cycle, masks, filters, style sheets, nested <svg>, units other than px, negative sizes, radii, widths
- * and dashes, any attribute or style property not implemented (see
- * css_known), and any other element of the SVG namespace; elements of
+ * paths forming a cycle, masks, filters, style sheets, nested <svg>,
+ * units other than px, negative sizes, radii, widths and dashes, any
+ * attribute or style property not implemented (see css_known), and any
+ * other element of the SVG namespace; elements of
  * other namespaces are not drawn (as a browser ignores them).  Malformed
  * XML or path data, files over AA_SVG_MAX_BYTES, nesting deeper than
  * AA_SVG_MAX_DEPTH, more than AA_SVG_MAX_SEGMENTS path segments (strokes'
@@ -1919,7 +1920,9 @@ static int group_begin(reader *r, double o)
  *   - The clip is in the user space of the element referencing it (its
  *     own transform applied, SVG 1.1 14.3.5), then the clipPath's own
  *     transform; with clipPathUnits="objectBoundingBox" the unit square
- *     maps onto the element's object bounding box first: the box of its
+ *     maps onto the element's object bounding box before that transform
+ *     (a point p of the content is at m(T(B(p))), as Chromium and resvg
+ *     draw it): the box of its
  *     fill geometry in its user space (SVG 2, "Bounding boxes"), exact for Bezier and
  *     elliptical arcs (their extremes in closed form, geometry_box), of a
  *     group the union of its children's, each through its transform.  A
@@ -2287,8 +2290,10 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
     r->node = cp;
     if ((st = check_props(r, cp)))
         return st;
-    /* the content's user space: m, the object bounding box, the
-     * clipPath's transform */
+    /* the content's user space: m, then the clipPath's transform, then the
+     * object bounding box (its unit square onto the box, in the user space
+     * the transform maps: p -> m(T(B(p))), as Chromium and resvg compose
+     * them) */
     mat mc = *m;
     double box[4] = {0, 0, 0, 0};
     xmlChar *units = xmlGetNoNsProp(cp, (const xmlChar *)"clipPathUnits");
@@ -2317,11 +2322,13 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
                               "whose bounding box has no width or no height",
                            (const char *)ref->name, xmlGetLineNo(ref));
         memcpy(box, b, sizeof box);
-        const mat bb = {b[2] - b[0], 0, 0, b[3] - b[1], b[0], b[1]};
-        mc = mat_mul(mc, bb);
     }
     if ((st = element_transform(r, cp, &mc)))
         return st;
+    if (obb) {
+        const mat bb = {box[2] - box[0], 0, 0, box[3] - box[1], box[0], box[1]};
+        mc = mat_mul(mc, bb);
+    }
     /* referenced alike before: the same clip */
     for (size_t k = 0; k < r->nmade; k++) {
         const clip_made *c = &r->made[k];

@@ -271,6 +271,22 @@ static const cell cells[] = {
      "clip-path=\"url(#k3)\"/>",
      {{28, 20, {1, 1, 1}}, {12, 20, {0, 0, 0}}},
      2, ""},
+    /* objectBoundingBox under the clipPath's transform: the unit square
+     * maps onto the box first, then the transform moves it in user units
+     * (Chromium's and resvg's order): the ellipse's box [4, 36] x [12, 28],
+     * x in [0, 1/4] of it is [4, 12], translated by 1/2 to [4.5, 12.5]:
+     * white at (8, 20), black at (24, 20) (where [1/2, 3/4] of the box
+     * would be, the transform taken in box units).  librsvg takes it in
+     * box units and draws [20, 28]; CSS Masking 1 and SVG 1.1 do not put
+     * the two in an order in words, and the reader follows the browser
+     * (Chromium, with resvg) */
+    {"objectBoundingBox and transform",
+     "<clipPath id=\"k3t\" clipPathUnits=\"objectBoundingBox\" "
+     "transform=\"translate(0.5 0)\"><rect width=\"0.25\" height=\"1\"/></clipPath>"
+     "<ellipse cx=\"20\" cy=\"20\" rx=\"16\" ry=\"8\" fill=\"white\" "
+     "clip-path=\"url(#k3t)\"/>",
+     {{8, 20, {1, 1, 1}}, {24, 20, {0, 0, 0}}},
+     2, "rsvg"},
     /* a clipPath clipped in turn: the disk of radius 10 at (14, 20) within
      * the disk of radius 10 at (26, 20): white at (20, 20) (6 from each),
      * black at (8, 20) and (32, 20) (in one disk only).  librsvg ignores

@@ -329,6 +329,15 @@ static void test_bounding_box(void **state)
                "<ellipse cx=\"32\" cy=\"32\" rx=\"24\" ry=\"12\" transform=\"translate(2 4)\" "
                "clip-path=\"url(#c)\"/>",
                24 * (6 * sqrt(3) + 4 * M_PI));
+    /* the clipPath's transform after the box: x in [0, 1/4] of the box is
+     * [8, 20], moved by translate(12 0) in user units to [20, 32], the
+     * strip from x = -12 to 0 about the centre: half the strip above (in
+     * box units the move would leave nothing) */
+    check_area("obb-transform",
+               "<clipPath id=\"c\" clipPathUnits=\"objectBoundingBox\" "
+               "transform=\"translate(12 0)\"><rect width=\"0.25\" height=\"1\"/></clipPath>"
+               "<ellipse cx=\"32\" cy=\"32\" rx=\"24\" ry=\"12\" clip-path=\"url(#c)\"/>",
+               12 * (6 * sqrt(3) + 4 * M_PI));
     const char *shape = "d=\"M 8 40 C 8 8, 56 8, 56 40 Z\"";
     char a[1024], b[1024];
     snprintf(a, sizeof a,
