@@ -21,6 +21,8 @@
  * composited in painter's order in sRGB-encoded values (SVG and CSS:
  * browsers composite in the encoded values) and the result decoded to
  * linear light (colour_composite).
+ * Clips (SVG's clipPath, "clips" below) are layers that paint nothing
+ * and gate others: a gated layer covers a point only inside its clip.
  *
  * Pieces are indexed in bins along y (each piece listed in every bin it
  * overlaps), so the queries touch only the pieces near the line or
