@@ -289,6 +289,19 @@ static const cell cells[] = {
      "clip-path=\"url(#k3t)\"/>",
      {{8, 20, {1, 1, 1}}, {24, 20, {0, 0, 0}}},
      2, "rsvg"},
+    /* objectBoundingBox of a cubic: its box is the curve's, not its control
+     * points' (SVG 2, "Bounding boxes"): M 4 30 C 4 6, 36 6, 36 30 reaches
+     * up to y(1/2) = (30 + 18 + 18 + 30)/8 = 12 (its controls to 6), so
+     * the box's upper half is y < 21: white at (20, 19) and (20, 14),
+     * black at (20, 25).  resvg takes the box of the control points
+     * (upper half y < 18) and leaves (20, 19) black; Chromium and librsvg
+     * take the curve's */
+    {"objectBoundingBox of a cubic",
+     "<clipPath id=\"k3c\" clipPathUnits=\"objectBoundingBox\"><rect width=\"1\" "
+     "height=\"0.5\"/></clipPath>"
+     "<path d=\"M 4 30 C 4 6, 36 6, 36 30 Z\" fill=\"white\" clip-path=\"url(#k3c)\"/>",
+     {{20, 19, {1, 1, 1}}, {20, 14, {1, 1, 1}}, {20, 25, {0, 0, 0}}},
+     3, "resvg"},
     /* a clipPath clipped in turn: the disk of radius 10 at (14, 20) within
      * the disk of radius 10 at (26, 20): white at (20, 20) (6 from each),
      * black at (8, 20) and (32, 20) (in one disk only).  librsvg ignores
