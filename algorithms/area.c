@@ -1829,6 +1829,10 @@ static int refuse_field(const aa_job *job)
                        field->name);
     /* its colour of a winding (colour_of) is the front-most layer's, and
      * Catmull's integrater splits on the front-most layer alone */
+    if (aa_scene_is_clipped(job->placed))
+        return aa_fail(AA_EINVAL, "area takes unclipped layers only: this scene has clip "
+                                  "paths, and its integrater splits on the front-most layer "
+                                  "alone, not on the clips that gate it");
     if (!aa_scene_is_opaque(job->placed))
         return aa_fail(AA_EINVAL, "area takes opaque layers only: this scene has translucent "
                                   "layers (opacity below 1), which it does not composite");

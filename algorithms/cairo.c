@@ -301,7 +301,7 @@ static int cairo_init(void *state, const double *p, const aa_job *job)
 {
     cairo_state *s = state;
     int st = aa_peer_scene_read("cairo", job, &s->ps);
-    if (st == AA_EINVAL &&
+    if (st == AA_EINVAL && !aa_scene_is_clipped(job->placed) &&
         (!aa_scene_is_grey(job->placed) || !aa_scene_is_opaque(job->placed) ||
          aa_scene_layer_count(job->placed) > 1))
         st = cairo_init_painted(s, job->placed, p[TOLERANCE]);

@@ -548,6 +548,11 @@ static int prepare(tl_state *S, const double *p, const aa_job *job)
 static int crowtiler_init(void *state, const double *p, const aa_job *job)
 {
     tl_state *S = state;
+    if ((int)p[P_HIDDEN] != HIDDEN_SCAN && aa_scene_is_clipped(job->placed))
+        return aa_fail(AA_EINVAL, "crowtiler:hidden=%s blends layers by their areas: this "
+                                  "scene has clip paths, which it does not apply; "
+                                  "hidden=scan takes them",
+                       (int)p[P_HIDDEN] == HIDDEN_PRIORITY ? "priority" : "zbuffer");
     if ((int)p[P_HIDDEN] == HIDDEN_PRIORITY && !aa_scene_is_opaque(job->placed))
         return aa_fail(AA_EINVAL, "crowtiler:hidden=priority blends opaque layers by their "
                                   "areas: this scene has translucent layers (opacity below "

@@ -546,6 +546,10 @@ static int external_init(void *state, const double *p, const aa_job *job)
     if ((st = adapter_find(name, s->adapter)))
         return st;
     /* the mask and the colour mapping read coverage, not composited colour */
+    if (aa_scene_is_clipped(scene))
+        return aa_fail(AA_EINVAL, "external maps a renderer's coverage back to the layers' "
+                                  "colours: this scene has clip paths, which it does not "
+                                  "take");
     if (!aa_scene_is_opaque(scene))
         return aa_fail(AA_EINVAL, "external maps a renderer's coverage back to the layers' "
                                   "colours: this scene has translucent layers (opacity below "

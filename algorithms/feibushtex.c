@@ -294,6 +294,10 @@ static int feibushtex_init(void *state, const double *p, const aa_job *job)
     /* the texture: the scene's colour at each definition point, as an
      * index into its colours (the background and each layer's) */
     int nl = aa_scene_layer_count(job->placed);
+    if (aa_scene_is_clipped(job->placed))
+        return aa_fail(AA_EINVAL, "feibushtex takes unclipped layers only: its texture "
+                                  "indexes one layer's colour per point by the front-most "
+                                  "covering layer, and this scene has clip paths");
     if (!aa_scene_is_opaque(job->placed))
         return aa_fail(AA_EINVAL, "feibushtex takes opaque layers only: its texture indexes "
                                   "one layer's colour per point, and this scene has "

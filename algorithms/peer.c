@@ -25,6 +25,11 @@ int aa_peer_scene_read(const char *name, const aa_job *job, aa_peer_scene *ps)
                        "colour with equal R, G and B), and this scene has colour",
                        name);
     int n = aa_scene_layer_count(s);
+    if (aa_scene_is_clipped(s))
+        return aa_fail(AA_EINVAL,
+                       "%s fills layers unclipped: this scene has clip paths, which it does "
+                       "not apply",
+                       name);
     if (!aa_scene_is_opaque(s))
         return aa_fail(AA_EINVAL,
                        "%s fills opaque layers only: this scene has translucent layers "

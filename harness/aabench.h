@@ -24,7 +24,7 @@ extern "C" {
 
 /* The interface version a plug-in is built for; the command refuses a
  * plug-in built for another.  Raised whenever a type below changes layout. */
-#define AA_PLUGIN_ABI 6
+#define AA_PLUGIN_ABI 7
 
 /* ------------------------------------------------------------------------
  * Status and errors
@@ -224,15 +224,34 @@ const aa_piece *aa_scene_pieces(const aa_scene *s, size_t *n);
 int aa_scene_bounds(const aa_scene *s, double *x0, double *y0, double *x1, double *y1);
 /* 1 if every colour (layers and background) is grey. */
 int aa_scene_is_grey(const aa_scene *s);
-/* 1 if every layer is opaque (alpha 1, in no group of opacity): the colour
- * at a point is then the front-most covering layer's colour.  0 for a
- * scene with translucent layers, whose colour at a point is the covering
- * layers composited (aa_scene_colour_of); a method that draws from the
- * layers' colours itself must refuse such a scene. */
+/* 1 if every layer is opaque (alpha 1, in no group of opacity) and none is
+ * clipped (no clips): the colour at a point is then the front-most
+ * covering layer's colour.  0 for a scene with translucent layers or
+ * clips, whose colour at a point is the covering layers composited
+ * (aa_scene_colour_of); a method that draws from the layers' colours
+ * itself must refuse such a scene. */
 int aa_scene_is_opaque(const aa_scene *s);
+/* 1 if some layer is gated by a clip (patterns/README.md, clip paths):
+ * some layers are then the members of clips, which paint nothing, and a
+ * layer paints only inside its clip; aa_scene_is_opaque is 0, and a
+ * method that draws from the layers' colours itself must refuse the scene
+ * (or clip as the scene does). */
+int aa_scene_is_clipped(const aa_scene *s);
+/* The clips: how many; the clip gating a layer (-1: none); the clip a
+ * layer is a member of (-1: a layer that paints); the clip a clip is
+ * itself inside (-1: none); a clip's members, layers first .. first +
+ * count - 1 (the count returned).  A point is inside clip c when it is
+ * inside aa_scene_clip_within(c) (if any) and some member's fill rule
+ * holds there and the point is inside that member's own clip (if any). */
+int aa_scene_clip_count(const aa_scene *s);
+int aa_scene_layer_clip(const aa_scene *s, int layer);
+int aa_scene_layer_clip_member(const aa_scene *s, int layer);
+int aa_scene_clip_within(const aa_scene *s, int clip);
+int aa_scene_clip_members(const aa_scene *s, int clip, int *first);
 /* The colour at a point whose winding numbers are `wind` (one per layer):
  * in an opaque scene the front-most layer's whose fill rule holds, or the
- * background; otherwise the covering layers composited back to front in
+ * background (a clip's member never paints, and a clipped layer paints
+ * only inside its clip); otherwise the covering layers composited back to front in
  * sRGB-encoded values, decoded to linear light (patterns/README.md). */
 aa_rgb aa_scene_colour_of(const aa_scene *s, const int *wind);
 

@@ -46,16 +46,21 @@
  *     (aa_stroke_outline), a shape of its own after the fill, nonzero; the
  *     pattern keeps it as a stroke (aa_scene_stroke: a layer of its own
  *     with its source, so that peers stroke it themselves and `export`
- *     writes it as a stroke).
+ *     writes it as a stroke);
+ *   - clipPath and clip-path="url(#id)" as the scene's clips (the sink's
+ *     clip_begin, clip_end and clip; "clip paths" below).
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
  * linearRGB (compositing in linear light), paint servers (gradients, patterns:
- * url() paints), text, images, <use>, clip paths, masks, filters, style
- * sheets, nested <svg>, units other than px, negative sizes, radii, widths
- * and dashes, any attribute or style property not implemented (see
- * css_known), and any other element of the SVG namespace; elements of
+ * url() paints), text, images, <use>, clip-path other than url(#id) or
+ * none (basic shapes, geometry boxes, other documents) and on the root,
+ * <text>, <use> and other non-shapes in a clipPath, references to clip
+ * paths forming a cycle, masks, filters, style sheets, nested <svg>,
+ * units other than px, negative sizes, radii, widths and dashes, any
+ * attribute or style property not implemented (see css_known), and any
+ * other element of the SVG namespace; elements of
  * other namespaces are not drawn (as a browser ignores them).  Malformed
  * XML or path data, files over AA_SVG_MAX_BYTES, nesting deeper than
  * AA_SVG_MAX_DEPTH, more than AA_SVG_MAX_SEGMENTS path segments (strokes'
@@ -209,7 +214,25 @@ typedef struct style {
     double fill_opacity, stroke_opacity; /* clamped to [0, 1] */
     int stroke_first;                     /* paint-order: the stroke under the fill */
     int visible;                          /* visibility: visible */
+    aa_fill_rule clip_rule;               /* clip-rule, for the children of a clipPath */
 } style;
+
+/* An element with an id (the first of its id in document order). */
+typedef struct id_entry {
+    xmlChar *id;
+    const xmlNode *node;
+    size_t order;
+} id_entry;
+
+/* A clip given to the sink for a clipPath referenced in user space m
+ * (with the object bounding box `box` under objectBoundingBox units)
+ * inside clip `within`, kept so that shapes referencing it alike share it. */
+typedef struct clip_made {
+    const xmlNode *node;
+    mat m;
+    double box[4];
+    int within, id;
+} clip_made;
 
 typedef struct reader {
     const aa_svg_sink *sink;
@@ -217,6 +240,17 @@ typedef struct reader {
     const char *name;
     long segments;
     const xmlNode *node; /* the element being read, for messages */
+    /* clip paths (svgfile.c, "clip paths") */
+    const xmlNode *root;
+    int clip;   /* the clip of the shapes given now (-1: none) */
+    int nclips; /* clips given to the sink so far */
+    const xmlNode *clip_stack[AA_SVG_MAX_CLIP_NESTING]; /* clipPaths being read */
+    int nstack;
+    id_entry *ids; /* sorted by id, then document order; built when first needed */
+    size_t nids;
+    int ids_built;
+    clip_made *made;
+    size_t nmade, capmade;
 } reader;
 
 /* AA_EINVAL naming the element and its line. */
@@ -349,14 +383,16 @@ static const char *const css_known[] = {
     "opacity",          "fill-opacity",   "clip-path",       "mask",
     "filter",           "visibility",     "stroke-width",    "stroke-opacity",
     "stroke-linecap",   "stroke-linejoin", "stroke-miterlimit", "stroke-dasharray",
-    "stroke-dashoffset", "color",         "paint-order",     "color-interpolation"};
+    "stroke-dashoffset", "color",         "paint-order",     "color-interpolation",
+    "clip-rule"};
 
 /* The attributes, beyond the properties, each element reads. */
 static int attr_known(const xmlNode *node, const char *name)
 {
     static const struct {
         const char *element, *attrs[8];
-    } own[] = {{"svg", {"width", "height", "viewBox", "preserveAspectRatio", "version",
+    } own[] = {{"clipPath", {"clipPathUnits"}},
+               {"svg", {"width", "height", "viewBox", "preserveAspectRatio", "version",
                         "baseProfile", "x", "y"}},
                {"rect", {"x", "y", "width", "height", "rx", "ry"}},
                {"circle", {"cx", "cy", "r"}},
@@ -1416,6 +1452,8 @@ static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
         return st;
     if (p->n && alpha < 1 && (st = k->alpha(r->ctx, alpha)))
         return st;
+    if (p->n && r->clip >= 0 && (st = k->clip(r->ctx, r->clip)))
+        return st;
     for (size_t i = 0; i < p->n && !st; i++) {
         const aa_path_seg *g = &p->seg[i];
         double q[6];
@@ -1784,6 +1822,14 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
         else
             return fail_at(r, "fill-rule=\"%s\" (nonzero or evenodd)", aa_echo(v));
     }
+    if (!st && prop(r, node, "clip-rule", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
+        if (!strcasecmp(v, "nonzero"))
+            sty->clip_rule = AA_FILL_NONZERO;
+        else if (!strcasecmp(v, "evenodd"))
+            sty->clip_rule = AA_FILL_EVENODD;
+        else
+            return fail_at(r, "clip-rule=\"%s\" (nonzero or evenodd)", aa_echo(v));
+    }
     if (!st)
         st = stroke_props(r, node, sty);
     static const char *const opacities[] = {"opacity", "fill-opacity", "stroke-opacity"};
@@ -1804,11 +1850,12 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
         return fail_at(r, "color-interpolation=\"%s\" is not supported (compositing in "
                           "linear light; auto or sRGB)",
                        aa_echo(v));
-    static const char *const refused[] = {"clip-path", "mask", "filter"};
-    for (int k = 0; k < 3 && !st; k++)
+    /* clip-path is read where the element is drawn (clip_of) */
+    static const char *const refused[] = {"mask", "filter"};
+    for (int k = 0; k < 2 && !st; k++)
         if (prop(r, node, refused[k], v, sizeof v, &st) && strcasecmp(v, "none"))
             return fail_at(r, "%s=\"%s\": %s not supported", refused[k], aa_echo(v),
-                           k == 0 ? "clip paths are" : k == 1 ? "masks are" : "filters are");
+                           k == 0 ? "masks are" : "filters are");
     if (!st && prop(r, node, "visibility", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
         if (!strcasecmp(v, "visible"))
             sty->visible = 1;
@@ -1851,6 +1898,565 @@ static int group_begin(reader *r, double o)
     return r->sink->group_begin(r->ctx, o);
 }
 
+/* ---- clip paths ----
+ *
+ * CSS Masking 1 (clip-path, clipPath) as exact geometry: a clipPath
+ * referenced by an element becomes a clip of the scene (the sink's
+ * clip_begin .. clip_end, aa_scene_clip_begin), its members the fill
+ * geometry of its children, each with its clip-rule, and the element's
+ * shapes are drawn inside it (`clip`).
+ *
+ *   - clip-path="url(#id)" (or url('#id'), url("#id")) on a shape, a <g>,
+ *     a child of a clipPath or a clipPath itself (on the root <svg> it is
+ *     refused: it would be in the viewport's coordinates); none is
+ *     no clip.  A reference to no element, or to an element that is not a
+ *     clipPath, is as if clip-path were not given (SVG 1.1's clip-path: a
+ *     reference that is not valid is "treated as if it hadn't been
+ *     specified"; the web-platform test css-masking/clip-path-svg-content/
+ *     clip-path-invalid-reference.svg and Chromium draw the element
+ *     unclipped).  References that come back to a clipPath being read form
+ *     a cycle, an error.  Other URLs, basic shapes
+ *     (circle() and the like) and geometry boxes are refused.
+ *   - The clip is in the user space of the element referencing it (its
+ *     own transform applied, SVG 1.1 14.3.5), then the clipPath's own
+ *     transform; with clipPathUnits="objectBoundingBox" the unit square
+ *     maps onto the element's object bounding box before that transform
+ *     (a point p of the content is at m(T(B(p))), as Chromium and resvg
+ *     draw it): the box of its
+ *     fill geometry in its user space (SVG 2, "Bounding boxes"), exact for Bezier and
+ *     elliptical arcs (their extremes in closed form, geometry_box), of a
+ *     group the union of its children's, each through its transform.  A
+ *     box of no width or no height is refused.
+ *   - The clip is the union of the clipPath's children: <path>, <rect>,
+ *     <circle>, <ellipse>, <polygon>, <polyline> (a <line> has no area),
+ *     each's fill geometry through its transform, with its clip-rule
+ *     (inherited), inside its own clip-path if it has one; fill, stroke
+ *     and opacities do not matter.  A child with display="none" or
+ *     visibility hidden or collapse adds nothing (CSS Masking 1, "The
+ *     clipPath element");
+ *     visibility and clip-rule inherit into the clipPath from its
+ *     ancestors, not from the referencing element.  The clipPath's own
+ *     clip-path clips the clip (an intersection), in the referencing
+ *     element's user space and bounding box.  The display of the clipPath
+ *     and its ancestors does not matter (it is referenced, never drawn).
+ *     <text> and <use> children are refused (not supported), as is any
+ *     other element (not in a clipPath's content model).
+ *   - An element's clip lies within the clip of every ancestor group:
+ *     the intersection, as the group's content is clipped as a whole.
+ *
+ * A clipPath referenced alike (the same user space, box and outer clip)
+ * by several elements is given once. */
+
+static void clips_free(reader *r)
+{
+    for (size_t k = 0; k < r->nids; k++)
+        xmlFree(r->ids[k].id);
+    free(r->ids);
+    free(r->made);
+    r->ids = NULL, r->made = NULL;
+    r->nids = r->nmade = r->capmade = 0;
+}
+
+static int id_cmp(const void *a, const void *b)
+{
+    const id_entry *p = a, *q = b;
+    int c = strcmp((const char *)p->id, (const char *)q->id);
+    return c ? c : (p->order > q->order) - (p->order < q->order);
+}
+
+/* Every element with an id, in document order, depth first. */
+static int ids_collect(reader *r, const xmlNode *node, size_t *cap)
+{
+    for (const xmlNode *c = node; c; c = c->next) {
+        if (c->type != XML_ELEMENT_NODE)
+            continue;
+        xmlChar *id = xmlGetNoNsProp(c, (const xmlChar *)"id");
+        if (id) {
+            if (r->nids == *cap) {
+                size_t n = *cap ? 2 * *cap : 64;
+                id_entry *e = realloc(r->ids, n * sizeof *e);
+                if (!e) {
+                    xmlFree(id);
+                    return aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
+                }
+                r->ids = e, *cap = n;
+            }
+            r->ids[r->nids] = (id_entry){id, c, r->nids};
+            r->nids++;
+        }
+        int st = c->children ? ids_collect(r, c->children, cap) : AA_OK;
+        if (st)
+            return st;
+    }
+    return AA_OK;
+}
+
+/* The element of id `id` (the first in document order), or NULL. */
+static int find_id(reader *r, const char *id, const xmlNode **out)
+{
+    *out = NULL;
+    if (!r->ids_built) {
+        size_t cap = 0;
+        int st = ids_collect(r, r->root, &cap);
+        if (st)
+            return st;
+        if (r->nids)
+            qsort(r->ids, r->nids, sizeof *r->ids, id_cmp);
+        r->ids_built = 1;
+    }
+    size_t lo = 0, hi = r->nids;
+    while (lo < hi) { /* the first entry not below id */
+        size_t mid = lo + (hi - lo) / 2;
+        if (strcmp((const char *)r->ids[mid].id, id) < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    if (lo < r->nids && !strcmp((const char *)r->ids[lo].id, id))
+        *out = r->ids[lo].node;
+    return AA_OK;
+}
+
+/* The extent of one coordinate of a Bezier arc of degree n
+ * (1, 2 or 3; q its n + 1 control values) grown into [*lo, *hi]: its ends
+ * and where its derivative vanishes inside (0, 1), in closed form (the
+ * derivative of a cubic is the quadratic (e0 - 2 e1 + e2) t^2 + 2 (e1 -
+ * e0) t + e0 times 3, e_i the differences of the control values; of a
+ * quadratic, linear). */
+static void bezier_extent(const double *q, int n, double *lo, double *hi)
+{
+    *lo = fmin(*lo, fmin(q[0], q[n]));
+    *hi = fmax(*hi, fmax(q[0], q[n]));
+    double ts[2];
+    int nt = 0;
+    if (n == 2) {
+        const double den = q[0] - 2 * q[1] + q[2];
+        if (den != 0)
+            ts[nt++] = (q[0] - q[1]) / den;
+    } else if (n == 3) {
+        const double e0 = q[1] - q[0], e1 = q[2] - q[1], e2 = q[3] - q[2];
+        const double a = e0 - 2 * e1 + e2, b = e1 - e0, c = e0; /* a t^2 + 2 b t + c */
+        if (a == 0) {
+            if (b != 0)
+                ts[nt++] = -c / (2 * b);
+        } else {
+            const double disc = b * b - a * c;
+            if (disc >= 0) {
+                /* the root of larger magnitude without cancellation, the
+                 * other from their product c / a */
+                const double sq = sqrt(disc), big = -(b + copysign(sq, b));
+                if (big != 0) {
+                    ts[nt++] = big / a;
+                    ts[nt++] = c / big;
+                } else {
+                    ts[nt++] = 0; /* b = disc = 0: a double root at 0 */
+                }
+            }
+        }
+    }
+    for (int k = 0; k < nt; k++) {
+        const double t = ts[k], u = 1 - t;
+        if (!(t > 0 && t < 1))
+            continue;
+        double v;
+        if (n == 2)
+            v = u * u * q[0] + 2 * t * u * q[1] + t * t * q[2];
+        else
+            v = u * u * u * q[0] + 3 * t * u * u * q[1] + 3 * t * t * u * q[2] +
+                t * t * t * q[3];
+        *lo = fmin(*lo, v);
+        *hi = fmax(*hi, v);
+    }
+}
+
+/* A path's fill geometry through m, grown into box (x0 y0 x1 y1): Bezier
+ * arcs map to Bezier arcs of the mapped control points; an elliptical arc
+ * c + u cos t + v sin t to m(c) + L u cos t + L v sin t, each coordinate
+ * c + R cos(t - a) (R = hypot(u, v), a = atan2(v, u)), extreme at
+ * t = a + j pi. */
+static void path_box(const aa_path *p, const mat *m, double box[4])
+{
+    double px = 0, py = 0, sx = 0, sy = 0; /* the pen and the subpath's start, mapped */
+    for (size_t i = 0; i < p->n; i++) {
+        const aa_path_seg *g = &p->seg[i];
+        const double *v = g->p;
+        double q[2][4];
+        int deg = 0;
+        switch (g->op) {
+        case AA_PATH_MOVE:
+            sx = px = m->a * v[0] + m->c * v[1] + m->e;
+            sy = py = m->b * v[0] + m->d * v[1] + m->f;
+            q[0][0] = px, q[1][0] = py;
+            break;
+        case AA_PATH_LINE:
+        case AA_PATH_QUAD:
+        case AA_PATH_CUBIC:
+            deg = g->op == AA_PATH_LINE ? 1 : g->op == AA_PATH_QUAD ? 2 : 3;
+            q[0][0] = px, q[1][0] = py;
+            for (int j = 0; j < deg; j++) {
+                q[0][j + 1] = m->a * v[2 * j] + m->c * v[2 * j + 1] + m->e;
+                q[1][j + 1] = m->b * v[2 * j] + m->d * v[2 * j + 1] + m->f;
+            }
+            px = q[0][deg], py = q[1][deg];
+            break;
+        case AA_PATH_ARC: {
+            const double c[2] = {m->a * v[0] + m->c * v[1] + m->e, m->b * v[0] + m->d * v[1] + m->f};
+            const double u[2] = {m->a * v[2] + m->c * v[3], m->b * v[2] + m->d * v[3]};
+            const double w[2] = {m->a * v[4] + m->c * v[5], m->b * v[4] + m->d * v[5]};
+            const double tl = fmin(v[6], v[7]), th = fmax(v[6], v[7]);
+            px = m->a * v[8] + m->c * v[9] + m->e;
+            py = m->b * v[8] + m->d * v[9] + m->f;
+            const double end[2] = {px, py};
+            for (int k = 0; k < 2; k++) {
+                box[k] = fmin(box[k], end[k]), box[k + 2] = fmax(box[k + 2], end[k]);
+                const double a = atan2(w[k], u[k]), R = hypot(u[k], w[k]);
+                for (double j = ceil((tl - a) / M_PI); a + j * M_PI < th; j += 1.0) {
+                    const double e = fmod(fabs(j), 2.0) == 0.0 ? c[k] + R : c[k] - R;
+                    box[k] = fmin(box[k], e), box[k + 2] = fmax(box[k + 2], e);
+                }
+            }
+            continue;
+        }
+        default: /* a close: back to the start, a point already counted */
+            px = sx, py = sy;
+            continue;
+        }
+        for (int k = 0; k < 2; k++)
+            bezier_extent(q[k], deg, &box[k], &box[k + 2]);
+    }
+}
+
+static int element_transform(reader *r, const xmlNode *node, mat *m)
+{
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"transform");
+    if (!t)
+        return AA_OK;
+    mat own = identity;
+    const xmlNode *was = r->node;
+    r->node = node;
+    int st = parse_transform(r, (const char *)t, &own);
+    r->node = was;
+    xmlFree(t);
+    if (!st)
+        *m = mat_mul(*m, own);
+    return st;
+}
+
+/* The fill geometry of node and what it holds through m, grown into box
+ * (SVG 2's object bounding box: shapes, and groups by their children, each
+ * through its own transform; elements with display="none" and those that
+ * draw nothing are left out). */
+static int geometry_box(reader *r, const xmlNode *node, const mat *m, double box[4], int depth)
+{
+    static const char *const shapes[] = {"path",    "rect",    "circle",  "ellipse",
+                                         "line",    "polygon", "polyline"};
+    if (!is_svg(node) || depth > AA_SVG_MAX_DEPTH)
+        return AA_OK; /* another namespace; too deep is refused where drawn */
+    char v[64];
+    int st = AA_OK;
+    const xmlNode *was = r->node;
+    r->node = node;
+    if (prop(r, node, "display", v, sizeof v, &st) && !strcasecmp(v, "none")) {
+        r->node = was;
+        return AA_OK;
+    }
+    int shape = 0;
+    for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+        shape |= named(node, shapes[k]);
+    if (!st && shape) {
+        aa_path p;
+        aa_path_init(&p);
+        if (!(st = shape_path(r, node, &p)))
+            path_box(&p, m, box);
+        aa_path_free(&p);
+    } else if (!st && (named(node, "g") || named(node, "svg"))) {
+        for (const xmlNode *c = node->children; c && !st; c = c->next) {
+            if (c->type != XML_ELEMENT_NODE)
+                continue;
+            mat mc = *m;
+            if (!(st = element_transform(r, c, &mc)))
+                st = geometry_box(r, c, &mc, box, depth + 1);
+        }
+    }
+    r->node = was;
+    return st;
+}
+
+/* The clip-path value: *id the fragment of url(#id) (in buf), NULL for
+ * none. */
+static int clip_ref(reader *r, const char *v, char *buf, size_t len, const char **id)
+{
+    *id = NULL;
+    if (!strcasecmp(v, "none"))
+        return AA_OK;
+    if (strncasecmp(v, "url(", 4))
+        return fail_at(r, "clip-path=\"%s\": only url(#id) is supported (CSS basic shapes and "
+                          "geometry boxes are not)",
+                       aa_echo(v));
+    const char *a = skip_wsp(v + 4), *e = strrchr(a, ')');
+    if (!e || *skip_wsp(e + 1))
+        return fail_at(r, "clip-path=\"%s\" is not url(...)", aa_echo(v));
+    while (e > a && is_wsp((unsigned char)e[-1]))
+        e--;
+    if (e > a && (*a == '\'' || *a == '"')) {
+        if (e - a < 2 || e[-1] != *a)
+            return fail_at(r, "clip-path=\"%s\": an unclosed quote", aa_echo(v));
+        a++, e--;
+    }
+    if (a == e || *a != '#' || e - a < 2)
+        return fail_at(r, "clip-path=\"%s\": only a reference into this document "
+                          "(url(#id)) is supported",
+                       aa_echo(v));
+    if ((size_t)(e - a) > len)
+        return fail_at(r, "clip-path=\"%s\": the id is too long", aa_echo(v));
+    memcpy(buf, a + 1, (size_t)(e - a - 1));
+    buf[e - a - 1] = '\0';
+    *id = buf;
+    return AA_OK;
+}
+
+static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const mat *m,
+                        int outer, int *out);
+
+/* One element's clip-rule and visibility over the inherited ones in sty. */
+static int clip_style(reader *r, const xmlNode *node, style *sty)
+{
+    char v[64];
+    int st = AA_OK;
+    r->node = node;
+    if (prop(r, node, "clip-rule", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
+        if (!strcasecmp(v, "nonzero") || !strcasecmp(v, "evenodd"))
+            sty->clip_rule = strcasecmp(v, "nonzero") ? AA_FILL_EVENODD : AA_FILL_NONZERO;
+        else
+            st = fail_at(r, "clip-rule=\"%s\" (nonzero or evenodd)", aa_echo(v));
+    }
+    if (!st && prop(r, node, "visibility", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
+        if (!strcasecmp(v, "visible"))
+            sty->visible = 1;
+        else if (!strcasecmp(v, "hidden") || !strcasecmp(v, "collapse"))
+            sty->visible = 0;
+        else
+            st = fail_at(r, "visibility=\"%s\" (visible, hidden or collapse)", aa_echo(v));
+    }
+    return st;
+}
+
+/* The clip of node: its clip-path resolved in its user space m within
+ * `outer` (outer itself when it has none). */
+static int clip_of(reader *r, const xmlNode *node, const mat *m, int outer, int *out)
+{
+    char v[1024];
+    int st = AA_OK;
+    *out = outer;
+    r->node = node;
+    if (!prop(r, node, "clip-path", v, sizeof v, &st))
+        return st;
+    return clip_resolve(r, v, node, m, outer, out);
+}
+
+/* clip-rule and visibility inherited into a clipPath from its ancestors
+ * (the root down), then its own: CSS Masking 1, properties inherit into
+ * the clipPath from its ancestors, not from the referencing element. */
+static int clip_inherited(reader *r, const xmlNode *cp, style *sty)
+{
+    const xmlNode *chain[AA_SVG_MAX_DEPTH + 2];
+    int n = 0, st = AA_OK;
+    for (const xmlNode *a = cp; a && a->type == XML_ELEMENT_NODE; a = a->parent) {
+        if (n == AA_SVG_MAX_DEPTH + 2)
+            return fail_at(r, "elements nested deeper than %d", AA_SVG_MAX_DEPTH);
+        chain[n++] = a;
+    }
+    while (n-- > 0 && !st)
+        st = clip_style(r, chain[n], sty);
+    return st;
+}
+
+/* A child of a clipPath as a member: its path in user units, its map, its
+ * clip-rule and its own clip. */
+typedef struct clip_member {
+    aa_path path;
+    mat m;
+    aa_fill_rule rule;
+    int gate;
+} clip_member;
+
+/* The clipPath cp referenced by `ref` (whose user space is m, whose clip
+ * outside is `outer`) given to the sink: its number into *out. */
+static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat *m, int outer,
+                     int *out)
+{
+    char v[1024];
+    int st = AA_OK;
+    r->node = cp;
+    if ((st = check_props(r, cp)))
+        return st;
+    /* the content's user space: m, then the clipPath's transform, then the
+     * object bounding box (its unit square onto the box, in the user space
+     * the transform maps: p -> m(T(B(p))), as Chromium and resvg compose
+     * them) */
+    mat mc = *m;
+    double box[4] = {0, 0, 0, 0};
+    xmlChar *units = xmlGetNoNsProp(cp, (const xmlChar *)"clipPathUnits");
+    int obb = 0;
+    if (units) {
+        const char *u = skip_wsp((const char *)units);
+        size_t n = strlen(u);
+        while (n && is_wsp((unsigned char)u[n - 1]))
+            n--;
+        if (n == 17 && !strncmp(u, "objectBoundingBox", n))
+            obb = 1;
+        else if (!(n == 14 && !strncmp(u, "userSpaceOnUse", n)))
+            st = fail_at(r, "clipPathUnits=\"%s\" (userSpaceOnUse or objectBoundingBox)",
+                         aa_echo((const char *)units));
+        xmlFree(units);
+        if (st)
+            return st;
+    }
+    if (obb) {
+        double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+        if ((st = geometry_box(r, ref, &identity, b, 0)))
+            return st;
+        r->node = cp;
+        if (!(b[2] > b[0] && b[3] > b[1]))
+            return fail_at(r, "clipPathUnits=\"objectBoundingBox\" for the <%s> of line %ld, "
+                              "whose bounding box has no width or no height",
+                           (const char *)ref->name, xmlGetLineNo(ref));
+        memcpy(box, b, sizeof box);
+    }
+    if ((st = element_transform(r, cp, &mc)))
+        return st;
+    if (obb) {
+        const mat bb = {box[2] - box[0], 0, 0, box[3] - box[1], box[0], box[1]};
+        mc = mat_mul(mc, bb);
+    }
+    /* referenced alike before: the same clip */
+    for (size_t k = 0; k < r->nmade; k++) {
+        const clip_made *c = &r->made[k];
+        if (c->node == cp && c->within == outer && !memcmp(&c->m, m, sizeof *m) &&
+            !memcmp(c->box, box, sizeof box)) {
+            *out = c->id;
+            return AA_OK;
+        }
+    }
+    /* its own clip-path, in the referencing element's user space and box */
+    int within = outer;
+    r->node = cp;
+    if (prop(r, cp, "clip-path", v, sizeof v, &st) && !st)
+        st = clip_resolve(r, v, ref, m, outer, &within);
+    if (st)
+        return st;
+    style inh;
+    initial_style(&inh);
+    if ((st = clip_inherited(r, cp, &inh)))
+        return st;
+    /* the members, their own clips given first (no clip begins inside
+     * another's definition) */
+    size_t n = 0;
+    for (const xmlNode *c = cp->children; c; c = c->next)
+        n += c->type == XML_ELEMENT_NODE;
+    clip_member *mem = n ? calloc(n, sizeof *mem) : NULL;
+    if (n && !mem)
+        return aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
+    size_t nm = 0;
+    static const char *const shapes[] = {"path", "rect", "circle", "ellipse", "polygon",
+                                         "polyline", "line"};
+    for (const xmlNode *c = cp->children; c && !st; c = c->next) {
+        if (c->type != XML_ELEMENT_NODE || !is_svg(c))
+            continue;
+        r->node = c;
+        if (named(c, "title") || named(c, "desc") || named(c, "metadata"))
+            continue;
+        int shape = 0;
+        for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+            shape |= named(c, shapes[k]);
+        if (!shape) {
+            st = named(c, "text") || named(c, "use")
+                     ? fail_at(r, "<%s> in a <clipPath> is not supported", (const char *)c->name)
+                     : fail_at(r, "not allowed in a <clipPath> (CSS Masking 1: shapes, text "
+                                  "and use)");
+            break;
+        }
+        if ((st = check_props(r, c)))
+            break;
+        if (prop(r, c, "display", v, sizeof v, &st) && !strcasecmp(v, "none"))
+            continue;
+        static const char *const refused[] = {"mask", "filter"};
+        for (int k = 0; k < 2 && !st; k++)
+            if (prop(r, c, refused[k], v, sizeof v, &st) && strcasecmp(v, "none"))
+                st = fail_at(r, "%s=\"%s\": %s not supported", refused[k], aa_echo(v),
+                             k == 0 ? "masks are" : "filters are");
+        style cs = inh;
+        if (st || (st = clip_style(r, c, &cs)))
+            break;
+        if (!cs.visible || named(c, "line")) /* hidden, or no area */
+            continue;
+        clip_member *k = &mem[nm];
+        aa_path_init(&k->path);
+        k->m = mc;
+        k->rule = cs.clip_rule;
+        nm++;
+        if ((st = element_transform(r, c, &k->m)) || (st = shape_path(r, c, &k->path)) ||
+            (st = clip_of(r, c, &k->m, -1, &k->gate)))
+            break;
+    }
+    if (!st && (st = r->sink->clip_begin(r->ctx, within)))
+        st = at_element(r, st);
+    const int was = r->clip;
+    const aa_rgb none = {{0, 0, 0}};
+    for (size_t k = 0; k < nm && !st; k++) {
+        r->clip = mem[k].gate;
+        st = give_path(r, &mem[k].path, &mem[k].m, none, mem[k].rule, 1.0);
+    }
+    r->clip = was;
+    if (!st)
+        st = r->sink->clip_end(r->ctx);
+    for (size_t k = 0; k < nm; k++)
+        aa_path_free(&mem[k].path);
+    free(mem);
+    if (st)
+        return st;
+    *out = r->nclips++;
+    if (r->nmade == r->capmade) {
+        size_t c = r->capmade ? 2 * r->capmade : 16;
+        clip_made *p = realloc(r->made, c * sizeof *p);
+        if (!p)
+            return aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
+        r->made = p, r->capmade = c;
+    }
+    r->made[r->nmade++] = (clip_made){cp, *m, {box[0], box[1], box[2], box[3]}, outer, *out};
+    return AA_OK;
+}
+
+static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const mat *m,
+                        int outer, int *out)
+{
+    char buf[1024];
+    const char *id;
+    int st;
+    *out = outer;
+    if ((st = clip_ref(r, value, buf, sizeof buf, &id)) || !id)
+        return st;
+    const xmlNode *cp;
+    if ((st = find_id(r, id, &cp)))
+        return st;
+    if (!cp || !is_svg(cp) || !named(cp, "clipPath"))
+        return AA_OK; /* as if not given (CSS Masking 1) */
+    for (int k = 0; k < r->nstack; k++)
+        if (r->clip_stack[k] == cp)
+            return fail_at(r, "clip-path=\"%s\": the references to clip paths form a cycle "
+                              "(back to the <clipPath> of line %ld)",
+                           aa_echo(value), xmlGetLineNo(cp));
+    if (r->nstack == AA_SVG_MAX_CLIP_NESTING)
+        return fail_at(r, "clip paths referenced inside clip paths deeper than %d",
+                       AA_SVG_MAX_CLIP_NESTING);
+    if (!r->sink->clip_begin || !r->sink->clip_end || !r->sink->clip)
+        return fail_at(r, "clip paths are not taken here");
+    r->clip_stack[r->nstack++] = cp;
+    st = clip_make(r, cp, ref, m, outer, out);
+    r->nstack--;
+    return st;
+}
+
 static int element(reader *r, const xmlNode *node, style sty, mat m, int depth);
 
 static int children(reader *r, const xmlNode *node, style sty, mat m, int depth)
@@ -1872,8 +2478,9 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         return fail_at(r, "elements nested deeper than %d", AA_SVG_MAX_DEPTH);
     if (!is_svg(node))
         return AA_OK; /* another namespace: not drawn */
-    static const char *const silent[] = {"title", "desc", "metadata", "defs"};
-    for (int k = 0; k < 4; k++)
+    /* a clipPath is drawn only where it is referenced (clip_of) */
+    static const char *const silent[] = {"title", "desc", "metadata", "defs", "clipPath"};
+    for (int k = 0; k < 5; k++)
         if (named(node, silent[k]))
             return AA_OK;
     int skip, st;
@@ -1890,7 +2497,6 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         } known[] = {{"text", "text is not supported (the pattern text draws glyphs)"},
                      {"image", "images are not supported"},
                      {"use", "<use> is not supported"},
-                     {"clipPath", "clip paths are not supported"},
                      {"mask", "masks are not supported"},
                      {"linearGradient", "gradients are not supported"},
                      {"radialGradient", "gradients are not supported"},
@@ -1904,13 +2510,24 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     double opacity;
     if ((st = element_props(r, node, &sty, &m, &skip, &opacity)) || skip || opacity == 0)
         return st;
+    /* its clip-path, in its user space (m, its own transform applied)
+     * within the clip of its ancestors; the shapes it gives are drawn
+     * inside that clip */
+    const int outer = r->clip;
+    int clip;
     if (named(node, "g")) {
+        if ((st = clip_of(r, node, &m, outer, &clip)))
+            return st;
+        r->node = node;
         /* a group of opacity below 1 is composited as a whole (SVG 2,
          * "Group opacity": its content drawn on its own, then over what is
          * below at that opacity) */
         if (opacity < 1 && (st = group_begin(r, opacity)))
             return st;
-        if (!(st = children(r, node, sty, m, depth)) && opacity < 1) {
+        r->clip = clip;
+        st = children(r, node, sty, m, depth);
+        r->clip = outer;
+        if (!st && opacity < 1) {
             r->node = node;
             st = r->sink->group_end(r->ctx);
         }
@@ -1930,9 +2547,13 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     const int grouped = fill && stroke && opacity < 1;
     if (!grouped)
         fa *= opacity, sa *= opacity;
+    if ((st = clip_of(r, node, &m, outer, &clip)))
+        return st;
+    r->node = node;
     aa_path p;
     aa_path_init(&p);
     st = shape_path(r, node, &p);
+    r->clip = clip;
     if (!st && grouped)
         st = group_begin(r, opacity);
     /* paint-order: the fill, then the stroke over it, unless the stroke is
@@ -1945,6 +2566,7 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     }
     if (!st && grouped)
         st = r->sink->group_end(r->ctx);
+    r->clip = outer;
     aa_path_free(&p);
     return st;
 }
@@ -2055,7 +2677,7 @@ int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
 int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h, double scale,
                    const aa_svg_sink *sink, void *ctx, double viewport[2])
 {
-    reader r = {sink, ctx, name, 0, NULL};
+    reader r = {.sink = sink, .ctx = ctx, .name = name, .clip = -1};
     double vp[2] = {0, 0};
     int given[2] = {0, 0};
     if (!sink) /* the size only: the view does not matter */
@@ -2099,6 +2721,7 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         initial_style(&sty);
         int skip;
         r.node = root;
+        r.root = root;
         xmlChar *t = xmlGetNoNsProp(root, (const xmlChar *)"transform");
         if (t) {
             xmlFree(t);
@@ -2117,8 +2740,13 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         }
         if (!st && sink && !(st = element_props(&r, root, &sty, &m, &skip, &opacity)) &&
             !skip && opacity > 0) {
+            /* the root's clip-path would be in its viewport's coordinates, not
+             * its viewBox's: refused */
+            char v[1024];
+            if (prop(&r, root, "clip-path", v, sizeof v, &st) && !st && strcasecmp(v, "none"))
+                st = fail_at(&r, "clip-path on the root <svg> is not supported");
             /* the root's opacity: its content as a group */
-            if (opacity < 1)
+            if (!st && opacity < 1)
                 st = group_begin(&r, opacity);
             if (!st)
                 st = children(&r, root, sty, m, 1);
@@ -2127,6 +2755,7 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         }
         aa__c_numbers_end(&numbers);
     }
+    clips_free(&r);
     xmlFreeDoc(doc);
     if (!st && viewport)
         viewport[0] = vp[0], viewport[1] = vp[1];
@@ -2195,6 +2824,9 @@ typedef struct rec_shape {
     long stroke; /* its source in the recording's strokes, or -1 for a fill */
     double alpha;
     int group;   /* 0 a shape; +1 a group's beginning, -1 its end (of opacity alpha) */
+    /* clips: +1 a clip's beginning (within the clip `clip`), -1 its end,
+     * 0 a shape (clipped by `clip`, -1 none); member: a clip's member */
+    int clipmark, clip, member;
 } rec_shape;
 
 /* A stroke's source as the reader gave it (its own copies). */
@@ -2213,6 +2845,7 @@ typedef struct recording {
     rec_op *ops;
     size_t nops, capops;
     double lo[2], hi[2]; /* the bounds of every op's box (op_box) */
+    int in_clip;         /* inside a clip's definition */
 } recording;
 
 static int grow(void **a, size_t *cap, size_t need, size_t size)
@@ -2234,7 +2867,8 @@ static int rec_shape_fn(void *ctx, aa_rgb colour, aa_fill_rule rule)
     recording *r = ctx;
     int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
     if (!st)
-        r->shapes[r->nshapes++] = (rec_shape){colour, rule, r->nops, 0, -1, 1.0, 0};
+        r->shapes[r->nshapes++] = (rec_shape){colour, rule, r->nops, 0, -1, 1.0, 0, 0, -1,
+                                              r->in_clip};
     return st;
 }
 
@@ -2251,8 +2885,8 @@ static int rec_group(recording *r, int mark, double opacity)
 {
     int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
     if (!st)
-        r->shapes[r->nshapes++] =
-            (rec_shape){{{0, 0, 0}}, AA_FILL_NONZERO, r->nops, 0, -1, opacity, mark};
+        r->shapes[r->nshapes++] = (rec_shape){{{0, 0, 0}}, AA_FILL_NONZERO, r->nops, 0, -1,
+                                              opacity, mark, 0, -1, 0};
     return st;
 }
 
@@ -2367,9 +3001,32 @@ static int rec_arc(void *ctx, double cx, double cy, double ux, double uy, double
     return rec_op_add(ctx, 5, v, 10);
 }
 
+/* A clip's beginning and end as marks among the shapes, its members the
+ * shapes between (marked `member`); a shape's clip on the shape. */
+static int rec_clip_mark(recording *r, int mark, int within)
+{
+    int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
+    if (!st)
+        r->shapes[r->nshapes++] = (rec_shape){{{0, 0, 0}}, AA_FILL_NONZERO, r->nops, 0, -1,
+                                              1.0, 0, mark, within, 0};
+    r->in_clip = mark > 0;
+    return st;
+}
+
+static int rec_clip_begin(void *ctx, int within) { return rec_clip_mark(ctx, 1, within); }
+static int rec_clip_end(void *ctx) { return rec_clip_mark(ctx, -1, -1); }
+
+static int rec_clip_fn(void *ctx, int clip)
+{
+    recording *r = ctx;
+    r->shapes[r->nshapes - 1].clip = clip;
+    return AA_OK;
+}
+
 static const aa_svg_sink recording_sink = {
-    rec_shape_fn, rec_move, rec_line, rec_quad, rec_cubic, rec_close, rec_arc, rec_stroke_fn,
-    rec_alpha_fn, rec_group_begin, rec_group_end};
+    rec_shape_fn,    rec_move,     rec_line,        rec_quad,     rec_cubic,
+    rec_close,       rec_arc,      rec_stroke_fn,   rec_alpha_fn, rec_group_begin,
+    rec_group_end,   rec_clip_begin, rec_clip_end,  rec_clip_fn};
 
 static int svg_check(const double *p)
 {
@@ -2383,6 +3040,40 @@ static int svg_build_unsized(const double *p, aa_scene *s)
     (void)s;
     return aa_fail(AA_EINVAL, "pattern svg (%s) is drawn at the view's size: build it with one",
                    aa_echo(aa_param_text(p[SVG_FILE])));
+}
+
+/* A recorded shape's ops into the scene's current layer, each point (u, v)
+ * in pixels as (u / W, v / H). */
+static int rec_put_ops(aa_scene *s, const recording *rec, const rec_shape *sh, int w, int h)
+{
+    int st = AA_OK;
+    for (size_t i = sh->first; i < sh->first + sh->n && !st; i++) {
+        const rec_op *o = &rec->ops[i];
+        const double *v = o->v;
+        switch (o->op) {
+        case 0:
+            st = aa_scene_move_to(s, v[0] / w, v[1] / h);
+            break;
+        case 1:
+            st = aa_scene_line_to(s, v[0] / w, v[1] / h);
+            break;
+        case 2:
+            st = aa_scene_quad_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h);
+            break;
+        case 3:
+            st = aa_scene_cubic_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h, v[4] / w,
+                                   v[5] / h);
+            break;
+        case 5: /* (x, y) -> (x / W, y / H) is linear: the semi-diameters scale too */
+            st = aa_scene_arc_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h, v[4] / w,
+                                 v[5] / h, v[6], v[7], v[8] / w, v[9] / h);
+            break;
+        default:
+            st = aa_scene_close(s);
+            break;
+        }
+    }
+    return st;
 }
 
 int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
@@ -2432,9 +3123,23 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
                 }
         }
     }
+    /* the clips first, in the order the reader numbered them (a clip
+     * refers to earlier ones only), so that the scene numbers them alike */
+    for (size_t k = 0; k < rec.nshapes && !st; k++) {
+        const rec_shape *sh = &rec.shapes[k];
+        if (sh->clipmark)
+            st = sh->clipmark > 0 ? aa_scene_clip_begin(s, sh->clip) : aa_scene_clip_end(s, NULL);
+        else if (sh->member && sh->n) {
+            if (!(st = aa_scene_clip_layer(s, sh->rule)) &&
+                !(sh->clip >= 0 && (st = aa_scene_set_clip(s, sh->clip))))
+                st = rec_put_ops(s, &rec, sh, w, h);
+        }
+    }
     size_t group = 0, group_first = 0; /* shapes in the current layer, the front one */
     for (size_t k = rec.nshapes; k-- > 0 && !st;) {
         const rec_shape *sh = &rec.shapes[k];
+        if (sh->clipmark || sh->member)
+            continue;
         if (sh->group) { /* front first: a group's end opens it */
             st = sh->group < 0 ? aa_scene_group_begin(s, sh->alpha) : aa_scene_group_end(s);
             group = 0;
@@ -2452,6 +3157,8 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
             st = aa_scene_stroke(s, &ks->path, &ks->style, m, sh->colour);
             if (!st && sh->alpha < 1)
                 st = aa_scene_set_alpha(s, sh->alpha);
+            if (!st && sh->clip >= 0)
+                st = aa_scene_set_clip(s, sh->clip);
             group = 0;
             continue;
         }
@@ -2459,6 +3166,7 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         const rec_shape *front = join ? &rec.shapes[group_first] : NULL;
         if (join)
             join = front->rule == sh->rule && front->alpha == sh->alpha &&
+                   front->clip == sh->clip &&
                    !memcmp(&front->colour, &sh->colour, sizeof sh->colour);
         for (size_t q = k + 1; join && q <= group_first; q++)
             if (rec.shapes[q].n && !(box[k][2] < box[q][0] || box[q][2] < box[k][0] ||
@@ -2466,37 +3174,13 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
                 join = 0;
         if (!join) {
             if ((st = aa_scene_layer(s, sh->colour, sh->rule)) ||
-                (sh->alpha < 1 && (st = aa_scene_set_alpha(s, sh->alpha))))
+                (sh->alpha < 1 && (st = aa_scene_set_alpha(s, sh->alpha))) ||
+                (sh->clip >= 0 && (st = aa_scene_set_clip(s, sh->clip))))
                 break;
             group = 0, group_first = k;
         }
         group++;
-        for (size_t i = sh->first; i < sh->first + sh->n && !st; i++) {
-            const rec_op *o = &rec.ops[i];
-            const double *v = o->v;
-            switch (o->op) {
-            case 0:
-                st = aa_scene_move_to(s, v[0] / w, v[1] / h);
-                break;
-            case 1:
-                st = aa_scene_line_to(s, v[0] / w, v[1] / h);
-                break;
-            case 2:
-                st = aa_scene_quad_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h);
-                break;
-            case 3:
-                st = aa_scene_cubic_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h, v[4] / w,
-                                       v[5] / h);
-                break;
-            case 5: /* (x, y) -> (x / W, y / H) is linear: the semi-diameters scale too */
-                st = aa_scene_arc_to(s, v[0] / w, v[1] / h, v[2] / w, v[3] / h, v[4] / w,
-                                     v[5] / h, v[6], v[7], v[8] / w, v[9] / h);
-                break;
-            default:
-                st = aa_scene_close(s);
-                break;
-            }
-        }
+        st = rec_put_ops(s, &rec, sh, w, h);
     }
     free(box);
     if (st && read_ok) /* the scene's refusal (a cubic arc it cannot hold, say) */

@@ -56,6 +56,17 @@ typedef struct aa_svg_sink {
     int (*alpha)(void *ctx, double alpha);
     int (*group_begin)(void *ctx, double opacity);
     int (*group_end)(void *ctx);
+    /* Optional (NULL: a document that needs them is refused).  Clip paths
+     * as aa_scene_clip_begin takes them: `clip_begin` starts the next clip
+     * (numbered from 0 in the order begun), itself inside the earlier clip
+     * `within` (-1: none); the shapes given until `clip_end` are its
+     * members (their colour means nothing, their rule is the clip-rule)
+     * and no other clip begins meanwhile; `clip` is called right after
+     * `shape` (and `alpha`) when that shape, a member or one that paints,
+     * is drawn only inside an ended clip. */
+    int (*clip_begin)(void *ctx, int within);
+    int (*clip_end)(void *ctx);
+    int (*clip)(void *ctx, int clip);
 } aa_svg_sink;
 
 /* Limits: larger or deeper documents are refused. */
@@ -65,6 +76,7 @@ typedef struct aa_svg_sink {
 #define AA_SVG_MAX_NUMBER 1e9        /* |a number| in the document */
 #define AA_SVG_MAX_COORD 1e7         /* |a coordinate| in pixels, after transforms */
 #define AA_SVG_MAX_DASHES 64         /* values in a stroke-dasharray */
+#define AA_SVG_MAX_CLIP_NESTING 16   /* clipPaths referenced while one is read */
 
 /* Read the document data[0 .. len) (`name` names it in messages) drawn on
  * a view of w x h pixels: the viewport is the root's width and height, or

@@ -74,6 +74,9 @@ static int ev_make(const aa_scene *s, int w, int h, ld sx, ld sy, ev_scene *out)
     const aa_edge *edges = aa_scene_edges(s, &n);
     memset(out, 0, sizeof *out);
     out->nlayers = aa_scene_layer_count(s);
+    if (aa_scene_is_clipped(s))
+        return aa_fail(AA_EINVAL, "stress: clip paths (this evaluator takes the front-most "
+                                  "layer's colour, unclipped)");
     if (!aa_scene_is_opaque(s))
         return aa_fail(AA_EINVAL, "stress: translucent layers (this evaluator takes the "
                                   "front-most layer's colour)");

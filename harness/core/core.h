@@ -197,6 +197,24 @@ int aa_scene_group_count(const aa_scene *s);
 int aa_scene_group_parent(const aa_scene *s, int group);
 double aa_scene_group_opacity(const aa_scene *s, int group);
 
+/* Clips (patterns/README.md, SVG's clipPath): geometry that paints
+ * nothing but gates other layers.  clip_begin starts the next clip (its
+ * number is the count of clips begun before it), itself clipped by the
+ * earlier clip `within` (-1: none); clip_layer adds a member layer of it,
+ * a path with a fill rule like any layer's; clip_end ends it and gives its
+ * number.  The clip is the union of its members, each the region where
+ * its fill rule holds (and inside its own clip, if set), intersected with
+ * `within`.  set_clip gates the layer added last (a painting layer or a
+ * member) by an ended clip: it paints, or counts, only inside the clip.
+ * A clip's members are contiguous; no painting layer, group or other clip
+ * begins inside a clip's definition.  At most AA_SCENE_MAX_CLIP_DEPTH
+ * clips in a chain of references. */
+#define AA_SCENE_MAX_CLIP_DEPTH 32
+int aa_scene_clip_begin(aa_scene *s, int within);
+int aa_scene_clip_layer(aa_scene *s, aa_fill_rule rule);
+int aa_scene_clip_end(aa_scene *s, int *clip);
+int aa_scene_set_clip(aa_scene *s, int clip);
+
 /* A finished copy mapped by x' = sx x + tx, y' = sy y + ty (sx, sy > 0). */
 aa_scene *aa_scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty);
 /* The scene placed on a W x H image at time t (frames) moving (vx, vy)

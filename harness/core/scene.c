@@ -21,6 +21,8 @@
  * composited in painter's order in sRGB-encoded values (SVG and CSS:
  * browsers composite in the encoded values) and the result decoded to
  * linear light (colour_composite).
+ * Clips (SVG's clipPath, "clips" below) are layers that paint nothing
+ * and gate others: a gated layer covers a point only inside its clip.
  *
  * Pieces are indexed in bins along y (each piece listed in every bin it
  * overlaps), so the queries touch only the pieces near the line or
@@ -69,6 +71,7 @@ aa_scene *aa_scene_new(aa_rgb background)
     }
     s->background = background;
     s->open_group = -1;
+    s->open_clip = -1;
     return s;
 }
 
@@ -82,6 +85,9 @@ void aa_scene_free(aa_scene *s)
     free(s->encoded);
     free(s->group);
     free(s->groups);
+    free(s->gate);
+    free(s->member);
+    free(s->clips);
     free(s->edges);
     free(s->contour);
     free(s->pieces);
@@ -126,11 +132,11 @@ static int check_building(aa_scene *s)
     return AA_OK;
 }
 
-int aa_scene_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule)
+/* A new layer: one that paints (member -1) or a member of the clip being
+ * defined. */
+static int add_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule, int member)
 {
-    int st = check_building(s);
-    if (st || (st = check_colour(colour)))
-        return st;
+    int st;
     if (rule != AA_FILL_NONZERO && rule != AA_FILL_EVENODD)
         return aa_fail(AA_EINVAL, "unknown fill rule %d", (int)rule);
     if (s->field)
@@ -152,15 +158,131 @@ int aa_scene_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule)
     cap = s->caplayers;
     if ((st = grow((void **)&s->group, &cap, (size_t)s->nlayers + 1, sizeof *s->group)))
         return st;
+    cap = s->caplayers;
+    if ((st = grow((void **)&s->gate, &cap, (size_t)s->nlayers + 1, sizeof *s->gate)))
+        return st;
+    cap = s->caplayers;
+    if ((st = grow((void **)&s->member, &cap, (size_t)s->nlayers + 1, sizeof *s->member)))
+        return st;
     s->caplayers = cap;
     s->colour[s->nlayers] = colour;
     s->rule[s->nlayers] = rule;
     s->alpha[s->nlayers] = 1.0;
     for (int k = 0; k < 3; k++)
         s->encoded[s->nlayers].c[k] = srgb_encode(colour.c[k]);
-    s->group[s->nlayers] = s->open_group;
-    s->translucent |= s->open_group >= 0;
+    /* a clip's member paints nothing: no group holds it */
+    s->group[s->nlayers] = member < 0 ? s->open_group : -1;
+    s->translucent |= member < 0 && s->open_group >= 0;
+    s->gate[s->nlayers] = -1;
+    s->member[s->nlayers] = member;
     s->current = s->nlayers++;
+    return AA_OK;
+}
+
+int aa_scene_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule)
+{
+    int st = check_building(s);
+    if (st || (st = check_colour(colour)))
+        return st;
+    if (s->open_clip >= 0)
+        return aa_fail(AA_EINVAL, "a painting layer inside the definition of clip %d (its "
+                                  "members are aa_scene_clip_layer's)",
+                       s->open_clip);
+    return add_layer(s, colour, rule, -1);
+}
+
+/* ---- clips ----
+ *
+ * A clip is geometry that paints nothing: the union of its member layers,
+ * each the region where its own fill rule holds for its winding number
+ * (and, when it has a clip of its own, inside that one too), intersected
+ * with the clip it is defined within.  A layer gated by a clip paints a
+ * point only where its fill rule holds and the point is inside the clip.
+ * Whether a point is inside is a function of the winding numbers of the
+ * member layers alone (in_clip), so the picture stays a function of the
+ * winding numbers of every layer (aa_scene_colour_of), piecewise constant
+ * between the pieces, and the reference integrates it exactly as before.
+ * A clip refers only to clips ended before it began, so the references
+ * have no cycle. */
+
+int aa_scene_clip_begin(aa_scene *s, int within)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (s->field)
+        return aa_fail(AA_EINVAL, "scene is a field (%s): it has no clips", s->field->name);
+    if (s->open_clip >= 0)
+        return aa_fail(AA_EINVAL, "clip %d is begun inside the definition of clip %d (define "
+                                  "it first)",
+                       s->nclips, s->open_clip);
+    if (within < -1 || within >= s->nclips)
+        return aa_fail(AA_EINVAL, "clip %d within clip %d, which is not defined yet", s->nclips,
+                       within);
+    if (within >= 0 && s->clips[within].depth >= AA_SCENE_MAX_CLIP_DEPTH)
+        return aa_fail(AA_EINVAL, "clips nested deeper than %d", AA_SCENE_MAX_CLIP_DEPTH);
+    if (s->open && (st = aa_scene_close(s)))
+        return st;
+    size_t cap = (size_t)s->capclips;
+    if ((st = grow((void **)&s->clips, &cap, (size_t)s->nclips + 1, sizeof *s->clips)))
+        return st;
+    s->capclips = (int)cap;
+    s->clips[s->nclips] = (aa_scene_clip){s->nlayers, 0, within,
+                                          1 + (within >= 0 ? s->clips[within].depth : 0)};
+    s->open_clip = s->nclips++;
+    s->current = -1; /* no path before the first member */
+    return AA_OK;
+}
+
+int aa_scene_clip_layer(aa_scene *s, aa_fill_rule rule)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (s->open_clip < 0)
+        return aa_fail(AA_EINVAL, "a clip's member layer outside a clip's definition");
+    const aa_rgb none = {{0, 0, 0}};
+    if ((st = add_layer(s, none, rule, s->open_clip)))
+        return st;
+    s->clips[s->open_clip].count++;
+    return AA_OK;
+}
+
+int aa_scene_clip_end(aa_scene *s, int *clip)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (s->open_clip < 0)
+        return aa_fail(AA_EINVAL, "clip end without a clip");
+    if (s->open && (st = aa_scene_close(s)))
+        return st;
+    if (clip)
+        *clip = s->open_clip;
+    s->open_clip = -1;
+    s->current = -1; /* the next layer is a new one */
+    return AA_OK;
+}
+
+int aa_scene_set_clip(aa_scene *s, int clip)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (s->current < 0 || !s->nlayers || s->current != s->nlayers - 1)
+        return aa_fail(AA_EINVAL, "a clip set without a layer");
+    if (clip < 0 || clip >= s->nclips || clip == s->open_clip)
+        return aa_fail(AA_EINVAL, "layer %d clipped by clip %d, which is not defined", s->current,
+                       clip);
+    const int l = s->current;
+    if (s->member[l] >= 0) { /* a member's own clip: its clip is then at least one deeper */
+        aa_scene_clip *c = &s->clips[s->member[l]];
+        if (s->clips[clip].depth >= AA_SCENE_MAX_CLIP_DEPTH)
+            return aa_fail(AA_EINVAL, "clips nested deeper than %d", AA_SCENE_MAX_CLIP_DEPTH);
+        if (c->depth < 1 + s->clips[clip].depth)
+            c->depth = 1 + s->clips[clip].depth;
+    }
+    s->gate[l] = clip;
     return AA_OK;
 }
 
@@ -171,6 +293,8 @@ int aa_scene_set_alpha(aa_scene *s, double alpha)
         return st;
     if (!s->nlayers)
         return aa_fail(AA_EINVAL, "alpha without a layer");
+    if (s->member[s->nlayers - 1] >= 0)
+        return aa_fail(AA_EINVAL, "alpha on a member of a clip, which paints nothing");
     if (!(alpha >= 0.0 && alpha <= 1.0))
         return aa_fail(AA_EINVAL, "alpha %g is outside [0, 1]", alpha);
     s->alpha[s->nlayers - 1] = alpha;
@@ -899,6 +1023,8 @@ static int finish(aa_scene *s, double hint)
         return st;
     s->grey = 1;
     for (int l = -1; l < s->nlayers; l++) {
+        if (l >= 0 && s->member[l] >= 0)
+            continue; /* a clip's member paints nothing */
         aa_rgb c = l < 0 ? s->background : s->colour[l];
         if (c.c[0] != c.c[1] || c.c[1] != c.c[2])
             s->grey = 0;
@@ -924,6 +1050,8 @@ int aa_scene_finish(aa_scene *s)
         return st;
     if (s->open_group >= 0)
         return aa_fail(AA_EINVAL, "a group of the scene is not ended");
+    if (s->open_clip >= 0)
+        return aa_fail(AA_EINVAL, "clip %d of the scene is not ended", s->open_clip);
     if (s->open && (st = aa_scene_close(s)))
         return st;
     /* Pattern units: about 256 bins over the unit square. */
@@ -983,6 +1111,9 @@ int aa_scene_clip_unit(aa_scene *s)
     int st = check_building(s);
     if (st)
         return st;
+    if (s->open_clip >= 0)
+        return aa_fail(AA_EINVAL, "clip to the unit square inside the definition of clip %d",
+                       s->open_clip);
     if (s->open && (st = aa_scene_close(s)))
         return st;
     double x0 = 0, y0 = 0, x1 = 1, y1 = 1;
@@ -1034,6 +1165,11 @@ int aa_scene_clip_unit(aa_scene *s)
     memmove(s->alpha + 1, s->alpha, (size_t)front * sizeof *s->alpha);
     memmove(s->encoded + 1, s->encoded, (size_t)front * sizeof *s->encoded);
     memmove(s->group + 1, s->group, (size_t)front * sizeof *s->group);
+    memmove(s->gate + 1, s->gate, (size_t)front * sizeof *s->gate);
+    memmove(s->member + 1, s->member, (size_t)front * sizeof *s->member);
+    s->gate[0] = s->member[0] = -1;
+    for (int c = 0; c < s->nclips; c++) /* their members moved back by one */
+        s->clips[c].first++;
     s->colour[0] = colour;
     s->rule[0] = AA_FILL_EVENODD;
     s->alpha[0] = 1.0;
@@ -1073,7 +1209,7 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
         return NULL;
     int st = AA_OK;
     for (int l = 0; l < s->nlayers && !st; l++)
-        st = aa_scene_layer(t, s->colour[l], s->rule[l]);
+        st = add_layer(t, s->colour[l], s->rule[l], s->member[l]);
     if (!st && s->ngroups) {
         size_t cap = 0;
         if (!(st = grow((void **)&t->groups, &cap, (size_t)s->ngroups, sizeof *t->groups))) {
@@ -1081,9 +1217,17 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
             t->ngroups = t->capgroups = s->ngroups;
         }
     }
+    if (!st && s->nclips) {
+        size_t cap = 0;
+        if (!(st = grow((void **)&t->clips, &cap, (size_t)s->nclips, sizeof *t->clips))) {
+            memcpy(t->clips, s->clips, (size_t)s->nclips * sizeof *t->clips);
+            t->nclips = t->capclips = s->nclips;
+        }
+    }
     if (!st && s->nlayers) {
         memcpy(t->alpha, s->alpha, (size_t)s->nlayers * sizeof *t->alpha);
         memcpy(t->group, s->group, (size_t)s->nlayers * sizeof *t->group);
+        memcpy(t->gate, s->gate, (size_t)s->nlayers * sizeof *t->gate);
         t->translucent = s->translucent;
     }
     if (!st && s->nedges) {
@@ -1202,16 +1346,50 @@ int aa_scene_bounds(const aa_scene *s, double *x0, double *y0, double *x1, doubl
     return s->has_bounds;
 }
 
-int aa_scene_is_opaque(const aa_scene *s) { return !s->translucent; }
+int aa_scene_is_opaque(const aa_scene *s) { return !s->translucent && !s->nclips; }
+int aa_scene_is_clipped(const aa_scene *s) { return s->nclips > 0; }
+int aa_scene_clip_count(const aa_scene *s) { return s->nclips; }
+int aa_scene_layer_clip(const aa_scene *s, int layer) { return s->gate[layer]; }
+int aa_scene_layer_clip_member(const aa_scene *s, int layer) { return s->member[layer]; }
+int aa_scene_clip_within(const aa_scene *s, int clip) { return s->clips[clip].within; }
+int aa_scene_clip_members(const aa_scene *s, int clip, int *first)
+{
+    *first = s->clips[clip].first;
+    return s->clips[clip].count;
+}
 double aa_scene_layer_alpha(const aa_scene *s, int layer) { return s->alpha[layer]; }
 int aa_scene_layer_group(const aa_scene *s, int layer) { return s->group[layer]; }
 int aa_scene_group_count(const aa_scene *s) { return s->ngroups; }
 int aa_scene_group_parent(const aa_scene *s, int group) { return s->groups[group].parent; }
 double aa_scene_group_opacity(const aa_scene *s, int group) { return s->groups[group].opacity; }
 
-static int covers(const aa_scene *s, const int *wind, int l)
+static int fills(const aa_scene *s, const int *wind, int l)
 {
     return s->rule[l] == AA_FILL_EVENODD ? (wind[l] & 1) : wind[l] != 0;
+}
+
+/* 1 if the point of winding numbers `wind` is inside clip c: inside the
+ * clip it is defined within, and where some member's fill rule holds and
+ * the point is inside that member's own clip.  Clips refer to earlier
+ * clips only and at most AA_SCENE_MAX_CLIP_DEPTH deep, so this ends. */
+static int in_clip(const aa_scene *s, const int *wind, int c)
+{
+    const aa_scene_clip *k = &s->clips[c];
+    if (k->within >= 0 && !in_clip(s, wind, k->within))
+        return 0;
+    for (int l = k->first; l < k->first + k->count; l++)
+        if (fills(s, wind, l) && (s->gate[l] < 0 || in_clip(s, wind, s->gate[l])))
+            return 1;
+    return 0;
+}
+
+/* 1 if layer l paints the point: it paints (it is no clip's member), its
+ * fill rule holds, and the point is inside its clip. */
+static int covers(const aa_scene *s, const int *wind, int l)
+{
+    if (!fills(s, wind, l))
+        return 0;
+    return !s->nclips || (s->member[l] < 0 && (s->gate[l] < 0 || in_clip(s, wind, s->gate[l])));
 }
 
 /* An accumulator of premultiplied encoded colour p and alpha a. */

@@ -13,6 +13,14 @@ typedef struct aa_scene_group {
     double opacity;
 } aa_scene_group;
 
+/* A clip region (aa_scene_clip_begin): the union of its member layers
+ * [first, first + count), each where its fill rule holds and it is inside
+ * its own clip (gate), intersected with the clip `within` (-1: none);
+ * depth: the longest chain of clips it consults, itself counted. */
+typedef struct aa_scene_clip {
+    int first, count, within, depth;
+} aa_scene_clip;
+
 struct aa_scene {
     aa_rgb background;
     int nlayers, current;
@@ -26,6 +34,11 @@ struct aa_scene {
     int *group;
     aa_scene_group *groups;
     int ngroups, capgroups, open_group, translucent;
+    /* clips (aa_scene_clip_begin): per layer the clip gating it (-1:
+     * none) and the clip it is a member of (-1: a layer that paints) */
+    int *gate, *member;
+    aa_scene_clip *clips;
+    int nclips, capclips, open_clip;
 
     aa_edge *edges;
     size_t nedges, capedges;

@@ -174,6 +174,18 @@ unsigned long long aa_scene_hash(const aa_scene *s)
             put_double(&z, s->groups[g].opacity);
         }
     }
+    if (s->nclips) { /* unclipped scenes keep the hash they always had */
+        put_int(&z, s->nclips);
+        for (int c = 0; c < s->nclips; c++) {
+            put_int(&z, s->clips[c].first);
+            put_int(&z, s->clips[c].count);
+            put_int(&z, s->clips[c].within);
+        }
+        for (int l = 0; l < s->nlayers; l++) {
+            put_int(&z, s->gate[l]);
+            put_int(&z, s->member[l]);
+        }
+    }
     put_int(&z, (long long)s->nedges);
     for (size_t k = 0; k < s->nedges; k++) {
         const aa_edge *e = &s->edges[k];

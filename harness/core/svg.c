@@ -73,6 +73,18 @@
  * stroker in user space as SVG says, and the project's reader gives the
  * same stroke back.
  *
+ * Clips.  Each clip of the scene (aa_scene_clip_begin) is a <clipPath
+ * id="clipC"> in a <defs> before the layers, in pixel units (clipPathUnits
+ * userSpaceOnUse, no transform), with clip-path="url(#clipW)" when it lies
+ * within clip W; each member layer is a <path id="layerK"> in it with the
+ * member's clip-rule, and clip-path="url(#clipG)" when the member has a
+ * clip of its own (SVG 1.1 14.3.5 and CSS Masking 1: a child of a
+ * clipPath may be clipped).  A clipped layer has clip-path="url(#clipG)";
+ * a stroke (which carries its map as a transform, and a clip is in the
+ * user space of the element referencing it) is wrapped in a <g> holding
+ * it.  A member is never a stroke (aa_scene_stroke adds a painting layer),
+ * so its path data is its fill, as a clipPath's child is.
+ *
  * AA_SVG_MASK paints every layer white over a black background: for a scene
  * of one layer the rendered image is that layer's coverage of each pixel,
  * as the renderer computes it.
@@ -271,6 +283,28 @@ static void put_document(FILE *f, const aa_scene *s, int w, int h, aa_svg_paint 
     fputs("\"/>\n", f);
     size_t nsrc;
     const aa_stroke_source *src = aa_scene_stroke_sources(s, &nsrc);
+    const int nclips = aa_scene_clip_count(s);
+    if (nclips)
+        fputs("<defs>\n", f);
+    for (int c = 0; c < nclips; c++) {
+        int first, n = aa_scene_clip_members(s, c, &first);
+        fprintf(f, "<clipPath id=\"clip%d\" clipPathUnits=\"userSpaceOnUse\"", c);
+        if (aa_scene_clip_within(s, c) >= 0)
+            fprintf(f, " clip-path=\"url(#clip%d)\"", aa_scene_clip_within(s, c));
+        fputs(">\n", f);
+        for (int l = first; l < first + n; l++) {
+            fprintf(f, "<path id=\"layer%d\" clip-rule=\"%s\"", l,
+                    aa_scene_layer_rule(s, l) == AA_FILL_EVENODD ? "evenodd" : "nonzero");
+            if (aa_scene_layer_clip(s, l) >= 0)
+                fprintf(f, " clip-path=\"url(#clip%d)\"", aa_scene_layer_clip(s, l));
+            fputs(" d=\"", f);
+            put_layer_data(f, s, l);
+            fputs("\"/>\n", f);
+        }
+        fputs("</clipPath>\n", f);
+    }
+    if (nclips)
+        fputs("</defs>\n", f);
     /* translucency as SVG writes it (the mask is coverage only): a layer's
      * alpha as its fill-opacity or stroke-opacity, each group a <g> with
      * its opacity around its layers, opened and closed as the layers go
@@ -278,6 +312,8 @@ static void put_document(FILE *f, const aa_scene *s, int w, int h, aa_svg_paint 
     const int mask = paint == AA_SVG_MASK;
     int open[AA_SCENE_MAX_GROUP_DEPTH], depth = 0;
     for (int l = aa_scene_layer_count(s) - 1; l >= 0; l--) {
+        if (aa_scene_layer_clip_member(s, l) >= 0)
+            continue; /* written in its clipPath */
         int chain[AA_SCENE_MAX_GROUP_DEPTH], n = 0;
         for (int g = mask ? -1 : aa_scene_layer_group(s, l); g >= 0;
              g = aa_scene_group_parent(s, g))
@@ -292,17 +328,24 @@ static void put_document(FILE *f, const aa_scene *s, int w, int h, aa_svg_paint 
             fprintf(f, "<g opacity=\"%.17g\">\n", aa_scene_group_opacity(s, open[depth]));
         }
         const double alpha = mask ? 1 : aa_scene_layer_alpha(s, l);
-        int k = aa_scene_layer_stroked(s, l);
+        int k = aa_scene_layer_stroked(s, l), clip = aa_scene_layer_clip(s, l);
         if (k >= 0) {
+            if (clip >= 0)
+                fprintf(f, "<g clip-path=\"url(#clip%d)\">\n", clip);
             put_stroke(f, &src[k], l, mask ? white : aa_scene_layer_colour(s, l), alpha);
+            if (clip >= 0)
+                fputs("</g>\n", f);
             continue;
         }
         fprintf(f, "<path id=\"layer%d\" fill=\"", l);
         put_colour(f, mask ? white : aa_scene_layer_colour(s, l));
         if (alpha < 1)
             fprintf(f, "\" fill-opacity=\"%.17g", alpha);
-        fprintf(f, "\" fill-rule=\"%s\" d=\"",
+        fprintf(f, "\" fill-rule=\"%s\"",
                 aa_scene_layer_rule(s, l) == AA_FILL_EVENODD ? "evenodd" : "nonzero");
+        if (clip >= 0)
+            fprintf(f, " clip-path=\"url(#clip%d)\"", clip);
+        fputs(" d=\"", f);
         put_layer_data(f, s, l);
         fputs("\"/>\n", f);
     }

@@ -8,7 +8,10 @@
  * segment inside a subpath begun by a move, every subpath closed, finite
  * coordinates within AA_SVG_MAX_COORD, elliptical arcs whose whole ellipse
  * is within it, alphas and group opacities in [0, 1), an alpha right after
- * its shape, groups balanced and never inside a subpath), and the points, put into a scene as
+ * its shape, groups balanced and never inside a subpath; clips begun
+ * outside any other clip's definition and any subpath, each within an
+ * earlier one, ended, and clipping a shape right after it only once
+ * ended), and the points, put into a scene as
  * the pattern does, must finish into a scene (cubics are refused by a scene
  * that cannot hold them, which is a status, not a fault).
  */
@@ -24,6 +27,7 @@
 typedef struct fuzz_sink {
     aa_scene *s;
     int shapes, open, groups, fresh; /* fresh: a shape with no point yet */
+    int clips, in_clip;               /* clips begun; inside one's definition */
 } fuzz_sink;
 
 static void fuzz_point(double x, double y)
@@ -42,7 +46,7 @@ static int fz_shape(void *ctx, aa_rgb c, aa_fill_rule rule)
             abort();
     f->shapes++;
     f->fresh = 1;
-    return aa_scene_layer(f->s, c, rule);
+    return f->in_clip ? aa_scene_clip_layer(f->s, rule) : aa_scene_layer(f->s, c, rule);
 }
 
 static int fz_alpha(void *ctx, double a)
@@ -71,6 +75,35 @@ static int fz_group_end(void *ctx)
     f->groups--;
     f->fresh = 0;
     return aa_scene_group_end(f->s);
+}
+
+static int fz_clip_begin(void *ctx, int within)
+{
+    fuzz_sink *f = ctx;
+    if (f->open || f->in_clip || within < -1 || within >= f->clips)
+        abort();
+    f->clips++;
+    f->in_clip = 1;
+    f->fresh = 0;
+    return aa_scene_clip_begin(f->s, within);
+}
+
+static int fz_clip_end(void *ctx)
+{
+    fuzz_sink *f = ctx;
+    if (f->open || !f->in_clip)
+        abort();
+    f->in_clip = 0;
+    f->fresh = 0;
+    return aa_scene_clip_end(f->s, NULL);
+}
+
+static int fz_clip(void *ctx, int clip)
+{
+    fuzz_sink *f = ctx;
+    if (!f->fresh || clip < 0 || clip >= f->clips - f->in_clip)
+        abort();
+    return aa_scene_set_clip(f->s, clip);
 }
 
 static int fz_move(void *ctx, double x, double y)
@@ -140,19 +173,19 @@ static int fz_arc(void *ctx, double cx, double cy, double ux, double uy, double 
                            x / 64, y / 48);
 }
 
-static const aa_svg_sink fuzz_svg_sink = {fz_shape, fz_move,  fz_line,        fz_quad,
-                                          fz_cubic, fz_close, fz_arc,         NULL,
-                                          fz_alpha, fz_group_begin, fz_group_end};
+static const aa_svg_sink fuzz_svg_sink = {
+    fz_shape, fz_move,        fz_line,      fz_quad,       fz_cubic,     fz_close, fz_arc, NULL,
+    fz_alpha, fz_group_begin, fz_group_end, fz_clip_begin, fz_clip_end, fz_clip};
 
 int aa_fuzz_svg(const uint8_t *data, size_t size)
 {
-    fuzz_sink f = {aa_scene_new((aa_rgb){{0, 0, 0}}), 0, 0, 0, 0};
+    fuzz_sink f = {aa_scene_new((aa_rgb){{0, 0, 0}}), 0, 0, 0, 0, 0, 0};
     if (!f.s)
         return 0;
     double vp[2];
     int st = aa_svg_read((const char *)data, size, "fuzz.svg", 64, 48, &fuzz_svg_sink, &f, vp);
     if (st == AA_OK) {
-        if (f.open || f.groups || !(vp[0] > 0 && vp[1] > 0))
+        if (f.open || f.groups || f.in_clip || !(vp[0] > 0 && vp[1] > 0))
             abort();
         int fin = aa_scene_finish(f.s);
         if (fin != AA_OK && fin != AA_EINVAL && fin != AA_ENOMEM)

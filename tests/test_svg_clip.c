@@ -1,0 +1,560 @@
+/*
+ * test_svg_clip.c: clip paths, in the scene model (aa_scene_clip_begin)
+ * and read by the pattern svg (clipPath, clip-path), through the scene and
+ * its box reference, against closed forms.
+ *
+ * The box reference of a white shape over black is at each pixel the area
+ * of the shape inside it, so the image's sum is the area of what is drawn
+ * (within the view): each clipped picture's area is derived by hand in a
+ * comment beside it (a half disk, a lens of two disks, the cells of a
+ * self-overlapping path under either rule, a strip of an ellipse), never
+ * taken from the code under test.  Where a clip is translucent paint, the
+ * integral is the area times the one colour it has, SVG 2's group opacity
+ * over black worked in sRGB-encoded values.
+ */
+#include "bench.h"
+#include "core.h"
+#include "path.h"
+#include "patterns.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#define N 64 /* the view: N x N pixels */
+
+static char dir[4096];
+
+static int setup(void **state)
+{
+    (void)state;
+    return support_tmpdir(dir, sizeof dir, "svgclip");
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    return support_rmtree(dir);
+}
+
+/* `body` inside a root <svg> of N x N pixels, white shapes, written to a
+ * file of the temporary folder; its pattern spec into spec. */
+static void svg_spec(const char *name, const char *body, char *spec, size_t len)
+{
+    char path[4200], doc[8192];
+    snprintf(path, sizeof path, "%s/%s.svg", dir, name);
+    int n = snprintf(doc, sizeof doc,
+                     "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" "
+                     "fill=\"white\">\n%s\n</svg>\n",
+                     N, N, body);
+    assert_true(n > 0 && (size_t)n < sizeof doc);
+    support_write_file(path, doc, strlen(doc));
+    snprintf(spec, len, "svg:file=%s", path);
+}
+
+/* The sum of the box reference of `body` (channel 0) over the view. */
+static double reference_sum(const char *name, const char *body)
+{
+    char spec[4400];
+    svg_spec(name, body, spec, sizeof spec);
+    aa_image img;
+    support_pattern_reference(spec, &(support_view){.w = N, .h = N}, &img, NULL, NULL);
+    double sum = 0;
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++)
+            sum += aa_pixel(&img, i, j)[0];
+    aa_image_free(&img);
+    return sum;
+}
+
+static void check_area(const char *name, const char *body, double area)
+{
+    double sum = reference_sum(name, body);
+    printf("# %s: area %.15g, reference sum %.15g, difference %.2g\n", name, area, sum,
+           sum - area);
+    if (!(fabs(sum - area) <= 1e-9))
+        fail_msg("%s: the reference sums to %.17g, the area is %.17g", name, sum, area);
+}
+
+/* The area of the lens where two disks of radius r, centres d apart,
+ * overlap: twice the circular segment cut by the chord at d/2 from each
+ * centre, 2 (r^2 acos(d / 2r) - (d / 2) sqrt(r^2 - d^2 / 4)). */
+static double lens(double r, double d)
+{
+    return 2 * r * r * acos(d / (2 * r)) - d * sqrt(r * r - d * d / 4);
+}
+
+/* sRGB's decoding (IEC 61966-2-1), written out here. */
+static double dec(double v)
+{
+    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+}
+
+/* ---- the scene model ---- */
+
+/* A unit square painted white, gated by a clip of two members: the
+ * left half [0, 1/2] x [0, 1] (nonzero) and the disk of radius 1/4 at
+ * (3/4, 1/2) itself clipped by the top half y < 1/2; the whole clip within
+ * a clip of the square [1/8, 7/8]^2.  Inside means inside the square
+ * [1/8, 7/8]^2 and (x < 1/2, or in the disk's upper half): checked at
+ * points, then the picture's area: the square's left part [1/8, 1/2] x
+ * [1/8, 7/8] is 3/8 x 3/4, and the disk's upper half pi / 32 lies inside
+ * [1/8, 7/8]^2 (its extent is [1/2, 1] x [1/4, 1/2], cut at x = 7/8: the
+ * part beyond x = 7/8 is a circular segment of the disk at distance 1/8
+ * from its centre, r^2 acos(1/2) - (1/8) sqrt(r^2 - 1/64) for r = 1/4,
+ * half of it above y = 1/2). */
+static void test_scene_model(void **state)
+{
+    (void)state;
+    const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
+    aa_scene *s = aa_scene_new(black);
+    int outer, top, clip;
+    assert_int_equal(aa_scene_clip_begin(s, -1), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.125, 0.125), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.875, 0.125), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.875, 0.875), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.125, 0.875), AA_OK);
+    assert_int_equal(aa_scene_clip_end(s, &outer), AA_OK);
+    assert_int_equal(outer, 0);
+    /* a painting layer inside a clip's definition is refused */
+    assert_int_equal(aa_scene_clip_begin(s, -1), AA_OK);
+    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "inside the definition of clip 1"));
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1, 0.5), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0, 0.5), AA_OK);
+    assert_int_equal(aa_scene_clip_end(s, &top), AA_OK);
+    assert_int_equal(top, 1);
+    /* a clip within a clip not yet ended is refused */
+    assert_int_equal(aa_scene_clip_begin(s, 2), AA_EINVAL);
+    assert_int_equal(aa_scene_clip_begin(s, outer), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.5, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.5, 1), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0, 1), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_EVENODD), AA_OK);
+    assert_int_equal(aa_scene_set_clip(s, 2), AA_EINVAL); /* itself, not ended */
+    assert_int_equal(aa_scene_set_clip(s, top), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 1, 0.5), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, 0.75, 0.5, 0.25, 0, 0, 0.25, 0, 2 * M_PI, 1, 0.5),
+                     AA_OK);
+    assert_int_equal(aa_scene_clip_end(s, &clip), AA_OK);
+    assert_int_equal(clip, 2);
+    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_set_clip(s, clip), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1, 1), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0, 1), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    assert_int_equal(aa_scene_is_clipped(s), 1);
+    assert_int_equal(aa_scene_is_opaque(s), 0);
+    assert_int_equal(aa_scene_clip_count(s), 3);
+    assert_int_equal(aa_scene_layer_count(s), 5);
+    assert_int_equal(aa_scene_layer_clip(s, 4), clip);
+    assert_int_equal(aa_scene_layer_clip_member(s, 4), -1);
+    assert_int_equal(aa_scene_layer_clip_member(s, 3), clip);
+    assert_int_equal(aa_scene_clip_within(s, clip), outer);
+    int first;
+    assert_int_equal(aa_scene_clip_members(s, clip, &first), 2);
+    assert_int_equal(first, 2);
+    static const struct {
+        double x, y;
+        int in;
+    } at[] = {{0.3, 0.3, 1},  {0.3, 0.8, 1},  {0.1, 0.3, 0},  {0.3, 0.9, 0},
+              {0.75, 0.4, 1}, {0.75, 0.6, 0}, {0.6, 0.2, 0},  {0.9, 0.45, 0},
+              {0.85, 0.45, 1}, {0.55, 0.45, 1}};
+    for (size_t k = 0; k < sizeof at / sizeof at[0]; k++) {
+        aa_rgb c = aa_scene_colour_at(s, at[k].x, at[k].y);
+        if (c.c[0] != (at[k].in ? 1.0 : 0.0))
+            fail_msg("(%g, %g): %g, not %d", at[k].x, at[k].y, c.c[0], at[k].in);
+    }
+    /* the reference's sum at 64 x 64 over 64^2 is the area */
+    const double r = 0.25, seg = r * r * acos(0.5) - 0.125 * sqrt(r * r - 1.0 / 64);
+    const double area = 0.375 * 0.75 + (M_PI * r * r - seg) / 2;
+    aa_image img;
+    support_reference(s, &(support_view){.w = N, .h = N}, &img, NULL, NULL);
+    double sum = 0;
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++)
+            sum += aa_pixel(&img, i, j)[0];
+    aa_image_free(&img);
+    printf("# scene model: area %.15g, reference sum %.15g\n", area, sum / (N * N));
+    if (!(fabs(sum / (N * N) - area) <= 1e-12))
+        fail_msg("the reference sums to %.17g, the area is %.17g", sum / (N * N), area);
+    /* transform and place keep the clips; the hash sees them */
+    aa_scene *t = aa_scene_transform(s, 2, 2, 0, 0);
+    assert_non_null(t);
+    assert_int_equal(aa_scene_clip_count(t), 3);
+    assert_int_equal(aa_scene_colour_at(t, 1.5, 0.8).c[0], 1.0);
+    assert_int_equal(aa_scene_colour_at(t, 1.5, 1.2).c[0], 0.0);
+    aa_scene_free(t);
+    aa_scene *u = aa_scene_new(black);
+    assert_int_equal(aa_scene_layer(u, white, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(u, 0, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(u, 1, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(u, 1, 1), AA_OK);
+    assert_int_equal(aa_scene_line_to(u, 0, 1), AA_OK);
+    assert_int_equal(aa_scene_finish(u), AA_OK);
+    assert_true(aa_scene_hash(u) != aa_scene_hash(s));
+    aa_scene_free(u);
+    /* methods that draw the layers' colours themselves refuse it, naming
+     * the clips; those that colour points through the scene take it */
+    aa_image out;
+    const support_view v = {.w = N, .h = N};
+    assert_int_equal(support_render_view("area", s, &v, &out, NULL), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "clip"));
+    support_render_must("supersample:n=4", s, &v, &out, NULL);
+    aa_image_free(&out);
+    aa_scene_free(s);
+}
+
+/* Clipping to the unit square puts a front layer before the clips'
+ * members: the clips must still gate what they gated.  A white square
+ * [1/2, 3/2] x [0, 1] gated by the disk of radius 1/2 at (1, 1/2) (both
+ * reaching outside the unit square): white inside the disk left of x = 1,
+ * black right of it (outside the square) and outside the disk. */
+static void test_clip_unit(void **state)
+{
+    (void)state;
+    const aa_rgb black = {{0, 0, 0}}, white = {{1, 1, 1}};
+    aa_scene *s = aa_scene_new(black);
+    int clip;
+    assert_int_equal(aa_scene_clip_begin(s, -1), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 1.5, 0.5), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, 1, 0.5, 0.5, 0, 0, 0.5, 0, 2 * M_PI, 1.5, 0.5), AA_OK);
+    assert_int_equal(aa_scene_clip_end(s, &clip), AA_OK);
+    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_set_clip(s, clip), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.5, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1.5, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1.5, 1), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.5, 1), AA_OK);
+    assert_int_equal(aa_scene_clip_unit(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    assert_int_equal(aa_scene_layer_count(s), 3);
+    assert_int_equal(aa_scene_layer_clip_member(s, 1), clip);
+    assert_int_equal(aa_scene_layer_clip(s, 2), clip);
+    assert_true(aa_scene_colour_at(s, 0.9, 0.5).c[0] == 1.0);
+    assert_true(aa_scene_colour_at(s, 1.2, 0.5).c[0] == 0.0);
+    assert_true(aa_scene_colour_at(s, 0.55, 0.1).c[0] == 0.0);
+    aa_scene_free(s);
+}
+
+/* ---- the reader ---- */
+
+/* A disk of radius 20 at (32, 32) clipped by the rectangle [0, 32] x
+ * [0, 64], through the disk's centre: half the disk, 200 pi. */
+static void test_half_disk(void **state)
+{
+    (void)state;
+    check_area("half", "<clipPath id=\"c\"><rect width=\"32\" height=\"64\"/></clipPath>"
+                       "<circle cx=\"32\" cy=\"32\" r=\"20\" clip-path=\"url(#c)\"/>",
+               200 * M_PI);
+    /* in <defs>, the reference quoted, the clipPath after its use */
+    check_area("half-defs", "<circle cx=\"32\" cy=\"32\" r=\"20\" clip-path=\"url('#c')\"/>"
+                            "<defs><clipPath id=\"c\"><rect width=\"32\" height=\"64\"/>"
+                            "</clipPath></defs>",
+               200 * M_PI);
+}
+
+/* A disk of radius 24 clipped by a concentric disk of radius 10: the
+ * small disk, 100 pi.  The clipPath's child's fill, stroke and opacity do
+ * not matter (fill="none" and a wide stroke: still the fill geometry). */
+static void test_small_disk(void **state)
+{
+    (void)state;
+    check_area("small", "<clipPath id=\"c\"><circle cx=\"32\" cy=\"32\" r=\"10\" fill=\"none\" "
+                        "stroke=\"red\" stroke-width=\"8\" opacity=\"0\"/></clipPath>"
+                        "<circle cx=\"32\" cy=\"32\" r=\"24\" clip-path=\"url(#c)\"/>",
+               100 * M_PI);
+}
+
+/* The whole view clipped by one path of two squares drawn the same way
+ * round, [8, 40]^2 and [24, 56]^2, overlapping in [24, 40]^2 (256): with
+ * clip-rule evenodd the overlap is out, 1024 + 1024 - 2 x 256 = 1536; with
+ * nonzero (winding 2 there) in, 1792.  clip-rule inherits into the
+ * clipPath from its ancestors; fill-rule does not matter. */
+static void test_clip_rule(void **state)
+{
+    (void)state;
+    const char *path = "d=\"M8 8 H40 V40 H8 Z M24 24 H56 V56 H24 Z\"";
+    char body[1024];
+    snprintf(body, sizeof body,
+             "<clipPath id=\"c\"><path clip-rule=\"evenodd\" fill-rule=\"nonzero\" %s/>"
+             "</clipPath><rect width=\"64\" height=\"64\" clip-path=\"url(#c)\"/>",
+             path);
+    check_area("evenodd", body, 1536);
+    snprintf(body, sizeof body,
+             "<clipPath id=\"c\"><path fill-rule=\"evenodd\" %s/></clipPath>"
+             "<rect width=\"64\" height=\"64\" clip-path=\"url(#c)\"/>",
+             path);
+    check_area("nonzero", body, 1792);
+    snprintf(body, sizeof body,
+             "<g clip-rule=\"evenodd\"><defs><clipPath id=\"c\"><path %s/></clipPath></defs></g>"
+             "<rect width=\"64\" height=\"64\" clip-path=\"url(#c)\"/>",
+             path);
+    check_area("inherited", body, 1536);
+}
+
+/* clipPathUnits="objectBoundingBox" on an ellipse of semi-axes a = 24,
+ * b = 12 at (32, 32) moved by translate(2 4) (its box in its user space:
+ * [8, 56] x [20, 44]): the box's middle half across, x in [0.25, 0.75] of
+ * it, is the strip |x - cx| <= c = 12 of the ellipse, of area
+ * int_{-c}^{c} 2 b sqrt(1 - x^2 / a^2) dx = 2 b (c sqrt(1 - c^2 / a^2) +
+ * a asin(c / a)) = 24 (6 sqrt 3 + 4 pi).  Then a cubic's box is its
+ * curve's, not its control points': M 8 40 C 8 8, 56 8, 56 40 Z reaches
+ * up to y(1/2) = 40/8 + 3 x 8 x 3/8 ... = 5 + 3 + 3 + 5 = 16 (its controls
+ * to 8), so its box is [8, 56] x [16, 40], and the box's upper half by
+ * objectBoundingBox is y < 28 in user units: the same picture as that
+ * rectangle by userSpaceOnUse. */
+static void test_bounding_box(void **state)
+{
+    (void)state;
+    check_area("obb-ellipse",
+               "<clipPath id=\"c\" clipPathUnits=\"objectBoundingBox\"><rect x=\"0.25\" "
+               "width=\"0.5\" height=\"1\"/></clipPath>"
+               "<ellipse cx=\"32\" cy=\"32\" rx=\"24\" ry=\"12\" transform=\"translate(2 4)\" "
+               "clip-path=\"url(#c)\"/>",
+               24 * (6 * sqrt(3) + 4 * M_PI));
+    /* the clipPath's transform after the box: x in [0, 1/4] of the box is
+     * [8, 20], moved by translate(12 0) in user units to [20, 32], the
+     * strip from x = -12 to 0 about the centre: half the strip above (in
+     * box units the move would leave nothing) */
+    check_area("obb-transform",
+               "<clipPath id=\"c\" clipPathUnits=\"objectBoundingBox\" "
+               "transform=\"translate(12 0)\"><rect width=\"0.25\" height=\"1\"/></clipPath>"
+               "<ellipse cx=\"32\" cy=\"32\" rx=\"24\" ry=\"12\" clip-path=\"url(#c)\"/>",
+               12 * (6 * sqrt(3) + 4 * M_PI));
+    const char *shape = "d=\"M 8 40 C 8 8, 56 8, 56 40 Z\"";
+    char a[1024], b[1024];
+    snprintf(a, sizeof a,
+             "<clipPath id=\"c\" clipPathUnits=\"objectBoundingBox\"><rect width=\"1\" "
+             "height=\"0.5\"/></clipPath><path %s clip-path=\"url(#c)\"/>",
+             shape);
+    snprintf(b, sizeof b,
+             "<clipPath id=\"c\"><rect width=\"64\" height=\"28\"/></clipPath>"
+             "<path %s clip-path=\"url(#c)\"/>",
+             shape);
+    double sa = reference_sum("obb-cubic", a), sb = reference_sum("user-cubic", b);
+    printf("# cubic's box: objectBoundingBox %.15g, user space %.15g\n", sa, sb);
+    assert_true(fabs(sa - sb) <= 1e-9);
+    /* a group's box: its children's, each through its transform: two unit
+     * squares at (8, 8) and, scaled by 4, at (40, 40) to (44, 44) give
+     * [8, 44]^2; the box's left half x < 26 by objectBoundingBox keeps the
+     * first square (1) whole and none of the second */
+    check_area("obb-group",
+               "<clipPath id=\"c\" clipPathUnits=\"objectBoundingBox\"><rect width=\"0.5\" "
+               "height=\"1\"/></clipPath><g clip-path=\"url(#c)\"><rect x=\"8\" y=\"8\" "
+               "width=\"1\" height=\"1\"/><rect x=\"10\" y=\"10\" width=\"1\" height=\"1\" "
+               "transform=\"scale(4)\"/></g>",
+               1);
+}
+
+/* A clip clipped in turn: the disk of radius 20 at (24, 32), whose
+ * clipPath has clip-path to the disk of radius 20 at (40, 32): the lens of
+ * two disks 16 apart.  And a member with its own clip-path: a rectangle
+ * x < 32 clipped by a disk of radius 20 at (32, 32), in a clipPath with a
+ * second member, a disk of radius 4 at (48, 32) (outside the first
+ * member): 200 pi + 16 pi. */
+static void test_clip_of_clip(void **state)
+{
+    (void)state;
+    check_area("lens",
+               "<clipPath id=\"b\"><circle cx=\"40\" cy=\"32\" r=\"20\"/></clipPath>"
+               "<clipPath id=\"a\" clip-path=\"url(#b)\"><circle cx=\"24\" cy=\"32\" r=\"20\"/>"
+               "</clipPath><rect width=\"64\" height=\"64\" clip-path=\"url(#a)\"/>",
+               lens(20, 16));
+    check_area("member",
+               "<clipPath id=\"d\"><circle cx=\"32\" cy=\"32\" r=\"20\"/></clipPath>"
+               "<clipPath id=\"a\"><rect width=\"32\" height=\"64\" clip-path=\"url(#d)\"/>"
+               "<circle cx=\"48\" cy=\"32\" r=\"4\"/></clipPath>"
+               "<rect width=\"64\" height=\"64\" clip-path=\"url(#a)\"/>",
+               216 * M_PI);
+    /* the union of two overlapping members: 2 pi r^2 less the lens */
+    check_area("union",
+               "<clipPath id=\"a\"><circle cx=\"24\" cy=\"32\" r=\"16\"/>"
+               "<circle cx=\"40\" cy=\"32\" r=\"16\"/></clipPath>"
+               "<rect width=\"64\" height=\"64\" clip-path=\"url(#a)\"/>",
+               2 * M_PI * 256 - lens(16, 16));
+    /* a group's clip and its child's meet: the child is drawn in both */
+    check_area("nested",
+               "<clipPath id=\"b\"><circle cx=\"40\" cy=\"32\" r=\"20\"/></clipPath>"
+               "<clipPath id=\"a\"><circle cx=\"24\" cy=\"32\" r=\"20\"/></clipPath>"
+               "<g clip-path=\"url(#a)\"><rect width=\"64\" height=\"64\" "
+               "clip-path=\"url(#b)\"/></g>",
+               lens(20, 16));
+}
+
+/* clip-path on a group of opacity 0.5: the group's white rectangle over
+ * the view, drawn at 0.5 over black inside the disk of radius 20: the
+ * encoded value 0.5 (SVG 2 group opacity, source over in encoded values),
+ * linear dec(0.5), on 400 pi. */
+static void test_group_opacity(void **state)
+{
+    (void)state;
+    check_area("group",
+               "<clipPath id=\"c\"><circle cx=\"32\" cy=\"32\" r=\"20\"/></clipPath>"
+               "<g opacity=\"0.5\" clip-path=\"url(#c)\"><rect width=\"64\" height=\"64\"/>"
+               "<rect width=\"32\" height=\"64\"/></g>",
+               400 * M_PI * dec(0.5));
+}
+
+/* What browsers do: a reference to no element, or to an element that is
+ * not a clipPath, is as if clip-path were not given (SVG 1.1's clip-path,
+ * "treated as if it hadn't been specified"; Chromium agrees,
+ * test_paint_renderers): the
+ * whole disk, 400 pi; clip-path="none" too.  Hidden or undisplayed
+ * children add nothing: the clip of only such children is empty. */
+static void test_invalid_references(void **state)
+{
+    (void)state;
+    check_area("missing", "<circle cx=\"32\" cy=\"32\" r=\"20\" clip-path=\"url(#nowhere)\"/>",
+               400 * M_PI);
+    check_area("not-a-clip",
+               "<rect id=\"r\" width=\"1\" height=\"1\"/>"
+               "<circle cx=\"32\" cy=\"32\" r=\"20\" clip-path=\"url(#r)\"/>",
+               1 + 400 * M_PI);
+    check_area("none", "<circle cx=\"32\" cy=\"32\" r=\"20\" clip-path=\"none\"/>", 400 * M_PI);
+    check_area("hidden",
+               "<clipPath id=\"c\"><rect width=\"64\" height=\"64\" visibility=\"hidden\"/>"
+               "<rect width=\"64\" height=\"64\" display=\"none\"/></clipPath>"
+               "<circle cx=\"32\" cy=\"32\" r=\"20\" clip-path=\"url(#c)\"/>",
+               0);
+    check_area("visible-again",
+               "<clipPath id=\"c\" visibility=\"hidden\"><rect width=\"32\" height=\"64\" "
+               "visibility=\"visible\"/></clipPath>"
+               "<circle cx=\"32\" cy=\"32\" r=\"20\" clip-path=\"url(#c)\"/>",
+               200 * M_PI);
+}
+
+/* The refusal for `body`, naming the element and containing `want`. */
+static void refused(const char *body, const char *where, const char *want)
+{
+    char spec[4400];
+    svg_spec("refused", body, spec, sizeof spec);
+    aa_spec s;
+    aa_scene *sc = NULL;
+    assert_int_equal(aa_pattern_parse(spec, &s), AA_OK);
+    int st = aa_pattern_scene_at(&s, N, N, &sc);
+    if (st == AA_OK) {
+        aa_scene_free(sc);
+        fail_msg("%s: read, not refused", body);
+    }
+    const char *e = aa_last_error();
+    printf("# %s\n", e);
+    if (!strstr(e, where) || !strstr(e, want))
+        fail_msg("%s: the message \"%s\" does not name %s and %s", body, e, where, want);
+}
+
+static void test_refused(void **state)
+{
+    (void)state;
+    /* a cycle: a's clip-path is b, b's is a */
+    refused("<clipPath id=\"a\" clip-path=\"url(#b)\"><rect width=\"9\" height=\"9\"/>"
+            "</clipPath>\n<clipPath id=\"b\" clip-path=\"url(#a)\"><rect width=\"9\" "
+            "height=\"9\"/></clipPath>\n<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
+            "line 3: <clipPath>", "cycle");
+    /* a member referring to its own clipPath */
+    refused("<clipPath id=\"a\">\n<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>"
+            "</clipPath><rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
+            "line 3: <rect>", "cycle");
+    refused("<rect width=\"9\" height=\"9\" clip-path=\"circle(4px)\"/>", "<rect>",
+            "basic shapes");
+    refused("<rect width=\"9\" height=\"9\" clip-path=\"url(other.svg#a)\"/>", "<rect>",
+            "url(#id)");
+    refused("<clipPath id=\"a\"><text>x</text></clipPath>"
+            "<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
+            "<text>", "not supported");
+    refused("<clipPath id=\"a\"><g/></clipPath>"
+            "<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
+            "<g>", "not allowed");
+    refused("<clipPath id=\"a\" clipPathUnits=\"pixels\"/>"
+            "<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
+            "<clipPath>", "clipPathUnits");
+    refused("<clipPath id=\"a\"><rect width=\"9\" height=\"9\" clip-rule=\"odd\"/></clipPath>"
+            "<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
+            "<rect>", "clip-rule");
+    refused("<clipPath id=\"a\" clipPathUnits=\"objectBoundingBox\"/>"
+            "<line x2=\"9\" stroke=\"red\" clip-path=\"url(#a)\"/>",
+            "<clipPath>", "no width or no height");
+}
+
+/* The shipped clips.svg builds, clipped. */
+static void test_shipped(void **state)
+{
+    (void)state;
+    char spec[4400];
+    snprintf(spec, sizeof spec, "svg:file=%s/clips.svg", aa_svg_dir());
+    aa_spec s;
+    aa_scene *sc = NULL;
+    assert_int_equal(aa_pattern_parse(spec, &s), AA_OK);
+    if (aa_pattern_scene_at(&s, 128, 128, &sc) != AA_OK)
+        fail_msg("%s", aa_last_error());
+    assert_int_equal(aa_scene_is_clipped(sc), 1);
+    /* inside the half disk, and left of its centre but right of the clip */
+    assert_true(aa_scene_colour_at(sc, 20.0 / 128, 32.0 / 128).c[0] == 1.0);
+    assert_true(aa_scene_colour_at(sc, 40.0 / 128, 32.0 / 128).c[0] == 0.0);
+    aa_scene_free(sc);
+}
+
+/* `export` writes a clipped scene as SVG with its clipPaths; read back,
+ * the same picture (the scene's own numbers, to rounding). */
+static void test_export_round_trip(void **state)
+{
+    (void)state;
+    const char *body =
+        "<clipPath id=\"b\"><circle cx=\"40\" cy=\"32\" r=\"20\"/></clipPath>"
+        "<clipPath id=\"a\" clip-path=\"url(#b)\"><circle cx=\"24\" cy=\"32\" r=\"20\"/>"
+        "<rect x=\"30\" width=\"4\" height=\"64\" clip-rule=\"evenodd\" clip-path=\"url(#b)\"/>"
+        "</clipPath><g opacity=\"0.5\"><rect width=\"64\" height=\"64\" fill=\"red\" "
+        "clip-path=\"url(#a)\"/><line x1=\"0\" y1=\"8\" x2=\"64\" y2=\"60\" stroke=\"white\" "
+        "stroke-width=\"3\" clip-path=\"url(#b)\"/></g>";
+    char spec[4400], spec2[4400], path[4200];
+    svg_spec("export", body, spec, sizeof spec);
+    aa_spec s;
+    aa_scene *sc = NULL;
+    assert_int_equal(aa_pattern_parse(spec, &s), AA_OK);
+    if (aa_pattern_scene_at(&s, N, N, &sc) != AA_OK)
+        fail_msg("%s", aa_last_error());
+    aa_scene *placed = aa_scene_place(sc, N, N, 0, 0, 0);
+    assert_non_null(placed);
+    snprintf(path, sizeof path, "%s/exported.svg", dir);
+    if (aa_scene_svg_write(path, placed, N, N, AA_SVG_COLOURS, NULL) != AA_OK)
+        fail_msg("%s", aa_last_error());
+    snprintf(spec2, sizeof spec2, "svg:file=%s", path);
+    aa_image a, b;
+    support_pattern_reference(spec, &(support_view){.w = N, .h = N}, &a, NULL, NULL);
+    support_pattern_reference(spec2, &(support_view){.w = N, .h = N}, &b, NULL, NULL);
+    double worst = 0;
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++)
+            for (int c = 0; c < 3; c++)
+                worst = fmax(worst, fabs(aa_pixel(&a, i, j)[c] - aa_pixel(&b, i, j)[c]));
+    printf("# export and read back: largest difference %.3g\n", worst);
+    assert_true(worst <= 1e-12);
+    aa_image_free(&a);
+    aa_image_free(&b);
+    aa_scene_free(placed);
+    aa_scene_free(sc);
+}
+
+SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_scene_model),
+             cmocka_unit_test(test_clip_unit), cmocka_unit_test(test_half_disk),
+             cmocka_unit_test(test_small_disk), cmocka_unit_test(test_clip_rule),
+             cmocka_unit_test(test_bounding_box), cmocka_unit_test(test_clip_of_clip),
+             cmocka_unit_test(test_group_opacity), cmocka_unit_test(test_invalid_references),
+             cmocka_unit_test(test_refused), cmocka_unit_test(test_shipped),
+             cmocka_unit_test(test_export_round_trip))
