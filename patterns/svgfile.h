@@ -65,6 +65,7 @@ typedef struct aa_svg_sink {
 #define AA_SVG_MAX_NUMBER 1e9        /* |a number| in the document */
 #define AA_SVG_MAX_COORD 1e7         /* |a coordinate| in pixels, after transforms */
 #define AA_SVG_MAX_DASHES 64         /* values in a stroke-dasharray */
+#define AA_SVG_MAX_ELEMENTS 1000000  /* elements read, <use> instances counted */
 
 /* Read the document data[0 .. len) (`name` names it in messages) drawn on
  * a view of w x h pixels: the viewport is the root's width and height, or
