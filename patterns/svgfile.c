@@ -1065,9 +1065,10 @@ static int css_angle(const char **s, double *deg)
     return -1;
 }
 
-/* A length of CSS at *s (a unit, or a unitless 0), a percentage of
- * `ref` (the reference box's size along the axis). */
-static int css_length(reader *r, const char **s, double ref, double *v)
+/* A length of CSS at *s (a unit, or a unitless 0; any unitless number in
+ * a presentation attribute, css 0, where SVG reads it in user units), a
+ * percentage of `ref` (the reference box's size along the axis). */
+static int css_length(reader *r, const char **s, double ref, int css, double *v)
 {
     const char *a = *s;
     if (scan_number(s, v))
@@ -1078,7 +1079,7 @@ static int css_length(reader *r, const char **s, double ref, double *v)
         return 0;
     }
     if (!isalpha((unsigned char)**s))
-        return *v == 0 ? 0 : -1; /* CSS: a length needs its unit */
+        return *v == 0 || !css ? 0 : -1; /* CSS: a length needs its unit */
     *s = a;
     return scan_length(r, s, 2, v) ? -1 : 0;
 }
@@ -1124,7 +1125,8 @@ static int parse_css_transform(reader *r, const char *text, const double box[4],
             if (kind == 0 || (kind >= 4 && kind <= 6)) /* numbers */
                 e = scan_number(&s, &a[na]);
             else if (kind <= 3) /* lengths */
-                e = css_length(r, &s, box[2 + (kind == 3 || (kind == 1 && na == 1))], &a[na]);
+                e = css_length(r, &s, box[2 + (kind == 3 || (kind == 1 && na == 1))], 1,
+                               &a[na]);
             else /* angles */
                 e = css_angle(&s, &a[na]);
             if (e)
@@ -1195,6 +1197,7 @@ bad:
  * other center.  The point in user units into o[2]. */
 static int parse_transform_origin(reader *r, const char *text, const double box[4], double o[2])
 {
+    const int css = r->from_css;
     static const struct {
         const char *name;
         int axis; /* 0 x, 1 y, 2 either */
@@ -1219,7 +1222,7 @@ static int parse_transform_origin(reader *r, const char *text, const double box[
             axis[n] = kw[k].axis, v[n] = kw[k].f;
             s += len;
         } else {
-            if (css_length(r, &s, n < 2 ? box[2 + n] : 0, &v[n]))
+            if (css_length(r, &s, n < 2 ? box[2 + n] : 0, css, &v[n]))
                 goto bad;
             axis[n] = 3;
         }
@@ -1342,6 +1345,22 @@ static int scan_flag(const char **s, double *v)
     return 0;
 }
 
+/* An error in path data (SVG 2, "Error handling in path data"): the
+ * path is drawn up to, not including, the command with the error, as
+ * browsers draw it; a warning names the element, its line and the error. */
+static int path_error(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
+static int path_error(reader *r, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    aa_warn("%s: line %ld: <%s>: %s: drawn up to the command before it", r->name,
+            xmlGetLineNo(r->node), (const char *)r->node->name, msg);
+    return AA_OK;
+}
+
 static int path_data(reader *r, aa_path *p, const char *d)
 {
     const char *s = skip_wsp(d);
@@ -1355,15 +1374,15 @@ static int path_data(reader *r, aa_path *p, const char *d)
         if (isalpha((unsigned char)*s)) {
             cmd = *s++;
             if (!strchr("MmLlHhVvQqTtCcSsZzAa", cmd))
-                return fail_at(r, "d: unknown path command '%c' at offset %ld", cmd,
+                return path_error(r, "d: unknown path command '%c' at offset %ld", cmd,
                                (long)(s - 1 - d));
             if (!subpath && cmd != 'M' && cmd != 'm')
-                return fail_at(r, "d: path data must begin with M or m");
+                return path_error(r, "d: path data must begin with M or m");
             s = skip_wsp(s);
         } else if (!cmd) {
-            return fail_at(r, "d: path data must begin with M or m");
+            return path_error(r, "d: path data must begin with M or m");
         } else if (cmd == 'Z' || cmd == 'z') {
-            return fail_at(r, "d: a number after Z at offset %ld", (long)(s - d));
+            return path_error(r, "d: a number after Z at offset %ld", (long)(s - d));
         }
         int up = toupper((unsigned char)cmd), rel = cmd != up;
         int need = up == 'M' || up == 'L' || up == 'T' ? 2
@@ -1378,7 +1397,7 @@ static int path_data(reader *r, aa_path *p, const char *d)
                 s = skip_comma_wsp(s);
             if (up == 'A' && (k == 3 || k == 4)) {
                 if (scan_flag(&s, &a[k]))
-                    return fail_at(r, "d: %s at offset %ld (the arc's %s flag is 0 or 1)",
+                    return path_error(r, "d: %s at offset %ld (the arc's %s flag is 0 or 1)",
                                    *s ? "malformed flag" : "path data ends too early",
                                    (long)(s - d), k == 3 ? "large-arc" : "sweep");
                 continue;
@@ -1388,7 +1407,7 @@ static int path_data(reader *r, aa_path *p, const char *d)
                 return fail_at(r, "d: a number out of range at offset %ld (at most %g)",
                                (long)(s - d), AA_SVG_MAX_NUMBER);
             if (e)
-                return fail_at(r, "d: %s at offset %ld (command %c needs %d numbers)",
+                return path_error(r, "d: %s at offset %ld (command %c needs %d numbers)",
                                *s ? "malformed number" : "path data ends too early",
                                (long)(s - d), cmd, need);
         }
@@ -1486,7 +1505,7 @@ static int path_data(reader *r, aa_path *p, const char *d)
         last = (char)up;
         s = skip_comma_wsp(s);
         if (up == 'Z' && *s == ',')
-            return fail_at(r, "d: a comma after Z at offset %ld", (long)(s - d));
+            return path_error(r, "d: a comma after Z at offset %ld", (long)(s - d));
     }
     return AA_OK;
 }
@@ -2570,9 +2589,9 @@ static int read_sheets(reader *r, const xmlNode *node)
                                  aa_echo((const char *)a->name));
             if (!st && css) {
                 xmlChar *text = xmlNodeGetContent(node);
-                long line = xmlGetLineNo(node->children ? node->children : node);
-                if (line <= 0)
-                    line = xmlGetLineNo(node);
+                /* libxml2 numbers a text node by its last line: the
+                 * sheet is taken to start on the start tag's line */
+                long line = xmlGetLineNo(node);
                 if (!r->css)
                     st = aa_css_new(&r->css);
                 if (!st)
@@ -2778,7 +2797,9 @@ static int use_element(reader *r, const xmlNode *node, style sty, mat m, int dep
     const char *h = skip_wsp((const char *)href);
     int st = AA_OK;
     const xmlNode *target = NULL;
-    if (*h != '#')
+    if (!*h) /* no reference: nothing */
+        ;
+    else if (*h != '#')
         st = fail_at(r, "href=\"%s\": a reference to another document is not supported",
                      aa_echo(h));
     else {

@@ -576,9 +576,6 @@ static void test_refusals(void **state)
     refused(L2("<ellipse rx=\"1\" ry=\"-2\"/>"), "line 2: <ellipse>", "negative ry");
     refused(L2("<rect width=\"1\" height=\"1\" rx=\"-1\"/>"), "<rect>", "negative rx");
     refused(L2("<circle r=\"10vw\"/>"), "<circle>", "not a length");
-    refused(L2("\n<path d=\"M0 0 A 5 5 0 2 1 10 10\"/>"), "line 3: <path>", "large-arc flag");
-    refused(L2("<path d=\"M0 0 a 5 5 0 0 x 10 10\"/>"), "line 2: <path>", "sweep flag");
-    refused(L2("<path d=\"M0 0 a 5 5 0 0\"/>"), "<path>", "ends too early");
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-opacity=\"half\"/>"), "line 2: <line>",
             "stroke-opacity");
     refused(L2("<g stroke-opacity=\"50% 1\"><line x2=\"5\" stroke=\"red\"/></g>"),
@@ -629,11 +626,6 @@ static void test_refusals(void **state)
     refused(L2("<rect width=\"-1\" height=\"1\"/>"), "<rect>", "negative");
     refused(L2("<rect width=\"1\" height=\"1\" fill=\"bogus\"/>"), "<rect>", "bogus");
     refused(L2("<polygon points=\"0 0 1\"/>"), "<polygon>", "odd");
-    refused(L2("<path d=\"L 1 1\"/>"), "<path>", "must begin with M");
-    refused(L2("<path d=\"M 1\"/>"), "<path>", "ends too early");
-    refused(L2("<path d=\"M 1 1 L 2 x\"/>"), "<path>", "malformed number");
-    refused(L2("<path d=\"M 1 1 z 3\"/>"), "<path>", "after Z");
-    refused(L2("<path d=\"M 1 1 B 3\"/>"), "<path>", "unknown path command");
     refused(L2("<path transform=\"spin(3)\" d=\"M0 0\"/>"), "<path>", "transform");
     refused(L2("<path transform=\"skewX(90)\" d=\"M0 0\"/>"), "<path>", "infinite");
     /* absurd numbers: beyond AA_SVG_MAX_NUMBER, overflowing a double, and
