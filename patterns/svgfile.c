@@ -11,25 +11,47 @@
  * document in front (painter's order), in pixel units exactly as a browser
  * draws the document at one CSS pixel per image pixel:
  *
- *   - the viewport is the root <svg>'s width and height in pixels (a number,
- *     optionally "px"; "100%" or absent: the view's W or H), at the image's
- *     top left corner; what falls outside it is clipped (the root's overflow
- *     is hidden), and everything no shape covers is black;
+ *   - the viewport is the root <svg>'s width and height (lengths; a
+ *     percentage of the view's W or H, absent or auto the view's), at the
+ *     image's top left corner; what falls outside it is clipped (the
+ *     root's overflow is hidden), and everything no shape covers is black;
+ *   - lengths as CSS Values 4 writes them (scan_length): px, in, cm, mm,
+ *     Q, pt, pc at 96 px to the inch, em of font-size (inherited; lengths
+ *     and the absolute-size keywords), ex as half an em (no font metrics:
+ *     CSS's fallback), and % of the nearest viewport's width, height or
+ *     normalised diagonal (SVG 2, "Units");
+ *   - structure (SVG 2): <use> (href or xlink:href to "#id", x, y, and
+ *     width and height for <svg> and <symbol> targets; the target drawn
+ *     as the use's child, inheriting from it; a missing target or a
+ *     reference cycle draws nothing, as browsers do), <symbol> (drawn only
+ *     through <use>) and nested <svg>, each a viewport with its viewBox
+ *     and preserveAspectRatio; a viewport of overflow hidden (the initial
+ *     value) clips, and the reader has no clip paths: content reaching
+ *     beyond it, by an exact bounds test (within_viewports), is refused,
+ *     and with overflow visible it is drawn unclipped;
+ *   - style: the style attribute and <style> sheets, cascaded by CSS
+ *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
+ *     !important; presentation attributes below every rule);
  *   - a viewBox maps to the viewport by preserveAspectRatio (default
  *     xMidYMid meet; every alignment, meet, slice and none);
  *   - transform lists (matrix, translate, scale, rotate with or without a
- *     centre, skewX, skewY) compose from the root down and are applied to
+ *     centre, skewX, skewY; in a declaration CSS Transforms 1's functions
+ *     with units, about transform-origin in the reference box of
+ *     transform-box, view-box or fill-box) compose from the root down and
+ *     are applied to
  *     every point, control points included, which is exact for Bezier
  *     arcs under affine maps; an elliptical arc's centre maps as a point
  *     and its semi-diameters as vectors, which is exact too;
  *   - every shape is first a path in its user units (path.h): <path> with
  *     every command (M L H V Q T C S A Z, absolute and relative, implicit
  *     repeats, the number grammar of SVG paths; the arc command by SVG's
- *     implementation notes, aa_arc_endpoints), <rect> with rounded corners
+ *     implementation notes, aa_arc_endpoints; drawn up to the command with
+ *     the first error, with a warning, SVG 2's error handling), <rect>
+ *     with rounded corners
  *     by SVG 2's rules for rx and ry, <circle>, <ellipse>, <line>,
  *     <polygon>, <polyline>, in <g>; <title>, <desc>, <metadata> and
  *     <defs> (whose content is drawn only when referenced) draw nothing;
- *   - fill and fill-rule, as attributes or in a style attribute; colours
+ *   - fill and fill-rule, as attributes or declarations; colours
  *     as CSS Color 4 writes them (names, transparent, currentColor, hex
  *     with or without alpha, rgb()/rgba() and hsl()/hsla() in the legacy
  *     and the modern forms; parse_colour) are sRGB and become linear light
@@ -52,13 +74,16 @@
  * cannot draw exactly (Bezier arcs with a cusp, arcs of ellipses that are
  * not circles), the joins miter-clip and arcs, color-interpolation:
  * linearRGB (compositing in linear light), paint servers (gradients, patterns:
- * url() paints), text, images, <use>, clip paths, masks, filters, style
- * sheets, nested <svg>, units other than px, negative sizes, radii, widths
- * and dashes, any attribute or style property not implemented (see
- * css_known), and any other element of the SVG namespace; elements of
+ * url() paints), text, images, clip paths, masks, filters, content beyond
+ * a viewport that clips, references to other documents, what svgcss.h
+ * refuses in a style sheet, sheets for other media, negative sizes, radii,
+ * widths and dashes, any attribute or style property not implemented (see
+ * css_known; in a rule, only when the rule matches a drawn element), and
+ * any other element of the SVG namespace; elements of
  * other namespaces are not drawn (as a browser ignores them).  Malformed
- * XML or path data, files over AA_SVG_MAX_BYTES, nesting deeper than
- * AA_SVG_MAX_DEPTH, more than AA_SVG_MAX_SEGMENTS path segments (strokes'
+ * XML, files over AA_SVG_MAX_BYTES, nesting deeper than AA_SVG_MAX_DEPTH
+ * (<use> levels counted), more than AA_SVG_MAX_ELEMENTS elements drawn
+ * (use instances counted), more than AA_SVG_MAX_SEGMENTS path segments (strokes'
  * outlines counted), numbers over AA_SVG_MAX_NUMBER and coordinates over
  * AA_SVG_MAX_COORD pixels are refused too.
  */
