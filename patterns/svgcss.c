@@ -779,8 +779,15 @@ int aa_css_each(aa_css *css, const xmlNode *node, const char *style,
         return aa_fail(AA_ENOMEM, "out of memory reading a style attribute");
     const char *p = t, *end = t + strlen(t);
     decl d;
-    while (!st && next_inline(&p, end, &d))
-        st = fn(ctx, d.name.n ? d.name.s : d.value.s, d.name.n, 0);
+    while (!st && next_inline(&p, end, &d)) {
+        if (d.name.n) {
+            st = fn(ctx, d.name.s, d.name.n, 0);
+            continue;
+        }
+        char bad[128]; /* a malformed declaration, as text */
+        snprintf(bad, sizeof bad, "%.*s", (int)(d.value.n < 127 ? d.value.n : 127), d.value.s);
+        st = fn(ctx, bad, 0, 0);
+    }
     free(t);
     return st;
 }

@@ -2259,6 +2259,8 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
     const int css = r->from_css;
     if (!strcasecmp(v, "inherit"))
         return fail_at(r, "transform: inherit is not supported");
+    if (node->parent && node->parent->type == XML_DOCUMENT_NODE)
+        return fail_at(r, "a transform on the root <svg> is not supported");
     double box[4] = {0, 0, r->vpw, r->vph};
     char kind[64];
     if (prop(r, node, "transform-box", kind, sizeof kind, &st) && strcasecmp(kind, "view-box")) {
@@ -3036,11 +3038,20 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         r.ids = &ids;
         r.font_size = 16;
         r.vpw = w / scale, r.vph = h / scale;
-        if (!st && sink && !(st = collect_ids(&ids, root))) {
+        if (!st && !(st = collect_ids(&ids, root))) {
             qsort(ids.e, ids.n, sizeof *ids.e, id_cmp);
             st = read_sheets(&r, root);
         }
         r.node = root;
+        r.chain[0] = root; /* a use of the root is a cycle */
+        char fs[256];
+        if (!st && prop(&r, root, "font-size", fs, sizeof fs, &st) && !st &&
+            strcasecmp(fs, "inherit"))
+        {
+            double size;
+            if (!(st = parse_font_size(&r, fs, 16, &size)))
+                r.font_size = size; /* em in the root's size */
+        }
         /* at `scale` pixels a CSS pixel: the document laid out in a view of
          * (w, h) / scale CSS pixels, then everything scaled */
         double vb[2];

@@ -147,6 +147,10 @@ static void test_use(void **state)
     expect(OPEN "<g id=\"g\"><rect width=\"1\" height=\"1\"/><use href=\"#g\" x=\"5\"/></g></svg>",
            BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
     expect(OPEN "<use id=\"a\" href=\"#b\"/><use id=\"b\" href=\"#a\"/></svg>", "");
+    /* a use of the root, its ancestor */
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"top\"><rect width=\"1\" "
+           "height=\"1\"/><use href=\"#top\" x=\"3\"/></svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
     /* g1 holds a rect and a use of g2, which uses g1: through g2's use
      * g1 would hold itself (its use is an ancestor): in error */
     expect(OPEN "<g id=\"g1\"><rect width=\"1\" height=\"1\"/><use href=\"#g2\"/></g>"
@@ -276,6 +280,15 @@ static void test_units(void **state)
            BLACK " M 0 0 L 30 0 L 30 30 L 0 30 Z");
     expect(OPEN "<rect width=\"1em\" height=\"1em\"/></svg>",
            BLACK " M 0 0 L 16 0 L 16 16 L 0 16 Z");
+    /* the root's font-size is the em of its own width: 2em of 10px */
+    {
+        double vp[2];
+        const char *doc = "<svg xmlns=\"http://www.w3.org/2000/svg\" font-size=\"10px\" "
+                          "width=\"2em\" height=\"3ex\"/>";
+        assert_int_equal(aa_svg_read(doc, strlen(doc), "t.svg", 1, 1, NULL, NULL, vp), AA_OK);
+        if (!(vp[0] == 20 && vp[1] == 15))
+            fail_msg("the root of 2em x 3ex at 10px: %g x %g", vp[0], vp[1]);
+    }
     snprintf(want, sizeof want, BLACK " M 0 0 L %.17g 0 L %.17g 1 L 0 1 Z", 16 * 6.0 / 5,
              16 * 6.0 / 5);
     expect(OPEN "<rect width=\"1em\" height=\"1\" font-size=\"large\"/></svg>", want);
@@ -452,6 +465,10 @@ static void test_css_transform(void **state)
             "units");
     refused(OPEN "<path style=\"transform: rotateX(10deg)\" d=\"M0 0\"/></svg>", "<path>",
             "no 3D");
+    /* the root's transform is refused, as an attribute or a declaration */
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\"><style>svg { transform: scale(2) }"
+            "</style></svg>",
+            "<svg>", "root");
 }
 
 /* ---- path data errors ---- */
