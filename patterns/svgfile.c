@@ -32,6 +32,10 @@
  *   - style: the style attribute and <style> sheets, cascaded by CSS
  *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
  *     !important; presentation attributes below every rule);
+ *   - an invalid presentation attribute (a length, a negative size or
+ *     radius, an opacity, a transform list that does not parse) is
+ *     ignored, as browsers ignore it, with a warning (invalid_attr); what
+ *     may be valid but is not read (calc(), vw) is refused;
  *   - a viewBox maps to the viewport by preserveAspectRatio (default
  *     xMidYMid meet; every alignment, meet, slice and none);
  *   - transform lists (matrix, translate, scale, rotate with or without a
@@ -76,8 +80,8 @@
  * linearRGB (compositing in linear light), paint servers (gradients, patterns:
  * url() paints), text, images, clip paths, masks, filters, content beyond
  * a viewport that clips, references to other documents, what svgcss.h
- * refuses in a style sheet, sheets for other media, negative sizes, radii,
- * widths and dashes, any attribute or style property not implemented (see
+ * refuses in a style sheet, sheets for other media, negative widths and
+ * dashes, invalid values in declarations, any attribute or style property not implemented (see
  * css_known; in a rule, only when the rule matches a drawn element), and
  * any other element of the SVG namespace; elements of
  * other namespaces are not drawn (as a browser ignores them).  Malformed
@@ -1537,6 +1541,43 @@ static int path_data(reader *r, aa_path *p, const char *d)
 
 /* ---- elements as paths ---- */
 
+/* A warning naming the element and its line. */
+static void warn_at(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
+static void warn_at(reader *r, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    aa_warn("%s: line %ld: <%s>: %s", r->name, xmlGetLineNo(r->node), (const char *)r->node->name,
+            msg);
+}
+
+/* An invalid presentation attribute is ignored, as browsers ignore it
+ * (SVG 2, "Presentation attributes": a value that does not parse has no
+ * effect; Chromium, resvg and librsvg draw the element with the
+ * property's default): 1 and a warning naming the element, its line and
+ * the value when `text` is invalid, 0 when it may be valid but not read
+ * here (a CSS function such as calc(), or a unit the reader does not know:
+ * refused by the caller, never guessed).  `what` says what was wanted. */
+static int invalid_attr(reader *r, const char *key, const char *text, const char *what)
+{
+    const char *s = skip_wsp(text);
+    if (isalpha((unsigned char)*s)) {
+        while (isalnum((unsigned char)*s) || *s == '-')
+            s++;
+        if (*s == '(')
+            return 0; /* a function */
+    } else {
+        double x;
+        if (!scan_number(&s, &x) && isalpha((unsigned char)*s))
+            return 0; /* a number and a unit */
+    }
+    warn_at(r, "%s=\"%s\" is not %s: ignored, as browsers ignore it", key, aa_echo(text), what);
+    return 1;
+}
+
 static int attr_length(reader *r, const xmlNode *node, const char *key, double def, double *v)
 {
     xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)key);
@@ -1544,22 +1585,32 @@ static int attr_length(reader *r, const xmlNode *node, const char *key, double d
         *v = def;
         return AA_OK;
     }
-    int st = parse_length(r, key, (const char *)t, v);
+    double x;
+    int st = parse_length(r, key, (const char *)t, &x);
+    if (st == AA_EINVAL && invalid_attr(r, key, (const char *)t, "a length"))
+        x = def, st = AA_OK;
     xmlFree(t);
+    if (!st)
+        *v = x;
     return st;
 }
 
 /* A radius rx or ry of <rect> or <ellipse>: a length, or auto (also when
- * absent: *is_auto = 1); a negative value is an error (SVG 1.1; SVG 2
- * calls it invalid), refused. */
+ * absent: *is_auto = 1); a negative value is invalid (SVG 2), so auto, as
+ * browsers take it, with a warning. */
 static int attr_radius(reader *r, const xmlNode *node, const char *key, double *v, int *is_auto)
 {
     xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)key);
     int st = AA_OK;
     *v = 0;
     *is_auto = !t || !strcasecmp(skip_wsp((const char *)t), "auto");
-    if (!*is_auto && !(st = parse_length(r, key, (const char *)t, v)) && *v < 0)
-        st = fail_at(r, "a negative %s is an error", key);
+    if (!*is_auto && !(st = parse_length(r, key, (const char *)t, v)) && *v < 0) {
+        /* SVG 2: a negative radius is invalid: auto */
+        warn_at(r, "%s=\"%s\" is negative: auto, as browsers take it", key,
+                aa_echo((const char *)t));
+        *v = 0, *is_auto = 1;
+    } else if (st == AA_EINVAL && invalid_attr(r, key, (const char *)t, "a length"))
+        *v = 0, *is_auto = 1, st = AA_OK;
     xmlFree(t);
     return st;
 }
@@ -1577,8 +1628,11 @@ static int rect(reader *r, const xmlNode *node, aa_path *p)
         (st = attr_length(r, node, "height", 0, &h)) ||
         (st = attr_radius(r, node, "rx", &rx, &ax)) || (st = attr_radius(r, node, "ry", &ry, &ay)))
         return st;
-    if (w < 0 || h < 0)
-        return fail_at(r, "a negative width or height is an error");
+    if (w < 0 || h < 0) { /* SVG 2: invalid, so auto: 0, not drawn */
+        warn_at(r, "a negative %s (%g): not drawn, as browsers do", w < 0 ? "width" : "height",
+                w < 0 ? w : h);
+        return AA_OK;
+    }
     if (w == 0 || h == 0)
         return AA_OK; /* not drawn */
     if (ax && !ay)
@@ -1610,7 +1664,8 @@ static int rect(reader *r, const xmlNode *node, aa_path *p)
 /* <circle> and <ellipse>: SVG 2's path, from (cx + rx, cy) through
  * (cx, cy + ry), (cx - rx, cy) and (cx, cy - ry), four quarter arcs,
  * closed.  An ellipse's auto radius is the other one.  A radius of 0
- * disables rendering; a negative one is an error, refused. */
+ * disables rendering; a negative one is invalid (SVG 2), so 0: nothing,
+ * with a warning. */
 static int ellipse(reader *r, const xmlNode *node, aa_path *p)
 {
     double cx, cy, rx, ry;
@@ -1620,8 +1675,10 @@ static int ellipse(reader *r, const xmlNode *node, aa_path *p)
     if (named(node, "circle")) {
         if ((st = attr_length(r, node, "r", 0, &rx)))
             return st;
-        if (rx < 0)
-            return fail_at(r, "a negative r is an error");
+        if (rx < 0) { /* SVG 2: invalid, so 0: not drawn */
+            warn_at(r, "a negative r (%g): not drawn, as browsers do", rx);
+            return AA_OK;
+        }
         ry = rx;
     } else {
         if ((st = attr_radius(r, node, "rx", &rx, &ax)) ||
@@ -2290,7 +2347,17 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
     if (st)
         return st;
     mat own = identity;
-    if ((st = css ? parse_css_transform(r, v, box, &own) : parse_transform(r, v, &own)))
+    st = css ? parse_css_transform(r, v, box, &own) : parse_transform(r, v, &own);
+    if (st == AA_EINVAL && !css &&
+        (strstr(aa_last_error(), "malformed") || strstr(aa_last_error(), "takes") ||
+         strstr(aa_last_error(), "too many"))) {
+        /* not SVG's transform list (CSS syntax with units included):
+         * ignored, as Chromium and resvg ignore it */
+        warn_at(r, "transform=\"%s\" is not a transform list: ignored, as browsers ignore it",
+                aa_echo(v));
+        own = identity, st = AA_OK;
+    }
+    if (st)
         return st;
     double o[2] = {box[0], box[1]};
     if (prop(r, node, "transform-origin", v, sizeof v, &st) &&
@@ -2369,7 +2436,13 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
                     return fail_at(r, "opacity=\"inherit\" is not supported");
                 continue; /* the inherited properties keep the parent's */
             }
-            st = parse_opacity(r, opacities[k], v, to[k]);
+            double o;
+            st = parse_opacity(r, opacities[k], v, &o);
+            if (!st)
+                *to[k] = o;
+            else if (st == AA_EINVAL && !r->from_css &&
+                     invalid_attr(r, opacities[k], v, "a number or a percentage"))
+                st = AA_OK; /* the default: 1, or the parent's */
         }
     if (!st && prop(r, node, "paint-order", v, sizeof v, &st) && strcasecmp(v, "inherit"))
         st = parse_paint_order(r, v, &sty->stroke_first);

@@ -572,13 +572,10 @@ static void test_refusals(void **state)
     /* shapes, arcs and strokes: invalid values, and what cannot be
      * stroked exactly yet (Bezier arcs, arcs of ellipses that are not
      * circles), or painted (stroke opacity) */
-    refused(L2("<circle r=\"-1\"/>"), "line 2: <circle>", "negative r");
-    refused(L2("<ellipse rx=\"1\" ry=\"-2\"/>"), "line 2: <ellipse>", "negative ry");
-    refused(L2("<rect width=\"1\" height=\"1\" rx=\"-1\"/>"), "<rect>", "negative rx");
     refused(L2("<circle r=\"10vw\"/>"), "<circle>", "not a length");
-    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-opacity=\"half\"/>"), "line 2: <line>",
-            "stroke-opacity");
-    refused(L2("<g stroke-opacity=\"50% 1\"><line x2=\"5\" stroke=\"red\"/></g>"),
+    refused(L2("<line x2=\"5\" stroke=\"red\" style=\"stroke-opacity: half\"/>"),
+            "line 2: <line>", "stroke-opacity");
+    refused(L2("<g style=\"stroke-opacity: 50% 1\"><line x2=\"5\" stroke=\"red\"/></g>"),
             "line 2: <g>", "stroke-opacity");
     /* a sink without `alpha` takes no translucent shape (test_opacity.c
      * reads them through the pattern's) */
@@ -605,7 +602,8 @@ static void test_refusals(void **state)
     refused(L2("<line x2=\"100000\" stroke=\"red\" stroke-dasharray=\"0.001\"/>"), "<line>",
             "dashes");
     refused(L2("<rect width=\"1\" height=\"1\" opacity=\"inherit\"/>"), "<rect>", "opacity");
-    refused(L2("<rect width=\"1\" height=\"1\" fill-opacity=\".\"/>"), "<rect>", "opacity");
+    refused(L2("<rect width=\"1\" height=\"1\" style=\"fill-opacity: .\"/>"), "<rect>",
+            "opacity");
     refused(L2("<rect width=\"1\" height=\"1\" color-interpolation=\"linearRGB\"/>"), "<rect>",
             "linear light");
     /* nor a group of an opacity */
@@ -623,10 +621,9 @@ static void test_refusals(void **state)
             "line 2: <rect>", "viewport of the <svg> at line 2");
     refused(L2("<blink/>"), "<blink>", "not supported");
     refused(L2("<rect width=\"10pz\" height=\"1\"/>"), "<rect>", "not a length");
-    refused(L2("<rect width=\"-1\" height=\"1\"/>"), "<rect>", "negative");
     refused(L2("<rect width=\"1\" height=\"1\" fill=\"bogus\"/>"), "<rect>", "bogus");
     refused(L2("<polygon points=\"0 0 1\"/>"), "<polygon>", "odd");
-    refused(L2("<path transform=\"spin(3)\" d=\"M0 0\"/>"), "<path>", "transform");
+    refused(L2("<path style=\"transform: spin(3)\" d=\"M0 0\"/>"), "<path>", "transform");
     refused(L2("<path transform=\"skewX(90)\" d=\"M0 0\"/>"), "<path>", "infinite");
     /* absurd numbers: beyond AA_SVG_MAX_NUMBER, overflowing a double, and
      * coordinates that transforms carry beyond AA_SVG_MAX_COORD */
