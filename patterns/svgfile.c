@@ -3112,7 +3112,8 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         r.font_size = 16;
         r.vpw = w / scale, r.vph = h / scale;
         if (!st && !(st = collect_ids(&ids, root))) {
-            qsort(ids.e, ids.n, sizeof *ids.e, id_cmp);
+            if (ids.n)
+                qsort(ids.e, ids.n, sizeof *ids.e, id_cmp);
             st = read_sheets(&r, root);
         }
         r.node = root;

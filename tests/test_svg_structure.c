@@ -308,10 +308,9 @@ static void test_units(void **state)
     }
     /* the root's size in absolute units is its own size */
     double vp[2];
-    assert_int_equal(aa_svg_read("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1in\" "
-                                 "height=\"2.54cm\"/>",
-                                 77, "t.svg", 1, 1, NULL, NULL, vp),
-                     AA_OK);
+    static const char own[] = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1in\" "
+                              "height=\"2.54cm\"/>";
+    assert_int_equal(aa_svg_read(own, strlen(own), "t.svg", 1, 1, NULL, NULL, vp), AA_OK);
     assert_true(vp[0] == 96 && fabs(vp[1] - 96) < 1e-13);
     refused(OPEN "<rect width=\"1vw\" height=\"1\"/></svg>", "<rect>", "not a length");
     refused(OPEN "<rect width=\"1\" height=\"1\" font-size=\"larger\"/></svg>", "<rect>",
