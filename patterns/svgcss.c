@@ -321,7 +321,7 @@ static int parse_selector(const char *a, const char *b, selector *out, const cha
                 q->name = ident(&p, b);
                 if (!q->name.n)
                     goto bad;
-                if (p < b && *p == '|') {
+                if (p < b && *p == '|' && !(p + 1 < b && p[1] == '=')) { /* not |= */
                     *why = "names a namespace (not supported)";
                     goto bad;
                 }

@@ -393,6 +393,41 @@ static void test_sheets(void **state)
                                    "</svg>";
     static const char *const want_inh[] = {"0 1 0", "0 1 1"};
     expect_colours(inh, want_inh, 2);
+    /* attribute selectors (Selectors 4): [a] present, [a=v] equal, [a~=v]
+     * a word of a white-space list, [a|=v] v or v followed by "-", [a^=v]
+     * a prefix, [a$=v] a suffix, [a*=v] a substring; the empty string
+     * matches nothing for ~=, ^=, $= and *= */
+    static const char attrs[] =
+        OPEN "<style>rect { fill: black } [id] { fill: red } [id=\"p\"] { fill: lime } "
+             "[class~=\"two\"] { fill: blue } [class|=\"en\"] { fill: yellow } "
+             "[id^=\"pre\"] { fill: aqua } [id$=\"fix\"] { fill: fuchsia } "
+             "[id*=\"mid\"] { fill: white } [class^=\"\"] { fill: red }</style>"
+             R("id=\"q\"")            /* [id]: red */
+             R("id=\"p\"")            /* [id=p] (0,1,0) later than [id]: lime */
+             R("class=\"one two\"")   /* blue */
+             R("class=\"en-GB\"")     /* yellow */
+             R("class=\"eng\"")       /* |= wants "en" or "en-": black */
+             R("id=\"prelude\"")      /* aqua */
+             R("id=\"suffix\"")       /* fuchsia */
+             R("id=\"amidst\"")       /* white */
+             "</svg>";
+    static const char *const want_attrs[] = {"1 0 0", "0 1 0", "0 0 1", "1 1 0",
+                                             "0 0 0", "0 1 1", "1 0 1", "1 1 1"};
+    expect_colours(attrs, want_attrs, 8);
+    /* combinators: a descendant at any depth, found past a non-matching
+     * nearer ancestor; a child only under its parent; :root is the root */
+    static const char comb[] =
+        OPEN "<style>.a .c { fill: lime } .b > .c { fill: blue } :root > g > .d { fill: red } "
+             ".a > .e { fill: white }</style>"
+             "<g class=\"a\"><g class=\"x\"><g class=\"y\">" R("class=\"c\"")  /* lime */
+             R("class=\"e\"")                      /* .a > .e: not a child: black */
+             "</g></g></g>"
+             "<g class=\"b\"><g>" R("class=\"c\"") "</g></g>" /* .b > .c fails; no .a: black */
+             "<g>" R("class=\"d\"") "</g>"                     /* red */
+             "<g><g>" R("class=\"d\"") "</g></g>"              /* not the root's grandchild: black */
+             "</svg>";
+    static const char *const want_comb[] = {"0 1 0", "0 0 0", "0 0 0", "1 0 0", "0 0 0"};
+    expect_colours(comb, want_comb, 5);
     /* a sheet that is not CSS is not read; one for another medium is
      * refused, and so is anything outside the subset that might match */
     expect(OPEN "<style type=\"text/x-other\">rect { bogus }</style>" R("") "</svg>",
