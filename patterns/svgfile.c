@@ -496,7 +496,10 @@ static const char *const css_known[] = {
     "transform-box",
     /* properties of text only, which is refused: they change no shape */
     "font-family",      "font-style",     "font-weight",     "font-variant",
-    "font-stretch"};
+    "font-stretch",
+    /* SVG 1.1's background for filters (refused), which no browser drew
+     * and SVG 2 dropped; Illustrator writes it on every root */
+    "enable-background"};
 
 /* The attributes, beyond the properties, each element reads. */
 static int attr_known(const xmlNode *node, const char *name)

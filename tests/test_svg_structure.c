@@ -448,6 +448,14 @@ static void test_sheets(void **state)
             "mix-blend-mode", "(style sheet line 3)");
     expect(OPEN "<style>.m { mix-blend-mode: multiply }</style>" R("") "</svg>",
            BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* as Illustrator writes a file: a class sheet in CDATA, an XML
+     * comment, enable-background (no effect in any browser) */
+    expect("<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<!-- Generator: x -->\n"
+           "<svg version=\"1.1\" xmlns=\"http://www.w3.org/2000/svg\" x=\"0px\" y=\"0px\" "
+           "viewBox=\"0 0 10 10\" style=\"enable-background:new 0 0 10 10;\" "
+           "xml:space=\"preserve\"><style type=\"text/css\"><![CDATA[\n\t.st0{fill:#FFFFFF;}\n"
+           "]]></style><rect class=\"st0\" width=\"10\" height=\"10\"/></svg>",
+           WHITE " M 0 0 L 100 0 L 100 100 L 0 100 Z");
     /* @charset and @font-face are read past */
     expect(OPEN "<style>@charset \"utf-8\"; @font-face { font-family: x; src: url(a.ttf) } "
                 "rect { fill: white }</style>" R("") "</svg>",
