@@ -11,25 +11,51 @@
  * document in front (painter's order), in pixel units exactly as a browser
  * draws the document at one CSS pixel per image pixel:
  *
- *   - the viewport is the root <svg>'s width and height in pixels (a number,
- *     optionally "px"; "100%" or absent: the view's W or H), at the image's
- *     top left corner; what falls outside it is clipped (the root's overflow
- *     is hidden), and everything no shape covers is black;
+ *   - the viewport is the root <svg>'s width and height (lengths; a
+ *     percentage of the view's W or H, absent or auto the view's), at the
+ *     image's top left corner; what falls outside it is clipped (the
+ *     root's overflow is hidden), and everything no shape covers is black;
+ *   - lengths as CSS Values 4 writes them (scan_length): px, in, cm, mm,
+ *     Q, pt, pc at 96 px to the inch, em of font-size (inherited; lengths
+ *     and the absolute-size keywords), ex as half an em (no font metrics:
+ *     CSS's fallback), and % of the nearest viewport's width, height or
+ *     normalised diagonal (SVG 2, "Units");
+ *   - structure (SVG 2): <use> (href or xlink:href to "#id", x, y, and
+ *     width and height for <svg> and <symbol> targets; the target drawn
+ *     as the use's child, inheriting from it; a missing target or a
+ *     reference cycle draws nothing, as browsers do), <symbol> (drawn only
+ *     through <use>) and nested <svg>, each a viewport with its viewBox
+ *     and preserveAspectRatio; a viewport of overflow hidden (the initial
+ *     value) clips, and the reader has no clip paths: content reaching
+ *     beyond it, by an exact bounds test (within_viewports), is refused,
+ *     and with overflow visible it is drawn unclipped;
+ *   - style: the style attribute and <style> sheets, cascaded by CSS
+ *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
+ *     !important; presentation attributes below every rule);
+ *   - an invalid presentation attribute (a length, a negative size or
+ *     radius, an opacity, a transform list that does not parse) is
+ *     ignored, as browsers ignore it, with a warning (invalid_attr); what
+ *     may be valid but is not read (calc(), vw) is refused;
  *   - a viewBox maps to the viewport by preserveAspectRatio (default
  *     xMidYMid meet; every alignment, meet, slice and none);
  *   - transform lists (matrix, translate, scale, rotate with or without a
- *     centre, skewX, skewY) compose from the root down and are applied to
+ *     centre, skewX, skewY; in a declaration CSS Transforms 1's functions
+ *     with units, about transform-origin in the reference box of
+ *     transform-box, view-box or fill-box) compose from the root down and
+ *     are applied to
  *     every point, control points included, which is exact for Bezier
  *     arcs under affine maps; an elliptical arc's centre maps as a point
  *     and its semi-diameters as vectors, which is exact too;
  *   - every shape is first a path in its user units (path.h): <path> with
  *     every command (M L H V Q T C S A Z, absolute and relative, implicit
  *     repeats, the number grammar of SVG paths; the arc command by SVG's
- *     implementation notes, aa_arc_endpoints), <rect> with rounded corners
+ *     implementation notes, aa_arc_endpoints; drawn up to the command with
+ *     the first error, with a warning, SVG 2's error handling), <rect>
+ *     with rounded corners
  *     by SVG 2's rules for rx and ry, <circle>, <ellipse>, <line>,
  *     <polygon>, <polyline>, in <g>; <title>, <desc>, <metadata> and
  *     <defs> (whose content is drawn only when referenced) draw nothing;
- *   - fill and fill-rule, as attributes or in a style attribute; colours
+ *   - fill and fill-rule, as attributes or declarations; colours
  *     as CSS Color 4 writes them (names, transparent, currentColor, hex
  *     with or without alpha, rgb()/rgba() and hsl()/hsla() in the legacy
  *     and the modern forms; parse_colour) are sRGB and become linear light
@@ -54,21 +80,25 @@
  * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
  * linearRGB (compositing in linear light), paint servers (gradients, patterns:
- * url() paints), text, images, <use>, clip-path other than url(#id) or
+ * url() paints), text, images, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <use> and other non-shapes in a clipPath, references to clip
- * paths forming a cycle, masks, filters, style sheets, nested <svg>,
- * units other than px, negative sizes, radii, widths and dashes, any
- * attribute or style property not implemented (see css_known), and any
- * other element of the SVG namespace; elements of
+ * paths forming a cycle, masks, filters, content beyond a viewport that
+ * clips, references to other documents, what svgcss.h refuses in a style
+ * sheet, sheets for other media, negative widths and dashes, invalid
+ * values in declarations, any attribute or style property not
+ * implemented (see css_known; in a rule, only when the rule matches a
+ * drawn element), and any other element of the SVG namespace; elements of
  * other namespaces are not drawn (as a browser ignores them).  Malformed
- * XML or path data, files over AA_SVG_MAX_BYTES, nesting deeper than
- * AA_SVG_MAX_DEPTH, more than AA_SVG_MAX_SEGMENTS path segments (strokes'
+ * XML, files over AA_SVG_MAX_BYTES, nesting deeper than AA_SVG_MAX_DEPTH
+ * (<use> levels counted), more than AA_SVG_MAX_ELEMENTS elements drawn
+ * (use instances counted), more than AA_SVG_MAX_SEGMENTS path segments (strokes'
  * outlines counted), numbers over AA_SVG_MAX_NUMBER and coordinates over
  * AA_SVG_MAX_COORD pixels are refused too.
  */
 #include "svgfile.h"
 #include "c_numbers_internal.h"
+#include "svgcss.h"
 #include "path.h"
 #include "patterns.h"
 
@@ -215,15 +245,10 @@ typedef struct style {
     int stroke_first;                     /* paint-order: the stroke under the fill */
     int visible;                          /* visibility: visible */
     aa_fill_rule clip_rule;               /* clip-rule, for the children of a clipPath */
+    double font_size;                     /* font-size in px (initial medium, 16) */
 } style;
 
 /* An element with an id (the first of its id in document order). */
-typedef struct id_entry {
-    xmlChar *id;
-    const xmlNode *node;
-    size_t order;
-} id_entry;
-
 /* A clip given to the sink for a clipPath referenced in user space m
  * (with the object bounding box `box` under objectBoundingBox units)
  * inside clip `within`, kept so that shapes referencing it alike share it. */
@@ -246,11 +271,23 @@ typedef struct reader {
     int nclips; /* clips given to the sink so far */
     const xmlNode *clip_stack[AA_SVG_MAX_CLIP_NESTING]; /* clipPaths being read */
     int nstack;
-    id_entry *ids; /* sorted by id, then document order; built when first needed */
-    size_t nids;
-    int ids_built;
     clip_made *made;
     size_t nmade, capmade;
+    /* structure, units and style sheets (below the reader's core) */
+    aa_css *css;             /* the document's style sheets (NULL: none) */
+    int from_css;            /* prop's last value came from a declaration */
+    double font_size;        /* the element's font-size in px (em) */
+    double vpw, vph;         /* the nearest viewport's size in user units (%) */
+    struct svg_ids *ids;     /* the elements with an id, sorted */
+    long elements;           /* elements read, use instances counted */
+    const xmlNode *use;      /* the <use> whose target is being read, or NULL */
+    const xmlNode *chain[AA_SVG_MAX_DEPTH + 2]; /* the elements being read */
+    int nvclip;              /* the viewports that clip (overflow hidden) */
+    struct svg_clip {
+        mat to;              /* pixels to the viewport's coordinates */
+        double box[4];       /* x0 y0 x1 y1 in them */
+        const xmlNode *node; /* the <svg> or <symbol> */
+    } vclip[AA_SVG_MAX_DEPTH + 2];
 } reader;
 
 /* AA_EINVAL naming the element and its line. */
@@ -351,24 +388,120 @@ static int scan_number(const char **s, double *v)
     return 0;
 }
 
-/* A whole attribute that is one number, with an optional "px". */
+/* ---- lengths ----
+ *
+ * CSS Values 4: the absolute units at 96 px to the inch (1in = 2.54cm =
+ * 25.4mm = 101.6Q = 72pt = 6pc = 96px); em the element's font-size (the
+ * parent's in font-size itself); ex half an em, CSS's value "where it is
+ * impossible or impractical to determine the x-height" (the reader has no
+ * font: a browser takes its default font's x-height, so an ex differs);
+ * a percentage of the nearest viewport's width (x, width, cx, rx, x1,
+ * x2), height (y, height, cy, ry, y1, y2) or normalised diagonal
+ * sqrt((w^2 + h^2)/2) (any other length: r, stroke-width, dashes), SVG 2
+ * "Units", in its user units (the viewBox's size when it has one). */
+
+static const struct {
+    const char *unit;
+    double px;
+} abs_units[] = {{"px", 1},           {"in", 96},         {"cm", 96 / 2.54}, {"mm", 96 / 25.4},
+                 {"q", 96 / 101.6},   {"pt", 96.0 / 72},  {"pc", 16}};
+
+/* The axis a percentage of the attribute or property `attr` refers to: 0
+ * the width, 1 the height, 2 the normalised diagonal. */
+static int length_axis(const char *attr)
+{
+    static const char *const xs[] = {"x", "cx", "rx", "x1", "x2", "width"};
+    static const char *const ys[] = {"y", "cy", "ry", "y1", "y2", "height"};
+    for (size_t k = 0; k < sizeof xs / sizeof xs[0]; k++) {
+        if (!strcmp(attr, xs[k]))
+            return 0;
+        if (!strcmp(attr, ys[k]))
+            return 1;
+    }
+    return 2;
+}
+
+/* A number and its unit at *s (none, an absolute unit, em, ex or %) in px:
+ * 0 and *s advanced; -1 for no number, -2 out of range, -3 a unit this
+ * reader does not know (*s at it). */
+static int scan_length(reader *r, const char **s, int axis, double *v)
+{
+    int k = scan_number(s, v);
+    if (k)
+        return k;
+    const char *u = *s;
+    size_t n = 0;
+    while (isalpha((unsigned char)u[n]))
+        n++;
+    if (u[0] == '%') {
+        const double w = r->vpw, h = r->vph;
+        *v *= (axis == 0 ? w : axis == 1 ? h : sqrt((w * w + h * h) / 2)) / 100;
+        *s = u + 1;
+    } else if (n) {
+        size_t j, nu = sizeof abs_units / sizeof abs_units[0];
+        for (j = 0; j < nu; j++)
+            if (strlen(abs_units[j].unit) == n && !strncasecmp(u, abs_units[j].unit, n))
+                break;
+        if (j < nu)
+            *v *= abs_units[j].px;
+        else if (n == 2 && !strncasecmp(u, "em", 2))
+            *v *= r->font_size;
+        else if (n == 2 && !strncasecmp(u, "ex", 2))
+            *v *= r->font_size / 2;
+        else
+            return -3;
+        *s = u + n;
+    }
+    return isfinite(*v) && fabs(*v) <= AA_SVG_MAX_NUMBER ? 0 : -2;
+}
+
+/* A whole attribute or property value that is one length. */
 static int parse_length(reader *r, const char *attr, const char *text, double *v)
 {
     const char *s = skip_wsp(text);
-    int k = scan_number(&s, v);
+    int k = scan_length(r, &s, length_axis(attr), v);
     if (k == -2)
         return fail_at(r, "%s=\"%s\": the number is out of range (at most %g)", attr,
                        aa_echo(text), AA_SVG_MAX_NUMBER);
-    if (k < 0)
+    if (k == -1)
         return fail_at(r, "%s=\"%s\" is not a number", attr, aa_echo(text));
-    if (s[0] == 'p' && s[1] == 'x')
-        s += 2;
     s = skip_wsp(s);
-    if (*s)
-        return fail_at(r, "%s=\"%s\": only plain numbers and px are supported (no %%, em, "
-                          "mm, ...)",
+    if (k == -3 || *s)
+        return fail_at(r, "%s=\"%s\" is not a length (a number, optionally of px, in, cm, mm, "
+                          "Q, pt, pc, em, ex or %%)",
                        attr, aa_echo(text));
     return AA_OK;
+}
+
+/* font-size (CSS Fonts 4): a length (em, ex and % of the parent's size),
+ * or an absolute-size keyword, medium being 16px and the others its
+ * multiples by the table of CSS Fonts 4 ("absolute-size"); larger and
+ * smaller, whose ratio CSS leaves to the browser, are refused. */
+static int parse_font_size(reader *r, const char *v, double parent, double *out)
+{
+    static const struct {
+        const char *name;
+        double size;
+    } sizes[] = {{"xx-small", 16 * 3.0 / 5}, {"x-small", 16 * 3.0 / 4}, {"small", 16 * 8.0 / 9},
+                 {"medium", 16},             {"large", 16 * 6.0 / 5},  {"x-large", 16 * 3.0 / 2},
+                 {"xx-large", 32},           {"xxx-large", 48}};
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
+        if (!strcasecmp(v, sizes[k].name)) {
+            *out = sizes[k].size;
+            return AA_OK;
+        }
+    if (!strcasecmp(v, "larger") || !strcasecmp(v, "smaller"))
+        return fail_at(r, "font-size=\"%s\" is not supported (its ratio is the browser's)",
+                       aa_echo(v));
+    /* em and ex of the parent's size, % of it */
+    const double own = r->font_size, w = r->vpw, h = r->vph;
+    r->font_size = parent;
+    r->vpw = r->vph = parent; /* a percentage: of the parent's font-size */
+    int st = parse_length(r, "font-size", v, out);
+    r->font_size = own, r->vpw = w, r->vph = h;
+    if (!st && *out < 0)
+        st = fail_at(r, "font-size=\"%s\": a negative size is an error", aa_echo(v));
+    return st;
 }
 
 /* ---- properties: attributes and the style attribute ---- */
@@ -384,7 +517,15 @@ static const char *const css_known[] = {
     "filter",           "visibility",     "stroke-width",    "stroke-opacity",
     "stroke-linecap",   "stroke-linejoin", "stroke-miterlimit", "stroke-dasharray",
     "stroke-dashoffset", "color",         "paint-order",     "color-interpolation",
-    "clip-rule"};
+    "clip-rule",
+    "font-size",        "overflow",       "transform",       "transform-origin",
+    "transform-box",
+    /* properties of text only, which is refused: they change no shape */
+    "font-family",      "font-style",     "font-weight",     "font-variant",
+    "font-stretch",
+    /* SVG 1.1's background for filters (refused), which no browser drew
+     * and SVG 2 dropped; Illustrator writes it on every root */
+    "enable-background"};
 
 /* The attributes, beyond the properties, each element reads. */
 static int attr_known(const xmlNode *node, const char *name)
@@ -400,7 +541,9 @@ static int attr_known(const xmlNode *node, const char *name)
                {"path", {"d"}},
                {"polygon", {"points"}},
                {"polyline", {"points"}},
-               {"line", {"x1", "y1", "x2", "y2"}}};
+               {"line", {"x1", "y1", "x2", "y2"}},
+               {"use", {"x", "y", "width", "height", "href"}},
+               {"symbol", {"viewBox", "preserveAspectRatio", "width", "height"}}};
     static const char *const any[] = {"id", "class", "style", "transform"};
     for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
         if (!strcmp(name, any[k]))
@@ -416,86 +559,60 @@ static int attr_known(const xmlNode *node, const char *name)
     return 0;
 }
 
+/* A declaration that applies to r->node (aa_css_each): refused unless
+ * its property is implemented. */
+static int check_decl(void *ctx, const char *name, size_t n, long line)
+{
+    reader *r = ctx;
+    char at[48] = "";
+    if (line)
+        snprintf(at, sizeof at, " (style sheet line %ld)", line);
+    if (!n)
+        return fail_at(r, "style: \"%s\" is not a declaration (name: value)%s",
+                       aa_echo(name), at);
+    for (size_t k = 0; k < sizeof css_known / sizeof css_known[0]; k++)
+        if (strlen(css_known[k]) == n && !strncasecmp(css_known[k], name, n))
+            return AA_OK;
+    char prop[64];
+    snprintf(prop, sizeof prop, "%.*s", (int)n, name);
+    return fail_at(r, "the style property %s is not supported%s", aa_echo(prop), at);
+}
+
 /* Refuse every attribute (of no namespace: others are not SVG's) and every
- * style declaration the reader does not know, and !important. */
+ * declaration of the style attribute and of the sheets' rules matching the
+ * element that the reader does not know. */
 static int check_props(reader *r, const xmlNode *node)
 {
     for (const xmlAttr *a = node->properties; a; a = a->next)
         if (!a->ns && !attr_known(node, (const char *)a->name))
             return fail_at(r, "the attribute %s is not supported", aa_echo((const char *)a->name));
     xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
-    int st = AA_OK;
-    for (const char *s = css ? (const char *)css : ""; *s && !st;) {
-        const char *end = strchr(s, ';');
-        size_t n = end ? (size_t)(end - s) : strlen(s);
-        const char *colon = memchr(s, ':', n);
-        const char *a = s, *b = colon ? colon : s + n;
-        while (a < b && is_wsp((unsigned char)*a))
-            a++;
-        while (b > a && is_wsp((unsigned char)b[-1]))
-            b--;
-        char name[64];
-        snprintf(name, sizeof name, "%.*s", (int)(b - a), a);
-        if (!colon && a != b)
-            st = fail_at(r, "style: \"%s\" is not a declaration (name: value)", aa_echo(name));
-        else if (colon) {
-            size_t k = 0, count = sizeof css_known / sizeof css_known[0];
-            while (k < count && (strlen(css_known[k]) != (size_t)(b - a) ||
-                                 strncasecmp(css_known[k], a, (size_t)(b - a))))
-                k++;
-            if (k == count)
-                st = fail_at(r, "the style property %s is not supported", aa_echo(name));
-            else if (memchr(colon, '!', n - (size_t)(colon - s)))
-                st = fail_at(r, "style %s: !important is not supported", aa_echo(name));
-        }
-        s += n;
-        if (*s == ';')
-            s++;
-    }
+    int st = aa_css_each(r->css, node, (const char *)css, check_decl, r);
     xmlFree(css);
     return st;
 }
 
-/* The value of property `key` for the element: its declaration in the
- * style attribute wins over the attribute.  Written into buf; 1 if given. */
+/* The value of property `key` for the element: the cascade of the style
+ * sheets and the style attribute (aa_css_value) wins over the
+ * presentation attribute, which is lower than any rule.  Written into
+ * buf; 1 if given (r->from_css: by a declaration, not the attribute). */
 static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size_t len, int *st)
 {
-    int found = 0;
     xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
-    if (css) {
-        const char *s = (const char *)css;
-        size_t klen = strlen(key);
-        while (*s) {
-            const char *end = strchr(s, ';');
-            size_t n = end ? (size_t)(end - s) : strlen(s);
-            const char *colon = memchr(s, ':', n);
-            const char *a = s, *b = colon ? colon : s + n;
-            while (a < b && is_wsp((unsigned char)*a))
-                a++;
-            while (b > a && is_wsp((unsigned char)b[-1]))
-                b--;
-            if (colon && (size_t)(b - a) == klen && !strncasecmp(a, key, klen)) {
-                const char *v = colon + 1, *ve = s + n;
-                while (v < ve && is_wsp((unsigned char)*v))
-                    v++;
-                while (ve > v && is_wsp((unsigned char)ve[-1]))
-                    ve--;
-                if ((size_t)(ve - v) >= len) {
-                    *st = fail_at(r, "style %s: value too long", key);
-                } else {
-                    memcpy(buf, v, (size_t)(ve - v));
-                    buf[ve - v] = '\0';
-                    found = 1;
-                }
-            }
-            s += n;
-            if (*s == ';')
-                s++;
-        }
-        xmlFree(css);
-        if (found || *st)
-            return found;
+    long line;
+    int found = aa_css_value(r->css, node, (const char *)css, key, buf, len, &line);
+    xmlFree(css);
+    r->from_css = found != 0;
+    if (found == -2) {
+        *st = aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
+        return 0;
     }
+    if (found < 0) {
+        *st = fail_at(r, "style %s: value too long", key);
+        return 0;
+    }
+    if (found)
+        return 1;
     xmlChar *v = xmlGetNoNsProp(node, (const xmlChar *)key);
     if (v) {
         const char *a = skip_wsp((const char *)v);
@@ -983,6 +1100,221 @@ static int parse_transform(reader *r, const char *text, mat *out)
     return AA_OK;
 }
 
+/* An angle of CSS (Values 4): a number of deg, rad, grad or turn, or a
+ * unitless 0; in degrees. */
+static int css_angle(const char **s, double *deg)
+{
+    static const struct {
+        const char *unit;
+        double deg;
+    } units[] = {{"deg", 1}, {"grad", 0.9}, {"rad", 180 / M_PI}, {"turn", 360}};
+    if (scan_number(s, deg))
+        return -1;
+    size_t n = 0;
+    while (isalpha((unsigned char)(*s)[n]))
+        n++;
+    if (!n)
+        return *deg == 0 ? 0 : -1;
+    for (size_t k = 0; k < sizeof units / sizeof units[0]; k++)
+        if (strlen(units[k].unit) == n && !strncasecmp(*s, units[k].unit, n)) {
+            *deg *= units[k].deg;
+            *s += n;
+            return 0;
+        }
+    return -1;
+}
+
+/* A length of CSS at *s (a unit, or a unitless 0; any unitless number in
+ * a presentation attribute, css 0, where SVG reads it in user units), a
+ * percentage of `ref` (the reference box's size along the axis). */
+static int css_length(reader *r, const char **s, double ref, int css, double *v)
+{
+    const char *a = *s;
+    if (scan_number(s, v))
+        return -1;
+    if (**s == '%') {
+        *v *= ref / 100;
+        (*s)++;
+        return 0;
+    }
+    if (!isalpha((unsigned char)**s))
+        return *v == 0 || !css ? 0 : -1; /* CSS: a length needs its unit */
+    *s = a;
+    return scan_length(r, s, 2, v) ? -1 : 0;
+}
+
+/* The property transform as CSS Transforms 1 writes it (in a style
+ * attribute or a sheet): none, or a list of matrix(), translate(),
+ * translateX(), translateY(), scale(), scaleX(), scaleY(), rotate(),
+ * skew(), skewX(), skewY(), their arguments separated by commas, lengths
+ * with units (percentages of the reference box box[2..3]), angles with
+ * units.  The 3D functions are refused. */
+static int parse_css_transform(reader *r, const char *text, const double box[4], mat *out)
+{
+    static const char *const kinds[] = {"matrix", "translate", "translateX", "translateY",
+                                        "scale",  "scaleX",    "scaleY",     "rotate",
+                                        "skew",   "skewX",     "skewY"};
+    mat m = identity;
+    const char *s = skip_wsp(text);
+    if (!strcasecmp(s, "none")) {
+        *out = m;
+        return AA_OK;
+    }
+    while (*s) {
+        size_t n = 0, kind, nk = sizeof kinds / sizeof kinds[0];
+        while (isalnum((unsigned char)s[n]))
+            n++;
+        for (kind = 0; kind < nk; kind++)
+            if (strlen(kinds[kind]) == n && !strncasecmp(s, kinds[kind], n))
+                break;
+        if (kind == nk || s[n] != '(')
+            return fail_at(r, "transform: \"%s\" is not a CSS transform this reader draws "
+                              "(matrix, translate, scale, rotate and skew and their X and Y "
+                              "forms; no 3D)",
+                           aa_echo(text));
+        s = skip_wsp(s + n + 1);
+        double a[6];
+        int na = 0;
+        while (*s != ')') {
+            if (na == 6 || (na && *s != ','))
+                goto bad;
+            if (na)
+                s = skip_wsp(s + 1);
+            int e;
+            if (kind == 0 || (kind >= 4 && kind <= 6)) /* numbers */
+                e = scan_number(&s, &a[na]);
+            else if (kind <= 3) /* lengths */
+                e = css_length(r, &s, box[2 + (kind == 3 || (kind == 1 && na == 1))], 1,
+                               &a[na]);
+            else /* angles */
+                e = css_angle(&s, &a[na]);
+            if (e)
+                goto bad;
+            na++;
+            s = skip_wsp(s);
+        }
+        s = skip_wsp(s + 1);
+        static const int most[] = {6, 2, 1, 1, 2, 1, 1, 1, 2, 1, 1};
+        if (na > most[kind] || na < (kind == 0 ? 6 : 1))
+            goto bad;
+        mat t = identity;
+        double c, sn, tx, ty;
+        switch (kind) {
+        case 0:
+            t = (mat){a[0], a[1], a[2], a[3], a[4], a[5]};
+            break;
+        case 1:
+            t.e = a[0], t.f = na > 1 ? a[1] : 0;
+            break;
+        case 2:
+            t.e = a[0];
+            break;
+        case 3:
+            t.f = a[0];
+            break;
+        case 4:
+            t.a = a[0], t.d = na > 1 ? a[1] : a[0];
+            break;
+        case 5:
+            t.a = a[0];
+            break;
+        case 6:
+            t.d = a[0];
+            break;
+        case 7:
+            cos_sin_deg(a[0], &c, &sn);
+            t = (mat){c, sn, -sn, c, 0, 0};
+            break;
+        default: /* skew(ax, ay), skewX(a), skewY(a) */
+            tx = ty = 0;
+            if ((kind != 10 && tan_deg(r, a[0], &tx)) ||
+                (kind == 8 && na > 1 && tan_deg(r, a[1], &ty)) ||
+                (kind == 10 && tan_deg(r, a[0], &ty)))
+                return AA_EINVAL;
+            t.c = tx, t.b = ty;
+            break;
+        }
+        m = mat_mul(m, t);
+    }
+    for (int k = 0; k < 6; k++) {
+        double v = ((const double *)&m)[k];
+        if (!isfinite(v) || fabs(v) > AA_SVG_MAX_NUMBER)
+            return fail_at(r, "transform: \"%s\" is out of range", aa_echo(text));
+    }
+    *out = m;
+    return AA_OK;
+bad:
+    return fail_at(r, "transform: \"%s\" is malformed (CSS: arguments separated by commas, "
+                      "lengths and angles with units)",
+                   aa_echo(text));
+}
+
+/* transform-origin (CSS Transforms 1): one or two values (and a z of 0),
+ * each a length (from the reference box's corner), a percentage of the
+ * reference box box (x y w h) or a keyword (left, center, right; top,
+ * center, bottom; two keywords in either order); one value leaves the
+ * other center.  The point in user units into o[2]. */
+static int parse_transform_origin(reader *r, const char *text, const double box[4], double o[2])
+{
+    const int css = r->from_css;
+    static const struct {
+        const char *name;
+        int axis; /* 0 x, 1 y, 2 either */
+        double f;
+    } kw[] = {{"left", 0, 0}, {"right", 0, 1}, {"top", 1, 0}, {"bottom", 1, 1}, {"center", 2, 0.5}};
+    int axis[3]; /* as kw, 3 a length */
+    double v[3];
+    int n = 0;
+    const char *s = skip_wsp(text);
+    while (*s) {
+        if (n == 3)
+            goto bad;
+        size_t len = 0, k, nk = sizeof kw / sizeof kw[0];
+        while (isalpha((unsigned char)s[len]))
+            len++;
+        if (len) {
+            for (k = 0; k < nk; k++)
+                if (strlen(kw[k].name) == len && !strncasecmp(s, kw[k].name, len))
+                    break;
+            if (k == nk || n == 2)
+                goto bad;
+            axis[n] = kw[k].axis, v[n] = kw[k].f;
+            s += len;
+        } else {
+            if (css_length(r, &s, n < 2 ? box[2 + n] : 0, css, &v[n]))
+                goto bad;
+            axis[n] = 3;
+        }
+        n++;
+        s = skip_wsp(s);
+    }
+    if (!n)
+        goto bad;
+    if (n == 3) {
+        if (axis[2] != 3 || v[2] != 0)
+            goto bad; /* a z other than 0 is 3D */
+        n = 2;
+    }
+    if (n == 1)
+        axis[1] = 2, v[1] = 0.5;
+    if (axis[0] == 1 || axis[1] == 0) { /* keywords in the other order */
+        if (axis[0] == 3 || axis[1] == 3)
+            goto bad;
+        int ta = axis[0];
+        double tv = v[0];
+        axis[0] = axis[1], v[0] = v[1], axis[1] = ta, v[1] = tv;
+    }
+    if (axis[0] == 1 || axis[1] == 0)
+        goto bad;
+    o[0] = box[0] + (axis[0] == 3 ? v[0] : v[0] * box[2]);
+    o[1] = box[1] + (axis[1] == 3 ? v[1] : v[1] * box[3]);
+    return AA_OK;
+bad:
+    return fail_at(r, "transform-origin=\"%s\" is malformed (one or two lengths, percentages "
+                      "or keywords)",
+                   aa_echo(text));
+}
+
 /* ---- paths in user units ---- */
 
 static int is_svg(const xmlNode *node)
@@ -1072,6 +1404,22 @@ static int scan_flag(const char **s, double *v)
     return 0;
 }
 
+/* An error in path data (SVG 2, "Error handling in path data"): the
+ * path is drawn up to, not including, the command with the error, as
+ * browsers draw it; a warning names the element, its line and the error. */
+static int path_error(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
+static int path_error(reader *r, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    aa_warn("%s: line %ld: <%s>: %s: drawn up to the command before it", r->name,
+            xmlGetLineNo(r->node), (const char *)r->node->name, msg);
+    return AA_OK;
+}
+
 static int path_data(reader *r, aa_path *p, const char *d)
 {
     const char *s = skip_wsp(d);
@@ -1085,15 +1433,15 @@ static int path_data(reader *r, aa_path *p, const char *d)
         if (isalpha((unsigned char)*s)) {
             cmd = *s++;
             if (!strchr("MmLlHhVvQqTtCcSsZzAa", cmd))
-                return fail_at(r, "d: unknown path command '%c' at offset %ld", cmd,
+                return path_error(r, "d: unknown path command '%c' at offset %ld", cmd,
                                (long)(s - 1 - d));
             if (!subpath && cmd != 'M' && cmd != 'm')
-                return fail_at(r, "d: path data must begin with M or m");
+                return path_error(r, "d: path data must begin with M or m");
             s = skip_wsp(s);
         } else if (!cmd) {
-            return fail_at(r, "d: path data must begin with M or m");
+            return path_error(r, "d: path data must begin with M or m");
         } else if (cmd == 'Z' || cmd == 'z') {
-            return fail_at(r, "d: a number after Z at offset %ld", (long)(s - d));
+            return path_error(r, "d: a number after Z at offset %ld", (long)(s - d));
         }
         int up = toupper((unsigned char)cmd), rel = cmd != up;
         int need = up == 'M' || up == 'L' || up == 'T' ? 2
@@ -1108,7 +1456,7 @@ static int path_data(reader *r, aa_path *p, const char *d)
                 s = skip_comma_wsp(s);
             if (up == 'A' && (k == 3 || k == 4)) {
                 if (scan_flag(&s, &a[k]))
-                    return fail_at(r, "d: %s at offset %ld (the arc's %s flag is 0 or 1)",
+                    return path_error(r, "d: %s at offset %ld (the arc's %s flag is 0 or 1)",
                                    *s ? "malformed flag" : "path data ends too early",
                                    (long)(s - d), k == 3 ? "large-arc" : "sweep");
                 continue;
@@ -1118,7 +1466,7 @@ static int path_data(reader *r, aa_path *p, const char *d)
                 return fail_at(r, "d: a number out of range at offset %ld (at most %g)",
                                (long)(s - d), AA_SVG_MAX_NUMBER);
             if (e)
-                return fail_at(r, "d: %s at offset %ld (command %c needs %d numbers)",
+                return path_error(r, "d: %s at offset %ld (command %c needs %d numbers)",
                                *s ? "malformed number" : "path data ends too early",
                                (long)(s - d), cmd, need);
         }
@@ -1216,12 +1564,49 @@ static int path_data(reader *r, aa_path *p, const char *d)
         last = (char)up;
         s = skip_comma_wsp(s);
         if (up == 'Z' && *s == ',')
-            return fail_at(r, "d: a comma after Z at offset %ld", (long)(s - d));
+            return path_error(r, "d: a comma after Z at offset %ld", (long)(s - d));
     }
     return AA_OK;
 }
 
 /* ---- elements as paths ---- */
+
+/* A warning naming the element and its line. */
+static void warn_at(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
+static void warn_at(reader *r, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    aa_warn("%s: line %ld: <%s>: %s", r->name, xmlGetLineNo(r->node), (const char *)r->node->name,
+            msg);
+}
+
+/* An invalid presentation attribute is ignored, as browsers ignore it
+ * (SVG 2, "Presentation attributes": a value that does not parse has no
+ * effect; Chromium, resvg and librsvg draw the element with the
+ * property's default): 1 and a warning naming the element, its line and
+ * the value when `text` is invalid, 0 when it may be valid but not read
+ * here (a CSS function such as calc(), or a unit the reader does not know:
+ * refused by the caller, never guessed).  `what` says what was wanted. */
+static int invalid_attr(reader *r, const char *key, const char *text, const char *what)
+{
+    const char *s = skip_wsp(text);
+    if (isalpha((unsigned char)*s)) {
+        while (isalnum((unsigned char)*s) || *s == '-')
+            s++;
+        if (*s == '(')
+            return 0; /* a function */
+    } else {
+        double x;
+        if (!scan_number(&s, &x) && isalpha((unsigned char)*s))
+            return 0; /* a number and a unit */
+    }
+    warn_at(r, "%s=\"%s\" is not %s: ignored, as browsers ignore it", key, aa_echo(text), what);
+    return 1;
+}
 
 static int attr_length(reader *r, const xmlNode *node, const char *key, double def, double *v)
 {
@@ -1230,22 +1615,32 @@ static int attr_length(reader *r, const xmlNode *node, const char *key, double d
         *v = def;
         return AA_OK;
     }
-    int st = parse_length(r, key, (const char *)t, v);
+    double x;
+    int st = parse_length(r, key, (const char *)t, &x);
+    if (st == AA_EINVAL && invalid_attr(r, key, (const char *)t, "a length"))
+        x = def, st = AA_OK;
     xmlFree(t);
+    if (!st)
+        *v = x;
     return st;
 }
 
 /* A radius rx or ry of <rect> or <ellipse>: a length, or auto (also when
- * absent: *is_auto = 1); a negative value is an error (SVG 1.1; SVG 2
- * calls it invalid), refused. */
+ * absent: *is_auto = 1); a negative value is invalid (SVG 2), so auto, as
+ * browsers take it, with a warning. */
 static int attr_radius(reader *r, const xmlNode *node, const char *key, double *v, int *is_auto)
 {
     xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)key);
     int st = AA_OK;
     *v = 0;
     *is_auto = !t || !strcasecmp(skip_wsp((const char *)t), "auto");
-    if (!*is_auto && !(st = parse_length(r, key, (const char *)t, v)) && *v < 0)
-        st = fail_at(r, "a negative %s is an error", key);
+    if (!*is_auto && !(st = parse_length(r, key, (const char *)t, v)) && *v < 0) {
+        /* SVG 2: a negative radius is invalid: auto */
+        warn_at(r, "%s=\"%s\" is negative: auto, as browsers take it", key,
+                aa_echo((const char *)t));
+        *v = 0, *is_auto = 1;
+    } else if (st == AA_EINVAL && invalid_attr(r, key, (const char *)t, "a length"))
+        *v = 0, *is_auto = 1, st = AA_OK;
     xmlFree(t);
     return st;
 }
@@ -1263,8 +1658,11 @@ static int rect(reader *r, const xmlNode *node, aa_path *p)
         (st = attr_length(r, node, "height", 0, &h)) ||
         (st = attr_radius(r, node, "rx", &rx, &ax)) || (st = attr_radius(r, node, "ry", &ry, &ay)))
         return st;
-    if (w < 0 || h < 0)
-        return fail_at(r, "a negative width or height is an error");
+    if (w < 0 || h < 0) { /* SVG 2: invalid, so auto: 0, not drawn */
+        warn_at(r, "a negative %s (%g): not drawn, as browsers do", w < 0 ? "width" : "height",
+                w < 0 ? w : h);
+        return AA_OK;
+    }
     if (w == 0 || h == 0)
         return AA_OK; /* not drawn */
     if (ax && !ay)
@@ -1296,7 +1694,8 @@ static int rect(reader *r, const xmlNode *node, aa_path *p)
 /* <circle> and <ellipse>: SVG 2's path, from (cx + rx, cy) through
  * (cx, cy + ry), (cx - rx, cy) and (cx, cy - ry), four quarter arcs,
  * closed.  An ellipse's auto radius is the other one.  A radius of 0
- * disables rendering; a negative one is an error, refused. */
+ * disables rendering; a negative one is invalid (SVG 2), so 0: nothing,
+ * with a warning. */
 static int ellipse(reader *r, const xmlNode *node, aa_path *p)
 {
     double cx, cy, rx, ry;
@@ -1306,8 +1705,10 @@ static int ellipse(reader *r, const xmlNode *node, aa_path *p)
     if (named(node, "circle")) {
         if ((st = attr_length(r, node, "r", 0, &rx)))
             return st;
-        if (rx < 0)
-            return fail_at(r, "a negative r is an error");
+        if (rx < 0) { /* SVG 2: invalid, so 0: not drawn */
+            warn_at(r, "a negative r (%g): not drawn, as browsers do", rx);
+            return AA_OK;
+        }
         ry = rx;
     } else {
         if ((st = attr_radius(r, node, "rx", &rx, &ax)) ||
@@ -1437,6 +1838,158 @@ static int give_arc(reader *r, const mat *m, const double a[10])
     return r->sink->arc_to(r->ctx, c[0], c[1], ux, uy, vx, vy, a[6], a[7], e[0], e[1]);
 }
 
+/* ---- exact bounds, and viewports that clip ---- */
+
+static void box_add(double b[4], double x, double y)
+{
+    b[0] = fmin(b[0], x), b[1] = fmin(b[1], y), b[2] = fmax(b[2], x), b[3] = fmax(b[3], y);
+}
+
+/* The Bezier arc of degree deg (control values q[0..deg]) at t. */
+static double bez(const double *q, int deg, double t)
+{
+    const double s = 1 - t;
+    return deg == 2 ? s * s * q[0] + 2 * s * t * q[1] + t * t * q[2]
+                    : s * s * s * q[0] + 3 * s * s * t * q[1] + 3 * s * t * t * q[2] +
+                          t * t * t * q[3];
+}
+
+/* The bounds b (x0 y0 x1 y1) of a path in user units mapped by m, exact:
+ * the ends of every segment and the points where a coordinate of a
+ * mapped Bezier arc (a Bezier arc of the mapped control points) or of a
+ * mapped elliptical arc turns (c + u cos t + v sin t turns in x where
+ * tan t = v_x / u_x).  The offset curves of a stroke outline are bounded
+ * by their Bezier arc's control points widened by the offset (an offset
+ * point is b(t) + d n(t), within d of the arc's hull), which contains
+ * them.  -1 for an evolute (a centre of curvature), not bounded here. */
+static int path_bounds(const aa_path *p, const mat *m, double b[4])
+{
+    b[0] = b[1] = INFINITY, b[2] = b[3] = -INFINITY;
+    double px = 0, py = 0, sx = 0, sy = 0; /* pen and start, user units */
+#define MX(x, y) (m->a * (x) + m->c * (y) + m->e)
+#define MY(x, y) (m->b * (x) + m->d * (y) + m->f)
+    for (size_t i = 0; i < p->n; i++) {
+        const aa_path_seg *g = &p->seg[i];
+        const double *q = g->p;
+        double cx[4], cy[4];
+        int deg = 0;
+        switch (g->op) {
+        case AA_PATH_MOVE:
+            sx = px = q[0], sy = py = q[1];
+            box_add(b, MX(px, py), MY(px, py));
+            continue;
+        case AA_PATH_LINE:
+            px = q[0], py = q[1];
+            box_add(b, MX(px, py), MY(px, py));
+            continue;
+        case AA_PATH_CLOSE:
+            px = sx, py = sy;
+            continue;
+        case AA_PATH_QUAD:
+        case AA_PATH_CUBIC:
+            deg = g->op == AA_PATH_QUAD ? 2 : 3;
+            cx[0] = MX(px, py), cy[0] = MY(px, py);
+            for (int k = 1; k <= deg; k++)
+                cx[k] = MX(q[2 * k - 2], q[2 * k - 1]), cy[k] = MY(q[2 * k - 2], q[2 * k - 1]);
+            box_add(b, cx[deg], cy[deg]);
+            for (int axis = 0; axis < 2; axis++) {
+                const double *c = axis ? cy : cx;
+                /* the derivative's roots in (0, 1): a t^2 + b t + c = 0 */
+                double qa, qb, qc, t[2];
+                int nt = 0;
+                if (deg == 2)
+                    qa = 0, qb = c[0] - 2 * c[1] + c[2], qc = c[1] - c[0];
+                else
+                    qa = -c[0] + 3 * c[1] - 3 * c[2] + c[3], qb = 2 * (c[0] - 2 * c[1] + c[2]),
+                    qc = c[1] - c[0];
+                if (qa == 0) {
+                    if (qb != 0)
+                        t[nt++] = -qc / qb;
+                } else {
+                    const double disc = qb * qb - 4 * qa * qc;
+                    if (disc >= 0) {
+                        const double sq = sqrt(disc);
+                        t[nt++] = (-qb + sq) / (2 * qa);
+                        t[nt++] = (-qb - sq) / (2 * qa);
+                    }
+                }
+                for (int k = 0; k < nt; k++)
+                    if (t[k] > 0 && t[k] < 1)
+                        box_add(b, bez(cx, deg, t[k]), bez(cy, deg, t[k]));
+            }
+            px = q[2 * deg - 2], py = q[2 * deg - 1];
+            continue;
+        case AA_PATH_ARC: {
+            const double ccx = MX(q[0], q[1]), ccy = MY(q[0], q[1]);
+            const double ux = m->a * q[2] + m->c * q[3], uy = m->b * q[2] + m->d * q[3];
+            const double vx = m->a * q[4] + m->c * q[5], vy = m->b * q[4] + m->d * q[5];
+            const double lo = fmin(q[6], q[7]), hi = fmax(q[6], q[7]);
+            box_add(b, ccx + ux * cos(q[6]) + vx * sin(q[6]), ccy + uy * cos(q[6]) + vy * sin(q[6]));
+            box_add(b, MX(q[8], q[9]), MY(q[8], q[9]));
+            for (int axis = 0; axis < 2; axis++) {
+                const double t0 = axis ? atan2(vy, uy) : atan2(vx, ux);
+                /* t0 + k pi within [lo, hi] */
+                double k = ceil((lo - t0) / M_PI);
+                for (int j = 0; j < 8; j++, k++) {
+                    const double t = t0 + k * M_PI;
+                    if (t > hi)
+                        break;
+                    if (t >= lo)
+                        box_add(b, ccx + ux * cos(t) + vx * sin(t), ccy + uy * cos(t) + vy * sin(t));
+                }
+            }
+            px = q[8], py = q[9];
+            continue;
+        }
+        case AA_PATH_OFFSET: {
+            if (q[9] != 0)
+                return -1;
+            double hb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+            for (int k = 0; k < 4; k++)
+                box_add(hb, MX(q[2 * k], q[2 * k + 1]), MY(q[2 * k], q[2 * k + 1]));
+            const double d = fabs(q[8]);
+            const double wx = d * hypot(m->a, m->c), wy = d * hypot(m->b, m->d);
+            box_add(b, hb[0] - wx, hb[1] - wy);
+            box_add(b, hb[2] + wx, hb[3] + wy);
+            px = q[12], py = q[13];
+            continue;
+        }
+        default:
+            return -1;
+        }
+    }
+#undef MX
+#undef MY
+    return 0;
+}
+
+/* Refuse a path (in user units, mapped by m to pixels) that reaches
+ * beyond a viewport that clips (a nested <svg> or a used <symbol> of
+ * overflow hidden): without clip paths it could not be drawn as clipped.
+ * The test is exact (the path's bounds in the viewport's coordinates)
+ * but for rounding: 1e-9 of the viewport's size, which changes no
+ * pixel's coverage by more than that. */
+static int within_viewports(reader *r, const aa_path *p, const mat *m)
+{
+    for (int k = 0; k < r->nvclip; k++) {
+        const struct svg_clip *c = &r->vclip[k];
+        const mat g = mat_mul(c->to, *m);
+        double b[4];
+        const double eps =
+            1e-9 * (fabs(c->box[0]) + fabs(c->box[1]) + fabs(c->box[2]) + fabs(c->box[3]));
+        int e = path_bounds(p, &g, b);
+        if (!e && b[0] >= c->box[0] - eps && b[1] >= c->box[1] - eps &&
+            b[2] <= c->box[2] + eps && b[3] <= c->box[3] + eps)
+            continue;
+        return fail_at(r, "%s the viewport of the <%s> at line %ld, which clips it (overflow "
+                          "hidden; clipping is not supported: overflow=\"visible\" draws it "
+                          "unclipped)",
+                       e ? "this stroke (of an evolute) may reach beyond" : "this reaches beyond",
+                       (const char *)c->node->name, xmlGetLineNo(c->node));
+    }
+    return AA_OK;
+}
+
 /* A path in user units through m to the sink as one shape of colour
  * `colour` and rule `rule`, every subpath closed (a fill closes it); a
  * path without segments gives nothing. */
@@ -1446,6 +1999,8 @@ static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
     int st = AA_OK, open = 0;
     double sx = 0, sy = 0; /* the subpath's start, user units */
     const aa_svg_sink *k = r->sink;
+    if (p->n && r->nvclip && (st = within_viewports(r, p, m)))
+        return st;
     if (p->n && alpha < 1 && !k->alpha)
         return fail_at(r, "a translucent shape (alpha %g) is not taken here", alpha);
     if (p->n && (st = k->shape(r->ctx, colour, rule)))
@@ -1627,6 +2182,7 @@ static void initial_style(style *sty)
     sty->fill.alpha = sty->stroke.alpha = sty->color.alpha = 1;
     sty->fill_opacity = sty->stroke_opacity = 1;
     sty->visible = 1;
+    sty->font_size = 16;
 }
 
 /* A keyword value of `key` among names[0 .. n) (CSS: any case): its index
@@ -1665,13 +2221,12 @@ static int parse_dasharray(reader *r, const char *v, style *sty)
             return fail_at(r, "stroke-dasharray=\"%s\": more than %d values", aa_echo(v),
                            AA_SVG_MAX_DASHES);
         double x;
-        int e = scan_number(&s, &x);
-        if (!e && s[0] == 'p' && s[1] == 'x')
-            s += 2;
+        int e = scan_length(r, &s, 2, &x);
         if (e || (*s && !is_wsp((unsigned char)*s) && *s != ','))
-            return fail_at(r, "stroke-dasharray=\"%s\": only plain numbers and px are "
-                              "supported (no %%, em, mm, ...)",
-                           aa_echo(v));
+            return fail_at(r, "stroke-dasharray=\"%s\": %s", aa_echo(v),
+                           e == -2 ? "a value is out of range"
+                                   : "not a list of lengths (numbers, optionally of px, in, "
+                                     "cm, mm, Q, pt, pc, em, ex or %)");
         if (x < 0)
             return fail_at(r, "stroke-dasharray=\"%s\": a negative value is an error",
                            aa_echo(v));
@@ -1776,6 +2331,80 @@ static int parse_paint_order(reader *r, const char *v, int *stroke_first)
     return AA_OK;
 }
 
+/* The element's own transform composed into *m: the property transform
+ * (CSS Transforms 1) as a presentation attribute (SVG's transform list,
+ * parse_transform) or a declaration (CSS's syntax, parse_css_transform),
+ * about transform-origin (initially 0 0 for SVG elements) in the
+ * reference box of transform-box: view-box (initial; the nearest
+ * viewport's user space, its origin at (0, 0), its size the viewBox's),
+ * or fill-box (content-box says the same in SVG) of a shape, its exact
+ * bounds in user units; stroke-box and border-box are refused. */
+static int element_transform(reader *r, const xmlNode *node, mat *m)
+{
+    char v[1024];
+    int st = AA_OK;
+    if (!prop(r, node, "transform", v, sizeof v, &st))
+        return st;
+    const int css = r->from_css;
+    if (!strcasecmp(v, "inherit"))
+        return fail_at(r, "transform: inherit is not supported");
+    if (node->parent && node->parent->type == XML_DOCUMENT_NODE)
+        return fail_at(r, "a transform on the root <svg> is not supported");
+    double box[4] = {0, 0, r->vpw, r->vph};
+    char kind[64];
+    if (prop(r, node, "transform-box", kind, sizeof kind, &st) && strcasecmp(kind, "view-box")) {
+        if (strcasecmp(kind, "fill-box") && strcasecmp(kind, "content-box"))
+            return fail_at(r, "transform-box=\"%s\" is not supported (view-box, fill-box or "
+                              "content-box)",
+                           aa_echo(kind));
+        static const char *const shapes[] = {"path", "rect",    "circle",  "ellipse",
+                                             "line", "polygon", "polyline"};
+        int shape = 0;
+        for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+            shape |= named(node, shapes[k]);
+        if (!shape)
+            return fail_at(r, "transform-box: fill-box is supported on shapes only");
+        aa_path p;
+        aa_path_init(&p);
+        double b[4];
+        if (!(st = shape_path(r, node, &p)) && p.n && path_bounds(&p, &identity, b))
+            st = fail_at(r, "transform-box: cannot bound the shape");
+        if (!st && p.n)
+            box[0] = b[0], box[1] = b[1], box[2] = b[2] - b[0], box[3] = b[3] - b[1];
+        else if (!st)
+            box[2] = box[3] = 0;
+        aa_path_free(&p);
+        r->node = node;
+    }
+    if (st)
+        return st;
+    mat own = identity;
+    st = css ? parse_css_transform(r, v, box, &own) : parse_transform(r, v, &own);
+    if (st == AA_EINVAL && !css &&
+        (strstr(aa_last_error(), "malformed") || strstr(aa_last_error(), "takes") ||
+         strstr(aa_last_error(), "too many"))) {
+        /* not SVG's transform list (CSS syntax with units included):
+         * ignored, as Chromium and resvg ignore it */
+        warn_at(r, "transform=\"%s\" is not a transform list: ignored, as browsers ignore it",
+                aa_echo(v));
+        own = identity, st = AA_OK;
+    }
+    if (st)
+        return st;
+    double o[2] = {box[0], box[1]};
+    if (prop(r, node, "transform-origin", v, sizeof v, &st) &&
+        (st = parse_transform_origin(r, v, box, o)))
+        return st;
+    if (st)
+        return st;
+    if (o[0] != 0 || o[1] != 0) { /* translate(o) own translate(-o) */
+        const mat to = {1, 0, 0, 1, o[0], o[1]}, back = {1, 0, 0, 1, -o[0], -o[1]};
+        own = mat_mul(to, mat_mul(own, back));
+    }
+    *m = mat_mul(*m, own);
+    return AA_OK;
+}
+
 /* The properties every element may set: style into *sty, the element's own
  * transform into *m, its opacity (not inherited) into *opacity; *skip = 1
  * for display: none. */
@@ -1794,6 +2423,12 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     }
     if (st)
         return st;
+    if (prop(r, node, "font-size", v, sizeof v, &st) && strcasecmp(v, "inherit") &&
+        (st = parse_font_size(r, v, sty->font_size, &sty->font_size)))
+        return st;
+    if (st)
+        return st;
+    r->font_size = sty->font_size; /* em in the element's lengths */
     if (prop(r, node, "color", v, sizeof v, &st) && strcasecmp(v, "inherit")) {
         css_colour c;
         if ((st = parse_colour(r, "color", v, &c)))
@@ -1841,7 +2476,13 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
                     return fail_at(r, "opacity=\"inherit\" is not supported");
                 continue; /* the inherited properties keep the parent's */
             }
-            st = parse_opacity(r, opacities[k], v, to[k]);
+            double o;
+            st = parse_opacity(r, opacities[k], v, &o);
+            if (!st)
+                *to[k] = o;
+            else if (st == AA_EINVAL && !r->from_css &&
+                     invalid_attr(r, opacities[k], v, "a number or a percentage"))
+                st = AA_OK; /* the default: 1, or the parent's */
         }
     if (!st && prop(r, node, "paint-order", v, sizeof v, &st) && strcasecmp(v, "inherit"))
         st = parse_paint_order(r, v, &sty->stroke_first);
@@ -1866,16 +2507,7 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     }
     if (st)
         return st;
-    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"transform");
-    if (t) {
-        mat own = identity;
-        st = parse_transform(r, (const char *)t, &own);
-        xmlFree(t);
-        if (st)
-            return st;
-        *m = mat_mul(*m, own);
-    }
-    return AA_OK;
+    return element_transform(r, node, m);
 }
 
 /* A paint's colour in linear light and its alpha (currentColor: the
@@ -1947,74 +2579,14 @@ static int group_begin(reader *r, double o)
  * A clipPath referenced alike (the same user space, box and outer clip)
  * by several elements is given once. */
 
+struct svg_ids;
+static const xmlNode *find_id(const struct svg_ids *ids, const char *id);
+
 static void clips_free(reader *r)
 {
-    for (size_t k = 0; k < r->nids; k++)
-        xmlFree(r->ids[k].id);
-    free(r->ids);
     free(r->made);
-    r->ids = NULL, r->made = NULL;
-    r->nids = r->nmade = r->capmade = 0;
-}
-
-static int id_cmp(const void *a, const void *b)
-{
-    const id_entry *p = a, *q = b;
-    int c = strcmp((const char *)p->id, (const char *)q->id);
-    return c ? c : (p->order > q->order) - (p->order < q->order);
-}
-
-/* Every element with an id, in document order, depth first. */
-static int ids_collect(reader *r, const xmlNode *node, size_t *cap)
-{
-    for (const xmlNode *c = node; c; c = c->next) {
-        if (c->type != XML_ELEMENT_NODE)
-            continue;
-        xmlChar *id = xmlGetNoNsProp(c, (const xmlChar *)"id");
-        if (id) {
-            if (r->nids == *cap) {
-                size_t n = *cap ? 2 * *cap : 64;
-                id_entry *e = realloc(r->ids, n * sizeof *e);
-                if (!e) {
-                    xmlFree(id);
-                    return aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
-                }
-                r->ids = e, *cap = n;
-            }
-            r->ids[r->nids] = (id_entry){id, c, r->nids};
-            r->nids++;
-        }
-        int st = c->children ? ids_collect(r, c->children, cap) : AA_OK;
-        if (st)
-            return st;
-    }
-    return AA_OK;
-}
-
-/* The element of id `id` (the first in document order), or NULL. */
-static int find_id(reader *r, const char *id, const xmlNode **out)
-{
-    *out = NULL;
-    if (!r->ids_built) {
-        size_t cap = 0;
-        int st = ids_collect(r, r->root, &cap);
-        if (st)
-            return st;
-        if (r->nids)
-            qsort(r->ids, r->nids, sizeof *r->ids, id_cmp);
-        r->ids_built = 1;
-    }
-    size_t lo = 0, hi = r->nids;
-    while (lo < hi) { /* the first entry not below id */
-        size_t mid = lo + (hi - lo) / 2;
-        if (strcmp((const char *)r->ids[mid].id, id) < 0)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    if (lo < r->nids && !strcmp((const char *)r->ids[lo].id, id))
-        *out = r->ids[lo].node;
-    return AA_OK;
+    r->made = NULL;
+    r->nmade = r->capmade = 0;
 }
 
 /* The extent of one coordinate of a Bezier arc of degree n
@@ -2124,22 +2696,6 @@ static void path_box(const aa_path *p, const mat *m, double box[4])
         for (int k = 0; k < 2; k++)
             bezier_extent(q[k], deg, &box[k], &box[k + 2]);
     }
-}
-
-static int element_transform(reader *r, const xmlNode *node, mat *m)
-{
-    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"transform");
-    if (!t)
-        return AA_OK;
-    mat own = identity;
-    const xmlNode *was = r->node;
-    r->node = node;
-    int st = parse_transform(r, (const char *)t, &own);
-    r->node = was;
-    xmlFree(t);
-    if (!st)
-        *m = mat_mul(*m, own);
-    return st;
 }
 
 /* The fill geometry of node and what it holds through m, grown into box
@@ -2436,9 +2992,7 @@ static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const 
     *out = outer;
     if ((st = clip_ref(r, value, buf, sizeof buf, &id)) || !id)
         return st;
-    const xmlNode *cp;
-    if ((st = find_id(r, id, &cp)))
-        return st;
+    const xmlNode *cp = find_id(r->ids, id);
     if (!cp || !is_svg(cp) || !named(cp, "clipPath"))
         return AA_OK; /* as if not given (CSS Masking 1) */
     for (int k = 0; k < r->nstack; k++)
@@ -2458,6 +3012,8 @@ static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const 
 }
 
 static int element(reader *r, const xmlNode *node, style sty, mat m, int depth);
+static int structure(reader *r, const xmlNode *node, const xmlNode *via, style sty, mat m,
+                     int depth);
 
 static int children(reader *r, const xmlNode *node, style sty, mat m, int depth)
 {
@@ -2474,8 +3030,14 @@ static int children(reader *r, const xmlNode *node, style sty, mat m, int depth)
 static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
 {
     r->node = node;
+    const xmlNode *via = r->use; /* the <use> this element is the target of */
+    r->use = NULL;
     if (depth > AA_SVG_MAX_DEPTH)
         return fail_at(r, "elements nested deeper than %d", AA_SVG_MAX_DEPTH);
+    r->chain[depth] = node;
+    if (++r->elements > AA_SVG_MAX_ELEMENTS)
+        return fail_at(r, "more than %d elements drawn (<use> instances counted)",
+                       AA_SVG_MAX_ELEMENTS);
     if (!is_svg(node))
         return AA_OK; /* another namespace: not drawn */
     /* a clipPath is drawn only where it is referenced (clip_of) */
@@ -2484,8 +3046,9 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         if (named(node, silent[k]))
             return AA_OK;
     int skip, st;
-    if (named(node, "svg"))
-        return fail_at(r, "nested <svg> elements are not supported");
+    if (named(node, "svg") || named(node, "use") || named(node, "symbol") ||
+        named(node, "style"))
+        return structure(r, node, via, sty, m, depth);
     static const char *const shapes[] = {"path",    "rect",    "circle",  "ellipse",
                                          "line",    "polygon", "polyline"};
     int shape = 0;
@@ -2496,12 +3059,10 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
             const char *name, *why;
         } known[] = {{"text", "text is not supported (the pattern text draws glyphs)"},
                      {"image", "images are not supported"},
-                     {"use", "<use> is not supported"},
                      {"mask", "masks are not supported"},
                      {"linearGradient", "gradients are not supported"},
                      {"radialGradient", "gradients are not supported"},
-                     {"pattern", "patterns are not supported"},
-                     {"style", "style sheets are not supported"}};
+                     {"pattern", "patterns are not supported"}};
         for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
             if (named(node, known[k].name))
                 return fail_at(r, "%s", known[k].why);
@@ -2571,6 +3132,361 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     return st;
 }
 
+/* ---- structure: <use>, <symbol>, nested <svg>, <style> ---- */
+
+/* The elements with an id, sorted by id and then document order, so that
+ * a reference finds the first in the document (getElementById). */
+typedef struct svg_ids {
+    struct svg_id {
+        xmlChar *id;
+        const xmlNode *node;
+        size_t order;
+    } *e;
+    size_t n, cap;
+} svg_ids;
+
+static int id_cmp(const void *a, const void *b)
+{
+    const struct svg_id *x = a, *y = b;
+    int c = strcmp((const char *)x->id, (const char *)y->id);
+    return c ? c : x->order < y->order ? -1 : x->order > y->order;
+}
+
+static int collect_ids(svg_ids *ids, const xmlNode *node)
+{
+    for (; node; node = node->next) {
+        if (node->type != XML_ELEMENT_NODE)
+            continue;
+        xmlChar *id = xmlGetNoNsProp(node, (const xmlChar *)"id");
+        if (id) {
+            if (ids->n == ids->cap) {
+                size_t cap = ids->cap ? 2 * ids->cap : 64;
+                struct svg_id *e = realloc(ids->e, cap * sizeof *e);
+                if (!e) {
+                    xmlFree(id);
+                    return aa_fail(AA_ENOMEM, "out of memory indexing ids");
+                }
+                ids->e = e, ids->cap = cap;
+            }
+            ids->e[ids->n] = (struct svg_id){id, node, ids->n};
+            ids->n++;
+        }
+        int st = collect_ids(ids, node->children);
+        if (st)
+            return st;
+    }
+    return AA_OK;
+}
+
+static void free_ids(svg_ids *ids)
+{
+    for (size_t k = 0; k < ids->n; k++)
+        xmlFree(ids->e[k].id);
+    free(ids->e);
+}
+
+static const xmlNode *find_id(const struct svg_ids *ids, const char *id)
+{
+    size_t lo = 0, hi = ids->n;
+    while (lo < hi) { /* the first element not below id */
+        size_t mid = lo + (hi - lo) / 2;
+        if (strcmp((const char *)ids->e[mid].id, id) < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < ids->n && !strcmp((const char *)ids->e[lo].id, id) ? ids->e[lo].node : NULL;
+}
+
+/* The style sheets of every <style> element of the SVG namespace, in
+ * document order (a sheet applies to the whole document wherever it is):
+ * type absent, empty or text/css (another type is not CSS, and browsers
+ * skip it), media absent, empty, all or screen (a sheet for another
+ * medium might apply: refused). */
+static int read_sheets(reader *r, const xmlNode *node)
+{
+    for (; node; node = node->next) {
+        if (node->type != XML_ELEMENT_NODE)
+            continue;
+        int st = AA_OK;
+        if (is_svg(node) && named(node, "style")) {
+            r->node = node;
+            xmlChar *type = xmlGetNoNsProp(node, (const xmlChar *)"type");
+            xmlChar *media = xmlGetNoNsProp(node, (const xmlChar *)"media");
+            const char *t = type ? skip_wsp((const char *)type) : "";
+            const char *md = media ? skip_wsp((const char *)media) : "";
+            const int css = !*t || !strcasecmp(t, "text/css");
+            if (css && *md && strcasecmp(md, "all") && strcasecmp(md, "screen"))
+                st = fail_at(r, "media=\"%s\": a sheet for other media is not supported",
+                             aa_echo(md));
+            for (const xmlAttr *a = node->properties; a && !st; a = a->next)
+                if (!a->ns && strcmp((const char *)a->name, "type") &&
+                    strcmp((const char *)a->name, "media") &&
+                    strcmp((const char *)a->name, "id") && strcmp((const char *)a->name, "title"))
+                    st = fail_at(r, "the attribute %s is not supported",
+                                 aa_echo((const char *)a->name));
+            if (!st && css) {
+                xmlChar *text = xmlNodeGetContent(node);
+                /* libxml2 numbers a text node by its last line: the
+                 * sheet is taken to start on the start tag's line */
+                long line = xmlGetLineNo(node);
+                if (!r->css)
+                    st = aa_css_new(&r->css);
+                if (!st)
+                    st = aa_css_add(r->css, text ? (const char *)text : "", r->name, line);
+                xmlFree(text);
+            }
+            xmlFree(type);
+            xmlFree(media);
+            if (st)
+                return st;
+            continue;
+        }
+        if ((st = read_sheets(r, node->children)))
+            return st;
+    }
+    return AA_OK;
+}
+
+/* m^-1, or 1 when m is singular. */
+static int mat_inverse(const mat *m, mat *out)
+{
+    const double det = m->a * m->d - m->b * m->c;
+    if (!(det != 0) || !isfinite(1 / det))
+        return 1;
+    out->a = m->d / det, out->b = -m->b / det, out->c = -m->c / det, out->d = m->a / det;
+    out->e = -(out->a * m->e + out->c * m->f);
+    out->f = -(out->b * m->e + out->d * m->f);
+    return 0;
+}
+
+/* The map of a viewBox (of node, if it has one) onto a viewport of vw x
+ * vh at the origin by its preserveAspectRatio, as for the root
+ * (root_map): *m, and the viewBox's size in vb (the viewport's without
+ * one). */
+static int viewbox_map(reader *r, const xmlNode *node, double vw, double vh, mat *m, double vb[2])
+{
+    *m = identity;
+    vb[0] = vw, vb[1] = vh;
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"viewBox");
+    if (!t)
+        return AA_OK;
+    double b[4];
+    const char *s = skip_wsp((const char *)t);
+    int st = AA_OK;
+    for (int k = 0; k < 4 && !st; k++) {
+        if (k)
+            s = skip_comma_wsp(s);
+        if (scan_number(&s, &b[k]))
+            st = fail_at(r, "viewBox=\"%s\" is not four numbers", aa_echo((const char *)t));
+    }
+    if (!st && *skip_wsp(s))
+        st = fail_at(r, "viewBox=\"%s\" is not four numbers", aa_echo((const char *)t));
+    if (!st && (b[2] <= 0 || b[3] <= 0))
+        st = fail_at(r, "viewBox=\"%s\": its width and height must be positive",
+                     aa_echo((const char *)t));
+    xmlFree(t);
+    if (st)
+        return st;
+    double sx = vw / b[2], sy = vh / b[3], ax = 0.5, ay = 0.5;
+    int none = 0, slice = 0;
+    t = xmlGetNoNsProp(node, (const xmlChar *)"preserveAspectRatio");
+    if (t) {
+        char align[16] = "", mos[16] = "meet";
+        int n = sscanf((const char *)t, " %15s %15s", align, mos);
+        static const char *const xs[3] = {"xMin", "xMid", "xMax"};
+        static const char *const ys[3] = {"YMin", "YMid", "YMax"};
+        int ok = n >= 1 && (!strcmp(mos, "meet") || !strcmp(mos, "slice"));
+        if (ok && !strcmp(align, "none"))
+            none = 1;
+        else if (ok) {
+            ok = 0;
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    if (!strncmp(align, xs[i], 4) && !strcmp(align + 4, ys[j]))
+                        ax = i / 2.0, ay = j / 2.0, ok = 1;
+        }
+        slice = !strcmp(mos, "slice");
+        if (!ok)
+            st = fail_at(r, "preserveAspectRatio=\"%s\" is malformed", aa_echo((const char *)t));
+        xmlFree(t);
+        if (st)
+            return st;
+    }
+    if (!none) {
+        double k = slice ? fmax(sx, sy) : fmin(sx, sy);
+        sx = sy = k;
+    }
+    m->a = sx, m->d = sy;
+    m->e = -b[0] * sx + (none ? 0 : ax * (vw - b[2] * sx));
+    m->f = -b[1] * sy + (none ? 0 : ay * (vh - b[3] * sy));
+    vb[0] = b[2], vb[1] = b[3];
+    return AA_OK;
+}
+
+/* A length attribute `key` of `node`, or when `over` (a <use>) gives it
+ * (and not auto), of `over`; auto or absent: 100% (of the viewport). */
+static int viewport_side(reader *r, const xmlNode *node, const xmlNode *over, const char *key,
+                         double *v)
+{
+    const xmlNode *from[2] = {over, node};
+    for (int k = 0; k < 2; k++) {
+        if (!from[k])
+            continue;
+        xmlChar *t = xmlGetNoNsProp(from[k], (const xmlChar *)key);
+        if (!t)
+            continue;
+        const char *s = skip_wsp((const char *)t);
+        int st = AA_OK, is_auto = !strncasecmp(s, "auto", 4) && !*skip_wsp(s + 4);
+        if (!is_auto) {
+            r->node = from[k];
+            st = parse_length(r, key, s, v);
+            if (!st && *v < 0)
+                st = fail_at(r, "a negative %s is an error", key);
+            r->node = node;
+        }
+        xmlFree(t);
+        if (st || !is_auto)
+            return st;
+    }
+    *v = key[0] == 'w' ? r->vpw : r->vph;
+    return AA_OK;
+}
+
+/* A nested <svg>, or a <symbol> drawn as the target of the <use> via (SVG
+ * 2, "The 'use' element": its width and height, unless auto, replace the
+ * target's): a new viewport at (x, y) of its width and height (auto or
+ * absent: 100%) in the user units it is in, its viewBox mapped onto it;
+ * percentages within it refer to the viewBox's size (or the viewport's).
+ * overflow (initially hidden for both, by SVG 2's user agent style sheet)
+ * hidden, scroll or clip clips its content to the viewport: the reader
+ * has no clip paths, so content reaching beyond it is refused
+ * (within_viewports); visible and auto (SVG: as visible) do not clip. */
+static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, style sty, mat m,
+                            int depth, double opacity)
+{
+    double x = 0, y = 0, w, h;
+    int st;
+    if (named(node, "svg") &&
+        ((st = attr_length(r, node, "x", 0, &x)) || (st = attr_length(r, node, "y", 0, &y))))
+        return st;
+    if ((st = viewport_side(r, node, via, "width", &w)) ||
+        (st = viewport_side(r, node, via, "height", &h)))
+        return st;
+    if (w == 0 || h == 0)
+        return AA_OK; /* SVG: a viewport of no area draws nothing */
+    char v[64];
+    int clip = 1;
+    if (prop(r, node, "overflow", v, sizeof v, &st)) {
+        if (!strcasecmp(v, "visible") || !strcasecmp(v, "auto"))
+            clip = 0;
+        else if (strcasecmp(v, "hidden") && strcasecmp(v, "scroll") && strcasecmp(v, "clip"))
+            return fail_at(r, "overflow=\"%s\" (visible, hidden, scroll, clip or auto)",
+                           aa_echo(v));
+    }
+    if (st)
+        return st;
+    mat vbm, to;
+    double vb[2];
+    if ((st = viewbox_map(r, node, w, h, &vbm, vb)))
+        return st;
+    if (clip) {
+        if (mat_inverse(&m, &to))
+            return fail_at(r, "a viewport that clips under a singular transform is not "
+                              "supported");
+        r->vclip[r->nvclip] = (struct svg_clip){to, {x, y, x + w, y + h}, node};
+        r->nvclip++;
+    }
+    const mat at = {1, 0, 0, 1, x, y};
+    const mat inner = mat_mul(m, mat_mul(at, vbm));
+    const double pw = r->vpw, ph = r->vph;
+    r->vpw = vb[0], r->vph = vb[1];
+    if (opacity < 1)
+        st = group_begin(r, opacity);
+    if (!st)
+        st = children(r, node, sty, inner, depth);
+    if (!st && opacity < 1) {
+        r->node = node;
+        st = r->sink->group_end(r->ctx);
+    }
+    r->vpw = pw, r->vph = ph;
+    if (clip)
+        r->nvclip--;
+    return st;
+}
+
+/* <use> (SVG 2, "The 'use' element"): its target (href, or xlink:href,
+ * "#id": the first element of that id) drawn as its child, so that the
+ * target's properties inherit from the <use> (style sheets match the
+ * target where it is in the document), under the use's transform and
+ * then translate(x, y).  A target that is missing, or that is the <use>
+ * or one of its ancestors (through the targets being drawn: a reference
+ * cycle), puts the use in error: it draws nothing, as browsers do.  A
+ * reference to another document is refused (never loaded). */
+static int use_element(reader *r, const xmlNode *node, style sty, mat m, int depth,
+                       double opacity)
+{
+    xmlChar *href = xmlGetNoNsProp(node, (const xmlChar *)"href");
+    if (!href)
+        href = xmlGetNsProp(node, (const xmlChar *)"href",
+                            (const xmlChar *)"http://www.w3.org/1999/xlink");
+    if (!href)
+        return AA_OK;
+    const char *h = skip_wsp((const char *)href);
+    int st = AA_OK;
+    const xmlNode *target = NULL;
+    if (!*h) /* no reference: nothing */
+        ;
+    else if (*h != '#')
+        st = fail_at(r, "href=\"%s\": a reference to another document is not supported",
+                     aa_echo(h));
+    else {
+        char id[1024];
+        snprintf(id, sizeof id, "%s", h + 1);
+        size_t n = strlen(id);
+        while (n && is_wsp((unsigned char)id[n - 1]))
+            id[--n] = '\0';
+        target = find_id(r->ids, id);
+    }
+    xmlFree(href);
+    if (st || !target)
+        return st;
+    for (int k = 0; k <= depth; k++)
+        if (r->chain[k] == target)
+            return AA_OK; /* a cycle: in error */
+    double x, y;
+    if ((st = attr_length(r, node, "x", 0, &x)) || (st = attr_length(r, node, "y", 0, &y)))
+        return st;
+    const mat at = {1, 0, 0, 1, x, y};
+    m = mat_mul(m, at);
+    if (opacity < 1 && (st = group_begin(r, opacity)))
+        return st;
+    r->use = node;
+    st = element(r, target, sty, m, depth + 1);
+    r->use = NULL;
+    if (!st && opacity < 1) {
+        r->node = node;
+        st = r->sink->group_end(r->ctx);
+    }
+    return st;
+}
+
+static int structure(reader *r, const xmlNode *node, const xmlNode *via, style sty, mat m,
+                     int depth)
+{
+    if (named(node, "style"))
+        return AA_OK; /* read before the walk (read_sheets) */
+    if (named(node, "symbol") && !via)
+        return AA_OK; /* drawn only as the target of a <use> */
+    int skip, st;
+    double opacity;
+    if ((st = element_props(r, node, &sty, &m, &skip, &opacity)) || skip || opacity == 0)
+        return st;
+    if (named(node, "use"))
+        return use_element(r, node, sty, m, depth, opacity);
+    return viewport_element(r, node, via, sty, m, depth, opacity);
+}
+
 /* The viewport and the root's map from user units to pixels. */
 static int root_map(reader *r, const xmlNode *root, double w, double h, mat *m, double vp[2],
                     int given[2])
@@ -2587,7 +3503,7 @@ static int root_map(reader *r, const xmlNode *root, double w, double h, mat *m, 
         if (!strcmp(s, "100%") || !strcmp(s, "auto"))
             st = AA_OK;
         else
-            st = parse_length(r, sides[k], s, k ? &vh : &vw), given[k] = 1;
+            st = parse_length(r, sides[k], s, k ? &vh : &vw), given[k] = !strchr(s, '%');
         xmlFree(t);
         if (st)
             return st;
@@ -2728,9 +3644,34 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
             st = fail_at(&r, "a transform on the root <svg> is not supported");
         }
         double opacity = 1;
+        /* the ids, the style sheets; percentages in the root's size are of
+         * the view's, em of the initial font-size */
+        svg_ids ids = {NULL, 0, 0};
+        r.ids = &ids;
+        r.font_size = 16;
+        r.vpw = w / scale, r.vph = h / scale;
+        if (!st && !(st = collect_ids(&ids, root))) {
+            if (ids.n)
+                qsort(ids.e, ids.n, sizeof *ids.e, id_cmp);
+            st = read_sheets(&r, root);
+        }
+        r.node = root;
+        r.chain[0] = root; /* a use of the root is a cycle */
+        char fs[256];
+        if (!st && prop(&r, root, "font-size", fs, sizeof fs, &st) && !st &&
+            strcasecmp(fs, "inherit"))
+        {
+            double size;
+            if (!(st = parse_font_size(&r, fs, 16, &size)))
+                r.font_size = size; /* em in the root's size */
+        }
         /* at `scale` pixels a CSS pixel: the document laid out in a view of
          * (w, h) / scale CSS pixels, then everything scaled */
-        if (!st && !(st = root_map(&r, root, w / scale, h / scale, &m, vp, given))) {
+        double vb[2];
+        mat vbm;
+        if (!st && !(st = root_map(&r, root, w / scale, h / scale, &m, vp, given)) &&
+            !(st = viewbox_map(&r, root, vp[0], vp[1], &vbm, vb))) {
+            r.vpw = vb[0], r.vph = vb[1]; /* percentages in the document */
             const mat zoom = {scale, 0, 0, scale, 0, 0};
             m = mat_mul(zoom, m);
             vp[0] *= scale, vp[1] *= scale;
@@ -2753,6 +3694,8 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
             if (!st && opacity < 1)
                 st = r.sink->group_end(r.ctx);
         }
+        free_ids(&ids);
+        aa_css_free(r.css);
         aa__c_numbers_end(&numbers);
     }
     clips_free(&r);

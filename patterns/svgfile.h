@@ -77,6 +77,7 @@ typedef struct aa_svg_sink {
 #define AA_SVG_MAX_COORD 1e7         /* |a coordinate| in pixels, after transforms */
 #define AA_SVG_MAX_DASHES 64         /* values in a stroke-dasharray */
 #define AA_SVG_MAX_CLIP_NESTING 16   /* clipPaths referenced while one is read */
+#define AA_SVG_MAX_ELEMENTS 1000000  /* elements read, <use> instances counted */
 
 /* Read the document data[0 .. len) (`name` names it in messages) drawn on
  * a view of w x h pixels: the viewport is the root's width and height, or

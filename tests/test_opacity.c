@@ -406,7 +406,7 @@ static void test_refusals(void **state)
         {"<rect width=\"4\" height=\"4\" color-interpolation=\"linearRGB\" opacity=\"0.5\"/>",
          "color-interpolation"},
         {"<rect width=\"4\" height=\"4\" opacity=\"inherit\"/>", "opacity"},
-        {"<rect width=\"4\" height=\"4\" fill-opacity=\"half\"/>", "fill-opacity"},
+        {"<rect width=\"4\" height=\"4\" style=\"fill-opacity: half\"/>", "fill-opacity"},
         {"<rect width=\"4\" height=\"4\" paint-order=\"stroke stroke\"/>", "paint-order"},
         {"<rect width=\"4\" height=\"4\" visibility=\"gone\"/>", "visibility"},
         {"<rect width=\"4\" height=\"4\" color=\"nocolour\"/>", "color"},

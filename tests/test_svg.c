@@ -573,16 +573,10 @@ static void test_refusals(void **state)
     /* shapes, arcs and strokes: invalid values, and what cannot be
      * stroked exactly yet (Bezier arcs, arcs of ellipses that are not
      * circles), or painted (stroke opacity) */
-    refused(L2("<circle r=\"-1\"/>"), "line 2: <circle>", "negative r");
-    refused(L2("<ellipse rx=\"1\" ry=\"-2\"/>"), "line 2: <ellipse>", "negative ry");
-    refused(L2("<rect width=\"1\" height=\"1\" rx=\"-1\"/>"), "<rect>", "negative rx");
-    refused(L2("<circle r=\"10%\"/>"), "<circle>", "px");
-    refused(L2("\n<path d=\"M0 0 A 5 5 0 2 1 10 10\"/>"), "line 3: <path>", "large-arc flag");
-    refused(L2("<path d=\"M0 0 a 5 5 0 0 x 10 10\"/>"), "line 2: <path>", "sweep flag");
-    refused(L2("<path d=\"M0 0 a 5 5 0 0\"/>"), "<path>", "ends too early");
-    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-opacity=\"half\"/>"), "line 2: <line>",
-            "stroke-opacity");
-    refused(L2("<g stroke-opacity=\"50% 1\"><line x2=\"5\" stroke=\"red\"/></g>"),
+    refused(L2("<circle r=\"10vw\"/>"), "<circle>", "not a length");
+    refused(L2("<line x2=\"5\" stroke=\"red\" style=\"stroke-opacity: half\"/>"),
+            "line 2: <line>", "stroke-opacity");
+    refused(L2("<g style=\"stroke-opacity: 50% 1\"><line x2=\"5\" stroke=\"red\"/></g>"),
             "line 2: <g>", "stroke-opacity");
     /* a sink without `alpha` takes no translucent shape (test_opacity.c
      * reads them through the pattern's) */
@@ -590,7 +584,7 @@ static void test_refusals(void **state)
             "translucent");
     refused(L2("<line x2=\"5\" stroke=\"url(#g)\"/>"), "<line>", "paint servers");
     refused(L2("<line x2=\"5\" stroke=\"#f00z\"/>"), "<line>", "#rgba");
-    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"10%\"/>"), "<line>", "px");
+    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"10vh\"/>"), "<line>", "length");
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"-1\"/>"), "<line>", "negative");
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-linejoin=\"miter-clip\"/>"), "<line>",
             "stroke-linejoin");
@@ -599,8 +593,8 @@ static void test_refusals(void **state)
     refused(L2("<line x2=\"5\" style=\"stroke-linecap: flat\"/>"), "<line>", "stroke-linecap");
     refused(L2("<line x2=\"5\" stroke-miterlimit=\"0.5\"/>"), "<line>", "stroke-miterlimit");
     refused(L2("<line x2=\"5\" stroke-dasharray=\"1 -2\"/>"), "<line>", "negative");
-    refused(L2("<line x2=\"5\" stroke-dasharray=\"1 2%\"/>"), "<line>", "stroke-dasharray");
-    refused(L2("<line x2=\"5\" stroke-dashoffset=\"1em\"/>"), "<line>", "stroke-dashoffset");
+    refused(L2("<line x2=\"5\" stroke-dasharray=\"1 2vmin\"/>"), "<line>", "stroke-dasharray");
+    refused(L2("<line x2=\"5\" stroke-dashoffset=\"1rem\"/>"), "<line>", "stroke-dashoffset");
     /* a stroked Bezier arc nearly with a cusp (its speed 1e-10 of its size
      * near t = 1/2, neither 0 to rounding nor clear of it) */
     refused(L2("\n\n<path stroke=\"red\" d=\"M0 0 C 10 10 0.000000001 10 10 0\"/>"),
@@ -609,7 +603,8 @@ static void test_refusals(void **state)
     refused(L2("<line x2=\"100000\" stroke=\"red\" stroke-dasharray=\"0.001\"/>"), "<line>",
             "dashes");
     refused(L2("<rect width=\"1\" height=\"1\" opacity=\"inherit\"/>"), "<rect>", "opacity");
-    refused(L2("<rect width=\"1\" height=\"1\" fill-opacity=\".\"/>"), "<rect>", "opacity");
+    refused(L2("<rect width=\"1\" height=\"1\" style=\"fill-opacity: .\"/>"), "<rect>",
+            "opacity");
     refused(L2("<rect width=\"1\" height=\"1\" color-interpolation=\"linearRGB\"/>"), "<rect>",
             "linear light");
     /* nor a group of an opacity */
@@ -624,20 +619,15 @@ static void test_refusals(void **state)
             "<rect>", "clip paths are not taken here");
     refused(L2("<rect width=\"1\" height=\"1\" clip-path=\"circle(1px)\"/>"), "<rect>",
             "basic shapes");
-    refused(L2("<use href=\"#a\"/>"), "<use>", NULL);
-    refused(L2("<style>rect{fill:red}</style>"), "<style>", "style sheets");
-    refused(L2("<svg/>"), "<svg>", "nested");
+    refused(L2("<use href=\"other.svg#a\"/>"), "<use>", "another document");
+    refused(L2("<style>rect:first-child{fill:red}</style>"), "line 2: <style>", "pseudo-class");
+    refused(L2("<svg width=\"4\" height=\"4\"><rect width=\"5\" height=\"1\"/></svg>"),
+            "line 2: <rect>", "viewport of the <svg> at line 2");
     refused(L2("<blink/>"), "<blink>", "not supported");
-    refused(L2("<rect width=\"10%\" height=\"1\"/>"), "<rect>", "px");
-    refused(L2("<rect width=\"-1\" height=\"1\"/>"), "<rect>", "negative");
+    refused(L2("<rect width=\"10pz\" height=\"1\"/>"), "<rect>", "not a length");
     refused(L2("<rect width=\"1\" height=\"1\" fill=\"bogus\"/>"), "<rect>", "bogus");
     refused(L2("<polygon points=\"0 0 1\"/>"), "<polygon>", "odd");
-    refused(L2("<path d=\"L 1 1\"/>"), "<path>", "must begin with M");
-    refused(L2("<path d=\"M 1\"/>"), "<path>", "ends too early");
-    refused(L2("<path d=\"M 1 1 L 2 x\"/>"), "<path>", "malformed number");
-    refused(L2("<path d=\"M 1 1 z 3\"/>"), "<path>", "after Z");
-    refused(L2("<path d=\"M 1 1 B 3\"/>"), "<path>", "unknown path command");
-    refused(L2("<path transform=\"spin(3)\" d=\"M0 0\"/>"), "<path>", "transform");
+    refused(L2("<path style=\"transform: spin(3)\" d=\"M0 0\"/>"), "<path>", "transform");
     refused(L2("<path transform=\"skewX(90)\" d=\"M0 0\"/>"), "<path>", "infinite");
     /* absurd numbers: beyond AA_SVG_MAX_NUMBER, overflowing a double, and
      * coordinates that transforms carry beyond AA_SVG_MAX_COORD */
@@ -902,7 +892,7 @@ static void test_command(void **state)
 
     snprintf(path, sizeof path, "%s/circle.svg", dir);
     snprintf(txt, sizeof txt, "%s/out.txt", dir);
-    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\">\n\n<use href=\"#a\"/></svg>");
+    write_svg(path, "<svg xmlns=\"http://www.w3.org/2000/svg\">\n\n<use href=\"b.svg#a\"/></svg>");
     snprintf(spec, sizeof spec, "svg:file=%s", path);
     const char *args[] = {"truth", "-p", spec, "-s", "16x16", "-o", txt, NULL};
     assert_int_equal(support_aabench(args, out, sizeof out), 2);
@@ -1128,9 +1118,12 @@ static void test_cubic_scene(void **state)
 static void test_unknown_properties(void **state)
 {
     (void)state;
-    refused(L2(R1 "style=\"transform: scale(2)\"/>"), "line 2: <rect>", "transform");
-    refused(L2(R1 "transform-origin=\"2 2\"/>"), "line 2: <rect>", "transform-origin");
-    refused(L2(R1 "style=\"transform-box: fill-box\"/>"), "line 2: <rect>", "transform-box");
+    refused(L2(R1 "style=\"transform: scale(2) perspective(3px)\"/>"), "line 2: <rect>",
+            "transform");
+    refused(L2(R1 "transform=\"scale(2)\" transform-origin=\"2 2 1px\"/>"), "line 2: <rect>",
+            "transform-origin");
+    refused(L2(R1 "transform=\"scale(2)\" style=\"transform-box: stroke-box\"/>"),
+            "line 2: <rect>", "transform-box");
     refused(L2("<g mix-blend-mode=\"multiply\">" R1 "/></g>"), "line 2: <g>", "mix-blend-mode");
     refused(L2("<path d=\"M0 0 L4 0 L4 4z\" marker-start=\"url(#m)\"/>"), "line 2: <path>",
             "marker-start");
@@ -1138,8 +1131,8 @@ static void test_unknown_properties(void **state)
             "marker");
     refused(L2("<path d=\"M0 0 L4 0 L4 4z\" marker-mid=\"url(#m)\"/>"), "<path>", "marker-mid");
     refused(L2("<path d=\"M0 0 L4 0 L4 4z\" marker-end=\"url(#m)\"/>"), "<path>", "marker-end");
-    refused(L2(R1 "style=\"display: none !important\"/>"), "line 2: <rect>", "!important");
-    refused(L2(R1 "style=\"fill: red!important\"/>"), "<rect>", "!important");
+    refused(L2(R1 "style=\"display: none !importan\"/>"), "line 2: <rect>", "not a declaration");
+    refused(L2(R1 "style=\"fill: red!\"/>"), "<rect>", "not a declaration");
     refused(L2(R1 "FILL=\"white\"/>"), "line 2: <rect>", "FILL");
     refused(L2("\n" R1 "systemLanguage=\"fr\"/>"), "line 3: <rect>", "systemLanguage");
     refused(L2(R1 "requiredExtensions=\"http://example.org/x\"/>"), "<rect>",

@@ -1,0 +1,691 @@
+/*
+ * test_svg_structure.c: the SVG reader's structure, units and style sheets
+ * (patterns/svgfile.c, patterns/svgcss.c): <use>, <symbol>, nested <svg>,
+ * CSS lengths, <style> sheets and the cascade, the CSS transform
+ * property, and path data drawn up to its first error.
+ *
+ * Every expected value is derived in the comment beside it from the
+ * specifications (SVG 2 "Coordinate systems", "The 'use' element",
+ * "Units", "Error handling in path data"; CSS Values 4, Cascade 4,
+ * Selectors 4, Transforms 1), never read from the code under test.  The
+ * box reference of white shapes over black sums to their area, and a
+ * shape drawn through <use> must give the same picture, pixel by pixel,
+ * as the same shape written where it lands (an independent construction).
+ */
+#include "bench.h"
+#include "patterns.h"
+#include "support.h"
+#include "svgfile.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+/* ---- a sink that writes what it is given as text ---- */
+
+typedef struct text_sink {
+    char buf[65536];
+    size_t n;
+} text_sink;
+
+static int put(text_sink *t, const char *fmt, ...) AA_PRINTF(2, 3);
+static int put(text_sink *t, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int m = vsnprintf(t->buf + t->n, sizeof t->buf - t->n, fmt, ap);
+    va_end(ap);
+    assert_true(m >= 0 && (size_t)m < sizeof t->buf - t->n);
+    t->n += (size_t)m;
+    return AA_OK;
+}
+
+static int s_shape(void *ctx, aa_rgb c, aa_fill_rule rule)
+{
+    (void)rule;
+    return put(ctx, "%s%.17g %.17g %.17g;", ((text_sink *)ctx)->n ? " " : "", c.c[0], c.c[1],
+               c.c[2]);
+}
+static int s_move(void *ctx, double x, double y) { return put(ctx, " M %.17g %.17g", x, y); }
+static int s_line(void *ctx, double x, double y) { return put(ctx, " L %.17g %.17g", x, y); }
+static int s_quad(void *ctx, double cx, double cy, double x, double y)
+{
+    return put(ctx, " Q %.17g %.17g %.17g %.17g", cx, cy, x, y);
+}
+static int s_cubic(void *ctx, double a, double b, double c, double d, double x, double y)
+{
+    return put(ctx, " C %.17g %.17g %.17g %.17g %.17g %.17g", a, b, c, d, x, y);
+}
+static int s_close(void *ctx) { return put(ctx, " Z"); }
+static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double vx, double vy,
+                 double t0, double t1, double x, double y)
+{
+    (void)ux, (void)uy, (void)vx, (void)vy, (void)t0, (void)t1;
+    return put(ctx, " A %.17g %.17g to %.17g %.17g", cx, cy, x, y);
+}
+
+static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc,
+                                 NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL};
+
+#define OPEN "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">"
+#define BLACK "0 0 0;"
+#define WHITE "1 1 1;"
+
+/* Read `doc` on a 100 x 100 view; the sink's text, or fail. */
+static const char *read_doc(const char *doc)
+{
+    static text_sink t;
+    t.n = 0;
+    t.buf[0] = '\0';
+    if (aa_svg_read(doc, strlen(doc), "test.svg", 100, 100, &sink, &t, NULL) != AA_OK)
+        fail_msg("%s: %s", doc, aa_last_error());
+    return t.buf;
+}
+
+static void expect(const char *doc, const char *want)
+{
+    const char *got = read_doc(doc);
+    if (strcmp(got, want))
+        fail_msg("%s\n  got  %s\n  want %s", doc, got, want);
+}
+
+/* `doc` is refused with a message containing want1 and want2. */
+static void refused(const char *doc, const char *want1, const char *want2)
+{
+    text_sink t = {.n = 0};
+    if (aa_svg_read(doc, strlen(doc), "test.svg", 100, 100, &sink, &t, NULL) != AA_EINVAL)
+        fail_msg("accepted: %s", doc);
+    const char *msg = aa_last_error();
+    if ((want1 && !strstr(msg, want1)) || (want2 && !strstr(msg, want2)))
+        fail_msg("%s\n  message: %s\n  wanted: %s / %s", doc, msg, want1, want2 ? want2 : "");
+}
+
+/* ---- <use> ---- */
+
+static void test_use(void **state)
+{
+    (void)state;
+    /* the rect [1, 4] x [2, 6] moved by translate(10, 20) */
+#define RECT_R "<defs><rect id=\"r\" x=\"1\" y=\"2\" width=\"3\" height=\"4\"/></defs>"
+    expect(OPEN RECT_R "<use href=\"#r\" x=\"10\" y=\"20\"/></svg>",
+           BLACK " M 11 22 L 14 22 L 14 26 L 11 26 Z");
+    expect(OPEN RECT_R "<use xlink:href=\"#r\" x=\"10\" y=\"20\"/></svg>",
+           BLACK " M 11 22 L 14 22 L 14 26 L 11 26 Z");
+    /* href wins over xlink:href (SVG 2) */
+    expect(OPEN RECT_R "<rect id=\"q\" width=\"1\" height=\"1\"/>"
+                       "<use href=\"#r\" xlink:href=\"#q\" x=\"10\" y=\"20\"/></svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z " BLACK " M 11 22 L 14 22 L 14 26 L 11 26 Z");
+    /* the use's transform, then translate(x, y): scale(2) of (p + (1, 0)):
+     * (1, 2) -> (4, 4), (4, 2) -> (10, 4), (4, 6) -> (10, 12) */
+    expect(OPEN RECT_R "<use href=\"#r\" transform=\"scale(2)\" x=\"1\"/></svg>",
+           BLACK " M 4 4 L 10 4 L 10 12 L 4 12 Z");
+    /* the target inherits from the <use>: red (linear 1 0 0); its own
+     * fill wins */
+    expect(OPEN RECT_R "<use href=\"#r\" fill=\"red\"/></svg>",
+           "1 0 0; M 1 2 L 4 2 L 4 6 L 1 6 Z");
+    expect(OPEN "<defs><rect id=\"r\" width=\"1\" height=\"1\" fill=\"lime\"/></defs>"
+                "<use href=\"#r\" fill=\"red\"/></svg>",
+           "0 1 0; M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* a use of a use: both translations */
+    expect(OPEN RECT_R "<use id=\"u\" href=\"#r\" x=\"1\"/><use href=\"#u\" y=\"1\"/></svg>",
+           BLACK " M 2 2 L 5 2 L 5 6 L 2 6 Z " BLACK " M 2 3 L 5 3 L 5 7 L 2 7 Z");
+    /* the first element of an id in document order */
+    expect(OPEN "<defs><rect id=\"d\" width=\"1\" height=\"1\"/><rect id=\"d\" width=\"2\" "
+                "height=\"2\"/></defs><use href=\"#d\"/></svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* a missing target, an empty href, no href: nothing (SVG 2: the use is
+     * not rendered) */
+    expect(OPEN "<use href=\"#nowhere\"/><use href=\"\"/><use/></svg>", "");
+    /* cycles: a use referencing its ancestor, and two uses referencing
+     * each other, are in error and draw nothing; the rest draws */
+    expect(OPEN "<g id=\"g\"><rect width=\"1\" height=\"1\"/><use href=\"#g\" x=\"5\"/></g></svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    expect(OPEN "<use id=\"a\" href=\"#b\"/><use id=\"b\" href=\"#a\"/></svg>", "");
+    /* a use of the root, its ancestor */
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"top\"><rect width=\"1\" "
+           "height=\"1\"/><use href=\"#top\" x=\"3\"/></svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* g1 holds a rect and a use of g2, which uses g1: through g2's use
+     * g1 would hold itself (its use is an ancestor): in error */
+    expect(OPEN "<g id=\"g1\"><rect width=\"1\" height=\"1\"/><use href=\"#g2\"/></g>"
+                "<defs><g id=\"g2\"><use href=\"#g1\" x=\"7\"/></g></defs></svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* a symbol draws only through a use */
+    expect(OPEN "<symbol id=\"s\"><rect width=\"1\" height=\"1\"/></symbol></svg>", "");
+    /* the use's opacity: the target's alpha (a sink without alpha refuses) */
+    refused(OPEN RECT_R "<use href=\"#r\" opacity=\"0.5\"/></svg>", "<use>", "opacity");
+    refused(OPEN "<use href=\"other.svg#r\"/></svg>", "<use>", "another document");
+    /* a billion laughs of uses is stopped by the element count */
+    {
+        static char doc[8192];
+        size_t n = (size_t)snprintf(doc, sizeof doc, "%s<defs><g id=\"l0\"/>", OPEN);
+        for (int k = 1; k <= 30; k++)
+            n += (size_t)snprintf(doc + n, sizeof doc - n,
+                                  "<g id=\"l%d\"><use href=\"#l%d\"/><use href=\"#l%d\"/></g>", k,
+                                  k - 1, k - 1);
+        snprintf(doc + n, sizeof doc - n, "</defs><use href=\"#l30\"/></svg>");
+        refused(doc, "more than", "elements");
+    }
+}
+
+/* ---- viewports: <symbol> and nested <svg> ---- */
+
+static void test_viewports(void **state)
+{
+    (void)state;
+    /* symbol viewBox 0 0 10 10 on a use of 20 x 40: meet, scale min(2, 4)
+     * = 2, xMidYMid: (40 - 20)/2 = 10 down; the use's (5, 5) on top: the
+     * rect [0, 10]^2 lands on [5, 25] x [15, 35] */
+    expect(OPEN "<symbol id=\"s\" viewBox=\"0 0 10 10\"><rect width=\"10\" height=\"10\"/>"
+                "</symbol><use href=\"#s\" x=\"5\" y=\"5\" width=\"20\" height=\"40\"/></svg>",
+           BLACK " M 5 15 L 25 15 L 25 35 L 5 35 Z");
+    /* preserveAspectRatio none: scale (2, 4) */
+    expect(OPEN "<symbol id=\"s\" viewBox=\"0 0 10 10\" preserveAspectRatio=\"none\">"
+                "<rect width=\"10\" height=\"10\"/></symbol>"
+                "<use href=\"#s\" width=\"20\" height=\"40\"/></svg>",
+           BLACK " M 0 0 L 20 0 L 20 40 L 0 40 Z");
+    /* the symbol's own size, when the use gives none; 100% when neither
+     * does: the viewport 100 x 100, a viewBox of 50 x 50: scale 2 */
+    expect(OPEN "<symbol id=\"s\" viewBox=\"0 0 50 50\"><rect width=\"50\" height=\"50\"/>"
+                "</symbol><use href=\"#s\"/></svg>",
+           BLACK " M 0 0 L 100 0 L 100 100 L 0 100 Z");
+    /* a nested svg at (10, 10) of 20 x 20, viewBox 0 0 10 10: scale 2;
+     * 50% of its width and height (of the viewBox: 5) */
+    expect(OPEN "<svg x=\"10\" y=\"10\" width=\"20\" height=\"20\" viewBox=\"0 0 10 10\">"
+                "<rect width=\"50%\" height=\"50%\"/></svg></svg>",
+           BLACK " M 10 10 L 20 10 L 20 20 L 10 20 Z");
+    /* a use of an svg: the use's width and height replace the svg's */
+    expect(OPEN "<defs><svg id=\"v\" width=\"1\" height=\"1\" viewBox=\"0 0 1 1\">"
+                "<rect width=\"1\" height=\"1\"/></svg></defs>"
+                "<use href=\"#v\" width=\"8\" height=\"8\"/></svg>",
+           BLACK " M 0 0 L 8 0 L 8 8 L 0 8 Z");
+    /* a viewport of no width draws nothing */
+    expect(OPEN "<svg width=\"0\"><rect width=\"1\" height=\"1\"/></svg></svg>", "");
+    /* content reaching beyond a viewport of overflow hidden (the initial
+     * value): refused, since the reader does not clip; touching its edges
+     * is inside; overflow visible draws it whole */
+    refused(OPEN "\n<svg width=\"10\" height=\"10\"><rect x=\"5\" width=\"5.001\" height=\"1\"/>"
+                 "</svg></svg>",
+            "line 2: <rect>", "beyond the viewport of the <svg> at line 2");
+    expect(OPEN "<svg width=\"10\" height=\"10\"><rect x=\"5\" width=\"5\" height=\"10\"/>"
+                "</svg></svg>",
+           BLACK " M 5 0 L 10 0 L 10 10 L 5 10 Z");
+    expect(OPEN "<svg width=\"10\" height=\"10\" overflow=\"visible\"><rect x=\"5\" "
+                "width=\"50\" height=\"1\"/></svg></svg>",
+           BLACK " M 5 0 L 55 0 L 55 1 L 5 1 Z");
+    expect(OPEN "<symbol id=\"s\" style=\"overflow: auto\"><rect x=\"-5\" width=\"50\" "
+                "height=\"1\"/></symbol><use href=\"#s\" width=\"10\" height=\"10\"/></svg>",
+           BLACK " M -5 0 L 45 0 L 45 1 L -5 1 Z");
+    refused(OPEN "<symbol id=\"s\"><rect x=\"-5\" width=\"50\" height=\"1\"/></symbol>"
+                 "<use href=\"#s\" width=\"10\" height=\"10\"/></svg>",
+            "<rect>", "<symbol>");
+    /* bounds are exact, not of the control points: a disk of radius 5
+     * touching a 10 x 10 viewport's sides, rotated 30 degrees with its
+     * viewport, is inside; the arc's control-free ellipse is tested at its
+     * extremes; a radius of 5.01 reaches beyond */
+    read_doc(OPEN "<g transform=\"rotate(30)\"><svg width=\"10\" height=\"10\">"
+                  "<circle cx=\"5\" cy=\"5\" r=\"5\"/></svg></g></svg>");
+    refused(OPEN "<g transform=\"rotate(30)\"><svg width=\"10\" height=\"10\">"
+                 "<circle cx=\"5\" cy=\"5\" r=\"5.01\"/></svg></g></svg>",
+            "<circle>", "beyond");
+    /* a cubic whose control points leave the viewport while the curve
+     * stays in it: B(t) from (0, 0) over (10, 12) (10, 12) to (10, 0)
+     * turns at y = 3 t (1 - t) 12 at t = 1/2: 9 */
+    read_doc(OPEN "<svg width=\"10\" height=\"10\"><path d=\"M0 0 C 0 12 10 12 10 0\"/>"
+                  "</svg></svg>");
+    refused(OPEN "<svg width=\"10\" height=\"8\"><path d=\"M0 0 C 0 12 10 12 10 0\"/>"
+                 "</svg></svg>",
+            "<path>", "beyond");
+    /* a stroke counts by its outline: 2 wide about x = 9 reaches 10 */
+    read_doc(OPEN "<svg width=\"10\" height=\"10\"><line x1=\"9\" x2=\"9\" y1=\"1\" y2=\"9\" "
+                  "stroke=\"red\" stroke-width=\"2\"/></svg></svg>");
+    refused(OPEN "<svg width=\"10\" height=\"10\"><line x1=\"9\" x2=\"9\" y1=\"1\" y2=\"9\" "
+                 "stroke=\"red\" stroke-width=\"2.1\"/></svg></svg>",
+            "<line>", "beyond");
+    refused(OPEN "<svg width=\"-1\"/></svg>", "<svg>", "negative");
+    refused(OPEN "<svg width=\"1\" height=\"1\" overflow=\"sideways\"/></svg>", "<svg>",
+            "overflow");
+    /* refX and refY are not read */
+    refused(OPEN "<symbol id=\"s\" refX=\"1\"/><use href=\"#s\"/></svg>", "<symbol>", "refX");
+}
+
+/* ---- units ---- */
+
+static void test_units(void **state)
+{
+    (void)state;
+    char want[512];
+    /* CSS Values 4: 1in = 96px, 1cm = 96/2.54 px */
+    snprintf(want, sizeof want, BLACK " M 0 0 L 96 0 L 96 %.17g L 0 %.17g Z", 96 / 2.54,
+             96 / 2.54);
+    expect(OPEN "<rect width=\"1in\" height=\"1cm\"/></svg>", want);
+    /* x = 1mm = 96/25.4 px, y = 3pt = 3 x 96/72 = 4, width and height
+     * 1pc = 16px (units in any case) */
+    snprintf(want, sizeof want, BLACK " M %.17g 4 L %.17g 4 L %.17g 20 L %.17g 20 Z", 96 / 25.4,
+             96 / 25.4 + 16, 96 / 25.4 + 16, 96 / 25.4);
+    expect(OPEN "<rect x=\"1mm\" y=\"3pt\" width=\"1pc\" height=\"1PC\"/></svg>", want);
+    /* em: the element's font-size (inherited), ex half of it (CSS Values 4
+     * when no font metrics are used); font-size in em and % of the
+     * parent's; medium is 16px, large 6/5 of it */
+    expect(OPEN "<g font-size=\"20\"><rect width=\"2em\" height=\"1ex\"/></g></svg>",
+           BLACK " M 0 0 L 40 0 L 40 10 L 0 10 Z");
+    expect(OPEN "<g font-size=\"10px\"><g style=\"font-size: 2em\"><rect width=\"1em\" "
+                "height=\"1em\" font-size=\"150%\"/></g></g></svg>",
+           BLACK " M 0 0 L 30 0 L 30 30 L 0 30 Z");
+    expect(OPEN "<rect width=\"1em\" height=\"1em\"/></svg>",
+           BLACK " M 0 0 L 16 0 L 16 16 L 0 16 Z");
+    /* the root's font-size is the em of its own width: 2em of 10px */
+    {
+        double vp[2];
+        const char *doc = "<svg xmlns=\"http://www.w3.org/2000/svg\" font-size=\"10px\" "
+                          "width=\"2em\" height=\"3ex\"/>";
+        assert_int_equal(aa_svg_read(doc, strlen(doc), "t.svg", 1, 1, NULL, NULL, vp), AA_OK);
+        if (!(vp[0] == 20 && vp[1] == 15))
+            fail_msg("the root of 2em x 3ex at 10px: %g x %g", vp[0], vp[1]);
+    }
+    snprintf(want, sizeof want, BLACK " M 0 0 L %.17g 0 L %.17g 1 L 0 1 Z", 16 * 6.0 / 5,
+             16 * 6.0 / 5);
+    expect(OPEN "<rect width=\"1em\" height=\"1\" font-size=\"large\"/></svg>", want);
+    /* %: of the viewport's width (x, width), height (y, height), and the
+     * normalised diagonal sqrt((w^2 + h^2)/2) for r: on the root of
+     * 100 x 50, r = 10% is sqrt(6250)/10 */
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100\" height=\"50\">"
+           "<rect x=\"10%\" y=\"10%\" width=\"50%\" height=\"50%\"/></svg>",
+           BLACK " M 10 5 L 60 5 L 60 30 L 10 30 Z");
+    snprintf(want, sizeof want, BLACK " M %.17g 0", sqrt(6250) / 10);
+    {
+        const char *doc = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100\" "
+                          "height=\"50\"><circle r=\"10%\"/></svg>";
+        const char *got = read_doc(doc);
+        if (strncmp(got, want, strlen(want)))
+            fail_msg("got %s, want %s...", got, want);
+    }
+    /* the root's size in absolute units is its own size */
+    double vp[2];
+    static const char own[] = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1in\" "
+                              "height=\"2.54cm\"/>";
+    assert_int_equal(aa_svg_read(own, strlen(own), "t.svg", 1, 1, NULL, NULL, vp), AA_OK);
+    assert_true(vp[0] == 96 && fabs(vp[1] - 96) < 1e-13);
+    refused(OPEN "<rect width=\"1vw\" height=\"1\"/></svg>", "<rect>", "not a length");
+    refused(OPEN "<rect width=\"1\" height=\"1\" font-size=\"larger\"/></svg>", "<rect>",
+            "font-size");
+    refused(OPEN "<rect width=\"1\" height=\"1\" font-size=\"-2px\"/></svg>", "<rect>",
+            "negative");
+}
+
+/* ---- style sheets and the cascade ---- */
+
+/* The colours of the shapes a document gives, in order. */
+static void expect_colours(const char *doc, const char *const *want, int n)
+{
+    const char *got = read_doc(doc);
+    const char *s = got;
+    for (int k = 0; k < n; k++) {
+        size_t len = strlen(want[k]);
+        if (k)
+            s = strstr(s, "Z ");
+        if (!s || (k && (s += 2, 0)) || strncmp(s, want[k], len) || s[len] != ';')
+            fail_msg("shape %d: want %s\n  got %s", k, want[k], got);
+    }
+}
+
+#define R(attrs) "<rect width=\"1\" height=\"1\" " attrs "/>"
+
+static void test_sheets(void **state)
+{
+    (void)state;
+    /* Specificity (a, b, c) = (ids; classes, attributes, pseudo-classes;
+     * types), Selectors 4; the higher wins, then the later rule; the style
+     * attribute wins over every rule and a presentation attribute loses
+     * to every rule (CSS Cascade 4, SVG 2 "Presentation attributes").
+     * Colours (linear light): red 1 0 0, lime 0 1 0, blue 0 0 1, yellow
+     * 1 1 0, white 1 1 1, aqua 0 1 1, fuchsia 1 0 1. */
+    static const char doc[] =
+        OPEN "<style>\n"
+             "rect { fill: red }\n"                  /* (0, 0, 1) */
+             ".a { fill: lime }\n"                   /* (0, 1, 0) */
+             "#x { fill: blue }\n"                   /* (1, 0, 0) */
+             "g > rect.a { fill: yellow }\n"         /* (0, 1, 2) */
+             "g rect { fill: white }\n"              /* (0, 0, 2) */
+             ".o { fill: red } .o { fill: aqua }\n"  /* equal: the later */
+             "rect[height=\"2\"] { fill: fuchsia }\n" /* (0, 1, 1) */
+             "rect:hover, .h { fill: aqua }\n"       /* :hover never matches */
+             "svg > g.k circle { fill: lime }\n"     /* (0, 1, 3) */
+             "/* a comment { fill: red } */\n"
+             "</style>\n"
+             R("") /* rect: red */
+             R("class=\"a\"") /* .a over rect: lime */
+             R("class=\"a\" id=\"x\"") /* #x: blue */
+             R("class=\"o\"") /* .o, later: aqua */
+             "<rect width=\"1\" height=\"2\"/>" /* [height="2"] (0,1,1): fuchsia */
+             R("class=\"h\"") /* .h: aqua */
+             "<g>" R("class=\"a\"") /* g > rect.a (0,1,2): yellow */
+             R("") /* g rect (0,0,2): white */
+             R("fill=\"blue\"") /* the attribute loses: white */
+             R("style=\"fill: blue\"") /* the style attribute wins: blue */
+             "</g>"
+             "<g class=\"k\"><circle r=\"1\"/></g>" /* svg > g.k circle: lime */
+             "</svg>";
+    static const char *const want[] = {"1 0 0", "0 1 0", "0 0 1", "0 1 1", "1 0 1", "0 1 1",
+                                       "1 1 0", "1 1 1", "1 1 1", "0 0 1", "0 1 0"};
+    expect_colours(doc, want, (int)(sizeof want / sizeof want[0]));
+    /* !important: an important rule beats the style attribute, an
+     * important style attribute beats it; importance beats specificity */
+    static const char imp[] =
+        OPEN "<style>.i { fill: lime !important } #y { fill: red } "
+             "rect { fill: blue ! IMPORTANT }</style>"
+             R("class=\"i\" style=\"fill: red\"") /* lime */
+             R("class=\"i\" style=\"fill: aqua !important\"") /* aqua */
+             R("id=\"y\"") /* blue (important, though of lower specificity) */
+             "</svg>";
+    static const char *const want_imp[] = {"0 1 0", "0 1 1", "0 0 1"};
+    expect_colours(imp, want_imp, 3);
+    /* inherited from a rule on the parent; the later of two style
+     * attribute declarations */
+    static const char inh[] = OPEN "<style>g { fill: lime; stroke-width: 3 }</style>"
+                                   "<g>" R("") "</g>" R("style=\"fill: red; fill: aqua\"")
+                                   "</svg>";
+    static const char *const want_inh[] = {"0 1 0", "0 1 1"};
+    expect_colours(inh, want_inh, 2);
+    /* attribute selectors (Selectors 4): [a] present, [a=v] equal, [a~=v]
+     * a word of a white-space list, [a|=v] v or v followed by "-", [a^=v]
+     * a prefix, [a$=v] a suffix, [a*=v] a substring; the empty string
+     * matches nothing for ~=, ^=, $= and *= */
+    static const char attrs[] =
+        OPEN "<style>rect { fill: black } [id] { fill: red } [id=\"p\"] { fill: lime } "
+             "[class~=\"two\"] { fill: blue } [class|=\"en\"] { fill: yellow } "
+             "[id^=\"pre\"] { fill: aqua } [id$=\"fix\"] { fill: fuchsia } "
+             "[id*=\"mid\"] { fill: white } [class^=\"\"] { fill: red }</style>"
+             R("id=\"q\"")            /* [id]: red */
+             R("id=\"p\"")            /* [id=p] (0,1,0) later than [id]: lime */
+             R("class=\"one two\"")   /* blue */
+             R("class=\"en-GB\"")     /* yellow */
+             R("class=\"eng\"")       /* |= wants "en" or "en-": black */
+             R("id=\"prelude\"")      /* aqua */
+             R("id=\"suffix\"")       /* fuchsia */
+             R("id=\"amidst\"")       /* white */
+             "</svg>";
+    static const char *const want_attrs[] = {"1 0 0", "0 1 0", "0 0 1", "1 1 0",
+                                             "0 0 0", "0 1 1", "1 0 1", "1 1 1"};
+    expect_colours(attrs, want_attrs, 8);
+    /* combinators: a descendant at any depth, found past a non-matching
+     * nearer ancestor; a child only under its parent; :root is the root */
+    static const char comb[] =
+        OPEN "<style>.a .c { fill: lime } .b > .c { fill: blue } :root > g > .d { fill: red } "
+             ".a > .e { fill: white }</style>"
+             "<g class=\"a\"><g class=\"x\"><g class=\"y\">" R("class=\"c\"")  /* lime */
+             R("class=\"e\"")                      /* .a > .e: not a child: black */
+             "</g></g></g>"
+             "<g class=\"b\"><g>" R("class=\"c\"") "</g></g>" /* .b > .c fails; no .a: black */
+             "<g>" R("class=\"d\"") "</g>"                     /* red */
+             "<g><g>" R("class=\"d\"") "</g></g>"              /* not the root's grandchild: black */
+             "</svg>";
+    static const char *const want_comb[] = {"0 1 0", "0 0 0", "0 0 0", "1 0 0", "0 0 0"};
+    expect_colours(comb, want_comb, 5);
+    /* a sheet that is not CSS is not read; one for another medium is
+     * refused, and so is anything outside the subset that might match */
+    expect(OPEN "<style type=\"text/x-other\">rect { bogus }</style>" R("") "</svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    refused(OPEN "<style media=\"print\">rect{fill:red}</style></svg>", "<style>", "media");
+    refused(OPEN "\n<style>\nrect{fill:red}\n@media screen { rect { fill: lime } }</style></svg>",
+            "line 4: <style>", "at-rule");
+    refused(OPEN "<style>rect + rect {fill:red}</style></svg>", "<style>", "sibling");
+    refused(OPEN "<style>rect::before {fill:red}</style></svg>", "<style>", "pseudo-element");
+    refused(OPEN "<style>rect:nth-child(2) {fill:red}</style></svg>", "<style>", "pseudo-class");
+    refused(OPEN "<style>rect { fill: red</style></svg>", "<style>", "not closed");
+    refused(OPEN "<style>rect { fill }</style></svg>", "<style>", "not a declaration");
+    refused(OPEN "<style>/* open</style></svg>", "<style>", "comment");
+    refused(OPEN "<style>svg|rect { fill: red }</style></svg>", "<style>", "namespace");
+    /* a property the reader does not draw, in a rule that matches: refused
+     * naming the sheet's line; in one that matches nothing: harmless */
+    refused(OPEN "<style>\n\n.m { mix-blend-mode: multiply }</style>" R("class=\"m\"") "</svg>",
+            "mix-blend-mode", "(style sheet line 3)");
+    expect(OPEN "<style>.m { mix-blend-mode: multiply }</style>" R("") "</svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* as Illustrator writes a file: a class sheet in CDATA, an XML
+     * comment, enable-background (no effect in any browser) */
+    expect("<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<!-- Generator: x -->\n"
+           "<svg version=\"1.1\" xmlns=\"http://www.w3.org/2000/svg\" x=\"0px\" y=\"0px\" "
+           "viewBox=\"0 0 10 10\" style=\"enable-background:new 0 0 10 10;\" "
+           "xml:space=\"preserve\"><style type=\"text/css\"><![CDATA[\n\t.st0{fill:#FFFFFF;}\n"
+           "]]></style><rect class=\"st0\" width=\"10\" height=\"10\"/></svg>",
+           WHITE " M 0 0 L 100 0 L 100 100 L 0 100 Z");
+    /* @charset and @font-face are read past */
+    expect(OPEN "<style>@charset \"utf-8\"; @font-face { font-family: x; src: url(a.ttf) } "
+                "rect { fill: white }</style>" R("") "</svg>",
+           WHITE " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+}
+
+/* ---- the CSS transform property ---- */
+
+static void test_css_transform(void **state)
+{
+    (void)state;
+    /* CSS Transforms 1: rotate(90deg) of (1, 0) is (0, 1), then
+     * translate(10px, 5px): (10, 6) */
+    expect(OPEN "<path style=\"transform: translate(10px, 5px) rotate(90deg)\" d=\"M1 0\"/>"
+                "</svg>",
+           BLACK " M 10 6 Z");
+    /* lengths in units: translateX(1in) = 96; rotate(0.25turn) */
+    expect(OPEN "<style>.t { transform: translateX(1in) rotate(0.25turn) }</style>"
+                "<path class=\"t\" d=\"M1 0\"/></svg>",
+           BLACK " M 96 1 Z");
+    /* a sheet's transform wins over the attribute */
+    expect(OPEN "<style>path { transform: none }</style>"
+                "<path transform=\"translate(5 5)\" d=\"M1 0\"/></svg>",
+           BLACK " M 1 0 Z");
+    /* transform-origin: rotate(90) about (10, 10) takes (11, 10) to
+     * (10, 11) */
+    expect(OPEN "<path transform=\"rotate(90)\" transform-origin=\"10 10\" d=\"M11 10\"/></svg>",
+           BLACK " M 10 11 Z");
+    expect(OPEN "<path style=\"transform: rotate(90deg); transform-origin: 10px 10px\" "
+                "d=\"M11 10\"/></svg>",
+           BLACK " M 10 11 Z");
+    /* transform-box fill-box: the rect [10, 14] x [10, 12] scaled by 2
+     * about its centre (12, 11) (transform-origin 50% 50%, center):
+     * (10, 10) -> (8, 9), (14, 12) -> (16, 13) */
+    expect(OPEN "<rect x=\"10\" y=\"10\" width=\"4\" height=\"2\" style=\"transform: "
+                "scale(2); transform-box: fill-box; transform-origin: center\"/></svg>",
+           BLACK " M 8 9 L 16 9 L 16 13 L 8 13 Z");
+    expect(OPEN "<rect x=\"10\" y=\"10\" width=\"4\" height=\"2\" style=\"transform: "
+                "scale(2); transform-box: fill-box; transform-origin: 50% 50%\"/></svg>",
+           BLACK " M 8 9 L 16 9 L 16 13 L 8 13 Z");
+    /* fill-box without an origin: its top left corner (10, 10) stays */
+    expect(OPEN "<rect x=\"10\" y=\"10\" width=\"4\" height=\"2\" style=\"transform: "
+                "scale(2); transform-box: fill-box\"/></svg>",
+           BLACK " M 10 10 L 18 10 L 18 14 L 10 14 Z");
+    /* keywords in either order: right top of the view-box (100 x 100) */
+    expect(OPEN "<path transform=\"scale(2)\" transform-origin=\"top right\" d=\"M99 1\"/></svg>",
+           BLACK " M 98 2 Z");
+    refused(OPEN "<path style=\"transform: translate(10, 5)\" d=\"M0 0\"/></svg>", "<path>",
+            "units");
+    refused(OPEN "<path style=\"transform: rotateX(10deg)\" d=\"M0 0\"/></svg>", "<path>",
+            "no 3D");
+    /* the root's transform is refused, as an attribute or a declaration */
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\"><style>svg { transform: scale(2) }"
+            "</style></svg>",
+            "<svg>", "root");
+}
+
+/* ---- path data errors ---- */
+
+static char warned[4096];
+static void keep_warning(const char *msg, void *ctx)
+{
+    (void)ctx;
+    snprintf(warned, sizeof warned, "%s", msg);
+}
+
+static void expect_partial(const char *doc, const char *want, const char *warning)
+{
+    void *octx;
+    aa_warn_fn old = aa_get_warn(&octx);
+    warned[0] = '\0';
+    aa_set_warn(keep_warning, NULL);
+    const char *got = read_doc(doc);
+    aa_set_warn(old, octx);
+    if (strcmp(got, want))
+        fail_msg("%s\n  got  %s\n  want %s", doc, got, want);
+    if (!strstr(warned, warning) || !strstr(warned, "test.svg: line "))
+        fail_msg("%s: warning \"%s\", wanted %s", doc, warned, warning);
+}
+
+static void test_path_errors(void **state)
+{
+    (void)state;
+    /* SVG 2: drawn up to, not including, the command with the first
+     * error */
+    expect_partial(OPEN "\n<path d=\"M 1 1 L 2 2 L 3 x\"/></svg>", BLACK " M 1 1 L 2 2 Z",
+                   "line 2");
+    expect_partial(OPEN "<path d=\"M0 0 L 4 0 A 5 5 0 2 1 10 10\"/></svg>", BLACK " M 0 0 L 4 0 Z",
+                   "large-arc");
+    expect_partial(OPEN "<path d=\"M0 0 L 4 0 a 5 5 0 0\"/></svg>", BLACK " M 0 0 L 4 0 Z",
+                   "ends too early");
+    expect_partial(OPEN "<path d=\"M 1 1 z 3\"/></svg>", BLACK " M 1 1 Z", "after Z");
+    expect_partial(OPEN "<path d=\"M 1 1 L 2 1 B 3\"/></svg>", BLACK " M 1 1 L 2 1 Z",
+                   "unknown path command");
+    /* an implicit repeat is a command of its own */
+    expect_partial(OPEN "<path d=\"M 1 1 2 2 3\"/></svg>", BLACK " M 1 1 L 2 2 Z",
+                   "ends too early");
+    expect_partial(OPEN "<path d=\"L 1 1\"/></svg>", "", "must begin with M");
+    /* a number beyond the reader's range is still refused */
+    refused(OPEN "<path d=\"M 1 1 L 1e10 0\"/></svg>", "<path>", "out of range");
+}
+
+/* ---- invalid attributes ---- */
+
+/* SVG 2, "Presentation attributes": an attribute whose value does not
+ * parse is ignored, the property taking its default (verified with
+ * Chromium, resvg and librsvg: x="zz" draws at 0, a negative width or r
+ * draws nothing, opacity="half" draws opaque, transform="spin(3)" and
+ * transform="translate(10px, 0)" draw untransformed); a warning names it.
+ * What may be valid but is not read here (a unit such as vw, a function
+ * such as calc()) is still refused, and so is an invalid declaration in
+ * CSS, where the cascade would fall to a lower one. */
+static void test_invalid_attributes(void **state)
+{
+    (void)state;
+    expect_partial(OPEN "<rect x=\"zz\" width=\"2\" height=\"1\"/></svg>",
+                   BLACK " M 0 0 L 2 0 L 2 1 L 0 1 Z", "x=\"zz\"");
+    expect_partial(OPEN "<rect width=\"-2\" height=\"1\"/></svg>", "", "negative width");
+    expect_partial(OPEN "<circle r=\"-1\"/></svg>", "", "negative r");
+    /* a negative ry is auto: the other, 1 */
+    expect_partial(OPEN "<ellipse rx=\"1\" ry=\"-2\"/></svg>",
+                   BLACK " M 1 0 A 0 0 to 0 1 A 0 0 to -1 0 A 0 0 to 0 -1 A 0 0 to 1 0 Z",
+                   "ry=\"-2\"");
+    /* rx=-1 is auto, and both auto are square corners */
+    expect_partial(OPEN "<rect width=\"1\" height=\"1\" rx=\"-1\"/></svg>",
+                   BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z", "rx=\"-1\"");
+    expect_partial(OPEN "<g fill-opacity=\"0\"><rect width=\"1\" height=\"1\" "
+                        "fill=\"white\" fill-opacity=\"half\"/></g>" R("fill=\"white\"") "</svg>",
+                   WHITE " M 0 0 L 1 0 L 1 1 L 0 1 Z", "fill-opacity=\"half\"");
+    expect_partial(OPEN "<path transform=\"spin(3)\" d=\"M1 0\"/></svg>", BLACK " M 1 0 Z",
+                   "transform=\"spin(3)\"");
+    expect_partial(OPEN "<path transform=\"translate(10px, 0)\" d=\"M1 0\"/></svg>",
+                   BLACK " M 1 0 Z", "not a transform list");
+    refused(OPEN "<rect width=\"1vw\" height=\"1\"/></svg>", "<rect>", "not a length");
+    refused(OPEN "<rect width=\"calc(1px + 1px)\" height=\"1\"/></svg>", "<rect>",
+            "calc(");
+    refused(OPEN "<rect width=\"1\" height=\"1\" opacity=\"calc(0.5)\"/></svg>", "<rect>",
+            "opacity");
+    refused(OPEN "<rect width=\"1\" height=\"1\" style=\"opacity: half\"/></svg>", "<rect>",
+            "opacity");
+}
+
+/* ---- pictures: box references against closed forms ---- */
+
+static char dir[4096];
+
+static int setup(void **state)
+{
+    (void)state;
+    return support_tmpdir(dir, sizeof dir, "svgstructure");
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    return support_rmtree(dir);
+}
+
+static void reference(const char *name, const char *doc, int w, int h, aa_image *img)
+{
+    char path[4200], spec[4400];
+    snprintf(path, sizeof path, "%s/%s.svg", dir, name);
+    support_write_file(path, doc, strlen(doc));
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    support_pattern_reference(spec, &(support_view){.w = w, .h = h}, img, NULL, NULL);
+}
+
+static double image_sum(const aa_image *img)
+{
+    double s = 0;
+    for (int j = 0; j < img->h; j++)
+        for (int i = 0; i < img->w; i++)
+            s += aa_pixel(img, i, j)[0];
+    return s;
+}
+
+static void test_pictures(void **state)
+{
+    (void)state;
+    aa_image a, b;
+    /* a use of a white rect [1.25, 9.75] x [2.5, 7] moved by (13.5, 17.25)
+     * against the rect written at [14.75, 23.25] x [19.75, 24.25]: the
+     * same picture, pixel by pixel, and its sum the area 8.5 x 4.5 */
+    reference("use",
+              "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"32\" height=\"32\">"
+              "<defs><rect id=\"r\" x=\"1.25\" y=\"2.5\" width=\"8.5\" height=\"4.5\" "
+              "fill=\"white\"/></defs><use href=\"#r\" x=\"13.5\" y=\"17.25\"/></svg>",
+              32, 32, &a);
+    reference("direct",
+              "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"32\" height=\"32\">"
+              "<rect x=\"14.75\" y=\"19.75\" width=\"8.5\" height=\"4.5\" fill=\"white\"/></svg>",
+              32, 32, &b);
+    for (int j = 0; j < 32; j++)
+        for (int i = 0; i < 32; i++)
+            for (int c = 0; c < 3; c++)
+                if (fabs(aa_pixel(&a, i, j)[c] - aa_pixel(&b, i, j)[c]) > 1e-15)
+                    fail_msg("pixel (%d, %d): use %.17g, direct %.17g", i, j,
+                             aa_pixel(&a, i, j)[c], aa_pixel(&b, i, j)[c]);
+    double s = image_sum(&a);
+    print_message("use: sum %.17g, area %.17g, error %.3g\n", s, 8.5 * 4.5, s - 8.5 * 4.5);
+    assert_true(fabs(s - 8.5 * 4.5) < 1e-12);
+    aa_image_free(&a);
+    aa_image_free(&b);
+    /* a symbol of viewBox 0 0 4 3 holding a disk of radius 1.5 at (2,
+     * 1.5), used at 24 x 24: meet scales by min(6, 8) = 6, so the disk's
+     * radius is 9 and its area 81 pi */
+    reference("symbol",
+              "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"32\" height=\"32\">"
+              "<symbol id=\"s\" viewBox=\"0 0 4 3\"><circle cx=\"2\" cy=\"1.5\" r=\"1.5\" "
+              "fill=\"white\"/></symbol><use href=\"#s\" x=\"3.5\" y=\"2.25\" width=\"24\" "
+              "height=\"24\"/></svg>",
+              32, 32, &a);
+    s = image_sum(&a);
+    print_message("symbol: sum %.17g, 81 pi %.17g, error %.3g\n", s, 81 * M_PI, s - 81 * M_PI);
+    assert_true(fabs(s - 81 * M_PI) < 1e-9);
+    aa_image_free(&a);
+    /* 1in x 1cm: 96 x 96/2.54 = 3628.3464566929133 px^2 */
+    reference("units",
+              "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"128\" height=\"64\">"
+              "<rect x=\"0.5cm\" y=\"3pt\" width=\"1in\" height=\"1cm\" fill=\"white\"/></svg>",
+              128, 64, &a);
+    s = image_sum(&a);
+    print_message("1in x 1cm: sum %.17g, area %.17g, error %.3g\n", s, 96 * 96 / 2.54,
+                  s - 96 * 96 / 2.54);
+    assert_true(fabs(s - 96 * 96 / 2.54) < 1e-10);
+    aa_image_free(&a);
+}
+
+SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_use), cmocka_unit_test(test_viewports),
+             cmocka_unit_test(test_units), cmocka_unit_test(test_sheets),
+             cmocka_unit_test(test_css_transform), cmocka_unit_test(test_path_errors),
+             cmocka_unit_test(test_invalid_attributes),
+             cmocka_unit_test(test_pictures))
