@@ -34,7 +34,9 @@ typedef struct local_piece {
     int offset;
     const aa_piece *src;
     long double uc, vc, oscale;
-    double hint; /* the parameter of the last crossing (NaN: none): the next one's start */
+    /* the last crossing (NaN: none), the next one's start: its parameter,
+     * its relative height and dy/dt there */
+    double hint, hint_s, hint_slope;
 } local_piece;
 
 /* The piece p relative to the centre (uc, vc), in extended precision. */

@@ -109,12 +109,17 @@ long double truth_offset_part(const local_piece *q, long double s)
         return p->x0 - q->uc;
     if (!(s < q->y1))
         return p->x1 - q->uc;
-    long double y = q->vc + s, x, yy;
-    long double t = aa__offset_solve_from(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y,
-                                          q->hint);
+    long double y = q->vc + s, x;
+    /* the start: the last crossing's parameter moved by its dt/dy times
+     * the change of height (one Newton step ahead, and none evaluated) */
+    double slope = 0, guess = q->hint + (double)(s - q->hint_s) / q->hint_slope;
+    long double t = aa__offset_root(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y,
+                                    isfinite(guess) ? guess : q->hint, &x, &slope);
     /* q belongs to the calling thread's window (not const there) */
-    ((local_piece *)q)->hint = (double)t;
-    aa__offset_eval(&p->oc, t, &x, &yy, NULL, NULL);
+    local_piece *w = (local_piece *)q;
+    w->hint = (double)t;
+    w->hint_s = (double)s;
+    w->hint_slope = slope;
     return x - q->uc;
 }
 
@@ -403,7 +408,7 @@ void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long dou
     q->conic = p->kind == AA_PIECE_CONIC;
     q->offset = p->kind == AA_PIECE_OFFSET;
     q->src = p;
-    q->uc = uc, q->vc = vc, q->oscale = 0, q->hint = NAN;
+    q->uc = uc, q->vc = vc, q->oscale = 0, q->hint = NAN, q->hint_s = 0, q->hint_slope = NAN;
     if (q->offset) {
         q->x0 = q->ax = q->bx = q->ay = q->by = 0;
         q->ey = q->er = q->ea = q->eb = q->top = q->bot = q->a0 = q->a1 = 0;
