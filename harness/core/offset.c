@@ -157,13 +157,16 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * convergence) or the coordinate is within double's rounding of the target
  * (twice the unit roundoff times the size of its terms: the polynomials'
  * coefficients, the map's, the normal term and the target); the bracket
- * left in *pa, *pb.  A step is also taken where it ends on the bracket's
- * side (the root within the last bit of an end).  Without the second test
- * a root whose rounding exceeds the step tolerance (|y'| small: 1e-15 /
- * 8e-4 = 1e-12 next to a y turn) was bisected down to two adjacent
- * doubles; without the third, a step of 0 from an end started bisection
- * from the middle of the bracket: both twice the evaluations in the
- * reference's inner loop. */
+ * left in *pa, *pb.  A last step that leaves the bracket by a rounding
+ * (a root at an end) ends on that end.  Without the second test a root
+ * whose rounding exceeds the step tolerance (|y'| small: 1e-15 / 8e-4 =
+ * 1e-12 next to a y turn) was bisected down to two adjacent doubles;
+ * without the third, a step of 0 from an end, or past an end at 0, started
+ * bisection from the middle of the bracket (towards 0: a hundred steps):
+ * both twice the evaluations in the reference's inner loop.  For the same
+ * reason a root at the far end b (within rounding) is taken there: where b
+ * was evaluated first, at once, and where it was not (a guess given), when
+ * a step goes past it. */
 #define SOLVE_D_STEP 1e-12
 static double solve_double(const aa_offset_curve *oc, int coord, double a, double b, double fa,
                            double tgt, double guess, double *pa, double *pb)
@@ -174,13 +177,36 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
     double size = fabs(oc->m[coord]) * (fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3])) +
                   fabs(oc->m[2 + coord]) * (fabs(c[4]) + fabs(c[5]) + fabs(c[6]) + fabs(c[7])) +
                   fabs(oc->m[4 + coord]) + fabs(tgt);
+    /* b unseen: the caller's end, its sign taken on trust and not
+     * evaluated (with a guess); a Newton step past it goes to it */
+    int unseen = 0;
     if (a < b ? (guess > a && guess < b) : (guess < a && guess > b)) {
         t = guess; /* a caller's start: the root on a nearby line */
+        unseen = 1;
     } else {
+        /* the root of the quadratic through fa at a and f at b with the
+         * slope df at b (h = t - b: f + df h + k h^2), exact where the
+         * coordinate is quadratic, as next to a turn at either end (a
+         * piece's end, where the chord's root is far off and Newton's
+         * steps only halve the distance); else the chord's */
         eval_d(oc, coord, b, tgt, &f, &df, &dn);
+        if (fabs(f) <= 2 * DBL_EPSILON * (size + dn)) {
+            *pa = a, *pb = b; /* the root at b, within rounding */
+            return b;
+        }
         if ((f < 0) != neg && f != fa) {
-            double r = fa / (fa - f);
-            if (r > 0.01 && r < 0.99)
+            double e = a - b, k = (fa - f - df * e) / (e * e), h = NAN;
+            double disc = df * df - 4 * k * f;
+            if (isfinite(k) && disc >= 0) {
+                /* the root between e and 0, cancellation-free */
+                double q = -0.5 * (df + copysign(sqrt(disc), df));
+                double h1 = q != 0 ? f / q : NAN, h2 = k != 0 ? q / k : NAN;
+                h = (e < 0 ? h1 > e && h1 < 0 : h1 < e && h1 > 0) ? h1 : h2;
+            }
+            double r = h / e; /* its place in the bracket: 0 at b, 1 at a */
+            if (r > 0.001 && r < 0.999)
+                t = b + h;
+            else if ((r = fa / (fa - f)) > 0.01 && r < 0.99)
                 t = a + r * (b - a);
         }
     }
@@ -191,17 +217,20 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
         if ((f < 0) == neg)
             a = t;
         else
-            b = t;
+            b = t, unseen = 0;
         double mid = 0.5 * (a + b);
         if (!(mid != a && mid != b))
             break;
         double next = df != 0 && isfinite(df) ? t - f / df : mid;
-        int inside = a < b ? (next >= a && next <= b) : (next <= a && next >= b);
-        if (inside && fabs(next - t) <= SOLVE_D_STEP * fmax(fabs(t), 1.0)) {
-            t = next;
+        if (fabs(next - t) <= SOLVE_D_STEP * fmax(fabs(t), 1.0)) {
+            /* a root at an end comes out a rounding beyond it */
+            t = fmin(fmax(next, fmin(a, b)), fmax(a, b));
             break;
         }
-        if (!inside || next == a || next == b || fabs(next - t) > 0.5 * prev)
+        int inside = a < b ? (next > a && next < b) : (next < a && next > b);
+        if (!inside && unseen && (a < b ? next >= b : next <= b))
+            next = b, unseen = 0;
+        else if (!inside || fabs(next - t) > 0.5 * prev)
             next = mid;
         prev = fabs(next - t);
         t = next;
