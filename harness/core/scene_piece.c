@@ -840,8 +840,7 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
         break;
     }
     if (b - a <= 1e-6 * scale) {
-        double fa = aa_piece_x_at(c->p, a) - aa_piece_x_at(c->q, a);
-        double fb = aa_piece_x_at(c->p, b) - aa_piece_x_at(c->q, b);
+        double fa = xp[0] - xq[0], fb = xp[1] - xq[1];
         if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
             record_meet(c, polish_meet(c->p, c->q, a, b, fa), scale);
             return;
