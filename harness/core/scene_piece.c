@@ -586,7 +586,7 @@ static double x_slope(const aa_piece *p, double y, double *slope)
         double t = offset_t_at(p, y), x, yy, dx, dy;
         aa_offset_point(&p->oc, t, &x, &yy, &dx, &dy);
         *slope = dx / dy;
-        return offset_x(p, t);
+        return t == p->ot0 ? p->x0 : t == p->ot1 ? p->x1 : x; /* offset_x(p, t) */
     }
     double t = aa_piece_t_at(p, y);
     double dx = p->bx + t * (2.0 * p->ax + 3.0 * t * p->dx);
