@@ -152,13 +152,14 @@ static int offset_span(const local_piece *q, double lo, double hi, long double *
  * double precision, as its crossings are), and its x extent there is that
  * at those ends and at the x turns between (closed form).  Its crossings
  * on those rows are x at parameters inside.  An extent that reaches the
- * window's side within 4 units of double's rounding of R still counts (a
- * row's ends are often where the piece crosses the side, a breakpoint):
- * a crossing taken for outside is then within that of the side, where
- * the pixel's bound already allows each crossing 8 such units (truth.c,
- * integrate_pixel: the crossing's rounding to double), and the extent's
- * own rounding is that of the crossings, in long double, which the bound
- * allows too. */
+ * window's side within 4 DBL_EPSILON still counts (a row's ends are often
+ * where the piece crosses the side, a breakpoint): a crossing taken for
+ * outside is then within that of the side, and over the rows (at most 2R
+ * high) moves the pixel by at most 8 DBL_EPSILON R times the filter's
+ * peak, within the 8 DBL_EPSILON max(R, 1) times the peak its bound
+ * already allows each piece (truth.c, integrate_pixel: a crossing's
+ * rounding to double); the extent's own rounding is that of the
+ * crossings, in long double, which the bound allows too. */
 /* An offset piece's parameter and x (relative) at relative height s in its
  * rows, for truth_offset_side: its ends as they are, else solved for from
  * its last crossing, the last height asked kept (the next rows start
@@ -195,7 +196,7 @@ int truth_offset_side(local_piece *q, double lo, double hi, double R)
         offset_local(q, ts[k], &x, &y);
         xmin = fminl(xmin, x), xmax = fmaxl(xmax, x);
     }
-    long double margin = 4 * DBL_EPSILON * fmax(R, 1.0);
+    long double margin = 4 * DBL_EPSILON;
     if (xmax <= -R + margin)
         return -1;
     if (xmin >= R - margin)
