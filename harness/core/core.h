@@ -718,6 +718,13 @@ double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, doubl
 /* The same started from guess (inside the bracket; NaN: none). */
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
                                   long double tb, long double fa, long double target, double guess);
+/* aa__offset_solve_from that also gives the other coordinate at the root
+ * (*other, to long double precision) and coordinate coord's derivative
+ * there (*slope: a guess's step to a nearby target); either NULL: not
+ * wanted. */
+long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta, long double tb,
+                            long double fa, long double target, double guess, long double *other,
+                            double *slope);
 
 #ifdef __cplusplus
 }

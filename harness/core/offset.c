@@ -179,36 +179,54 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
         *dy = m[1] * qx + m[3] * qy;
 }
 
-/* aa__offset_eval in double: the solver's first steps. */
-static void eval_d(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
-                   double *dy)
+/* Coordinate coord of oc at t less tgt (*f), its derivative (*df) and the
+ * size of its normal term (*dn: |d w / L| or |w L^2 / c|, below), in
+ * double: the solver's first steps.  Only the wanted row of the map is
+ * applied, and each form takes one division: with r = (m[coord],
+ * m[2 + coord]) and w = r1 B'x - r0 B'y (the row applied to L N),
+ *  - the offset: r.B + m[4 + coord] + d w / L, slope (r.B') (1 - d c / L^3);
+ *  - the evolute (N / k = N L^3 / c = L N (L^2 / c), no square root):
+ *    r.B + m[4 + coord] + w L^2 / c, slope w (1/k)' / L =
+ *    w (3 (B'.B'') c - L^2 c') / c^2. */
+static void eval_d(const aa_offset_curve *oc, int coord, double t, double tgt, double *f,
+                   double *df, double *dn)
 {
-    const double *m = oc->m;
-    double B[2], U[2], V[2], W[2];
-    base_eval_d(oc, t, B, U, V, W);
-    double ux = U[0], uy = U[1], vx = V[0], vy = V[1];
-    double L = sqrt(ux * ux + uy * uy), c = ux * vy - uy * vx, px, py, qx, qy;
     double te, q[4];
-    if (aa__offset_stop(oc, t, &te, q)) {
-        long double X, Y, DX, DY; /* near an end where B' = 0: factored */
+    if (oc->base != AA_OFFSET_CUBIC || aa__offset_stop(oc, t, &te, q)) {
+        /* an ellipse's offset, or next to a cubic's end where B' = 0 (the
+         * factored form, in long double): the point, its derivative and
+         * the base point, the row applied to each */
+        long double X, Y, DX, DY;
         aa__offset_eval(oc, t, &X, &Y, &DX, &DY);
-        *x = (double)X, *y = (double)Y, *dx = (double)DX, *dy = (double)DY;
+        double B[2], U[2], V[2], W[2];
+        base_eval_d(oc, t, B, U, V, W);
+        double at = (double)(coord ? Y : X);
+        double bm = oc->m[coord] * B[0] + oc->m[2 + coord] * B[1] + oc->m[4 + coord];
+        *f = at - tgt;
+        *df = (double)(coord ? DY : DX);
+        *dn = fabs(at - bm);
         return;
     }
+    const double *b = oc->b;
+    double r0 = oc->m[coord], r1 = oc->m[2 + coord];
+    double bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+    double by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+    double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+    double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+    double c = ux * vy - uy * vx, L2 = ux * ux + uy * uy, w = r1 * ux - r0 * uy;
+    double base = (r0 * bx + r1 * by + oc->m[4 + coord]) - tgt;
     if (!oc->evolute) {
-        double f = 1 - oc->d * c / (L * L * L);
-        px = B[0] - oc->d * uy / L, py = B[1] + oc->d * ux / L;
-        qx = ux * f, qy = uy * f;
+        double il = 1 / sqrt(L2);
+        *dn = oc->d * w * il;
+        *f = base + *dn;
+        *df = (r0 * ux + r1 * uy) * (1 - oc->d * c * (il * il * il));
     } else {
-        double cp = ux * W[1] - uy * W[0], dot = ux * vx + uy * vy, L2 = L * L;
-        double r = L2 * L / c, rp = L * (3 * dot * c - L2 * cp) / (c * c);
-        px = B[0] - r * uy / L, py = B[1] + r * ux / L;
-        qx = -rp * uy / L, qy = rp * ux / L;
+        double ic = 1 / c, cp = ux * 6 * b[7] - uy * 6 * b[3], dot = ux * vx + uy * vy;
+        *dn = w * L2 * ic;
+        *f = base + *dn;
+        *df = w * (3 * dot * c - L2 * cp) * (ic * ic);
     }
-    *x = m[0] * px + m[2] * py + m[4];
-    *y = m[1] * px + m[3] * py + m[5];
-    *dx = m[0] * qx + m[2] * qy;
-    *dy = m[1] * qx + m[3] * qy;
+    *dn = fabs(*dn);
 }
 
 void aa_offset_point(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
@@ -295,41 +313,87 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
     return aa__offset_solve_from(oc, coord, ta, tb, fa, target, NAN);
 }
 
-/* The double phase of aa__offset_solve_from: the root to about 1e-15,
- * the bracket left in *pa, *pb. */
+/* The double phase of the solver: Newton's method from the guess or where
+ * the chord meets the target, kept inside the bracket, bisection where a
+ * step leaves it or shrinks it by less than half, until a step is within
+ * SOLVE_D_STEP (it leaves an error of the order of its square: quadratic
+ * convergence) or the coordinate is within double's rounding of the target
+ * (twice the unit roundoff times the size of its terms: the polynomials'
+ * coefficients, the map's, the normal term and the target); the bracket
+ * left in *pa, *pb.  A last step that leaves the bracket by a rounding
+ * (a root at an end) ends on that end.  Without the second test a root
+ * whose rounding exceeds the step tolerance (|y'| small: 1e-15 / 8e-4 =
+ * 1e-12 next to a y turn) was bisected down to two adjacent doubles;
+ * without the third, a step of 0 from an end, or past an end at 0, started
+ * bisection from the middle of the bracket (towards 0: a hundred steps):
+ * both twice the evaluations in the reference's inner loop.  For the same
+ * reason a root at the far end b (within rounding) is taken there: where b
+ * was evaluated first, at once, and where it was not (a guess given), when
+ * a step goes past it. */
+#define SOLVE_D_STEP 1e-12
 static double solve_double(const aa_offset_curve *oc, int coord, double a, double b, double fa,
                            double tgt, double guess, double *pa, double *pb)
 {
+    const double *c = oc->b;
     int neg = fa < 0;
-    double t = 0.5 * (a + b), prev = fabs(b - a), x, y, dx, dy;
-    eval_d(oc, b, &x, &y, &dx, &dy);
-    double fb = (coord ? y : x) - tgt;
+    double t = 0.5 * (a + b), prev = fabs(b - a), f, df, dn;
+    double size = fabs(oc->m[coord]) * (fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3])) +
+                  fabs(oc->m[2 + coord]) * (fabs(c[4]) + fabs(c[5]) + fabs(c[6]) + fabs(c[7])) +
+                  fabs(oc->m[4 + coord]) + fabs(tgt);
+    /* b unseen: the caller's end, its sign taken on trust and not
+     * evaluated (with a guess); a Newton step past it goes to it */
+    int unseen = 0;
     if (a < b ? (guess > a && guess < b) : (guess < a && guess > b)) {
-        t = guess; /* a caller's start: the last root on a nearby line */
-    } else if ((fb < 0) != neg && fb != fa) {
-        double r = fa / (fa - fb);
-        if (r > 0.01 && r < 0.99)
-            t = a + r * (b - a);
+        t = guess; /* a caller's start: the root on a nearby line */
+        unseen = 1;
+    } else {
+        /* the root of the quadratic through fa at a and f at b with the
+         * slope df at b (h = t - b: f + df h + k h^2), exact where the
+         * coordinate is quadratic, as next to a turn at either end (a
+         * piece's end, where the chord's root is far off and Newton's
+         * steps only halve the distance); else the chord's */
+        eval_d(oc, coord, b, tgt, &f, &df, &dn);
+        if (fabs(f) <= 2 * DBL_EPSILON * (size + dn)) {
+            *pa = a, *pb = b; /* the root at b, within rounding */
+            return b;
+        }
+        if ((f < 0) != neg && f != fa) {
+            double e = a - b, k = (fa - f - df * e) / (e * e), h = NAN;
+            double disc = df * df - 4 * k * f;
+            if (isfinite(k) && disc >= 0) {
+                /* the root between e and 0, cancellation-free */
+                double q = -0.5 * (df + copysign(sqrt(disc), df));
+                double h1 = q != 0 ? f / q : NAN, h2 = k != 0 ? q / k : NAN;
+                h = (e < 0 ? h1 > e && h1 < 0 : h1 < e && h1 > 0) ? h1 : h2;
+            }
+            double r = h / e; /* its place in the bracket: 0 at b, 1 at a */
+            if (r > 0.001 && r < 0.999)
+                t = b + h;
+            else if ((r = fa / (fa - f)) > 0.01 && r < 0.99)
+                t = a + r * (b - a);
+        }
     }
     for (int it = 0; it < 100; it++) {
-        eval_d(oc, t, &x, &y, &dx, &dy);
-        double f = (coord ? y : x) - tgt, df = coord ? dy : dx;
-        if (f == 0)
+        eval_d(oc, coord, t, tgt, &f, &df, &dn);
+        if (fabs(f) <= 2 * DBL_EPSILON * (size + dn))
             break;
         if ((f < 0) == neg)
             a = t;
         else
-            b = t;
+            b = t, unseen = 0;
         double mid = 0.5 * (a + b);
         if (!(mid != a && mid != b))
             break;
         double next = df != 0 && isfinite(df) ? t - f / df : mid;
-        int inside = a < b ? (next > a && next < b) : (next < a && next > b);
-        if (inside && fabs(next - t) <= 1e-15 * fabs(t) + 1e-300) {
-            t = next;
+        if (fabs(next - t) <= SOLVE_D_STEP * fmax(fabs(t), 1.0)) {
+            /* a root at an end comes out a rounding beyond it */
+            t = fmin(fmax(next, fmin(a, b)), fmax(a, b));
             break;
         }
-        if (!inside || fabs(next - t) > 0.5 * prev)
+        int inside = a < b ? (next > a && next < b) : (next < a && next > b);
+        if (!inside && unseen && (a < b ? next >= b : next <= b))
+            next = b, unseen = 0;
+        else if (!inside || fabs(next - t) > 0.5 * prev)
             next = mid;
         prev = fabs(next - t);
         t = next;
@@ -350,41 +414,69 @@ double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, doubl
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
                                   long double tb, long double fa, long double target, double guess)
 {
+    return aa__offset_root(oc, coord, ta, tb, fa, target, guess, NULL, NULL);
+}
+
+long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta, long double tb,
+                            long double fa, long double target, double guess, long double *other,
+                            double *slope)
+{
     /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
-     * (either may be 0).  Newton's method in double from the guess or
-     * where the chord meets the target, kept inside the bracket, bisection
-     * where a step leaves it or shrinks it too slowly, until a step is
-     * within 1e-15; then Newton in long double, still bracketed: a step
-     * within 1e-13 is the last (the error after it is of the order of its
-     * square), else on until the bracket is two adjacent numbers. */
-    if (fa == 0)
-        return ta;
+     * (either may be 0).  Newton's method in double (solve_double), then
+     * in long double, still bracketed: a step within 1e-13 is the last
+     * (the error after it is of the order of its square), else on until
+     * the bracket is two adjacent numbers.  The other coordinate at the
+     * root is the last evaluation's moved by its derivative times that
+     * last step h: off by half its second derivative times h^2, the order
+     * of the error the root itself is left with (coordinate coord's second
+     * derivative over twice its first, times h^2, moves the other
+     * coordinate by its first derivative times that), and at |h| <= 1e-13
+     * (t is in [0, 1]) below long double's rounding of it. */
+    long double X, Y, DX = 0, DY = 0, lt = ta;
     int neg = fa < 0;
+    if (fa == 0)
+        goto at_lt;
     double a, b;
-    double t = solve_double(oc, coord, (double)ta, (double)tb, (double)fa, (double)target, guess,
-                            &a, &b);
-    /* long double: the bracket is [a, b] (as double) or what is left */
-    long double la = a, lb = b, lt = t;
+    lt = solve_double(oc, coord, (double)ta, (double)tb, (double)fa, (double)target, guess, &a,
+                      &b);
+    /* long double: the bracket is the caller's, [ta, tb], not what the
+     * double phase left: the signs that shrank it are double's, wrong
+     * within its rounding of the root, where long double's Newton steps
+     * then left it and were bisected, one bit an evaluation */
+    long double la = ta, lb = tb;
     for (int it = 0; it < 8; it++) {
-        long double X, Y, DX, DY;
         aa__offset_eval(oc, lt, &X, &Y, &DX, &DY);
         long double f = (coord ? Y : X) - target, df = coord ? DY : DX;
         if (f == 0)
-            return lt;
+            goto done;
         if ((f < 0) == neg)
             la = lt;
         else
             lb = lt;
         long double mid = 0.5L * (la + lb);
         if (!(mid != la && mid != lb))
-            break;
+            goto done;
         long double next = df != 0 && isfinite(df) ? lt - f / df : mid;
         int inside = la < lb ? (next >= la && next <= lb) : (next <= la && next >= lb);
-        if (!inside)
+        if (!inside) {
             next = mid;
-        else if (fabsl(next - lt) <= 1e-13L * fabsl(lt) + 1e-30L)
+        } else if (fabsl(next - lt) <= 1e-13L * fabsl(lt) + 1e-30L) {
+            if (other)
+                *other = (coord ? X + DX * (next - lt) : Y + DY * (next - lt));
+            if (slope)
+                *slope = (double)df;
             return next;
+        }
         lt = next;
     }
+at_lt: /* lt not evaluated yet */
+    if (!other && !slope)
+        return lt;
+    aa__offset_eval(oc, lt, &X, &Y, &DX, &DY);
+done: /* lt evaluated */
+    if (other)
+        *other = coord ? X : Y;
+    if (slope)
+        *slope = (double)(coord ? DY : DX);
     return lt;
 }

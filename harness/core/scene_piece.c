@@ -230,11 +230,12 @@ static double offset_x(const aa_piece *p, double t)
     return x;
 }
 
-/* x extent between parameters ta and tb of p: the ends and the x turns
- * between (closed form). */
-static void offset_range(const aa_piece *p, double ta, double tb, double *xmin, double *xmax)
+/* x extent between parameters ta and tb of p, where x is xa and xb: the
+ * ends and the x turns between (closed form). */
+static void offset_range_x(const aa_piece *p, double ta, double tb, double xa, double xb,
+                           double *xmin, double *xmax)
 {
-    double lo = fmin(ta, tb), hi = fmax(ta, tb), ts[2], xa = offset_x(p, ta), xb = offset_x(p, tb);
+    double lo = fmin(ta, tb), hi = fmax(ta, tb), ts[2];
     *xmin = fmin(xa, xb);
     *xmax = fmax(xa, xb);
     int n = aa__offset_turns(&p->oc, 0, lo, hi, ts);
@@ -243,6 +244,11 @@ static void offset_range(const aa_piece *p, double ta, double tb, double *xmin, 
         *xmin = fmin(*xmin, x);
         *xmax = fmax(*xmax, x);
     }
+}
+
+static void offset_range(const aa_piece *p, double ta, double tb, double *xmin, double *xmax)
+{
+    offset_range_x(p, ta, tb, offset_x(p, ta), offset_x(p, tb), xmin, xmax);
 }
 
 /* The heights where p meets the vertical line x: on each part between its
@@ -580,7 +586,7 @@ static double x_slope(const aa_piece *p, double y, double *slope)
         double t = offset_t_at(p, y), x, yy, dx, dy;
         aa_offset_point(&p->oc, t, &x, &yy, &dx, &dy);
         *slope = dx / dy;
-        return offset_x(p, t);
+        return t == p->ot0 ? p->x0 : t == p->ot1 ? p->x1 : x; /* offset_x(p, t) */
     }
     double t = aa_piece_t_at(p, y);
     double dx = p->bx + t * (2.0 * p->ax + 3.0 * t * p->dx);
@@ -669,11 +675,18 @@ static double param_within(const aa_piece *p, double y, double a, const double t
     return aa__offset_solve_d(&p->oc, 1, t[0], t[1], a - y, y);
 }
 
-static void range_at(const aa_piece *p, double a, double b, double ta, double tb, double *lo,
-                     double *hi)
+/* x of p at height y, its parameter there t (offset pieces): what
+ * slopes_say and range_at take at an interval's ends. */
+static double end_x(const aa_piece *p, double y, double t)
+{
+    return p->kind == AA_PIECE_OFFSET ? offset_x(p, t) : aa_piece_x_at(p, y);
+}
+
+static void range_at(const aa_piece *p, double a, double b, const double t[2], const double x[2],
+                     double *lo, double *hi)
 {
     if (p->kind == AA_PIECE_OFFSET)
-        offset_range(p, ta, tb, lo, hi);
+        offset_range_x(p, t[0], t[1], x[0], x[1], lo, hi);
     else
         aa_piece_xrange(p, a, b, lo, hi);
 }
@@ -788,17 +801,12 @@ static int slope_range(const aa_piece *p, double a, double b, const double t[2],
  * piece turning horizontal) or nothing is proven. */
 enum { UNKNOWN, APART, ONE, AT_A, AT_B };
 static int slopes_say(const aa_piece *p, const aa_piece *q, double a, double b,
-                      const double tp[2], const double tq[2], double tol, double res, double *fa)
+                      const double tp[2], const double tq[2], const double xp[2],
+                      const double xq[2], double tol, double res, double *fa)
 {
     double plo, phi, qlo, qhi;
     if (!slope_range(p, a, b, tp, &plo, &phi) || !slope_range(q, a, b, tq, &qlo, &qhi))
         return UNKNOWN;
-    double xp[2], xq[2];
-    for (int k = 0; k < 2; k++) {
-        double y = k ? b : a;
-        xp[k] = p->kind == AA_PIECE_OFFSET ? offset_x(p, tp[k]) : aa_piece_x_at(p, y);
-        xq[k] = q->kind == AA_PIECE_OFFSET ? offset_x(q, tq[k]) : aa_piece_x_at(q, y);
-    }
     double da = xp[0] - xq[0], db = xp[1] - xq[1], slo = plo - qhi, shi = phi - qlo;
     *fa = da;
     if (slo > 0.0 || shi < 0.0) {
@@ -824,18 +832,19 @@ static int slopes_say(const aa_piece *p, const aa_piece *q, double a, double b,
 }
 
 static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2],
-                             const double tq[2], int depth)
+                             const double tq[2], const double xp[2], const double xq[2],
+                             int depth)
 {
     double pa, pb, qa, qb;
     if (c->n >= c->max || --c->budget < 0)
         return;
-    range_at(c->p, a, b, tp[0], tp[1], &pa, &pb);
-    range_at(c->q, a, b, tq[0], tq[1], &qa, &qb);
+    range_at(c->p, a, b, tp, xp, &pa, &pb);
+    range_at(c->q, a, b, tq, xq, &qa, &qb);
     double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
     if (pb < qa - tol || qb < pa - tol)
         return;
     double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m)), da;
-    switch (slopes_say(c->p, c->q, a, b, tp, tq, tol, 1e-12 * scale, &da)) {
+    switch (slopes_say(c->p, c->q, a, b, tp, tq, xp, xq, tol, 1e-12 * scale, &da)) {
     case APART:
         return;
     case ONE:
@@ -853,8 +862,7 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
         break;
     }
     if (b - a <= 1e-6 * scale) {
-        double fa = aa_piece_x_at(c->p, a) - aa_piece_x_at(c->q, a);
-        double fb = aa_piece_x_at(c->p, b) - aa_piece_x_at(c->q, b);
+        double fa = xp[0] - xq[0], fb = xp[1] - xq[1];
         if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
             record_meet(c, polish_meet(c->p, c->q, a, b, fa), scale);
             return;
@@ -867,10 +875,13 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
         return;
     }
     double pm = param_within(c->p, m, a, tp), qm = param_within(c->q, m, a, tq);
+    double xpm = end_x(c->p, m, pm), xqm = end_x(c->q, m, qm);
     const double lp[2] = {tp[0], pm}, rp[2] = {pm, tp[1]};
     const double lq[2] = {tq[0], qm}, rq[2] = {qm, tq[1]};
-    subdivide_offset(c, a, m, lp, lq, depth + 1);
-    subdivide_offset(c, m, b, rp, rq, depth + 1);
+    const double lxp[2] = {xp[0], xpm}, rxp[2] = {xpm, xp[1]};
+    const double lxq[2] = {xq[0], xqm}, rxq[2] = {xqm, xq[1]};
+    subdivide_offset(c, a, m, lp, lq, lxp, lxq, depth + 1);
+    subdivide_offset(c, m, b, rp, rq, rxp, rxq, depth + 1);
 }
 
 /* 1 if p and q are the same curve over the same heights (a path tracing an
@@ -928,16 +939,22 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
         return 0; /* they meet everywhere: no meeting isolates them */
     meet_ctx c = {p, q, ys, 0, max, 4096, lo, hi, 0, 0};
     /* pieces of one outline meet end to end at its vertices */
-    c.lo_shared = (lo == p->y0 || lo == p->y1) && (lo == q->y0 || lo == q->y1) &&
-                  aa_piece_x_at(p, lo) == aa_piece_x_at(q, lo);
-    c.hi_shared = (hi == p->y0 || hi == p->y1) && (hi == q->y0 || hi == q->y1) &&
-                  aa_piece_x_at(p, hi) == aa_piece_x_at(q, hi);
+    int lo_ends = (lo == p->y0 || lo == p->y1) && (lo == q->y0 || lo == q->y1);
+    int hi_ends = (hi == p->y0 || hi == p->y1) && (hi == q->y0 || hi == q->y1);
     if (p->kind == AA_PIECE_OFFSET || q->kind == AA_PIECE_OFFSET) {
+        /* the ends' parameters and x, found once (aa_piece_x_at of an
+         * offset piece is offset_x at offset_t_at, param_at's parameter) */
         const double tp[2] = {param_at(p, lo), param_at(p, hi)};
         const double tq[2] = {param_at(q, lo), param_at(q, hi)};
-        subdivide_offset(&c, lo, hi, tp, tq, 0);
+        const double xp[2] = {end_x(p, lo, tp[0]), end_x(p, hi, tp[1])};
+        const double xq[2] = {end_x(q, lo, tq[0]), end_x(q, hi, tq[1])};
+        c.lo_shared = lo_ends && xp[0] == xq[0];
+        c.hi_shared = hi_ends && xp[1] == xq[1];
+        subdivide_offset(&c, lo, hi, tp, tq, xp, xq, 0);
         return c.n;
     }
+    c.lo_shared = lo_ends && aa_piece_x_at(p, lo) == aa_piece_x_at(q, lo);
+    c.hi_shared = hi_ends && aa_piece_x_at(p, hi) == aa_piece_x_at(q, hi);
     if (p->kind == AA_PIECE_LINE && q->kind == AA_PIECE_CONIC)
         return line_conic(p, q, lo, hi, ys, max);
     if (p->kind == AA_PIECE_LINE && q->kind == AA_PIECE_CUBIC) {
@@ -978,7 +995,9 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
      * x always overlap: the slopes' test of offset pairs parts them */
     if (c.lo_shared || c.hi_shared) {
         const double t0[2] = {0.0, 0.0};
-        subdivide_offset(&c, lo, hi, t0, t0, 0);
+        const double xp[2] = {aa_piece_x_at(p, lo), aa_piece_x_at(p, hi)};
+        const double xq[2] = {aa_piece_x_at(q, lo), aa_piece_x_at(q, hi)};
+        subdivide_offset(&c, lo, hi, t0, t0, xp, xq, 0);
     } else if (cubic)
         subdivide_cubic(&c, lo, hi, 0);
     else

@@ -34,7 +34,14 @@ typedef struct local_piece {
     int offset;
     const aa_piece *src;
     long double uc, vc, oscale;
-    double hint; /* the parameter of the last crossing (NaN: none): the next one's start */
+    /* the last crossing (NaN: none), the next one's start: its parameter,
+     * its relative height and dy/dt there */
+    double hint, hint_s, hint_slope;
+    /* on the rows being integrated (truth.c, integrate_intervals): -1 if
+     * wholly left of the window, 1 if wholly right (no crossing solved
+     * for), 0 if not known so */
+    int side;
+    long double end_s, end_t, end_x; /* the last row end it was solved at (NaN: none) */
 } local_piece;
 
 /* The piece p relative to the centre (uc, vc), in extended precision. */
@@ -53,6 +60,10 @@ static inline long double truth_conic_part(const local_piece *q, long double s)
     long double c = (q->ey - s) / q->er, r = lo * hi;
     return q->ea * c + q->eb * sqrtl(r > 0 ? r : 0);
 }
+/* Where offset piece q lies on the rows [lo, hi] (relative) against the
+ * window [-R, R] along x: -1 if wholly left of -R, 1 if wholly right of R,
+ * by a margin above the rounding of its crossings; else 0. */
+int truth_offset_side(local_piece *q, double lo, double hi, double R);
 /* The crossing of q with the line at relative height s, less its x0
  * (inline: the integrand's inner loop). */
 long double truth_offset_part(const local_piece *q, long double s);

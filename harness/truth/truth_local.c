@@ -11,6 +11,7 @@
  */
 #include "truth_internal.h"
 
+#include <float.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_poly.h>
 #include <math.h>
@@ -109,12 +110,17 @@ long double truth_offset_part(const local_piece *q, long double s)
         return p->x0 - q->uc;
     if (!(s < q->y1))
         return p->x1 - q->uc;
-    long double y = q->vc + s, x, yy;
-    long double t = aa__offset_solve_from(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y,
-                                          q->hint);
+    long double y = q->vc + s, x;
+    /* the start: the last crossing's parameter moved by its dt/dy times
+     * the change of height (one Newton step ahead, and none evaluated) */
+    double slope = 0, guess = q->hint + (double)(s - q->hint_s) / q->hint_slope;
+    long double t = aa__offset_root(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y,
+                                    isfinite(guess) ? guess : q->hint, &x, &slope);
     /* q belongs to the calling thread's window (not const there) */
-    ((local_piece *)q)->hint = (double)t;
-    aa__offset_eval(&p->oc, t, &x, &yy, NULL, NULL);
+    local_piece *w = (local_piece *)q;
+    w->hint = (double)t;
+    w->hint_s = (double)s;
+    w->hint_slope = slope;
     return x - q->uc;
 }
 
@@ -139,6 +145,63 @@ static int offset_span(const local_piece *q, double lo, double hi, long double *
     *tb = b >= q->y1 ? p->ot1
                      : aa__offset_solve(&p->oc, 1, p->ot0, p->ot1, p->y0 - (q->vc + b), q->vc + b);
     return 1;
+}
+
+/* truth_offset_side: y is monotone along the piece, so its part in the
+ * rows is the parameters between those at lo and hi (solved for to long
+ * double precision, as its crossings are), and its x extent there is that
+ * at those ends and at the x turns between (closed form).  Its crossings
+ * on those rows are x at parameters inside.  An extent that reaches the
+ * window's side within 4 DBL_EPSILON still counts (a row's ends are often
+ * where the piece crosses the side, a breakpoint): a crossing taken for
+ * outside is then within that of the side, and over the rows (at most 2R
+ * high) moves the pixel by at most 8 DBL_EPSILON R times the filter's
+ * peak, within the 8 DBL_EPSILON max(R, 1) times the peak its bound
+ * already allows each piece (truth.c, integrate_pixel: a crossing's
+ * rounding to double); the extent's own rounding is that of the
+ * crossings, in long double, which the bound allows too. */
+/* An offset piece's parameter and x (relative) at relative height s in its
+ * rows, for truth_offset_side: its ends as they are, else solved for from
+ * its last crossing, the last height asked kept (the next rows start
+ * there). */
+static void offset_end(local_piece *q, long double s, long double *t, long double *x)
+{
+    const aa_piece *p = q->src;
+    if (!(s > q->y0)) {
+        *t = p->ot0, *x = p->x0 - q->uc;
+    } else if (!(s < q->y1)) {
+        *t = p->ot1, *x = p->x1 - q->uc;
+    } else if (s == q->end_s) {
+        *t = q->end_t, *x = q->end_x;
+    } else {
+        long double y = q->vc + s;
+        *t = aa__offset_root(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y, q->hint, x,
+                             NULL);
+        *x -= q->uc;
+        q->end_s = s, q->end_t = *t, q->end_x = *x;
+    }
+}
+
+int truth_offset_side(local_piece *q, double lo, double hi, double R)
+{
+    long double a = fmaxl(lo, q->y0), b = fminl(hi, q->y1), ta, tb, xa, xb, x, y;
+    if (!(a < b))
+        return 0;
+    offset_end(q, a, &ta, &xa);
+    offset_end(q, b, &tb, &xb);
+    long double xmin = fminl(xa, xb), xmax = fmaxl(xa, xb);
+    double ts[2];
+    int n = aa__offset_turns(&q->src->oc, 0, (double)fminl(ta, tb), (double)fmaxl(ta, tb), ts);
+    for (int k = 0; k < n; k++) {
+        offset_local(q, ts[k], &x, &y);
+        xmin = fminl(xmin, x), xmax = fmaxl(xmax, x);
+    }
+    long double margin = 4 * DBL_EPSILON;
+    if (xmax <= -R + margin)
+        return -1;
+    if (xmin >= R - margin)
+        return 1;
+    return 0;
 }
 
 #define OFFSET_SAMPLES 64
@@ -403,7 +466,8 @@ void truth_set_local(local_piece *q, const aa_piece *p, long double uc, long dou
     q->conic = p->kind == AA_PIECE_CONIC;
     q->offset = p->kind == AA_PIECE_OFFSET;
     q->src = p;
-    q->uc = uc, q->vc = vc, q->oscale = 0, q->hint = NAN;
+    q->uc = uc, q->vc = vc, q->oscale = 0, q->hint = NAN, q->hint_s = 0, q->hint_slope = NAN, q->side = 0;
+    q->end_s = NAN;
     if (q->offset) {
         q->x0 = q->ax = q->bx = q->ay = q->by = 0;
         q->ey = q->er = q->ea = q->eb = q->top = q->bot = q->a0 = q->a1 = 0;
