@@ -1,8 +1,10 @@
 /*
  * test_paint_renderers.c: translucent paint, paint order, currentColor,
  * visibility, CSS colours, strokes (joins, caps, a Bezier arc's exact
- * offsets, dashes, ellipses, a cusp) and clip paths as browsers draw them: the exact box
- * reference of the pattern svg against headless Chromium and resvg (and
+ * offsets, dashes, ellipses, a cusp), clip paths, and <use>, <symbol>,
+ * nested <svg>, CSS lengths, style sheets and the cascade, the CSS
+ * transform property and path data with an error, as browsers draw them:
+ * the exact box reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
  * The scene is one document of small cells, each one feature (the table
@@ -44,7 +46,7 @@
 
 #define CELL 40
 #define COLS 4
-#define ROWS 9
+#define ROWS 13
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
@@ -428,6 +430,134 @@ static const cell cells[] = {
      "stroke-width=\"8\" clip-path=\"url(#k10)\"/>",
      {{10, 20, {1, 1, 1}}, {30, 20, {0, 0, 0}}},
      2, ""},
+    /* Structure, units, style sheets and the CSS transform property
+     * (SVG 2, CSS Values 4, CSS Cascade 4, CSS Transforms 1). */
+    /* a rect without a fill used twice: it inherits each use's fill;
+     * [4, 18]^2 white, [20, 34]^2 red */
+    {"use inherits",
+     "<defs><rect id=\"u1\" width=\"14\" height=\"14\"/></defs>"
+     "<use href=\"#u1\" x=\"4\" y=\"4\" fill=\"white\"/><use href=\"#u1\" x=\"20\" y=\"20\" "
+     "fill=\"red\"/>",
+     {{10, 10, {1, 1, 1}}, {27, 27, {1, 0, 0}}, {28, 10, {0, 0, 0}}},
+     3, ""},
+    /* xlink:href under the use's transform, then its x and y: scale(2) of
+     * [2, 16]^2 is [4, 32]^2 */
+    {"use transform",
+     "<use xlink:href=\"#u1\" transform=\"scale(2)\" x=\"2\" y=\"2\" fill=\"lime\"/>",
+     {{20, 20, {0, 1, 0}}, {36, 36, {0, 0, 0}}, {30, 30, {0, 1, 0}}},
+     3, ""},
+    /* a symbol of viewBox 0 0 10 10 at (4, 4), 32 x 32: scale 3.2, its
+     * disk of radius 5 about (5, 5) is the disk of radius 16 about
+     * (20, 20) */
+    {"symbol viewBox",
+     "<symbol id=\"s1\" viewBox=\"0 0 10 10\"><circle cx=\"5\" cy=\"5\" r=\"5\" "
+     "fill=\"lime\"/></symbol><use href=\"#s1\" x=\"4\" y=\"4\" width=\"32\" height=\"32\"/>",
+     {{20, 20, {0, 1, 0}}, {6, 6, {0, 0, 0}}, {33, 20, {0, 1, 0}}},
+     3, ""},
+    /* a nested svg at (4, 4), 32 x 32, viewBox 0 0 20 10, xMinYMax meet:
+     * scale min(1.6, 3.2) = 1.6, the box 32 x 16 at the bottom: y from
+     * 20; the rect 50% (of the viewBox's 20: 10) x 100% (10) is
+     * [4, 20] x [20, 36] */
+    {"nested svg",
+     "<svg x=\"4\" y=\"4\" width=\"32\" height=\"32\" viewBox=\"0 0 20 10\" "
+     "preserveAspectRatio=\"xMinYMax meet\"><rect width=\"50%\" height=\"100%\" "
+     "fill=\"aqua\"/></svg>",
+     {{12, 28, {0, 1, 1}}, {12, 12, {0, 0, 0}}, {28, 28, {0, 0, 0}}},
+     3, ""},
+    /* absolute units at 96 px to the inch: x 0.1in = 9.6, y 5mm = 18.9,
+     * width 18pt = 24, height 1pc = 16: [9.6, 33.6] x [18.9, 34.9] */
+    {"units",
+     "<rect x=\"0.1in\" y=\"5mm\" width=\"18pt\" height=\"1pc\" fill=\"white\"/>",
+     {{20, 26, {1, 1, 1}}, {20, 14, {0, 0, 0}}, {5, 26, {0, 0, 0}}},
+     3, ""},
+    /* em of an inherited font-size of 8px: [4, 28] x [8, 20] */
+    {"em",
+     "<g font-size=\"8px\"><rect x=\"0.5em\" y=\"1em\" width=\"3em\" height=\"1.5em\" "
+     "fill=\"yellow\"/></g>",
+     {{16, 14, {1, 1, 0}}, {16, 30, {0, 0, 0}}, {34, 14, {0, 0, 0}}},
+     3, ""},
+    /* specificity: .c7 rect (0, 1, 1) red; .c7 > .b (0, 2, 0) lime over
+     * it; #c7x (1, 0, 0) blue; .c7 rect.i yellow !important over the
+     * style attribute's aqua (resvg paints that one aqua: wrong by CSS
+     * Cascade 4, where an important declaration beats every normal one,
+     * the style attribute's included; Chromium and librsvg agree) */
+    {"sheet specificity",
+     "<style>.c7 rect { fill: red } .c7 > .b { fill: lime } #c7x { fill: blue } "
+     ".c7 rect.i { fill: yellow !important }</style><g class=\"c7\">"
+     "<rect x=\"1\" y=\"1\" width=\"18\" height=\"18\"/>"
+     "<rect class=\"b\" x=\"21\" y=\"1\" width=\"18\" height=\"18\"/>"
+     "<rect id=\"c7x\" class=\"b\" x=\"1\" y=\"21\" width=\"18\" height=\"18\"/>"
+     "<rect class=\"i\" style=\"fill: aqua\" x=\"21\" y=\"21\" width=\"18\" height=\"18\"/></g>",
+     {{10, 10, {1, 0, 0}}, {30, 10, {0, 1, 0}}, {10, 30, {0, 0, 1}}, {30, 30, {1, 1, 0}}},
+     4, "resvg"},
+    /* a rule over the presentation attribute (lime, not red); the style
+     * attribute over the rule (blue) */
+    {"attribute and style",
+     "<style>.c8 { fill: lime }</style><rect class=\"c8\" fill=\"red\" x=\"4\" y=\"4\" "
+     "width=\"14\" height=\"32\"/><rect class=\"c8\" style=\"fill: blue\" x=\"22\" y=\"4\" "
+     "width=\"14\" height=\"32\"/>",
+     {{10, 20, {0, 1, 0}}, {28, 20, {0, 0, 1}}},
+     2, ""},
+    /* transform in a style: translateX(0.1in) scale(2, 1.5) of the rect
+     * 12 x 20: [9.6, 33.6] x [0, 30] (resvg ignores transform in a style;
+     * librsvg 2.54.7 drops a translation in inches, though CSS Values 4
+     * makes every absolute length valid there, and with it the whole
+     * declaration: both draw the rect untransformed, wrong) */
+    {"CSS transform",
+     "<rect width=\"12\" height=\"20\" fill=\"white\" style=\"transform: translateX(0.1in) "
+     "scale(2, 1.5)\"/>",
+     {{20, 15, {1, 1, 1}}, {5, 15, {0, 0, 0}}, {20, 36, {0, 0, 0}}},
+     3, "resvg rsvg"},
+    /* rotate(90) about transform-origin (20, 20): (x, y) -> (40 - y, x),
+     * the rect [10, 30] x [4, 12] to [28, 36] x [10, 30] (resvg and
+     * librsvg ignore transform-origin, a presentation attribute in SVG 2
+     * and a property of CSS Transforms 1, and rotate about (0, 0), out of
+     * the cell: wrong) */
+    {"transform-origin",
+     "<rect x=\"10\" y=\"4\" width=\"20\" height=\"8\" fill=\"white\" transform=\"rotate(90)\" "
+     "transform-origin=\"20 20\"/>",
+     {{32, 20, {1, 1, 1}}, {20, 8, {0, 0, 0}}},
+     2, "resvg rsvg"},
+    /* transform-box fill-box: scale(0.5) about the centre (20, 20) of
+     * the rect [4, 36]^2: [12, 28]^2 (resvg and librsvg draw the rect
+     * whole: wrong by CSS Transforms 1) */
+    {"transform-box",
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"lime\" style=\"transform-box: "
+     "fill-box; transform-origin: center; transform: scale(0.5)\"/>",
+     {{20, 20, {0, 1, 0}}, {8, 8, {0, 0, 0}}, {25, 14, {0, 1, 0}}},
+     3, "resvg rsvg"},
+    /* path data drawn up to its error: the second subpath is the
+     * triangle (4, 24), (36, 24), (36, 36) (the L with "x" dropped); at
+     * x = 8 its diagonal is at y = 25.5 */
+    {"path error",
+     "<path fill=\"white\" d=\"M 4 4 L 36 4 L 36 20 L 4 20 Z M 4 24 L 36 24 L 36 36 L 4 x\"/>",
+     {{20, 12, {1, 1, 1}}, {32, 27, {1, 1, 1}}, {8, 34, {0, 0, 0}}},
+     3, ""},
+    /* overflow visible: the nested svg's content beyond its 10 x 10 is
+     * drawn */
+    {"overflow visible",
+     "<svg x=\"4\" y=\"4\" width=\"10\" height=\"10\" overflow=\"visible\"><rect width=\"32\" "
+     "height=\"32\" fill=\"aqua\"/></svg>",
+     {{30, 30, {0, 1, 1}}, {8, 8, {0, 1, 1}}, {38, 20, {0, 0, 0}}},
+     3, ""},
+    /* a use of its own ancestor (in error: nothing) and of a missing
+     * element (nothing); the rest draws (librsvg 2.54.7 draws one copy of
+     * the group at (20, 20) before it stops: wrong by SVG 2, "The 'use'
+     * element": a use whose target is its ancestor is in error and not
+     * rendered; Chromium and resvg draw nothing) */
+    {"use in error",
+     "<g id=\"c14\"><rect x=\"2\" y=\"2\" width=\"16\" height=\"16\" fill=\"fuchsia\"/>"
+     "<use href=\"#c14\" x=\"20\" y=\"20\"/></g><use href=\"#nothing\"/>",
+     {{10, 10, {1, 0, 1}}, {30, 30, {0, 0, 0}}},
+     2, "rsvg"},
+    /* %: of the nearest viewport's width, height and normalised
+     * diagonal; here a nested svg of 40 x 20: r = 25% of sqrt((40^2 +
+     * 20^2)/2) = 7.9, the disk about (50% of 40, 50% of 20) = (20, 10) */
+    {"percentages",
+     "<svg width=\"40\" height=\"20\"><circle cx=\"50%\" cy=\"50%\" r=\"25%\" "
+     "fill=\"white\"/></svg>",
+     {{20, 10, {1, 1, 1}}, {20, 4, {1, 1, 1}}, {20, 30, {0, 0, 0}}},
+     3, ""},
 };
 #define NCELLS (sizeof cells / sizeof cells[0])
 
@@ -436,7 +566,8 @@ static void document(char *path, size_t len, aa_image *ref)
 {
     static char doc[1 << 15];
     size_t n = (size_t)snprintf(doc, sizeof doc,
-                                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" "
+                                "<svg xmlns=\"http://www.w3.org/2000/svg\" "
+                                "xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"%d\" "
                                 "height=\"%d\">\n<rect width=\"%d\" height=\"%d\"/>\n",
                                 W, H, W, H);
     for (size_t k = 0; k < NCELLS; k++)
