@@ -3294,6 +3294,8 @@ static int viewbox_map(reader *r, const xmlNode *node, double vw, double vh, mat
     if (t) {
         char align[16] = "", mos[16] = "meet";
         int n = sscanf((const char *)t, " %15s %15s", align, mos);
+        if (n >= 1 && !strcmp(align, "defer")) /* only for images */
+            n = sscanf((const char *)t, " defer %15s %15s", align, mos);
         static const char *const xs[3] = {"xMin", "xMid", "xMax"};
         static const char *const ys[3] = {"YMin", "YMid", "YMax"};
         int ok = n >= 1 && (!strcmp(mos, "meet") || !strcmp(mos, "slice"));
@@ -3513,62 +3515,8 @@ static int root_map(reader *r, const xmlNode *root, double w, double h, mat *m, 
             return fail_at(r, "%s is larger than %g", sides[k], AA_SVG_MAX_COORD);
     }
     vp[0] = vw, vp[1] = vh;
-    *m = identity;
-    xmlChar *t = xmlGetNoNsProp(root, (const xmlChar *)"viewBox");
-    if (!t)
-        return AA_OK;
-    double b[4];
-    const char *s = skip_wsp((const char *)t);
-    st = AA_OK;
-    for (int k = 0; k < 4 && !st; k++) {
-        if (k)
-            s = skip_comma_wsp(s);
-        if (scan_number(&s, &b[k]))
-            st = fail_at(r, "viewBox=\"%s\" is not four numbers", aa_echo((const char *)t));
-    }
-    if (!st && *skip_wsp(s))
-        st = fail_at(r, "viewBox=\"%s\" is not four numbers", aa_echo((const char *)t));
-    if (!st && (b[2] <= 0 || b[3] <= 0))
-        st = fail_at(r, "viewBox=\"%s\": its width and height must be positive",
-                     aa_echo((const char *)t));
-    xmlFree(t);
-    if (st)
-        return st;
-    double sx = vw / b[2], sy = vh / b[3], ax = 0.5, ay = 0.5;
-    int none = 0, slice = 0;
-    t = xmlGetNoNsProp(root, (const xmlChar *)"preserveAspectRatio");
-    if (t) {
-        char align[16] = "", mos[16] = "meet";
-        int n = sscanf((const char *)t, " %15s %15s", align, mos);
-        if (n >= 1 && !strcmp(align, "defer")) /* only for images */
-            n = sscanf((const char *)t, " defer %15s %15s", align, mos);
-        static const char *const xs[3] = {"xMin", "xMid", "xMax"};
-        static const char *const ys[3] = {"YMin", "YMid", "YMax"};
-        int ok = n >= 1 && (!strcmp(mos, "meet") || !strcmp(mos, "slice"));
-        if (ok && !strcmp(align, "none"))
-            none = 1;
-        else if (ok) {
-            ok = 0;
-            for (int i = 0; i < 3; i++)
-                for (int j = 0; j < 3; j++)
-                    if (!strncmp(align, xs[i], 4) && !strcmp(align + 4, ys[j]))
-                        ax = i / 2.0, ay = j / 2.0, ok = 1;
-        }
-        slice = !strcmp(mos, "slice");
-        if (!ok)
-            st = fail_at(r, "preserveAspectRatio=\"%s\" is malformed", aa_echo((const char *)t));
-        xmlFree(t);
-        if (st)
-            return st;
-    }
-    if (!none) {
-        double k = slice ? fmax(sx, sy) : fmin(sx, sy);
-        sx = sy = k;
-    }
-    m->a = sx, m->d = sy;
-    m->e = -b[0] * sx + (none ? 0 : ax * (vw - b[2] * sx));
-    m->f = -b[1] * sy + (none ? 0 : ay * (vh - b[3] * sy));
-    return AA_OK;
+    double vb[2];
+    return viewbox_map(r, root, vw, vh, m, vb);
 }
 
 /* 1 if the document declares entities (an internal DTD subset with
