@@ -29,3 +29,6 @@ echo
 echo "== analytic under its filters against area under the box, crow 1024x1024, one thread =="
 # shellcheck disable=SC2086
 "$build/bench_analytic" -p crow -s 1024x1024 $timing
+echo
+echo "== strokes: 1,000 stroked cubic segments 1024x1024, one thread: stroker, box reference, point, area =="
+"$build/bench_bezstroke" -s 1024x1024 ${REPS:+-r "$REPS"}
