@@ -57,8 +57,14 @@
  * Frobenius norm, so their tolerance holds in pixels.  Several strokes of
  * one grey are painted OVER each other (peer.h).
  *
- * Limits: grey scenes of at most one layer, or of strokes of one grey,
- * and the box filter only (peer.h); at most 32 dash lengths; 8-bit coverage (up to 1/510 from rounding alone); positions
+ * Painted (peer.h): any other unclipped scene (colour, several layers,
+ * translucency) is painted layer by layer (band_painted): each layer's
+ * contours under its rule, or its stroke by AGG's stroker as above, swept
+ * into the band's covers and composited over the layers behind
+ * (aa_peer_composite_row).
+ *
+ * Limits: grey scenes of one layer or of strokes of one grey, or painted
+ * layer by layer (peer.h), and the box filter only; at most 32 dash lengths; 8-bit coverage (up to 1/510 from rounding alone); positions
  * rounded to 1/256 px; arcs flattened; the cover and area of a cell are
  * 32-bit integers (a cell crossed by some 2^15 edges would overflow them).
  */
@@ -146,6 +152,7 @@ struct agg_state {
     double lut[256];
     agg_work *work;
     int nthreads;
+    int painted; /* the scene painted layer by layer (peer.h) */
 };
 
 /* Elliptical arc edge d as AGG draws an ellipse under a transformation:
@@ -289,16 +296,20 @@ void add_stroke(rasterizer &ras, Src &in, const aa_stroke_source &src, double sc
     ras.add_path(mapped);
 }
 
-/* Rows [y0, y0 + rows) of the band: each stroke of the scene by AGG's
- * stroker, painted OVER the others.  Curves are flattened in user units
+/* Rows [y0, y0 + rows) of the band: each stroke of the scene (or only
+ * source `only`, if it is not -1) by AGG's stroker, painted OVER the
+ * others.  Curves are flattened in user units
  * to AGG's tolerance divided by the map's largest stretch (its Frobenius
  * norm bounds it), so within it in pixels. */
-void band_strokes(worker &wk, const aa_scene *scene, const double *p, int w, int y0, int rows)
+void band_strokes(worker &wk, const aa_scene *scene, const double *p, int w, int y0, int rows,
+                  int only)
 {
     size_t nsrc;
     const aa_stroke_source *src = aa_scene_stroke_sources(scene, &nsrc);
     std::memset(wk.band.data(), 0, (size_t)rows * (size_t)w);
     for (size_t k = 0; k < nsrc; k++) {
+        if (only >= 0 && k != (size_t)only)
+            continue;
         const aa_stroke_source &a = src[k];
         const double norm = std::hypot(std::hypot(a.m[0], a.m[1]), std::hypot(a.m[2], a.m[3]));
         const double scale = p[SCALE] * norm;
@@ -329,14 +340,11 @@ void band_strokes(worker &wk, const aa_scene *scene, const double *p, int w, int
     }
 }
 
-/* Fill rows [y0, y0 + rows) of band coverage from the scene's edges. */
-void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, const double *p,
-                int w, int y0, int rows)
+/* Fill rows [y0, y0 + rows) of band coverage from the scene's contours
+ * of layer `layer` (-1: every contour) under `rule`. */
+void band_fill(worker &wk, const aa_scene *scene, int layer, aa_fill_rule rule, const double *p,
+               int w, int y0, int rows)
 {
-    if (ps.strokes) {
-        band_strokes(wk, scene, p, w, y0, rows);
-        return;
-    }
     size_t ne, nc;
     const aa_edge *e = aa_scene_edges(scene, &ne);
     const size_t *start = aa_scene_contours(scene, &nc);
@@ -345,14 +353,14 @@ void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, cons
     rasterizer &ras = wk.ras;
     ras.reset();
     ras.gamma(agg::gamma_none());
-    ras.filling_rule(ps.rule == AA_FILL_EVENODD ? agg::fill_even_odd : agg::fill_non_zero);
+    ras.filling_rule(rule == AA_FILL_EVENODD ? agg::fill_even_odd : agg::fill_non_zero);
     ras.clip_box(0.0, ya, (double)w, yb);
     wk.curve.approximation_method((int)p[CURVES] == CURVES_INC ? agg::curve_inc : agg::curve_div);
     wk.curve.approximation_scale(p[SCALE]);
     wk.curve4.approximation_method((int)p[CURVES] == CURVES_INC ? agg::curve_inc : agg::curve_div);
     wk.curve4.approximation_scale(p[SCALE]);
     for (size_t c = 0; c < nc; c++) {
-        if (start[c] == start[c + 1])
+        if (start[c] == start[c + 1] || (layer >= 0 && e[start[c]].layer != layer))
             continue;
         ras.move_to_d(e[start[c]].x0, e[start[c]].y0);
         for (size_t k = start[c]; k < start[c + 1]; k++) {
@@ -393,6 +401,37 @@ void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, cons
     sweep_over(wk, w, y0, rows);
 }
 
+/* The grey path's band: the strokes OVER each other, or the one layer. */
+void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, const double *p,
+                int w, int y0, int rows)
+{
+    if (ps.strokes)
+        band_strokes(wk, scene, p, w, y0, rows, -1);
+    else
+        band_fill(wk, scene, -1, ps.rule, p, w, y0, rows);
+}
+
+/* Painted (peer.h): the background, then each layer back to front, its
+ * coverage (its stroke by AGG's stroker, or its contours under its rule)
+ * composited over what is below. */
+void band_painted(worker &wk, const aa_scene *scene, const double *p, aa_image *out, int y0,
+                  int rows)
+{
+    const int w = out->w;
+    for (int j = y0; j < y0 + rows; j++)
+        aa_peer_background_row(scene, out, j, w);
+    for (int l = aa_scene_layer_count(scene) - 1; l >= 0; l--) {
+        int k = aa_scene_layer_stroked(scene, l);
+        if (k >= 0)
+            band_strokes(wk, scene, p, w, y0, rows, k);
+        else
+            band_fill(wk, scene, l, aa_scene_layer_rule(scene, l), p, w, y0, rows);
+        for (int j = 0; j < rows; j++)
+            aa_peer_composite_row(scene, l, wk.band.data() + (size_t)j * (size_t)w, w,
+                                  aa_pixel(out, 0, y0 + j));
+    }
+}
+
 int agg_check(const double *p, const aa_filter *f)
 {
     (void)p;
@@ -411,6 +450,13 @@ int agg_init(void *state, const double *p, const aa_job *job)
     (void)p;
     agg_state *s = static_cast<agg_state *>(state);
     int st = aa_peer_scene_read("agg", job, &s->ps);
+    s->painted = 0;
+    if (st == AA_EINVAL && aa_peer_paintable(job->placed)) {
+        /* strokes by AGG's stroker: only filled layers' offsets refused */
+        if ((st = aa_peer_painted_check("agg", job->placed, 0)))
+            return st;
+        s->painted = 1;
+    }
     if (st)
         return st;
     size_t nsrc;
@@ -456,13 +502,17 @@ int agg_render(void *state, const double *p, const aa_job *job, aa_image *out,
 #pragma omp for schedule(dynamic, 1)
         for (int b = 0; b < nbands; b++) {
             int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
-            if (!s->ps.layers) {
+            if (!s->painted && !s->ps.layers) {
                 for (int j = y0; j < y0 + rows; j++)
                     aa_peer_fill(out, j, 0, job->w, s->ps.bg);
                 continue;
             }
             int st = AA_OK;
             try {
+                if (s->painted) {
+                    band_painted(wk, job->placed, p, out, y0, rows);
+                    continue;
+                }
                 band_cover(wk, job->placed, s->ps, p, job->w, y0, rows);
             } catch (const std::bad_alloc &) {
                 st = AA_ENOMEM;

@@ -35,8 +35,9 @@
  *
  * Painted: a scene of colour, of several layers or translucent is painted
  * layer by layer, Cairo's coverage of each composited over the layers
- * behind (cairo_init_painted): layers sharing an edge show the background
- * through their seam, as every renderer that uses coverage as alpha.
+ * behind (cairo_init_painted, aa_peer_composite_row: peer.h): layers
+ * sharing an edge show the background through their seam, as every
+ * renderer that uses coverage as alpha.
  *
  * Limits: the box filter only; 8-bit
  * coverage (up to 1/510 from rounding); positions in 24.8 fixed point
@@ -274,22 +275,12 @@ static void cairo_stroke_source(cairo_t *cr, const aa_stroke_source *src)
  * group's coverage is not any one layer's) are refused. */
 static int cairo_init_painted(cairo_state *s, const aa_scene *scene, double tolerance)
 {
-    size_t ne;
-    const aa_edge *e = aa_scene_edges(scene, &ne);
-    for (size_t k = 0; k < ne; k++)
-        if (e[k].quad == 4 && aa_scene_layer_stroked(scene, e[k].layer) < 0)
-            return aa_fail(AA_EINVAL,
-                           "cairo: layer %d is filled from the exact offset curves of a "
-                           "Bezier arc's stroke, which a Cairo path cannot hold",
-                           e[k].layer);
-    if (aa_scene_group_count(scene) > 0)
-        return aa_fail(AA_EINVAL, "cairo: this scene has groups of opacity (SVG's opacity on a "
-                                  "group or on a shape with a fill and a stroke), which its "
-                                  "layer by layer painting does not draw");
+    int st = aa_peer_painted_check("cairo", scene, 0);
+    if (st)
+        return st;
     s->nlayers = aa_scene_layer_count(scene);
     if (s->nlayers && !(s->lpath = calloc((size_t)s->nlayers, sizeof *s->lpath)))
         return aa_fail(AA_ENOMEM, "cairo: out of memory");
-    int st = AA_OK;
     for (int l = 0; l < s->nlayers && !st; l++)
         if (aa_scene_layer_stroked(scene, l) < 0)
             st = cairo_build_path(&s->lpath[l], scene, l, tolerance);
@@ -301,9 +292,7 @@ static int cairo_init(void *state, const double *p, const aa_job *job)
 {
     cairo_state *s = state;
     int st = aa_peer_scene_read("cairo", job, &s->ps);
-    if (st == AA_EINVAL && !aa_scene_is_clipped(job->placed) &&
-        (!aa_scene_is_grey(job->placed) || !aa_scene_is_opaque(job->placed) ||
-         aa_scene_layer_count(job->placed) > 1))
+    if (st == AA_EINVAL && aa_peer_paintable(job->placed))
         st = cairo_init_painted(s, job->placed, p[TOLERANCE]);
     else if (!st)
         st = cairo_build_path(&s->path, job->placed, -1, p[TOLERANCE]);
@@ -326,29 +315,18 @@ static int cairo_init(void *state, const double *p, const aa_job *job)
     return st;
 }
 
-/* A linear colour channel as Cairo takes it: sRGB-encoded. */
-static double cairo_encoded(double linear)
-{
-    const aa_encode srgb = {AA_ENCODE_SRGB, 0};
-    return aa_encode_value(&srgb, linear);
-}
-
 /* Painted mode's band y0 .. y0 + rows - 1 into out (cairo_init_painted):
  * the background, then each layer back to front, its coverage from Cairo
  * on the band's A8 surface composited over what is below in linear light,
- * its inside the scene's colour there (a layer of alpha 1 its colour; a
- * translucent one its colour over what is below in sRGB-encoded values,
- * as the scene composites). */
+ * its inside the scene's colour there (aa_peer_composite_row). */
 static int cairo_layered_band(const cairo_state *s, cairo_surface_t *surf, const double *p,
                               const aa_job *job, aa_image *out, int y0, int rows)
 {
     static const cairo_antialias_t modes[] = {CAIRO_ANTIALIAS_BEST, CAIRO_ANTIALIAS_GOOD,
                                               CAIRO_ANTIALIAS_FAST};
     const aa_scene *scene = job->placed;
-    aa_rgb bg = aa_scene_background(scene);
     for (int j = y0; j < y0 + rows; j++)
-        for (int i = 0; i < job->w; i++)
-            memcpy(aa_pixel(out, i, j), bg.c, sizeof bg.c);
+        aa_peer_background_row(scene, out, j, job->w);
     size_t nsrc;
     const aa_stroke_source *src = aa_scene_stroke_sources(scene, &nsrc);
     int st = AA_OK;
@@ -377,25 +355,9 @@ static int cairo_layered_band(const cairo_state *s, cairo_surface_t *surf, const
             st = AA_EFAIL;
         cairo_destroy(cr);
         cairo_surface_flush(surf);
-        const aa_rgb c = aa_scene_layer_colour(scene, l);
-        const double alpha = aa_scene_layer_alpha(scene, l);
-        double e[3];
-        for (int q = 0; q < 3; q++)
-            e[q] = alpha * cairo_encoded(c.c[q]);
-        for (int j = 0; j < rows; j++) {
-            const unsigned char *row = data + (size_t)j * stride;
-            for (int i = 0; i < job->w; i++) {
-                if (!row[i])
-                    continue;
-                double a = row[i] / 255.0, *px = aa_pixel(out, i, y0 + j);
-                for (int q = 0; q < 3; q++) {
-                    double inside = alpha == 1.0 ? c.c[q]
-                                                 : aa_srgb_decode(e[q] + (1.0 - alpha) *
-                                                                             cairo_encoded(px[q]));
-                    px[q] = a * inside + (1.0 - a) * px[q];
-                }
-            }
-        }
+        for (int j = 0; j < rows; j++)
+            aa_peer_composite_row(scene, l, data + (size_t)j * stride, job->w,
+                                  aa_pixel(out, 0, y0 + j));
     }
     return st;
 }

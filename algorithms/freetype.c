@@ -50,8 +50,15 @@
  * which FT_Stroker cannot draw) the scene's exact outlines are filled as
  * any outline, stated here rather than approximated otherwise.
  *
- * Limits: grey scenes of at most one layer, or of strokes of one grey
- * (peer.h), and the box filter only; 8-bit coverage (an error of up to 1/510 from rounding alone);
+ * Painted (peer.h): any other unclipped scene (colour, several layers,
+ * translucency) is painted layer by layer: each layer's own outline (its
+ * contours under its rule; a stroke by FT_Stroker when it can draw it as
+ * above, else its exact outline) built in init, rendered per band with its
+ * spans written as coverage bytes into the thread's BAND x W buffer, then
+ * composited over the layers behind (aa_peer_composite_row).
+ *
+ * Limits: grey scenes of one layer or of strokes of one grey, or painted
+ * layer by layer (peer.h), and the box filter only; 8-bit coverage (an error of up to 1/510 from rounding alone);
  * positions rounded to 1/64 px; arcs flattened; at most 32767 points and
  * contours (FT_Outline counts in shorts) and coordinates within 2^17 px:
  * larger scenes are refused.  Nonzero coverage is |accumulated area|
@@ -65,6 +72,7 @@
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <ft2build.h>
 #include FT_FREETYPE_H
@@ -81,12 +89,18 @@ typedef struct ft_state {
     int nlib;
     int *strip; /* per band: tile width that rendered without overflow */
     int nbands;
+    /* painted (peer.h): each layer's outline, and one BAND x W coverage
+     * buffer per thread */
+    int painted, nlayers;
+    FT_Outline *lo;
+    unsigned char **cov;
 } ft_state;
 
 typedef struct ft_target {
     aa_image *out;
     const aa_peer_scene *ps;
     int x0, x1, y0, y1; /* the tile: pixels [x0, x1) x [y0, y1) */
+    unsigned char *cov;  /* painted: coverage of rows y0 .. y1 - 1, out->w bytes each */
 } ft_target;
 
 static const aa_param ft_params[] = {{0}};
@@ -108,6 +122,16 @@ static void ft_release(void *state)
     free(s->outline.points);
     free(s->outline.tags);
     free(s->outline.contours);
+    for (int l = 0; s->lo && l < s->nlayers; l++) {
+        free(s->lo[l].points);
+        free(s->lo[l].tags);
+        free(s->lo[l].contours);
+    }
+    free(s->lo);
+    for (int k = 0; s->cov && k < s->nlib; k++)
+        free(s->cov[k]);
+    free(s->cov);
+    s->lo = NULL, s->cov = NULL, s->nlayers = 0;
     s->lib = NULL, s->strip = NULL, s->nlib = 0;
     s->outline.points = NULL, s->outline.tags = NULL, s->outline.contours = NULL;
 }
@@ -167,30 +191,36 @@ static int ft_put_edge(FT_Outline *o, int *n, int first, const aa_edge *e, int l
     return ft_put(o, n, e->x1, e->y1, FT_CURVE_TAG_ON);
 }
 
-static int ft_build_outline(ft_state *s, const aa_scene *scene)
+/* The outline of layer `layer`'s contours (-1: every contour) under
+ * `rule`, into *o (its arrays allocated here). */
+static int ft_build_outline(FT_Outline *o, const aa_scene *scene, int layer, aa_fill_rule rule)
 {
     size_t nedges, ncont;
     const aa_edge *e = aa_scene_edges(scene, &nedges);
     const size_t *start = aa_scene_contours(scene, &ncont);
     /* at most: a start point, then each edge's controls and end */
-    size_t cap = ncont;
-    for (size_t k = 0; k < nedges && cap <= 32767; k++)
-        cap += ft_edge_points(&e[k]);
-    if (ncont > 32767 || cap > 32767)
+    size_t cap = 0, nsel = 0;
+    for (size_t c = 0; c < ncont && cap <= 32767; c++) {
+        if (layer >= 0 && (start[c] == start[c + 1] || e[start[c]].layer != layer))
+            continue;
+        nsel++, cap++;
+        for (size_t k = start[c]; k < start[c + 1] && cap <= 32767; k++)
+            cap += ft_edge_points(&e[k]);
+    }
+    if (nsel > 32767 || cap > 32767)
         return aa_fail(AA_EINVAL,
                        "freetype: the scene has %zu paths and more than 32767 outline points "
                        "(%zu so far); FreeType's outline takes at most 32767 of each",
-                       ncont, cap);
-    FT_Outline *o = &s->outline;
+                       nsel, cap);
     o->points = malloc((cap ? cap : 1) * sizeof *o->points);
     o->tags = malloc(cap ? cap : 1);
-    o->contours = malloc((ncont ? ncont : 1) * sizeof *o->contours);
+    o->contours = malloc((nsel ? nsel : 1) * sizeof *o->contours);
     if (!o->points || !o->tags || !o->contours)
         return aa_fail(AA_ENOMEM, "freetype: out of memory for the outline");
     int n = 0, nc = 0, st = AA_OK;
     for (size_t c = 0; c < ncont && !st; c++) {
         size_t a = start[c], b = start[c + 1];
-        if (a == b)
+        if (a == b || (layer >= 0 && e[a].layer != layer))
             continue;
         int first = n;
         st = ft_put(o, &n, e[a].x0, e[a].y0, FT_CURVE_TAG_ON);
@@ -200,7 +230,7 @@ static int ft_build_outline(ft_state *s, const aa_scene *scene)
     }
     o->n_points = (short)n;
     o->n_contours = (short)nc;
-    o->flags = s->ps.rule == AA_FILL_EVENODD ? FT_OUTLINE_EVEN_ODD_FILL : FT_OUTLINE_NONE;
+    o->flags = rule == AA_FILL_EVENODD ? FT_OUTLINE_EVEN_ODD_FILL : FT_OUTLINE_NONE;
     return st;
 }
 
@@ -294,14 +324,13 @@ static FT_Error ft_stroke_path(FT_Stroker k, const aa_stroke_source *a)
     return err;
 }
 
-/* Append `add` to s->outline (grown), its orientation made `*want`'s (the
+/* Append `add` to *o (grown), its orientation made `*want`'s (the
  * first stroke's): FT_Stroker's borders of one stroke wind one way (a
  * closed subpath's inner border the other way round inside it), so with
  * every stroke wound alike no two strokes' windings cancel under the
  * non-zero rule. */
-static int ft_append(ft_state *s, FT_Outline *add, FT_Orientation *want)
+static int ft_append(FT_Outline *o, FT_Outline *add, FT_Orientation *want)
 {
-    FT_Outline *o = &s->outline;
     FT_Orientation got = FT_Outline_Get_Orientation(add);
     if (*want == FT_ORIENTATION_NONE)
         *want = got;
@@ -333,8 +362,9 @@ static int ft_append(ft_state *s, FT_Outline *add, FT_Orientation *want)
 
 /* The outline of every stroke by FT_Stroker (radius k w/2 in 26.6, SVG's
  * joins: MITER_FIXED is the miter that becomes a bevel past the limit,
- * PostScript's and SVG's), one non-zero outline. */
-static int ft_stroke_outline(ft_state *s, const aa_scene *scene, FT_Library lib)
+ * PostScript's and SVG's), one non-zero outline into *o; only source
+ * `only` if it is not -1. */
+static int ft_stroke_outline(FT_Outline *o, const aa_scene *scene, FT_Library lib, int only)
 {
     static const FT_Stroker_LineJoin joins[] = {FT_STROKER_LINEJOIN_MITER_FIXED,
                                                 FT_STROKER_LINEJOIN_ROUND,
@@ -347,9 +377,11 @@ static int ft_stroke_outline(ft_state *s, const aa_scene *scene, FT_Library lib)
     FT_Stroker k;
     if (FT_Stroker_New(lib, &k))
         return aa_fail(AA_ENOMEM, "freetype: FT_Stroker_New failed");
-    memset(&s->outline, 0, sizeof s->outline);
+    memset(o, 0, sizeof *o);
     int st = AA_OK;
     for (size_t i = 0; i < nsrc && !st; i++) {
+        if (only >= 0 && i != (size_t)only)
+            continue;
         const aa_stroke_source *a = &src[i];
         const double *m = a->m;
         const double scale = sqrt(fabs(m[0] * m[3] - m[1] * m[2]));
@@ -366,13 +398,51 @@ static int ft_stroke_outline(ft_state *s, const aa_scene *scene, FT_Library lib)
         else {
             out.n_points = out.n_contours = 0;
             FT_Stroker_Export(k, &out);
-            st = ft_append(s, &out, &want);
+            st = ft_append(o, &out, &want);
             FT_Outline_Done(lib, &out);
         }
         FT_Stroker_Rewind(k);
     }
     FT_Stroker_Done(k);
-    s->outline.flags = FT_OUTLINE_NONE; /* non-zero */
+    o->flags = FT_OUTLINE_NONE; /* non-zero */
+    return st;
+}
+
+/* Painted (peer.h): each layer's outline, a stroke's by FT_Stroker when
+ * it can draw it as SVG says (ft_strokable), else the layer's exact
+ * outline (offset curves refused), a fill's its contours under its rule;
+ * and each thread's band of coverage. */
+static int ft_init_painted(ft_state *s, const aa_scene *scene, int w)
+{
+    size_t nsrc, ne;
+    const aa_stroke_source *src = aa_scene_stroke_sources(scene, &nsrc);
+    const aa_edge *e = aa_scene_edges(scene, &ne);
+    s->nlayers = aa_scene_layer_count(scene);
+    s->lo = calloc((size_t)(s->nlayers ? s->nlayers : 1), sizeof *s->lo);
+    s->cov = calloc((size_t)s->nlib, sizeof *s->cov);
+    if (!s->lo || !s->cov)
+        return aa_fail(AA_ENOMEM, "freetype: out of memory");
+    for (int k = 0; k < s->nlib; k++)
+        if (!(s->cov[k] = malloc((size_t)BAND * (size_t)w)))
+            return aa_fail(AA_ENOMEM, "freetype: out of memory");
+    int st = AA_OK;
+    for (int l = 0; l < s->nlayers && !st; l++) {
+        int k = aa_scene_layer_stroked(scene, l);
+        if (k >= 0 && (size_t)k < nsrc && ft_strokable(&src[k])) {
+            st = ft_stroke_outline(&s->lo[l], scene, s->lib[0], k);
+            continue;
+        }
+        for (size_t q = 0; q < ne && !st; q++)
+            if (e[q].quad == 4 && e[q].layer == l)
+                st = aa_fail(AA_EINVAL,
+                             "freetype: layer %d is a stroke FT_Stroker cannot draw as SVG "
+                             "says (dashed, or mapped other than by a similarity), and its "
+                             "exact outline has the offset curves of a Bezier arc, which "
+                             "FreeType's outline cannot hold",
+                             l);
+        if (!st)
+            st = ft_build_outline(&s->lo[l], scene, l, aa_scene_layer_rule(scene, l));
+    }
     return st;
 }
 
@@ -393,8 +463,13 @@ static int ft_init(void *state, const double *p, const aa_job *job)
     }
     if (!st && !stroker && s->ps.strokes)
         st = aa_peer_refuse_offsets("freetype", job->placed);
-    if (!st && !stroker)
-        st = ft_build_outline(s, job->placed);
+    if (st == AA_EINVAL && aa_peer_paintable(job->placed)) {
+        /* painted (peer.h): offsets refused in the layers filled below */
+        st = aa_peer_painted_check("freetype", job->placed, 0);
+        s->painted = 1;
+    } else if (!st && !stroker) {
+        st = ft_build_outline(&s->outline, job->placed, -1, s->ps.rule);
+    }
     if (!st) {
         s->nlib = job->threads > 0 ? job->threads : 1;
         s->nbands = (job->h + BAND - 1) / BAND;
@@ -409,7 +484,9 @@ static int ft_init(void *state, const double *p, const aa_job *job)
                 st = aa_fail(AA_EFAIL, "freetype: FT_Init_FreeType failed");
     }
     if (!st && stroker)
-        st = ft_stroke_outline(s, job->placed, s->lib[0]);
+        st = ft_stroke_outline(&s->outline, job->placed, s->lib[0], -1);
+    if (!st && s->painted)
+        st = ft_init_painted(s, job->placed, job->w);
     if (st)
         ft_release(s);
     return st;
@@ -426,26 +503,31 @@ static void ft_spans(int y, int count, const FT_Span *spans, void *user)
             i0 = t->x0;
         if (i1 > t->x1)
             i1 = t->x1;
-        if (i0 < i1)
+        if (t->cov && i0 < i1)
+            memset(t->cov + (size_t)(y - t->y0) * (size_t)t->out->w + (size_t)i0,
+                   spans[k].coverage, (size_t)(i1 - i0));
+        else if (i0 < i1)
             aa_peer_fill(t->out, y, i0, i1, aa_peer_mix(t->ps, spans[k].coverage / 255.0));
     }
 }
 
-/* Render pixels [x0, x1) x [y0, y1) in tiles of at most *width columns,
- * halving *width on overflow. */
-static int ft_band(ft_state *s, FT_Library lib, aa_image *out, int y0, int y1, int *width)
+/* Render outline o on pixels [x0, x1) x [y0, y1) in tiles of at most
+ * *width columns, halving *width on overflow: into out (the grey path) or,
+ * if cov is not NULL, as coverage bytes into cov (rows y0 .. y1 - 1). */
+static int ft_band(ft_state *s, FT_Library lib, FT_Outline *o, aa_image *out, unsigned char *cov,
+                   int y0, int y1, int *width)
 {
     int x0 = 0;
     while (x0 < out->w) {
         int x1 = x0 + *width < out->w ? x0 + *width : out->w;
-        ft_target t = {out, &s->ps, x0, x1, y0, y1};
+        ft_target t = {out, &s->ps, x0, x1, y0, y1, cov};
         FT_Raster_Params rp = {0};
-        rp.source = &s->outline;
+        rp.source = o;
         rp.flags = FT_RASTER_FLAG_AA | FT_RASTER_FLAG_DIRECT | FT_RASTER_FLAG_CLIP;
         rp.gray_spans = ft_spans;
         rp.user = &t;
         rp.clip_box = (FT_BBox){x0, y0, x1, y1};
-        FT_Error err = FT_Outline_Render(lib, &s->outline, &rp);
+        FT_Error err = FT_Outline_Render(lib, o, &rp);
         if (err == FT_Err_Raster_Overflow && *width > 1) {
             *width = (*width + 1) / 2; /* rows already swept are rewritten alike */
             continue;
@@ -471,11 +553,32 @@ static int ft_render(void *state, const double *p, const aa_job *job, aa_image *
 #pragma omp for schedule(dynamic, 1)
         for (int b = 0; b < s->nbands; b++) {
             int y0 = b * BAND, y1 = y0 + BAND < job->h ? y0 + BAND : job->h;
+            if (s->painted) { /* back to front (peer.h) */
+                unsigned char *cov = s->cov[omp_get_thread_num()];
+                for (int j = y0; j < y1; j++)
+                    aa_peer_background_row(job->placed, out, j, job->w);
+                for (int l = s->nlayers - 1; l >= 0; l--) {
+                    if (!s->lo[l].n_points)
+                        continue;
+                    memset(cov, 0, (size_t)(y1 - y0) * (size_t)job->w);
+                    int st = ft_band(s, lib, &s->lo[l], out, cov, y0, y1, &s->strip[b]);
+                    if (st) {
+#pragma omp atomic write
+                        status = st;
+                        break;
+                    }
+                    for (int j = y0; j < y1; j++)
+                        aa_peer_composite_row(job->placed, l,
+                                              cov + (size_t)(j - y0) * (size_t)job->w, job->w,
+                                              aa_pixel(out, 0, j));
+                }
+                continue;
+            }
             for (int j = y0; j < y1; j++)
                 aa_peer_fill(out, j, 0, job->w, s->ps.bg);
             if (!s->ps.layers || !s->outline.n_points)
                 continue;
-            int st = ft_band(s, lib, out, y0, y1, &s->strip[b]);
+            int st = ft_band(s, lib, &s->outline, out, NULL, y0, y1, &s->strip[b]);
             if (st) {
 #pragma omp atomic write
                 status = st;

@@ -2,6 +2,7 @@
  * peer.c: the checks and helpers the peer rasterizers share (peer.h).
  */
 #include "peer.h"
+#include "core.h"
 #include "path.h"
 
 #include <math.h>
@@ -96,6 +97,66 @@ void aa_peer_fill(aa_image *out, int j, int i0, int i1, double v)
     double *px = aa_pixel(out, 0, j) + 3 * (size_t)i0;
     for (int i = i0; i < i1; i++, px += 3)
         px[0] = px[1] = px[2] = v;
+}
+
+int aa_peer_paintable(const aa_scene *s)
+{
+    return !aa_scene_is_clipped(s) && (!aa_scene_is_grey(s) || !aa_scene_is_opaque(s) ||
+                                       aa_scene_layer_count(s) > 1);
+}
+
+int aa_peer_painted_check(const char *name, const aa_scene *s, int strokes_filled)
+{
+    if (aa_scene_group_count(s) > 0)
+        return aa_fail(AA_EINVAL,
+                       "%s: this scene has groups of opacity (SVG's opacity on a group or on "
+                       "a shape with a fill and a stroke), which its layer by layer painting "
+                       "does not draw",
+                       name);
+    size_t ne;
+    const aa_edge *e = aa_scene_edges(s, &ne);
+    for (size_t k = 0; k < ne; k++)
+        if (e[k].quad == 4 && (strokes_filled || aa_scene_layer_stroked(s, e[k].layer) < 0))
+            return aa_fail(AA_EINVAL,
+                           "%s: layer %d is filled from the exact offset curves of a Bezier "
+                           "arc's stroke, which its outlines cannot hold",
+                           name, e[k].layer);
+    return AA_OK;
+}
+
+void aa_peer_background_row(const aa_scene *s, aa_image *out, int j, int n)
+{
+    const aa_rgb bg = aa_scene_background(s);
+    double *px = aa_pixel(out, 0, j);
+    for (int i = 0; i < n; i++, px += 3)
+        px[0] = bg.c[0], px[1] = bg.c[1], px[2] = bg.c[2];
+}
+
+/* A linear channel sRGB-encoded, as the scene composites translucency. */
+static double peer_encoded(double linear)
+{
+    const aa_encode srgb = {AA_ENCODE_SRGB, 0};
+    return aa_encode_value(&srgb, linear);
+}
+
+void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *cov, int n,
+                           double *px)
+{
+    const aa_rgb c = aa_scene_layer_colour(s, layer);
+    const double alpha = aa_scene_layer_alpha(s, layer);
+    double e[3];
+    for (int q = 0; q < 3; q++)
+        e[q] = alpha * peer_encoded(c.c[q]);
+    for (int i = 0; i < n; i++, px += 3) {
+        if (!cov[i])
+            continue;
+        const double a = cov[i] / 255.0;
+        for (int q = 0; q < 3; q++) {
+            const double inside =
+                alpha == 1.0 ? c.c[q] : aa_srgb_decode(e[q] + (1.0 - alpha) * peer_encoded(px[q]));
+            px[q] = a * inside + (1.0 - a) * px[q];
+        }
+    }
 }
 
 /*

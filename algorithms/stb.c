@@ -44,8 +44,16 @@
  * accumulated area clamped to 1, is too large in a pixel that two of them
  * share in part.
  *
- * Limits: grey scenes of at most one layer, or of strokes of one grey, and
- * the box filter only; 8-bit
+ * Painted (peer.h): any other unclipped scene (colour, several layers,
+ * translucency) is painted layer by layer: each layer's contours (a stroke
+ * its exact outline, stb having no stroker) its own run of vertices,
+ * rasterized per band into the thread's bitmap and composited over the
+ * layers behind (aa_peer_composite_row); an even-odd layer is checked on
+ * its own as above (its crossings only, at every piece's critical
+ * heights), and offset curves are refused in any layer.
+ *
+ * Limits: grey scenes of one layer or of strokes of one grey, or painted
+ * layer by layer (peer.h), and the box filter only; 8-bit
  * coverage (up to 1/510 from rounding); single-precision geometry (at
  * 4096 px a coordinate's last bit is 2.4e-4 px); curves flattened; nonzero
  * coverage is |accumulated area| clamped to 1, which under-estimates where
@@ -104,6 +112,9 @@ typedef struct stb_state {
     unsigned char **buf; /* one BAND x W bitmap per thread */
     int nbuf;
     double lut[256];
+    /* painted (peer.h): layer l's vertices are v[lv[l] .. lv[l + 1]) */
+    int painted, nlayers;
+    int *lv;
 } stb_state;
 
 static int stb_check(const double *p, const aa_filter *f)
@@ -119,7 +130,8 @@ static void stb_release(void *state)
         free(s->buf[k]);
     free(s->buf);
     free(s->v);
-    s->buf = NULL, s->v = NULL, s->nbuf = 0;
+    free(s->lv);
+    s->buf = NULL, s->v = NULL, s->nbuf = 0, s->lv = NULL;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -134,9 +146,11 @@ static int cmp_piece_xmin(const void *a, const void *b)
     return p->xmin < q->xmin ? -1 : p->xmin > q->xmin;
 }
 
-/* Even-odd by nonzero: the winding numbers must stay within {0, s} for one
- * sign s (see the header).  AA_OK if so. */
-static int stb_check_windings(const aa_scene *scene)
+/* Even-odd by nonzero: the winding numbers of layer `layer`'s contours
+ * (-1: of every contour) must stay within {0, s} for one sign s (see the
+ * header).  The critical heights are every piece's, a superset of the
+ * layer's, which only adds slabs.  AA_OK if so. */
+static int stb_check_windings(const aa_scene *scene, int layer)
 {
     size_t np;
     const aa_piece *pc = aa_scene_pieces(scene, &np);
@@ -184,16 +198,19 @@ static int stb_check_windings(const aa_scene *scene)
         size_t nc = aa_scene_crossings(scene, y, cross, np + 1);
         int wind = 0;
         for (size_t c = 0; c < nc && !st; c++) {
+            if (layer >= 0 && cross[c].layer != layer)
+                continue;
             wind += cross[c].dir;
             if (wind == 0)
                 continue;
             if (wind > 1 || wind < -1 || (seen && wind != seen))
                 st = aa_fail(AA_EINVAL,
-                             "stb fills by nonzero only: this even-odd scene has winding "
-                             "numbers %d and %d (at y = %.17g px), so nonzero would not give "
-                             "its coverage; it accepts even-odd scenes whose filled regions "
-                             "are each wound once, all the same way",
-                             seen ? seen : wind, wind, y);
+                             "stb fills by nonzero only: %s%d has winding numbers %d and "
+                             "%d (at y = %.17g px), so nonzero would not give its coverage; it "
+                             "accepts even-odd layers whose filled regions are each wound "
+                             "once, all the same way",
+                             layer >= 0 ? "the even-odd layer " : "this even-odd scene's layer ",
+                             layer >= 0 ? layer : 0, seen ? seen : wind, wind, y);
             seen = wind;
         }
     }
@@ -217,15 +234,57 @@ static void stb_vertex(stb_state *s, unsigned char type, double x, double y, con
         v->cx1 = (float)ctl[2], v->cy1 = (float)(ctl[3] + Y_SHIFT);
 }
 
+/* The vertices of contour c (a move, then its edges; an elliptical arc as
+ * cubics, peer.h). */
+static void stb_contour(stb_state *s, const aa_edge *e, const size_t *start, size_t c)
+{
+    stb_vertex(s, STBTT_vmove, e[start[c]].x0, e[start[c]].y0, NULL);
+    for (size_t k = start[c]; k < start[c + 1]; k++) {
+        const aa_edge *d = &e[k];
+        if (d->quad == 3) { /* cubics (peer.h): stb's outlines have no arcs */
+            double cub[AA_PEER_ARC_CUBICS][6];
+            int m = aa_peer_arc_cubics(d, cub);
+            for (int q = 0; q < m; q++)
+                stb_vertex(s, STBTT_vcubic, cub[q][4], cub[q][5], cub[q]);
+        } else if (d->quad == 2) {
+            const double ctl[4] = {d->cx, d->cy, d->c2x, d->c2y};
+            stb_vertex(s, STBTT_vcubic, d->x1, d->y1, ctl);
+        } else if (d->quad) {
+            const double ctl[2] = {d->cx, d->cy};
+            stb_vertex(s, STBTT_vcurve, d->x1, d->y1, ctl);
+        } else {
+            stb_vertex(s, STBTT_vline, d->x1, d->y1, NULL);
+        }
+    }
+}
+
+/* Painted (peer.h): stb has no stroker, so every layer, stroke or fill,
+ * is its exact outline (offset curves refused), an even-odd one checked
+ * as above on its own. */
+static int stb_init_painted(stb_state *s, const aa_scene *scene)
+{
+    int st = aa_peer_painted_check("stb", scene, 1);
+    s->nlayers = aa_scene_layer_count(scene);
+    for (int l = 0; l < s->nlayers && !st; l++)
+        if (aa_scene_layer_rule(scene, l) == AA_FILL_EVENODD)
+            st = stb_check_windings(scene, l);
+    if (!st && !(s->lv = calloc((size_t)s->nlayers + 1, sizeof *s->lv)))
+        st = aa_fail(AA_ENOMEM, "stb: out of memory");
+    s->painted = 1;
+    return st;
+}
+
 static int stb_init(void *state, const double *p, const aa_job *job)
 {
     (void)p;
     stb_state *s = state;
     int st = aa_peer_scene_read("stb", job, &s->ps);
-    if (!st) /* stb fills the strokes' exact outlines too (above) */
+    if (st == AA_EINVAL && aa_peer_paintable(job->placed))
+        st = stb_init_painted(s, job->placed);
+    else if (!st) /* stb fills the strokes' exact outlines too (above) */
         st = aa_peer_refuse_offsets("stb", job->placed);
-    if (!st && s->ps.layers && s->ps.rule == AA_FILL_EVENODD)
-        st = stb_check_windings(job->placed);
+    if (!st && !s->painted && s->ps.layers && s->ps.rule == AA_FILL_EVENODD)
+        st = stb_check_windings(job->placed, -1);
     size_t nedges, ncont;
     const aa_edge *e = aa_scene_edges(job->placed, &nedges);
     const size_t *start = aa_scene_contours(job->placed, &ncont);
@@ -245,33 +304,37 @@ static int stb_init(void *state, const double *p, const aa_job *job)
             if (!(s->buf[k] = malloc((size_t)BAND * (size_t)job->w)))
                 st = aa_fail(AA_ENOMEM, "stb: out of memory");
     }
-    for (size_t c = 0; c < ncont && !st; c++) {
-        if (start[c] == start[c + 1])
-            continue;
-        stb_vertex(s, STBTT_vmove, e[start[c]].x0, e[start[c]].y0, NULL);
-        for (size_t k = start[c]; k < start[c + 1]; k++) {
-            const aa_edge *d = &e[k];
-            if (d->quad == 3) { /* cubics (peer.h): stb's outlines have no arcs */
-                double cub[AA_PEER_ARC_CUBICS][6];
-                int m = aa_peer_arc_cubics(d, cub);
-                for (int q = 0; q < m; q++)
-                    stb_vertex(s, STBTT_vcubic, cub[q][4], cub[q][5], cub[q]);
-            } else if (d->quad == 2) {
-                const double ctl[4] = {d->cx, d->cy, d->c2x, d->c2y};
-                stb_vertex(s, STBTT_vcubic, d->x1, d->y1, ctl);
-            } else if (d->quad) {
-                const double ctl[2] = {d->cx, d->cy};
-                stb_vertex(s, STBTT_vcurve, d->x1, d->y1, ctl);
-            } else {
-                stb_vertex(s, STBTT_vline, d->x1, d->y1, NULL);
-            }
+    if (!st && s->painted) { /* the contours layer by layer */
+        for (int l = 0; l < s->nlayers; l++) {
+            s->lv[l] = s->nv;
+            for (size_t c = 0; c < ncont; c++)
+                if (start[c] != start[c + 1] && e[start[c]].layer == l)
+                    stb_contour(s, e, start, c);
         }
+        s->lv[s->nlayers] = s->nv;
+    } else {
+        for (size_t c = 0; c < ncont && !st; c++)
+            if (start[c] != start[c + 1])
+                stb_contour(s, e, start, c);
     }
     for (int k = 0; k < 256; k++)
         s->lut[k] = aa_peer_mix(&s->ps, k / 255.0);
     if (st)
         stb_release(s);
     return st;
+}
+
+/* stb's coverage of vertices v[0 .. nv) on rows [y0, y0 + rows) into buf
+ * (rows x w bytes). */
+static void stb_band(const double *p, stbtt_vertex *v, int nv, unsigned char *buf, int w,
+                     int y0, int rows)
+{
+    memset(buf, 0, (size_t)rows * (size_t)w);
+    if (!nv)
+        return;
+    stbtt__bitmap bm = {w, rows, w, buf};
+    stbtt_Rasterize(&bm, (float)p[FLATNESS], v, nv, 1.0f, 1.0f, 0.0f, 0.0f, 0, y0 + Y_SHIFT, 0,
+                    NULL);
 }
 
 static int stb_render(void *state, const double *p, const aa_job *job, aa_image *out,
@@ -287,15 +350,24 @@ static int stb_render(void *state, const double *p, const aa_job *job, aa_image 
 #pragma omp for schedule(dynamic, 1)
         for (int b = 0; b < nbands; b++) {
             int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
+            if (s->painted) { /* back to front (peer.h) */
+                for (int j = y0; j < y0 + rows; j++)
+                    aa_peer_background_row(job->placed, out, j, job->w);
+                for (int l = s->nlayers - 1; l >= 0; l--) {
+                    stb_band(p, s->v + s->lv[l], s->lv[l + 1] - s->lv[l], buf, job->w, y0,
+                             rows);
+                    for (int j = 0; j < rows; j++)
+                        aa_peer_composite_row(job->placed, l, buf + (size_t)j * job->w, job->w,
+                                              aa_pixel(out, 0, y0 + j));
+                }
+                continue;
+            }
             if (!s->ps.layers || !s->nv) {
                 for (int j = y0; j < y0 + rows; j++)
                     aa_peer_fill(out, j, 0, job->w, s->ps.bg);
                 continue;
             }
-            memset(buf, 0, (size_t)rows * (size_t)job->w);
-            stbtt__bitmap bm = {job->w, rows, job->w, buf};
-            stbtt_Rasterize(&bm, (float)p[FLATNESS], s->v, s->nv, 1.0f, 1.0f, 0.0f, 0.0f, 0,
-                            y0 + Y_SHIFT, 0, NULL);
+            stb_band(p, s->v, s->nv, buf, job->w, y0, rows);
             for (int j = 0; j < rows; j++) {
                 const unsigned char *row = buf + (size_t)j * job->w;
                 double *px = aa_pixel(out, 0, y0 + j);

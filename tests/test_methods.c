@@ -145,6 +145,14 @@ static void check_uniform(const char *spec, const aa_method_type *type)
     aa_image img;
     aa_counters c;
     int st = render(spec, s, filter, W, H, 1, 2, &img, &c);
+    /* the peers paint colour layer by layer (algorithms/peer.h): a layer
+     * covering every pixel wholly gives its colour exactly */
+    static const char *const peers[] = {"freetype", "stb", "cairo", "agg"};
+    for (size_t k = 0; k < sizeof peers / sizeof peers[0]; k++) {
+        size_t n = strlen(peers[k]);
+        if (st && !strncmp(spec, peers[k], n) && (!spec[n] || spec[n] == ':'))
+            fail_msg("%s refuses a colour scene: %s", spec, aa_last_error());
+    }
     if (st == AA_EINVAL && (type->flags & AA_METHOD_SOME_SCENES)) {
         /* a method that says it refuses some scenes may refuse colour, with
          * a message; it must then take the same scene in grey */

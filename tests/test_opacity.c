@@ -525,7 +525,8 @@ static void test_methods(void **state)
     (void)state;
     int taken = 0, refused = 0;
     methods_on("translucent", translucent, "opaque", opaque, 32, 24, &taken, &refused);
-    /* one grey layer, which the peers take when it is opaque */
+    /* one grey layer: opaque, the peers' one-layer grey path; translucent,
+     * painted (algorithms/peer.h) */
     methods_on("grey", "<rect x=\"3.3\" y=\"2.2\" width=\"17.4\" height=\"13.2\" fill=\"white\" "
                        "fill-opacity=\"0.5\"/>",
                "grey-opaque", "<rect x=\"3.3\" y=\"2.2\" width=\"17.4\" height=\"13.2\" "
