@@ -604,3 +604,41 @@ double oracle_cubic_length(const double c[8], double a, double b)
     gsl_integration_workspace_free(w);
     return st || !(err < 1e-13) ? NAN : r;
 }
+
+double oracle_curve_feet(oracle_curve_fn at, const void *ctx, double t0, double t1, int n,
+                         double px, double py, int ends, double h, int *unsure)
+{
+    double best = INFINITY, x, y, dx, dy;
+    at(ctx, t0, &x, &y, &dx, &dy);
+    double pg = (px - x) * dx + (py - y) * dy, pt = t0;
+    if (ends)
+        best = fmin(best, hypot(px - x, py - y));
+    else if (fabs(pg) / hypot(dx, dy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)
+        *unsure = 1;
+    for (int k = 1; k <= n; k++) {
+        double t = t0 + (t1 - t0) * k / n;
+        at(ctx, t, &x, &y, &dx, &dy);
+        double g = (px - x) * dx + (py - y) * dy;
+        if ((pg < 0 && g >= 0) || (pg > 0 && g <= 0)) {
+            double lo = pt, hi = t, glo = pg;
+            for (int it = 0; it < 60; it++) {
+                double m = 0.5 * (lo + hi), gm;
+                at(ctx, m, &x, &y, &dx, &dy);
+                gm = (px - x) * dx + (py - y) * dy;
+                if ((gm < 0) == (glo < 0))
+                    lo = m, glo = gm;
+                else
+                    hi = m;
+            }
+            at(ctx, 0.5 * (lo + hi), &x, &y, &dx, &dy);
+            best = fmin(best, hypot(px - x, py - y));
+        }
+        pg = g, pt = t;
+    }
+    at(ctx, t1, &x, &y, &dx, &dy);
+    if (ends)
+        best = fmin(best, hypot(px - x, py - y));
+    else if (fabs(pg) / hypot(dx, dy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)
+        *unsure = 1;
+    return best;
+}

@@ -112,4 +112,18 @@ double oracle_cubic_curvature(const double c[8], double t);
  * points) of |B'(t)| to 1e-13 relative; NAN if it cannot say so. */
 double oracle_cubic_length(const double c[8], double a, double b);
 
+/* A parametric curve for the distance oracle: its point (x, y) at t and a
+ * direction (dx, dy) along it there (the tangent or any nonzero multiple
+ * of it; at a cusp the limit direction). */
+typedef void (*oracle_curve_fn)(const void *ctx, double t, double *x, double *y, double *dx,
+                                double *dy);
+/* The least distance from p to the curve on t0 .. t1 at the t where
+ * p - C(t) is perpendicular to the direction (sign changes of
+ * (p - C) . D at n samples, each bisected 60 times), and to its ends when
+ * `ends`; without `ends`, *unsure is set when p lies on an end's normal
+ * line (within 1e-7) no farther than h + 1e-7 from it, where a butt end's
+ * region cannot be told.  INFINITY if there is no foot. */
+double oracle_curve_feet(oracle_curve_fn at, const void *ctx, double t0, double t1, int n,
+                         double px, double py, int ends, double h, int *unsure);
+
 #endif

@@ -148,6 +148,11 @@ static double rnd(void)
     return (double)(rng >> 11) * 0x1p-53;
 }
 
+static void cubic_at(const void *c, double t, double *x, double *y, double *dx, double *dy)
+{
+    oracle_cubic_at(c, t, x, y, dx, dy);
+}
+
 /* The distances from p to c at the t where p - B(t) is perpendicular to
  * B'(t) (sign changes of g(t) = (p - B) . B' at 4000 samples, bisected),
  * and the ends' too when `ends`; the least of them (butt: only the
@@ -155,40 +160,7 @@ static double rnd(void)
  * line's end region, where the oracle is unsure). */
 static double feet(const double *c, double px, double py, int ends, double h, int *unsure)
 {
-    double best = INFINITY, x, y, dx, dy;
-    int n = 4000;
-    oracle_cubic_at(c, 0, &x, &y, &dx, &dy);
-    double pg = (px - x) * dx + (py - y) * dy, pt = 0;
-    if (ends)
-        best = fmin(best, hypot(px - x, py - y));
-    else if (fabs(pg) / hypot(dx, dy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)
-        *unsure = 1;
-    for (int k = 1; k <= n; k++) {
-        double t = (double)k / n;
-        oracle_cubic_at(c, t, &x, &y, &dx, &dy);
-        double g = (px - x) * dx + (py - y) * dy;
-        if ((pg < 0 && g >= 0) || (pg > 0 && g <= 0)) {
-            double a = pt, b = t, ga = pg;
-            for (int it = 0; it < 60; it++) {
-                double m = 0.5 * (a + b), gm;
-                oracle_cubic_at(c, m, &x, &y, &dx, &dy);
-                gm = (px - x) * dx + (py - y) * dy;
-                if ((gm < 0) == (ga < 0))
-                    a = m, ga = gm;
-                else
-                    b = m;
-            }
-            oracle_cubic_at(c, 0.5 * (a + b), &x, &y, &dx, &dy);
-            best = fmin(best, hypot(px - x, py - y));
-        }
-        pg = g, pt = t;
-    }
-    oracle_cubic_at(c, 1, &x, &y, &dx, &dy);
-    if (ends)
-        best = fmin(best, hypot(px - x, py - y));
-    else if (fabs(pg) / hypot(dx, dy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)
-        *unsure = 1;
-    return best;
+    return oracle_curve_feet(cubic_at, c, 0, 1, 4000, px, py, ends, h, unsure);
 }
 
 /* Path of nc cubics (control points chained: 2 + 6 nc numbers), stroked at
@@ -339,39 +311,19 @@ static void cusp_q(const cusp_cubic *k, double t, double *qx, double *qy)
     }
 }
 
+/* The cusp cubic's point, and B'/(t - tc) as its direction (cusp_q). */
+static void cusp_at(const void *vk, double t, double *x, double *y, double *dx, double *dy)
+{
+    const cusp_cubic *k = vk;
+    double ux, uy;
+    oracle_cubic_at(k->c, t, x, y, &ux, &uy);
+    cusp_q(k, t, dx, dy);
+}
+
 static double cusp_feet(const cusp_cubic *k, double px, double py, int round, double h,
                         int *unsure)
 {
-    double best = INFINITY, x, y, dx, dy, qx, qy;
-    int n = 4000;
-    double pg = 0, pt = 0;
-    for (int j = 0; j <= n; j++) {
-        double t = (double)j / n;
-        oracle_cubic_at(k->c, t, &x, &y, &dx, &dy);
-        cusp_q(k, t, &qx, &qy);
-        double g = (px - x) * qx + (py - y) * qy;
-        if ((j == 0 || j == n) && fabs(g) / hypot(qx, qy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)
-            *unsure = 1; /* on an end's normal line: the oracle cannot tell */
-        if ((j == 0 || j == n) && round)
-            best = fmin(best, hypot(px - x, py - y));
-        if (j > 0 && ((pg < 0 && g >= 0) || (pg > 0 && g <= 0))) {
-            double a = pt, b = t, ga = pg;
-            for (int it = 0; it < 60; it++) {
-                double m = 0.5 * (a + b), gm;
-                oracle_cubic_at(k->c, m, &x, &y, &dx, &dy);
-                cusp_q(k, m, &qx, &qy);
-                gm = (px - x) * qx + (py - y) * qy;
-                if ((gm < 0) == (ga < 0))
-                    a = m, ga = gm;
-                else
-                    b = m;
-            }
-            oracle_cubic_at(k->c, 0.5 * (a + b), &x, &y, &dx, &dy);
-            best = fmin(best, hypot(px - x, py - y));
-        }
-        pg = g, pt = t;
-    }
-    return best;
+    return oracle_curve_feet(cusp_at, k, 0, 1, 4000, px, py, round, h, unsure);
 }
 
 static void cusp_oracle(const char *what, const cusp_cubic *k, double w, int round, const double *m,

@@ -251,46 +251,18 @@ static double rnd(void)
     return (double)(rng >> 11) * 0x1p-53;
 }
 
+static void ell_at(const void *e, double t, double *x, double *y, double *dx, double *dy)
+{
+    at(e, t, x, y, dx, dy);
+}
+
 /* The least distance from p to the arc t0 .. t1 of e at the t where p - B
  * is perpendicular to B' (sign changes of (p - B) . B' at 4000 samples,
- * bisected), and at its ends when `ends`. */
+ * bisected), and at its ends when `ends` (oracle_curve_feet). */
 static double feet(const ell *e, double t0, double t1, double px, double py, int ends, double h,
                    int *unsure)
 {
-    double best = INFINITY, x, y, dx, dy;
-    int n = 4000;
-    at(e, t0, &x, &y, &dx, &dy);
-    double pg = (px - x) * dx + (py - y) * dy, pt = t0;
-    if (ends)
-        best = fmin(best, hypot(px - x, py - y));
-    else if (fabs(pg) / hypot(dx, dy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)
-        *unsure = 1;
-    for (int k = 1; k <= n; k++) {
-        double t = t0 + (t1 - t0) * k / n;
-        at(e, t, &x, &y, &dx, &dy);
-        double g = (px - x) * dx + (py - y) * dy;
-        if ((pg < 0 && g >= 0) || (pg > 0 && g <= 0)) {
-            double lo = pt, hi = t, glo = pg;
-            for (int it = 0; it < 60; it++) {
-                double m = 0.5 * (lo + hi), gm;
-                at(e, m, &x, &y, &dx, &dy);
-                gm = (px - x) * dx + (py - y) * dy;
-                if ((gm < 0) == (glo < 0))
-                    lo = m, glo = gm;
-                else
-                    hi = m;
-            }
-            at(e, 0.5 * (lo + hi), &x, &y, &dx, &dy);
-            best = fmin(best, hypot(px - x, py - y));
-        }
-        pg = g, pt = t;
-    }
-    at(e, t1, &x, &y, &dx, &dy);
-    if (ends)
-        best = fmin(best, hypot(px - x, py - y));
-    else if (fabs(pg) / hypot(dx, dy) < 1e-7 && hypot(px - x, py - y) < h + 1e-7)
-        *unsure = 1;
-    return best;
+    return oracle_curve_feet(ell_at, e, t0, t1, 4000, px, py, ends, h, unsure);
 }
 
 /* The stroke of the arc t0 .. t1 of e (closed: the closed subpath), width
