@@ -88,6 +88,7 @@
  * paths forming a cycle, masks, filters, clip-path on a nested <svg> or a
  * <symbol> (where it applies is not settled: Chromium clips in the
  * viewBox's coordinates, librsvg in the parent's, resvg not at all),
+ * objectBoundingBox units for a clip-path on a <use>,
  * content beyond a viewport that clips when the sink takes no clips,
  * references to other documents, what svgcss.h refuses in a style
  * sheet, sheets for other media, negative widths and dashes, invalid
@@ -2961,6 +2962,10 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
         if (st)
             return st;
     }
+    if (obb && named(ref, "use"))
+        return fail_at(r, "clipPathUnits=\"objectBoundingBox\" for the <use> of line %ld is "
+                          "not supported (the bounding box of a use's target is not computed)",
+                       xmlGetLineNo(ref));
     if (obb) {
         double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
         if ((st = geometry_box(r, ref, &identity, b, 0)))

@@ -361,6 +361,12 @@ static void test_viewport_clips(void **state)
                             "<use href=\"#r\" x=\"20\" clip-path=\"url(#c)\"/></svg>",
                  "[within -1 " BLACK " M 20 0 L 24 0 L 24 4 L 20 4 Z ] " BLACK
                  " clip 0 M 20 0 L 30 0 L 30 10 L 20 10 Z");
+    /* objectBoundingBox units for a use: its box is not computed */
+    refused_clips(OPEN "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect "
+                       "width=\"1\" height=\"1\"/></clipPath><defs><rect id=\"r\" "
+                       "width=\"10\" height=\"10\"/></defs><use href=\"#r\" "
+                       "clip-path=\"url(#o)\"/></svg>",
+                  "<clipPath>", "for the <use> of line 1 is not supported");
     /* clip-path on the viewport element itself is refused (its user
      * space is not settled); none is no clip */
     refused_clips(OPEN CLIP4 "<svg width=\"1\" height=\"1\" clip-path=\"url(#c)\"/></svg>",
