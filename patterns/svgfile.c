@@ -2646,7 +2646,9 @@ static int group_begin(reader *r, double o)
  *     draw it): the box of its
  *     fill geometry in its user space (SVG 2, "Bounding boxes"), exact for Bezier and
  *     elliptical arcs (their extremes in closed form, geometry_box), of a
- *     group the union of its children's, each through its transform.  A
+ *     group the union of its children's, each through its transform, of a
+ *     nested <svg> its content's through x, y and its viewBox map, not cut
+ *     by its viewport (as Chromium, resvg and librsvg take it).  A
  *     box of no width or no height is refused.
  *   - The clip is the union of the clipPath's children: <path>, <rect>,
  *     <circle>, <ellipse>, <polygon>, <polyline> (a <line> has no area),
@@ -2792,6 +2794,11 @@ static void path_box(const aa_path *p, const mat *m, double box[4])
     }
 }
 
+static int viewbox_map(reader *r, const xmlNode *node, double vw, double vh, mat *m,
+                       double vb[2]);
+static int viewport_side(reader *r, const xmlNode *node, const xmlNode *over, const char *key,
+                         double *v);
+
 /* The fill geometry of node and what it holds through m, grown into box
  * (SVG 2's object bounding box: shapes, and groups by their children, each
  * through its own transform; elements with display="none" and those that
@@ -2820,13 +2827,33 @@ static int geometry_box(reader *r, const xmlNode *node, const mat *m, double box
             path_box(&p, m, box);
         aa_path_free(&p);
     } else if (!st && (named(node, "g") || named(node, "svg"))) {
-        for (const xmlNode *c = node->children; c && !st; c = c->next) {
+        /* a nested <svg>: its content through translate(x, y) and its
+         * viewBox map, unclipped (its overflow does not change the box:
+         * Chromium, resvg and librsvg alike); one of no area adds nothing */
+        mat mv = *m;
+        double vb[2] = {r->vpw, r->vph}, pw = r->vpw, ph = r->vph;
+        int drawn = 1;
+        if (named(node, "svg") && node != r->root) {
+            double x = 0, y = 0, w = 0, h = 0;
+            mat vbm;
+            if (!(st = attr_length(r, node, "x", 0, &x)) &&
+                !(st = attr_length(r, node, "y", 0, &y)) &&
+                !(st = viewport_side(r, node, NULL, "width", &w)) &&
+                !(st = viewport_side(r, node, NULL, "height", &h)) &&
+                (drawn = w > 0 && h > 0) && !(st = viewbox_map(r, node, w, h, &vbm, vb))) {
+                const mat at = {1, 0, 0, 1, x, y};
+                mv = mat_mul(*m, mat_mul(at, vbm));
+            }
+        }
+        r->vpw = vb[0], r->vph = vb[1];
+        for (const xmlNode *c = node->children; c && !st && drawn; c = c->next) {
             if (c->type != XML_ELEMENT_NODE)
                 continue;
-            mat mc = *m;
+            mat mc = mv;
             if (!(st = element_transform(r, c, &mc)))
                 st = geometry_box(r, c, &mc, box, depth + 1);
         }
+        r->vpw = pw, r->vph = ph;
     }
     r->node = was;
     return st;

@@ -599,6 +599,17 @@ static const cell cells[] = {
      "x=\"8\" y=\"8\" clip-path=\"url(#vc4)\"/>",
      {{20, 20, {1, 1, 1}}, {30, 30, {0, 0, 0}}, {4, 4, {0, 0, 0}}},
      3, ""},
+    /* objectBoundingBox of a group holding a nested svg at (8, 8): its
+     * content through translate(8, 8), unclipped: the rect [-8, 24] x
+     * [0, 24] there is [0, 32] x [8, 32], the unit rect [1/4, 1/2] x
+     * [0, 1] on it [8, 16] x [8, 32] */
+    {"box through a viewport",
+     "<clipPath id=\"vo5\" clipPathUnits=\"objectBoundingBox\"><rect x=\"0.25\" "
+     "width=\"0.25\" height=\"1\"/></clipPath><g clip-path=\"url(#vo5)\"><svg x=\"8\" "
+     "y=\"8\" width=\"24\" height=\"24\"><rect x=\"-8\" width=\"32\" height=\"24\" "
+     "fill=\"white\"/></svg></g>",
+     {{12, 20, {1, 1, 1}}, {20, 20, {0, 0, 0}}, {4, 20, {0, 0, 0}}},
+     3, ""},
 };
 #define NCELLS (sizeof cells / sizeof cells[0])
 

@@ -361,6 +361,18 @@ static void test_viewport_clips(void **state)
                             "<use href=\"#r\" x=\"20\" clip-path=\"url(#c)\"/></svg>",
                  "[within -1 " BLACK " M 20 0 L 24 0 L 24 4 L 20 4 Z ] " BLACK
                  " clip 0 M 20 0 L 30 0 L 30 10 L 20 10 Z");
+    /* objectBoundingBox of a group holding a nested svg: its content
+     * through translate(20, 20), unclipped (the rect [-20, 40] x [0, 20]
+     * there: [0, 60] x [20, 40]; Chromium, resvg and librsvg take it so);
+     * the unit rect [1/4, 1/2] x [0, 1] on it is [15, 30] x [20, 40] */
+    expect_clips(OPEN "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect "
+                      "x=\"0.25\" width=\"0.25\" height=\"1\"/></clipPath><g "
+                      "clip-path=\"url(#o)\"><svg x=\"20\" y=\"20\" width=\"20\" "
+                      "height=\"20\"><rect x=\"-20\" width=\"60\" height=\"20\"/></svg></g>"
+                      "</svg>",
+                 "[within -1 " BLACK " M 15 20 L 30 20 L 30 40 L 15 40 Z ] [within 0 " BLACK
+                 " M 20 20 L 40 20 L 40 40 L 20 40 Z ] " BLACK
+                 " clip 1 M 0 20 L 60 20 L 60 40 L 0 40 Z");
     /* objectBoundingBox units for a use: its box is not computed */
     refused_clips(OPEN "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect "
                        "width=\"1\" height=\"1\"/></clipPath><defs><rect id=\"r\" "
@@ -842,6 +854,16 @@ static void test_pictures(void **state)
                             "width=\"20\" height=\"20\"><rect x=\"-10\" y=\"-10\" width=\"60\" "
                             "height=\"60\"/></svg></g>"),
          "25 pi", 25 * M_PI},
+        /* objectBoundingBox of a group holding a nested svg of viewBox
+         * 0 0 10 10 at (20, 20), 20 x 20: its rect [0, 10]^2 is [20, 40]^2,
+         * the box, whose left half the unit rect [0, 1/2] x [0, 1] keeps:
+         * 10 x 20 */
+        {"box through a viewport",
+         VSVG("<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect width=\"0.5\" "
+              "height=\"1\"/></clipPath><g clip-path=\"url(#o)\"><svg x=\"20\" y=\"20\" "
+              "width=\"20\" height=\"20\" viewBox=\"0 0 10 10\"><rect width=\"10\" "
+              "height=\"10\"/></svg></g>"),
+         "200", 200},
         /* a clip-path inside the viewport: the disk of radius 8 at the
          * viewport's right edge, cut by it: half the disk, 32 pi */
         {"clip inside", VSVG("<svg x=\"4\" y=\"4\" width=\"20\" height=\"20\"><clipPath "
