@@ -26,9 +26,11 @@
  *     reference cycle draws nothing, as browsers do), <symbol> (drawn only
  *     through <use>) and nested <svg>, each a viewport with its viewBox
  *     and preserveAspectRatio; a viewport of overflow hidden (the initial
- *     value) clips, and the reader has no clip paths: content reaching
- *     beyond it, by an exact bounds test (within_viewports), is refused,
- *     and with overflow visible it is drawn unclipped;
+ *     value) clips its content: a clip of the scene whose one member is
+ *     the viewport's rectangle (viewport_clip), made only for content
+ *     reaching beyond it by an exact bounds test (shape_clip); with
+ *     overflow visible it is drawn unclipped; clip-path on a <use> clips
+ *     in its user space, translate(x, y) included;
  *   - style: the style attribute and <style> sheets, cascaded by CSS
  *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
  *     !important; presentation attributes below every rule);
@@ -83,8 +85,12 @@
  * url() paints), text, images, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <use> and other non-shapes in a clipPath, references to clip
- * paths forming a cycle, masks, filters, content beyond a viewport that
- * clips, references to other documents, what svgcss.h refuses in a style
+ * paths forming a cycle, masks, filters, clip-path on a nested <svg> or a
+ * <symbol> (where it applies is not settled: Chromium clips in the
+ * viewBox's coordinates, librsvg in the parent's, resvg not at all),
+ * objectBoundingBox units for a clip-path on a <use>,
+ * content beyond a viewport that clips when the sink takes no clips,
+ * references to other documents, what svgcss.h refuses in a style
  * sheet, sheets for other media, negative widths and dashes, invalid
  * values in declarations, any attribute or style property not
  * implemented (see css_known; in a rule, only when the rule matches a
@@ -267,7 +273,8 @@ typedef struct reader {
     const xmlNode *node; /* the element being read, for messages */
     /* clip paths (svgfile.c, "clip paths") */
     const xmlNode *root;
-    int clip;   /* the clip of the shapes given now (-1: none) */
+    int clip;   /* the clip of the shapes given now (-1: none; -2 - k: the
+                 * viewport vclip[k], given to the sink when first needed) */
     int nclips; /* clips given to the sink so far */
     const xmlNode *clip_stack[AA_SVG_MAX_CLIP_NESTING]; /* clipPaths being read */
     int nstack;
@@ -284,9 +291,12 @@ typedef struct reader {
     const xmlNode *chain[AA_SVG_MAX_DEPTH + 2]; /* the elements being read */
     int nvclip;              /* the viewports that clip (overflow hidden) */
     struct svg_clip {
-        mat to;              /* pixels to the viewport's coordinates */
+        mat m;               /* the viewport's coordinates to pixels */
+        mat to;              /* and back */
         double box[4];       /* x0 y0 x1 y1 in them */
         const xmlNode *node; /* the <svg> or <symbol> */
+        int outer;           /* the clip it lies within (as r->clip) */
+        int id;              /* its clip given to the sink, or -1: not yet */
     } vclip[AA_SVG_MAX_DEPTH + 2];
 } reader;
 
@@ -1963,31 +1973,109 @@ static int path_bounds(const aa_path *p, const mat *m, double b[4])
     return 0;
 }
 
-/* Refuse a path (in user units, mapped by m to pixels) that reaches
- * beyond a viewport that clips (a nested <svg> or a used <symbol> of
- * overflow hidden): without clip paths it could not be drawn as clipped.
- * The test is exact (the path's bounds in the viewport's coordinates)
- * but for rounding: 1e-9 of the viewport's size, which changes no
- * pixel's coverage by more than that. */
-static int within_viewports(reader *r, const aa_path *p, const mat *m)
+static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
+                     aa_fill_rule rule, double alpha);
+
+/* Remember the clip `id` made of node referenced in user space m (with the
+ * box `box`) within `within`, so that the same reference gives it again. */
+static int clip_record(reader *r, const xmlNode *node, const mat *m, const double box[4],
+                       int within, int id)
 {
-    for (int k = 0; k < r->nvclip; k++) {
-        const struct svg_clip *c = &r->vclip[k];
-        const mat g = mat_mul(c->to, *m);
+    if (r->nmade == r->capmade) {
+        size_t c = r->capmade ? 2 * r->capmade : 16;
+        clip_made *p = realloc(r->made, c * sizeof *p);
+        if (!p)
+            return aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
+        r->made = p, r->capmade = c;
+    }
+    r->made[r->nmade++] = (clip_made){node, *m, {box[0], box[1], box[2], box[3]}, within, id};
+    return AA_OK;
+}
+
+/* The clip c (as r->clip) given to the sink: a viewport's clip is made
+ * when first needed, within its outer clip (made first), its one member
+ * the viewport's rectangle [x0, x1] x [y0, y1] through the map m at the
+ * viewport (a parallelogram in pixels, exact lines; nonzero).  The same
+ * viewport at the same map and size within the same clip (a <symbol>
+ * used alike twice) gives the clip made before, as clip paths do. */
+static int viewport_clip(reader *r, int c, int *out)
+{
+    *out = c;
+    if (c >= -1)
+        return AA_OK;
+    struct svg_clip *v = &r->vclip[-2 - c];
+    if (v->id >= 0) {
+        *out = v->id;
+        return AA_OK;
+    }
+    int within, st;
+    if ((st = viewport_clip(r, v->outer, &within)))
+        return st;
+    for (size_t k = 0; k < r->nmade; k++) {
+        const clip_made *d = &r->made[k];
+        if (d->node == v->node && d->within == within && !memcmp(&d->m, &v->m, sizeof v->m) &&
+            !memcmp(d->box, v->box, sizeof v->box)) {
+            *out = v->id = d->id;
+            return AA_OK;
+        }
+    }
+    aa_path p;
+    aa_path_init(&p);
+    const double *b = v->box;
+    if (!(st = aa_path_move_to(&p, b[0], b[1])) && !(st = aa_path_line_to(&p, b[2], b[1])) &&
+        !(st = aa_path_line_to(&p, b[2], b[3])) && !(st = aa_path_line_to(&p, b[0], b[3])) &&
+        !(st = aa_path_close(&p)) && (st = r->sink->clip_begin(r->ctx, within)))
+        st = at_element(r, st);
+    if (!st) {
+        const int was = r->clip;
+        const aa_rgb none = {{0, 0, 0}};
+        r->clip = -1;
+        st = give_path(r, &p, &v->m, none, AA_FILL_NONZERO, 1.0);
+        r->clip = was;
+    }
+    if (!st)
+        st = r->sink->clip_end(r->ctx);
+    aa_path_free(&p);
+    if (st)
+        return st;
+    v->id = r->nclips++;
+    *out = v->id;
+    return clip_record(r, v->node, &v->m, v->box, within, v->id);
+}
+
+/* The clip of a path (in user units, mapped by m to pixels) drawn now:
+ * r->clip, but a viewport that clips (a nested <svg> or a used <symbol>
+ * of overflow hidden) the path lies wholly inside is passed over for the
+ * clip it lies within, so that content inside its viewports is drawn
+ * as without them and no clip is made for it.  The test is exact (the
+ * path's bounds in the viewport's coordinates) but for rounding: 1e-9 of
+ * the viewport's size, which changes no pixel's coverage by more than
+ * that.  A sink without clips refuses a path that needs one. */
+static int shape_clip(reader *r, const aa_path *p, const mat *m, int *out)
+{
+    int c = r->clip;
+    while (c <= -2) {
+        const struct svg_clip *v = &r->vclip[-2 - c];
+        const mat g = mat_mul(v->to, *m);
         double b[4];
         const double eps =
-            1e-9 * (fabs(c->box[0]) + fabs(c->box[1]) + fabs(c->box[2]) + fabs(c->box[3]));
+            1e-9 * (fabs(v->box[0]) + fabs(v->box[1]) + fabs(v->box[2]) + fabs(v->box[3]));
         int e = path_bounds(p, &g, b);
-        if (!e && b[0] >= c->box[0] - eps && b[1] >= c->box[1] - eps &&
-            b[2] <= c->box[2] + eps && b[3] <= c->box[3] + eps)
+        if (!e && b[0] >= v->box[0] - eps && b[1] >= v->box[1] - eps &&
+            b[2] <= v->box[2] + eps && b[3] <= v->box[3] + eps) {
+            c = v->outer;
             continue;
-        return fail_at(r, "%s the viewport of the <%s> at line %ld, which clips it (overflow "
-                          "hidden; clipping is not supported: overflow=\"visible\" draws it "
-                          "unclipped)",
-                       e ? "this stroke (of an evolute) may reach beyond" : "this reaches beyond",
-                       (const char *)c->node->name, xmlGetLineNo(c->node));
+        }
+        if (!r->sink->clip_begin || !r->sink->clip_end || !r->sink->clip)
+            return fail_at(r, "%s the viewport of the <%s> at line %ld, which clips it "
+                              "(overflow hidden), and clips are not taken here "
+                              "(overflow=\"visible\" draws it unclipped)",
+                           e ? "this stroke (of an evolute) may reach beyond"
+                             : "this reaches beyond",
+                           (const char *)v->node->name, xmlGetLineNo(v->node));
+        break;
     }
-    return AA_OK;
+    return viewport_clip(r, c, out);
 }
 
 /* A path in user units through m to the sink as one shape of colour
@@ -1999,7 +2087,8 @@ static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
     int st = AA_OK, open = 0;
     double sx = 0, sy = 0; /* the subpath's start, user units */
     const aa_svg_sink *k = r->sink;
-    if (p->n && r->nvclip && (st = within_viewports(r, p, m)))
+    int clip = r->clip;
+    if (p->n && (st = shape_clip(r, p, m, &clip)))
         return st;
     if (p->n && alpha < 1 && !k->alpha)
         return fail_at(r, "a translucent shape (alpha %g) is not taken here", alpha);
@@ -2007,7 +2096,7 @@ static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
         return st;
     if (p->n && alpha < 1 && (st = k->alpha(r->ctx, alpha)))
         return st;
-    if (p->n && r->clip >= 0 && (st = k->clip(r->ctx, r->clip)))
+    if (p->n && clip >= 0 && (st = k->clip(r->ctx, clip)))
         return st;
     for (size_t i = 0; i < p->n && !st; i++) {
         const aa_path_seg *g = &p->seg[i];
@@ -2557,7 +2646,9 @@ static int group_begin(reader *r, double o)
  *     draw it): the box of its
  *     fill geometry in its user space (SVG 2, "Bounding boxes"), exact for Bezier and
  *     elliptical arcs (their extremes in closed form, geometry_box), of a
- *     group the union of its children's, each through its transform.  A
+ *     group the union of its children's, each through its transform, of a
+ *     nested <svg> its content's through x, y and its viewBox map, not cut
+ *     by its viewport (as Chromium, resvg and librsvg take it).  A
  *     box of no width or no height is refused.
  *   - The clip is the union of the clipPath's children: <path>, <rect>,
  *     <circle>, <ellipse>, <polygon>, <polyline> (a <line> has no area),
@@ -2575,6 +2666,11 @@ static int group_begin(reader *r, double o)
  *     other element (not in a clipPath's content model).
  *   - An element's clip lies within the clip of every ancestor group:
  *     the intersection, as the group's content is clipped as a whole.
+ *     So it does within the clip of a <use> (its clip-path in its user
+ *     space, translate(x, y) included) and of every viewport that clips
+ *     around it (a nested <svg> or a used <symbol> of overflow hidden:
+ *     a clip whose one member is the viewport's rectangle, made when
+ *     first needed, before the clip that lies within it begins).
  *
  * A clipPath referenced alike (the same user space, box and outer clip)
  * by several elements is given once. */
@@ -2698,6 +2794,11 @@ static void path_box(const aa_path *p, const mat *m, double box[4])
     }
 }
 
+static int viewbox_map(reader *r, const xmlNode *node, double vw, double vh, mat *m,
+                       double vb[2]);
+static int viewport_side(reader *r, const xmlNode *node, const xmlNode *over, const char *key,
+                         double *v);
+
 /* The fill geometry of node and what it holds through m, grown into box
  * (SVG 2's object bounding box: shapes, and groups by their children, each
  * through its own transform; elements with display="none" and those that
@@ -2726,13 +2827,33 @@ static int geometry_box(reader *r, const xmlNode *node, const mat *m, double box
             path_box(&p, m, box);
         aa_path_free(&p);
     } else if (!st && (named(node, "g") || named(node, "svg"))) {
-        for (const xmlNode *c = node->children; c && !st; c = c->next) {
+        /* a nested <svg>: its content through translate(x, y) and its
+         * viewBox map, unclipped (its overflow does not change the box:
+         * Chromium, resvg and librsvg alike); one of no area adds nothing */
+        mat mv = *m;
+        double vb[2] = {r->vpw, r->vph}, pw = r->vpw, ph = r->vph;
+        int drawn = 1;
+        if (named(node, "svg") && node != r->root) {
+            double x = 0, y = 0, w = 0, h = 0;
+            mat vbm;
+            if (!(st = attr_length(r, node, "x", 0, &x)) &&
+                !(st = attr_length(r, node, "y", 0, &y)) &&
+                !(st = viewport_side(r, node, NULL, "width", &w)) &&
+                !(st = viewport_side(r, node, NULL, "height", &h)) &&
+                (drawn = w > 0 && h > 0) && !(st = viewbox_map(r, node, w, h, &vbm, vb))) {
+                const mat at = {1, 0, 0, 1, x, y};
+                mv = mat_mul(*m, mat_mul(at, vbm));
+            }
+        }
+        r->vpw = vb[0], r->vph = vb[1];
+        for (const xmlNode *c = node->children; c && !st && drawn; c = c->next) {
             if (c->type != XML_ELEMENT_NODE)
                 continue;
-            mat mc = *m;
+            mat mc = mv;
             if (!(st = element_transform(r, c, &mc)))
                 st = geometry_box(r, c, &mc, box, depth + 1);
         }
+        r->vpw = pw, r->vph = ph;
     }
     r->node = was;
     return st;
@@ -2868,6 +2989,10 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
         if (st)
             return st;
     }
+    if (obb && named(ref, "use"))
+        return fail_at(r, "clipPathUnits=\"objectBoundingBox\" for the <use> of line %ld is "
+                          "not supported (the bounding box of a use's target is not computed)",
+                       xmlGetLineNo(ref));
     if (obb) {
         double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
         if ((st = geometry_box(r, ref, &identity, b, 0)))
@@ -2972,15 +3097,7 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
     if (st)
         return st;
     *out = r->nclips++;
-    if (r->nmade == r->capmade) {
-        size_t c = r->capmade ? 2 * r->capmade : 16;
-        clip_made *p = realloc(r->made, c * sizeof *p);
-        if (!p)
-            return aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
-        r->made = p, r->capmade = c;
-    }
-    r->made[r->nmade++] = (clip_made){cp, *m, {box[0], box[1], box[2], box[3]}, outer, *out};
-    return AA_OK;
+    return clip_record(r, cp, m, box, outer, *out);
 }
 
 static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const mat *m,
@@ -3005,6 +3122,10 @@ static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const 
                        AA_SVG_MAX_CLIP_NESTING);
     if (!r->sink->clip_begin || !r->sink->clip_end || !r->sink->clip)
         return fail_at(r, "clip paths are not taken here");
+    /* the clip it lies within, a viewport's made now if not yet (before
+     * this one begins) */
+    if ((st = viewport_clip(r, outer, &outer)))
+        return st;
     r->clip_stack[r->nstack++] = cp;
     st = clip_make(r, cp, ref, m, outer, out);
     r->nstack--;
@@ -3361,9 +3482,13 @@ static int viewport_side(reader *r, const xmlNode *node, const xmlNode *over, co
  * absent: 100%) in the user units it is in, its viewBox mapped onto it;
  * percentages within it refer to the viewBox's size (or the viewport's).
  * overflow (initially hidden for both, by SVG 2's user agent style sheet)
- * hidden, scroll or clip clips its content to the viewport: the reader
- * has no clip paths, so content reaching beyond it is refused
- * (within_viewports); visible and auto (SVG: as visible) do not clip. */
+ * hidden, scroll or clip clips its content to the viewport (CSS Overflow
+ * 3; SVG 2, "The effect of the 'overflow' property"): the viewport's
+ * rectangle x, y, width, height in the user space the element is in (not
+ * the viewBox, which meet may leave smaller) becomes a clip within the
+ * clip the element is drawn in, made when a shape first reaches beyond
+ * it (shape_clip, viewport_clip); visible and auto (SVG: as visible) do
+ * not clip. */
 static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, style sty, mat m,
                             int depth, double opacity)
 {
@@ -3377,7 +3502,7 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
         return st;
     if (w == 0 || h == 0)
         return AA_OK; /* SVG: a viewport of no area draws nothing */
-    char v[64];
+    char v[1024];
     int clip = 1;
     if (prop(r, node, "overflow", v, sizeof v, &st)) {
         if (!strcasecmp(v, "visible") || !strcasecmp(v, "auto"))
@@ -3388,6 +3513,14 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
     }
     if (st)
         return st;
+    /* clip-path on the viewport element itself: in which user space is
+     * not settled (Chromium clips in the viewBox's coordinates, librsvg in
+     * the parent's, resvg draws nothing), so it is refused */
+    if (prop(r, node, "clip-path", v, sizeof v, &st) && !st && strcasecmp(v, "none"))
+        return fail_at(r, "clip-path on a nested <svg> or a <symbol> is not supported (its "
+                          "user space is not settled: browsers and renderers differ)");
+    if (st)
+        return st;
     mat vbm, to;
     double vb[2];
     if ((st = viewbox_map(r, node, w, h, &vbm, vb)))
@@ -3396,8 +3529,8 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
         if (mat_inverse(&m, &to))
             return fail_at(r, "a viewport that clips under a singular transform is not "
                               "supported");
-        r->vclip[r->nvclip] = (struct svg_clip){to, {x, y, x + w, y + h}, node};
-        r->nvclip++;
+        r->vclip[r->nvclip] = (struct svg_clip){m, to, {x, y, x + w, y + h}, node, r->clip, -1};
+        r->clip = -2 - r->nvclip++;
     }
     const mat at = {1, 0, 0, 1, x, y};
     const mat inner = mat_mul(m, mat_mul(at, vbm));
@@ -3413,7 +3546,7 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
     }
     r->vpw = pw, r->vph = ph;
     if (clip)
-        r->nvclip--;
+        r->clip = r->vclip[--r->nvclip].outer;
     return st;
 }
 
@@ -3461,10 +3594,20 @@ static int use_element(reader *r, const xmlNode *node, style sty, mat m, int dep
         return st;
     const mat at = {1, 0, 0, 1, x, y};
     m = mat_mul(m, at);
+    /* its clip-path in its user space, translate(x, y) included (SVG 2:
+     * x and y are a transform appended to the use's; Chromium, resvg and
+     * librsvg clip there), within the clip it is drawn in */
+    const int outer = r->clip;
+    int clip;
+    if ((st = clip_of(r, node, &m, outer, &clip)))
+        return st;
+    r->node = node;
     if (opacity < 1 && (st = group_begin(r, opacity)))
         return st;
     r->use = node;
+    r->clip = clip;
     st = element(r, target, sty, m, depth + 1);
+    r->clip = outer;
     r->use = NULL;
     if (!st && opacity < 1) {
         r->node = node;

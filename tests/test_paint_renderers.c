@@ -2,8 +2,9 @@
  * test_paint_renderers.c: translucent paint, paint order, currentColor,
  * visibility, CSS colours, strokes (joins, caps, a Bezier arc's exact
  * offsets, dashes, ellipses, a cusp), clip paths, and <use>, <symbol>,
- * nested <svg>, CSS lengths, style sheets and the cascade, the CSS
- * transform property and path data with an error, as browsers draw them:
+ * nested <svg> (viewports that clip, clip-path on a use), CSS lengths,
+ * style sheets and the cascade, the CSS transform property and path data
+ * with an error, as browsers draw them:
  * the exact box reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -46,7 +47,7 @@
 
 #define CELL 40
 #define COLS 4
-#define ROWS 13
+#define ROWS 14
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
@@ -557,6 +558,57 @@ static const cell cells[] = {
      "<svg width=\"40\" height=\"20\"><circle cx=\"50%\" cy=\"50%\" r=\"25%\" "
      "fill=\"white\"/></svg>",
      {{20, 10, {1, 1, 1}}, {20, 4, {1, 1, 1}}, {20, 30, {0, 0, 0}}},
+     3, ""},
+    /* a nested svg of overflow hidden (the initial value) clips: the
+     * rect [0, 40]^2 drawn in the viewport [8, 24] x [8, 32] shows only
+     * there (SVG 2, "The effect of the 'overflow' property") */
+    {"viewport clip",
+     "<svg x=\"8\" y=\"8\" width=\"16\" height=\"24\"><rect x=\"-8\" y=\"-8\" width=\"40\" "
+     "height=\"40\" fill=\"lime\"/></svg>",
+     {{16, 20, {0, 1, 0}}, {4, 4, {0, 0, 0}}, {30, 20, {0, 0, 0}}},
+     3, ""},
+    /* a symbol of viewBox 0 0 10 10 used at (4, 12), 32 x 16: meet
+     * scales by min(3.2, 1.6) = 1.6 and centres the viewBox 8 right, on
+     * [12, 28]^2; its rect [-5, 15]^2 lands on [4, 36]^2 and the viewport
+     * [4, 36] x [12, 28] (not the viewBox) keeps [4, 36] x [12, 28]
+     * (librsvg 2.54.7 draws the rect whole: wrong by SVG 2, whose user
+     * agent style sheet gives symbol overflow hidden; Chromium and resvg
+     * clip it) */
+    {"symbol clip",
+     "<symbol id=\"vs2\" viewBox=\"0 0 10 10\"><rect x=\"-5\" y=\"-5\" width=\"20\" "
+     "height=\"20\" fill=\"aqua\"/></symbol><use href=\"#vs2\" x=\"4\" y=\"12\" "
+     "width=\"32\" height=\"16\"/>",
+     {{8, 20, {0, 1, 1}}, {20, 20, {0, 1, 1}}, {20, 6, {0, 0, 0}}, {20, 33, {0, 0, 0}}},
+     4, "rsvg"},
+    /* a group's clip-path (the disk of radius 14 about (20, 20)) around a
+     * viewport [10, 30]^2 rotated 30 degrees about (20, 20): their
+     * intersection; the centre is yellow, the cell's corners and the
+     * disk's edge beyond the square black */
+    {"viewport in a clip",
+     "<clipPath id=\"vc3\"><circle cx=\"20\" cy=\"20\" r=\"14\"/></clipPath>"
+     "<g clip-path=\"url(#vc3)\"><g transform=\"rotate(30 20 20)\"><svg x=\"10\" "
+     "y=\"10\" width=\"20\" height=\"20\"><rect x=\"-20\" y=\"-20\" width=\"60\" "
+     "height=\"60\" fill=\"yellow\"/></svg></g></g>",
+     {{20, 20, {1, 1, 0}}, {2, 2, {0, 0, 0}}, {20, 37, {0, 0, 0}}},
+     3, ""},
+    /* clip-path on a use, in its user space with translate(8, 8): the
+     * square [0, 16]^2 there is [8, 24]^2, over the rect [8, 38]^2 */
+    {"use clip-path",
+     "<clipPath id=\"vc4\"><rect width=\"16\" height=\"16\"/></clipPath><defs><rect "
+     "id=\"vr4\" width=\"30\" height=\"30\" fill=\"white\"/></defs><use href=\"#vr4\" "
+     "x=\"8\" y=\"8\" clip-path=\"url(#vc4)\"/>",
+     {{20, 20, {1, 1, 1}}, {30, 30, {0, 0, 0}}, {4, 4, {0, 0, 0}}},
+     3, ""},
+    /* objectBoundingBox of a group holding a nested svg at (8, 8): its
+     * content through translate(8, 8), unclipped: the rect [-8, 24] x
+     * [0, 24] there is [0, 32] x [8, 32], the unit rect [1/4, 1/2] x
+     * [0, 1] on it [8, 16] x [8, 32] */
+    {"box through a viewport",
+     "<clipPath id=\"vo5\" clipPathUnits=\"objectBoundingBox\"><rect x=\"0.25\" "
+     "width=\"0.25\" height=\"1\"/></clipPath><g clip-path=\"url(#vo5)\"><svg x=\"8\" "
+     "y=\"8\" width=\"24\" height=\"24\"><rect x=\"-8\" width=\"32\" height=\"24\" "
+     "fill=\"white\"/></svg></g>",
+     {{12, 20, {1, 1, 1}}, {20, 20, {0, 0, 0}}, {4, 20, {0, 0, 0}}},
      3, ""},
 };
 #define NCELLS (sizeof cells / sizeof cells[0])

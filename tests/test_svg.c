@@ -621,6 +621,7 @@ static void test_refusals(void **state)
             "basic shapes");
     refused(L2("<use href=\"other.svg#a\"/>"), "<use>", "another document");
     refused(L2("<style>rect:first-child{fill:red}</style>"), "line 2: <style>", "pseudo-class");
+    /* nor content beyond a viewport that clips, which needs a clip */
     refused(L2("<svg width=\"4\" height=\"4\"><rect width=\"5\" height=\"1\"/></svg>"),
             "line 2: <rect>", "viewport of the <svg> at line 2");
     refused(L2("<blink/>"), "<blink>", "not supported");

@@ -73,6 +73,19 @@ static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double v
 static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc,
                                  NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL};
 
+/* The same with clips: "[within W" .. " ]" around a clip's members, and
+ * " clip N" after the shape drawn inside clip N. */
+static int s_clip_begin(void *ctx, int within)
+{
+    return put(ctx, "%s[within %d", ((text_sink *)ctx)->n ? " " : "", within);
+}
+static int s_clip_end(void *ctx) { return put(ctx, " ]"); }
+static int s_clip(void *ctx, int clip) { return put(ctx, " clip %d", clip); }
+
+static const aa_svg_sink clip_sink = {s_shape, s_move,       s_line,     s_quad, s_cubic,
+                                      s_close, s_arc,        NULL,       NULL,   NULL,
+                                      NULL,    s_clip_begin, s_clip_end, s_clip};
+
 #define OPEN "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">"
 #define BLACK "0 0 0;"
 #define WHITE "1 1 1;"
@@ -93,6 +106,29 @@ static void expect(const char *doc, const char *want)
     const char *got = read_doc(doc);
     if (strcmp(got, want))
         fail_msg("%s\n  got  %s\n  want %s", doc, got, want);
+}
+
+/* The same through the sink that takes clips. */
+static void expect_clips(const char *doc, const char *want)
+{
+    static text_sink t;
+    t.n = 0;
+    t.buf[0] = '\0';
+    if (aa_svg_read(doc, strlen(doc), "test.svg", 100, 100, &clip_sink, &t, NULL) != AA_OK)
+        fail_msg("%s: %s", doc, aa_last_error());
+    if (strcmp(t.buf, want))
+        fail_msg("%s\n  got  %s\n  want %s", doc, t.buf, want);
+}
+
+static void refused_clips(const char *doc, const char *want1, const char *want2)
+{
+    static text_sink t;
+    t.n = 0;
+    if (aa_svg_read(doc, strlen(doc), "test.svg", 100, 100, &clip_sink, &t, NULL) != AA_EINVAL)
+        fail_msg("accepted: %s", doc);
+    const char *msg = aa_last_error();
+    if ((want1 && !strstr(msg, want1)) || (want2 && !strstr(msg, want2)))
+        fail_msg("%s\n  message: %s\n  wanted: %s / %s", doc, msg, want1, want2 ? want2 : "");
 }
 
 /* `doc` is refused with a message containing want1 and want2. */
@@ -208,8 +244,9 @@ static void test_viewports(void **state)
     /* a viewport of no width draws nothing */
     expect(OPEN "<svg width=\"0\"><rect width=\"1\" height=\"1\"/></svg></svg>", "");
     /* content reaching beyond a viewport of overflow hidden (the initial
-     * value): refused, since the reader does not clip; touching its edges
-     * is inside; overflow visible draws it whole */
+     * value): refused by a sink that takes no clips (test_viewport_clips
+     * for one that does); touching its edges is inside; overflow visible
+     * draws it whole */
     refused(OPEN "\n<svg width=\"10\" height=\"10\"><rect x=\"5\" width=\"5.001\" height=\"1\"/>"
                  "</svg></svg>",
             "line 2: <rect>", "beyond the viewport of the <svg> at line 2");
@@ -253,6 +290,106 @@ static void test_viewports(void **state)
             "overflow");
     /* refX and refY are not read */
     refused(OPEN "<symbol id=\"s\" refX=\"1\"/><use href=\"#s\"/></svg>", "<symbol>", "refX");
+}
+
+/* Viewports that clip, through a sink that takes clips (SVG 2: a nested
+ * <svg> or a used <symbol> of overflow hidden clips its content to its
+ * viewport, x y width height in the user space it is in): the clip's one
+ * member is that rectangle through the map there, within the clip the
+ * viewport is drawn in, given when a shape first reaches beyond it. */
+static void test_viewport_clips(void **state)
+{
+    (void)state;
+    /* the viewport [2, 12] x [3, 13]; the rect [7, 27] x [3, 4] beyond it */
+    expect_clips(OPEN "<svg x=\"2\" y=\"3\" width=\"10\" height=\"10\"><rect x=\"5\" "
+                      "width=\"20\" height=\"1\"/></svg></svg>",
+                 "[within -1 " BLACK " M 2 3 L 12 3 L 12 13 L 2 13 Z ] " BLACK
+                 " clip 0 M 7 3 L 27 3 L 27 4 L 7 4 Z");
+    /* a shape inside is drawn as without the viewport; two beyond share
+     * one clip */
+    expect_clips(OPEN "<svg width=\"10\" height=\"10\"><rect width=\"1\" height=\"1\"/>"
+                      "<rect y=\"2\" width=\"20\" height=\"1\"/><rect y=\"4\" width=\"1\" "
+                      "height=\"20\"/></svg></svg>",
+                 BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z [within -1 " BLACK
+                       " M 0 0 L 10 0 L 10 10 L 0 10 Z ] " BLACK
+                       " clip 0 M 0 2 L 20 2 L 20 3 L 0 3 Z " BLACK
+                       " clip 0 M 0 4 L 1 4 L 1 24 L 0 24 Z");
+    /* a symbol used twice alike gives one clip; used elsewhere, another:
+     * its viewport [0, 10]^2 at the use, then at translate(50, 0) */
+    expect_clips(OPEN "<symbol id=\"s\"><rect x=\"-5\" width=\"20\" height=\"1\"/></symbol>"
+                      "<use href=\"#s\" width=\"10\" height=\"10\"/>"
+                      "<use href=\"#s\" width=\"10\" height=\"10\"/>"
+                      "<use href=\"#s\" x=\"50\" width=\"10\" height=\"10\"/></svg>",
+                 "[within -1 " BLACK " M 0 0 L 10 0 L 10 10 L 0 10 Z ] " BLACK
+                 " clip 0 M -5 0 L 15 0 L 15 1 L -5 1 Z " BLACK
+                 " clip 0 M -5 0 L 15 0 L 15 1 L -5 1 Z [within -1 " BLACK
+                 " M 50 0 L 60 0 L 60 10 L 50 10 Z ] " BLACK
+                 " clip 1 M 45 0 L 65 0 L 65 1 L 45 1 Z");
+    /* under a skew, x' = x + y / 2: the viewport [0, 10] x [0, 20] is the
+     * parallelogram (0, 0) (10, 0) (20, 20) (10, 20) */
+    expect_clips(OPEN "<g transform=\"matrix(1 0 0.5 1 0 0)\"><svg width=\"10\" "
+                      "height=\"20\"><rect width=\"30\" height=\"2\"/></svg></g></svg>",
+                 "[within -1 " BLACK " M 0 0 L 10 0 L 20 20 L 10 20 Z ] " BLACK
+                 " clip 0 M 0 0 L 30 0 L 31 2 L 1 2 Z");
+    /* in a group with a clip-path: the viewport's clip lies within the
+     * group's (an intersection); a shape inside the viewport keeps the
+     * group's clip */
+#define CLIP4 "<clipPath id=\"c\"><rect width=\"4\" height=\"4\"/></clipPath>"
+    expect_clips(OPEN CLIP4 "<g clip-path=\"url(#c)\"><svg width=\"10\" height=\"10\">"
+                            "<rect width=\"1\" height=\"1\"/><rect width=\"20\" height=\"1\"/>"
+                            "</svg></g></svg>",
+                 "[within -1 " BLACK " M 0 0 L 4 0 L 4 4 L 0 4 Z ] " BLACK
+                 " clip 0 M 0 0 L 1 0 L 1 1 L 0 1 Z [within 0 " BLACK
+                 " M 0 0 L 10 0 L 10 10 L 0 10 Z ] " BLACK " clip 1 M 0 0 L 20 0 L 20 1 L 0 1 Z");
+    /* a clip-path inside a viewport: its clip within the viewport's */
+    expect_clips(OPEN CLIP4 "<svg width=\"10\" height=\"10\"><rect width=\"20\" height=\"1\" "
+                            "clip-path=\"url(#c)\"/></svg></svg>",
+                 "[within -1 " BLACK " M 0 0 L 10 0 L 10 10 L 0 10 Z ] [within 0 " BLACK
+                 " M 0 0 L 4 0 L 4 4 L 0 4 Z ] " BLACK " clip 1 M 0 0 L 20 0 L 20 1 L 0 1 Z");
+    /* viewports in viewports: the inner [2, 7] x [0, 5] within the outer
+     * [0, 10]^2; overflow visible makes no clip */
+    expect_clips(OPEN "<svg width=\"10\" height=\"10\"><svg x=\"2\" width=\"5\" height=\"5\">"
+                      "<rect width=\"20\" height=\"1\"/></svg></svg></svg>",
+                 "[within -1 " BLACK " M 0 0 L 10 0 L 10 10 L 0 10 Z ] [within 0 " BLACK
+                 " M 2 0 L 7 0 L 7 5 L 2 5 Z ] " BLACK " clip 1 M 2 0 L 22 0 L 22 1 L 2 1 Z");
+    expect_clips(OPEN "<svg width=\"10\" height=\"10\"><svg width=\"5\" height=\"5\" "
+                      "overflow=\"visible\"><rect width=\"8\" height=\"1\"/></svg></svg></svg>",
+                 BLACK " M 0 0 L 8 0 L 8 1 L 0 1 Z");
+    /* clip-path on a <use>: in its user space, translate(x, y) included
+     * (SVG 2, "The 'use' element"; Chromium, resvg and librsvg alike) */
+    expect_clips(OPEN CLIP4 "<defs><rect id=\"r\" width=\"10\" height=\"10\"/></defs>"
+                            "<use href=\"#r\" x=\"20\" clip-path=\"url(#c)\"/></svg>",
+                 "[within -1 " BLACK " M 20 0 L 24 0 L 24 4 L 20 4 Z ] " BLACK
+                 " clip 0 M 20 0 L 30 0 L 30 10 L 20 10 Z");
+    /* objectBoundingBox of a group holding a nested svg: its content
+     * through translate(20, 20), unclipped (the rect [-20, 40] x [0, 20]
+     * there: [0, 60] x [20, 40]; Chromium, resvg and librsvg take it so);
+     * the unit rect [1/4, 1/2] x [0, 1] on it is [15, 30] x [20, 40] */
+    expect_clips(OPEN "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect "
+                      "x=\"0.25\" width=\"0.25\" height=\"1\"/></clipPath><g "
+                      "clip-path=\"url(#o)\"><svg x=\"20\" y=\"20\" width=\"20\" "
+                      "height=\"20\"><rect x=\"-20\" width=\"60\" height=\"20\"/></svg></g>"
+                      "</svg>",
+                 "[within -1 " BLACK " M 15 20 L 30 20 L 30 40 L 15 40 Z ] [within 0 " BLACK
+                 " M 20 20 L 40 20 L 40 40 L 20 40 Z ] " BLACK
+                 " clip 1 M 0 20 L 60 20 L 60 40 L 0 40 Z");
+    /* objectBoundingBox units for a use: its box is not computed */
+    refused_clips(OPEN "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect "
+                       "width=\"1\" height=\"1\"/></clipPath><defs><rect id=\"r\" "
+                       "width=\"10\" height=\"10\"/></defs><use href=\"#r\" "
+                       "clip-path=\"url(#o)\"/></svg>",
+                  "<clipPath>", "for the <use> of line 1 is not supported");
+    /* clip-path on the viewport element itself is refused (its user
+     * space is not settled); none is no clip */
+    refused_clips(OPEN CLIP4 "<svg width=\"1\" height=\"1\" clip-path=\"url(#c)\"/></svg>",
+                  "<svg>", "clip-path");
+    refused_clips(OPEN CLIP4 "<symbol id=\"s\" clip-path=\"url(#c)\"/>"
+                             "<use href=\"#s\"/></svg>",
+                  "<symbol>", "clip-path");
+    expect_clips(OPEN "<svg width=\"10\" height=\"10\" clip-path=\"none\"><rect width=\"1\" "
+                      "height=\"1\"/></svg></svg>",
+                 BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+#undef CLIP4
 }
 
 /* ---- units ---- */
@@ -672,6 +809,80 @@ static void test_pictures(void **state)
     print_message("symbol: sum %.17g, 81 pi %.17g, error %.3g\n", s, 81 * M_PI, s - 81 * M_PI);
     assert_true(fabs(s - 81 * M_PI) < 1e-9);
     aa_image_free(&a);
+    /* viewports that clip, against closed forms (the scene's exact
+     * clips): a nested svg of 20 x 20 at (5.5, 7.25) holding a white disk
+     * of radius 15 centred at its corner: the quarter disk, 225 pi / 4 */
+#define VSVG(body)                                                                   \
+    "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"64\" height=\"64\" fill=\"white\">" \
+    body "</svg>"
+    static const struct {
+        const char *name, *doc, *what;
+        double area;
+    } vp[] = {
+        {"quarter", VSVG("<svg x=\"5.5\" y=\"7.25\" width=\"20\" height=\"20\">"
+                         "<circle r=\"15\"/></svg>"),
+         "225 pi / 4", 225 * M_PI / 4},
+        /* the same under rotate(30) about (32, 32): a rotation keeps areas */
+        {"quarter, rotated",
+         VSVG("<g transform=\"rotate(30 32 32)\"><svg x=\"22\" y=\"22\" width=\"20\" "
+              "height=\"20\"><circle r=\"15\"/></svg></g>"),
+         "225 pi / 4", 225 * M_PI / 4},
+        /* under skewX(30) (determinant 1): the rect [-10, 40] x [5, 15]
+         * cut to the viewport's [0, 20] x [5, 15]: 200 */
+        {"skewed", VSVG("<g transform=\"translate(10 10) skewX(30)\"><svg width=\"20\" "
+                        "height=\"20\"><rect x=\"-10\" y=\"5\" width=\"50\" height=\"10\"/>"
+                        "</svg></g>"),
+         "200", 200},
+        /* a symbol of viewBox 0 0 10 10 used at 20 x 30: meet scales by
+         * 2 and centres it 5 down; the rect [-5, 25] x [-5, 7] of the
+         * viewBox lands on [-10, 50] x [-5, 19] and the viewport (not the
+         * viewBox) [0, 20] x [0, 30] keeps [0, 20] x [0, 19]: 380; the
+         * use at (3, 4) moves it whole */
+        {"symbol", VSVG("<symbol id=\"s\" viewBox=\"0 0 10 10\"><rect x=\"-5\" y=\"-5\" "
+                        "width=\"30\" height=\"12\"/></symbol><use href=\"#s\" x=\"3\" "
+                        "y=\"4\" width=\"20\" height=\"30\"/>"),
+         "380", 380},
+        /* overflow visible: the disk whole, 225 pi */
+        {"visible", VSVG("<svg x=\"20\" y=\"20\" width=\"20\" height=\"20\" "
+                         "overflow=\"visible\"><circle cx=\"10\" cy=\"10\" r=\"15\"/></svg>"),
+         "225 pi", 225 * M_PI},
+        /* a group's clip-path (the disk of radius 10 at the viewport's
+         * corner) and the viewport (20 x 20) over a rect covering both:
+         * the quarter disk of radius 10, 25 pi */
+        {"group clip", VSVG("<clipPath id=\"c\"><circle cx=\"10\" cy=\"10\" r=\"10\"/>"
+                            "</clipPath><g clip-path=\"url(#c)\"><svg x=\"10\" y=\"10\" "
+                            "width=\"20\" height=\"20\"><rect x=\"-10\" y=\"-10\" width=\"60\" "
+                            "height=\"60\"/></svg></g>"),
+         "25 pi", 25 * M_PI},
+        /* objectBoundingBox of a group holding a nested svg of viewBox
+         * 0 0 10 10 at (20, 20), 20 x 20: its rect [0, 10]^2 is [20, 40]^2,
+         * the box, whose left half the unit rect [0, 1/2] x [0, 1] keeps:
+         * 10 x 20 */
+        {"box through a viewport",
+         VSVG("<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect width=\"0.5\" "
+              "height=\"1\"/></clipPath><g clip-path=\"url(#o)\"><svg x=\"20\" y=\"20\" "
+              "width=\"20\" height=\"20\" viewBox=\"0 0 10 10\"><rect width=\"10\" "
+              "height=\"10\"/></svg></g>"),
+         "200", 200},
+        /* a clip-path inside the viewport: the disk of radius 8 at the
+         * viewport's right edge, cut by it: half the disk, 32 pi */
+        {"clip inside", VSVG("<svg x=\"4\" y=\"4\" width=\"20\" height=\"20\"><clipPath "
+                             "id=\"c\"><circle cx=\"20\" cy=\"10\" r=\"8\"/></clipPath>"
+                             "<rect x=\"-4\" y=\"-4\" width=\"50\" height=\"50\" "
+                             "clip-path=\"url(#c)\"/></svg>"),
+         "32 pi", 32 * M_PI},
+    };
+#undef VSVG
+    for (size_t k = 0; k < sizeof vp / sizeof vp[0]; k++) {
+        reference("viewport", vp[k].doc, 64, 64, &a);
+        s = image_sum(&a);
+        print_message("%s: sum %.17g, %s %.17g, error %.3g\n", vp[k].name, s, vp[k].what,
+                      vp[k].area, s - vp[k].area);
+        if (!(fabs(s - vp[k].area) < 1e-9))
+            fail_msg("%s: the reference sums to %.17g, the area is %.17g", vp[k].name, s,
+                     vp[k].area);
+        aa_image_free(&a);
+    }
     /* 1in x 1cm: 96 x 96/2.54 = 3628.3464566929133 px^2 */
     reference("units",
               "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"128\" height=\"64\">"
@@ -685,6 +896,7 @@ static void test_pictures(void **state)
 }
 
 SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_use), cmocka_unit_test(test_viewports),
+             cmocka_unit_test(test_viewport_clips),
              cmocka_unit_test(test_units), cmocka_unit_test(test_sheets),
              cmocka_unit_test(test_css_transform), cmocka_unit_test(test_path_errors),
              cmocka_unit_test(test_invalid_attributes),
