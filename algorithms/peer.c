@@ -132,13 +132,6 @@ void aa_peer_background_row(const aa_scene *s, aa_image *out, int j, int n)
         px[0] = bg.c[0], px[1] = bg.c[1], px[2] = bg.c[2];
 }
 
-/* A linear channel sRGB-encoded, as the scene composites translucency. */
-static double peer_encoded(double linear)
-{
-    const aa_encode srgb = {AA_ENCODE_SRGB, 0};
-    return aa_encode_value(&srgb, linear);
-}
-
 void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *cov, int n,
                            double *px)
 {
@@ -146,14 +139,15 @@ void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *co
     const double alpha = aa_scene_layer_alpha(s, layer);
     double e[3];
     for (int q = 0; q < 3; q++)
-        e[q] = alpha * peer_encoded(c.c[q]);
+        e[q] = alpha * aa_srgb_encode(c.c[q]);
     for (int i = 0; i < n; i++, px += 3) {
         if (!cov[i])
             continue;
         const double a = cov[i] / 255.0;
         for (int q = 0; q < 3; q++) {
-            const double inside =
-                alpha == 1.0 ? c.c[q] : aa_srgb_decode(e[q] + (1.0 - alpha) * peer_encoded(px[q]));
+            const double inside = alpha == 1.0 ? c.c[q]
+                                               : aa_srgb_decode(e[q] + (1.0 - alpha) *
+                                                                           aa_srgb_encode(px[q]));
             px[q] = a * inside + (1.0 - a) * px[q];
         }
     }

@@ -199,3 +199,25 @@ void scenes_history_steady(const aa_scene *placed, int w, int h, int frame, int 
             }
         }
 }
+
+aa_scene *scenes_stroke_outline(const aa_path *in, const aa_stroke_style *st, const double *m,
+                                size_t *noffset)
+{
+    aa_path out = {0};
+    if (aa_stroke_outline(in, st, &out))
+        fail_msg("stroke outline: %s", aa_last_error());
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    if (aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO) || aa_path_fill(&out, m, s) ||
+        aa_scene_finish(s))
+        fail_msg("stroke outline scene: %s", aa_last_error());
+    aa_path_free(&out);
+    if (noffset) {
+        size_t n;
+        const aa_piece *pc = aa_scene_pieces(s, &n);
+        *noffset = 0;
+        for (size_t k = 0; k < n; k++)
+            *noffset += pc[k].kind == AA_PIECE_OFFSET;
+    }
+    return s;
+}

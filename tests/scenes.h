@@ -8,6 +8,7 @@
 
 #include "bench.h"
 #include "oracle.h"
+#include "path.h"
 
 /* The scene of a pattern spec ("crow", "star:spokes=7"), pattern units. */
 aa_scene *scenes_pattern(const char *spec);
@@ -69,5 +70,11 @@ aa_scene *scenes_triangles(uint64_t seed);
  * without reprojection, in closed form (out allocated). */
 void scenes_history_steady(const aa_scene *placed, int w, int h, int frame, int m,
                            double alpha, aa_image *out);
+
+/* The outline of the stroke of `in` (aa_stroke_outline) filled white on
+ * black through map m (NULL: none), non-zero; *noffset (may be NULL): how
+ * many of its pieces are offset curves (AA_PIECE_OFFSET). */
+aa_scene *scenes_stroke_outline(const aa_path *in, const aa_stroke_style *st, const double *m,
+                                size_t *noffset);
 
 #endif

@@ -502,3 +502,29 @@ int support_teardown_dir(void **state)
 {
     return *state && support_rmtree(*state) == 0 ? 0 : -1;
 }
+
+void support_stroke_check(const char *what, const aa_scene *s, const double box[4], double h,
+                          const double *m, int npts, double (*rnd)(void),
+                          support_distance_fn distance, const void *ctx)
+{
+    int tested = 0, inside = 0, wrong = 0;
+    for (int i = 0; i < npts; i++) {
+        double px = box[0] + (box[2] - box[0]) * rnd(), py = box[1] + (box[3] - box[1]) * rnd();
+        int unsure = 0;
+        double d = distance(ctx, px, py, &unsure);
+        if (unsure || fabs(d - h) < 1e-7)
+            continue;
+        double qx = px, qy = py;
+        if (m)
+            qx = m[0] * px + m[2] * py + m[4], qy = m[1] * px + m[3] * py + m[5];
+        int want = d <= h, got = aa_scene_colour_at(s, qx, qy).c[0] > 0.5;
+        tested++;
+        inside += want;
+        if (want != got && wrong++ < 5)
+            print_message("%s: (%.17g, %.17g) distance %.17g, h %g: stroke says %d\n", what,
+                          px, py, d, h, got);
+    }
+    print_message("%-40s %d points (%d inside), %d wrong\n", what, tested, inside, wrong);
+    assert_int_equal(wrong, 0);
+    assert_true(inside > tested / 20 && inside < tested);
+}

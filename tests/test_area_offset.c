@@ -23,6 +23,7 @@
  */
 #include "path.h"
 #include "oracle.h"
+#include "scenes.h"
 #include "support.h"
 
 #include <math.h>
@@ -47,25 +48,16 @@ static void must(int st)
 static aa_scene *stroke_scene(const double *cs, int nc, const aa_stroke_style *st,
                               const double *m)
 {
-    aa_path in = {0}, out = {0};
+    aa_path in = {0};
     must(aa_path_move_to(&in, cs[0], cs[1]));
     for (int k = 0; k < nc; k++) {
         const double *q = cs + 2 + 6 * k;
         must(aa_path_cubic_to(&in, q[0], q[1], q[2], q[3], q[4], q[5]));
     }
-    must(aa_stroke_outline(&in, st, &out));
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(s);
-    must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO));
-    must(aa_path_fill(&out, m, s));
-    must(aa_scene_finish(s));
-    size_t n, noff = 0;
-    const aa_piece *pc = aa_scene_pieces(s, &n);
-    for (size_t k = 0; k < n; k++)
-        noff += pc[k].kind == AA_PIECE_OFFSET;
+    size_t noff;
+    aa_scene *s = scenes_stroke_outline(&in, st, m, &noff);
     assert_true(noff > 0); /* the case is about offset pieces */
     aa_path_free(&in);
-    aa_path_free(&out);
     return s;
 }
 

@@ -31,6 +31,7 @@
  */
 #include "path.h"
 #include "oracle.h"
+#include "scenes.h"
 #include "support.h"
 
 #include <math.h>
@@ -50,19 +51,6 @@ static void must(int st)
         fail_msg("status %d: %s", st, aa_last_error());
 }
 
-static aa_scene *outline_scene(const aa_path *in, const aa_stroke_style *st, const double *m)
-{
-    aa_path out = {0};
-    must(aa_stroke_outline(in, st, &out));
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(s);
-    must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO));
-    must(aa_path_fill(&out, m, s));
-    must(aa_scene_finish(s));
-    aa_path_free(&out);
-    return s;
-}
-
 /* ---- the tube formula ---- */
 
 static void tube(const char *what, const double *c, double w, int n)
@@ -76,7 +64,7 @@ static void tube(const char *what, const double *c, double w, int n)
     st.width = w;
     must(aa_path_move_to(&p, c[0], c[1]));
     must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
-    aa_scene *s = outline_scene(&p, &st, NULL);
+    aa_scene *s = scenes_stroke_outline(&p, &st, NULL, NULL);
     support_view v = {.w = n, .h = n, .threads = 1};
     aa_image im;
     support_reference(s, &v, &im, NULL, NULL);
@@ -124,7 +112,7 @@ static void test_dashes(void **state)
         st.dashoffset = o;
         must(aa_path_move_to(&p, c[0], c[1]));
         must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
-        aa_scene *s = outline_scene(&p, &st, NULL);
+        aa_scene *s = scenes_stroke_outline(&p, &st, NULL, NULL);
         support_view v = {.w = 64, .h = 64, .threads = 1};
         aa_image im;
         support_reference(s, &v, &im, NULL, NULL);
@@ -163,6 +151,26 @@ static double feet(const double *c, double px, double py, int ends, double h, in
     return oracle_curve_feet(cubic_at, c, 0, 1, 4000, px, py, ends, h, unsure);
 }
 
+/* The oracle's distance to a path of nc chained cubics: the least over
+ * its cubics (feet). */
+typedef struct path_ctx {
+    const double *cs;
+    int nc, round;
+    double h;
+} path_ctx;
+
+static double path_distance(const void *vctx, double px, double py, int *unsure)
+{
+    const path_ctx *c = vctx;
+    double d = INFINITY;
+    for (int k = 0; k < c->nc; k++) {
+        double q[8] = {c->cs[6 * k], c->cs[6 * k + 1]};
+        memcpy(q + 2, c->cs + 2 + 6 * k, 6 * sizeof *q);
+        d = fmin(d, feet(q, px, py, c->round, c->h, unsure));
+    }
+    return d;
+}
+
 /* Path of nc cubics (control points chained: 2 + 6 nc numbers), stroked at
  * width w (butt and one cubic, or round joins and caps), the outline
  * filled through map m (NULL: none; the oracle at the preimage). */
@@ -180,37 +188,15 @@ static void oracle(const char *what, const double *cs, int nc, double w, int rou
         const double *q = cs + 2 + 6 * k;
         must(aa_path_cubic_to(&p, q[0], q[1], q[2], q[3], q[4], q[5]));
     }
-    aa_scene *s = outline_scene(&p, &st, m);
+    aa_scene *s = scenes_stroke_outline(&p, &st, m, NULL);
     double h = 0.5 * w, x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
     for (int k = 0; k < 2 + 6 * nc; k += 2) {
         x0 = fmin(x0, cs[k]), x1 = fmax(x1, cs[k]);
         y0 = fmin(y0, cs[k + 1]), y1 = fmax(y1, cs[k + 1]);
     }
-    x0 -= 2 * h, y0 -= 2 * h, x1 += 2 * h, y1 += 2 * h;
-    int tested = 0, inside = 0, wrong = 0;
-    for (int i = 0; i < npts; i++) {
-        double px = x0 + (x1 - x0) * rnd(), py = y0 + (y1 - y0) * rnd(), d = INFINITY;
-        int unsure = 0;
-        for (int k = 0; k < nc; k++) {
-            double c[8] = {cs[6 * k], cs[6 * k + 1]};
-            memcpy(c + 2, cs + 2 + 6 * k, 6 * sizeof *c);
-            d = fmin(d, feet(c, px, py, round, h, &unsure));
-        }
-        if (unsure || fabs(d - h) < 1e-7)
-            continue;
-        double qx = px, qy = py;
-        if (m)
-            qx = m[0] * px + m[2] * py + m[4], qy = m[1] * px + m[3] * py + m[5];
-        int want = d <= h, got = aa_scene_colour_at(s, qx, qy).c[0] > 0.5;
-        tested++;
-        inside += want;
-        if (want != got && wrong++ < 5)
-            print_message("%s: (%.17g, %.17g) distance %.17g, h %g: stroke says %d\n", what,
-                          px, py, d, h, got);
-    }
-    print_message("%-30s %d points (%d inside), %d wrong\n", what, tested, inside, wrong);
-    assert_int_equal(wrong, 0);
-    assert_true(inside > tested / 20 && inside < tested);
+    const double box[4] = {x0 - 2 * h, y0 - 2 * h, x1 + 2 * h, y1 + 2 * h};
+    const path_ctx ctx = {cs, nc, round, h};
+    support_stroke_check(what, s, box, h, m, npts, rnd, path_distance, &ctx);
     aa_scene_free(s);
     aa_path_free(&p);
 }
@@ -264,7 +250,8 @@ static void test_quadratic(void **state)
     must(aa_path_move_to(&q, 0.1, 0.8));
     must(aa_path_cubic_to(&q, 0.1 + 2.0 / 3 * 0.4, 0.8 - 2.0 / 3 * 0.8, 0.9 - 2.0 / 3 * 0.4,
                           0.8 - 2.0 / 3 * 0.8, 0.9, 0.8));
-    aa_scene *a = outline_scene(&p, &st, NULL), *b = outline_scene(&q, &st, NULL);
+    aa_scene *a = scenes_stroke_outline(&p, &st, NULL, NULL);
+    aa_scene *b = scenes_stroke_outline(&q, &st, NULL, NULL);
     int differ = 0;
     for (int i = 0; i < 4000; i++) {
         double x = rnd(), y = rnd();
@@ -326,6 +313,18 @@ static double cusp_feet(const cusp_cubic *k, double px, double py, int round, do
     return oracle_curve_feet(cusp_at, k, 0, 1, 4000, px, py, round, h, unsure);
 }
 
+typedef struct cusp_ctx {
+    const cusp_cubic *k;
+    int round;
+    double h;
+} cusp_ctx;
+
+static double cusp_distance(const void *vctx, double px, double py, int *unsure)
+{
+    const cusp_ctx *c = vctx;
+    return cusp_feet(c->k, px, py, c->round, c->h, unsure);
+}
+
 static void cusp_oracle(const char *what, const cusp_cubic *k, double w, int round, const double *m,
                         int npts)
 {
@@ -338,33 +337,15 @@ static void cusp_oracle(const char *what, const cusp_cubic *k, double w, int rou
     const double *c = k->c;
     must(aa_path_move_to(&p, c[0], c[1]));
     must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
-    aa_scene *s = outline_scene(&p, &st, m);
+    aa_scene *s = scenes_stroke_outline(&p, &st, m, NULL);
     double h = 0.5 * w, x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
     for (int j = 0; j < 8; j += 2) {
         x0 = fmin(x0, c[j]), x1 = fmax(x1, c[j]);
         y0 = fmin(y0, c[j + 1]), y1 = fmax(y1, c[j + 1]);
     }
-    x0 -= 2 * h, y0 -= 2 * h, x1 += 2 * h, y1 += 2 * h;
-    int tested = 0, inside = 0, wrong = 0;
-    for (int i = 0; i < npts; i++) {
-        double px = x0 + (x1 - x0) * rnd(), py = y0 + (y1 - y0) * rnd();
-        int unsure = 0;
-        double d = cusp_feet(k, px, py, round, h, &unsure);
-        if (unsure || fabs(d - h) < 1e-7)
-            continue;
-        double qx = px, qy = py;
-        if (m)
-            qx = m[0] * px + m[2] * py + m[4], qy = m[1] * px + m[3] * py + m[5];
-        int want = d <= h, got = aa_scene_colour_at(s, qx, qy).c[0] > 0.5;
-        tested++;
-        inside += want;
-        if (want != got && wrong++ < 5)
-            print_message("%s: (%.17g, %.17g) distance %.17g, h %g: stroke says %d\n", what,
-                          px, py, d, h, got);
-    }
-    print_message("%-30s %d points (%d inside), %d wrong\n", what, tested, inside, wrong);
-    assert_int_equal(wrong, 0);
-    assert_true(inside > tested / 20 && inside < tested);
+    const double box[4] = {x0 - 2 * h, y0 - 2 * h, x1 + 2 * h, y1 + 2 * h};
+    const cusp_ctx ctx = {k, round, h};
+    support_stroke_check(what, s, box, h, m, npts, rnd, cusp_distance, &ctx);
     aa_scene_free(s);
     aa_path_free(&p);
 }
@@ -397,7 +378,7 @@ static void test_cusp_tip(void **state)
     st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
     must(aa_path_move_to(&p, 0.2, 0.25));
     must(aa_path_cubic_to(&p, 0.8, 0.85, 0.2, 0.85, 0.8, 0.25));
-    aa_scene *s = outline_scene(&p, &st, NULL);
+    aa_scene *s = scenes_stroke_outline(&p, &st, NULL, NULL);
     /* the cusp B(1/2) = (0.5, 0.7), its tangent (0, 1) arriving: ahead is y > 0.7 */
     assert_true(aa_scene_colour_at(s, 0.5, 0.72).c[0] < 0.5);
     assert_true(aa_scene_colour_at(s, 0.5, 0.74).c[0] < 0.5);

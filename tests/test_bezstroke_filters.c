@@ -9,6 +9,7 @@
  */
 #include "path.h"
 #include "oracle.h"
+#include "scenes.h"
 #include "support.h"
 
 #include <math.h>
@@ -26,19 +27,6 @@ static void must(int st)
 {
     if (st)
         fail_msg("status %d: %s", st, aa_last_error());
-}
-
-static aa_scene *outline_scene(const aa_path *in, const aa_stroke_style *st, const double *m)
-{
-    aa_path out = {0};
-    must(aa_stroke_outline(in, st, &out));
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(s);
-    must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO));
-    must(aa_path_fill(&out, m, s));
-    must(aa_scene_finish(s));
-    aa_path_free(&out);
-    return s;
 }
 
 /* The box, tent and Gaussian references of the gentle arc's butt stroke
@@ -60,7 +48,7 @@ static void test_filters(void **state)
     st.width = w;
     must(aa_path_move_to(&p, c[0], c[1]));
     must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
-    aa_scene *s = outline_scene(&p, &st, NULL);
+    aa_scene *s = scenes_stroke_outline(&p, &st, NULL, NULL);
     const char *filters[] = {"box", "tent:r=1", "gauss:s=1.2", "cone:r=1"};
     for (int k = 0; k < 4; k++) {
         support_view v = {.w = 64, .h = 64, .threads = 0, .filter = filters[k]};

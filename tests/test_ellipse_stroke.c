@@ -32,6 +32,7 @@
  *    to 1e-12 per pixel, on folding, dashed and sheared ellipse strokes.
  */
 #include "path.h"
+#include "scenes.h"
 #include "support.h"
 
 #include <math.h>
@@ -89,21 +90,13 @@ static void add_arc(aa_path *p, const ell *e, double t0, double t1, int closed)
         must(aa_path_close(p));
 }
 
+/* The stroke's outline filled (scenes_stroke_outline), the case being
+ * about offset pieces. */
 static aa_scene *outline_scene(const aa_path *in, const aa_stroke_style *st, const double *m)
 {
-    aa_path out = {0};
-    must(aa_stroke_outline(in, st, &out));
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(s);
-    must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO));
-    must(aa_path_fill(&out, m, s));
-    must(aa_scene_finish(s));
-    size_t n, noff = 0;
-    const aa_piece *pc = aa_scene_pieces(s, &n);
-    for (size_t k = 0; k < n; k++)
-        noff += pc[k].kind == AA_PIECE_OFFSET;
-    assert_true(noff > 0); /* the case is about offset pieces */
-    aa_path_free(&out);
+    size_t noff;
+    aa_scene *s = scenes_stroke_outline(in, st, m, &noff);
+    assert_true(noff > 0);
     return s;
 }
 
@@ -265,6 +258,19 @@ static double feet(const ell *e, double t0, double t1, double px, double py, int
     return oracle_curve_feet(ell_at, e, t0, t1, 4000, px, py, ends, h, unsure);
 }
 
+typedef struct arc_ctx {
+    const ell *e;
+    double t0, t1;
+    int ends;
+    double h;
+} arc_ctx;
+
+static double arc_distance(const void *vctx, double px, double py, int *unsure)
+{
+    const arc_ctx *c = vctx;
+    return feet(c->e, c->t0, c->t1, px, py, c->ends, c->h, unsure);
+}
+
 /* The stroke of the arc t0 .. t1 of e (closed: the closed subpath), width
  * w, round or butt caps, through map m (NULL: none), at npts points. */
 static void oracle(const char *what, const ell *e, double t0, double t1, int closed, double w,
@@ -279,26 +285,9 @@ static void oracle(const char *what, const ell *e, double t0, double t1, int clo
         st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
     aa_scene *s = outline_scene(&p, &st, m);
     double h = 0.5 * w, r = hypot(e->ux, e->uy) + hypot(e->vx, e->vy) + h;
-    int tested = 0, inside = 0, wrong = 0;
-    for (int i = 0; i < npts; i++) {
-        double px = e->cx + r * (2 * rnd() - 1), py = e->cy + r * (2 * rnd() - 1);
-        int unsure = 0;
-        double d = feet(e, t0, t1, px, py, closed || round, h, &unsure);
-        if (unsure || fabs(d - h) < 1e-7)
-            continue;
-        double qx = px, qy = py;
-        if (m)
-            qx = m[0] * px + m[2] * py + m[4], qy = m[1] * px + m[3] * py + m[5];
-        int want = d <= h, got = aa_scene_colour_at(s, qx, qy).c[0] > 0.5;
-        tested++;
-        inside += want;
-        if (want != got && wrong++ < 5)
-            print_message("%s: (%.17g, %.17g) distance %.17g, h %g: stroke says %d\n", what, px,
-                          py, d, h, got);
-    }
-    print_message("%-40s %d points (%d inside), %d wrong\n", what, tested, inside, wrong);
-    assert_int_equal(wrong, 0);
-    assert_true(inside > tested / 20 && inside < tested);
+    const double box[4] = {e->cx - r, e->cy - r, e->cx + r, e->cy + r};
+    const arc_ctx ctx = {e, t0, t1, closed || round, h};
+    support_stroke_check(what, s, box, h, m, npts, rnd, arc_distance, &ctx);
     aa_scene_free(s);
     aa_path_free(&p);
 }

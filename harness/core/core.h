@@ -92,7 +92,10 @@ typedef struct aa_encode {
 /* "srgb", "linear" or "gamma:G" (G in [1, 4]). */
 int aa_encode_parse(const char *text, aa_encode *out);
 double aa_encode_value(const aa_encode *e, double linear);
-/* The sRGB decoding (IEC 61966-2-1) of an encoded value in [0, 1]. */
+/* sRGB's transfer functions (IEC 61966-2-1) as the scene composites with
+ * them: the encoding of a linear value and its inverse, each clamped to
+ * [0, 1] (a NaN to 0). */
+double aa_srgb_encode(double linear);
 double aa_srgb_decode(double encoded);
 /* Known image file extension (".exr", ".tif", ".tiff", ".png", ".pfm",
  * ".txt")?  1 if yes. */

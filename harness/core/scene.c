@@ -99,7 +99,7 @@ void aa_scene_free(aa_scene *s)
 
 /* sRGB's transfer functions (IEC 61966-2-1): the encoding of a linear
  * value, and its inverse. */
-static double srgb_encode(double v)
+double aa_srgb_encode(double v)
 {
     if (!(v > 0.0))
         return 0.0;
@@ -169,7 +169,7 @@ static int add_layer(aa_scene *s, aa_rgb colour, aa_fill_rule rule, int member)
     s->rule[s->nlayers] = rule;
     s->alpha[s->nlayers] = 1.0;
     for (int k = 0; k < 3; k++)
-        s->encoded[s->nlayers].c[k] = srgb_encode(colour.c[k]);
+        s->encoded[s->nlayers].c[k] = aa_srgb_encode(colour.c[k]);
     /* a clip's member paints nothing: no group holds it */
     s->group[s->nlayers] = member < 0 ? s->open_group : -1;
     s->translucent |= member < 0 && s->open_group >= 0;
@@ -1175,7 +1175,7 @@ int aa_scene_clip_unit(aa_scene *s)
     s->alpha[0] = 1.0;
     s->group[0] = -1;
     for (int k = 0; k < 3; k++)
-        s->encoded[0].c[k] = srgb_encode(colour.c[k]);
+        s->encoded[0].c[k] = aa_srgb_encode(colour.c[k]);
     for (size_t k = 0; k < s->nedges; k++)
         s->edges[k].layer++;
     aa__scene_strokes_shift(s, 1);
@@ -1413,7 +1413,7 @@ static aa_rgb colour_composite(const aa_scene *s, const int *wind, int first)
     int gid[AA_SCENE_MAX_GROUP_DEPTH + 1], depth = 0;
     aa_rgb bc = base < s->nlayers ? s->encoded[base] : s->background;
     for (int k = 0; k < 3; k++)
-        acc[0].p[k] = base < s->nlayers ? bc.c[k] : srgb_encode(bc.c[k]);
+        acc[0].p[k] = base < s->nlayers ? bc.c[k] : aa_srgb_encode(bc.c[k]);
     acc[0].a = 1.0;
     gid[0] = -1;
     for (int l = base - 1; l >= first; l--) {
