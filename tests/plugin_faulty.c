@@ -1,13 +1,17 @@
 /*
  * plugin_faulty.c: methods that misbehave, for the fault tests
  * (tests/test_faults.c): a method whose image holds NaN, one whose values
- * leave [0, 1], one that crashes and one that never returns.  Built like
- * any plug-in, against aabench.h alone.
+ * leave [0, 1], one that crashes and one that never returns.  The last two
+ * first leave a file in $TMPDIR (as a method that starts a renderer leaves
+ * its files when it is killed): the run must remove it (isolate.c).  Built
+ * like any plug-in, against aabench.h alone.
  */
 #include "aabench.h"
 
 #include <math.h>
 #include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -46,10 +50,25 @@ static int over_render(void *state, const double *p, const aa_job *job, aa_image
     return AA_OK;
 }
 
+/* A file in $TMPDIR (or /tmp), named for the process, left there. */
+static void leave_file(void)
+{
+    const char *tmp = getenv("TMPDIR");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/aabench-faulty-%ld", tmp && *tmp ? tmp : "/tmp",
+             (long)getpid());
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fputs("left by a method that was ended\n", f);
+        fclose(f);
+    }
+}
+
 static int crash_render(void *state, const double *p, const aa_job *job, aa_image *out,
                         aa_counters *counters)
 {
     (void)state, (void)p, (void)job, (void)out, (void)counters;
+    leave_file();
     raise(SIGSEGV);
     return AA_OK;
 }
@@ -58,6 +77,7 @@ static int hang_render(void *state, const double *p, const aa_job *job, aa_image
                        aa_counters *counters)
 {
     (void)state, (void)p, (void)job, (void)out, (void)counters;
+    leave_file();
     for (;;)
         pause();
     return AA_OK;

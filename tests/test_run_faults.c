@@ -51,6 +51,7 @@
 #include "bench.h"
 #include "support.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fenv.h>
 #include <setjmp.h>
@@ -526,7 +527,20 @@ static void test_rows_kept_when_killed(void **state)
                           "16x16", "-m",      "point", "-m",         "area",       "-m",
                           "hang", "--reps",   "1",     "--no-images", "--no-plots", "-q",
                           "--out", out,       NULL};
+    /* the hanging case's temporary folder, which its run killed with
+     * SIGKILL cannot remove, in this test's folder (removed at teardown) */
+    char tmp[600];
+    path_in(tmp, sizeof tmp, "killed-tmp");
+    assert_int_equal(mkdir(tmp, 0755), 0);
+    char *saved = getenv("TMPDIR") ? strdup(getenv("TMPDIR")) : NULL;
+    setenv("TMPDIR", tmp, 1);
     pid_t pid = support_aabench_spawn(args, NULL, so, se);
+    if (saved) {
+        setenv("TMPDIR", saved, 1);
+        free(saved);
+    } else {
+        unsetenv("TMPDIR");
+    }
     double t0 = aa_now();
     while (count_lines(csv) < 3) {
         int status;
@@ -834,13 +848,33 @@ static void test_isolated_faults(void **state)
     snprintf(csv, sizeof csv, "%s/results.csv", out);
     /* plug-in methods are isolated by default */
     /* through the command: a crash in this process's child would meet the
-     * test framework's signal handlers, not a process's own */
+     * test framework's signal handlers, not a process's own.  `crash` and
+     * `hang` leave a file in $TMPDIR before they are ended (plugin_faulty.c):
+     * each case's temporary folder is removed with what it holds, so the
+     * run's TMPDIR ends as empty as it began */
+    char tmp[600];
+    path_in(tmp, sizeof tmp, "isolated-tmp");
+    assert_int_equal(mkdir(tmp, 0755), 0);
+    char *saved = getenv("TMPDIR") ? strdup(getenv("TMPDIR")) : NULL;
+    setenv("TMPDIR", tmp, 1);
     int code = RUN("run", "--plugin", faulty, "--plugin", failing, "-p", "crow", "-s", "8x8",
                    "-m", "point", "-m", "crash", "-m", "aborts", "-m", "quits", "-m", "hang",
                    "-m", "area", "-f", "box", "--case-timeout", "2", "--reps", "1", "--no-images",
                    "--no-plots", "-q", "--out", out);
+    if (saved) {
+        setenv("TMPDIR", saved, 1);
+        free(saved);
+    } else {
+        unsetenv("TMPDIR");
+    }
     if (code != 1)
         fail_msg("exit %d, not 1\n%s%s", code, out_text, err_text);
+    DIR *d = opendir(tmp);
+    assert_non_null(d);
+    for (struct dirent *e; (e = readdir(d));)
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, ".."))
+            fail_msg("the run left %s in its TMPDIR %s", e->d_name, tmp);
+    closedir(d);
     table *t = read_table(csv);
     assert_non_null(t);
     assert_int_equal(t->nrows, 6);

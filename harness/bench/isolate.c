@@ -14,8 +14,9 @@
  * SIGTERM, which ends a renderer it started with its folder (external.c's
  * handler), and SIGKILL ISOLATE_TERM s later.  Everything the child needs
  * (the reference, the scene, the job) is in its copy of the parent's
- * memory; it writes no file of its own, so a child killed halfway leaves
- * nothing behind, and the parent writes the images.
+ * memory; it writes no file of its own but in its temporary folder
+ * (below), so a child killed halfway leaves nothing behind, and the parent
+ * writes the images.
  *
  * OpenMP: GCC's libgomp is not fork-safe once its thread pool exists (the
  * child would wait forever for threads that were not copied), and the
@@ -28,12 +29,25 @@
  *
  * The child dies with its parent (PR_SET_PDEATHSIG on Linux): a run killed
  * with SIGKILL leaves no case running.
+ *
+ * Temporary files.  What a child or the programs it starts write in the
+ * temporary folder (the external method's folder with its SVG and PNG, a
+ * renderer's own files) would stay behind if the child were killed before
+ * it removed them: by the time-out's SIGKILL, or by SIGTERM while the
+ * method is still in init, before it watches for signals.  So the parent
+ * makes a folder of the case's own in $TMPDIR (aabench-case-XXXXXX), the
+ * child takes it as its TMPDIR, and the parent removes it, whatever it
+ * holds, once the child has ended in any way.  (Where the folder cannot be
+ * made, the case runs with the parent's TMPDIR, as before.)
  */
+#define _XOPEN_SOURCE 700 /* nftw */
 #include "bench.h"
 #include "isolate_internal.h"
 
 #include <errno.h>
 #include <fcntl.h>
+#include <ftw.h>
+#include <limits.h>
 #include <math.h>
 #include <poll.h>
 #include <signal.h>
@@ -42,6 +56,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -112,11 +127,41 @@ static void end_at_exit(int status, void *unused)
     _exit(status);
 }
 
+/* The case's temporary folder (see the header): made before the fork,
+ * removed with all it holds after the child has ended. */
+static int case_tmp_make(char *dir, size_t size)
+{
+    const char *tmp = getenv("TMPDIR");
+    if (!tmp || !*tmp)
+        tmp = "/tmp";
+    int n = snprintf(dir, size, "%s/aabench-case-XXXXXX", tmp);
+    if (n < 0 || (size_t)n >= size || !mkdtemp(dir)) {
+        dir[0] = '\0';
+        return 0;
+    }
+    return 1;
+}
+
+static int remove_one(const char *path, const struct stat *sb, int flag, struct FTW *ftw)
+{
+    (void)sb, (void)flag, (void)ftw;
+    remove(path);
+    return 0; /* go on: remove what can be removed */
+}
+
+static void case_tmp_remove(const char *dir)
+{
+    if (*dir)
+        nftw(dir, remove_one, 16, FTW_DEPTH | FTW_PHYS);
+}
+
 static void child(int fd, aa__case_fn fn, void *arg, aa_row *row, aa_image *img, int threads,
-                  pid_t parent)
+                  pid_t parent, const char *tmp)
 {
     /* registered last, so run first */
     on_exit(end_at_exit, NULL);
+    if (*tmp)
+        setenv("TMPDIR", tmp, 1);
 #ifdef __linux__
     prctl(PR_SET_PDEATHSIG, SIGKILL);
 #endif
@@ -212,6 +257,8 @@ int aa__case_isolated(aa__case_fn fn, void *arg, aa_row *row, aa_image *img, dou
                        strerror(errno));
     fcntl(fds[0], F_SETFD, FD_CLOEXEC);
     fcntl(fds[1], F_SETFD, FD_CLOEXEC);
+    char tmp[PATH_MAX];
+    case_tmp_make(tmp, sizeof tmp);
     /* the child must not write out what the parent's buffers hold */
     fflush(NULL);
     pid_t parent = getpid(), pid = fork();
@@ -219,12 +266,13 @@ int aa__case_isolated(aa__case_fn fn, void *arg, aa_row *row, aa_image *img, dou
         int err = errno;
         close(fds[0]);
         close(fds[1]);
+        case_tmp_remove(tmp);
         return aa_fail(AA_EIO, "cannot run %s in a child process: fork: %s", row->method,
                        strerror(err));
     }
     if (pid == 0) {
         close(fds[0]);
-        child(fds[1], fn, arg, row, img, threads, parent);
+        child(fds[1], fn, arg, row, img, threads, parent, tmp);
     }
     close(fds[1]);
     report *r = malloc(sizeof *r);
@@ -272,6 +320,7 @@ int aa__case_isolated(aa__case_fn fn, void *arg, aa_row *row, aa_image *img, dou
                 ;
         }
     }
+    case_tmp_remove(tmp);
     int st = AA_OK;
     if (!r) {
         st = aa_fail(AA_ENOMEM, "out of memory");
