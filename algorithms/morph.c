@@ -131,7 +131,10 @@
  *    exact there); over the edge's positions within the same staircase the
  *    box value of such a pixel is (1 - t)^2 / 2, t in (0, 1), mean 1/6.
  *    Near 45 degrees, where the orthogonal patterns see runs of one and
- *    two, the diagonal reading halves the error (tests/test_postaa.c).
+ *    two, the diagonal reading halves the error or better (slope 1/1.2,
+ *    tests/test_postaa.c).  On scenes: lower on the star, rules.svg and
+ *    logo.svg, higher on mono.svg, curves.svg and text at 24 ppem
+ *    (algorithms/README.md, results/README.md).
  *
  * Variant: `smaa:diag=0`, without the diagonal patterns (step 8): the
  * orthogonal filter alone, staircases of one-pixel runs read as MLAA reads
@@ -145,7 +148,11 @@
  * column lines, smaa's diagonals, blending), and the column lines walk the image down its
  * columns; nothing skips empty stretches as trio does, so on scenes with
  * few edges these cost about four times trio (1.2 against 0.3 ms on the
- * SVG scenes at 256x256, one thread).
+ * SVG scenes at 256x256, one thread).  smaa's diagonal searches run only
+ * from pixels with a north side and stop at the first step missing: on
+ * the vector suite's SVG scenes its fastest renders took 1.4 to 1.5 ms,
+ * smaa:diag=0's 1.3 to 1.5 (one thread, a busy machine:
+ * results/README.md).
  *
  * Limits.  What point sampling lost (thin objects between centres, moire)
  * cannot come back; a 45-degree staircase is read as the 45-degree line
