@@ -231,17 +231,26 @@ static void test_diag_area_table(void **state)
     check_diag(3, 3, 2, 2, 0.25, 0.25);
 }
 
-/* RMSE of an image against the box-filtered half-plane below y = y0 + x/k
- * (mirrored: x -> w - x), columns 4 .. w-5, two colours. */
-static double line_rmse(const aa_image *img, double y0, double k, int mirror, aa_rgb in,
-                        aa_rgb out)
+/* The half-plane below y = y0 + x/k in a w x h frame, placed in the image
+ * by `orient`: bit 0 mirrors (x -> w - x), bit 1 transposes (the image h x
+ * w, the frame's x down its columns). */
+static const double *frame_pixel(const aa_image *img, int u, int v, int w, int orient)
+{
+    int x = orient & 1 ? w - 1 - u : u;
+    return orient & 2 ? aa_pixel(img, v, x) : aa_pixel(img, x, v);
+}
+
+/* RMSE of an image against the box-filtered half-plane, the frame's
+ * columns 4 .. w-5, two colours. */
+static double line_rmse(const aa_image *img, double y0, double k, int w, int h, int orient,
+                        aa_rgb in, aa_rgb out)
 {
     double sum = 0.0;
     size_t n = 0;
-    for (int u = 4; u < img->w - 4; u++)
-        for (int v = 0; v < img->h; v++) {
+    for (int u = 4; u < w - 4; u++)
+        for (int v = 0; v < h; v++) {
             double c = below_line(u, v, y0, k);
-            const double *px = aa_pixel(img, mirror ? img->w - 1 - u : u, v);
+            const double *px = frame_pixel(img, u, v, w, orient);
             for (int ch = 0; ch < 3; ch++) {
                 double e = px[ch] - (out.c[ch] + c * (in.c[ch] - out.c[ch]));
                 sum += e * e, n++;
@@ -250,13 +259,15 @@ static double line_rmse(const aa_image *img, double y0, double k, int mirror, aa
     return sqrt(sum / (double)n);
 }
 
-static aa_scene *below_line_scene(double y0, double k, int w, int h, int mirror, aa_rgb in,
+static aa_scene *below_line_scene(double y0, double k, int w, int h, int orient, aa_rgb in,
                                   aa_rgb out)
 {
     double p[4][2] = {{0, y0}, {w, y0 + w / k}, {w, h}, {0, h}};
     double xy[8];
-    for (int c = 0; c < 4; c++)
-        xy[2 * c] = (mirror ? w - p[c][0] : p[c][0]) / w, xy[2 * c + 1] = p[c][1] / h;
+    for (int c = 0; c < 4; c++) {
+        double x = (orient & 1 ? w - p[c][0] : p[c][0]) / w, y = p[c][1] / h;
+        xy[2 * c] = orient & 2 ? y : x, xy[2 * c + 1] = orient & 2 ? x : y;
+    }
     return scenes_polygon(xy, 4, in, out, AA_FILL_NONZERO);
 }
 
@@ -288,7 +299,7 @@ static void test_diag_staircase(void **state)
                 double c = below_line(u, v, 4.5, 1.0);
                 double share = c > 0.5 && c < 1 ? 0.75 : (c > 0 && c < 0.5 ? 0.25 : c);
                 beside += c > 0 && c < 1;
-                const double *px = aa_pixel(&img, mirror ? w - 1 - u : u, v);
+                const double *px = frame_pixel(&img, u, v, w, mirror);
                 for (int ch = 0; ch < 3; ch++) {
                     double want = out.c[ch] + share * (in.c[ch] - out.c[ch]);
                     if (fabs(px[ch] - want) > 1e-12)
@@ -299,8 +310,8 @@ static void test_diag_staircase(void **state)
                 }
             }
         assert_int_equal(beside, 2 * (w - 8));
-        double ed = line_rmse(&img, 4.5, 1.0, mirror, in, out);
-        double eo = line_rmse(&orth, 4.5, 1.0, mirror, in, out);
+        double ed = line_rmse(&img, 4.5, 1.0, w, h, mirror, in, out);
+        double eo = line_rmse(&orth, 4.5, 1.0, w, h, mirror, in, out);
         /* every pixel beside the line 1/8 of the contrast off, 2 of the
          * h = 40 in each column: RMSE over the channels (0.9, 0.6, 0.4)
          * sqrt(2/40 (0.81 + 0.36 + 0.16)/3) / 8 */
@@ -320,29 +331,35 @@ static void test_diag_staircase(void **state)
      * them.  Over the line's positions (ten offsets a tenth of a pixel
      * apart), the RMSE of each against the box-filtered half-plane (hand
      * geometry, below_line): the paper's claim that the diagonal patterns
-     * reconstruct such lines better than the orthogonal ones, checked. */
-    for (int mirror = 0; mirror < 2; mirror++) {
+     * reconstruct such lines better than the orthogonal ones, checked.
+     * Falling and rising (mirrored), along rows and (transposed, slope 1.2)
+     * along columns. */
+    static const char *const orients[] = {"falling", "rising", "falling, along columns",
+                                          "rising, along columns"};
+    for (int o = 0; o < 4; o++) {
         double sd = 0.0, so = 0.0;
         int fired = 0;
+        const int W = o & 2 ? h : w, H = o & 2 ? w : h;
         for (int t = 0; t < 10; t++) {
             const double y0 = 4.0 + 0.1 * t + 0.05;
-            aa_scene *s = below_line_scene(y0, 1.2, w, h, mirror, in, out);
+            aa_scene *s = below_line_scene(y0, 1.2, w, h, o, in, out);
             aa_image img, orth;
-            support_render("smaa", s, NULL, w, h, 2, &img, NULL);
-            support_render("smaa:diag=0", s, NULL, w, h, 2, &orth, NULL);
+            support_render("smaa", s, NULL, W, H, 2, &img, NULL);
+            support_render("smaa:diag=0", s, NULL, W, H, 2, &orth, NULL);
             fired += !support_same_image(&img, &orth);
-            sd += line_rmse(&img, y0, 1.2, mirror, in, out);
-            so += line_rmse(&orth, y0, 1.2, mirror, in, out);
+            sd += line_rmse(&img, y0, 1.2, w, h, o, in, out);
+            so += line_rmse(&orth, y0, 1.2, w, h, o, in, out);
             aa_image_free(&img);
             aa_image_free(&orth);
             aa_scene_free(s);
         }
         assert_int_equal(fired, 10);
         if (!(sd < so))
-            fail_msg("slope 1/1.2%s: smaa's mean RMSE %.4f not below smaa:diag=0's %.4f",
-                     mirror ? " rising" : " falling", sd / 10, so / 10);
-        print_message("slope 1/1.2%s, mean RMSE over 10 offsets: smaa %.4f, smaa:diag=0 %.4f\n",
-                      mirror ? " rising" : " falling", sd / 10, so / 10);
+            fail_msg("slope 1/1.2, %s: smaa's mean RMSE %.4f not below smaa:diag=0's %.4f",
+                     orients[o], sd / 10, so / 10);
+        print_message("slope 1/1.2, %s, mean RMSE over 10 offsets: smaa %.4f, smaa:diag=0 "
+                      "%.4f\n",
+                      orients[o], sd / 10, so / 10);
     }
 }
 
