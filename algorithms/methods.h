@@ -23,6 +23,13 @@ extern const aa_method_type aa_method_smaa;
  * pixel's distances to them; share[0] of the far colour goes to the near
  * pixel, share[1] of the near colour to the far pixel. */
 void aa_morph_area(int e_left, int e_right, int d_left, int d_right, double share[2]);
+/* The shares of the two pixels across the north side of a pixel on a
+ * diagonal line of smaa (morph.c, step 8; SMAA's diagonal area table): the
+ * crossing sides at the line's lower-left and upper-right ends (0 unknown,
+ * 1 vertical, 2 horizontal, 3 both) and the pixel's distances to them, in
+ * steps along the diagonal; share[0] of the colour above goes to the pixel,
+ * share[1] of its colour to the pixel above. */
+void aa_morph_diag_area(int e_left, int e_right, int d_left, int d_right, double share[2]);
 extern const aa_method_type aa_method_area;
 extern const aa_method_type aa_method_taa;
 extern const aa_method_type aa_method_cycle;

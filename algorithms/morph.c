@@ -83,26 +83,82 @@
  *    staircase), the pixel's share is scaled by `rounding` (0.25, SMAA's
  *    default corner rounding of 25%; 1 blends as MLAA).  With both ends
  *    equally near, each counts half.
+ * 8. Diagonal patterns (smaa, `diag` = 1).  The paper searches lines near
+ *    45 degrees along the diagonals, up to `dsearch` steps each way (8 in
+ *    its high preset), reads the sides crossing the line at its two ends,
+ *    and takes the shares from a second area table; a pixel on a diagonal
+ *    line blends by it and not by its orthogonal patterns.  The details
+ *    below are those of the authors' implementation (SMAA.hlsl's diagonal
+ *    search and weights, Scripts/AreaTex.py's diagonal areas), which the
+ *    paper's text leaves to its figures and code.
+ *    A pixel with its north side looks along two diagonals.  Rising to the
+ *    right: the pixels down-left (searched only if it has its west side
+ *    too) and up-right that have both their north and west sides, each a
+ *    step of the staircase; down-left, a pixel with its north side only
+ *    ends the line as its first step.  Falling to the right: the same with
+ *    north and east sides, up-left, and down-right (searched only if it
+ *    has its east side; a pixel with its north side only is the last
+ *    step).  A line of four steps or more (the distances to its ends summing
+ *    to more than 2) is blended; a search that runs out leaves its end
+ *    unknown.  At a found end, the crossing sides: vertical (the line turns
+ *    down at its lower end, up at its upper), horizontal (turns left,
+ *    right), both, or neither (unknown).
+ *    The table, in the frame of the rising line with y up: the steps are
+ *    the squares [1 + l, 2 + l] x [l, 1 + l] (l = 0 .. d-1, d = the two
+ *    distances + 1), the outer corners (1 + l, 1 + l) on y = x, the inner
+ *    ones on y = x - 1.  The reconstructed line runs between the ends of
+ *    the staircase: at the lower end (1, 0) (the foot of the first step)
+ *    when it turns down, (1, 1) when it turns left; at the upper end
+ *    (1 + d, 1 + d) when it turns up, (1 + d, d) when it turns right; an
+ *    end turning both ways or unknown has two candidates, the outer and the
+ *    inner one (unknown: (0, 0) and (1, 0), (d, d) and (1 + d, d)), and the
+ *    shares are the mean over the lines joining the candidates (outer with
+ *    outer, inner with inner, or each with the other end's only one).  The
+ *    step's pixel takes the part of its square above the line, the pixel
+ *    above it the part of its square below (aa_morph_diag_area), computed
+ *    exactly for every pattern and pair of distances 0 .. `dsearch` in init
+ *    (the authors estimate them by 30 x 30 point samples and store them in
+ *    8 bits).  The falling line uses the same table upside down: its
+ *    steps' pixels are the table's upper pixels.  The pixel's share across
+ *    its north side (and the pixel above's) is the sum of the two
+ *    diagonals' in place of the orthogonal one, and its west side blends
+ *    nothing.  Outside the image there are no sides (the GPU clamps its
+ *    reads to the border; a choice).
+ *    What it gives: a long 45-degree staircase (no end within reach) is the
+ *    mean of the lines through its outer and its inner corners, 1/4 of the
+ *    colour across for every pixel beside it, where the box-filtered edge
+ *    through the steps' middles cuts 1/8 (the orthogonal patterns' reading,
+ *    exact there); over the edge's positions within the same staircase the
+ *    box value of such a pixel is (1 - t)^2 / 2, t in (0, 1), mean 1/6.
+ *    Near 45 degrees, where the orthogonal patterns see runs of one and
+ *    two, the diagonal reading halves the error or better (slope 1/1.2,
+ *    tests/test_postaa.c).  On scenes: lower on the star, rules.svg and
+ *    logo.svg, higher on mono.svg, curves.svg and text at 24 ppem
+ *    (algorithms/README.md, results/README.md).
  *
- * Variant: `smaa` here has no diagonal patterns (SMAA's diagonal lines:
- * slope near 45 degrees searched along diagonals, up to 8 steps in the high
- * preset, with their own area texture): staircases of one-pixel runs are
- * left as MLAA leaves them.  Nor the temporal and multisample modes (T2x,
- * S2x, 4x): this is SMAA 1x's spatial filter.
+ * Variant: `smaa:diag=0`, without the diagonal patterns (step 8): the
+ * orthogonal filter alone, staircases of one-pixel runs read as MLAA reads
+ * them.  Not here: the temporal and multisample modes (T2x, S2x, 4x): this
+ * is SMAA 1x's spatial filter.
  *
  * Counters: samples = pixels (one point sample each); expensive_pixels =
  * pixels beside at least one edge.
  *
  * Cost.  Every pixel is visited in each pass (edges, the row lines, the
- * column lines, blending), and the column lines walk the image down its
+ * column lines, smaa's diagonals, blending), and the column lines walk the image down its
  * columns; nothing skips empty stretches as trio does, so on scenes with
  * few edges these cost about four times trio (1.2 against 0.3 ms on the
- * SVG scenes at 256x256, one thread).
+ * SVG scenes at 256x256, one thread).  smaa's diagonal searches run only
+ * from pixels with a north side and stop at the first step missing: on
+ * the vector suite's SVG scenes its fastest renders took 1.4 to 1.5 ms,
+ * smaa:diag=0's 1.3 to 1.5 (one thread, a busy machine:
+ * results/README.md).
  *
  * Limits.  What point sampling lost (thin objects between centres, moire)
  * cannot come back; a 45-degree staircase is read as the 45-degree line
- * through its turns' middles (exact for that edge, tests/test_postaa.c),
- * wherever the edge lies; the edge's position inside a pixel is unknown,
+ * through its turns' middles by mlaa and smaa:diag=0 (exact for that edge,
+ * tests/test_postaa.c) and as 1/4 of the colour across by smaa's diagonal
+ * table, wherever the edge lies; the edge's position inside a pixel is unknown,
  * so reconstructed lines go through the middles of the turns and can be
  * half a pixel off; shapes narrower than two pixels are read as U shapes
  * and smeared; corners of shapes are rounded (mlaa fully, smaa by
@@ -146,10 +202,92 @@ void aa_morph_area(int e_left, int e_right, int d_left, int d_right, double shar
     share[1] = (l < 0 ? -l : 0.0) + (r < 0 ? -r : 0.0);
 }
 
+/* ---- the diagonal lines' areas ----
+ * In the frame of step 8 (y up): the part of the unit square with lower
+ * left corner (px, py) on the right of the line through a and b, directed
+ * from a to b (the square clipped by the half-plane, then the shoelace
+ * formula: exact up to rounding). */
+static double square_right_of(const double a[2], const double b[2], double px, double py)
+{
+    const double dx = b[0] - a[0], dy = b[1] - a[1];
+    const double sq[4][2] = {{px, py}, {px + 1, py}, {px + 1, py + 1}, {px, py + 1}};
+    double poly[8][2], f[4];
+    int n = 0;
+    for (int k = 0; k < 4; k++) /* > 0: left of the line */
+        f[k] = dx * (sq[k][1] - a[1]) - dy * (sq[k][0] - a[0]);
+    for (int k = 0; k < 4; k++) {
+        const int m = (k + 1) & 3;
+        if (f[k] <= 0) {
+            poly[n][0] = sq[k][0], poly[n][1] = sq[k][1];
+            n++;
+        }
+        if ((f[k] < 0 && f[m] > 0) || (f[k] > 0 && f[m] < 0)) {
+            const double t = f[k] / (f[k] - f[m]);
+            poly[n][0] = sq[k][0] + t * (sq[m][0] - sq[k][0]);
+            poly[n][1] = sq[k][1] + t * (sq[m][1] - sq[k][1]);
+            n++;
+        }
+    }
+    double twice = 0.0;
+    for (int k = 0; k < n; k++) {
+        const int m = k + 1 < n ? k + 1 : 0;
+        twice += poly[k][0] * poly[m][1] - poly[m][0] * poly[k][1];
+    }
+    return 0.5 * fabs(twice);
+}
+
+void aa_morph_diag_area(int e_left, int e_right, int d_left, int d_right, double share[2])
+{
+    /* the candidate ends of the line (step 8): [0] on the outer corners'
+     * line y = x, [1] on the inner corners' line y = x - 1; the right end's
+     * are offset by (d, d) */
+    const double d = (double)d_left + (double)d_right + 1.0;
+    double l[2][2], r[2][2];
+    int nl = 2, nr = 2;
+    switch (e_left & 3) {
+    case 1: /* the line turns down: from the foot of the first step */
+        l[0][0] = 1, l[0][1] = 0, nl = 1;
+        break;
+    case 2: /* the line turns left: from the top of the first step */
+        l[0][0] = 1, l[0][1] = 1, nl = 1;
+        break;
+    case 3: /* both */
+        l[0][0] = 1, l[0][1] = 1, l[1][0] = 1, l[1][1] = 0;
+        break;
+    default: /* unknown: the staircase going on, or ending at its foot */
+        l[0][0] = 0, l[0][1] = 0, l[1][0] = 1, l[1][1] = 0;
+    }
+    switch (e_right & 3) {
+    case 1: /* the line turns up: to the top of the crossing side */
+        r[0][0] = 1 + d, r[0][1] = 1 + d, nr = 1;
+        break;
+    case 2: /* the line turns right: to the top of the last step */
+        r[0][0] = 1 + d, r[0][1] = d, nr = 1;
+        break;
+    case 3:
+        r[0][0] = 1 + d, r[0][1] = 1 + d, r[1][0] = 1 + d, r[1][1] = d;
+        break;
+    default:
+        r[0][0] = d, r[0][1] = d, r[1][0] = 1 + d, r[1][1] = d;
+    }
+    /* two candidates at an end are each paired with the other end's
+     * candidate of the same kind (outer with outer, inner with inner), or
+     * with its only one; the areas are averaged */
+    const int n = nl > nr ? nl : nr;
+    const double px = 1.0 + d_left, py = d_left;
+    share[0] = share[1] = 0.0;
+    for (int k = 0; k < n; k++) {
+        const double *a = l[nl > 1 ? k : 0], *b = r[nr > 1 ? k : 0];
+        share[0] += 1.0 - square_right_of(a, b, px, py);
+        share[1] += square_right_of(a, b, px, py + 1.0);
+    }
+    share[0] /= n, share[1] /= n;
+}
+
 /* ---- parameters ---- */
 
 enum { P_THRESHOLD };
-enum { S_THRESHOLD, S_ADAPT, S_SEARCH, S_ROUNDING };
+enum { S_THRESHOLD, S_ADAPT, S_SEARCH, S_ROUNDING, S_DIAG, S_DSEARCH };
 
 static const aa_param mlaa_params[] = {
     {"threshold", AA_PARAM_REAL, 0.125, 0.0, 1.0, 0, NULL,
@@ -166,18 +304,25 @@ static const aa_param smaa_params[] = {
      "pixels searched each way along a line for its ends (high preset: 32)"},
     {"rounding", AA_PARAM_REAL, 0.25, 0.0, 1.0, 0, NULL,
      "share kept at sharp corners (0.25: SMAA's default 25%; 1: as MLAA)"},
+    {"diag", AA_PARAM_INT, 1, 0, 1, 0, NULL,
+     "1: diagonal patterns searched and blended from the diagonal area table; 0: the "
+     "orthogonal patterns only"},
+    {"dsearch", AA_PARAM_INT, 8, 1, 20, 0, NULL,
+     "steps searched each way along a diagonal for its ends (high preset: 8; the "
+     "authors allow up to 20)"},
     {0}};
 
 /* ---- state ---- */
 
 typedef struct morph_state {
-    int w, h, ready, search;
+    int w, h, ready, search, dsearch; /* dsearch 0: no diagonal patterns */
     double *img;          /* the point samples */
     unsigned char *hm;    /* edge between (i, j) and (i, j+1) */
     unsigned char *vm;    /* edge between (i, j) and (i+1, j) */
     double *hn, *hf;      /* row line j below pixel (i, j): near (upper) and far shares */
     double *vn, *vf;      /* column line i right of (i, j): near (left) and far shares */
     double *area;         /* smaa: the area table, 16 x (search+1)^2 x 2 */
+    double *darea;        /* smaa: the diagonal area table, 16 x (dsearch+1)^2 x 2 */
 } morph_state;
 
 static int morph_check(const double *p, const aa_filter *f)
@@ -201,6 +346,7 @@ static void morph_release(void *state)
     free(s->vn);
     free(s->vf);
     free(s->area);
+    free(s->darea);
     memset(s, 0, sizeof *s);
 }
 
@@ -210,11 +356,11 @@ static size_t area_at(int search, int el, int er, int dl, int dr)
     return 2 * ((((size_t)(el * 4 + er)) * n + (size_t)dl) * n + (size_t)dr);
 }
 
-static int prepare(morph_state *s, int smaa, int search, const aa_job *job)
+static int prepare(morph_state *s, int smaa, int search, int dsearch, const aa_job *job)
 {
     morph_release(s);
     const size_t n = (size_t)job->w * (size_t)job->h;
-    s->w = job->w, s->h = job->h, s->search = search;
+    s->w = job->w, s->h = job->h, s->search = search, s->dsearch = dsearch;
     int ok = (s->img = calloc(n * 3, sizeof *s->img)) && (s->hm = calloc(n, 1)) &&
              (s->vm = calloc(n, 1)) && (s->hn = calloc(n, sizeof(double))) &&
              (s->hf = calloc(n, sizeof(double))) && (s->vn = calloc(n, sizeof(double))) &&
@@ -229,6 +375,17 @@ static int prepare(morph_state *s, int smaa, int search, const aa_job *job)
                         for (int dr = 0; dr <= search; dr++)
                             aa_morph_area(el, er, dl, dr,
                                           s->area + area_at(search, el, er, dl, dr));
+    }
+    if (ok && smaa && dsearch > 0) {
+        const size_t k = (size_t)dsearch + 1;
+        ok = (s->darea = malloc(16 * k * k * 2 * sizeof *s->darea)) != NULL;
+        if (ok)
+            for (int el = 0; el < 4; el++)
+                for (int er = 0; er < 4; er++)
+                    for (int dl = 0; dl <= dsearch; dl++)
+                        for (int dr = 0; dr <= dsearch; dr++)
+                            aa_morph_diag_area(el, er, dl, dr,
+                                               s->darea + area_at(dsearch, el, er, dl, dr));
     }
     if (!ok) {
         morph_release(s);
@@ -460,6 +617,99 @@ static void make_shares(morph_state *s, int smaa, double rounding, int threads)
     }
 }
 
+/* ---- diagonal patterns (SMAA, step 8) ----
+ * Edges by pixel: the north side of (i, j) (the row line above it) and the
+ * west side (the column line left of it); none outside the image. */
+
+static inline int north_at(const morph_state *s, int i, int j)
+{
+    return i >= 0 && i < s->w && j >= 1 && j < s->h &&
+           s->hm[(size_t)(j - 1) * (size_t)s->w + (size_t)i];
+}
+
+static inline int west_at(const morph_state *s, int i, int j)
+{
+    return i >= 1 && i < s->w && j >= 0 && j < s->h &&
+           s->vm[(size_t)j * (size_t)s->w + (size_t)(i - 1)];
+}
+
+/* From (i, j), steps (di, dj) while the pixel has its north side and its
+ * west side (east = 0) or east side (east = 1), at most dsearch of them.
+ * Returns the steps before the first pixel without both (the last
+ * searched when the search ran out: *found 0); *north: that pixel's north
+ * side. */
+static int diag_search(const morph_state *s, int i, int j, int di, int dj, int east, int *found,
+                       int *north)
+{
+    for (int k = 0;; k++) {
+        const int x = i + (k + 1) * di, y = j + (k + 1) * dj;
+        const int n = north_at(s, x, y), side = west_at(s, x + east, y);
+        if (!(n && side) || k + 1 == s->dsearch) {
+            *found = !(n && side);
+            *north = n;
+            return k;
+        }
+    }
+}
+
+/* The diagonal shares of pixel (i, j), which has its north side: sh[0] its
+ * own toward the pixel above, sh[1] the pixel above's toward it. */
+static void diag_shares(const morph_state *s, int i, int j, double sh[2])
+{
+    const int S = s->dsearch;
+    int fl = 1, fr = 1, n, dl = 0, dr;
+    sh[0] = sh[1] = 0.0;
+    /* the line rising to the right (north and west sides): down-left only
+     * if (i, j) has its west side too; the pixel with only its north side
+     * that ends the search there is the line's first */
+    if (west_at(s, i, j))
+        dl = diag_search(s, i, j, -1, 1, 0, &fl, &n) + n;
+    dr = diag_search(s, i, j, 1, -1, 0, &fr, &n);
+    if (dl + dr > 2) {
+        const int xl = i - dl, yl = j + dl, xr = i + dr, yr = j - dr;
+        int el = fl ? 2 * north_at(s, xl - 1, yl) + west_at(s, xl, yl) : 0;
+        int er = fr ? 2 * north_at(s, xr + 1, yr) + west_at(s, xr + 1, yr - 1) : 0;
+        const double *a = s->darea + area_at(S, el, er, dl, dr);
+        sh[0] += a[0], sh[1] += a[1];
+    }
+    /* the line falling to the right (north and east sides), the same
+     * upside down: the table's lower pixel is the one above (i, j) */
+    dl = diag_search(s, i, j, -1, -1, 1, &fl, &n);
+    dr = 0, fr = 1;
+    if (west_at(s, i + 1, j))
+        dr = diag_search(s, i, j, 1, 1, 1, &fr, &n) + n;
+    if (dl + dr > 2) {
+        const int xl = i - dl, yl = j - dl, xr = i + dr, yr = j + dr;
+        int el = fl ? 2 * north_at(s, xl - 1, yl) + west_at(s, xl, yl - 1) : 0;
+        int er = fr ? 2 * north_at(s, xr + 1, yr) + west_at(s, xr + 1, yr) : 0;
+        const double *a = s->darea + area_at(S, el, er, dl, dr);
+        sh[0] += a[1], sh[1] += a[0];
+    }
+}
+
+/* Every pixel with its north side on a diagonal line takes the diagonal
+ * shares across that side in place of the orthogonal ones, and its west
+ * side blends nothing (SMAA gives diagonals priority). */
+static void smaa_diagonals(morph_state *s, int threads)
+{
+    const int w = s->w, h = s->h;
+    const size_t W = (size_t)w;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int j = 1; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            const size_t up = (size_t)(j - 1) * W + (size_t)i;
+            if (!s->hm[up])
+                continue;
+            double sh[2];
+            diag_shares(s, i, j, sh);
+            if (sh[0] == 0.0 && sh[1] == 0.0)
+                continue;
+            s->hf[up] = sh[0], s->hn[up] = sh[1];
+            if (i > 0)
+                s->vn[(size_t)j * W + (size_t)i - 1] = s->vf[(size_t)j * W + (size_t)i - 1] = 0.0;
+        }
+}
+
 /* ---- blending ---- */
 
 static uint64_t blend(const morph_state *s, int smaa, int threads, aa_image *out)
@@ -521,12 +771,12 @@ static uint64_t blend(const morph_state *s, int smaa, int threads, aa_image *out
 static int mlaa_init(void *state, const double *p, const aa_job *job)
 {
     (void)p;
-    return prepare(state, 0, 0, job);
+    return prepare(state, 0, 0, 0, job);
 }
 
 static int smaa_init(void *state, const double *p, const aa_job *job)
 {
-    return prepare(state, 1, (int)p[S_SEARCH], job);
+    return prepare(state, 1, (int)p[S_SEARCH], p[S_DIAG] != 0 ? (int)p[S_DSEARCH] : 0, job);
 }
 
 static int morph_render(morph_state *s, int smaa, const double *p, const aa_job *job,
@@ -534,8 +784,10 @@ static int morph_render(morph_state *s, int smaa, const double *p, const aa_job 
 {
     int st;
     int search = smaa ? (int)p[S_SEARCH] : 0;
-    if ((!s->ready || s->w != job->w || s->h != job->h || s->search != search) &&
-        (st = prepare(s, smaa, search, job)))
+    int dsearch = smaa && p[S_DIAG] != 0 ? (int)p[S_DSEARCH] : 0;
+    if ((!s->ready || s->w != job->w || s->h != job->h || s->search != search ||
+         s->dsearch != dsearch) &&
+        (st = prepare(s, smaa, search, dsearch, job)))
         return st;
     aa_image img = {job->w, job->h, 3, s->img};
     if ((st = aa_point_sample(job->placed, 0.0, 0.0, job->threads, &img)))
@@ -546,6 +798,8 @@ static int morph_render(morph_state *s, int smaa, const double *p, const aa_job 
     else
         mlaa_edges(s, p[P_THRESHOLD], job->threads);
     make_shares(s, smaa, smaa ? p[S_ROUNDING] : 1.0, job->threads);
+    if (s->dsearch > 0)
+        smaa_diagonals(s, job->threads);
     counters->expensive_pixels = blend(s, smaa, job->threads, out);
     return AA_OK;
 }
@@ -575,7 +829,7 @@ const aa_method_type aa_method_mlaa = {
 
 const aa_method_type aa_method_smaa = {
     {"smaa", "point samples smoothed by SMAA 1x: luma edges with local contrast adaptation, "
-             "area table, sharp corners (Jimenez et al. 2012; no diagonal patterns)",
+             "orthogonal and diagonal area tables, sharp corners (Jimenez et al. 2012)",
      smaa_params},
     sizeof(morph_state),
     AA_METHOD_FIELDS,

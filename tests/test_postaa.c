@@ -145,8 +145,15 @@ static void test_slope_exact(void **state)
             }
             aa_scene *s = scenes_polygon(xy, 4, in, out, AA_FILL_NONZERO);
             for (int m = 0; m < 3; m += 2) { /* mlaa, smaa */
+                /* smaa's diagonal patterns read the 45-degree staircase
+                 * as a diagonal line (test_diag_staircase); its orthogonal
+                 * patterns alone are the ones exact here.  At slopes 1/4
+                 * and 1/2 no pixel's diagonal holds four steps in a row
+                 * (a step every 4 or 2 pixels), so the diagonal search
+                 * finds nothing and smaa is itself. */
+                const char *spec = m == 2 && k == 1 ? "smaa:diag=0" : posts[m];
                 aa_image img;
-                support_render(posts[m], s, NULL, W, H, 2, &img, NULL);
+                support_render(spec, s, NULL, W, H, 2, &img, NULL);
                 double worst = 0.0;
                 /* columns 4 .. w-5 along the line: away from the runs that
                  * end at the image border (open ends, drawn by half) */
@@ -161,17 +168,199 @@ static void test_slope_exact(void **state)
                             if (e > 1e-12)
                                 fail_msg("%s%s, slope 1/%g: pixel (%d, %d) channel %d is "
                                          "%.15g, the half-plane's box value %.15g",
-                                         posts[m], tr ? " (transposed)" : "", k, tr ? v : u,
+                                         spec, tr ? " (transposed)" : "", k, tr ? v : u,
                                          tr ? u : v, ch, px[ch], want);
                         }
                     }
                 print_message("%s%s, slope 1/%g through the turns' middles: largest error "
                               "%.1e\n",
-                              posts[m], tr ? " (along columns)" : "", k, worst);
+                              spec, tr ? " (along columns)" : "", k, worst);
                 aa_image_free(&img);
             }
             aa_scene_free(s);
         }
+}
+
+/* ---- SMAA's diagonal patterns ---- */
+
+static void check_diag(int el, int er, int dl, int dr, double px, double above)
+{
+    double sh[2];
+    aa_morph_diag_area(el, er, dl, dr, sh);
+    if (fabs(sh[0] - px) > 1e-15 || fabs(sh[1] - above) > 1e-15)
+        fail_msg("diagonal area(%d, %d, %d, %d) = (%.17g, %.17g), by hand (%.17g, %.17g)", el,
+                 er, dl, dr, sh[0], sh[1], px, above);
+}
+
+static void test_diag_area_table(void **state)
+{
+    (void)state;
+    /* The frame of morph.c's step 8, y up: the line's pixels are the
+     * squares [1 + l, 2 + l] x [l, 1 + l] (l = 0 .. d - 1, d = dl + dr + 1),
+     * each with its west and north sides on the staircase; the outer
+     * corners (1 + l, 1 + l) lie on y = x, the inner ones (1 + l, l) on
+     * y = x - 1.  The pixel at l = dl takes the part of its square above
+     * the line, the one above it ([1 + l, 2 + l] x [1 + l, 2 + l]) the part
+     * of its square below.
+     * Both ends unknown: the mean of y = x (the pixel wholly below: 0; the
+     * one above halved: 1/2) and y = x - 1 (1/2; 0): 1/4 each, whatever
+     * the distances. */
+    check_diag(0, 0, 0, 5, 0.25, 0.25);
+    check_diag(0, 0, 3, 3, 0.25, 0.25);
+    check_diag(0, 0, 8, 7, 0.25, 0.25);
+    /* turning down at the lower end, right at the upper: from (1, 0) to
+     * (1 + d, d), the line y = x - 1 through the inner corners: 1/2, 0 */
+    check_diag(1, 2, 2, 3, 0.5, 0.0);
+    /* turning left at the lower end, up at the upper: (1, 1) to
+     * (1 + d, 1 + d), y = x: 0, 1/2 */
+    check_diag(2, 1, 4, 1, 0.0, 0.5);
+    /* left at the lower end, right at the upper, d = 4: from (1, 1) to
+     * (5, 4), slope 3/4.  The pixel [2, 3] x [1, 2] (dl = 1): the line
+     * meets x = 2 at y = 7/4 and y = 2 at x = 7/3, the triangle above it
+     * 1/2 (1/4) (1/3) = 1/24; the one above, [2, 3] x [2, 3]: below the
+     * line from (7/3, 2) to (3, 5/2), 1/2 (2/3) (1/2) = 1/6 */
+    check_diag(2, 2, 1, 2, 1.0 / 24.0, 1.0 / 6.0);
+    /* down at the lower end, the upper unknown, d = 4, the pixel at dl = 0
+     * ([1, 2] x [0, 1]): the mean of the lines from (1, 0) to (4, 4) (slope
+     * 4/3: it leaves the square's top at x = 7/4, the triangle left of it
+     * 3/8; above, the triangle (7/4, 1), (2, 1), (2, 4/3), 1/24) and to
+     * (5, 4) (y = x - 1: 1/2; 0): 7/16 and 1/48 */
+    check_diag(1, 0, 0, 3, 7.0 / 16.0, 1.0 / 48.0);
+    /* crossing at both ends, both sides: the mean of y = x and y = x - 1,
+     * as unknown ends */
+    check_diag(3, 3, 2, 2, 0.25, 0.25);
+}
+
+/* The half-plane below y = y0 + x/k in a w x h frame, placed in the image
+ * by `orient`: bit 0 mirrors (x -> w - x), bit 1 transposes (the image h x
+ * w, the frame's x down its columns). */
+static const double *frame_pixel(const aa_image *img, int u, int v, int w, int orient)
+{
+    int x = orient & 1 ? w - 1 - u : u;
+    return orient & 2 ? aa_pixel(img, v, x) : aa_pixel(img, x, v);
+}
+
+/* RMSE of an image against the box-filtered half-plane, the frame's
+ * columns 4 .. w-5, two colours. */
+static double line_rmse(const aa_image *img, double y0, double k, int w, int h, int orient,
+                        aa_rgb in, aa_rgb out)
+{
+    double sum = 0.0;
+    size_t n = 0;
+    for (int u = 4; u < w - 4; u++)
+        for (int v = 0; v < h; v++) {
+            double c = below_line(u, v, y0, k);
+            const double *px = frame_pixel(img, u, v, w, orient);
+            for (int ch = 0; ch < 3; ch++) {
+                double e = px[ch] - (out.c[ch] + c * (in.c[ch] - out.c[ch]));
+                sum += e * e, n++;
+            }
+        }
+    return sqrt(sum / (double)n);
+}
+
+static aa_scene *below_line_scene(double y0, double k, int w, int h, int orient, aa_rgb in,
+                                  aa_rgb out)
+{
+    double p[4][2] = {{0, y0}, {w, y0 + w / k}, {w, h}, {0, h}};
+    double xy[8];
+    for (int c = 0; c < 4; c++) {
+        double x = (orient & 1 ? w - p[c][0] : p[c][0]) / w, y = p[c][1] / h;
+        xy[2 * c] = orient & 2 ? y : x, xy[2 * c + 1] = orient & 2 ? x : y;
+    }
+    return scenes_polygon(xy, 4, in, out, AA_FILL_NONZERO);
+}
+
+static void test_diag_staircase(void **state)
+{
+    (void)state;
+    const aa_rgb in = {{1.0, 0.8, 0.2}}, out = {{0.1, 0.2, 0.6}};
+    const int w = 32, h = 40;
+    for (int mirror = 0; mirror < 2; mirror++) {
+        /* The 45-degree line y = 4.5 + x (falling to the right; mirrored,
+         * rising: the other diagonal), point sampled: one step a pixel, no
+         * pixel's run longer than one, so every pixel beside the staircase
+         * is on a diagonal line of 4 or more steps whose ends are the
+         * image's borders (no crossing sides): both ends unknown.  The
+         * diagonal area table gives such a pixel 1/4 of the colour across
+         * (test_diag_area_table: the mean of the lines through the outer
+         * and the inner corners, the first missing the pixel, the second
+         * halving it).  The box-filtered image is 1/8 there: the edge
+         * itself is the line through the steps' middles (y = x - 1/2 in
+         * that frame), which cuts the corner 1/2 x 1/2 / 2 from each pixel
+         * (the orthogonal patterns draw exactly that, test_slope_exact). */
+        aa_scene *s = below_line_scene(4.5, 1.0, w, h, mirror, in, out);
+        aa_image img, orth;
+        support_render("smaa", s, NULL, w, h, 2, &img, NULL);
+        support_render("smaa:diag=0", s, NULL, w, h, 2, &orth, NULL);
+        int beside = 0;
+        for (int u = 4; u < w - 4; u++)
+            for (int v = 0; v < h; v++) {
+                double c = below_line(u, v, 4.5, 1.0);
+                double share = c > 0.5 && c < 1 ? 0.75 : (c > 0 && c < 0.5 ? 0.25 : c);
+                beside += c > 0 && c < 1;
+                const double *px = frame_pixel(&img, u, v, w, mirror);
+                for (int ch = 0; ch < 3; ch++) {
+                    double want = out.c[ch] + share * (in.c[ch] - out.c[ch]);
+                    if (fabs(px[ch] - want) > 1e-12)
+                        fail_msg("smaa, 45 degrees%s: pixel (%d, %d) channel %d is %.15g, the "
+                                 "diagonal table's %.15g",
+                                 mirror ? " (rising)" : "", mirror ? w - 1 - u : u, v, ch,
+                                 px[ch], want);
+                }
+            }
+        assert_int_equal(beside, 2 * (w - 8));
+        double ed = line_rmse(&img, 4.5, 1.0, w, h, mirror, in, out);
+        double eo = line_rmse(&orth, 4.5, 1.0, w, h, mirror, in, out);
+        /* every pixel beside the line 1/8 of the contrast off, 2 of the
+         * h = 40 in each column: RMSE over the channels (0.9, 0.6, 0.4)
+         * sqrt(2/40 (0.81 + 0.36 + 0.16)/3) / 8 */
+        const double hand = sqrt(2.0 / 40.0 * (0.81 + 0.36 + 0.16) / 3.0) / 8.0;
+        if (fabs(ed - hand) > 1e-12 || !(eo < 1e-12))
+            fail_msg("45 degrees: smaa RMSE %.15g (by hand %.15g), smaa:diag=0 %.3g (exact)",
+                     ed, hand, eo);
+        print_message("45 degrees%s through the steps' middles: RMSE smaa %.4f (1/8 of the "
+                      "contrast beside the line), smaa:diag=0 %.1e\n",
+                      mirror ? " rising" : " falling", ed, eo);
+        aa_image_free(&img);
+        aa_image_free(&orth);
+        aa_scene_free(s);
+    }
+    /* Near 45 degrees, slope 1/1.2: runs of one pixel with one of two every
+     * six columns; the diagonal search fires on the stretches between
+     * them.  Over the line's positions (ten offsets a tenth of a pixel
+     * apart), the RMSE of each against the box-filtered half-plane (hand
+     * geometry, below_line): the paper's claim that the diagonal patterns
+     * reconstruct such lines better than the orthogonal ones, checked.
+     * Falling and rising (mirrored), along rows and (transposed, slope 1.2)
+     * along columns. */
+    static const char *const orients[] = {"falling", "rising", "falling, along columns",
+                                          "rising, along columns"};
+    for (int o = 0; o < 4; o++) {
+        double sd = 0.0, so = 0.0;
+        int fired = 0;
+        const int W = o & 2 ? h : w, H = o & 2 ? w : h;
+        for (int t = 0; t < 10; t++) {
+            const double y0 = 4.0 + 0.1 * t + 0.05;
+            aa_scene *s = below_line_scene(y0, 1.2, w, h, o, in, out);
+            aa_image img, orth;
+            support_render("smaa", s, NULL, W, H, 2, &img, NULL);
+            support_render("smaa:diag=0", s, NULL, W, H, 2, &orth, NULL);
+            fired += !support_same_image(&img, &orth);
+            sd += line_rmse(&img, y0, 1.2, w, h, o, in, out);
+            so += line_rmse(&orth, y0, 1.2, w, h, o, in, out);
+            aa_image_free(&img);
+            aa_image_free(&orth);
+            aa_scene_free(s);
+        }
+        assert_int_equal(fired, 10);
+        if (!(sd < so))
+            fail_msg("slope 1/1.2, %s: smaa's mean RMSE %.4f not below smaa:diag=0's %.4f",
+                     orients[o], sd / 10, so / 10);
+        print_message("slope 1/1.2, %s, mean RMSE over 10 offsets: smaa %.4f, smaa:diag=0 "
+                      "%.4f\n",
+                      orients[o], sd / 10, so / 10);
+    }
 }
 
 /* ---- edges along pixel boundaries ---- */
@@ -338,6 +527,7 @@ static void test_refuse_prefilter(void **state)
 }
 
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_area_table), cmocka_unit_test(test_slope_exact),
+             cmocka_unit_test(test_diag_area_table), cmocka_unit_test(test_diag_staircase),
              cmocka_unit_test(test_aligned_edges), cmocka_unit_test(test_square_corners),
              cmocka_unit_test(test_flat_and_range),
              cmocka_unit_test(test_below_point), cmocka_unit_test(test_refuse_prefilter))

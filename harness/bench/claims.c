@@ -2182,7 +2182,7 @@ static const claim_row claims[] = {
             "abstract",
         .claim = "SMAA yields \"results of better overall quality than previous approaches "
             "while more closely converging to MSAA/SSAA references\".",
-        .setting = "smaa (SMAA 1x's spatial filter, without its diagonal patterns) against "
+        .setting = "smaa (SMAA 1x's spatial filter, with its diagonal patterns) against "
             "the approaches before it, mlaa and fxaa (FXAA 3.11 quality), all on the "
             "same point samples, 256x256, box: RMSE against the box reference on crow, "
             "star, slivers and feibush; 4 x 4 supersampling beside.",
