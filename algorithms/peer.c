@@ -157,30 +157,91 @@ void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *co
 
 /* ---- Painting clips and groups of opacity (peer.h) ----
  *
- * A band's workspace: the mask of every clip (band x w doubles each) and
- * a group buffer per level of nesting (band x w pixels of five doubles:
- * k, the coverage of the group, and Q, B, its encoded premultiplied
- * colour and alpha, each already times k). */
+ * A band's workspace: masks of clips (band x w doubles each) and a group
+ * buffer per level of nesting (band x w pixels of five doubles: k, the
+ * coverage of the group, and Q, B, its encoded premultiplied colour and
+ * alpha, each already times k).
+ *
+ * The masks follow a plan made once for the scene (plan_clips): a clip's
+ * mask is made just before the first layer, back to front, that needs it
+ * (gated by it, or by a clip made from it: the clip it is defined within
+ * and its members' own clips are made first), into a slot that is given
+ * back once its last use is past.  So each needed clip is made once per
+ * band, and the slots are as many as the masks ever alive at once (a
+ * scene clipping each element by a clip of its own needs one or two, not
+ * one per clip). */
 struct aa_peer_painter {
-    int w, band, nclips, depth;
-    double *mask;          /* nclips x band x w */
-    double *group;         /* depth x band x w x 5 */
-    unsigned char *own;    /* per layer: 1 if its coverage has its clip applied */
-    unsigned char *needed; /* per clip: 1 if its mask is used */
+    int w, band, nclips, depth, nslots;
+    double *mask;       /* nslots x band x w */
+    double *group;      /* depth x band x w x 5 */
+    unsigned char *own; /* per layer: 1 if its coverage has its clip applied */
+    int *slot;          /* per clip: its mask's slot (-1: not needed) */
+    int *order, *at;    /* the clips to make, in order, each before layer at[k] */
+    int norder;
 };
 
-/* Clip c's mask is needed, and so are those it is made from. */
-static void need_clip(aa_peer_painter *pp, const aa_scene *s, int c)
+/* The plan's walk (plan_clips): clip c made (once) with what it is made
+ * from; `uses` counts every use of a clip's mask (pass 0), and pass 1
+ * gives slots, freeing a clip's slot when its uses run out. */
+typedef struct plan_walk {
+    aa_peer_painter *pp;
+    const aa_scene *s;
+    int pass, layer, *uses, *made, *free_slots, nfree;
+} plan_walk;
+
+static void plan_use(plan_walk *pw, int c)
 {
-    if (pp->needed[c])
+    if (pw->pass == 0)
+        pw->uses[c]++;
+    else if (--pw->uses[c] == 0)
+        pw->free_slots[pw->nfree++] = pw->pp->slot[c];
+}
+
+static void plan_make(plan_walk *pw, int c)
+{
+    if (pw->made[c] == pw->pass + 1)
         return;
-    pp->needed[c] = 1;
-    if (aa_scene_clip_within(s, c) >= 0)
-        need_clip(pp, s, aa_scene_clip_within(s, c));
+    pw->made[c] = pw->pass + 1;
+    const aa_scene *s = pw->s;
+    const int within = aa_scene_clip_within(s, c);
     int first, count = aa_scene_clip_members(s, c, &first);
+    if (within >= 0)
+        plan_make(pw, within);
     for (int l = first; l < first + count; l++)
         if (aa_scene_layer_clip(s, l) >= 0)
-            need_clip(pp, s, aa_scene_layer_clip(s, l));
+            plan_make(pw, aa_scene_layer_clip(s, l));
+    aa_peer_painter *pp = pw->pp;
+    if (pw->pass == 1) { /* c's slot first, then its sources' given back */
+        pp->slot[c] = pw->nfree ? pw->free_slots[--pw->nfree] : pp->nslots++;
+        pp->order[pp->norder] = c;
+        pp->at[pp->norder++] = pw->layer;
+    }
+    if (within >= 0)
+        plan_use(pw, within);
+    for (int l = first; l < first + count; l++)
+        if (aa_scene_layer_clip(s, l) >= 0)
+            plan_use(pw, aa_scene_layer_clip(s, l));
+}
+
+static int plan_clips(aa_peer_painter *pp, const aa_scene *s)
+{
+    const int nc = pp->nclips;
+    plan_walk pw = {pp, s, 0, 0, calloc((size_t)nc, sizeof(int)), calloc((size_t)nc, sizeof(int)),
+                    calloc((size_t)nc, sizeof(int)), 0};
+    int ok = pw.uses && pw.made && pw.free_slots;
+    for (pw.pass = 0; pw.pass < 2 && ok; pw.pass++)
+        for (int l = aa_scene_layer_count(s) - 1; l >= 0; l--) {
+            const int g = aa_scene_layer_clip(s, l);
+            if (aa_scene_layer_clip_member(s, l) >= 0 || g < 0 || pp->own[l])
+                continue;
+            pw.layer = l;
+            plan_make(&pw, g);
+            plan_use(&pw, g);
+        }
+    free(pw.uses);
+    free(pw.made);
+    free(pw.free_slots);
+    return ok;
 }
 
 /* The groups holding layer l, outermost first, into chain; returns how
@@ -207,8 +268,9 @@ int aa_peer_painter_new(const char *name, const aa_scene *s, int w, int band,
     if (!pp)
         return aa_fail(AA_ENOMEM, "%s: out of memory", name);
     pp->w = w, pp->band = band, pp->nclips = aa_scene_clip_count(s);
-    if (!(pp->own = calloc((size_t)n + 1, 1)) ||
-        !(pp->needed = calloc((size_t)pp->nclips + 1, 1)))
+    const size_t nc = (size_t)pp->nclips + 1;
+    if (!(pp->own = calloc((size_t)n + 1, 1)) || !(pp->slot = malloc(nc * sizeof *pp->slot)) ||
+        !(pp->order = malloc(nc * sizeof *pp->order)) || !(pp->at = malloc(nc * sizeof *pp->at)))
         goto nomem;
     int chain[AA_SCENE_MAX_GROUP_DEPTH];
     for (int l = 0; l < n; l++) {
@@ -216,24 +278,25 @@ int aa_peer_painter_new(const char *name, const aa_scene *s, int w, int band,
         if (k > pp->depth)
             pp->depth = k;
         pp->own[l] = own && own[l];
-        if (aa_scene_layer_clip_member(s, l) < 0 && aa_scene_layer_clip(s, l) >= 0 &&
-            !pp->own[l])
-            need_clip(pp, s, aa_scene_layer_clip(s, l));
     }
+    for (int c = 0; c < pp->nclips; c++)
+        pp->slot[c] = -1;
+    if (pp->nclips && !plan_clips(pp, s))
+        goto nomem;
     const size_t px = (size_t)w * (size_t)band;
-    if (pp->nclips && !(pp->mask = malloc((size_t)pp->nclips * px * sizeof *pp->mask)))
+    if (pp->nslots && !(pp->mask = malloc((size_t)pp->nslots * px * sizeof *pp->mask)))
         goto nomem;
     if (pp->depth && !(pp->group = malloc((size_t)pp->depth * px * 5 * sizeof *pp->group)))
         goto nomem;
     *out = pp;
     return AA_OK;
 nomem:;
-    const int nclips = pp->nclips, depth = pp->depth;
+    const int nslots = pp->nslots, depth = pp->depth;
     aa_peer_painter_free(pp);
     return aa_fail(AA_ENOMEM,
-                   "%s: out of memory for the masks of %d clips and %d levels of groups on "
+                   "%s: out of memory for %d masks of clips and %d levels of groups on "
                    "%d x %d pixels",
-                   name, nclips, depth, w, band);
+                   name, nslots, depth, w, band);
 }
 
 void aa_peer_painter_free(aa_peer_painter *pp)
@@ -243,53 +306,51 @@ void aa_peer_painter_free(aa_peer_painter *pp)
     free(pp->mask);
     free(pp->group);
     free(pp->own);
-    free(pp->needed);
+    free(pp->slot);
+    free(pp->order);
+    free(pp->at);
     free(pp);
 }
 
-/* The clips' masks on rows [y0, y0 + rows), in order (a clip refers only
- * to earlier ones): for clip c,
+/* Clip c's mask on rows [y0, y0 + rows), into its slot (the masks it is
+ * made from are made already, plan_clips):
  *     M_c = M_within(c) (1 - prod over members m (1 - a_m M_gate(m))),
  * a_m the library's coverage of member m under its rule, the union of the
  * members by OVER (u = m + (1 - m) u, in turn), as the peers paint
  * strokes of one grey over each other. */
-static int clip_masks(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn cover, void *ctx,
-                      int y0, int rows)
+static int clip_mask(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn cover, void *ctx,
+                     int y0, int rows, int c)
 {
     const int w = pp->w;
     const size_t px = (size_t)w * (size_t)pp->band;
-    for (int c = 0; c < pp->nclips; c++) {
-        if (!pp->needed[c])
+    double *m = pp->mask + (size_t)pp->slot[c] * px;
+    memset(m, 0, (size_t)rows * (size_t)w * sizeof *m);
+    int first, count = aa_scene_clip_members(s, c, &first);
+    for (int l = first; l < first + count; l++) {
+        const unsigned char *cov;
+        size_t stride;
+        int st = cover(ctx, l, y0, rows, &cov, &stride);
+        if (st)
+            return st;
+        if (!cov)
             continue;
-        double *m = pp->mask + (size_t)c * px;
-        memset(m, 0, (size_t)rows * (size_t)w * sizeof *m);
-        int first, count = aa_scene_clip_members(s, c, &first);
-        for (int l = first; l < first + count; l++) {
-            const unsigned char *cov;
-            size_t stride;
-            int st = cover(ctx, l, y0, rows, &cov, &stride);
-            if (st)
-                return st;
-            if (!cov)
-                continue;
-            const int g = aa_scene_layer_clip(s, l);
-            const double *gm = g >= 0 ? pp->mask + (size_t)g * px : NULL;
-            for (int j = 0; j < rows; j++)
-                for (int i = 0; i < w; i++) {
-                    const size_t k = (size_t)j * (size_t)w + (size_t)i;
-                    const unsigned char b = cov[(size_t)j * stride + (size_t)i];
-                    if (!b)
-                        continue;
-                    const double a = gm ? b / 255.0 * gm[k] : b / 255.0;
-                    m[k] = a + (1.0 - a) * m[k];
-                }
-        }
-        const int within = aa_scene_clip_within(s, c);
-        if (within >= 0) {
-            const double *wm = pp->mask + (size_t)within * px;
-            for (size_t k = 0; k < (size_t)rows * (size_t)w; k++)
-                m[k] *= wm[k];
-        }
+        const int g = aa_scene_layer_clip(s, l);
+        const double *gm = g >= 0 ? pp->mask + (size_t)pp->slot[g] * px : NULL;
+        for (int j = 0; j < rows; j++)
+            for (int i = 0; i < w; i++) {
+                const size_t k = (size_t)j * (size_t)w + (size_t)i;
+                const unsigned char b = cov[(size_t)j * stride + (size_t)i];
+                if (!b)
+                    continue;
+                const double a = gm ? b / 255.0 * gm[k] : b / 255.0;
+                m[k] = a + (1.0 - a) * m[k];
+            }
+    }
+    const int within = aa_scene_clip_within(s, c);
+    if (within >= 0) {
+        const double *wm = pp->mask + (size_t)pp->slot[within] * px;
+        for (size_t k = 0; k < (size_t)rows * (size_t)w; k++)
+            m[k] *= wm[k];
     }
     return AA_OK;
 }
@@ -339,11 +400,15 @@ int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn 
     const size_t px = (size_t)w * (size_t)pp->band;
     for (int j = y0; j < y0 + rows; j++)
         aa_peer_background_row(s, out, j, w);
-    int st = pp->nclips ? clip_masks(pp, s, cover, ctx, y0, rows) : AA_OK;
+    int st = AA_OK, next = 0; /* next: the plan's next clip to make */
     int open[AA_SCENE_MAX_GROUP_DEPTH], depth = 0; /* the groups open, outermost first */
     for (int l = n - 1; l >= 0 && !st; l--) {
         if (aa_scene_layer_clip_member(s, l) >= 0)
             continue; /* a clip's member paints nothing */
+        for (; next < pp->norder && pp->at[next] == l && !st; next++)
+            st = clip_mask(pp, s, cover, ctx, y0, rows, pp->order[next]);
+        if (st)
+            break;
         int chain[AA_SCENE_MAX_GROUP_DEPTH], nc = group_chain(s, l, chain), keep = 0;
         while (keep < depth && keep < nc && open[keep] == chain[keep])
             keep++;
@@ -359,7 +424,7 @@ int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn 
         if ((st = cover(ctx, l, y0, rows, &cov, &stride)) || !cov)
             continue;
         const int g = pp->own[l] ? -1 : aa_scene_layer_clip(s, l);
-        const double *gm = g >= 0 ? pp->mask + (size_t)g * px : NULL;
+        const double *gm = g >= 0 ? pp->mask + (size_t)pp->slot[g] * px : NULL;
         if (!depth && !gm) { /* as ever: bit for bit what painting did before clips */
             for (int j = 0; j < rows; j++)
                 aa_peer_composite_row(s, l, cov + (size_t)j * stride, w, aa_pixel(out, 0, y0 + j));

@@ -123,7 +123,9 @@ typedef int (*aa_peer_cover_fn)(void *ctx, int layer, int y0, int rows,
                                 const unsigned char **cov, size_t *stride);
 /* One thread's workspace for painting bands of at most `band` rows of w
  * pixels of the scene: the clips' masks and the groups' buffers, 8 x
- * (clips + 5 x depth of groups) bytes a pixel.  own (NULL: none) marks
+ * (masks alive at once + 5 x depth of groups) bytes a pixel (a mask is
+ * made once per band, before the first layer that needs it, and its
+ * memory reused once its last use is past).  own (NULL: none) marks
  * the layers whose coverage from the peer already holds their clip (the
  * library's own clipping, cairo.c), which take no mask. */
 typedef struct aa_peer_painter aa_peer_painter;
