@@ -403,6 +403,67 @@ static void test_clip_evenodd(void **state)
     }
 }
 
+/* Several clips, made from each other, over one another (the masks' plan,
+ * peer.c), on a 64 x 64 image in cells of 4 px (every edge on pixel
+ * boundaries: masks and coverages 0 or 1, so every pixel is exact).
+ * Clips, in cells: C0 = [0, 8] x [0, 16]; C1 = [4, 16] x [0, 16] within C0,
+ * so [4, 8] x [0, 16]; C2 = [0, 16] x [0, 8] whose member is clipped by
+ * C1, so [4, 8] x [0, 8]; C3 = [12, 16] x [0, 8] and [12, 16] x [8, 16],
+ * two members (a union Cairo cannot clip to: its mask).  Layers over all
+ * the image, front to back: red gated by C3, green by C2, blue by C0,
+ * white by C1.  So by hand: columns 0-3 blue; 4-7 green in rows 0-7, blue
+ * below (white is behind blue there); 8-11 black; 12-15 red. */
+static void test_clip_many(void **state)
+{
+    (void)state;
+    const aa_rgb red = {{1, 0, 0}}, green = {{0, 1, 0}}, blue = {{0, 0, 1}};
+    const double u = N / 16.0;
+    aa_scene *s = aa_scene_new(black);
+    int c0, c1, c2, c3;
+    assert_int_equal(aa_scene_clip_begin(s, -1), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    rect_path(s, 0, 0, 8 * u, N, 0);
+    assert_int_equal(aa_scene_clip_end(s, &c0), AA_OK);
+    assert_int_equal(aa_scene_clip_begin(s, c0), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    rect_path(s, 4 * u, 0, N, N, 0);
+    assert_int_equal(aa_scene_clip_end(s, &c1), AA_OK);
+    assert_int_equal(aa_scene_clip_begin(s, -1), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    rect_path(s, 0, 0, N, 8 * u, 0);
+    assert_int_equal(aa_scene_set_clip(s, c1), AA_OK);
+    assert_int_equal(aa_scene_clip_end(s, &c2), AA_OK);
+    assert_int_equal(aa_scene_clip_begin(s, -1), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    rect_path(s, 12 * u, 0, N, 8 * u, 0);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    rect_path(s, 12 * u, 8 * u, N, N, 0);
+    assert_int_equal(aa_scene_clip_end(s, &c3), AA_OK);
+    const aa_rgb colour[4] = {red, green, blue, white};
+    const int gate[4] = {c3, c2, c0, c1};
+    for (int k = 0; k < 4; k++) {
+        rect_layer(s, colour[k], 0, 0, N, N);
+        assert_int_equal(aa_scene_set_clip(s, gate[k]), AA_OK);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    for (size_t k = 0; k < NPAINTERS; k++) {
+        aa_image img;
+        support_render(painters[k], s, "box", N, N, 2, &img, NULL);
+        for (int j = 0; j < N; j++)
+            for (int i = 0; i < N; i++) {
+                const int ci = (int)(i / u), cj = (int)(j / u);
+                const aa_rgb want = ci < 4                ? blue
+                                    : ci < 8 && cj < 8   ? green
+                                    : ci < 8             ? blue
+                                    : ci < 12            ? black
+                                                         : red;
+                expect_px(painters[k], &img, i, j, want.c, 0.0, "the clips by hand");
+            }
+        aa_image_free(&img);
+    }
+    aa_scene_free(s);
+}
+
 /* Masks multiply coverages: a white rectangle [0, 10.5] x [0, 16] gated
  * by a clip of [10.5, 16] x [0, 16] draws nothing in the exact picture
  * (the reference is 0 in every pixel), but column 10 is covered 1/2 by
@@ -468,4 +529,5 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_clip_disk_by_rect),
              cmocka_unit_test(test_clip_nested),
              cmocka_unit_test(test_clip_evenodd),
+             cmocka_unit_test(test_clip_many),
              cmocka_unit_test(test_clip_mask_product))
