@@ -43,7 +43,10 @@
  * in a pixel both shapes cross, the product of two coverages is not the
  * coverage of their intersection (two half-covering shapes give 1/4
  * whether they overlap in all, half or none of the pixel): that is the
- * error of masking, measured against the exact reference.
+ * error of masking, measured against the exact reference.  A peer whose
+ * library clips by itself marks the layers it clips so
+ * (aa_peer_painter_new's `own`; cairo.c, cairo_clip for a clip that is an
+ * intersection of paths), and those take no mask.
  *
  * Groups of opacity, by offscreen buffers: a group's layers are painted
  * into a buffer of the band, transparent at first, that holds per pixel
