@@ -57,11 +57,18 @@
  * Frobenius norm, so their tolerance holds in pixels.  Several strokes of
  * one grey are painted OVER each other (peer.h).
  *
- * Painted (peer.h): any other unclipped scene (colour, several layers,
- * translucency) is painted layer by layer (band_painted): each layer's
- * contours under its rule, or its stroke by AGG's stroker as above, swept
- * into the band's covers and composited over the layers behind
- * (aa_peer_composite_row).
+ * Painted (peer.h): any other scene (colour, several layers, translucency,
+ * groups of opacity, clips) is painted layer by layer (agg_cover): each
+ * layer's contours under its rule, or its stroke by AGG's stroker as
+ * above, swept into the band's covers and composited over the layers
+ * behind (aa_peer_paint_band).  A clip is the coverage of its members,
+ * swept by AGG's rasterizer as any layer, made a mask and multiplied into
+ * the coverage of the layers it gates (AGG's own alpha mask,
+ * alpha_mask_gray8, multiplies 8-bit covers by an 8-bit mask the same
+ * way, taking the product to 8 bits besides, (255 + c m) >> 8; its
+ * scanline boolean intersection multiplies the covers of two scanlines
+ * alike); a group's layers go into the group's
+ * buffer, composited with its opacity.
  *
  * Limits: grey scenes of one layer or of strokes of one grey, or painted
  * layer by layer (peer.h), and the box filter only; at most 32 dash lengths; 8-bit coverage (up to 1/510 from rounding alone); positions
@@ -135,7 +142,11 @@ struct worker {
     agg::curve4 curve4;
     agg::arc ellipse;
     std::vector<unsigned char> band;
-    worker() : ras(CELL_BLOCKS) {}
+    aa_peer_painter *painter; /* painted (peer.h) */
+    worker() : ras(CELL_BLOCKS), painter(nullptr) {}
+    ~worker() { aa_peer_painter_free(painter); }
+    worker(const worker &) = delete;
+    worker &operator=(const worker &) = delete;
 };
 
 struct agg_work {
@@ -411,25 +422,34 @@ void band_cover(worker &wk, const aa_scene *scene, const aa_peer_scene &ps, cons
         band_fill(wk, scene, -1, ps.rule, p, w, y0, rows);
 }
 
-/* Painted (peer.h): the background, then each layer back to front, its
- * coverage (its stroke by AGG's stroker, or its contours under its rule)
- * composited over what is below. */
-void band_painted(worker &wk, const aa_scene *scene, const double *p, aa_image *out, int y0,
-                  int rows)
+/* Painted (peer.h): AGG's coverage of layer l (its stroke by AGG's
+ * stroker, or its contours under its rule) in the worker's band; AGG's
+ * exceptions end here, as statuses, before they reach peer.c. */
+struct cover_ctx {
+    worker *wk;
+    const aa_scene *scene;
+    const double *p;
+    int w;
+};
+
+int agg_cover(void *vctx, int l, int y0, int rows, const unsigned char **cov, size_t *stride)
 {
-    const int w = out->w;
-    for (int j = y0; j < y0 + rows; j++)
-        aa_peer_background_row(scene, out, j, w);
-    for (int l = aa_scene_layer_count(scene) - 1; l >= 0; l--) {
-        int k = aa_scene_layer_stroked(scene, l);
+    const cover_ctx &c = *static_cast<const cover_ctx *>(vctx);
+    *cov = nullptr;
+    *stride = (size_t)c.w;
+    try {
+        int k = aa_scene_layer_stroked(c.scene, l);
         if (k >= 0)
-            band_strokes(wk, scene, p, w, y0, rows, k);
+            band_strokes(*c.wk, c.scene, c.p, c.w, y0, rows, k);
         else
-            band_fill(wk, scene, l, aa_scene_layer_rule(scene, l), p, w, y0, rows);
-        for (int j = 0; j < rows; j++)
-            aa_peer_composite_row(scene, l, wk.band.data() + (size_t)j * (size_t)w, w,
-                                  aa_pixel(out, 0, y0 + j));
+            band_fill(*c.wk, c.scene, l, aa_scene_layer_rule(c.scene, l), c.p, c.w, y0, rows);
+    } catch (const std::bad_alloc &) {
+        return AA_ENOMEM;
+    } catch (...) {
+        return AA_EFAIL;
     }
+    *cov = c.wk->band.data();
+    return AA_OK;
 }
 
 int agg_check(const double *p, const aa_filter *f)
@@ -478,6 +498,14 @@ int agg_init(void *state, const double *p, const aa_job *job)
             s->work->workers.push_back(nullptr);
             s->work->workers.back() = new worker;
             s->work->workers.back()->band.resize((size_t)BAND * (size_t)job->w);
+            if (s->painted) {
+                int st = aa_peer_painter_new("agg", job->placed, job->w, BAND, nullptr,
+                                             &s->work->workers.back()->painter);
+                if (st) {
+                    agg_release(s);
+                    return st;
+                }
+            }
         }
     } catch (const std::bad_alloc &) {
         agg_release(s);
@@ -510,7 +538,12 @@ int agg_render(void *state, const double *p, const aa_job *job, aa_image *out,
             int st = AA_OK;
             try {
                 if (s->painted) {
-                    band_painted(wk, job->placed, p, out, y0, rows);
+                    cover_ctx c = {&wk, job->placed, p, job->w};
+                    st = aa_peer_paint_band(wk.painter, job->placed, agg_cover, &c, out, y0, rows);
+                    if (st) {
+#pragma omp atomic write
+                        status = st;
+                    }
                     continue;
                 }
                 band_cover(wk, job->placed, s->ps, p, job->w, y0, rows);

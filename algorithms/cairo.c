@@ -33,11 +33,19 @@
  * dashes), not filled from our outline; several strokes of one grey are
  * painted in turn, OVER each other (peer.h).
  *
- * Painted: a scene of colour, of several layers or translucent is painted
- * layer by layer, Cairo's coverage of each composited over the layers
- * behind (cairo_init_painted, aa_peer_composite_row: peer.h): layers
- * sharing an edge show the background through their seam, as every
- * renderer that uses coverage as alpha.
+ * Painted: a scene of colour, of several layers, translucent, with groups
+ * of opacity or clipped is painted layer by layer, Cairo's coverage of
+ * each composited over the layers behind (cairo_init_painted, cairo_cover,
+ * aa_peer_paint_band: peer.h): layers sharing an edge show the background
+ * through their seam, as every renderer that uses coverage as alpha.  A
+ * layer gated by a clip that is an intersection of paths is clipped by
+ * Cairo itself (cairo_clip: cairo_clips, below); one gated by a union of
+ * several members takes the clip's mask (peer.h).  Groups of opacity are
+ * composited by peer.h's buffers, not by cairo_push_group: this peer's
+ * surfaces hold coverage only (A8), and every colour is composited outside
+ * Cairo in double precision, as for layers, where a group of Cairo's own
+ * would be an ARGB32 surface of 8-bit colour in the scene's encoded values
+ * (colour rounding besides the coverage measured here).
  *
  * Limits: the box filter only; 8-bit
  * coverage (up to 1/510 from rounding); positions in 24.8 fixed point
@@ -79,6 +87,8 @@ typedef struct cairo_state {
      * layer's path (NULL for a stroke, stroked from its source) */
     int painted, nlayers;
     cairo_path_t **lpath;
+    aa_peer_painter **pp; /* one per thread */
+    unsigned char *own;   /* per layer: clipped by Cairo itself (cairo_clips) */
 } cairo_state;
 
 static int cairo_check(const double *p, const aa_filter *f)
@@ -100,7 +110,12 @@ static void cairo_release(void *state)
         if (s->lpath[l])
             cairo_path_destroy(s->lpath[l]);
     free(s->lpath);
+    for (int k = 0; s->pp && k < s->nsurf; k++)
+        aa_peer_painter_free(s->pp[k]);
+    free(s->pp);
+    free(s->own);
     s->surf = NULL, s->path = NULL, s->nsurf = 0, s->lpath = NULL, s->nlayers = 0;
+    s->pp = NULL, s->own = NULL;
 }
 
 /* Elliptical arc edge d in Cairo's own way: the unit circle's arc from t0
@@ -262,6 +277,44 @@ static void cairo_stroke_source(cairo_t *cr, const aa_stroke_source *src)
     cairo_restore(cr);
 }
 
+/*
+ * Clips in Cairo's own way, where it has one: cairo_clip intersects the
+ * clip with the current one, so a clip Cairo can hold is an intersection
+ * of paths: a clip of one member (a path under its rule), that member's
+ * own clip and the clip it is defined within each such a clip again
+ * (cairo_clips).  A layer gated by one is filled or stroked after those
+ * paths are clipped to (cairo_clip_to), and the clip is Cairo's: its
+ * image compositor intersects the polygons of the clip and of the fill
+ * (or renders the clip as a mask where it cannot, as for a stroke).  A
+ * clip of several members, a union, is none: cairo_clip has no union, so
+ * the layers it gates take the masks of peer.h (aa_peer_paint_band).
+ */
+static int cairo_clips(const cairo_state *s, const aa_scene *scene, int c)
+{
+    int first, count = aa_scene_clip_members(scene, c, &first);
+    if (count != 1 || !s->lpath[first])
+        return 0;
+    const int within = aa_scene_clip_within(scene, c), g = aa_scene_layer_clip(scene, first);
+    return (within < 0 || cairo_clips(s, scene, within)) && (g < 0 || cairo_clips(s, scene, g));
+}
+
+static void cairo_clip_to(cairo_t *cr, const cairo_state *s, const aa_scene *scene, int c)
+{
+    int first;
+    aa_scene_clip_members(scene, c, &first);
+    const int within = aa_scene_clip_within(scene, c), g = aa_scene_layer_clip(scene, first);
+    if (within >= 0)
+        cairo_clip_to(cr, s, scene, within);
+    if (g >= 0)
+        cairo_clip_to(cr, s, scene, g);
+    cairo_new_path(cr);
+    cairo_set_fill_rule(cr, aa_scene_layer_rule(scene, first) == AA_FILL_EVENODD
+                                ? CAIRO_FILL_RULE_EVEN_ODD
+                                : CAIRO_FILL_RULE_WINDING);
+    cairo_append_path(cr, s->lpath[first]);
+    cairo_clip(cr);
+}
+
 /* A scene the one-layer grey fill refuses (colour, several layers,
  * translucency) is painted layer by layer: Cairo's coverage of each layer
  * (its path filled with its rule, or its stroke stroked from the source)
@@ -284,6 +337,15 @@ static int cairo_init_painted(cairo_state *s, const aa_scene *scene, double tole
     for (int l = 0; l < s->nlayers && !st; l++)
         if (aa_scene_layer_stroked(scene, l) < 0)
             st = cairo_build_path(&s->lpath[l], scene, l, tolerance);
+    if (!st && aa_scene_is_clipped(scene)) {
+        if (!(s->own = calloc((size_t)s->nlayers, 1)))
+            return aa_fail(AA_ENOMEM, "cairo: out of memory");
+        for (int l = 0; l < s->nlayers; l++) {
+            const int c = aa_scene_layer_clip(scene, l);
+            s->own[l] = aa_scene_layer_clip_member(scene, l) < 0 && c >= 0 &&
+                        cairo_clips(s, scene, c);
+        }
+    }
     s->painted = 1;
     return st;
 }
@@ -308,6 +370,12 @@ static int cairo_init(void *state, const double *p, const aa_job *job)
                              BAND);
         }
     }
+    if (!st && s->painted) {
+        if (!(s->pp = calloc((size_t)s->nsurf, sizeof *s->pp)))
+            st = aa_fail(AA_ENOMEM, "cairo: out of memory");
+        for (int k = 0; k < s->nsurf && !st; k++)
+            st = aa_peer_painter_new("cairo", job->placed, job->w, BAND, s->own, &s->pp[k]);
+    }
     for (int k = 0; k < 256 && !s->painted; k++)
         s->lut[k] = aa_peer_mix(&s->ps, k / 255.0);
     if (st)
@@ -315,50 +383,55 @@ static int cairo_init(void *state, const double *p, const aa_job *job)
     return st;
 }
 
-/* Painted mode's band y0 .. y0 + rows - 1 into out (cairo_init_painted):
- * the background, then each layer back to front, its coverage from Cairo
- * on the band's A8 surface composited over what is below in linear light,
- * its inside the scene's colour there (aa_peer_composite_row). */
-static int cairo_layered_band(const cairo_state *s, cairo_surface_t *surf, const double *p,
-                              const aa_job *job, aa_image *out, int y0, int rows)
+/* Painted mode (cairo_init_painted): Cairo's coverage of layer l on rows
+ * [y0, y0 + rows), its path filled with its rule or its stroke stroked
+ * from its source, on the thread's A8 surface. */
+typedef struct cairo_cover_ctx {
+    const cairo_state *s;
+    cairo_surface_t *surf;
+    const double *p;
+    const aa_scene *scene;
+} cairo_cover_ctx;
+
+static int cairo_cover(void *vctx, int l, int y0, int rows, const unsigned char **cov,
+                       size_t *stride)
 {
     static const cairo_antialias_t modes[] = {CAIRO_ANTIALIAS_BEST, CAIRO_ANTIALIAS_GOOD,
                                               CAIRO_ANTIALIAS_FAST};
-    const aa_scene *scene = job->placed;
-    for (int j = y0; j < y0 + rows; j++)
-        aa_peer_background_row(scene, out, j, job->w);
+    (void)rows;
+    const cairo_cover_ctx *c = vctx;
+    const cairo_state *s = c->s;
+    cairo_surface_t *surf = c->surf;
     size_t nsrc;
-    const aa_stroke_source *src = aa_scene_stroke_sources(scene, &nsrc);
-    int st = AA_OK;
-    for (int l = s->nlayers - 1; l >= 0 && !st; l--) {
-        cairo_surface_flush(surf);
-        unsigned char *data = cairo_image_surface_get_data(surf);
-        int stride = cairo_image_surface_get_stride(surf);
-        memset(data, 0, (size_t)stride * BAND);
-        cairo_surface_mark_dirty(surf);
-        cairo_t *cr = cairo_create(surf);
-        cairo_set_antialias(cr, modes[(int)p[AA]]);
-        cairo_set_tolerance(cr, p[TOLERANCE]);
-        cairo_translate(cr, 0.0, -(double)y0);
-        cairo_set_source_rgba(cr, 0, 0, 0, 1);
-        int k = aa_scene_layer_stroked(scene, l);
-        if (k >= 0 && (size_t)k < nsrc) {
-            cairo_stroke_source(cr, &src[k]);
-        } else if (s->lpath[l]) {
-            cairo_set_fill_rule(cr, aa_scene_layer_rule(scene, l) == AA_FILL_EVENODD
-                                        ? CAIRO_FILL_RULE_EVEN_ODD
-                                        : CAIRO_FILL_RULE_WINDING);
-            cairo_append_path(cr, s->lpath[l]);
-            cairo_fill(cr);
-        }
-        if (cairo_status(cr))
-            st = AA_EFAIL;
-        cairo_destroy(cr);
-        cairo_surface_flush(surf);
-        for (int j = 0; j < rows; j++)
-            aa_peer_composite_row(scene, l, data + (size_t)j * stride, job->w,
-                                  aa_pixel(out, 0, y0 + j));
+    const aa_stroke_source *src = aa_scene_stroke_sources(c->scene, &nsrc);
+    cairo_surface_flush(surf);
+    unsigned char *data = cairo_image_surface_get_data(surf);
+    int st = AA_OK, bstride = cairo_image_surface_get_stride(surf);
+    memset(data, 0, (size_t)bstride * BAND);
+    cairo_surface_mark_dirty(surf);
+    cairo_t *cr = cairo_create(surf);
+    cairo_set_antialias(cr, modes[(int)c->p[AA]]);
+    cairo_set_tolerance(cr, c->p[TOLERANCE]);
+    cairo_translate(cr, 0.0, -(double)y0);
+    cairo_set_source_rgba(cr, 0, 0, 0, 1);
+    if (s->own && s->own[l])
+        cairo_clip_to(cr, s, c->scene, aa_scene_layer_clip(c->scene, l));
+    int k = aa_scene_layer_stroked(c->scene, l);
+    if (k >= 0 && (size_t)k < nsrc) {
+        cairo_stroke_source(cr, &src[k]);
+    } else if (s->lpath[l]) {
+        cairo_set_fill_rule(cr, aa_scene_layer_rule(c->scene, l) == AA_FILL_EVENODD
+                                    ? CAIRO_FILL_RULE_EVEN_ODD
+                                    : CAIRO_FILL_RULE_WINDING);
+        cairo_append_path(cr, s->lpath[l]);
+        cairo_fill(cr);
     }
+    if (cairo_status(cr))
+        st = AA_EFAIL;
+    cairo_destroy(cr);
+    cairo_surface_flush(surf);
+    *cov = data;
+    *stride = (size_t)bstride;
     return st;
 }
 
@@ -378,7 +451,9 @@ static int cairo_render(void *state, const double *p, const aa_job *job, aa_imag
         for (int b = 0; b < nbands; b++) {
             int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
             if (s->painted) {
-                if (cairo_layered_band(s, surf, p, job, out, y0, rows)) {
+                cairo_cover_ctx c = {s, surf, p, job->placed};
+                if (aa_peer_paint_band(s->pp[omp_get_thread_num()], job->placed, cairo_cover, &c,
+                                       out, y0, rows)) {
 #pragma omp atomic write
                     status = AA_EFAIL;
                 }

@@ -50,12 +50,15 @@
  * which FT_Stroker cannot draw) the scene's exact outlines are filled as
  * any outline, stated here rather than approximated otherwise.
  *
- * Painted (peer.h): any other unclipped scene (colour, several layers,
- * translucency) is painted layer by layer: each layer's own outline (its
- * contours under its rule; a stroke by FT_Stroker when it can draw it as
- * above, else its exact outline) built in init, rendered per band with its
- * spans written as coverage bytes into the thread's BAND x W buffer, then
- * composited over the layers behind (aa_peer_composite_row).
+ * Painted (peer.h): any other scene (colour, several layers, translucency,
+ * groups of opacity, clips) is painted layer by layer: each layer's own
+ * outline (its contours under its rule; a stroke by FT_Stroker when it can
+ * draw it as above, else its exact outline) built in init, rendered per
+ * band with its spans written as coverage bytes into the thread's BAND x W
+ * buffer (ft_cover), then composited over the layers behind
+ * (aa_peer_paint_band): a clip's members rendered so too, as the clip's
+ * mask multiplied into the coverage of the layers it gates, and a group's
+ * layers into the group's buffer, composited with its opacity.
  *
  * Limits: grey scenes of one layer or of strokes of one grey, or painted
  * layer by layer (peer.h), and the box filter only; 8-bit coverage (an error of up to 1/510 from rounding alone);
@@ -94,6 +97,7 @@ typedef struct ft_state {
     int painted, nlayers;
     FT_Outline *lo;
     unsigned char **cov;
+    aa_peer_painter **pp; /* one per thread */
 } ft_state;
 
 typedef struct ft_target {
@@ -131,7 +135,10 @@ static void ft_release(void *state)
     for (int k = 0; s->cov && k < s->nlib; k++)
         free(s->cov[k]);
     free(s->cov);
-    s->lo = NULL, s->cov = NULL, s->nlayers = 0;
+    for (int k = 0; s->pp && k < s->nlib; k++)
+        aa_peer_painter_free(s->pp[k]);
+    free(s->pp);
+    s->lo = NULL, s->cov = NULL, s->pp = NULL, s->nlayers = 0;
     s->lib = NULL, s->strip = NULL, s->nlib = 0;
     s->outline.points = NULL, s->outline.tags = NULL, s->outline.contours = NULL;
 }
@@ -420,12 +427,15 @@ static int ft_init_painted(ft_state *s, const aa_scene *scene, int w)
     s->nlayers = aa_scene_layer_count(scene);
     s->lo = calloc((size_t)(s->nlayers ? s->nlayers : 1), sizeof *s->lo);
     s->cov = calloc((size_t)s->nlib, sizeof *s->cov);
-    if (!s->lo || !s->cov)
+    s->pp = calloc((size_t)s->nlib, sizeof *s->pp);
+    if (!s->lo || !s->cov || !s->pp)
         return aa_fail(AA_ENOMEM, "freetype: out of memory");
     for (int k = 0; k < s->nlib; k++)
         if (!(s->cov[k] = malloc((size_t)BAND * (size_t)w)))
             return aa_fail(AA_ENOMEM, "freetype: out of memory");
     int st = AA_OK;
+    for (int k = 0; k < s->nlib && !st; k++)
+        st = aa_peer_painter_new("freetype", scene, w, BAND, NULL, &s->pp[k]);
     for (int l = 0; l < s->nlayers && !st; l++) {
         int k = aa_scene_layer_stroked(scene, l);
         if (k >= 0 && (size_t)k < nsrc && ft_strokable(&src[k])) {
@@ -539,6 +549,30 @@ static int ft_band(ft_state *s, FT_Library lib, FT_Outline *o, aa_image *out, un
     return AA_OK;
 }
 
+/* Painted (peer.h): FreeType's coverage of layer l on the band's rows,
+ * into the thread's coverage buffer (NULL for a layer of no outline). */
+typedef struct ft_cover_ctx {
+    ft_state *s;
+    FT_Library lib;
+    aa_image *out;
+    unsigned char *cov;
+    int *width;
+} ft_cover_ctx;
+
+static int ft_cover(void *vctx, int layer, int y0, int rows, const unsigned char **cov,
+                    size_t *stride)
+{
+    const ft_cover_ctx *c = vctx;
+    FT_Outline *o = &c->s->lo[layer];
+    *cov = NULL;
+    *stride = (size_t)c->out->w;
+    if (!o->n_points)
+        return AA_OK;
+    memset(c->cov, 0, (size_t)rows * (size_t)c->out->w);
+    *cov = c->cov;
+    return ft_band(c->s, c->lib, o, c->out, c->cov, y0, y0 + rows, c->width);
+}
+
 static int ft_render(void *state, const double *p, const aa_job *job, aa_image *out,
                      aa_counters *counters)
 {
@@ -554,23 +588,12 @@ static int ft_render(void *state, const double *p, const aa_job *job, aa_image *
         for (int b = 0; b < s->nbands; b++) {
             int y0 = b * BAND, y1 = y0 + BAND < job->h ? y0 + BAND : job->h;
             if (s->painted) { /* back to front (peer.h) */
-                unsigned char *cov = s->cov[omp_get_thread_num()];
-                for (int j = y0; j < y1; j++)
-                    aa_peer_background_row(job->placed, out, j, job->w);
-                for (int l = s->nlayers - 1; l >= 0; l--) {
-                    if (!s->lo[l].n_points)
-                        continue;
-                    memset(cov, 0, (size_t)(y1 - y0) * (size_t)job->w);
-                    int st = ft_band(s, lib, &s->lo[l], out, cov, y0, y1, &s->strip[b]);
-                    if (st) {
+                ft_cover_ctx c = {s, lib, out, s->cov[omp_get_thread_num()], &s->strip[b]};
+                int st = aa_peer_paint_band(s->pp[omp_get_thread_num()], job->placed, ft_cover,
+                                            &c, out, y0, y1 - y0);
+                if (st) {
 #pragma omp atomic write
-                        status = st;
-                        break;
-                    }
-                    for (int j = y0; j < y1; j++)
-                        aa_peer_composite_row(job->placed, l,
-                                              cov + (size_t)(j - y0) * (size_t)job->w, job->w,
-                                              aa_pixel(out, 0, j));
+                    status = st;
                 }
                 continue;
             }

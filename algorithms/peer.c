@@ -6,6 +6,8 @@
 #include "path.h"
 
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 int aa_peer_check_filter(const char *name, const aa_filter *f)
 {
@@ -101,18 +103,12 @@ void aa_peer_fill(aa_image *out, int j, int i0, int i1, double v)
 
 int aa_peer_paintable(const aa_scene *s)
 {
-    return !aa_scene_is_clipped(s) && (!aa_scene_is_grey(s) || !aa_scene_is_opaque(s) ||
-                                       aa_scene_layer_count(s) > 1);
+    return aa_scene_is_clipped(s) || !aa_scene_is_grey(s) || !aa_scene_is_opaque(s) ||
+           aa_scene_layer_count(s) > 1;
 }
 
 int aa_peer_painted_check(const char *name, const aa_scene *s, int strokes_filled)
 {
-    if (aa_scene_group_count(s) > 0)
-        return aa_fail(AA_EINVAL,
-                       "%s: this scene has groups of opacity (SVG's opacity on a group or on "
-                       "a shape with a fill and a stroke), which its layer by layer painting "
-                       "does not draw",
-                       name);
     size_t ne;
     const aa_edge *e = aa_scene_edges(s, &ne);
     for (size_t k = 0; k < ne; k++)
@@ -132,6 +128,20 @@ void aa_peer_background_row(const aa_scene *s, aa_image *out, int j, int n)
         px[0] = bg.c[0], px[1] = bg.c[1], px[2] = bg.c[2];
 }
 
+/* One pixel v (three linear channels) under coverage a > 0 of a layer of
+ * linear colour c, alpha `alpha` and encoded premultiplied colour e =
+ * alpha encode(c): v = a inside + (1 - a) v (aa_peer_composite_row). */
+static inline void composite_px(const aa_rgb *c, double alpha, const double e[3], double a,
+                                double *px)
+{
+    for (int q = 0; q < 3; q++) {
+        const double inside = alpha == 1.0
+                                  ? c->c[q]
+                                  : aa_srgb_decode(e[q] + (1.0 - alpha) * aa_srgb_encode(px[q]));
+        px[q] = a * inside + (1.0 - a) * px[q];
+    }
+}
+
 void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *cov, int n,
                            double *px)
 {
@@ -140,17 +150,318 @@ void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *co
     double e[3];
     for (int q = 0; q < 3; q++)
         e[q] = alpha * aa_srgb_encode(c.c[q]);
-    for (int i = 0; i < n; i++, px += 3) {
-        if (!cov[i])
+    for (int i = 0; i < n; i++, px += 3)
+        if (cov[i])
+            composite_px(&c, alpha, e, cov[i] / 255.0, px);
+}
+
+/* ---- Painting clips and groups of opacity (peer.h) ----
+ *
+ * A band's workspace: masks of clips (band x w doubles each) and a group
+ * buffer per level of nesting (band x w pixels of five doubles: k, the
+ * coverage of the group, and Q, B, its encoded premultiplied colour and
+ * alpha, each already times k).
+ *
+ * The masks follow a plan made once for the scene (plan_clips): a clip's
+ * mask is made just before the first layer, back to front, that needs it
+ * (gated by it, or by a clip made from it: the clip it is defined within
+ * and its members' own clips are made first), into a slot that is given
+ * back once its last use is past.  So each needed clip is made once per
+ * band, and the slots are as many as the masks ever alive at once (a
+ * scene clipping each element by a clip of its own needs one or two, not
+ * one per clip). */
+struct aa_peer_painter {
+    int w, band, nclips, depth, nslots;
+    double *mask;       /* nslots x band x w */
+    double *group;      /* depth x band x w x 5 */
+    unsigned char *own; /* per layer: 1 if its coverage has its clip applied */
+    int *slot;          /* per clip: its mask's slot (-1: not needed) */
+    int *order, *at;    /* the clips to make, in order, each before layer at[k] */
+    int norder;
+};
+
+/* The plan's walk (plan_clips): clip c made (once) with what it is made
+ * from; `uses` counts every use of a clip's mask (pass 0), and pass 1
+ * gives slots, freeing a clip's slot when its uses run out. */
+typedef struct plan_walk {
+    aa_peer_painter *pp;
+    const aa_scene *s;
+    int pass, layer, *uses, *made, *free_slots, nfree;
+} plan_walk;
+
+static void plan_use(plan_walk *pw, int c)
+{
+    if (pw->pass == 0)
+        pw->uses[c]++;
+    else if (--pw->uses[c] == 0)
+        pw->free_slots[pw->nfree++] = pw->pp->slot[c];
+}
+
+static void plan_make(plan_walk *pw, int c)
+{
+    if (pw->made[c] == pw->pass + 1)
+        return;
+    pw->made[c] = pw->pass + 1;
+    const aa_scene *s = pw->s;
+    const int within = aa_scene_clip_within(s, c);
+    int first, count = aa_scene_clip_members(s, c, &first);
+    if (within >= 0)
+        plan_make(pw, within);
+    for (int l = first; l < first + count; l++)
+        if (aa_scene_layer_clip(s, l) >= 0)
+            plan_make(pw, aa_scene_layer_clip(s, l));
+    aa_peer_painter *pp = pw->pp;
+    if (pw->pass == 1) { /* c's slot first, then its sources' given back */
+        pp->slot[c] = pw->nfree ? pw->free_slots[--pw->nfree] : pp->nslots++;
+        pp->order[pp->norder] = c;
+        pp->at[pp->norder++] = pw->layer;
+    }
+    if (within >= 0)
+        plan_use(pw, within);
+    for (int l = first; l < first + count; l++)
+        if (aa_scene_layer_clip(s, l) >= 0)
+            plan_use(pw, aa_scene_layer_clip(s, l));
+}
+
+static int plan_clips(aa_peer_painter *pp, const aa_scene *s)
+{
+    const int nc = pp->nclips;
+    plan_walk pw = {pp, s, 0, 0, calloc((size_t)nc, sizeof(int)), calloc((size_t)nc, sizeof(int)),
+                    calloc((size_t)nc, sizeof(int)), 0};
+    int ok = pw.uses && pw.made && pw.free_slots;
+    for (pw.pass = 0; pw.pass < 2 && ok; pw.pass++)
+        for (int l = aa_scene_layer_count(s) - 1; l >= 0; l--) {
+            const int g = aa_scene_layer_clip(s, l);
+            if (aa_scene_layer_clip_member(s, l) >= 0 || g < 0 || pp->own[l])
+                continue;
+            pw.layer = l;
+            plan_make(&pw, g);
+            plan_use(&pw, g);
+        }
+    free(pw.uses);
+    free(pw.made);
+    free(pw.free_slots);
+    return ok;
+}
+
+/* The groups holding layer l, outermost first, into chain; returns how
+ * many. */
+static int group_chain(const aa_scene *s, int l, int chain[AA_SCENE_MAX_GROUP_DEPTH])
+{
+    int n = 0;
+    for (int g = aa_scene_layer_group(s, l); g >= 0 && n < AA_SCENE_MAX_GROUP_DEPTH;
+         g = aa_scene_group_parent(s, g))
+        chain[n++] = g;
+    for (int a = 0, b = n - 1; a < b; a++, b--) {
+        int t = chain[a];
+        chain[a] = chain[b], chain[b] = t;
+    }
+    return n;
+}
+
+int aa_peer_painter_new(const char *name, const aa_scene *s, int w, int band,
+                        const unsigned char *own, aa_peer_painter **out)
+{
+    *out = NULL;
+    const int n = aa_scene_layer_count(s);
+    aa_peer_painter *pp = calloc(1, sizeof *pp);
+    if (!pp)
+        return aa_fail(AA_ENOMEM, "%s: out of memory", name);
+    pp->w = w, pp->band = band, pp->nclips = aa_scene_clip_count(s);
+    const size_t nc = (size_t)pp->nclips + 1;
+    if (!(pp->own = calloc((size_t)n + 1, 1)) || !(pp->slot = malloc(nc * sizeof *pp->slot)) ||
+        !(pp->order = malloc(nc * sizeof *pp->order)) || !(pp->at = malloc(nc * sizeof *pp->at)))
+        goto nomem;
+    int chain[AA_SCENE_MAX_GROUP_DEPTH];
+    for (int l = 0; l < n; l++) {
+        int k = group_chain(s, l, chain);
+        if (k > pp->depth)
+            pp->depth = k;
+        pp->own[l] = own && own[l];
+    }
+    for (int c = 0; c < pp->nclips; c++)
+        pp->slot[c] = -1;
+    if (pp->nclips && !plan_clips(pp, s))
+        goto nomem;
+    const size_t px = (size_t)w * (size_t)band;
+    if (pp->nslots && !(pp->mask = malloc((size_t)pp->nslots * px * sizeof *pp->mask)))
+        goto nomem;
+    if (pp->depth && !(pp->group = malloc((size_t)pp->depth * px * 5 * sizeof *pp->group)))
+        goto nomem;
+    *out = pp;
+    return AA_OK;
+nomem:;
+    const int nslots = pp->nslots, depth = pp->depth;
+    aa_peer_painter_free(pp);
+    return aa_fail(AA_ENOMEM,
+                   "%s: out of memory for %d masks of clips and %d levels of groups on "
+                   "%d x %d pixels",
+                   name, nslots, depth, w, band);
+}
+
+void aa_peer_painter_free(aa_peer_painter *pp)
+{
+    if (!pp)
+        return;
+    free(pp->mask);
+    free(pp->group);
+    free(pp->own);
+    free(pp->slot);
+    free(pp->order);
+    free(pp->at);
+    free(pp);
+}
+
+/* Clip c's mask on rows [y0, y0 + rows), into its slot (the masks it is
+ * made from are made already, plan_clips):
+ *     M_c = M_within(c) (1 - prod over members m (1 - a_m M_gate(m))),
+ * a_m the library's coverage of member m under its rule, the union of the
+ * members by OVER (u = m + (1 - m) u, in turn), as the peers paint
+ * strokes of one grey over each other. */
+static int clip_mask(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn cover, void *ctx,
+                     int y0, int rows, int c)
+{
+    const int w = pp->w;
+    const size_t px = (size_t)w * (size_t)pp->band;
+    double *m = pp->mask + (size_t)pp->slot[c] * px;
+    memset(m, 0, (size_t)rows * (size_t)w * sizeof *m);
+    int first, count = aa_scene_clip_members(s, c, &first);
+    for (int l = first; l < first + count; l++) {
+        const unsigned char *cov;
+        size_t stride;
+        int st = cover(ctx, l, y0, rows, &cov, &stride);
+        if (st)
+            return st;
+        if (!cov)
             continue;
-        const double a = cov[i] / 255.0;
-        for (int q = 0; q < 3; q++) {
-            const double inside = alpha == 1.0 ? c.c[q]
-                                               : aa_srgb_decode(e[q] + (1.0 - alpha) *
-                                                                           aa_srgb_encode(px[q]));
-            px[q] = a * inside + (1.0 - a) * px[q];
+        const int g = aa_scene_layer_clip(s, l);
+        const double *gm = g >= 0 ? pp->mask + (size_t)pp->slot[g] * px : NULL;
+        for (int j = 0; j < rows; j++)
+            for (int i = 0; i < w; i++) {
+                const size_t k = (size_t)j * (size_t)w + (size_t)i;
+                const unsigned char b = cov[(size_t)j * stride + (size_t)i];
+                if (!b)
+                    continue;
+                const double a = gm ? b / 255.0 * gm[k] : b / 255.0;
+                m[k] = a + (1.0 - a) * m[k];
+            }
+    }
+    const int within = aa_scene_clip_within(s, c);
+    if (within >= 0) {
+        const double *wm = pp->mask + (size_t)pp->slot[within] * px;
+        for (size_t k = 0; k < (size_t)rows * (size_t)w; k++)
+            m[k] *= wm[k];
+    }
+    return AA_OK;
+}
+
+/* Group buffer `level` (1 = outermost) closed with opacity o over the
+ * level below it: into the canvas (level 1) as
+ *     v = k decode(o Q/k + (1 - o B/k) encode(v)) + (1 - k) v,
+ * else into the parent's buffer as Q' = o Q + (1 - o B) Q',
+ * B' = o B + (1 - o B) B', k' = k + (1 - k) k' (peer.h). */
+static void group_close(aa_peer_painter *pp, aa_image *out, int y0, int rows, int level,
+                        double o)
+{
+    const int w = pp->w;
+    const size_t px = (size_t)w * (size_t)pp->band;
+    const double *g = pp->group + (size_t)(level - 1) * px * 5;
+    double *d = level > 1 ? pp->group + (size_t)(level - 2) * px * 5 : NULL;
+    for (int j = 0; j < rows; j++) {
+        double *v = aa_pixel(out, 0, y0 + j);
+        for (int i = 0; i < w; i++, v += 3) {
+            const size_t k = (size_t)j * (size_t)w + (size_t)i;
+            const double *b = g + 5 * k;
+            if (!(b[0] > 0.0))
+                continue;
+            if (d) {
+                double *p = d + 5 * k;
+                const double ob = o * b[4];
+                p[0] = b[0] + (1.0 - b[0]) * p[0];
+                for (int q = 0; q < 3; q++)
+                    p[1 + q] = o * b[1 + q] + (1.0 - ob) * p[1 + q];
+                p[4] = ob + (1.0 - ob) * p[4];
+                continue;
+            }
+            const double cov = b[0], oa = o * b[4] / cov;
+            for (int q = 0; q < 3; q++) {
+                const double inside =
+                    aa_srgb_decode(o * b[1 + q] / cov + (1.0 - oa) * aa_srgb_encode(v[q]));
+                v[q] = cov * inside + (1.0 - cov) * v[q];
+            }
         }
     }
+}
+
+int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn cover,
+                       void *ctx, aa_image *out, int y0, int rows)
+{
+    const int w = pp->w, n = aa_scene_layer_count(s);
+    const size_t px = (size_t)w * (size_t)pp->band;
+    for (int j = y0; j < y0 + rows; j++)
+        aa_peer_background_row(s, out, j, w);
+    int st = AA_OK, next = 0; /* next: the plan's next clip to make */
+    int open[AA_SCENE_MAX_GROUP_DEPTH], depth = 0; /* the groups open, outermost first */
+    for (int l = n - 1; l >= 0 && !st; l--) {
+        if (aa_scene_layer_clip_member(s, l) >= 0)
+            continue; /* a clip's member paints nothing */
+        for (; next < pp->norder && pp->at[next] == l && !st; next++)
+            st = clip_mask(pp, s, cover, ctx, y0, rows, pp->order[next]);
+        if (st)
+            break;
+        int chain[AA_SCENE_MAX_GROUP_DEPTH], nc = group_chain(s, l, chain), keep = 0;
+        while (keep < depth && keep < nc && open[keep] == chain[keep])
+            keep++;
+        for (; depth > keep; depth--)
+            group_close(pp, out, y0, rows, depth, aa_scene_group_opacity(s, open[depth - 1]));
+        for (; depth < nc; depth++) { /* open the layer's own, transparent */
+            open[depth] = chain[depth];
+            memset(pp->group + (size_t)depth * px * 5, 0,
+                   (size_t)rows * (size_t)w * 5 * sizeof *pp->group);
+        }
+        const unsigned char *cov;
+        size_t stride;
+        if ((st = cover(ctx, l, y0, rows, &cov, &stride)) || !cov)
+            continue;
+        const int g = pp->own[l] ? -1 : aa_scene_layer_clip(s, l);
+        const double *gm = g >= 0 ? pp->mask + (size_t)pp->slot[g] * px : NULL;
+        if (!depth && !gm) { /* as ever: bit for bit what painting did before clips */
+            for (int j = 0; j < rows; j++)
+                aa_peer_composite_row(s, l, cov + (size_t)j * stride, w, aa_pixel(out, 0, y0 + j));
+            continue;
+        }
+        const aa_rgb c = aa_scene_layer_colour(s, l);
+        const double alpha = aa_scene_layer_alpha(s, l);
+        double e[3];
+        for (int q = 0; q < 3; q++)
+            e[q] = alpha * aa_srgb_encode(c.c[q]);
+        double *buf = depth ? pp->group + (size_t)(depth - 1) * px * 5 : NULL;
+        for (int j = 0; j < rows; j++) {
+            double *v = aa_pixel(out, 0, y0 + j);
+            for (int i = 0; i < w; i++, v += 3) {
+                const size_t k = (size_t)j * (size_t)w + (size_t)i;
+                const unsigned char b = cov[(size_t)j * stride + (size_t)i];
+                const double a = gm ? b / 255.0 * gm[k] : b / 255.0;
+                if (!(a > 0.0))
+                    continue;
+                if (!buf) {
+                    composite_px(&c, alpha, e, a, v);
+                    continue;
+                }
+                /* into the group: the layer's encoded premultiplied colour
+                 * under alpha a alpha, source over (peer.h) */
+                double *p = buf + 5 * k;
+                const double aa = a * alpha;
+                p[0] = a + (1.0 - a) * p[0];
+                for (int q = 0; q < 3; q++)
+                    p[1 + q] = a * e[q] + (1.0 - aa) * p[1 + q];
+                p[4] = aa + (1.0 - aa) * p[4];
+            }
+        }
+    }
+    for (; depth > 0 && !st; depth--)
+        group_close(pp, out, y0, rows, depth, aa_scene_group_opacity(s, open[depth - 1]));
+    return st;
 }
 
 /*

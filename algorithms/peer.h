@@ -22,17 +22,54 @@
  * map turns them all alike, so no winding cancels.
  *
  * Painted: a scene the grey path refuses for its colour, its several
- * layers or its translucency (aa_peer_paintable) is painted layer by layer
- * by every peer: each layer's own outline (the contours whose edges carry
- * it, under its rule; a layer kept as a stroke by the peer's own stroker
- * where it has one, else its exact outline) rasterized by the library into
- * an 8-bit coverage row, composited back to front over the background in
- * linear light by aa_peer_composite_row.  Coverage is used as alpha, so
- * layers sharing an edge let what is behind show through their seam
- * (conflation), which the exact reference does not have.  Clipped scenes
- * and groups of opacity are refused (a group's coverage is no one
- * layer's), and so is a filled layer of offset curves (aa_peer_painted_check).
- */
+ * layers, its translucency or its clips (aa_peer_paintable) is painted
+ * layer by layer by every peer (aa_peer_paint_band): each layer's own
+ * outline (the contours whose edges carry it, under its rule; a layer
+ * kept as a stroke by the peer's own stroker where it has one, else its
+ * exact outline) rasterized by the library into an 8-bit coverage row,
+ * composited back to front over the background in linear light by
+ * aa_peer_composite_row.  Coverage is used as alpha, so layers sharing an
+ * edge let what is behind show through their seam (conflation), which the
+ * exact reference does not have.  A filled layer of offset curves is
+ * refused (aa_peer_painted_check).
+ *
+ * Clips, by masks: the library rasterizes each member of a clip under its
+ * rule, as any layer; the clip's mask is the members' coverages painted
+ * OVER each other (their union as the peers paint strokes of one grey:
+ * u = m + (1 - m) u), each member's first multiplied by its own clip's
+ * mask, and the whole by the mask of the clip it is defined within; a
+ * gated layer's coverage is its own times its clip's mask.  A mask of 0
+ * or 1 is exact (so are whole pixels inside or outside every edge), but
+ * in a pixel both shapes cross, the product of two coverages is not the
+ * coverage of their intersection (two half-covering shapes give 1/4
+ * whether they overlap in all, half or none of the pixel): that is the
+ * error of masking, measured against the exact reference.  A peer whose
+ * library clips by itself marks the layers it clips so
+ * (aa_peer_painter_new's `own`; cairo.c, cairo_clip for a clip that is an
+ * intersection of paths), and those take no mask.
+ *
+ * Groups of opacity, by offscreen buffers: a group's layers are painted
+ * into a buffer of the band, transparent at first, that holds per pixel
+ * the group's coverage k and its encoded premultiplied colour Q and alpha
+ * B, each times k; a layer of coverage a, alpha alpha and linear colour c
+ * goes on as the libraries composite coverage, source over with a alpha
+ * as alpha in the group's (sRGB-encoded) values:
+ *     Q = a alpha encode(c) + (1 - a alpha) Q,  B = a alpha + (1 - a alpha) B,
+ *     k = a + (1 - a) k
+ * (the area averages of the group's colour where it covers, the layer's
+ * coverage taken as independent of what is below it, as OVER does).  The
+ * group, closed, goes over what is below with its opacity o: over the
+ * canvas, as a layer goes, its covered part mixed in by coverage in
+ * linear light,
+ *     v = k decode(o Q/k + (1 - o B/k) encode(v)) + (1 - k) v,
+ * and into the buffer of the group holding it as a layer of colour o Q
+ * and alpha o B: Q' = o Q + (1 - o B) Q', B' = o B + (1 - o B) B',
+ * k' = k + (1 - k) k'.  Where every coverage is 0 or 1 this is the
+ * scene's own compositing (patterns/README.md); a group of one layer
+ * paints as the layer with its alpha times o would; a seam between two
+ * layers of a group shows the buffer's transparency through, conflation
+ * as above, once per group.
+  */
 #ifndef AA_PEER_H
 #define AA_PEER_H
 
@@ -63,11 +100,11 @@ static inline double aa_peer_mix(const aa_peer_scene *ps, double a)
 void aa_peer_fill(aa_image *out, int j, int i0, int i1, double v);
 
 /* Whether the placed scene, refused by the grey path, is painted layer by
- * layer: unclipped, and of colour, of several layers or translucent. */
+ * layer: of colour, of several layers, translucent or clipped. */
 int aa_peer_paintable(const aa_scene *s);
-/* Painted mode's refusals: groups of opacity, and (for every layer if
- * `strokes_filled`, else only for layers filled as fills) a layer whose
- * outline has offset curves (edge quad 4). */
+/* Painted mode's refusals: (for every layer if `strokes_filled`, else
+ * only for layers filled as fills) a layer whose outline has offset
+ * curves (edge quad 4). */
 int aa_peer_painted_check(const char *name, const aa_scene *s, int strokes_filled);
 /* Row j of out, pixels [0, n), set to the scene's background colour. */
 void aa_peer_background_row(const aa_scene *s, aa_image *out, int j, int n);
@@ -79,6 +116,31 @@ void aa_peer_background_row(const aa_scene *s, aa_image *out, int j, int n);
  * compositing rule, patterns/README.md).  A coverage of 0 leaves v. */
 void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *cov, int n,
                            double *px);
+
+/* The library's coverage of layer `layer` (a painting layer or a clip's
+ * member, under its rule, or its stroke) on rows [y0, y0 + rows) of the
+ * image: *cov set to its first row's w bytes, row j at *cov + j *stride,
+ * valid until the next call (or *cov NULL: no coverage anywhere).  Returns
+ * a status. */
+typedef int (*aa_peer_cover_fn)(void *ctx, int layer, int y0, int rows,
+                                const unsigned char **cov, size_t *stride);
+/* One thread's workspace for painting bands of at most `band` rows of w
+ * pixels of the scene: the clips' masks and the groups' buffers, 8 x
+ * (masks alive at once + 5 x depth of groups) bytes a pixel (a mask is
+ * made once per band, before the first layer that needs it, and its
+ * memory reused once its last use is past).  own (NULL: none) marks
+ * the layers whose coverage from the peer already holds their clip (the
+ * library's own clipping, cairo.c), which take no mask. */
+typedef struct aa_peer_painter aa_peer_painter;
+int aa_peer_painter_new(const char *name, const aa_scene *s, int w, int band,
+                        const unsigned char *own, aa_peer_painter **out);
+void aa_peer_painter_free(aa_peer_painter *pp);
+/* Rows [y0, y0 + rows) of out painted (above): the background, then each
+ * layer back to front, through its clip's mask and its groups' buffers.
+ * A scene of no clip and no group composites each layer's coverage by
+ * aa_peer_composite_row alone. */
+int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn cover,
+                       void *ctx, aa_image *out, int y0, int rows);
 
 /* An elliptical arc edge (quad == 3) as cubic Bezier arcs, for the peers
  * whose outlines have no arcs (freetype.c, stb.c): the arc split into n

@@ -44,11 +44,14 @@
  * accumulated area clamped to 1, is too large in a pixel that two of them
  * share in part.
  *
- * Painted (peer.h): any other unclipped scene (colour, several layers,
- * translucency) is painted layer by layer: each layer's contours (a stroke
- * its exact outline, stb having no stroker) its own run of vertices,
- * rasterized per band into the thread's bitmap and composited over the
- * layers behind (aa_peer_composite_row); an even-odd layer is checked on
+ * Painted (peer.h): any other scene (colour, several layers, translucency,
+ * groups of opacity, clips) is painted layer by layer: each layer's
+ * contours (a stroke its exact outline, stb having no stroker) its own run
+ * of vertices, rasterized per band into the thread's bitmap (stb_cover)
+ * and composited over the layers behind (aa_peer_paint_band: a clip's
+ * members rasterized so too, as the clip's mask multiplied into the
+ * coverage of the layers it gates; a group's layers into the group's
+ * buffer, composited with its opacity); an even-odd layer is checked on
  * its own as above (its crossings only, at every piece's critical
  * heights), and offset curves are refused in any layer.
  *
@@ -115,6 +118,7 @@ typedef struct stb_state {
     /* painted (peer.h): layer l's vertices are v[lv[l] .. lv[l + 1]) */
     int painted, nlayers;
     int *lv;
+    aa_peer_painter **pp; /* one per thread */
 } stb_state;
 
 static int stb_check(const double *p, const aa_filter *f)
@@ -131,7 +135,10 @@ static void stb_release(void *state)
     free(s->buf);
     free(s->v);
     free(s->lv);
-    s->buf = NULL, s->v = NULL, s->nbuf = 0, s->lv = NULL;
+    for (int k = 0; s->pp && k < s->nbuf; k++)
+        aa_peer_painter_free(s->pp[k]);
+    free(s->pp);
+    s->buf = NULL, s->v = NULL, s->nbuf = 0, s->lv = NULL, s->pp = NULL;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -304,6 +311,12 @@ static int stb_init(void *state, const double *p, const aa_job *job)
             if (!(s->buf[k] = malloc((size_t)BAND * (size_t)job->w)))
                 st = aa_fail(AA_ENOMEM, "stb: out of memory");
     }
+    if (!st && s->painted) {
+        if (!(s->pp = calloc((size_t)s->nbuf, sizeof *s->pp)))
+            st = aa_fail(AA_ENOMEM, "stb: out of memory");
+        for (int k = 0; k < s->nbuf && !st; k++)
+            st = aa_peer_painter_new("stb", job->placed, job->w, BAND, NULL, &s->pp[k]);
+    }
     if (!st && s->painted) { /* the contours layer by layer */
         for (int l = 0; l < s->nlayers; l++) {
             s->lv[l] = s->nv;
@@ -337,6 +350,26 @@ static void stb_band(const double *p, stbtt_vertex *v, int nv, unsigned char *bu
                     NULL);
 }
 
+/* Painted (peer.h): stb's coverage of layer l, into the thread's bitmap. */
+typedef struct stb_cover_ctx {
+    const stb_state *s;
+    const double *p;
+    unsigned char *buf;
+    int w;
+} stb_cover_ctx;
+
+static int stb_cover(void *vctx, int layer, int y0, int rows, const unsigned char **cov,
+                     size_t *stride)
+{
+    const stb_cover_ctx *c = vctx;
+    const stb_state *s = c->s;
+    stb_band(c->p, s->v + s->lv[layer], s->lv[layer + 1] - s->lv[layer], c->buf, c->w, y0,
+             rows);
+    *cov = c->buf;
+    *stride = (size_t)c->w;
+    return AA_OK;
+}
+
 static int stb_render(void *state, const double *p, const aa_job *job, aa_image *out,
                       aa_counters *counters)
 {
@@ -351,15 +384,9 @@ static int stb_render(void *state, const double *p, const aa_job *job, aa_image 
         for (int b = 0; b < nbands; b++) {
             int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
             if (s->painted) { /* back to front (peer.h) */
-                for (int j = y0; j < y0 + rows; j++)
-                    aa_peer_background_row(job->placed, out, j, job->w);
-                for (int l = s->nlayers - 1; l >= 0; l--) {
-                    stb_band(p, s->v + s->lv[l], s->lv[l + 1] - s->lv[l], buf, job->w, y0,
-                             rows);
-                    for (int j = 0; j < rows; j++)
-                        aa_peer_composite_row(job->placed, l, buf + (size_t)j * job->w, job->w,
-                                              aa_pixel(out, 0, y0 + j));
-                }
+                stb_cover_ctx c = {s, p, buf, job->w};
+                aa_peer_paint_band(s->pp[omp_get_thread_num()], job->placed, stb_cover, &c, out,
+                                   y0, rows);
                 continue;
             }
             if (!s->ps.layers || !s->nv) {

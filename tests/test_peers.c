@@ -518,8 +518,8 @@ static void test_arc_ellipse_pieces(void **state)
  *    (stb takes only even-odd layers whose regions are wound once, and
  *    refuses the hole wound as its rectangle, winding 2);
  *  - a white rectangle of alpha 1/2 over all of black: encoded 1/2
- *    exactly, and blue in front of part of it: blue exactly;
- *  - a group of opacity: refused, naming it. */
+ *    exactly, and blue in front of part of it: blue exactly.
+ * Groups of opacity and clips: test_peer_clips.c. */
 static double srgb_decode_here(double e)
 {
     return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
@@ -647,19 +647,6 @@ static void test_painted(void **state)
                                  painters[k], i, j, c, got, want);
                 }
         aa_image_free(&img);
-    }
-    aa_scene_free(s);
-    /* a group of opacity */
-    s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_int_equal(aa_scene_group_begin(s, 0.5), AA_OK);
-    rect_layer(s, white, 0, 0, 4, 8);
-    rect_layer(s, white, 2, 0, 6, 8);
-    assert_int_equal(aa_scene_group_end(s), AA_OK);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    for (size_t k = 0; k < NPAINTERS; k++) {
-        aa_image img;
-        assert_int_equal(render(painters[k], s, "box", W, H, 1, &img), AA_EINVAL);
-        assert_non_null(strstr(aa_last_error(), "groups of opacity"));
     }
     aa_scene_free(s);
 }
