@@ -668,12 +668,243 @@ static void test_radial_sampled(void **state)
     gw = W, gh = H;
 }
 
+
+/* ---- the SVG reader ---- */
+
+/* `body` inside a root <svg> of W x H pixels over black, written to a file
+ * of the temporary folder; its pattern spec into spec. */
+static void svg_spec(const char *name, const char *body, char *spec, size_t len)
+{
+    char path[4200], doc[8192];
+    snprintf(path, sizeof path, "%s/%s.svg", dir, name);
+    snprintf(doc, sizeof doc,
+             "<svg xmlns=\"http://www.w3.org/2000/svg\" "
+             "xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"%d\" height=\"%d\">\n%s\n"
+             "</svg>\n",
+             W, H, body);
+    support_write_file(path, doc, strlen(doc));
+    snprintf(spec, len, "svg:file=%s", path);
+}
+
+/* The pattern's scene of body, or NULL with the status in *st. */
+static aa_scene *svg_scene(const char *name, const char *body, int *st)
+{
+    char spec[4400];
+    svg_spec(name, body, spec, sizeof spec);
+    aa_spec sp;
+    aa_scene *sc = NULL;
+    *st = aa_pattern_parse(spec, &sp);
+    if (!*st)
+        *st = aa_pattern_scene_at(&sp, W, H, &sc);
+    return *st ? NULL : sc;
+}
+
+static void svg_box(const char *name, const char *body, aa_image *ref)
+{
+    int st;
+    aa_scene *sc = svg_scene(name, body, &st);
+    if (!sc)
+        fail_msg("%s: %s", body, aa_last_error());
+    aa_truth_stats stats;
+    reference(sc, W, H, ref, NULL, &stats);
+    expect_bound(name, &stats);
+    aa_scene_free(sc);
+}
+
+static void svg_refused(const char *body, const char *where, const char *why)
+{
+    int st;
+    aa_scene *sc = svg_scene("refused", body, &st);
+    if (sc)
+        fail_msg("%s: read, not refused", body);
+    print_message("refused: %s\n", aa_last_error());
+    assert_int_equal(st, AA_EINVAL);
+    if (!strstr(aa_last_error(), where) || !strstr(aa_last_error(), why))
+        fail_msg("%s: the message \"%s\" does not name %s and %s", body, aa_last_error(),
+                 where, why);
+}
+
+/* A whole-view rectangle painted from x = 3.25 to 11.5 (userSpaceOnUse,
+ * or objectBoundingBox fractions of it) black to white: the box sum of
+ * test_linear_pad, whichever way the document says it: stop colours by
+ * attribute, style and sheet; offsets as percentages, clamped; href and
+ * xlink:href inheriting stops and attributes; a gradientTransform. */
+static void test_svg_linear(void **state)
+{
+    (void)state;
+    const double a = 3.25, b = 11.5, want = H * ((b - a) * ibar() + (W - b));
+    static const char *const docs[] = {
+        "<linearGradient id=\"g\" gradientUnits=\"userSpaceOnUse\" x1=\"3.25\" x2=\"11.5\">"
+        "<stop offset=\"0\" stop-color=\"black\"/><stop offset=\"1\" stop-color=\"white\"/>"
+        "</linearGradient><rect width=\"16\" height=\"12\" fill=\"url(#g)\"/>",
+        /* fractions of the box, percent offsets clamped, style and sheet */
+        "<style>.w { stop-color: #fff }</style>"
+        "<linearGradient id=\"g\" x1=\"0.203125\" x2=\"71.875%\">"
+        "<stop offset=\"-20%\" style=\"stop-color: black\"/><stop class=\"w\" offset=\"3\"/>"
+        "</linearGradient><rect width=\"16\" height=\"12\" fill=\"url('#g')\"/>",
+        /* stops from the gradient named by href, its vector from xlink:href's */
+        "<linearGradient id=\"s\"><stop offset=\"0\"/><stop offset=\"1\" stop-color=\"white\"/>"
+        "</linearGradient><linearGradient id=\"v\" xlink:href=\"#s\" "
+        "gradientUnits=\"userSpaceOnUse\" x1=\"3.25\" x2=\"11.5\"/>"
+        "<linearGradient id=\"g\" href=\"#v\"/><rect width=\"16\" height=\"12\" "
+        "fill=\"url(#g) red\"/>",
+        /* the vector (0, 0) to (8.25, 0) moved by the gradient's transform */
+        "<linearGradient id=\"g\" gradientUnits=\"userSpaceOnUse\" x2=\"8.25\" "
+        "gradientTransform=\"translate(3.25 7)\"><stop offset=\"0\"/>"
+        "<stop offset=\"1\" stop-color=\"white\"/></linearGradient>"
+        "<rect width=\"16\" height=\"12\" fill=\"url(#g)\"/>",
+    };
+    for (size_t k = 0; k < sizeof docs / sizeof *docs; k++) {
+        aa_image ref;
+        svg_box("linear", docs[k], &ref);
+        expect_sum(docs[k], &ref, 1, want, 1e-13);
+        aa_image_free(&ref);
+    }
+}
+
+/* Offsets raised to the largest before them: stops black at 0, white at
+ * 0.8, red at 0.3 (read as 0.8): black to white over t in [0, 0.8], then
+ * red (a sharp step, then pad).  With t = (x - a) / (b - a) the ramp
+ * covers x in [a, a + 0.8 (b - a)]: red's channel sums to H (0.8 (b - a)
+ * Ibar + W - a - 0.8 (b - a)), green's to H 0.8 (b - a) Ibar. */
+static void test_svg_monotone(void **state)
+{
+    (void)state;
+    const double a = 3.25, b = 11.5, r = 0.8 * (b - a);
+    aa_image ref;
+    svg_box("monotone",
+            "<linearGradient id=\"g\" gradientUnits=\"userSpaceOnUse\" x1=\"3.25\" x2=\"11.5\">"
+            "<stop offset=\"0\" stop-color=\"black\"/><stop offset=\"0.8\" stop-color=\"white\"/>"
+            "<stop offset=\"0.3\" stop-color=\"red\"/></linearGradient>"
+            "<rect width=\"16\" height=\"12\" fill=\"url(#g)\"/>",
+            &ref);
+    expect_sum("monotone offsets", &ref, 0, H * (r * ibar() + W - a - r), 1e-13);
+    expect_sum("monotone offsets", &ref, 1, H * r * ibar(), 1e-13);
+    aa_image_free(&ref);
+}
+
+/* What paints a colour or nothing: a fallback colour for a missing id,
+ * one stop (its colour and opacity), no stops (none), objectBoundingBox
+ * on a horizontal line's stroke (a box of no height: none), the same in
+ * userSpaceOnUse (drawn: a 12 x 2 stroke, white throughout). */
+static void test_svg_degenerate(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *body;
+        double sum; /* of channel 1 */
+    } cases[] = {
+        {"<rect x=\"2\" y=\"2\" width=\"8\" height=\"4\" fill=\"url(#none) white\"/>", 32},
+        {"<linearGradient id=\"g\"><stop stop-color=\"white\" stop-opacity=\"0.5\"/>"
+         "</linearGradient><rect x=\"2\" y=\"2\" width=\"8\" height=\"4\" fill=\"url(#g)\"/>",
+         -32},
+        {"<linearGradient id=\"g\"/><rect x=\"2\" y=\"2\" width=\"8\" height=\"4\" "
+         "fill=\"url(#g) white\"/>",
+         0},
+        {"<linearGradient id=\"g\"><stop stop-color=\"white\"/><stop offset=\"1\" "
+         "stop-color=\"white\"/></linearGradient><line x1=\"2\" y1=\"6\" x2=\"14\" y2=\"6\" "
+         "stroke=\"url(#g)\" stroke-width=\"2\"/>",
+         0},
+        {"<linearGradient id=\"g\" gradientUnits=\"userSpaceOnUse\"><stop "
+         "stop-color=\"white\"/><stop offset=\"1\" stop-color=\"white\"/></linearGradient>"
+         "<line x1=\"2\" y1=\"6\" x2=\"14\" y2=\"6\" stroke=\"url(#g)\" stroke-width=\"2\"/>",
+         24},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        aa_image ref;
+        svg_box("degenerate", cases[k].body, &ref);
+        /* -32: 32 pixels of white at 0.5 over black, decoded */
+        double want = cases[k].sum >= 0 ? cases[k].sum : 32 * dec(0.5);
+        expect_sum(cases[k].body, &ref, 1, want, 1e-13);
+        aa_image_free(&ref);
+    }
+}
+
+/* What the reader refuses, naming the element and its line. */
+static void test_svg_refusals(void **state)
+{
+    (void)state;
+    svg_refused("<linearGradient id=\"a\" href=\"#b\"/><linearGradient id=\"b\" href=\"#a\"/>"
+                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "line 2: <linearGradient>", "cycle");
+    svg_refused("<radialGradient id=\"a\" fx=\"1.2\"><stop/><stop offset=\"1\"/>"
+                "</radialGradient><rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<radialGradient>", "cone");
+    svg_refused("<linearGradient id=\"a\" spreadMethod=\"mirror\"><stop/></linearGradient>"
+                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<linearGradient>", "spreadMethod");
+    svg_refused("<linearGradient id=\"a\" x1=\"2px\"><stop/><stop offset=\"1\"/>"
+                "</linearGradient><rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<linearGradient>", "objectBoundingBox");
+    svg_refused("<linearGradient id=\"a\"><stop/><rect/></linearGradient>"
+                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<rect>", "only <stop>");
+    svg_refused("<linearGradient id=\"a\"><stop offset=\"0\" stop-colour=\"red\"/>"
+                "</linearGradient><rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<stop>", "stop-colour");
+    /* a radial gradient is read, and the reference refuses it by name */
+    int st;
+    aa_scene *sc = svg_scene("radial", "<radialGradient id=\"a\"><stop/><stop offset=\"1\" "
+                                       "stop-color=\"white\"/></radialGradient>"
+                                       "<rect width=\"8\" height=\"8\" fill=\"url(#a)\"/>",
+                             &st);
+    assert_non_null(sc);
+    aa_scene *placed = aa_scene_place(sc, W, H, 0, 0, 0);
+    aa_image out;
+    assert_int_equal(aa_image_alloc(&out, W, H, 3), AA_OK);
+    aa_filter f;
+    aa_filter_default(&f);
+    assert_int_equal(aa_truth_render(placed, &f, 1, &out, NULL, NULL), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "radial gradient"));
+    aa_image_free(&out);
+    aa_scene_free(placed);
+    aa_scene_free(sc);
+}
+
+/* The reference cache: a changed stop changes the view's key (the file's
+ * bytes), so it never meets the old entry; the same file hits it. */
+static void test_cache(void **state)
+{
+    (void)state;
+    char spec[4400], cache[4200];
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    const char *fmt = "<linearGradient id=\"g\"><stop/><stop offset=\"1\" stop-color=\"%s\"/>"
+                      "</linearGradient><rect width=\"16\" height=\"12\" fill=\"url(#g)\"/>";
+    char body[512];
+    double sums[3];
+    int hits[3];
+    const char *colours[3] = {"white", "grey", "grey"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(body, sizeof body, fmt, colours[k]);
+        svg_spec("cached", body, spec, sizeof spec);
+        aa_view v = {0};
+        v.w = W, v.h = H;
+        aa_filter_default(&v.filter);
+        assert_int_equal(aa_pattern_parse(spec, &v.pattern), AA_OK);
+        aa_image im;
+        if (aa_reference(&v, cache, 1, &im, NULL, &hits[k]))
+            fail_msg("%s", aa_last_error());
+        sums[k] = channel_sum(&im, 0);
+        aa_image_free(&im);
+    }
+    print_message("cache: sums %.6f %.6f %.6f, from the cache %d %d %d\n", sums[0], sums[1],
+                  sums[2], hits[0], hits[1], hits[2]);
+    assert_false(hits[0]);
+    assert_false(hits[1]);
+    assert_true(hits[2]);
+    assert_true(sums[1] < sums[0]);
+    assert_true(sums[2] == sums[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_linear_pad),     cmocka_unit_test(test_repeat_reflect),
         cmocka_unit_test(test_against_2d),     cmocka_unit_test(test_methods),
         cmocka_unit_test(test_refusals),       cmocka_unit_test(test_radial_sampled),
+        cmocka_unit_test(test_svg_linear),     cmocka_unit_test(test_svg_monotone),
+        cmocka_unit_test(test_svg_degenerate), cmocka_unit_test(test_svg_refusals),
+        cmocka_unit_test(test_cache),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
