@@ -76,13 +76,16 @@
  *     with its source, so that peers stroke it themselves and `export`
  *     writes it as a stroke);
  *   - clipPath and clip-path="url(#id)" as the scene's clips (the sink's
- *     clip_begin, clip_end and clip; "clip paths" below).
+ *     clip_begin, clip_end and clip; "clip paths" below);
+ *   - linearGradient and radialGradient as fill and stroke paint
+ *     (url(#id) with an optional fallback; the sink's `gradient`;
+ *     "gradients" below).
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
- * linearRGB (compositing in linear light), paint servers (gradients, patterns:
- * url() paints), text, images, clip-path other than url(#id) or
+ * linearRGB (compositing in linear light), <pattern> paint servers, the
+ * radial gradients SVG 2 draws as a cone (grad_resolve), text, images, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <use> and other non-shapes in a clipPath, references to clip
  * paths forming a cycle, masks, filters, clip-path on a nested <svg> or a
