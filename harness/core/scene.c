@@ -317,10 +317,13 @@ int aa_scene_set_alpha(aa_scene *s, double alpha)
  * A gradient layer's colour at a point (aabench.h, aa_gradient;
  * patterns/README.md, "Gradients"): t from the point mapped back into the
  * gradient's coordinates, spread into [0, 1], and the stops' sRGB-encoded
- * channels and opacity interpolated there, not premultiplied (SVG 1.1,
- * 13.2.4 and SVG 2's `stop-color`: SVG gradients are not interpolated in
- * premultiplied space; so do Chromium and resvg).  That colour then
- * composites as a layer's own does. */
+ * channels and opacity interpolated there, each on its own, not
+ * premultiplied: SVG's text leaves it implicit, the SVG working group
+ * answered that colour and opacity interpolate independently (www-svg,
+ * July 2006), and no browser interpolates SVG stops premultiplied (svgwg
+ * issue 180), unlike CSS Images 3's gradients; Chromium and resvg agree
+ * (tests/test_gradient_renderers.c).  That colour then composites as a
+ * layer's own does. */
 
 static int invert_map(const double m[6], double inv[6])
 {
