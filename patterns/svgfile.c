@@ -3283,8 +3283,9 @@ static int grad_chain(reader *r, const xmlNode *g, const xmlNode **chain, int *n
     return AA_OK;
 }
 
-/* The first value of attribute key along the chain (malloc'd by libxml2),
- * for the attributes of both kinds only where the kind has it. */
+/* The first value of attribute key along the chain (malloc'd by libxml2;
+ * a kind's own attributes are refused on the other kind, check_props, so
+ * a linear gradient inherits from a radial one only what both have). */
 static xmlChar *grad_attr(const xmlNode *const *chain, int n, const char *key)
 {
     for (int k = 0; k < n; k++) {
