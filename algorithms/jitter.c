@@ -87,7 +87,8 @@
  * jitter spp=16 on crow, stores and conversions more than the hash).
  * Elsewhere a sample also asks the strip for the winding left of the
  * window on its line.  On a field scene (the zone plate) every pixel is
- * sampled through the point function.  Counters: samples = point evaluations,
+ * sampled through the point function, and so is every pixel of a scene with
+ * gradient paint.  Counters: samples = point evaluations,
  * expensive_pixels = pixels sampled.
  *
  * Limits.  Noise instead of aliasing: the RMSE of a pixel crossed by an
@@ -774,7 +775,7 @@ const aa_method_type aa_method_jitter = {
     {"jitter", "spp stratified, random or Owen-scrambled quasi-random samples per pixel",
      jitter_params},
     sizeof(jt_state),
-    AA_METHOD_SEEDED | AA_METHOD_FIELDS,
+    AA_METHOD_SEEDED | AA_METHOD_FIELDS | AA_METHOD_GRADIENTS,
     jitter_check,
     jitter_init,
     jitter_render,

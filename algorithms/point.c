@@ -13,6 +13,8 @@
  *
  * On a field scene (core.h, "Fields": the zone plate) there are no
  * crossings: each centre takes the field's value (aa_scene_colour_at).
+ * With gradient paint each centre of a run takes its own colour
+ * (aa_scene_colour_of_at).
  *
  * Limits: it has no filter; it is measured against the box reference and
  * refuses other filters.  A centre exactly on an edge takes the colour to
@@ -42,6 +44,19 @@ static void fill(double *row, int i0, int i1, aa_rgb c)
     double *px = row + 3 * (size_t)i0;
     for (int i = i0; i < i1; i++, px += 3)
         px[0] = c.c[0], px[1] = c.c[1], px[2] = c.c[2];
+}
+
+/* Fill pixels [i0, i1) of row y with the colour of winding `wind`: one
+ * colour, or with gradient paint each centre's own (aa_scene_colour_of_at). */
+static void fill_at(const aa_scene *placed, const int *wind, double *row, int i0, int i1,
+                    double dx, double y)
+{
+    if (!aa_scene_has_gradients(placed)) {
+        fill(row, i0, i1, aa_scene_colour_of(placed, wind));
+        return;
+    }
+    for (int i = i0; i < i1; i++)
+        fill(row, i, i + 1, aa_scene_colour_of_at(placed, wind, i + 0.5 + dx, y));
 }
 
 /* The first pixel whose centre i + 1/2 lies strictly right of x. */
@@ -93,12 +108,12 @@ void aa_point_row(const aa_scene *placed, aa_point_ws *ws, double dx, double y, 
          * left of the crossing */
         int stop = first_right_of(ws->cross[k].x - dx, w);
         if (stop > i) {
-            fill(row, i, stop, aa_scene_colour_of(placed, ws->wind));
+            fill_at(placed, ws->wind, row, i, stop, dx, y);
             i = stop;
         }
         ws->wind[ws->cross[k].layer] += ws->cross[k].dir;
     }
-    fill(row, i, w, aa_scene_colour_of(placed, ws->wind));
+    fill_at(placed, ws->wind, row, i, w, dx, y);
 }
 
 int aa_point_sample(const aa_scene *placed, double dx, double dy, int threads, aa_image *out)
@@ -134,7 +149,7 @@ static int point_render(void *state, const double *p, const aa_job *job, aa_imag
 const aa_method_type aa_method_point = {
     {"point", "one sample at each pixel centre (Crow fig. 2.10)", point_params},
     0,
-    AA_METHOD_FIELDS,
+    AA_METHOD_FIELDS | AA_METHOD_GRADIENTS,
     point_check,
     NULL,
     point_render,

@@ -44,7 +44,10 @@ static int worker_make(aa__sampler_worker *wk, const aa_scene *scene, size_t own
     memset(b, 0, size);
     wk->own = b;
     wk->wind = (int *)(b + o_wind), wk->wind2 = wk->wind + nw;
-    wk->field = aa_scene_field(scene, NULL, NULL, NULL) != NULL;
+    /* a field, or gradient paint (whose colour changes inside the spans
+     * between edges): no uniform runs, every sample from the point
+     * function (aa_scene_colour_at) */
+    wk->field = aa_scene_field(scene, NULL, NULL, NULL) != NULL || aa_scene_has_gradients(scene);
     return AA_OK;
 }
 

@@ -51,7 +51,8 @@ typedef struct aa__sampler_worker {
     aa_strip *strip;
     void *own;         /* the method's scratch (own_size bytes, cache-line aligned) */
     int *wind, *wind2; /* one per layer each */
-    int field;         /* the scene is a field: every sample from its point function */
+    int field;         /* the scene is a field or has gradient paint: every sample
+                        * from its point function (aa_scene_colour_at) */
     void *block;       /* all of the above but the strip, in whole cache lines */
 } aa__sampler_worker;
 

@@ -38,7 +38,8 @@
  * elsewhere the strip gives the winding left of the window per line.
  * Counters: samples = positions evaluated, expensive_pixels = pixels that
  * were sampled.  On a field scene (the zone plate) every pixel is sampled
- * and every sample is the point function.  The workers, the row loop and the by-subset colouring are
+ * and every sample is the point function; so on a scene with gradient
+ * paint (aa_scene_colour_at at every sample).  The workers, the row loop and the by-subset colouring are
  * shared with jitter (sampling.h); this file has the plans and weights.
  *
  * Limits.  The grid is regular, so it aliases: detail near the grid's own
@@ -433,7 +434,7 @@ const aa_method_type aa_method_supersample = {
      "n x n grid (Crow figs. 2.11-2.12) or msaa positions per pixel, filter-weighted",
      supersample_params},
     sizeof(ss_state),
-    AA_METHOD_FIELDS,
+    AA_METHOD_FIELDS | AA_METHOD_GRADIENTS,
     supersample_check,
     supersample_init,
     supersample_render,

@@ -24,7 +24,7 @@ extern "C" {
 
 /* The interface version a plug-in is built for; the command refuses a
  * plug-in built for another.  Raised whenever a type below changes layout. */
-#define AA_PLUGIN_ABI 7
+#define AA_PLUGIN_ABI 8
 
 /* ------------------------------------------------------------------------
  * Status and errors
@@ -255,6 +255,55 @@ int aa_scene_clip_members(const aa_scene *s, int clip, int *first);
  * sRGB-encoded values, decoded to linear light (patterns/README.md). */
 aa_rgb aa_scene_colour_of(const aa_scene *s, const int *wind);
 
+/* Gradient paint (patterns/README.md, "Gradients"): a layer's paint may be
+ * a linear or a radial gradient instead of its colour.  t at a point p
+ * of the scene: with q = m^-1(p) in the gradient's own coordinates,
+ *  - linear (p[] = x1 y1 x2 y2): t = (q - P1).(P2 - P1) / |P2 - P1|^2;
+ *  - radial (p[] = cx cy r fx fy fr): the largest w with |q - F - w (C -
+ *    F)| = fr + w (r - fr) (the circles of SVG 2 and canvas, F = (fx, fy),
+ *    C = (cx, cy)); the focal circle strictly inside the end circle
+ *    (|C - F| + fr < r), so every point has exactly one;
+ * then spread maps t to [0, 1] (pad: clamp; reflect: the distance to the
+ * nearest even integer; repeat: t - floor t) and the stops give the colour:
+ * sRGB-encoded channels and opacity interpolated linearly, not
+ * premultiplied, between the two stops around t (the first stop's below the
+ * first offset, the last's above the last).  The layer's alpha multiplies
+ * the stop's opacity.  Offsets ascending in [0, 1]; two equal offsets make
+ * a sharp step (the later stop's colour from there).  m maps the gradient's
+ * coordinates to the scene's: (m[0] x + m[2] y + m[4], m[1] x + m[3] y +
+ * m[5]); colours are linear light, as everywhere. */
+typedef enum aa_gradient_kind { AA_GRADIENT_LINEAR = 1, AA_GRADIENT_RADIAL = 2 } aa_gradient_kind;
+typedef enum aa_spread { AA_SPREAD_PAD = 0, AA_SPREAD_REFLECT = 1, AA_SPREAD_REPEAT = 2 } aa_spread;
+typedef struct aa_gradient_stop {
+    double offset;
+    aa_rgb colour;
+    double opacity;
+} aa_gradient_stop;
+typedef struct aa_gradient {
+    int kind;   /* aa_gradient_kind */
+    int spread; /* aa_spread */
+    double p[6];
+    double m[6];
+    int nstops;
+    const aa_gradient_stop *stops;
+} aa_gradient;
+
+/* 1 if some painting layer's paint is a gradient: the colour at a point
+ * then depends on the point, not on the winding numbers alone, and
+ * aa_scene_is_opaque is 0.  A method takes such a scene only if it
+ * declares AA_METHOD_GRADIENTS (it samples the picture through
+ * aa_scene_colour_of_at, aa_scene_colour_at or aa_strip_colour_at);
+ * aa_method_init refuses it to the others. */
+int aa_scene_has_gradients(const aa_scene *s);
+/* Layer's gradient into *g (its stops the scene's own, valid while the
+ * scene lives): 1, or 0 for a layer painted with its colour. */
+int aa_scene_layer_gradient(const aa_scene *s, int layer, aa_gradient *g);
+/* The colour at point (x, y) whose winding numbers are `wind`: as
+ * aa_scene_colour_of, each gradient layer painting its colour at (x, y).
+ * aa_scene_colour_of gives a gradient layer the colour of its first stop:
+ * it is the picture only in scenes without gradients. */
+aa_rgb aa_scene_colour_of_at(const aa_scene *s, const int *wind, double x, double y);
+
 /* The point of an offset curve at parameter t, and its derivative (either
  * pointer NULL: not wanted) (aa_offset_curve). */
 void aa_offset_point(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
@@ -443,7 +492,11 @@ enum aa_method_flags {
      * without it a field scene is refused by aa_method_init */
     AA_METHOD_FIELDS = 8, /* 16: AA_METHOD_DISPLAY, built-in only (core.h, "Displays") */
     /* render runs another program: its time includes that start-up */
-    AA_METHOD_EXTERNAL = 32
+    AA_METHOD_EXTERNAL = 32,
+    /* takes scenes with gradient paint (aa_scene_has_gradients): it samples
+     * the picture at points (aa_scene_colour_of_at and the like); without
+     * it such a scene is refused by aa_method_init */
+    AA_METHOD_GRADIENTS = 64
 };
 
 typedef struct aa_method_type {

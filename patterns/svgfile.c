@@ -76,13 +76,16 @@
  *     with its source, so that peers stroke it themselves and `export`
  *     writes it as a stroke);
  *   - clipPath and clip-path="url(#id)" as the scene's clips (the sink's
- *     clip_begin, clip_end and clip; "clip paths" below).
+ *     clip_begin, clip_end and clip; "clip paths" below);
+ *   - linearGradient and radialGradient as fill and stroke paint
+ *     (url(#id) with an optional fallback; the sink's `gradient`;
+ *     "gradients" below).
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
- * linearRGB (compositing in linear light), paint servers (gradients, patterns:
- * url() paints), text, images, clip-path other than url(#id) or
+ * linearRGB (compositing in linear light), <pattern> paint servers, the
+ * radial gradients SVG 2 draws as a cone (grad_resolve), text, images, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <use> and other non-shapes in a clipPath, references to clip
  * paths forming a cycle, masks, filters, clip-path on a nested <svg> or a
@@ -236,6 +239,9 @@ typedef struct css_colour {
  * visible). */
 typedef struct style {
     css_colour fill, stroke, color; /* the paints, and the property color */
+    /* a paint server (url(#id) to a linearGradient or radialGradient) in
+     * place of the colour, or NULL */
+    const xmlNode *fill_server, *stroke_server;
     int fill_none;
     aa_fill_rule rule;
     int stroke_none;
@@ -420,8 +426,8 @@ static const struct {
  * the width, 1 the height, 2 the normalised diagonal. */
 static int length_axis(const char *attr)
 {
-    static const char *const xs[] = {"x", "cx", "rx", "x1", "x2", "width"};
-    static const char *const ys[] = {"y", "cy", "ry", "y1", "y2", "height"};
+    static const char *const xs[] = {"x", "cx", "rx", "x1", "x2", "width", "fx"};
+    static const char *const ys[] = {"y", "cy", "ry", "y1", "y2", "height", "fy"};
     for (size_t k = 0; k < sizeof xs / sizeof xs[0]; k++) {
         if (!strcmp(attr, xs[k]))
             return 0;
@@ -529,7 +535,7 @@ static const char *const css_known[] = {
     "stroke-dashoffset", "color",         "paint-order",     "color-interpolation",
     "clip-rule",
     "font-size",        "overflow",       "transform",       "transform-origin",
-    "transform-box",
+    "transform-box",    "stop-color",     "stop-opacity",
     /* properties of text only, which is refused: they change no shape */
     "font-family",      "font-style",     "font-weight",     "font-variant",
     "font-stretch",
@@ -541,8 +547,13 @@ static const char *const css_known[] = {
 static int attr_known(const xmlNode *node, const char *name)
 {
     static const struct {
-        const char *element, *attrs[8];
+        const char *element, *attrs[12];
     } own[] = {{"clipPath", {"clipPathUnits"}},
+               {"linearGradient", {"x1", "y1", "x2", "y2", "gradientUnits", "gradientTransform",
+                                   "spreadMethod", "href"}},
+               {"radialGradient", {"cx", "cy", "r", "fx", "fy", "fr", "gradientUnits",
+                                   "gradientTransform", "spreadMethod", "href"}},
+               {"stop", {"offset"}},
                {"svg", {"width", "height", "viewBox", "preserveAspectRatio", "version",
                         "baseProfile", "x", "y"}},
                {"rect", {"x", "y", "width", "height", "rx", "ry"}},
@@ -563,7 +574,7 @@ static int attr_known(const xmlNode *node, const char *name)
             return 1;
     for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
         if (!strcmp((const char *)node->name, own[k].element))
-            for (size_t j = 0; j < 8 && own[k].attrs[j]; j++)
+            for (size_t j = 0; j < 12 && own[k].attrs[j]; j++)
                 if (!strcmp(name, own[k].attrs[j]))
                     return 1;
     return 0;
@@ -979,19 +990,71 @@ bad_function:
                    what, aa_echo(text));
 }
 
+struct svg_ids;
+static const xmlNode *find_id(const struct svg_ids *ids, const char *id);
+static void warn_at(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
+static int is_svg(const xmlNode *node);
+static int named(const xmlNode *node, const char *name);
+
 /* A paint value (of the property `what`, fill or stroke): a colour into
- * *c, or none (*none = 1).  "inherit" is the caller's. */
-static int parse_paint(reader *r, const char *what, const char *text, css_colour *c, int *none)
+ * *c, none (*none = 1), or a paint server (*server, SVG 2 "Paint
+ * servers": url(#id) naming a linearGradient or radialGradient of this
+ * document, optionally followed by a fallback colour or none, used when
+ * the reference names no gradient; without a fallback such a paint is
+ * none, as browsers draw it, with a warning).  "inherit" is the caller's. */
+static int parse_paint(reader *r, const char *what, const char *text, css_colour *c, int *none,
+                       const xmlNode **server)
 {
     *none = 0;
+    *server = NULL;
     if (!strcasecmp(text, "none")) {
         *none = 1;
         return AA_OK;
     }
-    if (!strncasecmp(text, "url(", 4))
-        return fail_at(r, "%s=\"%s\": paint servers (gradients, patterns) are not supported",
+    if (strncasecmp(text, "url(", 4))
+        return parse_colour(r, what, text, c);
+    const char *a = skip_wsp(text + 4), *e, *rest;
+    if (*a == '\'' || *a == '"') { /* url('#id') and url("#id") */
+        const char *close = strchr(a + 1, *a);
+        if (!close || *skip_wsp(close + 1) != ')')
+            return fail_at(r, "%s=\"%s\" is not url(...)", what, aa_echo(text));
+        a++, e = close, rest = skip_wsp(close + 1);
+    } else {
+        rest = e = strchr(a, ')');
+        if (!e)
+            return fail_at(r, "%s=\"%s\" is not url(...)", what, aa_echo(text));
+        while (e > a && is_wsp((unsigned char)e[-1]))
+            e--;
+    }
+    if (e - a < 2 || *a != '#')
+        return fail_at(r, "%s=\"%s\": only a reference into this document (url(#id)) is "
+                          "supported",
                        what, aa_echo(text));
-    return parse_colour(r, what, text, c);
+    char id[1024];
+    if ((size_t)(e - a) >= sizeof id)
+        return fail_at(r, "%s=\"%s\": the id is too long", what, aa_echo(text));
+    memcpy(id, a + 1, (size_t)(e - a - 1));
+    id[e - a - 1] = '\0';
+    const char *fallback = skip_wsp(rest + 1);
+    const xmlNode *t = find_id(r->ids, id);
+    if (t && is_svg(t) && named(t, "pattern"))
+        return fail_at(r, "%s=\"%s\": patterns are not supported", what, aa_echo(text));
+    if (t && is_svg(t) && (named(t, "linearGradient") || named(t, "radialGradient"))) {
+        *server = t;
+        return AA_OK;
+    }
+    if (!*fallback) {
+        warn_at(r, "%s=\"%s\": no gradient has that id and there is no fallback colour: none, "
+                   "as browsers draw it",
+                what, aa_echo(text));
+        *none = 1;
+        return AA_OK;
+    }
+    if (!strcasecmp(fallback, "none")) {
+        *none = 1;
+        return AA_OK;
+    }
+    return parse_colour(r, what, fallback, c);
 }
 
 /* ---- transforms ---- */
@@ -1974,7 +2037,7 @@ static int path_bounds(const aa_path *p, const mat *m, double b[4])
 }
 
 static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
-                     aa_fill_rule rule, double alpha);
+                     aa_fill_rule rule, double alpha, const aa_gradient *grad);
 
 /* Remember the clip `id` made of node referenced in user space m (with the
  * box `box`) within `within`, so that the same reference gives it again. */
@@ -2030,7 +2093,7 @@ static int viewport_clip(reader *r, int c, int *out)
         const int was = r->clip;
         const aa_rgb none = {{0, 0, 0}};
         r->clip = -1;
-        st = give_path(r, &p, &v->m, none, AA_FILL_NONZERO, 1.0);
+        st = give_path(r, &p, &v->m, none, AA_FILL_NONZERO, 1.0, NULL);
         r->clip = was;
     }
     if (!st)
@@ -2082,7 +2145,7 @@ static int shape_clip(reader *r, const aa_path *p, const mat *m, int *out)
  * `colour` and rule `rule`, every subpath closed (a fill closes it); a
  * path without segments gives nothing. */
 static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
-                     aa_fill_rule rule, double alpha)
+                     aa_fill_rule rule, double alpha, const aa_gradient *grad)
 {
     int st = AA_OK, open = 0;
     double sx = 0, sy = 0; /* the subpath's start, user units */
@@ -2092,7 +2155,11 @@ static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
         return st;
     if (p->n && alpha < 1 && !k->alpha)
         return fail_at(r, "a translucent shape (alpha %g) is not taken here", alpha);
+    if (p->n && grad && !k->gradient)
+        return fail_at(r, "gradient paint is not taken here");
     if (p->n && (st = k->shape(r->ctx, colour, rule)))
+        return st;
+    if (p->n && grad && (st = k->gradient(r->ctx, grad)))
         return st;
     if (p->n && alpha < 1 && (st = k->alpha(r->ctx, alpha)))
         return st;
@@ -2205,7 +2272,7 @@ static double length_bound(const aa_path *p)
 /* The element's stroke: its outline (aa_stroke_outline, in user units)
  * through m to the sink as a shape of the stroke's colour, nonzero. */
 static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty,
-                       aa_rgb colour, double alpha)
+                       aa_rgb colour, double alpha, const aa_gradient *grad)
 {
     if (sty->join_other)
         return fail_at(r, "stroke-linejoin=\"%s\" is not supported (miter, round or bevel)",
@@ -2247,7 +2314,7 @@ static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *s
     if (!st)
         st = count_segments(r, out.n);
     if (!st)
-        st = give_path(r, &out, m, colour, AA_FILL_NONZERO, alpha);
+        st = give_path(r, &out, m, colour, AA_FILL_NONZERO, alpha, grad);
     if (!st && out.n && r->sink->stroke) {
         const double mm[6] = {m->a, m->b, m->c, m->d, m->e, m->f};
         st = r->sink->stroke(r->ctx, p, &ss, mm);
@@ -2531,10 +2598,12 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     for (int k = 0; k < 2; k++)
         if (prop(r, node, paints[k], v, sizeof v, &st) && strcasecmp(v, "inherit")) {
             css_colour c = {{0, 0, 0}, 1, 0};
-            if ((st = parse_paint(r, paints[k], v, &c, &none)))
+            const xmlNode *server;
+            if ((st = parse_paint(r, paints[k], v, &c, &none, &server)))
                 return st;
             *(k ? &sty->stroke_none : &sty->fill_none) = none;
-            if (!none)
+            *(k ? &sty->stroke_server : &sty->fill_server) = server;
+            if (!none && !server)
                 *(k ? &sty->stroke : &sty->fill) = c;
         } else if (st)
             return st;
@@ -3086,7 +3155,7 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
     const aa_rgb none = {{0, 0, 0}};
     for (size_t k = 0; k < nm && !st; k++) {
         r->clip = mem[k].gate;
-        st = give_path(r, &mem[k].path, &mem[k].m, none, mem[k].rule, 1.0);
+        st = give_path(r, &mem[k].path, &mem[k].m, none, mem[k].rule, 1.0, NULL);
     }
     r->clip = was;
     if (!st)
@@ -3132,6 +3201,364 @@ static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const 
     return st;
 }
 
+/* ---- gradients (paint servers) ----
+ *
+ * A fill or stroke of url(#id) naming a linearGradient or radialGradient
+ * (SVG 2, "Paint servers"; patterns/README.md, "Gradients"): the
+ * gradient's attributes are its own or, where it has none, those of the
+ * gradient its href (or xlink:href) names, and so on along the chain
+ * (a cycle is refused); its stops are those of the first gradient of the
+ * chain that has any.  gradientUnits objectBoundingBox (the default)
+ * measures x1 .. fr in the bounding box of the element's geometry (its
+ * fill's, for a stroke too), as numbers or percentages of it;
+ * userSpaceOnUse in the element's user space, as lengths.
+ * gradientTransform maps the gradient's coordinates into those units.
+ * Stops: offset a number or a percentage clamped to [0, 1] and raised to
+ * the largest offset before it; stop-color (default black; currentColor
+ * the stop's color) and stop-opacity (default 1) as attributes, style or
+ * sheet rules, their product with the colour's alpha the stop's opacity.
+ * No stops paint nothing; one stop, or a linear gradient whose two points
+ * coincide, or a radial one of radius 0, paint the (last) stop's colour;
+ * an objectBoundingBox gradient on geometry of zero width or height paints
+ * nothing (SVG 1.1, 7.11 "Object bounding box units").  A radial gradient
+ * whose focal circle is not strictly inside its end circle is refused (SVG
+ * 2 then paints a cone and leaves the rest unpainted; aa_scene_set_gradient). */
+
+#define GRAD_MAX_CHAIN 32     /* gradients along an href chain */
+#define GRAD_MAX_STOPS 4096   /* stops of one gradient */
+
+/* A resolved paint: none, a colour of alpha, or a gradient (its stops
+ * malloc'd, g.m its map to pixels). */
+typedef struct paint_res {
+    int none, grad;
+    aa_rgb colour;
+    double alpha;
+    aa_gradient g;
+    aa_gradient_stop *stops;
+} paint_res;
+
+/* The chain of gradients from g along href: at most GRAD_MAX_CHAIN, a
+ * cycle refused; a reference to a missing element ends it. */
+static int grad_chain(reader *r, const xmlNode *g, const xmlNode **chain, int *n)
+{
+    *n = 0;
+    while (g) {
+        for (int k = 0; k < *n; k++)
+            if (chain[k] == g)
+                return fail_at(r, "the gradients' href references form a cycle (through "
+                                  "line %ld)",
+                               xmlGetLineNo(g));
+        if (*n == GRAD_MAX_CHAIN)
+            return fail_at(r, "more than %d gradients along an href chain", GRAD_MAX_CHAIN);
+        chain[(*n)++] = g;
+        xmlChar *href = xmlGetNoNsProp(g, (const xmlChar *)"href");
+        if (!href)
+            href = xmlGetNsProp(g, (const xmlChar *)"href",
+                                (const xmlChar *)"http://www.w3.org/1999/xlink");
+        if (!href)
+            break;
+        const char *h = skip_wsp((const char *)href);
+        const xmlNode *next = NULL;
+        int st = AA_OK;
+        if (*h && *h != '#')
+            st = fail_at(r, "gradient at line %ld: href=\"%s\": a reference to another "
+                            "document is not supported",
+                         xmlGetLineNo(g), aa_echo(h));
+        else if (*h) {
+            char id[1024];
+            snprintf(id, sizeof id, "%s", h + 1);
+            size_t k = strlen(id);
+            while (k && is_wsp((unsigned char)id[k - 1]))
+                id[--k] = '\0';
+            next = find_id(r->ids, id);
+            if (next && !(is_svg(next) && (named(next, "linearGradient") ||
+                                           named(next, "radialGradient"))))
+                next = NULL; /* not a gradient: nothing to inherit */
+        }
+        xmlFree(href);
+        if (st)
+            return st;
+        g = next;
+    }
+    return AA_OK;
+}
+
+/* The first value of attribute key along the chain (malloc'd by libxml2;
+ * a kind's own attributes are refused on the other kind, check_props, so
+ * a linear gradient inherits from a radial one only what both have). */
+static xmlChar *grad_attr(const xmlNode *const *chain, int n, const char *key)
+{
+    for (int k = 0; k < n; k++) {
+        xmlChar *v = xmlGetNoNsProp(chain[k], (const xmlChar *)key);
+        if (v)
+            return v;
+    }
+    return NULL;
+}
+
+/* A coordinate of the gradient: in objectBoundingBox units a number or a
+ * percentage (a fraction of the box), in userSpaceOnUse a length (% of
+ * the viewport). */
+static int grad_coord(reader *r, const xmlNode *const *chain, int n, const char *key,
+                      const char *def, int bbox, double *v, int *given)
+{
+    xmlChar *a = grad_attr(chain, n, key);
+    const char *t = a ? (const char *)a : def;
+    if (given)
+        *given = a != NULL;
+    int st = AA_OK;
+    if (bbox) {
+        const char *q = skip_wsp(t);
+        if (scan_number(&q, v))
+            st = fail_at(r, "gradient %s=\"%s\" is not a number or a percentage", key,
+                         aa_echo(t));
+        else {
+            if (*q == '%')
+                *v /= 100, q++;
+            if (*skip_wsp(q))
+                st = fail_at(r, "gradient %s=\"%s\": in objectBoundingBox units only a number "
+                                "or a percentage",
+                             key, aa_echo(t));
+        }
+    } else
+        st = parse_length(r, key, t, v);
+    xmlFree(a);
+    return st;
+}
+
+/* The colour of a stop (stop-color, stop-opacity; currentColor the
+ * stop's own color or its ancestors'). */
+static int stop_colour(reader *r, const xmlNode *stop, aa_rgb *c, double *opacity)
+{
+    char v[256];
+    int st = AA_OK;
+    css_colour col = {{0, 0, 0}, 1, 0};
+    if (prop(r, stop, "stop-color", v, sizeof v, &st) && strcasecmp(v, "inherit") &&
+        (st = parse_colour(r, "stop-color", v, &col)))
+        return st;
+    if (st)
+        return st;
+    if (col.current) {
+        col = (css_colour){{0, 0, 0}, 1, 0};
+        for (const xmlNode *a = stop; a && a->type == XML_ELEMENT_NODE; a = a->parent) {
+            css_colour cc;
+            if (prop(r, a, "color", v, sizeof v, &st) && strcasecmp(v, "inherit") &&
+                strcasecmp(v, "currentColor")) {
+                if ((st = parse_colour(r, "color", v, &cc)))
+                    return st;
+                col = cc;
+                break;
+            }
+            if (st)
+                return st;
+        }
+    }
+    double o = 1;
+    if (prop(r, stop, "stop-opacity", v, sizeof v, &st) && strcasecmp(v, "inherit") &&
+        (st = parse_opacity(r, "stop-opacity", v, &o)))
+        return st;
+    if (st)
+        return st;
+    for (int k = 0; k < 3; k++)
+        c->c[k] = srgb_decode(col.v[k]);
+    *opacity = o * col.alpha;
+    return AA_OK;
+}
+
+/* The stops of the first gradient along the chain that has any. */
+static int grad_stops(reader *r, const xmlNode *const *chain, int n, paint_res *out)
+{
+    int count = 0, st = AA_OK;
+    const xmlNode *owner = NULL;
+    for (int k = 0; k < n && !owner; k++)
+        for (const xmlNode *c = chain[k]->children; c; c = c->next)
+            if (c->type == XML_ELEMENT_NODE && is_svg(c) && named(c, "stop")) {
+                owner = chain[k];
+                break;
+            }
+    if (!owner)
+        return AA_OK;
+    for (const xmlNode *c = owner->children; c; c = c->next)
+        if (c->type == XML_ELEMENT_NODE && is_svg(c) && named(c, "stop"))
+            count++;
+    if (count > GRAD_MAX_STOPS)
+        return fail_at(r, "a gradient of more than %d stops", GRAD_MAX_STOPS);
+    out->stops = malloc((size_t)count * sizeof *out->stops);
+    if (!out->stops)
+        return aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
+    const xmlNode *keep = r->node;
+    double last = 0;
+    int m = 0;
+    for (const xmlNode *c = owner->children; c && !st; c = c->next) {
+        if (c->type != XML_ELEMENT_NODE || !is_svg(c))
+            continue;
+        r->node = c;
+        if (!named(c, "stop")) {
+            static const char *const quiet[] = {"title", "desc", "metadata"};
+            int ok = 0;
+            for (int q = 0; q < 3; q++)
+                ok |= named(c, quiet[q]);
+            if (!ok)
+                st = fail_at(r, "not supported in a gradient (only <stop>)");
+            continue;
+        }
+        if ((st = check_props(r, c)))
+            break;
+        aa_gradient_stop *s = &out->stops[m];
+        double off = 0;
+        xmlChar *o = xmlGetNoNsProp(c, (const xmlChar *)"offset");
+        if (o) {
+            const char *q = skip_wsp((const char *)o);
+            if (scan_number(&q, &off))
+                off = NAN;
+            else if (*q == '%')
+                off /= 100, q++;
+            if (off != off || *skip_wsp(q)) {
+                if (!invalid_attr(r, "offset", (const char *)o, "a number or a percentage"))
+                    st = fail_at(r, "offset=\"%s\" is not supported", aa_echo((const char *)o));
+                off = 0;
+            }
+            xmlFree(o);
+        }
+        if (st)
+            break;
+        /* clamped to [0, 1], and at least the largest offset before */
+        off = off < 0 ? 0 : off > 1 ? 1 : off;
+        if (off < last)
+            off = last;
+        last = off;
+        s->offset = off;
+        st = stop_colour(r, c, &s->colour, &s->opacity);
+        m++;
+    }
+    r->node = keep;
+    out->g.nstops = m;
+    return st;
+}
+
+/* A paint server's paint for the element whose geometry p is in user
+ * space m (to pixels): none, a colour, or a gradient with its map. */
+static int grad_resolve(reader *r, const xmlNode *server, const aa_path *p, const mat *m,
+                        paint_res *out)
+{
+    memset(out, 0, sizeof *out);
+    const xmlNode *chain[GRAD_MAX_CHAIN];
+    int n, st, given;
+    const xmlNode *keep = r->node;
+    r->node = server;
+    if ((st = grad_chain(r, server, chain, &n)))
+        return st;
+    for (int k = 0; k < n; k++) {
+        r->node = chain[k];
+        if ((st = check_props(r, chain[k])))
+            return st;
+    }
+    r->node = server;
+    const int radial = named(server, "radialGradient");
+    int bbox = 1, spread = AA_SPREAD_PAD;
+    xmlChar *a = grad_attr(chain, n, "gradientUnits");
+    if (a && !strcmp((const char *)a, "userSpaceOnUse"))
+        bbox = 0;
+    else if (a && strcmp((const char *)a, "objectBoundingBox"))
+        st = fail_at(r, "gradientUnits=\"%s\" (userSpaceOnUse or objectBoundingBox)",
+                     aa_echo((const char *)a));
+    xmlFree(a);
+    a = grad_attr(chain, n, "spreadMethod");
+    if (!st && a) {
+        if (!strcmp((const char *)a, "reflect"))
+            spread = AA_SPREAD_REFLECT;
+        else if (!strcmp((const char *)a, "repeat"))
+            spread = AA_SPREAD_REPEAT;
+        else if (strcmp((const char *)a, "pad"))
+            st = fail_at(r, "spreadMethod=\"%s\" (pad, reflect or repeat)",
+                         aa_echo((const char *)a));
+    }
+    xmlFree(a);
+    mat G = identity;
+    a = grad_attr(chain, n, "gradientTransform");
+    if (!st && a)
+        st = parse_transform(r, (const char *)a, &G);
+    xmlFree(a);
+    double v[6];
+    if (!st && !radial) {
+        static const char *const keys[4] = {"x1", "y1", "x2", "y2"};
+        static const char *const defs[4] = {"0%", "0%", "100%", "0%"};
+        for (int k = 0; k < 4 && !st; k++)
+            st = grad_coord(r, chain, n, keys[k], defs[k], bbox, &v[k], NULL);
+        v[4] = v[5] = 0;
+    } else if (!st) {
+        static const char *const keys[3] = {"cx", "cy", "r"};
+        for (int k = 0; k < 3 && !st; k++)
+            st = grad_coord(r, chain, n, keys[k], "50%", bbox, &v[k], NULL);
+        if (!st && (st = grad_coord(r, chain, n, "fx", "0", bbox, &v[3], &given)) == AA_OK &&
+            !given)
+            v[3] = v[0]; /* fx defaults to cx */
+        if (!st && (st = grad_coord(r, chain, n, "fy", "0", bbox, &v[4], &given)) == AA_OK &&
+            !given)
+            v[4] = v[1];
+        if (!st)
+            st = grad_coord(r, chain, n, "fr", "0%", bbox, &v[5], NULL);
+        if (!st && (v[2] < 0 || v[5] < 0))
+            st = fail_at(r, "radialGradient: a negative %s (%g) is an error",
+                         v[2] < 0 ? "r" : "fr", v[2] < 0 ? v[2] : v[5]);
+    }
+    if (!st)
+        st = grad_stops(r, chain, n, out);
+    r->node = keep;
+    if (st) {
+        free(out->stops);
+        out->stops = NULL;
+        return st;
+    }
+    const int ns = out->g.nstops;
+    if (!ns) { /* no stops: as none */
+        out->none = 1;
+        return AA_OK;
+    }
+    /* one stop, or a degenerate vector or radius: the last stop's colour */
+    const int solid = ns == 1 || (!radial && v[0] == v[2] && v[1] == v[3]) ||
+                      (radial && v[2] == 0);
+    if (solid) {
+        out->colour = out->stops[ns - 1].colour;
+        out->alpha = out->stops[ns - 1].opacity;
+        free(out->stops);
+        out->stops = NULL;
+        return AA_OK;
+    }
+    mat B = identity;
+    if (bbox) {
+        double box[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+        path_box(p, &identity, box);
+        if (!(box[2] > box[0] && box[3] > box[1])) { /* no width or no height: none */
+            out->none = 1;
+            free(out->stops);
+            out->stops = NULL;
+            return AA_OK;
+        }
+        B = (mat){box[2] - box[0], 0, 0, box[3] - box[1], box[0], box[1]};
+    }
+    const mat M = mat_mul(*m, mat_mul(B, G));
+    out->grad = 1;
+    out->g.kind = radial ? AA_GRADIENT_RADIAL : AA_GRADIENT_LINEAR;
+    out->g.spread = spread;
+    memcpy(out->g.p, v, sizeof v);
+    const double mm[6] = {M.a, M.b, M.c, M.d, M.e, M.f};
+    memcpy(out->g.m, mm, sizeof mm);
+    out->g.stops = out->stops;
+    if (radial && !(hypot(v[0] - v[3], v[1] - v[4]) + v[5] < v[2])) {
+        r->node = server;
+        st = fail_at(r, "the focal circle (fx %g, fy %g, fr %g) is not strictly inside the end "
+                        "circle (cx %g, cy %g, r %g): SVG 2 then paints a cone and leaves the "
+                        "rest unpainted, which is not supported",
+                     v[3], v[4], v[5], v[0], v[1], v[2]);
+        r->node = keep;
+        free(out->stops);
+        out->stops = NULL;
+        out->grad = 0;
+    }
+    return st;
+}
+
 static int element(reader *r, const xmlNode *node, style sty, mat m, int depth);
 static int structure(reader *r, const xmlNode *node, const xmlNode *via, style sty, mat m,
                      int depth);
@@ -3162,8 +3589,9 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     if (!is_svg(node))
         return AA_OK; /* another namespace: not drawn */
     /* a clipPath is drawn only where it is referenced (clip_of) */
-    static const char *const silent[] = {"title", "desc", "metadata", "defs", "clipPath"};
-    for (int k = 0; k < 5; k++)
+    static const char *const silent[] = {"title", "desc", "metadata", "defs", "clipPath",
+                                         "linearGradient", "radialGradient"};
+    for (int k = 0; k < 7; k++)
         if (named(node, silent[k]))
             return AA_OK;
     int skip, st;
@@ -3181,8 +3609,6 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         } known[] = {{"text", "text is not supported (the pattern text draws glyphs)"},
                      {"image", "images are not supported"},
                      {"mask", "masks are not supported"},
-                     {"linearGradient", "gradients are not supported"},
-                     {"radialGradient", "gradients are not supported"},
                      {"pattern", "patterns are not supported"}};
         for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
             if (named(node, known[k].name))
@@ -3216,25 +3642,45 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         return st;
     }
     double fa, sa;
-    const aa_rgb fc = paint_rgb(&sty, &sty.fill, &fa), sc = paint_rgb(&sty, &sty.stroke, &sa);
+    aa_rgb fc = paint_rgb(&sty, &sty.fill, &fa), sc = paint_rgb(&sty, &sty.stroke, &sa);
+    if (sty.fill_server)
+        fa = 1;
+    if (sty.stroke_server)
+        sa = 1;
     fa *= sty.fill_opacity, sa *= sty.stroke_opacity;
     /* a line has no area: only its stroke draws; a hidden element or a
      * paint of alpha 0 draws nothing */
-    const int fill = !sty.fill_none && !named(node, "line") && sty.visible && fa > 0;
-    const int stroke = !sty.stroke_none && sty.stroke_width > 0 && sty.visible && sa > 0;
+    int fill = !sty.fill_none && !named(node, "line") && sty.visible && fa > 0;
+    int stroke = !sty.stroke_none && sty.stroke_width > 0 && sty.visible && sa > 0;
     if (!fill && !stroke)
         return AA_OK;
-    /* the element's opacity: its one painted shape's alpha, or both
-     * composited as a group */
-    const int grouped = fill && stroke && opacity < 1;
-    if (!grouped)
-        fa *= opacity, sa *= opacity;
     if ((st = clip_of(r, node, &m, outer, &clip)))
         return st;
     r->node = node;
     aa_path p;
     aa_path_init(&p);
     st = shape_path(r, node, &p);
+    /* paint servers: resolved against the geometry (its bounding box) */
+    paint_res fp = {0}, sp = {0};
+    if (!st && fill && sty.fill_server && !(st = grad_resolve(r, sty.fill_server, &p, &m, &fp))) {
+        fill = !fp.none;
+        if (!fp.grad)
+            fc = fp.colour, fa *= fp.alpha;
+        fill = fill && fa > 0;
+    }
+    if (!st && stroke && sty.stroke_server &&
+        !(st = grad_resolve(r, sty.stroke_server, &p, &m, &sp))) {
+        stroke = !sp.none;
+        if (!sp.grad)
+            sc = sp.colour, sa *= sp.alpha;
+        stroke = stroke && sa > 0;
+    }
+    r->node = node;
+    /* the element's opacity: its one painted shape's alpha, or both
+     * composited as a group */
+    const int grouped = fill && stroke && opacity < 1;
+    if (!grouped)
+        fa *= opacity, sa *= opacity;
     r->clip = clip;
     if (!st && grouped)
         st = group_begin(r, opacity);
@@ -3242,14 +3688,16 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
      * first */
     for (int k = 0; k < 2 && !st; k++) {
         if (k == sty.stroke_first && fill)
-            st = give_path(r, &p, &m, fc, sty.rule, fa);
+            st = give_path(r, &p, &m, fc, sty.rule, fa, fp.grad ? &fp.g : NULL);
         else if (k != sty.stroke_first && stroke)
-            st = give_stroke(r, &p, &m, &sty, sc, sa);
+            st = give_stroke(r, &p, &m, &sty, sc, sa, sp.grad ? &sp.g : NULL);
     }
     if (!st && grouped)
         st = r->sink->group_end(r->ctx);
     r->clip = outer;
     aa_path_free(&p);
+    free(fp.stops);
+    free(sp.stops);
     return st;
 }
 
@@ -3861,6 +4309,7 @@ typedef struct rec_shape {
     /* clips: +1 a clip's beginning (within the clip `clip`), -1 its end,
      * 0 a shape (clipped by `clip`, -1 none); member: a clip's member */
     int clipmark, clip, member;
+    long grad; /* its gradient in the recording's gradients, or -1: its colour */
 } rec_shape;
 
 /* A stroke's source as the reader gave it (its own copies). */
@@ -3880,6 +4329,8 @@ typedef struct recording {
     size_t nops, capops;
     double lo[2], hi[2]; /* the bounds of every op's box (op_box) */
     int in_clip;         /* inside a clip's definition */
+    aa_gradient *grads;  /* the shapes' gradients, each with its own stops */
+    size_t ngrads, capgrads;
 } recording;
 
 static int grow(void **a, size_t *cap, size_t need, size_t size)
@@ -3902,8 +4353,41 @@ static int rec_shape_fn(void *ctx, aa_rgb colour, aa_fill_rule rule)
     int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
     if (!st)
         r->shapes[r->nshapes++] = (rec_shape){colour, rule, r->nops, 0, -1, 1.0, 0, 0, -1,
-                                              r->in_clip};
+                                              r->in_clip, -1};
     return st;
+}
+
+/* The last shape's gradient: a copy, its stops its own. */
+static int rec_gradient_fn(void *ctx, const aa_gradient *g)
+{
+    recording *r = ctx;
+    if (!r->nshapes)
+        return aa_fail(AA_EFAIL, "a gradient without its shape");
+    int st = grow((void **)&r->grads, &r->capgrads, r->ngrads + 1, sizeof *r->grads);
+    if (st)
+        return st;
+    aa_gradient_stop *stops = malloc((size_t)(g->nstops > 0 ? g->nstops : 1) * sizeof *stops);
+    if (!stops)
+        return aa_fail(AA_ENOMEM, "out of memory reading an SVG");
+    memcpy(stops, g->stops, (size_t)g->nstops * sizeof *stops);
+    r->grads[r->ngrads] = *g;
+    r->grads[r->ngrads].stops = stops;
+    r->shapes[r->nshapes - 1].grad = (long)r->ngrads++;
+    return AA_OK;
+}
+
+/* A recorded shape's gradient on the scene's layer added last, its map
+ * from pixels to the unit square (x / W, y / H). */
+static int rec_put_gradient(aa_scene *s, const recording *rec, const rec_shape *sh, int w,
+                            int h)
+{
+    if (sh->grad < 0)
+        return AA_OK;
+    aa_gradient g = rec->grads[sh->grad];
+    const double *m = rec->grads[sh->grad].m;
+    const double to[6] = {m[0] / w, m[1] / h, m[2] / w, m[3] / h, m[4] / w, m[5] / h};
+    memcpy(g.m, to, sizeof to);
+    return aa_scene_set_gradient(s, &g);
 }
 
 static int rec_alpha_fn(void *ctx, double alpha)
@@ -3920,7 +4404,7 @@ static int rec_group(recording *r, int mark, double opacity)
     int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
     if (!st)
         r->shapes[r->nshapes++] = (rec_shape){{{0, 0, 0}}, AA_FILL_NONZERO, r->nops, 0, -1,
-                                              opacity, mark, 0, -1, 0};
+                                              opacity, mark, 0, -1, 0, -1};
     return st;
 }
 
@@ -4042,7 +4526,7 @@ static int rec_clip_mark(recording *r, int mark, int within)
     int st = grow((void **)&r->shapes, &r->capshapes, r->nshapes + 1, sizeof *r->shapes);
     if (!st)
         r->shapes[r->nshapes++] = (rec_shape){{{0, 0, 0}}, AA_FILL_NONZERO, r->nops, 0, -1,
-                                              1.0, 0, mark, within, 0};
+                                              1.0, 0, mark, within, 0, -1};
     r->in_clip = mark > 0;
     return st;
 }
@@ -4060,7 +4544,7 @@ static int rec_clip_fn(void *ctx, int clip)
 static const aa_svg_sink recording_sink = {
     rec_shape_fn,    rec_move,     rec_line,        rec_quad,     rec_cubic,
     rec_close,       rec_arc,      rec_stroke_fn,   rec_alpha_fn, rec_group_begin,
-    rec_group_end,   rec_clip_begin, rec_clip_end,  rec_clip_fn};
+    rec_group_end,   rec_clip_begin, rec_clip_end,  rec_clip_fn,  rec_gradient_fn};
 
 static int svg_check(const double *p)
 {
@@ -4189,6 +4673,8 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
             const double m[6] = {ks->m[0] / w, ks->m[1] / h, ks->m[2] / w,
                                  ks->m[3] / h, ks->m[4] / w, ks->m[5] / h};
             st = aa_scene_stroke(s, &ks->path, &ks->style, m, sh->colour);
+            if (!st)
+                st = rec_put_gradient(s, &rec, sh, w, h);
             if (!st && sh->alpha < 1)
                 st = aa_scene_set_alpha(s, sh->alpha);
             if (!st && sh->clip >= 0)
@@ -4199,7 +4685,8 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         int join = group > 0 && group < 256 && rec.shapes[group_first].stroke < 0;
         const rec_shape *front = join ? &rec.shapes[group_first] : NULL;
         if (join)
-            join = front->rule == sh->rule && front->alpha == sh->alpha &&
+            join = front->grad < 0 && sh->grad < 0 && front->rule == sh->rule &&
+                   front->alpha == sh->alpha &&
                    front->clip == sh->clip &&
                    !memcmp(&front->colour, &sh->colour, sizeof sh->colour);
         for (size_t q = k + 1; join && q <= group_first; q++)
@@ -4208,6 +4695,7 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
                 join = 0;
         if (!join) {
             if ((st = aa_scene_layer(s, sh->colour, sh->rule)) ||
+                (st = rec_put_gradient(s, &rec, sh, w, h)) ||
                 (sh->alpha < 1 && (st = aa_scene_set_alpha(s, sh->alpha))) ||
                 (sh->clip >= 0 && (st = aa_scene_set_clip(s, sh->clip))))
                 break;
@@ -4224,6 +4712,9 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
     for (size_t k = 0; k < rec.nstrokes; k++)
         aa_path_free(&rec.strokes[k].path);
     free(rec.strokes);
+    for (size_t k = 0; k < rec.ngrads; k++)
+        free((void *)rec.grads[k].stops);
+    free(rec.grads);
     return st;
 }
 

@@ -67,6 +67,12 @@ typedef struct aa_svg_sink {
     int (*clip_begin)(void *ctx, int within);
     int (*clip_end)(void *ctx);
     int (*clip)(void *ctx, int clip);
+    /* Optional (NULL: a document that needs it is refused).  Called right
+     * after `shape` when the shape's paint is a gradient (aabench.h,
+     * aa_gradient: its stops valid during the call only; its map m from
+     * the gradient's coordinates to pixels); the shape's colour is then
+     * its first stop's and means nothing. */
+    int (*gradient)(void *ctx, const aa_gradient *g);
 } aa_svg_sink;
 
 /* Limits: larger or deeper documents are refused. */

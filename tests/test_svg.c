@@ -66,7 +66,7 @@ static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double v
 }
 
 static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc,
-                                 NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL};
+                                 NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL};
 
 /* Read `doc` on a w x h view; the sink's text, or fail. */
 static const char *read_doc(const char *doc, int w, int h, double vp[2])
@@ -249,7 +249,7 @@ static int g_arc(void *ctx, double cx, double cy, double ux, double uy, double v
     return g_add(ctx, 'A', 10, (double[]){cx, cy, ux, uy, vx, vy, t0, t1, x, y});
 }
 static const aa_svg_sink geo = {g_shape, g_move, g_line, g_quad, g_cubic, g_close, g_arc,
-                                NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL};
+                                NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL};
 
 /* The ops' letters of `doc` read on a 100 x 100 view into *g. */
 static const char *geo_read(const char *doc, geo_sink *g)
@@ -582,7 +582,10 @@ static void test_refusals(void **state)
      * reads them through the pattern's) */
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-opacity=\"0.5\"/>"), "line 2: <line>",
             "translucent");
-    refused(L2("<line x2=\"5\" stroke=\"url(#g)\"/>"), "<line>", "paint servers");
+    /* nor gradient paint (test_gradient.c reads it through the pattern's) */
+    refused(L2("<linearGradient id=\"g\"><stop/><stop offset=\"1\"/></linearGradient>"
+               "<rect width=\"1\" height=\"1\" stroke=\"url(#g)\"/>"),
+            "<rect>", "gradient paint is not taken here");
     refused(L2("<line x2=\"5\" stroke=\"#f00z\"/>"), "<line>", "#rgba");
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"10vh\"/>"), "<line>", "length");
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"-1\"/>"), "<line>", "negative");
@@ -610,8 +613,10 @@ static void test_refusals(void **state)
     /* nor a group of an opacity */
     refused(L2("<g opacity=\"0.99\"/>"), "<g>", "opacity");
     refused(L2("<rect width=\"1\" height=\"1\" fill=\"#f008\"/>"), "<rect>", "alpha");
-    refused(L2("<linearGradient id=\"a\"/>"), "<linearGradient>", "gradients");
-    refused(L2("<rect width=\"1\" height=\"1\" fill=\"url(#a)\"/>"), "<rect>", "paint servers");
+    refused(L2("<defs><pattern id=\"a\"/></defs><rect width=\"1\" height=\"1\" fill=\"url(#a)\"/>"),
+            "<rect>", "patterns are not supported");
+    refused(L2("<rect width=\"1\" height=\"1\" fill=\"url(o.svg#a)\"/>"), "<rect>",
+            "this document");
     refused(L2("<text>hi</text>"), "line 2: <text>", "text");
     refused(L2("<image href=\"x.png\"/>"), "<image>", "images");
     /* this sink takes no clips: a clip path it would need is refused */

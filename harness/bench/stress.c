@@ -77,6 +77,9 @@ static int ev_make(const aa_scene *s, int w, int h, ld sx, ld sy, ev_scene *out)
     if (aa_scene_is_clipped(s))
         return aa_fail(AA_EINVAL, "stress: clip paths (this evaluator takes the front-most "
                                   "layer's colour, unclipped)");
+    if (aa_scene_has_gradients(s))
+        return aa_fail(AA_EINVAL, "stress: gradient paint (this evaluator takes the front-most "
+                                  "layer's constant colour)");
     if (!aa_scene_is_opaque(s))
         return aa_fail(AA_EINVAL, "stress: translucent layers (this evaluator takes the "
                                   "front-most layer's colour)");

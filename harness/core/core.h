@@ -185,6 +185,19 @@ int aa_scene_clip_unit(aa_scene *s);
  * what is behind it, as an opaque layer always did. */
 /* The alpha (in [0, 1]) of the layer added last. */
 int aa_scene_set_alpha(aa_scene *s, double alpha);
+/* The paint of the layer added last becomes gradient g (aabench.h,
+ * aa_gradient; its stops copied): the kind and spread known, every number
+ * finite, m invertible, at least one stop, offsets ascending in [0, 1],
+ * colours and opacities in [0, 1]; a linear gradient's two points apart
+ * (SVG paints a zero-length one with its last stop: give that as a colour);
+ * a radial's r > 0, fr >= 0 and its focal circle strictly inside the end
+ * circle (|C - F| + fr < r): otherwise SVG 2's picture is a cone, with
+ * parts the gradient leaves unpainted, and that is refused. */
+int aa_scene_set_gradient(aa_scene *s, const aa_gradient *g);
+/* The composite at (x, y) of winding numbers `wind` as aa_scene_colour_of_at
+ * gives it, before the decoding: its sRGB-encoded channels (the
+ * reference integrates their decoding exactly). */
+void aa_scene_encoded_of_at(const aa_scene *s, const int *wind, double x, double y, double e[3]);
 /* Layers added from now until the matching end belong to a new group of
  * opacity in [0, 1], inside the group open now (at most
  * AA_SCENE_MAX_GROUP_DEPTH deep).  Layers go front to back, so a group is

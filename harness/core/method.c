@@ -112,7 +112,9 @@ int aa_method_parse(const char *text, const aa_filter *f, aa_spec *out)
 }
 
 /* A method that does not declare AA_METHOD_FIELDS is refused a field scene
- * (it would see no edges and render the background). */
+ * (it would see no edges and render the background), and one that does not
+ * declare AA_METHOD_GRADIENTS a scene with gradient paint (it would paint
+ * each gradient layer with one colour). */
 static int check_scene(const aa_method_type *type, const aa_job *job)
 {
     const aa_field_type *field = job->placed ? aa_scene_field(job->placed, NULL, NULL, NULL) : NULL;
@@ -122,6 +124,13 @@ static int check_scene(const aa_method_type *type, const aa_job *job)
                        "field: use a method that samples it (such as point, supersample or "
                        "jitter)",
                        type->info.name, field->name);
+    if (job->placed && aa_scene_has_gradients(job->placed) &&
+        !(type->flags & AA_METHOD_GRADIENTS))
+        return aa_fail(AA_EINVAL,
+                       "method %s draws from the layers' constant colours and the scene has "
+                       "gradient paint (linearGradient/radialGradient): use a method that "
+                       "samples the picture at points (point, supersample, jitter)",
+                       type->info.name);
     return AA_OK;
 }
 

@@ -21,6 +21,25 @@ typedef struct aa_scene_clip {
     int first, count, within, depth;
 } aa_scene_clip;
 
+/* A gradient paint (aa_scene_set_gradient): its definition with its own
+ * stops, the inverse of its map (scene to gradient coordinates), and per
+ * stop its sRGB-encoded colour and opacity (enc[4 k .. 4 k + 3]). */
+typedef struct aa_scene_gradient {
+    aa_gradient g;
+    aa_gradient_stop *stops;
+    double *enc;
+    double inv[6];
+} aa_scene_gradient;
+
+/* The t of gradient sg at scene point (x, y), before the spread (NaN
+ * nowhere: radial gradients are refused where a point has no circle), and
+ * its colour: sRGB-encoded channels and opacity at spread-mapped t
+ * (scene.c). */
+double aa__gradient_t(const aa_scene_gradient *sg, double x, double y);
+void aa__gradient_paint(const aa_scene_gradient *sg, double t, double out[4]);
+double aa__gradient_spread(int spread, double t);
+const aa_scene_gradient *aa__scene_layer_paint(const aa_scene *s, int layer);
+
 struct aa_scene {
     aa_rgb background;
     int nlayers, current;
@@ -39,6 +58,11 @@ struct aa_scene {
     int *gate, *member;
     aa_scene_clip *clips;
     int nclips, capclips, open_clip;
+    /* gradients (aa_scene_set_gradient): per layer the index of its
+     * gradient (-1: its colour) */
+    int *paint;
+    aa_scene_gradient *grads;
+    int ngrads, capgrads;
 
     aa_edge *edges;
     size_t nedges, capedges;

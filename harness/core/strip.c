@@ -322,7 +322,7 @@ aa_rgb aa_strip_colour_at(const aa_strip *st, double x, double y)
     /* a stack array for the usual few layers: the strip is not written */
     int small[32], *wind = st->nl <= 32 ? small : st->wind;
     aa_strip_winding(st, x, y, wind);
-    return aa_scene_colour_of(st->s, wind);
+    return aa_scene_colour_of_at(st->s, wind, x, y);
 }
 
 static int same_colour(aa_rgb a, aa_rgb b)

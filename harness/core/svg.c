@@ -367,6 +367,9 @@ int aa_scene_svg(const aa_scene *placed, int w, int h, aa_svg_paint paint, const
                        field->name);
     if (w < 1 || h < 1)
         return aa_fail(AA_EINVAL, "SVG of a %dx%d image", w, h);
+    if (aa_scene_has_gradients(placed))
+        return aa_fail(AA_EINVAL, "the scene has gradient paint, which this writer does not "
+                                  "write (its layers are written as colours)");
     size_t ne;
     const aa_edge *e = aa_scene_edges(placed, &ne);
     /* a stroke's layer is written as the stroke (its source), so only a

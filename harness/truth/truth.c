@@ -171,6 +171,35 @@
  * masses within a radius for centred disks, and the three paths against
  * each other (tests/test_conic.c).
  *
+ * Gradient paint (patterns/README.md, "Gradients"), linear gradients under
+ * the box filter: along a row a linear gradient's t is linear in x, so
+ * between the x where some gradient layer's t passes a stop's offset or a
+ * period's end (repeat, reflect) the composite's sRGB-encoded channels are
+ * affine in x: each layer's stops interpolate linearly, and compositing
+ * (source over, group opacity) is affine in every layer's colour while the
+ * alphas are constant; a single gradient with stops of differing opacity
+ * keeps it affine as long as it is the scene's only gradient (its alpha
+ * then multiplies constants only), and other scenes are refused
+ * (grad_check).  The composite is read at the quarter and three-quarter
+ * points of each such piece (the ends may lie on a jump) and extended
+ * linearly to its ends, va and vb, and the piece's integral is its length
+ * times the mean of the sRGB decoding over [va, vb] in closed form: v /
+ * 12.92 below 0.04045, whose mean is the midpoint's; above, u^2.4 with u =
+ * (v + 0.055)/1.055, whose mean is ua^2.4 expm1(3.4 log1p(d)) / (3.4 d),
+ * d = (ub - ua)/ua (no cancellation however close va and vb are); a piece
+ * straddling 0.04045 is split there.  No pixel is uniform.  The outer
+ * integral's breakpoints add the heights where each line t = tau (tau a
+ * stop's offset or a period's end, in the window's range of t) crosses the
+ * window's sides, and where it meets each local piece (a cubic's roots
+ * isolated between its turns and bisected; an arc's from an acos): there
+ * the inner integral has a kink when the colour jumps across the line (a
+ * sharp stop, repeat) and a jump in its second derivative otherwise.  The
+ * decoding's own kink at 0.04045 (its slope goes from 1/12.92 to 0.0789, a
+ * 2% step) leaves the inner integral continuously differentiable and is no
+ * breakpoint: QAG's bisection takes it.  Offset pieces (strokes of curves),
+ * radial gradients and other filters are refused with a gradient scene:
+ * their pieces would need other closed forms.
+ *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
  * rounding.  Pixels whose window meets no piece are uniform: they take the
@@ -229,8 +258,27 @@ typedef struct memo {
 #define MEMO_MIN_SLOTS ((size_t)1 << 10)
 #define MEMO_MAX_SLOTS ((size_t)1 << 16)
 
+/* A linear gradient layer's t = tx x + ty y + t0 in pixel units, its spread
+ * and its stops' offsets. */
+typedef struct grad_plane {
+    double tx, ty, t0;
+    int spread, nstops;
+    const aa_gradient_stop *stops;
+} grad_plane;
+
+/* Most stop lines one pixel's window may meet (a repeating gradient finer
+ * than that is refused). */
+#define GRAD_MAX_BREAKS 4096
+
 typedef struct worker {
     const aa_scene *scene;
+    /* gradient paint (grad set): the linear gradients' planes, and room
+     * for the break values of t and the x of one span's pieces */
+    int grad;
+    grad_plane *gp;
+    int ngp;
+    double *gbuf;
+    size_t cap_gbuf;
     const aa_filter *f;
     aa_strip *strip;
     gsl_integration_workspace *ws;
@@ -267,7 +315,309 @@ static void worker_free(worker *w)
     free(w->cross);
     free(w->wind);
     free(w->memo.slot);
+    free(w->gp);
+    free(w->gbuf);
     crowd_free(&w->crowd);
+}
+
+/* ---- gradient paint ---- */
+
+/* The plane of t of gradient g (aa_gradient, linear), whose map m takes
+ * gradient coordinates to pixels: t = ((q - P1).(P2 - P1)) / |P2 - P1|^2
+ * with q = m^-1(x, y). */
+static void grad_plane_of(const aa_gradient *g, grad_plane *gp)
+{
+    const double *m = g->m, *p = g->p;
+    double det = m[0] * m[3] - m[1] * m[2];
+    double i0 = m[3] / det, i1 = -m[1] / det, i2 = -m[2] / det, i3 = m[0] / det;
+    double i4 = -(i0 * m[4] + i2 * m[5]), i5 = -(i1 * m[4] + i3 * m[5]);
+    double dx = p[2] - p[0], dy = p[3] - p[1], l2 = dx * dx + dy * dy;
+    gp->tx = (i0 * dx + i1 * dy) / l2;
+    gp->ty = (i2 * dx + i3 * dy) / l2;
+    gp->t0 = ((i4 - p[0]) * dx + (i5 - p[1]) * dy) / l2;
+    gp->spread = g->spread;
+    gp->nstops = g->nstops;
+    gp->stops = g->stops;
+}
+
+/* The values of t in (ta, tb) where the colour of gp is not smooth: its
+ * stops' offsets (pad), and for repeat and reflect those of every period
+ * (n + o, n + 1 - o) and the periods' ends; at most cap written, the total
+ * returned. */
+static size_t grad_taus(const grad_plane *gp, double ta, double tb, double *out, size_t cap)
+{
+    size_t n = 0;
+    if (gp->spread == AA_SPREAD_PAD) {
+        for (int k = 0; k < gp->nstops; k++) {
+            double o = gp->stops[k].offset;
+            if (o > ta && o < tb && n++ < cap)
+                out[n - 1] = o;
+        }
+        return n;
+    }
+    double lo = floor(ta), hi = ceil(tb);
+    if (hi - lo > 4.0 * GRAD_MAX_BREAKS)
+        return SIZE_MAX; /* refused by the caller */
+    for (double p = lo; p <= hi; p++) {
+        if (p > ta && p < tb && n++ < cap)
+            out[n - 1] = p;
+        for (int k = 0; k < gp->nstops; k++) {
+            double o = gp->stops[k].offset, v[2] = {p + o, p + 1.0 - o};
+            for (int q = 0; q < 2; q++)
+                if (v[q] > ta && v[q] < tb && n++ < cap)
+                    out[n - 1] = v[q];
+        }
+    }
+    return n;
+}
+
+/* The mean of the sRGB decoding over [a, b] (both at least 0.04045): u^2.4
+ * with u = (v + 0.055)/1.055, whose integral is 1.055 u^3.4 / 3.4; over
+ * the interval that is ua^2.4 ((1 + d)^3.4 - 1) / (3.4 d), d = (ub - ua) /
+ * ua, taken through log1p and expm1. */
+static double pow_mean(double a, double b)
+{
+    double ua = (a + 0.055) / 1.055, d = ((b - a) / 1.055) / ua;
+    double base = pow(ua, 2.4);
+    if (d == 0.0)
+        return base;
+    return base * expm1(3.4 * log1p(d)) / (3.4 * d);
+}
+
+/* The mean of aa_srgb_decode over [va, vb] (either order), exactly: the
+ * linear part's mean is its midpoint's, the power part's pow_mean, an
+ * interval across 0.04045 split there. */
+static double decode_mean(double va, double vb)
+{
+    const double T = 0.04045;
+    if (va > vb) {
+        double t = va;
+        va = vb, vb = t;
+    }
+    if (vb <= T)
+        return 0.5 * (va + vb) / 12.92;
+    if (va >= T)
+        return pow_mean(va, vb);
+    double lam = (T - va) / (vb - va);
+    return lam * 0.5 * (va + T) / 12.92 + (1.0 - lam) * pow_mean(T, vb);
+}
+
+static int cmp_dbl(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The integral over the span [xa, xb] (absolute x) of line y, winding
+ * w->wind, of each channel of the decoded composite (box: weight 1). */
+static void grad_span(worker *w, double xa, double xb, double y, int nch, double *sum)
+{
+    double *xs = w->gbuf;
+    size_t nx = 0;
+    xs[nx++] = xa;
+    for (int g = 0; g < w->ngp; g++) {
+        const grad_plane *gp = &w->gp[g];
+        if (gp->tx == 0.0)
+            continue; /* t constant along the line */
+        double ta = gp->tx * xa + gp->ty * y + gp->t0, tb = gp->tx * xb + gp->ty * y + gp->t0;
+        double *taus = xs + nx;
+        size_t m = grad_taus(gp, fmin(ta, tb), fmax(ta, tb), taus, w->cap_gbuf - nx - 1);
+        if (m > w->cap_gbuf - nx - 1)
+            m = w->cap_gbuf - nx - 1; /* cannot happen: sized by the window's range */
+        for (size_t k = 0; k < m; k++) {
+            double x = (taus[k] - gp->ty * y - gp->t0) / gp->tx;
+            if (x > xa && x < xb)
+                xs[nx++] = x;
+        }
+    }
+    qsort(xs + 1, nx - 1, sizeof *xs, cmp_dbl);
+    xs[nx++] = xb;
+    for (size_t k = 0; k + 1 < nx; k++) {
+        double a = xs[k], b = xs[k + 1], h = b - a;
+        if (!(h > 0.0))
+            continue;
+        double e1[3], e3[3];
+        aa_scene_encoded_of_at(w->scene, w->wind, a + 0.25 * h, y, e1);
+        aa_scene_encoded_of_at(w->scene, w->wind, a + 0.75 * h, y, e3);
+        for (int ch = 0; ch < nch; ch++) {
+            double va = 1.5 * e1[ch] - 0.5 * e3[ch], vb = 1.5 * e3[ch] - 0.5 * e1[ch];
+            va = va < 0.0 ? 0.0 : (va > 1.0 ? 1.0 : va);
+            vb = vb < 0.0 ? 0.0 : (vb > 1.0 ? 1.0 : vb);
+            sum[ch] += h * decode_mean(va, vb);
+        }
+    }
+}
+
+/* Whether the reference integrates this gradient scene exactly (truth.c's
+ * opening comment): linear gradients only, the box filter, no offset
+ * pieces, and the composite affine along a row between stops. */
+static int grad_check(const aa_scene *scene, const aa_filter *f)
+{
+    if (!aa_filter_is_box(f))
+        return aa_fail(AA_EINVAL, "the reference integrates gradient paint exactly under the "
+                                  "box filter only (filter %s): use -f box",
+                       f->type->info.name);
+    int n = aa_scene_layer_count(scene), ngrad = 0, varying = -1;
+    for (int l = 0; l < n; l++) {
+        aa_gradient g;
+        if (!aa_scene_layer_gradient(scene, l, &g))
+            continue;
+        ngrad++;
+        if (g.kind != AA_GRADIENT_LINEAR)
+            return aa_fail(AA_EINVAL, "layer %d: the reference of a radial gradient is not "
+                                      "implemented (its t is a square root along a row, whose "
+                                      "decoded integral has no closed form here); sample it "
+                                      "with point, supersample or jitter",
+                           l);
+        for (int k = 1; k < g.nstops; k++)
+            if (g.stops[k].opacity != g.stops[0].opacity)
+                varying = l;
+    }
+    if (varying >= 0 && ngrad > 1)
+        return aa_fail(AA_EINVAL, "layer %d: a gradient whose stops' opacities differ, with "
+                                  "another gradient in the scene: the composite is then not "
+                                  "affine along a row and the reference's closed form does not "
+                                  "apply",
+                       varying);
+    size_t np;
+    const aa_piece *pc = aa_scene_pieces(scene, &np);
+    for (size_t k = 0; k < np; k++)
+        if (pc[k].kind == AA_PIECE_OFFSET)
+            return aa_fail(AA_EINVAL, "the reference of gradient paint with offset curves "
+                                      "(strokes of curves) is not implemented: where a stop's "
+                                      "line meets them is not solved for");
+    return AA_OK;
+}
+
+static int grad_init(worker *w)
+{
+    int n = aa_scene_layer_count(w->scene);
+    w->gp = calloc((size_t)(n > 0 ? n : 1), sizeof *w->gp);
+    w->cap_gbuf = 4 * GRAD_MAX_BREAKS + 8;
+    w->gbuf = malloc(w->cap_gbuf * sizeof *w->gbuf);
+    if (!w->gp || !w->gbuf)
+        return aa_fail(AA_ENOMEM, "out of memory for gradient planes");
+    for (int l = 0; l < n; l++) {
+        aa_gradient g;
+        if (aa_scene_layer_gradient(w->scene, l, &g))
+            grad_plane_of(&g, &w->gp[w->ngp++]);
+    }
+    w->grad = 1;
+    return AA_OK;
+}
+
+/* The roots in [0, 1] of c0 + c1 t + c2 t^2 + c3 t^3, isolated between
+ * its turns and bisected; at most 3 into ts. */
+static int cubic_roots01(const double c[4], double ts[3])
+{
+    double cut[4] = {0.0, 0.0, 0.0, 0.0}, r0, r1;
+    int nc = 0, n = 0;
+    cut[nc++] = 0.0;
+    int m = gsl_poly_solve_quadratic(3.0 * c[3], 2.0 * c[2], c[1], &r0, &r1);
+    if (m > 0 && r0 > 0.0 && r0 < 1.0)
+        cut[nc++] = r0;
+    if (m > 1 && r1 > cut[nc - 1] && r1 < 1.0)
+        cut[nc++] = r1;
+    cut[nc++] = 1.0;
+    for (int k = 0; k + 1 < nc; k++) {
+        double a = cut[k], b = cut[k + 1];
+        double fa = c[0] + a * (c[1] + a * (c[2] + a * c[3]));
+        double fb = c[0] + b * (c[1] + b * (c[2] + b * c[3]));
+        if (fa == 0.0) {
+            if (!n || ts[n - 1] != a)
+                ts[n++] = a;
+            continue;
+        }
+        if ((fa < 0.0) == (fb < 0.0) || fb == 0.0)
+            continue;
+        for (int it = 0; it < 200 && b - a > 0.0; it++) {
+            double mid = 0.5 * (a + b);
+            if (mid <= a || mid >= b)
+                break;
+            double fm = c[0] + mid * (c[1] + mid * (c[2] + mid * c[3]));
+            if ((fm < 0.0) == (fa < 0.0))
+                a = mid, fa = fm;
+            else
+                b = mid;
+        }
+        ts[n++] = 0.5 * (a + b);
+    }
+    return n;
+}
+
+/* Breakpoints of gradient paint (truth.c's opening comment): where each
+ * line t = tau of the window's range crosses the window's sides and meets
+ * a local piece. */
+static int add_abs(worker *w, double y, double lo, double hi);
+static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
+{
+    double R = w->R, cx[4] = {w->uc - R, w->uc + R, w->uc - R, w->uc + R},
+           cy[4] = {w->vc - R, w->vc - R, w->vc + R, w->vc + R};
+    int st = AA_OK;
+    size_t total = 0;
+    for (int g = 0; g < w->ngp && !st; g++) {
+        const grad_plane *gp = &w->gp[g];
+        double tmin = INFINITY, tmax = -INFINITY;
+        for (int k = 0; k < 4; k++) {
+            double t = gp->tx * cx[k] + gp->ty * cy[k] + gp->t0;
+            tmin = fmin(tmin, t), tmax = fmax(tmax, t);
+        }
+        double *taus = w->gbuf;
+        size_t m = grad_taus(gp, tmin, tmax, taus, w->cap_gbuf);
+        total += m;
+        if (m > GRAD_MAX_BREAKS || total > GRAD_MAX_BREAKS)
+            return aa_fail(AA_EINVAL, "a gradient's stops repeat more than %d times across the "
+                                      "window of pixel (%g, %g): refused",
+                           GRAD_MAX_BREAKS, w->uc - 0.5, w->vc - 0.5);
+        for (size_t q = 0; q < m && !st; q++) {
+            double tau = taus[q];
+            if (gp->ty != 0.0)
+                for (int k = 0; k < 2 && !st; k++)
+                    st = add_abs(w, (tau - gp->t0 - gp->tx * cx[k]) / gp->ty, -INFINITY,
+                                 INFINITY);
+            for (size_t k = 0; k < n && !st; k++) {
+                const aa_piece *p = local[k];
+                double ys[3];
+                if (p->kind == AA_PIECE_FLAT || p->kind == AA_PIECE_OFFSET)
+                    continue;
+                if (gp->ty == 0.0) {
+                    int mm = aa_piece_meet_x(p, (tau - gp->t0) / gp->tx, ys);
+                    for (int r = 0; r < mm && !st; r++)
+                        st = add_abs(w, ys[r], -INFINITY, INFINITY);
+                    continue;
+                }
+                if (p->kind == AA_PIECE_CONIC) {
+                    /* A cos s + B sin s + C = 0 on the arc's angle s */
+                    double A = gp->tx * p->ea - gp->ty * p->er, B = gp->tx * p->eb;
+                    double C = gp->tx * p->ex + gp->ty * p->ey + gp->t0 - tau;
+                    double rho = hypot(A, B);
+                    if (!(rho > 0.0) || fabs(C) > rho)
+                        continue;
+                    double phi = atan2(B, A), a = acos(-C / rho);
+                    for (int r = 0; r < 2 && !st; r++) {
+                        double sang = phi + (r ? -a : a);
+                        for (int wrap = -2; wrap <= 2 && !st; wrap++) {
+                            double sv = sang + 2.0 * M_PI * wrap;
+                            if (sv >= p->s0 && sv <= p->s1)
+                                st = add_abs(w, p->ey - p->er * cos(sv), -INFINITY, INFINITY);
+                        }
+                    }
+                    continue;
+                }
+                double c[4] = {gp->tx * p->x0 + gp->ty * p->y0 + gp->t0 - tau,
+                               gp->tx * p->bx + gp->ty * p->by, gp->tx * p->ax + gp->ty * p->ay,
+                               gp->tx * p->dx + gp->ty * p->dy};
+                double ts[3];
+                int mm = cubic_roots01(c, ts);
+                for (int r = 0; r < mm && !st; r++) {
+                    double t = ts[r];
+                    st = add_abs(w, p->y0 + t * (p->by + t * (p->ay + t * p->dy)), -INFINITY,
+                                 INFINITY);
+                }
+            }
+        }
+    }
+    return st;
 }
 
 /* On failure the worker is left empty, so worker_free is always safe. */
@@ -445,6 +795,8 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
             st = add_point(w, near);
         }
     }
+    if (!st && w->grad)
+        st = grad_breakpoints(w, local, n);
     if (st)
         return st;
     /* make room for both ends: add_point only grows inside (-R, R) */
@@ -540,7 +892,10 @@ static inline void inner_sums(worker *w, double s, int nch, double *out)
     double sum[3] = {0.0, 0.0, 0.0}, cur = -R, fcur = 0.0;
     for (size_t k = 0; k <= nc; k++) {
         double next = k < nc ? w->cross[k].x : R;
-        if (next > cur) {
+        if (next > cur && w->grad) {
+            grad_span(w, w->uc + cur, w->uc + next, w->vc + s, nch, sum);
+            cur = next;
+        } else if (next > cur) {
             aa_rgb col = aa_scene_colour_of(w->scene, w->wind);
             double fnext = w->box      ? next
                            : w->radial ? aa_filter_row_cdf(w->f, s, next)
@@ -745,6 +1100,11 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     size_t n;
     const aa_piece *const *local = aa_strip_local(w->strip, &n);
     int st;
+    if (w->grad && (n > TRUTH_MAX_PAIRS || w->all_crowd))
+        return aa_fail(AA_EINVAL, "pixel (%g, %g): %zu pieces near it in a scene with gradient "
+                                  "paint; the reference's crowded path takes constant colours "
+                                  "only (at most %d)",
+                       w->uc - 0.5, w->vc - 0.5, n, TRUTH_MAX_PAIRS);
     if (n > TRUTH_MAX_PAIRS || w->all_crowd) {
         st = crowd_pixel(&w->crowd, w->scene, w->strip, w->f, w->uc, w->vc, local, n, grey,
                          n <= TRUTH_CROWD && !w->all_crowd, value, bound);
@@ -785,6 +1145,11 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     long double leps = aa_long_double_is_extended() ? LDBL_EPSILON : DBL_EPSILON;
     *bound = worst + w->f->lost + 8.0 * DBL_EPSILON * fmax(w->R, 1.0) * peak * (double)n +
              (double)(8 * leps) * scale * peak;
+    /* gradient paint: each piece's mean comes from two composites (a few
+     * ulps each, doubled by the extension to the ends) and pow, expm1 and
+     * log1p (an ulp or two each), over a window of width 2R */
+    if (w->grad)
+        *bound += 64.0 * DBL_EPSILON * 2.0 * w->R;
     return AA_OK;
 }
 
@@ -813,7 +1178,7 @@ static int render_row(worker *w, panel_worker *fs, int j, aa_image *out, aa_imag
     for (int i = 0; i < out->w;) {
         double *px = aa_pixel(out, i, j), b;
         w->uc = i + 0.5;
-        if (aa_strip_window(w->strip, w->uc - R, w->uc + R) == 0) {
+        if (aa_strip_window(w->strip, w->uc - R, w->uc + R) == 0 && !w->grad) {
             /* a run of uniform windows: one colour, no integration */
             aa_rgb c;
             int end = aa_strip_uniform_run(w->strip, i, out->w, R, w->vc, w->wind, &c);
@@ -920,6 +1285,9 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
         return aa_fail(AA_EINVAL, "reference bound image must be %dx%dx1", out->w, out->h);
     if (aa_scene_field(placed, NULL, NULL, NULL))
         return field_render(placed, f, threads, out, bound, stats, nfast);
+    int grad = aa_scene_has_gradients(placed), gst;
+    if (grad && (gst = grad_check(placed, f)))
+        return gst;
     gsl_set_error_handler_off(); /* QAG's status is judged by its error estimate */
     int status = AA_OK;
     char message[1024] = "";
@@ -961,6 +1329,8 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
         panel_worker fs;
         row_stats rs = {0, 0, 0, 0, 0.0, -1, -1};
         int st = worker_init(&w, placed, f);
+        if (!st && grad)
+            st = grad_init(&w);
         w.all_crowd = mode == AA__TRUTH_CROWD;
         memset(&fs, 0, sizeof fs);
         if (!st && use_fast)

@@ -173,9 +173,32 @@ static int fz_arc(void *ctx, double cx, double cy, double ux, double uy, double 
                            x / 64, y / 48);
 }
 
+/* A gradient right after its shape, outside clips: at least two stops,
+ * offsets ascending in [0, 1], opacities in [0, 1], every number finite;
+ * its map to the unit square as the points'. */
+static int fz_gradient(void *ctx, const aa_gradient *g)
+{
+    fuzz_sink *f = ctx;
+    if (!f->fresh || f->in_clip || g->nstops < 2 || !g->stops)
+        abort();
+    for (int k = 0; k < g->nstops; k++)
+        if (!(g->stops[k].offset >= 0 && g->stops[k].offset <= 1) ||
+            (k && g->stops[k].offset < g->stops[k - 1].offset) ||
+            !(g->stops[k].opacity >= 0 && g->stops[k].opacity <= 1))
+            abort();
+    for (int k = 0; k < 6; k++)
+        if (!isfinite(g->p[k]) || !isfinite(g->m[k]))
+            abort();
+    aa_gradient h = *g;
+    const double m[6] = {g->m[0] / 64, g->m[1] / 48, g->m[2] / 64,
+                         g->m[3] / 48, g->m[4] / 64, g->m[5] / 48};
+    memcpy(h.m, m, sizeof m);
+    return aa_scene_set_gradient(f->s, &h);
+}
+
 static const aa_svg_sink fuzz_svg_sink = {
     fz_shape, fz_move,        fz_line,      fz_quad,       fz_cubic,     fz_close, fz_arc, NULL,
-    fz_alpha, fz_group_begin, fz_group_end, fz_clip_begin, fz_clip_end, fz_clip};
+    fz_alpha, fz_group_begin, fz_group_end, fz_clip_begin, fz_clip_end, fz_clip, fz_gradient};
 
 int aa_fuzz_svg(const uint8_t *data, size_t size)
 {

@@ -1,0 +1,910 @@
+/*
+ * test_gradient.c: gradient paint (harness/core/scene.c,
+ * aa_scene_set_gradient; patterns/README.md, "Gradients") through the
+ * exact box reference (harness/truth/truth.c), the sampling methods, the
+ * methods that refuse it, and the SVG reader (patterns/svgfile.c).
+ *
+ * Known answers, derived here and not from the code under test:
+ *  - the sRGB decoding (IEC 61966-2-1) dec(v) = v / 12.92 for v <= T =
+ *    0.04045, ((v + 0.055) / 1.055)^2.4 above.  Its integral over [0, 1]:
+ *        Ibar = T^2 / (2 x 12.92) + (1.055 / 3.4) (1 - uT^3.4),
+ *    uT = (T + 0.055) / 1.055, since d/dv (1.055/3.4) u^3.4 = u^2.4 with
+ *    du/dv = 1/1.055.  A black-to-white linear gradient (encoded value
+ *    the ramp t itself) from x = a to x = b across a W x H rectangle,
+ *    padded, has the box reference sum H (a dec(0) + (b - a) Ibar +
+ *    (W - b) dec(1)) = H ((b - a) Ibar + W - b): the box reference of a
+ *    picture sums to its integral;
+ *  - repeat and reflect of that ramp over whole periods: every period's
+ *    integral is (its length) Ibar (reflect's second half is the first
+ *    mirrored), so the sum is W H Ibar;
+ *  - a gradient over a disc and an oblique gradient with three stops over
+ *    a rectangle: their integrals by GSL's adaptive quadrature in two
+ *    dimensions (outer rows, inner along the chord, with the gradient's
+ *    colour written out here from SVG's definition), a different route
+ *    from the reference's closed form along rows;
+ *  - per pixel, the same two-dimensional quadrature over single pixels
+ *    (1e-11);
+ *  - a centred radial gradient black to white over its disc of radius r:
+ *    in polar coordinates t = rho / r, so the integral is
+ *    2 pi r^2 int_0^1 dec(t) t dt, the last integral by GSL's QAG here;
+ *    the sampling methods (point, supersample) must converge to it.
+ *
+ * The sampling methods' images converge to the reference as their sample
+ * counts grow; the methods that draw from the layers' constant colours
+ * refuse the scene naming gradient paint.
+ */
+#include "bench.h"
+#include "core.h"
+#include "patterns.h"
+#include "support.h"
+#include "truth.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+
+#define W 16
+#define H 12
+
+static char dir[4096];
+/* the image's size for the helpers below (pattern units to pixels) */
+static int gw = W, gh = H;
+
+static int setup(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off();
+    return support_tmpdir(dir, sizeof dir, "gradient");
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    return support_rmtree(dir);
+}
+
+/* sRGB's decoding (IEC 61966-2-1), written out here. */
+static double dec(double e)
+{
+    if (e <= 0.0)
+        return 0.0;
+    if (e >= 1.0)
+        return 1.0;
+    return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+}
+
+/* Ibar = int_0^1 dec(v) dv in closed form (the opening comment). */
+static double ibar(void)
+{
+    const double T = 0.04045, uT = (T + 0.055) / 1.055;
+    return T * T / (2.0 * 12.92) + (1.055 / 3.4) * (1.0 - pow(uT, 3.4));
+}
+
+static double channel_sum(const aa_image *im, int ch)
+{
+    double s = 0.0;
+    for (int j = 0; j < im->h; j++)
+        for (int i = 0; i < im->w; i++)
+            s += aa_pixel(im, i, j)[ch];
+    return s;
+}
+
+static void expect_sum(const char *what, const aa_image *im, int ch, double want, double tol)
+{
+    double got = channel_sum(im, ch);
+    print_message("%s, channel %d: sum %.15g, independent %.15g (diff %.2g)\n", what, ch, got,
+                  want, got - want);
+    if (!(fabs(got - want) <= tol * fmax(1, fabs(want))))
+        fail_msg("%s, channel %d: the box reference sums to %.17g, not %.17g", what, ch, got,
+                 want);
+}
+
+/* ---- scenes in pattern units (the unit square is W x H pixels) ---- */
+
+/* A rectangle [x0, x1] x [y0, y1] in pixels as a layer of the scene. */
+static void rect_px(aa_scene *s, aa_rgb c, double x0, double y0, double x1, double y1)
+{
+    assert_int_equal(aa_scene_layer(s, c, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, x0 / gw, y0 / gh), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x1 / gw, y0 / gh), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x1 / gw, y1 / gh), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x0 / gw, y1 / gh), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+}
+
+/* A disc of centre (cx, cy) and radius r in pixels. */
+static void disc_px(aa_scene *s, double cx, double cy, double r)
+{
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, (cx + r) / gw, cy / gh), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, cx / gw, cy / gh, r / gw, 0, 0, r / gh, 0, 2 * M_PI,
+                                     (cx + r) / gw, cy / gh),
+                     AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+}
+
+/* A gradient whose coordinates are pixels (m: pixels to pattern units). */
+static aa_gradient grad_px(int kind, int spread, const double p[6], const aa_gradient_stop *st,
+                           int n)
+{
+    aa_gradient g = {kind, spread, {0}, {1.0 / gw, 0, 0, 1.0 / gh, 0, 0}, n, st};
+    memcpy(g.p, p, sizeof g.p);
+    return g;
+}
+
+static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
+                                                {1.0, {{1, 1, 1}}, 1.0}};
+
+static void reference(const aa_scene *s, int w, int h, aa_image *ref, aa_image *bound,
+                      aa_truth_stats *stats)
+{
+    support_view v = {w, h, 0, 0, 0, NULL, 1, 1, 0};
+    support_reference(s, &v, ref, bound, stats);
+}
+
+/* The largest per-pixel bound of a reference, checked against 1e-12. */
+static void expect_bound(const char *what, const aa_truth_stats *stats)
+{
+    print_message("%s: largest bound %.2g\n", what, stats->max_bound);
+    if (!(stats->max_bound <= 1e-12))
+        fail_msg("%s: the reference's bound %.3g is above 1e-12", what, stats->max_bound);
+}
+
+/* ---- closed forms ---- */
+
+/* Black to white from x = 3.25 to x = 11.5 across the whole 16 x 12
+ * image, padded on both sides; horizontal and, through the gradient's
+ * map, the same ramp given along y and rotated by 90 degrees. */
+static void test_linear_pad(void **state)
+{
+    (void)state;
+    const double a = 3.25, b = 11.5, want = H * ((b - a) * ibar() + (W - b));
+    for (int rot = 0; rot < 2; rot++) {
+        aa_scene *s = aa_scene_new((aa_rgb){{0.3, 0.1, 0.7}});
+        rect_px(s, (aa_rgb){{0, 0, 0}}, 0, 0, W, H);
+        aa_gradient g = grad_px(AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                                (const double[6]){a, 0, b, 0, 0, 0}, black_white, 2);
+        if (rot) { /* gradient (x, y) -> pixels (-y + 0, x): ramp along y in its own units */
+            double p[6] = {0, -a, 0, -b, 0, 0}; /* q = (0, -X) maps to pixel X */
+            g = grad_px(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, p, black_white, 2);
+            double m[6] = {0, 1.0 / H, -1.0 / W, 0, 0, 0};
+            memcpy(g.m, m, sizeof m);
+        }
+        assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        assert_true(aa_scene_has_gradients(s));
+        assert_false(aa_scene_is_opaque(s));
+        assert_true(aa_scene_is_grey(s) == 0); /* the background is not grey */
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, W, H, &ref, &bound, &stats);
+        for (int ch = 0; ch < 3; ch++)
+            expect_sum(rot ? "linear pad, rotated map" : "linear pad", &ref, ch, want, 1e-13);
+        expect_bound("linear pad", &stats);
+        /* the first column is black, the last white, exactly */
+        assert_true(aa_pixel(&ref, 0, 5)[0] == 0.0 || fabs(aa_pixel(&ref, 0, 5)[0]) < 1e-15);
+        assert_true(fabs(aa_pixel(&ref, W - 1, 5)[1] - 1.0) < 1e-15);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+}
+
+/* Repeat and reflect over whole periods: 16 px holds 4 periods of 4 px
+ * (the gradient from x = 1 to 5, so the periods start at 1, 5, 9, 13 and
+ * the first and last pixels hold one period's two ends between them). */
+static void test_repeat_reflect(void **state)
+{
+    (void)state;
+    for (int spread = AA_SPREAD_REFLECT; spread <= AA_SPREAD_REPEAT; spread++) {
+        aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+        rect_px(s, (aa_rgb){{0, 0, 0}}, 0, 0, W, H);
+        /* slightly oblique: x from 1 to 5 and y 0.5 px down over the period */
+        aa_gradient g = grad_px(AA_GRADIENT_LINEAR, spread,
+                                (const double[6]){1, 0, 5, 0, 0, 0}, black_white, 2);
+        assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, W, H, &ref, &bound, &stats);
+        const char *what = spread == AA_SPREAD_REPEAT ? "repeat" : "reflect";
+        expect_sum(what, &ref, 0, W * H * ibar(), 1e-13);
+        expect_bound(what, &stats);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* ---- an independent 2-D integration of the picture ---- */
+
+/* One gradient layer painting a region over an opaque background: the
+ * colour at (x, y) in pixels, written out from SVG's definition (linear:
+ * t the projection on P1 P2; pad, reflect, repeat; stops interpolated in
+ * encoded values). */
+typedef struct picture {
+    double x1, y1, x2, y2;
+    int spread;
+    const aa_gradient_stop *stops;
+    int n;
+    double alpha;  /* the layer's alpha */
+    double bg[3];  /* encoded background */
+    int disc;      /* region: disc (cx, cy, r) or rectangle (rx0, ry0, rx1, ry1) */
+    double r[4];
+    int ch;
+    double tau[256]; /* the t where channel ch is not smooth (picture_taus) */
+    int ntau;
+} picture;
+
+static double stop_value(const picture *p, double t, int ch, double *opacity)
+{
+    if (p->spread == AA_SPREAD_REPEAT)
+        t -= floor(t);
+    else if (p->spread == AA_SPREAD_REFLECT) {
+        t = fmod(fabs(t), 2.0);
+        if (t > 1.0)
+            t = 2.0 - t;
+    } else
+        t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    const aa_gradient_stop *s = p->stops;
+    double c0, c1;
+    if (t <= s[0].offset) {
+        *opacity = s[0].opacity;
+        return ch < 3 ? (s[0].colour.c[ch] <= 0.0031308 ? 12.92 * s[0].colour.c[ch]
+                                                         : 1.055 * pow(s[0].colour.c[ch],
+                                                                       1 / 2.4) - 0.055)
+                      : 0;
+    }
+    int k = p->n - 1;
+    for (int q = 0; q + 1 < p->n; q++)
+        if (t < s[q + 1].offset) {
+            k = q;
+            break;
+        }
+    double lin0 = s[k].colour.c[ch], lin1 = s[k < p->n - 1 ? k + 1 : k].colour.c[ch];
+    c0 = lin0 <= 0.0031308 ? 12.92 * lin0 : 1.055 * pow(lin0, 1 / 2.4) - 0.055;
+    c1 = lin1 <= 0.0031308 ? 12.92 * lin1 : 1.055 * pow(lin1, 1 / 2.4) - 0.055;
+    if (k == p->n - 1) {
+        *opacity = s[k].opacity;
+        return c0;
+    }
+    double f = (t - s[k].offset) / (s[k + 1].offset - s[k].offset);
+    *opacity = s[k].opacity + f * (s[k + 1].opacity - s[k].opacity);
+    return c0 + f * (c1 - c0);
+}
+
+static double picture_at(const picture *p, double x, double y)
+{
+    int in = p->disc ? hypot(x - p->r[0], y - p->r[1]) < p->r[2]
+                     : (x > p->r[0] && x < p->r[2] && y > p->r[1] && y < p->r[3]);
+    if (!in)
+        return dec(p->bg[p->ch]);
+    double dx = p->x2 - p->x1, dy = p->y2 - p->y1;
+    double t = ((x - p->x1) * dx + (y - p->y1) * dy) / (dx * dx + dy * dy), op;
+    double c = stop_value(p, t, p->ch, &op);
+    double a = p->alpha * op;
+    return dec(a * c + (1 - a) * p->bg[p->ch]);
+}
+
+typedef struct row_ctx {
+    const picture *p;
+    double y, xa, xb;
+    gsl_integration_workspace *wi;
+} row_ctx;
+
+static double along_x(double x, void *v)
+{
+    const row_ctx *c = v;
+    return picture_at(c->p, x, c->y);
+}
+
+/* The integral of a row y over [xa, xb], split where the region's side
+ * is (the disc's chord ends, the rectangle's sides). */
+static double along_y(double y, void *v)
+{
+    row_ctx *c = v;
+    c->y = y;
+    double cut[4], res, err, sum = 0;
+    int n = 0;
+    cut[n++] = c->xa;
+    (void)cut;
+    double lo, hi;
+    if (c->p->disc) {
+        double h = c->p->r[2] * c->p->r[2] - (y - c->p->r[1]) * (y - c->p->r[1]);
+        lo = h > 0 ? c->p->r[0] - sqrt(h) : c->xa, hi = h > 0 ? c->p->r[0] + sqrt(h) : c->xa;
+    } else
+        lo = c->p->r[0], hi = c->p->r[2];
+    if (lo > c->xa && lo < c->xb)
+        cut[n++] = lo;
+    if (hi > cut[n - 1] && hi < c->xb)
+        cut[n++] = hi;
+    cut[n++] = c->xb;
+    /* and where t passes a value of p->tau along the row */
+    const picture *p = c->p;
+    double dx = p->x2 - p->x1, dy = p->y2 - p->y1, l2 = dx * dx + dy * dy;
+    double all[300];
+    int na = 0;
+    for (int q = 0; q < p->ntau && dx != 0; q++) {
+        double x = p->x1 + (p->tau[q] * l2 - (y - p->y1) * dy) / dx;
+        if (x > c->xa && x < c->xb)
+            all[na++] = x;
+    }
+    for (int k = 0; k < n - 1; k++)
+        all[na++] = cut[k + 1];
+    qsort(all, (size_t)na, sizeof *all, cmp_double);
+    double xs[300];
+    int m = 0;
+    xs[m++] = c->xa;
+    for (int k = 0; k < na; k++)
+        if (all[k] > xs[m - 1] && all[k] <= c->xb)
+            xs[m++] = all[k];
+    gsl_function F = {along_x, c};
+    for (int k = 0; k + 1 < m; k++) {
+        gsl_integration_qag(&F, xs[k], xs[k + 1], 1e-15, 1e-14, 1000, GSL_INTEG_GAUSS21, c->wi,
+                            &res, &err);
+        sum += res;
+    }
+    return sum;
+}
+
+/* The values of t in periods -4 .. 4 where channel p->ch of the picture
+ * is not smooth: each stop's offset, mirrored for reflect, and where the
+ * composite crosses the decoding's threshold 0.04045 inside a stop's
+ * segment. */
+static void picture_taus(picture *p)
+{
+    double o[64];
+    int no = 0;
+    for (int q = 0; q < p->n; q++)
+        o[no++] = p->stops[q].offset;
+    for (int q = 0; q + 1 < p->n; q++) {
+        double op, c0 = stop_value(p, p->stops[q].offset, p->ch, &op);
+        double a = p->alpha * op;
+        double mid = stop_value(p, 0.5 * (p->stops[q].offset + p->stops[q + 1].offset), p->ch,
+                                &op);
+        double c1 = 2 * mid - c0; /* the segment's far end, linear */
+        if (c1 == c0)
+            continue;
+        double f = ((0.04045 - (1 - a) * p->bg[p->ch]) / a - c0) / (c1 - c0);
+        if (f > 0 && f < 1)
+            o[no++] = p->stops[q].offset + f * (p->stops[q + 1].offset - p->stops[q].offset);
+    }
+    p->ntau = 0;
+    for (int per = -4; per <= 4; per++)
+        for (int q = 0; q < no; q++) {
+            p->tau[p->ntau++] = per + o[q];
+            if (p->spread == AA_SPREAD_REFLECT)
+                p->tau[p->ntau++] = per + 1 - o[q];
+        }
+}
+
+/* The integral of the picture over [xa, xb] x [ya, yb], rows split at the
+ * given heights. */
+static double integrate2d(const picture *p, double xa, double xb, double ya, double yb,
+                          const double *ycut, int ncut)
+{
+    gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
+    row_ctx c = {p, 0, xa, xb, gsl_integration_workspace_alloc(1000)};
+    gsl_function F = {along_y, &c};
+    /* rows also split where a line t = tau (a stop's offset in some
+     * period, or where the composite crosses the decoding's threshold)
+     * crosses a side of the region or of [xa, xb]: the row integral has a
+     * kink there */
+    double cut[1200], res, err, sum = 0, all[1200];
+    int n = 0, na = 0;
+    for (int k = 0; k < ncut; k++)
+        all[na++] = ycut[k];
+    double dx = p->x2 - p->x1, dy = p->y2 - p->y1, l2 = dx * dx + dy * dy;
+    double X[4] = {xa, xb, p->disc ? xa : p->r[0], p->disc ? xb : p->r[2]};
+    for (int q = 0; q < p->ntau && dy != 0; q++)
+        for (int k = 0; k < 4 && na < 1190; k++)
+            all[na++] = p->y1 + (p->tau[q] * l2 - (X[k] - p->x1) * dx) / dy;
+    qsort(all, (size_t)na, sizeof *all, cmp_double);
+    cut[n++] = ya;
+    for (int k = 0; k < na; k++)
+        if (all[k] > cut[n - 1] && all[k] < yb)
+            cut[n++] = all[k];
+    cut[n++] = yb;
+    for (int k = 0; k + 1 < n; k++) {
+        gsl_integration_qag(&F, cut[k], cut[k + 1], 1e-14, 1e-13, 1000, GSL_INTEG_GAUSS21, wo,
+                            &res, &err);
+        sum += res;
+    }
+    gsl_integration_workspace_free(c.wi);
+    gsl_integration_workspace_free(wo);
+    return sum;
+}
+
+static const aa_gradient_stop three[3] = {{0.0, {{1, 0, 0}}, 1.0},
+                                          {0.4, {{0.2, 0.9, 0.1}}, 1.0},
+                                          {1.0, {{0, 0.05, 1}}, 1.0}};
+
+/* A gradient on a disc over a grey background, and an oblique one with
+ * three stops (one of them sharp) and alpha 0.6 on a rectangle: the box
+ * reference sums to the 2-D integral, and a few pixels (a disc's edge, a
+ * stop's line) match the 2-D integral over the pixel. */
+static void test_against_2d(void **state)
+{
+    (void)state;
+    const double bgl = 0.2, bge = 1.055 * pow(bgl, 1 / 2.4) - 0.055;
+    for (int which = 0; which < 2; which++) {
+        aa_scene *s = aa_scene_new((aa_rgb){{bgl, bgl, bgl}});
+        picture p = {0};
+        p.bg[0] = p.bg[1] = p.bg[2] = bge;
+        p.alpha = 1;
+        if (!which) {
+            disc_px(s, 8.3, 6.1, 5.2);
+            p.disc = 1, p.r[0] = 8.3, p.r[1] = 6.1, p.r[2] = 5.2;
+            p.x1 = 3.1, p.y1 = 2.0, p.x2 = 13.4, p.y2 = 9.7;
+            p.spread = AA_SPREAD_PAD, p.stops = black_white, p.n = 2;
+        } else {
+            rect_px(s, (aa_rgb){{0, 0, 0}}, 1.5, 2.25, 14.75, 10.5);
+            assert_int_equal(aa_scene_set_alpha(s, 0.6), AA_OK);
+            p.r[0] = 1.5, p.r[1] = 2.25, p.r[2] = 14.75, p.r[3] = 10.5;
+            p.x1 = 2.0, p.y1 = 9.0, p.x2 = 9.0, p.y2 = 4.5;
+            p.spread = AA_SPREAD_REFLECT, p.stops = three, p.n = 3, p.alpha = 0.6;
+        }
+        aa_gradient g = grad_px(AA_GRADIENT_LINEAR, p.spread,
+                                (const double[6]){p.x1, p.y1, p.x2, p.y2, 0, 0}, p.stops, p.n);
+        assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, W, H, &ref, &bound, &stats);
+        expect_bound(which ? "three stops, reflect" : "disc", &stats);
+        double ycut[2] = {which ? 2.25 : 6.1 - 5.2, which ? 10.5 : 6.1 + 5.2};
+        for (int ch = 0; ch < 3; ch++) {
+            p.ch = ch;
+            picture_taus(&p);
+            double want = integrate2d(&p, 0, W, 0, H, ycut, 2);
+            expect_sum(which ? "three stops, reflect" : "disc", &ref, ch, want, 1e-11);
+        }
+        static const int pix[4][2] = {{3, 6}, {8, 1}, {6, 7}, {12, 3}};
+        for (int k = 0; k < 4; k++) {
+            int i = pix[k][0], j = pix[k][1];
+            for (int ch = 0; ch < 3; ch++) {
+                p.ch = ch;
+            picture_taus(&p);
+                /* rows split also where the disc's rim crosses the pixel's
+                 * sides (the row integral has a kink there) */
+                double cuts[6] = {ycut[0], ycut[1]};
+                int nc = 2;
+                for (int side = 0; p.disc && side < 2; side++) {
+                    double dx = i + side - p.r[0], h = p.r[2] * p.r[2] - dx * dx;
+                    if (h > 0)
+                        cuts[nc++] = p.r[1] - sqrt(h), cuts[nc++] = p.r[1] + sqrt(h);
+                }
+                qsort(cuts, (size_t)nc, sizeof *cuts, cmp_double);
+                double want = integrate2d(&p, i, i + 1, j, j + 1, cuts, nc);
+                double got = aa_pixel(&ref, i, j)[ch];
+                if (!(fabs(got - want) <= 1e-11))
+                    fail_msg("pixel (%d, %d) channel %d: %.17g, 2-D quadrature %.17g", i, j, ch,
+                             got, want);
+            }
+        }
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+}
+
+/* ---- methods ---- */
+
+/* The sampling methods converge to the reference: supersample n = 2, 4,
+ * 8, 16 on the disc's gradient; each error below the last, the last
+ * below 3e-3; point sampling and jitter run; the methods drawing from the
+ * layers' colours refuse, naming gradient paint. */
+static void test_methods(void **state)
+{
+    (void)state;
+    gw = gh = W;
+    aa_scene *s = aa_scene_new((aa_rgb){{0.2, 0.2, 0.2}});
+    disc_px(s, 8.3, 6.1, 5.2);
+    aa_gradient g = grad_px(AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT,
+                            (const double[6]){3.1, 2.0, 7.4, 5.7, 0, 0}, three, 3);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_image ref;
+    aa_truth_stats stats;
+    reference(s, W, W, &ref, NULL, &stats);
+    double last = INFINITY;
+    for (int n = 2; n <= 16; n *= 2) {
+        char spec[64];
+        snprintf(spec, sizeof spec, "supersample:n=%d", n);
+        aa_image im;
+        support_render(spec, s, NULL, W, W, 1, &im, NULL);
+        double e = support_rmse(&im, &ref);
+        print_message("%s: rmse %.3g\n", spec, e);
+        assert_true(e < last);
+        last = e;
+        aa_image_free(&im);
+    }
+    assert_true(last < 3e-3);
+    aa_image im;
+    support_render("point", s, NULL, W, W, 1, &im, NULL);
+    /* a point sample at a centre inside the disc is the picture there */
+    int wind[1] = {1};
+    aa_scene *placed = aa_scene_place(s, W, W, 0, 0, 0);
+    aa_rgb c = aa_scene_colour_of_at(placed, wind, 8.5, 6.5);
+    for (int ch = 0; ch < 3; ch++)
+        assert_true(fabs(aa_pixel(&im, 8, 6)[ch] - c.c[ch]) < 1e-15);
+    aa_scene_free(placed);
+    aa_image_free(&im);
+    support_render("jitter:spp=64", s, NULL, W, W, 1, &im, NULL);
+    assert_true(support_rmse(&im, &ref) < 2e-2);
+    aa_image_free(&im);
+    static const char *const refusing[] = {"area", "analytic", "crowtiler", "trio", "fxaa"};
+    for (size_t k = 0; k < sizeof refusing / sizeof *refusing; k++) {
+        support_view v = {W, W, 0, 0, 0, k == 2 ? "tent:r=1" : NULL, 1, 1, 0};
+        int st = support_render_view(refusing[k], s, &v, &im, NULL);
+        print_message("%s: %s\n", refusing[k], aa_last_error());
+        assert_int_equal(st, AA_EINVAL);
+        assert_non_null(strstr(aa_last_error(), "gradient"));
+    }
+    aa_image_free(&ref);
+    aa_scene_free(s);
+    gw = W, gh = H;
+}
+
+/* What the reference and the model refuse, each naming why. */
+static void test_refusals(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    rect_px(s, (aa_rgb){{0, 0, 0}}, 0, 0, W, H);
+    aa_gradient g = grad_px(AA_GRADIENT_RADIAL, AA_SPREAD_PAD,
+                            (const double[6]){8, 6, 5, 14, 6, 0}, black_white, 2);
+    /* the focal point outside the end circle: a cone */
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "cone"));
+    g.p[3] = 9;
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *placed = aa_scene_place(s, W, H, 0, 0, 0);
+    aa_image out;
+    assert_int_equal(aa_image_alloc(&out, W, H, 3), AA_OK);
+    aa_filter f;
+    aa_filter_default(&f);
+    assert_int_equal(aa_truth_render(placed, &f, 1, &out, NULL, NULL), AA_EINVAL);
+    print_message("radial: %s\n", aa_last_error());
+    assert_non_null(strstr(aa_last_error(), "radial gradient"));
+    aa_scene_free(placed);
+    aa_scene_free(s);
+    /* a linear gradient under the tent */
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    rect_px(s, (aa_rgb){{0, 0, 0}}, 0, 0, W, H);
+    g = grad_px(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){0, 0, 5, 0, 0, 0},
+                black_white, 2);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    placed = aa_scene_place(s, W, H, 0, 0, 0);
+    assert_int_equal(aa_filter_parse("tent:r=1", &f), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &f, 1, &out, NULL, NULL), AA_EINVAL);
+    print_message("tent: %s\n", aa_last_error());
+    assert_non_null(strstr(aa_last_error(), "box filter"));
+    aa_scene_free(placed);
+    aa_scene_free(s);
+    aa_image_free(&out);
+    /* bad gradients: stops out of order, none, a zero-length vector */
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    rect_px(s, (aa_rgb){{0, 0, 0}}, 0, 0, W, H);
+    aa_gradient_stop bad[2] = {{0.6, {{0, 0, 0}}, 1}, {0.2, {{1, 1, 1}}, 1}};
+    g = grad_px(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){0, 0, 5, 0, 0, 0}, bad, 2);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_EINVAL);
+    g.nstops = 0;
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_EINVAL);
+    g = grad_px(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){2, 2, 2, 2, 0, 0},
+                black_white, 2);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_EINVAL);
+    aa_scene_free(s);
+}
+
+/* A centred radial gradient over its disc, sampled: in polar coordinates
+ * the integral is 2 pi r^2 int_0^1 dec(t) t dt (GSL here), plus the
+ * background outside.  supersample:n=16's image sums to it within the
+ * edge's sampling error. */
+static double dec_t(double t, void *v)
+{
+    (void)v;
+    return dec(t) * t;
+}
+
+static void test_radial_sampled(void **state)
+{
+    (void)state;
+    gw = gh = W;
+    const double r = 6.0;
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    disc_px(s, 8, 8, r);
+    aa_gradient g = grad_px(AA_GRADIENT_RADIAL, AA_SPREAD_PAD,
+                            (const double[6]){8, 8, r, 8, 8, 0}, black_white, 2);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(100);
+    gsl_function F = {dec_t, NULL};
+    double I, err;
+    gsl_integration_qag(&F, 0, 1, 1e-15, 1e-14, 100, GSL_INTEG_GAUSS21, ws, &I, &err);
+    gsl_integration_workspace_free(ws);
+    const double want = 2 * M_PI * r * r * I;
+    aa_image im;
+    support_render("supersample:n=64", s, NULL, W, W, 1, &im, NULL);
+    double got = channel_sum(&im, 1);
+    print_message("radial: supersample n=64 sums to %.6f, polar integral %.6f\n", got, want);
+    assert_true(fabs(got - want) < 0.02);
+    /* the focal point moved: t = 0 there, 1 on the circle of radius r */
+    aa_image_free(&im);
+    aa_scene_free(s);
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    disc_px(s, 8, 8, r);
+    g.p[3] = 10, g.p[4] = 7;
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *placed = aa_scene_place(s, W, W, 0, 0, 0);
+    int wind[1] = {1};
+    aa_rgb at_focus = aa_scene_colour_of_at(placed, wind, 10, 7);
+    assert_true(at_focus.c[0] < 1e-15);
+    /* on the end circle, toward the focal point's side and away from it */
+    aa_rgb rim = aa_scene_colour_of_at(placed, wind, 8 + r * 0.999999, 8);
+    assert_true(rim.c[0] > 0.9999);
+    /* halfway along the ray from F to the rim point (8 - r, 8): t = 1/2 */
+    aa_rgb half = aa_scene_colour_of_at(placed, wind, 0.5 * (10 + 8 - r), 0.5 * (7 + 8));
+    assert_true(fabs(half.c[0] - dec(0.5)) < 1e-14);
+    aa_scene_free(placed);
+    aa_scene_free(s);
+    gw = W, gh = H;
+}
+
+
+/* ---- the SVG reader ---- */
+
+/* `body` inside a root <svg> of W x H pixels over black, written to a file
+ * of the temporary folder; its pattern spec into spec. */
+static void svg_spec(const char *name, const char *body, char *spec, size_t len)
+{
+    char path[4200], doc[8192];
+    snprintf(path, sizeof path, "%s/%s.svg", dir, name);
+    snprintf(doc, sizeof doc,
+             "<svg xmlns=\"http://www.w3.org/2000/svg\" "
+             "xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"%d\" height=\"%d\">\n%s\n"
+             "</svg>\n",
+             W, H, body);
+    support_write_file(path, doc, strlen(doc));
+    snprintf(spec, len, "svg:file=%s", path);
+}
+
+/* The pattern's scene of body, or NULL with the status in *st. */
+static aa_scene *svg_scene(const char *name, const char *body, int *st)
+{
+    char spec[4400];
+    svg_spec(name, body, spec, sizeof spec);
+    aa_spec sp;
+    aa_scene *sc = NULL;
+    *st = aa_pattern_parse(spec, &sp);
+    if (!*st)
+        *st = aa_pattern_scene_at(&sp, W, H, &sc);
+    return *st ? NULL : sc;
+}
+
+static void svg_box(const char *name, const char *body, aa_image *ref)
+{
+    int st;
+    aa_scene *sc = svg_scene(name, body, &st);
+    if (!sc)
+        fail_msg("%s: %s", body, aa_last_error());
+    aa_truth_stats stats;
+    reference(sc, W, H, ref, NULL, &stats);
+    expect_bound(name, &stats);
+    aa_scene_free(sc);
+}
+
+static void svg_refused(const char *body, const char *where, const char *why)
+{
+    int st;
+    aa_scene *sc = svg_scene("refused", body, &st);
+    if (sc)
+        fail_msg("%s: read, not refused", body);
+    print_message("refused: %s\n", aa_last_error());
+    assert_int_equal(st, AA_EINVAL);
+    if (!strstr(aa_last_error(), where) || !strstr(aa_last_error(), why))
+        fail_msg("%s: the message \"%s\" does not name %s and %s", body, aa_last_error(),
+                 where, why);
+}
+
+/* A whole-view rectangle painted from x = 3.25 to 11.5 (userSpaceOnUse,
+ * or objectBoundingBox fractions of it) black to white: the box sum of
+ * test_linear_pad, whichever way the document says it: stop colours by
+ * attribute, style and sheet; offsets as percentages, clamped; href and
+ * xlink:href inheriting stops and attributes; a gradientTransform. */
+static void test_svg_linear(void **state)
+{
+    (void)state;
+    const double a = 3.25, b = 11.5, want = H * ((b - a) * ibar() + (W - b));
+    static const char *const docs[] = {
+        "<linearGradient id=\"g\" gradientUnits=\"userSpaceOnUse\" x1=\"3.25\" x2=\"11.5\">"
+        "<stop offset=\"0\" stop-color=\"black\"/><stop offset=\"1\" stop-color=\"white\"/>"
+        "</linearGradient><rect width=\"16\" height=\"12\" fill=\"url(#g)\"/>",
+        /* fractions of the box, percent offsets clamped, style and sheet */
+        "<style>.w { stop-color: #fff }</style>"
+        "<linearGradient id=\"g\" x1=\"0.203125\" x2=\"71.875%\">"
+        "<stop offset=\"-20%\" style=\"stop-color: black\"/><stop class=\"w\" offset=\"3\"/>"
+        "</linearGradient><rect width=\"16\" height=\"12\" fill=\"url('#g')\"/>",
+        /* stops from the gradient named by href, its vector from xlink:href's */
+        "<linearGradient id=\"s\"><stop offset=\"0\"/><stop offset=\"1\" stop-color=\"white\"/>"
+        "</linearGradient><linearGradient id=\"v\" xlink:href=\"#s\" "
+        "gradientUnits=\"userSpaceOnUse\" x1=\"3.25\" x2=\"11.5\"/>"
+        "<linearGradient id=\"g\" href=\"#v\"/><rect width=\"16\" height=\"12\" "
+        "fill=\"url(#g) red\"/>",
+        /* the vector (0, 0) to (8.25, 0) moved by the gradient's transform */
+        "<linearGradient id=\"g\" gradientUnits=\"userSpaceOnUse\" x2=\"8.25\" "
+        "gradientTransform=\"translate(3.25 7)\"><stop offset=\"0\"/>"
+        "<stop offset=\"1\" stop-color=\"white\"/></linearGradient>"
+        "<rect width=\"16\" height=\"12\" fill=\"url(#g)\"/>",
+    };
+    for (size_t k = 0; k < sizeof docs / sizeof *docs; k++) {
+        aa_image ref;
+        svg_box("linear", docs[k], &ref);
+        expect_sum(docs[k], &ref, 1, want, 1e-13);
+        aa_image_free(&ref);
+    }
+}
+
+/* Offsets raised to the largest before them: stops black at 0, white at
+ * 0.8, red at 0.3 (read as 0.8): black to white over t in [0, 0.8], then
+ * red (a sharp step, then pad).  With t = (x - a) / (b - a) the ramp
+ * covers x in [a, a + 0.8 (b - a)]: red's channel sums to H (0.8 (b - a)
+ * Ibar + W - a - 0.8 (b - a)), green's to H 0.8 (b - a) Ibar. */
+static void test_svg_monotone(void **state)
+{
+    (void)state;
+    const double a = 3.25, b = 11.5, r = 0.8 * (b - a);
+    aa_image ref;
+    svg_box("monotone",
+            "<linearGradient id=\"g\" gradientUnits=\"userSpaceOnUse\" x1=\"3.25\" x2=\"11.5\">"
+            "<stop offset=\"0\" stop-color=\"black\"/><stop offset=\"0.8\" stop-color=\"white\"/>"
+            "<stop offset=\"0.3\" stop-color=\"red\"/></linearGradient>"
+            "<rect width=\"16\" height=\"12\" fill=\"url(#g)\"/>",
+            &ref);
+    expect_sum("monotone offsets", &ref, 0, H * (r * ibar() + W - a - r), 1e-13);
+    expect_sum("monotone offsets", &ref, 1, H * r * ibar(), 1e-13);
+    aa_image_free(&ref);
+}
+
+/* What paints a colour or nothing: a fallback colour for a missing id,
+ * one stop (its colour and opacity), no stops (none), objectBoundingBox
+ * on a horizontal line's stroke (a box of no height: none), the same in
+ * userSpaceOnUse (drawn: a 12 x 2 stroke, white throughout). */
+static void test_svg_degenerate(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *body;
+        double sum; /* of channel 1 */
+    } cases[] = {
+        {"<rect x=\"2\" y=\"2\" width=\"8\" height=\"4\" fill=\"url(#none) white\"/>", 32},
+        {"<linearGradient id=\"g\"><stop stop-color=\"white\" stop-opacity=\"0.5\"/>"
+         "</linearGradient><rect x=\"2\" y=\"2\" width=\"8\" height=\"4\" fill=\"url(#g)\"/>",
+         -32},
+        {"<linearGradient id=\"g\"/><rect x=\"2\" y=\"2\" width=\"8\" height=\"4\" "
+         "fill=\"url(#g) white\"/>",
+         0},
+        {"<linearGradient id=\"g\"><stop stop-color=\"white\"/><stop offset=\"1\" "
+         "stop-color=\"white\"/></linearGradient><line x1=\"2\" y1=\"6\" x2=\"14\" y2=\"6\" "
+         "stroke=\"url(#g)\" stroke-width=\"2\"/>",
+         0},
+        {"<linearGradient id=\"g\" gradientUnits=\"userSpaceOnUse\"><stop "
+         "stop-color=\"white\"/><stop offset=\"1\" stop-color=\"white\"/></linearGradient>"
+         "<line x1=\"2\" y1=\"6\" x2=\"14\" y2=\"6\" stroke=\"url(#g)\" stroke-width=\"2\"/>",
+         24},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        aa_image ref;
+        svg_box("degenerate", cases[k].body, &ref);
+        /* -32: 32 pixels of white at 0.5 over black, decoded */
+        double want = cases[k].sum >= 0 ? cases[k].sum : 32 * dec(0.5);
+        expect_sum(cases[k].body, &ref, 1, want, 1e-13);
+        aa_image_free(&ref);
+    }
+}
+
+/* What the reader refuses, naming the element and its line. */
+static void test_svg_refusals(void **state)
+{
+    (void)state;
+    svg_refused("<linearGradient id=\"a\" href=\"#b\"/><linearGradient id=\"b\" href=\"#a\"/>"
+                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "line 2: <linearGradient>", "cycle");
+    svg_refused("<radialGradient id=\"a\" fx=\"1.2\"><stop/><stop offset=\"1\"/>"
+                "</radialGradient><rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<radialGradient>", "cone");
+    svg_refused("<linearGradient id=\"a\" spreadMethod=\"mirror\"><stop/></linearGradient>"
+                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<linearGradient>", "spreadMethod");
+    svg_refused("<linearGradient id=\"a\" x1=\"2px\"><stop/><stop offset=\"1\"/>"
+                "</linearGradient><rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<linearGradient>", "objectBoundingBox");
+    svg_refused("<linearGradient id=\"a\"><stop/><rect/></linearGradient>"
+                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<rect>", "only <stop>");
+    svg_refused("<linearGradient id=\"a\"><stop offset=\"0\" stop-colour=\"red\"/>"
+                "</linearGradient><rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<stop>", "stop-colour");
+    /* a radial gradient is read, and the reference refuses it by name */
+    int st;
+    aa_scene *sc = svg_scene("radial", "<radialGradient id=\"a\"><stop/><stop offset=\"1\" "
+                                       "stop-color=\"white\"/></radialGradient>"
+                                       "<rect width=\"8\" height=\"8\" fill=\"url(#a)\"/>",
+                             &st);
+    assert_non_null(sc);
+    aa_scene *placed = aa_scene_place(sc, W, H, 0, 0, 0);
+    aa_image out;
+    assert_int_equal(aa_image_alloc(&out, W, H, 3), AA_OK);
+    aa_filter f;
+    aa_filter_default(&f);
+    assert_int_equal(aa_truth_render(placed, &f, 1, &out, NULL, NULL), AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "radial gradient"));
+    aa_image_free(&out);
+    aa_scene_free(placed);
+    aa_scene_free(sc);
+}
+
+/* The reference cache: a changed stop changes the view's key (the file's
+ * bytes), so it never meets the old entry; the same file hits it. */
+static void test_cache(void **state)
+{
+    (void)state;
+    char spec[4400], cache[4200];
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    const char *fmt = "<linearGradient id=\"g\"><stop/><stop offset=\"1\" stop-color=\"%s\"/>"
+                      "</linearGradient><rect width=\"16\" height=\"12\" fill=\"url(#g)\"/>";
+    char body[512];
+    double sums[3];
+    int hits[3];
+    const char *colours[3] = {"white", "grey", "grey"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(body, sizeof body, fmt, colours[k]);
+        svg_spec("cached", body, spec, sizeof spec);
+        aa_view v = {0};
+        v.w = W, v.h = H;
+        aa_filter_default(&v.filter);
+        assert_int_equal(aa_pattern_parse(spec, &v.pattern), AA_OK);
+        aa_image im;
+        if (aa_reference(&v, cache, 1, &im, NULL, &hits[k]))
+            fail_msg("%s", aa_last_error());
+        sums[k] = channel_sum(&im, 0);
+        aa_image_free(&im);
+    }
+    print_message("cache: sums %.6f %.6f %.6f, from the cache %d %d %d\n", sums[0], sums[1],
+                  sums[2], hits[0], hits[1], hits[2]);
+    assert_false(hits[0]);
+    assert_false(hits[1]);
+    assert_true(hits[2]);
+    assert_true(sums[1] < sums[0]);
+    assert_true(sums[2] == sums[1]);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_linear_pad),     cmocka_unit_test(test_repeat_reflect),
+        cmocka_unit_test(test_against_2d),     cmocka_unit_test(test_methods),
+        cmocka_unit_test(test_refusals),       cmocka_unit_test(test_radial_sampled),
+        cmocka_unit_test(test_svg_linear),     cmocka_unit_test(test_svg_monotone),
+        cmocka_unit_test(test_svg_degenerate), cmocka_unit_test(test_svg_refusals),
+        cmocka_unit_test(test_cache),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

@@ -1,0 +1,401 @@
+/*
+ * test_gradient_renderers.c: gradient paint (linearGradient,
+ * radialGradient) read by the pattern svg, against headless Chromium and
+ * resvg drawing the same documents, and against colours worked by hand
+ * from SVG 2's definitions.
+ *
+ * Two documents of small cells, each one feature (the tables below, each
+ * cell's hand-worked colours in its comment): the linear gradients, drawn
+ * by the exact box reference; the radial ones, which the reference refuses
+ * (patterns/README.md, "Gradients"), by supersample:n=8 (a grid of 64
+ * samples a pixel; away from edges its error is that of averaging a
+ * smooth ramp, under 1e-4 here).  The reference's (or the samples')
+ * colours at the cells' points are first checked against the hand-worked
+ * values, to 2e-3 in encoded values (the pixel's mean in linear light
+ * against the colour at its centre: for a ramp of slope s per pixel they
+ * differ by about (decode'' / decode') s^2 / 24 in encoded values, 1e-3
+ * at most here, for the radial reflect's slope of 1/12 at 0.36), so the
+ * renderers are held to the specification.
+ *
+ * Then each renderer's image is compared on the pixels where the picture
+ * is smooth: the reference's encoded values' second differences along x
+ * and along y, over the pixel's 3 x 3 neighbourhood, under 6/255 (an
+ * edge or a sharp stop gives tenths; a radial ramp of radius r bends by
+ * about 1 / (r rho) at a distance rho from its centre); every point of
+ * the table must be among them.  The tolerance is 3/255 in encoded values:
+ * the renderers interpolate stops in 8-bit or single-precision values and
+ * round their output (one code each), and Chromium's Skia dithers
+ * gradients (a code more); a wrong spread, focal point, unit, map or
+ * stop is off by tens of codes.  Where a renderer draws a cell otherwise,
+ * `differs` names it and the comment says who is wrong; the cell must then
+ * differ and every other cell agree.
+ */
+/* tier: full */
+#include "bench.h"
+#include "core.h"
+#include "patterns.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#define CELL 40
+#define COLS 3
+#define ROWS 3
+#define W (CELL * COLS)
+#define H (CELL * ROWS)
+
+static char dir[4096];
+
+static int setup(void **state)
+{
+    (void)state;
+    return support_tmpdir(dir, sizeof dir, "gradrender");
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    return support_rmtree(dir);
+}
+
+/* sRGB's encoding (IEC 61966-2-1), written out here. */
+static double enc(double v)
+{
+    if (v <= 0)
+        return 0;
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+}
+
+typedef struct cell {
+    const char *what, *body;
+    struct {
+        int x, y;
+        double c[3];
+    } at[3];
+    int nat;
+    const char *differs;
+} cell;
+
+/* Cells in cell coordinates (0 to 40), over black.  The black-to-white
+ * ramp's encoded value is t itself; a pixel's centre is (x + 1/2, y +
+ * 1/2). */
+#define BW "<stop offset=\"0\" stop-color=\"black\"/><stop offset=\"1\" stop-color=\"white\"/>"
+static const cell linear[] = {
+    /* objectBoundingBox (the default) on [4, 36]^2, from its left to its
+     * right side: t = (x + 1/2 - 4) / 32; at x = 20, 0.515625 */
+    {"linear, objectBoundingBox",
+     "<linearGradient id=\"l1\">" BW "</linearGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#l1)\"/>",
+     {{20, 20, {0.515625, 0.515625, 0.515625}}},
+     1, ""},
+    /* userSpaceOnUse from x = 4 to 36, three stops red, lime (50%), blue:
+     * at x = 10, t = 6.5/32 = 0.203125, 0.40625 of the way from red to
+     * lime: (0.59375, 0.40625, 0) */
+    {"linear, userSpaceOnUse, three stops",
+     "<linearGradient id=\"l2\" gradientUnits=\"userSpaceOnUse\" x1=\"4\" y1=\"0\" x2=\"36\" "
+     "y2=\"0\"><stop offset=\"0\" stop-color=\"red\"/><stop offset=\"50%\" "
+     "stop-color=\"lime\"/><stop offset=\"1\" stop-color=\"blue\"/></linearGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#l2)\"/>",
+     {{10, 20, {0.59375, 0.40625, 0}}},
+     1, ""},
+    /* reflect, the vector half the box (16 px): at x = 26, t = 22.5 / 16
+     * = 1.40625, reflected 0.59375 */
+    {"linear, reflect",
+     "<linearGradient id=\"l3\" x2=\"0.5\" spreadMethod=\"reflect\">" BW "</linearGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#l3)\"/>",
+     {{26, 20, {0.59375, 0.59375, 0.59375}}},
+     1, ""},
+    /* repeat: the same t, 0.40625 */
+    {"linear, repeat",
+     "<linearGradient id=\"l4\" x2=\"0.5\" spreadMethod=\"repeat\">" BW "</linearGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#l4)\"/>",
+     {{26, 20, {0.40625, 0.40625, 0.40625}}},
+     1, ""},
+    /* gradientTransform rotate(90) in the box's units: the vector from
+     * (0, 0) to (0, 1), top to bottom: at y = 10, t = 6.5 / 32 */
+    {"linear, gradientTransform",
+     "<linearGradient id=\"l5\" gradientTransform=\"rotate(90)\">" BW "</linearGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#l5)\"/>",
+     {{20, 10, {0.203125, 0.203125, 0.203125}}},
+     1, ""},
+    /* href: l1's stops, its own x1 = 1 and x2 = 0 (right to left): at
+     * x = 20, t = 1 - 0.515625; xlink:href alike, with l1's vector */
+    {"href and xlink:href",
+     "<linearGradient id=\"l6\" href=\"#l1\" x1=\"1\" x2=\"0\"/>"
+     "<linearGradient id=\"l6b\" xlink:href=\"#l6\" x1=\"0\" x2=\"1\"/>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"14\" fill=\"url(#l6)\"/>"
+     "<rect x=\"4\" y=\"22\" width=\"32\" height=\"14\" fill=\"url(#l6b)\"/>",
+     {{20, 10, {0.484375, 0.484375, 0.484375}}, {20, 28, {0.515625, 0.515625, 0.515625}}},
+     2, ""},
+    /* a stroke painted by l1 in the box of the geometry [8, 32]^2 (not
+     * the stroke's): t = (x + 1/2 - 8) / 24; at x = 20, 0.5208333;
+     * at x = 5, t < 0: black (pad) */
+    {"stroke with a gradient",
+     "<rect x=\"8\" y=\"8\" width=\"24\" height=\"24\" fill=\"none\" stroke=\"url(#l1)\" "
+     "stroke-width=\"8\"/>",
+     {{20, 6, {12.5 / 24, 12.5 / 24, 12.5 / 24}}, {5, 20, {0, 0, 0}}},
+     2, ""},
+    /* stop-opacity 0.5 at both stops, white to blue, over red: at x = 20,
+     * t = 0.515625, the stop colour (1 - t, 1 - t, 1) at 0.5 over red:
+     * (0.5 (1 - t) + 0.5, 0.5 (1 - t), 0.5) */
+    {"stop-opacity over another layer",
+     "<linearGradient id=\"l8\"><stop offset=\"0\" stop-color=\"white\" stop-opacity=\"0.5\"/>"
+     "<stop offset=\"1\" stop-color=\"blue\" stop-opacity=\"0.5\"/></linearGradient>"
+     "<rect width=\"40\" height=\"40\" fill=\"red\"/>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#l8)\"/>",
+     {{20, 20, {0.7421875, 0.2421875, 0.5}}},
+     1, ""},
+    /* a missing gradient with a fallback colour (lime), one stop (a
+     * colour: red), no stops (none: black shows) */
+    {"fallback, one stop, no stops",
+     "<linearGradient id=\"l9\"><stop stop-color=\"red\"/></linearGradient>"
+     "<linearGradient id=\"l9b\"/>"
+     "<rect x=\"4\" y=\"4\" width=\"14\" height=\"32\" fill=\"url(#nothing) lime\"/>"
+     "<rect x=\"22\" y=\"4\" width=\"14\" height=\"14\" fill=\"url(#l9)\"/>"
+     "<rect x=\"22\" y=\"22\" width=\"14\" height=\"14\" fill=\"url(#l9b)\"/>",
+     {{10, 20, {0, 1, 0}}, {28, 10, {1, 0, 0}}, {28, 28, {0, 0, 0}}},
+     3, ""},
+};
+
+#define WB "<stop offset=\"0\" stop-color=\"white\"/><stop offset=\"1\" stop-color=\"black\"/>"
+static const cell radial[] = {
+    /* centred on [4, 36]^2: centre (20, 20), r = 16, white to black: at
+     * pixel (26, 20) the centre is 6.519 away (hypot(6.5, 0.5)), t =
+     * 0.40744, encoded 1 - t */
+    {"radial, centred",
+     "<radialGradient id=\"r1\">" WB "</radialGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#r1)\"/>",
+     {{26, 20, {0.59256, 0.59256, 0.59256}}},
+     1, ""},
+    /* the focal point at (0.25, 0.5) of the box, F = (12, 20), the end
+     * circle C = (20, 20), r = 16: the point q lies on the circle of
+     * centre F + t (C - F) and radius 16 t, so with q - F = (17.5, 0.5)
+     * at pixel (29, 20), (17.5 - 8 t)^2 + 0.25 = 256 t^2, 192 t^2 + 280 t
+     * - 306.5 = 0, t = (-280 + sqrt(313792)) / 384 = 0.72961, white to
+     * black: 0.27039 */
+    {"radial, focal point",
+     "<radialGradient id=\"r2\" fx=\"0.25\">" WB "</radialGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#r2)\"/>",
+     {{29, 20, {0.27039, 0.27039, 0.27039}}},
+     1, ""},
+    /* repeat with a focal radius: fr = 0.1 (3.2 px), r = 0.4 (12.8 px),
+     * so t = (rho - 3.2) / 9.6 about the centre; at pixel (31, 31), rho =
+     * hypot(11.5, 11.5) = 16.2635: t = 1.36078, repeated 0.36078, white to
+     * black: 0.63922.  resvg draws it as if fr were 0 (t = rho / 12.8: 44
+     * codes off at rho = 6, exactly that ramp): it does not read SVG 2's
+     * fr, so resvg is wrong; Chromium agrees with the reference */
+    {"radial, fr and repeat",
+     "<radialGradient id=\"r3\" r=\"0.4\" fr=\"0.1\" spreadMethod=\"repeat\">" WB
+     "</radialGradient><rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#r3)\"/>",
+     {{31, 31, {0.63922, 0.63922, 0.63922}}},
+     1, "resvg"},
+    /* reflect, userSpaceOnUse centre (20, 20), r 12: at pixel (31, 31),
+     * rho = 16.2635, t = 1.35529, reflected 0.64471: 0.35529 */
+    {"radial, userSpaceOnUse, reflect",
+     "<radialGradient id=\"r4\" gradientUnits=\"userSpaceOnUse\" cx=\"20\" cy=\"20\" "
+     "r=\"12\" spreadMethod=\"reflect\">" WB "</radialGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#r4)\"/>",
+     {{31, 31, {0.35529, 0.35529, 0.35529}}},
+     1, ""},
+    /* on a circle, gradientTransform scale(1, 0.5) about the box's origin:
+     * the circle of radius 0.5 at (0.5, 0.25): an ellipse over the top
+     * half; at pixel (20, 8) (box units (0.515625, 0.140625)): distance
+     * (0.015625, 0.109375 / 0.5) in gradient units, hypot 0.219307, t =
+     * 0.43861: 0.56139 */
+    {"radial, gradientTransform, on a circle",
+     "<radialGradient id=\"r5\" gradientTransform=\"scale(1 0.5)\">" WB "</radialGradient>"
+     "<circle cx=\"20\" cy=\"20\" r=\"16\" fill=\"url(#r5)\"/>",
+     {{20, 8, {0.56139, 0.56139, 0.56139}}},
+     1, ""},
+};
+
+/* A document of the cells and its image: the box reference (linear) or
+ * supersample:n=8 (radial, which the reference refuses). */
+static void document(const cell *cells, size_t n, const char *name, char *path, size_t len,
+                     aa_image *ref)
+{
+    static char doc[1 << 15];
+    size_t m = (size_t)snprintf(doc, sizeof doc,
+                                "<svg xmlns=\"http://www.w3.org/2000/svg\" "
+                                "xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"%d\" "
+                                "height=\"%d\">\n<rect width=\"%d\" height=\"%d\"/>\n",
+                                W, H, W, H);
+    for (size_t k = 0; k < n; k++)
+        m += (size_t)snprintf(doc + m, sizeof doc - m,
+                              "<g transform=\"translate(%d %d)\">%s</g>\n",
+                              (int)(k % COLS) * CELL, (int)(k / COLS) * CELL, cells[k].body);
+    m += (size_t)snprintf(doc + m, sizeof doc - m, "</svg>\n");
+    assert_true(m < sizeof doc);
+    snprintf(path, len, "%s/%s.svg", dir, name);
+    support_write_file(path, doc, m);
+    char spec[4200];
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    support_view v = {W, H, 0, 0, 0, NULL, 1, 0, 0};
+    if (cells == linear) {
+        support_pattern_reference(spec, &v, ref, NULL, NULL);
+        return;
+    }
+    aa_spec sp;
+    aa_scene *sc = NULL;
+    if (aa_pattern_parse(spec, &sp) || aa_pattern_scene_at(&sp, W, H, &sc))
+        fail_msg("%s: %s", spec, aa_last_error());
+    support_render_must("supersample:n=8", sc, &v, ref, NULL);
+    aa_scene_free(sc);
+}
+
+/* 1 if the picture is smooth about pixel (i, j): every channel's encoded
+ * second differences along x and y under 1/255 over its 3 x 3
+ * neighbourhood. */
+static int smooth(const aa_image *ref, int i, int j)
+{
+    if (i < 2 || j < 2 || i > W - 3 || j > H - 3)
+        return 0;
+    for (int dj = -1; dj <= 1; dj++)
+        for (int di = -1; di <= 1; di++)
+            for (int c = 0; c < 3; c++) {
+                int x = i + di, y = j + dj;
+                double e = enc(aa_pixel(ref, x, y)[c]);
+                double dx = enc(aa_pixel(ref, x - 1, y)[c]) + enc(aa_pixel(ref, x + 1, y)[c]) - 2 * e;
+                double dy = enc(aa_pixel(ref, x, y - 1)[c]) + enc(aa_pixel(ref, x, y + 1)[c]) - 2 * e;
+                if (!(fabs(dx) < 6.0 / 255 && fabs(dy) < 6.0 / 255))
+                    return 0;
+            }
+    return 1;
+}
+
+static void check_points(const cell *cells, size_t n, const aa_image *ref)
+{
+    for (size_t k = 0; k < n; k++)
+        for (int a = 0; a < cells[k].nat; a++) {
+            int i = (int)(k % COLS) * CELL + cells[k].at[a].x;
+            int j = (int)(k / COLS) * CELL + cells[k].at[a].y;
+            if (!smooth(ref, i, j))
+                fail_msg("%s: (%d, %d) is not where the picture is smooth", cells[k].what,
+                         cells[k].at[a].x, cells[k].at[a].y);
+            for (int c = 0; c < 3; c++) {
+                double got = enc(aa_pixel(ref, i, j)[c]), want = cells[k].at[a].c[c];
+                print_message("%s: (%d, %d) channel %d: %.5f, by hand %.5f\n", cells[k].what,
+                              cells[k].at[a].x, cells[k].at[a].y, c, got, want);
+                if (!(fabs(got - want) <= 2e-3))
+                    fail_msg("%s: (%d, %d) channel %d is %.6f encoded, not %.6f",
+                             cells[k].what, cells[k].at[a].x, cells[k].at[a].y, c, got, want);
+            }
+        }
+}
+
+static void test_points(void **state)
+{
+    (void)state;
+    char path[4200];
+    aa_image ref;
+    document(linear, sizeof linear / sizeof *linear, "linear", path, sizeof path, &ref);
+    check_points(linear, sizeof linear / sizeof *linear, &ref);
+    aa_image_free(&ref);
+    document(radial, sizeof radial / sizeof *radial, "radial", path, sizeof path, &ref);
+    check_points(radial, sizeof radial / sizeof *radial, &ref);
+    aa_image_free(&ref);
+}
+
+static int names(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *s = strstr(list, name); s; s = strstr(s + 1, name))
+        if ((s == list || s[-1] == ' ') && (s[n] == '\0' || s[n] == ' '))
+            return 1;
+    return 0;
+}
+
+static void renderer_cells(const char *name, const cell *cells, size_t n, const char *docname)
+{
+    const char *tree = aa_source_tree();
+    char adapter[4200], cmd[13000], path[4200], png[4300];
+    snprintf(adapter, sizeof adapter, "%s/scripts/renderers/%s", tree, name);
+    aa_image ref, img;
+    document(cells, n, docname, path, sizeof path, &ref);
+    snprintf(png, sizeof png, "%s/%s-%s.png", dir, name, docname);
+    snprintf(cmd, sizeof cmd, "'%s' '%s' %d %d '%s' >/dev/null", adapter, path, W, H, png);
+    if (system(cmd) != 0)
+        fail_msg("%s failed on %s", name, path);
+    if (aa_image_read(png, &img))
+        fail_msg("%s", aa_last_error());
+    assert_int_equal(img.w, W);
+    assert_int_equal(img.h, H);
+    int bad = 0;
+    for (size_t k = 0; k < n; k++) {
+        double worst = 0;
+        int wi = 0, wj = 0, count = 0;
+        int x0 = (int)(k % COLS) * CELL, y0 = (int)(k / COLS) * CELL;
+        for (int j = y0; j < y0 + CELL; j++)
+            for (int i = x0; i < x0 + CELL; i++) {
+                if (!smooth(&ref, i, j))
+                    continue;
+                count++;
+                for (int c = 0; c < 3; c++) {
+                    double d = fabs(enc(aa_pixel(&ref, i, j)[c]) - enc(aa_pixel(&img, i, j)[c]));
+                    if (d > worst)
+                        worst = d, wi = i - x0, wj = j - y0;
+                }
+            }
+        const int agrees = worst <= 3.0 / 255 + 1e-9, known = names(cells[k].differs, name);
+        print_message("%s, %s: %d smooth pixels, largest difference %.1f/255 at (%d, %d)%s\n",
+                      name, cells[k].what, count, worst * 255, wi, wj,
+                      agrees ? "" : known ? " (the renderer is wrong: noted)" : " DIFFERS");
+        if (count < 100)
+            fail_msg("%s: only %d smooth pixels to compare", cells[k].what, count);
+        if (agrees == known)
+            bad++;
+    }
+    aa_image_free(&img);
+    aa_image_free(&ref);
+    if (bad)
+        fail_msg("%s: %d cells not as the table says", name, bad);
+}
+
+static void renderer(const char *name)
+{
+#if defined(__SANITIZE_ADDRESS__)
+    print_message("%s: tested in the plain build\n", name);
+    skip();
+#endif
+    const char *tree = aa_source_tree();
+    if (!tree) {
+        print_message("%s skipped: no source tree (its adapters)\n", name);
+        skip();
+    }
+    char adapter[4200], cmd[4400];
+    snprintf(adapter, sizeof adapter, "%s/scripts/renderers/%s", tree, name);
+    assert_null(strchr(adapter, '\''));
+    assert_null(strchr(dir, '\''));
+    snprintf(cmd, sizeof cmd, "'%s' --check >/dev/null 2>&1", adapter);
+    if (system(cmd) != 0) {
+        print_message("%s skipped: not installed (sh scripts/install-deps.sh "
+                      "--with-renderers)\n",
+                      name);
+        skip();
+    }
+    renderer_cells(name, linear, sizeof linear / sizeof *linear, "linear");
+    renderer_cells(name, radial, sizeof radial / sizeof *radial, "radial");
+}
+
+static void test_chromium(void **state)
+{
+    (void)state;
+    renderer("chromium");
+}
+
+static void test_resvg(void **state)
+{
+    (void)state;
+    renderer("resvg");
+}
+
+SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_points), cmocka_unit_test(test_chromium),
+             cmocka_unit_test(test_resvg))
