@@ -644,23 +644,23 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
     if (s->ja != ja)
         expand(s, p, ja);
     double ta, tb, ua, ub;
-    if (p->offset)
-        s->V = s->Va - (j - ja); /* part_area's v */
+    if (p->offset) /* part_area's v, none kept yet */
+        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = NAN, s->vn = 0;
     if (p->y0 >= j)
         ta = p->conic || p->offset ? s->t0 : 0.0,
-        ua = p->conic || p->offset ? u_at(s, ta) : s->U;
+        ua = p->conic || p->offset ? seg_u(s, ta) : s->U;
     else if (s->mline == m)
         ta = s->tline, ua = s->uline;
     else
-        ta = line_tau(s, m), ua = u_at(s, ta);
+        ta = line_tau(s, m), ua = seg_u(s, ta);
     if (p->y1 <= j + 1.0) {
         tb = s->tend;
-        ub = u_at(s, tb);
+        ub = seg_u(s, tb);
     } else {
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
         tb = line_tau(s, m + 1);
-        ub = u_at(s, tb);
+        ub = seg_u(s, tb);
         s->mline = m + 1, s->tline = tb, s->uline = ub;
     }
     if (!(tb >= ta))
@@ -728,10 +728,11 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
     double d = tb - ta;
     if (s->p->offset) {
         /* the chord's height from the ends, the segment between chord and
-         * arc by quadrature with its bound (area_offset.c) */
-        double u0, v0, u1, v1;
-        offset_uv(s, ta, &u0, &v0);
-        offset_uv(s, tb, &u1, &v1);
+         * arc by quadrature with its bound (area_offset.c); v at the
+         * ends as kept (offset_keep) */
+        double v0 = offset_v_kept(s, ta), v1 = offset_v_kept(s, tb);
+        if (tb != s->vt[0] && tb != s->vt[1])
+            offset_keep(s, tb, v1);
         *dy = v1 - v0;
         double sg = s->p->sg;
         return *dy * (1.0 - 0.5 * (ua + ub)) - area_offset_segment(s->p, sg * ta, sg * tb);
@@ -888,7 +889,7 @@ static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const d
             accumulate(r->wk, s, s->ta, s->tb, s->ua, s->ub, dc, S->nch, r->W);
         } else {
             double t1 = tau_of_v(s, ya), t2 = tau_of_v(s, yb);
-            accumulate(r->wk, s, t1, t2, u_at(s, t1), u_at(s, t2), dc, S->nch, r->W);
+            accumulate(r->wk, s, t1, t2, seg_u(s, t1), seg_u(s, t2), dc, S->nch, r->W);
         }
     }
 }
