@@ -61,6 +61,10 @@ typedef struct ar_quad {
 typedef struct ar_panel {
     double a, b, m, R, M;
     double bx[4], by[4];
+    /* a cubic's factored form about te on this panel (aa__offset_stop at
+     * m, found once): stop, te, Q's coefficients q */
+    int stop;
+    double te, q[4];
 } ar_panel;
 
 /* ------------------------------------------------------------------------
