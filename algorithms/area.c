@@ -138,15 +138,15 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point was 7.7 in the last run here
- * (area 259 ms, point 34 ms; 6 to 8 in others, the shared machine's load
- * at 5 to 15), 4.2 by perf's samples of the two renders: about 40% of
- * area's time is aa_piece_meet (the pieces of a stroke's overlapping
- * contours cross near every join; pairs running side by side are decided
- * by their slopes, scene_piece.c), a fifth the parts' end points and
- * quadrature (part_area), the rest the band lines' and cell sides'
- * parameters (Newton on the curve).  Not yet within the factor of 2 of
- * other scenes.
+ * (tests/bench_bezstroke.c), area/point 6.0 in CPU time (5.7 to 6.2 in
+ * three runs on the shared machine; area 114 to 129 ms, point 19 to 22
+ * ms), 4.8 by instructions (callgrind): the crossings' root-finding
+ * (Newton on the curve) is 36% of area's instructions, the quadrature
+ * 18%, aa_piece_meet 17% (the pieces of a stroke's overlapping contours
+ * cross near every join; pairs running side by side are decided by their
+ * slopes, scene_piece.c).  Each end of a part is evaluated once, for u and
+ * v together (seg_u, part_area: the seg's memo of v).  Not yet within the
+ * factor of 2 of other scenes.
  *
  * Hidden surfaces.  Clusters where pieces cross, or end inside the band
  * (vertices, flat edges), need the per-pixel treatment Catmull describes
@@ -491,8 +491,11 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     a->c0 = (int)c0;
     a->U = (double)(X - c0);
     a->Va = -(double)ja;
-    a->g = a->vy = a->ax = a->ay = a->cx3 = a->cy3 = 0.0;
+    a->ax = a->ay = a->cx3 = a->cy3 = 0.0;
     a->ivy = a->k6 = 0.0;
+    /* line_tau's root on the anchor's line */
+    a->g = p->sg * t;
+    a->vy = 0.0;
     a->t0 = p->sg * q->ot0;
     a->tend = p->sg * q->ot1;
     a->te = p->ote;
@@ -584,8 +587,12 @@ static void expand(ar_seg *a, const ar_piece *p, int ja)
 static inline double line_tau(const ar_seg *a, int m)
 {
     double c = a->Va - m;
-    if (a->p->offset) { /* y = ja + m = -c, on the whole piece */
+    if (a->p->offset) {
+        /* y = ja + m = -c, on the whole piece; on the anchor's line the
+         * anchor's own root (expand_offset made the same call) */
         const aa_piece *q = a->p->src;
+        if (m == 0 && a->p->y0 < a->ja)
+            return a->g;
         return a->p->sg * (double)aa__offset_solve_from(&q->oc, 1, q->ot0, q->ot1,
                                                           a->p->y0 + c, -c, NAN);
     }

@@ -123,7 +123,10 @@ typedef struct ar_seg {
      * u = U + 2 q (g + ax q)/(1 + q^2), v = Va + 2 q (vy + ay q)/(1 + q^2)
      * (from sin tau and 1 - cos tau; (g, vy) = P'(ang), (ax, ay) =
      * -(P(ang) - centre)); k6 = -eb er / 2; t0, tend: q at the piece's
-     * ends where they lie in the anchor's rows (else -+infinity) */
+     * ends where they lie in the anchor's rows (else -+infinity).
+     * An offset piece (AA_PIECE_OFFSET): g is its tau at its anchor point
+     * (line_tau's root on the anchor's line); vy, ax, ay, cx3, cy3, ivy,
+     * k6 are 0 */
     /* tau and u on the line y = ja + mline (the bottom of the last band
      * rendered): the next band's top, without solving again */
     double tline, uline;
