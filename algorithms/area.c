@@ -138,9 +138,10 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 6.0 in CPU time (5.7 to 6.2 in
- * three runs on the shared machine; area 114 to 129 ms, point 19 to 22
- * ms), 4.8 by instructions (callgrind): the crossings' root-finding
+ * (tests/bench_bezstroke.c), area/point 4.8 to 6.2 in CPU time (two
+ * sets of three runs on the shared machine, the build before 6.4 to 7.9
+ * in the same sets; area 88 to 129 ms, point 19 to 22 ms), 4.8 by
+ * instructions (callgrind): the crossings' root-finding
  * (Newton on the curve) is 36% of area's instructions, the quadrature
  * 18%, aa_piece_meet 17% (the pieces of a stroke's overlapping contours
  * cross near every join; pairs running side by side are decided by their
