@@ -138,15 +138,16 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point was 7.7 in the last run here
- * (area 259 ms, point 34 ms; 6 to 8 in others, the shared machine's load
- * at 5 to 15), 4.2 by perf's samples of the two renders: about 40% of
- * area's time is aa_piece_meet (the pieces of a stroke's overlapping
- * contours cross near every join; pairs running side by side are decided
- * by their slopes, scene_piece.c), a fifth the parts' end points and
- * quadrature (part_area), the rest the band lines' and cell sides'
- * parameters (Newton on the curve).  Not yet within the factor of 2 of
- * other scenes.
+ * (tests/bench_bezstroke.c), area/point 4.8 to 6.2 in CPU time (two
+ * sets of three runs on the shared machine, the build before 6.4 to 7.9
+ * in the same sets; area 88 to 129 ms, point 19 to 22 ms), 4.8 by
+ * instructions (callgrind): the crossings' root-finding
+ * (Newton on the curve) is 36% of area's instructions, the quadrature
+ * 18%, aa_piece_meet 17% (the pieces of a stroke's overlapping contours
+ * cross near every join; pairs running side by side are decided by their
+ * slopes, scene_piece.c).  Each end of a part is evaluated once, for u and
+ * v together (seg_u, part_area: the seg's memo of v).  Not yet within the
+ * factor of 2 of other scenes.
  *
  * Hidden surfaces.  Clusters where pieces cross, or end inside the band
  * (vertices, flat edges), need the per-pixel treatment Catmull describes
@@ -491,8 +492,11 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     a->c0 = (int)c0;
     a->U = (double)(X - c0);
     a->Va = -(double)ja;
-    a->g = a->vy = a->ax = a->ay = a->cx3 = a->cy3 = 0.0;
+    a->ax = a->ay = a->cx3 = a->cy3 = 0.0;
     a->ivy = a->k6 = 0.0;
+    /* line_tau's root on the anchor's line */
+    a->g = p->sg * t;
+    a->vy = 0.0;
     a->t0 = p->sg * q->ot0;
     a->tend = p->sg * q->ot1;
     a->te = p->ote;
@@ -584,8 +588,12 @@ static void expand(ar_seg *a, const ar_piece *p, int ja)
 static inline double line_tau(const ar_seg *a, int m)
 {
     double c = a->Va - m;
-    if (a->p->offset) { /* y = ja + m = -c, on the whole piece */
+    if (a->p->offset) {
+        /* y = ja + m = -c, on the whole piece; on the anchor's line the
+         * anchor's own root (expand_offset made the same call) */
         const aa_piece *q = a->p->src;
+        if (m == 0 && a->p->y0 < a->ja)
+            return a->g;
         return a->p->sg * (double)aa__offset_solve_from(&q->oc, 1, q->ot0, q->ot1,
                                                           a->p->y0 + c, -c, NAN);
     }
@@ -644,23 +652,23 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
     if (s->ja != ja)
         expand(s, p, ja);
     double ta, tb, ua, ub;
-    if (p->offset)
-        s->V = s->Va - (j - ja); /* part_area's v */
+    if (p->offset) /* part_area's v, none kept yet */
+        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = NAN, s->vn = 0;
     if (p->y0 >= j)
         ta = p->conic || p->offset ? s->t0 : 0.0,
-        ua = p->conic || p->offset ? u_at(s, ta) : s->U;
+        ua = p->conic || p->offset ? seg_u(s, ta) : s->U;
     else if (s->mline == m)
         ta = s->tline, ua = s->uline;
     else
-        ta = line_tau(s, m), ua = u_at(s, ta);
+        ta = line_tau(s, m), ua = seg_u(s, ta);
     if (p->y1 <= j + 1.0) {
         tb = s->tend;
-        ub = u_at(s, tb);
+        ub = seg_u(s, tb);
     } else {
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
         tb = line_tau(s, m + 1);
-        ub = u_at(s, tb);
+        ub = seg_u(s, tb);
         s->mline = m + 1, s->tline = tb, s->uline = ub;
     }
     if (!(tb >= ta))
@@ -728,10 +736,11 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
     double d = tb - ta;
     if (s->p->offset) {
         /* the chord's height from the ends, the segment between chord and
-         * arc by quadrature with its bound (area_offset.c) */
-        double u0, v0, u1, v1;
-        offset_uv(s, ta, &u0, &v0);
-        offset_uv(s, tb, &u1, &v1);
+         * arc by quadrature with its bound (area_offset.c); v at the
+         * ends as kept (offset_keep) */
+        double v0 = offset_v_kept(s, ta), v1 = offset_v_kept(s, tb);
+        if (tb != s->vt[0] && tb != s->vt[1])
+            offset_keep(s, tb, v1);
         *dy = v1 - v0;
         double sg = s->p->sg;
         return *dy * (1.0 - 0.5 * (ua + ub)) - area_offset_segment(s->p, sg * ta, sg * tb);
@@ -888,7 +897,7 @@ static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const d
             accumulate(r->wk, s, s->ta, s->tb, s->ua, s->ub, dc, S->nch, r->W);
         } else {
             double t1 = tau_of_v(s, ya), t2 = tau_of_v(s, yb);
-            accumulate(r->wk, s, t1, t2, u_at(s, t1), u_at(s, t2), dc, S->nch, r->W);
+            accumulate(r->wk, s, t1, t2, seg_u(s, t1), seg_u(s, t2), dc, S->nch, r->W);
         }
     }
 }

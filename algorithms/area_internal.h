@@ -61,6 +61,10 @@ typedef struct ar_quad {
 typedef struct ar_panel {
     double a, b, m, R, M;
     double bx[4], by[4];
+    /* a cubic's factored form about te on this panel (aa__offset_stop at
+     * m, found once): stop, te, Q's coefficients q */
+    int stop;
+    double te, q[4];
 } ar_panel;
 
 /* ------------------------------------------------------------------------
@@ -119,10 +123,18 @@ typedef struct ar_seg {
      * u = U + 2 q (g + ax q)/(1 + q^2), v = Va + 2 q (vy + ay q)/(1 + q^2)
      * (from sin tau and 1 - cos tau; (g, vy) = P'(ang), (ax, ay) =
      * -(P(ang) - centre)); k6 = -eb er / 2; t0, tend: q at the piece's
-     * ends where they lie in the anchor's rows (else -+infinity) */
+     * ends where they lie in the anchor's rows (else -+infinity).
+     * An offset piece (AA_PIECE_OFFSET): g is its tau at its anchor point
+     * (line_tau's root on the anchor's line); vy, ax, ay, cx3, cy3, ivy,
+     * k6 are 0 */
     /* tau and u on the line y = ja + mline (the bottom of the last band
      * rendered): the next band's top, without solving again */
     double tline, uline;
+    /* an offset piece: its v at up to two taus vt of the current band
+     * (NAN: none), the ends of its parts (seg_u, part_area); vn: the
+     * slot written next */
+    double vt[2], vv[2];
+    int vn;
     /* the current band */
     double V;
     double ta, tb;  /* tau at the band's (or piece's) top and bottom */
@@ -202,14 +214,31 @@ static inline const double *colour_of(const ar_state *S, const int *w)
     return S->colour[S->nl];
 }
 
-/* An offset piece's point at tau, relative to the cell c0 and to the
- * line y = -V (extended precision, then rounded). */
-static inline void offset_uv(const ar_seg *s, double t, double *u, double *v)
+/* An offset piece's v at tau (y relative to the line y = -V; extended
+ * precision, then rounded). */
+static inline double offset_v(const ar_seg *s, double t)
 {
     long double X, Y;
     aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
-    *u = (double)(X - s->c0);
-    *v = (double)(Y + s->V);
+    return (double)(Y + s->V);
+}
+
+/* An offset piece's memo of v at the ends of its parts, each of which is
+ * evaluated once for u and v together: seg_make and sweep take u at the
+ * ends, part_area the chord's height from v there, and a part starts
+ * where the last ended.  The value kept is the one offset_v gives (same
+ * tau, same band), so the image is the same bit for bit.  The seg is the
+ * worker's own, never shared: the memo is written through the const
+ * pointers the row code passes (the object itself is not const). */
+static inline void offset_keep(const ar_seg *s, double t, double v)
+{
+    ar_seg *w = (ar_seg *)s;
+    w->vt[w->vn] = t, w->vv[w->vn] = v, w->vn ^= 1;
+}
+
+static inline double offset_v_kept(const ar_seg *s, double t)
+{
+    return t == s->vt[0] ? s->vv[0] : (t == s->vt[1] ? s->vv[1] : offset_v(s, t));
 }
 
 static inline double u_at(const ar_seg *s, double t)
@@ -222,6 +251,17 @@ static inline double u_at(const ar_seg *s, double t)
     if (s->p->conic) /* sin tau = 2q/(1 + q^2), 1 - cos tau = 2q^2/(1 + q^2) */
         return s->U + 2.0 * t * (s->g + s->ax * t) / (1.0 + t * t);
     return s->U + t * (s->g + t * (s->ax + t * s->cx3));
+}
+
+/* u_at, keeping an offset piece's v there (offset_keep). */
+static inline double seg_u(const ar_seg *s, double t)
+{
+    if (!s->p->offset)
+        return u_at(s, t);
+    long double X, Y;
+    aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
+    offset_keep(s, t, (double)(Y + s->V));
+    return (double)(X - s->c0);
 }
 
 /* A cubic's root of c + tau (k1 + tau (k2 + tau k3)) in [a, b], where it

@@ -326,6 +326,9 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
         }
         ar_panel *p = &out->p[out->n++];
         p->a = a, p->b = b, p->m = m, p->R = bR, p->M = bM;
+        p->stop = stop, p->te = stop ? te : 0.0;
+        for (int k = 0; k < 4; k++)
+            p->q[k] = stop ? q[k] : 0.0;
         memcpy(p->bx, bx, sizeof bx);
         memcpy(p->by, by, sizeof by);
         return AA_OK;
@@ -375,10 +378,10 @@ static void rel_point(const aa_offset_curve *oc, const ar_panel *p, double t, do
         *y = by[1] * c1 + by[2] * sn + r * ux / L;
         return;
     }
-    double te, q[4];
-    if (aa__offset_stop(oc, p->m, &te, q)) {
+    if (p->stop) {
         /* the factored form: P = B + d sg perp(Q)/|Q|, E = B + (t - te)
          * |Q|^2 perp(Q)/X */
+        const double *q = p->q, te = p->te;
         double Qx = q[0] + q[1] * t, Qy = q[2] + q[3] * t, q2 = Qx * Qx + Qy * Qy;
         double r = oc->evolute ? (t - te) * q2 / (Qx * q[3] - Qy * q[1])
                                : oc->d * (te == 0 ? 1 : -1) / sqrt(q2);
@@ -409,11 +412,21 @@ static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
     int r = AR_QUAD_RULES - 1;
     double Rs = p->R - fabs(mm - p->m);
     if (Rs > h && p->M > 0.0) {
-        double z = Rs / h, rho = z + sqrt((z - 1.0) * (z + 1.0));
-        double need = log_factor(h, p->M, rho) - log(AR_QUAD_TOL), lr = 2.0 * log(rho);
-        for (r = 0; r < AR_QUAD_RULES - 1; r++)
-            if (q->n[r] * lr >= need)
+        /* the fewest points n with h 64 M / (15 (1 - rho^-2) rho^(2n)) <=
+         * AR_QUAD_TOL, as rho^(2n) >= need: the powers by products (no
+         * logarithms: two a share were a tenth of its time), their
+         * rounding (a few units in the last place) within the 1e-12
+         * margin on need */
+        double z = Rs / h, rho = z + sqrt((z - 1.0) * (z + 1.0)), r2 = rho * rho;
+        double need = h * 64.0 * p->M / (15.0 * (1.0 - 1.0 / r2) * AR_QUAD_TOL) * (1.0 + 1e-12);
+        double pw = 1.0; /* r2^k */
+        int k = 0;
+        for (r = 0; r < AR_QUAD_RULES - 1; r++) {
+            for (; k < q->n[r]; k++)
+                pw *= r2;
+            if (pw >= need)
                 break;
+        }
     }
     double ax, ay;
     rel_point(oc, p, al, &ax, &ay);
@@ -438,9 +451,8 @@ static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
         }
         return 0.5 * h * sum;
     }
-    double te, qs[4];
-    if (aa__offset_stop(oc, p->m, &te, qs)) {
-        double sg = te == 0 ? 1 : -1;
+    if (p->stop) {
+        const double *qs = p->q, te = p->te, sg = te == 0 ? 1 : -1;
         for (int i = 0; i < q->n[r]; i++) {
             double t = mm + h * q->x[q->at[r] + i], s = t - p->m;
             double Dx = s * (bx[1] + s * (bx[2] + s * bx[3])) - ax;

@@ -87,7 +87,9 @@ static void base_eval_d(const aa_offset_curve *oc, double t, double B[2], double
     B3[0] = 6 * b[3], B3[1] = 6 * b[7];
 }
 
-int aa__offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4])
+/* aa__offset_stop, inline for the evaluations here: every evaluation asks
+ * it (a tenth of area's time on stroked cubics as a call). */
+static inline int offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4])
 {
     if (oc->base != AA_OFFSET_CUBIC)
         return 0;
@@ -109,6 +111,11 @@ int aa__offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4]
     }
     q[1] = 3 * b[3], q[3] = 3 * b[7];
     return 1;
+}
+
+int aa__offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4])
+{
+    return offset_stop(oc, t, te, q);
 }
 
 /* The point and derivative (unmapped) of a cubic's offset or evolute in
@@ -154,7 +161,7 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
     long double L = sqrtl(ux * ux + uy * uy), c = ux * vy - uy * vx;
     long double px, py, qx, qy; /* the point and its derivative, unmapped */
     double te, q[4];
-    if (aa__offset_stop(oc, (double)t, &te, q)) {
+    if (offset_stop(oc, (double)t, &te, q)) {
         stop_eval(oc, t, te, q, &px, &py, &qx, &qy);
     } else if (!oc->evolute) {
         long double k = c / (L * L * L), f = 1 - oc->d * k;
@@ -192,10 +199,10 @@ static void eval_d(const aa_offset_curve *oc, int coord, double t, double tgt, d
                    double *df, double *dn)
 {
     double te, q[4];
-    if (oc->base != AA_OFFSET_CUBIC || aa__offset_stop(oc, t, &te, q)) {
-        /* an ellipse's offset, or next to a cubic's end where B' = 0 (the
-         * factored form, in long double): the point, its derivative and
-         * the base point, the row applied to each */
+    if (oc->base == AA_OFFSET_CUBIC && offset_stop(oc, t, &te, q)) {
+        /* next to a cubic's end where B' = 0 (the factored form, in long
+         * double): the point, its derivative and the base point, the row
+         * applied to each */
         long double X, Y, DX, DY;
         aa__offset_eval(oc, t, &X, &Y, &DX, &DY);
         double B[2], U[2], V[2], W[2];
@@ -208,11 +215,21 @@ static void eval_d(const aa_offset_curve *oc, int coord, double t, double tgt, d
         return;
     }
     const double *b = oc->b;
-    double r0 = oc->m[coord], r1 = oc->m[2 + coord];
-    double bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
-    double by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
-    double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
-    double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+    double r0 = oc->m[coord], r1 = oc->m[2 + coord], bx, by, ux, uy, vx, vy, cp;
+    if (oc->base == AA_OFFSET_ELLIPSE) {
+        /* B, B', B'' from cos t and sin t in double (each within an ulp),
+         * B''' = -B': c' = B' x B''' = 0 */
+        double B[2], U[2], V[2], W[2];
+        base_eval_d(oc, t, B, U, V, W);
+        bx = B[0], by = B[1], ux = U[0], uy = U[1], vx = V[0], vy = V[1];
+        cp = ux * W[1] - uy * W[0];
+    } else {
+        bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+        by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+        ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+        vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+        cp = ux * 6 * b[7] - uy * 6 * b[3];
+    }
     double c = ux * vy - uy * vx, L2 = ux * ux + uy * uy, w = r1 * ux - r0 * uy;
     double base = (r0 * bx + r1 * by + oc->m[4 + coord]) - tgt;
     if (!oc->evolute) {
@@ -221,7 +238,7 @@ static void eval_d(const aa_offset_curve *oc, int coord, double t, double tgt, d
         *f = base + *dn;
         *df = (r0 * ux + r1 * uy) * (1 - oc->d * c * (il * il * il));
     } else {
-        double ic = 1 / c, cp = ux * 6 * b[7] - uy * 6 * b[3], dot = ux * vx + uy * vy;
+        double ic = 1 / c, dot = ux * vx + uy * vy;
         *dn = w * L2 * ic;
         *f = base + *dn;
         *df = w * (3 * dot * c - L2 * cp) * (ic * ic);
@@ -337,8 +354,14 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
     const double *c = oc->b;
     int neg = fa < 0;
     double t = 0.5 * (a + b), prev = fabs(b - a), f, df, dn;
-    double size = fabs(oc->m[coord]) * (fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3])) +
-                  fabs(oc->m[2 + coord]) * (fabs(c[4]) + fabs(c[5]) + fabs(c[6]) + fabs(c[7])) +
+    /* the terms' size: a cubic's x and y coefficients, an ellipse's
+     * centre and semi-diameters (x in c[0], c[2], c[4], y in the others) */
+    int ell = oc->base == AA_OFFSET_ELLIPSE;
+    double sx = ell ? fabs(c[0]) + fabs(c[2]) + fabs(c[4])
+                    : fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3]);
+    double sy = ell ? fabs(c[1]) + fabs(c[3]) + fabs(c[5])
+                    : fabs(c[4]) + fabs(c[5]) + fabs(c[6]) + fabs(c[7]);
+    double size = fabs(oc->m[coord]) * sx + fabs(oc->m[2 + coord]) * sy +
                   fabs(oc->m[4 + coord]) + fabs(tgt);
     /* b unseen: the caller's end, its sign taken on trust and not
      * evaluated (with a guess); a Newton step past it goes to it */

@@ -831,6 +831,42 @@ static int slopes_say(const aa_piece *p, const aa_piece *q, double a, double b,
     return fmax(da + slo * u, db - shi * (h - u)) > tol ? APART : UNKNOWN;
 }
 
+/* 1 if p's x is strictly monotone over [a, b] (t: an offset piece's
+ * parameters there): a line; an offset piece without an x turn inside
+ * (aa__offset_turns, closed form).  0 where not proven (other kinds). */
+static int x_monotone(const aa_piece *p, const double t[2])
+{
+    double ts[2];
+    if (p->kind == AA_PIECE_LINE)
+        return 1;
+    if (p->kind != AA_PIECE_OFFSET)
+        return 0;
+    return aa__offset_turns(&p->oc, 0, fmin(t[0], t[1]), fmax(t[0], t[1]), ts) == 0;
+}
+
+/* 1 if p and q, leaving the end point they share at an end of [a, b]
+ * (x there: X), part in x for good: both strictly monotone in x there
+ * (x_monotone) and at the other end one left of X and the other right of
+ * it beyond the rounding margin tol.  Then one's x stays below X and the
+ * other's above on the whole interval, and they meet nowhere but where
+ * both are within rounding of X next to the shared end, which is the end
+ * itself as for the shared ends below (b - a <= 1e-6 scale).  Two parts
+ * of one offset curve split at its top or bottom (a y turn, where both
+ * run horizontally and slope_range bounds neither slope) were bisected
+ * down to that width, ten or more levels of two solves each, in every
+ * band that held the shared end. */
+static int part_at_end(const meet_ctx *c, double a, double b, const double tp[2],
+                       const double tq[2], const double xp[2], const double xq[2], double tol)
+{
+    int e = a == c->lo && c->lo_shared ? 0 : (b == c->hi && c->hi_shared ? 1 : -1);
+    if (e < 0)
+        return 0;
+    double dp = xp[1 - e] - xp[e], dq = xq[1 - e] - xq[e];
+    if (!((dp < -tol && dq > tol) || (dp > tol && dq < -tol)))
+        return 0;
+    return x_monotone(c->p, tp) && x_monotone(c->q, tq);
+}
+
 static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2],
                              const double tq[2], const double xp[2], const double xq[2],
                              int depth)
@@ -841,7 +877,7 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
     range_at(c->p, a, b, tp, xp, &pa, &pb);
     range_at(c->q, a, b, tq, xq, &qa, &qb);
     double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
-    if (pb < qa - tol || qb < pa - tol)
+    if (pb < qa - tol || qb < pa - tol || part_at_end(c, a, b, tp, tq, xp, xq, tol))
         return;
     double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m)), da;
     switch (slopes_say(c->p, c->q, a, b, tp, tq, xp, xq, tol, 1e-12 * scale, &da)) {
@@ -902,6 +938,8 @@ static int same_curve(const aa_piece *p, const aa_piece *q)
     case AA_PIECE_CONIC:
         return p->ex == q->ex && p->ey == q->ey && p->er == q->er && p->ea == q->ea &&
                p->eb == q->eb;
+    case AA_PIECE_OFFSET: /* one curve over the same parameters */
+        return p->ot0 == q->ot0 && p->ot1 == q->ot1 && !memcmp(&p->oc, &q->oc, sizeof p->oc);
     default:
         return 0;
     }
