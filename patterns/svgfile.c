@@ -992,6 +992,7 @@ bad_function:
 
 struct svg_ids;
 static const xmlNode *find_id(const struct svg_ids *ids, const char *id);
+static const xmlNode *find_href(const struct svg_ids *ids, const char *h);
 static void warn_at(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
 static int is_svg(const xmlNode *node);
 static int named(const xmlNode *node, const char *name);
@@ -3265,12 +3266,7 @@ static int grad_chain(reader *r, const xmlNode *g, const xmlNode **chain, int *n
                             "document is not supported",
                          xmlGetLineNo(g), aa_echo(h));
         else if (*h) {
-            char id[1024];
-            snprintf(id, sizeof id, "%s", h + 1);
-            size_t k = strlen(id);
-            while (k && is_wsp((unsigned char)id[k - 1]))
-                id[--k] = '\0';
-            next = find_id(r->ids, id);
+            next = find_href(r->ids, h);
             if (next && !(is_svg(next) && (named(next, "linearGradient") ||
                                            named(next, "radialGradient"))))
                 next = NULL; /* not a gradient: nothing to inherit */
@@ -3767,6 +3763,18 @@ static const xmlNode *find_id(const struct svg_ids *ids, const char *id)
     return lo < ids->n && !strcmp((const char *)ids->e[lo].id, id) ? ids->e[lo].node : NULL;
 }
 
+/* The element a same-document reference "#id" names (h at its '#';
+ * trailing white space dropped), or NULL. */
+static const xmlNode *find_href(const struct svg_ids *ids, const char *h)
+{
+    char id[1024];
+    snprintf(id, sizeof id, "%s", h + 1);
+    size_t n = strlen(id);
+    while (n && is_wsp((unsigned char)id[n - 1]))
+        id[--n] = '\0';
+    return find_id(ids, id);
+}
+
 /* The style sheets of every <style> element of the SVG namespace, in
  * document order (a sheet applies to the whole document wherever it is):
  * type absent, empty or text/css (another type is not CSS, and browsers
@@ -4024,12 +4032,7 @@ static int use_element(reader *r, const xmlNode *node, style sty, mat m, int dep
         st = fail_at(r, "href=\"%s\": a reference to another document is not supported",
                      aa_echo(h));
     else {
-        char id[1024];
-        snprintf(id, sizeof id, "%s", h + 1);
-        size_t n = strlen(id);
-        while (n && is_wsp((unsigned char)id[n - 1]))
-            id[--n] = '\0';
-        target = find_id(r->ids, id);
+        target = find_href(r->ids, h);
     }
     xmlFree(href);
     if (st || !target)
