@@ -150,6 +150,8 @@ typedef struct an_state {
      * and knot k; likewise in y. */
     int nph;
     double ph[AN_MAX_CELLS + 1];
+    int regular; /* deg + 1 cells of width 1 (fast_part_regular) */
+    int pad;     /* margins of the scatter's buffers: the support's width + 3 */
     /* The plan of the scene (see "One layer at a time"): for the scene
      * and height it was made for, which rows take the per-pixel path
      * (slow[j]), and each layer's value per unit of winding (coef, nv
@@ -630,19 +632,37 @@ static size_t cut_cap(const an_state *S, int w)
     return ny + nx + 2;
 }
 
+/* A block's buffers: rows j0 - pad .. j1 - 1 + pad, columns -pad .. w +
+ * pad, pad = the support's width + 3 (the margins take the terms of
+ * supports beyond the image, which the parts below write rather than test
+ * for; the running sum starts in the left margin). */
+static inline size_t block_cols(const an_state *S, int w)
+{
+    return (size_t)w + 2 * (size_t)S->pad + 1;
+}
+
+static inline size_t block_cells(const an_state *S, int w)
+{
+    return (size_t)(AN_BLOCK + 2 * S->pad) * block_cols(S, w);
+}
+
 static size_t fast_size(const an_state *S, int w)
 {
-    size_t cover = (size_t)AN_BLOCK * (size_t)(w + 1) * 3 * sizeof(double);
-    size_t touched = ((size_t)AN_BLOCK * (size_t)w + 63) & ~(size_t)63;
-    return cover + touched + 2 * cut_cap(S, w) * sizeof(double);
+    size_t cells = block_cells(S, w);
+    size_t cover = cells * 3 * sizeof(double), touched = (cells + 63) & ~(size_t)63;
+    size_t scratch = 2 * (size_t)S->pad * AN_MAX_GAUSS * sizeof(double);
+    return cover + touched + scratch + 2 * cut_cap(S, w) * sizeof(double);
 }
 
 typedef struct an_block {
     const an_state *S;
     int w, j0, j1, nv;
-    double *cover; /* rows j0 .. j1-1: (w + 1) x nv each */
-    unsigned char *touched;
-    double *ts; /* 2 cap: the cuts of y, then of x */
+    double *cover;          /* nv values a cell */
+    unsigned char *touched; /* a cell got an exact term */
+    size_t cols;            /* block_cols */
+    int pad;
+    double *wcol, *arow;    /* pad x AN_MAX_GAUSS each: W at the columns, a at the rows */
+    double *ts;             /* 2 cap: the cuts of y, then of x */
     size_t cap;
 } an_block;
 
@@ -653,8 +673,34 @@ static inline int ifloor(double x)
     return i - (x < i);
 }
 
+/* The rule's points of the part [t0, t1] of piece p: X, Y and the
+ * weight times y' (D); its middle (xm, ym).  0 if the part lies right of
+ * every support or outside the block's rows. */
+__attribute__((always_inline)) static inline int
+part_points(const an_block *B, const aa_piece *p, const int m, double t0, double t1, double *X,
+            double *Y, double *D, double *xm, double *ym)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double *gx = S->gx[m], *gw = S->gw[m];
+    double hh = 0.5 * (t1 - t0), mid = 0.5 * (t0 + t1), dum;
+    aa__piece_point(p, mid, xm, ym, &dum);
+    if (!(*xm < B->w - 0.5 + pp->k[pp->ncell]))
+        return 0; /* right of every support: W = 1 */
+    /* clamped left of every support (the same columns) for ifloor */
+    if (*xm < pp->k[0] - 1.0)
+        *xm = pp->k[0] - 1.0;
+    for (int g = 0; g < m; g++) {
+        double dy;
+        aa__piece_point(p, mid + hh * gx[g], &X[g], &Y[g], &dy);
+        D[g] = gw[g] * hh * dy;
+    }
+    return 1;
+}
+
 /* The terms of the part [t0, t1] of piece p (inside one cell of every
- * support it meets) in the block's rows, with values val[0 .. nv). */
+ * support it meets) in the block's rows, with values val[0 .. nv): any
+ * filter. */
 __attribute__((always_inline)) static inline void
 fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, double t0,
           double t1, const int nv, const int N)
@@ -662,38 +708,20 @@ fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, 
     const an_state *S = B->S;
     const an_pp *pp = &S->pp;
     const double k0 = pp->k[0], kn = pp->k[pp->ncell];
-    const int w = B->w;
-    const double *gx = S->gx[m], *gw = S->gw[m];
-    double hh = 0.5 * (t1 - t0), mid = 0.5 * (t0 + t1), xm, ym, dum;
-    aa__piece_point(p, mid, &xm, &ym, &dum);
-    if (!(xm < w - 0.5 + kn))
-        return; /* right of every support: W = 1 */
-    /* ym lies in the block's support rows; xm is clamped left of every
-     * support (the same columns) so that ifloor holds */
-    if (xm < k0 - 1.0)
-        xm = k0 - 1.0;
+    double X[AN_MAX_GAUSS], Y[AN_MAX_GAUSS], D[AN_MAX_GAUSS], xm, ym;
+    if (!part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym))
+        return;
     int jlo = ifloor(ym - 0.5 - kn) + 1, jhi = ifloor(ym - 0.5 - k0);
     if (jlo < B->j0)
         jlo = B->j0;
     if (jhi > B->j1 - 1)
         jhi = B->j1 - 1;
-    if (jlo > jhi)
-        return;
-    double X[AN_MAX_GAUSS], Y[AN_MAX_GAUSS], D[AN_MAX_GAUSS];
-    for (int g = 0; g < m; g++) {
-        double dy;
-        aa__piece_point(p, mid + hh * gx[g], &X[g], &Y[g], &dy);
-        D[g] = gw[g] * hh * dy;
-    }
     /* the columns whose support holds the part, and W at its points */
     int ilo = ifloor(xm - 0.5 - kn) + 1, ihi = ifloor(xm - 0.5 - k0);
-    int ic = ilo < 0 ? 0 : ilo, ie = ihi > w - 1 ? w - 1 : ihi;
-    if (ic >= w)
-        return;
-    double Wc[AN_MAX_CELLS + 2][AN_MAX_GAUSS];
-    int ncol = ie - ic + 1;
+    double *Wc = B->wcol;
+    int ncol = ihi - ilo + 1;
     for (int c = 0; c < ncol; c++) {
-        double cx = ic + c + 0.5;
+        double cx = ilo + c + 0.5;
         int cell = an_cell(pp, xm - cx);
         const double *a = pp->cdf[cell];
         double o = cx + pp->k[cell];
@@ -701,15 +729,14 @@ fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, 
             double u = X[g] - o, v = a[N + 1];
             for (int q = N; q >= 0; q--)
                 v = a[q] + u * v;
-            Wc[c][g] = v;
+            Wc[c * AN_MAX_GAUSS + g] = v;
         }
     }
-    const size_t stride = (size_t)(w + 1) * (size_t)nv;
     for (int j = jlo; j <= jhi; j++) {
         double cy = j + 0.5;
         int cell = an_cell(pp, ym - cy);
         const double *b = pp->w[cell];
-        double o = cy + pp->k[cell], a[AN_MAX_GAUSS], A = 0.0;
+        double o = cy + pp->k[cell], *a = B->arow, A = 0.0;
         for (int g = 0; g < m; g++) {
             double u = Y[g] - o, v = b[N];
             for (int q = N - 1; q >= 0; q--)
@@ -717,15 +744,16 @@ fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, 
             a[g] = D[g] * v;
             A += a[g];
         }
-        double *cov = B->cover + (size_t)(j - B->j0) * stride;
-        unsigned char *tch = B->touched + (size_t)(j - B->j0) * (size_t)w;
+        size_t row = (size_t)(j - B->j0 + B->pad) * B->cols + (size_t)B->pad;
+        double *cov = B->cover + row * nv;
+        unsigned char *tch = B->touched + row;
         for (int v = 0; v < nv; v++)
-            cov[(size_t)ic * nv + v] += val[v] * A;
+            cov[(ptrdiff_t)ilo * nv + v] += val[v] * A;
         for (int c = 0; c < ncol; c++) {
             double r = 0.0;
             for (int g = 0; g < m; g++)
-                r += a[g] * Wc[c][g];
-            size_t i = (size_t)(ic + c);
+                r += a[g] * Wc[c * AN_MAX_GAUSS + g];
+            ptrdiff_t i = ilo + c;
             for (int v = 0; v < nv; v++) {
                 cov[i * nv + v] -= val[v] * r;
                 cov[(i + 1) * nv + v] += val[v] * r;
@@ -735,13 +763,81 @@ fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, 
     }
 }
 
+/* The same for a regular filter: N + 1 cells of width 1 (box, tent:r=1,
+ * the B-splines, Mitchell-Netravali but where its cubic near 0 is even):
+ * exactly N + 1 rows and columns hold the part, the first in the last
+ * cell, each next one cell to the left, so every count is a constant
+ * (rows outside the block and columns outside the image fall in the
+ * margins). */
+__attribute__((always_inline)) static inline void
+fast_part_regular(const an_block *B, const aa_piece *p, const double *val, const int m,
+                  double t0, double t1, const int nv, const int N)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
+    double X[AN_MAX_GAUSS], Y[AN_MAX_GAUSS], D[AN_MAX_GAUSS], xm, ym;
+    if (!part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym))
+        return;
+    (void)k0;
+    const int ns = N + 1;
+    int jlo = ifloor(ym - 0.5 - kn) + 1, ilo = ifloor(xm - 0.5 - kn) + 1;
+    double Wc[4][AN_MAX_GAUSS], a[4][AN_MAX_GAUSS], A[4];
+    for (int c = 0; c < ns; c++) {
+        const double *q = pp->cdf[ns - 1 - c];
+        double o = ilo + c + 0.5 + pp->k[ns - 1 - c];
+        for (int g = 0; g < m; g++) {
+            double u = X[g] - o, v = q[N + 1];
+            for (int e = N; e >= 0; e--)
+                v = q[e] + u * v;
+            Wc[c][g] = v;
+        }
+    }
+    for (int r = 0; r < ns; r++) {
+        const double *q = pp->w[ns - 1 - r];
+        double o = jlo + r + 0.5 + pp->k[ns - 1 - r], s = 0.0;
+        for (int g = 0; g < m; g++) {
+            double u = Y[g] - o, v = q[N];
+            for (int e = N - 1; e >= 0; e--)
+                v = q[e] + u * v;
+            a[r][g] = D[g] * v;
+            s += a[r][g];
+        }
+        A[r] = s;
+    }
+    for (int r = 0; r < ns; r++) {
+        size_t row = (size_t)(jlo + r - B->j0 + B->pad) * B->cols + (size_t)B->pad;
+        double *cov = B->cover + row * nv;
+        unsigned char *tch = B->touched + row;
+        double d[5];
+        d[0] = A[r];
+        for (int c = 0; c < ns; c++) {
+            double x = 0.0;
+            for (int g = 0; g < m; g++)
+                x += a[r][g] * Wc[c][g];
+            d[c] -= x;
+            d[c + 1] = x;
+        }
+        for (int c = 0; c <= ns; c++)
+            for (int v = 0; v < nv; v++)
+                cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
+        for (int c = 0; c < ns; c++)
+            tch[ilo + c] = 1;
+    }
+}
+
 /* fast_part with its rule's size and the values' count constants (the
  * loops unrolled by the compiler) */
 #define AN_PART(N, M)                                                               \
     static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
                                     double t0, double t1)                           \
     {                                                                               \
-        if (B->nv == 1)                                                             \
+        if (B->S->regular) {                                                        \
+            if (B->nv == 1)                                                         \
+                fast_part_regular(B, p, val, M, t0, t1, 1, N);                      \
+            else                                                                    \
+                fast_part_regular(B, p, val, M, t0, t1, 3, N);                      \
+        } else if (B->nv == 1)                                                      \
             fast_part(B, p, val, M, t0, t1, 1, N);                                  \
         else                                                                        \
             fast_part(B, p, val, M, t0, t1, 3, N);                                  \
@@ -852,12 +948,17 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     const an_state *S = R->S;
     const an_pp *pp = &S->pp;
     const int w = out->w, nv = S->nv;
+    const int pad = S->pad;
+    const size_t cols = block_cols(S, w), cells = block_cells(S, w);
     char *own = (char *)wk->own + S->fast_off;
-    an_block B = {S, w, j0, j1, nv, NULL, NULL, NULL, 0};
+    an_block B = {S, w, j0, j1, nv, NULL, NULL, cols, pad, NULL, NULL, NULL, 0};
     B.cover = (double *)own;
-    own += (size_t)AN_BLOCK * (size_t)(w + 1) * 3 * sizeof(double);
+    own += cells * 3 * sizeof(double);
     B.touched = (unsigned char *)own;
-    own += ((size_t)AN_BLOCK * (size_t)w + 63) & ~(size_t)63;
+    own += (cells + 63) & ~(size_t)63;
+    B.wcol = (double *)own;
+    B.arow = B.wcol + (size_t)pad * AN_MAX_GAUSS;
+    own += 2 * (size_t)pad * AN_MAX_GAUSS * sizeof(double);
     B.ts = (double *)own;
     B.cap = cut_cap(S, w);
     double Y0 = j0 + 0.5 + pp->k[0], Y1 = (j1 - 1) + 0.5 + pp->k[pp->ncell];
@@ -883,26 +984,29 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
             continue;
         fast_piece(&B, p, val);
     }
-    const size_t stride = (size_t)(w + 1) * (size_t)nv;
-    for (int j = j0; j < j1; j++) {
-        double *cov = B.cover + (size_t)(j - j0) * stride;
-        unsigned char *tch = B.touched + (size_t)(j - j0) * (size_t)w;
-        if (S->slow[j]) {
-            memset(cov, 0, stride * sizeof *cov);
-            memset(tch, 0, (size_t)w);
+    const double lo = R->lo, hi = R->hi;
+    for (int r = 0; r < AN_BLOCK + 2 * pad; r++) {
+        int j = j0 - pad + r;
+        double *cov = B.cover + (size_t)r * cols * nv;
+        unsigned char *tch = B.touched + (size_t)r * cols;
+        if (j < j0 || j >= j1 || S->slow[j]) { /* margins and other paths' rows */
+            memset(cov, 0, cols * nv * sizeof *cov);
+            memset(tch, 0, cols);
             continue;
         }
-        double *px = aa_pixel(out, 0, j);
-        const double lo = R->lo, hi = R->hi;
         uint64_t touched = 0;
         for (int i = 0; i < w; i++)
-            touched += tch[i];
-        memset(tch, 0, (size_t)(w > 0 ? w : 0));
+            touched += tch[pad + i];
+        memset(tch, 0, cols);
         *expensive += touched;
+        double *px = aa_pixel(out, 0, j);
         if (nv == 1) {
             const double b0 = S->bg.c[0], b1 = S->bg.c[1], b2 = S->bg.c[2];
             const double c0 = S->coef1.c[0], c1 = S->coef1.c[1], c2 = S->coef1.c[2];
             double run = 0.0;
+            for (int i = 0; i < pad; i++)
+                run += cov[i], cov[i] = 0.0;
+            cov += pad;
             for (int i = 0; i < w; i++, px += 3) {
                 run += cov[i];
                 cov[i] = 0.0;
@@ -911,20 +1015,22 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
                 px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
             }
+            memset(cov + w, 0, (cols - (size_t)pad - (size_t)w) * sizeof *cov);
         } else {
             double r0 = 0.0, r1 = 0.0, r2 = 0.0;
-            for (int i = 0; i < w; i++, px += 3) {
-                double *cv = cov + 3 * (size_t)i;
-                r0 += cv[0], r1 += cv[1], r2 += cv[2];
-                cv[0] = cv[1] = cv[2] = 0.0;
+            for (int i = 0; i < pad; i++, cov += 3) {
+                r0 += cov[0], r1 += cov[1], r2 += cov[2];
+                cov[0] = cov[1] = cov[2] = 0.0;
+            }
+            for (int i = 0; i < w; i++, px += 3, cov += 3) {
+                r0 += cov[0], r1 += cov[1], r2 += cov[2];
+                cov[0] = cov[1] = cov[2] = 0.0;
                 double v0 = S->bg.c[0] + r0, v1 = S->bg.c[1] + r1, v2 = S->bg.c[2] + r2;
-                /* branch-free clamps (minsd, maxsd) */
                 v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
                 px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
             }
+            memset(cov, 0, (cols - (size_t)pad - (size_t)w) * 3 * sizeof *cov);
         }
-        for (int v = 0; v < nv; v++)
-            cov[(size_t)w * nv + v] = 0.0;
     }
     return 0;
 }
@@ -1003,6 +1109,10 @@ static void knot_lines(an_state *S)
             S->ph[S->nph++] = f;
     }
     aa__vis_sort(S->ph, (size_t)S->nph);
+    S->pad = (int)ceil(pp->k[pp->ncell] - pp->k[0]) + 3;
+    S->regular = pp->ncell == pp->deg + 1;
+    for (int c = 0; c < pp->ncell; c++)
+        S->regular &= pp->k[c + 1] - pp->k[c] == 1.0;
 }
 
 static int analytic_init(void *state, const double *p, const aa_job *job)
