@@ -674,8 +674,11 @@ static inline int ifloor(double x)
 }
 
 /* The rule's points of the part [t0, t1] of piece p: X, Y and the
- * weight times y' (D); its middle (xm, ym).  0 if the part lies right of
- * every support or outside the block's rows. */
+ * weight times y' (D); its middle (xm, ym).  Returns 0 if the part lies
+ * right of every support (W = 1: no terms), 2 if left of every support
+ * (W = 0: the constant part alone, at column 0; X is not set), else 1.
+ * (A part lies between two neighbouring knots' lines, and the supports'
+ * ends are such lines, so its middle tells.) */
 __attribute__((always_inline)) static inline int
 part_points(const an_block *B, const aa_piece *p, const int m, double t0, double t1, double *X,
             double *Y, double *D, double *xm, double *ym)
@@ -686,16 +689,44 @@ part_points(const an_block *B, const aa_piece *p, const int m, double t0, double
     double hh = 0.5 * (t1 - t0), mid = 0.5 * (t0 + t1), dum;
     aa__piece_point(p, mid, xm, ym, &dum);
     if (!(*xm < B->w - 0.5 + pp->k[pp->ncell]))
-        return 0; /* right of every support: W = 1 */
-    /* clamped left of every support (the same columns) for ifloor */
-    if (*xm < pp->k[0] - 1.0)
-        *xm = pp->k[0] - 1.0;
+        return 0;
+    int left = *xm < 0.5 + pp->k[0];
     for (int g = 0; g < m; g++) {
         double dy;
         aa__piece_point(p, mid + hh * gx[g], &X[g], &Y[g], &dy);
         D[g] = gw[g] * hh * dy;
     }
-    return 1;
+    return left ? 2 : 1;
+}
+
+/* The constant part alone (a part left of every support): A of each row
+ * whose support holds it, at column 0. */
+__attribute__((always_inline)) static inline void
+part_left(const an_block *B, const double *val, const int m, const double *Y, const double *D,
+          double ym, const int nv, const int N)
+{
+    const an_pp *pp = &B->S->pp;
+    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
+    int jlo = ifloor(ym - 0.5 - kn) + 1, jhi = ifloor(ym - 0.5 - k0);
+    if (jlo < B->j0)
+        jlo = B->j0;
+    if (jhi > B->j1 - 1)
+        jhi = B->j1 - 1;
+    for (int j = jlo; j <= jhi; j++) {
+        double cy = j + 0.5;
+        int cell = an_cell(pp, ym - cy);
+        const double *b = pp->w[cell];
+        double o = cy + pp->k[cell], A = 0.0;
+        for (int g = 0; g < m; g++) {
+            double u = Y[g] - o, v = b[N];
+            for (int q = N - 1; q >= 0; q--)
+                v = b[q] + u * v;
+            A += D[g] * v;
+        }
+        double *cov = B->cover + ((size_t)(j - B->j0 + B->pad) * B->cols + (size_t)B->pad) * nv;
+        for (int v = 0; v < nv; v++)
+            cov[v] += val[v] * A;
+    }
 }
 
 /* The terms of the part [t0, t1] of piece p (inside one cell of every
@@ -709,8 +740,12 @@ fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, 
     const an_pp *pp = &S->pp;
     const double k0 = pp->k[0], kn = pp->k[pp->ncell];
     double X[AN_MAX_GAUSS], Y[AN_MAX_GAUSS], D[AN_MAX_GAUSS], xm, ym;
-    if (!part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym))
+    int where = part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym);
+    if (where != 1) {
+        if (where == 2)
+            part_left(B, val, m, Y, D, ym, nv, N);
         return;
+    }
     int jlo = ifloor(ym - 0.5 - kn) + 1, jhi = ifloor(ym - 0.5 - k0);
     if (jlo < B->j0)
         jlo = B->j0;
@@ -777,8 +812,12 @@ fast_part_regular(const an_block *B, const aa_piece *p, const double *val, const
     const an_pp *pp = &S->pp;
     const double k0 = pp->k[0], kn = pp->k[pp->ncell];
     double X[AN_MAX_GAUSS], Y[AN_MAX_GAUSS], D[AN_MAX_GAUSS], xm, ym;
-    if (!part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym))
+    int where = part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym);
+    if (where != 1) {
+        if (where == 2)
+            part_left(B, val, m, Y, D, ym, nv, N);
         return;
+    }
     (void)k0;
     const int ns = N + 1;
     int jlo = ifloor(ym - 0.5 - kn) + 1, ilo = ifloor(xm - 0.5 - kn) + 1;
