@@ -581,7 +581,22 @@ static void expand(ar_seg *a, const ar_piece *p, int ja)
 
 /* tau where the piece meets the line y = ja + m (the same expression
  * whichever band asks, so a band's top equals the band above's bottom). */
+static double line_tau_curved(const ar_seg *a, int m);
+
 static inline double line_tau(const ar_seg *a, int m)
+{
+    double c = a->Va - m;
+    if (a->p->curved)
+        return line_tau_curved(a, m);
+    if (a->ay == 0.0)
+        return -c * a->ivy;
+    double disc = a->vy * a->vy - 4.0 * a->ay * c;
+    double den = a->vy + sqrt(disc > 0.0 ? disc : 0.0);
+    return den > 0.0 ? -2.0 * c / den : 0.0;
+}
+
+/* line_tau of a cubic, conic or offset piece */
+static double line_tau_curved(const ar_seg *a, int m)
 {
     double c = a->Va - m;
     if (a->p->offset) { /* y = ja + m = -c, on the whole piece */
@@ -644,11 +659,12 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
     if (s->ja != ja)
         expand(s, p, ja);
     double ta, tb, ua, ub;
-    if (p->offset)
+    /* (p->curved first: the common path reads no other cache line of p) */
+    int special = p->curved && (p->conic || p->offset);
+    if (p->curved && p->offset)
         s->V = s->Va - (j - ja); /* part_area's v */
     if (p->y0 >= j)
-        ta = p->conic || p->offset ? s->t0 : 0.0,
-        ua = p->conic || p->offset ? u_at(s, ta) : s->U;
+        ta = special ? s->t0 : 0.0, ua = special ? u_at(s, ta) : s->U;
     else if (s->mline == m)
         ta = s->tline, ua = s->uline;
     else
@@ -679,7 +695,7 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
         s->lo = ue < s->lo ? ue : s->lo;
         s->hi = ue > s->hi ? ue : s->hi;
     }
-    if (p->conic || p->offset) {
+    if (special) {
         /* a conic's ends come from its angle (an offset piece's from its
          * parameter), off its exact end points
          * (x0, y0) and (x1, y1) by rounding: where two pieces meet on a cell's
@@ -722,7 +738,21 @@ static void band_fields(ar_seg *s, int j)
 
 /* The area right of the part of s from tau ta to tb (u from ua to ub,
  * relative to its column) inside the column, and its height *dy. */
+static double part_area_curved(const ar_seg *s, double ta, double tb, double ua, double ub,
+                               double *dy);
+
 static inline double part_area(const ar_seg *s, double ta, double tb, double ua, double ub,
+                               double *dy)
+{
+    if (s->p->curved)
+        return part_area_curved(s, ta, tb, ua, ub, dy);
+    double d = tb - ta;
+    *dy = d * (s->vy + s->ay * (ta + tb));
+    return *dy * (1.0 - 0.5 * (ua + ub)) + d * d * d * s->k6;
+}
+
+/* part_area of a cubic, conic or offset piece */
+static double part_area_curved(const ar_seg *s, double ta, double tb, double ua, double ub,
                                double *dy)
 {
     double d = tb - ta;
@@ -1682,6 +1712,7 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
         q->line = p->kind == AA_PIECE_LINE || p->kind == AA_PIECE_FLAT;
         q->cubic = p->kind == AA_PIECE_CUBIC;
         q->conic = p->kind == AA_PIECE_CONIC;
+        q->curved = q->cubic || q->conic || p->kind == AA_PIECE_OFFSET;
         q->src = p;
         if (p->kind == AA_PIECE_OFFSET && (st = load_offset(S, q, p)))
             return st;
