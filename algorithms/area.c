@@ -270,7 +270,7 @@ static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo
 static inline double tau_of_u(const ar_seg *s, double k, double sg)
 {
     double c = s->U - k, g = s->g;
-    if (s->p->conic) {
+    if (s->p->curved && s->p->conic) {
         double a = c + 2.0 * s->ax, disc = g * g - c * a, q = sqrt(disc > 0.0 ? disc : 0.0);
         double den = g + sg * q;
         if ((sg * g > 0.0 || a == 0.0) && den != 0.0)
@@ -1304,14 +1304,14 @@ static inline const double *single(const ar_row *r, const ar_seg *s, int *w,
     /* two cells: the piece crosses their common side x = c0 + k + 1 */
     double dl, dr, al, ar;
     if (s->ub > s->ua) {
-        double tc = s->p->cubic || s->p->offset
+        double tc = s->p->curved && (s->p->cubic || s->p->offset)
                         ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb, s->ua, s->ub)
                                 : tau_of_u(s, k + 1.0, 1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
         al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
         ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
     } else {
-        double tc = s->p->cubic || s->p->offset
+        double tc = s->p->curved && (s->p->cubic || s->p->offset)
                         ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb, s->ua, s->ub)
                                 : tau_of_u(s, k + 1.0, -1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
