@@ -190,6 +190,10 @@ typedef struct an_state {
     int plan_h, plan_nl, nv, any_fast;
     unsigned char *slow;
     double *coef;
+    /* the colour of each layer's face (winding s(L)), nl x 3; with nv = 1
+     * those of the faces of winding -1, 0 and +1 (face1) */
+    double *face;
+    double face1[3][3];
     size_t fast_off; /* the scatter's buffers in a worker's scratch */
     aa_rgb bg, coef1;
 } an_state;
@@ -518,6 +522,8 @@ static int render_row(const void *ctx, aa__sampler_worker *wk, int j, aa_image *
  * terms in the scene's piece order whatever the threads. */
 
 #define AN_BLOCK 64
+/* values a piece carries when the layers' steps differ: colour and code */
+#define AN_NV 4
 
 typedef struct an_check {
     an_state *S;
@@ -566,7 +572,8 @@ static void plan_free(an_state *S)
 {
     free(S->slow);
     free(S->coef);
-    S->slow = NULL, S->coef = NULL;
+    free(S->face);
+    S->slow = NULL, S->coef = NULL, S->face = NULL;
     S->plan_scene = NULL;
     S->plan_h = 0;
 }
@@ -581,11 +588,12 @@ static int plan(an_state *S, const aa_scene *scene, int h)
     int nl = aa_scene_layer_count(scene), nw = nl > 0 ? nl : 1, st = AA_OK;
     S->slow = calloc((size_t)(h > 0 ? h : 1), 1);
     S->coef = calloc((size_t)nw * 3, sizeof *S->coef);
+    S->face = calloc((size_t)nw * 3, sizeof *S->face);
     signed char *sign = calloc((size_t)nw, 1);
     int *wind = calloc((size_t)nw, sizeof *wind);
     void *block = malloc(aa__vis_size(scene, 1));
     aa_strip *strip = aa_strip_new(scene);
-    if (!S->slow || !S->coef || !sign || !wind || !block || !strip) {
+    if (!S->slow || !S->coef || !S->face || !sign || !wind || !block || !strip) {
         st = aa_fail(AA_ENOMEM, "out of memory for analytic's plan of the scene");
         goto out;
     }
@@ -608,20 +616,31 @@ static int plan(an_state *S, const aa_scene *scene, int h)
         }
     }
     S->bg = aa_scene_colour_of(scene, wind);
+    /* one value a piece (nv = 1) when every layer seen has the same step
+     * and, of each sign, the same colour: the running sum is then the
+     * winding itself; else the three channels and a fourth, the code
+     * sum of dir (L + 1), which in a face of layer L is (L + 1) s(L) */
     S->nv = 1;
-    int first = -1;
+    int first = -1, seen[2] = {0, 0};
+    for (int ch = 0; ch < 3; ch++)
+        S->face1[0][ch] = S->face1[1][ch] = S->face1[2][ch] = S->bg.c[ch];
     for (int L = 0; L < nl; L++) {
         if (!sign[L])
             continue;
         wind[L] = sign[L];
         aa_rgb c = aa_scene_colour_of(scene, wind);
         wind[L] = 0;
+        memcpy(&S->face[3 * L], c.c, sizeof c.c);
         for (int ch = 0; ch < 3; ch++)
             S->coef[3 * L + ch] = sign[L] * (c.c[ch] - S->bg.c[ch]);
+        int sg = sign[L] > 0;
         if (first < 0)
             first = L;
-        else if (memcmp(&S->coef[3 * L], &S->coef[3 * first], 3 * sizeof(double)))
-            S->nv = 3;
+        else if (memcmp(&S->coef[3 * L], &S->coef[3 * first], 3 * sizeof(double)) ||
+                 (seen[sg] && memcmp(S->face1[2 * sg], c.c, sizeof c.c)))
+            S->nv = AN_NV;
+        seen[sg] = 1;
+        memcpy(S->face1[2 * sg], c.c, sizeof c.c);
     }
     S->coef1 = (aa_rgb){{0.0, 0.0, 0.0}};
     if (first >= 0)
@@ -679,7 +698,7 @@ static inline size_t block_cells(const an_state *S, int w)
 static size_t fast_size(const an_state *S, int w)
 {
     size_t cells = block_cells(S, w);
-    size_t cover = cells * 3 * sizeof(double), touched = (cells + 63) & ~(size_t)63;
+    size_t cover = cells * AN_NV * sizeof(double), touched = (cells + 63) & ~(size_t)63;
     size_t scratch = 2 * (size_t)S->pad * AN_MAX_GAUSS * sizeof(double);
     return cover + touched + scratch + 2 * cut_cap(S, w) * sizeof(double);
 }
@@ -905,11 +924,11 @@ fast_part_regular(const an_block *B, const aa_piece *p, const double *val, const
             if (B->nv == 1)                                                         \
                 fast_part_regular(B, p, val, M, t0, t1, 1, N);                      \
             else                                                                    \
-                fast_part_regular(B, p, val, M, t0, t1, 3, N);                      \
+                fast_part_regular(B, p, val, M, t0, t1, AN_NV, N);                      \
         } else if (B->nv == 1)                                                      \
             fast_part(B, p, val, M, t0, t1, 1, N);                                  \
         else                                                                        \
-            fast_part(B, p, val, M, t0, t1, 3, N);                                  \
+            fast_part(B, p, val, M, t0, t1, AN_NV, N);                                  \
     }
 #define AN_PARTS(N)                                                                 \
     AN_PART(N, 1)                                                                   \
@@ -1022,7 +1041,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     char *own = (char *)wk->own + S->fast_off;
     an_block B = {S, w, j0, j1, nv, NULL, NULL, cols, pad, NULL, NULL, NULL, 0};
     B.cover = (double *)own;
-    own += cells * 3 * sizeof(double);
+    own += cells * AN_NV * sizeof(double);
     B.touched = (unsigned char *)own;
     own += (cells + 63) & ~(size_t)63;
     B.wcol = (double *)own;
@@ -1038,19 +1057,38 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     aa_strip_window(wk->strip, fmin(sx0, 0.0) - 1.0, w - 0.5 + pp->k[pp->ncell]);
     size_t nloc;
     const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
+    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
     for (size_t q = 0; q < nloc; q++) {
         const aa_piece *p = loc[q];
-        if (!p->dir)
-            continue;
         const double *cf = &S->coef[3 * p->layer];
-        double val[3];
+        if (cf[0] == 0.0 && cf[1] == 0.0 && cf[2] == 0.0)
+            continue; /* no step (its faces are the background's colour) */
+        if (!p->dir) {
+            /* a flat piece has no terms, but the pixels whose supports it
+             * crosses are not inside one face (marked, as the parts mark
+             * theirs) */
+            if (!(p->y0 >= Y0 && p->y0 <= Y1))
+                continue;
+            /* rows and columns whose closed supports meet it: ceil, floor */
+            int ja = -ifloor(-(p->y0 - 0.5 - kn)), jb = ifloor(p->y0 - 0.5 - k0);
+            double xa = fmax(p->xmin, -2.0 * pad), xb = fmin(p->xmax, w + 2.0 * pad);
+            int ia = -ifloor(-(xa - 0.5 - kn)), ib = ifloor(xb - 0.5 - k0);
+            ja = ja < j0 ? j0 : ja, jb = jb > j1 - 1 ? j1 - 1 : jb;
+            ia = ia < 0 ? 0 : ia, ib = ib > w - 1 ? w - 1 : ib;
+            for (int j = ja; j <= jb; j++)
+                if (ia <= ib)
+                    memset(B.touched + (size_t)(j - j0 + pad) * cols + (size_t)(pad + ia), 1,
+                           (size_t)(ib - ia + 1));
+            continue;
+        }
+        double val[AN_NV];
         if (nv == 1)
-            val[0] = cf[0] == 0.0 && cf[1] == 0.0 && cf[2] == 0.0 ? 0.0 : p->dir;
-        else
+            val[0] = p->dir;
+        else {
             for (int v = 0; v < 3; v++)
                 val[v] = p->dir * cf[v];
-        if (val[0] == 0.0 && (nv == 1 || (val[1] == 0.0 && val[2] == 0.0)))
-            continue;
+            val[3] = p->dir * (p->layer + 1.0);
+        }
         fast_piece(&B, p, val);
     }
     const double lo = R->lo, hi = R->hi;
@@ -1066,8 +1104,11 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
         uint64_t touched = 0;
         for (int i = 0; i < w; i++)
             touched += tch[pad + i];
-        memset(tch, 0, cols);
         *expensive += touched;
+        /* a pixel no part or flat piece reached has its support inside one
+         * face: its colour exactly, from the winding the running sum holds
+         * (within rounding of an integer) */
+        const unsigned char *t = tch + pad;
         double *px = aa_pixel(out, 0, j);
         if (nv == 1) {
             const double b0 = S->bg.c[0], b1 = S->bg.c[1], b2 = S->bg.c[2];
@@ -1096,11 +1137,19 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 _mm_storeu_pd(px, _mm_min_pd(_mm_max_pd(v0, vlo), vhi));
                 _mm_storeu_pd(px + 2, _mm_min_pd(_mm_max_pd(v1, vlo), vhi));
                 _mm_storeu_pd(px + 4, _mm_min_pd(_mm_max_pd(v2, vlo), vhi));
+                if (!t[i])
+                    memcpy(px, S->face1[1 + (ra > 0.5) - (ra < -0.5)], 3 * sizeof *px);
+                if (!t[i + 1])
+                    memcpy(px + 3, S->face1[1 + (rb > 0.5) - (rb < -0.5)], 3 * sizeof *px);
             }
 #endif
             for (; i < w; i++, px += 3) {
                 run += cov[i];
                 cov[i] = 0.0;
+                if (!t[i]) {
+                    memcpy(px, S->face1[1 + (run > 0.5) - (run < -0.5)], 3 * sizeof *px);
+                    continue;
+                }
                 double v0 = b0 + c0 * run, v1 = b1 + c1 * run, v2 = b2 + c2 * run;
                 /* branch-free clamps (minsd, maxsd) */
                 v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
@@ -1108,20 +1157,28 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
             }
             memset(cov + w, 0, (cols - (size_t)pad - (size_t)w) * sizeof *cov);
         } else {
-            double r0 = 0.0, r1 = 0.0, r2 = 0.0;
-            for (int i = 0; i < pad; i++, cov += 3) {
-                r0 += cov[0], r1 += cov[1], r2 += cov[2];
-                cov[0] = cov[1] = cov[2] = 0.0;
+            double r0 = 0.0, r1 = 0.0, r2 = 0.0, r3 = 0.0;
+            for (int i = 0; i < pad; i++, cov += AN_NV) {
+                r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
+                cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
             }
-            for (int i = 0; i < w; i++, px += 3, cov += 3) {
-                r0 += cov[0], r1 += cov[1], r2 += cov[2];
-                cov[0] = cov[1] = cov[2] = 0.0;
+            for (int i = 0; i < w; i++, px += 3, cov += AN_NV) {
+                r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
+                cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
+                if (!t[i]) {
+                    /* the code: (L + 1) s(L) in a face of layer L, 0 outside */
+                    long k = lrint(r3), L = (k < 0 ? -k : k) - 1;
+                    const double *f = L < 0 || L >= S->plan_nl ? S->bg.c : &S->face[3 * L];
+                    memcpy(px, f, 3 * sizeof *px);
+                    continue;
+                }
                 double v0 = S->bg.c[0] + r0, v1 = S->bg.c[1] + r1, v2 = S->bg.c[2] + r2;
                 v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
                 px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
             }
-            memset(cov, 0, (cols - (size_t)pad - (size_t)w) * 3 * sizeof *cov);
+            memset(cov, 0, (cols - (size_t)pad - (size_t)w) * AN_NV * sizeof *cov);
         }
+        memset(tch, 0, cols);
     }
     return 0;
 }

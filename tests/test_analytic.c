@@ -324,6 +324,72 @@ static void test_fast_and_layered(void **state)
     aa_scene_free(s);
 }
 
+/* Wide rectangles (flat top and bottom edges) in two colours, then in one:
+ * against the reference, and every pixel whose support lies wholly inside
+ * a rectangle or wholly outside both, not touching a side, is that face's
+ * colour exactly (the supports inside are found from the geometry alone;
+ * a side on a support's edge leaves that pixel to the integration, within
+ * rounding of the colour). */
+static void test_faces_exact(void **state)
+{
+    (void)state;
+    const char *const flist[] = {"box", "tent:r=1", "bspline:order=3", NULL};
+    const int w = 40, h = 30;
+    const aa_rgb bg = {{0.1, 0.2, 0.3}}, c[2][2] = {{{{0.3, 0.8, 0.15}}, {{0.9, 0.05, 0.6}}},
+                                                   {{{0.7, 0.7, 0.7}}, {{0.7, 0.7, 0.7}}}};
+    /* pixel boxes [x0, x1) x [y0, y1) */
+    const int r[2][4] = {{4, 3, 36, 12}, {6, 17, 30, 27}};
+    for (int colours = 0; colours < 2; colours++) {
+        aa_scene *s = aa_scene_new(bg);
+        assert_non_null(s);
+        for (int k = 0; k < 2; k++) {
+            assert_int_equal(aa_scene_layer(s, c[colours][k], AA_FILL_NONZERO), AA_OK);
+            assert_int_equal(aa_scene_move_to(s, r[k][0] / (double)w, r[k][1] / (double)h),
+                             AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[k][2] / (double)w, r[k][1] / (double)h),
+                             AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[k][2] / (double)w, r[k][3] / (double)h),
+                             AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[k][0] / (double)w, r[k][3] / (double)h),
+                             AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        against_filters(colours ? "rectangles, one colour" : "rectangles", s, w, h, flist);
+        for (const char *const *f = flist; *f; f++) {
+            aa_filter fl;
+            assert_int_equal(aa_filter_parse(*f, &fl), AA_OK);
+            double rad = fl.radius; /* the support: [c - rad, c + rad] */
+            aa_image a;
+            support_render("analytic", s, *f, w, h, 1, &a, NULL);
+            int inside = 0, outside = 0;
+            for (int j = 0; j < h; j++)
+                for (int i = 0; i < w; i++) {
+                    double x0 = i + 0.5 - rad, x1 = i + 0.5 + rad, y0 = j + 0.5 - rad,
+                           y1 = j + 0.5 + rad;
+                    const double *want = NULL;
+                    int apart = 1;
+                    for (int k = 0; k < 2; k++) {
+                        if (x0 > r[k][0] && x1 < r[k][2] && y0 > r[k][1] && y1 < r[k][3])
+                            want = c[colours][k].c, inside++;
+                        apart &= x1 < r[k][0] || x0 > r[k][2] || y1 < r[k][1] || y0 > r[k][3];
+                    }
+                    if (!want && apart)
+                        want = bg.c, outside++;
+                    for (int ch = 0; want && ch < 3; ch++)
+                        if (aa_pixel(&a, i, j)[ch] != want[ch])
+                            fail_msg("%s under %s: pixel (%d, %d) channel %d is %.17g, not the "
+                                     "face's %.17g",
+                                     colours ? "one colour" : "two colours", *f, i, j, ch,
+                                     aa_pixel(&a, i, j)[ch], want[ch]);
+                }
+            assert_true(inside > 0 && outside > 0);
+            aa_image_free(&a);
+        }
+        aa_scene_free(s);
+    }
+}
+
 /* Supports many pixels wide: tent:r=6 (12 px) and tent:r=3.7 (cells of
  * width 3.7, so the knots' lines of neighbouring pixels interleave) on an
  * edge that crosses most of the image within one row (a thin wedge), a
@@ -442,5 +508,6 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_shared_ends),
              cmocka_unit_test(test_fast_and_layered),
              cmocka_unit_test(test_wide_supports),
+             cmocka_unit_test(test_faces_exact),
              cmocka_unit_test(test_sums),
              cmocka_unit_test(test_refusals))
