@@ -129,8 +129,8 @@
  * per row; the rule's size, the filter's degree and (for filters of unit
  * cells) the support's width are constants of the compiled loops.  On
  * crow 1024x1024, one thread, the thread CPU time per render (algorithms/
- * README.md, "Exact filtering beyond the box"): under tent:r=1 1.8x
- * area's box time, under bspline:order=3 4.2x (medians of three runs).  Elsewhere, per pixel
+ * README.md, "Exact filtering beyond the box"): under tent:r=1 1.9x
+ * area's box time, under bspline:order=3 4.1x (medians of three runs).  Elsewhere, per pixel
  * whose support meets an edge, the visible parts (sorting each band's
  * pieces along x and one meeting test per neighbouring pair) and, per part
  * and cell, the rule of the table above; other pixels are filled in runs.
@@ -516,6 +516,13 @@ static int render_row(const void *ctx, aa__sampler_worker *wk, int j, aa_image *
  * a path wound twice, and the zero-width face between the two copies of
  * an edge shared by abutting paths of one layer (conservative: such rows
  * go the slow way).
+ *
+ * A pixel whose support no part reaches and no flat piece crosses lies
+ * inside one face and takes its colour exactly, as the per-pixel path's
+ * uniform runs give it: from the winding the running sum holds (within
+ * rounding of an integer) when every layer has the same step and, of each
+ * sign, the same colour (one value a piece, nv = 1), else from a fourth
+ * value summing dir (L + 1), which in a face of layer L is (L + 1) s(L).
  *
  * Rows are taken AN_BLOCK at a time (the parts of a piece cut at the
  * block's support rows, which are knots' lines): a pixel's value sums its
