@@ -1036,6 +1036,14 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val)
     }
 }
 
+/* a + b, and its rounding error added to *e (Knuth's TwoSum) */
+static inline double two_sum(double a, double b, double *e)
+{
+    double s = a + b, bb = s - a;
+    *e += (a - (s - bb)) + (b - bb);
+    return s;
+}
+
 /* Rows j0 .. j1-1 (those not marked slow) by the scatter. */
 static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1, aa_image *out,
                       uint64_t *expensive)
@@ -1114,15 +1122,18 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
         *expensive += touched;
         /* a pixel no part or flat piece reached has its support inside one
          * face: its colour exactly, from the winding the running sum holds
-         * (within rounding of an integer) */
+         * (within rounding of an integer), and the sums set to their exact
+         * values there, so that rounding does not carry from face to face */
         const unsigned char *t = tch + pad;
         double *px = aa_pixel(out, 0, j);
         if (nv == 1) {
             const double b0 = S->bg.c[0], b1 = S->bg.c[1], b2 = S->bg.c[2];
             const double c0 = S->coef1.c[0], c1 = S->coef1.c[1], c2 = S->coef1.c[2];
-            double run = 0.0;
+            /* the running sum compensated (two_sum): its rounding would
+             * otherwise grow with the edges left of a pixel */
+            double run = 0.0, comp = 0.0;
             for (int i = 0; i < pad; i++)
-                run += cov[i], cov[i] = 0.0;
+                run = two_sum(run, cov[i], &comp), cov[i] = 0.0;
             cov += pad;
             int i = 0;
 #if AN_SSE2
@@ -1133,8 +1144,14 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
             const __m128d c01 = _mm_set_pd(c1, c0), c20 = _mm_set_pd(c0, c2),
                           c12 = _mm_set_pd(c2, c1);
             for (; i + 1 < w; i += 2, px += 6) {
-                double ra = run + cov[i], rb = ra + cov[i + 1];
-                run = rb;
+                run = two_sum(run, cov[i], &comp);
+                double ra = run + comp;
+                if (!t[i])
+                    ra = run = (ra > 0.5) - (ra < -0.5), comp = 0.0;
+                run = two_sum(run, cov[i + 1], &comp);
+                double rb = run + comp;
+                if (!t[i + 1])
+                    rb = run = (rb > 0.5) - (rb < -0.5), comp = 0.0;
                 cov[i] = cov[i + 1] = 0.0;
                 __m128d raa = _mm_set1_pd(ra), rab = _mm_set_pd(rb, ra), rbb = _mm_set1_pd(rb);
                 __m128d v0 = _mm_add_pd(b01, _mm_mul_pd(c01, raa));
@@ -1145,19 +1162,21 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 _mm_storeu_pd(px + 2, _mm_min_pd(_mm_max_pd(v1, vlo), vhi));
                 _mm_storeu_pd(px + 4, _mm_min_pd(_mm_max_pd(v2, vlo), vhi));
                 if (!t[i])
-                    memcpy(px, S->face1[1 + (ra > 0.5) - (ra < -0.5)], 3 * sizeof *px);
+                    memcpy(px, S->face1[1 + (int)ra], 3 * sizeof *px);
                 if (!t[i + 1])
-                    memcpy(px + 3, S->face1[1 + (rb > 0.5) - (rb < -0.5)], 3 * sizeof *px);
+                    memcpy(px + 3, S->face1[1 + (int)rb], 3 * sizeof *px);
             }
 #endif
             for (; i < w; i++, px += 3) {
-                run += cov[i];
+                run = two_sum(run, cov[i], &comp);
                 cov[i] = 0.0;
+                double rs = run + comp;
                 if (!t[i]) {
-                    memcpy(px, S->face1[1 + (run > 0.5) - (run < -0.5)], 3 * sizeof *px);
+                    run = (rs > 0.5) - (rs < -0.5), comp = 0.0;
+                    memcpy(px, S->face1[1 + (int)run], 3 * sizeof *px);
                     continue;
                 }
-                double v0 = b0 + c0 * run, v1 = b1 + c1 * run, v2 = b2 + c2 * run;
+                double v0 = b0 + c0 * rs, v1 = b1 + c1 * rs, v2 = b2 + c2 * rs;
                 /* branch-free clamps (minsd, maxsd) */
                 v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
                 px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
@@ -1175,8 +1194,15 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 if (!t[i]) {
                     /* the code: (L + 1) s(L) in a face of layer L, 0 outside */
                     long k = lrint(r3), L = (k < 0 ? -k : k) - 1;
-                    const double *f = L < 0 || L >= S->plan_nl ? S->bg.c : &S->face[3 * L];
+                    int in = L >= 0 && L < S->plan_nl;
+                    double sg = k < 0 ? -1.0 : 1.0;
+                    const double *f = in ? &S->face[3 * L] : S->bg.c;
                     memcpy(px, f, 3 * sizeof *px);
+                    /* the sums there exactly: s(L) coef(L), the code */
+                    r0 = in ? sg * S->coef[3 * L] : 0.0;
+                    r1 = in ? sg * S->coef[3 * L + 1] : 0.0;
+                    r2 = in ? sg * S->coef[3 * L + 2] : 0.0;
+                    r3 = in ? (double)k : 0.0;
                     continue;
                 }
                 double v0 = S->bg.c[0] + r0, v1 = S->bg.c[1] + r1, v2 = S->bg.c[2] + r2;
