@@ -97,10 +97,11 @@
  * (aa_piece_meet_x): a cut misplaced by e moves the part of width e into
  * the neighbouring cell's polynomial, whose value differs there by at most
  * e times the jump of w's derivative (w and W are continuous; the box's
- * steps are at the support's sides, where the window ends).  The scatter's
- * running sums add a rounding per term along the row: on crow at 32x30,
- * 3.9e-14 at most where the visible parts gave 1.1e-14.  Values are
- * clamped to the filter's range (aa_filter_range: a rounding of 1e-16
+ * steps are at the support's sides, where the window ends).  The scatter
+ * sums more terms per pixel (every part left of it in its rows, through
+ * the running sum, compensated): on crow at 32x30 3.9e-14 at most where
+ * the visible parts gave 1.1e-14, at 128x128 under tent:r=1 1.1e-13 (1.2e-14),
+ * at 1024x1024 1.8e-13 (7.6e-13).  Values are clamped to the filter's range (aa_filter_range: a rounding of 1e-16
  * past it).
  *
  * Known answers (tests/test_analytic.c): the exact reference
