@@ -72,9 +72,16 @@
  *
  * What is chosen here (a variant in the means, not in the values).  The
  * paper rasterizes a scene of one shape at a time by scanlines, adding each
- * curve's terms to the pixels whose supports it crosses.  Shapes that
- * overlap are not summed but painted, and the weight of an area hidden by a
- * front layer must not count: here each pixel takes the visible parts of
+ * curve's terms to the pixels whose supports it crosses.  That is done here
+ * wherever the picture is linear in the edges: where at most one layer
+ * winds around a point, once (see "One layer at a time" below, where a
+ * sweep at init finds the rows where this holds).  There each piece is cut
+ * once at the knots' lines, each part gives its rule's points once for all
+ * the pixels whose supports hold it, and the constant part of (1) is
+ * carried along the row by a running sum, as area.c's cover.  Shapes that
+ * overlap are not summed but painted, and the weight of an area hidden by
+ * a front layer must not count: in the rows whose supports reach such
+ * places, each pixel takes the visible parts of
  * the edges in its support (visible.c, as `crowtiler:hidden=scan` does),
  * each with its step of colour, so the pixel is
  *
@@ -90,14 +97,21 @@
  * (aa_piece_meet_x): a cut misplaced by e moves the part of width e into
  * the neighbouring cell's polynomial, whose value differs there by at most
  * e times the jump of w's derivative (w and W are continuous; the box's
- * steps are at the support's sides, where the window ends).  Values are
- * clamped to the filter's range (aa_filter_range: a rounding of 1e-16
+ * steps are at the support's sides, where the window ends).  The scatter
+ * sums more terms per pixel (every part left of it in its rows, through
+ * the running sum, compensated): on crow at 32x30 3.9e-14 at most where
+ * the visible parts gave 1.1e-14, at 128x128 under tent:r=1 1.1e-13 (1.2e-14),
+ * at 1024x1024 1.8e-13 (7.6e-13).  Values are clamped to the filter's range (aa_filter_range: a rounding of 1e-16
  * past it).
  *
  * Known answers (tests/test_analytic.c): the exact reference
  * (aa_truth_render) within 1e-12 per pixel on crow, star, slivers,
  * catmull, feibush, SVG scenes of quadratic and cubic arcs and overlapping
- * even-odd layers, under every filter taken; a white region's image sums
+ * even-odd layers, under every filter taken; rows of both paths in one
+ * image (overlapping layers above disjoint shapes wound +1 and -1), a
+ * layer wound both ways, supports 12 px wide (tent:r=6) and with cells
+ * wider than a pixel (tent:r=3.7), a piece far left of the image, the same
+ * image at 1 and 2 threads; a white region's image sums
  * to its area (Archimedes' parabolic segment, 2/3 of its control triangle;
  * the area under y = x^3, 1/4) under the filters whose integer translates
  * sum to 1 (box, tent:r=1, the B-splines, Mitchell-Netravali, Catmull-Rom).
@@ -109,12 +123,22 @@
  * not polynomials); field scenes (no edges).  The paper also fills with
  * linear colour gradients, which the scene model does not hold.
  *
- * Cost: per pixel whose support meets an edge, the visible parts (sorting
- * each band's pieces along x and one meeting test per neighbouring pair)
- * and, per part and cell, the rule of the table above; other pixels are
- * filled in runs.  A pixel depends only on its row's strip: the same image
- * for any thread count.  Counters: samples = 0, expensive_pixels = pixels
- * summed.
+ * Cost.  Where the per-edge scatter holds (every row of crow and of scenes
+ * of disjoint shapes): per part of a piece between two knots' lines, its
+ * rule's points, the filter's pieces at them for the (support width)
+ * rows and columns that hold it and their products, then one running sum
+ * per row; the rule's size, the filter's degree and (for filters of unit
+ * cells) the support's width are constants of the compiled loops.  On
+ * crow 1024x1024, one thread, the thread CPU time per render (algorithms/
+ * README.md, "Exact filtering beyond the box"): under tent:r=1 1.9x
+ * area's box time, under bspline:order=3 4.1x (medians of three runs).  Elsewhere, per pixel
+ * whose support meets an edge, the visible parts (sorting each band's
+ * pieces along x and one meeting test per neighbouring pair) and, per part
+ * and cell, the rule of the table above; other pixels are filled in runs.
+ * The image does not depend on the thread count (rows are taken
+ * AN_BLOCK at a time by the scatter, one at a time by the visible parts,
+ * each from the scene alone).  Counters: samples = 0, expensive_pixels =
+ * pixels summed (the scatter's: the pixels some part's exact term reached).
  */
 #include "core.h"
 #include "methods.h"
@@ -122,6 +146,13 @@
 #include "visible.h"
 
 #include <math.h>
+#include <omp.h>
+#if defined(__SSE2__) && defined(__x86_64__)
+#include <emmintrin.h>
+#define AN_SSE2 1
+#else
+#define AN_SSE2 0
+#endif
 #include <stdlib.h>
 #include <string.h>
 
@@ -144,6 +175,28 @@ typedef struct an_state {
     an_pp pp;
     /* Gauss-Legendre on [-1, 1]: gx[m][q], gw[m][q] for m points */
     double gx[AN_MAX_GAUSS + 1][AN_MAX_GAUSS], gw[AN_MAX_GAUSS + 1][AN_MAX_GAUSS];
+    /* The knots' lines: x = n + ph[q] for every integer n (ph in [0, 1),
+     * ascending), the lines x = cx + k of every pixel centre cx = i + 1/2
+     * and knot k; likewise in y. */
+    int nph;
+    double ph[AN_MAX_CELLS + 1];
+    int regular; /* deg + 1 cells of width 1 (fast_part_regular) */
+    int pad;     /* margins of the scatter's buffers: the support's width + 3 */
+    /* The plan of the scene (see "One layer at a time"): for the scene
+     * and height it was made for, which rows take the per-pixel path
+     * (slow[j]), and each layer's value per unit of winding (coef, nv
+     * values a layer: nv = 1 when every layer has the same step, which
+     * is then coef1) over the background bg. */
+    const aa_scene *plan_scene;
+    int plan_h, plan_nl, nv, any_fast;
+    unsigned char *slow;
+    double *coef;
+    /* the colour of each layer's face (winding s(L)), nl x 3; with nv = 1
+     * those of the faces of winding -1, 0 and +1 (face1) */
+    double *face;
+    double face1[3][3];
+    size_t fast_off; /* the scatter's buffers in a worker's scratch */
+    aa_rgb bg, coef1;
 } an_state;
 
 typedef struct an_render {
@@ -423,6 +476,764 @@ static int render_row(const void *ctx, aa__sampler_worker *wk, int j, aa_image *
                            expensive);
 }
 
+
+/* ---- one layer at a time: the paper's per-edge scatter ----
+ *
+ * Where the colour is the background plus a fixed step per unit of one
+ * layer's winding, the picture is linear in the windings, so in the edges:
+ * with wind(x, y) the sum of dir over the pieces crossing line y left of x,
+ *
+ *     pixel = bg + sum over pieces p of dir(p) coef(layer p) R(p),
+ *
+ * R of (1) over p's rows in the pixel's support (the weights sum to 1).  No
+ * visible parts are needed; each piece is cut once at the knots' lines
+ * (x = n + ph, y = n + ph: every pixel's lines x = cx + k, y = cy + k), and
+ * each part, inside one cell of every pixel's support it meets, gives its
+ * rule's points once, for all those pixels: with a(g) = gw h y' w(y - cy)
+ * at its points,
+ *
+ *     R = sum_g a(g) (1 - W(x_g - cx))
+ *       = A - sum_g a(g) W(x_g - cx),     A = sum_g a(g),
+ *
+ * which is A for the pixels of the row whose support lies right of the part
+ * (W = 0 there) and 0 left of it (W = 1).  A is added at the first column
+ * whose support reaches the part and carried along the row by a running
+ * sum (area.c's cover and accumulation); the columns whose support holds
+ * the part take their sum of W (added as a difference of neighbours, so
+ * the one running sum makes the row).  The rule needs fewer points where
+ * the curve's degree in y or x is lower than its kind's (crow's arcs have
+ * y linear in t): with dy, dx the degrees of y(t), x(t) the integrand has
+ * degree n dy + (n + 1) dx + dy - 1.
+ *
+ * When it holds: the colour is bg + wind(L) coef(L) exactly where at most
+ * one layer's winding is non-zero and it is s(L) = +1 or -1, the same sign
+ * wherever layer L is seen (either rule then says inside, and coef(L) =
+ * s(L) (colour at winding s(L) - bg)).  At init the scene is swept
+ * (visible.c, every face between neighbouring pieces in every band of its
+ * rows, eight rows at a time) and a band where a face breaks this marks
+ * the rows whose supports reach it: those rows take the per-pixel path of
+ * visible parts; the others, this one.  A crossing of two pieces always
+ * breaks it in one of the four faces about it, so do overlapping layers,
+ * a path wound twice, and the zero-width face between the two copies of
+ * an edge shared by abutting paths of one layer (conservative: such rows
+ * go the slow way).
+ *
+ * A pixel whose support no part reaches and no flat piece crosses lies
+ * inside one face and takes its colour exactly, as the per-pixel path's
+ * uniform runs give it: from the winding the running sum holds (within
+ * rounding of an integer) when every layer has the same step and, of each
+ * sign, the same colour (one value a piece, nv = 1), else from a fourth
+ * value summing dir (L + 1), which in a face of layer L is (L + 1) s(L).
+ *
+ * Rows are taken AN_BLOCK at a time (the parts of a piece cut at the
+ * block's support rows, which are knots' lines): a pixel's value sums its
+ * terms in the scene's piece order whatever the threads. */
+
+#define AN_BLOCK 64
+/* values a piece carries when the layers' steps differ: colour and code */
+#define AN_NV 4
+
+typedef struct an_check {
+    an_state *S;
+    int nl, h;
+    double lo, hi; /* the band being swept */
+    signed char *sign;
+} an_check;
+
+static void chk_band(void *ctx, double ya, double yb, const int *wind)
+{
+    an_check *C = ctx;
+    (void)wind; /* left of the scene: no winding */
+    C->lo = ya, C->hi = yb;
+}
+
+static void chk_values(void *ctx, const int *wind, double *out)
+{
+    an_check *C = ctx;
+    const an_pp *pp = &C->S->pp;
+    int seen = 0, bad = 0;
+    out[0] = 0.0;
+    for (int L = 0; L < C->nl; L++) {
+        int w = wind[L];
+        if (!w)
+            continue;
+        if (seen++ || (w != 1 && w != -1))
+            bad = 1;
+        else if (!C->sign[L])
+            C->sign[L] = (signed char)w;
+        else if (C->sign[L] != w)
+            bad = 1;
+    }
+    if (!bad)
+        return;
+    /* rows whose support [j + 1/2 + k0, j + 1/2 + kn] meets the band, one
+     * more each way */
+    double k0 = pp->k[0], kn = pp->k[pp->ncell];
+    double a = floor(C->lo - 0.5 - kn) - 1.0, b = floor(C->hi - 0.5 - k0) + 1.0;
+    int ja = a < 0.0 ? 0 : (a > C->h ? C->h : (int)a);
+    int jb = b < 0.0 ? -1 : (b >= C->h ? C->h - 1 : (int)b);
+    for (int j = ja; j <= jb; j++)
+        C->S->slow[j] = 1;
+}
+
+static void plan_free(an_state *S)
+{
+    free(S->slow);
+    free(S->coef);
+    free(S->face);
+    S->slow = NULL, S->coef = NULL, S->face = NULL;
+    S->plan_scene = NULL;
+    S->plan_h = 0;
+}
+
+/* Which rows the scene lets this path take, and the layers' steps. */
+static int plan(an_state *S, const aa_scene *scene, int h)
+{
+    if (S->plan_scene == scene && S->plan_h == h)
+        return AA_OK;
+    plan_free(S);
+    const an_pp *pp = &S->pp;
+    int nl = aa_scene_layer_count(scene), nw = nl > 0 ? nl : 1, st = AA_OK;
+    S->slow = calloc((size_t)(h > 0 ? h : 1), 1);
+    S->coef = calloc((size_t)nw * 3, sizeof *S->coef);
+    S->face = calloc((size_t)nw * 3, sizeof *S->face);
+    signed char *sign = calloc((size_t)nw, 1);
+    int *wind = calloc((size_t)nw, sizeof *wind);
+    void *block = malloc(aa__vis_size(scene, 1));
+    aa_strip *strip = aa_strip_new(scene);
+    if (!S->slow || !S->coef || !S->face || !sign || !wind || !block || !strip) {
+        st = aa_fail(AA_ENOMEM, "out of memory for analytic's plan of the scene");
+        goto out;
+    }
+    double sx0, sy0, sx1, sy1;
+    if (aa_scene_bounds(scene, &sx0, &sy0, &sx1, &sy1)) {
+        aa__vis v;
+        an_check C = {S, nl, h, 0.0, 0.0, sign};
+        const aa__vis_sink sink = {chk_band, NULL, NULL, chk_values, &C, 1, 0, 0};
+        aa__vis_bind(&v, scene, 1, block);
+        double xl = sx0 - 1.0, xr = sx1 + 1.0;
+        double ylo = fmax(0.5 + pp->k[0], sy0 - 1.0), yhi = fmin(h - 0.5 + pp->k[pp->ncell], sy1 + 1.0);
+        for (double ya = ylo; ya < yhi; ya += 8.0) {
+            double yb = fmin(ya + 8.0, yhi);
+            if (aa_strip_begin(strip, ya, yb)) {
+                st = aa_fail(AA_ENOMEM, "out of memory for a strip of the scene");
+                goto out;
+            }
+            aa_strip_window(strip, xl, xr);
+            aa__vis_window(&v, strip, xl, xr, ya, yb, &sink);
+        }
+    }
+    S->bg = aa_scene_colour_of(scene, wind);
+    /* one value a piece (nv = 1) when every layer seen has the same step
+     * and, of each sign, the same colour: the running sum is then the
+     * winding itself; else the three channels and a fourth, the code
+     * sum of dir (L + 1), which in a face of layer L is (L + 1) s(L) */
+    S->nv = 1;
+    int first = -1, seen[2] = {0, 0};
+    for (int ch = 0; ch < 3; ch++)
+        S->face1[0][ch] = S->face1[1][ch] = S->face1[2][ch] = S->bg.c[ch];
+    for (int L = 0; L < nl; L++) {
+        if (!sign[L])
+            continue;
+        wind[L] = sign[L];
+        aa_rgb c = aa_scene_colour_of(scene, wind);
+        wind[L] = 0;
+        memcpy(&S->face[3 * L], c.c, sizeof c.c);
+        for (int ch = 0; ch < 3; ch++)
+            S->coef[3 * L + ch] = sign[L] * (c.c[ch] - S->bg.c[ch]);
+        int sg = sign[L] > 0;
+        if (first < 0)
+            first = L;
+        else if (memcmp(&S->coef[3 * L], &S->coef[3 * first], 3 * sizeof(double)) ||
+                 (seen[sg] && memcmp(S->face1[2 * sg], c.c, sizeof c.c)))
+            S->nv = AN_NV;
+        seen[sg] = 1;
+        memcpy(S->face1[2 * sg], c.c, sizeof c.c);
+    }
+    S->coef1 = (aa_rgb){{0.0, 0.0, 0.0}};
+    if (first >= 0)
+        memcpy(S->coef1.c, &S->coef[3 * first], sizeof S->coef1.c);
+    S->any_fast = 0;
+    for (int j = 0; j < h; j++)
+        S->any_fast |= !S->slow[j];
+    S->plan_scene = scene;
+    S->plan_h = h;
+    S->plan_nl = nl;
+out:
+    aa_strip_free(strip);
+    free(block);
+    free(wind);
+    free(sign);
+    if (st)
+        plan_free(S);
+    return st;
+}
+
+/* The rule's size for piece p under a filter of degree n: from the degrees
+ * of its y(t) and x(t) (power basis), see "One layer at a time" */
+static inline int gauss_points(const aa_piece *p, int n)
+{
+    int dy = p->dy != 0.0 ? 3 : (p->ay != 0.0 ? 2 : 1);
+    int dx = p->dx != 0.0 ? 3 : (p->ax != 0.0 ? 2 : (p->bx != 0.0 ? 1 : 0));
+    return (n * dy + (n + 1) * dx + dy - 1) / 2 + 1;
+}
+
+/* Capacity of a piece's cuts in one block: the knots' lines it can cross
+ * (each x line up to 3 times, a cubic) and its two ends. */
+static size_t cut_cap(const an_state *S, int w)
+{
+    const an_pp *pp = &S->pp;
+    double span = pp->k[pp->ncell] - pp->k[0];
+    size_t ny = (size_t)S->nph * (size_t)(AN_BLOCK + span + 3.0);
+    size_t nx = 3 * (size_t)S->nph * (size_t)(w + span + 3.0);
+    return ny + nx + 2;
+}
+
+/* A block's buffers: rows j0 - pad .. j1 - 1 + pad, columns -pad .. w +
+ * pad, pad = the support's width + 3 (the margins take the terms of
+ * supports beyond the image, which the parts below write rather than test
+ * for; the running sum starts in the left margin). */
+static inline size_t block_cols(const an_state *S, int w)
+{
+    return (size_t)w + 2 * (size_t)S->pad + 1;
+}
+
+static inline size_t block_cells(const an_state *S, int w)
+{
+    return (size_t)(AN_BLOCK + 2 * S->pad) * block_cols(S, w);
+}
+
+static size_t fast_size(const an_state *S, int w)
+{
+    size_t cells = block_cells(S, w);
+    size_t cover = cells * AN_NV * sizeof(double), touched = (cells + 63) & ~(size_t)63;
+    size_t scratch = 2 * (size_t)S->pad * AN_MAX_GAUSS * sizeof(double);
+    return cover + touched + scratch + 2 * cut_cap(S, w) * sizeof(double);
+}
+
+typedef struct an_block {
+    const an_state *S;
+    int w, j0, j1, nv;
+    double *cover;          /* nv values a cell */
+    unsigned char *touched; /* a cell got an exact term */
+    size_t cols;            /* block_cols */
+    int pad;
+    double *wcol, *arow;    /* pad x AN_MAX_GAUSS each: W at the columns, a at the rows */
+    double *ts;             /* 2 cap: the cuts of y, then of x */
+    size_t cap;
+} an_block;
+
+/* floor(x) for |x| < 2^31 */
+static inline int ifloor(double x)
+{
+    int i = (int)x;
+    return i - (x < i);
+}
+
+/* The rule's points of the part [t0, t1] of piece p: X, Y and the
+ * weight times y' (D); its middle (xm, ym).  Returns 0 if the part lies
+ * right of every support (W = 1: no terms), 2 if left of every support
+ * (W = 0: the constant part alone, at column 0; X is not set), else 1.
+ * (A part lies between two neighbouring knots' lines, and the supports'
+ * ends are such lines, so its middle tells.) */
+__attribute__((always_inline)) static inline int
+part_points(const an_block *B, const aa_piece *p, const int m, double t0, double t1, double *X,
+            double *Y, double *D, double *xm, double *ym)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double *gx = S->gx[m], *gw = S->gw[m];
+    double hh = 0.5 * (t1 - t0), mid = 0.5 * (t0 + t1), dum;
+    aa__piece_point(p, mid, xm, ym, &dum);
+    if (!(*xm < B->w - 0.5 + pp->k[pp->ncell]))
+        return 0;
+    int left = *xm < 0.5 + pp->k[0];
+    for (int g = 0; g < m; g++) {
+        double dy;
+        aa__piece_point(p, mid + hh * gx[g], &X[g], &Y[g], &dy);
+        D[g] = gw[g] * hh * dy;
+    }
+    return left ? 2 : 1;
+}
+
+/* The constant part alone (a part left of every support): A of each row
+ * whose support holds it, at column 0. */
+__attribute__((always_inline)) static inline void
+part_left(const an_block *B, const double *val, const int m, const double *Y, const double *D,
+          double ym, const int nv, const int N)
+{
+    const an_pp *pp = &B->S->pp;
+    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
+    int jlo = ifloor(ym - 0.5 - kn) + 1, jhi = ifloor(ym - 0.5 - k0);
+    if (jlo < B->j0)
+        jlo = B->j0;
+    if (jhi > B->j1 - 1)
+        jhi = B->j1 - 1;
+    for (int j = jlo; j <= jhi; j++) {
+        double cy = j + 0.5;
+        int cell = an_cell(pp, ym - cy);
+        const double *b = pp->w[cell];
+        double o = cy + pp->k[cell], A = 0.0;
+        for (int g = 0; g < m; g++) {
+            double u = Y[g] - o, v = b[N];
+            for (int q = N - 1; q >= 0; q--)
+                v = b[q] + u * v;
+            A += D[g] * v;
+        }
+        double *cov = B->cover + ((size_t)(j - B->j0 + B->pad) * B->cols + (size_t)B->pad) * nv;
+        for (int v = 0; v < nv; v++)
+            cov[v] += val[v] * A;
+    }
+}
+
+/* The terms of the part [t0, t1] of piece p (inside one cell of every
+ * support it meets) in the block's rows, with values val[0 .. nv): any
+ * filter. */
+__attribute__((always_inline)) static inline void
+fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, double t0,
+          double t1, const int nv, const int N)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
+    double X[AN_MAX_GAUSS], Y[AN_MAX_GAUSS], D[AN_MAX_GAUSS], xm, ym;
+    int where = part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym);
+    if (where != 1) {
+        if (where == 2)
+            part_left(B, val, m, Y, D, ym, nv, N);
+        return;
+    }
+    int jlo = ifloor(ym - 0.5 - kn) + 1, jhi = ifloor(ym - 0.5 - k0);
+    if (jlo < B->j0)
+        jlo = B->j0;
+    if (jhi > B->j1 - 1)
+        jhi = B->j1 - 1;
+    /* the columns whose support holds the part, and W at its points */
+    int ilo = ifloor(xm - 0.5 - kn) + 1, ihi = ifloor(xm - 0.5 - k0);
+    double *Wc = B->wcol;
+    int ncol = ihi - ilo + 1;
+    for (int c = 0; c < ncol; c++) {
+        double cx = ilo + c + 0.5;
+        int cell = an_cell(pp, xm - cx);
+        const double *a = pp->cdf[cell];
+        double o = cx + pp->k[cell];
+        for (int g = 0; g < m; g++) {
+            double u = X[g] - o, v = a[N + 1];
+            for (int q = N; q >= 0; q--)
+                v = a[q] + u * v;
+            Wc[c * AN_MAX_GAUSS + g] = v;
+        }
+    }
+    for (int j = jlo; j <= jhi; j++) {
+        double cy = j + 0.5;
+        int cell = an_cell(pp, ym - cy);
+        const double *b = pp->w[cell];
+        double o = cy + pp->k[cell], *a = B->arow, A = 0.0;
+        for (int g = 0; g < m; g++) {
+            double u = Y[g] - o, v = b[N];
+            for (int q = N - 1; q >= 0; q--)
+                v = b[q] + u * v;
+            a[g] = D[g] * v;
+            A += a[g];
+        }
+        size_t row = (size_t)(j - B->j0 + B->pad) * B->cols + (size_t)B->pad;
+        double *cov = B->cover + row * nv;
+        unsigned char *tch = B->touched + row;
+        for (int v = 0; v < nv; v++)
+            cov[(ptrdiff_t)ilo * nv + v] += val[v] * A;
+        for (int c = 0; c < ncol; c++) {
+            double r = 0.0;
+            for (int g = 0; g < m; g++)
+                r += a[g] * Wc[c * AN_MAX_GAUSS + g];
+            ptrdiff_t i = ilo + c;
+            for (int v = 0; v < nv; v++) {
+                cov[i * nv + v] -= val[v] * r;
+                cov[(i + 1) * nv + v] += val[v] * r;
+            }
+            tch[i] = 1;
+        }
+    }
+}
+
+/* The same for a regular filter: N + 1 cells of width 1 (box, tent:r=1,
+ * the B-splines, Mitchell-Netravali but where its cubic near 0 is even):
+ * exactly N + 1 rows and columns hold the part, the first in the last
+ * cell, each next one cell to the left, so every count is a constant
+ * (rows outside the block and columns outside the image fall in the
+ * margins). */
+__attribute__((always_inline)) static inline void
+fast_part_regular(const an_block *B, const aa_piece *p, const double *val, const int m,
+                  double t0, double t1, const int nv, const int N)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
+    double X[AN_MAX_GAUSS], Y[AN_MAX_GAUSS], D[AN_MAX_GAUSS], xm, ym;
+    int where = part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym);
+    if (where != 1) {
+        if (where == 2)
+            part_left(B, val, m, Y, D, ym, nv, N);
+        return;
+    }
+    (void)k0;
+    const int ns = N + 1;
+    int jlo = ifloor(ym - 0.5 - kn) + 1, ilo = ifloor(xm - 0.5 - kn) + 1;
+    double Wc[4][AN_MAX_GAUSS], a[4][AN_MAX_GAUSS], A[4];
+    for (int c = 0; c < ns; c++) {
+        const double *q = pp->cdf[ns - 1 - c];
+        double o = ilo + c + 0.5 + pp->k[ns - 1 - c];
+        for (int g = 0; g < m; g++) {
+            double u = X[g] - o, v = q[N + 1];
+            for (int e = N; e >= 0; e--)
+                v = q[e] + u * v;
+            Wc[c][g] = v;
+        }
+    }
+    for (int r = 0; r < ns; r++) {
+        const double *q = pp->w[ns - 1 - r];
+        double o = jlo + r + 0.5 + pp->k[ns - 1 - r], s = 0.0;
+        for (int g = 0; g < m; g++) {
+            double u = Y[g] - o, v = q[N];
+            for (int e = N - 1; e >= 0; e--)
+                v = q[e] + u * v;
+            a[r][g] = D[g] * v;
+            s += a[r][g];
+        }
+        A[r] = s;
+    }
+    for (int r = 0; r < ns; r++) {
+        size_t row = (size_t)(jlo + r - B->j0 + B->pad) * B->cols + (size_t)B->pad;
+        double *cov = B->cover + row * nv;
+        unsigned char *tch = B->touched + row;
+        double d[5];
+        d[0] = A[r];
+        for (int c = 0; c < ns; c++) {
+            double x = 0.0;
+            for (int g = 0; g < m; g++)
+                x += a[r][g] * Wc[c][g];
+            d[c] -= x;
+            d[c + 1] = x;
+        }
+        for (int c = 0; c <= ns; c++)
+            for (int v = 0; v < nv; v++)
+                cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
+        for (int c = 0; c < ns; c++)
+            tch[ilo + c] = 1;
+    }
+}
+
+/* fast_part with its rule's size and the values' count constants (the
+ * loops unrolled by the compiler) */
+#define AN_PART(N, M)                                                               \
+    static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
+                                    double t0, double t1)                           \
+    {                                                                               \
+        if (B->S->regular) {                                                        \
+            if (B->nv == 1)                                                         \
+                fast_part_regular(B, p, val, M, t0, t1, 1, N);                      \
+            else                                                                    \
+                fast_part_regular(B, p, val, M, t0, t1, AN_NV, N);                      \
+        } else if (B->nv == 1)                                                      \
+            fast_part(B, p, val, M, t0, t1, 1, N);                                  \
+        else                                                                        \
+            fast_part(B, p, val, M, t0, t1, AN_NV, N);                                  \
+    }
+#define AN_PARTS(N)                                                                 \
+    AN_PART(N, 1)                                                                   \
+    AN_PART(N, 2)                                                                   \
+    AN_PART(N, 3)                                                                   \
+    AN_PART(N, 4)                                                                   \
+    AN_PART(N, 5)                                                                   \
+    AN_PART(N, 6)                                                                   \
+    AN_PART(N, 7)                                                                   \
+    AN_PART(N, 8)                                                                   \
+    AN_PART(N, 9)                                                                   \
+    AN_PART(N, 10)                                                                  \
+    AN_PART(N, 11)                                                                  \
+    AN_PART(N, 12)
+AN_PARTS(0)
+AN_PARTS(1)
+AN_PARTS(2)
+AN_PARTS(3)
+#undef AN_PARTS
+#undef AN_PART
+
+typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val, double t0,
+                        double t1);
+#define AN_ROW(N)                                                                   \
+    {NULL,                fast_part_##N##_1,  fast_part_##N##_2, fast_part_##N##_3,  \
+     fast_part_##N##_4,   fast_part_##N##_5,  fast_part_##N##_6, fast_part_##N##_7,  \
+     fast_part_##N##_8,   fast_part_##N##_9,  fast_part_##N##_10, fast_part_##N##_11, \
+     fast_part_##N##_12}
+/* [filter degree][rule's points] */
+static an_part_fn *const fast_parts[4][AN_MAX_GAUSS + 1] = {AN_ROW(0), AN_ROW(1), AN_ROW(2),
+                                                            AN_ROW(3)};
+#undef AN_ROW
+
+/* The terms of piece p (values val[0 .. nv)) in the block's rows: cut at
+ * the knots' lines, in order of t (the lines of y in order, those of x
+ * sorted apart and merged). */
+static void fast_piece(const an_block *B, const aa_piece *p, const double *val)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
+    const int w = B->w;
+    const double Y0 = B->j0 + 0.5 + k0, Y1 = (B->j1 - 1) + 0.5 + kn;
+    const double XA = 0.5 + k0, XB = w - 0.5 + kn;
+    double lo = fmax(p->y0, Y0), hi = fmin(p->y1, Y1);
+    if (!(lo < hi))
+        return;
+    double *ty = B->ts, *tx = B->ts + B->cap;
+    size_t ny = 0, nx = 0;
+    double ta = lo <= p->y0 ? 0.0 : aa_piece_t_at(p, lo);
+    double tb = hi >= p->y1 ? 1.0 : aa_piece_t_at(p, hi);
+    ty[ny++] = ta;
+    for (double base = floor(lo); base <= hi; base += 1.0)
+        for (int q = 0; q < S->nph; q++) {
+            double Y = base + S->ph[q];
+            if (Y > lo && Y < hi)
+                ty[ny++] = aa_piece_t_at(p, Y);
+        }
+    ty[ny++] = tb;
+    double xa, xb;
+    aa_piece_xrange(p, lo, hi, &xa, &xb);
+    double ca = fmax(xa, XA), cb = fmin(xb, XB);
+    int line = p->kind == AA_PIECE_LINE;
+    for (double base = floor(ca); base <= cb; base += 1.0)
+        for (int q = 0; q < S->nph; q++) {
+            double X = base + S->ph[q];
+            if (!(X > xa && X < xb && X >= XA && X <= XB))
+                continue;
+            if (line) {
+                double t = (X - p->x0) / p->bx;
+                if (t > ta && t < tb)
+                    tx[nx++] = t;
+                continue;
+            }
+            double ys[3];
+            int c = aa_piece_meet_x(p, X, ys);
+            for (int r = 0; r < c; r++)
+                if (ys[r] > lo && ys[r] < hi)
+                    tx[nx++] = aa_piece_t_at(p, ys[r]);
+        }
+    if (line && p->bx < 0.0) /* descending in X: ascending reversed */
+        for (size_t a = 0, b = nx ? nx - 1 : 0; a < b; a++, b--) {
+            double t = tx[a];
+            tx[a] = tx[b], tx[b] = t;
+        }
+    else if (!line)
+        aa__vis_sort(tx, nx);
+    /* ty holds both ends: every cut of tx lies between its first and last */
+    an_part_fn *part = fast_parts[pp->deg][gauss_points(p, pp->deg)];
+    double prev = ty[0];
+    size_t iy = 1, ix = 0;
+    while (iy < ny) {
+        double t = ix < nx && tx[ix] < ty[iy] ? tx[ix++] : ty[iy++];
+        if (!(prev < t))
+            continue;
+        part(B, p, val, prev, t);
+        prev = t;
+    }
+}
+
+/* a + b, and its rounding error added to *e (Knuth's TwoSum) */
+static inline double two_sum(double a, double b, double *e)
+{
+    double s = a + b, bb = s - a;
+    *e += (a - (s - bb)) + (b - bb);
+    return s;
+}
+
+/* Rows j0 .. j1-1 (those not marked slow) by the scatter. */
+static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1, aa_image *out,
+                      uint64_t *expensive)
+{
+    const an_state *S = R->S;
+    const an_pp *pp = &S->pp;
+    const int w = out->w, nv = S->nv;
+    const int pad = S->pad;
+    const size_t cols = block_cols(S, w), cells = block_cells(S, w);
+    char *own = (char *)wk->own + S->fast_off;
+    an_block B = {S, w, j0, j1, nv, NULL, NULL, cols, pad, NULL, NULL, NULL, 0};
+    B.cover = (double *)own;
+    own += cells * AN_NV * sizeof(double);
+    B.touched = (unsigned char *)own;
+    own += (cells + 63) & ~(size_t)63;
+    B.wcol = (double *)own;
+    B.arow = B.wcol + (size_t)pad * AN_MAX_GAUSS;
+    own += 2 * (size_t)pad * AN_MAX_GAUSS * sizeof(double);
+    B.ts = (double *)own;
+    B.cap = cut_cap(S, w);
+    double Y0 = j0 + 0.5 + pp->k[0], Y1 = (j1 - 1) + 0.5 + pp->k[pp->ncell];
+    double sx0, sy0, sx1, sy1;
+    aa_scene_bounds(R->scene, &sx0, &sy0, &sx1, &sy1);
+    if (aa_strip_begin(wk->strip, Y0, Y1))
+        return 1;
+    aa_strip_window(wk->strip, fmin(sx0, 0.0) - 1.0, w - 0.5 + pp->k[pp->ncell]);
+    size_t nloc;
+    const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
+    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
+    for (size_t q = 0; q < nloc; q++) {
+        const aa_piece *p = loc[q];
+        const double *cf = &S->coef[3 * p->layer];
+        if (cf[0] == 0.0 && cf[1] == 0.0 && cf[2] == 0.0)
+            continue; /* no step (its faces are the background's colour) */
+        if (!p->dir) {
+            /* a flat piece has no terms, but the pixels whose supports it
+             * crosses are not inside one face (marked, as the parts mark
+             * theirs) */
+            if (!(p->y0 >= Y0 && p->y0 <= Y1))
+                continue;
+            /* rows and columns whose closed supports meet it: ceil, floor */
+            int ja = -ifloor(-(p->y0 - 0.5 - kn)), jb = ifloor(p->y0 - 0.5 - k0);
+            double xa = fmax(p->xmin, -2.0 * pad), xb = fmin(p->xmax, w + 2.0 * pad);
+            int ia = -ifloor(-(xa - 0.5 - kn)), ib = ifloor(xb - 0.5 - k0);
+            ja = ja < j0 ? j0 : ja, jb = jb > j1 - 1 ? j1 - 1 : jb;
+            ia = ia < 0 ? 0 : ia, ib = ib > w - 1 ? w - 1 : ib;
+            for (int j = ja; j <= jb; j++)
+                if (ia <= ib)
+                    memset(B.touched + (size_t)(j - j0 + pad) * cols + (size_t)(pad + ia), 1,
+                           (size_t)(ib - ia + 1));
+            continue;
+        }
+        double val[AN_NV];
+        if (nv == 1)
+            val[0] = p->dir;
+        else {
+            for (int v = 0; v < 3; v++)
+                val[v] = p->dir * cf[v];
+            val[3] = p->dir * (p->layer + 1.0);
+        }
+        fast_piece(&B, p, val);
+    }
+    const double lo = R->lo, hi = R->hi;
+    for (int r = 0; r < AN_BLOCK + 2 * pad; r++) {
+        int j = j0 - pad + r;
+        double *cov = B.cover + (size_t)r * cols * nv;
+        unsigned char *tch = B.touched + (size_t)r * cols;
+        if (j < j0 || j >= j1 || S->slow[j]) { /* margins and other paths' rows */
+            memset(cov, 0, cols * nv * sizeof *cov);
+            memset(tch, 0, cols);
+            continue;
+        }
+        uint64_t touched = 0;
+        for (int i = 0; i < w; i++)
+            touched += tch[pad + i];
+        *expensive += touched;
+        /* a pixel no part or flat piece reached has its support inside one
+         * face: its colour exactly, from the winding the running sum holds
+         * (within rounding of an integer), and the sums set to their exact
+         * values there, so that rounding does not carry from face to face */
+        const unsigned char *t = tch + pad;
+        double *px = aa_pixel(out, 0, j);
+        if (nv == 1) {
+            const double b0 = S->bg.c[0], b1 = S->bg.c[1], b2 = S->bg.c[2];
+            const double c0 = S->coef1.c[0], c1 = S->coef1.c[1], c2 = S->coef1.c[2];
+            /* the running sum compensated (two_sum): its rounding would
+             * otherwise grow with the edges left of a pixel */
+            double run = 0.0, comp = 0.0;
+            for (int i = 0; i < pad; i++)
+                run = two_sum(run, cov[i], &comp), cov[i] = 0.0;
+            cov += pad;
+            int i = 0;
+#if AN_SSE2
+            /* two pixels, three 16-byte stores, at a time */
+            const __m128d vlo = _mm_set1_pd(lo), vhi = _mm_set1_pd(hi);
+            const __m128d b01 = _mm_set_pd(b1, b0), b20 = _mm_set_pd(b0, b2),
+                          b12 = _mm_set_pd(b2, b1);
+            const __m128d c01 = _mm_set_pd(c1, c0), c20 = _mm_set_pd(c0, c2),
+                          c12 = _mm_set_pd(c2, c1);
+            for (; i + 1 < w; i += 2, px += 6) {
+                run = two_sum(run, cov[i], &comp);
+                double ra = run + comp;
+                if (!t[i])
+                    ra = run = (ra > 0.5) - (ra < -0.5), comp = 0.0;
+                run = two_sum(run, cov[i + 1], &comp);
+                double rb = run + comp;
+                if (!t[i + 1])
+                    rb = run = (rb > 0.5) - (rb < -0.5), comp = 0.0;
+                cov[i] = cov[i + 1] = 0.0;
+                __m128d raa = _mm_set1_pd(ra), rab = _mm_set_pd(rb, ra), rbb = _mm_set1_pd(rb);
+                __m128d v0 = _mm_add_pd(b01, _mm_mul_pd(c01, raa));
+                __m128d v1 = _mm_add_pd(b20, _mm_mul_pd(c20, rab));
+                __m128d v2 = _mm_add_pd(b12, _mm_mul_pd(c12, rbb));
+                /* max(lo, v), then min(hi, .): as the scalar clamps below */
+                _mm_storeu_pd(px, _mm_min_pd(_mm_max_pd(v0, vlo), vhi));
+                _mm_storeu_pd(px + 2, _mm_min_pd(_mm_max_pd(v1, vlo), vhi));
+                _mm_storeu_pd(px + 4, _mm_min_pd(_mm_max_pd(v2, vlo), vhi));
+                if (!t[i])
+                    memcpy(px, S->face1[1 + (int)ra], 3 * sizeof *px);
+                if (!t[i + 1])
+                    memcpy(px + 3, S->face1[1 + (int)rb], 3 * sizeof *px);
+            }
+#endif
+            for (; i < w; i++, px += 3) {
+                run = two_sum(run, cov[i], &comp);
+                cov[i] = 0.0;
+                double rs = run + comp;
+                if (!t[i]) {
+                    run = (rs > 0.5) - (rs < -0.5), comp = 0.0;
+                    memcpy(px, S->face1[1 + (int)run], 3 * sizeof *px);
+                    continue;
+                }
+                double v0 = b0 + c0 * rs, v1 = b1 + c1 * rs, v2 = b2 + c2 * rs;
+                /* branch-free clamps (minsd, maxsd) */
+                v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
+                px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
+            }
+            memset(cov + w, 0, (cols - (size_t)pad - (size_t)w) * sizeof *cov);
+        } else {
+            double r0 = 0.0, r1 = 0.0, r2 = 0.0, r3 = 0.0;
+            for (int i = 0; i < pad; i++, cov += AN_NV) {
+                r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
+                cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
+            }
+            for (int i = 0; i < w; i++, px += 3, cov += AN_NV) {
+                r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
+                cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
+                if (!t[i]) {
+                    /* the code: (L + 1) s(L) in a face of layer L, 0 outside */
+                    long k = lrint(r3), L = (k < 0 ? -k : k) - 1;
+                    int in = L >= 0 && L < S->plan_nl;
+                    double sg = k < 0 ? -1.0 : 1.0;
+                    const double *f = in ? &S->face[3 * L] : S->bg.c;
+                    memcpy(px, f, 3 * sizeof *px);
+                    /* the sums there exactly: s(L) coef(L), the code */
+                    r0 = in ? sg * S->coef[3 * L] : 0.0;
+                    r1 = in ? sg * S->coef[3 * L + 1] : 0.0;
+                    r2 = in ? sg * S->coef[3 * L + 2] : 0.0;
+                    r3 = in ? (double)k : 0.0;
+                    continue;
+                }
+                double v0 = S->bg.c[0] + r0, v1 = S->bg.c[1] + r1, v2 = S->bg.c[2] + r2;
+                v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
+                px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
+            }
+            memset(cov, 0, (cols - (size_t)pad - (size_t)w) * AN_NV * sizeof *cov);
+        }
+        memset(tch, 0, cols);
+    }
+    return 0;
+}
+
+static int render_block(const an_render *R, aa__sampler_worker *wk, int b, aa_image *out,
+                        uint64_t *expensive)
+{
+    const an_state *S = R->S;
+    int j0 = b * AN_BLOCK, j1 = j0 + AN_BLOCK < out->h ? j0 + AN_BLOCK : out->h, fast = 0;
+    for (int j = j0; j < j1; j++)
+        fast |= !S->slow[j];
+    if (fast && fast_block(R, wk, j0, j1, out, expensive))
+        return 1;
+    uint64_t samples = 0;
+    for (int j = j0; j < j1; j++)
+        if (S->slow[j] &&
+            aa__sampler_row(wk, j, S->pp.k[S->pp.ncell], 0, shade, R, out, &samples, expensive))
+            return 1;
+    return 0;
+}
+
 /* ---- the method ---- */
 
 static int analytic_check(const double *p, const aa_filter *f)
@@ -457,7 +1268,33 @@ static int scene_check(const aa_scene *s)
 static int prepare(an_state *S, const aa_job *job)
 {
     int st = scene_check(job->placed);
-    return st ? st : aa__sampler_ready(&S->sampler, job, aa__vis_size(job->placed, 3));
+    if (st || (st = plan(S, job->placed, job->h)))
+        return st;
+    /* the visible parts' workspace, then the scatter's buffers (left zeroed
+     * after each block: the sampler's scratch starts zeroed) */
+    S->fast_off = (aa__vis_size(job->placed, 3) + 63) & ~(size_t)63;
+    return aa__sampler_ready(&S->sampler, job, S->fast_off + fast_size(S, job->w));
+}
+
+/* The lines of the knots: x = cx + k = n + frac(1/2 + k). */
+static void knot_lines(an_state *S)
+{
+    const an_pp *pp = &S->pp;
+    S->nph = 0;
+    for (int q = 0; q <= pp->ncell; q++) {
+        double f = 0.5 + pp->k[q];
+        f -= floor(f);
+        int seen = 0;
+        for (int r = 0; r < S->nph; r++)
+            seen |= S->ph[r] == f;
+        if (!seen)
+            S->ph[S->nph++] = f;
+    }
+    aa__vis_sort(S->ph, (size_t)S->nph);
+    S->pad = (int)ceil(pp->k[pp->ncell] - pp->k[0]) + 3;
+    S->regular = pp->ncell == pp->deg + 1;
+    for (int c = 0; c < pp->ncell; c++)
+        S->regular &= pp->k[c + 1] - pp->k[c] == 1.0;
 }
 
 static int analytic_init(void *state, const double *p, const aa_job *job)
@@ -469,6 +1306,7 @@ static int analytic_init(void *state, const double *p, const aa_job *job)
         return st;
     an_def_of(&job->filter, &d);
     an_pp_make(&d, &S->pp);
+    knot_lines(S);
     gauss_make(S);
     return prepare(S, job);
 }
@@ -483,13 +1321,38 @@ static int analytic_render(void *state, const double *p, const aa_job *job, aa_i
         return st;
     an_render R = {S, job->placed, 0.0, 1.0};
     aa_filter_range(&job->filter, &R.lo, &R.hi);
-    return aa__sampler_render(&S->sampler, job, out, render_row, &R, counters);
+    if (!S->any_fast)
+        return aa__sampler_render(&S->sampler, job, out, render_row, &R, counters);
+    /* blocks of rows shared among threads (a pixel's value does not
+     * depend on how) */
+    uint64_t expensive = 0;
+    int failed = 0, nb = (job->h + AN_BLOCK - 1) / AN_BLOCK;
+#pragma omp parallel num_threads(job->threads) reduction(+ : expensive)
+    {
+        aa__sampler_worker *wk = &S->sampler.workers[omp_get_thread_num()];
+#pragma omp for schedule(dynamic, 1)
+        for (int b = 0; b < nb; b++) {
+            int stop;
+#pragma omp atomic read
+            stop = failed;
+            if (!stop && render_block(&R, wk, b, out, &expensive)) {
+#pragma omp atomic write
+                failed = 1;
+            }
+        }
+    }
+    if (failed)
+        return aa_fail(AA_ENOMEM, "out of memory for a strip of the scene");
+    counters->samples = 0;
+    counters->expensive_pixels = expensive;
+    return AA_OK;
 }
 
 static void analytic_release(void *state)
 {
     an_state *S = state;
     aa__sampler_free(&S->sampler);
+    plan_free(S);
 }
 
 const aa_method_type aa_method_analytic = {

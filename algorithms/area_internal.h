@@ -77,6 +77,8 @@ typedef struct ar_piece {
     double xmin, xmax; /* x extent of the whole piece */
     int flat, line, dir, layer;
     uint32_t id; /* index in the scene: the tie-break of every sort */
+    int curved;  /* a cubic, conic or offset piece (0: a line or quadratic, the
+                  * common path, whose tests stay in this cache line) */
     double byd, ayd; /* by and ay rounded, to find T */
     double k6;       /* (y' x'' - x' y'') / 12, constant along a parabola */
     /* power basis from the control points, extended precision:
@@ -243,6 +245,8 @@ static inline double offset_v_kept(const ar_seg *s, double t)
 
 static inline double u_at(const ar_seg *s, double t)
 {
+    if (!s->p->curved) /* cx3 = 0 */
+        return s->U + t * (s->g + t * s->ax);
     if (s->p->offset) {
         long double X, Y;
         aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
@@ -256,7 +260,7 @@ static inline double u_at(const ar_seg *s, double t)
 /* u_at, keeping an offset piece's v there (offset_keep). */
 static inline double seg_u(const ar_seg *s, double t)
 {
-    if (!s->p->offset)
+    if (!s->p->curved || !s->p->offset) /* curved first: the common path's cache line */
         return u_at(s, t);
     long double X, Y;
     aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);

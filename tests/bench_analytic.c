@@ -15,7 +15,14 @@
  * states them: analytic under tent:r=1 within 2x area's box time, under
  * bspline:order=3 within 4x.  Figures are read, not asserted.
  *
+ * --cpu N: then N more renders of each case, taking turns, each timed by
+ * the thread's CPU time (CLOCK_THREAD_CPUTIME_ID: one thread renders, on
+ * the calling thread), which time spent waiting for a shared machine's
+ * cores does not inflate; printed: the median, the quartiles and the
+ * median's ratio to area's, and the targets on those.
+ *
  * usage: bench_analytic [-p PATTERN] [-s WxH] [-r REPS] [--target-ci PCT] [--budget S]
+ *                       [--cpu N]
  */
 #include "bench.h"
 
@@ -23,6 +30,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 typedef struct bcase {
     const char *method, *filter;
@@ -43,6 +51,19 @@ static int noisy(const aa_timing *t)
     return t->noisy != 0;
 }
 
+static double thread_cpu(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
 int main(int argc, char **argv)
 {
     if (aa_method_add_builtin()) {
@@ -51,6 +72,7 @@ int main(int argc, char **argv)
     }
     const char *pattern = "crow", *size = "1024x1024";
     aa_timing_plan plan = {0};
+    int cpu = 0;
     for (int a = 1; a < argc; a++) {
         if (!strcmp(argv[a], "-p") && a + 1 < argc)
             pattern = argv[++a];
@@ -62,9 +84,11 @@ int main(int argc, char **argv)
             plan.target_ci = atof(argv[++a]) / 100.0;
         else if (!strcmp(argv[a], "--budget") && a + 1 < argc)
             plan.budget = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--cpu") && a + 1 < argc && atoi(argv[a + 1]) > 0)
+            cpu = atoi(argv[++a]);
         else {
             fprintf(stderr, "usage: bench_analytic [-p PATTERN] [-s WxH] [-r REPS] "
-                            "[--target-ci PCT] [--budget S]\n");
+                            "[--target-ci PCT] [--budget S] [--cpu N]\n");
             return 2;
         }
     }
@@ -136,6 +160,39 @@ int main(int argc, char **argv)
                                                     : (r <= lim[q] ? "met" : "NOT met"));
     }
     printf("(* noisy: the harness's verdict, harness/bench/README.md, \"A quiet measurement\")\n");
+    if (cpu) {
+        double *ct = malloc(sizeof *ct * (size_t)N * (size_t)cpu);
+        if (!ct)
+            return 3;
+        for (int r = 0; r < cpu; r++)
+            for (int k = 0; k < N; k++) {
+                double t0 = thread_cpu();
+                if (render_once(&cs[k])) {
+                    fprintf(stderr, "bench_analytic: %s\n", aa_last_error());
+                    return 3;
+                }
+                ct[(size_t)k * cpu + r] = thread_cpu() - t0;
+            }
+        double med[N];
+        printf("\nthread CPU time of %d more renders each, taking turns: median ms (quartiles)\n",
+               cpu);
+        for (int k = 0; k < N; k++) {
+            double *v = ct + (size_t)k * cpu;
+            qsort(v, (size_t)cpu, sizeof *v, cmp_double);
+            med[k] = v[cpu / 2];
+        }
+        for (int k = 0; k < N; k++) {
+            double *v = ct + (size_t)k * cpu;
+            printf("%-18s %-16s %11.3f  (%.3f .. %.3f) %9.2fx\n", cs[k].method, cs[k].filter,
+                   med[k] * 1e3, v[cpu / 4] * 1e3, v[(3 * cpu) / 4] * 1e3, med[k] / med[AREA]);
+        }
+        for (int q = 0; q < 2; q++) {
+            double r = med[tgt[q]] / med[AREA];
+            printf("target (CPU time): analytic -f %s within %gx area -f box: %.2fx, %s\n",
+                   cs[tgt[q]].filter, lim[q], r, r <= lim[q] ? "met" : "NOT met");
+        }
+        free(ct);
+    }
     for (int k = 0; k < N; k++) {
         aa_method_free(&cs[k].m);
         aa_job_free(&cs[k].job);

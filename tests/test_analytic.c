@@ -221,6 +221,207 @@ static void test_shared_ends(void **state)
     aa_scene_free(s);
 }
 
+/* analytic against the reference under each filter of `filters` (NULL
+ * ended), at w x h, threads 1 and 2 (the image does not depend on them). */
+static void against_filters(const char *what, const aa_scene *s, int w, int h,
+                            const char *const *flist)
+{
+    for (const char *const *f = flist; *f; f++) {
+        aa_image a, a1, r;
+        support_render("analytic", s, *f, w, h, 2, &a, NULL);
+        support_render("analytic", s, *f, w, h, 1, &a1, NULL);
+        support_reference(s, &(support_view){.w = w, .h = h, .filter = *f, .threads = 1}, &r,
+                          NULL, NULL);
+        double worst = 0.0;
+        size_t n = (size_t)w * h * 3;
+        for (size_t k = 0; k < n; k++) {
+            double d = fabs(a.v[k] - r.v[k]);
+            if (!(d <= 1e-12))
+                fail_msg("%s %dx%d under %s: pixel (%zu, %zu) channel %zu: analytic %.17g, "
+                         "reference %.17g",
+                         what, w, h, *f, k / 3 % (size_t)w, k / 3 / (size_t)w, k % 3, a.v[k],
+                         r.v[k]);
+            if (memcmp(&a.v[k], &a1.v[k], sizeof a.v[k]))
+                fail_msg("%s under %s: pixel %zu channel %zu differs between 1 and 2 threads",
+                         what, *f, k / 3, k % 3);
+            worst = fmax(worst, d);
+        }
+        print_message("%-24s %-22s largest difference %.1e\n", what, *f, worst);
+        aa_image_free(&a);
+        aa_image_free(&a1);
+        aa_image_free(&r);
+    }
+}
+
+/* A closed path of quadratic arcs through the corners of the box [x0, x1] x
+ * [y0, y1], bulging out by b, clockwise on screen (ccw = 0) or the other
+ * way. */
+static void add_blob(aa_scene *s, double x0, double y0, double x1, double y1, double b, int ccw)
+{
+    double xm = 0.5 * (x0 + x1), ym = 0.5 * (y0 + y1);
+    const double pts[4][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    const double ctl[4][2] = {{xm, y0 - b}, {x1 + b, ym}, {xm, y1 + b}, {x0 - b, ym}};
+    if (!ccw) {
+        assert_int_equal(aa_scene_move_to(s, pts[0][0], pts[0][1]), AA_OK);
+        for (int k = 0; k < 4; k++)
+            assert_int_equal(aa_scene_quad_to(s, ctl[k][0], ctl[k][1], pts[(k + 1) % 4][0],
+                                              pts[(k + 1) % 4][1]),
+                             AA_OK);
+    } else {
+        assert_int_equal(aa_scene_move_to(s, pts[0][0], pts[0][1]), AA_OK);
+        for (int k = 3; k >= 0; k--)
+            assert_int_equal(aa_scene_quad_to(s, ctl[k][0], ctl[k][1], pts[k][0], pts[k][1]),
+                             AA_OK);
+    }
+    assert_int_equal(aa_scene_close(s), AA_OK);
+}
+
+/* Rows of both paths in one image (analytic.c, "One layer at a time"):
+ * the top third holds two layers that overlap (every row whose support
+ * reaches the overlap is integrated pixel by pixel from the visible
+ * parts), the rest disjoint shapes of both layers, one layer's paths
+ * clockwise and the other's counter-clockwise (winding +1 and -1: the
+ * per-edge scatter, with a step of colour per layer), one of them cut by
+ * the image's left side and one by its bottom.  Then one layer whose two
+ * paths run opposite ways (the lower one's rows go the per-pixel way, as
+ * for a layer wound twice), and a scene of one colour (one value per
+ * piece).  The reference is the harness's own quadrature (support.h). */
+static void test_fast_and_layered(void **state)
+{
+    (void)state;
+    const char *const flist[] = {"box", "tent:r=1", "tent:r=0.65", "bspline:order=2",
+                                 "bspline:order=3", "mitchell:b=0.2,c=0.7", NULL};
+    aa_scene *s = aa_scene_new((aa_rgb){{0.1, 0.2, 0.3}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.3, 0.8, 0.15}}, AA_FILL_NONZERO), AA_OK);
+    add_blob(s, 0.1, 0.06, 0.45, 0.28, 0.05, 0);
+    add_blob(s, -0.2, 0.5, 0.3, 0.7, 0.08, 0);   /* beyond the left side */
+    add_blob(s, 0.55, 0.8, 0.8, 1.1, 0.04, 0);   /* beyond the bottom */
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.9, 0.05, 0.6}}, AA_FILL_EVENODD), AA_OK);
+    add_blob(s, 0.3, 0.12, 0.7, 0.3, 0.06, 1);   /* over the first */
+    add_blob(s, 0.5, 0.45, 0.9, 0.7, 0.03, 1);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    against_filters("both paths", s, 30, 36, flist);
+    aa_scene_free(s);
+
+    s = aa_scene_new((aa_rgb){{0.1, 0.2, 0.3}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.3, 0.8, 0.15}}, AA_FILL_NONZERO), AA_OK);
+    add_blob(s, 0.15, 0.1, 0.8, 0.4, 0.05, 0);
+    add_blob(s, 0.2, 0.6, 0.75, 0.9, 0.05, 1);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    against_filters("one layer, both ways", s, 24, 30, flist);
+    aa_scene_free(s);
+
+    s = aa_scene_new((aa_rgb){{0.25, 0.25, 0.25}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.75, 0.75, 0.75}}, AA_FILL_NONZERO), AA_OK);
+    add_blob(s, 0.15, 0.1, 0.5, 0.4, 0.05, 0);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.75, 0.75, 0.75}}, AA_FILL_EVENODD), AA_OK);
+    add_blob(s, 0.55, 0.5, 0.85, 0.9, 0.05, 1);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    against_filters("two layers, one colour", s, 24, 30, flist);
+    aa_scene_free(s);
+}
+
+/* Wide rectangles (flat top and bottom edges) in two colours, then in one:
+ * against the reference, and every pixel whose support lies wholly inside
+ * a rectangle or wholly outside both, not touching a side, is that face's
+ * colour exactly (the supports inside are found from the geometry alone;
+ * a side on a support's edge leaves that pixel to the integration, within
+ * rounding of the colour). */
+static void test_faces_exact(void **state)
+{
+    (void)state;
+    const char *const flist[] = {"box", "tent:r=1", "bspline:order=3", NULL};
+    const int w = 40, h = 30;
+    const aa_rgb bg = {{0.1, 0.2, 0.3}}, c[2][2] = {{{{0.3, 0.8, 0.15}}, {{0.9, 0.05, 0.6}}},
+                                                   {{{0.7, 0.7, 0.7}}, {{0.7, 0.7, 0.7}}}};
+    /* pixel boxes [x0, x1) x [y0, y1) */
+    const int r[2][4] = {{4, 3, 36, 12}, {6, 17, 30, 27}};
+    for (int colours = 0; colours < 2; colours++) {
+        aa_scene *s = aa_scene_new(bg);
+        assert_non_null(s);
+        for (int k = 0; k < 2; k++) {
+            assert_int_equal(aa_scene_layer(s, c[colours][k], AA_FILL_NONZERO), AA_OK);
+            assert_int_equal(aa_scene_move_to(s, r[k][0] / (double)w, r[k][1] / (double)h),
+                             AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[k][2] / (double)w, r[k][1] / (double)h),
+                             AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[k][2] / (double)w, r[k][3] / (double)h),
+                             AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[k][0] / (double)w, r[k][3] / (double)h),
+                             AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        against_filters(colours ? "rectangles, one colour" : "rectangles", s, w, h, flist);
+        for (const char *const *f = flist; *f; f++) {
+            aa_filter fl;
+            assert_int_equal(aa_filter_parse(*f, &fl), AA_OK);
+            double rad = fl.radius; /* the support: [c - rad, c + rad] */
+            aa_image a;
+            support_render("analytic", s, *f, w, h, 1, &a, NULL);
+            int inside = 0, outside = 0;
+            for (int j = 0; j < h; j++)
+                for (int i = 0; i < w; i++) {
+                    double x0 = i + 0.5 - rad, x1 = i + 0.5 + rad, y0 = j + 0.5 - rad,
+                           y1 = j + 0.5 + rad;
+                    const double *want = NULL;
+                    int apart = 1;
+                    for (int k = 0; k < 2; k++) {
+                        if (x0 > r[k][0] && x1 < r[k][2] && y0 > r[k][1] && y1 < r[k][3])
+                            want = c[colours][k].c, inside++;
+                        apart &= x1 < r[k][0] || x0 > r[k][2] || y1 < r[k][1] || y0 > r[k][3];
+                    }
+                    if (!want && apart)
+                        want = bg.c, outside++;
+                    for (int ch = 0; want && ch < 3; ch++)
+                        if (aa_pixel(&a, i, j)[ch] != want[ch])
+                            fail_msg("%s under %s: pixel (%d, %d) channel %d is %.17g, not the "
+                                     "face's %.17g",
+                                     colours ? "one colour" : "two colours", *f, i, j, ch,
+                                     aa_pixel(&a, i, j)[ch], want[ch]);
+                }
+            assert_true(inside > 0 && outside > 0);
+            aa_image_free(&a);
+        }
+        aa_scene_free(s);
+    }
+}
+
+/* Supports many pixels wide: tent:r=6 (12 px) and tent:r=3.7 (cells of
+ * width 3.7, so the knots' lines of neighbouring pixels interleave) on an
+ * edge that crosses most of the image within one row (a thin wedge), a
+ * cubic and crow's arcs; and a line far left of the image, whose terms are
+ * the constant part alone. */
+static void test_wide_supports(void **state)
+{
+    (void)state;
+    const char *const flist[] = {"tent:r=6", "tent:r=3.7", "bspline:order=3", NULL};
+    aa_scene *s = aa_scene_new((aa_rgb){{0.0, 0.0, 0.0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.03, 0.31), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.97, 0.27), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.95, 0.33), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.1, 0.5), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 0.9, 0.45, 0.2, 0.95, 0.85, 0.9), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 0.9, 0.55), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, -30.0, 0.4), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, -29.0, 0.42), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, -29.5, 0.9), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    against_filters("wide supports", s, 40, 32, flist);
+    aa_scene_free(s);
+    aa_scene *crow = scenes_pattern("crow");
+    against_filters("crow", crow, 32, 24, flist);
+    aa_scene_free(crow);
+}
+
 /* The image of a white region sums to its area (header), w x h pixels. */
 static void check_sum(const char *what, const aa_scene *s, int w, int h, double area)
 {
@@ -305,5 +506,8 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_svg),
              cmocka_unit_test(test_overlapping_layers),
              cmocka_unit_test(test_shared_ends),
+             cmocka_unit_test(test_fast_and_layered),
+             cmocka_unit_test(test_wide_supports),
+             cmocka_unit_test(test_faces_exact),
              cmocka_unit_test(test_sums),
              cmocka_unit_test(test_refusals))
