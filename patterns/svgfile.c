@@ -485,8 +485,13 @@ static int parse_length(reader *r, const char *attr, const char *text, double *v
 
 /* font-size (CSS Fonts 4): a length (em, ex and % of the parent's size),
  * or an absolute-size keyword, medium being 16px and the others its
- * multiples by the table of CSS Fonts 4 ("absolute-size"); larger and
- * smaller, whose ratio CSS leaves to the browser, are refused. */
+ * multiples by the table of CSS Fonts 4 ("absolute-size"), or a
+ * relative-size keyword, larger or smaller: the parent's size times or
+ * over 1.2.  CSS Fonts 4 leaves that ratio to the user agent ("a ratio of
+ * 1.2 is suggested" between consecutive sizes of its table, which the
+ * table itself only roughly keeps); 1.2 is what Chromium and resvg take
+ * whatever the parent's size (a 10px parent's larger is 12px in both), so
+ * em and ex under it are theirs. */
 static int parse_font_size(reader *r, const char *v, double parent, double *out)
 {
     static const struct {
@@ -500,9 +505,10 @@ static int parse_font_size(reader *r, const char *v, double parent, double *out)
             *out = sizes[k].size;
             return AA_OK;
         }
-    if (!strcasecmp(v, "larger") || !strcasecmp(v, "smaller"))
-        return fail_at(r, "font-size=\"%s\" is not supported (its ratio is the browser's)",
-                       aa_echo(v));
+    if (!strcasecmp(v, "larger") || !strcasecmp(v, "smaller")) {
+        *out = v[0] == 'l' || v[0] == 'L' ? parent * 1.2 : parent / 1.2;
+        return AA_OK;
+    }
     /* em and ex of the parent's size, % of it */
     const double own = r->font_size, w = r->vpw, h = r->vph;
     r->font_size = parent;

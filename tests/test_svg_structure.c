@@ -450,8 +450,25 @@ static void test_units(void **state)
     assert_int_equal(aa_svg_read(own, strlen(own), "t.svg", 1, 1, NULL, NULL, vp), AA_OK);
     assert_true(vp[0] == 96 && fabs(vp[1] - 96) < 1e-13);
     refused(OPEN "<rect width=\"1vw\" height=\"1\"/></svg>", "<rect>", "not a length");
-    refused(OPEN "<rect width=\"1\" height=\"1\" font-size=\"larger\"/></svg>", "<rect>",
-            "font-size");
+    /* larger and smaller: the parent's size times and over 1.2 (CSS Fonts
+     * 4 suggests the ratio; Chromium and resvg take it): of 10px, 12px and
+     * 10/1.2 px; twice larger of 25px, 36px; xx-small and xxx-large are
+     * CSS Fonts 4's 3/5 and 3 of medium's 16px */
+    expect(OPEN "<g font-size=\"10px\"><rect width=\"1em\" height=\"1\" "
+                "font-size=\"larger\"/></g></svg>",
+           BLACK " M 0 0 L 12 0 L 12 1 L 0 1 Z");
+    snprintf(want, sizeof want, BLACK " M 0 0 L %.17g 0 L %.17g 1 L 0 1 Z", 10 / 1.2, 10 / 1.2);
+    expect(OPEN "<g font-size=\"10px\"><rect width=\"1em\" height=\"1\" "
+                "style=\"font-size: SMALLER\"/></g></svg>",
+           want);
+    expect(OPEN "<g font-size=\"25px\"><g font-size=\"larger\"><rect width=\"1em\" "
+                "height=\"1\" font-size=\"larger\"/></g></g></svg>",
+           BLACK " M 0 0 L 36 0 L 36 1 L 0 1 Z");
+    snprintf(want, sizeof want, BLACK " M 0 0 L %.17g 0 L %.17g 1 L 0 1 Z", 16 * 3.0 / 5,
+             16 * 3.0 / 5);
+    expect(OPEN "<rect width=\"1em\" height=\"1\" font-size=\"xx-small\"/></svg>", want);
+    expect(OPEN "<rect width=\"1em\" height=\"1\" style=\"font-size: xxx-large\"/></svg>",
+           BLACK " M 0 0 L 48 0 L 48 1 L 0 1 Z");
     refused(OPEN "<rect width=\"1\" height=\"1\" font-size=\"-2px\"/></svg>", "<rect>",
             "negative");
 }
