@@ -290,6 +290,12 @@ typedef struct reader {
     const xmlNode *use;      /* the <use> whose target is being read, or NULL */
     const xmlNode *chain[AA_SVG_MAX_DEPTH + 2]; /* the elements being read */
     int nvclip;              /* the viewports that clip (overflow hidden) */
+    /* a bounding box being walked (geometry_box): the uses followed, the
+     * use whose target is next, elements visited, nesting of the walk */
+    const xmlNode *bchain[AA_SVG_MAX_DEPTH + 2];
+    int nb, blevel;
+    const xmlNode *bvia;
+    long belements;
     struct svg_clip {
         mat m;               /* the viewport's coordinates to pixels */
         mat to;              /* and back */
@@ -559,7 +565,7 @@ static int attr_known(const xmlNode *node, const char *name)
                {"polyline", {"points"}},
                {"line", {"x1", "y1", "x2", "y2"}},
                {"use", {"x", "y", "width", "height", "href"}},
-               {"symbol", {"viewBox", "preserveAspectRatio", "width", "height"}}};
+               {"symbol", {"viewBox", "preserveAspectRatio", "width", "height", "refX", "refY"}}};
     static const char *const any[] = {"id", "class", "style", "transform"};
     for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
         if (!strcmp(name, any[k]))
@@ -2804,17 +2810,51 @@ static int viewbox_map(reader *r, const xmlNode *node, double vw, double vh, mat
                        double vb[2]);
 static int viewport_side(reader *r, const xmlNode *node, const xmlNode *over, const char *key,
                          double *v);
+static int use_target(reader *r, const xmlNode *node, const xmlNode **out);
+static int symbol_shift(reader *r, const xmlNode *node, const mat *vbm, const double vb[2],
+                        double s[2]);
+
+/* 1 if the use `node`'s target is the use or one of its ancestors, or of
+ * the uses the bounding box walk has followed to reach it: a reference
+ * cycle, in error (nothing, as where it is drawn). */
+static int bbox_cycle(const reader *r, const xmlNode *node, const xmlNode *target)
+{
+    for (int k = 0; k <= r->nb; k++)
+        for (const xmlNode *a = k < r->nb ? r->bchain[k] : node; a; a = a->parent)
+            if (a == target)
+                return 1;
+    return 0;
+}
+
+static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double box[4], int depth);
 
 /* The fill geometry of node and what it holds through m, grown into box
  * (SVG 2's object bounding box: shapes, and groups by their children, each
- * through its own transform; elements with display="none" and those that
- * draw nothing are left out). */
+ * through its own transform; a <use> by its target's, through translate(x,
+ * y), as the target is drawn there; elements with display="none" and
+ * those that draw nothing are left out).  A walk visits at most
+ * AA_SVG_MAX_ELEMENTS elements, uses' instances counted, as a drawing. */
 static int geometry_box(reader *r, const xmlNode *node, const mat *m, double box[4], int depth)
+{
+    if (!r->blevel++)
+        r->belements = 0, r->nb = 0, r->bvia = NULL;
+    int st = geometry_walk(r, node, m, box, depth);
+    r->blevel--;
+    return st;
+}
+
+static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double box[4], int depth)
 {
     static const char *const shapes[] = {"path",    "rect",    "circle",  "ellipse",
                                          "line",    "polygon", "polyline"};
+    /* the use whose target node is, if it is one */
+    const xmlNode *via = r->bvia;
+    r->bvia = NULL;
     if (!is_svg(node) || depth > AA_SVG_MAX_DEPTH)
         return AA_OK; /* another namespace; too deep is refused where drawn */
+    if (++r->belements > AA_SVG_MAX_ELEMENTS)
+        return fail_at(r, "a bounding box of more than %d elements (use instances counted)",
+                       AA_SVG_MAX_ELEMENTS);
     char v[64];
     int st = AA_OK;
     const xmlNode *was = r->node;
@@ -2832,22 +2872,44 @@ static int geometry_box(reader *r, const xmlNode *node, const mat *m, double box
         if (!(st = shape_path(r, node, &p)))
             path_box(&p, m, box);
         aa_path_free(&p);
-    } else if (!st && (named(node, "g") || named(node, "svg"))) {
-        /* a nested <svg>: its content through translate(x, y) and its
-         * viewBox map, unclipped (its overflow does not change the box:
-         * Chromium, resvg and librsvg alike); one of no area adds nothing */
+    } else if (!st && named(node, "use")) {
+        /* its target through translate(x, y) and the target's own
+         * transform, as use_element draws it */
+        const xmlNode *target;
+        double x = 0, y = 0;
+        if (!(st = use_target(r, node, &target)) && target && !bbox_cycle(r, node, target) &&
+            !(st = attr_length(r, node, "x", 0, &x)) &&
+            !(st = attr_length(r, node, "y", 0, &y))) {
+            const mat at = {1, 0, 0, 1, x, y};
+            mat mt = mat_mul(*m, at);
+            r->bchain[r->nb++] = node;
+            if (!(st = element_transform(r, target, &mt))) {
+                r->bvia = node;
+                st = geometry_walk(r, target, &mt, box, depth + 1);
+            }
+            r->nb--;
+        }
+    } else if (!st && (named(node, "g") || named(node, "svg") ||
+                       (via && named(node, "symbol")))) {
+        /* a nested <svg>, or a symbol or svg a use draws: its content
+         * through translate(x, y) (a nested svg's own; a symbol's
+         * reference point's shift) and its viewBox map, of the use's width
+         * and height where it gives them, unclipped (its overflow does not
+         * change the box: Chromium, resvg and librsvg alike); one of no
+         * area adds nothing */
         mat mv = *m;
         double vb[2] = {r->vpw, r->vph}, pw = r->vpw, ph = r->vph;
         int drawn = 1;
-        if (named(node, "svg") && node != r->root) {
-            double x = 0, y = 0, w = 0, h = 0;
+        if ((named(node, "svg") && node != r->root) || named(node, "symbol")) {
+            double x = 0, y = 0, w = 0, h = 0, sh[2] = {0, 0};
             mat vbm;
-            if (!(st = attr_length(r, node, "x", 0, &x)) &&
-                !(st = attr_length(r, node, "y", 0, &y)) &&
-                !(st = viewport_side(r, node, NULL, "width", &w)) &&
-                !(st = viewport_side(r, node, NULL, "height", &h)) &&
-                (drawn = w > 0 && h > 0) && !(st = viewbox_map(r, node, w, h, &vbm, vb))) {
-                const mat at = {1, 0, 0, 1, x, y};
+            if (named(node, "svg") && !(st = attr_length(r, node, "x", 0, &x)))
+                st = attr_length(r, node, "y", 0, &y);
+            if (!st && !(st = viewport_side(r, node, via, "width", &w)) &&
+                !(st = viewport_side(r, node, via, "height", &h)) &&
+                (drawn = w > 0 && h > 0) && !(st = viewbox_map(r, node, w, h, &vbm, vb)) &&
+                !(st = symbol_shift(r, node, &vbm, vb, sh))) {
+                const mat at = {1, 0, 0, 1, x + sh[0], y + sh[1]};
                 mv = mat_mul(*m, mat_mul(at, vbm));
             }
         }
@@ -2857,7 +2919,7 @@ static int geometry_box(reader *r, const xmlNode *node, const mat *m, double box
                 continue;
             mat mc = mv;
             if (!(st = element_transform(r, c, &mc)))
-                st = geometry_box(r, c, &mc, box, depth + 1);
+                st = geometry_walk(r, c, &mc, box, depth + 1);
         }
         r->vpw = pw, r->vph = ph;
     }
@@ -3482,6 +3544,74 @@ static int viewport_side(reader *r, const xmlNode *node, const xmlNode *over, co
     return AA_OK;
 }
 
+/* A <symbol>'s reference point (SVG 2, "The 'symbol' element": refX and
+ * refY, in the symbol's content coordinates, after its viewBox and
+ * preserveAspectRatio) is placed at the symbol's (x, y), the whole
+ * viewport moving with it: *s, the shift to add in the viewport's
+ * coordinates, is minus the point mapped by the viewBox map vbm (a scale
+ * and a translation).  A length (a number, a unit, % of the viewBox's
+ * width or height: vb) or left, center, right (top, center, bottom): the
+ * viewBox's left edge, middle and right edge in content coordinates (the
+ * viewport's, 0 to its size, without a viewBox).  Absent: no shift on
+ * that axis, which is not refX="0" when the viewBox does not start at 0
+ * or meet leaves room (SVG 2 keeps the old placement for symbols that do
+ * not say). */
+static int symbol_shift(reader *r, const xmlNode *node, const mat *vbm, const double vb[2],
+                        double s[2])
+{
+    static const char *const keys[2] = {"refX", "refY"};
+    static const char *const words[2][3] = {{"left", "center", "right"},
+                                            {"top", "center", "bottom"}};
+    s[0] = s[1] = 0;
+    if (!named(node, "symbol"))
+        return AA_OK;
+    /* the viewBox's origin in content coordinates: vbm maps it to
+     * (vbm.e + vbm.a b0, ...) and a viewBox of size vb starts at b0 */
+    double b0[2] = {0, 0};
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"viewBox");
+    if (t) { /* read already by viewbox_map, so four numbers */
+        const char *p = skip_wsp((const char *)t);
+        for (int k = 0; k < 2; k++) {
+            if (k)
+                p = skip_comma_wsp(p);
+            (void)scan_number(&p, &b0[k]);
+        }
+        xmlFree(t);
+    }
+    int st = AA_OK;
+    for (int k = 0; k < 2 && !st; k++) {
+        t = xmlGetNoNsProp(node, (const xmlChar *)keys[k]);
+        if (!t)
+            continue;
+        const char *v = skip_wsp((const char *)t);
+        char word[16] = "";
+        sscanf(v, "%15[a-zA-Z]", word);
+        double ref = 0;
+        int j = 0;
+        while (j < 3 && strcasecmp(word, words[k][j]))
+            j++;
+        if (j < 3 && !*skip_wsp(v + strlen(word)))
+            ref = b0[k] + vb[k] * j / 2;
+        else {
+            /* % of the viewBox's width or height: the viewport's size for
+             * the axis is the viewBox's here */
+            const double w = r->vpw, h = r->vph;
+            r->vpw = vb[0], r->vph = vb[1];
+            st = parse_length(r, k ? "y" : "x", v, &ref);
+            r->vpw = w, r->vph = h;
+            if (st == AA_EINVAL && invalid_attr(r, keys[k], v, "a length or a keyword")) {
+                st = AA_OK; /* SVG 2: the initial value, no shift */
+                xmlFree(t);
+                continue;
+            }
+        }
+        xmlFree(t);
+        if (!st)
+            s[k] = -(k ? vbm->d * ref + vbm->f : vbm->a * ref + vbm->e);
+    }
+    return st;
+}
+
 /* A nested <svg>, or a <symbol> drawn as the target of the <use> via (SVG
  * 2, "The 'use' element": its width and height, unless auto, replace the
  * target's): a new viewport at (x, y) of its width and height (auto or
@@ -3528,9 +3658,11 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
     if (st)
         return st;
     mat vbm, to;
-    double vb[2];
-    if ((st = viewbox_map(r, node, w, h, &vbm, vb)))
+    double vb[2], sh[2];
+    if ((st = viewbox_map(r, node, w, h, &vbm, vb)) ||
+        (st = symbol_shift(r, node, &vbm, vb, sh)))
         return st;
+    x += sh[0], y += sh[1]; /* the viewport moves with the reference point */
     if (clip) {
         if (mat_inverse(&m, &to))
             return fail_at(r, "a viewport that clips under a singular transform is not "
@@ -3556,17 +3688,12 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
     return st;
 }
 
-/* <use> (SVG 2, "The 'use' element"): its target (href, or xlink:href,
- * "#id": the first element of that id) drawn as its child, so that the
- * target's properties inherit from the <use> (style sheets match the
- * target where it is in the document), under the use's transform and
- * then translate(x, y).  A target that is missing, or that is the <use>
- * or one of its ancestors (through the targets being drawn: a reference
- * cycle), puts the use in error: it draws nothing, as browsers do.  A
+/* The target of the <use> node (href, or xlink:href, "#id": the first
+ * element of that id) into *out, NULL when it has none or it is missing; a
  * reference to another document is refused (never loaded). */
-static int use_element(reader *r, const xmlNode *node, style sty, mat m, int depth,
-                       double opacity)
+static int use_target(reader *r, const xmlNode *node, const xmlNode **out)
 {
+    *out = NULL;
     xmlChar *href = xmlGetNoNsProp(node, (const xmlChar *)"href");
     if (!href)
         href = xmlGetNsProp(node, (const xmlChar *)"href",
@@ -3590,6 +3717,23 @@ static int use_element(reader *r, const xmlNode *node, style sty, mat m, int dep
         target = find_id(r->ids, id);
     }
     xmlFree(href);
+    *out = st ? NULL : target;
+    return st;
+}
+
+/* <use> (SVG 2, "The 'use' element"): its target (href, or xlink:href,
+ * "#id": the first element of that id) drawn as its child, so that the
+ * target's properties inherit from the <use> (style sheets match the
+ * target where it is in the document), under the use's transform and
+ * then translate(x, y).  A target that is missing, or that is the <use>
+ * or one of its ancestors (through the targets being drawn: a reference
+ * cycle), puts the use in error: it draws nothing, as browsers do.  A
+ * reference to another document is refused (never loaded). */
+static int use_element(reader *r, const xmlNode *node, style sty, mat m, int depth,
+                       double opacity)
+{
+    const xmlNode *target;
+    int st = use_target(r, node, &target);
     if (st || !target)
         return st;
     for (int k = 0; k <= depth; k++)

@@ -131,6 +131,8 @@ static void refused_clips(const char *doc, const char *want1, const char *want2)
         fail_msg("%s\n  message: %s\n  wanted: %s / %s", doc, msg, want1, want2 ? want2 : "");
 }
 
+static void expect_partial(const char *doc, const char *want, const char *warning);
+
 /* `doc` is refused with a message containing want1 and want2. */
 static void refused(const char *doc, const char *want1, const char *want2)
 {
@@ -288,8 +290,41 @@ static void test_viewports(void **state)
     refused(OPEN "<svg width=\"-1\"/></svg>", "<svg>", "negative");
     refused(OPEN "<svg width=\"1\" height=\"1\" overflow=\"sideways\"/></svg>", "<svg>",
             "overflow");
-    /* refX and refY are not read */
-    refused(OPEN "<symbol id=\"s\" refX=\"1\"/><use href=\"#s\"/></svg>", "<symbol>", "refX");
+    /* refX, refY (SVG 2, "The 'symbol' element"): the reference point, in
+     * content coordinates after the viewBox map, lands on the use's (x,
+     * y), the viewport with it.  viewBox 0 0 10 10 on 20 x 20 scales by 2:
+     * (5, 5) is (10, 10) of the viewport, so the viewport's corner is at
+     * (20, 30) - (10, 10) and the rect [0, 10]^2 on [10, 30] x [20, 40] */
+    expect(OPEN "<symbol id=\"s\" viewBox=\"0 0 10 10\" refX=\"5\" refY=\"5\"><rect "
+                "width=\"10\" height=\"10\"/></symbol><use href=\"#s\" x=\"20\" y=\"30\" "
+                "width=\"20\" height=\"20\"/></svg>",
+           BLACK " M 10 20 L 30 20 L 30 40 L 10 40 Z");
+    /* keywords: right and bottom are the viewBox's right and bottom edges
+     * (12, 14), at the viewport's (10, 10) (scale 1, the viewBox starting
+     * at (2, 4)): the rect of the whole viewBox on [40, 50]^2 */
+    expect(OPEN "<symbol id=\"s\" viewBox=\"2 4 10 10\" refX=\"right\" refY=\"BOTTOM\">"
+                "<rect x=\"2\" y=\"4\" width=\"10\" height=\"10\"/></symbol><use "
+                "href=\"#s\" x=\"50\" y=\"50\" width=\"10\" height=\"10\"/></svg>",
+           BLACK " M 40 40 L 50 40 L 50 50 L 40 50 Z");
+    /* without a viewBox center is half the viewport's width (20): 10 to
+     * the left; refY absent moves nothing */
+    expect(OPEN "<symbol id=\"s\" refX=\"center\"><rect width=\"20\" height=\"5\"/>"
+                "</symbol><use href=\"#s\" x=\"30\" width=\"20\" height=\"20\"/></svg>",
+           BLACK " M 20 0 L 40 0 L 40 5 L 20 5 Z");
+    /* 50% of the viewBox's width, 5, after meet on 40 x 20 (scale 2, the
+     * viewBox centred 10 in): 2 x 5 + 10 = 20 to the left; the rect [0,
+     * 10]^2 of the viewBox on [10, 30] x [0, 20], then [40, 60] at x = 50 */
+    expect(OPEN "<symbol id=\"s\" viewBox=\"0 0 10 10\" refX=\"50%\"><rect width=\"10\" "
+                "height=\"10\"/></symbol><use href=\"#s\" x=\"50\" width=\"40\" "
+                "height=\"20\"/></svg>",
+           BLACK " M 40 0 L 60 0 L 60 20 L 40 20 Z");
+    /* an invalid refX is its initial value (none: no shift), with a
+     * warning */
+    expect_partial(OPEN "<symbol id=\"s\" refX=\"middle\"><rect width=\"2\" height=\"1\"/>"
+                        "</symbol><use href=\"#s\" x=\"3\"/></svg>",
+                   BLACK " M 3 0 L 5 0 L 5 1 L 3 1 Z", "refX=\"middle\"");
+    /* x and y of a symbol are still not read */
+    refused(OPEN "<symbol id=\"s\" x=\"1\"/><use href=\"#s\"/></svg>", "<symbol>", "x");
 }
 
 /* Viewports that clip, through a sink that takes clips (SVG 2: a nested
@@ -881,6 +916,38 @@ static void test_pictures(void **state)
               "width=\"20\" height=\"20\" viewBox=\"0 0 10 10\"><rect width=\"10\" "
               "height=\"10\"/></svg></g>"),
          "200", 200},
+        /* a symbol's reference point at the use's (x, y): the disk of
+         * radius 2 about the centre of viewBox 0 0 4 4, used at (0, 0) as
+         * 16 x 16 with refX and refY center, is centred on the view's
+         * corner, radius 8: the view keeps a quarter, 16 pi (64 pi were
+         * the reference point ignored) */
+        {"symbol refX", VSVG("<symbol id=\"s\" viewBox=\"0 0 4 4\" refX=\"center\" "
+                             "refY=\"center\"><circle cx=\"2\" cy=\"2\" r=\"2\"/></symbol>"
+                             "<use href=\"#s\" width=\"16\" height=\"16\"/>"),
+         "16 pi", 16 * M_PI},
+        /* objectBoundingBox of a group holding a use: the box holds the
+         * used rect [10, 30]^2 (and the rect [10, 12] x [10, 30]), so its
+         * left half [10, 20] x [10, 30] is kept: 200 (20, were the use
+         * left out of the box) */
+        {"box with a use",
+         VSVG("<defs><rect id=\"u\" width=\"20\" height=\"20\"/></defs><clipPath id=\"o\" "
+              "clipPathUnits=\"objectBoundingBox\"><rect width=\"0.5\" height=\"1\"/>"
+              "</clipPath><g clip-path=\"url(#o)\"><rect x=\"10\" y=\"10\" width=\"2\" "
+              "height=\"20\"/><use href=\"#u\" x=\"10\" y=\"10\"/></g>"),
+         "200", 200},
+        /* the same through a symbol with its reference point: the symbol's
+         * rect lands on [22, 42]^2 (its centre at the use's (32, 32)), the
+         * group's box is [0, 42] x [22, 42] with the rect [0, 2] x [22,
+         * 42], and its left half [0, 21] keeps that rect only: 40 (120 with
+         * the symbol's box unshifted, 20 without the use) */
+        {"box with a symbol's use",
+         VSVG("<symbol id=\"s\" viewBox=\"0 0 10 10\" refX=\"center\" refY=\"center\">"
+              "<rect width=\"10\" height=\"10\"/></symbol><clipPath id=\"o\" "
+              "clipPathUnits=\"objectBoundingBox\"><rect width=\"0.5\" height=\"1\"/>"
+              "</clipPath><g clip-path=\"url(#o)\"><rect y=\"22\" width=\"2\" "
+              "height=\"20\"/><use href=\"#s\" x=\"32\" y=\"32\" width=\"20\" "
+              "height=\"20\"/></g>"),
+         "40", 40},
         /* a clip-path inside the viewport: the disk of radius 8 at the
          * viewport's right edge, cut by it: half the disk, 32 pi */
         {"clip inside", VSVG("<svg x=\"4\" y=\"4\" width=\"20\" height=\"20\"><clipPath "
