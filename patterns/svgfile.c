@@ -24,8 +24,9 @@
  *     width and height for <svg> and <symbol> targets; the target drawn
  *     as the use's child, inheriting from it; a missing target or a
  *     reference cycle draws nothing, as browsers do), <symbol> (drawn only
- *     through <use>) and nested <svg>, each a viewport with its viewBox
- *     and preserveAspectRatio; a viewport of overflow hidden (the initial
+ *     through <use>; refX and refY its reference point, symbol_shift) and
+ *     nested <svg>, each a viewport with its viewBox and
+ *     preserveAspectRatio; a viewport of overflow hidden (the initial
  *     value) clips its content: a clip of the scene whose one member is
  *     the viewport's rectangle (viewport_clip), made only for content
  *     reaching beyond it by an exact bounds test (shape_clip); with
@@ -34,10 +35,11 @@
  *   - style: the style attribute and <style> sheets, cascaded by CSS
  *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
  *     !important; presentation attributes below every rule);
- *   - an invalid presentation attribute (a length, a negative size or
- *     radius, an opacity, a transform list that does not parse) is
- *     ignored, as browsers ignore it, with a warning (invalid_attr); what
- *     may be valid but is not read (calc(), vw) is refused;
+ *   - a declaration of an invalid value is ignored, the cascade going on
+ *     (CSS 2.1, 4.2), and an invalid presentation attribute is its
+ *     property's initial value (SVG 2), with a warning (prop, prop_check;
+ *     geometry attributes: invalid_attr); what may be valid but is not
+ *     read (calc(), vw) is refused;
  *   - a viewBox maps to the viewport by preserveAspectRatio (default
  *     xMidYMid meet; every alignment, meet, slice and none);
  *   - transform lists (matrix, translate, scale, rotate with or without a
@@ -91,8 +93,7 @@
  * objectBoundingBox units for a clip-path on a <use>,
  * content beyond a viewport that clips when the sink takes no clips,
  * references to other documents, what svgcss.h refuses in a style
- * sheet, sheets for other media, negative widths and dashes, invalid
- * values in declarations, any attribute or style property not
+ * sheet, sheets for other media, any attribute or style property not
  * implemented (see css_known; in a rule, only when the rule matches a
  * drawn element), and any other element of the SVG namespace; elements of
  * other namespaces are not drawn (as a browser ignores them).  Malformed
@@ -283,6 +284,7 @@ typedef struct reader {
     /* structure, units and style sheets (below the reader's core) */
     aa_css *css;             /* the document's style sheets (NULL: none) */
     int from_css;            /* prop's last value came from a declaration */
+    int unsupported;         /* the last value refused may be valid (prop_check) */
     double font_size;        /* the element's font-size in px (em) */
     double vpw, vph;         /* the nearest viewport's size in user units (%) */
     struct svg_ids *ids;     /* the elements with an id, sorted */
@@ -443,6 +445,8 @@ static int length_axis(const char *attr)
 static int scan_length(reader *r, const char **s, int axis, double *v)
 {
     int k = scan_number(s, v);
+    if (k == -2)
+        r->unsupported = 1;
     if (k)
         return k;
     const char *u = *s;
@@ -464,11 +468,16 @@ static int scan_length(reader *r, const char **s, int axis, double *v)
             *v *= r->font_size;
         else if (n == 2 && !strncasecmp(u, "ex", 2))
             *v *= r->font_size / 2;
-        else
+        else {
+            r->unsupported = 1; /* a unit of CSS (vw, ch...) may be valid */
             return -3;
+        }
         *s = u + n;
     }
-    return isfinite(*v) && fabs(*v) <= AA_SVG_MAX_NUMBER ? 0 : -2;
+    if (isfinite(*v) && fabs(*v) <= AA_SVG_MAX_NUMBER)
+        return 0;
+    r->unsupported = 1;
+    return -2;
 }
 
 /* A whole attribute or property value that is one length. */
@@ -614,17 +623,79 @@ static int check_props(reader *r, const xmlNode *node)
     return st;
 }
 
+/* SVG 2's initial values of the inherited properties (an invalid
+ * presentation attribute takes it; for the others the initial value is
+ * what their absence gives). */
+static const struct {
+    const char *key, *value;
+} initial_values[] = {
+    {"fill", "black"},           {"stroke", "none"},           {"color", "black"},
+    {"fill-rule", "nonzero"},    {"clip-rule", "nonzero"},     {"stroke-width", "1"},
+    {"stroke-linecap", "butt"},  {"stroke-linejoin", "miter"}, {"stroke-miterlimit", "4"},
+    {"stroke-dasharray", "none"}, {"stroke-dashoffset", "0"},  {"fill-opacity", "1"},
+    {"stroke-opacity", "1"},     {"visibility", "visible"},    {"paint-order", "normal"},
+    {"color-interpolation", "sRGB"}, {"font-size", "medium"}};
+
+static int prop_check(reader *r, const char *key, const char *v, int css, int *st);
+static void warn_at(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
+
+/* The last error's reason, without the file, line and element it names. */
+static const char *last_reason(void)
+{
+    const char *m = aa_last_error(), *e = strstr(m, ">: ");
+    return e ? e + 3 : m;
+}
+
 /* The value of property `key` for the element: the cascade of the style
- * sheets and the style attribute (aa_css_value) wins over the
- * presentation attribute, which is lower than any rule.  Written into
- * buf; 1 if given (r->from_css: by a declaration, not the attribute). */
+ * sheets and the style attribute (aa_css_value_nth) wins over the
+ * presentation attribute, which is lower than any rule.  A declaration
+ * whose value is invalid (prop_check) is ignored, the next in the
+ * cascade taking its place (CSS 2.1, 4.2; CSS Syntax 3); a presentation
+ * attribute whose value is invalid is its property's initial value (SVG 2,
+ * "Attribute syntax"), or absent when that is the same, with a warning
+ * naming it.  A value that may be valid but is not drawn is refused in
+ * *st.  Written into buf; 1 if given (r->from_css: by a declaration, not
+ * the attribute). */
 static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size_t len, int *st)
 {
     xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
     long line;
-    int found = aa_css_value(r->css, node, (const char *)css, key, buf, len, &line);
+    int found = 0;
+    /* the declarations in the cascade's order, the first valid one
+     * winning (an invalid one is ignored, CSS 2.1 4.2) */
+    for (int nth = 0; !*st; nth++) {
+        found = aa_css_value_nth(r->css, node, (const char *)css, key, nth, buf, len, &line);
+        if (found <= 0)
+            break;
+        int ok = prop_check(r, key, buf, 1, st);
+        if (ok)
+            break;
+        found = 0;
+        if (*st)
+            break;
+        if (line)
+            warn_at(r, "style sheet line %ld: %s: \"%s\" is invalid (%s): the declaration is "
+                       "ignored, as CSS says",
+                    line, key, aa_echo(buf), last_reason());
+        else
+            warn_at(r, "style: %s: \"%s\" is invalid (%s): the declaration is ignored, as CSS "
+                       "says",
+                    key, aa_echo(buf), last_reason());
+    }
     xmlFree(css);
     r->from_css = found != 0;
+    if (*st)
+        return 0;
+    if (found > 0 && (!strcasecmp(buf, "initial") || !strcasecmp(buf, "unset"))) {
+        /* of an inherited property (prop_check): its initial value, or
+         * inherit */
+        for (size_t k = 0; k < sizeof initial_values / sizeof initial_values[0]; k++)
+            if (!strcmp(key, initial_values[k].key))
+                snprintf(buf, len, "%s", tolower((unsigned char)buf[0]) == 'i'
+                                             ? initial_values[k].value
+                                             : "inherit");
+        return 1;
+    }
     if (found == -2) {
         *st = aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
         return 0;
@@ -649,6 +720,22 @@ static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size
             found = 1;
         }
         xmlFree(v);
+        const char *initial = NULL;
+        if (found && !prop_check(r, key, buf, 0, st) && !*st) {
+            /* SVG 2, "Attribute syntax": an attribute that does not parse is
+             * as if it were given its initial value */
+            for (size_t k = 0; k < sizeof initial_values / sizeof initial_values[0]; k++)
+                if (!strcmp(key, initial_values[k].key))
+                    initial = initial_values[k].value;
+            warn_at(r, "%s=\"%s\" is invalid (%s): %s%s, as SVG 2 says", key, aa_echo(buf),
+                    last_reason(), initial ? "its initial value " : "ignored",
+                    initial ? initial : "");
+            if (initial)
+                snprintf(buf, len, "%s", initial);
+            found = initial != NULL;
+        }
+        if (*st)
+            found = 0;
     }
     return found;
 }
@@ -1602,8 +1689,11 @@ static void warn_at(reader *r, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    aa_warn("%s: line %ld: <%s>: %s", r->name, xmlGetLineNo(r->node), (const char *)r->node->name,
-            msg);
+    if (!r->node)
+        aa_warn("%s: %s", r->name, msg);
+    else
+        aa_warn("%s: line %ld: <%s>: %s", r->name, xmlGetLineNo(r->node),
+                (const char *)r->node->name, msg);
 }
 
 /* An invalid presentation attribute is ignored, as browsers ignore it
@@ -2318,7 +2408,7 @@ static int parse_dasharray(reader *r, const char *v, style *sty)
     double sum = 0;
     const char *s = v;
     while (*s) {
-        if (n == AA_SVG_MAX_DASHES)
+        if (n == AA_SVG_MAX_DASHES && (r->unsupported = 1))
             return fail_at(r, "stroke-dasharray=\"%s\": more than %d values", aa_echo(v),
                            AA_SVG_MAX_DASHES);
         double x;
@@ -2504,6 +2594,129 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
     }
     *m = mat_mul(*m, own);
     return AA_OK;
+}
+
+/* 1 if the value v holds a function the reader does not read (calc(),
+ * var(), url(), color(), a 3D transform...): a value that fails to parse
+ * with one may still be valid CSS, so it is refused, never ignored. */
+static int unknown_function(const char *v)
+{
+    static const char *const known[] = {"rgb",        "rgba",       "hsl",      "hsla",
+                                        "matrix",     "translate",  "translatex",
+                                        "translatey", "scale",      "scalex",   "scaley",
+                                        "rotate",     "skew",       "skewx",    "skewy"};
+    for (const char *p = v; *p; p++) {
+        if (*p != '(')
+            continue;
+        const char *a = p;
+        while (a > v && (isalnum((unsigned char)a[-1]) || a[-1] == '-' || a[-1] == '_'))
+            a--;
+        size_t n = (size_t)(p - a), k = 0;
+        while (k < sizeof known / sizeof known[0] &&
+               !(strlen(known[k]) == n && !strncasecmp(a, known[k], n)))
+            k++;
+        if (k == sizeof known / sizeof known[0])
+            return 1;
+    }
+    return 0;
+}
+
+/* Whether v is a valid value of the property `key` (css: of a declaration,
+ * else of a presentation attribute), by the parsers that read it: 1 valid
+ * (or a property not checked here, read where it is used), 0 invalid (the
+ * parser's reason in aa_last_error), or 0 with *st set when it may be
+ * valid but is not drawn (a unit or a function not read, a number out of
+ * range, a value named unsupported): refused, never ignored. */
+static int prop_check(reader *r, const char *key, const char *v, int css, int *st)
+{
+    static const char *const displays[] = {
+        "inline",          "block",           "run-in",       "flow",      "flow-root",
+        "table",           "flex",            "grid",         "ruby",      "list-item",
+        "contents",        "none",            "inline-block", "inline-table", "inline-flex",
+        "inline-grid",     "table-row-group", "table-header-group", "table-footer-group",
+        "table-row",       "table-cell",      "table-column-group", "table-column",
+        "table-caption",   "ruby-base",       "ruby-text",    "ruby-base-container",
+        "ruby-text-container"};
+    static const char *const rules[] = {"nonzero", "evenodd"};
+    static const char *const caps[] = {"butt", "round", "square"};
+    static const char *const joins[] = {"miter", "round", "bevel", "miter-clip", "arcs"};
+    static const char *const visibilities[] = {"visible", "hidden", "collapse"};
+    static const char *const interpolations[] = {"auto", "sRGB", "linearRGB"};
+    static const char *const overflows[] = {"visible", "hidden", "scroll", "clip", "auto"};
+    static const char *const boxes[] = {"view-box", "fill-box", "stroke-box", "content-box",
+                                        "border-box"};
+    static const struct {
+        const char *key;
+        const char *const *names;
+        int n;
+    } keywords[] = {{"display", displays, sizeof displays / sizeof displays[0]},
+                    {"fill-rule", rules, 2},
+                    {"clip-rule", rules, 2},
+                    {"stroke-linecap", caps, 3},
+                    {"stroke-linejoin", joins, 5},
+                    {"visibility", visibilities, 3},
+                    {"color-interpolation", interpolations, 3},
+                    {"overflow", overflows, 5},
+                    {"transform-box", boxes, 5}};
+    if (!strcasecmp(v, "inherit"))
+        return 1;
+    if (!strcasecmp(v, "initial") || !strcasecmp(v, "unset") || !strcasecmp(v, "revert") ||
+        !strcasecmp(v, "revert-layer")) {
+        /* CSS Cascade 4's keywords: initial and unset of an inherited
+         * property are its initial value and inherit (prop); the others
+         * are refused */
+        for (size_t j = 0; j < sizeof initial_values / sizeof initial_values[0]; j++)
+            if (!strcmp(key, initial_values[j].key) && tolower((unsigned char)v[0]) != 'r')
+                return 1;
+        *st = fail_at(r, "%s: %s is not supported here", key, aa_echo(v));
+        return 0;
+    }
+    r->unsupported = 0;
+    int e = AA_OK, k;
+    style sty;
+    initial_style(&sty);
+    css_colour c;
+    double x;
+    mat m = identity;
+    for (size_t j = 0; j < sizeof keywords / sizeof keywords[0]; j++)
+        if (!strcmp(key, keywords[j].key))
+            e = keyword(r, key, v, keywords[j].names, keywords[j].n, &k, "a keyword");
+    if (!strcmp(key, "fill") || !strcmp(key, "stroke"))
+        e = parse_paint(r, key, v, &c, &k);
+    else if (!strcmp(key, "color"))
+        e = parse_colour(r, key, v, &c);
+    else if (!strcmp(key, "font-size"))
+        e = parse_font_size(r, v, 16, &x);
+    else if (!strcmp(key, "stroke-width")) {
+        if (!(e = parse_length(r, key, v, &x)) && x < 0)
+            e = fail_at(r, "stroke-width=\"%s\": a negative width is invalid", aa_echo(v));
+    } else if (!strcmp(key, "stroke-miterlimit")) {
+        if (plain_number(v, &x) || !(x >= 1))
+            e = fail_at(r, "stroke-miterlimit=\"%s\" is not a number of at least 1",
+                        aa_echo(v));
+    } else if (!strcmp(key, "stroke-dasharray"))
+        e = parse_dasharray(r, v, &sty);
+    else if (!strcmp(key, "stroke-dashoffset"))
+        e = parse_length(r, key, v, &x);
+    else if (!strcmp(key, "opacity") || !strcmp(key, "fill-opacity") ||
+             !strcmp(key, "stroke-opacity"))
+        e = parse_opacity(r, key, v, &x);
+    else if (!strcmp(key, "paint-order"))
+        e = parse_paint_order(r, v, &k);
+    else if (!strcmp(key, "transform") && css) {
+        const double box[4] = {0, 0, r->vpw, r->vph};
+        e = parse_css_transform(r, v, box, &m);
+    } else if (!strcmp(key, "transform-origin")) {
+        const double box[4] = {0, 0, r->vpw, r->vph};
+        double o[2];
+        e = parse_transform_origin(r, v, box, o);
+    }
+    if (e == AA_OK)
+        return 1;
+    if (e == AA_EINVAL && !r->unsupported && !unknown_function(v))
+        return 0;
+    *st = e;
+    return 0;
 }
 
 /* The properties every element may set: style into *sty, the element's own

@@ -288,8 +288,10 @@ static void test_viewports(void **state)
                  "stroke=\"red\" stroke-width=\"2.1\"/></svg></svg>",
             "<line>", "beyond");
     refused(OPEN "<svg width=\"-1\"/></svg>", "<svg>", "negative");
-    refused(OPEN "<svg width=\"1\" height=\"1\" overflow=\"sideways\"/></svg>", "<svg>",
-            "overflow");
+    /* an invalid overflow is ignored (SVG 2: as if absent, the user agent
+     * sheet's hidden) with a warning */
+    expect_partial(OPEN "<svg width=\"1\" height=\"1\" overflow=\"sideways\"/></svg>", "",
+                   "overflow=\"sideways\"");
     /* refX, refY (SVG 2, "The 'symbol' element"): the reference point, in
      * content coordinates after the viewBox map, lands on the use's (x,
      * y), the viewport with it.  viewBox 0 0 10 10 on 20 x 20 scales by 2:
@@ -504,8 +506,14 @@ static void test_units(void **state)
     expect(OPEN "<rect width=\"1em\" height=\"1\" font-size=\"xx-small\"/></svg>", want);
     expect(OPEN "<rect width=\"1em\" height=\"1\" style=\"font-size: xxx-large\"/></svg>",
            BLACK " M 0 0 L 48 0 L 48 1 L 0 1 Z");
-    refused(OPEN "<rect width=\"1\" height=\"1\" font-size=\"-2px\"/></svg>", "<rect>",
-            "negative");
+    /* a negative font-size is invalid (CSS Fonts 4): the initial medium,
+     * 16px, for the attribute (SVG 2), the parent's 10px for a declaration
+     * (ignored, CSS) */
+    expect_partial(OPEN "<rect width=\"1em\" height=\"1\" font-size=\"-2px\"/></svg>",
+                   BLACK " M 0 0 L 16 0 L 16 1 L 0 1 Z", "negative");
+    expect_partial(OPEN "<g font-size=\"10px\"><rect width=\"1em\" height=\"1\" "
+                        "style=\"font-size: -2px\"/></g></svg>",
+                   BLACK " M 0 0 L 10 0 L 10 1 L 0 1 Z", "negative");
 }
 
 /* ---- style sheets and the cascade ---- */
@@ -692,8 +700,11 @@ static void test_css_transform(void **state)
     /* keywords in either order: right top of the view-box (100 x 100) */
     expect(OPEN "<path transform=\"scale(2)\" transform-origin=\"top right\" d=\"M99 1\"/></svg>",
            BLACK " M 98 2 Z");
-    refused(OPEN "<path style=\"transform: translate(10, 5)\" d=\"M0 0\"/></svg>", "<path>",
-            "units");
+    /* numbers without units are invalid in CSS's translate(): the
+     * declaration is ignored, the attribute's transform applies */
+    expect_partial(OPEN "<path transform=\"translate(1 2)\" style=\"transform: translate(10, "
+                        "5)\" d=\"M0 0\"/></svg>",
+                   BLACK " M 1 2 Z", "ignored");
     refused(OPEN "<path style=\"transform: rotateX(10deg)\" d=\"M0 0\"/></svg>", "<path>",
             "no 3D");
     /* the root's transform is refused, as an attribute or a declaration */
@@ -771,9 +782,16 @@ static void test_invalid_attributes(void **state)
     /* rx=-1 is auto, and both auto are square corners */
     expect_partial(OPEN "<rect width=\"1\" height=\"1\" rx=\"-1\"/></svg>",
                    BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z", "rx=\"-1\"");
+    /* an invalid inherited property's attribute is its initial value (SVG
+     * 2, "Attribute syntax"), not the parent's: fill-opacity 1 drawn where
+     * the parent's 0 would draw nothing, fill black under a red group
+     * (resvg agrees; Chromium takes the attribute as absent, the
+     * parent's value, as CSS takes an invalid declaration) */
     expect_partial(OPEN "<g fill-opacity=\"0\"><rect width=\"1\" height=\"1\" "
-                        "fill=\"white\" fill-opacity=\"half\"/></g>" R("fill=\"white\"") "</svg>",
+                        "fill=\"white\" fill-opacity=\"half\"/></g></svg>",
                    WHITE " M 0 0 L 1 0 L 1 1 L 0 1 Z", "fill-opacity=\"half\"");
+    expect_partial(OPEN "<g fill=\"red\">" R("fill=\"bogus\"") "</g></svg>",
+                   BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z", "initial value black");
     expect_partial(OPEN "<path transform=\"spin(3)\" d=\"M1 0\"/></svg>", BLACK " M 1 0 Z",
                    "transform=\"spin(3)\"");
     expect_partial(OPEN "<path transform=\"translate(10px, 0)\" d=\"M1 0\"/></svg>",
@@ -783,8 +801,64 @@ static void test_invalid_attributes(void **state)
             "calc(");
     refused(OPEN "<rect width=\"1\" height=\"1\" opacity=\"calc(0.5)\"/></svg>", "<rect>",
             "opacity");
-    refused(OPEN "<rect width=\"1\" height=\"1\" style=\"opacity: half\"/></svg>", "<rect>",
-            "opacity");
+}
+
+/* ---- invalid declarations ---- */
+
+/* CSS 2.1, 4.2 (and CSS Syntax 3): a declaration whose value is invalid is
+ * ignored, the cascade going on as if it were not there: the declaration
+ * before it, a rule of lower precedence, the presentation attribute, the
+ * parent's value (inherited properties) or the initial one.  Chromium
+ * draws every case below so (checked: tests/test_paint_renderers.c).  What
+ * may be valid but is not drawn is still refused. */
+static void test_invalid_declarations(void **state)
+{
+    (void)state;
+    /* the earlier declaration of the same style attribute */
+    expect_partial(OPEN R("style=\"fill: lime; fill: bogus\"") "</svg>",
+                   "0 1 0; M 0 0 L 1 0 L 1 1 L 0 1 Z", "ignored");
+    /* the earlier rule of the same specificity */
+    expect_partial(OPEN "<style>.q { fill: blue } .q { fill: bogus }</style>"
+                        R("class=\"q\" fill=\"lime\"") "</svg>",
+                   "0 0 1; M 0 0 L 1 0 L 1 1 L 0 1 Z", "style sheet line 1");
+    /* an invalid !important one: the style attribute's below it */
+    expect_partial(OPEN "<style>.q { fill: 12px !important }</style>"
+                        R("class=\"q\" style=\"fill: blue\"") "</svg>",
+                   "0 0 1; M 0 0 L 1 0 L 1 1 L 0 1 Z", "ignored");
+    /* the presentation attribute */
+    expect_partial(OPEN R("style=\"fill: bogus\" fill=\"lime\"") "</svg>",
+                   "0 1 0; M 0 0 L 1 0 L 1 1 L 0 1 Z", "ignored");
+    /* none of them: inherited from the parent */
+    expect_partial(OPEN "<g fill=\"red\">" R("style=\"fill: rgb(1, 2)\"") "</g></svg>",
+                   "1 0 0; M 0 0 L 1 0 L 1 1 L 0 1 Z", "ignored");
+    /* display: the attribute's none, under an invalid declaration */
+    expect_partial(OPEN R("display=\"none\" style=\"display: 4\"") "</svg>", "", "ignored");
+    /* opacity: half is ignored: opaque, drawn */
+    expect_partial(OPEN R("fill=\"white\" style=\"opacity: half\"") "</svg>",
+                   WHITE " M 0 0 L 1 0 L 1 1 L 0 1 Z", "opacity");
+    /* a negative stroke-width, an unknown keyword, a malformed dash list:
+     * ignored (the rect's stroke then has the width 1 of the attribute's
+     * absence: its outline is drawn, a second shape) */
+    {
+        const char *got = read_doc(OPEN R("stroke=\"white\" style=\"stroke-width: -1; "
+                                          "stroke-linecap: flat; stroke-dasharray: 1 -2\"")
+                                       "</svg>");
+        assert_non_null(strstr(got, "1 1 1;"));
+    }
+    /* CSS Cascade 4's initial and unset of an inherited property: its
+     * initial value (black) and the parent's (red) */
+    expect(OPEN "<g fill=\"red\">" R("style=\"fill: initial\"") R("style=\"fill: UNSET\"")
+                "</g></svg>",
+           "0 0 0; M 0 0 L 1 0 L 1 1 L 0 1 Z 1 0 0; M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* valid, not drawn: refused naming the element */
+    refused(OPEN R("style=\"fill: revert\"") "</svg>", "<rect>", "revert");
+    refused(OPEN R("style=\"opacity: calc(0.5)\"") "</svg>", "<rect>", "opacity");
+    refused(OPEN R("style=\"stroke-width: 1vw\"") "</svg>", "<rect>", "not a length");
+    refused(OPEN R("style=\"filter: blur(1px)\"") "</svg>", "<rect>", "filters");
+    refused(OPEN R("style=\"color-interpolation: linearRGB\"") "</svg>", "<rect>",
+            "linear light");
+    refused(OPEN R("style=\"fill: color(display-p3 1 0 0)\"") "</svg>", "<rect>", "fill");
+    refused(OPEN R("style=\"stroke-width: 1e12\"") "</svg>", "<rect>", "out of range");
 }
 
 /* ---- pictures: box references against closed forms ---- */
@@ -984,4 +1058,5 @@ SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_use), cmocka_unit_test(test_
              cmocka_unit_test(test_units), cmocka_unit_test(test_sheets),
              cmocka_unit_test(test_css_transform), cmocka_unit_test(test_path_errors),
              cmocka_unit_test(test_invalid_attributes),
+             cmocka_unit_test(test_invalid_declarations),
              cmocka_unit_test(test_pictures))
