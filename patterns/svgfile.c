@@ -45,7 +45,8 @@
  *   - transform lists (matrix, translate, scale, rotate with or without a
  *     centre, skewX, skewY; in a declaration CSS Transforms 1's functions
  *     with units, about transform-origin in the reference box of
- *     transform-box, view-box or fill-box) compose from the root down and
+ *     transform-box, view-box, fill-box or stroke-box) compose from the
+ *     root down and
  *     are applied to
  *     every point, control points included, which is exact for Bezier
  *     arcs under affine maps; an elliptical arc's centre maps as a point
@@ -285,6 +286,8 @@ typedef struct reader {
     aa_css *css;             /* the document's style sheets (NULL: none) */
     int from_css;            /* prop's last value came from a declaration */
     int unsupported;         /* the last value refused may be valid (prop_check) */
+    const struct style *tsty; /* the style of the element whose transform is read, or
+                               * NULL (its stroke box) */
     double font_size;        /* the element's font-size in px (em) */
     double vpw, vph;         /* the nearest viewport's size in user units (%) */
     struct svg_ids *ids;     /* the elements with an id, sorted */
@@ -2304,10 +2307,10 @@ static double length_bound(const aa_path *p)
  * segments in the outline). */
 #define MAX_DASHES_DRAWN (AA_SVG_MAX_SEGMENTS / 8)
 
-/* The element's stroke: its outline (aa_stroke_outline, in user units)
- * through m to the sink as a shape of the stroke's colour, nonzero. */
-static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty,
-                       aa_rgb colour, double alpha)
+/* The stroke style of sty for the path p into *ss (its dashes pointing
+ * into sty), refusing joins not drawn and dash patterns of too many
+ * dashes. */
+static int stroke_style_of(reader *r, const aa_path *p, const style *sty, aa_stroke_style *out)
 {
     if (sty->join_other)
         return fail_at(r, "stroke-linejoin=\"%s\" is not supported (miter, round or bevel)",
@@ -2341,9 +2344,22 @@ static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *s
         ss.ndash = sty->ndash;
         ss.dashoffset = sty->dashoffset;
     }
+    *out = ss;
+    return AA_OK;
+}
+
+/* The element's stroke: its outline (aa_stroke_outline, in user units)
+ * through m to the sink as a shape of the stroke's colour, nonzero. */
+static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty,
+                       aa_rgb colour, double alpha)
+{
+    aa_stroke_style ss;
+    int st = stroke_style_of(r, p, sty, &ss);
+    if (st)
+        return st;
     aa_path out;
     aa_path_init(&out);
-    int st = aa_stroke_outline(p, &ss, &out);
+    st = aa_stroke_outline(p, &ss, &out);
     if (st) /* the message begins "stroke: " */
         st = at_element(r, st);
     if (!st)
@@ -2522,14 +2538,49 @@ static int parse_paint_order(reader *r, const char *v, int *stroke_first)
     return AA_OK;
 }
 
+static void path_box(const aa_path *p, const mat *m, double box[4]);
+
+/* The stroke bounding box of a shape (SVG 2, "Bounding boxes": its fill
+ * box, p's exact bounds, grown by the bounds of its stroke shape when the
+ * stroke is not none), x0 y0 x1 y1 in b, which holds the fill box.  The
+ * stroke shape is the outline aa_stroke_outline draws: lines and circular
+ * arcs, bounded exactly by path_box (an arc's extremes in closed form); a
+ * stroke with offset curves (a Bezier arc or a non-circular elliptical arc
+ * stroked) is refused, its extent not being computed exactly here. */
+static int stroke_box(reader *r, const aa_path *p, const style *sty, double b[4])
+{
+    if (sty->stroke_none || !(sty->stroke_width > 0))
+        return AA_OK;
+    aa_stroke_style ss;
+    int st = stroke_style_of(r, p, sty, &ss);
+    if (st)
+        return st;
+    aa_path out;
+    aa_path_init(&out);
+    if ((st = aa_stroke_outline(p, &ss, &out)))
+        st = at_element(r, st);
+    for (size_t k = 0; k < out.n && !st; k++)
+        if (out.seg[k].op == AA_PATH_OFFSET)
+            st = fail_at(r, "transform-box: stroke-box of a stroke with offset curves (a "
+                            "Bezier or non-circular arc stroked) is not supported: their "
+                            "extent is not computed exactly");
+    if (!st)
+        path_box(&out, &identity, b);
+    aa_path_free(&out);
+    return st;
+}
+
 /* The element's own transform composed into *m: the property transform
  * (CSS Transforms 1) as a presentation attribute (SVG's transform list,
  * parse_transform) or a declaration (CSS's syntax, parse_css_transform),
  * about transform-origin (initially 0 0 for SVG elements) in the
  * reference box of transform-box: view-box (initial; the nearest
  * viewport's user space, its origin at (0, 0), its size the viewBox's),
- * or fill-box (content-box says the same in SVG) of a shape, its exact
- * bounds in user units; stroke-box and border-box are refused. */
+ * fill-box of a shape, its exact bounds in user units, or stroke-box, its
+ * stroke bounding box (stroke_box; when the element's style is known,
+ * r->tsty: not inside an object bounding box, where it is refused); CSS
+ * Transforms 1 maps content-box to fill-box and border-box to stroke-box
+ * for SVG elements. */
 static int element_transform(reader *r, const xmlNode *node, mat *m)
 {
     char v[1024];
@@ -2544,9 +2595,14 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
     double box[4] = {0, 0, r->vpw, r->vph};
     char kind[64];
     if (prop(r, node, "transform-box", kind, sizeof kind, &st) && strcasecmp(kind, "view-box")) {
-        if (strcasecmp(kind, "fill-box") && strcasecmp(kind, "content-box"))
-            return fail_at(r, "transform-box=\"%s\" is not supported (view-box, fill-box or "
-                              "content-box)",
+        const int stroked = !strcasecmp(kind, "stroke-box") || !strcasecmp(kind, "border-box");
+        if (strcasecmp(kind, "fill-box") && strcasecmp(kind, "content-box") && !stroked)
+            return fail_at(r, "transform-box=\"%s\" is not supported (view-box, fill-box, "
+                              "content-box, stroke-box or border-box)",
+                           aa_echo(kind));
+        if (stroked && !r->tsty && (r->node = node))
+            return fail_at(r, "transform-box: %s inside an object bounding box is not "
+                              "supported (the element's stroke is not known there)",
                            aa_echo(kind));
         static const char *const shapes[] = {"path", "rect",    "circle",  "ellipse",
                                              "line", "polygon", "polyline"};
@@ -2560,6 +2616,11 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
         double b[4];
         if (!(st = shape_path(r, node, &p)) && p.n && path_bounds(&p, &identity, b))
             st = fail_at(r, "transform-box: cannot bound the shape");
+        if (!st && p.n && stroked) {
+            b[0] = b[1] = INFINITY, b[2] = b[3] = -INFINITY;
+            path_box(&p, &identity, b);
+            st = stroke_box(r, &p, r->tsty, b);
+        }
         if (!st && p.n)
             box[0] = b[0], box[1] = b[1], box[2] = b[2] - b[0], box[3] = b[3] - b[1];
         else if (!st)
@@ -2821,7 +2882,10 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     }
     if (st)
         return st;
-    return element_transform(r, node, m);
+    r->tsty = sty;
+    st = element_transform(r, node, m);
+    r->tsty = NULL;
+    return st;
 }
 
 /* A paint's colour in linear light and its alpha (currentColor: the

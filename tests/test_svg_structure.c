@@ -697,6 +697,38 @@ static void test_css_transform(void **state)
     expect(OPEN "<rect x=\"10\" y=\"10\" width=\"4\" height=\"2\" style=\"transform: "
                 "scale(2); transform-box: fill-box\"/></svg>",
            BLACK " M 10 10 L 18 10 L 18 14 L 10 14 Z");
+    /* transform-box stroke-box (SVG 2's stroke bounding box): the rect
+     * [10, 14] x [10, 12] stroked 2 wide with miter joins has the box [9,
+     * 15] x [9, 13]; scale(2) about its corner (9, 9) takes (10, 10) to
+     * (11, 11) and (14, 12) to (19, 15); border-box is stroke-box for SVG
+     * (CSS Transforms 1) */
+    static const char *const stroked[] = {"stroke-box", "border-box"};
+    for (int k = 0; k < 2; k++) {
+        char doc[512];
+        snprintf(doc, sizeof doc,
+                 OPEN "<rect x=\"10\" y=\"10\" width=\"4\" height=\"2\" stroke=\"white\" "
+                      "stroke-width=\"2\" style=\"transform: scale(2); transform-box: %s\"/>"
+                      "</svg>",
+                 stroked[k]);
+        const char *got = read_doc(doc);
+        const char *want = BLACK " M 11 11 L 19 11 L 19 15 L 11 15 Z 1 1 1;";
+        if (strncmp(got, want, strlen(want)))
+            fail_msg("%s\n  got  %s\n  want %s...", doc, got, want);
+    }
+    /* without a stroke the stroke box is the fill box: (10, 10) stays */
+    expect(OPEN "<rect x=\"10\" y=\"10\" width=\"4\" height=\"2\" style=\"transform: "
+                "scale(2); transform-box: stroke-box\"/></svg>",
+           BLACK " M 10 10 L 18 10 L 18 14 L 10 14 Z");
+    /* refused: offset curves (an ellipse's stroke), and inside an object
+     * bounding box, where the stroke is not known */
+    refused(OPEN "<ellipse rx=\"4\" ry=\"2\" stroke=\"white\" style=\"transform: scale(2); "
+                 "transform-box: stroke-box\"/></svg>",
+            "<ellipse>", "offset curves");
+    refused_clips(OPEN "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect "
+                       "width=\"1\" height=\"1\"/></clipPath><g clip-path=\"url(#o)\"><rect "
+                       "width=\"1\" height=\"1\" stroke=\"white\" style=\"transform: "
+                       "scale(2); transform-box: stroke-box\"/></g></svg>",
+                  "<rect>", "object bounding box");
     /* keywords in either order: right top of the view-box (100 x 100) */
     expect(OPEN "<path transform=\"scale(2)\" transform-origin=\"top right\" d=\"M99 1\"/></svg>",
            BLACK " M 98 2 Z");
@@ -1022,6 +1054,25 @@ static void test_pictures(void **state)
               "height=\"20\"/><use href=\"#s\" x=\"32\" y=\"32\" width=\"20\" "
               "height=\"20\"/></g>"),
          "40", 40},
+        /* transform-box stroke-box: the white rect [10, 30]^2 stroked
+         * white 4 wide is the square [8, 32]^2, its stroke box;
+         * translate(-50%) moves it half that box's width, 12, to [-4, 20] x
+         * [8, 32], which the view cuts to 20 x 24: 480 (528 by the fill
+         * box's 20, 0 by the view box's 64) */
+        {"stroke-box translate",
+         VSVG("<rect x=\"10\" y=\"10\" width=\"20\" height=\"20\" stroke=\"white\" "
+              "stroke-width=\"4\" style=\"transform-box: stroke-box; transform: "
+              "translate(-50%, 0)\"/>"),
+         "480", 480},
+        /* a disk of radius 8 about (20, 20) stroked 4 wide: the disk of
+         * radius 10, its stroke box [10, 30]^2; rotate(180deg) about the
+         * box's corner (10, 10) puts its centre on the view's corner (0,
+         * 0): a quarter of it is drawn, 25 pi */
+        {"stroke-box rotation",
+         VSVG("<circle cx=\"20\" cy=\"20\" r=\"8\" stroke=\"white\" stroke-width=\"4\" "
+              "style=\"transform-box: stroke-box; transform-origin: 0 0; transform: "
+              "rotate(180deg)\"/>"),
+         "25 pi", 25 * M_PI},
         /* a clip-path inside the viewport: the disk of radius 8 at the
          * viewport's right edge, cut by it: half the disk, 32 pi */
         {"clip inside", VSVG("<svg x=\"4\" y=\"4\" width=\"20\" height=\"20\"><clipPath "
