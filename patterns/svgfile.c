@@ -1403,8 +1403,10 @@ static int parse_transform_origin(reader *r, const char *text, const double box[
     if (!n)
         goto bad;
     if (n == 3) {
-        if (axis[2] != 3 || v[2] != 0)
-            goto bad; /* a z other than 0 is 3D */
+        if (axis[2] != 3 || v[2] != 0) {
+            r->unsupported = axis[2] == 3; /* a z other than 0 is 3D: valid, not drawn */
+            goto bad;
+        }
         n = 2;
     }
     if (n == 1)
@@ -2733,6 +2735,7 @@ static int prop_check(reader *r, const char *key, const char *v, int css, int *s
         return 0;
     }
     r->unsupported = 0;
+    r->from_css = css; /* (transform-origin reads numbers without units in attributes) */
     int e = AA_OK, k;
     style sty;
     initial_style(&sty);
