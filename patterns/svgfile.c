@@ -2612,7 +2612,7 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
         for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
             shape |= named(node, shapes[k]);
         if (!shape)
-            return fail_at(r, "transform-box: fill-box is supported on shapes only");
+            return fail_at(r, "transform-box: %s is supported on shapes only", aa_echo(kind));
         aa_path p;
         aa_path_init(&p);
         double b[4];
