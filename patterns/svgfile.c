@@ -91,7 +91,9 @@
  * paths forming a cycle, masks, filters, clip-path on a nested <svg> or a
  * <symbol> (where it applies is not settled: Chromium clips in the
  * viewBox's coordinates, librsvg in the parent's, resvg not at all),
- * objectBoundingBox units for a clip-path on a <use>,
+ * objectBoundingBox units for a clip-path on a <use>, transform-box
+ * stroke-box of a stroke with offset curves (its extent not computed
+ * exactly) or inside an object bounding box (its stroke not known there),
  * content beyond a viewport that clips when the sink takes no clips,
  * references to other documents, what svgcss.h refuses in a style
  * sheet, sheets for other media, any attribute or style property not
@@ -3339,7 +3341,8 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
     }
     if (obb && named(ref, "use"))
         return fail_at(r, "clipPathUnits=\"objectBoundingBox\" for the <use> of line %ld is "
-                          "not supported (the bounding box of a use's target is not computed)",
+                          "not supported (its box in the use's own user space, x and y "
+                          "included, is not computed)",
                        xmlGetLineNo(ref));
     if (obb) {
         double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
