@@ -2428,9 +2428,11 @@ static int parse_dasharray(reader *r, const char *v, style *sty)
     double sum = 0;
     const char *s = v;
     while (*s) {
-        if (n == AA_SVG_MAX_DASHES && (r->unsupported = 1))
+        if (n == AA_SVG_MAX_DASHES) {
+            r->unsupported = 1; /* the reader's limit, not an invalid value */
             return fail_at(r, "stroke-dasharray=\"%s\": more than %d values", aa_echo(v),
                            AA_SVG_MAX_DASHES);
+        }
         double x;
         int e = scan_length(r, &s, 2, &x);
         if (e || (*s && !is_wsp((unsigned char)*s) && *s != ','))
@@ -2604,10 +2606,12 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
             return fail_at(r, "transform-box=\"%s\" is not supported (view-box, fill-box, "
                               "content-box, stroke-box or border-box)",
                            aa_echo(kind));
-        if (stroked && !r->tsty && (r->node = node))
+        if (stroked && !r->tsty) {
+            r->node = node; /* named, not the element whose box is computed */
             return fail_at(r, "transform-box: %s inside an object bounding box is not "
                               "supported (the element's stroke is not known there)",
                            aa_echo(kind));
+        }
         static const char *const shapes[] = {"path", "rect",    "circle",  "ellipse",
                                              "line", "polygon", "polyline"};
         int shape = 0;
