@@ -699,54 +699,73 @@ static char *inline_copy(const char *style)
     return t;
 }
 
-int aa_css_value(aa_css *css, const xmlNode *node, const char *style, const char *key,
-                 char *buf, size_t len, long *line)
+/* 1 if the rank a (important, inline, specificity, order) is above b. */
+static int rank_above(const long a[4], const long b[4])
 {
-    /* the best so far: (important, inline, specificity, order) */
-    long best[4] = {-1, -1, -1, -1};
+    for (int k = 0; k < 4; k++)
+        if (a[k] != b[k])
+            return a[k] > b[k];
+    return 0;
+}
+
+int aa_css_value_nth(aa_css *css, const xmlNode *node, const char *style, const char *key,
+                     int nth, char *buf, size_t len, long *line)
+{
+    /* the n-th best is the best of those below the (n-1)-th: each pass
+     * takes the best ranked below `below`, (important, inline,
+     * specificity, order) compared in that order (the style attribute's
+     * declarations are inline, 1, of no specificity) */
+    long below[4] = {2, 0, 0, 0}, best[4];
     span value = {NULL, 0};
-    *line = 0;
-    if (css && css->nsel) {
-        if (matches(css, node))
-            return -2;
-        for (size_t i = 0; i < css->nmatch; i++) {
-            const selector *s = &css->sel[css->match[i]];
-            const rule *ru = &css->rules[s->rule];
-            for (size_t j = ru->first; j < ru->first + ru->n; j++) {
-                const decl *d = &css->decl[j];
-                if (!span_is(d->name, key))
+    long at = 0;
+    char *t = NULL;
+    if (style && !(t = inline_copy(style)))
+        return -2;
+    if (css && css->nsel && matches(css, node)) {
+        free(t);
+        return -2;
+    }
+    for (int pass = 0; pass <= nth; pass++) {
+        best[0] = best[1] = best[2] = best[3] = -1;
+        value = (span){NULL, 0};
+        if (css && css->nsel)
+            for (size_t i = 0; i < css->nmatch; i++) {
+                const selector *s = &css->sel[css->match[i]];
+                const rule *ru = &css->rules[s->rule];
+                for (size_t j = ru->first; j < ru->first + ru->n; j++) {
+                    const decl *d = &css->decl[j];
+                    if (!span_is(d->name, key))
+                        continue;
+                    const long cand[4] = {d->important, 0, (long)s->spec, (long)j};
+                    if (rank_above(below, cand) && rank_above(cand, best)) {
+                        memcpy(best, cand, sizeof best);
+                        value = d->value;
+                        at = d->line;
+                    }
+                }
+            }
+        if (t) {
+            const char *p = t, *end = t + strlen(t);
+            decl d;
+            long order = 0;
+            while (next_inline(&p, end, &d)) {
+                order++;
+                if (!d.name.n || !span_is(d.name, key))
                     continue;
-                const long cand[4] = {d->important, 0, (long)s->spec, (long)j};
-                if (cand[0] > best[0] ||
-                    (cand[0] == best[0] &&
-                     (cand[2] > best[2] || (cand[2] == best[2] && cand[3] > best[3])))) {
+                const long cand[4] = {d.important, 1, 0, order};
+                if (rank_above(below, cand) && rank_above(cand, best)) {
                     memcpy(best, cand, sizeof best);
-                    value = d->value;
-                    *line = d->line;
+                    value = d.value;
+                    at = 0;
                 }
             }
         }
-    }
-    char *t = NULL;
-    if (style) {
-        if (!(t = inline_copy(style)))
-            return -2;
-        const char *p = t, *end = t + strlen(t);
-        decl d;
-        long order = 0;
-        while (next_inline(&p, end, &d)) {
-            order++;
-            if (!d.name.n || !span_is(d.name, key))
-                continue;
-            /* over any rule unless only the rule is important */
-            if (d.important > best[0] || (d.important == best[0])) {
-                best[0] = d.important, best[1] = 1, best[3] = order;
-                value = d.value;
-                *line = 0;
-            }
-        }
+        if (!value.s)
+            break;
+        memcpy(below, best, sizeof below);
     }
     int found = value.s != NULL;
+    *line = found ? at : 0;
     if (found) {
         if (value.n >= len)
             found = -1;
@@ -757,6 +776,12 @@ int aa_css_value(aa_css *css, const xmlNode *node, const char *style, const char
     }
     free(t);
     return found;
+}
+
+int aa_css_value(aa_css *css, const xmlNode *node, const char *style, const char *key,
+                 char *buf, size_t len, long *line)
+{
+    return aa_css_value_nth(css, node, style, key, 0, buf, len, line);
 }
 
 int aa_css_each(aa_css *css, const xmlNode *node, const char *style,

@@ -46,6 +46,14 @@ int aa_css_add(aa_css *css, const char *text, const char *name, long line);
 int aa_css_value(aa_css *css, const xmlNode *node, const char *style, const char *key,
                  char *buf, size_t len, long *line);
 
+/* The same for the nth (0: the best, as aa_css_value) of the declarations
+ * of `key` that apply, in the cascade's order: 0 when there are no more.
+ * A caller that finds a value invalid takes the next one (CSS Syntax 3 and
+ * CSS 2.1, 4.2: a declaration with an invalid value is ignored, as if it
+ * were not there). */
+int aa_css_value_nth(aa_css *css, const xmlNode *node, const char *style, const char *key,
+                     int nth, char *buf, size_t len, long *line);
+
 /* Call fn for every declaration that applies to `node` (of the rules
  * matching it, then of `style`): its name name[0 .. n) and line (0 for
  * the style attribute); the first nonzero return is returned.  A

@@ -24,8 +24,9 @@
  *     width and height for <svg> and <symbol> targets; the target drawn
  *     as the use's child, inheriting from it; a missing target or a
  *     reference cycle draws nothing, as browsers do), <symbol> (drawn only
- *     through <use>) and nested <svg>, each a viewport with its viewBox
- *     and preserveAspectRatio; a viewport of overflow hidden (the initial
+ *     through <use>; refX and refY its reference point, symbol_shift) and
+ *     nested <svg>, each a viewport with its viewBox and
+ *     preserveAspectRatio; a viewport of overflow hidden (the initial
  *     value) clips its content: a clip of the scene whose one member is
  *     the viewport's rectangle (viewport_clip), made only for content
  *     reaching beyond it by an exact bounds test (shape_clip); with
@@ -34,16 +35,18 @@
  *   - style: the style attribute and <style> sheets, cascaded by CSS
  *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
  *     !important; presentation attributes below every rule);
- *   - an invalid presentation attribute (a length, a negative size or
- *     radius, an opacity, a transform list that does not parse) is
- *     ignored, as browsers ignore it, with a warning (invalid_attr); what
- *     may be valid but is not read (calc(), vw) is refused;
+ *   - a declaration of an invalid value is ignored, the cascade going on
+ *     (CSS 2.1, 4.2), and an invalid presentation attribute is its
+ *     property's initial value (SVG 2), with a warning (prop, prop_check;
+ *     geometry attributes: invalid_attr); what may be valid but is not
+ *     read (calc(), vw) is refused;
  *   - a viewBox maps to the viewport by preserveAspectRatio (default
  *     xMidYMid meet; every alignment, meet, slice and none);
  *   - transform lists (matrix, translate, scale, rotate with or without a
  *     centre, skewX, skewY; in a declaration CSS Transforms 1's functions
  *     with units, about transform-origin in the reference box of
- *     transform-box, view-box or fill-box) compose from the root down and
+ *     transform-box, view-box, fill-box or stroke-box) compose from the
+ *     root down and
  *     are applied to
  *     every point, control points included, which is exact for Bezier
  *     arcs under affine maps; an elliptical arc's centre maps as a point
@@ -91,11 +94,12 @@
  * paths forming a cycle, masks, filters, clip-path on a nested <svg> or a
  * <symbol> (where it applies is not settled: Chromium clips in the
  * viewBox's coordinates, librsvg in the parent's, resvg not at all),
- * objectBoundingBox units for a clip-path on a <use>,
+ * objectBoundingBox units for a clip-path on a <use>, transform-box
+ * stroke-box of a stroke with offset curves (its extent not computed
+ * exactly) or inside an object bounding box (its stroke not known there),
  * content beyond a viewport that clips when the sink takes no clips,
  * references to other documents, what svgcss.h refuses in a style
- * sheet, sheets for other media, negative widths and dashes, invalid
- * values in declarations, any attribute or style property not
+ * sheet, sheets for other media, any attribute or style property not
  * implemented (see css_known; in a rule, only when the rule matches a
  * drawn element), and any other element of the SVG namespace; elements of
  * other namespaces are not drawn (as a browser ignores them).  Malformed
@@ -289,6 +293,9 @@ typedef struct reader {
     /* structure, units and style sheets (below the reader's core) */
     aa_css *css;             /* the document's style sheets (NULL: none) */
     int from_css;            /* prop's last value came from a declaration */
+    int unsupported;         /* the last value refused may be valid (prop_check) */
+    const struct style *tsty; /* the style of the element whose transform is read, or
+                               * NULL (its stroke box) */
     double font_size;        /* the element's font-size in px (em) */
     double vpw, vph;         /* the nearest viewport's size in user units (%) */
     struct svg_ids *ids;     /* the elements with an id, sorted */
@@ -296,6 +303,12 @@ typedef struct reader {
     const xmlNode *use;      /* the <use> whose target is being read, or NULL */
     const xmlNode *chain[AA_SVG_MAX_DEPTH + 2]; /* the elements being read */
     int nvclip;              /* the viewports that clip (overflow hidden) */
+    /* a bounding box being walked (geometry_box): the uses followed, the
+     * use whose target is next, elements visited, nesting of the walk */
+    const xmlNode *bchain[AA_SVG_MAX_DEPTH + 2];
+    int nb, blevel;
+    const xmlNode *bvia;
+    long belements;
     struct svg_clip {
         mat m;               /* the viewport's coordinates to pixels */
         mat to;              /* and back */
@@ -443,6 +456,8 @@ static int length_axis(const char *attr)
 static int scan_length(reader *r, const char **s, int axis, double *v)
 {
     int k = scan_number(s, v);
+    if (k == -2)
+        r->unsupported = 1;
     if (k)
         return k;
     const char *u = *s;
@@ -464,11 +479,16 @@ static int scan_length(reader *r, const char **s, int axis, double *v)
             *v *= r->font_size;
         else if (n == 2 && !strncasecmp(u, "ex", 2))
             *v *= r->font_size / 2;
-        else
+        else {
+            r->unsupported = 1; /* a unit of CSS (vw, ch...) may be valid */
             return -3;
+        }
         *s = u + n;
     }
-    return isfinite(*v) && fabs(*v) <= AA_SVG_MAX_NUMBER ? 0 : -2;
+    if (isfinite(*v) && fabs(*v) <= AA_SVG_MAX_NUMBER)
+        return 0;
+    r->unsupported = 1;
+    return -2;
 }
 
 /* A whole attribute or property value that is one length. */
@@ -491,8 +511,13 @@ static int parse_length(reader *r, const char *attr, const char *text, double *v
 
 /* font-size (CSS Fonts 4): a length (em, ex and % of the parent's size),
  * or an absolute-size keyword, medium being 16px and the others its
- * multiples by the table of CSS Fonts 4 ("absolute-size"); larger and
- * smaller, whose ratio CSS leaves to the browser, are refused. */
+ * multiples by the table of CSS Fonts 4 ("absolute-size"), or a
+ * relative-size keyword, larger or smaller: the parent's size times or
+ * over 1.2.  CSS Fonts 4 leaves that ratio to the user agent ("a ratio of
+ * 1.2 is suggested" between consecutive sizes of its table, which the
+ * table itself only roughly keeps); 1.2 is what Chromium and resvg take
+ * whatever the parent's size (a 10px parent's larger is 12px in both), so
+ * em and ex under it are theirs. */
 static int parse_font_size(reader *r, const char *v, double parent, double *out)
 {
     static const struct {
@@ -506,9 +531,10 @@ static int parse_font_size(reader *r, const char *v, double parent, double *out)
             *out = sizes[k].size;
             return AA_OK;
         }
-    if (!strcasecmp(v, "larger") || !strcasecmp(v, "smaller"))
-        return fail_at(r, "font-size=\"%s\" is not supported (its ratio is the browser's)",
-                       aa_echo(v));
+    if (!strcasecmp(v, "larger") || !strcasecmp(v, "smaller")) {
+        *out = v[0] == 'l' || v[0] == 'L' ? parent * 1.2 : parent / 1.2;
+        return AA_OK;
+    }
     /* em and ex of the parent's size, % of it */
     const double own = r->font_size, w = r->vpw, h = r->vph;
     r->font_size = parent;
@@ -564,7 +590,7 @@ static int attr_known(const xmlNode *node, const char *name)
                {"polyline", {"points"}},
                {"line", {"x1", "y1", "x2", "y2"}},
                {"use", {"x", "y", "width", "height", "href"}},
-               {"symbol", {"viewBox", "preserveAspectRatio", "width", "height"}}};
+               {"symbol", {"viewBox", "preserveAspectRatio", "width", "height", "refX", "refY"}}};
     static const char *const any[] = {"id", "class", "style", "transform"};
     for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
         if (!strcmp(name, any[k]))
@@ -613,17 +639,79 @@ static int check_props(reader *r, const xmlNode *node)
     return st;
 }
 
+/* SVG 2's initial values of the inherited properties (an invalid
+ * presentation attribute takes it; for the others the initial value is
+ * what their absence gives). */
+static const struct {
+    const char *key, *value;
+} initial_values[] = {
+    {"fill", "black"},           {"stroke", "none"},           {"color", "black"},
+    {"fill-rule", "nonzero"},    {"clip-rule", "nonzero"},     {"stroke-width", "1"},
+    {"stroke-linecap", "butt"},  {"stroke-linejoin", "miter"}, {"stroke-miterlimit", "4"},
+    {"stroke-dasharray", "none"}, {"stroke-dashoffset", "0"},  {"fill-opacity", "1"},
+    {"stroke-opacity", "1"},     {"visibility", "visible"},    {"paint-order", "normal"},
+    {"color-interpolation", "sRGB"}, {"font-size", "medium"}};
+
+static int prop_check(reader *r, const char *key, const char *v, int css, int *st);
+static void warn_at(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
+
+/* The last error's reason, without the file, line and element it names. */
+static const char *last_reason(void)
+{
+    const char *m = aa_last_error(), *e = strstr(m, ">: ");
+    return e ? e + 3 : m;
+}
+
 /* The value of property `key` for the element: the cascade of the style
- * sheets and the style attribute (aa_css_value) wins over the
- * presentation attribute, which is lower than any rule.  Written into
- * buf; 1 if given (r->from_css: by a declaration, not the attribute). */
+ * sheets and the style attribute (aa_css_value_nth) wins over the
+ * presentation attribute, which is lower than any rule.  A declaration
+ * whose value is invalid (prop_check) is ignored, the next in the
+ * cascade taking its place (CSS 2.1, 4.2; CSS Syntax 3); a presentation
+ * attribute whose value is invalid is its property's initial value (SVG 2,
+ * "Attribute syntax"), or absent when that is the same, with a warning
+ * naming it.  A value that may be valid but is not drawn is refused in
+ * *st.  Written into buf; 1 if given (r->from_css: by a declaration, not
+ * the attribute). */
 static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size_t len, int *st)
 {
     xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
     long line;
-    int found = aa_css_value(r->css, node, (const char *)css, key, buf, len, &line);
+    int found = 0;
+    /* the declarations in the cascade's order, the first valid one
+     * winning (an invalid one is ignored, CSS 2.1 4.2) */
+    for (int nth = 0; !*st; nth++) {
+        found = aa_css_value_nth(r->css, node, (const char *)css, key, nth, buf, len, &line);
+        if (found <= 0)
+            break;
+        int ok = prop_check(r, key, buf, 1, st);
+        if (ok)
+            break;
+        found = 0;
+        if (*st)
+            break;
+        if (line)
+            warn_at(r, "style sheet line %ld: %s: \"%s\" is invalid (%s): the declaration is "
+                       "ignored, as CSS says",
+                    line, key, aa_echo(buf), last_reason());
+        else
+            warn_at(r, "style: %s: \"%s\" is invalid (%s): the declaration is ignored, as CSS "
+                       "says",
+                    key, aa_echo(buf), last_reason());
+    }
     xmlFree(css);
     r->from_css = found != 0;
+    if (*st)
+        return 0;
+    if (found > 0 && (!strcasecmp(buf, "initial") || !strcasecmp(buf, "unset"))) {
+        /* of an inherited property (prop_check): its initial value, or
+         * inherit */
+        for (size_t k = 0; k < sizeof initial_values / sizeof initial_values[0]; k++)
+            if (!strcmp(key, initial_values[k].key))
+                snprintf(buf, len, "%s", tolower((unsigned char)buf[0]) == 'i'
+                                             ? initial_values[k].value
+                                             : "inherit");
+        return 1;
+    }
     if (found == -2) {
         *st = aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
         return 0;
@@ -648,6 +736,22 @@ static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size
             found = 1;
         }
         xmlFree(v);
+        const char *initial = NULL;
+        if (found && !prop_check(r, key, buf, 0, st) && !*st) {
+            /* SVG 2, "Attribute syntax": an attribute that does not parse is
+             * as if it were given its initial value */
+            for (size_t k = 0; k < sizeof initial_values / sizeof initial_values[0]; k++)
+                if (!strcmp(key, initial_values[k].key))
+                    initial = initial_values[k].value;
+            warn_at(r, "%s=\"%s\" is invalid (%s): %s%s, as SVG 2 says", key, aa_echo(buf),
+                    last_reason(), initial ? "its initial value " : "ignored",
+                    initial ? initial : "");
+            if (initial)
+                snprintf(buf, len, "%s", initial);
+            found = initial != NULL;
+        }
+        if (*st)
+            found = 0;
     }
     return found;
 }
@@ -1365,8 +1469,10 @@ static int parse_transform_origin(reader *r, const char *text, const double box[
     if (!n)
         goto bad;
     if (n == 3) {
-        if (axis[2] != 3 || v[2] != 0)
-            goto bad; /* a z other than 0 is 3D */
+        if (axis[2] != 3 || v[2] != 0) {
+            r->unsupported = axis[2] == 3; /* a z other than 0 is 3D: valid, not drawn */
+            goto bad;
+        }
         n = 2;
     }
     if (n == 1)
@@ -1654,8 +1760,11 @@ static void warn_at(reader *r, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    aa_warn("%s: line %ld: <%s>: %s", r->name, xmlGetLineNo(r->node), (const char *)r->node->name,
-            msg);
+    if (!r->node)
+        aa_warn("%s: %s", r->name, msg);
+    else
+        aa_warn("%s: line %ld: <%s>: %s", r->name, xmlGetLineNo(r->node),
+                (const char *)r->node->name, msg);
 }
 
 /* An invalid presentation attribute is ignored, as browsers ignore it
@@ -2270,10 +2379,10 @@ static double length_bound(const aa_path *p)
  * segments in the outline). */
 #define MAX_DASHES_DRAWN (AA_SVG_MAX_SEGMENTS / 8)
 
-/* The element's stroke: its outline (aa_stroke_outline, in user units)
- * through m to the sink as a shape of the stroke's colour, nonzero. */
-static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty,
-                       aa_rgb colour, double alpha, const aa_gradient *grad)
+/* The stroke style of sty for the path p into *ss (its dashes pointing
+ * into sty), refusing joins not drawn and dash patterns of too many
+ * dashes. */
+static int stroke_style_of(reader *r, const aa_path *p, const style *sty, aa_stroke_style *out)
 {
     if (sty->join_other)
         return fail_at(r, "stroke-linejoin=\"%s\" is not supported (miter, round or bevel)",
@@ -2307,9 +2416,22 @@ static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *s
         ss.ndash = sty->ndash;
         ss.dashoffset = sty->dashoffset;
     }
+    *out = ss;
+    return AA_OK;
+}
+
+/* The element's stroke: its outline (aa_stroke_outline, in user units)
+ * through m to the sink as a shape of the stroke's colour, nonzero. */
+static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty,
+                       aa_rgb colour, double alpha, const aa_gradient *grad)
+{
+    aa_stroke_style ss;
+    int st = stroke_style_of(r, p, sty, &ss);
+    if (st)
+        return st;
     aa_path out;
     aa_path_init(&out);
-    int st = aa_stroke_outline(p, &ss, &out);
+    st = aa_stroke_outline(p, &ss, &out);
     if (st) /* the message begins "stroke: " */
         st = at_element(r, st);
     if (!st)
@@ -2374,9 +2496,11 @@ static int parse_dasharray(reader *r, const char *v, style *sty)
     double sum = 0;
     const char *s = v;
     while (*s) {
-        if (n == AA_SVG_MAX_DASHES)
+        if (n == AA_SVG_MAX_DASHES) {
+            r->unsupported = 1; /* the reader's limit, not an invalid value */
             return fail_at(r, "stroke-dasharray=\"%s\": more than %d values", aa_echo(v),
                            AA_SVG_MAX_DASHES);
+        }
         double x;
         int e = scan_length(r, &s, 2, &x);
         if (e || (*s && !is_wsp((unsigned char)*s) && *s != ','))
@@ -2488,14 +2612,49 @@ static int parse_paint_order(reader *r, const char *v, int *stroke_first)
     return AA_OK;
 }
 
+static void path_box(const aa_path *p, const mat *m, double box[4]);
+
+/* The stroke bounding box of a shape (SVG 2, "Bounding boxes": its fill
+ * box, p's exact bounds, grown by the bounds of its stroke shape when the
+ * stroke is not none), x0 y0 x1 y1 in b, which holds the fill box.  The
+ * stroke shape is the outline aa_stroke_outline draws: lines and circular
+ * arcs, bounded exactly by path_box (an arc's extremes in closed form); a
+ * stroke with offset curves (a Bezier arc or a non-circular elliptical arc
+ * stroked) is refused, its extent not being computed exactly here. */
+static int stroke_box(reader *r, const aa_path *p, const style *sty, double b[4])
+{
+    if (sty->stroke_none || !(sty->stroke_width > 0))
+        return AA_OK;
+    aa_stroke_style ss;
+    int st = stroke_style_of(r, p, sty, &ss);
+    if (st)
+        return st;
+    aa_path out;
+    aa_path_init(&out);
+    if ((st = aa_stroke_outline(p, &ss, &out)))
+        st = at_element(r, st);
+    for (size_t k = 0; k < out.n && !st; k++)
+        if (out.seg[k].op == AA_PATH_OFFSET)
+            st = fail_at(r, "transform-box: stroke-box of a stroke with offset curves (a "
+                            "Bezier or non-circular arc stroked) is not supported: their "
+                            "extent is not computed exactly");
+    if (!st)
+        path_box(&out, &identity, b);
+    aa_path_free(&out);
+    return st;
+}
+
 /* The element's own transform composed into *m: the property transform
  * (CSS Transforms 1) as a presentation attribute (SVG's transform list,
  * parse_transform) or a declaration (CSS's syntax, parse_css_transform),
  * about transform-origin (initially 0 0 for SVG elements) in the
  * reference box of transform-box: view-box (initial; the nearest
  * viewport's user space, its origin at (0, 0), its size the viewBox's),
- * or fill-box (content-box says the same in SVG) of a shape, its exact
- * bounds in user units; stroke-box and border-box are refused. */
+ * fill-box of a shape, its exact bounds in user units, or stroke-box, its
+ * stroke bounding box (stroke_box; when the element's style is known,
+ * r->tsty: not inside an object bounding box, where it is refused); CSS
+ * Transforms 1 maps content-box to fill-box and border-box to stroke-box
+ * for SVG elements. */
 static int element_transform(reader *r, const xmlNode *node, mat *m)
 {
     char v[1024];
@@ -2510,22 +2669,34 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
     double box[4] = {0, 0, r->vpw, r->vph};
     char kind[64];
     if (prop(r, node, "transform-box", kind, sizeof kind, &st) && strcasecmp(kind, "view-box")) {
-        if (strcasecmp(kind, "fill-box") && strcasecmp(kind, "content-box"))
-            return fail_at(r, "transform-box=\"%s\" is not supported (view-box, fill-box or "
-                              "content-box)",
+        const int stroked = !strcasecmp(kind, "stroke-box") || !strcasecmp(kind, "border-box");
+        if (strcasecmp(kind, "fill-box") && strcasecmp(kind, "content-box") && !stroked)
+            return fail_at(r, "transform-box=\"%s\" is not supported (view-box, fill-box, "
+                              "content-box, stroke-box or border-box)",
                            aa_echo(kind));
+        if (stroked && !r->tsty) {
+            r->node = node; /* named, not the element whose box is computed */
+            return fail_at(r, "transform-box: %s inside an object bounding box is not "
+                              "supported (the element's stroke is not known there)",
+                           aa_echo(kind));
+        }
         static const char *const shapes[] = {"path", "rect",    "circle",  "ellipse",
                                              "line", "polygon", "polyline"};
         int shape = 0;
         for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
             shape |= named(node, shapes[k]);
         if (!shape)
-            return fail_at(r, "transform-box: fill-box is supported on shapes only");
+            return fail_at(r, "transform-box: %s is supported on shapes only", aa_echo(kind));
         aa_path p;
         aa_path_init(&p);
         double b[4];
         if (!(st = shape_path(r, node, &p)) && p.n && path_bounds(&p, &identity, b))
             st = fail_at(r, "transform-box: cannot bound the shape");
+        if (!st && p.n && stroked) {
+            b[0] = b[1] = INFINITY, b[2] = b[3] = -INFINITY;
+            path_box(&p, &identity, b);
+            st = stroke_box(r, &p, r->tsty, b);
+        }
         if (!st && p.n)
             box[0] = b[0], box[1] = b[1], box[2] = b[2] - b[0], box[3] = b[3] - b[1];
         else if (!st)
@@ -2560,6 +2731,131 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
     }
     *m = mat_mul(*m, own);
     return AA_OK;
+}
+
+/* 1 if the value v holds a function the reader does not read (calc(),
+ * var(), url(), color(), a 3D transform...): a value that fails to parse
+ * with one may still be valid CSS, so it is refused, never ignored. */
+static int unknown_function(const char *v)
+{
+    static const char *const known[] = {"rgb",        "rgba",       "hsl",      "hsla",
+                                        "matrix",     "translate",  "translatex",
+                                        "translatey", "scale",      "scalex",   "scaley",
+                                        "rotate",     "skew",       "skewx",    "skewy"};
+    for (const char *p = v; *p; p++) {
+        if (*p != '(')
+            continue;
+        const char *a = p;
+        while (a > v && (isalnum((unsigned char)a[-1]) || a[-1] == '-' || a[-1] == '_'))
+            a--;
+        size_t n = (size_t)(p - a), k = 0;
+        while (k < sizeof known / sizeof known[0] &&
+               !(strlen(known[k]) == n && !strncasecmp(a, known[k], n)))
+            k++;
+        if (k == sizeof known / sizeof known[0])
+            return 1;
+    }
+    return 0;
+}
+
+/* Whether v is a valid value of the property `key` (css: of a declaration,
+ * else of a presentation attribute), by the parsers that read it: 1 valid
+ * (or a property not checked here, read where it is used), 0 invalid (the
+ * parser's reason in aa_last_error), or 0 with *st set when it may be
+ * valid but is not drawn (a unit or a function not read, a number out of
+ * range, a value named unsupported): refused, never ignored. */
+static int prop_check(reader *r, const char *key, const char *v, int css, int *st)
+{
+    static const char *const displays[] = {
+        "inline",          "block",           "run-in",       "flow",      "flow-root",
+        "table",           "flex",            "grid",         "ruby",      "list-item",
+        "contents",        "none",            "inline-block", "inline-table", "inline-flex",
+        "inline-grid",     "table-row-group", "table-header-group", "table-footer-group",
+        "table-row",       "table-cell",      "table-column-group", "table-column",
+        "table-caption",   "ruby-base",       "ruby-text",    "ruby-base-container",
+        "ruby-text-container"};
+    static const char *const rules[] = {"nonzero", "evenodd"};
+    static const char *const caps[] = {"butt", "round", "square"};
+    static const char *const joins[] = {"miter", "round", "bevel", "miter-clip", "arcs"};
+    static const char *const visibilities[] = {"visible", "hidden", "collapse"};
+    static const char *const interpolations[] = {"auto", "sRGB", "linearRGB"};
+    static const char *const overflows[] = {"visible", "hidden", "scroll", "clip", "auto"};
+    static const char *const boxes[] = {"view-box", "fill-box", "stroke-box", "content-box",
+                                        "border-box"};
+    static const struct {
+        const char *key;
+        const char *const *names;
+        int n;
+    } keywords[] = {{"display", displays, sizeof displays / sizeof displays[0]},
+                    {"fill-rule", rules, 2},
+                    {"clip-rule", rules, 2},
+                    {"stroke-linecap", caps, 3},
+                    {"stroke-linejoin", joins, 5},
+                    {"visibility", visibilities, 3},
+                    {"color-interpolation", interpolations, 3},
+                    {"overflow", overflows, 5},
+                    {"transform-box", boxes, 5}};
+    if (!strcasecmp(v, "inherit"))
+        return 1;
+    if (!strcasecmp(v, "initial") || !strcasecmp(v, "unset") || !strcasecmp(v, "revert") ||
+        !strcasecmp(v, "revert-layer")) {
+        /* CSS Cascade 4's keywords: initial and unset of an inherited
+         * property are its initial value and inherit (prop); the others
+         * are refused */
+        for (size_t j = 0; j < sizeof initial_values / sizeof initial_values[0]; j++)
+            if (!strcmp(key, initial_values[j].key) && tolower((unsigned char)v[0]) != 'r')
+                return 1;
+        *st = fail_at(r, "%s: %s is not supported here", key, aa_echo(v));
+        return 0;
+    }
+    r->unsupported = 0;
+    r->from_css = css; /* (transform-origin reads numbers without units in attributes) */
+    int e = AA_OK, k;
+    style sty;
+    initial_style(&sty);
+    css_colour c;
+    double x;
+    mat m = identity;
+    for (size_t j = 0; j < sizeof keywords / sizeof keywords[0]; j++)
+        if (!strcmp(key, keywords[j].key))
+            e = keyword(r, key, v, keywords[j].names, keywords[j].n, &k, "a keyword");
+    const xmlNode *server;
+    if (!strcmp(key, "fill") || !strcmp(key, "stroke"))
+        e = parse_paint(r, key, v, &c, &k, &server);
+    else if (!strcmp(key, "color"))
+        e = parse_colour(r, key, v, &c);
+    else if (!strcmp(key, "font-size"))
+        e = parse_font_size(r, v, 16, &x);
+    else if (!strcmp(key, "stroke-width")) {
+        if (!(e = parse_length(r, key, v, &x)) && x < 0)
+            e = fail_at(r, "stroke-width=\"%s\": a negative width is invalid", aa_echo(v));
+    } else if (!strcmp(key, "stroke-miterlimit")) {
+        if (plain_number(v, &x) || !(x >= 1))
+            e = fail_at(r, "stroke-miterlimit=\"%s\" is not a number of at least 1",
+                        aa_echo(v));
+    } else if (!strcmp(key, "stroke-dasharray"))
+        e = parse_dasharray(r, v, &sty);
+    else if (!strcmp(key, "stroke-dashoffset"))
+        e = parse_length(r, key, v, &x);
+    else if (!strcmp(key, "opacity") || !strcmp(key, "fill-opacity") ||
+             !strcmp(key, "stroke-opacity"))
+        e = parse_opacity(r, key, v, &x);
+    else if (!strcmp(key, "paint-order"))
+        e = parse_paint_order(r, v, &k);
+    else if (!strcmp(key, "transform") && css) {
+        const double box[4] = {0, 0, r->vpw, r->vph};
+        e = parse_css_transform(r, v, box, &m);
+    } else if (!strcmp(key, "transform-origin")) {
+        const double box[4] = {0, 0, r->vpw, r->vph};
+        double o[2];
+        e = parse_transform_origin(r, v, box, o);
+    }
+    if (e == AA_OK)
+        return 1;
+    if (e == AA_EINVAL && !r->unsupported && !unknown_function(v))
+        return 0;
+    *st = e;
+    return 0;
 }
 
 /* The properties every element may set: style into *sty, the element's own
@@ -2666,7 +2962,10 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     }
     if (st)
         return st;
-    return element_transform(r, node, m);
+    r->tsty = sty;
+    st = element_transform(r, node, m);
+    r->tsty = NULL;
+    return st;
 }
 
 /* A paint's colour in linear light and its alpha (currentColor: the
@@ -2868,17 +3167,51 @@ static int viewbox_map(reader *r, const xmlNode *node, double vw, double vh, mat
                        double vb[2]);
 static int viewport_side(reader *r, const xmlNode *node, const xmlNode *over, const char *key,
                          double *v);
+static int use_target(reader *r, const xmlNode *node, const xmlNode **out);
+static int symbol_shift(reader *r, const xmlNode *node, const mat *vbm, const double vb[2],
+                        double s[2]);
+
+/* 1 if the use `node`'s target is the use or one of its ancestors, or of
+ * the uses the bounding box walk has followed to reach it: a reference
+ * cycle, in error (nothing, as where it is drawn). */
+static int bbox_cycle(const reader *r, const xmlNode *node, const xmlNode *target)
+{
+    for (int k = 0; k <= r->nb; k++)
+        for (const xmlNode *a = k < r->nb ? r->bchain[k] : node; a; a = a->parent)
+            if (a == target)
+                return 1;
+    return 0;
+}
+
+static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double box[4], int depth);
 
 /* The fill geometry of node and what it holds through m, grown into box
  * (SVG 2's object bounding box: shapes, and groups by their children, each
- * through its own transform; elements with display="none" and those that
- * draw nothing are left out). */
+ * through its own transform; a <use> by its target's, through translate(x,
+ * y), as the target is drawn there; elements with display="none" and
+ * those that draw nothing are left out).  A walk visits at most
+ * AA_SVG_MAX_ELEMENTS elements, uses' instances counted, as a drawing. */
 static int geometry_box(reader *r, const xmlNode *node, const mat *m, double box[4], int depth)
+{
+    if (!r->blevel++)
+        r->belements = 0, r->nb = 0, r->bvia = NULL;
+    int st = geometry_walk(r, node, m, box, depth);
+    r->blevel--;
+    return st;
+}
+
+static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double box[4], int depth)
 {
     static const char *const shapes[] = {"path",    "rect",    "circle",  "ellipse",
                                          "line",    "polygon", "polyline"};
+    /* the use whose target node is, if it is one */
+    const xmlNode *via = r->bvia;
+    r->bvia = NULL;
     if (!is_svg(node) || depth > AA_SVG_MAX_DEPTH)
         return AA_OK; /* another namespace; too deep is refused where drawn */
+    if (++r->belements > AA_SVG_MAX_ELEMENTS)
+        return fail_at(r, "a bounding box of more than %d elements (use instances counted)",
+                       AA_SVG_MAX_ELEMENTS);
     char v[64];
     int st = AA_OK;
     const xmlNode *was = r->node;
@@ -2896,22 +3229,44 @@ static int geometry_box(reader *r, const xmlNode *node, const mat *m, double box
         if (!(st = shape_path(r, node, &p)))
             path_box(&p, m, box);
         aa_path_free(&p);
-    } else if (!st && (named(node, "g") || named(node, "svg"))) {
-        /* a nested <svg>: its content through translate(x, y) and its
-         * viewBox map, unclipped (its overflow does not change the box:
-         * Chromium, resvg and librsvg alike); one of no area adds nothing */
+    } else if (!st && named(node, "use")) {
+        /* its target through translate(x, y) and the target's own
+         * transform, as use_element draws it */
+        const xmlNode *target;
+        double x = 0, y = 0;
+        if (!(st = use_target(r, node, &target)) && target && !bbox_cycle(r, node, target) &&
+            !(st = attr_length(r, node, "x", 0, &x)) &&
+            !(st = attr_length(r, node, "y", 0, &y))) {
+            const mat at = {1, 0, 0, 1, x, y};
+            mat mt = mat_mul(*m, at);
+            r->bchain[r->nb++] = node;
+            if (!(st = element_transform(r, target, &mt))) {
+                r->bvia = node;
+                st = geometry_walk(r, target, &mt, box, depth + 1);
+            }
+            r->nb--;
+        }
+    } else if (!st && (named(node, "g") || named(node, "svg") ||
+                       (via && named(node, "symbol")))) {
+        /* a nested <svg>, or a symbol or svg a use draws: its content
+         * through translate(x, y) (a nested svg's own; a symbol's
+         * reference point's shift) and its viewBox map, of the use's width
+         * and height where it gives them, unclipped (its overflow does not
+         * change the box: Chromium, resvg and librsvg alike); one of no
+         * area adds nothing */
         mat mv = *m;
         double vb[2] = {r->vpw, r->vph}, pw = r->vpw, ph = r->vph;
         int drawn = 1;
-        if (named(node, "svg") && node != r->root) {
-            double x = 0, y = 0, w = 0, h = 0;
+        if ((named(node, "svg") && node != r->root) || named(node, "symbol")) {
+            double x = 0, y = 0, w = 0, h = 0, sh[2] = {0, 0};
             mat vbm;
-            if (!(st = attr_length(r, node, "x", 0, &x)) &&
-                !(st = attr_length(r, node, "y", 0, &y)) &&
-                !(st = viewport_side(r, node, NULL, "width", &w)) &&
-                !(st = viewport_side(r, node, NULL, "height", &h)) &&
-                (drawn = w > 0 && h > 0) && !(st = viewbox_map(r, node, w, h, &vbm, vb))) {
-                const mat at = {1, 0, 0, 1, x, y};
+            if (named(node, "svg") && !(st = attr_length(r, node, "x", 0, &x)))
+                st = attr_length(r, node, "y", 0, &y);
+            if (!st && !(st = viewport_side(r, node, via, "width", &w)) &&
+                !(st = viewport_side(r, node, via, "height", &h)) &&
+                (drawn = w > 0 && h > 0) && !(st = viewbox_map(r, node, w, h, &vbm, vb)) &&
+                !(st = symbol_shift(r, node, &vbm, vb, sh))) {
+                const mat at = {1, 0, 0, 1, x + sh[0], y + sh[1]};
                 mv = mat_mul(*m, mat_mul(at, vbm));
             }
         }
@@ -2921,7 +3276,7 @@ static int geometry_box(reader *r, const xmlNode *node, const mat *m, double box
                 continue;
             mat mc = mv;
             if (!(st = element_transform(r, c, &mc)))
-                st = geometry_box(r, c, &mc, box, depth + 1);
+                st = geometry_walk(r, c, &mc, box, depth + 1);
         }
         r->vpw = pw, r->vph = ph;
     }
@@ -3061,7 +3416,8 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
     }
     if (obb && named(ref, "use"))
         return fail_at(r, "clipPathUnits=\"objectBoundingBox\" for the <use> of line %ld is "
-                          "not supported (the bounding box of a use's target is not computed)",
+                          "not supported (its box in the use's own user space, x and y "
+                          "included, is not computed)",
                        xmlGetLineNo(ref));
     if (obb) {
         double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
@@ -3932,6 +4288,74 @@ static int viewport_side(reader *r, const xmlNode *node, const xmlNode *over, co
     return AA_OK;
 }
 
+/* A <symbol>'s reference point (SVG 2, "The 'symbol' element": refX and
+ * refY, in the symbol's content coordinates, after its viewBox and
+ * preserveAspectRatio) is placed at the symbol's (x, y), the whole
+ * viewport moving with it: *s, the shift to add in the viewport's
+ * coordinates, is minus the point mapped by the viewBox map vbm (a scale
+ * and a translation).  A length (a number, a unit, % of the viewBox's
+ * width or height: vb) or left, center, right (top, center, bottom): the
+ * viewBox's left edge, middle and right edge in content coordinates (the
+ * viewport's, 0 to its size, without a viewBox).  Absent: no shift on
+ * that axis, which is not refX="0" when the viewBox does not start at 0
+ * or meet leaves room (SVG 2 keeps the old placement for symbols that do
+ * not say). */
+static int symbol_shift(reader *r, const xmlNode *node, const mat *vbm, const double vb[2],
+                        double s[2])
+{
+    static const char *const keys[2] = {"refX", "refY"};
+    static const char *const words[2][3] = {{"left", "center", "right"},
+                                            {"top", "center", "bottom"}};
+    s[0] = s[1] = 0;
+    if (!named(node, "symbol"))
+        return AA_OK;
+    /* the viewBox's origin in content coordinates: vbm maps it to
+     * (vbm.e + vbm.a b0, ...) and a viewBox of size vb starts at b0 */
+    double b0[2] = {0, 0};
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"viewBox");
+    if (t) { /* read already by viewbox_map, so four numbers */
+        const char *p = skip_wsp((const char *)t);
+        for (int k = 0; k < 2; k++) {
+            if (k)
+                p = skip_comma_wsp(p);
+            (void)scan_number(&p, &b0[k]);
+        }
+        xmlFree(t);
+    }
+    int st = AA_OK;
+    for (int k = 0; k < 2 && !st; k++) {
+        t = xmlGetNoNsProp(node, (const xmlChar *)keys[k]);
+        if (!t)
+            continue;
+        const char *v = skip_wsp((const char *)t);
+        char word[16] = "";
+        sscanf(v, "%15[a-zA-Z]", word);
+        double ref = 0;
+        int j = 0;
+        while (j < 3 && strcasecmp(word, words[k][j]))
+            j++;
+        if (j < 3 && !*skip_wsp(v + strlen(word)))
+            ref = b0[k] + vb[k] * j / 2;
+        else {
+            /* % of the viewBox's width or height: the viewport's size for
+             * the axis is the viewBox's here */
+            const double w = r->vpw, h = r->vph;
+            r->vpw = vb[0], r->vph = vb[1];
+            st = parse_length(r, k ? "y" : "x", v, &ref);
+            r->vpw = w, r->vph = h;
+            if (st == AA_EINVAL && invalid_attr(r, keys[k], v, "a length or a keyword")) {
+                st = AA_OK; /* SVG 2: the initial value, no shift */
+                xmlFree(t);
+                continue;
+            }
+        }
+        xmlFree(t);
+        if (!st)
+            s[k] = -(k ? vbm->d * ref + vbm->f : vbm->a * ref + vbm->e);
+    }
+    return st;
+}
+
 /* A nested <svg>, or a <symbol> drawn as the target of the <use> via (SVG
  * 2, "The 'use' element": its width and height, unless auto, replace the
  * target's): a new viewport at (x, y) of its width and height (auto or
@@ -3978,9 +4402,11 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
     if (st)
         return st;
     mat vbm, to;
-    double vb[2];
-    if ((st = viewbox_map(r, node, w, h, &vbm, vb)))
+    double vb[2], sh[2];
+    if ((st = viewbox_map(r, node, w, h, &vbm, vb)) ||
+        (st = symbol_shift(r, node, &vbm, vb, sh)))
         return st;
+    x += sh[0], y += sh[1]; /* the viewport moves with the reference point */
     if (clip) {
         if (mat_inverse(&m, &to))
             return fail_at(r, "a viewport that clips under a singular transform is not "
@@ -4006,17 +4432,12 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
     return st;
 }
 
-/* <use> (SVG 2, "The 'use' element"): its target (href, or xlink:href,
- * "#id": the first element of that id) drawn as its child, so that the
- * target's properties inherit from the <use> (style sheets match the
- * target where it is in the document), under the use's transform and
- * then translate(x, y).  A target that is missing, or that is the <use>
- * or one of its ancestors (through the targets being drawn: a reference
- * cycle), puts the use in error: it draws nothing, as browsers do.  A
+/* The target of the <use> node (href, or xlink:href, "#id": the first
+ * element of that id) into *out, NULL when it has none or it is missing; a
  * reference to another document is refused (never loaded). */
-static int use_element(reader *r, const xmlNode *node, style sty, mat m, int depth,
-                       double opacity)
+static int use_target(reader *r, const xmlNode *node, const xmlNode **out)
 {
+    *out = NULL;
     xmlChar *href = xmlGetNoNsProp(node, (const xmlChar *)"href");
     if (!href)
         href = xmlGetNsProp(node, (const xmlChar *)"href",
@@ -4035,6 +4456,23 @@ static int use_element(reader *r, const xmlNode *node, style sty, mat m, int dep
         target = find_href(r->ids, h);
     }
     xmlFree(href);
+    *out = st ? NULL : target;
+    return st;
+}
+
+/* <use> (SVG 2, "The 'use' element"): its target (href, or xlink:href,
+ * "#id": the first element of that id) drawn as its child, so that the
+ * target's properties inherit from the <use> (style sheets match the
+ * target where it is in the document), under the use's transform and
+ * then translate(x, y).  A target that is missing, or that is the <use>
+ * or one of its ancestors (through the targets being drawn: a reference
+ * cycle), puts the use in error: it draws nothing, as browsers do.  A
+ * reference to another document is refused (never loaded). */
+static int use_element(reader *r, const xmlNode *node, style sty, mat m, int depth,
+                       double opacity)
+{
+    const xmlNode *target;
+    int st = use_target(r, node, &target);
     if (st || !target)
         return st;
     for (int k = 0; k <= depth; k++)

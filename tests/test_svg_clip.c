@@ -484,9 +484,15 @@ static void test_refused(void **state)
     refused("<clipPath id=\"a\" clipPathUnits=\"pixels\"/>"
             "<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
             "<clipPath>", "clipPathUnits");
-    refused("<clipPath id=\"a\"><rect width=\"9\" height=\"9\" clip-rule=\"odd\"/></clipPath>"
-            "<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
-            "<rect>", "clip-rule");
+    /* an invalid clip-rule is its initial value, nonzero (SVG 2,
+     * "Attribute syntax"), with a warning: the square of two windings
+     * [0, 9]^2 (evenodd would leave its inner [3, 6]^2 out: 72) keeps the
+     * rect whole, 81 */
+    check_area("invalid clip-rule",
+               "<clipPath id=\"a\"><path d=\"M0 0 H9 V9 H0 Z M3 3 H6 V6 H3 Z\" "
+               "clip-rule=\"odd\"/></clipPath>"
+               "<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
+               81);
     refused("<clipPath id=\"a\" clipPathUnits=\"objectBoundingBox\"/>"
             "<line x2=\"9\" stroke=\"red\" clip-path=\"url(#a)\"/>",
             "<clipPath>", "no width or no height");
