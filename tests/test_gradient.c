@@ -573,7 +573,7 @@ static void test_refusals(void **state)
     assert_non_null(strstr(aa_last_error(), "cone"));
     g.p[3] = 9;
     assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
-    /* the reference takes a radial gradient only as the scene's one */
+    /* the reference takes radial gradients only without linear ones */
     rect_px(s, (aa_rgb){{0, 0, 0}}, 0, 0, W, H);
     aa_gradient lin = grad_px(AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
                               (const double[6]){0, 0, 5, 0, 0, 0}, black_white, 2);
@@ -1152,9 +1152,12 @@ static double polar_integral(const rpic *p)
  *    area: the centred case's sum again;
  *  - centred with fr > 0, reflect and repeat over a disc larger than the
  *    end circle, three coloured stops: the 1-D polar integral above (GSL);
+ *  - two discs each with its own centred gradient: the sum of the two
+ *    polar integrals (and, overlapping under a translucent one, refused);
  *  - single pixels of a focal case with fr > 0 and reflect: GSL in two
  *    dimensions over the pixel (rpic_pixel), the pixels of the focal
- *    circle's centre, the disc's edge, and a stop's circle. */
+ *    circle's centre, the disc's edge, and a stop's circle; and every
+ *    pixel of the repeating one above. */
 static void test_radial_reference(void **state)
 {
     (void)state;
@@ -1212,6 +1215,43 @@ static void test_radial_reference(void **state)
                           worst);
         aa_image_free(&ref);
         aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+    /* two discs, each with its own centred gradient: the sum of their polar
+     * integrals; overlapping with the front one translucent, refused by
+     * name */
+    for (int k = 0; k < 2; k++) {
+        gw = gh = W;
+        aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+        const double cx[2] = {k ? 6.5 : 4.0, k ? 9.5 : 12.0}, rr = 3.5;
+        for (int d = 0; d < 2; d++) {
+            disc_px(s, cx[d], 8, rr);
+            aa_gradient g = grad_px(AA_GRADIENT_RADIAL, AA_SPREAD_PAD,
+                                    (const double[6]){cx[d], 8, rr, cx[d], 8, 0}, black_white, 2);
+            assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+            if (k && !d) /* the front one translucent: both paint the overlap */
+                assert_int_equal(aa_scene_set_alpha(s, 0.5), AA_OK);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        if (!k) {
+            reference(s, W, W, &ref, &bound, &stats);
+            expect_sum("radial, two discs", &ref, 1, 2 * 2 * M_PI * rr * rr * I, 1e-12);
+            expect_bound("radial, two discs", &stats);
+            aa_image_free(&ref);
+            aa_image_free(&bound);
+        } else {
+            aa_scene *placed = aa_scene_place(s, W, W, 0, 0, 0);
+            aa_filter f;
+            aa_filter_default(&f);
+            assert_int_equal(aa_image_alloc(&ref, W, W, 3), AA_OK);
+            assert_int_equal(aa_truth_render(placed, &f, 1, &ref, NULL, NULL), AA_EINVAL);
+            print_message("radial, overlapping: %s\n", aa_last_error());
+            assert_non_null(strstr(aa_last_error(), "two radial gradients"));
+            aa_image_free(&ref);
+            aa_scene_free(placed);
+        }
         aa_scene_free(s);
     }
     /* a focal case with fr > 0, reflect: single pixels */

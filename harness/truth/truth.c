@@ -198,8 +198,8 @@
  * 2% step) leaves the inner integral continuously differentiable and is no
  * breakpoint: QAG's bisection takes it.
  *
- * Radial gradients (the scene's only gradient; "radial gradient paint"
- * below): along a row t is (b - sqrt(d)) / a, b affine and d quadratic in
+ * Radial gradients (in scenes without linear ones, each point painted by
+ * one at most; "radial gradient paint" below): along a row t is (b - sqrt(d)) / a, b affine and d quadratic in
  * x, and the decoded colour has no closed-form integral.  The row is cut
  * where t passes a stop's offset or a period's end, where a channel's
  * composite passes 0.04045, and where d is least; each piece takes a
@@ -214,8 +214,8 @@
  * polynomial of degree 6 for a cubic, 4 for an arc in the half-angle
  * parameter, its sign changes isolated between its derivative's roots
  * and bisected), and the row of P* where t is least.  Offset pieces
- * (strokes of curves), a radial gradient with another gradient, and other
- * filters are refused with a gradient scene.
+ * (strokes of curves), radial gradients with linear ones or over one
+ * another, and other filters are refused with a gradient scene.
  *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
@@ -284,8 +284,8 @@ typedef struct grad_plane {
     const aa_gradient_stop *stops;
 } grad_plane;
 
-/* The radial gradient of a scene whose only gradient it is (truth.c,
- * "radial gradient paint"): its layer, its stops' encoded channels and
+/* A radial gradient of a scene without linear ones (truth.c, "radial
+ * gradient paint"): its layer, its stops' encoded channels and
  * opacities (enc[4 k .. 4 k + 3]), the inverse of its map, F, D = C - F,
  * fr, dr = r - fr, a = D.D - dr^2 < 0, P* (px, py in the scene), and a
  * plane holding its spread and stops for grad_taus. */
@@ -313,9 +313,9 @@ typedef struct worker {
     size_t cap_gbuf;
     /* a radial gradient (rad set): its rows' Gauss-Legendre nodes and
      * weights on [-1, 1], the current row's error bound and the pixel's
-     * largest row bound */
-    int rad;
-    grad_radial rg;
+     * largest row bound; rad_mixed: a span painted by two of them */
+    int rad, nrg, rad_mixed;
+    grad_radial *rg;
     double gl_x[RAD_GL], gl_w[RAD_GL];
     double rad_row_err, rad_err_max;
     const aa_filter *f;
@@ -356,7 +356,9 @@ static void worker_free(worker *w)
     free(w->memo.slot);
     free(w->gp);
     free(w->gbuf);
-    free(w->rg.enc);
+    for (int k = 0; k < w->nrg; k++)
+        free(w->rg[k].enc);
+    free(w->rg);
     crowd_free(&w->crowd);
 }
 
@@ -494,15 +496,17 @@ static void grad_span(worker *w, double xa, double xb, double y, int nch, double
 }
 
 /* Whether the reference integrates this gradient scene exactly (truth.c's
- * opening comment): linear gradients only, the box filter, no offset
- * pieces, and the composite affine along a row between stops. */
+ * opening comment): the box filter, no offset pieces, and either linear
+ * gradients with the composite affine along a row between stops, or
+ * radial ones only (each point painted by one of them at most, which
+ * rad_span checks span by span). */
 static int grad_check(const aa_scene *scene, const aa_filter *f)
 {
     if (!aa_filter_is_box(f))
         return aa_fail(AA_EINVAL, "the reference integrates gradient paint exactly under the "
                                   "box filter only (filter %s): use -f box",
                        f->type->info.name);
-    int n = aa_scene_layer_count(scene), ngrad = 0, varying = -1, radial = -1;
+    int n = aa_scene_layer_count(scene), ngrad = 0, varying = -1, radial = -1, linear = -1;
     for (int l = 0; l < n; l++) {
         aa_gradient g;
         if (!aa_scene_layer_gradient(scene, l, &g))
@@ -510,17 +514,19 @@ static int grad_check(const aa_scene *scene, const aa_filter *f)
         ngrad++;
         if (g.kind != AA_GRADIENT_LINEAR)
             radial = l;
+        else
+            linear = l;
         for (int k = 1; k < g.nstops; k++)
             if (g.stops[k].opacity != g.stops[0].opacity)
                 varying = l;
     }
-    if (radial >= 0 && ngrad > 1)
-        return aa_fail(AA_EINVAL, "layer %d: a radial gradient with another gradient in the "
-                                  "scene: the reference integrates a radial gradient only as the "
-                                  "scene's one gradient (the composite is then a polynomial in "
-                                  "its t); sample it with point, supersample or jitter",
-                       radial);
-    if (varying >= 0 && ngrad > 1)
+    if (radial >= 0 && linear >= 0)
+        return aa_fail(AA_EINVAL, "layer %d: a radial gradient with a linear one (layer %d) in "
+                                  "the scene: the reference integrates radial gradients only in "
+                                  "scenes without linear ones; sample it with point, supersample "
+                                  "or jitter",
+                       radial, linear);
+    if (varying >= 0 && ngrad > 1 && radial < 0)
         return aa_fail(AA_EINVAL, "layer %d: a gradient whose stops' opacities differ, with "
                                   "another gradient in the scene: the composite is then not "
                                   "affine along a row and the reference's closed form does not "
@@ -536,11 +542,17 @@ static int grad_check(const aa_scene *scene, const aa_filter *f)
     return AA_OK;
 }
 
-/* The radial gradient g of layer l into w->rg (grad_check let it be the
- * scene's only gradient). */
+/* The radial gradient g of layer l appended to w->rg (grad_check let the
+ * scene have no linear ones). */
 static int rad_init(worker *w, int l, const aa_gradient *g)
 {
-    grad_radial *r = &w->rg;
+    if (!w->rg) {
+        int n = aa_scene_layer_count(w->scene);
+        w->rg = calloc((size_t)(n > 0 ? n : 1), sizeof *w->rg);
+        if (!w->rg)
+            return aa_fail(AA_ENOMEM, "out of memory for radial gradients");
+    }
+    grad_radial *r = &w->rg[w->nrg++];
     const double *m = g->m, *p = g->p;
     double det = m[0] * m[3] - m[1] * m[2];
     r->inv[0] = m[3] / det, r->inv[1] = -m[1] / det;
@@ -643,7 +655,8 @@ static int add_abs(worker *w, double y, double lo, double hi);
 
 /* ---- radial gradient paint ----
  *
- * A radial gradient (the scene's only gradient) along the row y: with q(x)
+ * A radial gradient (in a scene of radial gradients only, each span
+ * painted by one of them at most: rad_span) along the row y: with q(x)
  * = m^-1(x, y) - F, D = C - F, dr = r - fr, t is the larger root of
  *     a t^2 - 2 b(x) t + c(x) = 0,   a = D.D - dr^2 < 0,
  *     b(x) = q.D + fr dr = b0 + b1 x,  c(x) = |q|^2 - fr^2 (quadratic),
@@ -866,16 +879,15 @@ static double rad_bound(const grad_radial *g, const rad_row *r, const rad_chan *
 
 /* The integral of the channels over [xa, xb] of row r (one piece), to
  * the bound, halving where needed; the bounds added into *err. */
-static void rad_piece(worker *w, const rad_row *r, const rad_chan *ch, int nch, double xa,
-                      double xb, int depth, double *sum, double *err)
+static void rad_piece(worker *w, const grad_radial *g, const rad_row *r, const rad_chan *ch,
+                      int nch, double xa, double xb, int depth, double *sum, double *err)
 {
-    const grad_radial *g = &w->rg;
     double m = 0.5 * (xa + xb), h = 0.5 * (xb - xa), worst = 0.0;
     for (int c = 0; c < nch; c++)
         worst = fmax(worst, rad_bound(g, r, &ch[c], m, h));
     if (worst > 2e-16 * (xb - xa) && depth < RAD_DEPTH) {
-        rad_piece(w, r, ch, nch, xa, m, depth + 1, sum, err);
-        rad_piece(w, r, ch, nch, m, xb, depth + 1, sum, err);
+        rad_piece(w, g, r, ch, nch, xa, m, depth + 1, sum, err);
+        rad_piece(w, g, r, ch, nch, m, xb, depth + 1, sum, err);
         return;
     }
     double part[3] = {0.0, 0.0, 0.0};
@@ -892,18 +904,40 @@ static void rad_piece(worker *w, const rad_row *r, const rad_chan *ch, int nch, 
     *err += fmin(worst, xb - xa);
 }
 
-/* The span [xa, xb] of row y (winding w->wind): cut as the comment above
- * says, each piece integrated by rad_piece. */
+/* The span [xa, xb] of row y (winding w->wind): the one radial gradient
+ * whose paint the composite there depends on (K1 or K2 not 0), if any (a
+ * span of none is of constant colour; of two, w->rad_mixed is set and the
+ * pixel refused), cut as the comment above says, each piece integrated by
+ * rad_piece. */
 static void rad_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
-    const grad_radial *g = &w->rg;
-    rad_row r;
-    rad_row_at(g, y, &r);
+    const grad_radial *g = NULL;
     /* the composite's K0, K1, K2 per channel */
     double p0[4] = {0, 0, 0, 0}, p1[4] = {0, 0, 0, 1}, p2[4] = {1, 1, 1, 1}, e0[3], e1[3], e2[3];
-    aa_scene_encoded_with(w->scene, w->wind, g->layer, p0, e0);
-    aa_scene_encoded_with(w->scene, w->wind, g->layer, p1, e1);
-    aa_scene_encoded_with(w->scene, w->wind, g->layer, p2, e2);
+    for (int k = 0; k < w->nrg; k++) {
+        double f0[3], f1[3], f2[3];
+        aa_scene_encoded_with(w->scene, w->wind, w->rg[k].layer, p0, f0);
+        aa_scene_encoded_with(w->scene, w->wind, w->rg[k].layer, p1, f1);
+        aa_scene_encoded_with(w->scene, w->wind, w->rg[k].layer, p2, f2);
+        int dep = f0[0] != f1[0] || f0[1] != f1[1] || f0[2] != f1[2] || f1[0] != f2[0] ||
+                  f1[1] != f2[1] || f1[2] != f2[2];
+        if (dep && g) {
+            w->rad_mixed = 1;
+            break;
+        }
+        if (dep || k == 0) {
+            memcpy(e0, f0, sizeof e0), memcpy(e1, f1, sizeof e1), memcpy(e2, f2, sizeof e2);
+            if (dep)
+                g = &w->rg[k];
+        }
+    }
+    if (!g) { /* no radial gradient paints the span */
+        for (int c = 0; c < nch; c++)
+            sum[c] += (xb - xa) * aa_srgb_decode(e0[c]);
+        return;
+    }
+    rad_row r;
+    rad_row_at(g, y, &r);
     double *xs = w->gbuf;
     size_t nx = 0, cap = w->cap_gbuf - 8;
     xs[nx++] = xa;
@@ -954,7 +988,7 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
             double tm = rad_t(g, 0.5 * (ca + cb), y);
             for (int c = 0; c < nch; c++)
                 ch[c].power = ch[c].E[0] + tm * (ch[c].E[1] + tm * ch[c].E[2]) > 0.04045;
-            rad_piece(w, &r, ch, nch, ca, cb, 0, sum, &err);
+            rad_piece(w, g, &r, ch, nch, ca, cb, 0, sum, &err);
         }
     }
     w->rad_row_err += err;
@@ -1027,10 +1061,9 @@ static int poly_sign_roots(const double *c, int n, double lo, double hi, double 
  * 0.04045: on each stop's segment e is quadratic in the segment's
  * parameter (rad_span); each root in every period of the range.  At most
  * cap into out, the total returned. */
-static size_t rad_threshold_taus(const worker *w, const int *wind, double ta, double tb,
-                                 double *out, size_t cap)
+static size_t rad_threshold_taus(const worker *w, const grad_radial *g, const int *wind,
+                                 double ta, double tb, double *out, size_t cap)
 {
-    const grad_radial *g = &w->rg;
     double p0[4] = {0, 0, 0, 0}, p1[4] = {0, 0, 0, 1}, p2[4] = {1, 1, 1, 1}, e0[3], e1[3], e2[3];
     aa_scene_encoded_with(w->scene, wind, g->layer, p0, e0);
     aa_scene_encoded_with(w->scene, wind, g->layer, p1, e1);
@@ -1078,9 +1111,9 @@ static long double crossing_at(const local_piece *q, long double s);
  * each tau of the window's range of t, where the circle of tau crosses the
  * window's sides, its top and bottom rows, and where it meets each local
  * piece; and the row of P*. */
-static int rad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
+static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *const *local,
+                              size_t n, size_t *total)
 {
-    const grad_radial *g = &w->rg;
     const double *iv = g->inv;
     double R = w->R, xl = w->uc - R, xr = w->uc + R, yt = w->vc - R, yb = w->vc + R;
     int st = add_abs(w, g->py, -INFINITY, INFINITY);
@@ -1113,7 +1146,8 @@ static int rad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
     tmax += 1e-12 * (1.0 + fabs(tmax));
     double *taus = w->gbuf;
     size_t m = grad_taus(&g->plane, tmin, tmax, taus, w->cap_gbuf);
-    if (m > GRAD_MAX_BREAKS)
+    *total += m;
+    if (m > GRAD_MAX_BREAKS || *total > GRAD_MAX_BREAKS)
         return aa_fail(AA_EINVAL, "a gradient's stops repeat more than %d times across the "
                                   "window of pixel (%g, %g): refused",
                        GRAD_MAX_BREAKS, w->uc - 0.5, w->vc - 0.5);
@@ -1128,7 +1162,7 @@ static int rad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
         if (lq->side ? lq->side < 0 : crossing_at(lq, 0.0L) < 0.0L)
             w->wind[lq->layer] += lq->dir;
     }
-    m += rad_threshold_taus(w, w->wind, tmin, tmax, taus + m, w->cap_gbuf - m);
+    m += rad_threshold_taus(w, g, w->wind, tmin, tmax, taus + m, w->cap_gbuf - m);
     if (m > w->cap_gbuf)
         m = w->cap_gbuf;
     double det = iv[0] * iv[3] - iv[1] * iv[2], n01 = hypot(iv[0], iv[1]);
@@ -1198,6 +1232,15 @@ static int rad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
             }
         }
     }
+    return st;
+}
+
+static int rad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
+{
+    size_t total = 0;
+    int st = AA_OK;
+    for (int k = 0; k < w->nrg && !st; k++)
+        st = rad_breakpoints_of(w, &w->rg[k], local, n, &total);
     return st;
 }
 
@@ -1784,6 +1827,15 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
         integrate_intervals(w, &result, &abserr);
         value[ch] = result;
         worst = fmax(worst, abserr);
+    }
+    if (w->rad_mixed) {
+        w->rad_mixed = 0;
+        return aa_fail(AA_EINVAL, "pixel (%g, %g): two radial gradients paint the same point "
+                                  "(overlapping, or one over another): the reference integrates "
+                                  "one radial gradient at a point (the composite is then a "
+                                  "polynomial in its t); sample it with point, supersample or "
+                                  "jitter",
+                       w->uc - 0.5, w->vc - 0.5);
     }
     if (grey)
         value[1] = value[2] = value[0];
