@@ -1069,7 +1069,12 @@ static size_t rad_threshold_taus(const worker *w, const grad_radial *g, const in
     aa_scene_encoded_with(w->scene, wind, g->layer, p1, e1);
     aa_scene_encoded_with(w->scene, wind, g->layer, p2, e2);
     size_t n = 0;
-    double lo = g->spread == AA_SPREAD_PAD ? 0.0 : floor(ta), hi = g->spread == AA_SPREAD_PAD ? 0.0 : ceil(tb);
+    /* the periods: pad, the stops' own; repeat, [n, n + 1); reflect, pairs
+     * [2n, 2n + 2) from even ends */
+    double lo = g->spread == AA_SPREAD_PAD       ? 0.0
+                : g->spread == AA_SPREAD_REFLECT ? 2.0 * floor(0.5 * ta)
+                                                 : floor(ta);
+    double hi = g->spread == AA_SPREAD_PAD ? 0.0 : ceil(tb);
     for (int k = 0; k + 1 < g->nstops; k++) {
         double o = g->stops[k].offset, dO = g->stops[k + 1].offset - o;
         if (!(dO > 0.0))
@@ -1088,14 +1093,10 @@ static size_t rad_threshold_taus(const worker *w, const grad_radial *g, const in
                 if (!(l[r] > 0.0 && l[r] < 1.0))
                     continue;
                 double sv = o + l[r] * dO;
-                for (double per = lo; per <= hi; per++) {
-                    double v[2] = {per + sv, per + 1.0 - sv};
-                    int nv = g->spread == AA_SPREAD_REFLECT ? 2 : 1;
-                    if (g->spread == AA_SPREAD_REFLECT && fmod(fabs(per), 2.0) == 1.0)
-                        continue; /* reflect's periods pair up from even ends */
-                    if (g->spread == AA_SPREAD_REFLECT)
-                        v[1] = per + 2.0 - sv;
-                    for (int q = 0; q < nv; q++)
+                int refl = g->spread == AA_SPREAD_REFLECT;
+                for (double per = lo; per <= hi; per += refl ? 2.0 : 1.0) {
+                    double v[2] = {per + sv, per + 2.0 - sv};
+                    for (int q = 0; q < 1 + refl; q++)
                         if (v[q] > ta && v[q] < tb && n++ < cap)
                             out[n - 1] = v[q];
                 }
