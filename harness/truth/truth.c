@@ -208,9 +208,11 @@
  * 2e-16 of its length.  The pixel's bound adds the largest row's bound
  * times the window's height.  The outer integral's breakpoints add, for
  * each such t (the threshold's as the composite at the window's centre
- * has it), where its circle crosses the window's sides, its top and
- * bottom rows (the inner integral's smoothness changes where a row
- * becomes tangent to it), and where it meets each local piece (a
+ * has it, and as it would with the gradient's layer covering the
+ * centre), where its circle crosses the window's sides, its top and
+ * bottom rows (the chord opens there like a square root of the height:
+ * turning points, integrated in the square root of the distance), and
+ * where it meets each local piece (a
  * polynomial of degree 6 for a cubic, 4 for an arc in the half-angle
  * parameter, its sign changes isolated between its derivative's roots
  * and bisected), and the row of P* where t is least.  Offset pieces
@@ -1107,6 +1109,7 @@ static size_t rad_threshold_taus(const worker *w, const grad_radial *g, const in
 }
 
 static long double crossing_at(const local_piece *q, long double s);
+static void note_turn(worker *w, double s);
 
 /* Outer breakpoints of a radial gradient (truth.c's opening comment): for
  * each tau of the window's range of t, where the circle of tau crosses the
@@ -1154,7 +1157,9 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
                        GRAD_MAX_BREAKS, w->uc - 0.5, w->vc - 0.5);
     /* and where the composite at the window's centre passes the
      * decoding's threshold (its winding numbers: the strip's left of the
-     * window, and the local pieces crossing the centre row left of it) */
+     * window, and the local pieces crossing the centre row left of it),
+     * and, if the centre is outside the gradient's layer, the composite
+     * there with that layer's winding number 1 */
     aa_strip_winding_left(w->strip, w->vc, w->wind);
     for (size_t k = 0; k < w->nlp; k++) {
         const local_piece *lq = &w->lp[k];
@@ -1164,6 +1169,11 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
             w->wind[lq->layer] += lq->dir;
     }
     m += rad_threshold_taus(w, g, w->wind, tmin, tmax, taus + m, w->cap_gbuf - m);
+    if (w->wind[g->layer] == 0 && m < w->cap_gbuf) {
+        /* the centre outside the gradient's layer: also as if inside it */
+        w->wind[g->layer] = 1;
+        m += rad_threshold_taus(w, g, w->wind, tmin, tmax, taus + m, w->cap_gbuf - m);
+    }
     if (m > w->cap_gbuf)
         m = w->cap_gbuf;
     double det = iv[0] * iv[3] - iv[1] * iv[2], n01 = hypot(iv[0], iv[1]);
@@ -1184,10 +1194,14 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
         }
         /* top and bottom rows: the row's quadratic in x has a double root
          * where iv0 Gy - iv1 Gx = +-rt |(iv0, iv1)| (Lagrange's identity),
-         * linear in y */
-        for (int sgn = -1; sgn <= 1 && !st; sgn += 2)
-            st = add_abs(w, (sgn * rt * n01 - (iv[0] * k1 - iv[1] * k0)) / det, -INFINITY,
-                         INFINITY);
+         * linear in y; the circle's chord opens there like a square root
+         * of the height, so those rows are turning points too (their half
+         * intervals integrated in the square root of the distance) */
+        for (int sgn = -1; sgn <= 1 && !st; sgn += 2) {
+            double ytan = (sgn * rt * n01 - (iv[0] * k1 - iv[1] * k0)) / det;
+            st = add_abs(w, ytan, -INFINITY, INFINITY);
+            note_turn(w, ytan - w->vc);
+        }
         /* local pieces: (X, Y) / W polynomials in the piece's parameter */
         for (size_t k = 0; k < n && !st; k++) {
             const aa_piece *p = local[k];
