@@ -27,7 +27,12 @@
  *  - a centred radial gradient black to white over its disc of radius r:
  *    in polar coordinates t = rho / r, so the integral is
  *    2 pi r^2 int_0^1 dec(t) t dt, the last integral by GSL's QAG here;
- *    the sampling methods (point, supersample) must converge to it.
+ *    the sampling methods (point, supersample) must converge to it, and
+ *    the box reference matches it to 1e-12 relative;
+ *  - a focal radial gradient (fr = 0): its circles are homothetic about
+ *    the focus, so its disc's integral is the centred one's; centred ones
+ *    with fr > 0 under reflect and repeat: a 1-D polar integral by GSL;
+ *    single pixels by GSL in two dimensions (test_radial_reference).
  *
  * The sampling methods' images converge to the reference as their sample
  * counts grow; the methods that draw from the layers' constant colours
