@@ -27,7 +27,12 @@
  *  - a centred radial gradient black to white over its disc of radius r:
  *    in polar coordinates t = rho / r, so the integral is
  *    2 pi r^2 int_0^1 dec(t) t dt, the last integral by GSL's QAG here;
- *    the sampling methods (point, supersample) must converge to it.
+ *    the sampling methods (point, supersample) must converge to it, and
+ *    the box reference matches it to 1e-12 relative;
+ *  - a focal radial gradient (fr = 0): its circles are homothetic about
+ *    the focus, so its disc's integral is the centred one's; centred ones
+ *    with fr > 0 under reflect and repeat: a 1-D polar integral by GSL;
+ *    single pixels by GSL in two dimensions (test_radial_reference).
  *
  * The sampling methods' images converge to the reference as their sample
  * counts grow; the methods that draw from the layers' constant colours
@@ -573,6 +578,11 @@ static void test_refusals(void **state)
     assert_non_null(strstr(aa_last_error(), "cone"));
     g.p[3] = 9;
     assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    /* the reference takes radial gradients only without linear ones */
+    rect_px(s, (aa_rgb){{0, 0, 0}}, 0, 0, W, H);
+    aa_gradient lin = grad_px(AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                              (const double[6]){0, 0, 5, 0, 0, 0}, black_white, 2);
+    assert_int_equal(aa_scene_set_gradient(s, &lin), AA_OK);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     aa_scene *placed = aa_scene_place(s, W, H, 0, 0, 0);
     aa_image out;
@@ -842,7 +852,10 @@ static void test_svg_refusals(void **state)
     svg_refused("<linearGradient id=\"a\"><stop offset=\"0\" stop-colour=\"red\"/>"
                 "</linearGradient><rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
                 "<stop>", "stop-colour");
-    /* a radial gradient is read, and the reference refuses it by name */
+    /* a radial gradient is read, and the reference integrates it: the
+     * bounding box's circle (centre (4, 4), radius 4) black to white, then
+     * white (pad) over the rest of the 8 x 8 square: 2 pi 16 int_0^1 dec(t)
+     * t dt + 64 - 16 pi (dec_t, GSL) */
     int st;
     aa_scene *sc = svg_scene("radial", "<radialGradient id=\"a\"><stop/><stop offset=\"1\" "
                                        "stop-color=\"white\"/></radialGradient>"
@@ -854,11 +867,423 @@ static void test_svg_refusals(void **state)
     assert_int_equal(aa_image_alloc(&out, W, H, 3), AA_OK);
     aa_filter f;
     aa_filter_default(&f);
-    assert_int_equal(aa_truth_render(placed, &f, 1, &out, NULL, NULL), AA_EINVAL);
-    assert_non_null(strstr(aa_last_error(), "radial gradient"));
+    assert_int_equal(aa_truth_render(placed, &f, 1, &out, NULL, NULL), AA_OK);
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(100);
+    gsl_function F = {dec_t, NULL};
+    double I, err, sum = 0;
+    gsl_integration_qag(&F, 0, 1, 1e-15, 1e-14, 100, GSL_INTEG_GAUSS21, ws, &I, &err);
+    gsl_integration_workspace_free(ws);
+    for (int j = 0; j < 8; j++)
+        for (int i = 0; i < 8; i++)
+            sum += aa_pixel(&out, i, j)[1];
+    double want = 32 * M_PI * I + 64 - 16 * M_PI;
+    print_message("svg radial: the square sums to %.15g, independent %.15g\n", sum, want);
+    assert_true(fabs(sum - want) < 1e-12 * want);
     aa_image_free(&out);
     aa_scene_free(placed);
     aa_scene_free(sc);
+}
+
+/* ---- radial gradients through the box reference ---- */
+
+/* sRGB's encoding (IEC 61966-2-1), written out here. */
+static double enc(double l)
+{
+    return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1 / 2.4) - 0.055;
+}
+
+/* A radial gradient over a disc of the scene, written out from SVG 2's
+ * definition: t is the largest w with |q - F - w D| = fr + w dr (D = C -
+ * F, dr = r - fr); squared, A w^2 - 2 B w - E = 0 with A = dr^2 - D.D > 0
+ * (the focal circle inside the end circle), B = -(q - F).D - fr dr, E =
+ * |q - F|^2 - fr^2, whose larger root is (B + S) / A = E / (S - B), S =
+ * sqrt(B^2 + A E), taken in the form that does not cancel; spread and
+ * stops as SVG says. */
+typedef struct rpic {
+    double disc[3];      /* the disc painted: centre, radius */
+    double c[2], r, f[2], fr;
+    int spread, n, ch;
+    const aa_gradient_stop *stops;
+} rpic;
+
+static double rpic_t(const rpic *p, double x, double y)
+{
+    double qx = x - p->f[0], qy = y - p->f[1], Dx = p->c[0] - p->f[0], Dy = p->c[1] - p->f[1];
+    double dr = p->r - p->fr, A = dr * dr - (Dx * Dx + Dy * Dy);
+    double B = -(qx * Dx + qy * Dy) - p->fr * dr, E = qx * qx + qy * qy - p->fr * p->fr;
+    double sq = sqrt(fmax(B * B + A * E, 0));
+    return B < 0 ? E / (sq - B) : (B + sq) / A;
+}
+
+static double rpic_colour(const rpic *p, double t)
+{
+    if (p->spread == AA_SPREAD_REPEAT)
+        t -= floor(t);
+    else if (p->spread == AA_SPREAD_REFLECT)
+        t = fabs(t - 2 * floor(t / 2 + 0.5));
+    else
+        t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    const aa_gradient_stop *s = p->stops;
+    if (t < s[0].offset)
+        return dec(enc(s[0].colour.c[p->ch]));
+    for (int k = p->n - 1; k > 0; k--)
+        if (t >= s[k - 1].offset && t < s[k].offset) {
+            double f = (t - s[k - 1].offset) / (s[k].offset - s[k - 1].offset);
+            double a = enc(s[k - 1].colour.c[p->ch]), b = enc(s[k].colour.c[p->ch]);
+            return dec(a + f * (b - a));
+        }
+    return dec(enc(s[p->n - 1].colour.c[p->ch]));
+}
+
+static double rpic_at(const rpic *p, double x, double y)
+{
+    if (hypot(x - p->disc[0], y - p->disc[1]) >= p->disc[2])
+        return 0; /* the black background */
+    return rpic_colour(p, rpic_t(p, x, y));
+}
+
+/* The values of t where the picture's channel is not smooth, in periods
+ * -1 .. 8: stops, periods' ends, and where the encoded value passes the
+ * decoding's threshold 0.04045 on a stop's segment. */
+static int rpic_taus(const rpic *p, double *tau)
+{
+    double o[32];
+    int no = 0, n = 0;
+    for (int k = 0; k < p->n; k++) {
+        o[no++] = p->stops[k].offset;
+        if (k + 1 < p->n) {
+            double a = enc(p->stops[k].colour.c[p->ch]), b = enc(p->stops[k + 1].colour.c[p->ch]);
+            double f = (0.04045 - a) / (b - a);
+            if (a != b && f > 0 && f < 1)
+                o[no++] = p->stops[k].offset + f * (p->stops[k + 1].offset - p->stops[k].offset);
+        }
+    }
+    o[no++] = 1.0;
+    for (int per = -1; per <= 8; per++)
+        for (int k = 0; k < no; k++) {
+            if (p->spread == AA_SPREAD_PAD && per != 0)
+                continue;
+            tau[n++] = per + o[k];
+            if (p->spread == AA_SPREAD_REFLECT)
+                tau[n++] = per + 1 - o[k];
+        }
+    return n;
+}
+
+typedef struct rrow {
+    const rpic *p;
+    double y, xa, xb;
+    gsl_integration_workspace *wi;
+} rrow;
+
+static double rrow_x(double x, void *v)
+{
+    const rrow *c = v;
+    return rpic_at(c->p, x, c->y);
+}
+
+/* Where t = tau on [a, b] of row y, t monotone there: bisection. */
+static double rrow_bisect(const rpic *p, double y, double a, double b, double tau)
+{
+    double ta = rpic_t(p, a, y) - tau;
+    for (int it = 0; it < 200; it++) {
+        double m = 0.5 * (a + b);
+        if (m <= a || m >= b)
+            break;
+        double tm = rpic_t(p, m, y) - tau;
+        if ((tm < 0) == (ta < 0))
+            a = m, ta = tm;
+        else
+            b = m;
+    }
+    return 0.5 * (a + b);
+}
+
+static double rrow_y(double y, void *v)
+{
+    rrow *c = v;
+    c->y = y;
+    const rpic *p = c->p;
+    double xs[200];
+    int n = 0;
+    xs[n++] = c->xa;
+    double h = p->disc[2] * p->disc[2] - (y - p->disc[1]) * (y - p->disc[1]);
+    if (h > 0) {
+        xs[n++] = p->disc[0] - sqrt(h);
+        xs[n++] = p->disc[0] + sqrt(h);
+    }
+    /* t's least point on the row (golden section: t is quasiconvex), and
+     * on each side of it where t passes each tau */
+    double a = c->xa - 1, b = c->xb + 1, g = (3 - sqrt(5)) / 2;
+    for (int it = 0; it < 200 && b - a > 1e-15; it++) {
+        double u = a + g * (b - a), w = b - g * (b - a);
+        if (rpic_t(p, u, y) <= rpic_t(p, w, y))
+            b = w;
+        else
+            a = u;
+    }
+    double xm = 0.5 * (a + b), tau[400];
+    xs[n++] = xm;
+    int nt = rpic_taus(p, tau);
+    for (int k = 0; k < nt && n < 196; k++) {
+        if ((rpic_t(p, c->xa, y) - tau[k]) * (rpic_t(p, xm, y) - tau[k]) < 0)
+            xs[n++] = rrow_bisect(p, y, c->xa, xm, tau[k]);
+        if ((rpic_t(p, c->xb, y) - tau[k]) * (rpic_t(p, xm, y) - tau[k]) < 0)
+            xs[n++] = rrow_bisect(p, y, xm, c->xb, tau[k]);
+    }
+    xs[n++] = c->xb;
+    qsort(xs, (size_t)n, sizeof *xs, cmp_double);
+    gsl_function F = {rrow_x, c};
+    double sum = 0, res, err;
+    for (int k = 0; k + 1 < n; k++) {
+        double lo = fmax(xs[k], c->xa), hi = fmin(xs[k + 1], c->xb);
+        if (!(hi > lo))
+            continue;
+        gsl_integration_qag(&F, lo, hi, 1e-16, 1e-14, 1000, GSL_INTEG_GAUSS21, c->wi, &res,
+                            &err);
+        sum += res;
+    }
+    return sum;
+}
+
+/* The integral of the picture's channel over the pixel (i, j) by GSL in
+ * two dimensions: rows split at the row of the circles' common point, and
+ * at the disc's and each circle t = tau's (centre F + tau D, radius fr +
+ * tau dr) top and bottom and crossings of the pixel's sides. */
+static double rpic_pixel(const rpic *p, int i, int j)
+{
+    gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
+    rrow c = {p, 0, i, i + 1, gsl_integration_workspace_alloc(1000)};
+    gsl_function F = {rrow_y, &c};
+    double ys[2500], tau[400], dr = p->r - p->fr;
+    int n = 0, nt = rpic_taus(p, tau);
+    ys[n++] = j;
+    ys[n++] = j + 1;
+    ys[n++] = p->disc[1] - p->disc[2];
+    ys[n++] = p->disc[1] + p->disc[2];
+    ys[n++] = p->f[1] - p->fr / dr * (p->c[1] - p->f[1]);
+    for (int k = 0; k <= nt; k++) {
+        /* each circle (the disc's last): its top and bottom, and where it
+         * crosses the pixel's sides x = i, i + 1 */
+        double rad = k < nt ? p->fr + tau[k] * dr : p->disc[2];
+        double cy = k < nt ? p->f[1] + tau[k] * (p->c[1] - p->f[1]) : p->disc[1];
+        double cx = k < nt ? p->f[0] + tau[k] * (p->c[0] - p->f[0]) : p->disc[0];
+        if (rad < 0)
+            continue;
+        ys[n++] = cy - rad;
+        ys[n++] = cy + rad;
+        for (int e = 0; e < 2; e++) {
+            double h = rad * rad - (i + e - cx) * (i + e - cx);
+            if (h > 0) {
+                ys[n++] = cy - sqrt(h);
+                ys[n++] = cy + sqrt(h);
+            }
+        }
+    }
+    qsort(ys, (size_t)n, sizeof *ys, cmp_double);
+    double sum = 0, res, err, prev = j;
+    for (int k = 0; k < n; k++) {
+        if (!(ys[k] > prev) || ys[k] > j + 1)
+            continue;
+        gsl_integration_qag(&F, prev, ys[k], 1e-15, 1e-13, 1000, GSL_INTEG_GAUSS21, wo, &res,
+                            &err);
+        sum += res;
+        prev = ys[k];
+    }
+    gsl_integration_workspace_free(c.wi);
+    gsl_integration_workspace_free(wo);
+    return sum;
+}
+
+/* The scene of p on a 16 x 16 image (black background, the disc a black
+ * layer painted with the gradient). */
+static aa_scene *rpic_scene(const rpic *p)
+{
+    gw = gh = W;
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    disc_px(s, p->disc[0], p->disc[1], p->disc[2]);
+    aa_gradient g = grad_px(AA_GRADIENT_RADIAL, p->spread,
+                            (const double[6]){p->c[0], p->c[1], p->r, p->f[0], p->f[1], p->fr},
+                            p->stops, p->n);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+typedef struct polar_ctx {
+    const rpic *p;
+} polar_ctx;
+
+/* Centred (F = C): t = (rho - fr) / dr on the circle of radius rho about
+ * C, so the disc's integral is int_0^R colour(t(rho)) 2 pi rho drho. */
+static double polar_f(double rho, void *v)
+{
+    const rpic *p = v;
+    return rpic_colour(p, (rho - p->fr) / (p->r - p->fr)) * 2 * M_PI * rho;
+}
+
+static double polar_integral(const rpic *p)
+{
+    double tau[400], cut[400], res, err, sum = 0;
+    int nt = rpic_taus(p, tau), n = 0;
+    cut[n++] = 0;
+    for (int k = 0; k < nt; k++) {
+        double rho = p->fr + tau[k] * (p->r - p->fr);
+        if (rho > 0 && rho < p->disc[2])
+            cut[n++] = rho;
+    }
+    cut[n++] = p->disc[2];
+    qsort(cut, (size_t)n, sizeof *cut, cmp_double);
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
+    gsl_function F = {polar_f, (void *)p};
+    for (int k = 0; k + 1 < n; k++) {
+        if (!(cut[k + 1] > cut[k]))
+            continue;
+        gsl_integration_qag(&F, cut[k], cut[k + 1], 1e-15, 1e-15, 1000, GSL_INTEG_GAUSS61, ws,
+                            &res, &err);
+        sum += res;
+    }
+    gsl_integration_workspace_free(ws);
+    return sum;
+}
+
+/* The box reference of radial gradients against answers derived here:
+ *  - centred, fr = 0, black to white over the end circle: the polar
+ *    integral 2 pi r^2 int_0^1 dec(t) t dt (test_radial_sampled's);
+ *  - the focus moved inside the end circle, fr = 0: the circles are then
+ *    homothetic about F, t = rho / rho_e(theta) along the ray from F (rho_e
+ *    the distance to the end circle), and the disc's integral is int dtheta
+ *    rho_e^2 int_0^1 dec(t) t dt, with int rho_e^2 dtheta = 2 x the disc's
+ *    area: the centred case's sum again;
+ *  - centred with fr > 0, reflect and repeat over a disc larger than the
+ *    end circle, three coloured stops: the 1-D polar integral above (GSL);
+ *  - two discs each with its own centred gradient: the sum of the two
+ *    polar integrals (and, overlapping under a translucent one, refused);
+ *  - single pixels of a focal case with fr > 0 and reflect: GSL in two
+ *    dimensions over the pixel (rpic_pixel), the pixels of the focal
+ *    circle's centre, the disc's edge, and a stop's circle; and every
+ *    pixel of the repeating one above. */
+static void test_radial_reference(void **state)
+{
+    (void)state;
+    const double r = 6.0;
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(100);
+    gsl_function F = {dec_t, NULL};
+    double I, err;
+    gsl_integration_qag(&F, 0, 1, 1e-15, 1e-14, 100, GSL_INTEG_GAUSS21, ws, &I, &err);
+    gsl_integration_workspace_free(ws);
+    const double want = 2 * M_PI * r * r * I;
+    const double focal[2][2] = {{8, 8}, {10, 7}};
+    for (int k = 0; k < 2; k++) {
+        rpic p = {{8, 8, r}, {8, 8}, r, {focal[k][0], focal[k][1]}, 0, AA_SPREAD_PAD, 2, 0,
+                  black_white};
+        aa_scene *s = rpic_scene(&p);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, W, W, &ref, &bound, &stats);
+        expect_sum(k ? "radial, focus (10, 7)" : "radial, centred", &ref, 1, want, 1e-12);
+        expect_bound(k ? "radial, focus (10, 7)" : "radial, centred", &stats);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+    const int spreads[2] = {AA_SPREAD_REFLECT, AA_SPREAD_REPEAT};
+    for (int k = 0; k < 2; k++) {
+        rpic p = {{8, 8, 7.5}, {8, 8}, 3.2, {8, 8}, 1.1, spreads[k], 3, 0, three};
+        aa_scene *s = rpic_scene(&p);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, W, W, &ref, &bound, &stats);
+        for (int ch = 0; ch < 3; ch++) {
+            p.ch = ch;
+            expect_sum(k ? "radial, fr > 0, repeat" : "radial, fr > 0, reflect", &ref, ch,
+                       polar_integral(&p), 1e-12);
+        }
+        expect_bound(k ? "radial, fr > 0, repeat" : "radial, fr > 0, reflect", &stats);
+        /* every pixel of the repeating one, each channel, within its bound
+         * plus GSL's own tolerance */
+        double worst = 0;
+        for (int j = 0; k && j < W; j++)
+            for (int i = 0; i < W * 3; i++) {
+                p.ch = i / W;
+                double g1 = rpic_pixel(&p, i % W, j), r1 = aa_pixel(&ref, i % W, j)[p.ch];
+                double b1 = *aa_pixel(&bound, i % W, j);
+                worst = fmax(worst, fabs(r1 - g1));
+                if (!(fabs(r1 - g1) <= b1 + 1e-14))
+                    fail_msg("repeat, pixel (%d, %d) channel %d: %.17g, GSL 2-D %.17g, bound "
+                             "%.2g",
+                             i % W, j, p.ch, r1, g1, b1);
+            }
+        if (k)
+            print_message("radial, fr > 0, repeat: every pixel and channel within %.2g of GSL "
+                          "2-D\n",
+                          worst);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+    /* two discs, each with its own centred gradient: the sum of their polar
+     * integrals; overlapping with the front one translucent, refused by
+     * name */
+    for (int k = 0; k < 2; k++) {
+        gw = gh = W;
+        aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+        const double cx[2] = {k ? 6.5 : 4.0, k ? 9.5 : 12.0}, rr = 3.5;
+        for (int d = 0; d < 2; d++) {
+            disc_px(s, cx[d], 8, rr);
+            aa_gradient g = grad_px(AA_GRADIENT_RADIAL, AA_SPREAD_PAD,
+                                    (const double[6]){cx[d], 8, rr, cx[d], 8, 0}, black_white, 2);
+            assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+            if (k && !d) /* the front one translucent: both paint the overlap */
+                assert_int_equal(aa_scene_set_alpha(s, 0.5), AA_OK);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        if (!k) {
+            reference(s, W, W, &ref, &bound, &stats);
+            expect_sum("radial, two discs", &ref, 1, 2 * 2 * M_PI * rr * rr * I, 1e-12);
+            expect_bound("radial, two discs", &stats);
+            aa_image_free(&ref);
+            aa_image_free(&bound);
+        } else {
+            aa_scene *placed = aa_scene_place(s, W, W, 0, 0, 0);
+            aa_filter f;
+            aa_filter_default(&f);
+            assert_int_equal(aa_image_alloc(&ref, W, W, 3), AA_OK);
+            assert_int_equal(aa_truth_render(placed, &f, 1, &ref, NULL, NULL), AA_EINVAL);
+            print_message("radial, overlapping: %s\n", aa_last_error());
+            assert_non_null(strstr(aa_last_error(), "two radial gradients"));
+            aa_image_free(&ref);
+            aa_scene_free(placed);
+        }
+        aa_scene_free(s);
+    }
+    /* a focal case with fr > 0, reflect: single pixels */
+    rpic p = {{8, 8, 7.5}, {8.5, 8}, 4.0, {7, 7.5}, 0.7, AA_SPREAD_REFLECT, 3, 0, three};
+    aa_scene *s = rpic_scene(&p);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    reference(s, W, W, &ref, &bound, &stats);
+    expect_bound("radial, focal, fr > 0, reflect", &stats);
+    const int px[5][2] = {{6, 7}, {7, 7}, {1, 8}, {12, 3}, {9, 12}};
+    for (int k = 0; k < 5; k++)
+        for (int ch = 0; ch < 3; ch++) {
+            p.ch = ch;
+            double want1 = rpic_pixel(&p, px[k][0], px[k][1]);
+            double got = aa_pixel(&ref, px[k][0], px[k][1])[ch];
+            double b = *aa_pixel(&bound, px[k][0], px[k][1]);
+            print_message("radial focal pixel (%d, %d) ch %d: %.15f, GSL 2-D %.15f (diff %.2g, "
+                          "bound %.2g)\n",
+                          px[k][0], px[k][1], ch, got, want1, got - want1, b);
+            if (!(fabs(got - want1) <= b + 1e-12))
+                fail_msg("pixel (%d, %d) channel %d: %.17g, not %.17g", px[k][0], px[k][1], ch,
+                         got, want1);
+        }
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+    gw = W, gh = H;
 }
 
 /* The reference cache: a changed stop changes the view's key (the file's
@@ -904,7 +1329,7 @@ int main(void)
         cmocka_unit_test(test_refusals),       cmocka_unit_test(test_radial_sampled),
         cmocka_unit_test(test_svg_linear),     cmocka_unit_test(test_svg_monotone),
         cmocka_unit_test(test_svg_degenerate), cmocka_unit_test(test_svg_refusals),
-        cmocka_unit_test(test_cache),
+        cmocka_unit_test(test_cache),          cmocka_unit_test(test_radial_reference),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -198,6 +198,14 @@ int aa_scene_set_gradient(aa_scene *s, const aa_gradient *g);
  * gives it, before the decoding: its sRGB-encoded channels (the
  * reference integrates their decoding exactly). */
 void aa_scene_encoded_of_at(const aa_scene *s, const int *wind, double x, double y, double e[3]);
+/* The same composite with layer `layer` painting paint[] (sRGB-encoded
+ * channels and opacity, before the layer's alpha) and every other layer
+ * its own colour (a gradient layer its first stop's): with one gradient
+ * in the scene, the composite as a function of that layer's colour and
+ * opacity, which is affine in the opacity and in opacity times channel
+ * (the reference of radial gradients reads it so, truth.c). */
+void aa_scene_encoded_with(const aa_scene *s, const int *wind, int layer, const double paint[4],
+                           double e[3]);
 /* Layers added from now until the matching end belong to a new group of
  * opacity in [0, 1], inside the group open now (at most
  * AA_SCENE_MAX_GROUP_DEPTH deep).  Layers go front to back, so a group is

@@ -196,9 +196,28 @@
  * sharp stop, repeat) and a jump in its second derivative otherwise.  The
  * decoding's own kink at 0.04045 (its slope goes from 1/12.92 to 0.0789, a
  * 2% step) leaves the inner integral continuously differentiable and is no
- * breakpoint: QAG's bisection takes it.  Offset pieces (strokes of curves),
- * radial gradients and other filters are refused with a gradient scene:
- * their pieces would need other closed forms.
+ * breakpoint: QAG's bisection takes it.
+ *
+ * Radial gradients (in scenes without linear ones, each point painted by
+ * one at most; "radial gradient paint" below): along a row t is (b - sqrt(d)) / a, b affine and d quadratic in
+ * x, and the decoded colour has no closed-form integral.  The row is cut
+ * where t passes a stop's offset or a period's end, where a channel's
+ * composite passes 0.04045, and where d is least; each piece takes a
+ * 20-point Gauss-Legendre rule with a rigorous bound from the integrand's
+ * analyticity in a Bernstein ellipse, halved until the bound is below
+ * 2e-16 of its length.  The pixel's bound adds the largest row's bound
+ * times the window's height.  The outer integral's breakpoints add, for
+ * each such t (the threshold's as the composite at the window's centre
+ * has it, and as it would with the gradient's layer covering the
+ * centre), where its circle crosses the window's sides, its top and
+ * bottom rows (the chord opens there like a square root of the height:
+ * turning points, integrated in the square root of the distance), and
+ * where it meets each local piece (a
+ * polynomial of degree 6 for a cubic, 4 for an arc in the half-angle
+ * parameter, its sign changes isolated between its derivative's roots
+ * and bisected), and the row of P* where t is least.  Offset pieces
+ * (strokes of curves), radial gradients with linear ones or over one
+ * another, and other filters are refused with a gradient scene.
  *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
@@ -210,6 +229,7 @@
 #include "truth.h"
 #include "truth_internal.h"
 
+#include <complex.h>
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -266,6 +286,20 @@ typedef struct grad_plane {
     const aa_gradient_stop *stops;
 } grad_plane;
 
+/* A radial gradient of a scene without linear ones (truth.c, "radial
+ * gradient paint"): its layer, its stops' encoded channels and
+ * opacities (enc[4 k .. 4 k + 3]), the inverse of its map, F, D = C - F,
+ * fr, dr = r - fr, a = D.D - dr^2 < 0, P* (px, py in the scene), and a
+ * plane holding its spread and stops for grad_taus. */
+#define RAD_GL 20 /* Gauss-Legendre nodes of a row's piece */
+typedef struct grad_radial {
+    int layer, spread, nstops;
+    const aa_gradient_stop *stops;
+    double *enc;
+    double inv[6], fx, fy, Dx, Dy, fr, dr, a, px, py;
+    grad_plane plane;
+} grad_radial;
+
 /* Most stop lines one pixel's window may meet (a repeating gradient finer
  * than that is refused). */
 #define GRAD_MAX_BREAKS 4096
@@ -279,6 +313,13 @@ typedef struct worker {
     int ngp;
     double *gbuf;
     size_t cap_gbuf;
+    /* a radial gradient (rad set): its rows' Gauss-Legendre nodes and
+     * weights on [-1, 1], the current row's error bound and the pixel's
+     * largest row bound; rad_mixed: a span painted by two of them */
+    int rad, nrg, rad_mixed;
+    grad_radial *rg;
+    double gl_x[RAD_GL], gl_w[RAD_GL];
+    double rad_row_err, rad_err_max;
     const aa_filter *f;
     aa_strip *strip;
     gsl_integration_workspace *ws;
@@ -317,6 +358,9 @@ static void worker_free(worker *w)
     free(w->memo.slot);
     free(w->gp);
     free(w->gbuf);
+    for (int k = 0; k < w->nrg; k++)
+        free(w->rg[k].enc);
+    free(w->rg);
     crowd_free(&w->crowd);
 }
 
@@ -410,8 +454,13 @@ static int cmp_dbl(const void *a, const void *b)
 
 /* The integral over the span [xa, xb] (absolute x) of line y, winding
  * w->wind, of each channel of the decoded composite (box: weight 1). */
+static void rad_span(worker *w, double xa, double xb, double y, int nch, double *sum);
 static void grad_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
+    if (w->rad) {
+        rad_span(w, xa, xb, y, nch, sum);
+        return;
+    }
     double *xs = w->gbuf;
     size_t nx = 0;
     xs[nx++] = xa;
@@ -449,31 +498,37 @@ static void grad_span(worker *w, double xa, double xb, double y, int nch, double
 }
 
 /* Whether the reference integrates this gradient scene exactly (truth.c's
- * opening comment): linear gradients only, the box filter, no offset
- * pieces, and the composite affine along a row between stops. */
+ * opening comment): the box filter, no offset pieces, and either linear
+ * gradients with the composite affine along a row between stops, or
+ * radial ones only (each point painted by one of them at most, which
+ * rad_span checks span by span). */
 static int grad_check(const aa_scene *scene, const aa_filter *f)
 {
     if (!aa_filter_is_box(f))
         return aa_fail(AA_EINVAL, "the reference integrates gradient paint exactly under the "
                                   "box filter only (filter %s): use -f box",
                        f->type->info.name);
-    int n = aa_scene_layer_count(scene), ngrad = 0, varying = -1;
+    int n = aa_scene_layer_count(scene), ngrad = 0, varying = -1, radial = -1, linear = -1;
     for (int l = 0; l < n; l++) {
         aa_gradient g;
         if (!aa_scene_layer_gradient(scene, l, &g))
             continue;
         ngrad++;
         if (g.kind != AA_GRADIENT_LINEAR)
-            return aa_fail(AA_EINVAL, "layer %d: the reference of a radial gradient is not "
-                                      "implemented (its t is a square root along a row, whose "
-                                      "decoded integral has no closed form here); sample it "
-                                      "with point, supersample or jitter",
-                           l);
+            radial = l;
+        else
+            linear = l;
         for (int k = 1; k < g.nstops; k++)
             if (g.stops[k].opacity != g.stops[0].opacity)
                 varying = l;
     }
-    if (varying >= 0 && ngrad > 1)
+    if (radial >= 0 && linear >= 0)
+        return aa_fail(AA_EINVAL, "layer %d: a radial gradient with a linear one (layer %d) in "
+                                  "the scene: the reference integrates radial gradients only in "
+                                  "scenes without linear ones; sample it with point, supersample "
+                                  "or jitter",
+                       radial, linear);
+    if (varying >= 0 && ngrad > 1 && radial < 0)
         return aa_fail(AA_EINVAL, "layer %d: a gradient whose stops' opacities differ, with "
                                   "another gradient in the scene: the composite is then not "
                                   "affine along a row and the reference's closed form does not "
@@ -489,6 +544,49 @@ static int grad_check(const aa_scene *scene, const aa_filter *f)
     return AA_OK;
 }
 
+/* The radial gradient g of layer l appended to w->rg (grad_check let the
+ * scene have no linear ones). */
+static int rad_init(worker *w, int l, const aa_gradient *g)
+{
+    if (!w->rg) {
+        int n = aa_scene_layer_count(w->scene);
+        w->rg = calloc((size_t)(n > 0 ? n : 1), sizeof *w->rg);
+        if (!w->rg)
+            return aa_fail(AA_ENOMEM, "out of memory for radial gradients");
+    }
+    grad_radial *r = &w->rg[w->nrg++];
+    const double *m = g->m, *p = g->p;
+    double det = m[0] * m[3] - m[1] * m[2];
+    r->inv[0] = m[3] / det, r->inv[1] = -m[1] / det;
+    r->inv[2] = -m[2] / det, r->inv[3] = m[0] / det;
+    r->inv[4] = -(r->inv[0] * m[4] + r->inv[2] * m[5]);
+    r->inv[5] = -(r->inv[1] * m[4] + r->inv[3] * m[5]);
+    r->layer = l, r->spread = g->spread, r->nstops = g->nstops, r->stops = g->stops;
+    r->fx = p[3], r->fy = p[4], r->fr = p[5];
+    r->Dx = p[0] - p[3], r->Dy = p[1] - p[4], r->dr = p[2] - p[5];
+    r->a = r->Dx * r->Dx + r->Dy * r->Dy - r->dr * r->dr;
+    double ts = -r->fr / r->dr, qx = r->fx + ts * r->Dx, qy = r->fy + ts * r->Dy;
+    r->px = m[0] * qx + m[2] * qy + m[4], r->py = m[1] * qx + m[3] * qy + m[5];
+    r->plane.spread = g->spread, r->plane.nstops = g->nstops, r->plane.stops = g->stops;
+    r->enc = malloc((size_t)g->nstops * 4 * sizeof *r->enc);
+    gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(RAD_GL);
+    if (!r->enc || !gl) {
+        if (gl)
+            gsl_integration_glfixed_table_free(gl);
+        return aa_fail(AA_ENOMEM, "out of memory for a radial gradient");
+    }
+    for (int k = 0; k < g->nstops; k++) {
+        for (int c = 0; c < 3; c++)
+            r->enc[4 * k + c] = aa_srgb_encode(g->stops[k].colour.c[c]);
+        r->enc[4 * k + 3] = g->stops[k].opacity;
+    }
+    for (int k = 0; k < RAD_GL; k++)
+        gsl_integration_glfixed_point(-1.0, 1.0, (size_t)k, &w->gl_x[k], &w->gl_w[k], gl);
+    gsl_integration_glfixed_table_free(gl);
+    w->rad = 1;
+    return AA_OK;
+}
+
 static int grad_init(worker *w)
 {
     int n = aa_scene_layer_count(w->scene);
@@ -499,8 +597,15 @@ static int grad_init(worker *w)
         return aa_fail(AA_ENOMEM, "out of memory for gradient planes");
     for (int l = 0; l < n; l++) {
         aa_gradient g;
-        if (aa_scene_layer_gradient(w->scene, l, &g))
+        if (!aa_scene_layer_gradient(w->scene, l, &g))
+            continue;
+        if (g.kind == AA_GRADIENT_LINEAR) {
             grad_plane_of(&g, &w->gp[w->ngp++]);
+            continue;
+        }
+        int st = rad_init(w, l, &g);
+        if (st)
+            return st;
     }
     w->grad = 1;
     return AA_OK;
@@ -549,8 +654,615 @@ static int cubic_roots01(const double c[4], double ts[3])
  * line t = tau of the window's range crosses the window's sides and meets
  * a local piece. */
 static int add_abs(worker *w, double y, double lo, double hi);
+
+/* ---- radial gradient paint ----
+ *
+ * A radial gradient (in a scene of radial gradients only, each span
+ * painted by one of them at most: rad_span) along the row y: with q(x)
+ * = m^-1(x, y) - F, D = C - F, dr = r - fr, t is the larger root of
+ *     a t^2 - 2 b(x) t + c(x) = 0,   a = D.D - dr^2 < 0,
+ *     b(x) = q.D + fr dr = b0 + b1 x,  c(x) = |q|^2 - fr^2 (quadratic),
+ * t = (b - sqrt(d)) / a with d = b^2 - a c = d0 + d1 x + d2 x^2, d2 > 0
+ * (aabench.h, aa_gradient).  d has no real zero except where the row
+ * passes through the point P* = F - (fr / dr) D, where t takes its least
+ * value -fr/dr (the degenerate circle's centre; the focus when fr = 0):
+ * there d has a double zero at x0 = -d1 / (2 d2) and t a kink.  Elsewhere
+ * t is analytic on the real line, with branch points at x0 +- i sqrt(dmin
+ * / d2), dmin = d(x0).
+ *
+ * The row is cut where t passes a stop's offset or a period's end (the x
+ * where c - 2 tau b + a tau^2 = 0 with fr + tau dr >= 0, a quadratic), at
+ * x0, and where a channel's composite passes 0.04045, the sRGB decoding's
+ * change of piece.  On each piece the layer's encoded channels and opacity
+ * are affine in t and the composite e (aa_scene_encoded_with: K0 + K1 op +
+ * K2 op C, read at three paints) is a polynomial E(t) of degree 2 at most;
+ * the integrand f = dec(E(t(x))) is then analytic where d != 0 and, on the
+ * power piece, E + 0.055 != 0, i.e. away from finitely many points: the
+ * roots of d and the z where t(z) = tau0 for each root tau0 of E + 0.055
+ * (c(z) - 2 tau0 b(z) + a tau0^2 = 0, solved in complex arithmetic; the
+ * roots of the other branch are kept too, which only narrows the region).
+ *
+ * The piece [p, q] (mid m, half-length h) takes the 20-point Gauss-Legendre
+ * rule, whose error for f analytic inside the Bernstein ellipse E_rho (foci
+ * p and q, semi-axes sum rho h) and bounded there by M is at most
+ *     h (64/15) M rho^(-40) / (rho^2 - 1)
+ * (Trefethen, Approximation Theory and Approximation Practice, Thm 19.3,
+ * scaled from [-1, 1]).  rho ranges below the ellipse through the nearest
+ * excluded point, and M is bounded by the triangle inequality: on E_rho,
+ * |z - x0| <= |m - x0| + h (rho + 1/rho)/2 = Z, |d(z)| <= d2 Z^2 + |dmin|,
+ * |t(z)| <= (|b(m)| + |b1| h (rho + 1/rho)/2 + sqrt(d2 Z^2 + |dmin|)) / |a|
+ * = T, |E| <= |E0| + |E1| T + |E2| T^2, and M = ((|E| + 0.055)/1.055)^2.4
+ * or |E| / 12.92.  The least of the bounds at seven rho is taken; a piece
+ * whose bound exceeds 2e-16 of its length is halved, down to 48 levels,
+ * past which it keeps its length as the bound (f lies in [0, 1]).  The
+ * row's bounds add up, and the pixel's bound adds the largest row's times
+ * the window's height (integrate_pixel).  The bound is rigorous as
+ * mathematics and computed in double, its own rounding not counted; the
+ * rounding of the nodes' values (a few ulps each, the weights summing to
+ * 2) is within the gradient term of 64 ulps per unit of the window's width
+ * that integrate_pixel adds.  A pixel whose pieces cannot reach the
+ * target within 48 halvings (a row passing within about 1e-14 px of P*)
+ * carries the larger bound, honestly.
+ */
+#define RAD_DEPTH 48
+
+typedef struct rad_row {
+    double y, b0, b1, c0, c1, c2, d0, d1, d2, x0, dmin;
+} rad_row;
+
+/* The row's coefficients: q(x) = (ux x + u0, vx x + v0). */
+static void rad_row_at(const grad_radial *g, double y, rad_row *r)
+{
+    double ux = g->inv[0], vx = g->inv[1];
+    double u0 = g->inv[2] * y + g->inv[4] - g->fx, v0 = g->inv[3] * y + g->inv[5] - g->fy;
+    r->y = y;
+    r->b1 = ux * g->Dx + vx * g->Dy;
+    r->b0 = u0 * g->Dx + v0 * g->Dy + g->fr * g->dr;
+    r->c2 = ux * ux + vx * vx;
+    r->c1 = 2.0 * (ux * u0 + vx * v0);
+    r->c0 = u0 * u0 + v0 * v0 - g->fr * g->fr;
+    r->d2 = r->b1 * r->b1 - g->a * r->c2;
+    r->d1 = 2.0 * r->b0 * r->b1 - g->a * r->c1;
+    r->d0 = r->b0 * r->b0 - g->a * r->c0;
+    r->x0 = -r->d1 / (2.0 * r->d2);
+    r->dmin = r->d0 - r->d1 * r->d1 / (4.0 * r->d2);
+}
+
+/* t at (x, y), as the scene computes it (aa__gradient_t): no cancellation. */
+static double rad_t(const grad_radial *g, double x, double y)
+{
+    double qx = g->inv[0] * x + g->inv[2] * y + g->inv[4] - g->fx;
+    double qy = g->inv[1] * x + g->inv[3] * y + g->inv[5] - g->fy;
+    double b = qx * g->Dx + qy * g->Dy + g->fr * g->dr;
+    double c = qx * qx + qy * qy - g->fr * g->fr;
+    double disc = b * b - g->a * c;
+    double sq = sqrt(disc > 0.0 ? disc : 0.0);
+    return b > 0.0 ? c / (b + sq) : (b - sq) / g->a;
+}
+
+/* The x in (xa, xb) of row r where t = tau (none where the circle of tau
+ * has negative radius); returns how many (0 to 2) into xs. */
+static int rad_cross(const grad_radial *g, const rad_row *r, double tau, double xa, double xb,
+                     double *xs)
+{
+    if (g->fr + tau * g->dr < 0.0)
+        return 0;
+    double x[2];
+    int n = gsl_poly_solve_quadratic(r->c2, r->c1 - 2.0 * tau * r->b1,
+                                     r->c0 - 2.0 * tau * r->b0 + g->a * tau * tau, &x[0], &x[1]),
+        m = 0;
+    for (int k = 0; k < n; k++)
+        if (x[k] > xa && x[k] < xb)
+            xs[m++] = x[k];
+    return m;
+}
+
+/* The least t over [xa, xb] of row r (t is quasiconvex: its sublevel sets
+ * are discs), by golden section. */
+static double rad_row_min(const grad_radial *g, double xa, double xb, double y)
+{
+    const double k = 0.5 * (3.0 - sqrt(5.0));
+    double a = xa, b = xb, c = a + k * (b - a), d = b - k * (b - a);
+    double fc = rad_t(g, c, y), fd = rad_t(g, d, y);
+    for (int it = 0; it < 90 && b - a > 1e-15 * (1.0 + fabs(a)); it++) {
+        if (fc <= fd)
+            b = d, d = c, fd = fc, c = a + k * (b - a), fc = rad_t(g, c, y);
+        else
+            a = c, c = d, fc = fd, d = b - k * (b - a), fd = rad_t(g, d, y);
+    }
+    return fmin(fmin(rad_t(g, xa, y), rad_t(g, xb, y)), fmin(fc, fd));
+}
+
+/* The spread's linear form s = sg t + s0 on the piece whose t at its
+ * middle is tm (aa__gradient_spread), and the layer's encoded channels and
+ * opacity there as v0[c] + v1[c] t (aa__gradient_paint). */
+static void rad_paint_lin(const grad_radial *g, double tm, double v0[4], double v1[4])
+{
+    double sg = 1.0, s0 = 0.0;
+    if (g->spread == AA_SPREAD_REPEAT)
+        s0 = -floor(tm);
+    else if (g->spread == AA_SPREAD_REFLECT) {
+        double n2 = 2.0 * floor(0.5 * tm), f = tm - n2;
+        if (f <= 1.0)
+            s0 = -n2;
+        else
+            sg = -1.0, s0 = 2.0 + n2;
+    } else if (tm < 0.0)
+        sg = 0.0, s0 = 0.0;
+    else if (tm > 1.0)
+        sg = 0.0, s0 = 1.0;
+    double sm = sg * tm + s0;
+    const aa_gradient_stop *st = g->stops;
+    int n = g->nstops;
+    if (!(sm >= st[0].offset) || sm >= st[n - 1].offset) {
+        int k = sm >= st[n - 1].offset ? n - 1 : 0;
+        for (int c = 0; c < 4; c++)
+            v0[c] = g->enc[4 * k + c], v1[c] = 0.0;
+        return;
+    }
+    int k = 0;
+    while (k + 1 < n && st[k + 1].offset <= sm)
+        k++;
+    double w = st[k + 1].offset - st[k].offset;
+    for (int c = 0; c < 4; c++) {
+        double de = (g->enc[4 * k + 4 + c] - g->enc[4 * k + c]) / w;
+        v1[c] = de * sg;
+        v0[c] = g->enc[4 * k + c] + de * (s0 - st[k].offset);
+    }
+}
+
+/* The Bernstein parameter of z for [m - h, m + h]: the rho of the ellipse
+ * through z. */
+static double rad_rho(double complex z, double m, double h)
+{
+    double complex w = (z - m) / h;
+    double r = cabs(w + csqrt(w - 1.0) * csqrt(w + 1.0));
+    return r >= 1.0 ? r : 1.0 / r;
+}
+
+/* One channel on one piece: E0 + E1 t + E2 t^2, its decoding's piece. */
+typedef struct rad_chan {
+    double E[3];
+    int power;
+} rad_chan;
+
+/* The error bound of the Gauss-Legendre rule for channel ch on [m - h,
+ * m + h] of row r (the comment above). */
+static double rad_bound(const grad_radial *g, const rad_row *r, const rad_chan *ch, double m,
+                        double h)
+{
+    double complex ex[6];
+    int ne = 0;
+    double sd = sqrt(fabs(r->dmin) / r->d2);
+    if (r->dmin >= 0.0) {
+        ex[ne++] = r->x0 + _Complex_I * sd;
+        ex[ne++] = r->x0 - _Complex_I * sd;
+    } else {
+        ex[ne++] = r->x0 + sd;
+        ex[ne++] = r->x0 - sd;
+    }
+    if (ch->power) {
+        double complex taus[2];
+        int nt = 0;
+        double A = ch->E[2], B = ch->E[1], C = ch->E[0] + 0.055;
+        if (A != 0.0) {
+            double complex sq = csqrt((double complex)(B * B - 4.0 * A * C));
+            taus[nt++] = (-B + sq) / (2.0 * A);
+            taus[nt++] = (-B - sq) / (2.0 * A);
+        } else if (B != 0.0)
+            taus[nt++] = -C / B;
+        for (int k = 0; k < nt; k++) {
+            double complex tau = taus[k], A2 = r->c2, A1 = r->c1 - 2.0 * tau * r->b1,
+                           A0 = r->c0 - 2.0 * tau * r->b0 + g->a * tau * tau;
+            double complex sq = csqrt(A1 * A1 - 4.0 * A2 * A0);
+            ex[ne++] = (-A1 + sq) / (2.0 * A2);
+            ex[ne++] = (-A1 - sq) / (2.0 * A2);
+        }
+    }
+    double rmax = INFINITY;
+    for (int k = 0; k < ne; k++)
+        rmax = fmin(rmax, rad_rho(ex[k], m, h));
+    if (!(rmax > 1.0 + 1e-9))
+        return INFINITY;
+    if (rmax > 64.0)
+        rmax = 64.0;
+    double best = INFINITY, bm = fabs(r->b0 + r->b1 * m);
+    for (int k = 1; k < 8; k++) {
+        double rho = 1.0 + (rmax - 1.0) * k / 8.0, semi = 0.5 * h * (rho + 1.0 / rho);
+        double Z = fabs(m - r->x0) + semi;
+        double T = (bm + fabs(r->b1) * semi + sqrt(r->d2 * Z * Z + fabs(r->dmin))) / fabs(g->a);
+        double E = fabs(ch->E[0]) + fabs(ch->E[1]) * T + fabs(ch->E[2]) * T * T;
+        double M = ch->power ? pow((E + 0.055) / 1.055, 2.4) : E / 12.92;
+        double b = h * (64.0 / 15.0) * M * pow(rho, -2.0 * RAD_GL) / (rho * rho - 1.0);
+        best = fmin(best, b);
+    }
+    return best;
+}
+
+/* The integral of the channels over [xa, xb] of row r (one piece), to
+ * the bound, halving where needed; the bounds added into *err. */
+static void rad_piece(worker *w, const grad_radial *g, const rad_row *r, const rad_chan *ch,
+                      int nch, double xa, double xb, int depth, double *sum, double *err)
+{
+    double m = 0.5 * (xa + xb), h = 0.5 * (xb - xa), worst = 0.0;
+    for (int c = 0; c < nch; c++)
+        worst = fmax(worst, rad_bound(g, r, &ch[c], m, h));
+    if (worst > 2e-16 * (xb - xa) && depth < RAD_DEPTH) {
+        rad_piece(w, g, r, ch, nch, xa, m, depth + 1, sum, err);
+        rad_piece(w, g, r, ch, nch, m, xb, depth + 1, sum, err);
+        return;
+    }
+    double part[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < RAD_GL; k++) {
+        double t = rad_t(g, m + h * w->gl_x[k], r->y);
+        for (int c = 0; c < nch; c++) {
+            double e = ch[c].E[0] + t * (ch[c].E[1] + t * ch[c].E[2]);
+            double v = ch[c].power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92;
+            part[c] += w->gl_w[k] * v;
+        }
+    }
+    for (int c = 0; c < nch; c++)
+        sum[c] += h * part[c];
+    *err += fmin(worst, xb - xa);
+}
+
+/* The span [xa, xb] of row y (winding w->wind): the one radial gradient
+ * whose paint the composite there depends on (K1 or K2 not 0), if any (a
+ * span of none is of constant colour; of two, w->rad_mixed is set and the
+ * pixel refused), cut as the comment above says, each piece integrated by
+ * rad_piece. */
+static void rad_span(worker *w, double xa, double xb, double y, int nch, double *sum)
+{
+    const grad_radial *g = NULL;
+    /* the composite's K0, K1, K2 per channel */
+    double p0[4] = {0, 0, 0, 0}, p1[4] = {0, 0, 0, 1}, p2[4] = {1, 1, 1, 1}, e0[3], e1[3], e2[3];
+    for (int k = 0; k < w->nrg; k++) {
+        double f0[3], f1[3], f2[3];
+        aa_scene_encoded_with(w->scene, w->wind, w->rg[k].layer, p0, f0);
+        aa_scene_encoded_with(w->scene, w->wind, w->rg[k].layer, p1, f1);
+        aa_scene_encoded_with(w->scene, w->wind, w->rg[k].layer, p2, f2);
+        int dep = f0[0] != f1[0] || f0[1] != f1[1] || f0[2] != f1[2] || f1[0] != f2[0] ||
+                  f1[1] != f2[1] || f1[2] != f2[2];
+        if (dep && g) {
+            w->rad_mixed = 1;
+            break;
+        }
+        if (dep || k == 0) {
+            memcpy(e0, f0, sizeof e0), memcpy(e1, f1, sizeof e1), memcpy(e2, f2, sizeof e2);
+            if (dep)
+                g = &w->rg[k];
+        }
+    }
+    if (!g) { /* no radial gradient paints the span */
+        for (int c = 0; c < nch; c++)
+            sum[c] += (xb - xa) * aa_srgb_decode(e0[c]);
+        return;
+    }
+    rad_row r;
+    rad_row_at(g, y, &r);
+    double *xs = w->gbuf;
+    size_t nx = 0, cap = w->cap_gbuf - 8;
+    xs[nx++] = xa;
+    if (r.x0 > xa && r.x0 < xb)
+        xs[nx++] = r.x0;
+    double tlo = g->spread == AA_SPREAD_PAD ? -INFINITY : rad_row_min(g, xa, xb, y);
+    double thi = fmax(rad_t(g, xa, y), rad_t(g, xb, y));
+    size_t mt = grad_taus(&g->plane, tlo, thi, xs + nx, cap - nx);
+    if (mt > (cap - nx) / 3)
+        mt = 0; /* cannot happen: grad_breakpoints refused such windows */
+    double *taus = xs + nx + 2 * mt;
+    memmove(taus, xs + nx, mt * sizeof *xs);
+    for (size_t k = 0; k < mt; k++)
+        nx += (size_t)rad_cross(g, &r, taus[k], xa, xb, xs + nx);
+    qsort(xs + 1, nx - 1, sizeof *xs, cmp_dbl);
+    xs[nx++] = xb;
+    double err = 0.0;
+    for (size_t k = 0; k + 1 < nx; k++) {
+        double a = xs[k], b = xs[k + 1];
+        if (!(b > a))
+            continue;
+        double v0[4], v1[4];
+        rad_paint_lin(g, rad_t(g, 0.5 * (a + b), y), v0, v1);
+        rad_chan ch[3];
+        double cuts[16];
+        int nc = 0;
+        cuts[nc++] = a;
+        for (int c = 0; c < nch; c++) {
+            /* e = K0 + K1 op + K2 op C, op = v0[3] + v1[3] t, C = v0[c] + v1[c] t */
+            double K0 = e0[c], K1 = e1[c] - e0[c], K2 = e2[c] - e1[c];
+            ch[c].E[0] = K0 + K1 * v0[3] + K2 * v0[3] * v0[c];
+            ch[c].E[1] = K1 * v1[3] + K2 * (v0[3] * v1[c] + v1[3] * v0[c]);
+            ch[c].E[2] = K2 * v1[3] * v1[c];
+            double rt[2];
+            int n = gsl_poly_solve_quadratic(ch[c].E[2], ch[c].E[1], ch[c].E[0] - 0.04045, &rt[0],
+                                             &rt[1]);
+            if (ch[c].E[2] == 0.0 && ch[c].E[1] != 0.0)
+                n = 1, rt[0] = (0.04045 - ch[c].E[0]) / ch[c].E[1];
+            for (int q = 0; q < n; q++)
+                nc += rad_cross(g, &r, rt[q], a, b, cuts + nc);
+        }
+        qsort(cuts + 1, (size_t)(nc - 1), sizeof *cuts, cmp_dbl);
+        cuts[nc++] = b;
+        for (int q = 0; q + 1 < nc; q++) {
+            double ca = cuts[q], cb = cuts[q + 1];
+            if (!(cb > ca))
+                continue;
+            double tm = rad_t(g, 0.5 * (ca + cb), y);
+            for (int c = 0; c < nch; c++)
+                ch[c].power = ch[c].E[0] + tm * (ch[c].E[1] + tm * ch[c].E[2]) > 0.04045;
+            rad_piece(w, g, &r, ch, nch, ca, cb, 0, sum, &err);
+        }
+    }
+    w->rad_row_err += err;
+}
+
+/* The product of polynomials a (degree na) and b (degree nb) added, times
+ * k, into out. */
+static void poly_mul_add(const double *a, int na, const double *b, int nb, double k, double *out)
+{
+    for (int i = 0; i <= na; i++)
+        for (int j = 0; j <= nb; j++)
+            out[i + j] += k * a[i] * b[j];
+}
+
+/* The value at u of the polynomial c of degree n, in long double. */
+static long double poly_at(const double *c, int n, long double u)
+{
+    long double f = 0.0L;
+    for (int i = n; i >= 0; i--)
+        f = f * u + c[i];
+    return f;
+}
+
+/* The points in [lo, hi] where the polynomial c of degree n (at most 6)
+ * changes sign: isolated between the roots of its derivative (found the
+ * same way) and bisected; at most n into out, ascending.  A root of even
+ * multiplicity (a tangency) is not a sign change and is not found. */
+static int poly_sign_roots(const double *c, int n, double lo, double hi, double *out)
+{
+    while (n > 0 && c[n] == 0.0)
+        n--;
+    if (n == 0)
+        return 0;
+    double dc[6] = {0}, cut[8];
+    int nc = 0, m = 0;
+    for (int i = 1; i <= n; i++)
+        dc[i - 1] = i * c[i];
+    cut[nc++] = lo;
+    nc += poly_sign_roots(dc, n - 1, lo, hi, cut + 1);
+    cut[nc++] = hi;
+    for (int k = 0; k + 1 < nc; k++) {
+        double a = cut[k], b = cut[k + 1];
+        long double fa = poly_at(c, n, a), fb = poly_at(c, n, b);
+        if (fa == 0.0L) {
+            if (!m || out[m - 1] != a)
+                out[m++] = a;
+            continue;
+        }
+        if ((fa < 0.0L) == (fb < 0.0L) || fb == 0.0L)
+            continue;
+        for (int it = 0; it < 200; it++) {
+            double mid = 0.5 * (a + b);
+            if (mid <= a || mid >= b)
+                break;
+            long double fm = poly_at(c, n, mid);
+            if ((fm < 0.0L) == (fa < 0.0L))
+                a = mid, fa = fm;
+            else
+                b = mid;
+        }
+        out[m++] = 0.5 * (a + b);
+    }
+    if (n > 0 && poly_at(c, n, hi) == 0.0L && (!m || out[m - 1] != hi))
+        out[m++] = hi;
+    return m;
+}
+
+/* The values of t in (ta, tb) where a channel of the composite at the
+ * window's centre (winding numbers wind) passes the decoding's threshold
+ * 0.04045: on each stop's segment e is quadratic in the segment's
+ * parameter (rad_span); each root in every period of the range.  At most
+ * cap into out, the total returned. */
+static size_t rad_threshold_taus(const worker *w, const grad_radial *g, const int *wind,
+                                 double ta, double tb, double *out, size_t cap)
+{
+    double p0[4] = {0, 0, 0, 0}, p1[4] = {0, 0, 0, 1}, p2[4] = {1, 1, 1, 1}, e0[3], e1[3], e2[3];
+    aa_scene_encoded_with(w->scene, wind, g->layer, p0, e0);
+    aa_scene_encoded_with(w->scene, wind, g->layer, p1, e1);
+    aa_scene_encoded_with(w->scene, wind, g->layer, p2, e2);
+    size_t n = 0;
+    /* the periods: pad, the stops' own; repeat, [n, n + 1); reflect, pairs
+     * [2n, 2n + 2) from even ends */
+    double lo = g->spread == AA_SPREAD_PAD       ? 0.0
+                : g->spread == AA_SPREAD_REFLECT ? 2.0 * floor(0.5 * ta)
+                                                 : floor(ta);
+    double hi = g->spread == AA_SPREAD_PAD ? 0.0 : ceil(tb);
+    for (int k = 0; k + 1 < g->nstops; k++) {
+        double o = g->stops[k].offset, dO = g->stops[k + 1].offset - o;
+        if (!(dO > 0.0))
+            continue;
+        const double *a = g->enc + 4 * k, *b = a + 4;
+        for (int c = 0; c < 3; c++) {
+            /* e(l) = K0 + K1 op + K2 op C, op and C affine in l in [0, 1] */
+            double K0 = e0[c], K1 = e1[c] - e0[c], K2 = e2[c] - e1[c];
+            double q0 = K0 + K1 * a[3] + K2 * a[3] * a[c] - 0.04045;
+            double q1 = K1 * (b[3] - a[3]) + K2 * (a[3] * (b[c] - a[c]) + (b[3] - a[3]) * a[c]);
+            double q2 = K2 * (b[3] - a[3]) * (b[c] - a[c]), l[2];
+            int nl = gsl_poly_solve_quadratic(q2, q1, q0, &l[0], &l[1]);
+            if (q2 == 0.0 && q1 != 0.0)
+                nl = 1, l[0] = -q0 / q1;
+            for (int r = 0; r < nl; r++) {
+                if (!(l[r] > 0.0 && l[r] < 1.0))
+                    continue;
+                double sv = o + l[r] * dO;
+                int refl = g->spread == AA_SPREAD_REFLECT;
+                for (double per = lo; per <= hi; per += refl ? 2.0 : 1.0) {
+                    double v[2] = {per + sv, per + 2.0 - sv};
+                    for (int q = 0; q < 1 + refl; q++)
+                        if (v[q] > ta && v[q] < tb && n++ < cap)
+                            out[n - 1] = v[q];
+                }
+            }
+        }
+    }
+    return n;
+}
+
+static long double crossing_at(const local_piece *q, long double s);
+static void note_turn(worker *w, double s);
+
+/* Outer breakpoints of a radial gradient (truth.c's opening comment): for
+ * each tau of the window's range of t, where the circle of tau crosses the
+ * window's sides, its top and bottom rows, and where it meets each local
+ * piece; and the row of P*. */
+static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *const *local,
+                              size_t n, size_t *total)
+{
+    const double *iv = g->inv;
+    double R = w->R, xl = w->uc - R, xr = w->uc + R, yt = w->vc - R, yb = w->vc + R;
+    int st = add_abs(w, g->py, -INFINITY, INFINITY);
+    /* t's range over the window: its largest at a corner (quasiconvex), its
+     * least at P* if inside, else on a side */
+    double tmax = -INFINITY, tmin;
+    double cx[4] = {xl, xr, xl, xr}, cy[4] = {yt, yt, yb, yb};
+    for (int k = 0; k < 4; k++)
+        tmax = fmax(tmax, rad_t(g, cx[k], cy[k]));
+    if (g->px >= xl && g->px <= xr && g->py >= yt && g->py <= yb)
+        tmin = -g->fr / g->dr;
+    else {
+        /* sides: the rows' minima along the top and bottom, and the
+         * columns' by the same golden section on the transposed map */
+        tmin = fmin(rad_row_min(g, xl, xr, yt), rad_row_min(g, xl, xr, yb));
+        for (int k = 0; k < 2; k++) {
+            const double kk = 0.5 * (3.0 - sqrt(5.0)), X = k ? xr : xl;
+            double a = yt, b = yb, c = a + kk * (b - a), d = b - kk * (b - a);
+            double fc = rad_t(g, X, c), fd = rad_t(g, X, d);
+            for (int it = 0; it < 90 && b - a > 1e-15 * (1.0 + fabs(a)); it++) {
+                if (fc <= fd)
+                    b = d, d = c, fd = fc, c = a + kk * (b - a), fc = rad_t(g, X, c);
+                else
+                    a = c, c = d, fc = fd, d = b - kk * (b - a), fd = rad_t(g, X, d);
+            }
+            tmin = fmin(tmin, fmin(fc, fd));
+        }
+    }
+    tmin -= 1e-12 * (1.0 + fabs(tmin));
+    tmax += 1e-12 * (1.0 + fabs(tmax));
+    double *taus = w->gbuf;
+    size_t m = grad_taus(&g->plane, tmin, tmax, taus, w->cap_gbuf);
+    *total += m;
+    if (m > GRAD_MAX_BREAKS || *total > GRAD_MAX_BREAKS)
+        return aa_fail(AA_EINVAL, "a gradient's stops repeat more than %d times across the "
+                                  "window of pixel (%g, %g): refused",
+                       GRAD_MAX_BREAKS, w->uc - 0.5, w->vc - 0.5);
+    /* and where the composite at the window's centre passes the
+     * decoding's threshold (its winding numbers: the strip's left of the
+     * window, and the local pieces crossing the centre row left of it),
+     * and, if the centre is outside the gradient's layer, the composite
+     * there with that layer's winding number 1 */
+    aa_strip_winding_left(w->strip, w->vc, w->wind);
+    for (size_t k = 0; k < w->nlp; k++) {
+        const local_piece *lq = &w->lp[k];
+        if (!(0.0 >= lq->y0 && 0.0 < lq->y1))
+            continue;
+        if (lq->side ? lq->side < 0 : crossing_at(lq, 0.0L) < 0.0L)
+            w->wind[lq->layer] += lq->dir;
+    }
+    m += rad_threshold_taus(w, g, w->wind, tmin, tmax, taus + m, w->cap_gbuf - m);
+    if (w->wind[g->layer] == 0 && m < w->cap_gbuf) {
+        /* the centre outside the gradient's layer: also as if inside it */
+        w->wind[g->layer] = 1;
+        m += rad_threshold_taus(w, g, w->wind, tmin, tmax, taus + m, w->cap_gbuf - m);
+    }
+    if (m > w->cap_gbuf)
+        m = w->cap_gbuf;
+    double det = iv[0] * iv[3] - iv[1] * iv[2], n01 = hypot(iv[0], iv[1]);
+    for (size_t q = 0; q < m && !st; q++) {
+        double tau = taus[q], rt = g->fr + tau * g->dr;
+        if (rt < 0.0)
+            continue;
+        /* the circle of tau: |G|^2 = rt^2, G = m^-1(x, y) - F - tau D */
+        double k0 = iv[4] - g->fx - tau * g->Dx, k1 = iv[5] - g->fy - tau * g->Dy;
+        /* the window's sides x = X: G = (iv0 X + k0 + iv2 y, iv1 X + k1 + iv3 y) */
+        for (int k = 0; k < 2 && !st; k++) {
+            double X = k ? xr : xl, a0 = iv[0] * X + k0, b0 = iv[1] * X + k1, ys[2];
+            int nr = gsl_poly_solve_quadratic(iv[2] * iv[2] + iv[3] * iv[3],
+                                              2.0 * (iv[2] * a0 + iv[3] * b0),
+                                              a0 * a0 + b0 * b0 - rt * rt, &ys[0], &ys[1]);
+            for (int r = 0; r < nr && !st; r++)
+                st = add_abs(w, ys[r], -INFINITY, INFINITY);
+        }
+        /* top and bottom rows: the row's quadratic in x has a double root
+         * where iv0 Gy - iv1 Gx = +-rt |(iv0, iv1)| (Lagrange's identity),
+         * linear in y; the circle's chord opens there like a square root
+         * of the height, so those rows are turning points too (their half
+         * intervals integrated in the square root of the distance) */
+        for (int sgn = -1; sgn <= 1 && !st; sgn += 2) {
+            double ytan = (sgn * rt * n01 - (iv[0] * k1 - iv[1] * k0)) / det;
+            st = add_abs(w, ytan, -INFINITY, INFINITY);
+            note_turn(w, ytan - w->vc);
+        }
+        /* local pieces: (X, Y) / W polynomials in the piece's parameter */
+        for (size_t k = 0; k < n && !st; k++) {
+            const aa_piece *p = local[k];
+            if (p->kind == AA_PIECE_FLAT || p->kind == AA_PIECE_OFFSET)
+                continue;
+            double X[4] = {0}, Y[4] = {0}, W[4] = {0}, Q[7] = {0}, lo = 0.0, hi = 1.0, sm = 0.0;
+            int deg;
+            if (p->kind == AA_PIECE_CONIC) {
+                /* the angle s = sm + 2 atan(u) about the arc's middle, u in
+                 * [-tan((s1 - s0)/4), tan(...)] (the arcs are split at their
+                 * extremes in y, so within [-1, 1]); cos and sin of 2 atan(u)
+                 * are (1 - u^2)/W and 2u/W, W = 1 + u^2 */
+                sm = 0.5 * (p->s0 + p->s1), hi = tan(0.25 * (p->s1 - p->s0)), lo = -hi;
+                double A = p->ea * cos(sm) + p->eb * sin(sm), B = p->eb * cos(sm) - p->ea * sin(sm);
+                double Cy = -p->er * cos(sm), Sy = p->er * sin(sm);
+                X[0] = p->ex + A, X[1] = 2.0 * B, X[2] = p->ex - A;
+                Y[0] = p->ey + Cy, Y[1] = 2.0 * Sy, Y[2] = p->ey - Cy;
+                W[0] = 1.0, W[2] = 1.0;
+                deg = 2;
+            } else {
+                X[0] = p->x0, X[1] = p->bx, X[2] = p->ax, X[3] = p->dx;
+                Y[0] = p->y0, Y[1] = p->by, Y[2] = p->ay, Y[3] = p->dy;
+                W[0] = 1.0;
+                deg = 3;
+            }
+            double GX[4], GY[4];
+            for (int i = 0; i <= deg; i++) {
+                GX[i] = iv[0] * X[i] + iv[2] * Y[i] + k0 * W[i];
+                GY[i] = iv[1] * X[i] + iv[3] * Y[i] + k1 * W[i];
+            }
+            poly_mul_add(GX, deg, GX, deg, 1.0, Q);
+            poly_mul_add(GY, deg, GY, deg, 1.0, Q);
+            poly_mul_add(W, deg, W, deg, -rt * rt, Q);
+            double us[6];
+            int nu = poly_sign_roots(Q, 2 * deg, lo, hi, us);
+            for (int r = 0; r < nu && !st; r++) {
+                double u = us[r], y;
+                if (p->kind == AA_PIECE_CONIC)
+                    y = p->ey - p->er * cos(sm + 2.0 * atan(u));
+                else
+                    y = p->y0 + u * (p->by + u * (p->ay + u * p->dy));
+                st = add_abs(w, y, -INFINITY, INFINITY);
+            }
+        }
+    }
+    return st;
+}
+
+static int rad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
+{
+    size_t total = 0;
+    int st = AA_OK;
+    for (int k = 0; k < w->nrg && !st; k++)
+        st = rad_breakpoints_of(w, &w->rg[k], local, n, &total);
+    return st;
+}
+
 static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
 {
+    if (w->rad)
+        return rad_breakpoints(w, local, n);
     double R = w->R, cx[4] = {w->uc - R, w->uc + R, w->uc - R, w->uc + R},
            cy[4] = {w->vc - R, w->vc - R, w->vc + R, w->vc + R};
     int st = AA_OK;
@@ -890,6 +1602,7 @@ static inline void inner_sums(worker *w, double s, int nch, double *out)
         w->cross[at].layer = q->layer;
     }
     double sum[3] = {0.0, 0.0, 0.0}, cur = -R, fcur = 0.0;
+    w->rad_row_err = 0.0;
     for (size_t k = 0; k <= nc; k++) {
         double next = k < nc ? w->cross[k].x : R;
         if (next > cur && w->grad) {
@@ -913,6 +1626,8 @@ static inline void inner_sums(worker *w, double s, int nch, double *out)
     }
     for (int ch = 0; ch < nch; ch++)
         out[ch] = ws * sum[ch];
+    if (w->rad_row_err > w->rad_err_max)
+        w->rad_err_max = w->rad_row_err;
 }
 
 static size_t memo_home(uint64_t key, size_t cap)
@@ -1117,6 +1832,7 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
         (st = reserve_workspace(w, w->npts)))
         return st;
     double worst = 0.0;
+    w->rad_err_max = 0.0;
     w->shared = !grey;
     if (w->shared)
         memo_next(&w->memo);
@@ -1126,6 +1842,15 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
         integrate_intervals(w, &result, &abserr);
         value[ch] = result;
         worst = fmax(worst, abserr);
+    }
+    if (w->rad_mixed) {
+        w->rad_mixed = 0;
+        return aa_fail(AA_EINVAL, "pixel (%g, %g): two radial gradients paint the same point "
+                                  "(overlapping, or one over another): the reference integrates "
+                                  "one radial gradient at a point (the composite is then a "
+                                  "polynomial in its t); sample it with point, supersample or "
+                                  "jitter",
+                       w->uc - 0.5, w->vc - 0.5);
     }
     if (grey)
         value[1] = value[2] = value[0];
@@ -1150,6 +1875,9 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
      * log1p (an ulp or two each), over a window of width 2R */
     if (w->grad)
         *bound += 64.0 * DBL_EPSILON * 2.0 * w->R;
+    /* radial gradient: the rows' quadrature bounds (rad_piece), the
+     * largest over the window's height */
+    *bound += w->rad_err_max * 2.0 * w->R;
     return AA_OK;
 }
 
