@@ -2420,20 +2420,27 @@ static int stroke_style_of(reader *r, const aa_path *p, const style *sty, aa_str
     return AA_OK;
 }
 
+/* The stroke style of sty for p into *ss and the stroke's outline
+ * (aa_stroke_outline, in user units) into *out (made by aa_path_init; the
+ * caller frees it either way). */
+static int stroke_outline_of(reader *r, const aa_path *p, const style *sty, aa_stroke_style *ss,
+                             aa_path *out)
+{
+    int st = stroke_style_of(r, p, sty, ss);
+    if (!st && (st = aa_stroke_outline(p, ss, out))) /* the message begins "stroke: " */
+        st = at_element(r, st);
+    return st;
+}
+
 /* The element's stroke: its outline (aa_stroke_outline, in user units)
  * through m to the sink as a shape of the stroke's colour, nonzero. */
 static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty,
                        aa_rgb colour, double alpha, const aa_gradient *grad)
 {
     aa_stroke_style ss;
-    int st = stroke_style_of(r, p, sty, &ss);
-    if (st)
-        return st;
     aa_path out;
     aa_path_init(&out);
-    st = aa_stroke_outline(p, &ss, &out);
-    if (st) /* the message begins "stroke: " */
-        st = at_element(r, st);
+    int st = stroke_outline_of(r, p, sty, &ss, &out);
     if (!st)
         st = count_segments(r, out.n);
     if (!st)
@@ -2626,13 +2633,9 @@ static int stroke_box(reader *r, const aa_path *p, const style *sty, double b[4]
     if (sty->stroke_none || !(sty->stroke_width > 0))
         return AA_OK;
     aa_stroke_style ss;
-    int st = stroke_style_of(r, p, sty, &ss);
-    if (st)
-        return st;
     aa_path out;
     aa_path_init(&out);
-    if ((st = aa_stroke_outline(p, &ss, &out)))
-        st = at_element(r, st);
+    int st = stroke_outline_of(r, p, sty, &ss, &out);
     for (size_t k = 0; k < out.n && !st; k++)
         if (out.seg[k].op == AA_PATH_OFFSET)
             st = fail_at(r, "transform-box: stroke-box of a stroke with offset curves (a "
