@@ -52,6 +52,25 @@ static const char *const filters[] = {"box",         "tent:r=1", "tent:r=0.65", 
 #endif
 #define NFILTERS 8
 
+/* Fails where analytic's image a is more than 1e-12 from the reference r;
+ * prints the largest difference. */
+static void within_reference(const char *what, const char *f, const aa_image *a,
+                             const aa_image *r)
+{
+    double worst = 0.0;
+    size_t n = (size_t)a->w * a->h * 3;
+    for (size_t k = 0; k < n; k++) {
+        double d = fabs(a->v[k] - r->v[k]);
+        if (!(d <= 1e-12))
+            fail_msg("%s %dx%d under %s: pixel (%zu, %zu) channel %zu: analytic %.17g, "
+                     "reference %.17g",
+                     what, a->w, a->h, f, k / 3 % (size_t)a->w, k / 3 / (size_t)a->w, k % 3,
+                     a->v[k], r->v[k]);
+        worst = fmax(worst, d);
+    }
+    print_message("%-24s %-22s largest difference %.1e\n", what, f, worst);
+}
+
 /* The largest difference between analytic and the reference on a scene
  * (pattern units) at w x h under every filter (all = 1) or under one, in
  * turn from call to call (quick tier); fails over 1e-12.  sized: the scene
@@ -73,17 +92,7 @@ static void against_reference(const char *what, const aa_scene *s, int w, int h,
         support_render("analytic", s, *f, w, h, 2, &a, NULL);
         support_reference(s, &(support_view){.w = w, .h = h, .filter = *f, .threads = 1}, &r,
                           NULL, NULL);
-        double worst = 0.0;
-        size_t n = (size_t)w * h * 3;
-        for (size_t k = 0; k < n; k++) {
-            double d = fabs(a.v[k] - r.v[k]);
-            if (!(d <= 1e-12))
-                fail_msg("%s %dx%d under %s: pixel %zu channel %zu: analytic %.17g, reference "
-                         "%.17g",
-                         what, w, h, *f, k / 3 % (size_t)w, k % 3, a.v[k], r.v[k]);
-            worst = fmax(worst, d);
-        }
-        print_message("%-24s %-22s largest difference %.1e\n", what, *f, worst);
+        within_reference(what, *f, &a, &r);
         aa_image_free(&a);
         aa_image_free(&r);
     }
@@ -232,21 +241,12 @@ static void against_filters(const char *what, const aa_scene *s, int w, int h,
         support_render("analytic", s, *f, w, h, 1, &a1, NULL);
         support_reference(s, &(support_view){.w = w, .h = h, .filter = *f, .threads = 1}, &r,
                           NULL, NULL);
-        double worst = 0.0;
+        within_reference(what, *f, &a, &r);
         size_t n = (size_t)w * h * 3;
-        for (size_t k = 0; k < n; k++) {
-            double d = fabs(a.v[k] - r.v[k]);
-            if (!(d <= 1e-12))
-                fail_msg("%s %dx%d under %s: pixel (%zu, %zu) channel %zu: analytic %.17g, "
-                         "reference %.17g",
-                         what, w, h, *f, k / 3 % (size_t)w, k / 3 / (size_t)w, k % 3, a.v[k],
-                         r.v[k]);
+        for (size_t k = 0; k < n; k++)
             if (memcmp(&a.v[k], &a1.v[k], sizeof a.v[k]))
                 fail_msg("%s under %s: pixel %zu channel %zu differs between 1 and 2 threads",
                          what, *f, k / 3, k % 3);
-            worst = fmax(worst, d);
-        }
-        print_message("%-24s %-22s largest difference %.1e\n", what, *f, worst);
         aa_image_free(&a);
         aa_image_free(&a1);
         aa_image_free(&r);
