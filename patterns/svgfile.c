@@ -94,7 +94,7 @@
  * paths forming a cycle, masks, filters, clip-path on a nested <svg> or a
  * <symbol> (where it applies is not settled: Chromium clips in the
  * viewBox's coordinates, librsvg in the parent's, resvg not at all),
- * objectBoundingBox units for a clip-path on a <use>, transform-box
+ * transform-box
  * stroke-box of a stroke with offset curves (its extent not computed
  * exactly) or inside an object bounding box (its stroke not known there),
  * content beyond a viewport that clips when the sink takes no clips,
@@ -3417,14 +3417,18 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
         if (st)
             return st;
     }
-    if (obb && named(ref, "use"))
-        return fail_at(r, "clipPathUnits=\"objectBoundingBox\" for the <use> of line %ld is "
-                          "not supported (its box in the use's own user space, x and y "
-                          "included, is not computed)",
-                       xmlGetLineNo(ref));
     if (obb) {
-        double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
-        if ((st = geometry_box(r, ref, &identity, b, 0)))
+        /* the box in the clip's user space: for a <use>, that space has
+         * translate(x, y) in it (use_element), so the box is its target's
+         * as the use draws it, less that translation (Chromium and resvg
+         * alike: a use at x = 20 of a rect at 10 clipped to the box's left
+         * half keeps 30 to 50) */
+        double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY}, x = 0, y = 0;
+        if (named(ref, "use") &&
+            ((st = attr_length(r, ref, "x", 0, &x)) || (st = attr_length(r, ref, "y", 0, &y))))
+            return st;
+        const mat back = {1, 0, 0, 1, -x, -y};
+        if ((st = geometry_box(r, ref, &back, b, 0)))
             return st;
         r->node = cp;
         if (!(b[2] > b[0] && b[3] > b[1]))

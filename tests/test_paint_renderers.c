@@ -6,7 +6,7 @@
  * style sheets and the cascade, the CSS transform property and path data
  * with an error, invalid declarations and attributes, font-size larger,
  * a symbol's reference point, the object bounding box of a group holding
- * a use and transform-box stroke-box, as browsers draw them:
+ * a use and of a use, and transform-box stroke-box, as browsers draw them:
  * the exact box reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -346,6 +346,17 @@ static const cell cells[] = {
      "clip-path=\"url(#k3t)\"/>",
      {{8, 20, {1, 1, 1}}, {24, 20, {0, 0, 0}}},
      2, "rsvg"},
+    /* objectBoundingBox for a <use>: its box in the clip's user space,
+     * which has the use's translate(x, y) in it: the target rect [0, 16] x
+     * [0, 8] used at (12, 16); the box's left half [0, 8] lands on [12,
+     * 20]: white at (16, 20), black at (24, 20) (the box taken in the
+     * parent's space, [12, 28], would clip to [24, 32]) */
+    {"objectBoundingBox of a use",
+     "<clipPath id=\"k3u\" clipPathUnits=\"objectBoundingBox\"><rect width=\"0.5\" "
+     "height=\"1\"/></clipPath><defs><rect id=\"k3r\" width=\"16\" height=\"8\" "
+     "fill=\"white\"/></defs><use href=\"#k3r\" x=\"12\" y=\"16\" clip-path=\"url(#k3u)\"/>",
+     {{16, 20, {1, 1, 1}}, {24, 20, {0, 0, 0}}},
+     2, ""},
     /* objectBoundingBox of a cubic: its box is the curve's, not its control
      * points' (SVG 2, "Bounding boxes"): M 4 30 C 4 6, 36 6, 36 30 reaches
      * up to y(1/2) = (30 + 18 + 18 + 30)/8 = 12 (its controls to 6), so

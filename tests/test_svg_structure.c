@@ -410,12 +410,18 @@ static void test_viewport_clips(void **state)
                  "[within -1 " BLACK " M 15 20 L 30 20 L 30 40 L 15 40 Z ] [within 0 " BLACK
                  " M 20 20 L 40 20 L 40 40 L 20 40 Z ] " BLACK
                  " clip 1 M 0 20 L 60 20 L 60 40 L 0 40 Z");
-    /* objectBoundingBox units for a use: its box is not computed */
-    refused_clips(OPEN "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect "
-                       "width=\"1\" height=\"1\"/></clipPath><defs><rect id=\"r\" "
-                       "width=\"10\" height=\"10\"/></defs><use href=\"#r\" "
-                       "clip-path=\"url(#o)\"/></svg>",
-                  "<clipPath>", "for the <use> of line 1 is not supported");
+    /* objectBoundingBox units for a use: the box in the clip's user space,
+     * which has translate(x, y) in it, so the target's own box [0, 10]^2;
+     * its left half [0, 5] x [0, 10] lands, moved by x = 20, on [20, 25] x
+     * [0, 10] (were the box taken in the use's parent space, [20, 30]^2,
+     * the clip would be [40, 45] x [0, 10] after the move; Chromium and
+     * resvg draw the former) */
+    expect_clips(OPEN "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect "
+                      "width=\"0.5\" height=\"1\"/></clipPath><defs><rect id=\"r\" "
+                      "width=\"10\" height=\"10\"/></defs><use href=\"#r\" x=\"20\" "
+                      "clip-path=\"url(#o)\"/></svg>",
+                 "[within -1 " BLACK " M 20 0 L 25 0 L 25 10 L 20 10 Z ] " BLACK
+                 " clip 0 M 20 0 L 30 0 L 30 10 L 20 10 Z");
     /* clip-path on the viewport element itself is refused (its user
      * space is not settled); none is no clip */
     refused_clips(OPEN CLIP4 "<svg width=\"1\" height=\"1\" clip-path=\"url(#c)\"/></svg>",
@@ -1054,6 +1060,18 @@ static void test_pictures(void **state)
               "height=\"20\"/><use href=\"#s\" x=\"32\" y=\"32\" width=\"20\" "
               "height=\"20\"/></g>"),
          "40", 40},
+        /* objectBoundingBox for a use under a rotation: its box in the
+         * clip's user space (translate(x, y) in it) is its target's, the
+         * disk of radius 10 scaled by 1.5, [-15, 15]^2; the left half x < 0
+         * keeps half the disk, 112.5 pi (nothing, the box taken in the
+         * use's parent space: [17, 47] there, its half [17, 32] moved by
+         * (32, 32) misses the disk) */
+        {"box of a use",
+         VSVG("<defs><circle id=\"d\" r=\"10\" transform=\"scale(1.5)\"/></defs>"
+              "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect width=\"0.5\" "
+              "height=\"1\"/></clipPath><use href=\"#d\" x=\"32\" y=\"32\" "
+              "transform=\"rotate(30 32 32)\" clip-path=\"url(#o)\"/>"),
+         "112.5 pi", 112.5 * M_PI},
         /* transform-box stroke-box: the white rect [10, 30]^2 stroked
          * white 4 wide is the square [8, 32]^2, its stroke box;
          * translate(-50%) moves it half that box's width, 12, to [-4, 20] x
