@@ -24,7 +24,8 @@
  *     width and height for <svg> and <symbol> targets; the target drawn
  *     as the use's child, inheriting from it; a missing target or a
  *     reference cycle draws nothing, as browsers do), <symbol> (drawn only
- *     through <use>; refX and refY its reference point, symbol_shift) and
+ *     through <use>; x, y, width and height laid out as a nested svg's;
+ *     refX and refY its reference point, symbol_shift) and
  *     nested <svg>, each a viewport with its viewBox and
  *     preserveAspectRatio; a viewport of overflow hidden (the initial
  *     value) clips its content: a clip of the scene whose one member is
@@ -590,7 +591,8 @@ static int attr_known(const xmlNode *node, const char *name)
                {"polyline", {"points"}},
                {"line", {"x1", "y1", "x2", "y2"}},
                {"use", {"x", "y", "width", "height", "href"}},
-               {"symbol", {"viewBox", "preserveAspectRatio", "width", "height", "refX", "refY"}}};
+               {"symbol",
+                {"viewBox", "preserveAspectRatio", "x", "y", "width", "height", "refX", "refY"}}};
     static const char *const any[] = {"id", "class", "style", "transform"};
     for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
         if (!strcmp(name, any[k]))
@@ -3252,7 +3254,7 @@ static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double bo
     } else if (!st && (named(node, "g") || named(node, "svg") ||
                        (via && named(node, "symbol")))) {
         /* a nested <svg>, or a symbol or svg a use draws: its content
-         * through translate(x, y) (a nested svg's own; a symbol's
+         * through translate(x, y) (its own, and a symbol's
          * reference point's shift) and its viewBox map, of the use's width
          * and height where it gives them, unclipped (its overflow does not
          * change the box: Chromium, resvg and librsvg alike); one of no
@@ -3263,7 +3265,7 @@ static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double bo
         if ((named(node, "svg") && node != r->root) || named(node, "symbol")) {
             double x = 0, y = 0, w = 0, h = 0, sh[2] = {0, 0};
             mat vbm;
-            if (named(node, "svg") && !(st = attr_length(r, node, "x", 0, &x)))
+            if (!(st = attr_length(r, node, "x", 0, &x)))
                 st = attr_length(r, node, "y", 0, &y);
             if (!st && !(st = viewport_side(r, node, via, "width", &w)) &&
                 !(st = viewport_side(r, node, via, "height", &h)) &&
@@ -4381,7 +4383,10 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
 {
     double x = 0, y = 0, w, h;
     int st;
-    if (named(node, "svg") &&
+    /* a nested svg's x and y, and a symbol's (SVG 2 gives <symbol> x, y,
+     * width and height, laid out as a nested svg's: Chromium and Firefox
+     * draw them so, resvg and librsvg ignore x and y) */
+    if ((named(node, "svg") || named(node, "symbol")) &&
         ((st = attr_length(r, node, "x", 0, &x)) || (st = attr_length(r, node, "y", 0, &y))))
         return st;
     if ((st = viewport_side(r, node, via, "width", &w)) ||

@@ -6,7 +6,8 @@
  * style sheets and the cascade, the CSS transform property and path data
  * with an error, invalid declarations and attributes, font-size larger,
  * a symbol's reference point, the object bounding box of a group holding
- * a use and of a use, and transform-box stroke-box, as browsers draw them:
+ * a use and of a use, a symbol's x and y, and transform-box stroke-box, as
+ * browsers draw them:
  * the exact box reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -665,6 +666,17 @@ static const cell cells[] = {
      "y=\"20\" width=\"16\" height=\"16\"/>",
      {{14, 14, {0, 1, 1}}, {20, 20, {0, 1, 1}}, {31, 31, {0, 0, 0}}},
      3, "chromium resvg rsvg"},
+    /* a symbol's own x and y (SVG 2 gives <symbol> x, y, width, height,
+     * laid out as a nested svg's): the viewport 16 x 16 at the symbol's
+     * (10, 5) from the use's (4, 4), [14, 30] x [9, 25], clips the rect
+     * 20 x 20: white at (22, 17), black at (8, 17), (22, 7) and (32, 20)
+     * (resvg and librsvg ignore x and y and draw the rect from (4, 4),
+     * white at the second and third: wrong by SVG 2) */
+    {"symbol x and y",
+     "<symbol id=\"sxy\" x=\"10\" y=\"5\" width=\"16\" height=\"16\"><rect width=\"20\" "
+     "height=\"20\" fill=\"white\"/></symbol><use href=\"#sxy\" x=\"4\" y=\"4\"/>",
+     {{22, 17, {1, 1, 1}}, {8, 17, {0, 0, 0}}, {22, 7, {0, 0, 0}}, {32, 20, {0, 0, 0}}},
+     4, "resvg rsvg"},
     /* objectBoundingBox of a group holding a use: the box [8, 32]^2 (the
      * used rect), its left half [8, 20] kept */
     {"box with a use",

@@ -325,8 +325,13 @@ static void test_viewports(void **state)
     expect_partial(OPEN "<symbol id=\"s\" refX=\"middle\"><rect width=\"2\" height=\"1\"/>"
                         "</symbol><use href=\"#s\" x=\"3\"/></svg>",
                    BLACK " M 3 0 L 5 0 L 5 1 L 3 1 Z", "refX=\"middle\"");
-    /* x and y of a symbol are still not read */
-    refused(OPEN "<symbol id=\"s\" x=\"1\"/><use href=\"#s\"/></svg>", "<symbol>", "x");
+    /* a symbol's x and y (SVG 2), where its reference point lands: refX
+     * and refY (2, 2) at the symbol's (1, 2) from the use's (3, 0), so
+     * the rect [0, 2] x [0, 1] moves by (1 - 2 + 3, 2 - 2) */
+    expect(OPEN "<symbol id=\"s\" x=\"1\" y=\"2\" width=\"4\" height=\"4\" viewBox=\"0 0 4 4\" "
+                "refX=\"2\" refY=\"2\" overflow=\"visible\"><rect width=\"2\" height=\"1\"/>"
+                "</symbol><use href=\"#s\" x=\"3\"/></svg>",
+           BLACK " M 2 0 L 4 0 L 4 1 L 2 1 Z");
 }
 
 /* Viewports that clip, through a sink that takes clips (SVG 2: a nested
@@ -1059,6 +1064,16 @@ static void test_pictures(void **state)
               "</clipPath><g clip-path=\"url(#o)\"><rect y=\"22\" width=\"2\" "
               "height=\"20\"/><use href=\"#s\" x=\"32\" y=\"32\" width=\"20\" "
               "height=\"20\"/></g>"),
+         "40", 40},
+        /* a symbol's own x and y, laid out as a nested svg's (SVG 2): its
+         * viewport 20 x 10 at x = -25% of the view's 64 (-16) and y = 5
+         * clips the rect 30 x 30: the use at (0, 0) shows [0, 4] x [5, 15]
+         * of it, 40; a second use 12 wide at (0, 30) puts its viewport on
+         * [-16, -4], out of view (x ignored: 200 + 120) */
+        {"symbol x and y",
+         VSVG("<symbol id=\"s\" x=\"-25%\" y=\"5\" width=\"20\" height=\"10\"><rect "
+              "width=\"30\" height=\"30\"/></symbol><use href=\"#s\"/><use href=\"#s\" "
+              "y=\"30\" width=\"12\"/>"),
          "40", 40},
         /* objectBoundingBox for a use under a rotation: its box in the
          * clip's user space (translate(x, y) in it) is its target's, the
