@@ -539,12 +539,11 @@ static long double arc_angle(const aa_piece *p, double y)
 }
 
 /* The angles in (sa, sb) where conic piece p meets the line x = X: x =
- * ex + R cos(s - a), R = |(ea, eb)|, a = atan2(eb, ea).  Returns how many
- * (at most 2), written to out. */
-static int arc_meet_x(const aa_piece *p, double X, long double sa, long double sb,
-                      long double *out)
+ * ex + R cos(s - a), R = |(ea, eb)|, a = atan2(eb, ea) (given, long
+ * double).  Returns how many (at most 2), written to out. */
+static int arc_meet_x(const aa_piece *p, long double R, long double a, double X, long double sa,
+                      long double sb, long double *out)
 {
-    long double R = hypotl(p->ea, p->eb), a = atan2l(p->eb, p->ea);
     long double c = ((long double)X - p->ex) / R;
     if (!(R > 0.0L) || !(c >= -1.0L && c <= 1.0L))
         return 0;
@@ -620,6 +619,7 @@ static double right_of_arc(const an_state *S, const aa_piece *p, double ya, doub
 {
     const an_pp *pp = &S->pp;
     long double ss[2 + 3 * (AN_MAX_CELLS + 1)];
+    long double R = hypotl(p->ea, p->eb), ang = atan2l(p->eb, p->ea);
     int n = 0;
     ss[n++] = arc_angle(p, ya);
     ss[n++] = arc_angle(p, yb);
@@ -627,7 +627,7 @@ static double right_of_arc(const an_state *S, const aa_piece *p, double ya, doub
         double yk = cy + pp->k[q];
         if (yk > ya && yk < yb)
             ss[n++] = arc_angle(p, yk);
-        n += arc_meet_x(p, cx + pp->k[q], ss[0], ss[1], ss + n);
+        n += arc_meet_x(p, R, ang, cx + pp->k[q], ss[0], ss[1], ss + n);
     }
     qsort(ss, (size_t)n, sizeof *ss, cmp_ld);
     double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym, sum = 0.0;
@@ -1281,11 +1281,12 @@ static void fast_conic(const an_block *B, const aa_piece *p, const double *val, 
     /* widened: the extent is the double one; a line that misses gives no cut */
     xa -= 1e-9 * (1.0 + fabs(xa)), xb += 1e-9 * (1.0 + fabs(xb));
     double ca = fmax(xa, XA), cb = fmin(xb, XB);
+    long double R = hypotl(p->ea, p->eb), ang = atan2l(p->eb, p->ea);
     for (double base = floor(ca); base <= cb; base += 1.0)
         for (int q = 0; q < S->nph; q++) {
             double X = base + S->ph[q];
             if (X >= XA && X <= XB && X >= xa && X <= xb)
-                n += (size_t)arc_meet_x(p, X, sa, sb, ts + n);
+                n += (size_t)arc_meet_x(p, R, ang, X, sa, sb, ts + n);
         }
     qsort(ts, n, sizeof *ts, cmp_ld);
     an_arc_fn *part = fast_arcs[pp->deg];
