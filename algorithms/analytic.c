@@ -34,7 +34,8 @@
  *  - The filters: box, tent (linear), the quadratic and cubic B-splines and
  *    Mitchell and Netravali's cubics (Catmull-Rom among them), all
  *    separable, as the paper lists; the curves: lines, quadratic and cubic
- *    Bezier arcs.
+ *    Bezier arcs, and elliptical arcs (the paper's rational quadratics:
+ *    see "Elliptical arcs" below for the rule used on them).
  *
  * The closed forms.  With w of degree n on a cell (box 0, tent 1,
  * bspline:order=2 2, bspline:order=3 and mitchell 3), W of degree n + 1,
@@ -51,6 +52,7 @@
  *     line              1     2       3          4
  *     quadratic         2     4       6          8
  *     cubic             3     6       9         12
+ *     elliptical arc    6    10      14         18   (2 (2 n + 3): "Elliptical arcs")
  *
  * (The paper gives closed-form expressions, the polynomial integrated term
  * by term; the Gauss rule of the right degree is the same integral,
@@ -106,22 +108,26 @@
  *
  * Known answers (tests/test_analytic.c): the exact reference
  * (aa_truth_render) within 1e-12 per pixel on crow, star, slivers,
- * catmull, feibush, SVG scenes of quadratic and cubic arcs and overlapping
- * even-odd layers, under every filter taken; rows of both paths in one
+ * catmull, feibush, SVG scenes of quadratic, cubic and elliptical arcs
+ * (circles, a turned ellipse, a rounded rectangle, paths of SVG `A`) and
+ * overlapping even-odd layers, under every filter taken; circles, turned
+ * ellipses, a pie slice and arcs 0.3 px in radius in one layer and in two
+ * overlapping; circles of radius 1e4 and 1e6 px; rows of both paths in one
  * image (overlapping layers above disjoint shapes wound +1 and -1), a
  * layer wound both ways, supports 12 px wide (tent:r=6) and with cells
  * wider than a pixel (tent:r=3.7), a piece far left of the image, the same
  * image at 1 and 2 threads; a white region's image sums
  * to its area (Archimedes' parabolic segment, 2/3 of its control triangle;
- * the area under y = x^3, 1/4) under the filters whose integer translates
+ * the area under y = x^3, 1/4; a disk and a turned ellipse, pi a b) under
+ * the filters whose integer translates
  * sum to 1 (box, tent:r=1, the B-splines, Mitchell-Netravali, Catmull-Rom).
  *
  * Limits, refused by name: filters that are not piecewise polynomial
  * (gauss, lanczos) and the radial ones (cone, gauss:cut: the paper's radial
- * polynomial filters are not done); elliptical arcs (the paper's rational
- * quadratic closed form is not done) and offset curves (stroked Bezier arcs,
- * not polynomials); field scenes (no edges).  The paper also fills with
- * linear colour gradients, which the scene model does not hold.
+ * polynomial filters are not done, and the reference holds none: the cone
+ * is 1 - r, not a polynomial in x and y); offset curves (stroked Bezier
+ * arcs, not polynomials); field scenes (no edges).  The paper also fills
+ * with linear colour gradients, which the scene model does not hold.
  *
  * Cost.  Where the per-edge scatter holds (every row of crow and of scenes
  * of disjoint shapes): per part of a piece between two knots' lines, its
@@ -131,7 +137,12 @@
  * cells) the support's width are constants of the compiled loops.  On
  * crow 1024x1024, one thread, the thread CPU time per render (algorithms/
  * README.md, "Exact filtering beyond the box"): under tent:r=1 1.9x
- * area's box time, under bspline:order=3 4.1x (medians of three runs).  Elsewhere, per pixel
+ * area's box time, under bspline:order=3 4.1x (medians of three runs).  On
+ * elliptical arcs each part costs more, under every filter alike: its
+ * cuts' angles and its middle's sine and cosine in long double, and 4 n +
+ * 6 points; on 36 circles at 1024x1024 (algorithms/README.md) 8.9x area's
+ * box time under the box, 11.0x under bspline:order=3, where the same
+ * circles as 64-gons took 3.4x and 3.8x.  Elsewhere, per pixel
  * whose support meets an edge, the visible parts (sorting each band's
  * pieces along x and one meeting test per neighbouring pair) and, per part
  * and cell, the rule of the table above; other pixels are filled in runs.
@@ -158,6 +169,10 @@
 
 #define AN_MAX_CELLS 6
 #define AN_MAX_GAUSS 12
+/* points of a part's rule at most: Gauss-Legendre's 12, an arc's 18 */
+#define AN_MAX_PTS 18
+/* terms of the series of an arc's weights in z = alpha^2 <= 1/4 */
+#define AN_ARC_K 30
 
 static const aa_param analytic_params[] = {{0}};
 
@@ -173,6 +188,10 @@ typedef struct an_pp {
 typedef struct an_state {
     aa__sampler sampler;
     an_pp pp;
+    /* elliptical arcs (see "Elliptical arcs"): the nodes u[g] of the arc's
+     * rule, g < arc_m, and the coefficients of their weights in z */
+    int arc_m;
+    double arc_u[AN_MAX_PTS / 2], arc_wz[AN_MAX_PTS / 2][AN_ARC_K + 1];
     /* Gauss-Legendre on [-1, 1]: gx[m][q], gw[m][q] for m points */
     double gx[AN_MAX_GAUSS + 1][AN_MAX_GAUSS], gw[AN_MAX_GAUSS + 1][AN_MAX_GAUSS];
     /* The knots' lines: x = n + ph[q] for every integer n (ph in [0, 1),
@@ -376,6 +395,215 @@ static void gauss_make(an_state *S)
         }
 }
 
+/* ---- elliptical arcs ----
+ *
+ * A conic piece is x = ex + ea cos s + eb sin s, y = ey - er cos s
+ * (aabench.h, aa_piece).  Cut at the knots' lines like any piece, a part
+ * [sa, sb] of it lies in one cell of every support, and about its middle
+ * angle sm, with s = sm + phi, phi in [-om, om], om = (sb - sa)/2,
+ *
+ *     P(phi) = E + A cos phi + B sin phi = M - A k + B sg,
+ *     k = 1 - cos phi = 2 sin^2(phi/2),   sg = sin phi,
+ *     A = (ea cos sm + eb sin sm, -er cos sm),
+ *     B = (eb cos sm - ea sin sm, er sin sm),   M = E + A = P(0),
+ *     y'(phi) = By (1 - k) - Ay sg.
+ *
+ * On the part w(y - cy) (1 - W(x - cx)) y'(phi), the integrand of (1),
+ * is a polynomial of total degree N = 2 n + 2 in (sg, k) (w of degree n,
+ * W of n + 1, y' of 1: a trigonometric polynomial of degree N), and since
+ * sg^2 = 2 k - k^2 it is p(k) + sg q(k) with p of degree N.  The term sg
+ * q(k) is odd in phi and integrates to 0 over [-om, om].  Substituting
+ * phi = 2 asin(alpha u), alpha = sin(om/2), u in [-1, 1] (the map of Da
+ * Fies and Vianello 2012, "Trigonometric Gaussian quadrature on
+ * subintervals of the period", whose rule is Gaussian in u; this one is
+ * interpolatory in u^2, below), k = 2 alpha^2 u^2, sg = 2 alpha u
+ * sqrt(1 - alpha^2 u^2) (odd in u) and dphi = 2 alpha du / sqrt(1 - z u^2),
+ * z = alpha^2:
+ *
+ *     integral over the part = 2 alpha integral_-1^1 p(2 z u^2) r(u) du,
+ *     r(u) = (1 - z u^2)^(-1/2),
+ *
+ * p(2 z v) a polynomial of degree N in v = u^2.  The rule: the m = N + 1
+ * positive nodes u_g of the 2m-point Gauss-Legendre rule, v_g = u_g^2, and
+ * the interpolatory weights in v,
+ *
+ *     Wt_g(z) = integral_-1^1 l_g(u^2) r(u) du
+ *             = sum_k beta_k z^k G_gk,   G_gk = integral_-1^1 l_g(u^2) u^(2k) du,
+ *
+ * l_g the Lagrange polynomial of the nodes v, beta_k = C(2k, k)/4^k (the
+ * binomial series of r), integrate every polynomial of degree N in v
+ * times r exactly; p(v_g) is the mean of the integrand at +-u_g, which
+ * drops the odd part exactly.  So each part takes 2m = 4 n + 6 points (box
+ * 6, tent 10, bspline:order=2 14, the cubics 18), each of weight alpha
+ * Wt_g(z) times y'.  G_gk is found at init by the 40-point Gauss-Legendre
+ * rule in long double (exact: degree 2 (m - 1) + 2 k <= 76); the series is
+ * cut after K = 30 terms with parts of om <= pi/3 (longer ones are split),
+ * so z <= 1/4 and the tail is below 4^-31 |l_g| (2e-19 of the weights).
+ * (The paper integrates rational quadratics in closed form; this rule is
+ * the same integral, exact, and keeps every term local: with the arc of
+ * length L = 2 R om in a cell, A k ~ L^2 / R and B sg ~ L, so no sum holds
+ * a term of the size of the radius, and no cancellation grows as the part
+ * shrinks: the weights tend to Gauss-Legendre's as z goes to 0.  A
+ * Fourier series of the integrand over the whole period, the other exact
+ * way, would hold terms of R^N, hopeless at R = 1e6.)
+ *
+ * Rounding.  The middle M is a long double sum of terms of the size of
+ * the radius R (its error about R 1e-19); the points are M plus terms of
+ * the size of the part (placed to about 1e-16 (|M| + L)).  The cuts are
+ * angles in long double, found from heights (y = ey - er cos s, from the
+ * distances to the ellipse's top or bottom as the scene does: s = 2
+ * asin(sqrt(dt / (2 er)))) and from the knots' vertical lines (x = ex +
+ * |(ea, eb)| cos(s - atan2(eb, ea))), so a cut lies on its line to about
+ * R 1e-19 (where a double angle would give R 2e-16: 2e-10 at R = 1e6).
+ * The piece's ends are its heights y0, y1 (arc_angle).  Per part the sum
+ * has 2m terms of at most max|w| max|y'| 2 om: its rounding is a few 1e-16
+ * of the filter's weight over the part, as for the polynomial pieces.
+ * Measured (tests/test_analytic.c): 3.3e-15 at most from the reference on
+ * circles of radius 1e4 px, 9.2e-14 at 1e6 px, where a 50-digit quadrature
+ * of one box pixel puts analytic 7.6e-14 and the reference 1.6e-14 from
+ * it (the R 1e-19 above); without arc_angle's care at the pieces' ends
+ * (clamping to the double s0, s1) it was 5e-13 at 1e4 px. */
+
+#define AN_PI 3.14159265358979323846264338327950288L
+
+/* Gauss-Legendre nodes and weights of n points in long double */
+static void gauss_ld(int n, long double *x, long double *w)
+{
+    for (int i = 0; i < n; i++) {
+        long double t = cosl(AN_PI * (i + 0.75L) / (n + 0.5L)), dp = 1.0L;
+        for (int it = 0; it < 100; it++) {
+            long double p0 = 1.0L, p1 = t;
+            for (int k = 2; k <= n; k++) {
+                long double p2 = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k;
+                p0 = p1, p1 = p2;
+            }
+            dp = n * (t * p1 - p0) / (t * t - 1.0L);
+            long double dt = p1 / dp;
+            t -= dt;
+            if (fabsl(dt) < 1e-19L)
+                break;
+        }
+        long double p0 = 1.0L, p1 = t;
+        for (int k = 2; k <= n; k++) {
+            long double p2 = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k;
+            p0 = p1, p1 = p2;
+        }
+        dp = n * (t * p1 - p0) / (t * t - 1.0L);
+        x[i] = t;
+        w[i] = 2.0L / ((1.0L - t * t) * dp * dp);
+    }
+}
+
+/* The arc's rule for a filter of degree n (see above). */
+static void arc_make(an_state *S)
+{
+    enum { NQ = 40 };
+    const int m = 2 * S->pp.deg + 3;
+    long double gu[AN_MAX_PTS], gwu[AN_MAX_PTS], qx[NQ], qw[NQ], v[AN_MAX_PTS / 2];
+    gauss_ld(2 * m, gu, gwu);
+    gauss_ld(NQ, qx, qw);
+    S->arc_m = m;
+    for (int g = 0; g < m; g++) { /* gauss_ld gives them descending: the first m are > 0 */
+        S->arc_u[g] = (double)gu[g];
+        v[g] = gu[g] * gu[g];
+    }
+    for (int g = 0; g < m; g++) {
+        long double beta = 1.0L;
+        for (int k = 0; k <= AN_ARC_K; k++) {
+            if (k > 0)
+                beta *= (2.0L * k - 1.0L) / (2.0L * k);
+            long double G = 0.0L;
+            for (int q = 0; q < NQ; q++) {
+                long double u2 = qx[q] * qx[q], l = 1.0L;
+                for (int h = 0; h < m; h++)
+                    if (h != g)
+                        l *= (u2 - v[h]) / (v[g] - v[h]);
+                G += qw[q] * l * powl(u2, k);
+            }
+            S->arc_wz[g][k] = (double)(beta * G);
+        }
+    }
+}
+
+/* The angle of conic piece p at height y, in long double.  Not clamped to
+ * the piece's s0, s1: those are doubles, off by up to 2e-16 rad, which at
+ * a turn in x moves the end along y by er 2e-16 (5e-13 at er = 1e4, a gap
+ * between two pieces meeting there); the piece's ends are its heights y0,
+ * y1, as for the other pieces. */
+static long double arc_angle(const aa_piece *p, double y)
+{
+    long double er = p->er, dt = (long double)y - ((long double)p->ey - er),
+                db = ((long double)p->ey + er) - (long double)y, s;
+    dt = dt > 0.0L ? dt : 0.0L;
+    db = db > 0.0L ? db : 0.0L;
+    if (dt <= db)
+        s = 2.0L * asinl(fminl(1.0L, sqrtl(dt / (2.0L * er))));
+    else
+        s = AN_PI - 2.0L * asinl(fminl(1.0L, sqrtl(db / (2.0L * er))));
+    return s;
+}
+
+/* The angles in (sa, sb) where conic piece p meets the line x = X: x =
+ * ex + R cos(s - a), R = |(ea, eb)|, a = atan2(eb, ea) (given, long
+ * double).  Returns how many (at most 2), written to out. */
+static int arc_meet_x(const aa_piece *p, long double R, long double a, double X, long double sa,
+                      long double sb, long double *out)
+{
+    long double c = ((long double)X - p->ex) / R;
+    if (!(R > 0.0L) || !(c >= -1.0L && c <= 1.0L))
+        return 0;
+    long double d = acosl(c);
+    int n = 0;
+    for (int sg = -1; sg <= 1; sg += 2)
+        for (int k = -1; k <= 1; k++) {
+            long double s = a + sg * d + 2.0L * AN_PI * k;
+            if (s > sa && s < sb && n < 2 && (n == 0 || s != out[0]))
+                out[n++] = s;
+        }
+    return n;
+}
+
+/* The rule's points of the arc part [sa, sb] (om <= pi/3): X, Y, and the
+ * weight times y'(phi) (D); its middle (xm, ym).  2 arc_m points. */
+static void arc_points(const an_state *S, const aa_piece *p, long double sa, long double sb,
+                       double *X, double *Y, double *D, double *xm, double *ym)
+{
+    long double sm = 0.5L * (sa + sb), cs = cosl(sm), sn = sinl(sm);
+    double c = (double)cs, s = (double)sn;
+    double Ax = p->ea * c + p->eb * s, Ay = -p->er * c;
+    double Bx = p->eb * c - p->ea * s, By = p->er * s;
+    double Mx = (double)(p->ex + p->ea * cs + p->eb * sn), My = (double)(p->ey - p->er * cs);
+    double al = sin((double)(0.25L * (sb - sa))), z = al * al;
+    *xm = Mx, *ym = My;
+    for (int g = 0; g < S->arc_m; g++) {
+        const double *wz = S->arc_wz[g];
+        double wt = wz[AN_ARC_K];
+        for (int k = AN_ARC_K - 1; k >= 0; k--)
+            wt = wz[k] + z * wt;
+        wt *= al;
+        double h = al * S->arc_u[g], k = 2.0 * h * h, sg = 2.0 * h * sqrt(1.0 - h * h);
+        double dx = Bx * sg - Ax * k, dy = By * sg - Ay * k;
+        X[2 * g] = Mx + dx, Y[2 * g] = My + dy;
+        D[2 * g] = wt * (By * (1.0 - k) - Ay * sg);
+        X[2 * g + 1] = Mx + (-Bx * sg - Ax * k), Y[2 * g + 1] = My + (-By * sg - Ay * k);
+        D[2 * g + 1] = wt * (By * (1.0 - k) + Ay * sg);
+    }
+}
+
+/* How many parts of om <= pi/3 the arc [sa, sb] is split into */
+static inline int arc_splits(long double sa, long double sb)
+{
+    long double n = ceill((sb - sa) / (2.0L * AN_PI / 3.0L));
+    return n < 1.0L ? 1 : (int)n;
+}
+
+static int cmp_ld(const void *a, const void *b)
+{
+    long double x = *(const long double *)a, y = *(const long double *)b;
+    return (x > y) - (x < y);
+}
+
+
 /* ---- one pixel ---- */
 
 typedef struct an_pixel {
@@ -389,10 +617,46 @@ static inline int curve_degree(const aa_piece *p)
     return p->kind == AA_PIECE_CUBIC ? 3 : (p->kind == AA_PIECE_QUAD ? 2 : 1);
 }
 
+/* R(part) of (1) for a conic piece: the parts between the knots' lines in
+ * angle (long double), each by the arc's rule */
+static double right_of_arc(const an_state *S, const aa_piece *p, double ya, double yb,
+                           double cx, double cy)
+{
+    const an_pp *pp = &S->pp;
+    long double ss[2 + 3 * (AN_MAX_CELLS + 1)];
+    long double R = hypotl(p->ea, p->eb), ang = atan2l(p->eb, p->ea);
+    int n = 0;
+    ss[n++] = arc_angle(p, ya);
+    ss[n++] = arc_angle(p, yb);
+    for (int q = 1; q < pp->ncell; q++) {
+        double yk = cy + pp->k[q];
+        if (yk > ya && yk < yb)
+            ss[n++] = arc_angle(p, yk);
+        n += arc_meet_x(p, R, ang, cx + pp->k[q], ss[0], ss[1], ss + n);
+    }
+    qsort(ss, (size_t)n, sizeof *ss, cmp_ld);
+    double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym, sum = 0.0;
+    for (int s = 0; s + 1 < n; s++) {
+        if (!(ss[s] < ss[s + 1]))
+            continue;
+        int ns = arc_splits(ss[s], ss[s + 1]);
+        for (int r = 0; r < ns; r++) {
+            long double a = ss[s] + (ss[s + 1] - ss[s]) * r / ns,
+                        b = r + 1 == ns ? ss[s + 1] : ss[s] + (ss[s + 1] - ss[s]) * (r + 1) / ns;
+            arc_points(S, p, a, b, X, Y, D, &xm, &ym);
+            for (int g = 0; g < 2 * S->arc_m; g++)
+                sum += D[g] * an_weight(pp, Y[g] - cy) * (1.0 - an_cdf(pp, X[g] - cx));
+        }
+    }
+    return sum;
+}
+
 /* R(part) of (1): the weight right of piece p over rows [ya, yb] */
 static double right_of(const an_state *S, const aa_piece *p, double ya, double yb, double cx,
                        double cy)
 {
+    if (p->kind == AA_PIECE_CONIC)
+        return right_of_arc(S, p, ya, yb, cx, cy);
     const an_pp *pp = &S->pp;
     double ys[2 + 2 * (AN_MAX_CELLS + 1) * 3];
     int n = 0;
@@ -707,8 +971,9 @@ static size_t fast_size(const an_state *S, int w)
 {
     size_t cells = block_cells(S, w);
     size_t cover = cells * AN_NV * sizeof(double), touched = (cells + 63) & ~(size_t)63;
-    size_t scratch = 2 * (size_t)S->pad * AN_MAX_GAUSS * sizeof(double);
-    return cover + touched + scratch + 2 * cut_cap(S, w) * sizeof(double);
+    size_t scratch = 2 * (size_t)S->pad * AN_MAX_PTS * sizeof(double);
+    /* the cuts: 2 cap doubles (cap long doubles for an arc, 16 bytes to align them) */
+    return cover + touched + scratch + 2 * cut_cap(S, w) * sizeof(double) + 16;
 }
 
 typedef struct an_block {
@@ -718,7 +983,7 @@ typedef struct an_block {
     unsigned char *touched; /* a cell got an exact term */
     size_t cols;            /* block_cols */
     int pad;
-    double *wcol, *arow;    /* pad x AN_MAX_GAUSS each: W at the columns, a at the rows */
+    double *wcol, *arow;    /* pad x AN_MAX_PTS each: W at the columns, a at the rows */
     double *ts;             /* 2 cap: the cuts of y, then of x */
     size_t cap;
 } an_block;
@@ -790,19 +1055,12 @@ part_left(const an_block *B, const double *val, const int m, const double *Y, co
  * support it meets) in the block's rows, with values val[0 .. nv): any
  * filter. */
 __attribute__((always_inline)) static inline void
-fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, double t0,
-          double t1, const int nv, const int N)
+fast_part(const an_block *B, const double *val, const int m, const double *X, const double *Y,
+          const double *D, double xm, double ym, const int nv, const int N)
 {
     const an_state *S = B->S;
     const an_pp *pp = &S->pp;
     const double k0 = pp->k[0], kn = pp->k[pp->ncell];
-    double X[AN_MAX_GAUSS], Y[AN_MAX_GAUSS], D[AN_MAX_GAUSS], xm, ym;
-    int where = part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym);
-    if (where != 1) {
-        if (where == 2)
-            part_left(B, val, m, Y, D, ym, nv, N);
-        return;
-    }
     int jlo = ifloor(ym - 0.5 - kn) + 1, jhi = ifloor(ym - 0.5 - k0);
     if (jlo < B->j0)
         jlo = B->j0;
@@ -821,7 +1079,7 @@ fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, 
             double u = X[g] - o, v = a[N + 1];
             for (int q = N; q >= 0; q--)
                 v = a[q] + u * v;
-            Wc[c * AN_MAX_GAUSS + g] = v;
+            Wc[c * AN_MAX_PTS + g] = v;
         }
     }
     for (int j = jlo; j <= jhi; j++) {
@@ -844,7 +1102,7 @@ fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, 
         for (int c = 0; c < ncol; c++) {
             double r = 0.0;
             for (int g = 0; g < m; g++)
-                r += a[g] * Wc[c * AN_MAX_GAUSS + g];
+                r += a[g] * Wc[c * AN_MAX_PTS + g];
             ptrdiff_t i = ilo + c;
             for (int v = 0; v < nv; v++) {
                 cov[i * nv + v] -= val[v] * r;
@@ -862,23 +1120,17 @@ fast_part(const an_block *B, const aa_piece *p, const double *val, const int m, 
  * (rows outside the block and columns outside the image fall in the
  * margins). */
 __attribute__((always_inline)) static inline void
-fast_part_regular(const an_block *B, const aa_piece *p, const double *val, const int m,
-                  double t0, double t1, const int nv, const int N)
+fast_part_regular(const an_block *B, const double *val, const int m, const double *X,
+                  const double *Y, const double *D, double xm, double ym, const int nv,
+                  const int N)
 {
     const an_state *S = B->S;
     const an_pp *pp = &S->pp;
     const double k0 = pp->k[0], kn = pp->k[pp->ncell];
-    double X[AN_MAX_GAUSS], Y[AN_MAX_GAUSS], D[AN_MAX_GAUSS], xm, ym;
-    int where = part_points(B, p, m, t0, t1, X, Y, D, &xm, &ym);
-    if (where != 1) {
-        if (where == 2)
-            part_left(B, val, m, Y, D, ym, nv, N);
-        return;
-    }
     (void)k0;
     const int ns = N + 1;
     int jlo = ifloor(ym - 0.5 - kn) + 1, ilo = ifloor(xm - 0.5 - kn) + 1;
-    double Wc[4][AN_MAX_GAUSS], a[4][AN_MAX_GAUSS], A[4];
+    double Wc[4][AN_MAX_PTS], a[4][AN_MAX_PTS], A[4];
     for (int c = 0; c < ns; c++) {
         const double *q = pp->cdf[ns - 1 - c];
         double o = ilo + c + 0.5 + pp->k[ns - 1 - c];
@@ -922,21 +1174,32 @@ fast_part_regular(const an_block *B, const aa_piece *p, const double *val, const
     }
 }
 
-/* fast_part with its rule's size and the values' count constants (the
- * loops unrolled by the compiler) */
+/* The terms of a part from its rule's points (part_points, arc_points):
+ * where 0, none; 2, the constant part alone; else by the filter's cells. */
+__attribute__((always_inline)) static inline void
+fast_terms(const an_block *B, const double *val, const int m, const double *X, const double *Y,
+           const double *D, double xm, double ym, int where, const int nv, const int N)
+{
+    if (where == 2)
+        part_left(B, val, m, Y, D, ym, nv, N);
+    else if (where == 1 && B->S->regular)
+        fast_part_regular(B, val, m, X, Y, D, xm, ym, nv, N);
+    else if (where == 1)
+        fast_part(B, val, m, X, Y, D, xm, ym, nv, N);
+}
+
+/* A part of a polynomial piece, with its rule's size and the values'
+ * count constants (the loops unrolled by the compiler) */
 #define AN_PART(N, M)                                                               \
     static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
                                     double t0, double t1)                           \
     {                                                                               \
-        if (B->S->regular) {                                                        \
-            if (B->nv == 1)                                                         \
-                fast_part_regular(B, p, val, M, t0, t1, 1, N);                      \
-            else                                                                    \
-                fast_part_regular(B, p, val, M, t0, t1, AN_NV, N);                      \
-        } else if (B->nv == 1)                                                      \
-            fast_part(B, p, val, M, t0, t1, 1, N);                                  \
+        double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;                 \
+        int where = part_points(B, p, M, t0, t1, X, Y, D, &xm, &ym);                \
+        if (B->nv == 1)                                                             \
+            fast_terms(B, val, M, X, Y, D, xm, ym, where, 1, N);                    \
         else                                                                        \
-            fast_part(B, p, val, M, t0, t1, AN_NV, N);                                  \
+            fast_terms(B, val, M, X, Y, D, xm, ym, where, AN_NV, N);                \
     }
 #define AN_PARTS(N)                                                                 \
     AN_PART(N, 1)                                                                   \
@@ -970,6 +1233,80 @@ static an_part_fn *const fast_parts[4][AN_MAX_GAUSS + 1] = {AN_ROW(0), AN_ROW(1)
                                                             AN_ROW(3)};
 #undef AN_ROW
 
+/* An arc's part by its rule (2 arc_m = 4 N + 6 points), N the filter's
+ * degree and the values' count constants */
+#define AN_ARC(N)                                                                   \
+    static void fast_arc_##N(const an_block *B, const aa_piece *p, const double *val,  \
+                             long double sa, long double sb)                        \
+    {                                                                               \
+        const an_pp *pp = &B->S->pp;                                                \
+        double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;                 \
+        arc_points(B->S, p, sa, sb, X, Y, D, &xm, &ym);                             \
+        int where = !(xm < B->w - 0.5 + pp->k[pp->ncell]) ? 0                       \
+                    : (xm < 0.5 + pp->k[0] ? 2 : 1);                                \
+        if (B->nv == 1)                                                             \
+            fast_terms(B, val, 4 * N + 6, X, Y, D, xm, ym, where, 1, N);            \
+        else                                                                        \
+            fast_terms(B, val, 4 * N + 6, X, Y, D, xm, ym, where, AN_NV, N);        \
+    }
+AN_ARC(0)
+AN_ARC(1)
+AN_ARC(2)
+AN_ARC(3)
+#undef AN_ARC
+
+typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
+                       long double sa, long double sb);
+static an_arc_fn *const fast_arcs[4] = {fast_arc_0, fast_arc_1, fast_arc_2, fast_arc_3};
+
+/* The terms of conic piece p in the block's rows: cut at the knots' lines
+ * in angle (long double, see "Elliptical arcs"), sorted, each part (split
+ * to om <= pi/3) by the arc's rule. */
+static void fast_conic(const an_block *B, const aa_piece *p, const double *val, double lo,
+                       double hi)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double XA = 0.5 + pp->k[0], XB = B->w - 0.5 + pp->k[pp->ncell];
+    /* the cuts, in the cut buffer (2 cap doubles: room for cap long
+     * doubles, aligned) */
+    long double *ts = (long double *)(((uintptr_t)B->ts + 15) & ~(uintptr_t)15);
+    size_t n = 0;
+    long double sa = arc_angle(p, lo), sb = arc_angle(p, hi);
+    ts[n++] = sa;
+    for (double base = floor(lo); base <= hi; base += 1.0)
+        for (int q = 0; q < S->nph; q++) {
+            double Yk = base + S->ph[q];
+            if (Yk > lo && Yk < hi)
+                ts[n++] = arc_angle(p, Yk);
+        }
+    ts[n++] = sb;
+    double xa, xb;
+    aa_piece_xrange(p, lo, hi, &xa, &xb);
+    /* widened: the extent is the double one; a line that misses gives no cut */
+    xa -= 1e-9 * (1.0 + fabs(xa)), xb += 1e-9 * (1.0 + fabs(xb));
+    double ca = fmax(xa, XA), cb = fmin(xb, XB);
+    long double R = hypotl(p->ea, p->eb), ang = atan2l(p->eb, p->ea);
+    for (double base = floor(ca); base <= cb; base += 1.0)
+        for (int q = 0; q < S->nph; q++) {
+            double X = base + S->ph[q];
+            if (X >= XA && X <= XB && X >= xa && X <= xb)
+                n += (size_t)arc_meet_x(p, R, ang, X, sa, sb, ts + n);
+        }
+    qsort(ts, n, sizeof *ts, cmp_ld);
+    an_arc_fn *part = fast_arcs[pp->deg];
+    for (size_t i = 0; i + 1 < n; i++) {
+        if (!(ts[i] < ts[i + 1]))
+            continue;
+        int ns = arc_splits(ts[i], ts[i + 1]);
+        for (int r = 0; r < ns; r++) {
+            long double a = ts[i] + (ts[i + 1] - ts[i]) * r / ns,
+                        b = r + 1 == ns ? ts[i + 1] : ts[i] + (ts[i + 1] - ts[i]) * (r + 1) / ns;
+            part(B, p, val, a, b);
+        }
+    }
+}
+
 /* The terms of piece p (values val[0 .. nv)) in the block's rows: cut at
  * the knots' lines, in order of t (the lines of y in order, those of x
  * sorted apart and merged). */
@@ -984,6 +1321,10 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val)
     double lo = fmax(p->y0, Y0), hi = fmin(p->y1, Y1);
     if (!(lo < hi))
         return;
+    if (p->kind == AA_PIECE_CONIC) {
+        fast_conic(B, p, val, lo, hi);
+        return;
+    }
     double *ty = B->ts, *tx = B->ts + B->cap;
     size_t ny = 0, nx = 0;
     double ta = lo <= p->y0 ? 0.0 : aa_piece_t_at(p, lo);
@@ -1061,8 +1402,8 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     B.touched = (unsigned char *)own;
     own += (cells + 63) & ~(size_t)63;
     B.wcol = (double *)own;
-    B.arow = B.wcol + (size_t)pad * AN_MAX_GAUSS;
-    own += 2 * (size_t)pad * AN_MAX_GAUSS * sizeof(double);
+    B.arow = B.wcol + (size_t)pad * AN_MAX_PTS;
+    own += 2 * (size_t)pad * AN_MAX_PTS * sizeof(double);
     B.ts = (double *)own;
     B.cap = cut_cap(S, w);
     double Y0 = j0 + 0.5 + pp->k[0], Y1 = (j1 - 1) + 0.5 + pp->k[pp->ncell];
@@ -1249,15 +1590,12 @@ static int analytic_check(const double *p, const aa_filter *f)
     return AA_OK;
 }
 
-/* The scene's pieces: lines, quadratic and cubic arcs only. */
+/* The scene's pieces: lines, quadratic, cubic and elliptical arcs only. */
 static int scene_check(const aa_scene *s)
 {
     size_t n;
     const aa_piece *p = aa_scene_pieces(s, &n);
     for (size_t i = 0; i < n; i++) {
-        if (p[i].kind == AA_PIECE_CONIC)
-            return aa_fail(AA_EINVAL, "elliptical arcs are not done (the closed form "
-                                      "for rational quadratic curves is not implemented)");
         if (p[i].kind == AA_PIECE_OFFSET)
             return aa_fail(AA_EINVAL, "offset curves (the outlines of stroked Bezier "
                                       "arcs) are not polynomial curves: refused");
@@ -1308,6 +1646,7 @@ static int analytic_init(void *state, const double *p, const aa_job *job)
     an_pp_make(&d, &S->pp);
     knot_lines(S);
     gauss_make(S);
+    arc_make(S);
     return prepare(S, job);
 }
 
@@ -1361,7 +1700,7 @@ const aa_method_type aa_method_analytic = {
      "degree (Manson and Schaefer 2013)",
      analytic_params},
     sizeof(an_state),
-    AA_METHOD_SOME_SCENES, /* elliptical arcs and offset curves: refused at init */
+    AA_METHOD_SOME_SCENES, /* offset curves: refused at init */
     analytic_check,
     analytic_init,
     analytic_render,
