@@ -1000,6 +1000,20 @@ static int conic_crossings(const ar_seg *p, const ar_seg *q, double ya, double y
     return n;
 }
 
+/* An offset seg's parameters t (sg tau) at band heights ya and yb where
+ * they are its band's ends (ta, tb, solved already), else NaN
+ * (aa__piece_meet_at solves for those). */
+static void seg_t_at(const ar_seg *s, double ya, double yb, double t[2])
+{
+    t[0] = t[1] = NAN;
+    if (!s->p->offset)
+        return;
+    if (ya == s->va)
+        t[0] = s->p->sg * s->ta;
+    if (yb == s->vb)
+        t[1] = s->p->sg * s->tb;
+}
+
 /* Heights v in (ya, yb), away from its ends, where segs p and q cross.
  * Both are reparametrised over [ya, yb] as P(s) = Pa + s B + s^2 A in
  * coordinates relative to p's cell; the crossings are where P meets q's
@@ -1021,8 +1035,11 @@ static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb
          * (aa_piece_meet: roots of a cubic polynomial against a line,
          * bisection on exact extents against an arc), as band-local
          * heights */
-        double base = j, ys[9];
-        int m = aa_piece_meet(p->p->src, q->p->src, base + ya, base + yb, ys, 9), n = 0;
+        double base = j, ys[9], tp[2], tq[2];
+        seg_t_at(p, ya, yb, tp);
+        seg_t_at(q, ya, yb, tq);
+        int m = aa__piece_meet_at(p->p->src, q->p->src, base + ya, base + yb, tp, tq, ys, 9),
+            n = 0;
         for (int i = 0; i < m; i++) {
             double v = ys[i] - base;
             if (v > ya + CROSS_MARGIN && v < yb - CROSS_MARGIN)
