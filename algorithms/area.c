@@ -296,29 +296,63 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : (x > y);
 }
 
-static int cmp_key(const void *a, const void *b)
+/* a after b in the order by (key, id) */
+static inline int key_after(const ar_key *a, const ar_key *b)
 {
-    const ar_key *p = a, *q = b;
-    if (p->key != q->key)
-        return p->key < q->key ? -1 : 1;
-    return p->id < q->id ? -1 : (p->id > q->id);
+    return a->key != b->key ? !(a->key < b->key) : a->id > b->id;
+}
+
+/* Heapsort by (key, id), in place: what sort_keys falls back to.  In place
+ * (no workspace: sort_keys sorts several of the worker's buffers) and with
+ * the comparison inline, where qsort's merge sort called its comparison
+ * through a pointer: the rows of a stroke scene, whose pieces arrive far out of x
+ * order, took it in most rows (a third of area's sorting there). */
+static void heap_keys(ar_key *k, size_t n)
+{
+    for (size_t top = n / 2; top-- > 0;) { /* heapify: largest at k[0] */
+        ar_key v = k[top];
+        size_t at = top, c;
+        while ((c = 2 * at + 1) < n) {
+            if (c + 1 < n && key_after(&k[c + 1], &k[c]))
+                c++;
+            if (!key_after(&k[c], &v))
+                break;
+            k[at] = k[c];
+            at = c;
+        }
+        k[at] = v;
+    }
+    for (size_t end = n; end-- > 1;) { /* move the largest behind the heap */
+        ar_key v = k[end];
+        k[end] = k[0];
+        size_t at = 0, c;
+        while ((c = 2 * at + 1) < end) {
+            if (c + 1 < end && key_after(&k[c + 1], &k[c]))
+                c++;
+            if (!key_after(&k[c], &v))
+                break;
+            k[at] = k[c];
+            at = c;
+        }
+        k[at] = v;
+    }
 }
 
 /* Sort by (key, id): a total order, so the result does not depend on the
  * starting order.  Insertion sort (the common input is nearly sorted),
- * qsort past a budget of moves. */
+ * heapsort past a budget of moves. */
 static void sort_keys(ar_key *k, size_t n)
 {
     size_t moves = 0, budget = 8 * n + 64;
     for (size_t a = 1; a < n; a++) {
         ar_key v = k[a];
         size_t at = a;
-        while (at > 0 && cmp_key(&k[at - 1], &v) > 0) {
+        while (at > 0 && key_after(&k[at - 1], &v)) {
             k[at] = k[at - 1];
             at--;
             if (++moves > budget) {
                 k[at] = v;
-                qsort(k, n, sizeof *k, cmp_key);
+                heap_keys(k, n);
                 return;
             }
         }
