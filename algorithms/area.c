@@ -138,16 +138,18 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 4.8 to 6.2 in CPU time (two
- * sets of three runs on the shared machine, the build before 6.4 to 7.9
- * in the same sets; area 88 to 129 ms, point 19 to 22 ms), 4.8 by
- * instructions (callgrind): the crossings' root-finding
- * (Newton on the curve) is 36% of area's instructions, the quadrature
- * 18%, aa_piece_meet 17% (the pieces of a stroke's overlapping contours
- * cross near every join; pairs running side by side are decided by their
- * slopes, scene_piece.c).  Each end of a part is evaluated once, for u and
- * v together (seg_u, part_area: the seg's memo of v).  Not yet within the
- * factor of 2 of other scenes.
+ * (tests/bench_bezstroke.c), area/point 5.1 in CPU time (medians of
+ * three runs on the shared machine at a load of 12; area 79 ms, point
+ * 15.5 ms), 4.5 by instructions (callgrind: area 504 M a render, point
+ * 112 M): the crossings' root-finding (Newton on the curve) is 33% of
+ * area's instructions (the band lines' half of it), the quadrature 19%,
+ * the meetings of pieces in a cluster 17% (aa__piece_meet_at, given the
+ * band's parameters of both segs: the pieces of a stroke's overlapping
+ * contours cross near every join; pairs running side by side are decided
+ * by their slopes, scene_piece.c; polishing a meeting 6%), sorting 4%.
+ * Each end of a part is evaluated once, for u and v together (seg_u,
+ * part_area: the seg's memo of v).  Not yet within the factor of 2 of
+ * other scenes (algorithms/README.md says where the time goes).
  *
  * Hidden surfaces.  Clusters where pieces cross, or end inside the band
  * (vertices, flat edges), need the per-pixel treatment Catmull describes
