@@ -138,16 +138,18 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 4.8 to 6.2 in CPU time (two
- * sets of three runs on the shared machine, the build before 6.4 to 7.9
- * in the same sets; area 88 to 129 ms, point 19 to 22 ms), 4.8 by
- * instructions (callgrind): the crossings' root-finding
- * (Newton on the curve) is 36% of area's instructions, the quadrature
- * 18%, aa_piece_meet 17% (the pieces of a stroke's overlapping contours
- * cross near every join; pairs running side by side are decided by their
- * slopes, scene_piece.c).  Each end of a part is evaluated once, for u and
- * v together (seg_u, part_area: the seg's memo of v).  Not yet within the
- * factor of 2 of other scenes.
+ * (tests/bench_bezstroke.c), area/point 5.1 in CPU time (medians of
+ * three runs on the shared machine at a load of 12; area 79 ms, point
+ * 15.5 ms), 4.5 by instructions (callgrind: area 504 M a render, point
+ * 112 M): the crossings' root-finding (Newton on the curve) is 33% of
+ * area's instructions (the band lines' half of it), the quadrature 19%,
+ * the meetings of pieces in a cluster 17% (aa__piece_meet_at, given the
+ * band's parameters of both segs: the pieces of a stroke's overlapping
+ * contours cross near every join; pairs running side by side are decided
+ * by their slopes, scene_piece.c; polishing a meeting 6%), sorting 4%.
+ * Each end of a part is evaluated once, for u and v together (seg_u,
+ * part_area: the seg's memo of v).  Not yet within the factor of 2 of
+ * other scenes (algorithms/README.md says where the time goes).
  *
  * Hidden surfaces.  Clusters where pieces cross, or end inside the band
  * (vertices, flat edges), need the per-pixel treatment Catmull describes
@@ -296,29 +298,64 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : (x > y);
 }
 
-static int cmp_key(const void *a, const void *b)
+/* a after b in the order by (key, id) */
+static inline int key_after(const ar_key *a, const ar_key *b)
 {
-    const ar_key *p = a, *q = b;
-    if (p->key != q->key)
-        return p->key < q->key ? -1 : 1;
-    return p->id < q->id ? -1 : (p->id > q->id);
+    return a->key != b->key ? !(a->key < b->key) : a->id > b->id;
+}
+
+/* Heapsort by (key, id), in place: what sort_keys falls back to.  In place
+ * (no workspace: sort_keys sorts several of the worker's buffers) and with
+ * the comparison inline, where qsort's merge sort called its comparison
+ * through a pointer: the rows of a stroke scene, whose pieces arrive far out of x
+ * order, took it in most rows (three fifths of sort_keys' instructions there;
+ * the heapsort takes seven tenths of its instructions). */
+static void heap_keys(ar_key *k, size_t n)
+{
+    for (size_t top = n / 2; top-- > 0;) { /* heapify: largest at k[0] */
+        ar_key v = k[top];
+        size_t at = top, c;
+        while ((c = 2 * at + 1) < n) {
+            if (c + 1 < n && key_after(&k[c + 1], &k[c]))
+                c++;
+            if (!key_after(&k[c], &v))
+                break;
+            k[at] = k[c];
+            at = c;
+        }
+        k[at] = v;
+    }
+    for (size_t end = n; end-- > 1;) { /* move the largest behind the heap */
+        ar_key v = k[end];
+        k[end] = k[0];
+        size_t at = 0, c;
+        while ((c = 2 * at + 1) < end) {
+            if (c + 1 < end && key_after(&k[c + 1], &k[c]))
+                c++;
+            if (!key_after(&k[c], &v))
+                break;
+            k[at] = k[c];
+            at = c;
+        }
+        k[at] = v;
+    }
 }
 
 /* Sort by (key, id): a total order, so the result does not depend on the
  * starting order.  Insertion sort (the common input is nearly sorted),
- * qsort past a budget of moves. */
+ * heapsort past a budget of moves. */
 static void sort_keys(ar_key *k, size_t n)
 {
     size_t moves = 0, budget = 8 * n + 64;
     for (size_t a = 1; a < n; a++) {
         ar_key v = k[a];
         size_t at = a;
-        while (at > 0 && cmp_key(&k[at - 1], &v) > 0) {
+        while (at > 0 && key_after(&k[at - 1], &v)) {
             k[at] = k[at - 1];
             at--;
             if (++moves > budget) {
                 k[at] = v;
-                qsort(k, n, sizeof *k, cmp_key);
+                heap_keys(k, n);
                 return;
             }
         }
@@ -1000,6 +1037,20 @@ static int conic_crossings(const ar_seg *p, const ar_seg *q, double ya, double y
     return n;
 }
 
+/* An offset seg's parameters t (sg tau) at band heights ya and yb where
+ * they are its band's ends (ta, tb, solved already), else NaN
+ * (aa__piece_meet_at solves for those). */
+static void seg_t_at(const ar_seg *s, double ya, double yb, double t[2])
+{
+    t[0] = t[1] = NAN;
+    if (!s->p->offset)
+        return;
+    if (ya == s->va)
+        t[0] = s->p->sg * s->ta;
+    if (yb == s->vb)
+        t[1] = s->p->sg * s->tb;
+}
+
 /* Heights v in (ya, yb), away from its ends, where segs p and q cross.
  * Both are reparametrised over [ya, yb] as P(s) = Pa + s B + s^2 A in
  * coordinates relative to p's cell; the crossings are where P meets q's
@@ -1021,8 +1072,11 @@ static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb
          * (aa_piece_meet: roots of a cubic polynomial against a line,
          * bisection on exact extents against an arc), as band-local
          * heights */
-        double base = j, ys[9];
-        int m = aa_piece_meet(p->p->src, q->p->src, base + ya, base + yb, ys, 9), n = 0;
+        double base = j, ys[9], tp[2], tq[2];
+        seg_t_at(p, ya, yb, tp);
+        seg_t_at(q, ya, yb, tq);
+        int m = aa__piece_meet_at(p->p->src, q->p->src, base + ya, base + yb, tp, tq, ys, 9),
+            n = 0;
         for (int i = 0; i < m; i++) {
             double v = ys[i] - base;
             if (v > ya + CROSS_MARGIN && v < yb - CROSS_MARGIN)

@@ -263,6 +263,13 @@ aa_scene *aa_scene_place(const aa_scene *s, int w, int h, double t, double vx, d
  * instead of using up the budget.  Flat pieces meet nothing. */
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys,
                   int max);
+/* aa_piece_meet with offset pieces' parameters at heights ya and yb
+ * already known to the caller (tpa for p, tqa for q; NaN where not known,
+ * and ignored for other kinds): where the common heights start at ya or
+ * end at yb they are taken as they are, not solved for again (area.c
+ * passes each band's). */
+int aa__piece_meet_at(const aa_piece *p, const aa_piece *q, double ya, double yb,
+                      const double tpa[2], const double tqa[2], double *ys, int max);
 
 /* ------------------------------------------------------------------------
  * Fields: a procedural scene, a point function plus its own exact pixel

@@ -333,7 +333,9 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
 /* The double phase of the solver: Newton's method from the guess or where
  * the chord meets the target, kept inside the bracket, bisection where a
  * step leaves it or shrinks it by less than half, until a step is within
- * SOLVE_D_STEP (it leaves an error of the order of its square: quadratic
+ * tol (SOLVE_D_STEP or ROOT_D_STEP; *last: that step, or the Newton step
+ * that reached the point returned, NaN if a bisection's or a start's;
+ * it leaves an error of the order of its square: quadratic
  * convergence) or the coordinate is within double's rounding of the target
  * (twice the unit roundoff times the size of its terms: the polynomials'
  * coefficients, the map's, the normal term and the target); the bracket
@@ -348,8 +350,12 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * was evaluated first, at once, and where it was not (a guess given), when
  * a step goes past it. */
 #define SOLVE_D_STEP 1e-12
+/* aa__offset_root's: it stops the double phase at a larger step, and its
+ * long double phase judges the error left by the two last steps (below). */
+#define ROOT_D_STEP 1e-6
 static double solve_double(const aa_offset_curve *oc, int coord, double a, double b, double fa,
-                           double tgt, double guess, double *pa, double *pb)
+                           double tgt, double guess, double tol, double *pa, double *pb,
+                           double *last)
 {
     const double *c = oc->b;
     int neg = fa < 0;
@@ -396,6 +402,7 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
                 t = a + r * (b - a);
         }
     }
+    *last = NAN; /* the step that reached t, where Newton's */
     for (int it = 0; it < 100; it++) {
         eval_d(oc, coord, t, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn))
@@ -408,17 +415,21 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
         if (!(mid != a && mid != b))
             break;
         double next = df != 0 && isfinite(df) ? t - f / df : mid;
-        if (fabs(next - t) <= SOLVE_D_STEP * fmax(fabs(t), 1.0)) {
+        if (fabs(next - t) <= tol * (fabs(t) > 1.0 ? fabs(t) : 1.0)) { /* fmax, not a call */
             /* a root at an end comes out a rounding beyond it */
-            t = fmin(fmax(next, fmin(a, b)), fmax(a, b));
+            double cl = fmin(fmax(next, fmin(a, b)), fmax(a, b));
+            *last = cl == next ? fabs(next - t) : NAN;
+            t = cl;
             break;
         }
         int inside = a < b ? (next > a && next < b) : (next < a && next > b);
+        int newton = 1;
         if (!inside && unseen && (a < b ? next >= b : next <= b))
-            next = b, unseen = 0;
+            next = b, unseen = 0, newton = 0;
         else if (!inside || fabs(next - t) > 0.5 * prev)
-            next = mid;
+            next = mid, newton = 0;
         prev = fabs(next - t);
+        *last = newton ? prev : NAN;
         t = next;
     }
     *pa = a, *pb = b;
@@ -428,10 +439,10 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
 double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, double tb, double fa,
                           double target)
 {
-    double a, b;
+    double a, b, last;
     if (fa == 0)
         return ta;
-    return solve_double(oc, coord, ta, tb, fa, target, NAN, &a, &b);
+    return solve_double(oc, coord, ta, tb, fa, target, NAN, SOLVE_D_STEP, &a, &b, &last);
 }
 
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
@@ -445,23 +456,34 @@ long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta
                             double *slope)
 {
     /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
-     * (either may be 0).  Newton's method in double (solve_double), then
-     * in long double, still bracketed: a step within 1e-13 is the last
-     * (the error after it is of the order of its square), else on until
-     * the bracket is two adjacent numbers.  The other coordinate at the
-     * root is the last evaluation's moved by its derivative times that
-     * last step h: off by half its second derivative times h^2, the order
-     * of the error the root itself is left with (coordinate coord's second
-     * derivative over twice its first, times h^2, moves the other
-     * coordinate by its first derivative times that), and at |h| <= 1e-13
-     * (t is in [0, 1]) below long double's rounding of it. */
+     * (either may be 0).  Newton's method in double (solve_double, to a
+     * step within ROOT_D_STEP), then in long double, still bracketed: a
+     * step h within 1e-13 is the last (the error after it is of the order
+     * of its square), and so is one whose error is judged from the step
+     * h1 before it: Newton's error after a step is C times the square of
+     * the error before (C = f''/(2 f'), about the root), and the error
+     * before a step is about the step, so h ~ C h1^2, C ~ h/h1^2 and the
+     * error after h ~ C h^2 = h^3/h1^2; taken as the last where that is
+     * at most 1e-21 max(|t|, 1) (below long double's rounding of t, about
+     * 5e-20 for t in [0, 1]), h is at most 1e-3 h1 (the steps shrinking
+     * as Newton's do, not as a bisection's or near a double root) and at
+     * most 1e-11.  Double's step to within 1e-6 then long double's one
+     * step (h ~ 1e-12) replace a third double evaluation (a step to within
+     * 1e-12) a root.  Else on until the bracket is two adjacent numbers.
+     * The other coordinate at the root is the last evaluation's moved by
+     * its derivative times that last step h: off by half its second
+     * derivative times h^2, the order of the error the root itself is left
+     * with (coordinate coord's second derivative over twice its first,
+     * times h^2, moves the other coordinate by its first derivative times
+     * that), and at |h| <= 1e-11 (t is in [0, 1]) about 1e-22 of that
+     * second derivative. */
     long double X, Y, DX = 0, DY = 0, lt = ta;
     int neg = fa < 0;
     if (fa == 0)
         goto at_lt;
-    double a, b;
-    lt = solve_double(oc, coord, (double)ta, (double)tb, (double)fa, (double)target, guess, &a,
-                      &b);
+    double a, b, h1;
+    lt = solve_double(oc, coord, (double)ta, (double)tb, (double)fa, (double)target, guess,
+                      ROOT_D_STEP, &a, &b, &h1);
     /* long double: the bracket is the caller's, [ta, tb], not what the
      * double phase left: the signs that shrank it are double's, wrong
      * within its rounding of the root, where long double's Newton steps
@@ -481,9 +503,12 @@ long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta
             goto done;
         long double next = df != 0 && isfinite(df) ? lt - f / df : mid;
         int inside = la < lb ? (next >= la && next <= lb) : (next <= la && next >= lb);
+        long double h = fabsl(next - lt);
         if (!inside) {
             next = mid;
-        } else if (fabsl(next - lt) <= 1e-13L * fabsl(lt) + 1e-30L) {
+        } else if (h <= 1e-13L * fabsl(lt) + 1e-30L ||
+                   (h1 > 0 && h <= 1e-11L && h <= 1e-3L * h1 &&
+                    h * h * h <= 1e-21L * h1 * h1 * fmaxl(fabsl(lt), 1))) {
             if (other)
                 *other = (coord ? X + DX * (next - lt) : Y + DY * (next - lt));
             if (slope)
@@ -491,6 +516,7 @@ long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta
             return next;
         }
         lt = next;
+        h1 = inside ? (double)h : NAN;
     }
 at_lt: /* lt not evaluated yet */
     if (!other && !slope)

@@ -573,8 +573,12 @@ static void subdivide(meet_ctx *c, double a, double b, int depth)
     subdivide(c, m, b, depth + 1);
 }
 
-/* x of the piece at y and dx/dy there (infinite where it is horizontal). */
-static double x_slope(const aa_piece *p, double y, double *slope)
+/* x of the piece at y and dx/dy there (infinite where it is horizontal);
+ * an offset piece's parameter there is t, solved for between the
+ * parameters tab[0] and tab[1] it has at heights ya < y and yb > y (its
+ * whole range where tab is NULL). */
+static double x_slope(const aa_piece *p, double y, double *slope, double ya, const double *tab,
+                      double *t_out)
 {
     if (p->kind == AA_PIECE_CONIC) {
         double c, sn;
@@ -583,9 +587,13 @@ static double x_slope(const aa_piece *p, double y, double *slope)
         return conic_x_at(p, y);
     }
     if (p->kind == AA_PIECE_OFFSET) {
-        double t = offset_t_at(p, y), x, yy, dx, dy;
+        double t = !tab || !(y > p->y0) || !(y < p->y1) || tab[0] == tab[1]
+                       ? offset_t_at(p, y)
+                       : aa__offset_solve_d(&p->oc, 1, tab[0], tab[1], ya - y, y);
+        double x, yy, dx, dy;
         aa_offset_point(&p->oc, t, &x, &yy, &dx, &dy);
         *slope = dx / dy;
+        *t_out = t;
         return t == p->ot0 ? p->x0 : t == p->ot1 ? p->x1 : x; /* offset_x(p, t) */
     }
     double t = aa_piece_t_at(p, y);
@@ -598,18 +606,29 @@ static double x_slope(const aa_piece *p, double y, double *slope)
 /* The height in [a, b] where x_p - x_q, of opposite signs fa and fb at a
  * and b, vanishes: Newton's method on y kept inside the bracket, bisection
  * where a step would leave it or shrink it too slowly, until the bracket
- * is two adjacent doubles or the difference is zero. */
-static double polish_meet(const aa_piece *p, const aa_piece *q, double a, double b, double fa)
+ * is two adjacent doubles or the difference is zero.  tp, tq (NULL: not
+ * known): offset pieces' parameters at a and b, each solve for the
+ * parameter at y then bracketed by those at the bracket's ends, kept as it
+ * shrinks (from the whole piece, each took twice the evaluations). */
+static double polish_meet(const aa_piece *p, const aa_piece *q, double a, double b, double fa,
+                          const double *tp, const double *tq)
 {
     double y = 0.5 * (a + b), prev = b - a;
+    double bp[2] = {0.0, 0.0}, bq[2] = {0.0, 0.0};
+    if (tp)
+        bp[0] = tp[0], bp[1] = tp[1];
+    if (tq)
+        bq[0] = tq[0], bq[1] = tq[1];
     for (int it = 0; it < 200; it++) {
-        double sp, sq, f = x_slope(p, y, &sp) - x_slope(q, y, &sq);
+        double sp, sq, up = 0.0, uq = 0.0;
+        double f = x_slope(p, y, &sp, a, tp ? bp : NULL, &up) -
+                   x_slope(q, y, &sq, a, tq ? bq : NULL, &uq);
         if (f == 0.0)
             return y;
         if ((f < 0.0) == (fa < 0.0))
-            a = y;
+            a = y, bp[0] = up, bq[0] = uq;
         else
-            b = y;
+            b = y, bp[1] = up, bq[1] = uq;
         double m = 0.5 * (a + b);
         if (!(m > a && m < b))
             break;
@@ -639,7 +658,7 @@ static void subdivide_cubic(meet_ctx *c, double a, double b, int depth)
         double fa = aa_piece_x_at(c->p, a) - aa_piece_x_at(c->q, a);
         double fb = aa_piece_x_at(c->p, b) - aa_piece_x_at(c->q, b);
         if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
-            record_meet(c, polish_meet(c->p, c->q, a, b, fa), scale);
+            record_meet(c, polish_meet(c->p, c->q, a, b, fa, NULL, NULL), scale);
             return;
         }
         /* a common end point of both pieces at the interval's end, and no
@@ -867,6 +886,13 @@ static int part_at_end(const meet_ctx *c, double a, double b, const double tp[2]
     return x_monotone(c->p, tp) && x_monotone(c->q, tq);
 }
 
+/* An offset piece's parameters t (at an interval's ends) for polish_meet;
+ * NULL for other kinds (subdivide_offset carries zeros for them). */
+static const double *offset_t(const aa_piece *p, const double t[2])
+{
+    return p->kind == AA_PIECE_OFFSET ? t : NULL;
+}
+
 static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2],
                              const double tq[2], const double xp[2], const double xq[2],
                              int depth)
@@ -884,7 +910,7 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
     case APART:
         return;
     case ONE:
-        record_meet(c, polish_meet(c->p, c->q, a, b, da), scale);
+        record_meet(c, polish_meet(c->p, c->q, a, b, da, offset_t(c->p, tp), offset_t(c->q, tq)), scale);
         return;
     case AT_A: /* within rounding of a: a shared end, or a meeting there */
         if (!(a == c->lo && c->lo_shared))
@@ -900,7 +926,7 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
     if (b - a <= 1e-6 * scale) {
         double fa = xp[0] - xq[0], fb = xp[1] - xq[1];
         if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
-            record_meet(c, polish_meet(c->p, c->q, a, b, fa), scale);
+            record_meet(c, polish_meet(c->p, c->q, a, b, fa, offset_t(c->p, tp), offset_t(c->q, tq)), scale);
             return;
         }
         if ((a == c->lo && c->lo_shared) || (b == c->hi && c->hi_shared))
@@ -947,6 +973,27 @@ static int same_curve(const aa_piece *p, const aa_piece *q)
 
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys, int max)
 {
+    const double none[2] = {NAN, NAN};
+    return aa__piece_meet_at(p, q, ya, yb, none, none, ys, max);
+}
+
+/* An offset piece's parameter at height y, lo or hi of the pair's common
+ * heights: at[0] where y is ya, at[1] where it is yb, if known (not NaN),
+ * else solved for (param_at). */
+static double param_known(const aa_piece *p, double y, double ya, double yb, const double at[2])
+{
+    if (p->kind != AA_PIECE_OFFSET)
+        return 0.0;
+    if (y == ya && at[0] == at[0])
+        return at[0];
+    if (y == yb && at[1] == at[1])
+        return at[1];
+    return param_at(p, y);
+}
+
+int aa__piece_meet_at(const aa_piece *p, const aa_piece *q, double ya, double yb,
+                      const double tpa[2], const double tqa[2], double *ys, int max)
+{
     if (!p->dir || !q->dir || max < 1)
         return 0;
     double lo = fmax(fmax(p->y0, q->y0), ya), hi = fmin(fmin(p->y1, q->y1), yb);
@@ -971,7 +1018,9 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
     }
     if (p->kind != AA_PIECE_LINE && q->kind == AA_PIECE_LINE) {
         const aa_piece *t = p;
+        const double *ta = tpa;
         p = q, q = t;
+        tpa = tqa, tqa = ta;
     }
     if (same_curve(p, q))
         return 0; /* they meet everywhere: no meeting isolates them */
@@ -982,8 +1031,8 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
     if (p->kind == AA_PIECE_OFFSET || q->kind == AA_PIECE_OFFSET) {
         /* the ends' parameters and x, found once (aa_piece_x_at of an
          * offset piece is offset_x at offset_t_at, param_at's parameter) */
-        const double tp[2] = {param_at(p, lo), param_at(p, hi)};
-        const double tq[2] = {param_at(q, lo), param_at(q, hi)};
+        const double tp[2] = {param_known(p, lo, ya, yb, tpa), param_known(p, hi, ya, yb, tpa)};
+        const double tq[2] = {param_known(q, lo, ya, yb, tqa), param_known(q, hi, ya, yb, tqa)};
         const double xp[2] = {end_x(p, lo, tp[0]), end_x(p, hi, tp[1])};
         const double xq[2] = {end_x(q, lo, tq[0]), end_x(q, hi, tq[1])};
         c.lo_shared = lo_ends && xp[0] == xq[0];
