@@ -4,7 +4,10 @@
  * pixel's region is split (Sutherland-Hodgman) by the line through an edge
  * of the front-most layer present, recursively on both sides, until a
  * region holds no edge of a visible layer; each region then adds its area
- * times the colour seen there.
+ * times the colour seen there.  In a scene that composites (translucent
+ * layers, groups, clips) every covering layer shows, so the split is on
+ * any edge left until a region holds none, and its colour is the scene's
+ * composite for the winding numbers there (colour_of).
  */
 #include "area_internal.h"
 
@@ -107,6 +110,26 @@ static void cm_integrate(const ar_row *r, const ar_key *in, size_t n, const int 
         return;
     cx = ox + cx / (3.0 * area), cy = oy + cy / (3.0 * area);
     area = 0.5 * fabs(area);
+    if (S->composite) {
+        /* The colour of a point is the composite of every layer covering
+         * it (translucent layers, groups, clips gating layers), so no
+         * layer hides the edges behind it: split on any edge left, until
+         * a region has none; its winding numbers, and so its colour, are
+         * then one state throughout. */
+        if (lv->ne) {
+            cm_split(lv, lv + 1, &lv->e[0], 1.0);
+            cm_integrate(r, in, n, w, i, d + 1, sum);
+            cm_split(lv, lv + 1, &lv->e[0], -1.0);
+            cm_integrate(r, in, n, w, i, d + 1, sum);
+            return;
+        }
+        int *wind = r->wk->wtmp;
+        cm_winding(r, in, n, w, i, cx, cy, wind);
+        const double *c = colour_of(S, r->wk, wind);
+        for (int ch = 0; ch < 3; ch++)
+            sum[ch] += c[ch] * area;
+        return;
+    }
     /* the front-most layer with an edge left in the region */
     int front = S->nl;
     const cm_edge *split = NULL;
