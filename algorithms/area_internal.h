@@ -1,6 +1,7 @@
 /*
  * area_internal.h: what the exact area method's rows (area.c) and Catmull's
- * recursive pixel integrater (area_catmull.c) share: the pieces as the
+ * recursive pixel integrater (area_catmull.c) share, with the colours of
+ * scenes that composite (area_composite.c): the pieces as the
  * method reads them, the per-thread workspace, and the small helpers.
  */
 #ifndef AA_AREA_INTERNAL_H
@@ -230,7 +231,8 @@ typedef struct ar_row {
  * Small helpers shared by the rows and Catmull's integrater
  * ------------------------------------------------------------------------ */
 
-/* The colour of winding state w in a scene that composites (area.c): a
+/* The colour of winding state w in a scene that composites
+ * (area_composite.c): a
  * pointer into the worker's ring, valid for the next AR_RING - 1 calls. */
 const double *area_composite_colour(const ar_state *S, ar_worker *wk, const int *w);
 
