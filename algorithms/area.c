@@ -163,10 +163,9 @@
  * sets it met (AR_CACHE_ENTRIES of them, emptied when full) keyed by that
  * set, and hands out copies from a small ring (colour_of's pointers stay
  * valid for the next AR_RING - 1 calls; the rows hold at most two;
- * area_composite.c).  In
- * Catmull's integrater no layer hides the edges of those behind it, so a
- * pixel is split on every edge until a region holds none, whose winding
- * numbers at its centroid give its colour.  Opaque unclipped scenes take
+ * area_composite.c).  In Catmull's integrater no layer hides the edges of
+ * those behind it, so a pixel is split on every edge until a region holds
+ * none, whose winding numbers at its centroid give its colour.  Opaque unclipped scenes take
  * the path they always took (colour_of scans for the front-most covering
  * layer, and asks whether the scene composites only where none covers:
  * crow 1024x1024, one thread, 48.54 to 48.83 million instructions in
@@ -191,10 +190,11 @@
  *    "Clipping" section), recurse on both; a region in which the front
  *    layer has no edge left is wholly inside it (it hides everything behind:
  *    return its colour times the area) or wholly outside (go on with the
- *    layers behind); in a scene that composites, on every edge (above).  His polygons are here the layers' regions under their
- *    fill rules: the winding numbers at the region's centroid decide inside
- *    or outside, so self-overlapping paths and holes need no polygon set
- *    operations.  Horizontal edges take part as splitters.
+ *    layers behind); in a scene that composites, on every edge (above).
+ *    His polygons are here the layers' regions under their fill rules: the
+ *    winding numbers at the region's centroid decide inside or outside, so
+ *    self-overlapping paths and holes need no polygon set operations.
+ *    Horizontal edges take part as splitters.
  *  - clusters with arcs (and every cluster with integrator=bands): the
  *    cluster's band is cut at every vertex and every crossing of two pieces
  *    into sub-bands with a fixed order along x, each summed as above.  This
@@ -233,12 +233,12 @@
  * (above).
  *
  * Limits.  The box filter only: tent and gauss are refused; gradient
- * paint is refused.  Results carry
- * rounding, about 1e-15 per pixel at 256 px and 1e-14 at 4096 px, and are
- * clamped to [0, 1].  Catmull's integrater takes polygons only; where arcs
- * meet other edges in a pixel the bands do the work, exactly, except that
- * crossings closer than CROSS_MARGIN (1e-12 px, in y) to a vertex or to the
- * band's edge are not split (an error below 1e-24), and arcs that touch
+ * paint is refused.  Results carry rounding, about 1e-15 per pixel at 256
+ * px and 1e-14 at 4096 px, and are clamped to [0, 1].  Catmull's
+ * integrater takes polygons only; where arcs meet other edges in a pixel
+ * the bands do the work, exactly, except that crossings closer than
+ * CROSS_MARGIN (1e-12 px, in y) to a vertex or to the band's edge are not
+ * split (an error below 1e-24), and arcs that touch
  * without crossing are not split (their order does not change).  In
  * Catmull's integrater edges within CM_EPS (1e-14 px) of a splitting line
  * count as lying on it.  A pixel with more than CM_MAX_EDGES edges goes to
