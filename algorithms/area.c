@@ -1414,7 +1414,8 @@ static void cluster(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                 return;
             }
         } else if (!(r->integrator == INT_CATMULL && lines &&
-                     area_cluster_catmull(r, in, n, lo, hi, w))) {
+                     (r->S->composite ? area_cluster_catmull_all(r, in, n, lo, hi, w)
+                                      : area_cluster_catmull(r, in, n, lo, hi, w)))) {
             cluster_bands(r, in, n, lo, hi, w, cin);
         }
     }

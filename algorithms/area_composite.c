@@ -2,11 +2,12 @@
  * area_composite.c: the `area` method's colours in scenes that composite
  * (translucent layers, groups of opacity, clips; area.c, "Translucent
  * layers, groups of opacity, clips"): the scene's own composite of a
- * winding state, cached per worker.  Its own file, used by both the rows
- * (area.c) and Catmull's integrater (area_catmull.c), so that neither
- * links to the other both ways.
+ * winding state, cached per worker; and Catmull's recursive pixel
+ * integrater for them, which splits on every edge.  A file of its own, so
+ * that the opaque scenes' integrater (area_catmull.c) is compiled as it
+ * always was.
  */
-#include "area_internal.h"
+#include "area_pixel.h"
 
 #include <string.h>
 
@@ -52,4 +53,48 @@ const double *area_composite_colour(const ar_state *S, ar_worker *wk, const int 
     wk->ringn = (wk->ringn + 1) % AR_RING;
     out[0] = c[0], out[1] = c[1], out[2] = c[2];
     return out;
+}
+
+/* Catmull's integrater on level d in a scene that composites: every
+ * covering layer shows, so no layer hides the edges behind it.  Split on
+ * any edge left (Catmull's clipper, area_pixel.h), until a region holds
+ * none; its winding numbers, and so its colour (the scene's composite),
+ * are then one state throughout, read at its centroid. */
+static void cm_integrate_all(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
+                             int d, double *sum)
+{
+    cm_level *lv = &r->wk->cm[d];
+    double cx, cy, area = cm_region(lv, &cx, &cy);
+    if (area == 0.0)
+        return;
+    if (lv->ne) {
+        cm_split(lv, lv + 1, &lv->e[0], 1.0);
+        cm_integrate_all(r, in, n, w, i, d + 1, sum);
+        cm_split(lv, lv + 1, &lv->e[0], -1.0);
+        cm_integrate_all(r, in, n, w, i, d + 1, sum);
+        return;
+    }
+    int *wind = r->wk->wtmp;
+    cm_winding(r, in, n, w, i, cx, cy, wind);
+    const double *c = colour_of(r->S, r->wk, wind);
+    for (int ch = 0; ch < 3; ch++)
+        sum[ch] += c[ch] * area;
+}
+
+int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
+                             const int *w)
+{
+    int a = lo < 0 ? 0 : lo, b = hi >= r->W ? r->W - 1 : hi;
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = a; i <= b; i++) {
+            cm_level *lv = &r->wk->cm[0];
+            if (!cm_pixel(r, in, n, i, lv))
+                return 0;
+            if (pass == 0)
+                continue; /* first pass: only check the edge counts */
+            double sum[3] = {0, 0, 0};
+            cm_integrate_all(r, in, n, w, i, 0, sum);
+            store_px(r, r->px + 3 * (size_t)i, sum);
+        }
+    return 1;
 }

@@ -445,6 +445,10 @@ static inline void store_px(const ar_row *r, double *px, const double *v)
  * declines (too many edges, or arcs) and the bands must do it. */
 int area_cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                            const int *w);
+/* The same in a scene that composites (area_composite.c): every edge
+ * splits, each region's colour the scene's composite. */
+int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
+                             const int *w);
 
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
  * (*out to be freed); 1/2 the integral of (P - P(ta)) x P' from t = ta to
