@@ -245,10 +245,11 @@ const double *area_composite_colour(const ar_state *S, ar_worker *wk, const int 
  * covers. */
 static inline const double *colour_of(const ar_state *S, ar_worker *wk, const int *w)
 {
-    for (int l = 0; l < S->nscan; l++)
+    int l = 0;
+    for (; l < S->nscan; l++)
         if (S->evenodd[l] ? (w[l] & 1) : (w[l] != 0))
             return S->colour[l];
-    if (S->composite)
+    if (l == 0 && S->composite) /* l = nl in an opaque scene */
         return area_composite_colour(S, wk, w);
     return S->colour[S->nl];
 }
