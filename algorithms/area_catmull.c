@@ -4,83 +4,11 @@
  * pixel's region is split (Sutherland-Hodgman) by the line through an edge
  * of the front-most layer present, recursively on both sides, until a
  * region holds no edge of a visible layer; each region then adds its area
- * times the colour seen there.
+ * times the colour seen there.  Scenes that composite (translucent layers,
+ * groups, clips), where no layer hides the edges behind it, take the form
+ * in area_composite.c instead.
  */
-#include "area_internal.h"
-
-#include <string.h>
-
-/* Winding numbers at pixel-local point (x, y) of pixel i. */
-static void cm_winding(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
-                       double x, double y, int *out)
-{
-    memcpy(out, w, (size_t)r->S->nl * sizeof *w);
-    for (size_t k = 0; k < n; k++) {
-        const ar_seg *s = &r->wk->seg[in[k].idx];
-        if (s->p->flat || !(s->va <= y && y < s->vb))
-            continue;
-        if ((double)(s->c0 - i) + u_at(s, tau_of_v(s, y)) < x)
-            out[s->p->layer] += s->p->dir;
-    }
-}
-
-/* Split level d's region and edges by the line through e (keeping side
- * `side` of it) into level d + 1. */
-/* A splitting line: side * (a x + b y + c) is the signed distance. */
-typedef struct cm_line {
-    double a, b, c, side;
-} cm_line;
-
-/* The distance of (x, y) from the line, zero within CM_EPS. */
-static inline double cm_dist(const cm_line *l, double x, double y)
-{
-    double d = l->side * (l->a * x + l->b * y + l->c);
-    return fabs(d) <= CM_EPS ? 0.0 : d;
-}
-
-static void cm_split(cm_level *from, cm_level *to, const cm_edge *e, double side)
-{
-    double a = e->y1 - e->y0, b = e->x0 - e->x1;
-    double len = sqrt(a * a + b * b);
-    a /= len, b /= len;
-    cm_line L = {a, b, -(a * e->x0 + b * e->y0), side};
-    /* the region: Sutherland-Hodgman against one side */
-    to->nv = 0;
-    for (int k = 0; k < from->nv; k++) {
-        int m = (k + 1) % from->nv;
-        double dk = cm_dist(&L, from->vx[k], from->vy[k]);
-        double dm = cm_dist(&L, from->vx[m], from->vy[m]);
-        if (dk >= 0.0 && to->nv < CM_MAX_VERTS) {
-            to->vx[to->nv] = from->vx[k];
-            to->vy[to->nv++] = from->vy[k];
-        }
-        if (((dk > 0.0 && dm < 0.0) || (dk < 0.0 && dm > 0.0)) && to->nv < CM_MAX_VERTS) {
-            double t = dk / (dk - dm);
-            to->vx[to->nv] = from->vx[k] + t * (from->vx[m] - from->vx[k]);
-            to->vy[to->nv++] = from->vy[k] + t * (from->vy[m] - from->vy[k]);
-        }
-    }
-    /* the edges: those on the line are clipped (dropped), the others cut */
-    to->ne = 0;
-    for (int k = 0; k < from->ne; k++) {
-        const cm_edge *f = &from->e[k];
-        if (f == e)
-            continue;
-        double d0 = cm_dist(&L, f->x0, f->y0), d1 = cm_dist(&L, f->x1, f->y1);
-        if ((d0 <= 0.0 && d1 <= 0.0))
-            continue; /* other side, or on the line */
-        cm_edge g = *f;
-        if (d0 < 0.0 || d1 < 0.0) {
-            double t = d0 / (d0 - d1), x = f->x0 + t * (f->x1 - f->x0),
-                   yy = f->y0 + t * (f->y1 - f->y0);
-            if (d0 < 0.0)
-                g.x0 = x, g.y0 = yy;
-            else
-                g.x1 = x, g.y1 = yy;
-        }
-        to->e[to->ne++] = g;
-    }
-}
+#include "area_pixel.h"
 
 /* Catmull's integrater on level d: add colour times area of its region. */
 static void cm_integrate(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
@@ -134,29 +62,6 @@ static void cm_integrate(const ar_row *r, const ar_key *in, size_t n, const int 
     cm_integrate(r, in, n, w, i, d + 1, sum);
 }
 
-/* Clip the segment to 0 <= x <= 1; 0 if nothing (of length) is left. */
-static int clip_unit_x(cm_edge *e)
-{
-    double t0 = 0.0, t1 = 1.0, dx = e->x1 - e->x0;
-    if (dx == 0.0) {
-        if (!(e->x0 > 0.0 && e->x0 < 1.0))
-            return 0;
-    } else {
-        double ta = (0.0 - e->x0) / dx, tb = (1.0 - e->x0) / dx;
-        if (ta > tb) {
-            double t = ta;
-            ta = tb, tb = t;
-        }
-        t0 = fmax(t0, ta), t1 = fmin(t1, tb);
-        if (!(t1 > t0))
-            return 0;
-    }
-    double x0 = e->x0 + t0 * dx, y0 = e->y0 + t0 * (e->y1 - e->y0);
-    double x1 = e->x0 + t1 * dx, y1 = e->y0 + t1 * (e->y1 - e->y0);
-    e->x0 = fmin(fmax(x0, 0.0), 1.0), e->y0 = y0;
-    e->x1 = fmin(fmax(x1, 0.0), 1.0), e->y1 = y1;
-    return fabs(e->x1 - e->x0) + fabs(e->y1 - e->y0) > 1e-15;
-}
 
 /* Every pixel of the cluster by Catmull's integrater; 0 if a pixel has too
  * many edges for it (nothing written then). */

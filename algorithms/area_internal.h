@@ -1,6 +1,7 @@
 /*
  * area_internal.h: what the exact area method's rows (area.c) and Catmull's
- * recursive pixel integrater (area_catmull.c) share: the pieces as the
+ * recursive pixel integrater (area_catmull.c) share, with the colours of
+ * scenes that composite (area_composite.c): the pieces as the
  * method reads them, the per-thread workspace, and the small helpers.
  */
 #ifndef AA_AREA_INTERNAL_H
@@ -38,6 +39,12 @@
 #define ANCHOR_ROWS 16
 /* Integer range of cell origins. */
 #define CELL_LIMIT 1073741824.0
+/* Translucent layers, groups and clips: colours of winding states kept
+ * per worker (entries, hash slots: a power of two, at least twice the
+ * entries), and the ring of colours colour_of hands out (composite_colour). */
+#define AR_CACHE_ENTRIES 1024
+#define AR_CACHE_SLOTS 2048
+#define AR_RING 4
 /* Offset pieces (area_offset.c): the largest error bound of the quadrature
  * of one part's share of a panel (px^2), the panels' order, and the number
  * of Gauss-Legendre rules tried. */
@@ -180,6 +187,16 @@ typedef struct ar_worker {
     uint32_t *act; /* segs whose extent reaches the current one */
     cm_level *cm;
     uint64_t expensive;
+    /* a scene that composites (ar_state.composite): the colours of the
+     * winding states met, by the set of layers whose fill rule holds
+     * (ckey: nwords words each; ccol: their colours; cslot: the hash
+     * table, -1 empty; cn entries used); key: the state being looked up;
+     * ring: the colours handed out, the last AR_RING */
+    uint64_t *ckey, *key;
+    double (*ccol)[3];
+    int32_t *cslot;
+    unsigned cn, ringn;
+    double ring[AR_RING][3];
 } ar_worker;
 
 typedef struct ar_state {
@@ -188,6 +205,12 @@ typedef struct ar_state {
     ar_piece *piece; /* sorted by (y0, id) */
     size_t npieces;
     int nl, nch;         /* layers; channels computed (1 for grey scenes) */
+    /* 1 if the colour of a winding state is the scene's composite of the
+     * layers covering it (translucent layers, groups of opacity, clips:
+     * aa_scene_is_opaque is 0), not the front-most covering layer's;
+     * nwords: 64-bit words of a state's key; nscan: layers colour_of
+     * scans for the front-most (nl, or 0 in a scene that composites) */
+    int composite, nwords, nscan;
     double (*colour)[3]; /* per layer, then the background */
     int *evenodd;
     ar_worker *workers;
@@ -208,11 +231,26 @@ typedef struct ar_row {
  * Small helpers shared by the rows and Catmull's integrater
  * ------------------------------------------------------------------------ */
 
-static inline const double *colour_of(const ar_state *S, const int *w)
+/* The colour of winding state w in a scene that composites
+ * (area_composite.c): a
+ * pointer into the worker's ring, valid for the next AR_RING - 1 calls. */
+const double *area_composite_colour(const ar_state *S, ar_worker *wk, const int *w);
+
+/* The colour of winding state w: in an opaque scene the front-most layer's
+ * whose fill rule holds (or the background), else the scene's composite.
+ * A pointer that stays valid for AR_RING - 1 more calls on this worker
+ * (forever in an opaque scene): callers hold at most two at once.  A scene
+ * that composites scans no layer here (nscan = 0), so the opaque scenes'
+ * path is the loop alone, tested for compositing only where no layer
+ * covers. */
+static inline const double *colour_of(const ar_state *S, ar_worker *wk, const int *w)
 {
-    for (int l = 0; l < S->nl; l++)
+    int l = 0;
+    for (; l < S->nscan; l++)
         if (S->evenodd[l] ? (w[l] & 1) : (w[l] != 0))
             return S->colour[l];
+    if (l == 0 && S->composite) /* l = nl in an opaque scene */
+        return area_composite_colour(S, wk, w);
     return S->colour[S->nl];
 }
 
@@ -408,6 +446,10 @@ static inline void store_px(const ar_row *r, double *px, const double *v)
  * declines (too many edges, or arcs) and the bands must do it. */
 int area_cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                            const int *w);
+/* The same in a scene that composites (area_composite.c): every edge
+ * splits, each region's colour the scene's composite. */
+int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
+                             const int *w);
 
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
  * (*out to be freed); 1/2 the integral of (P - P(ta)) x P' from t = ta to
