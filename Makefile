@@ -29,6 +29,8 @@ PKGS      += libcjson
 # the patterns svg (patterns/svgfile.c: libxml2) and text (patterns/text.c:
 # FreeType and HarfBuzz)
 PKGS      += libxml-2.0 harfbuzz
+# .png files (harness/core/image_png.c): libpng, not OpenImageIO's module
+PKGS      += libpng
 TEST_PKGS := cmocka
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
