@@ -922,8 +922,22 @@ fast_part_regular(const an_block *B, const aa_piece *p, const double *val, const
     }
 }
 
-/* fast_part with its rule's size and the values' count constants (the
- * loops unrolled by the compiler) */
+typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val, double t0,
+                        double t1);
+
+/* AN_SPECIALIZE 1 (the default): fast_part with its rule's size and the
+ * values' count constants, one function for each filter degree and rule
+ * (the loops unrolled by the compiler; the rows per degree below).  0: one
+ * function for them all, the same code with the sizes as arguments.  The
+ * sanitizer build uses 0 (Makefile): the 192 unrolled copies took 57 s of
+ * CPU to compile under the sanitizers, a quarter of that build's
+ * compiling, for speed it does not need; every statement of fast_part and
+ * fast_part_regular runs there all the same. */
+#ifndef AN_SPECIALIZE
+#define AN_SPECIALIZE 1
+#endif
+
+#if AN_SPECIALIZE
 #define AN_PART(N, M)                                                               \
     static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
                                     double t0, double t1)                           \
@@ -958,8 +972,6 @@ AN_PARTS(3)
 #undef AN_PARTS
 #undef AN_PART
 
-typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val, double t0,
-                        double t1);
 #define AN_ROW(N)                                                                   \
     {NULL,                fast_part_##N##_1,  fast_part_##N##_2, fast_part_##N##_3,  \
      fast_part_##N##_4,   fast_part_##N##_5,  fast_part_##N##_6, fast_part_##N##_7,  \
@@ -969,6 +981,20 @@ typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val,
 static an_part_fn *const fast_parts[4][AN_MAX_GAUSS + 1] = {AN_ROW(0), AN_ROW(1), AN_ROW(2),
                                                             AN_ROW(3)};
 #undef AN_ROW
+#define AN_PART_FOR(deg, m) fast_parts[deg][m]
+#else
+/* The sizes from the block and the rule's points, as the table is indexed. */
+static void fast_part_any(const an_block *B, const aa_piece *p, const double *val, double t0,
+                          double t1)
+{
+    const int N = B->S->pp.deg, M = gauss_points(p, N), nv = B->nv == 1 ? 1 : AN_NV;
+    if (B->S->regular)
+        fast_part_regular(B, p, val, M, t0, t1, nv, N);
+    else
+        fast_part(B, p, val, M, t0, t1, nv, N);
+}
+#define AN_PART_FOR(deg, m) ((void)(m), fast_part_any)
+#endif
 
 /* The terms of piece p (values val[0 .. nv)) in the block's rows: cut at
  * the knots' lines, in order of t (the lines of y in order, those of x
@@ -1025,7 +1051,7 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val)
     else if (!line)
         aa__vis_sort(tx, nx);
     /* ty holds both ends: every cut of tx lies between its first and last */
-    an_part_fn *part = fast_parts[pp->deg][gauss_points(p, pp->deg)];
+    an_part_fn *part = AN_PART_FOR(pp->deg, gauss_points(p, pp->deg));
     double prev = ty[0];
     size_t iy = 1, ix = 0;
     while (iy < ny) {
