@@ -1188,8 +1188,25 @@ fast_terms(const an_block *B, const double *val, const int m, const double *X, c
         fast_part(B, val, m, X, Y, D, xm, ym, nv, N);
 }
 
-/* A part of a polynomial piece, with its rule's size and the values'
- * count constants (the loops unrolled by the compiler) */
+typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val, double t0,
+                        double t1);
+typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
+                       long double sa, long double sb);
+
+/* AN_SPECIALIZE 1 (the default): a part of a polynomial piece with its
+ * rule's size and the values' count constants, one function for each
+ * filter degree and rule, and an arc's part one for each degree (the
+ * loops unrolled by the compiler; the rows per degree below).  0: one
+ * function for each kind, the same code with the sizes as arguments.  The
+ * sanitizer build uses 0 (Makefile): the unrolled copies took about a
+ * minute of CPU to compile under the sanitizers, a quarter of that
+ * build's compiling, for speed it does not need; every statement of
+ * fast_part and fast_part_regular runs there all the same. */
+#ifndef AN_SPECIALIZE
+#define AN_SPECIALIZE 1
+#endif
+
+#if AN_SPECIALIZE
 #define AN_PART(N, M)                                                               \
     static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
                                     double t0, double t1)                           \
@@ -1221,8 +1238,6 @@ AN_PARTS(3)
 #undef AN_PARTS
 #undef AN_PART
 
-typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val, double t0,
-                        double t1);
 #define AN_ROW(N)                                                                   \
     {NULL,                fast_part_##N##_1,  fast_part_##N##_2, fast_part_##N##_3,  \
      fast_part_##N##_4,   fast_part_##N##_5,  fast_part_##N##_6, fast_part_##N##_7,  \
@@ -1255,9 +1270,34 @@ AN_ARC(2)
 AN_ARC(3)
 #undef AN_ARC
 
-typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
-                       long double sa, long double sb);
 static an_arc_fn *const fast_arcs[4] = {fast_arc_0, fast_arc_1, fast_arc_2, fast_arc_3};
+#define AN_PART_FOR(deg, m) fast_parts[deg][m]
+#define AN_ARC_FOR(deg) fast_arcs[deg]
+#else
+/* The sizes from the block and the piece, as the tables are indexed. */
+static void fast_part_any(const an_block *B, const aa_piece *p, const double *val, double t0,
+                          double t1)
+{
+    const int N = B->S->pp.deg, M = gauss_points(p, N);
+    double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;
+    int where = part_points(B, p, M, t0, t1, X, Y, D, &xm, &ym);
+    fast_terms(B, val, M, X, Y, D, xm, ym, where, B->nv == 1 ? 1 : AN_NV, N);
+}
+
+static void fast_arc_any(const an_block *B, const aa_piece *p, const double *val,
+                         long double sa, long double sb)
+{
+    const an_pp *pp = &B->S->pp;
+    const int N = pp->deg;
+    double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;
+    arc_points(B->S, p, sa, sb, X, Y, D, &xm, &ym);
+    int where = !(xm < B->w - 0.5 + pp->k[pp->ncell]) ? 0 : (xm < 0.5 + pp->k[0] ? 2 : 1);
+    fast_terms(B, val, 4 * N + 6, X, Y, D, xm, ym, where, B->nv == 1 ? 1 : AN_NV, N);
+}
+#define AN_PART_FOR(deg, m) ((void)(m), fast_part_any)
+#define AN_ARC_FOR(deg) ((void)(deg), fast_arc_any)
+#endif
+
 
 /* The terms of conic piece p in the block's rows: cut at the knots' lines
  * in angle (long double, see "Elliptical arcs"), sorted, each part (split
@@ -1294,7 +1334,7 @@ static void fast_conic(const an_block *B, const aa_piece *p, const double *val, 
                 n += (size_t)arc_meet_x(p, R, ang, X, sa, sb, ts + n);
         }
     qsort(ts, n, sizeof *ts, cmp_ld);
-    an_arc_fn *part = fast_arcs[pp->deg];
+    an_arc_fn *part = AN_ARC_FOR(pp->deg);
     for (size_t i = 0; i + 1 < n; i++) {
         if (!(ts[i] < ts[i + 1]))
             continue;
@@ -1366,7 +1406,7 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val)
     else if (!line)
         aa__vis_sort(tx, nx);
     /* ty holds both ends: every cut of tx lies between its first and last */
-    an_part_fn *part = fast_parts[pp->deg][gauss_points(p, pp->deg)];
+    an_part_fn *part = AN_PART_FOR(pp->deg, gauss_points(p, pp->deg));
     double prev = ty[0];
     size_t iy = 1, ix = 0;
     while (iy < ny) {

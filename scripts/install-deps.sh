@@ -51,6 +51,7 @@ need hdr:stdio.h libc6-dev
 need cmd:pkg-config pkg-config
 need pc:gsl libgsl-dev
 need pc:OpenImageIO libopenimageio-dev
+need pc:libpng libpng-dev
 need pc:cmocka libcmocka-dev
 need pc:freetype2 libfreetype-dev
 need pc:stb libstb-dev

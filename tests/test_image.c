@@ -763,6 +763,43 @@ static void test_png_other_encodings(void **state)
     assert_true(fabs(back.v[1] - 31.0 / 255) < 1e-16);
     aa_image_free(&back);
 
+    /* The PNG specification (11.3.3.2): gAMA stores 100000 / G rounded to
+     * an integer, so G is known to that.  gamma:2.2 is stored as 45455, and
+     * read back as 2.2, the value in hundredths that rounds to it:
+     * 0.3^(1/2.2) * 255 = 147.526 -> code 148, read back as (148/255)^2.2 =
+     * 0.30212549635885279428 (python3 decimal, 40 digits). */
+    assert_int_equal(aa_encode_parse("gamma:2.2", &e), AA_OK);
+    assert_int_equal(aa_image_write(path, &im, &e), AA_OK);
+    assert_int_equal(aa_image_read(path, &back), AA_OK);
+    assert_true(fabs(back.v[0] - 0.30212549635885279428) < 1e-15);
+    aa_image_free(&back);
+    /* gamma:2.345 is stored as 42644, and no value in hundredths rounds to
+     * that: read back with the G the file states, 100000/42644.  0.3^(1/2.345)
+     * * 255 = 152.603 -> code 153, read back as (153/255)^(100000/42644) =
+     * 0.30183223429575855041 ((153/255)^2.345 would be 0.3018315835; python3
+     * decimal, 40 digits). */
+    assert_int_equal(aa_encode_parse("gamma:2.345", &e), AA_OK);
+    assert_int_equal(aa_image_write(path, &im, &e), AA_OK);
+    assert_int_equal(aa_image_read(path, &back), AA_OK);
+    assert_true(fabs(back.v[0] - 0.30183223429575855041) < 1e-15);
+    aa_image_free(&back);
+
+    /* A damaged chunk is refused, an ancillary one too: with its gAMA
+     * dropped (libpng's default for an ancillary chunk whose CRC fails) the
+     * file would be decoded as sRGB. */
+    size_t len;
+    char *bytes = slurp(path, &len);
+    char *gama = NULL;
+    for (size_t k = 0; k + 8 < len && gama == NULL; k++)
+        if (memcmp(bytes + k, "gAMA", 4) == 0)
+            gama = bytes + k + 4;
+    assert_non_null(gama);
+    gama[3] ^= 1; /* a bit of 100000 / G: the CRC no longer matches */
+    support_write_file(path, bytes, len);
+    back = (aa_image){1, 1, 1, (double *)&back};
+    assert_refused(aa_image_read(path, &back), AA_EIO, "enc.png", 0);
+    assert_null(back.v);
+
     /* An encoding that did not come from the parser is refused. */
     aa_encode bad = {AA_ENCODE_GAMMA, 0.5};
     assert_refused(aa_image_write(in_dir(state, "bad.png"), &im, &bad), AA_EINVAL, "bad.png", 0);
@@ -1005,13 +1042,15 @@ static void child(void **state, int (*body)(void *state))
     support_in_child(body, state);
 }
 
-/* .txt reads and writes, .pfm writes and looking at extensions load no
- * module; reading .pfm (through OpenImageIO) loads it. */
+/* .txt reads and writes, .png reads and writes (libpng), .pfm writes and
+ * looking at extensions load no module; reading .pfm (through OpenImageIO)
+ * loads it. */
 static int txt_loads_nothing(void *state)
 {
-    char txt[PATH_MAX + 64], pfm[PATH_MAX + 64];
+    char txt[PATH_MAX + 64], pfm[PATH_MAX + 64], png[PATH_MAX + 64];
     snprintf(txt, sizeof txt, "%s", in_dir(state, "a.txt"));
     snprintf(pfm, sizeof pfm, "%s", in_dir(state, "a.pfm"));
+    snprintf(png, sizeof png, "%s", in_dir(state, "a.png"));
     aa_image im, back;
     SUPPORT_CHILD_CHECK(aa_image_alloc(&im, 3, 2, 3) == AA_OK);
     fill_distinct(&im, 0.125);
@@ -1022,6 +1061,12 @@ static int txt_loads_nothing(void *state)
     SUPPORT_CHILD_CHECK(aa_image_read_txt(txt, &back) == AA_OK);
     aa_image_free(&back);
     SUPPORT_CHILD_CHECK(aa_image_write(pfm, &im, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_write(png, &im, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_read(png, &back) == AA_OK);
+    aa_image_free(&back);
+    int w, h, c;
+    SUPPORT_CHILD_CHECK(aa_image_file_size(png, &w, &h, &c) == AA_OK && w == 3 && h == 2 &&
+                        c == 3);
     SUPPORT_CHILD_CHECK(aa_image_ext_known("x.exr") && aa_image_ext_known("x.png"));
     SUPPORT_CHILD_CHECK(module_loaded() == 0);
     SUPPORT_CHILD_CHECK(aa_image_read(pfm, &back) == AA_OK);
@@ -1039,7 +1084,8 @@ static void test_module_on_demand(void **state)
 
 /* A module that cannot be loaded: the formats that need it are refused with
  * AA_EIO, a message naming the image file, the module looked for and the
- * loader's reason, and no file; the others work as before. */
+ * loader's reason, and no file; the others (.png through libpng among them)
+ * work as before. */
 static int module_missing(void *state)
 {
     static const char bogus[] = "/nonexistent/aabench-oiio.so";
@@ -1059,10 +1105,10 @@ static int module_missing(void *state)
                             strstr(msg, "AABENCH_OIIO"));
         SUPPORT_CHILD_CHECK(strstr(msg, "No such file") != NULL); /* dlerror() */
         SUPPORT_CHILD_CHECK(!exists(exr));
-        SUPPORT_CHILD_CHECK(aa_image_write(png, &im, NULL) == AA_EIO);
-        SUPPORT_CHILD_CHECK(strstr(msg, png) == msg && strstr(msg, bogus));
-        SUPPORT_CHILD_CHECK(!exists(png));
     }
+    SUPPORT_CHILD_CHECK(aa_image_write(png, &im, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_read(png, &back) == AA_OK);
+    aa_image_free(&back);
     SUPPORT_CHILD_CHECK(aa_image_write(pfm, &im, NULL) == AA_OK);
     SUPPORT_CHILD_CHECK(aa_image_read(pfm, &back) == AA_EIO);
     SUPPORT_CHILD_CHECK(strstr(msg, pfm) == msg && strstr(msg, bogus));

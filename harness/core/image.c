@@ -9,12 +9,16 @@
  *   .png                  8 bits, display encoded (sRGB unless told), for eyes;
  *   .txt                  text, every value with %.17g, so nothing is lost.
  *
- * The binary formats go through OpenImageIO (oiio.cpp), except for writing
- * .pfm: OpenImageIO 2.4 (Debian 12) reads PFM but its PNM writer only makes
- * 8- and 16-bit PPM/PGM, so we write that simple format here.  The .txt
- * format is ours; its reader and writer are in image_txt.c.  OpenImageIO is
- * a module of its own, loaded the first time a file needs it (the end of
- * this file, and oiio.h), so neither .txt nor writing .pfm loads it.
+ * .png goes through libpng (image_png.c): the pictures a run writes and the
+ * renderers' output the external method reads need none of OpenImageIO's
+ * some 250 libraries.  The float formats go through OpenImageIO (oiio.cpp),
+ * except for writing .pfm: OpenImageIO 2.4 (Debian 12) reads PFM but its
+ * PNM writer only makes 8- and 16-bit PPM/PGM, so we write that simple
+ * format here.  The .txt format is ours; its reader and writer are in
+ * image_txt.c.  OpenImageIO is a module of its own, loaded the first time a
+ * file needs it (the end of this file, and oiio.h), so neither .png, .txt
+ * nor writing .pfm loads it (but for a file named .png that is not a PNG,
+ * read_file below).
  *
  * Every write goes to a temporary name beside the result and is renamed
  * into place (files.c), so a failure leaves no output behind.
@@ -156,7 +160,7 @@ typedef enum format_kind { FORMAT_TXT, FORMAT_FLOAT, FORMAT_PFM, FORMAT_8BIT } f
 
 typedef struct image_format {
     const char *ext;      /* lower case, with its dot */
-    const char *oiio;     /* OpenImageIO's writer; NULL if we write it */
+    const char *oiio;     /* OpenImageIO's writer; NULL if not OpenImageIO's */
     format_kind kind;
     unsigned channels;    /* bit c set: c channels can be stored */
     const char *channels_why;
@@ -171,7 +175,7 @@ static const image_format formats[] = {
     {".tiff", "tiff", FORMAT_FLOAT, ONE_TO_FOUR, "1 to 4"},
     {".pfm", NULL, FORMAT_PFM, GREY_OR_RGB, "1 or 3 (all PFM can hold)"},
     /* PNG could hold 2 or 4, but every reader takes the last as alpha. */
-    {".png", "png", FORMAT_8BIT, GREY_OR_RGB, "1 or 3 (2 or 4 would be read as alpha)"},
+    {".png", NULL, FORMAT_8BIT, GREY_OR_RGB, "1 or 3 (2 or 4 would be read as alpha)"},
     {".txt", NULL, FORMAT_TXT, ONE_TO_FOUR, "1 to 4"}, /* last: txt_format */
 };
 
@@ -263,6 +267,7 @@ struct aa_image_out {
     off_t pfm_data;          /* where the .pfm samples start */
     const aa__oiio_api *oiio;
     aa__oiio_out *oo;        /* the formats OpenImageIO writes */
+    aa__png_out *po;         /* .png, through libpng */
     unsigned char *bytes;    /* display-encoded rows, for 8-bit files */
     size_t nbytes;
     int status;              /* the first failure, kept for later calls */
@@ -280,6 +285,10 @@ static int out_failed(aa_image_out *out, int status)
     if (out->oo != NULL) {
         out->oiio->out_abort(out->oo);
         out->oo = NULL;
+    }
+    if (out->po != NULL) {
+        aa__png_out_abort(out->po);
+        out->po = NULL;
     }
     remove(out->tmp); /* may not exist, if creating it failed */
     aa_fail_context(status, "%s", out->path);
@@ -393,9 +402,10 @@ int aa_image_out_begin(const char *path, int w, int h, int c, const aa_encode *e
     }
     switch (f->kind) {
     case FORMAT_FLOAT:
+        status = out->oiio->out_open(out->tmp, f->oiio, w, h, c, 1, 0, &out->oo);
+        break;
     case FORMAT_8BIT:
-        status = out->oiio->out_open(out->tmp, f->oiio, w, h, c, f->kind == FORMAT_FLOAT,
-                                     encode_gamma(enc), &out->oo);
+        status = aa__png_out_open(out->tmp, w, h, c, encode_gamma(enc), &out->po);
         break;
     case FORMAT_TXT:
     case FORMAT_PFM:
@@ -444,7 +454,7 @@ int aa_image_out_rows(aa_image_out *out, const double *v, int rows)
             out->nbytes = n;
         }
         encode_bytes(&out->enc, v, n, out->bytes);
-        status = out->oiio->out_rows(out->oo, y0, y0 + rows, out->bytes);
+        status = aa__png_out_rows(out->po, y0, y0 + rows, out->bytes);
         break;
     case FORMAT_TXT:
         status = aa__txt_check_finite_rows(out->path, v, out->w, y0, rows, out->c);
@@ -477,6 +487,9 @@ int aa_image_out_finish(aa_image_out *out)
     else if (out->oo != NULL) {
         status = out->oiio->out_close(out->oo);
         out->oo = NULL;
+    } else if (out->po != NULL) {
+        status = aa__png_out_close(out->po);
+        out->po = NULL;
     } else {
         FILE *f = out->f;
         out->f = NULL;
@@ -544,7 +557,7 @@ int aa_image_write(const char *path, const aa_image *im, const aa_encode *enc)
 }
 
 /* ------------------------------------------------------------------------
- * Reading through OpenImageIO
+ * Reading through libpng and OpenImageIO
  * ------------------------------------------------------------------------ */
 
 /* 8-bit samples arrive as code / 255; snap back to the code and decode
@@ -677,15 +690,55 @@ static int pfm_complete(const char *path)
     return AA_OK;
 }
 
-static int read_oiio(const char *path, aa_image *im)
+/* Whether a .png file is read by libpng: 1 unless 8 bytes of it could be
+ * read and are not the PNG signature.  Such a file is something else under
+ * a .png name, which OpenImageIO reads by its content as it always did; a
+ * file shorter than a signature or one that cannot be opened is refused by
+ * libpng's reader, which says so. */
+static int png_reads(const char *path)
 {
-    /* Before OpenImageIO reads it: its PNG reader, given a file that ends
-     * early, leaks what libpng's error jump skips, and libpng prints. */
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return 1;
+    unsigned char head[8];
+    ssize_t n = read(fd, head, sizeof head);
+    close(fd);
+    return n != (ssize_t)sizeof head || aa__png_signature(head);
+}
+
+/* A .png file through libpng (image_png.c). */
+static int read_png(const char *path, aa_image *im)
+{
+    aa__png_in *in;
+    aa__oiio_info info;
+    int status = aa__png_open(path, &in, &info);
+    if (status != AA_OK)
+        return status;
+    status = check_file_size(path, &info);
+    if (status == AA_OK)
+        status = aa_image_alloc(im, info.w, info.h, info.c);
+    if (status == AA_OK)
+        status = aa__png_read(in, im->v);
+    aa__png_close(in);
+    if (status != AA_OK) {
+        aa_image_free(im);
+        return status;
+    }
+    decode_integers(im, &info);
+    return AA_OK;
+}
+
+static int read_file(const char *path, const image_format *f, aa_image *im)
+{
+    /* Before a reader reads it: libpng would refuse a PNG cut short too,
+     * but not one cut inside or just before its IEND chunk. */
     int status = aa_png_complete(path);
     if (status == AA_OK)
         status = pfm_complete(path);
     if (status != AA_OK)
         return status;
+    if (f->kind == FORMAT_8BIT && png_reads(path))
+        return read_png(path, im);
     const aa__oiio_api *oiio = aa__oiio(path);
     if (oiio == NULL)
         return AA_EIO;
@@ -722,11 +775,22 @@ int aa_image_file_size(const char *path, int *w, int *h, int *c)
     int status = pfm_complete(path);
     if (status != AA_OK)
         return status;
+    aa__oiio_info info;
+    if (f->kind == FORMAT_8BIT && png_reads(path)) {
+        aa__png_in *png;
+        status = aa__png_open(path, &png, &info);
+        if (status != AA_OK)
+            return status;
+        aa__png_close(png);
+        status = check_file_sides(path, &info);
+        if (status == AA_OK)
+            *w = info.w, *h = info.h, *c = info.c;
+        return status;
+    }
     const aa__oiio_api *oiio = aa__oiio(path);
     if (oiio == NULL)
         return AA_EIO;
     aa__oiio_in *in;
-    aa__oiio_info info;
     status = oiio->open(path, &in, &info);
     if (status != AA_OK)
         return status;
@@ -747,7 +811,7 @@ int aa_image_read(const char *path, aa_image *im)
         return unknown_format(path);
     if (f->kind == FORMAT_TXT)
         return aa_image_read_txt(path, im);
-    return read_oiio(path, im);
+    return read_file(path, f, im);
 }
 
 /* ------------------------------------------------------------------------

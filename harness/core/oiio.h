@@ -13,8 +13,8 @@
  * command.  So oiio.cpp is built into a module of its own,
  * aabench-oiio.so, linked against OpenImageIO, and the library does not link
  * either: image.c loads the module with dlopen() the first time an image
- * file needs it (.exr, .tif, .png, and reading .pfm), and never for .txt or
- * for writing .pfm.  The module exports one function, aa__oiio_entry(),
+ * file needs it (.exr, .tif, reading .pfm, and a file named .png that is not
+ * a PNG), and never for .png (libpng, image_png.c), .txt or writing .pfm.  The module exports one function, aa__oiio_entry(),
  * which returns the table of the others.  It is handed the library's aa_fail
  * rather than calling it by name, so it needs no symbol of the program that
  * loads it.
