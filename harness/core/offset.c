@@ -118,6 +118,21 @@ int aa__offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4]
     return offset_stop(oc, t, te, q);
 }
 
+/* offset_stop's answer at either end at once (bit 0: at t = 0, for t <
+ * 0.5; bit 1: at t = 1), its tests in the same arithmetic: for a solver
+ * that evaluates the curve several times (the magnitudes' sum once). */
+#define STOP_ASK 3 /* both bits: offset_stop asked at each evaluation */
+static inline int stop_ends(const aa_offset_curve *oc)
+{
+    if (oc->base != AA_OFFSET_CUBIC)
+        return 0;
+    const double *b = oc->b;
+    double scale = fabs(b[1]) + fabs(b[2]) + fabs(b[3]) + fabs(b[5]) + fabs(b[6]) + fabs(b[7]);
+    double tol = 1e-12 * scale;
+    double ex = b[1] + (2 * b[2] + 3 * b[3]), ey = b[5] + (2 * b[6] + 3 * b[7]);
+    return (b[1] * b[1] + b[5] * b[5] <= tol * tol) | (ex * ex + ey * ey <= tol * tol) << 1;
+}
+
 /* The point and derivative (unmapped) of a cubic's offset or evolute in
  * the factored form about te (see the header). */
 static void stop_eval(const aa_offset_curve *oc, long double t, double te, const double *q,
@@ -197,11 +212,12 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
  *  - the evolute (N / k = N L^3 / c = L N (L^2 / c), no square root):
  *    r.B + m[4 + coord] + w L^2 / c, slope w (1/k)' / L =
  *    w (3 (B'.B'') c - L^2 c') / c^2. */
-static inline void eval_parts(const aa_offset_curve *oc, int coord, double t, double *base0,
-                              double *nrm, double *df, double *dn)
+static inline void eval_parts(const aa_offset_curve *oc, int coord, double t, int stops,
+                              double *base0, double *nrm, double *df, double *dn)
 {
     double te, q[4];
-    if (oc->base == AA_OFFSET_CUBIC && offset_stop(oc, t, &te, q)) {
+    if (oc->base == AA_OFFSET_CUBIC && (stops & (t < 0.5 ? 1 : 2)) &&
+        offset_stop(oc, t, &te, q)) {
         /* next to a cubic's end where B' = 0 (the factored form, in long
          * double): the point, its derivative and the base point, the row
          * applied to each */
@@ -254,17 +270,17 @@ static inline double parts_f(double base0, double nrm, double tgt)
     return (base0 - tgt) + nrm;
 }
 
-static inline void eval_d(const aa_offset_curve *oc, int coord, double t, double tgt, double *f,
-                          double *df, double *dn)
+static inline void eval_d(const aa_offset_curve *oc, int coord, double t, int stops, double tgt,
+                          double *f, double *df, double *dn)
 {
     double base0, nrm;
-    eval_parts(oc, coord, t, &base0, &nrm, df, dn);
+    eval_parts(oc, coord, t, stops, &base0, &nrm, df, dn);
     *f = parts_f(base0, nrm, tgt);
 }
 
 void aa__offset_end(const aa_offset_curve *oc, int coord, double t, double e[4])
 {
-    eval_parts(oc, coord, t, &e[0], &e[1], &e[2], &e[3]);
+    eval_parts(oc, coord, t, STOP_ASK, &e[0], &e[1], &e[2], &e[3]);
 }
 
 void aa_offset_point(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
@@ -379,7 +395,7 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
                            double *pb, double *last)
 {
     const double *c = oc->b;
-    int neg = fa < 0;
+    int neg = fa < 0, stops = stop_ends(oc);
     double t = 0.5 * (a + b), prev = fabs(b - a), f, df, dn;
     /* the terms' size: a cubic's x and y coefficients, an ellipse's
      * centre and semi-diameters (x in c[0], c[2], c[4], y in the others) */
@@ -405,7 +421,7 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
         if (endb) /* the caller's eval_parts at b (aa__offset_end) */
             f = parts_f(endb[0], endb[1], tgt), df = endb[2], dn = endb[3];
         else
-            eval_d(oc, coord, b, tgt, &f, &df, &dn);
+            eval_d(oc, coord, b, stops, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn)) {
             *pa = a, *pb = b; /* the root at b, within rounding */
             return b;
@@ -428,7 +444,7 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
     }
     *last = NAN; /* the step that reached t, where Newton's */
     for (int it = 0; it < 100; it++) {
-        eval_d(oc, coord, t, tgt, &f, &df, &dn);
+        eval_d(oc, coord, t, stops, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn))
             break;
         if ((f < 0) == neg)
