@@ -138,15 +138,17 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 5.1 in CPU time (medians of
- * three runs on the shared machine at a load of 12; area 79 ms, point
- * 15.5 ms), 4.5 by instructions (callgrind: area 504 M a render, point
- * 112 M): the crossings' root-finding (Newton on the curve) is 33% of
- * area's instructions (the band lines' half of it), the quadrature 19%,
- * the meetings of pieces in a cluster 17% (aa__piece_meet_at, given the
+ * (tests/bench_bezstroke.c), area/point about 5 in CPU time (medians of
+ * three runs on the shared machine at a load of 11 to 14; area 79 to
+ * 96 ms, point 14 to 21 ms), 4.45 by instructions (callgrind: area 486 M
+ * a render, point 109 M): the crossings' root-finding (Newton on the
+ * curve; the band lines' y at an offset piece's bottom evaluated once a
+ * piece, aa__offset_end) is 31% of area's instructions (the band lines'
+ * half of it), the quadrature 20%,
+ * the meetings of pieces in a cluster 16% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
- * by their slopes, scene_piece.c; polishing a meeting 6%), sorting 4%.
+ * by their slopes, scene_piece.c; polishing a meeting 6%), sorting 5%.
  * Each end of a part is evaluated once, for u and v together (seg_u,
  * part_area: the seg's memo of v).  Not yet within the factor of 2 of
  * other scenes (algorithms/README.md says where the time goes).
