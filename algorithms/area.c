@@ -138,9 +138,9 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point about 5 in CPU time (medians of
- * three runs on the shared machine at a load of 11 to 14; area 79 to
- * 96 ms, point 14 to 21 ms), 4.45 by instructions (callgrind: area 486 M
+ * (tests/bench_bezstroke.c), area/point 5.0 in CPU time (medians of
+ * three runs on the shared machine at a load of 4; area 68 to 71 ms,
+ * point 13.6 to 14.3 ms), 4.45 by instructions (callgrind: area 486 M
  * a render, point 109 M): the crossings' root-finding (Newton on the
  * curve; the band lines' y at an offset piece's bottom evaluated once a
  * piece, aa__offset_end) is 31% of area's instructions (the band lines'
