@@ -138,15 +138,17 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 5.1 in CPU time (medians of
- * three runs on the shared machine at a load of 12; area 79 ms, point
- * 15.5 ms), 4.5 by instructions (callgrind: area 504 M a render, point
- * 112 M): the crossings' root-finding (Newton on the curve) is 33% of
- * area's instructions (the band lines' half of it), the quadrature 19%,
- * the meetings of pieces in a cluster 17% (aa__piece_meet_at, given the
+ * (tests/bench_bezstroke.c), area/point 5.0 in CPU time (medians of
+ * three runs on the shared machine at a load of 4; area 68 to 71 ms,
+ * point 13.6 to 14.3 ms), 4.45 by instructions (callgrind: area 486 M
+ * a render, point 109 M): the crossings' root-finding (Newton on the
+ * curve; the band lines' y at an offset piece's bottom evaluated once a
+ * piece, aa__offset_end) is 31% of area's instructions (the band lines'
+ * half of it), the quadrature 20%,
+ * the meetings of pieces in a cluster 16% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
- * by their slopes, scene_piece.c; polishing a meeting 6%), sorting 4%.
+ * by their slopes, scene_piece.c; polishing a meeting 6%), sorting 5%.
  * Each end of a part is evaluated once, for u and v together (seg_u,
  * part_area: the seg's memo of v).  Not yet within the factor of 2 of
  * other scenes (algorithms/README.md says where the time goes).
@@ -561,7 +563,7 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     const aa_piece *q = p->src;
     double t = q->ot0;
     if (p->y0 < ja)
-        t = (double)aa__offset_solve_from(&q->oc, 1, q->ot0, q->ot1, p->y0 - ja, ja, NAN);
+        t = (double)aa__offset_solve_end(&q->oc, 1, q->ot0, q->ot1, p->y0 - ja, ja, p->oend);
     long double X, Y;
     aa__offset_eval(&q->oc, t, &X, &Y, NULL, NULL);
     double c0 = floor((double)X);
@@ -688,8 +690,8 @@ static double line_tau_curved(const ar_seg *a, int m)
         const aa_piece *q = a->p->src;
         if (m == 0 && a->p->y0 < a->ja)
             return a->g;
-        return a->p->sg * (double)aa__offset_solve_from(&q->oc, 1, q->ot0, q->ot1,
-                                                          a->p->y0 + c, -c, NAN);
+        return a->p->sg * (double)aa__offset_solve_end(&q->oc, 1, q->ot0, q->ot1,
+                                                         a->p->y0 + c, -c, a->p->oend);
     }
     if (a->p->conic)
         return conic_q_of_v(a, c);
@@ -1774,6 +1776,7 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
 {
     q->offset = 1;
     q->sg = p->ot1 > p->ot0 ? 1.0 : -1.0;
+    aa__offset_end(&p->oc, 1, p->ot1, q->oend);
     double ts[2];
     int n = aa__offset_turns(&p->oc, 0, fmin(p->ot0, p->ot1), fmax(p->ot0, p->ot1), ts);
     q->ote = q->ote2 = INFINITY;

@@ -99,9 +99,12 @@ typedef struct ar_piece {
     /* An offset piece (AA_PIECE_OFFSET): its "tau" is sg t (t the curve's
      * parameter, sg = +-1 so that tau rises down the piece); te, te2: tau
      * where x turns (ascending, infinite if none); its panels (npan of
-     * them, state-owned) and the rules (area_offset.c) */
+     * them, state-owned) and the rules (area_offset.c); oend: y's
+     * evaluation at its bottom ot1 (aa__offset_end), which every band
+     * line's root would repeat */
     int offset;
     double sg, ote, ote2;
+    double oend[4];
     const ar_panel *pan;
     size_t pan0, npan; /* pan0: the first panel's index in the state's */
     const ar_quad *quad;

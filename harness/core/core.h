@@ -756,6 +756,15 @@ long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long dou
 long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta, long double tb,
                             long double fa, long double target, double guess, long double *other,
                             double *slope);
+/* Coordinate coord of oc at t as the double phase of the solvers first
+ * evaluates it at a bracket's far end (e[4], opaque): for a caller that
+ * solves for many targets in one bracket [ta, tb] (a piece's band lines),
+ * so that tb is evaluated once. */
+void aa__offset_end(const aa_offset_curve *oc, int coord, double t, double e[4]);
+/* aa__offset_solve_from without a guess, given aa__offset_end's e at tb:
+ * the same root, bit for bit, one evaluation fewer. */
+long double aa__offset_solve_end(const aa_offset_curve *oc, int coord, double ta, double tb,
+                                 long double fa, long double target, const double endb[4]);
 
 #ifdef __cplusplus
 }

@@ -118,6 +118,21 @@ int aa__offset_stop(const aa_offset_curve *oc, double t, double *te, double q[4]
     return offset_stop(oc, t, te, q);
 }
 
+/* offset_stop's answer at either end at once (bit 0: at t = 0, for t <
+ * 0.5; bit 1: at t = 1), its tests in the same arithmetic: for a solver
+ * that evaluates the curve several times (the magnitudes' sum once). */
+#define STOP_ASK 3 /* both bits: offset_stop asked at each evaluation */
+static inline int stop_ends(const aa_offset_curve *oc)
+{
+    if (oc->base != AA_OFFSET_CUBIC)
+        return 0;
+    const double *b = oc->b;
+    double scale = fabs(b[1]) + fabs(b[2]) + fabs(b[3]) + fabs(b[5]) + fabs(b[6]) + fabs(b[7]);
+    double tol = 1e-12 * scale;
+    double ex = b[1] + (2 * b[2] + 3 * b[3]), ey = b[5] + (2 * b[6] + 3 * b[7]);
+    return (b[1] * b[1] + b[5] * b[5] <= tol * tol) | (ex * ex + ey * ey <= tol * tol) << 1;
+}
+
 /* The point and derivative (unmapped) of a cubic's offset or evolute in
  * the factored form about te (see the header). */
 static void stop_eval(const aa_offset_curve *oc, long double t, double te, const double *q,
@@ -186,20 +201,23 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
         *dy = m[1] * qx + m[3] * qy;
 }
 
-/* Coordinate coord of oc at t less tgt (*f), its derivative (*df) and the
- * size of its normal term (*dn: |d w / L| or |w L^2 / c|, below), in
- * double: the solver's first steps.  Only the wanted row of the map is
+/* Coordinate coord of oc at t as the base curve's mapped coordinate
+ * (*base0) plus the normal term (*nrm: d w / L or w L^2 / c, below; in the
+ * factored form next to a cusp the point's coordinate and 0), its
+ * derivative (*df) and the size of its normal term (*dn), in double: the
+ * solver's first steps (eval_d: the value less a target).  Only the wanted row of the map is
  * applied, and each form takes one division: with r = (m[coord],
  * m[2 + coord]) and w = r1 B'x - r0 B'y (the row applied to L N),
  *  - the offset: r.B + m[4 + coord] + d w / L, slope (r.B') (1 - d c / L^3);
  *  - the evolute (N / k = N L^3 / c = L N (L^2 / c), no square root):
  *    r.B + m[4 + coord] + w L^2 / c, slope w (1/k)' / L =
  *    w (3 (B'.B'') c - L^2 c') / c^2. */
-static void eval_d(const aa_offset_curve *oc, int coord, double t, double tgt, double *f,
-                   double *df, double *dn)
+static inline void eval_parts(const aa_offset_curve *oc, int coord, double t, int stops,
+                              double *base0, double *nrm, double *df, double *dn)
 {
     double te, q[4];
-    if (oc->base == AA_OFFSET_CUBIC && offset_stop(oc, t, &te, q)) {
+    if (oc->base == AA_OFFSET_CUBIC && (stops & (t < 0.5 ? 1 : 2)) &&
+        offset_stop(oc, t, &te, q)) {
         /* next to a cubic's end where B' = 0 (the factored form, in long
          * double): the point, its derivative and the base point, the row
          * applied to each */
@@ -209,7 +227,7 @@ static void eval_d(const aa_offset_curve *oc, int coord, double t, double tgt, d
         base_eval_d(oc, t, B, U, V, W);
         double at = (double)(coord ? Y : X);
         double bm = oc->m[coord] * B[0] + oc->m[2 + coord] * B[1] + oc->m[4 + coord];
-        *f = at - tgt;
+        *base0 = at, *nrm = 0.0;
         *df = (double)(coord ? DY : DX);
         *dn = fabs(at - bm);
         return;
@@ -231,19 +249,38 @@ static void eval_d(const aa_offset_curve *oc, int coord, double t, double tgt, d
         cp = ux * 6 * b[7] - uy * 6 * b[3];
     }
     double c = ux * vy - uy * vx, L2 = ux * ux + uy * uy, w = r1 * ux - r0 * uy;
-    double base = (r0 * bx + r1 * by + oc->m[4 + coord]) - tgt;
+    *base0 = r0 * bx + r1 * by + oc->m[4 + coord];
     if (!oc->evolute) {
         double il = 1 / sqrt(L2);
-        *dn = oc->d * w * il;
-        *f = base + *dn;
+        *nrm = oc->d * w * il;
         *df = (r0 * ux + r1 * uy) * (1 - oc->d * c * (il * il * il));
     } else {
         double ic = 1 / c, dot = ux * vx + uy * vy;
-        *dn = w * L2 * ic;
-        *f = base + *dn;
+        *nrm = w * L2 * ic;
         *df = w * (3 * dot * c - L2 * cp) * (ic * ic);
     }
-    *dn = fabs(*dn);
+    *dn = fabs(*nrm);
+}
+
+/* The value less tgt from eval_parts' terms: (base - tgt) + normal term,
+ * in this order (the factored form's normal term is 0 and its base the
+ * point's coordinate). */
+static inline double parts_f(double base0, double nrm, double tgt)
+{
+    return (base0 - tgt) + nrm;
+}
+
+static inline void eval_d(const aa_offset_curve *oc, int coord, double t, int stops, double tgt,
+                          double *f, double *df, double *dn)
+{
+    double base0, nrm;
+    eval_parts(oc, coord, t, stops, &base0, &nrm, df, dn);
+    *f = parts_f(base0, nrm, tgt);
+}
+
+void aa__offset_end(const aa_offset_curve *oc, int coord, double t, double e[4])
+{
+    eval_parts(oc, coord, t, STOP_ASK, &e[0], &e[1], &e[2], &e[3]);
 }
 
 void aa_offset_point(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
@@ -354,11 +391,11 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * long double phase judges the error left by the two last steps (below). */
 #define ROOT_D_STEP 1e-6
 static double solve_double(const aa_offset_curve *oc, int coord, double a, double b, double fa,
-                           double tgt, double guess, double tol, double *pa, double *pb,
-                           double *last)
+                           double tgt, double guess, double tol, const double *endb, double *pa,
+                           double *pb, double *last)
 {
     const double *c = oc->b;
-    int neg = fa < 0;
+    int neg = fa < 0, stops = stop_ends(oc);
     double t = 0.5 * (a + b), prev = fabs(b - a), f, df, dn;
     /* the terms' size: a cubic's x and y coefficients, an ellipse's
      * centre and semi-diameters (x in c[0], c[2], c[4], y in the others) */
@@ -381,7 +418,10 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
          * coordinate is quadratic, as next to a turn at either end (a
          * piece's end, where the chord's root is far off and Newton's
          * steps only halve the distance); else the chord's */
-        eval_d(oc, coord, b, tgt, &f, &df, &dn);
+        if (endb) /* the caller's eval_parts at b (aa__offset_end) */
+            f = parts_f(endb[0], endb[1], tgt), df = endb[2], dn = endb[3];
+        else
+            eval_d(oc, coord, b, stops, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn)) {
             *pa = a, *pb = b; /* the root at b, within rounding */
             return b;
@@ -404,7 +444,7 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
     }
     *last = NAN; /* the step that reached t, where Newton's */
     for (int it = 0; it < 100; it++) {
-        eval_d(oc, coord, t, tgt, &f, &df, &dn);
+        eval_d(oc, coord, t, stops, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn))
             break;
         if ((f < 0) == neg)
@@ -417,7 +457,9 @@ static double solve_double(const aa_offset_curve *oc, int coord, double a, doubl
         double next = df != 0 && isfinite(df) ? t - f / df : mid;
         if (fabs(next - t) <= tol * (fabs(t) > 1.0 ? fabs(t) : 1.0)) { /* fmax, not a call */
             /* a root at an end comes out a rounding beyond it */
-            double cl = fmin(fmax(next, fmin(a, b)), fmax(a, b));
+            double lo = a < b ? a : b, hi = a < b ? b : a; /* no calls */
+            double cl = next > lo ? next : lo;
+            cl = cl < hi ? cl : hi;
             *last = cl == next ? fabs(next - t) : NAN;
             t = cl;
             break;
@@ -442,7 +484,7 @@ double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, doubl
     double a, b, last;
     if (fa == 0)
         return ta;
-    return solve_double(oc, coord, ta, tb, fa, target, NAN, SOLVE_D_STEP, &a, &b, &last);
+    return solve_double(oc, coord, ta, tb, fa, target, NAN, SOLVE_D_STEP, NULL, &a, &b, &last);
 }
 
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
@@ -451,9 +493,26 @@ long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long dou
     return aa__offset_root(oc, coord, ta, tb, fa, target, guess, NULL, NULL);
 }
 
+static long double offset_root(const aa_offset_curve *oc, int coord, long double ta,
+                               long double tb, long double fa, long double target, double guess,
+                               const double *endb, long double *other, double *slope);
+
 long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta, long double tb,
                             long double fa, long double target, double guess, long double *other,
                             double *slope)
+{
+    return offset_root(oc, coord, ta, tb, fa, target, guess, NULL, other, slope);
+}
+
+long double aa__offset_solve_end(const aa_offset_curve *oc, int coord, double ta, double tb,
+                                 long double fa, long double target, const double endb[4])
+{
+    return offset_root(oc, coord, ta, tb, fa, target, NAN, endb, NULL, NULL);
+}
+
+static long double offset_root(const aa_offset_curve *oc, int coord, long double ta,
+                               long double tb, long double fa, long double target, double guess,
+                               const double *endb, long double *other, double *slope)
 {
     /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
      * (either may be 0).  Newton's method in double (solve_double, to a
@@ -483,7 +542,7 @@ long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta
         goto at_lt;
     double a, b, h1;
     lt = solve_double(oc, coord, (double)ta, (double)tb, (double)fa, (double)target, guess,
-                      ROOT_D_STEP, &a, &b, &h1);
+                      ROOT_D_STEP, endb, &a, &b, &h1);
     /* long double: the bracket is the caller's, [ta, tb], not what the
      * double phase left: the signs that shrank it are double's, wrong
      * within its rounding of the root, where long double's Newton steps
