@@ -179,8 +179,8 @@
  * (source over, group opacity) is affine in every layer's colour while the
  * alphas are constant; a single gradient with stops of differing opacity
  * keeps it affine as long as it is the scene's only gradient (its alpha
- * then multiplies constants only), and other scenes are refused
- * (grad_check).  The composite is read at the quarter and three-quarter
+ * then multiplies constants only); other scenes take the path of several
+ * gradients (grad_mode).  The composite is read at the quarter and three-quarter
  * points of each such piece (the ends may lie on a jump) and extended
  * linearly to its ends, va and vb, and the piece's integral is its length
  * times the mean of the sRGB decoding over [va, vb] in closed form: v /
@@ -198,9 +198,10 @@
  * 2% step) leaves the inner integral continuously differentiable and is no
  * breakpoint: QAG's bisection takes it.
  *
- * Radial gradients (in scenes without linear ones, each point painted by
- * one at most; "radial gradient paint" below): along a row t is (b - sqrt(d)) / a, b affine and d quadratic in
- * x, and the decoded colour has no closed-form integral.  The row is cut
+ * Radial gradients (in scenes without linear ones; a span painted by two
+ * takes the path of several gradients; "radial gradient paint" below):
+ * along a row t is (b - sqrt(d)) / a, b affine and d quadratic in x, and
+ * the decoded colour has no closed-form integral.  The row is cut
  * where t passes a stop's offset or a period's end, where a channel's
  * composite passes 0.04045, and where d is least; each piece takes a
  * 20-point Gauss-Legendre rule with a rigorous bound from the integrand's
@@ -216,8 +217,30 @@
  * polynomial of degree 6 for a cubic, 4 for an arc in the half-angle
  * parameter, its sign changes isolated between its derivative's roots
  * and bisected), and the row of P* where t is least.  Offset pieces
- * (strokes of curves), radial gradients with linear ones or over one
- * another, and other filters are refused with a gradient scene.
+ * (strokes of curves), windows with more than TRUTH_MAX_PAIRS pieces and
+ * other filters are refused with a gradient scene.
+ *
+ * Several gradients at a point (radial with linear, two radial ones, a
+ * gradient of varying opacity with another: "several gradients" below):
+ * the composite is affine in each layer's opacity and opacity times
+ * channel, so a sum of products over the layers whose coefficients are
+ * read from 3^n composites (n <= GEN_MAX layers painting a span; more are
+ * refused).  The row is cut at every layer's stops, periods' ends and
+ * radial x0; the decoding's threshold, now where a composite of several
+ * t passes 0.04045, is isolated by bisection with a certified bound on
+ * the composite's slope (intervals it cannot clear shrink to 1e-13 and
+ * take their midpoint with their width times the slope bound as their
+ * error); each piece takes the 20-point rule with the Bernstein-ellipse
+ * bound, the ellipse clear of every radial layer's branch points and, on
+ * the power piece, of the zeros of e + 0.055 (shown by a bound on e's
+ * change over the ellipse).  The outer breakpoints are the union of the
+ * layers' own (stop lines and circles as above); the threshold's curve is
+ * no circle then and is left to QAG's bisection, as the linear path's
+ * kink at 0.04045 is.  Scenes that do not mix take the paths above, to
+ * the bit, except that the radial path's test of which layer a span
+ * depends on now takes the other gradients as transparent (their
+ * stand-in colour, the first stop's at the layer's alpha, could hide a
+ * layer behind a translucent gradient).
  *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
@@ -2334,9 +2357,9 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     if (w->gen_over) {
         w->gen_over = 0;
         return aa_fail(AA_EINVAL, "pixel (%g, %g): more than %d gradient layers paint one point "
-                                  "(the reference reads 3^%d composites for each span there): "
-                                  "refused; sample it with point, supersample or jitter",
-                       w->uc - 0.5, w->vc - 0.5, GEN_MAX, GEN_MAX);
+                                  "(the reference reads 3^n composites for each span n of them "
+                                  "paint): refused; sample it with point, supersample or jitter",
+                       w->uc - 0.5, w->vc - 0.5, GEN_MAX);
     }
     if (grey)
         value[1] = value[2] = value[0];
