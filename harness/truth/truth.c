@@ -1183,8 +1183,11 @@ static void gen_eval(const gen_span_ctx *c, double x, double *e)
     }
 }
 
-/* Bounds of |e| and |e'| of each channel on the rectangle |Re z - m| <= A,
- * |Im z| <= B (the comment above); 0 if a branch point may lie in it. */
+/* Bounds of |e| and |e'| of each channel on the ellipse of semi-axes A
+ * and B about m (|z - m| <= A there; the branch points' distances are
+ * bounded below by their distances to the rectangle |Re z - m| <= A,
+ * |Im z| <= B that holds it: the comment above); 0 if a branch point may
+ * lie in that rectangle.  B = 0, A = h: the real segment [m - h, m + h]. */
 static int gen_bounds(const gen_span_ctx *c, double m, double A, double B, double *emax,
                       double *dmax)
 {
