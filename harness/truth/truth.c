@@ -1200,14 +1200,24 @@ static int gen_bounds(const gen_span_ctx *c, double m, double A, double B, doubl
             continue;
         }
         const rad_row *r = &c->row[l];
-        double sd = sqrt(fabs(r->dmin) / r->d2), D1, D2;
+        double sd = sqrt(fabs(r->dmin) / r->d2), D1, D2, ia = 1.0 / fabs(g->rg->a);
+        if (B == 0.0 && r->dmin >= 0.0) {
+            /* the real segment: |d'| / (2 sqrt d) = d2 u / sqrt(d2 u^2 +
+             * dmin), u = |x - x0| <= Z, increasing in u, so at most its
+             * value at Z (below sqrt(d2): finite even through x0, where t
+             * is a cone) */
+            double Z = fabs(m - r->x0) + A, dz = sqrt(r->d2 * Z * Z + r->dmin);
+            T[l] = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + dz) * ia;
+            P[l] = (fabs(r->b1) + (dz > 0.0 ? r->d2 * Z / dz : 0.0)) * ia;
+            continue;
+        }
         if (r->dmin >= 0.0)
             D1 = D2 = fmax(sd - B, fabs(r->x0 - m) - A);
         else
             D1 = fabs(r->x0 - sd - m) - A, D2 = fabs(r->x0 + sd - m) - A;
         if (!(D1 > 0.0 && D2 > 0.0))
             return 0;
-        double Z = fabs(m - r->x0) + A, ia = 1.0 / fabs(g->rg->a);
+        double Z = fabs(m - r->x0) + A;
         T[l] = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + sqrt(r->d2 * Z * Z + fabs(r->dmin))) *
                ia;
         P[l] = (fabs(r->b1) + r->d2 * Z / sqrt(r->d2 * D1 * D2)) * ia;
