@@ -1135,6 +1135,15 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
  * on the ellipse, so u^2.4 is analytic there and bounded by ((|e| +
  * 0.055) / 1.055)^2.4.  Pieces are halved until the bound is below 2e-16
  * of their length, as rad_piece does, and the bounds add into the row's.
+ * On the real segment (the threshold's bisection) a radial layer's |t'| is
+ * bounded by its supremum there, (|b1| + d2 Z / sqrt(d2 Z^2 + dmin)) /
+ * |a|, finite through x0 (the bound from the branch points' distance is
+ * not: rows through P* left intervals of 1e-13 relative bounded by their
+ * width, 5.7e-12 at x = 66).  A row tangent to the threshold's curve away
+ * from x0 gives the Lipschitz test little room about its double root;
+ * past GEN_BUDGET halvings the piece counts its length as its bound,
+ * honestly (a test of g' against a bound on g'' would separate such
+ * roots: not done).
  */
 #define GEN_MAX 5      /* gradient layers painting one span */
 #define GEN_FUZZ 1e-13 /* the narrowest interval bisected for the threshold, relative */
