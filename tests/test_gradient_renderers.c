@@ -4,9 +4,11 @@
  * resvg drawing the same documents, and against colours worked by hand
  * from SVG 2's definitions.
  *
- * Two documents of small cells, each one feature (the tables below, each
- * cell's hand-worked colours in its comment): the linear gradients and the
- * radial ones, both drawn by the exact box reference (patterns/README.md,
+ * Three documents of small cells, each one feature (the tables below, each
+ * cell's hand-worked colours in its comment): the linear gradients, the
+ * radial ones and several gradients at a point (radial over linear, two
+ * radial ones, a fading linear one over a radial one), all drawn by the
+ * exact box reference (patterns/README.md,
  * "Gradients").  The reference's colours at the cells' points are first checked against the hand-worked
  * values, to 2e-3 in encoded values (the pixel's mean in linear light
  * against the colour at its centre: for a ramp of slope s per pixel they
@@ -214,6 +216,49 @@ static const cell radial[] = {
      1, ""},
 };
 
+/* Several gradients at a point (the reference's path of several
+ * gradients, harness/truth/truth.c): source over in encoded values. */
+static const cell mixed[] = {
+    /* a radial gradient (centre (20, 20), r = 12, white to black) at
+     * fill-opacity 0.5 over a linear one (black to white on [4, 36]):
+     * at pixel (24, 20), linear t = 20.5 / 32 = 0.640625, radial rho =
+     * hypot(4.5, 0.5) = 4.52769, 1 - rho / 12 = 0.622692: half of each,
+     * 0.63166 */
+    {"radial at half opacity over linear",
+     "<linearGradient id=\"m1\">" BW "</linearGradient>"
+     "<radialGradient id=\"m2\">" WB "</radialGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#m1)\"/>"
+     "<circle cx=\"20\" cy=\"20\" r=\"12\" fill=\"url(#m2)\" fill-opacity=\"0.5\"/>",
+     {{24, 20, {0.63166, 0.63166, 0.63166}}},
+     1, ""},
+    /* two radial gradients: white to black about (20, 20), r = 16, under
+     * red to lime about (26, 20), r = 10, at fill-opacity 0.5: at pixel
+     * (24, 24) the back one is 1 - hypot(4.5, 4.5) / 16 = 0.602252, the
+     * front one's t = hypot(1.5, 4.5) / 10 = 0.474342: (0.525658,
+     * 0.474342, 0); half of each: (0.563955, 0.538297, 0.301126) */
+    {"two radial gradients",
+     "<radialGradient id=\"m3\">" WB "</radialGradient>"
+     "<radialGradient id=\"m4\"><stop offset=\"0\" stop-color=\"red\"/>"
+     "<stop offset=\"1\" stop-color=\"lime\"/></radialGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#m3)\"/>"
+     "<circle cx=\"26\" cy=\"20\" r=\"10\" fill=\"url(#m4)\" fill-opacity=\"0.5\"/>",
+     {{24, 24, {0.563955, 0.538297, 0.301126}}},
+     1, ""},
+    /* white (opacity 1) to blue (opacity 0), linear on [4, 36], over the
+     * radial white to black about (20, 20), r = 16: at pixel (20, 10), t =
+     * 16.5 / 32 = 0.515625, the stop colour (1 - t, 1 - t, 1) at opacity
+     * 1 - t over 1 - hypot(0.5, 9.5) / 16 = 0.405428: (0.443668,
+     * 0.443668, 0.693424) */
+    {"fading linear over radial",
+     "<radialGradient id=\"m5\">" WB "</radialGradient>"
+     "<linearGradient id=\"m6\"><stop offset=\"0\" stop-color=\"white\"/>"
+     "<stop offset=\"1\" stop-color=\"blue\" stop-opacity=\"0\"/></linearGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#m5)\"/>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#m6)\"/>",
+     {{20, 10, {0.443668, 0.443668, 0.693424}}},
+     1, ""},
+};
+
 /* A document of the cells and its image: the box reference. */
 static void document(const cell *cells, size_t n, const char *name, char *path, size_t len,
                      aa_image *ref)
@@ -288,6 +333,9 @@ static void test_points(void **state)
     aa_image_free(&ref);
     document(radial, sizeof radial / sizeof *radial, "radial", path, sizeof path, &ref);
     check_points(radial, sizeof radial / sizeof *radial, &ref);
+    aa_image_free(&ref);
+    document(mixed, sizeof mixed / sizeof *mixed, "mixed", path, sizeof path, &ref);
+    check_points(mixed, sizeof mixed / sizeof *mixed, &ref);
     aa_image_free(&ref);
 }
 
@@ -370,6 +418,7 @@ static void renderer(const char *name)
     }
     renderer_cells(name, linear, sizeof linear / sizeof *linear, "linear");
     renderer_cells(name, radial, sizeof radial / sizeof *radial, "radial");
+    renderer_cells(name, mixed, sizeof mixed / sizeof *mixed, "mixed");
 }
 
 static void test_chromium(void **state)

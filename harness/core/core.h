@@ -206,6 +206,13 @@ void aa_scene_encoded_of_at(const aa_scene *s, const int *wind, double x, double
  * (the reference of radial gradients reads it so, truth.c). */
 void aa_scene_encoded_with(const aa_scene *s, const int *wind, int layer, const double paint[4],
                            double e[3]);
+/* The same with n layers, layers[k] painting paints[4 k .. 4 k + 3]: the
+ * composite is affine in each layer's opacity and opacity times channel
+ * separately (source over and group opacity are), so a product of such
+ * terms over the layers; the reference reads its coefficients from
+ * composites at three paints per layer (truth.c, "several gradients"). */
+void aa_scene_encoded_with_n(const aa_scene *s, const int *wind, int n, const int *layers,
+                             const double *paints, double e[3]);
 /* Layers added from now until the matching end belong to a new group of
  * opacity in [0, 1], inside the group open now (at most
  * AA_SCENE_MAX_GROUP_DEPTH deep).  Layers go front to back, so a group is

@@ -1648,15 +1648,18 @@ typedef struct premul { double p[3], a; } premul;
  * group opacity as SVG 2's `opacity`: the group's result times the
  * opacity, then source over). */
 /* Layer l's sRGB-encoded colour and alpha at (x, y) (at: a gradient layer
- * paints its colour there; else every layer its own colour); layer ol, if
- * any, paints ov (encoded channels and opacity) instead. */
-static double layer_paint(const aa_scene *s, int l, int at, double x, double y, int ol,
-                          const double *ov, double e[3])
+ * paints its colour there; else every layer its own colour); the layers
+ * ol[0 .. nol - 1] paint ov[4 k .. 4 k + 3] (encoded channels and opacity)
+ * instead. */
+static double layer_paint(const aa_scene *s, int l, int at, double x, double y, int nol,
+                          const int *ol, const double *ov, double e[3])
 {
-    if (l == ol) {
-        e[0] = ov[0], e[1] = ov[1], e[2] = ov[2];
-        return s->alpha[l] * ov[3];
-    }
+    for (int k = 0; k < nol; k++)
+        if (l == ol[k]) {
+            const double *v = ov + 4 * k;
+            e[0] = v[0], e[1] = v[1], e[2] = v[2];
+            return s->alpha[l] * v[3];
+        }
     if (at && s->paint[l] >= 0) {
         const aa_scene_gradient *g = &s->grads[s->paint[l]];
         double v[4];
@@ -1669,12 +1672,12 @@ static double layer_paint(const aa_scene *s, int l, int at, double x, double y, 
 }
 
 static void composite_encoded(const aa_scene *s, const int *wind, int first, int at, double x,
-                              double y, int ol, const double *ov, double out[3])
+                              double y, int nol, const int *ol, const double *ov, double out[3])
 {
     int base = first + 1;
     double be[3];
     while (base < s->nlayers && !(covers(s, wind, base) && s->group[base] < 0 &&
-                                  layer_paint(s, base, at, x, y, ol, ov, be) == 1.0))
+                                  layer_paint(s, base, at, x, y, nol, ol, ov, be) == 1.0))
         base++;
     premul acc[AA_SCENE_MAX_GROUP_DEPTH + 1];
     int gid[AA_SCENE_MAX_GROUP_DEPTH + 1], depth = 0;
@@ -1704,7 +1707,7 @@ static void composite_encoded(const aa_scene *s, const int *wind, int first, int
             acc[depth + 1] = (premul){{0.0, 0.0, 0.0}, 0.0};
         }
         double e[3];
-        const double a = layer_paint(s, l, at, x, y, ol, ov, e);
+        const double a = layer_paint(s, l, at, x, y, nol, ol, ov, e);
         premul *d = &acc[depth];
         for (int k = 0; k < 3; k++)
             d->p[k] = a * e[k] + (1.0 - a) * d->p[k];
@@ -1725,7 +1728,7 @@ static aa_rgb colour_composite(const aa_scene *s, const int *wind, int first, in
                                double y)
 {
     double e[3];
-    composite_encoded(s, wind, first, at, x, y, -1, NULL, e);
+    composite_encoded(s, wind, first, at, x, y, 0, NULL, NULL, e);
     aa_rgb c;
     for (int k = 0; k < 3; k++)
         c.c[k] = aa_srgb_decode(e[k]);
@@ -1747,7 +1750,7 @@ void aa_scene_encoded_of_at(const aa_scene *s, const int *wind, double x, double
 {
     for (int l = 0; l < s->nlayers; l++)
         if (covers(s, wind, l)) {
-            composite_encoded(s, wind, l, 1, x, y, -1, NULL, e);
+            composite_encoded(s, wind, l, 1, x, y, 0, NULL, NULL, e);
             return;
         }
     for (int k = 0; k < 3; k++)
@@ -1759,7 +1762,19 @@ void aa_scene_encoded_with(const aa_scene *s, const int *wind, int layer, const 
 {
     for (int l = 0; l < s->nlayers; l++)
         if (covers(s, wind, l)) {
-            composite_encoded(s, wind, l, 0, 0.0, 0.0, layer, paint, e);
+            composite_encoded(s, wind, l, 0, 0.0, 0.0, 1, &layer, paint, e);
+            return;
+        }
+    for (int k = 0; k < 3; k++)
+        e[k] = aa_srgb_encode(s->background.c[k]);
+}
+
+void aa_scene_encoded_with_n(const aa_scene *s, const int *wind, int n, const int *layers,
+                             const double *paints, double e[3])
+{
+    for (int l = 0; l < s->nlayers; l++)
+        if (covers(s, wind, l)) {
+            composite_encoded(s, wind, l, 0, 0.0, 0.0, n, layers, paints, e);
             return;
         }
     for (int k = 0; k < 3; k++)
