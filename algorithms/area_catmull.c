@@ -16,25 +16,9 @@ static void cm_integrate(const ar_row *r, const ar_key *in, size_t n, const int 
 {
     const ar_state *S = r->S;
     cm_level *lv = &r->wk->cm[d];
-    double area = 0.0, cx = 0.0, cy = 0.0;
-    if (lv->nv < 3)
-        return;
-    /* relative to the first vertex, so that a sliver's centroid is found
-     * to its own size, not to the pixel's (a region 1e-9 px wide would
-     * otherwise get a centroid 1e-7 px off, outside itself) */
-    const double ox = lv->vx[0], oy = lv->vy[0];
-    for (int k = 1; k + 1 < lv->nv; k++) {
-        double ax = lv->vx[k] - ox, ay = lv->vy[k] - oy;
-        double bx = lv->vx[k + 1] - ox, by = lv->vy[k + 1] - oy;
-        double cr = ax * by - bx * ay;
-        area += cr;
-        cx += (ax + bx) * cr;
-        cy += (ay + by) * cr;
-    }
+    double cx, cy, area = cm_region(lv, &cx, &cy);
     if (area == 0.0)
         return;
-    cx = ox + cx / (3.0 * area), cy = oy + cy / (3.0 * area);
-    area = 0.5 * fabs(area);
     /* the front-most layer with an edge left in the region */
     int front = S->nl;
     const cm_edge *split = NULL;
