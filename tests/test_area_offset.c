@@ -19,7 +19,9 @@
  *    running side by side are decided by their slopes): every sign change
  *    of x_p - x_q seen at 400 heights over two pieces' common height, on
  *    every pair of a stroke's pieces with an offset piece, holds a meeting
- *    aa_piece_meet reports (ends shared by the two pieces aside).
+ *    aa_piece_meet reports (ends shared by the two pieces aside);
+ *  - a crossing's root near a turn of the offset's y: y at the parameter
+ *    aa__offset_root returns is the line's, to rounding.
  */
 #include "path.h"
 #include "oracle.h"
@@ -251,10 +253,47 @@ static void test_meetings(void **state)
     assert_true(changes > 0); /* the oracle saw crossings */
 }
 
+/* A crossing of an offset curve is the root of y(t) = v: whatever path the
+ * solver takes, the offset's y at the parameter it returns must be v to
+ * long double's rounding of the coordinates (the equation itself is the
+ * oracle, through the same evaluation of the curve, not the solver).  The
+ * case: the left offset (d = 0.05) of the `tight` cubic below at 64 px,
+ * crossed by the line y = 44.89 over a bracket near a turn of its y, where
+ * Newton's steps in long double left the bracket or landed on its ends and
+ * a solver stopped after 8 of them returned y 1.4e-5 px off (with 8
+ * steps; 3.5e-4 px in other calls of test_ellipse_stroke). */
+static void test_root(void **state)
+{
+    (void)state;
+    aa_offset_curve oc = {{0x1.999999999999ap-3, 0x1.cccccccccccc9p-1, -0x1.cccccccccccc5p-1,
+                           0x1.333333333332bp-2, 0x1p-2, 0x1.cccccccccccc8p-1,
+                           -0x1.cccccccccccc3p-2, 0},
+                          {64, 0, 0, 64, 0, 0},
+                          0.05,
+                          0,
+                          AA_OFFSET_CUBIC};
+    const long double ta = 0x1.8a8d304019cdp-1, tb = 0x1.e3af7fdeab36ap-1;
+    const long double target = 0xb.38df1a0932d3p+2L;
+    long double X, Y, DX, DY, other;
+    aa__offset_eval(&oc, ta, &X, &Y, &DX, &DY);
+    const long double fa = Y - target;
+    aa__offset_eval(&oc, tb, &X, &Y, &DX, &DY);
+    assert_true((fa < 0) != (Y - target < 0)); /* a bracket */
+    double slope;
+    long double t = aa__offset_root(&oc, 1, ta, tb, fa, target, NAN, &other, &slope);
+    aa__offset_eval(&oc, t, &X, &Y, &DX, &DY);
+    print_message("root t %.21Lg: y - v = %.3Lg px, x %.17Lg (other %.17Lg)\n", t, Y - target,
+                  X, other);
+    assert_true(t >= ta && t <= tb);
+    assert_true(fabsl(Y - target) <= 1e-15L);
+    assert_true(fabsl(X - other) <= 1e-12L);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
                                        cmocka_unit_test(test_tube),
-                                       cmocka_unit_test(test_meetings)};
+                                       cmocka_unit_test(test_meetings),
+                                       cmocka_unit_test(test_root)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

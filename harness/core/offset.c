@@ -390,6 +390,10 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
 /* aa__offset_root's: it stops the double phase at a larger step, and its
  * long double phase judges the error left by the two last steps (below). */
 #define ROOT_D_STEP 1e-6
+/* The long double phase's evaluations at most: enough for a bisection of
+ * any bracket of the parameter (a few units wide) to reach two adjacent
+ * long doubles, 64 halvings and more */
+#define ROOT_LD_STEPS 200
 static double solve_double(const aa_offset_curve *oc, int coord, double a, double b, double fa,
                            double tgt, double guess, double tol, const double *endb, double *pa,
                            double *pb, double *last)
@@ -548,7 +552,13 @@ static long double offset_root(const aa_offset_curve *oc, int coord, long double
      * within its rounding of the root, where long double's Newton steps
      * then left it and were bisected, one bit an evaluation */
     long double la = ta, lb = tb;
-    for (int it = 0; it < 8; it++) {
+    /* Newton's steps, or a bisection where a step leaves the bracket: at
+     * most ROOT_LD_STEPS, which a bisection alone needs to take any
+     * bracket in the piece's parameter to two adjacent long doubles (a
+     * cap of 8, as this once had, returned roots 3.5e-4 px off near a
+     * turn, where Newton's steps left the bracket and the halvings had
+     * not yet closed it) */
+    for (int it = 0; it < ROOT_LD_STEPS; it++) {
         aa__offset_eval(oc, lt, &X, &Y, &DX, &DY);
         long double f = (coord ? Y : X) - target, df = coord ? DY : DX;
         if (f == 0)
@@ -558,10 +568,15 @@ static long double offset_root(const aa_offset_curve *oc, int coord, long double
         else
             lb = lt;
         long double mid = 0.5L * (la + lb);
-        if (!(mid != la && mid != lb))
+        /* two adjacent numbers, or a bracket of 1e-30 about a root at 0
+         * (where adjacent numbers are denormals apart) */
+        if (!(mid != la && mid != lb) || fabsl(lb - la) <= 1e-30L)
             goto done;
         long double next = df != 0 && isfinite(df) ? lt - f / df : mid;
-        int inside = la < lb ? (next >= la && next <= lb) : (next <= la && next >= lb);
+        /* strictly inside: a step onto an end of the bracket (Newton's
+         * steps between its two ends, each onto the other, the bracket
+         * never shrinking, were seen within 1e-13 of a root) bisects */
+        int inside = la < lb ? (next > la && next < lb) : (next < la && next > lb);
         long double h = fabsl(next - lt);
         if (!inside) {
             next = mid;
