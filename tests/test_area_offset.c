@@ -260,8 +260,8 @@ static void test_meetings(void **state)
  * case: the left offset (d = 0.05) of the `tight` cubic below at 64 px,
  * crossed by the line y = 44.89 over a bracket near a turn of its y, where
  * Newton's steps in long double left the bracket or landed on its ends and
- * a solver stopped after 8 of them returned y 1.4e-5 px off (with 8
- * steps; 3.5e-4 px in other calls of test_ellipse_stroke). */
+ * a solver that stopped after 8 of them returned y 1.4e-5 px off (up to
+ * 3.5e-4 px in other calls the stroke tests make). */
 static void test_root(void **state)
 {
     (void)state;
