@@ -56,28 +56,10 @@ int area_cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, in
     for (int pass = 0; pass < 2; pass++)
         for (int i = a; i <= b; i++) {
             cm_level *lv = &r->wk->cm[0];
-            lv->ne = 0;
-            for (size_t k = 0; k < n; k++) {
-                const ar_seg *s = &r->wk->seg[in[k].idx];
-                if (s->ca > i || s->cb < i)
-                    continue;
-                cm_edge e;
-                if (s->p->flat)
-                    e = (cm_edge){s->p->xmin - i, s->va, s->p->xmax - i, s->va, s->p->layer};
-                else
-                    e = (cm_edge){(double)(s->c0 - i) + s->ua, s->va,
-                                  (double)(s->c0 - i) + s->ub, s->vb, s->p->layer};
-                if (!clip_unit_x(&e))
-                    continue;
-                if (lv->ne == CM_MAX_EDGES)
-                    return 0;
-                lv->e[lv->ne++] = e;
-            }
+            if (!cm_pixel(r, in, n, i, lv))
+                return 0;
             if (pass == 0)
                 continue; /* first pass: only check the edge counts */
-            lv->nv = 4;
-            lv->vx[0] = 0, lv->vy[0] = 0, lv->vx[1] = 1, lv->vy[1] = 0;
-            lv->vx[2] = 1, lv->vy[2] = 1, lv->vx[3] = 0, lv->vy[3] = 1;
             double sum[3] = {0, 0, 0};
             cm_integrate(r, in, n, w, i, 0, sum);
             store_px(r, r->px + 3 * (size_t)i, sum);
