@@ -361,40 +361,6 @@ static inline double an_cdf(const an_pp *pp, double t)
     return a[0] + s * (a[1] + s * (a[2] + s * (a[3] + s * a[4])));
 }
 
-/* ---- Gauss-Legendre nodes and weights ---- */
-
-static void gauss_make(an_state *S)
-{
-    for (int m = 1; m <= AN_MAX_GAUSS; m++)
-        for (int i = 0; i < m; i++) {
-            long double x = cosl(3.14159265358979323846264338327950288L * (i + 0.75L) /
-                                 (m + 0.5L)),
-                        dp = 1.0L;
-            for (int it = 0; it < 100; it++) {
-                long double p0 = 1.0L, p1 = x;
-                for (int k = 2; k <= m; k++) {
-                    long double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-                    p0 = p1, p1 = p2;
-                }
-                dp = m * (x * p1 - p0) / (x * x - 1.0L);
-                long double dx = p1 / dp;
-                x -= dx;
-                if (fabsl(dx) < 1e-19L)
-                    break;
-            }
-            {
-                long double p0 = 1.0L, p1 = x;
-                for (int k = 2; k <= m; k++) {
-                    long double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-                    p0 = p1, p1 = p2;
-                }
-                dp = m * (x * p1 - p0) / (x * x - 1.0L);
-            }
-            S->gx[m][i] = (double)x;
-            S->gw[m][i] = (double)(2.0L / ((1.0L - x * x) * dp * dp));
-        }
-}
-
 /* ---- elliptical arcs ----
  *
  * A conic piece is x = ex + ea cos s + eb sin s, y = ey - er cos s
@@ -491,6 +457,17 @@ static void gauss_ld(int n, long double *x, long double *w)
         dp = n * (t * p1 - p0) / (t * t - 1.0L);
         x[i] = t;
         w[i] = 2.0L / ((1.0L - t * t) * dp * dp);
+    }
+}
+
+/* The rules of 1 to AN_MAX_GAUSS points, rounded to double. */
+static void gauss_make(an_state *S)
+{
+    for (int m = 1; m <= AN_MAX_GAUSS; m++) {
+        long double x[AN_MAX_GAUSS], w[AN_MAX_GAUSS];
+        gauss_ld(m, x, w);
+        for (int i = 0; i < m; i++)
+            S->gx[m][i] = (double)x[i], S->gw[m][i] = (double)w[i];
     }
 }
 

@@ -348,34 +348,30 @@ static inline int key_after(const ar_key *a, const ar_key *b)
  * through a pointer: the rows of a stroke scene, whose pieces arrive far out of x
  * order, took it in most rows (three fifths of sort_keys' instructions there;
  * the heapsort takes seven tenths of its instructions). */
+/* v put into the heap k[0 .. n) at its hole `at`, moved down past the
+ * larger of its children while they come after it. */
+static inline void sift_down(ar_key *k, size_t at, size_t n, ar_key v)
+{
+    size_t c;
+    while ((c = 2 * at + 1) < n) {
+        if (c + 1 < n && key_after(&k[c + 1], &k[c]))
+            c++;
+        if (!key_after(&k[c], &v))
+            break;
+        k[at] = k[c];
+        at = c;
+    }
+    k[at] = v;
+}
+
 static void heap_keys(ar_key *k, size_t n)
 {
-    for (size_t top = n / 2; top-- > 0;) { /* heapify: largest at k[0] */
-        ar_key v = k[top];
-        size_t at = top, c;
-        while ((c = 2 * at + 1) < n) {
-            if (c + 1 < n && key_after(&k[c + 1], &k[c]))
-                c++;
-            if (!key_after(&k[c], &v))
-                break;
-            k[at] = k[c];
-            at = c;
-        }
-        k[at] = v;
-    }
+    for (size_t top = n / 2; top-- > 0;) /* heapify: largest at k[0] */
+        sift_down(k, top, n, k[top]);
     for (size_t end = n; end-- > 1;) { /* move the largest behind the heap */
         ar_key v = k[end];
         k[end] = k[0];
-        size_t at = 0, c;
-        while ((c = 2 * at + 1) < end) {
-            if (c + 1 < end && key_after(&k[c + 1], &k[c]))
-                c++;
-            if (!key_after(&k[c], &v))
-                break;
-            k[at] = k[c];
-            at = c;
-        }
-        k[at] = v;
+        sift_down(k, 0, end, v);
     }
 }
 

@@ -52,17 +52,5 @@ static void cm_integrate(const ar_row *r, const ar_key *in, size_t n, const int 
 int area_cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                            const int *w)
 {
-    int a = lo < 0 ? 0 : lo, b = hi >= r->W ? r->W - 1 : hi;
-    for (int pass = 0; pass < 2; pass++)
-        for (int i = a; i <= b; i++) {
-            cm_level *lv = &r->wk->cm[0];
-            if (!cm_pixel(r, in, n, i, lv))
-                return 0;
-            if (pass == 0)
-                continue; /* first pass: only check the edge counts */
-            double sum[3] = {0, 0, 0};
-            cm_integrate(r, in, n, w, i, 0, sum);
-            store_px(r, r->px + 3 * (size_t)i, sum);
-        }
-    return 1;
+    return cm_cluster(r, in, n, lo, hi, w, cm_integrate);
 }

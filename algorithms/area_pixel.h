@@ -161,4 +161,27 @@ static inline int cm_pixel(const ar_row *r, const ar_key *in, size_t n, int i, c
     return 1;
 }
 
+/* Catmull's integrater of one form (integrate: cm_integrate or
+ * cm_integrate_all) over every pixel of the cluster; 0 if a pixel has too
+ * many edges for it (nothing written then: a first pass counts them). */
+typedef void cm_integrate_fn(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
+                             int d, double *sum);
+static inline int cm_cluster(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
+                             const int *w, cm_integrate_fn *integrate)
+{
+    int a = lo < 0 ? 0 : lo, b = hi >= r->W ? r->W - 1 : hi;
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = a; i <= b; i++) {
+            cm_level *lv = &r->wk->cm[0];
+            if (!cm_pixel(r, in, n, i, lv))
+                return 0;
+            if (pass == 0)
+                continue; /* first pass: only check the edge counts */
+            double sum[3] = {0, 0, 0};
+            integrate(r, in, n, w, i, 0, sum);
+            store_px(r, r->px + 3 * (size_t)i, sum);
+        }
+    return 1;
+}
+
 #endif /* AA_AREA_PIXEL_H */

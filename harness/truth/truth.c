@@ -843,20 +843,33 @@ static int rad_cross(const grad_radial *g, const rad_row *r, double tau, double 
     return m;
 }
 
-/* The least t over [xa, xb] of row r (t is quasiconvex: its sublevel sets
- * are discs), by golden section. */
-static double rad_row_min(const grad_radial *g, double xa, double xb, double y)
+/* t at s along row y (col 0: the point (s, y)) or column y (col 1: (y,
+ * s)). */
+static inline double rad_t_on(const grad_radial *g, int col, double s, double y)
+{
+    return col ? rad_t(g, y, s) : rad_t(g, s, y);
+}
+
+/* The least t over [xa, xb] of row y, or with col of column y over [xa,
+ * xb] in y (t is quasiconvex: its sublevel sets are discs), by golden
+ * section. */
+static double rad_line_min(const grad_radial *g, int col, double xa, double xb, double y)
 {
     const double k = 0.5 * (3.0 - sqrt(5.0));
     double a = xa, b = xb, c = a + k * (b - a), d = b - k * (b - a);
-    double fc = rad_t(g, c, y), fd = rad_t(g, d, y);
+    double fc = rad_t_on(g, col, c, y), fd = rad_t_on(g, col, d, y);
     for (int it = 0; it < 90 && b - a > 1e-15 * (1.0 + fabs(a)); it++) {
         if (fc <= fd)
-            b = d, d = c, fd = fc, c = a + k * (b - a), fc = rad_t(g, c, y);
+            b = d, d = c, fd = fc, c = a + k * (b - a), fc = rad_t_on(g, col, c, y);
         else
-            a = c, c = d, fc = fd, d = b - k * (b - a), fd = rad_t(g, d, y);
+            a = c, c = d, fc = fd, d = b - k * (b - a), fd = rad_t_on(g, col, d, y);
     }
-    return fmin(fmin(rad_t(g, xa, y), rad_t(g, xb, y)), fmin(fc, fd));
+    return fmin(fmin(rad_t_on(g, col, xa, y), rad_t_on(g, col, xb, y)), fmin(fc, fd));
+}
+
+static double rad_row_min(const grad_radial *g, double xa, double xb, double y)
+{
+    return rad_line_min(g, 0, xa, xb, y);
 }
 
 /* The spread's linear form s = sg t + s0 on the piece whose t at its
@@ -1663,18 +1676,9 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
         /* sides: the rows' minima along the top and bottom, and the
          * columns' by the same golden section on the transposed map */
         tmin = fmin(rad_row_min(g, xl, xr, yt), rad_row_min(g, xl, xr, yb));
-        for (int k = 0; k < 2; k++) {
-            const double kk = 0.5 * (3.0 - sqrt(5.0)), X = k ? xr : xl;
-            double a = yt, b = yb, c = a + kk * (b - a), d = b - kk * (b - a);
-            double fc = rad_t(g, X, c), fd = rad_t(g, X, d);
-            for (int it = 0; it < 90 && b - a > 1e-15 * (1.0 + fabs(a)); it++) {
-                if (fc <= fd)
-                    b = d, d = c, fd = fc, c = a + kk * (b - a), fc = rad_t(g, X, c);
-                else
-                    a = c, c = d, fc = fd, d = b - kk * (b - a), fd = rad_t(g, X, d);
-            }
-            tmin = fmin(tmin, fmin(fc, fd));
-        }
+        /* the corners the columns add are the rows' ends, already in */
+        for (int k = 0; k < 2; k++)
+            tmin = fmin(tmin, rad_line_min(g, 1, yt, yb, k ? xr : xl));
     }
     tmin -= 1e-12 * (1.0 + fabs(tmin));
     tmax += 1e-12 * (1.0 + fabs(tmax));
