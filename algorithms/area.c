@@ -310,24 +310,30 @@ static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo
     return area_cubic_near(k - s->U, -s->g, -s->ax, -s->cx3, lo, hi, g);
 }
 
-/* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1).  For
- * a conic, q where u(q) = k: (K + 2 ax) q^2 + 2 g q + K = 0 (K = U - k),
+/* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1), on a
+ * line or a quadratic (tau_of_u_quad), or on a conic: for a conic, q where u(q) = k: (K + 2 ax) q^2 + 2 g q + K = 0 (K = U - k),
  * whose derivative there has the sign of u' (u (1 + q^2) - k (1 + q^2) has
  * derivative u' (1 + q^2) where u = k). */
-static inline double tau_of_u(const ar_seg *s, double k, double sg)
+static inline double tau_of_u_quad(const ar_seg *s, double k, double sg)
 {
     double c = s->U - k, g = s->g;
+    double disc = g * g - 4.0 * s->ax * c, q = sqrt(disc > 0.0 ? disc : 0.0);
+    if (sg * g > 0.0 || s->ax == 0.0)
+        return -2.0 * c / (g + sg * q);
+    return (-g + sg * q) / (2.0 * s->ax);
+}
+
+static inline double tau_of_u(const ar_seg *s, double k, double sg)
+{
     if (s->p->curved && s->p->conic) {
+        double c = s->U - k, g = s->g;
         double a = c + 2.0 * s->ax, disc = g * g - c * a, q = sqrt(disc > 0.0 ? disc : 0.0);
         double den = g + sg * q;
         if ((sg * g > 0.0 || a == 0.0) && den != 0.0)
             return -c / den;
         return a != 0.0 ? (-g + sg * q) / a : 0.0;
     }
-    double disc = g * g - 4.0 * s->ax * c, q = sqrt(disc > 0.0 ? disc : 0.0);
-    if (sg * g > 0.0 || s->ax == 0.0)
-        return -2.0 * c / (g + sg * q);
-    return (-g + sg * q) / (2.0 * s->ax);
+    return tau_of_u_quad(s, k, sg);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -661,19 +667,25 @@ static void expand(ar_seg *a, const ar_piece *p, int ja)
 }
 
 /* tau where the piece meets the line y = ja + m (the same expression
- * whichever band asks, so a band's top equals the band above's bottom). */
+ * whichever band asks, so a band's top equals the band above's bottom);
+ * line_tau_quad for a line or a quadratic. */
 static double line_tau_curved(const ar_seg *a, int m);
 
-static inline double line_tau(const ar_seg *a, int m)
+static inline double line_tau_quad(const ar_seg *a, int m)
 {
     double c = a->Va - m;
-    if (a->p->curved)
-        return line_tau_curved(a, m);
     if (a->ay == 0.0)
         return -c * a->ivy;
     double disc = a->vy * a->vy - 4.0 * a->ay * c;
     double den = a->vy + sqrt(disc > 0.0 ? disc : 0.0);
     return den > 0.0 ? -2.0 * c / den : 0.0;
+}
+
+static inline double line_tau(const ar_seg *a, int m)
+{
+    if (a->p->curved)
+        return line_tau_curved(a, m);
+    return line_tau_quad(a, m);
 }
 
 /* line_tau of a cubic, conic or offset piece */
@@ -722,8 +734,12 @@ static inline int icell(double x)
 }
 
 /* Piece p clipped to the band [j, j+1], in its seg s.  Returns 0 if it
- * lies right of the image. */
-static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
+ * lies right of the image.  `plain` (a constant where it is inlined): the
+ * scene has no curved piece, so the cubic, conic and offset cases are
+ * left out (their tests, seg_u's call, the second x extremum: te2 is
+ * infinite on lines and quadratics); the same arithmetic either way. */
+__attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_piece *p, int j,
+                                                          int W, const int plain)
 {
     s->p = p;
     if (p->flat) {
@@ -745,23 +761,26 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
         expand(s, p, ja);
     double ta, tb, ua, ub;
     /* (p->curved first: the common path reads no other cache line of p) */
-    int special = p->curved && (p->conic || p->offset);
-    if (p->curved && p->offset) /* part_area's v, none kept yet */
+    int curved = !plain && p->curved;
+    int special = curved && (p->conic || p->offset);
+    if (curved && p->offset) /* part_area's v, none kept yet */
         s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = NAN, s->vn = 0;
     if (p->y0 >= j)
         ta = special ? s->t0 : 0.0, ua = special ? seg_u(s, ta) : s->U;
     else if (s->mline == m)
         ta = s->tline, ua = s->uline;
+    else if (plain)
+        ta = line_tau_quad(s, m), ua = u_quad(s, ta);
     else
         ta = line_tau(s, m), ua = seg_u(s, ta);
     if (p->y1 <= j + 1.0) {
         tb = s->tend;
-        ub = seg_u(s, tb);
+        ub = plain ? u_quad(s, tb) : seg_u(s, tb);
     } else {
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
-        tb = line_tau(s, m + 1);
-        ub = seg_u(s, tb);
+        tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
+        ub = plain ? u_quad(s, tb) : seg_u(s, tb);
         s->mline = m + 1, s->tline = tb, s->uline = ub;
     }
     if (!(tb >= ta))
@@ -771,11 +790,11 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
     s->lo = s->ua < s->ub ? s->ua : s->ub;
     s->hi = s->ua < s->ub ? s->ub : s->ua;
     if (s->te > ta && s->te < tb) {
-        double ue = u_at(s, s->te);
+        double ue = plain ? u_quad(s, s->te) : u_at(s, s->te);
         s->lo = ue < s->lo ? ue : s->lo;
         s->hi = ue > s->hi ? ue : s->hi;
     }
-    if (s->te2 > ta && s->te2 < tb) {
+    if (!plain && s->te2 > ta && s->te2 < tb) {
         double ue = u_at(s, s->te2);
         s->lo = ue < s->lo ? ue : s->lo;
         s->hi = ue > s->hi ? ue : s->hi;
@@ -822,18 +841,25 @@ static void band_fields(ar_seg *s, int j)
  * ------------------------------------------------------------------------ */
 
 /* The area right of the part of s from tau ta to tb (u from ua to ub,
- * relative to its column) inside the column, and its height *dy. */
+ * relative to its column) inside the column, and its height *dy
+ * (part_area_quad: of a line or a quadratic). */
 static double part_area_curved(const ar_seg *s, double ta, double tb, double ua, double ub,
                                double *dy);
+
+static inline double part_area_quad(const ar_seg *s, double ta, double tb, double ua,
+                                    double ub, double *dy)
+{
+    double d = tb - ta;
+    *dy = d * (s->vy + s->ay * (ta + tb));
+    return *dy * (1.0 - 0.5 * (ua + ub)) + d * d * d * s->k6;
+}
 
 static inline double part_area(const ar_seg *s, double ta, double tb, double ua, double ub,
                                double *dy)
 {
     if (s->p->curved)
         return part_area_curved(s, ta, tb, ua, ub, dy);
-    double d = tb - ta;
-    *dy = d * (s->vy + s->ay * (ta + tb));
-    return *dy * (1.0 - 0.5 * (ua + ub)) + d * d * d * s->k6;
+    return part_area_quad(s, ta, tb, ua, ub, dy);
 }
 
 /* part_area of a cubic, conic or offset piece */
@@ -1385,14 +1411,14 @@ static inline void put(const ar_row *r, double *px, const double *cin, const dou
  * two cells of the image (single_kind and the cells checked), written
  * directly, without the cell arrays: a tenth of the cost of the general
  * path on `crow`.  w moves past the seg; returns the colour right of it. */
-static inline int single_kind(const ar_row *r, const ar_seg *s)
+static inline int single_kind(const ar_row *r, const ar_seg *s, const int plain)
 {
     return s->p->y0 <= r->j && s->p->y1 >= r->j + 1.0 && !(s->te > s->ta && s->te < s->tb) &&
-           !(s->te2 > s->ta && s->te2 < s->tb);
+           (plain || !(s->te2 > s->ta && s->te2 < s->tb));
 }
 
-static inline const double *single(const ar_row *r, const ar_seg *s, int *w,
-                                   const double *cin)
+__attribute__((always_inline)) static inline const double *
+single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int plain)
 {
     const ar_piece *p = s->p;
     w[p->layer] += p->dir;
@@ -1401,25 +1427,39 @@ static inline const double *single(const ar_row *r, const ar_seg *s, int *w,
     double *px = r->px + 3 * (size_t)s->ca, dy;
     double k = (double)(s->ca - s->c0); /* the left cell, local */
     if (s->ca == s->cb) {
-        put(r, px, cin, dc, part_area(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy));
+        double a = plain ? part_area_quad(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy)
+                         : part_area(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy);
+        put(r, px, cin, dc, a);
         return nx;
     }
     /* two cells: the piece crosses their common side x = c0 + k + 1 */
     double dl, dr, al, ar;
     if (s->ub > s->ua) {
-        double tc = s->p->curved && (s->p->cubic || s->p->offset)
+        double tc = plain ? tau_of_u_quad(s, k + 1.0, 1.0)
+                    : s->p->curved && (s->p->cubic || s->p->offset)
                         ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb, s->ua, s->ub)
-                                : tau_of_u(s, k + 1.0, 1.0);
+                        : tau_of_u(s, k + 1.0, 1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
-        al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
-        ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
+        if (plain) {
+            al = part_area_quad(s, s->ta, tc, s->ua - k, 1.0, &dl);
+            ar = part_area_quad(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
+        } else {
+            al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
+            ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
+        }
     } else {
-        double tc = s->p->curved && (s->p->cubic || s->p->offset)
+        double tc = plain ? tau_of_u_quad(s, k + 1.0, -1.0)
+                    : s->p->curved && (s->p->cubic || s->p->offset)
                         ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb, s->ua, s->ub)
-                                : tau_of_u(s, k + 1.0, -1.0);
+                        : tau_of_u(s, k + 1.0, -1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
-        ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
-        al = part_area(s, tc, s->tb, 1.0, s->ub - k, &dl);
+        if (plain) {
+            ar = part_area_quad(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
+            al = part_area_quad(s, tc, s->tb, 1.0, s->ub - k, &dl);
+        } else {
+            ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
+            al = part_area(s, tc, s->tb, 1.0, s->ub - k, &dl);
+        }
     }
     put(r, px, cin, dc, al);
     put(r, px + 3, cin, dc, dl + ar);
@@ -1429,9 +1469,9 @@ static inline const double *single(const ar_row *r, const ar_seg *s, int *w,
 /* single() if s is of its kind; 0 (and nothing changed) if not. */
 static int cluster_single(const ar_row *r, const ar_seg *s, int *w, const double *cin)
 {
-    if (s->cb - s->ca > 1 || s->ca < 0 || s->cb >= r->W || !single_kind(r, s))
+    if (s->cb - s->ca > 1 || s->ca < 0 || s->cb >= r->W || !single_kind(r, s, 0))
         return 0;
-    single(r, s, w, cin);
+    single(r, s, w, cin, 0);
     return 1;
 }
 
@@ -1634,22 +1674,25 @@ static inline uint64_t cells_of(int lo, int hi, int W)
 /* flush_list, with the common single seg inline (a call per piece was
  * measured at a tenth of the render). */
 static inline int close_cluster(const ar_row *r, const uint32_t *list, size_t n, int lo, int hi,
-                                int x, int *w, const double **c)
+                                int x, int *w, const double **c, const int plain)
 {
     if (n == 1) {
         const ar_seg *s = &r->wk->seg[list[0]];
-        if (s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s)) {
+        if (s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s, plain)) {
             if (lo > x)
                 fill(r->px, x, lo, r->W, *c, r->stream);
-            *c = single(r, s, w, *c);
+            *c = single(r, s, w, *c, plain);
             return hi + 1;
         }
     }
     return flush_list(r, list, n, lo, hi, x, w, c);
 }
 
-static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, int stream,
-                       aa_image *out)
+/* Row j.  `plain`: S->plain, a constant in each of the two forms below
+ * (render_row_plain, render_row_any), chosen once a row. */
+__attribute__((always_inline)) static inline void render_row_k(const ar_state *S, ar_worker *wk,
+                                                               int j, int integrator, int stream,
+                                                               aa_image *out, const int plain)
 {
     int W = S->w;
     update_active(S, wk, j);
@@ -1671,7 +1714,7 @@ static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, 
         if (p->xmin >= W || (p->flat && !(p->y0 > j && p->y0 < j + 1.0)))
             continue; /* right of the image, or flat on the band's edge */
         ar_seg *s = &wk->seg[ix];
-        if (!seg_make(s, p, j, W))
+        if (!seg_make(s, p, j, W, plain))
             continue;
         wk->list[n] = ix;
         if (ordered) {
@@ -1679,7 +1722,7 @@ static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, 
                 lo = s->ca, hi = s->cb;
             } else if (s->ca > hi) {
                 cells += cells_of(lo, hi, W);
-                x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c);
+                x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c, plain);
                 first = n;
                 lo = s->ca, hi = s->cb;
             } else if (s->ca >= lo) {
@@ -1693,7 +1736,7 @@ static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, 
     if (ordered) {
         if (n > first) {
             cells += cells_of(lo, hi, W);
-            x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c);
+            x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c, plain);
         }
         if (x < W)
             fill(r.px, x, W, W, c, stream);
@@ -1722,6 +1765,20 @@ static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, 
     }
     if (x < W)
         fill(r.px, x, W, W, c, stream);
+}
+
+/* The rows of a scene of lines and quadratics (crow and most polygons),
+ * compiled without the curved pieces' cases, and of any scene. */
+static void render_row_plain(const ar_state *S, ar_worker *wk, int j, int integrator, int stream,
+                             aa_image *out)
+{
+    render_row_k(S, wk, j, integrator, stream, out, 1);
+}
+
+static void render_row_any(const ar_state *S, ar_worker *wk, int j, int integrator, int stream,
+                           aa_image *out)
+{
+    render_row_k(S, wk, j, integrator, stream, out, 0);
 }
 
 /* ------------------------------------------------------------------------
@@ -1810,6 +1867,7 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
     if (n && !(S->piece = calloc(n, sizeof *S->piece)))
         return aa_fail(AA_ENOMEM, "out of memory for %zu pieces", n);
     S->npieces = n;
+    S->plain = 1;
     int st = area_quad_init(&S->quad);
     if (st)
         return st;
@@ -1822,6 +1880,7 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
         q->cubic = p->kind == AA_PIECE_CUBIC;
         q->conic = p->kind == AA_PIECE_CONIC;
         q->curved = q->cubic || q->conic || p->kind == AA_PIECE_OFFSET;
+        S->plain &= !q->curved;
         q->src = p;
         if (p->kind == AA_PIECE_OFFSET && (st = load_offset(S, q, p)))
             return st;
@@ -2020,7 +2079,7 @@ static int area_render(void *state, const double *p, const aa_job *job, aa_image
         wk->expensive = 0;
 #pragma omp for schedule(static)
         for (int j = 0; j < job->h; j++)
-            render_row(S, wk, j, integrator, stream, out);
+            (S->plain ? render_row_plain : render_row_any)(S, wk, j, integrator, stream, out);
 #if AR_STREAM
         if (stream)
             _mm_sfence(); /* order the non-temporal stores before the join */
