@@ -1398,7 +1398,7 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
 static inline void put(const ar_row *r, double *px, const double *cin, const double *dc,
                        double area)
 {
-    if (r->S->nch == 1 && !r->stream) {
+    if (r->grey) {
         double v = clamp01(cin[0] + dc[0] * area);
         px[0] = v, px[1] = v, px[2] = v;
         return;
@@ -1536,6 +1536,23 @@ static void cluster(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
  * branches in the ~100 short runs of a `crow` row were measured as a large
  * part of the render).  If `stream`, non-temporal and exact (the image is
  * larger than the caches: the stores then do not read the lines first). */
+#if AR_STREAM
+/* n > 0 pixels from p in whole chunks of 4 (v0, v1, v2: the colour's
+ * 16-byte pattern), running over by up to 3 pixels. */
+static inline void fill_chunks(double *p, int n, __m128d v0, __m128d v1, __m128d v2)
+{
+    do {
+        _mm_storeu_pd(p, v0);
+        _mm_storeu_pd(p + 2, v1);
+        _mm_storeu_pd(p + 4, v2);
+        _mm_storeu_pd(p + 6, v0);
+        _mm_storeu_pd(p + 8, v1);
+        _mm_storeu_pd(p + 10, v2);
+        p += 12, n -= 4;
+    } while (n > 0);
+}
+#endif
+
 static void fill(double *px, int i0, int i1, int W, const double *c, int stream)
 {
     double *p = px + 3 * (size_t)i0;
@@ -1568,15 +1585,7 @@ static void fill(double *px, int i0, int i1, int W, const double *c, int stream)
     if (i0 + ((n + 3) & ~3) <= W) {
         /* whole chunks of 4 pixels: every pixel after the run is written
          * again later in the row, so running over is harmless */
-        do {
-            _mm_storeu_pd(p, v0);
-            _mm_storeu_pd(p + 2, v1);
-            _mm_storeu_pd(p + 4, v2);
-            _mm_storeu_pd(p + 6, v0);
-            _mm_storeu_pd(p + 8, v1);
-            _mm_storeu_pd(p + 10, v2);
-            p += 12, n -= 4;
-        } while (n > 0);
+        fill_chunks(p, n, v0, v1, v2);
         return;
     }
     if (i1 == W)
@@ -1596,6 +1605,23 @@ static void fill(double *px, int i0, int i1, int W, const double *c, int stream)
 #endif
     if (i1 == W && ((i1 - i0) & 1))
         p[0] = c[0], p[1] = c[1], p[2] = c[2];
+}
+
+/* fill for the run [i0, i1), i0 < i1, before a cluster of row r: in a
+ * row that does not stream, its whole chunks inline (the call, its tests
+ * and its pattern's set-up were a sixth of crow's render); the same
+ * stores. */
+static inline void fill_run(const ar_row *r, int i0, int i1, const double *c)
+{
+#if AR_STREAM
+    int n = i1 - i0;
+    if (!r->stream && i0 + ((n + 3) & ~3) <= r->W) {
+        fill_chunks(r->px + 3 * (size_t)i0, n, _mm_set_pd(c[1], c[0]), _mm_set_pd(c[0], c[2]),
+                    _mm_set_pd(c[2], c[1]));
+        return;
+    }
+#endif
+    fill(r->px, i0, i1, r->W, c, r->stream);
 }
 
 /* Bring the active list to row j: the pieces meeting the band, in the
@@ -1650,7 +1676,7 @@ static int flush(const ar_row *r, ar_key *keys, size_t n, int lo, int hi, int x,
 
 /* The cluster list[0..n) of the one-pass order: keys in canonical order,
  * the same as the sorted pass gives it. */
-static int flush_list(const ar_row *r, const uint32_t *list, size_t n, int lo, int hi, int x,
+__attribute__((noinline)) static int flush_list(const ar_row *r, const uint32_t *list, size_t n, int lo, int hi, int x,
                       int *w, const double **c)
 {
     ar_seg *seg = r->wk->seg;
@@ -1673,14 +1699,16 @@ static inline uint64_t cells_of(int lo, int hi, int W)
 
 /* flush_list, with the common single seg inline (a call per piece was
  * measured at a tenth of the render). */
-static inline int close_cluster(const ar_row *r, const uint32_t *list, size_t n, int lo, int hi,
-                                int x, int *w, const double **c, const int plain)
+__attribute__((always_inline)) static inline int close_cluster(const ar_row *r,
+                                                               const uint32_t *list, size_t n,
+                                                               int lo, int hi, int x, int *w,
+                                                               const double **c, const int plain)
 {
     if (n == 1) {
         const ar_seg *s = &r->wk->seg[list[0]];
         if (s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s, plain)) {
             if (lo > x)
-                fill(r->px, x, lo, r->W, *c, r->stream);
+                fill_run(r, x, lo, *c);
             *c = single(r, s, w, *c, plain);
             return hi + 1;
         }
@@ -1696,7 +1724,7 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
 {
     int W = S->w;
     update_active(S, wk, j);
-    ar_row r = {S, wk, j, W, integrator, stream, aa_pixel(out, 0, j)};
+    ar_row r = {S, wk, j, W, integrator, stream, aa_pixel(out, 0, j), S->nch == 1 && !stream};
     int *w = wk->wind;
     memset(w, 0, (size_t)S->nl * sizeof *w);
     const double *c = colour_of(S, wk, w);

@@ -231,6 +231,7 @@ typedef struct ar_row {
     ar_worker *wk;
     int j, W, integrator, stream;
     double *px; /* the row's first pixel */
+    int grey;   /* nch == 1 and not stream: a pixel is one value stored thrice */
 } ar_row;
 
 /* ------------------------------------------------------------------------
