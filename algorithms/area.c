@@ -1394,16 +1394,17 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
     resolve(r, lo, hi, cin);
 }
 
-/* Pixel cin + dc area; grey scenes compute one channel. */
-static inline void put(const ar_row *r, double *px, const double *cin, const double *dc,
+/* Pixel cin + (nx - cin) area; grey scenes compute one channel. */
+static inline void put(const ar_row *r, double *px, const double *cin, const double *nx,
                        double area)
 {
     if (r->grey) {
-        double v = clamp01(cin[0] + dc[0] * area);
+        double v = clamp01(cin[0] + (nx[0] - cin[0]) * area);
         px[0] = v, px[1] = v, px[2] = v;
         return;
     }
-    double v[3] = {cin[0] + dc[0] * area, cin[1] + dc[1] * area, cin[2] + dc[2] * area};
+    double v[3] = {cin[0] + (nx[0] - cin[0]) * area, cin[1] + (nx[1] - cin[1]) * area,
+                   cin[2] + (nx[2] - cin[2]) * area};
     store_px(r, px, v);
 }
 
@@ -1423,13 +1424,12 @@ single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int pl
     const ar_piece *p = s->p;
     w[p->layer] += p->dir;
     const double *nx = colour_of(r->S, r->wk, w);
-    double dc[3] = {nx[0] - cin[0], nx[1] - cin[1], nx[2] - cin[2]};
     double *px = r->px + 3 * (size_t)s->ca, dy;
     double k = (double)(s->ca - s->c0); /* the left cell, local */
     if (s->ca == s->cb) {
         double a = plain ? part_area_quad(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy)
                          : part_area(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy);
-        put(r, px, cin, dc, a);
+        put(r, px, cin, nx, a);
         return nx;
     }
     /* two cells: the piece crosses their common side x = c0 + k + 1 */
@@ -1461,8 +1461,8 @@ single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int pl
             al = part_area(s, tc, s->tb, 1.0, s->ub - k, &dl);
         }
     }
-    put(r, px, cin, dc, al);
-    put(r, px + 3, cin, dc, dl + ar);
+    put(r, px, cin, nx, al);
+    put(r, px + 3, cin, nx, dl + ar);
     return nx;
 }
 
@@ -1846,6 +1846,7 @@ static void state_free(ar_state *S)
     free(S->piece);
     free(S->colour);
     free(S->evenodd);
+    free(S->inside);
     free(S->pan);
     memset(S, 0, sizeof *S);
 }
@@ -1953,13 +1954,16 @@ static int load_colours(ar_state *S, const aa_scene *scene)
     S->nl = nl;
     S->colour = calloc((size_t)nl + 1, sizeof *S->colour);
     S->evenodd = calloc((size_t)nl + 1, sizeof *S->evenodd);
-    if (!S->colour || !S->evenodd)
+    S->inside = calloc((size_t)nl + 1, sizeof *S->inside);
+    if (!S->colour || !S->evenodd || !S->inside)
         return aa_fail(AA_ENOMEM, "out of memory for %d layers", nl);
     for (int l = 0; l <= nl; l++) {
         aa_rgb c = l < nl ? aa_scene_layer_colour(scene, l) : aa_scene_background(scene);
         memcpy(S->colour[l], c.c, sizeof c.c);
-        if (l < nl)
+        if (l < nl) {
             S->evenodd[l] = aa_scene_layer_rule(scene, l) == AA_FILL_EVENODD;
+            S->inside[l] = S->evenodd[l] ? 1 : ~0;
+        }
     }
     /* greys composite to greys (every channel the same arithmetic) */
     S->nch = aa_scene_is_grey(scene) ? 1 : 3;

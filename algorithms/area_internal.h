@@ -219,6 +219,9 @@ typedef struct ar_state {
     int plain;
     double (*colour)[3]; /* per layer, then the background */
     int *evenodd;
+    /* per layer, the bits of a winding number that put a point inside it:
+     * 1 under even-odd, all under nonzero (colour_of's one test) */
+    int *inside;
     ar_worker *workers;
     ar_panel *pan; /* the offset pieces' panels */
     size_t npan;
@@ -254,7 +257,7 @@ static inline const double *colour_of(const ar_state *S, ar_worker *wk, const in
 {
     int l = 0;
     for (; l < S->nscan; l++)
-        if (S->evenodd[l] ? (w[l] & 1) : (w[l] != 0))
+        if (w[l] & S->inside[l]) /* evenodd[l] ? w[l] & 1 : w[l] != 0 */
             return S->colour[l];
     if (l == 0 && S->composite) /* l = nl in an opaque scene */
         return area_composite_colour(S, wk, w);
