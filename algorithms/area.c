@@ -322,9 +322,10 @@ static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo
 }
 
 /* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1), on a
- * line or a quadratic (tau_of_u_quad), or on a conic: for a conic, q where u(q) = k: (K + 2 ax) q^2 + 2 g q + K = 0 (K = U - k),
- * whose derivative there has the sign of u' (u (1 + q^2) - k (1 + q^2) has
- * derivative u' (1 + q^2) where u = k). */
+ * line or a quadratic (tau_of_u_quad) or a conic.  For a conic, q where
+ * u(q) = k: (K + 2 ax) q^2 + 2 g q + K = 0 (K = U - k), whose derivative
+ * there has the sign of u' (u (1 + q^2) - k (1 + q^2) has derivative
+ * u' (1 + q^2) where u = k). */
 static inline double tau_of_u_quad(const ar_seg *s, double k, double sg)
 {
     double c = s->U - k, g = s->g;
@@ -1687,8 +1688,9 @@ static int flush(const ar_row *r, ar_key *keys, size_t n, int lo, int hi, int x,
 
 /* The cluster list[0..n) of the one-pass order: keys in canonical order,
  * the same as the sorted pass gives it. */
-__attribute__((noinline)) static int flush_list(const ar_row *r, const uint32_t *list, size_t n, int lo, int hi, int x,
-                      int *w, const double **c)
+__attribute__((noinline)) static int flush_list(const ar_row *r, const uint32_t *list,
+                                                size_t n, int lo, int hi, int x, int *w,
+                                                const double **c)
 {
     ar_seg *seg = r->wk->seg;
     ar_key *keys = r->wk->order;
