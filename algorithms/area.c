@@ -219,7 +219,18 @@
  * line_tau and u_at inline, the cubic, conic and offset cases out of line
  * (area/point 1.40 in thread CPU time, 21 renders of each taking turns,
  * medians of three runs 1.39 to 1.41, against 1.60 to 1.67 when each call
- * tested those cases on the piece's later cache lines); the per-row order
+ * tested those cases on the piece's later cache lines).  A scene with no
+ * curved piece at all (crow, polygons: ar_state.plain) takes a form of the
+ * rows compiled without those cases, chosen once a row (render_row_plain:
+ * no curved tests per piece, no out-of-line seg_u for the band's bottom,
+ * no second x extremum), with the common cluster and the fill of the run
+ * before it inline in the row and colour_of's test of a layer one mask; the
+ * same arithmetic, so the same image bit for bit.  Instructions in
+ * area_render (callgrind, one render against three, one thread): 48.77 M
+ * a render before, 35.29 M after, point 36.10 M (area/point 1.35 to 0.98);
+ * thread CPU time area/point 1.31 to 1.38 before and 1.02 to 1.10 after
+ * (three runs of each build taking turns, medians of 21 renders, a load of
+ * 15: tests/bench_analytic.c --cpu 21).  The per-row order
  * of the active list is kept,
  * so for most scenes the pieces arrive in x order and clusters are written
  * as they close, with a sorted pass only when a piece comes out of order;
@@ -310,24 +321,31 @@ static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo
     return area_cubic_near(k - s->U, -s->g, -s->ax, -s->cx3, lo, hi, g);
 }
 
-/* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1).  For
- * a conic, q where u(q) = k: (K + 2 ax) q^2 + 2 g q + K = 0 (K = U - k),
- * whose derivative there has the sign of u' (u (1 + q^2) - k (1 + q^2) has
- * derivative u' (1 + q^2) where u = k). */
-static inline double tau_of_u(const ar_seg *s, double k, double sg)
+/* tau where u(tau) = k on a part where u' has sign `sg` (+1 or -1), on a
+ * line or a quadratic (tau_of_u_quad) or a conic.  For a conic, q where
+ * u(q) = k: (K + 2 ax) q^2 + 2 g q + K = 0 (K = U - k), whose derivative
+ * there has the sign of u' (u (1 + q^2) - k (1 + q^2) has derivative
+ * u' (1 + q^2) where u = k). */
+static inline double tau_of_u_quad(const ar_seg *s, double k, double sg)
 {
     double c = s->U - k, g = s->g;
+    double disc = g * g - 4.0 * s->ax * c, q = sqrt(disc > 0.0 ? disc : 0.0);
+    if (sg * g > 0.0 || s->ax == 0.0)
+        return -2.0 * c / (g + sg * q);
+    return (-g + sg * q) / (2.0 * s->ax);
+}
+
+static inline double tau_of_u(const ar_seg *s, double k, double sg)
+{
     if (s->p->curved && s->p->conic) {
+        double c = s->U - k, g = s->g;
         double a = c + 2.0 * s->ax, disc = g * g - c * a, q = sqrt(disc > 0.0 ? disc : 0.0);
         double den = g + sg * q;
         if ((sg * g > 0.0 || a == 0.0) && den != 0.0)
             return -c / den;
         return a != 0.0 ? (-g + sg * q) / a : 0.0;
     }
-    double disc = g * g - 4.0 * s->ax * c, q = sqrt(disc > 0.0 ? disc : 0.0);
-    if (sg * g > 0.0 || s->ax == 0.0)
-        return -2.0 * c / (g + sg * q);
-    return (-g + sg * q) / (2.0 * s->ax);
+    return tau_of_u_quad(s, k, sg);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -661,19 +679,25 @@ static void expand(ar_seg *a, const ar_piece *p, int ja)
 }
 
 /* tau where the piece meets the line y = ja + m (the same expression
- * whichever band asks, so a band's top equals the band above's bottom). */
+ * whichever band asks, so a band's top equals the band above's bottom);
+ * line_tau_quad for a line or a quadratic. */
 static double line_tau_curved(const ar_seg *a, int m);
 
-static inline double line_tau(const ar_seg *a, int m)
+static inline double line_tau_quad(const ar_seg *a, int m)
 {
     double c = a->Va - m;
-    if (a->p->curved)
-        return line_tau_curved(a, m);
     if (a->ay == 0.0)
         return -c * a->ivy;
     double disc = a->vy * a->vy - 4.0 * a->ay * c;
     double den = a->vy + sqrt(disc > 0.0 ? disc : 0.0);
     return den > 0.0 ? -2.0 * c / den : 0.0;
+}
+
+static inline double line_tau(const ar_seg *a, int m)
+{
+    if (a->p->curved)
+        return line_tau_curved(a, m);
+    return line_tau_quad(a, m);
 }
 
 /* line_tau of a cubic, conic or offset piece */
@@ -722,8 +746,12 @@ static inline int icell(double x)
 }
 
 /* Piece p clipped to the band [j, j+1], in its seg s.  Returns 0 if it
- * lies right of the image. */
-static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
+ * lies right of the image.  `plain` (a constant where it is inlined): the
+ * scene has no curved piece, so the cubic, conic and offset cases are
+ * left out (their tests, seg_u's call, the second x extremum: te2 is
+ * infinite on lines and quadratics); the same arithmetic either way. */
+__attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_piece *p, int j,
+                                                          int W, const int plain)
 {
     s->p = p;
     if (p->flat) {
@@ -745,23 +773,26 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
         expand(s, p, ja);
     double ta, tb, ua, ub;
     /* (p->curved first: the common path reads no other cache line of p) */
-    int special = p->curved && (p->conic || p->offset);
-    if (p->curved && p->offset) /* part_area's v, none kept yet */
+    int curved = !plain && p->curved;
+    int special = curved && (p->conic || p->offset);
+    if (curved && p->offset) /* part_area's v, none kept yet */
         s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = NAN, s->vn = 0;
     if (p->y0 >= j)
         ta = special ? s->t0 : 0.0, ua = special ? seg_u(s, ta) : s->U;
     else if (s->mline == m)
         ta = s->tline, ua = s->uline;
+    else if (plain)
+        ta = line_tau_quad(s, m), ua = u_quad(s, ta);
     else
         ta = line_tau(s, m), ua = seg_u(s, ta);
     if (p->y1 <= j + 1.0) {
         tb = s->tend;
-        ub = seg_u(s, tb);
+        ub = plain ? u_quad(s, tb) : seg_u(s, tb);
     } else {
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
-        tb = line_tau(s, m + 1);
-        ub = seg_u(s, tb);
+        tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
+        ub = plain ? u_quad(s, tb) : seg_u(s, tb);
         s->mline = m + 1, s->tline = tb, s->uline = ub;
     }
     if (!(tb >= ta))
@@ -771,11 +802,11 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
     s->lo = s->ua < s->ub ? s->ua : s->ub;
     s->hi = s->ua < s->ub ? s->ub : s->ua;
     if (s->te > ta && s->te < tb) {
-        double ue = u_at(s, s->te);
+        double ue = plain ? u_quad(s, s->te) : u_at(s, s->te);
         s->lo = ue < s->lo ? ue : s->lo;
         s->hi = ue > s->hi ? ue : s->hi;
     }
-    if (s->te2 > ta && s->te2 < tb) {
+    if (!plain && s->te2 > ta && s->te2 < tb) {
         double ue = u_at(s, s->te2);
         s->lo = ue < s->lo ? ue : s->lo;
         s->hi = ue > s->hi ? ue : s->hi;
@@ -822,18 +853,25 @@ static void band_fields(ar_seg *s, int j)
  * ------------------------------------------------------------------------ */
 
 /* The area right of the part of s from tau ta to tb (u from ua to ub,
- * relative to its column) inside the column, and its height *dy. */
+ * relative to its column) inside the column, and its height *dy
+ * (part_area_quad: of a line or a quadratic). */
 static double part_area_curved(const ar_seg *s, double ta, double tb, double ua, double ub,
                                double *dy);
+
+static inline double part_area_quad(const ar_seg *s, double ta, double tb, double ua,
+                                    double ub, double *dy)
+{
+    double d = tb - ta;
+    *dy = d * (s->vy + s->ay * (ta + tb));
+    return *dy * (1.0 - 0.5 * (ua + ub)) + d * d * d * s->k6;
+}
 
 static inline double part_area(const ar_seg *s, double ta, double tb, double ua, double ub,
                                double *dy)
 {
     if (s->p->curved)
         return part_area_curved(s, ta, tb, ua, ub, dy);
-    double d = tb - ta;
-    *dy = d * (s->vy + s->ay * (ta + tb));
-    return *dy * (1.0 - 0.5 * (ua + ub)) + d * d * d * s->k6;
+    return part_area_quad(s, ta, tb, ua, ub, dy);
 }
 
 /* part_area of a cubic, conic or offset piece */
@@ -1368,16 +1406,17 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
     resolve(r, lo, hi, cin);
 }
 
-/* Pixel cin + dc area; grey scenes compute one channel. */
-static inline void put(const ar_row *r, double *px, const double *cin, const double *dc,
+/* Pixel cin + (nx - cin) area; grey scenes compute one channel. */
+static inline void put(const ar_row *r, double *px, const double *cin, const double *nx,
                        double area)
 {
-    if (r->S->nch == 1 && !r->stream) {
-        double v = clamp01(cin[0] + dc[0] * area);
+    if (r->grey) {
+        double v = clamp01(cin[0] + (nx[0] - cin[0]) * area);
         px[0] = v, px[1] = v, px[2] = v;
         return;
     }
-    double v[3] = {cin[0] + dc[0] * area, cin[1] + dc[1] * area, cin[2] + dc[2] * area};
+    double v[3] = {cin[0] + (nx[0] - cin[0]) * area, cin[1] + (nx[1] - cin[1]) * area,
+                   cin[2] + (nx[2] - cin[2]) * area};
     store_px(r, px, v);
 }
 
@@ -1385,53 +1424,66 @@ static inline void put(const ar_row *r, double *px, const double *cin, const dou
  * two cells of the image (single_kind and the cells checked), written
  * directly, without the cell arrays: a tenth of the cost of the general
  * path on `crow`.  w moves past the seg; returns the colour right of it. */
-static inline int single_kind(const ar_row *r, const ar_seg *s)
+static inline int single_kind(const ar_row *r, const ar_seg *s, const int plain)
 {
     return s->p->y0 <= r->j && s->p->y1 >= r->j + 1.0 && !(s->te > s->ta && s->te < s->tb) &&
-           !(s->te2 > s->ta && s->te2 < s->tb);
+           (plain || !(s->te2 > s->ta && s->te2 < s->tb));
 }
 
-static inline const double *single(const ar_row *r, const ar_seg *s, int *w,
-                                   const double *cin)
+__attribute__((always_inline)) static inline const double *
+single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int plain)
 {
     const ar_piece *p = s->p;
     w[p->layer] += p->dir;
     const double *nx = colour_of(r->S, r->wk, w);
-    double dc[3] = {nx[0] - cin[0], nx[1] - cin[1], nx[2] - cin[2]};
     double *px = r->px + 3 * (size_t)s->ca, dy;
     double k = (double)(s->ca - s->c0); /* the left cell, local */
     if (s->ca == s->cb) {
-        put(r, px, cin, dc, part_area(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy));
+        double a = plain ? part_area_quad(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy)
+                         : part_area(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy);
+        put(r, px, cin, nx, a);
         return nx;
     }
     /* two cells: the piece crosses their common side x = c0 + k + 1 */
     double dl, dr, al, ar;
     if (s->ub > s->ua) {
-        double tc = s->p->curved && (s->p->cubic || s->p->offset)
+        double tc = plain ? tau_of_u_quad(s, k + 1.0, 1.0)
+                    : s->p->curved && (s->p->cubic || s->p->offset)
                         ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb, s->ua, s->ub)
-                                : tau_of_u(s, k + 1.0, 1.0);
+                        : tau_of_u(s, k + 1.0, 1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
-        al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
-        ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
+        if (plain) {
+            al = part_area_quad(s, s->ta, tc, s->ua - k, 1.0, &dl);
+            ar = part_area_quad(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
+        } else {
+            al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
+            ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
+        }
     } else {
-        double tc = s->p->curved && (s->p->cubic || s->p->offset)
+        double tc = plain ? tau_of_u_quad(s, k + 1.0, -1.0)
+                    : s->p->curved && (s->p->cubic || s->p->offset)
                         ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb, s->ua, s->ub)
-                                : tau_of_u(s, k + 1.0, -1.0);
+                        : tau_of_u(s, k + 1.0, -1.0);
         tc = tc < s->ta ? s->ta : (tc > s->tb ? s->tb : tc);
-        ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
-        al = part_area(s, tc, s->tb, 1.0, s->ub - k, &dl);
+        if (plain) {
+            ar = part_area_quad(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
+            al = part_area_quad(s, tc, s->tb, 1.0, s->ub - k, &dl);
+        } else {
+            ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
+            al = part_area(s, tc, s->tb, 1.0, s->ub - k, &dl);
+        }
     }
-    put(r, px, cin, dc, al);
-    put(r, px + 3, cin, dc, dl + ar);
+    put(r, px, cin, nx, al);
+    put(r, px + 3, cin, nx, dl + ar);
     return nx;
 }
 
 /* single() if s is of its kind; 0 (and nothing changed) if not. */
 static int cluster_single(const ar_row *r, const ar_seg *s, int *w, const double *cin)
 {
-    if (s->cb - s->ca > 1 || s->ca < 0 || s->cb >= r->W || !single_kind(r, s))
+    if (s->cb - s->ca > 1 || s->ca < 0 || s->cb >= r->W || !single_kind(r, s, 0))
         return 0;
-    single(r, s, w, cin);
+    single(r, s, w, cin, 0);
     return 1;
 }
 
@@ -1496,6 +1548,23 @@ static void cluster(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
  * branches in the ~100 short runs of a `crow` row were measured as a large
  * part of the render).  If `stream`, non-temporal and exact (the image is
  * larger than the caches: the stores then do not read the lines first). */
+#if AR_STREAM
+/* n > 0 pixels from p in whole chunks of 4 (v0, v1, v2: the colour's
+ * 16-byte pattern), running over by up to 3 pixels. */
+static inline void fill_chunks(double *p, int n, __m128d v0, __m128d v1, __m128d v2)
+{
+    do {
+        _mm_storeu_pd(p, v0);
+        _mm_storeu_pd(p + 2, v1);
+        _mm_storeu_pd(p + 4, v2);
+        _mm_storeu_pd(p + 6, v0);
+        _mm_storeu_pd(p + 8, v1);
+        _mm_storeu_pd(p + 10, v2);
+        p += 12, n -= 4;
+    } while (n > 0);
+}
+#endif
+
 static void fill(double *px, int i0, int i1, int W, const double *c, int stream)
 {
     double *p = px + 3 * (size_t)i0;
@@ -1528,15 +1597,7 @@ static void fill(double *px, int i0, int i1, int W, const double *c, int stream)
     if (i0 + ((n + 3) & ~3) <= W) {
         /* whole chunks of 4 pixels: every pixel after the run is written
          * again later in the row, so running over is harmless */
-        do {
-            _mm_storeu_pd(p, v0);
-            _mm_storeu_pd(p + 2, v1);
-            _mm_storeu_pd(p + 4, v2);
-            _mm_storeu_pd(p + 6, v0);
-            _mm_storeu_pd(p + 8, v1);
-            _mm_storeu_pd(p + 10, v2);
-            p += 12, n -= 4;
-        } while (n > 0);
+        fill_chunks(p, n, v0, v1, v2);
         return;
     }
     if (i1 == W)
@@ -1556,6 +1617,23 @@ static void fill(double *px, int i0, int i1, int W, const double *c, int stream)
 #endif
     if (i1 == W && ((i1 - i0) & 1))
         p[0] = c[0], p[1] = c[1], p[2] = c[2];
+}
+
+/* fill for the run [i0, i1), i0 < i1, before a cluster of row r: in a
+ * row that does not stream, its whole chunks inline (the call, its tests
+ * and its pattern's set-up were a sixth of crow's render); the same
+ * stores. */
+static inline void fill_run(const ar_row *r, int i0, int i1, const double *c)
+{
+#if AR_STREAM
+    int n = i1 - i0;
+    if (!r->stream && i0 + ((n + 3) & ~3) <= r->W) {
+        fill_chunks(r->px + 3 * (size_t)i0, n, _mm_set_pd(c[1], c[0]), _mm_set_pd(c[0], c[2]),
+                    _mm_set_pd(c[2], c[1]));
+        return;
+    }
+#endif
+    fill(r->px, i0, i1, r->W, c, r->stream);
 }
 
 /* Bring the active list to row j: the pieces meeting the band, in the
@@ -1610,8 +1688,9 @@ static int flush(const ar_row *r, ar_key *keys, size_t n, int lo, int hi, int x,
 
 /* The cluster list[0..n) of the one-pass order: keys in canonical order,
  * the same as the sorted pass gives it. */
-static int flush_list(const ar_row *r, const uint32_t *list, size_t n, int lo, int hi, int x,
-                      int *w, const double **c)
+__attribute__((noinline)) static int flush_list(const ar_row *r, const uint32_t *list,
+                                                size_t n, int lo, int hi, int x, int *w,
+                                                const double **c)
 {
     ar_seg *seg = r->wk->seg;
     ar_key *keys = r->wk->order;
@@ -1633,27 +1712,32 @@ static inline uint64_t cells_of(int lo, int hi, int W)
 
 /* flush_list, with the common single seg inline (a call per piece was
  * measured at a tenth of the render). */
-static inline int close_cluster(const ar_row *r, const uint32_t *list, size_t n, int lo, int hi,
-                                int x, int *w, const double **c)
+__attribute__((always_inline)) static inline int close_cluster(const ar_row *r,
+                                                               const uint32_t *list, size_t n,
+                                                               int lo, int hi, int x, int *w,
+                                                               const double **c, const int plain)
 {
     if (n == 1) {
         const ar_seg *s = &r->wk->seg[list[0]];
-        if (s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s)) {
+        if (s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s, plain)) {
             if (lo > x)
-                fill(r->px, x, lo, r->W, *c, r->stream);
-            *c = single(r, s, w, *c);
+                fill_run(r, x, lo, *c);
+            *c = single(r, s, w, *c, plain);
             return hi + 1;
         }
     }
     return flush_list(r, list, n, lo, hi, x, w, c);
 }
 
-static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, int stream,
-                       aa_image *out)
+/* Row j.  `plain`: S->plain, a constant in each of the two forms below
+ * (render_row_plain, render_row_any), chosen once a row. */
+__attribute__((always_inline)) static inline void render_row_k(const ar_state *S, ar_worker *wk,
+                                                               int j, int integrator, int stream,
+                                                               aa_image *out, const int plain)
 {
     int W = S->w;
     update_active(S, wk, j);
-    ar_row r = {S, wk, j, W, integrator, stream, aa_pixel(out, 0, j)};
+    ar_row r = {S, wk, j, W, integrator, stream, aa_pixel(out, 0, j), S->nch == 1 && !stream};
     int *w = wk->wind;
     memset(w, 0, (size_t)S->nl * sizeof *w);
     const double *c = colour_of(S, wk, w);
@@ -1671,7 +1755,7 @@ static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, 
         if (p->xmin >= W || (p->flat && !(p->y0 > j && p->y0 < j + 1.0)))
             continue; /* right of the image, or flat on the band's edge */
         ar_seg *s = &wk->seg[ix];
-        if (!seg_make(s, p, j, W))
+        if (!seg_make(s, p, j, W, plain))
             continue;
         wk->list[n] = ix;
         if (ordered) {
@@ -1679,7 +1763,7 @@ static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, 
                 lo = s->ca, hi = s->cb;
             } else if (s->ca > hi) {
                 cells += cells_of(lo, hi, W);
-                x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c);
+                x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c, plain);
                 first = n;
                 lo = s->ca, hi = s->cb;
             } else if (s->ca >= lo) {
@@ -1693,7 +1777,7 @@ static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, 
     if (ordered) {
         if (n > first) {
             cells += cells_of(lo, hi, W);
-            x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c);
+            x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c, plain);
         }
         if (x < W)
             fill(r.px, x, W, W, c, stream);
@@ -1722,6 +1806,20 @@ static void render_row(const ar_state *S, ar_worker *wk, int j, int integrator, 
     }
     if (x < W)
         fill(r.px, x, W, W, c, stream);
+}
+
+/* The rows of a scene of lines and quadratics (crow and most polygons),
+ * compiled without the curved pieces' cases, and of any scene. */
+static void render_row_plain(const ar_state *S, ar_worker *wk, int j, int integrator, int stream,
+                             aa_image *out)
+{
+    render_row_k(S, wk, j, integrator, stream, out, 1);
+}
+
+static void render_row_any(const ar_state *S, ar_worker *wk, int j, int integrator, int stream,
+                           aa_image *out)
+{
+    render_row_k(S, wk, j, integrator, stream, out, 0);
 }
 
 /* ------------------------------------------------------------------------
@@ -1761,6 +1859,7 @@ static void state_free(ar_state *S)
     free(S->piece);
     free(S->colour);
     free(S->evenodd);
+    free(S->inside);
     free(S->pan);
     memset(S, 0, sizeof *S);
 }
@@ -1810,6 +1909,7 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
     if (n && !(S->piece = calloc(n, sizeof *S->piece)))
         return aa_fail(AA_ENOMEM, "out of memory for %zu pieces", n);
     S->npieces = n;
+    S->plain = 1;
     int st = area_quad_init(&S->quad);
     if (st)
         return st;
@@ -1822,6 +1922,7 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
         q->cubic = p->kind == AA_PIECE_CUBIC;
         q->conic = p->kind == AA_PIECE_CONIC;
         q->curved = q->cubic || q->conic || p->kind == AA_PIECE_OFFSET;
+        S->plain &= !q->curved;
         q->src = p;
         if (p->kind == AA_PIECE_OFFSET && (st = load_offset(S, q, p)))
             return st;
@@ -1866,13 +1967,16 @@ static int load_colours(ar_state *S, const aa_scene *scene)
     S->nl = nl;
     S->colour = calloc((size_t)nl + 1, sizeof *S->colour);
     S->evenodd = calloc((size_t)nl + 1, sizeof *S->evenodd);
-    if (!S->colour || !S->evenodd)
+    S->inside = calloc((size_t)nl + 1, sizeof *S->inside);
+    if (!S->colour || !S->evenodd || !S->inside)
         return aa_fail(AA_ENOMEM, "out of memory for %d layers", nl);
     for (int l = 0; l <= nl; l++) {
         aa_rgb c = l < nl ? aa_scene_layer_colour(scene, l) : aa_scene_background(scene);
         memcpy(S->colour[l], c.c, sizeof c.c);
-        if (l < nl)
+        if (l < nl) {
             S->evenodd[l] = aa_scene_layer_rule(scene, l) == AA_FILL_EVENODD;
+            S->inside[l] = S->evenodd[l] ? 1 : ~0;
+        }
     }
     /* greys composite to greys (every channel the same arithmetic) */
     S->nch = aa_scene_is_grey(scene) ? 1 : 3;
@@ -2020,7 +2124,7 @@ static int area_render(void *state, const double *p, const aa_job *job, aa_image
         wk->expensive = 0;
 #pragma omp for schedule(static)
         for (int j = 0; j < job->h; j++)
-            render_row(S, wk, j, integrator, stream, out);
+            (S->plain ? render_row_plain : render_row_any)(S, wk, j, integrator, stream, out);
 #if AR_STREAM
         if (stream)
             _mm_sfence(); /* order the non-temporal stores before the join */

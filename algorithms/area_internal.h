@@ -214,8 +214,14 @@ typedef struct ar_state {
      * nwords: 64-bit words of a state's key; nscan: layers colour_of
      * scans for the front-most (nl, or 0 in a scene that composites) */
     int composite, nwords, nscan;
+    /* 1 if no piece is curved (cubic, conic or offset): the rows then take
+     * render_row's form compiled without those cases (area.c) */
+    int plain;
     double (*colour)[3]; /* per layer, then the background */
     int *evenodd;
+    /* per layer, the bits of a winding number that put a point inside it:
+     * 1 under even-odd, all under nonzero (colour_of's one test) */
+    int *inside;
     ar_worker *workers;
     ar_panel *pan; /* the offset pieces' panels */
     size_t npan;
@@ -228,6 +234,7 @@ typedef struct ar_row {
     ar_worker *wk;
     int j, W, integrator, stream;
     double *px; /* the row's first pixel */
+    int grey;   /* nch == 1 and not stream: a pixel is one value stored thrice */
 } ar_row;
 
 /* ------------------------------------------------------------------------
@@ -250,7 +257,7 @@ static inline const double *colour_of(const ar_state *S, ar_worker *wk, const in
 {
     int l = 0;
     for (; l < S->nscan; l++)
-        if (S->evenodd[l] ? (w[l] & 1) : (w[l] != 0))
+        if (w[l] & S->inside[l]) /* evenodd[l] ? w[l] & 1 : w[l] != 0 */
             return S->colour[l];
     if (l == 0 && S->composite) /* l = nl in an opaque scene */
         return area_composite_colour(S, wk, w);
@@ -284,10 +291,18 @@ static inline double offset_v_kept(const ar_seg *s, double t)
     return t == s->vt[0] ? s->vv[0] : (t == s->vt[1] ? s->vv[1] : offset_v(s, t));
 }
 
+/* u at tau on a line or a quadratic (cx3 = 0): u_at's common case, which
+ * the rows of a scene without curved pieces call directly (area.c,
+ * render_row). */
+static inline double u_quad(const ar_seg *s, double t)
+{
+    return s->U + t * (s->g + t * s->ax);
+}
+
 static inline double u_at(const ar_seg *s, double t)
 {
     if (!s->p->curved) /* cx3 = 0 */
-        return s->U + t * (s->g + t * s->ax);
+        return u_quad(s, t);
     if (s->p->offset) {
         long double X, Y;
         aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
