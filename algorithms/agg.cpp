@@ -101,6 +101,9 @@ extern "C" {
 /* C++20 deprecates AGG's arithmetic between its enums and with doubles */
 #pragma GCC diagnostic ignored "-Wdeprecated-enum-enum-conversion"
 #pragma GCC diagnostic ignored "-Wdeprecated-enum-float-conversion"
+/* gradient_lut::build_lut sets `end` in a loop that runs whenever it is
+ * read (two stops or more), which GCC does not see at every -O level */
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <agg_arc.h>
 #include <agg_basics.h>
 #include <agg_conv_curve.h>

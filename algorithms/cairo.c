@@ -524,7 +524,8 @@ static int cairo_shade(void *vctx, int l, int y0, int rows, const float **rgba, 
     cairo_pattern_destroy(pat);
     cairo_surface_flush(surf);
     const unsigned char *data = cairo_image_surface_get_data(surf);
-    const int bstride = cairo_image_surface_get_stride(surf), w = cairo_image_surface_get_width(surf);
+    const int bstride = cairo_image_surface_get_stride(surf);
+    const int w = cairo_image_surface_get_width(surf);
     for (int j = 0; j < rows; j++) {
         const uint32_t *row = (const uint32_t *)(const void *)(data + (size_t)j * (size_t)bstride);
         float *out = c->paint + (size_t)j * (size_t)w * 4;

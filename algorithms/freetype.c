@@ -589,8 +589,8 @@ static int ft_render(void *state, const double *p, const aa_job *job, aa_image *
             int y0 = b * BAND, y1 = y0 + BAND < job->h ? y0 + BAND : job->h;
             if (s->painted) { /* back to front (peer.h) */
                 ft_cover_ctx c = {s, lib, out, s->cov[omp_get_thread_num()], &s->strip[b]};
-                int st = aa_peer_paint_band(s->pp[omp_get_thread_num()], job->placed, ft_cover, NULL,
-                                            &c, out, y0, y1 - y0);
+                int st = aa_peer_paint_band(s->pp[omp_get_thread_num()], job->placed, ft_cover,
+                                            NULL, &c, out, y0, y1 - y0);
                 if (st) {
 #pragma omp atomic write
                     status = st;
