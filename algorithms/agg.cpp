@@ -78,6 +78,7 @@
 #include "agg.h"
 
 extern "C" {
+#include "core.h"
 #include "path.h"
 #include "peer.h"
 }
@@ -100,6 +101,9 @@ extern "C" {
 /* C++20 deprecates AGG's arithmetic between its enums and with doubles */
 #pragma GCC diagnostic ignored "-Wdeprecated-enum-enum-conversion"
 #pragma GCC diagnostic ignored "-Wdeprecated-enum-float-conversion"
+/* gradient_lut::build_lut sets `end` in a loop that runs whenever it is
+ * read (two stops or more), which GCC does not see at every -O level */
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <agg_arc.h>
 #include <agg_basics.h>
 #include <agg_conv_curve.h>
@@ -111,7 +115,11 @@ extern "C" {
 #include <agg_path_storage.h>
 #include <agg_rasterizer_scanline_aa.h>
 #include <agg_rasterizer_sl_clip.h>
+#include <agg_color_rgba.h>
+#include <agg_gradient_lut.h>
 #include <agg_scanline_u.h>
+#include <agg_span_gradient.h>
+#include <agg_span_interpolator_linear.h>
 #include <agg_trans_affine.h>
 #pragma GCC diagnostic pop
 
@@ -142,6 +150,8 @@ struct worker {
     agg::curve4 curve4;
     agg::arc ellipse;
     std::vector<unsigned char> band;
+    std::vector<float> paint;      /* a gradient layer's paint on the band (grad_shade) */
+    std::vector<agg::rgba8> span;  /* one row of it, as span_gradient makes it */
     aa_peer_painter *painter; /* painted (peer.h) */
     worker() : ras(CELL_BLOCKS), painter(nullptr) {}
     ~worker() { aa_peer_painter_free(painter); }
@@ -429,7 +439,7 @@ struct cover_ctx {
     worker *wk;
     const aa_scene *scene;
     const double *p;
-    int w;
+    int w, h;
 };
 
 int agg_cover(void *vctx, int l, int y0, int rows, const unsigned char **cov, size_t *stride)
@@ -449,6 +459,207 @@ int agg_cover(void *vctx, int l, int y0, int rows, const unsigned char **cov, si
         return AA_EFAIL;
     }
     *cov = c.wk->band.data();
+    return AA_OK;
+}
+
+/*
+ * Gradient paint (peer.h), by AGG's span_gradient: the span generator
+ * render_scanlines_aa would call for the layer, asked here for whole rows
+ * (span_gradient::generate at the pixels' centres), its colours
+ * composited by peer.c over the coverage AGG swept (agg_cover).
+ *
+ * AGG's gradients are integer: span_interpolator_linear maps each pixel's
+ * centre through a trans_affine into the gradient's space in 1/256 units
+ * (subpixel_shift 8), span_gradient takes those to 1/16 units
+ * (gradient_subpixel_shift 4), the gradient function gives a distance d in
+ * 1/16 units, and the colour is entry (d - d1) 256 / (d2 - d1) of a
+ * 256-entry colour table (gradient_lut), clamped to [0, 255] (pad); the
+ * adaptors gradient_repeat_adaptor and gradient_reflect_adaptor fold d
+ * into [0, d2] first.  So the space is scaled to D = 256 units a period
+ * (d1 = 0, d2 = D): t is resolved to 1/4096 and its index is floor(256 t).
+ *  - linear: gradient_x of gx = D (q - P1).(P2 - P1) / |P2 - P1|^2, q the
+ *    pixel mapped back by the gradient's map m (the trans_affine is that
+ *    composition);
+ *  - radial: gradient_radial_focus, the circle of radius D about the
+ *    origin and the focal point F inside it, in the space of
+ *    (D / r) (q - C): d is D times the w whose circle F + w (C - F) of
+ *    radius w r passes through the point (AGG solves the same quadratic),
+ *    SVG 2's two circles with a focal radius of 0.  AGG has no focal
+ *    radius: fr > 0 is refused.  It rounds F to 1/16 unit (1/4096 of r).
+ * The table (gradient_lut with color_interpolator<rgba8>): the stops'
+ * sRGB-encoded colours and opacities as rgba8 (rounded to 8 bits), entry
+ * i for t in [i/256, (i + 1)/256), between two stops of offsets o0 < o1 a
+ * dda of count end - start + 1 from entry start = round(256 o0) to end =
+ * round(256 o1), each channel floored to 8 bits; colour and opacity
+ * interpolated each on its own, not premultiplied, as SVG says.  Entry
+ * i's colour is the stops' at some t' within 2.5/256 of every t it stands
+ * for (the dda's count, one more than its entries, and the offsets'
+ * rounding): so a channel of slope L per unit of t is within L 2.5/256
+ * plus 1.5/255 (rounding and floor) of the exact colour, at a t resolved
+ * to 1/4096 (tests/test_gradient_renderers.c holds AGG to that).  The
+ * table keeps one stop of several at one offset (build_lut's
+ * remove_duplicates keeps the first, after an unstable sort), so a sharp
+ * step, two stops at one offset of different colours, is refused.
+ * span_gradient's arithmetic is in int: (d - d1) 256 overflows past 2^31
+ * for |t| beyond 2048 periods, so a gradient reaching |t| > 2000 inside
+ * the image is refused.
+ */
+const double GRAD_D = 256.0; /* gradient units a period */
+const double GRAD_MAX_T = 2000.0;
+
+typedef agg::gradient_lut<agg::color_interpolator<agg::rgba8>, 256> grad_lut;
+typedef agg::span_interpolator_linear<> grad_interp;
+
+/* The gradient of layer l into AGG's terms: the map from pixels to
+ * gradient units, the focal point (radial) and the table.  Returns a
+ * status (refusals as the comment above says, naming the layer). */
+int grad_setup(const aa_scene *scene, int l, int w, int h, agg::trans_affine &mtx, double f[2],
+               grad_lut *lut)
+{
+    aa_gradient g;
+    aa_scene_layer_gradient(scene, l, &g);
+    const double *m = g.m, *p = g.p;
+    const double det = m[0] * m[3] - m[1] * m[2];
+    /* the inverse map, pixels to the gradient's coordinates */
+    const double a = m[3] / det, b = -m[1] / det, c = -m[2] / det, d = m[0] / det;
+    const double e = -(a * m[4] + c * m[5]), ff = -(b * m[4] + d * m[5]);
+    double tmax = 0.0;
+    if (g.kind == AA_GRADIENT_LINEAR) {
+        const double dx = p[2] - p[0], dy = p[3] - p[1], n = dx * dx + dy * dy;
+        const double ux = GRAD_D * dx / n, uy = GRAD_D * dy / n;
+        mtx = agg::trans_affine(ux * a + uy * b, 0.0, ux * c + uy * d, 0.0,
+                                ux * (e - p[0]) + uy * (ff - p[1]), 0.0);
+        f[0] = f[1] = 0.0;
+    } else {
+        if (p[5] > 0.0)
+            return aa_fail(AA_EINVAL,
+                           "agg: layer %d's radial gradient has a focal radius (fr = %g): "
+                           "AGG's gradient_radial_focus has a focal point only",
+                           l, p[5]);
+        const double k = GRAD_D / p[2];
+        mtx = agg::trans_affine(k * a, k * b, k * c, k * d, k * (e - p[0]), k * (ff - p[1]));
+        f[0] = k * (p[3] - p[0]), f[1] = k * (p[4] - p[1]);
+    }
+    /* |t| over the image (its corners, a pixel beyond: the map is affine);
+     * radial: t <= (|g| + |F|) / (D - |F|) at a point g */
+    const double fr = std::hypot(f[0], f[1]);
+    for (int q = 0; q < 4; q++) {
+        double x = q & 1 ? w + 1.0 : -1.0, y = q & 2 ? h + 1.0 : -1.0;
+        mtx.transform(&x, &y);
+        const double t = g.kind == AA_GRADIENT_LINEAR
+                             ? std::fabs(x) / GRAD_D
+                             : (std::hypot(x, y) + fr) / (GRAD_D - fr);
+        tmax = std::fmax(tmax, std::fmax(t, std::fmax(std::fabs(x), std::fabs(y)) / GRAD_D));
+    }
+    if (!(tmax <= GRAD_MAX_T))
+        return aa_fail(AA_EINVAL,
+                       "agg: layer %d's gradient reaches %.3g periods inside the image, "
+                       "beyond the %.0f AGG's integer gradient arithmetic holds",
+                       l, tmax, GRAD_MAX_T);
+    const aa_gradient_stop *st = g.stops;
+    for (int k = 0; k + 1 < g.nstops; k++)
+        if (st[k].offset == st[k + 1].offset &&
+            (st[k].opacity != st[k + 1].opacity || st[k].colour.c[0] != st[k + 1].colour.c[0] ||
+             st[k].colour.c[1] != st[k + 1].colour.c[1] ||
+             st[k].colour.c[2] != st[k + 1].colour.c[2]))
+            return aa_fail(AA_EINVAL,
+                           "agg: layer %d's gradient steps sharply at offset %g (stops %d and "
+                           "%d): AGG's gradient_lut keeps one stop at an offset",
+                           l, st[k].offset, k, k + 1);
+    if (lut) {
+        lut->remove_all();
+        for (int k = 0; k < g.nstops; k++) {
+            const aa_rgb &cc = st[k].colour;
+            lut->add_color(st[k].offset,
+                           agg::rgba8(agg::rgba(aa_srgb_encode(cc.c[0]), aa_srgb_encode(cc.c[1]),
+                                                aa_srgb_encode(cc.c[2]), st[k].opacity)));
+        }
+        if (g.nstops == 1 || st[0].offset == st[g.nstops - 1].offset) {
+            /* one colour: build_lut needs two stops (it leaves the table
+             * as it was otherwise) */
+            lut->remove_all();
+            const aa_rgb &cc = st[0].colour;
+            const agg::rgba8 one(agg::rgba(aa_srgb_encode(cc.c[0]), aa_srgb_encode(cc.c[1]),
+                                           aa_srgb_encode(cc.c[2]), st[0].opacity));
+            lut->add_color(0.0, one);
+            lut->add_color(1.0, one);
+        }
+        lut->build_lut();
+    }
+    return AA_OK;
+}
+
+int grad_setup_check(const aa_scene *scene, int l, int w, int h)
+{
+    agg::trans_affine mtx;
+    double f[2];
+    return grad_setup(scene, l, w, h, mtx, f, nullptr);
+}
+
+/* Rows [y0, y0 + rows) of the paint, by span_gradient with gradient
+ * function gf, as premultiplied floats (peer.h). */
+template <class GF>
+void grad_rows(worker &wk, grad_interp &interp, GF &gf, grad_lut &lut, int w, int y0, int rows)
+{
+    agg::span_gradient<agg::rgba8, grad_interp, GF, grad_lut> sg(interp, gf, lut, 0.0, GRAD_D);
+    for (int j = 0; j < rows; j++) {
+        sg.generate(wk.span.data(), 0, y0 + j, (unsigned)w);
+        float *out = wk.paint.data() + (size_t)j * (size_t)w * 4;
+        for (int i = 0; i < w; i++, out += 4) {
+            const agg::rgba8 &c = wk.span[(size_t)i];
+            const float a = c.a / 255.0f;
+            out[0] = c.r / 255.0f * a, out[1] = c.g / 255.0f * a, out[2] = c.b / 255.0f * a;
+            out[3] = a;
+        }
+    }
+}
+
+template <class GF>
+void grad_spread(worker &wk, int spread, grad_interp &interp, GF &gf, grad_lut &lut, int w,
+                 int y0, int rows)
+{
+    if (spread == AA_SPREAD_REPEAT) {
+        agg::gradient_repeat_adaptor<GF> r(gf);
+        grad_rows(wk, interp, r, lut, w, y0, rows);
+    } else if (spread == AA_SPREAD_REFLECT) {
+        agg::gradient_reflect_adaptor<GF> r(gf);
+        grad_rows(wk, interp, r, lut, w, y0, rows);
+    } else {
+        grad_rows(wk, interp, gf, lut, w, y0, rows);
+    }
+}
+
+/* Painted (peer.h): AGG's paint of gradient layer l on rows [y0, y0 +
+ * rows). */
+int agg_shade(void *vctx, int l, int y0, int rows, const float **rgba, size_t *stride)
+{
+    const cover_ctx &c = *static_cast<const cover_ctx *>(vctx);
+    worker &wk = *c.wk;
+    *rgba = nullptr;
+    *stride = (size_t)c.w * 4;
+    try {
+        agg::trans_affine mtx;
+        double f[2];
+        grad_lut lut;
+        int st = grad_setup(c.scene, l, c.w, c.h, mtx, f, &lut);
+        if (st)
+            return st;
+        aa_gradient g;
+        aa_scene_layer_gradient(c.scene, l, &g);
+        grad_interp interp(mtx);
+        if (g.kind == AA_GRADIENT_LINEAR) {
+            agg::gradient_x gf;
+            grad_spread(wk, g.spread, interp, gf, lut, c.w, y0, rows);
+        } else {
+            agg::gradient_radial_focus gf(GRAD_D, f[0], f[1]);
+            grad_spread(wk, g.spread, interp, gf, lut, c.w, y0, rows);
+        }
+    } catch (const std::bad_alloc &) {
+        return AA_ENOMEM;
+    } catch (...) {
+        return AA_EFAIL;
+    }
+    *rgba = wk.paint.data();
     return AA_OK;
 }
 
@@ -476,6 +687,12 @@ int agg_init(void *state, const double *p, const aa_job *job)
         if ((st = aa_peer_painted_check("agg", job->placed, 0)))
             return st;
         s->painted = 1;
+        /* gradient paint AGG cannot draw as SVG means it, refused here
+         * (grad_setup) */
+        for (int l = 0; l < aa_scene_layer_count(job->placed); l++)
+            if (aa_scene_layer_gradient(job->placed, l, nullptr) &&
+                (st = grad_setup_check(job->placed, l, job->w, job->h)))
+                return st;
     }
     if (st)
         return st;
@@ -498,6 +715,10 @@ int agg_init(void *state, const double *p, const aa_job *job)
             s->work->workers.push_back(nullptr);
             s->work->workers.back() = new worker;
             s->work->workers.back()->band.resize((size_t)BAND * (size_t)job->w);
+            if (aa_scene_has_gradients(job->placed)) {
+                s->work->workers.back()->paint.resize((size_t)BAND * (size_t)job->w * 4);
+                s->work->workers.back()->span.resize((size_t)job->w);
+            }
             if (s->painted) {
                 int st = aa_peer_painter_new("agg", job->placed, job->w, BAND, nullptr,
                                              &s->work->workers.back()->painter);
@@ -538,8 +759,9 @@ int agg_render(void *state, const double *p, const aa_job *job, aa_image *out,
             int st = AA_OK;
             try {
                 if (s->painted) {
-                    cover_ctx c = {&wk, job->placed, p, job->w};
-                    st = aa_peer_paint_band(wk.painter, job->placed, agg_cover, &c, out, y0, rows);
+                    cover_ctx c = {&wk, job->placed, p, job->w, job->h};
+                    st = aa_peer_paint_band(wk.painter, job->placed, agg_cover, agg_shade, &c,
+                                            out, y0, rows);
                     if (st) {
 #pragma omp atomic write
                         status = st;
@@ -576,7 +798,7 @@ extern "C" const aa_method_type aa_method_agg = {
     {"agg", "peer: Anti-Grain Geometry's scanline rasterizer (8-bit coverage, arcs flattened)",
      agg_params},
     sizeof(agg_state),
-    AA_METHOD_SOME_SCENES,
+    AA_METHOD_SOME_SCENES | AA_METHOD_GRADIENTS,
     agg_check,
     agg_init,
     agg_render,

@@ -59,6 +59,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -89,6 +90,10 @@ typedef struct cairo_state {
     cairo_path_t **lpath;
     aa_peer_painter **pp; /* one per thread */
     unsigned char *own;   /* per layer: clipped by Cairo itself (cairo_clips) */
+    /* gradient paint (cairo_shade): per thread a BAND x W ARGB32 surface
+     * and the paint as floats (peer.h) */
+    cairo_surface_t **gsurf;
+    float **paint;
 } cairo_state;
 
 static int cairo_check(const double *p, const aa_filter *f)
@@ -114,6 +119,14 @@ static void cairo_release(void *state)
         aa_peer_painter_free(s->pp[k]);
     free(s->pp);
     free(s->own);
+    for (int k = 0; s->gsurf && k < s->nsurf; k++)
+        if (s->gsurf[k])
+            cairo_surface_destroy(s->gsurf[k]);
+    for (int k = 0; s->paint && k < s->nsurf; k++)
+        free(s->paint[k]);
+    free(s->gsurf);
+    free(s->paint);
+    s->gsurf = NULL, s->paint = NULL;
     s->surf = NULL, s->path = NULL, s->nsurf = 0, s->lpath = NULL, s->nlayers = 0;
     s->pp = NULL, s->own = NULL;
 }
@@ -370,6 +383,18 @@ static int cairo_init(void *state, const double *p, const aa_job *job)
                              BAND);
         }
     }
+    if (!st && aa_scene_has_gradients(job->placed)) {
+        if (!(s->gsurf = calloc((size_t)s->nsurf, sizeof *s->gsurf)) ||
+            !(s->paint = calloc((size_t)s->nsurf, sizeof *s->paint)))
+            st = aa_fail(AA_ENOMEM, "cairo: out of memory");
+        for (int k = 0; k < s->nsurf && !st; k++) {
+            s->gsurf[k] = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, job->w, BAND);
+            if (cairo_surface_status(s->gsurf[k]) ||
+                !(s->paint[k] = malloc((size_t)job->w * BAND * 4 * sizeof **s->paint)))
+                st = aa_fail(AA_ENOMEM, "cairo: cannot make a %dx%d ARGB32 surface", job->w,
+                             BAND);
+        }
+    }
     if (!st && s->painted) {
         if (!(s->pp = calloc((size_t)s->nsurf, sizeof *s->pp)))
             st = aa_fail(AA_ENOMEM, "cairo: out of memory");
@@ -391,6 +416,8 @@ typedef struct cairo_cover_ctx {
     cairo_surface_t *surf;
     const double *p;
     const aa_scene *scene;
+    cairo_surface_t *gsurf; /* gradient paint (cairo_shade) */
+    float *paint;
 } cairo_cover_ctx;
 
 static int cairo_cover(void *vctx, int l, int y0, int rows, const unsigned char **cov,
@@ -435,6 +462,86 @@ static int cairo_cover(void *vctx, int l, int y0, int rows, const unsigned char 
     return st;
 }
 
+/*
+ * Gradient paint (peer.h), by Cairo's own gradients: the layer's gradient
+ * as a Cairo pattern, painted (CAIRO_OPERATOR_SOURCE) on the thread's
+ * ARGB32 surface, which Cairo's image backend hands to pixman: pixman
+ * samples the gradient at each pixel's centre, interpolates the stops'
+ * colour and alpha each on its own in single precision (not premultiplied,
+ * as SVG says), premultiplies and rounds to 8 bits.  Its colour then goes
+ * over Cairo's coverage of the layer (cairo_cover) as peer.c composites.
+ *  - linear: cairo_pattern_create_linear(x1, y1, x2, y2);
+ *  - radial: cairo_pattern_create_radial(fx, fy, fr, cx, cy, r), Cairo's
+ *    two circles, the start circle the focal one (SVG 2's and the canvas's
+ *    gradient: the largest w whose circle passes through the point, of a
+ *    radius of at least 0), so the focal radius is Cairo's own;
+ * the stops by cairo_pattern_add_color_stop_rgba, their sRGB-encoded
+ * colours and their opacity, in order (Cairo keeps stops of one offset in
+ * the order they were added, and pixman takes the later one from that
+ * offset on: SVG's sharp step); pad, reflect and repeat as
+ * CAIRO_EXTEND_PAD, REFLECT and REPEAT; the gradient's map m (its space
+ * to the scene's, gradientTransform and units composed) as the pattern's
+ * matrix, which maps user space to the pattern's, so m inverted.  The
+ * colour at a pixel is within half a code of the exact colour at its
+ * centre in each premultiplied channel and in alpha
+ * (tests/test_gradient_renderers.c).
+ */
+static int cairo_shade(void *vctx, int l, int y0, int rows, const float **rgba, size_t *stride)
+{
+    static const cairo_extend_t extends[] = {CAIRO_EXTEND_PAD, CAIRO_EXTEND_REFLECT,
+                                             CAIRO_EXTEND_REPEAT};
+    const cairo_cover_ctx *c = vctx;
+    aa_gradient g;
+    aa_scene_layer_gradient(c->scene, l, &g);
+    const double *q = g.p;
+    cairo_pattern_t *pat = g.kind == AA_GRADIENT_LINEAR
+                               ? cairo_pattern_create_linear(q[0], q[1], q[2], q[3])
+                               : cairo_pattern_create_radial(q[3], q[4], q[5], q[0], q[1], q[2]);
+    for (int k = 0; k < g.nstops; k++) {
+        const aa_gradient_stop *t = &g.stops[k];
+        cairo_pattern_add_color_stop_rgba(pat, t->offset, aa_srgb_encode(t->colour.c[0]),
+                                          aa_srgb_encode(t->colour.c[1]),
+                                          aa_srgb_encode(t->colour.c[2]), t->opacity);
+    }
+    cairo_pattern_set_extend(pat, extends[g.spread]);
+    cairo_matrix_t m;
+    cairo_matrix_init(&m, g.m[0], g.m[1], g.m[2], g.m[3], g.m[4], g.m[5]);
+    int st = AA_OK;
+    if (cairo_matrix_invert(&m) != CAIRO_STATUS_SUCCESS) {
+        cairo_pattern_destroy(pat);
+        return AA_EINVAL; /* the scene refuses a map that is not invertible */
+    }
+    cairo_pattern_set_matrix(pat, &m);
+    cairo_surface_t *surf = c->gsurf;
+    cairo_t *cr = cairo_create(surf);
+    cairo_translate(cr, 0.0, -(double)y0);
+    cairo_set_operator(cr, CAIRO_OPERATOR_SOURCE);
+    cairo_set_source(cr, pat);
+    cairo_paint(cr);
+    if (cairo_status(cr) || cairo_pattern_status(pat))
+        st = AA_EFAIL;
+    cairo_destroy(cr);
+    cairo_pattern_destroy(pat);
+    cairo_surface_flush(surf);
+    const unsigned char *data = cairo_image_surface_get_data(surf);
+    const int bstride = cairo_image_surface_get_stride(surf);
+    const int w = cairo_image_surface_get_width(surf);
+    for (int j = 0; j < rows; j++) {
+        const uint32_t *row = (const uint32_t *)(const void *)(data + (size_t)j * (size_t)bstride);
+        float *out = c->paint + (size_t)j * (size_t)w * 4;
+        for (int i = 0; i < w; i++, out += 4) { /* ARGB32: premultiplied, alpha high */
+            const uint32_t v = row[i];
+            out[0] = (float)((v >> 16) & 255u) / 255.0f;
+            out[1] = (float)((v >> 8) & 255u) / 255.0f;
+            out[2] = (float)(v & 255u) / 255.0f;
+            out[3] = (float)(v >> 24) / 255.0f;
+        }
+    }
+    *rgba = c->paint;
+    *stride = (size_t)w * 4;
+    return st;
+}
+
 static int cairo_render(void *state, const double *p, const aa_job *job, aa_image *out,
                         aa_counters *counters)
 {
@@ -451,9 +558,11 @@ static int cairo_render(void *state, const double *p, const aa_job *job, aa_imag
         for (int b = 0; b < nbands; b++) {
             int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
             if (s->painted) {
-                cairo_cover_ctx c = {s, surf, p, job->placed};
-                if (aa_peer_paint_band(s->pp[omp_get_thread_num()], job->placed, cairo_cover, &c,
-                                       out, y0, rows)) {
+                const int th = omp_get_thread_num();
+                cairo_cover_ctx c = {s, surf, p, job->placed, s->gsurf ? s->gsurf[th] : NULL,
+                                     s->paint ? s->paint[th] : NULL};
+                if (aa_peer_paint_band(s->pp[th], job->placed, cairo_cover, cairo_shade, &c, out,
+                                       y0, rows)) {
 #pragma omp atomic write
                     status = AA_EFAIL;
                 }
@@ -507,7 +616,7 @@ const aa_method_type aa_method_cairo = {
     {"cairo", "peer: Cairo's A8 image-surface fill (8-bit coverage, curves flattened)",
      cairo_params},
     sizeof(cairo_state),
-    AA_METHOD_SOME_SCENES,
+    AA_METHOD_SOME_SCENES | AA_METHOD_GRADIENTS,
     cairo_check,
     cairo_init,
     cairo_render,

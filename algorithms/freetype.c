@@ -590,7 +590,7 @@ static int ft_render(void *state, const double *p, const aa_job *job, aa_image *
             if (s->painted) { /* back to front (peer.h) */
                 ft_cover_ctx c = {s, lib, out, s->cov[omp_get_thread_num()], &s->strip[b]};
                 int st = aa_peer_paint_band(s->pp[omp_get_thread_num()], job->placed, ft_cover,
-                                            &c, out, y0, y1 - y0);
+                                            NULL, &c, out, y0, y1 - y0);
                 if (st) {
 #pragma omp atomic write
                     status = st;

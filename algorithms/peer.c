@@ -142,6 +142,17 @@ static inline void composite_px(const aa_rgb *c, double alpha, const double e[3]
     }
 }
 
+/* One pixel v under coverage a > 0 of paint of encoded premultiplied
+ * colour e and alpha alpha (a gradient's, per pixel):
+ * v = a decode(e + (1 - alpha) encode(v)) + (1 - a) v. */
+static inline void composite_paint_px(const double e[3], double alpha, double a, double *px)
+{
+    for (int q = 0; q < 3; q++) {
+        const double inside = aa_srgb_decode(e[q] + (1.0 - alpha) * aa_srgb_encode(px[q]));
+        px[q] = a * inside + (1.0 - a) * px[q];
+    }
+}
+
 void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *cov, int n,
                            double *px)
 {
@@ -394,7 +405,7 @@ static void group_close(aa_peer_painter *pp, aa_image *out, int y0, int rows, in
 }
 
 int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn cover,
-                       void *ctx, aa_image *out, int y0, int rows)
+                       aa_peer_shade_fn shade, void *ctx, aa_image *out, int y0, int rows)
 {
     const int w = pp->w, n = aa_scene_layer_count(s);
     const size_t px = (size_t)w * (size_t)pp->band;
@@ -425,7 +436,19 @@ int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn 
             continue;
         const int g = pp->own[l] ? -1 : aa_scene_layer_clip(s, l);
         const double *gm = g >= 0 ? pp->mask + (size_t)pp->slot[g] * px : NULL;
-        if (!depth && !gm) { /* as ever: bit for bit what painting did before clips */
+        /* gradient paint: the library's colour per pixel (peer.h) */
+        const float *rgba = NULL;
+        size_t rstride = 0;
+        if (aa_scene_layer_gradient(s, l, NULL)) {
+            if (!shade) {
+                st = aa_fail(AA_EINVAL, "layer %d has gradient paint and this peer draws none",
+                             l);
+                break;
+            }
+            if ((st = shade(ctx, l, y0, rows, &rgba, &rstride)))
+                break;
+        }
+        if (!depth && !gm && !rgba) { /* as ever: bit for bit what painting did before clips */
             for (int j = 0; j < rows; j++)
                 aa_peer_composite_row(s, l, cov + (size_t)j * stride, w, aa_pixel(out, 0, y0 + j));
             continue;
@@ -444,17 +467,28 @@ int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn 
                 const double a = gm ? b / 255.0 * gm[k] : b / 255.0;
                 if (!(a > 0.0))
                     continue;
+                double ep[3], ap = alpha; /* the pixel's encoded premultiplied paint */
+                const double *ek = e;
+                if (rgba) {
+                    const float *r = rgba + (size_t)j * rstride + 4 * (size_t)i;
+                    for (int q = 0; q < 3; q++)
+                        ep[q] = alpha * r[q];
+                    ap = alpha * r[3], ek = ep;
+                }
                 if (!buf) {
-                    composite_px(&c, alpha, e, a, v);
+                    if (rgba)
+                        composite_paint_px(ek, ap, a, v);
+                    else
+                        composite_px(&c, alpha, e, a, v);
                     continue;
                 }
                 /* into the group: the layer's encoded premultiplied colour
                  * under alpha a alpha, source over (peer.h) */
                 double *p = buf + 5 * k;
-                const double aa = a * alpha;
+                const double aa = a * ap;
                 p[0] = a + (1.0 - a) * p[0];
                 for (int q = 0; q < 3; q++)
-                    p[1 + q] = a * e[q] + (1.0 - aa) * p[1 + q];
+                    p[1 + q] = a * ek[q] + (1.0 - aa) * p[1 + q];
                 p[4] = aa + (1.0 - aa) * p[4];
             }
         }

@@ -69,7 +69,23 @@
  * paints as the layer with its alpha times o would; a seam between two
  * layers of a group shows the buffer's transparency through, conflation
  * as above, once per group.
-  */
+ *
+ * Gradient paint (aa_scene_layer_gradient), by the library's own gradient
+ * code, where it has one (cairo.c: pixman's gradients; agg.cpp:
+ * span_gradient and its colour LUT): the library paints the layer's
+ * gradient on the band, per pixel its colour at the pixel's centre as
+ * the library samples and interpolates it, premultiplied by the stops'
+ * opacity, in the scene's encoded values (aa_peer_shade_fn); the layer
+ * then goes on as a layer of that pixel's colour would, its coverage
+ * mixing in linear light and its alpha (the layer's times the paint's)
+ * in encoded values:
+ *     v = a decode(alpha P + (1 - alpha A) encode(v)) + (1 - a) v,
+ * P, A the paint's premultiplied colour and alpha, and into a group's
+ * buffer alike.  The paint is the library's, quantised as it keeps it
+ * (8 bits a channel in both); a coverage of 0 or 1 gives that colour
+ * exactly.  FreeType and stb have no gradients: aa_method_init refuses
+ * them such a scene (they do not declare AA_METHOD_GRADIENTS).
+ */
 #ifndef AA_PEER_H
 #define AA_PEER_H
 
@@ -124,6 +140,13 @@ void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *co
  * a status. */
 typedef int (*aa_peer_cover_fn)(void *ctx, int layer, int y0, int rows,
                                 const unsigned char **cov, size_t *stride);
+/* The library's paint of gradient layer `layer` on rows [y0, y0 + rows)
+ * of the image: *rgba set to its first row's w pixels of four floats, the
+ * sRGB-encoded channels premultiplied by the opacity, then the opacity (the
+ * stops', not yet the layer's alpha), row j at *rgba + j * stride (floats),
+ * valid until the next call.  Returns a status. */
+typedef int (*aa_peer_shade_fn)(void *ctx, int layer, int y0, int rows, const float **rgba,
+                                size_t *stride);
 /* One thread's workspace for painting bands of at most `band` rows of w
  * pixels of the scene: the clips' masks and the groups' buffers, 8 x
  * (masks alive at once + 5 x depth of groups) bytes a pixel (a mask is
@@ -136,11 +159,13 @@ int aa_peer_painter_new(const char *name, const aa_scene *s, int w, int band,
                         const unsigned char *own, aa_peer_painter **out);
 void aa_peer_painter_free(aa_peer_painter *pp);
 /* Rows [y0, y0 + rows) of out painted (above): the background, then each
- * layer back to front, through its clip's mask and its groups' buffers.
- * A scene of no clip and no group composites each layer's coverage by
+ * layer back to front, through its clip's mask and its groups' buffers,
+ * a gradient layer in the paint `shade` gives (NULL: the peer draws no
+ * gradients, and a gradient layer is an error).  A scene of no clip, no
+ * group and no gradient composites each layer's coverage by
  * aa_peer_composite_row alone. */
 int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn cover,
-                       void *ctx, aa_image *out, int y0, int rows);
+                       aa_peer_shade_fn shade, void *ctx, aa_image *out, int y0, int rows);
 
 /* An elliptical arc edge (quad == 3) as cubic Bezier arcs, for the peers
  * whose outlines have no arcs (freetype.c, stb.c): the arc split into n

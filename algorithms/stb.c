@@ -385,8 +385,8 @@ static int stb_render(void *state, const double *p, const aa_job *job, aa_image 
             int y0 = b * BAND, rows = y0 + BAND < job->h ? BAND : job->h - y0;
             if (s->painted) { /* back to front (peer.h) */
                 stb_cover_ctx c = {s, p, buf, job->w};
-                aa_peer_paint_band(s->pp[omp_get_thread_num()], job->placed, stb_cover, &c, out,
-                                   y0, rows);
+                aa_peer_paint_band(s->pp[omp_get_thread_num()], job->placed, stb_cover, NULL, &c,
+                                   out, y0, rows);
                 continue;
             }
             if (!s->ps.layers || !s->nv) {

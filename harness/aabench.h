@@ -292,8 +292,9 @@ typedef struct aa_gradient {
  * then depends on the point, not on the winding numbers alone, and
  * aa_scene_is_opaque is 0.  A method takes such a scene only if it
  * declares AA_METHOD_GRADIENTS (it samples the picture through
- * aa_scene_colour_of_at, aa_scene_colour_at or aa_strip_colour_at);
- * aa_method_init refuses it to the others. */
+ * aa_scene_colour_of_at, aa_scene_colour_at or aa_strip_colour_at, or
+ * paints each gradient from aa_scene_layer_gradient with a library's
+ * own); aa_method_init refuses it to the others. */
 int aa_scene_has_gradients(const aa_scene *s);
 /* Layer's gradient into *g (its stops the scene's own, valid while the
  * scene lives): 1, or 0 for a layer painted with its colour. */
@@ -494,7 +495,8 @@ enum aa_method_flags {
     /* render runs another program: its time includes that start-up */
     AA_METHOD_EXTERNAL = 32,
     /* takes scenes with gradient paint (aa_scene_has_gradients): it samples
-     * the picture at points (aa_scene_colour_of_at and the like); without
+     * the picture at points (aa_scene_colour_of_at and the like), or paints
+     * the gradients with a library's own (the peers cairo and agg); without
      * it such a scene is refused by aa_method_init */
     AA_METHOD_GRADIENTS = 64
 };

@@ -28,6 +28,14 @@
  * stop is off by tens of codes.  Where a renderer draws a cell otherwise,
  * `differs` names it and the comment says who is wrong; the cell must then
  * differ and every other cell agree.
+ *
+ * The peers with gradients of their own (cairo, agg: test_peers) draw
+ * every cell, one document a cell, and three cells more; each is held on
+ * the smooth pixels to an allowance derived from its library's gradient
+ * arithmetic (peer_quantum) plus the centre-against-box-mean difference
+ * read from the reference (centre_allowance), not fitted to what they
+ * draw; a peer named in a cell's `differs` must refuse that cell, naming
+ * why.
  */
 /* tier: full */
 #include "bench.h"
@@ -190,12 +198,13 @@ static const cell radial[] = {
      * hypot(11.5, 11.5) = 16.2635: t = 1.36078, repeated 0.36078, white to
      * black: 0.63922.  resvg draws it as if fr were 0 (t = rho / 12.8: 44
      * codes off at rho = 6, exactly that ramp): it does not read SVG 2's
-     * fr, so resvg is wrong; Chromium agrees with the reference */
+     * fr, so resvg is wrong; Chromium agrees with the reference.  AGG
+     * has no focal radius and refuses it (test_peers) */
     {"radial, fr and repeat",
      "<radialGradient id=\"r3\" r=\"0.4\" fr=\"0.1\" spreadMethod=\"repeat\">" WB
      "</radialGradient><rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#r3)\"/>",
      {{31, 31, {0.63922, 0.63922, 0.63922}}},
-     1, "resvg"},
+     1, "resvg agg"},
     /* reflect, userSpaceOnUse centre (20, 20), r 12: at pixel (31, 31),
      * rho = 16.2635, t = 1.35529, reflected 0.64471: 0.35529 */
     {"radial, userSpaceOnUse, reflect",
@@ -286,9 +295,9 @@ static void document(const cell *cells, size_t n, const char *name, char *path, 
 /* 1 if the picture is smooth about pixel (i, j): every channel's encoded
  * second differences along x and y under 1/255 over its 3 x 3
  * neighbourhood. */
-static int smooth(const aa_image *ref, int i, int j)
+static int smooth_in(const aa_image *ref, int w, int h, int i, int j)
 {
-    if (i < 2 || j < 2 || i > W - 3 || j > H - 3)
+    if (i < 2 || j < 2 || i > w - 3 || j > h - 3)
         return 0;
     for (int dj = -1; dj <= 1; dj++)
         for (int di = -1; di <= 1; di++)
@@ -302,6 +311,8 @@ static int smooth(const aa_image *ref, int i, int j)
             }
     return 1;
 }
+
+static int smooth(const aa_image *ref, int i, int j) { return smooth_in(ref, W, H, i, j); }
 
 static void check_points(const cell *cells, size_t n, const aa_image *ref)
 {
@@ -337,6 +348,280 @@ static void test_points(void **state)
     document(mixed, sizeof mixed / sizeof *mixed, "mixed", path, sizeof path, &ref);
     check_points(mixed, sizeof mixed / sizeof *mixed, &ref);
     aa_image_free(&ref);
+}
+
+static int names(const char *list, const char *name);
+
+/* ---- the peers (algorithms/cairo.c, agg.cpp: gradients of their own) ----
+ *
+ * Cells the peers draw besides the tables above: a sharp step (two stops
+ * at one offset, repeated), a skewed reflected radial gradient with a
+ * focal point inside a group of opacity over a flat disc, and a linear
+ * gradient of varying stop opacity, rotated, clipped by a circle, over a
+ * colour. */
+static const cell own[] = {
+    {"sharp steps, repeat",
+     "<linearGradient id=\"p1\" gradientUnits=\"userSpaceOnUse\" x1=\"4\" x2=\"20\" "
+     "spreadMethod=\"repeat\"><stop offset=\"0\" stop-color=\"red\"/><stop offset=\"0.5\" "
+     "stop-color=\"yellow\"/><stop offset=\"0.5\" stop-color=\"blue\"/><stop offset=\"1\" "
+     "stop-color=\"white\"/></linearGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#p1)\"/>",
+     {{0}},
+     0, "agg"},
+    {"focal radial, skewed, reflect, in a group",
+     "<radialGradient id=\"p2\" r=\"0.3\" fx=\"0.4\" fy=\"0.6\" spreadMethod=\"reflect\" "
+     "gradientTransform=\"skewX(15)\"><stop offset=\"0\" stop-color=\"#ffd080\"/>"
+     "<stop offset=\"0.6\" stop-color=\"teal\" stop-opacity=\"0.7\"/><stop offset=\"1\" "
+     "stop-color=\"navy\"/></radialGradient>"
+     "<circle cx=\"26\" cy=\"14\" r=\"10\" fill=\"#c04040\"/>"
+     "<g opacity=\"0.6\"><rect x=\"2\" y=\"2\" width=\"36\" height=\"36\" fill=\"url(#p2)\"/>"
+     "</g>",
+     {{0}},
+     0, ""},
+    {"fading linear, rotated, clipped",
+     "<clipPath id=\"c3\"><circle cx=\"20\" cy=\"20\" r=\"15\"/></clipPath>"
+     "<linearGradient id=\"p3\" gradientTransform=\"rotate(30 0.5 0.5)\">"
+     "<stop offset=\"0.1\" stop-color=\"lime\" stop-opacity=\"0.2\"/><stop offset=\"0.9\" "
+     "stop-color=\"fuchsia\" stop-opacity=\"0.9\"/></linearGradient>"
+     "<rect width=\"40\" height=\"40\" fill=\"#3050a0\"/>"
+     "<rect x=\"2\" y=\"2\" width=\"36\" height=\"36\" fill=\"url(#p3)\" clip-path=\"url(#c3)\"/>",
+     {{0}},
+     0, ""},
+};
+
+/* Cell k of a table alone in a document of its own, CELL x CELL (the
+ * cells before it in <defs>, for the gradients it refers to): its file
+ * in path, its box reference into ref. */
+static void cell_document(const cell *cells, size_t k, const char *name, char *path, size_t len,
+                          aa_image *ref)
+{
+    static char doc[1 << 15];
+    size_t m = (size_t)snprintf(doc, sizeof doc,
+                                "<svg xmlns=\"http://www.w3.org/2000/svg\" "
+                                "xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"%d\" "
+                                "height=\"%d\">\n<defs>",
+                                CELL, CELL);
+    for (size_t b = 0; b < k; b++)
+        m += (size_t)snprintf(doc + m, sizeof doc - m, "%s", cells[b].body);
+    m += (size_t)snprintf(doc + m, sizeof doc - m,
+                          "</defs>\n<rect width=\"%d\" height=\"%d\"/>\n%s\n</svg>\n", CELL,
+                          CELL, cells[k].body);
+    assert_true(m < sizeof doc);
+    snprintf(path, len, "%s/%s.svg", dir, name);
+    support_write_file(path, doc, m);
+    char spec[4200];
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    support_view v = {CELL, CELL, 0, 0, 0, NULL, 1, 0, 0};
+    support_pattern_reference(spec, &v, ref, NULL, NULL);
+}
+
+/* The quantisation a peer's gradient paint may add to a pixel's encoded
+ * channel, summed over the scene's gradient layers (each composites at
+ * most its own error through: v's weight in a layer over it is at most 1).
+ * A layer's paint goes on as v = decode(alpha P + (1 - alpha A) enc v)
+ * (peer.h), so an error dP in the premultiplied channel and dA in alpha
+ * move the encoded result by at most dP + dA |...| <= dP + dA.
+ *  - cairo: pixman interpolates in single precision at the centre's t
+ *    (to 1/65536 of a period) and rounds P and A to 8 bits: half a code
+ *    each, 1/255.
+ *  - agg: the 256-entry table (agg.cpp): the colour of an entry is the
+ *    stops' at a t' within 2.5/256 of the pixel's t, and t is resolved to
+ *    1/4096 (its 1/16 units of a period of 256; for a radial gradient
+ *    through the focal point's map, up to 2 r / (r - |F - C|) of those);
+ *    each channel and the opacity rounded at the stops and floored by the
+ *    table's dda: 1.5/255.  So a non-premultiplied channel of slope L in t
+ *    (the largest over the stops' intervals) is off by up to
+ *    L dt + 1.5/255, dt = 2.5/256 + k/4096; the opacity likewise when the
+ *    stops' differ, else by its rounding alone (half a code, 0 for
+ *    opacity 1); P = A c is off by A dc + c dA <= dc + dA, and the result
+ *    by dc + 2 dA. */
+static double peer_quantum(const aa_scene *placed, const char *peer)
+{
+    double q = 0;
+    for (int l = 0; l < aa_scene_layer_count(placed); l++) {
+        aa_gradient g;
+        if (!aa_scene_layer_gradient(placed, l, &g))
+            continue;
+        if (!strcmp(peer, "cairo")) {
+            q += 1.0 / 255;
+            continue;
+        }
+        double lc = 0, la = 0;
+        int varies = 0, opaque = 1;
+        for (int k = 0; k < g.nstops; k++) {
+            varies |= g.stops[k].opacity != g.stops[0].opacity;
+            opaque &= g.stops[k].opacity == 1.0;
+            if (k + 1 == g.nstops)
+                break;
+            const double dt = g.stops[k + 1].offset - g.stops[k].offset;
+            if (!(dt > 0))
+                continue;
+            for (int c = 0; c < 3; c++)
+                lc = fmax(lc, fabs(enc(g.stops[k + 1].colour.c[c]) - enc(g.stops[k].colour.c[c])) /
+                                  dt);
+            la = fmax(la, fabs(g.stops[k + 1].opacity - g.stops[k].opacity) / dt);
+        }
+        double k = 1;
+        if (g.kind == AA_GRADIENT_RADIAL)
+            k = 2 * g.p[2] / (g.p[2] - hypot(g.p[3] - g.p[0], g.p[4] - g.p[1]));
+        const double dt = 2.5 / 256 + k / 4096;
+        const double da = varies ? la * dt + 1.5 / 255 : opaque ? 0 : 0.5 / 255;
+        q += lc * dt + 1.5 / 255 + 2 * da;
+    }
+    return q;
+}
+
+/* How far a pixel's colour at its centre may be from its box mean, in
+ * encoded values, where the picture is smooth: with e the encoded value,
+ * mean - centre is about (e_xx + e_yy) / 24 and, through the decoding's
+ * curvature, (decode'' / decode') |grad e|^2 / 24, decode'' / decode' =
+ * 1.4 / (e + 0.055) on the decoding's power piece (e > 0.04045; 0 on its
+ * linear one).  e's derivatives from the reference's differences, the
+ * largest over the pixel's 3 x 3 neighbourhood. */
+static double centre_allowance(const aa_image *ref, int w, int h, int i, int j, int c)
+{
+    double worst = 0;
+    for (int dj = -1; dj <= 1; dj++)
+        for (int di = -1; di <= 1; di++) {
+            int x = i + di, y = j + dj;
+            if (x < 1 || y < 1 || x > w - 2 || y > h - 2)
+                return INFINITY;
+            double e = enc(aa_pixel(ref, x, y)[c]);
+            double l = enc(aa_pixel(ref, x - 1, y)[c]), r = enc(aa_pixel(ref, x + 1, y)[c]);
+            double u = enc(aa_pixel(ref, x, y - 1)[c]), d = enc(aa_pixel(ref, x, y + 1)[c]);
+            double curv = (fabs(l + r - 2 * e) + fabs(u + d - 2 * e)) / 24;
+            double gx = (r - l) / 2, gy = (d - u) / 2;
+            double bend = e > 0.04045 ? 1.4 / (e + 0.055) * (gx * gx + gy * gy) / 24 : 0;
+            worst = fmax(worst, curv + bend);
+        }
+    return worst;
+}
+
+/* The peer on one cell: refused where the cell's `differs` names it (the
+ * message printed), else on the smooth pixels (smooth() on the cell's own
+ * image) within the quantisation and centre allowances of the reference;
+ * its error over the whole cell (RMSE and largest, linear light: edges,
+ * seams and all) printed. */
+static void peer_cell(const char *peer, const cell *cells, size_t k, const char *name, int *bad)
+{
+    const cell *c = &cells[k];
+    char path[4200], spec[4300];
+    aa_image ref, img;
+    cell_document(cells, k, name, path, sizeof path, &ref);
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_spec sp;
+    aa_scene *sc = NULL;
+    if (aa_pattern_parse(spec, &sp) != AA_OK || aa_pattern_scene_at(&sp, CELL, CELL, &sc) != AA_OK)
+        fail_msg("%s", aa_last_error());
+    if (!aa_scene_has_gradients(sc)) { /* a cell of colours only (the fallback cell) */
+        aa_image_free(&ref);
+        aa_scene_free(sc);
+        return;
+    }
+    const support_view v = {.w = CELL, .h = CELL, .filter = "box", .seed = 1, .threads = 2};
+    const int refuses = names(c->differs, peer);
+    int st = support_render_view(peer, sc, &v, &img, NULL);
+    if (refuses) {
+        print_message("%s, %s: refused: %s\n", peer, c->what, aa_last_error());
+        if (st != AA_EINVAL) {
+            print_message("%s, %s: drawn, but the table says it is refused\n", peer, c->what);
+            (*bad)++;
+        }
+        if (!st)
+            aa_image_free(&img);
+        aa_image_free(&ref);
+        aa_scene_free(sc);
+        return;
+    }
+    if (st)
+        fail_msg("%s, %s: %s", peer, c->what, aa_last_error());
+    aa_scene *placed = aa_scene_place(sc, CELL, CELL, 0, 0, 0);
+    assert_non_null(placed);
+    const double q = peer_quantum(placed, peer);
+    aa_scene_free(placed);
+    double worst = 0, over = -INFINITY;
+    int wi = 0, wj = 0, count = 0;
+    for (int j = 0; j < CELL; j++)
+        for (int i = 0; i < CELL; i++) {
+            if (!smooth_in(&ref, CELL, CELL, i, j))
+                continue;
+            count++;
+            for (int ch = 0; ch < 3; ch++) {
+                double d = fabs(enc(aa_pixel(&ref, i, j)[ch]) - enc(aa_pixel(&img, i, j)[ch]));
+                double allow = q + centre_allowance(&ref, CELL, CELL, i, j, ch);
+                if (d > worst)
+                    worst = d, wi = i, wj = j;
+                if (d - allow > over)
+                    over = d - allow;
+            }
+        }
+    int mi, mj;
+    const double rmse = support_rmse(&img, &ref), mx = support_max_diff(&img, &ref, &mi, &mj);
+    print_message("%s, %s: %d smooth pixels, largest difference %.2f/255 at (%d, %d) (allowed "
+                  "%.2f/255 of quantisation; largest excess over allowance %.2f/255); whole "
+                  "cell: rmse %.3e, max %.3e at (%d, %d)\n",
+                  peer, c->what, count, worst * 255, wi, wj, q * 255, over * 255, rmse, mx, mi,
+                  mj);
+    if (count < 100) {
+        print_message("%s: only %d smooth pixels to compare\n", c->what, count);
+        (*bad)++;
+    }
+    if (!(over <= 1e-9)) {
+        print_message("%s, %s: DIFFERS beyond the allowance\n", peer, c->what);
+        (*bad)++;
+    }
+    aa_image_free(&img);
+    aa_image_free(&ref);
+    aa_scene_free(sc);
+}
+
+static void peer_table(const char *peer, const cell *cells, size_t n, const char *tag, int *bad)
+{
+    for (size_t k = 0; k < n; k++) {
+        char name[64];
+        snprintf(name, sizeof name, "%s-%s-%zu", peer, tag, k);
+        peer_cell(peer, cells, k, name, bad);
+    }
+}
+
+/* Cairo and AGG draw every gradient cell with their own gradients, each
+ * within its derived allowance of the exact reference where the picture is
+ * smooth; AGG refuses, naming why, the focal radius (r3) and the sharp
+ * step (its table keeps one stop an offset); FreeType and stb refuse
+ * gradient paint, naming it. */
+static void test_peers(void **state)
+{
+    (void)state;
+    static const char *const peers[] = {"cairo", "agg"};
+    for (size_t p = 0; p < 2; p++) {
+        int bad = 0;
+        peer_table(peers[p], linear, sizeof linear / sizeof *linear, "linear", &bad);
+        peer_table(peers[p], radial, sizeof radial / sizeof *radial, "radial", &bad);
+        peer_table(peers[p], mixed, sizeof mixed / sizeof *mixed, "mixed", &bad);
+        peer_table(peers[p], own, sizeof own / sizeof *own, "own", &bad);
+        if (bad)
+            fail_msg("%s: %d cells not as the tables say", peers[p], bad);
+    }
+    char path[4200], spec[4300];
+    aa_image ref;
+    cell_document(radial, 0, "nopeer", path, sizeof path, &ref);
+    aa_image_free(&ref);
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_spec sp;
+    aa_scene *sc = NULL;
+    assert_int_equal(aa_pattern_parse(spec, &sp), AA_OK);
+    assert_int_equal(aa_pattern_scene_at(&sp, CELL, CELL, &sc), AA_OK);
+    static const char *const none[] = {"freetype", "stb"};
+    for (size_t p = 0; p < 2; p++) {
+        const support_view v = {.w = CELL, .h = CELL, .filter = "box", .seed = 1, .threads = 1};
+        aa_image img;
+        int st = support_render_view(none[p], sc, &v, &img, NULL);
+        print_message("%s: %s\n", none[p], aa_last_error());
+        assert_int_equal(st, AA_EINVAL);
+        assert_non_null(strstr(aa_last_error(), "gradient"));
+        assert_non_null(strstr(aa_last_error(), none[p]));
+    }
+    aa_scene_free(sc);
 }
 
 static int names(const char *list, const char *name)
@@ -433,5 +718,5 @@ static void test_resvg(void **state)
     renderer("resvg");
 }
 
-SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_points), cmocka_unit_test(test_chromium),
-             cmocka_unit_test(test_resvg))
+SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_points), cmocka_unit_test(test_peers),
+             cmocka_unit_test(test_chromium), cmocka_unit_test(test_resvg))

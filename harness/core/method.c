@@ -129,7 +129,8 @@ static int check_scene(const aa_method_type *type, const aa_job *job)
         return aa_fail(AA_EINVAL,
                        "method %s draws from the layers' constant colours and the scene has "
                        "gradient paint (linearGradient/radialGradient): use a method that "
-                       "samples the picture at points (point, supersample, jitter)",
+                       "samples the picture at points (point, supersample, jitter) or a peer "
+                       "with gradients of its own (cairo, agg)",
                        type->info.name);
     return AA_OK;
 }
