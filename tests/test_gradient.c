@@ -602,7 +602,8 @@ static void test_refusals(void **state)
     assert_non_null(strstr(aa_last_error(), "more than 5 gradient layers"));
     aa_scene_free(placed);
     aa_scene_free(s);
-    /* a linear gradient under the tent */
+    /* a linear gradient under the cone (radial: refused by name; the
+     * separable filters: tests/test_gradient_filter.c) */
     s = aa_scene_new((aa_rgb){{0, 0, 0}});
     rect_px(s, (aa_rgb){{0, 0, 0}}, 0, 0, W, H);
     g = grad_px(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){0, 0, 5, 0, 0, 0},
@@ -610,10 +611,10 @@ static void test_refusals(void **state)
     assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     placed = aa_scene_place(s, W, H, 0, 0, 0);
-    assert_int_equal(aa_filter_parse("tent:r=1", &f), AA_OK);
+    assert_int_equal(aa_filter_parse("cone:r=1", &f), AA_OK);
     assert_int_equal(aa_truth_render(placed, &f, 1, &out, NULL, NULL), AA_EINVAL);
-    print_message("tent: %s\n", aa_last_error());
-    assert_non_null(strstr(aa_last_error(), "box filter"));
+    print_message("cone: %s\n", aa_last_error());
+    assert_non_null(strstr(aa_last_error(), "radial filter cone"));
     aa_scene_free(placed);
     aa_scene_free(s);
     aa_image_free(&out);

@@ -218,7 +218,7 @@
  * parameter, its sign changes isolated between its derivative's roots
  * and bisected), and the row of P* where t is least.  Offset pieces
  * (strokes of curves), windows with more than TRUTH_MAX_PAIRS pieces and
- * other filters are refused with a gradient scene.
+ * the radial filters are refused with a gradient scene.
  *
  * Several gradients at a point (radial with linear, two radial ones, a
  * gradient of varying opacity with another: "several gradients" below):
@@ -241,6 +241,16 @@
  * depends on now takes the other gradients as transparent (their
  * stand-in colour, the first stop's at the layer's alpha, could hide a
  * layer behind a translucent gradient).
+ *
+ * The other separable filters (tent, gauss, bspline, mitchell, catrom,
+ * lanczos; "the other separable filters" below): every span of a
+ * gradient scene takes the path of several gradients with the row's
+ * integrand dec(e(x)) w(x - uc), cut also at the filter's kinks; each
+ * piece's bound is the colour's times the weight's on the same Bernstein
+ * ellipse.  The outer breakpoints add the stop lines' and circles'
+ * crossings of every kink line x = uc + k, and, for linear gradients,
+ * the lines where the composite at the window's centre passes the
+ * decoding's threshold.  The Gaussian's fixed rule is not taken.
  *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
@@ -580,13 +590,17 @@ static int grad_mode(const aa_scene *scene)
 }
 
 /* Whether the reference integrates this gradient scene exactly (truth.c's
- * opening comment): the box filter and no offset pieces. */
+ * opening comment): a separable filter and no offset pieces. */
 static int grad_check(const aa_scene *scene, const aa_filter *f)
 {
-    if (!aa_filter_is_box(f))
+    if (!aa_filter_is_separable(f))
         return aa_fail(AA_EINVAL, "the reference integrates gradient paint exactly under the "
-                                  "box filter only (filter %s): use -f box",
-                       f->type->info.name);
+                                  "separable filters only (box, tent, gauss without cut, "
+                                  "bspline, mitchell, catrom, lanczos), not the radial filter "
+                                  "%s%s: a row's weight times the varying colour is not "
+                                  "solved for",
+                       f->type->info.name,
+                       f->type == &aa_filter_gauss_mask ? " with cut" : "");
     size_t np;
     const aa_piece *pc = aa_scene_pieces(scene, &np);
     for (size_t k = 0; k < np; k++)
@@ -692,7 +706,10 @@ static int grad_init(worker *w)
     for (int k = 0; k < RAD_GL; k++)
         gsl_integration_glfixed_point(-1.0, 1.0, (size_t)k, &w->gl_x[k], &w->gl_w[k], gt);
     gsl_integration_glfixed_table_free(gt);
-    w->gen = grad_mode(w->scene) == 2;
+    /* under the other separable filters every span takes the path of
+     * several gradients, which carries the weight ("the other separable
+     * filters") */
+    w->gen = grad_mode(w->scene) == 2 || !w->box;
     w->grad = 1;
     return AA_OK;
 }
@@ -1171,7 +1188,98 @@ typedef struct gen_span_ctx {
     double K[3][243];
     int nk;
     double y;
+    /* weighted: the separable filter's weight w(x - uc) multiplies the
+     * row (every filter but the box; "the other separable filters") */
+    int weighted;
+    const aa_filter *f;
+    double uc;
 } gen_span_ctx;
+
+/* ---- the other separable filters: the weight along a row ----
+ *
+ * Under a separable filter other than the box the row's integral is that
+ * of dec(e(x)) w(x - uc).  The row is cut also at the filter's kinks
+ * (uc + k for k of aa_filter_type.kinks), so that on a piece w is one
+ * polynomial (tent: degree 1, bspline:order=2: 2, bspline:order=3,
+ * mitchell, catrom: 3), or Lanczos's sinc(t) sinc(t / a) / M, or the
+ * Gaussian: entire functions in every case, so the product is analytic
+ * wherever the colour is and the 20-point rule keeps Trefethen's bound
+ * with M the product of the colour's bound and the weight's on the
+ * Bernstein ellipse E_rho about [m - h, m + h] (semi-axes A = h (rho +
+ * 1/rho)/2, B = h (rho - 1/rho)/2):
+ *  - a polynomial piece, written in s = (x - m)/h as sum a_k s^k (the
+ *    cubic through its values at the four Chebyshev points cos((2k + 1)
+ *    pi / 8), which is the piece itself, degree at most 3), has |w| <=
+ *    sum |a_k| (A/h)^k there, as |z - m| <= A;
+ *  - Lanczos: sinc(pi z) = int_0^1 cos(pi z u) du and |cos(x + i y)| <=
+ *    cosh(y), so |w| <= cosh(pi B) cosh(pi B / a) / M, and 1/M = w(0);
+ *  - the Gaussian: |exp(-z^2 / (2 s^2))| = exp(-(X^2 - Y^2) / (2 s^2))
+ *    with |X| >= max(0, |m - uc| - A) and |Y| <= B.
+ * On the real segment (rho = 1) these bound |w|; the slope, for the
+ * threshold's narrow intervals, is bounded by sum k |a_k| / h, by pi (1 +
+ * 1/a) / (2 M) for Lanczos (|d/dx sin(x)/x| < 1/2) and by w(0) e^(-1/2)
+ * / s for the Gaussian.  The Gaussian is truncated to the window [-R,
+ * R]^2 as elsewhere, its mass outside in the pixel's bound (f->lost: the
+ * colour lies in [0, 1]).  In v the rows are weighed by w(v - vc) with
+ * the filter's kinks as breakpoints (breakpoints()), and the lines t =
+ * tau of a linear gradient, and the circles of a radial one, add their
+ * crossings of every vertical line x = uc + k (and, for the Gaussian,
+ * x = uc + k s, as the pieces do) to the outer breakpoints.  A row's
+ * bound, times |w(v - vc)|, enters the pixel's as under the box. */
+
+/* The weight's coefficients in s = (x - m) / h over [m - h, m + h] (a
+ * piece of a polynomial filter between kinks): Newton's form through the
+ * four Chebyshev points, expanded. */
+static void wt_poly(const gen_span_ctx *c, double m, double h, double a[4])
+{
+    static const double sn[4] = {-0.92387953251128674, -0.38268343236508978,
+                                 0.38268343236508978, 0.92387953251128674};
+    double d[4];
+    for (int k = 0; k < 4; k++)
+        d[k] = aa_filter_weight(c->f, m + h * sn[k] - c->uc);
+    for (int j = 1; j < 4; j++)
+        for (int k = 3; k >= j; k--)
+            d[k] = (d[k] - d[k - 1]) / (sn[k] - sn[k - j]);
+    a[0] = d[3], a[1] = a[2] = a[3] = 0.0;
+    for (int k = 2, deg = 0; k >= 0; k--, deg++) {
+        /* a := a (s - sn[k]) + d[k] */
+        for (int i = deg + 1; i > 0; i--)
+            a[i] = a[i - 1] - sn[k] * a[i];
+        a[0] = d[k] - sn[k] * a[0];
+    }
+}
+
+/* A bound of |w(z - uc)| on the ellipse of semi-axes A, B about m (the
+ * comment above; a: wt_poly's coefficients for a polynomial filter). */
+static double wt_bound(const gen_span_ctx *c, const double *a, double m, double h, double A,
+                       double B)
+{
+    const aa_filter *f = c->f;
+    if (f->type == &aa_filter_lanczos)
+        return cosh(M_PI * B) * cosh(M_PI * B / f->spec.v[0]) * aa_filter_weight(f, 0.0);
+    if (f->type == &aa_filter_gauss) {
+        double s = f->spec.v[0], X = fmax(0.0, fabs(m - c->uc) - A);
+        return aa_filter_weight(f, 0.0) * exp((B * B - X * X) / (2.0 * s * s));
+    }
+    double S = A / h;
+    return fabs(a[0]) + S * (fabs(a[1]) + S * (fabs(a[2]) + S * fabs(a[3])));
+}
+
+/* |w| and |w'| on the real segment [m - h, m + h] into *sup, *slope. */
+static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, double *slope)
+{
+    const aa_filter *f = c->f;
+    double a[4] = {0, 0, 0, 0};
+    if (f->type == &aa_filter_lanczos)
+        *slope = M_PI * (1.0 + 1.0 / f->spec.v[0]) * 0.5 * aa_filter_weight(f, 0.0);
+    else if (f->type == &aa_filter_gauss)
+        *slope = aa_filter_weight(f, 0.0) * exp(-0.5) / f->spec.v[0];
+    else {
+        wt_poly(c, m, h, a);
+        *slope = (fabs(a[1]) + 2.0 * fabs(a[2]) + 3.0 * fabs(a[3])) / h;
+    }
+    *sup = wt_bound(c, a, m, h, h, 0.0);
+}
 
 static double gen_t(const gen_span_ctx *c, int l, double x)
 {
@@ -1296,10 +1404,15 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
     }
     if (!(rmax > 1.0 + 1e-9))
         return INFINITY;
-    double best = INFINITY;
-    for (int k = 1; k < 8; k++) {
-        double rho = 1.0 + (rmax - 1.0) * k / 8.0, A = 0.5 * h * (rho + 1.0 / rho),
-               B = 0.5 * h * (rho - 1.0 / rho), emax[3], dmax[3], worst = 0.0;
+    double best = INFINITY, wa[4] = {0, 0, 0, 0};
+    if (c->weighted && c->f->type != &aa_filter_lanczos && c->f->type != &aa_filter_gauss)
+        wt_poly(c, m, h, wa);
+    /* weighted, also rho at geometric steps towards rmax (the Gaussian's
+     * bound grows like exp(B^2 / (2 s^2)): its best rho is small) */
+    for (int k = 1; k < (c->weighted ? 15 : 8); k++) {
+        double rho = k < 8 ? 1.0 + (rmax - 1.0) * k / 8.0 : pow(rmax, (k - 7) / 16.0),
+               A = 0.5 * h * (rho + 1.0 / rho), B = 0.5 * h * (rho - 1.0 / rho), emax[3],
+               dmax[3], worst = 0.0;
         if (!gen_bounds(c, m, A, B, emax, dmax))
             continue;
         for (int ch = 0; ch < c->nch; ch++) {
@@ -1314,6 +1427,8 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
                 M = emax[ch] / 12.92;
             worst = fmax(worst, M);
         }
+        if (c->weighted)
+            worst *= wt_bound(c, wa, m, h, A, B);
         best = fmin(best, h * (64.0 / 15.0) * worst * pow(rho, -2.0 * RAD_GL) / (rho * rho - 1.0));
     }
     return best;
@@ -1339,14 +1454,21 @@ static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double
     }
     double part[3] = {0.0, 0.0, 0.0};
     for (int k = 0; k < RAD_GL; k++) {
-        double e[3];
-        gen_eval(c, m + h * w->gl_x[k], e);
+        double e[3], x = m + h * w->gl_x[k];
+        gen_eval(c, x, e);
+        double wk = c->weighted ? w->gl_w[k] * aa_filter_weight(c->f, x - c->uc) : w->gl_w[k];
         for (int ch = 0; ch < c->nch; ch++)
-            part[ch] += w->gl_w[k] * gen_decode(e[ch], power[ch]);
+            part[ch] += wk * gen_decode(e[ch], power[ch]);
     }
     for (int ch = 0; ch < c->nch; ch++)
         sum[ch] += h * part[ch];
-    *err += fmin(bound, xb - xa);
+    if (c->weighted) {
+        /* the rule and the integral both within (xb - xa) sup |w| of 0 */
+        double sup, slope;
+        wt_real(c, m, h, &sup, &slope);
+        *err += fmin(bound, 2.0 * (xb - xa) * sup);
+    } else
+        *err += fmin(bound, xb - xa);
 }
 
 /* The threshold's places in [u, v] for channel ch (g = e - 0.04045 there
@@ -1395,11 +1517,15 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
         nf = gen_isolate(c, ch, a, ea[ch] - 0.04045, b, eb[ch] - 0.04045, fz, nf, GEN_MAX_FUZZ,
                          &budget);
     if (nf >= GEN_MAX_FUZZ) { /* more places than room: the piece bounded by its length */
-        double e[3];
+        double e[3], wm = 1.0, sup = 0.5, slope;
         gen_eval(c, 0.5 * (a + b), e);
+        if (c->weighted) {
+            wm = aa_filter_weight(c->f, 0.5 * (a + b) - c->uc);
+            wt_real(c, 0.5 * (a + b), 0.5 * (b - a), &sup, &slope);
+        }
         for (int ch = 0; ch < c->nch; ch++)
-            sum[ch] += (b - a) * aa_srgb_decode(e[ch]);
-        *err += b - a;
+            sum[ch] += (b - a) * aa_srgb_decode(e[ch]) * wm;
+        *err += 2.0 * sup * (b - a);
         return;
     }
     /* the intervals in order, merged where they overlap */
@@ -1425,9 +1551,19 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
                 for (int ch = 0; ch < c->nch; ch++)
                     worst = fmax(worst, 2.3 * dmax[ch] * wd);
             }
-            for (int ch = 0; ch < c->nch; ch++)
-                sum[ch] += wd * aa_srgb_decode(e[ch]);
-            *err += wd * fmin(1.0, worst);
+            if (c->weighted) {
+                /* |f w - f(m) w(m)| <= |f - f(m)| sup |w| + |f(m)| |w - w(m)|,
+                 * f in [0, 1] */
+                double mid = 0.5 * (fa + fb), sup, slope, wm = aa_filter_weight(c->f, mid - c->uc);
+                wt_real(c, mid, 0.5 * wd, &sup, &slope);
+                for (int ch = 0; ch < c->nch; ch++)
+                    sum[ch] += wd * aa_srgb_decode(e[ch]) * wm;
+                *err += wd * (sup * fmin(1.0, worst) + slope * wd);
+            } else {
+                for (int ch = 0; ch < c->nch; ch++)
+                    sum[ch] += wd * aa_srgb_decode(e[ch]);
+                *err += wd * fmin(1.0, worst);
+            }
         }
         cur = fmax(cur, fb);
     }
@@ -1458,13 +1594,16 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
             dep[nd++] = k;
         }
     }
-    if (nd == 0) { /* of constant colour */
+    if (nd == 0) { /* of constant colour: weighted, the cdf's difference */
+        double wd = w->box ? xb - xa
+                           : aa_filter_cdf(w->f, xb - w->uc) - aa_filter_cdf(w->f, xa - w->uc);
         for (int c = 0; c < nch; c++)
-            sum[c] += (xb - xa) * aa_srgb_decode(f[0][c]);
+            sum[c] += wd * aa_srgb_decode(f[0][c]);
         return;
     }
     gen_span_ctx c;
     c.n = nd, c.nch = nch, c.y = y, c.nk = 1;
+    c.weighted = !w->box, c.f = w->f, c.uc = w->uc;
     for (int l = 0; l < nd; l++) {
         c.L[l] = &w->gl[dep[l]];
         c.nk *= 3;
@@ -1521,6 +1660,13 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
                     xs[nx++] = x;
             }
         }
+    }
+    if (c.weighted) { /* the filter's kinks: w is one piece between them */
+        double kink[8];
+        int nkk = w->f->type->kinks(w->f->spec.v, kink);
+        for (int j = 0; j < nkk && nx < cap; j++)
+            if (w->uc + kink[j] > xa && w->uc + kink[j] < xb)
+                xs[nx++] = w->uc + kink[j];
     }
     qsort(xs + 1, nx - 1, sizeof *xs, cmp_dbl);
     xs[nx++] = xb;
@@ -1606,7 +1752,7 @@ static int poly_sign_roots(const double *c, int n, double lo, double hi, double 
  * 0.04045: on each stop's segment e is quadratic in the segment's
  * parameter (rad_span); each root in every period of the range.  At most
  * cap into out, the total returned. */
-static size_t rad_threshold_taus(const worker *w, const grad_radial *g, const int *wind,
+static size_t rad_threshold_taus(const worker *w, const gen_layer *g, const int *wind,
                                  double ta, double tb, double *out, size_t cap)
 {
     double p0[4] = {0, 0, 0, 0}, p1[4] = {0, 0, 0, 1}, p2[4] = {1, 1, 1, 1}, e0[3], e1[3], e2[3];
@@ -1654,10 +1800,71 @@ static size_t rad_threshold_taus(const worker *w, const grad_radial *g, const in
 static long double crossing_at(const local_piece *q, long double s);
 static void note_turn(worker *w, double s);
 
+/* The gradient layer of scene layer l. */
+static const gen_layer *gl_of(const worker *w, int l)
+{
+    for (int k = 0; k < w->ngl; k++)
+        if (w->gl[k].layer == l)
+            return &w->gl[k];
+    return &w->gl[0]; /* cannot happen: every gradient layer is in w->gl */
+}
+
+/* The values of t in (ta, tb) where the composite at the window's centre
+ * passes the decoding's threshold (rad_threshold_taus; its winding
+ * numbers: the strip's left of the window, and the local pieces crossing
+ * the centre row left of it), and, if the centre is outside the
+ * gradient's layer, the composite there with that layer's winding number
+ * 1.  At most cap into out, the total returned. */
+static size_t threshold_taus(worker *w, const gen_layer *g, double ta, double tb, double *out,
+                             size_t cap)
+{
+    aa_strip_winding_left(w->strip, w->vc, w->wind);
+    for (size_t k = 0; k < w->nlp; k++) {
+        const local_piece *lq = &w->lp[k];
+        if (!(0.0 >= lq->y0 && 0.0 < lq->y1))
+            continue;
+        if (lq->side ? lq->side < 0 : crossing_at(lq, 0.0L) < 0.0L)
+            w->wind[lq->layer] += lq->dir;
+    }
+    size_t m = rad_threshold_taus(w, g, w->wind, ta, tb, out, cap);
+    if (w->wind[g->layer] == 0 && m < cap) {
+        /* the centre outside the gradient's layer: also as if inside it */
+        w->wind[g->layer] = 1;
+        m += rad_threshold_taus(w, g, w->wind, ta, tb, out + m, cap - m);
+    }
+    return m;
+}
+
 /* Outer breakpoints of a radial gradient (truth.c's opening comment): for
  * each tau of the window's range of t, where the circle of tau crosses the
  * window's sides, its top and bottom rows, and where it meets each local
  * piece; and the row of P*. */
+/* The vertical lines (absolute x) where the inner integral's weight is
+ * not smooth, for the gradients' breakpoints: the window's sides for the
+ * box; for the other separable filters their kinks, the window's sides
+ * and, for the Gaussian, x = uc + k s (as for the pieces, breakpoints()).
+ * At most KINK_LINES. */
+#define KINK_LINES 96
+static int kink_lines(const worker *w, double *X)
+{
+    int n = 0;
+    X[n++] = w->uc - w->R;
+    X[n++] = w->uc + w->R;
+    if (w->box)
+        return n;
+    double kink[8];
+    int nk = w->f->type->kinks(w->f->spec.v, kink);
+    for (int j = 0; j < nk; j++)
+        if (kink[j] > -w->R && kink[j] < w->R)
+            X[n++] = w->uc + kink[j];
+    if (w->f->type == &aa_filter_gauss) {
+        double sd = w->f->spec.v[0];
+        for (double t = -floor(w->R / sd) * sd; t <= w->R && n < KINK_LINES; t += sd)
+            X[n++] = w->uc + t;
+    }
+    return n;
+}
+
 static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *const *local,
                               size_t n, size_t *total)
 {
@@ -1690,36 +1897,22 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
                                   "window of pixel (%g, %g): refused",
                        GRAD_MAX_BREAKS, w->uc - 0.5, w->vc - 0.5);
     /* and where the composite at the window's centre passes the
-     * decoding's threshold (its winding numbers: the strip's left of the
-     * window, and the local pieces crossing the centre row left of it),
-     * and, if the centre is outside the gradient's layer, the composite
-     * there with that layer's winding number 1 */
-    aa_strip_winding_left(w->strip, w->vc, w->wind);
-    for (size_t k = 0; k < w->nlp; k++) {
-        const local_piece *lq = &w->lp[k];
-        if (!(0.0 >= lq->y0 && 0.0 < lq->y1))
-            continue;
-        if (lq->side ? lq->side < 0 : crossing_at(lq, 0.0L) < 0.0L)
-            w->wind[lq->layer] += lq->dir;
-    }
-    m += rad_threshold_taus(w, g, w->wind, tmin, tmax, taus + m, w->cap_gbuf - m);
-    if (w->wind[g->layer] == 0 && m < w->cap_gbuf) {
-        /* the centre outside the gradient's layer: also as if inside it */
-        w->wind[g->layer] = 1;
-        m += rad_threshold_taus(w, g, w->wind, tmin, tmax, taus + m, w->cap_gbuf - m);
-    }
+     * decoding's threshold (threshold_taus) */
+    m += threshold_taus(w, gl_of(w, g->layer), tmin, tmax, taus + m, w->cap_gbuf - m);
     if (m > w->cap_gbuf)
         m = w->cap_gbuf;
-    double det = iv[0] * iv[3] - iv[1] * iv[2], n01 = hypot(iv[0], iv[1]);
+    double det = iv[0] * iv[3] - iv[1] * iv[2], n01 = hypot(iv[0], iv[1]), XL[KINK_LINES];
+    int nxl = kink_lines(w, XL);
     for (size_t q = 0; q < m && !st; q++) {
         double tau = taus[q], rt = g->fr + tau * g->dr;
         if (rt < 0.0)
             continue;
         /* the circle of tau: |G|^2 = rt^2, G = m^-1(x, y) - F - tau D */
         double k0 = iv[4] - g->fx - tau * g->Dx, k1 = iv[5] - g->fy - tau * g->Dy;
-        /* the window's sides x = X: G = (iv0 X + k0 + iv2 y, iv1 X + k1 + iv3 y) */
-        for (int k = 0; k < 2 && !st; k++) {
-            double X = k ? xr : xl, a0 = iv[0] * X + k0, b0 = iv[1] * X + k1, ys[2];
+        /* the window's sides x = X (and the filter's kinks, kink_lines):
+         * G = (iv0 X + k0 + iv2 y, iv1 X + k1 + iv3 y) */
+        for (int k = 0; k < nxl && !st; k++) {
+            double X = XL[k], a0 = iv[0] * X + k0, b0 = iv[1] * X + k1, ys[2];
             int nr = gsl_poly_solve_quadratic(iv[2] * iv[2] + iv[3] * iv[3],
                                               2.0 * (iv[2] * a0 + iv[3] * b0),
                                               a0 * a0 + b0 * b0 - rt * rt, &ys[0], &ys[1]);
@@ -1804,6 +1997,8 @@ static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
            cy[4] = {w->vc - R, w->vc - R, w->vc + R, w->vc + R};
     int st = AA_OK;
     size_t total = 0;
+    double XL[KINK_LINES];
+    int nxl = kink_lines(w, XL);
     for (int g = 0; g < w->ngp && !st; g++) {
         const grad_plane *gp = &w->gp[g];
         double tmin = INFINITY, tmax = -INFINITY;
@@ -1818,11 +2013,27 @@ static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
             return aa_fail(AA_EINVAL, "a gradient's stops repeat more than %d times across the "
                                       "window of pixel (%g, %g): refused",
                            GRAD_MAX_BREAKS, w->uc - 0.5, w->vc - 0.5);
+        /* weighted: and the lines where the composite at the window's
+         * centre passes the decoding's threshold, whose crossings of the
+         * kink lines are breakpoints too (the inner integral's third
+         * derivative jumps there; without them a pixel under tent:r=1
+         * whose window's side the threshold's line crosses came out
+         * 1.05e-13 off against a bound of 1.0e-13, with them 7e-18) */
+        if (!w->box) {
+            const gen_layer *gl = NULL;
+            for (int k = 0; k < w->ngl; k++)
+                if (w->gl[k].gp == gp)
+                    gl = &w->gl[k];
+            if (gl)
+                m += threshold_taus(w, gl, tmin, tmax, taus + m, w->cap_gbuf - m);
+            if (m > w->cap_gbuf)
+                m = w->cap_gbuf;
+        }
         for (size_t q = 0; q < m && !st; q++) {
             double tau = taus[q];
             if (gp->ty != 0.0)
-                for (int k = 0; k < 2 && !st; k++)
-                    st = add_abs(w, (tau - gp->t0 - gp->tx * cx[k]) / gp->ty, -INFINITY,
+                for (int k = 0; k < nxl && !st; k++)
+                    st = add_abs(w, (tau - gp->t0 - gp->tx * XL[k]) / gp->ty, -INFINITY,
                                  INFINITY);
             for (size_t k = 0; k < n && !st; k++) {
                 const aa_piece *p = local[k];
@@ -2163,8 +2374,9 @@ static inline void inner_sums(worker *w, double s, int nch, double *out)
     }
     for (int ch = 0; ch < nch; ch++)
         out[ch] = ws * sum[ch];
-    if (w->rad_row_err > w->rad_err_max)
-        w->rad_err_max = w->rad_row_err;
+    /* the row's quadrature bound, weighed as the row is (box: 1) */
+    if (fabs(ws) * w->rad_row_err > w->rad_err_max)
+        w->rad_err_max = fabs(ws) * w->rad_row_err;
 }
 
 static size_t memo_home(uint64_t key, size_t cap)
@@ -2408,8 +2620,10 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     /* gradient paint: each piece's mean comes from two composites (a few
      * ulps each, doubled by the extension to the ends) and pow, expm1 and
      * log1p (an ulp or two each), over a window of width 2R */
-    if (w->grad)
+    if (w->grad && w->box)
         *bound += 64.0 * DBL_EPSILON * 2.0 * w->R;
+    else if (w->grad) /* the same per unit of the weights' largest absolute integrals */
+        *bound += 64.0 * DBL_EPSILON * (2.0 * w->R * peak) * (2.0 * w->R * peak);
     /* radial gradient: the rows' quadrature bounds (rad_piece), the
      * largest over the window's height */
     *bound += w->rad_err_max * 2.0 * w->R;
@@ -2567,11 +2781,12 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
      * as fast: measured on crow 256x256, s = 0.05), or long double is no
      * wider than double where it runs (the rule's node heights count on
      * the 64-bit mantissa; valgrind, for one, emulates the x87 in double:
-     * its error then reached 1.2e-12 on a half-plane at s = 0.07). */
+     * its error then reached 1.2e-12 on a half-plane at s = 0.07), or the
+     * scene has gradient paint (the panels carry constant colours only). */
     gauss_plan plan;
     int use_fast = 0;
     if (f->type == &aa_filter_gauss && mode == 0 && 2.0 * f->radius >= 1.0 &&
-        aa_long_double_is_extended()) {
+        aa_long_double_is_extended() && !grad) {
         if ((status = plan_init(&plan, f)))
             return status;
         use_fast = fast_bytes(&plan, out->w, aa_scene_is_grey(placed) ? 1 : 3) <= FAST_MAX_BYTES;
