@@ -376,9 +376,10 @@ size_t aa_strip_spans(aa_strip *st, double y, aa_span *out, size_t cap);
  * Filters: normalised weights in pixel units (patterns/README.md, "Filters")
  *
  * box, tent, gauss, bspline, mitchell, catrom and lanczos are separable,
- * w(u) w(v): `weight` and `cdf` are the 1-D weight and its integral.  cone
- * and the Gaussian in a circular mask (gauss with cut > 0, whose type is
- * aa_filter_gauss_mask, not aa_filter_gauss) are radial: their `weight`
+ * w(u) w(v): `weight` and `cdf` are the 1-D weight and its integral.  cone,
+ * the polynomials in r^2 on a disc (radial:k=K,r=R) and the Gaussian in a
+ * circular mask (gauss with cut > 0, whose type is aa_filter_gauss_mask,
+ * not aa_filter_gauss) are radial: their `weight`
  * and `cdf` are NULL and they give the 2-D weight and the integral of a
  * row instead.  A
  * method's check refuses a filter it cannot form (aa_filter_is_separable);
@@ -411,8 +412,8 @@ typedef struct aa_filter {
 } aa_filter;
 
 extern const aa_filter_type aa_filter_box, aa_filter_tent, aa_filter_gauss, aa_filter_cone;
-extern const aa_filter_type aa_filter_gauss_mask, aa_filter_bspline, aa_filter_mitchell,
-    aa_filter_catrom, aa_filter_lanczos;
+extern const aa_filter_type aa_filter_gauss_mask, aa_filter_radial, aa_filter_bspline,
+    aa_filter_mitchell, aa_filter_catrom, aa_filter_lanczos;
 int aa_filter_is_box(const aa_filter *f);
 /* The values a filtered image of values in [0, 1] can take: [0, 1], or
  * wider by the filter's negative mass for filters with negative lobes

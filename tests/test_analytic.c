@@ -28,8 +28,8 @@
  *    y = x^3 over [0, 1], the cubic Bezier (0,0) (1/3,0) (2/3,0) (1,1),
  *    has area 1/4, scaled; a disk of radius r, pi r^2, and an ellipse of
  *    semi-axes a, b turned, pi a b (placed: times the view's w h);
- *  - refusals by name: filters that are not piecewise polynomial or not
- *    separable.
+ *  - refusals by name: filters that are not piecewise polynomial (the
+ *    radial polynomials: tests/test_analytic_radial.c).
  */
 #include "bench.h"
 #include "scenes.h"

@@ -103,8 +103,8 @@ static void test_spec_refusals(void **state)
         const char *spec, *needle;
     } filters[] = {
         {"tent:r=-1", "r=-1: out of range"},
-        {"sinc", "unknown filter \"sinc\" (known: box, tent, gauss, cone, bspline, mitchell, "
-                 "catrom, lanczos)"},
+        {"sinc", "unknown filter \"sinc\" (known: box, tent, gauss, cone, radial, bspline, "
+                 "mitchell, catrom, lanczos)"},
         {"cone:r=0", "r=0: out of range"},
         {"cone:r=nan", "r=nan: not a number"},
         {"cone:r=8.5", "r=8.5: out of range"},
@@ -140,8 +140,8 @@ static void test_refusals(void **state)
     T(2, "unknown pattern \"nosuch\" (known: crow", "truth", "-p", "nosuch", "-s", "8x8", "-o", o);
     T(2, "must be even", "truth", "-p", "crow:curves=3", "-s", "8x8", "-o", o);
     T(2, "is not WxH", "truth", "-p", "crow", "-s", "256", "-o", o);
-    T(2, "unknown filter \"sinc\" (known: box, tent, gauss, cone, bspline, mitchell, catrom, "
-         "lanczos)",
+    T(2, "unknown filter \"sinc\" (known: box, tent, gauss, cone, radial, bspline, mitchell, "
+         "catrom, lanczos)",
       "truth", "-p", "crow", "-s", "8x8", "-f", "sinc", "-o", o);
     T(2, "unknown method \"nosuch\" (known: point", "render", "-p", "crow", "-m", "nosuch", "-s",
       "8x8", "-o", o);

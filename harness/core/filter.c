@@ -78,6 +78,31 @@
  *              mask: the rows close like a square root there, as the
  *              cone's do at R.
  *
+ * Radially symmetric polynomial filters (Manson and Schaefer 2013 rasterize
+ * with "radial" filters besides separable ones; the family here is the one
+ * of polynomials in r^2 on a disc, whose every power is a polynomial in u
+ * and v, so their exact method applies to it):
+ *
+ *   radial:k=K,r=R   c_K (1 - (u^2 + v^2) / R^2)^K inside the disc
+ *              u^2 + v^2 < R^2, 0 outside, K = 1, 2, 3; volume 1 with
+ *              c_K = (K + 1) / (pi R^2), since in polar coordinates
+ *              int_0^R (1 - r^2/R^2)^K 2 pi r dr = pi R^2 / (K + 1)
+ *              (t = r^2 / R^2: pi R^2 int_0^1 (1 - t)^K dt).
+ *
+ * Its row at height v, with y = v / R, x = u / R, a^2 = 1 - y^2 (taken
+ * as (1 - y)(1 + y)), is c_K (a^2 - x^2)^K on the chord |x| < a, and
+ *     H_K(x) = int_0^x (a^2 - t^2)^K dt
+ *            = sum_j binom(K, j) (-1)^j a^(2(K-j)) x^(2j+1) / (2j + 1)
+ * (K = 1: a^2 x - x^3/3; K = 2: a^4 x - 2 a^2 x^3/3 + x^5/5; K = 3:
+ * a^6 x - a^4 x^3 + 3 a^2 x^5/5 - x^7/7), odd in x, so the row's integral
+ * up to u is c_K R (H_K(clamp(x, -a, a)) + H_K(a)), a polynomial in u and
+ * a.  The row's whole integral is 2 c_K R H_K(a) = c_K R B_K a^(2K+1),
+ * B_K = int_-1^1 (1 - t^2)^K dt = 4/3, 16/15, 32/35: like a power
+ * (R - |v|)^(K + 1/2) at v = +-R, where the chord closes (the
+ * reference's breakpoints there, with v = 0 for symmetry); smooth
+ * elsewhere.  The weight is continuous for every K; its derivative at the
+ * rim is 0 for K >= 2.
+ *
  * The Gaussian has unbounded support; users of `radius` truncate it where
  * the 2-D mass outside the square [-R, R]^2 is below a stated tail, and
  * that mass is reported so it can enter an error bound.
@@ -108,6 +133,13 @@ static const aa_param cone_params[] = {
     {"cut", AA_PARAM_REAL, 1.0, 0.0, 1.0, 1, NULL,
      "radius of the mask in units of r, the weight renormalised inside it (below 1: a "
      "truncated cone)"},
+    {0}};
+
+static const aa_param radial_params[] = {
+    {"k", AA_PARAM_INT, 2.0, 1.0, 3.0, 0, NULL,
+     "the power: the weight is (1 - d^2/r^2)^k inside the disc d < r (1, 2, 3)"},
+    {"r", AA_PARAM_REAL, 1.5, 0.01, 8.0, 0, NULL,
+     "radius in pixels: the weight falls to zero at distance r from the centre"},
     {0}};
 
 static const aa_param bspline_params[] = {
@@ -329,6 +361,79 @@ const aa_filter_type aa_filter_gauss_mask = {
     gmask_weight2,
     gmask_row_cdf};
 
+/* ---- radially symmetric polynomials (1 - d^2/r^2)^k on a disc ---- */
+
+/* c_k = (k + 1) / (pi r^2) */
+static double radial_norm(double k, double r)
+{
+    return (k + 1.0) / (M_PI * r * r);
+}
+
+static double radial_weight2(const double *p, double u, double v)
+{
+    double k = p[0], r = p[1], x = u / r, y = v / r, q = 1.0 - (x * x + y * y);
+    if (!(q > 0.0))
+        return 0.0;
+    double w = q;
+    for (int i = 1; i < (int)k; i++)
+        w *= q;
+    return radial_norm(k, r) * w;
+}
+
+/* H_k(x) = int_0^x (a2 - t^2)^k dt (header), by Horner in x^2. */
+static double radial_h(int k, double a2, double x)
+{
+    double z = x * x;
+    switch (k) {
+    case 1:
+        return x * (a2 - z / 3.0);
+    case 2:
+        return x * (a2 * a2 + z * (-2.0 / 3.0 * a2 + z / 5.0));
+    default:
+        return x * (a2 * a2 * a2 + z * (-a2 * a2 + z * (0.6 * a2 - z / 7.0)));
+    }
+}
+
+static double radial_row_cdf(const double *p, double v, double u)
+{
+    double r = p[1], y = v / r;
+    int k = (int)p[0];
+    if (!(fabs(y) < 1.0))
+        return 0.0;
+    double a2 = (1.0 - y) * (1.0 + y), a = sqrt(a2), x = u / r;
+    if (x <= -a)
+        return 0.0;
+    x = x >= a ? a : x;
+    return radial_norm(k, r) * r * (radial_h(k, a2, x) + radial_h(k, a2, a));
+}
+
+static double radial_radius(const double *p, double tail, double *lost)
+{
+    (void)tail;
+    *lost = 0.0;
+    return p[1];
+}
+
+static int radial_kinks(const double *p, double *t)
+{
+    t[0] = -p[1];
+    t[1] = 0.0;
+    t[2] = p[1];
+    return 3;
+}
+
+const aa_filter_type aa_filter_radial = {
+    {"radial",
+     "radial polynomial (1 - d^2/r^2)^k on the disc of radius r pixels, k = 1, 2, 3, not "
+     "separable (Manson and Schaefer's radial filters)",
+     radial_params},
+    NULL,
+    NULL,
+    radial_radius, /* r, nothing lost */
+    radial_kinks,  /* -r, 0, r */
+    radial_weight2,
+    radial_row_cdf};
+
 /* ---- B-splines ---- */
 
 static double bspline_weight(const double *p, double t)
@@ -548,8 +653,8 @@ const aa_filter_type aa_filter_gauss = {
 
 const aa_filter_type *const aa_filter_types[] = {
     &aa_filter_box,      &aa_filter_tent,     &aa_filter_gauss,   &aa_filter_cone,
-    &aa_filter_bspline,  &aa_filter_mitchell, &aa_filter_catrom,  &aa_filter_lanczos,
-    NULL};
+    &aa_filter_radial,   &aa_filter_bspline,  &aa_filter_mitchell, &aa_filter_catrom,
+    &aa_filter_lanczos,  NULL};
 
 /* The tail of the 2-D weight a user may neglect (well under the 1e-12
  * bound of the reference). */
