@@ -561,7 +561,7 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     if (p->y0 < ja)
         t = (double)aa__offset_solve_end(&q->oc, 1, q->ot0, q->ot1, p->y0 - ja, ja, p->oend);
     long double X, Y;
-    aa__offset_eval(&q->oc, t, &X, &Y, NULL, NULL);
+    aa__offset_eval_s(&q->oc, p->ostops, t, &X, &Y, NULL, NULL);
     double c0 = floor((double)X);
     c0 = c0 < -CELL_LIMIT ? -CELL_LIMIT : (c0 > CELL_LIMIT ? CELL_LIMIT : c0);
     a->p = p;
@@ -1773,6 +1773,7 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
     q->offset = 1;
     q->sg = p->ot1 > p->ot0 ? 1.0 : -1.0;
     aa__offset_end(&p->oc, 1, p->ot1, q->oend);
+    q->ostops = aa__offset_stops(&p->oc);
     double ts[2];
     int n = aa__offset_turns(&p->oc, 0, fmin(p->ot0, p->ot1), fmax(p->ot0, p->ot1), ts);
     q->ote = q->ote2 = INFINITY;

@@ -102,7 +102,7 @@ typedef struct ar_piece {
      * them, state-owned) and the rules (area_offset.c); oend: y's
      * evaluation at its bottom ot1 (aa__offset_end), which every band
      * line's root would repeat */
-    int offset;
+    int offset, ostops; /* ostops: its curve's stops (aa__offset_stops) */
     double sg, ote, ote2;
     double oend[4];
     const ar_panel *pan;
@@ -262,7 +262,7 @@ static inline const double *colour_of(const ar_state *S, ar_worker *wk, const in
 static inline double offset_v(const ar_seg *s, double t)
 {
     long double X, Y;
-    aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
+    aa__offset_eval_s(&s->p->src->oc, s->p->ostops, s->p->sg * t, &X, &Y, NULL, NULL);
     return (double)(Y + s->V);
 }
 
@@ -290,7 +290,7 @@ static inline double u_at(const ar_seg *s, double t)
         return s->U + t * (s->g + t * s->ax);
     if (s->p->offset) {
         long double X, Y;
-        aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
+        aa__offset_eval_s(&s->p->src->oc, s->p->ostops, s->p->sg * t, &X, &Y, NULL, NULL);
         return (double)(X - s->c0);
     }
     if (s->p->conic) /* sin tau = 2q/(1 + q^2), 1 - cos tau = 2q^2/(1 + q^2) */
@@ -304,7 +304,7 @@ static inline double seg_u(const ar_seg *s, double t)
     if (!s->p->curved || !s->p->offset) /* curved first: the common path's cache line */
         return u_at(s, t);
     long double X, Y;
-    aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
+    aa__offset_eval_s(&s->p->src->oc, s->p->ostops, s->p->sg * t, &X, &Y, NULL, NULL);
     offset_keep(s, t, (double)(Y + s->V));
     return (double)(X - s->c0);
 }
