@@ -260,7 +260,7 @@ static inline void eval_parts(const aa_offset_curve *oc, int coord, double t, in
         return;
     }
     const double *b = oc->b;
-    double r0 = oc->m[coord], r1 = oc->m[2 + coord], bx, by, ux, uy, vx, vy, cp;
+    double r0 = oc->m[coord], r1 = oc->m[2 + coord], bx, by, ux, uy, vx, vy, cp = 0.0;
     if (oc->base == AA_OFFSET_ELLIPSE) {
         /* B, B', B'' from cos t and sin t in double (each within an ulp),
          * B''' = -B': c' = B' x B''' = 0 */
@@ -273,7 +273,8 @@ static inline void eval_parts(const aa_offset_curve *oc, int coord, double t, in
         by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
         ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
         vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
-        cp = ux * 6 * b[7] - uy * 6 * b[3];
+        if (oc->evolute) /* c' only there */
+            cp = ux * 6 * b[7] - uy * 6 * b[3];
     }
     double c = ux * vy - uy * vx, L2 = ux * ux + uy * uy, w = r1 * ux - r0 * uy;
     *base0 = r0 * bx + r1 * by + oc->m[4 + coord];
