@@ -302,7 +302,7 @@ static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo
                                  double ul, double uh)
 {
     if (s->p->offset) /* x = c0 + k */
-        return offset_tau(s, 0, lo, hi, ul - k, (double)s->c0 + k);
+        return offset_tau_u(s, lo, hi, ul - k, (double)s->c0 + k);
     /* the guess: the chord from lo to hi (ul, uh: u there) */
     double g = uh != ul ? lo + (hi - lo) * ((k - ul) / (uh - ul)) : 0.5 * (lo + hi);
     if (sg > 0.0)
@@ -747,7 +747,7 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
     /* (p->curved first: the common path reads no other cache line of p) */
     int special = p->curved && (p->conic || p->offset);
     if (p->curved && p->offset) /* part_area's v, none kept yet */
-        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = NAN, s->vn = 0;
+        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = s->vt[2] = s->vt[3] = NAN, s->vn = 0;
     if (p->y0 >= j)
         ta = special ? s->t0 : 0.0, ua = special ? seg_u(s, ta) : s->U;
     else if (s->mline == m)
@@ -768,6 +768,10 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
         tb = ta, ub = ua;
     s->ta = ta, s->tb = tb;
     s->ua = ua, s->ub = ub;
+    if (p->curved && p->offset) { /* the band's ends kept apart (offset_keep) */
+        s->vt[2] = s->vt[0], s->vv[2] = s->vv[0], s->vt[3] = s->vt[1], s->vv[3] = s->vv[1];
+        s->vt[0] = s->vt[1] = NAN, s->vn = 0;
+    }
     s->lo = s->ua < s->ub ? s->ua : s->ub;
     s->hi = s->ua < s->ub ? s->ub : s->ua;
     if (s->te > ta && s->te < tb) {
@@ -846,7 +850,7 @@ static double part_area_curved(const ar_seg *s, double ta, double tb, double ua,
          * arc by quadrature with its bound (area_offset.c); v at the
          * ends as kept (offset_keep) */
         double v0 = offset_v_kept(s, ta), v1 = offset_v_kept(s, tb);
-        if (tb != s->vt[0] && tb != s->vt[1])
+        if (offset_slot(s, tb) < 0)
             offset_keep(s, tb, v1);
         *dy = v1 - v0;
         double sg = s->p->sg;

@@ -142,10 +142,11 @@ typedef struct ar_seg {
     /* tau and u on the line y = ja + mline (the bottom of the last band
      * rendered): the next band's top, without solving again */
     double tline, uline;
-    /* an offset piece: its v at up to two taus vt of the current band
-     * (NAN: none), the ends of its parts (seg_u, part_area); vn: the
-     * slot written next */
-    double vt[2], vv[2];
+    /* an offset piece: its v at up to four taus vt of the current band
+     * (NAN: none), the ends of its parts: [2] and [3] the band's ends as
+     * seg_make evaluated them, [0] and [1] the others (seg_u, part_area,
+     * the cells' sides' roots), vn the one of those written next */
+    double vt[4], vv[4];
     int vn;
     /* the current band */
     double V;
@@ -270,18 +271,31 @@ static inline double offset_v(const ar_seg *s, double t)
  * evaluated once for u and v together: seg_make and sweep take u at the
  * ends, part_area the chord's height from v there, and a part starts
  * where the last ended.  The value kept is the one offset_v gives (same
- * tau, same band), so the image is the same bit for bit.  The seg is the
- * worker's own, never shared: the memo is written through the const
- * pointers the row code passes (the object itself is not const). */
+ * tau, same band), but at a cell's side, where it is the root's own
+ * (offset_tau_u: the last long double evaluation of the root moved by
+ * its slope over the last step, within about 1e-22 of y'' of offset_v's
+ * at the root, and the same for both parts that end there).  The band's
+ * ends, which seg_make evaluated, stay in slots of their own (a walk
+ * across cells keeps its sides' roots in the others: each of its parts
+ * then finds both its ends).  The seg is the worker's own, never shared:
+ * the memo is written through the const pointers the row code passes
+ * (the object itself is not const). */
 static inline void offset_keep(const ar_seg *s, double t, double v)
 {
     ar_seg *w = (ar_seg *)s;
     w->vt[w->vn] = t, w->vv[w->vn] = v, w->vn ^= 1;
 }
 
+/* the slot of tau t in the memo, -1 if none */
+static inline int offset_slot(const ar_seg *s, double t)
+{
+    return t == s->vt[2] ? 2 : t == s->vt[3] ? 3 : t == s->vt[0] ? 0 : t == s->vt[1] ? 1 : -1;
+}
+
 static inline double offset_v_kept(const ar_seg *s, double t)
 {
-    return t == s->vt[0] ? s->vv[0] : (t == s->vt[1] ? s->vv[1] : offset_v(s, t));
+    int k = offset_slot(s, t);
+    return k >= 0 ? s->vv[k] : offset_v(s, t);
 }
 
 static inline double u_at(const ar_seg *s, double t)
@@ -387,6 +401,18 @@ static inline double offset_tau(const ar_seg *s, int coord, double a, double b, 
     double sg = s->p->sg;
     return sg * (double)aa__offset_solve_from(&s->p->src->oc, coord, sg * a, sg * b, fa, target,
                                               NAN);
+}
+
+/* offset_tau where x is target (a cell's side), keeping v there as the
+ * root gives it (offset_keep). */
+static inline double offset_tau_u(const ar_seg *s, double a, double b, double fa, double target)
+{
+    double sg = s->p->sg;
+    long double y;
+    double t = sg * (double)aa__offset_root(&s->p->src->oc, 0, sg * a, sg * b, fa, target, NAN,
+                                            &y, NULL);
+    offset_keep(s, t, (double)(y + s->V));
+    return t;
 }
 
 /* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
