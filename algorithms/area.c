@@ -750,9 +750,13 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
         s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = s->vt[2] = s->vt[3] = NAN, s->vn = 0;
     if (p->y0 >= j)
         ta = special ? s->t0 : 0.0, ua = special ? seg_u(s, ta) : s->U;
-    else if (s->mline == m)
+    else if (s->mline == m) {
         ta = s->tline, ua = s->uline;
-    else
+        /* an offset piece's v there from the y the band above kept: what
+         * offset_v would give, bit for bit (same y, same V) */
+        if (special && p->offset)
+            offset_keep(s, ta, (double)(s->yline + s->V));
+    } else
         ta = line_tau(s, m), ua = seg_u(s, ta);
     if (p->y1 <= j + 1.0) {
         tb = s->tend;
@@ -761,7 +765,7 @@ static int seg_make(ar_seg *s, const ar_piece *p, int j, int W)
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
         tb = line_tau(s, m + 1);
-        ub = seg_u(s, tb);
+        ub = special && p->offset ? offset_seg_u(s, tb, &s->yline) : seg_u(s, tb);
         s->mline = m + 1, s->tline = tb, s->uline = ub;
     }
     if (!(tb >= ta))

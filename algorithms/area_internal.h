@@ -142,6 +142,7 @@ typedef struct ar_seg {
     /* tau and u on the line y = ja + mline (the bottom of the last band
      * rendered): the next band's top, without solving again */
     double tline, uline;
+    long double yline; /* an offset piece's y there (its v in the next band) */
     /* an offset piece: its v at up to four taus vt of the current band
      * (NAN: none), the ends of its parts: [2] and [3] the band's ends as
      * seg_make evaluated them, [0] and [1] the others (seg_u, part_area,
@@ -312,15 +313,23 @@ static inline double u_at(const ar_seg *s, double t)
     return s->U + t * (s->g + t * (s->ax + t * s->cx3));
 }
 
+/* seg_u of an offset piece, giving its y there too (*y). */
+static inline double offset_seg_u(const ar_seg *s, double t, long double *y)
+{
+    long double X, Y;
+    aa__offset_eval_s(&s->p->src->oc, s->p->ostops, s->p->sg * t, &X, &Y, NULL, NULL);
+    offset_keep(s, t, (double)(Y + s->V));
+    *y = Y;
+    return (double)(X - s->c0);
+}
+
 /* u_at, keeping an offset piece's v there (offset_keep). */
 static inline double seg_u(const ar_seg *s, double t)
 {
     if (!s->p->curved || !s->p->offset) /* curved first: the common path's cache line */
         return u_at(s, t);
-    long double X, Y;
-    aa__offset_eval_s(&s->p->src->oc, s->p->ostops, s->p->sg * t, &X, &Y, NULL, NULL);
-    offset_keep(s, t, (double)(Y + s->V));
-    return (double)(X - s->c0);
+    long double y;
+    return offset_seg_u(s, t, &y);
 }
 
 /* A cubic's root of c + tau (k1 + tau (k2 + tau k3)) in [a, b], where it
