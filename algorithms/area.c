@@ -138,20 +138,24 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 5.0 in CPU time (medians of
- * three runs on the shared machine at a load of 4; area 68 to 71 ms,
- * point 13.6 to 14.3 ms), 4.45 by instructions (callgrind: area 486 M
- * a render, point 109 M): the crossings' root-finding (Newton on the
- * curve; the band lines' y at an offset piece's bottom evaluated once a
- * piece, aa__offset_end) is 31% of area's instructions (the band lines'
- * half of it), the quadrature 20%,
- * the meetings of pieces in a cluster 16% (aa__piece_meet_at, given the
+ * (tests/bench_bezstroke.c), area/point 4.18 by instructions (callgrind:
+ * area 453 M a render, point 108 M), in CPU time 4.9 to 5.3 (three runs
+ * on the shared machine at a load of 14; area 93 to 100 ms, point 17.9
+ * to 19.1 ms): the crossings' root-finding (Newton on the curve; the band
+ * lines' y at an offset piece's bottom evaluated once a piece,
+ * aa__offset_end) is 27% of area's instructions (the band lines' half of
+ * it), the quadrature 21%,
+ * the meetings of pieces in a cluster 17% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
  * by their slopes, scene_piece.c; polishing a meeting 6%), sorting 5%.
  * Each end of a part is evaluated once, for u and v together (seg_u,
- * part_area: the seg's memo of v).  Not yet within the factor of 2 of
- * other scenes (algorithms/README.md says where the time goes).
+ * part_area: the seg's memo of v, offset_keep), and some not at all: a
+ * band's top takes v from the y its line's root had as the band above's
+ * bottom, and a cell's side from its root's last evaluation (123 k long
+ * double evaluations a render where there were 216 k).  Not yet within
+ * the factor of 2 of other scenes (algorithms/README.md says where the
+ * time goes).
  *
  * Translucent layers, groups of opacity, clips.  In such a scene the colour
  * at a point is the layers covering it composited back to front in
