@@ -1239,7 +1239,7 @@ static void order_mid(const ar_row *r, const ar_key *in, size_t n, int lo, ar_ke
 {
     for (size_t k = 0; k < n; k++) {
         const ar_seg *s = &r->wk->seg[in[k].idx];
-        keys[k].key = (double)(s->c0 - lo) + u_at(s, tau_of_v(s, 0.5));
+        keys[k].key = (double)(s->c0 - lo) + key_u(s, 0.5);
         keys[k].id = in[k].id;
         keys[k].idx = in[k].idx;
     }
@@ -1368,7 +1368,7 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
                 const ar_seg *s = &wk->seg[keys[k].idx];
                 if (s->p->flat || !(s->va <= ya && s->vb >= yb))
                     continue;
-                list[m].key = (double)(s->c0 - lo) + u_at(s, tau_of_v(s, vm));
+                list[m].key = (double)(s->c0 - lo) + key_u(s, vm);
                 list[m].id = keys[k].id;
                 list[m++].idx = keys[k].idx;
             }

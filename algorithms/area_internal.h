@@ -452,6 +452,21 @@ static inline double tau_of_v(const ar_seg *s, double v)
     return solve_v(s, v);
 }
 
+/* u where v(tau) = v in the band, for an order's key: an offset piece's
+ * from its root's last evaluation moved by its slope over the last step
+ * (aa__offset_root's other coordinate, within about 1e-22 of x'' of the
+ * root's own x), not a second evaluation. */
+static inline double key_u(const ar_seg *s, double v)
+{
+    if (!(s->p->curved && s->p->offset) || v <= s->va || v >= s->vb)
+        return u_at(s, tau_of_v(s, v));
+    double sg = s->p->sg;
+    long double x;
+    aa__offset_root(&s->p->src->oc, 1, sg * s->ta, sg * s->tb, s->va - v, v - s->V, NAN, &x,
+                    NULL);
+    return (double)(x - s->c0);
+}
+
 /* Rounding may step just outside [0, 1]. */
 static inline double clamp01(double v)
 {
