@@ -138,11 +138,11 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 4.18 by instructions (callgrind:
- * area 453 M a render, point 108 M), in CPU time 4.9 to 5.3 (three runs
- * on the shared machine at a load of 14; area 93 to 100 ms, point 17.9
- * to 19.1 ms): the crossings' root-finding (Newton on the curve; the band
- * lines' y at an offset piece's bottom evaluated once a piece,
+ * (tests/bench_bezstroke.c), area/point 4.15 by instructions (callgrind:
+ * area 449 M a render, point 108 M), in CPU time 5.2 to 5.5 (three runs
+ * on the shared machine at a load of 12 to 13; area 92 to 95 ms, point
+ * 17.4 to 17.9 ms): the crossings' root-finding (Newton on the curve; the
+ * band lines' y at an offset piece's bottom evaluated once a piece,
  * aa__offset_end) is 27% of area's instructions (the band lines' half of
  * it), the quadrature 21%,
  * the meetings of pieces in a cluster 17% (aa__piece_meet_at, given the
@@ -152,8 +152,9 @@
  * Each end of a part is evaluated once, for u and v together (seg_u,
  * part_area: the seg's memo of v, offset_keep), and some not at all: a
  * band's top takes v from the y its line's root had as the band above's
- * bottom, and a cell's side from its root's last evaluation (123 k long
- * double evaluations a render where there were 216 k).  Not yet within
+ * bottom, and a cell's side (and an order's key its u) from its root's
+ * last evaluation (105 k long double evaluations a render where there
+ * were 216 k).  Not yet within
  * the factor of 2 of other scenes (algorithms/README.md says where the
  * time goes).
  *
