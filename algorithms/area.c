@@ -138,20 +138,25 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 5.0 in CPU time (medians of
- * three runs on the shared machine at a load of 4; area 68 to 71 ms,
- * point 13.6 to 14.3 ms), 4.45 by instructions (callgrind: area 486 M
- * a render, point 109 M): the crossings' root-finding (Newton on the
- * curve; the band lines' y at an offset piece's bottom evaluated once a
- * piece, aa__offset_end) is 31% of area's instructions (the band lines'
- * half of it), the quadrature 20%,
- * the meetings of pieces in a cluster 16% (aa__piece_meet_at, given the
+ * (tests/bench_bezstroke.c), area/point 4.15 by instructions (callgrind:
+ * area 449 M a render, point 108 M), in CPU time 5.2 to 5.5 (three runs
+ * on the shared machine at a load of 12 to 13; area 92 to 95 ms, point
+ * 17.4 to 17.9 ms): the crossings' root-finding (Newton on the curve; the
+ * band lines' y at an offset piece's bottom evaluated once a piece,
+ * aa__offset_end) is 27% of area's instructions (the band lines' half of
+ * it), the quadrature 21%,
+ * the meetings of pieces in a cluster 17% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
  * by their slopes, scene_piece.c; polishing a meeting 6%), sorting 5%.
  * Each end of a part is evaluated once, for u and v together (seg_u,
- * part_area: the seg's memo of v).  Not yet within the factor of 2 of
- * other scenes (algorithms/README.md says where the time goes).
+ * part_area: the seg's memo of v, offset_keep), and some not at all: a
+ * band's top takes v from the y its line's root had as the band above's
+ * bottom, and a cell's side (and an order's key its u) from its root's
+ * last evaluation (105 k long double evaluations a render where there
+ * were 216 k).  Not yet within
+ * the factor of 2 of other scenes (algorithms/README.md says where the
+ * time goes).
  *
  * Translucent layers, groups of opacity, clips.  In such a scene the colour
  * at a point is the layers covering it composited back to front in
@@ -313,7 +318,7 @@ static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo
                                  double ul, double uh)
 {
     if (s->p->offset) /* x = c0 + k */
-        return offset_tau(s, 0, lo, hi, ul - k, (double)s->c0 + k);
+        return offset_tau_u(s, lo, hi, ul - k, (double)s->c0 + k);
     /* the guess: the chord from lo to hi (ul, uh: u there) */
     double g = uh != ul ? lo + (hi - lo) * ((k - ul) / (uh - ul)) : 0.5 * (lo + hi);
     if (sg > 0.0)
@@ -579,7 +584,7 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     if (p->y0 < ja)
         t = (double)aa__offset_solve_end(&q->oc, 1, q->ot0, q->ot1, p->y0 - ja, ja, p->oend);
     long double X, Y;
-    aa__offset_eval(&q->oc, t, &X, &Y, NULL, NULL);
+    aa__offset_eval_s(&q->oc, p->ostops, t, &X, &Y, NULL, NULL);
     double c0 = floor((double)X);
     c0 = c0 < -CELL_LIMIT ? -CELL_LIMIT : (c0 > CELL_LIMIT ? CELL_LIMIT : c0);
     a->p = p;
@@ -776,12 +781,16 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     int curved = !plain && p->curved;
     int special = curved && (p->conic || p->offset);
     if (curved && p->offset) /* part_area's v, none kept yet */
-        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = NAN, s->vn = 0;
+        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = s->vt[2] = s->vt[3] = NAN, s->vn = 0;
     if (p->y0 >= j)
         ta = special ? s->t0 : 0.0, ua = special ? seg_u(s, ta) : s->U;
-    else if (s->mline == m)
+    else if (s->mline == m) {
         ta = s->tline, ua = s->uline;
-    else if (plain)
+        /* an offset piece's v there from the y the band above kept: what
+         * offset_v would give, bit for bit (same y, same V) */
+        if (special && p->offset)
+            offset_keep(s, ta, (double)(s->yline + s->V));
+    } else if (plain)
         ta = line_tau_quad(s, m), ua = u_quad(s, ta);
     else
         ta = line_tau(s, m), ua = seg_u(s, ta);
@@ -792,13 +801,19 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
         tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
-        ub = plain ? u_quad(s, tb) : seg_u(s, tb);
+        ub = plain                      ? u_quad(s, tb)
+             : special && p->offset ? offset_seg_u(s, tb, &s->yline)
+                                    : seg_u(s, tb);
         s->mline = m + 1, s->tline = tb, s->uline = ub;
     }
     if (!(tb >= ta))
         tb = ta, ub = ua;
     s->ta = ta, s->tb = tb;
     s->ua = ua, s->ub = ub;
+    if (curved && p->offset) { /* the band's ends kept apart (offset_keep) */
+        s->vt[2] = s->vt[0], s->vv[2] = s->vv[0], s->vt[3] = s->vt[1], s->vv[3] = s->vv[1];
+        s->vt[0] = s->vt[1] = NAN, s->vn = 0;
+    }
     s->lo = s->ua < s->ub ? s->ua : s->ub;
     s->hi = s->ua < s->ub ? s->ub : s->ua;
     if (s->te > ta && s->te < tb) {
@@ -884,7 +899,7 @@ static double part_area_curved(const ar_seg *s, double ta, double tb, double ua,
          * arc by quadrature with its bound (area_offset.c); v at the
          * ends as kept (offset_keep) */
         double v0 = offset_v_kept(s, ta), v1 = offset_v_kept(s, tb);
-        if (tb != s->vt[0] && tb != s->vt[1])
+        if (offset_slot(s, tb) < 0)
             offset_keep(s, tb, v1);
         *dy = v1 - v0;
         double sg = s->p->sg;
@@ -1265,7 +1280,7 @@ static void order_mid(const ar_row *r, const ar_key *in, size_t n, int lo, ar_ke
 {
     for (size_t k = 0; k < n; k++) {
         const ar_seg *s = &r->wk->seg[in[k].idx];
-        keys[k].key = (double)(s->c0 - lo) + u_at(s, tau_of_v(s, 0.5));
+        keys[k].key = (double)(s->c0 - lo) + key_u(s, 0.5);
         keys[k].id = in[k].id;
         keys[k].idx = in[k].idx;
     }
@@ -1394,7 +1409,7 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
                 const ar_seg *s = &wk->seg[keys[k].idx];
                 if (s->p->flat || !(s->va <= ya && s->vb >= yb))
                     continue;
-                list[m].key = (double)(s->c0 - lo) + u_at(s, tau_of_v(s, vm));
+                list[m].key = (double)(s->c0 - lo) + key_u(s, vm);
                 list[m].id = keys[k].id;
                 list[m++].idx = keys[k].idx;
             }
@@ -1872,6 +1887,7 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
     q->offset = 1;
     q->sg = p->ot1 > p->ot0 ? 1.0 : -1.0;
     aa__offset_end(&p->oc, 1, p->ot1, q->oend);
+    q->ostops = aa__offset_stops(&p->oc);
     double ts[2];
     int n = aa__offset_turns(&p->oc, 0, fmin(p->ot0, p->ot1), fmax(p->ot0, p->ot1), ts);
     q->ote = q->ote2 = INFINITY;

@@ -102,7 +102,7 @@ typedef struct ar_piece {
      * them, state-owned) and the rules (area_offset.c); oend: y's
      * evaluation at its bottom ot1 (aa__offset_end), which every band
      * line's root would repeat */
-    int offset;
+    int offset, ostops; /* ostops: its curve's stops (aa__offset_stops) */
     double sg, ote, ote2;
     double oend[4];
     const ar_panel *pan;
@@ -142,10 +142,12 @@ typedef struct ar_seg {
     /* tau and u on the line y = ja + mline (the bottom of the last band
      * rendered): the next band's top, without solving again */
     double tline, uline;
-    /* an offset piece: its v at up to two taus vt of the current band
-     * (NAN: none), the ends of its parts (seg_u, part_area); vn: the
-     * slot written next */
-    double vt[2], vv[2];
+    long double yline; /* an offset piece's y there (its v in the next band) */
+    /* an offset piece: its v at up to four taus vt of the current band
+     * (NAN: none), the ends of its parts: [2] and [3] the band's ends as
+     * seg_make evaluated them, [0] and [1] the others (seg_u, part_area,
+     * the cells' sides' roots), vn the one of those written next */
+    double vt[4], vv[4];
     int vn;
     /* the current band */
     double V;
@@ -269,7 +271,7 @@ static inline const double *colour_of(const ar_state *S, ar_worker *wk, const in
 static inline double offset_v(const ar_seg *s, double t)
 {
     long double X, Y;
-    aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
+    aa__offset_eval_s(&s->p->src->oc, s->p->ostops, s->p->sg * t, &X, &Y, NULL, NULL);
     return (double)(Y + s->V);
 }
 
@@ -277,18 +279,31 @@ static inline double offset_v(const ar_seg *s, double t)
  * evaluated once for u and v together: seg_make and sweep take u at the
  * ends, part_area the chord's height from v there, and a part starts
  * where the last ended.  The value kept is the one offset_v gives (same
- * tau, same band), so the image is the same bit for bit.  The seg is the
- * worker's own, never shared: the memo is written through the const
- * pointers the row code passes (the object itself is not const). */
+ * tau, same band), but at a cell's side, where it is the root's own
+ * (offset_tau_u: the last long double evaluation of the root moved by
+ * its slope over the last step, within about 1e-22 of y'' of offset_v's
+ * at the root, and the same for both parts that end there).  The band's
+ * ends, which seg_make evaluated, stay in slots of their own (a walk
+ * across cells keeps its sides' roots in the others: each of its parts
+ * then finds both its ends).  The seg is the worker's own, never shared:
+ * the memo is written through the const pointers the row code passes
+ * (the object itself is not const). */
 static inline void offset_keep(const ar_seg *s, double t, double v)
 {
     ar_seg *w = (ar_seg *)s;
     w->vt[w->vn] = t, w->vv[w->vn] = v, w->vn ^= 1;
 }
 
+/* the slot of tau t in the memo, -1 if none */
+static inline int offset_slot(const ar_seg *s, double t)
+{
+    return t == s->vt[2] ? 2 : t == s->vt[3] ? 3 : t == s->vt[0] ? 0 : t == s->vt[1] ? 1 : -1;
+}
+
 static inline double offset_v_kept(const ar_seg *s, double t)
 {
-    return t == s->vt[0] ? s->vv[0] : (t == s->vt[1] ? s->vv[1] : offset_v(s, t));
+    int k = offset_slot(s, t);
+    return k >= 0 ? s->vv[k] : offset_v(s, t);
 }
 
 /* u at tau on a line or a quadratic (cx3 = 0): u_at's common case, which
@@ -305,7 +320,7 @@ static inline double u_at(const ar_seg *s, double t)
         return u_quad(s, t);
     if (s->p->offset) {
         long double X, Y;
-        aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
+        aa__offset_eval_s(&s->p->src->oc, s->p->ostops, s->p->sg * t, &X, &Y, NULL, NULL);
         return (double)(X - s->c0);
     }
     if (s->p->conic) /* sin tau = 2q/(1 + q^2), 1 - cos tau = 2q^2/(1 + q^2) */
@@ -313,15 +328,23 @@ static inline double u_at(const ar_seg *s, double t)
     return s->U + t * (s->g + t * (s->ax + t * s->cx3));
 }
 
+/* seg_u of an offset piece, giving its y there too (*y). */
+static inline double offset_seg_u(const ar_seg *s, double t, long double *y)
+{
+    long double X, Y;
+    aa__offset_eval_s(&s->p->src->oc, s->p->ostops, s->p->sg * t, &X, &Y, NULL, NULL);
+    offset_keep(s, t, (double)(Y + s->V));
+    *y = Y;
+    return (double)(X - s->c0);
+}
+
 /* u_at, keeping an offset piece's v there (offset_keep). */
 static inline double seg_u(const ar_seg *s, double t)
 {
     if (!s->p->curved || !s->p->offset) /* curved first: the common path's cache line */
         return u_at(s, t);
-    long double X, Y;
-    aa__offset_eval(&s->p->src->oc, s->p->sg * t, &X, &Y, NULL, NULL);
-    offset_keep(s, t, (double)(Y + s->V));
-    return (double)(X - s->c0);
+    long double y;
+    return offset_seg_u(s, t, &y);
 }
 
 /* A cubic's root of c + tau (k1 + tau (k2 + tau k3)) in [a, b], where it
@@ -404,6 +427,18 @@ static inline double offset_tau(const ar_seg *s, int coord, double a, double b, 
                                               NAN);
 }
 
+/* offset_tau where x is target (a cell's side), keeping v there as the
+ * root gives it (offset_keep). */
+static inline double offset_tau_u(const ar_seg *s, double a, double b, double fa, double target)
+{
+    double sg = s->p->sg;
+    long double y;
+    double t = sg * (double)aa__offset_root(&s->p->src->oc, 0, sg * a, sg * b, fa, target, NAN,
+                                            &y, NULL);
+    offset_keep(s, t, (double)(y + s->V));
+    return t;
+}
+
 /* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),
  * in the cancellation-free form. */
 static inline double solve_v(const ar_seg *s, double v)
@@ -430,6 +465,21 @@ static inline double tau_of_v(const ar_seg *s, double v)
     if (v >= s->vb)
         return s->tb;
     return solve_v(s, v);
+}
+
+/* u where v(tau) = v in the band, for an order's key: an offset piece's
+ * from its root's last evaluation moved by its slope over the last step
+ * (aa__offset_root's other coordinate, within about 1e-22 of x'' of the
+ * root's own x), not a second evaluation. */
+static inline double key_u(const ar_seg *s, double v)
+{
+    if (!(s->p->curved && s->p->offset) || v <= s->va || v >= s->vb)
+        return u_at(s, tau_of_v(s, v));
+    double sg = s->p->sg;
+    long double x;
+    aa__offset_root(&s->p->src->oc, 1, sg * s->ta, sg * s->tb, s->va - v, v - s->V, NAN, &x,
+                    NULL);
+    return (double)(x - s->c0);
 }
 
 /* Rounding may step just outside [0, 1]. */

@@ -289,11 +289,64 @@ static void test_root(void **state)
     assert_true(fabsl(X - other) <= 1e-12L);
 }
 
+/* aa__offset_eval_s given aa__offset_stops (the curve's stops found once)
+ * against aa__offset_eval, which asks aa__offset_stop at every evaluation:
+ * the same point and derivative, bit for bit, and the same point without
+ * the derivative.  The stops expected by construction: a cubic whose
+ * first control point lies on its start has B'(0) = 0 (bit 0), one whose
+ * last lies on its end B'(1) = 0 (bit 1), as test_root's cubic's (B'(1) =
+ * (0.9 - 1.8 + 0.9, 0.9 - 0.9)); a cubic without and an ellipse have
+ * none. */
+static void test_stops(void **state)
+{
+    (void)state;
+    /* power basis x: b[0..3], y: b[4..7]; P0 = P1 = (0, 0), P2 = (1, 1),
+     * P3 = (2, 0); the same reversed; test_root's cubic; P = (0, 0), (1,
+     * 2), (2, -1), (3, 0); an ellipse (centre, u, v) */
+    static const double bs[5][8] = {{0, 0, 3, -1, 0, 0, 3, -3},
+                                    {2, -3, 0, 1, 0, 3, -6, 3},
+                                    {0x1.999999999999ap-3, 0x1.cccccccccccc9p-1,
+                                     -0x1.cccccccccccc5p-1, 0x1.333333333332bp-2, 0x1p-2,
+                                     0x1.cccccccccccc8p-1, -0x1.cccccccccccc3p-2, 0},
+                                    {0, 3, 0, 0, 0, 6, -15, 9},
+                                    {0.5, 0.5, 0.3, 0.1, -0.05, 0.2, 0, 0}};
+    static const int want[5] = {1, 2, 2, 0, 0};
+    static const double maps[2][6] = {{64, 0, 0, 64, 0, 0}, {64, 5, -7, 60, 3, 2}};
+    for (int c = 0; c < 5; c++)
+        for (int e = 0; e < 2; e++)
+            for (int k = 0; k < 2; k++) {
+                aa_offset_curve oc;
+                memset(&oc, 0, sizeof oc);
+                memcpy(oc.b, bs[c], sizeof oc.b);
+                memcpy(oc.m, maps[k], sizeof oc.m);
+                oc.d = 0.1;
+                oc.evolute = e;
+                oc.base = c == 4 ? AA_OFFSET_ELLIPSE : AA_OFFSET_CUBIC;
+                int stops = aa__offset_stops(&oc);
+                double te, q[4];
+                assert_int_equal(stops, want[c]);
+                assert_int_equal(stops & 1, aa__offset_stop(&oc, 0.25, &te, q));
+                assert_int_equal(stops >> 1, aa__offset_stop(&oc, 0.75, &te, q));
+                for (int i = 0; i <= 66; i++) {
+                    long double t = i <= 64 ? i / 64.0L : (i == 65 ? 0.5L - 0x1p-40L : 0x1p-30L);
+                    if (c < 4 && e && (t == 0 || t == 1))
+                        continue; /* an evolute's point at a stop is 0/0 in the plain form */
+                    long double x0, y0, dx0, dy0, x1, y1, dx1, dy1, x2, y2;
+                    aa__offset_eval(&oc, t, &x0, &y0, &dx0, &dy0);
+                    aa__offset_eval_s(&oc, stops, t, &x1, &y1, &dx1, &dy1);
+                    aa__offset_eval_s(&oc, stops, t, &x2, &y2, NULL, NULL);
+                    assert_true(x0 == x1 && y0 == y1 && dx0 == dx1 && dy0 == dy1);
+                    assert_true(x0 == x2 && y0 == y2);
+                }
+            }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
                                        cmocka_unit_test(test_tube),
                                        cmocka_unit_test(test_meetings),
-                                       cmocka_unit_test(test_root)};
+                                       cmocka_unit_test(test_root),
+                                       cmocka_unit_test(test_stops)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -734,6 +734,13 @@ const char *aa_cache_dir_default(void);
  * wanted), in long double. */
 void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
                      long double *dx, long double *dy);
+/* Which ends of oc are stops (aa__offset_stop's test there, once: bit 0
+ * at t = 0, bit 1 at t = 1; 0 for an ellipse), and aa__offset_eval given
+ * them (a caller that evaluates one curve many times): the same values,
+ * bit for bit. */
+int aa__offset_stops(const aa_offset_curve *oc);
+void aa__offset_eval_s(const aa_offset_curve *oc, int stops, long double t, long double *x,
+                       long double *y, long double *dx, long double *dy);
 /* The parameters in (lo, hi) (ascending, at most 2) where coordinate coord
  * (0 x, 1 y) of oc turns, on a part without folds (an offset) or extremes
  * of the curvature (an evolute): in closed form. */

@@ -166,32 +166,42 @@ static void stop_eval(const aa_offset_curve *oc, long double t, double te, const
     }
 }
 
-void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
-                     long double *dx, long double *dy)
+/* aa__offset_eval given stop_ends' bits (stops): an evaluation asks
+ * offset_stop only where the bit of its half of [0, 1] is set (the same
+ * test in the same arithmetic, so the same answer), and the curvature
+ * only where the derivative is wanted (the roots' long double phase; not
+ * the parts' ends, which take the point alone). */
+static inline void offset_eval(const aa_offset_curve *oc, int stops, long double t,
+                               long double *x, long double *y, long double *dx, long double *dy)
 {
     const double *m = oc->m;
-    long double B[2], U[2], V[2], W[2];
-    base_eval(oc, t, B, U, V, W);
-    long double ux = U[0], uy = U[1], vx = V[0], vy = V[1];
-    long double L = sqrtl(ux * ux + uy * uy), c = ux * vy - uy * vx;
-    long double px, py, qx, qy; /* the point and its derivative, unmapped */
+    long double px, py, qx = 0, qy = 0; /* the point and its derivative, unmapped */
     double te, q[4];
-    if (offset_stop(oc, (double)t, &te, q)) {
+    if ((stops & ((double)t < 0.5 ? 1 : 2)) && offset_stop(oc, (double)t, &te, q)) {
         stop_eval(oc, t, te, q, &px, &py, &qx, &qy);
-    } else if (!oc->evolute) {
-        long double k = c / (L * L * L), f = 1 - oc->d * k;
-        px = B[0] - oc->d * uy / L;
-        py = B[1] + oc->d * ux / L;
-        qx = ux * f;
-        qy = uy * f;
     } else {
-        long double cp = ux * W[1] - uy * W[0], dot = ux * vx + uy * vy, L2 = L * L;
-        long double r = L2 * L / c; /* 1/k */
-        long double rp = L * (3 * dot * c - L2 * cp) / (c * c);
-        px = B[0] - r * uy / L;
-        py = B[1] + r * ux / L;
-        qx = -rp * uy / L;
-        qy = rp * ux / L;
+        long double B[2], U[2], V[2], W[2];
+        base_eval(oc, t, B, U, V, W);
+        long double ux = U[0], uy = U[1], vx = V[0], vy = V[1];
+        long double L = sqrtl(ux * ux + uy * uy);
+        if (!oc->evolute) {
+            px = B[0] - oc->d * uy / L;
+            py = B[1] + oc->d * ux / L;
+            if (dx || dy) {
+                long double c = ux * vy - uy * vx, k = c / (L * L * L), f = 1 - oc->d * k;
+                qx = ux * f;
+                qy = uy * f;
+            }
+        } else {
+            long double c = ux * vy - uy * vx;
+            long double cp = ux * W[1] - uy * W[0], dot = ux * vx + uy * vy, L2 = L * L;
+            long double r = L2 * L / c; /* 1/k */
+            long double rp = L * (3 * dot * c - L2 * cp) / (c * c);
+            px = B[0] - r * uy / L;
+            py = B[1] + r * ux / L;
+            qx = -rp * uy / L;
+            qy = rp * ux / L;
+        }
     }
     *x = m[0] * px + m[2] * py + m[4];
     *y = m[1] * px + m[3] * py + m[5];
@@ -199,6 +209,23 @@ void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, l
         *dx = m[0] * qx + m[2] * qy;
     if (dy)
         *dy = m[1] * qx + m[3] * qy;
+}
+
+void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
+                     long double *dx, long double *dy)
+{
+    offset_eval(oc, STOP_ASK, t, x, y, dx, dy);
+}
+
+int aa__offset_stops(const aa_offset_curve *oc)
+{
+    return stop_ends(oc);
+}
+
+void aa__offset_eval_s(const aa_offset_curve *oc, int stops, long double t, long double *x,
+                       long double *y, long double *dx, long double *dy)
+{
+    offset_eval(oc, stops, t, x, y, dx, dy);
 }
 
 /* Coordinate coord of oc at t as the base curve's mapped coordinate
@@ -233,7 +260,7 @@ static inline void eval_parts(const aa_offset_curve *oc, int coord, double t, in
         return;
     }
     const double *b = oc->b;
-    double r0 = oc->m[coord], r1 = oc->m[2 + coord], bx, by, ux, uy, vx, vy, cp;
+    double r0 = oc->m[coord], r1 = oc->m[2 + coord], bx, by, ux, uy, vx, vy, cp = 0.0;
     if (oc->base == AA_OFFSET_ELLIPSE) {
         /* B, B', B'' from cos t and sin t in double (each within an ulp),
          * B''' = -B': c' = B' x B''' = 0 */
@@ -246,7 +273,8 @@ static inline void eval_parts(const aa_offset_curve *oc, int coord, double t, in
         by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
         ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
         vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
-        cp = ux * 6 * b[7] - uy * 6 * b[3];
+        if (oc->evolute) /* c' only there */
+            cp = ux * 6 * b[7] - uy * 6 * b[3];
     }
     double c = ux * vy - uy * vx, L2 = ux * ux + uy * uy, w = r1 * ux - r0 * uy;
     *base0 = r0 * bx + r1 * by + oc->m[4 + coord];
@@ -394,12 +422,12 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * any bracket of the parameter (a few units wide) to reach two adjacent
  * long doubles, 64 halvings and more */
 #define ROOT_LD_STEPS 200
-static double solve_double(const aa_offset_curve *oc, int coord, double a, double b, double fa,
-                           double tgt, double guess, double tol, const double *endb, double *pa,
-                           double *pb, double *last)
+static double solve_double(const aa_offset_curve *oc, int coord, int stops, double a, double b,
+                           double fa, double tgt, double guess, double tol, const double *endb,
+                           double *pa, double *pb, double *last)
 {
     const double *c = oc->b;
-    int neg = fa < 0, stops = stop_ends(oc);
+    int neg = fa < 0;
     double t = 0.5 * (a + b), prev = fabs(b - a), f, df, dn;
     /* the terms' size: a cubic's x and y coefficients, an ellipse's
      * centre and semi-diameters (x in c[0], c[2], c[4], y in the others) */
@@ -488,7 +516,8 @@ double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, doubl
     double a, b, last;
     if (fa == 0)
         return ta;
-    return solve_double(oc, coord, ta, tb, fa, target, NAN, SOLVE_D_STEP, NULL, &a, &b, &last);
+    return solve_double(oc, coord, stop_ends(oc), ta, tb, fa, target, NAN, SOLVE_D_STEP, NULL, &a,
+                        &b, &last);
 }
 
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
@@ -541,11 +570,11 @@ static long double offset_root(const aa_offset_curve *oc, int coord, long double
      * that), and at |h| <= 1e-11 (t is in [0, 1]) about 1e-22 of that
      * second derivative. */
     long double X, Y, DX = 0, DY = 0, lt = ta;
-    int neg = fa < 0;
+    int neg = fa < 0, stops = stop_ends(oc); /* asked once a root */
     if (fa == 0)
         goto at_lt;
     double a, b, h1;
-    lt = solve_double(oc, coord, (double)ta, (double)tb, (double)fa, (double)target, guess,
+    lt = solve_double(oc, coord, stops, (double)ta, (double)tb, (double)fa, (double)target, guess,
                       ROOT_D_STEP, endb, &a, &b, &h1);
     /* long double: the bracket is the caller's, [ta, tb], not what the
      * double phase left: the signs that shrank it are double's, wrong
@@ -559,7 +588,7 @@ static long double offset_root(const aa_offset_curve *oc, int coord, long double
      * turn, where Newton's steps left the bracket and the halvings had
      * not yet closed it) */
     for (int it = 0; it < ROOT_LD_STEPS; it++) {
-        aa__offset_eval(oc, lt, &X, &Y, &DX, &DY);
+        offset_eval(oc, stops, lt, &X, &Y, &DX, &DY);
         long double f = (coord ? Y : X) - target, df = coord ? DY : DX;
         if (f == 0)
             goto done;
@@ -595,7 +624,7 @@ static long double offset_root(const aa_offset_curve *oc, int coord, long double
 at_lt: /* lt not evaluated yet */
     if (!other && !slope)
         return lt;
-    aa__offset_eval(oc, lt, &X, &Y, &DX, &DY);
+    offset_eval(oc, stops, lt, &X, &Y, &DX, &DY);
 done: /* lt evaluated */
     if (other)
         *other = coord ? X : Y;
