@@ -40,12 +40,6 @@
 static const char *const filters[] = {"radial:k=1,r=1", "radial", "radial:k=3,r=2.3",
                                       "radial:k=2,r=0.6", NULL};
 
-/* arcs.svg under the radius 2.3 takes minutes in the visible parts'
- * search for where two of its arcs meet (visible.c; the same under
- * tent:r=2.3): a smaller radius there. */
-static const char *const arc_filters[] = {"radial:k=1,r=1", "radial", "radial:k=3,r=1.8",
-                                          "radial:k=2,r=0.6", NULL};
-
 /* analytic within 1e-12 of the reference on s (pattern units) at w x h
  * under every filter of the list, at 1 and 2 threads. */
 static void against(const char *what, const aa_scene *s, int w, int h,
@@ -201,7 +195,7 @@ static void test_arcs(void **state)
 {
     (void)state;
     aa_scene *s = svg_at("arcs", 20);
-    against("arcs.svg", s, 20, 20, arc_filters);
+    against_reference("arcs.svg", s, 20, 20);
     aa_scene_free(s);
     const int n = 13;
     const double frac[] = {0.2, 0.5, 0.77, 0.999, 1.4};

@@ -278,6 +278,60 @@ static void test_arc_refusals_and_transform(void **state)
     aa_scene_free(c);
 }
 
+/* A crescent: the upper half of the circle of centre (4.4, 16) and radius
+ * 2.4 from (2, 16) to (6.8, 16), back along the upper half of the ellipse
+ * of the same centre and semi-axes 2.4 and 1.6 (arcs.svg's first `A` and
+ * `a` path placed on 20 x 20 pixels).  The two meet only at their common
+ * end points: with X = x - 4.4, Y = y - 16, X^2 + Y^2 = 2.4^2 and
+ * X^2/2.4^2 + Y^2/1.6^2 = 1 give Y^2 (1 - 2.4^2/1.6^2) = 0, Y = 0.  Near
+ * the ends they are tangent (both vertical), their x apart by about 0.26
+ * Y^2, within rounding of each other for |Y| below about 1e-7.  So no
+ * band strictly above y = 16, wherever it stops short of it, holds a
+ * meeting of the circle's and the ellipse's pieces on one side. */
+static void test_crescent_meetings(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new(black);
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 2.0, 16.0), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, 4.4, 16.0, -2.4, 0, 0, -2.4, 0, M_PI, 6.8, 16.0), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, 4.4, 16.0, 2.4, 0, 0, -1.6, 0, M_PI, 2.0, 16.0), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    size_t n;
+    const aa_piece *p = aa_scene_pieces(s, &n);
+    int pairs = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = i + 1; j < n; j++) {
+            const aa_piece *a = &p[i], *b = &p[j];
+            /* the circle's and the ellipse's pieces on one side: both end
+             * at y = 16 at one point */
+            if (a->kind != AA_PIECE_CONIC || b->kind != AA_PIECE_CONIC || a->y1 != 16.0 ||
+                b->y1 != 16.0 || fabs(a->x1 - b->x1) > 1e-12 || a->er == b->er)
+                continue;
+            pairs++;
+            double lo = fmax(a->y0, b->y0);
+            for (int k = 0; k <= 40; k++) {
+                /* cut at 16 - 2^-k, 1 down to about 1e-12 below the end */
+                double cut = 16.0 - ldexp(1.0, -k), ys[4];
+                int m1 = aa_piece_meet(a, b, lo, cut, ys, 4);
+                if (m1 != 0)
+                    fail_msg("pieces %zu, %zu over [%.17g, %.17g]: %d meetings, the first "
+                             "at %.17g; none exists",
+                             i, j, lo, cut, m1, ys[0]);
+                int m2 = aa_piece_meet(b, a, cut, 16.0, ys, 4);
+                if (m2 != 0)
+                    fail_msg("pieces %zu, %zu over [%.17g, 16]: %d meetings, the first at "
+                             "%.17g; none exists",
+                             j, i, cut, m2, ys[0]);
+            }
+        }
+    assert_int_equal(pairs, 2);
+    aa_scene_free(s);
+}
+
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_circle_pieces),
              cmocka_unit_test(test_rotated_ellipse_points), cmocka_unit_test(test_meet_x_and_lines),
-             cmocka_unit_test(test_arc_refusals_and_transform))
+             cmocka_unit_test(test_arc_refusals_and_transform),
+             cmocka_unit_test(test_crescent_meetings))

@@ -1,0 +1,81 @@
+/*
+ * test_analytic_wide.c: `analytic` on elliptical arcs under filters wider
+ * than a pixel and a half, where the window of the visible parts
+ * (algorithms/visible.c) takes in pairs of arcs that leave a common end
+ * point tangent to each other: arcs.svg's crescent (the upper halves of a
+ * circle and of an ellipse on one diameter) at 20 x 20 under tent:r=2.3,
+ * which took minutes in aa_piece_meet (harness/core/scene_piece.c,
+ * near_shared_end), under bspline:order=3 and mitchell, and at 64 x 64.
+ *
+ * Known answer, not the method's own: the exact reference of the
+ * harness's separate truth path (aa_truth_render, its own quadrature of
+ * the filter over the scene's rows), within 1e-12 per pixel and channel,
+ * at 1 and 2 threads (bit-identical).  The meeting itself is checked in
+ * tests/test_scene_conic.c (test_crescent_meetings: none inside any band,
+ * from the two ellipses' equations).
+ */
+#include "bench.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+static aa_scene *svg_at(const char *name, int n)
+{
+    char spec[128];
+    snprintf(spec, sizeof spec, "svg:file=patterns/svg/%s.svg", name);
+    aa_spec ps;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, n, n, &s))
+        fail_msg("pattern %s: %s", spec, aa_last_error());
+    return s;
+}
+
+/* analytic within 1e-12 of the reference on s at n x n under filter f, at
+ * 1 and 2 threads. */
+static void against(const char *what, const aa_scene *s, int n, const char *f)
+{
+    aa_image a, a1, r;
+    support_render("analytic", s, f, n, n, 2, &a, NULL);
+    support_render("analytic", s, f, n, n, 1, &a1, NULL);
+    support_reference(s, &(support_view){.w = n, .h = n, .filter = f, .threads = 2}, &r, NULL,
+                      NULL);
+    double worst = 0.0;
+    size_t m = (size_t)n * n * 3;
+    for (size_t k = 0; k < m; k++) {
+        double d = fabs(a.v[k] - r.v[k]);
+        if (!(d <= 1e-12))
+            fail_msg("%s %dx%d under %s: pixel (%zu, %zu) channel %zu: analytic %.17g, "
+                     "reference %.17g",
+                     what, n, n, f, k / 3 % (size_t)n, k / 3 / (size_t)n, k % 3, a.v[k], r.v[k]);
+        if (a.v[k] != a1.v[k])
+            fail_msg("%s under %s: 1 and 2 threads differ at %zu", what, f, k);
+        worst = fmax(worst, d);
+    }
+    print_message("%-10s %dx%-4d %-18s largest difference %.1e\n", what, n, n, f, worst);
+    aa_image_free(&a);
+    aa_image_free(&a1);
+    aa_image_free(&r);
+}
+
+static void test_arcs_wide(void **state)
+{
+    (void)state;
+    const char *const flist[] = {"tent:r=2.3", "bspline:order=3", "mitchell", NULL};
+    aa_scene *s = svg_at("arcs", 20);
+    for (const char *const *f = flist; *f; f++)
+        against("arcs.svg", s, 20, *f);
+    aa_scene_free(s);
+    s = svg_at("arcs", 64);
+    against("arcs.svg", s, 64, "tent:r=2.3");
+    aa_scene_free(s);
+}
+
+SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_arcs_wide))
