@@ -2,8 +2,9 @@
 # run-tests.sh: run test binaries and count what passed.
 #
 #   run-tests.sh one BUILD TEST      run one test binary; its output goes to
-#                                    TEST.log, its result (passed or failed)
-#                                    and wall time to TEST.result; prints one
+#                                    TEST.log, its result (passed or failed),
+#                                    wall time and user and system CPU time
+#                                    (seconds) to TEST.result; prints one
 #                                    line (and the log if it failed); exits 0
 #                                    either way
 #   run-tests.sh summary TEST...     the failed tests, then "N passed, N
@@ -42,18 +43,25 @@ one() {
     fi
     rm -f "$t.result"
     start=$(now)
-    if $run "$t" >"$t.log" 2>&1; then
-        result=passed
-    else
-        result=failed
-    fi
+    # the test in a subshell whose `times` (its children's user and system
+    # CPU: the test and every process it waited for) follows its status;
+    # CPU time is what a busy machine inflates least
+    out=$( { $run "$t" >"$t.log" 2>&1; echo "$?"; times; } )
+    result=failed
+    [ "${out%%[!0-9]*}" = 0 ] && result=passed
     seconds=$(awk -v a="$start" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }')
-    echo "$result $seconds" >"$t.result"
+    # times' last line: the children's user and system time, as 1m2.5s
+    cpu=$(echo "$out" | awk 'END {
+        for (i = 1; i <= 2; i++) { split($i, p, "m"); sub("s", "", p[2]); s[i] = p[1] * 60 + p[2] }
+        printf "%.1f %.1f", s[1], s[2] }')
+    # result, wall seconds, user and system CPU seconds
+    echo "$result $seconds $cpu" >"$t.result"
+    cpus=$(echo "$cpu" | awk '{ printf "%.1f", $1 + $2 }')
     if [ "$result" = passed ]; then
-        printf '%-40s ok     %6s s\n' "$t" "$seconds"
+        printf '%-40s ok     %6s s  %6s s CPU\n' "$t" "$seconds" "$cpus"
     else
         # in one printf, so that a parallel test's line does not land inside
-        printf '%-40s FAILED %6s s (log: %s)\n%s\n' "$t" "$seconds" "$t.log" "$(cat "$t.log")"
+        printf '%-40s FAILED %6s s  %6s s CPU (log: %s)\n%s\n' "$t" "$seconds" "$cpus" "$t.log" "$(cat "$t.log")"
     fi
 }
 
@@ -78,9 +86,14 @@ summary() {
 
 order() {
     n=0
+    # read, a built-in, not a process a test: make runs this when it reads
+    # the Makefile, once a pass, in each make of `make test`
     for t in "$@"; do
         n=$((n + 1))
-        seconds=$(cut -d' ' -f2 "$t.result" 2>/dev/null)
+        seconds=""
+        if [ -f "$t.result" ]; then
+            read -r _ seconds _ <"$t.result" || :
+        fi
         echo "${seconds:-1e9} $n $t"
     done | sort -k1,1gr -k2,2n | cut -d' ' -f3
 }
