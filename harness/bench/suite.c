@@ -101,6 +101,9 @@ static const aa_suite_group full[] = {
     /* analytic under the polynomial filters beyond the tent */
     {LIST("crow"), LIST("256x256", "1024x1024"),
      LIST("bspline:order=2", "bspline:order=3", "mitchell", "catrom"), LIST("analytic")},
+    /* and under the radial polynomial filters (per pixel: 256x256 only) */
+    {LIST("crow"), LIST("256x256"), LIST("radial:k=1,r=1", "radial", "radial:k=3,r=2"),
+     LIST("analytic", "supersample:n=4")},
     {LIST("catmull:tiles=3", "slivers", "star", "feibush", "fence", "dots"), LIST("256x256"),
      LIST("box", "tent:r=1", "gauss", "cone"), LIST(FAMILIES)},
     /* the zone plate has exact integrals for box, tent and gauss, and only
