@@ -528,3 +528,27 @@ void support_stroke_check(const char *what, const aa_scene *s, const double box[
     assert_int_equal(wrong, 0);
     assert_true(inside > tested / 20 && inside < tested);
 }
+
+void support_reference_mode(const aa_scene *s, int w, int h, const char *filter, int mode,
+                            aa_image *img, aa_image *bound)
+{
+    aa_filter f;
+    aa_truth_stats st;
+    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
+    assert_int_equal(aa_image_alloc(img, w, h, 3), AA_OK);
+    assert_int_equal(aa_image_alloc(bound, w, h, 1), AA_OK);
+    if (aa__truth_render_mode(s, &f, 0, mode, img, bound, &st, NULL))
+        fail_msg("reference under %s: %s", filter, aa_last_error());
+    assert_true(st.max_bound <= AA_TRUTH_BOUND);
+}
+
+void support_check_value(const char *what, const char *filter, int i, int j, double got, double b,
+                         double want, double err, double *worst)
+{
+    double d = fabs(got - want);
+    if (!(d <= b + err))
+        fail_msg("%s under %s, pixel (%d, %d): reference %.17g, expected %.17g (bound %.2e, "
+                 "answer's error %.2e)",
+                 what, filter, i, j, got, want, b, err);
+    *worst = fmax(*worst, d);
+}

@@ -68,6 +68,17 @@ void support_render(const char *method, const aa_scene *scene, const char *filte
  * `stats` may be NULL. */
 void support_reference(const aa_scene *scene, const support_view *v, aa_image *out,
                        aa_image *bound, aa_truth_stats *stats);
+/* The reference of the placed scene s at w x h under `filter` by the
+ * reference's path `mode` (aa__truth_render_mode: 0 its own choice), one
+ * thread, into img (3 channels) and bound (1); fails the test if it is
+ * refused or a bound exceeds AA_TRUTH_BOUND. */
+void support_reference_mode(const aa_scene *s, int w, int h, const char *filter, int mode,
+                            aa_image *img, aa_image *bound);
+/* Fails the test unless the reference's value `got` (bound b) is within
+ * b + err of the answer `want` (err: the answer's own error); the
+ * difference goes into *worst. */
+void support_check_value(const char *what, const char *filter, int i, int j, double got, double b,
+                         double want, double err, double *worst);
 /* The same for a pattern spec. */
 void support_pattern_reference(const char *pattern, const support_view *v, aa_image *out,
                                aa_image *bound, aa_truth_stats *stats);

@@ -241,29 +241,6 @@ static const char *const radial_specs[] = {"gauss:s=1,cut=2", "gauss:s=0.6,cut=3
 
 /* ---- references ---- */
 
-static void ref(const aa_scene *s, int w, int h, const char *filter, int mode, aa_image *img,
-                aa_image *bound)
-{
-    aa_filter f;
-    aa_truth_stats st;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    assert_int_equal(aa_image_alloc(img, w, h, 3), AA_OK);
-    assert_int_equal(aa_image_alloc(bound, w, h, 1), AA_OK);
-    if (aa__truth_render_mode(s, &f, 0, mode, img, bound, &st, NULL))
-        fail_msg("reference under %s: %s", filter, aa_last_error());
-    assert_true(st.max_bound <= AA_TRUTH_BOUND);
-}
-
-static void check_value(const char *what, const char *filter, int i, int j, double got, double b,
-                        double want, double err, double *worst)
-{
-    double d = fabs(got - want);
-    if (!(d <= b + err))
-        fail_msg("%s under %s, pixel (%d, %d): reference %.17g, expected %.17g (bound %.2e, "
-                 "answer's error %.2e)",
-                 what, filter, i, j, got, want, b, err);
-    *worst = fmax(*worst, d);
-}
 
 /* Vertical and horizontal half-planes, white right of x0 and above y0. */
 static void test_half_planes_separable(void **state)
@@ -282,14 +259,16 @@ static void test_half_planes_separable(void **state)
                 aa_scene *s = vertical ? scenes_half_plane_of(x0, 0, 0, 100, white, black)
                                        : scenes_half_plane_of(0, y0, M_PI_2, 100, white, black);
                 aa_image img, bound;
-                ref(s, w, h, *f, mode, &img, &bound);
+                support_reference_mode(s, w, h, *f, mode, &img, &bound);
                 for (int j = 0; j < h; j++)
                     for (int i = 0; i < w; i++) {
                         double err, want = vertical ? 1 - cdf_of(*f, x0 - (i + 0.5), &err)
                                                     : cdf_of(*f, y0 - (j + 0.5), &err);
                         double got = aa_pixel(&img, i, j)[0];
-                        check_value(vertical ? "vertical half-plane" : "horizontal half-plane", *f,
-                                    i, j, got, *aa_pixel(&bound, i, j), want, err, &worst);
+                        support_check_value(vertical ? "vertical half-plane"
+                                                     : "horizontal half-plane",
+                                            *f, i, j, got, *aa_pixel(&bound, i, j), want, err,
+                                            &worst);
                         lo = fmin(lo, got);
                         hi = fmax(hi, got);
                     }
@@ -324,14 +303,14 @@ static void test_half_planes_radial(void **state)
                 double an = angles[q], nx = cos(an), ny = -sin(an);
                 aa_scene *s = scenes_half_plane_of(px, py, an, 100, white, black);
                 aa_image img, bound;
-                ref(s, w, h, *f, mode, &img, &bound);
+                support_reference_mode(s, w, h, *f, mode, &img, &bound);
                 for (int j = 0; j < h; j++)
                     for (int i = (j * 3) % 2; i < w; i += 2) {
                         /* the centre's signed distance into the white side */
                         double d = (i + 0.5 - px) * nx + (j + 0.5 - py) * ny;
                         double want = radial_beyond(r, -d);
-                        check_value("half-plane", *f, i, j, aa_pixel(&img, i, j)[0],
-                                    *aa_pixel(&bound, i, j), want, 1e-14, &worst);
+                        support_check_value("half-plane", *f, i, j, aa_pixel(&img, i, j)[0],
+                                            *aa_pixel(&bound, i, j), want, 1e-14, &worst);
                     }
                 aa_image_free(&img);
                 aa_image_free(&bound);
@@ -371,9 +350,9 @@ static void test_centred_disks(void **state)
             assert_int_equal(aa_scene_finish(s), AA_OK);
             aa_image img, bound;
             double worst = 0;
-            ref(s, 13, 11, *f, 0, &img, &bound);
-            check_value("centred disk", *f, 6, 5, aa_pixel(&img, 6, 5)[0], *aa_pixel(&bound, 6, 5),
-                        want, 1e-15, &worst);
+            support_reference_mode(s, 13, 11, *f, 0, &img, &bound);
+            support_check_value("centred disk", *f, 6, 5, aa_pixel(&img, 6, 5)[0],
+                                *aa_pixel(&bound, 6, 5), want, 1e-15, &worst);
             print_message("disk of radius %.3f under %-20s: %.17f, error %.2e\n", a, *f,
                           aa_pixel(&img, 6, 5)[0], worst);
             aa_image_free(&img);
@@ -402,15 +381,15 @@ static void test_abutting_squares(void **state)
         double R = filt.radius, worst = 0;
         int inside = 0;
         aa_image img, bound;
-        ref(s, 21, 20, *f, 0, &img, &bound);
+        support_reference_mode(s, 21, 20, *f, 0, &img, &bound);
         for (int j = 0; j < 20; j++)
             for (int i = 0; i < 21; i++) {
                 double u = i + 0.5, v = j + 0.5;
                 int in = u - R > 2.3 && u + R < 18.8 && v - R > 1.7 && v + R < 18.2;
                 int out = u + R < 2.3 || u - R > 18.8 || v + R < 1.7 || v - R > 18.2;
                 if (in || out)
-                    check_value("abutting squares", *f, i, j, aa_pixel(&img, i, j)[0],
-                                *aa_pixel(&bound, i, j), in ? 1 : 0, 1e-15, &worst);
+                    support_check_value("abutting squares", *f, i, j, aa_pixel(&img, i, j)[0],
+                                        *aa_pixel(&bound, i, j), in ? 1 : 0, 1e-15, &worst);
                 inside += in;
             }
         assert_true(inside >= 64);
@@ -429,7 +408,7 @@ static void check_sum(const char *what, const aa_scene *s, int w, int h, double 
                               "mitchell:b=0,c=1", "catrom",  NULL};
     for (const char *const *f = pu; *f; f++) {
         aa_image img, bound;
-        ref(s, w, h, *f, 0, &img, &bound);
+        support_reference_mode(s, w, h, *f, 0, &img, &bound);
         double sum = 0, bsum = 0;
         for (int k = 0; k < w * h; k++) {
             sum += img.v[3 * k];
@@ -473,8 +452,8 @@ static void check_same(const char *fa, const char *fb, double extra)
     double worst = 0;
     for (int q = 0; q < 2; q++) {
         aa_image a, b, ba, bb;
-        ref(scenes[q], 21, 18, fa, 0, &a, &ba);
-        ref(scenes[q], 21, 18, fb, 0, &b, &bb);
+        support_reference_mode(scenes[q], 21, 18, fa, 0, &a, &ba);
+        support_reference_mode(scenes[q], 21, 18, fb, 0, &b, &bb);
         for (int k = 0; k < 21 * 18; k++) {
             double d = fabs(a.v[3 * k] - b.v[3 * k]);
             if (!(d <= ba.v[k] + bb.v[k] + extra))
@@ -633,8 +612,8 @@ static void check_loop(const aa_scene *s, const aa_scene *st, const char *f, int
     aa_image a, ba, b, bb;
     aa_filter filt;
     assert_int_equal(aa_filter_parse(f, &filt), AA_OK);
-    ref(s, 17, 14, f, mode, &a, &ba);
-    ref(st, 14, 17, f, mode, &b, &bb);
+    support_reference_mode(s, 17, 14, f, mode, &a, &ba);
+    support_reference_mode(st, 14, 17, f, mode, &b, &bb);
     double worst = 0, tip77 = 0;
     /* rows whose window ends above the loop's crossing (y = 9.687) */
     for (int j = 0; j + 0.5 + filt.radius <= 9.68; j++)
@@ -642,10 +621,10 @@ static void check_loop(const aa_scene *s, const aa_scene *st, const char *f, int
             double want = tip_value(f, i + 0.5, j + 0.5);
             if (i == 7 && j == 7)
                 tip77 = want;
-            check_value("loop tip", f, i, j, aa_pixel(&a, i, j)[0], *aa_pixel(&ba, i, j), want,
-                        1e-15, &worst);
-            check_value("transposed loop tip", f, j, i, aa_pixel(&b, j, i)[0],
-                        *aa_pixel(&bb, j, i), want, 1e-15, &worst);
+            support_check_value("loop tip", f, i, j, aa_pixel(&a, i, j)[0], *aa_pixel(&ba, i, j),
+                                want, 1e-15, &worst);
+            support_check_value("transposed loop tip", f, j, i, aa_pixel(&b, j, i)[0],
+                                *aa_pixel(&bb, j, i), want, 1e-15, &worst);
         }
     for (int j = 0; j < 14; j++)
         for (int i = 0; i < 17; i++) {

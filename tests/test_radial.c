@@ -281,29 +281,6 @@ static void test_weight_rows_volume(void **state)
 
 /* ---- the reference ---- */
 
-static void ref(const aa_scene *s, int w, int h, const char *filter, int mode, aa_image *img,
-                aa_image *bound)
-{
-    aa_filter f;
-    aa_truth_stats st;
-    assert_int_equal(aa_filter_parse(filter, &f), AA_OK);
-    assert_int_equal(aa_image_alloc(img, w, h, 3), AA_OK);
-    assert_int_equal(aa_image_alloc(bound, w, h, 1), AA_OK);
-    if (aa__truth_render_mode(s, &f, 0, mode, img, bound, &st, NULL))
-        fail_msg("reference under %s: %s", filter, aa_last_error());
-    assert_true(st.max_bound <= AA_TRUTH_BOUND);
-}
-
-static void check_value(const char *what, const char *filter, int i, int j, double got, double b,
-                        double want, double err, double *worst)
-{
-    double d = fabs(got - want);
-    if (!(d <= b + err))
-        fail_msg("%s under %s, pixel (%d, %d): reference %.17g, expected %.17g (bound %.2e, "
-                 "answer's error %.2e)",
-                 what, filter, i, j, got, want, b, err);
-    *worst = fmax(*worst, d);
-}
 
 /* Half-planes whose edge passes through the centre of pixel (5, 4): 1/2. */
 static void test_half_plane_centre(void **state)
@@ -316,12 +293,13 @@ static void test_half_plane_centre(void **state)
             for (int q = 0; q < 6; q++) {
                 aa_scene *s = scenes_half_plane_of(5.5, 4.5, angles[q], 40, white, black);
                 aa_image img, bound;
-                ref(s, 11, 9, *sp, mode, &img, &bound);
+                support_reference_mode(s, 11, 9, *sp, mode, &img, &bound);
                 /* the stored edge's ends are rounded 40 px out: the line
                  * moves by up to 40 * 2^-52 px, times the row's largest
                  * mass (K + 1) B_K / (pi R) < 1.4 / R */
-                check_value("half-plane through the centre", *sp, 5, 4, aa_pixel(&img, 5, 4)[0],
-                            *aa_pixel(&bound, 5, 4), 0.5, 1e-14, &worst);
+                support_check_value("half-plane through the centre", *sp, 5, 4,
+                                    aa_pixel(&img, 5, 4)[0], *aa_pixel(&bound, 5, 4), 0.5,
+                                    1e-14, &worst);
                 aa_image_free(&img);
                 aa_image_free(&bound);
                 aa_scene_free(s);
@@ -350,9 +328,9 @@ static void test_centred_disks(void **state)
             assert_int_equal(aa_scene_close(s), AA_OK);
             assert_int_equal(aa_scene_finish(s), AA_OK);
             aa_image img, bound;
-            ref(s, 13, 11, *sp, 0, &img, &bound);
-            check_value("centred disk", *sp, 6, 5, aa_pixel(&img, 6, 5)[0],
-                        *aa_pixel(&bound, 6, 5), want, 1e-15, &worst);
+            support_reference_mode(s, 13, 11, *sp, 0, &img, &bound);
+            support_check_value("centred disk", *sp, 6, 5, aa_pixel(&img, 6, 5)[0],
+                                *aa_pixel(&bound, 6, 5), want, 1e-15, &worst);
             aa_image_free(&img);
             aa_image_free(&bound);
             aa_scene_free(s);
@@ -381,12 +359,12 @@ static void test_half_planes(void **state)
                                      px - L * dx + L * nx, py - L * dy + L * ny};
                 aa_scene *s = scenes_polygon(xy, 4, white, black, AA_FILL_NONZERO);
                 aa_image img, bound;
-                ref(s, w, h, *sp, mode, &img, &bound);
+                support_reference_mode(s, w, h, *sp, mode, &img, &bound);
                 for (int j = 0; j < h; j++)
                     for (int i = (j * 3) % 2; i < w; i += 2) {
                         double e, want = polygon_mass(&d, xy, 4, i + 0.5, j + 0.5, &e);
-                        check_value("half-plane", *sp, i, j, aa_pixel(&img, i, j)[0],
-                                    *aa_pixel(&bound, i, j), want, e, &worst);
+                        support_check_value("half-plane", *sp, i, j, aa_pixel(&img, i, j)[0],
+                                            *aa_pixel(&bound, i, j), want, e, &worst);
                     }
                 aa_image_free(&img);
                 aa_image_free(&bound);
@@ -418,7 +396,7 @@ static void test_polygons(void **state)
         scenes_path(s, tri, 3);
         assert_int_equal(aa_scene_finish(s), AA_OK);
         aa_image img, bound;
-        ref(s, w, h, *sp, 0, &img, &bound);
+        support_reference_mode(s, w, h, *sp, 0, &img, &bound);
         double worst = 0;
         for (int j = 0; j < h; j++)
             for (int i = 0; i < w; i++) {
@@ -426,7 +404,7 @@ static void test_polygons(void **state)
                 double m1 = polygon_mass(&d, pent, 5, i + 0.5, j + 0.5, &e1);
                 double m2 = polygon_mass(&d, tri, 3, i + 0.5, j + 0.5, &e2);
                 for (int c = 0; c < 3; c++)
-                    check_value("pentagon and triangle", *sp, i, j, aa_pixel(&img, i, j)[c],
+                    support_check_value("pentagon and triangle", *sp, i, j, aa_pixel(&img, i, j)[c],
                                 *aa_pixel(&bound, i, j), m1 + grey.c[c] * m2, e1 + e2, &worst);
             }
         print_message("pentagon and triangle %-18s: max |ref - 2-D quadrature| %.1e\n", *sp,
