@@ -7,6 +7,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include <cmocka.h>
 
@@ -219,5 +220,37 @@ aa_scene *scenes_stroke_outline(const aa_path *in, const aa_stroke_style *st, co
         for (size_t k = 0; k < n; k++)
             *noffset += pc[k].kind == AA_PIECE_OFFSET;
     }
+    return s;
+}
+
+aa_scene *scenes_overlapping_layers(void)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0.1, 0.2, 0.3}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.9, 0.05, 0.6}}, AA_FILL_EVENODD), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0.15, 0.2), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 0.9, 0.1, 0.1, 0.9, 0.85, 0.8), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 0.95, 0.3, 0.3, 0.95, 0.15, 0.2), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.3, 0.8, 0.15}}, AA_FILL_NONZERO), AA_OK);
+    for (int turn = 0; turn < 2; turn++) {
+        double d = 0.037 * turn; /* the second turn moved: the two cross */
+        assert_int_equal(aa_scene_move_to(s, 0.3 + d, 0.55 + d), AA_OK);
+        assert_int_equal(aa_scene_quad_to(s, 0.5 + d, 0.1 + d, 0.72 + d, 0.5 + d), AA_OK);
+        assert_int_equal(aa_scene_quad_to(s, 0.55 + d, 0.95 + d, 0.3 + d, 0.55 + d), AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+aa_scene *scenes_svg_at(const char *name, int n)
+{
+    char spec[128];
+    snprintf(spec, sizeof spec, "svg:file=patterns/svg/%s.svg", name);
+    aa_spec ps;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, n, n, &s))
+        fail_msg("pattern %s: %s", spec, aa_last_error());
     return s;
 }

@@ -43,6 +43,14 @@ aa_scene *scenes_rebuild(const aa_scene *src, int swap, scenes_edge_fn edge);
  * second path whose one arc loops over itself (harness/README.md, "Scenes
  * and their queries"), finished. */
 aa_scene *scenes_cubics(void);
+/* On (0.1, 0.2, 0.3): a self-crossing even-odd path of cubic arcs in front
+ * of a nonzero path of two crossing loops of quadratic arcs (wound twice
+ * where they overlap), in colours apart in every channel, inside the unit
+ * square.  Finished. */
+aa_scene *scenes_overlapping_layers(void);
+/* The shipped scene patterns/svg/NAME.svg (run from the source tree's root)
+ * placed at n x n pixels. */
+aa_scene *scenes_svg_at(const char *name, int n);
 /* A copy of a finished scene (pattern units) with every quadratic arc
  * raised to the cubic of the same curve: controls P0 + 2/3 (C - P0) and
  * P1 + 2/3 (C - P1); lines as they were.  Finished. */

@@ -154,22 +154,7 @@ static void test_svg(void **state)
 static void test_overlapping_layers(void **state)
 {
     (void)state;
-    aa_scene *s = aa_scene_new((aa_rgb){{0.1, 0.2, 0.3}});
-    assert_non_null(s);
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.9, 0.05, 0.6}}, AA_FILL_EVENODD), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 0.15, 0.2), AA_OK);
-    assert_int_equal(aa_scene_cubic_to(s, 0.9, 0.1, 0.1, 0.9, 0.85, 0.8), AA_OK);
-    assert_int_equal(aa_scene_cubic_to(s, 0.95, 0.3, 0.3, 0.95, 0.15, 0.2), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.3, 0.8, 0.15}}, AA_FILL_NONZERO), AA_OK);
-    for (int turn = 0; turn < 2; turn++) {
-        double d = 0.037 * turn; /* the second turn moved: the two cross */
-        assert_int_equal(aa_scene_move_to(s, 0.3 + d, 0.55 + d), AA_OK);
-        assert_int_equal(aa_scene_quad_to(s, 0.5 + d, 0.1 + d, 0.72 + d, 0.5 + d), AA_OK);
-        assert_int_equal(aa_scene_quad_to(s, 0.55 + d, 0.95 + d, 0.3 + d, 0.55 + d), AA_OK);
-        assert_int_equal(aa_scene_close(s), AA_OK);
-    }
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *s = scenes_overlapping_layers();
     against_reference("overlapping layers", s, 27, 25, 0, 0);
     aa_scene_free(s);
 }

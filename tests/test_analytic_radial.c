@@ -104,41 +104,15 @@ static void test_cubics_and_polygon(void **state)
 static void test_two_layers(void **state)
 {
     (void)state;
-    aa_scene *s = aa_scene_new((aa_rgb){{0.1, 0.2, 0.3}});
-    assert_non_null(s);
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.9, 0.05, 0.6}}, AA_FILL_EVENODD), AA_OK);
-    assert_int_equal(aa_scene_move_to(s, 0.15, 0.2), AA_OK);
-    assert_int_equal(aa_scene_cubic_to(s, 0.9, 0.1, 0.1, 0.9, 0.85, 0.8), AA_OK);
-    assert_int_equal(aa_scene_cubic_to(s, 0.95, 0.3, 0.3, 0.95, 0.15, 0.2), AA_OK);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0.3, 0.8, 0.15}}, AA_FILL_NONZERO), AA_OK);
-    for (int turn = 0; turn < 2; turn++) {
-        double d = 0.037 * turn;
-        assert_int_equal(aa_scene_move_to(s, 0.3 + d, 0.55 + d), AA_OK);
-        assert_int_equal(aa_scene_quad_to(s, 0.5 + d, 0.1 + d, 0.72 + d, 0.5 + d), AA_OK);
-        assert_int_equal(aa_scene_quad_to(s, 0.55 + d, 0.95 + d, 0.3 + d, 0.55 + d), AA_OK);
-        assert_int_equal(aa_scene_close(s), AA_OK);
-    }
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *s = scenes_overlapping_layers();
     against_reference("two layers", s, 25, 23);
     aa_scene_free(s);
-}
-
-static aa_scene *svg_at(const char *name, int n)
-{
-    char spec[128];
-    snprintf(spec, sizeof spec, "svg:file=patterns/svg/%s.svg", name);
-    aa_spec ps;
-    aa_scene *s = NULL;
-    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, n, n, &s))
-        fail_msg("pattern %s: %s", spec, aa_last_error());
-    return s;
 }
 
 static void test_svg(void **state)
 {
     (void)state;
-    aa_scene *s = svg_at("curves", 20);
+    aa_scene *s = scenes_svg_at("curves", 20);
     against_reference("curves.svg", s, 20, 20);
     aa_scene_free(s);
 }
@@ -194,7 +168,7 @@ static void test_closed_forms(void **state)
 static void test_arcs(void **state)
 {
     (void)state;
-    aa_scene *s = svg_at("arcs", 20);
+    aa_scene *s = scenes_svg_at("arcs", 20);
     against_reference("arcs.svg", s, 20, 20);
     aa_scene_free(s);
     const int n = 13;

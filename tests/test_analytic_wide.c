@@ -15,6 +15,7 @@
  * from the two ellipses' equations).
  */
 #include "bench.h"
+#include "scenes.h"
 #include "support.h"
 
 #include <math.h>
@@ -26,17 +27,6 @@
 #include <string.h>
 
 #include <cmocka.h>
-
-static aa_scene *svg_at(const char *name, int n)
-{
-    char spec[128];
-    snprintf(spec, sizeof spec, "svg:file=patterns/svg/%s.svg", name);
-    aa_spec ps;
-    aa_scene *s = NULL;
-    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, n, n, &s))
-        fail_msg("pattern %s: %s", spec, aa_last_error());
-    return s;
-}
 
 /* analytic within 1e-12 of the reference on s at n x n under filter f, at
  * 1 and 2 threads. */
@@ -69,11 +59,11 @@ static void test_arcs_wide(void **state)
 {
     (void)state;
     const char *const flist[] = {"tent:r=2.3", "bspline:order=3", "mitchell", NULL};
-    aa_scene *s = svg_at("arcs", 20);
+    aa_scene *s = scenes_svg_at("arcs", 20);
     for (const char *const *f = flist; *f; f++)
         against("arcs.svg", s, 20, *f);
     aa_scene_free(s);
-    s = svg_at("arcs", 64);
+    s = scenes_svg_at("arcs", 64);
     against("arcs.svg", s, 64, "tent:r=2.3");
     aa_scene_free(s);
 }
