@@ -254,3 +254,15 @@ aa_scene *scenes_svg_at(const char *name, int n)
         fail_msg("pattern %s: %s", spec, aa_last_error());
     return s;
 }
+
+aa_scene *scenes_disk(double cx, double cy, double a)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, cx + a, cy), AA_OK);
+    assert_int_equal(aa_scene_arc_to(s, cx, cy, a, 0, 0, a, 0, 2 * M_PI, cx + a, cy), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}

@@ -48,6 +48,9 @@ aa_scene *scenes_cubics(void);
  * where they overlap), in colours apart in every channel, inside the unit
  * square.  Finished. */
 aa_scene *scenes_overlapping_layers(void);
+/* A white disk of radius a centred at (cx, cy) on black, one circular arc,
+ * finished (units the caller's). */
+aa_scene *scenes_disk(double cx, double cy, double a);
 /* The shipped scene patterns/svg/NAME.svg (run from the source tree's root)
  * placed at n x n pixels. */
 aa_scene *scenes_svg_at(const char *name, int n);

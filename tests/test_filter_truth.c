@@ -340,14 +340,7 @@ static void test_centred_disks(void **state)
                     (a * a / 2 - a * a * a / (3 * r.s)) / (rc * rc / 2 - rc * rc * rc / (3 * r.s));
             else
                 want = -expm1(-0.5 * a * a / (r.s * r.s)) / -expm1(-0.5 * r.k * r.k);
-            aa_scene *s = aa_scene_new(black);
-            assert_non_null(s);
-            assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-            assert_int_equal(aa_scene_move_to(s, cx + a, cy), AA_OK);
-            assert_int_equal(aa_scene_arc_to(s, cx, cy, a, 0, 0, a, 0, 2 * M_PI, cx + a, cy),
-                             AA_OK);
-            assert_int_equal(aa_scene_close(s), AA_OK);
-            assert_int_equal(aa_scene_finish(s), AA_OK);
+            aa_scene *s = scenes_disk(cx, cy, a);
             aa_image img, bound;
             double worst = 0;
             support_reference_mode(s, 13, 11, *f, 0, &img, &bound);

@@ -319,14 +319,7 @@ static void test_centred_disks(void **state)
         for (int q = 0; q < 5; q++) {
             double a = frac[q] * d.r, t = fmin(a * a / (d.r * d.r), 1);
             double want = 1 - pow(1 - t, d.k + 1);
-            aa_scene *s = aa_scene_new(black);
-            assert_non_null(s);
-            assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
-            assert_int_equal(aa_scene_move_to(s, cx + a, cy), AA_OK);
-            assert_int_equal(aa_scene_arc_to(s, cx, cy, a, 0, 0, a, 0, 2 * M_PI, cx + a, cy),
-                             AA_OK);
-            assert_int_equal(aa_scene_close(s), AA_OK);
-            assert_int_equal(aa_scene_finish(s), AA_OK);
+            aa_scene *s = scenes_disk(cx, cy, a);
             aa_image img, bound;
             support_reference_mode(s, 13, 11, *sp, 0, &img, &bound);
             support_check_value("centred disk", *sp, 6, 5, aa_pixel(&img, 6, 5)[0],
