@@ -1636,6 +1636,16 @@ static void test_threshold_tangent(void **state)
               {1, 1, 1},
               0};
     mpic_check("focal radial over linear, a row tangent to the threshold", &a, px, 6);
+    /* the linear layer alone at the scene's own scale: the lines where
+     * its composite passes the threshold cross the pixels' sides (the
+     * box's row integral has a kink there, a breakpoint between rows) */
+    static const int lx[6][2] = {{4, 10}, {3, 10}, {7, 4}, {4, 8}, {5, 8}, {2, 12}};
+    mpic b = {1,
+              {{0, {2, 3, 46, 33}, AA_GRADIENT_LINEAR, {4, 8, 58, 50, 0, 0}, AA_SPREAD_PAD, 3,
+                grad_l, 1.0}},
+              {1, 1, 1},
+              0};
+    mpic_check("linear across the threshold, box", &b, lx, 6);
 }
 
 /* The reference cache: a changed stop changes the view's key (the file's

@@ -2142,13 +2142,15 @@ static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
             return aa_fail(AA_EINVAL, "a gradient's stops repeat more than %d times across the "
                                       "window of pixel (%g, %g): refused",
                            GRAD_MAX_BREAKS, w->uc - 0.5, w->vc - 0.5);
-        /* weighted: and the lines where the composite at the window's
-         * centre passes the decoding's threshold, whose crossings of the
-         * kink lines are breakpoints too (the inner integral's third
-         * derivative jumps there; without them a pixel under tent:r=1
-         * whose window's side the threshold's line crosses came out
-         * 1.05e-13 off against a bound of 1.0e-13, with them 7e-18) */
-        if (!w->box) {
+        /* and the lines where the composite at the window's centre
+         * passes the decoding's threshold, whose crossings of the kink
+         * lines (for the box, the window's sides) are breakpoints too (the
+         * inner integral's derivatives jump there; without them a pixel
+         * under tent:r=1 whose window's side the threshold's line crosses
+         * came out 1.05e-13 off against a bound of 1.0e-13, with them
+         * 7e-18; the box's row integral has a kink there, which QAG's
+         * estimate can miss) */
+        {
             const gen_layer *gl = NULL;
             for (int k = 0; k < w->ngl; k++)
                 if (w->gl[k].gp == gp)
