@@ -368,9 +368,11 @@ typedef struct worker {
     /* every gradient layer (gl, ngl) with room for its layer and a paint,
      * and a second buffer of t values; gen: every span takes the path of
      * several gradients; gen_over: a span painted by more than GEN_MAX;
-     * gen_stuck: a row whose threshold could not be isolated (gen_section) */
+     * gen_stuck: a row not resolved within the work limit (gen_section,
+     * gen_piece) */
     gen_layer *gl;
     int ngl, gen, gen_over, gen_stuck;
+    size_t gen_work; /* gen_piece's halvings on the current span (GEN_PIECES) */
     int *gl_layer;
     double *gl_paint, *gbuf2;
     const aa_filter *f;
@@ -1193,11 +1195,13 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
  * nearest when dmin < 0 (d2 u / sqrt(d2 u^2 + dmin) decreases in u then);
  * f[2]'' = 2 o1 c1 t'^2 + (o1 C + c1 op) t'' and the product rule twice
  * bound |e''|.  Like the rest, the tests are computed in double, their
- * own rounding not counted.  Past GEN_BUDGET halvings on one piece, or
- * more than GEN_MAX_FUZZ intervals left, the pixel is refused (naming
- * it): that takes a channel within rounding of 0.04045 along a stretch
- * of a row, and a length as the row's bound would not be the reference's
- * 1e-12.  An interval left (at most GEN_FUZZ wide) is integrated by its
+ * own rounding not counted (a channel whose e' and bound on e'' are 0
+ * is constant and crosses nothing, even if it equals 0.04045).  Past
+ * GEN_BUDGET halvings on one piece, or more than GEN_MAX_FUZZ intervals
+ * left, or GEN_PIECES pieces of the rule on one span, the pixel is
+ * refused (naming it): that takes a channel within rounding of 0.04045
+ * along a stretch of a row, and a length as the row's bound would not be
+ * the reference's 1e-12.  An interval left (at most GEN_FUZZ wide) is integrated by its
  * midpoint with the bound width (2.3 L width + 2.4e-9), the last term
  * the decoding's own jump at 0.04045 (0.0031308073 - 0.0031308050).
  */
@@ -1465,12 +1469,21 @@ static double gen_decode(double e, int power)
     return power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92;
 }
 
+/* Pieces one span may take in all: past them the pixel is refused
+ * (integrate_pixel), so that no row's halving to RAD_DEPTH levels runs
+ * on unbounded. */
+#define GEN_PIECES 65536
+
 /* One piece free of the threshold, each channel on its decoding's piece
  * power[ch]: the 20-point rule, halved to the bound (rad_piece). */
 static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double xa, double xb,
                       int depth, double *sum, double *err)
 {
     double m = 0.5 * (xa + xb), h = 0.5 * (xb - xa), em[3];
+    if (++w->gen_work > GEN_PIECES) {
+        w->gen_stuck = 1;
+        return;
+    }
     gen_eval(c, m, em);
     double bound = gen_rule_bound(c, m, h, power, em);
     if (bound > 2e-16 * (xb - xa) && depth < RAD_DEPTH) {
@@ -1623,6 +1636,8 @@ static size_t gen_isolate(const gen_span_ctx *c, int ch, double u, double gu, do
     gen_eval(c, m, e);
     double gm = e[ch] - 0.04045;
     if (gen_taylor(c, ch, m, h, &d1, &d2)) {
+        if (d1 == 0.0 && d2 == 0.0)
+            return nf; /* constant there: no crossing, even at 0.04045 */
         if (fabs(gm) > fabs(d1) * h + 0.5 * d2 * h * h)
             return nf; /* Taylor: no root */
         if (fabs(d1) > d2 * h) { /* monotone */
@@ -1800,7 +1815,8 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
     qsort(xs + 1, nx - 1, sizeof *xs, cmp_dbl);
     xs[nx++] = xb;
     double err = 0.0;
-    for (size_t k = 0; k + 1 < nx; k++) {
+    w->gen_work = 0;
+    for (size_t k = 0; k + 1 < nx && !w->gen_stuck; k++) {
         double a = xs[k], b = xs[k + 1];
         if (!(b > a))
             continue;
@@ -2725,11 +2741,12 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     }
     if (w->gen_stuck) {
         w->gen_stuck = w->gen_over = 0;
-        return aa_fail(AA_EINVAL, "pixel (%g, %g): a channel of the gradients' composite stays "
-                                  "within rounding of the sRGB decoding's threshold 0.04045 "
-                                  "along a row (more than %d places or %d halvings to isolate "
-                                  "it): refused; sample it with point, supersample or jitter",
-                       w->uc - 0.5, w->vc - 0.5, GEN_MAX_FUZZ, GEN_BUDGET);
+        return aa_fail(AA_EINVAL, "pixel (%g, %g): a row of the gradients' composite not "
+                                  "resolved within the work limit (the sRGB decoding's "
+                                  "threshold 0.04045 isolated in at most %d places and %d "
+                                  "halvings, at most %d Gauss-Legendre pieces a span): refused; "
+                                  "sample it with point, supersample or jitter",
+                       w->uc - 0.5, w->vc - 0.5, GEN_MAX_FUZZ, GEN_BUDGET, GEN_PIECES);
     }
     if (w->gen_over) {
         w->gen_over = 0;
