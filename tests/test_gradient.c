@@ -1609,6 +1609,45 @@ static void test_several_gradients(void **state)
     mpic_check("fading linear over linear", &c, px, 6);
 }
 
+static const aa_gradient_stop grad_l[3] = {{0.0, {{0, 0, 0}}, 1.0},
+                                           {0.4, {{0.016, 0.723, 0.246}}, 1.0},
+                                           {1.0, {{1, 1, 1}}, 1.0}};
+static const aa_gradient_stop grad_r[2] = {{0.0, {{1, 1, 1}}, 1.0},
+                                           {1.0, {{0.0056, 0.0, 0.0331}}, 1.0}};
+
+/* A focal radial gradient on its own end circle over a linear one on a
+ * rectangle (a 64 x 64 scene that once took minutes a pixel at 48 x 48,
+ * scaled by 1/4): the green channel passes the decoding's threshold
+ * 0.04045 on the circle of t ~ 0.96, whose top (9.96, 5.62) lies inside
+ * pixel (9, 5), so rows there run tangent to it, where the threshold's two
+ * crossings of a row merge.  Against the 2-D quadrature of the picture
+ * (mpic_pixel, the known answer from an independent integration) at that
+ * pixel, its neighbours and where the circle's and the rectangle's edges
+ * pass; the whole reference within its bound of 1e-12. */
+static void test_threshold_tangent(void **state)
+{
+    (void)state;
+    static const int px[6][2] = {{9, 5}, {10, 5}, {9, 6}, {8, 5}, {11, 7}, {3, 7}};
+    mpic a = {2,
+              {{0, {0.5, 0.75, 11.5, 8.25}, AA_GRADIENT_LINEAR, {1, 2, 14.5, 12.5, 0, 0},
+                AA_SPREAD_PAD, 3, grad_l, 1.0},
+               {1, {10, 10, 4.5, 0}, AA_GRADIENT_RADIAL, {10, 10, 4.5, 9, 8.5, 0}, AA_SPREAD_PAD,
+                2, grad_r, 1.0}},
+              {1, 1, 1},
+              0};
+    mpic_check("focal radial over linear, a row tangent to the threshold", &a, px, 6);
+    /* the linear layer alone at the scene's own scale: the lines where
+     * its composite passes the threshold cross the pixels' sides (the
+     * box's row integral has a kink there, a breakpoint between rows) */
+    static const int lx[6][2] = {{4, 10}, {3, 10}, {7, 4}, {4, 8}, {5, 8}, {2, 12}};
+    mpic b = {1,
+              {{0, {2, 3, 46, 33}, AA_GRADIENT_LINEAR, {4, 8, 58, 50, 0, 0}, AA_SPREAD_PAD, 3,
+                grad_l, 1.0}},
+              {1, 1, 1},
+              0};
+    mpic_check("linear across the threshold, box", &b, lx, 6);
+}
+
 /* The reference cache: a changed stop changes the view's key (the file's
  * bytes), so it never meets the old entry; the same file hits it. */
 static void test_cache(void **state)
@@ -1654,6 +1693,7 @@ int main(void)
         cmocka_unit_test(test_svg_degenerate), cmocka_unit_test(test_svg_refusals),
         cmocka_unit_test(test_cache),          cmocka_unit_test(test_radial_reference),
         cmocka_unit_test(test_several_gradients),
+        cmocka_unit_test(test_threshold_tangent),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -32,14 +32,18 @@
 #include <unistd.h>
 
 /* Bump when the ground truth's results could change. */
-#define TRUTH_VERSION 6 /* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
+#define TRUTH_VERSION 7 /* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
                           * pieces, and the cone's breakpoint where a piece passes
                           * closest to the centre; 4: the square root substitution on
                           * intervals that end near a turning point; 5: which radial
                           * gradient a span depends on, decided with the other
                           * gradients transparent (one could hide behind another's
                           * stand-in colour); 6: offset curves' roots taken to
-                          * convergence (aa__offset_root stopped after 8 steps) */
+                          * convergence (aa__offset_root stopped after 8 steps); 7:
+                          * under the box, the threshold's lines of a linear gradient
+                          * crossing the window's sides as breakpoints, and the
+                          * threshold isolated by Taylor's theorem (rows tangent to it
+                          * had their lengths as bounds) */
 #define CACHE_MAGIC "aabench-reference 2\n"
 
 static int field_key(const aa_view *view, char *buf, size_t len);

@@ -367,9 +367,12 @@ typedef struct worker {
     double rad_row_err, rad_err_max;
     /* every gradient layer (gl, ngl) with room for its layer and a paint,
      * and a second buffer of t values; gen: every span takes the path of
-     * several gradients; gen_over: a span painted by more than GEN_MAX */
+     * several gradients; gen_over: a span painted by more than GEN_MAX;
+     * gen_stuck: a row not resolved within the work limit (gen_section,
+     * gen_piece) */
     gen_layer *gl;
-    int ngl, gen, gen_over;
+    int ngl, gen, gen_over, gen_stuck;
+    size_t gen_work; /* gen_piece's halvings on the current span (GEN_PIECES) */
     int *gl_layer;
     double *gl_paint, *gbuf2;
     const aa_filter *f;
@@ -1170,10 +1173,37 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
  * |a|, finite through x0 (the bound from the branch points' distance is
  * not: rows through P* left intervals of 1e-13 relative bounded by their
  * width, 5.7e-12 at x = 66).  A row tangent to the threshold's curve away
- * from x0 gives the Lipschitz test little room about its double root;
- * past GEN_BUDGET halvings the piece counts its length as its bound,
- * honestly (a test of g' against a bound on g'' would separate such
- * roots: not done).
+ * from x0 gives the Lipschitz test little room about its double root
+ * (with L ~ 0.07 and |g'| ~ 1e-5 at the roots of rows near the tangent,
+ * a 48x48 crop of a focal radial gradient over a linear one took 650
+ * million halvings on one pixel, then gave up on those rows with their
+ * lengths as bounds: 246 s and a bound of 1), so an interval the test
+ * fails is tried by Taylor's theorem next: with g'(m) exact and H >=
+ * |g''| on [m - h, m + h],
+ *     |g(m)| > |g'(m)| h + H h^2 / 2   : no root there;
+ *     |g'(m)| > H h                    : g monotone there, so a root
+ *                                        only if the ends' signs differ,
+ *                                        and then one, found by halving on
+ *                                        the signs alone.
+ * Between them they leave O(1) intervals a level about a double root
+ * (those within about 2.4 h of it) and O(1) about a simple one.  On the
+ * real segment t'' of a radial layer is -d2 dmin / (a d^(3/2)) (t = (b -
+ * sqrt d) / a, d = d2 (x - x0)^2 + dmin), so |t''| <= d2 |dmin| / (|a|
+ * dlo^(3/2)) with dlo the least d there (0 when dmin = 0: t is affine on
+ * each side of x0, which is a cut); |t'| is bounded as above, by its
+ * value at the segment's point farthest from x0 when dmin >= 0 and
+ * nearest when dmin < 0 (d2 u / sqrt(d2 u^2 + dmin) decreases in u then);
+ * f[2]'' = 2 o1 c1 t'^2 + (o1 C + c1 op) t'' and the product rule twice
+ * bound |e''|.  Like the rest, the tests are computed in double, their
+ * own rounding not counted (a channel whose e' and bound on e'' are 0
+ * is constant and crosses nothing, even if it equals 0.04045).  Past
+ * GEN_BUDGET halvings on one piece, or more than GEN_MAX_FUZZ intervals
+ * left, or GEN_PIECES pieces of the rule on one span, the pixel is
+ * refused (naming it): that takes a channel within rounding of 0.04045
+ * along a stretch of a row, and a length as the row's bound would not be
+ * the reference's 1e-12.  An interval left (at most GEN_FUZZ wide) is integrated by its
+ * midpoint with the bound width (2.3 L width + 2.4e-9), the last term
+ * the decoding's own jump at 0.04045 (0.0031308073 - 0.0031308050).
  */
 #define GEN_MAX 5      /* gradient layers painting one span */
 #define GEN_FUZZ 1e-13 /* the narrowest interval bisected for the threshold, relative */
@@ -1439,12 +1469,21 @@ static double gen_decode(double e, int power)
     return power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92;
 }
 
+/* Pieces one span may take in all: past them the pixel is refused
+ * (integrate_pixel), so that no row's halving to RAD_DEPTH levels runs
+ * on unbounded. */
+#define GEN_PIECES 65536
+
 /* One piece free of the threshold, each channel on its decoding's piece
  * power[ch]: the 20-point rule, halved to the bound (rad_piece). */
 static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double xa, double xb,
                       int depth, double *sum, double *err)
 {
     double m = 0.5 * (xa + xb), h = 0.5 * (xb - xa), em[3];
+    if (++w->gen_work > GEN_PIECES) {
+        w->gen_stuck = 1;
+        return;
+    }
     gen_eval(c, m, em);
     double bound = gen_rule_bound(c, m, h, power, em);
     if (bound > 2e-16 * (xb - xa) && depth < RAD_DEPTH) {
@@ -1471,6 +1510,109 @@ static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double
         *err += fmin(bound, xb - xa);
 }
 
+/* Channel ch's e'(m), exact, into *d1, and a bound of |e''| on the real
+ * segment [m - h, m + h] into *d2 (the comment above "several gradients
+ * at a point"); 0 if no bound is had (a radial layer's d reaching 0
+ * there). */
+static int gen_taylor(const gen_span_ctx *c, int ch, double m, double h, double *d1, double *d2)
+{
+    double f[GEN_MAX][3], fp[GEN_MAX][3], F[GEN_MAX][3], G[GEN_MAX][3], H[GEN_MAX][3];
+    for (int l = 0; l < c->n; l++) {
+        const gen_layer *g = c->L[l];
+        double tm = gen_t(c, l, m), tp, T, P, Q;
+        if (!g->rg) {
+            tp = g->gp->tx;
+            T = fabs(tm) + fabs(tp) * h, P = fabs(tp), Q = 0.0;
+        } else {
+            const rad_row *r = &c->row[l];
+            double ia = 1.0 / fabs(g->rg->a), um = fabs(m - r->x0);
+            double Z = um + h, lo = fmax(0.0, um - h), dlo = r->d2 * lo * lo + r->dmin;
+            if (r->dmin == 0.0) {
+                if (!(um >= h))
+                    return 0; /* x0 inside: a kink, which is a cut */
+                Q = 0.0;
+            } else if (dlo > 0.0)
+                Q = r->d2 * fabs(r->dmin) * ia / (dlo * sqrt(dlo));
+            else
+                return 0;
+            double dm = r->d2 * um * um + r->dmin, dz = sqrt(r->d2 * Z * Z + r->dmin);
+            if (!(dm > 0.0))
+                return 0;
+            tp = (r->b1 - r->d2 * (m - r->x0) / sqrt(dm)) / g->rg->a;
+            double U = r->dmin >= 0.0 ? Z : lo, dU = sqrt(r->d2 * U * U + r->dmin);
+            T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * h + dz) * ia;
+            P = (fabs(r->b1) + (dU > 0.0 ? r->d2 * U / dU : 0.0)) * ia;
+        }
+        double o0 = c->v0[l][3], o1 = c->v1[l][3], c0 = c->v0[l][ch], c1 = c->v1[l][ch];
+        double op = o0 + o1 * tm, cc = c0 + c1 * tm;
+        f[l][0] = 1.0, f[l][1] = op, f[l][2] = op * cc;
+        fp[l][0] = 0.0, fp[l][1] = o1 * tp, fp[l][2] = (o1 * cc + c1 * op) * tp;
+        double opb = fabs(o0) + fabs(o1) * T, ccb = fabs(c0) + fabs(c1) * T;
+        F[l][0] = 1.0, F[l][1] = opb, F[l][2] = opb * ccb;
+        G[l][0] = 0.0, G[l][1] = fabs(o1) * P, G[l][2] = (fabs(o1) * ccb + fabs(c1) * opb) * P;
+        H[l][0] = 0.0, H[l][1] = fabs(o1) * Q;
+        H[l][2] = 2.0 * fabs(o1 * c1) * P * P + (fabs(o1) * ccb + fabs(c1) * opb) * Q;
+    }
+    double s1 = 0.0, s2 = 0.0;
+    for (int a = 0; a < c->nk; a++) {
+        double k = c->K[ch][a];
+        if (k == 0.0)
+            continue;
+        int q[GEN_MAX];
+        for (int l = 0, z = a; l < c->n; l++, z /= 3)
+            q[l] = z % 3;
+        for (int l = 0; l < c->n; l++) {
+            /* e': sum_l f_l' prod_{j != l} f_j; |e''| <= sum_l H_l prod_{j
+             * != l} F_j + sum_{l != i} G_l G_i prod_{j != l, i} F_j */
+            double p1 = k * fp[l][q[l]], p2 = fabs(k) * H[l][q[l]];
+            for (int j = 0; j < c->n; j++)
+                if (j != l)
+                    p1 *= f[j][q[j]], p2 *= F[j][q[j]];
+            s1 += p1, s2 += p2;
+            for (int i = 0; i < c->n; i++) {
+                if (i == l)
+                    continue;
+                double p = fabs(k) * G[l][q[l]] * G[i][q[i]];
+                for (int j = 0; j < c->n && p != 0.0; j++)
+                    if (j != l && j != i)
+                        p *= F[j][q[j]];
+                s2 += p;
+            }
+        }
+    }
+    *d1 = s1, *d2 = s2;
+    return 1;
+}
+
+/* The one root of g, monotone on [u, v] with signs differing at the ends
+ * (gu, gv), narrowed by halving on the signs to GEN_FUZZ and appended to
+ * fz (none if at an end). */
+static size_t gen_bisect(const gen_span_ctx *c, int ch, double u, double gu, double v, double gv,
+                         double *fz, size_t nf, size_t cap, size_t *budget)
+{
+    if (gu == 0.0 || gv == 0.0)
+        return nf;
+    while (v - u > GEN_FUZZ * (1.0 + fabs(0.5 * (u + v)))) {
+        double m = 0.5 * (u + v), e[3];
+        if (!(m > u && m < v))
+            break;
+        if (*budget == 0)
+            return cap;
+        --*budget;
+        gen_eval(c, m, e);
+        double gm = e[ch] - 0.04045;
+        if (gm == 0.0)
+            return nf;
+        if ((gm < 0.0) == (gu < 0.0))
+            u = m, gu = gm;
+        else
+            v = m;
+    }
+    if (nf < cap)
+        fz[2 * nf] = u, fz[2 * nf + 1] = v, nf++;
+    return nf;
+}
+
 /* The threshold's places in [u, v] for channel ch (g = e - 0.04045 there
  * gu, gv): intervals no wider than GEN_FUZZ that may hold a root appended
  * to fz (pairs), at most cap pairs; the count returned. */
@@ -1490,16 +1632,26 @@ static size_t gen_isolate(const gen_span_ctx *c, int ch, double u, double gu, do
             fz[2 * nf] = u, fz[2 * nf + 1] = v, nf++;
         return nf;
     }
-    double e[3];
+    double e[3], d1, d2, h = 0.5 * (v - u);
     gen_eval(c, m, e);
     double gm = e[ch] - 0.04045;
+    if (gen_taylor(c, ch, m, h, &d1, &d2)) {
+        if (d1 == 0.0 && d2 == 0.0)
+            return nf; /* constant there: no crossing, even at 0.04045 */
+        if (fabs(gm) > fabs(d1) * h + 0.5 * d2 * h * h)
+            return nf; /* Taylor: no root */
+        if (fabs(d1) > d2 * h) { /* monotone */
+            if (gu != 0.0 && gv != 0.0 && (gu < 0.0) == (gv < 0.0))
+                return nf;
+            return gen_bisect(c, ch, u, gu, v, gv, fz, nf, cap, budget);
+        }
+    }
     nf = gen_isolate(c, ch, u, gu, m, gm, fz, nf, cap, budget);
     return gen_isolate(c, ch, m, gm, v, gv, fz, nf, cap, budget);
 }
 
 /* Intervals that may hold the threshold, and halvings, one piece may
- * take; past them the piece counts its length as its bound (honest, and
- * seen only where a channel stays within rounding of 0.04045). */
+ * take; past them the pixel is refused (gen_section). */
 #define GEN_MAX_FUZZ 256
 #define GEN_BUDGET 20000
 
@@ -1516,16 +1668,8 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
     for (int ch = 0; ch < c->nch && nf < GEN_MAX_FUZZ; ch++)
         nf = gen_isolate(c, ch, a, ea[ch] - 0.04045, b, eb[ch] - 0.04045, fz, nf, GEN_MAX_FUZZ,
                          &budget);
-    if (nf >= GEN_MAX_FUZZ) { /* more places than room: the piece bounded by its length */
-        double e[3], wm = 1.0, sup = 0.5, slope;
-        gen_eval(c, 0.5 * (a + b), e);
-        if (c->weighted) {
-            wm = aa_filter_weight(c->f, 0.5 * (a + b) - c->uc);
-            wt_real(c, 0.5 * (a + b), 0.5 * (b - a), &sup, &slope);
-        }
-        for (int ch = 0; ch < c->nch; ch++)
-            sum[ch] += (b - a) * aa_srgb_decode(e[ch]) * wm;
-        *err += 2.0 * sup * (b - a);
+    if (nf >= GEN_MAX_FUZZ) { /* more places than room, or work: the pixel refused */
+        w->gen_stuck = 1;
         return;
     }
     /* the intervals in order, merged where they overlap */
@@ -1549,7 +1693,7 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
             if (gen_bounds(c, 0.5 * (fa + fb), 0.5 * wd, 0.0, emax, dmax)) {
                 worst = 0.0;
                 for (int ch = 0; ch < c->nch; ch++)
-                    worst = fmax(worst, 2.3 * dmax[ch] * wd);
+                    worst = fmax(worst, 2.3 * dmax[ch] * wd + 2.4e-9);
             }
             if (c->weighted) {
                 /* |f w - f(m) w(m)| <= |f - f(m)| sup |w| + |f(m)| |w - w(m)|,
@@ -1671,7 +1815,8 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
     qsort(xs + 1, nx - 1, sizeof *xs, cmp_dbl);
     xs[nx++] = xb;
     double err = 0.0;
-    for (size_t k = 0; k + 1 < nx; k++) {
+    w->gen_work = 0;
+    for (size_t k = 0; k + 1 < nx && !w->gen_stuck; k++) {
         double a = xs[k], b = xs[k + 1];
         if (!(b > a))
             continue;
@@ -2013,13 +2158,15 @@ static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
             return aa_fail(AA_EINVAL, "a gradient's stops repeat more than %d times across the "
                                       "window of pixel (%g, %g): refused",
                            GRAD_MAX_BREAKS, w->uc - 0.5, w->vc - 0.5);
-        /* weighted: and the lines where the composite at the window's
-         * centre passes the decoding's threshold, whose crossings of the
-         * kink lines are breakpoints too (the inner integral's third
-         * derivative jumps there; without them a pixel under tent:r=1
-         * whose window's side the threshold's line crosses came out
-         * 1.05e-13 off against a bound of 1.0e-13, with them 7e-18) */
-        if (!w->box) {
+        /* and the lines where the composite at the window's centre
+         * passes the decoding's threshold, whose crossings of the kink
+         * lines (for the box, the window's sides) are breakpoints too (the
+         * inner integral's derivatives jump there; without them a pixel
+         * under tent:r=1 whose window's side the threshold's line crosses
+         * came out 1.05e-13 off against a bound of 1.0e-13, with them
+         * 7e-18; the box's row integral has a kink there, which QAG's
+         * estimate can miss) */
+        {
             const gen_layer *gl = NULL;
             for (int k = 0; k < w->ngl; k++)
                 if (w->gl[k].gp == gp)
@@ -2591,6 +2738,15 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
         integrate_intervals(w, &result, &abserr);
         value[ch] = result;
         worst = fmax(worst, abserr);
+    }
+    if (w->gen_stuck) {
+        w->gen_stuck = w->gen_over = 0;
+        return aa_fail(AA_EINVAL, "pixel (%g, %g): a row of the gradients' composite not "
+                                  "resolved within the work limit (the sRGB decoding's "
+                                  "threshold 0.04045 isolated in at most %d places and %d "
+                                  "halvings, at most %d Gauss-Legendre pieces a span): refused; "
+                                  "sample it with point, supersample or jitter",
+                       w->uc - 0.5, w->vc - 0.5, GEN_MAX_FUZZ, GEN_BUDGET, GEN_PIECES);
     }
     if (w->gen_over) {
         w->gen_over = 0;
