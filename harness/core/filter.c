@@ -79,8 +79,9 @@
  *              cone's do at R.
  *
  * Radially symmetric polynomial filters (Manson and Schaefer 2013 rasterize
- * with "radial" filters besides separable ones; the family here is the one
- * of polynomials in r^2 on a disc, whose every power is a polynomial in u
+ * with "radial" filters besides separable ones; their paper's own radial
+ * polynomials were not at hand, so this family is a variant of our choice:
+ * the polynomials in r^2 on a disc, whose every power is a polynomial in u
  * and v, so their exact method applies to it):
  *
  *   radial:k=K,r=R   c_K (1 - (u^2 + v^2) / R^2)^K inside the disc
@@ -425,7 +426,7 @@ static int radial_kinks(const double *p, double *t)
 const aa_filter_type aa_filter_radial = {
     {"radial",
      "radial polynomial (1 - d^2/r^2)^k on the disc of radius r pixels, k = 1, 2, 3, not "
-     "separable (Manson and Schaefer's radial filters)",
+     "separable (of Manson and Schaefer's radial kind; a family of our choice)",
      radial_params},
     NULL,
     NULL,
