@@ -2087,7 +2087,7 @@ static int area_check(const double *p, const aa_filter *f)
     (void)p;
     if (!aa_filter_is_box(f))
         return aa_fail(AA_EINVAL, "area integrates the box filter exactly and no other "
-                                  "(use -f box; tent, gauss and cone are not supported)");
+                                  "(use -f box; no other filter is supported)");
     return AA_OK;
 }
 

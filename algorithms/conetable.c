@@ -243,8 +243,8 @@ static int conetable_check(const double *p, const aa_filter *f)
                        f->spec.v[1]);
     if (!gauss && f->type != &aa_filter_cone)
         return aa_fail(AA_EINVAL, "conetable weighs a circular mask with a radial weight and "
-                                  "is measured against -f gauss:s=S or -f cone:r=R; %s is a "
-                                  "separable square filter it cannot form",
+                                  "is measured against -f gauss:s=S or -f cone:r=R; it has no "
+                                  "table for %s (its weights: the Gaussian and the cone)",
                        f->type->info.name);
     if (weight == W_CONE && f->type != &aa_filter_cone)
         return aa_fail(AA_EINVAL, "conetable: weight=cone is measured against the cone "

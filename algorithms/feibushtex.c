@@ -128,8 +128,8 @@ static int feibushtex_check(const double *p, const aa_filter *f)
     if (f->type != &aa_filter_gauss && f->type != &aa_filter_gauss_mask &&
         f->type != &aa_filter_cone)
         return aa_fail(AA_EINVAL, "feibushtex weighs a circular mask with a radial weight and "
-                                  "is measured against -f gauss:s=S or -f cone:r=R; %s is a "
-                                  "separable square filter it cannot form",
+                                  "is measured against -f gauss:s=S or -f cone:r=R; it has no "
+                                  "table for %s (its weights: the Gaussian and the cone)",
                        f->type->info.name);
     if (f->type == &aa_filter_cone && p[P_CUT] != FT_DEFAULT_CUT)
         return aa_fail(AA_EINVAL, "cut=%g sets the Gaussian's mask; the cone's mask is its "

@@ -14,7 +14,7 @@ int aa_peer_check_filter(const char *name, const aa_filter *f)
     if (!aa_filter_is_box(f))
         return aa_fail(AA_EINVAL,
                        "%s computes box-filter coverage only: it is measured against the box "
-                       "reference (use -f box; tent, gauss and cone are not supported)",
+                       "reference (use -f box; no other filter is supported)",
                        name);
     return AA_OK;
 }

@@ -432,6 +432,7 @@ static void test_refusals(void **state)
     /* conetable's circular mask: filters it cannot form or that are bad */
     static const char *const masks[][2] = {{"box", "circular mask"},
                                            {"tent:r=1", "circular mask"},
+                                           {"radial", "the Gaussian and the cone"},
                                            {"cone:r=0", "out of range"},
                                            {"cone:r=nan", "not a number"}};
     for (size_t k = 0; k < sizeof masks / sizeof *masks; k++)
