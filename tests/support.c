@@ -552,3 +552,37 @@ void support_check_value(const char *what, const char *filter, int i, int j, dou
                  what, filter, i, j, got, want, b, err);
     *worst = fmax(*worst, d);
 }
+
+double support_within_reference(const char *what, const char *filter, const aa_image *got,
+                                const aa_image *r, double tol)
+{
+    double worst = 0.0;
+    size_t n = (size_t)got->w * got->h * 3;
+    for (size_t k = 0; k < n; k++) {
+        double d = fabs(got->v[k] - r->v[k]);
+        if (!(d <= tol))
+            fail_msg("%s %dx%d under %s: pixel (%zu, %zu) channel %zu: %.17g, reference %.17g",
+                     what, got->w, got->h, filter, k / 3 % (size_t)got->w,
+                     k / 3 / (size_t)got->w, k % 3, got->v[k], r->v[k]);
+        worst = fmax(worst, d);
+    }
+    return worst;
+}
+
+double support_method_against_reference(const char *method, const char *what, const aa_scene *s,
+                                        int w, int h, const char *filter)
+{
+    aa_image a, a1, r;
+    support_render(method, s, filter, w, h, 2, &a, NULL);
+    support_render(method, s, filter, w, h, 1, &a1, NULL);
+    support_reference(s, &(support_view){.w = w, .h = h, .filter = filter, .threads = 2}, &r,
+                      NULL, NULL);
+    double worst = support_within_reference(what, filter, &a, &r, 1e-12);
+    if (!support_same_image(&a, &a1))
+        fail_msg("%s under %s: %s on 1 and 2 threads differ", what, filter, method);
+    print_message("%-22s %dx%-4d %-18s largest difference %.1e\n", what, w, h, filter, worst);
+    aa_image_free(&a);
+    aa_image_free(&a1);
+    aa_image_free(&r);
+    return worst;
+}

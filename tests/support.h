@@ -68,6 +68,16 @@ void support_render(const char *method, const aa_scene *scene, const char *filte
  * `stats` may be NULL. */
 void support_reference(const aa_scene *scene, const support_view *v, aa_image *out,
                        aa_image *bound, aa_truth_stats *stats);
+/* Fails the test if an image (3 channels) is more than tol from the
+ * reference r anywhere, naming the pixel and channel; returns the largest
+ * difference. */
+double support_within_reference(const char *what, const char *filter, const aa_image *got,
+                                const aa_image *r, double tol);
+/* `method` on the scene s (pattern units) at w x h under `filter`, at 2 and
+ * 1 threads, within 1e-12 of the reference everywhere and the same bits
+ * on both; prints and returns the largest difference. */
+double support_method_against_reference(const char *method, const char *what, const aa_scene *s,
+                                        int w, int h, const char *filter);
 /* The reference of the placed scene s at w x h under `filter` by the
  * reference's path `mode` (aa__truth_render_mode: 0 its own choice), one
  * thread, into img (3 channels) and bound (1); fails the test if it is

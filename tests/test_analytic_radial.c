@@ -45,30 +45,8 @@ static const char *const filters[] = {"radial:k=1,r=1", "radial", "radial:k=3,r=
 static void against(const char *what, const aa_scene *s, int w, int h,
                     const char *const *list)
 {
-    for (const char *const *f = list; *f; f++) {
-        aa_image a, a1, r;
-        support_render("analytic", s, *f, w, h, 2, &a, NULL);
-        support_render("analytic", s, *f, w, h, 1, &a1, NULL);
-        support_reference(s, &(support_view){.w = w, .h = h, .filter = *f, .threads = 2}, &r,
-                          NULL, NULL);
-        double worst = 0.0;
-        size_t n = (size_t)w * h * 3;
-        for (size_t k = 0; k < n; k++) {
-            double d = fabs(a.v[k] - r.v[k]);
-            if (!(d <= 1e-12))
-                fail_msg("%s %dx%d under %s: pixel (%zu, %zu) channel %zu: analytic %.17g, "
-                         "reference %.17g",
-                         what, w, h, *f, k / 3 % (size_t)w, k / 3 / (size_t)w, k % 3, a.v[k],
-                         r.v[k]);
-            if (a.v[k] != a1.v[k])
-                fail_msg("%s under %s: 1 and 2 threads differ at %zu", what, *f, k);
-            worst = fmax(worst, d);
-        }
-        print_message("%-22s %-18s largest difference %.1e\n", what, *f, worst);
-        aa_image_free(&a);
-        aa_image_free(&a1);
-        aa_image_free(&r);
-    }
+    for (const char *const *f = list; *f; f++)
+        support_method_against_reference("analytic", what, s, w, h, *f);
 }
 
 static void against_reference(const char *what, const aa_scene *s, int w, int h)

@@ -32,27 +32,7 @@
  * 1 and 2 threads. */
 static void against(const char *what, const aa_scene *s, int n, const char *f)
 {
-    aa_image a, a1, r;
-    support_render("analytic", s, f, n, n, 2, &a, NULL);
-    support_render("analytic", s, f, n, n, 1, &a1, NULL);
-    support_reference(s, &(support_view){.w = n, .h = n, .filter = f, .threads = 2}, &r, NULL,
-                      NULL);
-    double worst = 0.0;
-    size_t m = (size_t)n * n * 3;
-    for (size_t k = 0; k < m; k++) {
-        double d = fabs(a.v[k] - r.v[k]);
-        if (!(d <= 1e-12))
-            fail_msg("%s %dx%d under %s: pixel (%zu, %zu) channel %zu: analytic %.17g, "
-                     "reference %.17g",
-                     what, n, n, f, k / 3 % (size_t)n, k / 3 / (size_t)n, k % 3, a.v[k], r.v[k]);
-        if (a.v[k] != a1.v[k])
-            fail_msg("%s under %s: 1 and 2 threads differ at %zu", what, f, k);
-        worst = fmax(worst, d);
-    }
-    print_message("%-10s %dx%-4d %-18s largest difference %.1e\n", what, n, n, f, worst);
-    aa_image_free(&a);
-    aa_image_free(&a1);
-    aa_image_free(&r);
+    support_method_against_reference("analytic", what, s, n, n, f);
 }
 
 static void test_arcs_wide(void **state)
