@@ -469,23 +469,58 @@ static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
         }
         return 0.5 * h * sum;
     }
-    for (int i = 0; i < q->n[r]; i++) {
-        double s = mm + h * q->x[q->at[r] + i] - p->m;
-        double ux = bx[1] + s * (2 * bx[2] + 3 * s * bx[3]);
-        double uy = by[1] + s * (2 * by[2] + 3 * s * by[3]);
-        double vx = 2 * bx[2] + 6 * s * bx[3], vy = 2 * by[2] + 6 * s * by[3];
-        double Dx = s * (bx[1] + s * (bx[2] + s * bx[3])) - ax;
-        double Dy = s * (by[1] + s * (by[2] + s * by[3])) - ay;
-        double L2 = ux * ux + uy * uy, c = ux * vy - uy * vx, f;
+    /* Two nodes at a time (SSE2): each lane the same operations in the
+     * same order as one node's scalar expression, with sqrt and the
+     * divisions correctly rounded in both, so each w f is the same double;
+     * they are then added one by one in the nodes' order, the sum the
+     * same as a node-by-node loop's.  An odd rule's last pair repeats its
+     * last node, the copy not added. */
+    const int n = q->n[r];
+    const double *qx = q->x + q->at[r], *qw = q->w + q->at[r];
+    double wf[AR_QUAD_NMAX + 1];
+    const __m128d vmm = _mm_set1_pd(mm), vh = _mm_set1_pd(h), vm = _mm_set1_pd(p->m);
+    const __m128d b1x = _mm_set1_pd(bx[1]), b2x = _mm_set1_pd(bx[2]), b3x = _mm_set1_pd(bx[3]);
+    const __m128d b1y = _mm_set1_pd(by[1]), b2y = _mm_set1_pd(by[2]), b3y = _mm_set1_pd(by[3]);
+    const __m128d b2x2 = _mm_set1_pd(2 * bx[2]), b2y2 = _mm_set1_pd(2 * by[2]);
+    const __m128d three = _mm_set1_pd(3.0), six = _mm_set1_pd(6.0);
+    const __m128d one = _mm_set1_pd(1.0), vd = _mm_set1_pd(d);
+    const __m128d vax = _mm_set1_pd(ax), vay = _mm_set1_pd(ay);
+    for (int i = 0; i < n; i += 2) {
+        int j = i + 1 < n ? i + 1 : i;
+        __m128d x = _mm_set_pd(qx[j], qx[i]), w = _mm_set_pd(qw[j], qw[i]);
+        __m128d s = _mm_sub_pd(_mm_add_pd(vmm, _mm_mul_pd(vh, x)), vm);
+        __m128d s3 = _mm_mul_pd(three, s), s6 = _mm_mul_pd(six, s);
+        __m128d ux = _mm_add_pd(b1x, _mm_mul_pd(s, _mm_add_pd(b2x2, _mm_mul_pd(s3, b3x))));
+        __m128d uy = _mm_add_pd(b1y, _mm_mul_pd(s, _mm_add_pd(b2y2, _mm_mul_pd(s3, b3y))));
+        __m128d vx = _mm_add_pd(b2x2, _mm_mul_pd(s6, b3x));
+        __m128d vy = _mm_add_pd(b2y2, _mm_mul_pd(s6, b3y));
+        __m128d Dx = _mm_sub_pd(
+            _mm_mul_pd(s, _mm_add_pd(b1x, _mm_mul_pd(s, _mm_add_pd(b2x, _mm_mul_pd(s, b3x))))),
+            vax);
+        __m128d Dy = _mm_sub_pd(
+            _mm_mul_pd(s, _mm_add_pd(b1y, _mm_mul_pd(s, _mm_add_pd(b2y, _mm_mul_pd(s, b3y))))),
+            vay);
+        __m128d L2 = _mm_add_pd(_mm_mul_pd(ux, ux), _mm_mul_pd(uy, uy));
+        __m128d c = _mm_sub_pd(_mm_mul_pd(ux, vy), _mm_mul_pd(uy, vx)), f;
         if (!oc->evolute) {
-            double L = sqrt(L2);
-            f = (Dx * uy - Dy * ux - d * L) * (1.0 - d * c / (L2 * L));
+            /* (Dx uy - Dy ux - d L) (1 - d c / (L2 L)) */
+            __m128d L = _mm_sqrt_pd(L2);
+            __m128d g = _mm_sub_pd(_mm_sub_pd(_mm_mul_pd(Dx, uy), _mm_mul_pd(Dy, ux)),
+                                   _mm_mul_pd(vd, L));
+            f = _mm_mul_pd(g, _mm_sub_pd(one, _mm_div_pd(_mm_mul_pd(vd, c),
+                                                         _mm_mul_pd(L2, L))));
         } else {
-            double cp = 6 * (ux * by[3] - uy * bx[3]), dd = ux * vx + uy * vy;
-            f = (3 * dd * c - L2 * cp) * (Dx * ux + Dy * uy) / (c * c);
+            /* (3 dd c - L2 cp) (Dx ux + Dy uy) / (c c), cp = 6 (ux by3 - uy bx3) */
+            __m128d cp = _mm_mul_pd(six, _mm_sub_pd(_mm_mul_pd(ux, b3y), _mm_mul_pd(uy, b3x)));
+            __m128d dd = _mm_add_pd(_mm_mul_pd(ux, vx), _mm_mul_pd(uy, vy));
+            __m128d num = _mm_sub_pd(_mm_mul_pd(_mm_mul_pd(three, dd), c), _mm_mul_pd(L2, cp));
+            f = _mm_div_pd(_mm_mul_pd(num, _mm_add_pd(_mm_mul_pd(Dx, ux), _mm_mul_pd(Dy, uy))),
+                           _mm_mul_pd(c, c));
         }
-        sum += q->w[q->at[r] + i] * f;
+        _mm_storeu_pd(wf + i, _mm_mul_pd(w, f));
     }
+    for (int i = 0; i < n; i++)
+        sum += wf[i];
     return 0.5 * h * sum;
 }
 
