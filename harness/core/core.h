@@ -760,6 +760,14 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
 /* The same in double only, to about 1e-15 (the scene's double queries). */
 double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, double tb, double fa,
                           double target);
+/* aa__offset_solve_d started from guess (inside the bracket, tb's sign
+ * taken on trust and tb not evaluated; NaN or outside: none, the same as
+ * aa__offset_solve_d): for a caller that knows the root nearly, Newton's
+ * step from a nearby root (one evaluation where the guess is within the
+ * step tolerance's square root of the root, against three or four from
+ * the bracket's ends). */
+double aa__offset_solve_dg(const aa_offset_curve *oc, int coord, double ta, double tb, double fa,
+                           double target, double guess);
 /* The same started from guess (inside the bracket; NaN: none). */
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
                                   long double tb, long double fa, long double target, double guess);

@@ -520,6 +520,16 @@ double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, doubl
                         &b, &last);
 }
 
+double aa__offset_solve_dg(const aa_offset_curve *oc, int coord, double ta, double tb, double fa,
+                           double target, double guess)
+{
+    double a, b, last;
+    if (fa == 0)
+        return ta;
+    return solve_double(oc, coord, stop_ends(oc), ta, tb, fa, target, guess, SOLVE_D_STEP, NULL,
+                        &a, &b, &last);
+}
+
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
                                   long double tb, long double fa, long double target, double guess)
 {

@@ -602,12 +602,22 @@ static void subdivide(meet_ctx *c, double a, double b, int depth)
     subdivide(c, m, b, depth + 1);
 }
 
+/* An offset piece's last solve in polish_meet: its height y, parameter t
+ * and dy/dt there (d; NaN: none yet). */
+typedef struct last_solve {
+    double y, t, d;
+} last_solve;
+
 /* x of the piece at y and dx/dy there (infinite where it is horizontal);
  * an offset piece's parameter there is t, solved for between the
  * parameters tab[0] and tab[1] it has at heights ya < y and yb > y (its
- * whole range where tab is NULL). */
+ * whole range where tab is NULL), started from the tangent's step from
+ * its last solve ls (Newton's first step: once polish_meet's steps in y
+ * shrink, within the solver's tolerance of the root, one evaluation where
+ * a solve from the bracket took three or four; the same root within
+ * double's rounding). */
 static double x_slope(const aa_piece *p, double y, double *slope, double ya, const double *tab,
-                      double *t_out)
+                      double *t_out, last_solve *ls)
 {
     if (p->kind == AA_PIECE_CONIC) {
         double c, sn;
@@ -616,13 +626,21 @@ static double x_slope(const aa_piece *p, double y, double *slope, double ya, con
         return conic_x_at(p, y);
     }
     if (p->kind == AA_PIECE_OFFSET) {
-        double t = !tab || !(y > p->y0) || !(y < p->y1) || tab[0] == tab[1]
-                       ? offset_t_at(p, y)
-                       : aa__offset_solve_d(&p->oc, 1, tab[0], tab[1], ya - y, y);
+        double guess = ls->t + (y - ls->y) / ls->d; /* NaN: none */
+        double t;
+        if (!(y > p->y0))
+            t = p->ot0;
+        else if (!(y < p->y1))
+            t = p->ot1;
+        else if (!tab || tab[0] == tab[1])
+            t = aa__offset_solve_dg(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y, guess);
+        else
+            t = aa__offset_solve_dg(&p->oc, 1, tab[0], tab[1], ya - y, y, guess);
         double x, yy, dx, dy;
         aa_offset_point(&p->oc, t, &x, &yy, &dx, &dy);
         *slope = dx / dy;
         *t_out = t;
+        ls->y = y, ls->t = t, ls->d = dy;
         return t == p->ot0 ? p->x0 : t == p->ot1 ? p->x1 : x; /* offset_x(p, t) */
     }
     double t = aa_piece_t_at(p, y);
@@ -638,20 +656,22 @@ static double x_slope(const aa_piece *p, double y, double *slope, double ya, con
  * is two adjacent doubles or the difference is zero.  tp, tq (NULL: not
  * known): offset pieces' parameters at a and b, each solve for the
  * parameter at y then bracketed by those at the bracket's ends, kept as it
- * shrinks (from the whole piece, each took twice the evaluations). */
+ * shrinks (from the whole piece, each took twice the evaluations), and
+ * started from the last (x_slope). */
 static double polish_meet(const aa_piece *p, const aa_piece *q, double a, double b, double fa,
                           const double *tp, const double *tq)
 {
     double y = 0.5 * (a + b), prev = b - a;
     double bp[2] = {0.0, 0.0}, bq[2] = {0.0, 0.0};
+    last_solve lp = {NAN, NAN, NAN}, lq = {NAN, NAN, NAN};
     if (tp)
         bp[0] = tp[0], bp[1] = tp[1];
     if (tq)
         bq[0] = tq[0], bq[1] = tq[1];
     for (int it = 0; it < 200; it++) {
         double sp, sq, up = 0.0, uq = 0.0;
-        double f = x_slope(p, y, &sp, a, tp ? bp : NULL, &up) -
-                   x_slope(q, y, &sq, a, tq ? bq : NULL, &uq);
+        double f = x_slope(p, y, &sp, a, tp ? bp : NULL, &up, &lp) -
+                   x_slope(q, y, &sq, a, tq ? bq : NULL, &uq, &lq);
         if (f == 0.0)
             return y;
         if ((f < 0.0) == (fa < 0.0))
