@@ -359,6 +359,9 @@ typedef struct gen_layer {
 /* Most stop lines one pixel's window may meet (a repeating gradient finer
  * than that is refused). */
 #define GRAD_MAX_BREAKS 4096
+/* Most pieces near a pixel of gradient paint (truth.c's opening comment,
+ * crowded windows): past them the pixel is refused. */
+#define GRAD_CROWD_MAX 4096
 
 typedef struct worker {
     const aa_scene *scene;
@@ -407,6 +410,8 @@ typedef struct worker {
     int radial; /* not separable (cone): rows weighed by aa_filter_row_cdf */
     gsl_poly_complex_workspace *poly; /* radial: the circle's crossings */
     crowd_worker crowd;               /* crowded pixels (truth_crowd.c) */
+    const double *xmeet;              /* gradient paint there: the sweep's events */
+    size_t nxmeet;
     int all_crowd;                    /* every pixel there (AA__TRUTH_CROWD) */
     size_t crowded;                   /* pixels it took */
 } worker;
@@ -2609,10 +2614,14 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
                     st = add_abs(w, ys[q], -INFINITY, INFINITY);
             }
         }
-        if (n <= TRUTH_MAX_PAIRS)
+        if (n <= TRUTH_MAX_PAIRS && !w->all_crowd)
             for (size_t q = k + 1; q < n && !st; q++)
                 st = add_intersections(w, p, local[q]);
     }
+    /* a crowded window of gradient paint: the sweep's events (meetings,
+     * ends, crossings of the window's sides) in place of the pairs */
+    for (size_t k = 0; k < w->nxmeet && !st; k++)
+        st = add_point(w, w->xmeet[k]);
     /* Radial filters: where a piece passes closest to the centre, the row
      * integral (singular at the centre) makes the inner integral change on
      * the scale of that distance, too fast for QAG's estimate to see: a
@@ -2938,12 +2947,21 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     size_t n;
     const aa_piece *const *local = aa_strip_local(w->strip, &n);
     int st;
-    if (w->grad && (n > TRUTH_MAX_PAIRS || w->all_crowd))
-        return aa_fail(AA_EINVAL, "pixel (%g, %g): %zu pieces near it in a scene with gradient "
-                                  "paint; the reference's crowded path takes constant colours "
-                                  "only (at most %d)",
-                       w->uc - 0.5, w->vc - 0.5, n, TRUTH_MAX_PAIRS);
-    if (n > TRUTH_MAX_PAIRS || w->all_crowd) {
+    w->nxmeet = 0;
+    if (w->grad && (n > TRUTH_MAX_PAIRS || w->all_crowd)) {
+        /* gradient paint in a crowded window: the sum over spans, with the
+         * crowd path's sweep for the meetings (truth.c's opening comment) */
+        if (n > GRAD_CROWD_MAX)
+            return aa_fail(AA_EINVAL, "pixel (%g, %g): %zu pieces near it in a scene with "
+                                      "gradient paint, more than %d (each height of the "
+                                      "reference's sum over spans costs every piece's crossing "
+                                      "and its span's quadrature): refused; sample it with "
+                                      "point, supersample or jitter",
+                           w->uc - 0.5, w->vc - 0.5, n, GRAD_CROWD_MAX);
+        if ((st = crowd_events(&w->crowd, w->scene, w->strip, w->f, w->uc, w->vc, local, n,
+                               &w->xmeet, &w->nxmeet)))
+            return st;
+    } else if (n > TRUTH_MAX_PAIRS || w->all_crowd) {
         st = crowd_pixel(&w->crowd, w->scene, w->strip, w->f, w->uc, w->vc, local, n, grey,
                          n <= TRUTH_CROWD && !w->all_crowd, value, bound);
         if (st != CROWD_DECLINED) {
