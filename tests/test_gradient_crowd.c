@@ -19,9 +19,27 @@
  *  - the same with two equal stops against the flat colour's reference,
  *    which takes the crowd path proper (colour jumps piece by piece,
  *    truth_crowd.c: another derivation) under box, tent:r=1 and the cone;
+ *  - a stroke of a cubic Bezier arc (a tube: butt caps, its curvature
+ *    radius above the half width everywhere, so the stroke is the set of
+ *    B(t) + s N(t), |s| <= h, and its outline the two offset curves B +-
+ *    h N and the caps) painted by a linear gradient of three stops whose
+ *    encoded values stay below the threshold (the colour piecewise affine
+ *    in x and y, with a kink along the middle stop's line, which crosses
+ *    the offset curves): under the box filter, single pixels by an outer
+ *    GSL QAGS over the rows, cut at the pixel's edges, the offset curves'
+ *    extremes in y (where B'y = 0: the offset's derivative is B' (1 - h
+ *    k)), the caps' ends and where the outline crosses the pixel's sides
+ *    and the middle stop's line, and an inner integral exact along each
+ *    row: the outline's crossings found here by bisection in t on the
+ *    offset curves written out from B, and the affine colour's integral
+ *    over each part between them and the stop's line in closed form;
+ *  - constant gradients (linear and radial, repeating: their stop lines
+ *    and circles cross the stroke) against the flat colour's reference
+ *    on that stroke, under box, tent:r=1 and the cone;
  *  - every pixel's bound within 1e-12.
  */
 #include "core.h"
+#include "path.h"
 #include "support.h"
 #include "truth.h"
 
@@ -34,9 +52,17 @@
 #include <string.h>
 
 #include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
 
 #define W 4
 #define H 4
+
+static int cmp_dbl(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
 
 /* ---- the polygons ---- */
 
@@ -253,11 +279,365 @@ static void test_crowded_constant(void **state)
     aa_scene_free(flat);
 }
 
+/* ---- strokes of curves (offset pieces) ---- */
+
+#define SW 8
+#define SH 6
+
+/* The tube: the cubic's control points (pixels), half width h. */
+static const double TC[8] = {0.8, 4.9, 2.6, 0.4, 5.2, 5.6, 7.3, 1.2};
+static const double TH = 0.45;
+
+static void bez(double t, double *x, double *y, double *dx, double *dy)
+{
+    double u = 1 - t;
+    *x = u * u * u * TC[0] + 3 * u * u * t * TC[2] + 3 * u * t * t * TC[4] + t * t * t * TC[6];
+    *y = u * u * u * TC[1] + 3 * u * u * t * TC[3] + 3 * u * t * t * TC[5] + t * t * t * TC[7];
+    *dx = 3 * (u * u * (TC[2] - TC[0]) + 2 * u * t * (TC[4] - TC[2]) + t * t * (TC[6] - TC[4]));
+    *dy = 3 * (u * u * (TC[3] - TC[1]) + 2 * u * t * (TC[5] - TC[3]) + t * t * (TC[7] - TC[5]));
+}
+
+/* The offset curve B + side h N, N = (-B'y, B'x) / |B'|. */
+static void off(int side, double t, double *x, double *y)
+{
+    double bx, by, dx, dy;
+    bez(t, &bx, &by, &dx, &dy);
+    double l = hypot(dx, dy);
+    *x = bx - side * TH * dy / l, *y = by + side * TH * dx / l;
+}
+
+/* The outline as four curves in a parameter u in [0, 1]: the offsets
+ * (sides +1, -1) and the caps at t = 0 and 1 (segments between them). */
+static void outline(int c, double u, double *x, double *y)
+{
+    if (c < 2) {
+        off(c ? -1 : 1, u, x, y);
+        return;
+    }
+    double t = c == 2 ? 0.0 : 1.0, xa, ya, xb, yb;
+    off(1, t, &xa, &ya);
+    off(-1, t, &xb, &yb);
+    *x = xa + u * (xb - xa), *y = ya + u * (yb - ya);
+}
+
+/* The u where ax x + ay y - at along curve c changes sign; count into out
+ * (at most cap).  On an offset curve the derivative of (ax, ay).P is
+ * (ax, ay).B' (1 - h k), so between the roots of the quadratic (ax,
+ * ay).B'(t) (and the ends) it is monotone: each part holds one root at
+ * most, found by bisection; the caps are segments. */
+static int roots_dir(int c, double ax, double ay, double at, double *out, int cap)
+{
+    double cut[4], x, y;
+    int nc = 0, n = 0;
+    cut[nc++] = 0;
+    if (c < 2) {
+        double d0 = ax * (TC[2] - TC[0]) + ay * (TC[3] - TC[1]);
+        double d1 = ax * (TC[4] - TC[2]) + ay * (TC[5] - TC[3]);
+        double d2 = ax * (TC[6] - TC[4]) + ay * (TC[7] - TC[5]);
+        double qa = d0 - 2 * d1 + d2, qb = 2 * (d1 - d0), qc = d0, r[2];
+        int nr = 0;
+        if (qa != 0) {
+            double disc = qb * qb - 4 * qa * qc;
+            if (disc > 0) {
+                r[0] = (-qb - sqrt(disc)) / (2 * qa), r[1] = (-qb + sqrt(disc)) / (2 * qa);
+                if (r[0] > r[1]) {
+                    double t = r[0];
+                    r[0] = r[1], r[1] = t;
+                }
+                nr = 2;
+            }
+        } else if (qb != 0)
+            r[0] = -qc / qb, nr = 1;
+        for (int k = 0; k < nr; k++)
+            if (r[k] > 0 && r[k] < 1)
+                cut[nc++] = r[k];
+    }
+    cut[nc++] = 1;
+    for (int k = 0; k + 1 < nc && n < cap; k++) {
+        double a = cut[k], b = cut[k + 1];
+        outline(c, a, &x, &y);
+        double fa = ax * x + ay * y - at;
+        outline(c, b, &x, &y);
+        double fb = ax * x + ay * y - at;
+        if (!((fa < 0 && fb > 0) || (fa > 0 && fb < 0)))
+            continue;
+        for (int it = 0; it < 200; it++) {
+            double m = 0.5 * (a + b);
+            if (!(m > a && m < b))
+                break;
+            outline(c, m, &x, &y);
+            double fm = ax * x + ay * y - at;
+            if ((fm < 0) == (fa < 0))
+                a = m, fa = fm;
+            else
+                b = m;
+        }
+        out[n++] = 0.5 * (a + b);
+    }
+    return n;
+}
+
+static int roots(int c, int coord, double at, double *out, int cap)
+{
+    return roots_dir(c, coord ? 0.0 : 1.0, coord ? 1.0 : 0.0, at, out, cap);
+}
+
+/* The gradient: t = gx x + gy y + g0 (pixels), stops 0, 0.5, 1 with
+ * encoded values ge[k][ch] below the threshold. */
+static const double GP[4] = {0.5, 0.7, 7.4, 5.1};
+static const double ge[3][3] = {{0.0, 0.03, 0.012}, {0.04, 0.002, 0.03}, {0.01, 0.035, 0.0}};
+
+static double grad_t(double x, double y)
+{
+    double dx = GP[2] - GP[0], dy = GP[3] - GP[1];
+    return ((x - GP[0]) * dx + (y - GP[1]) * dy) / (dx * dx + dy * dy);
+}
+
+static double lin_colour(int ch, double x, double y)
+{
+    double t = grad_t(x, y);
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    double e = t < 0.5 ? ge[0][ch] + 2 * t * (ge[1][ch] - ge[0][ch])
+                       : ge[1][ch] + 2 * (t - 0.5) * (ge[2][ch] - ge[1][ch]);
+    return e / 12.92;
+}
+
+/* The x where row y meets the line t = tau. */
+static double tau_x(double tau, double y)
+{
+    double dx = GP[2] - GP[0], dy = GP[3] - GP[1];
+    return GP[0] + (tau * (dx * dx + dy * dy) - (y - GP[1]) * dy) / dx;
+}
+
+typedef struct row_ctx {
+    int i, ch;
+} row_ctx;
+
+/* The row y's integral over [i, i + 1] of the colour inside the stroke:
+ * the outline's crossings in order (inside between the first and second,
+ * third and fourth...), each part cut at the stops' lines, the affine
+ * colour's integral its length times its value at the middle. */
+static double stroke_row(double y, void *v)
+{
+    const row_ctx *r = v;
+    double xs[64], us[32];
+    int nx = 0;
+    for (int c = 0; c < 4; c++) {
+        int n = roots(c, 1, y, us, 32);
+        for (int k = 0; k < n && nx < 64; k++) {
+            double x, yy;
+            outline(c, us[k], &x, &yy);
+            xs[nx++] = x;
+        }
+    }
+    qsort(xs, (size_t)nx, sizeof *xs, cmp_dbl);
+    assert_true(nx % 2 == 0);
+    double sum = 0;
+    for (int k = 0; k + 1 < nx; k += 2) {
+        double a = fmax(xs[k], r->i), b = fmin(xs[k + 1], r->i + 1.0), cut[8];
+        if (!(b > a))
+            continue;
+        int n = 0;
+        cut[n++] = a;
+        for (int q = 0; q < 3; q++) {
+            double x = tau_x(0.5 * q, y);
+            if (x > a && x < b)
+                cut[n++] = x;
+        }
+        cut[n++] = b;
+        qsort(cut, (size_t)n, sizeof *cut, cmp_dbl);
+        for (int q = 0; q + 1 < n; q++)
+            sum += (cut[q + 1] - cut[q]) * lin_colour(r->ch, 0.5 * (cut[q] + cut[q + 1]), y);
+    }
+    return sum;
+}
+
+/* Pixel (i, j), channel ch, by the outer QAGS between the cuts. */
+static double stroke_pixel(int i, int j, int ch)
+{
+    double cut[256], us[32], x, y;
+    int n = 0;
+    cut[n++] = j, cut[n++] = j + 1.0;
+    /* the offsets' extremes in y: B'y = 0, a quadratic in t */
+    double a0 = TC[3] - TC[1], a1 = TC[5] - TC[3], a2 = TC[7] - TC[5];
+    double qa = a0 - 2 * a1 + a2, qb = 2 * (a1 - a0), qc = a0, disc = qb * qb - 4 * qa * qc;
+    if (disc > 0)
+        for (int sg = -1; sg <= 1; sg += 2) {
+            double t = (-qb + sg * sqrt(disc)) / (2 * qa);
+            if (t > 0 && t < 1)
+                for (int c = 0; c < 2; c++)
+                    outline(c, t, &x, &y), cut[n++] = y;
+        }
+    for (int c = 2; c < 4; c++) /* the caps' ends */
+        for (int e = 0; e < 2; e++)
+            outline(c, e, &x, &y), cut[n++] = y;
+    for (int c = 0; c < 4; c++) {
+        /* the pixel's sides */
+        for (int side = 0; side < 2; side++) {
+            int m = roots(c, 0, i + side, us, 32);
+            for (int k = 0; k < m; k++)
+                outline(c, us[k], &x, &y), cut[n++] = y;
+        }
+    }
+    /* the stops' lines against the outline: t = ((x, y) - P1).(P2 - P1) /
+     * |P2 - P1|^2 = tau */
+    {
+        double dx = GP[2] - GP[0], dy = GP[3] - GP[1], l2 = dx * dx + dy * dy;
+        for (int c = 0; c < 4; c++)
+            for (int q = 0; q < 3; q++) {
+                int m = roots_dir(c, dx / l2, dy / l2, 0.5 * q + (GP[0] * dx + GP[1] * dy) / l2,
+                                  us, 32);
+                for (int k = 0; k < m; k++)
+                    outline(c, us[k], &x, &y), cut[n++] = y;
+            }
+    }
+    qsort(cut, (size_t)n, sizeof *cut, cmp_dbl);
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
+    row_ctx r = {i, ch};
+    gsl_function F = {stroke_row, &r};
+    double sum = 0, res, err;
+    for (int k = 0; k + 1 < n; k++) {
+        double a = fmax(cut[k], j), b = fmin(cut[k + 1], j + 1.0);
+        if (!(b > a))
+            continue;
+        gsl_integration_qags(&F, a, b, 1e-17, 1e-14, 1000, ws, &res, &err);
+        sum += res;
+    }
+    gsl_integration_workspace_free(ws);
+    return sum;
+}
+
+/* The tube's outline as a layer of a new scene (pixels mapped to pattern
+ * units), painted by g (NULL: the flat colour col); *noff its offset
+ * pieces. */
+static aa_scene *tube_scene(const aa_gradient *g, aa_rgb col, size_t *noff)
+{
+    aa_path in = {0}, out = {0};
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 2 * TH;
+    assert_int_equal(aa_path_move_to(&in, TC[0], TC[1]), AA_OK);
+    assert_int_equal(aa_path_cubic_to(&in, TC[2], TC[3], TC[4], TC[5], TC[6], TC[7]), AA_OK);
+    assert_int_equal(aa_stroke_outline(&in, &st, &out), AA_OK);
+    const double m[6] = {1.0 / SW, 0, 0, 1.0 / SH, 0, 0};
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_int_equal(aa_scene_layer(s, col, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_path_fill(&out, m, s), AA_OK);
+    if (g)
+        assert_int_equal(aa_scene_set_gradient(s, g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    *noff = 0;
+    for (size_t k = 0; k < n; k++)
+        *noff += pc[k].kind == AA_PIECE_OFFSET;
+    aa_path_free(&in);
+    aa_path_free(&out);
+    return s;
+}
+
+static void test_stroke_box(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off();
+    /* the curvature radius above the half width (a tube) */
+    for (int k = 0; k <= 2000; k++) {
+        double t = k / 2000.0, u = 1 - t, x, y, dx, dy;
+        bez(t, &x, &y, &dx, &dy);
+        double ddx = 6 * (u * (TC[4] - 2 * TC[2] + TC[0]) + t * (TC[6] - 2 * TC[4] + TC[2]));
+        double ddy = 6 * (u * (TC[5] - 2 * TC[3] + TC[1]) + t * (TC[7] - 2 * TC[5] + TC[3]));
+        double kappa = fabs(dx * ddy - dy * ddx) / pow(hypot(dx, dy), 3);
+        assert_true(kappa * TH < 0.95);
+    }
+    aa_gradient_stop st[3];
+    for (int k = 0; k < 3; k++) {
+        st[k].offset = 0.5 * k, st[k].opacity = 1;
+        for (int ch = 0; ch < 3; ch++)
+            st[k].colour.c[ch] = ge[k][ch] / 12.92;
+    }
+    aa_gradient g = {AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {GP[0], GP[1], GP[2], GP[3], 0, 0},
+                     {1.0 / SW, 0, 0, 1.0 / SH, 0, 0}, 3, st};
+    size_t noff;
+    aa_scene *s = tube_scene(&g, (aa_rgb){{0, 0, 0}}, &noff);
+    assert_true(noff > 0);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    support_view v = {SW, SH, 0, 0, 0, "box", 1, 1, 0};
+    support_reference(s, &v, &ref, &bound, &stats);
+    assert_true(stats.max_bound <= 1e-12);
+    double worst = 0;
+    int checked = 0;
+    for (int j = 0; j < SH; j++)
+        for (int i = 0; i < SW; i++)
+            for (int ch = 0; ch < 3; ch++) {
+                double want = stroke_pixel(i, j, ch), got = aa_pixel(&ref, i, j)[ch];
+                double bd = *aa_pixel(&bound, i, j);
+                worst = fmax(worst, fabs(got - want));
+                checked++;
+                if (!(fabs(got - want) <= bd + 1e-15))
+                    fail_msg("stroke: pixel (%d, %d) channel %d is %.17g, the rows' integral "
+                             "%.17g (bound %.3g)",
+                             i, j, ch, got, want, bd);
+            }
+    print_message("stroke of a cubic (%zu offset pieces) under a linear gradient, box: %d "
+                  "values, largest difference from the rows' integral %.2g, largest bound "
+                  "%.2g\n",
+                  noff, checked, worst, stats.max_bound);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
+static void test_stroke_constant(void **state)
+{
+    (void)state;
+    const aa_rgb col = {{0.65, 0.3, 0.1}};
+    const aa_gradient_stop same[2] = {{0, col, 1.0}, {1, col, 1.0}};
+    size_t noff;
+    aa_scene *flat = tube_scene(NULL, col, &noff);
+    static const char *const filters[] = {"box", "tent:r=1", "cone:r=1"};
+    for (int radial = 0; radial < 2; radial++) {
+        aa_gradient g = {radial ? AA_GRADIENT_RADIAL : AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT,
+                         {0}, {1.0 / SW, 0, 0, 1.0 / SH, 0, 0}, 2, same};
+        static const double at[2][6] = {{1.0, 1.5, 2.2, 2.1, 0, 0}, {4.1, 3.0, 1.3, 3.6, 2.7, 0.2}};
+        memcpy(g.p, at[radial], sizeof g.p);
+        aa_scene *s = tube_scene(&g, col, &noff);
+        for (int k = 0; k < 3; k++) {
+            support_view v = {SW, SH, 0, 0, 0, filters[k], 1, 1, 0};
+            aa_image rg, rf, bg, bf;
+            aa_truth_stats sg, sf;
+            support_reference(s, &v, &rg, &bg, &sg);
+            support_reference(flat, &v, &rf, &bf, &sf);
+            double worst = 0;
+            for (int j = 0; j < SH; j++)
+                for (int i = 0; i < SW; i++)
+                    for (int ch = 0; ch < 3; ch++)
+                        worst = fmax(worst, fabs(aa_pixel(&rg, i, j)[ch] - aa_pixel(&rf, i, j)[ch]));
+            print_message("%-9s stroke: a constant %s gradient against the flat colour: %.2g "
+                          "(bounds %.2g, %.2g)\n",
+                          filters[k], radial ? "radial" : "linear", worst, sg.max_bound,
+                          sf.max_bound);
+            assert_true(sg.max_bound <= 1e-12);
+            if (!(worst <= sg.max_bound + sf.max_bound + 1e-15))
+                fail_msg("%s: a constant %s gradient on a stroke %.3g off the flat colour",
+                         filters[k], radial ? "radial" : "linear", worst);
+            aa_image_free(&rg);
+            aa_image_free(&rf);
+            aa_image_free(&bg);
+            aa_image_free(&bf);
+        }
+        aa_scene_free(s);
+    }
+    aa_scene_free(flat);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_crowded_box),
         cmocka_unit_test(test_crowded_constant),
+        cmocka_unit_test(test_stroke_box),
+        cmocka_unit_test(test_stroke_constant),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -217,8 +217,17 @@
  * polynomial of degree 6 for a cubic, 4 for an arc in the half-angle
  * parameter, its sign changes isolated between its derivative's roots
  * and bisected), and the row of P* where t is least.  Offset pieces
- * (strokes of curves) and windows with more than TRUTH_MAX_PAIRS pieces
- * are refused with a gradient scene.
+ * (strokes of curves) meet the stop lines and circles as two pieces meet
+ * (offset_meets: the line's part across the window's rows as a line
+ * piece, the circle, an ellipse in pixels, as its two halves between its
+ * top and bottom as conic pieces, against the offset piece by
+ * aa_piece_meet).  A window of more than TRUTH_MAX_PAIRS pieces takes the
+ * same sum over spans, with the crowd path's sweep (truth_crowd.c,
+ * crowd_events) for the heights where pieces meet in place of the pairs:
+ * its events (ends, crossings of the window's sides, the meetings of
+ * neighbours in the order along x, which find every crossing inside the
+ * window) are breakpoints; past GRAD_CROWD_MAX pieces the pixel is
+ * refused.
  *
  * Several gradients at a point (radial with linear, two radial ones, a
  * gradient of varying opacity with another: "several gradients" below):
@@ -609,23 +618,7 @@ static int grad_mode(const aa_scene *scene)
     return varying && ngrad > 1 ? 2 : 0;
 }
 
-/* Whether the reference integrates this gradient scene exactly (truth.c's
- * opening comment): a separable filter and no offset pieces. */
-static int grad_check(const aa_scene *scene, const aa_filter *f)
-{
-    (void)f;
-    size_t np;
-    const aa_piece *pc = aa_scene_pieces(scene, &np);
-    for (size_t k = 0; k < np; k++)
-        if (pc[k].kind == AA_PIECE_OFFSET)
-            return aa_fail(AA_EINVAL, "the reference of gradient paint with offset curves "
-                                      "(strokes of curves) is not implemented: where a stop's "
-                                      "line meets them is not solved for");
-    return AA_OK;
-}
-
-/* The radial gradient g of layer l appended to w->rg (grad_check let the
- * scene have no linear ones). */
+/* The radial gradient g of layer l appended to w->rg. */
 static int rad_init(worker *w, int l, const aa_gradient *g)
 {
     if (!w->rg) {
@@ -2237,6 +2230,80 @@ static int rad_filter_circle(worker *w, const grad_radial *g, double rt, double 
     return st;
 }
 
+/* Offset pieces (strokes of curves) against the curves t = tau of a
+ * gradient: the curve as a piece of the scene's own kinds over the
+ * window's rows (a line's part; a circle, in pixels an ellipse, as its
+ * two halves between its top and bottom, conic pieces), and their
+ * meetings from aa_piece_meet, which for an offset piece bisects on exact
+ * extents, told apart by the two pieces' slope ranges, and polishes each
+ * change of sign of the difference of their x by Newton's method (core.h):
+ * the same search as for an offset piece against another piece. */
+static int offset_meets(worker *w, const aa_piece *p, const aa_piece *q)
+{
+    double ys[16];
+    int m = aa_piece_meet(p, q, w->vc - w->R, w->vc + w->R, ys, 16), st = AA_OK;
+    for (int r = 0; r < m && !st; r++)
+        st = add_abs(w, ys[r], -INFINITY, INFINITY);
+    return st;
+}
+
+/* The line tx x + ty y + k = 0 (ty != 0 and, for a crossing, tx != 0). */
+static int offset_meet_line(worker *w, const aa_piece *p, double tx, double ty, double k)
+{
+    if (tx == 0.0) /* horizontal: its height is a breakpoint in itself */
+        return add_abs(w, -k / ty, -INFINITY, INFINITY);
+    aa_piece q;
+    memset(&q, 0, sizeof q);
+    q.kind = AA_PIECE_LINE;
+    q.dir = 1;
+    q.y0 = w->vc - w->R, q.y1 = w->vc + w->R;
+    q.x0 = -(k + ty * q.y0) / tx, q.x1 = -(k + ty * q.y1) / tx;
+    q.cx = 0.5 * (q.x0 + q.x1), q.cy = 0.5 * (q.y0 + q.y1);
+    q.bx = q.x1 - q.x0, q.by = q.y1 - q.y0;
+    q.xmin = fmin(q.x0, q.x1), q.xmax = fmax(q.x0, q.x1);
+    q.layer = -1, q.edge = -1;
+    return offset_meets(w, p, &q);
+}
+
+/* The circle of tau of radial gradient g, radius rt in its own
+ * coordinates: in pixels m(F + tau D) + rt (cos th m1 + sin th m2) (m1,
+ * m2 the map's columns), an ellipse of centre (ex, ey) and half height er
+ * = rt |(m1y, m2y)|; with th = s + phi - pi, phi = atan2(m2y, m1y), y =
+ * ey - er cos s and x = ex + ea cos s +- eb sin s, s in [0, pi]: the two
+ * halves (the conic piece's angle form, aabench.h). */
+static int offset_meet_circle(worker *w, const aa_piece *p, const grad_radial *g, double tau,
+                              double rt)
+{
+    const double *m = g->m;
+    double er = rt * hypot(m[1], m[3]);
+    if (!(er > 0.0))
+        return AA_OK; /* a point: no crossing */
+    double phi = atan2(m[3], m[1]), cp = cos(phi), sp = sin(phi);
+    double qx = g->fx + tau * g->Dx, qy = g->fy + tau * g->Dy;
+    double ex = m[0] * qx + m[2] * qy + m[4], ey = m[1] * qx + m[3] * qy + m[5];
+    double ea = -rt * (m[0] * cp + m[2] * sp), eb = rt * (m[0] * sp - m[2] * cp);
+    if (ey + er < w->vc - w->R || ey - er > w->vc + w->R)
+        return AA_OK; /* not in the window's rows */
+    int st = AA_OK;
+    for (int half = 0; half < 2 && !st; half++) {
+        aa_piece q;
+        memset(&q, 0, sizeof q);
+        q.kind = AA_PIECE_CONIC;
+        q.dir = 1;
+        q.ex = ex, q.ey = ey, q.er = er, q.ea = ea, q.eb = half ? -eb : eb;
+        q.s0 = 0.0, q.s1 = M_PI;
+        q.x0 = ex + ea, q.y0 = ey - er, q.x1 = ex - ea, q.y1 = ey + er;
+        /* x = ex + rho cos(s - al) over [0, pi]: its extremes inside if
+         * al (or al + pi) is, else at the ends; widened by rounding */
+        double rho = hypot(q.ea, q.eb), al = atan2(q.eb, q.ea), tol = 1e-12 * (fabs(ex) + rho);
+        q.xmax = (al >= 0.0 ? ex + rho : fmax(q.x0, q.x1)) + tol;
+        q.xmin = (al <= 0.0 ? ex - rho : fmin(q.x0, q.x1)) - tol;
+        q.layer = -1, q.edge = -1;
+        st = offset_meets(w, p, &q);
+    }
+    return st;
+}
+
 static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *const *local,
                               size_t n, size_t *total)
 {
@@ -2306,8 +2373,12 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
         /* local pieces: (X, Y) / W polynomials in the piece's parameter */
         for (size_t k = 0; k < n && !st; k++) {
             const aa_piece *p = local[k];
-            if (p->kind == AA_PIECE_FLAT || p->kind == AA_PIECE_OFFSET)
+            if (p->kind == AA_PIECE_FLAT)
                 continue;
+            if (p->kind == AA_PIECE_OFFSET) {
+                st = offset_meet_circle(w, p, g, tau, rt);
+                continue;
+            }
             double X[4] = {0}, Y[4] = {0}, W[4] = {0}, Q[7] = {0}, lo = 0.0, hi = 1.0, sm = 0.0;
             int deg;
             if (p->kind == AA_PIECE_CONIC) {
@@ -2416,12 +2487,16 @@ static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
             for (size_t k = 0; k < n && !st; k++) {
                 const aa_piece *p = local[k];
                 double ys[3];
-                if (p->kind == AA_PIECE_FLAT || p->kind == AA_PIECE_OFFSET)
+                if (p->kind == AA_PIECE_FLAT)
                     continue;
                 if (gp->ty == 0.0) {
                     int mm = aa_piece_meet_x(p, (tau - gp->t0) / gp->tx, ys);
                     for (int r = 0; r < mm && !st; r++)
                         st = add_abs(w, ys[r], -INFINITY, INFINITY);
+                    continue;
+                }
+                if (p->kind == AA_PIECE_OFFSET) {
+                    st = offset_meet_line(w, p, gp->tx, gp->ty, gp->t0 - tau);
                     continue;
                 }
                 if (p->kind == AA_PIECE_CONIC) {
@@ -3163,9 +3238,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
         return aa_fail(AA_EINVAL, "reference bound image must be %dx%dx1", out->w, out->h);
     if (aa_scene_field(placed, NULL, NULL, NULL))
         return field_render(placed, f, threads, out, bound, stats, nfast);
-    int grad = aa_scene_has_gradients(placed), gst;
-    if (grad && (gst = grad_check(placed, f)))
-        return gst;
+    int grad = aa_scene_has_gradients(placed);
     gsl_set_error_handler_off(); /* QAG's status is judged by its error estimate */
     int status = AA_OK;
     char message[1024] = "";
