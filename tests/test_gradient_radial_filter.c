@@ -28,10 +28,12 @@
  *  - single pixels by GSL's adaptive quadrature in two dimensions (outer
  *    rows, inner along the row's chord), the filter and the picture
  *    written out here: a centred radial gradient over the whole plane in
- *    its own polar form (t = distance / r), cut at the support's centre
- *    row and column and where each circle t = 0, T, 1 crosses the
- *    support's circle and meets the rows; and an oblique linear ramp on
- *    a rectangle, cut at the rectangle's sides and the lines t = 0, T, 1.
+ *    its own polar form (t = distance / r), and a focal one (F off the
+ *    centre, fr = 0: t the positive root of (r^2 - |D|^2) t^2 + 2 (q -
+ *    F).D t - |q - F|^2 = 0), cut at the support's centre row and column,
+ *    the focus's, and where each circle t = 0, T, 1 crosses the support's
+ *    circle and meets the rows; and an oblique linear ramp on a
+ *    rectangle, cut at the rectangle's sides and the lines t = 0, T, 1.
  * Each pixel must lie within its own bound of the oracle, and every bound
  * within 1e-12.
  */
@@ -310,6 +312,7 @@ typedef struct pic {
     double x1, y1, x2, y2;
     double rc[4], bg;
     double cx, cy, r;
+    double fx, fy; /* radial: the focus (fr = 0) */
     const filt *f;
     double uc, vc, y;
     gsl_integration_workspace *wi;
@@ -319,8 +322,13 @@ static const double taus[3] = {0.0, T0, 1.0};
 
 static double pic_t(const pic *p, double x, double y)
 {
-    if (p->radial)
-        return hypot(x - p->cx, y - p->cy) / p->r;
+    if (p->radial) {
+        /* the largest t with |q - F - t D| = t r, D = C - F: A t^2 + 2 b t
+         * - c = 0 with A = r^2 - |D|^2 > 0, b = (q - F).D, c = |q - F|^2 */
+        double qx = x - p->fx, qy = y - p->fy, Dx = p->cx - p->fx, Dy = p->cy - p->fy;
+        double A = p->r * p->r - Dx * Dx - Dy * Dy, b = qx * Dx + qy * Dy, c = qx * qx + qy * qy;
+        return (-b + sqrt(b * b + A * c)) / A;
+    }
     double dx = p->x2 - p->x1, dy = p->y2 - p->y1;
     return ((x - p->x1) * dx + (y - p->y1) * dy) / (dx * dx + dy * dy);
 }
@@ -343,10 +351,11 @@ static double pic_x(double x, void *v)
 static int tau_row(const pic *p, double tau, double y, double *out)
 {
     if (p->radial) {
-        double rr = tau * p->r, d = y - p->cy, h = rr * rr - d * d;
+        double ccx = p->fx + tau * (p->cx - p->fx), ccy = p->fy + tau * (p->cy - p->fy);
+        double rr = tau * p->r, d = y - ccy, h = rr * rr - d * d;
         if (h <= 0)
             return 0;
-        out[0] = p->cx - sqrt(h), out[1] = p->cx + sqrt(h);
+        out[0] = ccx - sqrt(h), out[1] = ccx + sqrt(h);
         return 2;
     }
     double dx = p->x2 - p->x1, dy = p->y2 - p->y1, l2 = dx * dx + dy * dy;
@@ -368,6 +377,8 @@ static double pic_y(double y, void *v)
     cut[n++] = p->uc - c, cut[n++] = p->uc + c, cut[n++] = p->uc;
     if (!p->radial)
         cut[n++] = p->rc[0], cut[n++] = p->rc[2];
+    else
+        cut[n++] = p->fx; /* t's cone at the focus */
     for (int q = 0; q < 3; q++)
         n += tau_row(p, taus[q], y, cut + n);
     qsort(cut, (size_t)n, sizeof *cut, cmp_double);
@@ -391,15 +402,16 @@ static int tau_circle(const pic *p, double tau, double *out)
     int n = 0;
     if (p->radial) {
         /* two circles: centres distance D apart, radii rr and Rc */
-        double rr = tau * p->r, ex = p->uc - p->cx, ey = p->vc - p->cy, D = hypot(ex, ey);
+        double ccx = p->fx + tau * (p->cx - p->fx), ccy = p->fy + tau * (p->cy - p->fy);
+        double rr = tau * p->r, ex = p->uc - ccx, ey = p->vc - ccy, D = hypot(ex, ey);
         if (!(D > 0))
             return 0;
         double l = (rr * rr - Rc * Rc + D * D) / (2 * D), h2 = rr * rr - l * l;
         if (h2 > 0) {
             double mx = ex / D, my = ey / D, h = sqrt(h2);
-            out[n++] = p->cy + l * my + h * mx, out[n++] = p->cy + l * my - h * mx;
+            out[n++] = ccy + l * my + h * mx, out[n++] = ccy + l * my - h * mx;
         }
-        out[n++] = p->cy + rr * ey / D; /* nearest the centre, on the ray */
+        out[n++] = ccy + rr * ey / D; /* nearest the centre, on the ray */
         return n;
     }
     double dx = p->x2 - p->x1, dy = p->y2 - p->y1, L = hypot(dx, dy);
@@ -428,9 +440,13 @@ static double pic_pixel(pic *p, int i, int j)
             if (fabs(d) < R)
                 cut[n++] = p->vc - sqrt(R * R - d * d), cut[n++] = p->vc + sqrt(R * R - d * d);
         }
-    } else
-        for (int q = 0; q < 3; q++)
-            cut[n++] = p->cy - taus[q] * p->r, cut[n++] = p->cy + taus[q] * p->r;
+    } else {
+        cut[n++] = p->fy; /* the focus's row */
+        for (int q = 0; q < 3; q++) {
+            double ccy = p->fy + taus[q] * (p->cy - p->fy);
+            cut[n++] = ccy - taus[q] * p->r, cut[n++] = ccy + taus[q] * p->r;
+        }
+    }
     for (int q = 0; q < 3; q++)
         n += tau_circle(p, taus[q], cut + n);
     qsort(cut, (size_t)n, sizeof *cut, cmp_double);
@@ -472,7 +488,7 @@ static void test_radial_2d(void **state)
     (void)state;
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
     pic p = {0};
-    p.radial = 1, p.cx = 7.3, p.cy = 5.1, p.r = 4.2;
+    p.radial = 1, p.cx = 7.3, p.cy = 5.1, p.r = 4.2, p.fx = p.cx, p.fy = p.cy;
     rect_px(s, -8, -8, W + 8, H + 8, (aa_rgb){{0, 0, 0}});
     set_grad(s, AA_GRADIENT_RADIAL, AA_SPREAD_PAD,
              (const double[6]){p.cx, p.cy, p.r, p.cx, p.cy, 0}, black_white, 2);
@@ -488,6 +504,35 @@ static void test_radial_2d(void **state)
         reference(s, f.spec, &ref, &bound, &stats);
         assert_true(stats.max_bound <= 1e-12);
         check_pixels("centred radial ramp", &p, &ref, &bound, px, (int)(sizeof px / sizeof *px));
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+    }
+    aa_scene_free(s);
+}
+
+/* A focal radial gradient (F off the centre, fr = 0: t has a cone at F)
+ * over the whole plane, its stop circles not concentric. */
+static void test_focal_2d(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    pic p = {0};
+    p.radial = 1, p.cx = 7.3, p.cy = 5.1, p.r = 4.2, p.fx = 5.9, p.fy = 4.2;
+    rect_px(s, -8, -8, W + 8, H + 8, (aa_rgb){{0, 0, 0}});
+    set_grad(s, AA_GRADIENT_RADIAL, AA_SPREAD_PAD,
+             (const double[6]){p.cx, p.cy, p.r, p.fx, p.fy, 0}, black_white, 2);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    /* the focus's pixel and its neighbours, the rim's crossings, the
+     * threshold's circle near F */
+    static const int px[][2] = {{5, 4}, {6, 4}, {5, 3}, {7, 5}, {11, 4}, {3, 2}, {7, 9}, {2, 8}};
+    for (int n = 0; n < NFILT; n++) {
+        filt f = filt_of(n);
+        p.f = &f;
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, f.spec, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        check_pixels("focal radial ramp", &p, &ref, &bound, px, (int)(sizeof px / sizeof *px));
         aa_image_free(&ref);
         aa_image_free(&bound);
     }
@@ -530,6 +575,7 @@ int main(void)
         cmocka_unit_test(test_along_x),
         cmocka_unit_test(test_constant),
         cmocka_unit_test(test_radial_2d),
+        cmocka_unit_test(test_focal_2d),
         cmocka_unit_test(test_linear_2d),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
