@@ -404,8 +404,13 @@ typedef struct worker {
     size_t limit;
     double *pts;
     size_t npts, cap_pts;
-    double sing[64]; /* heights (relative) where a piece turns: x ~ sqrt */
-    size_t nsing;
+    /* heights (relative) where a piece turns (x ~ sqrt), grown as needed
+     * (a window of many arcs, or a repeating radial gradient's stop
+     * circles' top and bottom rows: once capped at 64, the rest left to
+     * QAG's estimate); sing_oom: room for one was not had */
+    double *sing;
+    size_t nsing, cap_sing;
+    int sing_oom;
     local_piece *lp;
     crossing *cross;
     size_t nlp, cap_lp;
@@ -433,6 +438,7 @@ static void worker_free(worker *w)
     if (w->poly)
         gsl_poly_complex_workspace_free(w->poly);
     free(w->pts);
+    free(w->sing);
     free(w->lp);
     free(w->cross);
     free(w->wind);
@@ -2596,8 +2602,18 @@ static int add_intersections(worker *w, const aa_piece *p, const aa_piece *q)
 /* Remember a turning point s (relative) inside [-R, R]. */
 static void note_turn(worker *w, double s)
 {
-    if (s >= -w->R && s <= w->R && w->nsing < sizeof w->sing / sizeof *w->sing)
-        w->sing[w->nsing++] = s;
+    if (!(s >= -w->R && s <= w->R))
+        return;
+    if (w->nsing == w->cap_sing) {
+        size_t cap = w->cap_sing ? 2 * w->cap_sing : 64;
+        double *p = realloc(w->sing, cap * sizeof *p);
+        if (!p) {
+            w->sing_oom = 1;
+            return;
+        }
+        w->sing = p, w->cap_sing = cap;
+    }
+    w->sing[w->nsing++] = s;
 }
 
 /* The nearest turning point at or below s (dir < 0), at or above it
@@ -3047,6 +3063,11 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     if ((st = load_local(w, local, n)) || (st = breakpoints(w, local, n)) ||
         (st = reserve_workspace(w, w->npts)))
         return st;
+    if (w->sing_oom) {
+        w->sing_oom = 0;
+        return aa_fail(AA_ENOMEM, "out of memory for the turning points of pixel (%g, %g)",
+                       w->uc - 0.5, w->vc - 0.5);
+    }
     double worst = 0.0;
     w->rad_err_max = 0.0;
     w->shared = !grey;
