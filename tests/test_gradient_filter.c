@@ -37,7 +37,7 @@
  *    own polar form (t = distance / r), cut at the circles t = 1 and t =
  *    T's chords and tangent rows, the centre's row and column and the
  *    filter's knots.
- * And the radial filters (cone, gauss with cut) are refused, by name.
+ * The radial filters: tests/test_gradient_radial_filter.c.
  */
 #include "core.h"
 #include "support.h"
@@ -634,37 +634,11 @@ static void test_radial_2d(void **state)
     aa_scene_free(s);
 }
 
-/* The radial filters are refused, naming the filter. */
-static void test_refused(void **state)
-{
-    (void)state;
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    rect_px(s, 0, 0, W, H);
-    set_grad(s, AA_GRADIENT_LINEAR, (const double[6]){0, 0, 5, 0, 0, 0}, black_white, 2);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
-    aa_scene *placed = aa_scene_place(s, W, H, 0, 0, 0);
-    aa_image out;
-    assert_int_equal(aa_image_alloc(&out, W, H, 3), AA_OK);
-    static const char *const radial[] = {"cone:r=1", "gauss:s=1,cut=2"};
-    for (int k = 0; k < 2; k++) {
-        aa_filter f;
-        assert_int_equal(aa_filter_parse(radial[k], &f), AA_OK);
-        assert_int_equal(aa_truth_render(placed, &f, 1, &out, NULL, NULL), AA_EINVAL);
-        print_message("%s: %s\n", radial[k], aa_last_error());
-        assert_non_null(strstr(aa_last_error(), k ? "gauss with cut" : "cone"));
-        assert_non_null(strstr(aa_last_error(), "separable"));
-    }
-    aa_image_free(&out);
-    aa_scene_free(placed);
-    aa_scene_free(s);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_along_x),   cmocka_unit_test(test_constant),
         cmocka_unit_test(test_linear_2d), cmocka_unit_test(test_radial_2d),
-        cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

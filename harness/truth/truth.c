@@ -217,8 +217,17 @@
  * polynomial of degree 6 for a cubic, 4 for an arc in the half-angle
  * parameter, its sign changes isolated between its derivative's roots
  * and bisected), and the row of P* where t is least.  Offset pieces
- * (strokes of curves), windows with more than TRUTH_MAX_PAIRS pieces and
- * the radial filters are refused with a gradient scene.
+ * (strokes of curves) meet the stop lines and circles as two pieces meet
+ * (offset_meets: the line's part across the window's rows as a line
+ * piece, the circle, an ellipse in pixels, as its two halves between its
+ * top and bottom as conic pieces, against the offset piece by
+ * aa_piece_meet).  A window of more than TRUTH_MAX_PAIRS pieces takes the
+ * same sum over spans, with the crowd path's sweep (truth_crowd.c,
+ * crowd_events) for the heights where pieces meet in place of the pairs:
+ * its events (ends, crossings of the window's sides, the meetings of
+ * neighbours in the order along x, which find every crossing inside the
+ * window) are breakpoints; past GRAD_CROWD_MAX pieces the pixel is
+ * refused.
  *
  * Several gradients at a point (radial with linear, two radial ones, a
  * gradient of varying opacity with another: "several gradients" below):
@@ -251,6 +260,17 @@
  * crossings of every kink line x = uc + k, and, for linear gradients,
  * the lines where the composite at the window's centre passes the
  * decoding's threshold.  The Gaussian's fixed rule is not taken.
+ *
+ * The radial filters (cone, cone:cut, gauss with cut, radial:k): every
+ * span takes the same path, clipped to the support's chord at the row's
+ * height s, with the row's weight w(sqrt(u^2 + s^2)) as the factor: the
+ * Gaussian's and the radial polynomials' entire in u, the cone's with
+ * branch points at u = +-i |s|, which bound the Bernstein ellipse; the
+ * row is cut at uc too.  The outer breakpoints keep the radial filters'
+ * own (v = 0, +-R, the pieces' crossings of the circle), and each stop's
+ * line or circle adds its crossings of the support's circle and, for the
+ * cone, the heights where it passes closest to the centre, as turning
+ * points ("the radial filters: the weight along a row").
  *
  * Each pixel carries an error bound: QAG's estimate or the fixed rule's,
  * plus the weight of the Gaussian outside its truncation square, plus the
@@ -329,7 +349,7 @@ typedef struct grad_radial {
     int layer, spread, nstops;
     const aa_gradient_stop *stops;
     double *enc;
-    double inv[6], fx, fy, Dx, Dy, fr, dr, a, px, py;
+    double inv[6], m[6], fx, fy, Dx, Dy, fr, dr, a, px, py;
     grad_plane plane;
 } grad_radial;
 
@@ -348,6 +368,9 @@ typedef struct gen_layer {
 /* Most stop lines one pixel's window may meet (a repeating gradient finer
  * than that is refused). */
 #define GRAD_MAX_BREAKS 4096
+/* Most pieces near a pixel of gradient paint (truth.c's opening comment,
+ * crowded windows): past them the pixel is refused. */
+#define GRAD_CROWD_MAX 4096
 
 typedef struct worker {
     const aa_scene *scene;
@@ -381,13 +404,19 @@ typedef struct worker {
     size_t limit;
     double *pts;
     size_t npts, cap_pts;
-    double sing[64]; /* heights (relative) where a piece turns: x ~ sqrt */
-    size_t nsing;
+    /* heights (relative) where a piece turns (x ~ sqrt), grown as needed
+     * (a window of many arcs, or a repeating radial gradient's stop
+     * circles' top and bottom rows: once capped at 64, the rest left to
+     * QAG's estimate); sing_oom: room for one was not had */
+    double *sing;
+    size_t nsing, cap_sing;
+    int sing_oom;
     local_piece *lp;
     crossing *cross;
     size_t nlp, cap_lp;
     int *wind;
     double uc, vc, R;
+    double row_s; /* the current row's height relative to vc (inner_sums) */
     int channel;
     int shared; /* colour pixel: the channels share each height's crossings */
     memo memo;
@@ -395,6 +424,8 @@ typedef struct worker {
     int radial; /* not separable (cone): rows weighed by aa_filter_row_cdf */
     gsl_poly_complex_workspace *poly; /* radial: the circle's crossings */
     crowd_worker crowd;               /* crowded pixels (truth_crowd.c) */
+    const double *xmeet;              /* gradient paint there: the sweep's events */
+    size_t nxmeet;
     int all_crowd;                    /* every pixel there (AA__TRUTH_CROWD) */
     size_t crowded;                   /* pixels it took */
 } worker;
@@ -407,6 +438,7 @@ static void worker_free(worker *w)
     if (w->poly)
         gsl_poly_complex_workspace_free(w->poly);
     free(w->pts);
+    free(w->sing);
     free(w->lp);
     free(w->cross);
     free(w->wind);
@@ -592,30 +624,7 @@ static int grad_mode(const aa_scene *scene)
     return varying && ngrad > 1 ? 2 : 0;
 }
 
-/* Whether the reference integrates this gradient scene exactly (truth.c's
- * opening comment): a separable filter and no offset pieces. */
-static int grad_check(const aa_scene *scene, const aa_filter *f)
-{
-    if (!aa_filter_is_separable(f))
-        return aa_fail(AA_EINVAL, "the reference integrates gradient paint exactly under the "
-                                  "separable filters only (box, tent, gauss without cut, "
-                                  "bspline, mitchell, catrom, lanczos), not the radial filter "
-                                  "%s%s: a row's weight times the varying colour is not "
-                                  "solved for",
-                       f->type->info.name,
-                       f->type == &aa_filter_gauss_mask ? " with cut" : "");
-    size_t np;
-    const aa_piece *pc = aa_scene_pieces(scene, &np);
-    for (size_t k = 0; k < np; k++)
-        if (pc[k].kind == AA_PIECE_OFFSET)
-            return aa_fail(AA_EINVAL, "the reference of gradient paint with offset curves "
-                                      "(strokes of curves) is not implemented: where a stop's "
-                                      "line meets them is not solved for");
-    return AA_OK;
-}
-
-/* The radial gradient g of layer l appended to w->rg (grad_check let the
- * scene have no linear ones). */
+/* The radial gradient g of layer l appended to w->rg. */
 static int rad_init(worker *w, int l, const aa_gradient *g)
 {
     if (!w->rg) {
@@ -631,6 +640,7 @@ static int rad_init(worker *w, int l, const aa_gradient *g)
     r->inv[2] = -m[2] / det, r->inv[3] = m[0] / det;
     r->inv[4] = -(r->inv[0] * m[4] + r->inv[2] * m[5]);
     r->inv[5] = -(r->inv[1] * m[4] + r->inv[3] * m[5]);
+    memcpy(r->m, m, sizeof r->m);
     r->layer = l, r->spread = g->spread, r->nstops = g->nstops, r->stops = g->stops;
     r->fx = p[3], r->fy = p[4], r->fr = p[5];
     r->Dx = p[0] - p[3], r->Dy = p[1] - p[4], r->dr = p[2] - p[5];
@@ -1223,6 +1233,11 @@ typedef struct gen_span_ctx {
     int weighted;
     const aa_filter *f;
     double uc;
+    /* radial: the weight is the radial filter's row at height s (relative
+     * to the pixel's centre), wn its value at the centre ("radial
+     * filters") */
+    int radial;
+    double s, wn;
 } gen_span_ctx;
 
 /* ---- the other separable filters: the weight along a row ----
@@ -1257,6 +1272,99 @@ typedef struct gen_span_ctx {
  * x = uc + k s, as the pieces do) to the outer breakpoints.  A row's
  * bound, times |w(v - vc)|, enters the pixel's as under the box. */
 
+/* ---- the radial filters: the weight along a row ----
+ *
+ * Under a radial filter (cone, cone:cut, gauss with cut, radial:k) the
+ * row at height s (relative to the pixel's centre) is weighed by w(u, s)
+ * = wn g(sqrt(u^2 + s^2)), u = x - uc, on the chord |u| < c = sqrt(R^2 -
+ * s^2) of the support's disc (R its radius, the mask's for the truncated
+ * ones), 0 outside it; each span is clipped to the chord, so that inside
+ * it the weight is the formula without its support test:
+ *  - cone:r=r (any cut): wn (1 - sqrt(u^2 + s^2) / r);
+ *  - gauss:s=S,cut=K: wn exp(-(u^2 + s^2) / (2 S^2));
+ *  - radial:k=K,r=r: wn q^K, q = 1 - (u^2 + s^2) / r^2;
+ * wn the weight at the centre (aa_filter_weight2(f, 0, 0)).  The last two
+ * are entire in u; the cone's has branch points at u = +-i |s|, where u^2
+ * + s^2 = 0, which the Bernstein ellipse must keep outside (its rho below
+ * that of uc + i |s|; the branch cuts run from there away from the real
+ * axis, and an ellipse, convex and symmetric about the axis, that holds
+ * neither point holds no point of them).  The row is cut at uc as well
+ * (the kink of |u| on the row s = 0, and the points nearest to the
+ * branch points), and the rule's bound takes, on the ellipse E_rho about
+ * [m - h, m + h] (|Re z - m| <= A, |Im z| <= B, |z - m| <= A; um = |m -
+ * uc|):
+ *  - cone: |sqrt(z^2 + s^2)| <= sqrt(|z|^2 + s^2), so |w| <= wn (1 +
+ *    sqrt((um + A)^2 + s^2) / r);
+ *  - Gaussian: |exp(-z^2 / (2 S^2))| = exp(-(X^2 - Y^2) / (2 S^2)) with
+ *    |X| >= max(0, um - A), |Y| <= B, times exp(-s^2 / (2 S^2));
+ *  - radial: with z - uc = (m - uc) + d, |d| <= A, q(z) = q(m) - (2 (m -
+ *    uc) d + d^2) / r^2, so |q| <= |q(m)| + (2 um A + A^2) / r^2, and |w|
+ *    <= wn that to the K.
+ * On the real segment (the threshold's narrow intervals, and the rule's
+ * fallback bound) |w| is at most its value at the point nearest the
+ * centre, u = max(0, um - h) (each weight decreases with the distance),
+ * and |w'| at most wn / r for the cone (|d sqrt(u^2 + s^2) / du| <= 1),
+ * wn exp(-s^2 / (2 S^2)) e^(-1/2) / S for the Gaussian, and wn 2 K (um +
+ * h) / r^2 for the radial polynomials (q in [0, 1] on the chord).  In v
+ * the rows keep the radial filters' breakpoints (0, +-R as turning points,
+ * the pieces' crossings of the circle, the cone's nearest approaches:
+ * breakpoints()), and each stop's line or circle (and the decoding's
+ * threshold's) adds its crossings of the support's circle, where the
+ * chord's end passes from one side of it to the other, and, for the cone,
+ * the heights where it passes closest to the centre, as turning points:
+ * the cone's apex makes the inner integral change on the scale of that
+ * distance there, as a piece's edge does (rad_filter_points). */
+
+/* The radial filter's weight on the row c->s at u = x - uc, inside the
+ * chord (the comment above). */
+static double rwt(const gen_span_ctx *c, double u)
+{
+    const double *p = c->f->spec.v, s = c->s;
+    if (c->f->type == &aa_filter_cone)
+        return c->wn * (1.0 - hypot(u, s) / p[0]);
+    if (c->f->type == &aa_filter_gauss_mask)
+        return c->wn * exp(-0.5 * (u * u + s * s) / (p[0] * p[0]));
+    double r = p[1], q = 1.0 - (u * u + s * s) / (r * r), v = q;
+    for (int k = 1; k < (int)p[0]; k++)
+        v *= q;
+    return c->wn * v;
+}
+
+/* A bound of |w| on the ellipse of semi-axes A, B about m (the comment
+ * above); B = 0, A = h: the real segment [m - h, m + h]. */
+static double rwt_bound(const gen_span_ctx *c, double m, double A, double B)
+{
+    const double *p = c->f->spec.v, s = c->s;
+    double um = fabs(m - c->uc), X = fmax(0.0, um - A);
+    if (c->f->type == &aa_filter_cone) {
+        if (B == 0.0)
+            return c->wn * fmax(0.0, 1.0 - hypot(X, s) / p[0]);
+        return c->wn * (1.0 + hypot(um + A, s) / p[0]);
+    }
+    if (c->f->type == &aa_filter_gauss_mask)
+        return c->wn * exp((B * B - X * X - s * s) / (2.0 * p[0] * p[0]));
+    double r = p[1], q;
+    if (B == 0.0)
+        q = fmax(0.0, 1.0 - (X * X + s * s) / (r * r));
+    else
+        q = fabs(1.0 - (um * um + s * s) / (r * r)) + (2.0 * um * A + A * A) / (r * r);
+    double v = q;
+    for (int k = 1; k < (int)p[0]; k++)
+        v *= q;
+    return c->wn * v;
+}
+
+/* |w'| on the real segment [m - h, m + h] (the comment above). */
+static double rwt_slope(const gen_span_ctx *c, double m, double h)
+{
+    const double *p = c->f->spec.v, s = c->s;
+    if (c->f->type == &aa_filter_cone)
+        return c->wn / p[0];
+    if (c->f->type == &aa_filter_gauss_mask)
+        return c->wn * exp(-0.5 * (s / p[0]) * (s / p[0]) - 0.5) / p[0];
+    return c->wn * 2.0 * p[0] * (fabs(m - c->uc) + h) / (p[1] * p[1]);
+}
+
 /* The weight's coefficients in s = (x - m) / h over [m - h, m + h] (a
  * piece of a polynomial filter between kinks): Newton's form through the
  * four Chebyshev points, expanded. */
@@ -1285,6 +1393,8 @@ static double wt_bound(const gen_span_ctx *c, const double *a, double m, double 
                        double B)
 {
     const aa_filter *f = c->f;
+    if (c->radial)
+        return rwt_bound(c, m, A, B);
     if (f->type == &aa_filter_lanczos)
         return cosh(M_PI * B) * cosh(M_PI * B / f->spec.v[0]) * aa_filter_weight(f, 0.0);
     if (f->type == &aa_filter_gauss) {
@@ -1300,6 +1410,11 @@ static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, doub
 {
     const aa_filter *f = c->f;
     double a[4] = {0, 0, 0, 0};
+    if (c->radial) {
+        *slope = rwt_slope(c, m, h);
+        *sup = rwt_bound(c, m, h, 0.0);
+        return;
+    }
     if (f->type == &aa_filter_lanczos)
         *slope = M_PI * (1.0 + 1.0 / f->spec.v[0]) * 0.5 * aa_filter_weight(f, 0.0);
     else if (f->type == &aa_filter_gauss)
@@ -1432,10 +1547,13 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
         else
             rmax = fmin(fmin(rmax, rad_rho(r->x0 + sd, m, h)), rad_rho(r->x0 - sd, m, h));
     }
+    if (c->radial && c->f->type == &aa_filter_cone) /* the cone's branch points */
+        rmax = fmin(rmax, rad_rho(c->uc + _Complex_I * fabs(c->s), m, h));
     if (!(rmax > 1.0 + 1e-9))
         return INFINITY;
     double best = INFINITY, wa[4] = {0, 0, 0, 0};
-    if (c->weighted && c->f->type != &aa_filter_lanczos && c->f->type != &aa_filter_gauss)
+    if (c->weighted && !c->radial && c->f->type != &aa_filter_lanczos &&
+        c->f->type != &aa_filter_gauss)
         wt_poly(c, m, h, wa);
     /* weighted, also rho at geometric steps towards rmax (the Gaussian's
      * bound grows like exp(B^2 / (2 s^2)): its best rho is small) */
@@ -1495,7 +1613,9 @@ static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double
     for (int k = 0; k < RAD_GL; k++) {
         double e[3], x = m + h * w->gl_x[k];
         gen_eval(c, x, e);
-        double wk = c->weighted ? w->gl_w[k] * aa_filter_weight(c->f, x - c->uc) : w->gl_w[k];
+        double wk = !c->weighted ? w->gl_w[k]
+                    : c->radial  ? w->gl_w[k] * rwt(c, x - c->uc)
+                                 : w->gl_w[k] * aa_filter_weight(c->f, x - c->uc);
         for (int ch = 0; ch < c->nch; ch++)
             part[ch] += wk * gen_decode(e[ch], power[ch]);
     }
@@ -1698,7 +1818,8 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
             if (c->weighted) {
                 /* |f w - f(m) w(m)| <= |f - f(m)| sup |w| + |f(m)| |w - w(m)|,
                  * f in [0, 1] */
-                double mid = 0.5 * (fa + fb), sup, slope, wm = aa_filter_weight(c->f, mid - c->uc);
+                double mid = 0.5 * (fa + fb), sup, slope,
+                       wm = c->radial ? rwt(c, mid - c->uc) : aa_filter_weight(c->f, mid - c->uc);
                 wt_real(c, mid, 0.5 * wd, &sup, &slope);
                 for (int ch = 0; ch < c->nch; ch++)
                     sum[ch] += wd * aa_srgb_decode(e[ch]) * wm;
@@ -1720,6 +1841,15 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
 {
     static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
     int N = w->ngl, *layers = w->gl_layer, dep[GEN_MAX], nd = 0;
+    if (w->radial) { /* the span clipped to the support's chord */
+        double s = w->row_s, R = w->R;
+        if (!(fabs(s) < R))
+            return;
+        double ch = sqrt((R - s) * (R + s));
+        xa = fmax(xa, w->uc - ch), xb = fmin(xb, w->uc + ch);
+        if (!(xb > xa))
+            return;
+    }
     double *paints = w->gl_paint, f[3][3];
     memset(paints, 0, 4 * (size_t)N * sizeof *paints);
     /* the layers the span depends on, the others transparent */
@@ -1739,8 +1869,10 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
         }
     }
     if (nd == 0) { /* of constant colour: weighted, the cdf's difference */
-        double wd = w->box ? xb - xa
-                           : aa_filter_cdf(w->f, xb - w->uc) - aa_filter_cdf(w->f, xa - w->uc);
+        double wd = w->box      ? xb - xa
+                    : w->radial ? aa_filter_row_cdf(w->f, w->row_s, xb - w->uc) -
+                                      aa_filter_row_cdf(w->f, w->row_s, xa - w->uc)
+                                : aa_filter_cdf(w->f, xb - w->uc) - aa_filter_cdf(w->f, xa - w->uc);
         for (int c = 0; c < nch; c++)
             sum[c] += wd * aa_srgb_decode(f[0][c]);
         return;
@@ -1748,6 +1880,7 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
     gen_span_ctx c;
     c.n = nd, c.nch = nch, c.y = y, c.nk = 1;
     c.weighted = !w->box, c.f = w->f, c.uc = w->uc;
+    c.radial = w->radial, c.s = w->row_s, c.wn = w->radial ? aa_filter_weight2(w->f, 0.0, 0.0) : 0.0;
     for (int l = 0; l < nd; l++) {
         c.L[l] = &w->gl[dep[l]];
         c.nk *= 3;
@@ -1993,6 +2126,8 @@ static size_t threshold_taus(worker *w, const gen_layer *g, double ta, double tb
 static int kink_lines(const worker *w, double *X)
 {
     int n = 0;
+    if (w->radial)
+        return 0; /* no vertical line: the support's circle (rad_filter_line, _circle) */
     X[n++] = w->uc - w->R;
     X[n++] = w->uc + w->R;
     if (w->box)
@@ -2008,6 +2143,171 @@ static int kink_lines(const worker *w, double *X)
             X[n++] = w->uc + t;
     }
     return n;
+}
+
+/* Under a radial filter ("the radial filters: the weight along a row"):
+ * where the line tx x + ty y + k = 0 crosses the support's circle about
+ * (uc, vc), and, for the cone, the height of its point nearest the centre
+ * if inside it, a turning point. */
+static int rad_filter_line(worker *w, double tx, double ty, double k)
+{
+    double nn = hypot(tx, ty), R = w->R;
+    if (!(nn > 0.0))
+        return AA_OK;
+    /* d: the centre's signed distance; the foot at centre - d n / |n|;
+     * the line's direction (-ty, tx) / |n| */
+    double d = (tx * w->uc + ty * w->vc + k) / nn, fy = w->vc - d * ty / nn;
+    if (!(fabs(d) < R))
+        return AA_OK;
+    double hc = sqrt((R - d) * (R + d)), dy = tx / nn;
+    int st = add_abs(w, fy + hc * dy, -INFINITY, INFINITY);
+    if (!st)
+        st = add_abs(w, fy - hc * dy, -INFINITY, INFINITY);
+    if (!st && w->f->type == &aa_filter_cone) {
+        st = add_abs(w, fy, -INFINITY, INFINITY);
+        note_turn(w, fy - w->vc);
+    }
+    return st;
+}
+
+/* The same for the circle of tau of radial gradient g (radius rt >= 0,
+ * G = m^-1(x, y) - F - tau D, k0 and k1 its constant terms): in pixels an
+ * ellipse.  Its crossings of the support's circle, that circle's two
+ * halves (uc, vc) +- R ((1 - u^2), 2 u) / (1 + u^2), u in [-1, 1],
+ * substituted into |G|^2 = rt^2: a quartic's sign changes; for the cone,
+ * where its distance to the centre is stationary: with the circle as
+ * p(th) = m(F + tau D) + rt (cos th m1 + sin th m2) (m1, m2 the map's
+ * columns) and a = m(F + tau D) - (uc, vc), the derivative of |p -
+ * centre|^2 / (2 rt) is
+ *     -sin th (a.m1) + cos th (a.m2) + rt (cos th sin th (|m2|^2 -
+ *     |m1|^2) + (cos^2 th - sin^2 th) m1.m2),
+ * in the half angle u (th = 2 atan u, and th + pi, which negates the
+ * first two terms) times (1 + u^2)^2 a quartic, whose sign changes give
+ * the stationary points: each inside the disc is a breakpoint and a
+ * turning point (the nearest ones among them; the others only cost
+ * time). */
+static int rad_filter_circle(worker *w, const grad_radial *g, double rt, double k0, double k1,
+                             double tau)
+{
+    const double *iv = g->inv, *m = g->m;
+    double R = w->R, uc = w->uc, vc = w->vc;
+    int st = AA_OK;
+    for (int half = 0; half < 2 && !st; half++) {
+        double sg = half ? -1.0 : 1.0, W[3] = {1.0, 0.0, 1.0};
+        double X[3] = {uc + sg * R, 0.0, uc - sg * R}, Y[3] = {vc, sg * 2.0 * R, vc};
+        double GX[3], GY[3], Q[7] = {0}, us[6];
+        for (int i = 0; i < 3; i++) {
+            GX[i] = iv[0] * X[i] + iv[2] * Y[i] + k0 * W[i];
+            GY[i] = iv[1] * X[i] + iv[3] * Y[i] + k1 * W[i];
+        }
+        poly_mul_add(GX, 2, GX, 2, 1.0, Q);
+        poly_mul_add(GY, 2, GY, 2, 1.0, Q);
+        poly_mul_add(W, 2, W, 2, -rt * rt, Q);
+        int nu = poly_sign_roots(Q, 4, -1.0, 1.0, us);
+        for (int r = 0; r < nu && !st; r++) {
+            double u = us[r];
+            st = add_abs(w, (vc * (1.0 + u * u) + sg * 2.0 * R * u) / (1.0 + u * u), -INFINITY,
+                         INFINITY);
+        }
+    }
+    if (st || w->f->type != &aa_filter_cone)
+        return st;
+    double qx = g->fx + tau * g->Dx, qy = g->fy + tau * g->Dy;
+    double ax = m[0] * qx + m[2] * qy + m[4] - uc, ay = m[1] * qx + m[3] * qy + m[5] - vc;
+    double am1 = ax * m[0] + ay * m[1], am2 = ax * m[2] + ay * m[3];
+    double dm = m[2] * m[2] + m[3] * m[3] - m[0] * m[0] - m[1] * m[1];
+    double cm = m[0] * m[2] + m[1] * m[3];
+    for (int half = 0; half < 2 && !st; half++) {
+        double sg = half ? -1.0 : 1.0, W[3] = {1.0, 0.0, 1.0};
+        double L1[3] = {sg * am2, -sg * 2.0 * am1, -sg * am2}, Q[7] = {0}, us[6];
+        poly_mul_add(W, 2, L1, 2, 1.0, Q);
+        Q[0] += rt * cm, Q[1] += rt * 2.0 * dm, Q[2] -= rt * 6.0 * cm;
+        Q[3] -= rt * 2.0 * dm, Q[4] += rt * cm;
+        int nu = poly_sign_roots(Q, 4, -1.0, 1.0, us);
+        for (int r = 0; r < nu && !st; r++) {
+            double th = 2.0 * atan(us[r]), co = sg * cos(th), si = sg * sin(th);
+            double px = ax + rt * (co * m[0] + si * m[2]), py = ay + rt * (co * m[1] + si * m[3]);
+            if (hypot(px, py) < R) {
+                st = add_abs(w, vc + py, -INFINITY, INFINITY);
+                note_turn(w, py);
+            }
+        }
+    }
+    return st;
+}
+
+/* Offset pieces (strokes of curves) against the curves t = tau of a
+ * gradient: the curve as a piece of the scene's own kinds over the
+ * window's rows (a line's part; a circle, in pixels an ellipse, as its
+ * two halves between its top and bottom, conic pieces), and their
+ * meetings from aa_piece_meet, which for an offset piece bisects on exact
+ * extents, told apart by the two pieces' slope ranges, and polishes each
+ * change of sign of the difference of their x by Newton's method (core.h):
+ * the same search as for an offset piece against another piece. */
+static int offset_meets(worker *w, const aa_piece *p, const aa_piece *q)
+{
+    double ys[16];
+    int m = aa_piece_meet(p, q, w->vc - w->R, w->vc + w->R, ys, 16), st = AA_OK;
+    for (int r = 0; r < m && !st; r++)
+        st = add_abs(w, ys[r], -INFINITY, INFINITY);
+    return st;
+}
+
+/* The line tx x + ty y + k = 0 (ty != 0 and, for a crossing, tx != 0). */
+static int offset_meet_line(worker *w, const aa_piece *p, double tx, double ty, double k)
+{
+    if (tx == 0.0) /* horizontal: its height is a breakpoint in itself */
+        return add_abs(w, -k / ty, -INFINITY, INFINITY);
+    aa_piece q;
+    memset(&q, 0, sizeof q);
+    q.kind = AA_PIECE_LINE;
+    q.dir = 1;
+    q.y0 = w->vc - w->R, q.y1 = w->vc + w->R;
+    q.x0 = -(k + ty * q.y0) / tx, q.x1 = -(k + ty * q.y1) / tx;
+    q.cx = 0.5 * (q.x0 + q.x1), q.cy = 0.5 * (q.y0 + q.y1);
+    q.bx = q.x1 - q.x0, q.by = q.y1 - q.y0;
+    q.xmin = fmin(q.x0, q.x1), q.xmax = fmax(q.x0, q.x1);
+    q.layer = -1, q.edge = -1;
+    return offset_meets(w, p, &q);
+}
+
+/* The circle of tau of radial gradient g, radius rt in its own
+ * coordinates: in pixels m(F + tau D) + rt (cos th m1 + sin th m2) (m1,
+ * m2 the map's columns), an ellipse of centre (ex, ey) and half height er
+ * = rt |(m1y, m2y)|; with th = s + phi - pi, phi = atan2(m2y, m1y), y =
+ * ey - er cos s and x = ex + ea cos s +- eb sin s, s in [0, pi]: the two
+ * halves (the conic piece's angle form, aabench.h). */
+static int offset_meet_circle(worker *w, const aa_piece *p, const grad_radial *g, double tau,
+                              double rt)
+{
+    const double *m = g->m;
+    double er = rt * hypot(m[1], m[3]);
+    if (!(er > 0.0))
+        return AA_OK; /* a point: no crossing */
+    double phi = atan2(m[3], m[1]), cp = cos(phi), sp = sin(phi);
+    double qx = g->fx + tau * g->Dx, qy = g->fy + tau * g->Dy;
+    double ex = m[0] * qx + m[2] * qy + m[4], ey = m[1] * qx + m[3] * qy + m[5];
+    double ea = -rt * (m[0] * cp + m[2] * sp), eb = rt * (m[0] * sp - m[2] * cp);
+    if (ey + er < w->vc - w->R || ey - er > w->vc + w->R)
+        return AA_OK; /* not in the window's rows */
+    int st = AA_OK;
+    for (int half = 0; half < 2 && !st; half++) {
+        aa_piece q;
+        memset(&q, 0, sizeof q);
+        q.kind = AA_PIECE_CONIC;
+        q.dir = 1;
+        q.ex = ex, q.ey = ey, q.er = er, q.ea = ea, q.eb = half ? -eb : eb;
+        q.s0 = 0.0, q.s1 = M_PI;
+        q.x0 = ex + ea, q.y0 = ey - er, q.x1 = ex - ea, q.y1 = ey + er;
+        /* x = ex + rho cos(s - al) over [0, pi]: its extremes inside if
+         * al (or al + pi) is, else at the ends; widened by rounding */
+        double rho = hypot(q.ea, q.eb), al = atan2(q.eb, q.ea), tol = 1e-12 * (fabs(ex) + rho);
+        q.xmax = (al >= 0.0 ? ex + rho : fmax(q.x0, q.x1)) + tol;
+        q.xmin = (al <= 0.0 ? ex - rho : fmin(q.x0, q.x1)) - tol;
+        q.layer = -1, q.edge = -1;
+        st = offset_meets(w, p, &q);
+    }
+    return st;
 }
 
 static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *const *local,
@@ -2074,11 +2374,17 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
             st = add_abs(w, ytan, -INFINITY, INFINITY);
             note_turn(w, ytan - w->vc);
         }
+        if (w->radial && !st)
+            st = rad_filter_circle(w, g, rt, k0, k1, tau);
         /* local pieces: (X, Y) / W polynomials in the piece's parameter */
         for (size_t k = 0; k < n && !st; k++) {
             const aa_piece *p = local[k];
-            if (p->kind == AA_PIECE_FLAT || p->kind == AA_PIECE_OFFSET)
+            if (p->kind == AA_PIECE_FLAT)
                 continue;
+            if (p->kind == AA_PIECE_OFFSET) {
+                st = offset_meet_circle(w, p, g, tau, rt);
+                continue;
+            }
             double X[4] = {0}, Y[4] = {0}, W[4] = {0}, Q[7] = {0}, lo = 0.0, hi = 1.0, sm = 0.0;
             int deg;
             if (p->kind == AA_PIECE_CONIC) {
@@ -2178,6 +2484,8 @@ static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
         }
         for (size_t q = 0; q < m && !st; q++) {
             double tau = taus[q];
+            if (w->radial)
+                st = rad_filter_line(w, gp->tx, gp->ty, gp->t0 - tau);
             if (gp->ty != 0.0)
                 for (int k = 0; k < nxl && !st; k++)
                     st = add_abs(w, (tau - gp->t0 - gp->tx * XL[k]) / gp->ty, -INFINITY,
@@ -2185,12 +2493,16 @@ static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
             for (size_t k = 0; k < n && !st; k++) {
                 const aa_piece *p = local[k];
                 double ys[3];
-                if (p->kind == AA_PIECE_FLAT || p->kind == AA_PIECE_OFFSET)
+                if (p->kind == AA_PIECE_FLAT)
                     continue;
                 if (gp->ty == 0.0) {
                     int mm = aa_piece_meet_x(p, (tau - gp->t0) / gp->tx, ys);
                     for (int r = 0; r < mm && !st; r++)
                         st = add_abs(w, ys[r], -INFINITY, INFINITY);
+                    continue;
+                }
+                if (p->kind == AA_PIECE_OFFSET) {
+                    st = offset_meet_line(w, p, gp->tx, gp->ty, gp->t0 - tau);
                     continue;
                 }
                 if (p->kind == AA_PIECE_CONIC) {
@@ -2290,8 +2602,18 @@ static int add_intersections(worker *w, const aa_piece *p, const aa_piece *q)
 /* Remember a turning point s (relative) inside [-R, R]. */
 static void note_turn(worker *w, double s)
 {
-    if (s >= -w->R && s <= w->R && w->nsing < sizeof w->sing / sizeof *w->sing)
-        w->sing[w->nsing++] = s;
+    if (!(s >= -w->R && s <= w->R))
+        return;
+    if (w->nsing == w->cap_sing) {
+        size_t cap = w->cap_sing ? 2 * w->cap_sing : 64;
+        double *p = realloc(w->sing, cap * sizeof *p);
+        if (!p) {
+            w->sing_oom = 1;
+            return;
+        }
+        w->sing = p, w->cap_sing = cap;
+    }
+    w->sing[w->nsing++] = s;
 }
 
 /* The nearest turning point at or below s (dir < 0), at or above it
@@ -2383,10 +2705,14 @@ static int breakpoints(worker *w, const aa_piece *const *local, size_t n)
                     st = add_abs(w, ys[q], -INFINITY, INFINITY);
             }
         }
-        if (n <= TRUTH_MAX_PAIRS)
+        if (n <= TRUTH_MAX_PAIRS && !w->all_crowd)
             for (size_t q = k + 1; q < n && !st; q++)
                 st = add_intersections(w, p, local[q]);
     }
+    /* a crowded window of gradient paint: the sweep's events (meetings,
+     * ends, crossings of the window's sides) in place of the pairs */
+    for (size_t k = 0; k < w->nxmeet && !st; k++)
+        st = add_point(w, w->xmeet[k]);
     /* Radial filters: where a piece passes closest to the centre, the row
      * integral (singular at the centre) makes the inner integral change on
      * the scale of that distance, too fast for QAG's estimate to see: a
@@ -2498,6 +2824,7 @@ static inline void inner_sums(worker *w, double s, int nch, double *out)
     }
     double sum[3] = {0.0, 0.0, 0.0}, cur = -R, fcur = 0.0;
     w->rad_row_err = 0.0;
+    w->row_s = s;
     for (size_t k = 0; k <= nc; k++) {
         double next = k < nc ? w->cross[k].x : R;
         if (next > cur && w->grad) {
@@ -2711,12 +3038,21 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     size_t n;
     const aa_piece *const *local = aa_strip_local(w->strip, &n);
     int st;
-    if (w->grad && (n > TRUTH_MAX_PAIRS || w->all_crowd))
-        return aa_fail(AA_EINVAL, "pixel (%g, %g): %zu pieces near it in a scene with gradient "
-                                  "paint; the reference's crowded path takes constant colours "
-                                  "only (at most %d)",
-                       w->uc - 0.5, w->vc - 0.5, n, TRUTH_MAX_PAIRS);
-    if (n > TRUTH_MAX_PAIRS || w->all_crowd) {
+    w->nxmeet = 0;
+    if (w->grad && (n > TRUTH_MAX_PAIRS || w->all_crowd)) {
+        /* gradient paint in a crowded window: the sum over spans, with the
+         * crowd path's sweep for the meetings (truth.c's opening comment) */
+        if (n > GRAD_CROWD_MAX)
+            return aa_fail(AA_EINVAL, "pixel (%g, %g): %zu pieces near it in a scene with "
+                                      "gradient paint, more than %d (each height of the "
+                                      "reference's sum over spans costs every piece's crossing "
+                                      "and its span's quadrature): refused; sample it with "
+                                      "point, supersample or jitter",
+                           w->uc - 0.5, w->vc - 0.5, n, GRAD_CROWD_MAX);
+        if ((st = crowd_events(&w->crowd, w->scene, w->strip, w->f, w->uc, w->vc, local, n,
+                               &w->xmeet, &w->nxmeet)))
+            return st;
+    } else if (n > TRUTH_MAX_PAIRS || w->all_crowd) {
         st = crowd_pixel(&w->crowd, w->scene, w->strip, w->f, w->uc, w->vc, local, n, grey,
                          n <= TRUTH_CROWD && !w->all_crowd, value, bound);
         if (st != CROWD_DECLINED) {
@@ -2727,6 +3063,11 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     if ((st = load_local(w, local, n)) || (st = breakpoints(w, local, n)) ||
         (st = reserve_workspace(w, w->npts)))
         return st;
+    if (w->sing_oom) {
+        w->sing_oom = 0;
+        return aa_fail(AA_ENOMEM, "out of memory for the turning points of pixel (%g, %g)",
+                       w->uc - 0.5, w->vc - 0.5);
+    }
     double worst = 0.0;
     w->rad_err_max = 0.0;
     w->shared = !grey;
@@ -2918,9 +3259,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
         return aa_fail(AA_EINVAL, "reference bound image must be %dx%dx1", out->w, out->h);
     if (aa_scene_field(placed, NULL, NULL, NULL))
         return field_render(placed, f, threads, out, bound, stats, nfast);
-    int grad = aa_scene_has_gradients(placed), gst;
-    if (grad && (gst = grad_check(placed, f)))
-        return gst;
+    int grad = aa_scene_has_gradients(placed);
     gsl_set_error_handler_off(); /* QAG's status is judged by its error estimate */
     int status = AA_OK;
     char message[1024] = "";

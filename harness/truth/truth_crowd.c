@@ -199,6 +199,7 @@ void crowd_free(crowd_worker *cw)
     free(cw->dirty);
     free(cw->xs);
     free(cw->wind);
+    free(cw->ev);
     if (cw->poly)
         gsl_poly_complex_workspace_free(cw->poly);
     memset(cw, 0, sizeof *cw);
@@ -920,6 +921,12 @@ static int sweep(crowd *c)
         double h = cw->heap[0].s;
         if (h >= R)
             break;
+        if (cw->record && h > -R) {
+            if (cw->nev == cw->cap_ev &&
+                (c->status = grow((void **)&cw->ev, &cw->cap_ev, cw->nev + 1, sizeof *cw->ev)))
+                break;
+            cw->ev[cw->nev++] = h;
+        }
         c->batch++;
         size_t nt = 0, nm = 0, nd = 0, nin = 0;
         int need_w = 0, all = 0;
@@ -1478,6 +1485,8 @@ int crowd_pixel(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
     }
     if (st || (st = sweep(&c)))
         return st;
+    if (cw->record)
+        return AA_OK; /* crowd_events: the sweep's heights only */
     if (only_crossed && !c.swaps)
         return CROWD_DECLINED;
     /* the integrals: each term to its share of TRUTH_EPSABS */
@@ -1515,4 +1524,17 @@ int crowd_pixel(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
         value[ch] = (double)acc[grey ? 0 : ch];
     *bound = (double)(err + rnd) + f->lost + 2 * DBL_EPSILON;
     return AA_OK;
+}
+
+int crowd_events(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
+                 const aa_filter *f, double uc, double vc, const aa_piece *const *local, size_t n,
+                 const double **hs, size_t *nh)
+{
+    cw->record = 1;
+    cw->nev = 0;
+    int st = crowd_pixel(cw, scene, strip, f, uc, vc, local, n, 0, 0, NULL, NULL);
+    cw->record = 0;
+    *hs = cw->ev;
+    *nh = st ? 0 : cw->nev;
+    return st;
 }

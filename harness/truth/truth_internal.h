@@ -161,6 +161,11 @@ typedef struct crowd_worker {
     int *wind;
     int nl;
     gsl_poly_complex_workspace *poly;
+    /* crowd_events: the sweep's event heights (relative), and whether they
+     * are being kept */
+    double *ev;
+    size_t nev, cap_ev;
+    int record;
 } crowd_worker;
 
 void crowd_free(crowd_worker *cw);
@@ -174,6 +179,16 @@ void crowd_free(crowd_worker *cw);
 int crowd_pixel(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
                 const aa_filter *f, double uc, double vc, const aa_piece *const *local, size_t n,
                 int grey, int only_crossed, double *value, double *bound);
+/* The heights (relative to vc, in (-R, R), ascending, possibly repeated)
+ * of every event of crowd_pixel's sweep over the window: where pieces
+ * begin, end, cross the window's sides and where two neighbours in the
+ * order along x meet (which finds every crossing inside the window), into
+ * *hs (the worker's, valid until its next use), their count into *nh; no
+ * integration.  Gradient paint takes these as breakpoints of the sum over
+ * spans in crowded windows (truth.c). */
+int crowd_events(crowd_worker *cw, const aa_scene *scene, const aa_strip *strip,
+                 const aa_filter *f, double uc, double vc, const aa_piece *const *local, size_t n,
+                 const double **hs, size_t *nh);
 
 /* ------------------------------------------------------------------------
  * The Gaussian: one fixed rule on panels shared by the rows

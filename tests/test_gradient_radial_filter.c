@@ -1,0 +1,582 @@
+/*
+ * test_gradient_radial_filter.c: the exact reference of gradient paint
+ * under the radial filters (harness/truth/truth.c, "the radial filters:
+ * the weight along a row"): cone (whole and truncated), the Gaussian in a
+ * circular mask (gauss with cut) and the radial polynomials (radial:k).
+ *
+ * Known answers, derived here and not from the code under test:
+ *  - a gradient that varies along x only, over the whole plane: the pixel
+ *    is the 1-D integral of the filter's marginal m(u) = int w(sqrt(u^2 +
+ *    v^2)) dv times dec(t(x)), u = x - uc.  The marginals in closed form,
+ *    from the filters' definitions (patterns/README.md, "Filters") with c
+ *    = sqrt(Rc^2 - u^2) the half chord inside the support Rc:
+ *        cone (radius r, normalised by N):  N (2 c - (c Rc + u^2
+ *            asinh(c / |u|)) / r), from int sqrt(u^2 + v^2) dv = (v
+ *            sqrt(u^2 + v^2) + u^2 asinh(v / |u|)) / 2;
+ *        Gaussian (S, in a mask):  N exp(-u^2 / (2 S^2)) S sqrt(2 pi)
+ *            erf(c / (S sqrt 2));
+ *        radial (k, r):  N c^(2k + 1) B_k / r^(2k), B_k = int_{-1}^{1} (1
+ *            - t^2)^k dt = 4/3, 16/15, 32/35;
+ *    the normalisations N from the volumes in polar coordinates (cone: 1
+ *    / (2 pi r^2 (K^2/2 - K^3/3)), K = Rc / r; Gaussian: 1 / (2 pi S^2 (1
+ *    - exp(-K^2/2))); radial: (k + 1) / (pi r^2)).  The 1-D integral of
+ *    the marginal times the decoded ramp by GSL's QAGS between the ramp's
+ *    ends, the threshold's x, uc and uc +- Rc;
+ *  - a constant gradient (two equal stops) is the flat colour: its
+ *    reference equals the flat-colour reference (the rows' closed-form
+ *    integrals, a different path) to rounding;
+ *  - single pixels by GSL's adaptive quadrature in two dimensions (outer
+ *    rows, inner along the row's chord), the filter and the picture
+ *    written out here: a centred radial gradient over the whole plane in
+ *    its own polar form (t = distance / r), and a focal one (F off the
+ *    centre, fr = 0: t the positive root of (r^2 - |D|^2) t^2 + 2 (q -
+ *    F).D t - |q - F|^2 = 0), cut at the support's centre row and column,
+ *    the focus's, and where each circle t = 0, T, 1 crosses the support's
+ *    circle and meets the rows; and an oblique linear ramp on a
+ *    rectangle, cut at the rectangle's sides and the lines t = 0, T, 1.
+ * Each pixel must lie within its own bound of the oracle, and every bound
+ * within 1e-12.
+ */
+#include "core.h"
+#include "support.h"
+#include "truth.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_sf_erf.h>
+
+#define W 14
+#define H 10
+#define T0 0.04045
+
+static int setup(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off();
+    return 0;
+}
+
+/* sRGB's decoding (IEC 61966-2-1), written out here. */
+static double dec(double e)
+{
+    if (e <= 0.0)
+        return 0.0;
+    if (e >= 1.0)
+        return 1.0;
+    return e <= T0 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* ---- the radial filters, from their definitions ---- */
+
+enum { F_CONE, F_GAUSS, F_RADIAL };
+
+typedef struct filt {
+    int kind;
+    const char *spec;
+    double r, K, S, k; /* cone: r, K; gauss: S, K; radial: k, r */
+    double Rc, N;      /* the support's radius, the normalisation */
+} filt;
+
+static filt make_filt(const char *spec, int kind, double a, double b)
+{
+    filt f = {kind, spec, 0, 0, 0, 0, 0, 0};
+    if (kind == F_CONE) {
+        f.r = a, f.K = b, f.Rc = a * b;
+        f.N = 1.0 / (2.0 * M_PI * a * a * (b * b / 2.0 - b * b * b / 3.0));
+    } else if (kind == F_GAUSS) {
+        f.S = a, f.K = b, f.Rc = a * b;
+        f.N = 1.0 / (2.0 * M_PI * a * a * (1.0 - exp(-b * b / 2.0)));
+    } else {
+        f.k = a, f.r = b, f.Rc = b;
+        f.N = (a + 1.0) / (M_PI * b * b);
+    }
+    return f;
+}
+
+static const char *const specs[] = {"cone:r=1", "cone:r=2,cut=0.55", "gauss:s=0.5,cut=2",
+                                    "radial:k=1,r=1", "radial:k=3,r=1.5"};
+
+static filt filt_of(int n)
+{
+    switch (n) {
+    case 0:
+        return make_filt(specs[0], F_CONE, 1, 1);
+    case 1:
+        return make_filt(specs[1], F_CONE, 2, 0.55);
+    case 2:
+        return make_filt(specs[2], F_GAUSS, 0.5, 2);
+    case 3:
+        return make_filt(specs[3], F_RADIAL, 1, 1);
+    default:
+        return make_filt(specs[4], F_RADIAL, 3, 1.5);
+    }
+}
+#define NFILT 5
+
+static double weight2(const filt *f, double u, double v)
+{
+    double d = hypot(u, v);
+    if (!(d < f->Rc))
+        return 0.0;
+    if (f->kind == F_CONE)
+        return f->N * (1.0 - d / f->r);
+    if (f->kind == F_GAUSS)
+        return f->N * exp(-d * d / (2.0 * f->S * f->S));
+    return f->N * pow(1.0 - d * d / (f->r * f->r), f->k);
+}
+
+/* The marginal int w dv at u (the header's closed forms). */
+static double marginal(const filt *f, double u)
+{
+    double au = fabs(u);
+    if (!(au < f->Rc))
+        return 0.0;
+    double c = sqrt((f->Rc - au) * (f->Rc + au));
+    if (f->kind == F_CONE)
+        return f->N * (2.0 * c - (c * f->Rc + (au > 0 ? u * u * asinh(c / au) : 0.0)) / f->r);
+    if (f->kind == F_GAUSS)
+        return f->N * exp(-u * u / (2.0 * f->S * f->S)) * f->S * sqrt(2.0 * M_PI) *
+               erf(c / (f->S * M_SQRT2));
+    static const double B[4] = {2.0, 4.0 / 3.0, 16.0 / 15.0, 32.0 / 35.0};
+    return f->N * pow(c, 2.0 * f->k + 1.0) * B[(int)f->k] / pow(f->r, 2.0 * f->k);
+}
+
+/* ---- scenes (pattern units: the unit square is W x H pixels) ---- */
+
+static void rect_px(aa_scene *s, double x0, double y0, double x1, double y1, aa_rgb col)
+{
+    assert_int_equal(aa_scene_layer(s, col, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, x0 / W, y0 / H), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x1 / W, y0 / H), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x1 / W, y1 / H), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x0 / W, y1 / H), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+}
+
+static void set_grad(aa_scene *s, int kind, int spread, const double p[6],
+                     const aa_gradient_stop *st, int n)
+{
+    aa_gradient g = {kind, spread, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0}, n, st};
+    memcpy(g.p, p, sizeof g.p);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+}
+
+static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
+                                                {1.0, {{1, 1, 1}}, 1.0}};
+
+static void reference(const aa_scene *s, const char *filter, aa_image *ref, aa_image *bound,
+                      aa_truth_stats *stats)
+{
+    support_view v = {W, H, 0, 0, 0, filter, 1, 1, 0};
+    support_reference(s, &v, ref, bound, stats);
+}
+
+/* ---- a ramp along x against the marginal's 1-D integral ---- */
+
+typedef struct ramp_ctx {
+    const filt *f;
+    double uc, a, L;
+} ramp_ctx;
+
+static double ramp_integrand(double x, void *v)
+{
+    const ramp_ctx *c = v;
+    return marginal(c->f, x - c->uc) * dec((x - c->a) / c->L);
+}
+
+static double ramp_1d(const filt *f, double uc, double a, double b)
+{
+    double L = b - a, cut[8] = {uc - f->Rc, uc, uc + f->Rc, a, b, a + T0 * L};
+    int n = 6;
+    qsort(cut, (size_t)n, sizeof *cut, cmp_double);
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
+    ramp_ctx rc = {f, uc, a, L};
+    gsl_function F = {ramp_integrand, &rc};
+    double sum = 0;
+    for (int k = 0; k + 1 < n; k++) {
+        double x0 = fmax(cut[k], uc - f->Rc), x1 = fmin(cut[k + 1], uc + f->Rc), res, err;
+        if (!(x1 > x0))
+            continue;
+        gsl_integration_qags(&F, x0, x1, 1e-17, 1e-15, 1000, ws, &res, &err);
+        sum += res;
+    }
+    gsl_integration_workspace_free(ws);
+    return sum;
+}
+
+static void test_along_x(void **state)
+{
+    (void)state;
+    const double a = 2.3, b = 10.05;
+    aa_scene *s = aa_scene_new((aa_rgb){{0.5, 0.5, 0.5}});
+    rect_px(s, -8, -8, W + 8, H + 8, (aa_rgb){{0, 0, 0}});
+    set_grad(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){a, 0, b, 0, 0, 0},
+             black_white, 2);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    for (int n = 0; n < NFILT; n++) {
+        filt f = filt_of(n);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, f.spec, &ref, &bound, &stats);
+        double worst = 0, wb = 0;
+        for (int i = 0; i < W; i++) {
+            double want = ramp_1d(&f, i + 0.5, a, b);
+            for (int j = 0; j < H; j += 4) {
+                double got = aa_pixel(&ref, i, j)[0], bd = *aa_pixel(&bound, i, j);
+                worst = fmax(worst, fabs(got - want));
+                wb = fmax(wb, bd);
+                if (!(fabs(got - want) <= bd + 1e-15 && bd <= 1e-12))
+                    fail_msg("%s: pixel (%d, %d) is %.17g, the marginal's 1-D integral %.17g "
+                             "(bound %.3g)",
+                             f.spec, i, j, got, want, bd);
+            }
+        }
+        print_message("%-18s along x: largest difference from the marginal's integral %.2g, "
+                      "largest bound %.2g\n",
+                      f.spec, worst, wb);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+    }
+    aa_scene_free(s);
+}
+
+/* ---- two equal stops: the flat colour ---- */
+
+static void test_constant(void **state)
+{
+    (void)state;
+    const aa_rgb col = {{0.3, 0.62, 0.05}}, bg = {{0.1, 0.2, 0.9}};
+    const aa_gradient_stop same[2] = {{0.0, col, 1.0}, {1.0, col, 1.0}};
+    for (int n = 0; n < NFILT; n++) {
+        filt f = filt_of(n);
+        for (int radial = 0; radial < 2; radial++) {
+            aa_scene *g = aa_scene_new(bg), *flat = aa_scene_new(bg);
+            rect_px(g, 2.25, 3.5, 11.75, 8.1, col);
+            static const double at[2][6] = {{1, 2, 11, 7, 0, 0}, {7, 6, 4, 6.5, 5.5, 0}};
+            set_grad(g, radial ? AA_GRADIENT_RADIAL : AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT,
+                     at[radial], same, 2);
+            rect_px(flat, 2.25, 3.5, 11.75, 8.1, col);
+            assert_int_equal(aa_scene_finish(g), AA_OK);
+            assert_int_equal(aa_scene_finish(flat), AA_OK);
+            aa_image rg, rf, bg_, bf;
+            aa_truth_stats sg, sf;
+            reference(g, f.spec, &rg, &bg_, &sg);
+            reference(flat, f.spec, &rf, &bf, &sf);
+            double worst = 0;
+            for (int j = 0; j < H; j++)
+                for (int i = 0; i < W; i++)
+                    for (int ch = 0; ch < 3; ch++)
+                        worst = fmax(worst, fabs(aa_pixel(&rg, i, j)[ch] - aa_pixel(&rf, i, j)[ch]));
+            print_message("%-18s constant %s gradient against the flat colour: %.2g (bound "
+                          "%.2g)\n",
+                          f.spec, radial ? "radial" : "linear", worst, sg.max_bound);
+            /* the flat colour's own bound and the gradient's: each is
+             * within its bound of the true value */
+            if (!(worst <= sg.max_bound + sf.max_bound + 1e-15))
+                fail_msg("%s: a constant %s gradient is %.3g off the flat colour (bounds %.3g, "
+                         "%.3g)",
+                         f.spec, radial ? "radial" : "linear", worst, sg.max_bound, sf.max_bound);
+            assert_true(sg.max_bound <= 1e-12);
+            aa_image_free(&rg);
+            aa_image_free(&rf);
+            aa_image_free(&bg_);
+            aa_image_free(&bf);
+            aa_scene_free(g);
+            aa_scene_free(flat);
+        }
+    }
+}
+
+/* ---- single pixels by 2-D quadrature ---- */
+
+/* The picture: linear (rectangle rc over a background, t the projection
+ * on P1 P2) or radial (centred at (cx, cy), radius r, over the whole
+ * plane); black to white, padded. */
+typedef struct pic {
+    int radial;
+    double x1, y1, x2, y2;
+    double rc[4], bg;
+    double cx, cy, r;
+    double fx, fy; /* radial: the focus (fr = 0) */
+    const filt *f;
+    double uc, vc, y;
+    gsl_integration_workspace *wi;
+} pic;
+
+static const double taus[3] = {0.0, T0, 1.0};
+
+static double pic_t(const pic *p, double x, double y)
+{
+    if (p->radial) {
+        /* the largest t with |q - F - t D| = t r, D = C - F: A t^2 + 2 b t
+         * - c = 0 with A = r^2 - |D|^2 > 0, b = (q - F).D, c = |q - F|^2 */
+        double qx = x - p->fx, qy = y - p->fy, Dx = p->cx - p->fx, Dy = p->cy - p->fy;
+        double A = p->r * p->r - Dx * Dx - Dy * Dy, b = qx * Dx + qy * Dy, c = qx * qx + qy * qy;
+        return (-b + sqrt(b * b + A * c)) / A;
+    }
+    double dx = p->x2 - p->x1, dy = p->y2 - p->y1;
+    return ((x - p->x1) * dx + (y - p->y1) * dy) / (dx * dx + dy * dy);
+}
+
+static double pic_at(const pic *p, double x, double y)
+{
+    if (!p->radial && !(x > p->rc[0] && x < p->rc[2] && y > p->rc[1] && y < p->rc[3]))
+        return p->bg;
+    double t = pic_t(p, x, y);
+    return dec(t < 0 ? 0 : t > 1 ? 1 : t);
+}
+
+static double pic_x(double x, void *v)
+{
+    const pic *p = v;
+    return weight2(p->f, x - p->uc, p->y - p->vc) * pic_at(p, x, p->y);
+}
+
+/* Where the row y meets the curve t = tau: count into out. */
+static int tau_row(const pic *p, double tau, double y, double *out)
+{
+    if (p->radial) {
+        double ccx = p->fx + tau * (p->cx - p->fx), ccy = p->fy + tau * (p->cy - p->fy);
+        double rr = tau * p->r, d = y - ccy, h = rr * rr - d * d;
+        if (h <= 0)
+            return 0;
+        out[0] = ccx - sqrt(h), out[1] = ccx + sqrt(h);
+        return 2;
+    }
+    double dx = p->x2 - p->x1, dy = p->y2 - p->y1, l2 = dx * dx + dy * dy;
+    if (dx == 0)
+        return 0;
+    out[0] = p->x1 + (tau * l2 - (y - p->y1) * dy) / dx;
+    return 1;
+}
+
+static double pic_y(double y, void *v)
+{
+    pic *p = v;
+    p->y = y;
+    double dv = y - p->vc, h2 = p->f->Rc * p->f->Rc - dv * dv;
+    if (!(h2 > 0))
+        return 0;
+    double c = sqrt(h2), cut[16];
+    int n = 0;
+    cut[n++] = p->uc - c, cut[n++] = p->uc + c, cut[n++] = p->uc;
+    if (!p->radial)
+        cut[n++] = p->rc[0], cut[n++] = p->rc[2];
+    else
+        cut[n++] = p->fx; /* t's cone at the focus */
+    for (int q = 0; q < 3; q++)
+        n += tau_row(p, taus[q], y, cut + n);
+    qsort(cut, (size_t)n, sizeof *cut, cmp_double);
+    gsl_function F = {pic_x, p};
+    double sum = 0, res, err;
+    for (int k = 0; k + 1 < n; k++) {
+        double a = fmax(cut[k], p->uc - c), b = fmin(cut[k + 1], p->uc + c);
+        if (!(b > a))
+            continue;
+        gsl_integration_qags(&F, a, b, 1e-17, 1e-14, 1000, p->wi, &res, &err);
+        sum += res;
+    }
+    return sum;
+}
+
+/* The heights where the curve t = tau crosses the circle of radius Rc
+ * about the pixel's centre, and where it passes closest to the centre. */
+static int tau_circle(const pic *p, double tau, double *out)
+{
+    double Rc = p->f->Rc;
+    int n = 0;
+    if (p->radial) {
+        /* two circles: centres distance D apart, radii rr and Rc */
+        double ccx = p->fx + tau * (p->cx - p->fx), ccy = p->fy + tau * (p->cy - p->fy);
+        double rr = tau * p->r, ex = p->uc - ccx, ey = p->vc - ccy, D = hypot(ex, ey);
+        if (!(D > 0))
+            return 0;
+        double l = (rr * rr - Rc * Rc + D * D) / (2 * D), h2 = rr * rr - l * l;
+        if (h2 > 0) {
+            double mx = ex / D, my = ey / D, h = sqrt(h2);
+            out[n++] = ccy + l * my + h * mx, out[n++] = ccy + l * my - h * mx;
+        }
+        out[n++] = ccy + rr * ey / D; /* nearest the centre, on the ray */
+        return n;
+    }
+    double dx = p->x2 - p->x1, dy = p->y2 - p->y1, L = hypot(dx, dy);
+    /* the line: points whose projection is tau L along (dx, dy) / L */
+    double d = ((p->uc - p->x1) * dx + (p->vc - p->y1) * dy) / L - tau * L;
+    double fy = p->vc - d * dy / L;
+    out[n++] = fy;
+    if (fabs(d) < Rc) {
+        double h = sqrt(Rc * Rc - d * d);
+        out[n++] = fy + h * dx / L, out[n++] = fy - h * dx / L;
+    }
+    return n;
+}
+
+static double pic_pixel(pic *p, int i, int j)
+{
+    p->uc = i + 0.5, p->vc = j + 0.5;
+    double R = p->f->Rc, cut[64];
+    int n = 0;
+    cut[n++] = p->vc - R, cut[n++] = p->vc + R, cut[n++] = p->vc;
+    if (!p->radial) {
+        cut[n++] = p->rc[1], cut[n++] = p->rc[3];
+        /* the rectangle's sides against the support's circle */
+        for (int k = 0; k < 4; k += 2) {
+            double d = p->rc[k] - p->uc;
+            if (fabs(d) < R)
+                cut[n++] = p->vc - sqrt(R * R - d * d), cut[n++] = p->vc + sqrt(R * R - d * d);
+        }
+    } else {
+        cut[n++] = p->fy; /* the focus's row */
+        for (int q = 0; q < 3; q++) {
+            double ccy = p->fy + taus[q] * (p->cy - p->fy);
+            cut[n++] = ccy - taus[q] * p->r, cut[n++] = ccy + taus[q] * p->r;
+        }
+    }
+    for (int q = 0; q < 3; q++)
+        n += tau_circle(p, taus[q], cut + n);
+    qsort(cut, (size_t)n, sizeof *cut, cmp_double);
+    p->wi = gsl_integration_workspace_alloc(1000);
+    gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
+    gsl_function F = {pic_y, p};
+    double sum = 0, res, err;
+    for (int k = 0; k + 1 < n; k++) {
+        double a = fmax(cut[k], p->vc - R), b = fmin(cut[k + 1], p->vc + R);
+        if (!(b > a))
+            continue;
+        gsl_integration_qags(&F, a, b, 1e-17, 1e-13, 1000, wo, &res, &err);
+        sum += res;
+    }
+    gsl_integration_workspace_free(p->wi);
+    gsl_integration_workspace_free(wo);
+    return sum;
+}
+
+static void check_pixels(const char *what, pic *p, const aa_image *ref, const aa_image *bound,
+                         const int (*px)[2], int npx)
+{
+    double worst = 0;
+    for (int k = 0; k < npx; k++) {
+        int i = px[k][0], j = px[k][1];
+        double want = pic_pixel(p, i, j), got = aa_pixel(ref, i, j)[0];
+        double bd = *aa_pixel(bound, i, j);
+        worst = fmax(worst, fabs(got - want));
+        if (!(fabs(got - want) <= bd + 2e-15 && bd <= 1e-12))
+            fail_msg("%s under %s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound %.3g)",
+                     what, p->f->spec, i, j, got, want, bd);
+    }
+    print_message("%-18s %s: %d pixels, largest difference from 2-D quadrature %.2g\n",
+                  p->f->spec, what, npx, worst);
+}
+
+static void test_radial_2d(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    pic p = {0};
+    p.radial = 1, p.cx = 7.3, p.cy = 5.1, p.r = 4.2, p.fx = p.cx, p.fy = p.cy;
+    rect_px(s, -8, -8, W + 8, H + 8, (aa_rgb){{0, 0, 0}});
+    set_grad(s, AA_GRADIENT_RADIAL, AA_SPREAD_PAD,
+             (const double[6]){p.cx, p.cy, p.r, p.cx, p.cy, 0}, black_white, 2);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    /* the rim's top row, the rim's crossing, the centre with the
+     * threshold's circle (radius 0.17), inside and outside */
+    static const int px[][2] = {{7, 0}, {7, 1}, {11, 4}, {3, 6}, {7, 5}, {6, 4}, {9, 6}, {1, 1}};
+    for (int n = 0; n < NFILT; n++) {
+        filt f = filt_of(n);
+        p.f = &f;
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, f.spec, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        check_pixels("centred radial ramp", &p, &ref, &bound, px, (int)(sizeof px / sizeof *px));
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+    }
+    aa_scene_free(s);
+}
+
+/* A focal radial gradient (F off the centre, fr = 0: t has a cone at F)
+ * over the whole plane, its stop circles not concentric. */
+static void test_focal_2d(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    pic p = {0};
+    p.radial = 1, p.cx = 7.3, p.cy = 5.1, p.r = 4.2, p.fx = 5.9, p.fy = 4.2;
+    rect_px(s, -8, -8, W + 8, H + 8, (aa_rgb){{0, 0, 0}});
+    set_grad(s, AA_GRADIENT_RADIAL, AA_SPREAD_PAD,
+             (const double[6]){p.cx, p.cy, p.r, p.fx, p.fy, 0}, black_white, 2);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    /* the focus's pixel and its neighbours, the rim's crossings, the
+     * threshold's circle near F */
+    static const int px[][2] = {{5, 4}, {6, 4}, {5, 3}, {7, 5}, {11, 4}, {3, 2}, {7, 9}, {2, 8}};
+    for (int n = 0; n < NFILT; n++) {
+        filt f = filt_of(n);
+        p.f = &f;
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, f.spec, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        check_pixels("focal radial ramp", &p, &ref, &bound, px, (int)(sizeof px / sizeof *px));
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+    }
+    aa_scene_free(s);
+}
+
+static void test_linear_2d(void **state)
+{
+    (void)state;
+    const double bgl = 0.2;
+    aa_scene *s = aa_scene_new((aa_rgb){{bgl, bgl, bgl}});
+    pic p = {0};
+    p.rc[0] = 1.5, p.rc[1] = 2.25, p.rc[2] = 12.75, p.rc[3] = 8.5, p.bg = bgl;
+    p.x1 = 3.1, p.y1 = 2.0, p.x2 = 11.4, p.y2 = 8.7;
+    rect_px(s, p.rc[0], p.rc[1], p.rc[2], p.rc[3], (aa_rgb){{0, 0, 0}});
+    set_grad(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){p.x1, p.y1, p.x2, p.y2, 0, 0},
+             black_white, 2);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    /* corners and sides of the rectangle, the ramp's ends, the
+     * threshold's line and the middle */
+    static const int px[][2] = {{1, 2}, {12, 8}, {3, 3}, {4, 2}, {10, 7}, {7, 5}, {2, 6}, {8, 8}};
+    for (int n = 0; n < NFILT; n++) {
+        filt f = filt_of(n);
+        p.f = &f;
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, f.spec, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        check_pixels("linear ramp on a rectangle", &p, &ref, &bound, px,
+                     (int)(sizeof px / sizeof *px));
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+    }
+    aa_scene_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_along_x),
+        cmocka_unit_test(test_constant),
+        cmocka_unit_test(test_radial_2d),
+        cmocka_unit_test(test_focal_2d),
+        cmocka_unit_test(test_linear_2d),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
