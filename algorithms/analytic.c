@@ -1083,12 +1083,25 @@ static int rad_render_row(const void *ctx, aa__sampler_worker *wk, int j, aa_ima
  * rounding of an integer) when every layer has the same step and, of each
  * sign, the same colour (one value a piece, nv = 1), else from a fourth
  * value summing dir (L + 1), which in a face of layer L is (L + 1) s(L).
+ * Each cell is marked where a part's exact term reached it (AN_TERM) or
+ * where only a carry of the running sum was added (AN_CARRY: the column
+ * right of a part's columns, the first column for a part left of every
+ * support); the cells of unmarked pixels hold nothing, so a run of them
+ * is one face, its colour stored eight pixels at a time without passing
+ * the sum over them (the same values as one pixel at a time: the sum is
+ * rounded once, at the run's start, and is an integer after it).
  *
  * Rows are taken AN_BLOCK at a time (the parts of a piece cut at the
  * block's support rows, which are knots' lines): a pixel's value sums its
  * terms in the scene's piece order whatever the threads. */
 
 #define AN_BLOCK 64
+/* a cell's marks (an_block's touched): a part's exact term reached the
+ * pixel (or a flat piece crosses its support), or only a carry of the
+ * running sum was added there; a pixel of neither has its support inside
+ * one face and nothing in its cell of the running sum */
+#define AN_TERM 1
+#define AN_CARRY 2
 /* values a piece carries when the layers' steps differ: colour and code */
 #define AN_NV 4
 
@@ -1275,7 +1288,7 @@ typedef struct an_block {
     const an_state *S;
     int w, j0, j1, nv;
     double *cover;          /* nv values a cell */
-    unsigned char *touched; /* a cell got an exact term */
+    unsigned char *touched; /* a cell's marks: AN_TERM, AN_CARRY */
     size_t cols;            /* block_cols */
     int pad;
     double *wcol, *arow;    /* pad x AN_MAX_PTS each: W at the columns, a at the rows */
@@ -1340,9 +1353,11 @@ part_left(const an_block *B, const double *val, const int m, const double *Y, co
                 v = b[q] + u * v;
             A += D[g] * v;
         }
-        double *cov = B->cover + ((size_t)(j - B->j0 + B->pad) * B->cols + (size_t)B->pad) * nv;
+        size_t row = (size_t)(j - B->j0 + B->pad) * B->cols + (size_t)B->pad;
+        double *cov = B->cover + row * nv;
         for (int v = 0; v < nv; v++)
             cov[v] += val[v] * A;
+        B->touched[row] |= AN_CARRY;
     }
 }
 
@@ -1394,6 +1409,7 @@ fast_part(const an_block *B, const double *val, const int m, const double *X, co
         unsigned char *tch = B->touched + row;
         for (int v = 0; v < nv; v++)
             cov[(ptrdiff_t)ilo * nv + v] += val[v] * A;
+        tch[ilo] |= AN_CARRY, tch[ihi + 1] |= AN_CARRY;
         for (int c = 0; c < ncol; c++) {
             double r = 0.0;
             for (int g = 0; g < m; g++)
@@ -1403,7 +1419,7 @@ fast_part(const an_block *B, const double *val, const int m, const double *X, co
                 cov[i * nv + v] -= val[v] * r;
                 cov[(i + 1) * nv + v] += val[v] * r;
             }
-            tch[i] = 1;
+            tch[i] |= AN_TERM;
         }
     }
 }
@@ -1465,7 +1481,8 @@ fast_part_regular(const an_block *B, const double *val, const int m, const doubl
             for (int v = 0; v < nv; v++)
                 cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
         for (int c = 0; c < ns; c++)
-            tch[ilo + c] = 1;
+            tch[ilo + c] |= AN_TERM;
+        tch[ilo + ns] |= AN_CARRY;
     }
 }
 
@@ -1794,9 +1811,6 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
             continue;
         }
         uint64_t touched = 0;
-        for (int i = 0; i < w; i++)
-            touched += tch[pad + i];
-        *expensive += touched;
         /* a pixel no part or flat piece reached has its support inside one
          * face: its colour exactly, from the winding the running sum holds
          * (within rounding of an integer), and the sums set to their exact
@@ -1813,53 +1827,57 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 run = two_sum(run, cov[i], &comp), cov[i] = 0.0;
             cov += pad;
             int i = 0;
+            while (i < w) {
+                if (!t[i]) {
+                    /* a run of unmarked pixels: no term and no carry in
+                     * their cells (zero already), so each takes the face
+                     * the running sum's winding names, rounded once (as
+                     * the first would, one pixel at a time, and the others
+                     * after it, the sum then an integer); eight at a time
+                     * where eight marks are zero */
+                    double rs = run + comp;
+                    run = (rs > 0.5) - (rs < -0.5), comp = 0.0;
+                    const double *f = S->face1[1 + (int)run];
 #if AN_SSE2
-            /* two pixels, three 16-byte stores, at a time */
-            const __m128d vlo = _mm_set1_pd(lo), vhi = _mm_set1_pd(hi);
-            const __m128d b01 = _mm_set_pd(b1, b0), b20 = _mm_set_pd(b0, b2),
-                          b12 = _mm_set_pd(b2, b1);
-            const __m128d c01 = _mm_set_pd(c1, c0), c20 = _mm_set_pd(c0, c2),
-                          c12 = _mm_set_pd(c2, c1);
-            for (; i + 1 < w; i += 2, px += 6) {
-                run = two_sum(run, cov[i], &comp);
-                double ra = run + comp;
-                if (!t[i])
-                    ra = run = (ra > 0.5) - (ra < -0.5), comp = 0.0;
-                run = two_sum(run, cov[i + 1], &comp);
-                double rb = run + comp;
-                if (!t[i + 1])
-                    rb = run = (rb > 0.5) - (rb < -0.5), comp = 0.0;
-                cov[i] = cov[i + 1] = 0.0;
-                __m128d raa = _mm_set1_pd(ra), rab = _mm_set_pd(rb, ra), rbb = _mm_set1_pd(rb);
-                __m128d v0 = _mm_add_pd(b01, _mm_mul_pd(c01, raa));
-                __m128d v1 = _mm_add_pd(b20, _mm_mul_pd(c20, rab));
-                __m128d v2 = _mm_add_pd(b12, _mm_mul_pd(c12, rbb));
-                /* max(lo, v), then min(hi, .): as the scalar clamps below */
-                _mm_storeu_pd(px, _mm_min_pd(_mm_max_pd(v0, vlo), vhi));
-                _mm_storeu_pd(px + 2, _mm_min_pd(_mm_max_pd(v1, vlo), vhi));
-                _mm_storeu_pd(px + 4, _mm_min_pd(_mm_max_pd(v2, vlo), vhi));
-                if (!t[i])
-                    memcpy(px, S->face1[1 + (int)ra], 3 * sizeof *px);
-                if (!t[i + 1])
-                    memcpy(px + 3, S->face1[1 + (int)rb], 3 * sizeof *px);
-            }
+                    const __m128d f01 = _mm_loadu_pd(f), f20 = _mm_set_pd(f[0], f[2]),
+                                  f12 = _mm_loadu_pd(f + 1);
+                    for (;;) {
+                        uint64_t t8;
+                        if (w - i < 8 || (memcpy(&t8, t + i, sizeof t8), t8))
+                            break;
+                        for (int k = 0; k < 4; k++, px += 6) {
+                            _mm_storeu_pd(px, f01);
+                            _mm_storeu_pd(px + 2, f20);
+                            _mm_storeu_pd(px + 4, f12);
+                        }
+                        i += 8;
+                    }
 #endif
-            for (; i < w; i++, px += 3) {
+                    for (; i < w && !t[i]; i++, px += 3)
+                        px[0] = f[0], px[1] = f[1], px[2] = f[2];
+                    continue;
+                }
+                /* a marked pixel: its term or carry added */
                 run = two_sum(run, cov[i], &comp);
                 cov[i] = 0.0;
                 double rs = run + comp;
-                if (!t[i]) {
+                if (!(t[i] & AN_TERM)) {
                     run = (rs > 0.5) - (rs < -0.5), comp = 0.0;
                     memcpy(px, S->face1[1 + (int)run], 3 * sizeof *px);
-                    continue;
+                } else {
+                    double v0 = b0 + c0 * rs, v1 = b1 + c1 * rs, v2 = b2 + c2 * rs;
+                    /* branch-free clamps (minsd, maxsd) */
+                    v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
+                    px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1,
+                    px[2] = v2 > hi ? hi : v2;
+                    touched++;
                 }
-                double v0 = b0 + c0 * rs, v1 = b1 + c1 * rs, v2 = b2 + c2 * rs;
-                /* branch-free clamps (minsd, maxsd) */
-                v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
-                px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
+                i++, px += 3;
             }
             memset(cov + w, 0, (cols - (size_t)pad - (size_t)w) * sizeof *cov);
         } else {
+            for (int i = 0; i < w; i++)
+                touched += t[i] & AN_TERM;
             double r0 = 0.0, r1 = 0.0, r2 = 0.0, r3 = 0.0;
             for (int i = 0; i < pad; i++, cov += AN_NV) {
                 r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
@@ -1868,7 +1886,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
             for (int i = 0; i < w; i++, px += 3, cov += AN_NV) {
                 r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
                 cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
-                if (!t[i]) {
+                if (!(t[i] & AN_TERM)) {
                     /* the code: (L + 1) s(L) in a face of layer L, 0 outside */
                     long k = lrint(r3), L = (k < 0 ? -k : k) - 1;
                     int in = L >= 0 && L < S->plan_nl;
@@ -1889,6 +1907,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
             memset(cov, 0, (cols - (size_t)pad - (size_t)w) * AN_NV * sizeof *cov);
         }
         memset(tch, 0, cols);
+        *expensive += touched;
     }
     return 0;
 }
