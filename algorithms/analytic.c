@@ -261,6 +261,10 @@ typedef struct an_state {
     int nph;
     double ph[AN_MAX_CELLS + 1];
     int regular; /* deg + 1 cells of width 1 (fast_part_regular) */
+    /* a regular filter's pieces by the column (row) c that holds a part:
+     * the cell deg - c's coefficients of W (w) and its left knot, zero
+     * past the last column (lanes of fast_part_regular's vectors) */
+    double rcdf[5][4], rw[4][4], rk[4];
     int pad;     /* margins of the scatter's buffers: the support's width + 3 */
     /* The plan of the scene (see "One layer at a time"): for the scene
      * and height it was made for, which rows take the per-pixel path
@@ -1430,11 +1434,117 @@ fast_part(const an_block *B, const double *val, const int m, const double *X, co
  * cell, each next one cell to the left, so every count is a constant
  * (rows outside the block and columns outside the image fall in the
  * margins). */
+/* the loops of a part's arithmetic, whose counts are constants of the
+ * specialised copies, written out in full (-O2 does not) */
+#if defined(__GNUC__) && !defined(__clang__)
+#define AN_UNROLL _Pragma("GCC unroll 18")
+#else
+#define AN_UNROLL
+#endif
+
+#if AN_SSE2
+/* fast_part_regular's arithmetic for N >= 1 in pairs of columns (rows):
+ * lane c of a vector is column (row) c, the cell N - c's piece at the
+ * same point.  Every value is the scalar version's, operation for
+ * operation (Horner's steps, the sums over the points in their order), so
+ * the image is the same to the bit; the vectors only do two columns' (or
+ * rows') steps at once. */
+__attribute__((always_inline)) static inline void
+fast_part_regular_sse2(const an_block *B, const double *val, const int m, const double *X,
+                       const double *Y, const double *D, double xm, double ym, const int nv,
+                       const int N)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double kn = pp->k[pp->ncell];
+    const int ns = N + 1, nh = (ns + 1) / 2;
+    int jlo = ifloor(ym - 0.5 - kn) + 1, ilo = ifloor(xm - 0.5 - kn) + 1;
+    double ox[4], oy[4];
+    AN_UNROLL
+    for (int c = 0; c < 4; c++) {
+        ox[c] = ilo + c + 0.5 + S->rk[c];
+        oy[c] = jlo + c + 0.5 + S->rk[c];
+    }
+    __m128d Wc[AN_MAX_PTS][2], a[AN_MAX_PTS][2], A[2];
+    __m128d vox[2], voy[2];
+    AN_UNROLL
+    for (int h = 0; h < nh; h++) {
+        vox[h] = _mm_loadu_pd(ox + 2 * h);
+        voy[h] = _mm_loadu_pd(oy + 2 * h);
+        A[h] = _mm_setzero_pd();
+    }
+    AN_UNROLL
+    for (int g = 0; g < m; g++) {
+        const __m128d x = _mm_set1_pd(X[g]), y = _mm_set1_pd(Y[g]), d = _mm_set1_pd(D[g]);
+        AN_UNROLL
+        for (int h = 0; h < nh; h++) {
+            __m128d u = _mm_sub_pd(x, vox[h]), v = _mm_loadu_pd(&S->rcdf[N + 1][2 * h]);
+            AN_UNROLL
+            for (int e = N; e >= 0; e--)
+                v = _mm_add_pd(_mm_loadu_pd(&S->rcdf[e][2 * h]), _mm_mul_pd(u, v));
+            Wc[g][h] = v;
+            u = _mm_sub_pd(y, voy[h]);
+            v = _mm_loadu_pd(&S->rw[N][2 * h]);
+            AN_UNROLL
+            for (int e = N - 1; e >= 0; e--)
+                v = _mm_add_pd(_mm_loadu_pd(&S->rw[e][2 * h]), _mm_mul_pd(u, v));
+            a[g][h] = _mm_mul_pd(d, v);
+            A[h] = _mm_add_pd(A[h], a[g][h]);
+        }
+    }
+    double As[4], xs[4];
+    _mm_storeu_pd(As, A[0]);
+    if (nh > 1)
+        _mm_storeu_pd(As + 2, A[1]);
+    AN_UNROLL
+    for (int r = 0; r < ns; r++) {
+        /* the row's products with the columns: x[c] = sum_g a[r][g] W[c][g] */
+        __m128d x0 = _mm_setzero_pd(), x1 = _mm_setzero_pd();
+        AN_UNROLL
+        for (int g = 0; g < m; g++) {
+            __m128d ar = (r & 1) ? _mm_unpackhi_pd(a[g][r >> 1], a[g][r >> 1])
+                                 : _mm_unpacklo_pd(a[g][r >> 1], a[g][r >> 1]);
+            x0 = _mm_add_pd(x0, _mm_mul_pd(ar, Wc[g][0]));
+            if (nh > 1)
+                x1 = _mm_add_pd(x1, _mm_mul_pd(ar, Wc[g][1]));
+        }
+        _mm_storeu_pd(xs, x0);
+        if (nh > 1)
+            _mm_storeu_pd(xs + 2, x1);
+        double d[5];
+        d[0] = As[r];
+        AN_UNROLL
+        for (int c = 0; c < ns; c++) {
+            d[c] -= xs[c];
+            d[c + 1] = xs[c];
+        }
+        size_t row = (size_t)(jlo + r - B->j0 + B->pad) * B->cols + (size_t)B->pad;
+        double *cov = B->cover + row * nv;
+        unsigned char *tch = B->touched + row;
+        AN_UNROLL
+        for (int c = 0; c <= ns; c++)
+            AN_UNROLL
+            for (int v = 0; v < nv; v++)
+                cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
+        AN_UNROLL
+        for (int c = 0; c < ns; c++)
+            tch[ilo + c] |= AN_TERM;
+        tch[ilo + ns] |= AN_CARRY;
+    }
+}
+#endif
+
 __attribute__((always_inline)) static inline void
 fast_part_regular(const an_block *B, const double *val, const int m, const double *X,
                   const double *Y, const double *D, double xm, double ym, const int nv,
                   const int N)
 {
+#if AN_SSE2
+    if (N >= 1) {
+        fast_part_regular_sse2(B, val, m, X, Y, D, xm, ym, nv, N);
+        return;
+    }
+#endif
     const an_state *S = B->S;
     const an_pp *pp = &S->pp;
     const double k0 = pp->k[0], kn = pp->k[pp->ncell];
@@ -1989,6 +2099,17 @@ static void knot_lines(an_state *S)
     S->regular = pp->ncell == pp->deg + 1;
     for (int c = 0; c < pp->ncell; c++)
         S->regular &= pp->k[c + 1] - pp->k[c] == 1.0;
+    memset(S->rcdf, 0, sizeof S->rcdf);
+    memset(S->rw, 0, sizeof S->rw);
+    memset(S->rk, 0, sizeof S->rk);
+    for (int c = 0; S->regular && c <= pp->deg; c++) {
+        int cell = pp->deg - c;
+        for (int e = 0; e <= pp->deg + 1; e++)
+            S->rcdf[e][c] = pp->cdf[cell][e];
+        for (int e = 0; e <= pp->deg; e++)
+            S->rw[e][c] = pp->w[cell][e];
+        S->rk[c] = pp->k[cell];
+    }
 }
 
 static int analytic_init(void *state, const double *p, const aa_job *job)
