@@ -193,12 +193,16 @@
  * Cost.  Where the per-edge scatter holds (every row of crow and of scenes
  * of disjoint shapes): per part of a piece between two knots' lines, its
  * rule's points, the filter's pieces at them for the (support width)
- * rows and columns that hold it and their products, then one running sum
- * per row; the rule's size, the filter's degree and (for filters of unit
+ * rows and columns that hold it and their products (for the regular
+ * filters of degree 1 to 3 two columns or rows at a time, in SSE2
+ * vectors), then one running sum per row over the pixels some term or
+ * carry reached, the runs of other pixels filled with their faces'
+ * colours; the rule's size, the filter's degree and (for filters of unit
  * cells) the support's width are constants of the compiled loops.  On
  * crow 1024x1024, one thread, the thread CPU time per render (algorithms/
- * README.md, "Exact filtering beyond the box"): under tent:r=1 1.9x
- * area's box time, under bspline:order=3 4.1x (medians of three runs).  On
+ * README.md, "Exact filtering beyond the box"): under tent:r=1 2.4x
+ * area's box time, under bspline:order=3 4.3x (medians of three runs on a
+ * loaded machine; 2.1x and 3.6x in a run on a less loaded one).  On
  * elliptical arcs each part costs more, under every filter alike: its
  * cuts' angles and its middle's sine and cosine in long double, and 4 n +
  * 6 points; on 36 circles at 1024x1024 (algorithms/README.md) 8.9x area's
