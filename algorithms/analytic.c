@@ -193,12 +193,16 @@
  * Cost.  Where the per-edge scatter holds (every row of crow and of scenes
  * of disjoint shapes): per part of a piece between two knots' lines, its
  * rule's points, the filter's pieces at them for the (support width)
- * rows and columns that hold it and their products, then one running sum
- * per row; the rule's size, the filter's degree and (for filters of unit
+ * rows and columns that hold it and their products (for the regular
+ * filters of degree 1 to 3 two columns or rows at a time, in SSE2
+ * vectors), then one running sum per row over the pixels some term or
+ * carry reached, the runs of other pixels filled with their faces'
+ * colours; the rule's size, the filter's degree and (for filters of unit
  * cells) the support's width are constants of the compiled loops.  On
  * crow 1024x1024, one thread, the thread CPU time per render (algorithms/
- * README.md, "Exact filtering beyond the box"): under tent:r=1 1.9x
- * area's box time, under bspline:order=3 4.1x (medians of three runs).  On
+ * README.md, "Exact filtering beyond the box"): under tent:r=1 2.4x
+ * area's box time, under bspline:order=3 4.3x (medians of three runs on a
+ * loaded machine; 2.1x and 3.6x in a run on a less loaded one).  On
  * elliptical arcs each part costs more, under every filter alike: its
  * cuts' angles and its middle's sine and cosine in long double, and 4 n +
  * 6 points; on 36 circles at 1024x1024 (algorithms/README.md) 8.9x area's
@@ -261,6 +265,10 @@ typedef struct an_state {
     int nph;
     double ph[AN_MAX_CELLS + 1];
     int regular; /* deg + 1 cells of width 1 (fast_part_regular) */
+    /* a regular filter's pieces by the column (row) c that holds a part:
+     * the cell deg - c's coefficients of W (w) and its left knot, zero
+     * past the last column (lanes of fast_part_regular's vectors) */
+    double rcdf[5][4], rw[4][4], rk[4];
     int pad;     /* margins of the scatter's buffers: the support's width + 3 */
     /* The plan of the scene (see "One layer at a time"): for the scene
      * and height it was made for, which rows take the per-pixel path
@@ -1083,12 +1091,25 @@ static int rad_render_row(const void *ctx, aa__sampler_worker *wk, int j, aa_ima
  * rounding of an integer) when every layer has the same step and, of each
  * sign, the same colour (one value a piece, nv = 1), else from a fourth
  * value summing dir (L + 1), which in a face of layer L is (L + 1) s(L).
+ * Each cell is marked where a part's exact term reached it (AN_TERM) or
+ * where only a carry of the running sum was added (AN_CARRY: the column
+ * right of a part's columns, the first column for a part left of every
+ * support); the cells of unmarked pixels hold nothing, so a run of them
+ * is one face, its colour stored eight pixels at a time without passing
+ * the sum over them (the same values as one pixel at a time: the sum is
+ * rounded once, at the run's start, and is an integer after it).
  *
  * Rows are taken AN_BLOCK at a time (the parts of a piece cut at the
  * block's support rows, which are knots' lines): a pixel's value sums its
  * terms in the scene's piece order whatever the threads. */
 
 #define AN_BLOCK 64
+/* a cell's marks (an_block's touched): a part's exact term reached the
+ * pixel (or a flat piece crosses its support), or only a carry of the
+ * running sum was added there; a pixel of neither has its support inside
+ * one face and nothing in its cell of the running sum */
+#define AN_TERM 1
+#define AN_CARRY 2
 /* values a piece carries when the layers' steps differ: colour and code */
 #define AN_NV 4
 
@@ -1275,7 +1296,7 @@ typedef struct an_block {
     const an_state *S;
     int w, j0, j1, nv;
     double *cover;          /* nv values a cell */
-    unsigned char *touched; /* a cell got an exact term */
+    unsigned char *touched; /* a cell's marks: AN_TERM, AN_CARRY */
     size_t cols;            /* block_cols */
     int pad;
     double *wcol, *arow;    /* pad x AN_MAX_PTS each: W at the columns, a at the rows */
@@ -1340,9 +1361,11 @@ part_left(const an_block *B, const double *val, const int m, const double *Y, co
                 v = b[q] + u * v;
             A += D[g] * v;
         }
-        double *cov = B->cover + ((size_t)(j - B->j0 + B->pad) * B->cols + (size_t)B->pad) * nv;
+        size_t row = (size_t)(j - B->j0 + B->pad) * B->cols + (size_t)B->pad;
+        double *cov = B->cover + row * nv;
         for (int v = 0; v < nv; v++)
             cov[v] += val[v] * A;
+        B->touched[row] |= AN_CARRY;
     }
 }
 
@@ -1394,6 +1417,7 @@ fast_part(const an_block *B, const double *val, const int m, const double *X, co
         unsigned char *tch = B->touched + row;
         for (int v = 0; v < nv; v++)
             cov[(ptrdiff_t)ilo * nv + v] += val[v] * A;
+        tch[ilo] |= AN_CARRY, tch[ihi + 1] |= AN_CARRY;
         for (int c = 0; c < ncol; c++) {
             double r = 0.0;
             for (int g = 0; g < m; g++)
@@ -1403,7 +1427,7 @@ fast_part(const an_block *B, const double *val, const int m, const double *X, co
                 cov[i * nv + v] -= val[v] * r;
                 cov[(i + 1) * nv + v] += val[v] * r;
             }
-            tch[i] = 1;
+            tch[i] |= AN_TERM;
         }
     }
 }
@@ -1414,11 +1438,117 @@ fast_part(const an_block *B, const double *val, const int m, const double *X, co
  * cell, each next one cell to the left, so every count is a constant
  * (rows outside the block and columns outside the image fall in the
  * margins). */
+/* the loops of a part's arithmetic, whose counts are constants of the
+ * specialised copies, written out in full (-O2 does not) */
+#if defined(__GNUC__) && !defined(__clang__)
+#define AN_UNROLL _Pragma("GCC unroll 18")
+#else
+#define AN_UNROLL
+#endif
+
+#if AN_SSE2
+/* fast_part_regular's arithmetic for N >= 1 in pairs of columns (rows):
+ * lane c of a vector is column (row) c, the cell N - c's piece at the
+ * same point.  Every value is the scalar version's, operation for
+ * operation (Horner's steps, the sums over the points in their order), so
+ * the image is the same to the bit; the vectors only do two columns' (or
+ * rows') steps at once. */
+__attribute__((always_inline)) static inline void
+fast_part_regular_sse2(const an_block *B, const double *val, const int m, const double *X,
+                       const double *Y, const double *D, double xm, double ym, const int nv,
+                       const int N)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double kn = pp->k[pp->ncell];
+    const int ns = N + 1, nh = (ns + 1) / 2;
+    int jlo = ifloor(ym - 0.5 - kn) + 1, ilo = ifloor(xm - 0.5 - kn) + 1;
+    double ox[4], oy[4];
+    AN_UNROLL
+    for (int c = 0; c < 4; c++) {
+        ox[c] = ilo + c + 0.5 + S->rk[c];
+        oy[c] = jlo + c + 0.5 + S->rk[c];
+    }
+    __m128d Wc[AN_MAX_PTS][2], a[AN_MAX_PTS][2], A[2];
+    __m128d vox[2], voy[2];
+    AN_UNROLL
+    for (int h = 0; h < nh; h++) {
+        vox[h] = _mm_loadu_pd(ox + 2 * h);
+        voy[h] = _mm_loadu_pd(oy + 2 * h);
+        A[h] = _mm_setzero_pd();
+    }
+    AN_UNROLL
+    for (int g = 0; g < m; g++) {
+        const __m128d x = _mm_set1_pd(X[g]), y = _mm_set1_pd(Y[g]), d = _mm_set1_pd(D[g]);
+        AN_UNROLL
+        for (int h = 0; h < nh; h++) {
+            __m128d u = _mm_sub_pd(x, vox[h]), v = _mm_loadu_pd(&S->rcdf[N + 1][2 * h]);
+            AN_UNROLL
+            for (int e = N; e >= 0; e--)
+                v = _mm_add_pd(_mm_loadu_pd(&S->rcdf[e][2 * h]), _mm_mul_pd(u, v));
+            Wc[g][h] = v;
+            u = _mm_sub_pd(y, voy[h]);
+            v = _mm_loadu_pd(&S->rw[N][2 * h]);
+            AN_UNROLL
+            for (int e = N - 1; e >= 0; e--)
+                v = _mm_add_pd(_mm_loadu_pd(&S->rw[e][2 * h]), _mm_mul_pd(u, v));
+            a[g][h] = _mm_mul_pd(d, v);
+            A[h] = _mm_add_pd(A[h], a[g][h]);
+        }
+    }
+    double As[4], xs[4];
+    _mm_storeu_pd(As, A[0]);
+    if (nh > 1)
+        _mm_storeu_pd(As + 2, A[1]);
+    AN_UNROLL
+    for (int r = 0; r < ns; r++) {
+        /* the row's products with the columns: x[c] = sum_g a[r][g] W[c][g] */
+        __m128d x0 = _mm_setzero_pd(), x1 = _mm_setzero_pd();
+        AN_UNROLL
+        for (int g = 0; g < m; g++) {
+            __m128d ar = (r & 1) ? _mm_unpackhi_pd(a[g][r >> 1], a[g][r >> 1])
+                                 : _mm_unpacklo_pd(a[g][r >> 1], a[g][r >> 1]);
+            x0 = _mm_add_pd(x0, _mm_mul_pd(ar, Wc[g][0]));
+            if (nh > 1)
+                x1 = _mm_add_pd(x1, _mm_mul_pd(ar, Wc[g][1]));
+        }
+        _mm_storeu_pd(xs, x0);
+        if (nh > 1)
+            _mm_storeu_pd(xs + 2, x1);
+        double d[5];
+        d[0] = As[r];
+        AN_UNROLL
+        for (int c = 0; c < ns; c++) {
+            d[c] -= xs[c];
+            d[c + 1] = xs[c];
+        }
+        size_t row = (size_t)(jlo + r - B->j0 + B->pad) * B->cols + (size_t)B->pad;
+        double *cov = B->cover + row * nv;
+        unsigned char *tch = B->touched + row;
+        AN_UNROLL
+        for (int c = 0; c <= ns; c++)
+            AN_UNROLL
+            for (int v = 0; v < nv; v++)
+                cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
+        AN_UNROLL
+        for (int c = 0; c < ns; c++)
+            tch[ilo + c] |= AN_TERM;
+        tch[ilo + ns] |= AN_CARRY;
+    }
+}
+#endif
+
 __attribute__((always_inline)) static inline void
 fast_part_regular(const an_block *B, const double *val, const int m, const double *X,
                   const double *Y, const double *D, double xm, double ym, const int nv,
                   const int N)
 {
+#if AN_SSE2
+    if (N >= 1) {
+        fast_part_regular_sse2(B, val, m, X, Y, D, xm, ym, nv, N);
+        return;
+    }
+#endif
     const an_state *S = B->S;
     const an_pp *pp = &S->pp;
     const double k0 = pp->k[0], kn = pp->k[pp->ncell];
@@ -1465,7 +1595,8 @@ fast_part_regular(const an_block *B, const double *val, const int m, const doubl
             for (int v = 0; v < nv; v++)
                 cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
         for (int c = 0; c < ns; c++)
-            tch[ilo + c] = 1;
+            tch[ilo + c] |= AN_TERM;
+        tch[ilo + ns] |= AN_CARRY;
     }
 }
 
@@ -1794,9 +1925,6 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
             continue;
         }
         uint64_t touched = 0;
-        for (int i = 0; i < w; i++)
-            touched += tch[pad + i];
-        *expensive += touched;
         /* a pixel no part or flat piece reached has its support inside one
          * face: its colour exactly, from the winding the running sum holds
          * (within rounding of an integer), and the sums set to their exact
@@ -1813,53 +1941,57 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 run = two_sum(run, cov[i], &comp), cov[i] = 0.0;
             cov += pad;
             int i = 0;
+            while (i < w) {
+                if (!t[i]) {
+                    /* a run of unmarked pixels: no term and no carry in
+                     * their cells (zero already), so each takes the face
+                     * the running sum's winding names, rounded once (as
+                     * the first would, one pixel at a time, and the others
+                     * after it, the sum then an integer); eight at a time
+                     * where eight marks are zero */
+                    double rs = run + comp;
+                    run = (rs > 0.5) - (rs < -0.5), comp = 0.0;
+                    const double *f = S->face1[1 + (int)run];
 #if AN_SSE2
-            /* two pixels, three 16-byte stores, at a time */
-            const __m128d vlo = _mm_set1_pd(lo), vhi = _mm_set1_pd(hi);
-            const __m128d b01 = _mm_set_pd(b1, b0), b20 = _mm_set_pd(b0, b2),
-                          b12 = _mm_set_pd(b2, b1);
-            const __m128d c01 = _mm_set_pd(c1, c0), c20 = _mm_set_pd(c0, c2),
-                          c12 = _mm_set_pd(c2, c1);
-            for (; i + 1 < w; i += 2, px += 6) {
-                run = two_sum(run, cov[i], &comp);
-                double ra = run + comp;
-                if (!t[i])
-                    ra = run = (ra > 0.5) - (ra < -0.5), comp = 0.0;
-                run = two_sum(run, cov[i + 1], &comp);
-                double rb = run + comp;
-                if (!t[i + 1])
-                    rb = run = (rb > 0.5) - (rb < -0.5), comp = 0.0;
-                cov[i] = cov[i + 1] = 0.0;
-                __m128d raa = _mm_set1_pd(ra), rab = _mm_set_pd(rb, ra), rbb = _mm_set1_pd(rb);
-                __m128d v0 = _mm_add_pd(b01, _mm_mul_pd(c01, raa));
-                __m128d v1 = _mm_add_pd(b20, _mm_mul_pd(c20, rab));
-                __m128d v2 = _mm_add_pd(b12, _mm_mul_pd(c12, rbb));
-                /* max(lo, v), then min(hi, .): as the scalar clamps below */
-                _mm_storeu_pd(px, _mm_min_pd(_mm_max_pd(v0, vlo), vhi));
-                _mm_storeu_pd(px + 2, _mm_min_pd(_mm_max_pd(v1, vlo), vhi));
-                _mm_storeu_pd(px + 4, _mm_min_pd(_mm_max_pd(v2, vlo), vhi));
-                if (!t[i])
-                    memcpy(px, S->face1[1 + (int)ra], 3 * sizeof *px);
-                if (!t[i + 1])
-                    memcpy(px + 3, S->face1[1 + (int)rb], 3 * sizeof *px);
-            }
+                    const __m128d f01 = _mm_loadu_pd(f), f20 = _mm_set_pd(f[0], f[2]),
+                                  f12 = _mm_loadu_pd(f + 1);
+                    for (;;) {
+                        uint64_t t8;
+                        if (w - i < 8 || (memcpy(&t8, t + i, sizeof t8), t8))
+                            break;
+                        for (int k = 0; k < 4; k++, px += 6) {
+                            _mm_storeu_pd(px, f01);
+                            _mm_storeu_pd(px + 2, f20);
+                            _mm_storeu_pd(px + 4, f12);
+                        }
+                        i += 8;
+                    }
 #endif
-            for (; i < w; i++, px += 3) {
+                    for (; i < w && !t[i]; i++, px += 3)
+                        px[0] = f[0], px[1] = f[1], px[2] = f[2];
+                    continue;
+                }
+                /* a marked pixel: its term or carry added */
                 run = two_sum(run, cov[i], &comp);
                 cov[i] = 0.0;
                 double rs = run + comp;
-                if (!t[i]) {
+                if (!(t[i] & AN_TERM)) {
                     run = (rs > 0.5) - (rs < -0.5), comp = 0.0;
                     memcpy(px, S->face1[1 + (int)run], 3 * sizeof *px);
-                    continue;
+                } else {
+                    double v0 = b0 + c0 * rs, v1 = b1 + c1 * rs, v2 = b2 + c2 * rs;
+                    /* branch-free clamps (minsd, maxsd) */
+                    v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
+                    px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1,
+                    px[2] = v2 > hi ? hi : v2;
+                    touched++;
                 }
-                double v0 = b0 + c0 * rs, v1 = b1 + c1 * rs, v2 = b2 + c2 * rs;
-                /* branch-free clamps (minsd, maxsd) */
-                v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
-                px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
+                i++, px += 3;
             }
             memset(cov + w, 0, (cols - (size_t)pad - (size_t)w) * sizeof *cov);
         } else {
+            for (int i = 0; i < w; i++)
+                touched += t[i] & AN_TERM;
             double r0 = 0.0, r1 = 0.0, r2 = 0.0, r3 = 0.0;
             for (int i = 0; i < pad; i++, cov += AN_NV) {
                 r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
@@ -1868,7 +2000,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
             for (int i = 0; i < w; i++, px += 3, cov += AN_NV) {
                 r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
                 cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
-                if (!t[i]) {
+                if (!(t[i] & AN_TERM)) {
                     /* the code: (L + 1) s(L) in a face of layer L, 0 outside */
                     long k = lrint(r3), L = (k < 0 ? -k : k) - 1;
                     int in = L >= 0 && L < S->plan_nl;
@@ -1889,6 +2021,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
             memset(cov, 0, (cols - (size_t)pad - (size_t)w) * AN_NV * sizeof *cov);
         }
         memset(tch, 0, cols);
+        *expensive += touched;
     }
     return 0;
 }
@@ -1970,6 +2103,17 @@ static void knot_lines(an_state *S)
     S->regular = pp->ncell == pp->deg + 1;
     for (int c = 0; c < pp->ncell; c++)
         S->regular &= pp->k[c + 1] - pp->k[c] == 1.0;
+    memset(S->rcdf, 0, sizeof S->rcdf);
+    memset(S->rw, 0, sizeof S->rw);
+    memset(S->rk, 0, sizeof S->rk);
+    for (int c = 0; S->regular && c <= pp->deg; c++) {
+        int cell = pp->deg - c;
+        for (int e = 0; e <= pp->deg + 1; e++)
+            S->rcdf[e][c] = pp->cdf[cell][e];
+        for (int e = 0; e <= pp->deg; e++)
+            S->rw[e][c] = pp->w[cell][e];
+        S->rk[c] = pp->k[cell];
+    }
 }
 
 static int analytic_init(void *state, const double *p, const aa_job *job)
