@@ -205,7 +205,7 @@
  * 0.04045, with a series where the value hardly changes along an edge.
  * Measured (tests/test_area_gradient.c): a black-to-white ramp over a
  * whole pixel within 1e-14 of the integral of the decoding written out
- * by hand (3.3e-16 off), and over three pixels and at half opacity; pad,
+ * by hand (2.8e-16 off), and over three pixels and at half opacity; pad,
  * reflect, repeat, several stops, a sharp step, stop opacity,
  * gradientTransform rotated and skewed, both gradient units, a gradient
  * over and under flat translucent layers, in a group of opacity, under a
