@@ -1979,6 +1979,8 @@ static void state_free(ar_state *S)
         free(wk->key);
         free(wk->ccol);
         free(wk->cslot);
+        free(wk->gkey);
+        free(wk->gmemo);
     }
     free(S->workers);
     free(S->piece);
@@ -2152,6 +2154,13 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
         for (size_t k = 0; k < AR_CACHE_SLOTS; k++)
             wk->cslot[k] = -1;
     }
+    if (S->ngrad) {
+        wk->gkey = line_alloc((size_t)(AR_GMEMO + 1) * (size_t)S->nwords, sizeof *wk->gkey);
+        wk->gmemo = line_alloc(AR_GMEMO, sizeof *wk->gmemo);
+        if (!wk->gkey || !wk->gmemo)
+            return aa_fail(AA_ENOMEM, "out of memory for an area gradient memo (%d layers)",
+                           S->nl);
+    }
     wk->row = -2;
     if (wk->seg)
         for (size_t k = 0; k < n; k++)
@@ -2245,6 +2254,7 @@ static int area_render(void *state, const double *p, const aa_job *job, aa_image
         wk->row = -2;
         wk->expensive = 0;
         wk->gerr = 0;
+        wk->gn = 0, wk->gnext = 0;
 #pragma omp for schedule(static)
         for (int j = 0; j < job->h; j++) {
             if (S->ngrad)

@@ -85,7 +85,8 @@
  * from its r^2 term on, over 4.4 x 3.4).  From k = 4 on |b_k| <= |b_3| <
  * 0.0112 and the ratio |b_k / b_(k-1)| < 1, so the tail after AR_BSERIES
  * = 30 terms is below 0.0112 x 4^-30 / (1 - 1/4) < 1.4e-20, relative to
- * B >= 0.4 on |r| <= 1/4: under rounding.  Above |r| = 1/4 the closed
+ * B >= 0.4 on |r| <= 1/4: under rounding.  The sum stops earlier once
+ * a term is under 2^-60 (the tail after it is under a third of it).  Above |r| = 1/4 the closed
  * form loses at most a factor 4.4/(14.96 x 0.25 x 0.227) < 6 to the
  * cancellation (the terms over the result; B >= B(-1) = 0.227 on r > -1),
  * a few ulps.  Each
@@ -263,12 +264,7 @@ int area_gradient_load(ar_state *S, const aa_scene *scene)
  * The composite of a region
  * ------------------------------------------------------------------------ */
 
-/* A region's colour: g < 0 flat (c, linear light), else layer grad[g]'s
- * paint composited as e = K0 + K1 o + K2 o c per channel. */
-typedef struct gstate {
-    int g;
-    double c[3], K0[3], K1[3], K2[3];
-} gstate;
+typedef ar_gstate gstate;
 
 /* Record the refusal of pixel i of row r (the first in row order). */
 static void gfail(const ar_row *r, int i, int kind, int a, int b)
@@ -320,8 +316,37 @@ static int influences(const ar_state *S, const int *w, int n, const int *lay)
     }
 }
 
-/* The state of winding numbers w: 0, or 1 if refused (recorded). */
+static int gstate_make(const ar_row *r, int i, const int *w, gstate *gs);
+
+/* The state of winding numbers w: 0, or 1 if refused (recorded).  It
+ * depends on w only through the set of layers whose fill rule holds (as
+ * the composite does, area_composite.c): the last AR_GMEMO sets met are
+ * kept with their states. */
 static int gstate_of(const ar_row *r, int i, const int *w, gstate *gs)
+{
+    const ar_state *S = r->S;
+    ar_worker *wk = r->wk;
+    const size_t nw = (size_t)S->nwords;
+    uint64_t *key = wk->gkey + AR_GMEMO * nw;
+    memset(key, 0, nw * sizeof *key);
+    for (int l = 0; l < S->nl; l++)
+        if (w[l] & S->inside[l])
+            key[l >> 6] |= (uint64_t)1 << (l & 63);
+    for (unsigned k = 0; k < wk->gn; k++)
+        if (!memcmp(wk->gkey + k * nw, key, nw * sizeof *key)) {
+            *gs = wk->gmemo[k];
+            return 0;
+        }
+    if (gstate_make(r, i, w, gs))
+        return 1;
+    memcpy(wk->gkey + wk->gnext * nw, key, nw * sizeof *key);
+    wk->gmemo[wk->gnext] = *gs;
+    wk->gnext = (wk->gnext + 1) % AR_GMEMO;
+    wk->gn += wk->gn < AR_GMEMO;
+    return 0;
+}
+
+static int gstate_make(const ar_row *r, int i, const int *w, gstate *gs)
 {
     const ar_state *S = r->S;
     int lay[5], n = 0, shown = -1;
@@ -383,11 +408,17 @@ static int gstate_of(const ar_row *r, int i, const int *w, gstate *gs)
 static double bfun(double r)
 {
     if (fabs(r) <= 0.25) {
+        /* past k = 1 the terms shrink by at least |r| each, so the tail
+         * after a term t is below |t| |r| / (1 - |r|) <= |t| / 3: stop
+         * once that is under 2^-60 (B >= 0.4), or at AR_BSERIES terms */
         double b = 0.5, s = 0.5, rk = 1.0;
         for (int k = 1; k < AR_BSERIES; k++) {
             b *= (3.4 - k) / (k + 2);
             rk *= r;
-            s += b * rk;
+            double t = b * rk;
+            s += t;
+            if (k > 1 && fabs(t) < 0x1p-60)
+                break;
         }
         return s;
     }

@@ -206,7 +206,23 @@ typedef struct ar_worker {
      * row order, that the worker refused (gerr an AR_GERR_ kind, 0 none;
      * gi, gj the pixel; ga, gb the layers or counts the message names) */
     int gerr, gi, gj, ga, gb;
+    /* and the last AR_GMEMO region states met (gkey: nwords words each,
+     * the set of layers whose fill rule holds; gmemo their states; gnext
+     * the slot written next, gn the slots in use) */
+    uint64_t *gkey;
+    struct ar_gstate *gmemo;
+    unsigned gnext, gn;
 } ar_worker;
+
+#define AR_GMEMO 8
+
+/* A region's colour in a gradient scene (area_gradient.c): g < 0 flat (c,
+ * linear light), else gradient g's paint composited as e = K0 + K1 o +
+ * K2 o c per encoded channel. */
+typedef struct ar_gstate {
+    int g;
+    double c[3], K0[3], K1[3], K2[3];
+} ar_gstate;
 
 /* Gradients (area_gradient.c): the most stops or period ends a repeated
  * gradient may pass across a pixel (more is refused at load); an edge's
