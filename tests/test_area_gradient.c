@@ -44,6 +44,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -245,6 +246,53 @@ static void test_against_reference(void **state)
                   sizeof scenes / sizeof *scenes, worst);
 }
 
+/* Crowded pixels: 60 random triangles (a fixed stream, drawn here), flat,
+ * some translucent, a third of them painted with one reflected gradient,
+ * over a repeated gradient behind everything, at 96 x 80; the gradient
+ * triangles are kept apart from each other (each in its own cell of a
+ * 5 x 4 grid), so no two gradients show over one point except the one
+ * behind, which every gradient triangle hides (opaque stops). */
+static void test_crowded(void **state)
+{
+    (void)state;
+    enum { CW = 96, CH = 80 };
+    static char body[32768];
+    size_t at = 0;
+    at += (size_t)snprintf(body + at, sizeof body - at,
+                           "<linearGradient id=\"b\" gradientUnits=\"userSpaceOnUse\" x1=\"0\" "
+                           "y1=\"0\" x2=\"13\" y2=\"5\" spreadMethod=\"repeat\"><stop "
+                           "offset=\"0\" stop-color=\"#102040\"/><stop offset=\"1\" "
+                           "stop-color=\"#e0d0a0\"/></linearGradient>"
+                           "<linearGradient id=\"g\" x1=\"0.2\" x2=\"0.6\" y2=\"0.3\" "
+                           "spreadMethod=\"reflect\"><stop offset=\"0\" stop-color=\"#f0f\"/>"
+                           "<stop offset=\"0.4\" stop-color=\"#0ff\"/><stop offset=\"1\" "
+                           "stop-color=\"#000\"/></linearGradient>"
+                           "<rect width=\"%d\" height=\"%d\" fill=\"url(#b)\"/>",
+                           CW, CH);
+    uint64_t x = 0x9e3779b97f4a7c15u;
+    for (int k = 0; k < 60; k++) {
+        double v[6];
+        int cell = k / 3, gradient = k % 3 == 0;
+        for (int q = 0; q < 6; q++) {
+            x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+            double u = (double)(x >> 11) / 9007199254740992.0;
+            /* gradient triangles inside their grid cell, the others anywhere */
+            v[q] = gradient ? (q % 2 ? (cell / 5) * 20.0 + 0.5 + 19.0 * u
+                                     : (cell % 5) * 19.2 + 0.5 + 18.2 * u)
+                            : (q % 2 ? CH : CW) * u;
+        }
+        at += (size_t)snprintf(
+            body + at, sizeof body - at,
+            "<polygon points=\"%.6f,%.6f %.6f,%.6f %.6f,%.6f\" fill=\"%s\" fill-opacity=\"%s\"/>",
+            v[0], v[1], v[2], v[3], v[4], v[5],
+            gradient ? "url(#g)" : (k % 3 == 1 ? "#c84" : "#4c8"),
+            gradient ? "1" : (k % 2 ? "0.5" : "1"));
+    }
+    aa_scene *sc = svg_must("crowded", body, CW, CH);
+    support_method_against_reference("area", "crowded", sc, CW, CH, NULL);
+    aa_scene_free(sc);
+}
+
 /* ---- the negative control ---- */
 
 static void test_threshold_split_matters(void **state)
@@ -346,6 +394,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_closed_form),
         cmocka_unit_test(test_against_reference),
+        cmocka_unit_test(test_crowded),
         cmocka_unit_test(test_threshold_split_matters),
         cmocka_unit_test(test_refusals),
     };
