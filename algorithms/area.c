@@ -210,7 +210,16 @@
  * gradientTransform rotated and skewed, both gradient units, a gradient
  * over and under flat translucent layers, in a group of opacity, under a
  * clip and on self-intersecting polygons: within 3.6e-15 of the exact
- * reference.  Refused, each by name (a refusal, never an approximation):
+ * reference; 60 triangles, flat, translucent and gradient, over a repeated
+ * gradient at 96x80 within 2.9e-14 (the reference's own bound there is of
+ * that order).  Speed: 40 flat triangles and 4 gradient ones over a
+ * repeated gradient (the crowded scene's kind), one thread, callgrind, one
+ * render against three: area 776 M instructions a render at 256x256,
+ * point 107 M (7.3 times); thread CPU time at 512x512, medians of 7 on a
+ * machine at a load of 12: area 0.333 s, point 0.050 s.  Most of it is the
+ * pixels between clusters, each its own square of four edges walked per
+ * channel (pow, expm1 and log1p a piece); the reference took 45 s of
+ * wall time at 512x512 on two threads.  Refused, each by name (a refusal, never an approximation):
  * radial gradients, gradients in scenes with curved pieces, a gradient
  * whose colour and opacity change between the same two stops, and a pixel
  * where two gradients show one over the other.
