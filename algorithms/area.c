@@ -210,9 +210,9 @@
  * gradientTransform rotated and skewed, both gradient units, a gradient
  * over and under flat translucent layers, in a group of opacity, under a
  * clip and on self-intersecting polygons: within 3.6e-15 of the exact
- * reference; 60 triangles, flat, translucent and gradient, over a repeated
- * gradient at 96x80 within 2.9e-14 (the reference's own bound there is of
- * that order).  Speed: 40 flat triangles and 4 gradient ones over a
+ * reference; 24 triangles, flat, translucent and gradient, over a repeated
+ * gradient at 48x40 within 6.8e-14 (the reference's bounds on such scenes
+ * are of that order: 3.4e-14 on the speed scene below).  Speed: 40 flat triangles and 4 gradient ones over a
  * repeated gradient (the crowded scene's kind), one thread, callgrind, one
  * render against three: area 776 M instructions a render at 256x256,
  * point 107 M (7.3 times); thread CPU time at 512x512, medians of 7 on a
@@ -282,7 +282,9 @@
  *
  * Counters: samples = 0 (no point of the scene is sampled);
  * expensive_pixels = the pixels some piece touches (integrated, by the cell
- * sweep or a pixel integrater), the others being filled.
+ * sweep or a pixel integrater), the others being filled; in a scene with
+ * gradient paint also the pixels between clusters where a gradient shows
+ * (each integrated over its square).
  *
  * Known answers (tests/test_area.c): Catmull's fig. 1 pixel is
  * (0, 0.25, 0.5); `crow` 256x256 equals the box reference within 1e-9 (in

@@ -567,6 +567,8 @@ void area_gradient_run(const ar_row *r, int i0, int i1, const int *w)
     gstate gs;
     if (gstate_of(r, i0, w, &gs))
         return;
+    if (gs.g >= 0) /* integrated, not filled */
+        r->wk->expensive += (uint64_t)(i1 - i0);
     for (int i = i0; i < i1; i++) {
         double sum[3] = {0, 0, 0};
         if (gs.g < 0)
