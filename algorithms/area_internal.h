@@ -202,7 +202,44 @@ typedef struct ar_worker {
     int32_t *cslot;
     unsigned cn, ringn;
     double ring[AR_RING][3];
+    /* a scene with gradient paint (area_gradient.c): the first pixel, in
+     * row order, that the worker refused (gerr an AR_GERR_ kind, 0 none;
+     * gi, gj the pixel; ga, gb the layers or counts the message names) */
+    int gerr, gi, gj, ga, gb;
+    /* and the last AR_GMEMO region states met (gkey: nwords words each,
+     * the set of layers whose fill rule holds; gmemo their states; gnext
+     * the slot written next, gn the slots in use) */
+    uint64_t *gkey;
+    struct ar_gstate *gmemo;
+    unsigned gnext, gn;
 } ar_worker;
+
+#define AR_GMEMO 8
+
+/* A region's colour in a gradient scene (area_gradient.c): g < 0 flat (c,
+ * linear light), else gradient g's paint composited as e = K0 + K1 o +
+ * K2 o c per encoded channel. */
+typedef struct ar_gstate {
+    int g;
+    double c[3], K0[3], K1[3], K2[3];
+} ar_gstate;
+
+/* Gradients (area_gradient.c): the most stops or period ends a repeated
+ * gradient may pass across a pixel (more is refused at load); an edge's
+ * walk along t passes at most 4 times as many. */
+#define AR_GKNOTS 4096
+/* Why a pixel of a gradient scene is refused (area_gradient.c). */
+enum { AR_GERR_NONE, AR_GERR_TWO_GRADIENTS, AR_GERR_EDGES, AR_GERR_KNOTS };
+
+/* A linear gradient layer as `area` reads it (area_gradient.c): t(x, y) =
+ * gu x + gv y + g0 in pixel units; the knots of t (where the spread turns
+ * or a stop is passed) are base + knot[k], base a multiple of the period
+ * (0: pad, knots absolute); enc: the stops' encoded channels and opacity. */
+typedef struct ar_grad {
+    int layer, spread, nstops, nknots;
+    double gu, gv, g0, period;
+    double *offset, (*enc)[4], *knot;
+} ar_grad;
 
 typedef struct ar_state {
     const aa_scene *scene;
@@ -228,6 +265,10 @@ typedef struct ar_state {
     ar_panel *pan; /* the offset pieces' panels */
     size_t npan;
     ar_quad quad;
+    /* gradient paint (area_gradient.c): the linear gradient layers, and per
+     * layer the index of its gradient, -1 for a layer painting its colour */
+    ar_grad *grad;
+    int ngrad, *gof;
 } ar_state;
 
 /* Row context passed through the cluster functions. */
@@ -238,6 +279,23 @@ typedef struct ar_row {
     double *px; /* the row's first pixel */
     int grey;   /* nch == 1 and not stream: a pixel is one value stored thrice */
 } ar_row;
+
+/* Gradient scenes (area_gradient.c): the scene's gradients read, or a
+ * refusal by name of what `area` cannot integrate exactly; freed with
+ * the state. */
+int area_gradient_load(ar_state *S, const aa_scene *scene);
+void area_gradient_free(ar_state *S);
+/* Pixels [i0, i1) of row r, all of winding state w (no edge inside). */
+void area_gradient_run(const ar_row *r, int i0, int i1, const int *w);
+/* The cluster of cells [lo, hi] of row r by Catmull's integrater split on
+ * every edge, each region's integral of the decoded composite exact; 0 if
+ * refused (the worker's gerr says why). */
+int area_cluster_gradient(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
+                          const int *w);
+/* The negative control of tests/test_area_gradient.c: 0 makes the
+ * integration skip its split at the decoding's threshold (wrong on
+ * purpose; the test must then fail).  1 always otherwise. */
+extern int aa__area_gradient_split;
 
 /* ------------------------------------------------------------------------
  * Small helpers shared by the rows and Catmull's integrater
