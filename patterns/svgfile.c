@@ -90,7 +90,8 @@
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
- * linearRGB (compositing in linear light), <pattern> paint servers, the
+ * linearRGB (compositing in linear light, and on a gradient element or
+ * its ancestors, interpolation in linear light), <pattern> paint servers, the
  * radial gradients SVG 2 draws as a cone (grad_resolve), text, images, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <use> and other non-shapes in a clipPath, references to clip
@@ -3822,6 +3823,32 @@ static int grad_resolve(reader *r, const xmlNode *server, const aa_path *p, cons
         r->node = chain[k];
         if ((st = check_props(r, chain[k])))
             return st;
+    }
+    /* color-interpolation of the gradient element (inherited from its
+     * own ancestors, not from the shape it paints; not through href):
+     * linearRGB interpolates the stops in linear light (SVG 1.1, 13.2.1,
+     * and "color-interpolation"), which the scene's gradients do not
+     * (their stops interpolate in sRGB-encoded values, and the reference
+     * integrates that), so it is refused, never drawn as sRGB.  Chromium
+     * interpolates in linear light; resvg ignores it */
+    for (const xmlNode *a = server; a && a->type == XML_ELEMENT_NODE; a = a->parent) {
+        char v[64];
+        r->node = a;
+        if (!prop(r, a, "color-interpolation", v, sizeof v, &st)) {
+            if (st)
+                return st;
+            continue;
+        }
+        if (!strcasecmp(v, "inherit"))
+            continue;
+        if (!strcasecmp(v, "linearRGB")) {
+            r->node = server;
+            return fail_at(r, "color-interpolation=\"linearRGB\"%s: gradient interpolation in "
+                              "linear light is not supported (the stops interpolate in "
+                              "sRGB-encoded values)",
+                           a == server ? "" : " (inherited)");
+        }
+        break; /* auto or sRGB */
     }
     r->node = server;
     const int radial = named(server, "radialGradient");
