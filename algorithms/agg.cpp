@@ -508,7 +508,28 @@ const double GRAD_D = 256.0; /* gradient units a period */
 const double GRAD_MAX_T = 2000.0;
 
 typedef agg::gradient_lut<agg::color_interpolator<agg::rgba8>, 256> grad_lut;
-typedef agg::span_interpolator_linear<> grad_interp;
+/* AGG's linear interpolator, begun at a row's pixel 0 whatever the
+ * span asked for: span_interpolator_linear runs a dda from the mapped
+ * first pixel's centre to the mapped end of the span, rounded to 1/256, so
+ * a span begun at x0 or ending short of the row would step otherwise than
+ * the whole row does.  begin(x0 + 0.5, y, n) begins the whole row of w
+ * pixels at 0.5 and steps x0 pixels on, so each pixel's coordinates are
+ * the whole row's, to the bit (agg_shade paints the covered span only). */
+class grad_interp : public agg::span_interpolator_linear<>
+{
+  public:
+    grad_interp(agg::trans_affine &mtx, int w) : agg::span_interpolator_linear<>(mtx), m_w(w) {}
+    void begin(double x, double y, unsigned len)
+    {
+        (void)len;
+        agg::span_interpolator_linear<>::begin(0.5, y, (unsigned)m_w);
+        for (int k = (int)(x - 0.5); k > 0; k--)
+            ++*this;
+    }
+
+  private:
+    int m_w;
+};
 
 /* The gradient of layer l into AGG's terms: the map from pixels to
  * gradient units, the focal point (radial) and the table.  Returns a
@@ -599,13 +620,14 @@ int grad_setup_check(const aa_scene *scene, int l, int w, int h)
 /* Rows [y0, y0 + rows) of the paint, by span_gradient with gradient
  * function gf, as premultiplied floats (peer.h). */
 template <class GF>
-void grad_rows(worker &wk, grad_interp &interp, GF &gf, grad_lut &lut, int w, int y0, int rows)
+void grad_rows(worker &wk, grad_interp &interp, GF &gf, grad_lut &lut, int w, int y0, int rows,
+               int x0, int x1)
 {
     agg::span_gradient<agg::rgba8, grad_interp, GF, grad_lut> sg(interp, gf, lut, 0.0, GRAD_D);
     for (int j = 0; j < rows; j++) {
-        sg.generate(wk.span.data(), 0, y0 + j, (unsigned)w);
-        float *out = wk.paint.data() + (size_t)j * (size_t)w * 4;
-        for (int i = 0; i < w; i++, out += 4) {
+        sg.generate(wk.span.data(), x0, y0 + j, (unsigned)(x1 - x0));
+        float *out = wk.paint.data() + ((size_t)j * (size_t)w + (size_t)x0) * 4;
+        for (int i = 0; i < x1 - x0; i++, out += 4) {
             const agg::rgba8 &c = wk.span[(size_t)i];
             const float a = c.a / 255.0f;
             out[0] = c.r / 255.0f * a, out[1] = c.g / 255.0f * a, out[2] = c.b / 255.0f * a;
@@ -616,22 +638,23 @@ void grad_rows(worker &wk, grad_interp &interp, GF &gf, grad_lut &lut, int w, in
 
 template <class GF>
 void grad_spread(worker &wk, int spread, grad_interp &interp, GF &gf, grad_lut &lut, int w,
-                 int y0, int rows)
+                 int y0, int rows, int x0, int x1)
 {
     if (spread == AA_SPREAD_REPEAT) {
         agg::gradient_repeat_adaptor<GF> r(gf);
-        grad_rows(wk, interp, r, lut, w, y0, rows);
+        grad_rows(wk, interp, r, lut, w, y0, rows, x0, x1);
     } else if (spread == AA_SPREAD_REFLECT) {
         agg::gradient_reflect_adaptor<GF> r(gf);
-        grad_rows(wk, interp, r, lut, w, y0, rows);
+        grad_rows(wk, interp, r, lut, w, y0, rows, x0, x1);
     } else {
-        grad_rows(wk, interp, gf, lut, w, y0, rows);
+        grad_rows(wk, interp, gf, lut, w, y0, rows, x0, x1);
     }
 }
 
 /* Painted (peer.h): AGG's paint of gradient layer l on rows [y0, y0 +
- * rows). */
-int agg_shade(void *vctx, int l, int y0, int rows, const float **rgba, size_t *stride)
+ * rows), columns [x0, x1) (grad_interp: as the whole row paints them). */
+int agg_shade(void *vctx, int l, int y0, int rows, int x0, int x1, const float **rgba,
+              size_t *stride)
 {
     const cover_ctx &c = *static_cast<const cover_ctx *>(vctx);
     worker &wk = *c.wk;
@@ -646,13 +669,13 @@ int agg_shade(void *vctx, int l, int y0, int rows, const float **rgba, size_t *s
             return st;
         aa_gradient g;
         aa_scene_layer_gradient(c.scene, l, &g);
-        grad_interp interp(mtx);
+        grad_interp interp(mtx, c.w);
         if (g.kind == AA_GRADIENT_LINEAR) {
             agg::gradient_x gf;
-            grad_spread(wk, g.spread, interp, gf, lut, c.w, y0, rows);
+            grad_spread(wk, g.spread, interp, gf, lut, c.w, y0, rows, x0, x1);
         } else {
             agg::gradient_radial_focus gf(GRAD_D, f[0], f[1]);
-            grad_spread(wk, g.spread, interp, gf, lut, c.w, y0, rows);
+            grad_spread(wk, g.spread, interp, gf, lut, c.w, y0, rows, x0, x1);
         }
     } catch (const std::bad_alloc &) {
         return AA_ENOMEM;

@@ -404,6 +404,8 @@ static void group_close(aa_peer_painter *pp, aa_image *out, int y0, int rows, in
     }
 }
 
+int aa__peer_shade_whole = 0;
+
 int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn cover,
                        aa_peer_shade_fn shade, void *ctx, aa_image *out, int y0, int rows)
 {
@@ -445,7 +447,28 @@ int aa_peer_paint_band(aa_peer_painter *pp, const aa_scene *s, aa_peer_cover_fn 
                              l);
                 break;
             }
-            if ((st = shade(ctx, l, y0, rows, &rgba, &rstride)))
+            /* the paint is wanted only where the layer mixes in (a > 0
+             * below): its covered span on the band, within its clip */
+            int x0 = w, x1 = 0;
+            for (int j = 0; j < rows; j++) {
+                const unsigned char *cr = cov + (size_t)j * stride;
+                const double *gr = gm ? gm + (size_t)j * (size_t)w : NULL;
+                for (int i = 0; i < x0; i++)
+                    if (cr[i] && (!gr || gr[i] > 0.0)) {
+                        x0 = i;
+                        break;
+                    }
+                for (int i = w - 1; i >= x1 && i >= x0; i--)
+                    if (cr[i] && (!gr || gr[i] > 0.0)) {
+                        x1 = i + 1;
+                        break;
+                    }
+            }
+            if (x0 >= x1)
+                continue; /* nothing of the layer shows on the band */
+            if (aa__peer_shade_whole)
+                x0 = 0, x1 = w;
+            if ((st = shade(ctx, l, y0, rows, x0, x1, &rgba, &rstride)))
                 break;
         }
         if (!depth && !gm && !rgba) { /* as ever: bit for bit what painting did before clips */

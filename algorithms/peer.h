@@ -73,7 +73,7 @@
  * Gradient paint (aa_scene_layer_gradient), by the library's own gradient
  * code, where it has one (cairo.c: pixman's gradients; agg.cpp:
  * span_gradient and its colour LUT): the library paints the layer's
- * gradient on the band, per pixel its colour at the pixel's centre as
+ * gradient on the band (over the layer's covered span of it), per pixel its colour at the pixel's centre as
  * the library samples and interpolates it, premultiplied by the stops'
  * opacity, in the scene's encoded values (aa_peer_shade_fn); the layer
  * then goes on as a layer of that pixel's colour would, its coverage
@@ -141,12 +141,19 @@ void aa_peer_composite_row(const aa_scene *s, int layer, const unsigned char *co
 typedef int (*aa_peer_cover_fn)(void *ctx, int layer, int y0, int rows,
                                 const unsigned char **cov, size_t *stride);
 /* The library's paint of gradient layer `layer` on rows [y0, y0 + rows)
- * of the image: *rgba set to its first row's w pixels of four floats, the
- * sRGB-encoded channels premultiplied by the opacity, then the opacity (the
- * stops', not yet the layer's alpha), row j at *rgba + j * stride (floats),
- * valid until the next call.  Returns a status. */
-typedef int (*aa_peer_shade_fn)(void *ctx, int layer, int y0, int rows, const float **rgba,
-                                size_t *stride);
+ * of the image, columns [x0, x1) (the layer's covered span on the band:
+ * the pixels outside it are not read, and need not be painted): *rgba set
+ * to its first row's w pixels of four floats, the sRGB-encoded channels
+ * premultiplied by the opacity, then the opacity (the stops', not yet the
+ * layer's alpha), pixel i of row j at *rgba + j * stride + 4 i (floats),
+ * valid until the next call.  Each pixel's paint must be what painting
+ * the whole row would give it, to the bit.  Returns a status. */
+typedef int (*aa_peer_shade_fn)(void *ctx, int layer, int y0, int rows, int x0, int x1,
+                                const float **rgba, size_t *stride);
+/* Tests only: 1 makes aa_peer_paint_band ask every gradient layer's paint
+ * over the band's whole width, as it did before spans, so that a test can
+ * hold the span's paint to the whole row's, bit for bit. */
+extern int aa__peer_shade_whole;
 /* One thread's workspace for painting bands of at most `band` rows of w
  * pixels of the scene: the clips' masks and the groups' buffers, 8 x
  * (masks alive at once + 5 x depth of groups) bytes a pixel (a mask is

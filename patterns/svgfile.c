@@ -32,7 +32,9 @@
  *     the viewport's rectangle (viewport_clip), made only for content
  *     reaching beyond it by an exact bounds test (shape_clip); with
  *     overflow visible it is drawn unclipped; clip-path on a <use> clips
- *     in its user space, translate(x, y) included;
+ *     in its user space, translate(x, y) included, and on a nested <svg>
+ *     or a <symbol> in the user space it establishes (its content's),
+ *     the viewport's clip within it (viewport_element);
  *   - style: the style attribute and <style> sheets, cascaded by CSS
  *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
  *     !important; presentation attributes below every rule);
@@ -88,14 +90,14 @@
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
- * linearRGB (compositing in linear light), <pattern> paint servers, the
+ * linearRGB (compositing in linear light, and on a gradient element or
+ * its ancestors, interpolation in linear light), <pattern> paint servers, the
  * radial gradients SVG 2 draws as a cone (grad_resolve), text, images, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <use> and other non-shapes in a clipPath, references to clip
- * paths forming a cycle, masks, filters, clip-path on a nested <svg> or a
- * <symbol> (where it applies is not settled: Chromium clips in the
- * viewBox's coordinates, librsvg in the parent's, resvg not at all),
- * transform-box
+ * paths forming a cycle, masks, filters, objectBoundingBox units for a
+ * clip-path on a nested <svg> or a <symbol> (its box in the viewBox's
+ * coordinates is not computed), transform-box
  * stroke-box of a stroke with offset curves (its extent not computed
  * exactly) or inside an object bounding box (its stroke not known there),
  * content beyond a viewport that clips when the sink takes no clips,
@@ -318,6 +320,9 @@ typedef struct reader {
         int outer;           /* the clip it lies within (as r->clip) */
         int id;              /* its clip given to the sink, or -1: not yet */
     } vclip[AA_SVG_MAX_DEPTH + 2];
+    /* the <svg> or <symbol> whose own clip-path is being resolved, in its
+     * content's user space (viewport_element) */
+    const xmlNode *clip_viewport;
 } reader;
 
 /* AA_EINVAL naming the element and its line. */
@@ -3419,6 +3424,11 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
         if (st)
             return st;
     }
+    if (obb && ref == r->clip_viewport)
+        return fail_at(r, "clipPathUnits=\"objectBoundingBox\" for the <%s> of line %ld: the "
+                          "bounding box of a nested <svg> or a <symbol> in its viewBox's "
+                          "coordinates is not supported",
+                       (const char *)ref->name, xmlGetLineNo(ref));
     if (obb) {
         /* the box in the clip's user space: for a <use>, that space has
          * translate(x, y) in it (use_element), so the box is its target's
@@ -3813,6 +3823,32 @@ static int grad_resolve(reader *r, const xmlNode *server, const aa_path *p, cons
         r->node = chain[k];
         if ((st = check_props(r, chain[k])))
             return st;
+    }
+    /* color-interpolation of the gradient element (inherited from its
+     * own ancestors, not from the shape it paints; not through href):
+     * linearRGB interpolates the stops in linear light (SVG 1.1, 13.2.1,
+     * and "color-interpolation"), which the scene's gradients do not
+     * (their stops interpolate in sRGB-encoded values, and the reference
+     * integrates that), so it is refused, never drawn as sRGB.  Chromium
+     * interpolates in linear light; resvg ignores it */
+    for (const xmlNode *a = server; a && a->type == XML_ELEMENT_NODE; a = a->parent) {
+        char v[64];
+        r->node = a;
+        if (!prop(r, a, "color-interpolation", v, sizeof v, &st)) {
+            if (st)
+                return st;
+            continue;
+        }
+        if (!strcasecmp(v, "inherit"))
+            continue;
+        if (!strcasecmp(v, "linearRGB")) {
+            r->node = server;
+            return fail_at(r, "color-interpolation=\"linearRGB\"%s: gradient interpolation in "
+                              "linear light is not supported (the stops interpolate in "
+                              "sRGB-encoded values)",
+                           a == server ? "" : " (inherited)");
+        }
+        break; /* auto or sRGB */
     }
     r->node = server;
     const int radial = named(server, "radialGradient");
@@ -4405,29 +4441,40 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
     }
     if (st)
         return st;
-    /* clip-path on the viewport element itself: in which user space is
-     * not settled (Chromium clips in the viewBox's coordinates, librsvg in
-     * the parent's, resvg draws nothing), so it is refused */
-    if (prop(r, node, "clip-path", v, sizeof v, &st) && !st && strcasecmp(v, "none"))
-        return fail_at(r, "clip-path on a nested <svg> or a <symbol> is not supported (its "
-                          "user space is not settled: browsers and renderers differ)");
-    if (st)
-        return st;
     mat vbm, to;
     double vb[2], sh[2];
     if ((st = viewbox_map(r, node, w, h, &vbm, vb)) ||
         (st = symbol_shift(r, node, &vbm, vb, sh)))
         return st;
     x += sh[0], y += sh[1]; /* the viewport moves with the reference point */
+    const mat at = {1, 0, 0, 1, x, y};
+    const mat inner = mat_mul(m, mat_mul(at, vbm));
+    /* clip-path on the viewport element itself: in the user space the
+     * element establishes, its content's (CSS Masking 1, userSpaceOnUse:
+     * "the user coordinate system for the element referencing the
+     * clipPath"; SVG 1.1: the viewBox "establishes a new user space"), so
+     * inner, the viewBox map and (x, y) (and a use's translate(x, y))
+     * applied, as Chromium and resvg clip a symbol; the viewport's own
+     * clip (overflow) is made within it, so the content is clipped by
+     * both (tests/test_svg_clip.c: Chromium drops the viewport's clip
+     * when a nested svg has a clip-path, resvg does not draw such an svg,
+     * librsvg clips in the parent's user space and not a symbol) */
+    const int outer = r->clip;
+    int cp;
+    r->clip_viewport = node;
+    st = clip_of(r, node, &inner, outer, &cp);
+    r->clip_viewport = NULL;
+    if (st)
+        return st;
+    r->node = node;
     if (clip) {
         if (mat_inverse(&m, &to))
             return fail_at(r, "a viewport that clips under a singular transform is not "
                               "supported");
-        r->vclip[r->nvclip] = (struct svg_clip){m, to, {x, y, x + w, y + h}, node, r->clip, -1};
+        r->vclip[r->nvclip] = (struct svg_clip){m, to, {x, y, x + w, y + h}, node, cp, -1};
         r->clip = -2 - r->nvclip++;
-    }
-    const mat at = {1, 0, 0, 1, x, y};
-    const mat inner = mat_mul(m, mat_mul(at, vbm));
+    } else
+        r->clip = cp;
     const double pw = r->vpw, ph = r->vph;
     r->vpw = vb[0], r->vph = vb[1];
     if (opacity < 1)
@@ -4440,7 +4487,8 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
     }
     r->vpw = pw, r->vph = ph;
     if (clip)
-        r->clip = r->vclip[--r->nvclip].outer;
+        --r->nvclip;
+    r->clip = outer;
     return st;
 }
 

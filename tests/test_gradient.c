@@ -869,6 +869,30 @@ static void test_svg_refusals(void **state)
     svg_refused("<linearGradient id=\"a\"><stop offset=\"0\" stop-colour=\"red\"/>"
                 "</linearGradient><rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
                 "<stop>", "stop-colour");
+    /* color-interpolation: linearRGB on the gradient (its own, in a style,
+     * or inherited from its <defs>) interpolates in linear light: refused,
+     * never drawn as sRGB; the nearest value given decides, and auto or
+     * sRGB draw */
+    svg_refused("<linearGradient id=\"a\" color-interpolation=\"linearRGB\"><stop/>"
+                "<stop offset=\"1\" stop-color=\"white\"/></linearGradient>"
+                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<linearGradient>", "linearRGB");
+    svg_refused("<defs style=\"color-interpolation: linearRGB\"><radialGradient id=\"a\">"
+                "<stop/><stop offset=\"1\" stop-color=\"white\"/></radialGradient></defs>"
+                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                "<radialGradient>", "(inherited)");
+    {
+        int st0;
+        aa_scene *s0 = svg_scene("interp-srgb",
+                                 "<defs color-interpolation=\"linearRGB\"><linearGradient "
+                                 "id=\"a\" color-interpolation=\"sRGB\"><stop/><stop "
+                                 "offset=\"1\" stop-color=\"white\"/></linearGradient></defs>"
+                                 "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
+                                 &st0);
+        if (!s0)
+            fail_msg("sRGB under a linearRGB <defs>: %s", aa_last_error());
+        aa_scene_free(s0);
+    }
     /* a radial gradient is read, and the reference integrates it: the
      * bounding box's circle (centre (4, 4), radius 4) black to white, then
      * white (pad) over the rest of the 8 x 8 square: 2 pi 16 int_0^1 dec(t)

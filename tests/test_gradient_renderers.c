@@ -41,6 +41,7 @@
 #include "bench.h"
 #include "core.h"
 #include "patterns.h"
+#include "peer.h"
 #include "support.h"
 
 #include <math.h>
@@ -348,6 +349,64 @@ static void test_points(void **state)
     document(mixed, sizeof mixed / sizeof *mixed, "mixed", path, sizeof path, &ref);
     check_points(mixed, sizeof mixed / sizeof *mixed, &ref);
     aa_image_free(&ref);
+}
+
+/* The peers paint a gradient layer only over its covered span of each
+ * band (algorithms/peer.c, aa_peer_paint_band; agg.cpp's grad_interp
+ * steps from the row's first pixel; cairo.c reads back the span of the
+ * band pixman paints whole): on each document, each peer's image must be
+ * the one painting every band's whole width gives (aa__peer_shade_whole),
+ * bit for bit.  The documents' cells lie side by side, so each layer
+ * covers a third of a row at most: a span begun at its first pixel with
+ * AGG's own interpolator steps otherwise, as a narrower Cairo paint
+ * rounds otherwise, and either fails here. */
+static void test_peer_span(void **state)
+{
+    (void)state;
+    static const char *const peers[] = {"cairo", "agg"};
+    const struct {
+        const cell *cells;
+        size_t n;
+        const char *name;
+    } docs[] = {{linear, sizeof linear / sizeof *linear, "linear"},
+                {radial, sizeof radial / sizeof *radial, "radial"},
+                {mixed, sizeof mixed / sizeof *mixed, "mixed"}};
+    int compared[2] = {0, 0};
+    for (size_t d = 0; d < sizeof docs / sizeof *docs; d++) {
+        char path[4200], spec[4300];
+        aa_image ref;
+        document(docs[d].cells, docs[d].n, docs[d].name, path, sizeof path, &ref);
+        aa_image_free(&ref);
+        snprintf(spec, sizeof spec, "svg:file=%s", path);
+        aa_spec sp;
+        aa_scene *sc = NULL;
+        assert_int_equal(aa_pattern_parse(spec, &sp), AA_OK);
+        assert_int_equal(aa_pattern_scene_at(&sp, W, H, &sc), AA_OK);
+        for (size_t p = 0; p < 2; p++) {
+            const support_view v = {.w = W, .h = H, .filter = "box", .seed = 1, .threads = 2};
+            aa_image span, whole;
+            aa__peer_shade_whole = 0;
+            if (support_render_view(peers[p], sc, &v, &span, NULL) != AA_OK) {
+                /* agg refuses a focal radius (test_peers holds it to that) */
+                print_message("%s, %s: refused (%s)\n", peers[p], docs[d].name, aa_last_error());
+                continue;
+            }
+            compared[p]++;
+            aa__peer_shade_whole = 1;
+            support_render_must(peers[p], sc, &v, &whole, NULL);
+            aa__peer_shade_whole = 0;
+            int wi = 0, wj = 0;
+            const double e = support_max_diff(&span, &whole, &wi, &wj);
+            print_message("%s, %s: span against whole rows: largest difference %g at (%d, %d)\n",
+                          peers[p], docs[d].name, e, wi, wj);
+            assert_true(support_same_image(&span, &whole));
+            aa_image_free(&span);
+            aa_image_free(&whole);
+        }
+        aa_scene_free(sc);
+    }
+    assert_int_equal(compared[0], 3); /* cairo draws every document */
+    assert_true(compared[1] >= 1);
 }
 
 static int names(const char *list, const char *name);
@@ -719,4 +778,5 @@ static void test_resvg(void **state)
 }
 
 SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_points), cmocka_unit_test(test_peers),
+             cmocka_unit_test(test_peer_span),
              cmocka_unit_test(test_chromium), cmocka_unit_test(test_resvg))

@@ -299,6 +299,37 @@ static void test_half_disk(void **state)
                200 * M_PI);
 }
 
+/* clip-path on a nested <svg> and on a used <symbol>: in the user space
+ * the element establishes (its viewBox's, here 24 units onto 48 px at
+ * (8, 8): scale 2), within the viewport's own clip [8, 56]^2.  The clip
+ * disk (20, 24) r 8 is (48, 56) r 16 in pixels: the viewport keeps its
+ * upper half (y < 56) left of x = 56, a chord 8 from the centre, so the
+ * half disk 128 pi less the upper half of the segment beyond the chord,
+ * (r^2 acos(d / r) - d sqrt(r^2 - d^2)) / 2 = (256 pi / 3 - 8 sqrt(192))
+ * / 2: 256 pi / 3 + 4 sqrt(192).  The symbol's disk (20, 12) r 8 is (48,
+ * 32) r 16: the whole disk less that segment, 512 pi / 3 + 8 sqrt(192).
+ * Were the clip taken in the parent's user space (librsvg), the first
+ * would be the whole disk (20, 24) r 8, 64 pi, and the second the disk
+ * (28, 20) r 8, 64 pi; were the viewport's clip dropped (Chromium, with
+ * a clip-path on a nested svg), 256 pi - (256 pi / 3 - 8 sqrt(192)) for
+ * the first. */
+static void test_viewport_element(void **state)
+{
+    (void)state;
+    check_area("nested-svg",
+               "<clipPath id=\"v\"><circle cx=\"20\" cy=\"24\" r=\"8\"/></clipPath>"
+               "<svg x=\"8\" y=\"8\" width=\"48\" height=\"48\" viewBox=\"0 0 24 24\" "
+               "clip-path=\"url(#v)\"><rect x=\"-50\" y=\"-50\" width=\"200\" "
+               "height=\"200\"/></svg>",
+               256 * M_PI / 3 + 4 * sqrt(192));
+    check_area("symbol",
+               "<clipPath id=\"v\"><circle cx=\"20\" cy=\"12\" r=\"8\"/></clipPath>"
+               "<symbol id=\"y\" viewBox=\"0 0 24 24\" clip-path=\"url(#v)\"><rect "
+               "x=\"-50\" y=\"-50\" width=\"200\" height=\"200\"/></symbol>"
+               "<use href=\"#y\" x=\"8\" y=\"8\" width=\"48\" height=\"48\"/>",
+               512 * M_PI / 3 + 8 * sqrt(192));
+}
+
 /* A disk of radius 24 clipped by a concentric disk of radius 10: the
  * small disk, 100 pi.  The clipPath's child's fill, stroke and opacity do
  * not matter (fill="none" and a wide stroke: still the fill geometry). */
@@ -603,7 +634,8 @@ static void test_export_round_trip(void **state)
 
 SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_scene_model),
              cmocka_unit_test(test_clip_unit), cmocka_unit_test(test_half_disk),
-             cmocka_unit_test(test_small_disk), cmocka_unit_test(test_clip_rule),
+             cmocka_unit_test(test_small_disk), cmocka_unit_test(test_viewport_element),
+             cmocka_unit_test(test_clip_rule),
              cmocka_unit_test(test_bounding_box), cmocka_unit_test(test_clip_of_clip),
              cmocka_unit_test(test_group_opacity), cmocka_unit_test(test_invalid_references),
              cmocka_unit_test(test_refused), cmocka_unit_test(test_shipped),

@@ -427,13 +427,26 @@ static void test_viewport_clips(void **state)
                       "clip-path=\"url(#o)\"/></svg>",
                  "[within -1 " BLACK " M 20 0 L 25 0 L 25 10 L 20 10 Z ] " BLACK
                  " clip 0 M 20 0 L 30 0 L 30 10 L 20 10 Z");
-    /* clip-path on the viewport element itself is refused (its user
-     * space is not settled); none is no clip */
-    refused_clips(OPEN CLIP4 "<svg width=\"1\" height=\"1\" clip-path=\"url(#c)\"/></svg>",
-                  "<svg>", "clip-path");
-    refused_clips(OPEN CLIP4 "<symbol id=\"s\" clip-path=\"url(#c)\"/>"
-                             "<use href=\"#s\"/></svg>",
-                  "<symbol>", "clip-path");
+    /* clip-path on the viewport element itself: in the user space it
+     * establishes (its content's: the viewBox's scale 2 and x = 10 here),
+     * so the rect [0, 4]^2 is [10, 18] x [0, 8]; the viewport's clip
+     * [10, 30] x [0, 20] lies within it (clipped by both) */
+    expect_clips(OPEN CLIP4 "<svg x=\"10\" width=\"20\" height=\"20\" viewBox=\"0 0 10 10\" "
+                            "clip-path=\"url(#c)\"><rect width=\"20\" height=\"1\"/></svg></svg>",
+                 "[within -1 " BLACK " M 10 0 L 18 0 L 18 8 L 10 8 Z ] [within 0 " BLACK
+                 " M 10 0 L 30 0 L 30 20 L 10 20 Z ] " BLACK " clip 1 M 10 0 L 50 0 L 50 2 L 10 2 Z");
+    /* on a symbol, alike, the use's translate(x, y) included: [0, 4]^2
+     * scaled by 3 at (5, 0), within the viewport [5, 35] x [0, 30] */
+    expect_clips(OPEN CLIP4 "<symbol id=\"s\" viewBox=\"0 0 10 10\" clip-path=\"url(#c)\">"
+                            "<rect width=\"20\" height=\"1\"/></symbol>"
+                            "<use href=\"#s\" x=\"5\" width=\"30\" height=\"30\"/></svg>",
+                 "[within -1 " BLACK " M 5 0 L 17 0 L 17 12 L 5 12 Z ] [within 0 " BLACK
+                 " M 5 0 L 35 0 L 35 30 L 5 30 Z ] " BLACK " clip 1 M 5 0 L 65 0 L 65 3 L 5 3 Z");
+    /* its bounding box in the viewBox's coordinates is not computed */
+    refused_clips(OPEN "<clipPath id=\"o\" clipPathUnits=\"objectBoundingBox\"><rect "
+                       "width=\"0.5\" height=\"1\"/></clipPath><svg width=\"10\" "
+                       "height=\"10\" clip-path=\"url(#o)\"/></svg>",
+                  "<clipPath>", "objectBoundingBox");
     expect_clips(OPEN "<svg width=\"10\" height=\"10\" clip-path=\"none\"><rect width=\"1\" "
                       "height=\"1\"/></svg></svg>",
                  BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
