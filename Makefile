@@ -75,8 +75,13 @@ PLAIN_CXX           := $(CXX)
 PLAIN_CFLAGS        := $(CFLAGS)
 PLAIN_CXXFLAGS      := $(CXXFLAGS)
 PLAIN_ALGO_CXXFLAGS  = $(ALGO_CXXFLAGS)
-# a test's own code with line tables only (enough for a failure's stack)
-PLAIN_TEST_CFLAGS   := -g1
+# a test's own code with line tables only (enough for a failure's stack),
+# at -O1: the library it tests is built -O2 above (and the helpers'
+# objects, tests/support.c and the others, with it); a test's own code is
+# set-up and checks, whose time did not change at -O1 (test_gradient,
+# test_cubic, test_oracle), and the 77 plain test programs compile in 36 s
+# of CPU instead of 44
+PLAIN_TEST_CFLAGS   := -O1 -g1
 SAN_CC              := $(CC)
 SAN_CXX             := $(CXX)
 SAN_CFLAGS          := $(CFLAGS) -O1 $(SAN)
