@@ -342,9 +342,10 @@ run: deps
 
 # both passes in one make: the sanitizer build and its tests fill the
 # cores while plain tests wait on their child processes, and no pass waits
-# alone for its last test.  The gate is one more job of that make, started
-# after the last test has started (it is the last prerequisite), so that it
-# runs beside the last tests rather than after them.  It judges errors; its
+# alone for its last test.  The gate is one more job of that make, its last
+# prerequisite: make starts it once every test before it has started or
+# waits on its build (in CI, while the sanitizer build compiles), so that
+# it runs beside the tests rather than after them.  It judges errors; its
 # times are informational, so three timed renders a case do (--reps 3).
 test: deps-test
 	@$(MAKE) --no-print-directory $(TEST_J) check-tests-both
