@@ -557,6 +557,12 @@ int grad_setup(const aa_scene *scene, int l, int w, int h, agg::trans_affine &mt
                            "agg: layer %d's radial gradient has a focal radius (fr = %g): "
                            "AGG's gradient_radial_focus has a focal point only",
                            l, p[5]);
+        if (aa_gradient_is_cone(&g))
+            return aa_fail(AA_EINVAL,
+                           "agg: layer %d's radial gradient has its focal point (%g, %g) on "
+                           "or outside its circle: SVG 2 paints a cone there and "
+                           "gradient_radial_focus does not",
+                           l, p[3], p[4]);
         const double k = GRAD_D / p[2];
         mtx = agg::trans_affine(k * a, k * b, k * c, k * d, k * (e - p[0]), k * (ff - p[1]));
         f[0] = k * (p[3] - p[0]), f[1] = k * (p[4] - p[1]);

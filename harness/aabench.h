@@ -261,8 +261,10 @@ aa_rgb aa_scene_colour_of(const aa_scene *s, const int *wind);
  *  - linear (p[] = x1 y1 x2 y2): t = (q - P1).(P2 - P1) / |P2 - P1|^2;
  *  - radial (p[] = cx cy r fx fy fr): the largest w with |q - F - w (C -
  *    F)| = fr + w (r - fr) (the circles of SVG 2 and canvas, F = (fx, fy),
- *    C = (cx, cy)); the focal circle strictly inside the end circle
- *    (|C - F| + fr < r), so every point has exactly one;
+ *    C = (cx, cy)); with the focal circle strictly inside the end circle
+ *    (|C - F| + fr < r) every point has exactly one; otherwise (the cone
+ *    case, aa_gradient_is_cone) some points have none and the layer
+ *    paints nothing there (transparent), as SVG 2 and canvas leave them;
  * then spread maps t to [0, 1] (pad: clamp; reflect: the distance to the
  * nearest even integer; repeat: t - floor t) and the stops give the colour:
  * sRGB-encoded channels and opacity interpolated linearly, not
@@ -288,6 +290,11 @@ typedef struct aa_gradient {
     const aa_gradient_stop *stops;
 } aa_gradient;
 
+/* 1 if g is a radial gradient of the cone case: its focal circle not
+ * strictly inside its end circle (|C - F| + fr >= r), so that the points
+ * on no circle of radius >= 0, outside the cone the circles sweep, are
+ * left unpainted. */
+int aa_gradient_is_cone(const aa_gradient *g);
 /* 1 if some painting layer's paint is a gradient: the colour at a point
  * then depends on the point, not on the winding numbers alone, and
  * aa_scene_is_opaque is 0.  A method takes such a scene only if it

@@ -190,9 +190,11 @@ int aa_scene_set_alpha(aa_scene *s, double alpha);
  * finite, m invertible, at least one stop, offsets ascending in [0, 1],
  * colours and opacities in [0, 1]; a linear gradient's two points apart
  * (SVG paints a zero-length one with its last stop: give that as a colour);
- * a radial's r > 0, fr >= 0 and its focal circle strictly inside the end
- * circle (|C - F| + fr < r): otherwise SVG 2's picture is a cone, with
- * parts the gradient leaves unpainted, and that is refused. */
+ * a radial's r > 0, fr >= 0 and its focal circle not the end circle (SVG
+ * 2 paints nothing then).  A focal circle not strictly inside the end
+ * circle (|C - F| + fr >= r) is the cone case (aa_gradient_is_cone): the
+ * layer paints only the points some circle of radius >= 0 passes
+ * through. */
 int aa_scene_set_gradient(aa_scene *s, const aa_gradient *g);
 /* The composite at (x, y) of winding numbers `wind` as aa_scene_colour_of_at
  * gives it, before the decoding: its sRGB-encoded channels (the

@@ -382,13 +382,11 @@ static int check_gradient(const aa_gradient *g)
             return aa_fail(AA_EINVAL, "radial gradient of radius %g and focal radius %g: r "
                                       "must be positive and fr at least 0",
                            p[2], p[5]);
-        if (!(hypot(p[0] - p[3], p[1] - p[4]) + p[5] < p[2]))
+        if (p[0] == p[3] && p[1] == p[4] && p[2] == p[5])
             return aa_fail(AA_EINVAL,
-                           "radial gradient: the focal circle (%g, %g) radius %g is not "
-                           "strictly inside the end circle (%g, %g) radius %g; SVG 2 then "
-                           "paints a cone and leaves the rest unpainted, which is not "
-                           "supported",
-                           p[3], p[4], p[5], p[0], p[1], p[2]);
+                           "radial gradient: the focal circle (%g, %g) radius %g is the end "
+                           "circle; SVG 2 paints nothing then: give no layer",
+                           p[3], p[4], p[5]);
     }
     return AA_OK;
 }
@@ -415,6 +413,7 @@ static int add_gradient(aa_scene *s, const aa_gradient *g, const double m[6], in
     d->g = *g;
     memcpy(d->g.m, m, sizeof d->g.m);
     d->g.stops = d->stops;
+    d->cone = g->kind == AA_GRADIENT_RADIAL && aa_gradient_is_cone(g);
     for (int k = 0; k < g->nstops; k++) {
         for (int c = 0; c < 3; c++)
             d->enc[4 * k + c] = aa_srgb_encode(g->stops[k].colour.c[c]);
@@ -462,22 +461,59 @@ double aa__gradient_t(const aa_scene_gradient *sg, double x, double y)
         return ((u - p[0]) * dx + (w - p[1]) * dy) / (dx * dx + dy * dy);
     }
     /* |q - F - t D| = fr + t dr, D = C - F, dr = r - fr: squared,
-     *     a t^2 - 2 b t + c = 0,  a = D.D - dr^2 < 0,
+     *     a t^2 - 2 b t + c = 0,  a = D.D - dr^2,
      *     b = (q - F).D + fr dr,  c = |q - F|^2 - fr^2;
-     * with the focal circle inside the end circle the circles are nested
+     * t is the largest root whose circle has radius fr + t dr >= 0 (SVG 2,
+     * canvas's createRadialGradient), NaN where there is none.  With the
+     * focal circle inside the end circle (a < 0) the circles are nested
      * and grow with t, so the point lies on exactly one of those with
      * radius >= 0: the larger root, (b - sqrt(b^2 - a c)) / a, taken as
-     * c / (b + sqrt(b^2 - a c)) when b > 0 (no cancellation). */
+     * c / (b + sqrt(b^2 - a c)) when b > 0 (no cancellation).  Otherwise
+     * (the cone case) the roots are Q / a and c / Q, Q = b + sign(b)
+     * sqrt(b^2 - a c) (no cancellation either), or c / (2 b) when a = 0;
+     * the larger one of radius >= 0 is taken; none where b^2 < a c. */
     double qx = u - p[3], qy = w - p[4], Dx = p[0] - p[3], Dy = p[1] - p[4];
     double dr = p[2] - p[5];
     double a = Dx * Dx + Dy * Dy - dr * dr;
     double b = qx * Dx + qy * Dy + p[5] * dr;
     double c = qx * qx + qy * qy - p[5] * p[5];
     double disc = b * b - a * c;
-    double sq = sqrt(disc > 0.0 ? disc : 0.0);
-    if (b > 0.0)
-        return c / (b + sq);
-    return (b - sq) / a;
+    if (!sg->cone) {
+        double sq = sqrt(disc > 0.0 ? disc : 0.0);
+        if (b > 0.0)
+            return c / (b + sq);
+        return (b - sq) / a;
+    }
+    double r1, r2;
+    if (a == 0.0) {
+        if (b == 0.0)
+            return NAN; /* c = 0 on a line of points at most: no single t */
+        r1 = r2 = c / (2.0 * b);
+    } else {
+        if (disc < 0.0)
+            return NAN;
+        double Q = b + copysign(sqrt(disc), b);
+        if (Q == 0.0) /* b = 0 and disc = 0: c = 0, the double root 0 */
+            r1 = r2 = 0.0;
+        else {
+            r1 = Q / a, r2 = c / Q;
+            if (r1 < r2) {
+                double tmp = r1;
+                r1 = r2, r2 = tmp;
+            }
+        }
+    }
+    if (p[5] + r1 * dr >= 0.0)
+        return r1;
+    if (p[5] + r2 * dr >= 0.0)
+        return r2;
+    return NAN;
+}
+
+int aa_gradient_is_cone(const aa_gradient *g)
+{
+    const double *p = g->p;
+    return g->kind == AA_GRADIENT_RADIAL && !(hypot(p[0] - p[3], p[1] - p[4]) + p[5] < p[2]);
 }
 
 double aa__gradient_spread(int spread, double t)
@@ -1662,8 +1698,10 @@ static double layer_paint(const aa_scene *s, int l, int at, double x, double y, 
         }
     if (at && s->paint[l] >= 0) {
         const aa_scene_gradient *g = &s->grads[s->paint[l]];
-        double v[4];
-        aa__gradient_paint(g, aa__gradient_spread(g->g.spread, aa__gradient_t(g, x, y)), v);
+        double v[4], t = aa__gradient_t(g, x, y);
+        aa__gradient_paint(g, aa__gradient_spread(g->g.spread, t), v);
+        if (isnan(t)) /* the cone case, on no circle: unpainted */
+            v[3] = 0.0;
         e[0] = v[0], e[1] = v[1], e[2] = v[2];
         return s->alpha[l] * v[3];
     }

@@ -29,10 +29,12 @@ typedef struct aa_scene_gradient {
     aa_gradient_stop *stops;
     double *enc;
     double inv[6];
+    int cone; /* radial, the focal circle not strictly inside the end circle */
 } aa_scene_gradient;
 
 /* The t of gradient sg at scene point (x, y), before the spread (NaN
- * nowhere: radial gradients are refused where a point has no circle), and
+ * where a radial gradient of the cone case has no circle through the
+ * point: the layer paints nothing there), and
  * its colour: sRGB-encoded channels and opacity at spread-mapped t
  * (scene.c). */
 double aa__gradient_t(const aa_scene_gradient *sg, double x, double y);

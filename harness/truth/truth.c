@@ -707,6 +707,14 @@ static int grad_init(worker *w)
         aa_gradient g;
         if (!aa_scene_layer_gradient(w->scene, l, &g))
             continue;
+        if (aa_gradient_is_cone(&g)) /* the rows' cuts and bounds assume nested circles */
+            return aa_fail(AA_EINVAL,
+                           "reference: layer %d's radial gradient is of the cone case (its "
+                           "focal circle not strictly inside its end circle): its painted "
+                           "region's edges, the cone's tangent lines, are not yet among the "
+                           "reference's breakpoints, so it is refused rather than integrated "
+                           "without a bound",
+                           l);
         int st = g.kind == AA_GRADIENT_LINEAR ? lin_init(w, l, &g) : rad_init(w, l, &g);
         if (st)
             return st;
