@@ -125,8 +125,10 @@
  * monotone there, equals it (aa__offset_solve_from: Newton in double, then
  * in long double, bracketed), x turns where aa__offset_turns says, and u
  * and v are the curve's point in extended precision less the cell and the
- * band.  The area right of a part is the trapezoid under its chord less
- * the segment between chord and arc, 1/2 the integral of (P - Pa) x P',
+ * band, but at the piece's ends, which are its own (x0, y0) and (x1, y1):
+ * the outline's vertex, rounded to double, that the next piece ends at
+ * (area_internal.h, offset_point).  The area right of a part is the
+ * trapezoid under its chord less the segment between chord and arc, 1/2 the integral of (P - Pa) x P',
  * by Gauss-Legendre quadrature with an error of at most AR_QUAD_TOL
  * (1e-15 px^2) for each panel of the piece that the part meets, proven
  * from the integrand's bound on a disc about the panel (Trefethen's bound
@@ -584,7 +586,7 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     if (p->y0 < ja)
         t = (double)aa__offset_solve_end(&q->oc, 1, q->ot0, q->ot1, p->y0 - ja, ja, p->oend);
     long double X, Y;
-    aa__offset_eval_s(&q->oc, p->ostops, t, &X, &Y, NULL, NULL);
+    offset_point(p, t, &X, &Y);
     double c0 = floor((double)X);
     c0 = c0 < -CELL_LIMIT ? -CELL_LIMIT : (c0 > CELL_LIMIT ? CELL_LIMIT : c0);
     a->p = p;
