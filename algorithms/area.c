@@ -125,8 +125,10 @@
  * monotone there, equals it (aa__offset_solve_from: Newton in double, then
  * in long double, bracketed), x turns where aa__offset_turns says, and u
  * and v are the curve's point in extended precision less the cell and the
- * band.  The area right of a part is the trapezoid under its chord less
- * the segment between chord and arc, 1/2 the integral of (P - Pa) x P',
+ * band, but at the piece's ends, which are its own (x0, y0) and (x1, y1):
+ * the outline's vertex, rounded to double, that the next piece ends at
+ * (area_internal.h, offset_point).  The area right of a part is the
+ * trapezoid under its chord less the segment between chord and arc, 1/2 the integral of (P - Pa) x P',
  * by Gauss-Legendre quadrature with an error of at most AR_QUAD_TOL
  * (1e-15 px^2) for each panel of the piece that the part meets, proven
  * from the integrand's bound on a disc about the panel (Trefethen's bound
@@ -618,7 +620,7 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     if (p->y0 < ja)
         t = (double)aa__offset_solve_end(&q->oc, 1, q->ot0, q->ot1, p->y0 - ja, ja, p->oend);
     long double X, Y;
-    aa__offset_eval_s(&q->oc, p->ostops, t, &X, &Y, NULL, NULL);
+    offset_point(p, t, &X, &Y);
     double c0 = floor((double)X);
     c0 = c0 < -CELL_LIMIT ? -CELL_LIMIT : (c0 > CELL_LIMIT ? CELL_LIMIT : c0);
     a->p = p;
@@ -923,6 +925,41 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
     return part_area_quad(s, ta, tb, ua, ub, dy);
 }
 
+/* A part of an offset piece that ends at an end of the piece: its chord
+ * runs to the piece's own end V (offset_point: the outline's vertex,
+ * rounded to double), while the segment between chord and arc
+ * (area_offset_segment) is the curve's own, whose end E is up to about an
+ * ulp of the coordinates from V.  The part is the arc joined to V by the
+ * short edge E V: its area right is the trapezoids under V E, E E' and E' V'
+ * less the segment, and this is those less the trapezoid under V V', the
+ * polygon V E E' V' (ends that are no piece's end: E = V), minus its signed
+ * area, 1/2 sum (v_Q - v_P)(u_P + u_Q) over its edges (the trapezoids' own
+ * 1 (v_Q - v_P) cancel round it); u and v from x and y in long double, the
+ * cell's column dropping out of the sum.  Without it, the triangle V E E'
+ * (up to |E E'| |E V| / 2, 5e-14 on the benchmark's scene) stayed. */
+static double offset_end_area(const ar_seg *s, double ta, double tb)
+{
+    const aa_piece *q = s->p->src;
+    int ea = ta == q->ot0 || ta == q->ot1, eb = tb == q->ot0 || tb == q->ot1;
+    if (!ea && !eb)
+        return 0.0;
+    long double P[4][2], X, Y; /* V, E, E', V' as (x, y) */
+    offset_point(s->p, ta, &X, &Y);
+    P[0][0] = P[1][0] = X, P[0][1] = P[1][1] = Y;
+    offset_point(s->p, tb, &X, &Y);
+    P[2][0] = P[3][0] = X, P[2][1] = P[3][1] = Y;
+    if (ea)
+        aa__offset_eval_s(&q->oc, s->p->ostops, ta, &P[1][0], &P[1][1], NULL, NULL);
+    if (eb)
+        aa__offset_eval_s(&q->oc, s->p->ostops, tb, &P[2][0], &P[2][1], NULL, NULL);
+    long double a = 0.0L, x0 = P[0][0], y0 = P[0][1];
+    for (int k = 0; k < 4; k++) {
+        const long double *A = P[k], *B = P[(k + 1) & 3];
+        a += ((B[1] - y0) - (A[1] - y0)) * ((A[0] - x0) + (B[0] - x0));
+    }
+    return (double)(-0.5L * a);
+}
+
 /* part_area of a cubic, conic or offset piece */
 static double part_area_curved(const ar_seg *s, double ta, double tb, double ua, double ub,
                                double *dy)
@@ -937,7 +974,8 @@ static double part_area_curved(const ar_seg *s, double ta, double tb, double ua,
             offset_keep(s, tb, v1);
         *dy = v1 - v0;
         double sg = s->p->sg;
-        return *dy * (1.0 - 0.5 * (ua + ub)) - area_offset_segment(s->p, sg * ta, sg * tb);
+        return *dy * (1.0 - 0.5 * (ua + ub)) - area_offset_segment(s->p, sg * ta, sg * tb) +
+               offset_end_area(s, sg * ta, sg * tb);
     }
     if (s->p->conic) {
         /* from q: the angle d = 2 atan(pq), pq = (tb - ta)/(1 + ta tb)

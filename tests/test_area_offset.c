@@ -21,7 +21,9 @@
  *    every pair of a stroke's pieces with an offset piece, holds a meeting
  *    aa_piece_meet reports (ends shared by the two pieces aside);
  *  - a crossing's root near a turn of the offset's y: y at the parameter
- *    aa__offset_root returns is the line's, to rounding.
+ *    aa__offset_root returns is the line's, to rounding;
+ *  - pixel (716, 793) of tests/bench_bezstroke.c's scene, against its area
+ *    derived here from the one offset curve in it (test_vertex).
  */
 #include "path.h"
 #include "oracle.h"
@@ -38,6 +40,7 @@
 #include <string.h>
 
 #include <cmocka.h>
+#include <gsl/gsl_integration.h>
 
 static void must(int st)
 {
@@ -341,12 +344,153 @@ static void test_stops(void **state)
             }
 }
 
+/* One pixel of tests/bench_bezstroke.c's scene, (716, 793) at 1024 px: the
+ * stroke (2.5 px, round joins) of three of its cubics, subpath 15's 35th to
+ * 37th (the same numbers as the benchmark's), against an answer derived
+ * here.  Only the outer offset of the 36th cubic enters the pixel: it
+ * starts at (715.98, 793.39), just left of it, at the vertex it shares
+ * with a line across the stroke, and leaves by the bottom; the pixel's
+ * value is then the area between the window's left side and that curve,
+ *
+ *     A = integral (x(t) - 716) y'(t) dt  from tc (x = 716) to te (y = 794),
+ *
+ * P = 1024 (B + d N), N = (-B'y, B'x)/|B'|, d = -1.25/1024, B the cubic
+ * from its control points: the crossings by Newton's method and the
+ * integral by 20-point Gauss-Legendre (GSL's nodes) on 8 panels, all in
+ * long double (the integrand is analytic there; 10 points on 1 panel
+ * agree to 1e-18).  A __float128 evaluation of the same gave
+ * 0.023660496760506964.  `area` was 1.1e-13 off here: it evaluated the
+ * curve at the piece's start, 4.2e-14 px from the vertex rounded to
+ * double that the line across the stroke ends at, so that the outline left
+ * a strip that high open across the pixel (area_internal.h,
+ * offset_point); the reference's bound (5.3e-15) holds. */
+static long double vx_b[4], vx_c[4]; /* the cubic's power basis, x and y */
+
+static void vertex_eval(long double t, long double *x, long double *y, long double *dx,
+                        long double *dy)
+{
+    const long double d = -1.25L / 1024.0L;
+    long double X = vx_b[0] + t * (vx_b[1] + t * (vx_b[2] + t * vx_b[3]));
+    long double Y = vx_c[0] + t * (vx_c[1] + t * (vx_c[2] + t * vx_c[3]));
+    long double X1 = vx_b[1] + t * (2 * vx_b[2] + 3 * t * vx_b[3]);
+    long double Y1 = vx_c[1] + t * (2 * vx_c[2] + 3 * t * vx_c[3]);
+    long double X2 = 2 * vx_b[2] + 6 * t * vx_b[3], Y2 = 2 * vx_c[2] + 6 * t * vx_c[3];
+    long double L = sqrtl(X1 * X1 + Y1 * Y1), k = (X1 * Y2 - Y1 * X2) / (L * L * L);
+    *x = 1024 * (X - d * Y1 / L);
+    *y = 1024 * (Y + d * X1 / L);
+    *dx = 1024 * X1 * (1 - d * k); /* P' = B' (1 - d k) */
+    *dy = 1024 * Y1 * (1 - d * k);
+}
+
+static long double vertex_root(int coord, long double target, long double t)
+{
+    for (int it = 0; it < 60; it++) {
+        long double x, y, dx, dy;
+        vertex_eval(t, &x, &y, &dx, &dy);
+        long double step = ((coord ? y : x) - target) / (coord ? dy : dx);
+        t -= step;
+        if (fabsl(step) < 1e-21L)
+            break;
+    }
+    return t;
+}
+
+static void test_vertex(void **state)
+{
+    (void)state;
+    const int r = 15, n = 1024;
+    double y = (r + 0.5) / 20.0, a = 0.004 + 0.0015 * r, dx = 0.9 / 50.0, x = 0.05;
+    double cs[2 + 18];
+    for (int k = 0; k < 35; k++)
+        x += dx;
+    cs[0] = x, cs[1] = y;
+    for (int k = 35; k < 38; k++) {
+        double s = (k % 2 ? -1.0 : 1.0) * a * (1.0 + 0.5 * sin(0.7 * k + r));
+        double kink = k % 7 == 6 ? 0.3 * dx : 0.0, *q = cs + 2 + 6 * (k - 35);
+        q[0] = x + dx / 3.0 + kink, q[1] = y + s, q[2] = x + 2.0 * dx / 3.0, q[3] = y + s;
+        q[4] = x + dx, q[5] = y;
+        if (k == 36) { /* its power basis from the control points */
+            const double *p0 = q - 2, *p = q;
+            long double P[4][2] = {{p0[0], p0[1]}, {p[0], p[1]}, {p[2], p[3]}, {p[4], p[5]}};
+            for (int c = 0; c < 2; c++) {
+                long double *o = c ? vx_c : vx_b;
+                o[0] = P[0][c];
+                o[1] = 3 * (P[1][c] - P[0][c]);
+                o[2] = 3 * (P[2][c] - 2 * P[1][c] + P[0][c]);
+                o[3] = P[3][c] - 3 * P[2][c] + 3 * P[1][c] - P[0][c];
+            }
+        }
+        x += dx;
+    }
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 2.5 / n;
+    st.join = AA_JOIN_ROUND;
+    st.cap = AA_CAP_ROUND;
+    aa_scene *s = stroke_scene(cs, 3, &st, NULL);
+    /* the premise: the curve starts left of the pixel and enters it */
+    long double x0, y0, x1, y1, dx1, dy1;
+    vertex_eval(0, &x0, &y0, &dx1, &dy1);
+    assert_true(x0 > 715.9L && x0 < 716 && y0 > 793 && y0 < 794);
+    long double tc = vertex_root(0, 716, 0.001L), te = vertex_root(1, 794, 0.006L);
+    vertex_eval(tc, &x1, &y1, &dx1, &dy1);
+    assert_true(tc > 0 && te > tc && y1 > 793 && y1 < 794);
+    gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(20);
+    assert_non_null(gl);
+    long double want = 0;
+    for (int p = 0; p < 8; p++) {
+        long double lo = tc + (te - tc) * p / 8, hi = tc + (te - tc) * (p + 1) / 8;
+        for (size_t i = 0; i < 20; i++) {
+            double xi, wi;
+            gsl_integration_glfixed_point(-1, 1, i, &xi, &wi, gl);
+            long double t = 0.5L * (lo + hi) + 0.5L * (hi - lo) * xi, px, py, pdx, pdy;
+            vertex_eval(t, &px, &py, &pdx, &pdy);
+            want += 0.5L * (hi - lo) * wi * (px - 716) * pdy;
+        }
+    }
+    gsl_integration_glfixed_table_free(gl);
+    /* the window holds no other piece: of the pieces in its rows (each
+     * y-monotone, x sampled at 257 heights), only one reaches between
+     * x = 716 and 717 */
+    aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
+    assert_non_null(placed);
+    size_t np, inside = 0;
+    const aa_piece *pc = aa_scene_pieces(placed, &np);
+    for (size_t k = 0; k < np; k++) {
+        double lo = fmax(pc[k].y0, 793), hi = fmin(pc[k].y1, 794);
+        double most = -INFINITY, least = INFINITY;
+        for (int i = 0; i <= 256 && lo < hi; i++) {
+            double px = aa_piece_x_at(&pc[k], lo + (hi - lo) * i / 256);
+            most = fmax(most, px), least = fmin(least, px);
+        }
+        inside += most > 716 && least < 717;
+    }
+    assert_int_equal(inside, 1);
+    aa_scene_free(placed);
+    support_view v = {.w = n, .h = n, .threads = 0};
+    aa_image ref, bound, got;
+    support_reference(s, &v, &ref, &bound, NULL);
+    support_render("area", s, "box", n, n, 1, &got, NULL);
+    double rv = aa_pixel(&ref, 716, 793)[0], b = aa_pixel(&bound, 716, 793)[0];
+    double av = aa_pixel(&got, 716, 793)[0];
+    print_message("pixel (716, 793): derived %.17Lg, reference %.1e off (bound %.1e), area "
+                  "%.1e off\n",
+                  want, (double)(rv - want), b, (double)(av - want));
+    assert_true(fabsl(rv - want) <= b);
+    assert_true(fabsl(av - want) <= 3e-14);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_image_free(&got);
+    aa_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
                                        cmocka_unit_test(test_tube),
                                        cmocka_unit_test(test_meetings),
                                        cmocka_unit_test(test_root),
-                                       cmocka_unit_test(test_stops)};
+                                       cmocka_unit_test(test_stops),
+                                       cmocka_unit_test(test_vertex)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
