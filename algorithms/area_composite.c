@@ -55,30 +55,21 @@ const double *area_composite_colour(const ar_state *S, ar_worker *wk, const int 
     return out;
 }
 
-/* Catmull's integrater on level d in a scene that composites: every
- * covering layer shows, so no layer hides the edges behind it.  Split on
- * any edge left (Catmull's clipper, area_pixel.h), until a region holds
- * none; its winding numbers, and so its colour (the scene's composite),
- * are then one state throughout, read at its centroid. */
-static void cm_integrate_all(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
-                             int d, double *sum)
+/* A region of a compositing scene (cm_split_all): its colour is the
+ * scene's composite of the covering layers. */
+static void leaf_all(const ar_row *r, const cm_level *lv, double area, const int *wind, int i,
+                     double *sum)
 {
-    cm_level *lv = &r->wk->cm[d];
-    double cx, cy, area = cm_region(lv, &cx, &cy);
-    if (area == 0.0)
-        return;
-    if (lv->ne) {
-        cm_split(lv, lv + 1, &lv->e[0], 1.0);
-        cm_integrate_all(r, in, n, w, i, d + 1, sum);
-        cm_split(lv, lv + 1, &lv->e[0], -1.0);
-        cm_integrate_all(r, in, n, w, i, d + 1, sum);
-        return;
-    }
-    int *wind = r->wk->wtmp;
-    cm_winding(r, in, n, w, i, cx, cy, wind);
+    (void)lv, (void)i;
     const double *c = colour_of(r->S, r->wk, wind);
     for (int ch = 0; ch < 3; ch++)
         sum[ch] += c[ch] * area;
+}
+
+static void cm_integrate_all(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
+                             int d, double *sum)
+{
+    cm_split_all(r, in, n, w, i, d, sum, leaf_all);
 }
 
 int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,

@@ -579,24 +579,12 @@ void area_gradient_run(const ar_row *r, int i0, int i1, const int *w)
     }
 }
 
-/* Catmull's integrater on level d, split on every edge (as
- * area_composite.c's), each region's integral exact. */
-static void cm_integrate_grad(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
-                              int d, double *sum)
+/* A region of a gradient scene (cm_split_all, Catmull's integrater split
+ * on every edge as area_composite.c's): its integral exact, a flat state's
+ * colour times its area, a gradient's over its polygon. */
+static void leaf_grad(const ar_row *r, const cm_level *lv, double area, const int *wind, int i,
+                      double *sum)
 {
-    cm_level *lv = &r->wk->cm[d];
-    double cx, cy, area = cm_region(lv, &cx, &cy);
-    if (area == 0.0)
-        return;
-    if (lv->ne) {
-        cm_split(lv, lv + 1, &lv->e[0], 1.0);
-        cm_integrate_grad(r, in, n, w, i, d + 1, sum);
-        cm_split(lv, lv + 1, &lv->e[0], -1.0);
-        cm_integrate_grad(r, in, n, w, i, d + 1, sum);
-        return;
-    }
-    int *wind = r->wk->wtmp;
-    cm_winding(r, in, n, w, i, cx, cy, wind);
     gstate gs;
     if (gstate_of(r, i, wind, &gs))
         return;
@@ -606,6 +594,12 @@ static void cm_integrate_grad(const ar_row *r, const ar_key *in, size_t n, const
         return;
     }
     polygon(r, &gs, i, lv->vx, lv->vy, lv->nv, sum);
+}
+
+static void cm_integrate_grad(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
+                              int d, double *sum)
+{
+    cm_split_all(r, in, n, w, i, d, sum, leaf_grad);
 }
 
 int area_cluster_gradient(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,

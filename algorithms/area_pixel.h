@@ -161,6 +161,32 @@ static inline int cm_pixel(const ar_row *r, const ar_key *in, size_t n, int i, c
     return 1;
 }
 
+/* Catmull's integrater on level d in a scene that composites: every
+ * covering layer shows, so no layer hides the edges behind it.  Split on
+ * any edge left (Catmull's clipper), until a region holds none; its winding
+ * numbers are then one state throughout, read at its centroid (cx, cy), and
+ * leaf adds the region's integral (area: its area; lv: its polygon) to sum. */
+typedef void cm_leaf_fn(const ar_row *r, const cm_level *lv, double area, const int *wind,
+                        int i, double *sum);
+static inline void cm_split_all(const ar_row *r, const ar_key *in, size_t n, const int *w, int i,
+                                int d, double *sum, cm_leaf_fn *leaf)
+{
+    cm_level *lv = &r->wk->cm[d];
+    double cx, cy, area = cm_region(lv, &cx, &cy);
+    if (area == 0.0)
+        return;
+    if (lv->ne) {
+        cm_split(lv, lv + 1, &lv->e[0], 1.0);
+        cm_split_all(r, in, n, w, i, d + 1, sum, leaf);
+        cm_split(lv, lv + 1, &lv->e[0], -1.0);
+        cm_split_all(r, in, n, w, i, d + 1, sum, leaf);
+        return;
+    }
+    int *wind = r->wk->wtmp;
+    cm_winding(r, in, n, w, i, cx, cy, wind);
+    leaf(r, lv, area, wind, i, sum);
+}
+
 /* Catmull's integrater of one form (integrate: cm_integrate or
  * cm_integrate_all) over every pixel of the cluster; 0 if a pixel has too
  * many edges for it (nothing written then: a first pass counts them). */
