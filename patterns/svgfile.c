@@ -284,6 +284,7 @@ typedef struct reader {
     const char *name;
     long segments;
     const xmlNode *node; /* the element being read, for messages */
+    const char *grad_source; /* the gradient given next: its element and line */
     /* clip paths (svgfile.c, "clip paths") */
     const xmlNode *root;
     int clip;   /* the clip of the shapes given now (-1: none; -2 - k: the
@@ -2276,7 +2277,7 @@ static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
         return fail_at(r, "gradient paint is not taken here");
     if (p->n && (st = k->shape(r->ctx, colour, rule)))
         return st;
-    if (p->n && grad && (st = k->gradient(r->ctx, grad)))
+    if (p->n && grad && (st = k->gradient(r->ctx, grad, r->grad_source ? r->grad_source : "")))
         return st;
     if (p->n && alpha < 1 && (st = k->alpha(r->ctx, alpha)))
         return st;
@@ -3597,8 +3598,13 @@ static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const 
  * coincide, or a radial one of radius 0, paint the (last) stop's colour;
  * an objectBoundingBox gradient on geometry of zero width or height paints
  * nothing (SVG 1.1, 7.11 "Object bounding box units").  A radial gradient
- * whose focal circle is not strictly inside its end circle is refused (SVG
- * 2 then paints a cone and leaves the rest unpainted; aa_scene_set_gradient). */
+ * whose focal circle is not strictly inside its end circle (the cone case)
+ * is read as any other: the scene draws the cone SVG 2 defines and leaves
+ * the rest unpainted (aa_gradient_is_cone); one whose focal circle is its
+ * end circle, which SVG 2 paints with nothing, is refused, as the scene
+ * refuses it (aa_scene_set_gradient).  Each gradient goes to the sink with
+ * its element and line, which the scene keeps for the messages that refuse
+ * it later (aa_scene_set_gradient_source). */
 
 #define GRAD_MAX_CHAIN 32     /* gradients along an href chain */
 #define GRAD_MAX_STOPS 4096   /* stops of one gradient */
@@ -3611,6 +3617,7 @@ typedef struct paint_res {
     double alpha;
     aa_gradient g;
     aa_gradient_stop *stops;
+    char source[192]; /* the gradient element and its line, for messages */
 } paint_res;
 
 /* The chain of gradients from g along href: at most GRAD_MAX_CHAIN, a
@@ -3817,6 +3824,8 @@ static int grad_resolve(reader *r, const xmlNode *server, const aa_path *p, cons
     int n, st, given;
     const xmlNode *keep = r->node;
     r->node = server;
+    snprintf(out->source, sizeof out->source, "%s: line %ld: <%s>", r->name,
+             xmlGetLineNo(server), (const char *)server->name);
     if ((st = grad_chain(r, server, chain, &n)))
         return st;
     for (int k = 0; k < n; k++) {
@@ -3942,12 +3951,11 @@ static int grad_resolve(reader *r, const xmlNode *server, const aa_path *p, cons
     const double mm[6] = {M.a, M.b, M.c, M.d, M.e, M.f};
     memcpy(out->g.m, mm, sizeof mm);
     out->g.stops = out->stops;
-    if (radial && !(hypot(v[0] - v[3], v[1] - v[4]) + v[5] < v[2])) {
+    if (radial && v[0] == v[3] && v[1] == v[4] && v[2] == v[5]) {
         r->node = server;
-        st = fail_at(r, "the focal circle (fx %g, fy %g, fr %g) is not strictly inside the end "
-                        "circle (cx %g, cy %g, r %g): SVG 2 then paints a cone and leaves the "
-                        "rest unpainted, which is not supported",
-                     v[3], v[4], v[5], v[0], v[1], v[2]);
+        st = fail_at(r, "the focal circle (fx %g, fy %g, fr %g) is the end circle: SVG 2 then "
+                        "paints nothing, which is refused",
+                     v[3], v[4], v[5]);
         r->node = keep;
         free(out->stops);
         out->stops = NULL;
@@ -4084,11 +4092,15 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     /* paint-order: the fill, then the stroke over it, unless the stroke is
      * first */
     for (int k = 0; k < 2 && !st; k++) {
-        if (k == sty.stroke_first && fill)
+        if (k == sty.stroke_first && fill) {
+            r->grad_source = fp.source;
             st = give_path(r, &p, &m, fc, sty.rule, fa, fp.grad ? &fp.g : NULL);
-        else if (k != sty.stroke_first && stroke)
+        } else if (k != sty.stroke_first && stroke) {
+            r->grad_source = sp.source;
             st = give_stroke(r, &p, &m, &sty, sc, sa, sp.grad ? &sp.g : NULL);
+        }
     }
+    r->grad_source = NULL;
     if (!st && grouped)
         st = r->sink->group_end(r->ctx);
     r->clip = outer;
@@ -4832,6 +4844,8 @@ typedef struct recording {
     int in_clip;         /* inside a clip's definition */
     aa_gradient *grads;  /* the shapes' gradients, each with its own stops */
     size_t ngrads, capgrads;
+    char (*sources)[192]; /* each gradient's element and line */
+    size_t capsources;
 } recording;
 
 static int grow(void **a, size_t *cap, size_t need, size_t size)
@@ -4859,14 +4873,17 @@ static int rec_shape_fn(void *ctx, aa_rgb colour, aa_fill_rule rule)
 }
 
 /* The last shape's gradient: a copy, its stops its own. */
-static int rec_gradient_fn(void *ctx, const aa_gradient *g)
+static int rec_gradient_fn(void *ctx, const aa_gradient *g, const char *source)
 {
     recording *r = ctx;
     if (!r->nshapes)
         return aa_fail(AA_EFAIL, "a gradient without its shape");
     int st = grow((void **)&r->grads, &r->capgrads, r->ngrads + 1, sizeof *r->grads);
+    if (!st)
+        st = grow((void **)&r->sources, &r->capsources, r->ngrads + 1, sizeof *r->sources);
     if (st)
         return st;
+    snprintf(r->sources[r->ngrads], sizeof *r->sources, "%s", source);
     aa_gradient_stop *stops = malloc((size_t)(g->nstops > 0 ? g->nstops : 1) * sizeof *stops);
     if (!stops)
         return aa_fail(AA_ENOMEM, "out of memory reading an SVG");
@@ -4888,7 +4905,8 @@ static int rec_put_gradient(aa_scene *s, const recording *rec, const rec_shape *
     const double *m = rec->grads[sh->grad].m;
     const double to[6] = {m[0] / w, m[1] / h, m[2] / w, m[3] / h, m[4] / w, m[5] / h};
     memcpy(g.m, to, sizeof to);
-    return aa_scene_set_gradient(s, &g);
+    int st = aa_scene_set_gradient(s, &g);
+    return st ? st : aa_scene_set_gradient_source(s, rec->sources[sh->grad]);
 }
 
 static int rec_alpha_fn(void *ctx, double alpha)
@@ -5216,6 +5234,7 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
     for (size_t k = 0; k < rec.ngrads; k++)
         free((void *)rec.grads[k].stops);
     free(rec.grads);
+    free(rec.sources);
     return st;
 }
 

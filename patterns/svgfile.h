@@ -71,8 +71,10 @@ typedef struct aa_svg_sink {
      * after `shape` when the shape's paint is a gradient (aabench.h,
      * aa_gradient: its stops valid during the call only; its map m from
      * the gradient's coordinates to pixels); the shape's colour is then
-     * its first stop's and means nothing. */
-    int (*gradient)(void *ctx, const aa_gradient *g);
+     * its first stop's and means nothing; `source` names the gradient
+     * element and its line ("FILE: line N: <radialGradient>"), for
+     * messages that refuse it later (aa_scene_set_gradient_source). */
+    int (*gradient)(void *ctx, const aa_gradient *g, const char *source);
 } aa_svg_sink;
 
 /* Limits: larger or deeper documents are refused. */

@@ -196,6 +196,12 @@ int aa_scene_set_alpha(aa_scene *s, double alpha);
  * layer paints only the points some circle of radius >= 0 passes
  * through. */
 int aa_scene_set_gradient(aa_scene *s, const aa_gradient *g);
+/* Where the last layer's gradient was given (e.g. an SVG file's element
+ * and line), for messages that refuse it: copied (at most 191 bytes) and
+ * kept by aa_scene_place.  aa_scene_layer_gradient_source: that text, or
+ * "" for a layer without a gradient or without a source. */
+int aa_scene_set_gradient_source(aa_scene *s, const char *source);
+const char *aa_scene_layer_gradient_source(const aa_scene *s, int layer);
 /* The composite at (x, y) of winding numbers `wind` as aa_scene_colour_of_at
  * gives it, before the decoding: its sRGB-encoded channels (the
  * reference integrates their decoding exactly). */

@@ -33,6 +33,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -562,6 +563,25 @@ int aa_scene_layer_gradient(const aa_scene *s, int layer, aa_gradient *g)
     if (g)
         *g = s->grads[s->paint[layer]].g;
     return 1;
+}
+
+int aa_scene_set_gradient_source(aa_scene *s, const char *source)
+{
+    int st = check_building(s);
+    if (st)
+        return st;
+    if (!s->nlayers || s->paint[s->nlayers - 1] < 0)
+        return aa_fail(AA_EINVAL, "gradient source without a gradient layer");
+    char *d = s->grads[s->paint[s->nlayers - 1]].source;
+    snprintf(d, sizeof s->grads->source, "%s", source ? source : "");
+    return AA_OK;
+}
+
+const char *aa_scene_layer_gradient_source(const aa_scene *s, int layer)
+{
+    if (layer < 0 || layer >= s->nlayers || s->paint[layer] < 0)
+        return "";
+    return s->grads[s->paint[layer]].source;
 }
 
 static int group_depth(const aa_scene *s, int g)
@@ -1509,6 +1529,9 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
         double m[6] = {sx * o[0], sy * o[1], sx * o[2], sy * o[3], sx * o[4] + tx,
                        sy * o[5] + ty};
         st = add_gradient(t, &s->grads[s->paint[l]].g, m, &t->paint[l]);
+        if (!st)
+            memcpy(t->grads[t->paint[l]].source, s->grads[s->paint[l]].source,
+                   sizeof t->grads[t->paint[l]].source);
     }
     if (!st && s->nedges) {
         t->edges = malloc(s->nedges * sizeof *t->edges);

@@ -30,6 +30,7 @@ typedef struct aa_scene_gradient {
     double *enc;
     double inv[6];
     int cone; /* radial, the focal circle not strictly inside the end circle */
+    char source[192]; /* where it was given (aa_scene_set_gradient_source), or "" */
 } aa_scene_gradient;
 
 /* The t of gradient sg at scene point (x, y), before the spread (NaN

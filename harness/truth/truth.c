@@ -707,14 +707,16 @@ static int grad_init(worker *w)
         aa_gradient g;
         if (!aa_scene_layer_gradient(w->scene, l, &g))
             continue;
-        if (aa_gradient_is_cone(&g)) /* the rows' cuts and bounds assume nested circles */
+        if (aa_gradient_is_cone(&g)) { /* the rows' cuts and bounds assume nested circles */
+            const char *src = aa_scene_layer_gradient_source(w->scene, l);
             return aa_fail(AA_EINVAL,
-                           "reference: layer %d's radial gradient is of the cone case (its "
-                           "focal circle not strictly inside its end circle): its painted "
-                           "region's edges, the cone's tangent lines, are not yet among the "
-                           "reference's breakpoints, so it is refused rather than integrated "
-                           "without a bound",
-                           l);
+                           "reference: layer %d's radial gradient%s%s%s is of the cone case "
+                           "(its focal circle not strictly inside its end circle), which the "
+                           "reference does not take yet: its painted region's edges, the "
+                           "cone's tangent lines, are not yet among its breakpoints, so it is "
+                           "refused rather than integrated without a bound",
+                           l, *src ? " (" : "", src, *src ? ")" : "");
+        }
         int st = g.kind == AA_GRADIENT_LINEAR ? lin_init(w, l, &g) : rad_init(w, l, &g);
         if (st)
             return st;

@@ -174,12 +174,12 @@ static int fz_arc(void *ctx, double cx, double cy, double ux, double uy, double 
 }
 
 /* A gradient right after its shape, outside clips: at least two stops,
- * offsets ascending in [0, 1], opacities in [0, 1], every number finite;
- * its map to the unit square as the points'. */
-static int fz_gradient(void *ctx, const aa_gradient *g)
+ * offsets ascending in [0, 1], opacities in [0, 1], every number finite,
+ * its source named (a string); its map to the unit square as the points'. */
+static int fz_gradient(void *ctx, const aa_gradient *g, const char *source)
 {
     fuzz_sink *f = ctx;
-    if (!f->fresh || f->in_clip || g->nstops < 2 || !g->stops)
+    if (!f->fresh || f->in_clip || g->nstops < 2 || !g->stops || !source)
         abort();
     for (int k = 0; k < g->nstops; k++)
         if (!(g->stops[k].offset >= 0 && g->stops[k].offset <= 1) ||
