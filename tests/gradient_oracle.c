@@ -8,6 +8,7 @@
 #include "gradient_oracle.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 const double go_taus[3] = {0.0, GO_T0, 1.0};
 
@@ -68,4 +69,19 @@ int go_tau_meet(const go_pic *p, double tau, int col, double at, double *out)
     out[0] = col ? p->y1 + (tau * l2 - (at - p->x1) * dx) / dy
                  : p->x1 + (tau * l2 - (at - p->y1) * dy) / dx;
     return 1;
+}
+
+double go_qags_cuts(const gsl_function *F, double *cut, int n, double lo, double hi,
+                    double epsabs, double epsrel, gsl_integration_workspace *ws)
+{
+    qsort(cut, (size_t)n, sizeof *cut, go_cmp_double);
+    double sum = 0, res, err;
+    for (int k = 0; k + 1 < n; k++) {
+        double a = fmax(cut[k], lo), b = fmin(cut[k + 1], hi);
+        if (!(b > a))
+            continue;
+        gsl_integration_qags(F, a, b, epsabs, epsrel, 1000, ws, &res, &err);
+        sum += res;
+    }
+    return sum;
 }

@@ -9,6 +9,8 @@
 #ifndef AABENCH_TESTS_GRADIENT_ORACLE_H
 #define AABENCH_TESTS_GRADIENT_ORACLE_H
 
+#include <gsl/gsl_integration.h>
+
 /* sRGB's decoding threshold on the encoded value (IEC 61966-2-1) */
 #define GO_T0 0.04045
 
@@ -47,5 +49,12 @@ double go_pic_at(const go_pic *p, double x, double y);
  * tau: the line's one point or the circle's two, written to out; returns
  * how many. */
 int go_tau_meet(const go_pic *p, double tau, int col, double at, double *out);
+
+/* The integral of F over [lo, hi] by GSL's QAGS (tolerances epsabs,
+ * epsrel, at most 1000 subintervals in ws), piece by piece between the n
+ * cuts (sorted here in place): the pieces between neighbouring cuts,
+ * clamped to [lo, hi], summed in ascending order. */
+double go_qags_cuts(const gsl_function *F, double *cut, int n, double lo, double hi,
+                    double epsabs, double epsrel, gsl_integration_workspace *ws);
 
 #endif

@@ -320,16 +320,8 @@ static double pic_y(double y, void *v)
         cut[n++] = p->g.fx; /* t's cone at the focus */
     for (int q = 0; q < 3; q++)
         n += go_tau_meet(&p->g, go_taus[q], 0, y, cut + n);
-    qsort(cut, (size_t)n, sizeof *cut, go_cmp_double);
     gsl_function F = {pic_x, p};
-    double sum = 0, res, err;
-    for (int k = 0; k + 1 < n; k++) {
-        double a = fmax(cut[k], p->uc - c), b = fmin(cut[k + 1], p->uc + c);
-        if (!(b > a))
-            continue;
-        gsl_integration_qags(&F, a, b, 1e-17, 1e-14, 1000, p->wi, &res, &err);
-        sum += res;
-    }
+    double sum = go_qags_cuts(&F, cut, n, p->uc - c, p->uc + c, 1e-17, 1e-14, p->wi);
     return sum;
 }
 
@@ -389,18 +381,10 @@ static double pic_pixel(pic *p, int i, int j)
     }
     for (int q = 0; q < 3; q++)
         n += tau_circle(p, go_taus[q], cut + n);
-    qsort(cut, (size_t)n, sizeof *cut, go_cmp_double);
     p->wi = gsl_integration_workspace_alloc(1000);
     gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
     gsl_function F = {pic_y, p};
-    double sum = 0, res, err;
-    for (int k = 0; k + 1 < n; k++) {
-        double a = fmax(cut[k], p->vc - R), b = fmin(cut[k + 1], p->vc + R);
-        if (!(b > a))
-            continue;
-        gsl_integration_qags(&F, a, b, 1e-17, 1e-13, 1000, wo, &res, &err);
-        sum += res;
-    }
+    double sum = go_qags_cuts(&F, cut, n, p->vc - R, p->vc + R, 1e-17, 1e-13, wo);
     gsl_integration_workspace_free(p->wi);
     gsl_integration_workspace_free(wo);
     return sum;
