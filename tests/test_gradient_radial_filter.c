@@ -407,6 +407,25 @@ static void check_pixels(const char *what, pic *p, const aa_image *ref, const aa
                   p->f->spec, what, npx, worst);
 }
 
+/* The reference of s under each radial filter: every bound within 1e-12
+ * and the pixels px against p's 2-D quadrature. */
+static void check_filters(const aa_scene *s, const char *what, pic *p, const int (*px)[2],
+                          int npx)
+{
+    for (int n = 0; n < NFILT; n++) {
+        filt f = filt_of(n);
+        p->f = &f;
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, f.spec, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        check_pixels(what, p, &ref, &bound, px, npx);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+    }
+    p->f = NULL;
+}
+
 /* A radial gradient centred at C = (7.3, 5.1), radius 4.2, focus F (fr =
  * 0), black to white over the whole plane, against 2-D quadrature at the
  * pixels px under each radial filter. */
@@ -420,17 +439,7 @@ static void radial_2d(const char *what, double fx, double fy, const int (*px)[2]
     set_grad(s, AA_GRADIENT_RADIAL, AA_SPREAD_PAD,
              (const double[6]){p.g.cx, p.g.cy, p.g.r, p.g.fx, p.g.fy, 0}, black_white, 2);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    for (int n = 0; n < NFILT; n++) {
-        filt f = filt_of(n);
-        p.f = &f;
-        aa_image ref, bound;
-        aa_truth_stats stats;
-        reference(s, f.spec, &ref, &bound, &stats);
-        assert_true(stats.max_bound <= 1e-12);
-        check_pixels(what, &p, &ref, &bound, px, npx);
-        aa_image_free(&ref);
-        aa_image_free(&bound);
-    }
+    check_filters(s, what, &p, px, npx);
     aa_scene_free(s);
 }
 
@@ -470,18 +479,7 @@ static void test_linear_2d(void **state)
     /* corners and sides of the rectangle, the ramp's ends, the
      * threshold's line and the middle */
     static const int px[][2] = {{1, 2}, {12, 8}, {3, 3}, {4, 2}, {10, 7}, {7, 5}, {2, 6}, {8, 8}};
-    for (int n = 0; n < NFILT; n++) {
-        filt f = filt_of(n);
-        p.f = &f;
-        aa_image ref, bound;
-        aa_truth_stats stats;
-        reference(s, f.spec, &ref, &bound, &stats);
-        assert_true(stats.max_bound <= 1e-12);
-        check_pixels("linear ramp on a rectangle", &p, &ref, &bound, px,
-                     (int)(sizeof px / sizeof *px));
-        aa_image_free(&ref);
-        aa_image_free(&bound);
-    }
+    check_filters(s, "linear ramp on a rectangle", &p, px, (int)(sizeof px / sizeof *px));
     aa_scene_free(s);
 }
 
