@@ -29,9 +29,9 @@
  *  - an oblique black-to-white linear gradient on a rectangle over a grey
  *    background, under tent:r=1 and the cubic B-spline: single pixels by
  *    GSL's adaptive quadrature in two dimensions (outer rows, inner along
- *    the row), the filter's weight and the picture written out here, cut at
- *    the filter's knots, the rectangle's sides and the lines where t passes
- *    0, 1 and the threshold;
+ *    the row), the filter's weight written out here and the picture in
+ *    tests/gradient_oracle.c, cut at the filter's knots, the rectangle's
+ *    sides and the lines where t passes 0, 1 and the threshold;
  *  - a centred radial gradient black to white over the whole plane under
  *    tent:r=1: single pixels by the same 2-D quadrature in the picture's
  *    own polar form (t = distance / r), cut at the circles t = 1 and t =
@@ -40,6 +40,7 @@
  * The radial filters: tests/test_gradient_radial_filter.c.
  */
 #include "core.h"
+#include "gradient_oracle.h"
 #include "support.h"
 #include "truth.h"
 
@@ -57,29 +58,12 @@
 
 #define W 16
 #define H 12
-#define T0 0.04045
 
 static int setup(void **state)
 {
     (void)state;
     gsl_set_error_handler_off();
     return 0;
-}
-
-/* sRGB's decoding (IEC 61966-2-1), written out here. */
-static double dec(double e)
-{
-    if (e <= 0.0)
-        return 0.0;
-    if (e >= 1.0)
-        return 1.0;
-    return e <= T0 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 /* ---- the filters, from their definitions (patterns/README.md, "Filters") ---- */
@@ -255,7 +239,7 @@ static long double piece_1d(const long double c[4], double uc, double a, double 
         return s;
     }
     /* t = alpha + beta z for z = v (below T) or u (above) */
-    int above = vm > T0;
+    int above = vm > GO_T0;
     long double alpha = above ? (long double)a - uc - 0.055L * L : (long double)a - uc,
                 beta = above ? 1.055L * L : (long double)L;
     long double r[4] = {0, 0, 0, 0}; /* p in z: sum c_k (alpha + beta z)^k */
@@ -284,7 +268,7 @@ typedef struct ramp_ctx {
 static double ramp_integrand(double x, void *v)
 {
     const ramp_ctx *c = v;
-    return weight(c->f, x - c->uc) * dec((x - c->a) / c->L);
+    return weight(c->f, x - c->uc) * go_dec((x - c->a) / c->L);
 }
 
 /* The 1-D integral of w(x - uc) dec(ramp) over the filter's support. */
@@ -296,14 +280,14 @@ static double ramp_1d(const filt *f, double uc, double a, double b)
     cut[n++] = uc + f->R;
     for (int k = 0; k < f->nknots; k++)
         cut[n++] = uc + f->knots[k];
-    double L = b - a, ends[3] = {a, b, a + T0 * L};
+    double L = b - a, ends[3] = {a, b, a + GO_T0 * L};
     for (int k = 0; k < 3; k++)
         if (ends[k] > uc - f->R && ends[k] < uc + f->R)
             cut[n++] = ends[k];
     if (f->kind == F_LANCZOS2 || f->kind == F_LANCZOS3 || f->kind == F_GAUSS)
         for (double t = -f->R; t <= f->R; t += 0.5)
             cut[n++] = uc + t;
-    qsort(cut, (size_t)n, sizeof *cut, cmp_double);
+    qsort(cut, (size_t)n, sizeof *cut, go_cmp_double);
     long double sum = 0;
     gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
     ramp_ctx rc = {f, uc, a, L};
@@ -426,63 +410,20 @@ static void test_constant(void **state)
 
 /* ---- 2-D quadrature of single pixels ---- */
 
-/* The picture: linear (rectangle rc over a grey background, t the
- * projection on P1 P2) or radial (centred at (cx, cy), radius r, over the
- * whole plane); black to white, padded. */
+/* The picture (tests/gradient_oracle.h) under the filter f about the
+ * pixel's centre (uc, vc), at the row y of the outer integral. */
 typedef struct pic {
-    int radial;
-    double x1, y1, x2, y2; /* linear */
-    double rc[4], bg;      /* linear: the rectangle, the background's linear value */
-    double cx, cy, r;      /* radial */
+    go_pic g;
     const filt *f;
     double uc, vc, y;
     gsl_integration_workspace *wi;
 } pic;
 
-static double pic_t(const pic *p, double x, double y)
-{
-    if (p->radial)
-        return hypot(x - p->cx, y - p->cy) / p->r;
-    double dx = p->x2 - p->x1, dy = p->y2 - p->y1;
-    return ((x - p->x1) * dx + (y - p->y1) * dy) / (dx * dx + dy * dy);
-}
-
-static double pic_at(const pic *p, double x, double y)
-{
-    if (!p->radial && !(x > p->rc[0] && x < p->rc[2] && y > p->rc[1] && y < p->rc[3]))
-        return p->bg;
-    double t = pic_t(p, x, y);
-    return dec(t < 0 ? 0 : t > 1 ? 1 : t);
-}
-
 static double pic_x(double x, void *v)
 {
     const pic *p = v;
-    return weight(p->f, x - p->uc) * pic_at(p, x, p->y);
+    return weight(p->f, x - p->uc) * go_pic_at(&p->g, x, p->y);
 }
-
-/* Where a row y (or the column x, with col) meets the curve t = tau: the
- * line's one point or the circle's two; count into out. */
-static int tau_meet(const pic *p, double tau, int col, double at, double *out)
-{
-    if (p->radial) {
-        double rr = tau * p->r, d = col ? at - p->cx : at - p->cy, h = rr * rr - d * d;
-        if (h <= 0)
-            return 0;
-        double c = col ? p->cy : p->cx;
-        out[0] = c - sqrt(h), out[1] = c + sqrt(h);
-        return 2;
-    }
-    double dx = p->x2 - p->x1, dy = p->y2 - p->y1, l2 = dx * dx + dy * dy;
-    double k = col ? dy : dx;
-    if (k == 0)
-        return 0;
-    out[0] = col ? p->y1 + (tau * l2 - (at - p->x1) * dx) / dy
-                 : p->x1 + (tau * l2 - (at - p->y1) * dy) / dx;
-    return 1;
-}
-
-static const double taus[3] = {0.0, T0, 1.0};
 
 static double pic_y(double y, void *v)
 {
@@ -493,22 +434,14 @@ static double pic_y(double y, void *v)
     cut[n++] = p->uc - R, cut[n++] = p->uc + R;
     for (int k = 0; k < p->f->nknots; k++)
         cut[n++] = p->uc + p->f->knots[k];
-    if (!p->radial)
-        cut[n++] = p->rc[0], cut[n++] = p->rc[2];
+    if (!p->g.radial)
+        cut[n++] = p->g.rc[0], cut[n++] = p->g.rc[2];
     else
-        cut[n++] = p->cx;
+        cut[n++] = p->g.cx;
     for (int q = 0; q < 3; q++)
-        n += tau_meet(p, taus[q], 0, y, cut + n);
-    qsort(cut, (size_t)n, sizeof *cut, cmp_double);
+        n += go_tau_meet(&p->g, go_taus[q], 0, y, cut + n);
     gsl_function F = {pic_x, p};
-    double sum = 0, res, err;
-    for (int k = 0; k + 1 < n; k++) {
-        double a = fmax(cut[k], p->uc - R), b = fmin(cut[k + 1], p->uc + R);
-        if (!(b > a))
-            continue;
-        gsl_integration_qags(&F, a, b, 1e-16, 1e-14, 1000, p->wi, &res, &err);
-        sum += res;
-    }
+    double sum = go_qags_cuts(&F, cut, n, p->uc - R, p->uc + R, 1e-16, 1e-14, p->wi);
     return weight(p->f, y - p->vc) * sum;
 }
 
@@ -522,31 +455,23 @@ static double pic_pixel(pic *p, int i, int j)
     for (int k = 0; k < p->f->nknots; k++)
         cut[n++] = p->vc + p->f->knots[k], X[nx++] = p->uc + p->f->knots[k];
     X[nx++] = p->uc - R, X[nx++] = p->uc + R;
-    if (!p->radial) {
-        cut[n++] = p->rc[1], cut[n++] = p->rc[3];
-        X[nx++] = p->rc[0], X[nx++] = p->rc[2];
+    if (!p->g.radial) {
+        cut[n++] = p->g.rc[1], cut[n++] = p->g.rc[3];
+        X[nx++] = p->g.rc[0], X[nx++] = p->g.rc[2];
     } else {
-        cut[n++] = p->cy;
-        X[nx++] = p->cx;
+        cut[n++] = p->g.cy;
+        X[nx++] = p->g.cx;
         for (int q = 0; q < 3; q++) /* the circles' top and bottom rows */
-            cut[n++] = p->cy - taus[q] * p->r, cut[n++] = p->cy + taus[q] * p->r;
+            cut[n++] = p->g.cy - go_taus[q] * p->g.r, cut[n++] = p->g.cy + go_taus[q] * p->g.r;
     }
     /* where each curve t = tau crosses each of those vertical lines */
     for (int q = 0; q < 3; q++)
         for (int k = 0; k < nx; k++)
-            n += tau_meet(p, taus[q], 1, X[k], cut + n);
-    qsort(cut, (size_t)n, sizeof *cut, cmp_double);
+            n += go_tau_meet(&p->g, go_taus[q], 1, X[k], cut + n);
     p->wi = gsl_integration_workspace_alloc(1000);
     gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
     gsl_function F = {pic_y, p};
-    double sum = 0, res, err;
-    for (int k = 0; k + 1 < n; k++) {
-        double a = fmax(cut[k], p->vc - R), b = fmin(cut[k + 1], p->vc + R);
-        if (!(b > a))
-            continue;
-        gsl_integration_qags(&F, a, b, 1e-16, 1e-13, 1000, wo, &res, &err);
-        sum += res;
-    }
+    double sum = go_qags_cuts(&F, cut, n, p->vc - R, p->vc + R, 1e-16, 1e-13, wo);
     gsl_integration_workspace_free(p->wi);
     gsl_integration_workspace_free(wo);
     return sum;
@@ -581,11 +506,11 @@ static void test_linear_2d(void **state)
     const double bgl = 0.2;
     aa_scene *s = aa_scene_new((aa_rgb){{bgl, bgl, bgl}});
     pic p = {0};
-    p.rc[0] = 1.5, p.rc[1] = 2.25, p.rc[2] = 14.75, p.rc[3] = 10.5, p.bg = bgl;
-    p.x1 = 3.1, p.y1 = 2.0, p.x2 = 13.4, p.y2 = 9.7;
-    rect_px(s, p.rc[0], p.rc[1], p.rc[2], p.rc[3]);
-    set_grad(s, AA_GRADIENT_LINEAR, (const double[6]){p.x1, p.y1, p.x2, p.y2, 0, 0}, black_white,
-             2);
+    p.g.rc[0] = 1.5, p.g.rc[1] = 2.25, p.g.rc[2] = 14.75, p.g.rc[3] = 10.5, p.g.bg = bgl;
+    p.g.x1 = 3.1, p.g.y1 = 2.0, p.g.x2 = 13.4, p.g.y2 = 9.7;
+    rect_px(s, p.g.rc[0], p.g.rc[1], p.g.rc[2], p.g.rc[3]);
+    set_grad(s, AA_GRADIENT_LINEAR, (const double[6]){p.g.x1, p.g.y1, p.g.x2, p.g.y2, 0, 0},
+             black_white, 2);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     /* corners and sides of the rectangle, the ramp's ends (t = 0 near (3,
      * 2), t = 1 near (13, 10)), the threshold's line and the middle */
@@ -613,9 +538,9 @@ static void test_radial_2d(void **state)
     (void)state;
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
     pic p = {0};
-    p.radial = 1, p.cx = 8.3, p.cy = 6.1, p.r = 5.2;
+    p.g.radial = 1, p.g.cx = 8.3, p.g.cy = 6.1, p.g.r = 5.2, p.g.fx = p.g.cx, p.g.fy = p.g.cy;
     rect_px(s, -8, -8, W + 8, H + 8);
-    set_grad(s, AA_GRADIENT_RADIAL, (const double[6]){p.cx, p.cy, p.r, p.cx, p.cy, 0},
+    set_grad(s, AA_GRADIENT_RADIAL, (const double[6]){p.g.cx, p.g.cy, p.g.r, p.g.cx, p.g.cy, 0},
              black_white, 2);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     filt f = make_filt(F_TENT);
