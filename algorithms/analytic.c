@@ -744,16 +744,24 @@ static double right_of(const an_state *S, const aa_piece *p, double ya, double y
     return sum;
 }
 
-static void an_band(void *ctx, double ya, double yb, const int *wind)
+/* A band of rows [ya, yb] across the whole window, of one state: its
+ * colour times the filter's weight of those rows (wy, the marginal's
+ * difference), under the separable filters (an_band) and the radial ones
+ * (rad_band). */
+static void add_band(an_pixel *P, double wy, const int *wind)
 {
-    an_pixel *P = ctx;
-    const an_pp *pp = &P->R->S->pp;
-    double wy = an_cdf(pp, yb - P->cy) - an_cdf(pp, ya - P->cy);
     if (!(wy != 0.0))
         return;
     aa_rgb c = aa_scene_colour_of(P->R->scene, wind);
     for (int ch = 0; ch < 3; ch++)
         P->acc[ch] += wy * c.c[ch];
+}
+
+static void an_band(void *ctx, double ya, double yb, const int *wind)
+{
+    an_pixel *P = ctx;
+    const an_pp *pp = &P->R->S->pp;
+    add_band(P, an_cdf(pp, yb - P->cy) - an_cdf(pp, ya - P->cy), wind);
 }
 
 static void an_run(void *ctx, const aa_piece *p, double ya, double yb, const double *jump,
@@ -1002,12 +1010,7 @@ static void rad_band(void *ctx, double ya, double yb, const int *wind)
 {
     an_pixel *P = ctx;
     const an_state *S = P->R->S;
-    double wy = rad_marg(S, yb - P->cy) - rad_marg(S, ya - P->cy);
-    if (!(wy != 0.0))
-        return;
-    aa_rgb c = aa_scene_colour_of(P->R->scene, wind);
-    for (int ch = 0; ch < 3; ch++)
-        P->acc[ch] += wy * c.c[ch];
+    add_band(P, rad_marg(S, yb - P->cy) - rad_marg(S, ya - P->cy), wind);
 }
 
 static void rad_run(void *ctx, const aa_piece *p, double ya, double yb, const double *jump,
