@@ -618,7 +618,8 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     const aa_piece *q = p->src;
     double t = q->ot0;
     if (p->y0 < ja)
-        t = (double)aa__offset_solve_end(&q->oc, 1, q->ot0, q->ot1, p->y0 - ja, ja, p->oend);
+        t = (double)aa__offset_root_fix(&q->oc, &p->ofix, 1, q->ot0, q->ot1, p->y0 - ja, ja, NAN,
+                                        p->oend, NULL, NULL);
     long double X, Y;
     offset_point(p, t, &X, &Y);
     double c0 = floor((double)X);
@@ -751,8 +752,9 @@ static double line_tau_curved(const ar_seg *a, int m)
         const aa_piece *q = a->p->src;
         if (m == 0 && a->p->y0 < a->ja)
             return a->g;
-        return a->p->sg * (double)aa__offset_solve_end(&q->oc, 1, q->ot0, q->ot1,
-                                                         a->p->y0 + c, -c, a->p->oend);
+        return a->p->sg * (double)aa__offset_root_fix(&q->oc, &a->p->ofix, 1, q->ot0, q->ot1,
+                                                        a->p->y0 + c, -c, NAN, a->p->oend, NULL,
+                                                        NULL);
     }
     if (a->p->conic)
         return conic_q_of_v(a, c);
@@ -2050,6 +2052,7 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
     q->sg = p->ot1 > p->ot0 ? 1.0 : -1.0;
     aa__offset_end(&p->oc, 1, p->ot1, q->oend);
     q->ostops = aa__offset_stops(&p->oc);
+    aa__offset_fix_init(&p->oc, &q->ofix);
     double ts[2];
     int n = aa__offset_turns(&p->oc, 0, fmin(p->ot0, p->ot1), fmax(p->ot0, p->ot1), ts);
     q->ote = q->ote2 = INFINITY;

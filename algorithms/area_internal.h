@@ -101,8 +101,10 @@ typedef struct ar_piece {
      * where x turns (ascending, infinite if none); its panels (npan of
      * them, state-owned) and the rules (area_offset.c); oend: y's
      * evaluation at its bottom ot1 (aa__offset_end), which every band
-     * line's root would repeat */
+     * line's root would repeat; ofix: what its roots take from the curve
+     * alone (aa__offset_fix_init) */
     int offset, ostops; /* ostops: its curve's stops (aa__offset_stops) */
+    aa__offset_fix ofix;
     double sg, ote, ote2;
     double oend[4];
     const ar_panel *pan;
@@ -503,8 +505,8 @@ static inline double offset_tau(const ar_seg *s, int coord, double a, double b, 
                                 double target)
 {
     double sg = s->p->sg;
-    return sg * (double)aa__offset_solve_from(&s->p->src->oc, coord, sg * a, sg * b, fa, target,
-                                              NAN);
+    return sg * (double)aa__offset_root_fix(&s->p->src->oc, &s->p->ofix, coord, sg * a, sg * b,
+                                            fa, target, NAN, NULL, NULL, NULL);
 }
 
 /* offset_tau where x is target (a cell's side), keeping v there as the
@@ -513,8 +515,8 @@ static inline double offset_tau_u(const ar_seg *s, double a, double b, double fa
 {
     double sg = s->p->sg;
     long double y;
-    double t = sg * (double)aa__offset_root(&s->p->src->oc, 0, sg * a, sg * b, fa, target, NAN,
-                                            &y, NULL);
+    double t = sg * (double)aa__offset_root_fix(&s->p->src->oc, &s->p->ofix, 0, sg * a, sg * b,
+                                                fa, target, NAN, NULL, &y, NULL);
     offset_keep(s, t, (double)(y + s->V));
     return t;
 }
@@ -557,8 +559,8 @@ static inline double key_u(const ar_seg *s, double v)
         return u_at(s, tau_of_v(s, v));
     double sg = s->p->sg;
     long double x;
-    aa__offset_root(&s->p->src->oc, 1, sg * s->ta, sg * s->tb, s->va - v, v - s->V, NAN, &x,
-                    NULL);
+    aa__offset_root_fix(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb, s->va - v,
+                        v - s->V, NAN, NULL, &x, NULL);
     return (double)(x - s->c0);
 }
 

@@ -786,6 +786,24 @@ long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long dou
 long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta, long double tb,
                             long double fa, long double target, double guess, long double *other,
                             double *slope);
+/* What the solvers take from the curve alone, found once a curve
+ * (aa__offset_fix_init) by a caller that solves on it many times: its
+ * stops (aa__offset_stops) and the sums of the magnitudes of its x and y
+ * terms (the scale of the double phase's test for a value within rounding
+ * of the target).  The same numbers the solvers find themselves, so the
+ * same roots, bit for bit. */
+typedef struct aa__offset_fix {
+    int stops;
+    double sx, sy;
+} aa__offset_fix;
+void aa__offset_fix_init(const aa_offset_curve *oc, aa__offset_fix *fx);
+/* aa__offset_root given oc's aa__offset_fix and, where endb is not NULL,
+ * aa__offset_end's e at tb (then without a guess: as
+ * aa__offset_solve_end). */
+long double aa__offset_root_fix(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                                long double ta, long double tb, long double fa,
+                                long double target, double guess, const double *endb,
+                                long double *other, double *slope);
 /* Coordinate coord of oc at t as the double phase of the solvers first
  * evaluates it at a bracket's far end (e[4], opaque): for a caller that
  * solves for many targets in one bracket [ta, tb] (a piece's band lines),

@@ -222,6 +222,31 @@ int aa__offset_stops(const aa_offset_curve *oc)
     return stop_ends(oc);
 }
 
+/* The terms' sizes solve_double takes for its rounding test: a cubic's x
+ * and y coefficients, an ellipse's centre and semi-diameters (x in b[0],
+ * b[2], b[4], y in the others), each the sum of their magnitudes. */
+static inline void term_sizes(const aa_offset_curve *oc, double *sx, double *sy)
+{
+    const double *c = oc->b;
+    int ell = oc->base == AA_OFFSET_ELLIPSE;
+    *sx = ell ? fabs(c[0]) + fabs(c[2]) + fabs(c[4])
+              : fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3]);
+    *sy = ell ? fabs(c[1]) + fabs(c[3]) + fabs(c[5])
+              : fabs(c[4]) + fabs(c[5]) + fabs(c[6]) + fabs(c[7]);
+}
+
+static __attribute__((always_inline)) inline void fix_init(const aa_offset_curve *oc,
+                                                          aa__offset_fix *fx)
+{
+    fx->stops = stop_ends(oc);
+    term_sizes(oc, &fx->sx, &fx->sy);
+}
+
+void aa__offset_fix_init(const aa_offset_curve *oc, aa__offset_fix *fx)
+{
+    fix_init(oc, fx);
+}
+
 void aa__offset_eval_s(const aa_offset_curve *oc, int stops, long double t, long double *x,
                        long double *y, long double *dx, long double *dy)
 {
@@ -422,21 +447,14 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * any bracket of the parameter (a few units wide) to reach two adjacent
  * long doubles, 64 halvings and more */
 #define ROOT_LD_STEPS 200
-static double solve_double(const aa_offset_curve *oc, int coord, int stops, double a, double b,
-                           double fa, double tgt, double guess, double tol, const double *endb,
-                           double *pa, double *pb, double *last)
+static double solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                           double a, double b, double fa, double tgt, double guess, double tol,
+                           const double *endb, double *pa, double *pb, double *last)
 {
-    const double *c = oc->b;
-    int neg = fa < 0;
+    int neg = fa < 0, stops = fx->stops;
     double t = 0.5 * (a + b), prev = fabs(b - a), f, df, dn;
-    /* the terms' size: a cubic's x and y coefficients, an ellipse's
-     * centre and semi-diameters (x in c[0], c[2], c[4], y in the others) */
-    int ell = oc->base == AA_OFFSET_ELLIPSE;
-    double sx = ell ? fabs(c[0]) + fabs(c[2]) + fabs(c[4])
-                    : fabs(c[0]) + fabs(c[1]) + fabs(c[2]) + fabs(c[3]);
-    double sy = ell ? fabs(c[1]) + fabs(c[3]) + fabs(c[5])
-                    : fabs(c[4]) + fabs(c[5]) + fabs(c[6]) + fabs(c[7]);
-    double size = fabs(oc->m[coord]) * sx + fabs(oc->m[2 + coord]) * sy +
+    /* the terms' size (term_sizes, the curve's, once) */
+    double size = fabs(oc->m[coord]) * fx->sx + fabs(oc->m[2 + coord]) * fx->sy +
                   fabs(oc->m[4 + coord]) + fabs(tgt);
     /* b unseen: the caller's end, its sign taken on trust and not
      * evaluated (with a guess); a Newton step past it goes to it */
@@ -514,20 +532,24 @@ double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, doubl
                           double target)
 {
     double a, b, last;
+    aa__offset_fix fx;
     if (fa == 0)
         return ta;
-    return solve_double(oc, coord, stop_ends(oc), ta, tb, fa, target, NAN, SOLVE_D_STEP, NULL, &a,
-                        &b, &last);
+    fix_init(oc, &fx);
+    return solve_double(oc, &fx, coord, ta, tb, fa, target, NAN, SOLVE_D_STEP, NULL, &a, &b,
+                        &last);
 }
 
 double aa__offset_solve_dg(const aa_offset_curve *oc, int coord, double ta, double tb, double fa,
                            double target, double guess)
 {
     double a, b, last;
+    aa__offset_fix fx;
     if (fa == 0)
         return ta;
-    return solve_double(oc, coord, stop_ends(oc), ta, tb, fa, target, guess, SOLVE_D_STEP, NULL,
-                        &a, &b, &last);
+    fix_init(oc, &fx);
+    return solve_double(oc, &fx, coord, ta, tb, fa, target, guess, SOLVE_D_STEP, NULL, &a, &b,
+                        &last);
 }
 
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
@@ -536,26 +558,40 @@ long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long dou
     return aa__offset_root(oc, coord, ta, tb, fa, target, guess, NULL, NULL);
 }
 
-static long double offset_root(const aa_offset_curve *oc, int coord, long double ta,
-                               long double tb, long double fa, long double target, double guess,
-                               const double *endb, long double *other, double *slope);
+static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                               long double ta, long double tb, long double fa, long double target,
+                               double guess, const double *endb, long double *other,
+                               double *slope);
 
 long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta, long double tb,
                             long double fa, long double target, double guess, long double *other,
                             double *slope)
 {
-    return offset_root(oc, coord, ta, tb, fa, target, guess, NULL, other, slope);
+    aa__offset_fix fx;
+    fix_init(oc, &fx);
+    return offset_root(oc, &fx, coord, ta, tb, fa, target, guess, NULL, other, slope);
+}
+
+long double aa__offset_root_fix(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                                long double ta, long double tb, long double fa,
+                                long double target, double guess, const double *endb,
+                                long double *other, double *slope)
+{
+    return offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, other, slope);
 }
 
 long double aa__offset_solve_end(const aa_offset_curve *oc, int coord, double ta, double tb,
                                  long double fa, long double target, const double endb[4])
 {
-    return offset_root(oc, coord, ta, tb, fa, target, NAN, endb, NULL, NULL);
+    aa__offset_fix fx;
+    fix_init(oc, &fx);
+    return offset_root(oc, &fx, coord, ta, tb, fa, target, NAN, endb, NULL, NULL);
 }
 
-static long double offset_root(const aa_offset_curve *oc, int coord, long double ta,
-                               long double tb, long double fa, long double target, double guess,
-                               const double *endb, long double *other, double *slope)
+static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                               long double ta, long double tb, long double fa, long double target,
+                               double guess, const double *endb, long double *other,
+                               double *slope)
 {
     /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
      * (either may be 0).  Newton's method in double (solve_double, to a
@@ -580,11 +616,11 @@ static long double offset_root(const aa_offset_curve *oc, int coord, long double
      * that), and at |h| <= 1e-11 (t is in [0, 1]) about 1e-22 of that
      * second derivative. */
     long double X, Y, DX = 0, DY = 0, lt = ta;
-    int neg = fa < 0, stops = stop_ends(oc); /* asked once a root */
+    int neg = fa < 0, stops = fx->stops; /* asked once a curve (aa__offset_fix_init) */
     if (fa == 0)
         goto at_lt;
     double a, b, h1;
-    lt = solve_double(oc, coord, stops, (double)ta, (double)tb, (double)fa, (double)target, guess,
+    lt = solve_double(oc, fx, coord, (double)ta, (double)tb, (double)fa, (double)target, guess,
                       ROOT_D_STEP, endb, &a, &b, &h1);
     /* long double: the bracket is the caller's, [ta, tb], not what the
      * double phase left: the signs that shrank it are double's, wrong
@@ -621,7 +657,7 @@ static long double offset_root(const aa_offset_curve *oc, int coord, long double
             next = mid;
         } else if (h <= 1e-13L * fabsl(lt) + 1e-30L ||
                    (h1 > 0 && h <= 1e-11L && h <= 1e-3L * h1 &&
-                    h * h * h <= 1e-21L * h1 * h1 * fmaxl(fabsl(lt), 1))) {
+                    h * h * h <= 1e-21L * h1 * h1 * (fabsl(lt) > 1 ? fabsl(lt) : 1))) {
             if (other)
                 *other = (coord ? X + DX * (next - lt) : Y + DY * (next - lt));
             if (slope)
