@@ -344,6 +344,82 @@ static void test_stops(void **state)
             }
 }
 
+/* aa__offset_root_fix given aa__offset_fix_init's terms against the
+ * solvers that find them at every root (aa__offset_root, with and without
+ * a guess; aa__offset_solve_end given aa__offset_end's value at the far
+ * end): the same root, the same other coordinate and slope, bit for bit,
+ * on test_stops' curves (offsets and evolutes, two maps), x and y, over 16
+ * brackets of 1/32 each; the stops expected by construction as there, and
+ * the terms' sizes the sums of the magnitudes of the x and the y terms
+ * (a cubic's coefficients b[0..3] and b[4..7]; an ellipse's centre and
+ * semi-diameters, x in b[0], b[2], b[4]). */
+static void test_fix(void **state)
+{
+    (void)state;
+    static const double bs[5][8] = {{0, 0, 3, -1, 0, 0, 3, -3},
+                                    {2, -3, 0, 1, 0, 3, -6, 3},
+                                    {0x1.999999999999ap-3, 0x1.cccccccccccc9p-1,
+                                     -0x1.cccccccccccc5p-1, 0x1.333333333332bp-2, 0x1p-2,
+                                     0x1.cccccccccccc8p-1, -0x1.cccccccccccc3p-2, 0},
+                                    {0, 3, 0, 0, 0, 6, -15, 9},
+                                    {0.5, 0.5, 0.3, 0.1, -0.05, 0.2, 0, 0}};
+    static const int want[5] = {1, 2, 2, 0, 0};
+    static const double maps[2][6] = {{64, 0, 0, 64, 0, 0}, {64, 5, -7, 60, 3, 2}};
+    int roots = 0;
+    for (int c = 0; c < 5; c++)
+        for (int e = 0; e < 2; e++)
+            for (int k = 0; k < 2; k++) {
+                aa_offset_curve oc;
+                memset(&oc, 0, sizeof oc);
+                memcpy(oc.b, bs[c], sizeof oc.b);
+                memcpy(oc.m, maps[k], sizeof oc.m);
+                oc.d = 0.1;
+                oc.evolute = e;
+                oc.base = c == 4 ? AA_OFFSET_ELLIPSE : AA_OFFSET_CUBIC;
+                aa__offset_fix fx;
+                aa__offset_fix_init(&oc, &fx);
+                const double *b = bs[c];
+                double sx = c == 4 ? fabs(b[0]) + fabs(b[2]) + fabs(b[4])
+                                   : fabs(b[0]) + fabs(b[1]) + fabs(b[2]) + fabs(b[3]);
+                double sy = c == 4 ? fabs(b[1]) + fabs(b[3]) + fabs(b[5])
+                                   : fabs(b[4]) + fabs(b[5]) + fabs(b[6]) + fabs(b[7]);
+                assert_int_equal(fx.stops, want[c]);
+                assert_true(fx.sx == sx && fx.sy == sy);
+                for (int i = 0; i < 16; i++)
+                    for (int coord = 0; coord < 2; coord++) {
+                        long double ta = i / 16.0L + 1 / 64.0L, tb = ta + 1 / 32.0L;
+                        long double X, Y, DX, DY;
+                        aa__offset_eval(&oc, ta, &X, &Y, &DX, &DY);
+                        long double va = coord ? Y : X;
+                        aa__offset_eval(&oc, tb, &X, &Y, &DX, &DY);
+                        long double vb = coord ? Y : X, target = 0.5L * (va + vb);
+                        if (!(va < target && target < vb) && !(vb < target && target < va))
+                            continue;
+                        long double fa = va - target, o0, o1;
+                        double s0, s1, guess = (double)(ta + 0.3L * (tb - ta));
+                        long double r0 = aa__offset_root(&oc, coord, ta, tb, fa, target, NAN,
+                                                         &o0, &s0);
+                        long double r1 = aa__offset_root_fix(&oc, &fx, coord, ta, tb, fa, target,
+                                                             NAN, NULL, &o1, &s1);
+                        assert_true(r0 == r1 && o0 == o1 && s0 == s1);
+                        r0 = aa__offset_root(&oc, coord, ta, tb, fa, target, guess, &o0, &s0);
+                        r1 = aa__offset_root_fix(&oc, &fx, coord, ta, tb, fa, target, guess,
+                                                 NULL, &o1, &s1);
+                        assert_true(r0 == r1 && o0 == o1 && s0 == s1);
+                        double end[4];
+                        aa__offset_end(&oc, coord, (double)tb, end);
+                        r0 = aa__offset_solve_end(&oc, coord, (double)ta, (double)tb, fa, target,
+                                                  end);
+                        r1 = aa__offset_root_fix(&oc, &fx, coord, ta, tb, fa, target, NAN, end,
+                                                 NULL, NULL);
+                        assert_true(r0 == r1);
+                        roots++;
+                    }
+            }
+    print_message("%d brackets, each root the same bit for bit\n", roots);
+    assert_true(roots > 200);
+}
+
 /* One pixel of tests/bench_bezstroke.c's scene, (716, 793) at 1024 px: the
  * stroke (2.5 px, round joins) of three of its cubics, subpath 15's 35th to
  * 37th (the same numbers as the benchmark's), against an answer derived
@@ -491,6 +567,7 @@ int main(void)
                                        cmocka_unit_test(test_meetings),
                                        cmocka_unit_test(test_root),
                                        cmocka_unit_test(test_stops),
+                                       cmocka_unit_test(test_fix),
                                        cmocka_unit_test(test_vertex)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
