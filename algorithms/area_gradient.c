@@ -251,6 +251,16 @@ int area_gradient_load(ar_state *S, const aa_scene *scene)
                            "a pixel has no closed form; area refuses it rather than approximate "
                            "(linear gradients are exact; use point, supersample or jitter)",
                            l);
+        if (aa_scene_layer_gradient_interpolation(scene, l) != AA_INTERPOLATE_SRGB) {
+            const char *src = aa_scene_layer_gradient_source(scene, l);
+            return aa_fail(AA_EINVAL,
+                           "area: layer %d's gradient%s%s%s interpolates its stops in linear "
+                           "light (color-interpolation: linearRGB): its encoded colour "
+                           "encode(l(t)) composited and decoded has no closed-form integral "
+                           "in general; area refuses it rather than approximate (use point, "
+                           "supersample or jitter)",
+                           l, *src ? " (" : "", src, *src ? ")" : "");
+        }
         S->gof[l] = ng;
         S->ngrad = ++ng;
         int st = load_one(&S->grad[ng - 1], l, &g);
