@@ -349,8 +349,13 @@ static void test_stop_opacity(void **state)
 /* ---- methods ---- */
 
 /* point and supersample draw it (they sample the scene): on pixels without
- * a kink the grid's mean of the opaque ramp is exact; area, cairo and agg
- * refuse it naming linear light, and FreeType and stb gradient paint. */
+ * a kink the grid's mean of the opaque ramp is exact; area draws the opaque
+ * ramp with nothing over it exactly (algorithms/area_gradient.c, "linear
+ * light": decode(encode(v)) = v) within 1e-12 of the reference on every
+ * pixel, the kinks' too, and a black-to-white ramp crossing 0.0031308 inside
+ * a pixel (where the standard's two pieces do not meet); it refuses the
+ * layer at alpha 1/2 at its first pixel, naming linear light; cairo and agg refuse
+ * it naming linear light. */
 static void test_methods(void **state)
 {
     (void)state;
@@ -379,8 +384,43 @@ static void test_methods(void **state)
             fail_msg("%s: %.3g from the reference", sampling[k], worst);
         aa_image_free(&img);
     }
-    static const char *const refusing[] = {"area", "cairo", "agg"};
-    for (int k = 0; k < 3; k++) {
+    for (int pair = 0; pair < 2; pair++) {
+        aa_scene *s2 = s;
+        if (pair) { /* black to white over 400 px, v = 0.0031308 at x = 0.5 */
+            s2 = aa_scene_new((aa_rgb){{0, 0, 0}});
+            rect_px(s2, 0, 0, W, H);
+            grad_px(s2, AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                    (const double[6]){0.5 - 0.0031308 * 400, 0, 400.5 - 0.0031308 * 400, 0, 0,
+                                      0},
+                    black_white, 2);
+            assert_int_equal(aa_scene_finish(s2), AA_OK);
+        }
+        print_message("area, %s:\n", pair ? "black to white across 0.0031308" : "red to blue");
+        support_method_against_reference("area", pair ? "across" : "red to blue", s2, W, H,
+                                         NULL);
+        if (pair)
+            aa_scene_free(s2);
+    }
+    {
+        aa_scene *s3 = aa_scene_new((aa_rgb){{0, 0, 0}});
+        rect_px(s3, 0, 0, W, H);
+        grad_px(s3, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){a, 0, b, 0, 0, 0},
+                red_blue, 2);
+        assert_int_equal(aa_scene_set_alpha(s3, 0.5), AA_OK);
+        assert_int_equal(aa_scene_finish(s3), AA_OK);
+        const support_view v = {.w = W, .h = H, .filter = "box", .seed = 1, .threads = 1};
+        aa_image img;
+        int st = support_render_view("area", s3, &v, &img, NULL);
+        print_message("area at alpha 1/2: %s\n", aa_last_error());
+        assert_int_equal(st, AA_EINVAL);
+        /* the first pixel: its region's composite is checked for every
+         * stop segment, not only where t lies */
+        assert_non_null(strstr(aa_last_error(), "pixel (0, 0)"));
+        assert_non_null(strstr(aa_last_error(), "linear light"));
+        aa_scene_free(s3);
+    }
+    static const char *const refusing[] = {"cairo", "agg"};
+    for (int k = 0; k < 2; k++) {
         const support_view v = {.w = W, .h = H, .filter = "box", .seed = 1, .threads = 1};
         aa_image img;
         int st = support_render_view(refusing[k], s, &v, &img, NULL);
