@@ -24,7 +24,7 @@ extern "C" {
 
 /* The interface version a plug-in is built for; the command refuses a
  * plug-in built for another.  Raised whenever a type below changes layout. */
-#define AA_PLUGIN_ABI 8
+#define AA_PLUGIN_ABI 9
 
 /* ------------------------------------------------------------------------
  * Status and errors
