@@ -1986,6 +1986,15 @@ static int gradient_refusal(const ar_state *S)
                        "has no closed form; refused, not approximated (use point, "
                        "supersample or jitter)",
                        f->gi, f->gj, f->ga, f->gb);
+    if (f->gerr == AR_GERR_LINEAR_LIGHT)
+        return aa_fail(AA_EINVAL,
+                       "area: pixel (%d, %d): layer %d's gradient in linear light "
+                       "(color-interpolation: linearRGB) shows there translucent or under "
+                       "something translucent, where its encoded colour composited and "
+                       "decoded has no closed-form integral (area draws it exactly where it "
+                       "shows opaque with nothing over it); refused, not approximated (use "
+                       "point, supersample or jitter)",
+                       f->gi, f->gj, f->ga);
     if (f->gerr == AR_GERR_EDGES)
         return aa_fail(AA_EINVAL,
                        "area: pixel (%d, %d) of a gradient scene holds more than %d edges, "

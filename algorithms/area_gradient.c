@@ -106,6 +106,25 @@
  * naming the pixel (the bands, which take such pixels in flat scenes,
  * integrate constant colours only).  A gradient passing more than
  * AR_GKNOTS knots across a pixel is refused at load.
+ *
+ * Linear light.  A gradient whose stops interpolate in linear light
+ * (aa_scene_layer_gradient_interpolation) paints C = encode(v), v its
+ * linear channel affine in t between stops.  Where nothing translucent
+ * lies over it and it is opaque there, the composite is C itself (K0 + K1 o
+ * = 0 and K2 o = 1 with o its opacity: checked exactly, per region and per
+ * stop segment where the channel changes, gstate_make) and h =
+ * decode(encode(v)), which is v, affine in t, except on v in (0.0031308,
+ * 0.0031308073), where the standard's two pieces do not meet and h is
+ * encode's power piece over 12.92 (lin_piece: its integrals by a binomial
+ * series, the interval being 2.3e-6 of v wide relative).  So the integral
+ * is exact there.  Elsewhere (the layer translucent, or under something
+ * translucent, on a segment where a channel changes) the composite is
+ * decode(K0 + K1 o + K2 o encode(v)), which has no elementary integral:
+ * the pixel is refused, naming it and the layer; the test is the region's,
+ * over all the gradient's segments, so a region that shows only a padded
+ * end of such a gradient is refused too (a refusal, never a wrong image).
+ * Where v is constant between two stops C is too and the sRGB path above
+ * takes it.
  */
 #include "area_pixel.h"
 
@@ -133,13 +152,14 @@ void area_gradient_free(ar_state *S)
         free(S->grad[g].offset);
         free(S->grad[g].enc);
         free(S->grad[g].knot);
+        free(S->grad[g].lv);
     }
     free(S->grad);
     free(S->gof);
     S->grad = NULL, S->gof = NULL, S->ngrad = 0;
 }
 
-static int load_one(ar_grad *G, int layer, const aa_gradient *g)
+static int load_one(ar_grad *G, int layer, const aa_gradient *g, int lin)
 {
     const double *m = g->m, *p = g->p;
     double det = m[0] * m[3] - m[1] * m[2];
@@ -164,11 +184,19 @@ static int load_one(ar_grad *G, int layer, const aa_gradient *g)
     G->knot = malloc(((size_t)2 * n + 4) * sizeof *G->knot);
     if (!G->offset || !G->enc || !G->knot)
         return aa_fail(AA_ENOMEM, "out of memory for a gradient of %d stops", n);
+    G->lin = lin;
+    if (lin && !(G->lv = malloc((size_t)n * sizeof *G->lv)))
+        return aa_fail(AA_ENOMEM, "out of memory for a gradient of %d stops", n);
     for (int k = 0; k < n; k++) {
         G->offset[k] = g->stops[k].offset;
-        for (int c = 0; c < 3; c++)
+        for (int c = 0; c < 3; c++) {
             G->enc[k][c] = aa_srgb_encode(g->stops[k].colour.c[c]);
+            if (lin)
+                G->lv[k][c] = g->stops[k].colour.c[c];
+        }
         G->enc[k][3] = g->stops[k].opacity;
+        if (lin)
+            G->lv[k][3] = g->stops[k].opacity;
     }
     for (int k = 0; k + 1 < n; k++) {
         if (!(G->offset[k + 1] > G->offset[k]))
@@ -253,7 +281,8 @@ int area_gradient_load(ar_state *S, const aa_scene *scene)
                            l);
         S->gof[l] = ng;
         S->ngrad = ++ng;
-        int st = load_one(&S->grad[ng - 1], l, &g);
+        int st = load_one(&S->grad[ng - 1], l, &g,
+                          aa_scene_layer_gradient_interpolation(scene, l) != AA_INTERPOLATE_SRGB);
         if (st)
             return st;
     }
@@ -392,6 +421,21 @@ static int gstate_make(const ar_row *r, int i, const int *w, gstate *gs)
         }
         if (any) {
             gs->g = S->gof[shown];
+            const ar_grad *G = &S->grad[gs->g];
+            /* linear light: wherever a channel changes between two stops
+             * (the opacity o constant there, load_one) the composite must
+             * be that channel, e = C: K0 + K1 o = 0 and K2 o = 1 */
+            for (int k = 0; G->lin && k + 1 < G->nstops; k++) {
+                if (!(G->offset[k + 1] > G->offset[k]))
+                    continue;
+                double o = G->lv[k][3];
+                for (int c = 0; c < S->nch; c++)
+                    if (G->lv[k + 1][c] != G->lv[k][c] &&
+                        !(gs->K0[c] + gs->K1[c] * o == 0.0 && gs->K2[c] * o == 1.0)) {
+                        gfail(r, i, AR_GERR_LINEAR_LIGHT, shown, 0);
+                        return 1;
+                    }
+            }
             return 0;
         }
     }
@@ -457,6 +501,56 @@ static void piece(double e0, double de, double L, double *H, double *M)
     branch(e0, de, L, H, M);
 }
 
+/* Linear light, where the composite is the channel C = encode(v) of an
+ * opaque layer ("linear light" in the header): h = decode(encode(v)),
+ * which is v but for v in (LIN_T, LIN_S), where encode's power piece is
+ * still below decode's threshold T (the two pieces of IEC 61966-2-1 do
+ * not meet: 1.055 LIN_T^(1/2.4) - 0.055 = 0.0404499 < T) and h =
+ * (1.055 v^p - 0.055) / 12.92, p = 1/2.4.  A piece where v = v0 + dv w
+ * is split at LIN_T and LIN_S; v's parts take I1 = L (v0 + dv L/2), I2 =
+ * L^2 (v0/2 + dv L/6), exactly; the part between, where |r| = |dv L /
+ * v0| < (LIN_S - LIN_T) / LIN_T < 2.4e-6, takes int_0^L v^p = L v0^p A(r)
+ * and int_0^L (L - w) v^p = L^2 v0^p B(r) by their binomial series, A(r)
+ * = 1 + p r/2 + p (p - 1) r^2/6, B(r) = 1/2 + p r/6 + p (p - 1) r^2/24,
+ * the next terms below |r|^3 < 1.4e-17 of them. */
+#define LIN_T 0.0031308
+#define LIN_S 0.0031308072830676845 /* encode's power piece reaches T there */
+static void lin_part(double v0, double dv, double L, double *H, double *M)
+{
+    double i1, i2;
+    const double vm = v0 + 0.5 * dv * L;
+    if (vm > LIN_T && vm < LIN_S) {
+        const double p = 1.0 / 2.4, r = dv * L / v0, b = pow(v0, p);
+        double A = 1.0 + r * (p / 2.0 + r * p * (p - 1.0) / 6.0);
+        double B = 0.5 + r * (p / 6.0 + r * p * (p - 1.0) / 24.0);
+        i1 = (1.055 * L * b * A - 0.055 * L) / 12.92;
+        i2 = (1.055 * L * L * b * B - 0.055 * L * L / 2.0) / 12.92;
+    } else {
+        i1 = L * (v0 + 0.5 * dv * L);
+        i2 = L * L * (0.5 * v0 + dv * L / 6.0);
+    }
+    *M += L * *H + i2;
+    *H += i1;
+}
+
+static void lin_piece(double v0, double dv, double L, double *H, double *M)
+{
+    double cut[2], w = 0.0;
+    int n = 0;
+    const double lv[2] = {LIN_T, LIN_S};
+    for (int k = 0; k < 2; k++) {
+        double tau = (lv[dv > 0.0 ? k : 1 - k] - v0) / dv;
+        if (tau > 0.0 && tau < L)
+            cut[n++] = tau;
+    }
+    for (int k = 0; k <= n; k++) {
+        double e = k < n ? cut[k] : L;
+        if (e > w)
+            lin_part(v0 + dv * w, dv, e - w, H, M);
+        w = e > w ? e : w;
+    }
+}
+
 /* The first knot of G above t (INFINITY: none). */
 static double next_knot(const ar_grad *G, double t)
 {
@@ -473,7 +567,8 @@ static double next_knot(const ar_grad *G, double t)
 
 /* Over [p, q] (no knot inside): the paint's channel ch (3: opacity) at p
  * and its slope in t. */
-static void paint_on(const ar_grad *G, double p, double q, int ch, double *v, double *dv)
+static void paint_on(const ar_grad *G, const double (*val)[4], double p, double q, int ch,
+                     double *v, double *dv)
 {
     double m = 0.5 * (p + q), um, sg;
     if (G->spread == AA_SPREAD_REPEAT) {
@@ -487,13 +582,13 @@ static void paint_on(const ar_grad *G, double p, double q, int ch, double *v, do
     const double *o = G->offset;
     int n = G->nstops, k = 0;
     if (!(um >= o[0]) || um >= o[n - 1]) {
-        *v = G->enc[um >= o[n - 1] ? n - 1 : 0][ch], *dv = 0.0;
+        *v = val[um >= o[n - 1] ? n - 1 : 0][ch], *dv = 0.0;
         return;
     }
     while (k + 1 < n && o[k + 1] <= um)
         k++;
     double up = um - sg * (m - p), span = o[k + 1] - o[k];
-    double a = G->enc[k][ch], b = G->enc[k + 1][ch];
+    double a = val[k][ch], b = val[k + 1][ch];
     *v = a + (up - o[k]) / span * (b - a);
     *dv = sg * (b - a) / span;
 }
@@ -515,8 +610,20 @@ static int edge_mean(const ar_grad *G, const gstate *gs, int ch, double t0, doub
         double q = next_knot(G, p);
         q = q < hi ? q : hi;
         double o, dop, c, dc;
-        paint_on(G, p, q, 3, &o, &dop);
-        paint_on(G, p, q, ch, &c, &dc);
+        paint_on(G, G->enc, p, q, 3, &o, &dop);
+        if (G->lin) {
+            /* linear light: the channel's linear value v; where it
+             * changes the composite is C itself (gstate_make) */
+            double v, dv;
+            paint_on(G, G->lv, p, q, ch, &v, &dv);
+            if (dv != 0.0) {
+                lin_piece(v, dv, q - p, &Hr, &M);
+                p = q;
+                continue;
+            }
+            c = aa_srgb_encode(v), dc = 0.0;
+        } else
+            paint_on(G, G->enc, p, q, ch, &c, &dc);
         /* e = K0 + K1 o + K2 o c; at most one of o, c changes here (load) */
         double e0 = gs->K0[ch] + gs->K1[ch] * o + gs->K2[ch] * o * c;
         double de = gs->K1[ch] * dop + gs->K2[ch] * (dop * c + o * dc);

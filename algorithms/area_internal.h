@@ -231,7 +231,7 @@ typedef struct ar_gstate {
  * walk along t passes at most 4 times as many. */
 #define AR_GKNOTS 4096
 /* Why a pixel of a gradient scene is refused (area_gradient.c). */
-enum { AR_GERR_NONE, AR_GERR_TWO_GRADIENTS, AR_GERR_EDGES, AR_GERR_KNOTS };
+enum { AR_GERR_NONE, AR_GERR_TWO_GRADIENTS, AR_GERR_EDGES, AR_GERR_KNOTS, AR_GERR_LINEAR_LIGHT };
 
 /* A linear gradient layer as `area` reads it (area_gradient.c): t(x, y) =
  * gu x + gv y + g0 in pixel units; the knots of t (where the spread turns
@@ -241,6 +241,10 @@ typedef struct ar_grad {
     int layer, spread, nstops, nknots;
     double gu, gv, g0, period;
     double *offset, (*enc)[4], *knot;
+    /* lin: in linear light (area_gradient.c, "linear light"): lv[k] the
+     * stops' linear channels and opacity */
+    int lin;
+    double (*lv)[4];
 } ar_grad;
 
 typedef struct ar_state {

@@ -117,6 +117,16 @@ int aa_peer_painted_check(const char *name, const aa_scene *s, int strokes_fille
                            "%s: layer %d is filled from the exact offset curves of a Bezier "
                            "arc's stroke, which its outlines cannot hold",
                            name, e[k].layer);
+    for (int l = 0; l < aa_scene_layer_count(s); l++)
+        if (aa_scene_layer_gradient_interpolation(s, l) != AA_INTERPOLATE_SRGB) {
+            const char *src = aa_scene_layer_gradient_source(s, l);
+            return aa_fail(AA_EINVAL,
+                           "%s: layer %d's gradient%s%s%s interpolates its stops in linear "
+                           "light (color-interpolation: linearRGB), which the library's "
+                           "gradients do not (they interpolate the values they are given): "
+                           "refused, not drawn in sRGB-encoded values",
+                           name, l, *src ? " (" : "", src, *src ? ")" : "");
+        }
     return AA_OK;
 }
 

@@ -84,7 +84,11 @@
  * buffer alike.  The paint is the library's, quantised as it keeps it
  * (8 bits a channel in both); a coverage of 0 or 1 gives that colour
  * exactly.  FreeType and stb have no gradients: aa_method_init refuses
- * them such a scene (they do not declare AA_METHOD_GRADIENTS).
+ * them such a scene (they do not declare AA_METHOD_GRADIENTS).  A
+ * gradient that interpolates its stops in linear light
+ * (aa_scene_layer_gradient_interpolation) is refused by name
+ * (aa_peer_painted_check): pixman and AGG interpolate in the values they
+ * are given, and an sRGB drawing of it would be a different picture.
  */
 #ifndef AA_PEER_H
 #define AA_PEER_H
@@ -120,7 +124,8 @@ void aa_peer_fill(aa_image *out, int j, int i0, int i1, double v);
 int aa_peer_paintable(const aa_scene *s);
 /* Painted mode's refusals: (for every layer if `strokes_filled`, else
  * only for layers filled as fills) a layer whose outline has offset
- * curves (edge quad 4). */
+ * curves (edge quad 4); a gradient in linear light, which neither
+ * library's gradients draw. */
 int aa_peer_painted_check(const char *name, const aa_scene *s, int strokes_filled);
 /* Row j of out, pixels [0, n), set to the scene's background colour. */
 void aa_peer_background_row(const aa_scene *s, aa_image *out, int j, int n);

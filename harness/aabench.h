@@ -24,7 +24,7 @@ extern "C" {
 
 /* The interface version a plug-in is built for; the command refuses a
  * plug-in built for another.  Raised whenever a type below changes layout. */
-#define AA_PLUGIN_ABI 8
+#define AA_PLUGIN_ABI 9
 
 /* ------------------------------------------------------------------------
  * Status and errors
@@ -267,8 +267,8 @@ aa_rgb aa_scene_colour_of(const aa_scene *s, const int *wind);
  *    paints nothing there (transparent), as SVG 2 and canvas leave them;
  * then spread maps t to [0, 1] (pad: clamp; reflect: the distance to the
  * nearest even integer; repeat: t - floor t) and the stops give the colour:
- * sRGB-encoded channels and opacity interpolated linearly, not
- * premultiplied, between the two stops around t (the first stop's below the
+ * sRGB-encoded channels (or linear light: aa_scene_layer_gradient_interpolation)
+ * and opacity interpolated linearly, not premultiplied, between the two stops around t (the first stop's below the
  * first offset, the last's above the last).  The layer's alpha multiplies
  * the stop's opacity.  Offsets ascending in [0, 1]; two equal offsets make
  * a sharp step (the later stop's colour from there).  m maps the gradient's
@@ -306,6 +306,19 @@ int aa_scene_has_gradients(const aa_scene *s);
 /* Layer's gradient into *g (its stops the scene's own, valid while the
  * scene lives): 1, or 0 for a layer painted with its colour. */
 int aa_scene_layer_gradient(const aa_scene *s, int layer, aa_gradient *g);
+/* The space layer's gradient interpolates its stops in (SVG's
+ * color-interpolation on a gradient element; patterns/README.md,
+ * "Gradients"): AA_INTERPOLATE_SRGB, the stops' sRGB-encoded channels as
+ * above (and for a layer without a gradient), or AA_INTERPOLATE_LINEAR_RGB:
+ * each stop's colour (linear light) interpolated as it is, not
+ * premultiplied, the opacity as above, and the result encoded to sRGB
+ * before it composites.  A method that paints gradients with a library's
+ * own must draw the latter so or refuse it, never draw it as sRGB. */
+typedef enum aa_interpolation {
+    AA_INTERPOLATE_SRGB = 0,
+    AA_INTERPOLATE_LINEAR_RGB = 1
+} aa_interpolation;
+int aa_scene_layer_gradient_interpolation(const aa_scene *s, int layer);
 /* The colour at point (x, y) whose winding numbers are `wind`: as
  * aa_scene_colour_of, each gradient layer painting its colour at (x, y).
  * aa_scene_colour_of gives a gradient layer the colour of its first stop:

@@ -90,8 +90,8 @@
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
- * linearRGB (compositing in linear light, and on a gradient element or
- * its ancestors, interpolation in linear light), <pattern> paint servers, the
+ * linearRGB on what is drawn (compositing in linear light, which no browser
+ * does; on a gradient element it is read: "gradients"), <pattern> paint servers, the
  * radial gradients SVG 2 draws as a cone (grad_resolve), text, images, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <use> and other non-shapes in a clipPath, references to clip
@@ -285,6 +285,7 @@ typedef struct reader {
     long segments;
     const xmlNode *node; /* the element being read, for messages */
     const char *grad_source; /* the gradient given next: its element and line */
+    int grad_interpolation;  /* and its aa_interpolation */
     /* clip paths (svgfile.c, "clip paths") */
     const xmlNode *root;
     int clip;   /* the clip of the shapes given now (-1: none; -2 - k: the
@@ -2277,7 +2278,13 @@ static int give_path(reader *r, const aa_path *p, const mat *m, aa_rgb colour,
         return fail_at(r, "gradient paint is not taken here");
     if (p->n && (st = k->shape(r->ctx, colour, rule)))
         return st;
+    if (p->n && grad && r->grad_interpolation != AA_INTERPOLATE_SRGB && !k->gradient_interpolation)
+        return fail_at(r, "a gradient in linear light (color-interpolation: linearRGB) is not "
+                          "taken here");
     if (p->n && grad && (st = k->gradient(r->ctx, grad, r->grad_source ? r->grad_source : "")))
+        return st;
+    if (p->n && grad && r->grad_interpolation != AA_INTERPOLATE_SRGB &&
+        (st = k->gradient_interpolation(r->ctx, r->grad_interpolation)))
         return st;
     if (p->n && alpha < 1 && (st = k->alpha(r->ctx, alpha)))
         return st;
@@ -3617,7 +3624,8 @@ typedef struct paint_res {
     double alpha;
     aa_gradient g;
     aa_gradient_stop *stops;
-    char source[192]; /* the gradient element and its line, for messages */
+    int interpolation; /* aa_interpolation: the gradient element's color-interpolation */
+    char source[192];  /* the gradient element and its line, for messages */
 } paint_res;
 
 /* The chain of gradients from g along href: at most GRAD_MAX_CHAIN, a
@@ -3833,13 +3841,19 @@ static int grad_resolve(reader *r, const xmlNode *server, const aa_path *p, cons
         if ((st = check_props(r, chain[k])))
             return st;
     }
-    /* color-interpolation of the gradient element (inherited from its
-     * own ancestors, not from the shape it paints; not through href):
-     * linearRGB interpolates the stops in linear light (SVG 1.1, 13.2.1,
-     * and "color-interpolation"), which the scene's gradients do not
-     * (their stops interpolate in sRGB-encoded values, and the reference
-     * integrates that), so it is refused, never drawn as sRGB.  Chromium
-     * interpolates in linear light; resvg ignores it */
+    /* color-interpolation of the gradient element: a property, inherited
+     * (SVG 1.1, "color-interpolation": "inherited: yes"), so the gradient
+     * element's own value, else its parent's and so on up the element
+     * tree, not the shape's it paints (a paint server's properties are
+     * its own and its ancestors') nor the href chain's (href passes on
+     * attributes the element lacks, and stops, not properties: SVG 1.1,
+     * 13.2.2 and 13.2.3, xlink:href).  linearRGB interpolates the stops
+     * in linear light (SVG 1.1, 13.2.1: "the color interpolation ... in
+     * the linearized RGB color space"; aa_scene_set_gradient_interpolation),
+     * as Chromium draws it; resvg ignores the property (as auto).  auto
+     * and sRGB keep sRGB-encoded values (auto: "the user agent can
+     * choose", and every browser chooses sRGB). */
+    out->interpolation = AA_INTERPOLATE_SRGB;
     for (const xmlNode *a = server; a && a->type == XML_ELEMENT_NODE; a = a->parent) {
         char v[64];
         r->node = a;
@@ -3850,14 +3864,9 @@ static int grad_resolve(reader *r, const xmlNode *server, const aa_path *p, cons
         }
         if (!strcasecmp(v, "inherit"))
             continue;
-        if (!strcasecmp(v, "linearRGB")) {
-            r->node = server;
-            return fail_at(r, "color-interpolation=\"linearRGB\"%s: gradient interpolation in "
-                              "linear light is not supported (the stops interpolate in "
-                              "sRGB-encoded values)",
-                           a == server ? "" : " (inherited)");
-        }
-        break; /* auto or sRGB */
+        if (!strcasecmp(v, "linearRGB"))
+            out->interpolation = AA_INTERPOLATE_LINEAR_RGB;
+        break; /* the nearest value given decides */
     }
     r->node = server;
     const int radial = named(server, "radialGradient");
@@ -4093,14 +4102,14 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
      * first */
     for (int k = 0; k < 2 && !st; k++) {
         if (k == sty.stroke_first && fill) {
-            r->grad_source = fp.source;
+            r->grad_source = fp.source, r->grad_interpolation = fp.interpolation;
             st = give_path(r, &p, &m, fc, sty.rule, fa, fp.grad ? &fp.g : NULL);
         } else if (k != sty.stroke_first && stroke) {
-            r->grad_source = sp.source;
+            r->grad_source = sp.source, r->grad_interpolation = sp.interpolation;
             st = give_stroke(r, &p, &m, &sty, sc, sa, sp.grad ? &sp.g : NULL);
         }
     }
-    r->grad_source = NULL;
+    r->grad_source = NULL, r->grad_interpolation = AA_INTERPOLATE_SRGB;
     if (!st && grouped)
         st = r->sink->group_end(r->ctx);
     r->clip = outer;
@@ -4846,6 +4855,8 @@ typedef struct recording {
     size_t ngrads, capgrads;
     char (*sources)[192]; /* each gradient's element and line */
     size_t capsources;
+    int *interps; /* each gradient's aa_interpolation */
+    size_t capinterps;
 } recording;
 
 static int grow(void **a, size_t *cap, size_t need, size_t size)
@@ -4881,9 +4892,12 @@ static int rec_gradient_fn(void *ctx, const aa_gradient *g, const char *source)
     int st = grow((void **)&r->grads, &r->capgrads, r->ngrads + 1, sizeof *r->grads);
     if (!st)
         st = grow((void **)&r->sources, &r->capsources, r->ngrads + 1, sizeof *r->sources);
+    if (!st)
+        st = grow((void **)&r->interps, &r->capinterps, r->ngrads + 1, sizeof *r->interps);
     if (st)
         return st;
     snprintf(r->sources[r->ngrads], sizeof *r->sources, "%s", source);
+    r->interps[r->ngrads] = AA_INTERPOLATE_SRGB;
     aa_gradient_stop *stops = malloc((size_t)(g->nstops > 0 ? g->nstops : 1) * sizeof *stops);
     if (!stops)
         return aa_fail(AA_ENOMEM, "out of memory reading an SVG");
@@ -4906,7 +4920,19 @@ static int rec_put_gradient(aa_scene *s, const recording *rec, const rec_shape *
     const double to[6] = {m[0] / w, m[1] / h, m[2] / w, m[3] / h, m[4] / w, m[5] / h};
     memcpy(g.m, to, sizeof to);
     int st = aa_scene_set_gradient(s, &g);
+    if (!st && rec->interps[sh->grad] != AA_INTERPOLATE_SRGB)
+        st = aa_scene_set_gradient_interpolation(s, rec->interps[sh->grad]);
     return st ? st : aa_scene_set_gradient_source(s, rec->sources[sh->grad]);
+}
+
+/* The last shape's gradient's interpolation (after rec_gradient_fn). */
+static int rec_interpolation_fn(void *ctx, int interpolation)
+{
+    recording *r = ctx;
+    if (!r->ngrads || r->shapes[r->nshapes - 1].grad != (long)r->ngrads - 1)
+        return aa_fail(AA_EFAIL, "a gradient interpolation without its gradient");
+    r->interps[r->ngrads - 1] = interpolation;
+    return AA_OK;
 }
 
 static int rec_alpha_fn(void *ctx, double alpha)
@@ -5063,7 +5089,8 @@ static int rec_clip_fn(void *ctx, int clip)
 static const aa_svg_sink recording_sink = {
     rec_shape_fn,    rec_move,     rec_line,        rec_quad,     rec_cubic,
     rec_close,       rec_arc,      rec_stroke_fn,   rec_alpha_fn, rec_group_begin,
-    rec_group_end,   rec_clip_begin, rec_clip_end,  rec_clip_fn,  rec_gradient_fn};
+    rec_group_end,   rec_clip_begin, rec_clip_end,  rec_clip_fn,  rec_gradient_fn,
+    rec_interpolation_fn};
 
 static int svg_check(const double *p)
 {
@@ -5235,6 +5262,7 @@ int aa__svg_build_at(const double *p, int w, int h, aa_scene *s)
         free((void *)rec.grads[k].stops);
     free(rec.grads);
     free(rec.sources);
+    free(rec.interps);
     return st;
 }
 

@@ -75,6 +75,11 @@ typedef struct aa_svg_sink {
      * element and its line ("FILE: line N: <radialGradient>"), for
      * messages that refuse it later (aa_scene_set_gradient_source). */
     int (*gradient)(void *ctx, const aa_gradient *g, const char *source);
+    /* Optional (NULL: such a gradient is refused).  Called right after
+     * `gradient` when the gradient interpolates its stops in linear light
+     * (color-interpolation: linearRGB; aa_scene_set_gradient_interpolation),
+     * with AA_INTERPOLATE_LINEAR_RGB. */
+    int (*gradient_interpolation)(void *ctx, int interpolation);
 } aa_svg_sink;
 
 /* Limits: larger or deeper documents are refused. */

@@ -872,18 +872,9 @@ static void test_svg_refusals(void **state)
     svg_refused("<linearGradient id=\"a\"><stop offset=\"0\" stop-colour=\"red\"/>"
                 "</linearGradient><rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
                 "<stop>", "stop-colour");
-    /* color-interpolation: linearRGB on the gradient (its own, in a style,
-     * or inherited from its <defs>) interpolates in linear light: refused,
-     * never drawn as sRGB; the nearest value given decides, and auto or
-     * sRGB draw */
-    svg_refused("<linearGradient id=\"a\" color-interpolation=\"linearRGB\"><stop/>"
-                "<stop offset=\"1\" stop-color=\"white\"/></linearGradient>"
-                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
-                "<linearGradient>", "linearRGB");
-    svg_refused("<defs style=\"color-interpolation: linearRGB\"><radialGradient id=\"a\">"
-                "<stop/><stop offset=\"1\" stop-color=\"white\"/></radialGradient></defs>"
-                "<rect width=\"4\" height=\"4\" fill=\"url(#a)\"/>",
-                "<radialGradient>", "(inherited)");
+    /* color-interpolation on the gradient: the nearest value given
+     * decides, and sRGB under a linearRGB <defs> reads (linearRGB itself:
+     * test_gradient_linrgb.c) */
     {
         int st0;
         aa_scene *s0 = svg_scene("interp-srgb",

@@ -66,7 +66,7 @@ static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double v
 }
 
 static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc,
-                                 NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL};
+                                 NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL, NULL};
 
 /* Read `doc` on a w x h view; the sink's text, or fail. */
 static const char *read_doc(const char *doc, int w, int h, double vp[2])
@@ -249,7 +249,7 @@ static int g_arc(void *ctx, double cx, double cy, double ux, double uy, double v
     return g_add(ctx, 'A', 10, (double[]){cx, cy, ux, uy, vx, vy, t0, t1, x, y});
 }
 static const aa_svg_sink geo = {g_shape, g_move, g_line, g_quad, g_cubic, g_close, g_arc,
-                                NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL};
+                                NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL, NULL};
 
 /* The ops' letters of `doc` read on a 100 x 100 view into *g. */
 static const char *geo_read(const char *doc, geo_sink *g)

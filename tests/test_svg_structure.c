@@ -71,7 +71,7 @@ static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double v
 }
 
 static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc,
-                                 NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL};
+                                 NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL, NULL};
 
 /* The same with clips: "[within W" .. " ]" around a clip's members, and
  * " clip N" after the shape drawn inside clip N. */
@@ -84,7 +84,7 @@ static int s_clip(void *ctx, int clip) { return put(ctx, " clip %d", clip); }
 
 static const aa_svg_sink clip_sink = {s_shape, s_move,       s_line,     s_quad, s_cubic,
                                       s_close, s_arc,        NULL,       NULL,   NULL,
-                                      NULL,    s_clip_begin, s_clip_end, s_clip, NULL};
+                                      NULL,    s_clip_begin, s_clip_end, s_clip, NULL, NULL};
 
 #define OPEN "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">"
 #define BLACK "0 0 0;"

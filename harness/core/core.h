@@ -202,6 +202,12 @@ int aa_scene_set_gradient(aa_scene *s, const aa_gradient *g);
  * "" for a layer without a gradient or without a source. */
 int aa_scene_set_gradient_source(aa_scene *s, const char *source);
 const char *aa_scene_layer_gradient_source(const aa_scene *s, int layer);
+/* The last layer's gradient interpolates its stops in `interpolation`
+ * (aabench.h, aa_interpolation; AA_INTERPOLATE_SRGB unless set): kept by
+ * aa_scene_place.  In AA_INTERPOLATE_LINEAR_RGB the colour at t is
+ * encode(l(t)), l the stops' linear-light channels interpolated linearly
+ * in t, and it composites as every layer's encoded colour does. */
+int aa_scene_set_gradient_interpolation(aa_scene *s, int interpolation);
 /* The composite at (x, y) of winding numbers `wind` as aa_scene_colour_of_at
  * gives it, before the decoding: its sRGB-encoded channels (the
  * reference integrates their decoding exactly). */

@@ -23,13 +23,15 @@ typedef struct aa_scene_clip {
 
 /* A gradient paint (aa_scene_set_gradient): its definition with its own
  * stops, the inverse of its map (scene to gradient coordinates), and per
- * stop its sRGB-encoded colour and opacity (enc[4 k .. 4 k + 3]). */
+ * stop its sRGB-encoded colour and opacity (enc[4 k .. 4 k + 3]); its
+ * interpolation space (aa_scene_set_gradient_interpolation). */
 typedef struct aa_scene_gradient {
     aa_gradient g;
     aa_gradient_stop *stops;
     double *enc;
     double inv[6];
     int cone; /* radial, the focal circle not strictly inside the end circle */
+    int interpolation; /* aa_interpolation: AA_INTERPOLATE_SRGB or _LINEAR_RGB */
     char source[192]; /* where it was given (aa_scene_set_gradient_source), or "" */
 } aa_scene_gradient;
 

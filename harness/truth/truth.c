@@ -251,6 +251,14 @@
  * stand-in colour, the first stop's at the layer's alpha, could hide a
  * layer behind a translucent gradient).
  *
+ * Gradients in linear light (color-interpolation: linearRGB; "gradients
+ * in linear light" below): a scene with one takes the path of several
+ * gradients for every span.  Such a layer's encoded channel is C =
+ * encode(v), v its linear value affine in t; its stops are cut where a
+ * channel's v passes 0.0031308 (the encoding's change of piece), so that
+ * on each piece C is 12.92 v (affine, as an sRGB stop's) or 1.055 v^(1/2.4)
+ * - 0.055, whose branch point v = 0 the ellipse must keep out.
+ *
  * The other separable filters (tent, gauss, bspline, mitchell, catrom,
  * lanczos; "the other separable filters" below): every span of a
  * gradient scene takes the path of several gradients with the row's
@@ -359,6 +367,9 @@ typedef struct grad_radial {
  * radial data. */
 typedef struct gen_layer {
     int layer, spread, nstops, own_enc;
+    /* lin: the gradient interpolates in linear light ("gradients in linear
+     * light"): enc holds the stops' linear-light channels, not encoded */
+    int lin;
     const aa_gradient_stop *stops;
     double *enc;
     const grad_plane *gp;
@@ -395,6 +406,7 @@ typedef struct worker {
      * gen_piece) */
     gen_layer *gl;
     int ngl, gen, gen_over, gen_stuck;
+    aa_gradient_stop **lin_stops; /* per layer: a linear-light gradient's stops, cut */
     size_t gen_work; /* gen_piece's halvings on the current span (GEN_PIECES) */
     int *gl_layer;
     double *gl_paint, *gbuf2;
@@ -452,6 +464,10 @@ static void worker_free(worker *w)
         if (w->gl[k].own_enc)
             free(w->gl[k].enc);
     free(w->gl);
+    if (w->lin_stops)
+        for (int k = 0; k < aa_scene_layer_count(w->scene); k++)
+            free(w->lin_stops[k]);
+    free(w->lin_stops);
     free(w->gl_layer);
     free(w->gl_paint);
     free(w->gbuf2);
@@ -600,7 +616,8 @@ static void grad_span(worker *w, double xa, double xb, double y, int nch, double
  * gradients in closed form (the composite affine along a row between
  * stops: no radial gradient, and no gradient of varying opacity with
  * another); 1, radial gradients only (a span painted by two of them takes
- * the path of several gradients); 2, every span by that path. */
+ * the path of several gradients); 2, every span by that path (also any
+ * scene with a gradient in linear light). */
 static int grad_mode(const aa_scene *scene)
 {
     int n = aa_scene_layer_count(scene), ngrad = 0, varying = 0, radial = 0, linear = 0;
@@ -609,6 +626,8 @@ static int grad_mode(const aa_scene *scene)
         if (!aa_scene_layer_gradient(scene, l, &g))
             continue;
         ngrad++;
+        if (aa_scene_layer_gradient_interpolation(scene, l) != AA_INTERPOLATE_SRGB)
+            return 2; /* linear light: gradients in linear light */
         if (g.kind != AA_GRADIENT_LINEAR)
             radial = 1;
         else
@@ -625,7 +644,7 @@ static int grad_mode(const aa_scene *scene)
 }
 
 /* The radial gradient g of layer l appended to w->rg. */
-static int rad_init(worker *w, int l, const aa_gradient *g)
+static int rad_init(worker *w, int l, const aa_gradient *g, int lin)
 {
     if (!w->rg) {
         int n = aa_scene_layer_count(w->scene);
@@ -657,7 +676,7 @@ static int rad_init(worker *w, int l, const aa_gradient *g)
     }
     for (int k = 0; k < g->nstops; k++) {
         for (int c = 0; c < 3; c++)
-            r->enc[4 * k + c] = aa_srgb_encode(g->stops[k].colour.c[c]);
+            r->enc[4 * k + c] = lin ? g->stops[k].colour.c[c] : aa_srgb_encode(g->stops[k].colour.c[c]);
         r->enc[4 * k + 3] = g->stops[k].opacity;
     }
     for (int k = 0; k < RAD_GL; k++)
@@ -666,12 +685,12 @@ static int rad_init(worker *w, int l, const aa_gradient *g)
     w->rad = 1;
     gen_layer *q = &w->gl[w->ngl++];
     q->layer = l, q->spread = g->spread, q->nstops = g->nstops, q->stops = g->stops;
-    q->enc = r->enc, q->rg = r;
+    q->enc = r->enc, q->rg = r, q->lin = lin;
     return AA_OK;
 }
 
 /* Linear gradient g of layer l appended to w->gp and w->gl. */
-static int lin_init(worker *w, int l, const aa_gradient *g)
+static int lin_init(worker *w, int l, const aa_gradient *g, int lin)
 {
     grad_plane *gp = &w->gp[w->ngp++];
     grad_plane_of(g, gp);
@@ -681,12 +700,98 @@ static int lin_init(worker *w, int l, const aa_gradient *g)
     q->enc = malloc((size_t)g->nstops * 4 * sizeof *q->enc);
     if (!q->enc)
         return aa_fail(AA_ENOMEM, "out of memory for a linear gradient");
-    q->own_enc = 1;
+    q->own_enc = 1, q->lin = lin;
     for (int k = 0; k < g->nstops; k++) {
         for (int c = 0; c < 3; c++)
-            q->enc[4 * k + c] = aa_srgb_encode(g->stops[k].colour.c[c]);
+            q->enc[4 * k + c] = lin ? g->stops[k].colour.c[c] : aa_srgb_encode(g->stops[k].colour.c[c]);
         q->enc[4 * k + 3] = g->stops[k].opacity;
     }
+    return AA_OK;
+}
+
+/* ---- gradients in linear light ----
+ *
+ * A gradient layer in linear light (aa_scene_layer_gradient_interpolation;
+ * core.h) paints, at t, the encoded channels C = encode(v(t)) of its
+ * stops' linear-light channels v interpolated in t (v affine between
+ * stops), with the opacity interpolated as ever; C then composites as any
+ * encoded channel does, so the composite keeps the form of "several
+ * gradients" with C in place of an affine channel.  The stops are cut
+ * where a channel's v passes LIN_T = 0.0031308, the encoding's change of
+ * piece (lin_cut_stops: a stop added there with the interpolation's own
+ * colour and opacity, so the picture does not change), and the cuts
+ * become stop lines and circles like any other: the rows are cut there and
+ * the outer integral takes them as breakpoints.  On a piece each channel
+ * keeps to one side of LIN_T (decided at the piece's middle): below it C =
+ * 12.92 v, affine in t, exactly the sRGB case; above it C = 1.055 v^p -
+ * 0.055, p = 1/2.4, analytic wherever Re v > 0 (the principal power; its
+ * branch point is v = 0).  The bounds on the Bernstein ellipse (gen_bounds)
+ * take |v(z) - v(m)| <= |v1| P A (P bounding |t'| there, the segment from
+ * m to z inside the ellipse), and require it below 0.9 v(m): then Re v >
+ * 0.1 v(m) on the ellipse, |C| <= 1.055 (v(m) + |v1| P A)^p + 0.055 and
+ * |C'| <= 1.055 p (v(m) - |v1| P A)^(p-1) |v1| |t'|; a linear layer's zero
+ * of v, a real point of the row, also caps the ellipse's rho (gen_rule_bound).
+ * The threshold's isolation takes the same bounds on the real segment and
+ * Taylor's test the second derivative, |C''| <= 1.055 p (1 - p) vlo^(p-2)
+ * v1^2 t'^2 + 1.055 p vlo^(p-1) |v1| |t''|, vlo = v(m) - |v1| P h
+ * (gen_taylor).  The decoding's threshold 0.04045 is where the composite
+ * passes it, isolated as ever; for an opaque layer with nothing over it e
+ * = C, which passes 0.04045 at v = 0.0031308073, not at LIN_T (the two
+ * pieces of IEC 61966-2-1 do not meet exactly), so that is a second cut a
+ * few 1e-9 of v from the stop's.  The outer breakpoints where the
+ * composite at the window's centre passes 0.04045 (rad_threshold_taus)
+ * are placed by the secant of C between the stops, a hint for QAG only.
+ */
+
+/* A gradient in linear light: its stops with a stop added inside each
+ * segment where a channel's linear value passes LIN_T (the sRGB
+ * encoding's change of piece), its colour and opacity there the
+ * interpolation's own, so that the picture is the same and each channel
+ * stays on one piece of the encoding between stops ("gradients in linear
+ * light").  g's stops become them (kept in w->lin_stops[l]). */
+#define LIN_T 0.0031308
+static int lin_cut_stops(worker *w, int l, aa_gradient *g)
+{
+    int nl = aa_scene_layer_count(w->scene), n = g->nstops;
+    if (!w->lin_stops && !(w->lin_stops = calloc((size_t)(nl > 0 ? nl : 1), sizeof *w->lin_stops)))
+        return aa_fail(AA_ENOMEM, "out of memory for a gradient's stops");
+    aa_gradient_stop *o = malloc((size_t)(4 * n + 1) * sizeof *o);
+    if (!o)
+        return aa_fail(AA_ENOMEM, "out of memory for a gradient's stops");
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        o[m++] = g->stops[k];
+        if (k + 1 == n || !(g->stops[k + 1].offset > g->stops[k].offset))
+            continue;
+        const aa_gradient_stop *a = &g->stops[k], *b = &g->stops[k + 1];
+        double f[3];
+        int nf = 0;
+        for (int c = 0; c < 3; c++) {
+            double la = a->colour.c[c], lb = b->colour.c[c];
+            if ((la < LIN_T && lb > LIN_T) || (la > LIN_T && lb < LIN_T))
+                f[nf++] = (LIN_T - la) / (lb - la);
+        }
+        for (int i = 1; i < nf; i++) /* sorted (three at most) */
+            for (int j = i; j > 0 && f[j] < f[j - 1]; j--) {
+                double tmp = f[j];
+                f[j] = f[j - 1], f[j - 1] = tmp;
+            }
+        for (int i = 0; i < nf; i++) {
+            if (i > 0 && f[i] == f[i - 1])
+                continue;
+            aa_gradient_stop *q = &o[m++];
+            q->offset = a->offset + f[i] * (b->offset - a->offset);
+            if (!(q->offset > o[m - 2].offset && q->offset < b->offset)) {
+                m--; /* rounded onto a stop: that stop is the cut */
+                continue;
+            }
+            for (int c = 0; c < 3; c++)
+                q->colour.c[c] = a->colour.c[c] + f[i] * (b->colour.c[c] - a->colour.c[c]);
+            q->opacity = a->opacity + f[i] * (b->opacity - a->opacity);
+        }
+    }
+    w->lin_stops[l] = o;
+    g->stops = o, g->nstops = m;
     return AA_OK;
 }
 
@@ -717,7 +822,10 @@ static int grad_init(worker *w)
                            "refused rather than integrated without a bound",
                            l, *src ? " (" : "", src, *src ? ")" : "");
         }
-        int st = g.kind == AA_GRADIENT_LINEAR ? lin_init(w, l, &g) : rad_init(w, l, &g);
+        int lin = aa_scene_layer_gradient_interpolation(w->scene, l) != AA_INTERPOLATE_SRGB, st;
+        if (lin && (st = lin_cut_stops(w, l, &g)))
+            return st;
+        st = g.kind == AA_GRADIENT_LINEAR ? lin_init(w, l, &g, lin) : rad_init(w, l, &g, lin);
         if (st)
             return st;
     }
@@ -1235,6 +1343,11 @@ typedef struct gen_span_ctx {
     const gen_layer *L[GEN_MAX];
     rad_row row[GEN_MAX];
     double v0[GEN_MAX][4], v1[GEN_MAX][4];
+    /* pw[l][ch]: layer l's channel ch is in linear light on the encoding's
+     * power piece here, v0 + v1 t its linear value and the encoded channel
+     * lin_enc of it ("gradients in linear light"); 0: the encoded channel
+     * is v0 + v1 t itself */
+    int pw[GEN_MAX][3];
     double K[3][243];
     int nk;
     double y;
@@ -1436,6 +1549,10 @@ static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, doub
     *sup = wt_bound(c, a, m, h, h, 0.0);
 }
 
+/* The sRGB encoding's power piece, 1.055 v^(1/2.4) - 0.055, of a linear
+ * value v above LIN_T (a channel of a gradient in linear light). */
+static double lin_enc(double v) { return 1.055 * pow(v, 1.0 / 2.4) - 0.055; }
+
 static double gen_t(const gen_span_ctx *c, int l, double x)
 {
     const gen_layer *g = c->L[l];
@@ -1451,9 +1568,10 @@ static void gen_eval(const gen_span_ctx *c, double x, double *e)
     for (int l = 0; l < c->n; l++) {
         double t = gen_t(c, l, x), op = c->v0[l][3] + c->v1[l][3] * t;
         for (int ch = 0; ch < c->nch; ch++) {
+            double v = c->v0[l][ch] + c->v1[l][ch] * t;
             f[l][ch][0] = 1.0;
             f[l][ch][1] = op;
-            f[l][ch][2] = op * (c->v0[l][ch] + c->v1[l][ch] * t);
+            f[l][ch][2] = op * (c->pw[l][ch] ? lin_enc(v) : v);
         }
     }
     for (int ch = 0; ch < c->nch; ch++) {
@@ -1512,9 +1630,23 @@ static int gen_bounds(const gen_span_ctx *c, double m, double A, double B, doubl
         for (int l = 0; l < c->n; l++) {
             double o0 = fabs(c->v0[l][3]), o1 = fabs(c->v1[l][3]);
             double c0 = fabs(c->v0[l][ch]), c1 = fabs(c->v1[l][ch]);
-            double op = o0 + o1 * T[l], cc = c0 + c1 * T[l];
+            double op = o0 + o1 * T[l], cc = c0 + c1 * T[l], dc = c1 * P[l];
+            if (c->pw[l][ch]) {
+                /* the linear value v(z) = v(m) + v1 (t(z) - t(m)), |t(z) -
+                 * t(m)| <= P |z - m| <= P A (the segment from m to z lies
+                 * in the ellipse): with D = |v1| P A below 0.9 v(m), Re v
+                 * > 0 there, so v^(1/2.4) is analytic (its branch point
+                 * v = 0 outside), |C| <= 1.055 (v(m) + D)^(1/2.4) + 0.055
+                 * and |C'| <= (1.055 / 2.4) |v|^(1/2.4 - 1) |v1| |t'| with
+                 * |v| >= v(m) - D */
+                double vm = c->v0[l][ch] + c->v1[l][ch] * gen_t(c, l, m), D = c1 * P[l] * A;
+                if (!(D < 0.9 * vm))
+                    return 0;
+                cc = 1.055 * pow(vm + D, 1.0 / 2.4) + 0.055;
+                dc = 1.055 / 2.4 * pow(vm - D, 1.0 / 2.4 - 1.0) * c1 * P[l];
+            }
             F[l][0] = 1.0, F[l][1] = op, F[l][2] = op * cc;
-            G[l][0] = 0.0, G[l][1] = o1 * P[l], G[l][2] = (o1 * cc + c1 * op) * P[l];
+            G[l][0] = 0.0, G[l][1] = o1 * P[l], G[l][2] = o1 * cc * P[l] + op * dc;
         }
         double se = 0.0, sdv = 0.0;
         for (int a = 0; a < c->nk; a++) {
@@ -1559,6 +1691,13 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
     }
     if (c->radial && c->f->type == &aa_filter_cone) /* the cone's branch points */
         rmax = fmin(rmax, rad_rho(c->uc + _Complex_I * fabs(c->s), m, h));
+    for (int l = 0; l < c->n; l++) /* linear light: v = 0 on a linear layer */
+        for (int ch = 0; ch < c->nch; ch++)
+            if (c->pw[l][ch] && !c->L[l]->rg && c->v1[l][ch] != 0.0 && c->L[l]->gp->tx != 0.0) {
+                const grad_plane *gp = c->L[l]->gp;
+                double x0 = (-c->v0[l][ch] / c->v1[l][ch] - gp->ty * c->y - gp->t0) / gp->tx;
+                rmax = fmin(rmax, rad_rho(x0, m, h));
+            }
     if (!(rmax > 1.0 + 1e-9))
         return INFINITY;
     double best = INFINITY, wa[4] = {0, 0, 0, 0};
@@ -1682,6 +1821,26 @@ static int gen_taylor(const gen_span_ctx *c, int ch, double m, double h, double 
         G[l][0] = 0.0, G[l][1] = fabs(o1) * P, G[l][2] = (fabs(o1) * ccb + fabs(c1) * opb) * P;
         H[l][0] = 0.0, H[l][1] = fabs(o1) * Q;
         H[l][2] = 2.0 * fabs(o1 * c1) * P * P + (fabs(o1) * ccb + fabs(c1) * opb) * Q;
+        if (c->pw[l][ch]) {
+            /* linear light, C = 1.055 v^p - 0.055 (p = 1/2.4) of v = c0 +
+             * c1 t: on the segment |v - v(m)| <= |c1| P h, so with vlo =
+             * v(m) - |c1| P h > 0, |C| <= 1.055 (v(m) + |c1| P h)^p +
+             * 0.055, |C'| <= 1.055 p vlo^(p-1) |c1| P and |C''| <= 1.055
+             * p (1 - p) vlo^(p-2) c1^2 P^2 + 1.055 p vlo^(p-1) |c1| Q;
+             * (op C)'' = o1 t'' C + 2 o1 t' C' + op C'' */
+            const double pe = 1.0 / 2.4;
+            double vm = c0 + c1 * tm, d = fabs(c1) * P * h, vlo = vm - d;
+            if (!(vlo > 0.0))
+                return 0;
+            double Cm = lin_enc(vm), C1 = 1.055 * pe * pow(vm, pe - 1.0) * c1 * tp;
+            double Cb = 1.055 * pow(vm + d, pe) + 0.055;
+            double C1b = 1.055 * pe * pow(vlo, pe - 1.0) * fabs(c1) * P;
+            double C2b = 1.055 * pe * (1.0 - pe) * pow(vlo, pe - 2.0) * c1 * c1 * P * P +
+                         1.055 * pe * pow(vlo, pe - 1.0) * fabs(c1) * Q;
+            f[l][2] = op * Cm, fp[l][2] = o1 * tp * Cm + op * C1;
+            F[l][2] = opb * Cb, G[l][2] = fabs(o1) * P * Cb + opb * C1b;
+            H[l][2] = fabs(o1) * Q * Cb + 2.0 * fabs(o1) * P * C1b + opb * C2b;
+        }
     }
     double s1 = 0.0, s2 = 0.0;
     for (int a = 0; a < c->nk; a++) {
@@ -1965,8 +2124,20 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
             continue;
         for (int l = 0; l < nd; l++) {
             const gen_layer *g = c.L[l];
-            paint_lin(g->spread, g->stops, g->nstops, g->enc, gen_t(&c, l, 0.5 * (a + b)),
-                      c.v0[l], c.v1[l]);
+            double tm = gen_t(&c, l, 0.5 * (a + b));
+            paint_lin(g->spread, g->stops, g->nstops, g->enc, tm, c.v0[l], c.v1[l]);
+            for (int ch = 0; ch < 3; ch++) {
+                c.pw[l][ch] = 0;
+                if (!g->lin)
+                    continue;
+                /* linear light: the stops cut where a channel passes
+                 * LIN_T, so on the piece it keeps to one side: below,
+                 * the encoding is 12.92 v, affine; above, its power */
+                if (c.v0[l][ch] + c.v1[l][ch] * tm > LIN_T)
+                    c.pw[l][ch] = 1;
+                else
+                    c.v0[l][ch] *= 12.92, c.v1[l][ch] *= 12.92;
+            }
         }
         gen_section(w, &c, a, b, sum, &err);
     }
@@ -2058,7 +2229,14 @@ static size_t rad_threshold_taus(const worker *w, const gen_layer *g, const int 
         double o = g->stops[k].offset, dO = g->stops[k + 1].offset - o;
         if (!(dO > 0.0))
             continue;
+        double ae[4], be[4];
         const double *a = g->enc + 4 * k, *b = a + 4;
+        if (g->lin) { /* linear light: the encoded ends, as a secant (a breakpoint's place) */
+            for (int c = 0; c < 3; c++)
+                ae[c] = aa_srgb_encode(a[c]), be[c] = aa_srgb_encode(b[c]);
+            ae[3] = a[3], be[3] = b[3];
+            a = ae, b = be;
+        }
         for (int c = 0; c < 3; c++) {
             /* e(l) = K0 + K1 op + K2 op C, op and C affine in l in [0, 1] */
             double K0 = e0[c], K1 = e1[c] - e0[c], K2 = e2[c] - e1[c];

@@ -196,9 +196,20 @@ static int fz_gradient(void *ctx, const aa_gradient *g, const char *source)
     return aa_scene_set_gradient(f->s, &h);
 }
 
+/* A gradient's interpolation right after it: linear light, the only one
+ * the reader passes on. */
+static int fz_interpolation(void *ctx, int interpolation)
+{
+    fuzz_sink *f = ctx;
+    if (interpolation != AA_INTERPOLATE_LINEAR_RGB)
+        abort();
+    return aa_scene_set_gradient_interpolation(f->s, interpolation);
+}
+
 static const aa_svg_sink fuzz_svg_sink = {
     fz_shape, fz_move,        fz_line,      fz_quad,       fz_cubic,     fz_close, fz_arc, NULL,
-    fz_alpha, fz_group_begin, fz_group_end, fz_clip_begin, fz_clip_end, fz_clip, fz_gradient};
+    fz_alpha, fz_group_begin, fz_group_end, fz_clip_begin, fz_clip_end, fz_clip, fz_gradient,
+    fz_interpolation};
 
 int aa_fuzz_svg(const uint8_t *data, size_t size)
 {
