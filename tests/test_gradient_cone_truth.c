@@ -13,9 +13,11 @@
  *    fr, the wedge from the external centre of similitude P = (r F - fr
  *    C) / (r - fr) (where every circle's radius shrinks to 0) opening
  *    towards C, bounded by the two external tangents of the circles,
- *    whose half-angle is asin((r - fr) / |C - F|); with r = fr the strip
- *    of half-width r about the line F C; with the end circle strictly
- *    inside the focal circle, the whole plane.  The area is the square
+ *    whose half-angle is asin((r - fr) / |C - F|) (with |C - F| = |r -
+ *    fr|, the circles touching inside, both are the line through P
+ *    perpendicular to F C, and the region the half-plane beyond it); with
+ *    r = fr the strip of half-width r about the line F C; with the end
+ *    circle strictly inside the focal circle, the whole plane.  The area is the square
  *    clipped by the bounding half-planes (Sutherland-Hodgman), by the
  *    shoelace formula;
  *  - single pixels by GSL's adaptive quadrature in two dimensions (outer
@@ -101,7 +103,7 @@ static int region(const double p[6], half *hp, int *wedge, double apex[2])
     long double cx = p[0], cy = p[1], r = p[2], fx = p[3], fy = p[4], fr = p[5];
     long double L = hypotl(cx - fx, cy - fy), ux = (cx - fx) / L, uy = (cy - fy) / L;
     *wedge = 0;
-    if (L + r <= fr) /* the end circle inside the focal one */
+    if (L + r < fr) /* the end circle strictly inside the focal one */
         return 0;
     if (r == fr) { /* the strip |(q - F) x u| <= r */
         hp[0] = (half){uy, -ux, r - (uy * fx - ux * fy)};
@@ -111,7 +113,8 @@ static int region(const double p[6], half *hp, int *wedge, double apex[2])
     /* the wedge from P opening along s u, s the sign of r - fr (towards
      * C when the end circle is the larger) */
     long double px = (r * fx - fr * cx) / (r - fr), py = (r * fy - fr * cy) / (r - fr);
-    long double s = r > fr ? 1.0L : -1.0L, sn = fabsl(r - fr) / L, cs = sqrtl(1.0L - sn * sn);
+    long double s = r > fr ? 1.0L : -1.0L, sn = fabsl(r - fr) / L;
+    long double cs = sqrtl(fmaxl(0.0L, 1.0L - sn * sn));
     *wedge = 1;
     apex[0] = (double)px, apex[1] = (double)py;
     for (int k = 0; k < 2; k++) {
@@ -197,6 +200,14 @@ static void test_area(void **state)
     check_area("strip, r = fr", (const double[6]){11.2, 8.3, 2.35, 4.1, 3.3, 2.35});
     /* the end circle inside the focal one: everything painted */
     check_area("nested, fr > r + |C - F|", (const double[6]){8.2, 6.3, 1.5, 7.6, 5.9, 6.0});
+    /* the circles touching inside (|C - F| = |r - fr|): both tangents are
+     * the line through P perpendicular to F C, the half-plane beyond it
+     * painted; the focus on the end circle (D = (3, 4), r = 5), the focal
+     * circle inside touching (P = (3, 6)), and the end circle inside the
+     * focal one touching it (P = (3, 6), painted x > 3) */
+    check_area("half-plane, fr = 0", (const double[6]){10.5, 8.25, 5.0, 7.5, 4.25, 0.0});
+    check_area("half-plane, fr < r", (const double[6]){8.0, 6.0, 5.0, 6.0, 6.0, 3.0});
+    check_area("half-plane, fr > r", (const double[6]){6.0, 6.0, 3.0, 8.0, 6.0, 5.0});
 }
 
 /* ---- single pixels against 2-D quadrature ---- */
@@ -219,6 +230,10 @@ static double pic_t(const pic *pc, double x, double y)
     /* |q - w D|^2 = (fr + w dr)^2: A w^2 - 2 B w + C = 0 */
     long double A = Dx * Dx + Dy * Dy - dr * dr, B = qx * Dx + qy * Dy + p[5] * dr;
     long double C = qx * qx + qy * qy - (long double)p[5] * p[5], disc = B * B - A * C;
+    if (A == 0) { /* one root */
+        long double w = C / (2 * B);
+        return B != 0 && p[5] + w * dr >= 0 ? (double)w : NAN;
+    }
     if (disc < 0)
         return NAN;
     long double w1 = (B + sqrtl(disc)) / A, w2 = (B - sqrtl(disc)) / A;
@@ -399,6 +414,17 @@ static void test_2d(void **state)
     static const int e[][2] = {{8, 6}, {7, 5}, {8, 5}, {7, 6}, {6, 3}, {10, 9}, {2, 2}};
     check_2d("nested, fr > r + |C - F|", (const double[6]){8.2, 6.3, 1.5, 7.6, 5.9, 6.0}, 0.4,
              e, (int)(sizeof e / sizeof *e));
+    /* the circles touching inside: t = c / (2 b) runs to infinity at the
+     * half-plane's edge (padded to the last stop there), every circle
+     * through P; P's pixel and the edge's */
+    static const int f[][2] = {{7, 4}, {11, 1}, {9, 2}, {5, 5}, {3, 7}, {1, 8}, {9, 7}, {12, 9}};
+    check_2d("half-plane, fr = 0", (const double[6]){10.5, 8.25, 5.0, 7.5, 4.25, 0.0}, 0.3, f,
+             (int)(sizeof f / sizeof *f));
+    static const int g[][2] = {{3, 6}, {3, 2}, {3, 9}, {2, 6}, {4, 6}, {5, 3}, {4, 5}};
+    check_2d("half-plane, fr < r", (const double[6]){8.0, 6.0, 5.0, 6.0, 6.0, 3.0}, 0.3, g,
+             (int)(sizeof g / sizeof *g));
+    check_2d("half-plane, fr > r", (const double[6]){6.0, 6.0, 3.0, 8.0, 6.0, 5.0}, 0.3, g,
+             (int)(sizeof g / sizeof *g));
 }
 
 int main(void)

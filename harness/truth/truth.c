@@ -251,6 +251,19 @@
  * stand-in colour, the first stop's at the layer's alpha, could hide a
  * layer behind a translucent gradient).
  *
+ * Radial gradients of the cone case (the focal circle not strictly inside
+ * the end circle; "the cone case" below), under the box filter as the
+ * scene's one gradient: the row is cut where it crosses the two lines
+ * tangent to every circle (d = b^2 - a c is their forms' product); the
+ * unpainted stretches take the composite without the layer, the painted
+ * ones the cuts above, their pieces next to a tangent line integrated in
+ * the square root of the distance to it, where t becomes analytic, with
+ * the same rule and bound in that variable.  The outer breakpoints add
+ * the tangent lines' crossings of the window's sides and of the pieces
+ * and where each stop circle touches them (the circles touching inside,
+ * a = 0: the half-plane's edge, where t has a pole, in place of the
+ * lines).  The other filters and other gradients beside it are refused.
+ *
  * The other separable filters (tent, gauss, bspline, mitchell, catrom,
  * lanczos; "the other separable filters" below): every span of a
  * gradient scene takes the path of several gradients with the row's
@@ -353,8 +366,10 @@ typedef struct grad_radial {
     grad_plane plane;
     /* the cone case (aa_gradient_is_cone; "the cone case" below): cone
      * CONE_WEDGE (a > 0: d = L0 L1, the tangent lines' real forms, the
-     * painted region where both are >= 0) or CONE_NESTED (a < 0, dr < 0:
-     * d = L0 L1 with L1 = conj L0, every point painted), else 0; lf[k]:
+     * painted region where both are >= 0), CONE_NESTED (a < 0, dr < 0:
+     * d = L0 L1 with L1 = conj L0, every point painted) or CONE_HALF (a =
+     * 0: L0 = b times the sign of dr, the painted half-plane L0 > 0, L1 =
+     * 1), else 0; lf[k]:
      * L_k's coefficients of x, y and 1 in pixels, lg[k] of qx, qy and 1
      * in the gradient's coordinates relative to F */
     int cone;
@@ -363,6 +378,7 @@ typedef struct grad_radial {
 } grad_radial;
 #define CONE_WEDGE 1
 #define CONE_NESTED 2
+#define CONE_HALF 3
 
 /* Any gradient layer for the path of several gradients at a point
  * ("several gradients"): its layer, spread, stops and their encoded
@@ -729,14 +745,8 @@ static int grad_init(worker *w)
             continue;
         if (aa_gradient_is_cone(&g)) { /* "the cone case" */
             const char *src = aa_scene_layer_gradient_source(w->scene, l);
-            const double *p = g.p;
-            double Dx = p[0] - p[3], Dy = p[1] - p[4], dr = p[2] - p[5];
             const char *why = NULL;
-            if (Dx * Dx + Dy * Dy - dr * dr == 0.0)
-                why = "its focal circle touches its end circle from inside (|C - F| + fr = "
-                      "r), where t = c / (2 b) has a pole along the painted half-plane's "
-                      "edge, which the reference's rows do not take";
-            else if (!w->box)
+            if (!w->box)
                 why = "the reference integrates the cone case under the box filter only: "
                       "the other filters' rows bound the colour for nested circles, with no "
                       "cut at the tangent lines";
@@ -1113,12 +1123,21 @@ static void rad_piece(worker *w, const grad_radial *g, const rad_row *r, const r
  *    circles of radius >= 0 (t <= t*) are nested and shrink to P*, every
  *    point lies on one of them, and it is the smaller root, again (b +
  *    sqrt d) / a; L0 = dr U + i sqrt(-a) V and L1 its conjugate.
- *  - a = 0 (the focal circle touching the end circle from inside) makes
- *    t = c / (2 b), with a pole along the painted half-plane's edge b = 0:
- *    refused by name (grad_init).
+ *  - a = 0 (the focal circle touching the end circle from inside, at P*;
+ *    CONE_HALF): the one root t = c / (2 b), of radius >= 0 exactly where
+ *    sg b > 0 (c + 2 b fr / dr = |q - q*|^2 >= 0, as |D| = |dr|): the
+ *    half-plane beyond the line through P* perpendicular to D, L0 = sg b,
+ *    L1 = 1.  t runs to sg infinity at its edge (a pole, not a branch
+ *    point): padded, the paint there is the last stop's or the first's,
+ *    constant, and the stretch from the last stop circle to the edge is
+ *    integrated exactly as such; the rule's bound takes |t| <= |c| / (2
+ *    |b|) with |b| >= |b(m)| - |b1| A on the ellipse.  Repeat and reflect
+ *    would repeat the stops without end at the edge: a window the edge
+ *    passes is refused by name (rad_breakpoints_of).
  * t is evaluated as (b + sqrt d) / a when b >= 0 and as c / (b - sqrt d)
  * otherwise (the same number; neither cancels), with d = L0 L1 from the
- * linear forms, exact to rounding however close to a tangent line.
+ * linear forms, exact to rounding however close to a tangent line (a = 0:
+ * c / (2 b)).
  * {t >= tau} is the union of the discs of the circles t' >= tau of radius
  * >= 0, which is convex (their centres and radii affine in t'): t is
  * quasiconcave on the painted region, which is convex, so along a segment
@@ -1165,8 +1184,10 @@ static void rad_piece(worker *w, const grad_radial *g, const rad_row *r, const r
  * circle touches the tangent lines, the ends of its front arc: near such a
  * point the part of a row where t < tau opens from the line like the
  * square of the height's distance to it, a jump in the inner integral's
- * second derivative.  Under the box filter only, with no other gradient
- * in the scene (grad_init refuses the rest by name).
+ * second derivative; for CONE_HALF, the edge's crossings and meetings
+ * (every circle touches it at P*, whose row is a breakpoint already).
+ * Under the box filter only, with no other gradient in the scene
+ * (grad_init refuses the rest by name).
  */
 
 /* The cone case's linear forms of radial gradient r (the comment above). */
@@ -1178,7 +1199,12 @@ static void cone_init(grad_radial *r)
     double ts = r->dr != 0.0 ? -r->fr / r->dr : 0.0, qsx = ts * r->Dx, qsy = ts * r->Dy;
     double U[3] = {ex, ey, -(ex * qsx + ey * qsy)}, V[3] = {-ey, ex, ey * qsx - ex * qsy};
     double complex G[2][3];
-    if (r->a < 0.0) {
+    if (r->a == 0.0) {
+        double sg = r->dr > 0.0 ? 1.0 : -1.0;
+        r->cone = CONE_HALF;
+        G[0][0] = sg * r->Dx, G[0][1] = sg * r->Dy, G[0][2] = sg * r->fr * r->dr;
+        G[1][0] = G[1][1] = 0.0, G[1][2] = 1.0;
+    } else if (r->a < 0.0) {
         double sa = sqrt(-r->a);
         r->cone = CONE_NESTED;
         for (int k = 0; k < 3; k++) {
@@ -1230,6 +1256,8 @@ static double cone_t_sq(const grad_radial *g, double x, double y, double sq)
     double qx = g->inv[0] * x + g->inv[2] * y + g->inv[4] - g->fx;
     double qy = g->inv[1] * x + g->inv[3] * y + g->inv[5] - g->fy;
     double b = qx * g->Dx + qy * g->Dy + g->fr * g->dr;
+    if (g->a == 0.0) /* CONE_HALF: the one root */
+        return (qx * qx + qy * qy - g->fr * g->fr) / (2.0 * b);
     if (b >= 0.0)
         return (b + sq) / g->a;
     return (qx * qx + qy * qy - g->fr * g->fr) / (b - sq);
@@ -1258,7 +1286,7 @@ static void cone_seg_range(const grad_radial *g, int col, double sa, double sb, 
 {
     double cut[4] = {sa, sb, sb, sb};
     int nc = 1;
-    if (g->cone == CONE_WEDGE)
+    if (g->cone != CONE_NESTED)
         for (int k = 0; k < 2; k++) {
             double ls = creal(g->lf[k][col ? 1 : 0]);
             double l0 = creal(g->lf[k][col ? 0 : 1]) * at + creal(g->lf[k][2]);
@@ -1336,8 +1364,8 @@ typedef struct cone_row {
  * ellipse from |t| <= T(rho) as fn gives it (with the factor it returns in
  * *fac). */
 typedef double (*cone_tbound)(const void *ctx, double rho, double *fac);
-static double cone_rule_bound(const grad_radial *g, const rad_chan *ch, const double complex *ex,
-                              int ne, double m, double h, cone_tbound fn, const void *ctx)
+static double cone_rule_bound(const rad_chan *ch, const double complex *ex, int ne, double m,
+                              double h, cone_tbound fn, const void *ctx)
 {
     double rmax = INFINITY;
     for (int k = 0; k < ne; k++)
@@ -1349,16 +1377,21 @@ static double cone_rule_bound(const grad_radial *g, const rad_chan *ch, const do
     double best = INFINITY;
     for (int k = 1; k < 8; k++) {
         double rho = 1.0 + (rmax - 1.0) * k / 8.0, fac = 1.0;
-        double T = fn(ctx, rho, &fac) / fabs(g->a);
-        double E = fabs(ch->E[0]) + fabs(ch->E[1]) * T + fabs(ch->E[2]) * T * T;
+        double T = fn(ctx, rho, &fac);
+        double E = fabs(ch->E[0]) + (ch->E[1] != 0.0 ? fabs(ch->E[1]) * T : 0.0) +
+                   (ch->E[2] != 0.0 ? fabs(ch->E[2]) * T * T : 0.0);
         double M = fac * (ch->power ? pow((E + 0.055) / 1.055, 2.4) : E / 12.92);
         best = fmin(best, h * (64.0 / 15.0) * M * pow(rho, -2.0 * RAD_GL) / (rho * rho - 1.0));
     }
     return best;
 }
 
-/* A piece in x, [m - h, m + h]: |b| + |sqrt d| on the ellipse. */
+/* A piece in x, [m - h, m + h]: (|b| + |sqrt d|) / |a| on the ellipse
+ * (|z - m| <= A there); CONE_HALF: |c| / (2 |b|), |c(z)| <= |c(m)| +
+ * |c'(m)| A + c2 A^2 and |b(z)| >= |b(m)| - |b1| A, infinite when the
+ * ellipse may reach the pole b = 0. */
 typedef struct cone_plain_ctx {
+    const grad_radial *g;
     const cone_row *cr;
     double m, h;
 } cone_plain_ctx;
@@ -1366,23 +1399,30 @@ static double cone_plain_t(const void *ctx, double rho, double *fac)
 {
     const cone_plain_ctx *c = ctx;
     const rad_row *r = &c->cr->r;
-    double semi = 0.5 * c->h * (rho + 1.0 / rho), L[2];
-    for (int k = 0; k < 2; k++)
-        L[k] = cabs(c->cr->lam[k] * c->m + c->cr->mu[k]) + cabs(c->cr->lam[k]) * semi;
+    double semi = 0.5 * c->h * (rho + 1.0 / rho), L[2], m = c->m;
     *fac = 1.0;
-    return fabs(r->b0 + r->b1 * c->m) + fabs(r->b1) * semi + sqrt(L[0] * L[1]);
+    if (c->g->cone == CONE_HALF) {
+        double bl = fabs(r->b0 + r->b1 * m) - fabs(r->b1) * semi;
+        double cz = fabs(r->c0 + m * (r->c1 + m * r->c2)) + fabs(r->c1 + 2.0 * r->c2 * m) * semi +
+                    r->c2 * semi * semi;
+        return bl > 0.0 ? cz / (2.0 * bl) : INFINITY;
+    }
+    for (int k = 0; k < 2; k++)
+        L[k] = cabs(c->cr->lam[k] * m + c->cr->mu[k]) + cabs(c->cr->lam[k]) * semi;
+    return (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * semi + sqrt(L[0] * L[1])) / fabs(c->g->a);
 }
 
 /* A piece in u of a stretch from a zero xr of L_k (the comment above). */
 typedef struct cone_root_ctx {
-    double m, h, P0, P1, bxr, b1;
+    double m, h, P0, P1, bxr, b1, a;
 } cone_root_ctx;
 static double cone_root_t(const void *ctx, double rho, double *fac)
 {
     const cone_root_ctx *c = ctx;
     double Zu = fabs(c->m) + 0.5 * c->h * (rho + 1.0 / rho), Z2 = Zu * Zu;
     *fac = 2.0 * Zu;
-    return fabs(c->bxr) + fabs(c->b1) * Z2 + Zu * sqrt(fabs(c->P0) + fabs(c->P1) * Z2);
+    return (fabs(c->bxr) + fabs(c->b1) * Z2 + Zu * sqrt(fabs(c->P0) + fabs(c->P1) * Z2)) /
+           fabs(c->a);
 }
 
 /* The channels over [xa, xb] of the row (one piece in x), halving where
@@ -1392,7 +1432,7 @@ static void cone_plain(worker *w, const grad_radial *g, const cone_row *cr, cons
 {
     const rad_row *r = &cr->r;
     double m = 0.5 * (xa + xb), h = 0.5 * (xb - xa), worst = 0.0;
-    cone_plain_ctx ctx = {cr, m, h};
+    cone_plain_ctx ctx = {g, cr, m, h};
     for (int c = 0; c < nch; c++) {
         double complex ex[6];
         int ne = 0;
@@ -1400,7 +1440,7 @@ static void cone_plain(worker *w, const grad_radial *g, const cone_row *cr, cons
             if (cr->lam[k] != 0.0)
                 ex[ne++] = -cr->mu[k] / cr->lam[k];
         ne += cone_ezeros(g, r, &ch[c], ex + ne);
-        worst = fmax(worst, cone_rule_bound(g, &ch[c], ex, ne, m, h, cone_plain_t, &ctx));
+        worst = fmax(worst, cone_rule_bound(&ch[c], ex, ne, m, h, cone_plain_t, &ctx));
     }
     if (worst > 2e-16 * (xb - xa) && depth < RAD_DEPTH) {
         cone_plain(w, g, cr, ch, nch, xa, m, depth + 1, sum, err);
@@ -1430,7 +1470,7 @@ static void cone_root(worker *w, const grad_radial *g, const cone_row *cr, const
     int o = 1 - k;
     double lk = creal(cr->lam[k]), lo = creal(cr->lam[o]), Lo = creal(cr->lam[o] * xr + cr->mu[o]);
     double m = 0.5 * (ua + ub), h = 0.5 * (ub - ua), worst = 0.0;
-    cone_root_ctx ctx = {m, h, eps * lk * Lo, lk * lo, r->b0 + r->b1 * xr, r->b1};
+    cone_root_ctx ctx = {m, h, eps * lk * Lo, lk * lo, r->b0 + r->b1 * xr, r->b1, g->a};
     for (int c = 0; c < nch; c++) {
         double complex ex[10], z[4];
         int ne = 0, nz = cone_ezeros(g, r, &ch[c], z);
@@ -1442,7 +1482,7 @@ static void cone_root(worker *w, const grad_radial *g, const cone_row *cr, const
             double complex u0 = csqrt(eps * (z[q] - xr));
             ex[ne++] = u0, ex[ne++] = -u0;
         }
-        worst = fmax(worst, cone_rule_bound(g, &ch[c], ex, ne, m, h, cone_root_t, &ctx));
+        worst = fmax(worst, cone_rule_bound(&ch[c], ex, ne, m, h, cone_root_t, &ctx));
     }
     if (worst > 2e-16 * (ub * ub - ua * ua) && depth < RAD_DEPTH) {
         cone_root(w, g, cr, ch, nch, xr, eps, k, ua, m, depth + 1, sum, err);
@@ -1482,7 +1522,7 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
     cut[nc] = xa, kind[nc++] = -1;
     for (int k = 0; k < 2; k++) {
         double x = NAN;
-        if (g->cone == CONE_WEDGE && creal(cr.lam[k]) != 0.0)
+        if (g->cone != CONE_NESTED && creal(cr.lam[k]) != 0.0)
             x = -creal(cr.mu[k]) / creal(cr.lam[k]);
         else if (g->cone == CONE_NESTED && k == 0)
             x = creal(-cr.mu[0] / cr.lam[0]); /* nearest P*: the zeros' real part */
@@ -2957,10 +2997,26 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
     tmax += 1e-12 * (1.0 + fabs(tmax));
     double *taus = w->gbuf, XL[KINK_LINES];
     int nxl = kink_lines(w, XL);
-    if (g->cone == CONE_WEDGE) /* the tangent lines L_k = 0 */
-        for (int k = 0; k < 2 && !st; k++)
+    if (g->cone == CONE_WEDGE || g->cone == CONE_HALF) /* the tangent lines L_k = 0 */
+        for (int k = 0; k < (g->cone == CONE_HALF ? 1 : 2) && !st; k++)
             st = line_breaks(w, creal(g->lf[k][0]), creal(g->lf[k][1]), creal(g->lf[k][2]), 0.0,
                              local, n, XL, nxl);
+    if (g->cone == CONE_HALF && g->spread != AA_SPREAD_PAD && !st) {
+        /* t runs to infinity at the half-plane's edge: its stops repeat
+         * without end there */
+        int pos = 0, neg = 0;
+        for (int k = 0; k < 4; k++) {
+            double l = creal(g->lf[0][0]) * cx[k] + creal(g->lf[0][1]) * cy[k] + creal(g->lf[0][2]);
+            pos |= l >= 0.0, neg |= l <= 0.0;
+        }
+        if (pos && neg)
+            return aa_fail(AA_EINVAL, "pixel (%g, %g): the edge of a cone-case radial "
+                                      "gradient whose focal circle touches its end circle, where "
+                                      "t runs to infinity, passes its window, and its %s spread "
+                                      "repeats the stops without end there: refused",
+                           w->uc - 0.5, w->vc - 0.5,
+                           g->spread == AA_SPREAD_REPEAT ? "repeat" : "reflect");
+    }
     if (g->cone && !(tmin <= tmax))
         return st; /* no painted point in the window */
     size_t m = grad_taus(&g->plane, tmin, tmax, taus, w->cap_gbuf);
