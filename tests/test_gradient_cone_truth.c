@@ -212,8 +212,11 @@ static void test_area(void **state)
 
 /* ---- single pixels against 2-D quadrature ---- */
 
+#define MAX_TAUS 200
 typedef struct pic {
     double p[6], bg;
+    int spread, ntaus;
+    double taus[MAX_TAUS]; /* where the spread ramp's derivatives jump */
     half hp[2];
     int nh, wedge;
     double apex[2];
@@ -253,6 +256,12 @@ static double pic_at(const pic *pc, double x, double y)
     double t = pic_t(pc, x, y);
     if (isnan(t))
         return pc->bg;
+    if (pc->spread == AA_SPREAD_REPEAT)
+        return go_dec(t - floor(t));
+    if (pc->spread == AA_SPREAD_REFLECT) {
+        double f = t - 2 * floor(t / 2);
+        return go_dec(f <= 1 ? f : 2 - f);
+    }
     return go_dec(t < 0 ? 0 : t > 1 ? 1 : t);
 }
 
@@ -293,12 +302,12 @@ static double pic_y(double y, void *v)
 {
     pic *pc = v;
     pc->y = y;
-    double cut[32];
+    double cut[2 * MAX_TAUS + 8];
     int n = 0;
     for (int k = 0; k < pc->nh; k++)
         n += line_meet(pc, k, 0, y, cut + n);
-    for (int q = 0; q < 3; q++)
-        n += circle_meet(pc, go_taus[q], 0, y, cut + n);
+    for (int q = 0; q < pc->ntaus; q++)
+        n += circle_meet(pc, pc->taus[q], 0, y, cut + n);
     if (pc->wedge)
         cut[n++] = pc->apex[0];
     cut[n++] = pc->xlo, cut[n++] = pc->xhi;
@@ -310,7 +319,7 @@ static double pic_y(double y, void *v)
 static double pic_pixel(pic *pc, int i, int j)
 {
     const double *p = pc->p;
-    double cut[64];
+    double cut[7 * MAX_TAUS + 16];
     int n = 0;
     pc->xlo = i, pc->xhi = i + 1;
     cut[n++] = j, cut[n++] = j + 1;
@@ -319,8 +328,8 @@ static double pic_pixel(pic *pc, int i, int j)
     for (int k = 0; k < pc->nh; k++)
         for (int e = 0; e < 2; e++)
             n += line_meet(pc, k, 1, i + e, cut + n);
-    for (int q = 0; q < 3; q++) {
-        double tau = go_taus[q], rr = p[5] + tau * (p[2] - p[5]);
+    for (int q = 0; q < pc->ntaus; q++) {
+        double tau = pc->taus[q], rr = p[5] + tau * (p[2] - p[5]);
         double ccx = p[3] + tau * (p[0] - p[3]), ccy = p[4] + tau * (p[1] - p[4]);
         if (rr < 0)
             continue;
@@ -345,16 +354,28 @@ static double pic_pixel(pic *pc, int i, int j)
     return sum;
 }
 
-/* The reference of the black-to-white ramp p[] over bg against 2-D
- * quadrature at the pixels px. */
-static void check_2d(const char *what, const double p[6], double bg, const int (*px)[2], int npx)
+/* The reference of the black-to-white ramp p[] with spread over bg
+ * against 2-D quadrature at the pixels px; repeat and reflect cut at
+ * every integer t and where the spread t is 0.04045, for t in [-40,
+ * 40] (wider than the cases' ranges). */
+static void check_2d_spread(const char *what, const double p[6], int spread, double bg,
+                            const int (*px)[2], int npx)
 {
     pic pc;
     memset(&pc, 0, sizeof pc);
     memcpy(pc.p, p, sizeof pc.p);
     pc.bg = bg;
+    pc.spread = spread;
+    if (spread == AA_SPREAD_PAD)
+        for (int q = 0; q < 3; q++)
+            pc.taus[pc.ntaus++] = go_taus[q];
+    else
+        for (int k = -40; k <= 40 && pc.ntaus + 2 <= MAX_TAUS; k++) {
+            pc.taus[pc.ntaus++] = k;
+            pc.taus[pc.ntaus++] = spread == AA_SPREAD_REPEAT || !(k & 1) ? k + GO_T0 : k - GO_T0;
+        }
     pc.nh = region(p, pc.hp, &pc.wedge, pc.apex);
-    aa_scene *s = grad_scene(p, AA_SPREAD_PAD, black_white, 2, bg);
+    aa_scene *s = grad_scene(p, spread, black_white, 2, bg);
     aa_image ref, bound;
     aa_truth_stats stats;
     support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
@@ -376,6 +397,11 @@ static void check_2d(const char *what, const double p[6], double bg, const int (
     aa_image_free(&ref);
     aa_image_free(&bound);
     aa_scene_free(s);
+}
+
+static void check_2d(const char *what, const double p[6], double bg, const int (*px)[2], int npx)
+{
+    check_2d_spread(what, p, AA_SPREAD_PAD, bg, px, npx);
 }
 
 static void test_2d(void **state)
@@ -427,11 +453,35 @@ static void test_2d(void **state)
              (int)(sizeof g / sizeof *g));
 }
 
+/* Repeat and reflect: many stop circles, their front arcs ending on the
+ * tangents, the range of t of each row and window taken from t's
+ * quasiconcavity. */
+static void test_2d_spread(void **state)
+{
+    (void)state;
+    /* a narrow wedge from P = (3.64, 4.69) towards C = (9.3, 6.1), r =
+     * 1.1, fr = 0.4, repeated: about 1.3 periods a pixel along the axis */
+    static const int a[][2] = {{3, 4}, {4, 4}, {5, 3}, {5, 5}, {7, 2}, {7, 6},
+                               {9, 1}, {10, 8}, {12, 5}, {14, 10}};
+    check_2d_spread("wedge, repeat", (const double[6]){9.3, 6.1, 1.1, 5.7, 5.2, 0.4},
+                    AA_SPREAD_REPEAT, 0.3, a, (int)(sizeof a / sizeof *a));
+    /* the focal circle the larger, reflected: P = (1.88, 10.02) */
+    static const int b[][2] = {{1, 10}, {2, 9}, {3, 9}, {5, 7}, {7, 6}, {8, 5},
+                               {10, 4}, {12, 3}, {13, 2}, {6, 3}};
+    check_2d_spread("wedge, reflect", (const double[6]){5.2, 7.9, 0.6, 12.4, 3.3, 1.9},
+                    AA_SPREAD_REFLECT, 0.2, b, (int)(sizeof b / sizeof *b));
+    /* the strip, repeated */
+    static const int c[][2] = {{4, 1}, {4, 5}, {6, 2}, {8, 3}, {8, 8}, {11, 6}, {13, 8}};
+    check_2d_spread("strip, repeat", (const double[6]){11.2, 8.3, 1.35, 7.1, 5.3, 1.35},
+                    AA_SPREAD_REPEAT, 0.2, c, (int)(sizeof c / sizeof *c));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_area),
         cmocka_unit_test(test_2d),
+        cmocka_unit_test(test_2d_spread),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }
