@@ -1327,7 +1327,11 @@ static void cone_seg_range(const grad_radial *g, int col, double sa, double sb, 
 
 /* The x where E(t) + 0.055 = 0 for channel ch on the power piece (both
  * roots of the circle's quadratic for each complex tau0; rad_bound), at
- * most 4 into z. */
+ * most 4 into z.  A real root where the painted t is not tau0 is the
+ * other root's (t' = 2 b / a - t, real across the painted region in the
+ * cone case, unlike nested circles'), no singularity of the integrand:
+ * left out (a real root where d < 0 lies beyond a tangent line's
+ * crossing, itself excluded, and so outside every ellipse taken). */
 static int cone_ezeros(const grad_radial *g, const rad_row *r, const rad_chan *ch,
                        double complex *z)
 {
@@ -1346,8 +1350,17 @@ static int cone_ezeros(const grad_radial *g, const rad_row *r, const rad_chan *c
         double complex tau = taus[k], A2 = r->c2, A1 = r->c1 - 2.0 * tau * r->b1,
                        A0 = r->c0 - 2.0 * tau * r->b0 + g->a * tau * tau;
         double complex sq = csqrt(A1 * A1 - 4.0 * A2 * A0);
-        z[n++] = (-A1 + sq) / (2.0 * A2);
-        z[n++] = (-A1 - sq) / (2.0 * A2);
+        for (int q = 0; q < 2; q++) {
+            double complex x = (-A1 + (q ? -sq : sq)) / (2.0 * A2);
+            if (cimag(x) == 0.0 && cimag(tau) == 0.0 && g->cone != CONE_HALF) {
+                int painted;
+                double d = cone_d(g, creal(x), r->y, &painted), tr = creal(tau);
+                if (!(d > 0.0 && fabs(cone_t_near(g, creal(x), r->y) - tr) <=
+                                     1e-9 * (1.0 + fabs(tr))))
+                    continue;
+            }
+            z[n++] = x;
+        }
     }
     return n;
 }
