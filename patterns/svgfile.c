@@ -95,9 +95,7 @@
  * radial gradients SVG 2 draws as a cone (grad_resolve), text, images, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <use> and other non-shapes in a clipPath, references to clip
- * paths forming a cycle, masks, filters, objectBoundingBox units for a
- * clip-path on a nested <svg> or a <symbol> (its box in the viewBox's
- * coordinates is not computed), transform-box
+ * paths forming a cycle, masks, filters, transform-box
  * stroke-box of a stroke with offset curves (its extent not computed
  * exactly) or inside an object bounding box (its stroke not known there),
  * content beyond a viewport that clips when the sink takes no clips,
@@ -323,8 +321,10 @@ typedef struct reader {
         int id;              /* its clip given to the sink, or -1: not yet */
     } vclip[AA_SVG_MAX_DEPTH + 2];
     /* the <svg> or <symbol> whose own clip-path is being resolved, in its
-     * content's user space (viewport_element) */
+     * content's user space (viewport_element), and its viewBox's size (or
+     * its viewport's): what percentages in its content refer to */
     const xmlNode *clip_viewport;
+    double clip_viewport_vb[2];
 } reader;
 
 /* AA_EINVAL naming the element and its line. */
@@ -3035,7 +3035,10 @@ static int group_begin(reader *r, double o)
  *     elliptical arcs (their extremes in closed form, geometry_box), of a
  *     group the union of its children's, each through its transform, of a
  *     nested <svg> its content's through x, y and its viewBox map, not cut
- *     by its viewport (as Chromium, resvg and librsvg take it).  A
+ *     by its viewport (as Chromium, resvg and librsvg take it); for a
+ *     clip-path on a nested <svg> or a <symbol> itself, whose clip is in
+ *     the user space the element establishes, its content's in that space
+ *     (content_box; Chromium and resvg alike).  A
  *     box of no width or no height is refused.
  *   - The clip is the union of the clipPath's children: <path>, <rect>,
  *     <circle>, <ellipse>, <polygon>, <polyline> (a <line> has no area),
@@ -3400,6 +3403,29 @@ typedef struct clip_member {
     int gate;
 } clip_member;
 
+/* The bounding box of the content of a nested <svg> or a <symbol> in the
+ * user space it establishes (SVG 2's getBBox of the element: the union of
+ * its children's boxes, each through its transform; geometry_walk), the
+ * percentages in it of its viewBox's size vb, added to box. */
+static int content_box(reader *r, const xmlNode *node, const double vb[2], double box[4])
+{
+    if (!r->blevel++)
+        r->belements = 0, r->nb = 0, r->bvia = NULL;
+    const double pw = r->vpw, ph = r->vph;
+    r->vpw = vb[0], r->vph = vb[1];
+    int st = AA_OK;
+    for (const xmlNode *c = node->children; c && !st; c = c->next) {
+        if (c->type != XML_ELEMENT_NODE)
+            continue;
+        mat mc = identity;
+        if (!(st = element_transform(r, c, &mc)))
+            st = geometry_walk(r, c, &mc, box, 1);
+    }
+    r->vpw = pw, r->vph = ph;
+    r->blevel--;
+    return st;
+}
+
 /* The clipPath cp referenced by `ref` (whose user space is m, whose clip
  * outside is `outer`) given to the sink: its number into *out. */
 static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat *m, int outer,
@@ -3432,12 +3458,20 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
         if (st)
             return st;
     }
-    if (obb && ref == r->clip_viewport)
-        return fail_at(r, "clipPathUnits=\"objectBoundingBox\" for the <%s> of line %ld: the "
-                          "bounding box of a nested <svg> or a <symbol> in its viewBox's "
-                          "coordinates is not supported",
-                       (const char *)ref->name, xmlGetLineNo(ref));
-    if (obb) {
+    if (obb && ref == r->clip_viewport) {
+        /* a nested <svg> or a <symbol>: the clip is in the user space the
+         * element establishes, and so is the box, its content's there
+         * (content_box; Chromium draws it so) */
+        double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+        if ((st = content_box(r, ref, r->clip_viewport_vb, b)))
+            return st;
+        r->node = cp;
+        if (!(b[2] > b[0] && b[3] > b[1]))
+            return fail_at(r, "clipPathUnits=\"objectBoundingBox\" for the <%s> of line %ld, "
+                              "whose content's bounding box has no width or no height",
+                           (const char *)ref->name, xmlGetLineNo(ref));
+        memcpy(box, b, sizeof box);
+    } else if (obb) {
         /* the box in the clip's user space: for a <use>, that space has
          * translate(x, y) in it (use_element), so the box is its target's
          * as the use draws it, less that translation (Chromium and resvg
@@ -4483,6 +4517,7 @@ static int viewport_element(reader *r, const xmlNode *node, const xmlNode *via, 
     const int outer = r->clip;
     int cp;
     r->clip_viewport = node;
+    r->clip_viewport_vb[0] = vb[0], r->clip_viewport_vb[1] = vb[1];
     st = clip_of(r, node, &inner, outer, &cp);
     r->clip_viewport = NULL;
     if (st)

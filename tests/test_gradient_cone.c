@@ -247,8 +247,12 @@ static void test_chromium_pixel(void **state)
 }
 
 /* The circles coinciding (SVG 2 paints nothing) is refused at the scene,
- * naming it; the exact reference refuses the cone case by name (its
- * edges are not among its breakpoints yet). */
+ * naming it; the exact reference integrates the cone case under the box
+ * filter (tests/test_gradient_cone_truth.c checks its values), the focal
+ * circle touching the end circle from inside (a = 0) too when padded, and
+ * refuses by name the cone under the other filters and beside another
+ * gradient, and the touching circles repeated in a window their
+ * half-plane's edge passes (t runs to infinity there). */
 static void test_refusals(void **state)
 {
     (void)state;
@@ -275,13 +279,58 @@ static void test_refusals(void **state)
     assert_int_equal(aa_image_alloc(&out, 8, 8, 3), AA_OK);
     assert_int_equal(aa_image_alloc(&bound, 8, 8, 1), AA_OK);
     aa_truth_stats stats;
+    assert_int_equal(aa_truth_render(placed, &f, 1, &out, &bound, &stats), AA_OK);
+    assert_true(stats.max_bound <= 1e-12);
+    assert_int_equal(aa_filter_parse("tent:r=1", &f), AA_OK);
     assert_int_equal(aa_truth_render(placed, &f, 1, &out, &bound, &stats), AA_EINVAL);
-    if (!strstr(aa_last_error(), "cone"))
-        fail_msg("the reference's refusal names no cone: %s", aa_last_error());
-    aa_image_free(&out);
-    aa_image_free(&bound);
+    if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), "box filter only"))
+        fail_msg("the reference's refusal under tent names no cone: %s", aa_last_error());
     aa_scene_free(placed);
     aa_scene_free(s);
+    /* the focal circle touching the end circle from inside (|C - F| + fr
+     * = r: 0.25 + 0.25 = 0.5; P* = (1, 0.5), the painted half-plane x < 1
+     * whose edge is the picture's right side), padded and repeated, and a
+     * cone beside another gradient */
+    for (int k = 0; k < 3; k++) {
+        s = aa_scene_new((aa_rgb){{0, 0, 0}});
+        for (int l = 0; l <= (k == 2); l++) {
+            assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+            assert_int_equal(aa_scene_move_to(s, 0, 0), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, 1, 0), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, 1, 1), AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+            aa_gradient touch = {AA_GRADIENT_RADIAL, k ? AA_SPREAD_REPEAT : AA_SPREAD_PAD,
+                                 {0.5, 0.5, 0.5, 0.75, 0.5, 0.25}, {1, 0, 0, 1, 0, 0},
+                                 2, red_blue};
+            aa_gradient lin = {AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {0, 0, 1, 1}, {1, 0, 0, 1, 0, 0},
+                               2, red_blue};
+            assert_true(aa_gradient_is_cone(&touch));
+            const aa_gradient *gr = k < 2 ? &touch : l ? &cone : &lin;
+            assert_int_equal(aa_scene_set_gradient(s, gr), AA_OK);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        placed = aa_scene_place(s, 8, 8, 0, 0, 0);
+        assert_non_null(placed);
+        assert_int_equal(aa_filter_parse("box", &f), AA_OK);
+        int st = aa_truth_render(placed, &f, 1, &out, &bound, &stats);
+        if (k == 0) {
+            if (st != AA_OK)
+                fail_msg("the touching circles padded refused: %s", aa_last_error());
+            assert_true(stats.max_bound <= 1e-12);
+            aa_scene_free(placed);
+            aa_scene_free(s);
+            continue;
+        }
+        assert_int_equal(st, AA_EINVAL);
+        const char *want = k == 2 ? "one gradient" : "without end";
+        if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), want))
+            fail_msg("the reference's refusal names no cone or not \"%s\": %s", want,
+                     aa_last_error());
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+    aa_image_free(&out);
+    aa_image_free(&bound);
     /* nested circles are no cone */
     aa_gradient nested = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0.5, 0.5, 0.4, 0.6, 0.5, 0.1},
                           {1, 0, 0, 1, 0, 0}, 2, red_blue};
@@ -367,8 +416,10 @@ static void test_peers(void **state)
  * differs, left out).  Pixel (12, 20) must be Chromium's #cb0033 within a
  * code (the opening comment; with fr dropped it would be #e1001e, so a
  * reader that lost fr fails here, and the same document without fr is
- * drawn to show it: the negative control).  The exact reference refuses
- * the document naming the <radialGradient> and its line, and the cone. */
+ * drawn to show it: the negative control).  The exact reference under the
+ * box filter must be within 3 codes of Chromium at the same clear pixels,
+ * and refuses the document under tent naming the <radialGradient>, its
+ * line and the cone. */
 static void svg_cone_doc(const char *dir, const char *name, const char *fr, char *path,
                          size_t len)
 {
@@ -447,7 +498,9 @@ static void test_svg(void **state)
         fail_msg("the document read is not Chromium's at (12, 20): %.2f codes", 255.0 * d);
     assert_true(d0 > 10.0 / 255.0); /* the control: fr matters there */
 
-    /* the exact reference refuses it, naming the element and line */
+    /* the exact reference integrates it under the box filter (compared
+     * with Chromium below) and refuses it under tent, naming the element
+     * and line */
     aa_scene *sc = svg_cone_read(path);
     aa_scene *placed = aa_scene_place(sc, 60, 40, 0, 0, 0);
     assert_non_null(placed);
@@ -456,11 +509,18 @@ static void test_svg(void **state)
     aa_image ref = {0};
     aa_truth_stats stats;
     assert_int_equal(aa_image_alloc(&ref, 60, 40, 3), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 1, &ref, NULL, &stats), AA_EINVAL);
-    print_message("reference: %s\n", aa_last_error());
+    if (aa_truth_render(placed, &f, 1, &ref, NULL, &stats) != AA_OK)
+        fail_msg("the reference refused the cone case under the box: %s", aa_last_error());
+    print_message("svg, reference: max bound %.2g\n", stats.max_bound);
+    assert_true(stats.max_bound <= 1e-12);
+    aa_image tref = {0};
+    assert_int_equal(aa_image_alloc(&tref, 60, 40, 3), AA_OK);
+    assert_int_equal(aa_filter_parse("tent:r=1", &f), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &f, 1, &tref, NULL, &stats), AA_EINVAL);
+    print_message("reference under tent: %s\n", aa_last_error());
     if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), "line 3: <radialGradient>"))
         fail_msg("the reference's refusal names no cone or no element: %s", aa_last_error());
-    aa_image_free(&ref);
+    aa_image_free(&tref);
     aa_scene_free(placed);
     aa_scene_free(sc);
 
@@ -482,7 +542,7 @@ static void test_svg(void **state)
         snprintf(cmd, sizeof cmd, "'%s' '%s' 60 40 '%s' >/dev/null", adapter, path, png);
         if (system(cmd) != 0 || aa_image_read(png, &ch))
             fail_msg("chromium failed on %s: %s", path, aa_last_error());
-        double worst = 0.0, worst0 = 0.0;
+        double worst = 0.0, worst0 = 0.0, worstr = 0.0;
         int count = 0, painted = 0;
         for (int j = 0; j < 40; j++)
             for (int i = 0; i < 60; i++) {
@@ -495,6 +555,7 @@ static void test_svg(void **state)
                     double e = aa_srgb_encode(aa_pixel(&ch, i, j)[c]);
                     worst = fmax(worst, fabs(aa_srgb_encode(aa_pixel(&im, i, j)[c]) - e));
                     worst0 = fmax(worst0, fabs(aa_srgb_encode(aa_pixel(&im0, i, j)[c]) - e));
+                    worstr = fmax(worstr, fabs(aa_srgb_encode(aa_pixel(&ref, i, j)[c]) - e));
                 }
             }
         print_message("svg, cairo against chromium: %d clear pixels (%d painted), worst %.2f "
@@ -505,11 +566,19 @@ static void test_svg(void **state)
             fail_msg("cairo's render of the document differs from Chromium's: %.2f codes",
                      255.0 * worst);
         assert_true(worst0 > 10.0 / 255.0); /* the control */
+        /* the exact reference (the pixel's mean, where Chromium samples
+         * its centre: over a clear pixel the colour is nearly affine) */
+        print_message("svg, the exact reference against chromium: worst %.2f codes\n",
+                      255.0 * worstr);
+        if (!(worstr <= 3.0 / 255.0 + 1e-9))
+            fail_msg("the exact reference of the document differs from Chromium's: %.2f codes",
+                     255.0 * worstr);
         aa_image_free(&ch);
     }
 #endif
     aa_image_free(&im);
     aa_image_free(&im0);
+    aa_image_free(&ref);
     support_rmtree(dir);
 }
 

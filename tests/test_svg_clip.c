@@ -421,6 +421,29 @@ static void test_bounding_box(void **state)
                "width=\"1\" height=\"1\"/><rect x=\"10\" y=\"10\" width=\"1\" height=\"1\" "
                "transform=\"scale(4)\"/></g>",
                1);
+    /* a nested svg's box, for a clip-path on the svg itself: its content's
+     * in the user space it establishes (where that clip applies; SVG 2's
+     * getBBox of the element).  viewBox 0 0 20 20 onto 40 x 40 px at (10,
+     * 10): content unit 2 px.  The content, a rect [2, 12] x [4, 12] and
+     * the unit square at (1, 1) moved by translate(15 15) to [16, 17]^2,
+     * has the box [2, 17] x [4, 17]; its right half, x >= 9.5, keeps [9.5,
+     * 12] x [4, 12] of the first (20 units) and the second whole (1): 21
+     * units, 84 px.  Chromium and resvg draw 84 px of white; the same
+     * content as a used symbol alike */
+    const char *content = "<rect x=\"2\" y=\"4\" width=\"10\" height=\"8\"/><rect x=\"1\" "
+                          "y=\"1\" width=\"1\" height=\"1\" transform=\"translate(15 15)\"/>";
+    const char *half = "<clipPath id=\"c\" clipPathUnits=\"objectBoundingBox\"><rect x=\"0.5\" "
+                       "width=\"0.5\" height=\"1\"/></clipPath>";
+    snprintf(a, sizeof a,
+             "%s<svg x=\"10\" y=\"10\" width=\"40\" height=\"40\" viewBox=\"0 0 20 20\" "
+             "clip-path=\"url(#c)\">%s</svg>",
+             half, content);
+    check_area("obb-nested-svg", a, 84);
+    snprintf(a, sizeof a,
+             "%s<symbol id=\"s\" viewBox=\"0 0 20 20\" clip-path=\"url(#c)\">%s</symbol>"
+             "<use href=\"#s\" x=\"10\" y=\"10\" width=\"40\" height=\"40\"/>",
+             half, content);
+    check_area("obb-symbol", a, 84);
 }
 
 /* A clip clipped in turn: the disk of radius 20 at (24, 32), whose
@@ -556,6 +579,11 @@ static void test_refused(void **state)
     refused("<clipPath id=\"a\" clipPathUnits=\"objectBoundingBox\"/>"
             "<line x2=\"9\" stroke=\"red\" clip-path=\"url(#a)\"/>",
             "<clipPath>", "no width or no height");
+    /* a nested svg whose content has no area */
+    refused("<clipPath id=\"a\" clipPathUnits=\"objectBoundingBox\"/>"
+            "<svg width=\"9\" height=\"9\" clip-path=\"url(#a)\"><line x2=\"9\" "
+            "stroke=\"red\"/></svg>",
+            "<clipPath>", "content's bounding box has no width");
 }
 
 /* The shipped clips.svg builds, clipped. */

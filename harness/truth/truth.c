@@ -259,6 +259,19 @@
  * on each piece C is 12.92 v (affine, as an sRGB stop's) or 1.055 v^(1/2.4)
  * - 0.055, whose branch point v = 0 the ellipse must keep out.
  *
+ * Radial gradients of the cone case (the focal circle not strictly inside
+ * the end circle; "the cone case" below), under the box filter as the
+ * scene's one gradient: the row is cut where it crosses the two lines
+ * tangent to every circle (d = b^2 - a c is their forms' product); the
+ * unpainted stretches take the composite without the layer, the painted
+ * ones the cuts above, their pieces next to a tangent line integrated in
+ * the square root of the distance to it, where t becomes analytic, with
+ * the same rule and bound in that variable.  The outer breakpoints add
+ * the tangent lines' crossings of the window's sides and of the pieces
+ * and where each stop circle touches them (the circles touching inside,
+ * a = 0: the half-plane's edge, where t has a pole, in place of the
+ * lines).  The other filters and other gradients beside it are refused.
+ *
  * The other separable filters (tent, gauss, bspline, mitchell, catrom,
  * lanczos; "the other separable filters" below): every span of a
  * gradient scene takes the path of several gradients with the row's
@@ -359,7 +372,21 @@ typedef struct grad_radial {
     double *enc;
     double inv[6], m[6], fx, fy, Dx, Dy, fr, dr, a, px, py;
     grad_plane plane;
+    /* the cone case (aa_gradient_is_cone; "the cone case" below): cone
+     * CONE_WEDGE (a > 0: d = L0 L1, the tangent lines' real forms, the
+     * painted region where both are >= 0), CONE_NESTED (a < 0, dr < 0:
+     * d = L0 L1 with L1 = conj L0, every point painted) or CONE_HALF (a =
+     * 0: L0 = b times the sign of dr, the painted half-plane L0 > 0, L1 =
+     * 1), else 0; lf[k]:
+     * L_k's coefficients of x, y and 1 in pixels, lg[k] of qx, qy and 1
+     * in the gradient's coordinates relative to F */
+    int cone;
+    double complex lf[2][3];
+    double lg[2][3];
 } grad_radial;
+#define CONE_WEDGE 1
+#define CONE_NESTED 2
+#define CONE_HALF 3
 
 /* Any gradient layer for the path of several gradients at a point
  * ("several gradients"): its layer, spread, stops and their encoded
@@ -643,6 +670,8 @@ static int grad_mode(const aa_scene *scene)
     return varying && ngrad > 1 ? 2 : 0;
 }
 
+static void cone_init(grad_radial *r);
+
 /* The radial gradient g of layer l appended to w->rg. */
 static int rad_init(worker *w, int l, const aa_gradient *g, int lin)
 {
@@ -667,6 +696,8 @@ static int rad_init(worker *w, int l, const aa_gradient *g, int lin)
     double ts = -r->fr / r->dr, qx = r->fx + ts * r->Dx, qy = r->fy + ts * r->Dy;
     r->px = m[0] * qx + m[2] * qy + m[4], r->py = m[1] * qx + m[3] * qy + m[5];
     r->plane.spread = g->spread, r->plane.nstops = g->nstops, r->plane.stops = g->stops;
+    if (aa_gradient_is_cone(g))
+        cone_init(r);
     r->enc = malloc((size_t)g->nstops * 4 * sizeof *r->enc);
     gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(RAD_GL);
     if (!r->enc || !gl) {
@@ -808,19 +839,36 @@ static int grad_init(worker *w)
     w->gbuf2 = malloc(w->cap_gbuf * sizeof *w->gbuf2);
     if (!w->gp || !w->gl || !w->gl_layer || !w->gl_paint || !w->gbuf || !w->gbuf2)
         return aa_fail(AA_ENOMEM, "out of memory for gradient planes");
+    int ngrad = 0;
+    for (int l = 0; l < n; l++) {
+        aa_gradient g;
+        ngrad += aa_scene_layer_gradient(w->scene, l, &g);
+    }
     for (int l = 0; l < n; l++) {
         aa_gradient g;
         if (!aa_scene_layer_gradient(w->scene, l, &g))
             continue;
-        if (aa_gradient_is_cone(&g)) { /* the rows' cuts and bounds assume nested circles */
+        if (aa_gradient_is_cone(&g)) { /* "the cone case" */
             const char *src = aa_scene_layer_gradient_source(w->scene, l);
-            return aa_fail(AA_EINVAL,
-                           "reference: layer %d's radial gradient%s%s%s is of the cone case "
-                           "(its focal circle not strictly inside its end circle), which the "
-                           "reference does not take yet: its painted region's edges, the "
-                           "cone's tangent lines, are not yet among its breakpoints, so it is "
-                           "refused rather than integrated without a bound",
-                           l, *src ? " (" : "", src, *src ? ")" : "");
+            const char *why = NULL;
+            if (!w->box)
+                why = "the reference integrates the cone case under the box filter only: "
+                      "the other filters' rows bound the colour for nested circles, with no "
+                      "cut at the tangent lines";
+            else if (ngrad > 1)
+                why = "the reference integrates the cone case only as the scene's one "
+                      "gradient: the path of several gradients at a point bounds the colour "
+                      "for nested circles, with no cut at the tangent lines";
+            else if (aa_scene_layer_gradient_interpolation(w->scene, l) != AA_INTERPOLATE_SRGB)
+                why = "the reference integrates the cone case in sRGB-encoded values only: "
+                      "a gradient in linear light takes the path of several gradients, which "
+                      "bounds the colour for nested circles, with no cut at the tangent lines";
+            if (why)
+                return aa_fail(AA_EINVAL,
+                               "reference: layer %d's radial gradient%s%s%s is of the cone "
+                               "case (its focal circle not strictly inside its end circle) "
+                               "and is refused: %s",
+                               l, *src ? " (" : "", src, *src ? ")" : "", why);
         }
         int lin = aa_scene_layer_gradient_interpolation(w->scene, l) != AA_INTERPOLATE_SRGB, st;
         if (lin && (st = lin_cut_stops(w, l, &g)))
@@ -1157,6 +1205,549 @@ static void rad_piece(worker *w, const grad_radial *g, const rad_row *r, const r
     *err += fmin(worst, xb - xa);
 }
 
+/* ---- the cone case ----
+ *
+ * A radial gradient whose focal circle is not strictly inside its end
+ * circle (aa_gradient_is_cone) paints the largest t whose circle, of
+ * radius fr + t dr >= 0, passes through the point, and nothing where
+ * there is none (aabench.h, aa_gradient).  With q the point relative to
+ * F, d = b^2 - a c is a quadratic in q whose value and gradient (2 b D -
+ * 2 a q) vanish at q* = t* D, t* = -fr/dr (the point P* where the radius
+ * is 0), so d(q) = Q(q - q*) with Q(v) = (v.D)^2 - a |v|^2; in the frame
+ * e = D/|D|, e' = (-e_y, e_x), with U = e.(q - q*) and V = e'.(q - q*),
+ *     d = dr^2 U^2 - a V^2.
+ *  - a > 0 (the cone proper, CONE_WEDGE): d = L0 L1, L0 = sg (|dr| U -
+ *    sqrt(a) V), L1 = sg (|dr| U + sqrt(a) V), sg the sign of dr: the two
+ *    lines through P* tangent to every circle, each a circle's envelope.
+ *    The circles of radius >= 0 lie in the wedge ahead of P* (along sg D,
+ *    within the half-angle asin(|dr|/|D|) < 90 degrees), where L0 >= 0
+ *    and L1 >= 0; on the opposite wedge, where d >= 0 too, both roots
+ *    have radius < 0, and where L0 and L1 differ in sign d < 0: the
+ *    painted region is {L0 >= 0, L1 >= 0}.  There g(w) = |q - F - w D| -
+ *    (fr + w dr), convex in w and rising without bound (|D| > |dr|), has
+ *    its zeros t1 <= t2 and t = t2 = (b + sqrt d) / a.  The line where
+ *    the radius is 0 (U = 0) meets the painted region at P* only, so it
+ *    adds nothing else.  dr = 0 (the circles of one radius sliding along
+ *    D) has no P*: d = |D|^2 (fr^2 - V^2) with q* = 0, L0 = |D| (fr - V),
+ *    L1 = |D| (fr + V), the strip |V| <= fr, t as above.
+ *  - a < 0 with dr < 0 (the end circle strictly inside the focal circle,
+ *    CONE_NESTED): d = dr^2 U^2 + |a| V^2 >= 0, zero at P* only: the
+ *    circles of radius >= 0 (t <= t*) are nested and shrink to P*, every
+ *    point lies on one of them, and it is the smaller root, again (b +
+ *    sqrt d) / a; L0 = dr U + i sqrt(-a) V and L1 its conjugate.
+ *  - a = 0 (the focal circle touching the end circle from inside, at P*;
+ *    CONE_HALF): the one root t = c / (2 b), of radius >= 0 exactly where
+ *    sg b > 0 (c + 2 b fr / dr = |q - q*|^2 >= 0, as |D| = |dr|): the
+ *    half-plane beyond the line through P* perpendicular to D, L0 = sg b,
+ *    L1 = 1.  t runs to sg infinity at its edge (a pole, not a branch
+ *    point): padded, the paint there is the last stop's or the first's,
+ *    constant, and the stretch from the last stop circle to the edge is
+ *    integrated exactly as such; the rule's bound takes |t| <= |c| / (2
+ *    |b|) with |b| >= |b(m)| - |b1| A on the ellipse.  Repeat and reflect
+ *    would repeat the stops without end at the edge: a window the edge
+ *    passes is refused by name (rad_breakpoints_of).
+ * t is evaluated as (b + sqrt d) / a when b >= 0 and as c / (b - sqrt d)
+ * otherwise (the same number; neither cancels), with d = L0 L1 from the
+ * linear forms, exact to rounding however close to a tangent line (a = 0:
+ * c / (2 b)).
+ * {t >= tau} is the union of the discs of the circles t' >= tau of radius
+ * >= 0, which is convex (their centres and radii affine in t'): t is
+ * quasiconcave on the painted region, which is convex, so along a segment
+ * its least is at the ends of the painted part and its greatest found by
+ * golden section; over the window, its least among the corners, the
+ * sides' crossings of the tangent lines (t = b / a there, affine along
+ * each line) and P*, its greatest on the sides or at P*.
+ *
+ * Where the picture is not analytic along a row: where the row crosses
+ * L0 = 0 or L1 = 0 (the paint starts or stops, and t moves like the square
+ * root of the distance to the line), where t passes a stop's offset or a
+ * period's end or the composite the decoding's threshold (on the circles
+ * of those t, only the front arc, where t' = 2 b / a - tau <= tau, is a
+ * curve of t = tau; the other roots rad_cross gives only cut the row where
+ * nothing happens), and, for CONE_NESTED, the row's point nearest P* (t's
+ * kink on the row through it; its branch points are the complex zeros of
+ * L0 and L1, which approach the real axis there).  A painted stretch
+ * between a zero of L_k and the next cut is integrated in u =
+ * sqrt(|x - xr|), x = xr + eps u^2: with L_k = lk eps u^2 and the other
+ * L_o = Lo(xr) + lo eps u^2,
+ *     sqrt(d) = u sqrt(P(u^2)),  P(w) = eps lk Lo(xr) + lk lo w,
+ * analytic in u but at the zeros of P (u^2 = -eps Lo(xr) / lo: the other
+ * line's crossing, real or imaginary), so the integrand 2 u f(t(u)) takes
+ * the 20-point rule with Trefethen's bound on the Bernstein ellipse in u,
+ * |u| <= Zu = |m| + A there, |P| <= |P(0)| + |lk lo| Zu^2, |b| <= |b(xr)|
+ * + |b1| Zu^2, |t| <= (|b| + Zu sqrt|P|) / |a| and M the colour's bound
+ * times 2 Zu; the zeros of E(t) + 0.055 on the power piece (the z where
+ * c - 2 tau0 b + a tau0^2 = 0, as rad_bound finds them) exclude u = +-
+ * sqrt(eps (z - xr)).  Other pieces take the rule in x with the zeros of
+ * L0 and L1 (complex for CONE_NESTED) excluded and |t| <= (|b(m)| + |b1| A
+ * + sqrt(|L0| |L1|)) / |a|, |L_k| <= |L_k(m)| + |lk| A.  A stretch
+ * whose paint is constant (every channel's E1 and E2 zero: pad beyond the
+ * stops) is its length times the decoded colour, exactly; an unpainted
+ * one the composite without the layer (its paint transparent).  Halving
+ * and the bounds' sum are rad_piece's.
+ *
+ * Where the inner integral is not smooth in the height (outer
+ * breakpoints, rad_breakpoints_of): the tangent lines' crossings of the
+ * window's sides and their meetings with the local pieces (as a linear
+ * gradient's stop lines, line_breaks), the row of P* (the lines cross and
+ * the painted chord's length has a kink), the stop circles as for nested
+ * circles (window's sides, top and bottom rows, pieces: a superset, as
+ * only their front arcs are curves of the picture), and where each stop
+ * circle touches the tangent lines, the ends of its front arc: near such a
+ * point the part of a row where t < tau opens from the line like the
+ * square of the height's distance to it, a jump in the inner integral's
+ * second derivative; for CONE_HALF, the edge's crossings and meetings
+ * (every circle touches it at P*, whose row is a breakpoint already).
+ * Under the box filter only, with no other gradient in the scene
+ * (grad_init refuses the rest by name).
+ */
+
+/* The cone case's linear forms of radial gradient r (the comment above). */
+static void cone_init(grad_radial *r)
+{
+    double Dn = hypot(r->Dx, r->Dy), ex = 1.0, ey = 0.0;
+    if (Dn > 0.0)
+        ex = r->Dx / Dn, ey = r->Dy / Dn;
+    double ts = r->dr != 0.0 ? -r->fr / r->dr : 0.0, qsx = ts * r->Dx, qsy = ts * r->Dy;
+    double U[3] = {ex, ey, -(ex * qsx + ey * qsy)}, V[3] = {-ey, ex, ey * qsx - ex * qsy};
+    double complex G[2][3];
+    if (r->a == 0.0) {
+        double sg = r->dr > 0.0 ? 1.0 : -1.0;
+        r->cone = CONE_HALF;
+        G[0][0] = sg * r->Dx, G[0][1] = sg * r->Dy, G[0][2] = sg * r->fr * r->dr;
+        G[1][0] = G[1][1] = 0.0, G[1][2] = 1.0;
+    } else if (r->a < 0.0) {
+        double sa = sqrt(-r->a);
+        r->cone = CONE_NESTED;
+        for (int k = 0; k < 3; k++) {
+            G[0][k] = r->dr * U[k] + _Complex_I * sa * V[k];
+            G[1][k] = r->dr * U[k] - _Complex_I * sa * V[k];
+        }
+    } else if (r->dr == 0.0) {
+        r->cone = CONE_WEDGE;
+        for (int k = 0; k < 3; k++) {
+            G[0][k] = -Dn * V[k] + (k == 2 ? Dn * r->fr : 0.0);
+            G[1][k] = Dn * V[k] + (k == 2 ? Dn * r->fr : 0.0);
+        }
+        r->px = r->py = NAN; /* no P*: the circles keep their radius */
+    } else {
+        double sg = r->dr > 0.0 ? 1.0 : -1.0, sa = sqrt(r->a), adr = fabs(r->dr);
+        r->cone = CONE_WEDGE;
+        for (int k = 0; k < 3; k++) {
+            G[0][k] = sg * (adr * U[k] - sa * V[k]);
+            G[1][k] = sg * (adr * U[k] + sa * V[k]);
+        }
+    }
+    const double *iv = r->inv;
+    for (int k = 0; k < 2; k++) {
+        for (int j = 0; j < 3; j++)
+            r->lg[k][j] = creal(G[k][j]);
+        r->lf[k][0] = G[k][0] * iv[0] + G[k][1] * iv[1];
+        r->lf[k][1] = G[k][0] * iv[2] + G[k][1] * iv[3];
+        r->lf[k][2] = G[k][0] * (iv[4] - r->fx) + G[k][1] * (iv[5] - r->fy) + G[k][2];
+    }
+}
+
+/* d at (x, y) from the forms; *painted: whether the point is painted. */
+static double cone_d(const grad_radial *g, double x, double y, int *painted)
+{
+    if (g->cone == CONE_NESTED) {
+        double complex l = g->lf[0][0] * x + g->lf[0][1] * y + g->lf[0][2];
+        *painted = 1;
+        return creal(l) * creal(l) + cimag(l) * cimag(l);
+    }
+    double l0 = creal(g->lf[0][0]) * x + creal(g->lf[0][1]) * y + creal(g->lf[0][2]);
+    double l1 = creal(g->lf[1][0]) * x + creal(g->lf[1][1]) * y + creal(g->lf[1][2]);
+    *painted = l0 >= 0.0 && l1 >= 0.0;
+    return l0 * l1;
+}
+
+/* t at (x, y) given sqrt(d) there (the comment above). */
+static double cone_t_sq(const grad_radial *g, double x, double y, double sq)
+{
+    double qx = g->inv[0] * x + g->inv[2] * y + g->inv[4] - g->fx;
+    double qy = g->inv[1] * x + g->inv[3] * y + g->inv[5] - g->fy;
+    double b = qx * g->Dx + qy * g->Dy + g->fr * g->dr;
+    if (g->a == 0.0) /* CONE_HALF: the one root */
+        return (qx * qx + qy * qy - g->fr * g->fr) / (2.0 * b);
+    if (b >= 0.0)
+        return (b + sq) / g->a;
+    return (qx * qx + qy * qy - g->fr * g->fr) / (b - sq);
+}
+
+/* t at (x, y) taking d < 0 (rounding next to a tangent line) as 0, the
+ * point as painted. */
+static double cone_t_near(const grad_radial *g, double x, double y)
+{
+    int p;
+    double d = cone_d(g, x, y, &p);
+    return cone_t_sq(g, x, y, sqrt(d > 0.0 ? d : 0.0));
+}
+
+static inline double cone_t_on(const grad_radial *g, int col, double s, double at)
+{
+    return col ? cone_t_near(g, at, s) : cone_t_near(g, s, at);
+}
+
+/* Widen the range [*lo, *hi] by t's range over the painted part of the
+ * segment [sa, sb] of row at (col 0) or column at (col 1): the least at
+ * the ends of each painted stretch, the greatest by golden section (t is
+ * quasiconcave there; the comment above). */
+static void cone_seg_range(const grad_radial *g, int col, double sa, double sb, double at,
+                           double *lo, double *hi)
+{
+    double cut[4] = {sa, sb, sb, sb};
+    int nc = 1;
+    if (g->cone != CONE_NESTED)
+        for (int k = 0; k < 2; k++) {
+            double ls = creal(g->lf[k][col ? 1 : 0]);
+            double l0 = creal(g->lf[k][col ? 0 : 1]) * at + creal(g->lf[k][2]);
+            double s = ls != 0.0 ? -l0 / ls : NAN;
+            if (s > sa && s < sb)
+                cut[nc++] = s;
+        }
+    if (nc == 3 && cut[2] < cut[1]) {
+        double tmp = cut[1];
+        cut[1] = cut[2], cut[2] = tmp;
+    }
+    cut[nc++] = sb;
+    const double k = 0.5 * (3.0 - sqrt(5.0));
+    for (int q = 0; q + 1 < nc; q++) {
+        double a = cut[q], b = cut[q + 1], mid = 0.5 * (a + b);
+        int painted;
+        if (!(b > a))
+            continue;
+        if (col)
+            cone_d(g, at, mid, &painted);
+        else
+            cone_d(g, mid, at, &painted);
+        if (!painted)
+            continue;
+        double ta = cone_t_on(g, col, a, at), tb = cone_t_on(g, col, b, at);
+        *lo = fmin(*lo, fmin(ta, tb));
+        double c = a + k * (b - a), e = b - k * (b - a);
+        double fc = cone_t_on(g, col, c, at), fe = cone_t_on(g, col, e, at);
+        for (int it = 0; it < 90 && b - a > 1e-15 * (1.0 + fabs(a)); it++) {
+            if (fc >= fe)
+                b = e, e = c, fe = fc, c = a + k * (b - a), fc = cone_t_on(g, col, c, at);
+            else
+                a = c, c = e, fc = fe, e = b - k * (b - a), fe = cone_t_on(g, col, e, at);
+        }
+        *hi = fmax(*hi, fmax(fmax(ta, tb), fmax(fc, fe)));
+    }
+}
+
+/* The x where E(t) + 0.055 = 0 for channel ch on the power piece (both
+ * roots of the circle's quadratic for each complex tau0; rad_bound), at
+ * most 4 into z.  A real root where the painted t is not tau0 is the
+ * other root's (t' = 2 b / a - t, real across the painted region in the
+ * cone case, unlike nested circles'), no singularity of the integrand:
+ * left out (a real root where d < 0 lies beyond a tangent line's
+ * crossing, itself excluded, and so outside every ellipse taken). */
+static int cone_ezeros(const grad_radial *g, const rad_row *r, const rad_chan *ch,
+                       double complex *z)
+{
+    if (!ch->power)
+        return 0;
+    double complex taus[2];
+    int nt = 0, n = 0;
+    double A = ch->E[2], B = ch->E[1], C = ch->E[0] + 0.055;
+    if (A != 0.0) {
+        double complex sq = csqrt((double complex)(B * B - 4.0 * A * C));
+        taus[nt++] = (-B + sq) / (2.0 * A);
+        taus[nt++] = (-B - sq) / (2.0 * A);
+    } else if (B != 0.0)
+        taus[nt++] = -C / B;
+    for (int k = 0; k < nt; k++) {
+        double complex tau = taus[k], A2 = r->c2, A1 = r->c1 - 2.0 * tau * r->b1,
+                       A0 = r->c0 - 2.0 * tau * r->b0 + g->a * tau * tau;
+        double complex sq = csqrt(A1 * A1 - 4.0 * A2 * A0);
+        for (int q = 0; q < 2; q++) {
+            double complex x = (-A1 + (q ? -sq : sq)) / (2.0 * A2);
+            if (cimag(x) == 0.0 && cimag(tau) == 0.0 && g->cone != CONE_HALF) {
+                int painted;
+                double d = cone_d(g, creal(x), r->y, &painted), tr = creal(tau);
+                if (!(d > 0.0 && fabs(cone_t_near(g, creal(x), r->y) - tr) <=
+                                     1e-9 * (1.0 + fabs(tr))))
+                    continue;
+            }
+            z[n++] = x;
+        }
+    }
+    return n;
+}
+
+/* A row of a cone-case gradient: rad_row's coefficients and L_k = lam[k]
+ * x + mu[k]. */
+typedef struct cone_row {
+    rad_row r;
+    double complex lam[2], mu[2];
+} cone_row;
+
+/* Trefethen's bound (rad_bound) of the 20-point rule from the excluded
+ * points ex[0 .. ne - 1] and, at each rho, the colour's bound on the
+ * ellipse from |t| <= T(rho) as fn gives it (with the factor it returns in
+ * *fac). */
+typedef double (*cone_tbound)(const void *ctx, double rho, double *fac);
+static double cone_rule_bound(const rad_chan *ch, const double complex *ex, int ne, double m,
+                              double h, cone_tbound fn, const void *ctx)
+{
+    double rmax = INFINITY;
+    for (int k = 0; k < ne; k++)
+        rmax = fmin(rmax, rad_rho(ex[k], m, h));
+    if (!(rmax > 1.0 + 1e-9))
+        return INFINITY;
+    if (rmax > 64.0)
+        rmax = 64.0;
+    double best = INFINITY;
+    for (int k = 1; k < 8; k++) {
+        double rho = 1.0 + (rmax - 1.0) * k / 8.0, fac = 1.0;
+        double T = fn(ctx, rho, &fac);
+        double E = fabs(ch->E[0]) + (ch->E[1] != 0.0 ? fabs(ch->E[1]) * T : 0.0) +
+                   (ch->E[2] != 0.0 ? fabs(ch->E[2]) * T * T : 0.0);
+        double M = fac * (ch->power ? pow((E + 0.055) / 1.055, 2.4) : E / 12.92);
+        best = fmin(best, h * (64.0 / 15.0) * M * pow(rho, -2.0 * RAD_GL) / (rho * rho - 1.0));
+    }
+    return best;
+}
+
+/* A piece in x, [m - h, m + h]: (|b| + |sqrt d|) / |a| on the ellipse
+ * (|z - m| <= A there); CONE_HALF: |c| / (2 |b|), |c(z)| <= |c(m)| +
+ * |c'(m)| A + c2 A^2 and |b(z)| >= |b(m)| - |b1| A, infinite when the
+ * ellipse may reach the pole b = 0. */
+typedef struct cone_plain_ctx {
+    const grad_radial *g;
+    const cone_row *cr;
+    double m, h;
+} cone_plain_ctx;
+static double cone_plain_t(const void *ctx, double rho, double *fac)
+{
+    const cone_plain_ctx *c = ctx;
+    const rad_row *r = &c->cr->r;
+    double semi = 0.5 * c->h * (rho + 1.0 / rho), L[2], m = c->m;
+    *fac = 1.0;
+    if (c->g->cone == CONE_HALF) {
+        double bl = fabs(r->b0 + r->b1 * m) - fabs(r->b1) * semi;
+        double cz = fabs(r->c0 + m * (r->c1 + m * r->c2)) + fabs(r->c1 + 2.0 * r->c2 * m) * semi +
+                    r->c2 * semi * semi;
+        return bl > 0.0 ? cz / (2.0 * bl) : INFINITY;
+    }
+    for (int k = 0; k < 2; k++)
+        L[k] = cabs(c->cr->lam[k] * m + c->cr->mu[k]) + cabs(c->cr->lam[k]) * semi;
+    return (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * semi + sqrt(L[0] * L[1])) / fabs(c->g->a);
+}
+
+/* A piece in u of a stretch from a zero xr of L_k (the comment above). */
+typedef struct cone_root_ctx {
+    double m, h, P0, P1, bxr, b1, a;
+} cone_root_ctx;
+static double cone_root_t(const void *ctx, double rho, double *fac)
+{
+    const cone_root_ctx *c = ctx;
+    double Zu = fabs(c->m) + 0.5 * c->h * (rho + 1.0 / rho), Z2 = Zu * Zu;
+    *fac = 2.0 * Zu;
+    return (fabs(c->bxr) + fabs(c->b1) * Z2 + Zu * sqrt(fabs(c->P0) + fabs(c->P1) * Z2)) /
+           fabs(c->a);
+}
+
+/* The channels over [xa, xb] of the row (one piece in x), halving where
+ * needed (rad_piece). */
+static void cone_plain(worker *w, const grad_radial *g, const cone_row *cr, const rad_chan *ch,
+                       int nch, double xa, double xb, int depth, double *sum, double *err)
+{
+    const rad_row *r = &cr->r;
+    double m = 0.5 * (xa + xb), h = 0.5 * (xb - xa), worst = 0.0;
+    cone_plain_ctx ctx = {g, cr, m, h};
+    for (int c = 0; c < nch; c++) {
+        double complex ex[6];
+        int ne = 0;
+        for (int k = 0; k < 2; k++)
+            if (cr->lam[k] != 0.0)
+                ex[ne++] = -cr->mu[k] / cr->lam[k];
+        ne += cone_ezeros(g, r, &ch[c], ex + ne);
+        worst = fmax(worst, cone_rule_bound(&ch[c], ex, ne, m, h, cone_plain_t, &ctx));
+    }
+    if (worst > 2e-16 * (xb - xa) && depth < RAD_DEPTH) {
+        cone_plain(w, g, cr, ch, nch, xa, m, depth + 1, sum, err);
+        cone_plain(w, g, cr, ch, nch, m, xb, depth + 1, sum, err);
+        return;
+    }
+    double part[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < RAD_GL; k++) {
+        double t = cone_t_near(g, m + h * w->gl_x[k], r->y);
+        for (int c = 0; c < nch; c++) {
+            double e = ch[c].E[0] + t * (ch[c].E[1] + t * ch[c].E[2]);
+            part[c] += w->gl_w[k] * (ch[c].power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92);
+        }
+    }
+    for (int c = 0; c < nch; c++)
+        sum[c] += h * part[c];
+    *err += fmin(worst, xb - xa);
+}
+
+/* The channels over x = xr + eps u^2, u in [ua, ub], xr a zero of L_k:
+ * the integrand 2 u f(t), halving where needed. */
+static void cone_root(worker *w, const grad_radial *g, const cone_row *cr, const rad_chan *ch,
+                      int nch, double xr, double eps, int k, double ua, double ub, int depth,
+                      double *sum, double *err)
+{
+    const rad_row *r = &cr->r;
+    int o = 1 - k;
+    double lk = creal(cr->lam[k]), lo = creal(cr->lam[o]), Lo = creal(cr->lam[o] * xr + cr->mu[o]);
+    double m = 0.5 * (ua + ub), h = 0.5 * (ub - ua), worst = 0.0;
+    cone_root_ctx ctx = {m, h, eps * lk * Lo, lk * lo, r->b0 + r->b1 * xr, r->b1, g->a};
+    for (int c = 0; c < nch; c++) {
+        double complex ex[10], z[4];
+        int ne = 0, nz = cone_ezeros(g, r, &ch[c], z);
+        if (ctx.P1 != 0.0) {
+            double complex u0 = csqrt(-ctx.P0 / ctx.P1);
+            ex[ne++] = u0, ex[ne++] = -u0;
+        }
+        for (int q = 0; q < nz; q++) {
+            double complex u0 = csqrt(eps * (z[q] - xr));
+            ex[ne++] = u0, ex[ne++] = -u0;
+        }
+        worst = fmax(worst, cone_rule_bound(&ch[c], ex, ne, m, h, cone_root_t, &ctx));
+    }
+    if (worst > 2e-16 * (ub * ub - ua * ua) && depth < RAD_DEPTH) {
+        cone_root(w, g, cr, ch, nch, xr, eps, k, ua, m, depth + 1, sum, err);
+        cone_root(w, g, cr, ch, nch, xr, eps, k, m, ub, depth + 1, sum, err);
+        return;
+    }
+    double part[3] = {0.0, 0.0, 0.0};
+    for (int q = 0; q < RAD_GL; q++) {
+        double u = m + h * w->gl_x[q], u2 = u * u, P = ctx.P0 + ctx.P1 * u2;
+        double t = cone_t_sq(g, xr + eps * u2, r->y, u * sqrt(P > 0.0 ? P : 0.0));
+        for (int c = 0; c < nch; c++) {
+            double e = ch[c].E[0] + t * (ch[c].E[1] + t * ch[c].E[2]);
+            part[c] += w->gl_w[q] * 2.0 * u *
+                       (ch[c].power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92);
+        }
+    }
+    for (int c = 0; c < nch; c++)
+        sum[c] += h * part[c];
+    *err += fmin(worst, ub * ub - ua * ua);
+}
+
+/* The span [xa, xb] of row y painted (where it is) by the cone-case
+ * gradient g alone, the composite K0 + K1 op + K2 op C read into e0, e1,
+ * e2 (rad_span): cut where the row crosses the tangent lines (and, nested,
+ * at its point nearest P*), each stretch unpainted (the layer
+ * transparent) or cut at the stops and the threshold as rad_span cuts,
+ * its end pieces at a tangent line in u (the comment above). */
+static void cone_span(worker *w, const grad_radial *g, const double *e0, const double *e1,
+                      const double *e2, double xa, double xb, double y, int nch, double *sum)
+{
+    cone_row cr;
+    rad_row_at(g, y, &cr.r);
+    for (int k = 0; k < 2; k++)
+        cr.lam[k] = g->lf[k][0], cr.mu[k] = g->lf[k][1] * y + g->lf[k][2];
+    double cut[4];
+    int kind[4], nc = 0;
+    cut[nc] = xa, kind[nc++] = -1;
+    for (int k = 0; k < 2; k++) {
+        double x = NAN;
+        if (g->cone != CONE_NESTED && creal(cr.lam[k]) != 0.0)
+            x = -creal(cr.mu[k]) / creal(cr.lam[k]);
+        else if (g->cone == CONE_NESTED && k == 0)
+            x = creal(-cr.mu[0] / cr.lam[0]); /* nearest P*: the zeros' real part */
+        if (!(x > xa && x < xb))
+            continue;
+        int at = nc++;
+        while (at > 1 && cut[at - 1] > x) {
+            cut[at] = cut[at - 1], kind[at] = kind[at - 1];
+            at--;
+        }
+        cut[at] = x, kind[at] = g->cone == CONE_WEDGE ? k : -1;
+    }
+    cut[nc] = xb, kind[nc++] = -1;
+    double *xs = w->gbuf, err = 0.0;
+    size_t cap = w->cap_gbuf - 8;
+    for (int s = 0; s + 1 < nc; s++) {
+        double p = cut[s], q = cut[s + 1];
+        int painted;
+        if (!(q > p))
+            continue;
+        cone_d(g, 0.5 * (p + q), y, &painted);
+        if (!painted) {
+            for (int c = 0; c < nch; c++)
+                sum[c] += (q - p) * aa_srgb_decode(e0[c]);
+            continue;
+        }
+        int kp = kind[s], kq = kind[s + 1];
+        double tlo = -INFINITY, thi = INFINITY;
+        if (g->spread != AA_SPREAD_PAD) {
+            tlo = INFINITY, thi = -INFINITY;
+            cone_seg_range(g, 0, p, q, y, &tlo, &thi);
+            tlo -= 1e-12 * (1.0 + fabs(tlo));
+            thi += 1e-12 * (1.0 + fabs(thi));
+        }
+        size_t nx = 0;
+        xs[nx++] = p;
+        size_t mt = grad_taus(&g->plane, tlo, thi, xs + nx, cap - nx);
+        if (mt > (cap - nx) / 3)
+            mt = 0; /* cannot happen: grad_breakpoints refused such windows */
+        double *taus = xs + nx + 2 * mt;
+        memmove(taus, xs + nx, mt * sizeof *xs);
+        for (size_t k = 0; k < mt; k++)
+            nx += (size_t)rad_cross(g, &cr.r, taus[k], p, q, xs + nx);
+        qsort(xs + 1, nx - 1, sizeof *xs, cmp_dbl);
+        xs[nx++] = q;
+        for (size_t k = 0; k + 1 < nx; k++) {
+            double a = xs[k], b = xs[k + 1];
+            if (!(b > a))
+                continue;
+            double v0[4], v1[4];
+            rad_paint_lin(g, cone_t_near(g, 0.5 * (a + b), y), v0, v1);
+            rad_chan ch[3];
+            double cuts[16];
+            int ncut = 0, flat = 1;
+            cuts[ncut++] = a;
+            for (int c = 0; c < nch; c++) {
+                double K0 = e0[c], K1 = e1[c] - e0[c], K2 = e2[c] - e1[c];
+                ch[c].E[0] = K0 + K1 * v0[3] + K2 * v0[3] * v0[c];
+                ch[c].E[1] = K1 * v1[3] + K2 * (v0[3] * v1[c] + v1[3] * v0[c]);
+                ch[c].E[2] = K2 * v1[3] * v1[c];
+                flat = flat && ch[c].E[1] == 0.0 && ch[c].E[2] == 0.0;
+                double rt[2];
+                int n = gsl_poly_solve_quadratic(ch[c].E[2], ch[c].E[1], ch[c].E[0] - 0.04045,
+                                                 &rt[0], &rt[1]);
+                if (ch[c].E[2] == 0.0 && ch[c].E[1] != 0.0)
+                    n = 1, rt[0] = (0.04045 - ch[c].E[0]) / ch[c].E[1];
+                for (int qq = 0; qq < n; qq++)
+                    ncut += rad_cross(g, &cr.r, rt[qq], a, b, cuts + ncut);
+            }
+            if (flat) { /* constant paint: exact */
+                for (int c = 0; c < nch; c++)
+                    sum[c] += (b - a) * aa_srgb_decode(ch[c].E[0]);
+                continue;
+            }
+            qsort(cuts + 1, (size_t)(ncut - 1), sizeof *cuts, cmp_dbl);
+            cuts[ncut++] = b;
+            for (int qq = 0; qq + 1 < ncut; qq++) {
+                double ca = cuts[qq], cb = cuts[qq + 1];
+                if (!(cb > ca))
+                    continue;
+                double tm = cone_t_near(g, 0.5 * (ca + cb), y);
+                for (int c = 0; c < nch; c++)
+                    ch[c].power = ch[c].E[0] + tm * (ch[c].E[1] + tm * ch[c].E[2]) > 0.04045;
+                int lr = ca == p && kp >= 0, rr = cb == q && kq >= 0;
+                if (lr && rr) {
+                    double mid = 0.5 * (ca + cb);
+                    cone_root(w, g, &cr, ch, nch, ca, 1.0, kp, 0.0, sqrt(mid - ca), 0, sum, &err);
+                    cone_root(w, g, &cr, ch, nch, cb, -1.0, kq, 0.0, sqrt(cb - mid), 0, sum, &err);
+                } else if (lr)
+                    cone_root(w, g, &cr, ch, nch, ca, 1.0, kp, 0.0, sqrt(cb - ca), 0, sum, &err);
+                else if (rr)
+                    cone_root(w, g, &cr, ch, nch, cb, -1.0, kq, 0.0, sqrt(cb - ca), 0, sum, &err);
+                else
+                    cone_plain(w, g, &cr, ch, nch, ca, cb, 0, sum, &err);
+            }
+        }
+    }
+    w->rad_row_err += err;
+}
+
 /* The span [xa, xb] of row y (winding w->wind): the one radial gradient
  * whose paint the composite there depends on (K1 or K2 not 0, the other
  * gradients transparent: a layer hidden by another gradient's stand-in
@@ -1193,6 +1784,10 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
     if (!g) { /* no radial gradient paints the span */
         for (int c = 0; c < nch; c++)
             sum[c] += (xb - xa) * aa_srgb_decode(e0[c]);
+        return;
+    }
+    if (g->cone) {
+        cone_span(w, g, e0, e1, e2, xa, xb, y, nch, sum);
         return;
     }
     rad_row r;
@@ -2498,6 +3093,66 @@ static int offset_meet_circle(worker *w, const aa_piece *p, const grad_radial *g
     return st;
 }
 
+/* The breakpoints of the line tx x + ty y + t0 = tau (a linear gradient's
+ * stop line, a cone's tangent line): under a radial filter its crossings
+ * of the support's circle (rad_filter_line), its crossings of the kink
+ * lines XL and where it meets each local piece. */
+static int line_breaks(worker *w, double tx, double ty, double t0, double tau,
+                       const aa_piece *const *local, size_t n, const double *XL, int nxl)
+{
+    int st = AA_OK;
+    if (w->radial)
+        st = rad_filter_line(w, tx, ty, t0 - tau);
+    if (ty != 0.0)
+        for (int k = 0; k < nxl && !st; k++)
+            st = add_abs(w, (tau - t0 - tx * XL[k]) / ty, -INFINITY, INFINITY);
+    for (size_t k = 0; k < n && !st; k++) {
+        const aa_piece *p = local[k];
+        double ys[3];
+        if (p->kind == AA_PIECE_FLAT)
+            continue;
+        if (ty == 0.0) {
+            int mm = aa_piece_meet_x(p, (tau - t0) / tx, ys);
+            for (int r = 0; r < mm && !st; r++)
+                st = add_abs(w, ys[r], -INFINITY, INFINITY);
+            continue;
+        }
+        if (p->kind == AA_PIECE_OFFSET) {
+            st = offset_meet_line(w, p, tx, ty, t0 - tau);
+            continue;
+        }
+        if (p->kind == AA_PIECE_CONIC) {
+            /* A cos s + B sin s + C = 0 on the arc's angle s */
+            double A = tx * p->ea - ty * p->er, B = tx * p->eb;
+            double C = tx * p->ex + ty * p->ey + t0 - tau;
+            double rho = hypot(A, B);
+            if (!(rho > 0.0) || fabs(C) > rho)
+                continue;
+            double phi = atan2(B, A), a = acos(-C / rho);
+            for (int r = 0; r < 2 && !st; r++) {
+                double sang = phi + (r ? -a : a);
+                for (int wrap = -2; wrap <= 2 && !st; wrap++) {
+                    double sv = sang + 2.0 * M_PI * wrap;
+                    if (sv >= p->s0 && sv <= p->s1)
+                        st = add_abs(w, p->ey - p->er * cos(sv), -INFINITY, INFINITY);
+                }
+            }
+            continue;
+        }
+        double c[4] = {tx * p->x0 + ty * p->y0 + t0 - tau,
+                       tx * p->bx + ty * p->by, tx * p->ax + ty * p->ay,
+                       tx * p->dx + ty * p->dy};
+        double ts[3];
+        int mm = cubic_roots01(c, ts);
+        for (int r = 0; r < mm && !st; r++) {
+            double t = ts[r];
+            st = add_abs(w, p->y0 + t * (p->by + t * (p->ay + t * p->dy)), -INFINITY,
+                         INFINITY);
+        }
+    }
+    return st;
+}
+
 static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *const *local,
                               size_t n, size_t *total)
 {
@@ -2505,24 +3160,60 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
     double R = w->R, xl = w->uc - R, xr = w->uc + R, yt = w->vc - R, yb = w->vc + R;
     int st = add_abs(w, g->py, -INFINITY, INFINITY);
     /* t's range over the window: its largest at a corner (quasiconvex), its
-     * least at P* if inside, else on a side */
+     * least at P* if inside, else on a side; the cone case's over the
+     * painted part of the window (quasiconcave: "the cone case") */
     double tmax = -INFINITY, tmin;
     double cx[4] = {xl, xr, xl, xr}, cy[4] = {yt, yt, yb, yb};
-    for (int k = 0; k < 4; k++)
-        tmax = fmax(tmax, rad_t(g, cx[k], cy[k]));
-    if (g->px >= xl && g->px <= xr && g->py >= yt && g->py <= yb)
-        tmin = -g->fr / g->dr;
-    else {
-        /* sides: the rows' minima along the top and bottom, and the
-         * columns' by the same golden section on the transposed map */
-        tmin = fmin(rad_row_min(g, xl, xr, yt), rad_row_min(g, xl, xr, yb));
-        /* the corners the columns add are the rows' ends, already in */
-        for (int k = 0; k < 2; k++)
-            tmin = fmin(tmin, rad_line_min(g, 1, yt, yb, k ? xr : xl));
+    if (g->cone) {
+        tmin = INFINITY;
+        cone_seg_range(g, 0, xl, xr, yt, &tmin, &tmax);
+        cone_seg_range(g, 0, xl, xr, yb, &tmin, &tmax);
+        cone_seg_range(g, 1, yt, yb, xl, &tmin, &tmax);
+        cone_seg_range(g, 1, yt, yb, xr, &tmin, &tmax);
+        if (g->px >= xl && g->px <= xr && g->py >= yt && g->py <= yb) {
+            tmin = fmin(tmin, -g->fr / g->dr);
+            tmax = fmax(tmax, -g->fr / g->dr);
+        }
+    } else {
+        for (int k = 0; k < 4; k++)
+            tmax = fmax(tmax, rad_t(g, cx[k], cy[k]));
+        if (g->px >= xl && g->px <= xr && g->py >= yt && g->py <= yb)
+            tmin = -g->fr / g->dr;
+        else {
+            /* sides: the rows' minima along the top and bottom, and the
+             * columns' by the same golden section on the transposed map */
+            tmin = fmin(rad_row_min(g, xl, xr, yt), rad_row_min(g, xl, xr, yb));
+            /* the corners the columns add are the rows' ends, already in */
+            for (int k = 0; k < 2; k++)
+                tmin = fmin(tmin, rad_line_min(g, 1, yt, yb, k ? xr : xl));
+        }
     }
     tmin -= 1e-12 * (1.0 + fabs(tmin));
     tmax += 1e-12 * (1.0 + fabs(tmax));
-    double *taus = w->gbuf;
+    double *taus = w->gbuf, XL[KINK_LINES];
+    int nxl = kink_lines(w, XL);
+    if (g->cone == CONE_WEDGE || g->cone == CONE_HALF) /* the tangent lines L_k = 0 */
+        for (int k = 0; k < (g->cone == CONE_HALF ? 1 : 2) && !st; k++)
+            st = line_breaks(w, creal(g->lf[k][0]), creal(g->lf[k][1]), creal(g->lf[k][2]), 0.0,
+                             local, n, XL, nxl);
+    if (g->cone == CONE_HALF && g->spread != AA_SPREAD_PAD && !st) {
+        /* t runs to infinity at the half-plane's edge: its stops repeat
+         * without end there */
+        int pos = 0, neg = 0;
+        for (int k = 0; k < 4; k++) {
+            double l = creal(g->lf[0][0]) * cx[k] + creal(g->lf[0][1]) * cy[k] + creal(g->lf[0][2]);
+            pos |= l >= 0.0, neg |= l <= 0.0;
+        }
+        if (pos && neg)
+            return aa_fail(AA_EINVAL, "pixel (%g, %g): the edge of a cone-case radial "
+                                      "gradient whose focal circle touches its end circle, where "
+                                      "t runs to infinity, passes its window, and its %s spread "
+                                      "repeats the stops without end there: refused",
+                           w->uc - 0.5, w->vc - 0.5,
+                           g->spread == AA_SPREAD_REPEAT ? "repeat" : "reflect");
+    }
+    if (g->cone && !(tmin <= tmax))
+        return st; /* no painted point in the window */
     size_t m = grad_taus(&g->plane, tmin, tmax, taus, w->cap_gbuf);
     *total += m;
     if (m > GRAD_MAX_BREAKS || *total > GRAD_MAX_BREAKS)
@@ -2534,12 +3225,21 @@ static int rad_breakpoints_of(worker *w, const grad_radial *g, const aa_piece *c
     m += threshold_taus(w, gl_of(w, g->layer), tmin, tmax, taus + m, w->cap_gbuf - m);
     if (m > w->cap_gbuf)
         m = w->cap_gbuf;
-    double det = iv[0] * iv[3] - iv[1] * iv[2], n01 = hypot(iv[0], iv[1]), XL[KINK_LINES];
-    int nxl = kink_lines(w, XL);
+    double det = iv[0] * iv[3] - iv[1] * iv[2], n01 = hypot(iv[0], iv[1]);
     for (size_t q = 0; q < m && !st; q++) {
         double tau = taus[q], rt = g->fr + tau * g->dr;
         if (rt < 0.0)
             continue;
+        /* the cone's front arc of the circle ends where the circle touches
+         * the tangent lines: the foot of the perpendicular from its centre
+         * tau D (relative to F) on L_k = 0 */
+        for (int k = 0; k < 2 && g->cone == CONE_WEDGE && !st; k++) {
+            const double *l = g->lg[k];
+            double ccx = tau * g->Dx, ccy = tau * g->Dy, nn = l[0] * l[0] + l[1] * l[1];
+            double lc = (l[0] * ccx + l[1] * ccy + l[2]) / nn;
+            double gx = g->fx + ccx - lc * l[0], gy = g->fy + ccy - lc * l[1];
+            st = add_abs(w, g->m[1] * gx + g->m[3] * gy + g->m[5], -INFINITY, INFINITY);
+        }
         /* the circle of tau: |G|^2 = rt^2, G = m^-1(x, y) - F - tau D */
         double k0 = iv[4] - g->fx - tau * g->Dx, k1 = iv[5] - g->fy - tau * g->Dy;
         /* the window's sides x = X (and the filter's kinks, kink_lines):
@@ -2670,59 +3370,8 @@ static int grad_breakpoints(worker *w, const aa_piece *const *local, size_t n)
             if (m > w->cap_gbuf)
                 m = w->cap_gbuf;
         }
-        for (size_t q = 0; q < m && !st; q++) {
-            double tau = taus[q];
-            if (w->radial)
-                st = rad_filter_line(w, gp->tx, gp->ty, gp->t0 - tau);
-            if (gp->ty != 0.0)
-                for (int k = 0; k < nxl && !st; k++)
-                    st = add_abs(w, (tau - gp->t0 - gp->tx * XL[k]) / gp->ty, -INFINITY,
-                                 INFINITY);
-            for (size_t k = 0; k < n && !st; k++) {
-                const aa_piece *p = local[k];
-                double ys[3];
-                if (p->kind == AA_PIECE_FLAT)
-                    continue;
-                if (gp->ty == 0.0) {
-                    int mm = aa_piece_meet_x(p, (tau - gp->t0) / gp->tx, ys);
-                    for (int r = 0; r < mm && !st; r++)
-                        st = add_abs(w, ys[r], -INFINITY, INFINITY);
-                    continue;
-                }
-                if (p->kind == AA_PIECE_OFFSET) {
-                    st = offset_meet_line(w, p, gp->tx, gp->ty, gp->t0 - tau);
-                    continue;
-                }
-                if (p->kind == AA_PIECE_CONIC) {
-                    /* A cos s + B sin s + C = 0 on the arc's angle s */
-                    double A = gp->tx * p->ea - gp->ty * p->er, B = gp->tx * p->eb;
-                    double C = gp->tx * p->ex + gp->ty * p->ey + gp->t0 - tau;
-                    double rho = hypot(A, B);
-                    if (!(rho > 0.0) || fabs(C) > rho)
-                        continue;
-                    double phi = atan2(B, A), a = acos(-C / rho);
-                    for (int r = 0; r < 2 && !st; r++) {
-                        double sang = phi + (r ? -a : a);
-                        for (int wrap = -2; wrap <= 2 && !st; wrap++) {
-                            double sv = sang + 2.0 * M_PI * wrap;
-                            if (sv >= p->s0 && sv <= p->s1)
-                                st = add_abs(w, p->ey - p->er * cos(sv), -INFINITY, INFINITY);
-                        }
-                    }
-                    continue;
-                }
-                double c[4] = {gp->tx * p->x0 + gp->ty * p->y0 + gp->t0 - tau,
-                               gp->tx * p->bx + gp->ty * p->by, gp->tx * p->ax + gp->ty * p->ay,
-                               gp->tx * p->dx + gp->ty * p->dy};
-                double ts[3];
-                int mm = cubic_roots01(c, ts);
-                for (int r = 0; r < mm && !st; r++) {
-                    double t = ts[r];
-                    st = add_abs(w, p->y0 + t * (p->by + t * (p->ay + t * p->dy)), -INFINITY,
-                                 INFINITY);
-                }
-            }
-        }
+        for (size_t q = 0; q < m && !st; q++)
+            st = line_breaks(w, gp->tx, gp->ty, gp->t0, taus[q], local, n, XL, nxl);
     }
     return st;
 }

@@ -1,0 +1,487 @@
+/*
+ * test_gradient_cone_truth.c: the exact reference of radial gradients of
+ * the cone case (the focal circle not strictly inside the end circle;
+ * harness/truth/truth.c, "the cone case") under the box filter, and what
+ * it refuses by name.
+ *
+ * Known answers, derived here and not from the code under test:
+ *  - the painted region's area: a gradient whose stops are all white, over
+ *    black, paints 1 where some circle of radius >= 0 passes (SVG 2,
+ *    13.3.5 radialGradient) and leaves the background 0 elsewhere, so the
+ *    box reference of a pixel is the area of the painted region inside its
+ *    square.  That region, derived from the circles' geometry: with r >
+ *    fr, the wedge from the external centre of similitude P = (r F - fr
+ *    C) / (r - fr) (where every circle's radius shrinks to 0) opening
+ *    towards C, bounded by the two external tangents of the circles,
+ *    whose half-angle is asin((r - fr) / |C - F|) (with |C - F| = |r -
+ *    fr|, the circles touching inside, both are the line through P
+ *    perpendicular to F C, and the region the half-plane beyond it); with
+ *    r = fr the strip of half-width r about the line F C; with the end
+ *    circle strictly inside the focal circle, the whole plane.  The area is the square
+ *    clipped by the bounding half-planes (Sutherland-Hodgman), by the
+ *    shoelace formula;
+ *  - single pixels by GSL's adaptive quadrature in two dimensions (outer
+ *    rows, inner along the row), the picture from SVG 2's definition: t
+ *    the largest root, of radius fr + t dr >= 0, of |q - F - t D| = fr + t
+ *    dr (squared, in long double), a black-to-white ramp padded, decoded
+ *    by sRGB's curve (tests/gradient_oracle.c, go_dec), the background
+ *    where no root qualifies.  Inner cuts: the row's crossings of the
+ *    tangents (from the construction above), of the circles t = 0,
+ *    0.04045 and 1, and P's column; outer cuts: P's row, the tangents'
+ *    and circles' crossings of the pixel's sides, the circles' top and
+ *    bottom rows, and where each circle touches each tangent.  Pixels
+ *    straddling one tangent or both, holding P, a circle's end on a
+ *    tangent, the threshold's arc.
+ * Each pixel must lie within its own bound of the answer (plus the
+ * quadrature's 1e-14), and every bound within 1e-12.
+ */
+#include "core.h"
+#include "gradient_oracle.h"
+#include "support.h"
+#include "truth.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+
+#define W 16
+#define H 12
+
+static int setup(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off();
+    return 0;
+}
+
+/* A scene of one layer over [-8, W + 8] x [-8, H + 8] (pixels) painted
+ * by the radial gradient p[] (cx cy r fx fy fr, in pixels) with stops st,
+ * over background bg. */
+static aa_scene *grad_scene(const double p[6], int spread, const aa_gradient_stop *st, int n,
+                            double bg)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{bg, bg, bg}});
+    assert_non_null(s);
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, -8.0 / W, -8.0 / H), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, (W + 8.0) / W, -8.0 / H), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, (W + 8.0) / W, (H + 8.0) / H), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, -8.0 / W, (H + 8.0) / H), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    aa_gradient g = {AA_GRADIENT_RADIAL, spread, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0}, n, st};
+    memcpy(g.p, p, sizeof g.p);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static const aa_gradient_stop white[2] = {{0.0, {{1, 1, 1}}, 1.0}, {1.0, {{1, 1, 1}}, 1.0}};
+static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
+                                                {1.0, {{1, 1, 1}}, 1.0}};
+
+/* ---- the painted region from the circles' geometry ---- */
+
+/* A half-plane nx x + ny y + k >= 0 (long double: the areas' own
+ * rounding stays far below the reference's). */
+typedef struct half {
+    long double nx, ny, k;
+} half;
+
+/* The half-planes bounding the painted region of p[] (cx cy r fx fy fr),
+ * how many (0: the whole plane); *wedge 1 and P into apex[] when the
+ * region is a wedge. */
+static int region(const double p[6], half *hp, int *wedge, double apex[2])
+{
+    long double cx = p[0], cy = p[1], r = p[2], fx = p[3], fy = p[4], fr = p[5];
+    long double L = hypotl(cx - fx, cy - fy), ux = (cx - fx) / L, uy = (cy - fy) / L;
+    *wedge = 0;
+    if (L + r < fr) /* the end circle strictly inside the focal one */
+        return 0;
+    if (r == fr) { /* the strip |(q - F) x u| <= r */
+        hp[0] = (half){uy, -ux, r - (uy * fx - ux * fy)};
+        hp[1] = (half){-uy, ux, r + (uy * fx - ux * fy)};
+        return 2;
+    }
+    /* the wedge from P opening along s u, s the sign of r - fr (towards
+     * C when the end circle is the larger) */
+    long double px = (r * fx - fr * cx) / (r - fr), py = (r * fy - fr * cy) / (r - fr);
+    long double s = r > fr ? 1.0L : -1.0L, sn = fabsl(r - fr) / L;
+    long double cs = sqrtl(fmaxl(0.0L, 1.0L - sn * sn));
+    *wedge = 1;
+    apex[0] = (double)px, apex[1] = (double)py;
+    for (int k = 0; k < 2; k++) {
+        long double sg = k ? 1.0L : -1.0L;
+        /* the tangent's direction: s u turned by +-theta */
+        long double dx = s * (ux * cs - sg * uy * sn), dy = s * (uy * cs + sg * ux * sn);
+        /* its normal towards the inside: the axis s u is inside */
+        long double nx = -dy, ny = dx;
+        if (nx * s * ux + ny * s * uy < 0)
+            nx = -nx, ny = -ny;
+        hp[k] = (half){nx, ny, -(nx * px + ny * py)};
+    }
+    return 2;
+}
+
+/* The area of the square [i, i + 1] x [j, j + 1] inside the half-planes. */
+static double clipped_area(int i, int j, const half *hp, int nh)
+{
+    long double P[16][2] = {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}, Q[16][2];
+    int n = 4;
+    for (int h = 0; h < nh; h++) {
+        int m = 0;
+        for (int k = 0; k < n; k++) {
+            const long double *a = P[k], *b = P[(k + 1) % n];
+            long double fa = hp[h].nx * a[0] + hp[h].ny * a[1] + hp[h].k;
+            long double fb = hp[h].nx * b[0] + hp[h].ny * b[1] + hp[h].k;
+            if (fa >= 0)
+                Q[m][0] = a[0], Q[m][1] = a[1], m++;
+            if ((fa < 0) != (fb < 0)) {
+                long double l = fa / (fa - fb);
+                Q[m][0] = a[0] + l * (b[0] - a[0]), Q[m][1] = a[1] + l * (b[1] - a[1]), m++;
+            }
+        }
+        memcpy(P, Q, sizeof P);
+        n = m;
+    }
+    long double A = 0;
+    for (int k = 0; k < n; k++)
+        A += P[k][0] * P[(k + 1) % n][1] - P[(k + 1) % n][0] * P[k][1];
+    return (double)(0.5L * fabsl(A));
+}
+
+static void check_area(const char *what, const double p[6])
+{
+    aa_scene *s = grad_scene(p, AA_SPREAD_PAD, white, 2, 0.0);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
+    support_reference(s, &v, &ref, &bound, &stats);
+    half hp[2];
+    double apex[2];
+    int wedge, nh = region(p, hp, &wedge, apex);
+    double worst = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            double want = clipped_area(i, j, hp, nh), got = aa_pixel(&ref, i, j)[0];
+            double bd = *aa_pixel(&bound, i, j);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-16 && bd <= 1e-12))
+                fail_msg("%s: pixel (%d, %d) is %.17g, the painted area %.17g (bound %.3g)", what,
+                         i, j, got, want, bd);
+        }
+    print_message("%-34s %d pixels, largest difference from the area %.2g, largest bound "
+                  "%.2g\n",
+                  what, W * H, worst, stats.max_bound);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
+/* White stops over black: the reference is the painted area. */
+static void test_area(void **state)
+{
+    (void)state;
+    /* the wedge opening right (r > fr), from P = (0.16, 4.63) */
+    check_area("wedge, r > fr", (const double[6]){9.3, 6.1, 3.1, 3.7, 5.2, 1.2});
+    /* opening left and down, P right of the picture (fr > r, the focal
+     * circle the larger) */
+    check_area("wedge, fr > r", (const double[6]){5.2, 7.9, 1.1, 12.4, 3.3, 3.9});
+    /* fr = 0 with the focus outside the end circle: P is the focus */
+    check_area("wedge, fr = 0", (const double[6]){10.6, 5.3, 2.7, 3.45, 6.55, 0.0});
+    /* equal radii: the strip, oblique */
+    check_area("strip, r = fr", (const double[6]){11.2, 8.3, 2.35, 4.1, 3.3, 2.35});
+    /* the end circle inside the focal one: everything painted */
+    check_area("nested, fr > r + |C - F|", (const double[6]){8.2, 6.3, 1.5, 7.6, 5.9, 6.0});
+    /* the circles touching inside (|C - F| = |r - fr|): both tangents are
+     * the line through P perpendicular to F C, the half-plane beyond it
+     * painted; the focus on the end circle (D = (3, 4), r = 5), the focal
+     * circle inside touching (P = (3, 6)), and the end circle inside the
+     * focal one touching it (P = (3, 6), painted x > 3) */
+    check_area("half-plane, fr = 0", (const double[6]){10.5, 8.25, 5.0, 7.5, 4.25, 0.0});
+    check_area("half-plane, fr < r", (const double[6]){8.0, 6.0, 5.0, 6.0, 6.0, 3.0});
+    check_area("half-plane, fr > r", (const double[6]){6.0, 6.0, 3.0, 8.0, 6.0, 5.0});
+}
+
+/* ---- single pixels against 2-D quadrature ---- */
+
+#define MAX_TAUS 200
+typedef struct pic {
+    double p[6], bg;
+    int spread, ntaus;
+    double taus[MAX_TAUS]; /* where the spread ramp's derivatives jump */
+    half hp[2];
+    int nh, wedge;
+    double apex[2];
+    double y, xlo, xhi;
+    gsl_integration_workspace *wi;
+} pic;
+
+/* t from SVG 2's definition (the opening comment), NAN where none. */
+static double pic_t(const pic *pc, double x, double y)
+{
+    const double *p = pc->p;
+    long double Dx = p[0] - p[3], Dy = p[1] - p[4], dr = p[2] - p[5];
+    long double qx = x - p[3], qy = y - p[4];
+    /* |q - w D|^2 = (fr + w dr)^2: A w^2 - 2 B w + C = 0 */
+    long double A = Dx * Dx + Dy * Dy - dr * dr, B = qx * Dx + qy * Dy + p[5] * dr;
+    long double C = qx * qx + qy * qy - (long double)p[5] * p[5], disc = B * B - A * C;
+    if (A == 0) { /* one root */
+        long double w = C / (2 * B);
+        return B != 0 && p[5] + w * dr >= 0 ? (double)w : NAN;
+    }
+    if (disc < 0)
+        return NAN;
+    long double w1 = (B + sqrtl(disc)) / A, w2 = (B - sqrtl(disc)) / A;
+    if (w1 < w2) {
+        long double tmp = w1;
+        w1 = w2, w2 = tmp;
+    }
+    if (p[5] + w1 * dr >= 0)
+        return (double)w1;
+    if (p[5] + w2 * dr >= 0)
+        return (double)w2;
+    return NAN;
+}
+
+static double pic_at(const pic *pc, double x, double y)
+{
+    double t = pic_t(pc, x, y);
+    if (isnan(t))
+        return pc->bg;
+    if (pc->spread == AA_SPREAD_REPEAT)
+        return go_dec(t - floor(t));
+    if (pc->spread == AA_SPREAD_REFLECT) {
+        double f = t - 2 * floor(t / 2);
+        return go_dec(f <= 1 ? f : 2 - f);
+    }
+    return go_dec(t < 0 ? 0 : t > 1 ? 1 : t);
+}
+
+static double pic_x(double x, void *v)
+{
+    const pic *pc = v;
+    return pic_at(pc, x, pc->y);
+}
+
+/* Where the circle t = tau meets the line x = at (col) or y = at. */
+static int circle_meet(const pic *pc, double tau, int col, double at, double *out)
+{
+    const double *p = pc->p;
+    double ccx = p[3] + tau * (p[0] - p[3]), ccy = p[4] + tau * (p[1] - p[4]);
+    double rr = p[5] + tau * (p[2] - p[5]);
+    if (rr < 0)
+        return 0;
+    double d = at - (col ? ccx : ccy), h = rr * rr - d * d;
+    if (h <= 0)
+        return 0;
+    double c = col ? ccy : ccx;
+    out[0] = c - sqrt(h), out[1] = c + sqrt(h);
+    return 2;
+}
+
+/* Where the half-plane k's line meets the line x = at (col) or y = at. */
+static int line_meet(const pic *pc, int k, int col, double at, double *out)
+{
+    const half *h = &pc->hp[k];
+    long double a = col ? h->ny : h->nx, b = col ? h->nx : h->ny;
+    if (a == 0)
+        return 0;
+    out[0] = (double)(-(b * at + h->k) / a);
+    return 1;
+}
+
+static double pic_y(double y, void *v)
+{
+    pic *pc = v;
+    pc->y = y;
+    double cut[2 * MAX_TAUS + 8];
+    int n = 0;
+    for (int k = 0; k < pc->nh; k++)
+        n += line_meet(pc, k, 0, y, cut + n);
+    for (int q = 0; q < pc->ntaus; q++)
+        n += circle_meet(pc, pc->taus[q], 0, y, cut + n);
+    if (pc->wedge)
+        cut[n++] = pc->apex[0];
+    cut[n++] = pc->xlo, cut[n++] = pc->xhi;
+    gsl_function F = {pic_x, pc};
+    return go_qags_cuts(&F, cut, n, pc->xlo, pc->xhi, 1e-16, 1e-14, pc->wi);
+}
+
+/* The box reference of pixel (i, j) by 2-D quadrature. */
+static double pic_pixel(pic *pc, int i, int j)
+{
+    const double *p = pc->p;
+    double cut[7 * MAX_TAUS + 16];
+    int n = 0;
+    pc->xlo = i, pc->xhi = i + 1;
+    cut[n++] = j, cut[n++] = j + 1;
+    if (pc->wedge)
+        cut[n++] = pc->apex[1];
+    for (int k = 0; k < pc->nh; k++)
+        for (int e = 0; e < 2; e++)
+            n += line_meet(pc, k, 1, i + e, cut + n);
+    for (int q = 0; q < pc->ntaus; q++) {
+        double tau = pc->taus[q], rr = p[5] + tau * (p[2] - p[5]);
+        double ccx = p[3] + tau * (p[0] - p[3]), ccy = p[4] + tau * (p[1] - p[4]);
+        if (rr < 0)
+            continue;
+        cut[n++] = ccy - rr, cut[n++] = ccy + rr;
+        for (int e = 0; e < 2; e++)
+            n += circle_meet(pc, tau, 1, i + e, cut + n);
+        /* where it touches each bounding line: the foot of the
+         * perpendicular from its centre */
+        for (int k = 0; k < pc->nh; k++) {
+            const half *h = &pc->hp[k];
+            long double nn = h->nx * h->nx + h->ny * h->ny;
+            long double f = (h->nx * ccx + h->ny * ccy + h->k) / nn;
+            cut[n++] = (double)(ccy - f * h->ny);
+        }
+    }
+    pc->wi = gsl_integration_workspace_alloc(1000);
+    gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
+    gsl_function F = {pic_y, pc};
+    double sum = go_qags_cuts(&F, cut, n, j, j + 1, 1e-16, 1e-14, wo);
+    gsl_integration_workspace_free(pc->wi);
+    gsl_integration_workspace_free(wo);
+    return sum;
+}
+
+/* The reference of the black-to-white ramp p[] with spread over bg
+ * against 2-D quadrature at the pixels px; repeat and reflect cut at
+ * every integer t and where the spread t is 0.04045, for t in [-40,
+ * 40] (wider than the cases' ranges). */
+static void check_2d_spread(const char *what, const double p[6], int spread, double bg,
+                            const int (*px)[2], int npx)
+{
+    pic pc;
+    memset(&pc, 0, sizeof pc);
+    memcpy(pc.p, p, sizeof pc.p);
+    pc.bg = bg;
+    pc.spread = spread;
+    if (spread == AA_SPREAD_PAD)
+        for (int q = 0; q < 3; q++)
+            pc.taus[pc.ntaus++] = go_taus[q];
+    else
+        for (int k = -40; k <= 40 && pc.ntaus + 2 <= MAX_TAUS; k++) {
+            pc.taus[pc.ntaus++] = k;
+            pc.taus[pc.ntaus++] = spread == AA_SPREAD_REPEAT || !(k & 1) ? k + GO_T0 : k - GO_T0;
+        }
+    pc.nh = region(p, pc.hp, &pc.wedge, pc.apex);
+    aa_scene *s = grad_scene(p, spread, black_white, 2, bg);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
+    support_reference(s, &v, &ref, &bound, &stats);
+    assert_true(stats.max_bound <= 1e-12);
+    double worst = 0;
+    for (int k = 0; k < npx; k++) {
+        int i = px[k][0], j = px[k][1];
+        double want = pic_pixel(&pc, i, j), got = aa_pixel(&ref, i, j)[0];
+        double bd = *aa_pixel(&bound, i, j);
+        worst = fmax(worst, fabs(got - want));
+        if (!(fabs(got - want) <= bd + 1e-14))
+            fail_msg("%s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound %.3g)", what, i, j,
+                     got, want, bd);
+    }
+    print_message("%-34s %d pixels, largest difference from 2-D quadrature %.2g, largest "
+                  "bound %.2g\n",
+                  what, npx, worst, stats.max_bound);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
+static void check_2d(const char *what, const double p[6], double bg, const int (*px)[2], int npx)
+{
+    check_2d_spread(what, p, AA_SPREAD_PAD, bg, px, npx);
+}
+
+static void test_2d(void **state)
+{
+    (void)state;
+    /* the wedge from P = (0.16, 4.63) towards C = (9.3, 6.1), r = 3.1,
+     * fr = 1.2: P's pixel; the circles t = 0 and 0.04045 touching the
+     * tangents (3, 3), (3, 6); the ramp along the tangents (4, 3) .. (8,
+     * 3) and (4, 7) .. (7, 8), t = 1 touching them at (8, 3) and (7, 8);
+     * inside and outside */
+    static const int a[][2] = {{0, 4}, {3, 3}, {3, 6}, {4, 3}, {5, 3}, {6, 3}, {8, 3}, {4, 7},
+                               {5, 7}, {6, 8}, {7, 8}, {5, 6}, {11, 6}, {13, 1}, {12, 10}};
+    check_2d("wedge, r > fr", (const double[6]){9.3, 6.1, 3.1, 3.7, 5.2, 1.2}, 0.3, a,
+             (int)(sizeof a / sizeof *a));
+    /* fr = 0, the focus outside the end circle: P the focus (3, 6), the
+     * ramp along the tangents from it, t = 1 touching them at (9, 3) and
+     * (10, 7) */
+    static const int b[][2] = {{3, 6}, {4, 6}, {4, 5}, {5, 5}, {6, 4}, {6, 7},
+                               {8, 3}, {8, 7}, {9, 3}, {10, 7}, {12, 3}};
+    check_2d("wedge, fr = 0", (const double[6]){10.6, 5.3, 2.7, 3.45, 6.55, 0.0}, 0.5, b,
+             (int)(sizeof b / sizeof *b));
+    /* the focal circle the larger: the wedge opening left and down from P
+     * = (2.37, 9.71); t = 0 and 0.04045 touching the tangents at (9, 0),
+     * (9, 1), (13, 7), (12, 7), the ramp along them, t = 1 at (4, 7), (5,
+     * 8) */
+    static const int c[][2] = {{9, 0}, {9, 1}, {8, 2}, {7, 2}, {6, 4}, {4, 7}, {13, 7},
+                               {12, 7}, {10, 7}, {8, 8}, {5, 8}, {9, 5}, {2, 9}};
+    check_2d("wedge, fr > r", (const double[6]){5.2, 7.9, 1.1, 12.4, 3.3, 3.9}, 0.1, c,
+             (int)(sizeof c / sizeof *c));
+    /* the strip, oblique, the ramp across its edges */
+    static const int d[][2] = {{4, 1}, {4, 5}, {6, 2}, {8, 3}, {8, 8}, {11, 6}, {11, 10}, {13, 8}};
+    check_2d("strip, r = fr", (const double[6]){11.2, 8.3, 2.35, 4.1, 3.3, 2.35}, 0.2, d,
+             (int)(sizeof d / sizeof *d));
+    /* the end circle inside the focal one: t greatest at P = (8.4,
+     * 6.43) */
+    static const int e[][2] = {{8, 6}, {7, 5}, {8, 5}, {7, 6}, {6, 3}, {10, 9}, {2, 2}};
+    check_2d("nested, fr > r + |C - F|", (const double[6]){8.2, 6.3, 1.5, 7.6, 5.9, 6.0}, 0.4,
+             e, (int)(sizeof e / sizeof *e));
+    /* the circles touching inside: t = c / (2 b) runs to infinity at the
+     * half-plane's edge (padded to the last stop there), every circle
+     * through P; P's pixel and the edge's */
+    static const int f[][2] = {{7, 4}, {11, 1}, {9, 2}, {5, 5}, {3, 7}, {1, 8}, {9, 7}, {12, 9}};
+    check_2d("half-plane, fr = 0", (const double[6]){10.5, 8.25, 5.0, 7.5, 4.25, 0.0}, 0.3, f,
+             (int)(sizeof f / sizeof *f));
+    static const int g[][2] = {{3, 6}, {3, 2}, {3, 9}, {2, 6}, {4, 6}, {5, 3}, {4, 5}};
+    check_2d("half-plane, fr < r", (const double[6]){8.0, 6.0, 5.0, 6.0, 6.0, 3.0}, 0.3, g,
+             (int)(sizeof g / sizeof *g));
+    check_2d("half-plane, fr > r", (const double[6]){6.0, 6.0, 3.0, 8.0, 6.0, 5.0}, 0.3, g,
+             (int)(sizeof g / sizeof *g));
+}
+
+/* Repeat and reflect: many stop circles, their front arcs ending on the
+ * tangents, the range of t of each row and window taken from t's
+ * quasiconcavity. */
+static void test_2d_spread(void **state)
+{
+    (void)state;
+    /* a narrow wedge from P = (3.64, 4.69) towards C = (9.3, 6.1), r =
+     * 1.1, fr = 0.4, repeated: about 1.3 periods a pixel along the axis */
+    static const int a[][2] = {{3, 4}, {4, 4}, {5, 3}, {5, 5}, {7, 2}, {7, 6},
+                               {9, 1}, {10, 8}, {12, 5}, {14, 10}};
+    check_2d_spread("wedge, repeat", (const double[6]){9.3, 6.1, 1.1, 5.7, 5.2, 0.4},
+                    AA_SPREAD_REPEAT, 0.3, a, (int)(sizeof a / sizeof *a));
+    /* the focal circle the larger, reflected: P = (1.88, 10.02) */
+    static const int b[][2] = {{1, 10}, {2, 9}, {3, 9}, {5, 7}, {7, 6}, {8, 5},
+                               {10, 4}, {12, 3}, {13, 2}, {6, 3}};
+    check_2d_spread("wedge, reflect", (const double[6]){5.2, 7.9, 0.6, 12.4, 3.3, 1.9},
+                    AA_SPREAD_REFLECT, 0.2, b, (int)(sizeof b / sizeof *b));
+    /* the strip, repeated */
+    static const int c[][2] = {{4, 1}, {4, 5}, {6, 2}, {8, 3}, {8, 8}, {11, 6}, {13, 8}};
+    check_2d_spread("strip, repeat", (const double[6]){11.2, 8.3, 1.35, 7.1, 5.3, 1.35},
+                    AA_SPREAD_REPEAT, 0.2, c, (int)(sizeof c / sizeof *c));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_area),
+        cmocka_unit_test(test_2d),
+        cmocka_unit_test(test_2d_spread),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
