@@ -250,7 +250,7 @@ static void test_chromium_pixel(void **state)
  * naming it; the exact reference integrates the cone case under the box
  * filter (tests/test_gradient_cone_truth.c checks its values), the focal
  * circle touching the end circle from inside (a = 0) too when padded, and
- * refuses by name the cone under the other filters and beside another
+ * refuses by name the cone under the other filters, in linear light and beside another
  * gradient, and the touching circles repeated in a window their
  * half-plane's edge passes (t runs to infinity there). */
 static void test_refusals(void **state)
@@ -285,6 +285,25 @@ static void test_refusals(void **state)
     assert_int_equal(aa_truth_render(placed, &f, 1, &out, &bound, &stats), AA_EINVAL);
     if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), "box filter only"))
         fail_msg("the reference's refusal under tent names no cone: %s", aa_last_error());
+    aa_scene_free(placed);
+    /* the same cone interpolated in linear light: the path of several
+     * gradients it would take has no cut at the tangent lines */
+    aa_scene_free(s);
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, 0, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1, 0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 1, 1), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_set_gradient(s, &cone), AA_OK);
+    assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    placed = aa_scene_place(s, 8, 8, 0, 0, 0);
+    assert_non_null(placed);
+    assert_int_equal(aa_filter_parse("box", &f), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &f, 1, &out, &bound, &stats), AA_EINVAL);
+    if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), "linear light"))
+        fail_msg("the reference's refusal in linear light names no cone: %s", aa_last_error());
     aa_scene_free(placed);
     aa_scene_free(s);
     /* the focal circle touching the end circle from inside (|C - F| + fr
