@@ -270,7 +270,8 @@
  * the tangent lines' crossings of the window's sides and of the pieces
  * and where each stop circle touches them (the circles touching inside,
  * a = 0: the half-plane's edge, where t has a pole, in place of the
- * lines).  The other filters and other gradients beside it are refused.
+ * lines).  The other filters, other gradients beside it and the cone in
+ * linear light are refused.
  *
  * The other separable filters (tent, gauss, bspline, mitchell, catrom,
  * lanczos; "the other separable filters" below): every span of a
