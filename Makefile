@@ -12,7 +12,12 @@
 #
 # Dependencies are found with pkg-config; scripts/install-deps.sh installs
 # what is missing.  Targets that need them re-enter make after installing,
-# so the flags below are computed with the packages present.
+# so the flags below are computed with the packages present.  Each is
+# computed once, where first used (VAR = $(eval VAR := ...)$(VAR)): as a
+# plain recursive variable it ran pkg-config again in every compile's and
+# link's command, 756 times in `make test`'s 422 commands, 5 now (`make -n
+# -B check-tests-both`: 8.1 s of CPU, 0.2 s computed once), for the same
+# flags.
 
 PREFIX ?= /usr/local
 # V=1 shows the full commands
@@ -32,17 +37,17 @@ PKGS      += libxml-2.0 harfbuzz
 # .png files (harness/core/image_png.c): libpng, not OpenImageIO's module
 PKGS      += libpng
 TEST_PKGS := cmocka
-PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+PKG_CFLAGS = $(eval PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null))$(PKG_CFLAGS)
+PKG_LIBS   = $(eval PKG_LIBS := $(shell pkg-config --libs $(PKGS) 2>/dev/null))$(PKG_LIBS)
 # OpenImageIO is linked into a module of its own, aabench-oiio.so
 # (harness/core/oiio.cpp), which the library loads with dlopen when an image
 # file first needs it (harness/core/oiio.h): the command and the tests do
 # not link it, and start without loading its ~250 libraries.
-OIIO_CFLAGS = $(shell pkg-config --cflags OpenImageIO 2>/dev/null)
-OIIO_LIBS   = $(shell pkg-config --libs OpenImageIO 2>/dev/null)
+OIIO_CFLAGS = $(eval OIIO_CFLAGS := $(shell pkg-config --cflags OpenImageIO 2>/dev/null))$(OIIO_CFLAGS)
+OIIO_LIBS   = $(eval OIIO_LIBS := $(shell pkg-config --libs OpenImageIO 2>/dev/null))$(OIIO_LIBS)
 # where `make install` puts the module; compiled into image.c
 OIIO_DIR   := $(PREFIX)/lib/aabench
-TEST_LIBS  = $(shell pkg-config --cflags --libs $(TEST_PKGS) 2>/dev/null)
+TEST_LIBS  = $(eval TEST_LIBS := $(shell pkg-config --cflags --libs $(TEST_PKGS) 2>/dev/null))$(TEST_LIBS)
 
 WARN     := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -Wno-unknown-pragmas
 HARNESS  := harness/core harness/truth harness/bench harness/cli
@@ -276,6 +281,12 @@ $(BUILD)/obj/harness/core/paths.o $(SAN_BUILD)/obj/harness/core/paths.o: \
 # 192 unrolled copies (algorithms/analytic.c, AN_SPECIALIZE): 57 s of CPU
 # less to compile there, 4 s instead of 61, for the same statements run.
 $(SAN_BUILD)/obj/algorithms/analytic.o: CPPFLAGS += -DAN_SPECIALIZE=0
+# In the plain build those 192 copies stay (they are its speed), with line
+# tables only (-g1, as the sanitizer build and the tests' own code): the
+# locals' descriptions of every copy were a third of the library's largest
+# compile, 32 s of CPU with -g and 20 s with -g1 (-g0: 20 s); a profile or
+# a stack still has its file, line and function.
+$(BUILD)/obj/algorithms/analytic.o: PLAIN_CFLAGS += -g1
 $(BUILD)/bench_%: tests/bench_%.c $(LIB) | $(OIIO_SO)
 	@echo '  LD    $@'
 	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) $(PKG_CFLAGS) $< $(LIB) -o $@ $(LDLIBS)
