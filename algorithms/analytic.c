@@ -2167,7 +2167,10 @@ static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1,
     aa__vis_window(&v, wk->strip, xl, xr, Y0, Y1, &sink);
     const double lo = R->lo, hi = R->hi;
     const double *bg = S->bg.c;
-    for (int r = 0; r < AN_BLOCK + 2 * pad; r++) {
+    /* the rows a term can reach: the slow rows' supports' rows, one more */
+    int ra = ja - pad - j0 + pad, rb = jb + pad - j0 + pad;
+    ra = ra < 0 ? 0 : ra, rb = rb > AN_BLOCK + 2 * pad - 1 ? AN_BLOCK + 2 * pad - 1 : rb;
+    for (int r = ra; r <= rb; r++) {
         int j = j0 - pad + r;
         double *cov = B.cover + (size_t)r * cols * AN_NV;
         unsigned char *tch = B.touched + (size_t)r * cols;
@@ -2184,21 +2187,36 @@ static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1,
             r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
             cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
         }
-        for (int i = 0; i < w; i++, px += 3, cov += AN_NV) {
+        int i = 0;
+        while (i < w) {
             r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
             cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
             long k = lrint(r3);
             if (!(t[i] & AN_TERM) && k >= 0 && k < V.nface) {
-                /* inside a face: its colour, and the sums there exactly */
+                /* inside a face: its colour, and the sums there exactly;
+                 * so are the unmarked pixels after it (their cells hold
+                 * nothing: the same sums, the same face), eight marks
+                 * tested at a time */
                 const double *f = &V.face[3 * k];
-                memcpy(px, f, 3 * sizeof *px);
                 r0 = f[0] - bg[0], r1 = f[1] - bg[1], r2 = f[2] - bg[2], r3 = (double)k;
+                do {
+                    memcpy(px, f, 3 * sizeof *px);
+                    i++, px += 3, cov += AN_NV;
+                    uint64_t t8;
+                    while (w - i >= 8 && (memcpy(&t8, t + i, sizeof t8), !t8)) {
+                        for (int e = 0; e < 8; e++, px += 3)
+                            memcpy(px, f, 3 * sizeof *px);
+                        i += 8, cov += 8 * AN_NV;
+                    }
+                } while (i < w && !t[i]);
                 continue;
             }
+            i++, cov += AN_NV;
             touched++;
             double v0 = bg[0] + r0, v1 = bg[1] + r1, v2 = bg[2] + r2;
             v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
             px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
+            px += 3;
         }
         memset(cov, 0, (cols - (size_t)pad - (size_t)w) * AN_NV * sizeof *cov);
         memset(tch, 0, cols);
