@@ -2019,7 +2019,8 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
                 cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
             }
-            for (int i = 0; i < w; i++, px += 3, cov += AN_NV) {
+            int i = 0;
+            while (i < w) {
                 r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
                 cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
                 if (!(t[i] & AN_TERM)) {
@@ -2028,17 +2029,31 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                     int in = L >= 0 && L < S->plan_nl;
                     double sg = k < 0 ? -1.0 : 1.0;
                     const double *f = in ? &S->face[3 * L] : S->bg.c;
-                    memcpy(px, f, 3 * sizeof *px);
                     /* the sums there exactly: s(L) coef(L), the code */
                     r0 = in ? sg * S->coef[3 * L] : 0.0;
                     r1 = in ? sg * S->coef[3 * L + 1] : 0.0;
                     r2 = in ? sg * S->coef[3 * L + 2] : 0.0;
                     r3 = in ? (double)k : 0.0;
+                    /* the unmarked pixels after it hold nothing in their
+                     * cells: the same sums, the same face (eight marks
+                     * tested at a time) */
+                    do {
+                        memcpy(px, f, 3 * sizeof *px);
+                        i++, px += 3, cov += AN_NV;
+                        uint64_t t8;
+                        while (w - i >= 8 && (memcpy(&t8, t + i, sizeof t8), !t8)) {
+                            for (int e = 0; e < 8; e++, px += 3)
+                                memcpy(px, f, 3 * sizeof *px);
+                            i += 8, cov += 8 * AN_NV;
+                        }
+                    } while (i < w && !t[i]);
                     continue;
                 }
+                i++, cov += AN_NV;
                 double v0 = S->bg.c[0] + r0, v1 = S->bg.c[1] + r1, v2 = S->bg.c[2] + r2;
                 v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
                 px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
+                px += 3;
             }
             memset(cov, 0, (cols - (size_t)pad - (size_t)w) * AN_NV * sizeof *cov);
         }
