@@ -211,8 +211,12 @@
  * cuts' angles and its middle's sine and cosine in long double, and 4 n +
  * 6 points; on 36 circles at 1024x1024 (algorithms/README.md) 8.9x area's
  * box time under the box, 11.0x under bspline:order=3, where the same
- * circles as 64-gons took 3.4x and 3.8x.  In the rows where layers
- * overlap, per block, the visible parts of one window (sorting each band's
+ * circles as 64-gons took 3.4x and 3.8x.  On the vector suite's scenes
+ * at 1024x1024 (mono, shapes, rules, curves, logo; algorithms/README.md),
+ * where layers overlap, under tent:r=1 1.2x to 2.0x area's box time and
+ * under bspline:order=3 1.3x to 2.5x (two runs on a loaded machine; before
+ * the visible parts' scatter 3.3x to 4.6x and 3.4x to 9.9x).  In the rows
+ * where layers overlap, per block, the visible parts of one window (sorting each band's
  * pieces along x and one meeting test per neighbouring pair), each run of
  * them scattered as a piece is, with four values (its step of colour and
  * of the face's code); under the radial filters, per pixel whose support
