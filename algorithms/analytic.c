@@ -83,16 +83,20 @@
  * carried along the row by a running sum, as area.c's cover.  Shapes that
  * overlap are not summed but painted, and the weight of an area hidden by
  * a front layer must not count: in the rows whose supports reach such
- * places, each pixel takes the visible parts of
- * the edges in its support (visible.c, as `crowtiler:hidden=scan` does),
- * each with its step of colour, so the pixel is
+ * places, the pixel is a sum over the visible parts of the edges in its
+ * support (visible.c, as `crowtiler:hidden=scan` does), each with its step
+ * of colour,
  *
  *     sum over bands of (colour left of the support) (W(yb - cy) - W(ya - cy))
  *       + sum over visible parts of (step of colour across it) R(part),
  *
  * which is the filtered picture exactly, for any number of opaque layers in
- * painter's order and either fill rule.  The price is the per-pixel work of
- * finding the visible parts (see Cost).
+ * painter's order and either fill rule.  The visible parts are found once
+ * for a window over the whole width and the rows of a block's slow rows,
+ * and scattered as the pieces of the sum of shapes are, each with its step
+ * of colour (see "The visible parts' scatter"; the per-pixel windows
+ * remain for blocks whose faces have too many colours, and under the
+ * radial filters).
  *
  * Error analysis: rounding, and the heights where pieces meet (found in
  * closed form by visible.c) and where they cross the knots' lines
@@ -207,13 +211,20 @@
  * cuts' angles and its middle's sine and cosine in long double, and 4 n +
  * 6 points; on 36 circles at 1024x1024 (algorithms/README.md) 8.9x area's
  * box time under the box, 11.0x under bspline:order=3, where the same
- * circles as 64-gons took 3.4x and 3.8x.  Elsewhere, per pixel
- * whose support meets an edge, the visible parts (sorting each band's
- * pieces along x and one meeting test per neighbouring pair) and, per part
- * and cell, the rule of the table above; other pixels are filled in runs.
- * The image does not depend on the thread count (rows are taken
- * AN_BLOCK at a time by the scatter, one at a time by the visible parts,
- * each from the scene alone).  Counters: samples = 0, expensive_pixels =
+ * circles as 64-gons took 3.4x and 3.8x.  On the vector suite's scenes
+ * at 1024x1024 (mono, shapes, rules, curves, logo; algorithms/README.md),
+ * where layers overlap, under tent:r=1 1.2x to 2.0x area's box time and
+ * under bspline:order=3 1.3x to 2.5x (two runs on a loaded machine; before
+ * the visible parts' scatter 3.3x to 4.6x and 3.4x to 9.9x).  In the rows
+ * where layers overlap, per block, the visible parts of one window (sorting each band's
+ * pieces along x and one meeting test per neighbouring pair), each run of
+ * them scattered as a piece is, with four values (its step of colour and
+ * of the face's code); under the radial filters, per pixel whose support
+ * meets an edge, the visible parts of its support and, per part, the rule
+ * of the table above; other pixels are filled in runs.  The image does
+ * not depend on the thread count (rows are taken AN_BLOCK at a time by
+ * the scatters, one at a time by the per-pixel visible parts, each from
+ * the scene alone).  Counters: samples = 0, expensive_pixels =
  * pixels summed (the scatter's: the pixels some part's exact term reached).
  */
 #include "core.h"
@@ -271,12 +282,12 @@ typedef struct an_state {
     double rcdf[5][4], rw[4][4], rk[4];
     int pad;     /* margins of the scatter's buffers: the support's width + 3 */
     /* The plan of the scene (see "One layer at a time"): for the scene
-     * and height it was made for, which rows take the per-pixel path
+     * and height it was made for, which rows take the visible parts
      * (slow[j]), and each layer's value per unit of winding (coef, nv
      * values a layer: nv = 1 when every layer has the same step, which
      * is then coef1) over the background bg. */
     const aa_scene *plan_scene;
-    int plan_h, plan_nl, nv, any_fast;
+    int plan_h, plan_nl, nv;
     unsigned char *slow;
     double *coef;
     /* the colour of each layer's face (winding s(L)), nl x 3; with nv = 1
@@ -790,14 +801,6 @@ static void shade(const void *ctx, aa__sampler_worker *wk, int i, int j, double 
     }
 }
 
-static int render_row(const void *ctx, aa__sampler_worker *wk, int j, aa_image *out,
-                      uint64_t *samples, uint64_t *expensive)
-{
-    const an_render *R = ctx;
-    return aa__sampler_row(wk, j, R->S->pp.k[R->S->pp.ncell], 0, shade, ctx, out, samples,
-                           expensive);
-}
-
 /* ---- radially symmetric polynomial filters (header, "Radial filters") ---- */
 
 /* F(x, v) = integral from 0 to x of the weight continued past the rim,
@@ -1081,12 +1084,12 @@ static int rad_render_row(const void *ctx, aa__sampler_worker *wk, int j, aa_ima
  * s(L) (colour at winding s(L) - bg)).  At init the scene is swept
  * (visible.c, every face between neighbouring pieces in every band of its
  * rows, eight rows at a time) and a band where a face breaks this marks
- * the rows whose supports reach it: those rows take the per-pixel path of
- * visible parts; the others, this one.  A crossing of two pieces always
+ * the rows whose supports reach it: those rows take the visible parts
+ * (below, "The visible parts' scatter"); the others, this one.  A crossing of two pieces always
  * breaks it in one of the four faces about it, so do overlapping layers,
  * a path wound twice, and the zero-width face between the two copies of
  * an edge shared by abutting paths of one layer (conservative: such rows
- * go the slow way).
+ * take the visible parts).
  *
  * A pixel whose support no part reaches and no flat piece crosses lies
  * inside one face and takes its colour exactly, as the per-pixel path's
@@ -1115,6 +1118,9 @@ static int rad_render_row(const void *ctx, aa__sampler_worker *wk, int j, aa_ima
 #define AN_CARRY 2
 /* values a piece carries when the layers' steps differ: colour and code */
 #define AN_NV 4
+/* distinct colours of faces the visible parts' scatter names by a code in
+ * one block (vis_block); a block that meets more takes the per-pixel path */
+#define AN_FACES 256
 
 typedef struct an_check {
     an_state *S;
@@ -1236,9 +1242,6 @@ static int plan(an_state *S, const aa_scene *scene, int h)
     S->coef1 = (aa_rgb){{0.0, 0.0, 0.0}};
     if (first >= 0)
         memcpy(S->coef1.c, &S->coef[3 * first], sizeof S->coef1.c);
-    S->any_fast = 0;
-    for (int j = 0; j < h; j++)
-        S->any_fast |= !S->slow[j];
     S->plan_scene = scene;
     S->plan_h = h;
     S->plan_nl = nl;
@@ -1292,7 +1295,9 @@ static size_t fast_size(const an_state *S, int w)
     size_t cover = cells * AN_NV * sizeof(double), touched = (cells + 63) & ~(size_t)63;
     size_t scratch = 2 * (size_t)S->pad * AN_MAX_PTS * sizeof(double);
     /* the cuts: 2 cap doubles (cap long doubles for an arc, 16 bytes to align them) */
-    return cover + touched + scratch + 2 * cut_cap(S, w) * sizeof(double) + 16;
+    /* and the faces' colours of the visible parts' scatter (vis_block) */
+    return cover + touched + scratch + 2 * cut_cap(S, w) * sizeof(double) + 16 +
+           AN_FACES * 3 * sizeof(double);
 }
 
 typedef struct an_block {
@@ -1776,10 +1781,12 @@ static void fast_conic(const an_block *B, const aa_piece *p, const double *val, 
     }
 }
 
-/* The terms of piece p (values val[0 .. nv)) in the block's rows: cut at
- * the knots' lines, in order of t (the lines of y in order, those of x
- * sorted apart and merged). */
-static void fast_piece(const an_block *B, const aa_piece *p, const double *val)
+/* The terms of piece p (values val[0 .. nv)) over rows [ya, yb] (a visible
+ * part's; the whole piece's, p->y0 and p->y1, on the scatter's rows) in the
+ * block's rows: cut at the knots' lines, in order of t (the lines of y in
+ * order, those of x sorted apart and merged). */
+static void fast_piece(const an_block *B, const aa_piece *p, const double *val, double ya,
+                       double yb)
 {
     const an_state *S = B->S;
     const an_pp *pp = &S->pp;
@@ -1787,7 +1794,7 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val)
     const int w = B->w;
     const double Y0 = B->j0 + 0.5 + k0, Y1 = (B->j1 - 1) + 0.5 + kn;
     const double XA = 0.5 + k0, XB = w - 0.5 + kn;
-    double lo = fmax(p->y0, Y0), hi = fmin(p->y1, Y1);
+    double lo = fmax(fmax(p->y0, ya), Y0), hi = fmin(fmin(p->y1, yb), Y1);
     if (!(lo < hi))
         return;
     if (p->kind == AA_PIECE_CONIC) {
@@ -1855,6 +1862,47 @@ static inline double two_sum(double a, double b, double *e)
     return s;
 }
 
+/* The scatter's buffers of rows j0 .. j1-1 in the worker's scratch, for
+ * nv values a cell. */
+static an_block block_bind(const an_state *S, aa__sampler_worker *wk, int w, int j0, int j1,
+                           int nv)
+{
+    const size_t cols = block_cols(S, w), cells = block_cells(S, w);
+    char *own = (char *)wk->own + S->fast_off;
+    an_block B = {S, w, j0, j1, nv, NULL, NULL, cols, S->pad, NULL, NULL, NULL, 0};
+    B.cover = (double *)own;
+    own += cells * AN_NV * sizeof(double);
+    B.touched = (unsigned char *)own;
+    own += (cells + 63) & ~(size_t)63;
+    B.wcol = (double *)own;
+    B.arow = B.wcol + (size_t)S->pad * AN_MAX_PTS;
+    own += 2 * (size_t)S->pad * AN_MAX_PTS * sizeof(double);
+    B.ts = (double *)own;
+    B.cap = cut_cap(S, w);
+    return B;
+}
+
+/* A flat piece has no terms, but the pixels whose supports it crosses are
+ * not inside one face: marked, as the parts mark theirs. */
+static void mark_flat(const an_block *B, const aa_piece *p)
+{
+    const an_pp *pp = &B->S->pp;
+    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
+    const int w = B->w, pad = B->pad, j0 = B->j0, j1 = B->j1;
+    if (!(p->y0 >= B->j0 + 0.5 + k0 && p->y0 <= (B->j1 - 1) + 0.5 + kn))
+        return;
+    /* rows and columns whose closed supports meet it: ceil, floor */
+    int ja = -ifloor(-(p->y0 - 0.5 - kn)), jb = ifloor(p->y0 - 0.5 - k0);
+    double xa = fmax(p->xmin, -2.0 * pad), xb = fmin(p->xmax, w + 2.0 * pad);
+    int ia = -ifloor(-(xa - 0.5 - kn)), ib = ifloor(xb - 0.5 - k0);
+    ja = ja < j0 ? j0 : ja, jb = jb > j1 - 1 ? j1 - 1 : jb;
+    ia = ia < 0 ? 0 : ia, ib = ib > w - 1 ? w - 1 : ib;
+    for (int j = ja; j <= jb; j++)
+        if (ia <= ib)
+            memset(B->touched + (size_t)(j - j0 + pad) * B->cols + (size_t)(pad + ia), AN_TERM,
+                   (size_t)(ib - ia + 1));
+}
+
 /* Rows j0 .. j1-1 (those not marked slow) by the scatter. */
 static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1, aa_image *out,
                       uint64_t *expensive)
@@ -1863,18 +1911,8 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     const an_pp *pp = &S->pp;
     const int w = out->w, nv = S->nv;
     const int pad = S->pad;
-    const size_t cols = block_cols(S, w), cells = block_cells(S, w);
-    char *own = (char *)wk->own + S->fast_off;
-    an_block B = {S, w, j0, j1, nv, NULL, NULL, cols, pad, NULL, NULL, NULL, 0};
-    B.cover = (double *)own;
-    own += cells * AN_NV * sizeof(double);
-    B.touched = (unsigned char *)own;
-    own += (cells + 63) & ~(size_t)63;
-    B.wcol = (double *)own;
-    B.arow = B.wcol + (size_t)pad * AN_MAX_PTS;
-    own += 2 * (size_t)pad * AN_MAX_PTS * sizeof(double);
-    B.ts = (double *)own;
-    B.cap = cut_cap(S, w);
+    const size_t cols = block_cols(S, w);
+    an_block B = block_bind(S, wk, w, j0, j1, nv);
     double Y0 = j0 + 0.5 + pp->k[0], Y1 = (j1 - 1) + 0.5 + pp->k[pp->ncell];
     double sx0, sy0, sx1, sy1;
     aa_scene_bounds(R->scene, &sx0, &sy0, &sx1, &sy1);
@@ -1883,28 +1921,13 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     aa_strip_window(wk->strip, fmin(sx0, 0.0) - 1.0, w - 0.5 + pp->k[pp->ncell]);
     size_t nloc;
     const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
-    const double k0 = pp->k[0], kn = pp->k[pp->ncell];
     for (size_t q = 0; q < nloc; q++) {
         const aa_piece *p = loc[q];
         const double *cf = &S->coef[3 * p->layer];
         if (cf[0] == 0.0 && cf[1] == 0.0 && cf[2] == 0.0)
             continue; /* no step (its faces are the background's colour) */
         if (!p->dir) {
-            /* a flat piece has no terms, but the pixels whose supports it
-             * crosses are not inside one face (marked, as the parts mark
-             * theirs) */
-            if (!(p->y0 >= Y0 && p->y0 <= Y1))
-                continue;
-            /* rows and columns whose closed supports meet it: ceil, floor */
-            int ja = -ifloor(-(p->y0 - 0.5 - kn)), jb = ifloor(p->y0 - 0.5 - k0);
-            double xa = fmax(p->xmin, -2.0 * pad), xb = fmin(p->xmax, w + 2.0 * pad);
-            int ia = -ifloor(-(xa - 0.5 - kn)), ib = ifloor(xb - 0.5 - k0);
-            ja = ja < j0 ? j0 : ja, jb = jb > j1 - 1 ? j1 - 1 : jb;
-            ia = ia < 0 ? 0 : ia, ib = ib > w - 1 ? w - 1 : ib;
-            for (int j = ja; j <= jb; j++)
-                if (ia <= ib)
-                    memset(B.touched + (size_t)(j - j0 + pad) * cols + (size_t)(pad + ia), 1,
-                           (size_t)(ib - ia + 1));
+            mark_flat(&B, p);
             continue;
         }
         double val[AN_NV];
@@ -1915,7 +1938,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 val[v] = p->dir * cf[v];
             val[3] = p->dir * (p->layer + 1.0);
         }
-        fast_piece(&B, p, val);
+        fast_piece(&B, p, val, p->y0, p->y1);
     }
     const double lo = R->lo, hi = R->hi;
     for (int r = 0; r < AN_BLOCK + 2 * pad; r++) {
@@ -2000,7 +2023,8 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
                 cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
             }
-            for (int i = 0; i < w; i++, px += 3, cov += AN_NV) {
+            int i = 0;
+            while (i < w) {
                 r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
                 cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
                 if (!(t[i] & AN_TERM)) {
@@ -2009,17 +2033,31 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                     int in = L >= 0 && L < S->plan_nl;
                     double sg = k < 0 ? -1.0 : 1.0;
                     const double *f = in ? &S->face[3 * L] : S->bg.c;
-                    memcpy(px, f, 3 * sizeof *px);
                     /* the sums there exactly: s(L) coef(L), the code */
                     r0 = in ? sg * S->coef[3 * L] : 0.0;
                     r1 = in ? sg * S->coef[3 * L + 1] : 0.0;
                     r2 = in ? sg * S->coef[3 * L + 2] : 0.0;
                     r3 = in ? (double)k : 0.0;
+                    /* the unmarked pixels after it hold nothing in their
+                     * cells: the same sums, the same face (eight marks
+                     * tested at a time) */
+                    do {
+                        memcpy(px, f, 3 * sizeof *px);
+                        i++, px += 3, cov += AN_NV;
+                        uint64_t t8;
+                        while (w - i >= 8 && (memcpy(&t8, t + i, sizeof t8), !t8)) {
+                            for (int e = 0; e < 8; e++, px += 3)
+                                memcpy(px, f, 3 * sizeof *px);
+                            i += 8, cov += 8 * AN_NV;
+                        }
+                    } while (i < w && !t[i]);
                     continue;
                 }
+                i++, cov += AN_NV;
                 double v0 = S->bg.c[0] + r0, v1 = S->bg.c[1] + r1, v2 = S->bg.c[2] + r2;
                 v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
                 px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
+                px += 3;
             }
             memset(cov, 0, (cols - (size_t)pad - (size_t)w) * AN_NV * sizeof *cov);
         }
@@ -2029,15 +2067,198 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     return 0;
 }
 
+/* ---- the visible parts' scatter (the rows marked slow) ----
+ *
+ * In the rows the plan marks slow, the picture is not a sum of shapes, but
+ * it is still a sum of visible parts: with the colour left of the scene
+ * bg (every piece right of the window's left side), the pixel at centre
+ * (cx, cy) is
+ *
+ *     bg + sum over visible parts of (step of colour across it) R(part),
+ *
+ * the per-pixel sum above with the window widened to the whole row: the
+ * bands' colour at the left side is then bg, and their weights sum to the
+ * filter's, 1, while a visible part outside the pixel's support gives
+ * R = its rows' weight (left of it) or 0 (right).  The visible parts of a
+ * window depend on the window only through its sides (where pieces are cut
+ * and which parts count), so those of one window over the whole width of
+ * the image and the rows of every slow row's support in the block, found
+ * once (aa__vis_window), are the visible parts of every pixel's support
+ * there, cut more finely.  Each run of bands along a piece with one step of
+ * colour is scattered as a piece of the sum of shapes is (fast_piece over
+ * the run's rows), its step as its values, so one part's rule serves
+ * every pixel whose support holds it and the constant part goes along the
+ * row in the running sum.  The same terms as the per-pixel path's, summed
+ * in another order: exact to rounding.
+ *
+ * The faces: a pixel no term reached (nor a flat piece crosses its
+ * support) lies inside one face, and takes its colour exactly, as the
+ * per-pixel path's uniform runs do.  The colour is named by a code: each
+ * distinct colour met in the block gets the next integer (bg 0), and the
+ * values are the colour and the code, so the running sum of the codes'
+ * steps is, in a face, its code within rounding (the colour being a
+ * function of the winding numbers, two faces of one colour share one code
+ * whichever layers make them).  The sums are set to the face's exact
+ * values there, so rounding does not carry from face to face.  A block
+ * whose faces have more than AN_FACES colours, or whose window's left side
+ * is not bg (it lies left of the scene's bounds: never), takes the
+ * per-pixel path. */
+
+typedef struct an_vis_ctx {
+    const an_block *B;
+    const aa_scene *scene;
+    double *face; /* the colours by code, 3 a code; face 0 bg */
+    int nface, bad;
+} an_vis_ctx;
+
+static void vis_values(void *ctx, const int *wind, double *out)
+{
+    an_vis_ctx *V = ctx;
+    aa_rgb c = aa_scene_colour_of(V->scene, wind);
+    int k = 0;
+    while (k < V->nface && memcmp(&V->face[3 * k], c.c, sizeof c.c))
+        k++;
+    if (k == V->nface) {
+        if (k == AN_FACES) {
+            V->bad = 1;
+            k = 0;
+        } else {
+            memcpy(&V->face[3 * k], c.c, sizeof c.c);
+            V->nface++;
+        }
+    }
+    out[0] = c.c[0], out[1] = c.c[1], out[2] = c.c[2], out[3] = k;
+}
+
+static void vis_band(void *ctx, double ya, double yb, const int *wind)
+{
+    an_vis_ctx *V = ctx;
+    (void)ya, (void)yb;
+    double c[AN_NV];
+    vis_values(V, wind, c);
+    if (c[3] != 0.0) /* the left side's colour is not bg */
+        V->bad = 1;
+}
+
+static void vis_run(void *ctx, const aa_piece *p, double ya, double yb, const double *jump,
+                    int inside)
+{
+    an_vis_ctx *V = ctx;
+    (void)inside;
+    fast_piece(V->B, p, jump, ya, yb);
+}
+
+/* The slow rows of rows j0 .. j1-1 by the visible parts' scatter: 0 done,
+ * 1 the strip could not be built, 2 not done (the faces' colours, above:
+ * the caller takes the per-pixel path; the buffers are left zeroed). */
+static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1, aa_image *out,
+                     uint64_t *expensive)
+{
+    const an_state *S = R->S;
+    const an_pp *pp = &S->pp;
+    const int w = out->w, pad = S->pad;
+    const size_t cols = block_cols(S, w);
+    an_block B = block_bind(S, wk, w, j0, j1, AN_NV);
+    int ja = j1, jb = j0 - 1;
+    for (int j = j0; j < j1; j++)
+        if (S->slow[j])
+            ja = j < ja ? j : ja, jb = j;
+    /* the rows of the slow rows' supports; the whole width */
+    double Y0 = ja + 0.5 + pp->k[0], Y1 = jb + 0.5 + pp->k[pp->ncell];
+    double sx0, sy0, sx1, sy1;
+    aa_scene_bounds(R->scene, &sx0, &sy0, &sx1, &sy1);
+    double xl = fmin(sx0, 0.0) - 1.0, xr = w - 0.5 + pp->k[pp->ncell];
+    if (aa_strip_begin(wk->strip, Y0, Y1))
+        return 1;
+    aa_strip_window(wk->strip, xl, xr);
+    an_vis_ctx V = {&B, R->scene,
+                    (double *)((char *)wk->own + S->fast_off + fast_size(S, w)) - 3 * AN_FACES,
+                    1, 0};
+    memcpy(V.face, S->bg.c, sizeof S->bg.c);
+    size_t nloc;
+    const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
+    for (size_t q = 0; q < nloc; q++)
+        if (!loc[q]->dir)
+            mark_flat(&B, loc[q]);
+    aa__vis v;
+    aa__vis_bind(&v, R->scene, AN_NV, wk->own);
+    const aa__vis_sink sink = {vis_band, vis_run, NULL, vis_values, &V, AN_NV, 0, 1};
+    aa__vis_window(&v, wk->strip, xl, xr, Y0, Y1, &sink);
+    const double lo = R->lo, hi = R->hi;
+    const double *bg = S->bg.c;
+    /* the rows a term can reach: the slow rows' supports' rows, one more */
+    int ra = ja - pad - j0 + pad, rb = jb + pad - j0 + pad;
+    ra = ra < 0 ? 0 : ra, rb = rb > AN_BLOCK + 2 * pad - 1 ? AN_BLOCK + 2 * pad - 1 : rb;
+    for (int r = ra; r <= rb; r++) {
+        int j = j0 - pad + r;
+        double *cov = B.cover + (size_t)r * cols * AN_NV;
+        unsigned char *tch = B.touched + (size_t)r * cols;
+        if (V.bad || j < j0 || j >= j1 || !S->slow[j]) { /* margins, other rows */
+            memset(cov, 0, cols * AN_NV * sizeof *cov);
+            memset(tch, 0, cols);
+            continue;
+        }
+        const unsigned char *t = tch + pad;
+        double *px = aa_pixel(out, 0, j);
+        uint64_t touched = 0;
+        double r0 = 0.0, r1 = 0.0, r2 = 0.0, r3 = 0.0;
+        for (int i = 0; i < pad; i++, cov += AN_NV) {
+            r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
+            cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
+        }
+        int i = 0;
+        while (i < w) {
+            r0 += cov[0], r1 += cov[1], r2 += cov[2], r3 += cov[3];
+            cov[0] = cov[1] = cov[2] = cov[3] = 0.0;
+            long k = lrint(r3);
+            if (!(t[i] & AN_TERM) && k >= 0 && k < V.nface) {
+                /* inside a face: its colour, and the sums there exactly;
+                 * so are the unmarked pixels after it (their cells hold
+                 * nothing: the same sums, the same face), eight marks
+                 * tested at a time */
+                const double *f = &V.face[3 * k];
+                r0 = f[0] - bg[0], r1 = f[1] - bg[1], r2 = f[2] - bg[2], r3 = (double)k;
+                do {
+                    memcpy(px, f, 3 * sizeof *px);
+                    i++, px += 3, cov += AN_NV;
+                    uint64_t t8;
+                    while (w - i >= 8 && (memcpy(&t8, t + i, sizeof t8), !t8)) {
+                        for (int e = 0; e < 8; e++, px += 3)
+                            memcpy(px, f, 3 * sizeof *px);
+                        i += 8, cov += 8 * AN_NV;
+                    }
+                } while (i < w && !t[i]);
+                continue;
+            }
+            i++, cov += AN_NV;
+            touched++;
+            double v0 = bg[0] + r0, v1 = bg[1] + r1, v2 = bg[2] + r2;
+            v0 = v0 < lo ? lo : v0, v1 = v1 < lo ? lo : v1, v2 = v2 < lo ? lo : v2;
+            px[0] = v0 > hi ? hi : v0, px[1] = v1 > hi ? hi : v1, px[2] = v2 > hi ? hi : v2;
+            px += 3;
+        }
+        memset(cov, 0, (cols - (size_t)pad - (size_t)w) * AN_NV * sizeof *cov);
+        memset(tch, 0, cols);
+        *expensive += touched;
+    }
+    return V.bad ? 2 : 0;
+}
+
 static int render_block(const an_render *R, aa__sampler_worker *wk, int b, aa_image *out,
                         uint64_t *expensive)
 {
     const an_state *S = R->S;
-    int j0 = b * AN_BLOCK, j1 = j0 + AN_BLOCK < out->h ? j0 + AN_BLOCK : out->h, fast = 0;
+    int j0 = b * AN_BLOCK, j1 = j0 + AN_BLOCK < out->h ? j0 + AN_BLOCK : out->h, fast = 0,
+        slow = 0;
     for (int j = j0; j < j1; j++)
-        fast |= !S->slow[j];
+        fast |= !S->slow[j], slow |= S->slow[j];
     if (fast && fast_block(R, wk, j0, j1, out, expensive))
         return 1;
+    if (!slow)
+        return 0;
+    int st = vis_block(R, wk, j0, j1, out, expensive);
+    if (st != 2)
+        return st;
     uint64_t samples = 0;
     for (int j = j0; j < j1; j++)
         if (S->slow[j] &&
@@ -2083,7 +2304,7 @@ static int prepare(an_state *S, const aa_job *job)
         return st;
     /* the visible parts' workspace, then the scatter's buffers (left zeroed
      * after each block: the sampler's scratch starts zeroed) */
-    S->fast_off = (aa__vis_size(job->placed, 3) + 63) & ~(size_t)63;
+    S->fast_off = (aa__vis_size(job->placed, AN_NV) + 63) & ~(size_t)63;
     return aa__sampler_ready(&S->sampler, job, S->fast_off + fast_size(S, job->w));
 }
 
@@ -2162,8 +2383,6 @@ static int analytic_render(void *state, const double *p, const aa_job *job, aa_i
     aa_filter_range(&job->filter, &R.lo, &R.hi);
     if (S->rad_k)
         return aa__sampler_render(&S->sampler, job, out, rad_render_row, &R, counters);
-    if (!S->any_fast)
-        return aa__sampler_render(&S->sampler, job, out, render_row, &R, counters);
     /* blocks of rows shared among threads (a pixel's value does not
      * depend on how) */
     uint64_t expensive = 0;
