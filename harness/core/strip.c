@@ -307,6 +307,29 @@ void aa_strip_winding_left(const aa_strip *st, double y, int *wind)
     }
 }
 
+/* Piece p active on the line y = yc + s, the sum exact (hi + lo, Knuth's
+ * two-sum: hi the sum rounded, lo its rounding error): y0 <= hi + lo is
+ * y0 - hi <= lo, and y0 - hi is exact where y0 is within a factor of 2 of
+ * hi (Sterbenz); elsewhere |y0 - hi| >= |hi| / 2, more than |lo| (half an
+ * ulp of hi), and its sign decides, which rounding keeps.  Likewise y <
+ * y1. */
+static inline int active_at(const aa_piece *p, double hi, double lo)
+{
+    return p->y0 - hi <= lo && p->y1 - hi > lo;
+}
+
+void aa_strip_winding_left_at(const aa_strip *st, double yc, double s, int *wind)
+{
+    double hi = yc + s, b = hi - yc, lo = (yc - (hi - b)) + (s - b);
+    for (int l = 0; l < st->nl; l++)
+        wind[l] = st->base[l];
+    for (size_t k = 0; k < st->nleft; k++) {
+        const aa_piece *p = st->item[st->left[k]].p;
+        if (active_at(p, hi, lo))
+            wind[p->layer] += p->dir;
+    }
+}
+
 void aa_strip_winding(const aa_strip *st, double x, double y, int *wind)
 {
     aa_strip_winding_left(st, y, wind);
