@@ -307,26 +307,30 @@ void aa_strip_winding_left(const aa_strip *st, double y, int *wind)
     }
 }
 
-/* Piece p active on the line y = yc + s, the sum exact (hi + lo, Knuth's
- * two-sum: hi the sum rounded, lo its rounding error): y0 <= hi + lo is
- * y0 - hi <= lo, and y0 - hi is exact where y0 is within a factor of 2 of
- * hi (Sterbenz); elsewhere |y0 - hi| >= |hi| / 2, more than |lo| (half an
- * ulp of hi), and its sign decides, which rounding keeps.  Likewise y <
- * y1. */
-static inline int active_at(const aa_piece *p, double hi, double lo)
-{
-    return p->y0 - hi <= lo && p->y1 - hi > lo;
-}
-
+/* The line y = yc + s, the sum exact: hi + lo, hi the sum rounded and lo
+ * its rounding error (Knuth's two-sum), |lo| at most half the gap from hi
+ * to its neighbour on lo's side.  No double lies strictly between hi and
+ * hi + lo, so a piece's end y0 is at or above the line (y0 <= hi + lo)
+ * exactly when y0 <= hi, if lo >= 0, or y0 < hi, if lo < 0; and hi + lo <
+ * y1 exactly when hi < y1, or hi <= y1.  Each is a loop of plain
+ * comparisons, as aa_strip_winding_left's. */
 void aa_strip_winding_left_at(const aa_strip *st, double yc, double s, int *wind)
 {
     double hi = yc + s, b = hi - yc, lo = (yc - (hi - b)) + (s - b);
     for (int l = 0; l < st->nl; l++)
         wind[l] = st->base[l];
-    for (size_t k = 0; k < st->nleft; k++) {
-        const aa_piece *p = st->item[st->left[k]].p;
-        if (active_at(p, hi, lo))
-            wind[p->layer] += p->dir;
+    if (lo >= 0.0) {
+        for (size_t k = 0; k < st->nleft; k++) {
+            const aa_piece *p = st->item[st->left[k]].p;
+            if (p->y0 <= hi && hi < p->y1)
+                wind[p->layer] += p->dir;
+        }
+    } else {
+        for (size_t k = 0; k < st->nleft; k++) {
+            const aa_piece *p = st->item[st->left[k]].p;
+            if (p->y0 < hi && hi <= p->y1)
+                wind[p->layer] += p->dir;
+        }
     }
 }
 
