@@ -376,6 +376,11 @@ aa_rgb aa_strip_colour_at(const aa_strip *st, double x, double y);
 /* The winding at line y from the pieces left of the window (add the local
  * pieces' crossings to get any point of the window). */
 void aa_strip_winding_left(const aa_strip *st, double y, int *wind);
+/* The same at line yc + s, that sum taken exactly (not rounded to double):
+ * a piece whose end lies within half an ulp of it is on its own side of
+ * the line, as a piece given relative to yc is (the reference's local
+ * pieces; harness/truth). */
+void aa_strip_winding_left_at(const aa_strip *st, double yc, double s, int *wind);
 /* 1 if no piece ends inside the band: the winding left of a window is then
  * the same on all its lines (a shortcut for sampling methods). */
 int aa_strip_all_full(const aa_strip *st);

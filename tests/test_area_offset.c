@@ -23,7 +23,11 @@
  *  - a crossing's root near a turn of the offset's y: y at the parameter
  *    aa__offset_root returns is the line's, to rounding;
  *  - pixel (716, 793) of tests/bench_bezstroke.c's scene, against its area
- *    derived here from the one offset curve in it (test_vertex).
+ *    derived here from the one offset curve in it (test_vertex);
+ *  - pixels (438, 998) and (880, 895) of the same scene, where two pieces
+ *    left of the window end at one vertex stored at heights an ulp apart,
+ *    against their area derived here exactly from the lines entering them
+ *    (test_ulp_vertex): the reference (both paths) and `area`.
  */
 #include "path.h"
 #include "oracle.h"
@@ -560,6 +564,198 @@ static void test_vertex(void **state)
     aa_scene_free(s);
 }
 
+/* ---- vertices whose heights differ by an ulp ---- */
+
+/* The benchmark's (tests/bench_bezstroke.c) cubics k0 .. k1 - 1 of subpath
+ * r, the same numbers as its own: 2 + 6 (k1 - k0) into cs. */
+static void bench_cubics(int r, int k0, int k1, double *cs)
+{
+    double y = (r + 0.5) / 20.0, a = 0.004 + 0.0015 * r, dx = 0.9 / 50.0, x = 0.05;
+    for (int k = 0; k < k0; k++)
+        x += dx;
+    cs[0] = x, cs[1] = y;
+    for (int k = k0; k < k1; k++) {
+        double s = (k % 2 ? -1.0 : 1.0) * a * (1.0 + 0.5 * sin(0.7 * k + r));
+        double kink = k % 7 == 6 ? 0.3 * dx : 0.0, *q = cs + 2 + 6 * (k - k0);
+        q[0] = x + dx / 3.0 + kink, q[1] = y + s, q[2] = x + 2.0 * dx / 3.0, q[3] = y + s;
+        q[4] = x + dx, q[5] = y;
+        x += dx;
+    }
+}
+
+typedef __float128 q128;
+
+static int q_cmp(q128 a, q128 b)
+{
+    return a < b ? -1 : a > b;
+}
+
+static void q_sort(q128 *v, int n) /* insertion sort: a few dozen values */
+{
+    for (int k = 1; k < n; k++)
+        for (int m = k; m > 0 && q_cmp(v[m - 1], v[m]) > 0; m--) {
+            q128 t = v[m];
+            v[m] = v[m - 1], v[m - 1] = t;
+        }
+}
+
+/* The box value of pixel (i, j) of a placed one-layer nonzero scene whose
+ * pieces entering the window are lines, the others lying wholly left or
+ * right of it over its rows (checked at 257 heights, 1e-3 px clear; the
+ * test fails otherwise).  Derived here, not by the reference's method: the
+ * rows are cut at every height where something changes (the lines' ends
+ * and their crossings of the window's sides and of each other, the other
+ * pieces' ends); between two such heights the covered length is linear in
+ * y, so its integral is the height times its value at the middle, exactly.
+ * All in __float128 from the pieces' doubles: the heights where two lines
+ * cross are the only roundings, about 1e-31 px. */
+#define LW_MAX 64
+static q128 lines_window(const aa_scene *placed, int i, int j)
+{
+    size_t np;
+    const aa_piece *pc = aa_scene_pieces(placed, &np);
+    q128 lx0[LW_MAX], ly0[LW_MAX], lx1[LW_MAX], ly1[LW_MAX], ev[4 * LW_MAX + LW_MAX * LW_MAX];
+    int ldir[LW_MAX], nl = 0, ne = 0;
+    double oy0[4 * LW_MAX], oy1[4 * LW_MAX];
+    int odir[4 * LW_MAX], no = 0;
+    const q128 X0 = i, X1 = i + 1, Y0 = j, Y1 = j + 1;
+    ev[ne++] = Y0, ev[ne++] = Y1;
+    for (size_t k = 0; k < np; k++) {
+        const aa_piece *p = &pc[k];
+        if (!p->dir || !(p->y1 > j && p->y0 < j + 1))
+            continue;
+        if (p->y0 > j)
+            ev[ne++] = p->y0;
+        if (p->y1 < j + 1)
+            ev[ne++] = p->y1;
+        if (p->kind == AA_PIECE_LINE) {
+            assert_true(nl < LW_MAX);
+            lx0[nl] = p->x0, ly0[nl] = p->y0, lx1[nl] = p->x1, ly1[nl] = p->y1;
+            ldir[nl++] = p->dir;
+            continue;
+        }
+        double lo = fmax(p->y0, j), hi = fmin(p->y1, j + 1), most = -INFINITY, least = INFINITY;
+        for (int q = 0; q <= 256; q++) {
+            double x = aa_piece_x_at(p, lo + (hi - lo) * q / 256);
+            most = fmax(most, x), least = fmin(least, x);
+        }
+        if (least > i + 1 + 1e-3)
+            continue; /* right of the window: no part in it */
+        assert_true(most < i - 1e-3); /* left: its winding only */
+        assert_true(no < 4 * LW_MAX);
+        oy0[no] = p->y0, oy1[no] = p->y1, odir[no++] = p->dir;
+    }
+    for (int a = 0; a < nl; a++) {
+        q128 dxa = lx1[a] - lx0[a], dya = ly1[a] - ly0[a];
+        for (int side = 0; side < 2 && dxa != 0; side++) { /* x = i, i + 1 */
+            q128 y = ly0[a] + dya * ((side ? X1 : X0) - lx0[a]) / dxa;
+            if (y > Y0 && y < Y1)
+                ev[ne++] = y;
+        }
+        for (int b = a + 1; b < nl; b++) {
+            q128 dxb = lx1[b] - lx0[b], dyb = ly1[b] - ly0[b], den = dxa * dyb - dya * dxb;
+            if (den == 0)
+                continue;
+            q128 u = ((lx0[b] - lx0[a]) * dyb - (ly0[b] - ly0[a]) * dxb) / den, y = ly0[a] + u * dya;
+            if (y > Y0 && y < Y1)
+                ev[ne++] = y;
+        }
+    }
+    q_sort(ev, ne);
+    q128 area = 0;
+    for (int e = 0; e + 1 < ne; e++) {
+        if (!(ev[e + 1] > ev[e]))
+            continue;
+        q128 ym = 0.5 * (ev[e] + ev[e + 1]), xs[LW_MAX];
+        int wind = 0, ds[LW_MAX], nx = 0;
+        for (int k = 0; k < no; k++)
+            wind += oy0[k] < ym && ym < oy1[k] ? odir[k] : 0;
+        for (int k = 0; k < nl; k++) {
+            if (!(ly0[k] < ym && ym < ly1[k]))
+                continue;
+            q128 x = lx0[k] + (lx1[k] - lx0[k]) * (ym - ly0[k]) / (ly1[k] - ly0[k]);
+            int at = nx++;
+            for (; at > 0 && xs[at - 1] > x; at--)
+                xs[at] = xs[at - 1], ds[at] = ds[at - 1];
+            xs[at] = x, ds[at] = ldir[k];
+        }
+        q128 cur = X0, len = 0;
+        int k = 0;
+        for (; k < nx && xs[k] <= X0; k++)
+            wind += ds[k];
+        for (; k <= nx; k++) {
+            q128 next = k < nx && xs[k] < X1 ? xs[k] : X1;
+            if (wind != 0)
+                len += next - cur;
+            cur = next;
+            if (next == X1)
+                break;
+            wind += ds[k];
+        }
+        area += (ev[e + 1] - ev[e]) * len;
+    }
+    return area;
+}
+
+/* Pixels of tests/bench_bezstroke.c's scene where the stroke's lines
+ * across it and its round joins' radii end at a vertex whose heights, as
+ * the pieces store them, differ by an ulp (1.1e-13 px between 512 and
+ * 1024), left of the window: (438, 998), the benchmark's largest
+ * difference between `area` and the reference before the reference took
+ * the winding left of the window at the exact height (5.7e-14, its bound
+ * 1.8e-14), and (880, 895), which the stroke covers whole.  The reference
+ * summed the winding numbers of the pieces left of the window at the
+ * absolute height vc + s rounded to double, which puts a vertex within
+ * half an ulp of it on the wrong side: on the rows between the two
+ * heights, half its Gauss-Kronrod nodes saw the window empty.  The answer
+ * here is lines_window's (the exact area of the window in the lines'
+ * arrangement); the other pieces are the benchmark's own, three or four
+ * cubics about the vertex. */
+static void test_ulp_vertex(void **state)
+{
+    (void)state;
+    static const struct {
+        int r, k0, k1, i, j;
+    } cases[] = {{19, 19, 23, 438, 998}, {17, 43, 47, 880, 895}};
+    const int n = 1024;
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        double cs[2 + 6 * 4];
+        bench_cubics(cases[c].r, cases[c].k0, cases[c].k1, cs);
+        aa_stroke_style st;
+        aa_stroke_style_default(&st);
+        st.width = 2.5 / n;
+        st.join = AA_JOIN_ROUND;
+        st.cap = AA_CAP_ROUND;
+        aa_scene *s = stroke_scene(cs, cases[c].k1 - cases[c].k0, &st, NULL);
+        aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
+        assert_non_null(placed);
+        int i = cases[c].i, j = cases[c].j;
+        q128 want = lines_window(placed, i, j);
+        support_view v = {.w = n, .h = n, .threads = 0};
+        aa_image ref, bound, crowd, cbound, got;
+        support_reference(s, &v, &ref, &bound, NULL);
+        support_reference_mode(placed, n, n, "box", AA__TRUTH_CROWD, &crowd, &cbound);
+        support_render("area", s, "box", n, n, 1, &got, NULL);
+        double rv = aa_pixel(&ref, i, j)[0], b = aa_pixel(&bound, i, j)[0];
+        double cv = aa_pixel(&crowd, i, j)[0], cb = aa_pixel(&cbound, i, j)[0];
+        double av = aa_pixel(&got, i, j)[0];
+        print_message("pixel (%d, %d): derived 1 - %.4e, reference %.1e off (bound %.1e), one "
+                      "piece at a time %.1e (bound %.1e), area %.1e off\n",
+                      i, j, (double)(1 - want), (double)(rv - want), b, (double)(cv - want), cb,
+                      (double)(av - want));
+        assert_true(fabs((double)(rv - want)) <= b);
+        assert_true(fabs((double)(cv - want)) <= cb);
+        assert_true(fabs((double)(av - want)) <= 1e-14);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_image_free(&crowd);
+        aa_image_free(&cbound);
+        aa_image_free(&got);
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -568,6 +764,7 @@ int main(void)
                                        cmocka_unit_test(test_root),
                                        cmocka_unit_test(test_stops),
                                        cmocka_unit_test(test_fix),
-                                       cmocka_unit_test(test_vertex)};
+                                       cmocka_unit_test(test_vertex),
+                                       cmocka_unit_test(test_ulp_vertex)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

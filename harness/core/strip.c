@@ -307,6 +307,19 @@ void aa_strip_winding_left(const aa_strip *st, double y, int *wind)
     }
 }
 
+/* The line y = yc + s, the sum exact: hi + lo, hi the sum rounded and lo
+ * its rounding error (Knuth's two-sum), |lo| at most half the gap from hi
+ * to its neighbour on lo's side.  No double lies strictly between hi and
+ * hi + lo, so pieces' ends (doubles) compare with hi + lo as with hi if
+ * lo >= 0, and as with the double below hi if lo < 0 (y0 <= hi + lo is
+ * then y0 < hi, and hi + lo < y1 is hi <= y1): the line y of
+ * aa_strip_winding_left, at no extra cost a piece. */
+void aa_strip_winding_left_at(const aa_strip *st, double yc, double s, int *wind)
+{
+    double hi = yc + s, b = hi - yc, lo = (yc - (hi - b)) + (s - b);
+    aa_strip_winding_left(st, lo < 0.0 ? nextafter(hi, -INFINITY) : hi, wind);
+}
+
 void aa_strip_winding(const aa_strip *st, double x, double y, int *wind)
 {
     aa_strip_winding_left(st, y, wind);

@@ -32,7 +32,7 @@
 #include <unistd.h>
 
 /* Bump when the ground truth's results could change. */
-#define TRUTH_VERSION 8 /* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
+#define TRUTH_VERSION 9 /* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
                           * pieces, and the cone's breakpoint where a piece passes
                           * closest to the centre; 4: the square root substitution on
                           * intervals that end near a turning point; 5: which radial
@@ -45,7 +45,11 @@
                           * threshold isolated by Taylor's theorem (rows tangent to it
                           * had their lengths as bounds); 8: every turning point of a
                           * window kept (64 at most were: a repeating radial gradient's
-                          * stop circles' tangent rows past them were left to QAG) */
+                          * stop circles' tangent rows past them were left to QAG); 9:
+                          * the winding left of the window at the exact height vc + s
+                          * (aa_strip_winding_left_at), not that sum rounded to double:
+                          * a piece ending within half an ulp of it was on the wrong
+                          * side, up to 5.7e-14 a pixel beyond the bound at 1024 px */
 #define CACHE_MAGIC "aabench-reference 2\n"
 
 static int field_key(const aa_view *view, char *buf, size_t len);

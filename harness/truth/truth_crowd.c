@@ -705,7 +705,7 @@ static void test_pair(crowd *c, int ia, int ib, double from)
 static void winding_afresh(crowd *c, double s, int *w)
 {
     crowd_worker *cw = c->cw;
-    aa_strip_winding_left(c->strip, c->vc + s, w);
+    aa_strip_winding_left_at(c->strip, c->vc, s, w);
     for (size_t k = 0; k < c->np; k++) {
         const crowd_piece *p = &cw->cp[k];
         if (s >= p->lo && s < p->hi && s >= p->q.y0 && s < p->q.y1 && x_at(p, s) < -c->R)
