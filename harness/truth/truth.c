@@ -1133,6 +1133,31 @@ typedef struct rad_chan {
     int power;
 } rad_chan;
 
+/* The x where E(t) + 0.055 = 0 for channel ch on its power piece: for each
+ * (complex) root tau0 of E(t) + 0.055, both roots in x of row r's circle
+ * quadratic at t = tau0; at most 4 into x, tau0 beside each in tau. */
+static int rad_ezeros(const grad_radial *g, const rad_row *r, const rad_chan *ch,
+                      double complex *tau, double complex *x)
+{
+    double complex taus[2];
+    int nt = 0, n = 0;
+    double A = ch->E[2], B = ch->E[1], C = ch->E[0] + 0.055;
+    if (A != 0.0) {
+        double complex sq = csqrt((double complex)(B * B - 4.0 * A * C));
+        taus[nt++] = (-B + sq) / (2.0 * A);
+        taus[nt++] = (-B - sq) / (2.0 * A);
+    } else if (B != 0.0)
+        taus[nt++] = -C / B;
+    for (int k = 0; k < nt; k++) {
+        double complex t0 = taus[k], A2 = r->c2, A1 = r->c1 - 2.0 * t0 * r->b1,
+                       A0 = r->c0 - 2.0 * t0 * r->b0 + g->a * t0 * t0;
+        double complex sq = csqrt(A1 * A1 - 4.0 * A2 * A0);
+        tau[n] = t0, x[n++] = (-A1 + sq) / (2.0 * A2);
+        tau[n] = t0, x[n++] = (-A1 - sq) / (2.0 * A2);
+    }
+    return n;
+}
+
 /* The error bound of the Gauss-Legendre rule for channel ch on [m - h,
  * m + h] of row r (the comment above). */
 static double rad_bound(const grad_radial *g, const rad_row *r, const rad_chan *ch, double m,
@@ -1149,22 +1174,8 @@ static double rad_bound(const grad_radial *g, const rad_row *r, const rad_chan *
         ex[ne++] = r->x0 - sd;
     }
     if (ch->power) {
-        double complex taus[2];
-        int nt = 0;
-        double A = ch->E[2], B = ch->E[1], C = ch->E[0] + 0.055;
-        if (A != 0.0) {
-            double complex sq = csqrt((double complex)(B * B - 4.0 * A * C));
-            taus[nt++] = (-B + sq) / (2.0 * A);
-            taus[nt++] = (-B - sq) / (2.0 * A);
-        } else if (B != 0.0)
-            taus[nt++] = -C / B;
-        for (int k = 0; k < nt; k++) {
-            double complex tau = taus[k], A2 = r->c2, A1 = r->c1 - 2.0 * tau * r->b1,
-                           A0 = r->c0 - 2.0 * tau * r->b0 + g->a * tau * tau;
-            double complex sq = csqrt(A1 * A1 - 4.0 * A2 * A0);
-            ex[ne++] = (-A1 + sq) / (2.0 * A2);
-            ex[ne++] = (-A1 - sq) / (2.0 * A2);
-        }
+        double complex taus[4];
+        ne += rad_ezeros(g, r, ch, taus, ex + ne);
     }
     double rmax = INFINITY;
     for (int k = 0; k < ne; k++)
@@ -1457,30 +1468,18 @@ static int cone_ezeros(const grad_radial *g, const rad_row *r, const rad_chan *c
 {
     if (!ch->power)
         return 0;
-    double complex taus[2];
-    int nt = 0, n = 0;
-    double A = ch->E[2], B = ch->E[1], C = ch->E[0] + 0.055;
-    if (A != 0.0) {
-        double complex sq = csqrt((double complex)(B * B - 4.0 * A * C));
-        taus[nt++] = (-B + sq) / (2.0 * A);
-        taus[nt++] = (-B - sq) / (2.0 * A);
-    } else if (B != 0.0)
-        taus[nt++] = -C / B;
-    for (int k = 0; k < nt; k++) {
-        double complex tau = taus[k], A2 = r->c2, A1 = r->c1 - 2.0 * tau * r->b1,
-                       A0 = r->c0 - 2.0 * tau * r->b0 + g->a * tau * tau;
-        double complex sq = csqrt(A1 * A1 - 4.0 * A2 * A0);
-        for (int q = 0; q < 2; q++) {
-            double complex x = (-A1 + (q ? -sq : sq)) / (2.0 * A2);
-            if (cimag(x) == 0.0 && cimag(tau) == 0.0 && g->cone != CONE_HALF) {
-                int painted;
-                double d = cone_d(g, creal(x), r->y, &painted), tr = creal(tau);
-                if (!(d > 0.0 && fabs(cone_t_near(g, creal(x), r->y) - tr) <=
-                                     1e-9 * (1.0 + fabs(tr))))
-                    continue;
-            }
-            z[n++] = x;
+    double complex taus[4], xs[4];
+    int nx = rad_ezeros(g, r, ch, taus, xs), n = 0;
+    for (int k = 0; k < nx; k++) {
+        double complex tau = taus[k], x = xs[k];
+        if (cimag(x) == 0.0 && cimag(tau) == 0.0 && g->cone != CONE_HALF) {
+            int painted;
+            double d = cone_d(g, creal(x), r->y, &painted), tr = creal(tau);
+            if (!(d > 0.0 &&
+                  fabs(cone_t_near(g, creal(x), r->y) - tr) <= 1e-9 * (1.0 + fabs(tr))))
+                continue;
         }
+        z[n++] = x;
     }
     return n;
 }
