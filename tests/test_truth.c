@@ -13,6 +13,10 @@
  *    from tests/oracle.c's polygon clipper (Sutherland-Hodgman and the
  *    shoelace formula); Catmull's pixel is (0, 0.25, 0.5) (Catmull 1978).
  *  - a parabolic segment's area is 2/3 of its control triangle (Archimedes).
+ *  - crowded pixels of 17 to 300 overlapping rectangles under the tent and
+ *    the cubic B-spline: each pixel within its colours' range, the image's
+ *    sum the picture's integral (partition of unity; visible areas from
+ *    the rectangles' geometry).
  *  - the reference cache returns the same image and treats a damaged file
  *    as a miss.
  *  - the Gaussian's fixed rule: tests/test_truth_gauss.c.
@@ -636,6 +640,99 @@ static void test_progress(void **state)
     assert_int_equal(log.calls, calls);
 }
 
+/* Many overlapping layers (more than CROWD_WL_LAYERS, past which the
+ * crowded sweep keeps no winding numbers per piece): n rectangles W x H
+ * px, each dx right and dy down of the one before, of distinct colours,
+ * on a 40x20 canvas, under the tent and the cubic B-spline, both paths
+ * (crowded pixels in the default mode, every pixel in AA__TRUTH_CROWD).
+ * Known answers from the geometry alone:
+ *  - the filters are non-negative, so each pixel is a convex combination
+ *    of the colours present: within [min, max] of them per channel;
+ *  - both filters' translates by whole pixels sum to 1 (a partition of
+ *    unity) over every point whose support's pixel centres lie in the
+ *    canvas, which holds the rectangles ([2, 38] x [4, 18] px, radius at
+ *    most 2), so the image's sum less the background's equals the
+ *    integral of the picture less the background: sum over layers of
+ *    (colour - background) times its visible area.  Layers go front to
+ *    back (core.h), and every rectangle before k meets rectangle k inside
+ *    rectangle k - 1 (their corners move right and down together), so k's
+ *    visible area is W H - (W - dx)(H - dy), and the first one's W H.
+ * The sweep once walked only from the first changed piece when the colour
+ * left of the window changed, leaving the jumps to its left stale: values
+ * down to -1.4. */
+static void test_crowd_many_layers(void **state)
+{
+    (void)state;
+    const char *const filters[] = {"tent:r=1", "bspline:order=3"};
+    const int counts[] = {17, 40, 300};
+    const int w = 40, h = 20;
+    const aa_rgb bg = {{0.1, 0.2, 0.3}};
+    for (size_t q = 0; q < sizeof counts / sizeof *counts; q++) {
+        int n = counts[q];
+        aa_scene *s = aa_scene_new(bg), *placed;
+        assert_non_null(s);
+        double want[3] = {0, 0, 0}, lo[3], hi[3];
+        /* in pixels: W = 0.1 w, H = 0.4 h, dx = 0.8 w / n, dy = 0.3 h / n */
+        double W = 0.1 * w, H = 0.4 * h, dx = 0.8 * w / n, dy = 0.3 * h / n;
+        for (int ch = 0; ch < 3; ch++)
+            lo[ch] = hi[ch] = bg.c[ch];
+        for (int k = 0; k < n; k++) {
+            aa_rgb c = {{(k % 7) / 7.0, (k % 11) / 11.0, k / (double)n}};
+            double x0 = 0.05 + 0.8 * k / n, x1 = x0 + 0.1, y0 = 0.2 + 0.3 * k / n,
+                   y1 = y0 + 0.4;
+            assert_int_equal(aa_scene_layer(s, c, AA_FILL_NONZERO), AA_OK);
+            assert_int_equal(aa_scene_move_to(s, x0, y0), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x1, y0), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x1, y1), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x0, y1), AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+            double area = k > 0 ? W * H - (W - dx) * (H - dy) : W * H;
+            for (int ch = 0; ch < 3; ch++) {
+                want[ch] += (c.c[ch] - bg.c[ch]) * area;
+                lo[ch] = fmin(lo[ch], c.c[ch]);
+                hi[ch] = fmax(hi[ch], c.c[ch]);
+            }
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        assert_non_null(placed = aa_scene_place(s, w, h, 0, 0, 0));
+        for (size_t fi = 0; fi < sizeof filters / sizeof *filters; fi++)
+            for (int mode = 0; mode <= AA__TRUTH_CROWD; mode += AA__TRUTH_CROWD) {
+                aa_filter f;
+                aa_image img;
+                aa_truth_stats st;
+                assert_int_equal(aa_filter_parse(filters[fi], &f), AA_OK);
+                assert_int_equal(aa_image_alloc(&img, w, h, 3), AA_OK);
+                assert_int_equal(aa__truth_render_mode(placed, &f, 1, mode, &img, NULL, &st, NULL),
+                                 AA_OK);
+                double worst = 0;
+                for (int ch = 0; ch < 3; ch++) {
+                    double sum = 0;
+                    for (int j = 0; j < h; j++)
+                        for (int i = 0; i < w; i++) {
+                            double v = aa_pixel(&img, i, j)[ch];
+                            if (v < lo[ch] - 1e-12 || v > hi[ch] + 1e-12)
+                                fail_msg("%d layers under %s, mode %d: pixel (%d, %d) channel "
+                                         "%d is %.17g, outside the colours' [%g, %g]",
+                                         n, filters[fi], mode, i, j, ch, v, lo[ch], hi[ch]);
+                            sum += v - bg.c[ch];
+                        }
+                    worst = fmax(worst, fabs(sum - want[ch]));
+                }
+                print_message("%3d layers %-16s %s: |sum - integral| %.1e, %zu of %zu "
+                              "integrated pixels crowded\n",
+                              n, filters[fi], mode ? "all crowded" : "default    ", worst,
+                              st.crowded, st.integrated);
+                /* 800 pixels, each within 1e-12 */
+                assert_true(worst <= (double)w * h * AA_TRUTH_BOUND);
+                /* the default mode takes some of 300 layers' windows one piece at a time */
+                assert_true(mode ? st.crowded == st.integrated : n < 300 || st.crowded > 0);
+                aa_image_free(&img);
+            }
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+}
+
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_crow_box_default),
              cmocka_unit_test(test_crow_box_other),
@@ -651,6 +748,7 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_cache),
              cmocka_unit_test(test_crowd_crow_oracle),
              cmocka_unit_test(test_crowd_against_spans),
+             cmocka_unit_test(test_crowd_many_layers),
              cmocka_unit_test(test_crowd_random_arcs),
              cmocka_unit_test(test_crowd_rule),
              cmocka_unit_test(test_progress))

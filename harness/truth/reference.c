@@ -32,7 +32,7 @@
 #include <unistd.h>
 
 /* Bump when the ground truth's results could change. */
-#define TRUTH_VERSION 9 /* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
+#define TRUTH_VERSION 10/* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
                           * pieces, and the cone's breakpoint where a piece passes
                           * closest to the centre; 4: the square root substitution on
                           * intervals that end near a turning point; 5: which radial
@@ -49,7 +49,11 @@
                           * the winding left of the window at the exact height vc + s
                           * (aa_strip_winding_left_at), not that sum rounded to double:
                           * a piece ending within half an ulp of it was on the wrong
-                          * side, up to 5.7e-14 a pixel beyond the bound at 1024 px */
+                          * side, up to 5.7e-14 a pixel beyond the bound at 1024 px;
+                          * 10: crowded windows of more than CROWD_WL_LAYERS layers
+                          * walk every colour jump again when the colour left of the
+                          * window changes (only those right of the first changed
+                          * piece were: values down to -1.4 under the B-spline) */
 #define CACHE_MAGIC "aabench-reference 2\n"
 
 static int field_key(const aa_view *view, char *buf, size_t len);

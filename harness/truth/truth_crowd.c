@@ -792,7 +792,9 @@ static int cmp_int(const void *a, const void *b)
  * that is not marked has the winding numbers kept for it: the rest up to
  * the next marked piece is unchanged.  From the head if the left side's
  * colour changed or `all`; to the end if no winding numbers are kept (more
- * than CROWD_WL_LAYERS layers). */
+ * than CROWD_WL_LAYERS layers), then from the first marked piece unless
+ * the left side's winding numbers changed: every piece's jump depends on
+ * them. */
 static void update_dc(crowd *c, size_t nd, int all, double h)
 {
     crowd_worker *cw = c->cw;
@@ -803,7 +805,7 @@ static void update_dc(crowd *c, size_t nd, int all, double h)
     if (all || !wl_of(c, 0)) {
         int x = c->head;
         memcpy(w, c->W, (size_t)nl * sizeof *w);
-        if (!all) { /* from the first marked piece */
+        if (!all && !c->w_changed) { /* from the first marked piece */
             int first = INT_MAX;
             for (size_t d = 0; d < nd; d++) {
                 const crowd_piece *p = &cw->cp[cw->dirty[2 * d]];
