@@ -1903,6 +1903,28 @@ static void mark_flat(const an_block *B, const aa_piece *p)
                    (size_t)(ib - ia + 1));
 }
 
+/* Pixel i, unmarked, and the unmarked pixels after it take face colour f
+ * (their cells hold nothing: the running sums stay as they are), eight
+ * marks tested at a time; *px and *cov moved past them.  Returns the next
+ * marked pixel's index (or w). */
+static inline int fill_face(double **px, double **cov, const unsigned char *t, int i, int w,
+                            const double *f)
+{
+    double *p = *px, *c = *cov;
+    do {
+        memcpy(p, f, 3 * sizeof *p);
+        i++, p += 3, c += AN_NV;
+        uint64_t t8;
+        while (w - i >= 8 && (memcpy(&t8, t + i, sizeof t8), !t8)) {
+            for (int e = 0; e < 8; e++, p += 3)
+                memcpy(p, f, 3 * sizeof *p);
+            i += 8, c += 8 * AN_NV;
+        }
+    } while (i < w && !t[i]);
+    *px = p, *cov = c;
+    return i;
+}
+
 /* Rows j0 .. j1-1 (those not marked slow) by the scatter. */
 static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1, aa_image *out,
                       uint64_t *expensive)
@@ -2041,16 +2063,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                     /* the unmarked pixels after it hold nothing in their
                      * cells: the same sums, the same face (eight marks
                      * tested at a time) */
-                    do {
-                        memcpy(px, f, 3 * sizeof *px);
-                        i++, px += 3, cov += AN_NV;
-                        uint64_t t8;
-                        while (w - i >= 8 && (memcpy(&t8, t + i, sizeof t8), !t8)) {
-                            for (int e = 0; e < 8; e++, px += 3)
-                                memcpy(px, f, 3 * sizeof *px);
-                            i += 8, cov += 8 * AN_NV;
-                        }
-                    } while (i < w && !t[i]);
+                    i = fill_face(&px, &cov, t, i, w, f);
                     continue;
                 }
                 i++, cov += AN_NV;
@@ -2218,16 +2231,7 @@ static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1,
                  * tested at a time */
                 const double *f = &V.face[3 * k];
                 r0 = f[0] - bg[0], r1 = f[1] - bg[1], r2 = f[2] - bg[2], r3 = (double)k;
-                do {
-                    memcpy(px, f, 3 * sizeof *px);
-                    i++, px += 3, cov += AN_NV;
-                    uint64_t t8;
-                    while (w - i >= 8 && (memcpy(&t8, t + i, sizeof t8), !t8)) {
-                        for (int e = 0; e < 8; e++, px += 3)
-                            memcpy(px, f, 3 * sizeof *px);
-                        i += 8, cov += 8 * AN_NV;
-                    }
-                } while (i < w && !t[i]);
+                i = fill_face(&px, &cov, t, i, w, f);
                 continue;
             }
             i++, cov += AN_NV;
