@@ -704,8 +704,12 @@ static const cell cells[] = {
      * clip in the parent's user space, (38, 20) were the viewport's clip
      * dropped (Chromium clips in the viewBox's space but drops the
      * viewport's clip, overflow hidden, when a clip-path is given: wrong by
-     * SVG 2, "The effect of the 'overflow' property"; resvg draws no such
-     * svg at all; librsvg clips in the parent's user space, taking the
+     * SVG 2, "The effect of the 'overflow' property"; resvg clips by the
+     * clip path in both the svg's user space and the parent's, [8, 28] x
+     * [4, 12] here, and the two do not meet, so it draws nothing of the
+     * cell (that rect under viewBox 0 0 50 50 onto 100 x 100 px at the
+     * origin: resvg draws 48 px, [16, 28] x [8, 12], the rect in both
+     * spaces intersected, where SVG 2 has 640); librsvg clips in the parent's user space, taking the
      * clipPath's units for the element's x, y, width and height, where
      * its content is not) */
     {"clip-path on a nested svg",
