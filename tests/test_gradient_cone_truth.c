@@ -35,6 +35,7 @@
  * Each pixel must lie within its own bound of the answer (plus the
  * quadrature's 1e-14), and every bound within 1e-12.
  */
+#include "cone_oracle.h"
 #include "core.h"
 #include "gradient_oracle.h"
 #include "support.h"
@@ -87,74 +88,12 @@ static const aa_gradient_stop white[2] = {{0.0, {{1, 1, 1}}, 1.0}, {1.0, {{1, 1,
 static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
                                                 {1.0, {{1, 1, 1}}, 1.0}};
 
-/* ---- the painted region from the circles' geometry ---- */
-
-/* A half-plane nx x + ny y + k >= 0 (long double: the areas' own
- * rounding stays far below the reference's). */
-typedef struct half {
-    long double nx, ny, k;
-} half;
-
-/* The half-planes bounding the painted region of p[] (cx cy r fx fy fr),
- * how many (0: the whole plane); *wedge 1 and P into apex[] when the
- * region is a wedge. */
-static int region(const double p[6], half *hp, int *wedge, double apex[2])
-{
-    long double cx = p[0], cy = p[1], r = p[2], fx = p[3], fy = p[4], fr = p[5];
-    long double L = hypotl(cx - fx, cy - fy), ux = (cx - fx) / L, uy = (cy - fy) / L;
-    *wedge = 0;
-    if (L + r < fr) /* the end circle strictly inside the focal one */
-        return 0;
-    if (r == fr) { /* the strip |(q - F) x u| <= r */
-        hp[0] = (half){uy, -ux, r - (uy * fx - ux * fy)};
-        hp[1] = (half){-uy, ux, r + (uy * fx - ux * fy)};
-        return 2;
-    }
-    /* the wedge from P opening along s u, s the sign of r - fr (towards
-     * C when the end circle is the larger) */
-    long double px = (r * fx - fr * cx) / (r - fr), py = (r * fy - fr * cy) / (r - fr);
-    long double s = r > fr ? 1.0L : -1.0L, sn = fabsl(r - fr) / L;
-    long double cs = sqrtl(fmaxl(0.0L, 1.0L - sn * sn));
-    *wedge = 1;
-    apex[0] = (double)px, apex[1] = (double)py;
-    for (int k = 0; k < 2; k++) {
-        long double sg = k ? 1.0L : -1.0L;
-        /* the tangent's direction: s u turned by +-theta */
-        long double dx = s * (ux * cs - sg * uy * sn), dy = s * (uy * cs + sg * ux * sn);
-        /* its normal towards the inside: the axis s u is inside */
-        long double nx = -dy, ny = dx;
-        if (nx * s * ux + ny * s * uy < 0)
-            nx = -nx, ny = -ny;
-        hp[k] = (half){nx, ny, -(nx * px + ny * py)};
-    }
-    return 2;
-}
+/* ---- the painted region from the circles' geometry (tests/cone_oracle.c) ---- */
 
 /* The area of the square [i, i + 1] x [j, j + 1] inside the half-planes. */
-static double clipped_area(int i, int j, const half *hp, int nh)
+static double clipped_area(int i, int j, const co_half *hp, int nh)
 {
-    long double P[16][2] = {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}, Q[16][2];
-    int n = 4;
-    for (int h = 0; h < nh; h++) {
-        int m = 0;
-        for (int k = 0; k < n; k++) {
-            const long double *a = P[k], *b = P[(k + 1) % n];
-            long double fa = hp[h].nx * a[0] + hp[h].ny * a[1] + hp[h].k;
-            long double fb = hp[h].nx * b[0] + hp[h].ny * b[1] + hp[h].k;
-            if (fa >= 0)
-                Q[m][0] = a[0], Q[m][1] = a[1], m++;
-            if ((fa < 0) != (fb < 0)) {
-                long double l = fa / (fa - fb);
-                Q[m][0] = a[0] + l * (b[0] - a[0]), Q[m][1] = a[1] + l * (b[1] - a[1]), m++;
-            }
-        }
-        memcpy(P, Q, sizeof P);
-        n = m;
-    }
-    long double A = 0;
-    for (int k = 0; k < n; k++)
-        A += P[k][0] * P[(k + 1) % n][1] - P[(k + 1) % n][0] * P[k][1];
-    return (double)(0.5L * fabsl(A));
+    return co_clipped_area(i, j, i + 1, j + 1, hp, nh);
 }
 
 static void check_area(const char *what, const double p[6])
@@ -164,9 +103,9 @@ static void check_area(const char *what, const double p[6])
     aa_truth_stats stats;
     support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
     support_reference(s, &v, &ref, &bound, &stats);
-    half hp[2];
+    co_half hp[2];
     double apex[2];
-    int wedge, nh = region(p, hp, &wedge, apex);
+    int wedge, nh = co_region(p, hp, &wedge, apex);
     double worst = 0;
     for (int j = 0; j < H; j++)
         for (int i = 0; i < W; i++) {
@@ -217,7 +156,7 @@ typedef struct pic {
     double p[6], bg;
     int spread, ntaus;
     double taus[MAX_TAUS]; /* where the spread ramp's derivatives jump */
-    half hp[2];
+    co_half hp[2];
     int nh, wedge;
     double apex[2];
     double y, xlo, xhi;
@@ -227,28 +166,7 @@ typedef struct pic {
 /* t from SVG 2's definition (the opening comment), NAN where none. */
 static double pic_t(const pic *pc, double x, double y)
 {
-    const double *p = pc->p;
-    long double Dx = p[0] - p[3], Dy = p[1] - p[4], dr = p[2] - p[5];
-    long double qx = x - p[3], qy = y - p[4];
-    /* |q - w D|^2 = (fr + w dr)^2: A w^2 - 2 B w + C = 0 */
-    long double A = Dx * Dx + Dy * Dy - dr * dr, B = qx * Dx + qy * Dy + p[5] * dr;
-    long double C = qx * qx + qy * qy - (long double)p[5] * p[5], disc = B * B - A * C;
-    if (A == 0) { /* one root */
-        long double w = C / (2 * B);
-        return B != 0 && p[5] + w * dr >= 0 ? (double)w : NAN;
-    }
-    if (disc < 0)
-        return NAN;
-    long double w1 = (B + sqrtl(disc)) / A, w2 = (B - sqrtl(disc)) / A;
-    if (w1 < w2) {
-        long double tmp = w1;
-        w1 = w2, w2 = tmp;
-    }
-    if (p[5] + w1 * dr >= 0)
-        return (double)w1;
-    if (p[5] + w2 * dr >= 0)
-        return (double)w2;
-    return NAN;
+    return co_t(pc->p, x, y);
 }
 
 static double pic_at(const pic *pc, double x, double y)
@@ -274,28 +192,13 @@ static double pic_x(double x, void *v)
 /* Where the circle t = tau meets the line x = at (col) or y = at. */
 static int circle_meet(const pic *pc, double tau, int col, double at, double *out)
 {
-    const double *p = pc->p;
-    double ccx = p[3] + tau * (p[0] - p[3]), ccy = p[4] + tau * (p[1] - p[4]);
-    double rr = p[5] + tau * (p[2] - p[5]);
-    if (rr < 0)
-        return 0;
-    double d = at - (col ? ccx : ccy), h = rr * rr - d * d;
-    if (h <= 0)
-        return 0;
-    double c = col ? ccy : ccx;
-    out[0] = c - sqrt(h), out[1] = c + sqrt(h);
-    return 2;
+    return co_circle_meet(pc->p, tau, col, at, out);
 }
 
 /* Where the half-plane k's line meets the line x = at (col) or y = at. */
 static int line_meet(const pic *pc, int k, int col, double at, double *out)
 {
-    const half *h = &pc->hp[k];
-    long double a = col ? h->ny : h->nx, b = col ? h->nx : h->ny;
-    if (a == 0)
-        return 0;
-    out[0] = (double)(-(b * at + h->k) / a);
-    return 1;
+    return co_line_meet(&pc->hp[k], col, at, out);
 }
 
 static double pic_y(double y, void *v)
@@ -330,7 +233,7 @@ static double pic_pixel(pic *pc, int i, int j)
             n += line_meet(pc, k, 1, i + e, cut + n);
     for (int q = 0; q < pc->ntaus; q++) {
         double tau = pc->taus[q], rr = p[5] + tau * (p[2] - p[5]);
-        double ccx = p[3] + tau * (p[0] - p[3]), ccy = p[4] + tau * (p[1] - p[4]);
+        double ccy = p[4] + tau * (p[1] - p[4]);
         if (rr < 0)
             continue;
         cut[n++] = ccy - rr, cut[n++] = ccy + rr;
@@ -338,12 +241,8 @@ static double pic_pixel(pic *pc, int i, int j)
             n += circle_meet(pc, tau, 1, i + e, cut + n);
         /* where it touches each bounding line: the foot of the
          * perpendicular from its centre */
-        for (int k = 0; k < pc->nh; k++) {
-            const half *h = &pc->hp[k];
-            long double nn = h->nx * h->nx + h->ny * h->ny;
-            long double f = (h->nx * ccx + h->ny * ccy + h->k) / nn;
-            cut[n++] = (double)(ccy - f * h->ny);
-        }
+        for (int k = 0; k < pc->nh; k++)
+            cut[n++] = co_touch_y(p, tau, &pc->hp[k]);
     }
     pc->wi = gsl_integration_workspace_alloc(1000);
     gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
@@ -374,7 +273,7 @@ static void check_2d_spread(const char *what, const double p[6], int spread, dou
             pc.taus[pc.ntaus++] = k;
             pc.taus[pc.ntaus++] = spread == AA_SPREAD_REPEAT || !(k & 1) ? k + GO_T0 : k - GO_T0;
         }
-    pc.nh = region(p, pc.hp, &pc.wedge, pc.apex);
+    pc.nh = co_region(p, pc.hp, &pc.wedge, pc.apex);
     aa_scene *s = grad_scene(p, spread, black_white, 2, bg);
     aa_image ref, bound;
     aa_truth_stats stats;
