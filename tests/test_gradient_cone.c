@@ -248,11 +248,12 @@ static void test_chromium_pixel(void **state)
 
 /* The circles coinciding (SVG 2 paints nothing) is refused at the scene,
  * naming it; the exact reference integrates the cone case under the box
- * filter (tests/test_gradient_cone_truth.c checks its values), the focal
- * circle touching the end circle from inside (a = 0) too when padded, and
- * refuses by name the cone under the other filters, in linear light and beside another
- * gradient, and the touching circles repeated in a window their
- * half-plane's edge passes (t runs to infinity there). */
+ * filter (tests/test_gradient_cone_truth.c checks its values) and the
+ * others (tests/test_gradient_cone_filter.c), the focal circle touching
+ * the end circle from inside (a = 0) too when padded, and refuses by name
+ * the cone in linear light and beside another gradient, and the touching
+ * circles repeated in a window their half-plane's edge passes (t runs to
+ * infinity there). */
 static void test_refusals(void **state)
 {
     (void)state;
@@ -281,10 +282,15 @@ static void test_refusals(void **state)
     aa_truth_stats stats;
     assert_int_equal(aa_truth_render(placed, &f, 1, &out, &bound, &stats), AA_OK);
     assert_true(stats.max_bound <= 1e-12);
-    assert_int_equal(aa_filter_parse("tent:r=1", &f), AA_OK);
-    assert_int_equal(aa_truth_render(placed, &f, 1, &out, &bound, &stats), AA_EINVAL);
-    if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), "box filter only"))
-        fail_msg("the reference's refusal under tent names no cone: %s", aa_last_error());
+    /* a separable filter and a radial one take it too */
+    static const char *const others[] = {"tent:r=1", "cone:r=1"};
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(aa_filter_parse(others[k], &f), AA_OK);
+        if (aa_truth_render(placed, &f, 1, &out, &bound, &stats) != AA_OK)
+            fail_msg("the reference refused the cone case under %s: %s", others[k],
+                     aa_last_error());
+        assert_true(stats.max_bound <= 1e-12);
+    }
     aa_scene_free(placed);
     /* the same cone interpolated in linear light: the path of several
      * gradients it would take has no cut at the tangent lines */
@@ -436,9 +442,9 @@ static void test_peers(void **state)
  * code (the opening comment; with fr dropped it would be #e1001e, so a
  * reader that lost fr fails here, and the same document without fr is
  * drawn to show it: the negative control).  The exact reference under the
- * box filter must be within 3 codes of Chromium at the same clear pixels,
- * and refuses the document under tent naming the <radialGradient>, its
- * line and the cone. */
+ * box filter must be within 3 codes of Chromium at the same clear pixels;
+ * it takes the document under tent as well, and refuses the same gradient
+ * in linear light naming the <radialGradient>, its line and the cone. */
 static void svg_cone_doc(const char *dir, const char *name, const char *fr, char *path,
                          size_t len)
 {
@@ -518,8 +524,8 @@ static void test_svg(void **state)
     assert_true(d0 > 10.0 / 255.0); /* the control: fr matters there */
 
     /* the exact reference integrates it under the box filter (compared
-     * with Chromium below) and refuses it under tent, naming the element
-     * and line */
+     * with Chromium below) and under tent, and refuses it in linear light,
+     * naming the element and line */
     aa_scene *sc = svg_cone_read(path);
     aa_scene *placed = aa_scene_place(sc, 60, 40, 0, 0, 0);
     assert_non_null(placed);
@@ -535,8 +541,19 @@ static void test_svg(void **state)
     aa_image tref = {0};
     assert_int_equal(aa_image_alloc(&tref, 60, 40, 3), AA_OK);
     assert_int_equal(aa_filter_parse("tent:r=1", &f), AA_OK);
+    if (aa_truth_render(placed, &f, 1, &tref, NULL, &stats) != AA_OK)
+        fail_msg("the reference refused the cone case under tent: %s", aa_last_error());
+    assert_true(stats.max_bound <= 1e-12);
+    aa_scene_free(placed);
+    aa_scene_free(sc);
+    char lin[4200];
+    svg_cone_doc(dir, "linear", " fr=\"2\" color-interpolation=\"linearRGB\"", lin, sizeof lin);
+    sc = svg_cone_read(lin);
+    placed = aa_scene_place(sc, 60, 40, 0, 0, 0);
+    assert_non_null(placed);
+    aa_filter_default(&f);
     assert_int_equal(aa_truth_render(placed, &f, 1, &tref, NULL, &stats), AA_EINVAL);
-    print_message("reference under tent: %s\n", aa_last_error());
+    print_message("reference in linear light: %s\n", aa_last_error());
     if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), "line 3: <radialGradient>"))
         fail_msg("the reference's refusal names no cone or no element: %s", aa_last_error());
     aa_image_free(&tref);

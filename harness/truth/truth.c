@@ -267,8 +267,8 @@
  * - 0.055, whose branch point v = 0 the ellipse must keep out.
  *
  * Radial gradients of the cone case (the focal circle not strictly inside
- * the end circle; "the cone case" below), under the box filter as the
- * scene's one gradient: the row is cut where it crosses the two lines
+ * the end circle; "the cone case" below), as the scene's one gradient,
+ * under every filter: the row is cut where it crosses the two lines
  * tangent to every circle (d = b^2 - a c is their forms' product); the
  * unpainted stretches take the composite without the layer, the painted
  * ones the cuts above, their pieces next to a tangent line integrated in
@@ -277,8 +277,9 @@
  * the tangent lines' crossings of the window's sides and of the pieces
  * and where each stop circle touches them (the circles touching inside,
  * a = 0: the half-plane's edge, where t has a pole, in place of the
- * lines).  The other filters, other gradients beside it and the cone in
- * linear light are refused.
+ * lines).  Under the other filters the same path carries the row's weight
+ * as a factor, the row cut also at the filter's kinks.  Other gradients
+ * beside it and the cone in linear light are refused.
  *
  * The other separable filters (tent, gauss, bspline, mitchell, catrom,
  * lanczos; "the other separable filters" below): every span of a
@@ -847,7 +848,7 @@ static int grad_init(worker *w)
     w->gbuf2 = malloc(w->cap_gbuf * sizeof *w->gbuf2);
     if (!w->gp || !w->gl || !w->gl_layer || !w->gl_paint || !w->gbuf || !w->gbuf2)
         return aa_fail(AA_ENOMEM, "out of memory for gradient planes");
-    int ngrad = 0;
+    int ngrad = 0, cone = 0;
     for (int l = 0; l < n; l++) {
         aa_gradient g;
         ngrad += aa_scene_layer_gradient(w->scene, l, &g);
@@ -859,11 +860,8 @@ static int grad_init(worker *w)
         if (aa_gradient_is_cone(&g)) { /* "the cone case" */
             const char *src = aa_scene_layer_gradient_source(w->scene, l);
             const char *why = NULL;
-            if (!w->box)
-                why = "the reference integrates the cone case under the box filter only: "
-                      "the other filters' rows bound the colour for nested circles, with no "
-                      "cut at the tangent lines";
-            else if (ngrad > 1)
+            cone = 1;
+            if (ngrad > 1)
                 why = "the reference integrates the cone case only as the scene's one "
                       "gradient: the path of several gradients at a point bounds the colour "
                       "for nested circles, with no cut at the tangent lines";
@@ -893,10 +891,11 @@ static int grad_init(worker *w)
     for (int k = 0; k < RAD_GL; k++)
         gsl_integration_glfixed_point(-1.0, 1.0, (size_t)k, &w->gl_x[k], &w->gl_w[k], gt);
     gsl_integration_glfixed_table_free(gt);
-    /* under the other separable filters every span takes the path of
-     * several gradients, which carries the weight ("the other separable
-     * filters") */
-    w->gen = grad_mode(w->scene) == 2 || !w->box;
+    /* under the other filters every span takes the path of several
+     * gradients, which carries the weight ("the other separable
+     * filters"), but the cone case's, which carries it on its own path
+     * ("the cone case") */
+    w->gen = grad_mode(w->scene) == 2 || (!w->box && !cone);
     w->grad = 1;
     return AA_OK;
 }
@@ -1224,6 +1223,43 @@ static void rad_piece(worker *w, const grad_radial *g, const rad_row *r, const r
     *err += fmin(worst, xb - xa);
 }
 
+#define GEN_MAX 5 /* gradient layers painting one span ("several gradients") */
+
+/* A span's gradient layers with the row's data and, on a piece, each
+ * layer's paint v0 + v1 t. */
+typedef struct gen_span_ctx {
+    int n, nch;
+    const gen_layer *L[GEN_MAX];
+    rad_row row[GEN_MAX];
+    double v0[GEN_MAX][4], v1[GEN_MAX][4];
+    /* pw[l][ch]: layer l's channel ch is in linear light on the encoding's
+     * power piece here, v0 + v1 t its linear value and the encoded channel
+     * lin_enc of it ("gradients in linear light"); 0: the encoded channel
+     * is v0 + v1 t itself */
+    int pw[GEN_MAX][3];
+    double K[3][243];
+    int nk;
+    double y;
+    /* weighted: the separable filter's weight w(x - uc) multiplies the
+     * row (every filter but the box; "the other separable filters") */
+    int weighted;
+    const aa_filter *f;
+    double uc;
+    /* radial: the weight is the radial filter's row at height s (relative
+     * to the pixel's centre), wn its value at the centre ("radial
+     * filters") */
+    int radial;
+    double s, wn;
+} gen_span_ctx;
+
+/* The weight along a row under a filter other than the box ("the other
+ * separable filters", "the radial filters: the weight along a row"). */
+static double rwt(const gen_span_ctx *c, double u);
+static void wt_poly(const gen_span_ctx *c, double m, double h, double a[4]);
+static double wt_bound(const gen_span_ctx *c, const double *a, double m, double h, double A,
+                       double B);
+static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, double *slope);
+
 /* ---- the cone case ----
  *
  * A radial gradient whose focal circle is not strictly inside its end
@@ -1317,8 +1353,44 @@ static void rad_piece(worker *w, const grad_radial *g, const rad_row *r, const r
  * square of the height's distance to it, a jump in the inner integral's
  * second derivative; for CONE_HALF, the edge's crossings and meetings
  * (every circle touches it at P*, whose row is a breakpoint already).
- * Under the box filter only, with no other gradient in the scene
- * (grad_init refuses the rest by name).
+ *
+ * Under the other filters ("the cone case under the other filters"; the
+ * separable ones and the radial ones) the path is the same with the
+ * row's weight w as a factor of the integrand, as "the other separable
+ * filters" and "the radial filters: the weight along a row" describe it:
+ * the span clipped to the support's chord for a radial filter; each
+ * painted stretch cut also at the filter's kinks uc + k (the radial
+ * filters': uc), so that on every piece w is one entire function (a
+ * polynomial, Lanczos's sincs, the Gaussian; the radial cone's branch
+ * points uc +- i |s| are kept out of the ellipse, in x or, mapped, in u);
+ * unpainted stretches and pieces of constant paint by the weight's cdf
+ * difference (the radial filters': the row's), exactly.  A piece in x
+ * takes the weight's bound on its ellipse (wt_bound) as a factor of M.
+ * A piece in u from a tangent line takes it on the image of the ellipse
+ * under x = xr + eps u^2: with |u| <= Zu and |Im u| <= B there, |z - xr|
+ * <= Zu^2 and |Im z| = 2 |Re u| |Im u| <= 2 Zu B, so about the middle of
+ * the piece's own x range (where the polynomial filters' piece is fitted,
+ * wt_poly) the semi-axes |xr - xm| + Zu^2 and the lesser of that and 2 Zu
+ * B serve.  A piece whose rule's bound fails keeps twice its length times
+ * the weight's supremum on it.  The kinks are cut before any piece is
+ * taken in u, so the piece next to a tangent line ends at the first kink,
+ * stop or threshold: in x no Bernstein ellipse about a piece that ends at
+ * a tangent line's crossing keeps out sqrt(d)'s branch point, which lies
+ * on its end (rho = 1), and its bound is infinite however often it is
+ * halved.  That is why the cone case does not take the path of several
+ * gradients, which carries the other filters' weight for the rest: it
+ * bounds a radial layer from rad_row's branch points, worked out for
+ * nested circles (d2 > 0): here d's real zeros are the tangent lines'
+ * crossings, the painted stretch's own ends, and where d2 = lam0 lam1 <
+ * 0 (a row across the painted wedge) those points are not numbers at all
+ * (a square root of a negative ratio); nor has it a substitution in u.  The outer breakpoints were already the filters':
+ * the tangent lines' and the stop circles' crossings of every kink line
+ * (kink_lines) and, under a radial filter, of the support's circle, with
+ * their nearest approaches to the centre (rad_filter_line,
+ * rad_filter_circle).
+ * Another gradient in the scene, and the cone in linear light, are
+ * refused by name (grad_init): the path of several gradients they would
+ * take has no cut at the tangent lines.
  */
 
 /* The cone case's linear forms of radial gradient r (the comment above). */
@@ -1526,13 +1598,15 @@ typedef struct cone_plain_ctx {
     const grad_radial *g;
     const cone_row *cr;
     double m, h;
+    const gen_span_ctx *wc; /* the weight (cone_weight), or NULL under the box */
+    double wa[4];
 } cone_plain_ctx;
 static double cone_plain_t(const void *ctx, double rho, double *fac)
 {
     const cone_plain_ctx *c = ctx;
     const rad_row *r = &c->cr->r;
     double semi = 0.5 * c->h * (rho + 1.0 / rho), L[2], m = c->m;
-    *fac = 1.0;
+    *fac = c->wc ? wt_bound(c->wc, c->wa, m, c->h, semi, 0.5 * c->h * (rho - 1.0 / rho)) : 1.0;
     if (c->g->cone == CONE_HALF) {
         double bl = fabs(r->b0 + r->b1 * m) - fabs(r->b1) * semi;
         double cz = fabs(r->c0 + m * (r->c1 + m * r->c2)) + fabs(r->c1 + 2.0 * r->c2 * m) * semi +
@@ -1544,68 +1618,139 @@ static double cone_plain_t(const void *ctx, double rho, double *fac)
     return (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * semi + sqrt(L[0] * L[1])) / fabs(c->g->a);
 }
 
-/* A piece in u of a stretch from a zero xr of L_k (the comment above). */
+/* A piece in u of a stretch from a zero xr of L_k (the comment above);
+ * weighted, the weight's bound on the image of the ellipse, |z - xr| =
+ * |u|^2 <= Zu^2 and |Im z| = 2 |Re u| |Im u| <= 2 Zu B there, about the
+ * middle xm of the piece's own x range (half-length xh), where wa fits
+ * the weight's polynomial piece ("the cone case under the other
+ * filters"). */
 typedef struct cone_root_ctx {
     double m, h, P0, P1, bxr, b1, a;
+    const gen_span_ctx *wc;
+    double wa[4], xr, xm, xh;
 } cone_root_ctx;
 static double cone_root_t(const void *ctx, double rho, double *fac)
 {
     const cone_root_ctx *c = ctx;
     double Zu = fabs(c->m) + 0.5 * c->h * (rho + 1.0 / rho), Z2 = Zu * Zu;
     *fac = 2.0 * Zu;
+    if (c->wc) {
+        double A = fabs(c->xr - c->xm) + Z2, B = fmin(A, Zu * c->h * (rho - 1.0 / rho));
+        *fac *= wt_bound(c->wc, c->wa, c->xm, c->xh, A, B);
+    }
     return (fabs(c->bxr) + fabs(c->b1) * Z2 + Zu * sqrt(fabs(c->P0) + fabs(c->P1) * Z2)) /
            fabs(c->a);
 }
 
+/* The row's weight for the cone case under a filter other than the box
+ * (w->box unset): the fields of gen_span_ctx that the weight's functions
+ * read ("the other separable filters", "the radial filters"). */
+static void cone_weight(const worker *w, gen_span_ctx *c)
+{
+    c->weighted = 1, c->f = w->f, c->uc = w->uc;
+    c->radial = w->radial, c->s = w->row_s;
+    c->wn = w->radial ? aa_filter_weight2(w->f, 0.0, 0.0) : 0.0;
+}
+
+/* The weight at x (inside the support's chord for a radial filter). */
+static double cone_wt_at(const gen_span_ctx *c, double x)
+{
+    return c->radial ? rwt(c, x - c->uc) : aa_filter_weight(c->f, x - c->uc);
+}
+
+/* wt_poly's coefficients on [m - h, m + h] for a polynomial filter (the
+ * separable ones but Lanczos and the Gaussian), else zeros. */
+static void cone_wt_poly(const gen_span_ctx *c, double m, double h, double a[4])
+{
+    a[0] = a[1] = a[2] = a[3] = 0.0;
+    if (!c->radial && c->f->type != &aa_filter_lanczos && c->f->type != &aa_filter_gauss)
+        wt_poly(c, m, h, a);
+}
+
+/* The bound a piece takes when the rule's fails (f in [0, 1]): its
+ * length, times twice the weight's supremum there when weighted (the
+ * rule and the integral each within length times sup |w| of 0). */
+static double cone_fallback(const gen_span_ctx *wc, double xa, double xb)
+{
+    if (!wc)
+        return xb - xa;
+    double sup, slope;
+    wt_real(wc, 0.5 * (xa + xb), 0.5 * (xb - xa), &sup, &slope);
+    return 2.0 * (xb - xa) * sup;
+}
+
+/* The radial cone filter's branch points uc +- i |s| (rwt), which the
+ * ellipse must keep out, into ex; how many. */
+static int cone_wt_branch(const gen_span_ctx *wc, double complex *ex)
+{
+    if (!wc || !wc->radial || wc->f->type != &aa_filter_cone)
+        return 0;
+    ex[0] = wc->uc + _Complex_I * fabs(wc->s);
+    ex[1] = wc->uc - _Complex_I * fabs(wc->s);
+    return 2;
+}
+
 /* The channels over [xa, xb] of the row (one piece in x), halving where
- * needed (rad_piece). */
+ * needed (rad_piece); wc the weight, NULL under the box. */
 static void cone_plain(worker *w, const grad_radial *g, const cone_row *cr, const rad_chan *ch,
-                       int nch, double xa, double xb, int depth, double *sum, double *err)
+                       int nch, const gen_span_ctx *wc, double xa, double xb, int depth,
+                       double *sum, double *err)
 {
     const rad_row *r = &cr->r;
     double m = 0.5 * (xa + xb), h = 0.5 * (xb - xa), worst = 0.0;
-    cone_plain_ctx ctx = {g, cr, m, h};
+    cone_plain_ctx ctx = {g, cr, m, h, wc, {0, 0, 0, 0}};
+    if (wc)
+        cone_wt_poly(wc, m, h, ctx.wa);
     for (int c = 0; c < nch; c++) {
-        double complex ex[6];
+        double complex ex[8];
         int ne = 0;
         for (int k = 0; k < 2; k++)
             if (cr->lam[k] != 0.0)
                 ex[ne++] = -cr->mu[k] / cr->lam[k];
         ne += cone_ezeros(g, r, &ch[c], ex + ne);
+        ne += cone_wt_branch(wc, ex + ne);
         worst = fmax(worst, cone_rule_bound(&ch[c], ex, ne, m, h, cone_plain_t, &ctx));
     }
     if (worst > 2e-16 * (xb - xa) && depth < RAD_DEPTH) {
-        cone_plain(w, g, cr, ch, nch, xa, m, depth + 1, sum, err);
-        cone_plain(w, g, cr, ch, nch, m, xb, depth + 1, sum, err);
+        cone_plain(w, g, cr, ch, nch, wc, xa, m, depth + 1, sum, err);
+        cone_plain(w, g, cr, ch, nch, wc, m, xb, depth + 1, sum, err);
         return;
     }
     double part[3] = {0.0, 0.0, 0.0};
     for (int k = 0; k < RAD_GL; k++) {
-        double t = cone_t_near(g, m + h * w->gl_x[k], r->y);
+        double x = m + h * w->gl_x[k], t = cone_t_near(g, x, r->y);
+        double wk = wc ? w->gl_w[k] * cone_wt_at(wc, x) : w->gl_w[k];
         for (int c = 0; c < nch; c++) {
             double e = ch[c].E[0] + t * (ch[c].E[1] + t * ch[c].E[2]);
-            part[c] += w->gl_w[k] * (ch[c].power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92);
+            part[c] += wk * (ch[c].power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92);
         }
     }
     for (int c = 0; c < nch; c++)
         sum[c] += h * part[c];
-    *err += fmin(worst, xb - xa);
+    *err += fmin(worst, cone_fallback(wc, xa, xb));
 }
 
 /* The channels over x = xr + eps u^2, u in [ua, ub], xr a zero of L_k:
  * the integrand 2 u f(t), halving where needed. */
 static void cone_root(worker *w, const grad_radial *g, const cone_row *cr, const rad_chan *ch,
-                      int nch, double xr, double eps, int k, double ua, double ub, int depth,
-                      double *sum, double *err)
+                      int nch, const gen_span_ctx *wc, double xr, double eps, int k, double ua,
+                      double ub, int depth, double *sum, double *err)
 {
     const rad_row *r = &cr->r;
     int o = 1 - k;
     double lk = creal(cr->lam[k]), lo = creal(cr->lam[o]), Lo = creal(cr->lam[o] * xr + cr->mu[o]);
     double m = 0.5 * (ua + ub), h = 0.5 * (ub - ua), worst = 0.0;
-    cone_root_ctx ctx = {m, h, eps * lk * Lo, lk * lo, r->b0 + r->b1 * xr, r->b1, g->a};
+    /* the piece's x range, [xr + eps ua^2, xr + eps ub^2] in some order */
+    double xa = xr + eps * ua * ua, xb = xr + eps * ub * ub, lo_x = fmin(xa, xb),
+           hi_x = fmax(xa, xb);
+    cone_root_ctx ctx = {m,    h,    eps * lk * Lo, lk * lo, r->b0 + r->b1 * xr, r->b1, g->a,
+                         wc,   {0, 0, 0, 0},        xr,      0.5 * (lo_x + hi_x),
+                         0.5 * (hi_x - lo_x)};
+    if (wc)
+        cone_wt_poly(wc, ctx.xm, ctx.xh, ctx.wa);
     for (int c = 0; c < nch; c++) {
-        double complex ex[10], z[4];
-        int ne = 0, nz = cone_ezeros(g, r, &ch[c], z);
+        double complex ex[14], z[4], bp[2];
+        int ne = 0, nz = cone_ezeros(g, r, &ch[c], z), nb = cone_wt_branch(wc, bp);
         if (ctx.P1 != 0.0) {
             double complex u0 = csqrt(-ctx.P0 / ctx.P1);
             ex[ne++] = u0, ex[ne++] = -u0;
@@ -1614,26 +1759,43 @@ static void cone_root(worker *w, const grad_radial *g, const cone_row *cr, const
             double complex u0 = csqrt(eps * (z[q] - xr));
             ex[ne++] = u0, ex[ne++] = -u0;
         }
+        for (int q = 0; q < nb; q++) { /* the radial cone filter's, in u */
+            double complex u0 = csqrt(eps * (bp[q] - xr));
+            ex[ne++] = u0, ex[ne++] = -u0;
+        }
         worst = fmax(worst, cone_rule_bound(&ch[c], ex, ne, m, h, cone_root_t, &ctx));
     }
     if (worst > 2e-16 * (ub * ub - ua * ua) && depth < RAD_DEPTH) {
-        cone_root(w, g, cr, ch, nch, xr, eps, k, ua, m, depth + 1, sum, err);
-        cone_root(w, g, cr, ch, nch, xr, eps, k, m, ub, depth + 1, sum, err);
+        cone_root(w, g, cr, ch, nch, wc, xr, eps, k, ua, m, depth + 1, sum, err);
+        cone_root(w, g, cr, ch, nch, wc, xr, eps, k, m, ub, depth + 1, sum, err);
         return;
     }
     double part[3] = {0.0, 0.0, 0.0};
     for (int q = 0; q < RAD_GL; q++) {
-        double u = m + h * w->gl_x[q], u2 = u * u, P = ctx.P0 + ctx.P1 * u2;
-        double t = cone_t_sq(g, xr + eps * u2, r->y, u * sqrt(P > 0.0 ? P : 0.0));
+        double u = m + h * w->gl_x[q], u2 = u * u, P = ctx.P0 + ctx.P1 * u2, x = xr + eps * u2;
+        double t = cone_t_sq(g, x, r->y, u * sqrt(P > 0.0 ? P : 0.0));
+        double wq = w->gl_w[q] * 2.0 * u * (wc ? cone_wt_at(wc, x) : 1.0);
         for (int c = 0; c < nch; c++) {
             double e = ch[c].E[0] + t * (ch[c].E[1] + t * ch[c].E[2]);
-            part[c] += w->gl_w[q] * 2.0 * u *
-                       (ch[c].power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92);
+            part[c] += wq * (ch[c].power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92);
         }
     }
     for (int c = 0; c < nch; c++)
         sum[c] += h * part[c];
-    *err += fmin(worst, ub * ub - ua * ua);
+    *err += fmin(worst, wc ? cone_fallback(wc, lo_x, hi_x) : ub * ub - ua * ua);
+}
+
+/* The weight's integral over [xa, xb] of the current row (absolute x):
+ * its length under the box, else the cdf's (the radial filters: the
+ * row's) difference. */
+static double span_weight(const worker *w, double xa, double xb)
+{
+    if (w->box)
+        return xb - xa;
+    if (w->radial)
+        return aa_filter_row_cdf(w->f, w->row_s, xb - w->uc) -
+               aa_filter_row_cdf(w->f, w->row_s, xa - w->uc);
+    return aa_filter_cdf(w->f, xb - w->uc) - aa_filter_cdf(w->f, xa - w->uc);
 }
 
 /* The span [xa, xb] of row y painted (where it is) by the cone-case
@@ -1646,6 +1808,9 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
                       const double *e2, double xa, double xb, double y, int nch, double *sum)
 {
     cone_row cr;
+    gen_span_ctx wcs, *wc = NULL;
+    if (!w->box)
+        cone_weight(w, &wcs), wc = &wcs;
     rad_row_at(g, y, &cr.r);
     for (int k = 0; k < 2; k++)
         cr.lam[k] = g->lf[k][0], cr.mu[k] = g->lf[k][1] * y + g->lf[k][2];
@@ -1677,8 +1842,9 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
             continue;
         cone_d(g, 0.5 * (p + q), y, &painted);
         if (!painted) {
+            double wd = span_weight(w, p, q);
             for (int c = 0; c < nch; c++)
-                sum[c] += (q - p) * aa_srgb_decode(e0[c]);
+                sum[c] += wd * aa_srgb_decode(e0[c]);
             continue;
         }
         int kp = kind[s], kq = kind[s + 1];
@@ -1698,6 +1864,13 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
         memmove(taus, xs + nx, mt * sizeof *xs);
         for (size_t k = 0; k < mt; k++)
             nx += (size_t)rad_cross(g, &cr.r, taus[k], p, q, xs + nx);
+        if (wc) { /* the filter's kinks: the weight one piece between them */
+            double kink[8];
+            int nkk = w->f->type->kinks(w->f->spec.v, kink);
+            for (int j = 0; j < nkk && nx < cap; j++)
+                if (w->uc + kink[j] > p && w->uc + kink[j] < q)
+                    xs[nx++] = w->uc + kink[j];
+        }
         qsort(xs + 1, nx - 1, sizeof *xs, cmp_dbl);
         xs[nx++] = q;
         for (size_t k = 0; k + 1 < nx; k++) {
@@ -1725,8 +1898,9 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
                     ncut += rad_cross(g, &cr.r, rt[qq], a, b, cuts + ncut);
             }
             if (flat) { /* constant paint: exact */
+                double wd = span_weight(w, a, b);
                 for (int c = 0; c < nch; c++)
-                    sum[c] += (b - a) * aa_srgb_decode(ch[c].E[0]);
+                    sum[c] += wd * aa_srgb_decode(ch[c].E[0]);
                 continue;
             }
             qsort(cuts + 1, (size_t)(ncut - 1), sizeof *cuts, cmp_dbl);
@@ -1741,14 +1915,18 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
                 int lr = ca == p && kp >= 0, rr = cb == q && kq >= 0;
                 if (lr && rr) {
                     double mid = 0.5 * (ca + cb);
-                    cone_root(w, g, &cr, ch, nch, ca, 1.0, kp, 0.0, sqrt(mid - ca), 0, sum, &err);
-                    cone_root(w, g, &cr, ch, nch, cb, -1.0, kq, 0.0, sqrt(cb - mid), 0, sum, &err);
+                    cone_root(w, g, &cr, ch, nch, wc, ca, 1.0, kp, 0.0, sqrt(mid - ca), 0, sum,
+                              &err);
+                    cone_root(w, g, &cr, ch, nch, wc, cb, -1.0, kq, 0.0, sqrt(cb - mid), 0, sum,
+                              &err);
                 } else if (lr)
-                    cone_root(w, g, &cr, ch, nch, ca, 1.0, kp, 0.0, sqrt(cb - ca), 0, sum, &err);
+                    cone_root(w, g, &cr, ch, nch, wc, ca, 1.0, kp, 0.0, sqrt(cb - ca), 0, sum,
+                              &err);
                 else if (rr)
-                    cone_root(w, g, &cr, ch, nch, cb, -1.0, kq, 0.0, sqrt(cb - ca), 0, sum, &err);
+                    cone_root(w, g, &cr, ch, nch, wc, cb, -1.0, kq, 0.0, sqrt(cb - ca), 0, sum,
+                              &err);
                 else
-                    cone_plain(w, g, &cr, ch, nch, ca, cb, 0, sum, &err);
+                    cone_plain(w, g, &cr, ch, nch, wc, ca, cb, 0, sum, &err);
             }
         }
     }
@@ -1763,6 +1941,15 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
  * says, each piece integrated by rad_piece. */
 static void rad_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
+    if (w->radial) { /* (the cone case alone) the span clipped to the support's chord */
+        double s = w->row_s, R = w->R;
+        if (!(fabs(s) < R))
+            return;
+        double hc = sqrt((R - s) * (R + s));
+        xa = fmax(xa, w->uc - hc), xb = fmin(xb, w->uc + hc);
+        if (!(xb > xa))
+            return;
+    }
     const grad_radial *g = NULL;
     /* the composite's K0, K1, K2 per channel (in a scene of radial
      * gradients only, w->gl[k] is w->rg[k]) */
@@ -1789,8 +1976,9 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
         }
     }
     if (!g) { /* no radial gradient paints the span */
+        double wd = span_weight(w, xa, xb);
         for (int c = 0; c < nch; c++)
-            sum[c] += (xb - xa) * aa_srgb_decode(e0[c]);
+            sum[c] += wd * aa_srgb_decode(e0[c]);
         return;
     }
     if (g->cone) {
@@ -1935,35 +2123,8 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
  * midpoint with the bound width (2.3 L width + 2.4e-9), the last term
  * the decoding's own jump at 0.04045 (0.0031308073 - 0.0031308050).
  */
-#define GEN_MAX 5      /* gradient layers painting one span */
 #define GEN_FUZZ 1e-13 /* the narrowest interval bisected for the threshold, relative */
 
-/* A span's gradient layers with the row's data and, on a piece, each
- * layer's paint v0 + v1 t. */
-typedef struct gen_span_ctx {
-    int n, nch;
-    const gen_layer *L[GEN_MAX];
-    rad_row row[GEN_MAX];
-    double v0[GEN_MAX][4], v1[GEN_MAX][4];
-    /* pw[l][ch]: layer l's channel ch is in linear light on the encoding's
-     * power piece here, v0 + v1 t its linear value and the encoded channel
-     * lin_enc of it ("gradients in linear light"); 0: the encoded channel
-     * is v0 + v1 t itself */
-    int pw[GEN_MAX][3];
-    double K[3][243];
-    int nk;
-    double y;
-    /* weighted: the separable filter's weight w(x - uc) multiplies the
-     * row (every filter but the box; "the other separable filters") */
-    int weighted;
-    const aa_filter *f;
-    double uc;
-    /* radial: the weight is the radial filter's row at height s (relative
-     * to the pixel's centre), wn its value at the centre ("radial
-     * filters") */
-    int radial;
-    double s, wn;
-} gen_span_ctx;
 
 /* ---- the other separable filters: the weight along a row ----
  *

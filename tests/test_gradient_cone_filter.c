@@ -1,0 +1,610 @@
+/*
+ * test_gradient_cone_filter.c: the exact reference of radial gradients of
+ * the cone case (the focal circle not strictly inside the end circle;
+ * harness/truth/truth.c, "the cone case") under the filters other than
+ * the box: the separable ones (tent, bspline of orders 2 and 3, mitchell,
+ * catrom, lanczos, gauss) and the radial ones (cone, gauss with cut,
+ * radial:k).
+ *
+ * Known answers, derived here and not from the code under test (the
+ * picture from tests/cone_oracle.c: SVG 2's definition and the circles'
+ * geometry; the filters written out below from their definitions,
+ * patterns/README.md, "Filters"):
+ *  - the painted area: a gradient of white stops on a rectangle inside
+ *    the canvas, over black, paints 1 on the rectangle's part of the
+ *    painted region (wedge, strip, half-plane or plane) and 0 elsewhere.
+ *    Under a separable filter whose integer translates sum to 1 (tent:r=1,
+ *    the B-splines, Mitchell-Netravali and Catmull-Rom), the pixels'
+ *    weights sum to 1 at every point whose every pixel lies on the
+ *    canvas, so the image's sum is that area exactly (the rectangle kept
+ *    2 px, the widest support's radius, inside);
+ *  - under every filter a pixel whose window lies wholly inside the
+ *    painted part is 1 (the weights integrate to 1; the Gaussian to 1
+ *    less its mass outside the window, in its bound) and one whose window
+ *    misses it is 0;
+ *  - single pixels by GSL's adaptive quadrature in two dimensions (outer
+ *    rows, inner along the row, or its chord of a radial filter's
+ *    support) of the weight times a black-to-white ramp over grey, cut
+ *    where the picture or the weight is not smooth: inner, at the row's
+ *    crossings of the tangents, the circles t = 0, T, 1 and the
+ *    rectangle's sides, the apex's column and the filter's knots (radial:
+ *    the centre's column); outer, at the knots' rows (radial: the centre's
+ *    row and the support's top and bottom), the apex's row, the tangents'
+ *    and circles' crossings of the knots' columns and of the window's
+ *    sides (radial: of the support's circle, and where each passes
+ *    closest to the centre), the circles' top and bottom rows and where
+ *    each touches each tangent.  Pixels straddling one tangent or both,
+ *    holding P* and the circles' ends on the tangents.
+ * Each pixel must lie within its own bound of the answer (plus the
+ * quadrature's 1e-14), and every bound within 1e-12.
+ */
+/* tier: full */
+#include "cone_oracle.h"
+#include "core.h"
+#include "gradient_oracle.h"
+#include "support.h"
+#include "truth.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+
+#define W 16
+#define H 12
+#define MARGIN 2 /* the rectangle's distance from the canvas's sides */
+
+static int setup(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off();
+    return 0;
+}
+
+/* ---- the filters, from their definitions (patterns/README.md, "Filters") ---- */
+
+enum {
+    F_TENT,
+    F_BSPLINE2,
+    F_BSPLINE3,
+    F_MITCHELL,
+    F_CATROM,
+    F_LANCZOS2,
+    F_GAUSS,
+    F_CONE,
+    F_GAUSSCUT,
+    F_RADIAL
+};
+
+typedef struct filt {
+    int kind, radial, unity; /* unity: integer translates sum to 1 */
+    const char *spec;
+    double R;           /* support's radius (the Gaussian: where this test integrates to) */
+    double knots[8];    /* separable: where its pieces end */
+    int nknots;
+    double N;           /* Lanczos: 1 / its integral; radial: the normalisation */
+} filt;
+
+static double sinc(double x)
+{
+    return x == 0 ? 1 : sin(M_PI * x) / (M_PI * x);
+}
+
+static double lanczos2_raw(double t, void *v)
+{
+    (void)v;
+    return fabs(t) < 2 ? sinc(t) * sinc(t / 2) : 0;
+}
+
+/* Mitchell-Netravali's cubic (Mitchell and Netravali 1988) with B, C. */
+static double mn(double t, double B, double C)
+{
+    double a = fabs(t);
+    if (a < 1)
+        return ((12 - 9 * B - 6 * C) * a * a * a + (-18 + 12 * B + 6 * C) * a * a + (6 - 2 * B)) /
+               6;
+    if (a < 2)
+        return ((-B - 6 * C) * a * a * a + (6 * B + 30 * C) * a * a + (-12 * B - 48 * C) * a +
+                (8 * B + 24 * C)) /
+               6;
+    return 0;
+}
+
+/* The separable filter's 1-D weight. */
+static double weight1(const filt *f, double t)
+{
+    double a = fabs(t);
+    switch (f->kind) {
+    case F_TENT:
+        return a < 1 ? 1 - a : 0;
+    case F_BSPLINE2:
+        return a < 0.5 ? 0.75 - a * a : a < 1.5 ? 0.5 * (1.5 - a) * (1.5 - a) : 0;
+    case F_BSPLINE3:
+        return a < 1 ? 2.0 / 3 - a * a + 0.5 * a * a * a : a < 2 ? (2 - a) * (2 - a) * (2 - a) / 6 : 0;
+    case F_MITCHELL:
+        return mn(t, 1.0 / 3, 1.0 / 3);
+    case F_CATROM:
+        return mn(t, 0, 0.5);
+    case F_LANCZOS2:
+        return lanczos2_raw(t, NULL) * f->N;
+    default: /* F_GAUSS, s = 0.5 */
+        return exp(-2 * t * t) / (0.5 * sqrt(2 * M_PI));
+    }
+}
+
+/* The filter's 2-D weight at (u, v) from the pixel's centre. */
+static double weight2(const filt *f, double u, double v)
+{
+    if (!f->radial)
+        return weight1(f, u) * weight1(f, v);
+    double d = hypot(u, v);
+    if (!(d < f->R))
+        return 0;
+    if (f->kind == F_CONE) /* cone:r=1 */
+        return f->N * (1 - d);
+    if (f->kind == F_GAUSSCUT) /* gauss:s=0.5,cut=2 */
+        return f->N * exp(-2 * d * d);
+    double q = 1 - d * d / (1.5 * 1.5); /* radial:k=2,r=1.5 */
+    return f->N * q * q;
+}
+
+static filt make_filt(int kind)
+{
+    filt f = {kind, 0, 0, NULL, 2, {0}, 0, 1};
+    switch (kind) {
+    case F_TENT:
+        f.spec = "tent:r=1", f.R = 1, f.unity = 1;
+        break;
+    case F_BSPLINE2:
+        f.spec = "bspline:order=2", f.R = 1.5, f.unity = 1;
+        break;
+    case F_BSPLINE3:
+        f.spec = "bspline:order=3", f.unity = 1;
+        break;
+    case F_MITCHELL:
+        f.spec = "mitchell", f.unity = 1;
+        break;
+    case F_CATROM:
+        f.spec = "catrom", f.unity = 1;
+        break;
+    case F_LANCZOS2:
+        f.spec = "lanczos:a=2";
+        break;
+    case F_GAUSS:
+        f.spec = "gauss:s=0.5", f.R = 4; /* 8 standard deviations: 1.2e-15 outside */
+        break;
+    case F_CONE: /* 1 / the cone's volume, pi r^2 / 3 */
+        f.spec = "cone:r=1", f.R = 1, f.radial = 1, f.N = 3 / M_PI;
+        break;
+    case F_GAUSSCUT: /* 1 / (2 pi S^2 (1 - exp(-K^2 / 2))), S = 0.5, K = 2 */
+        f.spec = "gauss:s=0.5,cut=2", f.R = 1, f.radial = 1;
+        f.N = 1 / (2 * M_PI * 0.25 * (1 - exp(-2.0)));
+        break;
+    default: /* (k + 1) / (pi r^2), k = 2, r = 1.5 */
+        f.spec = "radial:k=2,r=1.5", f.R = 1.5, f.radial = 1, f.N = 3 / (M_PI * 2.25);
+    }
+    if (kind == F_BSPLINE2) {
+        double k[4] = {-1.5, -0.5, 0.5, 1.5};
+        memcpy(f.knots, k, sizeof k), f.nknots = 4;
+    } else if (!f.radial && kind != F_GAUSS)
+        for (double t = -f.R; t <= f.R; t++)
+            f.knots[f.nknots++] = t;
+    if (kind == F_LANCZOS2) { /* normalised by its integral (QAG here) */
+        gsl_integration_workspace *ws = gsl_integration_workspace_alloc(100);
+        gsl_function F = {lanczos2_raw, NULL};
+        double sum = 0, res, err;
+        for (int k = -2; k < 2; k++) {
+            gsl_integration_qag(&F, k, k + 1, 1e-17, 1e-14, 100, GSL_INTEG_GAUSS61, ws, &res,
+                                &err);
+            sum += res;
+        }
+        gsl_integration_workspace_free(ws);
+        f.N = 1 / sum;
+    }
+    return f;
+}
+
+/* ---- scenes ---- */
+
+/* A rectangle [MARGIN, W - MARGIN] x [MARGIN, H - MARGIN] (pixels) painted
+ * by the radial gradient p[] (cx cy r fx fy fr, in pixels) with stops st
+ * and spread, over background bg. */
+static aa_scene *grad_scene(const double p[6], int spread, const aa_gradient_stop *st, int n,
+                            double bg)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{bg, bg, bg}});
+    assert_non_null(s);
+    double x0 = (double)MARGIN / W, y0 = (double)MARGIN / H;
+    double x1 = (double)(W - MARGIN) / W, y1 = (double)(H - MARGIN) / H;
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, x0, y0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x1, y0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x1, y1), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x0, y1), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    aa_gradient g = {AA_GRADIENT_RADIAL, spread, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0}, n, st};
+    memcpy(g.p, p, sizeof g.p);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static const aa_gradient_stop white[2] = {{0.0, {{1, 1, 1}}, 1.0}, {1.0, {{1, 1, 1}}, 1.0}};
+static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
+                                                {1.0, {{1, 1, 1}}, 1.0}};
+
+/* The geometries: a wedge opening right (r > fr), one opening left and
+ * down (fr > r), a strip (r = fr), the plane (the end circle inside the
+ * focal one), a half-plane (the circles touching inside). */
+typedef struct geom {
+    const char *what;
+    double p[6];
+} geom;
+
+static const geom geoms[] = {
+    {"wedge, r > fr", {11.3, 6.1, 3.1, 5.7, 5.2, 1.2}},
+    {"wedge, fr > r", {7.2, 7.9, 1.1, 13.4, 3.3, 3.9}},
+    {"strip, r = fr", {13.2, 8.3, 2.35, 6.1, 3.3, 2.35}},
+    {"nested, fr > r + |C - F|", {9.2, 6.3, 1.5, 8.6, 5.9, 6.0}},
+    {"half-plane, fr < r", {10.0, 6.0, 5.0, 8.0, 6.0, 3.0}},
+};
+#define NGEOM ((int)(sizeof geoms / sizeof *geoms))
+
+/* The reference of s under f, every bound within 1e-12. */
+static void reference(const aa_scene *s, const filt *f, aa_image *ref, aa_image *bound,
+                      aa_truth_stats *stats)
+{
+    support_view v = {W, H, 0, 0, 0, f->spec, 1, 1, 0};
+    support_reference(s, &v, ref, bound, stats);
+    if (!(stats->max_bound <= 1e-12))
+        fail_msg("%s: largest bound %.3g", f->spec, stats->max_bound);
+}
+
+/* ---- the painted area, and pixels wholly in or out ---- */
+
+static void check_area(const filt *f, const geom *gm)
+{
+    aa_scene *s = grad_scene(gm->p, AA_SPREAD_PAD, white, 2, 0.0);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    reference(s, f, &ref, &bound, &stats);
+    co_half hp[2];
+    double apex[2];
+    int wedge, nh = co_region(gm->p, hp, &wedge, apex);
+    long double sum = 0, bsum = 0;
+    int inside = 0, outside = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            double got = aa_pixel(&ref, i, j)[0], bd = *aa_pixel(&bound, i, j);
+            sum += got, bsum += bd;
+            /* the window [uc - R, uc + R]^2 (radial: the square holding
+             * the support) against the painted part of the rectangle */
+            double x0 = i + 0.5 - f->R, x1 = i + 0.5 + f->R, y0 = j + 0.5 - f->R,
+                   y1 = j + 0.5 + f->R;
+            double win = (x1 - x0) * (y1 - y0);
+            double cx0 = fmax(x0, MARGIN), cx1 = fmin(x1, W - MARGIN);
+            double cy0 = fmax(y0, MARGIN), cy1 = fmin(y1, H - MARGIN);
+            double in = cx1 > cx0 && cy1 > cy0 ? co_clipped_area(cx0, cy0, cx1, cy1, hp, nh) : 0;
+            double want = NAN;
+            if (in == 0)
+                want = 0, outside++;
+            else if (fabs(in - win) <= 1e-12 * win)
+                want = 1, inside++;
+            if (!isnan(want) && !(fabs(got - want) <= bd + 1e-15))
+                fail_msg("%s, %s: pixel (%d, %d) is %.17g, not %g (bound %.3g)", f->spec,
+                         gm->what, i, j, got, want, bd);
+        }
+    double area = co_clipped_area(MARGIN, MARGIN, W - MARGIN, H - MARGIN, hp, nh);
+    if (f->unity) {
+        double diff = fabs((double)sum - area);
+        if (!(diff <= (double)bsum + W * H * 1e-16))
+            fail_msg("%s, %s: the image sums to %.17g, the painted area %.17g (bounds sum to "
+                     "%.3g)",
+                     f->spec, gm->what, (double)sum, area, (double)bsum);
+        print_message("%-18s %-26s sum - area %8.2g (bounds' sum %.2g), %d in, %d out\n",
+                      f->spec, gm->what, (double)sum - area, (double)bsum, inside, outside);
+    } else
+        print_message("%-18s %-26s %d pixels in, %d out, largest bound %.2g\n", f->spec,
+                      gm->what, inside, outside, stats.max_bound);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
+static void test_area(void **state)
+{
+    (void)state;
+    static const int kinds[] = {F_TENT, F_BSPLINE2, F_BSPLINE3, F_MITCHELL, F_CATROM};
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        filt f = make_filt(kinds[k]);
+        for (int g = 0; g < NGEOM; g++)
+            check_area(&f, &geoms[g]);
+    }
+}
+
+/* Lanczos, the Gaussian and the radial filters: pixels wholly in or out
+ * (their translates do not sum to 1). */
+static void test_inside(void **state)
+{
+    (void)state;
+    static const int kinds[] = {F_LANCZOS2, F_GAUSS, F_CONE, F_GAUSSCUT, F_RADIAL};
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        filt f = make_filt(kinds[k]);
+        check_area(&f, &geoms[0]);
+        check_area(&f, &geoms[2]);
+    }
+}
+
+/* ---- single pixels against 2-D quadrature ---- */
+
+#define MAX_TAUS 120
+#define MAX_CUTS (4 * MAX_TAUS + 64)
+typedef struct pic {
+    double p[6], bg;
+    int spread, ntaus;
+    double taus[MAX_TAUS]; /* where the spread ramp's derivatives jump */
+    co_half hp[2];
+    int nh, wedge;
+    double apex[2];
+    const filt *f;
+    double uc, vc, y;
+    gsl_integration_workspace *wi;
+} pic;
+
+/* The picture: the ramp black to white, padded, decoded, on the
+ * rectangle where painted; bg elsewhere. */
+static double pic_at(const pic *pc, double x, double y)
+{
+    if (x < MARGIN || x > W - MARGIN || y < MARGIN || y > H - MARGIN)
+        return pc->bg;
+    double t = co_t(pc->p, x, y);
+    if (isnan(t))
+        return pc->bg;
+    if (pc->spread == AA_SPREAD_REPEAT)
+        return go_dec(t - floor(t));
+    if (pc->spread == AA_SPREAD_REFLECT) {
+        double f = t - 2 * floor(t / 2);
+        return go_dec(f <= 1 ? f : 2 - f);
+    }
+    return go_dec(t < 0 ? 0 : t > 1 ? 1 : t);
+}
+
+static double pic_x(double x, void *v)
+{
+    const pic *pc = v;
+    return weight2(pc->f, x - pc->uc, pc->y - pc->vc) * pic_at(pc, x, pc->y);
+}
+
+/* Where the circle of centre (ax, ay), radius ar, meets the circle (bx,
+ * by) rb: their heights into out; how many. */
+static int circles_meet(double ax, double ay, double ar, double bx, double by, double rb,
+                        double *out)
+{
+    double dx = bx - ax, dy = by - ay, d = hypot(dx, dy);
+    if (!(d > 0) || d > ar + rb || d < fabs(ar - rb))
+        return 0;
+    double l = (d * d + ar * ar - rb * rb) / (2 * d), h = sqrt(fmax(0, ar * ar - l * l));
+    double mx = ax + l * dx / d, my = ay + l * dy / d;
+    (void)mx;
+    out[0] = my + h * dx / d, out[1] = my - h * dx / d;
+    return 2;
+}
+
+static double pic_y(double y, void *v)
+{
+    pic *pc = v;
+    const filt *f = pc->f;
+    pc->y = y;
+    double cut[MAX_CUTS], lo = pc->uc - f->R, hi = pc->uc + f->R;
+    int n = 0;
+    if (f->radial) {
+        double dv = y - pc->vc, c = sqrt(fmax(0, f->R * f->R - dv * dv));
+        lo = pc->uc - c, hi = pc->uc + c;
+        cut[n++] = pc->uc;
+    } else
+        for (int k = 0; k < f->nknots; k++)
+            cut[n++] = pc->uc + f->knots[k];
+    for (int k = 0; k < pc->nh; k++)
+        n += co_line_meet(&pc->hp[k], 0, y, cut + n);
+    for (int q = 0; q < pc->ntaus; q++)
+        n += co_circle_meet(pc->p, pc->taus[q], 0, y, cut + n);
+    if (pc->wedge)
+        cut[n++] = pc->apex[0];
+    cut[n++] = MARGIN, cut[n++] = W - MARGIN;
+    cut[n++] = lo, cut[n++] = hi;
+    if (!(hi > lo))
+        return 0;
+    gsl_function F = {pic_x, pc};
+    return go_qags_cuts(&F, cut, n, lo, hi, 1e-16, 1e-14, pc->wi);
+}
+
+/* The reference of pixel (i, j) under pc->f by 2-D quadrature. */
+static double pic_pixel(pic *pc, int i, int j)
+{
+    const double *p = pc->p;
+    const filt *f = pc->f;
+    static double cut[32 * MAX_TAUS + 64];
+    double R = f->R;
+    int n = 0;
+    pc->uc = i + 0.5, pc->vc = j + 0.5;
+    double cols[16];
+    int ncol = 0;
+    cut[n++] = pc->vc - R, cut[n++] = pc->vc + R, cut[n++] = MARGIN, cut[n++] = H - MARGIN;
+    if (pc->wedge)
+        cut[n++] = pc->apex[1];
+    if (f->radial)
+        cut[n++] = pc->vc;
+    else {
+        for (int k = 0; k < f->nknots; k++)
+            cut[n++] = pc->vc + f->knots[k], cols[ncol++] = pc->uc + f->knots[k];
+        cols[ncol++] = pc->uc - R, cols[ncol++] = pc->uc + R;
+    }
+    cols[ncol++] = MARGIN, cols[ncol++] = W - MARGIN;
+    for (int c = 0; c < ncol; c++) {
+        for (int k = 0; k < pc->nh; k++)
+            n += co_line_meet(&pc->hp[k], 1, cols[c], cut + n);
+        for (int q = 0; q < pc->ntaus; q++)
+            n += co_circle_meet(p, pc->taus[q], 1, cols[c], cut + n);
+    }
+    for (int q = 0; q < pc->ntaus; q++) {
+        double tau = pc->taus[q], rr = p[5] + tau * (p[2] - p[5]);
+        double ccx = p[3] + tau * (p[0] - p[3]), ccy = p[4] + tau * (p[1] - p[4]);
+        if (rr < 0)
+            continue;
+        cut[n++] = ccy - rr, cut[n++] = ccy + rr;
+        for (int k = 0; k < pc->nh; k++)
+            cut[n++] = co_touch_y(p, tau, &pc->hp[k]);
+        if (f->radial) {
+            /* its crossings of the support's circle, and its point
+             * nearest the centre (on the line through the two centres) */
+            n += circles_meet(ccx, ccy, rr, pc->uc, pc->vc, R, cut + n);
+            double d = hypot(pc->uc - ccx, pc->vc - ccy);
+            if (d > 0)
+                cut[n++] = ccy + rr * (pc->vc - ccy) / d;
+        }
+    }
+    if (f->radial)
+        for (int k = 0; k < pc->nh; k++) {
+            /* the tangent's crossings of the support's circle, and its
+             * foot from the centre */
+            const co_half *h = &pc->hp[k];
+            long double nn = sqrtl(h->nx * h->nx + h->ny * h->ny);
+            double d = (double)((h->nx * pc->uc + h->ny * pc->vc + h->k) / nn);
+            double ny = (double)(h->ny / nn), nx = (double)(h->nx / nn);
+            double fy = pc->vc - d * ny;
+            cut[n++] = fy;
+            if (fabs(d) < R) {
+                double hc = sqrt(R * R - d * d);
+                cut[n++] = fy + hc * nx, cut[n++] = fy - hc * nx;
+            }
+        }
+    pc->wi = gsl_integration_workspace_alloc(1000);
+    gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
+    gsl_function F = {pic_y, pc};
+    double sum = go_qags_cuts(&F, cut, n, pc->vc - R, pc->vc + R, 1e-16, 1e-14, wo);
+    gsl_integration_workspace_free(pc->wi);
+    gsl_integration_workspace_free(wo);
+    return sum;
+}
+
+/* The reference of the black-to-white ramp of gm with spread over bg
+ * under f against 2-D quadrature at the pixels px; repeat and reflect cut
+ * at every integer t and where the spread t is T, for t in [-20, 20]
+ * (wider than the cases' ranges). */
+static void check_2d_spread(const filt *f, const geom *gm, int spread, double bg,
+                            const int (*px)[2], int npx)
+{
+    pic pc;
+    memset(&pc, 0, sizeof pc);
+    memcpy(pc.p, gm->p, sizeof pc.p);
+    pc.bg = bg, pc.f = f, pc.spread = spread;
+    if (spread == AA_SPREAD_PAD)
+        for (int q = 0; q < 3; q++)
+            pc.taus[pc.ntaus++] = go_taus[q];
+    else
+        for (int k = -20; k <= 20 && pc.ntaus + 2 <= MAX_TAUS; k++) {
+            pc.taus[pc.ntaus++] = k;
+            pc.taus[pc.ntaus++] = spread == AA_SPREAD_REPEAT || !(k & 1) ? k + GO_T0 : k - GO_T0;
+        }
+    pc.nh = co_region(gm->p, pc.hp, &pc.wedge, pc.apex);
+    aa_scene *s = grad_scene(gm->p, spread, black_white, 2, bg);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    reference(s, f, &ref, &bound, &stats);
+    double worst = 0;
+    for (int k = 0; k < npx; k++) {
+        int i = px[k][0], j = px[k][1];
+        double want = pic_pixel(&pc, i, j), got = aa_pixel(&ref, i, j)[0];
+        double bd = *aa_pixel(&bound, i, j);
+        worst = fmax(worst, fabs(got - want));
+        if (!(fabs(got - want) <= bd + 1e-14))
+            fail_msg("%s, %s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound %.3g)",
+                     f->spec, gm->what, i, j, got, want, bd);
+    }
+    print_message("%-18s %-26s %s%d pixels, largest difference from 2-D quadrature %.2g, "
+                  "largest bound %.2g\n",
+                  f->spec, gm->what,
+                  spread == AA_SPREAD_REPEAT    ? "repeat, "
+                  : spread == AA_SPREAD_REFLECT ? "reflect, "
+                                                : "",
+                  npx, worst, stats.max_bound);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
+static void check_2d(const filt *f, const geom *gm, double bg, const int (*px)[2], int npx)
+{
+    check_2d_spread(f, gm, AA_SPREAD_PAD, bg, px, npx);
+}
+
+/* The wedge from P* = (2.16, 4.63) towards C = (11.3, 6.1): P*'s pixel,
+ * the circles t = 0 and T touching the tangents near (5, 3) and (5, 6),
+ * the ramp along the tangents, t = 1 touching them near (10, 3) and (9,
+ * 8), inside; the strip's edges and the ramp across them. */
+static const int wedge_px[][2] = {{2, 4}, {3, 4}, {5, 3}, {5, 6}, {7, 3}, {7, 7}, {10, 3}, {9, 8},
+                                  {11, 6}};
+static const int strip_px[][2] = {{6, 1}, {6, 5}, {8, 2}, {10, 3}, {10, 8}, {13, 6}};
+/* The wedge from P* = (4.76, 9.71) opening right and up (fr > r): P*'s
+ * pixel, both tangents, inside. */
+static const int fr_px[][2] = {{4, 9}, {5, 8}, {6, 7}, {7, 5}, {8, 3}, {9, 1}, {10, 7}, {13, 6},
+                               {12, 3}};
+/* The half-plane x > 5 (the circles touching inside at P* = (5, 6)),
+ * where t runs to infinity at the edge (padded: the last stop's colour
+ * there): P*'s pixel and the edge's. */
+static const int half_px[][2] = {{4, 5}, {5, 5}, {5, 6}, {4, 6}, {6, 3}, {7, 8}, {9, 6}};
+
+static void test_2d_separable(void **state)
+{
+    (void)state;
+    static const int kinds[] = {F_TENT, F_BSPLINE2, F_BSPLINE3, F_MITCHELL, F_CATROM,
+                                F_LANCZOS2, F_GAUSS};
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        filt f = make_filt(kinds[k]);
+        check_2d(&f, &geoms[0], 0.3, wedge_px, (int)(sizeof wedge_px / sizeof *wedge_px));
+    }
+    filt t = make_filt(F_TENT), b = make_filt(F_BSPLINE3);
+    check_2d(&t, &geoms[2], 0.2, strip_px, (int)(sizeof strip_px / sizeof *strip_px));
+    check_2d(&b, &geoms[2], 0.2, strip_px, (int)(sizeof strip_px / sizeof *strip_px));
+    filt c = make_filt(F_CATROM);
+    check_2d(&c, &geoms[4], 0.3, half_px, (int)(sizeof half_px / sizeof *half_px));
+    check_2d(&t, &geoms[1], 0.1, fr_px, (int)(sizeof fr_px / sizeof *fr_px));
+    check_2d(&b, &geoms[3], 0.4, wedge_px, (int)(sizeof wedge_px / sizeof *wedge_px));
+    /* repeated and reflected: many stop circles, their front arcs ending
+     * on the tangents */
+    check_2d_spread(&t, &geoms[0], AA_SPREAD_REPEAT, 0.3, wedge_px,
+                    (int)(sizeof wedge_px / sizeof *wedge_px));
+    check_2d_spread(&c, &geoms[1], AA_SPREAD_REFLECT, 0.2, fr_px,
+                    (int)(sizeof fr_px / sizeof *fr_px));
+}
+
+static void test_2d_radial(void **state)
+{
+    (void)state;
+    static const int kinds[] = {F_CONE, F_GAUSSCUT, F_RADIAL};
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        filt f = make_filt(kinds[k]);
+        check_2d(&f, &geoms[0], 0.3, wedge_px, (int)(sizeof wedge_px / sizeof *wedge_px));
+    }
+    filt c = make_filt(F_CONE);
+    check_2d_spread(&c, &geoms[0], AA_SPREAD_REPEAT, 0.3, wedge_px,
+                    (int)(sizeof wedge_px / sizeof *wedge_px));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_area),
+        cmocka_unit_test(test_inside),
+        cmocka_unit_test(test_2d_separable),
+        cmocka_unit_test(test_2d_radial),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
