@@ -251,9 +251,11 @@ static void test_chromium_pixel(void **state)
  * filter (tests/test_gradient_cone_truth.c checks its values) and the
  * others (tests/test_gradient_cone_filter.c), the focal circle touching
  * the end circle from inside (a = 0) too when padded, and refuses by name
- * the cone in linear light and beside another gradient, and the touching
- * circles repeated in a window their half-plane's edge passes (t runs to
- * infinity there). */
+ * the cone in linear light, a pixel where the cone and another gradient
+ * paint one point (here a linear gradient under it: the reference takes a
+ * cone beside other gradients only where they do not meet;
+ * tests/test_gradient_cone_filter.c), and the touching circles repeated in
+ * a window their half-plane's edge passes (t runs to infinity there). */
 static void test_refusals(void **state)
 {
     (void)state;
@@ -347,7 +349,7 @@ static void test_refusals(void **state)
             continue;
         }
         assert_int_equal(st, AA_EINVAL);
-        const char *want = k == 2 ? "one gradient" : "without end";
+        const char *want = k == 2 ? "and another gradient paint one point" : "without end";
         if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), want))
             fail_msg("the reference's refusal names no cone or not \"%s\": %s", want,
                      aa_last_error());

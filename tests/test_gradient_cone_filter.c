@@ -4,7 +4,8 @@
  * harness/truth/truth.c, "the cone case") under the filters other than
  * the box: the separable ones (tent, bspline of orders 2 and 3, mitchell,
  * catrom, lanczos, gauss) and the radial ones (cone, gauss with cut,
- * radial:k).
+ * radial:k); and beside other gradients ("a cone beside other
+ * gradients").
  *
  * Known answers, derived here and not from the code under test (the
  * picture from tests/cone_oracle.c: SVG 2's definition and the circles'
@@ -35,6 +36,14 @@
  *    closest to the centre), the circles' top and bottom rows and where
  *    each touches each tangent.  Pixels straddling one tangent or both,
  *    holding P* and the circles' ends on the tangents.
+ * A cone beside other gradients (a linear one and a radial one of nested
+ * circles on rectangles 1 and 0.5 px from the cone's and each other):
+ * under the box each pixel is the painted area of its square, under the
+ * filters whose translates sum to 1 the image sums to the whole painted
+ * area, and single pixels whose windows hold the gaps match the same 2-D
+ * quadrature (the linear and radial ramps from tests/gradient_oracle.c,
+ * cut at their curves t = 0, T, 1 and the rectangles' sides); a linear
+ * gradient laid over the cone is refused by name where both paint.
  * Each pixel must lie within its own bound of the answer (plus the
  * quadrature's 1e-14), and every bound within 1e-12.
  */
@@ -356,12 +365,33 @@ typedef struct pic {
     const filt *f;
     double uc, vc, y;
     gsl_integration_workspace *wi;
+    /* beside: the cone on BA only, a linear ramp on BB and a focal
+     * radial one on BC beside it (beside_scene) */
+    int beside;
+    go_pic lin, rad;
 } pic;
+
+/* The rectangles of beside_scene (pixels): the cone's, the linear
+ * gradient's and the radial one's, 1 and 0.5 px apart. */
+static const double BA[4] = {2, 2, 9, 10}, BB[4] = {10, 2, 14, 6}, BC[4] = {10, 6.5, 14, 10};
+
+static int in_rect(const double r[4], double x, double y)
+{
+    return x > r[0] && x < r[2] && y > r[1] && y < r[3];
+}
 
 /* The picture: the ramp black to white, padded, decoded, on the
  * rectangle where painted; bg elsewhere. */
 static double pic_at(const pic *pc, double x, double y)
 {
+    if (pc->beside) {
+        if (in_rect(BB, x, y))
+            return go_pic_at(&pc->lin, x, y);
+        if (in_rect(BC, x, y))
+            return go_pic_at(&pc->rad, x, y);
+        if (!in_rect(BA, x, y))
+            return pc->bg;
+    }
     if (x < MARGIN || x > W - MARGIN || y < MARGIN || y > H - MARGIN)
         return pc->bg;
     double t = co_t(pc->p, x, y);
@@ -419,6 +449,13 @@ static double pic_y(double y, void *v)
         cut[n++] = pc->apex[0];
     cut[n++] = MARGIN, cut[n++] = W - MARGIN;
     cut[n++] = lo, cut[n++] = hi;
+    if (pc->beside) {
+        cut[n++] = BA[2], cut[n++] = BB[0];
+        for (int q = 0; q < 3; q++) {
+            n += go_tau_meet(&pc->lin, go_taus[q], 0, y, cut + n);
+            n += go_tau_meet(&pc->rad, go_taus[q], 0, y, cut + n);
+        }
+    }
     if (!(hi > lo))
         return 0;
     gsl_function F = {pic_x, pc};
@@ -447,6 +484,19 @@ static double pic_pixel(pic *pc, int i, int j)
         cols[ncol++] = pc->uc - R, cols[ncol++] = pc->uc + R;
     }
     cols[ncol++] = MARGIN, cols[ncol++] = W - MARGIN;
+    if (pc->beside) {
+        cut[n++] = BB[3], cut[n++] = BC[1];
+        cols[ncol++] = BA[2], cols[ncol++] = BB[0];
+        for (int q = 0; q < 3; q++) {
+            /* the radial ramp's circles t = tau (centre F + tau D, radius
+             * tau r): top and bottom rows, crossings of the columns */
+            const go_pic *g = &pc->rad;
+            double cy = g->fy + go_taus[q] * (g->cy - g->fy), rr = go_taus[q] * g->r;
+            cut[n++] = cy - rr, cut[n++] = cy + rr;
+            for (int c = 0; c < ncol; c++)
+                n += go_tau_meet(g, go_taus[q], 1, cols[c], cut + n);
+        }
+    }
     for (int c = 0; c < ncol; c++) {
         for (int k = 0; k < pc->nh; k++)
             n += co_line_meet(&pc->hp[k], 1, cols[c], cut + n);
@@ -545,6 +595,164 @@ static void check_2d(const filt *f, const geom *gm, double bg, const int (*px)[2
     check_2d_spread(f, gm, AA_SPREAD_PAD, bg, px, npx);
 }
 
+/* ---- a cone beside other gradients ---- */
+
+/* The layer of the rectangle r (pixels) painted by g (its p[] in pixels). */
+static void rect_layer(aa_scene *s, const double r[4], aa_gradient g)
+{
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, r[0] / W, r[1] / H), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, r[2] / W, r[1] / H), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, r[2] / W, r[3] / H), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, r[0] / W, r[3] / H), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    const double m[6] = {1.0 / W, 0, 0, 1.0 / H, 0, 0};
+    memcpy(g.m, m, sizeof g.m);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+}
+
+/* The cone gm on BA, a linear gradient along x from x = 10 to 14 on BB
+ * and a focal radial one (centre (12, 8.25), r 3, focus (12.5, 8), fr 0:
+ * nested circles) on BC, each with stops st, over bg; with over, also a
+ * linear gradient on [6, 12] x [2, 10] over the cone. */
+static aa_scene *beside_scene(const geom *gm, const aa_gradient_stop *st, double bg, int over)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{bg, bg, bg}});
+    assert_non_null(s);
+    aa_gradient cone = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0}, {0}, 2, st};
+    memcpy(cone.p, gm->p, sizeof cone.p);
+    rect_layer(s, BA, cone);
+    rect_layer(s, BB, (aa_gradient){AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {10, 0, 14, 0}, {0}, 2, st});
+    rect_layer(s, BC, (aa_gradient){AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {12, 8.25, 3, 12.5, 8, 0},
+                                    {0}, 2, st});
+    if (over)
+        rect_layer(s, (const double[4]){6, 2, 12, 10},
+                   (aa_gradient){AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {6, 0, 12, 0}, {0}, 2, st});
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+/* White stops over black: under the box each pixel is the painted area
+ * of its square (the wedge's part of BA, and BB and BC whole); under the
+ * filters whose translates sum to 1 the image sums to the whole painted
+ * area. */
+static void check_beside_area(const filt *f, const geom *gm)
+{
+    aa_scene *s = beside_scene(gm, white, 0.0, 0);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    reference(s, f, &ref, &bound, &stats);
+    co_half hp[2];
+    double apex[2];
+    int wedge, nh = co_region(gm->p, hp, &wedge, apex);
+    long double sum = 0, bsum = 0;
+    double worst = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            double got = aa_pixel(&ref, i, j)[0], bd = *aa_pixel(&bound, i, j);
+            sum += got, bsum += bd;
+            if (f->kind >= 0)
+                continue;
+            /* the box: the pixel's square against the three */
+            double want = 0;
+            const double *rs[3] = {BA, BB, BC};
+            for (int r = 0; r < 3; r++) {
+                double x0 = fmax(i, rs[r][0]), x1 = fmin(i + 1, rs[r][2]);
+                double y0 = fmax(j, rs[r][1]), y1 = fmin(j + 1, rs[r][3]);
+                if (x1 > x0 && y1 > y0)
+                    want += r ? (x1 - x0) * (y1 - y0) : co_clipped_area(x0, y0, x1, y1, hp, nh);
+            }
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-15))
+                fail_msg("box, beside: pixel (%d, %d) is %.17g, the painted area %.17g (bound "
+                         "%.3g)",
+                         i, j, got, want, bd);
+        }
+    double area = co_clipped_area(BA[0], BA[1], BA[2], BA[3], hp, nh) +
+                  (BB[2] - BB[0]) * (BB[3] - BB[1]) + (BC[2] - BC[0]) * (BC[3] - BC[1]);
+    double diff = fabs((double)sum - area);
+    if (!(diff <= (double)bsum + W * H * 1e-16))
+        fail_msg("%s, beside: the image sums to %.17g, the painted area %.17g (bounds sum to "
+                 "%.3g)",
+                 f->spec, (double)sum, area, (double)bsum);
+    if (f->kind < 0)
+        print_message("%-18s beside %-19s sum - area %8.2g (bounds' sum %.2g), largest pixel "
+                      "difference %.2g\n",
+                      f->spec, gm->what, (double)sum - area, (double)bsum, worst);
+    else
+        print_message("%-18s beside %-19s sum - area %8.2g (bounds' sum %.2g)\n", f->spec,
+                      gm->what, (double)sum - area, (double)bsum);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
+static void test_beside(void **state)
+{
+    (void)state;
+    filt box = {-1, 0, 1, NULL, 0.5, {0}, 0, 1};
+    box.spec = "box";
+    check_beside_area(&box, &geoms[0]);
+    static const int kinds[] = {F_TENT, F_BSPLINE3, F_CATROM};
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        filt f = make_filt(kinds[k]);
+        check_beside_area(&f, &geoms[0]);
+    }
+    /* ramps: pixels whose windows hold the cone's tangents and the other
+     * gradients, the gaps between the rectangles */
+    static const int px[][2] = {{5, 3}, {7, 7}, {8, 4}, {9, 4}, {9, 7}, {10, 3},
+                                {11, 5}, {12, 6}, {12, 8}};
+    static const int kr[] = {F_TENT, F_BSPLINE3, F_CONE};
+    for (size_t k = 0; k < sizeof kr / sizeof *kr; k++) {
+        filt f = make_filt(kr[k]);
+        pic pc;
+        memset(&pc, 0, sizeof pc);
+        memcpy(pc.p, geoms[0].p, sizeof pc.p);
+        pc.bg = 0.3, pc.f = &f, pc.spread = AA_SPREAD_PAD, pc.beside = 1;
+        for (int q = 0; q < 3; q++)
+            pc.taus[pc.ntaus++] = go_taus[q];
+        pc.nh = co_region(pc.p, pc.hp, &pc.wedge, pc.apex);
+        pc.lin = (go_pic){0, 0, 10, 0, 14, 0, {BB[0], BB[1], BB[2], BB[3]}, 0.3, 0, 0, 0, 0, 0};
+        pc.rad = (go_pic){1, 1, 0, 0, 0, 0, {0, 0, 0, 0}, 0.3, 12, 8.25, 3, 12.5, 8};
+        aa_scene *s = beside_scene(&geoms[0], black_white, 0.3, 0);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, &f, &ref, &bound, &stats);
+        double worst = 0;
+        for (size_t q = 0; q < sizeof px / sizeof *px; q++) {
+            int i = px[q][0], j = px[q][1];
+            double want = pic_pixel(&pc, i, j), got = aa_pixel(&ref, i, j)[0];
+            double bd = *aa_pixel(&bound, i, j);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-14))
+                fail_msg("%s, beside: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound %.3g)",
+                         f.spec, i, j, got, want, bd);
+        }
+        print_message("%-18s beside, ramps: %d pixels, largest difference from 2-D quadrature "
+                      "%.2g, largest bound %.2g\n",
+                      f.spec, (int)(sizeof px / sizeof *px), worst, stats.max_bound);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+    /* a linear gradient over the cone: where both paint, refused by name */
+    aa_scene *s = beside_scene(&geoms[0], black_white, 0.3, 1);
+    aa_scene *placed = aa_scene_place(s, W, H, 0, 0, 0);
+    assert_non_null(placed);
+    aa_filter fl;
+    assert_int_equal(aa_filter_parse("tent:r=1", &fl), AA_OK);
+    aa_image out = {0};
+    aa_truth_stats stats;
+    assert_int_equal(aa_image_alloc(&out, W, H, 3), AA_OK);
+    assert_int_equal(aa_truth_render(placed, &fl, 1, &out, NULL, &stats), AA_EINVAL);
+    if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), "another gradient paint"))
+        fail_msg("the refusal names no cone or no other gradient: %s", aa_last_error());
+    print_message("over the cone: %s\n", aa_last_error());
+    aa_image_free(&out);
+    aa_scene_free(placed);
+    aa_scene_free(s);
+}
+
 /* The wedge from P* = (2.16, 4.63) towards C = (11.3, 6.1): P*'s pixel,
  * the circles t = 0 and T touching the tangents near (5, 3) and (5, 6),
  * the ramp along the tangents, t = 1 touching them near (10, 3) and (9,
@@ -605,6 +813,7 @@ int main(void)
         cmocka_unit_test(test_inside),
         cmocka_unit_test(test_2d_separable),
         cmocka_unit_test(test_2d_radial),
+        cmocka_unit_test(test_beside),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -267,8 +267,8 @@
  * - 0.055, whose branch point v = 0 the ellipse must keep out.
  *
  * Radial gradients of the cone case (the focal circle not strictly inside
- * the end circle; "the cone case" below), as the scene's one gradient,
- * under every filter: the row is cut where it crosses the two lines
+ * the end circle; "the cone case" below), under every filter: the row is
+ * cut where it crosses the two lines
  * tangent to every circle (d = b^2 - a c is their forms' product); the
  * unpainted stretches take the composite without the layer, the painted
  * ones the cuts above, their pieces next to a tangent line integrated in
@@ -278,8 +278,11 @@
  * and where each stop circle touches them (the circles touching inside,
  * a = 0: the half-plane's edge, where t has a pole, in place of the
  * lines).  Under the other filters the same path carries the row's weight
- * as a factor, the row cut also at the filter's kinks.  Other gradients
- * beside it and the cone in linear light are refused.
+ * as a factor, the row cut also at the filter's kinks.  Beside other
+ * gradients each span takes the path of the layers it depends on, and a
+ * pixel where the cone and another gradient paint one point is refused
+ * ("a cone beside other gradients"); the cone in linear light is
+ * refused.
  *
  * The other separable filters (tent, gauss, bspline, mitchell, catrom,
  * lanczos; "the other separable filters" below): every span of a
@@ -442,6 +445,9 @@ typedef struct worker {
      * gen_piece) */
     gen_layer *gl;
     int ngl, gen, gen_over, gen_stuck;
+    /* cone_mix: a cone-case gradient beside other gradients (each span by
+     * mix_span); cone_over: a span painted by the cone and another */
+    int cone_mix, cone_over;
     aa_gradient_stop **lin_stops; /* per layer: a linear-light gradient's stops, cut */
     size_t gen_work; /* gen_piece's halvings on the current span (GEN_PIECES) */
     int *gl_layer;
@@ -602,8 +608,13 @@ static int cmp_dbl(const void *a, const void *b)
  * w->wind, of each channel of the decoded composite (box: weight 1). */
 static void rad_span(worker *w, double xa, double xb, double y, int nch, double *sum);
 static void gen_span(worker *w, double xa, double xb, double y, int nch, double *sum);
+static void mix_span(worker *w, double xa, double xb, double y, int nch, double *sum);
 static void grad_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
+    if (w->cone_mix) {
+        mix_span(w, xa, xb, y, nch, sum);
+        return;
+    }
     if (w->gen) {
         gen_span(w, xa, xb, y, nch, sum);
         return;
@@ -861,11 +872,7 @@ static int grad_init(worker *w)
             const char *src = aa_scene_layer_gradient_source(w->scene, l);
             const char *why = NULL;
             cone = 1;
-            if (ngrad > 1)
-                why = "the reference integrates the cone case only as the scene's one "
-                      "gradient: the path of several gradients at a point bounds the colour "
-                      "for nested circles, with no cut at the tangent lines";
-            else if (aa_scene_layer_gradient_interpolation(w->scene, l) != AA_INTERPOLATE_SRGB)
+            if (aa_scene_layer_gradient_interpolation(w->scene, l) != AA_INTERPOLATE_SRGB)
                 why = "the reference integrates the cone case in sRGB-encoded values only: "
                       "a gradient in linear light takes the path of several gradients, which "
                       "bounds the colour for nested circles, with no cut at the tangent lines";
@@ -896,6 +903,9 @@ static int grad_init(worker *w)
      * filters"), but the cone case's, which carries it on its own path
      * ("the cone case") */
     w->gen = grad_mode(w->scene) == 2 || (!w->box && !cone);
+    /* a cone beside other gradients: each span by the layer it depends
+     * on ("a cone beside other gradients") */
+    w->cone_mix = cone && ngrad > 1;
     w->grad = 1;
     return AA_OK;
 }
@@ -1388,9 +1398,10 @@ static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, doub
  * (kink_lines) and, under a radial filter, of the support's circle, with
  * their nearest approaches to the centre (rad_filter_line,
  * rad_filter_circle).
- * Another gradient in the scene, and the cone in linear light, are
- * refused by name (grad_init): the path of several gradients they would
- * take has no cut at the tangent lines.
+ * The cone in linear light is refused by name (grad_init), and so is a
+ * pixel where the cone and another gradient paint one point ("a cone
+ * beside other gradients"): the path of several gradients they would take
+ * has no cut at the tangent lines.
  */
 
 /* The cone case's linear forms of radial gradient r (the comment above). */
@@ -2907,6 +2918,65 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
     w->rad_row_err += err;
 }
 
+/* ---- a cone beside other gradients ----
+ *
+ * A scene with a cone-case gradient and other gradient layers (any kind,
+ * the others in linear light too) takes each span by the layers it
+ * depends on, found as the path of several gradients finds them (the
+ * composite at three paints of each layer, the others transparent): the
+ * cone's layer alone, the cone's path (cone_span, its composite's K0,
+ * K1, K2 read the same way, the span clipped to a radial filter's chord);
+ * no cone among them, the path of several gradients (gen_span), as
+ * without the cone; the cone and another together, nothing: the pixel is
+ * refused by name (cone_over; integrate_pixel), as that path has no cut
+ * at the tangent lines and bounds the cone's t as nested circles' (the
+ * comment above "the cone case under the other filters").  So shapes
+ * painted by a cone and by other gradients are exact where no point is
+ * painted by both; a pixel whose window holds such a point is refused.
+ * The outer breakpoints are the union of the layers' own, as for several
+ * gradients (grad_breakpoints).
+ */
+static void mix_span(worker *w, double xa, double xb, double y, int nch, double *sum)
+{
+    static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
+    int N = w->ngl, *layers = w->gl_layer, nd = 0, cone = -1;
+    double *paints = w->gl_paint, f[3][3], e[3][3];
+    memset(paints, 0, 4 * (size_t)N * sizeof *paints);
+    for (int k = 0; k < N; k++) {
+        for (int q = 0; q < 3; q++) {
+            memcpy(paints + 4 * k, P[q], 4 * sizeof *paints);
+            aa_scene_encoded_with_n(w->scene, w->wind, N, layers, paints, f[q]);
+        }
+        memset(paints + 4 * k, 0, 4 * sizeof *paints);
+        if (f[0][0] != f[1][0] || f[0][1] != f[1][1] || f[0][2] != f[1][2] ||
+            f[1][0] != f[2][0] || f[1][1] != f[2][1] || f[1][2] != f[2][2]) {
+            nd++;
+            if (w->gl[k].rg && w->gl[k].rg->cone) {
+                cone = k;
+                memcpy(e, f, sizeof e);
+            }
+        }
+    }
+    if (cone < 0) { /* no cone: the path of several gradients */
+        gen_span(w, xa, xb, y, nch, sum);
+        return;
+    }
+    if (nd > 1) { /* the cone and another gradient at one point */
+        w->cone_over = 1;
+        return;
+    }
+    if (w->radial) { /* the span clipped to the support's chord */
+        double s = w->row_s, R = w->R;
+        if (!(fabs(s) < R))
+            return;
+        double hc = sqrt((R - s) * (R + s));
+        xa = fmax(xa, w->uc - hc), xb = fmin(xb, w->uc + hc);
+        if (!(xb > xa))
+            return;
+    }
+    cone_span(w, w->gl[cone].rg, e[0], e[1], e[2], xa, xb, y, nch, sum);
+}
+
 /* The product of polynomials a (degree na) and b (degree nb) added, times
  * k, into out. */
 static void poly_mul_add(const double *a, int na, const double *b, int nb, double k, double *out)
@@ -4086,13 +4156,21 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
         worst = fmax(worst, abserr);
     }
     if (w->gen_stuck) {
-        w->gen_stuck = w->gen_over = 0;
+        w->gen_stuck = w->gen_over = w->cone_over = 0;
         return aa_fail(AA_EINVAL, "pixel (%g, %g): a row of the gradients' composite not "
                                   "resolved within the work limit (the sRGB decoding's "
                                   "threshold 0.04045 isolated in at most %d places and %d "
                                   "halvings, at most %d Gauss-Legendre pieces a span): refused; "
                                   "sample it with point, supersample or jitter",
                        w->uc - 0.5, w->vc - 0.5, GEN_MAX_FUZZ, GEN_BUDGET, GEN_PIECES);
+    }
+    if (w->cone_over) {
+        w->cone_over = w->gen_over = 0;
+        return aa_fail(AA_EINVAL, "pixel (%g, %g): a cone-case radial gradient and another "
+                                  "gradient paint one point of its window (the path of several "
+                                  "gradients has no cut at the cone's tangent lines): refused; "
+                                  "sample it with point, supersample or jitter",
+                       w->uc - 0.5, w->vc - 0.5);
     }
     if (w->gen_over) {
         w->gen_over = 0;
