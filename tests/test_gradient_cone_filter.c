@@ -36,6 +36,11 @@
  *    closest to the centre), the circles' top and bottom rows and where
  *    each touches each tangent.  Pixels straddling one tangent or both,
  *    holding P* and the circles' ends on the tangents.
+ * A gradient under a map that rotates, scales unequally and shears: its
+ * painted region is the map's image of the one above (each half-plane
+ * through the inverse map's transpose), so under the box each pixel is
+ * its square's painted area, and under the filters whose translates sum
+ * to 1 the image sums to the rectangle's.
  * A cone beside other gradients (a linear one and a radial one of nested
  * circles on rectangles 1 and 0.5 px from the cone's and each other):
  * under the box each pixel is the painted area of its square, under the
@@ -595,6 +600,98 @@ static void check_2d(const filt *f, const geom *gm, double bg, const int (*px)[2
     check_2d_spread(f, gm, AA_SPREAD_PAD, bg, px, npx);
 }
 
+/* ---- a gradient under a transform ---- */
+
+/* The cone p[] in its own coordinates (u, v), drawn through the map x =
+ * a u + c v + e, y = b u + d v + f (M = a b c d e f, pixels): white stops
+ * on the rectangle over black.  The painted region is the map's image of
+ * the one co_region gives: a half-plane n.q + k >= 0 in (u, v), q = M^-1
+ * (x - (e, f)), is N.x + k - N.(e, f) >= 0 with N = M^-T n (the linear
+ * part's inverse transposed).  Under the box each pixel is its square's
+ * painted area; under the filters whose translates sum to 1 the image
+ * sums to the rectangle's painted area. */
+static void check_transformed(const filt *f, const double p[6], const double M[6])
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    aa_gradient g = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0}, {0}, 2, white};
+    memcpy(g.p, p, sizeof g.p);
+    g.m[0] = M[0] / W, g.m[1] = M[1] / H, g.m[2] = M[2] / W, g.m[3] = M[3] / H;
+    g.m[4] = M[4] / W, g.m[5] = M[5] / H;
+    double x0 = (double)MARGIN / W, y0 = (double)MARGIN / H;
+    double x1 = (double)(W - MARGIN) / W, y1 = (double)(H - MARGIN) / H;
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+    assert_int_equal(aa_scene_move_to(s, x0, y0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x1, y0), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x1, y1), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, x0, y1), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    reference(s, f, &ref, &bound, &stats);
+    co_half hg[2], hp[2];
+    double apex[2];
+    int wedge, nh = co_region(p, hg, &wedge, apex);
+    long double det = (long double)M[0] * M[3] - (long double)M[2] * M[1];
+    /* M^-1 = (d -c; -b a) / det; N = M^-T n */
+    for (int k = 0; k < nh; k++) {
+        long double nx = (M[3] * hg[k].nx - M[1] * hg[k].ny) / det;
+        long double ny = (-M[2] * hg[k].nx + M[0] * hg[k].ny) / det;
+        hp[k] = (co_half){nx, ny, hg[k].k - nx * M[4] - ny * M[5]};
+    }
+    long double sum = 0, bsum = 0;
+    double worst = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            double got = aa_pixel(&ref, i, j)[0], bd = *aa_pixel(&bound, i, j);
+            sum += got, bsum += bd;
+            if (f->kind >= 0)
+                continue;
+            double cx0 = fmax(i, MARGIN), cx1 = fmin(i + 1, W - MARGIN);
+            double cy0 = fmax(j, MARGIN), cy1 = fmin(j + 1, H - MARGIN);
+            double want = cx1 > cx0 && cy1 > cy0 ? co_clipped_area(cx0, cy0, cx1, cy1, hp, nh) : 0;
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-15))
+                fail_msg("box, transformed: pixel (%d, %d) is %.17g, the painted area %.17g "
+                         "(bound %.3g)",
+                         i, j, got, want, bd);
+        }
+    double area = co_clipped_area(MARGIN, MARGIN, W - MARGIN, H - MARGIN, hp, nh);
+    if (!(fabs((double)sum - area) <= (double)bsum + W * H * 1e-16))
+        fail_msg("%s, transformed: the image sums to %.17g, the painted area %.17g (bounds sum "
+                 "to %.3g)",
+                 f->spec, (double)sum, area, (double)bsum);
+    print_message("%-18s transformed: sum - area %8.2g (bounds' sum %.2g)", f->spec,
+                  (double)sum - area, (double)bsum);
+    if (f->kind < 0)
+        print_message(", largest pixel difference %.2g", worst);
+    print_message("\n");
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
+/* A wedge (C = (6, 1), r = 2, F = (1, 0.5), fr = 0.6; P* = (-8/7, 2/7))
+ * and a strip (r = fr), through a map rotating, scaling unequally and
+ * shearing: P* lands near (2.1, 4.3) px. */
+static void test_transformed(void **state)
+{
+    (void)state;
+    static const double M[6] = {1.1, 0.4, -0.5, 0.9, 3.5, 4.5};
+    static const double wedge[6] = {6, 1, 2, 1, 0.5, 0.6}, strip[6] = {7, 0.5, 1.5, 2, 0, 1.5};
+    filt box = {-1, 0, 1, "box", 0.5, {0}, 0, 1};
+    check_transformed(&box, wedge, M);
+    check_transformed(&box, strip, M);
+    static const int kinds[] = {F_TENT, F_BSPLINE3, F_CATROM};
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        filt f = make_filt(kinds[k]);
+        check_transformed(&f, wedge, M);
+        check_transformed(&f, strip, M);
+    }
+}
+
 /* ---- a cone beside other gradients ---- */
 
 /* The layer of the rectangle r (pixels) painted by g (its p[] in pixels). */
@@ -690,8 +787,7 @@ static void check_beside_area(const filt *f, const geom *gm)
 static void test_beside(void **state)
 {
     (void)state;
-    filt box = {-1, 0, 1, NULL, 0.5, {0}, 0, 1};
-    box.spec = "box";
+    filt box = {-1, 0, 1, "box", 0.5, {0}, 0, 1};
     check_beside_area(&box, &geoms[0]);
     static const int kinds[] = {F_TENT, F_BSPLINE3, F_CATROM};
     for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
@@ -813,6 +909,7 @@ int main(void)
         cmocka_unit_test(test_inside),
         cmocka_unit_test(test_2d_separable),
         cmocka_unit_test(test_2d_radial),
+        cmocka_unit_test(test_transformed),
         cmocka_unit_test(test_beside),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
