@@ -349,7 +349,7 @@ static void test_refusals(void **state)
             continue;
         }
         assert_int_equal(st, AA_EINVAL);
-        const char *want = k == 2 ? "and another gradient paint one point" : "without end";
+        const char *want = k == 2 ? "another gradient layer paint one point" : "without end";
         if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), want))
             fail_msg("the reference's refusal names no cone or not \"%s\": %s", want,
                      aa_last_error());

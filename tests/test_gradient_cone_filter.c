@@ -141,7 +141,9 @@ static double weight1(const filt *f, double t)
     case F_BSPLINE2:
         return a < 0.5 ? 0.75 - a * a : a < 1.5 ? 0.5 * (1.5 - a) * (1.5 - a) : 0;
     case F_BSPLINE3:
-        return a < 1 ? 2.0 / 3 - a * a + 0.5 * a * a * a : a < 2 ? (2 - a) * (2 - a) * (2 - a) / 6 : 0;
+        return a < 1   ? 2.0 / 3 - a * a + 0.5 * a * a * a
+               : a < 2 ? (2 - a) * (2 - a) * (2 - a) / 6
+                       : 0;
     case F_MITCHELL:
         return mn(t, 1.0 / 3, 1.0 / 3);
     case F_CATROM:
@@ -841,7 +843,8 @@ static void test_beside(void **state)
     aa_truth_stats stats;
     assert_int_equal(aa_image_alloc(&out, W, H, 3), AA_OK);
     assert_int_equal(aa_truth_render(placed, &fl, 1, &out, NULL, &stats), AA_EINVAL);
-    if (!strstr(aa_last_error(), "cone") || !strstr(aa_last_error(), "another gradient paint"))
+    if (!strstr(aa_last_error(), "cone") ||
+        !strstr(aa_last_error(), "another gradient layer paint"))
         fail_msg("the refusal names no cone or no other gradient: %s", aa_last_error());
     print_message("over the cone: %s\n", aa_last_error());
     aa_image_free(&out);

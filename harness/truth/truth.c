@@ -1393,11 +1393,11 @@ static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, doub
  * nested circles (d2 > 0): here d's real zeros are the tangent lines'
  * crossings, the painted stretch's own ends, and where d2 = lam0 lam1 <
  * 0 (a row across the painted wedge) those points are not numbers at all
- * (a square root of a negative ratio); nor has it a substitution in u.  The outer breakpoints were already the filters':
- * the tangent lines' and the stop circles' crossings of every kink line
- * (kink_lines) and, under a radial filter, of the support's circle, with
- * their nearest approaches to the centre (rad_filter_line,
- * rad_filter_circle).
+ * (a square root of a negative ratio); nor has it a substitution in u.
+ * The outer breakpoints were already the filters': the tangent lines' and
+ * the stop circles' crossings of every kink line (kink_lines) and, under
+ * a radial filter, of the support's circle, with their nearest approaches
+ * to the centre (rad_filter_line, rad_filter_circle).
  * The cone in linear light is refused by name (grad_init), and so is a
  * pixel where the cone and another gradient paint one point ("a cone
  * beside other gradients"): the path of several gradients they would take
@@ -4166,10 +4166,10 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     }
     if (w->cone_over) {
         w->cone_over = w->gen_over = 0;
-        return aa_fail(AA_EINVAL, "pixel (%g, %g): a cone-case radial gradient and another "
-                                  "gradient paint one point of its window (the path of several "
-                                  "gradients has no cut at the cone's tangent lines): refused; "
-                                  "sample it with point, supersample or jitter",
+        return aa_fail(AA_EINVAL, "pixel (%g, %g): a layer of a cone-case radial gradient and "
+                                  "another gradient layer paint one point of its window (the "
+                                  "path of several gradients has no cut at the cone's tangent "
+                                  "lines): refused; sample it with point, supersample or jitter",
                        w->uc - 0.5, w->vc - 0.5);
     }
     if (w->gen_over) {
