@@ -268,8 +268,8 @@
  *
  * Radial gradients of the cone case (the focal circle not strictly inside
  * the end circle; "the cone case" below), under every filter: the row is
- * cut where it crosses the two lines
- * tangent to every circle (d = b^2 - a c is their forms' product); the
+ * cut where it crosses the two lines tangent to every circle (d = b^2 -
+ * a c is their forms' product); the
  * unpainted stretches take the composite without the layer, the painted
  * ones the cuts above, their pieces next to a tangent line integrated in
  * the square root of the distance to it, where t becomes analytic, with
