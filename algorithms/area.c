@@ -140,8 +140,8 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 3.76 by instructions (callgrind:
- * area 406.5 M a render, point 108.0 M), in CPU time 4.5 to 5.2 (runs on
+ * (tests/bench_bezstroke.c), area/point 3.82 by instructions (callgrind:
+ * area 403.2 M a render, point 105.7 M), in CPU time 4.5 to 5.2 (runs on
  * the shared machine at loads of 18 to 20; area 63 to 90 ms, point 14 to
  * 18 ms): the crossings' root-finding (Newton on the curve in double, then
  * one long double step; what a root takes from its curve alone found once
