@@ -293,16 +293,29 @@ static inline void eval_parts(const aa_offset_curve *oc, int coord, double t, in
         base_eval_d(oc, t, B, U, V, W);
         bx = B[0], by = B[1], ux = U[0], uy = U[1], vx = V[0], vy = V[1];
         cp = ux * W[1] - uy * W[0];
+        *base0 = r0 * bx + r1 * by + oc->m[4 + coord];
     } else {
-        bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
-        by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+        /* the row's base point: where the map keeps the axes (r0 or r1
+         * 0, as a scene's placement does) the other coordinate of B is
+         * not evaluated, its product 0 dropped from the sum (the same
+         * value: 0 + p = p, up to the sign of a zero) */
+        if (r0 == 0) {
+            by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+            *base0 = r1 * by + oc->m[4 + coord];
+        } else if (r1 == 0) {
+            bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+            *base0 = r0 * bx + oc->m[4 + coord];
+        } else {
+            bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+            by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+            *base0 = r0 * bx + r1 * by + oc->m[4 + coord];
+        }
         ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
         vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
         if (oc->evolute) /* c' only there */
             cp = ux * 6 * b[7] - uy * 6 * b[3];
     }
     double c = ux * vy - uy * vx, L2 = ux * ux + uy * uy, w = r1 * ux - r0 * uy;
-    *base0 = r0 * bx + r1 * by + oc->m[4 + coord];
     if (!oc->evolute) {
         double il = 1 / sqrt(L2);
         *nrm = oc->d * w * il;
