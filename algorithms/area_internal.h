@@ -183,6 +183,7 @@ typedef struct cm_level {
 typedef struct ar_worker {
     _Alignas(64) uint32_t *active; /* indices into the sorted pieces */
     size_t nactive, next;
+    size_t carried;   /* active[0..carried): pieces of the rows before */
     double first_end; /* the lowest bottom of an active piece */
     int row;          /* last row rendered (-2: none) */
     ar_seg *seg;     /* per sorted piece */
