@@ -56,6 +56,7 @@
 typedef struct ar_quad {
     int n[AR_QUAD_RULES], at[AR_QUAD_RULES];
     double x[64], w[64];
+    int avx; /* the processor has AVX: a cubic's nodes four at a time */
 } ar_quad;
 
 /* A panel of an offset piece's parameter (area_offset.c): [a, b], its
