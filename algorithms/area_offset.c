@@ -89,7 +89,8 @@
 #include <string.h>
 
 /* Gauss-Legendre orders tried, ascending; the last is the panels' own. */
-static const int ar_quad_order[AR_QUAD_RULES] = {4, 6, 8, 11, 16};
+static const int ar_quad_order[AR_QUAD_RULES] = {4, 6, 8, 11, 16}; /* share's choice writes
+                                                                       * them out */
 
 int area_quad_init(ar_quad *q)
 {
@@ -488,14 +489,19 @@ static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
          * margin on need */
         double z = Rs / h, rho = z + sqrt((z - 1.0) * (z + 1.0)), r2 = rho * rho;
         double need = h * 64.0 * p->M / (15.0 * (1.0 - 1.0 / r2) * AR_QUAD_TOL) * (1.0 + 1e-12);
-        double pw = 1.0; /* r2^k */
-        int k = 0;
-        for (r = 0; r < AR_QUAD_RULES - 1; r++) {
-            for (; k < q->n[r]; k++)
-                pw *= r2;
-            if (pw >= need)
-                break;
-        }
+        /* r2^n for the orders 4, 6, 8, 11 (ar_quad_order), each the last
+         * times r2 as often as the orders differ, written out: a loop's
+         * products in the same order (the loops' own instructions were a
+         * third of the choice's) */
+        double pw = r2 * r2 * r2 * r2;
+        if (pw >= need)
+            r = 0;
+        else if ((pw = pw * r2 * r2) >= need)
+            r = 1;
+        else if ((pw = pw * r2 * r2) >= need)
+            r = 2;
+        else if ((pw = pw * r2 * r2 * r2) >= need)
+            r = 3;
     }
     double ax, ay;
     rel_point(oc, p, al, &ax, &ay);
@@ -549,7 +555,10 @@ static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
     double wf[AR_QUAD_NMAX + 3];
     if (q->avx) {
         nodes_avx(qx, qw, n, mm, h, p->m, bx, by, d, ax, ay, oc->evolute, wf);
-        for (int i = 0; i < n; i++)
+        int i = 0;
+        for (; i + 4 <= n; i += 4) /* one by one in the nodes' order */
+            sum = sum + wf[i] + wf[i + 1] + wf[i + 2] + wf[i + 3];
+        for (; i < n; i++)
             sum += wf[i];
         return 0.5 * h * sum;
     }
