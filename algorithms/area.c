@@ -140,17 +140,18 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 4.15 by instructions (callgrind:
- * area 449 M a render, point 108 M), in CPU time 5.2 to 5.5 (three runs
- * on the shared machine at a load of 12 to 13; area 92 to 95 ms, point
- * 17.4 to 17.9 ms): the crossings' root-finding (Newton on the curve; the
+ * (tests/bench_bezstroke.c), area/point 3.18 by instructions (callgrind:
+ * area 343 M a render, point 108 M), in CPU time 4.07 to 4.59 (eight runs
+ * on the shared machine at a load of 22 to 24; area 66 to 87 ms, point
+ * 15.3 to 19.6 ms): the crossings' root-finding (Newton on the curve; the
  * band lines' y at an offset piece's bottom evaluated once a piece,
- * aa__offset_end) is 27% of area's instructions (the band lines' half of
- * it), the quadrature 21%,
- * the meetings of pieces in a cluster 17% (aa__piece_meet_at, given the
+ * aa__offset_end) is 40% of area's instructions (the band lines' half of
+ * it), the quadrature 16% (a cubic's nodes four at a time with AVX),
+ * the meetings of pieces in a cluster 13% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
- * by their slopes, scene_piece.c; polishing a meeting 6%), sorting 5%.
+ * by their slopes, scene_piece.c; polishing a meeting 4%), sorting 1% (the
+ * active list kept in the last row's x order, keep_order).
  * Each end of a part is evaluated once, for u and v together (seg_u,
  * part_area: the seg's memo of v, offset_keep), and some not at all: a
  * band's top takes v from the y its line's root had as the band above's
