@@ -140,18 +140,18 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 3.82 by instructions (callgrind:
- * area 403.2 M a render, point 105.7 M), in CPU time 4.5 to 5.2 (runs on
- * the shared machine at loads of 18 to 20; area 63 to 90 ms, point 14 to
- * 18 ms): the crossings' root-finding (Newton on the curve in double, then
- * one long double step; what a root takes from its curve alone found once
- * a piece, aa__offset_fix and the band lines' y at its bottom,
- * aa__offset_end) is 34% of area's instructions (the band lines' half of
- * it), the quadrature 19%,
- * the meetings of pieces in a cluster 16% (aa__piece_meet_at, given the
+ * (tests/bench_bezstroke.c), area/point 3.18 by instructions (callgrind:
+ * area 343 M a render, point 108 M), in CPU time 4.07 to 4.59 (eight runs
+ * on the shared machine at a load of 22 to 24; area 66 to 87 ms, point
+ * 15.3 to 19.6 ms): the crossings' root-finding (Newton on the curve; the
+ * band lines' y at an offset piece's bottom evaluated once a piece,
+ * aa__offset_end) is 40% of area's instructions (the band lines' half of
+ * it), the quadrature 16% (a cubic's nodes four at a time with AVX),
+ * the meetings of pieces in a cluster 13% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
- * by their slopes, scene_piece.c; polishing a meeting 3%), sorting 6%.
+ * by their slopes, scene_piece.c; polishing a meeting 4%), sorting 1% (the
+ * active list kept in the last row's x order, keep_order).
  * Each end of a part is evaluated once, for u and v together (seg_u,
  * part_area: the seg's memo of v, offset_keep), and some not at all: a
  * band's top takes v from the y its line's root had as the band above's
@@ -1726,8 +1726,9 @@ static inline void fill_run(const ar_row *r, int i0, int i1, const double *c)
     fill(r->px, i0, i1, r->W, c, r->stream);
 }
 
-/* Bring the active list to row j: the pieces meeting the band, in the
- * order of the sorted pieces (canonical, whatever the rows before). */
+/* Bring the active list to row j: the pieces meeting the band, those of
+ * the rows before in the order they were left in (keep_order), the new
+ * ones after them in the order of the sorted pieces. */
 static void update_active(const ar_state *S, ar_worker *wk, int j)
 {
     if (wk->row != j - 1) {
@@ -1750,6 +1751,7 @@ static void update_active(const ar_state *S, ar_worker *wk, int j)
         }
         wk->first_end = first_end;
     }
+    wk->carried = m;
     while (wk->next < S->npieces && S->piece[wk->next].y0 < bottom) {
         double y1 = S->piece[wk->next].y1;
         if (y1 > j) {
@@ -1819,6 +1821,50 @@ __attribute__((always_inline)) static inline int close_cluster(const ar_row *r,
     return flush_list(r, list, n, lo, hi, x, w, c);
 }
 
+/* The active list put in the order of the row's sorted pass (keys[0..n),
+ * the segs made from wk->list, in order of cell): those pieces first, in
+ * that order, then the active pieces that made no seg in the row, in their
+ * own order.  The next row's pieces then arrive nearly in x order, so its
+ * one pass closes its clusters as they come or its sorted pass is an
+ * insertion sort of the few that moved: on a stroke scene, whose pieces
+ * come in path order, every row took the sorted pass and its heapsort.  The
+ * clusters and their order are canonical whatever the active list's order
+ * (each cluster sorted by (cell, id)), so the image is the same. */
+static void keep_order(ar_worker *wk, const ar_key *keys, size_t n)
+{
+    uint32_t *act = wk->active;
+    size_t rest = 0, i = 0;
+    for (size_t k = 0; k < wk->nactive; k++) { /* wk->list is act's made segs, in order */
+        if (i < n && act[k] == wk->list[i])
+            i++;
+        else
+            act[rest++] = act[k];
+    }
+    memmove(act + n, act, rest * sizeof *act);
+    for (size_t k = 0; k < n; k++)
+        act[k] = keys[k].idx;
+}
+
+/* keys[0..n) sorted by (key, id) (`tmp`: room for n): the first nold (the pieces carried from the rows
+ * before, kept in their x order there: few out of place) and the rest (the
+ * pieces new in the band, in path order) sorted apart, then merged.  The
+ * new ones at the end sent one insertion sort past its budget, to the
+ * heapsort, in a third of a stroke scene's rows.  (key, id) is a total
+ * order, so the result is sort_keys' of all n. */
+static void merge_keys(ar_key *keys, size_t nold, size_t n, ar_key *tmp)
+{
+    sort_keys(keys, nold);
+    sort_keys(keys + nold, n - nold);
+    if (nold == 0 || nold == n || !key_after(&keys[nold - 1], &keys[nold]))
+        return;
+    size_t a = 0, b = nold, k = 0;
+    while (a < nold && b < n)
+        tmp[k++] = key_after(&keys[a], &keys[b]) ? keys[b++] : keys[a++];
+    while (a < nold)
+        tmp[k++] = keys[a++];
+    memcpy(keys, tmp, k * sizeof *keys); /* keys[b..n) are in place */
+}
+
 /* Row j.  `plain`: S->plain, a constant in each of the two forms below
  * (render_row_plain, render_row_any), chosen once a row. */
 __attribute__((always_inline)) static inline void render_row_k(const ar_state *S, ar_worker *wk,
@@ -1835,8 +1881,13 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
      * always for `crow`) is already the order along x: a cluster is written
      * as soon as a piece starts right of it.  A piece out of order sends the
      * row to the sorted pass below; both give the same clusters, each
-     * sorted the same way, so the same image. */
-    size_t n = 0, first = 0;
+     * sorted the same way, so the same image.  Rows with curved pieces
+     * (not `plain`) make all their segs and check the order first, closing
+     * the clusters after: their active list is kept in the last row's x
+     * order (keep_order), where a piece that entered the band out of order
+     * is found late in the row, and the clusters closed before it were
+     * work thrown away. */
+    size_t n = 0, first = 0, nold = 0;
     int lo = 0, hi = 0, x = 0, ordered = 1;
     uint64_t cells = 0;
     for (size_t k = 0; k < wk->nactive; k++) {
@@ -1848,7 +1899,17 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
         if (!seg_make(s, p, j, W, plain))
             continue;
         wk->list[n] = ix;
-        if (ordered) {
+        nold += k < wk->carried;
+        if (ordered && !plain) {
+            /* not yet closed (below): a piece out of order late in the
+             * row would throw away the clusters closed before it */
+            if (n == 0 || s->ca > hi)
+                lo = s->ca, hi = s->cb;
+            else if (s->ca >= lo)
+                hi = s->cb > hi ? s->cb : hi;
+            else
+                ordered = 0;
+        } else if (ordered) {
             if (n == first) {
                 lo = s->ca, hi = s->cb;
             } else if (s->ca > hi) {
@@ -1863,6 +1924,21 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
             }
         }
         n++;
+    }
+    if (ordered && !plain) {
+        for (size_t k = 0; k < n; k++) {
+            const ar_seg *s = &wk->seg[wk->list[k]];
+            if (k == first) {
+                lo = s->ca, hi = s->cb;
+            } else if (s->ca > hi) {
+                cells += cells_of(lo, hi, W);
+                x = close_cluster(&r, wk->list + first, k - first, lo, hi, x, w, &c, plain);
+                first = k;
+                lo = s->ca, hi = s->cb;
+            } else {
+                hi = s->cb > hi ? s->cb : hi;
+            }
+        }
     }
     if (ordered) {
         if (n > first) {
@@ -1881,7 +1957,12 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
         keys[k].id = wk->seg[wk->list[k]].p->id;
         keys[k].idx = wk->list[k];
     }
-    sort_keys(keys, n);
+    if (plain) {
+        sort_keys(keys, n);
+    } else {
+        merge_keys(keys, nold, n, wk->sub);
+        keep_order(wk, keys, n);
+    }
     memset(w, 0, (size_t)S->nl * sizeof *w);
     c = colour_of(S, wk, w);
     x = 0;

@@ -56,6 +56,7 @@
 typedef struct ar_quad {
     int n[AR_QUAD_RULES], at[AR_QUAD_RULES];
     double x[64], w[64];
+    int avx; /* the processor has AVX: a cubic's nodes four at a time */
 } ar_quad;
 
 /* A panel of an offset piece's parameter (area_offset.c): [a, b], its
@@ -183,6 +184,7 @@ typedef struct cm_level {
 typedef struct ar_worker {
     _Alignas(64) uint32_t *active; /* indices into the sorted pieces */
     size_t nactive, next;
+    size_t carried;   /* active[0..carried): pieces of the rows before */
     double first_end; /* the lowest bottom of an active piece */
     int row;          /* last row rendered (-2: none) */
     ar_seg *seg;     /* per sorted piece */
