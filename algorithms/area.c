@@ -140,8 +140,8 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 3.18 by instructions (callgrind:
- * area 343 M a render, point 108 M), in CPU time 4.07 to 4.59 (eight runs
+ * (tests/bench_bezstroke.c), area/point 3.21 by instructions (callgrind:
+ * area 340 M a render, point 106 M), in CPU time 4.07 to 4.59 (eight runs
  * on the shared machine at a load of 22 to 24; area 66 to 87 ms, point
  * 15.3 to 19.6 ms): the crossings' root-finding (Newton on the curve; the
  * band lines' y at an offset piece's bottom evaluated once a piece,
