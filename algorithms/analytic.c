@@ -1319,20 +1319,45 @@ static inline int ifloor(double x)
     return i - (x < i);
 }
 
+/* Whether piece p (a line, quadratic or cubic) has y linear in t and x
+ * of degree 2 at most (lines, and quadratics such as crow's arcs): its
+ * points then take part_points' short form. */
+static inline int piece_lin(const aa_piece *p)
+{
+    return p->ay == 0.0 && p->dy == 0.0 && p->dx == 0.0;
+}
+
 /* The rule's points of the part [t0, t1] of piece p: X, Y and the
  * weight times y' (D); its middle (xm, ym).  Returns 0 if the part lies
  * right of every support (W = 1: no terms), 2 if left of every support
  * (W = 0: the constant part alone, at column 0; X is not set), else 1.
  * (A part lies between two neighbouring knots' lines, and the supports'
- * ends are such lines, so its middle tells.) */
+ * ends are such lines, so its middle tells.)  lin: piece_lin(p), when
+ * the points are aa__piece_point's Horner steps without the terms that
+ * are zero, x0 + t (bx + t ax), y0 + t by and y' = by: each dropped step
+ * added a zero, so the values are the same. */
 __attribute__((always_inline)) static inline int
-part_points(const an_block *B, const aa_piece *p, const int m, double t0, double t1, double *X,
-            double *Y, double *D, double *xm, double *ym)
+part_points(const an_block *B, const aa_piece *p, const int m, double t0, double t1, int lin,
+            double *X, double *Y, double *D, double *xm, double *ym)
 {
     const an_state *S = B->S;
     const an_pp *pp = &S->pp;
     const double *gx = S->gx[m], *gw = S->gw[m];
     double hh = 0.5 * (t1 - t0), mid = 0.5 * (t0 + t1), dum;
+    if (lin) {
+        const double x0 = p->x0, bx = p->bx, ax = p->ax, y0 = p->y0, by = p->by;
+        *xm = x0 + mid * (bx + mid * ax), *ym = y0 + mid * by;
+        if (!(*xm < B->w - 0.5 + pp->k[pp->ncell]))
+            return 0;
+        int left = *xm < 0.5 + pp->k[0];
+        for (int g = 0; g < m; g++) {
+            double t = mid + hh * gx[g];
+            X[g] = x0 + t * (bx + t * ax);
+            Y[g] = y0 + t * by;
+            D[g] = gw[g] * hh * by;
+        }
+        return left ? 2 : 1;
+    }
     aa__piece_point(p, mid, xm, ym, &dum);
     if (!(*xm < B->w - 0.5 + pp->k[pp->ncell]))
         return 0;
@@ -1504,7 +1529,7 @@ fast_part_regular_sse2(const an_block *B, const double *val, const int m, const 
             A[h] = _mm_add_pd(A[h], a[g][h]);
         }
     }
-    double As[4], xs[4];
+    double As[4];
     _mm_storeu_pd(As, A[0]);
     if (nh > 1)
         _mm_storeu_pd(As + 2, A[1]);
@@ -1520,28 +1545,52 @@ fast_part_regular_sse2(const an_block *B, const double *val, const int m, const 
             if (nh > 1)
                 x1 = _mm_add_pd(x1, _mm_mul_pd(ar, Wc[g][1]));
         }
-        _mm_storeu_pd(xs, x0);
-        if (nh > 1)
-            _mm_storeu_pd(xs + 2, x1);
-        double d[5];
-        d[0] = As[r];
-        AN_UNROLL
-        for (int c = 0; c < ns; c++) {
-            d[c] -= xs[c];
-            d[c + 1] = xs[c];
-        }
+        /* the row's differences d[c] = x[c-1] - x[c] (x[-1] = A, x[ns] =
+         * 0: d[ns] = x[ns-1]), two at a time: d01 = (A, x0) - (x0, x1),
+         * d23 = (x1, x2) - (x2, x3) (for ns = 3 x3 = 0, its cells' zero
+         * coefficients: x2 - 0 = x2) */
+        const __m128d d01 = _mm_sub_pd(_mm_unpacklo_pd(_mm_set_sd(As[r]), x0), x0);
+        const __m128d d23 = _mm_sub_pd(_mm_shuffle_pd(x0, x1, 1), x1);
         size_t row = (size_t)(jlo + r - B->j0 + B->pad) * B->cols + (size_t)B->pad;
         double *cov = B->cover + row * nv;
         unsigned char *tch = B->touched + row;
-        AN_UNROLL
-        for (int c = 0; c <= ns; c++)
+        if (nv == 1) {
+            /* cov[ilo + c] += val d[c], two cells at a time */
+            const __m128d vv = _mm_set1_pd(val[0]);
+            double *c0 = cov + ilo;
+            _mm_storeu_pd(c0, _mm_add_pd(_mm_loadu_pd(c0), _mm_mul_pd(vv, d01)));
+            if (ns == 2)
+                c0[2] += val[0] * _mm_cvtsd_f64(_mm_unpackhi_pd(x0, x0));
+            else {
+                _mm_storeu_pd(c0 + 2, _mm_add_pd(_mm_loadu_pd(c0 + 2), _mm_mul_pd(vv, d23)));
+                if (ns == 4)
+                    c0[4] += val[0] * _mm_cvtsd_f64(_mm_unpackhi_pd(x1, x1));
+            }
+        } else {
+            double d[5];
+            _mm_storeu_pd(d, d01);
+            if (ns == 2)
+                _mm_storeh_pd(d + 2, x0);
+            else {
+                _mm_storeu_pd(d + 2, d23);
+                if (ns == 4)
+                    _mm_storeh_pd(d + 4, x1);
+            }
             AN_UNROLL
-            for (int v = 0; v < nv; v++)
-                cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
-        AN_UNROLL
-        for (int c = 0; c < ns; c++)
-            tch[ilo + c] |= AN_TERM;
-        tch[ilo + ns] |= AN_CARRY;
+            for (int c = 0; c <= ns; c++)
+                AN_UNROLL
+                for (int v = 0; v < nv; v++)
+                    cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
+        }
+        /* the marks: AN_TERM at the ns columns, AN_CARRY after them */
+        uint32_t m4, t4 = ns == 2   ? AN_TERM * 0x0101u + AN_CARRY * 0x10000u
+                          : ns == 3 ? AN_TERM * 0x010101u + AN_CARRY * 0x1000000u
+                                    : AN_TERM * 0x01010101u;
+        memcpy(&m4, tch + ilo, sizeof m4);
+        m4 |= t4;
+        memcpy(tch + ilo, &m4, sizeof m4);
+        if (ns == 4)
+            tch[ilo + 4] |= AN_CARRY;
     }
 }
 #endif
@@ -1623,7 +1672,7 @@ fast_terms(const an_block *B, const double *val, const int m, const double *X, c
 }
 
 typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val, double t0,
-                        double t1);
+                        double t1, int lin);
 typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
                        long double sa, long double sb);
 
@@ -1643,10 +1692,10 @@ typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
 #if AN_SPECIALIZE
 #define AN_PART(N, M)                                                               \
     static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
-                                    double t0, double t1)                           \
+                                    double t0, double t1, int lin)                  \
     {                                                                               \
         double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;                 \
-        int where = part_points(B, p, M, t0, t1, X, Y, D, &xm, &ym);                \
+        int where = part_points(B, p, M, t0, t1, lin, X, Y, D, &xm, &ym);           \
         if (B->nv == 1)                                                             \
             fast_terms(B, val, M, X, Y, D, xm, ym, where, 1, N);                    \
         else                                                                        \
@@ -1710,11 +1759,11 @@ static an_arc_fn *const fast_arcs[4] = {fast_arc_0, fast_arc_1, fast_arc_2, fast
 #else
 /* The sizes from the block and the piece, as the tables are indexed. */
 static void fast_part_any(const an_block *B, const aa_piece *p, const double *val, double t0,
-                          double t1)
+                          double t1, int lin)
 {
     const int N = B->S->pp.deg, M = gauss_points(p, N);
     double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;
-    int where = part_points(B, p, M, t0, t1, X, Y, D, &xm, &ym);
+    int where = part_points(B, p, M, t0, t1, lin, X, Y, D, &xm, &ym);
     fast_terms(B, val, M, X, Y, D, xm, ym, where, B->nv == 1 ? 1 : AN_NV, N);
 }
 
@@ -1806,12 +1855,30 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val, 
     double ta = lo <= p->y0 ? 0.0 : aa_piece_t_at(p, lo);
     double tb = hi >= p->y1 ? 1.0 : aa_piece_t_at(p, hi);
     ty[ny++] = ta;
-    for (double base = floor(lo); base <= hi; base += 1.0)
-        for (int q = 0; q < S->nph; q++) {
-            double Y = base + S->ph[q];
-            if (Y > lo && Y < hi)
-                ty[ny++] = aa_piece_t_at(p, Y);
-        }
+    const int lin = piece_lin(p);
+    if (lin && p->kind != AA_PIECE_CUBIC) {
+        /* aa_piece_t_at's steps for y linear in t, inline */
+        const double y0 = p->y0, y1 = p->y1, by = p->by;
+        for (double base = floor(lo); base <= hi; base += 1.0)
+            for (int q = 0; q < S->nph; q++) {
+                double Y = base + S->ph[q], d = Y - y0, t;
+                if (!(Y > lo && Y < hi))
+                    continue;
+                if (!(d > 0.0))
+                    t = 0.0;
+                else if (Y >= y1)
+                    t = 1.0;
+                else
+                    t = d / by, t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+                ty[ny++] = t;
+            }
+    } else
+        for (double base = floor(lo); base <= hi; base += 1.0)
+            for (int q = 0; q < S->nph; q++) {
+                double Y = base + S->ph[q];
+                if (Y > lo && Y < hi)
+                    ty[ny++] = aa_piece_t_at(p, Y);
+            }
     ty[ny++] = tb;
     double xa, xb;
     aa_piece_xrange(p, lo, hi, &xa, &xb);
@@ -1849,7 +1916,7 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val, 
         double t = ix < nx && tx[ix] < ty[iy] ? tx[ix++] : ty[iy++];
         if (!(prev < t))
             continue;
-        part(B, p, val, prev, t);
+        part(B, p, val, prev, t, lin);
         prev = t;
     }
 }
@@ -1982,6 +2049,8 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
         if (nv == 1) {
             const double b0 = S->bg.c[0], b1 = S->bg.c[1], b2 = S->bg.c[2];
             const double c0 = S->coef1.c[0], c1 = S->coef1.c[1], c2 = S->coef1.c[2];
+            /* a grey scene (crow): the three channels' values are one */
+            const int gray = b0 == b1 && b1 == b2 && c0 == c1 && c1 == c2;
             /* the running sum compensated (two_sum): its rounding would
              * otherwise grow with the edges left of a pixel */
             double run = 0.0, comp = 0.0;
@@ -2026,6 +2095,12 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 if (!(t[i] & AN_TERM)) {
                     run = (rs > 0.5) - (rs < -0.5), comp = 0.0;
                     memcpy(px, S->face1[1 + (int)run], 3 * sizeof *px);
+                } else if (gray) {
+                    double v = b0 + c0 * rs;
+                    v = v < lo ? lo : v;
+                    v = v > hi ? hi : v;
+                    px[0] = v, px[1] = v, px[2] = v;
+                    touched++;
                 } else {
                     double v0 = b0 + c0 * rs, v1 = b1 + c1 * rs, v2 = b2 + c2 * rs;
                     /* branch-free clamps (minsd, maxsd) */
