@@ -279,7 +279,9 @@ typedef struct an_state {
     /* a regular filter's pieces by the column (row) c that holds a part:
      * the cell deg - c's coefficients of W (w) and its left knot, zero
      * past the last column (lanes of fast_part_regular's vectors) */
-    double rcdf[5][4], rw[4][4], rk[4];
+    _Alignas(16) double rcdf[5][4];
+    _Alignas(16) double rw[4][4];
+    double rk[4];
     int pad;     /* margins of the scatter's buffers: the support's width + 3 */
     /* The plan of the scene (see "One layer at a time"): for the scene
      * and height it was made for, which rows take the visible parts
@@ -1312,6 +1314,14 @@ typedef struct an_block {
     size_t cap;
 } an_block;
 
+/* the loops of a part's arithmetic, whose counts are constants of the
+ * specialised copies, written out in full (-O2 does not) */
+#if defined(__GNUC__) && !defined(__clang__)
+#define AN_UNROLL _Pragma("GCC unroll 18")
+#else
+#define AN_UNROLL
+#endif
+
 /* floor(x) for |x| < 2^31 */
 static inline int ifloor(double x)
 {
@@ -1350,6 +1360,7 @@ part_points(const an_block *B, const aa_piece *p, const int m, double t0, double
         if (!(*xm < B->w - 0.5 + pp->k[pp->ncell]))
             return 0;
         int left = *xm < 0.5 + pp->k[0];
+        AN_UNROLL
         for (int g = 0; g < m; g++) {
             double t = mid + hh * gx[g];
             X[g] = x0 + t * (bx + t * ax);
@@ -1471,13 +1482,6 @@ fast_part(const an_block *B, const double *val, const int m, const double *X, co
  * cell, each next one cell to the left, so every count is a constant
  * (rows outside the block and columns outside the image fall in the
  * margins). */
-/* the loops of a part's arithmetic, whose counts are constants of the
- * specialised copies, written out in full (-O2 does not) */
-#if defined(__GNUC__) && !defined(__clang__)
-#define AN_UNROLL _Pragma("GCC unroll 18")
-#else
-#define AN_UNROLL
-#endif
 
 #if AN_SSE2
 /* fast_part_regular's arithmetic for N >= 1 in pairs of columns (rows):
@@ -1498,7 +1502,7 @@ fast_part_regular_sse2(const an_block *B, const double *val, const int m, const 
     int jlo = ifloor(ym - 0.5 - kn) + 1, ilo = ifloor(xm - 0.5 - kn) + 1;
     double ox[4], oy[4];
     AN_UNROLL
-    for (int c = 0; c < 4; c++) {
+    for (int c = 0; c < 2 * nh; c++) {
         ox[c] = ilo + c + 0.5 + S->rk[c];
         oy[c] = jlo + c + 0.5 + S->rk[c];
     }
@@ -1515,16 +1519,16 @@ fast_part_regular_sse2(const an_block *B, const double *val, const int m, const 
         const __m128d x = _mm_set1_pd(X[g]), y = _mm_set1_pd(Y[g]), d = _mm_set1_pd(D[g]);
         AN_UNROLL
         for (int h = 0; h < nh; h++) {
-            __m128d u = _mm_sub_pd(x, vox[h]), v = _mm_loadu_pd(&S->rcdf[N + 1][2 * h]);
+            __m128d u = _mm_sub_pd(x, vox[h]), v = _mm_load_pd(&S->rcdf[N + 1][2 * h]);
             AN_UNROLL
             for (int e = N; e >= 0; e--)
-                v = _mm_add_pd(_mm_loadu_pd(&S->rcdf[e][2 * h]), _mm_mul_pd(u, v));
+                v = _mm_add_pd(_mm_load_pd(&S->rcdf[e][2 * h]), _mm_mul_pd(u, v));
             Wc[g][h] = v;
             u = _mm_sub_pd(y, voy[h]);
-            v = _mm_loadu_pd(&S->rw[N][2 * h]);
+            v = _mm_load_pd(&S->rw[N][2 * h]);
             AN_UNROLL
             for (int e = N - 1; e >= 0; e--)
-                v = _mm_add_pd(_mm_loadu_pd(&S->rw[e][2 * h]), _mm_mul_pd(u, v));
+                v = _mm_add_pd(_mm_load_pd(&S->rw[e][2 * h]), _mm_mul_pd(u, v));
             a[g][h] = _mm_mul_pd(d, v);
             A[h] = _mm_add_pd(A[h], a[g][h]);
         }
@@ -1533,6 +1537,10 @@ fast_part_regular_sse2(const an_block *B, const double *val, const int m, const 
     _mm_storeu_pd(As, A[0]);
     if (nh > 1)
         _mm_storeu_pd(As + 2, A[1]);
+    /* the block's fields in locals: the marks' stores (bytes) may alias them */
+    const size_t cols = B->cols;
+    double *const cov0 = B->cover + ((size_t)(jlo - B->j0 + B->pad) * cols + (size_t)B->pad) * nv;
+    unsigned char *const tch0 = B->touched + (size_t)(jlo - B->j0 + B->pad) * cols + (size_t)B->pad;
     AN_UNROLL
     for (int r = 0; r < ns; r++) {
         /* the row's products with the columns: x[c] = sum_g a[r][g] W[c][g] */
@@ -1551,9 +1559,8 @@ fast_part_regular_sse2(const an_block *B, const double *val, const int m, const 
          * coefficients: x2 - 0 = x2) */
         const __m128d d01 = _mm_sub_pd(_mm_unpacklo_pd(_mm_set_sd(As[r]), x0), x0);
         const __m128d d23 = _mm_sub_pd(_mm_shuffle_pd(x0, x1, 1), x1);
-        size_t row = (size_t)(jlo + r - B->j0 + B->pad) * B->cols + (size_t)B->pad;
-        double *cov = B->cover + row * nv;
-        unsigned char *tch = B->touched + row;
+        double *cov = cov0 + (size_t)r * cols * nv;
+        unsigned char *tch = tch0 + (size_t)r * cols;
         if (nv == 1) {
             /* cov[ilo + c] += val d[c], two cells at a time */
             const __m128d vv = _mm_set1_pd(val[0]);
