@@ -2079,16 +2079,26 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
 #if AN_SSE2
                     const __m128d f01 = _mm_loadu_pd(f), f20 = _mm_set_pd(f[0], f[2]),
                                   f12 = _mm_loadu_pd(f + 1);
-                    for (;;) {
+                    /* eight pixels stored at a time, then the index
+                     * moved past the unmarked ones among them (the first
+                     * marked one's byte: the lowest non-zero of the eight,
+                     * little-endian as x86-64 is); the marked pixels after
+                     * the run are stored again, in order, below, so the
+                     * run's length takes no branch */
+                    while (w - i >= 8) {
                         uint64_t t8;
-                        if (w - i < 8 || (memcpy(&t8, t + i, sizeof t8), t8))
-                            break;
-                        for (int k = 0; k < 4; k++, px += 6) {
-                            _mm_storeu_pd(px, f01);
-                            _mm_storeu_pd(px + 2, f20);
-                            _mm_storeu_pd(px + 4, f12);
+                        memcpy(&t8, t + i, sizeof t8);
+                        for (int k = 0; k < 4; k++) {
+                            _mm_storeu_pd(px + 6 * k, f01);
+                            _mm_storeu_pd(px + 6 * k + 2, f20);
+                            _mm_storeu_pd(px + 6 * k + 4, f12);
                         }
-                        i += 8;
+                        if (t8) {
+                            int n = __builtin_ctzll(t8) >> 3;
+                            i += n, px += 3 * n;
+                            break;
+                        }
+                        i += 8, px += 24;
                     }
 #endif
                     for (; i < w && !t[i]; i++, px += 3)
