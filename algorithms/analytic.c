@@ -1678,8 +1678,30 @@ fast_terms(const an_block *B, const double *val, const int m, const double *X, c
         fast_part(B, val, m, X, Y, D, xm, ym, nv, N);
 }
 
-typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val, double t0,
-                        double t1, int lin);
+/* The parts of a polynomial piece between its cuts, ty (the horizontal
+ * knots' lines' and both ends, ascending) and tx (the vertical ones',
+ * ascending, between the ends), merged in order of t, each part's points
+ * and terms: in one function a piece, whose loop holds the part's
+ * arithmetic. */
+__attribute__((always_inline)) static inline void
+piece_parts(const an_block *B, const aa_piece *p, const double *val, const double *ty, size_t ny,
+           const double *tx, size_t nx, int lin, const int M, const int nv, const int N)
+{
+    double prev = ty[0];
+    size_t iy = 1, ix = 0;
+    while (iy < ny) {
+        double t = ix < nx && tx[ix] < ty[iy] ? tx[ix++] : ty[iy++];
+        if (!(prev < t))
+            continue;
+        double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;
+        int where = part_points(B, p, M, prev, t, lin, X, Y, D, &xm, &ym);
+        fast_terms(B, val, M, X, Y, D, xm, ym, where, nv, N);
+        prev = t;
+    }
+}
+
+typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val,
+                        const double *ty, size_t ny, const double *tx, size_t nx, int lin);
 typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
                        long double sa, long double sb);
 
@@ -1699,14 +1721,13 @@ typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
 #if AN_SPECIALIZE
 #define AN_PART(N, M)                                                               \
     static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
-                                    double t0, double t1, int lin)                  \
+                                    const double *ty, size_t ny, const double *tx,  \
+                                    size_t nx, int lin)                             \
     {                                                                               \
-        double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;                 \
-        int where = part_points(B, p, M, t0, t1, lin, X, Y, D, &xm, &ym);           \
         if (B->nv == 1)                                                             \
-            fast_terms(B, val, M, X, Y, D, xm, ym, where, 1, N);                    \
+            piece_parts(B, p, val, ty, ny, tx, nx, lin, M, 1, N);                    \
         else                                                                        \
-            fast_terms(B, val, M, X, Y, D, xm, ym, where, AN_NV, N);                \
+            piece_parts(B, p, val, ty, ny, tx, nx, lin, M, AN_NV, N);                \
     }
 #define AN_PARTS(N)                                                                 \
     AN_PART(N, 1)                                                                   \
@@ -1765,13 +1786,11 @@ static an_arc_fn *const fast_arcs[4] = {fast_arc_0, fast_arc_1, fast_arc_2, fast
 #define AN_ARC_FOR(deg) fast_arcs[deg]
 #else
 /* The sizes from the block and the piece, as the tables are indexed. */
-static void fast_part_any(const an_block *B, const aa_piece *p, const double *val, double t0,
-                          double t1, int lin)
+static void fast_part_any(const an_block *B, const aa_piece *p, const double *val,
+                          const double *ty, size_t ny, const double *tx, size_t nx, int lin)
 {
     const int N = B->S->pp.deg, M = gauss_points(p, N);
-    double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;
-    int where = part_points(B, p, M, t0, t1, lin, X, Y, D, &xm, &ym);
-    fast_terms(B, val, M, X, Y, D, xm, ym, where, B->nv == 1 ? 1 : AN_NV, N);
+    piece_parts(B, p, val, ty, ny, tx, nx, lin, M, B->nv == 1 ? 1 : AN_NV, N);
 }
 
 static void fast_arc_any(const an_block *B, const aa_piece *p, const double *val,
@@ -1916,16 +1935,7 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val, 
     else if (!line)
         aa__vis_sort(tx, nx);
     /* ty holds both ends: every cut of tx lies between its first and last */
-    an_part_fn *part = AN_PART_FOR(pp->deg, gauss_points(p, pp->deg));
-    double prev = ty[0];
-    size_t iy = 1, ix = 0;
-    while (iy < ny) {
-        double t = ix < nx && tx[ix] < ty[iy] ? tx[ix++] : ty[iy++];
-        if (!(prev < t))
-            continue;
-        part(B, p, val, prev, t, lin);
-        prev = t;
-    }
+    AN_PART_FOR(pp->deg, gauss_points(p, pp->deg))(B, p, val, ty, ny, tx, nx, lin);
 }
 
 /* a + b, and its rounding error added to *e (Knuth's TwoSum) */
