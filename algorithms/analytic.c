@@ -1687,6 +1687,10 @@ __attribute__((always_inline)) static inline void
 piece_parts(const an_block *B, const aa_piece *p, const double *val, const double *ty, size_t ny,
            const double *tx, size_t nx, int lin, const int M, const int nv, const int N)
 {
+    /* the block's fields in a local copy: the byte stores of the marks
+     * cannot alias it, so they are not read again for every part */
+    const an_block Bl = *B;
+    B = &Bl;
     double prev = ty[0];
     size_t iy = 1, ix = 0;
     while (iy < ny) {
