@@ -1722,9 +1722,19 @@ typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
 #define AN_SPECIALIZE 1
 #endif
 
+/* AN_CLONES: each specialised copy compiled twice, for the processor's
+ * AVX2 (its SSE2 operations in the VEX encoding, three operands, so fewer
+ * register copies; no FMA: the same operations, the same values) and for
+ * any x86-64, the one taken chosen once at load (GCC's target_clones) */
+#if AN_SSE2 && defined(__GNUC__) && !defined(__clang__) && defined(__linux__)
+#define AN_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define AN_CLONES
+#endif
+
 #if AN_SPECIALIZE
 #define AN_PART(N, M)                                                               \
-    static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
+    AN_CLONES static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
                                     const double *ty, size_t ny, const double *tx,  \
                                     size_t nx, int lin)                             \
     {                                                                               \
