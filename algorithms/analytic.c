@@ -202,11 +202,17 @@
  * vectors), then one running sum per row over the pixels some term or
  * carry reached, the runs of other pixels filled with their faces'
  * colours; the rule's size, the filter's degree and (for filters of unit
- * cells) the support's width are constants of the compiled loops.  On
- * crow 1024x1024, one thread, the thread CPU time per render (algorithms/
- * README.md, "Exact filtering beyond the box"): under tent:r=1 2.4x
- * area's box time, under bspline:order=3 4.3x (medians of three runs on a
- * loaded machine; 2.1x and 3.6x in a run on a less loaded one).  On
+ * cells) the support's width are constants of the compiled loops, a
+ * piece's parts are taken in one such function (compiled for AVX2 too,
+ * chosen at load), and a piece with y linear in t (a line, crow's arcs)
+ * has its points without the zero terms.  On crow 1024x1024, one thread
+ * (algorithms/README.md, "Exact filtering beyond the box"): 60.8e6
+ * instructions a render under tent:r=1 and 118.7e6 under
+ * bspline:order=3 against area's 35.0e6 (callgrind), and a thread CPU
+ * time per render of 2.0x area's box time under tent:r=1 and 3.3x under
+ * bspline:order=3 (medians of 21 renders, two runs taking turns with the
+ * build before on a loaded machine, where that build measured 2.1x to
+ * 2.5x and 3.9x to 4.6x; the ratios move with the load).  On
  * elliptical arcs each part costs more, under every filter alike: its
  * cuts' angles and its middle's sine and cosine in long double, and 4 n +
  * 6 points; on 36 circles at 1024x1024 (algorithms/README.md) 8.9x area's
