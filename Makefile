@@ -285,7 +285,9 @@ $(SAN_BUILD)/obj/algorithms/analytic.o: CPPFLAGS += -DAN_SPECIALIZE=0
 # tables only (-g1, as the sanitizer build and the tests' own code): the
 # locals' descriptions of every copy were a third of the library's largest
 # compile, 32 s of CPU with -g and 20 s with -g1 (-g0: 20 s); a profile or
-# a stack still has its file, line and function.
+# a stack still has its file, line and function.  The polynomial pieces'
+# copies are compiled twice, for AVX2 and for any x86-64 (AN_CLONES):
+# 47 s of CPU with -g1.
 $(BUILD)/obj/algorithms/analytic.o: PLAIN_CFLAGS += -g1
 $(BUILD)/bench_%: tests/bench_%.c $(LIB) | $(OIIO_SO)
 	@echo '  LD    $@'

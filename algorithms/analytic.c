@@ -202,11 +202,17 @@
  * vectors), then one running sum per row over the pixels some term or
  * carry reached, the runs of other pixels filled with their faces'
  * colours; the rule's size, the filter's degree and (for filters of unit
- * cells) the support's width are constants of the compiled loops.  On
- * crow 1024x1024, one thread, the thread CPU time per render (algorithms/
- * README.md, "Exact filtering beyond the box"): under tent:r=1 2.4x
- * area's box time, under bspline:order=3 4.3x (medians of three runs on a
- * loaded machine; 2.1x and 3.6x in a run on a less loaded one).  On
+ * cells) the support's width are constants of the compiled loops, a
+ * piece's parts are taken in one such function (compiled for AVX2 too,
+ * chosen at load), and a piece with y linear in t (a line, crow's arcs)
+ * has its points without the zero terms.  On crow 1024x1024, one thread
+ * (algorithms/README.md, "Exact filtering beyond the box"): 60.8e6
+ * instructions a render under tent:r=1 and 118.7e6 under
+ * bspline:order=3 against area's 35.0e6 (callgrind), and a thread CPU
+ * time per render of 2.0x area's box time under tent:r=1 and 3.3x under
+ * bspline:order=3 (medians of 21 renders, two runs taking turns with the
+ * build before on a loaded machine, where that build measured 2.1x to
+ * 2.5x and 3.9x to 4.6x; the ratios move with the load).  On
  * elliptical arcs each part costs more, under every filter alike: its
  * cuts' angles and its middle's sine and cosine in long double, and 4 n +
  * 6 points; on 36 circles at 1024x1024 (algorithms/README.md) 8.9x area's
@@ -279,7 +285,9 @@ typedef struct an_state {
     /* a regular filter's pieces by the column (row) c that holds a part:
      * the cell deg - c's coefficients of W (w) and its left knot, zero
      * past the last column (lanes of fast_part_regular's vectors) */
-    double rcdf[5][4], rw[4][4], rk[4];
+    _Alignas(16) double rcdf[5][4];
+    _Alignas(16) double rw[4][4];
+    double rk[4];
     int pad;     /* margins of the scatter's buffers: the support's width + 3 */
     /* The plan of the scene (see "One layer at a time"): for the scene
      * and height it was made for, which rows take the visible parts
@@ -1312,6 +1320,14 @@ typedef struct an_block {
     size_t cap;
 } an_block;
 
+/* the loops of a part's arithmetic, whose counts are constants of the
+ * specialised copies, written out in full (-O2 does not) */
+#if defined(__GNUC__) && !defined(__clang__)
+#define AN_UNROLL _Pragma("GCC unroll 18")
+#else
+#define AN_UNROLL
+#endif
+
 /* floor(x) for |x| < 2^31 */
 static inline int ifloor(double x)
 {
@@ -1319,20 +1335,46 @@ static inline int ifloor(double x)
     return i - (x < i);
 }
 
+/* Whether piece p (a line, quadratic or cubic) has y linear in t and x
+ * of degree 2 at most (lines, and quadratics such as crow's arcs): its
+ * points then take part_points' short form. */
+static inline int piece_lin(const aa_piece *p)
+{
+    return p->ay == 0.0 && p->dy == 0.0 && p->dx == 0.0;
+}
+
 /* The rule's points of the part [t0, t1] of piece p: X, Y and the
  * weight times y' (D); its middle (xm, ym).  Returns 0 if the part lies
  * right of every support (W = 1: no terms), 2 if left of every support
  * (W = 0: the constant part alone, at column 0; X is not set), else 1.
  * (A part lies between two neighbouring knots' lines, and the supports'
- * ends are such lines, so its middle tells.) */
+ * ends are such lines, so its middle tells.)  lin: piece_lin(p), when
+ * the points are aa__piece_point's Horner steps without the terms that
+ * are zero, x0 + t (bx + t ax), y0 + t by and y' = by: each dropped step
+ * added a zero, so the values are the same. */
 __attribute__((always_inline)) static inline int
-part_points(const an_block *B, const aa_piece *p, const int m, double t0, double t1, double *X,
-            double *Y, double *D, double *xm, double *ym)
+part_points(const an_block *B, const aa_piece *p, const int m, double t0, double t1, int lin,
+            double *X, double *Y, double *D, double *xm, double *ym)
 {
     const an_state *S = B->S;
     const an_pp *pp = &S->pp;
     const double *gx = S->gx[m], *gw = S->gw[m];
     double hh = 0.5 * (t1 - t0), mid = 0.5 * (t0 + t1), dum;
+    if (lin) {
+        const double x0 = p->x0, bx = p->bx, ax = p->ax, y0 = p->y0, by = p->by;
+        *xm = x0 + mid * (bx + mid * ax), *ym = y0 + mid * by;
+        if (!(*xm < B->w - 0.5 + pp->k[pp->ncell]))
+            return 0;
+        int left = *xm < 0.5 + pp->k[0];
+        AN_UNROLL
+        for (int g = 0; g < m; g++) {
+            double t = mid + hh * gx[g];
+            X[g] = x0 + t * (bx + t * ax);
+            Y[g] = y0 + t * by;
+            D[g] = gw[g] * hh * by;
+        }
+        return left ? 2 : 1;
+    }
     aa__piece_point(p, mid, xm, ym, &dum);
     if (!(*xm < B->w - 0.5 + pp->k[pp->ncell]))
         return 0;
@@ -1446,13 +1488,6 @@ fast_part(const an_block *B, const double *val, const int m, const double *X, co
  * cell, each next one cell to the left, so every count is a constant
  * (rows outside the block and columns outside the image fall in the
  * margins). */
-/* the loops of a part's arithmetic, whose counts are constants of the
- * specialised copies, written out in full (-O2 does not) */
-#if defined(__GNUC__) && !defined(__clang__)
-#define AN_UNROLL _Pragma("GCC unroll 18")
-#else
-#define AN_UNROLL
-#endif
 
 #if AN_SSE2
 /* fast_part_regular's arithmetic for N >= 1 in pairs of columns (rows):
@@ -1473,7 +1508,7 @@ fast_part_regular_sse2(const an_block *B, const double *val, const int m, const 
     int jlo = ifloor(ym - 0.5 - kn) + 1, ilo = ifloor(xm - 0.5 - kn) + 1;
     double ox[4], oy[4];
     AN_UNROLL
-    for (int c = 0; c < 4; c++) {
+    for (int c = 0; c < 2 * nh; c++) {
         ox[c] = ilo + c + 0.5 + S->rk[c];
         oy[c] = jlo + c + 0.5 + S->rk[c];
     }
@@ -1490,24 +1525,28 @@ fast_part_regular_sse2(const an_block *B, const double *val, const int m, const 
         const __m128d x = _mm_set1_pd(X[g]), y = _mm_set1_pd(Y[g]), d = _mm_set1_pd(D[g]);
         AN_UNROLL
         for (int h = 0; h < nh; h++) {
-            __m128d u = _mm_sub_pd(x, vox[h]), v = _mm_loadu_pd(&S->rcdf[N + 1][2 * h]);
+            __m128d u = _mm_sub_pd(x, vox[h]), v = _mm_load_pd(&S->rcdf[N + 1][2 * h]);
             AN_UNROLL
             for (int e = N; e >= 0; e--)
-                v = _mm_add_pd(_mm_loadu_pd(&S->rcdf[e][2 * h]), _mm_mul_pd(u, v));
+                v = _mm_add_pd(_mm_load_pd(&S->rcdf[e][2 * h]), _mm_mul_pd(u, v));
             Wc[g][h] = v;
             u = _mm_sub_pd(y, voy[h]);
-            v = _mm_loadu_pd(&S->rw[N][2 * h]);
+            v = _mm_load_pd(&S->rw[N][2 * h]);
             AN_UNROLL
             for (int e = N - 1; e >= 0; e--)
-                v = _mm_add_pd(_mm_loadu_pd(&S->rw[e][2 * h]), _mm_mul_pd(u, v));
+                v = _mm_add_pd(_mm_load_pd(&S->rw[e][2 * h]), _mm_mul_pd(u, v));
             a[g][h] = _mm_mul_pd(d, v);
             A[h] = _mm_add_pd(A[h], a[g][h]);
         }
     }
-    double As[4], xs[4];
+    double As[4];
     _mm_storeu_pd(As, A[0]);
     if (nh > 1)
         _mm_storeu_pd(As + 2, A[1]);
+    /* the block's fields in locals: the marks' stores (bytes) may alias them */
+    const size_t cols = B->cols;
+    double *const cov0 = B->cover + ((size_t)(jlo - B->j0 + B->pad) * cols + (size_t)B->pad) * nv;
+    unsigned char *const tch0 = B->touched + (size_t)(jlo - B->j0 + B->pad) * cols + (size_t)B->pad;
     AN_UNROLL
     for (int r = 0; r < ns; r++) {
         /* the row's products with the columns: x[c] = sum_g a[r][g] W[c][g] */
@@ -1520,28 +1559,51 @@ fast_part_regular_sse2(const an_block *B, const double *val, const int m, const 
             if (nh > 1)
                 x1 = _mm_add_pd(x1, _mm_mul_pd(ar, Wc[g][1]));
         }
-        _mm_storeu_pd(xs, x0);
-        if (nh > 1)
-            _mm_storeu_pd(xs + 2, x1);
-        double d[5];
-        d[0] = As[r];
-        AN_UNROLL
-        for (int c = 0; c < ns; c++) {
-            d[c] -= xs[c];
-            d[c + 1] = xs[c];
-        }
-        size_t row = (size_t)(jlo + r - B->j0 + B->pad) * B->cols + (size_t)B->pad;
-        double *cov = B->cover + row * nv;
-        unsigned char *tch = B->touched + row;
-        AN_UNROLL
-        for (int c = 0; c <= ns; c++)
+        /* the row's differences d[c] = x[c-1] - x[c] (x[-1] = A, x[ns] =
+         * 0: d[ns] = x[ns-1]), two at a time: d01 = (A, x0) - (x0, x1),
+         * d23 = (x1, x2) - (x2, x3) (for ns = 3 x3 = 0, its cells' zero
+         * coefficients: x2 - 0 = x2) */
+        const __m128d d01 = _mm_sub_pd(_mm_unpacklo_pd(_mm_set_sd(As[r]), x0), x0);
+        const __m128d d23 = _mm_sub_pd(_mm_shuffle_pd(x0, x1, 1), x1);
+        double *cov = cov0 + (size_t)r * cols * nv;
+        unsigned char *tch = tch0 + (size_t)r * cols;
+        if (nv == 1) {
+            /* cov[ilo + c] += val d[c], two cells at a time */
+            const __m128d vv = _mm_set1_pd(val[0]);
+            double *c0 = cov + ilo;
+            _mm_storeu_pd(c0, _mm_add_pd(_mm_loadu_pd(c0), _mm_mul_pd(vv, d01)));
+            if (ns == 2)
+                c0[2] += val[0] * _mm_cvtsd_f64(_mm_unpackhi_pd(x0, x0));
+            else {
+                _mm_storeu_pd(c0 + 2, _mm_add_pd(_mm_loadu_pd(c0 + 2), _mm_mul_pd(vv, d23)));
+                if (ns == 4)
+                    c0[4] += val[0] * _mm_cvtsd_f64(_mm_unpackhi_pd(x1, x1));
+            }
+        } else {
+            double d[5];
+            _mm_storeu_pd(d, d01);
+            if (ns == 2)
+                _mm_storeh_pd(d + 2, x0);
+            else {
+                _mm_storeu_pd(d + 2, d23);
+                if (ns == 4)
+                    _mm_storeh_pd(d + 4, x1);
+            }
             AN_UNROLL
-            for (int v = 0; v < nv; v++)
-                cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
-        AN_UNROLL
-        for (int c = 0; c < ns; c++)
-            tch[ilo + c] |= AN_TERM;
-        tch[ilo + ns] |= AN_CARRY;
+            for (int c = 0; c <= ns; c++)
+                AN_UNROLL
+                for (int v = 0; v < nv; v++)
+                    cov[(ptrdiff_t)(ilo + c) * nv + v] += val[v] * d[c];
+        }
+        /* the marks: AN_TERM at the ns columns, AN_CARRY after them */
+        uint32_t m4, t4 = ns == 2   ? AN_TERM * 0x0101u + AN_CARRY * 0x10000u
+                          : ns == 3 ? AN_TERM * 0x010101u + AN_CARRY * 0x1000000u
+                                    : AN_TERM * 0x01010101u;
+        memcpy(&m4, tch + ilo, sizeof m4);
+        m4 |= t4;
+        memcpy(tch + ilo, &m4, sizeof m4);
+        if (ns == 4)
+            tch[ilo + 4] |= AN_CARRY;
     }
 }
 #endif
@@ -1622,8 +1684,34 @@ fast_terms(const an_block *B, const double *val, const int m, const double *X, c
         fast_part(B, val, m, X, Y, D, xm, ym, nv, N);
 }
 
-typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val, double t0,
-                        double t1);
+/* The parts of a polynomial piece between its cuts, ty (the horizontal
+ * knots' lines' and both ends, ascending) and tx (the vertical ones',
+ * ascending, between the ends), merged in order of t, each part's points
+ * and terms: in one function a piece, whose loop holds the part's
+ * arithmetic. */
+__attribute__((always_inline)) static inline void
+piece_parts(const an_block *B, const aa_piece *p, const double *val, const double *ty, size_t ny,
+           const double *tx, size_t nx, int lin, const int M, const int nv, const int N)
+{
+    /* the block's fields in a local copy: the byte stores of the marks
+     * cannot alias it, so they are not read again for every part */
+    const an_block Bl = *B;
+    B = &Bl;
+    double prev = ty[0];
+    size_t iy = 1, ix = 0;
+    while (iy < ny) {
+        double t = ix < nx && tx[ix] < ty[iy] ? tx[ix++] : ty[iy++];
+        if (!(prev < t))
+            continue;
+        double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;
+        int where = part_points(B, p, M, prev, t, lin, X, Y, D, &xm, &ym);
+        fast_terms(B, val, M, X, Y, D, xm, ym, where, nv, N);
+        prev = t;
+    }
+}
+
+typedef void an_part_fn(const an_block *B, const aa_piece *p, const double *val,
+                        const double *ty, size_t ny, const double *tx, size_t nx, int lin);
 typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
                        long double sa, long double sb);
 
@@ -1640,17 +1728,26 @@ typedef void an_arc_fn(const an_block *B, const aa_piece *p, const double *val,
 #define AN_SPECIALIZE 1
 #endif
 
+/* AN_CLONES: each specialised copy compiled twice, for the processor's
+ * AVX2 (its SSE2 operations in the VEX encoding, three operands, so fewer
+ * register copies; no FMA: the same operations, the same values) and for
+ * any x86-64, the one taken chosen once at load (GCC's target_clones) */
+#if AN_SSE2 && defined(__GNUC__) && !defined(__clang__) && defined(__linux__)
+#define AN_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define AN_CLONES
+#endif
+
 #if AN_SPECIALIZE
 #define AN_PART(N, M)                                                               \
-    static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
-                                    double t0, double t1)                           \
+    AN_CLONES static void fast_part_##N##_##M(const an_block *B, const aa_piece *p, const double *val, \
+                                    const double *ty, size_t ny, const double *tx,  \
+                                    size_t nx, int lin)                             \
     {                                                                               \
-        double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;                 \
-        int where = part_points(B, p, M, t0, t1, X, Y, D, &xm, &ym);                \
         if (B->nv == 1)                                                             \
-            fast_terms(B, val, M, X, Y, D, xm, ym, where, 1, N);                    \
+            piece_parts(B, p, val, ty, ny, tx, nx, lin, M, 1, N);                    \
         else                                                                        \
-            fast_terms(B, val, M, X, Y, D, xm, ym, where, AN_NV, N);                \
+            piece_parts(B, p, val, ty, ny, tx, nx, lin, M, AN_NV, N);                \
     }
 #define AN_PARTS(N)                                                                 \
     AN_PART(N, 1)                                                                   \
@@ -1709,13 +1806,11 @@ static an_arc_fn *const fast_arcs[4] = {fast_arc_0, fast_arc_1, fast_arc_2, fast
 #define AN_ARC_FOR(deg) fast_arcs[deg]
 #else
 /* The sizes from the block and the piece, as the tables are indexed. */
-static void fast_part_any(const an_block *B, const aa_piece *p, const double *val, double t0,
-                          double t1)
+static void fast_part_any(const an_block *B, const aa_piece *p, const double *val,
+                          const double *ty, size_t ny, const double *tx, size_t nx, int lin)
 {
     const int N = B->S->pp.deg, M = gauss_points(p, N);
-    double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;
-    int where = part_points(B, p, M, t0, t1, X, Y, D, &xm, &ym);
-    fast_terms(B, val, M, X, Y, D, xm, ym, where, B->nv == 1 ? 1 : AN_NV, N);
+    piece_parts(B, p, val, ty, ny, tx, nx, lin, M, B->nv == 1 ? 1 : AN_NV, N);
 }
 
 static void fast_arc_any(const an_block *B, const aa_piece *p, const double *val,
@@ -1806,12 +1901,30 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val, 
     double ta = lo <= p->y0 ? 0.0 : aa_piece_t_at(p, lo);
     double tb = hi >= p->y1 ? 1.0 : aa_piece_t_at(p, hi);
     ty[ny++] = ta;
-    for (double base = floor(lo); base <= hi; base += 1.0)
-        for (int q = 0; q < S->nph; q++) {
-            double Y = base + S->ph[q];
-            if (Y > lo && Y < hi)
-                ty[ny++] = aa_piece_t_at(p, Y);
-        }
+    const int lin = piece_lin(p);
+    if (lin && p->kind != AA_PIECE_CUBIC) {
+        /* aa_piece_t_at's steps for y linear in t, inline */
+        const double y0 = p->y0, y1 = p->y1, by = p->by;
+        for (double base = floor(lo); base <= hi; base += 1.0)
+            for (int q = 0; q < S->nph; q++) {
+                double Y = base + S->ph[q], d = Y - y0, t;
+                if (!(Y > lo && Y < hi))
+                    continue;
+                if (!(d > 0.0))
+                    t = 0.0;
+                else if (Y >= y1)
+                    t = 1.0;
+                else
+                    t = d / by, t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+                ty[ny++] = t;
+            }
+    } else
+        for (double base = floor(lo); base <= hi; base += 1.0)
+            for (int q = 0; q < S->nph; q++) {
+                double Y = base + S->ph[q];
+                if (Y > lo && Y < hi)
+                    ty[ny++] = aa_piece_t_at(p, Y);
+            }
     ty[ny++] = tb;
     double xa, xb;
     aa_piece_xrange(p, lo, hi, &xa, &xb);
@@ -1842,16 +1955,7 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val, 
     else if (!line)
         aa__vis_sort(tx, nx);
     /* ty holds both ends: every cut of tx lies between its first and last */
-    an_part_fn *part = AN_PART_FOR(pp->deg, gauss_points(p, pp->deg));
-    double prev = ty[0];
-    size_t iy = 1, ix = 0;
-    while (iy < ny) {
-        double t = ix < nx && tx[ix] < ty[iy] ? tx[ix++] : ty[iy++];
-        if (!(prev < t))
-            continue;
-        part(B, p, val, prev, t);
-        prev = t;
-    }
+    AN_PART_FOR(pp->deg, gauss_points(p, pp->deg))(B, p, val, ty, ny, tx, nx, lin);
 }
 
 /* a + b, and its rounding error added to *e (Knuth's TwoSum) */
@@ -1982,6 +2086,8 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
         if (nv == 1) {
             const double b0 = S->bg.c[0], b1 = S->bg.c[1], b2 = S->bg.c[2];
             const double c0 = S->coef1.c[0], c1 = S->coef1.c[1], c2 = S->coef1.c[2];
+            /* a grey scene (crow): the three channels' values are one */
+            const int gray = b0 == b1 && b1 == b2 && c0 == c1 && c1 == c2;
             /* the running sum compensated (two_sum): its rounding would
              * otherwise grow with the edges left of a pixel */
             double run = 0.0, comp = 0.0;
@@ -2003,16 +2109,26 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
 #if AN_SSE2
                     const __m128d f01 = _mm_loadu_pd(f), f20 = _mm_set_pd(f[0], f[2]),
                                   f12 = _mm_loadu_pd(f + 1);
-                    for (;;) {
+                    /* eight pixels stored at a time, then the index
+                     * moved past the unmarked ones among them (the first
+                     * marked one's byte: the lowest non-zero of the eight,
+                     * little-endian as x86-64 is); the marked pixels after
+                     * the run are stored again, in order, below, so the
+                     * run's length takes no branch */
+                    while (w - i >= 8) {
                         uint64_t t8;
-                        if (w - i < 8 || (memcpy(&t8, t + i, sizeof t8), t8))
-                            break;
-                        for (int k = 0; k < 4; k++, px += 6) {
-                            _mm_storeu_pd(px, f01);
-                            _mm_storeu_pd(px + 2, f20);
-                            _mm_storeu_pd(px + 4, f12);
+                        memcpy(&t8, t + i, sizeof t8);
+                        for (int k = 0; k < 4; k++) {
+                            _mm_storeu_pd(px + 6 * k, f01);
+                            _mm_storeu_pd(px + 6 * k + 2, f20);
+                            _mm_storeu_pd(px + 6 * k + 4, f12);
                         }
-                        i += 8;
+                        if (t8) {
+                            int n = __builtin_ctzll(t8) >> 3;
+                            i += n, px += 3 * n;
+                            break;
+                        }
+                        i += 8, px += 24;
                     }
 #endif
                     for (; i < w && !t[i]; i++, px += 3)
@@ -2026,6 +2142,12 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 if (!(t[i] & AN_TERM)) {
                     run = (rs > 0.5) - (rs < -0.5), comp = 0.0;
                     memcpy(px, S->face1[1 + (int)run], 3 * sizeof *px);
+                } else if (gray) {
+                    double v = b0 + c0 * rs;
+                    v = v < lo ? lo : v;
+                    v = v > hi ? hi : v;
+                    px[0] = v, px[1] = v, px[2] = v;
+                    touched++;
                 } else {
                     double v0 = b0 + c0 * rs, v1 = b1 + c1 * rs, v2 = b2 + c2 * rs;
                     /* branch-free clamps (minsd, maxsd) */
