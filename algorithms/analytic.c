@@ -227,6 +227,7 @@
  * the scene alone).  Counters: samples = 0, expensive_pixels =
  * pixels summed (the scatter's: the pixels some part's exact term reached).
  */
+#include "area_internal.h"
 #include "core.h"
 #include "methods.h"
 #include "sampling.h"
@@ -300,12 +301,16 @@ typedef struct an_state {
      * constant c_k and the marginal's Q; k = 0 for the separable ones */
     int rad_k;
     double rad_r, rad_c, rad_q;
+    /* offset pieces (see "Offset curves"): Gauss-Legendre rules of 1 to
+     * AN_MAX_PTS points, ogx[m][q], ogw[m][q] */
+    double ogx[AN_MAX_PTS + 1][AN_MAX_PTS], ogw[AN_MAX_PTS + 1][AN_MAX_PTS];
 } an_state;
 
 typedef struct an_render {
     const an_state *S;
     const aa_scene *scene;
     double lo, hi; /* the filter's range */
+    int *uncertain; /* set where an offset part's rule could not be certified */
 } an_render;
 
 /* ---- the filters' pieces (patterns/README.md, "Filters") ---- */
@@ -665,6 +670,199 @@ static int cmp_ld(const void *a, const void *b)
 }
 
 
+/* ---- offset pieces (header, "Offset curves") ---- */
+
+/* The largest error bound of one part's rule (in the filter's weight), and
+ * the halvings of a part at most before a rule's bound is given up. */
+#define AN_OFF_TOL 1e-16
+#define AN_OFF_DEPTH 50
+
+/* The rules of 1 to AN_MAX_PTS points for offset parts, rounded to double. */
+static void off_rules_make(an_state *S)
+{
+    for (int m = 1; m <= AN_MAX_PTS; m++) {
+        long double x[AN_MAX_PTS], w[AN_MAX_PTS];
+        gauss_ld(m, x, w);
+        for (int i = 0; i < m; i++)
+            S->ogx[m][i] = (double)x[i], S->ogw[m][i] = (double)w[i];
+    }
+}
+
+/* Bounds on the filter's pieces continued off the real line, at a point
+ * within dw (of w's argument) resp. dW (of W's) of a real point of any
+ * cell: |w| <= sum |w_i| (h_c + dw)^i, the cell c of width h_c whose
+ * polynomial holds, the largest over the cells (returned); likewise |W|
+ * in *bW. */
+static double off_filter_bound(const an_pp *pp, double dw, double dW, double *bW)
+{
+    double bw = 0.0, bc = 0.0;
+    for (int c = 0; c < pp->ncell; c++) {
+        double hc = pp->k[c + 1] - pp->k[c], zw = hc + dw, zW = hc + dW, sw = 0.0, sW = 0.0;
+        for (int i = 3; i >= 0; i--)
+            sw = sw * zw + fabs(pp->w[c][i]);
+        for (int i = 4; i >= 0; i--)
+            sW = sW * zW + fabs(pp->cdf[c][i]);
+        bw = fmax(bw, sw), bc = fmax(bc, sW);
+    }
+    *bW = bc;
+    return bw;
+}
+
+/* The fewest points (at most AN_MAX_PTS) of the Gauss-Legendre rule whose
+ * error bound on the part [t0, t1] of offset piece p is within
+ * AN_OFF_TOL; 0 if none is.  The bound (Trefethen 2013, Theorem 19.3):
+ * h 64 M / (15 (1 - rho^-2) rho^(2n)) for the integrand analytic in the
+ * Bernstein ellipse of parameter rho about the part (half width h), inside
+ * the disc of radius R = h (rho + 1/rho)/2 about its middle, where
+ * |w(y - cy) (1 - W(x - cx)) y'| <= M: |P'| <= V there
+ * (area_offset_speed, which also proves the disc free of the curve's
+ * singularities), so y' and the distance of y from its value at the
+ * middle are within |row| V and |row| V R (the map's row), and w, W
+ * within off_filter_bound of those. */
+static int off_points(const an_state *S, const aa_piece *p, double t0, double t1)
+{
+    static const double rhos[] = {1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0, 32.0, 64.0};
+    enum { NR = sizeof rhos / sizeof *rhos };
+    const aa_offset_curve *oc = &p->oc;
+    double h = 0.5 * fabs(t1 - t0), mid = 0.5 * (t0 + t1), R[NR], V[NR];
+    if (!(h > 0.0))
+        return 1;
+    for (int k = 0; k < NR; k++)
+        R[k] = 0.5 * h * (rhos[k] + 1.0 / rhos[k]);
+    area_offset_speed(oc, mid, NR, R, V);
+    double nx = hypot(oc->m[0], oc->m[2]), ny = hypot(oc->m[1], oc->m[3]);
+    int best = 0;
+    for (int k = 0; k < NR && V[k] < INFINITY; k++) {
+        double vy = ny * V[k], bW, bw = off_filter_bound(&S->pp, vy * R[k], nx * V[k] * R[k], &bW);
+        double r2 = rhos[k] * rhos[k], M = bw * (1.0 + bW) * vy;
+        double need = h * 64.0 * M / (15.0 * (1.0 - 1.0 / r2) * AN_OFF_TOL) * (1.0 + 1e-12);
+        if (!(need < INFINITY))
+            continue;
+        /* the fewest n with r2^n >= need, the powers by products */
+        double pw = r2;
+        int n = 1;
+        while (pw < need && n <= AN_MAX_PTS)
+            pw *= r2, n++;
+        if (n <= AN_MAX_PTS && (!best || n < best))
+            best = n;
+    }
+    return best;
+}
+
+/* The curve's parameter of offset piece p at height y in its rows. */
+static double off_t_at(const aa_piece *p, double y)
+{
+    if (!(y > p->y0))
+        return p->ot0;
+    if (!(y < p->y1))
+        return p->ot1;
+    return aa__offset_solve_d(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y);
+}
+
+static inline void off_point(const aa_piece *p, int stops, double t, double *x, double *y,
+                             double *dy)
+{
+    long double X, Y, DX, DY;
+    aa__offset_eval_s(&p->oc, stops, t, &X, &Y, &DX, &DY);
+    *x = (double)X, *y = (double)Y, *dy = (double)DY;
+}
+
+/* The parts of [lo, hi] (ascending parameters) between x's turns, where x
+ * is monotone: their ends tb[0 .. n] and x there xb; returns n (1 to 3). */
+static int off_monotone(const aa_piece *p, int stops, double lo, double hi, double *tb,
+                        double *xb)
+{
+    tb[0] = lo;
+    int n = aa__offset_turns(&p->oc, 0, lo, hi, tb + 1) + 1;
+    tb[n] = hi;
+    for (int k = 0; k <= n; k++) {
+        double y, dy;
+        off_point(p, stops, tb[k], &xb[k], &y, &dy);
+    }
+    return n;
+}
+
+/* The parameters where p meets the line x = X inside the parts of
+ * off_monotone (one root a part whose ends lie strictly either side),
+ * written to out; returns how many. */
+static int off_meet_x(const aa_piece *p, const double *tb, const double *xb, int n, double X,
+                      double *out)
+{
+    int c = 0;
+    for (int k = 0; k < n; k++) {
+        double fa = xb[k] - X, fb = xb[k + 1] - X;
+        if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0))
+            out[c++] = aa__offset_solve_d(&p->oc, 0, tb[k], tb[k + 1], fa, X);
+    }
+    return c;
+}
+
+static void off_uncertain(int *flag)
+{
+#pragma omp atomic write
+    *flag = 1;
+}
+
+/* The integral over the part [u, v] (u < v, inside one cell of the pixel's
+ * support) of w(y - cy) (1 - W(x - cx)) y' dt, by the certified rule,
+ * halved where none is. */
+static double off_part(const an_render *Rn, const aa_piece *p, int stops, double u, double v,
+                       double cx, double cy, int depth)
+{
+    const an_state *S = Rn->S;
+    const an_pp *pp = &S->pp;
+    int m = off_points(S, p, u, v);
+    if (!m) {
+        double mid = 0.5 * (u + v);
+        if (depth < AN_OFF_DEPTH && mid > u && mid < v)
+            return off_part(Rn, p, stops, u, mid, cx, cy, depth + 1) +
+                   off_part(Rn, p, stops, mid, v, cx, cy, depth + 1);
+        off_uncertain(Rn->uncertain);
+        m = AN_MAX_PTS;
+    }
+    double h = 0.5 * (v - u), mid = 0.5 * (u + v), sum = 0.0;
+    for (int g = 0; g < m; g++) {
+        double x, y, dy;
+        off_point(p, stops, mid + h * S->ogx[m][g], &x, &y, &dy);
+        sum += S->ogw[m][g] * an_weight(pp, y - cy) * (1.0 - an_cdf(pp, x - cx)) * dy;
+    }
+    return h * sum;
+}
+
+/* R(part) of (1) for offset piece p over rows [ya, yb]: cut where it
+ * crosses the knots' lines of the pixel's support (and at t = 1/2 where
+ * the curve has a stop, where its evaluation changes form), each part by
+ * off_part. */
+static double right_of_offset(const an_render *Rn, const aa_piece *p, double ya, double yb,
+                              double cx, double cy)
+{
+    const an_pp *pp = &Rn->S->pp;
+    int stops = aa__offset_stops(&p->oc);
+    double ta = off_t_at(p, ya), tb = off_t_at(p, yb), lo = fmin(ta, tb), hi = fmax(ta, tb);
+    if (!(lo < hi))
+        return 0.0;
+    double ts[3 + 4 * (AN_MAX_CELLS + 1)], tbd[4], xbd[4];
+    int n = 0;
+    ts[n++] = lo;
+    ts[n++] = hi;
+    if (stops && 0.5 > lo && 0.5 < hi)
+        ts[n++] = 0.5;
+    for (int q = 0; q <= pp->ncell; q++) {
+        double yk = cy + pp->k[q];
+        if (yk > ya && yk < yb)
+            ts[n++] = off_t_at(p, yk);
+    }
+    int nm = off_monotone(p, stops, lo, hi, tbd, xbd);
+    for (int q = 0; q <= pp->ncell; q++)
+        n += off_meet_x(p, tbd, xbd, nm, cx + pp->k[q], ts + n);
+    aa__vis_sort(ts, (size_t)n);
+    double sum = 0.0;
+    for (int s = 0; s + 1 < n; s++)
+        if (ts[s] < ts[s + 1])
+            sum += off_part(Rn, p, stops, ts[s], ts[s + 1], cx, cy, 0);
+    return ta < tb ? sum : -sum;
+}
+
 /* ---- one pixel ---- */
 
 typedef struct an_pixel {
@@ -780,7 +978,8 @@ static void an_run(void *ctx, const aa_piece *p, double ya, double yb, const dou
 {
     an_pixel *P = ctx;
     (void)inside;
-    double r = right_of(P->R->S, p, ya, yb, P->cx, P->cy);
+    double r = p->kind == AA_PIECE_OFFSET ? right_of_offset(P->R, p, ya, yb, P->cx, P->cy)
+                                          : right_of(P->R->S, p, ya, yb, P->cx, P->cy);
     for (int ch = 0; ch < 3; ch++)
         P->acc[ch] += jump[ch] * r;
 }
@@ -1208,8 +1407,15 @@ static int plan(an_state *S, const aa_scene *scene, int h)
                 st = aa_fail(AA_ENOMEM, "out of memory for a strip of the scene");
                 goto out;
             }
-            aa_strip_window(strip, xl, xr);
-            aa__vis_window(&v, strip, xl, xr, ya, yb, &sink);
+            /* in tiles 8 px wide: the same faces, cut at the tiles' sides,
+             * and the meetings sought among the pieces of one tile (across
+             * the whole width, a strip of many offset pieces, each band cut
+             * at every meeting of any two, took minutes) */
+            for (double xa = xl; xa < xr; xa += 8.0) {
+                double xb = fmin(xa + 8.0, xr);
+                aa_strip_window(strip, xa, xb);
+                aa__vis_window(&v, strip, xa, xb, ya, yb, &sink);
+            }
         }
     }
     S->bg = aa_scene_colour_of(scene, wind);
@@ -1310,6 +1516,7 @@ typedef struct an_block {
     double *wcol, *arow;    /* pad x AN_MAX_PTS each: W at the columns, a at the rows */
     double *ts;             /* 2 cap: the cuts of y, then of x */
     size_t cap;
+    int *uncertain; /* an_render's */
 } an_block;
 
 /* floor(x) for |x| < 2^31 */
@@ -1781,6 +1988,115 @@ static void fast_conic(const an_block *B, const aa_piece *p, const double *val, 
     }
 }
 
+/* fast_terms with the filter's degree and the values' count constants (the
+ * rule's size varies from part to part, so the general fast_part: the
+ * regular filters' copies are unrolled for a constant size) */
+#define AN_OFF_TERMS(N)                                                              \
+    static void off_terms_##N(const an_block *B, const double *val, int m, const double *X, \
+                              const double *Y, const double *D, double xm, double ym,   \
+                              int where)                                             \
+    {                                                                                \
+        const int nv = B->nv == 1 ? 1 : AN_NV;                                       \
+        if (where == 2 && nv == 1)                                                   \
+            part_left(B, val, m, Y, D, ym, 1, N);                                    \
+        else if (where == 2)                                                         \
+            part_left(B, val, m, Y, D, ym, AN_NV, N);                                \
+        else if (nv == 1)                                                            \
+            fast_part(B, val, m, X, Y, D, xm, ym, 1, N);                             \
+        else                                                                         \
+            fast_part(B, val, m, X, Y, D, xm, ym, AN_NV, N);                         \
+    }
+AN_OFF_TERMS(0)
+AN_OFF_TERMS(1)
+AN_OFF_TERMS(2)
+AN_OFF_TERMS(3)
+#undef AN_OFF_TERMS
+
+static void off_terms(const an_block *B, const double *val, int m, const double *X,
+                      const double *Y, const double *D, double xm, double ym, int where)
+{
+    static void (*const fn[4])(const an_block *, const double *, int, const double *,
+                               const double *, const double *, double, double,
+                               int) = {off_terms_0, off_terms_1, off_terms_2, off_terms_3};
+    fn[B->S->pp.deg](B, val, m, X, Y, D, xm, ym, where);
+}
+
+/* The terms of the part [u, v] (u < v) of offset piece p, inside one cell
+ * of every support it meets, by its certified rule (halved where none
+ * is); sg: the sign of the piece's direction in the parameter. */
+static void fast_off_part(const an_block *B, const aa_piece *p, int stops, const double *val,
+                          double u, double v, double sg, int depth)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    int m = off_points(S, p, u, v);
+    if (!m) {
+        double mid = 0.5 * (u + v);
+        if (depth < AN_OFF_DEPTH && mid > u && mid < v) {
+            fast_off_part(B, p, stops, val, u, mid, sg, depth + 1);
+            fast_off_part(B, p, stops, val, mid, v, sg, depth + 1);
+            return;
+        }
+        off_uncertain(B->uncertain);
+        m = AN_MAX_PTS;
+    }
+    double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym, dy;
+    double h = 0.5 * (v - u), mid = 0.5 * (u + v);
+    off_point(p, stops, mid, &xm, &ym, &dy);
+    int where = !(xm < B->w - 0.5 + pp->k[pp->ncell]) ? 0 : (xm < 0.5 + pp->k[0] ? 2 : 1);
+    if (!where)
+        return;
+    for (int g = 0; g < m; g++) {
+        off_point(p, stops, mid + h * S->ogx[m][g], &X[g], &Y[g], &dy);
+        D[g] = sg * S->ogw[m][g] * h * dy;
+    }
+    off_terms(B, val, m, X, Y, D, xm, ym, where);
+}
+
+/* The terms of offset piece p in the block's rows [lo, hi]: cut at the
+ * knots' lines (y: every line in the rows; x: on each part between x's
+ * turns, every line the part crosses in the supports' span) and at t =
+ * 1/2 where the curve has a stop, sorted in the parameter. */
+static void fast_offset(const an_block *B, const aa_piece *p, const double *val, double lo,
+                        double hi)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double XA = 0.5 + pp->k[0], XB = B->w - 0.5 + pp->k[pp->ncell];
+    int stops = aa__offset_stops(&p->oc);
+    double ta = off_t_at(p, lo), tb = off_t_at(p, hi), a = fmin(ta, tb), b = fmax(ta, tb);
+    if (!(a < b))
+        return;
+    double *ts = B->ts, tbd[4], xbd[4];
+    size_t n = 0;
+    ts[n++] = a;
+    ts[n++] = b;
+    if (stops && 0.5 > a && 0.5 < b)
+        ts[n++] = 0.5;
+    for (double base = floor(lo); base <= hi; base += 1.0)
+        for (int q = 0; q < S->nph; q++) {
+            double Y = base + S->ph[q];
+            if (Y > lo && Y < hi)
+                ts[n++] = off_t_at(p, Y);
+        }
+    int nm = off_monotone(p, stops, a, b, tbd, xbd);
+    for (int k = 0; k < nm; k++) {
+        double xa = fmin(xbd[k], xbd[k + 1]), xb = fmax(xbd[k], xbd[k + 1]);
+        double ca = fmax(xa, XA), cb = fmin(xb, XB);
+        for (double base = floor(ca); base <= cb; base += 1.0)
+            for (int q = 0; q < S->nph; q++) {
+                double X = base + S->ph[q];
+                if (X > xa && X < xb && X >= XA && X <= XB)
+                    ts[n++] = aa__offset_solve_d(&p->oc, 0, tbd[k], tbd[k + 1], xbd[k] - X, X);
+            }
+    }
+    aa__vis_sort(ts, n);
+    double sg = ta < tb ? 1.0 : -1.0;
+    for (size_t i = 0; i + 1 < n; i++)
+        if (ts[i] < ts[i + 1])
+            fast_off_part(B, p, stops, val, ts[i], ts[i + 1], sg, 0);
+}
+
 /* The terms of piece p (values val[0 .. nv)) over rows [ya, yb] (a visible
  * part's; the whole piece's, p->y0 and p->y1, on the scatter's rows) in the
  * block's rows: cut at the knots' lines, in order of t (the lines of y in
@@ -1799,6 +2115,10 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val, 
         return;
     if (p->kind == AA_PIECE_CONIC) {
         fast_conic(B, p, val, lo, hi);
+        return;
+    }
+    if (p->kind == AA_PIECE_OFFSET) {
+        fast_offset(B, p, val, lo, hi);
         return;
     }
     double *ty = B->ts, *tx = B->ts + B->cap;
@@ -1869,7 +2189,7 @@ static an_block block_bind(const an_state *S, aa__sampler_worker *wk, int w, int
 {
     const size_t cols = block_cols(S, w), cells = block_cells(S, w);
     char *own = (char *)wk->own + S->fast_off;
-    an_block B = {S, w, j0, j1, nv, NULL, NULL, cols, S->pad, NULL, NULL, NULL, 0};
+    an_block B = {S, w, j0, j1, nv, NULL, NULL, cols, S->pad, NULL, NULL, NULL, 0, NULL};
     B.cover = (double *)own;
     own += cells * AN_NV * sizeof(double);
     B.touched = (unsigned char *)own;
@@ -1935,6 +2255,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     const int pad = S->pad;
     const size_t cols = block_cols(S, w);
     an_block B = block_bind(S, wk, w, j0, j1, nv);
+    B.uncertain = R->uncertain;
     double Y0 = j0 + 0.5 + pp->k[0], Y1 = (j1 - 1) + 0.5 + pp->k[pp->ncell];
     double sx0, sy0, sx1, sy1;
     aa_scene_bounds(R->scene, &sx0, &sy0, &sx1, &sy1);
@@ -2172,6 +2493,7 @@ static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1,
     const int w = out->w, pad = S->pad;
     const size_t cols = block_cols(S, w);
     an_block B = block_bind(S, wk, w, j0, j1, AN_NV);
+    B.uncertain = R->uncertain;
     int ja = j1, jb = j0 - 1;
     for (int j = j0; j < j1; j++)
         if (S->slow[j])
@@ -2286,22 +2608,28 @@ static int analytic_check(const double *p, const aa_filter *f)
     return AA_OK;
 }
 
-/* The scene's pieces: lines, quadratic, cubic and elliptical arcs only. */
-static int scene_check(const aa_scene *s)
+/* The scene's pieces: every kind under the separable filters; under the
+ * radial ones lines, quadratic, cubic and elliptical arcs only (an offset
+ * curve's crossings with the filter's circle are not the roots of a
+ * polynomial, and nothing here isolates them with a proof). */
+static int scene_check(const an_state *S, const aa_scene *s)
 {
     size_t n;
     const aa_piece *p = aa_scene_pieces(s, &n);
-    for (size_t i = 0; i < n; i++) {
+    for (size_t i = 0; S->rad_k && i < n; i++) {
         if (p[i].kind == AA_PIECE_OFFSET)
-            return aa_fail(AA_EINVAL, "offset curves (the outlines of stroked Bezier "
-                                      "arcs) are not polynomial curves: refused");
+            return aa_fail(AA_EINVAL,
+                           "analytic under a radial filter does not take offset curves (the "
+                           "outlines of stroked Bezier and elliptical arcs): their crossings "
+                           "with the filter's circle are not roots of a polynomial; refused "
+                           "(the separable filters take them)");
     }
     return AA_OK;
 }
 
 static int prepare(an_state *S, const aa_job *job)
 {
-    int st = scene_check(job->placed);
+    int st = scene_check(S, job->placed);
     if (!st && S->rad_k) /* every row takes the visible parts */
         return aa__sampler_ready(&S->sampler, job, aa__vis_size(job->placed, 3));
     if (st || (st = plan(S, job->placed, job->h)))
@@ -2372,7 +2700,22 @@ static int analytic_init(void *state, const double *p, const aa_job *job)
     knot_lines(S);
     gauss_make(S);
     arc_make(S);
+    off_rules_make(S);
     return prepare(S, job);
+}
+
+/* An image with an offset part whose rule's bound was not met (its speed
+ * or a denominator within rounding of 0 on it, after AN_OFF_DEPTH
+ * halvings) is refused: its values are not certified. */
+static int off_certified(int uncertain)
+{
+    if (!uncertain)
+        return AA_OK;
+    return aa_fail(AA_EINVAL,
+                   "analytic: an offset curve (a stroke's outline) with a part whose "
+                   "quadrature bound (%g) it cannot meet (its speed or curvature within "
+                   "rounding of 0 there): refused",
+                   AN_OFF_TOL);
 }
 
 static int analytic_render(void *state, const double *p, const aa_job *job, aa_image *out,
@@ -2383,7 +2726,8 @@ static int analytic_render(void *state, const double *p, const aa_job *job, aa_i
     int st = prepare(S, job);
     if (st)
         return st;
-    an_render R = {S, job->placed, 0.0, 1.0};
+    int uncertain = 0;
+    an_render R = {S, job->placed, 0.0, 1.0, &uncertain};
     aa_filter_range(&job->filter, &R.lo, &R.hi);
     if (S->rad_k)
         return aa__sampler_render(&S->sampler, job, out, rad_render_row, &R, counters);
@@ -2409,7 +2753,7 @@ static int analytic_render(void *state, const double *p, const aa_job *job, aa_i
         return aa_fail(AA_ENOMEM, "out of memory for a strip of the scene");
     counters->samples = 0;
     counters->expensive_pixels = expensive;
-    return AA_OK;
+    return off_certified(uncertain);
 }
 
 static void analytic_release(void *state)
