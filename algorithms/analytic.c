@@ -35,7 +35,10 @@
  *    Mitchell and Netravali's cubics (Catmull-Rom among them), all
  *    separable, and radially symmetric polynomials (see "Radial filters"); the curves: lines, quadratic and cubic
  *    Bezier arcs, and elliptical arcs (the paper's rational quadratics:
- *    see "Elliptical arcs" below for the rule used on them).
+ *    see "Elliptical arcs" below for the rule used on them); beyond the
+ *    paper, the offset curves and evolutes that outline strokes of Bezier
+ *    and elliptical arcs, by a rule with a proven error bound (see
+ *    "Offset curves").
  *
  * The closed forms.  With w of degree n on a cell (box 0, tent 1,
  * bspline:order=2 2, bspline:order=3 and mitchell 3), W of degree n + 1,
@@ -110,7 +113,8 @@
  * at 1024x1024 1.8e-13 (7.6e-13).  Values are clamped to the filter's range (aa_filter_range: a rounding of 1e-16
  * past it).
  *
- * Known answers (tests/test_analytic.c): the exact reference
+ * Known answers (tests/test_analytic.c; offset curves in
+ * tests/test_analytic_stroke.c, see "Offset curves"): the exact reference
  * (aa_truth_render) within 1e-12 per pixel on crow, star, slivers,
  * catmull, feibush, SVG scenes of quadratic, cubic and elliptical arcs
  * (circles, a turned ellipse, a rounded rectangle, paths of SVG `A`) and
@@ -188,11 +192,61 @@
  * family, the polynomials in r^2 vanishing to order K at the rim, is the
  * one patterns/README.md defines.)
  *
+ * Offset curves.  A stroke's outline (harness/core/stroke.c) holds offset
+ * pieces (AA_PIECE_OFFSET): parts of P = B + d N of a cubic or an ellipse
+ * B, or of its evolute, mapped, y-monotone, without folds or cusps
+ * inside.  They are not polynomial (N carries 1/|B'|), so no rule of
+ * fixed size is exact; but on a part inside one cell of the filter the
+ * integrand of (1), w(y(t) - cy) (1 - W(x(t) - cx)) y'(t), is analytic
+ * wherever the curve is, and Gauss-Legendre's error on it is bounded: n
+ * points on a part of half width h err by at most
+ *
+ *     h 64 M / (15 (1 - rho^-2) rho^(2n))
+ *
+ * for the integrand analytic inside the Bernstein ellipse of parameter
+ * rho about the part and at most M there (Trefethen, "Approximation
+ * Theory and Approximation Practice", 2013, Theorem 19.3), the bound
+ * `area` certifies its offset quadrature with (algorithms/area_offset.c).
+ * The ellipse lies in the disc of radius R = h (rho + 1/rho)/2 about the
+ * part's middle; there area_offset_speed bounds the speed |P'| <= V from
+ * the curve's Taylor sums (and proves the disc free of zeros of |B'|^2, or
+ * of the curvature for an evolute), so |y'| <= |row_y| V, y is within
+ * |row_y| V R of its real value at the middle (row: the map's row), and
+ * the cell's pieces are bounded term by term, |w| <= sum |w_i| (h_c +
+ * |row_y| V R)^i (h_c the cell's width; W likewise): M = max|w| (1 +
+ * max|W|) |row_y| V, the largest over the cells.  For rho in 1.5 .. 64 the
+ * fewest n with the bound within 1e-16 is taken (at most 18 points), and a
+ * part none holds is halved (as rho grows the bound falls as rho^-2n; a
+ * part left uncertified after 50 halvings, its speed within rounding of
+ * 0, refuses the render).  The cuts: the rows (y = cy + k) are found by
+ * the offset solver in y (aa__offset_solve_d, Newton's method bracketed,
+ * to rounding), the columns on the parts between x's turns (closed form,
+ * aa__offset_turns) by the same solver in x, and the curve is cut at t =
+ * 1/2 where an end is a stop (a cusp split off), where its evaluation
+ * (aa__offset_eval, the same points as `area` and the reference use)
+ * changes form, so that each part's integrand is one analytic function.
+ * The per-pixel path takes every offset part in its support this way; the
+ * scatter cuts the piece once at every knots' line of its rows and
+ * columns and gives each part's points to the general fast_part (the
+ * rule's size is not a constant of the compiled loops).  Measured
+ * (tests/test_analytic_stroke.c): 7.7e-14 at most from the reference on
+ * a window of tests/bench_bezstroke.c's strokes, and the tube formula
+ * (a butt-capped stroke of a gentle cubic and a closed ellipse's, width
+ * times length) within 1e-12 under the six filters whose translates sum
+ * to 1.
+ *
  * Limits, refused by name: filters that are not piecewise polynomial
  * (gauss, lanczos, the cone, gauss:cut: the cone is 1 - r, not a
- * polynomial in x and y); offset curves (stroked Bezier arcs, not polynomials); field scenes (no
- * edges).  The paper also fills with linear colour gradients, which the
- * scene model does not hold.
+ * polynomial in x and y); offset curves under the radial filters (their
+ * crossings with the filter's circle are not roots of a polynomial, and
+ * nothing here isolates them with a proof); field scenes (no edges).
+ * The paper also fills with linear colour gradients; the scene model
+ * holds them, and the method refuses them (it does not declare
+ * AA_METHOD_GRADIENTS, harness/core/method.c): the project interpolates a
+ * gradient's stops in sRGB-encoded values and filters in linear light, so
+ * the colour over a region is the sRGB decoding (a power 2.4 and a linear
+ * toe) of an affine function of x and y, not a polynomial, and the
+ * paper's closed forms do not hold.
  *
  * Cost.  Where the per-edge scatter holds (every row of crow and of scenes
  * of disjoint shapes): per part of a piece between two knots' lines, its
@@ -221,7 +275,11 @@
  * them scattered as a piece is, with four values (its step of colour and
  * of the face's code); under the radial filters, per pixel whose support
  * meets an edge, the visible parts of its support and, per part, the rule
- * of the table above; other pixels are filled in runs.  The image does
+ * of the table above; other pixels are filled in runs.  Offset pieces
+ * cost more per part: the bound's Taylor sums in long double, its rule (4
+ * to 18 points) evaluated in long double, and per cut a root of the
+ * offset solver (see algorithms/README.md for the times on
+ * tests/bench_bezstroke.c's scene).  The image does
  * not depend on the thread count (rows are taken AN_BLOCK at a time by
  * the scatters, one at a time by the per-pixel visible parts, each from
  * the scene alone).  Counters: samples = 0, expensive_pixels =
@@ -869,6 +927,11 @@ typedef struct an_pixel {
     const an_render *R;
     double cx, cy;
     double acc[3];
+    /* the bands since the last change of colour, rows [blo, bhi] (open:
+     * any), their colour (band_merge) */
+    int open;
+    double blo, bhi;
+    aa_rgb bc;
 } an_pixel;
 
 static inline int curve_degree(const aa_piece *p)
@@ -953,24 +1016,50 @@ static double right_of(const an_state *S, const aa_piece *p, double ya, double y
     return sum;
 }
 
-/* A band of rows [ya, yb] across the whole window, of one state: its
- * colour times the filter's weight of those rows (wy, the marginal's
- * difference), under the separable filters (an_band) and the radial ones
- * (rad_band). */
-static void add_band(an_pixel *P, double wy, const int *wind)
+static double rad_marg(const an_state *S, double v);
+
+/* The pending bands (band_merge) added: their colour times the weight of
+ * their rows, the marginal's difference over all of them at once. */
+static void band_flush(an_pixel *P)
 {
+    if (!P->open)
+        return;
+    const an_state *S = P->R->S;
+    double wy = S->rad_k ? rad_marg(S, P->bhi - P->cy) - rad_marg(S, P->blo - P->cy)
+                         : an_cdf(&S->pp, P->bhi - P->cy) - an_cdf(&S->pp, P->blo - P->cy);
+    P->open = 0;
     if (!(wy != 0.0))
         return;
-    aa_rgb c = aa_scene_colour_of(P->R->scene, wind);
     for (int ch = 0; ch < 3; ch++)
-        P->acc[ch] += wy * c.c[ch];
+        P->acc[ch] += wy * P->bc.c[ch];
+}
+
+/* A band of rows [ya, yb] across the whole window, of one state: its
+ * colour times the filter's weight of those rows (the marginal's
+ * difference), under the separable filters (an_band) and the radial ones
+ * (rad_band), joined to the pending ones where
+ * it continues them in the same colour: the visible parts cut a window's
+ * rows at every meeting of two pieces, and two offset pieces tangent to
+ * each other (a stroke's outline where a join's contour meets a
+ * segment's) are reported meeting every 1e-12 px or so of their common
+ * stretch, thousands of bands a pixel, whose weights, each a difference of
+ * the marginal rounded to 1e-16, summed to 5e-12 off one face's colour
+ * (tests/test_analytic_stroke.c, folding strokes); joined, the
+ * differences telescope and the face's weight is one difference. */
+static void band_merge(an_pixel *P, double ya, double yb, const int *wind)
+{
+    aa_rgb c = aa_scene_colour_of(P->R->scene, wind);
+    if (P->open && ya == P->bhi && !memcmp(c.c, P->bc.c, sizeof c.c)) {
+        P->bhi = yb;
+        return;
+    }
+    band_flush(P);
+    P->open = 1, P->blo = ya, P->bhi = yb, P->bc = c;
 }
 
 static void an_band(void *ctx, double ya, double yb, const int *wind)
 {
-    an_pixel *P = ctx;
-    const an_pp *pp = &P->R->S->pp;
-    add_band(P, an_cdf(pp, yb - P->cy) - an_cdf(pp, ya - P->cy), wind);
+    band_merge(ctx, ya, yb, wind);
 }
 
 static void an_run(void *ctx, const aa_piece *p, double ya, double yb, const double *jump,
@@ -990,10 +1079,11 @@ static void shade(const void *ctx, aa__sampler_worker *wk, int i, int j, double 
     const an_pp *pp = &R->S->pp;
     aa__vis v;
     aa__vis_bind(&v, R->scene, 3, wk->own);
-    an_pixel P = {R, i + 0.5, j + 0.5, {0.0, 0.0, 0.0}};
+    an_pixel P = {R, i + 0.5, j + 0.5, {0.0, 0.0, 0.0}, 0, 0.0, 0.0, {{0.0, 0.0, 0.0}}};
     const aa__vis_sink sink = {an_band, an_run, NULL, NULL, &P, 3, 0, 0};
     double lo = pp->k[0], hi = pp->k[pp->ncell];
     aa__vis_window(&v, wk->strip, P.cx + lo, P.cx + hi, P.cy + lo, P.cy + hi, &sink);
+    band_flush(&P);
     for (int ch = 0; ch < 3; ch++) {
         double c = P.acc[ch];
         px[ch] = c < R->lo ? R->lo : (c > R->hi ? R->hi : c);
@@ -1210,9 +1300,7 @@ static double rad_right_of_arc(const an_state *S, const aa_piece *p, double ya, 
 
 static void rad_band(void *ctx, double ya, double yb, const int *wind)
 {
-    an_pixel *P = ctx;
-    const an_state *S = P->R->S;
-    add_band(P, rad_marg(S, yb - P->cy) - rad_marg(S, ya - P->cy), wind);
+    band_merge(ctx, ya, yb, wind);
 }
 
 static void rad_run(void *ctx, const aa_piece *p, double ya, double yb, const double *jump,
@@ -1232,9 +1320,10 @@ static void rad_shade(const void *ctx, aa__sampler_worker *wk, int i, int j, dou
     double r = R->S->rad_r;
     aa__vis v;
     aa__vis_bind(&v, R->scene, 3, wk->own);
-    an_pixel P = {R, i + 0.5, j + 0.5, {0.0, 0.0, 0.0}};
+    an_pixel P = {R, i + 0.5, j + 0.5, {0.0, 0.0, 0.0}, 0, 0.0, 0.0, {{0.0, 0.0, 0.0}}};
     const aa__vis_sink sink = {rad_band, rad_run, NULL, NULL, &P, 3, 0, 0};
     aa__vis_window(&v, wk->strip, P.cx - r, P.cx + r, P.cy - r, P.cy + r, &sink);
+    band_flush(&P);
     for (int ch = 0; ch < 3; ch++) {
         double c = P.acc[ch];
         px[ch] = c < R->lo ? R->lo : (c > R->hi ? R->hi : c);
