@@ -1,6 +1,7 @@
 /*
  * bench_bezstroke.c: speed of strokes of Bezier arcs (`make bench`): the
- * stroker, the box reference of the stroke, and `point`, on a path of
+ * stroker, the box reference of the stroke, `point`, `area` and
+ * `analytic`, on a path of
  * 1,000 cubic segments (20 wavy subpaths of 50 smooth cubics across the
  * square, stroked 2.5 px wide at 1024 px with round joins and caps; some
  * segments tight enough that their offsets fold).
@@ -9,8 +10,9 @@
  * stroke the path (median of 5), the number of pieces of the scene, the
  * box reference's time (median of -r REPS renders, default 3, after none
  * untimed: each is seconds long; -r 0: none; then the least and the most)
- * with its largest bound, and `point`'s and `area`'s medians (of 5, then
- * the least and the most) and area/point, the ratio of the medians; each
+ * with its largest bound, and `point`'s, `area`'s and `analytic`'s (under
+ * the box) medians (of 5, then the least and the most), area/point and
+ * analytic/area, the ratios of the medians; each
  * in wall-clock time and in the process's CPU time (`cpu`), which other
  * processes sharing the core lengthen far less.  Figures are read, not
  * asserted.
@@ -159,13 +161,13 @@ int main(int argc, char **argv)
     aa_spec spec;
     aa_method m;
     aa_counters c;
-    double t_m[2][5], c_m[2][5], med[2], cmed[2];
-    const char *names[2] = {"point", "area"};
+    double t_m[3][5], c_m[3][5], med[3], cmed[3];
+    const char *names[3] = {"point", "area", "analytic"};
     if (aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1)) {
         fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
         return 3;
     }
-    for (int q = 0; q < 2; q++) {
+    for (int q = 0; q < 3; q++) {
         if (aa_method_parse(names[q], &f, &spec) || aa_method_init(&m, &spec, &job)) {
             fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
             return 3;
@@ -187,6 +189,7 @@ int main(int argc, char **argv)
                1e3 * c_m[q][0], 1e3 * c_m[q][4]);
     }
     printf("area/point          %10.2f (cpu %.2f)\n", med[1] / med[0], cmed[1] / cmed[0]);
+    printf("analytic/area       %10.2f (cpu %.2f)\n", med[2] / med[1], cmed[2] / cmed[1]);
     aa_job_free(&job);
     aa_image_free(&im);
     aa_image_free(&bound);
