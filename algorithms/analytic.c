@@ -349,6 +349,11 @@ typedef struct an_state {
     const aa_scene *plan_scene;
     int plan_h, plan_nl, nv;
     unsigned char *slow;
+    /* the x of every piece whose extent in x is one value (a vertical
+     * line), ascending, distinct: the visible parts' tiles' sides avoid
+     * them (vis_block) */
+    double *vert;
+    size_t nvert;
     double *coef;
     /* the colour of each layer's face (winding s(L)), nl x 3; with nv = 1
      * those of the faces of winding -1, 0 and +1 (face1) */
@@ -1459,9 +1464,35 @@ static void plan_free(an_state *S)
     free(S->slow);
     free(S->coef);
     free(S->face);
-    S->slow = NULL, S->coef = NULL, S->face = NULL;
+    free(S->vert);
+    S->slow = NULL, S->coef = NULL, S->face = NULL, S->vert = NULL;
+    S->nvert = 0;
     S->plan_scene = NULL;
     S->plan_h = 0;
+}
+
+/* S->vert: the x of the scene's vertical pieces (xmin == xmax), sorted
+ * and distinct. */
+static int plan_vert(an_state *S, const aa_scene *scene)
+{
+    size_t n, nv = 0;
+    const aa_piece *p = aa_scene_pieces(scene, &n);
+    for (size_t k = 0; k < n; k++)
+        nv += p[k].kind != AA_PIECE_FLAT && p[k].xmin == p[k].xmax;
+    S->vert = malloc((nv ? nv : 1) * sizeof *S->vert);
+    if (!S->vert)
+        return aa_fail(AA_ENOMEM, "out of memory for analytic's plan of the scene");
+    S->nvert = 0;
+    for (size_t k = 0; k < n; k++)
+        if (p[k].kind != AA_PIECE_FLAT && p[k].xmin == p[k].xmax)
+            S->vert[S->nvert++] = p[k].xmin;
+    aa__vis_sort(S->vert, S->nvert);
+    size_t m = 0;
+    for (size_t k = 0; k < S->nvert; k++)
+        if (!m || S->vert[k] != S->vert[m - 1])
+            S->vert[m++] = S->vert[k];
+    S->nvert = m;
+    return AA_OK;
 }
 
 /* Which rows the scene lets this path take, and the layers' steps. */
@@ -1483,6 +1514,8 @@ static int plan(an_state *S, const aa_scene *scene, int h)
         st = aa_fail(AA_ENOMEM, "out of memory for analytic's plan of the scene");
         goto out;
     }
+    if ((st = plan_vert(S, scene)))
+        goto out;
     double sx0, sy0, sx1, sy1;
     if (aa_scene_bounds(scene, &sx0, &sy0, &sx1, &sy1)) {
         aa__vis v;
@@ -2533,6 +2566,7 @@ typedef struct an_vis_ctx {
     const aa_scene *scene;
     double *face; /* the colours by code, 3 a code; face 0 bg */
     int nface, bad;
+    int first; /* the window is the leftmost tile (vis_band) */
 } an_vis_ctx;
 
 static void vis_values(void *ctx, const int *wind, double *out)
@@ -2560,7 +2594,7 @@ static void vis_band(void *ctx, double ya, double yb, const int *wind)
     (void)ya, (void)yb;
     double c[AN_NV];
     vis_values(V, wind, c);
-    if (c[3] != 0.0) /* the left side's colour is not bg */
+    if (V->first && c[3] != 0.0) /* the left side's colour is not bg */
         V->bad = 1;
 }
 
@@ -2570,6 +2604,28 @@ static void vis_run(void *ctx, const aa_piece *p, double ya, double yb, const do
     an_vis_ctx *V = ctx;
     (void)inside;
     fast_piece(V->B, p, jump, ya, yb);
+}
+
+/* The width of the visible parts' tiles (px) */
+#define AN_TILE 8.0
+
+/* A tile's side at X or, where a vertical piece lies on x = X (S->vert),
+ * the first X + k/64 where none does. */
+static double tile_side(const an_state *S, double X)
+{
+    for (;;) {
+        size_t a = 0, b = S->nvert;
+        while (a < b) { /* the first vert >= X */
+            size_t m = a + (b - a) / 2;
+            if (S->vert[m] < X)
+                a = m + 1;
+            else
+                b = m;
+        }
+        if (a == S->nvert || S->vert[a] != X)
+            return X;
+        X += 1.0 / 64.0;
+    }
 }
 
 /* The slow rows of rows j0 .. j1-1 by the visible parts' scatter: 0 done,
@@ -2595,20 +2651,28 @@ static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1,
     double xl = fmin(sx0, 0.0) - 1.0, xr = w - 0.5 + pp->k[pp->ncell];
     if (aa_strip_begin(wk->strip, Y0, Y1))
         return 1;
-    aa_strip_window(wk->strip, xl, xr);
     an_vis_ctx V = {&B, R->scene,
                     (double *)((char *)wk->own + S->fast_off + fast_size(S, w)) - 3 * AN_FACES,
-                    1, 0};
+                    1, 0, 1};
     memcpy(V.face, S->bg.c, sizeof S->bg.c);
-    size_t nloc;
-    const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
-    for (size_t q = 0; q < nloc; q++)
-        if (!loc[q]->dir)
-            mark_flat(&B, loc[q]);
     aa__vis v;
     aa__vis_bind(&v, R->scene, AN_NV, wk->own);
-    const aa__vis_sink sink = {vis_band, vis_run, NULL, vis_values, &V, AN_NV, 0, 1};
-    aa__vis_window(&v, wk->strip, xl, xr, Y0, Y1, &sink);
+    const aa__vis_sink sink = {vis_band, vis_run, NULL, vis_values, &V, AN_NV, 0, 0};
+    /* the window in tiles (see "The visible parts' scatter"): the first
+     * from xl, the others AN_TILE px wide, the last to xr */
+    for (double xa = xl, side = 0.5 + pp->k[0]; xa < xr && !V.bad;) {
+        side = tile_side(S, fmax(side + AN_TILE, xa + AN_TILE));
+        double xb = fmin(side, xr);
+        aa_strip_window(wk->strip, xa, xb);
+        size_t nloc;
+        const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
+        for (size_t q = 0; q < nloc; q++)
+            if (!loc[q]->dir)
+                mark_flat(&B, loc[q]);
+        aa__vis_window(&v, wk->strip, xa, xb, Y0, Y1, &sink);
+        V.first = 0;
+        xa = xb;
+    }
     const double lo = R->lo, hi = R->hi;
     const double *bg = S->bg.c;
     /* the rows a term can reach: the slow rows' supports' rows, one more */
