@@ -11,13 +11,14 @@
  * box reference's time (median of -r REPS renders, default 3, after none
  * untimed: each is seconds long; -r 0: none; then the least and the most)
  * with its largest bound, and `point`'s, `area`'s and `analytic`'s (under
- * the box) medians (of 5, then the least and the most), area/point and
- * analytic/area, the ratios of the medians; each
+ * the box, and under each filter of -f, repeatable) medians (of 5, then
+ * the least and the most), area/point and analytic/area (analytic under
+ * each filter against area under the box), the ratios of the medians; each
  * in wall-clock time and in the process's CPU time (`cpu`), which other
  * processes sharing the core lengthen far less.  Figures are read, not
  * asserted.
  *
- * usage: bench_bezstroke [-s WxH] [-r REPS]
+ * usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]...
  */
 #include "bench.h"
 #include "path.h"
@@ -75,14 +76,17 @@ static int build(aa_path *p)
 
 int main(int argc, char **argv)
 {
-    int w = 1024, h = 1024, reps = 3;
+    int w = 1024, h = 1024, reps = 3, nf = 1;
+    const char *filters[8] = {"box"};
     for (int k = 1; k < argc; k++) {
         if (!strcmp(argv[k], "-s") && k + 1 < argc && sscanf(argv[k + 1], "%dx%d", &w, &h) == 2)
             k++;
         else if (!strcmp(argv[k], "-r") && k + 1 < argc)
             reps = atoi(argv[++k]);
+        else if (!strcmp(argv[k], "-f") && k + 1 < argc && nf < 8)
+            filters[nf++] = argv[++k];
         else {
-            fprintf(stderr, "usage: bench_bezstroke [-s WxH] [-r REPS]\n");
+            fprintf(stderr, "usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]...\n");
             return 2;
         }
     }
@@ -161,14 +165,15 @@ int main(int argc, char **argv)
     aa_spec spec;
     aa_method m;
     aa_counters c;
-    double t_m[3][5], c_m[3][5], med[3], cmed[3];
-    const char *names[3] = {"point", "area", "analytic"};
-    if (aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1)) {
-        fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
-        return 3;
-    }
-    for (int q = 0; q < 3; q++) {
-        if (aa_method_parse(names[q], &f, &spec) || aa_method_init(&m, &spec, &job)) {
+    double t_m[10][5], c_m[10][5], med[10], cmed[10];
+    const char *names[10] = {"point", "area"};
+    int nq = 2 + nf;
+    for (int q = 2; q < nq; q++)
+        names[q] = "analytic";
+    for (int q = 0; q < nq; q++) {
+        const char *fname = q < 2 ? "box" : filters[q - 2];
+        if (aa_filter_parse(fname, &f) || aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1) ||
+            aa_method_parse(names[q], &f, &spec) || aa_method_init(&m, &spec, &job)) {
             fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
             return 3;
         }
@@ -182,15 +187,19 @@ int main(int argc, char **argv)
             c_m[q][k] = cpu_now() - c0;
         }
         aa_method_free(&m);
+        aa_job_free(&job);
         med[q] = median(t_m[q], 5); /* sorts them */
         cmed[q] = median(c_m[q], 5);
+        char label[64];
+        snprintf(label, sizeof label, q < 2 ? "%s" : "%s %s", names[q], fname);
         printf("%-19s %10.3f ms (median of 5, %.3f .. %.3f), cpu %.3f ms (%.3f .. %.3f)\n",
-               names[q], 1e3 * med[q], 1e3 * t_m[q][0], 1e3 * t_m[q][4], 1e3 * cmed[q],
+               label, 1e3 * med[q], 1e3 * t_m[q][0], 1e3 * t_m[q][4], 1e3 * cmed[q],
                1e3 * c_m[q][0], 1e3 * c_m[q][4]);
     }
     printf("area/point          %10.2f (cpu %.2f)\n", med[1] / med[0], cmed[1] / cmed[0]);
-    printf("analytic/area       %10.2f (cpu %.2f)\n", med[2] / med[1], cmed[2] / cmed[1]);
-    aa_job_free(&job);
+    for (int q = 2; q < nq; q++)
+        printf("analytic/area       %10.2f (cpu %.2f) %s\n", med[q] / med[1], cmed[q] / cmed[1],
+               filters[q - 2]);
     aa_image_free(&im);
     aa_image_free(&bound);
     aa_scene_free(placed);
