@@ -294,39 +294,15 @@ static double param_at(const aa_piece *p, double y)
     return aa__offset_solve_d(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y);
 }
 
-/* The parameter at height y in (lo, hi) of an offset piece whose
- * parameters at lo and hi are t[0] and t[1]: solved in that bracket, not
- * the piece's. */
-static double param_within(const aa_piece *p, double y, double lo, const double t[2])
-{
-    if (!(y > p->y0) || !(y < p->y1) || !(t[0] != t[1]))
-        return param_at(p, y);
-    return aa__offset_solve_d(&p->oc, 1, t[0], t[1], lo - y, y);
-}
-
 /* The parameters of the band's offset pieces (ord[0 .. na)) at height y,
- * as their e-th end: from the piece's whole range, or (within) from the
- * bracket of their parameters at lo and at the band's last end, y lying
- * between. */
-static void params_at(aa__vis *v, size_t na, double y, int e, int within, double lo)
+ * as their e-th end (the same roots aa_piece_meet would solve for). */
+static void params_at(aa__vis *v, size_t na, double y, int e)
 {
     for (size_t a = 0; a < na; a++) {
         aa__vis_piece *P = &v->lp[v->ord[a].li];
         if (P->p->kind == AA_PIECE_OFFSET)
-            P->t[e] = within ? param_within(P->p, y, lo, P->t) : param_at(P->p, y);
+            P->t[e] = param_at(P->p, y);
     }
-}
-
-/* x of piece P at height y in (lo, hi) of its band: an offset piece's at
- * its parameter there, solved in the band's bracket. */
-static double x_within(const aa__vis_piece *P, double y, double lo)
-{
-    const aa_piece *p = P->p;
-    if (p->kind != AA_PIECE_OFFSET)
-        return aa_piece_x_at(p, y);
-    double x, yy;
-    aa_offset_point(&p->oc, param_within(p, y, lo, P->t), &x, &yy, NULL, NULL);
-    return x;
 }
 
 void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double ya, double yb,
@@ -387,14 +363,14 @@ void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double
             if (v->lp[i].lo <= e0 && v->lp[i].hi >= e1)
                 v->ord[na++] = (aa__vis_order){0.0, v->lp[i].id, (int)i};
         double lo = e0;
-        params_at(v, na, lo, 0, 0, lo);
+        params_at(v, na, lo, 0);
         while (lo < e1) {
             double hi = e1;
-            params_at(v, na, hi, 1, 0, lo);
+            params_at(v, na, hi, 1);
             for (int it = 0;; it++) {
                 double mid = 0.5 * (lo + hi);
                 for (size_t a = 0; a < na; a++)
-                    v->ord[a].x = x_within(&v->lp[v->ord[a].li], mid, lo);
+                    v->ord[a].x = aa_piece_x_at(v->lp[v->ord[a].li].p, mid);
                 sort_order(v->ord, na);
                 if (it >= VIS_MAX_NARROW)
                     break;
@@ -411,7 +387,7 @@ void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double
                 if (!(m < hi))
                     break;
                 hi = m;
-                params_at(v, na, hi, 1, 1, lo);
+                params_at(v, na, hi, 1);
             }
             band_sweep(v, st, xl, xr, lo, hi, na, sk);
             for (size_t a = 0; a < na; a++) {
