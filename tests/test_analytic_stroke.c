@@ -1,4 +1,3 @@
-/* tier: full */
 /*
  * test_analytic_stroke.c: `analytic` on the exact outlines of stroked
  * Bezier and elliptical arcs (offset curves and evolutes, AA_PIECE_OFFSET),
@@ -8,15 +7,15 @@
  *  - the exact reference of the harness's separate truth path
  *    (aa_truth_render: the rows' crossings with the pieces root-found, the
  *    filter integrated over the rows by its own quadrature), within 1e-12
- *    per pixel, under box, tent:r=1, bspline:order=3 and mitchell, on the
- *    built-in `strokes` pattern, on the scene of tests/bench_bezstroke.c
+ *    per pixel, under box, tent:r=1, bspline:order=3 and mitchell on the
+ *    built-in `strokes` pattern and on the scene of tests/bench_bezstroke.c
  *    (20 wavy paths of 50 cubics, stroked 2.5 px wide with round joins and
  *    caps, some tight enough that their offsets fold) at 64 px, where
- *    neighbouring strokes overlap (rows of the per-pixel path of visible
- *    parts) and others stand alone (rows of the per-edge scatter), and on
- *    an SVG drawn here of thick strokes of tight cubics and of a turned
- *    ellipse whose inner offsets fold, a cubic with a cusp and overlapping
- *    layers of four colours;
+ *    neighbouring strokes overlap (rows of the visible parts' scatter) and
+ *    others stand alone (rows of the per-edge scatter), and under box and
+ *    tent:r=1 on an SVG drawn here (at 24 px) of thick strokes of tight
+ *    cubics and of a turned ellipse whose inner offsets fold, a cubic with
+ *    a cusp and overlapping layers of four colours;
  *  - the tube formula (a closed form): a butt-capped stroke of width w of
  *    a curve whose curvature radius exceeds w/2 everywhere covers w times
  *    the curve's length, and so does a closed stroke of a closed curve,
@@ -29,9 +28,10 @@
  *    q^(2n), q = (a - b)/(a + b), and under a shear m the area times
  *    |det m|;
  *  - refusals by name: offset curves under the radial filters.
- * Full tier: the folding strokes take about a minute a filter (the visible
- * parts of a stroke's outline, whose tangent offset pieces are reported
- * meeting every 1e-12 px along their common stretch).
+ * Quick tier (about 1.2 s of CPU): the folding strokes at 24 px under two
+ * filters; at 96 px their visible parts take minutes (tangent offset
+ * pieces of one outline reported meeting every 1e-12 px along their
+ * common stretch, algorithms/README.md).
  */
 #include "oracle.h"
 #include "path.h"
@@ -62,13 +62,13 @@ static void must(int st)
  * under any of the filters; prints the largest difference and how many
  * pieces are offset pieces (none in `strokes`, of lines and circular
  * arcs, whose offsets are lines and circles). */
-static void against_reference(const char *what, const aa_scene *s, int w, int h)
+static void against_reference(const char *what, const aa_scene *s, int w, int h, int f0, int f1)
 {
     size_t n, noff = 0;
     const aa_piece *pc = aa_scene_pieces(s, &n);
     for (size_t k = 0; k < n; k++)
         noff += pc[k].kind == AA_PIECE_OFFSET;
-    for (int f = 0; f < NF; f++) {
+    for (int f = f0; f < f1 && f < NF; f++) {
         aa_image a, r;
         support_render("analytic", s, filters[f], w, h, 2, &a, NULL);
         support_reference(s, &(support_view){.w = w, .h = h, .filter = filters[f], .threads = 2},
@@ -85,7 +85,7 @@ static void test_strokes_pattern(void **state)
 {
     (void)state;
     aa_scene *s = scenes_pattern("strokes");
-    against_reference("strokes", s, 40, 40);
+    against_reference("strokes", s, 40, 40, 0, NF);
     aa_scene_free(s);
 }
 
@@ -125,7 +125,7 @@ static void test_bezstroke_scene(void **state)
     /* subpath 10 (amplitude about 20 px) about its seventh cubic (a
      * corner): cubics 3 to 8, the window from (125, 505.6) */
     aa_scene *s = bezstroke_scene(64, 10, 3, 8, 125.0, 537.6 - 32.0);
-    against_reference("bench_bezstroke, 64 px of it", s, 64, 64);
+    against_reference("bench_bezstroke, 64 px of it", s, 64, 64, 0, NF);
     aa_scene_free(s);
 }
 
@@ -157,14 +157,14 @@ static void test_folding_svg(void **state)
     snprintf(spec, sizeof spec, "svg:file=%s", path);
     aa_spec ps;
     aa_scene *s = NULL;
-    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, 48, 48, &s))
+    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, 24, 24, &s))
         fail_msg("pattern %s: %s", spec, aa_last_error());
     size_t n, noff = 0;
     const aa_piece *pc = aa_scene_pieces(s, &n);
     for (size_t k = 0; k < n; k++)
         noff += pc[k].kind == AA_PIECE_OFFSET;
     assert_true(noff > 0);
-    against_reference("folding strokes (svg)", s, 48, 48);
+    against_reference("folding strokes (svg)", s, 24, 24, 0, 2);
     aa_scene_free(s);
     assert_int_equal(support_rmtree(dir), 0);
 }
