@@ -95,8 +95,8 @@
  *
  * which is the filtered picture exactly, for any number of opaque layers in
  * painter's order and either fill rule.  The visible parts are found once
- * for a window over the whole width and the rows of a block's slow rows,
- * and scattered as the pieces of the sum of shapes are, each with its step
+ * a block, over the rows of its slow rows and the whole width in tiles 8
+ * px wide, and scattered as the pieces of the sum of shapes are, each with its step
  * of colour (see "The visible parts' scatter"; the per-pixel windows
  * remain for blocks whose faces have too many colours, and under the
  * radial filters).
@@ -226,15 +226,17 @@
  * (aa__offset_eval, the same points as `area` and the reference use)
  * changes form, so that each part's integrand is one analytic function.
  * The per-pixel path takes every offset part in its support this way; the
- * scatter cuts the piece once at every knots' line of its rows and
- * columns and gives each part's points to the general fast_part (the
+ * scatters (a piece of the sum of shapes, or a run of visible parts over
+ * its rows) cut the piece once at every knots' line of its rows and
+ * columns and give each part's points to the general fast_part (the
  * rule's size is not a constant of the compiled loops).  Measured
- * (tests/test_analytic_stroke.c): 7.7e-14 at most from the reference on
- * a window of tests/bench_bezstroke.c's strokes, 5.3e-14 on thick strokes
- * whose inner offsets fold (evolute pieces), and the tube formula
- * (a butt-capped stroke of a gentle cubic and a closed ellipse's, width
- * times length) within 1e-12 under the six filters whose translates sum
- * to 1.
+ * (tests/test_analytic_stroke.c): 8.7e-14 at most from the reference on
+ * a 64 px window of tests/bench_bezstroke.c's strokes (box; 5.2e-14 to
+ * 6.7e-14 under tent:r=1, bspline:order=3, mitchell), 1.8e-14 on thick
+ * strokes whose inner offsets fold (evolute pieces) at 24 px, and the
+ * tube formula (a butt-capped stroke of a gentle cubic and a closed
+ * ellipse's, width times length) within 7e-17 under the six filters whose
+ * translates sum to 1.
  *
  * Limits, refused by name: filters that are not piecewise polynomial
  * (gauss, lanczos, the cone, gauss:cut: the cone is 1 - r, not a
@@ -279,8 +281,16 @@
  * of the table above; other pixels are filled in runs.  Offset pieces
  * cost more per part: the bound's Taylor sums in long double, its rule (4
  * to 18 points) evaluated in long double, and per cut a root of the
- * offset solver (see algorithms/README.md for the times on
- * tests/bench_bezstroke.c's scene).  The image does
+ * offset solver; and a stroke's outline overlaps itself (each segment's
+ * outline and each join a contour of its own, wound twice where they
+ * overlap), so its rows take the visible parts' scatter, whose meetings
+ * of offset pieces are sought by subdivision.  On tests/bench_bezstroke.c's
+ * scene (1,000 stroked cubics, 1024x1024, one thread, CPU time, medians of
+ * five, a loaded machine) 7.3x area's box time under the box, 8.1x under
+ * tent:r=1 and 9.0x under bspline:order=3 (algorithms/README.md; 736x
+ * at 256x256 when the visible parts took one window across the width and
+ * solved the offset pieces' parameters again in every meeting test).  The
+ * image does
  * not depend on the thread count (rows are taken AN_BLOCK at a time by
  * the scatters, one at a time by the per-pixel visible parts, each from
  * the scene alone).  Counters: samples = 0, expensive_pixels =
@@ -2541,7 +2551,17 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
  * and which parts count), so those of one window over the whole width of
  * the image and the rows of every slow row's support in the block, found
  * once (aa__vis_window), are the visible parts of every pixel's support
- * there, cut more finely.  Each run of bands along a piece with one step of
+ * there, cut more finely.  The window is taken in tiles 8 px wide (the
+ * first from the window's left side, the last to its right), whose
+ * visible parts are the window's cut again at the tiles' sides: a step of
+ * colour is the colour's jump across the piece at a point, whatever the
+ * window, and each part lies in one tile (a piece is cut where it crosses a
+ * side, and the part inside a tile is reported by it alone; a vertical
+ * piece on a side would be in neither, so the sides avoid their x).  In
+ * one window across the width every band was cut at every meeting of any
+ * two pieces of the row and every neighbouring pair tested again in each:
+ * on strokes' outlines, whose pieces meet often, most of the time.  Each
+ * run of bands along a piece with one step of
  * colour is scattered as a piece of the sum of shapes is (fast_piece over
  * the run's rows), its step as its values, so one part's rule serves
  * every pixel whose support holds it and the constant part goes along the
@@ -2557,7 +2577,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
  * function of the winding numbers, two faces of one colour share one code
  * whichever layers make them).  The sums are set to the face's exact
  * values there, so rounding does not carry from face to face.  A block
- * whose faces have more than AN_FACES colours, or whose window's left side
+ * whose faces have more than AN_FACES colours, or whose first tile's left side
  * is not bg (it lies left of the scene's bounds: never), takes the
  * per-pixel path. */
 
@@ -2923,7 +2943,7 @@ const aa_method_type aa_method_analytic = {
      "degree (Manson and Schaefer 2013)",
      analytic_params},
     sizeof(an_state),
-    AA_METHOD_SOME_SCENES, /* offset curves: refused at init */
+    AA_METHOD_SOME_SCENES, /* offset curves under the radial filters: refused at init */
     analytic_check,
     analytic_init,
     analytic_render,
