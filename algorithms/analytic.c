@@ -35,7 +35,10 @@
  *    Mitchell and Netravali's cubics (Catmull-Rom among them), all
  *    separable, and radially symmetric polynomials (see "Radial filters"); the curves: lines, quadratic and cubic
  *    Bezier arcs, and elliptical arcs (the paper's rational quadratics:
- *    see "Elliptical arcs" below for the rule used on them).
+ *    see "Elliptical arcs" below for the rule used on them); beyond the
+ *    paper, the offset curves and evolutes that outline strokes of Bezier
+ *    and elliptical arcs, by a rule with a proven error bound (see
+ *    "Offset curves").
  *
  * The closed forms.  With w of degree n on a cell (box 0, tent 1,
  * bspline:order=2 2, bspline:order=3 and mitchell 3), W of degree n + 1,
@@ -92,8 +95,8 @@
  *
  * which is the filtered picture exactly, for any number of opaque layers in
  * painter's order and either fill rule.  The visible parts are found once
- * for a window over the whole width and the rows of a block's slow rows,
- * and scattered as the pieces of the sum of shapes are, each with its step
+ * a block, over the rows of its slow rows and the whole width in tiles 8
+ * px wide, and scattered as the pieces of the sum of shapes are, each with its step
  * of colour (see "The visible parts' scatter"; the per-pixel windows
  * remain for blocks whose faces have too many colours, and under the
  * radial filters).
@@ -110,7 +113,8 @@
  * at 1024x1024 1.8e-13 (7.6e-13).  Values are clamped to the filter's range (aa_filter_range: a rounding of 1e-16
  * past it).
  *
- * Known answers (tests/test_analytic.c): the exact reference
+ * Known answers (tests/test_analytic.c; offset curves in
+ * tests/test_analytic_stroke.c, see "Offset curves"): the exact reference
  * (aa_truth_render) within 1e-12 per pixel on crow, star, slivers,
  * catmull, feibush, SVG scenes of quadratic, cubic and elliptical arcs
  * (circles, a turned ellipse, a rounded rectangle, paths of SVG `A`) and
@@ -188,11 +192,64 @@
  * family, the polynomials in r^2 vanishing to order K at the rim, is the
  * one patterns/README.md defines.)
  *
+ * Offset curves.  A stroke's outline (harness/core/stroke.c) holds offset
+ * pieces (AA_PIECE_OFFSET): parts of P = B + d N of a cubic or an ellipse
+ * B, or of its evolute, mapped, y-monotone, without folds or cusps
+ * inside.  They are not polynomial (N carries 1/|B'|), so no rule of
+ * fixed size is exact; but on a part inside one cell of the filter the
+ * integrand of (1), w(y(t) - cy) (1 - W(x(t) - cx)) y'(t), is analytic
+ * wherever the curve is, and Gauss-Legendre's error on it is bounded: n
+ * points on a part of half width h err by at most
+ *
+ *     h 64 M / (15 (1 - rho^-2) rho^(2n))
+ *
+ * for the integrand analytic inside the Bernstein ellipse of parameter
+ * rho about the part and at most M there (Trefethen, "Approximation
+ * Theory and Approximation Practice", 2013, Theorem 19.3), the bound
+ * `area` certifies its offset quadrature with (algorithms/area_offset.c).
+ * The ellipse lies in the disc of radius R = h (rho + 1/rho)/2 about the
+ * part's middle; there area_offset_speed bounds the speed |P'| <= V from
+ * the curve's Taylor sums (and proves the disc free of zeros of |B'|^2, or
+ * of the curvature for an evolute), so |y'| <= |row_y| V, y is within
+ * |row_y| V R of its real value at the middle (row: the map's row), and
+ * the cell's pieces are bounded term by term, |w| <= sum |w_i| (h_c +
+ * |row_y| V R)^i (h_c the cell's width; W likewise): M = max|w| (1 +
+ * max|W|) |row_y| V, the largest over the cells.  For rho in 1.5 .. 64 the
+ * fewest n with the bound within 1e-16 is taken (at most 18 points), and a
+ * part none holds is halved (as rho grows the bound falls as rho^-2n; a
+ * part left uncertified after 50 halvings, its speed within rounding of
+ * 0, refuses the render).  The cuts: the rows (y = cy + k) are found by
+ * the offset solver in y (aa__offset_solve_d, Newton's method bracketed,
+ * to rounding), the columns on the parts between x's turns (closed form,
+ * aa__offset_turns) by the same solver in x, and the curve is cut at t =
+ * 1/2 where an end is a stop (a cusp split off), where its evaluation
+ * (aa__offset_eval, the same points as `area` and the reference use)
+ * changes form, so that each part's integrand is one analytic function.
+ * The per-pixel path takes every offset part in its support this way; the
+ * scatters (a piece of the sum of shapes, or a run of visible parts over
+ * its rows) cut the piece once at every knots' line of its rows and
+ * columns and give each part's points to the general fast_part (the
+ * rule's size is not a constant of the compiled loops).  Measured
+ * (tests/test_analytic_stroke.c): 8.7e-14 at most from the reference on
+ * a 64 px window of tests/bench_bezstroke.c's strokes (box; 5.2e-14 to
+ * 6.7e-14 under tent:r=1, bspline:order=3, mitchell), 1.8e-14 on thick
+ * strokes whose inner offsets fold (evolute pieces) at 24 px, and the
+ * tube formula (a butt-capped stroke of a gentle cubic and a closed
+ * ellipse's, width times length) within 7e-17 under the six filters whose
+ * translates sum to 1.
+ *
  * Limits, refused by name: filters that are not piecewise polynomial
  * (gauss, lanczos, the cone, gauss:cut: the cone is 1 - r, not a
- * polynomial in x and y); offset curves (stroked Bezier arcs, not polynomials); field scenes (no
- * edges).  The paper also fills with linear colour gradients, which the
- * scene model does not hold.
+ * polynomial in x and y); offset curves under the radial filters (their
+ * crossings with the filter's circle are not roots of a polynomial, and
+ * nothing here isolates them with a proof); field scenes (no edges).
+ * The paper also fills with linear colour gradients; the scene model
+ * holds them, and the method refuses them (it does not declare
+ * AA_METHOD_GRADIENTS, harness/core/method.c): the project interpolates a
+ * gradient's stops in sRGB-encoded values and filters in linear light, so
+ * the colour over a region is the sRGB decoding (a power 2.4 and a linear
+ * toe) of an affine function of x and y, not a polynomial, and the
+ * paper's closed forms do not hold.
  *
  * Cost.  Where the per-edge scatter holds (every row of crow and of scenes
  * of disjoint shapes): per part of a piece between two knots' lines, its
@@ -227,12 +284,25 @@
  * them scattered as a piece is, with four values (its step of colour and
  * of the face's code); under the radial filters, per pixel whose support
  * meets an edge, the visible parts of its support and, per part, the rule
- * of the table above; other pixels are filled in runs.  The image does
+ * of the table above; other pixels are filled in runs.  Offset pieces
+ * cost more per part: the bound's Taylor sums in long double, its rule (4
+ * to 18 points) evaluated in long double, and per cut a root of the
+ * offset solver; and a stroke's outline overlaps itself (each segment's
+ * outline and each join a contour of its own, wound twice where they
+ * overlap), so its rows take the visible parts' scatter, whose meetings
+ * of offset pieces are sought by subdivision.  On tests/bench_bezstroke.c's
+ * scene (1,000 stroked cubics, 1024x1024, one thread, CPU time, medians of
+ * five, a loaded machine) 7.3x area's box time under the box, 8.1x under
+ * tent:r=1 and 9.0x under bspline:order=3 (algorithms/README.md; 736x
+ * at 256x256 when the visible parts took one window across the width and
+ * solved the offset pieces' parameters again in every meeting test).  The
+ * image does
  * not depend on the thread count (rows are taken AN_BLOCK at a time by
  * the scatters, one at a time by the per-pixel visible parts, each from
  * the scene alone).  Counters: samples = 0, expensive_pixels =
  * pixels summed (the scatter's: the pixels some part's exact term reached).
  */
+#include "area_internal.h"
 #include "core.h"
 #include "methods.h"
 #include "sampling.h"
@@ -297,6 +367,11 @@ typedef struct an_state {
     const aa_scene *plan_scene;
     int plan_h, plan_nl, nv;
     unsigned char *slow;
+    /* the x of every piece whose extent in x is one value (a vertical
+     * line), ascending, distinct: the visible parts' tiles' sides avoid
+     * them (vis_block) */
+    double *vert;
+    size_t nvert;
     double *coef;
     /* the colour of each layer's face (winding s(L)), nl x 3; with nv = 1
      * those of the faces of winding -1, 0 and +1 (face1) */
@@ -308,12 +383,16 @@ typedef struct an_state {
      * constant c_k and the marginal's Q; k = 0 for the separable ones */
     int rad_k;
     double rad_r, rad_c, rad_q;
+    /* offset pieces (see "Offset curves"): Gauss-Legendre rules of 1 to
+     * AN_MAX_PTS points, ogx[m][q], ogw[m][q] */
+    double ogx[AN_MAX_PTS + 1][AN_MAX_PTS], ogw[AN_MAX_PTS + 1][AN_MAX_PTS];
 } an_state;
 
 typedef struct an_render {
     const an_state *S;
     const aa_scene *scene;
     double lo, hi; /* the filter's range */
+    int *uncertain; /* set where an offset part's rule could not be certified */
 } an_render;
 
 /* ---- the filters' pieces (patterns/README.md, "Filters") ---- */
@@ -673,12 +752,210 @@ static int cmp_ld(const void *a, const void *b)
 }
 
 
+/* ---- offset pieces (header, "Offset curves") ---- */
+
+/* The largest error bound of one part's rule (in the filter's weight), and
+ * the halvings of a part at most before a rule's bound is given up. */
+#define AN_OFF_TOL 1e-16
+#define AN_OFF_DEPTH 50
+
+/* The rules of 1 to AN_MAX_PTS points for offset parts, rounded to double. */
+static void off_rules_make(an_state *S)
+{
+    for (int m = 1; m <= AN_MAX_PTS; m++) {
+        long double x[AN_MAX_PTS], w[AN_MAX_PTS];
+        gauss_ld(m, x, w);
+        for (int i = 0; i < m; i++)
+            S->ogx[m][i] = (double)x[i], S->ogw[m][i] = (double)w[i];
+    }
+}
+
+/* Bounds on the filter's pieces continued off the real line, at a point
+ * within dw (of w's argument) resp. dW (of W's) of a real point of any
+ * cell: |w| <= sum |w_i| (h_c + dw)^i, the cell c of width h_c whose
+ * polynomial holds, the largest over the cells (returned); likewise |W|
+ * in *bW. */
+static double off_filter_bound(const an_pp *pp, double dw, double dW, double *bW)
+{
+    double bw = 0.0, bc = 0.0;
+    for (int c = 0; c < pp->ncell; c++) {
+        double hc = pp->k[c + 1] - pp->k[c], zw = hc + dw, zW = hc + dW, sw = 0.0, sW = 0.0;
+        for (int i = 3; i >= 0; i--)
+            sw = sw * zw + fabs(pp->w[c][i]);
+        for (int i = 4; i >= 0; i--)
+            sW = sW * zW + fabs(pp->cdf[c][i]);
+        bw = fmax(bw, sw), bc = fmax(bc, sW);
+    }
+    *bW = bc;
+    return bw;
+}
+
+/* The fewest points (at most AN_MAX_PTS) of the Gauss-Legendre rule whose
+ * error bound on the part [t0, t1] of offset piece p is within
+ * AN_OFF_TOL; 0 if none is.  The bound (Trefethen 2013, Theorem 19.3):
+ * h 64 M / (15 (1 - rho^-2) rho^(2n)) for the integrand analytic in the
+ * Bernstein ellipse of parameter rho about the part (half width h), inside
+ * the disc of radius R = h (rho + 1/rho)/2 about its middle, where
+ * |w(y - cy) (1 - W(x - cx)) y'| <= M: |P'| <= V there
+ * (area_offset_speed, which also proves the disc free of the curve's
+ * singularities), so y' and the distance of y from its value at the
+ * middle are within |row| V and |row| V R (the map's row), and w, W
+ * within off_filter_bound of those. */
+static int off_points(const an_state *S, const aa_piece *p, double t0, double t1)
+{
+    static const double rhos[] = {1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0, 32.0, 64.0};
+    enum { NR = sizeof rhos / sizeof *rhos };
+    const aa_offset_curve *oc = &p->oc;
+    double h = 0.5 * fabs(t1 - t0), mid = 0.5 * (t0 + t1), R[NR], V[NR];
+    if (!(h > 0.0))
+        return 1;
+    for (int k = 0; k < NR; k++)
+        R[k] = 0.5 * h * (rhos[k] + 1.0 / rhos[k]);
+    area_offset_speed(oc, mid, NR, R, V);
+    double nx = hypot(oc->m[0], oc->m[2]), ny = hypot(oc->m[1], oc->m[3]);
+    int best = 0;
+    for (int k = 0; k < NR && V[k] < INFINITY; k++) {
+        double vy = ny * V[k], bW, bw = off_filter_bound(&S->pp, vy * R[k], nx * V[k] * R[k], &bW);
+        double r2 = rhos[k] * rhos[k], M = bw * (1.0 + bW) * vy;
+        double need = h * 64.0 * M / (15.0 * (1.0 - 1.0 / r2) * AN_OFF_TOL) * (1.0 + 1e-12);
+        if (!(need < INFINITY))
+            continue;
+        /* the fewest n with r2^n >= need, the powers by products */
+        double pw = r2;
+        int n = 1;
+        while (pw < need && n <= AN_MAX_PTS)
+            pw *= r2, n++;
+        if (n <= AN_MAX_PTS && (!best || n < best))
+            best = n;
+    }
+    return best;
+}
+
+/* The curve's parameter of offset piece p at height y in its rows. */
+static double off_t_at(const aa_piece *p, double y)
+{
+    if (!(y > p->y0))
+        return p->ot0;
+    if (!(y < p->y1))
+        return p->ot1;
+    return aa__offset_solve_d(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y);
+}
+
+static inline void off_point(const aa_piece *p, int stops, double t, double *x, double *y,
+                             double *dy)
+{
+    long double X, Y, DX, DY;
+    aa__offset_eval_s(&p->oc, stops, t, &X, &Y, &DX, &DY);
+    *x = (double)X, *y = (double)Y, *dy = (double)DY;
+}
+
+/* The parts of [lo, hi] (ascending parameters) between x's turns, where x
+ * is monotone: their ends tb[0 .. n] and x there xb; returns n (1 to 3). */
+static int off_monotone(const aa_piece *p, int stops, double lo, double hi, double *tb,
+                        double *xb)
+{
+    tb[0] = lo;
+    int n = aa__offset_turns(&p->oc, 0, lo, hi, tb + 1) + 1;
+    tb[n] = hi;
+    for (int k = 0; k <= n; k++) {
+        double y, dy;
+        off_point(p, stops, tb[k], &xb[k], &y, &dy);
+    }
+    return n;
+}
+
+/* The parameters where p meets the line x = X inside the parts of
+ * off_monotone (one root a part whose ends lie strictly either side),
+ * written to out; returns how many. */
+static int off_meet_x(const aa_piece *p, const double *tb, const double *xb, int n, double X,
+                      double *out)
+{
+    int c = 0;
+    for (int k = 0; k < n; k++) {
+        double fa = xb[k] - X, fb = xb[k + 1] - X;
+        if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0))
+            out[c++] = aa__offset_solve_d(&p->oc, 0, tb[k], tb[k + 1], fa, X);
+    }
+    return c;
+}
+
+static void off_uncertain(int *flag)
+{
+#pragma omp atomic write
+    *flag = 1;
+}
+
+/* The integral over the part [u, v] (u < v, inside one cell of the pixel's
+ * support) of w(y - cy) (1 - W(x - cx)) y' dt, by the certified rule,
+ * halved where none is. */
+static double off_part(const an_render *Rn, const aa_piece *p, int stops, double u, double v,
+                       double cx, double cy, int depth)
+{
+    const an_state *S = Rn->S;
+    const an_pp *pp = &S->pp;
+    int m = off_points(S, p, u, v);
+    if (!m) {
+        double mid = 0.5 * (u + v);
+        if (depth < AN_OFF_DEPTH && mid > u && mid < v)
+            return off_part(Rn, p, stops, u, mid, cx, cy, depth + 1) +
+                   off_part(Rn, p, stops, mid, v, cx, cy, depth + 1);
+        off_uncertain(Rn->uncertain);
+        m = AN_MAX_PTS;
+    }
+    double h = 0.5 * (v - u), mid = 0.5 * (u + v), sum = 0.0;
+    for (int g = 0; g < m; g++) {
+        double x, y, dy;
+        off_point(p, stops, mid + h * S->ogx[m][g], &x, &y, &dy);
+        sum += S->ogw[m][g] * an_weight(pp, y - cy) * (1.0 - an_cdf(pp, x - cx)) * dy;
+    }
+    return h * sum;
+}
+
+/* R(part) of (1) for offset piece p over rows [ya, yb]: cut where it
+ * crosses the knots' lines of the pixel's support (and at t = 1/2 where
+ * the curve has a stop, where its evaluation changes form), each part by
+ * off_part. */
+static double right_of_offset(const an_render *Rn, const aa_piece *p, double ya, double yb,
+                              double cx, double cy)
+{
+    const an_pp *pp = &Rn->S->pp;
+    int stops = aa__offset_stops(&p->oc);
+    double ta = off_t_at(p, ya), tb = off_t_at(p, yb), lo = fmin(ta, tb), hi = fmax(ta, tb);
+    if (!(lo < hi))
+        return 0.0;
+    double ts[3 + 4 * (AN_MAX_CELLS + 1)], tbd[4], xbd[4];
+    int n = 0;
+    ts[n++] = lo;
+    ts[n++] = hi;
+    if (stops && 0.5 > lo && 0.5 < hi)
+        ts[n++] = 0.5;
+    for (int q = 0; q <= pp->ncell; q++) {
+        double yk = cy + pp->k[q];
+        if (yk > ya && yk < yb)
+            ts[n++] = off_t_at(p, yk);
+    }
+    int nm = off_monotone(p, stops, lo, hi, tbd, xbd);
+    for (int q = 0; q <= pp->ncell; q++)
+        n += off_meet_x(p, tbd, xbd, nm, cx + pp->k[q], ts + n);
+    aa__vis_sort(ts, (size_t)n);
+    double sum = 0.0;
+    for (int s = 0; s + 1 < n; s++)
+        if (ts[s] < ts[s + 1])
+            sum += off_part(Rn, p, stops, ts[s], ts[s + 1], cx, cy, 0);
+    return ta < tb ? sum : -sum;
+}
+
 /* ---- one pixel ---- */
 
 typedef struct an_pixel {
     const an_render *R;
     double cx, cy;
     double acc[3];
+    /* the bands since the last change of colour, rows [blo, bhi] (open:
+     * any), their colour (band_merge) */
+    int open;
+    double blo, bhi;
+    aa_rgb bc;
 } an_pixel;
 
 static inline int curve_degree(const aa_piece *p)
@@ -763,24 +1040,50 @@ static double right_of(const an_state *S, const aa_piece *p, double ya, double y
     return sum;
 }
 
-/* A band of rows [ya, yb] across the whole window, of one state: its
- * colour times the filter's weight of those rows (wy, the marginal's
- * difference), under the separable filters (an_band) and the radial ones
- * (rad_band). */
-static void add_band(an_pixel *P, double wy, const int *wind)
+static double rad_marg(const an_state *S, double v);
+
+/* The pending bands (band_merge) added: their colour times the weight of
+ * their rows, the marginal's difference over all of them at once. */
+static void band_flush(an_pixel *P)
 {
+    if (!P->open)
+        return;
+    const an_state *S = P->R->S;
+    double wy = S->rad_k ? rad_marg(S, P->bhi - P->cy) - rad_marg(S, P->blo - P->cy)
+                         : an_cdf(&S->pp, P->bhi - P->cy) - an_cdf(&S->pp, P->blo - P->cy);
+    P->open = 0;
     if (!(wy != 0.0))
         return;
-    aa_rgb c = aa_scene_colour_of(P->R->scene, wind);
     for (int ch = 0; ch < 3; ch++)
-        P->acc[ch] += wy * c.c[ch];
+        P->acc[ch] += wy * P->bc.c[ch];
+}
+
+/* A band of rows [ya, yb] across the whole window, of one state: its
+ * colour times the filter's weight of those rows (the marginal's
+ * difference), under the separable filters (an_band) and the radial ones
+ * (rad_band), joined to the pending ones where
+ * it continues them in the same colour: the visible parts cut a window's
+ * rows at every meeting of two pieces, and two offset pieces tangent to
+ * each other (a stroke's outline where a join's contour meets a
+ * segment's) are reported meeting every 1e-12 px or so of their common
+ * stretch, thousands of bands a pixel, whose weights, each a difference of
+ * the marginal rounded to 1e-16, summed to 5e-12 off one face's colour
+ * (tests/test_analytic_stroke.c, folding strokes); joined, the
+ * differences telescope and the face's weight is one difference. */
+static void band_merge(an_pixel *P, double ya, double yb, const int *wind)
+{
+    aa_rgb c = aa_scene_colour_of(P->R->scene, wind);
+    if (P->open && ya == P->bhi && !memcmp(c.c, P->bc.c, sizeof c.c)) {
+        P->bhi = yb;
+        return;
+    }
+    band_flush(P);
+    P->open = 1, P->blo = ya, P->bhi = yb, P->bc = c;
 }
 
 static void an_band(void *ctx, double ya, double yb, const int *wind)
 {
-    an_pixel *P = ctx;
-    const an_pp *pp = &P->R->S->pp;
-    add_band(P, an_cdf(pp, yb - P->cy) - an_cdf(pp, ya - P->cy), wind);
+    band_merge(ctx, ya, yb, wind);
 }
 
 static void an_run(void *ctx, const aa_piece *p, double ya, double yb, const double *jump,
@@ -788,7 +1091,8 @@ static void an_run(void *ctx, const aa_piece *p, double ya, double yb, const dou
 {
     an_pixel *P = ctx;
     (void)inside;
-    double r = right_of(P->R->S, p, ya, yb, P->cx, P->cy);
+    double r = p->kind == AA_PIECE_OFFSET ? right_of_offset(P->R, p, ya, yb, P->cx, P->cy)
+                                          : right_of(P->R->S, p, ya, yb, P->cx, P->cy);
     for (int ch = 0; ch < 3; ch++)
         P->acc[ch] += jump[ch] * r;
 }
@@ -799,10 +1103,11 @@ static void shade(const void *ctx, aa__sampler_worker *wk, int i, int j, double 
     const an_pp *pp = &R->S->pp;
     aa__vis v;
     aa__vis_bind(&v, R->scene, 3, wk->own);
-    an_pixel P = {R, i + 0.5, j + 0.5, {0.0, 0.0, 0.0}};
+    an_pixel P = {R, i + 0.5, j + 0.5, {0.0, 0.0, 0.0}, 0, 0.0, 0.0, {{0.0, 0.0, 0.0}}};
     const aa__vis_sink sink = {an_band, an_run, NULL, NULL, &P, 3, 0, 0};
     double lo = pp->k[0], hi = pp->k[pp->ncell];
     aa__vis_window(&v, wk->strip, P.cx + lo, P.cx + hi, P.cy + lo, P.cy + hi, &sink);
+    band_flush(&P);
     for (int ch = 0; ch < 3; ch++) {
         double c = P.acc[ch];
         px[ch] = c < R->lo ? R->lo : (c > R->hi ? R->hi : c);
@@ -1019,9 +1324,7 @@ static double rad_right_of_arc(const an_state *S, const aa_piece *p, double ya, 
 
 static void rad_band(void *ctx, double ya, double yb, const int *wind)
 {
-    an_pixel *P = ctx;
-    const an_state *S = P->R->S;
-    add_band(P, rad_marg(S, yb - P->cy) - rad_marg(S, ya - P->cy), wind);
+    band_merge(ctx, ya, yb, wind);
 }
 
 static void rad_run(void *ctx, const aa_piece *p, double ya, double yb, const double *jump,
@@ -1041,9 +1344,10 @@ static void rad_shade(const void *ctx, aa__sampler_worker *wk, int i, int j, dou
     double r = R->S->rad_r;
     aa__vis v;
     aa__vis_bind(&v, R->scene, 3, wk->own);
-    an_pixel P = {R, i + 0.5, j + 0.5, {0.0, 0.0, 0.0}};
+    an_pixel P = {R, i + 0.5, j + 0.5, {0.0, 0.0, 0.0}, 0, 0.0, 0.0, {{0.0, 0.0, 0.0}}};
     const aa__vis_sink sink = {rad_band, rad_run, NULL, NULL, &P, 3, 0, 0};
     aa__vis_window(&v, wk->strip, P.cx - r, P.cx + r, P.cy - r, P.cy + r, &sink);
+    band_flush(&P);
     for (int ch = 0; ch < 3; ch++) {
         double c = P.acc[ch];
         px[ch] = c < R->lo ? R->lo : (c > R->hi ? R->hi : c);
@@ -1178,9 +1482,35 @@ static void plan_free(an_state *S)
     free(S->slow);
     free(S->coef);
     free(S->face);
-    S->slow = NULL, S->coef = NULL, S->face = NULL;
+    free(S->vert);
+    S->slow = NULL, S->coef = NULL, S->face = NULL, S->vert = NULL;
+    S->nvert = 0;
     S->plan_scene = NULL;
     S->plan_h = 0;
+}
+
+/* S->vert: the x of the scene's vertical pieces (xmin == xmax), sorted
+ * and distinct. */
+static int plan_vert(an_state *S, const aa_scene *scene)
+{
+    size_t n, nv = 0;
+    const aa_piece *p = aa_scene_pieces(scene, &n);
+    for (size_t k = 0; k < n; k++)
+        nv += p[k].kind != AA_PIECE_FLAT && p[k].xmin == p[k].xmax;
+    S->vert = malloc((nv ? nv : 1) * sizeof *S->vert);
+    if (!S->vert)
+        return aa_fail(AA_ENOMEM, "out of memory for analytic's plan of the scene");
+    S->nvert = 0;
+    for (size_t k = 0; k < n; k++)
+        if (p[k].kind != AA_PIECE_FLAT && p[k].xmin == p[k].xmax)
+            S->vert[S->nvert++] = p[k].xmin;
+    aa__vis_sort(S->vert, S->nvert);
+    size_t m = 0;
+    for (size_t k = 0; k < S->nvert; k++)
+        if (!m || S->vert[k] != S->vert[m - 1])
+            S->vert[m++] = S->vert[k];
+    S->nvert = m;
+    return AA_OK;
 }
 
 /* Which rows the scene lets this path take, and the layers' steps. */
@@ -1202,6 +1532,8 @@ static int plan(an_state *S, const aa_scene *scene, int h)
         st = aa_fail(AA_ENOMEM, "out of memory for analytic's plan of the scene");
         goto out;
     }
+    if ((st = plan_vert(S, scene)))
+        goto out;
     double sx0, sy0, sx1, sy1;
     if (aa_scene_bounds(scene, &sx0, &sy0, &sx1, &sy1)) {
         aa__vis v;
@@ -1216,8 +1548,15 @@ static int plan(an_state *S, const aa_scene *scene, int h)
                 st = aa_fail(AA_ENOMEM, "out of memory for a strip of the scene");
                 goto out;
             }
-            aa_strip_window(strip, xl, xr);
-            aa__vis_window(&v, strip, xl, xr, ya, yb, &sink);
+            /* in tiles 8 px wide: the same faces, cut at the tiles' sides,
+             * and the meetings sought among the pieces of one tile (across
+             * the whole width, a strip of many offset pieces, each band cut
+             * at every meeting of any two, took minutes) */
+            for (double xa = xl; xa < xr; xa += 8.0) {
+                double xb = fmin(xa + 8.0, xr);
+                aa_strip_window(strip, xa, xb);
+                aa__vis_window(&v, strip, xa, xb, ya, yb, &sink);
+            }
         }
     }
     S->bg = aa_scene_colour_of(scene, wind);
@@ -1318,6 +1657,7 @@ typedef struct an_block {
     double *wcol, *arow;    /* pad x AN_MAX_PTS each: W at the columns, a at the rows */
     double *ts;             /* 2 cap: the cuts of y, then of x */
     size_t cap;
+    int *uncertain; /* an_render's */
 } an_block;
 
 /* the loops of a part's arithmetic, whose counts are constants of the
@@ -1876,6 +2216,115 @@ static void fast_conic(const an_block *B, const aa_piece *p, const double *val, 
     }
 }
 
+/* fast_terms with the filter's degree and the values' count constants (the
+ * rule's size varies from part to part, so the general fast_part: the
+ * regular filters' copies are unrolled for a constant size) */
+#define AN_OFF_TERMS(N)                                                              \
+    static void off_terms_##N(const an_block *B, const double *val, int m, const double *X, \
+                              const double *Y, const double *D, double xm, double ym,   \
+                              int where)                                             \
+    {                                                                                \
+        const int nv = B->nv == 1 ? 1 : AN_NV;                                       \
+        if (where == 2 && nv == 1)                                                   \
+            part_left(B, val, m, Y, D, ym, 1, N);                                    \
+        else if (where == 2)                                                         \
+            part_left(B, val, m, Y, D, ym, AN_NV, N);                                \
+        else if (nv == 1)                                                            \
+            fast_part(B, val, m, X, Y, D, xm, ym, 1, N);                             \
+        else                                                                         \
+            fast_part(B, val, m, X, Y, D, xm, ym, AN_NV, N);                         \
+    }
+AN_OFF_TERMS(0)
+AN_OFF_TERMS(1)
+AN_OFF_TERMS(2)
+AN_OFF_TERMS(3)
+#undef AN_OFF_TERMS
+
+static void off_terms(const an_block *B, const double *val, int m, const double *X,
+                      const double *Y, const double *D, double xm, double ym, int where)
+{
+    static void (*const fn[4])(const an_block *, const double *, int, const double *,
+                               const double *, const double *, double, double,
+                               int) = {off_terms_0, off_terms_1, off_terms_2, off_terms_3};
+    fn[B->S->pp.deg](B, val, m, X, Y, D, xm, ym, where);
+}
+
+/* The terms of the part [u, v] (u < v) of offset piece p, inside one cell
+ * of every support it meets, by its certified rule (halved where none
+ * is); sg: the sign of the piece's direction in the parameter. */
+static void fast_off_part(const an_block *B, const aa_piece *p, int stops, const double *val,
+                          double u, double v, double sg, int depth)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    int m = off_points(S, p, u, v);
+    if (!m) {
+        double mid = 0.5 * (u + v);
+        if (depth < AN_OFF_DEPTH && mid > u && mid < v) {
+            fast_off_part(B, p, stops, val, u, mid, sg, depth + 1);
+            fast_off_part(B, p, stops, val, mid, v, sg, depth + 1);
+            return;
+        }
+        off_uncertain(B->uncertain);
+        m = AN_MAX_PTS;
+    }
+    double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym, dy;
+    double h = 0.5 * (v - u), mid = 0.5 * (u + v);
+    off_point(p, stops, mid, &xm, &ym, &dy);
+    int where = !(xm < B->w - 0.5 + pp->k[pp->ncell]) ? 0 : (xm < 0.5 + pp->k[0] ? 2 : 1);
+    if (!where)
+        return;
+    for (int g = 0; g < m; g++) {
+        off_point(p, stops, mid + h * S->ogx[m][g], &X[g], &Y[g], &dy);
+        D[g] = sg * S->ogw[m][g] * h * dy;
+    }
+    off_terms(B, val, m, X, Y, D, xm, ym, where);
+}
+
+/* The terms of offset piece p in the block's rows [lo, hi]: cut at the
+ * knots' lines (y: every line in the rows; x: on each part between x's
+ * turns, every line the part crosses in the supports' span) and at t =
+ * 1/2 where the curve has a stop, sorted in the parameter. */
+static void fast_offset(const an_block *B, const aa_piece *p, const double *val, double lo,
+                        double hi)
+{
+    const an_state *S = B->S;
+    const an_pp *pp = &S->pp;
+    const double XA = 0.5 + pp->k[0], XB = B->w - 0.5 + pp->k[pp->ncell];
+    int stops = aa__offset_stops(&p->oc);
+    double ta = off_t_at(p, lo), tb = off_t_at(p, hi), a = fmin(ta, tb), b = fmax(ta, tb);
+    if (!(a < b))
+        return;
+    double *ts = B->ts, tbd[4], xbd[4];
+    size_t n = 0;
+    ts[n++] = a;
+    ts[n++] = b;
+    if (stops && 0.5 > a && 0.5 < b)
+        ts[n++] = 0.5;
+    for (double base = floor(lo); base <= hi; base += 1.0)
+        for (int q = 0; q < S->nph; q++) {
+            double Y = base + S->ph[q];
+            if (Y > lo && Y < hi)
+                ts[n++] = off_t_at(p, Y);
+        }
+    int nm = off_monotone(p, stops, a, b, tbd, xbd);
+    for (int k = 0; k < nm; k++) {
+        double xa = fmin(xbd[k], xbd[k + 1]), xb = fmax(xbd[k], xbd[k + 1]);
+        double ca = fmax(xa, XA), cb = fmin(xb, XB);
+        for (double base = floor(ca); base <= cb; base += 1.0)
+            for (int q = 0; q < S->nph; q++) {
+                double X = base + S->ph[q];
+                if (X > xa && X < xb && X >= XA && X <= XB)
+                    ts[n++] = aa__offset_solve_d(&p->oc, 0, tbd[k], tbd[k + 1], xbd[k] - X, X);
+            }
+    }
+    aa__vis_sort(ts, n);
+    double sg = ta < tb ? 1.0 : -1.0;
+    for (size_t i = 0; i + 1 < n; i++)
+        if (ts[i] < ts[i + 1])
+            fast_off_part(B, p, stops, val, ts[i], ts[i + 1], sg, 0);
+}
+
 /* The terms of piece p (values val[0 .. nv)) over rows [ya, yb] (a visible
  * part's; the whole piece's, p->y0 and p->y1, on the scatter's rows) in the
  * block's rows: cut at the knots' lines, in order of t (the lines of y in
@@ -1894,6 +2343,10 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val, 
         return;
     if (p->kind == AA_PIECE_CONIC) {
         fast_conic(B, p, val, lo, hi);
+        return;
+    }
+    if (p->kind == AA_PIECE_OFFSET) {
+        fast_offset(B, p, val, lo, hi);
         return;
     }
     double *ty = B->ts, *tx = B->ts + B->cap;
@@ -1973,7 +2426,7 @@ static an_block block_bind(const an_state *S, aa__sampler_worker *wk, int w, int
 {
     const size_t cols = block_cols(S, w), cells = block_cells(S, w);
     char *own = (char *)wk->own + S->fast_off;
-    an_block B = {S, w, j0, j1, nv, NULL, NULL, cols, S->pad, NULL, NULL, NULL, 0};
+    an_block B = {S, w, j0, j1, nv, NULL, NULL, cols, S->pad, NULL, NULL, NULL, 0, NULL};
     B.cover = (double *)own;
     own += cells * AN_NV * sizeof(double);
     B.touched = (unsigned char *)own;
@@ -2039,6 +2492,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     const int pad = S->pad;
     const size_t cols = block_cols(S, w);
     an_block B = block_bind(S, wk, w, j0, j1, nv);
+    B.uncertain = R->uncertain;
     double Y0 = j0 + 0.5 + pp->k[0], Y1 = (j1 - 1) + 0.5 + pp->k[pp->ncell];
     double sx0, sy0, sx1, sy1;
     aa_scene_bounds(R->scene, &sx0, &sy0, &sx1, &sy1);
@@ -2219,7 +2673,17 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
  * and which parts count), so those of one window over the whole width of
  * the image and the rows of every slow row's support in the block, found
  * once (aa__vis_window), are the visible parts of every pixel's support
- * there, cut more finely.  Each run of bands along a piece with one step of
+ * there, cut more finely.  The window is taken in tiles 8 px wide (the
+ * first from the window's left side, the last to its right), whose
+ * visible parts are the window's cut again at the tiles' sides: a step of
+ * colour is the colour's jump across the piece at a point, whatever the
+ * window, and each part lies in one tile (a piece is cut where it crosses a
+ * side, and the part inside a tile is reported by it alone; a vertical
+ * piece on a side would be in neither, so the sides avoid their x).  In
+ * one window across the width every band was cut at every meeting of any
+ * two pieces of the row and every neighbouring pair tested again in each:
+ * on strokes' outlines, whose pieces meet often, most of the time.  Each
+ * run of bands along a piece with one step of
  * colour is scattered as a piece of the sum of shapes is (fast_piece over
  * the run's rows), its step as its values, so one part's rule serves
  * every pixel whose support holds it and the constant part goes along the
@@ -2235,7 +2699,7 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
  * function of the winding numbers, two faces of one colour share one code
  * whichever layers make them).  The sums are set to the face's exact
  * values there, so rounding does not carry from face to face.  A block
- * whose faces have more than AN_FACES colours, or whose window's left side
+ * whose faces have more than AN_FACES colours, or whose first tile's left side
  * is not bg (it lies left of the scene's bounds: never), takes the
  * per-pixel path. */
 
@@ -2244,6 +2708,7 @@ typedef struct an_vis_ctx {
     const aa_scene *scene;
     double *face; /* the colours by code, 3 a code; face 0 bg */
     int nface, bad;
+    int first; /* the window is the leftmost tile (vis_band) */
 } an_vis_ctx;
 
 static void vis_values(void *ctx, const int *wind, double *out)
@@ -2271,7 +2736,7 @@ static void vis_band(void *ctx, double ya, double yb, const int *wind)
     (void)ya, (void)yb;
     double c[AN_NV];
     vis_values(V, wind, c);
-    if (c[3] != 0.0) /* the left side's colour is not bg */
+    if (V->first && c[3] != 0.0) /* the left side's colour is not bg */
         V->bad = 1;
 }
 
@@ -2281,6 +2746,28 @@ static void vis_run(void *ctx, const aa_piece *p, double ya, double yb, const do
     an_vis_ctx *V = ctx;
     (void)inside;
     fast_piece(V->B, p, jump, ya, yb);
+}
+
+/* The width of the visible parts' tiles (px) */
+#define AN_TILE 8.0
+
+/* A tile's side at X or, where a vertical piece lies on x = X (S->vert),
+ * the first X + k/64 where none does. */
+static double tile_side(const an_state *S, double X)
+{
+    for (;;) {
+        size_t a = 0, b = S->nvert;
+        while (a < b) { /* the first vert >= X */
+            size_t m = a + (b - a) / 2;
+            if (S->vert[m] < X)
+                a = m + 1;
+            else
+                b = m;
+        }
+        if (a == S->nvert || S->vert[a] != X)
+            return X;
+        X += 1.0 / 64.0;
+    }
 }
 
 /* The slow rows of rows j0 .. j1-1 by the visible parts' scatter: 0 done,
@@ -2294,6 +2781,7 @@ static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1,
     const int w = out->w, pad = S->pad;
     const size_t cols = block_cols(S, w);
     an_block B = block_bind(S, wk, w, j0, j1, AN_NV);
+    B.uncertain = R->uncertain;
     int ja = j1, jb = j0 - 1;
     for (int j = j0; j < j1; j++)
         if (S->slow[j])
@@ -2305,20 +2793,28 @@ static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1,
     double xl = fmin(sx0, 0.0) - 1.0, xr = w - 0.5 + pp->k[pp->ncell];
     if (aa_strip_begin(wk->strip, Y0, Y1))
         return 1;
-    aa_strip_window(wk->strip, xl, xr);
     an_vis_ctx V = {&B, R->scene,
                     (double *)((char *)wk->own + S->fast_off + fast_size(S, w)) - 3 * AN_FACES,
-                    1, 0};
+                    1, 0, 1};
     memcpy(V.face, S->bg.c, sizeof S->bg.c);
-    size_t nloc;
-    const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
-    for (size_t q = 0; q < nloc; q++)
-        if (!loc[q]->dir)
-            mark_flat(&B, loc[q]);
     aa__vis v;
     aa__vis_bind(&v, R->scene, AN_NV, wk->own);
-    const aa__vis_sink sink = {vis_band, vis_run, NULL, vis_values, &V, AN_NV, 0, 1};
-    aa__vis_window(&v, wk->strip, xl, xr, Y0, Y1, &sink);
+    const aa__vis_sink sink = {vis_band, vis_run, NULL, vis_values, &V, AN_NV, 0, 0};
+    /* the window in tiles (see "The visible parts' scatter"): the first
+     * from xl, the others AN_TILE px wide, the last to xr */
+    for (double xa = xl, side = 0.5 + pp->k[0]; xa < xr && !V.bad;) {
+        side = tile_side(S, fmax(side + AN_TILE, xa + AN_TILE));
+        double xb = fmin(side, xr);
+        aa_strip_window(wk->strip, xa, xb);
+        size_t nloc;
+        const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
+        for (size_t q = 0; q < nloc; q++)
+            if (!loc[q]->dir)
+                mark_flat(&B, loc[q]);
+        aa__vis_window(&v, wk->strip, xa, xb, Y0, Y1, &sink);
+        V.first = 0;
+        xa = xb;
+    }
     const double lo = R->lo, hi = R->hi;
     const double *bg = S->bg.c;
     /* the rows a term can reach: the slow rows' supports' rows, one more */
@@ -2408,22 +2904,28 @@ static int analytic_check(const double *p, const aa_filter *f)
     return AA_OK;
 }
 
-/* The scene's pieces: lines, quadratic, cubic and elliptical arcs only. */
-static int scene_check(const aa_scene *s)
+/* The scene's pieces: every kind under the separable filters; under the
+ * radial ones lines, quadratic, cubic and elliptical arcs only (an offset
+ * curve's crossings with the filter's circle are not the roots of a
+ * polynomial, and nothing here isolates them with a proof). */
+static int scene_check(const an_state *S, const aa_scene *s)
 {
     size_t n;
     const aa_piece *p = aa_scene_pieces(s, &n);
-    for (size_t i = 0; i < n; i++) {
+    for (size_t i = 0; S->rad_k && i < n; i++) {
         if (p[i].kind == AA_PIECE_OFFSET)
-            return aa_fail(AA_EINVAL, "offset curves (the outlines of stroked Bezier "
-                                      "arcs) are not polynomial curves: refused");
+            return aa_fail(AA_EINVAL,
+                           "analytic under a radial filter does not take offset curves (the "
+                           "outlines of stroked Bezier and elliptical arcs): their crossings "
+                           "with the filter's circle are not roots of a polynomial; refused "
+                           "(the separable filters take them)");
     }
     return AA_OK;
 }
 
 static int prepare(an_state *S, const aa_job *job)
 {
-    int st = scene_check(job->placed);
+    int st = scene_check(S, job->placed);
     if (!st && S->rad_k) /* every row takes the visible parts */
         return aa__sampler_ready(&S->sampler, job, aa__vis_size(job->placed, 3));
     if (st || (st = plan(S, job->placed, job->h)))
@@ -2494,7 +2996,22 @@ static int analytic_init(void *state, const double *p, const aa_job *job)
     knot_lines(S);
     gauss_make(S);
     arc_make(S);
+    off_rules_make(S);
     return prepare(S, job);
+}
+
+/* An image with an offset part whose rule's bound was not met (its speed
+ * or a denominator within rounding of 0 on it, after AN_OFF_DEPTH
+ * halvings) is refused: its values are not certified. */
+static int off_certified(int uncertain)
+{
+    if (!uncertain)
+        return AA_OK;
+    return aa_fail(AA_EINVAL,
+                   "analytic: an offset curve (a stroke's outline) with a part whose "
+                   "quadrature bound (%g) it cannot meet (its speed or curvature within "
+                   "rounding of 0 there): refused",
+                   AN_OFF_TOL);
 }
 
 static int analytic_render(void *state, const double *p, const aa_job *job, aa_image *out,
@@ -2505,7 +3022,8 @@ static int analytic_render(void *state, const double *p, const aa_job *job, aa_i
     int st = prepare(S, job);
     if (st)
         return st;
-    an_render R = {S, job->placed, 0.0, 1.0};
+    int uncertain = 0;
+    an_render R = {S, job->placed, 0.0, 1.0, &uncertain};
     aa_filter_range(&job->filter, &R.lo, &R.hi);
     if (S->rad_k)
         return aa__sampler_render(&S->sampler, job, out, rad_render_row, &R, counters);
@@ -2531,7 +3049,7 @@ static int analytic_render(void *state, const double *p, const aa_job *job, aa_i
         return aa_fail(AA_ENOMEM, "out of memory for a strip of the scene");
     counters->samples = 0;
     counters->expensive_pixels = expensive;
-    return AA_OK;
+    return off_certified(uncertain);
 }
 
 static void analytic_release(void *state)
@@ -2547,7 +3065,7 @@ const aa_method_type aa_method_analytic = {
      "degree (Manson and Schaefer 2013)",
      analytic_params},
     sizeof(an_state),
-    AA_METHOD_SOME_SCENES, /* offset curves: refused at init */
+    AA_METHOD_SOME_SCENES, /* offset curves under the radial filters: refused at init */
     analytic_check,
     analytic_init,
     analytic_render,

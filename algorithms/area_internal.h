@@ -615,5 +615,10 @@ int area_quad_init(ar_quad *q);
 int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel **out,
                        size_t *n);
 double area_offset_segment(const ar_piece *pc, double ta, double tb);
+/* A bound on the speed |P'| of an offset curve or evolute (unmapped, its
+ * own units) on each disc |t - m| <= R[k], k < n, R ascending: INFINITY
+ * from the first disc that may hold a zero of a denominator on (the form
+ * aa__offset_eval takes at m: the factored one next to a stop). */
+void area_offset_speed(const aa_offset_curve *oc, double m, int n, const double *R, double *V);
 
 #endif /* AA_AREA_INTERNAL_H */

@@ -645,3 +645,105 @@ double area_offset_segment(const ar_piece *pc, double ta, double tb)
     double det = pc->src->oc.m[0] * pc->src->oc.m[3] - pc->src->oc.m[2] * pc->src->oc.m[1];
     return ta < tb ? det * seg : -det * seg;
 }
+
+/* ---- the speed of the curve on a disc (for `analytic`) ----
+ *
+ * A bound on |P'| (the Euclidean norm of the complex vector, unmapped: the
+ * curve's own coordinates) on the disc |t - m| <= R, from the same Taylor
+ * sums as panel_M's factors, in the form aa__offset_eval takes at m:
+ *  - offset of a cubic: P' = B' (1 - d c/L^3), at most
+ *    |B'| (1 + |d| |c| / lo^(3/2)), lo the lower bound of |L^2|;
+ *  - evolute of a cubic: E' = (3 (B'.B'') c - L^2 c')/c^2 perp(B'), at most
+ *    (3 |B'.B''| |c| + |L^2| |c'|) |B'| / cl^2, cl the lower bound of |c|;
+ *  - the ellipse's: c = J constant, c' = 0, |B'| <= |u'| sinh R + |v'|
+ *    cosh R, |B'.B''| as in panel_M_ellipse;
+ *  - the factored form about a stop te (sd = |m - te| + R): the offset's
+ *    P' = (t - te - d sg X/|Q|^3) Q, at most (sd + |d| |X| / lo^(3/2))
+ *    |Q|, lo the lower bound of |Q|^2; the evolute's E' = (|Q|^2 + 3 (t -
+ *    te) (Q . Q')) perp(Q)/X; where X = 0 (straight next to te) P' = (t -
+ *    te) Q.
+ * Where a lower bound is not positive the disc may hold a zero of a
+ * denominator (or of L^2, whose square root then has no analytic branch):
+ * INFINITY, and the larger discs after it too. */
+void area_offset_speed(const aa_offset_curve *oc, double m, int n, const double *R, double *V)
+{
+    double bx[4] = {0}, by[4] = {0}, te = 0.0, q[4] = {0.0, 0.0, 0.0, 0.0};
+    int ell = oc->base == AA_OFFSET_ELLIPSE, stop = aa__offset_stop(oc, m, &te, q), dead = 0;
+    double up[2], vp[2];
+    if (ell)
+        ellipse_at(oc, m, up, vp);
+    else
+        taylor(oc, m, bx, by);
+    double ux[3] = {bx[1], 2 * bx[2], 3 * bx[3]}, uy[3] = {by[1], 2 * by[2], 3 * by[3]};
+    double vx[2] = {2 * bx[2], 6 * bx[3]}, vy[2] = {2 * by[2], 6 * by[3]};
+    double L2[5], t1[5], c[4], t2[4], dd[4], cp[3];
+    pmul(ux, 3, ux, 3, L2);
+    pmul(uy, 3, uy, 3, t1);
+    for (int k = 0; k < 5; k++)
+        L2[k] += t1[k];
+    pmul(ux, 3, vy, 2, c);
+    pmul(uy, 3, vx, 2, t2);
+    for (int k = 0; k < 4; k++)
+        c[k] -= t2[k];
+    pmul(ux, 3, vx, 2, dd);
+    pmul(uy, 3, vy, 2, t2);
+    for (int k = 0; k < 4; k++)
+        dd[k] += t2[k];
+    for (int k = 0; k < 3; k++)
+        cp[k] = ux[k] * 6 * by[3] - uy[k] * 6 * bx[3];
+    double Qx[2] = {q[0] + q[1] * m, q[1]}, Qy[2] = {q[2] + q[3] * m, q[3]};
+    double Q2[3] = {0.0, 0.0, 0.0}, QQ[2] = {0.0, 0.0};
+    if (stop) {
+        pmul(Qx, 2, Qx, 2, Q2);
+        pmul(Qy, 2, Qy, 2, t1);
+        for (int k = 0; k < 3; k++)
+            Q2[k] += t1[k];
+        QQ[0] = Qx[0] * q[1] + Qy[0] * q[3], QQ[1] = q[1] * q[1] + q[3] * q[3];
+    }
+    const double d = fabs(oc->d);
+    for (int k = 0; k < n; k++) {
+        double r = R[k], v = INFINITY;
+        if (dead) {
+            V[k] = INFINITY;
+            continue;
+        }
+        if (ell) {
+            double ch = cosh(r), sh = sinh(r);
+            double uu = up[0] * up[0] + up[1] * up[1], vv = vp[0] * vp[0] + vp[1] * vp[1];
+            double uv = fabs(up[0] * vp[0] + up[1] * vp[1]);
+            double J = fabs(up[0] * vp[1] - up[1] * vp[0]);
+            double Uu = sqrt(uu) * sh + sqrt(vv) * ch;
+            double lo = vv - (fabs(uu - vv) * sh * sh + 2.0 * uv * sh * ch);
+            if (J > 0.0 && lo > 0.0) {
+                if (!oc->evolute)
+                    v = Uu * (1.0 + d * J / (lo * sqrt(lo)));
+                else
+                    v = 3.0 * (fabs(uu - vv) * sh * ch + uv * (sh * sh + ch * ch)) * Uu / J;
+            }
+        } else if (stop) {
+            double X = fabs(Qx[0] * q[3] - Qy[0] * q[1]), sd = fabs(m - te) + r;
+            double Qmax = sqrt(pabs(Q2, 3, 0, r)), lo = plow(Q2, 3, r);
+            if (X == 0.0)
+                v = sd * Qmax;
+            else if (!oc->evolute && lo > 0.0)
+                v = (sd + d * X / (lo * sqrt(lo))) * Qmax;
+            else if (oc->evolute)
+                v = (pabs(Q2, 3, 0, r) + 3 * sd * pabs(QQ, 2, 0, r)) * Qmax / X;
+        } else {
+            double Uu = hypot(pabs(ux, 3, 0, r), pabs(uy, 3, 0, r));
+            if (!oc->evolute) {
+                double lo = plow(L2, 5, r);
+                if (lo > 0.0)
+                    v = Uu * (1.0 + d * pabs(c, 4, 0, r) / (lo * sqrt(lo)));
+            } else {
+                double cl = plow(c, 4, r);
+                if (cl > 0.0)
+                    v = (3 * pabs(dd, 4, 0, r) * pabs(c, 4, 0, r) +
+                         pabs(L2, 5, 0, r) * pabs(cp, 3, 0, r)) *
+                        Uu / (cl * cl);
+            }
+        }
+        V[k] = v * (1.0 + 1e-12); /* the bound's own rounding */
+        dead = !(v < INFINITY);
+    }
+}

@@ -19,6 +19,7 @@ struct aa__vis_piece {
     double lo, hi;         /* the piece's rows inside the window's rows */
     double run_lo, run_hi; /* the open run */
     double *jump;          /* its jump (dims values, in the workspace) */
+    double t[2];           /* an offset piece's parameters at the band's ends */
     int id;                /* index in the scene */
     int open, inside;
 };
@@ -279,6 +280,31 @@ static void flat_parts(aa__vis *v, const aa_strip *st, const aa_piece *const *lo
     }
 }
 
+/* An offset piece's parameter at height y (the one aa_piece_meet would
+ * solve for: its ends' outside its rows, else the offset solver's root in
+ * y); NaN for other kinds, which take none. */
+static double param_at(const aa_piece *p, double y)
+{
+    if (p->kind != AA_PIECE_OFFSET)
+        return NAN;
+    if (!(y > p->y0))
+        return p->ot0;
+    if (!(y < p->y1))
+        return p->ot1;
+    return aa__offset_solve_d(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y);
+}
+
+/* The parameters of the band's offset pieces (ord[0 .. na)) at height y,
+ * as their e-th end (the same roots aa_piece_meet would solve for). */
+static void params_at(aa__vis *v, size_t na, double y, int e)
+{
+    for (size_t a = 0; a < na; a++) {
+        aa__vis_piece *P = &v->lp[v->ord[a].li];
+        if (P->p->kind == AA_PIECE_OFFSET)
+            P->t[e] = param_at(P->p, y);
+    }
+}
+
 void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double ya, double yb,
                     const aa__vis_sink *sk)
 {
@@ -337,8 +363,10 @@ void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double
             if (v->lp[i].lo <= e0 && v->lp[i].hi >= e1)
                 v->ord[na++] = (aa__vis_order){0.0, v->lp[i].id, (int)i};
         double lo = e0;
+        params_at(v, na, lo, 0);
         while (lo < e1) {
             double hi = e1;
+            params_at(v, na, hi, 1);
             for (int it = 0;; it++) {
                 double mid = 0.5 * (lo + hi);
                 for (size_t a = 0; a < na; a++)
@@ -350,8 +378,8 @@ void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double
                 double m = hi;
                 for (size_t a = 0; a + 1 < na; a++) {
                     double ys[2];
-                    int nm = aa_piece_meet(v->lp[v->ord[a].li].p, v->lp[v->ord[a + 1].li].p,
-                                           lo, hi, ys, 2);
+                    const aa__vis_piece *P = &v->lp[v->ord[a].li], *Q = &v->lp[v->ord[a + 1].li];
+                    int nm = aa__piece_meet_at(P->p, Q->p, lo, hi, P->t, Q->t, ys, 2);
                     for (int r = 0; r < nm; r++)
                         if (ys[r] > lo + eps && ys[r] < hi - eps && ys[r] < m)
                             m = ys[r];
@@ -359,8 +387,13 @@ void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double
                 if (!(m < hi))
                     break;
                 hi = m;
+                params_at(v, na, hi, 1);
             }
             band_sweep(v, st, xl, xr, lo, hi, na, sk);
+            for (size_t a = 0; a < na; a++) {
+                aa__vis_piece *P = &v->lp[v->ord[a].li];
+                P->t[0] = P->t[1];
+            }
             lo = hi;
         }
     }

@@ -1,6 +1,7 @@
 /*
  * bench_bezstroke.c: speed of strokes of Bezier arcs (`make bench`): the
- * stroker, the box reference of the stroke, and `point`, on a path of
+ * stroker, the box reference of the stroke, `point`, `area` and
+ * `analytic`, on a path of
  * 1,000 cubic segments (20 wavy subpaths of 50 smooth cubics across the
  * square, stroked 2.5 px wide at 1024 px with round joins and caps; some
  * segments tight enough that their offsets fold).
@@ -9,13 +10,15 @@
  * stroke the path (median of 5), the number of pieces of the scene, the
  * box reference's time (median of -r REPS renders, default 3, after none
  * untimed: each is seconds long; -r 0: none; then the least and the most)
- * with its largest bound, and `point`'s and `area`'s medians (of 5, then
- * the least and the most) and area/point, the ratio of the medians; each
+ * with its largest bound, and `point`'s, `area`'s and `analytic`'s (under
+ * the box, and under each filter of -f, repeatable) medians (of 5, then
+ * the least and the most), area/point and analytic/area (analytic under
+ * each filter against area under the box), the ratios of the medians; each
  * in wall-clock time and in the process's CPU time (`cpu`), which other
  * processes sharing the core lengthen far less.  Figures are read, not
  * asserted.
  *
- * usage: bench_bezstroke [-s WxH] [-r REPS]
+ * usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]...
  */
 #include "bench.h"
 #include "path.h"
@@ -73,14 +76,17 @@ static int build(aa_path *p)
 
 int main(int argc, char **argv)
 {
-    int w = 1024, h = 1024, reps = 3;
+    int w = 1024, h = 1024, reps = 3, nf = 1;
+    const char *filters[8] = {"box"};
     for (int k = 1; k < argc; k++) {
         if (!strcmp(argv[k], "-s") && k + 1 < argc && sscanf(argv[k + 1], "%dx%d", &w, &h) == 2)
             k++;
         else if (!strcmp(argv[k], "-r") && k + 1 < argc)
             reps = atoi(argv[++k]);
+        else if (!strcmp(argv[k], "-f") && k + 1 < argc && nf < 8)
+            filters[nf++] = argv[++k];
         else {
-            fprintf(stderr, "usage: bench_bezstroke [-s WxH] [-r REPS]\n");
+            fprintf(stderr, "usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]...\n");
             return 2;
         }
     }
@@ -159,14 +165,15 @@ int main(int argc, char **argv)
     aa_spec spec;
     aa_method m;
     aa_counters c;
-    double t_m[2][5], c_m[2][5], med[2], cmed[2];
-    const char *names[2] = {"point", "area"};
-    if (aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1)) {
-        fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
-        return 3;
-    }
-    for (int q = 0; q < 2; q++) {
-        if (aa_method_parse(names[q], &f, &spec) || aa_method_init(&m, &spec, &job)) {
+    double t_m[10][5], c_m[10][5], med[10], cmed[10];
+    const char *names[10] = {"point", "area"};
+    int nq = 2 + nf;
+    for (int q = 2; q < nq; q++)
+        names[q] = "analytic";
+    for (int q = 0; q < nq; q++) {
+        const char *fname = q < 2 ? "box" : filters[q - 2];
+        if (aa_filter_parse(fname, &f) || aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1) ||
+            aa_method_parse(names[q], &f, &spec) || aa_method_init(&m, &spec, &job)) {
             fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
             return 3;
         }
@@ -180,14 +187,19 @@ int main(int argc, char **argv)
             c_m[q][k] = cpu_now() - c0;
         }
         aa_method_free(&m);
+        aa_job_free(&job);
         med[q] = median(t_m[q], 5); /* sorts them */
         cmed[q] = median(c_m[q], 5);
+        char label[64];
+        snprintf(label, sizeof label, q < 2 ? "%s" : "%s %s", names[q], fname);
         printf("%-19s %10.3f ms (median of 5, %.3f .. %.3f), cpu %.3f ms (%.3f .. %.3f)\n",
-               names[q], 1e3 * med[q], 1e3 * t_m[q][0], 1e3 * t_m[q][4], 1e3 * cmed[q],
+               label, 1e3 * med[q], 1e3 * t_m[q][0], 1e3 * t_m[q][4], 1e3 * cmed[q],
                1e3 * c_m[q][0], 1e3 * c_m[q][4]);
     }
     printf("area/point          %10.2f (cpu %.2f)\n", med[1] / med[0], cmed[1] / cmed[0]);
-    aa_job_free(&job);
+    for (int q = 2; q < nq; q++)
+        printf("analytic/area       %10.2f (cpu %.2f) %s\n", med[q] / med[1], cmed[q] / cmed[1],
+               filters[q - 2]);
     aa_image_free(&im);
     aa_image_free(&bound);
     aa_scene_free(placed);

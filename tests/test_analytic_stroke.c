@@ -1,0 +1,285 @@
+/*
+ * test_analytic_stroke.c: `analytic` on the exact outlines of stroked
+ * Bezier and elliptical arcs (offset curves and evolutes, AA_PIECE_OFFSET),
+ * under the separable filters it takes.
+ *
+ * Known answers, none from the method itself:
+ *  - the exact reference of the harness's separate truth path
+ *    (aa_truth_render: the rows' crossings with the pieces root-found, the
+ *    filter integrated over the rows by its own quadrature), within 1e-12
+ *    per pixel, under box, tent:r=1, bspline:order=3 and mitchell on the
+ *    built-in `strokes` pattern and on the scene of tests/bench_bezstroke.c
+ *    (20 wavy paths of 50 cubics, stroked 2.5 px wide with round joins and
+ *    caps, some tight enough that their offsets fold) at 64 px, where
+ *    neighbouring strokes overlap (rows of the visible parts' scatter) and
+ *    others stand alone (rows of the per-edge scatter), and under box and
+ *    tent:r=1 on an SVG drawn here (at 24 px) of thick strokes of tight
+ *    cubics and of a turned ellipse whose inner offsets fold, a cubic with
+ *    a cusp and overlapping layers of four colours;
+ *  - the tube formula (a closed form): a butt-capped stroke of width w of
+ *    a curve whose curvature radius exceeds w/2 everywhere covers w times
+ *    the curve's length, and so does a closed stroke of a closed curve,
+ *    so under a filter whose integer translates sum to 1 (box, tent:r=1,
+ *    the B-splines, Mitchell-Netravali, Catmull-Rom) the image of the white
+ *    stroke on black sums to that area (placed: times the view's w h) over
+ *    an image holding its whole filtered support.  The lengths: a gentle
+ *    cubic's by GSL's QAG (oracle_cubic_length), a closed ellipse's
+ *    perimeter by the Gauss-Kummer series pi (a + b) sum binom(1/2, n)^2
+ *    q^(2n), q = (a - b)/(a + b), and under a shear m the area times
+ *    |det m|;
+ *  - refusals by name: offset curves under the radial filters.
+ * Quick tier (about 1.2 s of CPU): the folding strokes at 24 px under two
+ * filters; at 96 px their visible parts take minutes (tangent offset
+ * pieces of one outline reported meeting every 1e-12 px along their
+ * common stretch, algorithms/README.md).
+ */
+#include "oracle.h"
+#include "path.h"
+#include "scenes.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+static const char *const filters[] = {"box", "tent:r=1", "bspline:order=3", "mitchell"};
+#define NF 4
+
+static void must(int st)
+{
+    if (st)
+        fail_msg("status %d: %s", st, aa_last_error());
+}
+
+/* Fails where analytic's image is more than 1e-12 from the reference's
+ * under any of the filters; prints the largest difference and how many
+ * pieces are offset pieces (none in `strokes`, of lines and circular
+ * arcs, whose offsets are lines and circles). */
+static void against_reference(const char *what, const aa_scene *s, int w, int h, int f0, int f1)
+{
+    size_t n, noff = 0;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    for (size_t k = 0; k < n; k++)
+        noff += pc[k].kind == AA_PIECE_OFFSET;
+    for (int f = f0; f < f1 && f < NF; f++) {
+        aa_image a, r;
+        support_render("analytic", s, filters[f], w, h, 2, &a, NULL);
+        support_reference(s, &(support_view){.w = w, .h = h, .filter = filters[f], .threads = 2},
+                          &r, NULL, NULL);
+        double worst = support_within_reference(what, filters[f], &a, &r, 1e-12);
+        print_message("%-28s %-16s %zu offset pieces, largest difference %.1e\n", what,
+                      filters[f], noff, worst);
+        aa_image_free(&a);
+        aa_image_free(&r);
+    }
+}
+
+static void test_strokes_pattern(void **state)
+{
+    (void)state;
+    aa_scene *s = scenes_pattern("strokes");
+    against_reference("strokes", s, 40, 40, 0, NF);
+    aa_scene_free(s);
+}
+
+/* tests/bench_bezstroke.c's scene at 1024 px (20 subpaths of 50 cubics
+ * across the square, stroked 2.5 px wide, round joins and caps), seen
+ * through the window of n x n px from (X0, Y0): the cubics k0 .. k1 of
+ * subpath r, mapped to the window's unit square. */
+static aa_scene *bezstroke_scene(int n, int r, int k0, int k1, double X0, double Y0)
+{
+    aa_path p = {0};
+    double y = (r + 0.5) / 20.0, a = 0.004 + 0.0015 * r, dx = 0.9 / 50.0, x = 0.05 + k0 * dx;
+#define WX(u) (((u) * 1024.0 - X0) / n)
+#define WY(v) (((v) * 1024.0 - Y0) / n)
+    must(aa_path_move_to(&p, WX(x), WY(y)));
+    for (int k = k0; k <= k1; k++) {
+        double s = (k % 2 ? -1.0 : 1.0) * a * (1.0 + 0.5 * sin(0.7 * k + r));
+        double kink = k % 7 == 6 ? 0.3 * dx : 0.0;
+        must(aa_path_cubic_to(&p, WX(x + dx / 3.0 + kink), WY(y + s), WX(x + 2.0 * dx / 3.0),
+                              WY(y + s), WX(x + dx), WY(y)));
+        x += dx;
+    }
+#undef WX
+#undef WY
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 2.5 / n;
+    st.join = AA_JOIN_ROUND;
+    st.cap = AA_CAP_ROUND;
+    aa_scene *s = scenes_stroke_outline(&p, &st, NULL, NULL);
+    aa_path_free(&p);
+    return s;
+}
+
+static void test_bezstroke_scene(void **state)
+{
+    (void)state;
+    /* subpath 10 (amplitude about 20 px) about its seventh cubic (a
+     * corner): cubics 3 to 8, the window from (125, 505.6) */
+    aa_scene *s = bezstroke_scene(64, 10, 3, 8, 125.0, 537.6 - 32.0);
+    against_reference("bench_bezstroke, 64 px of it", s, 64, 64, 0, NF);
+    aa_scene_free(s);
+}
+
+/* Thick strokes of tight curves: the inner offsets of the first two paths'
+ * bends and of the ellipse's ends fold (curvature radius under the half
+ * width: the ellipse's least, ry^2/rx = 1.6, against 5), the third path's
+ * cubic has a cusp (its control polygon crosses itself symmetrically), and
+ * the strokes overlap, each in front of the last. */
+static const char fold_svg[] =
+    "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 100 100\">\n"
+    "  <rect width=\"100\" height=\"100\" fill=\"#102030\"/>\n"
+    "  <path d=\"M10 30 C 25 5, 30 5, 45 30 S 65 55, 90 20\" fill=\"none\" stroke=\"gold\"\n"
+    "        stroke-width=\"9\" stroke-linejoin=\"round\" stroke-linecap=\"round\"/>\n"
+    "  <path d=\"M12 62 C 40 97, 10 97, 40 62\" fill=\"none\" stroke=\"white\"\n"
+    "        stroke-width=\"7\"/>\n"
+    "  <path d=\"M50 90 C 90 50, 55 50, 95 90\" fill=\"none\" stroke=\"#6c6\" stroke-width=\"5\"\n"
+    "        stroke-linecap=\"square\"/>\n"
+    "  <ellipse cx=\"62\" cy=\"60\" rx=\"25\" ry=\"6.3\" fill=\"none\" stroke=\"rgb(200, 60, 40)\"\n"
+    "           stroke-width=\"10\" transform=\"rotate(20 62 60)\"/>\n"
+    "</svg>\n";
+
+static void test_folding_svg(void **state)
+{
+    (void)state;
+    char dir[256], path[512], spec[600];
+    assert_int_equal(support_tmpdir(dir, sizeof dir, "anastroke"), 0);
+    snprintf(path, sizeof path, "%s/fold.svg", dir);
+    support_write_file(path, fold_svg, strlen(fold_svg));
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_spec ps;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, 24, 24, &s))
+        fail_msg("pattern %s: %s", spec, aa_last_error());
+    size_t n, noff = 0;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    for (size_t k = 0; k < n; k++)
+        noff += pc[k].kind == AA_PIECE_OFFSET;
+    assert_true(noff > 0);
+    against_reference("folding strokes (svg)", s, 24, 24, 0, 2);
+    aa_scene_free(s);
+    assert_int_equal(support_rmtree(dir), 0);
+}
+
+/* ---- the tube formula ---- */
+
+static const char *const sum_filters[] = {"box",      "tent:r=1", "bspline:order=2",
+                                          "bspline:order=3", "mitchell", "catrom"};
+
+/* The mean of analytic's image of s (white on black) at n x n under each
+ * of sum_filters, against want (pattern units). */
+static void sums_to(const char *what, const aa_scene *s, int n, double want)
+{
+    for (size_t f = 0; f < sizeof sum_filters / sizeof *sum_filters; f++) {
+        aa_image im;
+        support_render("analytic", s, sum_filters[f], n, n, 2, &im, NULL);
+        double got = support_channel_mean(&im, 0);
+        print_message("%-28s %-16s area %.15f, want %.15f (%.1e)\n", what, sum_filters[f], got,
+                      want, got - want);
+        if (!(fabs(got - want) < 1e-12))
+            fail_msg("%s under %s: area %.17g, want %.17g", what, sum_filters[f], got, want);
+        aa_image_free(&im);
+    }
+}
+
+/* Gauss-Kummer: P = pi (a + b) sum_n binom(1/2, n)^2 q^(2n). */
+static double perimeter(double a, double b)
+{
+    double q = (a - b) / (a + b), h = q * q, c = 1, sum = 1, hn = 1;
+    for (int n = 1; n < 2000; n++) {
+        c *= (0.5 - (n - 1)) / n;
+        hn *= h;
+        double term = c * c * hn;
+        sum += term;
+        if (term < 1e-20 * sum)
+            break;
+    }
+    return M_PI * (a + b) * sum;
+}
+
+static void test_tube(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st); /* butt caps */
+    /* a gentle cubic: curvature radius above w/2 everywhere */
+    const double c[8] = {0.25, 0.5, 0.35, 0.35, 0.65, 0.65, 0.75, 0.5};
+    double w = 0.04;
+    for (int k = 0; k <= 1000; k++)
+        assert_true(fabs(oracle_cubic_curvature(c, k / 1000.0)) * 0.5 * w < 0.99);
+    aa_path p = {0};
+    st.width = w;
+    must(aa_path_move_to(&p, c[0], c[1]));
+    must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
+    size_t noff;
+    aa_scene *s = scenes_stroke_outline(&p, &st, NULL, &noff);
+    assert_true(noff > 0);
+    sums_to("gentle cubic, butt", s, 64, w * oracle_cubic_length(c, 0, 1));
+    aa_scene_free(s);
+    aa_path_free(&p);
+    /* a closed ellipse of semi-axes a, b turned by 0.5 (least curvature
+     * radius b^2/a = 0.114 > w/2), and sheared after stroking */
+    const double a = 0.35, b = 0.2, phi = 0.5;
+    const double shear[6] = {0.8, 0.15, -0.3, 0.6, 0.3, 0.1};
+    w = 0.05;
+    st.width = w;
+    double ux = a * cos(phi), uy = a * sin(phi), vx = -b * sin(phi), vy = b * cos(phi);
+    must(aa_path_move_to(&p, 0.5 + ux, 0.5 + uy));
+    must(aa_path_arc_to(&p, 0.5, 0.5, ux, uy, vx, vy, 0.0, 2.0 * M_PI, 0.5 + ux, 0.5 + uy));
+    must(aa_path_close(&p));
+    s = scenes_stroke_outline(&p, &st, NULL, &noff);
+    assert_true(noff > 0);
+    sums_to("closed ellipse", s, 64, w * perimeter(a, b));
+    aa_scene_free(s);
+    s = scenes_stroke_outline(&p, &st, shear, &noff);
+    assert_true(noff > 0);
+    sums_to("closed ellipse, sheared", s, 64,
+            fabs(shear[0] * shear[3] - shear[1] * shear[2]) * w * perimeter(a, b));
+    aa_scene_free(s);
+    aa_path_free(&p);
+}
+
+/* ---- refusals ---- */
+
+static void test_radial_refused(void **state)
+{
+    (void)state;
+    const double c[8] = {0.25, 0.5, 0.35, 0.35, 0.65, 0.65, 0.75, 0.5};
+    aa_path p = {0};
+    aa_stroke_style sty;
+    aa_stroke_style_default(&sty);
+    sty.width = 0.04;
+    must(aa_path_move_to(&p, c[0], c[1]));
+    must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
+    size_t noff;
+    aa_scene *s = scenes_stroke_outline(&p, &sty, NULL, &noff);
+    assert_true(noff > 0);
+    aa_path_free(&p);
+    aa_image im;
+    int st = support_render_view("analytic", s, &(support_view){.w = 16, .h = 16,
+                                                                .filter = "radial:k=2,r=1.5",
+                                                                .threads = 1},
+                                 &im, NULL);
+    assert_int_equal(st, AA_EINVAL);
+    print_message("radial: %s\n", aa_last_error());
+    assert_non_null(strstr(aa_last_error(), "radial"));
+    assert_non_null(strstr(aa_last_error(), "offset curves"));
+    aa_scene_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_strokes_pattern), cmocka_unit_test(test_bezstroke_scene),
+        cmocka_unit_test(test_folding_svg), cmocka_unit_test(test_tube),
+        cmocka_unit_test(test_radial_refused)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
