@@ -389,11 +389,14 @@ static void test_2d_spread(void **state)
  *    curve (gradient_oracle.c, go_dec);
  *  - a ramp of encoded colour and opacity (C = 0.2 + 0.8 t, alpha = 0.9 -
  *    0.5 t, padded; stops' colours are given in linear light and
- *    interpolated encoded) against 2-D quadrature of the composite from that
+ *    interpolated encoded), and C = t, whose composite crosses sRGB's
+ *    threshold 0.04045 on circles of t found here by bisection (cut there
+ *    too), against 2-D quadrature of the composite from that
  *    definition: alpha C where one rectangle paints, alpha C (2 - alpha)
  *    where both do, decoded; cut at the tangents, the circles t = 0 and
  *    1 (where the padding's derivatives jump), the rectangles' sides. */
-static const double LA[4] = {2.5, 2.25, 11.5, 9.5}, LB[4] = {6.5, 4.5, 14.75, 11.25};
+static const double LA[4] = {2.5, 2.25, 11.5, 9.5}, LB[4] = {2.75, 4.25, 14.75, 11.25};
+static double layers_c0; /* the ramp's first encoded colour */
 
 /* Two layers, rectangles LA then LB, each painted by the cone p[] with
  * stops st, over black. */
@@ -433,7 +436,7 @@ static double layers_at(const pic *pc, double x, double y)
     if (isnan(t) || n == 0)
         return 0.0;
     t = t < 0 ? 0 : t > 1 ? 1 : t;
-    double c = 0.2 + 0.8 * t, al = 0.9 - 0.5 * t;
+    double c = layers_c0 + (1 - layers_c0) * t, al = 0.9 - 0.5 * t;
     return go_dec(n == 1 ? al * c : al * c * (2 - al));
 }
 
@@ -504,8 +507,10 @@ static void test_layers(void **state)
 {
     (void)state;
     /* the wedge from P = (0.16, 4.63) towards C = (9.3, 6.1): its upper
-     * tangent crosses the overlap [6.5, 11.5] x [4.5, 9.5] near (6, 8) ..
-     * (9, 9), the lower one LA alone near (3, 4) .. (10, 2) */
+     * tangent crosses the overlap [2.75, 11.5] x [4.25, 9.5] near (4, 6) ..
+     * (9, 9), the lower one LA alone near (3, 4) .. (10, 2); the circles
+     * t = 0 and where the composite crosses 0.04045 lie in the overlap
+     * near (2, 4) .. (4, 6) */
     const double p[6] = {9.3, 6.1, 3.1, 3.7, 5.2, 1.2};
     static const aa_gradient_stop half[2] = {{0.0, {{1, 1, 1}}, 0.5}, {1.0, {{1, 1, 1}}, 0.5}};
     co_half hp[2];
@@ -537,41 +542,55 @@ static void test_layers(void **state)
     aa_image_free(&bound);
     aa_scene_free(s);
 
-    /* the ramp of colour and opacity: the composite a quartic in t */
-    /* stop colours are given in linear light and interpolated encoded:
-     * the first stop's colour the decoding of 0.2 (encoded 0.2 again to
-     * within rounding) */
-    double d02 = go_dec(0.2);
-    const aa_gradient_stop ramp[2] = {{0.0, {{d02, d02, d02}}, 0.9}, {1.0, {{1, 1, 1}}, 0.4}};
+    /* the ramps of colour and opacity: the composite a quartic in t */
     static const int px[][2] = {{6, 8}, {7, 8}, {8, 8}, {9, 9}, {6, 4}, {6, 6}, {11, 4},
                                 {11, 9}, {10, 6}, {8, 5}, {3, 4}, {5, 3}, {2, 4}, {14, 7},
-                                {12, 10}, {9, 2}, {1, 4}};
-    pic pc;
-    memset(&pc, 0, sizeof pc);
-    memcpy(pc.p, p, sizeof pc.p);
-    pc.taus[pc.ntaus++] = 0.0, pc.taus[pc.ntaus++] = 1.0;
-    pc.nh = co_region(p, pc.hp, &pc.wedge, pc.apex);
-    s = layers_scene(p, ramp);
-    support_reference(s, &v, &ref, &bound, &stats);
-    assert_true(stats.max_bound <= 1e-12);
-    worst = 0;
-    for (size_t k = 0; k < sizeof px / sizeof *px; k++) {
-        int i = px[k][0], j = px[k][1];
-        double want = layers_pixel(&pc, i, j), got = aa_pixel(&ref, i, j)[0];
-        double bd = *aa_pixel(&bound, i, j);
-        worst = fmax(worst, fabs(got - want));
-        if (!(fabs(got - want) <= bd + 1e-14))
-            fail_msg("two layers, ramp: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound "
-                     "%.3g)",
-                     i, j, got, want, bd);
+                                {12, 10}, {9, 2}, {1, 4}, {3, 5}, {4, 5}, {3, 3}, {4, 6},
+                                {3, 6}, {4, 4}, {5, 5}, {2, 5}, {2, 6}};
+    for (int r = 0; r < 2; r++) {
+        layers_c0 = r ? 0.0 : 0.2;
+        /* stop colours are given in linear light and interpolated
+         * encoded: the first stop's colour the decoding of c0 (encoded c0
+         * again to within rounding) */
+        double d0 = go_dec(layers_c0);
+        const aa_gradient_stop ramp[2] = {{0.0, {{d0, d0, d0}}, 0.9}, {1.0, {{1, 1, 1}}, 0.4}};
+        pic pc;
+        memset(&pc, 0, sizeof pc);
+        memcpy(pc.p, p, sizeof pc.p);
+        pc.taus[pc.ntaus++] = 0.0, pc.taus[pc.ntaus++] = 1.0;
+        /* where alpha C and alpha C (2 - alpha) reach 0.04045 (both
+         * increasing on [0, 1/2] for C = t), by bisection */
+        for (int n = 1; r && n <= 2; n++) {
+            double lo = 0, hi = 0.5;
+            for (int it = 0; it < 200; it++) {
+                double m = 0.5 * (lo + hi), al = 0.9 - 0.5 * m;
+                double e = n == 1 ? al * m : al * m * (2 - al);
+                *(e < GO_T0 ? &lo : &hi) = m;
+            }
+            pc.taus[pc.ntaus++] = 0.5 * (lo + hi);
+        }
+        pc.nh = co_region(p, pc.hp, &pc.wedge, pc.apex);
+        s = layers_scene(p, ramp);
+        support_reference(s, &v, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        worst = 0;
+        for (size_t k = 0; k < sizeof px / sizeof *px; k++) {
+            int i = px[k][0], j = px[k][1];
+            double want = layers_pixel(&pc, i, j), got = aa_pixel(&ref, i, j)[0];
+            double bd = *aa_pixel(&bound, i, j);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-14))
+                fail_msg("two layers, ramp from %g: pixel (%d, %d) is %.17g, 2-D quadrature "
+                         "%.17g (bound %.3g)",
+                         layers_c0, i, j, got, want, bd);
+        }
+        print_message("two layers of one cone, ramp from %.1f %d pixels, largest difference "
+                      "from 2-D quadrature %.2g, largest bound %.2g\n",
+                      layers_c0, (int)(sizeof px / sizeof *px), worst, stats.max_bound);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
     }
-    print_message("%-34s %d pixels, largest difference from 2-D quadrature %.2g, largest "
-                  "bound %.2g\n",
-                  "two layers of one cone, ramp", (int)(sizeof px / sizeof *px), worst,
-                  stats.max_bound);
-    aa_image_free(&ref);
-    aa_image_free(&bound);
-    aa_scene_free(s);
 }
 
 int main(void)

@@ -281,8 +281,9 @@
  * as a factor, the row cut also at the filter's kinks.  Beside other
  * gradients each span takes the path of the layers it depends on, and a
  * pixel where the cone and another gradient paint one point is refused
- * ("a cone beside other gradients"); the cone in linear light is
- * refused.
+ * ("a cone beside other gradients"); several layers of one cone take
+ * their composite, a polynomial in the shared t, on the cone's path ("one
+ * cone on several layers"); the cone in linear light is refused.
  *
  * The other separable filters (tent, gauss, bspline, mitchell, catrom,
  * lanczos; "the other separable filters" below): every span of a
@@ -1898,7 +1899,10 @@ static double span_weight(const worker *w, double xa, double xb)
  * |E| <= sum |E_q| T^q on the ellipse, T the bound of |t| there.  For n =
  * 1, K_0 = e0, K_1 = e1 - e0, K_2 = e2 - e1 and E is the quadratic
  * above.  The K are read as for several gradients (mix_span): composites
- * at every choice of the three paints per layer, then differences.
+ * at every choice of the three paints per layer, then differences.  More
+ * than GEN_MAX such layers at a point, or a polynomial whose roots the
+ * solver does not find, refuse the pixel as a cone meeting another
+ * gradient does (cone_over).
  */
 typedef struct cone_comp {
     int n, nk;
@@ -3081,7 +3085,9 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
  * cone's layer alone, the cone's path (cone_span, its composite's K0,
  * K1, K2 read the same way, the span clipped to a radial filter's chord);
  * no cone among them, the path of several gradients (gen_span), as
- * without the cone; the cone and another together, nothing: the pixel is
+ * without the cone; several layers all of one cone-case gradient
+ * (cone_same), the cone's path with their composite ("one cone on several
+ * layers"); the cone and another gradient together, nothing: the pixel is
  * refused by name (cone_over; integrate_pixel), as that path has no cut
  * at the tangent lines and bounds the cone's t as nested circles' (the
  * comment above "the cone case under the other filters").  So shapes
