@@ -852,6 +852,64 @@ static void test_beside(void **state)
     aa_scene_free(s);
 }
 
+/* Two rectangles filled with one cone (geoms[0]; the same circles, map
+ * and stops), white stops of opacity 1/2 over black: source over in
+ * encoded values gives 1/2 where one paints the wedge and 3/4 where both
+ * do, so under the filters whose translates sum to 1 the image sums to
+ * dec(1/2) (|A| + |B| - 2 |A B|) + dec(3/4) |A B|, the areas of the
+ * rectangles and their overlap clipped by the wedge (cone_oracle.c), dec
+ * sRGB's curve (gradient_oracle.c, go_dec). */
+static const double LA[4] = {2.5, 2.25, 9.5, 9.5}, LB[4] = {5.5, 4.5, 13.75, 9.75};
+
+static double layers_area(const double *r, const double *r2, const co_half *hp, int nh)
+{
+    double x0 = r[0], y0 = r[1], x1 = r[2], y1 = r[3];
+    if (r2)
+        x0 = fmax(x0, r2[0]), y0 = fmax(y0, r2[1]), x1 = fmin(x1, r2[2]), y1 = fmin(y1, r2[3]);
+    return x1 > x0 && y1 > y0 ? co_clipped_area(x0, y0, x1, y1, hp, nh) : 0.0;
+}
+
+static void test_layers(void **state)
+{
+    (void)state;
+    static const aa_gradient_stop half[2] = {{0.0, {{1, 1, 1}}, 0.5}, {1.0, {{1, 1, 1}}, 0.5}};
+    const geom *gm = &geoms[0];
+    co_half hp[2];
+    double apex[2];
+    int wedge, nh = co_region(gm->p, hp, &wedge, apex);
+    double a = layers_area(LA, NULL, hp, nh), b = layers_area(LB, NULL, hp, nh);
+    double ab = layers_area(LA, LB, hp, nh);
+    double want = go_dec(0.5) * (a + b - 2 * ab) + go_dec(0.75) * ab;
+    static const int kinds[] = {F_TENT, F_BSPLINE3, F_CATROM};
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        filt f = make_filt(kinds[k]);
+        aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+        assert_non_null(s);
+        aa_gradient g = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0}, {0}, 2, half};
+        memcpy(g.p, gm->p, sizeof g.p);
+        rect_layer(s, LA, g);
+        rect_layer(s, LB, g);
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, &f, &ref, &bound, &stats);
+        long double sum = 0, bsum = 0;
+        for (int j = 0; j < H; j++)
+            for (int i = 0; i < W; i++)
+                sum += aa_pixel(&ref, i, j)[0], bsum += *aa_pixel(&bound, i, j);
+        double diff = fabs((double)sum - want);
+        if (!(diff <= (double)bsum + W * H * 1e-16))
+            fail_msg("%s, two layers of one cone: the image sums to %.17g, from the areas %.17g "
+                     "(bounds sum to %.3g)",
+                     f.spec, (double)sum, want, (double)bsum);
+        print_message("%-18s two layers of one cone, sum - areas %8.2g (bounds' sum %.2g)\n",
+                      f.spec, (double)sum - want, (double)bsum);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+}
+
 /* The wedge from P* = (2.16, 4.63) towards C = (11.3, 6.1): P*'s pixel,
  * the circles t = 0 and T touching the tangents near (5, 3) and (5, 6),
  * the ramp along the tangents, t = 1 touching them near (10, 3) and (9,
@@ -914,6 +972,7 @@ int main(void)
         cmocka_unit_test(test_2d_radial),
         cmocka_unit_test(test_transformed),
         cmocka_unit_test(test_beside),
+        cmocka_unit_test(test_layers),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

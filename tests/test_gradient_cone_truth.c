@@ -375,12 +375,231 @@ static void test_2d_spread(void **state)
                     AA_SPREAD_REPEAT, 0.2, c, (int)(sizeof c / sizeof *c));
 }
 
+/* ---- several layers of one cone ----
+ *
+ * Two rectangles filled with the same cone-case gradient (the same
+ * circles, map and stops: two overlapping shapes of an SVG filled with
+ * it), over black.  Known answers:
+ *  - stops all white of opacity 1/2: source over in encoded values
+ *    (SVG's compositing of sRGB-encoded colours) gives 1/2 where one
+ *    rectangle paints the wedge, 1/2 + 1/2 x 1/2 = 3/4 where both do, so
+ *    the box reference of a pixel is dec(1/2) (|A| + |B| - 2 |A B|) +
+ *    dec(3/4) |A B|, each area the pixel's square clipped by the
+ *    rectangle(s) and the wedge's half-planes (cone_oracle.c), dec sRGB's
+ *    curve (gradient_oracle.c, go_dec);
+ *  - a ramp of encoded colour and opacity (C = 0.2 + 0.8 t, alpha = 0.9 -
+ *    0.5 t, padded; stops' colours are given in linear light and
+ *    interpolated encoded), and C = t, whose composite crosses sRGB's
+ *    threshold 0.04045 on circles of t found here by bisection (cut there
+ *    too), against 2-D quadrature of the composite from that
+ *    definition: alpha C where one rectangle paints, alpha C (2 - alpha)
+ *    where both do, decoded; cut at the tangents, the circles t = 0 and
+ *    1 (where the padding's derivatives jump), the rectangles' sides. */
+static const double LA[4] = {2.5, 2.25, 11.5, 9.5}, LB[4] = {2.75, 4.25, 14.75, 11.25};
+static double layers_c0; /* the ramp's first encoded colour */
+
+/* Two layers, rectangles LA then LB, each painted by the cone p[] with
+ * stops st, over black. */
+static aa_scene *layers_scene(const double p[6], const aa_gradient_stop *st)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    const double *rs[2] = {LA, LB};
+    for (int k = 0; k < 2; k++) {
+        const double *r = rs[k];
+        assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+        assert_int_equal(aa_scene_move_to(s, r[0] / W, r[1] / H), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, r[2] / W, r[1] / H), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, r[2] / W, r[3] / H), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, r[0] / W, r[3] / H), AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+        aa_gradient g = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0},
+                         2, st};
+        memcpy(g.p, p, sizeof g.p);
+        assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static int in_rect(const double *r, double x, double y)
+{
+    return x >= r[0] && x <= r[2] && y >= r[1] && y <= r[3];
+}
+
+/* The two layers' composite at (x, y) from the definition (the comment
+ * above), decoded. */
+static double layers_at(const pic *pc, double x, double y)
+{
+    double t = pic_t(pc, x, y);
+    int n = in_rect(LA, x, y) + in_rect(LB, x, y);
+    if (isnan(t) || n == 0)
+        return 0.0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    double c = layers_c0 + (1 - layers_c0) * t, al = 0.9 - 0.5 * t;
+    return go_dec(n == 1 ? al * c : al * c * (2 - al));
+}
+
+static double layers_x(double x, void *v)
+{
+    const pic *pc = v;
+    return layers_at(pc, x, pc->y);
+}
+
+static double layers_y(double y, void *v)
+{
+    pic *pc = v;
+    pc->y = y;
+    double cut[2 * MAX_TAUS + 16];
+    int n = 0;
+    for (int k = 0; k < pc->nh; k++)
+        n += line_meet(pc, k, 0, y, cut + n);
+    for (int q = 0; q < pc->ntaus; q++)
+        n += circle_meet(pc, pc->taus[q], 0, y, cut + n);
+    cut[n++] = LA[0], cut[n++] = LA[2], cut[n++] = LB[0], cut[n++] = LB[2];
+    cut[n++] = pc->apex[0], cut[n++] = pc->xlo, cut[n++] = pc->xhi;
+    gsl_function F = {layers_x, pc};
+    return go_qags_cuts(&F, cut, n, pc->xlo, pc->xhi, 1e-16, 1e-14, pc->wi);
+}
+
+/* Pixel (i, j) of the two layers by 2-D quadrature. */
+static double layers_pixel(pic *pc, int i, int j)
+{
+    const double *p = pc->p;
+    double cut[7 * MAX_TAUS + 24];
+    int n = 0;
+    pc->xlo = i, pc->xhi = i + 1;
+    cut[n++] = j, cut[n++] = j + 1, cut[n++] = pc->apex[1];
+    cut[n++] = LA[1], cut[n++] = LA[3], cut[n++] = LB[1], cut[n++] = LB[3];
+    for (int k = 0; k < pc->nh; k++)
+        for (int e = 0; e < 2; e++)
+            n += line_meet(pc, k, 1, i + e, cut + n);
+    for (int q = 0; q < pc->ntaus; q++) {
+        double tau = pc->taus[q], rr = p[5] + tau * (p[2] - p[5]);
+        double ccy = p[4] + tau * (p[1] - p[4]);
+        cut[n++] = ccy - rr, cut[n++] = ccy + rr;
+        for (int e = 0; e < 2; e++)
+            n += circle_meet(pc, tau, 1, i + e, cut + n);
+        for (int k = 0; k < pc->nh; k++)
+            cut[n++] = co_touch_y(p, tau, &pc->hp[k]);
+    }
+    pc->wi = gsl_integration_workspace_alloc(1000);
+    gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
+    gsl_function F = {layers_y, pc};
+    double sum = go_qags_cuts(&F, cut, n, j, j + 1, 1e-16, 1e-14, wo);
+    gsl_integration_workspace_free(pc->wi);
+    gsl_integration_workspace_free(wo);
+    return sum;
+}
+
+/* The area of [x0, x1] x [y0, y1] meeting rectangle r (and r2 if not
+ * NULL) inside the half-planes. */
+static double rect_area(double x0, double y0, double x1, double y1, const double *r,
+                        const double *r2, const co_half *hp, int nh)
+{
+    x0 = fmax(x0, r[0]), y0 = fmax(y0, r[1]), x1 = fmin(x1, r[2]), y1 = fmin(y1, r[3]);
+    if (r2)
+        x0 = fmax(x0, r2[0]), y0 = fmax(y0, r2[1]), x1 = fmin(x1, r2[2]), y1 = fmin(y1, r2[3]);
+    return x1 > x0 && y1 > y0 ? co_clipped_area(x0, y0, x1, y1, hp, nh) : 0.0;
+}
+
+static void test_layers(void **state)
+{
+    (void)state;
+    /* the wedge from P = (0.16, 4.63) towards C = (9.3, 6.1): its upper
+     * tangent crosses the overlap [2.75, 11.5] x [4.25, 9.5] near (4, 6) ..
+     * (9, 9), the lower one LA alone near (3, 4) .. (10, 2); the circles
+     * t = 0 and where the composite crosses 0.04045 lie in the overlap
+     * near (2, 4) .. (4, 6) */
+    const double p[6] = {9.3, 6.1, 3.1, 3.7, 5.2, 1.2};
+    static const aa_gradient_stop half[2] = {{0.0, {{1, 1, 1}}, 0.5}, {1.0, {{1, 1, 1}}, 0.5}};
+    co_half hp[2];
+    double apex[2];
+    int wedge, nh = co_region(p, hp, &wedge, apex);
+    aa_scene *s = layers_scene(p, half);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
+    support_reference(s, &v, &ref, &bound, &stats);
+    double d1 = go_dec(0.5), d2 = go_dec(0.75), worst = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            double a = rect_area(i, j, i + 1, j + 1, LA, NULL, hp, nh);
+            double b = rect_area(i, j, i + 1, j + 1, LB, NULL, hp, nh);
+            double ab = rect_area(i, j, i + 1, j + 1, LA, LB, hp, nh);
+            double want = d1 * (a + b - 2 * ab) + d2 * ab, got = aa_pixel(&ref, i, j)[0];
+            double bd = *aa_pixel(&bound, i, j);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-15 && bd <= 1e-12))
+                fail_msg("two layers, opacity 1/2: pixel (%d, %d) is %.17g, from the areas "
+                         "%.17g (bound %.3g)",
+                         i, j, got, want, bd);
+        }
+    print_message("%-34s %d pixels, largest difference from the areas %.2g, largest bound "
+                  "%.2g\n",
+                  "two layers of one cone, 1/2 each", W * H, worst, stats.max_bound);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+
+    /* the ramps of colour and opacity: the composite a quartic in t */
+    static const int px[][2] = {{6, 8}, {7, 8}, {8, 8}, {9, 9}, {6, 4}, {6, 6}, {11, 4},
+                                {11, 9}, {10, 6}, {8, 5}, {3, 4}, {5, 3}, {2, 4}, {14, 7},
+                                {12, 10}, {9, 2}, {1, 4}, {3, 5}, {4, 5}, {3, 3}, {4, 6},
+                                {3, 6}, {4, 4}, {5, 5}, {2, 5}, {2, 6}};
+    for (int r = 0; r < 2; r++) {
+        layers_c0 = r ? 0.0 : 0.2;
+        /* stop colours are given in linear light and interpolated
+         * encoded: the first stop's colour the decoding of c0 (encoded c0
+         * again to within rounding) */
+        double d0 = go_dec(layers_c0);
+        const aa_gradient_stop ramp[2] = {{0.0, {{d0, d0, d0}}, 0.9}, {1.0, {{1, 1, 1}}, 0.4}};
+        pic pc;
+        memset(&pc, 0, sizeof pc);
+        memcpy(pc.p, p, sizeof pc.p);
+        pc.taus[pc.ntaus++] = 0.0, pc.taus[pc.ntaus++] = 1.0;
+        /* where alpha C and alpha C (2 - alpha) reach 0.04045 (both
+         * increasing on [0, 1/2] for C = t), by bisection */
+        for (int n = 1; r && n <= 2; n++) {
+            double lo = 0, hi = 0.5;
+            for (int it = 0; it < 200; it++) {
+                double m = 0.5 * (lo + hi), al = 0.9 - 0.5 * m;
+                double e = n == 1 ? al * m : al * m * (2 - al);
+                *(e < GO_T0 ? &lo : &hi) = m;
+            }
+            pc.taus[pc.ntaus++] = 0.5 * (lo + hi);
+        }
+        pc.nh = co_region(p, pc.hp, &pc.wedge, pc.apex);
+        s = layers_scene(p, ramp);
+        support_reference(s, &v, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        worst = 0;
+        for (size_t k = 0; k < sizeof px / sizeof *px; k++) {
+            int i = px[k][0], j = px[k][1];
+            double want = layers_pixel(&pc, i, j), got = aa_pixel(&ref, i, j)[0];
+            double bd = *aa_pixel(&bound, i, j);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-14))
+                fail_msg("two layers, ramp from %g: pixel (%d, %d) is %.17g, 2-D quadrature "
+                         "%.17g (bound %.3g)",
+                         layers_c0, i, j, got, want, bd);
+        }
+        print_message("two layers of one cone, ramp from %.1f %d pixels, largest difference "
+                      "from 2-D quadrature %.2g, largest bound %.2g\n",
+                      layers_c0, (int)(sizeof px / sizeof *px), worst, stats.max_bound);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_area),
         cmocka_unit_test(test_2d),
         cmocka_unit_test(test_2d_spread),
+        cmocka_unit_test(test_layers),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -281,8 +281,9 @@
  * as a factor, the row cut also at the filter's kinks.  Beside other
  * gradients each span takes the path of the layers it depends on, and a
  * pixel where the cone and another gradient paint one point is refused
- * ("a cone beside other gradients"); the cone in linear light is
- * refused.
+ * ("a cone beside other gradients"); several layers of one cone take
+ * their composite, a polynomial in the shared t, on the cone's path ("one
+ * cone on several layers"); the cone in linear light is refused.
  *
  * The other separable filters (tent, gauss, bspline, mitchell, catrom,
  * lanczos; "the other separable filters" below): every span of a
@@ -399,6 +400,8 @@ typedef struct grad_radial {
 #define CONE_WEDGE 1
 #define CONE_NESTED 2
 #define CONE_HALF 3
+
+#define GEN_MAX 5 /* gradient layers painting one span ("several gradients") */
 
 /* Any gradient layer for the path of several gradients at a point
  * ("several gradients"): its layer, spread, stops and their encoded
@@ -1136,27 +1139,80 @@ static double rad_rho(double complex z, double m, double h)
     return r >= 1.0 ? r : 1.0 / r;
 }
 
-/* One channel on one piece: E0 + E1 t + E2 t^2, its decoding's piece. */
+/* One channel on one piece: E0 + E1 t + ... + E_deg t^deg (deg 2 but
+ * for several layers of one cone-case gradient, "one cone on several
+ * layers"), its decoding's piece. */
+#define CHAN_DEG (2 * GEN_MAX)
 typedef struct rad_chan {
-    double E[3];
-    int power;
+    double E[CHAN_DEG + 1];
+    int deg, power;
 } rad_chan;
+
+/* E(t) of channel ch (Horner). */
+static double chan_at(const rad_chan *ch, double t)
+{
+    double e = ch->E[ch->deg];
+    for (int k = ch->deg - 1; k >= 0; k--)
+        e = ch->E[k] + t * e;
+    return e;
+}
+
+/* The roots of E(t) + add of channel ch, complex, into tau (at most
+ * ch->deg); how many.  Degree above 2: GSL's companion-matrix solver,
+ * each root then polished by Newton's method. */
+static int chan_roots(const rad_chan *ch, double add, double complex *tau)
+{
+    double c[CHAN_DEG + 1];
+    int n = ch->deg;
+    memcpy(c, ch->E, (size_t)(n + 1) * sizeof *c);
+    c[0] += add;
+    while (n > 0 && c[n] == 0.0)
+        n--;
+    if (n == 0)
+        return 0;
+    if (n == 1) {
+        tau[0] = -c[0] / c[1];
+        return 1;
+    }
+    if (n == 2) {
+        double complex sq = csqrt((double complex)(c[1] * c[1] - 4.0 * c[2] * c[0]));
+        tau[0] = (-c[1] + sq) / (2.0 * c[2]);
+        tau[1] = (-c[1] - sq) / (2.0 * c[2]);
+        return 2;
+    }
+    double z[2 * CHAN_DEG];
+    gsl_poly_complex_workspace *ws = gsl_poly_complex_workspace_alloc((size_t)n + 1);
+    int ok = ws && gsl_poly_complex_solve(c, (size_t)n + 1, ws, z) == GSL_SUCCESS;
+    if (ws)
+        gsl_poly_complex_workspace_free(ws);
+    if (!ok) /* no roots known: the caller's bound must not trust them */
+        return -1;
+    for (int k = 0; k < n; k++) {
+        double complex r = z[2 * k] + _Complex_I * z[2 * k + 1];
+        for (int it = 0; it < 3; it++) {
+            double complex p = c[n], d = 0.0;
+            for (int q = n - 1; q >= 0; q--)
+                d = d * r + p, p = p * r + c[q];
+            if (d == 0.0)
+                break;
+            r -= p / d;
+        }
+        tau[k] = r;
+    }
+    return n;
+}
 
 /* The x where E(t) + 0.055 = 0 for channel ch on its power piece: for each
  * (complex) root tau0 of E(t) + 0.055, both roots in x of row r's circle
- * quadratic at t = tau0; at most 4 into x, tau0 beside each in tau. */
+ * quadratic at t = tau0; at most 2 deg into x, tau0 beside each in tau;
+ * -1 if the roots are not known (chan_roots). */
 static int rad_ezeros(const grad_radial *g, const rad_row *r, const rad_chan *ch,
                       double complex *tau, double complex *x)
 {
-    double complex taus[2];
-    int nt = 0, n = 0;
-    double A = ch->E[2], B = ch->E[1], C = ch->E[0] + 0.055;
-    if (A != 0.0) {
-        double complex sq = csqrt((double complex)(B * B - 4.0 * A * C));
-        taus[nt++] = (-B + sq) / (2.0 * A);
-        taus[nt++] = (-B - sq) / (2.0 * A);
-    } else if (B != 0.0)
-        taus[nt++] = -C / B;
+    double complex taus[CHAN_DEG];
+    int nt = chan_roots(ch, 0.055, taus), n = 0;
+    if (nt < 0)
+        return -1;
     for (int k = 0; k < nt; k++) {
         double complex t0 = taus[k], A2 = r->c2, A1 = r->c1 - 2.0 * t0 * r->b1,
                        A0 = r->c0 - 2.0 * t0 * r->b0 + g->a * t0 * t0;
@@ -1233,7 +1289,6 @@ static void rad_piece(worker *w, const grad_radial *g, const rad_row *r, const r
     *err += fmin(worst, xb - xa);
 }
 
-#define GEN_MAX 5 /* gradient layers painting one span ("several gradients") */
 
 /* A span's gradient layers with the row's data and, on a piece, each
  * layer's paint v0 + v1 t. */
@@ -1541,7 +1596,7 @@ static void cone_seg_range(const grad_radial *g, int col, double sa, double sb, 
 
 /* The x where E(t) + 0.055 = 0 for channel ch on the power piece (both
  * roots of the circle's quadratic for each complex tau0; rad_bound), at
- * most 4 into z.  A real root where the painted t is not tau0 is the
+ * most 2 deg into z; -1 if the roots are not known.  A real root where the painted t is not tau0 is the
  * other root's (t' = 2 b / a - t, real across the painted region in the
  * cone case, unlike nested circles'), no singularity of the integrand:
  * left out (a real root where d < 0 lies beyond a tangent line's
@@ -1551,8 +1606,10 @@ static int cone_ezeros(const grad_radial *g, const rad_row *r, const rad_chan *c
 {
     if (!ch->power)
         return 0;
-    double complex taus[4], xs[4];
+    double complex taus[2 * CHAN_DEG], xs[2 * CHAN_DEG];
     int nx = rad_ezeros(g, r, ch, taus, xs), n = 0;
+    if (nx < 0)
+        return -1;
     for (int k = 0; k < nx; k++) {
         double complex tau = taus[k], x = xs[k];
         if (cimag(x) == 0.0 && cimag(tau) == 0.0 && g->cone != CONE_HALF) {
@@ -1593,8 +1650,11 @@ static double cone_rule_bound(const rad_chan *ch, const double complex *ex, int 
     for (int k = 1; k < 8; k++) {
         double rho = 1.0 + (rmax - 1.0) * k / 8.0, fac = 1.0;
         double T = fn(ctx, rho, &fac);
-        double E = fabs(ch->E[0]) + (ch->E[1] != 0.0 ? fabs(ch->E[1]) * T : 0.0) +
-                   (ch->E[2] != 0.0 ? fabs(ch->E[2]) * T * T : 0.0);
+        double E = fabs(ch->E[0]), Tk = 1.0;
+        for (int q = 1; q <= ch->deg; q++) {
+            Tk *= T;
+            E += ch->E[q] != 0.0 ? fabs(ch->E[q]) * Tk : 0.0;
+        }
         double M = fac * (ch->power ? pow((E + 0.055) / 1.055, 2.4) : E / 12.92);
         best = fmin(best, h * (64.0 / 15.0) * M * pow(rho, -2.0 * RAD_GL) / (rho * rho - 1.0));
     }
@@ -1713,12 +1773,17 @@ static void cone_plain(worker *w, const grad_radial *g, const cone_row *cr, cons
     if (wc)
         cone_wt_poly(wc, m, h, ctx.wa);
     for (int c = 0; c < nch; c++) {
-        double complex ex[8];
+        double complex ex[4 + 2 * CHAN_DEG];
         int ne = 0;
         for (int k = 0; k < 2; k++)
             if (cr->lam[k] != 0.0)
                 ex[ne++] = -cr->mu[k] / cr->lam[k];
-        ne += cone_ezeros(g, r, &ch[c], ex + ne);
+        int nz = cone_ezeros(g, r, &ch[c], ex + ne);
+        if (nz < 0) {
+            worst = INFINITY;
+            continue;
+        }
+        ne += nz;
         ne += cone_wt_branch(wc, ex + ne);
         worst = fmax(worst, cone_rule_bound(&ch[c], ex, ne, m, h, cone_plain_t, &ctx));
     }
@@ -1732,7 +1797,7 @@ static void cone_plain(worker *w, const grad_radial *g, const cone_row *cr, cons
         double x = m + h * w->gl_x[k], t = cone_t_near(g, x, r->y);
         double wk = wc ? w->gl_w[k] * cone_wt_at(wc, x) : w->gl_w[k];
         for (int c = 0; c < nch; c++) {
-            double e = ch[c].E[0] + t * (ch[c].E[1] + t * ch[c].E[2]);
+            double e = chan_at(&ch[c], t);
             part[c] += wk * (ch[c].power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92);
         }
     }
@@ -1760,8 +1825,12 @@ static void cone_root(worker *w, const grad_radial *g, const cone_row *cr, const
     if (wc)
         cone_wt_poly(wc, ctx.xm, ctx.xh, ctx.wa);
     for (int c = 0; c < nch; c++) {
-        double complex ex[14], z[4], bp[2];
+        double complex ex[6 + 4 * CHAN_DEG], z[2 * CHAN_DEG], bp[2];
         int ne = 0, nz = cone_ezeros(g, r, &ch[c], z), nb = cone_wt_branch(wc, bp);
+        if (nz < 0) {
+            worst = INFINITY;
+            continue;
+        }
         if (ctx.P1 != 0.0) {
             double complex u0 = csqrt(-ctx.P0 / ctx.P1);
             ex[ne++] = u0, ex[ne++] = -u0;
@@ -1787,7 +1856,7 @@ static void cone_root(worker *w, const grad_radial *g, const cone_row *cr, const
         double t = cone_t_sq(g, x, r->y, u * sqrt(P > 0.0 ? P : 0.0));
         double wq = w->gl_w[q] * 2.0 * u * (wc ? cone_wt_at(wc, x) : 1.0);
         for (int c = 0; c < nch; c++) {
-            double e = ch[c].E[0] + t * (ch[c].E[1] + t * ch[c].E[2]);
+            double e = chan_at(&ch[c], t);
             part[c] += wq * (ch[c].power ? pow((e + 0.055) / 1.055, 2.4) : e / 12.92);
         }
     }
@@ -1809,14 +1878,76 @@ static double span_weight(const worker *w, double xa, double xb)
     return aa_filter_cdf(w->f, xb - w->uc) - aa_filter_cdf(w->f, xa - w->uc);
 }
 
+/* ---- one cone on several layers ----
+ *
+ * Layers that all paint one cone-case gradient (the same gradient, map
+ * and stops: two overlapping shapes of an SVG filled with it) have the
+ * same t at every point, and on a piece between stops each layer's
+ * opacity op = v0[3] + v1[3] t and channel C = v0[c] + v1[c] t are the
+ * same affine functions of it.  The composite's channel is affine in
+ * each layer's op and op C separately (source over and group opacity
+ * are; "several gradients"), so with the n layers
+ *     e = sum over a in {0, 1, 2}^n of K_a prod_l f[a_l],
+ *     f[0] = 1, f[1] = op, f[2] = op C,
+ * a polynomial in t of degree at most 2 n (cone_comp_poly): the cone's
+ * path (cone_span) takes it as it takes one layer's quadratic, the
+ * integrand dec(E(t)) analytic but where E + 0.055 = 0 on the power
+ * piece (each complex root tau0 of that polynomial, found by GSL's
+ * companion-matrix solver and polished by Newton's method, gives the two
+ * x of the circle's quadratic at t = tau0, as for one layer), the rows
+ * cut where E crosses 0.04045 (its real roots), and the rule's bound from
+ * |E| <= sum |E_q| T^q on the ellipse, T the bound of |t| there.  For n =
+ * 1, K_0 = e0, K_1 = e1 - e0, K_2 = e2 - e1 and E is the quadratic
+ * above.  The K are read as for several gradients (mix_span): composites
+ * at every choice of the three paints per layer, then differences.  More
+ * than GEN_MAX such layers at a point, or a polynomial whose roots the
+ * solver does not find, refuse the pixel as a cone meeting another
+ * gradient does (cone_over).
+ */
+typedef struct cone_comp {
+    int n, nk;
+    double K[3][243];
+} cone_comp;
+
+/* Channel c's E on a piece where op and C are v0 + v1 t (cc->n layers of
+ * one cone), into ch (degree 2 n). */
+static void cone_comp_poly(const cone_comp *cc, int c, const double v0[4], const double v1[4],
+                           rad_chan *ch)
+{
+    double F[3][3] = {{1.0, 0.0, 0.0},
+                      {v0[3], v1[3], 0.0},
+                      {v0[3] * v0[c], v0[3] * v1[c] + v1[3] * v0[c], v1[3] * v1[c]}};
+    static const int fd[3] = {0, 1, 2};
+    ch->deg = 2 * cc->n;
+    memset(ch->E, 0, sizeof ch->E);
+    for (int a = 0; a < cc->nk; a++) {
+        double k = cc->K[c][a];
+        if (k == 0.0)
+            continue;
+        double p[CHAN_DEG + 1] = {1.0}, q[CHAN_DEG + 1];
+        int dp = 0;
+        for (int l = 0, r = a; l < cc->n; l++, r /= 3) {
+            int i = r % 3;
+            memset(q, 0, sizeof q);
+            for (int u = 0; u <= dp; u++)
+                for (int v = 0; v <= fd[i]; v++)
+                    q[u + v] += p[u] * F[i][v];
+            dp += fd[i];
+            memcpy(p, q, sizeof p);
+        }
+        for (int u = 0; u <= dp; u++)
+            ch->E[u] += k * p[u];
+    }
+}
+
 /* The span [xa, xb] of row y painted (where it is) by the cone-case
- * gradient g alone, the composite K0 + K1 op + K2 op C read into e0, e1,
- * e2 (rad_span): cut where the row crosses the tangent lines (and, nested,
+ * gradient g alone, on one layer or several (the composite's K in cc:
+ * "one cone on several layers"; rad_span, mix_span): cut where the row crosses the tangent lines (and, nested,
  * at its point nearest P*), each stretch unpainted (the layer
  * transparent) or cut at the stops and the threshold as rad_span cuts,
  * its end pieces at a tangent line in u (the comment above). */
-static void cone_span(worker *w, const grad_radial *g, const double *e0, const double *e1,
-                      const double *e2, double xa, double xb, double y, int nch, double *sum)
+static void cone_span(worker *w, const grad_radial *g, const cone_comp *cc, double xa,
+                      double xb, double y, int nch, double *sum)
 {
     cone_row cr;
     gen_span_ctx wcs, *wc = NULL;
@@ -1855,7 +1986,7 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
         if (!painted) {
             double wd = span_weight(w, p, q);
             for (int c = 0; c < nch; c++)
-                sum[c] += wd * aa_srgb_decode(e0[c]);
+                sum[c] += wd * aa_srgb_decode(cc->K[c][0]);
             continue;
         }
         int kp = kind[s], kq = kind[s + 1];
@@ -1891,22 +2022,44 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
             double v0[4], v1[4];
             rad_paint_lin(g, cone_t_near(g, 0.5 * (a + b), y), v0, v1);
             rad_chan ch[3];
-            double cuts[16];
+            double cuts[4 + 6 * CHAN_DEG];
             int ncut = 0, flat = 1;
             cuts[ncut++] = a;
             for (int c = 0; c < nch; c++) {
-                double K0 = e0[c], K1 = e1[c] - e0[c], K2 = e2[c] - e1[c];
-                ch[c].E[0] = K0 + K1 * v0[3] + K2 * v0[3] * v0[c];
-                ch[c].E[1] = K1 * v1[3] + K2 * (v0[3] * v1[c] + v1[3] * v0[c]);
-                ch[c].E[2] = K2 * v1[3] * v1[c];
-                flat = flat && ch[c].E[1] == 0.0 && ch[c].E[2] == 0.0;
-                double rt[2];
-                int n = gsl_poly_solve_quadratic(ch[c].E[2], ch[c].E[1], ch[c].E[0] - 0.04045,
-                                                 &rt[0], &rt[1]);
-                if (ch[c].E[2] == 0.0 && ch[c].E[1] != 0.0)
-                    n = 1, rt[0] = (0.04045 - ch[c].E[0]) / ch[c].E[1];
+                if (cc->n == 1) {
+                    double K0 = cc->K[c][0], K1 = cc->K[c][1], K2 = cc->K[c][2];
+                    ch[c].deg = 2;
+                    ch[c].E[0] = K0 + K1 * v0[3] + K2 * v0[3] * v0[c];
+                    ch[c].E[1] = K1 * v1[3] + K2 * (v0[3] * v1[c] + v1[3] * v0[c]);
+                    ch[c].E[2] = K2 * v1[3] * v1[c];
+                } else
+                    cone_comp_poly(cc, c, v0, v1, &ch[c]);
+                int moves = 0;
+                for (int qd = 1; qd <= ch[c].deg; qd++)
+                    moves = moves || ch[c].E[qd] != 0.0;
+                flat = flat && !moves;
+                if (ch[c].deg == 2) {
+                    double rt[2];
+                    int n = gsl_poly_solve_quadratic(ch[c].E[2], ch[c].E[1],
+                                                     ch[c].E[0] - 0.04045, &rt[0], &rt[1]);
+                    if (ch[c].E[2] == 0.0 && ch[c].E[1] != 0.0)
+                        n = 1, rt[0] = (0.04045 - ch[c].E[0]) / ch[c].E[1];
+                    for (int qq = 0; qq < n; qq++)
+                        ncut += rad_cross(g, &cr.r, rt[qq], a, b, cuts + ncut);
+                    continue;
+                }
+                /* the real roots of E - 0.04045 (a pair of complex roots
+                 * closer than 1e-9 to the axis is a double root where E
+                 * touches the threshold without crossing it) */
+                double complex rt[CHAN_DEG];
+                int n = chan_roots(&ch[c], -0.04045, rt);
+                if (n < 0) { /* the solver failed: the decoding's pieces unknown */
+                    w->cone_over = 1;
+                    return;
+                }
                 for (int qq = 0; qq < n; qq++)
-                    ncut += rad_cross(g, &cr.r, rt[qq], a, b, cuts + ncut);
+                    if (fabs(cimag(rt[qq])) <= 1e-9 * (1.0 + fabs(creal(rt[qq]))))
+                        ncut += rad_cross(g, &cr.r, creal(rt[qq]), a, b, cuts + ncut);
             }
             if (flat) { /* constant paint: exact */
                 double wd = span_weight(w, a, b);
@@ -1922,7 +2075,7 @@ static void cone_span(worker *w, const grad_radial *g, const double *e0, const d
                     continue;
                 double tm = cone_t_near(g, 0.5 * (ca + cb), y);
                 for (int c = 0; c < nch; c++)
-                    ch[c].power = ch[c].E[0] + tm * (ch[c].E[1] + tm * ch[c].E[2]) > 0.04045;
+                    ch[c].power = chan_at(&ch[c], tm) > 0.04045;
                 int lr = ca == p && kp >= 0, rr = cb == q && kq >= 0;
                 if (lr && rr) {
                     double mid = 0.5 * (ca + cb);
@@ -1993,7 +2146,11 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
         return;
     }
     if (g->cone) {
-        cone_span(w, g, e0, e1, e2, xa, xb, y, nch, sum);
+        cone_comp cc;
+        cc.n = 1, cc.nk = 3;
+        for (int c = 0; c < 3; c++)
+            cc.K[c][0] = e0[c], cc.K[c][1] = e1[c] - e0[c], cc.K[c][2] = e2[c] - e1[c];
+        cone_span(w, g, &cc, xa, xb, y, nch, sum);
         return;
     }
     rad_row r;
@@ -2031,6 +2188,7 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
             ch[c].E[0] = K0 + K1 * v0[3] + K2 * v0[3] * v0[c];
             ch[c].E[1] = K1 * v1[3] + K2 * (v0[3] * v1[c] + v1[3] * v0[c]);
             ch[c].E[2] = K2 * v1[3] * v1[c];
+            ch[c].deg = 2;
             double rt[2];
             int n = gsl_poly_solve_quadratic(ch[c].E[2], ch[c].E[1], ch[c].E[0] - 0.04045, &rt[0],
                                              &rt[1]);
@@ -2927,7 +3085,9 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
  * cone's layer alone, the cone's path (cone_span, its composite's K0,
  * K1, K2 read the same way, the span clipped to a radial filter's chord);
  * no cone among them, the path of several gradients (gen_span), as
- * without the cone; the cone and another together, nothing: the pixel is
+ * without the cone; several layers all of one cone-case gradient
+ * (cone_same), the cone's path with their composite ("one cone on several
+ * layers"); the cone and another gradient together, nothing: the pixel is
  * refused by name (cone_over; integrate_pixel), as that path has no cut
  * at the tangent lines and bounds the cone's t as nested circles' (the
  * comment above "the cone case under the other filters").  So shapes
@@ -2936,11 +3096,34 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
  * The outer breakpoints are the union of the layers' own, as for several
  * gradients (grad_breakpoints).
  */
+/* Whether cone-case gradients g and h are one gradient: the same map,
+ * circles, spread and stops (then t and the paint are the same functions
+ * of the point; "one cone on several layers"). */
+static int cone_same(const grad_radial *g, const grad_radial *h)
+{
+    if (!g || !h || !g->cone || g->cone != h->cone || g->spread != h->spread ||
+        g->nstops != h->nstops)
+        return 0;
+    for (int k = 0; k < 6; k++)
+        if (g->m[k] != h->m[k] || g->inv[k] != h->inv[k])
+            return 0;
+    if (g->fx != h->fx || g->fy != h->fy || g->Dx != h->Dx || g->Dy != h->Dy ||
+        g->fr != h->fr || g->dr != h->dr || g->a != h->a)
+        return 0;
+    for (int k = 0; k < g->nstops; k++)
+        if (g->stops[k].offset != h->stops[k].offset)
+            return 0;
+    for (int k = 0; k < 4 * g->nstops; k++)
+        if (g->enc[k] != h->enc[k])
+            return 0;
+    return 1;
+}
+
 static void mix_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
     static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
-    int N = w->ngl, *layers = w->gl_layer, nd = 0, cone = -1;
-    double *paints = w->gl_paint, f[3][3], e[3][3];
+    int N = w->ngl, *layers = w->gl_layer, nd = 0, cone = -1, dep[GEN_MAX], same = 1;
+    double *paints = w->gl_paint, f[3][3];
     memset(paints, 0, 4 * (size_t)N * sizeof *paints);
     for (int k = 0; k < N; k++) {
         for (int q = 0; q < 3; q++) {
@@ -2950,18 +3133,22 @@ static void mix_span(worker *w, double xa, double xb, double y, int nch, double 
         memset(paints + 4 * k, 0, 4 * sizeof *paints);
         if (f[0][0] != f[1][0] || f[0][1] != f[1][1] || f[0][2] != f[1][2] ||
             f[1][0] != f[2][0] || f[1][1] != f[2][1] || f[1][2] != f[2][2]) {
+            if (nd < GEN_MAX)
+                dep[nd] = k;
             nd++;
-            if (w->gl[k].rg && w->gl[k].rg->cone) {
+            if (w->gl[k].rg && w->gl[k].rg->cone)
                 cone = k;
-                memcpy(e, f, sizeof e);
-            }
         }
     }
     if (cone < 0) { /* no cone: the path of several gradients */
         gen_span(w, xa, xb, y, nch, sum);
         return;
     }
-    if (nd > 1) { /* the cone and another gradient at one point */
+    /* several layers: all of one cone-case gradient ("one cone on several
+     * layers"), else the cone and another gradient at one point */
+    for (int l = 1; l < nd && same; l++)
+        same = l < GEN_MAX && cone_same(w->gl[dep[0]].rg, w->gl[dep[l]].rg);
+    if (nd > 1 && !same) {
         w->cone_over = 1;
         return;
     }
@@ -2974,7 +3161,33 @@ static void mix_span(worker *w, double xa, double xb, double y, int nch, double 
         if (!(xb > xa))
             return;
     }
-    cone_span(w, w->gl[cone].rg, e[0], e[1], e[2], xa, xb, y, nch, sum);
+    /* the composite's K: composites at every choice of paints, then the
+     * differences f1 - f0, f2 - f1 along each layer's index (gen_span) */
+    cone_comp cc;
+    cc.n = nd, cc.nk = 1;
+    for (int l = 0; l < nd; l++)
+        cc.nk *= 3;
+    for (int a = 0; a < cc.nk; a++) {
+        double e[3];
+        for (int l = 0, q = a; l < nd; l++, q /= 3)
+            memcpy(paints + 4 * dep[l], P[q % 3], 4 * sizeof *paints);
+        aa_scene_encoded_with_n(w->scene, w->wind, N, layers, paints, e);
+        for (int ch = 0; ch < 3; ch++)
+            cc.K[ch][a] = e[ch];
+    }
+    for (int l = 0; l < nd; l++)
+        memset(paints + 4 * dep[l], 0, 4 * sizeof *paints);
+    for (int l = 0, stride = 1; l < nd; l++, stride *= 3)
+        for (int a = 0; a < cc.nk; a++) {
+            if ((a / stride) % 3 != 0)
+                continue;
+            for (int ch = 0; ch < 3; ch++) {
+                double f0 = cc.K[ch][a], f1 = cc.K[ch][a + stride], f2 = cc.K[ch][a + 2 * stride];
+                cc.K[ch][a + stride] = f1 - f0;
+                cc.K[ch][a + 2 * stride] = f2 - f1;
+            }
+        }
+    cone_span(w, w->gl[cone].rg, &cc, xa, xb, y, nch, sum);
 }
 
 /* The product of polynomials a (degree na) and b (degree nb) added, times
@@ -4169,7 +4382,9 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
         return aa_fail(AA_EINVAL, "pixel (%g, %g): a layer of a cone-case radial gradient and "
                                   "another gradient layer paint one point of its window (the "
                                   "path of several gradients has no cut at the cone's tangent "
-                                  "lines): refused; sample it with point, supersample or jitter",
+                                  "lines; layers of one cone-case gradient alone are "
+                                  "integrated): refused; sample it with point, supersample or "
+                                  "jitter",
                        w->uc - 0.5, w->vc - 0.5);
     }
     if (w->gen_over) {
