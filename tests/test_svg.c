@@ -1196,6 +1196,72 @@ static void test_unknown_properties(void **state)
     assert_int_equal(unlink(path), 0);
 }
 
+/* What editors and icon sets write beside the geometry and a browser draws
+ * nothing of (measured on public icon sets: patterns/README.md, "Public
+ * files"): accessibility and data attributes (role="img" on the root of
+ * every simple-icons file, aria-*, data-*, tabindex, focusable, lang), the
+ * properties of text, of filter primitives, of interaction, and markers,
+ * blending, isolation, vector effects and rendering hints at values that
+ * draw nothing (Inkscape's style attribute).  The known answer is the
+ * document's geometry without them, written by hand: white is 1 1 1 in
+ * linear light, the triangle's points as given.  Any value that would draw
+ * something (a marker, a blend, a non-scaling stroke, crisp edges) is
+ * refused naming the element and its line, and so is a name the reader
+ * does not know. */
+#define TRI "d=\"M0 0 L1 0 L0 1z\" fill=\"white\""
+#define WHITE_TRI "fill 1 1 1 nonzero; M 0 0 L 1 0 L 0 1 Z"
+static void test_noop_properties(void **state)
+{
+    (void)state;
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" role=\"img\" aria-label=\"x\" "
+           "focusable=\"false\" tabindex=\"-1\" lang=\"en\" data-name=\"Layer 1\">"
+           "<path " TRI " aria-hidden=\"true\" data-x=\"1\"/></svg>",
+           WHITE_TRI);
+    expect(SVG_OPEN "<path " TRI " style=\"marker:none;marker-start:none;isolation:auto;"
+                    "mix-blend-mode:normal;vector-effect:none;shape-rendering:auto;"
+                    "color-rendering:auto;image-rendering:auto;"
+                    "color-interpolation-filters:linearRGB;flood-color:red;"
+                    "flood-opacity:1;lighting-color:blue;solid-color:#000000;"
+                    "solid-opacity:1;pointer-events:none;cursor:pointer;line-height:1.25;"
+                    "letter-spacing:0px;word-spacing:0px;text-anchor:middle;"
+                    "text-align:center;writing-mode:lr-tb;direction:ltr;"
+                    "baseline-shift:baseline;white-space:normal;"
+                    "font-variant-ligatures:normal;font-feature-settings:normal;"
+                    "-inkscape-font-specification:Sans;text-decoration-line:none\"/></svg>",
+           WHITE_TRI);
+    /* as presentation attributes, and isolate: an isolated group of
+     * normal blending and opacity 1 is its content laid one by one */
+    expect(SVG_OPEN "<g isolation=\"isolate\" marker-end=\"none\" "
+                    "shape-rendering=\"geometricPrecision\" color-rendering=\"optimizeQuality\">"
+                    "<path " TRI " marker-mid=\"inherit\" text-anchor=\"end\"/></g></svg>",
+           WHITE_TRI);
+    /* in a sheet, and on a clipPath's child */
+    expect(SVG_OPEN "<style>path { marker: none; line-height: 2 }</style>"
+                    "<path " TRI "/></svg>",
+           WHITE_TRI);
+    refused(L2("<path " TRI " style=\"marker: url(#m)\"/>"), "line 2: <path>",
+            "markers are not drawn");
+    refused(L2("<g style=\"marker-start: url(#m)\"><path " TRI "/></g>"), "line 2: <g>",
+            "marker-start");
+    refused(L2("<path " TRI " vector-effect=\"non-scaling-stroke\"/>"), "line 2: <path>",
+            "vector-effect");
+    refused(L2("<path " TRI " style=\"mix-blend-mode: multiply\"/>"), "line 2: <path>",
+            "blending is not drawn");
+    refused(L2("<path " TRI " style=\"shape-rendering: crispEdges\"/>"), "line 2: <path>",
+            "shape-rendering");
+    refused(L2("<path " TRI " shape-rendering=\"optimizeSpeed\"/>"), "line 2: <path>",
+            "shape-rendering");
+    refused(L2("<path " TRI " isolation=\"bogus\"/>"), "line 2: <path>", "isolation");
+    refused(L2("<style>\n.a { marker-end: url(#m) }</style><path class=\"a\" " TRI "/>"),
+            "<path>", "marker-end");
+    /* not every name: `font` sets font-size (em lengths), data- and aria-
+     * need a name after them, and names stay case-sensitive */
+    refused(L2("<path " TRI " style=\"font: 12px serif\"/>"), "line 2: <path>", "font");
+    refused(L2("<path " TRI " data-=\"1\"/>"), "line 2: <path>", "data-");
+    refused(L2("<path " TRI " aria-=\"1\"/>"), "line 2: <path>", "aria-");
+    refused(L2("<path " TRI " ROLE=\"img\"/>"), "line 2: <path>", "ROLE");
+}
+
 /* The shipped scenes read (those with cubics once the scene holds them). */
 static void test_shipped(void **state)
 {
@@ -1238,4 +1304,5 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_export_strokes),
              cmocka_unit_test(test_cubic_scene),
              cmocka_unit_test(test_unknown_properties),
+             cmocka_unit_test(test_noop_properties),
              cmocka_unit_test(test_shipped))
