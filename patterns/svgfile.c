@@ -4165,10 +4165,17 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
                        AA_SVG_MAX_ELEMENTS);
     if (!is_svg(node))
         return AA_OK; /* another namespace: not drawn */
-    /* a clipPath is drawn only where it is referenced (clip_of) */
-    static const char *const silent[] = {"title", "desc", "metadata", "defs", "clipPath",
-                                         "linearGradient", "radialGradient"};
-    for (int k = 0; k < 7; k++)
+    /* a clipPath is drawn only where it is referenced (clip_of); filters,
+     * masks, markers and patterns are never drawn where they stand either
+     * (SVG 2 and Filter Effects 1: "never rendered directly"), and a
+     * reference to one is refused where it is made (the filter, mask and
+     * marker properties, a url() paint naming a pattern), so one defined
+     * and not used changes nothing */
+    static const char *const silent[] = {"title",   "desc",           "metadata",
+                                         "defs",    "clipPath",       "linearGradient",
+                                         "radialGradient", "filter",  "mask",
+                                         "marker",  "pattern"};
+    for (size_t k = 0; k < sizeof silent / sizeof silent[0]; k++)
         if (named(node, silent[k]))
             return AA_OK;
     int skip, st;
@@ -4184,9 +4191,7 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         static const struct {
             const char *name, *why;
         } known[] = {{"text", "text is not supported (the pattern text draws glyphs)"},
-                     {"image", "images are not supported"},
-                     {"mask", "masks are not supported"},
-                     {"pattern", "patterns are not supported"}};
+                     {"image", "images are not supported"}};
         for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
             if (named(node, known[k].name))
                 return fail_at(r, "%s", known[k].why);

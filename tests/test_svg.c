@@ -1262,6 +1262,38 @@ static void test_noop_properties(void **state)
     refused(L2("<path " TRI " ROLE=\"img\"/>"), "line 2: <path>", "ROLE");
 }
 
+/* Filters, masks, markers and patterns are never drawn where they stand
+ * (SVG 2, Filter Effects 1: "never rendered directly"): one defined and not
+ * referenced, in <defs> or not, leaves the picture as it is (the answer
+ * written by hand, as above).  A reference to one is refused where it is
+ * made, and so are text and images, each naming the element and its line:
+ * the reader never draws them approximately. */
+static void test_never_rendered(void **state)
+{
+    (void)state;
+    expect(SVG_OPEN "<filter id=\"f\"><feGaussianBlur stdDeviation=\"2\"/></filter>"
+                    "<mask id=\"m\"><rect width=\"9\" height=\"9\" fill=\"white\"/></mask>"
+                    "<marker id=\"k\"><circle r=\"3\"/></marker>"
+                    "<pattern id=\"p\" width=\"2\" height=\"2\"><rect width=\"1\" "
+                    "height=\"1\"/></pattern>"
+                    "<defs><filter id=\"g\"><feOffset dx=\"1\"/></filter></defs>"
+                    "<path " TRI "/></svg>",
+           WHITE_TRI);
+    refused(L2("<filter id=\"f\"><feOffset dx=\"1\"/></filter>\n<path " TRI
+               " filter=\"url(#f)\"/>"),
+            "line 3: <path>", "filters are not supported");
+    refused(L2("<mask id=\"m\"/>\n<g style=\"mask: url(#m)\"><path " TRI "/></g>"),
+            "line 3: <g>", "masks are not supported");
+    refused(L2("<marker id=\"k\"/>\n<path " TRI " marker-end=\"url(#k)\"/>"),
+            "line 3: <path>", "marker-end");
+    refused(L2("<pattern id=\"p\"/>\n<path d=\"M0 0 L1 0 L0 1z\" fill=\"url(#p)\"/>"),
+            "line 3: <path>",
+            "patterns are not supported");
+    refused(L2("\n<text x=\"1\" y=\"9\">A</text>"), "line 3: <text>", "text is not supported");
+    refused(L2("\n<image href=\"a.png\" width=\"9\" height=\"9\"/>"), "line 3: <image>",
+            "images are not supported");
+}
+
 /* The shipped scenes read (those with cubics once the scene holds them). */
 static void test_shipped(void **state)
 {
@@ -1305,4 +1337,5 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_cubic_scene),
              cmocka_unit_test(test_unknown_properties),
              cmocka_unit_test(test_noop_properties),
+             cmocka_unit_test(test_never_rendered),
              cmocka_unit_test(test_shipped))
