@@ -19,6 +19,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -1294,6 +1296,90 @@ static void test_never_rendered(void **state)
             "images are not supported");
 }
 
+/* scripts/svg-corpus.sh over a folder made for it: its table's counts are
+ * known by construction.  Five files: two taken (one with a comma in its
+ * name, which the spec must escape), two refused for the same reason
+ * (<text>, on lines 2 and 3: one reason, counted twice), one refused for
+ * another; a symbolic link to a taken file is not followed.  Then the
+ * failures, with a stand-in for the command: one that ends by SIGSEGV
+ * (failed, exit 139) and one that sleeps past --timeout (hung), the script
+ * exiting 1. */
+static void corpus_run(const char *args, char *out, size_t cap, int *status)
+{
+    char cmd[9200];
+    snprintf(cmd, sizeof cmd, "sh scripts/svg-corpus.sh %s 2>&1", args);
+    FILE *f = popen(cmd, "r");
+    assert_non_null(f);
+    size_t n = fread(out, 1, cap - 1, f);
+    out[n] = '\0';
+    int st = pclose(f);
+    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static void test_corpus_script(void **state)
+{
+    (void)state;
+    const char *aabench = getenv("AABENCH");
+    if (!aabench)
+        fail_msg("AABENCH is not set (scripts/run-tests.sh sets it)");
+    char cdir[4200], path[4400], args[9000], out[8192];
+    snprintf(cdir, sizeof cdir, "%s/corpus", dir);
+    assert_int_equal(mkdir(cdir, 0755), 0);
+    static const struct {
+        const char *name, *doc;
+    } files[] = {{"a.svg", L2("<rect width=\"4\" height=\"4\" fill=\"white\"/>")},
+                 {"b,c.svg", L2("<circle cx=\"8\" cy=\"8\" r=\"3\"/>")},
+                 {"t1.svg", L2("<text>A</text>")},
+                 {"t2.svg", L2("\n<text>B</text>")},
+                 {"u.svg", L2("<rect width=\"4\" height=\"4\" FILL=\"red\"/>")}};
+    for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
+        snprintf(path, sizeof path, "%s/%s", cdir, files[k].name);
+        write_svg(path, files[k].doc);
+    }
+    snprintf(path, sizeof path, "%s/link.svg", cdir);
+    assert_int_equal(symlink("a.svg", path), 0);
+    int status;
+    snprintf(args, sizeof args, "--aabench %s --jobs 2 %s", aabench, cdir);
+    corpus_run(args, out, sizeof out, &status);
+    printf("%s", out);
+    assert_int_equal(status, 0);
+    assert_non_null(strstr(out, "5 files: 2 taken (40.0%), 3 refused, 0 failed, 0 hung\n"));
+    assert_non_null(strstr(out, "      2  <text>: text is not supported"));
+    assert_non_null(strstr(out, "      1  <rect>: the attribute FILL is not supported"));
+    /* the most first */
+    assert_true(strstr(out, "<text>") < strstr(out, "FILL"));
+    /* every K-th */
+    snprintf(args, sizeof args, "--aabench %s --every 2 %s", aabench, cdir);
+    corpus_run(args, out, sizeof out, &status);
+    assert_int_equal(status, 0);
+    assert_non_null(strstr(out, "3 files: "));
+    /* a crash and a hang, through stand-ins */
+    char crash[4400], hang[4400];
+    snprintf(crash, sizeof crash, "%s/crash.sh", dir);
+    snprintf(hang, sizeof hang, "%s/hang.sh", dir);
+    write_svg(crash, "#!/bin/sh\nkill -SEGV $$\n");
+    write_svg(hang, "#!/bin/sh\nexec sleep 30\n");
+    assert_int_equal(chmod(crash, 0755), 0);
+    assert_int_equal(chmod(hang, 0755), 0);
+    snprintf(path, sizeof path, "%s/a.svg", cdir);
+    snprintf(args, sizeof args, "--aabench %s %s", crash, path);
+    corpus_run(args, out, sizeof out, &status);
+    printf("%s", out);
+    assert_int_equal(status, 1);
+    assert_non_null(strstr(out, "1 files: 0 taken (0.0%), 0 refused, 1 failed, 0 hung\n"));
+    assert_non_null(strstr(out, "failed (exit 139): "));
+    snprintf(args, sizeof args, "--aabench %s --timeout 1 %s", hang, path);
+    corpus_run(args, out, sizeof out, &status);
+    printf("%s", out);
+    assert_int_equal(status, 1);
+    assert_non_null(strstr(out, "1 files: 0 taken (0.0%), 0 refused, 0 failed, 1 hung\n"));
+    /* bad usage */
+    corpus_run("--every 0 .", out, sizeof out, &status);
+    assert_int_equal(status, 2);
+    corpus_run("/nonexistent-dir", out, sizeof out, &status);
+    assert_int_equal(status, 2);
+}
+
 /* The shipped scenes read (those with cubics once the scene holds them). */
 static void test_shipped(void **state)
 {
@@ -1338,4 +1424,5 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_unknown_properties),
              cmocka_unit_test(test_noop_properties),
              cmocka_unit_test(test_never_rendered),
+             cmocka_unit_test(test_corpus_script),
              cmocka_unit_test(test_shipped))
