@@ -887,9 +887,23 @@ static int check_noop_values(reader *r, const xmlNode *node)
         int ok = 0;
         for (int j = 0; j < 4 && css_noop[k].values[j] && !ok; j++)
             ok = !strcasecmp(v, css_noop[k].values[j]);
-        if (!ok)
-            st = fail_at(r, "%s=\"%s\" is not supported (%s)", css_noop[k].name, aa_echo(v),
-                         css_noop[k].why);
+        if (ok)
+            continue;
+        /* a sheet's declaration: its line too (a declaration of these is
+         * never invalid, so the winning one is the cascade's first) */
+        long line = 0;
+        char at[48] = "", w[256];
+        if (r->from_css) {
+            xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
+            if (aa_css_value(r->css, node, (const char *)css, css_noop[k].name, w, sizeof w,
+                             &line) <= 0)
+                line = 0;
+            xmlFree(css);
+        }
+        if (line)
+            snprintf(at, sizeof at, " (style sheet line %ld)", line);
+        st = fail_at(r, "%s=\"%s\" is not supported (%s)%s", css_noop[k].name, aa_echo(v),
+                     css_noop[k].why, at);
     }
     return st;
 }

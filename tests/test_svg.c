@@ -1255,7 +1255,8 @@ static void test_noop_properties(void **state)
             "shape-rendering");
     refused(L2("<path " TRI " isolation=\"bogus\"/>"), "line 2: <path>", "isolation");
     refused(L2("<style>\n.a { marker-end: url(#m) }</style><path class=\"a\" " TRI "/>"),
-            "<path>", "marker-end");
+            "<path>", "marker-end=\"url(#m)\" is not supported (markers are not drawn) "
+                      "(style sheet line 3)");
     /* not every name: `font` sets font-size (em lengths), data- and aria-
      * need a name after them, and names stay case-sensitive */
     refused(L2("<path " TRI " style=\"font: 12px serif\"/>"), "line 2: <path>", "font");
