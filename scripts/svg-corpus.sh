@@ -12,6 +12,7 @@
 #   --jobs N        files read side by side (default 1)
 #   --timeout S     seconds a file may take before it counts as hung (default 60)
 #   --list FILE     also write one line a file: status, exit code, path, message
+#   --from FILE     no files read: the table of a list --list wrote (no DIR)
 #
 # Each file is `aabench truth -p svg:file=F -s WxH --no-cache -q`: read, built
 # into a scene and its box reference computed. Exit status 0 is taken, 2 is
@@ -21,7 +22,7 @@
 set -u
 
 usage() {
-    sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//' >&2
+    sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//' >&2
     exit 2
 }
 
@@ -31,6 +32,7 @@ every=1
 jobs=1
 timeout=60
 list=
+from=
 while [ $# -gt 0 ]; do
     case $1 in
     --aabench) aabench=${2:?}; shift 2 ;;
@@ -39,24 +41,33 @@ while [ $# -gt 0 ]; do
     --jobs) jobs=${2:?}; shift 2 ;;
     --timeout) timeout=${2:?}; shift 2 ;;
     --list) list=${2:?}; shift 2 ;;
+    --from) from=${2:?}; shift 2 ;;
     -h | --help) usage ;;
     --) shift; break ;;
     -*) echo "svg-corpus: unknown option $1" >&2; usage ;;
     *) break ;;
     esac
 done
-[ $# -gt 0 ] || usage
+if [ -n "$from" ]; then
+    [ $# -eq 0 ] || { echo "svg-corpus: --from takes no DIR or FILE" >&2; exit 2; }
+    [ -r "$from" ] || { echo "svg-corpus: cannot read $from" >&2; exit 2; }
+else
+    [ $# -gt 0 ] || usage
+fi
 for n in "$every" "$jobs" "$timeout"; do
     case $n in '' | *[!0-9]* | 0) echo "svg-corpus: $n is not a positive whole number" >&2; exit 2 ;; esac
 done
 case $size in *[!0-9x]* | x* | *x | *x*x*) echo "svg-corpus: --size $size is not WxH" >&2; exit 2 ;; *x*) ;; *) echo "svg-corpus: --size $size is not WxH" >&2; exit 2 ;; esac
-[ -x "$aabench" ] || { echo "svg-corpus: $aabench is not an executable (build it: make)" >&2; exit 2; }
+[ -n "$from" ] || [ -x "$aabench" ] || { echo "svg-corpus: $aabench is not an executable (build it: make)" >&2; exit 2; }
 command -v timeout >/dev/null || { echo "svg-corpus: needs timeout (coreutils)" >&2; exit 2; }
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/svg-corpus.XXXXXX") || exit 3
 trap 'rm -rf "$work"' EXIT
 trap 'exit 130' INT TERM
 
+if [ -n "$from" ]; then
+    cp "$from" "$work/all" || exit 2
+else
 # The files, NUL-separated, every K-th of each argument.
 for a in "$@"; do
     if [ -d "$a" ]; then
@@ -97,14 +108,19 @@ xargs -0 -r -n 1 -P "$jobs" env W="$work" A="$aabench" S="$size" T="$timeout" \
     sh "$work/one.sh" <"$work/files" >"$work/lines"
 sort -t "$(printf '\t')" -k3 "$work/lines" >"$work/all"
 [ -n "$list" ] && cp "$work/all" "$list"
+fi
 
-# The table. A reason is the message from the element on (the reader's
-# "FILE: line N: <el>: ...") or the reference's ("pixel (i, j): ..."), its
-# quoted values and numbers replaced, so that alike refusals count together.
+# The table. A reason is the reader's message after its element (the
+# element kept when the element is what is refused: "<switch>: this
+# element is not supported"), or the reference's ("pixel (i, j): ..."),
+# its quoted values and numbers replaced, so that alike refusals count
+# together; its example names the file, the line and the element.
 awk -F '\t' '
 function reason(m) {
-    if (match(m, /: line [0-9]+: /)) m = substr(m, RSTART + RLENGTH)
-    else if (match(m, /pixel \([0-9]+, [0-9]+\): /)) m = "reference: " substr(m, RSTART + RLENGTH)
+    if (match(m, /: line [0-9]+: /)) {
+        m = substr(m, RSTART + RLENGTH)
+        if (m !~ /^<[^>]*>: this element/) sub(/^<[^>]*>: /, "", m)
+    } else if (match(m, /pixel \([0-9]+, [0-9]+\): /)) m = "reference: " substr(m, RSTART + RLENGTH)
     else sub(/^aabench truth: /, "", m)
     gsub(/"[^"]*"/, "\"...\"", m)
     gsub(/[0-9]+(\.[0-9]+)?(e[-+]?[0-9]+)?/, "N", m)
@@ -112,7 +128,10 @@ function reason(m) {
     return m
 }
 { n++; count[$1]++ }
-$1 == "refused" { r = reason($4); why[r]++; if (!(r in ex)) ex[r] = $3 }
+function where(m) {
+    return match(m, /: line [0-9]+: <[^>]*>/) ? substr(m, RSTART + 2, RLENGTH - 2) : ""
+}
+$1 == "refused" { r = reason($4); why[r]++; if (!(r in ex)) ex[r] = $3 (where($4) == "" ? "" : " (" where($4) ")") }
 $1 == "hung" || $1 == "failed" { bad[++nb] = $1 " (exit " $2 "): " $3 ": " $4 }
 END {
     printf "%d files: %d taken (%.1f%%), %d refused, %d failed, %d hung\n", n, count["taken"],

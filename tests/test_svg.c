@@ -1298,10 +1298,12 @@ static void test_never_rendered(void **state)
 }
 
 /* scripts/svg-corpus.sh over a folder made for it: its table's counts are
- * known by construction.  Five files: two taken (one with a comma in its
+ * known by construction.  Six files: two taken (one with a comma in its
  * name, which the spec must escape), two refused for the same reason
- * (<text>, on lines 2 and 3: one reason, counted twice), one refused for
- * another; a symbolic link to a taken file is not followed.  Then the
+ * (<text>, on lines 2 and 3: one reason, counted twice), one for an
+ * attribute and one for an element the reader does not know (the element
+ * kept in the reason); a symbolic link to a taken file is not followed; the
+ * list --list writes gives the same table again (--from).  Then the
  * failures, with a stand-in for the command: one that ends by SIGSEGV
  * (failed, exit 139) and one that sleeps past --timeout (hung), the script
  * exiting 1. */
@@ -1332,7 +1334,8 @@ static void test_corpus_script(void **state)
                  {"b,c.svg", L2("<circle cx=\"8\" cy=\"8\" r=\"3\"/>")},
                  {"t1.svg", L2("<text>A</text>")},
                  {"t2.svg", L2("\n<text>B</text>")},
-                 {"u.svg", L2("<rect width=\"4\" height=\"4\" FILL=\"red\"/>")}};
+                 {"u.svg", L2("<rect width=\"4\" height=\"4\" FILL=\"red\"/>")},
+                 {"v.svg", L2("<switch><rect width=\"4\" height=\"4\"/></switch>")}};
     for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
         snprintf(path, sizeof path, "%s/%s", cdir, files[k].name);
         write_svg(path, files[k].doc);
@@ -1340,20 +1343,30 @@ static void test_corpus_script(void **state)
     snprintf(path, sizeof path, "%s/link.svg", cdir);
     assert_int_equal(symlink("a.svg", path), 0);
     int status;
-    snprintf(args, sizeof args, "--aabench %s --jobs 2 %s", aabench, cdir);
+    char list[4400], again[8192];
+    snprintf(list, sizeof list, "%s/list.tsv", dir);
+    snprintf(args, sizeof args, "--aabench %s --jobs 2 --list %s %s", aabench, list, cdir);
     corpus_run(args, out, sizeof out, &status);
     printf("%s", out);
     assert_int_equal(status, 0);
-    assert_non_null(strstr(out, "5 files: 2 taken (40.0%), 3 refused, 0 failed, 0 hung\n"));
-    assert_non_null(strstr(out, "      2  <text>: text is not supported"));
-    assert_non_null(strstr(out, "      1  <rect>: the attribute FILL is not supported"));
+    assert_non_null(strstr(out, "6 files: 2 taken (33.3%), 4 refused, 0 failed, 0 hung\n"));
+    assert_non_null(strstr(out, "      2  text is not supported"));
+    assert_non_null(strstr(out, "t1.svg (line 2: <text>)"));
+    assert_non_null(strstr(out, "      1  the attribute FILL is not supported"));
+    assert_non_null(strstr(out, "u.svg (line 2: <rect>)"));
+    assert_non_null(strstr(out, "      1  <switch>: this element is not supported"));
     /* the most first */
-    assert_true(strstr(out, "<text>") < strstr(out, "FILL"));
+    assert_true(strstr(out, "text is not") < strstr(out, "FILL"));
+    snprintf(args, sizeof args, "--from %s", list);
+    corpus_run(args, again, sizeof again, &status);
+    assert_int_equal(status, 0);
+    assert_string_equal(again, out);
     /* every K-th */
     snprintf(args, sizeof args, "--aabench %s --every 2 %s", aabench, cdir);
     corpus_run(args, out, sizeof out, &status);
     assert_int_equal(status, 0);
     assert_non_null(strstr(out, "3 files: "));
+    assert_int_equal(unlink(list), 0);
     /* a crash and a hang, through stand-ins */
     char crash[4400], hang[4400];
     snprintf(crash, sizeof crash, "%s/crash.sh", dir);
