@@ -577,6 +577,109 @@ static const char *const css_known[] = {
      * and SVG 2 dropped; Illustrator writes it on every root */
     "enable-background"};
 
+/* Properties that change nothing the reader draws, accepted with the
+ * values listed (any value where there is no list; case-insensitive) and
+ * refused, naming the element and its line, with any other: a value that
+ * would draw something else.  Editors write them on every element
+ * (Inkscape's style attribute holds most of them at their initial
+ * values). */
+static const struct {
+    const char *name, *values[4], *why;
+} css_noop[] = {
+    /* markers, blending, non-scaling strokes: drawn at their initial value
+     * only (`inherit` of the inherited marker properties then gives none
+     * too: every ancestor was read) */
+    {"marker", {"none", "inherit"}, "markers are not drawn"},
+    {"marker-start", {"none", "inherit"}, "markers are not drawn"},
+    {"marker-mid", {"none", "inherit"}, "markers are not drawn"},
+    {"marker-end", {"none", "inherit"}, "markers are not drawn"},
+    {"mix-blend-mode", {"normal"}, "blending is not drawn"},
+    {"vector-effect", {"none"}, "vector effects are not drawn"},
+    /* an isolated group of normal blending and opacity 1 is the picture
+     * of its content laid on the backdrop one by one: source-over is
+     * associative (Compositing and Blending 1, "Isolation") */
+    {"isolation", {"auto", "isolate"}, "auto or isolate"},
+    /* how to antialias is what is measured: auto and geometricPrecision
+     * ask for the geometry, the exact picture; crispEdges and
+     * optimizeSpeed ask to trade it away (Chromium then draws aliased) */
+    {"shape-rendering", {"auto", "geometricPrecision"},
+     "crispEdges and optimizeSpeed ask for another picture than the exact one"},
+    /* a hint of precision, no colour */
+    {"color-rendering", {"auto", "optimizeSpeed", "optimizeQuality", "inherit"},
+     "auto, optimizeSpeed or optimizeQuality"},
+    /* of what is refused anyway: images, filter primitives */
+    {"image-rendering", {NULL}, NULL},
+    {"color-interpolation-filters", {NULL}, NULL},
+    {"flood-color", {NULL}, NULL},
+    {"flood-opacity", {NULL}, NULL},
+    {"lighting-color", {NULL}, NULL},
+    /* of SVG 2 drafts' <solidcolor>, which no browser draws (Inkscape
+     * writes them everywhere) */
+    {"solid-color", {NULL}, NULL},
+    {"solid-opacity", {NULL}, NULL},
+    /* interaction */
+    {"pointer-events", {NULL}, NULL},
+    {"cursor", {NULL}, NULL},
+    /* text only (text is refused); not `font`, which sets font-size */
+    {"line-height", {NULL}, NULL},
+    {"letter-spacing", {NULL}, NULL},
+    {"word-spacing", {NULL}, NULL},
+    {"text-anchor", {NULL}, NULL},
+    {"text-align", {NULL}, NULL},
+    {"text-align-last", {NULL}, NULL},
+    {"text-indent", {NULL}, NULL},
+    {"text-transform", {NULL}, NULL},
+    {"text-orientation", {NULL}, NULL},
+    {"text-rendering", {NULL}, NULL},
+    {"text-decoration", {NULL}, NULL},
+    {"text-decoration-line", {NULL}, NULL},
+    {"text-decoration-style", {NULL}, NULL},
+    {"text-decoration-color", {NULL}, NULL},
+    {"writing-mode", {NULL}, NULL},
+    {"direction", {NULL}, NULL},
+    {"unicode-bidi", {NULL}, NULL},
+    {"baseline-shift", {NULL}, NULL},
+    {"dominant-baseline", {NULL}, NULL},
+    {"alignment-baseline", {NULL}, NULL},
+    {"white-space", {NULL}, NULL},
+    {"inline-size", {NULL}, NULL},
+    {"shape-inside", {NULL}, NULL},
+    {"shape-subtract", {NULL}, NULL},
+    {"shape-padding", {NULL}, NULL},
+    {"shape-margin", {NULL}, NULL},
+    {"kerning", {NULL}, NULL},
+    {"font-kerning", {NULL}, NULL},
+    {"font-size-adjust", {NULL}, NULL},
+    {"font-feature-settings", {NULL}, NULL},
+    {"font-variation-settings", {NULL}, NULL},
+    {"font-variant-ligatures", {NULL}, NULL},
+    {"font-variant-caps", {NULL}, NULL},
+    {"font-variant-numeric", {NULL}, NULL},
+    {"font-variant-east-asian", {NULL}, NULL},
+    {"font-variant-position", {NULL}, NULL},
+    {"font-variant-alternates", {NULL}, NULL},
+    {"-inkscape-font-specification", {NULL}, NULL}};
+
+static int css_noop_index(const char *name, size_t n)
+{
+    for (size_t k = 0; k < sizeof css_noop / sizeof css_noop[0]; k++)
+        if (strlen(css_noop[k].name) == n && !strncasecmp(css_noop[k].name, name, n))
+            return (int)k;
+    return -1;
+}
+
+/* Attributes that are no property and draw nothing in a still picture:
+ * accessibility (WAI-ARIA's role and aria-*), focus, language, and
+ * custom data (data-*, as HTML names them and SVG 2 takes them). */
+static int attr_nonrendering(const char *name)
+{
+    static const char *const names[] = {"role", "tabindex", "focusable", "lang"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (!strcmp(name, names[k]))
+            return 1;
+    return (!strncmp(name, "aria-", 5) && name[5]) || (!strncmp(name, "data-", 5) && name[5]);
+}
+
 /* The attributes, beyond the properties, each element reads. */
 static int attr_known(const xmlNode *node, const char *name)
 {
@@ -604,6 +707,8 @@ static int attr_known(const xmlNode *node, const char *name)
     for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
         if (!strcmp(name, any[k]))
             return 1;
+    if (attr_nonrendering(name) || css_noop_index(name, strlen(name)) >= 0)
+        return 1;
     for (size_t k = 0; k < sizeof css_known / sizeof css_known[0]; k++)
         if (!strcmp(name, css_known[k]))
             return 1;
@@ -629,14 +734,19 @@ static int check_decl(void *ctx, const char *name, size_t n, long line)
     for (size_t k = 0; k < sizeof css_known / sizeof css_known[0]; k++)
         if (strlen(css_known[k]) == n && !strncasecmp(css_known[k], name, n))
             return AA_OK;
+    if (css_noop_index(name, n) >= 0)
+        return AA_OK;
     char prop[64];
     snprintf(prop, sizeof prop, "%.*s", (int)n, name);
     return fail_at(r, "the style property %s is not supported%s", aa_echo(prop), at);
 }
 
+static int check_noop_values(reader *r, const xmlNode *node);
+
 /* Refuse every attribute (of no namespace: others are not SVG's) and every
  * declaration of the style attribute and of the sheets' rules matching the
- * element that the reader does not know. */
+ * element that the reader does not know, and a property of css_noop of a
+ * value that would draw something. */
 static int check_props(reader *r, const xmlNode *node)
 {
     for (const xmlAttr *a = node->properties; a; a = a->next)
@@ -645,7 +755,7 @@ static int check_props(reader *r, const xmlNode *node)
     xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
     int st = aa_css_each(r->css, node, (const char *)css, check_decl, r);
     xmlFree(css);
-    return st;
+    return st ? st : check_noop_values(r, node);
 }
 
 /* SVG 2's initial values of the inherited properties (an invalid
@@ -763,6 +873,39 @@ static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size
             found = 0;
     }
     return found;
+}
+
+/* The properties of css_noop with a list of values: refused with any
+ * other (prop: in the cascade's order, an invalid declaration ignored). */
+static int check_noop_values(reader *r, const xmlNode *node)
+{
+    char v[256];
+    int st = AA_OK;
+    for (size_t k = 0; k < sizeof css_noop / sizeof css_noop[0] && !st; k++) {
+        if (!css_noop[k].values[0] || !prop(r, node, css_noop[k].name, v, sizeof v, &st) || st)
+            continue;
+        int ok = 0;
+        for (int j = 0; j < 4 && css_noop[k].values[j] && !ok; j++)
+            ok = !strcasecmp(v, css_noop[k].values[j]);
+        if (ok)
+            continue;
+        /* a sheet's declaration: its line too (a declaration of these is
+         * never invalid, so the winning one is the cascade's first) */
+        long line = 0;
+        char at[48] = "", w[256];
+        if (r->from_css) {
+            xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
+            if (aa_css_value(r->css, node, (const char *)css, css_noop[k].name, w, sizeof w,
+                             &line) <= 0)
+                line = 0;
+            xmlFree(css);
+        }
+        if (line)
+            snprintf(at, sizeof at, " (style sheet line %ld)", line);
+        st = fail_at(r, "%s=\"%s\" is not supported (%s)%s", css_noop[k].name, aa_echo(v),
+                     css_noop[k].why, at);
+    }
+    return st;
 }
 
 /* ---- colours ---- */
@@ -4036,10 +4179,17 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
                        AA_SVG_MAX_ELEMENTS);
     if (!is_svg(node))
         return AA_OK; /* another namespace: not drawn */
-    /* a clipPath is drawn only where it is referenced (clip_of) */
-    static const char *const silent[] = {"title", "desc", "metadata", "defs", "clipPath",
-                                         "linearGradient", "radialGradient"};
-    for (int k = 0; k < 7; k++)
+    /* a clipPath is drawn only where it is referenced (clip_of); filters,
+     * masks, markers and patterns are never drawn where they stand either
+     * (SVG 2 and Filter Effects 1: "never rendered directly"), and a
+     * reference to one is refused where it is made (the filter, mask and
+     * marker properties, a url() paint naming a pattern), so one defined
+     * and not used changes nothing */
+    static const char *const silent[] = {"title",   "desc",           "metadata",
+                                         "defs",    "clipPath",       "linearGradient",
+                                         "radialGradient", "filter",  "mask",
+                                         "marker",  "pattern"};
+    for (size_t k = 0; k < sizeof silent / sizeof silent[0]; k++)
         if (named(node, silent[k]))
             return AA_OK;
     int skip, st;
@@ -4055,9 +4205,7 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         static const struct {
             const char *name, *why;
         } known[] = {{"text", "text is not supported (the pattern text draws glyphs)"},
-                     {"image", "images are not supported"},
-                     {"mask", "masks are not supported"},
-                     {"pattern", "patterns are not supported"}};
+                     {"image", "images are not supported"}};
         for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
             if (named(node, known[k].name))
                 return fail_at(r, "%s", known[k].why);

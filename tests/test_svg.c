@@ -19,6 +19,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -1196,6 +1198,202 @@ static void test_unknown_properties(void **state)
     assert_int_equal(unlink(path), 0);
 }
 
+/* What editors and icon sets write beside the geometry and a browser draws
+ * nothing of (measured on public icon sets: patterns/README.md, "Public
+ * files"): accessibility and data attributes (role="img" on the root of
+ * every simple-icons file, aria-*, data-*, tabindex, focusable, lang), the
+ * properties of text, of filter primitives, of interaction, and markers,
+ * blending, isolation, vector effects and rendering hints at values that
+ * draw nothing (Inkscape's style attribute).  The known answer is the
+ * document's geometry without them, written by hand: white is 1 1 1 in
+ * linear light, the triangle's points as given.  Any value that would draw
+ * something (a marker, a blend, a non-scaling stroke, crisp edges) is
+ * refused naming the element and its line, and so is a name the reader
+ * does not know. */
+#define TRI "d=\"M0 0 L1 0 L0 1z\" fill=\"white\""
+#define WHITE_TRI "fill 1 1 1 nonzero; M 0 0 L 1 0 L 0 1 Z"
+static void test_noop_properties(void **state)
+{
+    (void)state;
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" role=\"img\" aria-label=\"x\" "
+           "focusable=\"false\" tabindex=\"-1\" lang=\"en\" data-name=\"Layer 1\">"
+           "<path " TRI " aria-hidden=\"true\" data-x=\"1\"/></svg>",
+           WHITE_TRI);
+    expect(SVG_OPEN "<path " TRI " style=\"marker:none;marker-start:none;isolation:auto;"
+                    "mix-blend-mode:normal;vector-effect:none;shape-rendering:auto;"
+                    "color-rendering:auto;image-rendering:auto;"
+                    "color-interpolation-filters:linearRGB;flood-color:red;"
+                    "flood-opacity:1;lighting-color:blue;solid-color:#000000;"
+                    "solid-opacity:1;pointer-events:none;cursor:pointer;line-height:1.25;"
+                    "letter-spacing:0px;word-spacing:0px;text-anchor:middle;"
+                    "text-align:center;writing-mode:lr-tb;direction:ltr;"
+                    "baseline-shift:baseline;white-space:normal;"
+                    "font-variant-ligatures:normal;font-feature-settings:normal;"
+                    "-inkscape-font-specification:Sans;text-decoration-line:none\"/></svg>",
+           WHITE_TRI);
+    /* as presentation attributes, and isolate: an isolated group of
+     * normal blending and opacity 1 is its content laid one by one */
+    expect(SVG_OPEN "<g isolation=\"isolate\" marker-end=\"none\" "
+                    "shape-rendering=\"geometricPrecision\" color-rendering=\"optimizeQuality\">"
+                    "<path " TRI " marker-mid=\"inherit\" text-anchor=\"end\"/></g></svg>",
+           WHITE_TRI);
+    /* in a sheet, and on a clipPath's child */
+    expect(SVG_OPEN "<style>path { marker: none; line-height: 2 }</style>"
+                    "<path " TRI "/></svg>",
+           WHITE_TRI);
+    refused(L2("<path " TRI " style=\"marker: url(#m)\"/>"), "line 2: <path>",
+            "markers are not drawn");
+    refused(L2("<g style=\"marker-start: url(#m)\"><path " TRI "/></g>"), "line 2: <g>",
+            "marker-start");
+    refused(L2("<path " TRI " vector-effect=\"non-scaling-stroke\"/>"), "line 2: <path>",
+            "vector-effect");
+    refused(L2("<path " TRI " style=\"mix-blend-mode: multiply\"/>"), "line 2: <path>",
+            "blending is not drawn");
+    refused(L2("<path " TRI " style=\"shape-rendering: crispEdges\"/>"), "line 2: <path>",
+            "shape-rendering");
+    refused(L2("<path " TRI " shape-rendering=\"optimizeSpeed\"/>"), "line 2: <path>",
+            "shape-rendering");
+    refused(L2("<path " TRI " isolation=\"bogus\"/>"), "line 2: <path>", "isolation");
+    refused(L2("<style>\n.a { marker-end: url(#m) }</style><path class=\"a\" " TRI "/>"),
+            "<path>", "marker-end=\"url(#m)\" is not supported (markers are not drawn) "
+                      "(style sheet line 3)");
+    /* not every name: `font` sets font-size (em lengths), data- and aria-
+     * need a name after them, and names stay case-sensitive */
+    refused(L2("<path " TRI " style=\"font: 12px serif\"/>"), "line 2: <path>", "font");
+    refused(L2("<path " TRI " data-=\"1\"/>"), "line 2: <path>", "data-");
+    refused(L2("<path " TRI " aria-=\"1\"/>"), "line 2: <path>", "aria-");
+    refused(L2("<path " TRI " ROLE=\"img\"/>"), "line 2: <path>", "ROLE");
+}
+
+/* Filters, masks, markers and patterns are never drawn where they stand
+ * (SVG 2, Filter Effects 1: "never rendered directly"): one defined and not
+ * referenced, in <defs> or not, leaves the picture as it is (the answer
+ * written by hand, as above).  A reference to one is refused where it is
+ * made, and so are text and images, each naming the element and its line:
+ * the reader never draws them approximately. */
+static void test_never_rendered(void **state)
+{
+    (void)state;
+    expect(SVG_OPEN "<filter id=\"f\"><feGaussianBlur stdDeviation=\"2\"/></filter>"
+                    "<mask id=\"m\"><rect width=\"9\" height=\"9\" fill=\"white\"/></mask>"
+                    "<marker id=\"k\"><circle r=\"3\"/></marker>"
+                    "<pattern id=\"p\" width=\"2\" height=\"2\"><rect width=\"1\" "
+                    "height=\"1\"/></pattern>"
+                    "<defs><filter id=\"g\"><feOffset dx=\"1\"/></filter></defs>"
+                    "<path " TRI "/></svg>",
+           WHITE_TRI);
+    refused(L2("<filter id=\"f\"><feOffset dx=\"1\"/></filter>\n<path " TRI
+               " filter=\"url(#f)\"/>"),
+            "line 3: <path>", "filters are not supported");
+    refused(L2("<mask id=\"m\"/>\n<g style=\"mask: url(#m)\"><path " TRI "/></g>"),
+            "line 3: <g>", "masks are not supported");
+    refused(L2("<marker id=\"k\"/>\n<path " TRI " marker-end=\"url(#k)\"/>"),
+            "line 3: <path>", "marker-end");
+    refused(L2("<pattern id=\"p\"/>\n<path d=\"M0 0 L1 0 L0 1z\" fill=\"url(#p)\"/>"),
+            "line 3: <path>",
+            "patterns are not supported");
+    refused(L2("\n<text x=\"1\" y=\"9\">A</text>"), "line 3: <text>", "text is not supported");
+    refused(L2("\n<image href=\"a.png\" width=\"9\" height=\"9\"/>"), "line 3: <image>",
+            "images are not supported");
+}
+
+/* scripts/svg-corpus.sh over a folder made for it: its table's counts are
+ * known by construction.  Six files: two taken (one with a comma in its
+ * name, which the spec must escape), two refused for the same reason
+ * (<text>, on lines 2 and 3: one reason, counted twice), one for an
+ * attribute and one for an element the reader does not know (the element
+ * kept in the reason); a symbolic link to a taken file is not followed; the
+ * list --list writes gives the same table again (--from).  Then the
+ * failures, with a stand-in for the command: one that ends by SIGSEGV
+ * (failed, exit 139) and one that sleeps past --timeout (hung), the script
+ * exiting 1. */
+static void corpus_run(const char *args, char *out, size_t cap, int *status)
+{
+    char cmd[9200];
+    snprintf(cmd, sizeof cmd, "sh scripts/svg-corpus.sh %s 2>&1", args);
+    FILE *f = popen(cmd, "r");
+    assert_non_null(f);
+    size_t n = fread(out, 1, cap - 1, f);
+    out[n] = '\0';
+    int st = pclose(f);
+    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static void test_corpus_script(void **state)
+{
+    (void)state;
+    const char *aabench = getenv("AABENCH");
+    if (!aabench)
+        fail_msg("AABENCH is not set (scripts/run-tests.sh sets it)");
+    char cdir[4200], path[4400], args[9000], out[8192];
+    snprintf(cdir, sizeof cdir, "%s/corpus", dir);
+    assert_int_equal(mkdir(cdir, 0755), 0);
+    static const struct {
+        const char *name, *doc;
+    } files[] = {{"a.svg", L2("<rect width=\"4\" height=\"4\" fill=\"white\"/>")},
+                 {"b,c.svg", L2("<circle cx=\"8\" cy=\"8\" r=\"3\"/>")},
+                 {"t1.svg", L2("<text>A</text>")},
+                 {"t2.svg", L2("\n<text>B</text>")},
+                 {"u.svg", L2("<rect width=\"4\" height=\"4\" FILL=\"red\"/>")},
+                 {"v.svg", L2("<switch><rect width=\"4\" height=\"4\"/></switch>")}};
+    for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
+        snprintf(path, sizeof path, "%s/%s", cdir, files[k].name);
+        write_svg(path, files[k].doc);
+    }
+    snprintf(path, sizeof path, "%s/link.svg", cdir);
+    assert_int_equal(symlink("a.svg", path), 0);
+    int status;
+    char list[4400], again[8192];
+    snprintf(list, sizeof list, "%s/list.tsv", dir);
+    snprintf(args, sizeof args, "--aabench %s --jobs 2 --list %s %s", aabench, list, cdir);
+    corpus_run(args, out, sizeof out, &status);
+    printf("%s", out);
+    assert_int_equal(status, 0);
+    assert_non_null(strstr(out, "6 files: 2 taken (33.3%), 4 refused, 0 failed, 0 hung\n"));
+    assert_non_null(strstr(out, "      2  text is not supported"));
+    assert_non_null(strstr(out, "t1.svg (line 2: <text>)"));
+    assert_non_null(strstr(out, "      1  the attribute FILL is not supported"));
+    assert_non_null(strstr(out, "u.svg (line 2: <rect>)"));
+    assert_non_null(strstr(out, "      1  <switch>: this element is not supported"));
+    /* the most first */
+    assert_true(strstr(out, "text is not") < strstr(out, "FILL"));
+    snprintf(args, sizeof args, "--from %s", list);
+    corpus_run(args, again, sizeof again, &status);
+    assert_int_equal(status, 0);
+    assert_string_equal(again, out);
+    /* every K-th */
+    snprintf(args, sizeof args, "--aabench %s --every 2 %s", aabench, cdir);
+    corpus_run(args, out, sizeof out, &status);
+    assert_int_equal(status, 0);
+    assert_non_null(strstr(out, "3 files: "));
+    assert_int_equal(unlink(list), 0);
+    /* a crash and a hang, through stand-ins */
+    char crash[4400], hang[4400];
+    snprintf(crash, sizeof crash, "%s/crash.sh", dir);
+    snprintf(hang, sizeof hang, "%s/hang.sh", dir);
+    write_svg(crash, "#!/bin/sh\nkill -SEGV $$\n");
+    write_svg(hang, "#!/bin/sh\nexec sleep 30\n");
+    assert_int_equal(chmod(crash, 0755), 0);
+    assert_int_equal(chmod(hang, 0755), 0);
+    snprintf(path, sizeof path, "%s/a.svg", cdir);
+    snprintf(args, sizeof args, "--aabench %s %s", crash, path);
+    corpus_run(args, out, sizeof out, &status);
+    printf("%s", out);
+    assert_int_equal(status, 1);
+    assert_non_null(strstr(out, "1 files: 0 taken (0.0%), 0 refused, 1 failed, 0 hung\n"));
+    assert_non_null(strstr(out, "failed (exit 139): "));
+    snprintf(args, sizeof args, "--aabench %s --timeout 1 %s", hang, path);
+    corpus_run(args, out, sizeof out, &status);
+    printf("%s", out);
+    assert_int_equal(status, 1);
+    assert_non_null(strstr(out, "1 files: 0 taken (0.0%), 0 refused, 0 failed, 1 hung\n"));
+    /* bad usage */
+    corpus_run("--every 0 .", out, sizeof out, &status);
+    assert_int_equal(status, 2);
+    corpus_run("/nonexistent-dir", out, sizeof out, &status);
+    assert_int_equal(status, 2);
+}
+
 /* The shipped scenes read (those with cubics once the scene holds them). */
 static void test_shipped(void **state)
 {
@@ -1238,4 +1436,7 @@ SUPPORT_MAIN(setup, teardown,
              cmocka_unit_test(test_export_strokes),
              cmocka_unit_test(test_cubic_scene),
              cmocka_unit_test(test_unknown_properties),
+             cmocka_unit_test(test_noop_properties),
+             cmocka_unit_test(test_never_rendered),
+             cmocka_unit_test(test_corpus_script),
              cmocka_unit_test(test_shipped))

@@ -322,6 +322,27 @@ static void test_stroke_bezier_areas(void **state)
                "<path transform=\"translate(5 4)\" d=\"M 0 0 Q 10 0 20 10\" fill=\"none\" "
                "stroke=\"white\" stroke-width=\"3\"/>",
                w * L);
+    /* a line written as a cubic whose controls are its ends (C a a b b,
+     * as editors write it): the points a + (3t^2 - 2t^3)(b - a), the
+     * segment traced once, so its stroke is the line's, w L with butt
+     * caps and w (L + w) with square ones; the ends off the grid and the
+     * chord at no simple angle, in the user units of a Papirus icon
+     * (CubicSDR.svg), where it was refused: its speed vanishes at both
+     * ends, where rounding gave the straight arc a curvature) */
+    const double cl = hypot(15.110139 - 14.169408, 27.722371 - 36.963583);
+    check_area("line as a cubic",
+               "<path transform=\"translate(0 -20)\" d=\"M 14.169408 36.963583 C 14.169408 "
+               "36.963583 15.110139 27.722371 15.110139 27.722371\" fill=\"none\" stroke=\"white\" stroke-width=\"0.7\"/>",
+               0.7 * cl);
+    check_area("line as a cubic with square caps",
+               "<path transform=\"translate(0 -20)\" d=\"M 14.169408 36.963583 C 14.169408 "
+               "36.963583 15.110139 27.722371 15.110139 27.722371\" fill=\"none\" stroke=\"white\" stroke-width=\"0.7\" "
+               "stroke-linecap=\"square\"/>",
+               0.7 * (cl + 0.7));
+    check_area("line as a cubic 0 1 0 1 dashed",
+               "<path d=\"M 4 5 C 26 20 4 5 26 20\" fill=\"none\" stroke=\"white\" "
+               "stroke-width=\"2\" stroke-dasharray=\"4 2\"/>",
+               2 * (4 + 4 + 4 + 4 + (hypot(22, 15) - 24)));
     check_area("stroked parabola as a cubic",
                "<path transform=\"translate(5 4)\" d=\"M 0 0 C 6.6666666666666667 0 "
                "13.333333333333333 3.3333333333333333 20 10\" fill=\"none\" stroke=\"white\" "

@@ -88,7 +88,9 @@
  * at a cusp inside, where the arc is split into arcs of their own with no
  * join between them (SVG 2 joins segments only at their boundaries, so
  * nothing is drawn ahead of the cusp's tip; Chromium, resvg and librsvg
- * draw a disk there).  Refused (AA_EINVAL, naming it): a Bezier arc whose
+ * draw a disk there).  A Bezier arc whose every control point is one of
+ * its ends (`C a a b b`) is stroked as the line it is (bez_on_ends).
+ * Refused (AA_EINVAL, naming it): a Bezier arc whose
  * speed comes within 1e-9 of its size without being 0 to rounding (1e-12),
  * nearly a cusp; a subpath of more than DASH_MAX (10000) dashes.
  */
@@ -1060,6 +1062,31 @@ static int line_piece(double x0, double y0, double x1, double y1, piece *p)
  * Lengths are by Gauss-Legendre quadrature (bez_length). */
 static double bez_length(const piece *p, double t0, double t1);
 
+/* Whether a Bezier arc's every control point is one of its two ends (and
+ * the ends differ): editors write a line so, `C a a b b`.  Such an arc is
+ * the segment from a to b, B(t) = a + f(t) (b - a), with f the Bernstein
+ * sum of 0 and 1 weights, f(0) = 0, f(1) = 1 and f' >= 0 for every choice
+ * (quadratic 0 0 1: 2t; 0 1 1: 2 - 2t; cubic 0 0 0 1: 3t^2; 0 0 1 1:
+ * 6t(1 - t); 0 1 0 1: 3(1 - 2t)^2; 0 1 1 1: 3(1 - t)^2), so it is traced
+ * once from a to b, by arc length as the line is, and SVG 2's directions
+ * at its ends (towards the next distinct control point) are b - a: its
+ * stroke is the line's exactly.  Its speed vanishes at both ends of
+ * `C a a b b`, where the curvature of the straight arc is rounding's
+ * quotient of zeros, so it is given to the stroker as the line it is. */
+static int bez_on_ends(const aa_path_seg *g, double px, double py)
+{
+    int nc = g->op == AA_PATH_QUAD ? 1 : 2;
+    double ex = g->p[2 * nc], ey = g->p[2 * nc + 1];
+    if (px == ex && py == ey)
+        return 0;
+    for (int c = 0; c < nc; c++) {
+        double x = g->p[2 * c], y = g->p[2 * c + 1];
+        if (!((x == px && y == py) || (x == ex && y == ey)))
+            return 0;
+    }
+    return 1;
+}
+
 static int bez_piece(const aa_path_seg *g, size_t k, double px, double py, piece out[3], int *n)
 {
     piece whole;
@@ -1276,6 +1303,21 @@ static int outline(const aa_path *in, const aa_stroke_style *style, aa_path *out
         case AA_PATH_CUBIC: {
             if (!started)
                 return aa_fail(AA_EINVAL, "stroke: segment %zu comes before any move", k);
+            if (bez_on_ends(g, px, py)) {
+                /* its points are on the chord, traced from one end to the
+                 * other without turning back, its end directions the
+                 * chord's: the line's stroke, dashes included */
+                double ex = g->op == AA_PATH_QUAD ? g->p[2] : g->p[4];
+                double ey = g->op == AA_PATH_QUAD ? g->p[3] : g->p[5];
+                line_piece(px, py, ex, ey, &p);
+                px = ex, py = ey;
+                drawn = 1;
+                if (!isfinite(p.len))
+                    st = aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
+                else if (p.len > 0)
+                    st = pieces_push(ps, &p);
+                break;
+            }
             piece parts[3];
             int np;
             if ((st = bez_piece(g, k, px, py, parts, &np)))
