@@ -139,6 +139,27 @@ static double pabs(const double *p, int n, int from, double R)
     return s;
 }
 
+/* From a cubic's Taylor coefficients about m (bx, by: B(m + s) = sum b_k
+ * s^k): B' (ux, uy) and B'' (vx, vy) in s, |B'|^2 (L2) and the cross
+ * product B' x B'' (c), the polynomials the speed's bounds are made of. */
+static void speed_polys(const double *bx, const double *by, double ux[3], double uy[3],
+                        double vx[2], double vy[2], double L2[5], double c[4])
+{
+    double t1[5], t2[4];
+    ux[0] = bx[1], ux[1] = 2 * bx[2], ux[2] = 3 * bx[3];
+    uy[0] = by[1], uy[1] = 2 * by[2], uy[2] = 3 * by[3];
+    vx[0] = 2 * bx[2], vx[1] = 6 * bx[3];
+    vy[0] = 2 * by[2], vy[1] = 6 * by[3];
+    pmul(ux, 3, ux, 3, L2);
+    pmul(uy, 3, uy, 3, t1);
+    for (int k = 0; k < 5; k++)
+        L2[k] += t1[k];
+    pmul(ux, 3, vy, 2, c);
+    pmul(uy, 3, vx, 2, t2);
+    for (int k = 0; k < 4; k++)
+        c[k] -= t2[k];
+}
+
 /* |p| on the disc of radius R: at most pabs(p, 0), at least this (<= 0:
  * no bound, a zero may be inside) */
 static double plow(const double *p, int n, double R)
@@ -167,17 +188,8 @@ static void taylor(const aa_offset_curve *oc, double m, double *bx, double *by)
 static double panel_M(const aa_offset_curve *oc, const double *bx, const double *by, double h,
                       double R)
 {
-    double ux[3] = {bx[1], 2 * bx[2], 3 * bx[3]}, uy[3] = {by[1], 2 * by[2], 3 * by[3]};
-    double vx[2] = {2 * bx[2], 6 * bx[3]}, vy[2] = {2 * by[2], 6 * by[3]};
-    double L2[5], t1[5], c[4], t2[4], G[6], t3[6];
-    pmul(ux, 3, ux, 3, L2);
-    pmul(uy, 3, uy, 3, t1);
-    for (int k = 0; k < 5; k++)
-        L2[k] += t1[k];
-    pmul(ux, 3, vy, 2, c);
-    pmul(uy, 3, vx, 2, t2);
-    for (int k = 0; k < 4; k++)
-        c[k] -= t2[k];
+    double ux[3], uy[3], vx[2], vy[2], L2[5], c[4], G[6], t3[6];
+    speed_polys(bx, by, ux, uy, vx, vy, L2, c);
     double Uux = pabs(ux, 3, 0, R), Uuy = pabs(uy, 3, 0, R), Uu = hypot(Uux, Uuy);
     /* the start point's distance from B(m): |B(t) - B(m)| on the panel,
      * plus the normal's length */
@@ -199,7 +211,7 @@ static double panel_M(const aa_offset_curve *oc, const double *bx, const double 
         return INFINITY;
     double L2h = pabs(L2, 5, 0, h);
     A += L2h * sqrt(L2h) / ch; /* |r| = L^3/|c| on the panel */
-    double dd[4], cp[3], w[2] = {6 * bx[3], 6 * by[3]};
+    double dd[4], t2[4], cp[3], w[2] = {6 * bx[3], 6 * by[3]};
     pmul(ux, 3, vx, 2, dd);
     pmul(uy, 3, vy, 2, t2);
     for (int k = 0; k < 4; k++)
@@ -674,17 +686,8 @@ void area_offset_speed(const aa_offset_curve *oc, double m, int n, const double 
         ellipse_at(oc, m, up, vp);
     else
         taylor(oc, m, bx, by);
-    double ux[3] = {bx[1], 2 * bx[2], 3 * bx[3]}, uy[3] = {by[1], 2 * by[2], 3 * by[3]};
-    double vx[2] = {2 * bx[2], 6 * bx[3]}, vy[2] = {2 * by[2], 6 * by[3]};
-    double L2[5], t1[5], c[4], t2[4], dd[4], cp[3];
-    pmul(ux, 3, ux, 3, L2);
-    pmul(uy, 3, uy, 3, t1);
-    for (int k = 0; k < 5; k++)
-        L2[k] += t1[k];
-    pmul(ux, 3, vy, 2, c);
-    pmul(uy, 3, vx, 2, t2);
-    for (int k = 0; k < 4; k++)
-        c[k] -= t2[k];
+    double ux[3], uy[3], vx[2], vy[2], L2[5], t1[5], c[4], t2[4], dd[4], cp[3];
+    speed_polys(bx, by, ux, uy, vx, vy, L2, c);
     pmul(ux, 3, vx, 2, dd);
     pmul(uy, 3, vy, 2, t2);
     for (int k = 0; k < 4; k++)
