@@ -2935,13 +2935,49 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
     }
 }
 
+/* The gradient layers span's colour depends on, at winding w->wind: a
+ * layer whose paint set to transparent, opaque black and opaque white
+ * (the others transparent) changes the composite.  Their indices in dep
+ * (the first GEN_MAX), the last such layer of a cone-case gradient in
+ * *cone (-1 if none; cone may be NULL), the composite with every layer
+ * transparent in f0 (the span's colour where none is found); returns how
+ * many were found.  w->gl_paint is left transparent. */
+static int span_deps(worker *w, int dep[GEN_MAX], int *cone, double f0[3])
+{
+    static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
+    int N = w->ngl, *layers = w->gl_layer, nd = 0;
+    double *paints = w->gl_paint, f[3][3];
+    memset(paints, 0, 4 * (size_t)N * sizeof *paints);
+    if (cone)
+        *cone = -1;
+    for (int k = 0; k < N; k++) {
+        for (int q = 0; q < 3; q++) {
+            memcpy(paints + 4 * k, P[q], 4 * sizeof *paints);
+            aa_scene_encoded_with_n(w->scene, w->wind, N, layers, paints, f[q]);
+        }
+        memset(paints + 4 * k, 0, 4 * sizeof *paints);
+        if (f[0][0] != f[1][0] || f[0][1] != f[1][1] || f[0][2] != f[1][2] ||
+            f[1][0] != f[2][0] || f[1][1] != f[2][1] || f[1][2] != f[2][2]) {
+            if (nd < GEN_MAX)
+                dep[nd] = k;
+            nd++;
+            if (cone && w->gl[k].rg && w->gl[k].rg->cone)
+                *cone = k;
+        }
+    }
+    if (N > 0)
+        memcpy(f0, f[0], 3 * sizeof *f0);
+    return nd;
+}
+
 /* The span [xa, xb] of row y (winding w->wind) by the path above; a span
  * painted by more than GEN_MAX gradient layers sets w->gen_over and is
  * left out (the pixel is refused). */
 static void gen_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
     static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
-    int N = w->ngl, *layers = w->gl_layer, dep[GEN_MAX], nd = 0;
+    int N = w->ngl, *layers = w->gl_layer, dep[GEN_MAX], nd;
+    double *paints = w->gl_paint;
     if (w->radial) { /* the span clipped to the support's chord */
         double s = w->row_s, R = w->R;
         if (!(fabs(s) < R))
@@ -2951,23 +2987,10 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
         if (!(xb > xa))
             return;
     }
-    double *paints = w->gl_paint, f[3][3];
-    memset(paints, 0, 4 * (size_t)N * sizeof *paints);
-    /* the layers the span depends on, the others transparent */
-    for (int k = 0; k < N; k++) {
-        for (int q = 0; q < 3; q++) {
-            memcpy(paints + 4 * k, P[q], 4 * sizeof *paints);
-            aa_scene_encoded_with_n(w->scene, w->wind, N, layers, paints, f[q]);
-        }
-        memset(paints + 4 * k, 0, 4 * sizeof *paints);
-        if (f[0][0] != f[1][0] || f[0][1] != f[1][1] || f[0][2] != f[1][2] ||
-            f[1][0] != f[2][0] || f[1][1] != f[2][1] || f[1][2] != f[2][2]) {
-            if (nd == GEN_MAX) {
-                w->gen_over = 1;
-                return;
-            }
-            dep[nd++] = k;
-        }
+    double f[1][3];
+    if ((nd = span_deps(w, dep, NULL, f[0])) > GEN_MAX) {
+        w->gen_over = 1;
+        return;
     }
     if (nd == 0) { /* of constant colour: weighted, the cdf's difference */
         double wd = w->box      ? xb - xa
@@ -3122,24 +3145,9 @@ static int cone_same(const grad_radial *g, const grad_radial *h)
 static void mix_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
     static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
-    int N = w->ngl, *layers = w->gl_layer, nd = 0, cone = -1, dep[GEN_MAX], same = 1;
-    double *paints = w->gl_paint, f[3][3];
-    memset(paints, 0, 4 * (size_t)N * sizeof *paints);
-    for (int k = 0; k < N; k++) {
-        for (int q = 0; q < 3; q++) {
-            memcpy(paints + 4 * k, P[q], 4 * sizeof *paints);
-            aa_scene_encoded_with_n(w->scene, w->wind, N, layers, paints, f[q]);
-        }
-        memset(paints + 4 * k, 0, 4 * sizeof *paints);
-        if (f[0][0] != f[1][0] || f[0][1] != f[1][1] || f[0][2] != f[1][2] ||
-            f[1][0] != f[2][0] || f[1][1] != f[2][1] || f[1][2] != f[2][2]) {
-            if (nd < GEN_MAX)
-                dep[nd] = k;
-            nd++;
-            if (w->gl[k].rg && w->gl[k].rg->cone)
-                cone = k;
-        }
-    }
+    int N = w->ngl, *layers = w->gl_layer, cone, dep[GEN_MAX], same = 1;
+    double *paints = w->gl_paint, fz[3];
+    int nd = span_deps(w, dep, &cone, fz);
     if (cone < 0) { /* no cone: the path of several gradients */
         gen_span(w, xa, xb, y, nch, sum);
         return;
