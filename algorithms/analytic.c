@@ -337,6 +337,11 @@ typedef struct an_pp {
     double cdf[AN_MAX_CELLS][5];
 } an_pp;
 
+/* The width of the visible parts' tiles (px) */
+#define AN_TILE 8.0
+/* how far (px) a tile's side keeps from a piece's extreme x */
+#define AN_TILE_CLEAR 1e-6
+
 typedef struct an_state {
     aa__sampler sampler;
     an_pp pp;
@@ -367,9 +372,9 @@ typedef struct an_state {
     const aa_scene *plan_scene;
     int plan_h, plan_nl, nv;
     unsigned char *slow;
-    /* the x of every piece whose extent in x is one value (a vertical
-     * line), ascending, distinct: the visible parts' tiles' sides avoid
-     * them (vis_block) */
+    /* every piece's least and greatest x (a vertical line's one x),
+     * ascending, distinct: the visible parts' tiles' sides keep clear of
+     * them (plan_vert, tile_side) */
     double *vert;
     size_t nvert;
     double *coef;
@@ -1489,21 +1494,28 @@ static void plan_free(an_state *S)
     S->plan_h = 0;
 }
 
-/* S->vert: the x of the scene's vertical pieces (xmin == xmax), sorted
- * and distinct. */
+/* S->vert: the x where a piece's x is extreme (its xmin and xmax: a
+ * vertical piece's x, a curve's leftmost and rightmost points), sorted
+ * and distinct.  The tiles' sides keep clear of
+ * them (tile_side): where a curve is tangent to a side, its crossing's
+ * height is found only to about the square root of rounding (1e-8 px),
+ * and the two tiles, each solving it in its own band, would count a sliver
+ * that high twice or not at all. */
 static int plan_vert(an_state *S, const aa_scene *scene)
 {
     size_t n, nv = 0;
     const aa_piece *p = aa_scene_pieces(scene, &n);
     for (size_t k = 0; k < n; k++)
-        nv += p[k].kind != AA_PIECE_FLAT && p[k].xmin == p[k].xmax;
+        nv += p[k].kind != AA_PIECE_FLAT ? 2 : 0;
     S->vert = malloc((nv ? nv : 1) * sizeof *S->vert);
     if (!S->vert)
         return aa_fail(AA_ENOMEM, "out of memory for analytic's plan of the scene");
     S->nvert = 0;
     for (size_t k = 0; k < n; k++)
-        if (p[k].kind != AA_PIECE_FLAT && p[k].xmin == p[k].xmax)
+        if (p[k].kind != AA_PIECE_FLAT) {
             S->vert[S->nvert++] = p[k].xmin;
+            S->vert[S->nvert++] = p[k].xmax;
+        }
     aa__vis_sort(S->vert, S->nvert);
     size_t m = 0;
     for (size_t k = 0; k < S->nvert; k++)
@@ -2679,7 +2691,9 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
  * colour is the colour's jump across the piece at a point, whatever the
  * window, and each part lies in one tile (a piece is cut where it crosses a
  * side, and the part inside a tile is reported by it alone; a vertical
- * piece on a side would be in neither, so the sides avoid their x).  In
+ * piece on a side would be in neither, and a curve tangent to a side
+ * crosses it at a height known only to about 1e-8 px, so the sides keep
+ * 1e-6 px clear of every piece's least and greatest x).  In
  * one window across the width every band was cut at every meeting of any
  * two pieces of the row and every neighbouring pair tested again in each:
  * on strokes' outlines, whose pieces meet often, most of the time.  Each
@@ -2748,23 +2762,20 @@ static void vis_run(void *ctx, const aa_piece *p, double ya, double yb, const do
     fast_piece(V->B, p, jump, ya, yb);
 }
 
-/* The width of the visible parts' tiles (px) */
-#define AN_TILE 8.0
-
-/* A tile's side at X or, where a vertical piece lies on x = X (S->vert),
- * the first X + k/64 where none does. */
+/* A tile's side at X or, where a piece's extreme x (S->vert) lies within
+ * AN_TILE_CLEAR of X, the first X + k/64 where none does. */
 static double tile_side(const an_state *S, double X)
 {
     for (;;) {
         size_t a = 0, b = S->nvert;
-        while (a < b) { /* the first vert >= X */
+        while (a < b) { /* the first vert >= X - AN_TILE_CLEAR */
             size_t m = a + (b - a) / 2;
-            if (S->vert[m] < X)
+            if (S->vert[m] < X - AN_TILE_CLEAR)
                 a = m + 1;
             else
                 b = m;
         }
-        if (a == S->nvert || S->vert[a] != X)
+        if (a == S->nvert || S->vert[a] > X + AN_TILE_CLEAR)
             return X;
         X += 1.0 / 64.0;
     }
