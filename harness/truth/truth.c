@@ -1865,6 +1865,18 @@ static void cone_root(worker *w, const grad_radial *g, const cone_row *cr, const
     *err += fmin(worst, wc ? cone_fallback(wc, lo_x, hi_x) : ub * ub - ua * ua);
 }
 
+/* The x of the filter's kinks about the pixel's centre strictly inside
+ * (a, b), appended to xs[nx ..] while nx < cap; returns the new count. */
+static size_t add_kinks(const worker *w, double a, double b, double *xs, size_t nx, size_t cap)
+{
+    double kink[8];
+    int nk = w->f->type->kinks(w->f->spec.v, kink);
+    for (int j = 0; j < nk && nx < cap; j++)
+        if (w->uc + kink[j] > a && w->uc + kink[j] < b)
+            xs[nx++] = w->uc + kink[j];
+    return nx;
+}
+
 /* The weight's integral over [xa, xb] of the current row (absolute x):
  * its length under the box, else the cdf's (the radial filters: the
  * row's) difference. */
@@ -2006,13 +2018,8 @@ static void cone_span(worker *w, const grad_radial *g, const cone_comp *cc, doub
         memmove(taus, xs + nx, mt * sizeof *xs);
         for (size_t k = 0; k < mt; k++)
             nx += (size_t)rad_cross(g, &cr.r, taus[k], p, q, xs + nx);
-        if (wc) { /* the filter's kinks: the weight one piece between them */
-            double kink[8];
-            int nkk = w->f->type->kinks(w->f->spec.v, kink);
-            for (int j = 0; j < nkk && nx < cap; j++)
-                if (w->uc + kink[j] > p && w->uc + kink[j] < q)
-                    xs[nx++] = w->uc + kink[j];
-        }
+        if (wc) /* the filter's kinks: the weight one piece between them */
+            nx = add_kinks(w, p, q, xs, nx, cap);
         qsort(xs + 1, nx - 1, sizeof *xs, cmp_dbl);
         xs[nx++] = q;
         for (size_t k = 0; k + 1 < nx; k++) {
@@ -3062,13 +3069,8 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
             }
         }
     }
-    if (c.weighted) { /* the filter's kinks: w is one piece between them */
-        double kink[8];
-        int nkk = w->f->type->kinks(w->f->spec.v, kink);
-        for (int j = 0; j < nkk && nx < cap; j++)
-            if (w->uc + kink[j] > xa && w->uc + kink[j] < xb)
-                xs[nx++] = w->uc + kink[j];
-    }
+    if (c.weighted) /* the filter's kinks: w is one piece between them */
+        nx = add_kinks(w, xa, xb, xs, nx, cap);
     qsort(xs + 1, nx - 1, sizeof *xs, cmp_dbl);
     xs[nx++] = xb;
     double err = 0.0;
