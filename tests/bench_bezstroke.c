@@ -18,13 +18,25 @@
  * processes sharing the core lengthen far less.  Figures are read, not
  * asserted.
  *
- * usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]...
+ * --renders N: no timing and no reference: `point` and `area` each render
+ * the scene N times, for counting instructions (valgrind --tool=callgrind
+ * with N = 1 and N = 3: point_render's and area_render's inclusive counts'
+ * differences halved are one render's, without the set-up).
+ *
+ * --check: the box reference once and `area` once: the pixels where area
+ * is farther from the reference than the reference's own bound, their
+ * count and the largest excess (and where), and a hash of area's image
+ * (FNV-1a of its doubles' bits) to tell an unchanged image from a moved
+ * one.
+ *
+ * usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]... [--renders N | --check]
  */
 #include "bench.h"
 #include "path.h"
 #include "truth.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +46,23 @@ static int cmp(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return x < y ? -1 : x > y;
+}
+
+/* FNV-1a (64 bits) over the bytes of an image's samples */
+static uint64_t image_hash(const aa_image *im)
+{
+    uint64_t hsh = 1469598103934665603u;
+    for (int j = 0; j < im->h; j++)
+        for (int i = 0; i < im->w; i++) {
+            const double *px = aa_pixel(im, i, j);
+            for (int c = 0; c < im->c; c++) {
+                uint64_t b;
+                memcpy(&b, &px[c], sizeof b);
+                for (int k = 0; k < 8; k++)
+                    hsh = (hsh ^ ((b >> (8 * k)) & 0xff)) * 1099511628211u;
+            }
+        }
+    return hsh;
 }
 
 static double median(double *v, int n)
@@ -76,7 +105,7 @@ static int build(aa_path *p)
 
 int main(int argc, char **argv)
 {
-    int w = 1024, h = 1024, reps = 3, nf = 1;
+    int w = 1024, h = 1024, reps = 3, nf = 1, renders = 0, check = 0;
     const char *filters[8] = {"box"};
     for (int k = 1; k < argc; k++) {
         if (!strcmp(argv[k], "-s") && k + 1 < argc && sscanf(argv[k + 1], "%dx%d", &w, &h) == 2)
@@ -85,12 +114,21 @@ int main(int argc, char **argv)
             reps = atoi(argv[++k]);
         else if (!strcmp(argv[k], "-f") && k + 1 < argc && nf < 8)
             filters[nf++] = argv[++k];
+        else if (!strcmp(argv[k], "--renders") && k + 1 < argc)
+            renders = atoi(argv[++k]);
+        else if (!strcmp(argv[k], "--check"))
+            check = 1;
         else {
-            fprintf(stderr, "usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]...\n");
+            fprintf(stderr, "usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]... [--renders N "
+                            "| --check]\n");
             return 2;
         }
     }
-    if (w < 1 || h < 1 || reps < 0 || reps > 100) {
+    if (renders && check) {
+        fprintf(stderr, "bench_bezstroke: --renders and --check exclude each other\n");
+        return 2;
+    }
+    if (w < 1 || h < 1 || reps < 0 || reps > 100 || renders < 0) {
         fprintf(stderr, "bench_bezstroke: bad size or repetitions\n");
         return 2;
     }
@@ -140,6 +178,65 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
         return 3;
     }
+    aa_job job;
+    aa_spec spec;
+    aa_method m;
+    aa_counters c;
+    if (renders || check) {
+        /* point and area N times (--renders), or area once against the
+         * reference (--check) */
+        aa_image ref;
+        if (check && (aa_image_alloc(&ref, w, h, 3) ||
+                      aa_truth_render(placed, &f, 1, &ref, &bound, &(aa_truth_stats){0}))) {
+            fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+            return 3;
+        }
+        for (int q = check; q < 2; q++) {
+            const char *name = q ? "area" : "point";
+            if (aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1) ||
+                aa_method_parse(name, &f, &spec) || aa_method_init(&m, &spec, &job)) {
+                fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+                return 3;
+            }
+            for (int k = 0; k < (check ? 1 : renders); k++)
+                if (aa_method_render(&m, &job, &im, &c)) {
+                    fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+                    return 3;
+                }
+            aa_method_free(&m);
+            aa_job_free(&job);
+            if (!check)
+                printf("%-19s %d renders\n", name, renders);
+        }
+        if (check) {
+            size_t beyond = 0;
+            double most = 0.0, off = 0.0;
+            int wi = -1, wj = -1;
+            for (int j = 0; j < h; j++)
+                for (int i = 0; i < w; i++) {
+                    double e = 0.0;
+                    for (int ch = 0; ch < 3; ch++)
+                        e = fmax(e, fabs(aa_pixel(&im, i, j)[ch] - aa_pixel(&ref, i, j)[ch]));
+                    if (e > aa_pixel(&bound, i, j)[0]) {
+                        beyond++;
+                        off = fmax(off, e);
+                        if (e - aa_pixel(&bound, i, j)[0] > most)
+                            most = e - aa_pixel(&bound, i, j)[0], wi = i, wj = j;
+                    }
+                }
+            printf("area against the box reference: %zu pixels beyond its bound, at most %.3g "
+                   "off, at most %.3g beyond it (at (%d, %d)); area's image hash %016llx\n",
+                   beyond, off, most, wi, wj, (unsigned long long)image_hash(&im));
+            aa_image_free(&ref);
+        }
+        aa_image_free(&im);
+        aa_image_free(&bound);
+        aa_scene_free(placed);
+        aa_scene_free(s);
+        aa_path_free(&path);
+        aa_path_free(&out);
+        return 0;
+    }
     double t_ref[100], c_ref[100], worst = 0;
     aa_truth_stats stats;
     for (int k = 0; k < reps; k++) {
@@ -161,10 +258,6 @@ int main(int argc, char **argv)
                1e3 * med, reps, 1e3 * t_ref[0], 1e3 * t_ref[reps - 1], 1e3 * cmed,
                1e3 * c_ref[0], 1e3 * c_ref[reps - 1], worst);
     }
-    aa_job job;
-    aa_spec spec;
-    aa_method m;
-    aa_counters c;
     double t_m[10][5], c_m[10][5], med[10], cmed[10];
     const char *names[10] = {"point", "area"};
     int nq = 2 + nf;
