@@ -611,18 +611,39 @@ static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
     a->mline = INT_MIN;
 }
 
+/* An offset piece's parameter t where it meets the line y = yl (fa = y0 -
+ * yl: its top's height over it, negative) and its point there (X, Y): the
+ * root's point (aa__offset_root_xy: the root's last evaluation moved to
+ * it, where the point was evaluated again), or the piece's own end where
+ * the root is one (offset_point).  A function of the piece and the line
+ * alone, so a band's bottom and the next band's top agree whichever row
+ * asks first. */
+static double offset_line_t(const ar_piece *p, double fa, double yl, long double *X,
+                            long double *Y)
+{
+    const aa_piece *q = p->src;
+    long double xy[2];
+    double t = aa__offset_root_xy(&q->oc, &p->ofix, 1, q->ot0, q->ot1, fa, yl, p->oend, xy);
+    if (t == q->ot0 || t == q->ot1)
+        offset_point(p, t, X, Y);
+    else
+        *X = xy[0], *Y = xy[1];
+    return t;
+}
+
 /* An offset piece: its cell from its point on the line y = ja (or its
  * top, if lower); its tau is sg t, so its fields are its ends' taus, its
- * x turns, and Va = -ja (V = -j in band j: y = v - V). */
+ * x turns, and Va = -ja (V = -j in band j: y = v - V).  On the anchor's
+ * line the point is kept as the first band's top (mline 0). */
 static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
 {
     const aa_piece *q = p->src;
     double t = q->ot0;
-    if (p->y0 < ja)
-        t = (double)aa__offset_root_fix(&q->oc, &p->ofix, 1, q->ot0, q->ot1, p->y0 - ja, ja, NAN,
-                                        p->oend, NULL, NULL);
     long double X, Y;
-    offset_point(p, t, &X, &Y);
+    if (p->y0 < ja)
+        t = offset_line_t(p, p->y0 - ja, ja, &X, &Y);
+    else
+        offset_point(p, t, &X, &Y);
     double c0 = floor((double)X);
     c0 = c0 < -CELL_LIMIT ? -CELL_LIMIT : (c0 > CELL_LIMIT ? CELL_LIMIT : c0);
     a->p = p;
@@ -640,6 +661,8 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     a->te = p->ote;
     a->te2 = p->ote2;
     a->mline = INT_MIN;
+    if (p->y0 < ja)
+        a->mline = 0, a->tline = a->g, a->uline = a->U, a->yline = Y;
 }
 
 /* Expand piece p about its point on line y = ja (or its top, if lower),
@@ -743,20 +766,22 @@ static inline double line_tau(const ar_seg *a, int m)
     return line_tau_quad(a, m);
 }
 
-/* line_tau of a cubic, conic or offset piece */
+/* An offset piece's tau on the line y = ja + m = -c (on the whole piece),
+ * u there and its y (*y): offset_line_t, the same call as expand_offset's
+ * on the anchor's line, so the same root and point. */
+static double offset_line(const ar_seg *a, int m, double *u, long double *y)
+{
+    double c = a->Va - m;
+    long double X;
+    double t = offset_line_t(a->p, a->p->y0 + c, -c, &X, y);
+    *u = (double)(X - a->c0);
+    return a->p->sg * t;
+}
+
+/* line_tau of a cubic or conic piece (an offset piece's: offset_line) */
 static double line_tau_curved(const ar_seg *a, int m)
 {
     double c = a->Va - m;
-    if (a->p->offset) {
-        /* y = ja + m = -c, on the whole piece; on the anchor's line the
-         * anchor's own root (expand_offset made the same call) */
-        const aa_piece *q = a->p->src;
-        if (m == 0 && a->p->y0 < a->ja)
-            return a->g;
-        return a->p->sg * (double)aa__offset_root_fix(&q->oc, &a->p->ofix, 1, q->ot0, q->ot1,
-                                                        a->p->y0 + c, -c, NAN, a->p->oend, NULL,
-                                                        NULL);
-    }
     if (a->p->conic)
         return conic_q_of_v(a, c);
     if (a->p->cubic) {
@@ -829,20 +854,28 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
          * offset_v would give, bit for bit (same y, same V) */
         if (special && p->offset)
             offset_keep(s, ta, (double)(s->yline + s->V));
-    } else if (plain)
+    } else if (plain) {
         ta = line_tau_quad(s, m), ua = u_quad(s, ta);
-    else
+    } else if (special && p->offset) {
+        long double y;
+        ta = offset_line(s, m, &ua, &y);
+        offset_keep(s, ta, (double)(y + s->V));
+    } else {
         ta = line_tau(s, m), ua = seg_u(s, ta);
+    }
     if (p->y1 <= j + 1.0) {
         tb = s->tend;
         ub = plain ? u_quad(s, tb) : seg_u(s, tb);
     } else {
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
-        tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
-        ub = plain                      ? u_quad(s, tb)
-             : special && p->offset ? offset_seg_u(s, tb, &s->yline)
-                                    : seg_u(s, tb);
+        if (special && p->offset) {
+            tb = offset_line(s, m + 1, &ub, &s->yline);
+            offset_keep(s, tb, (double)(s->yline + s->V));
+        } else {
+            tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
+            ub = plain ? u_quad(s, tb) : seg_u(s, tb);
+        }
         s->mline = m + 1, s->tline = tb, s->uline = ub;
     }
     if (!(tb >= ta))

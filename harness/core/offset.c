@@ -574,7 +574,7 @@ long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long dou
 static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                                long double ta, long double tb, long double fa, long double target,
                                double guess, const double *endb, long double *other,
-                               double *slope);
+                               double *slope, long double *xy);
 
 long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta, long double tb,
                             long double fa, long double target, double guess, long double *other,
@@ -582,7 +582,7 @@ long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta
 {
     aa__offset_fix fx;
     fix_init(oc, &fx);
-    return offset_root(oc, &fx, coord, ta, tb, fa, target, guess, NULL, other, slope);
+    return offset_root(oc, &fx, coord, ta, tb, fa, target, guess, NULL, other, slope, NULL);
 }
 
 long double aa__offset_root_fix(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
@@ -590,7 +590,7 @@ long double aa__offset_root_fix(const aa_offset_curve *oc, const aa__offset_fix 
                                 long double target, double guess, const double *endb,
                                 long double *other, double *slope)
 {
-    return offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, other, slope);
+    return offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, other, slope, NULL);
 }
 
 long double aa__offset_solve_end(const aa_offset_curve *oc, int coord, double ta, double tb,
@@ -598,13 +598,20 @@ long double aa__offset_solve_end(const aa_offset_curve *oc, int coord, double ta
 {
     aa__offset_fix fx;
     fix_init(oc, &fx);
-    return offset_root(oc, &fx, coord, ta, tb, fa, target, NAN, endb, NULL, NULL);
+    return offset_root(oc, &fx, coord, ta, tb, fa, target, NAN, endb, NULL, NULL, NULL);
+}
+
+double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                          long double ta, long double tb, long double fa, long double target,
+                          const double *endb, long double xy[2])
+{
+    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, NAN, endb, NULL, NULL, xy);
 }
 
 static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                                long double ta, long double tb, long double fa, long double target,
                                double guess, const double *endb, long double *other,
-                               double *slope)
+                               double *slope, long double *xy)
 {
     /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
      * (either may be 0).  Newton's method in double (solve_double, to a
@@ -627,7 +634,11 @@ static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *
      * with (coordinate coord's second derivative over twice its first,
      * times h^2, moves the other coordinate by its first derivative times
      * that), and at |h| <= 1e-11 (t is in [0, 1]) about 1e-22 of that
-     * second derivative. */
+     * second derivative.  The point at the root rounded to double (xy,
+     * aa__offset_root_xy) the same way: the last evaluation moved by its
+     * derivative over the step from there to the rounded root (at most h
+     * plus half an ulp of t), where the caller would evaluate it again;
+     * evaluated there where no evaluation was made. */
     long double X, Y, DX = 0, DY = 0, lt = ta;
     int neg = fa < 0, stops = fx->stops; /* asked once a curve (aa__offset_fix_init) */
     if (fa == 0)
@@ -675,19 +686,34 @@ static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *
                 *other = (coord ? X + DX * (next - lt) : Y + DY * (next - lt));
             if (slope)
                 *slope = (double)df;
+            if (xy) {
+                long double hd = (long double)(double)next - lt;
+                xy[0] = X + DX * hd, xy[1] = Y + DY * hd;
+            }
             return next;
         }
         lt = next;
         h1 = inside ? (double)h : NAN;
     }
 at_lt: /* lt not evaluated yet */
+    if (xy) /* the point at the rounded root, as the caller would evaluate it */
+        offset_eval(oc, stops, (double)lt, &xy[0], &xy[1], NULL, NULL);
     if (!other && !slope)
         return lt;
     offset_eval(oc, stops, lt, &X, &Y, &DX, &DY);
+    if (other)
+        *other = coord ? X : Y;
+    if (slope)
+        *slope = (double)(coord ? DY : DX);
+    return lt;
 done: /* lt evaluated */
     if (other)
         *other = coord ? X : Y;
     if (slope)
         *slope = (double)(coord ? DY : DX);
+    if (xy) {
+        long double hd = (long double)(double)lt - lt;
+        xy[0] = X + DX * hd, xy[1] = Y + DY * hd;
+    }
     return lt;
 }
