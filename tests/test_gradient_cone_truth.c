@@ -619,12 +619,22 @@ static const double OR[4] = {4.5, 1.5, 12.25, 9.75};
 typedef struct over_pic {
     pic pc;
     go_pic g;
+    int front; /* the gradient on OR (else the cone alone) */
+    int lin;   /* the cone in linear light (test_linear) */
 } over_pic;
+
+/* sRGB's encoding (IEC 61966-2-1) of the linear value v. */
+static double enc(double v)
+{
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+}
 
 static double over_enc(const over_pic *o, double x, double y)
 {
     double t = pic_t(&o->pc, x, y), e = isnan(t) ? 0.0 : t < 0 ? 0 : t > 1 ? 1 : t;
-    if (x > OR[0] && x < OR[2] && y > OR[1] && y < OR[3]) {
+    if (o->lin && !isnan(t)) /* linear light: LIN_STOPS over black */
+        e = (0.9 - 0.4 * e) * enc(0.002 + 0.598 * e);
+    if (o->front && x > OR[0] && x < OR[2] && y > OR[1] && y < OR[3]) {
         double s = go_pic_t(&o->g, x, y);
         s = s < 0 ? 0 : s > 1 ? 1 : s;
         double C = 0.9 - 0.88 * s, al = 0.35 + 0.45 * s;
@@ -712,14 +722,21 @@ static double over_pixel(over_pic *o, int i, int j)
     return sum;
 }
 
-/* Gradient g (stops above) on OR in front of the cone p[] over [-8, W +
- * 8] x [-8, H + 8], over black. */
-static aa_scene *over_scene(const double p[6], const aa_gradient *g)
+/* The cone in linear light (test_linear): linear values 0.002 to 0.6
+ * (across the encoding's change of piece at 0.0031308), opacity 0.9 to
+ * 0.5. */
+static const aa_gradient_stop LIN_STOPS[2] = {{0.0, {{0.002, 0.002, 0.002}}, 0.9},
+                                              {1.0, {{0.6, 0.6, 0.6}}, 0.5}};
+
+/* Gradient g (stops above; none if NULL) on OR in front of the cone p[]
+ * over [-8, W + 8] x [-8, H + 8] (black to white, or with lin LIN_STOPS
+ * in linear light), over black. */
+static aa_scene *over_scene(const double p[6], const aa_gradient *g, int lin)
 {
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
     assert_non_null(s);
     const double big[4] = {-8, -8, W + 8, H + 8};
-    for (int k = 0; k < 2; k++) {
+    for (int k = !g; k < 2; k++) {
         const double *r = k ? big : OR; /* front to back: OR's layer first */
         assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
         assert_int_equal(aa_scene_move_to(s, r[0] / W, r[1] / H), AA_OK);
@@ -732,9 +749,12 @@ static aa_scene *over_scene(const double p[6], const aa_gradient *g)
             continue;
         }
         aa_gradient c = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0},
-                         2, black_white};
+                         2, lin ? LIN_STOPS : black_white};
         memcpy(c.p, p, sizeof c.p);
         assert_int_equal(aa_scene_set_gradient(s, &c), AA_OK);
+        if (lin)
+            assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB),
+                             AA_OK);
     }
     assert_int_equal(aa_scene_finish(s), AA_OK);
     return s;
@@ -760,6 +780,7 @@ static void test_over(void **state)
                          {1.0 / W, 0, 0, 1.0 / H, 0, 0}, 2, st};
         over_pic o;
         memset(&o, 0, sizeof o);
+        o.front = 1;
         if (kind) {
             const double q[6] = {8, 6, 6, 6.5, 5, 0};
             memcpy(g.p, q, sizeof q);
@@ -774,7 +795,7 @@ static void test_over(void **state)
         for (int q = 0; q < 3; q++)
             o.pc.taus[o.pc.ntaus++] = go_taus[q];
         o.pc.nh = co_region(p, o.pc.hp, &o.pc.wedge, o.pc.apex);
-        aa_scene *s = over_scene(p, &g);
+        aa_scene *s = over_scene(p, &g, 0);
         aa_image ref, bound;
         aa_truth_stats stats;
         support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
@@ -801,6 +822,74 @@ static void test_over(void **state)
     }
 }
 
+/* ---- the cone in linear light ----
+ *
+ * The cone (test_over's wedge) interpolating in linear light (SVG's
+ * color-interpolation linearRGB): its stops' linear values 0.002 to 0.6
+ * interpolated as they are and encoded, then laid over black with the
+ * opacity 0.9 to 0.5 (SVG 1.1, 'color-interpolation'; sRGB's encoding
+ * from IEC 61966-2-1), alone and under test_over's linear gradient on
+ * OR.  Known answer: e = alpha enc(v) (+ the front layer's source over),
+ * decoded, by the same 2-D quadrature, cut also at the circles where v
+ * passes 0.0031308 (the encoding's change of piece) and where the cone's
+ * composite alone passes sRGB's threshold. */
+static void test_linear(void **state)
+{
+    (void)state;
+    const double p[6] = {9.3, 6.1, 3.1, 3.7, 5.2, 1.2};
+    double c0 = go_dec(0.9), c1 = go_dec(0.02);
+    static aa_gradient_stop st[2];
+    st[0] = (aa_gradient_stop){0.0, {{c0, c0, c0}}, 0.35};
+    st[1] = (aa_gradient_stop){1.0, {{c1, c1, c1}}, 0.8};
+    aa_gradient g = {AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {4, 2, 12, 9},
+                     {1.0 / W, 0, 0, 1.0 / H, 0, 0}, 2, st};
+    static const int px[][2] = {{0, 4}, {1, 4}, {2, 4}, {3, 3}, {3, 6}, {4, 3}, {6, 3},
+                                {4, 7}, {6, 8}, {5, 5}, {8, 3}, {7, 8}, {11, 6}, {13, 1}};
+    for (int front = 0; front < 2; front++) {
+        over_pic o;
+        memset(&o, 0, sizeof o);
+        o.front = front, o.lin = 1;
+        o.g.x1 = 4, o.g.y1 = 2, o.g.x2 = 12, o.g.y2 = 9;
+        memcpy(o.pc.p, p, sizeof o.pc.p);
+        for (int q = 0; q < 3; q++)
+            o.pc.taus[o.pc.ntaus++] = go_taus[q];
+        o.pc.taus[o.pc.ntaus++] = (0.0031308 - 0.002) / 0.598;
+        { /* where the cone's composite alone passes sRGB's threshold (bisection) */
+            double lo = 0, hi = 0.1;
+            for (int it = 0; it < 200; it++) {
+                double m = 0.5 * (lo + hi);
+                *((0.9 - 0.4 * m) * enc(0.002 + 0.598 * m) < GO_T0 ? &lo : &hi) = m;
+            }
+            o.pc.taus[o.pc.ntaus++] = 0.5 * (lo + hi);
+        }
+        o.pc.nh = co_region(p, o.pc.hp, &o.pc.wedge, o.pc.apex);
+        aa_scene *s = over_scene(p, front ? &g : NULL, 1);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
+        support_reference(s, &v, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        double worst = 0;
+        for (size_t k = 0; k < sizeof px / sizeof *px; k++) {
+            int i = px[k][0], j = px[k][1];
+            double want = over_pixel(&o, i, j), got = aa_pixel(&ref, i, j)[0];
+            double bd = *aa_pixel(&bound, i, j);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-14))
+                fail_msg("cone in linear light%s: pixel (%d, %d) is %.17g, 2-D quadrature "
+                         "%.17g (bound %.3g)",
+                         front ? " under a linear gradient" : "", i, j, got, want, bd);
+        }
+        print_message("cone in linear light%s %d pixels, largest difference from 2-D "
+                      "quadrature %.2g, largest bound %.2g\n",
+                      front ? " under a linear gradient" : "", (int)(sizeof px / sizeof *px),
+                      worst, stats.max_bound);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -809,6 +898,7 @@ int main(void)
         cmocka_unit_test(test_2d_spread),
         cmocka_unit_test(test_layers),
         cmocka_unit_test(test_over),
+        cmocka_unit_test(test_linear),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -449,7 +449,8 @@ typedef struct worker {
     gen_layer *gl;
     int ngl, gen, gen_over, gen_stuck;
     /* cone_mix: a cone-case gradient beside other gradients (each span by
-     * mix_span); cone_over: a span painted by the cone and another */
+     * mix_span); cone_over: the composite of several layers of one cone
+     * whose polynomial's roots were not found (cone_span) */
     int cone_mix, cone_over;
     aa_gradient_stop **lin_stops; /* per layer: a linear-light gradient's stops, cut */
     size_t gen_work; /* gen_piece's halvings on the current span (GEN_PIECES) */
@@ -1362,7 +1363,20 @@ static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, doub
  *    integrated exactly as such; the rule's bound takes |t| <= |c| / (2
  *    |b|) with |b| >= |b(m)| - |b1| A on the ellipse.  Repeat and reflect
  *    would repeat the stops without end at the edge: a window the edge
- *    passes is refused by name (rad_breakpoints_of).
+ *    passes is refused by name (rad_breakpoints_of).  Cutting a sliver
+ *    of width eps off the edge and bounding it by its area times the
+ *    largest colour is exact to a bound, but not to the reference's:
+ *    along a row at distance delta from the edge t ~ k / delta (k of the
+ *    order of the gradient's size over |D|), so the rest holds k / eps
+ *    periods, each cut twice a row, and the 4096 stop lines a window may
+ *    take (GRAD_MAX_BREAKS) leave eps ~ k / 4096, a bound near 1e-4 for
+ *    1e-12.  Where the colour is a function of t alone the tail has an
+ *    exact treatment (in t, x'(t) ~ k / t^2 is smooth, and integrating
+ *    by parts against the periodic primitives of the colour less its
+ *    mean leaves the mean times the sliver plus terms O(k / N^j) at the
+ *    N-th period), but the composite with other layers, or the weight
+ *    under the decoding, is no product of a periodic function of t and
+ *    a smooth one of x; it is not built.
  * t is evaluated as (b + sqrt d) / a when b >= 0 and as c / (b - sqrt d)
  * otherwise (the same number; neither cancels), with d = L0 L1 from the
  * linear forms, exact to rounding however close to a tangent line (a = 0:
@@ -1439,21 +1453,23 @@ static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, doub
  * stop or threshold: in x no Bernstein ellipse about a piece that ends at
  * a tangent line's crossing keeps out sqrt(d)'s branch point, which lies
  * on its end (rho = 1), and its bound is infinite however often it is
- * halved.  That is why the cone case does not take the path of several
- * gradients, which carries the other filters' weight for the rest: it
- * bounds a radial layer from rad_row's branch points, worked out for
- * nested circles (d2 > 0): here d's real zeros are the tangent lines'
+ * halved.  That is why the cone case alone does not take the path of
+ * several gradients, which carries the other filters' weight for the
+ * rest: it bounds a radial layer from rad_row's branch points, worked out
+ * for nested circles (d2 > 0): here d's real zeros are the tangent lines'
  * crossings, the painted stretch's own ends, and where d2 = lam0 lam1 <
  * 0 (a row across the painted wedge) those points are not numbers at all
- * (a square root of a negative ratio); nor has it a substitution in u.
+ * (a square root of a negative ratio).  That path takes a cone layer only
+ * with the cone's own cuts, bounds and substitution in u ("a cone beside
+ * other gradients").
  * The outer breakpoints were already the filters': the tangent lines' and
  * the stop circles' crossings of every kink line (kink_lines) and, under
  * a radial filter, of the support's circle, with their nearest approaches
  * to the centre (rad_filter_line, rad_filter_circle).
- * The cone in linear light is refused by name (grad_init), and so is a
- * pixel where the cone and another gradient paint one point ("a cone
- * beside other gradients"): the path of several gradients they would take
- * has no cut at the tangent lines.
+ * A span where the cone and another gradient paint one point, and the
+ * cone in linear light, take the path of several gradients, which now
+ * cuts the row at the cone's tangent lines and takes the pieces next to
+ * them in u ("a cone beside other gradients").
  */
 
 /* The cone case's linear forms of radial gradient r (the comment above). */
@@ -1909,9 +1925,9 @@ static double span_weight(const worker *w, double xa, double xb)
  * 1, K_0 = e0, K_1 = e1 - e0, K_2 = e2 - e1 and E is the quadratic
  * above.  The K are read as for several gradients (mix_span): composites
  * at every choice of the three paints per layer, then differences.  More
- * than GEN_MAX such layers at a point, or a polynomial whose roots the
- * solver does not find, refuse the pixel as a cone meeting another
- * gradient does (cone_over).
+ * than GEN_MAX such layers at a point take the path of several gradients
+ * (gen_span, which refuses them: gen_over), and a polynomial whose roots
+ * the solver does not find refuses the pixel (cone_over).
  */
 typedef struct cone_comp {
     int n, nk;
@@ -3389,14 +3405,51 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
  * no cone among them, the path of several gradients (gen_span), as
  * without the cone; several layers all of one cone-case gradient
  * (cone_same), the cone's path with their composite ("one cone on several
- * layers"); the cone and another gradient together, nothing: the pixel is
- * refused by name (cone_over; integrate_pixel), as that path has no cut
- * at the tangent lines and bounds the cone's t as nested circles' (the
- * comment above "the cone case under the other filters").  So shapes
- * painted by a cone and by other gradients are exact where no point is
- * painted by both; a pixel whose window holds such a point is refused.
+ * layers"); the cone and another gradient together, or a cone in linear
+ * light, the path of several gradients with the cone's own cuts:
+ *  - the row is cut where it crosses each cone layer's tangent lines (the
+ *    half-plane's edge; nested, at its point nearest P*), and at its stop
+ *    circles over its range of t on the painted part (cone_seg_range), as
+ *    cone_span cuts it; on an unpainted stretch the layer is transparent,
+ *    its paint constant (as is a padded stretch beyond its stops: flat,
+ *    its t then not read, so that the half-plane's pole at its edge, the
+ *    stretch beyond the last stop circle, is no singularity);
+ *  - a cone layer's t is its own (cone_t_near), and on a piece in x its
+ *    bounds on the rectangle |Re z - m| <= A, |Im z| <= B (gen_layer_tp)
+ *    are T = (|b(m)| + |b1| A + sqrt(|L0| |L1|)) / |a| and, with t' = (b1
+ *    + (lam0 L1 + lam1 L0) / (2 sqrt(L0 L1))) / a, P = (|b1| + (|lam0|
+ *    sqrt(|L1| / |L0|) + |lam1| sqrt(|L0| / |L1|)) / 2) / |a|, each |L_k|
+ *    above by |L_k(m)| + |lam_k| A and below by |lam_k| times its zero's
+ *    distance from the rectangle (CONE_HALF: t = c / (2 b), |b| >= |b(m)|
+ *    - |b1| A); the Bernstein ellipse keeps the zeros of L0 and L1 out;
+ *  - a painted piece one end of which is a tangent line's crossing xr
+ *    (CONE_WEDGE; both ends: halved at its middle) is taken in u, x = xr
+ *    + eps u^2, as cone_root takes it: the integrand 2 u dec(e(x(u)))
+ *    w(x(u)); that layer's t = (b + u sqrt(P(u^2))) / a is analytic in u
+ *    but at P's zeros (the other line's crossing), with |t| <= (|b(xr)| +
+ *    |b1| Zu^2 + Zu sqrt(|P0| + |P1| Zu^2)) / |a| and |dt/du| <= (2 |b1|
+ *    Zu + (|P0| + 2 |P1| Zu^2) / sqrt(|P|)) / |a| on the ellipse in u
+ *    (|u| <= Zu = m + A, |P| >= |P1| |u - u0| |u + u0| by the distances
+ *    from +-u0 to the rectangle about it); the other layers' bounds in x
+ *    hold on the image of that ellipse, inside the rectangle Re(x - xr)
+ *    eps in [lo^2 - B^2, Zu^2] (lo = max(0, m - A)), |Im x| <= 2 Zu B,
+ *    and |dt/du| <= 2 Zu |t'(x)|; their branch points (and the radial cone
+ *    filter's, and a linear layer's v = 0 in linear light) map into u as
+ *    +-sqrt(eps (z - xr)) for the ellipse's rho; the weight's bound is
+ *    cone_root_t's, and M takes the factor 2 Zu.  The composite's bounds
+ *    (gen_bounds: |e|, |e'| from the layers' T and P by the product rule;
+ *    on the power piece Re(e + 0.055) > 0 from |e(z) - e(m)| <= A max
+ *    |e'|; in linear light Re v > 0 likewise, keeping v = 0 out) are then
+ *    those of several gradients in the piece's variable, and the
+ *    threshold's isolation runs in it too, by the Lipschitz test alone
+ *    (gen_taylor gives no bound in u or with a painted cone layer, whose
+ *    t'' it does not bound; the halving is then on the signs and the
+ *    budget as ever, a row tangent to the threshold's curve at worst
+ *    refusing the pixel by name); a narrow interval in u is its x range
+ *    times the colour at its middle, with the same bound.
  * The outer breakpoints are the union of the layers' own, as for several
- * gradients (grad_breakpoints).
+ * gradients (grad_breakpoints): the cone's tangent lines and front arcs
+ * among them.
  */
 /* Whether cone-case gradients g and h are one gradient: the same map,
  * circles, spread and stops (then t and the paint are the same functions
@@ -4667,11 +4720,10 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     }
     if (w->cone_over) {
         w->cone_over = w->gen_over = 0;
-        return aa_fail(AA_EINVAL, "pixel (%g, %g): a layer of a cone-case radial gradient and "
-                                  "another gradient layer paint one point of its window (the "
-                                  "path of several gradients has no cut at the cone's tangent "
-                                  "lines; layers of one cone-case gradient alone are "
-                                  "integrated): refused; sample it with point, supersample or "
+        return aa_fail(AA_EINVAL, "pixel (%g, %g): the composite of several layers of one "
+                                  "cone-case radial gradient is a polynomial in t whose roots "
+                                  "GSL's solver did not find (the sRGB decoding's pieces are "
+                                  "unknown there): refused; sample it with point, supersample or "
                                   "jitter",
                        w->uc - 0.5, w->vc - 0.5);
     }
