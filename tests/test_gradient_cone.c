@@ -668,11 +668,6 @@ static int svg_over_clear(int i, int j)
 static void test_svg_over(void **state)
 {
     (void)state;
-#if defined(__SANITIZE_ADDRESS__)
-    print_message("chromium, resvg: compared in the plain build\n");
-    (void)svg_over_doc;
-    (void)svg_over_clear;
-#else
     char dir[4096];
     assert_int_equal(support_tmpdir(dir, sizeof dir, "svgconeover"), 0);
     const char *tree = aa_source_tree();
@@ -695,6 +690,10 @@ static void test_svg_over(void **state)
         aa_scene_free(placed);
         aa_scene_free(sc);
         static const char *const who[2] = {"chromium", "resvg"};
+#if defined(__SANITIZE_ADDRESS__)
+        print_message("chromium, resvg: compared in the plain build\n");
+        (void)who, (void)tree, (void)pg, (void)svg_over_clear;
+#else
         for (int r = 0; r < 2; r++) {
             if (r == 1 && d == 0)
                 continue; /* resvg ignores fr */
@@ -735,10 +734,10 @@ static void test_svg_over(void **state)
                          255.0 * worst);
             aa_image_free(&im);
         }
+#endif
         aa_image_free(&ref);
     }
     support_rmtree(dir);
-#endif
 }
 
 int main(void)
