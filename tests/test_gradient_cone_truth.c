@@ -614,13 +614,18 @@ static void test_layers(void **state)
  * of OR's, the circles' top and bottom rows and where each touches each
  * tangent, and the other's curves' crossings of the sides (the radial
  * one's top and bottom rows too).  Pixels straddling the tangents inside
- * OR, the threshold's curve next to them, OR's corners over the wedge. */
+ * OR, the threshold's curve next to them, OR's corners over the wedge.
+ * And the linear gradient in front of test_layers' two rectangles of one
+ * cone (the ramp from 0.2: alpha C where one paints, alpha C (2 - alpha)
+ * where both do, below it), cut also at LA's and LB's sides: two layers
+ * of one cone and another gradient at one point. */
 static const double OR[4] = {4.5, 1.5, 12.25, 9.75};
 typedef struct over_pic {
     pic pc;
     go_pic g;
     int front; /* the gradient on OR (else the cone alone) */
     int lin;   /* the cone in linear light (test_linear) */
+    int two;   /* the cone on LA and LB with test_layers' ramp from 0.2 */
 } over_pic;
 
 /* sRGB's encoding (IEC 61966-2-1) of the linear value v. */
@@ -634,6 +639,11 @@ static double over_enc(const over_pic *o, double x, double y)
     double t = pic_t(&o->pc, x, y), e = isnan(t) ? 0.0 : t < 0 ? 0 : t > 1 ? 1 : t;
     if (o->lin && !isnan(t)) /* linear light: LIN_STOPS over black */
         e = (0.9 - 0.4 * e) * enc(0.002 + 0.598 * e);
+    if (o->two) { /* two layers of one cone (test_layers' composite) */
+        int n = in_rect(LA, x, y) + in_rect(LB, x, y);
+        double c = 0.2 + 0.8 * e, al = 0.9 - 0.5 * e;
+        e = isnan(t) || n == 0 ? 0.0 : n == 1 ? al * c : al * c * (2 - al);
+    }
     if (o->front && x > OR[0] && x < OR[2] && y > OR[1] && y < OR[3]) {
         double s = go_pic_t(&o->g, x, y);
         s = s < 0 ? 0 : s > 1 ? 1 : s;
@@ -664,6 +674,8 @@ static double over_y(double y, void *v)
         n += go_tau_meet(&o->g, go_taus[q], 0, y, cut + n);
     cut[n++] = OR[0], cut[n++] = OR[2], cut[n++] = pc->apex[0];
     cut[n++] = pc->xlo, cut[n++] = pc->xhi;
+    if (o->two)
+        cut[n++] = LA[0], cut[n++] = LA[2], cut[n++] = LB[0], cut[n++] = LB[2];
     /* where e passes the threshold: sign changes among 400 samples */
     double h = (pc->xhi - pc->xlo) / 400, xp = pc->xlo, gp = over_enc(o, xp, y) - GO_T0;
     for (int k = 1; k <= 400 && n < 2 * MAX_TAUS + 60; k++) {
@@ -689,11 +701,13 @@ static double over_pixel(over_pic *o, int i, int j)
 {
     pic *pc = &o->pc;
     const double *p = pc->p;
-    double cut[12 * MAX_TAUS + 64], cols[4] = {i, i + 1, OR[0], OR[2]};
-    int n = 0;
+    double cut[16 * MAX_TAUS + 64], cols[8] = {i, i + 1, OR[0], OR[2], LA[0], LA[2], LB[0], LB[2]};
+    int n = 0, ncol = o->two ? 8 : 4;
     pc->xlo = i, pc->xhi = i + 1;
     cut[n++] = j, cut[n++] = j + 1, cut[n++] = pc->apex[1], cut[n++] = OR[1], cut[n++] = OR[3];
-    for (int c = 0; c < 4; c++) {
+    if (o->two)
+        cut[n++] = LA[1], cut[n++] = LA[3], cut[n++] = LB[1], cut[n++] = LB[3];
+    for (int c = 0; c < ncol; c++) {
         for (int k = 0; k < pc->nh; k++)
             n += line_meet(pc, k, 1, cols[c], cut + n);
         for (int q = 0; q < pc->ntaus; q++)
@@ -735,6 +749,28 @@ static aa_scene *over_scene(const double p[6], const aa_gradient *g, int lin)
 {
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
     assert_non_null(s);
+    if (lin == 2) { /* g on OR in front of test_layers' two layers, the ramp from 0.2 */
+        double d0 = go_dec(0.2);
+        static aa_gradient_stop ramp[2];
+        ramp[0] = (aa_gradient_stop){0.0, {{d0, d0, d0}}, 0.9};
+        ramp[1] = (aa_gradient_stop){1.0, {{1, 1, 1}}, 0.4};
+        const double *rs[3] = {OR, LA, LB};
+        for (int k = 0; k < 3; k++) {
+            const double *r = rs[k];
+            assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+            assert_int_equal(aa_scene_move_to(s, r[0] / W, r[1] / H), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[2] / W, r[1] / H), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[2] / W, r[3] / H), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[0] / W, r[3] / H), AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+            aa_gradient c = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0},
+                             {1.0 / W, 0, 0, 1.0 / H, 0, 0}, 2, ramp};
+            memcpy(c.p, p, sizeof c.p);
+            assert_int_equal(aa_scene_set_gradient(s, k ? &c : g), AA_OK);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        return s;
+    }
     const double big[4] = {-8, -8, W + 8, H + 8};
     for (int k = !g; k < 2; k++) {
         const double *r = k ? big : OR; /* front to back: OR's layer first */
@@ -775,13 +811,15 @@ static void test_over(void **state)
     static const int px[][2] = {{4, 3}, {5, 3}, {6, 3}, {7, 3}, {8, 3}, {4, 6}, {4, 7},
                                 {5, 7}, {6, 7}, {6, 8}, {7, 8}, {8, 9}, {4, 4}, {5, 5},
                                 {9, 5}, {11, 2}, {12, 9}, {4, 1}, {10, 8}, {4, 5}};
-    for (int kind = 0; kind < 2; kind++) {
-        aa_gradient g = {kind ? AA_GRADIENT_RADIAL : AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {0},
+    static const char *const what[3] = {"a linear gradient", "a radial gradient",
+                                        "a linear gradient, on two layers"};
+    for (int kind = 0; kind < 3; kind++) {
+        aa_gradient g = {kind == 1 ? AA_GRADIENT_RADIAL : AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {0},
                          {1.0 / W, 0, 0, 1.0 / H, 0, 0}, 2, st};
         over_pic o;
         memset(&o, 0, sizeof o);
-        o.front = 1;
-        if (kind) {
+        o.front = 1, o.two = kind == 2;
+        if (kind == 1) {
             const double q[6] = {8, 6, 6, 6.5, 5, 0};
             memcpy(g.p, q, sizeof q);
             o.g.radial = o.g.focal = 1;
@@ -795,7 +833,7 @@ static void test_over(void **state)
         for (int q = 0; q < 3; q++)
             o.pc.taus[o.pc.ntaus++] = go_taus[q];
         o.pc.nh = co_region(p, o.pc.hp, &o.pc.wedge, o.pc.apex);
-        aa_scene *s = over_scene(p, &g, 0);
+        aa_scene *s = over_scene(p, &g, kind == 2 ? 2 : 0);
         aa_image ref, bound;
         aa_truth_stats stats;
         support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
@@ -808,14 +846,13 @@ static void test_over(void **state)
             double bd = *aa_pixel(&bound, i, j);
             worst = fmax(worst, fabs(got - want));
             if (!(fabs(got - want) <= bd + 1e-14))
-                fail_msg("cone under a %s gradient: pixel (%d, %d) is %.17g, 2-D quadrature "
-                         "%.17g (bound %.3g)",
-                         kind ? "radial" : "linear", i, j, got, want, bd);
+                fail_msg("cone under %s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g "
+                         "(bound %.3g)",
+                         what[kind], i, j, got, want, bd);
         }
-        print_message("cone under a %s gradient %d pixels, largest difference from 2-D "
-                      "quadrature %.2g, largest bound %.2g\n",
-                      kind ? "radial" : "linear", (int)(sizeof px / sizeof *px), worst,
-                      stats.max_bound);
+        print_message("cone under %s %d pixels, largest difference from 2-D quadrature %.2g, "
+                      "largest bound %.2g\n",
+                      what[kind], (int)(sizeof px / sizeof *px), worst, stats.max_bound);
         aa_image_free(&ref);
         aa_image_free(&bound);
         aa_scene_free(s);

@@ -1313,6 +1313,9 @@ typedef struct gen_span_ctx {
      * sqrt(P0 + P1 u^2); else the variable is x */
     int umode, ul;
     double xr, eps, P0, P1;
+    /* uroot[l]: layer l is of the same cone as ul (the same forms) and
+     * takes ul's sqrt(d) = u sqrt(P) on the piece in u */
+    int uroot[GEN_MAX];
 } gen_span_ctx;
 
 /* The weight along a row under a filter other than the box ("the other
@@ -2528,7 +2531,7 @@ static double gen_t_x(const gen_span_ctx *c, int l, double x)
  * from takes sqrt(d) = u sqrt(P0 + P1 u^2) (cone_root). */
 static double gen_t(const gen_span_ctx *c, int l, double s)
 {
-    if (c->umode && l == c->ul && !c->flat[l]) {
+    if (c->umode && c->uroot[l] && !c->flat[l]) {
         double P = c->P0 + c->P1 * s * s;
         return cone_t_sq(c->L[l]->rg, gen_x(c, s), c->y, s * sqrt(P > 0.0 ? P : 0.0));
     }
@@ -2663,7 +2666,7 @@ static int gen_layer_tp_s(const gen_span_ctx *c, int l, double m, double A, doub
     if (!c->umode)
         return gen_layer_tp(c, l, m, A, B, T, P);
     double Zu = fabs(m) + A, Z2 = Zu * Zu;
-    if (l == c->ul && !c->flat[l]) {
+    if (c->uroot[l] && !c->flat[l]) {
         const rad_row *r = &c->row[l];
         double Plo = fabs(c->P0);
         if (c->P1 != 0.0) {
@@ -2766,7 +2769,7 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
         if (c->L[l]->rg->cone) { /* the zeros of L0, L1 (CONE_HALF: b's) */
             if (c->flat[l])
                 continue;
-            if (c->umode && l == c->ul) { /* P's zeros, in u */
+            if (c->umode && c->uroot[l]) { /* P's zeros, in u */
                 if (c->P1 != 0.0) {
                     double complex u0 = csqrt((double complex)(-c->P0 / c->P1));
                     rmax = fmin(fmin(rmax, rad_rho(u0, m, h)), rad_rho(-u0, m, h));
@@ -3195,6 +3198,10 @@ static void gen_root(gen_span_ctx *c, int l, int k, double xr, double eps)
     double Lo = creal(c->lam[l][o] * xr + c->mu[l][o]);
     c->umode = 1, c->ul = l, c->xr = xr, c->eps = eps;
     c->P0 = eps * lk * Lo, c->P1 = lk * lo;
+    for (int q = 0; q < c->n; q++) /* layers of the same cone: the same forms */
+        c->uroot[q] = c->L[q]->rg && c->L[q]->rg->cone && !c->flat[q] &&
+                      c->lam[q][0] == c->lam[l][0] && c->lam[q][1] == c->lam[l][1] &&
+                      c->mu[q][0] == c->mu[l][0] && c->mu[q][1] == c->mu[l][1];
 }
 
 /* The span [xa, xb] of row y (winding w->wind) by the path above; a span
@@ -3236,7 +3243,7 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
     for (int l = 0; l < nd; l++) {
         c.L[l] = &w->gl[dep[l]];
         c.nk *= 3;
-        c.flat[l] = 0;
+        c.flat[l] = c.uroot[l] = 0;
         if (c.L[l]->rg)
             rad_row_at(c.L[l]->rg, y, &c.row[l]);
         if (c.L[l]->rg && c.L[l]->rg->cone)
@@ -3425,7 +3432,9 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
  *  - a painted piece one end of which is a tangent line's crossing xr
  *    (CONE_WEDGE; both ends: halved at its middle) is taken in u, x = xr
  *    + eps u^2, as cone_root takes it: the integrand 2 u dec(e(x(u)))
- *    w(x(u)); that layer's t = (b + u sqrt(P(u^2))) / a is analytic in u
+ *    w(x(u)); that layer's t (and that of any layer of the same cone,
+ *    whose forms are the same: uroot) = (b + u sqrt(P(u^2))) / a is
+ *    analytic in u
  *    but at P's zeros (the other line's crossing), with |t| <= (|b(xr)| +
  *    |b1| Zu^2 + Zu sqrt(|P0| + |P1| Zu^2)) / |a| and |dt/du| <= (2 |b1|
  *    Zu + (|P0| + 2 |P1| Zu^2) / sqrt(|P|)) / |a| on the ellipse in u
