@@ -593,6 +593,340 @@ static void test_layers(void **state)
     }
 }
 
+/* ---- a cone beside other gradients at one point ----
+ *
+ * The cone's black-to-white ramp (padded, opaque) over the whole canvas,
+ * over black, and over it on the rectangle OR a second gradient of
+ * encoded colour C = 0.9 - 0.88 s and opacity alpha = 0.35 + 0.45 s, s
+ * its own t padded: a linear one (P1 (4, 2) to P2 (12, 9)) or a radial
+ * one of nested circles (centre (8, 6), r 6, focus (6.5, 5), fr 0).
+ * Known answer: source over in encoded values (SVG's compositing of
+ * sRGB-encoded colours) gives e = alpha C + (1 - alpha) e_cone on OR,
+ * e_cone elsewhere (e_cone the cone's clamped t where painted, 0 where
+ * not), decoded by sRGB's curve; each pixel by 2-D quadrature of that
+ * definition (t of the cone from cone_oracle.c, of the other from
+ * gradient_oracle.c), cut inside each row at the tangents, the cone's
+ * circles t = 0, 0.04045, 1, the apex's column, OR's sides, the other
+ * gradient's curves s = 0 and 1, and where e passes 0.04045 (which the
+ * second gradient moves off the circles: found along the row by 400
+ * samples and bisection); outside, at the apex's row, OR's top and
+ * bottom, the tangents' and circles' crossings of the pixel's sides and
+ * of OR's, the circles' top and bottom rows and where each touches each
+ * tangent, and the other's curves' crossings of the sides (the radial
+ * one's top and bottom rows too).  Pixels straddling the tangents inside
+ * OR, the threshold's curve next to them, OR's corners over the wedge.
+ * And the linear gradient in front of test_layers' two rectangles of one
+ * cone (the ramp from 0.2: alpha C where one paints, alpha C (2 - alpha)
+ * where both do, below it), cut also at LA's and LB's sides: two layers
+ * of one cone and another gradient at one point. */
+static const double OR[4] = {4.5, 1.5, 12.25, 9.75};
+typedef struct over_pic {
+    pic pc;
+    go_pic g;
+    int front; /* the gradient on OR (else the cone alone) */
+    int lin;   /* the cone in linear light (test_linear) */
+    int two;   /* the cone on LA and LB with test_layers' ramp from 0.2 */
+} over_pic;
+
+/* sRGB's encoding (IEC 61966-2-1) of the linear value v. */
+static double enc(double v)
+{
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+}
+
+static double over_enc(const over_pic *o, double x, double y)
+{
+    double t = pic_t(&o->pc, x, y), e = isnan(t) ? 0.0 : t < 0 ? 0 : t > 1 ? 1 : t;
+    if (o->lin && !isnan(t)) /* linear light: LIN_STOPS over black */
+        e = (0.9 - 0.4 * e) * enc(0.002 + 0.598 * e);
+    if (o->two) { /* two layers of one cone (test_layers' composite) */
+        int n = in_rect(LA, x, y) + in_rect(LB, x, y);
+        double c = 0.2 + 0.8 * e, al = 0.9 - 0.5 * e;
+        e = isnan(t) || n == 0 ? 0.0 : n == 1 ? al * c : al * c * (2 - al);
+    }
+    if (o->front && x > OR[0] && x < OR[2] && y > OR[1] && y < OR[3]) {
+        double s = go_pic_t(&o->g, x, y);
+        s = s < 0 ? 0 : s > 1 ? 1 : s;
+        double C = 0.9 - 0.88 * s, al = 0.35 + 0.45 * s;
+        e = al * C + (1 - al) * e;
+    }
+    return e;
+}
+
+static double over_x(double x, void *v)
+{
+    const over_pic *o = v;
+    return go_dec(over_enc(o, x, o->pc.y));
+}
+
+static double over_y(double y, void *v)
+{
+    over_pic *o = v;
+    pic *pc = &o->pc;
+    pc->y = y;
+    double cut[2 * MAX_TAUS + 64];
+    int n = 0;
+    for (int k = 0; k < pc->nh; k++)
+        n += line_meet(pc, k, 0, y, cut + n);
+    for (int q = 0; q < pc->ntaus; q++)
+        n += circle_meet(pc, pc->taus[q], 0, y, cut + n);
+    for (int q = 0; q < 3; q += 2)
+        n += go_tau_meet(&o->g, go_taus[q], 0, y, cut + n);
+    cut[n++] = OR[0], cut[n++] = OR[2], cut[n++] = pc->apex[0];
+    cut[n++] = pc->xlo, cut[n++] = pc->xhi;
+    if (o->two)
+        cut[n++] = LA[0], cut[n++] = LA[2], cut[n++] = LB[0], cut[n++] = LB[2];
+    /* where e passes the threshold: sign changes among 400 samples */
+    double h = (pc->xhi - pc->xlo) / 400, xp = pc->xlo, gp = over_enc(o, xp, y) - GO_T0;
+    for (int k = 1; k <= 400 && n < 2 * MAX_TAUS + 60; k++) {
+        double xq = pc->xlo + k * h, gq = over_enc(o, xq, y) - GO_T0;
+        if ((gp < 0) != (gq < 0)) {
+            double lo = xp, hi = xq;
+            for (int it = 0; it < 100; it++) {
+                double m = 0.5 * (lo + hi);
+                if ((over_enc(o, m, y) - GO_T0 < 0) == (gp < 0))
+                    lo = m;
+                else
+                    hi = m;
+            }
+            cut[n++] = 0.5 * (lo + hi);
+        }
+        xp = xq, gp = gq;
+    }
+    gsl_function F = {over_x, o};
+    return go_qags_cuts(&F, cut, n, pc->xlo, pc->xhi, 1e-16, 1e-14, pc->wi);
+}
+
+static double over_pixel(over_pic *o, int i, int j)
+{
+    pic *pc = &o->pc;
+    const double *p = pc->p;
+    double cut[16 * MAX_TAUS + 64], cols[8] = {i, i + 1, OR[0], OR[2], LA[0], LA[2], LB[0], LB[2]};
+    int n = 0, ncol = o->two ? 8 : 4;
+    pc->xlo = i, pc->xhi = i + 1;
+    cut[n++] = j, cut[n++] = j + 1, cut[n++] = pc->apex[1], cut[n++] = OR[1], cut[n++] = OR[3];
+    if (o->two)
+        cut[n++] = LA[1], cut[n++] = LA[3], cut[n++] = LB[1], cut[n++] = LB[3];
+    for (int c = 0; c < ncol; c++) {
+        for (int k = 0; k < pc->nh; k++)
+            n += line_meet(pc, k, 1, cols[c], cut + n);
+        for (int q = 0; q < pc->ntaus; q++)
+            n += circle_meet(pc, pc->taus[q], 1, cols[c], cut + n);
+        for (int q = 0; q < 3; q += 2)
+            n += go_tau_meet(&o->g, go_taus[q], 1, cols[c], cut + n);
+    }
+    if (o->g.radial)
+        for (int q = 0; q < 3; q += 2) {
+            double cy = o->g.fy + go_taus[q] * (o->g.cy - o->g.fy), rr = go_taus[q] * o->g.r;
+            cut[n++] = cy - rr, cut[n++] = cy + rr;
+        }
+    for (int q = 0; q < pc->ntaus; q++) {
+        double tau = pc->taus[q], rr = p[5] + tau * (p[2] - p[5]);
+        double ccy = p[4] + tau * (p[1] - p[4]);
+        cut[n++] = ccy - rr, cut[n++] = ccy + rr;
+        for (int k = 0; k < pc->nh; k++)
+            cut[n++] = co_touch_y(p, tau, &pc->hp[k]);
+    }
+    pc->wi = gsl_integration_workspace_alloc(1000);
+    gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
+    gsl_function F = {over_y, o};
+    double sum = go_qags_cuts(&F, cut, n, j, j + 1, 1e-16, 1e-14, wo);
+    gsl_integration_workspace_free(pc->wi);
+    gsl_integration_workspace_free(wo);
+    return sum;
+}
+
+/* The cone in linear light (test_linear): linear values 0.002 to 0.6
+ * (across the encoding's change of piece at 0.0031308), opacity 0.9 to
+ * 0.5. */
+static const aa_gradient_stop LIN_STOPS[2] = {{0.0, {{0.002, 0.002, 0.002}}, 0.9},
+                                              {1.0, {{0.6, 0.6, 0.6}}, 0.5}};
+
+/* Gradient g (stops above; none if NULL) on OR in front of the cone p[]
+ * over [-8, W + 8] x [-8, H + 8] (black to white, or with lin LIN_STOPS
+ * in linear light), over black. */
+static aa_scene *over_scene(const double p[6], const aa_gradient *g, int lin)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    if (lin == 2) { /* g on OR in front of test_layers' two layers, the ramp from 0.2 */
+        double d0 = go_dec(0.2);
+        static aa_gradient_stop ramp[2];
+        ramp[0] = (aa_gradient_stop){0.0, {{d0, d0, d0}}, 0.9};
+        ramp[1] = (aa_gradient_stop){1.0, {{1, 1, 1}}, 0.4};
+        const double *rs[3] = {OR, LA, LB};
+        for (int k = 0; k < 3; k++) {
+            const double *r = rs[k];
+            assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+            assert_int_equal(aa_scene_move_to(s, r[0] / W, r[1] / H), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[2] / W, r[1] / H), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[2] / W, r[3] / H), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, r[0] / W, r[3] / H), AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+            aa_gradient c = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0},
+                             {1.0 / W, 0, 0, 1.0 / H, 0, 0}, 2, ramp};
+            memcpy(c.p, p, sizeof c.p);
+            assert_int_equal(aa_scene_set_gradient(s, k ? &c : g), AA_OK);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        return s;
+    }
+    const double big[4] = {-8, -8, W + 8, H + 8};
+    for (int k = !g; k < 2; k++) {
+        const double *r = k ? big : OR; /* front to back: OR's layer first */
+        assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+        assert_int_equal(aa_scene_move_to(s, r[0] / W, r[1] / H), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, r[2] / W, r[1] / H), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, r[2] / W, r[3] / H), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, r[0] / W, r[3] / H), AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+        if (!k) {
+            assert_int_equal(aa_scene_set_gradient(s, g), AA_OK);
+            continue;
+        }
+        aa_gradient c = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0},
+                         2, lin ? LIN_STOPS : black_white};
+        memcpy(c.p, p, sizeof c.p);
+        assert_int_equal(aa_scene_set_gradient(s, &c), AA_OK);
+        if (lin)
+            assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB),
+                             AA_OK);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static void test_over(void **state)
+{
+    (void)state;
+    /* the wedge from P = (0.16, 4.63) towards C = (9.3, 6.1) (test_2d):
+     * its tangents cross OR near (4, 3) .. (8, 3) and (4, 7) .. (7, 8) */
+    const double p[6] = {9.3, 6.1, 3.1, 3.7, 5.2, 1.2};
+    /* colours given in linear light, interpolated encoded: the stops'
+     * encoded 0.9 and 0.02 */
+    double c0 = go_dec(0.9), c1 = go_dec(0.02);
+    static aa_gradient_stop st[2];
+    st[0] = (aa_gradient_stop){0.0, {{c0, c0, c0}}, 0.35};
+    st[1] = (aa_gradient_stop){1.0, {{c1, c1, c1}}, 0.8};
+    static const int px[][2] = {{4, 3}, {5, 3}, {6, 3}, {7, 3}, {8, 3}, {4, 6}, {4, 7},
+                                {5, 7}, {6, 7}, {6, 8}, {7, 8}, {8, 9}, {4, 4}, {5, 5},
+                                {9, 5}, {11, 2}, {12, 9}, {4, 1}, {10, 8}, {4, 5}};
+    static const char *const what[3] = {"a linear gradient", "a radial gradient",
+                                        "a linear gradient, on two layers"};
+    for (int kind = 0; kind < 3; kind++) {
+        aa_gradient g = {kind == 1 ? AA_GRADIENT_RADIAL : AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {0},
+                         {1.0 / W, 0, 0, 1.0 / H, 0, 0}, 2, st};
+        over_pic o;
+        memset(&o, 0, sizeof o);
+        o.front = 1, o.two = kind == 2;
+        if (kind == 1) {
+            const double q[6] = {8, 6, 6, 6.5, 5, 0};
+            memcpy(g.p, q, sizeof q);
+            o.g.radial = o.g.focal = 1;
+            o.g.cx = 8, o.g.cy = 6, o.g.r = 6, o.g.fx = 6.5, o.g.fy = 5;
+        } else {
+            const double q[4] = {4, 2, 12, 9};
+            memcpy(g.p, q, sizeof q);
+            o.g.x1 = 4, o.g.y1 = 2, o.g.x2 = 12, o.g.y2 = 9;
+        }
+        memcpy(o.pc.p, p, sizeof o.pc.p);
+        for (int q = 0; q < 3; q++)
+            o.pc.taus[o.pc.ntaus++] = go_taus[q];
+        o.pc.nh = co_region(p, o.pc.hp, &o.pc.wedge, o.pc.apex);
+        aa_scene *s = over_scene(p, &g, kind == 2 ? 2 : 0);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
+        support_reference(s, &v, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        double worst = 0;
+        for (size_t k = 0; k < sizeof px / sizeof *px; k++) {
+            int i = px[k][0], j = px[k][1];
+            double want = over_pixel(&o, i, j), got = aa_pixel(&ref, i, j)[0];
+            double bd = *aa_pixel(&bound, i, j);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-14))
+                fail_msg("cone under %s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g "
+                         "(bound %.3g)",
+                         what[kind], i, j, got, want, bd);
+        }
+        print_message("cone under %s %d pixels, largest difference from 2-D quadrature %.2g, "
+                      "largest bound %.2g\n",
+                      what[kind], (int)(sizeof px / sizeof *px), worst, stats.max_bound);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+}
+
+/* ---- the cone in linear light ----
+ *
+ * The cone (test_over's wedge) interpolating in linear light (SVG's
+ * color-interpolation linearRGB): its stops' linear values 0.002 to 0.6
+ * interpolated as they are and encoded, then laid over black with the
+ * opacity 0.9 to 0.5 (SVG 1.1, 'color-interpolation'; sRGB's encoding
+ * from IEC 61966-2-1), alone and under test_over's linear gradient on
+ * OR.  Known answer: e = alpha enc(v) (+ the front layer's source over),
+ * decoded, by the same 2-D quadrature, cut also at the circles where v
+ * passes 0.0031308 (the encoding's change of piece) and where the cone's
+ * composite alone passes sRGB's threshold. */
+static void test_linear(void **state)
+{
+    (void)state;
+    const double p[6] = {9.3, 6.1, 3.1, 3.7, 5.2, 1.2};
+    double c0 = go_dec(0.9), c1 = go_dec(0.02);
+    static aa_gradient_stop st[2];
+    st[0] = (aa_gradient_stop){0.0, {{c0, c0, c0}}, 0.35};
+    st[1] = (aa_gradient_stop){1.0, {{c1, c1, c1}}, 0.8};
+    aa_gradient g = {AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {4, 2, 12, 9},
+                     {1.0 / W, 0, 0, 1.0 / H, 0, 0}, 2, st};
+    static const int px[][2] = {{0, 4}, {1, 4}, {2, 4}, {3, 3}, {3, 6}, {4, 3}, {6, 3},
+                                {4, 7}, {6, 8}, {5, 5}, {8, 3}, {7, 8}, {11, 6}, {13, 1}};
+    for (int front = 0; front < 2; front++) {
+        over_pic o;
+        memset(&o, 0, sizeof o);
+        o.front = front, o.lin = 1;
+        o.g.x1 = 4, o.g.y1 = 2, o.g.x2 = 12, o.g.y2 = 9;
+        memcpy(o.pc.p, p, sizeof o.pc.p);
+        for (int q = 0; q < 3; q++)
+            o.pc.taus[o.pc.ntaus++] = go_taus[q];
+        o.pc.taus[o.pc.ntaus++] = (0.0031308 - 0.002) / 0.598;
+        { /* where the cone's composite alone passes sRGB's threshold (bisection) */
+            double lo = 0, hi = 0.1;
+            for (int it = 0; it < 200; it++) {
+                double m = 0.5 * (lo + hi);
+                *((0.9 - 0.4 * m) * enc(0.002 + 0.598 * m) < GO_T0 ? &lo : &hi) = m;
+            }
+            o.pc.taus[o.pc.ntaus++] = 0.5 * (lo + hi);
+        }
+        o.pc.nh = co_region(p, o.pc.hp, &o.pc.wedge, o.pc.apex);
+        aa_scene *s = over_scene(p, front ? &g : NULL, 1);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
+        support_reference(s, &v, &ref, &bound, &stats);
+        assert_true(stats.max_bound <= 1e-12);
+        double worst = 0;
+        for (size_t k = 0; k < sizeof px / sizeof *px; k++) {
+            int i = px[k][0], j = px[k][1];
+            double want = over_pixel(&o, i, j), got = aa_pixel(&ref, i, j)[0];
+            double bd = *aa_pixel(&bound, i, j);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd + 1e-14))
+                fail_msg("cone in linear light%s: pixel (%d, %d) is %.17g, 2-D quadrature "
+                         "%.17g (bound %.3g)",
+                         front ? " under a linear gradient" : "", i, j, got, want, bd);
+        }
+        print_message("cone in linear light%s %d pixels, largest difference from 2-D "
+                      "quadrature %.2g, largest bound %.2g\n",
+                      front ? " under a linear gradient" : "", (int)(sizeof px / sizeof *px),
+                      worst, stats.max_bound);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -600,6 +934,8 @@ int main(void)
         cmocka_unit_test(test_2d),
         cmocka_unit_test(test_2d_spread),
         cmocka_unit_test(test_layers),
+        cmocka_unit_test(test_over),
+        cmocka_unit_test(test_linear),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -449,7 +449,8 @@ typedef struct worker {
     gen_layer *gl;
     int ngl, gen, gen_over, gen_stuck;
     /* cone_mix: a cone-case gradient beside other gradients (each span by
-     * mix_span); cone_over: a span painted by the cone and another */
+     * mix_span); cone_over: the composite of several layers of one cone
+     * whose polynomial's roots were not found (cone_span) */
     int cone_mix, cone_over;
     aa_gradient_stop **lin_stops; /* per layer: a linear-light gradient's stops, cut */
     size_t gen_work; /* gen_piece's halvings on the current span (GEN_PIECES) */
@@ -871,21 +872,8 @@ static int grad_init(worker *w)
         aa_gradient g;
         if (!aa_scene_layer_gradient(w->scene, l, &g))
             continue;
-        if (aa_gradient_is_cone(&g)) { /* "the cone case" */
-            const char *src = aa_scene_layer_gradient_source(w->scene, l);
-            const char *why = NULL;
+        if (aa_gradient_is_cone(&g)) /* "the cone case" */
             cone = 1;
-            if (aa_scene_layer_gradient_interpolation(w->scene, l) != AA_INTERPOLATE_SRGB)
-                why = "the reference integrates the cone case in sRGB-encoded values only: "
-                      "a gradient in linear light takes the path of several gradients, which "
-                      "bounds the colour for nested circles, with no cut at the tangent lines";
-            if (why)
-                return aa_fail(AA_EINVAL,
-                               "reference: layer %d's radial gradient%s%s%s is of the cone "
-                               "case (its focal circle not strictly inside its end circle) "
-                               "and is refused: %s",
-                               l, *src ? " (" : "", src, *src ? ")" : "", why);
-        }
         int lin = aa_scene_layer_gradient_interpolation(w->scene, l) != AA_INTERPOLATE_SRGB, st;
         if (lin && (st = lin_cut_stops(w, l, &g)))
             return st;
@@ -1315,6 +1303,19 @@ typedef struct gen_span_ctx {
      * filters") */
     int radial;
     double s, wn;
+    /* a cone-case layer ("a cone beside other gradients"): its L_k = lam
+     * x + mu on the row; flat[l]: the layer's paint is constant on the
+     * piece (unpainted, or padded beyond its stops), t then not read */
+    double complex lam[GEN_MAX][2], mu[GEN_MAX][2];
+    int flat[GEN_MAX];
+    /* umode: the piece's variable is u, x = xr + eps u^2, from the zero
+     * of layer ul's form L_uk (painted on the piece), where sqrt(d) = u
+     * sqrt(P0 + P1 u^2); else the variable is x */
+    int umode, ul;
+    double xr, eps, P0, P1;
+    /* uroot[l]: layer l is of the same cone as ul (the same forms) and
+     * takes ul's sqrt(d) = u sqrt(P) on the piece in u */
+    int uroot[GEN_MAX];
 } gen_span_ctx;
 
 /* The weight along a row under a filter other than the box ("the other
@@ -1365,7 +1366,20 @@ static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, doub
  *    integrated exactly as such; the rule's bound takes |t| <= |c| / (2
  *    |b|) with |b| >= |b(m)| - |b1| A on the ellipse.  Repeat and reflect
  *    would repeat the stops without end at the edge: a window the edge
- *    passes is refused by name (rad_breakpoints_of).
+ *    passes is refused by name (rad_breakpoints_of).  Cutting a sliver
+ *    of width eps off the edge and bounding it by its area times the
+ *    largest colour is exact to a bound, but not to the reference's:
+ *    along a row at distance delta from the edge t ~ k / delta (k of the
+ *    order of the gradient's size over |D|), so the rest holds k / eps
+ *    periods, each cut twice a row, and the 4096 stop lines a window may
+ *    take (GRAD_MAX_BREAKS) leave eps ~ k / 4096, a bound near 1e-4 for
+ *    1e-12.  Where the colour is a function of t alone the tail has an
+ *    exact treatment (in t, x'(t) ~ k / t^2 is smooth, and integrating
+ *    by parts against the periodic primitives of the colour less its
+ *    mean leaves the mean times the sliver plus terms O(k / N^j) at the
+ *    N-th period), but the composite with other layers, or the weight
+ *    under the decoding, is no product of a periodic function of t and
+ *    a smooth one of x; it is not built.
  * t is evaluated as (b + sqrt d) / a when b >= 0 and as c / (b - sqrt d)
  * otherwise (the same number; neither cancels), with d = L0 L1 from the
  * linear forms, exact to rounding however close to a tangent line (a = 0:
@@ -1442,21 +1456,23 @@ static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, doub
  * stop or threshold: in x no Bernstein ellipse about a piece that ends at
  * a tangent line's crossing keeps out sqrt(d)'s branch point, which lies
  * on its end (rho = 1), and its bound is infinite however often it is
- * halved.  That is why the cone case does not take the path of several
- * gradients, which carries the other filters' weight for the rest: it
- * bounds a radial layer from rad_row's branch points, worked out for
- * nested circles (d2 > 0): here d's real zeros are the tangent lines'
+ * halved.  That is why the cone case alone does not take the path of
+ * several gradients, which carries the other filters' weight for the
+ * rest: it bounds a radial layer from rad_row's branch points, worked out
+ * for nested circles (d2 > 0): here d's real zeros are the tangent lines'
  * crossings, the painted stretch's own ends, and where d2 = lam0 lam1 <
  * 0 (a row across the painted wedge) those points are not numbers at all
- * (a square root of a negative ratio); nor has it a substitution in u.
+ * (a square root of a negative ratio).  That path takes a cone layer only
+ * with the cone's own cuts, bounds and substitution in u ("a cone beside
+ * other gradients").
  * The outer breakpoints were already the filters': the tangent lines' and
  * the stop circles' crossings of every kink line (kink_lines) and, under
  * a radial filter, of the support's circle, with their nearest approaches
  * to the centre (rad_filter_line, rad_filter_circle).
- * The cone in linear light is refused by name (grad_init), and so is a
- * pixel where the cone and another gradient paint one point ("a cone
- * beside other gradients"): the path of several gradients they would take
- * has no cut at the tangent lines.
+ * A span where the cone and another gradient paint one point, and the
+ * cone in linear light, take the path of several gradients, which now
+ * cuts the row at the cone's tangent lines and takes the pieces next to
+ * them in u ("a cone beside other gradients").
  */
 
 /* The cone case's linear forms of radial gradient r (the comment above). */
@@ -1912,9 +1928,9 @@ static double span_weight(const worker *w, double xa, double xb)
  * 1, K_0 = e0, K_1 = e1 - e0, K_2 = e2 - e1 and E is the quadratic
  * above.  The K are read as for several gradients (mix_span): composites
  * at every choice of the three paints per layer, then differences.  More
- * than GEN_MAX such layers at a point, or a polynomial whose roots the
- * solver does not find, refuse the pixel as a cone meeting another
- * gradient does (cone_over).
+ * than GEN_MAX such layers at a point take the path of several gradients
+ * (gen_span, which refuses them: gen_over), and a polynomial whose roots
+ * the solver does not find refuses the pixel (cone_over).
  */
 typedef struct cone_comp {
     int n, nk;
@@ -2492,12 +2508,34 @@ static void wt_real(const gen_span_ctx *c, double m, double h, double *sup, doub
  * value v above LIN_T (a channel of a gradient in linear light). */
 static double lin_enc(double v) { return 1.055 * pow(v, 1.0 / 2.4) - 0.055; }
 
-static double gen_t(const gen_span_ctx *c, int l, double x)
+/* x at the piece's variable s (x itself, or u: "a cone beside other
+ * gradients"). */
+static inline double gen_x(const gen_span_ctx *c, double s)
+{
+    return c->umode ? c->xr + c->eps * s * s : s;
+}
+
+/* Layer l's t at x (a cone-case layer's painted t; not the layer a piece
+ * in u starts from, whose t is gen_t's). */
+static double gen_t_x(const gen_span_ctx *c, int l, double x)
 {
     const gen_layer *g = c->L[l];
+    if (g->rg && g->rg->cone)
+        return c->flat[l] ? 0.0 : cone_t_near(g->rg, x, c->y);
     if (g->rg)
         return rad_t(g->rg, x, c->y);
     return g->gp->tx * x + g->gp->ty * c->y + g->gp->t0;
+}
+
+/* Layer l's t at the piece's variable s; the layer a piece in u starts
+ * from takes sqrt(d) = u sqrt(P0 + P1 u^2) (cone_root). */
+static double gen_t(const gen_span_ctx *c, int l, double s)
+{
+    if (c->umode && c->uroot[l] && !c->flat[l]) {
+        double P = c->P0 + c->P1 * s * s;
+        return cone_t_sq(c->L[l]->rg, gen_x(c, s), c->y, s * sqrt(P > 0.0 ? P : 0.0));
+    }
+    return gen_t_x(c, l, gen_x(c, s));
 }
 
 /* e of each channel at real x (on the current piece). */
@@ -2530,40 +2568,136 @@ static void gen_eval(const gen_span_ctx *c, double x, double *e)
  * bounded below by their distances to the rectangle |Re z - m| <= A,
  * |Im z| <= B that holds it: the comment above); 0 if a branch point may
  * lie in that rectangle.  B = 0, A = h: the real segment [m - h, m + h]. */
+/* Bounds T of |t| and P of |t'| of layer l on the rectangle |Re z - m|
+ * <= A, |Im z| <= B in x (the comment above); 0 if a branch point (a pole)
+ * may lie in it.  A cone-case layer ("a cone beside other gradients"):
+ * t = (b + sqrt(L0 L1)) / a, t' = (b1 + (lam0 L1 + lam1 L0) / (2 sqrt(L0
+ * L1))) / a, with |L_k| <= |L_k(m)| + |lam_k| A and |L_k| >= |lam_k| times
+ * the distance from its zero to the rectangle; CONE_HALF t = c / (2 b),
+ * t' = (c' b - c b1) / (2 b^2), |b| >= |b(m)| - |b1| A; a layer of
+ * constant paint on the piece (flat) needs neither. */
+static int gen_layer_tp(const gen_span_ctx *c, int l, double m, double A, double B, double *T,
+                        double *P)
+{
+    const gen_layer *g = c->L[l];
+    if (!g->rg) {
+        *T = fabs(gen_t_x(c, l, m)) + fabs(g->gp->tx) * A;
+        *P = fabs(g->gp->tx);
+        return 1;
+    }
+    if (g->rg->cone) {
+        const grad_radial *q = g->rg;
+        const rad_row *r = &c->row[l];
+        double bm = fabs(r->b0 + r->b1 * m), ia;
+        if (c->flat[l]) {
+            *T = *P = 0.0;
+            return 1;
+        }
+        if (q->cone == CONE_HALF) {
+            double bl = bm - fabs(r->b1) * A, c1 = fabs(r->c1 + 2.0 * r->c2 * m);
+            double cz = fabs(r->c0 + m * (r->c1 + m * r->c2)) + c1 * A + r->c2 * A * A;
+            if (!(bl > 0.0))
+                return 0;
+            *T = cz / (2.0 * bl);
+            *P = ((c1 + 2.0 * r->c2 * A) * (bm + fabs(r->b1) * A) + cz * fabs(r->b1)) /
+                 (2.0 * bl * bl);
+            return 1;
+        }
+        ia = 1.0 / fabs(q->a);
+        double Lu[2], Ll[2], sl = 0.0;
+        for (int k = 0; k < 2; k++) {
+            double complex lam = c->lam[l][k], mu = c->mu[l][k];
+            Lu[k] = cabs(lam * m + mu) + cabs(lam) * A;
+            if (lam == 0.0)
+                Ll[k] = cabs(mu);
+            else {
+                double complex z = -mu / lam;
+                Ll[k] = cabs(lam) * fmax(fabs(creal(z) - m) - A, fabs(cimag(z)) - B);
+            }
+        }
+        if (Lu[0] == 0.0 || Lu[1] == 0.0) /* the row along a tangent line: d = 0 */
+            sl = 0.0;
+        else if (!(Ll[0] > 0.0 && Ll[1] > 0.0))
+            return 0;
+        else
+            sl = 0.5 * (cabs(c->lam[l][0]) * sqrt(Lu[1] / Ll[0]) +
+                        cabs(c->lam[l][1]) * sqrt(Lu[0] / Ll[1]));
+        *T = (bm + fabs(r->b1) * A + sqrt(Lu[0] * Lu[1])) * ia;
+        *P = (fabs(r->b1) + sl) * ia;
+        return 1;
+    }
+    const rad_row *r = &c->row[l];
+    double sd = sqrt(fabs(r->dmin) / r->d2), D1, D2, ia = 1.0 / fabs(g->rg->a);
+    if (B == 0.0 && r->dmin >= 0.0) {
+        /* the real segment: |d'| / (2 sqrt d) = d2 u / sqrt(d2 u^2 +
+         * dmin), u = |x - x0| <= Z, increasing in u, so at most its
+         * value at Z (below sqrt(d2): finite even through x0, where t
+         * is a cone) */
+        double Z = fabs(m - r->x0) + A, dz = sqrt(r->d2 * Z * Z + r->dmin);
+        *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + dz) * ia;
+        *P = (fabs(r->b1) + (dz > 0.0 ? r->d2 * Z / dz : 0.0)) * ia;
+        return 1;
+    }
+    if (r->dmin >= 0.0)
+        D1 = D2 = fmax(sd - B, fabs(r->x0 - m) - A);
+    else
+        D1 = fabs(r->x0 - sd - m) - A, D2 = fabs(r->x0 + sd - m) - A;
+    if (!(D1 > 0.0 && D2 > 0.0))
+        return 0;
+    double Z = fabs(m - r->x0) + A;
+    *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + sqrt(r->d2 * Z * Z + fabs(r->dmin))) *
+           ia;
+    *P = (fabs(r->b1) + r->d2 * Z / sqrt(r->d2 * D1 * D2)) * ia;
+    return 1;
+}
+
+/* T and P (gen_layer_tp) on the ellipse of semi-axes A, B about m in the
+ * piece's variable.  In u (x = xr + eps u^2; |u| <= Zu = |m| + A, u >= 0
+ * on the piece): the ellipse's image lies in the rectangle Re(x - xr) eps
+ * in [lo^2 - B^2, Zu^2], lo = max(0, m - A), |Im x| <= 2 Zu B, where the
+ * layers' bounds in x hold, and |dt/du| = |t'(x)| 2 |u| <= 2 Zu P; the
+ * layer the piece starts from has t = (b + u sqrt(P(u^2))) / a, dt/du =
+ * (2 eps b1 u + (P0 + 2 P1 u^2) / sqrt(P)) / a, |P| >= |P1| |u - u0| |u +
+ * u0| (u0^2 = -P0 / P1) with the distances to the rectangle |Re u - m| <=
+ * A, |Im u| <= B. */
+static int gen_layer_tp_s(const gen_span_ctx *c, int l, double m, double A, double B,
+                          double *T, double *P)
+{
+    if (!c->umode)
+        return gen_layer_tp(c, l, m, A, B, T, P);
+    double Zu = fabs(m) + A, Z2 = Zu * Zu;
+    if (c->uroot[l] && !c->flat[l]) {
+        const rad_row *r = &c->row[l];
+        double Plo = fabs(c->P0);
+        if (c->P1 != 0.0) {
+            double complex u0 = csqrt((double complex)(-c->P0 / c->P1));
+            double d0 = fmax(fabs(creal(u0) - m) - A, fabs(cimag(u0)) - B);
+            double d1 = fmax(fabs(-creal(u0) - m) - A, fabs(cimag(u0)) - B);
+            Plo = d0 > 0.0 && d1 > 0.0 ? fabs(c->P1) * d0 * d1 : 0.0;
+        }
+        if (!(Plo > 0.0))
+            return 0;
+        double ia = 1.0 / fabs(c->L[l]->rg->a);
+        *T = (fabs(r->b0 + r->b1 * c->xr) + fabs(r->b1) * Z2 +
+              Zu * sqrt(fabs(c->P0) + fabs(c->P1) * Z2)) * ia;
+        *P = (2.0 * fabs(r->b1) * Zu + (fabs(c->P0) + 2.0 * fabs(c->P1) * Z2) / sqrt(Plo)) * ia;
+        return 1;
+    }
+    double lo = fmax(0.0, m - A), rl = lo * lo - B * B;
+    double xc = c->xr + c->eps * 0.5 * (rl + Z2), Ax = 0.5 * (Z2 - rl), Bx = 2.0 * Zu * B;
+    if (!gen_layer_tp(c, l, xc, Ax, Bx, T, P))
+        return 0;
+    *P *= 2.0 * Zu;
+    return 1;
+}
+
 static int gen_bounds(const gen_span_ctx *c, double m, double A, double B, double *emax,
                       double *dmax)
 {
     double T[GEN_MAX], P[GEN_MAX];
-    for (int l = 0; l < c->n; l++) {
-        const gen_layer *g = c->L[l];
-        if (!g->rg) {
-            T[l] = fabs(gen_t(c, l, m)) + fabs(g->gp->tx) * A;
-            P[l] = fabs(g->gp->tx);
-            continue;
-        }
-        const rad_row *r = &c->row[l];
-        double sd = sqrt(fabs(r->dmin) / r->d2), D1, D2, ia = 1.0 / fabs(g->rg->a);
-        if (B == 0.0 && r->dmin >= 0.0) {
-            /* the real segment: |d'| / (2 sqrt d) = d2 u / sqrt(d2 u^2 +
-             * dmin), u = |x - x0| <= Z, increasing in u, so at most its
-             * value at Z (below sqrt(d2): finite even through x0, where t
-             * is a cone) */
-            double Z = fabs(m - r->x0) + A, dz = sqrt(r->d2 * Z * Z + r->dmin);
-            T[l] = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + dz) * ia;
-            P[l] = (fabs(r->b1) + (dz > 0.0 ? r->d2 * Z / dz : 0.0)) * ia;
-            continue;
-        }
-        if (r->dmin >= 0.0)
-            D1 = D2 = fmax(sd - B, fabs(r->x0 - m) - A);
-        else
-            D1 = fabs(r->x0 - sd - m) - A, D2 = fabs(r->x0 + sd - m) - A;
-        if (!(D1 > 0.0 && D2 > 0.0))
+    for (int l = 0; l < c->n; l++)
+        if (!gen_layer_tp_s(c, l, m, A, B, &T[l], &P[l]))
             return 0;
-        double Z = fabs(m - r->x0) + A;
-        T[l] = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + sqrt(r->d2 * Z * Z + fabs(r->dmin))) *
-               ia;
-        P[l] = (fabs(r->b1) + r->d2 * Z / sqrt(r->d2 * D1 * D2)) * ia;
-    }
     for (int ch = 0; ch < c->nch; ch++) {
         double F[GEN_MAX][3], G[GEN_MAX][3];
         for (int l = 0; l < c->n; l++) {
@@ -2611,6 +2745,16 @@ static int gen_bounds(const gen_span_ctx *c, double m, double A, double B, doubl
     return 1;
 }
 
+/* The Bernstein parameter (rad_rho) of the point z of x in the piece's
+ * variable: z itself, or in u the nearer of +-sqrt(eps (z - xr)). */
+static double gen_rho(const gen_span_ctx *c, double complex z, double m, double h)
+{
+    if (!c->umode)
+        return rad_rho(z, m, h);
+    double complex u = csqrt(c->eps * (z - c->xr));
+    return fmin(rad_rho(u, m, h), rad_rho(-u, m, h));
+}
+
 /* The error bound of the 20-point rule on [m - h, m + h] for the channels
  * (power[ch]: the decoding's power piece), e at m given; INFINITY if no
  * ellipse serves. */
@@ -2622,27 +2766,50 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
         if (!c->L[l]->rg)
             continue;
         const rad_row *r = &c->row[l];
+        if (c->L[l]->rg->cone) { /* the zeros of L0, L1 (CONE_HALF: b's) */
+            if (c->flat[l])
+                continue;
+            if (c->umode && c->uroot[l]) { /* P's zeros, in u */
+                if (c->P1 != 0.0) {
+                    double complex u0 = csqrt((double complex)(-c->P0 / c->P1));
+                    rmax = fmin(fmin(rmax, rad_rho(u0, m, h)), rad_rho(-u0, m, h));
+                }
+                continue;
+            }
+            for (int k = 0; k < 2; k++) {
+                double complex lam = c->L[l]->rg->cone == CONE_HALF ? (k ? 0.0 : r->b1)
+                                                                    : c->lam[l][k];
+                double complex mu = c->L[l]->rg->cone == CONE_HALF ? r->b0 : c->mu[l][k];
+                if (lam != 0.0)
+                    rmax = fmin(rmax, gen_rho(c, -mu / lam, m, h));
+            }
+            continue;
+        }
         double sd = sqrt(fabs(r->dmin) / r->d2);
         if (r->dmin >= 0.0)
-            rmax = fmin(rmax, rad_rho(r->x0 + _Complex_I * sd, m, h));
+            rmax = fmin(rmax, gen_rho(c, r->x0 + _Complex_I * sd, m, h));
         else
-            rmax = fmin(fmin(rmax, rad_rho(r->x0 + sd, m, h)), rad_rho(r->x0 - sd, m, h));
+            rmax = fmin(fmin(rmax, gen_rho(c, r->x0 + sd, m, h)), gen_rho(c, r->x0 - sd, m, h));
     }
     if (c->radial && c->f->type == &aa_filter_cone) /* the cone's branch points */
-        rmax = fmin(rmax, rad_rho(c->uc + _Complex_I * fabs(c->s), m, h));
+        rmax = fmin(rmax, gen_rho(c, c->uc + _Complex_I * fabs(c->s), m, h));
     for (int l = 0; l < c->n; l++) /* linear light: v = 0 on a linear layer */
         for (int ch = 0; ch < c->nch; ch++)
             if (c->pw[l][ch] && !c->L[l]->rg && c->v1[l][ch] != 0.0 && c->L[l]->gp->tx != 0.0) {
                 const grad_plane *gp = c->L[l]->gp;
                 double x0 = (-c->v0[l][ch] / c->v1[l][ch] - gp->ty * c->y - gp->t0) / gp->tx;
-                rmax = fmin(rmax, rad_rho(x0, m, h));
+                rmax = fmin(rmax, gen_rho(c, x0, m, h));
             }
     if (!(rmax > 1.0 + 1e-9))
         return INFINITY;
-    double best = INFINITY, wa[4] = {0, 0, 0, 0};
+    double best = INFINITY, wa[4] = {0, 0, 0, 0}, xm = m, xh = h;
+    if (c->umode) { /* the weight fitted about the piece's own x range */
+        double xa = gen_x(c, m - h), xb = gen_x(c, m + h);
+        xm = 0.5 * (xa + xb), xh = 0.5 * fabs(xb - xa);
+    }
     if (c->weighted && !c->radial && c->f->type != &aa_filter_lanczos &&
         c->f->type != &aa_filter_gauss)
-        wt_poly(c, m, h, wa);
+        wt_poly(c, xm, xh, wa);
     /* weighted, also rho at geometric steps towards rmax (the Gaussian's
      * bound grows like exp(B^2 / (2 s^2)): its best rho is small) */
     for (int k = 1; k < (c->weighted ? 15 : 8); k++) {
@@ -2663,7 +2830,16 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
                 M = emax[ch] / 12.92;
             worst = fmax(worst, M);
         }
-        if (c->weighted)
+        if (c->umode) {
+            /* the factor 2 u, and the weight on the ellipse's image
+             * (cone_root_t) */
+            double Zu = fabs(m) + A;
+            worst *= 2.0 * Zu;
+            if (c->weighted) {
+                double Aw = fabs(c->xr - xm) + Zu * Zu;
+                worst *= wt_bound(c, wa, xm, xh, Aw, fmin(Aw, 2.0 * Zu * B));
+            }
+        } else if (c->weighted)
             worst *= wt_bound(c, wa, m, h, A, B);
         best = fmin(best, h * (64.0 / 15.0) * worst * pow(rho, -2.0 * RAD_GL) / (rho * rho - 1.0));
     }
@@ -2702,20 +2878,24 @@ static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double
         double e[3], x = m + h * w->gl_x[k];
         gen_eval(c, x, e);
         double wk = !c->weighted ? w->gl_w[k]
-                    : c->radial  ? w->gl_w[k] * rwt(c, x - c->uc)
-                                 : w->gl_w[k] * aa_filter_weight(c->f, x - c->uc);
+                    : c->radial  ? w->gl_w[k] * rwt(c, gen_x(c, x) - c->uc)
+                                 : w->gl_w[k] * aa_filter_weight(c->f, gen_x(c, x) - c->uc);
+        if (c->umode) /* dx = 2 u du */
+            wk *= 2.0 * x;
         for (int ch = 0; ch < c->nch; ch++)
             part[ch] += wk * gen_decode(e[ch], power[ch]);
     }
     for (int ch = 0; ch < c->nch; ch++)
         sum[ch] += h * part[ch];
+    /* the piece's x range (in u: [xr + eps xa^2, xr + eps xb^2]) */
+    double pa = gen_x(c, xa), pb = gen_x(c, xb), lx = fabs(pb - pa);
     if (c->weighted) {
         /* the rule and the integral both within (xb - xa) sup |w| of 0 */
         double sup, slope;
-        wt_real(c, m, h, &sup, &slope);
-        *err += fmin(bound, 2.0 * (xb - xa) * sup);
+        wt_real(c, 0.5 * (pa + pb), 0.5 * lx, &sup, &slope);
+        *err += fmin(bound, 2.0 * lx * sup);
     } else
-        *err += fmin(bound, xb - xa);
+        *err += fmin(bound, lx);
 }
 
 /* Channel ch's e'(m), exact, into *d1, and a bound of |e''| on the real
@@ -2725,10 +2905,16 @@ static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double
 static int gen_taylor(const gen_span_ctx *c, int ch, double m, double h, double *d1, double *d2)
 {
     double f[GEN_MAX][3], fp[GEN_MAX][3], F[GEN_MAX][3], G[GEN_MAX][3], H[GEN_MAX][3];
+    if (c->umode)
+        return 0; /* in u: the Lipschitz test alone ("a cone beside other gradients") */
     for (int l = 0; l < c->n; l++) {
         const gen_layer *g = c->L[l];
         double tm = gen_t(c, l, m), tp, T, P, Q;
-        if (!g->rg) {
+        if (g->rg && g->rg->cone) {
+            if (!c->flat[l])
+                return 0; /* a painted cone: the Lipschitz test alone */
+            tm = tp = T = P = Q = 0.0; /* its paint constant */
+        } else if (!g->rg) {
             tp = g->gp->tx;
             T = fabs(tm) + fabs(tp) * h, P = fabs(tp), Q = 0.0;
         } else {
@@ -2923,7 +3109,20 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
                 for (int ch = 0; ch < c->nch; ch++)
                     worst = fmax(worst, 2.3 * dmax[ch] * wd + 2.4e-9);
             }
-            if (c->weighted) {
+            if (c->umode) {
+                /* in u: the interval's x range [pa, pb] (the colour's
+                 * spread over it is the same whichever the variable),
+                 * weighed at x(mid), inside it */
+                double pa = gen_x(c, fa), pb = gen_x(c, fb), lx = fabs(pb - pa);
+                double xm = gen_x(c, 0.5 * (fa + fb)), wm = 1.0, sup = 1.0, slope = 0.0;
+                if (c->weighted) {
+                    wm = c->radial ? rwt(c, xm - c->uc) : aa_filter_weight(c->f, xm - c->uc);
+                    wt_real(c, 0.5 * (pa + pb), 0.5 * lx, &sup, &slope);
+                }
+                for (int ch = 0; ch < c->nch; ch++)
+                    sum[ch] += lx * aa_srgb_decode(e[ch]) * wm;
+                *err += lx * (sup * fmin(1.0, worst) + slope * lx);
+            } else if (c->weighted) {
                 /* |f w - f(m) w(m)| <= |f - f(m)| sup |w| + |f(m)| |w - w(m)|,
                  * f in [0, 1] */
                 double mid = 0.5 * (fa + fb), sup, slope,
@@ -2977,6 +3176,34 @@ static int span_deps(worker *w, int dep[GEN_MAX], int *cone, double f0[3])
     return nd;
 }
 
+/* The row's crossing of cone-case layer q's tangent line L_k = lam x + mu
+ * = 0 (CONE_HALF: the edge, k = 0; CONE_NESTED: k = 0, the real part of
+ * L0's zero, the row's point nearest P*), else NAN. */
+static double cone_cross(const grad_radial *q, const double complex lam[2],
+                         const double complex mu[2], int k)
+{
+    if (q->cone == CONE_NESTED)
+        return k == 0 && lam[0] != 0.0 ? creal(-mu[0] / lam[0]) : NAN;
+    if (q->cone == CONE_HALF && k == 1)
+        return NAN;
+    return creal(lam[k]) != 0.0 ? -creal(mu[k]) / creal(lam[k]) : NAN;
+}
+
+/* The piece's variable set to u from the zero xr of layer l's L_k, x =
+ * xr + eps u^2 (cone_root: sqrt(d) = u sqrt(P0 + P1 u^2)). */
+static void gen_root(gen_span_ctx *c, int l, int k, double xr, double eps)
+{
+    int o = 1 - k;
+    double lk = creal(c->lam[l][k]), lo = creal(c->lam[l][o]);
+    double Lo = creal(c->lam[l][o] * xr + c->mu[l][o]);
+    c->umode = 1, c->ul = l, c->xr = xr, c->eps = eps;
+    c->P0 = eps * lk * Lo, c->P1 = lk * lo;
+    for (int q = 0; q < c->n; q++) /* layers of the same cone: the same forms */
+        c->uroot[q] = c->L[q]->rg && c->L[q]->rg->cone && !c->flat[q] &&
+                      c->lam[q][0] == c->lam[l][0] && c->lam[q][1] == c->lam[l][1] &&
+                      c->mu[q][0] == c->mu[l][0] && c->mu[q][1] == c->mu[l][1];
+}
+
 /* The span [xa, xb] of row y (winding w->wind) by the path above; a span
  * painted by more than GEN_MAX gradient layers sets w->gen_over and is
  * left out (the pixel is refused). */
@@ -3012,11 +3239,17 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
     c.n = nd, c.nch = nch, c.y = y, c.nk = 1;
     c.weighted = !w->box, c.f = w->f, c.uc = w->uc;
     c.radial = w->radial, c.s = w->row_s, c.wn = w->radial ? aa_filter_weight2(w->f, 0.0, 0.0) : 0.0;
+    c.umode = 0, c.ul = -1, c.xr = c.eps = c.P0 = c.P1 = 0.0;
     for (int l = 0; l < nd; l++) {
         c.L[l] = &w->gl[dep[l]];
         c.nk *= 3;
+        c.flat[l] = c.uroot[l] = 0;
         if (c.L[l]->rg)
             rad_row_at(c.L[l]->rg, y, &c.row[l]);
+        if (c.L[l]->rg && c.L[l]->rg->cone)
+            for (int k = 0; k < 2; k++)
+                c.lam[l][k] = c.L[l]->rg->lf[k][0],
+                c.mu[l][k] = c.L[l]->rg->lf[k][1] * y + c.L[l]->rg->lf[k][2];
     }
     /* the coefficients: composites at every choice of paints, then the
      * differences f1 - f0, f2 - f1 along each layer's index */
@@ -3045,7 +3278,30 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
     for (int l = 0; l < nd; l++) {
         const gen_layer *g = c.L[l];
         double *taus = w->gbuf2;
-        if (g->rg) {
+        if (g->rg && g->rg->cone) {
+            /* a cone-case layer: cut where the row crosses its tangent
+             * lines (the half-plane's edge; nested, at its point nearest
+             * P*), and at its stop circles over its range of t on the
+             * painted part (cone_span) */
+            const grad_radial *q = g->rg;
+            for (int k = 0; k < 2 && nx < cap; k++) {
+                double x = cone_cross(q, c.lam[l], c.mu[l], k);
+                if (x > xa && x < xb)
+                    xs[nx++] = x;
+            }
+            double tlo = -INFINITY, thi = INFINITY;
+            if (q->spread != AA_SPREAD_PAD) {
+                tlo = INFINITY, thi = -INFINITY;
+                cone_seg_range(q, 0, xa, xb, y, &tlo, &thi);
+                tlo -= 1e-12 * (1.0 + fabs(tlo));
+                thi += 1e-12 * (1.0 + fabs(thi));
+            }
+            size_t mt = tlo <= thi ? grad_taus(&q->plane, tlo, thi, taus, w->cap_gbuf) : 0;
+            if (mt > w->cap_gbuf)
+                mt = w->cap_gbuf;
+            for (size_t k = 0; k < mt && nx + 2 < cap; k++)
+                nx += (size_t)rad_cross(q, &c.row[l], taus[k], xa, xb, xs + nx);
+        } else if (g->rg) {
             const rad_row *r = &c.row[l];
             if (r->x0 > xa && r->x0 < xb && nx < cap)
                 xs[nx++] = r->x0;
@@ -3079,10 +3335,25 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
         double a = xs[k], b = xs[k + 1];
         if (!(b > a))
             continue;
+        c.umode = 0;
         for (int l = 0; l < nd; l++) {
             const gen_layer *g = c.L[l];
+            c.flat[l] = 0;
+            if (g->rg && g->rg->cone) {
+                int painted;
+                cone_d(g->rg, 0.5 * (a + b), y, &painted);
+                if (!painted) { /* the layer transparent here */
+                    memset(c.v0[l], 0, sizeof c.v0[l]), memset(c.v1[l], 0, sizeof c.v1[l]);
+                    memset(c.pw[l], 0, sizeof c.pw[l]);
+                    c.flat[l] = 1;
+                    continue;
+                }
+            }
             double tm = gen_t(&c, l, 0.5 * (a + b));
             paint_lin(g->spread, g->stops, g->nstops, g->enc, tm, c.v0[l], c.v1[l]);
+            if (g->rg && g->rg->cone)
+                c.flat[l] = c.v1[l][0] == 0.0 && c.v1[l][1] == 0.0 && c.v1[l][2] == 0.0 &&
+                            c.v1[l][3] == 0.0;
             for (int ch = 0; ch < 3; ch++) {
                 c.pw[l][ch] = 0;
                 if (!g->lin)
@@ -3096,7 +3367,36 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
                     c.v0[l][ch] *= 12.92, c.v1[l][ch] *= 12.92;
             }
         }
-        gen_section(w, &c, a, b, sum, &err);
+        /* a painted cone layer whose tangent line the row crosses at a
+         * or b: the piece next to it in u ("a cone beside other
+         * gradients"), halved at its middle if both ends are such */
+        int la = -1, ka = -1, lb = -1, kb = -1;
+        for (int l = 0; l < nd; l++) {
+            const grad_radial *q = c.L[l]->rg;
+            if (!q || q->cone != CONE_WEDGE || c.flat[l])
+                continue;
+            for (int kk = 0; kk < 2; kk++) {
+                double x = cone_cross(q, c.lam[l], c.mu[l], kk);
+                if (x == a && la < 0)
+                    la = l, ka = kk;
+                if (x == b && lb < 0)
+                    lb = l, kb = kk;
+            }
+        }
+        if (la < 0 && lb < 0) {
+            gen_section(w, &c, a, b, sum, &err);
+            continue;
+        }
+        double mid = 0.5 * (a + b);
+        if (la >= 0) {
+            gen_root(&c, la, ka, a, 1.0);
+            gen_section(w, &c, 0.0, sqrt((lb >= 0 ? mid : b) - a), sum, &err);
+        }
+        if (lb >= 0 && !w->gen_stuck) {
+            gen_root(&c, lb, kb, b, -1.0);
+            gen_section(w, &c, 0.0, sqrt(b - (la >= 0 ? mid : a)), sum, &err);
+        }
+        c.umode = 0;
     }
     w->rad_row_err += err;
 }
@@ -3112,14 +3412,53 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
  * no cone among them, the path of several gradients (gen_span), as
  * without the cone; several layers all of one cone-case gradient
  * (cone_same), the cone's path with their composite ("one cone on several
- * layers"); the cone and another gradient together, nothing: the pixel is
- * refused by name (cone_over; integrate_pixel), as that path has no cut
- * at the tangent lines and bounds the cone's t as nested circles' (the
- * comment above "the cone case under the other filters").  So shapes
- * painted by a cone and by other gradients are exact where no point is
- * painted by both; a pixel whose window holds such a point is refused.
+ * layers"); the cone and another gradient together, or a cone in linear
+ * light, the path of several gradients with the cone's own cuts:
+ *  - the row is cut where it crosses each cone layer's tangent lines (the
+ *    half-plane's edge; nested, at its point nearest P*), and at its stop
+ *    circles over its range of t on the painted part (cone_seg_range), as
+ *    cone_span cuts it; on an unpainted stretch the layer is transparent,
+ *    its paint constant (as is a padded stretch beyond its stops: flat,
+ *    its t then not read, so that the half-plane's pole at its edge, the
+ *    stretch beyond the last stop circle, is no singularity);
+ *  - a cone layer's t is its own (cone_t_near), and on a piece in x its
+ *    bounds on the rectangle |Re z - m| <= A, |Im z| <= B (gen_layer_tp)
+ *    are T = (|b(m)| + |b1| A + sqrt(|L0| |L1|)) / |a| and, with t' = (b1
+ *    + (lam0 L1 + lam1 L0) / (2 sqrt(L0 L1))) / a, P = (|b1| + (|lam0|
+ *    sqrt(|L1| / |L0|) + |lam1| sqrt(|L0| / |L1|)) / 2) / |a|, each |L_k|
+ *    above by |L_k(m)| + |lam_k| A and below by |lam_k| times its zero's
+ *    distance from the rectangle (CONE_HALF: t = c / (2 b), |b| >= |b(m)|
+ *    - |b1| A); the Bernstein ellipse keeps the zeros of L0 and L1 out;
+ *  - a painted piece one end of which is a tangent line's crossing xr
+ *    (CONE_WEDGE; both ends: halved at its middle) is taken in u, x = xr
+ *    + eps u^2, as cone_root takes it: the integrand 2 u dec(e(x(u)))
+ *    w(x(u)); that layer's t (and that of any layer of the same cone,
+ *    whose forms are the same: uroot) = (b + u sqrt(P(u^2))) / a is
+ *    analytic in u
+ *    but at P's zeros (the other line's crossing), with |t| <= (|b(xr)| +
+ *    |b1| Zu^2 + Zu sqrt(|P0| + |P1| Zu^2)) / |a| and |dt/du| <= (2 |b1|
+ *    Zu + (|P0| + 2 |P1| Zu^2) / sqrt(|P|)) / |a| on the ellipse in u
+ *    (|u| <= Zu = m + A, |P| >= |P1| |u - u0| |u + u0| by the distances
+ *    from +-u0 to the rectangle about it); the other layers' bounds in x
+ *    hold on the image of that ellipse, inside the rectangle Re(x - xr)
+ *    eps in [lo^2 - B^2, Zu^2] (lo = max(0, m - A)), |Im x| <= 2 Zu B,
+ *    and |dt/du| <= 2 Zu |t'(x)|; their branch points (and the radial cone
+ *    filter's, and a linear layer's v = 0 in linear light) map into u as
+ *    +-sqrt(eps (z - xr)) for the ellipse's rho; the weight's bound is
+ *    cone_root_t's, and M takes the factor 2 Zu.  The composite's bounds
+ *    (gen_bounds: |e|, |e'| from the layers' T and P by the product rule;
+ *    on the power piece Re(e + 0.055) > 0 from |e(z) - e(m)| <= A max
+ *    |e'|; in linear light Re v > 0 likewise, keeping v = 0 out) are then
+ *    those of several gradients in the piece's variable, and the
+ *    threshold's isolation runs in it too, by the Lipschitz test alone
+ *    (gen_taylor gives no bound in u or with a painted cone layer, whose
+ *    t'' it does not bound; the halving is then on the signs and the
+ *    budget as ever, a row tangent to the threshold's curve at worst
+ *    refusing the pixel by name); a narrow interval in u is its x range
+ *    times the colour at its middle, with the same bound.
  * The outer breakpoints are the union of the layers' own, as for several
- * gradients (grad_breakpoints).
+ * gradients (grad_breakpoints): the cone's tangent lines and front arcs
+ * among them.
  */
 /* Whether cone-case gradients g and h are one gradient: the same map,
  * circles, spread and stops (then t and the paint are the same functions
@@ -3150,16 +3489,17 @@ static void mix_span(worker *w, double xa, double xb, double y, int nch, double 
     int N = w->ngl, *layers = w->gl_layer, cone, dep[GEN_MAX], same = 1;
     double *paints = w->gl_paint, fz[3];
     int nd = span_deps(w, dep, &cone, fz);
-    if (cone < 0) { /* no cone: the path of several gradients */
+    if (cone < 0 || w->gl[cone].lin) { /* no cone, or in linear light: several gradients */
         gen_span(w, xa, xb, y, nch, sum);
         return;
     }
     /* several layers: all of one cone-case gradient ("one cone on several
-     * layers"), else the cone and another gradient at one point */
+     * layers"), else the cone and another gradient at one point, on the
+     * path of several gradients with the cone's cuts */
     for (int l = 1; l < nd && same; l++)
         same = l < GEN_MAX && cone_same(w->gl[dep[0]].rg, w->gl[dep[l]].rg);
     if (nd > 1 && !same) {
-        w->cone_over = 1;
+        gen_span(w, xa, xb, y, nch, sum);
         return;
     }
     if (w->radial) { /* the span clipped to the support's chord */
@@ -4389,11 +4729,10 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     }
     if (w->cone_over) {
         w->cone_over = w->gen_over = 0;
-        return aa_fail(AA_EINVAL, "pixel (%g, %g): a layer of a cone-case radial gradient and "
-                                  "another gradient layer paint one point of its window (the "
-                                  "path of several gradients has no cut at the cone's tangent "
-                                  "lines; layers of one cone-case gradient alone are "
-                                  "integrated): refused; sample it with point, supersample or "
+        return aa_fail(AA_EINVAL, "pixel (%g, %g): the composite of several layers of one "
+                                  "cone-case radial gradient is a polynomial in t whose roots "
+                                  "GSL's solver did not find (the sRGB decoding's pieces are "
+                                  "unknown there): refused; sample it with point, supersample or "
                                   "jitter",
                        w->uc - 0.5, w->vc - 0.5);
     }
