@@ -1068,11 +1068,12 @@ static void band_flush(an_pixel *P)
  * difference), under the separable filters (an_band) and the radial ones
  * (rad_band), joined to the pending ones where
  * it continues them in the same colour: the visible parts cut a window's
- * rows at every meeting of two pieces, and two offset pieces tangent to
- * each other (a stroke's outline where a join's contour meets a
- * segment's) are reported meeting every 1e-12 px or so of their common
- * stretch, thousands of bands a pixel, whose weights, each a difference of
- * the marginal rounded to 1e-16, summed to 5e-12 off one face's colour
+ * rows at every meeting of two pieces, and two pieces of a stroke's
+ * outline within rounding of each other were reported meeting every
+ * 1e-12 px or so of their common stretch (before aa_piece_meet took such
+ * pieces as meeting nowhere there: scene_piece.c, slopes_say), thousands
+ * of bands a pixel, whose weights, each a difference of the marginal
+ * rounded to 1e-16, summed to 5e-12 off one face's colour
  * (tests/test_analytic_stroke.c, folding strokes); joined, the
  * differences telescope and the face's weight is one difference. */
 static void band_merge(an_pixel *P, double ya, double yb, const int *wind)

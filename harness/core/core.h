@@ -281,7 +281,11 @@ aa_scene *aa_scene_place(const aa_scene *s, int w, int h, double t, double vx, d
  * quartic instead).  With an offset piece, each interval is first decided
  * by the two pieces' slope ranges where both are bounded (scene_piece.c,
  * slopes_say): pieces running side by side are then told apart at once
- * instead of using up the budget.  Flat pieces meet nothing. */
+ * instead of using up the budget, and pieces within rounding of each
+ * other over an interval, crossing at a small angle or touching, report
+ * no meeting there (or one at its end) where the region between them
+ * that a meeting could misplace is under 1e-15 (square pixels in a
+ * placed scene).  Flat pieces meet nothing. */
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys,
                   int max);
 /* aa_piece_meet with offset pieces' parameters at heights ya and yb

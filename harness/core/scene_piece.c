@@ -857,11 +857,21 @@ static int slope_range(const aa_piece *p, double a, double b, const double t[2],
  * and b), with D = x_p - x_q, D' = dx_p/dy - dx_q/dy within [slo, shi]
  * (slope_range) and tol the rounding margin of x (by the mean value
  * theorem):
+ *  - |D| <= tol at both ends, and the region between the pieces over
+ *    [a, b] below `sliver` in area (NEAR): the pieces are within rounding
+ *    of each other at a and b, so |D| <= 2 tol there (the margin and the
+ *    rounding of the evaluation) and, with |D'| <= M = max(|slo|, |shi|),
+ *    |D(y)| <= 2 tol + M min(y - a, b - y) between, whose integral is at
+ *    most 2 tol (b - a) + M (b - a)^2 / 4.  Whatever meetings they have
+ *    there order them wrongly over part of that region at most, so none
+ *    is reported;
  *  - D' of one sign (D strictly monotone): no meeting if D(a) and D(b) are
  *    of one sign beyond tol (APART), exactly one if of opposite signs
  *    beyond tol (ONE: *fa is D(a)), else a meeting at the end where
  *    |D| <= tol (AT_A, AT_B) if the meeting is then within res of it (it
- *    is within tol/min |D'|), else UNKNOWN;
+ *    is within w = 2 tol/min |D'|), or if the region between the pieces
+ *    from that end to the meeting, where |D| <= 2 tol (D is monotone), is
+ *    below `sliver` (2 tol w), else UNKNOWN;
  *  - else D lies above both D(a) + slo (y - a) and D(b) - shi (b - y) (for
  *    D > 0 at both ends), whose larger is least where they cross (clamped
  *    to [a, b]): no meeting if that least value exceeds tol (APART).
@@ -869,26 +879,51 @@ static int slope_range(const aa_piece *p, double a, double b, const double t[2],
  * their join, a normal line and the offset it ends) this ends the
  * bisection at once, where their boxes in x overlap down to a small
  * fraction of their distance.  UNKNOWN where a slope is not bounded (a
- * piece turning horizontal) or nothing is proven. */
-enum { UNKNOWN, APART, ONE, AT_A, AT_B };
+ * piece turning horizontal) or nothing is proven.
+ *
+ * Pieces that cross at a small angle, or touch, within rounding of each
+ * other: the evaluated D changes sign at random over a band of heights
+ * about the meeting, and before NEAR and the sliver's test the bisection
+ * reported a meeting in every 1e-12 of it, and the visible parts' sweep
+ * (visible.c), which starts each band at the last meeting, asked again
+ * from there.  The normal line that ends a folding offset's region and
+ * the evolute that ends on it (tangent to it there, and convex) meet
+ * only at that end, but their two copies of the end point, each rounded
+ * its own way, are 1.4e-14 px apart, so they cross next to it, where D
+ * grows as 0.27 u^2 (u px from the end) and stays within rounding over
+ * some 1e-7 px: 439 meetings were reported within 4e-8 px there (the
+ * folding SVG of tests/test_analytic_stroke.c at 96 px, whose visible
+ * parts took 27.4 s of CPU).  The region such a meeting could misplace
+ * lies within 2 tol of a piece: with `sliver` 1e-15 (square pixels, the
+ * units of the placed scenes the methods and the reference take), a
+ * pixel's value under the box filter moves by at most that, a thousandth
+ * of the 1e-12 to which the reference is exact. */
+enum { UNKNOWN, APART, ONE, AT_A, AT_B, NEAR };
 static int slopes_say(const aa_piece *p, const aa_piece *q, double a, double b,
                       const double tp[2], const double tq[2], const double xp[2],
-                      const double xq[2], double tol, double res, double *fa)
+                      const double xq[2], double tol, double res, double sliver, double *fa)
 {
     double plo, phi, qlo, qhi;
     if (!slope_range(p, a, b, tp, &plo, &phi) || !slope_range(q, a, b, tq, &qlo, &qhi))
         return UNKNOWN;
     double da = xp[0] - xq[0], db = xp[1] - xq[1], slo = plo - qhi, shi = phi - qlo;
     *fa = da;
+    if (fabs(da) <= tol && fabs(db) <= tol) {
+        double h = b - a, M = fmax(fabs(slo), fabs(shi));
+        if (2.0 * tol * h + 0.25 * M * h * h <= sliver)
+            return NEAR;
+    }
     if (slo > 0.0 || shi < 0.0) {
         if ((da > tol && db > tol) || (da < -tol && db < -tol))
             return APART;
         if ((da < -tol && db > tol) || (da > tol && db < -tol))
             return ONE;
         /* an end within tol: |D'| >= g, so a meeting is within tol/g of
-         * it; said to be there only if that is within the resolution */
+         * it (2 tol/g with the rounding of D there); said to be there if
+         * that is within the resolution, or if the region between the
+         * pieces up to it, 2 tol wide at most, is below `sliver` */
         double g = slo > 0.0 ? slo : -shi;
-        if (!(tol <= res * g))
+        if (!(tol <= res * g || 4.0 * tol * tol <= sliver * g))
             return UNKNOWN;
         return fabs(da) <= fabs(db) ? AT_A : AT_B;
     }
@@ -958,8 +993,9 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
     if (pb < qa - tol || qb < pa - tol || part_at_end(c, a, b, tp, tq, xp, xq, tol))
         return;
     double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m)), da;
-    switch (slopes_say(c->p, c->q, a, b, tp, tq, xp, xq, tol, 1e-12 * scale, &da)) {
+    switch (slopes_say(c->p, c->q, a, b, tp, tq, xp, xq, tol, 1e-12 * scale, 1e-15, &da)) {
     case APART:
+    case NEAR:
         return;
     case ONE:
         record_meet(c, polish_meet(c->p, c->q, a, b, da, offset_t(c->p, tp), offset_t(c->q, tq)), scale);
