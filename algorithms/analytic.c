@@ -133,7 +133,9 @@
  * 1e-12 per pixel on crow, crow raised to cubics, the cubic scene, a
  * pentagon, two overlapping layers, curves.svg and arcs.svg (largest
  * difference 1.1e-14), half-planes through a pixel centre 1/2, centred
- * disks 1 - (1 - a^2/R^2)^(K+1).
+ * disks 1 - (1 - a^2/R^2)^(K+1); offset curves in
+ * tests/test_analytic_stroke.c ("Offset curves under the radial
+ * filters").
  *
  * Radial filters.  The paper rasterizes with radially symmetric
  * polynomial filters too; radial:k=K,r=R (patterns/README.md, "Filters")
@@ -238,11 +240,40 @@
  * ellipse's, width times length) within 7e-17 under the six filters whose
  * translates sum to 1.
  *
+ * Offset curves under the radial filters.  As for the other curves (see
+ * "Radial filters"), R(part) = (M(yb) - M(ya))/2 - integral of F(clamp(x,
+ * -ch, ch), y) dy, the part cut where it crosses the filter's circle; but
+ * those crossings are the zeros of g(t) = |P(t) - C|^2 - R^2, analytic and
+ * not a polynomial, so they are isolated with a proof (rad_off_cross): an
+ * interval of half width h about m is bisected until it is shown free of
+ * them (|P - P(m)| <= V h, V area_offset_speed's bound on |P'| on the disc
+ * of radius h; or g within 2 h (|g'(m)|/2 + D) of g(m), D the drift of
+ * g'/2 = (P - C) . P' over the interval, from Cauchy's estimate |P''| <=
+ * Vk/(Rk - h) on a disc of radius Rk = 2 h .. 256 h), or g' shown of one
+ * sign on it (|g'(m)|/2 > D: one crossing at most, where g's signs at the
+ * ends differ, then found by Newton's method kept in the bracket, to the
+ * last bit), or every point of it shown within e of the circle with the
+ * bound of the integral's change however it is taken, 2 h V c (3 e/R)^K
+ * sqrt(3 R e), within 1e-16 of the part's share (a curve touching the
+ * circle).  Each sub-part inside the disc takes the certified rule above
+ * with the integrand F(x - cx, y - cy) y' (|F| bounded term by term on
+ * the disc, rad_f_bound), each outside +-(M(y1) - M(y0))/2.  A curve that
+ * runs along a pixel's circle within rounding (an arc concentric with it
+ * and of its radius) is never shown off it: after 4096 intervals a part
+ * (or at more than 64 cuts) the render is refused, as uncertain.
+ * Measured (tests/test_analytic_stroke.c): 3.0e-14 at most from the
+ * reference on a 24 px window of tests/bench_bezstroke.c's strokes under
+ * radial:k=1,r=1, radial:k=2,r=1.5 and radial:k=3,r=2.3; a straight
+ * stroke (a cubic of collinear control points, its offsets lines) within
+ * 5.7e-15 of the same rectangle as a polygon and 8.3e-16 of 1/2 where its
+ * side passes through a pixel centre; the offsets of a circle (an annulus)
+ * within 1.4e-15 of the two circles as elliptical arcs, and 1.7e-16 at its
+ * centre of the closed form (1 - a1^2/R^2)^(K+1) - (1 - a2^2/R^2)^(K+1).
+ *
  * Limits, refused by name: filters that are not piecewise polynomial
  * (gauss, lanczos, the cone, gauss:cut: the cone is 1 - r, not a
- * polynomial in x and y); offset curves under the radial filters (their
- * crossings with the filter's circle are not roots of a polynomial, and
- * nothing here isolates them with a proof); field scenes (no edges).
+ * polynomial in x and y); an offset curve running along a pixel's radial
+ * circle within rounding (above); field scenes (no edges).
  * The paper also fills with linear colour gradients; the scene model
  * holds them, and the method refuses them (it does not declare
  * AA_METHOD_GRADIENTS, harness/core/method.c): the project interpolates a
@@ -295,7 +326,17 @@
  * five, a loaded machine) 7.3x area's box time under the box, 8.1x under
  * tent:r=1 and 9.0x under bspline:order=3 (algorithms/README.md; 736x
  * at 256x256 when the visible parts took one window across the width and
- * solved the offset pieces' parameters again in every meeting test).  The
+ * solved the offset pieces' parameters again in every meeting test).
+ * Under the radial filters offset pieces cost far more: every pixel whose
+ * support meets one takes its own visible parts, and per part the
+ * isolation of its circle crossings (a speed bound of nine discs per
+ * interval, each crossing solved by Newton's method) before the rule: on
+ * 60 separate strokes of single cubics (an SVG at 256x256, 2.5 px wide;
+ * one thread, CPU time, medians of five, a loaded machine) 207 ms (206
+ * to 209) under radial:k=2,r=1.5 against 12.9 ms (12.6 to 12.9) under
+ * tent:r=1 and area's 2.39 ms (2.33 to 2.47; 86x), half of it in the isolation and a third in its root solving
+ * (perf); bench_bezstroke's 1024 px scene was not measured under it (a
+ * render takes minutes there).  The
  * image does
  * not depend on the thread count (rows are taken AN_BLOCK at a time by
  * the scatters, one at a time by the per-pixel visible parts, each from
@@ -308,6 +349,7 @@
 #include "sampling.h"
 #include "visible.h"
 
+#include <float.h>
 #include <math.h>
 #include <omp.h>
 #if defined(__SSE2__) && defined(__x86_64__)
@@ -805,7 +847,11 @@ static double off_filter_bound(const an_pp *pp, double dw, double dW, double *bW
  * (area_offset_speed, which also proves the disc free of the curve's
  * singularities), so y' and the distance of y from its value at the
  * middle are within |row| V and |row| V R (the map's row), and w, W
- * within off_filter_bound of those. */
+ * within off_filter_bound of those; under a radial filter the integrand is
+ * F(x - cx, y - cy) y' on a part inside the disc, |F| within rad_f_bound
+ * of x and y within |row| V R of a point of the disc. */
+static double rad_f_bound(const an_state *S, double dx, double dv);
+
 static int off_points(const an_state *S, const aa_piece *p, double t0, double t1)
 {
     static const double rhos[] = {1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0, 32.0, 64.0};
@@ -820,8 +866,13 @@ static int off_points(const an_state *S, const aa_piece *p, double t0, double t1
     double nx = hypot(oc->m[0], oc->m[2]), ny = hypot(oc->m[1], oc->m[3]);
     int best = 0;
     for (int k = 0; k < NR && V[k] < INFINITY; k++) {
-        double vy = ny * V[k], bW, bw = off_filter_bound(&S->pp, vy * R[k], nx * V[k] * R[k], &bW);
-        double r2 = rhos[k] * rhos[k], M = bw * (1.0 + bW) * vy;
+        double vy = ny * V[k], r2 = rhos[k] * rhos[k], M;
+        if (S->rad_k) { /* a radial filter's integrand F(x - cx, y - cy) y' */
+            M = rad_f_bound(S, nx * V[k] * R[k], vy * R[k]) * vy;
+        } else {
+            double bW, bw = off_filter_bound(&S->pp, vy * R[k], nx * V[k] * R[k], &bW);
+            M = bw * (1.0 + bW) * vy;
+        }
         double need = h * 64.0 * M / (15.0 * (1.0 - 1.0 / r2) * AN_OFF_TOL) * (1.0 + 1e-12);
         if (!(need < INFINITY))
             continue;
@@ -884,10 +935,12 @@ static int off_meet_x(const aa_piece *p, const double *tb, const double *xb, int
     return c;
 }
 
-static void off_uncertain(int *flag)
+/* Marks the render uncertain: 1, an offset part's rule not certified; 2,
+ * a part's crossings of a radial filter's circle not isolated
+ * (rad_off_cross). */
+static void off_uncertain(int *flag, int why)
 {
-#pragma omp atomic write
-    *flag = 1;
+    __atomic_store_n(flag, why, __ATOMIC_RELAXED);
 }
 
 /* The integral over the part [u, v] (u < v, inside one cell of the pixel's
@@ -904,7 +957,7 @@ static double off_part(const an_render *Rn, const aa_piece *p, int stops, double
         if (depth < AN_OFF_DEPTH && mid > u && mid < v)
             return off_part(Rn, p, stops, u, mid, cx, cy, depth + 1) +
                    off_part(Rn, p, stops, mid, v, cx, cy, depth + 1);
-        off_uncertain(Rn->uncertain);
+        off_uncertain(Rn->uncertain, 1);
         m = AN_MAX_PTS;
     }
     double h = 0.5 * (v - u), mid = 0.5 * (u + v), sum = 0.0;
@@ -1328,6 +1381,288 @@ static double rad_right_of_arc(const an_state *S, const aa_piece *p, double ya, 
     return sum;
 }
 
+/* ---- offset pieces under a radial filter (header, "Offset curves") ---- */
+
+/* A bound on |F(x, v)| (rad_f) at complex x and v within dx and dv of a
+ * real point of the disc (|x|, |v| <= R): with X = x/R and a2 = 1 -
+ * (v/R)^2, |X| <= 1 + dx/R and |a2| <= 1 + (1 + dv/R)^2, term by term. */
+static double rad_f_bound(const an_state *S, double dx, double dv)
+{
+    double R = S->rad_r, X = 1.0 + dx / R, y = 1.0 + dv / R, a = 1.0 + y * y, z = X * X;
+    double sum = 0.0, b = 1.0, zj = 1.0;
+    for (int j = 0; j <= S->rad_k; j++) {
+        double aj = 1.0;
+        for (int i = j; i < S->rad_k; i++)
+            aj *= a;
+        sum += b * aj * zj / (2 * j + 1);
+        b = b * (S->rad_k - j) / (j + 1);
+        zj *= z;
+    }
+    return S->rad_c * R * X * sum * (1.0 + 1e-12);
+}
+
+/* The crossings of an offset piece with the filter's circle are sought on
+ * at most this many intervals deep (halvings), and at most this many cuts
+ * are kept per part (beyond: the render is refused, as uncertain). */
+#define AN_RAD_DEPTH 64
+#define AN_RAD_CUTS 64
+/* intervals examined per part at most: a curve that runs within rounding
+ * of the circle along a stretch (an arc concentric with it, of its
+ * radius) is never proven off it, and would be halved to the last bit all
+ * along; it is refused instead */
+#define AN_RAD_WORK 4096
+
+/* The point of p at t relative to the centre, (x, y), its derivative, g(t)
+ * = x^2 + y^2 - R^2 and g'(t)/2 = (x, y) . P'(t), in long double. */
+typedef struct an_gpt {
+    long double x, y, dx, dy, g, s;
+} an_gpt;
+
+static an_gpt rad_g(const aa_piece *p, int stops, double t, double cx, double cy, double R)
+{
+    an_gpt q;
+    aa__offset_eval_s(&p->oc, stops, t, &q.x, &q.y, &q.dx, &q.dy);
+    q.x -= cx, q.y -= cy;
+    q.g = (q.x - R) * (q.x + R) + q.y * q.y;
+    q.s = q.x * q.dx + q.y * q.dy;
+    return q;
+}
+
+static inline int opposite(long double a, long double b)
+{
+    return (a < 0 && b > 0) || (a > 0 && b < 0);
+}
+
+/* The one root of g in (a, b), where g is monotone and ga = g(a) and g(b)
+ * have opposite signs: Newton's method kept in the bracket, bisection
+ * where a step leaves it, until the bracket's ends are neighbours or a
+ * step is below the last bit of t. */
+static double rad_off_root(const aa_piece *p, int stops, double a, double b, long double ga,
+                           double cx, double cy, double R)
+{
+    double t = 0.5 * (a + b);
+    for (int it = 0; it < 200; it++) {
+        an_gpt q = rad_g(p, stops, t, cx, cy, R);
+        if (q.g == 0)
+            return t;
+        if (opposite(q.g, ga))
+            b = t;
+        else
+            a = t, ga = q.g;
+        double nt = q.s != 0 ? (double)(t - q.g / (2 * q.s)) : NAN;
+        double mid = 0.5 * (a + b);
+        if (!(mid > a && mid < b))
+            break;
+        if (!(nt > a && nt < b))
+            nt = mid;
+        if (fabs(nt - t) <= 4.0 * DBL_EPSILON * fabs(t) && nt != mid) {
+            t = nt;
+            break;
+        }
+        t = nt;
+    }
+    return t;
+}
+
+/* What rad_off_cross carries: the piece (evaluated with its stops), the
+ * pixel's centre, the filter, half the part's length H, the cuts found
+ * (out[0 .. n), n < 0: given up) and the intervals examined. */
+typedef struct an_iso {
+    const an_state *S;
+    const aa_piece *p;
+    int stops;
+    double cx, cy, H;
+    double *out;
+    int n, work;
+} an_iso;
+
+static void iso_cut(an_iso *I, double t)
+{
+    if (I->n < 0)
+        return;
+    if (I->n >= AN_RAD_CUTS)
+        I->n = -1;
+    else
+        I->out[I->n++] = t;
+}
+
+/* The cuts of an offset piece at its crossings with the circle of radius R
+ * about C inside (a, b), where one analytic function holds (no stop's t =
+ * 1/2 inside); g at the ends ga, gb.  On [m - h, m + h], with |P'| <= V0
+ * on the disc of radius h about m (area_offset_speed) and so |P(t) - P(m)|
+ * <= V0 h:
+ *  - no crossing where |P(m) - C| is farther than V0 h from R;
+ *  - with |P'| <= Vk on the disc of radius Rk = rho_k h (rho_k = 2 ..
+ *    256), Cauchy's estimate gives |P''| <= Vk/(Rk - h) on the interval,
+ *    so g'/2 = (P - C) . P' is within D = h (V0^2 + (|P(m) - C| + V0 h)
+ *    Vk/(Rk - h)) of its value s at m, and g within 2 h (|s| + D) of g(m):
+ *    no crossing where |g(m)| exceeds that;
+ *  - at most one where |s| > D (g' of one sign), where g's signs at the
+ *    ends differ: found by rad_off_root;
+ *  - every point within e = G/R of the circle, G = |g(m)| + 2 h (|s| + D)
+ *    (|g| = |r - R| (r + R) at distance r from C): there F(clamp(x)) and
+ *    F(x) differ by at most c (3 e/R)^K sqrt(3 R e) (the chord's end moves
+ *    by at most sqrt(|r^2 - R^2|), over which the continued weight is at
+ *    most c |r^2/R^2 - 1|^K), so however the interval is taken (it is cut
+ *    at its ends, a part of its own) the integral moves by at most 2 h V0
+ *    times that: taken so where that is within AN_OFF_TOL h/H (so within
+ *    AN_OFF_TOL over the part), as happens where the curve touches the
+ *    circle.
+ * Neither proven, the interval is halved; one that cannot be (its ends
+ * neighbours in double) is cut at its middle where g's signs at its ends
+ * differ (any other crossings in it are within its width of it: a
+ * misplaced crossing moves the integral by the square of the error, the
+ * integrand being continuous across the circle).  Beyond AN_RAD_WORK
+ * intervals or AN_RAD_CUTS cuts, given up (a curve running along the
+ * circle within rounding, never proven off it). */
+static void rad_off_cross(an_iso *I, double a, double b, long double ga, long double gb,
+                          int depth)
+{
+    static const double rhos[] = {1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0, 256.0};
+    enum { NR = sizeof rhos / sizeof *rhos };
+    if (I->n < 0)
+        return;
+    if (++I->work > AN_RAD_WORK) {
+        I->n = -1;
+        return;
+    }
+    const an_state *S = I->S;
+    const aa_piece *p = I->p;
+    double R = S->rad_r, m = 0.5 * (a + b), h = 0.5 * (b - a);
+    if (!(m > a && m < b) || depth >= AN_RAD_DEPTH) {
+        if (opposite(ga, gb))
+            iso_cut(I, m > a && m < b ? m : a);
+        return;
+    }
+    const aa_offset_curve *oc = &p->oc;
+    double Rk[NR], V[NR];
+    for (int k = 0; k < NR; k++)
+        Rk[k] = rhos[k] * h;
+    area_offset_speed(oc, m, NR, Rk, V);
+    /* the map's bound: |(m z)_x| <= |row x| |z| for a complex vector z */
+    double nf = hypot(hypot(oc->m[0], oc->m[2]), hypot(oc->m[1], oc->m[3]));
+    an_gpt q = rad_g(p, I->stops, m, I->cx, I->cy, R);
+    double d = (double)sqrtl(q.x * q.x + q.y * q.y), sp = (double)sqrtl(q.dx * q.dx + q.dy * q.dy);
+    double ag = (double)fabsl(q.g), as = (double)fabsl(q.s);
+    /* rounding of the point, of d and of g: far below these */
+    double tol = 64.0 * DBL_EPSILON * (d + R), gtol = 2.0 * tol * (d + R);
+    if (V[0] < INFINITY) {
+        double v0 = nf * V[0], e = v0 * h, Gmin = INFINITY;
+        if (d - e - tol > R || d + e + tol < R)
+            return;
+        for (int k = 1; k < NR && V[k] < INFINITY; k++) {
+            double D = h * (v0 * v0 + (d + e) * nf * V[k] / (Rk[k] - h)) * (1.0 + 1e-12) +
+                       64.0 * DBL_EPSILON * d * sp;
+            double G = ag + 2.0 * h * (as + D) + gtol;
+            if (ag > G - ag)
+                return;
+            if (as > D) { /* g monotone on [a, b] */
+                if (opposite(ga, gb))
+                    iso_cut(I, rad_off_root(p, I->stops, a, b, ga, I->cx, I->cy, R));
+                return;
+            }
+            Gmin = fmin(Gmin, G);
+        }
+        double eps = Gmin / R;
+        if (eps < R) {
+            double E = S->rad_c * sqrt(3.0 * R * eps);
+            for (int i = 0; i < S->rad_k; i++)
+                E *= 3.0 * eps / R;
+            if (2.0 * h * v0 * E <= AN_OFF_TOL * h / I->H) {
+                iso_cut(I, a);
+                iso_cut(I, b);
+                return;
+            }
+        }
+    }
+    rad_off_cross(I, a, m, ga, q.g, depth + 1);
+    if (q.g == 0) /* a crossing (or touching) at m itself */
+        iso_cut(I, m);
+    rad_off_cross(I, m, b, q.g, gb, depth + 1);
+}
+
+/* The integral over [u, v] (u < v, a part inside the disc) of
+ * F(x - cx, y - cy) y' dt by the certified rule (off_points), halved where
+ * none is. */
+static double rad_off_part(const an_render *Rn, const aa_piece *p, int stops, double u, double v,
+                           double cx, double cy, int depth)
+{
+    const an_state *S = Rn->S;
+    int m = off_points(S, p, u, v);
+    if (!m) {
+        double mid = 0.5 * (u + v);
+        if (depth < AN_OFF_DEPTH && mid > u && mid < v)
+            return rad_off_part(Rn, p, stops, u, mid, cx, cy, depth + 1) +
+                   rad_off_part(Rn, p, stops, mid, v, cx, cy, depth + 1);
+        off_uncertain(Rn->uncertain, 1);
+        m = AN_MAX_PTS;
+    }
+    double h = 0.5 * (v - u), mid = 0.5 * (u + v), sum = 0.0;
+    for (int g = 0; g < m; g++) {
+        double x, y, dy;
+        off_point(p, stops, mid + h * S->ogx[m][g], &x, &y, &dy);
+        sum += S->ogw[m][g] * rad_f(S, x - cx, y - cy) * dy;
+    }
+    return h * sum;
+}
+
+/* R(part) for offset piece p over rows [ya, yb] under a radial filter: as
+ * rad_right_of, the piece cut where it crosses the circle (rad_off_cross)
+ * and at t = 1/2 where it has a stop; the sub-parts inside the disc by the
+ * certified rule, those outside +-M/2. */
+static double rad_right_of_offset(const an_render *Rn, const aa_piece *p, double ya, double yb,
+                                  double cx, double cy)
+{
+    const an_state *S = Rn->S;
+    double R = S->rad_r, lo = fmax(ya, cy - R), hi = fmin(yb, cy + R);
+    if (!(lo < hi))
+        return 0.0;
+    int stops = aa__offset_stops(&p->oc);
+    double ta = off_t_at(p, lo), tb = off_t_at(p, hi), t0 = fmin(ta, tb), t1 = fmax(ta, tb);
+    double sum = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy));
+    if (!(t0 < t1))
+        return sum;
+    double ends[3] = {t0, t1, t1}, ts[AN_RAD_CUTS + 4];
+    int ne = 2;
+    if (stops && 0.5 > t0 && 0.5 < t1)
+        ends[1] = 0.5, ne = 3;
+    an_iso I = {S, p, stops, cx, cy, 0.5 * (t1 - t0), ts + 1, 0, 0};
+    an_gpt ea = rad_g(p, stops, t0, cx, cy, R);
+    for (int k = 1; k < ne && I.n >= 0; k++) {
+        an_gpt eb = rad_g(p, stops, ends[k], cx, cy, R);
+        rad_off_cross(&I, ends[k - 1], ends[k], ea.g, eb.g, 0);
+        iso_cut(&I, ends[k]);
+        ea = eb;
+    }
+    if (I.n < 0) {
+        off_uncertain(Rn->uncertain, 2);
+        return sum;
+    }
+    ts[0] = t0;
+    int n = I.n + 1;
+    aa__vis_sort(ts, (size_t)n);
+    double part = 0.0;
+    for (int s = 0; s + 1 < n; s++) {
+        double u = ts[s], v = ts[s + 1];
+        if (!(u < v))
+            continue;
+        double x, y, dy;
+        off_point(p, stops, 0.5 * (u + v), &x, &y, &dy);
+        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < R * R) {
+            part += rad_off_part(Rn, p, stops, u, v, cx, cy, 0);
+        } else {
+            /* outside the disc, in its rows: wholly left or right of it
+             * (y monotone), where F(clamp) = +-F(ch) */
+            double y0, y1, d;
+            off_point(p, stops, u, &d, &y0, &d);
+            off_point(p, stops, v, &d, &y1, &d);
+            double half = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
+            part += x > cx ? half : -half;
+        }
+    }
+    return sum - (ta < tb ? part : -part);
+}
+
 static void rad_band(void *ctx, double ya, double yb, const int *wind)
 {
     band_merge(ctx, ya, yb, wind);
@@ -1338,8 +1673,9 @@ static void rad_run(void *ctx, const aa_piece *p, double ya, double yb, const do
 {
     an_pixel *P = ctx;
     (void)inside;
-    double r = p->kind == AA_PIECE_CONIC ? rad_right_of_arc(P->R->S, p, ya, yb, P->cx, P->cy)
-                                         : rad_right_of(P->R->S, p, ya, yb, P->cx, P->cy);
+    double r = p->kind == AA_PIECE_CONIC    ? rad_right_of_arc(P->R->S, p, ya, yb, P->cx, P->cy)
+               : p->kind == AA_PIECE_OFFSET ? rad_right_of_offset(P->R, p, ya, yb, P->cx, P->cy)
+                                            : rad_right_of(P->R->S, p, ya, yb, P->cx, P->cy);
     for (int ch = 0; ch < 3; ch++)
         P->acc[ch] += jump[ch] * r;
 }
@@ -2278,7 +2614,7 @@ static void fast_off_part(const an_block *B, const aa_piece *p, int stops, const
             fast_off_part(B, p, stops, val, mid, v, sg, depth + 1);
             return;
         }
-        off_uncertain(B->uncertain);
+        off_uncertain(B->uncertain, 1);
         m = AN_MAX_PTS;
     }
     double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym, dy;
@@ -2916,31 +3252,12 @@ static int analytic_check(const double *p, const aa_filter *f)
     return AA_OK;
 }
 
-/* The scene's pieces: every kind under the separable filters; under the
- * radial ones lines, quadratic, cubic and elliptical arcs only (an offset
- * curve's crossings with the filter's circle are not the roots of a
- * polynomial, and nothing here isolates them with a proof). */
-static int scene_check(const an_state *S, const aa_scene *s)
-{
-    size_t n;
-    const aa_piece *p = aa_scene_pieces(s, &n);
-    for (size_t i = 0; S->rad_k && i < n; i++) {
-        if (p[i].kind == AA_PIECE_OFFSET)
-            return aa_fail(AA_EINVAL,
-                           "analytic under a radial filter does not take offset curves (the "
-                           "outlines of stroked Bezier and elliptical arcs): their crossings "
-                           "with the filter's circle are not roots of a polynomial; refused "
-                           "(the separable filters take them)");
-    }
-    return AA_OK;
-}
-
 static int prepare(an_state *S, const aa_job *job)
 {
-    int st = scene_check(S, job->placed);
-    if (!st && S->rad_k) /* every row takes the visible parts */
+    int st;
+    if (S->rad_k) /* every row takes the visible parts */
         return aa__sampler_ready(&S->sampler, job, aa__vis_size(job->placed, 3));
-    if (st || (st = plan(S, job->placed, job->h)))
+    if ((st = plan(S, job->placed, job->h)))
         return st;
     /* the visible parts' workspace, then the scatter's buffers (left zeroed
      * after each block: the sampler's scratch starts zeroed) */
@@ -3001,6 +3318,7 @@ static int analytic_init(void *state, const double *p, const aa_job *job)
         gauss_make(S);
         S->pp.deg = S->rad_k; /* the arc's rule of degree 2 K + 2 */
         arc_make(S);
+        off_rules_make(S);
         return prepare(S, job);
     }
     an_def_of(&job->filter, &d);
@@ -3014,11 +3332,19 @@ static int analytic_init(void *state, const double *p, const aa_job *job)
 
 /* An image with an offset part whose rule's bound was not met (its speed
  * or a denominator within rounding of 0 on it, after AN_OFF_DEPTH
- * halvings) is refused: its values are not certified. */
+ * halvings), or whose crossings of a radial filter's circle were not
+ * isolated (rad_off_cross), is refused: its values are not certified. */
 static int off_certified(int uncertain)
 {
     if (!uncertain)
         return AA_OK;
+    if (uncertain == 2)
+        return aa_fail(AA_EINVAL,
+                       "analytic: an offset curve (a stroke's outline) whose crossings with "
+                       "a pixel's radial filter circle it cannot isolate (more than %d "
+                       "cuts, or the curve within rounding of the circle along a stretch, as "
+                       "an arc concentric with it of its radius): refused",
+                       AN_RAD_CUTS);
     return aa_fail(AA_EINVAL,
                    "analytic: an offset curve (a stroke's outline) with a part whose "
                    "quadrature bound (%g) it cannot meet (its speed or curvature within "
@@ -3037,8 +3363,10 @@ static int analytic_render(void *state, const double *p, const aa_job *job, aa_i
     int uncertain = 0;
     an_render R = {S, job->placed, 0.0, 1.0, &uncertain};
     aa_filter_range(&job->filter, &R.lo, &R.hi);
-    if (S->rad_k)
-        return aa__sampler_render(&S->sampler, job, out, rad_render_row, &R, counters);
+    if (S->rad_k) {
+        st = aa__sampler_render(&S->sampler, job, out, rad_render_row, &R, counters);
+        return st ? st : off_certified(uncertain);
+    }
     /* blocks of rows shared among threads (a pixel's value does not
      * depend on how) */
     uint64_t expensive = 0;
@@ -3077,7 +3405,7 @@ const aa_method_type aa_method_analytic = {
      "degree (Manson and Schaefer 2013)",
      analytic_params},
     sizeof(an_state),
-    AA_METHOD_SOME_SCENES, /* offset curves under the radial filters: refused at init */
+    0, /* every scene's pieces taken (an uncertified offset part refuses its render) */
     analytic_check,
     analytic_init,
     analytic_render,

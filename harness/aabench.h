@@ -512,8 +512,7 @@ enum aa_method_flags {
     AA_METHOD_SEEDED = 1,  /* the image depends on the seed */
     AA_METHOD_TEMPORAL = 2, /* the image depends on several frames */
     /* init refuses some scenes (colour, several layers; curves it does not
-     * integrate) with AA_EINVAL and a message: the peer rasterizers,
-     * analytic */
+     * integrate) with AA_EINVAL and a message: the peer rasterizers */
     AA_METHOD_SOME_SCENES = 4,
     /* renders a field scene (aa_scene_field) through its point function;
      * without it a field scene is refused by aa_method_init */

@@ -1,7 +1,7 @@
 /*
  * test_analytic_stroke.c: `analytic` on the exact outlines of stroked
  * Bezier and elliptical arcs (offset curves and evolutes, AA_PIECE_OFFSET),
- * under the separable filters it takes.
+ * under the separable filters and the radial ones.
  *
  * Known answers, none from the method itself:
  *  - the exact reference of the harness's separate truth path
@@ -36,8 +36,25 @@
  *    perimeter by the Gauss-Kummer series pi (a + b) sum binom(1/2, n)^2
  *    q^(2n), q = (a - b)/(a + b), and under a shear m the area times
  *    |det m|;
- *  - refusals by name: offset curves under the radial filters.
- * Quick tier (about 2 s of CPU): the folding strokes at 24, 96 and 192 px.
+ *  - under the radial filters (radial:k=1,r=1, radial:k=2,r=1.5,
+ *    radial:k=3,r=2.3): the reference within 1e-12 per pixel on a 24 px
+ *    window of tests/bench_bezstroke.c's scene, at 1 and 2 threads
+ *    (bit-identical); a straight stroke (a cubic of collinear, unevenly
+ *    spaced control points, whose offsets are lines) within 1e-12 of the
+ *    same rectangle as a polygon (the polynomial path, itself held to the
+ *    reference in tests/test_analytic_radial.c), and 1/2 (a closed form:
+ *    the filter is even about every line through its centre) where its
+ *    side passes through a pixel centre; the offsets of a circle (an
+ *    annulus) within 1e-12 of the two circles as elliptical arcs, and at
+ *    the annulus's centre the closed form (1 - a1^2/R^2)^(K+1) -
+ *    (1 - a2^2/R^2)^(K+1) (the weight of a centred disc of radius a being
+ *    1 - (1 - a^2/R^2)^(K+1));
+ *  - refusals by name: an offset running along a pixel's radial filter
+ *    circle within rounding (a circle of the filter's radius about a pixel
+ *    centre), whose crossings cannot be isolated.
+ * Quick tier (about 3 s of CPU): the folding strokes at 24, 96 and 192 px
+ * under separable filters; under a radial filter every pixel takes its
+ * own visible parts, and the folding SVG is not in this tier.
  */
 #include "oracle.h"
 #include "path.h"
@@ -465,31 +482,180 @@ static void test_tube(void **state)
     aa_path_free(&p);
 }
 
-/* ---- refusals ---- */
+/* ---- the radial filters ---- */
 
-static void test_radial_refused(void **state)
+static const char *const rad_filters[] = {"radial:k=1,r=1", "radial:k=2,r=1.5",
+                                          "radial:k=3,r=2.3"};
+#define NRF 3
+
+/* analytic under a radial filter within 1e-12 of the reference on s at
+ * w x h, at 1 and 2 threads (bit-identical). */
+static void rad_against_reference(const char *what, const aa_scene *s, int w, int h, int f0,
+                                  int f1)
+{
+    for (int f = f0; f < f1 && f < NRF; f++)
+        support_method_against_reference("analytic", what, s, w, h, rad_filters[f]);
+}
+
+static void test_radial_reference(void **state)
 {
     (void)state;
-    const double c[8] = {0.25, 0.5, 0.35, 0.35, 0.65, 0.65, 0.75, 0.5};
-    aa_path p = {0};
-    aa_stroke_style sty;
-    aa_stroke_style_default(&sty);
-    sty.width = 0.04;
-    must(aa_path_move_to(&p, c[0], c[1]));
-    must(aa_path_cubic_to(&p, c[2], c[3], c[4], c[5], c[6], c[7]));
-    size_t noff;
-    aa_scene *s = scenes_stroke_outline(&p, &sty, NULL, &noff);
+    /* a 24 px window of the bench's strokes about a corner (cubics 5 to
+     * 7 of subpath 10) */
+    aa_scene *s = bezstroke_scene(24, 10, 5, 7, 140.0, 537.6 - 12.0);
+    size_t n, noff = 0;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    for (size_t k = 0; k < n; k++)
+        noff += pc[k].kind == AA_PIECE_OFFSET;
     assert_true(noff > 0);
+    rad_against_reference("bench_bezstroke, 24 px", s, 24, 24, 0, NRF);
+    aa_scene_free(s);
+}
+
+/* The largest difference between a and b over every channel and pixel. */
+static double largest_difference(const aa_image *a, const aa_image *b)
+{
+    double worst = 0.0;
+    for (int p = 0; p < 3 * a->w * a->h; p++)
+        worst = fmax(worst, fabs(a->v[p] - b->v[p]));
+    return worst;
+}
+
+/* Offsets of known shape against the same region outlined by the scene's
+ * polynomial and conic pieces (a path the reference checks in
+ * tests/test_analytic_radial.c), and closed forms at a pixel centre:
+ *  - a straight stroke: a cubic with collinear control points spaced
+ *    unevenly (its offsets are the lines at +-w/2, not linear in t),
+ *    butt-capped, against the rectangle as a polygon; one side passes
+ *    through a pixel centre whose filter disc it cuts and the rest of the
+ *    rectangle covers (the caps and the far side out of reach), where the
+ *    weight is 1/2 (the filter is even about every line through its
+ *    centre);
+ *  - the offsets at -+w/2 of a circle (of an ellipse's base): the annulus
+ *    of radii rho -+ w/2 about a pixel centre, against the two circles as
+ *    elliptical arcs (even-odd); at that centre, the radial weight inside
+ *    radius a being 1 - (1 - a^2/R^2)^(K+1) (integrating 2 pi s c (1 -
+ *    s^2/R^2)^K from 0 to a, c = (K + 1)/(pi R^2)), the annulus gives
+ *    (1 - a1^2/R^2)^(K+1) - (1 - a2^2/R^2)^(K+1), the second term 0 where
+ *    a2 >= R. */
+static void test_radial_known(void **state)
+{
+    (void)state;
+    const int N = 24;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st); /* butt caps */
+    /* the straight stroke, in pixels: from A along (ux, uy) for L, width
+     * wd; its left side (x, y) - (wd/2) n passes through the centre of
+     * pixel (11, 12) */
+    const double ang = 0.37, ux = cos(ang), uy = sin(ang), nx = -uy, ny = ux, wd = 7.0,
+                 L = 40.0;
+    const double Cx = 11.5, Cy = 12.5;
+    const double Ax = Cx + 0.5 * wd * nx - 0.5 * L * ux, Ay = Cy + 0.5 * wd * ny - 0.5 * L * uy;
+#define P(v) ((v) / N)
+    aa_path p = {0};
+    st.width = P(wd);
+    must(aa_path_move_to(&p, P(Ax), P(Ay)));
+    must(aa_path_cubic_to(&p, P(Ax + 0.1 * L * ux), P(Ay + 0.1 * L * uy), P(Ax + 0.45 * L * ux),
+                          P(Ay + 0.45 * L * uy), P(Ax + L * ux), P(Ay + L * uy)));
+    size_t noff, n;
+    aa_scene *s = scenes_stroke_outline(&p, &st, NULL, &noff);
     aa_path_free(&p);
+    assert_true(noff > 0);
+    double xy[8];
+    for (int k = 0; k < 4; k++) {
+        double t = k == 1 || k == 2 ? L : 0.0, o = k >= 2 ? -0.5 * wd : 0.5 * wd;
+        xy[2 * k] = P(Ax + t * ux + o * nx), xy[2 * k + 1] = P(Ay + t * uy + o * ny);
+    }
+    aa_scene *poly = scenes_polygon(xy, 4, (aa_rgb){{1, 1, 1}}, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO);
+    for (int f = 0; f < NRF; f++) {
+        aa_image a, b;
+        support_render("analytic", s, rad_filters[f], N, N, 2, &a, NULL);
+        support_render("analytic", poly, rad_filters[f], N, N, 2, &b, NULL);
+        double worst = largest_difference(&a, &b), half = a.v[3 * (12 * N + 11)];
+        print_message("straight stroke %-18s against the polygon %.1e, at the side's pixel "
+                      "%.17f (1/2: %.1e)\n",
+                      rad_filters[f], worst, half, half - 0.5);
+        if (!(worst < 1e-12))
+            fail_msg("straight stroke under %s: %.3g from the polygon", rad_filters[f], worst);
+        if (!(fabs(half - 0.5) < 1e-12))
+            fail_msg("straight stroke under %s: %.17g at the side's pixel, want 1/2",
+                     rad_filters[f], half);
+        aa_image_free(&a);
+        aa_image_free(&b);
+    }
+    aa_scene_free(s);
+    aa_scene_free(poly);
+    /* the annulus about the centre of pixel (9, 10), outlined by the two
+     * offsets at -+wa/2 of the circle of radius rho (the stroker draws a
+     * circle's stroke with circular arcs: these are given as offset curves
+     * of an ellipse's base, whose normal points inwards) */
+    const double Ox = 9.5, Oy = 10.5, rho = 1.05, wa = 0.7, a1 = rho - 0.5 * wa, a2 = rho + 0.5 * wa;
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_EVENODD));
+    for (int k = 0; k < 2; k++) {
+        aa_offset_curve oc = {{P(Ox), P(Oy), P(rho), 0.0, 0.0, P(rho), 0.0, 0.0},
+                              {1.0, 0.0, 0.0, 1.0, 0.0, 0.0},
+                              P(k ? -0.5 * wa : 0.5 * wa),
+                              0,
+                              AA_OFFSET_ELLIPSE};
+        double r = k ? a2 : a1;
+        must(aa_scene_move_to(s, P(Ox + r), P(Oy)));
+        must(aa_scene_offset_to(s, &oc, 0.0, 2.0 * M_PI, P(Ox + r), P(Oy)));
+        must(aa_scene_close(s));
+    }
+    must(aa_scene_finish(s));
+    noff = 0;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    for (size_t k = 0; k < n; k++)
+        noff += pc[k].kind == AA_PIECE_OFFSET;
+    assert_true(noff > 0);
+    aa_scene *ring = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(ring);
+    must(aa_scene_layer(ring, (aa_rgb){{1, 1, 1}}, AA_FILL_EVENODD));
+    const double rr[2] = {a1, a2};
+    for (int k = 0; k < 2; k++) {
+        must(aa_scene_move_to(ring, P(Ox + rr[k]), P(Oy)));
+        must(aa_scene_arc_to(ring, P(Ox), P(Oy), P(rr[k]), 0, 0, P(rr[k]), 0, 2 * M_PI,
+                             P(Ox + rr[k]), P(Oy)));
+        must(aa_scene_close(ring));
+    }
+    must(aa_scene_finish(ring));
+    for (int f = 0; f < NRF; f++) {
+        aa_filter flt;
+        must(aa_filter_parse(rad_filters[f], &flt));
+        int K = (int)flt.spec.v[0];
+        double R = flt.spec.v[1];
+        double want = pow(1.0 - a1 * a1 / (R * R), K + 1) -
+                      (a2 < R ? pow(1.0 - a2 * a2 / (R * R), K + 1) : 0.0);
+        aa_image a, b;
+        support_render("analytic", s, rad_filters[f], N, N, 2, &a, NULL);
+        support_render("analytic", ring, rad_filters[f], N, N, 2, &b, NULL);
+        double worst = largest_difference(&a, &b), got = a.v[3 * (10 * N + 9)];
+        print_message("circle's stroke %-18s against the arcs %.1e, at its centre %.17f "
+                      "(closed form: %.1e)\n",
+                      rad_filters[f], worst, got, got - want);
+        if (!(worst < 1e-12))
+            fail_msg("circle's stroke under %s: %.3g from the arcs", rad_filters[f], worst);
+        if (!(fabs(got - want) < 1e-12))
+            fail_msg("circle's stroke under %s: %.17g at its centre, want %.17g",
+                     rad_filters[f], got, want);
+        aa_image_free(&a);
+        aa_image_free(&b);
+    }
+    aa_scene_free(ring);
+    /* the outer offset of radius 1.4 about the centre of pixel (9, 10)
+     * under radial:k=2,r=1.4 runs along that pixel's filter circle, within
+     * rounding of it all round: refused by name, not guessed */
     aa_image im;
-    int st = support_render_view("analytic", s, &(support_view){.w = 16, .h = 16,
-                                                                .filter = "radial:k=2,r=1.5",
+    int rc = support_render_view("analytic", s, &(support_view){.w = N, .h = N,
+                                                                .filter = "radial:k=2,r=1.4",
                                                                 .threads = 1},
                                  &im, NULL);
-    assert_int_equal(st, AA_EINVAL);
-    print_message("radial: %s\n", aa_last_error());
-    assert_non_null(strstr(aa_last_error(), "radial"));
-    assert_non_null(strstr(aa_last_error(), "offset curves"));
+    print_message("radius of the filter's circle: %s\n", rc ? aa_last_error() : "taken");
+    assert_int_equal(rc, AA_EINVAL);
+    assert_non_null(strstr(aa_last_error(), "circle"));
+#undef P
     aa_scene_free(s);
 }
 
@@ -499,6 +665,6 @@ int main(void)
         cmocka_unit_test(test_strokes_pattern), cmocka_unit_test(test_bezstroke_scene),
         cmocka_unit_test(test_folding_svg), cmocka_unit_test(test_folding_larger),
         cmocka_unit_test(test_folding_oracle), cmocka_unit_test(test_tube),
-        cmocka_unit_test(test_radial_refused)};
+        cmocka_unit_test(test_radial_reference), cmocka_unit_test(test_radial_known)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
