@@ -36,7 +36,8 @@
  *
  * The sampling methods' images converge to the reference as their sample
  * counts grow; the methods that draw from the layers' constant colours
- * refuse the scene naming gradient paint.
+ * refuse the scene naming gradient paint, and `area` and `analytic`,
+ * which take linear gradients, refuse this radial one naming it.
  */
 #include "bench.h"
 #include "core.h"

@@ -242,6 +242,19 @@ int aa_scene_group_count(const aa_scene *s);
 int aa_scene_group_parent(const aa_scene *s, int group);
 double aa_scene_group_opacity(const aa_scene *s, int group);
 
+/* A copy of the finished scene s still open for building (NULL on
+ * failure, reported): layers added to it lie behind s's (layers go front
+ * to back), and aa__scene_finish_copy finishes it with `hint` as the
+ * height of its index's bins (aa_scene_place's: 1, one pixel row).  For a
+ * method that adds geometry of its own, read through its own values of
+ * the windings (analytic's stop lines). */
+aa_scene *aa__scene_copy_open(const aa_scene *s);
+int aa__scene_finish_copy(aa_scene *s, double hint);
+/* 1 if `layer` paints the points of winding numbers `wind`: no clip's
+ * member, its fill rule holds, and inside its clip (the test
+ * aa_scene_colour_of makes of each layer, front to back). */
+int aa__scene_covers(const aa_scene *s, const int *wind, int layer);
+
 /* Clips (patterns/README.md, SVG's clipPath): geometry that paints
  * nothing but gates other layers.  clip_begin starts the next clip (its
  * number is the count of clips begun before it), itself clipped by the

@@ -1519,8 +1519,9 @@ int aa_scene_clip_unit(aa_scene *s)
     return AA_OK;
 }
 
-aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty,
-                              double hint)
+/* aa__scene_transform's copy, before it is finished (NULL on failure,
+ * reported). */
+static aa_scene *transform_open(const aa_scene *s, double sx, double sy, double tx, double ty)
 {
     if (!s->finished) {
         aa_fail(AA_EFAIL, "transform of an unfinished scene");
@@ -1629,13 +1630,32 @@ aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx
             if (!isfinite(t->fmap[k]) || (k < 2 && !(t->fmap[k] > 0.0)))
                 st = aa_fail(AA_EINVAL, "scene transform of the field overflows");
     }
-    if (!st)
-        st = finish(t, hint);
     if (st) {
         aa_scene_free(t);
         return NULL;
     }
     return t;
+}
+
+aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty,
+                              double hint)
+{
+    aa_scene *t = transform_open(s, sx, sy, tx, ty);
+    if (t && finish(t, hint)) {
+        aa_scene_free(t);
+        return NULL;
+    }
+    return t;
+}
+
+aa_scene *aa__scene_copy_open(const aa_scene *s) { return transform_open(s, 1.0, 1.0, 0.0, 0.0); }
+
+int aa__scene_finish_copy(aa_scene *s, double hint)
+{
+    int st = check_building(s);
+    if (!st && s->open)
+        st = aa_scene_close(s);
+    return st ? st : finish(s, hint);
 }
 
 aa_scene *aa_scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty)
@@ -1733,6 +1753,11 @@ static int covers(const aa_scene *s, const int *wind, int l)
     if (!fills(s, wind, l))
         return 0;
     return !s->nclips || (s->member[l] < 0 && (s->gate[l] < 0 || in_clip(s, wind, s->gate[l])));
+}
+
+int aa__scene_covers(const aa_scene *s, const int *wind, int layer)
+{
+    return covers(s, wind, layer);
 }
 
 /* An accumulator of premultiplied encoded colour p and alpha a. */

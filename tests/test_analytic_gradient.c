@@ -1,0 +1,395 @@
+/*
+ * test_analytic_gradient.c: `analytic` on linear gradients in linear light
+ * (algorithms/analytic.c, "Linear gradients": the stop lines made
+ * geometry, each strip's colour affine, its first moments by Green's
+ * theorem), against answers that are not the method's own:
+ *
+ *  - the exact reference of the harness's truth path (aa_truth_render: its
+ *    own quadrature of the filter times decode(encode(v)) along the rows,
+ *    cut at the stop lines and at the encoding's change of piece;
+ *    harness/truth/truth.c, "gradients in linear light"), within 1e-12 per
+ *    pixel and channel, at 1 and 2 threads (bit-identical), under box,
+ *    tent:r=1, bspline:order=2, bspline:order=3, mitchell, catrom and
+ *    tent:r=0.65 (cells narrower than a pixel) (the quick tier: the box
+ *    only; the closed forms below take the others there), on: several layers in painter's order (a flat triangle in
+ *    front of a path of lines, a quadratic and a cubic arc painted by a
+ *    padded gradient of three stops with a sharp step, in front of a
+ *    repeated gradient of a period of 4.4 px across the whole image, over
+ *    the background), a self-crossing even-odd path of cubic arcs under a
+ *    reflected gradient, a gradient gated by a clip, stroked polylines
+ *    (their outlines: lines) read from SVG, and a slow ramp across the
+ *    encoding's sliver (the linear values 0.003130 to 0.003132 across the
+ *    image, so the sliver (0.0031308, 0.0031308073), where decode(encode(v))
+ *    lies 2.2e-9 below v, is 0.07 px wide: taking v there would miss by
+ *    about 1e-10, a hundred times the tolerance);
+ *  - closed forms, derived here: under a filter whose integer translates
+ *    sum to 1 (box, tent:r=1, the B-splines, Mitchell-Netravali,
+ *    Catmull-Rom) an image holding the whole filtered support of the
+ *    picture sums to the picture's integral.  A black-to-white linear-light
+ *    ramp along x from a to b (colour (x - a)/(b - a), pad) painting a
+ *    rectangle [x0, x1] x [y0, y1] inside [a, b] on black integrates to
+ *    (y1 - y0) ((x1 - a)^2 - (x0 - a)^2) / (2 (b - a)) in every channel
+ *    (the integral of an affine function; the sliver changes it by at most
+ *    2.4e-9 x 7.3e-9 (b - a) (y1 - y0) < 1e-14 here); the same ramp
+ *    repeated with period P over a rectangle of whole periods integrates to
+ *    half its area (each period's mean is 1/2);
+ *  - refusals by name: sRGB interpolation, radial gradients, a stop of
+ *    partial opacity, a translucent layer, a radial filter, an elliptical
+ *    arc, a gradient of more stop lines than the method takes.
+ */
+#include "bench.h"
+#include "core.h"
+#include "patterns.h"
+#include "support.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+static const char *const filters[] = {"box",      "tent:r=1", "bspline:order=2", "bspline:order=3",
+                                      "mitchell", "catrom",   "tent:r=0.65",     NULL};
+/* the filters whose integer translates sum to 1 */
+static const char *const unity[] = {"box",      "tent:r=1", "bspline:order=2", "bspline:order=3",
+                                    "mitchell", "catrom",   NULL};
+
+static char dir[4096];
+
+static int setup(void **state)
+{
+    (void)state;
+    return support_tmpdir(dir, sizeof dir, "anagrad");
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    return support_rmtree(dir);
+}
+
+/* Scenes in pixels of a W x H view, in pattern units. */
+static int W, H;
+
+static void layer(aa_scene *s, double r, double g, double b, aa_fill_rule rule)
+{
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{r, g, b}}, rule), AA_OK);
+}
+
+static void move(aa_scene *s, double x, double y)
+{
+    assert_int_equal(aa_scene_move_to(s, x / W, y / H), AA_OK);
+}
+
+static void line(aa_scene *s, double x, double y)
+{
+    assert_int_equal(aa_scene_line_to(s, x / W, y / H), AA_OK);
+}
+
+static void rect(aa_scene *s, double x0, double y0, double x1, double y1)
+{
+    move(s, x0, y0);
+    line(s, x1, y0);
+    line(s, x1, y1);
+    line(s, x0, y1);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+}
+
+/* A gradient in pixels on the layer added last, in linear light unless
+ * srgb. */
+static void gradient(aa_scene *s, int kind, int spread, const double p[6],
+                     const aa_gradient_stop *st, int n, int srgb)
+{
+    aa_gradient g = {kind, spread, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0}, n, st};
+    memcpy(g.p, p, sizeof g.p);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    if (!srgb)
+        assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB),
+                         AA_OK);
+}
+
+/* The quick tier takes each scene under the box (the closed forms below
+ * take the others);
+ * test_analytic_gradient_full.c, of the full tier, is this file with
+ * ANALYTIC_GRADIENT_ALL set: every scene under every filter (the
+ * reference's quadrature of a gradient scene under the smooth filters
+ * takes seconds a scene). */
+#ifndef ANALYTIC_GRADIENT_ALL
+#define ANALYTIC_GRADIENT_ALL 0
+#endif
+
+static void against(const char *what, const aa_scene *s, int w, int h)
+{
+    const int nf = (int)(sizeof filters / sizeof *filters) - 1;
+    double worst = 0.0;
+    for (int k = 0; k < nf; k++)
+        if (ANALYTIC_GRADIENT_ALL || k == 0)
+            worst = fmax(worst,
+                         support_method_against_reference("analytic", what, s, w, h, filters[k]));
+    print_message("%-28s largest difference over the filters %.1e\n", what, worst);
+}
+
+static const aa_gradient_stop three[4] = {{0.0, {{0.9, 0.05, 0.2}}, 1.0},
+                                          {0.45, {{0.1, 0.8, 0.3}}, 1.0},
+                                          {0.45, {{0.2, 0.1, 0.7}}, 1.0},
+                                          {1.0, {{1.0, 0.95, 0.6}}, 1.0}};
+static const aa_gradient_stop two[2] = {{0.15, {{0.0, 0.3, 0.05}}, 1.0},
+                                        {0.8, {{0.6, 1.0, 0.1}}, 1.0}};
+static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
+                                                {1.0, {{1, 1, 1}}, 1.0}};
+
+/* A flat triangle in front of a path of lines, a quadratic and a cubic arc
+ * (padded gradient, a sharp step), in front of a repeated gradient over the
+ * whole image, over the background. */
+static void test_layers(void **state)
+{
+    (void)state;
+    W = 24, H = 20;
+    aa_scene *s = aa_scene_new((aa_rgb){{0.2, 0.3, 0.4}});
+    layer(s, 0.9, 0.1, 0.5, AA_FILL_NONZERO);
+    move(s, 5.5, 5.5);
+    line(s, 14.2, 9.9);
+    line(s, 7.1, 15.3);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    move(s, 3.3, 2.2);
+    line(s, 20.7, 4.1);
+    assert_int_equal(aa_scene_quad_to(s, 22.0 / W, 15.0 / H, 12.2 / W, 18.6 / H), AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 8.0 / W, 12.0 / H, 1.0 / W, 19.0 / H, 3.3 / W, 2.2 / H),
+                     AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){2, 3, 19, 15, 0, 0}, three,
+             4, 0);
+    layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    rect(s, 0, 0, W, H);
+    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT, (const double[6]){3, 1, 7.3, 2.1, 0, 0},
+             two, 2, 0);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    against("three layers", s, W, H);
+    aa_scene_free(s);
+}
+
+/* A self-crossing even-odd path of cubic arcs under a reflected gradient,
+ * over a flat rectangle; and a gradient gated by a clip (a triangle). */
+static void test_curves_and_clip(void **state)
+{
+    (void)state;
+    W = 22, H = 20;
+    aa_scene *s = aa_scene_new((aa_rgb){{0.05, 0.05, 0.1}});
+    layer(s, 0, 0, 0, AA_FILL_EVENODD);
+    move(s, 2.5, 3.1);
+    assert_int_equal(aa_scene_cubic_to(s, 30.0 / W, 1.0 / H, -8.0 / W, 21.0 / H, 19.3 / W,
+                                       17.2 / H),
+                     AA_OK);
+    assert_int_equal(aa_scene_cubic_to(s, 12.0 / W, 5.0 / H, 6.0 / W, 25.0 / H, 2.5 / W, 3.1 / H),
+                     AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_REFLECT, (const double[6]){4, 15, 9.1, 11.2, 0, 0},
+             three, 4, 0);
+    layer(s, 0.7, 0.6, 0.2, AA_FILL_NONZERO);
+    rect(s, 4.3, 4.6, 17.7, 13.1);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    against("reflected, cubic arcs", s, W, H);
+    aa_scene_free(s);
+
+    s = aa_scene_new((aa_rgb){{0.3, 0.3, 0.3}});
+    int clip;
+    assert_int_equal(aa_scene_clip_begin(s, -1), AA_OK);
+    assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
+    move(s, 1.7, 18.2);
+    line(s, 11.3, 0.9);
+    line(s, 20.6, 16.4);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_clip_end(s, &clip), AA_OK);
+    layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    rect(s, 3.2, 2.4, 19.1, 17.3);
+    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){4, 4, 18, 9, 0, 0}, three,
+             4, 0);
+    assert_int_equal(aa_scene_set_clip(s, clip), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    against("clipped gradient", s, W, H);
+    aa_scene_free(s);
+}
+
+/* The slow ramp across the encoding's sliver (the opening comment). */
+static void test_sliver(void **state)
+{
+    (void)state;
+    W = 20, H = 8;
+    const aa_gradient_stop slow[2] = {{0.0, {{0.003130, 0.003131, 0.5}}, 1.0},
+                                      {1.0, {{0.003132, 0.003131, 0.5}}, 1.0}};
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    rect(s, 1.3, 1.1, 18.6, 6.7);
+    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){1, 0, 19, 0.4, 0, 0}, slow,
+             2, 0);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    against("ramp across the sliver", s, W, H);
+    aa_scene_free(s);
+}
+
+/* Stroked polylines with a gradient stroke, read from SVG (miter joins,
+ * butt and square caps: outlines of lines). */
+static void test_strokes(void **state)
+{
+    (void)state;
+    static const char svg[] =
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"24\" height=\"20\">\n"
+        "<linearGradient id=\"g\" x1=\"2\" y1=\"1\" x2=\"9\" y2=\"6\" gradientUnits=\"userSpaceOnUse\"\n"
+        " spreadMethod=\"reflect\" color-interpolation=\"linearRGB\">\n"
+        " <stop offset=\"0.2\" stop-color=\"#ff2000\"/><stop offset=\"0.9\" stop-color=\"#2040ff\"/>\n"
+        "</linearGradient>\n"
+        "<rect width=\"24\" height=\"20\" fill=\"#203040\"/>\n"
+        "<polyline points=\"2.3,3.4 20.1,5.2 6.2,16.7 21.3,17.9\" fill=\"none\" stroke=\"url(#g)\"\n"
+        " stroke-width=\"2.6\"/>\n"
+        "<polyline points=\"3.1,12.2 9.7,8.3 12.4,13.6\" fill=\"none\" stroke=\"#e0e0a0\"\n"
+        " stroke-width=\"1.3\" stroke-linecap=\"square\"/>\n"
+        "</svg>\n";
+    char path[4200], spec[4300];
+    snprintf(path, sizeof path, "%s/strokes.svg", dir);
+    support_write_file(path, svg, sizeof svg - 1);
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_spec ps;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, 24, 20, &s))
+        fail_msg("pattern %s: %s", spec, aa_last_error());
+    against("stroked polylines (SVG)", s, 24, 20);
+    aa_scene_free(s);
+}
+
+/* The image's sum against the picture's integral (the opening comment). */
+static void sums_to(const char *what, const aa_scene *s, int w, int h, double want)
+{
+    double worst = 0.0;
+    for (const char *const *f = unity; *f; f++) {
+        aa_image img;
+        support_render("analytic", s, *f, w, h, 1, &img, NULL);
+        for (int ch = 0; ch < 3; ch++) {
+            double sum = 0.0;
+            for (int j = 0; j < h; j++)
+                for (int i = 0; i < w; i++)
+                    sum += aa_pixel(&img, i, j)[ch];
+            if (!(fabs(sum - want) <= 1e-12))
+                fail_msg("%s under %s: channel %d sums to %.17g, the integral is %.17g", what,
+                         *f, ch, sum, want);
+            worst = fmax(worst, fabs(sum - want));
+        }
+        aa_image_free(&img);
+    }
+    print_message("%-28s max |sum - integral| %.1e (integral %.6f)\n", what, worst, want);
+}
+
+static void test_closed_forms(void **state)
+{
+    (void)state;
+    W = 28, H = 16;
+    /* the ramp from a to b across the rectangle [x0, x1] x [y0, y1] */
+    double a = 2.25, b = 25.5, x0 = 4.3, x1 = 23.6, y0 = 4.2, y1 = 11.9;
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    rect(s, x0, y0, x1, y1);
+    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){a, 7, b, 7, 0, 0},
+             black_white, 2, 0);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    sums_to("ramp across a rectangle", s, W, H,
+            (y1 - y0) * ((x1 - a) * (x1 - a) - (x0 - a) * (x0 - a)) / (2.0 * (b - a)));
+    aa_scene_free(s);
+
+    /* repeated with period P = 3.7 over 5 whole periods from x0 */
+    double P = 3.7;
+    x0 = 4.15, x1 = x0 + 5 * P;
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    rect(s, x0, y0, x1, y1);
+    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT, (const double[6]){x0, 3, x0 + P, 3, 0, 0},
+             black_white, 2, 0);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    sums_to("repeated ramp, whole periods", s, W, H, 0.5 * (x1 - x0) * (y1 - y0));
+    aa_scene_free(s);
+}
+
+/* analytic refuses the scene (or filter) with a message holding `want`. */
+static void refused(const char *what, const aa_scene *s, const char *filter, const char *want)
+{
+    aa_image img;
+    support_view v = {W, H, 0, 0, 0, filter, 1, 1, 0};
+    int st = support_render_view("analytic", s, &v, &img, NULL);
+    if (st == AA_OK) {
+        aa_image_free(&img);
+        fail_msg("%s: rendered, not refused", what);
+    }
+    if (!strstr(aa_last_error(), want))
+        fail_msg("%s: refused as \"%s\", not naming \"%s\"", what, aa_last_error(), want);
+    print_message("%-28s refused: %s\n", what, aa_last_error());
+}
+
+/* A rectangle painted by a gradient (kind, spread, p, stops; sRGB if
+ * srgb), behind a flat layer of alpha `alpha`, or the rectangle bounded by
+ * an elliptical arc (arc). */
+static aa_scene *one(int kind, int spread, const double p[6], const aa_gradient_stop *st, int n,
+                     int srgb, double alpha, int arc)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    layer(s, 1, 1, 1, AA_FILL_NONZERO);
+    rect(s, 1, 1, 4, 4);
+    assert_int_equal(aa_scene_set_alpha(s, alpha), AA_OK);
+    layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    if (arc) {
+        move(s, 8, 3);
+        assert_int_equal(aa_scene_arc_to(s, 6.0 / W, 3.0 / H, 2.0 / W, 0, 0, 2.0 / H, 0, M_PI,
+                                         4.0 / W, 3.0 / H),
+                         AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+    } else {
+        rect(s, 2, 2, 10, 7);
+    }
+    gradient(s, kind, spread, p, st, n, srgb);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    W = 12, H = 8;
+    const double lin[6] = {2, 0, 9, 0, 0, 0}, rad[6] = {6, 4, 3, 6, 4, 0};
+    const aa_gradient_stop half[2] = {{0.0, {{1, 0, 0}}, 1.0}, {1.0, {{0, 0, 1}}, 0.5}};
+    aa_scene *s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 0, 1.0, 0);
+    support_method_against_reference("analytic", "refusals' base scene", s, W, H, "box");
+    refused("radial filter", s, "radial:k=2,r=1.5", "under a radial filter");
+    aa_scene_free(s);
+    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 1, 1.0, 0);
+    refused("sRGB interpolation", s, "box", "layer 1's linear gradient interpolates its stops in "
+                                            "sRGB-encoded values");
+    aa_scene_free(s);
+    s = one(AA_GRADIENT_RADIAL, AA_SPREAD_PAD, rad, black_white, 2, 0, 1.0, 0);
+    refused("radial gradient", s, "box", "layer 1's radial gradient is refused");
+    aa_scene_free(s);
+    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, half, 2, 0, 1.0, 0);
+    refused("stop opacity", s, "box", "has stop 1 of opacity 0.5");
+    aa_scene_free(s);
+    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 0, 0.5, 0);
+    refused("translucent layer", s, "box", "layer 0 is translucent");
+    aa_scene_free(s);
+    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 0, 1.0, 1);
+    refused("elliptical arc", s, "box", "layer 1 has an elliptical arc");
+    aa_scene_free(s);
+    /* a period of 1e-4 px: 1.7e5 periods across the frame */
+    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT, (const double[6]){2, 0, 2.0001, 0, 0, 0},
+            black_white, 2, 0, 1.0, 0);
+    refused("too many stop lines", s, "box", "more than 65536 stop lines");
+    aa_scene_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_layers),       cmocka_unit_test(test_curves_and_clip),
+        cmocka_unit_test(test_sliver),       cmocka_unit_test(test_strokes),
+        cmocka_unit_test(test_closed_forms), cmocka_unit_test(test_refusals)};
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
