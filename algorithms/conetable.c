@@ -441,7 +441,7 @@ static void shade(const void *ctx, aa__sampler_worker *wk, int i, int j, double 
     aa__vis v;
     aa__vis_bind(&v, s, 3, wk->own);
     aa_strip_winding_left(wk->strip, P.oy, P.wind);
-    const aa__vis_sink sink = {NULL, cn_run, cn_flat, NULL, &P, 3, 1, 1};
+    const aa__vis_sink sink = {NULL, cn_run, cn_flat, NULL, &P, 3, 1, 1, 0};
     aa__vis_window(&v, wk->strip, P.ox - tab->rc, P.ox + tab->rc, P.oy - tab->rc,
                    P.oy + tab->rc, &sink);
     aa_rgb c = aa_scene_colour_of(s, P.wind);

@@ -492,7 +492,7 @@ static void shade(const void *ctx, aa__sampler_worker *wk, int i, int j, double 
     tl_pixel P = {R, i + 0.5, j + 0.5, i - 0.5, j - 0.5, {0.0, 0.0, 0.0}, cov, cov + dims};
     for (int l = 0; l < nl; l++)
         cov[l] = 0.0;
-    const aa__vis_sink sink = {tl_band, tl_run, NULL, scan ? NULL : tl_values, &P, dims, 0, 0};
+    const aa__vis_sink sink = {tl_band, tl_run, NULL, scan ? NULL : tl_values, &P, dims, 0, 0, 0};
     aa__vis_window(&v, wk->strip, P.xl, P.xl + 2.0, P.top, P.top + 2.0, &sink);
     if (scan) {
         for (int ch = 0; ch < 3; ch++)

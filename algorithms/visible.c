@@ -167,6 +167,13 @@ static void flush(aa__vis_piece *P, const aa__vis_sink *sk, int dims)
         sk->run(sk->ctx, P->p, P->run_lo, P->run_hi, P->jump, P->inside);
 }
 
+/* 1 if x (a piece's at a band's middle) is in the window: the piece is
+ * then inside it all through the band (band_sweep's test). */
+static inline int in_window(double x, double xl, double xr)
+{
+    return x >= xl && x <= xr;
+}
+
 /* One band [lo, hi] whose pieces (ord[0 .. na), sorted at its middle) meet
  * nowhere inside it: sweep left to right from the winding left of the
  * window, extending each piece's run or starting a new one. */
@@ -187,7 +194,7 @@ static void band_sweep(aa__vis *v, const aa_strip *st, double xl, double xr, dou
                 sk->band(sk->ctx, lo, hi, W);
             told = 1;
         }
-        int inside = o->x >= xl && o->x <= xr;
+        int inside = in_window(o->x, xl, xr);
         W[p->layer] += p->dir;
         values_of(v, sk, W, cr);
         for (int d = 0; d < dims; d++)
@@ -378,6 +385,9 @@ void aa__vis_window(aa__vis *v, const aa_strip *st, double xl, double xr, double
                 double m = hi;
                 for (size_t a = 0; a + 1 < na; a++) {
                     double ys[2];
+                    if (sk->inside_meets && !in_window(v->ord[a].x, xl, xr) &&
+                        !in_window(v->ord[a + 1].x, xl, xr))
+                        continue;
                     const aa__vis_piece *P = &v->lp[v->ord[a].li], *Q = &v->lp[v->ord[a + 1].li];
                     int nm = aa__piece_meet_at(P->p, Q->p, lo, hi, P->t, Q->t, ys, 2);
                     for (int r = 0; r < nm; r++)

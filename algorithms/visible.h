@@ -21,7 +21,16 @@
  *    met at y* with no meeting nearer, every piece between them would be
  *    squeezed to the same point at y*, so some pair of neighbours would
  *    meet there).  A band is therefore narrowed to the nearest meeting of
- *    neighbours until none is left inside it.
+ *    neighbours until none is left inside it.  A sink may ask
+ *    (inside_meets) that only the pairs with a piece inside the window be
+ *    tested: the pieces inside form one run of the order (x between two
+ *    inside pieces' is inside), so the argument holds within it; a piece
+ *    outside in a band is outside all through it (the band is cut where it
+ *    crosses a side), so it meets no inside piece there, and two outside
+ *    pieces that cross change only the order of windings added left of
+ *    the window or after its last piece, never a part's jump.  With
+ *    windows narrower than the pieces (analytic's tiles 8 px wide), most
+ *    meetings of a row are of pieces outside the window.
  *
  * Inside a band the pieces are ordered along x at the band's middle (ties,
  * such as the shared edge of two abutting polygons, by their index in the
@@ -88,6 +97,12 @@ typedef struct aa__vis_sink {
      * its jump (for weights that vanish outside the window, where the
      * piece's terms are zero whatever the jump: fewer cuts) */
     int merge_outside;
+    /* meetings of two pieces both outside the window in a band (both left
+     * of it, both right, or one each side) are not sought: they change no
+     * part's jump, nor the winding at the window's left side, only where
+     * bands are cut (for sinks whose results do not depend on that: runs,
+     * and bands weighed only after consecutive ones of one colour merge) */
+    int inside_meets;
 } aa__vis_sink;
 
 typedef struct aa__vis_piece aa__vis_piece;

@@ -12,12 +12,19 @@
  *    scatter's table of faces' colours);
  *  - a pixel whose support lies, for each rectangle, wholly inside it or
  *    wholly outside it is the colour of the scene's own point query at its
- *    centre (aa_scene_colour_at), exactly: the face's colour, not a sum.
+ *    centre (aa_scene_colour_at), exactly: the face's colour, not a sum;
+ *  - the visible parts of windows 8 px wide (the scatter's tiles) are the
+ *    same, run for run and bit for bit, whether or not the meetings of two
+ *    pieces both outside the window are sought (visible.h, inside_meets:
+ *    such a meeting changes no part's jump, only where bands are cut),
+ *    and the reference as above on that scene: two layers of long cubic
+ *    arcs crossing each other in a few tiles, outside the others.
  * (test_analytic.c holds the rest: the shipped scenes with overlapping
  * layers, rows of both paths in one image, abutting paths.)
  */
 #include "bench.h"
 #include "support.h"
+#include "visible.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -161,5 +168,110 @@ static void test_many_colours(void **state)
     }
 }
 
+/* Two lenses of cubic arcs, each 0.9 of the width wide, in two colours,
+ * the second shifted down and sheared so that their arcs cross each other
+ * near x = 0.3 and x = 0.7 (pattern units). */
+static aa_scene *lenses(void)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0.1, 0.2, 0.3}});
+    assert_non_null(s);
+    const aa_rgb c[2] = {{{0.9, 0.6, 0.1}}, {{0.2, 0.7, 0.9}}};
+    for (int k = 0; k < 2; k++) {
+        double d = 0.12 * k, e = 0.1 * k;
+        assert_int_equal(aa_scene_layer(s, c[k], AA_FILL_NONZERO), AA_OK);
+        assert_int_equal(aa_scene_move_to(s, 0.05, 0.5 + d - e), AA_OK);
+        assert_int_equal(aa_scene_cubic_to(s, 0.3, 0.05 + d, 0.7, 0.05 + d, 0.95, 0.5 + d + e),
+                         AA_OK);
+        assert_int_equal(aa_scene_cubic_to(s, 0.7, 0.95 + d - e, 0.3, 0.95 - d, 0.05,
+                                           0.5 + d - e),
+                         AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+typedef struct vis_log {
+    const aa_piece *base;
+    size_t nrun, nband;
+    double run[4096][7]; /* piece index, ya, yb, jump (3), inside */
+    double band[4096][2]; /* ya, yb */
+} vis_log;
+
+static void log_band(void *ctx, double ya, double yb, const int *wind)
+{
+    vis_log *L = ctx;
+    (void)wind;
+    assert_true(L->nband < 4096);
+    double *b = L->band[L->nband++];
+    b[0] = ya, b[1] = yb;
+}
+
+static void log_run(void *ctx, const aa_piece *p, double ya, double yb, const double *jump,
+                    int inside)
+{
+    vis_log *L = ctx;
+    assert_true(L->nrun < 4096);
+    double *r = L->run[L->nrun++];
+    r[0] = (double)(p - L->base), r[1] = ya, r[2] = yb;
+    r[3] = jump[0], r[4] = jump[1], r[5] = jump[2], r[6] = inside;
+}
+
+/* The visible parts of the lenses placed at 96 x 32 px, in windows 8 px
+ * wide across the rows [0, 32], with inside_meets off (every neighbouring
+ * pair's meetings sought) and on: the same runs in the same order, bit for
+ * bit; every band cut with it on is one cut with it off (only cuts go);
+ * and fewer bands with it on (the scene has meetings outside windows). */
+static void test_outside_meetings(void **state)
+{
+    (void)state;
+    aa_scene *s = lenses();
+    aa_scene *P = aa_scene_place(s, 96, 32, 0.0, 0.0, 0.0);
+    assert_non_null(P);
+    size_t n;
+    const aa_piece *base = aa_scene_pieces(P, &n);
+    void *block = malloc(aa__vis_size(P, 3));
+    vis_log *L[2] = {calloc(1, sizeof(vis_log)), calloc(1, sizeof(vis_log))};
+    aa_strip *st = aa_strip_new(P);
+    assert_true(block && L[0] && L[1] && st);
+    size_t total[2] = {0, 0};
+    for (double xa = -1.0; xa < 97.0; xa += 8.0) {
+        for (int f = 0; f < 2; f++) {
+            aa__vis v;
+            aa__vis_bind(&v, P, 3, block);
+            L[f]->base = base, L[f]->nrun = L[f]->nband = 0;
+            const aa__vis_sink sk = {log_band, log_run, NULL, NULL, L[f], 3, 0, 0, f};
+            assert_int_equal(aa_strip_begin(st, 0.0, 32.0), AA_OK);
+            aa_strip_window(st, xa, xa + 8.0);
+            aa__vis_window(&v, st, xa, xa + 8.0, 0.0, 32.0, &sk);
+            total[f] += L[f]->nband;
+        }
+        if (L[0]->nrun != L[1]->nrun ||
+            memcmp(L[0]->run, L[1]->run, L[0]->nrun * sizeof L[0]->run[0]))
+            fail_msg("window [%g, %g]: the runs differ with inside_meets (%zu and %zu runs)", xa,
+                     xa + 8.0, L[0]->nrun, L[1]->nrun);
+        /* each cut of the bands with it on is a cut with it off */
+        size_t k = 0;
+        for (size_t b = 0; b < L[1]->nband; b++) {
+            while (k < L[0]->nband && L[0]->band[k][1] < L[1]->band[b][1])
+                k++;
+            if (k == L[0]->nband || L[0]->band[k][1] != L[1]->band[b][1])
+                fail_msg("window [%g, %g]: a band ends at %.17g with inside_meets only", xa,
+                         xa + 8.0, L[1]->band[b][1]);
+        }
+    }
+    print_message("bands over the windows: %zu seeking every meeting, %zu with inside_meets\n",
+                  total[0], total[1]);
+    assert_true(total[1] < total[0]);
+    aa_strip_free(st);
+    free(L[0]);
+    free(L[1]);
+    free(block);
+    aa_scene_free(P);
+    const char *const flist[] = {"box", "tent:r=1", "bspline:order=3", NULL};
+    against_filters("lenses crossing", s, 96, 32, flist);
+    aa_scene_free(s);
+}
+
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_faces_exact),
-             cmocka_unit_test(test_many_colours))
+             cmocka_unit_test(test_many_colours), cmocka_unit_test(test_outside_meetings))
