@@ -3866,7 +3866,7 @@ static void grad_shade(const void *ctx, aa__sampler_worker *wk, int i, int j, do
     aa__vis v;
     aa__vis_bind(&v, R->scene, 9, wk->own);
     an_gpixel P = {R, i + 0.5, j + 0.5, {0.0, 0.0, 0.0}, 0, 0.0, 0.0, {0.0}};
-    const aa__vis_sink sink = {gp_band, gp_run, NULL, gp_values, &P, 9, 0, 0};
+    const aa__vis_sink sink = {gp_band, gp_run, NULL, gp_values, &P, 9, 0, 0, 0};
     double lo = pp->k[0], hi = pp->k[pp->ncell];
     aa__vis_window(&v, wk->strip, P.cx + lo, P.cx + hi, P.cy + lo, P.cy + hi, &sink);
     gp_flush(&P);
