@@ -658,7 +658,13 @@ static const struct {
     {"font-variant-east-asian", {NULL}, NULL},
     {"font-variant-position", {NULL}, NULL},
     {"font-variant-alternates", {NULL}, NULL},
-    {"-inkscape-font-specification", {NULL}, NULL}};
+    {"-inkscape-font-specification", {NULL}, NULL},
+    /* no property of CSS or SVG, so no browser reads them (CSS 2.1, 4.2:
+     * a declaration of an unknown property is ignored): SVG 1.2 drafts'
+     * flowed text's block-progression and Inkscape's own
+     * filter-blend-mode, which Inkscape writes in the style of shapes */
+    {"block-progression", {NULL}, NULL},
+    {"filter-blend-mode", {NULL}, NULL}};
 
 static int css_noop_index(const char *name, size_t n)
 {
@@ -678,6 +684,22 @@ static int attr_nonrendering(const char *name)
         if (!strcmp(name, names[k]))
             return 1;
     return (!strncmp(name, "aria-", 5) && name[5]) || (!strncmp(name, "data-", 5) && name[5]);
+}
+
+/* width and height on a shape they are no geometry of (SVG 2 gives them
+ * to rect, svg, image, foreignObject and use only; presentation attributes
+ * apply only where their property does, so a browser reads nothing of
+ * them on a path or another basic shape; icon editors write them there). */
+static int attr_inert_size(const xmlNode *node, const char *name)
+{
+    static const char *const shapes[] = {"path",     "circle",   "ellipse", "line",
+                                         "polyline", "polygon"};
+    if (strcmp(name, "width") && strcmp(name, "height"))
+        return 0;
+    for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+        if (!strcmp((const char *)node->name, shapes[k]))
+            return 1;
+    return 0;
 }
 
 /* The attributes, beyond the properties, each element reads. */
@@ -707,7 +729,8 @@ static int attr_known(const xmlNode *node, const char *name)
     for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
         if (!strcmp(name, any[k]))
             return 1;
-    if (attr_nonrendering(name) || css_noop_index(name, strlen(name)) >= 0)
+    if (attr_nonrendering(name) || attr_inert_size(node, name) ||
+        css_noop_index(name, strlen(name)) >= 0)
         return 1;
     for (size_t k = 0; k < sizeof css_known / sizeof css_known[0]; k++)
         if (!strcmp(name, css_known[k]))

@@ -1204,7 +1204,9 @@ static void test_unknown_properties(void **state)
  * every simple-icons file, aria-*, data-*, tabindex, focusable, lang), the
  * properties of text, of filter primitives, of interaction, and markers,
  * blending, isolation, vector effects and rendering hints at values that
- * draw nothing (Inkscape's style attribute).  The known answer is the
+ * draw nothing (Inkscape's style attribute), names no CSS knows
+ * (block-progression, filter-blend-mode: CSS 2.1, 4.2, ignores them), and
+ * width and height on a path.  The known answer is the
  * document's geometry without them, written by hand: white is 1 1 1 in
  * linear light, the triangle's points as given.  Any value that would draw
  * something (a marker, a blend, a non-scaling stroke, crisp edges) is
@@ -1229,8 +1231,14 @@ static void test_noop_properties(void **state)
                     "text-align:center;writing-mode:lr-tb;direction:ltr;"
                     "baseline-shift:baseline;white-space:normal;"
                     "font-variant-ligatures:normal;font-feature-settings:normal;"
-                    "-inkscape-font-specification:Sans;text-decoration-line:none\"/></svg>",
+                    "-inkscape-font-specification:Sans;text-decoration-line:none;"
+                    "block-progression:tb;filter-blend-mode:normal\"/></svg>",
            WHITE_TRI);
+    /* width and height on a path, where they are no geometry (SVG 2 gives
+     * them to rect, svg, image, foreignObject and use): breeze's
+     * application-x-root.svg writes 100% there */
+    expect(SVG_OPEN "<path " TRI " width=\"100%\" height=\"100%\"/></svg>", WHITE_TRI);
+    refused(L2("<g width=\"10\"><path " TRI "/></g>"), "line 2: <g>", "width");
     /* as presentation attributes, and isolate: an isolated group of
      * normal blending and opacity 1 is its content laid one by one */
     expect(SVG_OPEN "<g isolation=\"isolate\" marker-end=\"none\" "
