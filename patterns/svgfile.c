@@ -689,9 +689,14 @@ static int attr_nonrendering(const char *name)
 /* width and height on a shape they are no geometry of (SVG 2 gives them
  * to rect, svg, image, foreignObject and use only; presentation attributes
  * apply only where their property does, so a browser reads nothing of
- * them on a path or another basic shape; icon editors write them there). */
+ * them on a path or another basic shape; icon editors write them there),
+ * and r on an ellipse (SVG 2 gives r to circle only: an ellipse of r alone
+ * has rx and ry auto, so radius 0, and Chromium and resvg draw nothing
+ * of it, where Inkscape draws a circle). */
 static int attr_inert_size(const xmlNode *node, const char *name)
 {
+    if (!strcmp(name, "r"))
+        return !strcmp((const char *)node->name, "ellipse");
     static const char *const shapes[] = {"path",     "circle",   "ellipse", "line",
                                          "polyline", "polygon"};
     if (strcmp(name, "width") && strcmp(name, "height"))
@@ -4207,11 +4212,13 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
      * (SVG 2 and Filter Effects 1: "never rendered directly"), and a
      * reference to one is refused where it is made (the filter, mask and
      * marker properties, a url() paint naming a pattern), so one defined
-     * and not used changes nothing */
+     * and not used changes nothing; SVG 1.2 drafts' flowed text
+     * (flowRoot, which Inkscape writes) is no SVG element, and Chromium
+     * and resvg draw nothing of it or its content */
     static const char *const silent[] = {"title",   "desc",           "metadata",
                                          "defs",    "clipPath",       "linearGradient",
                                          "radialGradient", "filter",  "mask",
-                                         "marker",  "pattern"};
+                                         "marker",  "pattern",        "flowRoot"};
     for (size_t k = 0; k < sizeof silent / sizeof silent[0]; k++)
         if (named(node, silent[k]))
             return AA_OK;

@@ -1239,6 +1239,15 @@ static void test_noop_properties(void **state)
      * application-x-root.svg writes 100% there */
     expect(SVG_OPEN "<path " TRI " width=\"100%\" height=\"100%\"/></svg>", WHITE_TRI);
     refused(L2("<g width=\"10\"><path " TRI "/></g>"), "line 2: <g>", "width");
+    /* r on an ellipse (SVG 2 gives r to circle only): rx and ry auto, so
+     * radius 0, nothing drawn; and SVG 1.2 drafts' flowRoot, no SVG
+     * element.  Chromium and resvg draw neither (a white ellipse of r = 8
+     * and white flowed text over black, 20 x 20: every pixel black) */
+    expect(SVG_OPEN "<path " TRI "/><ellipse cx=\"5\" cy=\"5\" r=\"3\" fill=\"white\"/>"
+                    "<flowRoot><flowRegion><rect width=\"9\" height=\"9\"/></flowRegion>"
+                    "<flowPara fill=\"white\">M</flowPara></flowRoot></svg>",
+           WHITE_TRI);
+    refused(L2("<circle cx=\"5\" cy=\"5\" r=\"3\" rx=\"2\"/>"), "line 2: <circle>", "rx");
     /* as presentation attributes, and isolate: an isolated group of
      * normal blending and opacity 1 is its content laid one by one */
     expect(SVG_OPEN "<g isolation=\"isolate\" marker-end=\"none\" "
