@@ -662,9 +662,11 @@ static const struct {
     /* no property of CSS or SVG, so no browser reads them (CSS 2.1, 4.2:
      * a declaration of an unknown property is ignored): SVG 1.2 drafts'
      * flowed text's block-progression and Inkscape's own
-     * filter-blend-mode, which Inkscape writes in the style of shapes */
+     * filter-blend-mode and filter-gaussianBlur-deviation, which Inkscape
+     * writes in the style of shapes */
     {"block-progression", {NULL}, NULL},
-    {"filter-blend-mode", {NULL}, NULL}};
+    {"filter-blend-mode", {NULL}, NULL},
+    {"filter-gaussianBlur-deviation", {NULL}, NULL}};
 
 static int css_noop_index(const char *name, size_t n)
 {

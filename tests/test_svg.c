@@ -1232,7 +1232,8 @@ static void test_noop_properties(void **state)
                     "baseline-shift:baseline;white-space:normal;"
                     "font-variant-ligatures:normal;font-feature-settings:normal;"
                     "-inkscape-font-specification:Sans;text-decoration-line:none;"
-                    "block-progression:tb;filter-blend-mode:normal\"/></svg>",
+                    "block-progression:tb;filter-blend-mode:normal;"
+                    "filter-gaussianBlur-deviation:0\"/></svg>",
            WHITE_TRI);
     /* width and height on a path, where they are no geometry (SVG 2 gives
      * them to rect, svg, image, foreignObject and use): breeze's
