@@ -796,6 +796,35 @@ static aa_scene *over_scene(const double p[6], const aa_gradient *g, int lin)
     return s;
 }
 
+/* The box reference of scene s (freed here) at the pixels px against
+ * over_pixel's 2-D quadrature of o: each within its bound (plus 1e-14 for
+ * the quadrature's own rounding); label names the case in messages. */
+static void over_check(over_pic *o, aa_scene *s, const int (*px)[2], size_t npx,
+                       const char *label)
+{
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
+    support_reference(s, &v, &ref, &bound, &stats);
+    assert_true(stats.max_bound <= 1e-12);
+    double worst = 0;
+    for (size_t k = 0; k < npx; k++) {
+        int i = px[k][0], j = px[k][1];
+        double want = over_pixel(o, i, j), got = aa_pixel(&ref, i, j)[0];
+        double bd = *aa_pixel(&bound, i, j);
+        worst = fmax(worst, fabs(got - want));
+        if (!(fabs(got - want) <= bd + 1e-14))
+            fail_msg("%s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound %.3g)", label, i,
+                     j, got, want, bd);
+    }
+    print_message("%s %d pixels, largest difference from 2-D quadrature %.2g, largest bound "
+                  "%.2g\n",
+                  label, (int)npx, worst, stats.max_bound);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
 static void test_over(void **state)
 {
     (void)state;
@@ -833,29 +862,9 @@ static void test_over(void **state)
         for (int q = 0; q < 3; q++)
             o.pc.taus[o.pc.ntaus++] = go_taus[q];
         o.pc.nh = co_region(p, o.pc.hp, &o.pc.wedge, o.pc.apex);
-        aa_scene *s = over_scene(p, &g, kind == 2 ? 2 : 0);
-        aa_image ref, bound;
-        aa_truth_stats stats;
-        support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
-        support_reference(s, &v, &ref, &bound, &stats);
-        assert_true(stats.max_bound <= 1e-12);
-        double worst = 0;
-        for (size_t k = 0; k < sizeof px / sizeof *px; k++) {
-            int i = px[k][0], j = px[k][1];
-            double want = over_pixel(&o, i, j), got = aa_pixel(&ref, i, j)[0];
-            double bd = *aa_pixel(&bound, i, j);
-            worst = fmax(worst, fabs(got - want));
-            if (!(fabs(got - want) <= bd + 1e-14))
-                fail_msg("cone under %s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g "
-                         "(bound %.3g)",
-                         what[kind], i, j, got, want, bd);
-        }
-        print_message("cone under %s %d pixels, largest difference from 2-D quadrature %.2g, "
-                      "largest bound %.2g\n",
-                      what[kind], (int)(sizeof px / sizeof *px), worst, stats.max_bound);
-        aa_image_free(&ref);
-        aa_image_free(&bound);
-        aa_scene_free(s);
+        char label[64];
+        snprintf(label, sizeof label, "cone under %s", what[kind]);
+        over_check(&o, over_scene(p, &g, kind == 2 ? 2 : 0), px, sizeof px / sizeof *px, label);
     }
 }
 
@@ -900,30 +909,8 @@ static void test_linear(void **state)
             o.pc.taus[o.pc.ntaus++] = 0.5 * (lo + hi);
         }
         o.pc.nh = co_region(p, o.pc.hp, &o.pc.wedge, o.pc.apex);
-        aa_scene *s = over_scene(p, front ? &g : NULL, 1);
-        aa_image ref, bound;
-        aa_truth_stats stats;
-        support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
-        support_reference(s, &v, &ref, &bound, &stats);
-        assert_true(stats.max_bound <= 1e-12);
-        double worst = 0;
-        for (size_t k = 0; k < sizeof px / sizeof *px; k++) {
-            int i = px[k][0], j = px[k][1];
-            double want = over_pixel(&o, i, j), got = aa_pixel(&ref, i, j)[0];
-            double bd = *aa_pixel(&bound, i, j);
-            worst = fmax(worst, fabs(got - want));
-            if (!(fabs(got - want) <= bd + 1e-14))
-                fail_msg("cone in linear light%s: pixel (%d, %d) is %.17g, 2-D quadrature "
-                         "%.17g (bound %.3g)",
-                         front ? " under a linear gradient" : "", i, j, got, want, bd);
-        }
-        print_message("cone in linear light%s %d pixels, largest difference from 2-D "
-                      "quadrature %.2g, largest bound %.2g\n",
-                      front ? " under a linear gradient" : "", (int)(sizeof px / sizeof *px),
-                      worst, stats.max_bound);
-        aa_image_free(&ref);
-        aa_image_free(&bound);
-        aa_scene_free(s);
+        over_check(&o, over_scene(p, front ? &g : NULL, 1), px, sizeof px / sizeof *px,
+                   front ? "cone in linear light under a linear gradient" : "cone in linear light");
     }
 }
 
