@@ -914,6 +914,88 @@ static void test_linear(void **state)
     }
 }
 
+/* ---- more than five layers at a point: the fold ----
+ *
+ * Past five gradient layers at a point the reference folds the composite
+ * layer by layer (harness/truth/truth.c, "the fold"), a cone-case layer
+ * among them taking the cone's cuts and its pieces in u.  Known answers,
+ * derived here: layers of constant white at opacity a_k over black
+ * composite, by source over in any order, to 1 - prod (1 - a_k) where
+ * they paint, and an opaque white layer among them to 1; so
+ *  - test_area's wedge, opaque white, with five linear gradients on the
+ *    whole picture in front of it, each of constant white at opacity a_k
+ *    = 0.1 k: a pixel is A + (1 - A) dec(1 - prod (1 - a_k)), A its
+ *    painted area (the clipped square above), dec sRGB's decoding;
+ *  - six layers of that wedge, each white at opacity 0.3 (one cone on
+ *    six layers, past the five its own path takes): A dec(1 - 0.7^6).
+ */
+static aa_scene *fold_scene(const double p[6], int cones)
+{
+    static const aa_gradient_stop w3[2] = {{0.0, {{1, 1, 1}}, 0.3}, {1.0, {{1, 1, 1}}, 0.3}};
+    static aa_gradient_stop wk[5][2];
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    for (int k = 0; k < 6; k++) {
+        assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+        assert_int_equal(aa_scene_move_to(s, -8.0 / W, -8.0 / H), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, (W + 8.0) / W, -8.0 / H), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, (W + 8.0) / W, (H + 8.0) / H), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, -8.0 / W, (H + 8.0) / H), AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+        aa_gradient g = {AA_GRADIENT_RADIAL, AA_SPREAD_PAD, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0},
+                         2, cones ? w3 : white};
+        memcpy(g.p, p, sizeof g.p);
+        if (!cones && k > 0) { /* a linear gradient along x, constant white at 0.1 k */
+            for (int q = 0; q < 2; q++)
+                wk[k - 1][q] = (aa_gradient_stop){q, {{1, 1, 1}}, 0.1 * k};
+            aa_gradient lg = {AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {3, 2, 13, 9},
+                              {1.0 / W, 0, 0, 1.0 / H, 0, 0}, 2, wk[k - 1]};
+            g = lg;
+        }
+        assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static void test_fold(void **state)
+{
+    (void)state;
+    const double p[6] = {9.3, 6.1, 3.1, 3.7, 5.2, 1.2}; /* test_area's first wedge */
+    co_half hp[2];
+    double apex[2];
+    int wedge, nh = co_region(p, hp, &wedge, apex);
+    for (int cones = 0; cones < 2; cones++) {
+        double keep = 1.0;
+        for (int k = 1; k <= 5; k++)
+            keep *= 1.0 - 0.1 * k;
+        double out = cones ? 0.0 : go_dec(1.0 - keep), in = cones ? go_dec(1.0 - pow(0.7, 6)) : 1.0;
+        aa_scene *s = fold_scene(p, cones);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        support_view v = {W, H, 0, 0, 0, "box", 1, 1, 0};
+        support_reference(s, &v, &ref, &bound, &stats);
+        double worst = 0;
+        for (int j = 0; j < H; j++)
+            for (int i = 0; i < W; i++) {
+                double A = clipped_area(i, j, hp, nh), want = A * in + (1.0 - A) * out;
+                double got = aa_pixel(&ref, i, j)[0], bd = *aa_pixel(&bound, i, j);
+                worst = fmax(worst, fabs(got - want));
+                if (!(fabs(got - want) <= bd + 1e-15 && bd <= 1e-12))
+                    fail_msg("%s: pixel (%d, %d) is %.17g, the closed form %.17g (bound %.3g)",
+                             cones ? "six layers of one cone" : "a cone under five gradients", i,
+                             j, got, want, bd);
+            }
+        print_message("%-34s %d pixels, largest difference from the closed form %.2g, largest "
+                      "bound %.2g\n",
+                      cones ? "six layers of one cone" : "a cone under five gradients", W * H,
+                      worst, stats.max_bound);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -923,6 +1005,7 @@ int main(void)
         cmocka_unit_test(test_layers),
         cmocka_unit_test(test_over),
         cmocka_unit_test(test_linear),
+        cmocka_unit_test(test_fold),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -4,10 +4,12 @@
  * resvg drawing the same documents, and against colours worked by hand
  * from SVG 2's definitions.
  *
- * Three documents of small cells, each one feature (the tables below, each
+ * Four documents of small cells, each one feature (the tables below, each
  * cell's hand-worked colours in its comment): the linear gradients, the
- * radial ones and several gradients at a point (radial over linear, two
- * radial ones, a fading linear one over a radial one), all drawn by the
+ * radial ones, several gradients at a point (radial over linear, two
+ * radial ones, a fading linear one over a radial one) and many (eight
+ * translucent ones at a point; one cone-case gradient on two overlapping
+ * shapes; Chromium and resvg only), all drawn by the
  * exact box reference (patterns/README.md,
  * "Gradients").  The reference's colours at the cells' points are first checked against the hand-worked
  * values, to 2e-3 in encoded values (the pixel's mean in linear light
@@ -269,6 +271,77 @@ static const cell mixed[] = {
      1, ""},
 };
 
+/* More than five gradient layers at a point, and one cone-case gradient
+ * painting two shapes (the reference's fold and its path of one cone on
+ * several layers: truth.c, "the fold", "one cone on several layers");
+ * against Chromium and resvg only (renderer()).  The hand-worked colours
+ * follow each layer back to front, source over in encoded values. */
+static const cell many[] = {
+    /* eight translucent gradients over black, at pixel (23, 24) (centre
+     * (23.5, 24.5), where the picture is smooth):
+     *  1. linear black to white on [4, 36]: t = 19.5 / 32 = 0.609375,
+     *     opaque: 0.609375;
+     *  2. radial white to black, centre (20, 20), r = 14, at 0.6: t =
+     *     hypot(3.5, 4.5) / 14 = 0.407206, colour 0.592794: 0.599427;
+     *  3. linear red to blue down [8, 32] at 0.5: t = 16.5 / 24 = 0.6875,
+     *     (0.3125, 0, 0.6875): (0.455963, 0.299713, 0.643463);
+     *  4. radial red to lime, centre (24, 18), r = 12, at 0.4: t =
+     *     hypot(0.5, 6.5) / 12 = 0.543267, (0.456733, 0.543267, 0):
+     *     (0.456271, 0.397135, 0.386078);
+     *  5. linear white to blue of opacity 0 across [6, 34]: t = 17.5 / 28
+     *     = 0.625, (0.375, 0.375, 1) at opacity 0.375: (0.425795,
+     *     0.388834, 0.616299);
+     *  6. radial lime to black, centre (16, 22), r = 13, focus (10.8, 22)
+     *     (fx = 0.3 of [3, 29]), at 0.5: q - F = (12.7, 2.5), D = (5.2,
+     *     0), |q - F - t D| = 13 t, so 141.96 t^2 + 132.08 t - 167.54 = 0,
+     *     t = 0.716579, (0, 0.283421, 0): (0.212897, 0.336128, 0.308149);
+     *  7. linear black to white along the diagonal of [4, 36]^2 at 0.3: t
+     *     = (19.5 + 20.5) / 64 = 0.625: (0.336528, 0.422789, 0.403205);
+     *  8. radial white to black, centre (20, 20), r = 8 (0.25 of 32),
+     *     reflect, at 0.35: t = hypot(3.5, 4.5) / 8 = 0.712610, colour
+     *     0.287390: (0.319330, 0.375400, 0.362670). */
+    {"eight translucent gradients",
+     "<linearGradient id=\"n1\">" BW "</linearGradient>"
+     "<radialGradient id=\"n2\">" WB "</radialGradient>"
+     "<linearGradient id=\"n3\" x2=\"0\" y2=\"1\"><stop offset=\"0\" stop-color=\"red\"/>"
+     "<stop offset=\"1\" stop-color=\"blue\"/></linearGradient>"
+     "<radialGradient id=\"n4\"><stop offset=\"0\" stop-color=\"red\"/>"
+     "<stop offset=\"1\" stop-color=\"lime\"/></radialGradient>"
+     "<linearGradient id=\"n5\"><stop offset=\"0\" stop-color=\"white\"/>"
+     "<stop offset=\"1\" stop-color=\"blue\" stop-opacity=\"0\"/></linearGradient>"
+     "<radialGradient id=\"n6\" fx=\"0.3\"><stop offset=\"0\" stop-color=\"lime\"/>"
+     "<stop offset=\"1\" stop-color=\"black\"/></radialGradient>"
+     "<linearGradient id=\"n7\" x2=\"1\" y2=\"1\">" BW "</linearGradient>"
+     "<radialGradient id=\"n8\" r=\"0.25\" spreadMethod=\"reflect\">" WB "</radialGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#n1)\"/>"
+     "<circle cx=\"20\" cy=\"20\" r=\"14\" fill=\"url(#n2)\" fill-opacity=\"0.6\"/>"
+     "<rect x=\"8\" y=\"8\" width=\"24\" height=\"24\" fill=\"url(#n3)\" fill-opacity=\"0.5\"/>"
+     "<circle cx=\"24\" cy=\"18\" r=\"12\" fill=\"url(#n4)\" fill-opacity=\"0.4\"/>"
+     "<rect x=\"6\" y=\"10\" width=\"28\" height=\"22\" fill=\"url(#n5)\"/>"
+     "<circle cx=\"16\" cy=\"22\" r=\"13\" fill=\"url(#n6)\" fill-opacity=\"0.5\"/>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#n7)\" fill-opacity=\"0.3\"/>"
+     "<circle cx=\"20\" cy=\"20\" r=\"16\" fill=\"url(#n8)\" fill-opacity=\"0.35\"/>",
+     {{23, 24, {0.319330, 0.375400, 0.362670}}},
+     1, ""},
+    /* one cone-case gradient (focus (6, 20) outside the end circle,
+     * centre (26, 20), r = 6, fr = 0, user space) painting a rectangle at
+     * 0.6 and a circle over it at 0.5, red to blue, over black: at pixel
+     * (17, 20), q - F = (11.5, 0.5), D = (20, 0), a = |D|^2 - r^2 = 364,
+     * b = q.D = 230, c = |q|^2 = 132.5, t = (b + sqrt(b^2 - a c)) / a =
+     * (230 + sqrt(4670)) / 364 = 0.819608 (the larger root, r(t) >= 0),
+     * inside the cone (its half-angle asin(6/20) = 17.5 degrees, the
+     * point's 2.5): (0.180392, 0, 0.819608) at 0.5 over itself at 0.6,
+     * 0.8 of it: (0.144314, 0, 0.655686); outside the cone black */
+    {"one cone on two shapes",
+     "<radialGradient id=\"k1\" gradientUnits=\"userSpaceOnUse\" cx=\"26\" cy=\"20\" r=\"6\" "
+     "fx=\"6\" fy=\"20\"><stop offset=\"0\" stop-color=\"red\"/>"
+     "<stop offset=\"1\" stop-color=\"blue\"/></radialGradient>"
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"url(#k1)\" fill-opacity=\"0.6\"/>"
+     "<circle cx=\"20\" cy=\"20\" r=\"8\" fill=\"url(#k1)\" fill-opacity=\"0.5\"/>",
+     {{17, 20, {0.144314, 0, 0.655686}}},
+     1, ""},
+};
+
 /* A document of the cells and its image: the box reference. */
 static void document(const cell *cells, size_t n, const char *name, char *path, size_t len,
                      aa_image *ref)
@@ -348,6 +421,9 @@ static void test_points(void **state)
     aa_image_free(&ref);
     document(mixed, sizeof mixed / sizeof *mixed, "mixed", path, sizeof path, &ref);
     check_points(mixed, sizeof mixed / sizeof *mixed, &ref);
+    aa_image_free(&ref);
+    document(many, sizeof many / sizeof *many, "many", path, sizeof path, &ref);
+    check_points(many, sizeof many / sizeof *many, &ref);
     aa_image_free(&ref);
 }
 
@@ -763,6 +839,7 @@ static void renderer(const char *name)
     renderer_cells(name, linear, sizeof linear / sizeof *linear, "linear");
     renderer_cells(name, radial, sizeof radial / sizeof *radial, "radial");
     renderer_cells(name, mixed, sizeof mixed / sizeof *mixed, "mixed");
+    renderer_cells(name, many, sizeof many / sizeof *many, "many");
 }
 
 static void test_chromium(void **state)

@@ -227,6 +227,25 @@ void aa_scene_encoded_with(const aa_scene *s, const int *wind, int layer, const 
  * composites at three paints per layer (truth.c, "several gradients"). */
 void aa_scene_encoded_with_n(const aa_scene *s, const int *wind, int n, const int *layers,
                              const double *paints, double e[3]);
+/* The same composite as a program the caller folds: base[] the encoded
+ * colour behind (the front-most covering layer of alpha 1 in no group and
+ * not among layers[0 .. n - 1], or the background), then, back to front,
+ * steps: AA_FOLD_LAYER (layer `layer` of alpha `a` and own encoded colour
+ * c[], source over the innermost open group's accumulator), AA_FOLD_OPEN
+ * (a group, its accumulator transparent) and AA_FOLD_CLOSE (the innermost
+ * group, of opacity `a`, source over its parent's).  The layers[] are
+ * folded whatever their paint (painted opaque they give the same
+ * composite as aa_scene_encoded_with_n, which then starts from them).
+ * Returns the number of steps (at most nlayers + 2 ngroups,
+ * aa_scene_fold_cap), or -1 if more than cap. */
+enum { AA_FOLD_LAYER, AA_FOLD_OPEN, AA_FOLD_CLOSE };
+typedef struct aa_fold_step {
+    int op, layer;
+    double a, c[3];
+} aa_fold_step;
+int aa_scene_fold_cap(const aa_scene *s);
+int aa_scene_fold(const aa_scene *s, const int *wind, int n, const int *layers, aa_fold_step *steps,
+                  int cap, double base[3]);
 /* Layers added from now until the matching end belong to a new group of
  * opacity in [0, 1], inside the group open now (at most
  * AA_SCENE_MAX_GROUP_DEPTH deep).  Layers go front to back, so a group is

@@ -1907,6 +1907,58 @@ void aa_scene_encoded_with_n(const aa_scene *s, const int *wind, int n, const in
         e[k] = aa_srgb_encode(s->background.c[k]);
 }
 
+int aa_scene_fold_cap(const aa_scene *s) { return s->nlayers + 2 * s->ngroups; }
+
+/* composite_encoded's walk, written out as steps (core.h): each group's
+ * layers are contiguous, so it is opened and closed at most once. */
+int aa_scene_fold(const aa_scene *s, const int *wind, int n, const int *layers, aa_fold_step *steps,
+                  int cap, double base[3])
+{
+    int b = 0, ns = 0, depth = 0, gid[AA_SCENE_MAX_GROUP_DEPTH + 1];
+    for (;; b++) {
+        int listed = 0;
+        for (int k = 0; k < n && !listed && b < s->nlayers; k++)
+            listed = layers[k] == b;
+        if (b >= s->nlayers ||
+            (!listed && covers(s, wind, b) && s->group[b] < 0 && s->alpha[b] == 1.0))
+            break;
+    }
+    for (int k = 0; k < 3; k++)
+        base[k] = b < s->nlayers ? s->encoded[b].c[k] : aa_srgb_encode(s->background.c[k]);
+    gid[0] = -1;
+    for (int l = b - 1; l >= -1; l--) {
+        if (l >= 0 && !covers(s, wind, l))
+            continue;
+        int chain[AA_SCENE_MAX_GROUP_DEPTH], nc = 0, keep = 0;
+        if (l >= 0)
+            for (int g = s->group[l]; g >= 0; g = s->groups[g].parent)
+                chain[nc++] = g;
+        while (keep < depth && keep < nc && gid[keep + 1] == chain[nc - 1 - keep])
+            keep++;
+        for (; depth > keep; depth--) {
+            if (ns >= cap)
+                return -1;
+            steps[ns++] = (aa_fold_step){AA_FOLD_CLOSE, -1, s->groups[gid[depth]].opacity, {0, 0, 0}};
+        }
+        if (l < 0)
+            break;
+        for (; depth < nc; depth++) {
+            if (ns >= cap)
+                return -1;
+            gid[depth + 1] = chain[nc - 1 - depth];
+            steps[ns++] = (aa_fold_step){AA_FOLD_OPEN, -1, 0.0, {0, 0, 0}};
+        }
+        if (ns >= cap)
+            return -1;
+        aa_fold_step *st = &steps[ns++];
+        double e[3];
+        st->op = AA_FOLD_LAYER, st->layer = l;
+        st->a = layer_paint(s, l, 0, 0.0, 0.0, 0, NULL, NULL, e);
+        memcpy(st->c, e, sizeof e);
+    }
+    return ns;
+}
+
 aa_rgb aa_scene_colour_of_at(const aa_scene *s, const int *wind, double x, double y)
 {
     if (!s->ngrads)

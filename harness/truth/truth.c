@@ -240,8 +240,12 @@
  * gradient of varying opacity with another: "several gradients" below):
  * the composite is affine in each layer's opacity and opacity times
  * channel, so a sum of products over the layers whose coefficients are
- * read from 3^n composites (n <= GEN_MAX layers painting a span; more are
- * refused).  The row is cut at every layer's stops, periods' ends and
+ * read from 3^n composites (n <= GEN_MAX = 5 layers painting a span;
+ * from 6 to GEN_LAYERS = 32 the composite is folded layer by layer in
+ * painter's order at each point, its bounds carried through the same fold
+ * centred at each piece's midpoint: "the fold" below; more are refused).
+ * Scenes of at most five layers a span keep the product form, to the bit.
+ * The row is cut at every layer's stops, periods' ends and
  * radial x0; the decoding's threshold, now where a composite of several
  * t passes 0.04045, is isolated by bisection with a certified bound on
  * the composite's slope (intervals it cannot clear shrink to 1e-13 and
@@ -401,7 +405,8 @@ typedef struct grad_radial {
 #define CONE_NESTED 2
 #define CONE_HALF 3
 
-#define GEN_MAX 5 /* gradient layers painting one span ("several gradients") */
+#define GEN_MAX 5 /* gradient layers of one span read as 3^n composites ("several gradients") */
+#define GEN_LAYERS 32 /* gradient layers painting one span, folded past GEN_MAX */
 
 /* Any gradient layer for the path of several gradients at a point
  * ("several gradients"): its layer, spread, stops and their encoded
@@ -443,7 +448,7 @@ typedef struct worker {
     double rad_row_err, rad_err_max;
     /* every gradient layer (gl, ngl) with room for its layer and a paint,
      * and a second buffer of t values; gen: every span takes the path of
-     * several gradients; gen_over: a span painted by more than GEN_MAX;
+     * several gradients; gen_over: a span painted by more than GEN_LAYERS;
      * gen_stuck: a row not resolved within the work limit (gen_section,
      * gen_piece) */
     gen_layer *gl;
@@ -456,6 +461,12 @@ typedef struct worker {
     size_t gen_work; /* gen_piece's halvings on the current span (GEN_PIECES) */
     int *gl_layer;
     double *gl_paint, *gbuf2;
+    /* a span of more than GEN_MAX gradient layers: its composite's steps
+     * (aa_scene_fold) and, per step, the index of its layer among the
+     * span's (fold_sl; -1 a gradient layer taken transparent, -2 a layer
+     * of its own colour) */
+    aa_fold_step *fold;
+    int *fold_sl, cap_fold;
     const aa_filter *f;
     aa_strip *strip;
     gsl_integration_workspace *ws;
@@ -516,6 +527,8 @@ static void worker_free(worker *w)
     free(w->lin_stops);
     free(w->gl_layer);
     free(w->gl_paint);
+    free(w->fold);
+    free(w->fold_sl);
     free(w->gbuf2);
     crowd_free(&w->crowd);
 }
@@ -861,7 +874,11 @@ static int grad_init(worker *w)
     w->cap_gbuf = 4 * GRAD_MAX_BREAKS + 8;
     w->gbuf = malloc(w->cap_gbuf * sizeof *w->gbuf);
     w->gbuf2 = malloc(w->cap_gbuf * sizeof *w->gbuf2);
-    if (!w->gp || !w->gl || !w->gl_layer || !w->gl_paint || !w->gbuf || !w->gbuf2)
+    w->cap_fold = aa_scene_fold_cap(w->scene) + 1;
+    w->fold = malloc((size_t)w->cap_fold * sizeof *w->fold);
+    w->fold_sl = malloc((size_t)w->cap_fold * sizeof *w->fold_sl);
+    if (!w->gp || !w->gl || !w->gl_layer || !w->gl_paint || !w->gbuf || !w->gbuf2 || !w->fold ||
+        !w->fold_sl)
         return aa_fail(AA_ENOMEM, "out of memory for gradient planes");
     int ngrad = 0, cone = 0;
     for (int l = 0; l < n; l++) {
@@ -1282,16 +1299,23 @@ static void rad_piece(worker *w, const grad_radial *g, const rad_row *r, const r
  * layer's paint v0 + v1 t. */
 typedef struct gen_span_ctx {
     int n, nch;
-    const gen_layer *L[GEN_MAX];
-    rad_row row[GEN_MAX];
-    double v0[GEN_MAX][4], v1[GEN_MAX][4];
+    const gen_layer *L[GEN_LAYERS];
+    rad_row row[GEN_LAYERS];
+    double v0[GEN_LAYERS][4], v1[GEN_LAYERS][4];
     /* pw[l][ch]: layer l's channel ch is in linear light on the encoding's
      * power piece here, v0 + v1 t its linear value and the encoded channel
      * lin_enc of it ("gradients in linear light"); 0: the encoded channel
      * is v0 + v1 t itself */
-    int pw[GEN_MAX][3];
+    int pw[GEN_LAYERS][3];
     double K[3][243];
     int nk;
+    /* fold: more than GEN_MAX layers, the composite folded over the
+     * scene's steps st[0 .. nst - 1] from base (sl: worker's fold_sl; the
+     * comment above "several gradients at a point") in place of K */
+    int fold, nst;
+    const aa_fold_step *st;
+    const int *sl;
+    double base[3];
     double y;
     /* weighted: the separable filter's weight w(x - uc) multiplies the
      * row (every filter but the box; "the other separable filters") */
@@ -1306,8 +1330,8 @@ typedef struct gen_span_ctx {
     /* a cone-case layer ("a cone beside other gradients"): its L_k = lam
      * x + mu on the row; flat[l]: the layer's paint is constant on the
      * piece (unpainted, or padded beyond its stops), t then not read */
-    double complex lam[GEN_MAX][2], mu[GEN_MAX][2];
-    int flat[GEN_MAX];
+    double complex lam[GEN_LAYERS][2], mu[GEN_LAYERS][2];
+    int flat[GEN_LAYERS];
     /* umode: the piece's variable is u, x = xr + eps u^2, from the zero
      * of layer ul's form L_uk (painted on the piece), where sqrt(d) = u
      * sqrt(P0 + P1 u^2); else the variable is x */
@@ -1315,7 +1339,7 @@ typedef struct gen_span_ctx {
     double xr, eps, P0, P1;
     /* uroot[l]: layer l is of the same cone as ul (the same forms) and
      * takes ul's sqrt(d) = u sqrt(P) on the piece in u */
-    int uroot[GEN_MAX];
+    int uroot[GEN_LAYERS];
 } gen_span_ctx;
 
 /* The weight along a row under a filter other than the box ("the other
@@ -1929,8 +1953,9 @@ static double span_weight(const worker *w, double xa, double xb)
  * above.  The K are read as for several gradients (mix_span): composites
  * at every choice of the three paints per layer, then differences.  More
  * than GEN_MAX such layers at a point take the path of several gradients
- * (gen_span, which refuses them: gen_over), and a polynomial whose roots
- * the solver does not find refuses the pixel (cone_over).
+ * (gen_span: its fold, up to GEN_LAYERS; more are refused: gen_over), and
+ * a polynomial whose roots the solver does not find refuses the pixel
+ * (cone_over).
  */
 typedef struct cone_comp {
     int n, nk;
@@ -2247,7 +2272,8 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
  *     e = sum over a in {0, 1, 2}^n of K_a prod_l f_l[a_l],
  *     f[0] = 1, f[1] = op, f[2] = op C,
  * the K read from the composites at paints (0, 0, 0, 0), (0, 0, 0, 1) and
- * (1, 1, 1, 1) of each layer (3^n of them, n <= GEN_MAX; the others
+ * (1, 1, 1, 1) of each layer (3^n of them, n <= GEN_MAX, past which the
+ * composite is folded layer by layer: "the fold" below; the others
  * transparent, which they are to the span: a layer the span does not
  * depend on with every other gradient transparent depends on none).  The
  * row is cut where any layer's t passes a stop's offset or a period's end
@@ -2539,9 +2565,15 @@ static double gen_t(const gen_span_ctx *c, int l, double s)
 }
 
 /* e of each channel at real x (on the current piece). */
+static void fold_eval(const gen_span_ctx *c, double x, double *e);
+
 static void gen_eval(const gen_span_ctx *c, double x, double *e)
 {
     double f[GEN_MAX][3][3];
+    if (c->fold) {
+        fold_eval(c, x, e);
+        return;
+    }
     for (int l = 0; l < c->n; l++) {
         double t = gen_t(c, l, x), op = c->v0[l][3] + c->v1[l][3] * t;
         for (int ch = 0; ch < c->nch; ch++) {
@@ -2568,6 +2600,9 @@ static void gen_eval(const gen_span_ctx *c, double x, double *e)
  * bounded below by their distances to the rectangle |Re z - m| <= A,
  * |Im z| <= B that holds it: the comment above); 0 if a branch point may
  * lie in that rectangle.  B = 0, A = h: the real segment [m - h, m + h]. */
+static int fold_bounds(const gen_span_ctx *c, double m, double A, double B, double *emax,
+                       double *dmax);
+
 /* Bounds T of |t| and P of |t'| of layer l on the rectangle |Re z - m|
  * <= A, |Im z| <= B in x (the comment above); 0 if a branch point (a pole)
  * may lie in it.  A cone-case layer ("a cone beside other gradients"):
@@ -2645,8 +2680,7 @@ static int gen_layer_tp(const gen_span_ctx *c, int l, double m, double A, double
     if (!(D1 > 0.0 && D2 > 0.0))
         return 0;
     double Z = fabs(m - r->x0) + A;
-    *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + sqrt(r->d2 * Z * Z + fabs(r->dmin))) *
-           ia;
+    *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + sqrt(r->d2 * Z * Z + fabs(r->dmin))) * ia;
     *P = (fabs(r->b1) + r->d2 * Z / sqrt(r->d2 * D1 * D2)) * ia;
     return 1;
 }
@@ -2695,6 +2729,8 @@ static int gen_bounds(const gen_span_ctx *c, double m, double A, double B, doubl
                       double *dmax)
 {
     double T[GEN_MAX], P[GEN_MAX];
+    if (c->fold)
+        return fold_bounds(c, m, A, B, emax, dmax);
     for (int l = 0; l < c->n; l++)
         if (!gen_layer_tp_s(c, l, m, A, B, &T[l], &P[l]))
             return 0;
@@ -2898,6 +2934,49 @@ static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double
         *err += fmin(bound, lx);
 }
 
+/* Layer l's t(m) and t'(m) into *tm, *tp, and bounds |t| <= *T, |t'|
+ * <= *P and |t''| <= *Q on the real segment [m - h, m + h] in x
+ * (gen_taylor); 0 if none are had (a painted cone-case layer: none; a
+ * flat one's are 0). */
+static int gen_tpq(const gen_span_ctx *c, int l, double m, double h, double *tm, double *tp,
+                   double *T, double *P, double *Q)
+{
+    const gen_layer *g = c->L[l];
+    *tm = gen_t(c, l, m);
+    if (g->rg && g->rg->cone) {
+        if (!c->flat[l])
+            return 0; /* a painted cone: the Lipschitz test alone */
+        *tm = *tp = *T = *P = *Q = 0.0; /* its paint constant */
+        return 1;
+    }
+    if (!g->rg) {
+        *tp = g->gp->tx;
+        *T = fabs(*tm) + fabs(*tp) * h, *P = fabs(*tp), *Q = 0.0;
+        return 1;
+    }
+    const rad_row *r = &c->row[l];
+    double ia = 1.0 / fabs(g->rg->a), um = fabs(m - r->x0);
+    double Z = um + h, lo = fmax(0.0, um - h), dlo = r->d2 * lo * lo + r->dmin;
+    if (r->dmin == 0.0) {
+        if (!(um >= h))
+            return 0; /* x0 inside: a kink, which is a cut */
+        *Q = 0.0;
+    } else if (dlo > 0.0)
+        *Q = r->d2 * fabs(r->dmin) * ia / (dlo * sqrt(dlo));
+    else
+        return 0;
+    double dm = r->d2 * um * um + r->dmin, dz = sqrt(r->d2 * Z * Z + r->dmin);
+    if (!(dm > 0.0))
+        return 0;
+    *tp = (r->b1 - r->d2 * (m - r->x0) / sqrt(dm)) / g->rg->a;
+    double U = r->dmin >= 0.0 ? Z : lo, dU = sqrt(r->d2 * U * U + r->dmin);
+    *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * h + dz) * ia;
+    *P = (fabs(r->b1) + (dU > 0.0 ? r->d2 * U / dU : 0.0)) * ia;
+    return 1;
+}
+
+static int fold_taylor(const gen_span_ctx *c, int ch, double m, double h, double *d1, double *d2);
+
 /* Channel ch's e'(m), exact, into *d1, and a bound of |e''| on the real
  * segment [m - h, m + h] into *d2 (the comment above "several gradients
  * at a point"); 0 if no bound is had (a radial layer's d reaching 0
@@ -2907,36 +2986,12 @@ static int gen_taylor(const gen_span_ctx *c, int ch, double m, double h, double 
     double f[GEN_MAX][3], fp[GEN_MAX][3], F[GEN_MAX][3], G[GEN_MAX][3], H[GEN_MAX][3];
     if (c->umode)
         return 0; /* in u: the Lipschitz test alone ("a cone beside other gradients") */
+    if (c->fold)
+        return fold_taylor(c, ch, m, h, d1, d2);
     for (int l = 0; l < c->n; l++) {
-        const gen_layer *g = c->L[l];
-        double tm = gen_t(c, l, m), tp, T, P, Q;
-        if (g->rg && g->rg->cone) {
-            if (!c->flat[l])
-                return 0; /* a painted cone: the Lipschitz test alone */
-            tm = tp = T = P = Q = 0.0; /* its paint constant */
-        } else if (!g->rg) {
-            tp = g->gp->tx;
-            T = fabs(tm) + fabs(tp) * h, P = fabs(tp), Q = 0.0;
-        } else {
-            const rad_row *r = &c->row[l];
-            double ia = 1.0 / fabs(g->rg->a), um = fabs(m - r->x0);
-            double Z = um + h, lo = fmax(0.0, um - h), dlo = r->d2 * lo * lo + r->dmin;
-            if (r->dmin == 0.0) {
-                if (!(um >= h))
-                    return 0; /* x0 inside: a kink, which is a cut */
-                Q = 0.0;
-            } else if (dlo > 0.0)
-                Q = r->d2 * fabs(r->dmin) * ia / (dlo * sqrt(dlo));
-            else
-                return 0;
-            double dm = r->d2 * um * um + r->dmin, dz = sqrt(r->d2 * Z * Z + r->dmin);
-            if (!(dm > 0.0))
-                return 0;
-            tp = (r->b1 - r->d2 * (m - r->x0) / sqrt(dm)) / g->rg->a;
-            double U = r->dmin >= 0.0 ? Z : lo, dU = sqrt(r->d2 * U * U + r->dmin);
-            T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * h + dz) * ia;
-            P = (fabs(r->b1) + (dU > 0.0 ? r->d2 * U / dU : 0.0)) * ia;
-        }
+        double tm, tp, T, P, Q;
+        if (!gen_tpq(c, l, m, h, &tm, &tp, &T, &P, &Q))
+            return 0;
         double o0 = c->v0[l][3], o1 = c->v1[l][3], c0 = c->v0[l][ch], c1 = c->v1[l][ch];
         double op = o0 + o1 * tm, cc = c0 + c1 * tm;
         f[l][0] = 1.0, f[l][1] = op, f[l][2] = op * cc;
@@ -2995,6 +3050,229 @@ static int gen_taylor(const gen_span_ctx *c, int ch, double m, double h, double 
         }
     }
     *d1 = s1, *d2 = s2;
+    return 1;
+}
+
+/* ---- more than GEN_MAX layers: the fold ----
+ *
+ * Past GEN_MAX layers the 3^n coefficients are not read; the composite is
+ * folded over the scene's steps (aa_scene_fold: the walk of core's
+ * composite, back to front from the solid layer behind or the
+ * background): each layer source over its group's accumulator, p := a C
+ * + (1 - a) p and alpha := a + (1 - a) alpha (a the layer's alpha times
+ * its opacity op, a C its alpha times op C), each group closed over its
+ * parent's with its opacity o, p := o p_g + (1 - o alpha_g) p and alpha
+ * := o alpha_g + (1 - o alpha_g) alpha; a gradient layer the span does
+ * not depend on is transparent (skipped), as in K.  The value at x is
+ * this fold in double (fold_eval).  The bounds carry, for every quantity
+ * q of the fold (a layer's op, C, op C, each accumulator's p and alpha),
+ * a jet on a region about m of radius A (the Bernstein ellipse, |z - m|
+ * <= A, or the real segment, A = h): q(m), q'(m) (on the segment only),
+ * D >= sup |q'|, H >= sup |q''| (the segment only) and S >= sup |q|.
+ * A layer's jets come from its t's bounds (gen_layer_tp_s, gen_tpq: op =
+ * o0 + o1 t has D = |o1| P, H = |o1| Q, S = |o0| + |o1| T; linear light
+ * as in gen_bounds and gen_taylor; all in the piece's variable, u on a
+ * piece in u, a flat layer's T = P = 0), and the fold's operations keep
+ * them bounds:
+ *     (r s)' = r' s + r s',  (r s)'' = r'' s + 2 r' s' + r s'',
+ * so D(r s) = D_r S_s + S_r D_s, H(r s) = H_r S_s + 2 D_r D_s + S_r H_s,
+ * S(r s) = S_r S_s, sums add, and S is also taken as |q(m)| + D A (the
+ * segment from m to any point of the region lies in it, the ellipse
+ * being convex).  That centred form is what keeps the bounds from
+ * growing with the number of layers: |1 - a(z)| <= (1 - a(m)) + D_a A, a
+ * factor at most about 1 per layer where |1 - a| <= 1 + |a| would give
+ * 1.5^n (3e5 for n = 32, and the power piece's test A |e'| < 0.9 (e(m) +
+ * 0.055) would halve the pieces as much).  The composite's channel jet
+ * gives gen_bounds' |e| <= S, |e'| <= D and gen_taylor's e'(m) and |e''|
+ * <= H, so the threshold's isolation and the rule's Bernstein-ellipse
+ * bound are those of the path above, with the fold's bounds in place of
+ * sum |K_a| prod F; gen_taylor's rule holds the same (in u, or with a
+ * painted cone-case layer, no Taylor bound: the Lipschitz test alone,
+ * "a cone beside other gradients").  Work per evaluation is one pass over the scene's
+ * steps, linear in the layers. */
+typedef struct gjet {
+    double v, d, D, H, S;
+} gjet;
+
+static gjet jet_const(double k) { return (gjet){k, 0.0, 0.0, 0.0, fabs(k)}; }
+
+static gjet jet_tight(gjet q, double A)
+{
+    q.S = fmin(q.S, fabs(q.v) + q.D * A);
+    return q;
+}
+
+static gjet jet_scale(gjet q, double k)
+{
+    double ak = fabs(k);
+    return (gjet){k * q.v, k * q.d, ak * q.D, ak * q.H, ak * q.S};
+}
+
+static gjet jet_mul(gjet r, gjet s, double A)
+{
+    gjet q = {r.v * s.v, r.d * s.v + r.v * s.d, r.D * s.S + r.S * s.D,
+              r.H * s.S + 2.0 * r.D * s.D + r.S * s.H, r.S * s.S};
+    return jet_tight(q, A);
+}
+
+/* ac + (1 - a) p */
+static gjet jet_over(gjet ac, gjet a, gjet p, double A)
+{
+    gjet u = {1.0 - a.v, -a.d, a.D, a.H, 1.0 + a.S}, q;
+    u = jet_tight(u, A);
+    q = jet_mul(u, p, A);
+    q.v += ac.v, q.d += ac.d, q.D += ac.D, q.H += ac.H, q.S += ac.S;
+    return jet_tight(q, A);
+}
+
+/* The fold's channel ch given each of the span's layers' a (alpha times
+ * op) and a C jets (the comment above). */
+static gjet fold_run(const gen_span_ctx *c, int ch, const gjet *la, const gjet *lac, double A)
+{
+    gjet p[AA_SCENE_MAX_GROUP_DEPTH + 1], al[AA_SCENE_MAX_GROUP_DEPTH + 1];
+    int d = 0;
+    p[0] = jet_const(c->base[ch]), al[0] = jet_const(1.0);
+    for (int k = 0; k < c->nst; k++) {
+        const aa_fold_step *st = &c->st[k];
+        if (st->op == AA_FOLD_OPEN) {
+            d++;
+            p[d] = al[d] = jet_const(0.0);
+        } else if (st->op == AA_FOLD_CLOSE) {
+            gjet op = jet_scale(p[d], st->a), oa = jet_scale(al[d], st->a);
+            p[d - 1] = jet_over(op, oa, p[d - 1], A);
+            al[d - 1] = jet_over(oa, oa, al[d - 1], A);
+            d--;
+        } else if (c->sl[k] >= 0) {
+            int l = c->sl[k];
+            p[d] = jet_over(lac[l], la[l], p[d], A);
+            al[d] = jet_over(la[l], la[l], al[d], A);
+        } else if (c->sl[k] == -2) {
+            gjet a = jet_const(st->a);
+            p[d] = jet_over(jet_const(st->a * st->c[ch]), a, p[d], A);
+            al[d] = jet_over(a, a, al[d], A);
+        }
+    }
+    return p[0];
+}
+
+/* e of each channel at real x by the fold. */
+static void fold_eval(const gen_span_ctx *c, double x, double *e)
+{
+    double a[GEN_LAYERS], ac[GEN_LAYERS][3];
+    double p[AA_SCENE_MAX_GROUP_DEPTH + 1][3], al[AA_SCENE_MAX_GROUP_DEPTH + 1];
+    for (int l = 0; l < c->n; l++) {
+        double t = gen_t(c, l, x), op = c->v0[l][3] + c->v1[l][3] * t;
+        a[l] = op;
+        for (int ch = 0; ch < c->nch; ch++) {
+            double v = c->v0[l][ch] + c->v1[l][ch] * t;
+            ac[l][ch] = op * (c->pw[l][ch] ? lin_enc(v) : v);
+        }
+    }
+    int d = 0;
+    for (int ch = 0; ch < 3; ch++)
+        p[0][ch] = c->base[ch];
+    al[0] = 1.0;
+    for (int k = 0; k < c->nst; k++) {
+        const aa_fold_step *st = &c->st[k];
+        if (st->op == AA_FOLD_OPEN) {
+            d++;
+            p[d][0] = p[d][1] = p[d][2] = al[d] = 0.0;
+        } else if (st->op == AA_FOLD_CLOSE) {
+            double oa = st->a * al[d];
+            for (int ch = 0; ch < c->nch; ch++)
+                p[d - 1][ch] = st->a * p[d][ch] + (1.0 - oa) * p[d - 1][ch];
+            al[d - 1] = oa + (1.0 - oa) * al[d - 1];
+            d--;
+        } else if (c->sl[k] != -1) {
+            int l = c->sl[k];
+            double aa = l >= 0 ? st->a * a[l] : st->a;
+            for (int ch = 0; ch < c->nch; ch++) {
+                double acc = l >= 0 ? st->a * ac[l][ch] : st->a * st->c[ch];
+                p[d][ch] = acc + (1.0 - aa) * p[d][ch];
+            }
+            al[d] = aa + (1.0 - aa) * al[d];
+        }
+    }
+    for (int ch = 0; ch < c->nch; ch++)
+        e[ch] = p[0][ch];
+}
+
+/* Layer l's jets of a (alpha times op) and a C, channel ch, on the region
+ * of radius A about m: the ellipse (taylor 0; T, P its gen_layer_tp_s
+ * bounds) or the segment (taylor 1; tm, tp, T, P, Q of gen_tpq); 0 if a
+ * linear-light channel may reach its branch point there. */
+static int fold_layer(const gen_span_ctx *c, int l, int ch, double A, int taylor, double tm,
+                      double tp, double T, double P, double Q, double alpha, gjet *a, gjet *ac)
+{
+    double o0 = c->v0[l][3], o1 = c->v1[l][3], c0 = c->v0[l][ch], c1 = c->v1[l][ch];
+    gjet op = {o0 + o1 * tm, o1 * tp, fabs(o1) * P, fabs(o1) * Q, fabs(o0) + fabs(o1) * T};
+    gjet C = {c0 + c1 * tm, c1 * tp, fabs(c1) * P, fabs(c1) * Q, fabs(c0) + fabs(c1) * T};
+    op = jet_tight(op, A), C = jet_tight(C, A);
+    if (c->pw[l][ch]) {
+        /* linear light, C = 1.055 v^p - 0.055 (p = 1/2.4): as gen_bounds
+         * (the ellipse) and gen_taylor (the segment) bound it */
+        const double pe = 1.0 / 2.4;
+        double vm = c0 + c1 * tm, dv = fabs(c1) * P * A, vlo = vm - dv;
+        if (!(taylor ? vlo > 0.0 : dv < 0.9 * vm))
+            return 0;
+        C.v = lin_enc(vm);
+        C.d = 1.055 * pe * pow(vm, pe - 1.0) * c1 * tp;
+        C.S = 1.055 * pow(vm + dv, pe) + 0.055;
+        C.D = 1.055 * pe * pow(vlo, pe - 1.0) * fabs(c1) * P;
+        C.H = 1.055 * pe * (1.0 - pe) * pow(vlo, pe - 2.0) * c1 * c1 * P * P +
+              1.055 * pe * pow(vlo, pe - 1.0) * fabs(c1) * Q;
+    }
+    *a = jet_scale(op, alpha);
+    *ac = jet_scale(jet_mul(op, C, A), alpha);
+    return 1;
+}
+
+/* The layer's own alpha: that of the fold's step that paints it. */
+static void fold_alphas(const gen_span_ctx *c, double *alpha)
+{
+    for (int l = 0; l < c->n; l++)
+        alpha[l] = 0.0;
+    for (int k = 0; k < c->nst; k++)
+        if (c->st[k].op == AA_FOLD_LAYER && c->sl[k] >= 0)
+            alpha[c->sl[k]] = c->st[k].a;
+}
+
+/* gen_bounds by the fold. */
+static int fold_bounds(const gen_span_ctx *c, double m, double A, double B, double *emax,
+                       double *dmax)
+{
+    double T[GEN_LAYERS], P[GEN_LAYERS], tm[GEN_LAYERS], alpha[GEN_LAYERS];
+    gjet a[GEN_LAYERS], ac[GEN_LAYERS];
+    fold_alphas(c, alpha);
+    for (int l = 0; l < c->n; l++) {
+        if (!gen_layer_tp_s(c, l, m, A, B, &T[l], &P[l]))
+            return 0;
+        tm[l] = gen_t(c, l, m);
+    }
+    for (int ch = 0; ch < c->nch; ch++) {
+        for (int l = 0; l < c->n; l++)
+            if (!fold_layer(c, l, ch, A, 0, tm[l], 0.0, T[l], P[l], 0.0, alpha[l], &a[l], &ac[l]))
+                return 0;
+        gjet e = fold_run(c, ch, a, ac, A);
+        emax[ch] = e.S, dmax[ch] = e.D;
+    }
+    return 1;
+}
+
+/* gen_taylor by the fold. */
+static int fold_taylor(const gen_span_ctx *c, int ch, double m, double h, double *d1, double *d2)
+{
+    double alpha[GEN_LAYERS];
+    gjet a[GEN_LAYERS], ac[GEN_LAYERS];
+    fold_alphas(c, alpha);
+    for (int l = 0; l < c->n; l++) {
+        double tm, tp, T, P, Q;
+        if (!gen_tpq(c, l, m, h, &tm, &tp, &T, &P, &Q) ||
+            !fold_layer(c, l, ch, h, 1, tm, tp, T, P, Q, alpha[l], &a[l], &ac[l]))
+            return 0;
+    }
+    gjet e = fold_run(c, ch, a, ac, h);
+    *d1 = e.d, *d2 = e.H;
     return 1;
 }
 
@@ -3144,11 +3422,11 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
 /* The gradient layers span's colour depends on, at winding w->wind: a
  * layer whose paint set to transparent, opaque black and opaque white
  * (the others transparent) changes the composite.  Their indices in dep
- * (the first GEN_MAX), the last such layer of a cone-case gradient in
+ * (the first GEN_LAYERS), the last such layer of a cone-case gradient in
  * *cone (-1 if none; cone may be NULL), the composite with every layer
  * transparent in f0 (the span's colour where none is found); returns how
  * many were found.  w->gl_paint is left transparent. */
-static int span_deps(worker *w, int dep[GEN_MAX], int *cone, double f0[3])
+static int span_deps(worker *w, int dep[GEN_LAYERS], int *cone, double f0[3])
 {
     static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
     int N = w->ngl, *layers = w->gl_layer, nd = 0;
@@ -3164,7 +3442,7 @@ static int span_deps(worker *w, int dep[GEN_MAX], int *cone, double f0[3])
         memset(paints + 4 * k, 0, 4 * sizeof *paints);
         if (f[0][0] != f[1][0] || f[0][1] != f[1][1] || f[0][2] != f[1][2] ||
             f[1][0] != f[2][0] || f[1][1] != f[2][1] || f[1][2] != f[2][2]) {
-            if (nd < GEN_MAX)
+            if (nd < GEN_LAYERS)
                 dep[nd] = k;
             nd++;
             if (cone && w->gl[k].rg && w->gl[k].rg->cone)
@@ -3204,13 +3482,14 @@ static void gen_root(gen_span_ctx *c, int l, int k, double xr, double eps)
                       c->mu[q][0] == c->mu[l][0] && c->mu[q][1] == c->mu[l][1];
 }
 
-/* The span [xa, xb] of row y (winding w->wind) by the path above; a span
- * painted by more than GEN_MAX gradient layers sets w->gen_over and is
- * left out (the pixel is refused). */
+/* The span [xa, xb] of row y (winding w->wind) by the path above (past
+ * GEN_MAX layers, the fold); a span painted by more than GEN_LAYERS
+ * gradient layers sets w->gen_over and is left out (the pixel is
+ * refused). */
 static void gen_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
     static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
-    int N = w->ngl, *layers = w->gl_layer, dep[GEN_MAX], nd;
+    int N = w->ngl, *layers = w->gl_layer, dep[GEN_LAYERS], nd;
     double *paints = w->gl_paint;
     if (w->radial) { /* the span clipped to the support's chord */
         double s = w->row_s, R = w->R;
@@ -3222,7 +3501,7 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
             return;
     }
     double f[1][3];
-    if ((nd = span_deps(w, dep, NULL, f[0])) > GEN_MAX) {
+    if ((nd = span_deps(w, dep, NULL, f[0])) > GEN_LAYERS) {
         w->gen_over = 1;
         return;
     }
@@ -3240,9 +3519,11 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
     c.weighted = !w->box, c.f = w->f, c.uc = w->uc;
     c.radial = w->radial, c.s = w->row_s, c.wn = w->radial ? aa_filter_weight2(w->f, 0.0, 0.0) : 0.0;
     c.umode = 0, c.ul = -1, c.xr = c.eps = c.P0 = c.P1 = 0.0;
+    c.fold = nd > GEN_MAX;
     for (int l = 0; l < nd; l++) {
         c.L[l] = &w->gl[dep[l]];
-        c.nk *= 3;
+        if (!c.fold)
+            c.nk *= 3;
         c.flat[l] = c.uroot[l] = 0;
         if (c.L[l]->rg)
             rad_row_at(c.L[l]->rg, y, &c.row[l]);
@@ -3251,9 +3532,27 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
                 c.lam[l][k] = c.L[l]->rg->lf[k][0],
                 c.mu[l][k] = c.L[l]->rg->lf[k][1] * y + c.L[l]->rg->lf[k][2];
     }
+    if (c.fold) { /* the scene's steps, each gradient layer's index among the span's */
+        int ns = aa_scene_fold(w->scene, w->wind, N, layers, w->fold, w->cap_fold, c.base);
+        if (ns < 0) { /* cannot happen: cap_fold is aa_scene_fold_cap's */
+            w->gen_stuck = 1;
+            return;
+        }
+        c.st = w->fold, c.nst = ns, c.sl = w->fold_sl;
+        for (int k = 0; k < ns; k++) {
+            int sl = -2, L = w->fold[k].layer;
+            for (int j = 0; j < N && sl == -2; j++)
+                if (layers[j] == L)
+                    sl = -1;
+            for (int l = 0; l < nd && sl == -1; l++)
+                if (layers[dep[l]] == L)
+                    sl = l;
+            w->fold_sl[k] = sl;
+        }
+    }
     /* the coefficients: composites at every choice of paints, then the
      * differences f1 - f0, f2 - f1 along each layer's index */
-    for (int a = 0; a < c.nk; a++) {
+    for (int a = 0; a < c.nk && !c.fold; a++) {
         double e[3];
         for (int l = 0, q = a; l < nd; l++, q /= 3)
             memcpy(paints + 4 * dep[l], P[q % 3], 4 * sizeof *paints);
@@ -3261,7 +3560,7 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
         for (int ch = 0; ch < 3; ch++)
             c.K[ch][a] = e[ch];
     }
-    for (int l = 0, stride = 1; l < nd; l++, stride *= 3)
+    for (int l = 0, stride = 1; l < nd && !c.fold; l++, stride *= 3)
         for (int a = 0; a < c.nk; a++) {
             if ((a / stride) % 3 != 0)
                 continue;
@@ -3455,7 +3754,12 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
  *    t'' it does not bound; the halving is then on the signs and the
  *    budget as ever, a row tangent to the threshold's curve at worst
  *    refusing the pixel by name); a narrow interval in u is its x range
- *    times the colour at its middle, with the same bound.
+ *    times the colour at its middle, with the same bound;
+ *  - past GEN_MAX layers at a point (a cone and other gradients, or more
+ *    than GEN_MAX layers of one cone) the composite is folded ("the
+ *    fold"), its bounds from the same layers' T and P in the piece's
+ *    variable (gen_layer_tp_s) and no Taylor bound in u or with a painted
+ *    cone layer, as above; past GEN_LAYERS the pixel is refused.
  * The outer breakpoints are the union of the layers' own, as for several
  * gradients (grad_breakpoints): the cone's tangent lines and front arcs
  * among them.
@@ -3486,7 +3790,7 @@ static int cone_same(const grad_radial *g, const grad_radial *h)
 static void mix_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
     static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
-    int N = w->ngl, *layers = w->gl_layer, cone, dep[GEN_MAX], same = 1;
+    int N = w->ngl, *layers = w->gl_layer, cone, dep[GEN_LAYERS], same = 1;
     double *paints = w->gl_paint, fz[3];
     int nd = span_deps(w, dep, &cone, fz);
     if (cone < 0 || w->gl[cone].lin) { /* no cone, or in linear light: several gradients */
@@ -4739,9 +5043,9 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
     if (w->gen_over) {
         w->gen_over = 0;
         return aa_fail(AA_EINVAL, "pixel (%g, %g): more than %d gradient layers paint one point "
-                                  "(the reference reads 3^n composites for each span n of them "
-                                  "paint): refused; sample it with point, supersample or jitter",
-                       w->uc - 0.5, w->vc - 0.5, GEN_MAX);
+                                  "(the reference folds at most that many layers' bounds a "
+                                  "span): refused; sample it with point, supersample or jitter",
+                       w->uc - 0.5, w->vc - 0.5, GEN_LAYERS);
     }
     if (grey)
         value[1] = value[2] = value[0];
