@@ -256,7 +256,14 @@
  * change over the ellipse).  The outer breakpoints are the union of the
  * layers' own (stop lines and circles as above); the threshold's curve is
  * no circle then and is left to QAG's bisection, as the linear path's
- * kink at 0.04045 is.  Scenes that do not mix take the paths above, to
+ * kink at 0.04045 is.  Its estimate does not always see the kink, so the
+ * bound there is not proven: each layer's threshold circles
+ * (threshold_taus) are the composite's with the other gradients at their
+ * first stops, the threshold only where no other gradient paints, and n
+ * identical translucent radial layers (tests/test_gradient.c,
+ * test_many_layers_stack) came out up to 6.9e-13 off at 12 layers
+ * against a bound of 1.6e-13; given the stack's own threshold circles as
+ * breakpoints, within 2e-15.  Scenes that do not mix take the paths above, to
  * the bit, except that the radial path's test of which layer a span
  * depends on now takes the other gradients as transparent (their
  * stand-in colour, the first stop's at the layer's alpha, could hide a
