@@ -635,6 +635,21 @@ static int cmp_dbl(const void *a, const void *b)
  * w->wind, of each channel of the decoded composite (box: weight 1). */
 static void rad_span(worker *w, double xa, double xb, double y, int nch, double *sum);
 static void gen_span(worker *w, double xa, double xb, double y, int nch, double *sum);
+
+/* Under a radial filter, the span [*xa, *xb] of the row at height w->row_s
+ * from the centre clipped to the support's chord; 0 if nothing is left
+ * (or the row misses the support). */
+static int chord_clip(const worker *w, double *xa, double *xb)
+{
+    if (!w->radial)
+        return 1;
+    double s = w->row_s, R = w->R;
+    if (!(fabs(s) < R))
+        return 0;
+    double hc = sqrt((R - s) * (R + s));
+    *xa = fmax(*xa, w->uc - hc), *xb = fmin(*xb, w->uc + hc);
+    return *xb > *xa;
+}
 static void mix_span(worker *w, double xa, double xb, double y, int nch, double *sum);
 static void grad_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
@@ -2163,15 +2178,8 @@ static void cone_span(worker *w, const grad_radial *g, const cone_comp *cc, doub
  * says, each piece integrated by rad_piece. */
 static void rad_span(worker *w, double xa, double xb, double y, int nch, double *sum)
 {
-    if (w->radial) { /* (the cone case alone) the span clipped to the support's chord */
-        double s = w->row_s, R = w->R;
-        if (!(fabs(s) < R))
-            return;
-        double hc = sqrt((R - s) * (R + s));
-        xa = fmax(xa, w->uc - hc), xb = fmin(xb, w->uc + hc);
-        if (!(xb > xa))
-            return;
-    }
+    if (!chord_clip(w, &xa, &xb)) /* the span clipped to the support's chord */
+        return;
     const grad_radial *g = NULL;
     /* the composite's K0, K1, K2 per channel (in a scene of radial
      * gradients only, w->gl[k] is w->rg[k]) */
@@ -3501,15 +3509,8 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
     static const double P[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
     int N = w->ngl, *layers = w->gl_layer, dep[GEN_LAYERS], nd;
     double *paints = w->gl_paint;
-    if (w->radial) { /* the span clipped to the support's chord */
-        double s = w->row_s, R = w->R;
-        if (!(fabs(s) < R))
-            return;
-        double ch = sqrt((R - s) * (R + s));
-        xa = fmax(xa, w->uc - ch), xb = fmin(xb, w->uc + ch);
-        if (!(xb > xa))
-            return;
-    }
+    if (!chord_clip(w, &xa, &xb)) /* the span clipped to the support's chord */
+        return;
     double f[1][3];
     if ((nd = span_deps(w, dep, NULL, f[0])) > GEN_LAYERS) {
         w->gen_over = 1;
@@ -3816,15 +3817,8 @@ static void mix_span(worker *w, double xa, double xb, double y, int nch, double 
         gen_span(w, xa, xb, y, nch, sum);
         return;
     }
-    if (w->radial) { /* the span clipped to the support's chord */
-        double s = w->row_s, R = w->R;
-        if (!(fabs(s) < R))
-            return;
-        double hc = sqrt((R - s) * (R + s));
-        xa = fmax(xa, w->uc - hc), xb = fmin(xb, w->uc + hc);
-        if (!(xb > xa))
-            return;
-    }
+    if (!chord_clip(w, &xa, &xb)) /* the span clipped to the support's chord */
+        return;
     /* the composite's K: composites at every choice of paints, then the
      * differences f1 - f0, f2 - f1 along each layer's index (gen_span) */
     cone_comp cc;
