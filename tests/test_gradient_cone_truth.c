@@ -598,8 +598,12 @@ static void test_layers(void **state)
  * The cone's black-to-white ramp (padded, opaque) over the whole canvas,
  * over black, and over it on the rectangle OR a second gradient of
  * encoded colour C = 0.9 - 0.88 s and opacity alpha = 0.35 + 0.45 s, s
- * its own t padded: a linear one (P1 (4, 2) to P2 (12, 9)) or a radial
- * one of nested circles (centre (8, 6), r 6, focus (6.5, 5), fr 0).
+ * its own t padded: a linear one (P1 (4, 2) to P2 (12, 9)), a radial
+ * one of nested circles (centre (8, 6), r 6, focus (6.5, 5), fr 0) or a
+ * second cone-case one (C (6, 4), r 2.4, F (11.5, 6.5), fr 0.8: a wedge
+ * opening the other way, its s unpainted outside it, where the layer
+ * leaves the cone below as it is; its tangents, circles s = 0 and 1 and
+ * apex cut as the first cone's).
  * Known answer: source over in encoded values (SVG's compositing of
  * sRGB-encoded colours) gives e = alpha C + (1 - alpha) e_cone on OR,
  * e_cone elsewhere (e_cone the cone's clamped t where painted, 0 where
@@ -626,6 +630,8 @@ typedef struct over_pic {
     int front; /* the gradient on OR (else the cone alone) */
     int lin;   /* the cone in linear light (test_linear) */
     int two;   /* the cone on LA and LB with test_layers' ramp from 0.2 */
+    int cone;  /* the gradient on OR is a second cone, fc (else g) */
+    pic fc;
 } over_pic;
 
 /* sRGB's encoding (IEC 61966-2-1) of the linear value v. */
@@ -645,7 +651,9 @@ static double over_enc(const over_pic *o, double x, double y)
         e = isnan(t) || n == 0 ? 0.0 : n == 1 ? al * c : al * c * (2 - al);
     }
     if (o->front && x > OR[0] && x < OR[2] && y > OR[1] && y < OR[3]) {
-        double s = go_pic_t(&o->g, x, y);
+        double s = o->cone ? pic_t(&o->fc, x, y) : go_pic_t(&o->g, x, y);
+        if (isnan(s)) /* the second cone does not paint here */
+            return e;
         s = s < 0 ? 0 : s > 1 ? 1 : s;
         double C = 0.9 - 0.88 * s, al = 0.35 + 0.45 * s;
         e = al * C + (1 - al) * e;
@@ -670,8 +678,15 @@ static double over_y(double y, void *v)
         n += line_meet(pc, k, 0, y, cut + n);
     for (int q = 0; q < pc->ntaus; q++)
         n += circle_meet(pc, pc->taus[q], 0, y, cut + n);
-    for (int q = 0; q < 3; q += 2)
-        n += go_tau_meet(&o->g, go_taus[q], 0, y, cut + n);
+    if (o->cone) { /* the second cone's tangents, circles t = 0 and 1, apex */
+        for (int k = 0; k < o->fc.nh; k++)
+            n += line_meet(&o->fc, k, 0, y, cut + n);
+        for (int q = 0; q < 3; q += 2)
+            n += circle_meet(&o->fc, go_taus[q], 0, y, cut + n);
+        cut[n++] = o->fc.apex[0];
+    } else
+        for (int q = 0; q < 3; q += 2)
+            n += go_tau_meet(&o->g, go_taus[q], 0, y, cut + n);
     cut[n++] = OR[0], cut[n++] = OR[2], cut[n++] = pc->apex[0];
     cut[n++] = pc->xlo, cut[n++] = pc->xhi;
     if (o->two)
@@ -712,8 +727,25 @@ static double over_pixel(over_pic *o, int i, int j)
             n += line_meet(pc, k, 1, cols[c], cut + n);
         for (int q = 0; q < pc->ntaus; q++)
             n += circle_meet(pc, pc->taus[q], 1, cols[c], cut + n);
-        for (int q = 0; q < 3; q += 2)
-            n += go_tau_meet(&o->g, go_taus[q], 1, cols[c], cut + n);
+        if (o->cone) {
+            for (int k = 0; k < o->fc.nh; k++)
+                n += line_meet(&o->fc, k, 1, cols[c], cut + n);
+            for (int q = 0; q < 3; q += 2)
+                n += circle_meet(&o->fc, go_taus[q], 1, cols[c], cut + n);
+        } else
+            for (int q = 0; q < 3; q += 2)
+                n += go_tau_meet(&o->g, go_taus[q], 1, cols[c], cut + n);
+    }
+    if (o->cone) { /* the second cone's apex row, circles' top and bottom rows, touches */
+        const double *f = o->fc.p;
+        cut[n++] = o->fc.apex[1];
+        for (int q = 0; q < 3; q += 2) {
+            double tau = go_taus[q], rr = f[5] + tau * (f[2] - f[5]);
+            double ccy = f[4] + tau * (f[1] - f[4]);
+            cut[n++] = ccy - rr, cut[n++] = ccy + rr;
+            for (int k = 0; k < o->fc.nh; k++)
+                cut[n++] = co_touch_y(f, tau, &o->fc.hp[k]);
+        }
     }
     if (o->g.radial)
         for (int q = 0; q < 3; q += 2) {
@@ -840,15 +872,30 @@ static void test_over(void **state)
     static const int px[][2] = {{4, 3}, {5, 3}, {6, 3}, {7, 3}, {8, 3}, {4, 6}, {4, 7},
                                 {5, 7}, {6, 7}, {6, 8}, {7, 8}, {8, 9}, {4, 4}, {5, 5},
                                 {9, 5}, {11, 2}, {12, 9}, {4, 1}, {10, 8}, {4, 5}};
-    static const char *const what[3] = {"a linear gradient", "a radial gradient",
-                                        "a linear gradient, on two layers"};
-    for (int kind = 0; kind < 3; kind++) {
-        aa_gradient g = {kind == 1 ? AA_GRADIENT_RADIAL : AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {0},
+    static const char *const what[4] = {"a linear gradient", "a radial gradient",
+                                        "a linear gradient, on two layers",
+                                        "a second cone-case gradient"};
+    /* the second cone: from P2 = (14.25, 7.75) opening towards C = (6, 4),
+     * half-angle 15.4 degrees; its tangents cross OR and the first
+     * wedge's (pixels (8, 3), (9, 3), (4, 6) hold an edge of each) */
+    static const double q2[6] = {6.0, 4.0, 2.4, 11.5, 6.5, 0.8};
+    static const int px2[][2] = {{8, 3}, {9, 3}, {4, 6}, {6, 1}, {7, 2}, {8, 2}, {9, 4},
+                                 {10, 5}, {12, 5}, {5, 6}, {7, 6}, {9, 6}, {12, 6}, {10, 7},
+                                 {12, 7}, {6, 4}, {7, 4}, {6, 5}, {4, 1}, {12, 9}};
+    for (int kind = 0; kind < 4; kind++) {
+        int radial = kind == 1 || kind == 3;
+        aa_gradient g = {radial ? AA_GRADIENT_RADIAL : AA_GRADIENT_LINEAR, AA_SPREAD_PAD, {0},
                          {1.0 / W, 0, 0, 1.0 / H, 0, 0}, 2, st};
         over_pic o;
         memset(&o, 0, sizeof o);
         o.front = 1, o.two = kind == 2;
-        if (kind == 1) {
+        if (kind == 3) {
+            memcpy(g.p, q2, sizeof q2);
+            o.cone = 1;
+            memcpy(o.fc.p, q2, sizeof q2);
+            o.fc.nh = co_region(q2, o.fc.hp, &o.fc.wedge, o.fc.apex);
+            assert_int_equal(o.fc.wedge, 1);
+        } else if (kind == 1) {
             const double q[6] = {8, 6, 6, 6.5, 5, 0};
             memcpy(g.p, q, sizeof q);
             o.g.radial = o.g.focal = 1;
@@ -864,7 +911,11 @@ static void test_over(void **state)
         o.pc.nh = co_region(p, o.pc.hp, &o.pc.wedge, o.pc.apex);
         char label[64];
         snprintf(label, sizeof label, "cone under %s", what[kind]);
-        over_check(&o, over_scene(p, &g, kind == 2 ? 2 : 0), px, sizeof px / sizeof *px, label);
+        if (kind == 3)
+            over_check(&o, over_scene(p, &g, 0), px2, sizeof px2 / sizeof *px2, label);
+        else
+            over_check(&o, over_scene(p, &g, kind == 2 ? 2 : 0), px, sizeof px / sizeof *px,
+                       label);
     }
 }
 

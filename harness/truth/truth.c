@@ -293,11 +293,12 @@
  * a = 0: the half-plane's edge, where t has a pole, in place of the
  * lines).  Under the other filters the same path carries the row's weight
  * as a factor, the row cut also at the filter's kinks.  Beside other
- * gradients each span takes the path of the layers it depends on, and a
- * pixel where the cone and another gradient paint one point is refused
- * ("a cone beside other gradients"); several layers of one cone take
- * their composite, a polynomial in the shared t, on the cone's path ("one
- * cone on several layers"); the cone in linear light is refused.
+ * gradients each span takes the path of the layers it depends on ("a
+ * cone beside other gradients"); several layers of one cone take their
+ * composite, a polynomial in the shared t, on the cone's path ("one cone
+ * on several layers"); where the cone and another gradient (a second
+ * cone too) paint one point, and for the cone in linear light, the path
+ * of several gradients takes it with the cone's cuts (there).
  *
  * The other separable filters (tent, gauss, bspline, mitchell, catrom,
  * lanczos; "the other separable filters" below): every span of a
