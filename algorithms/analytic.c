@@ -419,12 +419,11 @@
  * support meets one takes its own visible parts, and per part the
  * isolation of its circle crossings (a speed bound of nine discs per
  * interval, each crossing solved by Newton's method) before the rule: on
- * 60 separate strokes of single cubics (an SVG at 256x256, 2.5 px wide;
- * one thread, CPU time, medians of five, a loaded machine) 207 ms (206
- * to 209) under radial:k=2,r=1.5 against 12.9 ms (12.6 to 12.9) under
- * tent:r=1 and area's 2.39 ms (2.33 to 2.47; 86x), half of it in the isolation and a third in its root solving
- * (perf); bench_bezstroke's 1024 px scene was not measured under it (a
- * render takes minutes there).  The
+ * bench_bezstroke's scene at 256x256 (-s 256x256 -f radial:k=2,r=1.5,
+ * one thread, CPU time, medians of five) 2.17 s under radial:k=2,r=1.5
+ * against 350 ms under tent:r=1 and area's 102 ms (21x;
+ * algorithms/README.md), half of it in the isolation and a third in its
+ * root solving (perf, on 60 separate strokes).  The
  * image does
  * not depend on the thread count (rows are taken AN_BLOCK at a time by
  * the scatters, one at a time by the per-pixel visible parts, each from
