@@ -92,9 +92,9 @@
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
  * linearRGB on what is drawn (compositing in linear light, which no browser
  * does; on a gradient element it is read: "gradients"), <pattern> paint servers, the
- * radial gradients SVG 2 draws as a cone (grad_resolve), text, images, clip-path other than url(#id) or
+ * radial gradients whose focal circle is their end circle (grad_resolve), text, images, clip-path other than url(#id) or
  * none (basic shapes, geometry boxes, other documents) and on the root,
- * <text>, <use> and other non-shapes in a clipPath, references to clip
+ * <text>, <g> and other non-shapes in a clipPath, references to clip
  * paths forming a cycle, masks, filters, transform-box
  * stroke-box of a stroke with offset curves (its extent not computed
  * exactly) or inside an object bounding box (its stroke not known there),
@@ -3225,8 +3225,15 @@ static int group_begin(reader *r, double o)
  *     clip-path clips the clip (an intersection), in the referencing
  *     element's user space and bounding box.  The display of the clipPath
  *     and its ancestors does not matter (it is referenced, never drawn).
- *     <text> and <use> children are refused (not supported), as is any
- *     other element (not in a clipPath's content model).
+ *     A <use> child adds its target's fill geometry through the use's
+ *     transform and translate(x, y), then the target's (its clip-path in
+ *     the space after translate(x, y), the target's own within it), the
+ *     target's clip-rule and visibility inherited from the use as by a
+ *     child; the target must be a shape itself ("Indirect references are
+ *     an error", CSS Masking 1): a use of a <g> or of another <use>, or of
+ *     nothing, adds nothing, as Chromium draws it (resvg draws a use of a
+ *     use).  <text> children are refused (not supported), as is any other
+ *     element (not in a clipPath's content model).
  *   - An element's clip lies within the clip of every ancestor group:
  *     the intersection, as the group's content is clipped as a whole.
  *     So it does within the clip of a <use> (its clip-path in its user
@@ -3707,37 +3714,74 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
         r->node = c;
         if (named(c, "title") || named(c, "desc") || named(c, "metadata"))
             continue;
-        int shape = 0;
+        int use = named(c, "use"), shape = 0;
         for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
             shape |= named(c, shapes[k]);
-        if (!shape) {
-            st = named(c, "text") || named(c, "use")
+        if (!shape && !use) {
+            st = named(c, "text")
                      ? fail_at(r, "<%s> in a <clipPath> is not supported", (const char *)c->name)
                      : fail_at(r, "not allowed in a <clipPath> (CSS Masking 1: shapes, text "
                                   "and use)");
             break;
         }
-        if ((st = check_props(r, c)))
+        /* a <use>: its target, which must be a shape itself (CSS Masking
+         * 1: "it must directly reference path, text or basic shapes
+         * elements. Indirect references are an error"); one that is not
+         * (a <g>, another <use>) or is missing adds nothing, as Chromium
+         * draws it (resvg draws a use of a use) */
+        const xmlNode *t = c;
+        if (use) {
+            if ((st = check_props(r, c)))
+                break;
+            if (prop(r, c, "display", v, sizeof v, &st) && !strcasecmp(v, "none"))
+                continue;
+            if (st || (st = use_target(r, c, &t)))
+                break;
+            int direct = 0;
+            for (size_t k = 0; t && is_svg(t) && k < sizeof shapes / sizeof shapes[0]; k++)
+                direct |= named(t, shapes[k]);
+            if (!direct)
+                continue;
+            r->node = t;
+        }
+        /* the shape's own properties; a use's first, inherited by its
+         * target as by a child (its shadow tree) */
+        style cs = inh;
+        if (use && (st = clip_style(r, c, &cs)))
             break;
-        if (prop(r, c, "display", v, sizeof v, &st) && !strcasecmp(v, "none"))
+        if ((st = check_props(r, t)))
+            break;
+        if (prop(r, t, "display", v, sizeof v, &st) && !strcasecmp(v, "none"))
             continue;
         static const char *const refused[] = {"mask", "filter"};
         for (int k = 0; k < 2 && !st; k++)
-            if (prop(r, c, refused[k], v, sizeof v, &st) && strcasecmp(v, "none"))
+            if (prop(r, t, refused[k], v, sizeof v, &st) && strcasecmp(v, "none"))
                 st = fail_at(r, "%s=\"%s\": %s not supported", refused[k], aa_echo(v),
                              k == 0 ? "masks are" : "filters are");
-        style cs = inh;
-        if (st || (st = clip_style(r, c, &cs)))
+        if (st || (st = clip_style(r, t, &cs)))
             break;
-        if (!cs.visible || named(c, "line")) /* hidden, or no area */
+        if (!cs.visible || named(t, "line")) /* hidden, or no area */
             continue;
         clip_member *k = &mem[nm];
         aa_path_init(&k->path);
         k->m = mc;
         k->rule = cs.clip_rule;
         nm++;
-        if ((st = element_transform(r, c, &k->m)) || (st = shape_path(r, c, &k->path)) ||
-            (st = clip_of(r, c, &k->m, -1, &k->gate)))
+        int gate = -1;
+        if (use) {
+            /* the use's transform, then translate(x, y), in which space its
+             * own clip-path lies (as use_element draws it) */
+            double x, y;
+            if ((st = element_transform(r, c, &k->m)) ||
+                (st = attr_length(r, c, "x", 0, &x)) || (st = attr_length(r, c, "y", 0, &y)))
+                break;
+            const mat at = {1, 0, 0, 1, x, y};
+            k->m = mat_mul(k->m, at);
+            if ((st = clip_of(r, c, &k->m, -1, &gate)))
+                break;
+        }
+        if ((st = element_transform(r, t, &k->m)) || (st = shape_path(r, t, &k->path)) ||
+            (st = clip_of(r, t, &k->m, gate, &k->gate)))
             break;
     }
     if (!st && (st = r->sink->clip_begin(r->ctx, within)))

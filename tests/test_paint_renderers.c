@@ -51,7 +51,7 @@
 
 #define CELL 40
 #define COLS 4
-#define ROWS 16
+#define ROWS 17
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
@@ -358,6 +358,34 @@ static const cell cells[] = {
      "fill=\"white\"/></defs><use href=\"#k3r\" x=\"12\" y=\"16\" clip-path=\"url(#k3u)\"/>",
      {{16, 20, {1, 1, 1}}, {24, 20, {0, 0, 0}}},
      2, ""},
+    /* <use> in a clipPath: the rect [2, 14] x [3, 17] through the use's
+     * transform translate(1, 2) and its x = 2, y = 1, so [5, 17] x [6, 20]:
+     * white at (11, 13), black at (3, 4); the square ring [20, 36]^2 less
+     * [24, 32]^2 by the use's clip-rule evenodd, which its target
+     * inherits: white at (22, 22), black in the hole at (28, 28) */
+    {"use in a clipPath",
+     "<defs><rect id=\"ku1\" x=\"2\" y=\"3\" width=\"12\" height=\"14\" fill=\"red\"/>"
+     "<path id=\"ku2\" d=\"M20 20 H36 V36 H20 Z M24 24 H32 V32 H24 Z\"/></defs>"
+     "<clipPath id=\"ku\"><use href=\"#ku1\" x=\"2\" y=\"1\" transform=\"translate(1 2)\"/>"
+     "<use href=\"#ku2\" clip-rule=\"evenodd\"/></clipPath>"
+     "<rect width=\"40\" height=\"40\" fill=\"white\" clip-path=\"url(#ku)\"/>",
+     {{11, 13, {1, 1, 1}}, {3, 4, {0, 0, 0}}, {22, 22, {1, 1, 1}}, {28, 28, {0, 0, 0}}},
+     4, ""},
+    /* a clipPath's <use> must name a shape itself (CSS Masking 1:
+     * "Indirect references are an error"): a use of the use of [4, 18]^2
+     * at x = 18 adds nothing, black at (29, 11) (resvg draws it: wrong by
+     * the spec); the target's visibility visible overrides the hidden it
+     * would inherit from the use: [4, 18] x [22, 36] white at (11, 29); a
+     * use of display none adds nothing: black at (11, 11) */
+    {"use of a use in a clipPath",
+     "<defs><rect id=\"kv1\" x=\"4\" y=\"4\" width=\"14\" height=\"14\"/>"
+     "<use id=\"kv2\" href=\"#kv1\" x=\"18\"/><rect id=\"kv3\" x=\"4\" y=\"22\" "
+     "width=\"14\" height=\"14\" visibility=\"visible\"/></defs>"
+     "<clipPath id=\"kv\"><use href=\"#kv2\"/><use href=\"#kv3\" visibility=\"hidden\"/>"
+     "<use href=\"#kv1\" display=\"none\"/></clipPath>"
+     "<rect width=\"40\" height=\"40\" fill=\"white\" clip-path=\"url(#kv)\"/>",
+     {{29, 11, {0, 0, 0}}, {11, 29, {1, 1, 1}}, {11, 11, {0, 0, 0}}},
+     3, "resvg"},
     /* objectBoundingBox of a cubic: its box is the curve's, not its control
      * points' (SVG 2, "Bounding boxes"): M 4 30 C 4 6, 36 6, 36 30 reaches
      * up to y(1/2) = (30 + 18 + 18 + 30)/8 = 12 (its controls to 6), so

@@ -369,6 +369,39 @@ static void test_clip_rule(void **state)
     check_area("inherited", body, 1536);
 }
 
+/* <use> in a clipPath (CSS Masking 1: it must name a shape directly),
+ * its regions apart so that the clip's area is their sum:
+ *  - the 10 x 20 rect through translate(1.25 0.5) and x = 2, y = 1:
+ *    [5.75, 15.75] x [4.75, 24.75], area 200;
+ *  - the square ring [30, 50]^2 less [35, 45]^2 by the use's clip-rule
+ *    evenodd, which the path inherits: 400 - 100 = 300;
+ *  - the disk of radius 6 through translate(0 10) scale(1 0.5): an
+ *    ellipse of semi-axes 6 and 3 about (20, 32.5), area 18 pi;
+ *  - the rect [2, 12] x [40, 60] inside the use's own clip-path, the
+ *    strip x < 7: [2, 7] x [40, 60], area 100;
+ *  - a use of a <g>, a use of a use (indirect references, an error: no
+ *    area) and a use of display none: nothing.
+ * In all 600 + 18 pi. */
+static void test_use_in_clip(void **state)
+{
+    (void)state;
+    check_area("use in a clipPath",
+               "<defs><rect id=\"u1\" x=\"2.5\" y=\"3.25\" width=\"10\" height=\"20\"/>"
+               "<path id=\"u2\" d=\"M30 30 H50 V50 H30 Z M35 35 H45 V45 H35 Z\"/>"
+               "<circle id=\"u3\" cx=\"20\" cy=\"45\" r=\"6\"/>"
+               "<rect id=\"u6\" x=\"2\" y=\"40\" width=\"10\" height=\"20\"/>"
+               "<g id=\"u4\"><rect x=\"52\" y=\"2\" width=\"10\" height=\"10\"/></g>"
+               "<use id=\"u5\" href=\"#u1\" x=\"40\"/></defs>"
+               "<clipPath id=\"h\"><rect width=\"7\" height=\"64\"/></clipPath>"
+               "<clipPath id=\"c\"><use href=\"#u1\" x=\"2\" y=\"1\" "
+               "transform=\"translate(1.25 0.5)\"/><use href=\"#u2\" clip-rule=\"evenodd\"/>"
+               "<use href=\"#u3\" transform=\"translate(0 10) scale(1 0.5)\"/>"
+               "<use href=\"#u6\" clip-path=\"url(#h)\"/><use href=\"#u4\"/>"
+               "<use href=\"#u5\"/><use href=\"#u1\" x=\"30\" display=\"none\"/></clipPath>"
+               "<rect width=\"64\" height=\"64\" clip-path=\"url(#c)\"/>",
+               600 + 18 * M_PI);
+}
+
 /* clipPathUnits="objectBoundingBox" on an ellipse of semi-axes a = 24,
  * b = 12 at (32, 32) moved by translate(2 4) (its box in its user space:
  * [8, 56] x [20, 44]): the box's middle half across, x in [0.25, 0.75] of
@@ -663,7 +696,7 @@ static void test_export_round_trip(void **state)
 SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_scene_model),
              cmocka_unit_test(test_clip_unit), cmocka_unit_test(test_half_disk),
              cmocka_unit_test(test_small_disk), cmocka_unit_test(test_viewport_element),
-             cmocka_unit_test(test_clip_rule),
+             cmocka_unit_test(test_clip_rule), cmocka_unit_test(test_use_in_clip),
              cmocka_unit_test(test_bounding_box), cmocka_unit_test(test_clip_of_clip),
              cmocka_unit_test(test_group_opacity), cmocka_unit_test(test_invalid_references),
              cmocka_unit_test(test_refused), cmocka_unit_test(test_shipped),
