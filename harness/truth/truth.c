@@ -274,7 +274,39 @@
  * than 2^-40 of the piece included (bz_roots); sampled at 64 points a
  * piece, two roots 0.0031 apart in t went unseen and a stack's pixel was
  * 4.8e-13 off against a bound of 9.7e-14, 2.6e-18 now (tests/
- * test_gradient.c, test_stack_close_roots).  Scenes that do not mix take the paths above, to
+ * test_gradient.c, test_stack_close_roots).
+ *
+ * Where layers of different t mix, the threshold's curve is still no
+ * breakpoint, and the pixel's bound there is QAG's estimate, not a proof.
+ * Why: the row integral F(y) = int dec(E(x, y)) w dx is analytic between
+ * heights where the curve crosses rows transversally (the crossing x(y)
+ * is analytic, and each side of it takes one of the decoding's pieces),
+ * but not at the heights where the curve is tangent to a row (E = c and
+ * dE/dx = 0) or crosses another of the row's cuts (a stop line or
+ * circle, a piece, the window's side).  The decoding's slope steps by
+ * 0.0013 at c = 0.04045 and its value by 2.3e-9 (IEC 61966-2-1's two
+ * pieces do not meet: 0.04045 / 12.92 - (0.09545 / 1.055)^2.4), so at a
+ * tangency F has a term 2.3e-9 times the chord, a square root of the
+ * height's distance, besides the slope's (y - y0)^(3/2).  A radial
+ * gradient at alpha 0.6 over a linear one whose t runs along y, the
+ * curve's lowest point (a horizontal tangent) at (7.5, 7.745) in pixel
+ * (7, 7) and the curve crossing the stop line y = 7.76 in that pixel,
+ * came out 1.6e-12 off GSL's 2-D quadrature of the picture (mpic_pixel,
+ * the same to the bit with 8 times its sampling) against a bound of
+ * 2.3e-14; given that height as a turning point the pixel came inside
+ * its bound, and pixel (6, 7), where the curve crosses the window's side
+ * x = 7, stayed 3.5e-13 off against 2.9e-14.  A proven rule needs those
+ * heights as breakpoints, found by a certified 2-D method (interval
+ * Newton on E = c, dE/dx = 0, and on E = c along each cut), and a bound
+ * of the rule's error between them; neither is here.  Nor is the
+ * alternative of cells: a 2-D subdivision of the cells the curve
+ * crosses, each taking the power piece across the curve with the error
+ * |dec(E) - P(E)| <= 2.3e-9 + 0.0013 |E - c| <= 2.3e-9 + 0.0013 |grad E|
+ * sqrt(2) h, needs cells of about h = 1.5e-6 px for 1e-14 along a curve 1
+ * px long with |grad E| ~ 1 / px (the value step alone asks 2 h 2.3e-9 <=
+ * 1e-14): 1.3e6 cells a pixel, each with its own rows.
+ *
+ * Scenes that do not mix take the paths above, to
  * the bit, except that the radial path's test of which layer a span
  * depends on now takes the other gradients as transparent (their
  * stand-in colour, the first stop's at the layer's alpha, could hide a
