@@ -1855,6 +1855,162 @@ static void test_many_layers_mixed(void **state)
     mpic_check("12 translucent layers", &p, px, 1);
 }
 
+/* Two identical translucent radial layers (one gradient: the composite a
+ * polynomial in the shared t) whose red channel passes 0.04045 twice
+ * within 0.0031 of t.  Written out: a = 0.6 (1 - t) the layer's opacity
+ * times alpha, C = C1 t its encoded red over a black background, so the
+ * composite is E(t) = (1 - (1 - a)^2) C, whose largest value, at t =
+ * 0.54313, is 0.256955 C1 (maximised by ternary search, outside the
+ * library); C1 = 0.15742186 (the stop's linear 0.021353654) puts it 4e-7
+ * above the threshold, with roots at t = 0.541589 and 0.544676.  The
+ * gradient is centred, of radius 1 px (t = rho, the distance to the
+ * centre), and each of the four pixels around its centre spans a range
+ * of t of 0.6 or more up to the stop at 1: the threshold's circles were
+ * found at 64 points a piece, steps of 0.01 or more, and both roots fell
+ * within one (pixel (7, 6) 4.8e-13 off against a bound of 9.7e-14).
+ * The known answer: the picture depends on rho alone there (the discs of
+ * radius 3 cover those pixels), so a pixel's integral is int f(rho)
+ * L(rho) drho, L the length of the circle of radius rho inside the
+ * pixel's square (the angles where it crosses the square's sides, each
+ * arc between them in or out by its midpoint) and f the picture along a
+ * ray (mpic_enc); GSL's QAG between the distances to the square's sides
+ * and corners, where L has kinks, and the roots of E(rho) - 0.04045 and
+ * rho = 1 (the last stop), where f has; the roots sampled at 2^16 points
+ * and bisected.  (mpic_pixel's sampling at 256 points a row is too coarse
+ * for a ring 0.003 px wide: it moved by 3e-13 at 4096.) */
+static const aa_gradient_stop close_roots[2] = {{0.0, {{0, 0.2, 1}}, 1.0},
+                                                {1.0, {{0.021353654058843805, 0.2, 1}}, 0.0}};
+
+typedef struct ring_ctx {
+    const mpic *p;
+    double cx, cy, x0, y0; /* centre; pixel's corner */
+} ring_ctx;
+
+/* The length of the circle of radius rho about (cx, cy) inside the unit
+ * square at (x0, y0). */
+static double ring_len(const ring_ctx *c, double rho)
+{
+    double th[16];
+    int n = 0;
+    for (int k = 0; k < 4; k++) {
+        int vert = k < 2; /* x = side, or y = side */
+        double side = vert ? c->x0 + k : c->y0 + (k - 2), d = side - (vert ? c->cx : c->cy);
+        if (fabs(d) >= rho)
+            continue;
+        double a = vert ? acos(d / rho) : asin(d / rho);
+        double cand[2] = {a, vert ? -a : M_PI - a};
+        for (int q = 0; q < 2; q++)
+            th[n++] = fmod(cand[q] + 4 * M_PI, 2 * M_PI);
+    }
+    th[n++] = 0, th[n++] = 2 * M_PI;
+    qsort(th, (size_t)n, sizeof *th, cmp_double);
+    double len = 0;
+    for (int k = 0; k + 1 < n; k++) {
+        double m = 0.5 * (th[k] + th[k + 1]), x = c->cx + rho * cos(m), y = c->cy + rho * sin(m);
+        if (x > c->x0 && x < c->x0 + 1 && y > c->y0 && y < c->y0 + 1)
+            len += rho * (th[k + 1] - th[k]);
+    }
+    return len;
+}
+
+static double ring_f(double rho, void *v)
+{
+    const ring_ctx *c = v;
+    return dec(mpic_enc(c->p, c->p->ch, c->cx + rho, c->cy)) * ring_len(c, rho);
+}
+
+static double ring_pixel(const mpic *p, double cx, double cy, int i, int j)
+{
+    ring_ctx c = {p, cx, cy, i, j};
+    double cut[64], res, err, sum = 0;
+    int n = 0;
+    double dx[2] = {i - cx, i + 1 - cx}, dy[2] = {j - cy, j + 1 - cy};
+    for (int a = 0; a < 2; a++) {
+        cut[n++] = fabs(dx[a]), cut[n++] = fabs(dy[a]);
+        for (int b = 0; b < 2; b++)
+            cut[n++] = hypot(dx[a], dy[b]);
+    }
+    if (cx > i && cx < i + 1 && cy > j && cy < j + 1)
+        cut[n++] = 0;
+    cut[n++] = 1; /* the last stop */
+    const int N = 1 << 16;
+    double prev = mpic_enc(p, p->ch, cx, cy) - 0.04045;
+    for (int k = 1; k <= N; k++) { /* the threshold's radii */
+        double a = 1.5 * (k - 1) / N, b = 1.5 * k / N, g = mpic_enc(p, p->ch, cx + b, cy) - 0.04045;
+        if ((g > 0) != (prev > 0)) {
+            double ga = prev;
+            for (int it = 0; it < 200; it++) {
+                double m = 0.5 * (a + b);
+                if (m <= a || m >= b)
+                    break;
+                if ((mpic_enc(p, p->ch, cx + m, cy) - 0.04045 > 0) == (ga > 0))
+                    a = m;
+                else
+                    b = m;
+            }
+            cut[n++] = b;
+        }
+        prev = g;
+    }
+    qsort(cut, (size_t)n, sizeof *cut, cmp_double);
+    double lo = cut[0], hi = cut[n - 1]; /* the pixel's range of rho: nearest, farthest */
+    if (cx > i && cx < i + 1 && cy > j && cy < j + 1)
+        lo = 0;
+    else
+        lo = hypot(fmax(fmax(i - cx, cx - i - 1), 0), fmax(fmax(j - cy, cy - j - 1), 0));
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
+    gsl_function F = {ring_f, &c};
+    double at = lo;
+    for (int k = 0; k <= n; k++) {
+        double to = k < n ? cut[k] : hi;
+        if (!(to > at))
+            continue;
+        if (to > hi)
+            to = hi;
+        gsl_integration_qag(&F, at, to, 1e-17, 1e-15, 1000, GSL_INTEG_GAUSS61, ws, &res, &err);
+        sum += res;
+        at = to;
+    }
+    gsl_integration_workspace_free(ws);
+    return sum;
+}
+
+static void test_stack_close_roots(void **state)
+{
+    (void)state;
+    const double cx = 8.2, cy = 6.3;
+    static const int px[4][2] = {{7, 5}, {8, 5}, {7, 6}, {8, 6}};
+    mpic p = {2, {{0}}, {0, enc(0.2), 1}, 0};
+    for (int l = 0; l < 2; l++)
+        p.l[l] = (mlayer){1, {8, 6, 3, 0}, AA_GRADIENT_RADIAL, {cx, cy, 1, cx, cy, 0},
+                          AA_SPREAD_PAD, 2, close_roots, 0.6};
+    gw = gh = W;
+    aa_scene *s = mpic_scene(&p);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    const char *what = "a stack passing the threshold twice within 0.0031 of t";
+    reference(s, W, W, &ref, &bound, &stats);
+    expect_bound(what, &stats);
+    double worst = 0;
+    for (int k = 0; k < 4; k++)
+        for (int ch = 0; ch < 3; ch++) {
+            p.ch = ch;
+            double want = ring_pixel(&p, cx, cy, px[k][0], px[k][1]);
+            double got = aa_pixel(&ref, px[k][0], px[k][1])[ch];
+            double b = *aa_pixel(&bound, px[k][0], px[k][1]);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= b))
+                fail_msg("%s: pixel (%d, %d) channel %d: %.17g, the polar integral %.17g "
+                         "(bound %.2g)",
+                         what, px[k][0], px[k][1], ch, got, want, b);
+        }
+    print_message("%s: 4 pixels x 3 channels within %.2g of the polar integral\n", what, worst);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+    gw = W, gh = H;
+}
+
 static const aa_gradient_stop grad_l[3] = {{0.0, {{0, 0, 0}}, 1.0},
                                            {0.4, {{0.016, 0.723, 0.246}}, 1.0},
                                            {1.0, {{1, 1, 1}}, 1.0}};
@@ -1943,6 +2099,7 @@ int main(void)
         cmocka_unit_test(test_many_layers_closed),
         cmocka_unit_test(test_many_layers_stack),
         cmocka_unit_test(test_many_layers_mixed),
+        cmocka_unit_test(test_stack_close_roots),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

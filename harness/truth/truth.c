@@ -250,7 +250,8 @@
  * t passes 0.04045, is isolated by bisection with a certified bound on
  * the composite's slope (intervals it cannot clear shrink to 1e-13 and
  * take their midpoint with their width times the slope bound as their
- * error); each piece takes the 20-point rule with the Bernstein-ellipse
+ * error; a midpoint where the composite is 0.04045 in double keeps the
+ * interval that holds it: gen_bisect); each piece takes the 20-point rule with the Bernstein-ellipse
  * bound, the ellipse clear of every radial layer's branch points and, on
  * the power piece, of the zeros of e + 0.055 (shown by a bound on e's
  * change over the ellipse).  The outer breakpoints are the union of the
@@ -266,7 +267,46 @@
  * of one gradient) the curve is a circle of that t again, and its
  * circles, where the composite with every such layer painting at t
  * passes 0.04045, are breakpoints (shared_threshold_taus): the stack
- * within 1.2e-14, inside its bound.  Scenes that do not mix take the paths above, to
+ * within 1.2e-14, inside its bound.  Those t are the roots of the
+ * composite, a polynomial in t between the members' stops, built exactly
+ * in the Bernstein basis with a bound on its rounding and isolated by
+ * subdivision (Descartes' rule of signs), double roots and roots closer
+ * than 2^-40 of the piece included (bz_roots); sampled at 64 points a
+ * piece, two roots 0.0031 apart in t went unseen and a stack's pixel was
+ * 4.8e-13 off against a bound of 9.7e-14, 2.6e-18 now (tests/
+ * test_gradient.c, test_stack_close_roots).
+ *
+ * Where layers of different t mix, the threshold's curve is still no
+ * breakpoint, and the pixel's bound there is QAG's estimate, not a proof.
+ * Why: the row integral F(y) = int dec(E(x, y)) w dx is analytic between
+ * heights where the curve crosses rows transversally (the crossing x(y)
+ * is analytic, and each side of it takes one of the decoding's pieces),
+ * but not at the heights where the curve is tangent to a row (E = c and
+ * dE/dx = 0) or crosses another of the row's cuts (a stop line or
+ * circle, a piece, the window's side).  The decoding's slope steps by
+ * 0.0013 at c = 0.04045 and its value by 2.3e-9 (IEC 61966-2-1's two
+ * pieces do not meet: 0.04045 / 12.92 - (0.09545 / 1.055)^2.4), so at a
+ * tangency F has a term 2.3e-9 times the chord, a square root of the
+ * height's distance, besides the slope's (y - y0)^(3/2).  A radial
+ * gradient at alpha 0.6 over a linear one whose t runs along y, the
+ * curve's lowest point (a horizontal tangent) at (7.5, 7.745) in pixel
+ * (7, 7) and the curve crossing the stop line y = 7.76 in that pixel,
+ * came out 1.6e-12 off GSL's 2-D quadrature of the picture (mpic_pixel,
+ * the same to the bit with 8 times its sampling) against a bound of
+ * 2.3e-14; given that height as a turning point the pixel came inside
+ * its bound, and pixel (6, 7), where the curve crosses the window's side
+ * x = 7, stayed 3.5e-13 off against 2.9e-14.  A proven rule needs those
+ * heights as breakpoints, found by a certified 2-D method (interval
+ * Newton on E = c, dE/dx = 0, and on E = c along each cut), and a bound
+ * of the rule's error between them; neither is here.  Nor is the
+ * alternative of cells: a 2-D subdivision of the cells the curve
+ * crosses, each taking the power piece across the curve with the error
+ * |dec(E) - P(E)| <= 2.3e-9 + 0.0013 |E - c| <= 2.3e-9 + 0.0013 |grad E|
+ * sqrt(2) h, needs cells of about h = 1.5e-6 px for 1e-14 along a curve 1
+ * px long with |grad E| ~ 1 / px (the value step alone asks 2 h 2.3e-9 <=
+ * 1e-14): 1.3e6 cells a pixel, each with its own rows.
+ *
+ * Scenes that do not mix take the paths above, to
  * the bit, except that the radial path's test of which layer a span
  * depends on now takes the other gradients as transparent (their
  * stand-in colour, the first stop's at the layer's alpha, could hide a
@@ -3297,7 +3337,11 @@ static int fold_taylor(const gen_span_ctx *c, int ch, double m, double h, double
 
 /* The one root of g, monotone on [u, v] with signs differing at the ends
  * (gu, gv), narrowed by halving on the signs to GEN_FUZZ and appended to
- * fz (none if at an end). */
+ * fz (none if at an end, where the piece is cut anyway).  A midpoint
+ * where g is 0 in double ends the halving with the interval that holds
+ * it: it once ended it holding nothing, and the piece across the root
+ * took one side's decoding (a stack's row 2.6e-11 off, whose composite
+ * crossed 0.04045 with a slope of 1.7e-4, a few ulps a step). */
 static size_t gen_bisect(const gen_span_ctx *c, int ch, double u, double gu, double v, double gv,
                          double *fz, size_t nf, size_t cap, size_t *budget)
 {
@@ -3313,7 +3357,7 @@ static size_t gen_bisect(const gen_span_ctx *c, int ch, double u, double gu, dou
         gen_eval(c, m, e);
         double gm = e[ch] - 0.04045;
         if (gm == 0.0)
-            return nf;
+            break; /* the threshold at m: [u, v] holds it */
         if ((gm < 0.0) == (gu < 0.0))
             u = m, gu = gm;
         else
@@ -3993,20 +4037,248 @@ static int rad_same_t(const grad_radial *g, const grad_radial *h)
            g->fr == h->fr && g->dr == h->dr;
 }
 
+/* A polynomial in s in [0, 1] in Bernstein form, b[0 .. n], with err a
+ * bound on how far every coefficient is from the exact polynomial's (the
+ * one the same operations give in exact arithmetic): the composite of a
+ * stack that shares one t (shared_threshold_taus).  Each operation is a
+ * combination with nonnegative weights summing to 1 (elevation, product,
+ * de Casteljau's halving) or a sum, so a coefficient's rounding is at most
+ * (terms + 4) ulps of the largest magnitude it combines; ulps are taken
+ * of double (DBL_EPSILON) though the arithmetic is in long double, which
+ * holds where long double is only double (valgrind).  The degree of a
+ * stack of n layers' composite is at most n + 1 (a layer's a C is
+ * quadratic in t, and each over adds one to the degree behind it). */
+#define BZ_MAX (GEN_LAYERS + 2)
+typedef struct bz {
+    int n;
+    long double b[BZ_MAX + 1];
+    double err;
+} bz;
+
+static double bz_mag(const bz *p)
+{
+    long double m = 0.0L;
+    for (int i = 0; i <= p->n; i++)
+        m = fmaxl(m, fabsl(p->b[i]));
+    return (double)m;
+}
+
+static double bz_ulps(int terms, double mag) { return (terms + 4) * DBL_EPSILON * mag; }
+
+/* The affine function of values f0, f1 at the ends, each computed from
+ * terms of magnitude at most mag. */
+static bz bz_affine(long double f0, long double f1, double mag)
+{
+    return (bz){1, {f0, f1}, bz_ulps(2, mag)};
+}
+
+static bz bz_const(long double k) { return (bz){0, {k}, 0.0}; }
+
+/* p raised to degree m (>= its own). */
+static bz bz_raise(bz p, int m)
+{
+    for (int n = p.n; n < m; n++) {
+        bz q = {n + 1, {0}, p.err + bz_ulps(3, bz_mag(&p))};
+        q.b[0] = p.b[0], q.b[n + 1] = p.b[n];
+        for (int i = 1; i <= n; i++) {
+            long double r = (long double)i / (n + 1);
+            q.b[i] = r * p.b[i - 1] + (1.0L - r) * p.b[i];
+        }
+        p = q;
+    }
+    return p;
+}
+
+/* u p + v q (u, v exact constants); 0 if the degree would pass BZ_MAX. */
+static bz bz_lin(long double u, bz p, long double v, bz q)
+{
+    int m = p.n > q.n ? p.n : q.n;
+    p = bz_raise(p, m), q = bz_raise(q, m);
+    bz r = {m, {0}, (double)(fabsl(u) * p.err + fabsl(v) * q.err)};
+    for (int i = 0; i <= m; i++)
+        r.b[i] = u * p.b[i] + v * q.b[i];
+    r.err += bz_ulps(3, (double)(fabsl(u) * bz_mag(&p) + fabsl(v) * bz_mag(&q)));
+    return r;
+}
+
+static int bz_mul(const bz *p, const bz *q, bz *r)
+{
+    int m = p->n, n = q->n;
+    if (m + n > BZ_MAX)
+        return 0;
+    long double cm[BZ_MAX + 1], cn[BZ_MAX + 1], cmn[BZ_MAX + 1];
+    cm[0] = cn[0] = cmn[0] = 1.0L; /* binomials, exact below 2^53 */
+    for (int i = 1; i <= m + n; i++) {
+        cm[i] = i <= m ? cm[i - 1] * (m - i + 1) / i : 0.0L;
+        cn[i] = i <= n ? cn[i - 1] * (n - i + 1) / i : 0.0L;
+        cmn[i] = cmn[i - 1] * (m + n - i + 1) / i;
+    }
+    double ma = bz_mag(p), mb = bz_mag(q);
+    r->n = m + n;
+    r->err = ma * q->err + mb * p->err + p->err * q->err + bz_ulps(m + n + 4, ma * mb);
+    for (int k = 0; k <= m + n; k++) {
+        long double s = 0.0L;
+        for (int i = k > n ? k - n : 0; i <= m && i <= k; i++)
+            s += cm[i] * cn[k - i] * p->b[i] * q->b[k - i];
+        r->b[k] = s / cmn[k];
+    }
+    return 1;
+}
+
+/* ac + (1 - a) p: source over. */
+static int bz_over(const bz *ac, const bz *a, const bz *p, bz *r)
+{
+    bz t;
+    if (!bz_mul(a, p, &t))
+        return 0;
+    *r = bz_lin(1.0L, *ac, 1.0L, bz_lin(1.0L, *p, -1.0L, t));
+    return r->n <= BZ_MAX;
+}
+
+/* p's value at s by de Casteljau. */
+static long double bz_at(const bz *p, long double s)
+{
+    long double b[BZ_MAX + 1];
+    memcpy(b, p->b, (size_t)(p->n + 1) * sizeof *b);
+    for (int r = 1; r <= p->n; r++)
+        for (int i = 0; i + r <= p->n; i++)
+            b[i] = (1.0L - s) * b[i] + s * b[i + 1];
+    return b[0];
+}
+
+/* p's halves on [0, 1/2] (lo) and [1/2, 1] (hi). */
+static void bz_halve(const bz *p, bz *lo, bz *hi)
+{
+    long double b[BZ_MAX + 1];
+    int n = p->n;
+    memcpy(b, p->b, (size_t)(n + 1) * sizeof *b);
+    double e = p->err + bz_ulps(n + 2, bz_mag(p));
+    lo->n = hi->n = n, lo->err = hi->err = e;
+    lo->b[0] = b[0], hi->b[n] = b[n];
+    for (int r = 1; r <= n; r++) {
+        for (int i = 0; i + r <= n; i++)
+            b[i] = 0.5L * (b[i] + b[i + 1]);
+        lo->b[r] = b[0], hi->b[n - r] = b[n - r];
+    }
+}
+
+/* The places in (0, 1) where p's exact polynomial may vanish, certified
+ * by subdivision (Descartes' rule of signs in the Bernstein basis): an
+ * interval whose coefficients are all of one sign beyond err holds no
+ * root; one whose coefficients' signs are all certain and change once
+ * holds exactly one (the count of roots is at most the changes and of
+ * their parity), bisected on p's values to rounding; any other is halved
+ * down to a width of BZ_NARROW and then holds every root there is in it,
+ * of any multiplicity (a double root, where the composite touches the
+ * threshold, or two roots closer than that): its midpoint stands for
+ * them, neighbouring such intervals merged into one.  Past BZ_WORK
+ * intervals the rest are taken whole, each by its midpoint and ends.
+ * The places, in increasing order, into s[] (at most cap); their count. */
+#define BZ_NARROW 0x1p-40
+#define BZ_WORK 4096
+static size_t bz_roots(const bz *p, double *s, size_t cap)
+{
+    struct {
+        bz q;
+        double a, b;
+    } *stk = malloc(64 * sizeof *stk);
+    size_t n = 0;
+    int top = 0, work = 0;
+    double run_a = -1.0, run_b = -1.0; /* the narrow intervals being merged */
+    if (!stk) { /* no room to look: every place the piece has */
+        if (cap)
+            s[n++] = 0.5;
+        return n;
+    }
+#define BZ_EMIT(x)                                                                                 \
+    do {                                                                                           \
+        if (n < cap && (x) > 0.0 && (x) < 1.0 && (!n || (x) > s[n - 1]))                           \
+            s[n++] = (x);                                                                          \
+    } while (0)
+#define BZ_FLUSH()                                                                                 \
+    do {                                                                                           \
+        if (run_a >= 0.0)                                                                          \
+            BZ_EMIT(0.5 * (run_a + run_b));                                                        \
+        run_a = run_b = -1.0;                                                                      \
+    } while (0)
+    stk[top].q = *p, stk[top].a = 0.0, stk[top].b = 1.0, top++;
+    while (top > 0) {
+        top--;
+        bz q = stk[top].q;
+        double a = stk[top].a, b = stk[top].b;
+        int pos = 0, neg = 0, unsure = 0, changes = 0, last = 0;
+        for (int i = 0; i <= q.n; i++) {
+            int sg = q.b[i] > q.err ? 1 : q.b[i] < -q.err ? -1 : 0;
+            pos += sg > 0, neg += sg < 0, unsure += sg == 0;
+            if (sg && last && sg != last)
+                changes++;
+            if (sg)
+                last = sg;
+        }
+        if (!unsure && (!pos || !neg))
+            continue; /* no root */
+        if (!unsure && changes == 1) { /* exactly one: bisected */
+            BZ_FLUSH();
+            long double lo = 0.0L, hi = 1.0L;
+            int slo = q.b[0] > 0.0L;
+            for (int it = 0; it < 80; it++) {
+                long double mid = 0.5L * (lo + hi);
+                if (!(mid > lo && mid < hi))
+                    break;
+                if ((bz_at(&q, mid) > 0.0L) == slo)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            BZ_EMIT(a + (b - a) * (double)(0.5L * (lo + hi)));
+            continue;
+        }
+        if (b - a <= BZ_NARROW || ++work > BZ_WORK || top + 2 > 64) {
+            if (run_a >= 0.0 && a <= run_b)
+                run_b = b;
+            else {
+                BZ_FLUSH();
+                run_a = a, run_b = b;
+            }
+            if (b - a > BZ_NARROW) { /* taken whole: its ends too */
+                BZ_FLUSH();
+                BZ_EMIT(a);
+                BZ_EMIT(0.5 * (a + b));
+                BZ_EMIT(b);
+            }
+            continue;
+        }
+        /* halved: the left half on top, so the intervals come in order */
+        double m = 0.5 * (a + b);
+        bz_halve(&q, &stk[top + 1].q, &stk[top].q);
+        stk[top].a = m, stk[top].b = b;
+        stk[top + 1].a = a, stk[top + 1].b = m;
+        top += 2;
+    }
+    BZ_FLUSH();
+#undef BZ_EMIT
+#undef BZ_FLUSH
+    free(stk);
+    return n;
+}
+
 /* The values of t in (ta, tb) where the composite at winding numbers wind
- * passes the decoding's threshold with every gradient layer whose t is
- * g's (rad_same_t; sRGB stops) painting at that t, the others at their
- * first stops, when there are two or more of them (a stack of one
- * gradient): the threshold's circles of the path of several gradients
+ * passes or touches the decoding's threshold with every gradient layer
+ * whose t is g's (rad_same_t; sRGB stops) painting at that t, the others
+ * at their first stops, when there are two or more of them (a stack of
+ * one gradient): the threshold's circles of the path of several gradients
  * (rad_threshold_taus takes the others at their first stops, and a
  * stack of n identical translucent layers came out up to 6.9e-13 off
  * against a bound of 1.6e-13 without these).  Between the members'
- * breaks of t (grad_taus) each paint is affine in t and the composite a
- * polynomial in t; its sign changes against 0.04045 are found at 64
- * points a piece and bisected to rounding (a breakpoint's place: QAG's
- * estimate, not the value's formula, depends on it); for the first
- * member only, the others' being the same.  At most cap into out, the
- * total returned. */
+ * breaks of t (grad_taus) each paint is affine in t, and the composite,
+ * the scene's fold (aa_scene_fold) with those paints, a polynomial in t
+ * built exactly in the Bernstein basis of the piece with a bound on its
+ * rounding (bz); its roots against 0.04045 are isolated by subdivision
+ * (bz_roots), double roots and roots closer than 2^-40 of the piece
+ * included.  Once 64 points a piece with their sign changes bisected: two
+ * roots within one step went unseen (tests/test_gradient.c,
+ * test_stack_close_roots).  For the first member only, the others' being
+ * the same.  At most cap into out, the total returned. */
 static size_t shared_threshold_taus(worker *w, const grad_radial *g, const int *wind, double ta,
                                     double tb, double *out, size_t cap)
 {
@@ -4020,7 +4292,7 @@ static size_t shared_threshold_taus(worker *w, const grad_radial *g, const int *
     /* the members' circles are the same: found once, for the first */
     if (ns < 2 || ms[0]->rg != g || !(tb > ta) || !isfinite(ta) || !isfinite(tb))
         return 0;
-    double *br = w->gbuf2;
+    double *br = w->gbuf2, base[3];
     size_t nb = 0, bcap = w->cap_gbuf - 2, n = 0;
     br[nb++] = ta;
     for (int i = 0; i < ns; i++) {
@@ -4031,7 +4303,20 @@ static size_t shared_threshold_taus(worker *w, const grad_radial *g, const int *
     }
     br[nb++] = tb;
     qsort(br, nb, sizeof *br, cmp_dbl);
-    double paints[4 * GEN_LAYERS], v0[GEN_LAYERS][4], v1[GEN_LAYERS][4], e[3];
+    int nst = aa_scene_fold(w->scene, wind, ns, lay, w->fold, w->cap_fold, base), depth = 0;
+    if (nst < 0)
+        return 0; /* cannot happen: cap_fold is aa_scene_fold_cap's */
+    for (int k = 0, d = 0; k < nst; k++) {
+        d += w->fold[k].op == AA_FOLD_OPEN ? 1 : w->fold[k].op == AA_FOLD_CLOSE ? -1 : 0;
+        depth = d > depth ? d : depth;
+    }
+    bz *p = malloc((size_t)(2 * depth + 2) * sizeof *p), *al = p + depth + 1;
+    double *roots = malloc(2 * BZ_MAX * sizeof *roots);
+    if (!p || !roots) {
+        free(p), free(roots);
+        return 0;
+    }
+    double v0[GEN_LAYERS][4], v1[GEN_LAYERS][4];
     for (size_t k = 0; k + 1 < nb; k++) {
         double u = br[k], v = br[k + 1];
         if (!(v > u))
@@ -4039,40 +4324,59 @@ static size_t shared_threshold_taus(worker *w, const grad_radial *g, const int *
         for (int i = 0; i < ns; i++)
             paint_lin(ms[i]->spread, ms[i]->stops, ms[i]->nstops, ms[i]->enc, 0.5 * (u + v), v0[i],
                       v1[i]);
-        const int N = 64;
-        double gp[3] = {0, 0, 0}, tp = u;
-        for (int q = 0; q <= N; q++) {
-            double t = q == N ? v : u + (v - u) * q / N, g3[3];
-            for (int i = 0; i < ns; i++)
-                for (int c = 0; c < 4; c++)
-                    paints[4 * i + c] = v0[i][c] + v1[i][c] * t;
-            aa_scene_encoded_with_n(w->scene, wind, ns, lay, paints, e);
-            for (int c = 0; c < 3; c++)
-                g3[c] = e[c] - 0.04045;
-            for (int c = 0; c < 3 && q > 0; c++) {
-                if ((gp[c] < 0.0) == (g3[c] < 0.0))
-                    continue;
-                /* a sign change in (tp, t]: bisected */
-                double a = tp, b = t, ga = gp[c];
-                for (int it = 0; it < 200; it++) {
-                    double mid = 0.5 * (a + b), em[3];
-                    if (!(mid > a && mid < b))
-                        break;
-                    for (int i = 0; i < ns; i++)
-                        for (int cc = 0; cc < 4; cc++)
-                            paints[4 * i + cc] = v0[i][cc] + v1[i][cc] * mid;
-                    aa_scene_encoded_with_n(w->scene, wind, ns, lay, paints, em);
-                    if ((em[c] - 0.04045 < 0.0) == (ga < 0.0))
-                        a = mid;
-                    else
-                        b = mid;
+        for (int c = 0; c < 3; c++) {
+            /* the fold of channel c in the piece's Bernstein basis */
+            int d = 0, ok = 1;
+            p[0] = bz_const(base[c]), al[0] = bz_const(1.0L);
+            for (int st = 0; st < nst && ok; st++) {
+                const aa_fold_step *s = &w->fold[st];
+                int i = -1;
+                for (int q = 0; q < ns && s->op == AA_FOLD_LAYER; q++)
+                    if (lay[q] == s->layer)
+                        i = q;
+                if (s->op == AA_FOLD_OPEN) {
+                    d++;
+                    p[d] = al[d] = bz_const(0.0L);
+                } else if (s->op == AA_FOLD_CLOSE) {
+                    bz op = bz_lin(s->a, p[d], 0.0L, bz_const(0.0L));
+                    bz oa = bz_lin(s->a, al[d], 0.0L, bz_const(0.0L)), r;
+                    ok = bz_over(&op, &oa, &p[d - 1], &p[d - 1]) &&
+                         bz_over(&oa, &oa, &al[d - 1], &r);
+                    al[d - 1] = r;
+                    d--;
+                } else {
+                    bz a, ac, r;
+                    if (i >= 0) { /* the member's a (alpha op) and a C, affine in t */
+                        long double o0 = v0[i][3] + (long double)v1[i][3] * u;
+                        long double o1 = v0[i][3] + (long double)v1[i][3] * v;
+                        long double c0 = v0[i][c] + (long double)v1[i][c] * u;
+                        long double c1 = v0[i][c] + (long double)v1[i][c] * v;
+                        double tt = fmax(fabs(u), fabs(v));
+                        bz op = bz_affine(s->a * o0, s->a * o1,
+                                          s->a * (fabs(v0[i][3]) + fabs(v1[i][3]) * tt));
+                        bz C = bz_affine(c0, c1, fabs(v0[i][c]) + fabs(v1[i][c]) * tt);
+                        a = op;
+                        ok = bz_mul(&op, &C, &ac);
+                    } else
+                        a = bz_const(s->a), ac = bz_const((long double)s->a * s->c[c]);
+                    ok = ok && bz_over(&ac, &a, &p[d], &p[d]) && bz_over(&a, &a, &al[d], &r);
+                    al[d] = r;
                 }
-                if (b > ta && b < tb && n++ < cap)
-                    out[n - 1] = b;
             }
-            memcpy(gp, g3, sizeof gp), tp = t;
+            size_t nr;
+            if (ok) {
+                bz q = bz_lin(1.0L, p[0], -(long double)0.04045, bz_const(1.0L));
+                nr = bz_roots(&q, roots, 2 * BZ_MAX);
+            } else /* cannot happen (the degree's bound, bz): the piece's middle */
+                nr = 1, roots[0] = 0.5;
+            for (size_t r = 0; r < nr; r++) {
+                double t = u + (v - u) * roots[r];
+                if (t > ta && t < tb && n++ < cap)
+                    out[n - 1] = t;
+            }
         }
     }
+    free(p), free(roots);
     return n;
 }
 
