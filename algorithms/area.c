@@ -355,7 +355,7 @@ static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo
                                  double ul, double uh)
 {
     if (s->p->offset) /* x = c0 + k */
-        return offset_tau_u(s, lo, hi, ul - k, (double)s->c0 + k);
+        return offset_tau_u(s, lo, hi, ul - k, (double)s->c0 + k, ul, uh);
     /* the guess: the chord from lo to hi (ul, uh: u there) */
     double g = uh != ul ? lo + (hi - lo) * ((k - ul) / (uh - ul)) : 0.5 * (lo + hi);
     if (sg > 0.0)
