@@ -140,13 +140,14 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 3.21 by instructions (callgrind:
- * area 340 M a render, point 106 M), in CPU time 4.07 to 4.59 (eight runs
- * on the shared machine at a load of 22 to 24; area 66 to 87 ms, point
- * 15.3 to 19.6 ms): the crossings' root-finding (Newton on the curve; the
- * band lines' y at an offset piece's bottom evaluated once a piece,
- * aa__offset_end) is 40% of area's instructions (the band lines' half of
- * it), the quadrature 16% (a cubic's nodes four at a time with AVX),
+ * (tests/bench_bezstroke.c), area/point 3.06 by instructions (callgrind:
+ * area 325 M a render, point 106 M), in CPU time 3.38 to 4.60, median 4.00
+ * (six runs on the shared machine at a load of about 10; area 55 to 62 ms,
+ * point 13.5 to 17.6 ms): the crossings' root-finding (Newton on the
+ * curve; the band lines' y at an offset piece's bottom evaluated once a
+ * piece, aa__offset_end; a cell's side from the chord's root,
+ * offset_tau_u) is 39% of area's instructions (the band lines' 21%), the
+ * quadrature 17% (a cubic's nodes four at a time with AVX),
  * the meetings of pieces in a cluster 13% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
@@ -355,7 +356,7 @@ static inline double tau_of_u_in(const ar_seg *s, double k, double sg, double lo
                                  double ul, double uh)
 {
     if (s->p->offset) /* x = c0 + k */
-        return offset_tau_u(s, lo, hi, ul - k, (double)s->c0 + k);
+        return offset_tau_u(s, lo, hi, ul - k, (double)s->c0 + k, ul, uh);
     /* the guess: the chord from lo to hi (ul, uh: u there) */
     double g = uh != ul ? lo + (hi - lo) * ((k - ul) / (uh - ul)) : 0.5 * (lo + hi);
     if (sg > 0.0)

@@ -25,9 +25,10 @@
  *
  * --check: the box reference once and `area` once: the pixels where area
  * is farther from the reference than the reference's own bound, their
- * count and the largest excess (and where), and a hash of area's image
- * (FNV-1a of its doubles' bits) to tell an unchanged image from a moved
- * one.
+ * count and the largest excess (and where), the sum over the image of
+ * |area - reference| (each pixel's largest over its channels; in brackets
+ * over every channel), and a hash of area's image (FNV-1a of its doubles'
+ * bits) to tell an unchanged image from a moved one.
  *
  * usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]... [--renders N | --check]
  */
@@ -210,13 +211,17 @@ int main(int argc, char **argv)
         }
         if (check) {
             size_t beyond = 0;
-            double most = 0.0, off = 0.0;
+            double most = 0.0, off = 0.0, sum = 0.0, sumc = 0.0;
             int wi = -1, wj = -1;
             for (int j = 0; j < h; j++)
                 for (int i = 0; i < w; i++) {
                     double e = 0.0;
-                    for (int ch = 0; ch < 3; ch++)
-                        e = fmax(e, fabs(aa_pixel(&im, i, j)[ch] - aa_pixel(&ref, i, j)[ch]));
+                    for (int ch = 0; ch < 3; ch++) {
+                        double d = fabs(aa_pixel(&im, i, j)[ch] - aa_pixel(&ref, i, j)[ch]);
+                        e = fmax(e, d);
+                        sumc += d;
+                    }
+                    sum += e;
                     if (e > aa_pixel(&bound, i, j)[0]) {
                         beyond++;
                         off = fmax(off, e);
@@ -225,8 +230,9 @@ int main(int argc, char **argv)
                     }
                 }
             printf("area against the box reference: %zu pixels beyond its bound, at most %.3g "
-                   "off, at most %.3g beyond it (at (%d, %d)); area's image hash %016llx\n",
-                   beyond, off, most, wi, wj, (unsigned long long)image_hash(&im));
+                   "off, at most %.3g beyond it (at (%d, %d)); sum of |area - reference| %.5g "
+                   "(%.5g); area's image hash %016llx\n",
+                   beyond, off, most, wi, wj, sum, sumc, (unsigned long long)image_hash(&im));
             aa_image_free(&ref);
         }
         aa_image_free(&im);
