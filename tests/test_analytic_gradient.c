@@ -21,7 +21,13 @@
  *    encoding's sliver (the linear values 0.003130 to 0.003132 across the
  *    image, so the sliver (0.0031308, 0.0031308073), where decode(encode(v))
  *    lies 2.2e-9 below v, is 0.07 px wide: taking v there would miss by
- *    about 1e-10, a hundred times the tolerance);
+ *    about 1e-10, a hundred times the tolerance); and elliptical arcs (a
+ *    circle, a turned ellipse and a rounded rectangle under pad, repeat
+ *    and reflect gradients) and offset curves (a stroked cubic whose inner
+ *    offset folds, a stroked turned ellipse) under box, tent:r=1,
+ *    bspline:order=3 and Mitchell; the full tier adds circles and an
+ *    ellipse under a steep repeated gradient against wide cells
+ *    (tent:r=3.7, tent:r=6), whose arcs' parts are long;
  *  - closed forms, derived here: under a filter whose integer translates
  *    sum to 1 (box, tent:r=1, the B-splines, Mitchell-Netravali,
  *    Catmull-Rom) an image holding the whole filtered support of the
@@ -32,10 +38,14 @@
  *    (the integral of an affine function; the sliver changes it by at most
  *    2.4e-9 x 7.3e-9 (b - a) (y1 - y0) < 1e-14 here); the same ramp
  *    repeated with period P over a rectangle of whole periods integrates to
- *    half its area (each period's mean is 1/2);
+ *    half its area (each period's mean is 1/2); a region whose colour is
+ *    affine, c(x, y), integrates to its area times c at its centroid: a
+ *    disk of radius R under a ramp along x (pad never reached) to pi R^2
+ *    c(centre), a turned ellipse of semi-axes a, b under an oblique ramp
+ *    to pi a b c(centre) (the sliver's change as above, below 1e-14);
  *  - refusals by name: sRGB interpolation, radial gradients, a stop of
- *    partial opacity, a translucent layer, a radial filter, an elliptical
- *    arc, a gradient of more stop lines than the method takes.
+ *    partial opacity, a translucent layer, a radial filter, a gradient of
+ *    more stop lines than the method takes.
  */
 #include "bench.h"
 #include "core.h"
