@@ -56,6 +56,7 @@
  *     quadratic         2     4       6          8
  *     cubic             3     6       9         12
  *     elliptical arc    6    10      14         18   (2 (2 n + 3): "Elliptical arcs")
+ *     arc, 1st moments  8    12      16         20   (2 (2 n + 4): "Linear gradients")
  *
  * (The paper gives closed-form expressions, the polynomial integrated term
  * by term; the Gauss rule of the right degree is the same integral,
@@ -137,7 +138,19 @@
  * under box, tent, the B-splines, Mitchell and Catmull-Rom; a
  * black-to-white ramp across a rectangle sums to the integral of its
  * affine colour over the rectangle (closed form; 7.1e-14 off 74.78), a
- * repeated ramp over whole periods to half its area (8.5e-14 off 71.2).
+ * repeated ramp over whole periods to half its area (8.5e-14 off 71.2);
+ * on elliptical arcs (a circle, a turned ellipse and a rounded rectangle
+ * under pad, repeat and reflect gradients) within 3.8e-15 under box,
+ * tent:r=1, bspline:order=3 and Mitchell, on offset curves (a stroked
+ * cubic and a stroked turned ellipse) within 3.0e-14; a disk under a ramp
+ * along x sums to its area times the colour at its centre (9.9e-14 off
+ * 81.4), a turned ellipse under an oblique ramp likewise (2.8e-14 off
+ * 53.1).  A rule two degrees short on the arcs' first moments (4 n + 4
+ * points) misses by 2.3e-12 under the box, an offset part's rule 3 points
+ * short of the certified one by 4.8e-11; the rule one degree short (the
+ * zeroth moment's, 4 n + 6) is not seen at 1e-12 on these scenes: on a
+ * part its error is of the order of z^m (2 z)^N (see "Elliptical arcs"),
+ * below 1e-13 on parts of at most a quarter of the ellipse.
  * Under radial:k=K,r=R (tests/test_analytic_radial.c): the reference within
  * 1e-12 per pixel on crow, crow raised to cubics, the cubic scene, a
  * pentagon, two overlapping layers, curves.svg and arcs.svg (largest
@@ -352,6 +365,24 @@
  * filter's range).  A gradient constant between two stops (both of one
  * colour, or the pad's ends) paints decode(encode(v)) exactly.
  *
+ * Elliptical arcs and offset curves under a gradient.  On a part of an
+ * arc (see "Elliptical arcs") x, y and y' are trigonometric polynomials
+ * of degree 1 in phi, w(v) of degree n, W1(u) of n + 2, v w(v) and
+ * 1 - W(u) of n + 1, so the integrands of (2), w(v) (W1(inf) - W1(u)) y'
+ * and v w(v) (1 - W(u)) y', have the degree n + (n + 2) + 1 = (n + 1) +
+ * (n + 1) + 1 = 2 n + 3, one more than the zeroth moment's 2 n + 2: the
+ * arc's rule for N = 2 n + 3 (m = 2 n + 4 positive nodes, 4 n + 8 points:
+ * box 8, tent 12, bspline:order=2 16, the cubics 20; its G_gk still exact,
+ * 2 (m - 1) + 2 K <= 78 < 80) gives R0, Ru and Rv at once, exact.  On an
+ * offset part the three integrands are analytic wherever the curve is,
+ * and the rule is certified as the zeroth moment's ("Offset curves"), M
+ * now bounding the part's term of the pixel, J0 |w (1 - W) y'| + J1 |w
+ * (W1(inf) - W1(u)) y'| + J2 |v w (1 - W) y'|, J the largest steps of a,
+ * gx and gy across the part over the channels (the run's jump): W1 on a
+ * cell bounded term by term as W is (off_m1_bound), |v| by the support's
+ * half width plus |row_y| V R.  So each part's error is within 1e-16 of
+ * every channel, as a flat colour's, however steep the gradient.
+ *
  * Limits, refused by name: filters that are not piecewise polynomial
  * (gauss, lanczos, the cone, gauss:cut: the cone is 1 - r, not a
  * polynomial in x and y); an offset curve running along a pixel's radial
@@ -365,10 +396,8 @@
  * stop of opacity below 1, a translucent layer or group anywhere in a
  * gradient scene (translucent paint composites in sRGB-encoded values),
  * gradients under the radial filters (the first moments over the
- * filter's disc are not derived here), elliptical arcs and offset curves
- * (a stroke's outline of a curve) in a gradient scene (the arc's rule
- * and the offset's certified rule are made for the zeroth moment only),
- * and a gradient repeating past 65536 stop lines across the frame.
+ * filter's disc are not derived here), and a gradient repeating past
+ * 65536 stop lines across the frame.
  *
  * Cost.  Where the per-edge scatter holds (every row of crow and of scenes
  * of disjoint shapes): per part of a piece between two knots' lines, its
@@ -429,6 +458,12 @@
  * the scatters, one at a time by the per-pixel visible parts, each from
  * the scene alone).  Counters: samples = 0, expensive_pixels =
  * pixels summed (the scatter's: the pixels some part's exact term reached).
+ * Gradient scenes take the per-pixel visible parts in every row; there an
+ * arc's part costs its cuts' angles and 4 n + 8 points, an offset part its
+ * certified rule for the three moments: on 36 gradient circles at 256x256
+ * (algorithms/README.md, "Filters and scenes") 310e6 instructions a
+ * render under the box and 1319e6 under bspline:order=3, the same circles
+ * as 64-gons 314e6 and 1231e6.
  */
 #include "area_internal.h"
 #include "core.h"
@@ -452,6 +487,9 @@
 #define AN_MAX_GAUSS 12
 /* points of a part's rule at most: Gauss-Legendre's 12, an arc's 18 */
 #define AN_MAX_PTS 18
+/* positive nodes of an arc's rule for the first moments at most (2 n + 4,
+ * n <= 3: "Linear gradients") */
+#define AN_ARC1_M 10
 /* terms of the series of an arc's weights in z = alpha^2 <= 1/4 */
 #define AN_ARC_K 30
 
@@ -509,6 +547,10 @@ typedef struct an_state {
      * rule, g < arc_m, and the coefficients of their weights in z */
     int arc_m;
     double arc_u[AN_MAX_PTS / 2], arc_wz[AN_MAX_PTS / 2][AN_ARC_K + 1];
+    /* the arc's rule of one degree more, for the first moments of a
+     * gradient's colour (see "Linear gradients"): arc1_m = arc_m + 1 */
+    int arc1_m;
+    double arc1_u[AN_ARC1_M], arc1_wz[AN_ARC1_M][AN_ARC_K + 1];
     /* Gauss-Legendre on [-1, 1]: gx[m][q], gw[m][q] for m points */
     double gx[AN_MAX_GAUSS + 1][AN_MAX_GAUSS], gw[AN_MAX_GAUSS + 1][AN_MAX_GAUSS];
     /* The knots' lines: x = n + ph[q] for every integer n (ph in [0, 1),
@@ -835,17 +877,18 @@ static void gauss_make(an_state *S)
     }
 }
 
-/* The arc's rule for a filter of degree n (see above). */
-static void arc_make(an_state *S)
+/* An arc's rule of m positive nodes u[g] (exact for trigonometric
+ * polynomials of degree m - 1 on a part, see above) and the coefficients
+ * of their weights in z, wz[g][k]; m <= AN_ARC1_M (G_gk exact: 2 (m - 1) +
+ * 2 AN_ARC_K <= 78 < 80). */
+static void arc_rule(int m, double *u, double (*wz)[AN_ARC_K + 1])
 {
     enum { NQ = 40 };
-    const int m = 2 * S->pp.deg + 3;
-    long double gu[AN_MAX_PTS], gwu[AN_MAX_PTS], qx[NQ], qw[NQ], v[AN_MAX_PTS / 2];
+    long double gu[2 * AN_ARC1_M], gwu[2 * AN_ARC1_M], qx[NQ], qw[NQ], v[AN_ARC1_M];
     gauss_ld(2 * m, gu, gwu);
     gauss_ld(NQ, qx, qw);
-    S->arc_m = m;
     for (int g = 0; g < m; g++) { /* gauss_ld gives them descending: the first m are > 0 */
-        S->arc_u[g] = (double)gu[g];
+        u[g] = (double)gu[g];
         v[g] = gu[g] * gu[g];
     }
     for (int g = 0; g < m; g++) {
@@ -861,9 +904,19 @@ static void arc_make(an_state *S)
                         l *= (u2 - v[h]) / (v[g] - v[h]);
                 G += qw[q] * l * powl(u2, k);
             }
-            S->arc_wz[g][k] = (double)(beta * G);
+            wz[g][k] = (double)(beta * G);
         }
     }
+}
+
+/* The arc's rules for a filter of degree n (see above): of degree 2 n + 2
+ * for the zeroth moment, of 2 n + 3 for the first ("Linear gradients"). */
+static void arc_make(an_state *S)
+{
+    S->arc_m = 2 * S->pp.deg + 3;
+    arc_rule(S->arc_m, S->arc_u, S->arc_wz);
+    S->arc1_m = 2 * S->pp.deg + 4;
+    arc_rule(S->arc1_m, S->arc1_u, S->arc1_wz);
 }
 
 /* The angle of conic piece p at height y, in long double.  Not clamped to
@@ -904,10 +957,12 @@ static int arc_meet_x(const aa_piece *p, long double R, long double a, double X,
     return n;
 }
 
-/* The rule's points of the arc part [sa, sb] (om <= pi/3): X, Y, and the
- * weight times y'(phi) (D); its middle (xm, ym).  2 arc_m points. */
-static void arc_points(const an_state *S, const aa_piece *p, long double sa, long double sb,
-                       double *X, double *Y, double *D, double *xm, double *ym)
+/* The points of the rule of m positive nodes u (weights' coefficients wz)
+ * on the arc part [sa, sb] (om <= pi/3): X, Y, and the weight times
+ * y'(phi) (D); its middle (xm, ym).  2 m points. */
+static void arc_points_of(int m, const double *u, const double (*wzs)[AN_ARC_K + 1],
+                          const aa_piece *p, long double sa, long double sb, double *X,
+                          double *Y, double *D, double *xm, double *ym)
 {
     long double sm = 0.5L * (sa + sb), cs = cosl(sm), sn = sinl(sm);
     double c = (double)cs, s = (double)sn;
@@ -916,19 +971,27 @@ static void arc_points(const an_state *S, const aa_piece *p, long double sa, lon
     double Mx = (double)(p->ex + p->ea * cs + p->eb * sn), My = (double)(p->ey - p->er * cs);
     double al = sin((double)(0.25L * (sb - sa))), z = al * al;
     *xm = Mx, *ym = My;
-    for (int g = 0; g < S->arc_m; g++) {
-        const double *wz = S->arc_wz[g];
+    for (int g = 0; g < m; g++) {
+        const double *wz = wzs[g];
         double wt = wz[AN_ARC_K];
         for (int k = AN_ARC_K - 1; k >= 0; k--)
             wt = wz[k] + z * wt;
         wt *= al;
-        double h = al * S->arc_u[g], k = 2.0 * h * h, sg = 2.0 * h * sqrt(1.0 - h * h);
+        double h = al * u[g], k = 2.0 * h * h, sg = 2.0 * h * sqrt(1.0 - h * h);
         double dx = Bx * sg - Ax * k, dy = By * sg - Ay * k;
         X[2 * g] = Mx + dx, Y[2 * g] = My + dy;
         D[2 * g] = wt * (By * (1.0 - k) - Ay * sg);
         X[2 * g + 1] = Mx + (-Bx * sg - Ax * k), Y[2 * g + 1] = My + (-By * sg - Ay * k);
         D[2 * g + 1] = wt * (By * (1.0 - k) + Ay * sg);
     }
+}
+
+/* The arc's rule's points on [sa, sb]: 2 arc_m points (arc_points_of). */
+static void arc_points(const an_state *S, const aa_piece *p, long double sa, long double sb,
+                       double *X, double *Y, double *D, double *xm, double *ym)
+{
+    arc_points_of(S->arc_m, S->arc_u, (const double(*)[AN_ARC_K + 1])S->arc_wz, p, sa, sb, X, Y,
+                  D, xm, ym);
 }
 
 /* How many parts of om <= pi/3 the arc [sa, sb] is split into */
@@ -998,7 +1061,29 @@ static double off_filter_bound(const an_pp *pp, double dw, double dW, double *bW
  * of x and y within |row| V R of a point of the disc. */
 static double rad_f_bound(const an_state *S, double dx, double dv);
 
-static int off_points(const an_state *S, const aa_piece *p, double t0, double t1)
+/* |W1| at a point within dW of a real point of any cell, as
+ * off_filter_bound: sum |m1_i| (h_c + dW)^i, the largest over the cells. */
+static double off_m1_bound(const an_pp *pp, double dW)
+{
+    double b = 0.0;
+    for (int c = 0; c < pp->ncell; c++) {
+        double z = pp->k[c + 1] - pp->k[c] + dW, sm = 0.0;
+        for (int i = 5; i >= 0; i--)
+            sm = sm * z + fabs(pp->m1[c][i]);
+        b = fmax(b, sm);
+    }
+    return b;
+}
+
+/* off_points for the three moments of a gradient's colour at once (see
+ * "Linear gradients"), weighted by J (the largest steps across the part
+ * of a, gx and gy over the channels): the rule whose bound on the part's
+ * term of the pixel, J0 E0 + J1 Eu + J2 Ev, is within AN_OFF_TOL, the
+ * integrands' bounds w (1 - W) y', w (W1(inf) - W1) y' and v w (1 - W) y'
+ * (|v| at most the support's half width plus y's drift); J NULL: the
+ * zeroth moment alone, as off_points. */
+static int off_points_j(const an_state *S, const aa_piece *p, double t0, double t1,
+                        const double *J)
 {
     static const double rhos[] = {1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0, 32.0, 64.0};
     enum { NR = sizeof rhos / sizeof *rhos };
@@ -1016,8 +1101,14 @@ static int off_points(const an_state *S, const aa_piece *p, double t0, double t1
         if (S->rad_k) { /* a radial filter's integrand F(x - cx, y - cy) y' */
             M = rad_f_bound(S, nx * V[k] * R[k], vy * R[k]) * vy;
         } else {
-            double bW, bw = off_filter_bound(&S->pp, vy * R[k], nx * V[k] * R[k], &bW);
+            const an_pp *pp = &S->pp;
+            double bW, bw = off_filter_bound(pp, vy * R[k], nx * V[k] * R[k], &bW);
             M = bw * (1.0 + bW) * vy;
+            if (J) {
+                double vmax = fmax(fabs(pp->k[0]), fabs(pp->k[pp->ncell])) + vy * R[k];
+                double b1 = fabs(pp->m1tot) + off_m1_bound(pp, nx * V[k] * R[k]);
+                M = bw * vy * (J[0] * (1.0 + bW) + J[1] * b1 + J[2] * vmax * (1.0 + bW));
+            }
         }
         double need = h * 64.0 * M / (15.0 * (1.0 - 1.0 / r2) * AN_OFF_TOL) * (1.0 + 1e-12);
         if (!(need < INFINITY))
@@ -1031,6 +1122,11 @@ static int off_points(const an_state *S, const aa_piece *p, double t0, double t1
             best = n;
     }
     return best;
+}
+
+static int off_points(const an_state *S, const aa_piece *p, double t0, double t1)
+{
+    return off_points_j(S, p, t0, t1, NULL);
 }
 
 /* The curve's parameter of offset piece p at height y in its rows. */
@@ -1115,19 +1211,20 @@ static double off_part(const an_render *Rn, const aa_piece *p, int stops, double
     return h * sum;
 }
 
-/* R(part) of (1) for offset piece p over rows [ya, yb]: cut where it
- * crosses the knots' lines of the pixel's support (and at t = 1/2 where
- * the curve has a stop, where its evaluation changes form), each part by
- * off_part. */
-static double right_of_offset(const an_render *Rn, const aa_piece *p, double ya, double yb,
-                              double cx, double cy)
+#define AN_OFF_CUTS (3 + 4 * (AN_MAX_CELLS + 1))
+
+/* The cuts of offset piece p over rows [ya, yb] for the pixel (cx, cy),
+ * ascending, in ts (AN_OFF_CUTS at most; 0 if the rows hold none of it):
+ * its parameters at ya and yb (*ta, *tb), t = 1/2 where the curve has a
+ * stop, and where it crosses the knots' lines of the pixel's support. */
+static int off_cuts(const an_pp *pp, const aa_piece *p, int stops, double ya, double yb,
+                    double cx, double cy, double *ts, double *ta_, double *tb_)
 {
-    const an_pp *pp = &Rn->S->pp;
-    int stops = aa__offset_stops(&p->oc);
     double ta = off_t_at(p, ya), tb = off_t_at(p, yb), lo = fmin(ta, tb), hi = fmax(ta, tb);
+    *ta_ = ta, *tb_ = tb;
     if (!(lo < hi))
-        return 0.0;
-    double ts[3 + 4 * (AN_MAX_CELLS + 1)], tbd[4], xbd[4];
+        return 0;
+    double tbd[4], xbd[4];
     int n = 0;
     ts[n++] = lo;
     ts[n++] = hi;
@@ -1142,6 +1239,19 @@ static double right_of_offset(const an_render *Rn, const aa_piece *p, double ya,
     for (int q = 0; q <= pp->ncell; q++)
         n += off_meet_x(p, tbd, xbd, nm, cx + pp->k[q], ts + n);
     aa__vis_sort(ts, (size_t)n);
+    return n;
+}
+
+/* R(part) of (1) for offset piece p over rows [ya, yb]: cut where it
+ * crosses the knots' lines of the pixel's support (and at t = 1/2 where
+ * the curve has a stop, where its evaluation changes form), each part by
+ * off_part. */
+static double right_of_offset(const an_render *Rn, const aa_piece *p, double ya, double yb,
+                              double cx, double cy)
+{
+    int stops = aa__offset_stops(&p->oc);
+    double ts[AN_OFF_CUTS], ta, tb;
+    int n = off_cuts(&Rn->S->pp, p, stops, ya, yb, cx, cy, ts, &ta, &tb);
     double sum = 0.0;
     for (int s = 0; s + 1 < n; s++)
         if (ts[s] < ts[s + 1])
@@ -1167,13 +1277,14 @@ static inline int curve_degree(const aa_piece *p)
     return p->kind == AA_PIECE_CUBIC ? 3 : (p->kind == AA_PIECE_QUAD ? 2 : 1);
 }
 
-/* R(part) of (1) for a conic piece: the parts between the knots' lines in
- * angle (long double), each by the arc's rule */
-static double right_of_arc(const an_state *S, const aa_piece *p, double ya, double yb,
-                           double cx, double cy)
+#define AN_ARC_CUTS (2 + 3 * (AN_MAX_CELLS + 1))
+
+/* The cuts in angle of conic piece p over rows [ya, yb] for the pixel
+ * (cx, cy), ascending, in ss (AN_ARC_CUTS at most): its angles at ya and
+ * yb and where it crosses the inner knots' lines of the support. */
+static int arc_cuts(const an_pp *pp, const aa_piece *p, double ya, double yb, double cx,
+                    double cy, long double *ss)
 {
-    const an_pp *pp = &S->pp;
-    long double ss[2 + 3 * (AN_MAX_CELLS + 1)];
     long double R = hypotl(p->ea, p->eb), ang = atan2l(p->eb, p->ea);
     int n = 0;
     ss[n++] = arc_angle(p, ya);
@@ -1185,6 +1296,17 @@ static double right_of_arc(const an_state *S, const aa_piece *p, double ya, doub
         n += arc_meet_x(p, R, ang, cx + pp->k[q], ss[0], ss[1], ss + n);
     }
     qsort(ss, (size_t)n, sizeof *ss, cmp_ld);
+    return n;
+}
+
+/* R(part) of (1) for a conic piece: the parts between the knots' lines in
+ * angle (long double), each by the arc's rule */
+static double right_of_arc(const an_state *S, const aa_piece *p, double ya, double yb,
+                           double cx, double cy)
+{
+    const an_pp *pp = &S->pp;
+    long double ss[AN_ARC_CUTS];
+    int n = arc_cuts(pp, p, ya, yb, cx, cy, ss);
     double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym, sum = 0.0;
     for (int s = 0; s + 1 < n; s++) {
         if (!(ss[s] < ss[s + 1]))
@@ -3582,18 +3704,6 @@ static int grad_check(const an_state *S, const aa_scene *s)
                                "refused (opaque stops are taken)",
                                l, o, src, c, k, g.stops[k].opacity);
     }
-    size_t np;
-    const aa_piece *p = aa_scene_pieces(s, &np);
-    for (size_t k = 0; k < np; k++)
-        if (p[k].kind == AA_PIECE_CONIC || p[k].kind == AA_PIECE_OFFSET)
-            return aa_fail(AA_EINVAL,
-                           "analytic: layer %d has %s in a scene with gradient paint: the "
-                           "colour's first moments along them are not integrated here (lines, "
-                           "quadratic and cubic Bezier arcs are); refused",
-                           p[k].layer,
-                           p[k].kind == AA_PIECE_CONIC
-                               ? "an elliptical arc"
-                               : "an offset curve (a stroke's outline of a curve)");
     return AA_OK;
 }
 
@@ -3803,6 +3913,87 @@ static void mom_right_of(const an_state *S, const aa_piece *p, double ya, double
     }
 }
 
+/* The three moments of mom_right_of for conic piece p: its parts between
+ * the knots' lines (arc_cuts), each by the arc's rule of one degree more
+ * (2 arc1_m = 4 n + 8 points: the integrands are trigonometric
+ * polynomials of degree 2 n + 3 on a part, header). */
+static void mom_arc(const an_state *S, const aa_piece *p, double ya, double yb, double cx,
+                    double cy, double r[3])
+{
+    const an_pp *pp = &S->pp;
+    long double ss[AN_ARC_CUTS];
+    int n = arc_cuts(pp, p, ya, yb, cx, cy, ss);
+    double X[2 * AN_ARC1_M], Y[2 * AN_ARC1_M], D[2 * AN_ARC1_M], xm, ym;
+    double a0 = 0.0, a1 = 0.0, a2 = 0.0;
+    for (int s = 0; s + 1 < n; s++) {
+        if (!(ss[s] < ss[s + 1]))
+            continue;
+        int ns = arc_splits(ss[s], ss[s + 1]);
+        for (int q = 0; q < ns; q++) {
+            long double a = ss[s] + (ss[s + 1] - ss[s]) * q / ns,
+                        b = q + 1 == ns ? ss[s + 1] : ss[s] + (ss[s + 1] - ss[s]) * (q + 1) / ns;
+            arc_points_of(S->arc1_m, S->arc1_u, (const double(*)[AN_ARC_K + 1])S->arc1_wz, p,
+                          a, b, X, Y, D, &xm, &ym);
+            for (int g = 0; g < 2 * S->arc1_m; g++) {
+                double v = Y[g] - cy, u = X[g] - cx, wv = D[g] * an_weight(pp, v);
+                double right = 1.0 - an_cdf(pp, u);
+                a0 += wv * right;
+                a1 += wv * (pp->m1tot - an_m1(pp, u));
+                a2 += wv * v * right;
+            }
+        }
+    }
+    r[0] = a0, r[1] = a1, r[2] = a2;
+}
+
+/* The three moments over the part [u, v] (u < v, inside one cell of the
+ * pixel's support) of offset piece p, added to r, by the rule certified
+ * for them weighted by J (off_points_j), halved where none is. */
+static void mom_off_part(const an_render *Rn, const aa_piece *p, int stops, double u, double v,
+                         double cx, double cy, const double *J, int depth, double r[3])
+{
+    const an_state *S = Rn->S;
+    const an_pp *pp = &S->pp;
+    int m = off_points_j(S, p, u, v, J);
+    if (!m) {
+        double mid = 0.5 * (u + v);
+        if (depth < AN_OFF_DEPTH && mid > u && mid < v) {
+            mom_off_part(Rn, p, stops, u, mid, cx, cy, J, depth + 1, r);
+            mom_off_part(Rn, p, stops, mid, v, cx, cy, J, depth + 1, r);
+            return;
+        }
+        off_uncertain(Rn->uncertain, 1);
+        m = AN_MAX_PTS;
+    }
+    double h = 0.5 * (v - u), mid = 0.5 * (u + v), a0 = 0.0, a1 = 0.0, a2 = 0.0;
+    for (int g = 0; g < m; g++) {
+        double x, y, dy;
+        off_point(p, stops, mid + h * S->ogx[m][g], &x, &y, &dy);
+        double vv = y - cy, wv = S->ogw[m][g] * an_weight(pp, vv) * dy;
+        double right = 1.0 - an_cdf(pp, x - cx);
+        a0 += wv * right;
+        a1 += wv * (pp->m1tot - an_m1(pp, x - cx));
+        a2 += wv * vv * right;
+    }
+    r[0] += h * a0, r[1] += h * a1, r[2] += h * a2;
+}
+
+/* The three moments of mom_right_of for offset piece p: its parts between
+ * the knots' lines (off_cuts), each by mom_off_part. */
+static void mom_offset(const an_render *Rn, const aa_piece *p, double ya, double yb, double cx,
+                       double cy, const double *J, double r[3])
+{
+    int stops = aa__offset_stops(&p->oc);
+    double ts[AN_OFF_CUTS], ta, tb;
+    int n = off_cuts(&Rn->S->pp, p, stops, ya, yb, cx, cy, ts, &ta, &tb);
+    r[0] = r[1] = r[2] = 0.0;
+    for (int s = 0; s + 1 < n; s++)
+        if (ts[s] < ts[s + 1])
+            mom_off_part(Rn, p, stops, ts[s], ts[s + 1], cx, cy, J, 0, r);
+    if (!(ta < tb))
+        r[0] = -r[0], r[1] = -r[1], r[2] = -r[2];
+}
+
 typedef struct an_gpixel {
     const an_render *R;
     double cx, cy;
@@ -3853,7 +4044,17 @@ static void gp_run(void *ctx, const aa_piece *p, double ya, double yb, const dou
     an_gpixel *P = ctx;
     double r[3];
     (void)inside;
-    mom_right_of(P->R->S, p, ya, yb, P->cx, P->cy, r);
+    if (p->kind == AA_PIECE_CONIC) {
+        mom_arc(P->R->S, p, ya, yb, P->cx, P->cy, r);
+    } else if (p->kind == AA_PIECE_OFFSET) {
+        double J[3] = {0.0, 0.0, 0.0};
+        for (int ch = 0; ch < 3; ch++)
+            for (int k = 0; k < 3; k++)
+                J[k] = fmax(J[k], fabs(jump[3 * ch + k]));
+        mom_offset(P->R, p, ya, yb, P->cx, P->cy, J, r);
+    } else {
+        mom_right_of(P->R->S, p, ya, yb, P->cx, P->cy, r);
+    }
     for (int ch = 0; ch < 3; ch++)
         P->acc[ch] += jump[3 * ch] * r[0] + jump[3 * ch + 1] * r[1] + jump[3 * ch + 2] * r[2];
 }
@@ -4041,7 +4242,8 @@ static int analytic_render(void *state, const double *p, const aa_job *job, aa_i
     if (aa_scene_has_gradients(job->placed)) {
         aa_job aj = *job;
         aj.placed = R.scene = S->grad.aug;
-        return aa__sampler_render(&S->sampler, &aj, out, grad_row, &R, counters);
+        st = aa__sampler_render(&S->sampler, &aj, out, grad_row, &R, counters);
+        return st ? st : off_certified(uncertain);
     }
     if (S->rad_k) {
         st = aa__sampler_render(&S->sampler, job, out, rad_render_row, &R, counters);

@@ -21,7 +21,13 @@
  *    encoding's sliver (the linear values 0.003130 to 0.003132 across the
  *    image, so the sliver (0.0031308, 0.0031308073), where decode(encode(v))
  *    lies 2.2e-9 below v, is 0.07 px wide: taking v there would miss by
- *    about 1e-10, a hundred times the tolerance);
+ *    about 1e-10, a hundred times the tolerance); and elliptical arcs (a
+ *    circle, a turned ellipse and a rounded rectangle under pad, repeat
+ *    and reflect gradients) and offset curves (a stroked cubic whose inner
+ *    offset folds, a stroked turned ellipse) under box, tent:r=1,
+ *    bspline:order=3 and Mitchell; the full tier adds circles and an
+ *    ellipse under a steep repeated gradient against wide cells
+ *    (tent:r=3.7, tent:r=6), whose arcs' parts are long;
  *  - closed forms, derived here: under a filter whose integer translates
  *    sum to 1 (box, tent:r=1, the B-splines, Mitchell-Netravali,
  *    Catmull-Rom) an image holding the whole filtered support of the
@@ -32,10 +38,14 @@
  *    (the integral of an affine function; the sliver changes it by at most
  *    2.4e-9 x 7.3e-9 (b - a) (y1 - y0) < 1e-14 here); the same ramp
  *    repeated with period P over a rectangle of whole periods integrates to
- *    half its area (each period's mean is 1/2);
+ *    half its area (each period's mean is 1/2); a region whose colour is
+ *    affine, c(x, y), integrates to its area times c at its centroid: a
+ *    disk of radius R under a ramp along x (pad never reached) to pi R^2
+ *    c(centre), a turned ellipse of semi-axes a, b under an oblique ramp
+ *    to pi a b c(centre) (the sliver's change as above, below 1e-14);
  *  - refusals by name: sRGB interpolation, radial gradients, a stop of
- *    partial opacity, a translucent layer, a radial filter, an elliptical
- *    arc, a gradient of more stop lines than the method takes.
+ *    partial opacity, a translucent layer, a radial filter, a gradient of
+ *    more stop lines than the method takes.
  */
 #include "bench.h"
 #include "core.h"
@@ -261,6 +271,120 @@ static void test_strokes(void **state)
     aa_scene_free(s);
 }
 
+/* An SVG scene (text) of w x h px, read as a pattern. */
+static aa_scene *svg_scene(const char *name, const char *text, int w, int h)
+{
+    char path[4200], spec[4300];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    support_write_file(path, text, strlen(text));
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_spec ps;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, w, h, &s))
+        fail_msg("pattern %s: %s", spec, aa_last_error());
+    return s;
+}
+
+/* The filters the arcs' and offsets' scenes take in the quick tier */
+static const char *const arc_filters[] = {"box", "tent:r=1", "bspline:order=3", "mitchell",
+                                          NULL};
+
+static void against_filters(const char *what, const aa_scene *s, int w, int h,
+                            const char *const *fl)
+{
+    double worst = 0.0;
+    for (; *fl; fl++)
+        worst = fmax(worst, support_method_against_reference("analytic", what, s, w, h, *fl));
+    print_message("%-28s largest difference over the filters %.1e\n", what, worst);
+}
+
+/* A circle, an ellipse turned by 30 degrees and a rounded rectangle
+ * (elliptical arcs), painted by linear gradients in linear light, pad,
+ * repeat and reflect, over a flat layer they overlap; under box,
+ * tent:r=1, bspline:order=3 and Mitchell (the full tier: every filter). */
+static void test_arcs(void **state)
+{
+    (void)state;
+    static const char svg[] =
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"24\" height=\"18\">\n"
+        "<linearGradient id=\"p\" x1=\"3.2\" y1=\"2.1\" x2=\"12.6\" y2=\"13.2\"\n"
+        " gradientUnits=\"userSpaceOnUse\" color-interpolation=\"linearRGB\">\n"
+        " <stop offset=\"0.1\" stop-color=\"#f02010\"/>\n"
+        " <stop offset=\"0.55\" stop-color=\"#30e060\"/>\n"
+        " <stop offset=\"0.55\" stop-color=\"#2040c0\"/>\n"
+        " <stop offset=\"0.9\" stop-color=\"#f0f0a0\"/>\n"
+        "</linearGradient>\n"
+        "<linearGradient id=\"r\" href=\"#p\" x1=\"12.1\" y1=\"6.3\" x2=\"15.8\" y2=\"4.1\"\n"
+        " spreadMethod=\"repeat\" color-interpolation=\"linearRGB\"/>\n"
+        "<linearGradient id=\"f\" href=\"#p\" x1=\"16.2\" y1=\"1.3\" x2=\"18.9\" y2=\"4.7\"\n"
+        " spreadMethod=\"reflect\" color-interpolation=\"linearRGB\"/>\n"
+        "<rect x=\"2.3\" y=\"9.4\" width=\"17.2\" height=\"5.9\" fill=\"#806040\"/>\n"
+        "<circle cx=\"7.3\" cy=\"8.1\" r=\"4.7\" fill=\"url(#p)\"/>\n"
+        "<ellipse cx=\"13.2\" cy=\"11.3\" rx=\"5.1\" ry=\"2.9\"\n"
+        " transform=\"rotate(30 13.2 11.3)\" fill=\"url(#r)\"/>\n"
+        "<rect x=\"15.4\" y=\"1.6\" width=\"6.3\" height=\"7.7\" rx=\"2.2\" ry=\"1.6\"\n"
+        " fill=\"url(#f)\"/>\n"
+        "</svg>\n";
+    aa_scene *s = svg_scene("arcs.svg", svg, 24, 18);
+    against_filters("circle, ellipse, round rect", s, 24, 18,
+                    ANALYTIC_GRADIENT_ALL ? filters : arc_filters);
+    aa_scene_free(s);
+}
+
+/* Circles and an ellipse against wide cells (tent:r=3.7 and tent:r=6,
+ * cells 3.7 and 6 px wide, where a part of an arc is up to a quarter of
+ * it), under a steep repeated gradient (the full tier: the reference
+ * takes most of a minute here). */
+#if ANALYTIC_GRADIENT_ALL
+static void test_small_arcs(void **state)
+{
+    (void)state;
+    static const char svg[] =
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"12\" height=\"10\">\n"
+        "<linearGradient id=\"g\" x1=\"1\" y1=\"2\" x2=\"2.3\" y2=\"2.9\"\n"
+        " gradientUnits=\"userSpaceOnUse\" spreadMethod=\"repeat\" color-interpolation=\"linearRGB\">\n"
+        " <stop offset=\"0\" stop-color=\"#000000\"/><stop offset=\"1\" stop-color=\"#ffffff\"/>\n"
+        "</linearGradient>\n"
+        "<circle cx=\"3.6\" cy=\"3.9\" r=\"2.9\" fill=\"url(#g)\"/>\n"
+        "<circle cx=\"8.6\" cy=\"2.7\" r=\"0.45\" fill=\"url(#g)\"/>\n"
+        "<ellipse cx=\"7.4\" cy=\"6.8\" rx=\"2.6\" ry=\"1.2\" transform=\"rotate(35 7.4 6.8)\"\n"
+        " fill=\"url(#g)\"/>\n"
+        "</svg>\n";
+    aa_scene *s = svg_scene("smallarcs.svg", svg, 12, 10);
+    against_filters("small arcs, wide cells", s, 12, 10,
+                    (const char *const[]){"tent:r=3.7", "tent:r=6", NULL});
+    aa_scene_free(s);
+}
+#endif
+
+/* A stroked cubic (its outline: offset curves, with a fold of the inner
+ * offset at its sharp turn) and a stroked turned ellipse, with gradient
+ * paint, over a flat circle. */
+static void test_curve_strokes(void **state)
+{
+    (void)state;
+    static const char svg[] =
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"22\" height=\"20\">\n"
+        "<linearGradient id=\"g\" x1=\"2\" y1=\"3\" x2=\"8.5\" y2=\"7\"\n"
+        " gradientUnits=\"userSpaceOnUse\" spreadMethod=\"reflect\" color-interpolation=\"linearRGB\">\n"
+        " <stop offset=\"0.15\" stop-color=\"#ff3010\"/><stop offset=\"0.85\" stop-color=\"#1050ff\"/>\n"
+        "</linearGradient>\n"
+        "<linearGradient id=\"h\" x1=\"4\" y1=\"18\" x2=\"19\" y2=\"9\"\n"
+        " gradientUnits=\"userSpaceOnUse\" color-interpolation=\"linearRGB\">\n"
+        " <stop offset=\"0\" stop-color=\"#e0e020\"/><stop offset=\"1\" stop-color=\"#20a0a0\"/>\n"
+        "</linearGradient>\n"
+        "<circle cx=\"11\" cy=\"10\" r=\"6.5\" fill=\"#404060\"/>\n"
+        "<path d=\"M2.4,3.3 C19.7,1.2 0.8,17.9 19.1,16.2\" fill=\"none\" stroke=\"url(#g)\"\n"
+        " stroke-width=\"2.3\"/>\n"
+        "<ellipse cx=\"12.1\" cy=\"11.4\" rx=\"6.2\" ry=\"3.1\" transform=\"rotate(-25 12.1 11.4)\"\n"
+        " fill=\"none\" stroke=\"url(#h)\" stroke-width=\"1.7\"/>\n"
+        "</svg>\n";
+    aa_scene *s = svg_scene("curvestrokes.svg", svg, 22, 20);
+    against_filters("stroked cubic and ellipse", s, 22, 20,
+                    ANALYTIC_GRADIENT_ALL ? filters : arc_filters);
+    aa_scene_free(s);
+}
+
 /* The image's sum against the picture's integral (the opening comment). */
 static void sums_to(const char *what, const aa_scene *s, int w, int h, double want)
 {
@@ -310,6 +434,46 @@ static void test_closed_forms(void **state)
     assert_int_equal(aa_scene_finish(s), AA_OK);
     sums_to("repeated ramp, whole periods", s, W, H, 0.5 * (x1 - x0) * (y1 - y0));
     aa_scene_free(s);
+
+    /* A disk of radius R about (xc, yc) painted by a ramp along x from a to
+     * b beyond it (pad never reached): its colour affine, its integral the
+     * area times the colour at the centre, pi R^2 (xc - a)/(b - a); and a
+     * turned ellipse of semi-axes ea, eb under an oblique ramp, pi ea eb
+     * times the colour at its centre (the centroid). */
+    W = 26, H = 24;
+    double R = 7.35, xc = 12.6, yc = 11.8;
+    a = xc - R - 1.5, b = xc + R + 2.25;
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    move(s, xc + R, yc);
+    assert_int_equal(aa_scene_arc_to(s, xc / W, yc / H, R / W, 0, 0, R / H, 0, 2.0 * M_PI,
+                                     (xc + R) / W, yc / H),
+                     AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){a, 3, b, 3, 0, 0},
+             black_white, 2, 0);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    sums_to("disk under a ramp", s, W, H, M_PI * R * R * (xc - a) / (b - a));
+    aa_scene_free(s);
+
+    /* the ellipse's axes (cos th, sin th) ea and (-sin th, cos th) eb; the
+     * ramp from (a, ya) to (b, yb), t = ((p - P1).d)/|d|^2 at the centre */
+    double ea = 8.1, eb = 4.3, th = 0.6, ya = 1.5, yb = 22.0;
+    a = 2.0, b = 24.5;
+    s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    move(s, xc + ea * cos(th), yc + ea * sin(th));
+    assert_int_equal(aa_scene_arc_to(s, xc / W, yc / H, ea * cos(th) / W, ea * sin(th) / H,
+                                     -eb * sin(th) / W, eb * cos(th) / H, 0, 2.0 * M_PI,
+                                     (xc + ea * cos(th)) / W, (yc + ea * sin(th)) / H),
+                     AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){a, ya, b, yb, 0, 0},
+             black_white, 2, 0);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    double dx = b - a, dy = yb - ya, t = ((xc - a) * dx + (yc - ya) * dy) / (dx * dx + dy * dy);
+    sums_to("turned ellipse, oblique ramp", s, W, H, M_PI * ea * eb * t);
+    aa_scene_free(s);
 }
 
 /* analytic refuses the scene (or filter) with a message holding `want`. */
@@ -328,25 +492,16 @@ static void refused(const char *what, const aa_scene *s, const char *filter, con
 }
 
 /* A rectangle painted by a gradient (kind, spread, p, stops; sRGB if
- * srgb), behind a flat layer of alpha `alpha`, or the rectangle bounded by
- * an elliptical arc (arc). */
+ * srgb), behind a flat layer of alpha `alpha`. */
 static aa_scene *one(int kind, int spread, const double p[6], const aa_gradient_stop *st, int n,
-                     int srgb, double alpha, int arc)
+                     int srgb, double alpha)
 {
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
     layer(s, 1, 1, 1, AA_FILL_NONZERO);
     rect(s, 1, 1, 4, 4);
     assert_int_equal(aa_scene_set_alpha(s, alpha), AA_OK);
     layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    if (arc) {
-        move(s, 8, 3);
-        assert_int_equal(aa_scene_arc_to(s, 6.0 / W, 3.0 / H, 2.0 / W, 0, 0, 2.0 / H, 0, M_PI,
-                                         4.0 / W, 3.0 / H),
-                         AA_OK);
-        assert_int_equal(aa_scene_close(s), AA_OK);
-    } else {
-        rect(s, 2, 2, 10, 7);
-    }
+    rect(s, 2, 2, 10, 7);
     gradient(s, kind, spread, p, st, n, srgb);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     return s;
@@ -358,29 +513,26 @@ static void test_refusals(void **state)
     W = 12, H = 8;
     const double lin[6] = {2, 0, 9, 0, 0, 0}, rad[6] = {6, 4, 3, 6, 4, 0};
     const aa_gradient_stop half[2] = {{0.0, {{1, 0, 0}}, 1.0}, {1.0, {{0, 0, 1}}, 0.5}};
-    aa_scene *s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 0, 1.0, 0);
+    aa_scene *s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 0, 1.0);
     support_method_against_reference("analytic", "refusals' base scene", s, W, H, "box");
     refused("radial filter", s, "radial:k=2,r=1.5", "under a radial filter");
     aa_scene_free(s);
-    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 1, 1.0, 0);
+    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 1, 1.0);
     refused("sRGB interpolation", s, "box", "layer 1's linear gradient interpolates its stops in "
                                             "sRGB-encoded values");
     aa_scene_free(s);
-    s = one(AA_GRADIENT_RADIAL, AA_SPREAD_PAD, rad, black_white, 2, 0, 1.0, 0);
+    s = one(AA_GRADIENT_RADIAL, AA_SPREAD_PAD, rad, black_white, 2, 0, 1.0);
     refused("radial gradient", s, "box", "layer 1's radial gradient is refused");
     aa_scene_free(s);
-    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, half, 2, 0, 1.0, 0);
+    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, half, 2, 0, 1.0);
     refused("stop opacity", s, "box", "has stop 1 of opacity 0.5");
     aa_scene_free(s);
-    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 0, 0.5, 0);
+    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 0, 0.5);
     refused("translucent layer", s, "box", "layer 0 is translucent");
-    aa_scene_free(s);
-    s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 0, 1.0, 1);
-    refused("elliptical arc", s, "box", "layer 1 has an elliptical arc");
     aa_scene_free(s);
     /* a period of 1e-4 px: 1.7e5 periods across the frame */
     s = one(AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT, (const double[6]){2, 0, 2.0001, 0, 0, 0},
-            black_white, 2, 0, 1.0, 0);
+            black_white, 2, 0, 1.0);
     refused("too many stop lines", s, "box", "more than 65536 stop lines");
     aa_scene_free(s);
 }
@@ -390,6 +542,10 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_layers),       cmocka_unit_test(test_curves_and_clip),
         cmocka_unit_test(test_sliver),       cmocka_unit_test(test_strokes),
+        cmocka_unit_test(test_arcs),         cmocka_unit_test(test_curve_strokes),
+#if ANALYTIC_GRADIENT_ALL
+        cmocka_unit_test(test_small_arcs),
+#endif
         cmocka_unit_test(test_closed_forms), cmocka_unit_test(test_refusals)};
     return cmocka_run_group_tests(tests, setup, teardown);
 }
