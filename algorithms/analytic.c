@@ -103,7 +103,8 @@
  *
  * Error analysis: rounding, and the heights where pieces meet (found in
  * closed form by visible.c) and where they cross the knots' lines
- * (aa_piece_meet_x): a cut misplaced by e moves the part of width e into
+ * (aa_piece_meet_x; a cubic's by cubic_cuts, to full precision): a cut
+ * misplaced by e moves the part of width e into
  * the neighbouring cell's polynomial, whose value differs there by at most
  * e times the jump of w's derivative (w and W are continuous; the box's
  * steps are at the support's sides, where the window ends).  The scatter
