@@ -104,7 +104,8 @@
  *
  * Error analysis: rounding, and the heights where pieces meet (found in
  * closed form by visible.c) and where they cross the knots' lines
- * (aa_piece_meet_x): a cut misplaced by e moves the part of width e into
+ * (aa_piece_meet_x; a cubic's by cubic_cuts, to full precision): a cut
+ * misplaced by e moves the part of width e into
  * the neighbouring cell's polynomial, whose value differs there by at most
  * e times the jump of w's derivative (w and W are continuous; the box's
  * steps are at the support's sides, where the window ends).  The scatter
@@ -472,6 +473,7 @@
 #include "visible.h"
 
 #include <float.h>
+#include <gsl/gsl_poly.h>
 #include <math.h>
 #include <omp.h>
 #if defined(__SSE2__) && defined(__x86_64__)
@@ -2942,10 +2944,109 @@ static void fast_offset(const an_block *B, const aa_piece *p, const double *val,
             fast_off_part(B, p, stops, val, ts[i], ts[i + 1], sg, 0);
 }
 
+/* The root in [a, b] of f(t) = c + t (k1 + t (k2 + t k3)), increasing
+ * there from a non-positive value to a non-negative one, from a guess t
+ * near it: Newton's steps while they stay in [a, b] and shrink, until the
+ * error left after a step is below 2^-54 of the root (or of 2^-10 near
+ * zero); else the bracketed search (area_cubic_root).  After the step s
+ * from t, f(t - s) = f''(u) s^2 / 2 for some u between (Taylor), and f''
+ * is linear, so |f''| / 2 is at most the larger of |k2 + 3 k3 t| at the
+ * step's two ends: the root lies within that times s^2 over the smaller
+ * f' there.  (area_cubic_near's estimate takes f'' at t alone, enough
+ * from its second-order guesses; from the neighbouring line's root, a
+ * step of 1e-2 where f'' vanishes at t, as on the half of a symmetric
+ * arc, left 1e-9 px.) */
+static inline double cubic_near(double c, double k1, double k2, double k3, double a, double b,
+                                double t)
+{
+    double last = INFINITY;
+    for (int it = 0; it < 8; it++) {
+        double f = c + t * (k1 + t * (k2 + t * k3));
+        double df = k1 + t * (2.0 * k2 + 3.0 * t * k3);
+        if (f == 0.0)
+            return t;
+        double step = f / df;
+        if (!(df > 0.0) || !(fabs(step) < 0.5 * last))
+            break;
+        double next = t - step;
+        if (!(next >= a && next <= b))
+            break;
+        double dn = k1 + next * (2.0 * k2 + 3.0 * next * k3);
+        double h = fmax(fabs(k2 + 3.0 * t * k3), fabs(k2 + 3.0 * next * k3));
+        if (dn > 0.0 && h * step * step <= 0x1p-54 * fmax(fabs(next), 0x1p-10) * fmin(df, dn))
+            return next;
+        t = next;
+        last = fabs(step);
+    }
+    return area_cubic_root(c, k1, k2, k3, a, b);
+}
+
+/* The cuts of cubic piece p over its rows [lo, hi] (ta, tb its parameters
+ * there): ty[1 ..] the lines of y between, then tb; tx the lines of x
+ * (XA <= X <= XB), ascending.  Each parameter is the root of a monotone
+ * cubic found by Newton's method from the neighbouring cut's (cubic_near:
+ * y rises along the piece, so the line above's root is a bracket's end
+ * and the guess; a line of x, on each part between x's turns, from the
+ * neighbouring line's root): on curves.svg under tent:r=1 at 1024x1024
+ * about 170 instructions a root, where aa_piece_t_at's bracketed search
+ * from [0, 1] took about 550.  The lines of x are solved in x directly,
+ * not for a height (aa_piece_meet_x) and then for its parameter again,
+ * and found in order of t, so not sorted. */
+static void cubic_cuts(const an_state *S, const aa_piece *p, double lo, double hi, double ta,
+                       double tb, double XA, double XB, double *ty, size_t *ny, double *tx,
+                       size_t *nx)
+{
+    const double y0 = p->y0, by = p->by, ay = p->ay, dy = p->dy;
+    double tp = ta;
+    for (double base = floor(lo); base <= hi; base += 1.0)
+        for (int q = 0; q < S->nph; q++) {
+            double Y = base + S->ph[q];
+            if (Y > lo && Y < hi)
+                ty[(*ny)++] = tp = cubic_near(y0 - Y, by, ay, dy, tp, tb, tp);
+        }
+    ty[(*ny)++] = tb;
+    /* x's turns inside (ta, tb) cut it into monotone parts */
+    double u[4], r[2];
+    int nu = 0;
+    u[nu++] = ta;
+    int nr = gsl_poly_solve_quadratic(3.0 * p->dx, 2.0 * p->ax, p->bx, &r[0], &r[1]);
+    for (int k = 0; k < nr; k++)
+        if (r[k] > u[nu - 1] && r[k] < tb)
+            u[nu++] = r[k];
+    u[nu++] = tb;
+    const double x0 = p->x0, bx = p->bx, ax = p->ax, dx = p->dx;
+    double xu = x0 + ta * (bx + ta * (ax + ta * dx));
+    for (int k = 0; k + 1 < nu; k++) {
+        double a = u[k], b = u[k + 1], xv = x0 + b * (bx + b * (ax + b * dx));
+        double xa = fmin(xu, xv), xb = fmax(xu, xv), ca = fmax(xa, XA), cb = fmin(xb, XB);
+        int up = xv > xu;
+        size_t first = *nx;
+        /* the lines in ascending X: rising x from a (each root above the
+         * last), falling x from b (each below the last) */
+        double tn = up ? a : b;
+        for (double base = floor(ca); base <= cb; base += 1.0)
+            for (int q = 0; q < S->nph; q++) {
+                double X = base + S->ph[q];
+                if (!(X > xa && X < xb && X >= XA && X <= XB))
+                    continue;
+                tn = up ? cubic_near(x0 - X, bx, ax, dx, tn, b, tn)
+                        : cubic_near(X - x0, -bx, -ax, -dx, a, tn, tn);
+                tx[(*nx)++] = tn;
+            }
+        if (!up) /* descending in t: reversed */
+            for (size_t i = first, j = *nx ? *nx - 1 : 0; i < j; i++, j--) {
+                double t = tx[i];
+                tx[i] = tx[j], tx[j] = t;
+            }
+        xu = xv;
+    }
+}
+
 /* The terms of piece p (values val[0 .. nv)) over rows [ya, yb] (a visible
  * part's; the whole piece's, p->y0 and p->y1, on the scatter's rows) in the
  * block's rows: cut at the knots' lines, in order of t (the lines of y in
- * order, those of x sorted apart and merged). */
+ * order, those of x sorted apart and merged; a cubic's found in order,
+ * cubic_cuts). */
 static void fast_piece(const an_block *B, const aa_piece *p, const double *val, double ya,
                        double yb)
 {
@@ -2972,7 +3073,12 @@ static void fast_piece(const an_block *B, const aa_piece *p, const double *val, 
     double tb = hi >= p->y1 ? 1.0 : aa_piece_t_at(p, hi);
     ty[ny++] = ta;
     const int lin = piece_lin(p);
-    if (lin && p->kind != AA_PIECE_CUBIC) {
+    if (p->kind == AA_PIECE_CUBIC) {
+        cubic_cuts(S, p, lo, hi, ta, tb, XA, XB, ty, &ny, tx, &nx);
+        AN_PART_FOR(pp->deg, gauss_points(p, pp->deg))(B, p, val, ty, ny, tx, nx, lin);
+        return;
+    }
+    if (lin) {
         /* aa_piece_t_at's steps for y linear in t, inline */
         const double y0 = p->y0, y1 = p->y1, by = p->by;
         for (double base = floor(lo); base <= hi; base += 1.0)
@@ -3099,6 +3205,45 @@ static inline int fill_face(double **px, double **cov, const unsigned char *t, i
     return i;
 }
 
+/* The buffers' rows (ra .. rb, from the block's first margin row) that
+ * hold terms of parts with y in [Y0, Y1], and marks of flat pieces there:
+ * a part's rows are those whose supports hold its middle (ym, within
+ * rounding of [Y0, Y1]: one row more each way), clipped to the block's
+ * rows but by the regular filters' parts, which write their N + 1 rows
+ * into the margins.  The other rows are left as every block leaves the
+ * rows it wrote, zero, and neither read nor cleared. */
+static void term_rows(const an_block *B, double Y0, double Y1, int *ra, int *rb)
+{
+    const an_pp *pp = &B->S->pp;
+    const int base = B->j0 - B->pad, last = AN_BLOCK + 2 * B->pad - 1;
+    int a = ifloor(Y0 - 0.5 - pp->k[pp->ncell]) - base, b = ifloor(Y1 - 0.5 - pp->k[0]) + 1 - base;
+    *ra = a < 0 ? 0 : a;
+    *rb = b > last ? last : b;
+}
+
+/* A row of the buffers whose values are not wanted, cleared: every cell a
+ * part or flat piece wrote is marked (a part marks each cell of its terms,
+ * AN_TERM, and those it carries into, AN_CARRY), so only the marked cells
+ * are zeroed, eight marks tested at a time, and the marks (a row of the
+ * margins holds a few parts' terms, where clearing all its cells stored
+ * some 33 kB at 1024 px wide with four values a cell). */
+static void clear_row(double *cov, unsigned char *tch, size_t cols, int nv)
+{
+    size_t i = 0;
+    for (; i + 8 <= cols; i += 8) {
+        uint64_t t8;
+        memcpy(&t8, tch + i, sizeof t8);
+        if (t8)
+            for (size_t e = i; e < i + 8; e++)
+                if (tch[e])
+                    memset(cov + e * (size_t)nv, 0, (size_t)nv * sizeof *cov);
+    }
+    for (; i < cols; i++)
+        if (tch[i])
+            memset(cov + i * (size_t)nv, 0, (size_t)nv * sizeof *cov);
+    memset(tch, 0, cols);
+}
+
 /* Rows j0 .. j1-1 (those not marked slow) by the scatter. */
 static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1, aa_image *out,
                       uint64_t *expensive)
@@ -3110,7 +3255,15 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
     const size_t cols = block_cols(S, w);
     an_block B = block_bind(S, wk, w, j0, j1, nv);
     B.uncertain = R->uncertain;
-    double Y0 = j0 + 0.5 + pp->k[0], Y1 = (j1 - 1) + 0.5 + pp->k[pp->ncell];
+    /* the rows of the supports of this path's rows (the first and last
+     * not marked slow, and those between): no part outside them has a
+     * term there */
+    int fa = j0, fb = j1 - 1;
+    while (S->slow[fa])
+        fa++;
+    while (S->slow[fb])
+        fb--;
+    double Y0 = fa + 0.5 + pp->k[0], Y1 = fb + 0.5 + pp->k[pp->ncell];
     double sx0, sy0, sx1, sy1;
     aa_scene_bounds(R->scene, &sx0, &sy0, &sx1, &sy1);
     if (aa_strip_begin(wk->strip, Y0, Y1))
@@ -3124,7 +3277,8 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
         if (cf[0] == 0.0 && cf[1] == 0.0 && cf[2] == 0.0)
             continue; /* no step (its faces are the background's colour) */
         if (!p->dir) {
-            mark_flat(&B, p);
+            if (p->y0 >= Y0 && p->y0 <= Y1)
+                mark_flat(&B, p);
             continue;
         }
         double val[AN_NV];
@@ -3135,16 +3289,17 @@ static int fast_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1
                 val[v] = p->dir * cf[v];
             val[3] = p->dir * (p->layer + 1.0);
         }
-        fast_piece(&B, p, val, p->y0, p->y1);
+        fast_piece(&B, p, val, Y0, Y1);
     }
     const double lo = R->lo, hi = R->hi;
-    for (int r = 0; r < AN_BLOCK + 2 * pad; r++) {
+    int ra, rb;
+    term_rows(&B, Y0, Y1, &ra, &rb);
+    for (int r = ra; r <= rb; r++) {
         int j = j0 - pad + r;
         double *cov = B.cover + (size_t)r * cols * nv;
         unsigned char *tch = B.touched + (size_t)r * cols;
         if (j < j0 || j >= j1 || S->slow[j]) { /* margins and other paths' rows */
-            memset(cov, 0, cols * nv * sizeof *cov);
-            memset(tch, 0, cols);
+            clear_row(cov, tch, cols, nv);
             continue;
         }
         uint64_t touched = 0;
@@ -3430,7 +3585,7 @@ static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1,
         size_t nloc;
         const aa_piece *const *loc = aa_strip_local(wk->strip, &nloc);
         for (size_t q = 0; q < nloc; q++)
-            if (!loc[q]->dir)
+            if (!loc[q]->dir && loc[q]->y0 >= Y0 && loc[q]->y0 <= Y1)
                 mark_flat(&B, loc[q]);
         aa__vis_window(&v, wk->strip, xa, xb, Y0, Y1, &sink);
         V.first = 0;
@@ -3438,16 +3593,15 @@ static int vis_block(const an_render *R, aa__sampler_worker *wk, int j0, int j1,
     }
     const double lo = R->lo, hi = R->hi;
     const double *bg = S->bg.c;
-    /* the rows a term can reach: the slow rows' supports' rows, one more */
-    int ra = ja - pad - j0 + pad, rb = jb + pad - j0 + pad;
-    ra = ra < 0 ? 0 : ra, rb = rb > AN_BLOCK + 2 * pad - 1 ? AN_BLOCK + 2 * pad - 1 : rb;
+    /* the rows a term can reach */
+    int ra, rb;
+    term_rows(&B, Y0, Y1, &ra, &rb);
     for (int r = ra; r <= rb; r++) {
         int j = j0 - pad + r;
         double *cov = B.cover + (size_t)r * cols * AN_NV;
         unsigned char *tch = B.touched + (size_t)r * cols;
         if (V.bad || j < j0 || j >= j1 || !S->slow[j]) { /* margins, other rows */
-            memset(cov, 0, cols * AN_NV * sizeof *cov);
-            memset(tch, 0, cols);
+            clear_row(cov, tch, cols, AN_NV);
             continue;
         }
         const unsigned char *t = tch + pad;

@@ -17,6 +17,8 @@
  *    rounded rectangle, paths of `A` and `a`, an even-odd ring), circles,
  *    turned ellipses, a pie slice and a circle 0.3 px in radius in one
  *    layer and in two overlapping, circles of radius 1e4 and 1e6 px;
+ *    curves.svg at 48 px under box, tent:r=1 and bspline:order=3 (a
+ *    cubic's cuts found from the neighbouring cut's root, test_cubic_cuts);
  *  - no meeting between two arcs leaving a common end point with a common
  *    control point: at equal parameters their heights agree and their x
  *    differ by t^2 times the difference of their other ends;
@@ -136,6 +138,34 @@ static void test_svg(void **state)
         against_reference(*f, s, n, n, 0, 1);
         aa_scene_free(s);
     }
+}
+
+/* curves.svg drawn at 48 px under box, tent:r=1 and bspline:order=3: a
+ * cubic's cuts at the knots' lines are found by Newton's method from the
+ * neighbouring line's root, and on the lens's halves (of a symmetric arc,
+ * whose x'' vanishes at the top) the first step starts where f'' = 0: a
+ * stopping test that reads f'' at the step's start alone stops after it,
+ * short of the root (1e-3 from the reference at this size under the box,
+ * 2e-8 under tent:r=1; this file's other cases passed). */
+static void test_cubic_cuts(void **state)
+{
+    (void)state;
+    const char *const fs[] = {"box", "tent:r=1", "bspline:order=3", NULL};
+    aa_spec ps;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse("svg:file=patterns/svg/curves.svg", &ps) ||
+        aa_pattern_scene_at(&ps, 48, 48, &s))
+        fail_msg("curves.svg: %s", aa_last_error());
+    for (const char *const *f = fs; *f; f++) {
+        aa_image a, r;
+        support_render("analytic", s, *f, 48, 48, 1, &a, NULL);
+        support_reference(s, &(support_view){.w = 48, .h = 48, .filter = *f, .threads = 1}, &r,
+                          NULL, NULL);
+        within_reference("curves at 48 px", *f, &a, &r);
+        aa_image_free(&a);
+        aa_image_free(&r);
+    }
+    aa_scene_free(s);
 }
 
 /* A self-crossing even-odd path of cubic arcs in front of a nonzero path of
@@ -587,6 +617,7 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_patterns),
              cmocka_unit_test(test_cubics),
              cmocka_unit_test(test_svg),
+             cmocka_unit_test(test_cubic_cuts),
              cmocka_unit_test(test_overlapping_layers),
              cmocka_unit_test(test_shared_ends),
              cmocka_unit_test(test_fast_and_layered),
