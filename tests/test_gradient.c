@@ -2085,6 +2085,65 @@ static void test_cache(void **state)
     assert_true(sums[2] == sums[1]);
 }
 
+/* A translucent radial gradient over a linear one whose t runs along y:
+ * along a row the linear layer's t is constant, so the threshold's curve
+ * E(x, y) = 0.04045 of the red channel is a circle of the radial's t
+ * that changes from row to row, no circle of any one t.  Written out:
+ * E = 0.6 CR(tR) + 0.4 CL(tL), CR = 0.2 (1 - tR), tR = |q - (7.5, 11)| / 4,
+ * CL piecewise linear with a peak a at tL = 0.48 (the stop line y =
+ * 7.76), tL = (y - 2) / 12; a = 0.0453681462 puts E(7.5, 7.745) at the
+ * threshold (bisected outside the library), where dE/dx = 0: the curve's
+ * lowest point, a horizontal tangent, inside pixel (7, 7), and it
+ * crosses the stop line at x = 7.17 and 7.83, in the same pixel.
+ * Against the 2-D quadrature of the picture (mpic_pixel) at that pixel
+ * and its neighbours. */
+static const aa_gradient_stop tan_r[2] = {{0.0, {{0.033104766570885055, 0.5, 0.5}}, 1.0},
+                                          {1.0, {{0, 0.5, 0.5}}, 1.0}};
+static const aa_gradient_stop tan_l[3] = {{0.0, {{0, 0.5, 0.5}}, 1.0},
+                                          {0.48, {{0.003511466425239878, 0.5, 0.5}}, 1.0},
+                                          {1.0, {{0, 0.5, 0.5}}, 1.0}};
+
+static void test_mixed_tangent(void **state)
+{
+    (void)state;
+    static const int px[3][2] = {{7, 7}, {6, 7}, {8, 7}};
+    mpic p = {2,
+              {{0, {0, 0, 16, 16}, AA_GRADIENT_LINEAR, {7.5, 2, 7.5, 14, 0, 0}, AA_SPREAD_PAD, 3,
+                tan_l, 1.0},
+               {1, {7.5, 11, 6, 0}, AA_GRADIENT_RADIAL, {7.5, 11, 4, 7.5, 11, 0}, AA_SPREAD_PAD, 2,
+                tan_r, 0.6}},
+              {0, 0, 0},
+              0};
+    mpic_check("radial over linear, the threshold's curve tangent to a row at a stop line", &p,
+               px, 3);
+}
+
+
+/* The same linear layer under a radial one with a stop at t = 0.8 (the
+ * circle of radius 3.2 about (7.5, 11)) whose encoded channel 0.046 breaks
+ * its slope: the threshold's curve crosses that stop circle obliquely near
+ * (4.64, 9.56) in pixel (4, 9) and, mirrored, in (10, 9) (located by
+ * sampling E along the circle outside the library; 4.63 to 4.66 for a
+ * threshold moved by 1e-4).  Against the 2-D quadrature of the picture. */
+static const aa_gradient_stop circ_r[3] = {{0.0, {{0.033104766570885055, 0.5, 0.5}}, 1.0},
+                                           {0.8, {{0.0035856293488019638, 0.5, 0.5}}, 1.0},
+                                           {1.0, {{0, 0.5, 0.5}}, 1.0}};
+
+static void test_mixed_stop_circle(void **state)
+{
+    (void)state;
+    static const int px[2][2] = {{4, 9}, {10, 9}};
+    mpic p = {2,
+              {{0, {0, 0, 16, 16}, AA_GRADIENT_LINEAR, {7.5, 2, 7.5, 14, 0, 0}, AA_SPREAD_PAD, 3,
+                tan_l, 1.0},
+               {1, {7.5, 11, 6, 0}, AA_GRADIENT_RADIAL, {7.5, 11, 4, 7.5, 11, 0}, AA_SPREAD_PAD, 3,
+                circ_r, 0.6}},
+              {0, 0, 0},
+              0};
+    mpic_check("radial over linear, the threshold's curve across a radial stop circle", &p, px,
+               2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -2100,6 +2159,8 @@ int main(void)
         cmocka_unit_test(test_many_layers_stack),
         cmocka_unit_test(test_many_layers_mixed),
         cmocka_unit_test(test_stack_close_roots),
+        cmocka_unit_test(test_mixed_tangent),
+        cmocka_unit_test(test_mixed_stop_circle),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

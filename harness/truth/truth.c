@@ -255,10 +255,11 @@
  * bound, the ellipse clear of every radial layer's branch points and, on
  * the power piece, of the zeros of e + 0.055 (shown by a bound on e's
  * change over the ellipse).  The outer breakpoints are the union of the
- * layers' own (stop lines and circles as above); the threshold's curve is
- * no circle then and is left to QAG's bisection, as the linear path's
- * kink at 0.04045 is.  Its estimate does not always see the kink, so the
- * bound there is not proven: each layer's threshold circles
+ * layers' own (stop lines and circles as above) and the threshold's
+ * heights found by scanning (below); the threshold's curve is no circle
+ * then, and between those heights its kink is left to QAG, as the linear
+ * path's kink at 0.04045 is.  Its estimate does not always see the kink,
+ * so the bound there is not proven: each layer's threshold circles
  * (threshold_taus) are the composite's with the other gradients at their
  * first stops, the threshold only where no other gradient paints, and n
  * identical translucent radial layers (tests/test_gradient.c,
@@ -276,9 +277,10 @@
  * 4.8e-13 off against a bound of 9.7e-14, 2.6e-18 now (tests/
  * test_gradient.c, test_stack_close_roots).
  *
- * Where layers of different t mix, the threshold's curve is still no
- * breakpoint, and the pixel's bound there is QAG's estimate, not a proof.
- * Why: the row integral F(y) = int dec(E(x, y)) w dx is analytic between
+ * Where layers of different t mix, the threshold's curve is no circle or
+ * line of one t, and its heights are found by scanning (thr_heights), not
+ * certified, so the pixel's bound there is QAG's estimate, not a proof.
+ * Why they matter: the row integral F(y) = int dec(E(x, y)) w dx is analytic between
  * heights where the curve crosses rows transversally (the crossing x(y)
  * is analytic, and each side of it takes one of the decoding's pieces),
  * but not at the heights where the curve is tangent to a row (E = c and
@@ -295,10 +297,27 @@
  * the same to the bit with 8 times its sampling) against a bound of
  * 2.3e-14; given that height as a turning point the pixel came inside
  * its bound, and pixel (6, 7), where the curve crosses the window's side
- * x = 7, stayed 3.5e-13 off against 2.9e-14.  A proven rule needs those
- * heights as breakpoints, found by a certified 2-D method (interval
- * Newton on E = c, dE/dx = 0, and on E = c along each cut), and a bound
- * of the rule's error between them; neither is here.  Nor is the
+ * x = 7, stayed 3.5e-13 off against 2.9e-14.  So, in a scene whose
+ * gradient layers are not all of one t, each pixel's rows are scanned
+ * between its breakpoints: THR_ROWS = 32 rows a window's height, and one
+ * just inside each interval's ends; each row's signature is the count of
+ * the threshold's places (gen_section's certified isolation) per channel
+ * in each section of the row where layers of different t mix, in the
+ * row's order.  Where two consecutive scan rows' signatures differ, the
+ * height of the change is bisected to rounding and made a breakpoint
+ * (unless within 1e-6 R of one already there, whose own change it is
+ * taken to be: THR_NEAR): a
+ * place entering or leaving a section is the curve crossing a cut (a
+ * stop line or circle, an edge, the window's side), and a total that
+ * changes by two a tangency, made a turning point too.  Those three
+ * pixels came within 1.1e-16 of the 2-D quadrature with it (tests/
+ * test_gradient.c, test_mixed_tangent).  Not certified: a tangency whose
+ * two places appear and vanish between two scan rows (a bump of the curve
+ * thinner than 1/32 of the window) goes unseen, and the bound there is
+ * again QAG's estimate.  A proven rule needs those heights found by a
+ * certified 2-D method (interval Newton on E = c, dE/dx = 0, and on E = c
+ * along each cut), and a bound of the rule's error between them; neither
+ * is here.  Nor is the
  * alternative of cells: a 2-D subdivision of the cells the curve
  * crosses, each taking the power piece across the curve with the error
  * |dec(E) - P(E)| <= 2.3e-9 + 0.0013 |E - c| <= 2.3e-9 + 0.0013 |grad E|
@@ -474,6 +493,10 @@ typedef struct gen_layer {
     const grad_radial *rg;
 } gen_layer;
 
+/* Most counts one row's signature of the threshold's places holds
+ * (thr_heights): past them the pixel keeps its breakpoints. */
+#define SIG_MAX 512
+
 /* Most stop lines one pixel's window may meet (a repeating gradient finer
  * than that is refused). */
 #define GRAD_MAX_BREAKS 4096
@@ -504,6 +527,13 @@ typedef struct worker {
      * gen_piece) */
     gen_layer *gl;
     int ngl, gen, gen_over, gen_stuck;
+    /* scanning a window's rows for the threshold's heights (thr_heights):
+     * per section of a span where layers of different t mix, the count
+     * of the threshold's places per channel (sig, nsig; sig_over: more
+     * than SIG_MAX); gen_mixed: the scene has such layers */
+    int scan, sig_over, gen_mixed;
+    size_t nsig;
+    int sig[SIG_MAX];
     /* cone_mix: a cone-case gradient beside other gradients (each span by
      * mix_span); cone_over: the composite of several layers of one cone
      * whose polynomial's roots were not found (cone_span) */
@@ -3405,6 +3435,29 @@ static size_t gen_isolate(const gen_span_ctx *c, int ch, double u, double gu, do
     return gen_isolate(c, ch, m, gm, v, gv, fz, nf, cap, budget);
 }
 
+static int rad_same_t(const grad_radial *g, const grad_radial *h);
+
+/* Whether layers l and m of the path of several gradients share one t
+ * (the same plane, or radial gradients of the same map). */
+static int gen_same_t(const gen_layer *l, const gen_layer *m)
+{
+    if (l->rg && m->rg)
+        return rad_same_t(l->rg, m->rg);
+    if (l->gp && m->gp)
+        return l->gp->tx == m->gp->tx && l->gp->ty == m->gp->ty && l->gp->t0 == m->gp->t0;
+    return 0;
+}
+
+/* Whether the span's layers are of different t (the threshold's curve is
+ * no circle or line of one t there: thr_heights). */
+static int gen_mixes(const gen_span_ctx *c)
+{
+    for (int l = 1; l < c->n; l++)
+        if (!gen_same_t(c->L[0], c->L[l]))
+            return 1;
+    return 0;
+}
+
 /* Intervals that may hold the threshold, and halvings, one piece may
  * take; past them the pixel is refused (gen_section). */
 #define GEN_MAX_FUZZ 256
@@ -3420,9 +3473,18 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
     size_t nf = 0, budget = GEN_BUDGET;
     gen_eval(c, a, ea);
     gen_eval(c, b, eb);
-    for (int ch = 0; ch < c->nch && nf < GEN_MAX_FUZZ; ch++)
+    int mixed = w->scan && gen_mixes(c);
+    for (int ch = 0; ch < c->nch && nf < GEN_MAX_FUZZ; ch++) {
+        size_t before = nf;
         nf = gen_isolate(c, ch, a, ea[ch] - 0.04045, b, eb[ch] - 0.04045, fz, nf, GEN_MAX_FUZZ,
                          &budget);
+        if (mixed) {
+            if (w->nsig < SIG_MAX)
+                w->sig[w->nsig++] = (int)(nf - before);
+            else
+                w->sig_over = 1;
+        }
+    }
     if (nf >= GEN_MAX_FUZZ) { /* more places than room, or work: the pixel refused */
         w->gen_stuck = 1;
         return;
@@ -5374,6 +5436,140 @@ static void integrate_intervals(worker *w, double *result, double *abserr)
         w->lp[k].side = 0; /* known for those rows only */
 }
 
+/* ---- the threshold's heights where layers of different t mix ----
+ *
+ * A row's signature: the counts of the threshold's places (gen_section)
+ * per channel in each section of the row where layers of different t
+ * mix, in the row's order; into sig (at most SIG_MAX), its length
+ * returned, -1 if it did not fit or the row was refused. */
+#define THR_ROWS 32   /* scan rows across the window's height */
+#define THR_EVENTS 64 /* most heights found a pixel */
+#define THR_NEAR 1e-6 /* changes closer to a breakpoint (times R) are its own */
+
+typedef struct thr_sig {
+    int n, v[SIG_MAX];
+} thr_sig;
+
+static void thr_row(worker *w, double s, int nch, thr_sig *out)
+{
+    double v[3];
+    w->scan = 1, w->nsig = 0, w->sig_over = 0;
+    inner_sums(w, s, nch, v);
+    w->scan = 0;
+    if (w->sig_over || w->gen_stuck || w->gen_over || w->cone_over) {
+        w->gen_stuck = w->gen_over = w->cone_over = 0;
+        out->n = -1;
+        return;
+    }
+    out->n = (int)w->nsig;
+    memcpy(out->v, w->sig, w->nsig * sizeof *w->sig);
+}
+
+static int thr_same(const thr_sig *a, const thr_sig *b)
+{
+    return a->n == b->n && (a->n <= 0 || !memcmp(a->v, b->v, (size_t)a->n * sizeof *a->v));
+}
+
+static int thr_total(const thr_sig *a)
+{
+    int t = 0;
+    for (int k = 0; k < a->n; k++)
+        t += a->v[k];
+    return t;
+}
+
+/* Where layers of different t mix, the heights at which the threshold's
+ * curve is tangent to a row or crosses another of the row's cuts (truth.c's
+ * opening comment, "several gradients"): between the breakpoints, rows at
+ * THR_ROWS per window height and just inside each interval's ends; where
+ * two consecutive rows' signatures differ, the height where it changes
+ * bisected to rounding and made a breakpoint, a turning point where the
+ * total count changes by two (a tangency).  Not certified: two crossings
+ * that appear and vanish between two scan rows go unseen.  Appended to the
+ * breakpoints, sorted again. */
+static int thr_heights(worker *w, int nch)
+{
+    int mixed = 0;
+    for (int k = 1; k < w->ngl && !mixed; k++) {
+        const gen_layer *l = &w->gl[0], *m = &w->gl[k];
+        mixed = !(l->rg && m->rg ? rad_same_t(l->rg, m->rg)
+                  : l->gp && m->gp ? l->gp->tx == m->gp->tx && l->gp->ty == m->gp->ty &&
+                                         l->gp->t0 == m->gp->t0
+                                   : 0);
+    }
+    if (!mixed || w->npts < 2)
+        return AA_OK;
+    double found[THR_EVENTS];
+    int nfound = 0, any = 0;
+    thr_sig *a = malloc(3 * sizeof *a);
+    if (!a)
+        return aa_fail(AA_ENOMEM, "out of memory for the threshold's scan");
+    thr_sig *sa = &a[0], *sb = &a[1], *sm = &a[2];
+    for (size_t k = 0; k + 1 < w->npts && nfound < THR_EVENTS; k++) {
+        double p = w->pts[k], q = w->pts[k + 1], d = 1e-9 * (q - p);
+        int m = (int)ceil(THR_ROWS * (q - p) / (2.0 * w->R));
+        if (m < 1)
+            m = 1;
+        double ya = p + d;
+        thr_row(w, ya, nch, sa);
+        for (int i = 1; i <= m + 1 && nfound < THR_EVENTS; i++) {
+            double yb = i <= m ? p + (q - p) * (i - 0.5) / m : q - d;
+            thr_row(w, yb, nch, sb);
+            if (sa->n > 0 || sb->n > 0)
+                any = 1;
+            /* every change between ya and yb, lowest first */
+            while (sa->n >= 0 && sb->n >= 0 && !thr_same(sa, sb) && nfound < THR_EVENTS) {
+                double l = ya, h = yb;
+                while (h - l > 4.0 * DBL_EPSILON * fmax(1.0, fabs(l))) {
+                    double c = 0.5 * (l + h);
+                    if (!(c > l && c < h))
+                        break;
+                    thr_row(w, c, nch, sm);
+                    if (sm->n < 0)
+                        break;
+                    if (thr_same(sm, sa))
+                        l = c;
+                    else
+                        h = c;
+                }
+                double e = 0.5 * (l + h);
+                thr_row(w, h, nch, sm);
+                if (sm->n < 0)
+                    break;
+                /* a change within THR_NEAR of a breakpoint is taken as
+                 * that breakpoint's own (rows that close to a tangent stop
+                 * circle carry row bounds of 1.2e-12: a pixel of
+                 * test_many_layers_mixed once went over 1e-12) */
+                if (e - p > THR_NEAR * w->R && q - e > THR_NEAR * w->R) {
+                    found[nfound++] = e;
+                    int dt = thr_total(sm) - thr_total(sa);
+                    if (sm->n == sa->n && (dt == 2 || dt == -2))
+                        note_turn(w, e);
+                }
+                ya = h;
+                *sa = *sm;
+            }
+            ya = yb;
+            *sa = *sb;
+        }
+    }
+    free(a);
+    if (!any || nfound == 0)
+        return AA_OK;
+    int st = AA_OK;
+    for (int k = 0; k < nfound && !st; k++)
+        st = add_point(w, found[k]);
+    if (st)
+        return st;
+    qsort(w->pts, w->npts, sizeof *w->pts, truth_cmp_double);
+    size_t m = 1;
+    for (size_t k = 1; k < w->npts; k++)
+        if (w->pts[k] > w->pts[m - 1])
+            w->pts[m++] = w->pts[k];
+    w->npts = m;
+    return AA_OK;
+}
+
 static int reserve_workspace(worker *w, size_t npts)
 {
     if (npts + 64 <= w->limit)
@@ -5417,7 +5613,7 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
         }
     }
     if ((st = load_local(w, local, n)) || (st = breakpoints(w, local, n)) ||
-        (st = reserve_workspace(w, w->npts)))
+        (w->grad && (st = thr_heights(w, grey ? 1 : 3))) || (st = reserve_workspace(w, w->npts)))
         return st;
     if (w->sing_oom) {
         w->sing_oom = 0;
