@@ -298,7 +298,10 @@
  * 2.3e-14; given that height as a turning point the pixel came inside
  * its bound, and pixel (6, 7), where the curve crosses the window's side
  * x = 7, stayed 3.5e-13 off against 2.9e-14.  So, in a scene whose
- * gradient layers are not all of one t, each pixel's rows are scanned
+ * gradient layers are not all of one t and where something is
+ * translucent (a layer's alpha, a group's opacity or a stop's opacity
+ * below 1: else the composite at a point is one layer's paint, of one t,
+ * and nothing mixes; scene_translucent), each pixel's rows are scanned
  * between its breakpoints: THR_ROWS = 32 rows a window's height, and one
  * just inside each interval's ends; each row's signature is the count of
  * the threshold's places (gen_section's certified isolation) per channel
@@ -5487,6 +5490,26 @@ static int thr_total(const thr_sig *a)
  * total count changes by two (a tangency).  Not certified: two crossings
  * that appear and vanish between two scan rows go unseen.  Appended to the
  * breakpoints, sorted again. */
+/* Whether anything in the scene can be seen through: a layer's alpha, a
+ * group's opacity or a gradient stop's opacity below 1.  Without, the
+ * composite at each point is the paint of the front layer painting there,
+ * of one t, so no span mixes and thr_heights has nothing to find. */
+static int scene_translucent(const worker *w)
+{
+    const aa_scene *s = w->scene;
+    for (int k = 0; k < aa_scene_layer_count(s); k++)
+        if (aa_scene_layer_alpha(s, k) < 1.0)
+            return 1;
+    for (int g = 0; g < aa_scene_group_count(s); g++)
+        if (aa_scene_group_opacity(s, g) < 1.0)
+            return 1;
+    for (int k = 0; k < w->ngl; k++)
+        for (int i = 0; i < w->gl[k].nstops; i++)
+            if (w->gl[k].stops[i].opacity < 1.0)
+                return 1;
+    return 0;
+}
+
 static int thr_heights(worker *w, int nch)
 {
     int mixed = 0;
@@ -5497,7 +5520,7 @@ static int thr_heights(worker *w, int nch)
                                          l->gp->t0 == m->gp->t0
                                    : 0);
     }
-    if (!mixed || w->npts < 2)
+    if (!mixed || w->npts < 2 || !scene_translucent(w))
         return AA_OK;
     double found[THR_EVENTS];
     int nfound = 0, any = 0;
