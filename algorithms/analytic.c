@@ -2946,39 +2946,15 @@ static void fast_offset(const an_block *B, const aa_piece *p, const double *val,
 
 /* The root in [a, b] of f(t) = c + t (k1 + t (k2 + t k3)), increasing
  * there from a non-positive value to a non-negative one, from a guess t
- * near it: Newton's steps while they stay in [a, b] and shrink, until the
- * error left after a step is below 2^-54 of the root (or of 2^-10 near
- * zero); else the bracketed search (area_cubic_root).  After the step s
- * from t, f(t - s) = f''(u) s^2 / 2 for some u between (Taylor), and f''
- * is linear, so |f''| / 2 is at most the larger of |k2 + 3 k3 t| at the
- * step's two ends: the root lies within that times s^2 over the smaller
- * f' there.  (area_cubic_near's estimate takes f'' at t alone, enough
- * from its second-order guesses; from the neighbouring line's root, a
- * step of 1e-2 where f'' vanishes at t, as on the half of a symmetric
- * arc, left 1e-9 px.) */
+ * near it, to 2^-54 of the root (area_cubic_newton: Newton's steps while
+ * they stay in [a, b] and shrink, their error bounded over the whole
+ * step; from the neighbouring line's root, a test reading f'' at the
+ * step's start alone took a step of 1e-2 from where f'' vanishes, as on
+ * the half of a symmetric arc, and left 1e-9 px). */
 static inline double cubic_near(double c, double k1, double k2, double k3, double a, double b,
                                 double t)
 {
-    double last = INFINITY;
-    for (int it = 0; it < 8; it++) {
-        double f = c + t * (k1 + t * (k2 + t * k3));
-        double df = k1 + t * (2.0 * k2 + 3.0 * t * k3);
-        if (f == 0.0)
-            return t;
-        double step = f / df;
-        if (!(df > 0.0) || !(fabs(step) < 0.5 * last))
-            break;
-        double next = t - step;
-        if (!(next >= a && next <= b))
-            break;
-        double dn = k1 + next * (2.0 * k2 + 3.0 * next * k3);
-        double h = fmax(fabs(k2 + 3.0 * t * k3), fabs(k2 + 3.0 * next * k3));
-        if (dn > 0.0 && h * step * step <= 0x1p-54 * fmax(fabs(next), 0x1p-10) * fmin(df, dn))
-            return next;
-        t = next;
-        last = fabs(step);
-    }
-    return area_cubic_root(c, k1, k2, k3, a, b);
+    return area_cubic_newton(c, k1, k2, k3, a, b, t, 0.0);
 }
 
 /* The cuts of cubic piece p over its rows [lo, hi] (ta, tb its parameters

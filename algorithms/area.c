@@ -57,8 +57,9 @@
  * line or a cell side is the root of a monotone cubic, found by Newton's
  * method from the neighbouring root (area_cubic_near: a second-order step
  * along the curve from the line above), kept in the bracket, stopped when
- * its own estimate of the error left, |f''/(2f')| step^2, is below 2^-54
- * of the bracket (else the bracketed search, area_cubic_root).  Where a
+ * the error left, at most max |f''/2| over the step times step^2 over f',
+ * is below 2^-54 of the bracket (else the bracketed search,
+ * area_cubic_root).  Where a
  * cubic meets another piece in a cluster, the band is cut at the heights
  * aa_piece_meet gives (polished to full precision).  The guess for a band
  * line comes from the anchor alone (the series of the inverse), so the

@@ -27,9 +27,13 @@
  *    derivations.
  *  - Crossings: every piece is y-monotone and the pieces of an edge chain
  *    end to end; x at y, the meetings with a vertical line and between two
- *    pieces against bisection in long double on the Bernstein form.
+ *    pieces against bisection in long double on the Bernstein form; and
+ *    `area`'s root of a monotone cubic from a guess (area_cubic_near,
+ *    Newton's method with a stopping test) against bisection in long
+ *    double, from guesses at the cubic's inflection, where f'' vanishes.
  *  - Export: cubic arcs are written as SVG C commands.
  */
+#include "area_internal.h"
 #include "bench.h"
 #include "oracle.h"
 #include "scenes.h"
@@ -906,6 +910,55 @@ static void test_building(void **state)
     }
 }
 
+/* The root of f(t) = c + t (k1 + t (k2 + t k3)) in [0, 1] by bisection in
+ * long double, f increasing there (the oracle of test_cubic_near). */
+static long double bisect_cubic(double c, double k1, double k2, double k3)
+{
+    long double lo = 0.0L, hi = 1.0L;
+    for (int it = 0; it < 200 && hi - lo > 0.0L; it++) {
+        long double m = 0.5L * (lo + hi);
+        if (!(m > lo && m < hi))
+            break;
+        long double f = c + m * (k1 + m * (k2 + m * (long double)k3));
+        if (f < 0.0L)
+            lo = m;
+        else
+            hi = m;
+    }
+    return 0.5L * (lo + hi);
+}
+
+/* area_cubic_near from a guess at the cubic's inflection: f(t) = t^3 -
+ * 1.5 t^2 + t + c has f'' = 0 at t = 1/2 and f' >= 1/4 on [0, 1], so
+ * every root is simple and Newton's first step from 1/2 is f(1/2) / (1/4).
+ * Its error after that step is |f''(u)| s^2 / (2 f'), u between the step's
+ * ends, not 0: a stopping test that reads f'' at the guess alone (zero
+ * there) took the first step as final, 4e-6 from the root when the step
+ * is 0.01.  Steps of 1e-1 to 1e-6 either way; the root within 2^-52 of
+ * the bracket [0, 1] (the function's promise, 2^-54, plus f's rounding
+ * in double near the root: |f| to 4 ulps of 1, over f' >= 1/4). */
+static void test_cubic_near(void **state)
+{
+    (void)state;
+    const double steps[] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
+    double worst = 0.0;
+    for (int i = 0; i < 6; i++)
+        for (int sg = -1; sg <= 1; sg += 2) {
+            /* f(1/2) = c + 1/4, so a first step of sg steps[i] */
+            double c = -0.25 + sg * 0.25 * steps[i];
+            double t = area_cubic_near(c, 1.0, -1.5, 1.0, 0.0, 1.0, 0.5);
+            long double r = bisect_cubic(c, 1.0, -1.5, 1.0);
+            double e = (double)fabsl((long double)t - r);
+            if (e > worst)
+                worst = e;
+            if (e > 0x1p-52)
+                print_message("step %g: root %.17g, bisection %.20Lg, %.3g apart\n",
+                              sg * steps[i], t, r, e);
+            assert_true(e <= 0x1p-52);
+        }
+    print_message("area_cubic_near from the inflection: within %.3g of the root\n", worst);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -922,6 +975,7 @@ int main(void)
         cmocka_unit_test(test_crowded_cubics),
         cmocka_unit_test(test_pieces_and_crossings),
         cmocka_unit_test(test_export),
+        cmocka_unit_test(test_cubic_near),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
