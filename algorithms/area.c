@@ -141,18 +141,19 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 3.06 by instructions (callgrind:
- * area 325 M a render, point 106 M), in CPU time 3.38 to 4.60, median 4.00
- * (six runs on the shared machine at a load of about 10; area 55 to 62 ms,
- * point 13.5 to 17.6 ms): the crossings' root-finding (Newton on the
+ * (tests/bench_bezstroke.c), area/point 3.00 by instructions (callgrind:
+ * area 318 M a render, point 106 M), in CPU time 3.12 to 4.19, median 3.27
+ * (three runs on the shared machine at a load of about 11; area 62 to 67
+ * ms, point 14.8 to 21.6 ms): the crossings' root-finding (Newton on the
  * curve; the band lines' y at an offset piece's bottom evaluated once a
  * piece, aa__offset_end; a cell's side from the chord's root,
  * offset_tau_u) is 39% of area's instructions (the band lines' 21%), the
  * quadrature 17% (a cubic's nodes four at a time with AVX),
- * the meetings of pieces in a cluster 13% (aa__piece_meet_at, given the
+ * the meetings of pieces in a cluster 12% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
- * by their slopes, scene_piece.c; polishing a meeting 4%), sorting 1% (the
+ * by their slopes, scene_piece.c; polishing a meeting 3%, stopped by its
+ * error estimate), sorting 1% (the
  * active list kept in the last row's x order, keep_order).
  * Each end of a part is evaluated once, for u and v together (seg_u,
  * part_area: the seg's memo of v, offset_keep), and some not at all: a

@@ -19,7 +19,12 @@
  *    running side by side are decided by their slopes): every sign change
  *    of x_p - x_q seen at 400 heights over two pieces' common height, on
  *    every pair of a stroke's pieces with an offset piece, holds a meeting
- *    aa_piece_meet reports (ends shared by the two pieces aside);
+ *    aa_piece_meet reports (ends shared by the two pieces aside), and one
+ *    that area's form (aa__piece_meet_at, its polish stopped by an error
+ *    estimate) reports, where x_p - x_q, evaluated here through
+ *    aa_piece_x_at, is within 1e-13 of 0; and a vertical line 1e-6 to
+ *    1e-10 inside an offset piece's x extreme, which it crosses twice
+ *    close together, is met on both sides of the extreme (test_touch);
  *  - a crossing's root near a turn of the offset's y: y at the parameter
  *    aa__offset_root returns is the line's, to rounding;
  *  - pixel (716, 793) of tests/bench_bezstroke.c's scene, against its area
@@ -213,6 +218,9 @@ static int meetings(const char *what, const double *cs, int nc, const aa_stroke_
                 continue;
             pairs++;
             int m = aa_piece_meet(p, q, lo, hi, ys, 16);
+            const double none[2] = {NAN, NAN};
+            double ya[16];
+            int ma = aa__piece_meet_at(p, q, lo, hi, none, none, ya, 16);
             double prev = NAN, yprev = lo;
             for (int j = 1; j < 400; j++) { /* inner heights: shared ends aside */
                 double y = lo + (hi - lo) * j / 400.0;
@@ -223,13 +231,17 @@ static int meetings(const char *what, const double *cs, int nc, const aa_stroke_
                 }
                 if (prev == prev && (prev < 0) != (d < 0)) {
                     changes++;
-                    int found = 0;
+                    int found = 0, found_a = 0;
                     for (int r = 0; r < m; r++)
                         found |= ys[r] >= yprev - 1e-9 && ys[r] <= y + 1e-9;
-                    if (!found && missed++ < 5)
+                    for (int r = 0; r < ma; r++) /* area's: at a root of x_p - x_q */
+                        found_a |= ya[r] >= yprev - 1e-9 && ya[r] <= y + 1e-9 &&
+                                   fabs(aa_piece_x_at(p, ya[r]) - aa_piece_x_at(q, ya[r])) <=
+                                       1e-13;
+                    if (!(found && found_a) && missed++ < 5)
                         print_message("%s: pieces %zu, %zu change sides in [%.17g, %.17g], "
-                                      "not met\n",
-                                      what, i, k, yprev, y);
+                                      "not met (%d, area's %d)\n",
+                                      what, i, k, yprev, y, found, found_a);
                 }
                 prev = d, yprev = y;
             }
@@ -264,6 +276,79 @@ static void test_meetings(void **state)
     st.width = 0.3;
     changes += meetings("tight, w 0.3 (folds)", tight, 1, &st);
     assert_true(changes > 0); /* the oracle saw crossings */
+}
+
+/* A vertical line p at x = xe + s delta, with xe the x extreme of an offset
+ * piece q inside it at height ye (s: towards q's inside there), from q's
+ * top to its bottom: x_q - x_p is -s delta at ye and of the other sign at
+ * both ends (checked here), so the line crosses q on each side of ye,
+ * about sqrt(2 delta / kappa) away (kappa: q's curvature there), a pair
+ * nearly touching.  Both meetings must be reported by area's form and
+ * the reference's, at heights where x_q - x_p (aa_piece_x_at) is within
+ * 1e-13 of 0.  Returns the lines tried. */
+static int touch(const char *what, const double *cs, int nc, const aa_stroke_style *st,
+                 double delta)
+{
+    aa_scene *s = stroke_scene(cs, nc, st, NULL);
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    int lines = 0;
+    for (size_t k = 0; k < n; k++) {
+        const aa_piece *q = &pc[k];
+        double ts[2], xe, ye;
+        if (q->kind != AA_PIECE_OFFSET ||
+            aa__offset_turns(&q->oc, 0, fmin(q->ot0, q->ot1), fmax(q->ot0, q->ot1), ts) != 1)
+            continue;
+        aa_offset_point(&q->oc, ts[0], &xe, &ye, NULL, NULL);
+        /* the side of q's inside: where its ends are */
+        double sgn = q->x0 > xe ? 1.0 : -1.0, x = xe + sgn * delta;
+        if (!(ye - q->y0 > 1e-3 && q->y1 - ye > 1e-3) || !((q->x0 - x) * sgn > 1e-4) ||
+            !((q->x1 - x) * sgn > 1e-4))
+            continue;
+        aa_piece p;
+        memset(&p, 0, sizeof p);
+        p.kind = AA_PIECE_LINE, p.dir = 1;
+        p.x0 = p.x1 = p.cx = p.xmin = p.xmax = x;
+        p.y0 = q->y0, p.y1 = q->y1, p.cy = 0.5 * (p.y0 + p.y1), p.by = p.y1 - p.y0;
+        assert_true((aa_piece_x_at(q, ye) - x) * sgn < 0.0); /* the extreme beyond the line */
+        const double none[2] = {NAN, NAN};
+        double ys[16], yr[16];
+        int m = aa__piece_meet_at(&p, q, q->y0, q->y1, none, none, ys, 16);
+        int mr = aa_piece_meet(&p, q, q->y0, q->y1, yr, 16);
+        int above = 0, below = 0, off = 0;
+        for (int r = 0; r < m; r++) {
+            above += ys[r] < ye, below += ys[r] > ye;
+            off += !(fabs(aa_piece_x_at(q, ys[r]) - x) <= 1e-13);
+        }
+        if (m != 2 || above != 1 || below != 1 || off || mr != 2 || !(yr[0] < ye && yr[1] > ye))
+            fail_msg("%s: piece %zu, line %.3g inside its x extreme at (%.17g, %.17g): area's "
+                     "meetings %d (%d above, %d below, %d off), the reference's %d",
+                     what, k, delta, xe, ye, m, above, below, off, mr);
+        lines++;
+    }
+    aa_scene_free(s);
+    return lines;
+}
+
+static void test_touch(void **state)
+{
+    (void)state;
+    const double three[20] = {0.1, 0.5, 0.3, 0.1,  0.5, 0.1,  0.6, 0.4, 0.7, 0.9,
+                              0.2, 0.6, 0.5, 0.5, 0.95, 0.2, 0.9, 0.8, 0.6, 0.85};
+    const double tight[8] = {0.2, 0.2, 0.9, 0.3, 0.9, 0.7, 0.25, 0.75};
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    int lines = 0;
+    for (int e = 6; e <= 10; e++) {
+        st.width = 0.08;
+        lines += touch("3 arcs, round, w 0.08", three, 3, &st, pow(10.0, -e));
+        st.width = 0.3;
+        lines += touch("tight, round, w 0.3", tight, 1, &st, pow(10.0, -e));
+    }
+    print_message("%d lines crossing an offset piece twice next to its x extreme, all met\n",
+                  lines);
+    assert_true(lines >= 10); /* the case was built */
 }
 
 /* A crossing of an offset curve is the root of y(t) = v: whatever path the
@@ -866,6 +951,7 @@ int main(void)
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
                                        cmocka_unit_test(test_tube),
                                        cmocka_unit_test(test_meetings),
+                                       cmocka_unit_test(test_touch),
                                        cmocka_unit_test(test_root),
                                        cmocka_unit_test(test_stops),
                                        cmocka_unit_test(test_fix),

@@ -324,7 +324,9 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
  * already known to the caller (tpa for p, tqa for q; NaN where not known,
  * and ignored for other kinds): where the common heights start at ya or
  * end at yb they are taken as they are, not solved for again (area.c
- * passes each band's). */
+ * passes each band's).  Its meetings are polished from the chord's root
+ * and stopped by an error estimate (scene_piece.c, polish_meet): the same
+ * heights as aa_piece_meet's to rounding, not bit for bit. */
 int aa__piece_meet_at(const aa_piece *p, const aa_piece *q, double ya, double yb,
                       const double tpa[2], const double tqa[2], double *ys, int max);
 
