@@ -97,7 +97,9 @@ SAN_CXX             := $(CXX)
 SAN_CFLAGS          := $(CFLAGS) -O1 $(SAN)
 SAN_CXXFLAGS        := $(CXXFLAGS) -O1 $(SAN)
 SAN_ALGO_CXXFLAGS    = $(ALGO_CXXFLAGS) -O1 $(SAN)
-SAN_TEST_CFLAGS     :=
+# AA_SANITIZED: a test may run a declared subset under the sanitizers
+# where its plain run repeats the same code paths (tests/README.md, "Tiers")
+SAN_TEST_CFLAGS     := -DAA_SANITIZED
 
 CLI_SRC  := $(wildcard harness/cli/*.c)
 LIB_CSRC := $(wildcard harness/core/*.c harness/truth/*.c harness/bench/*.c) \

@@ -62,12 +62,6 @@
 
 #include <cmocka.h>
 
-static const char *const filters[] = {"box",      "tent:r=1", "bspline:order=2", "bspline:order=3",
-                                      "mitchell", "catrom",   "tent:r=0.65",     NULL};
-/* the filters whose integer translates sum to 1 */
-static const char *const unity[] = {"box",      "tent:r=1", "bspline:order=2", "bspline:order=3",
-                                    "mitchell", "catrom",   NULL};
-
 static char dir[4096];
 
 static int setup(void **state)
@@ -122,24 +116,58 @@ static void gradient(aa_scene *s, int kind, int spread, const double p[6],
                          AA_OK);
 }
 
-/* The quick tier takes each scene under the box (the closed forms below
- * take the others);
- * test_analytic_gradient_full.c, of the full tier, is this file with
- * ANALYTIC_GRADIENT_ALL set: every scene under every filter (the
- * reference's quadrature of a gradient scene under the smooth filters
- * takes seconds a scene). */
+/* The filters each scene takes.  The quick tier (this file): every scene
+ * under the box, the arcs' and offsets' scenes under bspline:order=3 too
+ * (the closed forms below take the others).  The full tier,
+ * test_analytic_gradient_full.c (this file with ANALYTIC_GRADIENT_ALL
+ * set), takes the rest, every scene under every filter (the reference's
+ * quadrature of a gradient scene under the smooth filters takes seconds a
+ * scene): the six other filters on the first five scenes, tent:r=1 and
+ * mitchell on the arcs' and offsets', tent:r=6 on the small arcs.  It
+ * leaves out what the quick tier checks (the box, the arcs under
+ * bspline:order=3, the closed forms, the refusals): `make test` runs both
+ * tiers, and the same cases twice would check nothing more.
+ *
+ * Under the sanitizers (AA_SANITIZED: the Makefile's sanitizer build sets
+ * it for the tests) the full tier runs a declared subset, `san` below:
+ * every filter of the plain run's, every scene, the wide cells, each
+ * scene under one or two of them.  The sanitizers find memory and
+ * undefined behaviour errors along the code paths taken; more filters on
+ * the same scene take the same paths (tests/README.md, "Tiers", says how
+ * that was checked), and the plain build runs everything. */
 #ifndef ANALYTIC_GRADIENT_ALL
 #define ANALYTIC_GRADIENT_ALL 0
 #endif
+#if !ANALYTIC_GRADIENT_ALL
+#define TIER(quick, full, san) (quick)
+#define TIER_NAME "quick"
+#elif defined(AA_SANITIZED)
+#define TIER(quick, full, san) (san)
+#define TIER_NAME "full, the sanitizer build's subset"
+#else
+#define TIER(quick, full, san) (full)
+#define TIER_NAME "full"
+#endif
+#define FILTERS(...) ((const char *const[]){__VA_ARGS__, NULL})
 
-static void against(const char *what, const aa_scene *s, int w, int h)
+/* The quick tier's filter for the first five scenes, and the full tier's:
+ * every filter but the box */
+#define BOX FILTERS("box")
+#define NOT_BOX                                                                                   \
+    FILTERS("tent:r=1", "bspline:order=2", "bspline:order=3", "mitchell", "catrom", "tent:r=0.65")
+/* for the arcs' and offsets' scenes: the box and the cubic B-spline, the
+ * largest rule (the reference under the smooth filters is most of this
+ * test's time); the full tier adds the linear filter and the one with
+ * negative lobes */
+#define ARC_QUICK FILTERS("box", "bspline:order=3")
+#define ARC_FULL FILTERS("tent:r=1", "mitchell")
+
+/* analytic against the reference under each filter of fl */
+static void against(const char *what, const aa_scene *s, int w, int h, const char *const *fl)
 {
-    const int nf = (int)(sizeof filters / sizeof *filters) - 1;
     double worst = 0.0;
-    for (int k = 0; k < nf; k++)
-        if (ANALYTIC_GRADIENT_ALL || k == 0)
-            worst = fmax(worst,
-                         support_method_against_reference("analytic", what, s, w, h, filters[k]));
+    for (; *fl; fl++)
+        worst = fmax(worst, support_method_against_reference("analytic", what, s, w, h, *fl));
     print_message("%-28s largest difference over the filters %.1e\n", what, worst);
 }
 
@@ -149,8 +177,6 @@ static const aa_gradient_stop three[4] = {{0.0, {{0.9, 0.05, 0.2}}, 1.0},
                                           {1.0, {{1.0, 0.95, 0.6}}, 1.0}};
 static const aa_gradient_stop two[2] = {{0.15, {{0.0, 0.3, 0.05}}, 1.0},
                                         {0.8, {{0.6, 1.0, 0.1}}, 1.0}};
-static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
-                                                {1.0, {{1, 1, 1}}, 1.0}};
 
 /* A flat triangle in front of a path of lines, a quadratic and a cubic arc
  * (padded gradient, a sharp step), in front of a repeated gradient over the
@@ -179,7 +205,8 @@ static void test_layers(void **state)
     gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT, (const double[6]){3, 1, 7.3, 2.1, 0, 0},
              two, 2, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    against("three layers", s, W, H);
+    against("three layers", s, W, H,
+            TIER(BOX, NOT_BOX, FILTERS("tent:r=1")));
     aa_scene_free(s);
 }
 
@@ -203,7 +230,8 @@ static void test_curves_and_clip(void **state)
     layer(s, 0.7, 0.6, 0.2, AA_FILL_NONZERO);
     rect(s, 4.3, 4.6, 17.7, 13.1);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    against("reflected, cubic arcs", s, W, H);
+    against("reflected, cubic arcs", s, W, H,
+            TIER(BOX, NOT_BOX, FILTERS("bspline:order=2")));
     aa_scene_free(s);
 
     s = aa_scene_new((aa_rgb){{0.3, 0.3, 0.3}});
@@ -221,7 +249,8 @@ static void test_curves_and_clip(void **state)
              4, 0);
     assert_int_equal(aa_scene_set_clip(s, clip), AA_OK);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    against("clipped gradient", s, W, H);
+    against("clipped gradient", s, W, H,
+            TIER(BOX, NOT_BOX, FILTERS("catrom")));
     aa_scene_free(s);
 }
 
@@ -238,7 +267,8 @@ static void test_sliver(void **state)
     gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){1, 0, 19, 0.4, 0, 0}, slow,
              2, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    against("ramp across the sliver", s, W, H);
+    against("ramp across the sliver", s, W, H,
+            TIER(BOX, NOT_BOX, FILTERS("tent:r=0.65")));
     aa_scene_free(s);
 }
 
@@ -267,7 +297,8 @@ static void test_strokes(void **state)
     aa_scene *s = NULL;
     if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, 24, 20, &s))
         fail_msg("pattern %s: %s", spec, aa_last_error());
-    against("stroked polylines (SVG)", s, 24, 20);
+    against("stroked polylines (SVG)", s, 24, 20,
+            TIER(BOX, NOT_BOX, FILTERS("bspline:order=3")));
     aa_scene_free(s);
 }
 
@@ -283,26 +314,6 @@ static aa_scene *svg_scene(const char *name, const char *text, int w, int h)
     if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, w, h, &s))
         fail_msg("pattern %s: %s", spec, aa_last_error());
     return s;
-}
-
-/* The filters the arcs' and offsets' scenes take in the quick tier: the
- * box and the cubic B-spline, the largest rule (the reference under the
- * smooth filters is most of this test's time; tent:r=1, mitchell and the
- * rest in the full tier, tests/test_analytic_gradient_full.c) */
-static const char *const arc_filters[] = {"box", "bspline:order=3", NULL};
-/* and in the full tier: the reference on these scenes under all seven of
- * `filters` took over two minutes of CPU; tent:r=1 and mitchell join the
- * two (the linear and the cubic filters, the one with negative lobes) */
-static const char *const arc_filters_full[] = {"box", "tent:r=1", "bspline:order=3", "mitchell",
-                                               NULL};
-
-static void against_filters(const char *what, const aa_scene *s, int w, int h,
-                            const char *const *fl)
-{
-    double worst = 0.0;
-    for (; *fl; fl++)
-        worst = fmax(worst, support_method_against_reference("analytic", what, s, w, h, *fl));
-    print_message("%-28s largest difference over the filters %.1e\n", what, worst);
 }
 
 /* A circle, an ellipse turned by 30 degrees and a rounded rectangle
@@ -333,8 +344,8 @@ static void test_arcs(void **state)
         " fill=\"url(#f)\"/>\n"
         "</svg>\n";
     aa_scene *s = svg_scene("arcs.svg", svg, 24, 18);
-    against_filters("circle, ellipse, round rect", s, 24, 18,
-                    ANALYTIC_GRADIENT_ALL ? arc_filters_full : arc_filters);
+    against("circle, ellipse, round rect", s, 24, 18,
+            TIER(ARC_QUICK, ARC_FULL, FILTERS("mitchell")));
     aa_scene_free(s);
 }
 
@@ -358,8 +369,7 @@ static void test_small_arcs(void **state)
         " fill=\"url(#g)\"/>\n"
         "</svg>\n";
     aa_scene *s = svg_scene("smallarcs.svg", svg, 12, 10);
-    against_filters("small arcs, wide cells", s, 12, 10,
-                    (const char *const[]){"tent:r=6", NULL});
+    against("small arcs, wide cells", s, 12, 10, FILTERS("tent:r=6"));
     aa_scene_free(s);
 }
 #endif
@@ -387,10 +397,18 @@ static void test_curve_strokes(void **state)
         " fill=\"none\" stroke=\"url(#h)\" stroke-width=\"1.7\"/>\n"
         "</svg>\n";
     aa_scene *s = svg_scene("curvestrokes.svg", svg, 22, 20);
-    against_filters("stroked cubic and ellipse", s, 22, 20,
-                    ANALYTIC_GRADIENT_ALL ? arc_filters_full : arc_filters);
+    against("stroked cubic and ellipse", s, 22, 20,
+            TIER(ARC_QUICK, ARC_FULL, FILTERS("tent:r=1")));
     aa_scene_free(s);
 }
+
+/* The closed forms and the refusals: the quick tier's alone (above) */
+#if !ANALYTIC_GRADIENT_ALL
+static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
+                                                {1.0, {{1, 1, 1}}, 1.0}};
+/* the filters whose integer translates sum to 1 */
+static const char *const unity[] = {"box",      "tent:r=1", "bspline:order=2", "bspline:order=3",
+                                    "mitchell", "catrom",   NULL};
 
 /* The image's sum against the picture's integral (the opening comment). */
 static void sums_to(const char *what, const aa_scene *s, int w, int h, double want)
@@ -544,15 +562,20 @@ static void test_refusals(void **state)
     aa_scene_free(s);
 }
 
+#endif
+
 int main(void)
 {
+    print_message("tier: %s\n", TIER_NAME);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_layers),       cmocka_unit_test(test_curves_and_clip),
         cmocka_unit_test(test_sliver),       cmocka_unit_test(test_strokes),
         cmocka_unit_test(test_arcs),         cmocka_unit_test(test_curve_strokes),
 #if ANALYTIC_GRADIENT_ALL
         cmocka_unit_test(test_small_arcs),
+#else
+        cmocka_unit_test(test_closed_forms), cmocka_unit_test(test_refusals),
 #endif
-        cmocka_unit_test(test_closed_forms), cmocka_unit_test(test_refusals)};
+    };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

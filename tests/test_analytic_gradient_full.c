@@ -1,7 +1,9 @@
 /* tier: full */
 /*
- * test_analytic_gradient_full.c: test_analytic_gradient.c with every scene
- * under every filter (its header says what is checked).
+ * test_analytic_gradient_full.c: test_analytic_gradient.c's scenes under
+ * the filters the quick tier leaves out, so that the two take every scene
+ * under every filter (its header says what is checked); under the
+ * sanitizers a declared subset (its "The filters each scene takes").
  */
 #define ANALYTIC_GRADIENT_ALL 1
 #include "test_analytic_gradient.c"
