@@ -386,8 +386,10 @@
  * where the search gave up early (a halving the full search might have
  * spared); a piece's value moves by at most the two rules' bounds (2^-9
  * of the tolerance) and its bound grows by at most 2^-10 of it: the arcs
- * of tests/test_analytic_gradient.c moved by at most 2.2e-16 a pixel, the
- * largest bound by under 1e-18 (harness/README.md, its figures).
+ * and the stroked curves of tests/test_analytic_gradient.c under tent,
+ * the cubic B-spline and Mitchell moved by at most 2.2e-16 a pixel, their
+ * bounds by at most 1.2e-18 up (3.8e-17 down, where pieces were halved
+ * more; harness/README.md, its figures).
  *
  * The radial filters (cone, cone:cut, gauss with cut, radial:k): every
  * span takes the same path, clipped to the support's chord at the row's
