@@ -372,6 +372,25 @@
  * the lines where the composite at the window's centre passes the
  * decoding's threshold.  The Gaussian's fixed rule is not taken.
  *
+ * The cost of that path (gen_piece, gen_section): a piece's bound is
+ * sought on up to 14 ellipses, each a bound of the composite on it; the
+ * search ends at the first ellipse whose bound is 2^-10 of the piece's
+ * tolerance (2e-16 of its length), and the 10-point rule is taken where
+ * its own bound, M rho^-20 on the same ellipse, is that small; a piece
+ * whose first four ellipses' bounds all exceed 2^10 times the tolerance
+ * is halved without trying the rest (under the polynomial filters and
+ * the box, above the last depth).  The threshold's places are isolated
+ * for the three channels in one halving, which computes the bounds on a
+ * segment and the colour at its midpoint once for all three.  Each
+ * channel's places are as before, to the bit; so are the pieces, but
+ * where the search gave up early (a halving the full search might have
+ * spared); a piece's value moves by at most the two rules' bounds (2^-9
+ * of the tolerance) and its bound grows by at most 2^-10 of it: the arcs
+ * and the stroked curves of tests/test_analytic_gradient.c under tent,
+ * the cubic B-spline and Mitchell moved by at most 2.2e-16 a pixel, their
+ * bounds by at most 1.2e-18 up (3.8e-17 down, where pieces were halved
+ * more; harness/README.md, its figures).
+ *
  * The radial filters (cone, cone:cut, gauss with cut, radial:k): every
  * span takes the same path, clipped to the support's chord at the row's
  * height s, with the row's weight w(sqrt(u^2 + s^2)) as the factor: the
@@ -456,6 +475,10 @@ typedef struct grad_plane {
  * fr, dr = r - fr, a = D.D - dr^2 < 0, P* (px, py in the scene), and a
  * plane holding its spread and stops for grad_taus. */
 #define RAD_GL 20 /* Gauss-Legendre nodes of a row's piece */
+/* The shorter Gauss-Legendre rules a piece of the path of several
+ * gradients takes where its bound allows (gen_piece). */
+#define GEN_NLO 1
+static const int GEN_LO[GEN_NLO] = {10};
 typedef struct grad_radial {
     int layer, spread, nstops;
     const aa_gradient_stop *stops;
@@ -522,6 +545,9 @@ typedef struct worker {
     int rad, nrg;
     grad_radial *rg;
     double gl_x[RAD_GL], gl_w[RAD_GL];
+    /* the shorter rules a piece of the path of several gradients may take
+     * (gen_piece): GEN_LO[k] nodes and weights on [-1, 1] */
+    double glo_x[GEN_NLO][RAD_GL], glo_w[GEN_NLO][RAD_GL];
     double rad_row_err, rad_err_max;
     /* every gradient layer (gl, ngl) with room for its layer and a paint,
      * and a second buffer of t values; gen: every span takes the path of
@@ -1005,6 +1031,14 @@ static int grad_init(worker *w)
     for (int k = 0; k < RAD_GL; k++)
         gsl_integration_glfixed_point(-1.0, 1.0, (size_t)k, &w->gl_x[k], &w->gl_w[k], gt);
     gsl_integration_glfixed_table_free(gt);
+    for (int r = 0; r < GEN_NLO; r++) {
+        if (!(gt = gsl_integration_glfixed_table_alloc((size_t)GEN_LO[r])))
+            return aa_fail(AA_ENOMEM, "out of memory for a Gauss-Legendre table");
+        for (int k = 0; k < GEN_LO[r]; k++)
+            gsl_integration_glfixed_point(-1.0, 1.0, (size_t)k, &w->glo_x[r][k], &w->glo_w[r][k],
+                                          gt);
+        gsl_integration_glfixed_table_free(gt);
+    }
     /* under the other filters every span takes the path of several
      * gradients, which carries the weight ("the other separable
      * filters"), but the cone case's, which carries it on its own path
@@ -2885,10 +2919,20 @@ static double gen_rho(const gen_span_ctx *c, double complex z, double m, double 
 
 /* The error bound of the 20-point rule on [m - h, m + h] for the channels
  * (power[ch]: the decoding's power piece), e at m given; INFINITY if no
- * ellipse serves. */
+ * ellipse serves.  The bound is the least over the ellipses tried, but
+ * the first ellipse whose bound is at most enough (0: none is) ends the
+ * search with it: the caller's test against a larger tolerance comes out
+ * the same, and the bound returned is still one of the ellipses' proven
+ * bounds.  The same ellipse bounds the n-point rule by M rho^(-2 n) in
+ * place of rho^(-2 RAD_GL): where that of a shorter rule, GEN_LO[*lo],
+ * is at most enough on some ellipse, the search ends with it (*lo = -1:
+ * none is; the 20-point rule's bound returned).  If the first four
+ * ellipses' bounds all exceed giveup, the search ends too, with the least
+ * of them (the caller halves the piece). */
 static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const int *power,
-                             const double *em)
+                             const double *em, double enough, double giveup, int *lo)
 {
+    *lo = -1;
     double rmax = 64.0;
     for (int l = 0; l < c->n; l++) {
         if (!c->L[l]->rg)
@@ -2941,6 +2985,8 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
     /* weighted, also rho at geometric steps towards rmax (the Gaussian's
      * bound grows like exp(B^2 / (2 s^2)): its best rho is small) */
     for (int k = 1; k < (c->weighted ? 15 : 8); k++) {
+        if (k == 5 && best > giveup)
+            break;
         double rho = k < 8 ? 1.0 + (rmax - 1.0) * k / 8.0 : pow(rmax, (k - 7) / 16.0),
                A = 0.5 * h * (rho + 1.0 / rho), B = 0.5 * h * (rho - 1.0 / rho), emax[3],
                dmax[3], worst = 0.0;
@@ -2969,7 +3015,17 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
             }
         } else if (c->weighted)
             worst *= wt_bound(c, wa, m, h, A, B);
-        best = fmin(best, h * (64.0 / 15.0) * worst * pow(rho, -2.0 * RAD_GL) / (rho * rho - 1.0));
+        double F = h * (64.0 / 15.0) * worst / (rho * rho - 1.0);
+        for (int r = 0; r < GEN_NLO; r++) {
+            double b = F * pow(rho, -2.0 * GEN_LO[r]);
+            if (b <= enough) {
+                *lo = r;
+                return b;
+            }
+        }
+        best = fmin(best, F * pow(rho, -2.0 * RAD_GL));
+        if (best <= enough)
+            break;
     }
     return best;
 }
@@ -2995,19 +3051,31 @@ static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double
         return;
     }
     gen_eval(c, m, em);
-    double bound = gen_rule_bound(c, m, h, power, em);
-    if (bound > 2e-16 * (xb - xa) && depth < RAD_DEPTH) {
+    /* a bound 2^-10 of the tolerance takes a shorter rule (gen_rule_bound):
+     * its value differs from the 20-point rule's by at most that and its
+     * own bound; and one 2^10 times it on the first four ellipses halves
+     * the piece without trying the others (on a piece that is halved
+     * most come out far above it), but at the last depth or under a
+     * weight that is no polynomial, whose best ellipse may be small */
+    int lo;
+    double tol = 2e-16 * (xb - xa);
+    int poly = !c->weighted || (!c->radial && c->f->type != &aa_filter_lanczos &&
+                                c->f->type != &aa_filter_gauss);
+    double bound = gen_rule_bound(c, m, h, power, em, 0x1p-10 * tol,
+                                  poly && depth < RAD_DEPTH ? 0x1p10 * tol : INFINITY, &lo);
+    if (lo < 0 && bound > tol && depth < RAD_DEPTH) {
         gen_piece(w, c, power, xa, m, depth + 1, sum, err);
         gen_piece(w, c, power, m, xb, depth + 1, sum, err);
         return;
     }
     double part[3] = {0.0, 0.0, 0.0};
-    for (int k = 0; k < RAD_GL; k++) {
-        double e[3], x = m + h * w->gl_x[k];
+    const double *gx = lo < 0 ? w->gl_x : w->glo_x[lo], *gw = lo < 0 ? w->gl_w : w->glo_w[lo];
+    for (int k = 0, n = lo < 0 ? RAD_GL : GEN_LO[lo]; k < n; k++) {
+        double e[3], x = m + h * gx[k];
         gen_eval(c, x, e);
-        double wk = !c->weighted ? w->gl_w[k]
-                    : c->radial  ? w->gl_w[k] * rwt(c, gen_x(c, x) - c->uc)
-                                 : w->gl_w[k] * aa_filter_weight(c->f, gen_x(c, x) - c->uc);
+        double wk = !c->weighted ? gw[k]
+                    : c->radial  ? gw[k] * rwt(c, gen_x(c, x) - c->uc)
+                                 : gw[k] * aa_filter_weight(c->f, gen_x(c, x) - c->uc);
         if (c->umode) /* dx = 2 u du */
             wk *= 2.0 * x;
         for (int ch = 0; ch < c->nch; ch++)
@@ -3401,41 +3469,65 @@ static size_t gen_bisect(const gen_span_ctx *c, int ch, double u, double gu, dou
     return nf;
 }
 
-/* The threshold's places in [u, v] for channel ch (g = e - 0.04045 there
- * gu, gv): intervals no wider than GEN_FUZZ that may hold a root appended
- * to fz (pairs), at most cap pairs; the count returned. */
-static size_t gen_isolate(const gen_span_ctx *c, int ch, double u, double gu, double v, double gv,
-                          double *fz, size_t nf, size_t cap, size_t *budget)
+/* The threshold's places in [u, v] for the channels in the mask act (bit
+ * ch; g = e - 0.04045 there gu[ch], gv[ch]): intervals no wider than
+ * GEN_FUZZ that may hold a root appended to fz (pairs), at most cap pairs,
+ * each channel's count added to cnt[ch]; the count returned (cap or more:
+ * no room, or work).  Each channel's places and work are those of
+ * isolating it alone; the channels share a halving's bounds on the
+ * segment and its colour at the midpoint, computed once for all. */
+static size_t gen_isolate_all(const gen_span_ctx *c, int act, double u, const double *gu,
+                              double v, const double *gv, double *fz, size_t nf, size_t cap,
+                              size_t *budget, size_t *cnt)
 {
-    double m = 0.5 * (u + v), emax[3], dmax[3];
-    if (*budget == 0)
-        return cap; /* too many intervals: the caller gives up on the piece */
-    --*budget;
-    if (gu != 0.0 && gv != 0.0 && (gu < 0.0) == (gv < 0.0) &&
-        gen_bounds(c, m, 0.5 * (v - u), 0.0, emax, dmax) &&
-        fabs(gu) + fabs(gv) > dmax[ch] * (v - u))
-        return nf; /* certified free of roots */
-    if (v - u <= GEN_FUZZ * (1.0 + fabs(m)) || !(m > u && m < v)) {
-        if (nf < cap)
-            fz[2 * nf] = u, fz[2 * nf + 1] = v, nf++;
-        return nf;
-    }
-    double e[3], d1, d2, h = 0.5 * (v - u);
-    gen_eval(c, m, e);
-    double gm = e[ch] - 0.04045;
-    if (gen_taylor(c, ch, m, h, &d1, &d2)) {
-        if (d1 == 0.0 && d2 == 0.0)
-            return nf; /* constant there: no crossing, even at 0.04045 */
-        if (fabs(gm) > fabs(d1) * h + 0.5 * d2 * h * h)
-            return nf; /* Taylor: no root */
-        if (fabs(d1) > d2 * h) { /* monotone */
-            if (gu != 0.0 && gv != 0.0 && (gu < 0.0) == (gv < 0.0))
-                return nf;
-            return gen_bisect(c, ch, u, gu, v, gv, fz, nf, cap, budget);
+    double m = 0.5 * (u + v), h = 0.5 * (v - u), emax[3], dmax[3], e[3], gm[3] = {0, 0, 0};
+    int bounds = -1, have_e = 0, next = 0;
+    int leaf = v - u <= GEN_FUZZ * (1.0 + fabs(m)) || !(m > u && m < v);
+    for (int ch = 0; ch < c->nch; ch++) {
+        if (!(act >> ch & 1))
+            continue;
+        if (*budget == 0)
+            return cap; /* too many intervals: the caller gives up on the piece */
+        --*budget;
+        if (gu[ch] != 0.0 && gv[ch] != 0.0 && (gu[ch] < 0.0) == (gv[ch] < 0.0)) {
+            if (bounds < 0)
+                bounds = gen_bounds(c, m, h, 0.0, emax, dmax);
+            if (bounds && fabs(gu[ch]) + fabs(gv[ch]) > dmax[ch] * (v - u))
+                continue; /* certified free of roots */
         }
+        if (leaf) {
+            if (nf < cap)
+                fz[2 * nf] = u, fz[2 * nf + 1] = v, nf++, cnt[ch]++;
+            continue;
+        }
+        double d1, d2;
+        if (!have_e)
+            gen_eval(c, m, e), have_e = 1;
+        gm[ch] = e[ch] - 0.04045;
+        if (gen_taylor(c, ch, m, h, &d1, &d2)) {
+            if (d1 == 0.0 && d2 == 0.0)
+                continue; /* constant there: no crossing, even at 0.04045 */
+            if (fabs(gm[ch]) > fabs(d1) * h + 0.5 * d2 * h * h)
+                continue; /* Taylor: no root */
+            if (fabs(d1) > d2 * h) { /* monotone */
+                if (gu[ch] != 0.0 && gv[ch] != 0.0 && (gu[ch] < 0.0) == (gv[ch] < 0.0))
+                    continue;
+                size_t before = nf;
+                nf = gen_bisect(c, ch, u, gu[ch], v, gv[ch], fz, nf, cap, budget);
+                if (nf >= cap)
+                    return nf;
+                cnt[ch] += nf - before;
+                continue;
+            }
+        }
+        next |= 1 << ch;
     }
-    nf = gen_isolate(c, ch, u, gu, m, gm, fz, nf, cap, budget);
-    return gen_isolate(c, ch, m, gm, v, gv, fz, nf, cap, budget);
+    if (!next || nf >= cap)
+        return nf;
+    nf = gen_isolate_all(c, next, u, gu, m, gm, fz, nf, cap, budget, cnt);
+    if (nf >= cap)
+        return nf;
+    return gen_isolate_all(c, next, m, gm, v, gv, fz, nf, cap, budget, cnt);
 }
 
 static int rad_same_t(const grad_radial *g, const grad_radial *h);
@@ -3477,16 +3569,16 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
     gen_eval(c, a, ea);
     gen_eval(c, b, eb);
     int mixed = w->scan && gen_mixes(c);
-    for (int ch = 0; ch < c->nch && nf < GEN_MAX_FUZZ; ch++) {
-        size_t before = nf;
-        nf = gen_isolate(c, ch, a, ea[ch] - 0.04045, b, eb[ch] - 0.04045, fz, nf, GEN_MAX_FUZZ,
-                         &budget);
-        if (mixed) {
-            if (w->nsig < SIG_MAX)
-                w->sig[w->nsig++] = (int)(nf - before);
-            else
-                w->sig_over = 1;
-        }
+    double ga[3] = {0, 0, 0}, gb[3] = {0, 0, 0};
+    size_t cnt[3] = {0, 0, 0};
+    for (int ch = 0; ch < c->nch; ch++)
+        ga[ch] = ea[ch] - 0.04045, gb[ch] = eb[ch] - 0.04045;
+    nf = gen_isolate_all(c, (1 << c->nch) - 1, a, ga, b, gb, fz, nf, GEN_MAX_FUZZ, &budget, cnt);
+    for (int ch = 0; ch < c->nch && mixed && nf < GEN_MAX_FUZZ; ch++) {
+        if (w->nsig < SIG_MAX)
+            w->sig[w->nsig++] = (int)cnt[ch];
+        else
+            w->sig_over = 1;
     }
     if (nf >= GEN_MAX_FUZZ) { /* more places than room, or work: the pixel refused */
         w->gen_stuck = 1;
