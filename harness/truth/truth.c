@@ -312,7 +312,8 @@
  * taken to be: THR_NEAR): a
  * place entering or leaving a section is the curve crossing a cut (a
  * stop line or circle, an edge, the window's side), and a total that
- * changes by two a tangency, made a turning point too.  Those three
+ * changes by two is a tangency, made a turning point too (whether the
+ * scene mixes and is translucent is found once a render: thr_setup).  Those three
  * pixels came within 1.1e-16 of the 2-D quadrature with it (tests/
  * test_gradient.c, test_mixed_tangent).  Not certified: a tangency whose
  * two places appear and vanish between two scan rows (a bump of the curve
@@ -590,6 +591,9 @@ typedef struct worker {
     double *sing;
     size_t nsing, cap_sing;
     int sing_oom;
+    /* thr_on: the scene's gradient layers are not all of one t and
+     * something is translucent (thr_setup, once a render) */
+    int thr_on;
     local_piece *lp;
     crossing *cross;
     size_t nlp, cap_lp;
@@ -988,6 +992,8 @@ static int lin_cut_stops(worker *w, int l, aa_gradient *g)
     return AA_OK;
 }
 
+static void thr_setup(worker *w);
+
 static int grad_init(worker *w)
 {
     int n = aa_scene_layer_count(w->scene);
@@ -1048,6 +1054,7 @@ static int grad_init(worker *w)
      * on ("a cone beside other gradients") */
     w->cone_mix = cone && ngrad > 1;
     w->grad = 1;
+    thr_setup(w);
     return AA_OK;
 }
 
@@ -5602,17 +5609,19 @@ static int scene_translucent(const worker *w)
     return 0;
 }
 
-static int thr_heights(worker *w, int nch)
+/* Once a render: whether the gradient layers are not all of one t
+ * (gen_same_t) and something is translucent (thr_on). */
+static void thr_setup(worker *w)
 {
     int mixed = 0;
-    for (int k = 1; k < w->ngl && !mixed; k++) {
-        const gen_layer *l = &w->gl[0], *m = &w->gl[k];
-        mixed = !(l->rg && m->rg ? rad_same_t(l->rg, m->rg)
-                  : l->gp && m->gp ? l->gp->tx == m->gp->tx && l->gp->ty == m->gp->ty &&
-                                         l->gp->t0 == m->gp->t0
-                                   : 0);
-    }
-    if (!mixed || w->npts < 2 || !scene_translucent(w))
+    for (int k = 1; k < w->ngl && !mixed; k++)
+        mixed = !gen_same_t(&w->gl[0], &w->gl[k]);
+    w->thr_on = mixed && scene_translucent(w);
+}
+
+static int thr_heights(worker *w, int nch)
+{
+    if (!w->thr_on || w->npts < 2)
         return AA_OK;
     double found[THR_EVENTS];
     int nfound = 0, any = 0;
