@@ -451,7 +451,10 @@
  * (6.7e-16), and a stroked cubic, its inner offset folding, under a
  * reflected gradient (1.1e-14).  H scaled by 1.001 is seen by the
  * half-plane (a pixel 6.4e-7 off the closed form) and by the reference on
- * both scenes (pixels 3.1e-6 and 1.3e-6 off).  Cost: as under the separable filters,
+ * both scenes (pixels 3.1e-6 and 1.3e-6 off), M1 negated by the half-plane
+ * y < y0 (1.3e-3); the zeroth moment's rules, one degree short (d (K + 1)
+ * points; on arcs 4 K + 6), miss by 1.1e-4 (the half-plane), 6.8e-7 (the
+ * cubic's scene) and 1.2e-11 (the arcs' scene).  Cost: as under the separable filters,
  * every pixel whose disc's square a piece or a stop line reaches takes its
  * visible parts: on that circle and ellipse drawn at 64x56 px (scale 4),
  * one thread, 101.9e6 instructions in analytic_render under
