@@ -397,9 +397,8 @@
  *     along u:  H(x, v) = integral from clamp(x) to ch of s w~(s, v) ds,
  *     along v:  v (F(ch, v) - F(clamp(x), v)).
  *
- * With X = x/R, s w~(s, v) = c s (a2 - s^2/R^2)^K is the derivative in s
- * of -c R^2/(2 (K + 1)) (a2 - s^2/R^2)^(K + 1), which vanishes at s = +-ch,
- * so
+ * s w~(s, v) = c s (a2 - s^2/R^2)^K is the derivative in s of -c R^2/(2
+ * (K + 1)) (a2 - s^2/R^2)^(K + 1), which vanishes at s = +-ch, so
  *
  *     H(x, v) = c R^2/(2 (K + 1)) (1 - (x^2 + v^2)/R^2)^(K + 1)
  *
@@ -454,9 +453,10 @@
  * both scenes (pixels 3.1e-6 and 1.3e-6 off), M1 negated by the half-plane
  * y < y0 (1.3e-3); the zeroth moment's rules, one degree short (d (K + 1)
  * points; on arcs 4 K + 6), miss by 1.1e-4 (the half-plane), 6.8e-7 (the
- * cubic's scene) and 1.2e-11 (the arcs' scene).  Cost: as under the separable filters,
- * every pixel whose disc's square a piece or a stop line reaches takes its
- * visible parts: on that circle and ellipse drawn at 64x56 px (scale 4),
+ * cubic's scene) and 1.2e-11 (the arcs' scene).  Cost: as under the
+ * separable filters, every pixel whose disc's square a piece or a stop
+ * line reaches takes its visible parts: on that circle and ellipse drawn
+ * at 64x56 px (scale 4),
  * one thread, 101.9e6 instructions in analytic_render under
  * radial:k=2,r=1.5 against 8.3e6 for the same shapes in flat colours and
  * 169.4e6 for the gradients under bspline:order=3 (callgrind;
