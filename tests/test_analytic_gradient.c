@@ -44,8 +44,9 @@
  *    c(centre), a turned ellipse of semi-axes a, b under an oblique ramp
  *    to pi a b c(centre) (the sliver's change as above, below 1e-14);
  *  - refusals by name: sRGB interpolation, radial gradients, a stop of
- *    partial opacity, a translucent layer, a radial filter, a gradient of
- *    more stop lines than the method takes.
+ *    partial opacity, a translucent layer, a gradient of more stop lines
+ *    than the method takes (gradients under the radial filters:
+ *    tests/test_analytic_radial_gradient.c).
  */
 #include "bench.h"
 #include "core.h"
@@ -540,7 +541,6 @@ static void test_refusals(void **state)
     const aa_gradient_stop half[2] = {{0.0, {{1, 0, 0}}, 1.0}, {1.0, {{0, 0, 1}}, 0.5}};
     aa_scene *s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 0, 1.0);
     support_method_against_reference("analytic", "refusals' base scene", s, W, H, "box");
-    refused("radial filter", s, "radial:k=2,r=1.5", "under a radial filter");
     aa_scene_free(s);
     s = one(AA_GRADIENT_LINEAR, AA_SPREAD_PAD, lin, black_white, 2, 1, 1.0);
     refused("sRGB interpolation", s, "box", "layer 1's linear gradient interpolates its stops in "

@@ -1,0 +1,332 @@
+/*
+ * test_analytic_radial_gradient.c: `analytic` on linear gradients in linear
+ * light under the radially symmetric polynomial filters radial:k=K,r=R
+ * (algorithms/analytic.c, "Linear gradients under the radial filters": the
+ * first moments over the part of the filter's disc in a region, by Green's
+ * theorem, from the potentials H and v F), against answers that are not
+ * the method's own:
+ *
+ *  - the exact reference of the harness's truth path (aa_truth_render: its
+ *    own quadrature of the filter times the gradient's colour along the
+ *    rows, cut at the stop lines; harness/truth/truth.c), within 1e-12 per
+ *    pixel and channel, at 1 and 2 threads (bit-identical), on: a path of
+ *    lines and a cubic arc painted by a padded gradient of three stops with
+ *    a sharp step, in front of a rectangle under a repeated gradient
+ *    (radial:k=1,r=1); an elliptical arc (a circle) under
+ *    a reflected gradient and a turned ellipse under a padded one
+ *    (radial:k=2,r=1.5); in the full tier
+ *    (tests/test_analytic_radial_gradient_full.c) both under
+ *    radial:k=1,r=1, radial:k=2,r=1.5 and radial:k=3,r=2, the first at
+ *    40x35 px too, and a stroked cubic (its outline offset curves, its
+ *    inner offset folding) under a reflected gradient;
+ *  - a closed form written here: the half-plane x < x0 painted by the ramp
+ *    c(x) = (x - a)/(b - a) along x (black to white, pad not reached
+ *    within the filter's disc), on black.  At a pixel centre (cx, cy),
+ *    with u = x - cx, its value is the integral over u < d = x0 - cx of
+ *    c(cx + u) times the weight of the disc's chord at u,
+ *
+ *        m(u) = integral over |v| < s of c_K (1 - (u^2 + v^2)/R^2)^K dv
+ *             = c_K R B (1 - u^2/R^2)^(K + 1/2),   s = sqrt(R^2 - u^2),
+ *
+ *    (v = s t: the integrand is c_K (s/R)^(2K) (1 - t^2)^K, B = integral
+ *    from -1 to 1 of (1 - t^2)^K = sum_j binom(K, j) (-1)^j 2/(2j + 1),
+ *    c_K = (K + 1)/(pi R^2): patterns/README.md, "Filters"), the outer
+ *    integral taken by GSL's 64-point Gauss-Legendre rule in theta, u = R
+ *    sin theta (whose integrand, cos^(2K + 2) theta times an affine
+ *    function of sin theta, is smooth: the rule is exact to rounding
+ *    there); and the half-plane y < y0 under the same ramp along y, the
+ *    same integral in v; within 1e-14.  The ramp's encoding's sliver
+ *    (decode(encode(v)) 2.3e-9 below v on a strip 7.3e-9 (b - a) wide)
+ *    changes these by less than 1e-16.
+ */
+#include "bench.h"
+#include "core.h"
+#include "patterns.h"
+#include "support.h"
+
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+static const char *const filters[] = {"radial:k=1,r=1", "radial:k=2,r=1.5", "radial:k=3,r=2",
+                                      NULL};
+
+#ifndef ANALYTIC_RADIAL_GRADIENT_ALL
+#define ANALYTIC_RADIAL_GRADIENT_ALL 0
+#endif
+
+static char dir[4096];
+
+static int setup(void **state)
+{
+    (void)state;
+    return support_tmpdir(dir, sizeof dir, "anaradgrad");
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    return support_rmtree(dir);
+}
+
+/* Scenes in pixels of a W x H view, in pattern units. */
+static int W, H;
+
+static void layer(aa_scene *s, double r, double g, double b)
+{
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{r, g, b}}, AA_FILL_NONZERO), AA_OK);
+}
+
+static void move(aa_scene *s, double x, double y)
+{
+    assert_int_equal(aa_scene_move_to(s, x / W, y / H), AA_OK);
+}
+
+static void line(aa_scene *s, double x, double y)
+{
+    assert_int_equal(aa_scene_line_to(s, x / W, y / H), AA_OK);
+}
+
+static void rect(aa_scene *s, double x0, double y0, double x1, double y1)
+{
+    move(s, x0, y0);
+    line(s, x1, y0);
+    line(s, x1, y1);
+    line(s, x0, y1);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+}
+
+/* A linear gradient in linear light, in pixels, on the layer added last. */
+static void gradient(aa_scene *s, int spread, const double p[6], const aa_gradient_stop *st,
+                     int n)
+{
+    aa_gradient g = {AA_GRADIENT_LINEAR, spread, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0}, n, st};
+    memcpy(g.p, p, sizeof g.p);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB), AA_OK);
+}
+
+/* The quick tier takes each scene under one filter (the reference's
+ * quadrature takes 1 to 3 s of CPU a scene and filter here; the closed
+ * forms take all three); test_analytic_radial_gradient_full.c, of the
+ * full tier, is this file with ANALYTIC_RADIAL_GRADIENT_ALL set: every
+ * scene under every filter, the stroke and a larger image. */
+static void against(const char *what, const aa_scene *s, int w, int h, const char *quick)
+{
+    const char *const one[] = {quick, NULL};
+    double worst = 0.0;
+    for (const char *const *f = ANALYTIC_RADIAL_GRADIENT_ALL ? filters : one; *f; f++)
+        worst = fmax(worst, support_method_against_reference("analytic", what, s, w, h, *f));
+    print_message("%-28s largest difference over the filters %.1e\n", what, worst);
+}
+
+static const aa_gradient_stop three[4] = {{0.0, {{0.9, 0.05, 0.2}}, 1.0},
+                                          {0.45, {{0.1, 0.8, 0.3}}, 1.0},
+                                          {0.45, {{0.2, 0.1, 0.7}}, 1.0},
+                                          {1.0, {{1.0, 0.95, 0.6}}, 1.0}};
+static const aa_gradient_stop two[2] = {{0.15, {{0.0, 0.3, 0.05}}, 1.0},
+                                        {0.8, {{0.6, 1.0, 0.1}}, 1.0}};
+static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
+                                                {1.0, {{1, 1, 1}}, 1.0}};
+
+/* A path of lines and a cubic arc (padded gradient, a sharp step) in
+ * front of a rectangle under a repeated gradient, over the background. */
+static aa_scene *lines_and_cubic(int w, int h)
+{
+    W = w, H = h;
+    double sx = w / 16.0, sy = h / 14.0;
+    aa_scene *s = aa_scene_new((aa_rgb){{0.2, 0.3, 0.4}});
+    layer(s, 0, 0, 0);
+    rect(s, 1.3 * sx, 2.1 * sy, 14.6 * sx, 12.2 * sy);
+    gradient(s, AA_SPREAD_REPEAT, (const double[6]){3 * sx, 1 * sy, 8.6 * sx, 3.6 * sy, 0, 0},
+             two, 2);
+    layer(s, 0, 0, 0);
+    move(s, 2.4 * sx, 1.6 * sy);
+    line(s, 13.7 * sx, 3.1 * sy);
+    assert_int_equal(aa_scene_cubic_to(s, 17.0 * sx / W, 9.0 * sy / H, 4.0 * sx / W,
+                                       6.0 * sy / H, 6.2 * sx / W, 12.9 * sy / H),
+                     AA_OK);
+    line(s, 1.9 * sx, 9.4 * sy);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    gradient(s, AA_SPREAD_PAD, (const double[6]){2 * sx, 3 * sy, 12 * sx, 11 * sy, 0, 0}, three,
+             4);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static void test_lines_and_cubic(void **state)
+{
+    (void)state;
+    aa_scene *s = lines_and_cubic(16, 14);
+    against("lines and a cubic", s, 16, 14, "radial:k=1,r=1");
+    aa_scene_free(s);
+#if ANALYTIC_RADIAL_GRADIENT_ALL
+    s = lines_and_cubic(40, 35);
+    against("lines and a cubic, 40 px", s, 40, 35, NULL);
+    aa_scene_free(s);
+#endif
+}
+
+/* An SVG scene (text) of w x h px, read as a pattern. */
+static aa_scene *svg_scene(const char *name, const char *text, int w, int h)
+{
+    char path[4200], spec[4300];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    support_write_file(path, text, strlen(text));
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_spec ps;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, w, h, &s))
+        fail_msg("pattern %s: %s", spec, aa_last_error());
+    return s;
+}
+
+/* A circle under a reflected gradient and a turned ellipse under a padded
+ * one (elliptical arcs), over a flat rectangle they overlap. */
+static void test_arcs(void **state)
+{
+    (void)state;
+    static const char svg[] =
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"16\" height=\"14\">\n"
+        "<linearGradient id=\"f\" x1=\"3.1\" y1=\"2.2\" x2=\"5.3\" y2=\"4.9\"\n"
+        " gradientUnits=\"userSpaceOnUse\" spreadMethod=\"reflect\"\n"
+        " color-interpolation=\"linearRGB\">\n"
+        " <stop offset=\"0.1\" stop-color=\"#f02010\"/>\n"
+        " <stop offset=\"0.9\" stop-color=\"#30e0c0\"/>\n"
+        "</linearGradient>\n"
+        "<linearGradient id=\"p\" x1=\"8.2\" y1=\"12.1\" x2=\"14.6\" y2=\"7.3\"\n"
+        " gradientUnits=\"userSpaceOnUse\" color-interpolation=\"linearRGB\">\n"
+        " <stop offset=\"0.2\" stop-color=\"#2040c0\"/>\n"
+        " <stop offset=\"0.8\" stop-color=\"#f0f0a0\"/>\n"
+        "</linearGradient>\n"
+        "<rect x=\"1.3\" y=\"7.4\" width=\"12.2\" height=\"4.9\" fill=\"#806040\"/>\n"
+        "<circle cx=\"5.3\" cy=\"5.9\" r=\"3.7\" fill=\"url(#f)\"/>\n"
+        "<ellipse cx=\"10.6\" cy=\"9.3\" rx=\"4.1\" ry=\"2.3\"\n"
+        " transform=\"rotate(30 10.6 9.3)\" fill=\"url(#p)\"/>\n"
+        "</svg>\n";
+    aa_scene *s = svg_scene("arcs.svg", svg, 16, 14);
+    against("circle and turned ellipse", s, 16, 14, "radial:k=2,r=1.5");
+    aa_scene_free(s);
+}
+
+#if ANALYTIC_RADIAL_GRADIENT_ALL
+/* A stroked cubic (its outline: offset curves, its inner offset folding
+ * at the sharp turn) under a reflected gradient, over a flat circle. */
+static void test_stroke(void **state)
+{
+    (void)state;
+    static const char svg[] =
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"16\" height=\"14\">\n"
+        "<linearGradient id=\"g\" x1=\"2\" y1=\"3\" x2=\"6.5\" y2=\"5\"\n"
+        " gradientUnits=\"userSpaceOnUse\" spreadMethod=\"reflect\"\n"
+        " color-interpolation=\"linearRGB\">\n"
+        " <stop offset=\"0.15\" stop-color=\"#ff3010\"/>\n"
+        " <stop offset=\"0.85\" stop-color=\"#1050ff\"/>\n"
+        "</linearGradient>\n"
+        "<circle cx=\"8\" cy=\"7\" r=\"4.5\" fill=\"#404060\"/>\n"
+        "<path d=\"M2.1,2.3 C14.7,1.2 0.8,12.9 13.9,11.6\" fill=\"none\" stroke=\"url(#g)\"\n"
+        " stroke-width=\"2.1\"/>\n"
+        "</svg>\n";
+    aa_scene *s = svg_scene("stroke.svg", svg, 16, 14);
+    against("stroked cubic", s, 16, 14, NULL);
+    aa_scene_free(s);
+}
+#endif
+
+/* The closed form of the opening comment: the value at a pixel centre of
+ * the half-plane u < d under the ramp c0 + g u (u measured from the
+ * centre), under radial:k=K,r=R. */
+typedef struct chord_ramp {
+    double R, K, c0, g;
+} chord_ramp;
+
+static double chord_integrand(double th, void *arg)
+{
+    const chord_ramp *q = arg;
+    double u = q->R * sin(th), c = cos(th), B = 0.0, bin = 1.0;
+    for (int j = 0; j <= (int)q->K; j++) {
+        B += bin * (j % 2 ? -2.0 : 2.0) / (2 * j + 1);
+        bin = bin * (q->K - j) / (j + 1);
+    }
+    double cK = (q->K + 1.0) / (M_PI * q->R * q->R);
+    /* m(u) du = c_K R B cos^(2K+1) th  R cos th d th */
+    return (q->c0 + q->g * u) * cK * q->R * B * pow(c, 2.0 * q->K + 1.0) * q->R * c;
+}
+
+static double half_plane_value(double R, double K, double d, double c0, double g)
+{
+    chord_ramp q = {R, K, c0, g};
+    gsl_function F = {chord_integrand, &q};
+    gsl_integration_glfixed_table *t = gsl_integration_glfixed_table_alloc(64);
+    assert_non_null(t);
+    double hi = d >= R ? M_PI / 2 : (d <= -R ? -M_PI / 2 : asin(d / R));
+    double v = gsl_integration_glfixed(&F, -M_PI / 2, hi, t);
+    gsl_integration_glfixed_table_free(t);
+    return v;
+}
+
+static void test_half_planes(void **state)
+{
+    (void)state;
+    W = 14, H = 12;
+    /* the ramp from a to b, the half-plane's edge at e (x, or y) */
+    const double a = -3.25, b = 17.5, e = 7.3;
+    for (int axis = 0; axis < 2; axis++)
+        for (const char *const *f = filters; *f; f++) {
+            aa_filter filt;
+            assert_int_equal(aa_filter_parse(*f, &filt), AA_OK);
+            double K = filt.spec.v[0], R = filt.spec.v[1], worst = 0.0;
+            aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+            layer(s, 0, 0, 0);
+            if (axis == 0)
+                rect(s, -30, -30, e, H + 30);
+            else
+                rect(s, -30, -30, W + 30, e);
+            gradient(s, AA_SPREAD_PAD,
+                     axis == 0 ? (const double[6]){a, 0, b, 0, 0, 0}
+                               : (const double[6]){0, a, 0, b, 0, 0},
+                     black_white, 2);
+            assert_int_equal(aa_scene_finish(s), AA_OK);
+            aa_image img;
+            support_render("analytic", s, *f, W, H, 1, &img, NULL);
+            /* pixels along the ramp's axis, the edge's distance from the
+             * centre from -R - 1.2 (none) to R + 1.3 (the whole disc) */
+            for (int k = 2; k <= 11; k++) {
+                int i = axis == 0 ? k : 4, j = axis == 0 ? 5 : k;
+                double c = (axis == 0 ? i : j) + 0.5, d = e - c;
+                double want = half_plane_value(R, K, d, (c - a) / (b - a), 1.0 / (b - a));
+                for (int ch = 0; ch < 3; ch++) {
+                    double v = aa_pixel(&img, i, j)[ch];
+                    if (!(fabs(v - want) <= 1e-14))
+                        fail_msg("half-plane %s < %g under %s at pixel (%d, %d): %.17g, "
+                                 "closed form %.17g",
+                                 axis == 0 ? "x" : "y", e, *f, i, j, v, want);
+                    worst = fmax(worst, fabs(v - want));
+                }
+            }
+            print_message("half-plane %s < %g, ramp along it, %-18s max |v - closed form| "
+                          "%.1e\n",
+                          axis == 0 ? "x" : "y", e, *f, worst);
+            aa_image_free(&img);
+            aa_scene_free(s);
+        }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_half_planes),
+                                       cmocka_unit_test(test_lines_and_cubic),
+                                       cmocka_unit_test(test_arcs),
+#if ANALYTIC_RADIAL_GRADIENT_ALL
+                                       cmocka_unit_test(test_stroke),
+#endif
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

@@ -1,0 +1,8 @@
+/* tier: full */
+/*
+ * test_analytic_radial_gradient_full.c: test_analytic_radial_gradient.c
+ * with every scene under every filter, a stroked cubic and a larger image
+ * (its header says what is checked).
+ */
+#define ANALYTIC_RADIAL_GRADIENT_ALL 1
+#include "test_analytic_radial_gradient.c"
