@@ -15,10 +15,11 @@
  *    (radial:k=1,r=1); an elliptical arc (a circle) under
  *    a reflected gradient and a turned ellipse under a padded one
  *    (radial:k=2,r=1.5); in the full tier
- *    (tests/test_analytic_radial_gradient_full.c) both under
- *    radial:k=1,r=1, radial:k=2,r=1.5 and radial:k=3,r=2, the first at
- *    40x35 px too, and a stroked cubic (its outline offset curves, its
- *    inner offset folding) under a reflected gradient;
+ *    (tests/test_analytic_radial_gradient_full.c) both under the other
+ *    two of radial:k=1,r=1, radial:k=2,r=1.5 and radial:k=3,r=2, the first
+ *    at 40x35 px under all three, and a stroked cubic (its outline offset
+ *    curves, its inner offset folding) under a reflected gradient, under
+ *    all three (under the sanitizers a subset: TIER below);
  *  - a closed form written here: the half-plane x < x0 painted by the ramp
  *    c(x) = (x - a)/(b - a) along x (black to white, pad not reached
  *    within the filter's disc), on black.  At a pixel centre (cx, cy),
@@ -61,6 +62,29 @@ static const char *const filters[] = {"radial:k=1,r=1", "radial:k=2,r=1.5", "rad
 #ifndef ANALYTIC_RADIAL_GRADIENT_ALL
 #define ANALYTIC_RADIAL_GRADIENT_ALL 0
 #endif
+/* The filters each case takes.  The quick tier (this file): each scene
+ * under one filter (the reference's quadrature takes 1 to 3 s of CPU a
+ * scene and filter here; the closed forms take all three).  The full
+ * tier, test_analytic_radial_gradient_full.c (this file with
+ * ANALYTIC_RADIAL_GRADIENT_ALL set): the two scenes under the filters the
+ * quick tier leaves out (`make test` runs both tiers), the first at 40x35
+ * px and the stroke under all three.  Under the sanitizers (AA_SANITIZED:
+ * the Makefile's sanitizer build sets it for the tests) the full tier runs
+ * a declared subset: each case under one filter, every filter reached
+ * (another filter on the same scene takes the same code paths with other
+ * numbers; tests/README.md, "Tiers"), the plain build running
+ * everything. */
+#if !ANALYTIC_RADIAL_GRADIENT_ALL
+#define TIER(quick, full, san) (quick)
+#define TIER_NAME "quick"
+#elif defined(AA_SANITIZED)
+#define TIER(quick, full, san) (san)
+#define TIER_NAME "full, the sanitizer build's subset"
+#else
+#define TIER(quick, full, san) (full)
+#define TIER_NAME "full"
+#endif
+#define FILTERS(...) ((const char *const[]){__VA_ARGS__, NULL})
 
 static char dir[4096];
 
@@ -113,16 +137,11 @@ static void gradient(aa_scene *s, int spread, const double p[6], const aa_gradie
     assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB), AA_OK);
 }
 
-/* The quick tier takes each scene under one filter (the reference's
- * quadrature takes 1 to 3 s of CPU a scene and filter here; the closed
- * forms take all three); test_analytic_radial_gradient_full.c, of the
- * full tier, is this file with ANALYTIC_RADIAL_GRADIENT_ALL set: every
- * scene under every filter, the stroke and a larger image. */
-static void against(const char *what, const aa_scene *s, int w, int h, const char *quick)
+/* analytic against the reference under each filter of fl (TIER above) */
+static void against(const char *what, const aa_scene *s, int w, int h, const char *const *fl)
 {
-    const char *const one[] = {quick, NULL};
     double worst = 0.0;
-    for (const char *const *f = ANALYTIC_RADIAL_GRADIENT_ALL ? filters : one; *f; f++)
+    for (const char *const *f = fl; *f; f++)
         worst = fmax(worst, support_method_against_reference("analytic", what, s, w, h, *f));
     print_message("%-28s largest difference over the filters %.1e\n", what, worst);
 }
@@ -165,11 +184,14 @@ static void test_lines_and_cubic(void **state)
 {
     (void)state;
     aa_scene *s = lines_and_cubic(16, 14);
-    against("lines and a cubic", s, 16, 14, "radial:k=1,r=1");
+    against("lines and a cubic", s, 16, 14,
+            TIER(FILTERS("radial:k=1,r=1"), FILTERS("radial:k=2,r=1.5", "radial:k=3,r=2"),
+                 FILTERS("radial:k=3,r=2")));
     aa_scene_free(s);
 #if ANALYTIC_RADIAL_GRADIENT_ALL
     s = lines_and_cubic(40, 35);
-    against("lines and a cubic, 40 px", s, 40, 35, NULL);
+    against("lines and a cubic, 40 px", s, 40, 35,
+            TIER(NULL, filters, FILTERS("radial:k=2,r=1.5")));
     aa_scene_free(s);
 #endif
 }
@@ -212,7 +234,9 @@ static void test_arcs(void **state)
         " transform=\"rotate(30 10.6 9.3)\" fill=\"url(#p)\"/>\n"
         "</svg>\n";
     aa_scene *s = svg_scene("arcs.svg", svg, 16, 14);
-    against("circle and turned ellipse", s, 16, 14, "radial:k=2,r=1.5");
+    against("circle and turned ellipse", s, 16, 14,
+            TIER(FILTERS("radial:k=2,r=1.5"), FILTERS("radial:k=1,r=1", "radial:k=3,r=2"),
+                 FILTERS("radial:k=1,r=1")));
     aa_scene_free(s);
 }
 
@@ -235,7 +259,7 @@ static void test_stroke(void **state)
         " stroke-width=\"2.1\"/>\n"
         "</svg>\n";
     aa_scene *s = svg_scene("stroke.svg", svg, 16, 14);
-    against("stroked cubic", s, 16, 14, NULL);
+    against("stroked cubic", s, 16, 14, TIER(NULL, filters, FILTERS("radial:k=3,r=2")));
     aa_scene_free(s);
 }
 #endif
@@ -321,6 +345,7 @@ static void test_half_planes(void **state)
 
 int main(void)
 {
+    print_message("tier: %s\n", TIER_NAME);
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_half_planes),
                                        cmocka_unit_test(test_lines_and_cubic),
                                        cmocka_unit_test(test_arcs),
