@@ -4251,11 +4251,14 @@ static void mom_arc(const an_state *S, const aa_piece *p, double ya, double yb, 
     r[0] = a0, r[1] = a1, r[2] = a2;
 }
 
-/* The three moments over the part [u, v] (u < v, inside one cell of the
- * pixel's support) of offset piece p, added to r, by the rule certified
- * for them weighted by J (off_points_j), halved where none is. */
+/* The three moments over the part [u, v] (u < v) of offset piece p, added
+ * to r, by the rule certified for them weighted by J (off_points_j),
+ * halved where none is: under a separable filter (radial 0; the part
+ * inside one cell of the pixel's support) mom_right_of's, under a radial
+ * one (the part inside the disc) the integrals of F y', H y' and v F y'. */
 static void mom_off_part(const an_render *Rn, const aa_piece *p, int stops, double u, double v,
-                         double cx, double cy, const double *J, int depth, double r[3])
+                         double cx, double cy, const double *J, int radial, int depth,
+                         double r[3])
 {
     const an_state *S = Rn->S;
     const an_pp *pp = &S->pp;
@@ -4263,8 +4266,8 @@ static void mom_off_part(const an_render *Rn, const aa_piece *p, int stops, doub
     if (!m) {
         double mid = 0.5 * (u + v);
         if (depth < AN_OFF_DEPTH && mid > u && mid < v) {
-            mom_off_part(Rn, p, stops, u, mid, cx, cy, J, depth + 1, r);
-            mom_off_part(Rn, p, stops, mid, v, cx, cy, J, depth + 1, r);
+            mom_off_part(Rn, p, stops, u, mid, cx, cy, J, radial, depth + 1, r);
+            mom_off_part(Rn, p, stops, mid, v, cx, cy, J, radial, depth + 1, r);
             return;
         }
         off_uncertain(Rn->uncertain, 1);
@@ -4274,11 +4277,18 @@ static void mom_off_part(const an_render *Rn, const aa_piece *p, int stops, doub
     for (int g = 0; g < m; g++) {
         double x, y, dy;
         off_point(p, stops, mid + h * S->ogx[m][g], &x, &y, &dy);
-        double vv = y - cy, wv = S->ogw[m][g] * an_weight(pp, vv) * dy;
-        double right = 1.0 - an_cdf(pp, x - cx);
-        a0 += wv * right;
-        a1 += wv * (pp->m1tot - an_m1(pp, x - cx));
-        a2 += wv * vv * right;
+        if (radial) {
+            double du = x - cx, dv = y - cy, f = S->ogw[m][g] * rad_f(S, du, dv) * dy;
+            a0 += f;
+            a1 += S->ogw[m][g] * rad_h(S, du, dv) * dy;
+            a2 += dv * f;
+        } else {
+            double vv = y - cy, wv = S->ogw[m][g] * an_weight(pp, vv) * dy;
+            double right = 1.0 - an_cdf(pp, x - cx);
+            a0 += wv * right;
+            a1 += wv * (pp->m1tot - an_m1(pp, x - cx));
+            a2 += wv * vv * right;
+        }
     }
     r[0] += h * a0, r[1] += h * a1, r[2] += h * a2;
 }
@@ -4294,7 +4304,7 @@ static void mom_offset(const an_render *Rn, const aa_piece *p, double ya, double
     r[0] = r[1] = r[2] = 0.0;
     for (int s = 0; s + 1 < n; s++)
         if (ts[s] < ts[s + 1])
-            mom_off_part(Rn, p, stops, ts[s], ts[s + 1], cx, cy, J, 0, r);
+            mom_off_part(Rn, p, stops, ts[s], ts[s + 1], cx, cy, J, 0, 0, r);
     if (!(ta < tb))
         r[0] = -r[0], r[1] = -r[1], r[2] = -r[2];
 }
@@ -4395,40 +4405,9 @@ static void rad_mom_arc(const an_state *S, const aa_piece *p, double ya, double 
     r[0] = s0, r[1] = su, r[2] = sv;
 }
 
-/* The integrals over [u, v] (u < v, a part inside the disc) of offset
- * piece p of F y', H y' and v F y', added to r, by the rule certified for
- * them weighted by J (off_points_j), halved where none is. */
-static void rad_mom_off_part(const an_render *Rn, const aa_piece *p, int stops, double u,
-                             double v, double cx, double cy, const double *J, int depth,
-                             double r[3])
-{
-    const an_state *S = Rn->S;
-    int m = off_points_j(S, p, u, v, J);
-    if (!m) {
-        double mid = 0.5 * (u + v);
-        if (depth < AN_OFF_DEPTH && mid > u && mid < v) {
-            rad_mom_off_part(Rn, p, stops, u, mid, cx, cy, J, depth + 1, r);
-            rad_mom_off_part(Rn, p, stops, mid, v, cx, cy, J, depth + 1, r);
-            return;
-        }
-        off_uncertain(Rn->uncertain, 1);
-        m = AN_MAX_PTS;
-    }
-    double h = 0.5 * (v - u), mid = 0.5 * (u + v), a0 = 0.0, a1 = 0.0, a2 = 0.0;
-    for (int g = 0; g < m; g++) {
-        double x, y, dy;
-        off_point(p, stops, mid + h * S->ogx[m][g], &x, &y, &dy);
-        double du = x - cx, dv = y - cy, f = S->ogw[m][g] * rad_f(S, du, dv) * dy;
-        a0 += f;
-        a1 += S->ogw[m][g] * rad_h(S, du, dv) * dy;
-        a2 += dv * f;
-    }
-    r[0] += h * a0, r[1] += h * a1, r[2] += h * a2;
-}
-
 /* The three moments of rad_mom_right_of for offset piece p: cut as for
  * the zeroth (rad_off_cuts, the touching intervals certified for J), the
- * sub-parts inside the disc by rad_mom_off_part, those outside as
+ * sub-parts inside the disc by mom_off_part, those outside as
  * rad_mom_right_of's. */
 static void rad_mom_offset(const an_render *Rn, const aa_piece *p, double ya, double yb,
                            double cx, double cy, const double *J, double r[3])
@@ -4450,7 +4429,7 @@ static void rad_mom_offset(const an_render *Rn, const aa_piece *p, double ya, do
         double x, y, dy;
         off_point(p, stops, 0.5 * (u + v), &x, &y, &dy);
         if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < R * R) {
-            rad_mom_off_part(Rn, p, stops, u, v, cx, cy, J, 0, part);
+            mom_off_part(Rn, p, stops, u, v, cx, cy, J, 1, 0, part);
         } else {
             double y0, y1, d;
             off_point(p, stops, u, &d, &y0, &d);

@@ -2,12 +2,14 @@
  * scenes.c: test-only scenes shared by several tests (scenes.h).
  */
 #include "scenes.h"
+#include "support.h"
 
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <string.h>
 
 #include <cmocka.h>
 
@@ -251,6 +253,19 @@ aa_scene *scenes_svg_at(const char *name, int n)
     aa_spec ps;
     aa_scene *s = NULL;
     if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, n, n, &s))
+        fail_msg("pattern %s: %s", spec, aa_last_error());
+    return s;
+}
+
+aa_scene *scenes_svg_text(const char *dir, const char *name, const char *text, int w, int h)
+{
+    char path[4200], spec[4300];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    support_write_file(path, text, strlen(text));
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_spec ps;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, w, h, &s))
         fail_msg("pattern %s: %s", spec, aa_last_error());
     return s;
 }

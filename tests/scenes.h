@@ -54,6 +54,9 @@ aa_scene *scenes_disk(double cx, double cy, double a);
 /* The shipped scene patterns/svg/NAME.svg (run from the source tree's root)
  * placed at n x n pixels. */
 aa_scene *scenes_svg_at(const char *name, int n);
+/* An SVG document's text written to dir/name and read as the pattern
+ * svg:file= of it at w x h px (fails the test if it cannot). */
+aa_scene *scenes_svg_text(const char *dir, const char *name, const char *text, int w, int h);
 /* A copy of a finished scene (pattern units) with every quadratic arc
  * raised to the cubic of the same curve: controls P0 + 2/3 (C - P0) and
  * P1 + 2/3 (C - P1); lines as they were.  Finished. */

@@ -51,6 +51,7 @@
 #include "bench.h"
 #include "core.h"
 #include "patterns.h"
+#include "scenes.h"
 #include "support.h"
 
 #include <math.h>
@@ -303,20 +304,6 @@ static void test_strokes(void **state)
     aa_scene_free(s);
 }
 
-/* An SVG scene (text) of w x h px, read as a pattern. */
-static aa_scene *svg_scene(const char *name, const char *text, int w, int h)
-{
-    char path[4200], spec[4300];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    support_write_file(path, text, strlen(text));
-    snprintf(spec, sizeof spec, "svg:file=%s", path);
-    aa_spec ps;
-    aa_scene *s = NULL;
-    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, w, h, &s))
-        fail_msg("pattern %s: %s", spec, aa_last_error());
-    return s;
-}
-
 /* A circle, an ellipse turned by 30 degrees and a rounded rectangle
  * (elliptical arcs), painted by linear gradients in linear light, pad,
  * repeat and reflect, over a flat layer they overlap; under box and
@@ -344,7 +331,7 @@ static void test_arcs(void **state)
         "<rect x=\"15.4\" y=\"1.6\" width=\"6.3\" height=\"7.7\" rx=\"2.2\" ry=\"1.6\"\n"
         " fill=\"url(#f)\"/>\n"
         "</svg>\n";
-    aa_scene *s = svg_scene("arcs.svg", svg, 24, 18);
+    aa_scene *s = scenes_svg_text(dir, "arcs.svg", svg, 24, 18);
     against("circle, ellipse, round rect", s, 24, 18,
             TIER(ARC_QUICK, ARC_FULL, FILTERS("mitchell")));
     aa_scene_free(s);
@@ -369,7 +356,7 @@ static void test_small_arcs(void **state)
         "<ellipse cx=\"7.4\" cy=\"6.8\" rx=\"2.6\" ry=\"1.2\" transform=\"rotate(35 7.4 6.8)\"\n"
         " fill=\"url(#g)\"/>\n"
         "</svg>\n";
-    aa_scene *s = svg_scene("smallarcs.svg", svg, 12, 10);
+    aa_scene *s = scenes_svg_text(dir, "smallarcs.svg", svg, 12, 10);
     against("small arcs, wide cells", s, 12, 10, FILTERS("tent:r=6"));
     aa_scene_free(s);
 }
@@ -397,7 +384,7 @@ static void test_curve_strokes(void **state)
         "<ellipse cx=\"12.1\" cy=\"11.4\" rx=\"6.2\" ry=\"3.1\" transform=\"rotate(-25 12.1 11.4)\"\n"
         " fill=\"none\" stroke=\"url(#h)\" stroke-width=\"1.7\"/>\n"
         "</svg>\n";
-    aa_scene *s = svg_scene("curvestrokes.svg", svg, 22, 20);
+    aa_scene *s = scenes_svg_text(dir, "curvestrokes.svg", svg, 22, 20);
     against("stroked cubic and ellipse", s, 22, 20,
             TIER(ARC_QUICK, ARC_FULL, FILTERS("tent:r=1")));
     aa_scene_free(s);

@@ -43,6 +43,7 @@
 #include "bench.h"
 #include "core.h"
 #include "patterns.h"
+#include "scenes.h"
 #include "support.h"
 
 #include <gsl/gsl_integration.h>
@@ -196,20 +197,6 @@ static void test_lines_and_cubic(void **state)
 #endif
 }
 
-/* An SVG scene (text) of w x h px, read as a pattern. */
-static aa_scene *svg_scene(const char *name, const char *text, int w, int h)
-{
-    char path[4200], spec[4300];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    support_write_file(path, text, strlen(text));
-    snprintf(spec, sizeof spec, "svg:file=%s", path);
-    aa_spec ps;
-    aa_scene *s = NULL;
-    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, w, h, &s))
-        fail_msg("pattern %s: %s", spec, aa_last_error());
-    return s;
-}
-
 /* A circle under a reflected gradient and a turned ellipse under a padded
  * one (elliptical arcs), over a flat rectangle they overlap. */
 static void test_arcs(void **state)
@@ -233,7 +220,7 @@ static void test_arcs(void **state)
         "<ellipse cx=\"10.6\" cy=\"9.3\" rx=\"4.1\" ry=\"2.3\"\n"
         " transform=\"rotate(30 10.6 9.3)\" fill=\"url(#p)\"/>\n"
         "</svg>\n";
-    aa_scene *s = svg_scene("arcs.svg", svg, 16, 14);
+    aa_scene *s = scenes_svg_text(dir, "arcs.svg", svg, 16, 14);
     against("circle and turned ellipse", s, 16, 14,
             TIER(FILTERS("radial:k=2,r=1.5"), FILTERS("radial:k=1,r=1", "radial:k=3,r=2"),
                  FILTERS("radial:k=1,r=1")));
@@ -258,7 +245,7 @@ static void test_stroke(void **state)
         "<path d=\"M2.1,2.3 C14.7,1.2 0.8,12.9 13.9,11.6\" fill=\"none\" stroke=\"url(#g)\"\n"
         " stroke-width=\"2.1\"/>\n"
         "</svg>\n";
-    aa_scene *s = svg_scene("stroke.svg", svg, 16, 14);
+    aa_scene *s = scenes_svg_text(dir, "stroke.svg", svg, 16, 14);
     against("stroked cubic", s, 16, 14, TIER(NULL, filters, FILTERS("radial:k=3,r=2")));
     aa_scene_free(s);
 }
