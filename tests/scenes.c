@@ -44,6 +44,37 @@ void scenes_rect(aa_scene *s, double x0, double y0, double x1, double y1)
     scenes_path(s, xy, 4);
 }
 
+void scenes_layer(aa_scene *s, double r, double g, double b, aa_fill_rule rule)
+{
+    assert_int_equal(aa_scene_layer(s, (aa_rgb){{r, g, b}}, rule), AA_OK);
+}
+
+void scenes_move_px(aa_scene *s, int w, int h, double x, double y)
+{
+    assert_int_equal(aa_scene_move_to(s, x / w, y / h), AA_OK);
+}
+
+void scenes_line_px(aa_scene *s, int w, int h, double x, double y)
+{
+    assert_int_equal(aa_scene_line_to(s, x / w, y / h), AA_OK);
+}
+
+void scenes_rect_px(aa_scene *s, int w, int h, double x0, double y0, double x1, double y1)
+{
+    scenes_rect(s, x0 / w, y0 / h, x1 / w, y1 / h);
+}
+
+void scenes_gradient_px(aa_scene *s, int w, int h, int kind, int spread, const double p[6],
+                        const aa_gradient_stop *st, int n, int srgb)
+{
+    aa_gradient g = {kind, spread, {0}, {1.0 / w, 0, 0, 1.0 / h, 0, 0}, n, st};
+    memcpy(g.p, p, sizeof g.p);
+    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+    if (!srgb)
+        assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB),
+                         AA_OK);
+}
+
 aa_scene *scenes_polygon(const double *xy, int n, aa_rgb inside, aa_rgb outside,
                          aa_fill_rule rule)
 {

@@ -22,6 +22,20 @@ void scenes_add_poly(aa_scene *s, const oracle_poly *p);
  * (x1, y1) (x0, y1). */
 void scenes_rect(aa_scene *s, double x0, double y0, double x1, double y1);
 
+/* Steps of a scene drawn in pixels of a w x h view, in pattern units (the
+ * point (x, y) px at (x / w, y / h)), each checked: a layer of colour
+ * (r, g, b) under rule; a move and a line to (x, y) px; the rectangle
+ * [x0, x1] x [y0, y1] px as scenes_rect's closed path; a gradient of kind
+ * and spread with points p in pixels (its map diag(1/w, 1/h)) and the n
+ * stops st on the layer added last, interpolated in linear light unless
+ * srgb. */
+void scenes_layer(aa_scene *s, double r, double g, double b, aa_fill_rule rule);
+void scenes_move_px(aa_scene *s, int w, int h, double x, double y);
+void scenes_line_px(aa_scene *s, int w, int h, double x, double y);
+void scenes_rect_px(aa_scene *s, int w, int h, double x0, double y0, double x1, double y1);
+void scenes_gradient_px(aa_scene *s, int w, int h, int kind, int spread, const double p[6],
+                        const aa_gradient_stop *st, int n, int srgb);
+
 /* One polygon (n points, xy pairs) of colour `inside` under `rule` on
  * `outside`, finished. */
 aa_scene *scenes_polygon(const double *xy, int n, aa_rgb inside, aa_rgb outside,

@@ -53,6 +53,7 @@
 #include "patterns.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -78,51 +79,13 @@ static int teardown(void **state)
     return support_rmtree(dir);
 }
 
-/* Scenes in pixels of a W x H view, in pattern units. */
+/* The size in pixels of the view whose scene is being built (scenes_*_px). */
 static int W, H;
-
-static void layer(aa_scene *s, double r, double g, double b, aa_fill_rule rule)
-{
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{r, g, b}}, rule), AA_OK);
-}
-
-static void move(aa_scene *s, double x, double y)
-{
-    assert_int_equal(aa_scene_move_to(s, x / W, y / H), AA_OK);
-}
-
-static void line(aa_scene *s, double x, double y)
-{
-    assert_int_equal(aa_scene_line_to(s, x / W, y / H), AA_OK);
-}
-
-static void rect(aa_scene *s, double x0, double y0, double x1, double y1)
-{
-    move(s, x0, y0);
-    line(s, x1, y0);
-    line(s, x1, y1);
-    line(s, x0, y1);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-}
-
-/* A gradient in pixels on the layer added last, in linear light unless
- * srgb. */
-static void gradient(aa_scene *s, int kind, int spread, const double p[6],
-                     const aa_gradient_stop *st, int n, int srgb)
-{
-    aa_gradient g = {kind, spread, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0}, n, st};
-    memcpy(g.p, p, sizeof g.p);
-    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
-    if (!srgb)
-        assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB),
-                         AA_OK);
-}
 
 /* The filters each scene takes.  The quick tier (this file): every scene
  * under the box, the arcs' and offsets' scenes under bspline:order=3 too
  * (the closed forms below take the others).  The full tier,
- * test_analytic_gradient_full.c (this file with ANALYTIC_GRADIENT_ALL
- * set), takes the rest, every scene under every filter (the reference's
+ * test_analytic_gradient_full.c (this file with TIER_FULL set), takes the rest, every scene under every filter (the reference's
  * quadrature of a gradient scene under the smooth filters takes seconds a
  * scene): the six other filters on the first five scenes, tent:r=1 and
  * mitchell on the arcs' and offsets', tent:r=6 on the small arcs.  It
@@ -137,21 +100,6 @@ static void gradient(aa_scene *s, int kind, int spread, const double p[6],
  * undefined behaviour errors along the code paths taken; more filters on
  * the same scene take the same paths (tests/README.md, "Tiers", says how
  * that was checked), and the plain build runs everything. */
-#ifndef ANALYTIC_GRADIENT_ALL
-#define ANALYTIC_GRADIENT_ALL 0
-#endif
-#if !ANALYTIC_GRADIENT_ALL
-#define TIER(quick, full, san) (quick)
-#define TIER_NAME "quick"
-#elif defined(AA_SANITIZED)
-#define TIER(quick, full, san) (san)
-#define TIER_NAME "full, the sanitizer build's subset"
-#else
-#define TIER(quick, full, san) (full)
-#define TIER_NAME "full"
-#endif
-#define FILTERS(...) ((const char *const[]){__VA_ARGS__, NULL})
-
 /* The quick tier's filter for the first five scenes, and the full tier's:
  * every filter but the box */
 #define BOX FILTERS("box")
@@ -188,24 +136,24 @@ static void test_layers(void **state)
     (void)state;
     W = 24, H = 20;
     aa_scene *s = aa_scene_new((aa_rgb){{0.2, 0.3, 0.4}});
-    layer(s, 0.9, 0.1, 0.5, AA_FILL_NONZERO);
-    move(s, 5.5, 5.5);
-    line(s, 14.2, 9.9);
-    line(s, 7.1, 15.3);
+    scenes_layer(s, 0.9, 0.1, 0.5, AA_FILL_NONZERO);
+    scenes_move_px(s, W, H, 5.5, 5.5);
+    scenes_line_px(s, W, H, 14.2, 9.9);
+    scenes_line_px(s, W, H, 7.1, 15.3);
     assert_int_equal(aa_scene_close(s), AA_OK);
-    layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    move(s, 3.3, 2.2);
-    line(s, 20.7, 4.1);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_move_px(s, W, H, 3.3, 2.2);
+    scenes_line_px(s, W, H, 20.7, 4.1);
     assert_int_equal(aa_scene_quad_to(s, 22.0 / W, 15.0 / H, 12.2 / W, 18.6 / H), AA_OK);
     assert_int_equal(aa_scene_cubic_to(s, 8.0 / W, 12.0 / H, 1.0 / W, 19.0 / H, 3.3 / W, 2.2 / H),
                      AA_OK);
     assert_int_equal(aa_scene_close(s), AA_OK);
-    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){2, 3, 19, 15, 0, 0}, three,
-             4, 0);
-    layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    rect(s, 0, 0, W, H);
-    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT, (const double[6]){3, 1, 7.3, 2.1, 0, 0},
-             two, 2, 0);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                       (const double[6]){2, 3, 19, 15, 0, 0}, three, 4, 0);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_rect_px(s, W, H, 0, 0, W, H);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT,
+                       (const double[6]){3, 1, 7.3, 2.1, 0, 0}, two, 2, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     against("three layers", s, W, H,
             TIER(BOX, NOT_BOX, FILTERS("tent:r=1")));
@@ -219,18 +167,18 @@ static void test_curves_and_clip(void **state)
     (void)state;
     W = 22, H = 20;
     aa_scene *s = aa_scene_new((aa_rgb){{0.05, 0.05, 0.1}});
-    layer(s, 0, 0, 0, AA_FILL_EVENODD);
-    move(s, 2.5, 3.1);
+    scenes_layer(s, 0, 0, 0, AA_FILL_EVENODD);
+    scenes_move_px(s, W, H, 2.5, 3.1);
     assert_int_equal(aa_scene_cubic_to(s, 30.0 / W, 1.0 / H, -8.0 / W, 21.0 / H, 19.3 / W,
                                        17.2 / H),
                      AA_OK);
     assert_int_equal(aa_scene_cubic_to(s, 12.0 / W, 5.0 / H, 6.0 / W, 25.0 / H, 2.5 / W, 3.1 / H),
                      AA_OK);
     assert_int_equal(aa_scene_close(s), AA_OK);
-    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_REFLECT, (const double[6]){4, 15, 9.1, 11.2, 0, 0},
-             three, 4, 0);
-    layer(s, 0.7, 0.6, 0.2, AA_FILL_NONZERO);
-    rect(s, 4.3, 4.6, 17.7, 13.1);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_REFLECT,
+                       (const double[6]){4, 15, 9.1, 11.2, 0, 0}, three, 4, 0);
+    scenes_layer(s, 0.7, 0.6, 0.2, AA_FILL_NONZERO);
+    scenes_rect_px(s, W, H, 4.3, 4.6, 17.7, 13.1);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     against("reflected, cubic arcs", s, W, H,
             TIER(BOX, NOT_BOX, FILTERS("bspline:order=2")));
@@ -240,15 +188,15 @@ static void test_curves_and_clip(void **state)
     int clip;
     assert_int_equal(aa_scene_clip_begin(s, -1), AA_OK);
     assert_int_equal(aa_scene_clip_layer(s, AA_FILL_NONZERO), AA_OK);
-    move(s, 1.7, 18.2);
-    line(s, 11.3, 0.9);
-    line(s, 20.6, 16.4);
+    scenes_move_px(s, W, H, 1.7, 18.2);
+    scenes_line_px(s, W, H, 11.3, 0.9);
+    scenes_line_px(s, W, H, 20.6, 16.4);
     assert_int_equal(aa_scene_close(s), AA_OK);
     assert_int_equal(aa_scene_clip_end(s, &clip), AA_OK);
-    layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    rect(s, 3.2, 2.4, 19.1, 17.3);
-    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){4, 4, 18, 9, 0, 0}, three,
-             4, 0);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_rect_px(s, W, H, 3.2, 2.4, 19.1, 17.3);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                       (const double[6]){4, 4, 18, 9, 0, 0}, three, 4, 0);
     assert_int_equal(aa_scene_set_clip(s, clip), AA_OK);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     against("clipped gradient", s, W, H,
@@ -264,10 +212,10 @@ static void test_sliver(void **state)
     const aa_gradient_stop slow[2] = {{0.0, {{0.003130, 0.003131, 0.5}}, 1.0},
                                       {1.0, {{0.003132, 0.003131, 0.5}}, 1.0}};
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    rect(s, 1.3, 1.1, 18.6, 6.7);
-    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){1, 0, 19, 0.4, 0, 0}, slow,
-             2, 0);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_rect_px(s, W, H, 1.3, 1.1, 18.6, 6.7);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                       (const double[6]){1, 0, 19, 0.4, 0, 0}, slow, 2, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     against("ramp across the sliver", s, W, H,
             TIER(BOX, NOT_BOX, FILTERS("tent:r=0.65")));
@@ -341,7 +289,7 @@ static void test_arcs(void **state)
  * where a part of an arc is up to a quarter of it), under a steep
  * repeated gradient (the full tier: the reference takes tens of seconds
  * here). */
-#if ANALYTIC_GRADIENT_ALL
+#if TIER_FULL
 static void test_small_arcs(void **state)
 {
     (void)state;
@@ -391,7 +339,7 @@ static void test_curve_strokes(void **state)
 }
 
 /* The closed forms and the refusals: the quick tier's alone (above) */
-#if !ANALYTIC_GRADIENT_ALL
+#if !TIER_FULL
 static const aa_gradient_stop black_white[2] = {{0.0, {{0, 0, 0}}, 1.0},
                                                 {1.0, {{1, 1, 1}}, 1.0}};
 /* the filters whose integer translates sum to 1 */
@@ -427,10 +375,10 @@ static void test_closed_forms(void **state)
     /* the ramp from a to b across the rectangle [x0, x1] x [y0, y1] */
     double a = 2.25, b = 25.5, x0 = 4.3, x1 = 23.6, y0 = 4.2, y1 = 11.9;
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    rect(s, x0, y0, x1, y1);
-    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){a, 7, b, 7, 0, 0},
-             black_white, 2, 0);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_rect_px(s, W, H, x0, y0, x1, y1);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                       (const double[6]){a, 7, b, 7, 0, 0}, black_white, 2, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     sums_to("ramp across a rectangle", s, W, H,
             (y1 - y0) * ((x1 - a) * (x1 - a) - (x0 - a) * (x0 - a)) / (2.0 * (b - a)));
@@ -440,10 +388,10 @@ static void test_closed_forms(void **state)
     double P = 3.7;
     x0 = 4.15, x1 = x0 + 5 * P;
     s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    rect(s, x0, y0, x1, y1);
-    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT, (const double[6]){x0, 3, x0 + P, 3, 0, 0},
-             black_white, 2, 0);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_rect_px(s, W, H, x0, y0, x1, y1);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT,
+                       (const double[6]){x0, 3, x0 + P, 3, 0, 0}, black_white, 2, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     sums_to("repeated ramp, whole periods", s, W, H, 0.5 * (x1 - x0) * (y1 - y0));
     aa_scene_free(s);
@@ -457,14 +405,14 @@ static void test_closed_forms(void **state)
     double R = 7.35, xc = 12.6, yc = 11.8;
     a = xc - R - 1.5, b = xc + R + 2.25;
     s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    move(s, xc + R, yc);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_move_px(s, W, H, xc + R, yc);
     assert_int_equal(aa_scene_arc_to(s, xc / W, yc / H, R / W, 0, 0, R / H, 0, 2.0 * M_PI,
                                      (xc + R) / W, yc / H),
                      AA_OK);
     assert_int_equal(aa_scene_close(s), AA_OK);
-    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){a, 3, b, 3, 0, 0},
-             black_white, 2, 0);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                       (const double[6]){a, 3, b, 3, 0, 0}, black_white, 2, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     sums_to("disk under a ramp", s, W, H, M_PI * R * R * (xc - a) / (b - a));
     aa_scene_free(s);
@@ -474,15 +422,15 @@ static void test_closed_forms(void **state)
     double ea = 8.1, eb = 4.3, th = 0.6, ya = 1.5, yb = 22.0;
     a = 2.0, b = 24.5;
     s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    move(s, xc + ea * cos(th), yc + ea * sin(th));
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_move_px(s, W, H, xc + ea * cos(th), yc + ea * sin(th));
     assert_int_equal(aa_scene_arc_to(s, xc / W, yc / H, ea * cos(th) / W, ea * sin(th) / H,
                                      -eb * sin(th) / W, eb * cos(th) / H, 0, 2.0 * M_PI,
                                      (xc + ea * cos(th)) / W, (yc + ea * sin(th)) / H),
                      AA_OK);
     assert_int_equal(aa_scene_close(s), AA_OK);
-    gradient(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){a, ya, b, yb, 0, 0},
-             black_white, 2, 0);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                       (const double[6]){a, ya, b, yb, 0, 0}, black_white, 2, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     double dx = b - a, dy = yb - ya, t = ((xc - a) * dx + (yc - ya) * dy) / (dx * dx + dy * dy);
     sums_to("turned ellipse, oblique ramp", s, W, H, M_PI * ea * eb * t);
@@ -510,12 +458,12 @@ static aa_scene *one(int kind, int spread, const double p[6], const aa_gradient_
                      int srgb, double alpha)
 {
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    layer(s, 1, 1, 1, AA_FILL_NONZERO);
-    rect(s, 1, 1, 4, 4);
+    scenes_layer(s, 1, 1, 1, AA_FILL_NONZERO);
+    scenes_rect_px(s, W, H, 1, 1, 4, 4);
     assert_int_equal(aa_scene_set_alpha(s, alpha), AA_OK);
-    layer(s, 0, 0, 0, AA_FILL_NONZERO);
-    rect(s, 2, 2, 10, 7);
-    gradient(s, kind, spread, p, st, n, srgb);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_rect_px(s, W, H, 2, 2, 10, 7);
+    scenes_gradient_px(s, W, H, kind, spread, p, st, n, srgb);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     return s;
 }
@@ -558,7 +506,7 @@ int main(void)
         cmocka_unit_test(test_layers),       cmocka_unit_test(test_curves_and_clip),
         cmocka_unit_test(test_sliver),       cmocka_unit_test(test_strokes),
         cmocka_unit_test(test_arcs),         cmocka_unit_test(test_curve_strokes),
-#if ANALYTIC_GRADIENT_ALL
+#if TIER_FULL
         cmocka_unit_test(test_small_arcs),
 #else
         cmocka_unit_test(test_closed_forms), cmocka_unit_test(test_refusals),

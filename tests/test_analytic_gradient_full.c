@@ -5,5 +5,5 @@
  * under every filter (its header says what is checked); under the
  * sanitizers a declared subset (its "The filters each scene takes").
  */
-#define ANALYTIC_GRADIENT_ALL 1
+#define TIER_FULL 1
 #include "test_analytic_gradient.c"

@@ -45,6 +45,7 @@
 #include "patterns.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <gsl/gsl_integration.h>
 #include <math.h>
@@ -60,32 +61,16 @@
 static const char *const filters[] = {"radial:k=1,r=1", "radial:k=2,r=1.5", "radial:k=3,r=2",
                                       NULL};
 
-#ifndef ANALYTIC_RADIAL_GRADIENT_ALL
-#define ANALYTIC_RADIAL_GRADIENT_ALL 0
-#endif
-/* The filters each case takes.  The quick tier (this file): each scene
- * under one filter (the reference's quadrature takes 1 to 3 s of CPU a
- * scene and filter here; the closed forms take all three).  The full
- * tier, test_analytic_radial_gradient_full.c (this file with
- * ANALYTIC_RADIAL_GRADIENT_ALL set): the two scenes under the filters the
- * quick tier leaves out (`make test` runs both tiers), the first at 40x35
- * px and the stroke under all three.  Under the sanitizers (AA_SANITIZED:
- * the Makefile's sanitizer build sets it for the tests) the full tier runs
- * a declared subset: each case under one filter, every filter reached
- * (another filter on the same scene takes the same code paths with other
- * numbers; tests/README.md, "Tiers"), the plain build running
- * everything. */
-#if !ANALYTIC_RADIAL_GRADIENT_ALL
-#define TIER(quick, full, san) (quick)
-#define TIER_NAME "quick"
-#elif defined(AA_SANITIZED)
-#define TIER(quick, full, san) (san)
-#define TIER_NAME "full, the sanitizer build's subset"
-#else
-#define TIER(quick, full, san) (full)
-#define TIER_NAME "full"
-#endif
-#define FILTERS(...) ((const char *const[]){__VA_ARGS__, NULL})
+/* The filters each case takes (TIER, tier.h).  The quick tier (this file):
+ * each scene under one filter (the reference's quadrature takes 1 to 3 s
+ * of CPU a scene and filter here; the closed forms take all three).  The
+ * full tier, test_analytic_radial_gradient_full.c (this file with
+ * TIER_FULL set): the two scenes under the filters the quick tier leaves
+ * out (`make test` runs both tiers), the first at 40x35 px and the stroke
+ * under all three.  Under the sanitizers the full tier runs a declared
+ * subset: each case under one filter, every filter reached (another filter
+ * on the same scene takes the same code paths with other numbers;
+ * tests/README.md, "Tiers"), the plain build running everything. */
 
 static char dir[4096];
 
@@ -101,42 +86,8 @@ static int teardown(void **state)
     return support_rmtree(dir);
 }
 
-/* Scenes in pixels of a W x H view, in pattern units. */
+/* The size in pixels of the view whose scene is being built (scenes_*_px). */
 static int W, H;
-
-static void layer(aa_scene *s, double r, double g, double b)
-{
-    assert_int_equal(aa_scene_layer(s, (aa_rgb){{r, g, b}}, AA_FILL_NONZERO), AA_OK);
-}
-
-static void move(aa_scene *s, double x, double y)
-{
-    assert_int_equal(aa_scene_move_to(s, x / W, y / H), AA_OK);
-}
-
-static void line(aa_scene *s, double x, double y)
-{
-    assert_int_equal(aa_scene_line_to(s, x / W, y / H), AA_OK);
-}
-
-static void rect(aa_scene *s, double x0, double y0, double x1, double y1)
-{
-    move(s, x0, y0);
-    line(s, x1, y0);
-    line(s, x1, y1);
-    line(s, x0, y1);
-    assert_int_equal(aa_scene_close(s), AA_OK);
-}
-
-/* A linear gradient in linear light, in pixels, on the layer added last. */
-static void gradient(aa_scene *s, int spread, const double p[6], const aa_gradient_stop *st,
-                     int n)
-{
-    aa_gradient g = {AA_GRADIENT_LINEAR, spread, {0}, {1.0 / W, 0, 0, 1.0 / H, 0, 0}, n, st};
-    memcpy(g.p, p, sizeof g.p);
-    assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
-    assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB), AA_OK);
-}
 
 /* analytic against the reference under each filter of fl (TIER above) */
 static void against(const char *what, const aa_scene *s, int w, int h, const char *const *fl)
@@ -163,20 +114,20 @@ static aa_scene *lines_and_cubic(int w, int h)
     W = w, H = h;
     double sx = w / 16.0, sy = h / 14.0;
     aa_scene *s = aa_scene_new((aa_rgb){{0.2, 0.3, 0.4}});
-    layer(s, 0, 0, 0);
-    rect(s, 1.3 * sx, 2.1 * sy, 14.6 * sx, 12.2 * sy);
-    gradient(s, AA_SPREAD_REPEAT, (const double[6]){3 * sx, 1 * sy, 8.6 * sx, 3.6 * sy, 0, 0},
-             two, 2);
-    layer(s, 0, 0, 0);
-    move(s, 2.4 * sx, 1.6 * sy);
-    line(s, 13.7 * sx, 3.1 * sy);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_rect_px(s, W, H, 1.3 * sx, 2.1 * sy, 14.6 * sx, 12.2 * sy);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT,
+                       (const double[6]){3 * sx, 1 * sy, 8.6 * sx, 3.6 * sy, 0, 0}, two, 2, 0);
+    scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
+    scenes_move_px(s, W, H, 2.4 * sx, 1.6 * sy);
+    scenes_line_px(s, W, H, 13.7 * sx, 3.1 * sy);
     assert_int_equal(aa_scene_cubic_to(s, 17.0 * sx / W, 9.0 * sy / H, 4.0 * sx / W,
                                        6.0 * sy / H, 6.2 * sx / W, 12.9 * sy / H),
                      AA_OK);
-    line(s, 1.9 * sx, 9.4 * sy);
+    scenes_line_px(s, W, H, 1.9 * sx, 9.4 * sy);
     assert_int_equal(aa_scene_close(s), AA_OK);
-    gradient(s, AA_SPREAD_PAD, (const double[6]){2 * sx, 3 * sy, 12 * sx, 11 * sy, 0, 0}, three,
-             4);
+    scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                       (const double[6]){2 * sx, 3 * sy, 12 * sx, 11 * sy, 0, 0}, three, 4, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
     return s;
 }
@@ -189,7 +140,7 @@ static void test_lines_and_cubic(void **state)
             TIER(FILTERS("radial:k=1,r=1"), FILTERS("radial:k=2,r=1.5", "radial:k=3,r=2"),
                  FILTERS("radial:k=3,r=2")));
     aa_scene_free(s);
-#if ANALYTIC_RADIAL_GRADIENT_ALL
+#if TIER_FULL
     s = lines_and_cubic(40, 35);
     against("lines and a cubic, 40 px", s, 40, 35,
             TIER(NULL, filters, FILTERS("radial:k=2,r=1.5")));
@@ -227,7 +178,7 @@ static void test_arcs(void **state)
     aa_scene_free(s);
 }
 
-#if ANALYTIC_RADIAL_GRADIENT_ALL
+#if TIER_FULL
 /* A stroked cubic (its outline: offset curves, its inner offset folding
  * at the sharp turn) under a reflected gradient, over a flat circle. */
 static void test_stroke(void **state)
@@ -295,15 +246,15 @@ static void test_half_planes(void **state)
             assert_int_equal(aa_filter_parse(*f, &filt), AA_OK);
             double K = filt.spec.v[0], R = filt.spec.v[1], worst = 0.0;
             aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-            layer(s, 0, 0, 0);
+            scenes_layer(s, 0, 0, 0, AA_FILL_NONZERO);
             if (axis == 0)
-                rect(s, -30, -30, e, H + 30);
+                scenes_rect_px(s, W, H, -30, -30, e, H + 30);
             else
-                rect(s, -30, -30, W + 30, e);
-            gradient(s, AA_SPREAD_PAD,
-                     axis == 0 ? (const double[6]){a, 0, b, 0, 0, 0}
-                               : (const double[6]){0, a, 0, b, 0, 0},
-                     black_white, 2);
+                scenes_rect_px(s, W, H, -30, -30, W + 30, e);
+            scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_PAD,
+                               axis == 0 ? (const double[6]){a, 0, b, 0, 0, 0}
+                                         : (const double[6]){0, a, 0, b, 0, 0},
+                               black_white, 2, 0);
             assert_int_equal(aa_scene_finish(s), AA_OK);
             aa_image img;
             support_render("analytic", s, *f, W, H, 1, &img, NULL);
@@ -336,7 +287,7 @@ int main(void)
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_half_planes),
                                        cmocka_unit_test(test_lines_and_cubic),
                                        cmocka_unit_test(test_arcs),
-#if ANALYTIC_RADIAL_GRADIENT_ALL
+#if TIER_FULL
                                        cmocka_unit_test(test_stroke),
 #endif
     };

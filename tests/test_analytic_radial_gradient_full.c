@@ -4,5 +4,5 @@
  * with every scene under every filter, a stroked cubic and a larger image
  * (its header says what is checked).
  */
-#define ANALYTIC_RADIAL_GRADIENT_ALL 1
+#define TIER_FULL 1
 #include "test_analytic_radial_gradient.c"
