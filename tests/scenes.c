@@ -277,15 +277,20 @@ aa_scene *scenes_overlapping_layers(void)
     return s;
 }
 
+aa_scene *scenes_pattern_at(const char *spec, int w, int h)
+{
+    aa_spec ps;
+    aa_scene *s = NULL;
+    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, w, h, &s))
+        fail_msg("pattern %s: %s", spec, aa_last_error());
+    return s;
+}
+
 aa_scene *scenes_svg_at(const char *name, int n)
 {
     char spec[128];
     snprintf(spec, sizeof spec, "svg:file=patterns/svg/%s.svg", name);
-    aa_spec ps;
-    aa_scene *s = NULL;
-    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, n, n, &s))
-        fail_msg("pattern %s: %s", spec, aa_last_error());
-    return s;
+    return scenes_pattern_at(spec, n, n);
 }
 
 aa_scene *scenes_svg_text(const char *dir, const char *name, const char *text, int w, int h)
@@ -294,11 +299,7 @@ aa_scene *scenes_svg_text(const char *dir, const char *name, const char *text, i
     snprintf(path, sizeof path, "%s/%s", dir, name);
     support_write_file(path, text, strlen(text));
     snprintf(spec, sizeof spec, "svg:file=%s", path);
-    aa_spec ps;
-    aa_scene *s = NULL;
-    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, w, h, &s))
-        fail_msg("pattern %s: %s", spec, aa_last_error());
-    return s;
+    return scenes_pattern_at(spec, w, h);
 }
 
 aa_scene *scenes_disk(double cx, double cy, double a)

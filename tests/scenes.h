@@ -12,6 +12,9 @@
 
 /* The scene of a pattern spec ("crow", "star:spokes=7"), pattern units. */
 aa_scene *scenes_pattern(const char *spec);
+/* The same placed at w x h px (aa_pattern_scene_at: an SVG drawn at the
+ * view's size), pattern units. */
+aa_scene *scenes_pattern_at(const char *spec, int w, int h);
 
 /* A closed path in the current layer: move to the first of n points (x, y
  * pairs in xy), lines to the others, close. */

@@ -127,14 +127,9 @@ static void test_svg(void **state)
     const char *const files[] = {"curves", "shapes", "logo", "mono", "abut", "coincident", "arcs",
                                  NULL};
     for (const char *const *f = files; *f; f++) {
-        char spec[128];
-        snprintf(spec, sizeof spec, "svg:file=patterns/svg/%s.svg", *f);
-        aa_spec ps;
-        aa_scene *s = NULL;
         /* drawn at the view's size */
         int n = ANALYTIC_ALL ? 28 : 20;
-        if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, n, n, &s))
-            fail_msg("pattern %s: %s", spec, aa_last_error());
+        aa_scene *s = scenes_svg_at(*f, n);
         against_reference(*f, s, n, n, 0, 1);
         aa_scene_free(s);
     }
@@ -151,11 +146,7 @@ static void test_cubic_cuts(void **state)
 {
     (void)state;
     const char *const fs[] = {"box", "tent:r=1", "bspline:order=3", NULL};
-    aa_spec ps;
-    aa_scene *s = NULL;
-    if (aa_pattern_parse("svg:file=patterns/svg/curves.svg", &ps) ||
-        aa_pattern_scene_at(&ps, 48, 48, &s))
-        fail_msg("curves.svg: %s", aa_last_error());
+    aa_scene *s = scenes_svg_at("curves", 48);
     for (const char *const *f = fs; *f; f++) {
         aa_image a, r;
         support_render("analytic", s, *f, 48, 48, 1, &a, NULL);

@@ -239,14 +239,7 @@ static void test_strokes(void **state)
         "<polyline points=\"3.1,12.2 9.7,8.3 12.4,13.6\" fill=\"none\" stroke=\"#e0e0a0\"\n"
         " stroke-width=\"1.3\" stroke-linecap=\"square\"/>\n"
         "</svg>\n";
-    char path[4200], spec[4300];
-    snprintf(path, sizeof path, "%s/strokes.svg", dir);
-    support_write_file(path, svg, sizeof svg - 1);
-    snprintf(spec, sizeof spec, "svg:file=%s", path);
-    aa_spec ps;
-    aa_scene *s = NULL;
-    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, 24, 20, &s))
-        fail_msg("pattern %s: %s", spec, aa_last_error());
+    aa_scene *s = scenes_svg_text(dir, "strokes.svg", svg, 24, 20);
     against("stroked polylines (SVG)", s, 24, 20,
             TIER(BOX, NOT_BOX, FILTERS("bspline:order=3")));
     aa_scene_free(s);

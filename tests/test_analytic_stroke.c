@@ -174,15 +174,9 @@ static const char fold_svg[] =
  * temporary folder of its own. */
 static aa_scene *fold_scene(int n)
 {
-    char dir[256], path[512], spec[600];
+    char dir[256];
     assert_int_equal(support_tmpdir(dir, sizeof dir, "anastroke"), 0);
-    snprintf(path, sizeof path, "%s/fold.svg", dir);
-    support_write_file(path, fold_svg, strlen(fold_svg));
-    snprintf(spec, sizeof spec, "svg:file=%s", path);
-    aa_spec ps;
-    aa_scene *s = NULL;
-    if (aa_pattern_parse(spec, &ps) || aa_pattern_scene_at(&ps, n, n, &s))
-        fail_msg("pattern %s: %s", spec, aa_last_error());
+    aa_scene *s = scenes_svg_text(dir, "fold.svg", fold_svg, n, n);
     assert_int_equal(support_rmtree(dir), 0);
     size_t np, noff = 0;
     const aa_piece *pc = aa_scene_pieces(s, &np);
