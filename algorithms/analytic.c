@@ -1726,21 +1726,32 @@ static int rad_arc_cuts(const an_state *S, const aa_piece *p, double ya, double 
     return n;
 }
 
-/* R(part) for conic piece p over rows [ya, yb] under a radial filter:
- * cut where it crosses the circle (rad_arc_cuts); between the cuts,
- * inside the disc, the arc's rule (of the filter's degree n = K:
- * the integrand F(x, y) y' is a trigonometric polynomial of degree
- * 2 K + 2, as w (1 - W) y' of degree 2 n + 2 is); outside, +-M/2. */
-static double rad_right_of_arc(const an_state *S, const aa_piece *p, double ya, double yb,
-                               double cx, double cy)
+static inline double rad_h(const an_state *S, double x, double v);
+static double rad_marg1(const an_state *S, double v);
+
+/* The walk of conic piece p over rows [ya, yb] under a radial filter that
+ * the zeroth moment (rad_right_of_arc) and the first moments
+ * (rad_mom_arc) share: cut where it crosses the circle (rad_arc_cuts);
+ * between the cuts, a span whose middle lies inside the disc split into
+ * parts of om <= pi/3 (arc_splits), each summed over the arc's rule of m
+ * points (u, wz: arc_points_of); a span outside, +-M/2 (and +-M1/2).  mom
+ * = 0: R(part) alone, in r[0]; 1: r[0 .. 2], R(part) and the first moments
+ * along x and y (rad_mom_right_of).  Inlined with mom constant: the
+ * zeroth's walk does none of the first moments' work. */
+__attribute__((always_inline)) static inline void
+rad_arc_walk(const an_state *S, const aa_piece *p, double ya, double yb, double cx, double cy,
+             int mom, int m, const double *u, const double (*wz)[AN_ARC_K + 1], double r[3])
 {
     double R = S->rad_r, lo, hi;
     long double ss[8];
+    r[0] = r[1] = r[2] = 0.0;
     int n = rad_arc_cuts(S, p, ya, yb, cx, cy, ss, &lo, &hi);
     if (!n)
-        return 0.0;
-    double X[AN_MAX_PTS], Y[AN_MAX_PTS], D[AN_MAX_PTS], xm, ym;
-    double sum = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy));
+        return;
+    double X[2 * AN_ARC1_M], Y[2 * AN_ARC1_M], D[2 * AN_ARC1_M], xm, ym;
+    double s0 = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy)), su = 0.0, sv = 0.0;
+    if (mom)
+        sv = 0.5 * (rad_marg1(S, hi - cy) - rad_marg1(S, lo - cy));
     for (int q = 0; q + 1 < n; q++) {
         long double a = ss[q], b = ss[q + 1], mid = 0.5L * (a + b);
         if (!(a < b))
@@ -1749,19 +1760,43 @@ static double rad_right_of_arc(const an_state *S, const aa_piece *p, double ya, 
                y = p->ey - p->er * cos((double)mid);
         if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < R * R) {
             int ns = arc_splits(a, b);
-            for (int r = 0; r < ns; r++) {
-                long double u = a + (b - a) * r / ns, v = r + 1 == ns ? b : a + (b - a) * (r + 1) / ns;
-                arc_points(S, p, u, v, X, Y, D, &xm, &ym);
-                for (int k = 0; k < 2 * S->arc_m; k++)
-                    sum -= D[k] * rad_f(S, X[k] - cx, Y[k] - cy);
+            for (int e = 0; e < ns; e++) {
+                long double sa = a + (b - a) * e / ns;
+                long double sb = e + 1 == ns ? b : a + (b - a) * (e + 1) / ns;
+                arc_points_of(m, u, wz, p, sa, sb, X, Y, D, &xm, &ym);
+                for (int g = 0; g < 2 * m; g++) {
+                    double du = X[g] - cx, dv = Y[g] - cy, f = D[g] * rad_f(S, du, dv);
+                    s0 -= f;
+                    if (mom) {
+                        su += D[g] * rad_h(S, du, dv);
+                        sv -= dv * f;
+                    }
+                }
             }
         } else {
             double y0 = (double)(p->ey - p->er * cosl(a)), y1 = (double)(p->ey - p->er * cosl(b));
-            double half = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
-            sum -= x > cx ? half : -half;
+            double h0 = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
+            s0 -= x > cx ? h0 : -h0;
+            if (mom) {
+                double h1 = 0.5 * (rad_marg1(S, y1 - cy) - rad_marg1(S, y0 - cy));
+                sv -= x > cx ? h1 : -h1;
+            }
         }
     }
-    return sum;
+    r[0] = s0, r[1] = su, r[2] = sv;
+}
+
+/* R(part) for conic piece p over rows [ya, yb] under a radial filter
+ * (rad_arc_walk): inside the disc the arc's rule of the filter's degree
+ * n = K (the integrand F(x, y) y' is a trigonometric polynomial of degree
+ * 2 K + 2, as w (1 - W) y' of degree 2 n + 2 is); outside, +-M/2. */
+static double rad_right_of_arc(const an_state *S, const aa_piece *p, double ya, double yb,
+                               double cx, double cy)
+{
+    double r[3];
+    rad_arc_walk(S, p, ya, yb, cx, cy, 0, S->arc_m, S->arc_u,
+                 (const double(*)[AN_ARC_K + 1])S->arc_wz, r);
+    return r[0];
 }
 
 /* ---- offset pieces under a radial filter (header, "Offset curves") ---- */
@@ -4358,51 +4393,15 @@ static void rad_mom_right_of(const an_state *S, const aa_piece *p, double ya, do
     r[0] = s0, r[1] = su, r[2] = sv;
 }
 
-/* The three moments of rad_mom_right_of for conic piece p: cut as for the
- * zeroth (rad_arc_cuts), inside the disc the arc's rule of one degree
- * more (2 arc1_m = 4 K + 8 points: H y' and v F y' are trigonometric
- * polynomials of degree 2 K + 3 on a part). */
+/* The three moments of rad_mom_right_of for conic piece p (rad_arc_walk):
+ * inside the disc the arc's rule of one degree more (2 arc1_m = 4 K + 8
+ * points: H y' and v F y' are trigonometric polynomials of degree 2 K + 3
+ * on a part). */
 static void rad_mom_arc(const an_state *S, const aa_piece *p, double ya, double yb, double cx,
                         double cy, double r[3])
 {
-    double R = S->rad_r, lo, hi;
-    long double ss[8];
-    r[0] = r[1] = r[2] = 0.0;
-    int n = rad_arc_cuts(S, p, ya, yb, cx, cy, ss, &lo, &hi);
-    if (!n)
-        return;
-    double X[2 * AN_ARC1_M], Y[2 * AN_ARC1_M], D[2 * AN_ARC1_M], xm, ym;
-    double s0 = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy)), su = 0.0;
-    double sv = 0.5 * (rad_marg1(S, hi - cy) - rad_marg1(S, lo - cy));
-    for (int q = 0; q + 1 < n; q++) {
-        long double a = ss[q], b = ss[q + 1], mid = 0.5L * (a + b);
-        if (!(a < b))
-            continue;
-        double x = p->ex + (p->ea * cos((double)mid) + p->eb * sin((double)mid)),
-               y = p->ey - p->er * cos((double)mid);
-        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < R * R) {
-            int ns = arc_splits(a, b);
-            for (int e = 0; e < ns; e++) {
-                long double u = a + (b - a) * e / ns;
-                long double v = e + 1 == ns ? b : a + (b - a) * (e + 1) / ns;
-                arc_points_of(S->arc1_m, S->arc1_u, (const double(*)[AN_ARC_K + 1])S->arc1_wz,
-                              p, u, v, X, Y, D, &xm, &ym);
-                for (int g = 0; g < 2 * S->arc1_m; g++) {
-                    double du = X[g] - cx, dv = Y[g] - cy, f = D[g] * rad_f(S, du, dv);
-                    s0 -= f;
-                    su += D[g] * rad_h(S, du, dv);
-                    sv -= dv * f;
-                }
-            }
-        } else {
-            double y0 = (double)(p->ey - p->er * cosl(a)), y1 = (double)(p->ey - p->er * cosl(b));
-            double h0 = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
-            double h1 = 0.5 * (rad_marg1(S, y1 - cy) - rad_marg1(S, y0 - cy));
-            s0 -= x > cx ? h0 : -h0;
-            sv -= x > cx ? h1 : -h1;
-        }
-    }
-    r[0] = s0, r[1] = su, r[2] = sv;
+    rad_arc_walk(S, p, ya, yb, cx, cy, 1, S->arc1_m, S->arc1_u,
+                 (const double(*)[AN_ARC_K + 1])S->arc1_wz, r);
 }
 
 /* The three moments of rad_mom_right_of for offset piece p: cut as for
