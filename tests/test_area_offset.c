@@ -106,15 +106,18 @@ static void against_reference(const char *what, const double *cs, int nc,
     aa_scene_free(s);
 }
 
+/* Cubics (2 + 6 nc numbers, stroke_scene's) several tests stroke: a tight
+ * arc whose offsets fold under a wide stroke, and three chained arcs. */
+static const double tight[8] = {0.2, 0.2, 0.9, 0.3, 0.9, 0.7, 0.25, 0.75};
+static const double three[20] = {0.1, 0.5, 0.3, 0.1,  0.5, 0.1,  0.6, 0.4, 0.7, 0.9,
+                                 0.2, 0.6, 0.5, 0.5, 0.95, 0.2, 0.9, 0.8, 0.6, 0.85};
+
 static void test_reference(void **state)
 {
     (void)state;
     const double gentle[8] = {0.1, 0.5, 0.3, 0.2, 0.7, 0.8, 0.9, 0.45};
-    const double tight[8] = {0.2, 0.2, 0.9, 0.3, 0.9, 0.7, 0.25, 0.75};
     const double loop[8] = {0.2, 0.8, 0.9, 0.1, 0.1, 0.1, 0.8, 0.8};
     const double hook[8] = {0.1, 0.9, 0.1, 0.1, 0.9, 0.1, 0.55, 0.5};
-    const double three[20] = {0.1, 0.5, 0.3, 0.1,  0.5, 0.1,  0.6, 0.4, 0.7, 0.9,
-                              0.2, 0.6, 0.5, 0.5, 0.95, 0.2, 0.9, 0.8, 0.6, 0.85};
     const double shear[6] = {1.3, 0.2, 0.5, 0.8, -0.1, -0.05};
     const double dash[2] = {0.07, 0.03};
     aa_stroke_style st;
@@ -256,9 +259,6 @@ static int meetings(const char *what, const double *cs, int nc, const aa_stroke_
 static void test_meetings(void **state)
 {
     (void)state;
-    const double three[20] = {0.1, 0.5, 0.3, 0.1,  0.5, 0.1,  0.6, 0.4, 0.7, 0.9,
-                              0.2, 0.6, 0.5, 0.5, 0.95, 0.2, 0.9, 0.8, 0.6, 0.85};
-    const double tight[8] = {0.2, 0.2, 0.9, 0.3, 0.9, 0.7, 0.25, 0.75};
     /* smooth joins: the offsets of consecutive arcs run side by side */
     const double wave[20] = {0.05, 0.5, 0.15, 0.45, 0.25, 0.45, 0.35, 0.5, 0.45, 0.55,
                              0.55, 0.55, 0.65, 0.5, 0.75, 0.45, 0.85, 0.45, 0.95, 0.5};
@@ -333,9 +333,6 @@ static int touch(const char *what, const double *cs, int nc, const aa_stroke_sty
 static void test_touch(void **state)
 {
     (void)state;
-    const double three[20] = {0.1, 0.5, 0.3, 0.1,  0.5, 0.1,  0.6, 0.4, 0.7, 0.9,
-                              0.2, 0.6, 0.5, 0.5, 0.95, 0.2, 0.9, 0.8, 0.6, 0.85};
-    const double tight[8] = {0.2, 0.2, 0.9, 0.3, 0.9, 0.7, 0.25, 0.75};
     aa_stroke_style st;
     aa_stroke_style_default(&st);
     st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
@@ -387,6 +384,32 @@ static void test_root(void **state)
     assert_true(fabsl(X - other) <= 1e-12L);
 }
 
+/* test_stops' and test_fix's curves, power basis x: b[0..3], y: b[4..7]:
+ * P0 = P1 = (0, 0), P2 = (1, 1), P3 = (2, 0); the same reversed;
+ * test_root's cubic; P = (0, 0), (1, 2), (2, -1), (3, 0); an ellipse
+ * (centre, u, v); their stops by construction (test_stops' comment); and
+ * two maps. */
+static const double stops_b[5][8] = {{0, 0, 3, -1, 0, 0, 3, -3},
+                                     {2, -3, 0, 1, 0, 3, -6, 3},
+                                     {0x1.999999999999ap-3, 0x1.cccccccccccc9p-1,
+                                      -0x1.cccccccccccc5p-1, 0x1.333333333332bp-2, 0x1p-2,
+                                      0x1.cccccccccccc8p-1, -0x1.cccccccccccc3p-2, 0},
+                                     {0, 3, 0, 0, 0, 6, -15, 9},
+                                     {0.5, 0.5, 0.3, 0.1, -0.05, 0.2, 0, 0}};
+static const int stops_want[5] = {1, 2, 2, 0, 0};
+static const double stops_maps[2][6] = {{64, 0, 0, 64, 0, 0}, {64, 5, -7, 60, 3, 2}};
+
+/* Curve c of stops_b at offset 0.1 (the evolute's when e) through map k. */
+static void stops_curve(aa_offset_curve *oc, int c, int e, int k)
+{
+    memset(oc, 0, sizeof *oc);
+    memcpy(oc->b, stops_b[c], sizeof oc->b);
+    memcpy(oc->m, stops_maps[k], sizeof oc->m);
+    oc->d = 0.1;
+    oc->evolute = e;
+    oc->base = c == 4 ? AA_OFFSET_ELLIPSE : AA_OFFSET_CUBIC;
+}
+
 /* aa__offset_eval_s given aa__offset_stops (the curve's stops found once)
  * against aa__offset_eval, which asks aa__offset_stop at every evaluation:
  * the same point and derivative, bit for bit, and the same point without
@@ -398,31 +421,14 @@ static void test_root(void **state)
 static void test_stops(void **state)
 {
     (void)state;
-    /* power basis x: b[0..3], y: b[4..7]; P0 = P1 = (0, 0), P2 = (1, 1),
-     * P3 = (2, 0); the same reversed; test_root's cubic; P = (0, 0), (1,
-     * 2), (2, -1), (3, 0); an ellipse (centre, u, v) */
-    static const double bs[5][8] = {{0, 0, 3, -1, 0, 0, 3, -3},
-                                    {2, -3, 0, 1, 0, 3, -6, 3},
-                                    {0x1.999999999999ap-3, 0x1.cccccccccccc9p-1,
-                                     -0x1.cccccccccccc5p-1, 0x1.333333333332bp-2, 0x1p-2,
-                                     0x1.cccccccccccc8p-1, -0x1.cccccccccccc3p-2, 0},
-                                    {0, 3, 0, 0, 0, 6, -15, 9},
-                                    {0.5, 0.5, 0.3, 0.1, -0.05, 0.2, 0, 0}};
-    static const int want[5] = {1, 2, 2, 0, 0};
-    static const double maps[2][6] = {{64, 0, 0, 64, 0, 0}, {64, 5, -7, 60, 3, 2}};
     for (int c = 0; c < 5; c++)
         for (int e = 0; e < 2; e++)
             for (int k = 0; k < 2; k++) {
                 aa_offset_curve oc;
-                memset(&oc, 0, sizeof oc);
-                memcpy(oc.b, bs[c], sizeof oc.b);
-                memcpy(oc.m, maps[k], sizeof oc.m);
-                oc.d = 0.1;
-                oc.evolute = e;
-                oc.base = c == 4 ? AA_OFFSET_ELLIPSE : AA_OFFSET_CUBIC;
+                stops_curve(&oc, c, e, k);
                 int stops = aa__offset_stops(&oc);
                 double te, q[4];
-                assert_int_equal(stops, want[c]);
+                assert_int_equal(stops, stops_want[c]);
                 assert_int_equal(stops & 1, aa__offset_stop(&oc, 0.25, &te, q));
                 assert_int_equal(stops >> 1, aa__offset_stop(&oc, 0.75, &te, q));
                 for (int i = 0; i <= 66; i++) {
@@ -453,35 +459,21 @@ static void test_stops(void **state)
 static void test_fix(void **state)
 {
     (void)state;
-    static const double bs[5][8] = {{0, 0, 3, -1, 0, 0, 3, -3},
-                                    {2, -3, 0, 1, 0, 3, -6, 3},
-                                    {0x1.999999999999ap-3, 0x1.cccccccccccc9p-1,
-                                     -0x1.cccccccccccc5p-1, 0x1.333333333332bp-2, 0x1p-2,
-                                     0x1.cccccccccccc8p-1, -0x1.cccccccccccc3p-2, 0},
-                                    {0, 3, 0, 0, 0, 6, -15, 9},
-                                    {0.5, 0.5, 0.3, 0.1, -0.05, 0.2, 0, 0}};
-    static const int want[5] = {1, 2, 2, 0, 0};
-    static const double maps[2][6] = {{64, 0, 0, 64, 0, 0}, {64, 5, -7, 60, 3, 2}};
     int roots = 0;
     double worst = 0.0;
     for (int c = 0; c < 5; c++)
         for (int e = 0; e < 2; e++)
             for (int k = 0; k < 2; k++) {
                 aa_offset_curve oc;
-                memset(&oc, 0, sizeof oc);
-                memcpy(oc.b, bs[c], sizeof oc.b);
-                memcpy(oc.m, maps[k], sizeof oc.m);
-                oc.d = 0.1;
-                oc.evolute = e;
-                oc.base = c == 4 ? AA_OFFSET_ELLIPSE : AA_OFFSET_CUBIC;
+                stops_curve(&oc, c, e, k);
                 aa__offset_fix fx;
                 aa__offset_fix_init(&oc, &fx);
-                const double *b = bs[c];
+                const double *b = stops_b[c];
                 double sx = c == 4 ? fabs(b[0]) + fabs(b[2]) + fabs(b[4])
                                    : fabs(b[0]) + fabs(b[1]) + fabs(b[2]) + fabs(b[3]);
                 double sy = c == 4 ? fabs(b[1]) + fabs(b[3]) + fabs(b[5])
                                    : fabs(b[4]) + fabs(b[5]) + fabs(b[6]) + fabs(b[7]);
-                assert_int_equal(fx.stops, want[c]);
+                assert_int_equal(fx.stops, stops_want[c]);
                 assert_true(fx.sx == sx && fx.sy == sy);
                 for (int i = 0; i < 16; i++)
                     for (int coord = 0; coord < 2; coord++) {
@@ -885,9 +877,6 @@ static void test_ulp_vertex(void **state)
 static void test_nodes(void **state)
 {
     (void)state;
-    const double three[20] = {0.1, 0.5, 0.3, 0.1,  0.5, 0.1,  0.6, 0.4, 0.7, 0.9,
-                              0.2, 0.6, 0.5, 0.5, 0.95, 0.2, 0.9, 0.8, 0.6, 0.85};
-    const double tight[8] = {0.2, 0.2, 0.9, 0.3, 0.9, 0.7, 0.25, 0.75};
     aa_stroke_style st;
     aa_stroke_style_default(&st);
     st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
