@@ -2110,23 +2110,33 @@ static int rad_off_cuts(const an_state *S, const aa_piece *p, int stops, double 
     return I.n + 1;
 }
 
-/* R(part) for offset piece p over rows [ya, yb] under a radial filter: as
- * rad_right_of, the piece cut where it crosses the circle (rad_off_cuts)
- * and at t = 1/2 where it has a stop; the sub-parts inside the disc by the
- * certified rule, those outside +-M/2. */
-static double rad_right_of_offset(const an_render *Rn, const aa_piece *p, double ya, double yb,
-                                  double cx, double cy)
+static void mom_off_part(const an_render *Rn, const aa_piece *p, int stops, double u, double v,
+                         double cx, double cy, const double *J, int radial, int depth,
+                         double r[3]);
+
+/* The walk of offset piece p over rows [ya, yb] under a radial filter that
+ * the zeroth moment (rad_right_of_offset) and the first moments
+ * (rad_mom_offset) share: as rad_right_of, the piece cut where it crosses
+ * the circle (rad_off_cuts; for the first moments the touching intervals
+ * certified for J) and at t = 1/2 where it has a stop; the sub-parts inside
+ * the disc by the certified rule (rad_off_part; mom_off_part), those
+ * outside, in the disc's rows, wholly left or right of it (y monotone),
+ * where F(clamp) = +-F(ch): +-M/2 (and +-M1/2).  mom and r as
+ * rad_arc_walk's. */
+__attribute__((always_inline)) static inline void
+rad_off_walk(const an_render *Rn, const aa_piece *p, double ya, double yb, double cx, double cy,
+             int mom, const double *J, double r[3])
 {
     const an_state *S = Rn->S;
     double R = S->rad_r, lo = fmax(ya, cy - R), hi = fmin(yb, cy + R);
+    r[0] = r[1] = r[2] = 0.0;
     if (!(lo < hi))
-        return 0.0;
+        return;
     int stops = aa__offset_stops(&p->oc);
-    double sum = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy)), ts[AN_RAD_CUTS + 4], ta, tb;
-    int n = rad_off_cuts(S, p, stops, lo, hi, cx, cy, NULL, ts, &ta, &tb);
+    double ts[AN_RAD_CUTS + 4], ta, tb, part[3] = {0.0, 0.0, 0.0};
+    int n = rad_off_cuts(S, p, stops, lo, hi, cx, cy, J, ts, &ta, &tb);
     if (n < 0)
         off_uncertain(Rn->uncertain, 2);
-    double part = 0.0;
     for (int s = 0; s + 1 < n; s++) {
         double u = ts[s], v = ts[s + 1];
         if (!(u < v))
@@ -2134,18 +2144,38 @@ static double rad_right_of_offset(const an_render *Rn, const aa_piece *p, double
         double x, y, dy;
         off_point(p, stops, 0.5 * (u + v), &x, &y, &dy);
         if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < R * R) {
-            part += rad_off_part(Rn, p, stops, u, v, cx, cy, 0);
+            if (mom)
+                mom_off_part(Rn, p, stops, u, v, cx, cy, J, 1, 0, part);
+            else
+                part[0] += rad_off_part(Rn, p, stops, u, v, cx, cy, 0);
         } else {
-            /* outside the disc, in its rows: wholly left or right of it
-             * (y monotone), where F(clamp) = +-F(ch) */
             double y0, y1, d;
             off_point(p, stops, u, &d, &y0, &d);
             off_point(p, stops, v, &d, &y1, &d);
-            double half = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
-            part += x > cx ? half : -half;
+            double h0 = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
+            part[0] += x > cx ? h0 : -h0;
+            if (mom) {
+                double h1 = 0.5 * (rad_marg1(S, y1 - cy) - rad_marg1(S, y0 - cy));
+                part[2] += x > cx ? h1 : -h1;
+            }
         }
     }
-    return sum - (ta < tb ? part : -part);
+    double sg = ta < tb ? 1.0 : -1.0;
+    r[0] = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy)) - sg * part[0];
+    if (mom) {
+        r[1] = sg * part[1];
+        r[2] = 0.5 * (rad_marg1(S, hi - cy) - rad_marg1(S, lo - cy)) - sg * part[2];
+    }
+}
+
+/* R(part) for offset piece p over rows [ya, yb] under a radial filter
+ * (rad_off_walk). */
+static double rad_right_of_offset(const an_render *Rn, const aa_piece *p, double ya, double yb,
+                                  double cx, double cy)
+{
+    double r[3];
+    rad_off_walk(Rn, p, ya, yb, cx, cy, 0, NULL, r);
+    return r[0];
 }
 
 static void rad_band(void *ctx, double ya, double yb, const int *wind)
@@ -4404,45 +4434,12 @@ static void rad_mom_arc(const an_state *S, const aa_piece *p, double ya, double 
                  (const double(*)[AN_ARC_K + 1])S->arc1_wz, r);
 }
 
-/* The three moments of rad_mom_right_of for offset piece p: cut as for
- * the zeroth (rad_off_cuts, the touching intervals certified for J), the
- * sub-parts inside the disc by mom_off_part, those outside as
- * rad_mom_right_of's. */
+/* The three moments of rad_mom_right_of for offset piece p
+ * (rad_off_walk): the sub-parts inside the disc by mom_off_part. */
 static void rad_mom_offset(const an_render *Rn, const aa_piece *p, double ya, double yb,
                            double cx, double cy, const double *J, double r[3])
 {
-    const an_state *S = Rn->S;
-    double R = S->rad_r, lo = fmax(ya, cy - R), hi = fmin(yb, cy + R);
-    r[0] = r[1] = r[2] = 0.0;
-    if (!(lo < hi))
-        return;
-    int stops = aa__offset_stops(&p->oc);
-    double ts[AN_RAD_CUTS + 4], ta, tb, part[3] = {0.0, 0.0, 0.0};
-    int n = rad_off_cuts(S, p, stops, lo, hi, cx, cy, J, ts, &ta, &tb);
-    if (n < 0)
-        off_uncertain(Rn->uncertain, 2);
-    for (int s = 0; s + 1 < n; s++) {
-        double u = ts[s], v = ts[s + 1];
-        if (!(u < v))
-            continue;
-        double x, y, dy;
-        off_point(p, stops, 0.5 * (u + v), &x, &y, &dy);
-        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < R * R) {
-            mom_off_part(Rn, p, stops, u, v, cx, cy, J, 1, 0, part);
-        } else {
-            double y0, y1, d;
-            off_point(p, stops, u, &d, &y0, &d);
-            off_point(p, stops, v, &d, &y1, &d);
-            double h0 = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
-            double h1 = 0.5 * (rad_marg1(S, y1 - cy) - rad_marg1(S, y0 - cy));
-            part[0] += x > cx ? h0 : -h0;
-            part[2] += x > cx ? h1 : -h1;
-        }
-    }
-    double sg = ta < tb ? 1.0 : -1.0;
-    r[0] = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy)) - sg * part[0];
-    r[1] = sg * part[1];
-    r[2] = 0.5 * (rad_marg1(S, hi - cy) - rad_marg1(S, lo - cy)) - sg * part[2];
+    rad_off_walk(Rn, p, ya, yb, cx, cy, 1, J, r);
 }
 
 typedef struct an_gpixel {
