@@ -605,6 +605,20 @@ double oracle_cubic_length(const double c[8], double a, double b)
     return st || !(err < 1e-13) ? NAN : r;
 }
 
+double oracle_ellipse_perimeter(double a, double b)
+{
+    double q = (a - b) / (a + b), h = q * q, c = 1, sum = 1, hn = 1;
+    for (int n = 1; n < 2000; n++) {
+        c *= (0.5 - (n - 1)) / n;
+        hn *= h;
+        double term = c * c * hn;
+        sum += term;
+        if (term < 1e-20 * sum)
+            break;
+    }
+    return M_PI * (a + b) * sum;
+}
+
 double oracle_curve_feet(oracle_curve_fn at, const void *ctx, double t0, double t1, int n,
                          double px, double py, int ends, double h, int *unsure)
 {

@@ -112,6 +112,11 @@ double oracle_cubic_curvature(const double c[8], double t);
  * points) of |B'(t)| to 1e-13 relative; NAN if it cannot say so. */
 double oracle_cubic_length(const double c[8], double a, double b);
 
+/* The perimeter of the ellipse of semi-axes a and b, by the Gauss-Kummer
+ * series P = pi (a + b) sum_n binom(1/2, n)^2 h^n, h = ((a - b)/(a + b))^2,
+ * summed until a term is below 1e-20 of the sum. */
+double oracle_ellipse_perimeter(double a, double b);
+
 /* A parametric curve for the distance oracle: its point (x, y) at t and a
  * direction (dx, dy) along it there (the tangent or any nonzero multiple
  * of it; at a cusp the limit direction). */
