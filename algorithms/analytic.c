@@ -1270,11 +1270,15 @@ static void off_uncertain(int *flag, int why)
     __atomic_store_n(flag, why, __ATOMIC_RELAXED);
 }
 
-/* The integral over the part [u, v] (u < v, inside one cell of the pixel's
- * support) of w(y - cy) (1 - W(x - cx)) y' dt, by the certified rule,
- * halved where none is. */
+static inline double rad_f(const an_state *S, double x, double v);
+
+/* The integral over the part [u, v] (u < v) of offset piece p by the
+ * certified rule (off_points), halved where none is: under a separable
+ * filter (radial 0; the part inside one cell of the pixel's support) of
+ * w(y - cy) (1 - W(x - cx)) y' dt, under a radial one (the part inside the
+ * disc) of F(x - cx, y - cy) y' dt. */
 static double off_part(const an_render *Rn, const aa_piece *p, int stops, double u, double v,
-                       double cx, double cy, int depth)
+                       double cx, double cy, int radial, int depth)
 {
     const an_state *S = Rn->S;
     const an_pp *pp = &S->pp;
@@ -1282,8 +1286,8 @@ static double off_part(const an_render *Rn, const aa_piece *p, int stops, double
     if (!m) {
         double mid = 0.5 * (u + v);
         if (depth < AN_OFF_DEPTH && mid > u && mid < v)
-            return off_part(Rn, p, stops, u, mid, cx, cy, depth + 1) +
-                   off_part(Rn, p, stops, mid, v, cx, cy, depth + 1);
+            return off_part(Rn, p, stops, u, mid, cx, cy, radial, depth + 1) +
+                   off_part(Rn, p, stops, mid, v, cx, cy, radial, depth + 1);
         off_uncertain(Rn->uncertain, 1);
         m = AN_MAX_PTS;
     }
@@ -1291,7 +1295,10 @@ static double off_part(const an_render *Rn, const aa_piece *p, int stops, double
     for (int g = 0; g < m; g++) {
         double x, y, dy;
         off_point(p, stops, mid + h * S->ogx[m][g], &x, &y, &dy);
-        sum += S->ogw[m][g] * an_weight(pp, y - cy) * (1.0 - an_cdf(pp, x - cx)) * dy;
+        if (radial)
+            sum += S->ogw[m][g] * rad_f(S, x - cx, y - cy) * dy;
+        else
+            sum += S->ogw[m][g] * an_weight(pp, y - cy) * (1.0 - an_cdf(pp, x - cx)) * dy;
     }
     return h * sum;
 }
@@ -1340,7 +1347,7 @@ static double right_of_offset(const an_render *Rn, const aa_piece *p, double ya,
     double sum = 0.0;
     for (int s = 0; s + 1 < n; s++)
         if (ts[s] < ts[s + 1])
-            sum += off_part(Rn, p, stops, ts[s], ts[s + 1], cx, cy, 0);
+            sum += off_part(Rn, p, stops, ts[s], ts[s + 1], cx, cy, 0, 0);
     return ta < tb ? sum : -sum;
 }
 
@@ -2051,31 +2058,6 @@ static void rad_off_cross(an_iso *I, double a, double b, long double ga, long do
     rad_off_cross(I, m, b, q.g, gb, depth + 1);
 }
 
-/* The integral over [u, v] (u < v, a part inside the disc) of
- * F(x - cx, y - cy) y' dt by the certified rule (off_points), halved where
- * none is. */
-static double rad_off_part(const an_render *Rn, const aa_piece *p, int stops, double u, double v,
-                           double cx, double cy, int depth)
-{
-    const an_state *S = Rn->S;
-    int m = off_points(S, p, u, v);
-    if (!m) {
-        double mid = 0.5 * (u + v);
-        if (depth < AN_OFF_DEPTH && mid > u && mid < v)
-            return rad_off_part(Rn, p, stops, u, mid, cx, cy, depth + 1) +
-                   rad_off_part(Rn, p, stops, mid, v, cx, cy, depth + 1);
-        off_uncertain(Rn->uncertain, 1);
-        m = AN_MAX_PTS;
-    }
-    double h = 0.5 * (v - u), mid = 0.5 * (u + v), sum = 0.0;
-    for (int g = 0; g < m; g++) {
-        double x, y, dy;
-        off_point(p, stops, mid + h * S->ogx[m][g], &x, &y, &dy);
-        sum += S->ogw[m][g] * rad_f(S, x - cx, y - cy) * dy;
-    }
-    return h * sum;
-}
-
 /* The cuts of offset piece p over the rows [lo, hi] (inside the disc's)
  * under a radial filter: its parameters at lo and hi (*ta, *tb), and
  * ts[0 .. n) ascending from min(ta, tb) to max(ta, tb), with the
@@ -2119,7 +2101,7 @@ static void mom_off_part(const an_render *Rn, const aa_piece *p, int stops, doub
  * (rad_mom_offset) share: as rad_right_of, the piece cut where it crosses
  * the circle (rad_off_cuts; for the first moments the touching intervals
  * certified for J) and at t = 1/2 where it has a stop; the sub-parts inside
- * the disc by the certified rule (rad_off_part; mom_off_part), those
+ * the disc by the certified rule (off_part; mom_off_part), those
  * outside, in the disc's rows, wholly left or right of it (y monotone),
  * where F(clamp) = +-F(ch): +-M/2 (and +-M1/2).  mom and r as
  * rad_arc_walk's. */
@@ -2147,7 +2129,7 @@ rad_off_walk(const an_render *Rn, const aa_piece *p, double ya, double yb, doubl
             if (mom)
                 mom_off_part(Rn, p, stops, u, v, cx, cy, J, 1, 0, part);
             else
-                part[0] += rad_off_part(Rn, p, stops, u, v, cx, cy, 0);
+                part[0] += off_part(Rn, p, stops, u, v, cx, cy, 1, 0);
         } else {
             double y0, y1, d;
             off_point(p, stops, u, &d, &y0, &d);
