@@ -61,6 +61,20 @@
 #define W 16
 #define H 12
 
+/* Under the sanitizers (AA_SANITIZED: the Makefile's sanitizer build sets
+ * it for the tests) a declared subset: the stack of identical radial
+ * layers with 6 layers alone (not 8 and 12), and the mixed stack with 7
+ * layers alone (not 12).  Past five layers the reference folds the layers
+ * one by one, whatever their number, so more layers take the same code
+ * paths with other numbers (tests/README.md, "Tiers", says how that was
+ * checked); the sanitizers find memory and undefined-behaviour errors
+ * along the paths taken, and the plain build runs every case. */
+#ifdef AA_SANITIZED
+#define SAN_SUBSET 1
+#else
+#define SAN_SUBSET 0
+#endif
+
 static char dir[4096];
 /* the image's size for the helpers below (pattern units to pixels) */
 static int gw = W, gh = H;
@@ -1782,7 +1796,7 @@ static void test_many_layers_stack(void **state)
     static const int ns[3] = {6, 8, 12};
     const double a = 0.3;
     aa_rgb bg = {{0.02, 0.3, 0.001}};
-    for (int q = 0; q < 3; q++) {
+    for (int q = 0; q < (SAN_SUBSET ? 1 : 3); q++) {
         int n = ns[q];
         aa_image ref[2], bound[2];
         aa_truth_stats stats[2];
@@ -1851,6 +1865,8 @@ static void test_many_layers_mixed(void **state)
     }
     p.nl = 7;
     mpic_check("7 translucent layers", &p, px, 2);
+    if (SAN_SUBSET)
+        return;
     p.nl = 12;
     mpic_check("12 translucent layers", &p, px, 1);
 }
@@ -2146,6 +2162,7 @@ static void test_mixed_stop_circle(void **state)
 
 int main(void)
 {
+    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_linear_pad),     cmocka_unit_test(test_repeat_reflect),
         cmocka_unit_test(test_against_2d),     cmocka_unit_test(test_methods),
