@@ -352,8 +352,9 @@
  * --tool=callgrind aabench truth -p svg:file=F --no-cache --threads 1`),
  * 5.06e9 instructions, 6.05e9 with the scan alone (its largest bound
  * 3e-14, 1.7e-13 with the scan, the values within 8.8e-16 of its);
- * tests/test_gradient 39.6 and 46.8 s of CPU in two runs on a loaded
- * machine, 39.4 s with the scan alone (`/usr/bin/time`).  A scene
+ * tests/test_gradient 42.7 s of user CPU, 44.6 s with the scan alone,
+ * tests/test_gradient_cone_filter 33.3 s, 32.1 s, each pair run one
+ * after the other on the shared machine (`/usr/bin/time`).  A scene
  * without translucent layers of different t does not enter it (the same
  * image and bounds to the bit).  A lens of the curve 0.015 px high along a radial
  * stop circle between two of the scan's rows (tests/test_gradient.c,
