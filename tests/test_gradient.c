@@ -2160,6 +2160,51 @@ static void test_mixed_stop_circle(void **state)
                2);
 }
 
+/* A threshold's curve closing into a thin lens between two rows of a
+ * scan.  The front layer, a radial gradient at alpha 0.5 about (9.4992,
+ * 47.4400) whose channel 0 (encoded) falls from 1 at t = 0.9 to 0 at t =
+ * 1, the circle of radius 40, and rises again (reflect), over a linear
+ * one whose channel 0 rises by 0.2 a pixel along u = (sin 0.05, cos
+ * 0.05), the direction to that centre: the composite 0.5 C + 0.5 L is
+ * least on the circle where L is, at M = (7.5, 7.49), 2.8e-5 below
+ * 0.04045 there, and passes 0.04045 on a lens along the circle, x in
+ * [7.352, 7.649], y in [7.4828, 7.4977] (area 2.5e-4; a grid of E at
+ * 6.7e-4 x 4e-5 px in Python).  The circle crosses the pixel's sides at
+ * y = 7.4681 and 7.5182, breakpoints, and a scan of 32 rows a window
+ * takes the rows 7.4806 and 7.5056 between them: the lens's heights (its
+ * lowest point and its two corners on the circle, where C turns) lie
+ * between those: with that scan alone (the code before thr_certify) no
+ * row's signature changed there, and the three pixels came within 1.6e-15
+ * of the quadrature (QAG's own halving met the lens's rows), inside its
+ * largest bound, 2.5e-14; certified, the lens's lowest row (7.48278) and
+ * upper corner (7.49778) are slivers, and they came within 5.6e-17.
+ * Against the 2-D quadrature of the picture (mpic_pixel). */
+#define LENS_HALF 0.21404114048223255 /* 0.5 encoded, in linear light */
+static const aa_gradient_stop lens_r[3] = {{0.0, {{1.0, LENS_HALF, LENS_HALF}}, 1.0},
+                                           {0.9, {{1.0, LENS_HALF, LENS_HALF}}, 1.0},
+                                           {1.0, {{0.0, LENS_HALF, LENS_HALF}}, 1.0}};
+static const aa_gradient_stop lens_l[2] = {
+    {0.0, {{3.8699690402476816e-05, LENS_HALF, LENS_HALF}}, 1.0}, /* 0.0005 encoded */
+    {1.0, {{1.0, LENS_HALF, LENS_HALF}}, 1.0}};
+
+static void test_mixed_lens(void **state)
+{
+    (void)state;
+    static const int px[3][2] = {{7, 7}, {6, 7}, {8, 7}};
+    mpic p = {2,
+              {{0, {0, 0, 16, 16}, AA_GRADIENT_LINEAR,
+                {7.479922430578072, 7.088783293502782, 7.729693329008287, 12.080037719826626, 0,
+                 0},
+                AA_SPREAD_PAD, 2, lens_l, 1.0},
+               {0, {0, 0, 16, 16}, AA_GRADIENT_RADIAL,
+                {9.499166770827133, 47.44001041579865, 40, 9.499166770827133, 47.44001041579865, 0},
+                AA_SPREAD_REFLECT, 3, lens_r, 0.5}},
+              {0, 0, 0},
+              0};
+    mpic_check("radial over linear, the threshold's curve a thin lens between scan rows", &p, px,
+               3);
+}
+
 int main(void)
 {
     print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
@@ -2178,6 +2223,7 @@ int main(void)
         cmocka_unit_test(test_stack_close_roots),
         cmocka_unit_test(test_mixed_tangent),
         cmocka_unit_test(test_mixed_stop_circle),
+        cmocka_unit_test(test_mixed_lens),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

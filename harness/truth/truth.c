@@ -278,8 +278,8 @@
  * test_gradient.c, test_stack_close_roots).
  *
  * Where layers of different t mix, the threshold's curve is no circle or
- * line of one t, and its heights are found by scanning (thr_heights), not
- * certified, so the pixel's bound there is QAG's estimate, not a proof.
+ * line of one t, and its heights are certified by interval boxes
+ * (thr_certify) where the window allows, found by a scan elsewhere.
  * Why they matter: the row integral F(y) = int dec(E(x, y)) w dx is analytic between
  * heights where the curve crosses rows transversally (the crossing x(y)
  * is analytic, and each side of it takes one of the decoding's pieces),
@@ -301,33 +301,90 @@
  * gradient layers are not all of one t and where something is
  * translucent (a layer's alpha, a group's opacity or a stop's opacity
  * below 1: else the composite at a point is one layer's paint, of one t,
- * and nothing mixes; scene_translucent), each pixel's rows are scanned
- * between its breakpoints: THR_ROWS = 32 rows a window's height, and one
- * just inside each interval's ends; each row's signature is the count of
- * the threshold's places (gen_section's certified isolation) per channel
- * in each section of the row where layers of different t mix, in the
- * row's order.  Where two consecutive scan rows' signatures differ, the
- * height of the change is bisected to rounding and made a breakpoint
- * (unless within 1e-6 R of one already there, whose own change it is
- * taken to be: THR_NEAR): a
- * place entering or leaving a section is the curve crossing a cut (a
- * stop line or circle, an edge, the window's side), and a total that
- * changes by two is a tangency, made a turning point too (whether the
- * scene mixes and is translucent is found once a render: thr_setup).  Those three
- * pixels came within 1.1e-16 of the 2-D quadrature with it (tests/
- * test_gradient.c, test_mixed_tangent).  Not certified: a tangency whose
- * two places appear and vanish between two scan rows (a bump of the curve
- * thinner than 1/32 of the window) goes unseen, and the bound there is
- * again QAG's estimate.  A proven rule needs those heights found by a
- * certified 2-D method (interval Newton on E = c, dE/dx = 0, and on E = c
- * along each cut), and a bound of the rule's error between them; neither
- * is here.  Nor is the
- * alternative of cells: a 2-D subdivision of the cells the curve
- * crosses, each taking the power piece across the curve with the error
- * |dec(E) - P(E)| <= 2.3e-9 + 0.0013 |E - c| <= 2.3e-9 + 0.0013 |grad E|
- * sqrt(2) h, needs cells of about h = 1.5e-6 px for 1e-14 along a curve 1
- * px long with |grad E| ~ 1 / px (the value step alone asks 2 h 2.3e-9 <=
- * 1e-14): 1.3e6 cells a pixel, each with its own rows.
+ * and nothing mixes; scene_translucent; found once a render: thr_setup),
+ * each pixel's heights are found as follows.
+ *
+ * Certified (thr_certify), where no piece enters the window (the
+ * composite's steps, aa_scene_fold, are then one for the whole window),
+ * every gradient is linear or radial but the cone case, in sRGB, and at
+ * most GEN_LAYERS paint: the window's rows between its first and last
+ * breakpoints are halved into boxes (across x too where a box is 16
+ * times wider than high and E depends on x there), and on each box E of
+ * every channel and dE/dx are bounded in interval arithmetic (each
+ * operation's result moved out by 2^-52 of itself and the least
+ * subnormal; a layer's t, its paint affine in t on one stop segment, the
+ * composite's steps folded).  A box is free of events if, for every
+ * channel, 0.04045 is outside E's range, or no cut meets the box (a stop
+ * line or circle or a period's end of a layer that paints, the window's
+ * side, a filter's kink or circle, a radial t whose derivative is not
+ * bounded) and 0 is outside dE/dx's range: the curve then crosses the
+ * box's rows transversally, x(y) analytic.  The others are halved until
+ * 2^-32 of the window high (THR_SIDE); those left are slivers, their
+ * rows merged (and with the rows between where less than 2^-32 of the
+ * window apart), their ends breakpoints.  Between slivers F is analytic
+ * (every height there lies in boxes shown free), and QAG's estimate is
+ * the bound as between any breakpoints.  On a sliver [a, b] the pixel
+ * takes F at its middle row m times b - a, with the declared bound (b -
+ * a) sup |F(s) - F(m)| plus that row's own: for the box filter, |F(s) -
+ * F(m)| <= int |dec(E(x, s)) - dec(E(x, m))| dx <= int (2.3 |E(x, s) -
+ * E(x, m)| + 2.4e-9) dx (2.3 bounds the decoding's slope on [0, 1],
+ * 2.4e-9 its step), and on each of 256 strips across the window |E(x, s)
+ * - E(x, m)| is at most b - a times the largest |dE/dy| on the strip's
+ * box (bounded as dE/dx is) where no stop or period's end crosses it,
+ * else the width of E's range there, such a strip halved up to 8 times
+ * while that is above 1e-6 (thr_strip).  Under a separable filter the
+ * sliver takes G(m), F = w(s) G(s), times the weight's integral over it,
+ * with that bound times the weight's peak twice; under a radial filter,
+ * 4 R times the weight's peak (|F| <= 2 R times it), and slivers are not
+ * joined across gaps.  So every height where F is not analytic is a
+ * breakpoint or inside a sliver whose bound is proven; a pixel that
+ * takes more than 200000 boxes (THR_BOXES) keeps the boxes left whole as
+ * slivers, with the same bound over their rows.  A period's end is a cut
+ * but no jump for reflect (the paint turns back, continuous), and a
+ * layer with no step of the window's fold (outside its region) is left
+ * out: taken in, a linear gradient at its reflect end, whose range was
+ * taken to hold the first stop's channel too, and the stop line of a
+ * layer not painting there made a sliver of pixel (13, 1) in
+ * test_several_gradients' "fading linear over linear" 1.3e-11 high with
+ * a bound of 1.85 a unit of height (2.4e-11); 2.7e-14 now, as the scan
+ * gave.  Its cost: a 48x48 radial gradient at fill-opacity 0.6 over a
+ * linear one along y, both of dark stops, under the box (`valgrind
+ * --tool=callgrind aabench truth -p svg:file=F --no-cache --threads 1`),
+ * 5.06e9 instructions, 6.05e9 with the scan alone (its largest bound
+ * 3e-14, 1.7e-13 with the scan, the values within 8.8e-16 of its);
+ * tests/test_gradient 42.7 s of user CPU, 44.6 s with the scan alone,
+ * tests/test_gradient_cone_filter 33.3 s, 32.1 s, each pair run one
+ * after the other on the shared machine (`/usr/bin/time`).  A scene
+ * without translucent layers of different t does not enter it (the same
+ * image and bounds to the bit).  A lens of the curve 0.015 px high along a radial
+ * stop circle between two of the scan's rows (tests/test_gradient.c,
+ * test_mixed_lens) is found: the scan does not see it.
+ *
+ * Scanned (thr_heights), elsewhere (a piece in the window, a cone-case
+ * or linear-light gradient, more than GEN_LAYERS layers): between the
+ * breakpoints, THR_ROWS = 32 rows a window's height, and one just inside
+ * each interval's ends; each row's signature is the count of the
+ * threshold's places (gen_section's certified isolation) per channel in
+ * each section of the row where layers of different t mix, in the row's
+ * order.  Where two consecutive scan rows' signatures differ, the height
+ * of the change is bisected to rounding and made a breakpoint (unless
+ * within 1e-6 R of one already there, whose own change it is taken to
+ * be: THR_NEAR): a place entering or leaving a section is the curve
+ * crossing a cut (a stop line or circle, an edge, the window's side), and
+ * a total that changes by two is a tangency, made a turning point too.
+ * Those three pixels came within 1.1e-16 of the 2-D quadrature with it
+ * (tests/test_gradient.c, test_mixed_tangent).  Not certified: a
+ * tangency whose two places appear and vanish between two scan rows (a
+ * bump of the curve thinner than 1/32 of the window) goes unseen, and
+ * the bound there is QAG's estimate, not a proof: such pixels are
+ * counted (aa_truth_stats' scanned, printed by `aabench truth`), not
+ * refused.  The alternative of cells, a 2-D subdivision of the cells
+ * the curve crosses, each taking the power piece across the curve with
+ * the error |dec(E) - P(E)| <= 2.3e-9 + 0.0013 |E - c| <= 2.3e-9 +
+ * 0.0013 |grad E| sqrt(2) h, needs cells of about h = 1.5e-6 px for
+ * 1e-14 along a curve 1 px long with |grad E| ~ 1 / px (the value step
+ * alone asks 2 h 2.3e-9 <= 1e-14): 1.3e6 cells a pixel, each with its
+ * own rows.
  *
  * Scenes that do not mix take the paths above, to
  * the bit, except that the radial path's test of which layer a span
@@ -591,9 +648,15 @@ typedef struct worker {
     double *sing;
     size_t nsing, cap_sing;
     int sing_oom;
-    /* thr_on: the scene's gradient layers are not all of one t and
-     * something is translucent (thr_setup, once a render) */
-    int thr_on;
+    /* the threshold's events where layers of different t mix (thr_heights,
+     * thr_certify): thr_on, the scene has such layers and something
+     * translucent; thr_cert, its layers are of the kinds thr_certify takes;
+     * the pixel's slivers (pairs of relative heights, nsliv pairs) whose
+     * rows take a declared bound (triples: the ends, the bound of |F(s) -
+     * F(m)| on them) */
+    int thr_on, thr_cert;
+    double *sliv;
+    size_t nsliv, cap_sliv;
     local_piece *lp;
     crossing *cross;
     size_t nlp, cap_lp;
@@ -605,12 +668,14 @@ typedef struct worker {
     memo memo;
     int box;
     int radial; /* not separable (cone): rows weighed by aa_filter_row_cdf */
+    int unweighed; /* inner_sums leaves out the row's weight (a sliver's row) */
     gsl_poly_complex_workspace *poly; /* radial: the circle's crossings */
     crowd_worker crowd;               /* crowded pixels (truth_crowd.c) */
     const double *xmeet;              /* gradient paint there: the sweep's events */
     size_t nxmeet;
     int all_crowd;                    /* every pixel there (AA__TRUTH_CROWD) */
     size_t crowded;                   /* pixels it took */
+    size_t scanned;                   /* pixels whose threshold heights were scanned */
 } worker;
 
 static void worker_free(worker *w)
@@ -622,6 +687,7 @@ static void worker_free(worker *w)
         gsl_poly_complex_workspace_free(w->poly);
     free(w->pts);
     free(w->sing);
+    free(w->sliv);
     free(w->lp);
     free(w->cross);
     free(w->wind);
@@ -5307,7 +5373,7 @@ static long double crossing_at(const local_piece *q, long double s)
  * [-R, R]. */
 static inline void inner_sums(worker *w, double s, int nch, double *out)
 {
-    double ws = w->box || w->radial ? 1.0 : aa_filter_weight(w->f, s);
+    double ws = w->box || w->radial || w->unweighed ? 1.0 : aa_filter_weight(w->f, s);
     if (ws == 0.0) {
         for (int ch = 0; ch < nch; ch++)
             out[ch] = 0.0;
@@ -5507,6 +5573,8 @@ static void sides(worker *w, double a, double b)
     }
 }
 
+static double thr_in_sliver(const worker *w, double a, double b);
+
 static void integrate_intervals(worker *w, double *result, double *abserr)
 {
     gsl_function F = {integrand, w};
@@ -5518,6 +5586,28 @@ static void integrate_intervals(worker *w, double *result, double *abserr)
         double ea = nearest_turn(w, a, -1), eb = nearest_turn(w, b, 1);
         int ta = a - ea < b - a, tb = eb - b < b - a; /* false for NaN */
         sides(w, a, b);
+        double dv = thr_in_sliver(w, a, b);
+        if (dv >= 0.0) {
+            /* a sliver of thr_certify: its middle row, and the declared
+             * bound (F within dv of it on every row of the sliver) with
+             * that row's own bound, over the sliver's height only; under
+             * a separable filter the row without its weight (G, F = w G),
+             * times the weight's integral over the sliver (dv bounds the
+             * weight times |G(s) - G(m)|) */
+            double v[3], keep = w->rad_err_max, pk = 1.0, ws = b - a;
+            w->rad_err_max = 0.0;
+            if (!w->box && !w->radial) {
+                w->unweighed = 1;
+                pk = fabs(aa_filter_weight(w->f, 0.0));
+                ws = aa_filter_cdf(w->f, b) - aa_filter_cdf(w->f, a);
+            }
+            inner_sums(w, 0.5 * (a + b), w->shared ? 3 : 1, v);
+            w->unweighed = 0;
+            *result += ws * v[w->shared ? w->channel : 0];
+            *abserr += (b - a) * (dv + pk * w->rad_err_max);
+            w->rad_err_max = keep;
+            continue;
+        }
         if (!ta && !tb) {
             qag(w, &F, a, b, eps, result, abserr);
             continue;
@@ -5580,6 +5670,613 @@ static int thr_total(const thr_sig *a)
     return t;
 }
 
+/* ---- the threshold's events, certified (thr_certify) ----
+ *
+ * Interval arithmetic over boxes of the window (truth.c's opening
+ * comment, "several gradients"): a range is a pair of doubles moved out
+ * by one ulp after every operation (each is correctly rounded, to within
+ * half an ulp, subnormal results included); a NaN makes it the whole
+ * line.  A jet holds a quantity's range on the box and its
+ * x-derivative's. */
+#define THR_BOXES 200000 /* most boxes one pixel's subdivision takes */
+#define THR_LEAVES 8192  /* room for the boxes kept, a pixel (merged as it fills) */
+#define THR_SLIVERS 256  /* most slivers (their rows merged), a pixel */
+#define THR_SIDE 0x1p-32 /* boxes are kept, not halved, once this times 2 R high */
+#define THR_SEG 8        /* one layer's stop segments a box is taken in, one at a time */
+#define THR_ASPECT 16.0  /* boxes are halved across x only if this many times wider than high */
+#define THR_GAP 0x1p-32  /* slivers closer than this times 2 R are merged, the rows between kept */
+
+typedef struct thr_iv {
+    double lo, hi;
+} thr_iv;
+
+typedef struct thr_jet {
+    thr_iv v, d;
+} thr_jet;
+
+/* lo and hi moved out by |x| 2^-52 and the least subnormal: a correctly
+ * rounded result is within 2^-53 |x| of the exact one (or half the least
+ * subnormal), and the move, at least an ulp of x, survives its own
+ * rounding to nearest (nextafter costs a call: once 44% of a mixed
+ * scene's time) */
+static thr_iv iv_out(double lo, double hi)
+{
+    if (lo != lo || hi != hi)
+        return (thr_iv){-INFINITY, INFINITY};
+    return (thr_iv){lo - (fabs(lo) * 0x1p-52 + 0x1p-1074), hi + (fabs(hi) * 0x1p-52 + 0x1p-1074)};
+}
+
+static inline double thr_min(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+static inline double thr_max(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+static thr_iv iv_k(double k)
+{
+    return (thr_iv){k, k};
+}
+
+static thr_iv iv_add(thr_iv a, thr_iv b)
+{
+    return iv_out(a.lo + b.lo, a.hi + b.hi);
+}
+
+static thr_iv iv_sub(thr_iv a, thr_iv b)
+{
+    return iv_out(a.lo - b.hi, a.hi - b.lo);
+}
+
+static thr_iv iv_mul(thr_iv a, thr_iv b)
+{
+    double p0 = a.lo * b.lo, p1 = a.lo * b.hi, p2 = a.hi * b.lo, p3 = a.hi * b.hi;
+    if (p0 != p0 || p1 != p1 || p2 != p2 || p3 != p3)
+        return (thr_iv){-INFINITY, INFINITY};
+    return iv_out(thr_min(thr_min(p0, p1), thr_min(p2, p3)),
+                  thr_max(thr_max(p0, p1), thr_max(p2, p3)));
+}
+
+static thr_iv iv_sqr(thr_iv a)
+{
+    if (a.lo >= 0.0)
+        return iv_out(a.lo * a.lo, a.hi * a.hi);
+    if (a.hi <= 0.0)
+        return iv_out(a.hi * a.hi, a.lo * a.lo);
+    return iv_out(0.0, thr_max(a.lo * a.lo, a.hi * a.hi));
+}
+
+static thr_jet j_k(thr_iv v)
+{
+    return (thr_jet){v, {0.0, 0.0}};
+}
+
+static thr_jet j_add(thr_jet a, thr_jet b)
+{
+    return (thr_jet){iv_add(a.v, b.v), iv_add(a.d, b.d)};
+}
+
+static thr_jet j_sub(thr_jet a, thr_jet b)
+{
+    return (thr_jet){iv_sub(a.v, b.v), iv_sub(a.d, b.d)};
+}
+
+static thr_jet j_mul(thr_jet a, thr_jet b)
+{
+    return (thr_jet){iv_mul(a.v, b.v), iv_add(iv_mul(a.d, b.v), iv_mul(a.v, b.d))};
+}
+
+static thr_jet j_scale(double k, thr_jet a)
+{
+    return (thr_jet){iv_mul(iv_k(k), a.v), iv_mul(iv_k(k), a.d)};
+}
+
+static thr_jet j_sqr(thr_jet a)
+{
+    return (thr_jet){iv_sqr(a.v), iv_mul(iv_mul(iv_k(2.0), a.v), a.d)};
+}
+
+/* The square root; its derivative's range needs the root's range above 0
+ * (else *bad is set and it is the whole line). */
+static thr_jet j_sqrt(thr_jet a, int *bad)
+{
+    thr_jet r;
+    if (!(a.v.hi >= 0.0)) {
+        *bad = 1;
+        return (thr_jet){{-INFINITY, INFINITY}, {-INFINITY, INFINITY}};
+    }
+    r.v = iv_out(sqrt(fmax(a.v.lo, 0.0)), sqrt(a.v.hi));
+    if (!(r.v.lo > 0.0)) {
+        *bad = 1;
+        r.d = (thr_iv){-INFINITY, INFINITY};
+    } else
+        r.d = iv_mul(a.d, iv_out(0.5 / r.v.hi, 0.5 / r.v.lo));
+    return r;
+}
+
+/* One pixel's data for the boxes: the composite's steps (aa_scene_fold,
+ * the window's windings) with, per step, the index of its gradient layer
+ * in w->gl (-1: a layer of its own colour), and each layer's t at the
+ * pixel's centre (linear) or q there (radial) as ranges. */
+typedef struct thr_ctx {
+    worker *w;
+    int nch, nst, nk;
+    const aa_fold_step *st;
+    const int *sl;
+    double base[3], kink[8];
+    unsigned char used[GEN_LAYERS]; /* the layer has a step of the fold */
+    int dy; /* the jets' derivative is along y, not x (thr_strip) */
+    thr_iv *q0;
+    double *buf;
+    size_t cap;
+} thr_ctx;
+
+/* Layer l's t on the box X x S (relative); *bad set where its derivative's
+ * range is not had (a radial layer's discriminant near 0). */
+static thr_jet thr_t(const thr_ctx *c, int l, thr_iv X, thr_iv S, int *bad)
+{
+    const gen_layer *g = &c->w->gl[l];
+    if (g->gp) {
+        const grad_plane *p = g->gp;
+        thr_iv v = iv_add(c->q0[2 * l], iv_add(iv_mul(iv_k(p->tx), X), iv_mul(iv_k(p->ty), S)));
+        return (thr_jet){v, iv_k(c->dy ? p->ty : p->tx)};
+    }
+    const grad_radial *r = g->rg;
+    thr_jet qx = {
+        iv_add(c->q0[2 * l], iv_add(iv_mul(iv_k(r->inv[0]), X), iv_mul(iv_k(r->inv[2]), S))),
+        iv_k(r->inv[c->dy ? 2 : 0])};
+    thr_jet qy = {
+        iv_add(c->q0[2 * l + 1], iv_add(iv_mul(iv_k(r->inv[1]), X), iv_mul(iv_k(r->inv[3]), S))),
+        iv_k(r->inv[c->dy ? 3 : 1])};
+    thr_jet b = j_add(j_add(j_scale(r->Dx, qx), j_scale(r->Dy, qy)),
+                      j_k(iv_mul(iv_k(r->fr), iv_k(r->dr))));
+    thr_jet cc = j_sub(j_add(j_sqr(qx), j_sqr(qy)), j_k(iv_sqr(iv_k(r->fr))));
+    thr_jet disc = j_sub(j_sqr(b), j_scale(r->a, cc));
+    /* t = (b - sqrt(disc)) / a, a < 0 (rad_t's two forms are this) */
+    return j_mul(j_sub(b, j_sqrt(disc, bad)), j_k(iv_out(1.0 / r->a, 1.0 / r->a)));
+}
+
+/* Where t = m falls in a period of the layer's stops (the spread). */
+static double thr_period_place(int spread, double t)
+{
+    if (spread == AA_SPREAD_REPEAT)
+        return t - floor(t);
+    if (spread == AA_SPREAD_REFLECT) {
+        double f = t - 2.0 * floor(0.5 * t);
+        return f <= 1.0 ? f : 2.0 - f;
+    }
+    return t;
+}
+
+/* Layer g's opacity and channels (p[3], p[0 .. 2]) where its t, in the
+ * range t, lies in one stop segment: v0 + v1 t (paint_lin) with their
+ * rounding added. */
+static void thr_affine(const gen_layer *g, thr_jet t, thr_jet p[4])
+{
+    double ta = t.v.lo, tb = t.v.hi, v0[4], v1[4];
+    paint_lin(g->spread, g->stops, g->nstops, g->enc, 0.5 * (ta + tb), v0, v1);
+    for (int k = 0; k < 4; k++) {
+        double e = 8.0 * DBL_EPSILON * (fabs(v0[k]) + fabs(v1[k]) * fmax(fabs(ta), fabs(tb)));
+        p[k].v = iv_add(iv_add(iv_k(v0[k]), iv_mul(iv_k(v1[k]), t.v)), (thr_iv){-e, e});
+        p[k].d = iv_mul(iv_k(v1[k]), t.d);
+    }
+}
+
+/* Layer l's opacity and channels (p[3], p[0 .. 2]) on the box, its t
+ * there given: one stop segment across the t range, v0 + v1 t with their
+ * rounding (paint_lin) added; else (*cut set: a stop line or circle, or a
+ * period's end, crosses the box) the ranges of the paint, which is
+ * piecewise affine in t, from its values at the range's ends and at the
+ * stops met inside (their own values: both sides of a sharp stop, the
+ * first and last stops at a period's end), the derivative not had. */
+static void thr_paint(const thr_ctx *c, int l, thr_jet t, thr_jet p[4], int *cut)
+{
+    const gen_layer *g = &c->w->gl[l];
+    const grad_plane *gp = g->gp ? g->gp : &g->rg->plane;
+    double ta = t.v.lo, tb = t.v.hi, v0[4], v1[4];
+    double pad = 8.0 * DBL_EPSILON * (1.0 + fmax(fabs(ta), fabs(tb)));
+    size_t nb = ta == -INFINITY || tb == INFINITY
+                    ? SIZE_MAX
+                    : grad_taus(gp, ta - pad, tb + pad, c->buf, c->cap);
+    if (nb == 0) {
+        thr_affine(g, t, p);
+        return;
+    }
+    *cut = 1;
+    double lo[4], hi[4];
+    for (int k = 0; k < 4; k++)
+        lo[k] = INFINITY, hi[k] = -INFINITY;
+    int all = nb > c->cap;
+    for (int e = 0; e < 2 && !all; e++) {
+        double te = e ? tb : ta;
+        paint_lin(g->spread, g->stops, g->nstops, g->enc, te, v0, v1);
+        for (int k = 0; k < 4; k++) {
+            double v = v0[k] + v1[k] * te;
+            lo[k] = fmin(lo[k], v), hi[k] = fmax(hi[k], v);
+        }
+    }
+    for (size_t b = 0; b < (all ? 0 : nb); b++) {
+        double m = thr_period_place(g->spread, c->buf[b]);
+        /* a period's end: repeat jumps from the last stop to the first;
+         * reflect turns back, continuous, at the first (m = 0) or the
+         * last (m = 1) */
+        int lo0 = m <= 1e-9, hi1 = m >= 1.0 - 1e-9, rep = g->spread == AA_SPREAD_REPEAT;
+        int refl = g->spread == AA_SPREAD_REFLECT;
+        for (int s = 0; s < g->nstops; s++) {
+            int end = (s == 0 && ((rep && (lo0 || hi1)) || (refl && lo0))) ||
+                      (s == g->nstops - 1 && ((rep && (lo0 || hi1)) || (refl && hi1)));
+            if (!(fabs(g->stops[s].offset - m) <= 1e-9) && !end)
+                continue;
+            for (int k = 0; k < 4; k++)
+                lo[k] = fmin(lo[k], g->enc[4 * s + k]), hi[k] = fmax(hi[k], g->enc[4 * s + k]);
+        }
+    }
+    for (int s = 0; s < g->nstops && all; s++)
+        for (int k = 0; k < 4; k++)
+            lo[k] = fmin(lo[k], g->enc[4 * s + k]), hi[k] = fmax(hi[k], g->enc[4 * s + k]);
+    for (int k = 0; k < 4; k++) {
+        double e = 8.0 * DBL_EPSILON * fmax(fabs(lo[k]), fabs(hi[k]));
+        p[k].v = iv_out(lo[k] - e, hi[k] + e);
+        p[k].d = (thr_iv){-INFINITY, INFINITY};
+    }
+}
+
+/* E of each channel on the box (its jets), the layers' opacity a and
+ * opacity times channel ac given: the composite's steps folded. */
+static void thr_fold(const thr_ctx *c, const thr_jet *a, thr_jet (*ac)[3], thr_jet *E)
+{
+    for (int ch = 0; ch < c->nch; ch++) {
+        thr_jet q[AA_SCENE_MAX_GROUP_DEPTH + 1], al[AA_SCENE_MAX_GROUP_DEPTH + 1];
+        thr_jet one = j_k(iv_k(1.0));
+        int d = 0;
+        q[0] = j_k(iv_k(c->base[ch]));
+        al[0] = one;
+        for (int k = 0; k < c->nst; k++) {
+            const aa_fold_step *st = &c->st[k];
+            if (st->op == AA_FOLD_OPEN) {
+                d++;
+                q[d] = al[d] = j_k(iv_k(0.0));
+            } else if (st->op == AA_FOLD_CLOSE) {
+                thr_jet oa = j_scale(st->a, al[d]), rest = j_sub(one, oa);
+                q[d - 1] = j_add(j_scale(st->a, q[d]), j_mul(rest, q[d - 1]));
+                al[d - 1] = j_add(oa, j_mul(rest, al[d - 1]));
+                d--;
+            } else {
+                int l = c->sl[k];
+                thr_jet aa = l >= 0 ? j_scale(st->a, a[l]) : j_k(iv_k(st->a));
+                thr_jet acc = l >= 0 ? j_scale(st->a, ac[l][ch])
+                                     : j_k(iv_mul(iv_k(st->a), iv_k(st->c[ch])));
+                thr_jet rest = j_sub(one, aa);
+                q[d] = j_add(acc, j_mul(rest, q[d]));
+                al[d] = j_add(aa, j_mul(rest, al[d]));
+            }
+        }
+        E[ch] = q[0];
+    }
+}
+
+/* Whether the box [x0, x1] x [s0, s1] (relative) may hold an event of
+ * the threshold's curve: for some channel, 0.04045 is in E's range and,
+ * unless a cut meets the box (a stop line or circle, the window's side,
+ * a kink of the filter, a radial filter's circle), 0 is in dE/dx's.
+ * *xfree: the composite does not depend on x (every gradient painting is
+ * linear along y only, or the channel that may hold an event is constant
+ * along x on the box: a radial layer padded beyond its last stop over a
+ * linear one along y), so the curve is rows, each an event, and the box
+ * is halved along y only.  wid (may be
+ * NULL): the widest of the channels' ranges of E on the box. */
+static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1, int *xfree,
+                   double *wid, double *lip)
+{
+    const worker *w = c->w;
+    *xfree = 1;
+    for (int k = 0; k < c->nst; k++)
+        if (c->st[k].op == AA_FOLD_LAYER && c->sl[k] >= 0) {
+            const gen_layer *g = &w->gl[c->sl[k]];
+            *xfree &= g->gp && g->gp->tx == 0.0;
+        }
+    thr_iv X = {x0, x1}, S = {s0, s1};
+    thr_jet a[GEN_LAYERS], ac[GEN_LAYERS][3];
+    int cut = x0 <= -w->R || x1 >= w->R;
+    for (int k = 0; k < c->nk; k++)
+        cut |= c->kink[k] >= x0 && c->kink[k] <= x1;
+    if (w->radial) {
+        double nx = fmax(0.0, fmax(x0, -x1)), ny = fmax(0.0, fmax(s0, -s1));
+        double fx = fmax(fabs(x0), fabs(x1)), fy = fmax(fabs(s0), fabs(s1));
+        cut |= hypot(nx, ny) * (1.0 - 1e-15) <= w->R && hypot(fx, fy) * (1.0 + 1e-15) >= w->R;
+    }
+    /* the first layer whose stops cut the box (at most THR_SEG - 1 times)
+     * is taken one segment of its t at a time: a jump of its paint at a
+     * sharp stop or a period's end is then no threshold's place */
+    thr_jet t[GEN_LAYERS];
+    double brk[THR_SEG + 1], elo[3] = {INFINITY, INFINITY, INFINITY};
+    double ehi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    int split = -1, nbrk = 0, hit = 0, flat = 0;
+    for (int l = 0; l < w->ngl; l++) {
+        int bad = 0;
+        if (!c->used[l])
+            continue;
+        t[l] = thr_t(c, l, X, S, &bad);
+        cut |= bad;
+        const gen_layer *g = &w->gl[l];
+        double ta = t[l].v.lo, tb = t[l].v.hi;
+        double pad = 8.0 * DBL_EPSILON * (1.0 + fmax(fabs(ta), fabs(tb)));
+        if (split >= 0 || !(ta > -INFINITY && tb < INFINITY))
+            continue;
+        size_t nb = grad_taus(g->gp ? g->gp : &g->rg->plane, ta - pad, tb + pad, c->buf, c->cap);
+        if (nb == 0 || nb >= THR_SEG)
+            continue;
+        split = l, nbrk = (int)nb;
+        memcpy(brk + 1, c->buf, nb * sizeof *brk);
+        qsort(brk + 1, nb, sizeof *brk, truth_cmp_double);
+        brk[0] = -INFINITY, brk[nb + 1] = INFINITY;
+    }
+    for (int j = 0; j <= nbrk; j++) {
+        int cj = cut;
+        for (int l = 0; l < w->ngl; l++) {
+            thr_jet p[4];
+            if (!c->used[l])
+                continue;
+            if (l == split) {
+                thr_jet ts = t[l];
+                ts.v.lo = fmax(ts.v.lo, brk[j]), ts.v.hi = fmin(ts.v.hi, brk[j + 1]);
+                if (!(ts.v.lo <= ts.v.hi))
+                    goto next;
+                thr_affine(&w->gl[l], ts, p);
+                cj = 1;
+            } else
+                thr_paint(c, l, t[l], p, &cj);
+            a[l] = p[3];
+            for (int ch = 0; ch < c->nch; ch++)
+                ac[l][ch] = j_mul(p[3], p[ch]);
+        }
+        thr_jet E[3];
+        thr_fold(c, a, ac, E);
+        for (int ch = 0; ch < c->nch && wid; ch++)
+            elo[ch] = fmin(elo[ch], E[ch].v.lo), ehi[ch] = fmax(ehi[ch], E[ch].v.hi);
+        for (int ch = 0; ch < c->nch && lip; ch++) {
+            double d = fmax(fabs(E[ch].d.lo), fabs(E[ch].d.hi));
+            *lip = split >= 0 || !(d <= INFINITY) ? INFINITY : fmax(*lip, d);
+        }
+        for (int ch = 0; ch < c->nch && !hit; ch++) {
+            thr_jet e = E[ch];
+            if (!(e.v.lo <= 0.04045 && e.v.hi >= 0.04045))
+                continue;
+            if (!cj && (e.d.lo > 0.0 || e.d.hi < 0.0))
+                continue;
+            hit = 1;
+            flat = e.d.lo >= -1e-300 && e.d.hi <= 1e-300;
+        }
+        if (hit && !wid) {
+            *xfree |= flat;
+            return 1;
+        }
+    next:;
+    }
+    for (int ch = 0; ch < c->nch && wid; ch++)
+        *wid = fmax(*wid, ehi[ch] - elo[ch]);
+    return hit;
+}
+
+/* Whether no local piece enters the window [-R, R]^2 (each wholly left or
+ * right of it, or outside its rows: the windings are then one over the
+ * window); the windings at the centre row into w->wind. */
+static int thr_window_clear(worker *w)
+{
+    double R = w->R;
+    aa_strip_winding_left_at(w->strip, w->vc, 0.0, w->wind);
+    for (size_t k = 0; k < w->nlp; k++) {
+        local_piece *q = &w->lp[k];
+        if (q->y1 <= -R || q->y0 >= R)
+            continue;
+        int side = 0;
+        if (q->offset)
+            side = truth_offset_side(q, -R, R, R);
+        else {
+            double lo, hi;
+            if (q->conic) {
+                double e = (double)(fabsl(q->ea) + fabsl(q->eb));
+                lo = (double)q->x0 - e, hi = (double)q->x0 + e;
+            } else { /* x0 + t (bx + t (ax + t dx)), t in [0, 1] */
+                thr_iv T = {0.0, 1.0}, p = iv_k((double)q->dx);
+                p = iv_add(iv_mul(p, T), iv_k((double)q->ax));
+                p = iv_add(iv_mul(p, T), iv_k((double)q->bx));
+                p = iv_add(iv_mul(p, T), iv_k((double)q->x0));
+                lo = p.lo, hi = p.hi;
+            }
+            double m = 1e-12 * (R + fabs(lo) + fabs(hi));
+            side = hi < -R - m ? -1 : lo > R + m ? 1 : 0;
+        }
+        if (side == 0)
+            return 0;
+        if (side < 0 && 0.0 >= q->y0 && 0.0 < q->y1)
+            w->wind[q->layer] += q->dir;
+    }
+    return 1;
+}
+
+static int cmp_pair(const void *a, const void *b)
+{
+    const double *p = a, *q = b;
+    return (p[0] > q[0]) - (p[0] < q[0]);
+}
+
+/* The slivers' rows sorted and merged where they meet or are closer than
+ * THR_GAP of the window (the rows between join the sliver: its bound
+ * covers every row in it, and fewer intervals cost fewer rows). */
+static void thr_merge(worker *w)
+{
+    qsort(w->sliv, w->nsliv, 3 * sizeof *w->sliv, cmp_pair);
+    size_t m = 0;
+    double gap = w->radial ? 0.0 : THR_GAP * 2.0 * w->R; /* radial filters: a crude bound */
+    for (size_t k = 0; k < w->nsliv; k++) {
+        if (m > 0 && w->sliv[3 * k] <= w->sliv[3 * m - 2] + gap) {
+            w->sliv[3 * m - 2] = fmax(w->sliv[3 * m - 2], w->sliv[3 * k + 1]);
+            continue;
+        }
+        w->sliv[3 * m] = w->sliv[3 * k], w->sliv[3 * m + 1] = w->sliv[3 * k + 1];
+        m++;
+    }
+    w->nsliv = m;
+}
+
+/* The integral over x in [x0, x1] of a bound of |E(x, s) - E(x, m)| for
+ * rows s and m in [a, b], times 2.3 (the decoding's largest slope): on
+ * the box, b - a times the largest |dE/dy| where no layer's stop or
+ * period's end crosses it (E is then smooth along each column), else the
+ * width of E's range, a strip whose bound is still wide (a jump of the
+ * paint at a sharp stop) halved in x up to 8 times; times the box's
+ * width. */
+static double thr_strip(const thr_ctx *c, double x0, double x1, double a, double b, int depth)
+{
+    thr_ctx cy = *c;
+    double wid = 0.0, lip = 0.0, xm = 0.5 * (x0 + x1);
+    int xfree;
+    cy.dy = 1;
+    thr_box(&cy, x0, x1, a, b, &xfree, &wid, &lip);
+    double d = fmin(wid, (b - a) * lip);
+    if (d > 1e-6 && depth < 8 && xm > x0 && xm < x1)
+        return thr_strip(c, x0, xm, a, b, depth + 1) + thr_strip(c, xm, x1, a, b, depth + 1);
+    return 2.3 * d * (x1 - x0);
+}
+
+/* The certified heights (the opening comment, "several gradients"): the
+ * window's rows between its first and last breakpoints halved into boxes
+ * until each is shown free of events (thr_box) or no side is above
+ * THR_SIDE of the window; the rows of those kept become slivers, their
+ * ends breakpoints.  *taken is 0 if the pixel is not of
+ * the kind it takes (the composite's steps not had). */
+static int thr_certify(worker *w, int nch, int *taken)
+{
+    thr_ctx c = {0};
+    double R = w->R;
+    c.w = w, c.nch = nch, c.st = w->fold, c.buf = w->gbuf, c.cap = 64;
+    *taken = 0;
+    if (w->ngl > GEN_LAYERS)
+        return AA_OK;
+    c.nst = aa_scene_fold(w->scene, w->wind, w->ngl, w->gl_layer, w->fold, w->cap_fold, c.base);
+    if (c.nst < 0)
+        return AA_OK;
+    *taken = 1;
+    for (int k = 0; k < c.nst; k++) {
+        w->fold_sl[k] = -1;
+        for (int l = 0; l < w->ngl && w->fold[k].op == AA_FOLD_LAYER; l++)
+            if (w->gl[l].layer == w->fold[k].layer)
+                w->fold_sl[k] = l;
+    }
+    c.sl = w->fold_sl;
+    for (int k = 0; k < c.nst; k++)
+        if (c.st[k].op == AA_FOLD_LAYER && c.sl[k] >= 0)
+            c.used[c.sl[k]] = 1;
+    c.nk = w->f->type->kinks(w->f->spec.v, c.kink);
+    thr_iv q0[2 * GEN_LAYERS], U = iv_k(w->uc), V = iv_k(w->vc);
+    for (int l = 0; l < w->ngl; l++) {
+        const gen_layer *g = &w->gl[l];
+        if (g->gp) {
+            q0[2 * l] = iv_add(iv_add(iv_mul(iv_k(g->gp->tx), U), iv_mul(iv_k(g->gp->ty), V)),
+                               iv_k(g->gp->t0));
+            continue;
+        }
+        const double *i = g->rg->inv;
+        q0[2 * l] = iv_sub(iv_add(iv_add(iv_mul(iv_k(i[0]), U), iv_mul(iv_k(i[2]), V)), iv_k(i[4])),
+                           iv_k(g->rg->fx));
+        q0[2 * l + 1] = iv_sub(
+            iv_add(iv_add(iv_mul(iv_k(i[1]), U), iv_mul(iv_k(i[3]), V)), iv_k(i[5])),
+            iv_k(g->rg->fy));
+    }
+    c.q0 = q0;
+    double side = THR_SIDE * 2.0 * R, box[4 * 256];
+    int top = 0;
+    size_t nbox = 0;
+    box[0] = -R, box[1] = R, box[2] = w->pts[0], box[3] = w->pts[w->npts - 1];
+    top = 1;
+    w->nsliv = 0;
+    int spent = 0; /* the work limit reached: what is left is kept whole */
+    while (top > 0) {
+        double *b = &box[4 * --top];
+        double x0 = b[0], x1 = b[1], s0 = b[2], s1 = b[3];
+        int xfree = 0;
+        if (!spent && ++nbox > THR_BOXES)
+            spent = 1;
+        if (!spent && !thr_box(&c, x0, x1, s0, s1, &xfree, NULL, NULL))
+            continue;
+        double xm = 0.5 * (x0 + x1), sm = 0.5 * (s0 + s1);
+        int byx = !xfree && x1 - x0 >= THR_ASPECT * (s1 - s0);
+        int leaf = spent || top + 2 > 256 || s1 - s0 <= side ||
+                   (byx ? !(xm > x0 && xm < x1) : !(sm > s0 && sm < s1));
+        if (!leaf) {
+            double *l = &box[4 * top++], *h = &box[4 * top++];
+            l[0] = x0, l[1] = byx ? xm : x1, l[2] = s0, l[3] = byx ? s1 : sm;
+            h[0] = byx ? xm : x0, h[1] = x1, h[2] = byx ? s0 : sm, h[3] = s1;
+            continue;
+        }
+        if (w->nsliv == w->cap_sliv) {
+            if (w->cap_sliv >= THR_LEAVES) { /* merged; past half full, the rest kept whole */
+                thr_merge(w);
+                spent |= w->nsliv > THR_LEAVES / 2;
+            } else {
+                size_t cap = w->cap_sliv ? 2 * w->cap_sliv : 16;
+                double *p = realloc(w->sliv, 3 * cap * sizeof *p);
+                if (!p)
+                    return aa_fail(AA_ENOMEM, "out of memory for the threshold's slivers");
+                w->sliv = p, w->cap_sliv = cap;
+            }
+        }
+        w->sliv[3 * w->nsliv] = s0, w->sliv[3 * w->nsliv + 1] = s1;
+        w->nsliv++;
+    }
+    if (w->nsliv == 0)
+        return AA_OK;
+    thr_merge(w);
+    if (w->nsliv > THR_SLIVERS) { /* too many: one from the first to the last */
+        w->sliv[1] = w->sliv[3 * w->nsliv - 2];
+        w->nsliv = 1;
+    }
+    /* Each sliver's rows: |F(s) - F(m)| per unit of height, m its middle.
+     * A radial filter: |F| <= 2 R times the weight's peak (at the centre
+     * for every filter here), so twice that.  The box: F(s) - F(m) is the
+     * integral over the row of dec(E(x, s)) - dec(E(x, m)), at most 2.3
+     * |E(x, s) - E(x, m)| (the decoding's slope is below 2.3 on [0, 1])
+     * plus 2.4e-9 (its step at the threshold), and |E(x, s) - E(x, m)|
+     * is bounded on 256 strips across the window (thr_strip).  A
+     * separable filter: F = w(s) G(s), the sliver taken as G(m) times the
+     * weight's integral over it (integrate_intervals), whose error is at
+     * most the weight's peak times |G(s) - G(m)|, the box's bound times
+     * the weight's peak again (|w(x)| under the row's integral). */
+    double w0 = w->box || w->radial ? 1.0 : aa_filter_weight(w->f, 0.0);
+    double pk = w->box ? 1.0 : w->radial ? aa_filter_weight2(w->f, 0.0, 0.0) : w0 * w0;
+    double crude = 4.0 * R * fabs(pk);
+    for (size_t k = 0; k < w->nsliv; k++) {
+        double a = w->sliv[3 * k], b = w->sliv[3 * k + 1], wid = 0.0;
+        w->sliv[3 * k + 2] = crude;
+        if (w->radial)
+            continue;
+        for (int i = 0; i < 256; i++)
+            wid += thr_strip(&c, -R + 2.0 * R * i / 256, -R + 2.0 * R * (i + 1) / 256, a, b, 0);
+        w->sliv[3 * k + 2] = fmin(crude, fabs(pk) * (wid + 2.0 * R * 2.4e-9) * (1.0 + 1e-9));
+    }
+    int st = AA_OK;
+    for (size_t k = 0; k < w->nsliv && !st; k++) {
+        double a = w->sliv[3 * k], b = w->sliv[3 * k + 1];
+        if ((st = add_point(w, a)) || (st = add_point(w, b)))
+            return st;
+    }
+    return AA_OK;
+}
+
+/* If the rows [a, b] lie in a sliver of thr_certify, its bound of |F(s) -
+ * F(m)|; else -1. */
+static double thr_in_sliver(const worker *w, double a, double b)
+{
+    for (size_t k = 0; k < w->nsliv; k++)
+        if (a >= w->sliv[3 * k] && b <= w->sliv[3 * k + 1])
+            return w->sliv[3 * k + 2];
+    return -1.0;
+}
+
 /* Where layers of different t mix, the heights at which the threshold's
  * curve is tangent to a row or crosses another of the row's cuts (truth.c's
  * opening comment, "several gradients"): between the breakpoints, rows at
@@ -5609,22 +6306,51 @@ static int scene_translucent(const worker *w)
     return 0;
 }
 
-/* Once a render: whether the gradient layers are not all of one t
- * (gen_same_t) and something is translucent (thr_on). */
+/* Once a render: whether its layers are not all of one t and something is
+ * translucent (thr_on), and whether they are all linear or radial but the
+ * cone case, in sRGB (thr_cert: thr_certify's kinds). */
 static void thr_setup(worker *w)
 {
     int mixed = 0;
     for (int k = 1; k < w->ngl && !mixed; k++)
         mixed = !gen_same_t(&w->gl[0], &w->gl[k]);
     w->thr_on = mixed && scene_translucent(w);
+    w->thr_cert = !aa_scene_field(w->scene, NULL, NULL, NULL);
+    for (int k = 0; k < w->ngl; k++)
+        if (w->gl[k].lin || (w->gl[k].rg && w->gl[k].rg->cone))
+            w->thr_cert = 0;
+}
+
+/* The breakpoints sorted, each once. */
+static void thr_sort(worker *w)
+{
+    qsort(w->pts, w->npts, sizeof *w->pts, truth_cmp_double);
+    size_t m = 1;
+    for (size_t k = 1; k < w->npts; k++)
+        if (w->pts[k] > w->pts[m - 1])
+            w->pts[m++] = w->pts[k];
+    w->npts = m;
 }
 
 static int thr_heights(worker *w, int nch)
 {
+    w->nsliv = 0;
     if (!w->thr_on || w->npts < 2)
         return AA_OK;
     double found[THR_EVENTS];
-    int nfound = 0, any = 0;
+    int nfound = 0, any = 0, taken = 0;
+    if (w->thr_cert && thr_window_clear(w)) {
+        size_t n0 = w->npts;
+        int st = thr_certify(w, nch, &taken);
+        if (st)
+            return st;
+        if (taken) {
+            if (w->npts > n0)
+                thr_sort(w);
+            return AA_OK;
+        }
+    }
+    w->scanned++;
     thr_sig *a = malloc(3 * sizeof *a);
     if (!a)
         return aa_fail(AA_ENOMEM, "out of memory for the threshold's scan");
@@ -5685,12 +6411,7 @@ static int thr_heights(worker *w, int nch)
         st = add_point(w, found[k]);
     if (st)
         return st;
-    qsort(w->pts, w->npts, sizeof *w->pts, truth_cmp_double);
-    size_t m = 1;
-    for (size_t k = 1; k < w->npts; k++)
-        if (w->pts[k] > w->pts[m - 1])
-            w->pts[m++] = w->pts[k];
-    w->npts = m;
+    thr_sort(w);
     return AA_OK;
 }
 
@@ -5817,7 +6538,7 @@ static int integrate_pixel(worker *w, int grey, double *value, double *bound)
  * ------------------------------------------------------------------------ */
 
 typedef struct row_stats {
-    size_t integrated, filled, fast, crowded;
+    size_t integrated, filled, fast, crowded, scanned;
     double max_bound;
     int worst_i, worst_j;
 } row_stats;
@@ -5893,6 +6614,7 @@ static int field_render(const aa_scene *placed, const aa_filter *f, int threads,
         stats->integrated = (size_t)out->w * (size_t)out->h;
         stats->filled = 0;
         stats->crowded = 0;
+        stats->scanned = 0;
         stats->max_bound = max_bound;
         stats->worst_i = worst[0];
         stats->worst_j = worst[1];
@@ -5948,7 +6670,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
     gsl_set_error_handler_off(); /* QAG's status is judged by its error estimate */
     int status = AA_OK;
     char message[1024] = "";
-    row_stats total = {0, 0, 0, 0, 0.0, -1, -1};
+    row_stats total = {0, 0, 0, 0, 0, 0.0, -1, -1};
 #ifdef _OPENMP
     int nthreads = aa_thread_count(threads);
 #else
@@ -5985,7 +6707,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
     {
         worker w;
         panel_worker fs;
-        row_stats rs = {0, 0, 0, 0, 0.0, -1, -1};
+        row_stats rs = {0, 0, 0, 0, 0, 0.0, -1, -1};
         int st = worker_init(&w, placed, f);
         if (!st && grad)
             st = grad_init(&w);
@@ -6004,6 +6726,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
             }
         }
         rs.crowded = w.crowded;
+        rs.scanned = w.scanned;
         worker_free(&w);
         fast_free(&fs);
 #pragma omp critical(aa_truth_merge)
@@ -6017,6 +6740,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
             total.filled += rs.filled;
             total.fast += rs.fast;
             total.crowded += rs.crowded;
+            total.scanned += rs.scanned;
             if (rs.max_bound > total.max_bound ||
                 (rs.max_bound == total.max_bound && rs.worst_j >= 0 &&
                  (total.worst_j < 0 || rs.worst_j < total.worst_j))) {
@@ -6036,6 +6760,7 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
         stats->integrated = total.integrated;
         stats->filled = total.filled;
         stats->crowded = total.crowded;
+        stats->scanned = total.scanned;
         stats->max_bound = total.max_bound;
         stats->worst_i = total.worst_i;
         stats->worst_j = total.worst_j;

@@ -19,6 +19,10 @@ typedef struct aa_truth_stats {
     size_t crowded;    /* of the integrated, those taken one piece at a time */
     double max_bound;  /* largest per-pixel error bound */
     int worst_i, worst_j;
+    /* of the integrated, those whose threshold heights where gradients of
+     * different t mix were scanned, not certified: their bound is QAG's
+     * estimate, not a proof (truth.c, "several gradients") */
+    size_t scanned;
 } aa_truth_stats;
 
 /* Whether long double arithmetic is wider than double where this runs (the
