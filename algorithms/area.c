@@ -141,14 +141,15 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 3.00 by instructions (callgrind:
- * area 318 M a render, point 106 M), in CPU time 3.12 to 4.19, median 3.27
- * (three runs on the shared machine at a load of about 11; area 62 to 67
- * ms, point 14.8 to 21.6 ms): the crossings' root-finding (Newton on the
- * curve; the band lines' y at an offset piece's bottom evaluated once a
- * piece, aa__offset_end; a cell's side from the chord's root,
- * offset_tau_u) is 39% of area's instructions (the band lines' 21%), the
- * quadrature 17% (a cubic's nodes four at a time with AVX),
+ * (tests/bench_bezstroke.c), area/point 2.79 by instructions (callgrind:
+ * area 296 M a render, point 106 M), in CPU time 3.43 to 3.67 (three runs
+ * on the shared machine at a load of about 4.5; area 55 to 75 ms, point
+ * 16 to 21 ms): the crossings' root-finding (Newton
+ * on the curve; the band lines and the heights inside a band started
+ * from a table of t(y) made once a piece, load_ytab; a cell's side from
+ * the chord's root, offset_tau_u) is 33% of area's instructions (the band
+ * lines' 15%), the quadrature 19% (a cubic's nodes four at a time with
+ * AVX),
  * the meetings of pieces in a cluster 12% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
