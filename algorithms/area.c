@@ -141,14 +141,15 @@
  * hook, three arcs with round joins and caps, square-capped dashes and a
  * sheared map; the tube formula (width x arc length, the length by GSL)
  * within 1.4e-17.  Speed: on 1,000 stroked cubics at 1024x1024, one thread
- * (tests/bench_bezstroke.c), area/point 3.00 by instructions (callgrind:
- * area 318 M a render, point 106 M), in CPU time 3.12 to 4.19, median 3.27
- * (three runs on the shared machine at a load of about 11; area 62 to 67
- * ms, point 14.8 to 21.6 ms): the crossings' root-finding (Newton on the
- * curve; the band lines' y at an offset piece's bottom evaluated once a
- * piece, aa__offset_end; a cell's side from the chord's root,
- * offset_tau_u) is 39% of area's instructions (the band lines' 21%), the
- * quadrature 17% (a cubic's nodes four at a time with AVX),
+ * (tests/bench_bezstroke.c), area/point 2.79 by instructions (callgrind:
+ * area 296 M a render, point 106 M), in CPU time 3.43 to 3.67 (three runs
+ * on the shared machine at a load of about 4.5; area 55 to 75 ms, point
+ * 16 to 21 ms): the crossings' root-finding (Newton
+ * on the curve; the band lines and the heights inside a band started
+ * from a table of t(y) made once a piece, load_ytab; a cell's side from
+ * the chord's root, offset_tau_u) is 33% of area's instructions (the band
+ * lines' 15%), the quadrature 19% (a cubic's nodes four at a time with
+ * AVX),
  * the meetings of pieces in a cluster 12% (aa__piece_meet_at, given the
  * band's parameters of both segs: the pieces of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
@@ -614,6 +615,36 @@ static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
     a->mline = INT_MIN;
 }
 
+/* A band line's start on an offset piece.  The line's root is sought on
+ * the whole piece (offset_line_t: a function of the piece and the line
+ * alone); from the piece's ends (the quadratic through the top's value
+ * and the bottom's value and slope) the double phase took 2.69
+ * evaluations a root on tests/bench_bezstroke.c's scene, where one
+ * suffices from a start within about 1e-6 of the root.  The start comes
+ * from a table made once a piece (load_ytab): nodes (t, y, dt/dy) along
+ * it, y and its slope in double as the solver evaluates them
+ * (aa__offset_end), between which t(y), the inverse of a coordinate
+ * monotone on the piece, is the cubic Hermite form through both nodes'
+ * values and slopes (yt_herm).  An interval is halved until the form at
+ * its middle's y is within YT_TOL of the middle's t (the middle then kept
+ * as a node too: the halves' forms are about 16 times closer), at most
+ * YT_DEPTH times, and from YT_MIN halvings on not where an end's dt/dy
+ * is over YT_TURN times the chord's (y turning at the piece's end, dt/dy
+ * infinite there, where no halving brings the form within YT_TOL); an
+ * interval left not within it is marked, and its lines start from the
+ * ends as before.  The heights inside a band (tau_of_v, key_u) start from
+ * the table too.  Only the start: the bracket is the same and the root
+ * Newton's, so a poor start costs steps, not accuracy.  A node is 4
+ * doubles: t, y, dt/dy, and 1 where the interval ending at it is within
+ * YT_TOL (0 at the first).  On tests/bench_bezstroke.c's scene at 1024 px
+ * (algorithms/README.md): 115,222 nodes for 4,558 offset pieces, the
+ * band lines' double evaluations 159,574 a render to 65,500, the heights'
+ * 77,416 to 52,237. */
+#define YT_TOL 3e-5
+#define YT_DEPTH 8
+#define YT_MIN 3
+#define YT_TURN 4.0
+
 /* An offset piece's parameter t where it meets the line y = yl (fa = y0 -
  * yl: its top's height over it, negative) and its point there (X, Y): the
  * root's point (aa__offset_root_xy: the root's last evaluation moved to
@@ -622,11 +653,12 @@ static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
  * alone, so a band's bottom and the next band's top agree whichever row
  * asks first. */
 static double offset_line_t(const ar_piece *p, double fa, double yl, long double *X,
-                            long double *Y)
+                            long double *Y, size_t *hint)
 {
     const aa_piece *q = p->src;
     long double xy[2];
-    double t = aa__offset_root_xy(&q->oc, &p->ofix, 1, q->ot0, q->ot1, fa, yl, p->oend, xy);
+    double t = aa__offset_root_xy(&q->oc, &p->ofix, 1, q->ot0, q->ot1, fa, yl,
+                                  ytab_guess(p, yl, hint), p->oend, xy);
     if (t == q->ot0 || t == q->ot1)
         offset_point(p, t, X, Y);
     else
@@ -644,7 +676,7 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     double t = q->ot0;
     long double X, Y;
     if (p->y0 < ja)
-        t = offset_line_t(p, p->y0 - ja, ja, &X, &Y);
+        t = offset_line_t(p, p->y0 - ja, ja, &X, &Y, &a->ythint);
     else
         offset_point(p, t, &X, &Y);
     double c0 = floor((double)X);
@@ -776,7 +808,7 @@ static double offset_line(const ar_seg *a, int m, double *u, long double *y)
 {
     double c = a->Va - m;
     long double X;
-    double t = offset_line_t(a->p, a->p->y0 + c, -c, &X, y);
+    double t = offset_line_t(a->p, a->p->y0 + c, -c, &X, y, &((ar_seg *)a)->ythint);
     *u = (double)(X - a->c0);
     return a->p->sg * t;
 }
@@ -2166,8 +2198,48 @@ static void state_free(ar_state *S)
     free(S->evenodd);
     free(S->inside);
     free(S->pan);
+    free(S->ytab);
     area_gradient_free(S);
     memset(S, 0, sizeof *S);
+}
+
+/* A node of an offset piece's table of band lines' starts (ytab_guess) */
+static void yt_node(const aa_piece *p, double t, double nd[4])
+{
+    double e[4];
+    aa__offset_end(&p->oc, 1, t, e);
+    nd[0] = t, nd[1] = e[0] + e[1], nd[2] = 1.0 / e[2], nd[3] = 0.0;
+}
+
+static int yt_push(ar_state *S, const double nd[4], int ok)
+{
+    if (S->nyt == S->capyt) {
+        size_t cap = S->capyt ? 2 * S->capyt : 1024;
+        double *t = realloc(S->ytab, cap * 4 * sizeof *t);
+        if (!t)
+            return aa_fail(AA_ENOMEM, "out of memory for offset pieces' tables");
+        S->ytab = t, S->capyt = cap;
+    }
+    double *o = S->ytab + 4 * S->nyt++;
+    o[0] = nd[0], o[1] = nd[1], o[2] = nd[2], o[3] = ok ? 1.0 : 0.0;
+    return AA_OK;
+}
+
+/* The nodes after a, up to b (a pushed already) */
+static int yt_rec(ar_state *S, const aa_piece *p, const double a[4], const double b[4],
+                  int depth)
+{
+    double m[4];
+    yt_node(p, 0.5 * (a[0] + b[0]), m);
+    int ok = fabs(yt_herm(a, b, m[1]) - m[0]) <= YT_TOL;
+    double ch = fabs((b[0] - a[0]) / (b[1] - a[1]));
+    int turn = !(fabs(a[2]) <= YT_TURN * ch && fabs(b[2]) <= YT_TURN * ch);
+    if (ok || depth >= YT_DEPTH || (depth >= YT_MIN && turn)) {
+        int st = yt_push(S, m, ok);
+        return st ? st : yt_push(S, b, ok);
+    }
+    int st = yt_rec(S, p, a, m, depth + 1);
+    return st ? st : yt_rec(S, p, m, b, depth + 1);
 }
 
 /* An offset piece: tau = sg t rising down it, its x turns in tau, its
@@ -2205,6 +2277,29 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
     q->npan = np;
     q->quad = &S->quad;
     S->npan += np;
+    return AA_OK;
+}
+
+/* An offset piece's table of band lines' starts, appended to S->ytab
+ * (after every piece's panels: the two arrays grown in turns were copied
+ * on most of their reallocations) */
+static int load_ytab(ar_state *S, ar_piece *q)
+{
+    const aa_piece *p = q->src;
+    double a[4], b[4];
+    yt_node(p, p->ot0, a);
+    yt_node(p, p->ot1, b);
+    q->yt0 = S->nyt;
+    int st = yt_push(S, a, 0);
+    if (st || (st = yt_rec(S, p, a, b, 0)))
+        return st;
+    q->nyt = S->nyt - q->yt0;
+    /* the nodes' y rising strictly (ytab_guess's walk), else no table */
+    for (size_t k = 1; k < q->nyt; k++)
+        if (!(S->ytab[4 * (q->yt0 + k) + 1] > S->ytab[4 * (q->yt0 + k - 1) + 1])) {
+            S->nyt = q->yt0, q->nyt = 0;
+            break;
+        }
     return AA_OK;
 }
 
@@ -2262,8 +2357,13 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
         q->id = (uint32_t)k;
     }
     for (size_t k = 0; k < n; k++)
-        if (S->piece[k].offset)
+        if (S->piece[k].offset && (st = load_ytab(S, &S->piece[k])))
+            return st;
+    for (size_t k = 0; k < n; k++)
+        if (S->piece[k].offset) {
             S->piece[k].pan = S->pan + S->piece[k].pan0;
+            S->piece[k].ytab = S->ytab + 4 * S->piece[k].yt0;
+        }
     if (n)
         qsort(S->piece, n, sizeof *S->piece, cmp_piece);
     return AA_OK;

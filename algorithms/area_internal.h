@@ -103,13 +103,17 @@ typedef struct ar_piece {
      * them, state-owned) and the rules (area_offset.c); oend: y's
      * evaluation at its bottom ot1 (aa__offset_end), which every band
      * line's root would repeat; ofix: what its roots take from the curve
-     * alone (aa__offset_fix_init) */
+     * alone (aa__offset_fix_init); ytab: the nyt nodes of its table of
+     * roots' starts in y (ytab_guess; area.c, load_ytab; state-owned, 4
+     * doubles each, yt0 the first's index in the state's) */
     int offset, ostops; /* ostops: its curve's stops (aa__offset_stops) */
     aa__offset_fix ofix;
     double sg, ote, ote2;
     double oend[4];
     const ar_panel *pan;
     size_t pan0, npan; /* pan0: the first panel's index in the state's */
+    const double *ytab;
+    size_t yt0, nyt;
     const ar_quad *quad;
 } ar_piece;
 
@@ -146,6 +150,7 @@ typedef struct ar_seg {
      * rendered): the next band's top, without solving again */
     double tline, uline;
     long double yline; /* an offset piece's y there (its v in the next band) */
+    size_t ythint;     /* an offset piece's last interval of its table (ytab_guess) */
     /* an offset piece: its v at up to four taus vt of the current band
      * (NAN: none), the ends of its parts: [2] and [3] the band's ends as
      * seg_make evaluated them, [0] and [1] the others (seg_u, part_area,
@@ -272,6 +277,8 @@ typedef struct ar_state {
     ar_worker *workers;
     ar_panel *pan; /* the offset pieces' panels */
     size_t npan;
+    double *ytab; /* the offset pieces' tables' nodes (capyt allocated) */
+    size_t nyt, capyt;
     ar_quad quad;
     /* gradient paint (area_gradient.c): the linear gradient layers, and per
      * layer the index of its gradient, -1 for a layer painting its colour */
@@ -435,6 +442,42 @@ static inline double seg_u(const ar_seg *s, double t)
     return offset_seg_u(s, t, &y);
 }
 
+/* The Hermite form of t at y between nodes a and b of an offset piece's
+ * table of starts (area.c, before offset_line_t) */
+static inline double yt_herm(const double *a, const double *b, double y)
+{
+    double h = b[1] - a[1], u = (y - a[1]) / h, u2 = u * u, u3 = u2 * u;
+    return a[0] + (b[0] - a[0]) * (3.0 * u2 - 2.0 * u3) +
+           h * (a[2] * (u3 - 2.0 * u2 + u) + b[2] * (u3 - u2));
+}
+
+/* The start of a root of y = yl on offset piece p from its table, NaN
+ * where the table has none (the solver then starts as it would without).
+ * The nodes' y rise strictly (load_ytab), so one interval holds yl and
+ * the walk finds it from any *hint (the seg's last, kept by the worker:
+ * the lines of successive bands are a node or two apart); the start is a
+ * function of the piece and yl alone. */
+static inline double ytab_guess(const ar_piece *p, double yl, size_t *hint)
+{
+    const double *n = p->ytab;
+    size_t last = p->nyt - 1, k = *hint;
+    if (p->nyt < 2 || !(n[1] <= yl && yl < n[4 * last + 1]))
+        return NAN;
+    k = k < last ? k : last - 1;
+    while (n[4 * k + 1] > yl)
+        k--;
+    while (n[4 * k + 5] <= yl)
+        k++;
+    *hint = k;
+    const double *a = n + 4 * k, *b = a + 4;
+    if (b[3] == 0.0)
+        return NAN;
+    double g = yt_herm(a, b, yl);
+    if (a[0] < b[0] ? (g > a[0] && g < b[0]) : (g < a[0] && g > b[0]))
+        return g;
+    return a[0] + (b[0] - a[0]) * ((yl - a[1]) / (b[1] - a[1]));
+}
+
 /* A cubic's root of c + tau (k1 + tau (k2 + tau k3)) in [a, b], where it
  * increases from a non-positive value to a non-negative one: Newton's
  * method kept in the bracket, bisection where a step would leave it, to
@@ -527,9 +570,9 @@ static inline double conic_q_of_v(const ar_seg *s, double c)
 static inline double offset_tau(const ar_seg *s, int coord, double a, double b, double fa,
                                 double target)
 {
-    double sg = s->p->sg;
+    double sg = s->p->sg, g = coord ? ytab_guess(s->p, target, &((ar_seg *)s)->ythint) : NAN;
     return sg * (double)aa__offset_root_fix(&s->p->src->oc, &s->p->ofix, coord, sg * a, sg * b,
-                                            fa, target, NAN, NULL, NULL, NULL);
+                                            fa, target, g, NULL, NULL, NULL);
 }
 
 /* offset_tau where x is target (a cell's side), keeping v there as the
@@ -587,10 +630,10 @@ static inline double key_u(const ar_seg *s, double v)
 {
     if (!(s->p->curved && s->p->offset) || v <= s->va || v >= s->vb)
         return u_at(s, tau_of_v(s, v));
-    double sg = s->p->sg;
+    double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &((ar_seg *)s)->ythint);
     long double x;
     aa__offset_root_fix(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb, s->va - v,
-                        v - s->V, NAN, NULL, &x, NULL);
+                        v - s->V, g, NULL, &x, NULL);
     return (double)(x - s->c0);
 }
 

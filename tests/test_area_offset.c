@@ -496,6 +496,7 @@ static void test_fix(void **state)
                         r1 = aa__offset_root_fix(&oc, &fx, coord, ta, tb, fa, target, guess,
                                                  NULL, &o1, &s1);
                         assert_true(r0 == r1 && o0 == o1 && s0 == s1);
+                        long double rg = r1;
                         double end[4];
                         aa__offset_end(&oc, coord, (double)tb, end);
                         r0 = aa__offset_solve_end(&oc, coord, (double)ta, (double)tb, fa, target,
@@ -518,12 +519,14 @@ static void test_fix(void **state)
                          * brackets).  And coordinate coord there at the
                          * target within the slope times the rounding of t
                          * and that tolerance (Newton's root, the point's
-                         * Taylor form) */
-                        for (int eb = 0; eb < 2; eb++) {
+                         * Taylor form); from the guess too (eb 2), the
+                         * root the same as aa__offset_root_fix's from it */
+                        for (int eb = 0; eb < 3; eb++) {
                             long double xy[2], EX, EY, EDX, EDY;
                             double t = aa__offset_root_xy(&oc, &fx, coord, ta, tb, fa, target,
-                                                          eb ? end : NULL, xy);
-                            assert_true(t == (double)r1);
+                                                          eb == 2 ? guess : NAN,
+                                                          eb == 1 ? end : NULL, xy);
+                            assert_true(t == (double)(eb == 2 ? rg : r1));
                             aa__offset_eval(&oc, t, &EX, &EY, &EDX, &EDY);
                             double dx = (double)fabsl(xy[0] - EX), dy = (double)fabsl(xy[1] - EY);
                             double tol = 2e-18 * ((double)(fabsl(EX) + fabsl(EY)) + 64);
@@ -531,7 +534,8 @@ static void test_fix(void **state)
                             assert_true(dx <= tol && dy <= tol);
                             long double own = coord ? xy[1] : xy[0], sl = coord ? EDY : EDX;
                             assert_true(fabsl(own - target) <=
-                                        fabsl(sl) * fabsl((long double)t - r1) + tol);
+                                        fabsl(sl) * fabsl((long double)t - (eb == 2 ? rg : r1)) +
+                                            tol);
                         }
                         roots++;
                     }
@@ -935,6 +939,64 @@ static void test_nodes(void **state)
     assert_true(parts > 0 && evolutes > 0);
 }
 
+/* area's band lines' starts on an offset piece (area_internal.h,
+ * ytab_guess) from a table of nodes (t, y, dt/dy) made here as area.c's
+ * load_offset makes them (y and its slope by aa__offset_end), at t = k/64
+ * on the offset of x = t, y = t + 0.3 t^2 (rising in y: y' >= 1 - d k >
+ * 0, its curvature k at most 0.6 and d = 0.1), mapped 64 px to a unit:
+ * for 200 heights, the interval the walk ends on holds the height and is
+ * the same from every start (hint), so the start is a function of the
+ * height alone; and it is within 1e-8 of the root aa__offset_root finds
+ * over the whole curve (the cubic Hermite form of t(y) on a 1/64 interval
+ * errs by about h^4 t/384, h about 1.3 px, t about 1e-8 here) */
+static void test_starts(void **state)
+{
+    (void)state;
+    aa_offset_curve oc;
+    memset(&oc, 0, sizeof oc);
+    const double b[8] = {0, 1, 0, 0, 0, 1, 0.3, 0}, m[6] = {64, 0, 0, 64, 3, 2};
+    memcpy(oc.b, b, sizeof oc.b);
+    memcpy(oc.m, m, sizeof oc.m);
+    oc.d = 0.1;
+    oc.base = AA_OFFSET_CUBIC;
+    enum { N = 65 };
+    double nd[4 * N];
+    for (int k = 0; k < N; k++) {
+        double e[4];
+        aa__offset_end(&oc, 1, k / 64.0, e);
+        nd[4 * k] = k / 64.0, nd[4 * k + 1] = e[0] + e[1], nd[4 * k + 2] = 1.0 / e[2];
+        nd[4 * k + 3] = k > 0;
+        if (k > 0)
+            assert_true(nd[4 * k + 1] > nd[4 * k - 3]);
+    }
+    ar_piece ap;
+    memset(&ap, 0, sizeof ap);
+    ap.ytab = nd, ap.nyt = N;
+    double worst = 0.0;
+    for (int i = 1; i < 200; i++) {
+        double yl = nd[1] + (nd[4 * N - 3] - nd[1]) * i / 200.0;
+        size_t h0 = 0;
+        double g = ytab_guess(&ap, yl, &h0);
+        assert_true(h0 < N - 1 && nd[4 * h0 + 1] <= yl && yl < nd[4 * h0 + 5]);
+        for (size_t hint = 0; hint < N + 3; hint++) {
+            size_t h = hint;
+            double g2 = ytab_guess(&ap, yl, &h);
+            assert_true(h == h0 && memcmp(&g, &g2, sizeof g) == 0);
+        }
+        long double X, Y;
+        aa__offset_eval(&oc, 0, &X, &Y, NULL, NULL);
+        double r = (double)aa__offset_root(&oc, 1, 0, 1, Y - yl, yl, NAN, NULL, NULL);
+        worst = fmax(worst, fabs(g - r));
+    }
+    /* outside the table's heights: none */
+    size_t h = 0;
+    assert_true(isnan(ytab_guess(&ap, nd[1] - 0.5, &h)));
+    assert_true(isnan(ytab_guess(&ap, nd[4 * N - 3], &h)));
+    print_message("199 heights: the starts within %.2g of the roots, the same from every hint\n",
+                  worst);
+    assert_true(worst <= 1e-8);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -946,6 +1008,7 @@ int main(void)
                                        cmocka_unit_test(test_fix),
                                        cmocka_unit_test(test_vertex),
                                        cmocka_unit_test(test_ulp_vertex),
-                                       cmocka_unit_test(test_nodes)};
+                                       cmocka_unit_test(test_nodes),
+                                       cmocka_unit_test(test_starts)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

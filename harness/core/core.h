@@ -848,14 +848,15 @@ long double aa__offset_root_fix(const aa_offset_curve *oc, const aa__offset_fix 
                                 long double ta, long double tb, long double fa,
                                 long double target, double guess, const double *endb,
                                 long double *other, double *slope);
-/* aa__offset_root_fix without a guess, its root rounded to double, and the
- * point there (xy: x and y, as aa__offset_eval gives them to within about
- * 1e-22 of the second derivative) from the root's last evaluation moved
- * by its derivative: for a caller that would evaluate the point at the
- * root again (`area`'s band lines). */
+/* aa__offset_root_fix, its root rounded to double, and the point there
+ * (xy: x and y, as aa__offset_eval gives them to within about 1e-22 of
+ * the second derivative) from the root's last evaluation moved by its
+ * derivative: for a caller that would evaluate the point at the root
+ * again (`area`'s band lines).  A guess strictly inside (ta, tb) is the
+ * start (endb then unused); else (NaN) endb's as aa__offset_root_fix's. */
 double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                           long double ta, long double tb, long double fa, long double target,
-                          const double *endb, long double xy[2]);
+                          double guess, const double *endb, long double xy[2]);
 /* Coordinate coord of oc at t as the double phase of the solvers first
  * evaluates it at a bracket's far end (e[4], opaque): for a caller that
  * solves for many targets in one bracket [ta, tb] (a piece's band lines),

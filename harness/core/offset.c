@@ -603,9 +603,9 @@ long double aa__offset_solve_end(const aa_offset_curve *oc, int coord, double ta
 
 double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                           long double ta, long double tb, long double fa, long double target,
-                          const double *endb, long double xy[2])
+                          double guess, const double *endb, long double xy[2])
 {
-    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, NAN, endb, NULL, NULL, xy);
+    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
 }
 
 static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
