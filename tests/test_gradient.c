@@ -2205,6 +2205,47 @@ static void test_mixed_lens(void **state)
                3);
 }
 
+/* Which pixels take the certified step and which the scan, as truth.c's
+ * opening comment ("several gradients") states the rule: the lens's
+ * scene, both layers filling the view (no edge in any window, a linear
+ * and a radial gradient in sRGB), has no pixel scanned; with the radial
+ * layer's rectangle ending at x = 8.5, the windows of column 8 hold that
+ * edge, both layers painting in each: those 16 pixels are scanned, and
+ * no other. */
+static void test_mixed_which_step(void **state)
+{
+    (void)state;
+    mpic p = {2,
+              {{0, {0, 0, 16, 16}, AA_GRADIENT_LINEAR,
+                {7.479922430578072, 7.088783293502782, 7.729693329008287, 12.080037719826626, 0,
+                 0},
+                AA_SPREAD_PAD, 2, lens_l, 1.0},
+               {0, {0, 0, 16, 16}, AA_GRADIENT_RADIAL,
+                {9.499166770827133, 47.44001041579865, 40, 9.499166770827133, 47.44001041579865, 0},
+                AA_SPREAD_REFLECT, 3, lens_r, 0.5}},
+              {0, 0, 0},
+              0};
+    gw = gh = W;
+    for (int edge = 0; edge < 2; edge++) {
+        p.l[1].r[2] = edge ? 8.5 : 16;
+        aa_scene *s = mpic_scene(&p);
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, W, W, &ref, &bound, &stats);
+        print_message("radial layer %s: %zu of %zu integrated pixels scanned\n",
+                      edge ? "ending at x = 8.5" : "filling the view", stats.scanned,
+                      stats.integrated);
+        if (!edge)
+            assert_int_equal(stats.scanned, 0);
+        else
+            assert_int_equal(stats.scanned, W);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+        aa_scene_free(s);
+    }
+    gw = W, gh = H;
+}
+
 int main(void)
 {
     print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
@@ -2224,6 +2265,7 @@ int main(void)
         cmocka_unit_test(test_mixed_tangent),
         cmocka_unit_test(test_mixed_stop_circle),
         cmocka_unit_test(test_mixed_lens),
+        cmocka_unit_test(test_mixed_which_step),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
