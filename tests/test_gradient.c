@@ -2187,10 +2187,10 @@ static const aa_gradient_stop lens_l[2] = {
     {0.0, {{3.8699690402476816e-05, LENS_HALF, LENS_HALF}}, 1.0}, /* 0.0005 encoded */
     {1.0, {{1.0, LENS_HALF, LENS_HALF}}, 1.0}};
 
-static void test_mixed_lens(void **state)
+/* The lens's picture: a radial gradient at alpha 0.5 over a linear one,
+ * both filling the 16 x 16 view. */
+static mpic lens_pic(void)
 {
-    (void)state;
-    static const int px[3][2] = {{7, 7}, {6, 7}, {8, 7}};
     mpic p = {2,
               {{0, {0, 0, 16, 16}, AA_GRADIENT_LINEAR,
                 {7.479922430578072, 7.088783293502782, 7.729693329008287, 12.080037719826626, 0,
@@ -2201,6 +2201,14 @@ static void test_mixed_lens(void **state)
                 AA_SPREAD_REFLECT, 3, lens_r, 0.5}},
               {0, 0, 0},
               0};
+    return p;
+}
+
+static void test_mixed_lens(void **state)
+{
+    (void)state;
+    static const int px[3][2] = {{7, 7}, {6, 7}, {8, 7}};
+    mpic p = lens_pic();
     mpic_check("radial over linear, the threshold's curve a thin lens between scan rows", &p, px,
                3);
 }
@@ -2215,16 +2223,7 @@ static void test_mixed_lens(void **state)
 static void test_mixed_which_step(void **state)
 {
     (void)state;
-    mpic p = {2,
-              {{0, {0, 0, 16, 16}, AA_GRADIENT_LINEAR,
-                {7.479922430578072, 7.088783293502782, 7.729693329008287, 12.080037719826626, 0,
-                 0},
-                AA_SPREAD_PAD, 2, lens_l, 1.0},
-               {0, {0, 0, 16, 16}, AA_GRADIENT_RADIAL,
-                {9.499166770827133, 47.44001041579865, 40, 9.499166770827133, 47.44001041579865, 0},
-                AA_SPREAD_REFLECT, 3, lens_r, 0.5}},
-              {0, 0, 0},
-              0};
+    mpic p = lens_pic();
     gw = gh = W;
     for (int edge = 0; edge < 2; edge++) {
         p.l[1].r[2] = edge ? 8.5 : 16;
