@@ -25,6 +25,16 @@
  *    aa_piece_x_at, is within 1e-13 of 0; and a vertical line 1e-6 to
  *    1e-10 inside an offset piece's x extreme, which it crosses twice
  *    close together, is met on both sides of the extreme (test_touch);
+ *  - pairs of pieces that share an end point (a stroke's pieces meeting
+ *    at a vertex, among them the normal lines and evolutes leaving the
+ *    fold of an offset tangent to each other, and lines from an offset
+ *    piece's end through its point a fraction of its height on, which
+ *    meet it there again): every sign change of x_p - x_q sampled at
+ *    2,050 heights (even and geometric towards the end) farther than
+ *    1e-6 of the scale from the end holds a meeting of both forms, and
+ *    each of area's meetings lies between such samples or where x_p -
+ *    x_q is within 1e-13 of 0, never within that of the end
+ *    (test_shared_ends);
  *  - a crossing's root near a turn of the offset's y: y at the parameter
  *    aa__offset_root returns is the line's, to rounding;
  *  - pixel (716, 793) of tests/bench_bezstroke.c's scene, against its area
@@ -997,6 +1007,181 @@ static void test_starts(void **state)
     assert_true(worst <= 1e-8);
 }
 
+/* ---- meetings of pairs that share an end point ---- */
+
+static int cmp_dbl(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Pieces p and q (one an offset piece) that share an end point E, whose
+ * common heights [lo, hi] start (at_lo) or end at E: x_p - x_q sampled at
+ * 2,000 heights evenly over [lo, hi] and at 2^-k of it from E (k = 1 ..
+ * 50); each change of sign between neighbouring samples, both beyond
+ * 1e-12 of 0 and the nearer farther than 1e-6 of the scale from E
+ * (nearer, a meeting is E itself: scene_piece.c, near_shared_end), must
+ * hold a meeting of area's form (aa__piece_meet_at) and of the
+ * reference's (aa_piece_meet), and each of area's meetings must lie
+ * farther than that from E, between two samples of opposite signs or
+ * where x_p - x_q is within 1e-13 of 0 (a touch).  Adds the
+ * sign changes to *changes, and 1 to *tangent if p and q leave E tangent
+ * to each other (x_p - x_q within 1e-7 of the distance from E at 1e-4 of
+ * [lo, hi] from it).  Returns the failures (their first few printed). */
+static int shared_pair(const char *what, const aa_piece *p, const aa_piece *q, int at_lo,
+                       int *changes, int *tangent)
+{
+    enum { NS = 2000 + 50 };
+    double ys[NS];
+    double lo = fmax(p->y0, q->y0), hi = fmin(p->y1, q->y1);
+    double e = at_lo ? lo : hi, sg = at_lo ? 1.0 : -1.0, h = hi - lo;
+    double res = 1e-6 * fmax(1.0, fabs(e));
+    int m = 0, bad = 0;
+    for (int j = 1; j < 2000; j++)
+        ys[m++] = lo + h * j / 2000.0;
+    for (int j = 1; j <= 50; j++)
+        ys[m++] = e + sg * ldexp(h, -j);
+    qsort(ys, (size_t)m, sizeof *ys, cmp_dbl);
+    const double none[2] = {NAN, NAN};
+    double ya[16], yr[16];
+    int na = aa__piece_meet_at(p, q, lo, hi, none, none, ya, 16);
+    int nr = aa_piece_meet(p, q, lo, hi, yr, 16);
+    int in_change[16] = {0};
+    double prev = NAN, yprev = lo;
+    for (int j = 0; j < m; j++) {
+        double y = ys[j], d = aa_piece_x_at(p, y) - aa_piece_x_at(q, y);
+        if (!(fabs(d) > 1e-12))
+            continue; /* too near a meeting to tell its side */
+        double near = at_lo ? yprev : y; /* the sample nearer the shared end */
+        if (prev == prev && (prev < 0) != (d < 0) && fabs(near - e) > res) {
+            (*changes)++;
+            int fa = 0, fr = 0;
+            for (int r = 0; r < na; r++)
+                if (ya[r] >= yprev - 1e-9 && ya[r] <= y + 1e-9)
+                    fa = in_change[r] = 1;
+            for (int r = 0; r < nr; r++)
+                fr |= yr[r] >= yprev - 1e-9 && yr[r] <= y + 1e-9;
+            if (!(fa && fr) && bad++ < 3)
+                print_message("%s: change of sides in [%.17g, %.17g] not met (area's %d, the "
+                              "reference's %d)\n",
+                              what, yprev, y, fa, fr);
+        }
+        prev = d, yprev = y;
+    }
+    for (int r = 0; r < na; r++) {
+        double d = aa_piece_x_at(p, ya[r]) - aa_piece_x_at(q, ya[r]);
+        if ((!(in_change[r] || fabs(d) <= 1e-13) || !(fabs(ya[r] - e) > res)) && bad++ < 3)
+            print_message("%s: area's meeting at %.17g, x_p - x_q %.3g, %.3g from the shared "
+                          "end\n",
+                          what, ya[r], d, fabs(ya[r] - e));
+    }
+    double u = e + sg * 1e-4 * h;
+    *tangent += fabs(aa_piece_x_at(p, u) - aa_piece_x_at(q, u)) <= 1e-7 * 1e-4 * h;
+    return bad;
+}
+
+/* shared_pair on every pair of a placed scene's pieces that share an end
+ * point, and on lines from each offset piece's ends through its point at
+ * a fraction 1/2 and 1e-2 of its height from there, which meet it
+ * there again.  Returns the pairs. */
+static int shared_ends(const char *what, const aa_scene *s, int *tangent, int *all_changes)
+{
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    int pairs = 0, changes = 0, bad = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = i + 1; k < n; k++) {
+            const aa_piece *p = &pc[i], *q = &pc[k];
+            if (!p->dir || !q->dir ||
+                (p->kind != AA_PIECE_OFFSET && q->kind != AA_PIECE_OFFSET))
+                continue;
+            double lo = fmax(p->y0, q->y0), hi = fmin(p->y1, q->y1);
+            if (!(lo < hi))
+                continue;
+            int at_lo = lo == p->y0 && lo == q->y0 && p->x0 == q->x0;
+            int at_hi = hi == p->y1 && hi == q->y1 && p->x1 == q->x1;
+            if (!at_lo && !at_hi)
+                continue;
+            pairs++;
+            bad += shared_pair(what, p, q, at_lo, &changes, tangent);
+        }
+    const double fr[2] = {0.5, 1e-2};
+    for (size_t k = 0; k < n; k++) {
+        const aa_piece *q = &pc[k];
+        if (q->kind != AA_PIECE_OFFSET || !q->dir)
+            continue;
+        for (int e = 0; e < 2; e++)
+            for (int f = 0; f < 2; f++) {
+                /* from end E = (xe, ye) through (xm, ym) to the other end's height */
+                double xe = e ? q->x1 : q->x0, ye = e ? q->y1 : q->y0, yo = e ? q->y0 : q->y1;
+                double ym = ye + fr[f] * (yo - ye), xm = aa_piece_x_at(q, ym);
+                if (!(fabs(ym - ye) > 1e-5 * fmax(1.0, fabs(ye))))
+                    continue;
+                double xo = xe + (yo - ye) * (xm - xe) / (ym - ye);
+                aa_piece p;
+                memset(&p, 0, sizeof p);
+                p.kind = AA_PIECE_LINE, p.dir = 1;
+                p.x0 = e ? xo : xe, p.y0 = q->y0, p.x1 = e ? xe : xo, p.y1 = q->y1;
+                p.cx = 0.5 * (p.x0 + p.x1), p.cy = 0.5 * (p.y0 + p.y1);
+                p.bx = p.x1 - p.x0, p.by = p.y1 - p.y0;
+                p.xmin = fmin(p.x0, p.x1), p.xmax = fmax(p.x0, p.x1);
+                pairs++;
+                bad += shared_pair(what, &p, q, !e, &changes, tangent);
+            }
+    }
+    print_message("%-34s %d pairs sharing an end, %d sign changes sampled, %d not met or "
+                  "off\n",
+                  what, pairs, changes, bad);
+    assert_int_equal(bad, 0);
+    *all_changes += changes;
+    return pairs;
+}
+
+static void test_shared_ends(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    int pairs = 0, tangent = 0, changes = 0;
+    /* the benchmark's cubics (tests/bench_bezstroke.c) at 256 px, 2.5 px
+     * wide: their offsets fold */
+    double cs[2 + 6 * 10];
+    st.width = 2.5 / 256.0;
+    for (int r = 0; r < 20; r += 4) {
+        bench_cubics(r, 0, 10, cs);
+        aa_scene *s = stroke_scene(cs, 10, &st, NULL);
+        aa_scene *placed = aa_scene_place(s, 256, 256, 0, 0, 0);
+        assert_non_null(placed);
+        char what[64];
+        snprintf(what, sizeof what, "benchmark's row %d, 256 px", r);
+        pairs += shared_ends(what, placed, &tangent, &changes);
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+    /* folds, and a loop and a hook whose pieces sharing an end cross
+     * again away from it */
+    const double loop[8] = {0.2, 0.8, 0.9, 0.1, 0.1, 0.1, 0.8, 0.8};
+    const double hook[8] = {0.1, 0.9, 0.1, 0.1, 0.9, 0.1, 0.55, 0.5};
+    const double *cases[3] = {tight, loop, hook};
+    const double widths[3] = {0.3, 0.5, 0.4};
+    const char *names[3] = {"tight, w 0.3 (folds), 64 px", "loop, w 0.5, 64 px",
+                            "hook, w 0.4, 64 px"};
+    st.join = AA_JOIN_MITER, st.cap = AA_CAP_BUTT;
+    for (int c = 0; c < 3; c++) {
+        st.width = widths[c];
+        aa_scene *s = stroke_scene(cases[c], 1, &st, NULL);
+        aa_scene *placed = aa_scene_place(s, 64, 64, 0, 0, 0);
+        assert_non_null(placed);
+        pairs += shared_ends(names[c], placed, &tangent, &changes);
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+    print_message("%d pairs sharing an end, %d of them tangent there; %d sign changes\n", pairs,
+                  tangent, changes);
+    assert_true(tangent >= 10 && changes >= 1); /* the cases were built */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -1009,6 +1194,7 @@ int main(void)
                                        cmocka_unit_test(test_vertex),
                                        cmocka_unit_test(test_ulp_vertex),
                                        cmocka_unit_test(test_nodes),
-                                       cmocka_unit_test(test_starts)};
+                                       cmocka_unit_test(test_starts),
+                                       cmocka_unit_test(test_shared_ends)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
