@@ -503,6 +503,21 @@ int support_teardown_dir(void **state)
     return *state && support_rmtree(*state) == 0 ? 0 : -1;
 }
 
+/* ---- random numbers ---- */
+
+double support_xorshift(uint64_t *s)
+{
+    *s ^= *s << 13, *s ^= *s >> 7, *s ^= *s << 17;
+    return (double)(*s >> 11) * 0x1p-53;
+}
+
+double support_uniform(uint64_t *s, double a, double b)
+{
+    return a + (b - a) * support_xorshift(s);
+}
+
+/* ---- the point-in-stroke check ---- */
+
 void support_stroke_check(const char *what, const aa_scene *s, const double box[4], double h,
                           const double *m, int npts, double (*rnd)(void),
                           support_distance_fn distance, const void *ctx)

@@ -213,6 +213,17 @@ void support_cache_file(const char *dir, char *path, size_t len);
  * folder and put its path in *state: removes it. */
 int support_teardown_dir(void **state);
 
+/* ---- random numbers ---- */
+
+/* The next number of a xorshift64 stream of state *s (nonzero; Marsaglia,
+ * "Xorshift RNGs", J. Stat. Softw. 8(14), 2003, shifts 13, 7, 17): the new
+ * state's top 53 bits over 2^53, in [0, 1).  The tests' own fixed streams,
+ * each seeded in its test; apart from the library's aa_rng, which some of
+ * them test. */
+double support_xorshift(uint64_t *s);
+/* The same scaled to [a, b]: a + (b - a) support_xorshift(s). */
+double support_uniform(uint64_t *s, double a, double b);
+
 /* ---- the point-in-stroke check ---- */
 
 /* The distance from p to a stroke's path by an oracle of the test's own

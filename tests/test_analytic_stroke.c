@@ -308,8 +308,7 @@ static void test_folding_larger(void **state)
 static uint64_t rng = 0x243f6a8885a308d3ull;
 static double rnd(void)
 {
-    rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
-    return (double)(rng >> 11) * 0x1p-53;
+    return support_xorshift(&rng);
 }
 
 typedef struct fold_path {

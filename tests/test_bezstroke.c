@@ -132,8 +132,7 @@ static void test_dashes(void **state)
 static uint64_t rng = 0x9e3779b97f4a7c15ull;
 static double rnd(void)
 {
-    rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
-    return (double)(rng >> 11) * 0x1p-53;
+    return support_xorshift(&rng);
 }
 
 static void cubic_at(const void *c, double t, double *x, double *y, double *dx, double *dy)
