@@ -519,12 +519,12 @@ double support_uniform(uint64_t *s, double a, double b)
 /* ---- the point-in-stroke check ---- */
 
 void support_stroke_check(const char *what, const aa_scene *s, const double box[4], double h,
-                          const double *m, int npts, double (*rnd)(void),
+                          const double *m, int npts, uint64_t *rng,
                           support_distance_fn distance, const void *ctx)
 {
     int tested = 0, inside = 0, wrong = 0;
     for (int i = 0; i < npts; i++) {
-        double px = box[0] + (box[2] - box[0]) * rnd(), py = box[1] + (box[3] - box[1]) * rnd();
+        double px = support_uniform(rng, box[0], box[2]), py = support_uniform(rng, box[1], box[3]);
         int unsure = 0;
         double d = distance(ctx, px, py, &unsure);
         if (unsure || fabs(d - h) < 1e-7)

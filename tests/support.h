@@ -229,15 +229,16 @@ double support_uniform(uint64_t *s, double a, double b);
 /* The distance from p to a stroke's path by an oracle of the test's own
  * (*unsure set where the oracle cannot tell, e.g. on a butt end's line). */
 typedef double (*support_distance_fn)(const void *ctx, double px, double py, int *unsure);
-/* npts points drawn uniformly in box = {x0, y0, x1, y1} by rnd() (the
- * test's own stream), each inside the stroke iff its distance is at most h
- * (the stroke's definition, SVG 2's stroke shape of a round or butt
- * stroke), against the scene s at m(p) (m NULL: p; white above 0.5 is
- * inside).  Points the oracle is unsure of, or within 1e-7 of h, are left
- * out.  Prints what it tested; fails on any disagreement, and unless more
- * than a twentieth of the points tested but not all are inside. */
+/* npts points drawn uniformly in box = {x0, y0, x1, y1} from the stream
+ * *rng (support_xorshift; the test's own seed), each inside the stroke iff
+ * its distance is at most h (the stroke's definition, SVG 2's stroke shape
+ * of a round or butt stroke), against the scene s at m(p) (m NULL: p;
+ * white above 0.5 is inside).  Points the oracle is unsure of, or within
+ * 1e-7 of h, are left out.  Prints what it tested; fails on any
+ * disagreement, and unless more than a twentieth of the points tested but
+ * not all are inside. */
 void support_stroke_check(const char *what, const aa_scene *s, const double box[4], double h,
-                          const double *m, int npts, double (*rnd)(void),
+                          const double *m, int npts, uint64_t *rng,
                           support_distance_fn distance, const void *ctx);
 
 #endif
