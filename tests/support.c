@@ -503,6 +503,44 @@ int support_teardown_dir(void **state)
     return *state && support_rmtree(*state) == 0 ? 0 : -1;
 }
 
+/* ---- text written piece by piece ---- */
+
+int support_put(support_text *t, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int m = vsnprintf(t->buf + t->n, sizeof t->buf - t->n, fmt, ap);
+    va_end(ap);
+    assert_true(m >= 0 && (size_t)m < sizeof t->buf - t->n);
+    t->n += (size_t)m;
+    return AA_OK;
+}
+
+int support_put_move(void *ctx, double x, double y)
+{
+    return support_put(ctx, " M %.17g %.17g", x, y);
+}
+
+int support_put_line(void *ctx, double x, double y)
+{
+    return support_put(ctx, " L %.17g %.17g", x, y);
+}
+
+int support_put_quad(void *ctx, double cx, double cy, double x, double y)
+{
+    return support_put(ctx, " Q %.17g %.17g %.17g %.17g", cx, cy, x, y);
+}
+
+int support_put_cubic(void *ctx, double ax, double ay, double bx, double by, double x, double y)
+{
+    return support_put(ctx, " C %.17g %.17g %.17g %.17g %.17g %.17g", ax, ay, bx, by, x, y);
+}
+
+int support_put_close(void *ctx)
+{
+    return support_put(ctx, " Z");
+}
+
 /* ---- random numbers ---- */
 
 double support_xorshift(uint64_t *s)

@@ -213,6 +213,25 @@ void support_cache_file(const char *dir, char *path, size_t len);
  * folder and put its path in *state: removes it. */
 int support_teardown_dir(void **state);
 
+/* ---- text written piece by piece ---- */
+
+/* A text (what a sink of the library was given, say) of at most 64 KiB. */
+typedef struct support_text {
+    char buf[65536];
+    size_t n;
+} support_text;
+/* Append to the text t as printf would; fails the test if it does not fit.
+ * Returns AA_OK (a sink's status). */
+int support_put(support_text *t, const char *fmt, ...) AA_PRINTF(2, 3);
+/* A path's commands appended to the support_text ctx, each " M x y", " L x
+ * y", " Q cx cy x y", " C ax ay bx by x y" or " Z" (%.17g): the path
+ * callbacks of a sink (the SVG reader's aa_svg_sink). */
+int support_put_move(void *ctx, double x, double y);
+int support_put_line(void *ctx, double x, double y);
+int support_put_quad(void *ctx, double cx, double cy, double x, double y);
+int support_put_cubic(void *ctx, double ax, double ay, double bx, double by, double x, double y);
+int support_put_close(void *ctx);
+
 /* ---- random numbers ---- */
 
 /* The next number of a xorshift64 stream of state *s (nonzero; Marsaglia,
