@@ -541,6 +541,15 @@ int support_put_close(void *ctx)
     return support_put(ctx, " Z");
 }
 
+int support_names(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *s = strstr(list, name); s; s = strstr(s + 1, name))
+        if ((s == list || s[-1] == ' ') && (s[n] == '\0' || s[n] == ' '))
+            return 1;
+    return 0;
+}
+
 /* ---- random numbers ---- */
 
 double support_xorshift(uint64_t *s)

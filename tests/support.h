@@ -231,6 +231,8 @@ int support_put_line(void *ctx, double x, double y);
 int support_put_quad(void *ctx, double cx, double cy, double x, double y);
 int support_put_cubic(void *ctx, double ax, double ay, double bx, double by, double x, double y);
 int support_put_close(void *ctx);
+/* 1 if `name` is one of the words of `list` (separated by single spaces). */
+int support_names(const char *list, const char *name);
 
 /* ---- random numbers ---- */
 
