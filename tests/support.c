@@ -648,3 +648,13 @@ double support_method_against_reference(const char *method, const char *what, co
     aa_image_free(&r);
     return worst;
 }
+
+double support_method_against_filters(const char *method, const char *what, const aa_scene *s,
+                                      int w, int h, const char *const *fl)
+{
+    double worst = 0.0;
+    for (; *fl; fl++)
+        worst = fmax(worst, support_method_against_reference(method, what, s, w, h, *fl));
+    print_message("%-28s largest difference over the filters %.1e\n", what, worst);
+    return worst;
+}

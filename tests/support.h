@@ -78,6 +78,10 @@ double support_within_reference(const char *what, const char *filter, const aa_i
  * on both; prints and returns the largest difference. */
 double support_method_against_reference(const char *method, const char *what, const aa_scene *s,
                                         int w, int h, const char *filter);
+/* The same under each filter of fl (NULL-ended); prints and returns the
+ * largest difference over them. */
+double support_method_against_filters(const char *method, const char *what, const aa_scene *s,
+                                      int w, int h, const char *const *fl);
 /* The reference of the placed scene s at w x h under `filter` by the
  * reference's path `mode` (aa__truth_render_mode: 0 its own choice), one
  * thread, into img (3 channels) and bound (1); fails the test if it is
