@@ -40,12 +40,10 @@ static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double v
 }
 
 /* the path's commands by support_put_move and the others */
-static const aa_svg_sink sink = {s_shape,          support_put_move,  support_put_line,
-                                 support_put_quad, support_put_cubic, support_put_close,
-                                 s_arc,            NULL,              NULL,
-                                 NULL,             NULL,              NULL,
-                                 NULL,             NULL,              NULL,
-                                 NULL};
+static const aa_svg_sink sink = {.shape = s_shape, .move_to = support_put_move,
+                                 .line_to = support_put_line, .quad_to = support_put_quad,
+                                 .cubic_to = support_put_cubic, .close = support_put_close,
+                                 .arc_to = s_arc};
 
 /* Read `doc` on a w x h view; the sink's text, or fail. */
 static const char *read_doc(const char *doc, int w, int h, double vp[2])

@@ -43,12 +43,10 @@ static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double v
 }
 
 /* the path's commands by support_put_move and the others */
-static const aa_svg_sink sink = {s_shape,          support_put_move,  support_put_line,
-                                 support_put_quad, support_put_cubic, support_put_close,
-                                 s_arc,            NULL,              NULL,
-                                 NULL,             NULL,              NULL,
-                                 NULL,             NULL,              NULL,
-                                 NULL};
+static const aa_svg_sink sink = {.shape = s_shape, .move_to = support_put_move,
+                                 .line_to = support_put_line, .quad_to = support_put_quad,
+                                 .cubic_to = support_put_cubic, .close = support_put_close,
+                                 .arc_to = s_arc};
 
 /* The same with clips: "[within W" .. " ]" around a clip's members, and
  * " clip N" after the shape drawn inside clip N. */
@@ -59,12 +57,11 @@ static int s_clip_begin(void *ctx, int within)
 static int s_clip_end(void *ctx) { return support_put(ctx, " ]"); }
 static int s_clip(void *ctx, int clip) { return support_put(ctx, " clip %d", clip); }
 
-static const aa_svg_sink clip_sink = {s_shape,          support_put_move,  support_put_line,
-                                      support_put_quad, support_put_cubic, support_put_close,
-                                      s_arc,            NULL,              NULL,
-                                      NULL,             NULL,              s_clip_begin,
-                                      s_clip_end,       s_clip,            NULL,
-                                      NULL};
+static const aa_svg_sink clip_sink = {.shape = s_shape, .move_to = support_put_move,
+                                      .line_to = support_put_line, .quad_to = support_put_quad,
+                                      .cubic_to = support_put_cubic, .close = support_put_close,
+                                      .arc_to = s_arc, .clip_begin = s_clip_begin,
+                                      .clip_end = s_clip_end, .clip = s_clip};
 
 #define OPEN "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">"
 #define BLACK "0 0 0;"
