@@ -1655,18 +1655,41 @@ static int rad_cuts(const an_state *S, const aa_piece *p, double ya, double yb, 
     return n;
 }
 
-/* R(part) for polynomial piece p over rows [ya, yb] under a radial filter
- * (header, "Radial filters") */
-static double rad_right_of(const an_state *S, const aa_piece *p, double ya, double yb,
-                           double cx, double cy)
+static inline double rad_h(const an_state *S, double x, double v);
+static double rad_marg1(const an_state *S, double v);
+
+/* Half the weight of the rows [y0, y1] under a radial filter about the
+ * row cy, (M(y1 - cy) - M(y0 - cy))/2, in h[0], and with mom that of the
+ * first moment along y, (M1(y1 - cy) - M1(y0 - cy))/2, in h[1] (else 0):
+ * of the disc's rows [lo, hi], where the walks below start; of a part
+ * outside the disc, in its rows wholly left or right of the centre, which
+ * takes -+h. */
+__attribute__((always_inline)) static inline void rad_halves(const an_state *S, double y0,
+                                                             double y1, double cy, int mom,
+                                                             double h[2])
 {
-    double R = S->rad_r, lo, hi, ts[8];
+    h[0] = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
+    h[1] = mom ? 0.5 * (rad_marg1(S, y1 - cy) - rad_marg1(S, y0 - cy)) : 0.0;
+}
+
+/* The walk of polynomial piece p over rows [ya, yb] under a radial filter
+ * that the zeroth moment (rad_right_of) and the first moments
+ * (rad_mom_right_of) share: cut where it crosses the circle (rad_cuts);
+ * between the cuts, a part whose middle lies inside the disc summed over
+ * the rule of m points (gx, gw, on [-1, 1]); a part outside, in the disc's
+ * rows, wholly left or right of it: +-M/2 (and +-M1/2).  mom and r as
+ * rad_arc_walk's. */
+__attribute__((always_inline)) static inline void
+rad_curve_walk(const an_state *S, const aa_piece *p, double ya, double yb, double cx, double cy,
+               int mom, int m, const double *gx, const double *gw, double r[3])
+{
+    double R = S->rad_r, lo, hi, ts[8], hv[2];
+    r[0] = r[1] = r[2] = 0.0;
     int n = rad_cuts(S, p, ya, yb, cx, cy, ts, &lo, &hi);
     if (!n)
-        return 0.0;
-    int m = curve_degree(p) * (S->rad_k + 1);
-    const double *gx = S->gx[m], *gw = S->gw[m];
-    double sum = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy));
+        return;
+    rad_halves(S, lo, hi, cy, mom, hv);
+    double s0 = hv[0], su = 0.0, sv = hv[1];
     for (int s = 0; s + 1 < n; s++) {
         double ta = ts[s], tc = ts[s + 1];
         if (!(ta < tc))
@@ -1674,23 +1697,41 @@ static double rad_right_of(const an_state *S, const aa_piece *p, double ya, doub
         double h = 0.5 * (tc - ta), mid = 0.5 * (ta + tc), x, y, dy;
         aa__piece_point(p, mid, &x, &y, &dy);
         if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < R * R) {
-            double part = 0.0;
+            double a0 = 0.0, a1 = 0.0, a2 = 0.0;
             for (int q = 0; q < m; q++) {
                 aa__piece_point(p, mid + h * gx[q], &x, &y, &dy);
-                part += gw[q] * rad_f(S, x - cx, y - cy) * dy;
+                double u = x - cx, v = y - cy, f = gw[q] * rad_f(S, u, v) * dy;
+                a0 += f;
+                if (mom) {
+                    a1 += gw[q] * rad_h(S, u, v) * dy;
+                    a2 += v * f;
+                }
             }
-            sum -= h * part;
+            s0 -= h * a0;
+            if (mom)
+                su += h * a1, sv -= h * a2;
         } else {
-            /* outside the disc the row's weight right of the piece is
-             * all of it (left) or none (right) */
             double y0, y1, d;
             aa__piece_point(p, ta, &d, &y0, &d);
             aa__piece_point(p, tc, &d, &y1, &d);
-            double half = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
-            sum -= x > cx ? half : -half;
+            rad_halves(S, y0, y1, cy, mom, hv);
+            s0 -= x > cx ? hv[0] : -hv[0];
+            sv -= x > cx ? hv[1] : -hv[1];
         }
     }
-    return sum;
+    r[0] = s0, r[1] = su, r[2] = sv;
+}
+
+/* R(part) for polynomial piece p over rows [ya, yb] under a radial filter
+ * (header, "Radial filters"; rad_curve_walk): inside the disc the rule of
+ * d (K + 1) points. */
+static double rad_right_of(const an_state *S, const aa_piece *p, double ya, double yb,
+                           double cx, double cy)
+{
+    double r[3];
+    int m = curve_degree(p) * (S->rad_k + 1);
+    rad_curve_walk(S, p, ya, yb, cx, cy, 0, m, S->gx[m], S->gw[m], r);
+    return r[0];
 }
 
 /* The cuts of conic piece p over rows [ya, yb] under a radial filter:
@@ -1733,9 +1774,6 @@ static int rad_arc_cuts(const an_state *S, const aa_piece *p, double ya, double 
     return n;
 }
 
-static inline double rad_h(const an_state *S, double x, double v);
-static double rad_marg1(const an_state *S, double v);
-
 /* The walk of conic piece p over rows [ya, yb] under a radial filter that
  * the zeroth moment (rad_right_of_arc) and the first moments
  * (rad_mom_arc) share: cut where it crosses the circle (rad_arc_cuts);
@@ -1755,10 +1793,9 @@ rad_arc_walk(const an_state *S, const aa_piece *p, double ya, double yb, double 
     int n = rad_arc_cuts(S, p, ya, yb, cx, cy, ss, &lo, &hi);
     if (!n)
         return;
-    double X[2 * AN_ARC1_M], Y[2 * AN_ARC1_M], D[2 * AN_ARC1_M], xm, ym;
-    double s0 = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy)), su = 0.0, sv = 0.0;
-    if (mom)
-        sv = 0.5 * (rad_marg1(S, hi - cy) - rad_marg1(S, lo - cy));
+    double X[2 * AN_ARC1_M], Y[2 * AN_ARC1_M], D[2 * AN_ARC1_M], xm, ym, hv[2];
+    rad_halves(S, lo, hi, cy, mom, hv);
+    double s0 = hv[0], su = 0.0, sv = hv[1];
     for (int q = 0; q + 1 < n; q++) {
         long double a = ss[q], b = ss[q + 1], mid = 0.5L * (a + b);
         if (!(a < b))
@@ -1782,12 +1819,9 @@ rad_arc_walk(const an_state *S, const aa_piece *p, double ya, double yb, double 
             }
         } else {
             double y0 = (double)(p->ey - p->er * cosl(a)), y1 = (double)(p->ey - p->er * cosl(b));
-            double h0 = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
-            s0 -= x > cx ? h0 : -h0;
-            if (mom) {
-                double h1 = 0.5 * (rad_marg1(S, y1 - cy) - rad_marg1(S, y0 - cy));
-                sv -= x > cx ? h1 : -h1;
-            }
+            rad_halves(S, y0, y1, cy, mom, hv);
+            s0 -= x > cx ? hv[0] : -hv[0];
+            sv -= x > cx ? hv[1] : -hv[1];
         }
     }
     r[0] = s0, r[1] = su, r[2] = sv;
@@ -2131,22 +2165,20 @@ rad_off_walk(const an_render *Rn, const aa_piece *p, double ya, double yb, doubl
             else
                 part[0] += off_part(Rn, p, stops, u, v, cx, cy, 1, 0);
         } else {
-            double y0, y1, d;
+            double y0, y1, d, hv[2];
             off_point(p, stops, u, &d, &y0, &d);
             off_point(p, stops, v, &d, &y1, &d);
-            double h0 = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
-            part[0] += x > cx ? h0 : -h0;
-            if (mom) {
-                double h1 = 0.5 * (rad_marg1(S, y1 - cy) - rad_marg1(S, y0 - cy));
-                part[2] += x > cx ? h1 : -h1;
-            }
+            rad_halves(S, y0, y1, cy, mom, hv);
+            part[0] += x > cx ? hv[0] : -hv[0];
+            part[2] += x > cx ? hv[1] : -hv[1];
         }
     }
-    double sg = ta < tb ? 1.0 : -1.0;
-    r[0] = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy)) - sg * part[0];
+    double sg = ta < tb ? 1.0 : -1.0, hv[2];
+    rad_halves(S, lo, hi, cy, mom, hv);
+    r[0] = hv[0] - sg * part[0];
     if (mom) {
         r[1] = sg * part[1];
-        r[2] = 0.5 * (rad_marg1(S, hi - cy) - rad_marg1(S, lo - cy)) - sg * part[2];
+        r[2] = hv[1] - sg * part[2];
     }
 }
 
@@ -4360,49 +4392,15 @@ static void mom_offset(const an_render *Rn, const aa_piece *p, double ya, double
  * filter ("Linear gradients under the radial filters"): r[0] = R of the
  * radial section, r[1] = integral of H(x - cx, v) dy, r[2] = (M1(hi) -
  * M1(lo))/2 - integral of v F(clamp(x - cx), v) dy, v = y - cy, the piece
- * cut at the circle as for the zeroth (rad_cuts); inside the disc the
+ * cut at the circle as for the zeroth (rad_curve_walk); inside the disc the
  * rule of d (K + 2) points (the integrands H y' and v F y' have degree
  * d (2 K + 3) - 1), outside +-(M(y1) - M(y0))/2, 0 and +-(M1(y1) -
  * M1(y0))/2. */
 static void rad_mom_right_of(const an_state *S, const aa_piece *p, double ya, double yb,
                              double cx, double cy, double r[3])
 {
-    double R = S->rad_r, lo, hi, ts[8];
-    r[0] = r[1] = r[2] = 0.0;
-    int n = rad_cuts(S, p, ya, yb, cx, cy, ts, &lo, &hi);
-    if (!n)
-        return;
     int m = curve_degree(p) * (S->rad_k + 2);
-    const double *gx = S->ogx[m], *gw = S->ogw[m];
-    double s0 = 0.5 * (rad_marg(S, hi - cy) - rad_marg(S, lo - cy)), su = 0.0;
-    double sv = 0.5 * (rad_marg1(S, hi - cy) - rad_marg1(S, lo - cy));
-    for (int s = 0; s + 1 < n; s++) {
-        double ta = ts[s], tc = ts[s + 1];
-        if (!(ta < tc))
-            continue;
-        double h = 0.5 * (tc - ta), mid = 0.5 * (ta + tc), x, y, dy;
-        aa__piece_point(p, mid, &x, &y, &dy);
-        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < R * R) {
-            double a0 = 0.0, a1 = 0.0, a2 = 0.0;
-            for (int q = 0; q < m; q++) {
-                aa__piece_point(p, mid + h * gx[q], &x, &y, &dy);
-                double u = x - cx, v = y - cy, f = gw[q] * rad_f(S, u, v) * dy;
-                a0 += f;
-                a1 += gw[q] * rad_h(S, u, v) * dy;
-                a2 += v * f;
-            }
-            s0 -= h * a0, su += h * a1, sv -= h * a2;
-        } else {
-            double y0, y1, d;
-            aa__piece_point(p, ta, &d, &y0, &d);
-            aa__piece_point(p, tc, &d, &y1, &d);
-            double h0 = 0.5 * (rad_marg(S, y1 - cy) - rad_marg(S, y0 - cy));
-            double h1 = 0.5 * (rad_marg1(S, y1 - cy) - rad_marg1(S, y0 - cy));
-            s0 -= x > cx ? h0 : -h0;
-            sv -= x > cx ? h1 : -h1;
-        }
-    }
-    r[0] = s0, r[1] = su, r[2] = sv;
+    rad_curve_walk(S, p, ya, yb, cx, cy, 1, m, S->ogx[m], S->ogw[m], r);
 }
 
 /* The three moments of rad_mom_right_of for conic piece p (rad_arc_walk):

@@ -503,13 +503,75 @@ int support_teardown_dir(void **state)
     return *state && support_rmtree(*state) == 0 ? 0 : -1;
 }
 
+/* ---- text written piece by piece ---- */
+
+int support_put(support_text *t, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int m = vsnprintf(t->buf + t->n, sizeof t->buf - t->n, fmt, ap);
+    va_end(ap);
+    assert_true(m >= 0 && (size_t)m < sizeof t->buf - t->n);
+    t->n += (size_t)m;
+    return AA_OK;
+}
+
+int support_put_move(void *ctx, double x, double y)
+{
+    return support_put(ctx, " M %.17g %.17g", x, y);
+}
+
+int support_put_line(void *ctx, double x, double y)
+{
+    return support_put(ctx, " L %.17g %.17g", x, y);
+}
+
+int support_put_quad(void *ctx, double cx, double cy, double x, double y)
+{
+    return support_put(ctx, " Q %.17g %.17g %.17g %.17g", cx, cy, x, y);
+}
+
+int support_put_cubic(void *ctx, double ax, double ay, double bx, double by, double x, double y)
+{
+    return support_put(ctx, " C %.17g %.17g %.17g %.17g %.17g %.17g", ax, ay, bx, by, x, y);
+}
+
+int support_put_close(void *ctx)
+{
+    return support_put(ctx, " Z");
+}
+
+int support_names(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *s = strstr(list, name); s; s = strstr(s + 1, name))
+        if ((s == list || s[-1] == ' ') && (s[n] == '\0' || s[n] == ' '))
+            return 1;
+    return 0;
+}
+
+/* ---- random numbers ---- */
+
+double support_xorshift(uint64_t *s)
+{
+    *s ^= *s << 13, *s ^= *s >> 7, *s ^= *s << 17;
+    return (double)(*s >> 11) * 0x1p-53;
+}
+
+double support_uniform(uint64_t *s, double a, double b)
+{
+    return a + (b - a) * support_xorshift(s);
+}
+
+/* ---- the point-in-stroke check ---- */
+
 void support_stroke_check(const char *what, const aa_scene *s, const double box[4], double h,
-                          const double *m, int npts, double (*rnd)(void),
+                          const double *m, int npts, uint64_t *rng,
                           support_distance_fn distance, const void *ctx)
 {
     int tested = 0, inside = 0, wrong = 0;
     for (int i = 0; i < npts; i++) {
-        double px = box[0] + (box[2] - box[0]) * rnd(), py = box[1] + (box[3] - box[1]) * rnd();
+        double px = support_uniform(rng, box[0], box[2]), py = support_uniform(rng, box[1], box[3]);
         int unsure = 0;
         double d = distance(ctx, px, py, &unsure);
         if (unsure || fabs(d - h) < 1e-7)
@@ -584,5 +646,15 @@ double support_method_against_reference(const char *method, const char *what, co
     aa_image_free(&a);
     aa_image_free(&a1);
     aa_image_free(&r);
+    return worst;
+}
+
+double support_method_against_filters(const char *method, const char *what, const aa_scene *s,
+                                      int w, int h, const char *const *fl)
+{
+    double worst = 0.0;
+    for (; *fl; fl++)
+        worst = fmax(worst, support_method_against_reference(method, what, s, w, h, *fl));
+    print_message("%-28s largest difference over the filters %.1e\n", what, worst);
     return worst;
 }

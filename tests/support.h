@@ -78,6 +78,10 @@ double support_within_reference(const char *what, const char *filter, const aa_i
  * on both; prints and returns the largest difference. */
 double support_method_against_reference(const char *method, const char *what, const aa_scene *s,
                                         int w, int h, const char *filter);
+/* The same under each filter of fl (NULL-ended); prints and returns the
+ * largest difference over them. */
+double support_method_against_filters(const char *method, const char *what, const aa_scene *s,
+                                      int w, int h, const char *const *fl);
 /* The reference of the placed scene s at w x h under `filter` by the
  * reference's path `mode` (aa__truth_render_mode: 0 its own choice), one
  * thread, into img (3 channels) and bound (1); fails the test if it is
@@ -213,20 +217,53 @@ void support_cache_file(const char *dir, char *path, size_t len);
  * folder and put its path in *state: removes it. */
 int support_teardown_dir(void **state);
 
+/* ---- text written piece by piece ---- */
+
+/* A text (what a sink of the library was given, say) of at most 64 KiB. */
+typedef struct support_text {
+    char buf[65536];
+    size_t n;
+} support_text;
+/* Append to the text t as printf would; fails the test if it does not fit.
+ * Returns AA_OK (a sink's status). */
+int support_put(support_text *t, const char *fmt, ...) AA_PRINTF(2, 3);
+/* A path's commands appended to the support_text ctx, each " M x y", " L x
+ * y", " Q cx cy x y", " C ax ay bx by x y" or " Z" (%.17g): the path
+ * callbacks of a sink (the SVG reader's aa_svg_sink). */
+int support_put_move(void *ctx, double x, double y);
+int support_put_line(void *ctx, double x, double y);
+int support_put_quad(void *ctx, double cx, double cy, double x, double y);
+int support_put_cubic(void *ctx, double ax, double ay, double bx, double by, double x, double y);
+int support_put_close(void *ctx);
+/* 1 if `name` is one of the words of `list` (separated by single spaces). */
+int support_names(const char *list, const char *name);
+
+/* ---- random numbers ---- */
+
+/* The next number of a xorshift64 stream of state *s (nonzero; Marsaglia,
+ * "Xorshift RNGs", J. Stat. Softw. 8(14), 2003, shifts 13, 7, 17): the new
+ * state's top 53 bits over 2^53, in [0, 1).  The tests' own fixed streams,
+ * each seeded in its test; apart from the library's aa_rng, which some of
+ * them test. */
+double support_xorshift(uint64_t *s);
+/* The same scaled to [a, b]: a + (b - a) support_xorshift(s). */
+double support_uniform(uint64_t *s, double a, double b);
+
 /* ---- the point-in-stroke check ---- */
 
 /* The distance from p to a stroke's path by an oracle of the test's own
  * (*unsure set where the oracle cannot tell, e.g. on a butt end's line). */
 typedef double (*support_distance_fn)(const void *ctx, double px, double py, int *unsure);
-/* npts points drawn uniformly in box = {x0, y0, x1, y1} by rnd() (the
- * test's own stream), each inside the stroke iff its distance is at most h
- * (the stroke's definition, SVG 2's stroke shape of a round or butt
- * stroke), against the scene s at m(p) (m NULL: p; white above 0.5 is
- * inside).  Points the oracle is unsure of, or within 1e-7 of h, are left
- * out.  Prints what it tested; fails on any disagreement, and unless more
- * than a twentieth of the points tested but not all are inside. */
+/* npts points drawn uniformly in box = {x0, y0, x1, y1} from the stream
+ * *rng (support_xorshift; the test's own seed), each inside the stroke iff
+ * its distance is at most h (the stroke's definition, SVG 2's stroke shape
+ * of a round or butt stroke), against the scene s at m(p) (m NULL: p;
+ * white above 0.5 is inside).  Points the oracle is unsure of, or within
+ * 1e-7 of h, are left out.  Prints what it tested; fails on any
+ * disagreement, and unless more than a twentieth of the points tested but
+ * not all are inside. */
 void support_stroke_check(const char *what, const aa_scene *s, const double box[4], double h,
-                          const double *m, int npts, double (*rnd)(void),
+                          const double *m, int npts, uint64_t *rng,
                           support_distance_fn distance, const void *ctx);
 
 #endif

@@ -92,10 +92,7 @@ static int W, H;
 /* analytic against the reference under each filter of fl (TIER above) */
 static void against(const char *what, const aa_scene *s, int w, int h, const char *const *fl)
 {
-    double worst = 0.0;
-    for (const char *const *f = fl; *f; f++)
-        worst = fmax(worst, support_method_against_reference("analytic", what, s, w, h, *f));
-    print_message("%-28s largest difference over the filters %.1e\n", what, worst);
+    support_method_against_filters("analytic", what, s, w, h, fl);
 }
 
 static const aa_gradient_stop three[4] = {{0.0, {{0.9, 0.05, 0.2}}, 1.0},

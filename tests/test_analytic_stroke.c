@@ -306,11 +306,6 @@ static void test_folding_larger(void **state)
  * the green cubic (a cusp, square caps) is left to test_bezstroke's cusp
  * oracle. */
 static uint64_t rng = 0x243f6a8885a308d3ull;
-static double rnd(void)
-{
-    rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
-    return (double)(rng >> 11) * 0x1p-53;
-}
 
 typedef struct fold_path {
     const double *cs; /* chained cubics: 2 + 6 nc numbers */
@@ -375,7 +370,7 @@ static void fold_oracle(const char *what, const fold_path *f, double w, const do
     size_t noff;
     aa_scene *s = scenes_stroke_outline(&p, &st, m, &noff);
     assert_true(noff > 0);
-    support_stroke_check(what, s, box, f->h, m, 2000, rnd, fold_distance, f);
+    support_stroke_check(what, s, box, f->h, m, 2000, &rng, fold_distance, f);
     aa_scene_free(s);
     aa_path_free(&p);
 }

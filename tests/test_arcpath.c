@@ -44,10 +44,7 @@ static void ellipse_at(const double c[8], double t, double *x, double *y)
 static uint64_t rng = 0x9e3779b97f4a7c15u;
 static double uniform(double a, double b)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return a + (b - a) * ((double)(rng >> 11) / 9007199254740992.0);
+    return support_uniform(&rng, a, b);
 }
 
 static void test_endpoints_special(void **state)

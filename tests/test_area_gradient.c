@@ -276,8 +276,7 @@ static void test_crowded(void **state)
         double v[6];
         int cell = k / 6, gradient = k % 6 == 0;
         for (int q = 0; q < 6; q++) {
-            x ^= x << 13, x ^= x >> 7, x ^= x << 17;
-            double u = (double)(x >> 11) / 9007199254740992.0;
+            double u = support_xorshift(&x);
             /* gradient triangles inside their grid cell, the others anywhere */
             v[q] = gradient ? (q % 2 ? (cell / 2) * 20.0 + 0.25 + 19.5 * u
                                      : (cell % 2) * 24.0 + 0.25 + 23.5 * u)

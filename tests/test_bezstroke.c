@@ -130,11 +130,6 @@ static void test_dashes(void **state)
 /* ---- the point-in-stroke oracle ---- */
 
 static uint64_t rng = 0x9e3779b97f4a7c15ull;
-static double rnd(void)
-{
-    rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
-    return (double)(rng >> 11) * 0x1p-53;
-}
 
 static void cubic_at(const void *c, double t, double *x, double *y, double *dx, double *dy)
 {
@@ -196,7 +191,7 @@ static void oracle(const char *what, const double *cs, int nc, double w, int rou
     }
     const double box[4] = {x0 - 2 * h, y0 - 2 * h, x1 + 2 * h, y1 + 2 * h};
     const path_ctx ctx = {cs, nc, round, h};
-    support_stroke_check(what, s, box, h, m, npts, rnd, path_distance, &ctx);
+    support_stroke_check(what, s, box, h, m, npts, &rng, path_distance, &ctx);
     aa_scene_free(s);
     aa_path_free(&p);
 }
@@ -229,9 +224,9 @@ static void test_oracle_round(void **state)
     for (int r = 0; r < 6; r++) {
         double cs[14];
         for (int k = 0; k < 14; k++)
-            cs[k] = 0.1 + 0.8 * rnd();
+            cs[k] = 0.1 + 0.8 * support_xorshift(&rng);
         char name[64];
-        double w = 0.02 + 0.4 * rnd();
+        double w = 0.02 + 0.4 * support_xorshift(&rng);
         snprintf(name, sizeof name, "random pair %d, w %.3f", r, w);
         oracle(name, cs, 2, w, 1, NULL, 2000);
     }
@@ -254,7 +249,7 @@ static void test_quadratic(void **state)
     aa_scene *b = scenes_stroke_outline(&q, &st, NULL, NULL);
     int differ = 0;
     for (int i = 0; i < 4000; i++) {
-        double x = rnd(), y = rnd();
+        double x = support_xorshift(&rng), y = support_xorshift(&rng);
         differ += aa_scene_colour_at(a, x, y).c[0] != aa_scene_colour_at(b, x, y).c[0];
     }
     /* points within rounding of the boundary may differ: none at random */
@@ -345,7 +340,7 @@ static void cusp_oracle(const char *what, const cusp_cubic *k, double w, int rou
     }
     const double box[4] = {x0 - 2 * h, y0 - 2 * h, x1 + 2 * h, y1 + 2 * h};
     const cusp_ctx ctx = {k, round, h};
-    support_stroke_check(what, s, box, h, m, npts, rnd, cusp_distance, &ctx);
+    support_stroke_check(what, s, box, h, m, npts, &rng, cusp_distance, &ctx);
     aa_scene_free(s);
     aa_path_free(&p);
 }

@@ -224,11 +224,6 @@ static void test_dashes(void **state)
 /* ---- the point-in-stroke oracle ---- */
 
 static uint64_t rng = 0x9e3779b97f4a7c15ull;
-static double rnd(void)
-{
-    rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
-    return (double)(rng >> 11) * 0x1p-53;
-}
 
 static void ell_at(const void *e, double t, double *x, double *y, double *dx, double *dy)
 {
@@ -273,7 +268,7 @@ static void oracle(const char *what, const ell *e, double t0, double t1, int clo
     double h = 0.5 * w, r = hypot(e->ux, e->uy) + hypot(e->vx, e->vy) + h;
     const double box[4] = {e->cx - r, e->cy - r, e->cx + r, e->cy + r};
     const arc_ctx ctx = {e, t0, t1, closed || round, h};
-    support_stroke_check(what, s, box, h, m, npts, rnd, arc_distance, &ctx);
+    support_stroke_check(what, s, box, h, m, npts, &rng, arc_distance, &ctx);
     aa_scene_free(s);
     aa_path_free(&p);
 }

@@ -527,8 +527,6 @@ static void test_peer_span(void **state)
     assert_true(compared[1] >= 1);
 }
 
-static int names(const char *list, const char *name);
-
 /* ---- the peers (algorithms/cairo.c, agg.cpp: gradients of their own) ----
  *
  * Cells the peers draw besides the tables above: a sharp step (two stops
@@ -692,7 +690,7 @@ static void peer_cell(const char *peer, const cell *cells, size_t k, const char 
         return;
     }
     const support_view v = {.w = CELL, .h = CELL, .filter = "box", .seed = 1, .threads = 2};
-    const int refuses = names(c->differs, peer);
+    const int refuses = support_names(c->differs, peer);
     int st = support_render_view(peer, sc, &v, &img, NULL);
     if (refuses) {
         print_message("%s, %s: refused: %s\n", peer, c->what, aa_last_error());
@@ -797,15 +795,6 @@ static void test_peers(void **state)
     aa_scene_free(sc);
 }
 
-static int names(const char *list, const char *name)
-{
-    size_t n = strlen(name);
-    for (const char *s = strstr(list, name); s; s = strstr(s + 1, name))
-        if ((s == list || s[-1] == ' ') && (s[n] == '\0' || s[n] == ' '))
-            return 1;
-    return 0;
-}
-
 static void renderer_cells(const char *name, const cell *cells, size_t n, const char *docname)
 {
     const char *tree = aa_source_tree();
@@ -837,7 +826,7 @@ static void renderer_cells(const char *name, const cell *cells, size_t n, const 
                         worst = d, wi = i - x0, wj = j - y0;
                 }
             }
-        const int agrees = worst <= 3.0 / 255 + 1e-9, known = names(cells[k].differs, name);
+        const int agrees = worst <= 3.0 / 255 + 1e-9, known = support_names(cells[k].differs, name);
         print_message("%s, %s: %d smooth pixels, largest difference %.1f/255 at (%d, %d)%s\n",
                       name, cells[k].what, count, worst * 255, wi, wj,
                       agrees ? "" : known ? " (the renderer is wrong: noted)" : " DIFFERS");

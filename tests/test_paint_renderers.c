@@ -866,15 +866,6 @@ static double cell_error(const aa_image *ref, const aa_image *img, size_t k, int
     return worst;
 }
 
-static int names(const char *list, const char *name)
-{
-    size_t n = strlen(name);
-    for (const char *s = strstr(list, name); s; s = strstr(s + 1, name))
-        if ((s == list || s[-1] == ' ') && (s[n] == '\0' || s[n] == ' '))
-            return 1;
-    return 0;
-}
-
 /* The paint document's scene written back as SVG (aa_scene_svg, what
  * `export` writes: clipPaths, groups, strokes as strokes) into path. */
 static void exported(const char *doc, char *path, size_t len)
@@ -946,7 +937,7 @@ static void renderer_table(void *arg)
         double e = cell_error(&ref, &img, k, &i, &j);
         /* on what export writes, the cells noted "chromium-export" */
         const int agrees = e <= 2.0 / 255 + 1e-9,
-                  known = names(tab[k].differs, export ? "chromium-export" : name);
+                  known = support_names(tab[k].differs, export ? "chromium-export" : name);
         print_message("%s, %s: largest difference %.1f/255 at (%d, %d)%s\n", name,
                       tab[k].what, e * 255, i, j,
                       agrees ? "" : known ? " (the renderer is wrong: noted)" : " DIFFERS");

@@ -263,10 +263,7 @@ static double dist_path(const aa_path *p, double qx, double qy)
 static uint64_t rng = 0x2545f4914f6cdd1du;
 static double uniform(double a, double b)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return a + (b - a) * ((double)(rng >> 11) / 9007199254740992.0);
+    return support_uniform(&rng, a, b);
 }
 
 /* ---- building ---- */

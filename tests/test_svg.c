@@ -27,53 +27,28 @@
 
 /* ---- a sink that writes what it is given as text ---- */
 
-typedef struct text_sink {
-    char buf[65536];
-    size_t n;
-} text_sink;
-
-static int put(text_sink *t, const char *fmt, ...) AA_PRINTF(2, 3);
-static int put(text_sink *t, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int m = vsnprintf(t->buf + t->n, sizeof t->buf - t->n, fmt, ap);
-    va_end(ap);
-    assert_true(m >= 0 && (size_t)m < sizeof t->buf - t->n);
-    t->n += (size_t)m;
-    return AA_OK;
-}
-
 static int s_shape(void *ctx, aa_rgb c, aa_fill_rule rule)
 {
-    return put(ctx, "%sfill %.17g %.17g %.17g %s;", ((text_sink *)ctx)->n ? " " : "", c.c[0],
-               c.c[1], c.c[2], rule == AA_FILL_EVENODD ? "evenodd" : "nonzero");
+    return support_put(ctx, "%sfill %.17g %.17g %.17g %s;", ((support_text *)ctx)->n ? " " : "",
+                       c.c[0], c.c[1], c.c[2], rule == AA_FILL_EVENODD ? "evenodd" : "nonzero");
 }
-static int s_move(void *ctx, double x, double y) { return put(ctx, " M %.17g %.17g", x, y); }
-static int s_line(void *ctx, double x, double y) { return put(ctx, " L %.17g %.17g", x, y); }
-static int s_quad(void *ctx, double cx, double cy, double x, double y)
-{
-    return put(ctx, " Q %.17g %.17g %.17g %.17g", cx, cy, x, y);
-}
-static int s_cubic(void *ctx, double a, double b, double c, double d, double x, double y)
-{
-    return put(ctx, " C %.17g %.17g %.17g %.17g %.17g %.17g", a, b, c, d, x, y);
-}
-static int s_close(void *ctx) { return put(ctx, " Z"); }
 static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double vx, double vy,
                  double t0, double t1, double x, double y)
 {
-    return put(ctx, " A %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g", cx, cy, ux,
-               uy, vx, vy, t0, t1, x, y);
+    return support_put(ctx, " A %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g", cx,
+                       cy, ux, uy, vx, vy, t0, t1, x, y);
 }
 
-static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc,
-                                 NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL, NULL};
+/* the path's commands by support_put_move and the others */
+static const aa_svg_sink sink = {.shape = s_shape, .move_to = support_put_move,
+                                 .line_to = support_put_line, .quad_to = support_put_quad,
+                                 .cubic_to = support_put_cubic, .close = support_put_close,
+                                 .arc_to = s_arc};
 
 /* Read `doc` on a w x h view; the sink's text, or fail. */
 static const char *read_doc(const char *doc, int w, int h, double vp[2])
 {
-    static text_sink t;
+    static support_text t;
     t.n = 0;
     t.buf[0] = '\0';
     if (aa_svg_read(doc, strlen(doc), "test.svg", w, h, &sink, &t, vp) != AA_OK)
@@ -561,7 +536,7 @@ static void test_viewbox(void **state)
 /* `doc` is refused with a message containing each of want[] (NULL-ended). */
 static void refused(const char *doc, const char *want1, const char *want2)
 {
-    text_sink t = {.n = 0};
+    support_text t = {.n = 0};
     if (aa_svg_read(doc, strlen(doc), "test.svg", 64, 64, &sink, &t, NULL) != AA_EINVAL)
         fail_msg("accepted: %s", doc);
     const char *msg = aa_last_error();
@@ -719,7 +694,7 @@ static void test_deep_and_huge(void **state)
     refused(doc, "malformed XML", NULL);
     free(doc);
     /* a document larger than AA_SVG_MAX_BYTES is refused before parsing */
-    text_sink t = {.n = 0};
+    support_text t = {.n = 0};
     assert_int_equal(aa_svg_read(SVG_OPEN, (size_t)AA_SVG_MAX_BYTES + 1, "big.svg", 8, 8, &sink,
                                  &t, NULL),
                      AA_EINVAL);
@@ -1421,7 +1396,7 @@ static void test_shipped(void **state)
     for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s", aa_svg_dir(), files[k]);
-        text_sink t = {.n = 0};
+        support_text t = {.n = 0};
         if (aa_svg_read_file(path, 64, 64, &sink, &t, NULL) != AA_OK)
             fail_msg("%s: %s", path, aa_last_error());
         assert_true(t.n > 0);

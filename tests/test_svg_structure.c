@@ -29,62 +29,39 @@
 
 /* ---- a sink that writes what it is given as text ---- */
 
-typedef struct text_sink {
-    char buf[65536];
-    size_t n;
-} text_sink;
-
-static int put(text_sink *t, const char *fmt, ...) AA_PRINTF(2, 3);
-static int put(text_sink *t, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int m = vsnprintf(t->buf + t->n, sizeof t->buf - t->n, fmt, ap);
-    va_end(ap);
-    assert_true(m >= 0 && (size_t)m < sizeof t->buf - t->n);
-    t->n += (size_t)m;
-    return AA_OK;
-}
-
 static int s_shape(void *ctx, aa_rgb c, aa_fill_rule rule)
 {
     (void)rule;
-    return put(ctx, "%s%.17g %.17g %.17g;", ((text_sink *)ctx)->n ? " " : "", c.c[0], c.c[1],
-               c.c[2]);
+    return support_put(ctx, "%s%.17g %.17g %.17g;", ((support_text *)ctx)->n ? " " : "", c.c[0],
+                       c.c[1], c.c[2]);
 }
-static int s_move(void *ctx, double x, double y) { return put(ctx, " M %.17g %.17g", x, y); }
-static int s_line(void *ctx, double x, double y) { return put(ctx, " L %.17g %.17g", x, y); }
-static int s_quad(void *ctx, double cx, double cy, double x, double y)
-{
-    return put(ctx, " Q %.17g %.17g %.17g %.17g", cx, cy, x, y);
-}
-static int s_cubic(void *ctx, double a, double b, double c, double d, double x, double y)
-{
-    return put(ctx, " C %.17g %.17g %.17g %.17g %.17g %.17g", a, b, c, d, x, y);
-}
-static int s_close(void *ctx) { return put(ctx, " Z"); }
 static int s_arc(void *ctx, double cx, double cy, double ux, double uy, double vx, double vy,
                  double t0, double t1, double x, double y)
 {
     (void)ux, (void)uy, (void)vx, (void)vy, (void)t0, (void)t1;
-    return put(ctx, " A %.17g %.17g to %.17g %.17g", cx, cy, x, y);
+    return support_put(ctx, " A %.17g %.17g to %.17g %.17g", cx, cy, x, y);
 }
 
-static const aa_svg_sink sink = {s_shape, s_move, s_line, s_quad, s_cubic, s_close, s_arc,
-                                 NULL,    NULL,   NULL,   NULL,    NULL,    NULL,  NULL, NULL, NULL};
+/* the path's commands by support_put_move and the others */
+static const aa_svg_sink sink = {.shape = s_shape, .move_to = support_put_move,
+                                 .line_to = support_put_line, .quad_to = support_put_quad,
+                                 .cubic_to = support_put_cubic, .close = support_put_close,
+                                 .arc_to = s_arc};
 
 /* The same with clips: "[within W" .. " ]" around a clip's members, and
  * " clip N" after the shape drawn inside clip N. */
 static int s_clip_begin(void *ctx, int within)
 {
-    return put(ctx, "%s[within %d", ((text_sink *)ctx)->n ? " " : "", within);
+    return support_put(ctx, "%s[within %d", ((support_text *)ctx)->n ? " " : "", within);
 }
-static int s_clip_end(void *ctx) { return put(ctx, " ]"); }
-static int s_clip(void *ctx, int clip) { return put(ctx, " clip %d", clip); }
+static int s_clip_end(void *ctx) { return support_put(ctx, " ]"); }
+static int s_clip(void *ctx, int clip) { return support_put(ctx, " clip %d", clip); }
 
-static const aa_svg_sink clip_sink = {s_shape, s_move,       s_line,     s_quad, s_cubic,
-                                      s_close, s_arc,        NULL,       NULL,   NULL,
-                                      NULL,    s_clip_begin, s_clip_end, s_clip, NULL, NULL};
+static const aa_svg_sink clip_sink = {.shape = s_shape, .move_to = support_put_move,
+                                      .line_to = support_put_line, .quad_to = support_put_quad,
+                                      .cubic_to = support_put_cubic, .close = support_put_close,
+                                      .arc_to = s_arc, .clip_begin = s_clip_begin,
+                                      .clip_end = s_clip_end, .clip = s_clip};
 
 #define OPEN "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">"
 #define BLACK "0 0 0;"
@@ -93,7 +70,7 @@ static const aa_svg_sink clip_sink = {s_shape, s_move,       s_line,     s_quad,
 /* Read `doc` on a 100 x 100 view; the sink's text, or fail. */
 static const char *read_doc(const char *doc)
 {
-    static text_sink t;
+    static support_text t;
     t.n = 0;
     t.buf[0] = '\0';
     if (aa_svg_read(doc, strlen(doc), "test.svg", 100, 100, &sink, &t, NULL) != AA_OK)
@@ -111,7 +88,7 @@ static void expect(const char *doc, const char *want)
 /* The same through the sink that takes clips. */
 static void expect_clips(const char *doc, const char *want)
 {
-    static text_sink t;
+    static support_text t;
     t.n = 0;
     t.buf[0] = '\0';
     if (aa_svg_read(doc, strlen(doc), "test.svg", 100, 100, &clip_sink, &t, NULL) != AA_OK)
@@ -122,7 +99,7 @@ static void expect_clips(const char *doc, const char *want)
 
 static void refused_clips(const char *doc, const char *want1, const char *want2)
 {
-    static text_sink t;
+    static support_text t;
     t.n = 0;
     if (aa_svg_read(doc, strlen(doc), "test.svg", 100, 100, &clip_sink, &t, NULL) != AA_EINVAL)
         fail_msg("accepted: %s", doc);
@@ -136,7 +113,7 @@ static void expect_partial(const char *doc, const char *want, const char *warnin
 /* `doc` is refused with a message containing want1 and want2. */
 static void refused(const char *doc, const char *want1, const char *want2)
 {
-    text_sink t = {.n = 0};
+    support_text t = {.n = 0};
     if (aa_svg_read(doc, strlen(doc), "test.svg", 100, 100, &sink, &t, NULL) != AA_EINVAL)
         fail_msg("accepted: %s", doc);
     const char *msg = aa_last_error();

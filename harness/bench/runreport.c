@@ -28,6 +28,15 @@ static int same_view(const aa_row *a, const aa_row *b)
            a->h == b->h;
 }
 
+/* 1 if rows[k] is the first of the rows with its view */
+static int first_of_view(const aa_row *rows, size_t k)
+{
+    for (size_t q = 0; q < k; q++)
+        if (same_view(&rows[q], &rows[k]))
+            return 0;
+    return 1;
+}
+
 /* the rows qsort's comparison looks the indices up in */
 static const aa_row *sort_rows;
 static int by_rmse(const void *a, const void *b)
@@ -197,10 +206,7 @@ int aa_run_report(const char *dir, const aa_row *rows, size_t n)
           "encoded luma. A time marked * was measured while the machine was busy.</p>\n<nav>",
           m);
     for (size_t k = 0; k < n; k++) {
-        size_t q = 0;
-        while (q < k && !same_view(&rows[q], &rows[k]))
-            q++;
-        if (q < k)
+        if (!first_of_view(rows, k))
             continue;
         char ps[512], fs[256];
         aa_spec_slug(rows[k].pattern, ps, sizeof ps);
@@ -216,10 +222,7 @@ int aa_run_report(const char *dir, const aa_row *rows, size_t n)
     fputs("</nav>\n", m);
     int first_done = 0;
     for (size_t k = 0; k < n; k++) {
-        size_t q = 0;
-        while (q < k && !same_view(&rows[q], &rows[k]))
-            q++;
-        if (q < k)
+        if (!first_of_view(rows, k))
             continue;
         /* montage.png is the first view that has a case that ran */
         int is_first = 0;

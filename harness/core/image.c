@@ -517,6 +517,20 @@ void aa_image_out_abort(aa_image_out *out)
     out_free(out);
 }
 
+/* The whole image (checked by the caller) to path through the writer
+ * (aa_image_out_begin; encoded by enc, or NULL): its rows at once, then
+ * finished, or aborted where they fail. */
+static int write_whole(const char *path, const aa_image *im, const aa_encode *enc)
+{
+    aa_image_out *out;
+    int status = aa_image_out_begin(path, im->w, im->h, im->c, enc, &out);
+    if (status == AA_OK && (status = aa_image_out_rows(out, im->v, im->h)) != AA_OK) {
+        aa_image_out_abort(out);
+        return status;
+    }
+    return status == AA_OK ? aa_image_out_finish(out) : status;
+}
+
 int aa_image_write_txt(const char *path, const aa_image *im)
 {
     if (path == NULL)
@@ -526,13 +540,7 @@ int aa_image_write_txt(const char *path, const aa_image *im)
         status = aa__txt_check_finite(path, im);
     if (status != AA_OK)
         return status;
-    aa_image_out *out;
-    status = aa_image_out_begin(path, im->w, im->h, im->c, NULL, &out);
-    if (status == AA_OK && (status = aa_image_out_rows(out, im->v, im->h)) != AA_OK) {
-        aa_image_out_abort(out);
-        return status;
-    }
-    return status == AA_OK ? aa_image_out_finish(out) : status;
+    return write_whole(path, im, NULL);
 }
 
 int aa_image_write(const char *path, const aa_image *im, const aa_encode *enc)
@@ -547,13 +555,7 @@ int aa_image_write(const char *path, const aa_image *im, const aa_encode *enc)
     int status = check_image(path, im, f);
     if (status != AA_OK)
         return status;
-    aa_image_out *out;
-    status = aa_image_out_begin(path, im->w, im->h, im->c, enc, &out);
-    if (status == AA_OK && (status = aa_image_out_rows(out, im->v, im->h)) != AA_OK) {
-        aa_image_out_abort(out);
-        return status;
-    }
-    return status == AA_OK ? aa_image_out_finish(out) : status;
+    return write_whole(path, im, enc);
 }
 
 /* ------------------------------------------------------------------------
