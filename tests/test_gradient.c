@@ -2213,31 +2213,60 @@ static void test_mixed_lens(void **state)
                3);
 }
 
+/* The lens's picture with the radial layer's rectangle ending at x =
+ * 7.45, across the lens (x in [7.352, 7.649]): in pixel (7, 7) the
+ * threshold's curve now meets that edge, where the composite steps from
+ * 0.5 C + 0.5 L to L, at the lens's two heights on x = 7.45 and where the
+ * line L = 0.04045 (about 0.2 px below the lens) ends at the edge: each
+ * a height where the row integral is not analytic, found by the boxes
+ * that the edge crosses.  Against the 2-D quadrature of the picture
+ * (mpic_pixel), pixel (7, 7) and its neighbours along the edge. */
+static void test_mixed_edge(void **state)
+{
+    (void)state;
+    static const int px[3][2] = {{7, 7}, {7, 6}, {7, 8}};
+    mpic p = lens_pic();
+    p.l[1].r[2] = 7.45;
+    mpic_check("radial over linear, the lens cut by the radial layer's side", &p, px, 3);
+}
+
 /* Which pixels take the certified step and which the scan, as truth.c's
  * opening comment ("several gradients") states the rule: the lens's
  * scene, both layers filling the view (no edge in any window, a linear
- * and a radial gradient in sRGB), has no pixel scanned; with the radial
- * layer's rectangle ending at x = 8.5, the windows of column 8 hold that
- * edge, both layers painting in each: those 16 pixels are scanned, and
- * no other. */
+ * and a radial gradient in sRGB), and the same with the radial layer's
+ * rectangle ending at x = 8.5 (the windows of column 8 hold that edge, a
+ * line, both layers painting in each: certified box by box) have no
+ * pixel scanned; with the radial layer in linear light every integrated
+ * pixel is (no edge: the kind of its gradient leaves it to the scan). */
 static void test_mixed_which_step(void **state)
 {
     (void)state;
+    static const char *what[3] = {"filling the view", "ending at x = 8.5",
+                                  "in linear light"};
     mpic p = lens_pic();
     gw = gh = W;
-    for (int edge = 0; edge < 2; edge++) {
-        p.l[1].r[2] = edge ? 8.5 : 16;
-        aa_scene *s = mpic_scene(&p);
+    for (int c = 0; c < 3; c++) {
+        p.l[1].r[2] = c == 1 ? 8.5 : 16;
+        aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+        for (int k = p.nl - 1; k >= 0; k--) { /* mpic_scene's, the front layer maybe linear */
+            const mlayer *m = &p.l[k];
+            rect_px(s, (aa_rgb){{0, 0, 0}}, m->r[0], m->r[1], m->r[2], m->r[3]);
+            aa_gradient g = grad_px(m->kind, m->spread, m->p, m->st, m->n);
+            assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+            if (c == 2 && k == 1)
+                assert_int_equal(
+                    aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB), AA_OK);
+            if (m->alpha != 1.0)
+                assert_int_equal(aa_scene_set_alpha(s, m->alpha), AA_OK);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
         aa_image ref, bound;
         aa_truth_stats stats;
         reference(s, W, W, &ref, &bound, &stats);
-        print_message("radial layer %s: %zu of %zu integrated pixels scanned\n",
-                      edge ? "ending at x = 8.5" : "filling the view", stats.scanned,
-                      stats.integrated);
-        if (!edge)
-            assert_int_equal(stats.scanned, 0);
-        else
-            assert_int_equal(stats.scanned, W);
+        print_message("radial layer %s: %zu of %zu integrated pixels scanned\n", what[c],
+                      stats.scanned, stats.integrated);
+        assert_true(stats.integrated > 0);
+        assert_int_equal(stats.scanned, c == 2 ? stats.integrated : 0);
         aa_image_free(&ref);
         aa_image_free(&bound);
         aa_scene_free(s);
@@ -2264,6 +2293,7 @@ int main(void)
         cmocka_unit_test(test_mixed_tangent),
         cmocka_unit_test(test_mixed_stop_circle),
         cmocka_unit_test(test_mixed_lens),
+        cmocka_unit_test(test_mixed_edge),
         cmocka_unit_test(test_mixed_which_step),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
