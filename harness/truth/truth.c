@@ -304,21 +304,34 @@
  * and nothing mixes; scene_translucent; found once a render: thr_setup),
  * each pixel's heights are found as follows.
  *
- * Certified (thr_certify), where no offset piece enters the window,
- * every gradient is linear or radial but the cone case, in sRGB, and at
- * most GEN_LAYERS paint: the window's rows between its first and last
- * breakpoints are halved into boxes (across x too where a box is 16
+ * Certified (thr_certify), where no offset piece enters the window and
+ * every gradient is linear or radial but the cone case (any number of
+ * them in the scene: a span that more than GEN_LAYERS paint is refused
+ * as ever): the window's rows between its first and last breakpoints
+ * are halved into boxes (across x too where a box is 16
  * times wider than high and E depends on x there), and on each box E of
  * every channel and dE/dx are bounded in interval arithmetic (each
  * operation's result moved out by 2^-52 of itself and the least
- * subnormal; a layer's t, its paint affine in t on one stop segment, the
- * composite's steps folded: aa_scene_fold, one for the whole window
+ * subnormal; a layer's t, its paint affine in t on one stop segment (in
+ * linear light each channel then encoded, on the side of 0.0031308 its
+ * segment keeps to: "gradients in linear light"; across a stop, the
+ * encoding of the linear values' range, widened by 3e-8 for its step
+ * there), the composite's steps folded: aa_scene_fold, one for the whole window
  * where no piece enters it).  A box is free of events if, for every
  * channel, 0.04045 is outside E's range, or no cut meets the box (a stop
  * line or circle or a period's end of a layer that paints, the window's
  * side, a filter's kink or circle, a radial t whose derivative is not
  * bounded, a piece) and 0 is outside dE/dx's range: the curve then
- * crosses the box's rows transversally, x(y) analytic.  Where pieces (a
+ * crosses the box's rows transversally, x(y) analytic.  The first layer
+ * whose stops cut the box (up to THR_SEG - 1 times) is taken one stop
+ * segment at a time, each free as above with E on the segment, its stop
+ * lines no cut where E on them (the layer's paint at that t from the
+ * segment's side) is off 0.04045: the curve then does not meet them on
+ * the box.  In linear light the curve of an opaque ramp (E = C passes
+ * 0.04045 at v = 0.0031308073) runs 7e-7 px beside the cut at 0.0031308
+ * in a ramp 96 px long, and with those lines always cuts the boxes
+ * between them were halved on and on (tests/test_gradient_linrgb_renderers
+ * past 75 s of CPU, stopped; 14.5 s so).  Where pieces (a
  * line, a quadratic or cubic arc, a conic piece) enter the window, a
  * layer none of whose pieces meets the box has one winding on it, that
  * at its centre; a piece's x over the box's rows is bounded in interval
@@ -373,7 +386,7 @@
  * test_mixed_lens) is found: the scan does not see it.
  *
  * Scanned (thr_heights), elsewhere (an offset piece in the window, a
- * cone-case or linear-light gradient, more than GEN_LAYERS layers): between the
+ * cone-case gradient): between the
  * breakpoints, THR_ROWS = 32 rows a window's height, and one just inside
  * each interval's ends; each row's signature is the count of the
  * threshold's places (gen_section's certified isolation) per channel in
@@ -5819,7 +5832,8 @@ typedef struct thr_ctx {
     const aa_fold_step *st;
     const int *sl;
     double base[3], kink[8];
-    unsigned char used[GEN_LAYERS]; /* the layer has a step of the fold */
+    unsigned char *used; /* per layer (ngl): it has a step of the fold */
+    thr_jet *scr;        /* room for 5 ngl jets (thr_box) */
     int dy; /* the jets' derivative is along y, not x (thr_strip) */
     thr_iv *q0;
     double *buf;
@@ -5868,18 +5882,52 @@ static double thr_period_place(int spread, double t)
     return t;
 }
 
+/* A channel of a layer in linear light ("gradients in linear light"):
+ * its linear value v (a jet) on one piece of the cut stops becomes the
+ * encoded C = 12.92 v below LIN_T (power 0), 1.055 v^p - 0.055 above it,
+ * p = 1/2.4, increasing, its derivative 1.055 p v^(p - 1) v' decreasing
+ * in v (not had where v's range reaches 0).  pow's error, below an ulp,
+ * and the product's rounding are covered by 4 epsilons of the result. */
+static thr_jet thr_encode(thr_jet v, int power)
+{
+    if (!power)
+        return j_scale(12.92, v);
+    const double p = 1.0 / 2.4, r = 4.0 * DBL_EPSILON;
+    double lo = v.v.lo, hi = v.v.hi;
+    thr_jet c;
+    c.v = iv_out(lo > 0.0 ? 1.055 * pow(lo, p) * (1.0 - r) - 0.055 : -0.055,
+                 1.055 * pow(fmax(hi, 0.0), p) * (1.0 + r) - 0.055);
+    if (!(lo > 0.0)) {
+        c.d = (thr_iv){-INFINITY, INFINITY};
+        return c;
+    }
+    thr_iv D = iv_out(1.055 * p * pow(hi, p - 1.0) * (1.0 - r),
+                      1.055 * p * pow(lo, p - 1.0) * (1.0 + r));
+    c.d = iv_mul(v.d, D);
+    return c;
+}
+
 /* Layer g's opacity and channels (p[3], p[0 .. 2]) where its t, in the
- * range t, lies in one stop segment: v0 + v1 t (paint_lin) with their
- * rounding added. */
-static void thr_affine(const gen_layer *g, thr_jet t, thr_jet p[4])
+ * range t, lies in one stop segment, that of tm (thr_affine: the range's
+ * middle): v0 + v1 t (paint_lin) with their rounding added; in linear
+ * light each channel then encoded on the side of LIN_T the segment keeps
+ * to, decided at tm as gen_section does. */
+static void thr_affine_at(const gen_layer *g, thr_jet t, double tm, thr_jet p[4])
 {
     double ta = t.v.lo, tb = t.v.hi, v0[4], v1[4];
-    paint_lin(g->spread, g->stops, g->nstops, g->enc, 0.5 * (ta + tb), v0, v1);
+    paint_lin(g->spread, g->stops, g->nstops, g->enc, tm, v0, v1);
     for (int k = 0; k < 4; k++) {
         double e = 8.0 * DBL_EPSILON * (fabs(v0[k]) + fabs(v1[k]) * fmax(fabs(ta), fabs(tb)));
         p[k].v = iv_add(iv_add(iv_k(v0[k]), iv_mul(iv_k(v1[k]), t.v)), (thr_iv){-e, e});
         p[k].d = iv_mul(iv_k(v1[k]), t.d);
+        if (g->lin && k < 3)
+            p[k] = thr_encode(p[k], v0[k] + v1[k] * tm > LIN_T);
     }
+}
+
+static void thr_affine(const gen_layer *g, thr_jet t, thr_jet p[4])
+{
+    thr_affine_at(g, t, 0.5 * (t.v.lo + t.v.hi), p);
 }
 
 /* Layer l's opacity and channels (p[3], p[0 .. 2]) on the box, its t
@@ -5936,6 +5984,12 @@ static void thr_paint(const thr_ctx *c, int l, thr_jet t, thr_jet p[4], int *cut
             lo[k] = fmin(lo[k], g->enc[4 * s + k]), hi[k] = fmax(hi[k], g->enc[4 * s + k]);
     for (int k = 0; k < 4; k++) {
         double e = 8.0 * DBL_EPSILON * fmax(fabs(lo[k]), fabs(hi[k]));
+        if (g->lin && k < 3) {
+            /* in linear light: the encoding of the linear values' range,
+             * increasing but for its step at LIN_T, 2.9e-8 down (IEC
+             * 61966-2-1's two pieces do not meet), and pow's rounding */
+            lo[k] = aa_srgb_encode(lo[k]) - 3e-8, hi[k] = aa_srgb_encode(hi[k]) + 3e-8;
+        }
         p[k].v = iv_out(lo[k] - e, hi[k] + e);
         p[k].d = (thr_iv){-INFINITY, INFINITY};
     }
@@ -5996,7 +6050,7 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
             *xfree &= g->gp && g->gp->tx == 0.0;
         }
     thr_iv X = {x0, x1}, S = {s0, s1};
-    thr_jet a[GEN_LAYERS], ac[GEN_LAYERS][3];
+    thr_jet *a = c->scr, (*ac)[3] = (thr_jet(*)[3])(c->scr + w->ngl), *t = c->scr + 4 * w->ngl;
     int cut = cut0 || x0 <= -w->R || x1 >= w->R;
     for (int k = 0; k < c->nk; k++)
         cut |= c->kink[k] >= x0 && c->kink[k] <= x1;
@@ -6007,8 +6061,9 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
     }
     /* the first layer whose stops cut the box (at most THR_SEG - 1 times)
      * is taken one segment of its t at a time: a jump of its paint at a
-     * sharp stop or a period's end is then no threshold's place */
-    thr_jet t[GEN_LAYERS];
+     * sharp stop or a period's end is then no threshold's place, and the
+     * stop lines bounding the segment are cuts only where E on them may
+     * be 0.04045 */
     double brk[THR_SEG + 1], elo[3] = {INFINITY, INFINITY, INFINITY};
     double ehi[3] = {-INFINITY, -INFINITY, -INFINITY};
     int split = -1, nbrk = 0, hit = 0, flat = 0;
@@ -6033,17 +6088,17 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
     }
     for (int j = 0; j <= nbrk; j++) {
         int cj = cut;
+        thr_jet ts = {{0.0, 0.0}, {0.0, 0.0}};
         for (int l = 0; l < w->ngl; l++) {
             thr_jet p[4];
             if (!c->used[l])
                 continue;
             if (l == split) {
-                thr_jet ts = t[l];
+                ts = t[l];
                 ts.v.lo = fmax(ts.v.lo, brk[j]), ts.v.hi = fmin(ts.v.hi, brk[j + 1]);
                 if (!(ts.v.lo <= ts.v.hi))
                     goto next;
                 thr_affine(&w->gl[l], ts, p);
-                cj = 1;
             } else
                 thr_paint(c, l, t[l], p, &cj);
             a[l] = p[3];
@@ -6052,6 +6107,26 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
         }
         thr_jet E[3];
         thr_fold(c, a, ac, E);
+        /* the split layer's stop lines that bound the segment on the box:
+         * a cut where the curve may meet one, E there (the layer's paint
+         * at that t, from the segment's side) holding 0.04045 */
+        for (int e = 0; e < 2 && split >= 0 && !cj; e++) {
+            double b = e ? brk[j + 1] : brk[j], tm = 0.5 * (ts.v.lo + ts.v.hi);
+            if (b != (e ? ts.v.hi : ts.v.lo))
+                continue; /* not met on the box */
+            thr_jet p[4], Eb[3], tb = {{b, b}, {0.0, 0.0}};
+            thr_jet keep = a[split], kc[3];
+            thr_affine_at(&w->gl[split], tb, tm, p);
+            a[split] = p[3];
+            for (int ch = 0; ch < c->nch; ch++)
+                kc[ch] = ac[split][ch], ac[split][ch] = j_mul(p[3], p[ch]);
+            thr_fold(c, a, ac, Eb);
+            a[split] = keep;
+            for (int ch = 0; ch < c->nch; ch++) {
+                ac[split][ch] = kc[ch];
+                cj |= Eb[ch].v.lo <= 0.04045 && Eb[ch].v.hi >= 0.04045;
+            }
+        }
         for (int ch = 0; ch < c->nch && wid; ch++)
             elo[ch] = fmin(elo[ch], E[ch].v.lo), ehi[ch] = fmax(ehi[ch], E[ch].v.hi);
         for (int ch = 0; ch < c->nch && lip; ch++) {
@@ -6143,7 +6218,7 @@ typedef struct thr_fc {
     int nst, *key, *sl;
     aa_fold_step *st;
     double base[3];
-    unsigned char used[GEN_LAYERS];
+    unsigned char *used; /* per layer (ngl) */
 } thr_fc;
 
 typedef struct thr_cache {
@@ -6236,7 +6311,7 @@ static const thr_fc *thr_fold_of(const thr_ctx *c, const int *wind)
         h->n++;
     memcpy(f->key, wind, kb);
     f->nst = aa_scene_fold(w->scene, wind, w->ngl, w->gl_layer, f->st, w->cap_fold, f->base);
-    memset(f->used, 0, sizeof f->used);
+    memset(f->used, 0, (size_t)w->ngl);
     for (int k = 0; k < f->nst; k++) {
         f->sl[k] = -1;
         for (int l = 0; l < w->ngl && f->st[k].op == AA_FOLD_LAYER; l++)
@@ -6312,7 +6387,7 @@ static int thr_box_at(const thr_ctx *c, double x0, double x1, double s0, double 
         int xf = 0;
         cc.nst = f->nst, cc.st = f->st, cc.sl = f->sl;
         memcpy(cc.base, f->base, sizeof cc.base);
-        memcpy(cc.used, f->used, sizeof cc.used);
+        cc.used = f->used;
         hit |= thr_box(&cc, x0, x1, s0, s1, nu > 0, &xf, wid, lip);
         if (nu == 0)
             *xfree = xf;
@@ -6458,7 +6533,8 @@ static int thr_certify_edges(worker *w, thr_ctx *c, int *taken)
 {
     thr_cache h = {0};
     int nl = aa_scene_layer_count(w->scene), cf = w->cap_fold;
-    size_t per = (size_t)cf * sizeof(aa_fold_step) + (size_t)(cf + nl) * sizeof(int);
+    size_t per = (size_t)cf * sizeof(aa_fold_step) + (size_t)(cf + nl) * sizeof(int) +
+                 (size_t)w->ngl;
     per = (per + 15) & ~(size_t)15; /* each entry's steps aligned */
     char *mem = malloc(THR_FOLDS * per + (size_t)(nl + 1) * sizeof(int) + 2 * w->nlp * sizeof(int));
     if (!mem)
@@ -6469,6 +6545,7 @@ static int thr_certify_edges(worker *w, thr_ctx *c, int *taken)
         h.e[k].st = (aa_fold_step *)(void *)m;
         h.e[k].sl = (int *)(void *)(m + (size_t)cf * sizeof(aa_fold_step));
         h.e[k].key = h.e[k].sl + cf;
+        h.e[k].used = (unsigned char *)(h.e[k].key + nl);
     }
     h.wind = (int *)(void *)(mem + THR_FOLDS * per);
     int *pc = h.wind + nl + 1, *side = pc + w->nlp, npc = 0;
@@ -6483,6 +6560,24 @@ static int thr_certify_edges(worker *w, thr_ctx *c, int *taken)
     return st;
 }
 
+/* thr_certify in a window that no piece enters, its steps (c->nst, the
+ * window's) had. */
+static int thr_certify_clear(worker *w, thr_ctx *c, int *taken)
+{
+    *taken = 1;
+    for (int k = 0; k < c->nst; k++) {
+        w->fold_sl[k] = -1;
+        for (int l = 0; l < w->ngl && w->fold[k].op == AA_FOLD_LAYER; l++)
+            if (w->gl[l].layer == w->fold[k].layer)
+                w->fold_sl[k] = l;
+    }
+    c->sl = w->fold_sl;
+    for (int k = 0; k < c->nst; k++)
+        if (c->st[k].op == AA_FOLD_LAYER && c->sl[k] >= 0)
+            c->used[c->sl[k]] = 1;
+    return thr_boxes(w, c);
+}
+
 /* The certified heights (the opening comment, "several gradients"): the
  * window's rows between its first and last breakpoints halved into boxes
  * until each is shown free of events (thr_box) or no side is above
@@ -6495,10 +6590,15 @@ static int thr_certify(worker *w, int nch, int edges, int *taken)
     thr_ctx c = {0};
     c.w = w, c.nch = nch, c.st = w->fold, c.buf = w->gbuf, c.cap = 64;
     *taken = 0;
-    if (w->ngl > GEN_LAYERS)
-        return AA_OK;
     c.nk = w->f->type->kinks(w->f->spec.v, c.kink);
-    thr_iv q0[2 * GEN_LAYERS], U = iv_k(w->uc), V = iv_k(w->vc);
+    size_t n = (size_t)w->ngl;
+    char *mem = malloc(n * (2 * sizeof(thr_iv) + 5 * sizeof(thr_jet)) + n);
+    if (!mem)
+        return aa_fail(AA_ENOMEM, "out of memory for the threshold's boxes");
+    thr_iv *q0 = (thr_iv *)(void *)mem, U = iv_k(w->uc), V = iv_k(w->vc);
+    c.scr = (thr_jet *)(void *)(q0 + 2 * n);
+    c.used = (unsigned char *)(c.scr + 5 * n);
+    memset(c.used, 0, n);
     for (int l = 0; l < w->ngl; l++) {
         const gen_layer *g = &w->gl[l];
         if (g->gp) {
@@ -6514,23 +6614,14 @@ static int thr_certify(worker *w, int nch, int edges, int *taken)
             iv_k(g->rg->fy));
     }
     c.q0 = q0;
+    int st = AA_OK;
     if (edges)
-        return thr_certify_edges(w, &c, taken);
-    c.nst = aa_scene_fold(w->scene, w->wind, w->ngl, w->gl_layer, w->fold, w->cap_fold, c.base);
-    if (c.nst < 0)
-        return AA_OK;
-    *taken = 1;
-    for (int k = 0; k < c.nst; k++) {
-        w->fold_sl[k] = -1;
-        for (int l = 0; l < w->ngl && w->fold[k].op == AA_FOLD_LAYER; l++)
-            if (w->gl[l].layer == w->fold[k].layer)
-                w->fold_sl[k] = l;
-    }
-    c.sl = w->fold_sl;
-    for (int k = 0; k < c.nst; k++)
-        if (c.st[k].op == AA_FOLD_LAYER && c.sl[k] >= 0)
-            c.used[c.sl[k]] = 1;
-    return thr_boxes(w, &c);
+        st = thr_certify_edges(w, &c, taken);
+    else if ((c.nst = aa_scene_fold(w->scene, w->wind, w->ngl, w->gl_layer, w->fold,
+                                    w->cap_fold, c.base)) >= 0)
+        st = thr_certify_clear(w, &c, taken);
+    free(mem);
+    return st;
 }
 
 /* If the rows [a, b] lie in a sliver of thr_certify, its bound of |F(s) -
@@ -6574,7 +6665,7 @@ static int scene_translucent(const worker *w)
 
 /* Once a render: whether its layers are not all of one t and something is
  * translucent (thr_on), and whether they are all linear or radial but the
- * cone case, in sRGB (thr_cert: thr_certify's kinds). */
+ * cone case (thr_cert: thr_certify's kinds). */
 static void thr_setup(worker *w)
 {
     int mixed = 0;
@@ -6583,7 +6674,7 @@ static void thr_setup(worker *w)
     w->thr_on = mixed && scene_translucent(w);
     w->thr_cert = !aa_scene_field(w->scene, NULL, NULL, NULL);
     for (int k = 0; k < w->ngl; k++)
-        if (w->gl[k].lin || (w->gl[k].rg && w->gl[k].rg->cone))
+        if (w->gl[k].rg && w->gl[k].rg->cone)
             w->thr_cert = 0;
 }
 
