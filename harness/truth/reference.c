@@ -57,7 +57,8 @@
                           * 11: the sRGB threshold's heights where translucent
                           * gradients of different t mix certified by interval boxes
                           * (thr_certify), not only scanned; 12: also in windows
-                          * that edges (not offset curves) enter, box by box */
+                          * that edges (not offset curves) enter, box by box, for
+                          * gradients in linear light and past 32 gradient layers */
 #define CACHE_MAGIC "aabench-reference 2\n"
 
 static int field_key(const aa_view *view, char *buf, size_t len);
