@@ -2281,16 +2281,20 @@ static void test_mixed_edge(void **state)
  * all, more than GEN_LAYERS, each a small square behind the lens's
  * opaque linear layer) have no pixel scanned; with the radial layer's
  * focal point moved outside its circle (the cone case) every integrated
- * pixel is (no edge: the kind of its gradient leaves it to the scan). */
+ * pixel is (no edge: the kind of its gradient leaves it to the scan);
+ * with the edge at x = 8.5 under the cone filter of radius 1/2 (a radial
+ * filter, whose slivers take a crude bound) the 16 windows of column 8
+ * are, and no other. */
 static void test_mixed_which_step(void **state)
 {
     (void)state;
-    static const char *what[5] = {"filling the view", "ending at x = 8.5", "in linear light",
-                                  "of the cone case", "over 32 more gradients"};
+    static const char *what[6] = {"filling the view", "ending at x = 8.5", "in linear light",
+                                  "of the cone case", "over 32 more gradients",
+                                  "ending at x = 8.5, under cone:r=0.5"};
     mpic p = lens_pic();
     gw = gh = W;
-    for (int c = 0; c < 5; c++) {
-        p.l[1].r[2] = c == 1 ? 8.5 : 16;
+    for (int c = 0; c < 6; c++) {
+        p.l[1].r[2] = c == 1 || c == 5 ? 8.5 : 16;
         p.l[1].p[4] = c == 3 ? 47.44001041579865 - 45 : 47.44001041579865; /* fy */
         mpic_lin = c == 2 ? 2u : 0u;
         aa_scene *s = c == 4 ? NULL : mpic_scene(&p);
@@ -2313,11 +2317,12 @@ static void test_mixed_which_step(void **state)
         }
         aa_image ref, bound;
         aa_truth_stats stats;
-        reference(s, W, W, &ref, &bound, &stats);
+        support_view v = {W, W, 0, 0, 0, c == 5 ? "cone:r=0.5" : NULL, 1, 1, 0};
+        support_reference(s, &v, &ref, &bound, &stats);
         print_message("radial layer %s: %zu of %zu integrated pixels scanned\n", what[c],
                       stats.scanned, stats.integrated);
         assert_true(stats.integrated > 0);
-        assert_int_equal(stats.scanned, c == 3 ? stats.integrated : 0);
+        assert_int_equal(stats.scanned, c == 3 ? stats.integrated : c == 5 ? W : 0);
         aa_image_free(&ref);
         aa_image_free(&bound);
         aa_scene_free(s);

@@ -394,8 +394,15 @@
  * stop circle between two of the scan's rows (tests/test_gradient.c,
  * test_mixed_lens) is found: the scan does not see it.
  *
+ * Under a radial filter only windows that no piece enters are certified:
+ * its slivers take 4 R times the weight's peak a unit of height, and
+ * where the curve met an edge (a 16x16 document of the kind below, under
+ * cone:r=1) slivers 8e-8 px high in all gave pixels bounds of 5e-7 (its
+ * windows that no piece enters reach 2e-7 so, as before: that bound is
+ * what is left to make fine under radial filters).
+ *
  * Scanned (thr_heights), elsewhere (an offset piece in the window, a
- * cone-case gradient): between the
+ * cone-case gradient, a piece in the window under a radial filter): between the
  * breakpoints, THR_ROWS = 32 rows a window's height, and one just inside
  * each interval's ends; each row's signature is the count of the
  * threshold's places (gen_section's certified isolation) per channel in
@@ -6706,6 +6713,8 @@ static int thr_heights(worker *w, int nch)
     double found[THR_EVENTS];
     int nfound = 0, any = 0, taken = 0;
     int clear = w->thr_cert ? thr_window_clear(w) : -1;
+    if (clear == 0 && w->radial)
+        clear = -1; /* a radial filter's slivers take the crude bound: scanned */
     if (clear >= 0) {
         size_t n0 = w->npts;
         int st = thr_certify(w, nch, !clear, &taken);
