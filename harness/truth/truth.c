@@ -387,8 +387,8 @@
  * stops, 6.52e9 instructions against 5.99e9 with those windows scanned
  * (263 pixels; its largest bound 1.9e-14, 9.8e-14 with the scan, the
  * values within 9.0e-15 of its, each difference inside both bounds);
- * tests/test_gradient 43.6 s of user CPU, 49.3 s before,
- * test_gradient_cone_filter 33.0 s, 36.8 s, not one after the other; in
+ * tests/test_gradient 46.2 s of user CPU, 49.3 s before,
+ * test_gradient_cone_filter 32.1 s, 36.8 s, not one after the other; in
  * linear light the references of tests/test_gradient_linrgb_renderers
  * 10.9 s, 7.0 s scanned, one after the other.  A lens of the curve 0.015 px high along a radial
  * stop circle between two of the scan's rows (tests/test_gradient.c,
