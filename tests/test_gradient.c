@@ -1387,6 +1387,10 @@ typedef struct mpic {
     int ch;
 } mpic;
 
+/* Bit k set: layer k of the picture interpolates its stops in linear light
+ * (AA_INTERPOLATE_LINEAR_RGB), for mpic_enc, mpic_sig and mpic_scene. */
+static unsigned mpic_lin;
+
 static double mlayer_t(const mlayer *m, double x, double y)
 {
     if (m->kind == AA_GRADIENT_LINEAR) {
@@ -1404,6 +1408,28 @@ static int mlayer_in(const mlayer *m, double x, double y)
                    : (x > m->r[0] && x < m->r[2] && y > m->r[1] && y < m->r[3]);
 }
 
+/* A layer in linear light: channel ch's linear value at t, the stops'
+ * linear channels interpolated (SVG's spread as stop_value takes it). */
+static double mlayer_linear(const mlayer *m, double t, int ch)
+{
+    if (m->spread == AA_SPREAD_REPEAT)
+        t -= floor(t);
+    else if (m->spread == AA_SPREAD_REFLECT) {
+        t = fmod(fabs(t), 2.0);
+        if (t > 1.0)
+            t = 2.0 - t;
+    }
+    const aa_gradient_stop *s = m->st;
+    if (t <= s[0].offset)
+        return s[0].colour.c[ch];
+    for (int q = 0; q + 1 < m->n; q++)
+        if (t < s[q + 1].offset) {
+            double f = (t - s[q].offset) / (s[q + 1].offset - s[q].offset);
+            return s[q].colour.c[ch] + f * (s[q + 1].colour.c[ch] - s[q].colour.c[ch]);
+        }
+    return s[m->n - 1].colour.c[ch];
+}
+
 /* The encoded composite of channel ch at (x, y). */
 static double mpic_enc(const mpic *p, int ch, double x, double y)
 {
@@ -1415,6 +1441,8 @@ static double mpic_enc(const mpic *p, int ch, double x, double y)
         picture pc = {0};
         pc.spread = m->spread, pc.stops = m->st, pc.n = m->n;
         double op, c = stop_value(&pc, mlayer_t(m, x, y), ch, &op), a = m->alpha * op;
+        if ((mpic_lin >> k) & 1u)
+            c = enc(mlayer_linear(m, mlayer_t(m, x, y), ch));
         acc = a * c + (1 - a) * acc;
     }
     return acc;
@@ -1446,6 +1474,8 @@ static void mpic_sig(const mpic *p, double x, double y, int *s)
         for (int q = 0; q < m->n; q++)
             seg += u >= m->st[q].offset;
         s[n++] = seg;
+        for (int c = 0; c < 3 && ((mpic_lin >> k) & 1u); c++) /* the encoding's change of piece */
+            s[n++] = mlayer_linear(m, t, c) > 0.0031308;
     }
     for (int c = 0; c < 3; c++)
         s[n++] = mpic_enc(p, c, x, y) > 0.04045;
@@ -1593,6 +1623,9 @@ static aa_scene *mpic_scene(const mpic *p)
             rect_px(s, (aa_rgb){{0, 0, 0}}, m->r[0], m->r[1], m->r[2], m->r[3]);
         aa_gradient g = grad_px(m->kind, m->spread, m->p, m->st, m->n);
         assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+        if ((mpic_lin >> k) & 1u)
+            assert_int_equal(aa_scene_set_gradient_interpolation(s, AA_INTERPOLATE_LINEAR_RGB),
+                             AA_OK);
         if (m->alpha != 1.0)
             assert_int_equal(aa_scene_set_alpha(s, m->alpha), AA_OK);
     }
@@ -2230,31 +2263,83 @@ static void test_mixed_lens(void **state)
                3);
 }
 
+/* The lens's picture with the radial layer's rectangle ending at x =
+ * 7.45, across the lens (x in [7.352, 7.649]): in pixel (7, 7) the
+ * threshold's curve now meets that edge, where the composite steps from
+ * 0.5 C + 0.5 L to L, at the lens's two heights on x = 7.45 and where the
+ * line L = 0.04045 (about 0.2 px below the lens) ends at the edge: each
+ * a height where the row integral is not analytic, found by the boxes
+ * that the edge crosses.  Then the same with the radial layer in linear
+ * light, cut and filling the view (the oracle encodes its interpolated
+ * linear channels, their change of piece at 0.0031308 a cut of its rows).
+ * Against the 2-D quadrature of the picture (mpic_pixel), pixel (7, 7)
+ * and its neighbours along the edge. */
+static void test_mixed_edge(void **state)
+{
+    (void)state;
+    static const int px[3][2] = {{7, 7}, {7, 6}, {7, 8}};
+    mpic p = lens_pic();
+    p.l[1].r[2] = 7.45;
+    mpic_check("radial over linear, the lens cut by the radial layer's side", &p, px, 3);
+    mpic_lin = 2u;
+    mpic_check("the same, the radial layer in linear light", &p, px, 3);
+    p.l[1].r[2] = 16;
+    mpic_check("the radial layer in linear light filling the view", &p, px, 3);
+    mpic_lin = 0;
+}
+
 /* Which pixels take the certified step and which the scan, as truth.c's
  * opening comment ("several gradients") states the rule: the lens's
  * scene, both layers filling the view (no edge in any window, a linear
- * and a radial gradient in sRGB), has no pixel scanned; with the radial
- * layer's rectangle ending at x = 8.5, the windows of column 8 hold that
- * edge, both layers painting in each: those 16 pixels are scanned, and
- * no other. */
+ * and a radial gradient in sRGB), and the same with the radial layer's
+ * rectangle ending at x = 8.5 (the windows of column 8 hold that edge, a
+ * line, both layers painting in each: certified box by box), with the
+ * radial layer in linear light, and with 32 more gradient layers (34 in
+ * all, more than GEN_LAYERS, each a small square behind the lens's
+ * opaque linear layer) have no pixel scanned; with the radial layer's
+ * focal point moved outside its circle (the cone case) every integrated
+ * pixel is (no edge: the kind of its gradient leaves it to the scan);
+ * with the edge at x = 8.5 under the cone filter of radius 1/2 (a radial
+ * filter, whose slivers take a crude bound) the 16 windows of column 8
+ * are, and no other. */
 static void test_mixed_which_step(void **state)
 {
     (void)state;
+    static const char *what[6] = {"filling the view", "ending at x = 8.5", "in linear light",
+                                  "of the cone case", "over 32 more gradients",
+                                  "ending at x = 8.5, under cone:r=0.5"};
     mpic p = lens_pic();
     gw = gh = W;
-    for (int edge = 0; edge < 2; edge++) {
-        p.l[1].r[2] = edge ? 8.5 : 16;
-        aa_scene *s = mpic_scene(&p);
+    for (int c = 0; c < 6; c++) {
+        p.l[1].r[2] = c == 1 || c == 5 ? 8.5 : 16;
+        p.l[1].p[4] = c == 3 ? 47.44001041579865 - 45 : 47.44001041579865; /* fy */
+        mpic_lin = c == 2 ? 2u : 0u;
+        aa_scene *s = c == 4 ? NULL : mpic_scene(&p);
+        mpic_lin = 0;
+        if (c == 4) { /* 34 gradient layers: 32 behind the lens's, a square of one each */
+            s = aa_scene_new((aa_rgb){{0, 0, 0}});
+            for (int k = 0; k < 34; k++) { /* front first: the lens's radial, linear, then */
+                const mlayer *m = &p.l[k == 0 ? 1 : 0];
+                double x = 0.5 * (k - 2);
+                if (k < 2)
+                    rect_px(s, (aa_rgb){{0, 0, 0}}, m->r[0], m->r[1], m->r[2], m->r[3]);
+                else
+                    rect_px(s, (aa_rgb){{0, 0, 0}}, x, 15.5, x + 0.25, 15.75);
+                aa_gradient g = grad_px(m->kind, m->spread, m->p, m->st, m->n);
+                assert_int_equal(aa_scene_set_gradient(s, &g), AA_OK);
+                if (m->alpha != 1.0)
+                    assert_int_equal(aa_scene_set_alpha(s, m->alpha), AA_OK);
+            }
+            assert_int_equal(aa_scene_finish(s), AA_OK);
+        }
         aa_image ref, bound;
         aa_truth_stats stats;
-        reference(s, W, W, &ref, &bound, &stats);
-        print_message("radial layer %s: %zu of %zu integrated pixels scanned\n",
-                      edge ? "ending at x = 8.5" : "filling the view", stats.scanned,
-                      stats.integrated);
-        if (!edge)
-            assert_int_equal(stats.scanned, 0);
-        else
-            assert_int_equal(stats.scanned, W);
+        support_view v = {W, W, 0, 0, 0, c == 5 ? "cone:r=0.5" : NULL, 1, 1, 0};
+        support_reference(s, &v, &ref, &bound, &stats);
+        print_message("radial layer %s: %zu of %zu integrated pixels scanned\n", what[c],
+                      stats.scanned, stats.integrated);
+        assert_true(stats.integrated > 0);
+        assert_int_equal(stats.scanned, c == 3 ? stats.integrated : c == 5 ? W : 0);
         aa_image_free(&ref);
         aa_image_free(&bound);
         aa_scene_free(s);
@@ -2281,6 +2366,7 @@ int main(void)
         cmocka_unit_test(test_mixed_tangent),
         cmocka_unit_test(test_mixed_stop_circle),
         cmocka_unit_test(test_mixed_lens),
+        cmocka_unit_test(test_mixed_edge),
         cmocka_unit_test(test_mixed_which_step),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
