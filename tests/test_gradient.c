@@ -50,6 +50,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -100,6 +101,32 @@ static double dec(double e)
     if (e >= 1.0)
         return 1.0;
     return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+}
+
+/* sRGB's encoding (IEC 61966-2-1), written out here. */
+static double enc(double l)
+{
+    return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1 / 2.4) - 0.055;
+}
+
+/* enc of a stop's channel, kept for the values asked last: the pictures
+ * below encode the same few stops at every point their quadratures take
+ * (two pow a layer and channel), and a value kept is the one enc gives
+ * again, bit for bit. */
+static double stop_enc(double l)
+{
+    enum { SLOTS = 64 };
+    static uint64_t key[SLOTS];
+    static double val[SLOTS];
+    static unsigned char kept[SLOTS];
+    union {
+        double d;
+        uint64_t u;
+    } bits = {l};
+    const unsigned k = (unsigned)((bits.u * 0x9E3779B97F4A7C15u) >> 58);
+    if (!kept[k] || key[k] != bits.u)
+        key[k] = bits.u, val[k] = enc(l), kept[k] = 1;
+    return val[k];
 }
 
 /* Ibar = int_0^1 dec(v) dv in closed form (the opening comment). */
@@ -285,10 +312,7 @@ static double stop_value(const picture *p, double t, int ch, double *opacity)
     double c0, c1;
     if (t <= s[0].offset) {
         *opacity = s[0].opacity;
-        return ch < 3 ? (s[0].colour.c[ch] <= 0.0031308 ? 12.92 * s[0].colour.c[ch]
-                                                         : 1.055 * pow(s[0].colour.c[ch],
-                                                                       1 / 2.4) - 0.055)
-                      : 0;
+        return ch < 3 ? stop_enc(s[0].colour.c[ch]) : 0;
     }
     int k = p->n - 1;
     for (int q = 0; q + 1 < p->n; q++)
@@ -296,9 +320,8 @@ static double stop_value(const picture *p, double t, int ch, double *opacity)
             k = q;
             break;
         }
-    double lin0 = s[k].colour.c[ch], lin1 = s[k < p->n - 1 ? k + 1 : k].colour.c[ch];
-    c0 = lin0 <= 0.0031308 ? 12.92 * lin0 : 1.055 * pow(lin0, 1 / 2.4) - 0.055;
-    c1 = lin1 <= 0.0031308 ? 12.92 * lin1 : 1.055 * pow(lin1, 1 / 2.4) - 0.055;
+    c0 = stop_enc(s[k].colour.c[ch]);
+    c1 = stop_enc(s[k < p->n - 1 ? k + 1 : k].colour.c[ch]);
     if (k == p->n - 1) {
         *opacity = s[k].opacity;
         return c0;
@@ -937,12 +960,6 @@ static void test_svg_refusals(void **state)
 
 /* ---- radial gradients through the box reference ---- */
 
-/* sRGB's encoding (IEC 61966-2-1), written out here. */
-static double enc(double l)
-{
-    return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1 / 2.4) - 0.055;
-}
-
 /* A radial gradient over a disc of the scene, written out from SVG 2's
  * definition: t is the largest w with |q - F - w D| = fr + w dr (D = C -
  * F, dr = r - fr); squared, A w^2 - 2 B w - E = 0 with A = dr^2 - D.D > 0
@@ -976,14 +993,14 @@ static double rpic_colour(const rpic *p, double t)
         t = t < 0 ? 0 : (t > 1 ? 1 : t);
     const aa_gradient_stop *s = p->stops;
     if (t < s[0].offset)
-        return dec(enc(s[0].colour.c[p->ch]));
+        return dec(stop_enc(s[0].colour.c[p->ch]));
     for (int k = p->n - 1; k > 0; k--)
         if (t >= s[k - 1].offset && t < s[k].offset) {
             double f = (t - s[k - 1].offset) / (s[k].offset - s[k - 1].offset);
-            double a = enc(s[k - 1].colour.c[p->ch]), b = enc(s[k].colour.c[p->ch]);
+            double a = stop_enc(s[k - 1].colour.c[p->ch]), b = stop_enc(s[k].colour.c[p->ch]);
             return dec(a + f * (b - a));
         }
-    return dec(enc(s[p->n - 1].colour.c[p->ch]));
+    return dec(stop_enc(s[p->n - 1].colour.c[p->ch]));
 }
 
 static double rpic_at(const rpic *p, double x, double y)
