@@ -635,6 +635,41 @@ static void test_pfm_known(void **state)
     assert_int_equal(len, sizeof pfm_known - 1);
     assert_memory_equal(text, pfm_known, len);
     aa_image_free(&im);
+
+    /* Three channels, 1 x 2: "PF", the bottom pixel (4, 5, 6) first, then
+     * the top one (1, 2, 3); 5.0 = 0x40a00000, 6.0 = 0x40c00000. */
+    static const char rgb[] = "PF\n1 2\n-1.0\n"
+                              "\x00\x00\x80\x40" "\x00\x00\xa0\x40" "\x00\x00\xc0\x40"
+                              "\x00\x00\x80\x3f" "\x00\x00\x00\x40" "\x00\x00\x40\x40";
+    path = in_dir(state, "rgb.pfm");
+    support_write_file(path, rgb, sizeof rgb - 1);
+    assert_int_equal(aa_image_read(path, &im), AA_OK);
+    assert_shape(&im, 1, 2, 3);
+    const double want_rgb[] = {1, 2, 3, 4, 5, 6};
+    assert_memory_equal(im.v, want_rgb, sizeof want_rgb);
+    aa_image_free(&im);
+
+    /* The scale's size multiplies the samples, as OpenImageIO 2.4's PFM
+     * reader (pnminput.cpp) does: scales 0.5 and 4 of the values 3 4 / 1 2
+     * above, little- and big-endian. */
+    static const char half[] = "Pf\n2 2\n-0.5\n"
+                               "\x00\x00\x40\x40" "\x00\x00\x80\x40"
+                               "\x00\x00\x80\x3f" "\x00\x00\x00\x40";
+    static const char four[] = "Pf\n2 2\n4\n"
+                               "\x40\x40\x00\x00" "\x40\x80\x00\x00"
+                               "\x3f\x80\x00\x00" "\x40\x00\x00\x00";
+    path = in_dir(state, "half.pfm");
+    support_write_file(path, half, sizeof half - 1);
+    assert_int_equal(aa_image_read(path, &im), AA_OK);
+    const double want_half[] = {0.5, 1, 1.5, 2};
+    assert_memory_equal(im.v, want_half, sizeof want_half);
+    aa_image_free(&im);
+    path = in_dir(state, "four.pfm");
+    support_write_file(path, four, sizeof four - 1);
+    assert_int_equal(aa_image_read(path, &im), AA_OK);
+    const double want_four[] = {4, 8, 12, 16};
+    assert_memory_equal(im.v, want_four, sizeof want_four);
+    aa_image_free(&im);
 }
 
 /* A PFM's scale gives the byte order by its sign: 0, NaN or infinity is
@@ -1042,9 +1077,9 @@ static void child(void **state, int (*body)(void *state))
     support_in_child(body, state);
 }
 
-/* .txt reads and writes, .png reads and writes (libpng), .pfm writes and
- * looking at extensions load no module; reading .pfm (through OpenImageIO)
- * loads it. */
+/* .txt reads and writes, .png reads and writes (libpng), .pfm reads and
+ * writes (PFM is read and written by image.c) and looking at extensions
+ * load no module; writing .exr (through OpenImageIO) loads it. */
 static int txt_loads_nothing(void *state)
 {
     char txt[PATH_MAX + 64], pfm[PATH_MAX + 64], png[PATH_MAX + 64];
@@ -1068,11 +1103,16 @@ static int txt_loads_nothing(void *state)
     SUPPORT_CHILD_CHECK(aa_image_file_size(png, &w, &h, &c) == AA_OK && w == 3 && h == 2 &&
                         c == 3);
     SUPPORT_CHILD_CHECK(aa_image_ext_known("x.exr") && aa_image_ext_known("x.png"));
-    SUPPORT_CHILD_CHECK(module_loaded() == 0);
     SUPPORT_CHILD_CHECK(aa_image_read(pfm, &back) == AA_OK);
-    SUPPORT_CHILD_CHECK(module_loaded() == 1);
     SUPPORT_CHILD_CHECK(back.w == 3 && back.h == 2 && back.c == 3);
     aa_image_free(&back);
+    SUPPORT_CHILD_CHECK(aa_image_file_size(pfm, &w, &h, &c) == AA_OK && w == 3 && h == 2 &&
+                        c == 3);
+    SUPPORT_CHILD_CHECK(module_loaded() == 0);
+    char exr[PATH_MAX + 64];
+    snprintf(exr, sizeof exr, "%s", in_dir(state, "a.exr"));
+    SUPPORT_CHILD_CHECK(aa_image_write(exr, &im, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(module_loaded() == 1);
     aa_image_free(&im);
     return 0;
 }
@@ -1084,8 +1124,9 @@ static void test_module_on_demand(void **state)
 
 /* A module that cannot be loaded: the formats that need it are refused with
  * AA_EIO, a message naming the image file, the module looked for and the
- * loader's reason, and no file; the others (.png through libpng among them)
- * work as before. */
+ * loader's reason, and no file; the others (.png through libpng and .pfm
+ * among them) work as before.  A file named .pfm that is no PFM (here a
+ * PNG) is left to OpenImageIO, and so refused. */
 static int module_missing(void *state)
 {
     static const char bogus[] = "/nonexistent/aabench-oiio.so";
@@ -1110,6 +1151,10 @@ static int module_missing(void *state)
     SUPPORT_CHILD_CHECK(aa_image_read(png, &back) == AA_OK);
     aa_image_free(&back);
     SUPPORT_CHILD_CHECK(aa_image_write(pfm, &im, NULL) == AA_OK);
+    SUPPORT_CHILD_CHECK(aa_image_read(pfm, &back) == AA_OK);
+    SUPPORT_CHILD_CHECK(back.w == 2 && back.h == 2 && back.c == 3);
+    aa_image_free(&back);
+    SUPPORT_CHILD_CHECK(rename(png, pfm) == 0);
     SUPPORT_CHILD_CHECK(aa_image_read(pfm, &back) == AA_EIO);
     SUPPORT_CHILD_CHECK(strstr(msg, pfm) == msg && strstr(msg, bogus));
     SUPPORT_CHILD_CHECK(back.v == NULL);

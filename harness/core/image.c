@@ -12,13 +12,14 @@
  * .png goes through libpng (image_png.c): the pictures a run writes and the
  * renderers' output the external method reads need none of OpenImageIO's
  * some 250 libraries.  The float formats go through OpenImageIO (oiio.cpp),
- * except for writing .pfm: OpenImageIO 2.4 (Debian 12) reads PFM but its
- * PNM writer only makes 8- and 16-bit PPM/PGM, so we write that simple
- * format here.  The .txt format is ours; its reader and writer are in
- * image_txt.c.  OpenImageIO is a module of its own, loaded the first time a
- * file needs it (the end of this file, and oiio.h), so neither .png, .txt
- * nor writing .pfm loads it (but for a file named .png that is not a PNG,
- * read_file below).
+ * except for .pfm: OpenImageIO 2.4 (Debian 12) reads PFM but its PNM writer
+ * only makes 8- and 16-bit PPM/PGM, so we write that simple format here,
+ * and read it here too, which spares every command that compares .pfm
+ * files the loading of OpenImageIO.  The .txt format is ours; its reader
+ * and writer are in image_txt.c.  OpenImageIO is a module of its own,
+ * loaded the first time a file needs it (the end of this file, and oiio.h),
+ * so neither .png, .txt nor .pfm loads it (but for a file named .png that
+ * is not a PNG, or .pfm that is not a PFM, read_file below).
  *
  * Every write goes to a temporary name beside the result and is renamed
  * into place (files.c), so a failure leaves no output behind.
@@ -633,26 +634,40 @@ int aa_png_complete(const char *path)
     return AA_OK;
 }
 
+/* What a PFM header says (pfm_head below). */
+typedef struct pfm_info {
+    int is_pfm;    /* the file starts as a PFM: the rest is filled in */
+    aa__oiio_info info;
+    off_t data;    /* where the samples start */
+    int big;       /* big-endian samples (a positive scale) */
+    float scale;   /* the scale's size, which multiplies every sample */
+} pfm_info;
+
 /* A PFM (Debevec's portable float map) is "PF" (3 channels) or "Pf" (1),
  * white space, the width, white space, the height, white space, the scale
  * (its sign the byte order: never 0, NaN or infinite), one white-space
  * character, then exactly width x height x channels 4-byte floats.
  * OpenImageIO takes a NaN or zero scale and ignores bytes after the
- * samples: such files are refused here, before it reads them, as damaged.
- * A file that cannot be read here, or does not start as a PFM, is left to
- * its reader. */
-static int pfm_complete(const char *path)
+ * samples: such files are refused here as damaged.  A file that starts as
+ * a PFM, whatever its name, is read here (p->is_pfm); any other is left to
+ * its reader (OpenImageIO reads a file by its content), and so is one that
+ * cannot be read, unless `own` (a .pfm name): then it is refused here. */
+static int pfm_head(const char *path, int own, pfm_info *p)
 {
+    *p = (pfm_info){0};
     FILE *f = fopen(path, "rb");
     if (f == NULL)
-        return AA_OK;
+        return own ? aa_fail(AA_EIO, "%s: cannot read: %s", path, strerror(errno)) : AA_OK;
     char head[128];
     size_t n = fread(head, 1, sizeof head - 1, f);
     head[n] = '\0';
     off_t size = fseeko(f, 0, SEEK_END) == 0 ? ftello(f) : -1;
+    int err = errno;
     int failed = ferror(f) || size < 0;
     fclose(f);
-    if (failed || n < 3 || head[0] != 'P' || (head[1] != 'F' && head[1] != 'f') ||
+    if (failed)
+        return own ? aa_fail(AA_EIO, "%s: cannot read: %s", path, strerror(err)) : AA_OK;
+    if (n < 3 || head[0] != 'P' || (head[1] != 'F' && head[1] != 'f') ||
         !strchr(" \t\r\n", head[2]))
         return AA_OK;
     const char *s = head + 2;
@@ -682,14 +697,80 @@ static int pfm_complete(const char *path)
         return aa_fail(AA_EIO,
                        "%s: cannot read: the PFM scale %s is not a nonzero number (its "
                        "sign gives the byte order)", path, word);
+    int c = head[1] == 'F' ? 3 : 1;
     double header = (double)(s + len + 1 - head);
-    double want = header + 4.0 * (double)side[0] * (double)side[1] * (head[1] == 'F' ? 3 : 1);
+    double want = header + 4.0 * (double)side[0] * (double)side[1] * c;
     if ((double)size != want)
         return aa_fail(AA_EIO,
                        "%s: cannot read: the PFM file holds %.0f bytes where its header "
                        "calls for %.0f (%s)", path, (double)size, want,
                        (double)size < want ? "cut short" : "bytes after the samples");
+    p->info.w = (int)side[0]; /* at most 9 digits */
+    p->info.h = (int)side[1];
+    p->info.c = c;
+    p->info.is_float = 1;
+    p->info.bits = 32;
+    p->data = (off_t)header;
+    p->big = scale > 0;
+    p->scale = (float)fabs(scale);
+    p->is_pfm = 1;
     return AA_OK;
+}
+
+/* The samples of a PFM whose header pfm_head read into `p`, into `im`
+ * (allocated by the caller): rows from the bottom of the image up, 4-byte
+ * floats in the byte order the scale's sign gives, whatever this machine's
+ * is, multiplied in float by the scale's size, as OpenImageIO's reader
+ * does (files this library writes say 1). */
+static int pfm_read(const char *path, const pfm_info *p, aa_image *im)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return aa_fail(AA_EIO, "%s: cannot read: %s", path, strerror(errno));
+    size_t row_values = (size_t)im->w * (size_t)im->c;
+    unsigned char *row = malloc(row_values * 4);
+    if (row == NULL) {
+        fclose(f);
+        return aa_fail(AA_ENOMEM, "%s: out of memory", path);
+    }
+    int status = AA_OK;
+    if (fseeko(f, p->data, SEEK_SET) != 0)
+        status = aa_fail(AA_EIO, "%s: cannot read: %s", path, strerror(errno));
+    for (int y = im->h - 1; y >= 0 && status == AA_OK; y--) {
+        if (fread(row, 4, row_values, f) != row_values) {
+            status = aa_fail(AA_EIO, "%s: cannot read: %s", path,
+                             ferror(f) ? strerror(errno) : "the file ends before its samples");
+            break;
+        }
+        double *v = im->v + (size_t)y * row_values;
+        for (size_t k = 0; k < row_values; k++) {
+            const unsigned char *b = row + 4 * k;
+            uint32_t bits = p->big ? (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 |
+                                         (uint32_t)b[2] << 8 | b[3]
+                                   : (uint32_t)b[3] << 24 | (uint32_t)b[2] << 16 |
+                                         (uint32_t)b[1] << 8 | b[0];
+            float x;
+            memcpy(&x, &bits, sizeof x);
+            x *= p->scale;
+            v[k] = x;
+        }
+    }
+    free(row);
+    fclose(f);
+    return status;
+}
+
+/* A file that starts as a PFM, read here: no module to load. */
+static int read_pfm(const char *path, const pfm_info *p, aa_image *im)
+{
+    int status = check_file_size(path, &p->info);
+    if (status == AA_OK)
+        status = aa_image_alloc(im, p->info.w, p->info.h, p->info.c);
+    if (status == AA_OK)
+        status = pfm_read(path, p, im);
+    if (status != AA_OK)
+        aa_image_free(im);
+    return status;
 }
 
 /* Whether a .png file is read by libpng: 1 unless 8 bytes of it could be
@@ -735,12 +816,15 @@ static int read_file(const char *path, const image_format *f, aa_image *im)
     /* Before a reader reads it: libpng would refuse a PNG cut short too,
      * but not one cut inside or just before its IEND chunk. */
     int status = aa_png_complete(path);
+    pfm_info pfm = {0};
     if (status == AA_OK)
-        status = pfm_complete(path);
+        status = pfm_head(path, f->kind == FORMAT_PFM, &pfm);
     if (status != AA_OK)
         return status;
     if (f->kind == FORMAT_8BIT && png_reads(path))
         return read_png(path, im);
+    if (pfm.is_pfm)
+        return read_pfm(path, &pfm, im);
     const aa__oiio_api *oiio = aa__oiio(path);
     if (oiio == NULL)
         return AA_EIO;
@@ -774,9 +858,16 @@ int aa_image_file_size(const char *path, int *w, int *h, int *c)
         return unknown_format(path);
     if (f->kind == FORMAT_TXT)
         return aa__txt_info(path, w, h, c);
-    int status = pfm_complete(path);
+    pfm_info pfm = {0};
+    int status = pfm_head(path, f->kind == FORMAT_PFM, &pfm);
     if (status != AA_OK)
         return status;
+    if (pfm.is_pfm) {
+        status = check_file_sides(path, &pfm.info);
+        if (status == AA_OK)
+            *w = pfm.info.w, *h = pfm.info.h, *c = pfm.info.c;
+        return status;
+    }
     aa__oiio_info info;
     if (f->kind == FORMAT_8BIT && png_reads(path)) {
         aa__png_in *png;

@@ -13,9 +13,10 @@
  * command.  So oiio.cpp is built into a module of its own,
  * aabench-oiio.so, linked against OpenImageIO, and the library does not link
  * either: image.c loads the module with dlopen() the first time an image
- * file needs it (.exr, .tif, reading .pfm, and a file named .png that is not
- * a PNG), and never for .png (libpng, image_png.c), .txt or writing .pfm.  The module exports one function, aa__oiio_entry(),
- * which returns the table of the others.  It is handed the library's aa_fail
+ * file needs it (.exr, .tif, and a file named .png or .pfm that is not a PNG
+ * or a PFM), and never for .png (libpng, image_png.c), .txt or .pfm (read
+ * and written in image.c).  The module exports one function,
+ * aa__oiio_entry(), which returns the table of the others.  It is handed the library's aa_fail
  * rather than calling it by name, so it needs no symbol of the program that
  * loads it.
  *

@@ -2,9 +2,9 @@
  * fuzz_image.c: libFuzzer target for the image readers (`make fuzz`).
  *
  * The input is written to a temporary file and read as .txt (aabench's own
- * text format, harness/core/image.c) and as .pfm (through OpenImageIO).  A read
- * must return a status and a whole image or nothing; a .txt image that was
- * read must write and read back identically.
+ * text format, harness/core/image.c) and as .pfm (read by image.c too).  A
+ * read must return a status and a whole image or nothing; a .txt image that
+ * was read must write and read back identically.
  */
 #include "bench.h"
 #include "fuzz.h"
