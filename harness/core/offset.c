@@ -573,10 +573,10 @@ long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long dou
     return aa__offset_root(oc, coord, ta, tb, fa, target, guess, NULL, NULL);
 }
 
-static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
-                               long double ta, long double tb, long double fa, long double target,
-                               double guess, const double *endb, long double *other,
-                               double *slope, long double *xy);
+static inline long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx,
+                                      int coord, long double ta, long double tb, long double fa,
+                                      long double target, double guess, const double *endb,
+                                      long double *other, double *slope, long double *xy);
 
 long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta, long double tb,
                             long double fa, long double target, double guess, long double *other,
@@ -610,10 +610,10 @@ double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, i
     return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
 }
 
-static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
-                               long double ta, long double tb, long double fa, long double target,
-                               double guess, const double *endb, long double *other,
-                               double *slope, long double *xy)
+static __attribute__((always_inline)) inline long double
+offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, long double ta,
+            long double tb, long double fa, long double target, double guess, const double *endb,
+            long double *other, double *slope, long double *xy)
 {
     /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
      * (either may be 0).  Newton's method in double (solve_double, to a
