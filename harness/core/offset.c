@@ -337,8 +337,9 @@ static inline double parts_f(double base0, double nrm, double tgt)
     return (base0 - tgt) + nrm;
 }
 
-static inline void eval_d(const aa_offset_curve *oc, int coord, double t, int stops, double tgt,
-                          double *f, double *df, double *dn)
+static __attribute__((always_inline)) inline void eval_d(const aa_offset_curve *oc, int coord,
+                                                         double t, int stops, double tgt,
+                                                         double *f, double *df, double *dn)
 {
     double base0, nrm;
     eval_parts(oc, coord, t, stops, &base0, &nrm, df, dn);
