@@ -264,8 +264,9 @@ void aa__offset_eval_s(const aa_offset_curve *oc, int stops, long double t, long
  *  - the evolute (N / k = N L^3 / c = L N (L^2 / c), no square root):
  *    r.B + m[4 + coord] + w L^2 / c, slope w (1/k)' / L =
  *    w (3 (B'.B'') c - L^2 c') / c^2. */
-static inline void eval_parts(const aa_offset_curve *oc, int coord, double t, int stops,
-                              double *base0, double *nrm, double *df, double *dn)
+static __attribute__((always_inline)) inline void eval_parts(const aa_offset_curve *oc, int coord,
+                                                            double t, int stops, double *base0,
+                                                            double *nrm, double *df, double *dn)
 {
     double te, q[4];
     if (oc->base == AA_OFFSET_CUBIC && (stops & (t < 0.5 ? 1 : 2)) &&
@@ -336,8 +337,9 @@ static inline double parts_f(double base0, double nrm, double tgt)
     return (base0 - tgt) + nrm;
 }
 
-static inline void eval_d(const aa_offset_curve *oc, int coord, double t, int stops, double tgt,
-                          double *f, double *df, double *dn)
+static __attribute__((always_inline)) inline void eval_d(const aa_offset_curve *oc, int coord,
+                                                         double t, int stops, double tgt,
+                                                         double *f, double *df, double *dn)
 {
     double base0, nrm;
     eval_parts(oc, coord, t, stops, &base0, &nrm, df, dn);
@@ -460,9 +462,10 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * any bracket of the parameter (a few units wide) to reach two adjacent
  * long doubles, 64 halvings and more */
 #define ROOT_LD_STEPS 200
-static double solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
-                           double a, double b, double fa, double tgt, double guess, double tol,
-                           const double *endb, double *pa, double *pb, double *last)
+static __attribute__((always_inline)) inline double
+solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double a, double b,
+             double fa, double tgt, double guess, double tol, const double *endb, double *pa,
+             double *pb, double *last)
 {
     int neg = fa < 0, stops = fx->stops;
     double t = 0.5 * (a + b), prev = fabs(b - a), f, df, dn;
@@ -472,6 +475,7 @@ static double solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, 
     /* b unseen: the caller's end, its sign taken on trust and not
      * evaluated (with a guess); a Newton step past it goes to it */
     int unseen = 0;
+    *last = NAN; /* the step that reached t, where Newton's; none at a start */
     if (a < b ? (guess > a && guess < b) : (guess < a && guess > b)) {
         t = guess; /* a caller's start: the root on a nearby line */
         unseen = 1;
@@ -505,7 +509,6 @@ static double solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, 
                 t = a + r * (b - a);
         }
     }
-    *last = NAN; /* the step that reached t, where Newton's */
     for (int it = 0; it < 100; it++) {
         eval_d(oc, coord, t, stops, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn))
@@ -571,10 +574,10 @@ long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long dou
     return aa__offset_root(oc, coord, ta, tb, fa, target, guess, NULL, NULL);
 }
 
-static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
-                               long double ta, long double tb, long double fa, long double target,
-                               double guess, const double *endb, long double *other,
-                               double *slope, long double *xy);
+static inline long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx,
+                                      int coord, long double ta, long double tb, long double fa,
+                                      long double target, double guess, const double *endb,
+                                      long double *other, double *slope, long double *xy);
 
 long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta, long double tb,
                             long double fa, long double target, double guess, long double *other,
@@ -608,10 +611,10 @@ double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, i
     return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
 }
 
-static long double offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
-                               long double ta, long double tb, long double fa, long double target,
-                               double guess, const double *endb, long double *other,
-                               double *slope, long double *xy)
+static __attribute__((always_inline)) inline long double
+offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, long double ta,
+            long double tb, long double fa, long double target, double guess, const double *endb,
+            long double *other, double *slope, long double *xy)
 {
     /* f(t) = coord(t) - target: of the sign of fa at ta, the other at tb
      * (either may be 0).  Newton's method in double (solve_double, to a
