@@ -214,6 +214,16 @@ static void test_tube(void **state)
 
 /* ---- meetings against sampled sign changes ---- */
 
+/* Whether pieces p and q are a pair whose meetings are sought here: both
+ * edges, one an offset piece at least, sharing rows [*lo, *hi]. */
+static int offset_pair(const aa_piece *p, const aa_piece *q, double *lo, double *hi)
+{
+    if (!p->dir || !q->dir || (p->kind != AA_PIECE_OFFSET && q->kind != AA_PIECE_OFFSET))
+        return 0;
+    *lo = fmax(p->y0, q->y0), *hi = fmin(p->y1, q->y1);
+    return *lo < *hi;
+}
+
 static int meetings(const char *what, const double *cs, int nc, const aa_stroke_style *st)
 {
     aa_scene *s = stroke_scene(cs, nc, st, NULL);
@@ -223,11 +233,8 @@ static int meetings(const char *what, const double *cs, int nc, const aa_stroke_
     for (size_t i = 0; i < n; i++)
         for (size_t k = i + 1; k < n; k++) {
             const aa_piece *p = &pc[i], *q = &pc[k];
-            if (!p->dir || !q->dir ||
-                (p->kind != AA_PIECE_OFFSET && q->kind != AA_PIECE_OFFSET))
-                continue;
-            double lo = fmax(p->y0, q->y0), hi = fmin(p->y1, q->y1), ys[16];
-            if (!(lo < hi) || p->xmax < q->xmin || q->xmax < p->xmin)
+            double lo, hi, ys[16];
+            if (!offset_pair(p, q, &lo, &hi) || p->xmax < q->xmin || q->xmax < p->xmin)
                 continue;
             pairs++;
             int m = aa_piece_meet(p, q, lo, hi, ys, 16);
@@ -1092,11 +1099,8 @@ static int shared_ends(const char *what, const aa_scene *s, int *tangent, int *a
     for (size_t i = 0; i < n; i++)
         for (size_t k = i + 1; k < n; k++) {
             const aa_piece *p = &pc[i], *q = &pc[k];
-            if (!p->dir || !q->dir ||
-                (p->kind != AA_PIECE_OFFSET && q->kind != AA_PIECE_OFFSET))
-                continue;
-            double lo = fmax(p->y0, q->y0), hi = fmin(p->y1, q->y1);
-            if (!(lo < hi))
+            double lo, hi;
+            if (!offset_pair(p, q, &lo, &hi))
                 continue;
             int at_lo = lo == p->y0 && lo == q->y0 && p->x0 == q->x0;
             int at_hi = hi == p->y1 && hi == q->y1 && p->x1 == q->x1;

@@ -617,6 +617,20 @@ static const char pfm_known[] = "Pf\n2 2\n-1.0\n"
                                 "\x00\x00\x40\x40" "\x00\x00\x80\x40"  /* bottom row: 3 4 */
                                 "\x00\x00\x80\x3f" "\x00\x00\x00\x40"; /* top row: 1 2 */
 
+/* A 2 x 2 grey PFM of the given bytes, written and read: its values as
+ * want (four of them). */
+static void pfm_read_as(void **state, const char *name, const char *bytes, size_t len,
+                        const double *want)
+{
+    const char *path = in_dir(state, name);
+    aa_image im;
+    support_write_file(path, bytes, len);
+    assert_int_equal(aa_image_read(path, &im), AA_OK);
+    assert_shape(&im, 2, 2, 1);
+    assert_memory_equal(im.v, want, 4 * sizeof *want);
+    aa_image_free(&im);
+}
+
 static void test_pfm_known(void **state)
 {
     const char *path = in_dir(state, "known.pfm");
@@ -658,18 +672,9 @@ static void test_pfm_known(void **state)
     static const char four[] = "Pf\n2 2\n4\n"
                                "\x40\x40\x00\x00" "\x40\x80\x00\x00"
                                "\x3f\x80\x00\x00" "\x40\x00\x00\x00";
-    path = in_dir(state, "half.pfm");
-    support_write_file(path, half, sizeof half - 1);
-    assert_int_equal(aa_image_read(path, &im), AA_OK);
-    const double want_half[] = {0.5, 1, 1.5, 2};
-    assert_memory_equal(im.v, want_half, sizeof want_half);
-    aa_image_free(&im);
-    path = in_dir(state, "four.pfm");
-    support_write_file(path, four, sizeof four - 1);
-    assert_int_equal(aa_image_read(path, &im), AA_OK);
-    const double want_four[] = {4, 8, 12, 16};
-    assert_memory_equal(im.v, want_four, sizeof want_four);
-    aa_image_free(&im);
+    const double want_half[] = {0.5, 1, 1.5, 2}, want_four[] = {4, 8, 12, 16};
+    pfm_read_as(state, "half.pfm", half, sizeof half - 1, want_half);
+    pfm_read_as(state, "four.pfm", four, sizeof four - 1, want_four);
 }
 
 /* A PFM's scale gives the byte order by its sign: 0, NaN or infinity is
