@@ -2288,6 +2288,70 @@ static void test_mixed_edge(void **state)
     mpic_lin = 0;
 }
 
+/* An opaque scene, a linear gradient over the view and a radial one on a
+ * disc (every span by the path of several gradients), where the linear
+ * gradient's threshold line (t = 0.04045 / (24/255)) crosses rows at the
+ * middle of a pixel's span: QAG's middle row between the breakpoints where
+ * the line crosses the window's sides, in the ten pixels below (outside
+ * the disc).  The isolation found 0.04045 in double at the span's first
+ * midpoint and kept the whole span as the threshold's interval, with the
+ * bound of the colour's spread across it: 8.7e-4 at those pixels.  The
+ * SVG (a 48 x 48 scene moved by (-32, -4)) against mpic_pixel's 2-D
+ * quadrature of the same picture (the bounding box's fractions worked
+ * out by hand: the linear vector (0, 0) to (9.6, 48), the radial circle
+ * at (18.6, 29.4) of radius 20.4, both moved), and every pixel's bound
+ * at most 1e-12. */
+static void test_threshold_mid_span(void **state)
+{
+    (void)state;
+    static const char *const body =
+        "<defs><linearGradient id=\"l\" x1=\"0\" y1=\"0\" x2=\"0.2\" y2=\"1\">"
+        "<stop offset=\"0\" stop-color=\"#000\"/><stop offset=\"1\" stop-color=\"#181818\"/>"
+        "</linearGradient><radialGradient id=\"r\" cx=\"0.4\" cy=\"0.6\" r=\"0.6\">"
+        "<stop offset=\"0\" stop-color=\"#1c1c1c\"/>"
+        "<stop offset=\"0.7\" stop-color=\"#040404\"/>"
+        "<stop offset=\"1\" stop-color=\"#101010\"/></radialGradient></defs>"
+        "<g transform=\"translate(-32 -4)\"><rect width=\"48\" height=\"48\" fill=\"url(#l)\"/>"
+        "<circle cx=\"22\" cy=\"26\" r=\"17\" fill=\"url(#r)\"/></g>";
+    static const int px[12][2] = {{11, 8}, {12, 8}, {13, 8}, {14, 8}, {6, 9}, {7, 9},
+                                  {8, 9},  {9, 9},  {3, 10}, {4, 10}, {0, 11}, {2, 2}};
+    double g24 = dec(24.0 / 255.0), g28 = dec(28.0 / 255.0), g4 = dec(4.0 / 255.0),
+           g16 = dec(16.0 / 255.0);
+    const aa_gradient_stop sl[2] = {{0.0, {{0, 0, 0}}, 1.0}, {1.0, {{g24, g24, g24}}, 1.0}};
+    const aa_gradient_stop sr[3] = {
+        {0.0, {{g28, g28, g28}}, 1.0}, {0.7, {{g4, g4, g4}}, 1.0}, {1.0, {{g16, g16, g16}}, 1.0}};
+    mpic p = {2,
+              {{0, {-32, -4, 16, 44}, AA_GRADIENT_LINEAR, {-32, -4, 9.6 - 32, 44, 0, 0},
+                AA_SPREAD_PAD, 2, sl, 1.0},
+               {1, {-10, 22, 17, 0}, AA_GRADIENT_RADIAL,
+                {18.6 - 32, 29.4 - 4, 20.4, 18.6 - 32, 29.4 - 4, 0}, AA_SPREAD_PAD, 3, sr, 1.0}},
+              {0, 0, 0},
+              0};
+    int st;
+    aa_scene *sc = svg_scene("mid_span", body, &st);
+    if (!sc)
+        fail_msg("mid_span: %s", aa_last_error());
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    reference(sc, W, H, &ref, &bound, &stats);
+    expect_bound("threshold line through the spans' middles", &stats);
+    double worst = 0;
+    for (int k = 0; k < 12; k++) {
+        double want = mpic_pixel(&p, px[k][0], px[k][1]);
+        double got = aa_pixel(&ref, px[k][0], px[k][1])[0];
+        double b = *aa_pixel(&bound, px[k][0], px[k][1]);
+        worst = fmax(worst, fabs(got - want));
+        if (!(fabs(got - want) <= b))
+            fail_msg("mid_span: pixel (%d, %d): %.17g, GSL 2-D %.17g (bound %.2g)", px[k][0],
+                     px[k][1], got, want, b);
+    }
+    print_message("threshold line through the spans' middles: 12 pixels within %.2g of GSL 2-D\n",
+                  worst);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(sc);
+}
+
 /* Which pixels take the certified step and which the scan, as truth.c's
  * opening comment ("several gradients") states the rule: the lens's
  * scene, both layers filling the view (no edge in any window, a linear
@@ -2368,6 +2432,7 @@ int main(void)
         cmocka_unit_test(test_mixed_lens),
         cmocka_unit_test(test_mixed_edge),
         cmocka_unit_test(test_mixed_which_step),
+        cmocka_unit_test(test_threshold_mid_span),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -2526,7 +2526,9 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
  * with a certified Lipschitz bound: on [u, v] with |e'| <= L, a channel
  * whose excess g = e - 0.04045 has one sign at u and v with |g(u)| +
  * |g(v)| > L (v - u) has no root there; other intervals are halved, down
- * to GEN_FUZZ (relative to the coordinates), and an interval that small is
+ * to GEN_FUZZ (relative to the coordinates; where g is 0 in double at a
+ * midpoint, each side of it to the last point of its end's sign:
+ * gen_bisect), and an interval that small is
  * integrated by its midpoint with the bound width * min(1, 2.3 L width)
  * (the decoding's slope is below 2.3 on [0, 1]).  Elsewhere each piece
  * takes the 20-point Gauss-Legendre rule with the bound of Trefethen's
@@ -3550,13 +3552,44 @@ static int fold_taylor(const gen_span_ctx *c, int ch, double m, double h, double
     return 1;
 }
 
+/* Halving [*u, *v] to GEN_FUZZ on whether g (channel ch) is nonzero of
+ * sign sg (< 0 or not): true at *u and false at *v if lo_true, the
+ * reverse if not; 0, or 1 when the work budget ran out. */
+static int gen_halve_sign(const gen_span_ctx *c, int ch, int sg, int lo_true, double *u,
+                          double *v, size_t *budget)
+{
+    while (*v - *u > GEN_FUZZ * (1.0 + fabs(0.5 * (*u + *v)))) {
+        double m = 0.5 * (*u + *v), e[3];
+        if (!(m > *u && m < *v))
+            break;
+        if (*budget == 0)
+            return 1;
+        --*budget;
+        gen_eval(c, m, e);
+        double gm = e[ch] - 0.04045;
+        int p = gm != 0.0 && (gm < 0.0) == sg;
+        if (p == lo_true)
+            *u = m;
+        else
+            *v = m;
+    }
+    return 0;
+}
+
 /* The one root of g, monotone on [u, v] with signs differing at the ends
  * (gu, gv), narrowed by halving on the signs to GEN_FUZZ and appended to
- * fz (none if at an end, where the piece is cut anyway).  A midpoint
- * where g is 0 in double ends the halving with the interval that holds
- * it: it once ended it holding nothing, and the piece across the root
- * took one side's decoding (a stack's row 2.6e-11 off, whose composite
- * crossed 0.04045 with a slope of 1.7e-4, a few ulps a step). */
+ * fz (none if at an end, where the piece is cut anyway).  A midpoint m
+ * where g is 0 in double keeps the root in the interval: it once ended
+ * the halving holding nothing, and the piece across the root took one
+ * side's decoding (a stack's row 2.6e-11 off, whose composite crossed
+ * 0.04045 with a slope of 1.7e-4, a few ulps a step).  Ending it there
+ * instead left [u, v] as wide as it was, up to the whole piece, taken by
+ * its midpoint with the bound of the colour's spread across it (8.7e-4
+ * a row where a linear gradient's threshold line passed the middle of a
+ * span: the first midpoint); so the halving goes on in [u, m] for the
+ * last point of gu's sign and in [m, v] for the first of gv's, and the
+ * interval between them (holding every zero) is kept, to GEN_FUZZ at
+ * each end (gen_halve_sign). */
 static size_t gen_bisect(const gen_span_ctx *c, int ch, double u, double gu, double v, double gv,
                          double *fz, size_t nf, size_t cap, size_t *budget)
 {
@@ -3571,8 +3604,15 @@ static size_t gen_bisect(const gen_span_ctx *c, int ch, double u, double gu, dou
         --*budget;
         gen_eval(c, m, e);
         double gm = e[ch] - 0.04045;
-        if (gm == 0.0)
-            break; /* the threshold at m: [u, v] holds it */
+        if (gm == 0.0) {
+            /* the threshold at m: the last point of gu's sign in [u, m],
+             * the first of gv's in [m, v] */
+            double l = m, r = m;
+            if (gen_halve_sign(c, ch, gu < 0.0, 1, &u, &l, budget) ||
+                gen_halve_sign(c, ch, gv < 0.0, 0, &r, &v, budget))
+                return cap;
+            break;
+        }
         if ((gm < 0.0) == (gu < 0.0))
             u = m, gu = gm;
         else
