@@ -880,7 +880,8 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     int curved = !plain && p->curved;
     int special = curved && (p->conic || p->offset);
     if (curved && p->offset) /* part_area's v, none kept yet */
-        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = s->vt[2] = s->vt[3] = NAN, s->vn = 0;
+        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = s->vt[2] = s->vt[3] = NAN, s->vn = 0,
+        s->my[0] = s->my[1] = NAN, s->mn = 0;
     if (p->y0 >= j)
         ta = special ? s->t0 : 0.0, ua = special ? seg_u(s, ta) : s->U;
     else if (s->mline == m) {
@@ -1281,6 +1282,43 @@ static void seg_t_at(const ar_seg *s, double ya, double yb, double t[2])
         t[1] = s->p->sg * s->tb;
 }
 
+/* An offset seg's parameter at height y (absolute) inside its piece, where
+ * a pair's common heights begin or end away from the band's ends asked
+ * about: the whole piece's solve that aa__piece_meet_at would make there
+ * (offset_t_at: the same call, the same root), kept in the seg.  A vertex
+ * inside the band begins one pair's common heights and ends another's
+ * (the two pieces meeting there, each paired with the seg), so the
+ * second finds it kept. */
+static double seg_t_kept(const ar_seg *s, double y)
+{
+    const aa_piece *p = s->p->src;
+    if (y == s->my[0])
+        return s->mt[0];
+    if (y == s->my[1])
+        return s->mt[1];
+    ar_seg *w = (ar_seg *)s; /* the worker's own seg (offset_keep) */
+    double r = aa__offset_solve_d(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y);
+    w->my[w->mn] = y, w->mt[w->mn] = r, w->mn ^= 1;
+    return r;
+}
+
+/* An offset seg's parameters t at the pair's common heights lo >= ya and
+ * hi <= yb, from seg_t_at's at ya and yb (NAN: unknown), as
+ * aa__piece_meet_at would take them (param_known): t[0] at ya, the
+ * piece's own at its ends, else the solve inside it, kept
+ * (seg_t_kept); NAN left where it finds them at once. */
+static inline void seg_t_common(const ar_seg *s, double lo, double hi, double ya, double yb,
+                                double t[2])
+{
+    const aa_piece *p = s->p->src;
+    if (!s->p->offset)
+        return;
+    if (!(lo == ya && t[0] == t[0]))
+        t[0] = lo > p->y0 ? seg_t_kept(s, lo) : NAN; /* lo < hi <= y1 */
+    if (!(hi == yb && t[1] == t[1]))
+        t[1] = hi < p->y1 ? seg_t_kept(s, hi) : NAN;
+}
+
 /* Heights v in (ya, yb), away from its ends, where segs p and q cross.
  * Both are reparametrised over [ya, yb] as P(s) = Pa + s B + s^2 A in
  * coordinates relative to p's cell; the crossings are where P meets q's
@@ -1302,11 +1340,23 @@ static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb
          * (aa_piece_meet: roots of a cubic polynomial against a line,
          * bisection on exact extents against an arc), as band-local
          * heights */
-        double base = j, ys[9], tp[2], tq[2];
+        double base = j, ys[9], tp[2], tq[2], Ya = base + ya, Yb = base + yb;
         seg_t_at(p, ya, yb, tp);
         seg_t_at(q, ya, yb, tq);
-        int m = aa__piece_meet_at(p->p->src, q->p->src, base + ya, base + yb, tp, tq, ys, 9),
-            n = 0;
+        /* where a piece begins or ends inside [Ya, Yb], the other's
+         * parameter there is kept in its seg (seg_t_common), asked for as
+         * the pair's common heights [lo, hi], aa__piece_meet_at's own */
+        const aa_piece *P = p->p->src, *Q = q->p->src;
+        double lo = P->y0 > Q->y0 ? P->y0 : Q->y0, hi = P->y1 < Q->y1 ? P->y1 : Q->y1;
+        lo = lo > Ya ? lo : Ya, hi = hi < Yb ? hi : Yb;
+        if (lo < hi && P->dir && Q->dir &&
+            (lo != Ya || hi != Yb || tp[0] != tp[0] || tp[1] != tp[1] || tq[0] != tq[0] ||
+             tq[1] != tq[1])) {
+            seg_t_common(p, lo, hi, Ya, Yb, tp);
+            seg_t_common(q, lo, hi, Ya, Yb, tq);
+            Ya = lo, Yb = hi;
+        }
+        int m = aa__piece_meet_at(P, Q, Ya, Yb, tp, tq, ys, 9), n = 0;
         for (int i = 0; i < m; i++) {
             double v = ys[i] - base;
             if (v > ya + CROSS_MARGIN && v < yb - CROSS_MARGIN)

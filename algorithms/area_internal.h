@@ -157,6 +157,12 @@ typedef struct ar_seg {
      * the cells' sides' roots), vn the one of those written next */
     double vt[4], vv[4];
     int vn;
+    /* an offset piece: its parameters mt at up to two heights my inside
+     * the band (absolute; NAN: none) where a pair's common heights began
+     * or ended, solved over the whole piece as aa__piece_meet_at would
+     * (pair_crossings), mn the one written next */
+    double my[2], mt[2];
+    int mn;
     /* the current band */
     double V;
     double ta, tb;  /* tau at the band's (or piece's) top and bottom */
