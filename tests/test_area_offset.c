@@ -35,6 +35,12 @@
  *    each of area's meetings lies between such samples or where x_p -
  *    x_q is within 1e-13 of 0, never within that of the end
  *    (test_shared_ends);
+ *  - a pair asked over heights beyond or inside its common rows, no
+ *    parameter known, and over the common heights aa__piece_meet_at takes
+ *    from those with the parameters there given as area finds them where
+ *    a piece begins or ends inside a band (the solve over the whole
+ *    piece, area.c's seg_t_kept): the same meetings bit for bit
+ *    (test_common_heights; area keeps those solves in its segs);
  *  - a crossing's root near a turn of the offset's y: y at the parameter
  *    aa__offset_root returns is the line's, to rounding;
  *  - pixel (716, 793) of tests/bench_bezstroke.c's scene, against its area
@@ -1186,6 +1192,91 @@ static void test_shared_ends(void **state)
     assert_true(tangent >= 10 && changes >= 1); /* the cases were built */
 }
 
+/* ---- a pair's common heights asked with their parameters given ---- */
+
+/* An offset piece's parameter at height y strictly inside its rows as area
+ * finds it where a pair's common heights begin or end inside a band
+ * (area.c, seg_t_kept): the solve over the whole piece; NAN elsewhere
+ * (aa__piece_meet_at takes the piece's own ends itself). */
+static double whole_solve(const aa_piece *p, double y)
+{
+    if (p->kind != AA_PIECE_OFFSET || !(y > p->y0 && y < p->y1))
+        return NAN;
+    return aa__offset_solve_d(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y);
+}
+
+/* Every offset pair of placed scene s asked over heights [ya, yb] beyond or
+ * inside its common rows, with no parameters known, and over the common
+ * heights [lo, hi] aa__piece_meet_at takes from those, with the
+ * parameters there given (whole_solve): the same meetings bit for bit.
+ * Returns the pairs asked. */
+static int common_heights(const char *what, const aa_scene *s)
+{
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    const double none[2] = {NAN, NAN};
+    int pairs = 0, bad = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = i + 1; k < n; k++) {
+            const aa_piece *p = &pc[i], *q = &pc[k];
+            double c0, c1;
+            if (!offset_pair(p, q, &c0, &c1) || p->xmax < q->xmin || q->xmax < p->xmin)
+                continue;
+            /* beyond both ends; from a third of the way; up to two thirds */
+            const double ya[3] = {c0 - 0.37, c0 + (c1 - c0) / 3.0, c0 - 0.5};
+            const double yb[3] = {c1 + 0.41, c1 + 0.5, c0 + 2.0 * (c1 - c0) / 3.0};
+            for (int w = 0; w < 3; w++) {
+                double lo = fmax(c0, ya[w]), hi = fmin(c1, yb[w]), y1[16], y2[16];
+                const double tp[2] = {whole_solve(p, lo), whole_solve(p, hi)};
+                const double tq[2] = {whole_solve(q, lo), whole_solve(q, hi)};
+                int m1 = aa__piece_meet_at(p, q, ya[w], yb[w], none, none, y1, 16);
+                int m2 = aa__piece_meet_at(p, q, lo, hi, tp, tq, y2, 16);
+                pairs++;
+                int same = m1 == m2;
+                for (int r = 0; same && r < m1; r++)
+                    same = y1[r] == y2[r];
+                if (!same && bad++ < 5)
+                    print_message("%s: pieces %zu and %zu over [%.17g, %.17g]: %d meetings "
+                                  "asked so, %d given the parameters\n",
+                                  what, i, k, ya[w], yb[w], m1, m2);
+            }
+        }
+    assert_int_equal(bad, 0);
+    return pairs;
+}
+
+static void test_common_heights(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    int pairs = 0;
+    double cs[2 + 6 * 10];
+    st.width = 2.5 / 256.0;
+    for (int r = 0; r < 20; r += 8) {
+        bench_cubics(r, 0, 10, cs);
+        aa_scene *s = stroke_scene(cs, 10, &st, NULL);
+        aa_scene *placed = aa_scene_place(s, 256, 256, 0, 0, 0);
+        assert_non_null(placed);
+        char what[64];
+        snprintf(what, sizeof what, "benchmark's row %d, 256 px", r);
+        pairs += common_heights(what, placed);
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+    st.join = AA_JOIN_MITER, st.cap = AA_CAP_BUTT;
+    st.width = 0.3;
+    aa_scene *s = stroke_scene(tight, 1, &st, NULL);
+    aa_scene *placed = aa_scene_place(s, 64, 64, 0, 0, 0);
+    assert_non_null(placed);
+    pairs += common_heights("tight, w 0.3 (folds), 64 px", placed);
+    aa_scene_free(placed);
+    aa_scene_free(s);
+    print_message("%d pairs' heights asked both ways\n", pairs);
+    assert_true(pairs > 100); /* the cases were built */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -1199,6 +1290,7 @@ int main(void)
                                        cmocka_unit_test(test_ulp_vertex),
                                        cmocka_unit_test(test_nodes),
                                        cmocka_unit_test(test_starts),
-                                       cmocka_unit_test(test_shared_ends)};
+                                       cmocka_unit_test(test_shared_ends),
+                                       cmocka_unit_test(test_common_heights)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
