@@ -151,7 +151,9 @@
  * lines' 15%), the quadrature 19% (a cubic's nodes four at a time with
  * AVX),
  * the meetings of pieces in a cluster 12% (aa__piece_meet_at, given the
- * band's parameters of both segs: the pieces of a stroke's overlapping
+ * band's parameters of both segs, and where a piece begins or ends inside
+ * the band the other's there, kept in its seg, seg_t_common: the pieces
+ * of a stroke's overlapping
  * contours cross near every join; pairs running side by side are decided
  * by their slopes, scene_piece.c; polishing a meeting 3%, stopped by its
  * error estimate), sorting 1% (the
