@@ -235,6 +235,12 @@ static inline void term_sizes(const aa_offset_curve *oc, double *sx, double *sy)
               : fabs(c[4]) + fabs(c[5]) + fabs(c[6]) + fabs(c[7]);
 }
 
+/* The root solver's parts (fix_init, eval_parts, eval_d, solve_double,
+ * offset_root) are forced inline: a root takes about 650 instructions, and
+ * as calls their arguments, out-parameters through memory and long double
+ * values passed twice cost about 120 of them (algorithms/README.md, the
+ * offset pieces' roots).  Inlined, the operations and their order are the
+ * same, so are the roots, bit for bit. */
 static __attribute__((always_inline)) inline void fix_init(const aa_offset_curve *oc,
                                                           aa__offset_fix *fx)
 {
