@@ -11,7 +11,9 @@
  *    pixel and channel, at 1 and 2 threads (bit-identical), under box,
  *    tent:r=1, bspline:order=2, bspline:order=3, mitchell, catrom and
  *    tent:r=0.65 (cells narrower than a pixel) (the quick tier: the box
- *    only; the closed forms below take the others there), on: several layers in painter's order (a flat triangle in
+ *    only; the closed forms below take the others there; the full tier:
+ *    bspline:order=2 and 3, Mitchell and Catmull-Rom each on a quarter of
+ *    the view), on: several layers in painter's order (a flat triangle in
  *    front of a path of lines, a quadratic and a cubic arc painted by a
  *    padded gradient of three stops with a sharp step, in front of a
  *    repeated gradient of a period of 4.4 px across the whole image, over
@@ -87,8 +89,10 @@ static int W, H;
  * (the closed forms below take the others).  The full tier,
  * test_analytic_gradient_full.c (this file with TIER_FULL set), takes the rest, every scene under every filter (the reference's
  * quadrature of a gradient scene under the smooth filters takes seconds a
- * scene): the six other filters on the first five scenes, tent:r=1 and
- * mitchell on the arcs' and offsets', tent:r=6 on the small arcs.  It
+ * scene): the six other filters on the first five scenes (four of them
+ * each on a quarter of the view: against_quarters), tent:r=1 and
+ * mitchell on the arcs' and offsets', tent:r=6 on the small arcs (their
+ * middle 6 x 5 pixels).  It
  * leaves out what the quick tier checks (the box, the arcs under
  * bspline:order=3, the closed forms, the refusals): `make test` runs both
  * tiers, and the same cases twice would check nothing more.
@@ -116,6 +120,61 @@ static int W, H;
 static void against(const char *what, const aa_scene *s, int w, int h, const char *const *fl)
 {
     support_method_against_filters("analytic", what, s, w, h, fl);
+}
+
+#if TIER_FULL
+/* analytic against the reference under `filter` on the pixels [x0, x0 + w)
+ * x [y0, y0 + h) of the scene's sw x sh view: the scene mapped (x' = (sw x
+ * - x0) / w, y' likewise) so that they make a w x h view of their own, the
+ * same picture on the same pixel squares, the rest of it still there for
+ * the filter's cells that reach beyond them. */
+static double against_part(const char *what, const aa_scene *s, int sw, int sh, int x0, int y0,
+                           int w, int h, const char *filter)
+{
+    aa_scene *part = aa_scene_transform(s, (double)sw / w, (double)sh / h, -(double)x0 / w,
+                                        -(double)y0 / h);
+    assert_non_null(part);
+    char name[128];
+    snprintf(name, sizeof name, "%s, [%d, %d) x [%d, %d)", what, x0, x0 + w, y0, y0 + h);
+    double worst = support_method_against_reference("analytic", name, part, w, h, filter);
+    aa_scene_free(part);
+    return worst;
+}
+#endif
+
+/* The first five scenes' filters (NOT_BOX): in the full tier those of
+ * cells 3 and 4 px wide, bspline:order=2 and 3, Mitchell and Catmull-Rom,
+ * each on one quarter of the view (top left, top right, bottom left,
+ * bottom right, in that order; against_part), so that the four check every
+ * pixel once: the reference's quadrature of these scenes under them is
+ * most of this test's time (the three layers' whole view under Mitchell
+ * 18 s of CPU, a quarter of it 3 to 5 s).  A quarter's cells meet the
+ * same layers, stop lines, arcs and clips as the whole view's, and the
+ * filter the same code with other numbers: gcov finds the same functions
+ * and lines of the library reached (tests/README.md, "Tiers").  The
+ * narrow cells, tent:r=1 and tent:r=0.65, take the whole view, as does
+ * the sliver's ramp (against: its sliver crosses the left half only). */
+static void against_quarters(const char *what, const aa_scene *s, int w, int h,
+                             const char *const *fl)
+{
+#if TIER_FULL
+    static const char *const wide[] = {"bspline:order=2", "bspline:order=3", "mitchell",
+                                       "catrom"};
+    double worst = 0.0;
+    for (; *fl; fl++) {
+        int q = -1;
+        for (int k = 0; k < 4; k++)
+            if (!strcmp(*fl, wide[k]))
+                q = k;
+        worst = fmax(worst, q < 0 ? support_method_against_reference("analytic", what, s, w, h,
+                                                                     *fl)
+                                  : against_part(what, s, w, h, q % 2 * (w / 2),
+                                                 q / 2 * (h / 2), w / 2, h / 2, *fl));
+    }
+    print_message("%-28s largest difference over the filters %.1e\n", what, worst);
+#else
+    against(what, s, w, h, fl);
+#endif
 }
 
 static const aa_gradient_stop three[4] = {{0.0, {{0.9, 0.05, 0.2}}, 1.0},
@@ -152,7 +211,7 @@ static void test_layers(void **state)
     scenes_gradient_px(s, W, H, AA_GRADIENT_LINEAR, AA_SPREAD_REPEAT,
                        (const double[6]){3, 1, 7.3, 2.1, 0, 0}, two, 2, 0);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    against("three layers", s, W, H,
+    against_quarters("three layers", s, W, H,
             TIER(BOX, NOT_BOX, FILTERS("tent:r=1")));
     aa_scene_free(s);
 }
@@ -177,7 +236,7 @@ static void test_curves_and_clip(void **state)
     scenes_layer(s, 0.7, 0.6, 0.2, AA_FILL_NONZERO);
     scenes_rect_px(s, W, H, 4.3, 4.6, 17.7, 13.1);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    against("reflected, cubic arcs", s, W, H,
+    against_quarters("reflected, cubic arcs", s, W, H,
             TIER(BOX, NOT_BOX, FILTERS("bspline:order=2")));
     aa_scene_free(s);
 
@@ -196,7 +255,7 @@ static void test_curves_and_clip(void **state)
                        (const double[6]){4, 4, 18, 9, 0, 0}, three, 4, 0);
     assert_int_equal(aa_scene_set_clip(s, clip), AA_OK);
     assert_int_equal(aa_scene_finish(s), AA_OK);
-    against("clipped gradient", s, W, H,
+    against_quarters("clipped gradient", s, W, H,
             TIER(BOX, NOT_BOX, FILTERS("catrom")));
     aa_scene_free(s);
 }
@@ -237,7 +296,7 @@ static void test_strokes(void **state)
         " stroke-width=\"1.3\" stroke-linecap=\"square\"/>\n"
         "</svg>\n";
     aa_scene *s = scenes_svg_text(dir, "strokes.svg", svg, 24, 20);
-    against("stroked polylines (SVG)", s, 24, 20,
+    against_quarters("stroked polylines (SVG)", s, 24, 20,
             TIER(BOX, NOT_BOX, FILTERS("bspline:order=3")));
     aa_scene_free(s);
 }
@@ -295,7 +354,12 @@ static void test_small_arcs(void **state)
         " fill=\"url(#g)\"/>\n"
         "</svg>\n";
     aa_scene *s = scenes_svg_text(dir, "smallarcs.svg", svg, 12, 10);
-    against("small arcs, wide cells", s, 12, 10, FILTERS("tent:r=6"));
+    /* the middle 6 x 5 pixels of the 12 x 10 (7.5 s of CPU, the whole view
+     * 24 s): every cell is 12 px wide, so each holds most of the picture,
+     * and their sides cross the three shapes' arcs on every side (the
+     * large circle's from column 7 on, the ellipse's up to column 3, the
+     * rows' likewise), as the whole view's do */
+    against_part("small arcs, wide cells", s, 12, 10, 3, 2, 6, 5, "tent:r=6");
     aa_scene_free(s);
 }
 #endif
