@@ -6301,8 +6301,129 @@ static thr_iv thr_cubic_iv(long double c0, long double c1, long double c2, long 
     return iv_add(iv_mul(p, T), iv_ld(c0));
 }
 
+/* a / b, b's range not holding 0: the quotients of the ends. */
+static thr_iv iv_div(thr_iv a, thr_iv b)
+{
+    double p0 = a.lo / b.lo, p1 = a.lo / b.hi, p2 = a.hi / b.lo, p3 = a.hi / b.hi;
+    if (p0 != p0 || p1 != p1 || p2 != p2 || p3 != p3)
+        return (thr_iv){-INFINITY, INFINITY};
+    return iv_out(thr_min(thr_min(p0, p1), thr_min(p2, p3)),
+                  thr_max(thr_max(p0, p1), thr_max(p2, p3)));
+}
+
+/* cos (sn 0) or sin (sn 1) over T: f(m) within |f'(m)| h + h^2 / 2 (|f''|
+ * <= 1), m T's middle and h its half width, each rounded up; the libm's
+ * error (below an ulp of 1) and that of f'(m) times h (h at most a few
+ * pi) within the 2^-48 added. */
+static thr_iv iv_trig(thr_iv T, int sn)
+{
+    double m = 0.5 * (T.lo + T.hi), h = thr_max(m - T.lo, T.hi - m) * (1.0 + 0x1p-50);
+    double v = sn ? sin(m) : cos(m), dv = sn ? cos(m) : sin(m);
+    double r = (fabs(dv) * h + 0.5 * h * h) * (1.0 + 0x1p-50) + 0x1p-48;
+    if (!(r < 2.0))
+        return (thr_iv){-1.0, 1.0};
+    return (thr_iv){thr_max(v - r, -1.0), thr_min(v + r, 1.0)};
+}
+
+/* The point of offset curve oc (aabench.h, aa_offset_curve) at the
+ * parameters T, mapped, in ranges (X, Y): B, B' and B'' by Horner (an
+ * ellipse's from iv_trig), the offset B + d perp(B')/|B'| (each of
+ * B'/|B'|'s coordinates kept in [-1, 1]), the evolute B + perp(B') |B'|^2
+ * / (B' x B''), as offset.c's offset_eval.  0 (not had) where |B'|^2 or
+ * B' x B'' (the evolute's) may vanish on T. */
+static int thr_offset_iv(const aa_offset_curve *oc, thr_iv T, thr_iv *X, thr_iv *Y)
+{
+    const double *b = oc->b;
+    thr_iv B[2], U[2], V[2], P[2];
+    if (oc->base == AA_OFFSET_ELLIPSE) {
+        thr_iv C = iv_trig(T, 0), S = iv_trig(T, 1);
+        for (int i = 0; i < 2; i++) {
+            thr_iv p = iv_add(iv_mul(iv_k(b[2 + i]), C), iv_mul(iv_k(b[4 + i]), S));
+            B[i] = iv_add(iv_k(b[i]), p);
+            U[i] = iv_sub(iv_mul(iv_k(b[4 + i]), C), iv_mul(iv_k(b[2 + i]), S));
+            V[i] = (thr_iv){-p.hi, -p.lo};
+        }
+    } else {
+        for (int i = 0; i < 2; i++) {
+            const double *c = b + 4 * i;
+            B[i] = thr_cubic_iv(c[0], c[1], c[2], c[3], T);
+            U[i] = thr_cubic_iv(c[1], 2.0L * c[2], 3.0L * c[3], 0.0L, T);
+            V[i] = thr_cubic_iv(2.0L * c[2], 6.0L * c[3], 0.0L, 0.0L, T);
+        }
+    }
+    thr_iv L2 = iv_add(iv_sqr(U[0]), iv_sqr(U[1]));
+    if (!(L2.lo > 0.0))
+        return 0;
+    if (!oc->evolute) {
+        thr_iv L = iv_out(sqrt(L2.lo), sqrt(L2.hi)), D = iv_k(oc->d), N[2];
+        for (int i = 0; i < 2; i++) {
+            N[i] = iv_div(U[i], L);
+            N[i].lo = thr_max(N[i].lo, -1.0), N[i].hi = thr_min(N[i].hi, 1.0);
+        }
+        P[0] = iv_sub(B[0], iv_mul(D, N[1]));
+        P[1] = iv_add(B[1], iv_mul(D, N[0]));
+    } else {
+        thr_iv c = iv_sub(iv_mul(U[0], V[1]), iv_mul(U[1], V[0]));
+        if (!(c.lo > 0.0 || c.hi < 0.0))
+            return 0;
+        thr_iv r = iv_div(L2, c);
+        P[0] = iv_sub(B[0], iv_mul(r, U[1]));
+        P[1] = iv_add(B[1], iv_mul(r, U[0]));
+    }
+    const double *m = oc->m;
+    *X = iv_add(iv_add(iv_mul(iv_k(m[0]), P[0]), iv_mul(iv_k(m[2]), P[1])), iv_k(m[4]));
+    *Y = iv_add(iv_add(iv_mul(iv_k(m[1]), P[0]), iv_mul(iv_k(m[3]), P[1])), iv_k(m[5]));
+    return X->lo == X->lo && Y->lo == Y->lo && X->hi == X->hi && Y->hi == Y->hi;
+}
+
+/* thr_piece_x for an offset piece (not thr_offset_stopped): y runs one
+ * way from ot0 (the top) to ot1 (no fold, cusp or turn of y inside), so
+ * the parameters of the rows [a, b] lie between ta and tb, ta the root of
+ * y = a (aa__offset_solve_d) moved towards ot0 until y there is shown
+ * below a less the margin (or ta is ot0), tb likewise; x over them by
+ * thr_offset_iv.  The margin, 1e-12 of the piece's absolute coordinates'
+ * size and the window's, holds the rounding of its crossings (long
+ * double, truth_local.c).  Unbounded where thr_offset_iv has nothing. */
+static thr_iv thr_offset_x(const worker *w, const local_piece *q, double a, double b)
+{
+    const aa_piece *p = q->src;
+    const aa_offset_curve *oc = &p->oc;
+    thr_iv all = {-INFINITY, INFINITY}, X, Y, vc = iv_ld(q->vc);
+    double dir = p->ot1 > p->ot0 ? 1.0 : -1.0, m = 1e-12 * (w->R + (double)q->oscale), t[2];
+    for (int e = 0; e < 2; e++) {
+        double s = e ? b : a, end = e ? p->ot1 : p->ot0, way = e ? dir : -dir;
+        if (e ? !(s < q->y1) : !(s > q->y0)) {
+            t[e] = end;
+            continue;
+        }
+        double y = (double)(q->vc + s), pad = 0x1p-40 * fabs(p->ot1 - p->ot0);
+        double t0 = aa__offset_solve_d(oc, 1, p->ot0, p->ot1, p->y0 - y, y);
+        if (t0 != t0)
+            return all;
+        for (;;) {
+            double tt = t0 + way * pad;
+            if (!((end - tt) * way > 0.0)) {
+                t[e] = end;
+                break;
+            }
+            if (!thr_offset_iv(oc, iv_k(tt), &X, &Y))
+                return all;
+            Y = iv_sub(Y, vc);
+            if (e ? Y.lo > s + m : Y.hi < s - m) {
+                t[e] = tt;
+                break;
+            }
+            pad *= 256.0;
+        }
+    }
+    if (!thr_offset_iv(oc, (thr_iv){thr_min(t[0], t[1]), thr_max(t[0], t[1])}, &X, &Y))
+        return all;
+    X = iv_sub(X, iv_ld(q->uc));
+    return iv_out(X.lo - m, X.hi + m);
+}
+
 /* The x of local piece q (a line, a quadratic or cubic arc, a conic
- * piece: not an offset piece) on its rows [a, b] (inside its own): a
+ * piece, an offset piece: thr_offset_x) on its rows [a, b] (inside its own): a
  * range holding them.  Widened by 1e-12 of its coefficients' size for the
  * rounding of the piece's coordinates relative to the centre (long
  * double, about 1e-19 of them).  A polynomial piece's y(t) increases on
@@ -6315,6 +6436,8 @@ static thr_iv thr_piece_x(const worker *w, const local_piece *q, double a, doubl
 {
     double R = w->R;
     thr_iv X;
+    if (q->offset)
+        return thr_offset_x(w, q, a, b);
     if (q->conic) {
         thr_iv S = {a, b}, one = iv_k(1.0);
         double er = (double)q->er;
