@@ -337,7 +337,8 @@
  * arithmetic (a polynomial piece over a range of its parameter shown to
  * hold those rows, y(t) increasing; a conic's x over the rows; an offset
  * piece's B + d N or evolute over such a range, B, B', B'' bounded there
- * and |B'|^2, the evolute's B' x B'' too, shown off 0, else the piece may
+ * (offset.c's factored form next to a cubic's end where B' vanishes) and
+ * |B'|^2, the evolute's B' x B'' too, shown off 0, else the piece may
  * meet any box of those rows: thr_offset_x), and a
  * layer whose piece may meet the box is taken both covered and not
  * (windings 1 and 0), every combination of up to THR_UNSURE such layers
@@ -395,7 +396,7 @@
  * 10.9 s, 7.0 s scanned, one after the other.  Where strokes' sides
  * enter (a 48x48 linear gradient under a cubic and a quadratic stroked
  * with a radial gradient at stroke-opacity 0.6 and 0.5, dark stops):
- * 1.94e9 instructions against 2.25e9 with those windows scanned (252
+ * 1.92e9 instructions against 2.25e9 with those windows scanned (252
  * pixels; its largest bound 2.2e-14, 6.2e-14 with the scan, the values
  * within 2.7e-16).  A lens of the curve 0.015 px high along a radial
  * stop circle between two of the scan's rows (tests/test_gradient.c,
@@ -408,9 +409,9 @@
  * windows that no piece enters reach 2e-7 so, as before: that bound is
  * what is left to make fine under radial filters).
  *
- * Scanned (thr_heights), elsewhere (an offset piece in the window whose
- * parameters reach the half of a cubic next to an end where B' vanishes,
- * evaluated there in offset.c's factored form, thr_offset_stopped; a
+ * Scanned (thr_heights), elsewhere (an evolute in the window on the half
+ * of a cubic next to an end where B' vanishes whose factored form
+ * (offset.c) has Q x Q' not shown off 0, thr_offset_stopped; a
  * cone-case gradient, a piece in the window under a radial filter): between the
  * breakpoints, THR_ROWS = 32 rows a window's height, and one just inside
  * each interval's ends; each row's signature is the count of the
@@ -6218,14 +6219,24 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
     return hit;
 }
 
-/* Whether offset piece p's parameters reach the half of [0, 1] next to a
- * cubic's end where B' vanishes, there evaluated in a factored form
- * (offset.c, aa__offset_stop): not bounded here. */
+/* Whether offset piece p is an evolute whose parameters reach the half of
+ * [0, 1] next to a cubic's end where B' vanishes, evaluated there in a
+ * factored form (offset.c, aa__offset_stop), whose Q x Q' (q0 q3 - q2 q1,
+ * a constant) is not shown off 0: the evolute is then the curve itself
+ * there (offset.c's stop_eval), not bounded by thr_offset_iv. */
 static int thr_offset_stopped(const aa_piece *p)
 {
     int stops = aa__offset_stops(&p->oc);
-    double lo = fmin(p->ot0, p->ot1), hi = fmax(p->ot0, p->ot1);
-    return ((stops & 1) && lo < 0.5) || ((stops & 2) && hi >= 0.5);
+    double lo = fmin(p->ot0, p->ot1), hi = fmax(p->ot0, p->ot1), te, q[4];
+    for (int e = 0; e < 2 && p->oc.evolute; e++) {
+        if (!((stops >> e) & 1) || !(e ? hi >= 0.5 : lo < 0.5) ||
+            !aa__offset_stop(&p->oc, e ? 1.0 : 0.0, &te, q))
+            continue;
+        double a = q[0] * q[3], c = q[2] * q[1];
+        if (!(fabs(a - c) > 1e-12 * (fabs(a) + fabs(c))))
+            return 1;
+    }
+    return 0;
 }
 
 /* Where local piece q lies against the window [-R, R]^2: 2 outside its
@@ -6301,6 +6312,8 @@ typedef struct thr_cache {
     int n, next, nl;
     int *wind;
     const int *side; /* per local piece, thr_piece_side */
+    double *rows;    /* per piece entering (c->pc's order): the rows last asked, */
+    thr_iv *px;      /* and thr_piece_x there (thr_strip asks the same rows often) */
     thr_fc e[THR_FOLDS];
 } thr_cache;
 
@@ -6345,37 +6358,67 @@ static thr_iv iv_trig(thr_iv T, int sn)
     return (thr_iv){thr_max(v - r, -1.0), thr_min(v + r, 1.0)};
 }
 
+/* The hull of two ranges. */
+static thr_iv iv_hull(thr_iv a, thr_iv b)
+{
+    return (thr_iv){thr_min(a.lo, b.lo), thr_max(a.hi, b.hi)};
+}
+
 /* The point of offset curve oc (aabench.h, aa_offset_curve) at the
  * parameters T, mapped, in ranges (X, Y): B, B' and B'' by Horner (an
  * ellipse's from iv_trig), the offset B + d perp(B')/|B'| (each of
  * B'/|B'|'s coordinates kept in [-1, 1]), the evolute B + perp(B') |B'|^2
- * / (B' x B''), as offset.c's offset_eval.  0 (not had) where |B'|^2 or
- * B' x B'' (the evolute's) may vanish on T. */
-static int thr_offset_iv(const aa_offset_curve *oc, thr_iv T, thr_iv *X, thr_iv *Y)
+ * / (B' x B''), as offset.c's offset_eval; on the half of [0, 1] next to
+ * a cubic's end te where B' vanishes (stops, aa__offset_stops' bits: the
+ * halves split at 0.5 as offset_eval splits them) its factored form, Q =
+ * (q0 + q1 t, q2 + q3 t), s = t - te, sg = 1 at te = 0 and -1 at 1: the
+ * offset B + d sg perp(Q)/|Q|, the evolute B + s |Q|^2 perp(Q) / (Q x
+ * Q').  0 (not had) where |B'|^2 (|Q|^2) or the evolute's denominator may
+ * vanish on T. */
+static int thr_offset_iv(const aa_offset_curve *oc, int stops, thr_iv T, thr_iv *X, thr_iv *Y)
 {
     const double *b = oc->b;
-    thr_iv B[2], U[2], V[2], P[2];
+    thr_iv B[2], U[2], V[2], P[2], L2, S = {0.0, 0.0};
+    double te = 0.0, q[4] = {0};
+    int stop = 0;
+    if (oc->base == AA_OFFSET_CUBIC && stops && T.lo < 0.5 && T.hi >= 0.5) {
+        thr_iv X2, Y2;
+        if (!thr_offset_iv(oc, stops, (thr_iv){T.lo, 0.5 - 0x1p-54}, X, Y) ||
+            !thr_offset_iv(oc, stops, (thr_iv){0.5, T.hi}, &X2, &Y2))
+            return 0;
+        *X = iv_hull(*X, X2), *Y = iv_hull(*Y, Y2);
+        return 1;
+    }
     if (oc->base == AA_OFFSET_ELLIPSE) {
-        thr_iv C = iv_trig(T, 0), S = iv_trig(T, 1);
+        thr_iv C = iv_trig(T, 0), Sn = iv_trig(T, 1);
         for (int i = 0; i < 2; i++) {
-            thr_iv p = iv_add(iv_mul(iv_k(b[2 + i]), C), iv_mul(iv_k(b[4 + i]), S));
+            thr_iv p = iv_add(iv_mul(iv_k(b[2 + i]), C), iv_mul(iv_k(b[4 + i]), Sn));
             B[i] = iv_add(iv_k(b[i]), p);
-            U[i] = iv_sub(iv_mul(iv_k(b[4 + i]), C), iv_mul(iv_k(b[2 + i]), S));
+            U[i] = iv_sub(iv_mul(iv_k(b[4 + i]), C), iv_mul(iv_k(b[2 + i]), Sn));
             V[i] = (thr_iv){-p.hi, -p.lo};
         }
     } else {
+        stop = (stops & (T.lo < 0.5 ? 1 : 2)) && aa__offset_stop(oc, T.lo, &te, q);
         for (int i = 0; i < 2; i++) {
             const double *c = b + 4 * i;
             B[i] = thr_cubic_iv(c[0], c[1], c[2], c[3], T);
-            U[i] = thr_cubic_iv(c[1], 2.0L * c[2], 3.0L * c[3], 0.0L, T);
-            V[i] = thr_cubic_iv(2.0L * c[2], 6.0L * c[3], 0.0L, 0.0L, T);
+            if (stop) { /* U: Q, V: Q' */
+                U[i] = iv_add(iv_k(q[2 * i]), iv_mul(iv_k(q[2 * i + 1]), T));
+                V[i] = iv_k(q[2 * i + 1]);
+            } else {
+                U[i] = thr_cubic_iv(c[1], 2.0L * c[2], 3.0L * c[3], 0.0L, T);
+                V[i] = thr_cubic_iv(2.0L * c[2], 6.0L * c[3], 0.0L, 0.0L, T);
+            }
         }
+        if (stop)
+            S = iv_sub(T, iv_k(te));
     }
-    thr_iv L2 = iv_add(iv_sqr(U[0]), iv_sqr(U[1]));
+    L2 = iv_add(iv_sqr(U[0]), iv_sqr(U[1]));
     if (!(L2.lo > 0.0))
         return 0;
     if (!oc->evolute) {
-        thr_iv L = iv_out(sqrt(L2.lo), sqrt(L2.hi)), D = iv_k(oc->d), N[2];
+        thr_iv L = iv_out(sqrt(L2.lo), sqrt(L2.hi)), N[2];
+        thr_iv D = iv_k(stop && te != 0.0 ? -oc->d : oc->d);
         for (int i = 0; i < 2; i++) {
             N[i] = iv_div(U[i], L);
             N[i].lo = thr_max(N[i].lo, -1.0), N[i].hi = thr_min(N[i].hi, 1.0);
@@ -6386,7 +6429,7 @@ static int thr_offset_iv(const aa_offset_curve *oc, thr_iv T, thr_iv *X, thr_iv 
         thr_iv c = iv_sub(iv_mul(U[0], V[1]), iv_mul(U[1], V[0]));
         if (!(c.lo > 0.0 || c.hi < 0.0))
             return 0;
-        thr_iv r = iv_div(L2, c);
+        thr_iv r = iv_div(stop ? iv_mul(S, L2) : L2, c);
         P[0] = iv_sub(B[0], iv_mul(r, U[1]));
         P[1] = iv_add(B[1], iv_mul(r, U[0]));
     }
@@ -6396,7 +6439,7 @@ static int thr_offset_iv(const aa_offset_curve *oc, thr_iv T, thr_iv *X, thr_iv 
     return X->lo == X->lo && Y->lo == Y->lo && X->hi == X->hi && Y->hi == Y->hi;
 }
 
-/* thr_piece_x for an offset piece (not thr_offset_stopped): y runs one
+/* thr_piece_x for an offset piece: y runs one
  * way from ot0 (the top) to ot1 (no fold, cusp or turn of y inside), so
  * the parameters of the rows [a, b] lie between ta and tb, ta the root of
  * y = a (aa__offset_solve_d) moved towards ot0 until y there is shown
@@ -6409,6 +6452,7 @@ static thr_iv thr_offset_x(const worker *w, const local_piece *q, double a, doub
     const aa_piece *p = q->src;
     const aa_offset_curve *oc = &p->oc;
     thr_iv all = {-INFINITY, INFINITY}, X, Y, vc = iv_ld(q->vc);
+    int stops = aa__offset_stops(oc);
     double dir = p->ot1 > p->ot0 ? 1.0 : -1.0, m = 1e-12 * (w->R + (double)q->oscale), t[2];
     for (int e = 0; e < 2; e++) {
         double s = e ? b : a, end = e ? p->ot1 : p->ot0, way = e ? dir : -dir;
@@ -6426,7 +6470,7 @@ static thr_iv thr_offset_x(const worker *w, const local_piece *q, double a, doub
                 t[e] = end;
                 break;
             }
-            if (!thr_offset_iv(oc, iv_k(tt), &X, &Y))
+            if (!thr_offset_iv(oc, stops, iv_k(tt), &X, &Y))
                 return all;
             Y = iv_sub(Y, vc);
             if (e ? Y.lo > s + m : Y.hi < s - m) {
@@ -6436,7 +6480,8 @@ static thr_iv thr_offset_x(const worker *w, const local_piece *q, double a, doub
             pad *= 256.0;
         }
     }
-    if (!thr_offset_iv(oc, (thr_iv){thr_min(t[0], t[1]), thr_max(t[0], t[1])}, &X, &Y))
+    if (!thr_offset_iv(oc, stops, (thr_iv){thr_min(t[0], t[1]), thr_max(t[0], t[1])}, &X,
+                       &Y))
         return all;
     X = iv_sub(X, iv_ld(q->uc));
     return iv_out(X.lo - m, X.hi + m);
@@ -6546,7 +6591,13 @@ static int thr_box_at(const thr_ctx *c, double x0, double x1, double s0, double 
         double a = fmax(s0, (double)q->y0), b = fmin(s1, (double)q->y1);
         if (!(a <= b))
             continue;
-        thr_iv X = thr_piece_x(w, q, a, b);
+        thr_iv X;
+        if (h->rows[2 * i] == a && h->rows[2 * i + 1] == b) {
+            X = h->px[i];
+        } else {
+            X = h->px[i] = thr_piece_x(w, q, a, b);
+            h->rows[2 * i] = a, h->rows[2 * i + 1] = b;
+        }
         if (X.lo > x1)
             continue;
         if (X.hi < x0) {
@@ -6735,7 +6786,9 @@ static int thr_certify_edges(worker *w, thr_ctx *c, int *taken)
     size_t per = (size_t)cf * sizeof(aa_fold_step) + (size_t)(cf + nl) * sizeof(int) +
                  (size_t)w->ngl;
     per = (per + 15) & ~(size_t)15; /* each entry's steps aligned */
-    char *mem = malloc(THR_FOLDS * per + (size_t)(nl + 1) * sizeof(int) + 2 * w->nlp * sizeof(int));
+    size_t ints = ((size_t)(nl + 1) + 2 * w->nlp) * sizeof(int);
+    ints = (ints + 15) & ~(size_t)15;
+    char *mem = malloc(THR_FOLDS * per + ints + w->nlp * (2 * sizeof(double) + sizeof(thr_iv)));
     if (!mem)
         return aa_fail(AA_ENOMEM, "out of memory for the threshold's boxes");
     h.nl = nl;
@@ -6752,6 +6805,10 @@ static int thr_certify_edges(worker *w, thr_ctx *c, int *taken)
         if ((side[k] = thr_piece_side(w, &w->lp[k])) == 0)
             pc[npc++] = (int)k;
     h.side = side;
+    h.rows = (double *)(void *)(mem + THR_FOLDS * per + ints);
+    h.px = (thr_iv *)(void *)(h.rows + 2 * w->nlp);
+    for (size_t k = 0; k < 2 * w->nlp; k++)
+        h.rows[k] = NAN;
     c->npc = npc, c->pc = pc, c->cache = &h;
     *taken = 1;
     int st = thr_boxes(w, c);
