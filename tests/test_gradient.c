@@ -2379,6 +2379,9 @@ static void test_mixed_edge(void **state)
  * Against the 2-D quadrature of the picture (mpic_pixel), pixel (7, 7) and
  * its neighbours along the side; every pixel's bound at most 1e-12. */
 static const double side_cubic[9] = {4.1, -2, 5.3, 3, 3.5, 12, 5.1, 18, 3};
+/* The same with its first control point on its start: B' vanishes there,
+ * and the stroke's sides on t < 1/2 are offset.c's factored form. */
+static const double cusp_cubic[9] = {4.1, -2, 4.1, -2, 3.5, 12, 5.1, 18, 3};
 
 static void test_mixed_stroke(void **state)
 {
@@ -2470,19 +2473,22 @@ static void test_threshold_mid_span(void **state)
  * filter, whose slivers take a crude bound) the 16 windows of column 8
  * are, and no other; with the radial layer the stroke of
  * test_mixed_stroke (its sides offset curves of the cubic, taken box by
- * box by thr_offset_x) none is. */
+ * box by thr_offset_x; 32 pixels scanned when those windows were), and
+ * of that cubic with a cusp at its start (the sides next to it in
+ * offset.c's factored form; 36 when those were), none is. */
 static void test_mixed_which_step(void **state)
 {
     (void)state;
-    static const char *what[7] = {"filling the view", "ending at x = 8.5", "in linear light",
+    static const char *what[8] = {"filling the view", "ending at x = 8.5", "in linear light",
                                   "of the cone case", "over 32 more gradients",
                                   "ending at x = 8.5, under cone:r=0.5",
-                                  "a stroked cubic (test_mixed_stroke)"};
+                                  "a stroked cubic (test_mixed_stroke)",
+                                  "a stroked cubic with a cusp at its start"};
     mpic p = lens_pic();
     gw = gh = W;
-    for (int c = 0; c < 7; c++) {
-        p.l[1].disc = c == 6 ? 2 : 0;
-        mpic_cubic = c == 6 ? side_cubic : NULL;
+    for (int c = 0; c < 8; c++) {
+        p.l[1].disc = c >= 6 ? 2 : 0;
+        mpic_cubic = c == 6 ? side_cubic : c == 7 ? cusp_cubic : NULL;
         p.l[1].r[2] = c == 1 || c == 5 ? 8.5 : 16;
         p.l[1].p[4] = c == 3 ? 47.44001041579865 - 45 : 47.44001041579865; /* fy */
         mpic_lin = c == 2 ? 2u : 0u;
