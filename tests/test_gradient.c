@@ -41,6 +41,7 @@
  */
 #include "bench.h"
 #include "core.h"
+#include "path.h"
 #include "patterns.h"
 #include "support.h"
 #include "truth.h"
@@ -1402,8 +1403,73 @@ static double mlayer_t(const mlayer *m, double x, double y)
     return rpic_t(&rp, x, y);
 }
 
+/* A layer whose region (disc) is 2 is the stroke of the cubic mpic_cubic[0
+ * .. 7] (x0, y0, x1, y1, x2, y2, x3, y3, in pixels) of half width
+ * mpic_cubic[8], round caps, for mlayer_in and mpic_scene. */
+static const double *mpic_cubic;
+
+static void mcubic_at(const double *c, double t, double *b, double *d, double *dd)
+{
+    double u = 1 - t;
+    for (int i = 0; i < 2; i++) {
+        double p0 = c[i], p1 = c[2 + i], p2 = c[4 + i], p3 = c[6 + i];
+        b[i] = u * u * u * p0 + 3 * u * u * t * p1 + 3 * u * t * t * p2 + t * t * t * p3;
+        d[i] = 3 * (u * u * (p1 - p0) + 2 * u * t * (p2 - p1) + t * t * (p3 - p2));
+        dd[i] = 6 * (u * (p2 - 2 * p1 + p0) + t * (p3 - 2 * p2 + p1));
+    }
+}
+
+/* Whether (x, y) lies in the stroke of mpic_cubic: its distance to the
+ * cubic at most the half width (SVG 2's stroke shape, round caps), the
+ * distance the least of the ends' and the foot's, where (p - B) . B' = 0:
+ * the least of |p - B|^2 at 33 parameters, the foot between its two
+ * neighbours by Newton's method on (p - B) . B', kept in that bracket by
+ * bisection.  For the cubics here (radius of curvature above 3 times the
+ * half width, points within a few half widths) |p - B(t)| has one minimum
+ * along the curve near p, so the sampled least is next to the foot. */
+static int stroke_in(const double *c, double x, double y)
+{
+    const int N = 32;
+    double b[2], d[2], dd[2], best = INFINITY;
+    int kb = 0;
+    for (int k = 0; k <= N; k++) {
+        mcubic_at(c, (double)k / N, b, d, dd);
+        double r = (x - b[0]) * (x - b[0]) + (y - b[1]) * (y - b[1]);
+        if (r < best)
+            best = r, kb = k;
+    }
+    double lo = kb > 0 ? (kb - 1.0) / N : 0.0, hi = kb < N ? (kb + 1.0) / N : 1.0, g[2];
+    for (int e = 0; e < 2; e++) {
+        mcubic_at(c, e ? hi : lo, b, d, dd);
+        g[e] = (x - b[0]) * d[0] + (y - b[1]) * d[1];
+    }
+    if (g[0] > 0 && g[1] < 0) { /* a minimum of the distance inside: its foot */
+        double t = 0.5 * (lo + hi);
+        for (int it = 0; it < 100 && hi - lo > 1e-17; it++) {
+            mcubic_at(c, t, b, d, dd);
+            double f = (x - b[0]) * d[0] + (y - b[1]) * d[1];
+            double df = (x - b[0]) * dd[0] + (y - b[1]) * dd[1] - d[0] * d[0] - d[1] * d[1];
+            if (f > 0)
+                lo = t;
+            else
+                hi = t;
+            double nt = t - f / df;
+            if (!(nt > lo && nt < hi))
+                nt = 0.5 * (lo + hi);
+            if (fabs(nt - t) < 1e-16)
+                break;
+            t = nt;
+        }
+        mcubic_at(c, t, b, d, dd);
+        best = fmin(best, (x - b[0]) * (x - b[0]) + (y - b[1]) * (y - b[1]));
+    }
+    return sqrt(best) <= c[8];
+}
+
 static int mlayer_in(const mlayer *m, double x, double y)
 {
+    if (m->disc == 2)
+        return stroke_in(mpic_cubic, x, y);
     return m->disc ? hypot(x - m->r[0], y - m->r[1]) < m->r[2]
                    : (x > m->r[0] && x < m->r[2] && y > m->r[1] && y < m->r[3]);
 }
@@ -1617,7 +1683,20 @@ static aa_scene *mpic_scene(const mpic *p)
     aa_scene *s = aa_scene_new(bg);
     for (int k = p->nl - 1; k >= 0; k--) {
         const mlayer *m = &p->l[k];
-        if (m->disc)
+        if (m->disc == 2) { /* the stroke of mpic_cubic, its outline's offset pieces */
+            const double *c = mpic_cubic, px[6] = {1.0 / gw, 0, 0, 1.0 / gh, 0, 0};
+            aa_path in = {0}, out = {0};
+            aa_stroke_style st;
+            aa_stroke_style_default(&st);
+            st.width = 2 * c[8], st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+            assert_int_equal(aa_path_move_to(&in, c[0], c[1]), AA_OK);
+            assert_int_equal(aa_path_cubic_to(&in, c[2], c[3], c[4], c[5], c[6], c[7]), AA_OK);
+            assert_int_equal(aa_stroke_outline(&in, &st, &out), AA_OK);
+            assert_int_equal(aa_scene_layer(s, (aa_rgb){{0, 0, 0}}, AA_FILL_NONZERO), AA_OK);
+            assert_int_equal(aa_path_fill(&out, px, s), AA_OK);
+            aa_path_free(&in);
+            aa_path_free(&out);
+        } else if (m->disc)
             disc_px(s, m->r[0], m->r[1], m->r[2]);
         else
             rect_px(s, (aa_rgb){{0, 0, 0}}, m->r[0], m->r[1], m->r[2], m->r[3]);
@@ -2288,6 +2367,33 @@ static void test_mixed_edge(void **state)
     mpic_lin = 0;
 }
 
+/* The lens's picture with the radial layer the stroke of a cubic, 6 px
+ * wide, round caps (an outline of offset pieces: harness/core/stroke.c),
+ * its right side near x = 7.4546 at y = 7.5 (Python, the offset sampled at
+ * 20001 parameters), across the lens (x in [7.352, 7.649]): in pixel (7,
+ * 7) the threshold's curve meets the stroke's side as it met the
+ * rectangle's in test_mixed_edge, now an offset curve of the cubic.  The
+ * cubic's radius of curvature is at least 10.3 (the same sampling), above
+ * the half width: the stroke is the tube about it, which the oracle's
+ * point-in-stroke test (stroke_in, the distance to the cubic) reads.
+ * Against the 2-D quadrature of the picture (mpic_pixel), pixel (7, 7) and
+ * its neighbours along the side; every pixel's bound at most 1e-12. */
+static const double side_cubic[9] = {4.1, -2, 5.3, 3, 3.5, 12, 5.1, 18, 3};
+/* The same with its first control point on its start: B' vanishes there,
+ * and the stroke's sides on t < 1/2 are offset.c's factored form. */
+static const double cusp_cubic[9] = {4.1, -2, 4.1, -2, 3.5, 12, 5.1, 18, 3};
+
+static void test_mixed_stroke(void **state)
+{
+    (void)state;
+    static const int px[3][2] = {{7, 7}, {7, 6}, {7, 8}};
+    mpic p = lens_pic();
+    p.l[1].disc = 2;
+    mpic_cubic = side_cubic;
+    mpic_check("radial over linear, the lens cut by a stroked cubic's side", &p, px, 3);
+    mpic_cubic = NULL;
+}
+
 /* An opaque scene, a linear gradient over the view and a radial one on a
  * disc (every span by the path of several gradients), where the linear
  * gradient's threshold line (t = 0.04045 / (24/255)) crosses rows at the
@@ -2365,21 +2471,30 @@ static void test_threshold_mid_span(void **state)
  * pixel is (no edge: the kind of its gradient leaves it to the scan);
  * with the edge at x = 8.5 under the cone filter of radius 1/2 (a radial
  * filter, whose slivers take a crude bound) the 16 windows of column 8
- * are, and no other. */
+ * are, and no other; with the radial layer the stroke of
+ * test_mixed_stroke (its sides offset curves of the cubic, taken box by
+ * box by thr_offset_x; 32 pixels scanned when those windows were), and
+ * of that cubic with a cusp at its start (the sides next to it in
+ * offset.c's factored form; 36 when those were), none is. */
 static void test_mixed_which_step(void **state)
 {
     (void)state;
-    static const char *what[6] = {"filling the view", "ending at x = 8.5", "in linear light",
+    static const char *what[8] = {"filling the view", "ending at x = 8.5", "in linear light",
                                   "of the cone case", "over 32 more gradients",
-                                  "ending at x = 8.5, under cone:r=0.5"};
+                                  "ending at x = 8.5, under cone:r=0.5",
+                                  "a stroked cubic (test_mixed_stroke)",
+                                  "a stroked cubic with a cusp at its start"};
     mpic p = lens_pic();
     gw = gh = W;
-    for (int c = 0; c < 6; c++) {
+    for (int c = 0; c < 8; c++) {
+        p.l[1].disc = c >= 6 ? 2 : 0;
+        mpic_cubic = c == 6 ? side_cubic : c == 7 ? cusp_cubic : NULL;
         p.l[1].r[2] = c == 1 || c == 5 ? 8.5 : 16;
         p.l[1].p[4] = c == 3 ? 47.44001041579865 - 45 : 47.44001041579865; /* fy */
         mpic_lin = c == 2 ? 2u : 0u;
         aa_scene *s = c == 4 ? NULL : mpic_scene(&p);
         mpic_lin = 0;
+        mpic_cubic = NULL;
         if (c == 4) { /* 34 gradient layers: 32 behind the lens's, a square of one each */
             s = aa_scene_new((aa_rgb){{0, 0, 0}});
             for (int k = 0; k < 34; k++) { /* front first: the lens's radial, linear, then */
@@ -2431,6 +2546,7 @@ int main(void)
         cmocka_unit_test(test_mixed_stop_circle),
         cmocka_unit_test(test_mixed_lens),
         cmocka_unit_test(test_mixed_edge),
+        cmocka_unit_test(test_mixed_stroke),
         cmocka_unit_test(test_mixed_which_step),
         cmocka_unit_test(test_threshold_mid_span),
     };
