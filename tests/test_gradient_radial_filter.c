@@ -524,6 +524,7 @@ static const aa_gradient_stop mix_l[3] = {{0.0, {{0, 0, 0}}, 1.0},
 typedef struct mix {
     const filt *f;
     double uc, vc, y, cr0, cl; /* cr0: CR at tR = 0; cl: CL at the stop */
+    double edge;               /* the radial layer's right side (x) */
     gsl_integration_workspace *wi;
 } mix;
 
@@ -538,10 +539,13 @@ static double mix_cl(const mix *m, double y)
 static double mix_e(const mix *m, double x, double y)
 {
     double tr = hypot(x - 6.5, y - 7.0) / 4.0;
+    if (x >= m->edge)
+        return mix_cl(m, y);
     return 0.6 * (tr < 1.0 ? m->cr0 * (1.0 - tr) : 0.0) + 0.4 * mix_cl(m, y);
 }
 
-/* The curve's crossings of row y (0 or 2, into x), in closed form. */
+/* The curve's crossings of row y left of the edge (at most 2, into x),
+ * in closed form (right of it E = CL is one number along the row). */
 static int mix_cross(const mix *m, double y, double *x)
 {
     double tr = 1.0 - (GO_T0 - 0.4 * mix_cl(m, y)) / (0.6 * m->cr0);
@@ -549,7 +553,7 @@ static int mix_cross(const mix *m, double y, double *x)
     if (!(tr > 0.0 && tr < 1.0 && h2 > 0.0))
         return 0;
     x[0] = 6.5 - sqrt(h2), x[1] = 6.5 + sqrt(h2);
-    return 2;
+    return (x[0] < m->edge) + (x[1] < m->edge);
 }
 
 /* Those inside the chord of the window's row y. */
@@ -578,6 +582,7 @@ static double mix_y(double y, void *v)
     double c = sqrt(h2), cut[16], q = 16.0 - (y - 7.0) * (y - 7.0);
     int n = 0;
     cut[n++] = m->uc - c, cut[n++] = m->uc + c, cut[n++] = m->uc, cut[n++] = 6.5;
+    cut[n++] = fmin(m->edge, 1e3);
     if (q > 0.0)
         cut[n++] = 6.5 - sqrt(q), cut[n++] = 6.5 + sqrt(q);
     n += mix_cross(m, y, cut + n);
@@ -592,6 +597,14 @@ static double mix_pixel(mix *m, int i, int j)
     int n = 0;
     cut[n++] = m->vc - R, cut[n++] = m->vc + R, cut[n++] = m->vc, cut[n++] = 3.76;
     cut[n++] = 3.0, cut[n++] = 7.0, cut[n++] = 11.0, cut[n++] = -2.0, cut[n++] = 10.0;
+    /* right of the edge: the rows where CL = 0.04045, and the edge's
+     * crossings of the filter's circle */
+    cut[n++] = 12.0 * 0.48 * GO_T0 / m->cl - 2.0;
+    cut[n++] = 12.0 * (1.0 - 0.52 * GO_T0 / m->cl) - 2.0;
+    if (fabs(m->edge - m->uc) < R) {
+        double e = m->edge - m->uc, h = sqrt((R - e) * (R + e));
+        cut[n++] = m->vc - h, cut[n++] = m->vc + h;
+    }
     const int N = 256;
     int na = mix_count(m, m->vc - R);
     for (int k = 1; k <= N && n < 60; k++) {
@@ -618,17 +631,11 @@ static double mix_pixel(mix *m, int i, int j)
     return sum;
 }
 
-/* Under cone:r=1, gauss:s=0.5,cut=2 (a drop at its mask's edge) and
- * radial:k=1,r=1: every bound within 1e-12 and the pixels where main's
- * slivers were widest, the curve's tangency (pixel (6, 3)) and their
- * neighbours within their bounds of the 2-D quadrature. */
-static void test_mixed_slivers(void **state)
+/* The picture's scene, the radial layer's rectangle ending at x = edge. */
+static aa_scene *mix_scene(double edge)
 {
-    (void)state;
-    static const int fn[3] = {0, 2, 3};
-    static const int px[][2] = {{8, 6}, {4, 6}, {8, 8}, {8, 4}, {6, 3}, {5, 3}};
     aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    rect_px(s, -8, -8, W + 8, H + 8, (aa_rgb){{0, 0, 0}}); /* front: the radial layer */
+    rect_px(s, -8, -8, edge, H + 8, (aa_rgb){{0, 0, 0}}); /* front: the radial layer */
     set_grad(s, AA_GRADIENT_RADIAL, AA_SPREAD_PAD, (const double[6]){6.5, 7, 4, 6.5, 7, 0},
              mix_r, 2);
     assert_int_equal(aa_scene_set_alpha(s, 0.6), AA_OK);
@@ -636,36 +643,71 @@ static void test_mixed_slivers(void **state)
     set_grad(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){6.5, -2, 6.5, 10, 0, 0},
              mix_l, 3);
     assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+/* The reference of the picture with the edge at x = edge under the
+ * filters fn (nf of them): every bound within 1e-12, no pixel scanned,
+ * and the pixels px within their bounds of the 2-D quadrature. */
+static void mix_check(const char *what, double edge, const int *fn, int nf, const int (*px)[2],
+                      int npx)
+{
+    aa_scene *s = mix_scene(edge < W + 8 ? edge : W + 8);
     mix m = {0};
     m.cr0 = mix_enc(mix_r[0].colour.c[0]), m.cl = mix_enc(mix_l[1].colour.c[0]);
-    for (int q = 0; q < 3; q++) {
+    m.edge = edge;
+    for (int q = 0; q < nf; q++) {
         filt f = filt_of(fn[q]);
         m.f = &f;
         aa_image ref, bound;
         aa_truth_stats stats;
         reference(s, f.spec, &ref, &bound, &stats);
-        print_message("%-18s translucent radial over linear: largest bound %.2g, %zu of %zu "
-                      "pixels scanned\n",
-                      f.spec, stats.max_bound, stats.scanned, stats.integrated);
+        print_message("%-18s %s: largest bound %.2g, %zu of %zu pixels scanned\n", f.spec, what,
+                      stats.max_bound, stats.scanned, stats.integrated);
         assert_true(stats.max_bound <= 1e-12);
+        assert_int_equal(stats.scanned, 0);
         double worst = 0;
-        for (size_t k = 0; k < sizeof px / sizeof *px; k++) {
+        for (int k = 0; k < npx; k++) {
             int i = px[k][0], j = px[k][1];
             double want = mix_pixel(&m, i, j), got = aa_pixel(&ref, i, j)[0];
             double bd = *aa_pixel(&bound, i, j);
             worst = fmax(worst, fabs(got - want));
             if (!(fabs(got - want) <= bd))
-                fail_msg("mixed under %s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g "
-                         "(bound %.3g)",
-                         f.spec, i, j, got, want, bd);
+                fail_msg("%s under %s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound "
+                         "%.3g)",
+                         what, f.spec, i, j, got, want, bd);
         }
-        print_message("%-18s translucent radial over linear: largest difference from 2-D "
-                      "quadrature %.2g\n",
-                      f.spec, worst);
+        print_message("%-18s %s: largest difference from 2-D quadrature %.2g\n", f.spec, what,
+                      worst);
         aa_image_free(&ref);
         aa_image_free(&bound);
     }
     aa_scene_free(s);
+}
+
+/* Under cone:r=1, gauss:s=0.5,cut=2 (a drop at its mask's edge) and
+ * radial:k=1,r=1: the pixels where those slivers were widest, the curve's
+ * tangency (pixel (6, 3)) and their neighbours. */
+static void test_mixed_slivers(void **state)
+{
+    (void)state;
+    static const int fn[3] = {0, 2, 3};
+    static const int px[][2] = {{8, 6}, {4, 6}, {8, 8}, {8, 4}, {6, 3}, {5, 3}};
+    mix_check("translucent radial over linear", INFINITY, fn, 3, px, 6);
+}
+
+/* The radial layer's rectangle ending at x = 7.2, across the curve's
+ * lower part (it meets x = 7.2 near y = 3.83): the windows of columns 6
+ * and 7 hold that edge, where the composite steps from 0.6 CR + 0.4 CL to
+ * CL; under cone:r=1 and radial:k=3,r=1.5 (those windows were scanned
+ * under a radial filter before its slivers took a fine bound: 20 pixels
+ * under cone:r=1).  The pixels about the curve's meeting with the edge. */
+static void test_mixed_edge(void **state)
+{
+    (void)state;
+    static const int fn[2] = {0, 4};
+    static const int px[][2] = {{7, 3}, {6, 3}, {7, 4}, {7, 2}, {6, 4}};
+    mix_check("the radial layer ending at x = 7.2", 7.2, fn, 2, px, 5);
 }
 
 int main(void)
@@ -677,6 +719,7 @@ int main(void)
         cmocka_unit_test(test_focal_2d),
         cmocka_unit_test(test_linear_2d),
         cmocka_unit_test(test_mixed_slivers),
+        cmocka_unit_test(test_mixed_edge),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -32,7 +32,7 @@
 #include <unistd.h>
 
 /* Bump when the ground truth's results could change. */
-#define TRUTH_VERSION 13/* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
+#define TRUTH_VERSION 14/* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
                           * pieces, and the cone's breakpoint where a piece passes
                           * closest to the centre; 4: the square root substitution on
                           * intervals that end near a turning point; 5: which radial
@@ -60,7 +60,10 @@
                           * that edges (not offset curves) enter, box by box, for
                           * gradients in linear light and past 32 gradient layers;
                           * 13: the threshold met in double at a halving's midpoint
-                          * kept to GEN_FUZZ (bounds of 8.7e-4 had the whole span) */
+                          * kept to GEN_FUZZ (bounds of 8.7e-4 had the whole span);
+                          * 14: under radial filters the threshold's slivers bounded
+                          * by the weight's slope (4 R its peak a unit of height
+                          * was), and windows that edges enter certified there too */
 #define CACHE_MAGIC "aabench-reference 2\n"
 
 static int field_key(const aa_view *view, char *buf, size_t len);
