@@ -631,6 +631,37 @@ static double mix_pixel(mix *m, int i, int j)
     return sum;
 }
 
+/* aa_filter_radial_slope, which the slivers' bound takes, against the
+ * weights written out above: the largest difference quotient of W(d)
+ * over 20000 steps across [0, Rc) at most its slope (with the
+ * quotients' rounding) and above 0.999 of it (the slope is the least
+ * such bound, up to the sampling), and its
+ * drop W just inside Rc (0 for the whole cone and the polynomials). */
+static void test_slope(void **state)
+{
+    (void)state;
+    for (int n = 0; n < NFILT; n++) {
+        filt f = filt_of(n);
+        aa_filter af;
+        double L, J, q = 0;
+        assert_int_equal(aa_filter_parse(f.spec, &af), AA_OK);
+        assert_true(aa_filter_radial_slope(&af, &L, &J));
+        const int N = 20000;
+        double h = f.Rc / N;
+        for (int k = 0; k + 1 < N; k++)
+            q = fmax(q, fabs(weight2(&f, (k + 1) * h, 0) - weight2(&f, k * h, 0)) / h);
+        double jump = weight2(&f, f.Rc * (1 - 1e-12), 0);
+        print_message("%-18s slope %.6g (difference quotients up to %.6g), drop %.6g (%.6g)\n",
+                      f.spec, L, q, J, jump);
+        assert_true(q <= L + 1e-9 && q > 0.999 * L); /* the quotients' rounding: 1e-11 */
+        assert_true(fabs(J - jump) <= 1e-9 * (f.N + jump));
+    }
+    aa_filter box;
+    double L, J;
+    aa_filter_default(&box);
+    assert_false(aa_filter_radial_slope(&box, &L, &J));
+}
+
 /* The picture's scene, the radial layer's rectangle ending at x = edge. */
 static aa_scene *mix_scene(double edge)
 {
@@ -718,6 +749,7 @@ int main(void)
         cmocka_unit_test(test_radial_2d),
         cmocka_unit_test(test_focal_2d),
         cmocka_unit_test(test_linear_2d),
+        cmocka_unit_test(test_slope),
         cmocka_unit_test(test_mixed_slivers),
         cmocka_unit_test(test_mixed_edge),
     };
