@@ -6519,9 +6519,10 @@ static double thr_chord(double R, double s)
     return q > 0.0 ? sqrt(q) : 0.0;
 }
 
-/* A sliver's bound of |F(s) - F(m)| for rows s in [a, b] under a radial
- * filter, m = (a + b) / 2, F(s) = int dec(E(x, s)) w(x, s) dx (truth.c's
- * opening comment, "several gradients"):
+/* A sliver's bound of |F(s) - F(m)| for rows s and m in [a, b] (m the
+ * middle of an interval inside it: any row) under a radial filter, F(s)
+ * = int dec(E(x, s)) w(x, s) dx (truth.c's opening comment, "several
+ * gradients"):
  *   |F(s) - F(m)| <= int |w(x, s) - w(x, m)| dec(E(x, s)) dx
  *                    + int w(x, m) |dec(E(x, s)) - dec(E(x, m))| dx.
  * The first: dec(E) <= 1, and w = W(d) with |W'| <= L inside the mask
@@ -6530,8 +6531,8 @@ static double thr_chord(double R, double s)
  * m)| <= |s - m|), at most J + L |s - m| where one does (the other point
  * lies outside the mask, within |s - m| of its edge), 0 where neither;
  * those x lie in the widest chord, 2 cmax long, and the rows' chords
- * differ on at most 2 max |c(s) - c(m)| (c(s) = sqrt(R^2 - s^2) is
- * largest at s = 0, monotone each side: the extremes at a, b and 0).
+ * differ on at most 2 (cmax - cmin) (c(s) = sqrt(R^2 - s^2) is concave:
+ * least at a or b, largest at 0 if the rows hold it, else at a or b).
  * The second: on each of 256 strips across the window, w(x, m) is at
  * most W at the strip's point nearest the centre on the rows [a, b] (W
  * does not increase), times the strip's thr_strip (2.3 |E(x, s) - E(x,
@@ -6539,14 +6540,12 @@ static double thr_chord(double R, double s)
  * outside the mask weighs 0 and is skipped. */
 static double thr_radial_sliver(worker *w, const thr_ctx *c, double a, double b)
 {
-    double R = w->R, m = 0.5 * (a + b), L, J;
+    double R = w->R, L, J;
     if (!aa_filter_radial_slope(w->f, &L, &J))
         return INFINITY;
-    double h = fmax(m - a, b - m), cm = thr_chord(R, m);
-    double ca = thr_chord(R, a), cb = thr_chord(R, b), cz = a <= 0.0 && b >= 0.0 ? R : 0.0;
-    double cmax = fmax(fmax(ca, cb), fmax(cm, cz));
-    double dc = fmax(fmax(fabs(ca - cm), fabs(cb - cm)), cz > 0.0 ? cz - cm : 0.0);
-    dc += 4.0 * DBL_EPSILON * R; /* the roots' rounding */
+    double h = b - a, ca = thr_chord(R, a), cb = thr_chord(R, b);
+    double cmax = a <= 0.0 && b >= 0.0 ? R : fmax(ca, cb);
+    double dc = cmax - fmin(ca, cb) + 4.0 * DBL_EPSILON * R; /* with the roots' rounding */
     double first = L * h * 2.0 * cmax + J * 2.0 * dc;
     double ny = a <= 0.0 && b >= 0.0 ? 0.0 : fmin(fabs(a), fabs(b)), second = 0.0;
     for (int i = 0; i < 256; i++) {
