@@ -444,6 +444,11 @@ int aa_filter_is_box(const aa_filter *f);
  * wider by the filter's negative mass for filters with negative lobes
  * (mitchell with c > 0, catrom, lanczos), rounded outwards. */
 void aa_filter_range(const aa_filter *f, double *lo, double *hi);
+/* A radial filter's weight W(d), d the distance from the centre: not
+ * increasing, |W'| <= *slope inside its mask, and it drops by *jump at
+ * the mask's edge (0 where it is continuous there).  Returns 0 (nothing
+ * set) for a separable filter. */
+int aa_filter_radial_slope(const aa_filter *f, double *slope, double *jump);
 static inline int aa_filter_is_separable(const aa_filter *f)
 {
     return f->type->weight != NULL;

@@ -43,6 +43,7 @@
 #include "support.h"
 #include "truth.h"
 
+#include <float.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -483,6 +484,263 @@ static void test_linear_2d(void **state)
     aa_scene_free(s);
 }
 
+/* ---- translucent layers of different t: the threshold's slivers ----
+ *
+ * test_gradient.c's test_mixed_tangent picture moved by (-1, -4): a radial
+ * gradient about C = (6.5, 7), radius 4, at alpha 0.6 over a linear one
+ * along y (t = (y + 2) / 12), both over the whole view, black behind.
+ * Encoded, E = 0.6 CR(tR) + 0.4 CL(tL): CR falls from 0.2 at tR = 0 to 0
+ * at 1 (0 beyond), CL rises from 0 to 0.0451 at the stop line tL = 0.48
+ * (y = 3.76) and falls to 0 at tL = 1 (the stops' linear values encoded
+ * here).  On a row CL is one number, so the threshold's curve E =
+ * 0.04045 meets it where |q - C| = 4 tR, tR = 1 - (0.04045 - 0.4 CL) /
+ * 0.12: x = 6.5 +- sqrt((4 tR)^2 - (y - 7)^2), in closed form (outside
+ * the circle tR = 1, E <= 0.4 CL < 0.04045: no crossing there); its
+ * lowest point, a horizontal tangent, is near (6.5, 3.75).  The pixel is
+ * the 2-D integral of dec(E) times the filter's weight (written out
+ * above): GSL's QAGS along each row's chord, cut at those crossings, the
+ * window's centre, C's column and the circle tR = 1, and over the rows,
+ * cut at the window's top, centre and bottom, the stop line, the ramp's
+ * ends, the circle's top and bottom, C's row and every height where the
+ * count of crossings inside the chord changes (the curve tangent to a row
+ * or crossing the filter's circle: 256 heights a window, bisected to
+ * rounding).  Slivers that took 4 R times the weight's peak a unit of
+ * height (truth.c before its radial sliver bound) gave a largest bound of
+ * 1.8e-7 under cone:r=1 here. */
+
+static double mix_enc(double v)
+{
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
+
+static const aa_gradient_stop mix_r[2] = {{0.0, {{0.033104766570885055, 0.033104766570885055,
+                                                   0.033104766570885055}}, 1.0},
+                                          {1.0, {{0, 0, 0}}, 1.0}};
+static const aa_gradient_stop mix_l[3] = {{0.0, {{0, 0, 0}}, 1.0},
+                                          {0.48, {{0.003511466425239878, 0.003511466425239878,
+                                                   0.003511466425239878}}, 1.0},
+                                          {1.0, {{0, 0, 0}}, 1.0}};
+
+typedef struct mix {
+    const filt *f;
+    double uc, vc, y, cr0, cl; /* cr0: CR at tR = 0; cl: CL at the stop */
+    double edge;               /* the radial layer's right side (x) */
+    gsl_integration_workspace *wi;
+} mix;
+
+static double mix_cl(const mix *m, double y)
+{
+    double t = (y + 2.0) / 12.0;
+    if (t <= 0.0 || t >= 1.0)
+        return 0.0;
+    return t < 0.48 ? m->cl * t / 0.48 : m->cl * (1.0 - t) / 0.52;
+}
+
+static double mix_e(const mix *m, double x, double y)
+{
+    double tr = hypot(x - 6.5, y - 7.0) / 4.0;
+    if (x >= m->edge)
+        return mix_cl(m, y);
+    return 0.6 * (tr < 1.0 ? m->cr0 * (1.0 - tr) : 0.0) + 0.4 * mix_cl(m, y);
+}
+
+/* The curve's crossings of row y left of the edge (at most 2, into x),
+ * in closed form (right of it E = CL is one number along the row). */
+static int mix_cross(const mix *m, double y, double *x)
+{
+    double tr = 1.0 - (GO_T0 - 0.4 * mix_cl(m, y)) / (0.6 * m->cr0);
+    double h2 = 16.0 * tr * tr - (y - 7.0) * (y - 7.0);
+    if (!(tr > 0.0 && tr < 1.0 && h2 > 0.0))
+        return 0;
+    x[0] = 6.5 - sqrt(h2), x[1] = 6.5 + sqrt(h2);
+    return (x[0] < m->edge) + (x[1] < m->edge);
+}
+
+/* Those inside the chord of the window's row y. */
+static int mix_count(const mix *m, double y)
+{
+    double dv = y - m->vc, h2 = m->f->Rc * m->f->Rc - dv * dv, x[2];
+    int n = mix_cross(m, y, x), k = 0;
+    for (int i = 0; i < n && h2 > 0.0; i++)
+        k += fabs(x[i] - m->uc) < sqrt(h2);
+    return k;
+}
+
+static double mix_x(double x, void *v)
+{
+    const mix *m = v;
+    return weight2(m->f, x - m->uc, m->y - m->vc) * go_dec(mix_e(m, x, m->y));
+}
+
+static double mix_y(double y, void *v)
+{
+    mix *m = v;
+    m->y = y;
+    double dv = y - m->vc, h2 = m->f->Rc * m->f->Rc - dv * dv;
+    if (!(h2 > 0))
+        return 0;
+    double c = sqrt(h2), cut[16], q = 16.0 - (y - 7.0) * (y - 7.0);
+    int n = 0;
+    cut[n++] = m->uc - c, cut[n++] = m->uc + c, cut[n++] = m->uc, cut[n++] = 6.5;
+    cut[n++] = fmin(m->edge, 1e3);
+    if (q > 0.0)
+        cut[n++] = 6.5 - sqrt(q), cut[n++] = 6.5 + sqrt(q);
+    n += mix_cross(m, y, cut + n);
+    gsl_function F = {mix_x, m};
+    return go_qags_cuts(&F, cut, n, m->uc - c, m->uc + c, 1e-17, 1e-14, m->wi);
+}
+
+static double mix_pixel(mix *m, int i, int j)
+{
+    m->uc = i + 0.5, m->vc = j + 0.5;
+    double R = m->f->Rc, cut[64];
+    int n = 0;
+    cut[n++] = m->vc - R, cut[n++] = m->vc + R, cut[n++] = m->vc, cut[n++] = 3.76;
+    cut[n++] = 3.0, cut[n++] = 7.0, cut[n++] = 11.0, cut[n++] = -2.0, cut[n++] = 10.0;
+    /* right of the edge: the rows where CL = 0.04045, and the edge's
+     * crossings of the filter's circle */
+    cut[n++] = 12.0 * 0.48 * GO_T0 / m->cl - 2.0;
+    cut[n++] = 12.0 * (1.0 - 0.52 * GO_T0 / m->cl) - 2.0;
+    if (fabs(m->edge - m->uc) < R) {
+        double e = m->edge - m->uc, h = sqrt((R - e) * (R + e));
+        cut[n++] = m->vc - h, cut[n++] = m->vc + h;
+    }
+    const int N = 256;
+    int na = mix_count(m, m->vc - R);
+    for (int k = 1; k <= N && n < 60; k++) {
+        double a = m->vc - R + 2.0 * R * (k - 1) / N, b = m->vc - R + 2.0 * R * k / N;
+        int nb = mix_count(m, b);
+        if (nb != na) { /* one change between a and b */
+            while (b - a > 4.0 * DBL_EPSILON * fabs(b)) {
+                double c = 0.5 * (a + b);
+                if (mix_count(m, c) == na)
+                    a = c;
+                else
+                    b = c;
+            }
+            cut[n++] = b;
+        }
+        na = nb;
+    }
+    m->wi = gsl_integration_workspace_alloc(1000);
+    gsl_integration_workspace *wo = gsl_integration_workspace_alloc(1000);
+    gsl_function F = {mix_y, m};
+    double sum = go_qags_cuts(&F, cut, n, m->vc - R, m->vc + R, 1e-17, 1e-13, wo);
+    gsl_integration_workspace_free(m->wi);
+    gsl_integration_workspace_free(wo);
+    return sum;
+}
+
+/* aa_filter_radial_slope, which the slivers' bound takes, against the
+ * weights written out above: the largest difference quotient of W(d)
+ * over 20000 steps across [0, Rc) at most its slope (with the
+ * quotients' rounding) and above 0.999 of it (the slope is the least
+ * such bound, up to the sampling), and its
+ * drop W just inside Rc (0 for the whole cone and the polynomials). */
+static void test_slope(void **state)
+{
+    (void)state;
+    for (int n = 0; n < NFILT; n++) {
+        filt f = filt_of(n);
+        aa_filter af;
+        double L, J, q = 0;
+        assert_int_equal(aa_filter_parse(f.spec, &af), AA_OK);
+        assert_true(aa_filter_radial_slope(&af, &L, &J));
+        const int N = 20000;
+        double h = f.Rc / N;
+        for (int k = 0; k + 1 < N; k++)
+            q = fmax(q, fabs(weight2(&f, (k + 1) * h, 0) - weight2(&f, k * h, 0)) / h);
+        double jump = weight2(&f, f.Rc * (1 - 1e-12), 0);
+        print_message("%-18s slope %.6g (difference quotients up to %.6g), drop %.6g (%.6g)\n",
+                      f.spec, L, q, J, jump);
+        assert_true(q <= L + 1e-9 && q > 0.999 * L); /* the quotients' rounding: 1e-11 */
+        assert_true(fabs(J - jump) <= 1e-9 * (f.N + jump));
+    }
+    aa_filter box;
+    double L, J;
+    aa_filter_default(&box);
+    assert_false(aa_filter_radial_slope(&box, &L, &J));
+}
+
+/* The picture's scene, the radial layer's rectangle ending at x = edge. */
+static aa_scene *mix_scene(double edge)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    rect_px(s, -8, -8, edge, H + 8, (aa_rgb){{0, 0, 0}}); /* front: the radial layer */
+    set_grad(s, AA_GRADIENT_RADIAL, AA_SPREAD_PAD, (const double[6]){6.5, 7, 4, 6.5, 7, 0},
+             mix_r, 2);
+    assert_int_equal(aa_scene_set_alpha(s, 0.6), AA_OK);
+    rect_px(s, -8, -8, W + 8, H + 8, (aa_rgb){{0, 0, 0}});
+    set_grad(s, AA_GRADIENT_LINEAR, AA_SPREAD_PAD, (const double[6]){6.5, -2, 6.5, 10, 0, 0},
+             mix_l, 3);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+/* The reference of the picture with the edge at x = edge under the
+ * filters fn (nf of them): every bound within 1e-12, no pixel scanned,
+ * and the pixels px within their bounds of the 2-D quadrature. */
+static void mix_check(const char *what, double edge, const int *fn, int nf, const int (*px)[2],
+                      int npx)
+{
+    aa_scene *s = mix_scene(edge < W + 8 ? edge : W + 8);
+    mix m = {0};
+    m.cr0 = mix_enc(mix_r[0].colour.c[0]), m.cl = mix_enc(mix_l[1].colour.c[0]);
+    m.edge = edge;
+    for (int q = 0; q < nf; q++) {
+        filt f = filt_of(fn[q]);
+        m.f = &f;
+        aa_image ref, bound;
+        aa_truth_stats stats;
+        reference(s, f.spec, &ref, &bound, &stats);
+        print_message("%-18s %s: largest bound %.2g, %zu of %zu pixels scanned\n", f.spec, what,
+                      stats.max_bound, stats.scanned, stats.integrated);
+        assert_true(stats.max_bound <= 1e-12);
+        assert_int_equal(stats.scanned, 0);
+        double worst = 0;
+        for (int k = 0; k < npx; k++) {
+            int i = px[k][0], j = px[k][1];
+            double want = mix_pixel(&m, i, j), got = aa_pixel(&ref, i, j)[0];
+            double bd = *aa_pixel(&bound, i, j);
+            worst = fmax(worst, fabs(got - want));
+            if (!(fabs(got - want) <= bd))
+                fail_msg("%s under %s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound "
+                         "%.3g)",
+                         what, f.spec, i, j, got, want, bd);
+        }
+        print_message("%-18s %s: largest difference from 2-D quadrature %.2g\n", f.spec, what,
+                      worst);
+        aa_image_free(&ref);
+        aa_image_free(&bound);
+    }
+    aa_scene_free(s);
+}
+
+/* Under cone:r=1, gauss:s=0.5,cut=2 (a drop at its mask's edge) and
+ * radial:k=1,r=1: the pixels where those slivers were widest, the curve's
+ * tangency (pixel (6, 3)) and their neighbours. */
+static void test_mixed_slivers(void **state)
+{
+    (void)state;
+    static const int fn[3] = {0, 2, 3};
+    static const int px[][2] = {{8, 6}, {4, 6}, {8, 8}, {8, 4}, {6, 3}, {5, 3}};
+    mix_check("translucent radial over linear", INFINITY, fn, 3, px, 6);
+}
+
+/* The radial layer's rectangle ending at x = 7.2, across the curve's
+ * lower part (it meets x = 7.2 near y = 3.83): the windows of columns 6
+ * and 7 hold that edge, where the composite steps from 0.6 CR + 0.4 CL to
+ * CL; under cone:r=1 and radial:k=3,r=1.5 (those windows were scanned
+ * under a radial filter before its slivers took a fine bound: 20 pixels
+ * under cone:r=1).  The pixels about the curve's meeting with the edge. */
+static void test_mixed_edge(void **state)
+{
+    (void)state;
+    static const int fn[2] = {0, 4};
+    static const int px[][2] = {{7, 3}, {6, 3}, {7, 4}, {7, 2}, {6, 4}};
+    mix_check("the radial layer ending at x = 7.2", 7.2, fn, 2, px, 5);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -491,6 +749,9 @@ int main(void)
         cmocka_unit_test(test_radial_2d),
         cmocka_unit_test(test_focal_2d),
         cmocka_unit_test(test_linear_2d),
+        cmocka_unit_test(test_slope),
+        cmocka_unit_test(test_mixed_slivers),
+        cmocka_unit_test(test_mixed_edge),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -435,6 +435,45 @@ const aa_filter_type aa_filter_radial = {
     radial_weight2,
     radial_row_cdf};
 
+/* ---- the radial filters' slopes ----
+ *
+ * Each radial weight is W(d) of the distance d from the centre, not
+ * increasing in d, with |W'(d)| <= L inside its mask and a drop J at the
+ * mask's edge (0 where W is continuous there), from the weights above:
+ *   cone:r=R,cut=K  W = n (1 - d / R): L = n / R, J = n (1 - K);
+ *   gauss:s=S,cut=K W = n exp(-d^2 / (2 S^2)), |W'| = n d / S^2 exp(..),
+ *                   largest at d = S: L = n / (S sqrt e) (at d = K S if
+ *                   K < 1), J = n exp(-K^2 / 2);
+ *   radial:k=K,r=R  W = n (1 - u^2)^K, u = d / R, |W'| = n 2 K u (1 -
+ *                   u^2)^(K-1) / R, largest at u = 1, 1/sqrt 3, 1/sqrt 5
+ *                   (its derivative's roots): L = 2 n / R, 8 n / (3
+ *                   sqrt(3) R), 96 n / (25 sqrt(5) R); J = 0.
+ * n is the weight's normalisation.  Each is widened by 1e-12 of itself
+ * for the rounding of its few operations. */
+int aa_filter_radial_slope(const aa_filter *f, double *slope, double *jump)
+{
+    const double *p = f->spec.v;
+    double L, J;
+    if (f->type == &aa_filter_cone) {
+        double n = cone_norm(p[0], p[1]);
+        L = n / p[0], J = p[1] == 1.0 ? 0.0 : n * (1.0 - p[1]);
+    } else if (f->type == &aa_filter_gauss_mask) {
+        double n = gmask_norm(p[0], p[1]), s = p[0], k = p[1];
+        L = k >= 1.0 ? n / (s * sqrt(M_E)) : n * k / s * exp(-0.5 * k * k);
+        J = n * exp(-0.5 * k * k);
+    } else if (f->type == &aa_filter_radial) {
+        int k = (int)p[0];
+        double n = radial_norm(k, p[1]), r = p[1];
+        L = k == 1   ? 2.0 * n / r
+            : k == 2 ? 8.0 * n / (3.0 * sqrt(3.0) * r)
+                     : 96.0 * n / (25.0 * sqrt(5.0) * r);
+        J = 0.0;
+    } else
+        return 0;
+    *slope = L * (1.0 + 1e-12), *jump = J * (1.0 + 1e-12);
+    return 1;
+}
+
 /* ---- B-splines ---- */
 
 static double bspline_weight(const double *p, double t)

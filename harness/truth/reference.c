@@ -62,7 +62,10 @@
                           * 13: the threshold met in double at a halving's midpoint
                           * kept to GEN_FUZZ (bounds of 8.7e-4 had the whole span);
                           * 14: windows that offset curves (strokes' sides) enter
-                          * certified box by box too (thr_offset_x) */
+                          * certified box by box too (thr_offset_x); under radial
+                          * filters the threshold's slivers bounded by the weight's
+                          * slope (4 R its peak a unit of height was), and windows
+                          * that edges enter certified there too */
 #define CACHE_MAGIC "aabench-reference 2\n"
 
 static int field_key(const aa_view *view, char *buf, size_t len);

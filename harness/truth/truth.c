@@ -362,9 +362,15 @@
  * else the width of E's range there, such a strip halved up to 8 times
  * while that is above 1e-6 (thr_strip).  Under a separable filter the
  * sliver takes G(m), F = w(s) G(s), times the weight's integral over it,
- * with that bound times the weight's peak twice; under a radial filter,
- * 4 R times the weight's peak (|F| <= 2 R times it), and slivers are not
- * joined across gaps.  So every height where F is not analytic is a
+ * with that bound times the weight's peak twice.  Under a radial filter
+ * (F(s) = int dec(E(x, s)) w(x, s) dx, w = W(distance) on the mask's
+ * chord) |F(s) - F(m)| <= int |w(x, s) - w(x, m)| dx + int w(x, m)
+ * |dec(E(x, s)) - dec(E(x, m))| dx: the first at most L |s - m| times
+ * the widest chord plus the drop J at the mask's edge times the chords'
+ * difference, L bounding |W'| and J the drop per filter in closed form
+ * (aa_filter_radial_slope), the second the strips' bound with W at each
+ * strip's point nearest the centre (thr_radial_sliver); the sliver takes
+ * F(m).  So every height where F is not analytic is a
  * breakpoint or inside a sliver whose bound is proven; a pixel that
  * takes more than 200000 boxes (THR_BOXES) keeps the boxes left whole as
  * slivers, with the same bound over their rows.  A period's end is a cut
@@ -402,18 +408,26 @@
  * stop circle between two of the scan's rows (tests/test_gradient.c,
  * test_mixed_lens) is found: the scan does not see it.
  *
- * Under a radial filter only windows that no piece enters are certified:
- * its slivers take 4 R times the weight's peak a unit of height, and
- * where the curve met an edge (a 16x16 document of the kind below, under
- * cone:r=1) slivers 8e-8 px high in all gave pixels bounds of 5e-7 (its
- * windows that no piece enters reach 2e-7 so, as before: that bound is
- * what is left to make fine under radial filters).
+ * Under a radial filter windows that pieces enter are certified as well.
+ * Its slivers once took 4 R times the weight's peak a unit of height,
+ * only b - a, and those windows were scanned: test_mixed_tangent's
+ * picture as a 16x16 document (both layers past the view) under cone:r=1
+ * had bounds up to 1.9e-7 (pixel (9, 10)); with the bound above its
+ * largest is 1.4e-13 (QAG's, 5.6e-14 at (9, 10)), the values the same to
+ * the bit (`aabench truth -p svg:file=F -f cone:r=1 --no-cache -o v.txt
+ * --bound b.txt`); with the radial layer on a disc of radius 6, 108
+ * pixels scanned then, none now, the values within 4.1e-14 of the scan's
+ * (inside both bounds), 2.55e10 instructions against 2.21e10 (`valgrind
+ * --tool=callgrind`, --threads 1).  The cone case is scanned: its t
+ * would need the wedge's two linear forms in intervals (the layer taken
+ * painted and not on a box its tangent lines cross, as a piece's layer
+ * is) and the root by the form whose range keeps off 0.
  *
  * Scanned (thr_heights), elsewhere (an evolute in the window on the half
  * of a cubic next to an end where B' vanishes whose factored form
  * (offset.c) has Q x Q' not shown off 0, thr_offset_stopped; a
- * cone-case gradient, a piece in the window under a radial filter): between the
- * breakpoints, THR_ROWS = 32 rows a window's height, and one just inside
+ * cone-case gradient): between the breakpoints, THR_ROWS = 32 rows a
+ * window's height, and one just inside
  * each interval's ends; each row's signature is the count of the
  * threshold's places (gen_section's certified isolation) per channel in
  * each section of the row where layers of different t mix, in the row's
@@ -6660,7 +6674,7 @@ static void thr_merge(worker *w)
 {
     qsort(w->sliv, w->nsliv, 3 * sizeof *w->sliv, cmp_pair);
     size_t m = 0;
-    double gap = w->radial ? 0.0 : THR_GAP * 2.0 * w->R; /* radial filters: a crude bound */
+    double gap = THR_GAP * 2.0 * w->R;
     for (size_t k = 0; k < w->nsliv; k++) {
         if (m > 0 && w->sliv[3 * k] <= w->sliv[3 * m - 2] + gap) {
             w->sliv[3 * m - 2] = fmax(w->sliv[3 * m - 2], w->sliv[3 * k + 1]);
@@ -6690,6 +6704,54 @@ static double thr_strip(const thr_ctx *c, double x0, double x1, double a, double
     if (d > 1e-6 && depth < 8 && xm > x0 && xm < x1)
         return thr_strip(c, x0, xm, a, b, depth + 1) + thr_strip(c, xm, x1, a, b, depth + 1);
     return 2.3 * d * (x1 - x0);
+}
+
+/* The half chord of the filter's mask at row s, 0 outside it. */
+static double thr_chord(double R, double s)
+{
+    double q = (R - s) * (R + s);
+    return q > 0.0 ? sqrt(q) : 0.0;
+}
+
+/* A sliver's bound of |F(s) - F(m)| for rows s and m in [a, b] (m the
+ * middle of an interval inside it: any row) under a radial filter, F(s)
+ * = int dec(E(x, s)) w(x, s) dx (truth.c's opening comment, "several
+ * gradients"):
+ *   |F(s) - F(m)| <= int |w(x, s) - w(x, m)| dec(E(x, s)) dx
+ *                    + int w(x, m) |dec(E(x, s)) - dec(E(x, m))| dx.
+ * The first: dec(E) <= 1, and w = W(d) with |W'| <= L inside the mask
+ * and a drop J at its edge (aa_filter_radial_slope): |w(x, s) - w(x, m)|
+ * <= L |s - m| where both rows hold x in their chords (|d(x, s) - d(x,
+ * m)| <= |s - m|), at most J + L |s - m| where one does (the other point
+ * lies outside the mask, within |s - m| of its edge), 0 where neither;
+ * those x lie in the widest chord, 2 cmax long, and the rows' chords
+ * differ on at most 2 (cmax - cmin) (c(s) = sqrt(R^2 - s^2) is concave:
+ * least at a or b, largest at 0 if the rows hold it, else at a or b).
+ * The second: on each of 256 strips across the window, w(x, m) is at
+ * most W at the strip's point nearest the centre on the rows [a, b] (W
+ * does not increase), times the strip's thr_strip (2.3 |E(x, s) - E(x,
+ * m)| over it) and the decoding's step 2.4e-9 times its width; a strip
+ * outside the mask weighs 0 and is skipped. */
+static double thr_radial_sliver(worker *w, const thr_ctx *c, double a, double b)
+{
+    double R = w->R, L, J;
+    if (!aa_filter_radial_slope(w->f, &L, &J))
+        return INFINITY;
+    double h = b - a, ca = thr_chord(R, a), cb = thr_chord(R, b);
+    double cmax = a <= 0.0 && b >= 0.0 ? R : fmax(ca, cb);
+    double dc = cmax - fmin(ca, cb) + 4.0 * DBL_EPSILON * R; /* with the roots' rounding */
+    double first = L * h * 2.0 * cmax + J * 2.0 * dc;
+    double ny = a <= 0.0 && b >= 0.0 ? 0.0 : fmin(fabs(a), fabs(b)), second = 0.0;
+    for (int i = 0; i < 256; i++) {
+        double x0 = -R + 2.0 * R * i / 256, x1 = -R + 2.0 * R * (i + 1) / 256;
+        double nx = x0 <= 0.0 && x1 >= 0.0 ? 0.0 : fmin(fabs(x0), fabs(x1));
+        /* moved in by 1e-14 of itself: W there bounds W at the point */
+        double wk = aa_filter_weight2(w->f, nx * (1.0 - 1e-14), ny * (1.0 - 1e-14));
+        if (!(wk > 0.0))
+            continue;
+        second += wk * (thr_strip(c, x0, x1, a, b, 0) + (x1 - x0) * 2.4e-9);
+    }
+    return (first + second) * (1.0 + 1e-9);
 }
 
 /* The boxes of thr_certify, its context set up. */
@@ -6744,9 +6806,10 @@ static int thr_boxes(worker *w, thr_ctx *cp)
         w->sliv[1] = w->sliv[3 * w->nsliv - 2];
         w->nsliv = 1;
     }
-    /* Each sliver's rows: |F(s) - F(m)| per unit of height, m its middle.
-     * A radial filter: |F| <= 2 R times the weight's peak (at the centre
-     * for every filter here), so twice that.  The box: F(s) - F(m) is the
+    /* Each sliver's rows: |F(s) - F(m)| per unit of height, m its middle,
+     * at most twice 2 R times the weight's peak (at the centre for every
+     * filter here; |F| <= 2 R times it).  A radial filter: the weight's
+     * change and the strips' (thr_radial_sliver).  The box: F(s) - F(m) is the
      * integral over the row of dec(E(x, s)) - dec(E(x, m)), at most 2.3
      * |E(x, s) - E(x, m)| (the decoding's slope is below 2.3 on [0, 1])
      * plus 2.4e-9 (its step at the threshold), and |E(x, s) - E(x, m)|
@@ -6761,8 +6824,10 @@ static int thr_boxes(worker *w, thr_ctx *cp)
     for (size_t k = 0; k < w->nsliv; k++) {
         double a = w->sliv[3 * k], b = w->sliv[3 * k + 1], wid = 0.0;
         w->sliv[3 * k + 2] = crude;
-        if (w->radial)
+        if (w->radial) {
+            w->sliv[3 * k + 2] = fmin(crude, thr_radial_sliver(w, &c, a, b));
             continue;
+        }
         for (int i = 0; i < 256; i++)
             wid += thr_strip(&c, -R + 2.0 * R * i / 256, -R + 2.0 * R * (i + 1) / 256, a, b, 0);
         w->sliv[3 * k + 2] = fmin(crude, fabs(pk) * (wid + 2.0 * R * 2.4e-9) * (1.0 + 1e-9));
@@ -6953,8 +7018,6 @@ static int thr_heights(worker *w, int nch)
     double found[THR_EVENTS];
     int nfound = 0, any = 0, taken = 0;
     int clear = w->thr_cert ? thr_window_clear(w) : -1;
-    if (clear == 0 && w->radial)
-        clear = -1; /* a radial filter's slivers take the crude bound: scanned */
     if (clear >= 0) {
         size_t n0 = w->npts;
         int st = thr_certify(w, nch, !clear, &taken);
