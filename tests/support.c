@@ -649,6 +649,20 @@ double support_method_against_reference(const char *method, const char *what, co
     return worst;
 }
 
+double support_method_against_part(const char *method, const char *what, const aa_scene *s,
+                                   int sw, int sh, int x0, int y0, int w, int h,
+                                   const char *filter)
+{
+    aa_scene *part = aa_scene_transform(s, (double)sw / w, (double)sh / h, -(double)x0 / w,
+                                        -(double)y0 / h);
+    assert_non_null(part);
+    char name[128];
+    snprintf(name, sizeof name, "%s, [%d, %d) x [%d, %d)", what, x0, x0 + w, y0, y0 + h);
+    double worst = support_method_against_reference(method, name, part, w, h, filter);
+    aa_scene_free(part);
+    return worst;
+}
+
 double support_method_against_filters(const char *method, const char *what, const aa_scene *s,
                                       int w, int h, const char *const *fl)
 {

@@ -78,6 +78,14 @@ double support_within_reference(const char *what, const char *filter, const aa_i
  * on both; prints and returns the largest difference. */
 double support_method_against_reference(const char *method, const char *what, const aa_scene *s,
                                         int w, int h, const char *filter);
+/* The same on the pixels [x0, x0 + w) x [y0, y0 + h) of the scene's sw x
+ * sh view: the scene mapped (x' = (sw x - x0) / w, y' likewise) so that
+ * they make a w x h view of their own, the same picture on the same pixel
+ * squares, the rest of it still there for the filter's cells that reach
+ * beyond them. */
+double support_method_against_part(const char *method, const char *what, const aa_scene *s,
+                                   int sw, int sh, int x0, int y0, int w, int h,
+                                   const char *filter);
 /* The same under each filter of fl (NULL-ended); prints and returns the
  * largest difference over them. */
 double support_method_against_filters(const char *method, const char *what, const aa_scene *s,

@@ -123,22 +123,12 @@ static void against(const char *what, const aa_scene *s, int w, int h, const cha
 }
 
 #if TIER_FULL
-/* analytic against the reference under `filter` on the pixels [x0, x0 + w)
- * x [y0, y0 + h) of the scene's sw x sh view: the scene mapped (x' = (sw x
- * - x0) / w, y' likewise) so that they make a w x h view of their own, the
- * same picture on the same pixel squares, the rest of it still there for
- * the filter's cells that reach beyond them. */
+/* analytic against the reference under `filter` on a part of the view
+ * (support_method_against_part) */
 static double against_part(const char *what, const aa_scene *s, int sw, int sh, int x0, int y0,
                            int w, int h, const char *filter)
 {
-    aa_scene *part = aa_scene_transform(s, (double)sw / w, (double)sh / h, -(double)x0 / w,
-                                        -(double)y0 / h);
-    assert_non_null(part);
-    char name[128];
-    snprintf(name, sizeof name, "%s, [%d, %d) x [%d, %d)", what, x0, x0 + w, y0, y0 + h);
-    double worst = support_method_against_reference("analytic", name, part, w, h, filter);
-    aa_scene_free(part);
-    return worst;
+    return support_method_against_part("analytic", what, s, sw, sh, x0, y0, w, h, filter);
 }
 #endif
 
