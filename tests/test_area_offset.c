@@ -1147,6 +1147,16 @@ static int shared_ends(const char *what, const aa_scene *s, int *tangent, int *a
     return pairs;
 }
 
+/* The stroke of cs (stroke_scene) placed on a size x size view. */
+static aa_scene *placed_stroke(const double *cs, int nc, const aa_stroke_style *st, int size)
+{
+    aa_scene *s = stroke_scene(cs, nc, st, NULL);
+    aa_scene *placed = aa_scene_place(s, size, size, 0, 0, 0);
+    assert_non_null(placed);
+    aa_scene_free(s);
+    return placed;
+}
+
 static void test_shared_ends(void **state)
 {
     (void)state;
@@ -1160,14 +1170,11 @@ static void test_shared_ends(void **state)
     st.width = 2.5 / 256.0;
     for (int r = 0; r < 20; r += 4) {
         bench_cubics(r, 0, 10, cs);
-        aa_scene *s = stroke_scene(cs, 10, &st, NULL);
-        aa_scene *placed = aa_scene_place(s, 256, 256, 0, 0, 0);
-        assert_non_null(placed);
+        aa_scene *placed = placed_stroke(cs, 10, &st, 256);
         char what[64];
         snprintf(what, sizeof what, "benchmark's row %d, 256 px", r);
         pairs += shared_ends(what, placed, &tangent, &changes);
         aa_scene_free(placed);
-        aa_scene_free(s);
     }
     /* folds, and a loop and a hook whose pieces sharing an end cross
      * again away from it */
@@ -1180,12 +1187,9 @@ static void test_shared_ends(void **state)
     st.join = AA_JOIN_MITER, st.cap = AA_CAP_BUTT;
     for (int c = 0; c < 3; c++) {
         st.width = widths[c];
-        aa_scene *s = stroke_scene(cases[c], 1, &st, NULL);
-        aa_scene *placed = aa_scene_place(s, 64, 64, 0, 0, 0);
-        assert_non_null(placed);
+        aa_scene *placed = placed_stroke(cases[c], 1, &st, 64);
         pairs += shared_ends(names[c], placed, &tangent, &changes);
         aa_scene_free(placed);
-        aa_scene_free(s);
     }
     print_message("%d pairs sharing an end, %d of them tangent there; %d sign changes\n", pairs,
                   tangent, changes);
@@ -1256,23 +1260,17 @@ static void test_common_heights(void **state)
     st.width = 2.5 / 256.0;
     for (int r = 0; r < 20; r += 8) {
         bench_cubics(r, 0, 10, cs);
-        aa_scene *s = stroke_scene(cs, 10, &st, NULL);
-        aa_scene *placed = aa_scene_place(s, 256, 256, 0, 0, 0);
-        assert_non_null(placed);
+        aa_scene *placed = placed_stroke(cs, 10, &st, 256);
         char what[64];
         snprintf(what, sizeof what, "benchmark's row %d, 256 px", r);
         pairs += common_heights(what, placed);
         aa_scene_free(placed);
-        aa_scene_free(s);
     }
     st.join = AA_JOIN_MITER, st.cap = AA_CAP_BUTT;
     st.width = 0.3;
-    aa_scene *s = stroke_scene(tight, 1, &st, NULL);
-    aa_scene *placed = aa_scene_place(s, 64, 64, 0, 0, 0);
-    assert_non_null(placed);
+    aa_scene *placed = placed_stroke(tight, 1, &st, 64);
     pairs += common_heights("tight, w 0.3 (folds), 64 px", placed);
     aa_scene_free(placed);
-    aa_scene_free(s);
     print_message("%d pairs' heights asked both ways\n", pairs);
     assert_true(pairs > 100); /* the cases were built */
 }
