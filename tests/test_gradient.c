@@ -299,15 +299,23 @@ typedef struct picture {
     int ntau;
 } picture;
 
+/* t under SVG's spread: repeat's fraction, reflect's fold of period 2;
+ * pad's t as it is (its callers clamp it or take the end stops). */
+static double spread_fold(int spread, double t)
+{
+    if (spread == AA_SPREAD_REPEAT)
+        return t - floor(t);
+    if (spread == AA_SPREAD_REFLECT) {
+        t = fmod(fabs(t), 2.0);
+        return t > 1.0 ? 2.0 - t : t;
+    }
+    return t;
+}
+
 static double stop_value(const picture *p, double t, int ch, double *opacity)
 {
-    if (p->spread == AA_SPREAD_REPEAT)
-        t -= floor(t);
-    else if (p->spread == AA_SPREAD_REFLECT) {
-        t = fmod(fabs(t), 2.0);
-        if (t > 1.0)
-            t = 2.0 - t;
-    } else
+    t = spread_fold(p->spread, t);
+    if (p->spread == AA_SPREAD_PAD)
         t = t < 0 ? 0 : (t > 1 ? 1 : t);
     const aa_gradient_stop *s = p->stops;
     double c0, c1;
@@ -1478,13 +1486,7 @@ static int mlayer_in(const mlayer *m, double x, double y)
  * linear channels interpolated (SVG's spread as stop_value takes it). */
 static double mlayer_linear(const mlayer *m, double t, int ch)
 {
-    if (m->spread == AA_SPREAD_REPEAT)
-        t -= floor(t);
-    else if (m->spread == AA_SPREAD_REFLECT) {
-        t = fmod(fabs(t), 2.0);
-        if (t > 1.0)
-            t = 2.0 - t;
-    }
+    t = spread_fold(m->spread, t);
     const aa_gradient_stop *s = m->st;
     if (t <= s[0].offset)
         return s[0].colour.c[ch];
@@ -1526,16 +1528,9 @@ static void mpic_sig(const mpic *p, double x, double y, int *s)
     int n = 0;
     for (int k = 0; k < p->nl; k++) {
         const mlayer *m = &p->l[k];
-        double t = mlayer_t(m, x, y), u = t;
+        double t = mlayer_t(m, x, y), u = spread_fold(m->spread, t);
         s[n++] = mlayer_in(m, x, y);
         s[n++] = (int)floor(t);
-        if (m->spread == AA_SPREAD_REPEAT)
-            u = t - floor(t);
-        else if (m->spread == AA_SPREAD_REFLECT) {
-            u = fmod(fabs(t), 2.0);
-            if (u > 1)
-                u = 2 - u;
-        }
         int seg = 0;
         for (int q = 0; q < m->n; q++)
             seg += u >= m->st[q].offset;
