@@ -15,8 +15,10 @@
  * the least and the most), area/point and analytic/area (analytic under
  * each filter against area under the box), the ratios of the medians; each
  * in wall-clock time and in the process's CPU time (`cpu`), which other
- * processes sharing the core lengthen far less.  Figures are read, not
- * asserted.
+ * processes sharing the core lengthen far less.  Each method's init (its
+ * tables for the scene and the size, outside the renders' times) is timed
+ * too, five times, and area/point is also given for one init and one
+ * render, what a scene drawn once costs.  Figures are read, not asserted.
  *
  * --renders N: no timing and no reference: `point` and `area` each render
  * the scene N times, for counting instructions (valgrind --tool=callgrind
@@ -264,7 +266,7 @@ int main(int argc, char **argv)
                1e3 * med, reps, 1e3 * t_ref[0], 1e3 * t_ref[reps - 1], 1e3 * cmed,
                1e3 * c_ref[0], 1e3 * c_ref[reps - 1], worst);
     }
-    double t_m[10][5], c_m[10][5], med[10], cmed[10];
+    double t_m[10][5], c_m[10][5], med[10], cmed[10], t_i[10][5], c_i[10][5], imed[10], icmed[10];
     const char *names[10] = {"point", "area"};
     int nq = 2 + nf;
     for (int q = 2; q < nq; q++)
@@ -272,9 +274,22 @@ int main(int argc, char **argv)
     for (int q = 0; q < nq; q++) {
         const char *fname = q < 2 ? "box" : filters[q - 2];
         if (aa_filter_parse(fname, &f) || aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1) ||
-            aa_method_parse(names[q], &f, &spec) || aa_method_init(&m, &spec, &job)) {
+            aa_method_parse(names[q], &f, &spec)) {
             fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
             return 3;
+        }
+        /* the init (its tables for the scene and the size), five times, the
+         * last kept for the renders */
+        for (int k = 0; k < 5; k++) {
+            double t0 = aa_now(), c0 = cpu_now();
+            if (aa_method_init(&m, &spec, &job)) {
+                fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+                return 3;
+            }
+            t_i[q][k] = aa_now() - t0;
+            c_i[q][k] = cpu_now() - c0;
+            if (k < 4)
+                aa_method_free(&m);
         }
         for (int k = 0; k < 5; k++) {
             double t0 = aa_now(), c0 = cpu_now();
@@ -289,13 +304,20 @@ int main(int argc, char **argv)
         aa_job_free(&job);
         med[q] = median(t_m[q], 5); /* sorts them */
         cmed[q] = median(c_m[q], 5);
+        imed[q] = median(t_i[q], 5);
+        icmed[q] = median(c_i[q], 5);
         char label[64];
         snprintf(label, sizeof label, q < 2 ? "%s" : "%s %s", names[q], fname);
         printf("%-19s %10.3f ms (median of 5, %.3f .. %.3f), cpu %.3f ms (%.3f .. %.3f)\n",
                label, 1e3 * med[q], 1e3 * t_m[q][0], 1e3 * t_m[q][4], 1e3 * cmed[q],
                1e3 * c_m[q][0], 1e3 * c_m[q][4]);
+        printf("%-19s %10.3f ms (median of 5, %.3f .. %.3f), cpu %.3f ms (%.3f .. %.3f)\n",
+               "  its init", 1e3 * imed[q], 1e3 * t_i[q][0], 1e3 * t_i[q][4], 1e3 * icmed[q],
+               1e3 * c_i[q][0], 1e3 * c_i[q][4]);
     }
     printf("area/point          %10.2f (cpu %.2f)\n", med[1] / med[0], cmed[1] / cmed[0]);
+    printf("area/point, init + render once %4.2f (cpu %.2f)\n",
+           (imed[1] + med[1]) / (imed[0] + med[0]), (icmed[1] + cmed[1]) / (icmed[0] + cmed[0]));
     for (int q = 2; q < nq; q++)
         printf("analytic/area       %10.2f (cpu %.2f) %s\n", med[q] / med[1], cmed[q] / cmed[1],
                filters[q - 2]);

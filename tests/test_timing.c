@@ -467,6 +467,93 @@ static void test_measure_counts(void **state)
     free(t);
 }
 
+/* A method whose init sleeps 50 ms and whose render fills grey: the
+ * init's time is measured once, on its own, and at least the sleep
+ * (POSIX: nanosleep returns no earlier than asked, barring a signal,
+ * retried here). */
+static int slow_inits;
+
+static int slow_init(void *state, const double *p, const aa_job *job)
+{
+    (void)state, (void)p, (void)job;
+    struct timespec left = {0, 50000000L};
+    while (nanosleep(&left, &left))
+        ;
+    slow_inits++;
+    return AA_OK;
+}
+
+static int grey_render(void *state, const double *p, const aa_job *job, aa_image *out,
+                       aa_counters *counters)
+{
+    (void)state, (void)p;
+    for (int j = 0; j < job->h; j++)
+        for (int i = 0; i < job->w; i++)
+            for (int c = 0; c < 3; c++)
+                aa_pixel(out, i, j)[c] = 0.5;
+    memset(counters, 0, sizeof *counters);
+    return AA_OK;
+}
+
+static const aa_param no_params[] = {{0}};
+static const aa_method_type slowinit = {
+    .info = {"slowinit", "test: an init of 50 ms", no_params},
+    .init = slow_init,
+    .render = grey_render,
+};
+
+static void test_init_timed(void **state)
+{
+    (void)state;
+    static const aa_method_type *const types[] = {&slowinit, NULL};
+    assert_int_equal(aa_method_register(types, "test_timing"), AA_OK);
+    aa_scene *scene = NULL;
+    aa_spec pattern, method;
+    aa_filter f;
+    aa_job job;
+    aa_image img;
+    aa_counters c;
+    aa_timing *t = malloc(sizeof *t);
+    assert_non_null(t);
+    aa_filter_default(&f);
+    assert_int_equal(aa_pattern_parse("crow", &pattern), AA_OK);
+    assert_int_equal(aa_pattern_scene_at(&pattern, 8, 8, &scene), AA_OK);
+    assert_int_equal(aa_job_init(&job, scene, 8, 8, 0, 0, 0, &f, 1, 1), AA_OK);
+    assert_int_equal(aa_image_alloc(&img, 8, 8, 3), AA_OK);
+    assert_int_equal(aa_method_parse("slowinit", &f, &method), AA_OK);
+    aa_timing_plan plan = {.reps = 3};
+    slow_inits = 0;
+    assert_int_equal(aa_method_time(&method, &job, &plan, &img, &c, t), AA_OK);
+    assert_int_equal(slow_inits, 1); /* once, before the warm-up and 3 renders */
+    assert_int_equal(t->n, 3);
+    if (!(t->init_seconds >= 0.05))
+        fail_msg("the init's time %g s is less than its 50 ms sleep", t->init_seconds);
+    assert_true(isfinite(t->init_cpu) && t->init_cpu >= 0);
+    /* a results file keeps it: results.csv's init_seconds read back */
+    aa_row *row = calloc(1, sizeof *row), *back;
+    size_t n;
+    char csv[128];
+    assert_non_null(row);
+    snprintf(row->pattern, sizeof row->pattern, "crow");
+    snprintf(row->filter, sizeof row->filter, "box");
+    snprintf(row->method, sizeof row->method, "slowinit");
+    row->w = row->h = 8, row->seed = 1, row->threads = 1, row->ok = 1, row->seeds = 1;
+    row->timing = *t;
+    row->seconds = t->stats.median, row->reps = t->n;
+    snprintf(csv, sizeof csv, "%s/init.csv", dir);
+    assert_int_equal(aa_rows_write_csv(csv, row, 1), AA_OK);
+    assert_int_equal(aa_rows_read_csv(csv, &back, &n), AA_OK);
+    assert_int_equal(n, 1);
+    assert_true(fabs(back[0].timing.init_seconds - t->init_seconds) <= 1e-8 * t->init_seconds);
+    assert_true(fabs(back[0].timing.init_cpu - t->init_cpu) <= 1e-8 * t->init_cpu + 1e-15);
+    free(back);
+    free(row);
+    aa_image_free(&img);
+    aa_job_free(&job);
+    aa_scene_free(scene);
+    free(t);
+}
+
 /* ---- results files, comparisons and the diff command ---- */
 
 static void fill_row(aa_row *r, const char *method, double rmse, double scale)
@@ -562,6 +649,8 @@ static void test_old_results(void **state)
     assert_int_equal(n, 1);
     assert_true(rows[0].timing.n == 0 && rows[0].seeds == 1 && rows[0].seconds == 0.00013);
     assert_true(rows[0].timing.noisy == 0);
+    /* no init columns: not measured, not 0 */
+    assert_true(isnan(rows[0].timing.init_seconds) && isnan(rows[0].timing.init_cpu));
     free(rows);
 }
 
@@ -674,6 +763,7 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_warning_order),
              cmocka_unit_test(test_child_cpu),
              cmocka_unit_test(test_measure_counts),
+             cmocka_unit_test(test_init_timed),
              cmocka_unit_test(test_results_round_trip),
              cmocka_unit_test(test_old_results),
              cmocka_unit_test(test_case_compare),

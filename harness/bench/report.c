@@ -387,6 +387,10 @@ static const column columns[] = {
     /* the perceptual and edge errors */
     REAL(flip, m.flip, G_MEASURE_OPTIONAL, 0, 0, 1),
     REAL(edge_rmse, m.edge_rmse, G_MEASURE_OPTIONAL, 0, 0, 1),
+    /* the method's init, timed once on its own (render_seconds leaves it
+     * out) */
+    REAL(init_seconds, timing.init_seconds, G_MEASURE_OPTIONAL, 0, 0, DBL_MAX),
+    REAL(init_cpu_seconds, timing.init_cpu, G_MEASURE_OPTIONAL, 0, 0, DBL_MAX),
 };
 #undef TEXT
 #undef REAL
@@ -612,6 +616,8 @@ static cJSON *row_json(const aa_row *r)
                  {"render_seconds", r->seconds},
                  {"render_seconds_min", r->seconds_min},
                  {"render_seconds_max", r->seconds_max},
+                 {"init_seconds", r->timing.init_seconds},
+                 {"init_cpu_seconds", r->timing.init_cpu},
                  {"ns_per_pixel", r->ns_per_pixel},
                  {"ns_per_sample", r->ns_per_sample},
                  {"expensive_fraction", r->expensive_fraction}};
@@ -1110,6 +1116,7 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
         memset(row, 0, sizeof *row);
         row->tm.popping = row->tm.lag = NAN;
         row->m.flip = row->m.edge_rmse = NAN;
+        row->timing.init_seconds = row->timing.init_cpu = NAN;
         row->case_index = -1;
         /* ok first: which columns must hold a value depends on it; then
          * whether the row is animated */
@@ -1317,6 +1324,7 @@ static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
     row->case_index = -1;
     row->m.rmse = row->m.max_err = row->seconds = NAN;
     row->m.flip = row->m.edge_rmse = NAN;
+    row->timing.init_seconds = row->timing.init_cpu = NAN;
     if (!cJSON_IsObject(o))
         return json_fail(name, k, "results", "a row is not an object");
     if ((st = json_text(name, k, o, "pattern", row->pattern, sizeof row->pattern, 0)) ||
@@ -1373,6 +1381,8 @@ static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
         (st = json_real(name, k, o, "flip", 0, 1, 1, &row->m.flip)) ||
         (st = json_real(name, k, o, "edge_rmse", 0, 1, 1, &row->m.edge_rmse)) ||
         (st = json_real(name, k, o, "render_seconds", 0, DBL_MAX, 1, &row->seconds)) ||
+        (st = json_real(name, k, o, "init_seconds", 0, DBL_MAX, 1, &row->timing.init_seconds)) ||
+        (st = json_real(name, k, o, "init_cpu_seconds", 0, DBL_MAX, 1, &row->timing.init_cpu)) ||
         (st = json_real(name, k, o, "spp", 0, DBL_MAX, 1, &row->spp)) ||
         (st = json_real(name, k, o, "seeds", 1, 1e9, 1, &seeds)))
         return st;

@@ -157,10 +157,12 @@ static int write_stats(const char *path, const render_args *a, const aa_spec *pa
                 "  \"filter\": %s,\n  \"size\": \"%dx%d\",\n  \"seed\": %llu,\n  \"time\": %.17g,\n"
                 "  \"motion\": [%.17g, %.17g],\n  \"threads\": %d,\n  \"reps\": %d,\n"
                 "  \"render_seconds\": %.9g,\n  \"render_seconds_min\": %.9g,\n"
-                "  \"render_seconds_max\": %.9g,\n  \"pixels\": %.0f,\n  \"samples\": %llu,\n"
+                "  \"render_seconds_max\": %.9g,\n  \"init_seconds\": %.9g,\n"
+                "  \"init_cpu_seconds\": %.9g,\n  \"pixels\": %.0f,\n  \"samples\": %llu,\n"
                 "  \"expensive_pixels\": %llu,\n  \"ns_per_pixel\": %.6g,\n  \"ns_per_sample\": %.6g",
                 pj, mj, gj, fj, w, h, (unsigned long long)a->seed, a->t, a->vx, a->vy, threads,
-                timing->n, med, timing->stats.min, timing->stats.max, pixels,
+                timing->n, med, timing->stats.min, timing->stats.max, timing->init_seconds,
+                timing->init_cpu, pixels,
                 (unsigned long long)c->samples, (unsigned long long)c->expensive_pixels,
                 med * 1e9 / pixels, c->samples ? med * 1e9 / (double)c->samples : 0.0);
         /* the row's members ", \"key\": value", one per line */

@@ -277,9 +277,9 @@ static void print_table(const aa_row *rows, size_t n)
         temporal |= rows[k].temporal;
     qsort(order, n, sizeof *order, temporal ? cmp_eye : cmp_rmse);
     widths c = widths_of(order, n);
-    printf("%-*s %-*s %-12s %-*s %10s %9s %9s %6s %8s %-27s %3s %9s %9s %6s\n", c.method,
+    printf("%-*s %-*s %-12s %-*s %10s %9s %9s %6s %8s %-27s %3s %9s %9s %9s %6s\n", c.method,
            "method", c.pattern, "pattern", "size", c.filter, "filter", "rmse", "edge_rmse",
-           "max_err", "flip", "psnr", "ms, median +-CI", "thr", "cpu ms",
+           "max_err", "flip", "psnr", "ms, median +-CI", "thr", "cpu ms", "init ms",
            "ns/px", "exp%");
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = order[k];
@@ -295,11 +295,15 @@ static void print_table(const aa_row *rows, size_t n)
         char cpu[32] = "-"; /* the median render's CPU time, the threads' sum */
         if (r->timing.n > 0 && isfinite(r->timing.cpu_median))
             snprintf(cpu, sizeof cpu, "%.3f", r->timing.cpu_median * 1e3);
-        printf("%-*.*s %-*.*s %-12s %-*.*s %10.3e %9.2e %9.2e %6.4f %8.2f %-27s %3d %9s %9.2f "
-               "%6.1f\n",
+        char init[32] = "-"; /* the method's init, once, outside the renders' times */
+        if (isfinite(r->timing.init_seconds))
+            snprintf(init, sizeof init, "%.3f", r->timing.init_seconds * 1e3);
+        printf("%-*.*s %-*.*s %-12s %-*.*s %10.3e %9.2e %9.2e %6.4f %8.2f %-27s %3d %9s %9s "
+               "%9.2f %6.1f\n",
                c.method, c.method, r->method, c.pattern, c.pattern, r->pattern, size, c.filter,
                c.filter, r->filter, r->m.rmse, r->m.edge_rmse, r->m.max_err, r->m.flip,
-               r->m.psnr, ms, r->threads, cpu, r->ns_per_pixel, 100 * r->expensive_fraction);
+               r->m.psnr, ms, r->threads, cpu, init, r->ns_per_pixel,
+               100 * r->expensive_fraction);
     }
     if (temporal) {
         printf("\n");

@@ -671,6 +671,10 @@ typedef struct aa_timing {
     double elapsed;       /* seconds from the warm-up's start to the last render's end */
     unsigned noisy;       /* AA_NOISY_* */
     int reported;         /* renders whose time the method reported (below) */
+    /* the method's init, timed once on its own before the renders (its
+     * tables for the scene, size and filter): wall and process CPU
+     * seconds, NaN where not measured; the renders' times leave it out */
+    double init_seconds, init_cpu;
 } aa_timing;
 
 /* The median's interval as text: "+-1.2%", "CI needs 6 renders" with
