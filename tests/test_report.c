@@ -141,7 +141,7 @@ static void test_header_is_the_table(void **state)
      * after it */
     size_t old_len = (size_t)(strchr(old_csv, '\n') - old_csv);
     assert_int_equal(strncmp(old_csv, want, old_len), 0);
-    assert_true(want[old_len] == ',' && strstr(want + old_len, ",lag,flip,edge_rmse\n"));
+    assert_true(want[old_len] == ',' && strstr(want + old_len, ",lag,flip,edge_rmse,init_seconds,init_cpu_seconds\n"));
     aa_row *rows;
     size_t n;
     assert_int_equal(aa_rows_read_csv(path, &rows, &n), AA_OK);
@@ -225,7 +225,8 @@ static void test_old_file_round_trip(void **state)
     const char *back = slurp(path, &len);
     /* cell by cell; the times' statistics are not read but recomputed
      * from the times, written with nine digits: they may differ in the
-     * last digit.  The columns added since (flip, edge_rmse) are written
+     * last digit.  The columns added since (flip, edge_rmse, init_seconds,
+     * init_cpu_seconds) are written
      * after the old ones, empty: the old file has no value for them */
     static const char *const recomputed[] = {"render_seconds_mean", "render_seconds_sd",
                                              "render_seconds_mad", "render_seconds_ci_lo",
@@ -245,7 +246,8 @@ static void test_old_file_round_trip(void **state)
             const char *end = strchr(b, '\n');
             assert_non_null(end);
             if (header)
-                assert_int_equal(strncmp(b + nb, ",lag,flip,edge_rmse\n", 20), 0);
+                assert_int_equal(strncmp(b + nb, ",lag,flip,edge_rmse,init_seconds,init_cpu_"
+                                         "seconds\n", 50), 0);
             else
                 for (const char *c = b + nb; c < end; c++)
                     assert_true(*c == ',');
