@@ -24,6 +24,10 @@
 #define GAP 8
 #define FONT 13
 #define LINE (FONT + 4)
+/* A cell is at least this wide, so that a label of about 16 characters
+ * ("RMSE 1.234e-02") shows whole beside small tiles; a longer one is cut at
+ * its cell's side, never drawn over the next cell. */
+#define LABEL_W 120
 
 /* The dark grey ground, apart from black. */
 #define GROUND 0.01
@@ -43,7 +47,7 @@ static int make_layout(size_t n, int columns, int tw, int th, int lines, layout 
         return aa_fail(AA_EINVAL, "montage of %zu tiles: too many", n);
     l->rows = (int)((n + (size_t)columns - 1) / (size_t)columns);
     l->columns = (size_t)columns > n ? (int)n : columns;
-    l->cw = tw + GAP;
+    l->cw = (tw > LABEL_W ? tw : LABEL_W) + GAP;
     l->ch = th + lines * LINE + GAP + 4;
     double w = (double)l->columns * l->cw + GAP, h = (double)l->rows * l->ch + GAP;
     if (w > AA_MAX_SIDE || h > AA_MAX_SIDE)
@@ -58,9 +62,11 @@ double aa_montage_bytes(size_t n, int columns, int tw, int th, int lines)
     layout l;
     if (make_layout(n, columns, tw, th, lines, &l) != AA_OK)
         return 0;
-    /* the band of doubles, its 8-bit codes for a PNG, and one tile */
+    /* the band of doubles, its 8-bit codes for a PNG, one tile and a label's
+     * line */
     double band = (double)l.w * (l.ch + GAP) * 3;
-    return band * sizeof(double) + band + (double)tw * th * 3 * sizeof(double);
+    return band * sizeof(double) + band + (double)tw * th * 3 * sizeof(double) +
+           (double)l.cw * LINE * 3 * sizeof(double);
 }
 
 int aa_montage_check(size_t n, int columns, int tw, int th, int lines)
@@ -86,14 +92,24 @@ static int draw_cell(const aa_tile_source *src, const layout *l, size_t k, aa_im
     const aa_image *im = tile.image;
     const float white[3] = {1, 1, 1};
     int x0 = GAP + (int)(k % (size_t)l->columns) * l->cw, y0 = GAP;
-    if (im == NULL || im->c != 3 || im->w > l->cw - GAP ||
+    if (im == NULL || im->c != 3 || im->w > src->tw ||
         im->h > l->ch - GAP - 4 - src->lines * LINE)
         st = aa_fail(AA_EINVAL, "montage tile %zu: %dx%dx%d, where tiles of at most %dx%dx3 were "
                      "announced", k, im ? im->w : 0, im ? im->h : 0, im ? im->c : 0,
-                     l->cw - GAP, l->ch - GAP - 4 - src->lines * LINE);
-    for (int j = 0; j < src->lines && tile.label[j] && !st; j++)
-        st = aa__oiio_text(band->v, band->w, band->h, 3, x0, y0 + j * LINE, tile.label[j], FONT,
-                           white);
+                     src->tw, l->ch - GAP - 4 - src->lines * LINE);
+    /* each label drawn on the cell's width alone, then copied: cut there */
+    aa_image line = {0};
+    if (!st && src->lines > 0 && tile.label[0])
+        st = aa_image_alloc(&line, l->cw - GAP, LINE, 3);
+    for (int j = 0; j < src->lines && tile.label[j] && !st; j++) {
+        for (size_t p = 0; p < (size_t)line.w * LINE * 3; p++)
+            line.v[p] = GROUND;
+        st = aa__oiio_text(line.v, line.w, line.h, 3, 0, 0, tile.label[j], FONT, white);
+        for (int r = 0; r < LINE && !st; r++)
+            memcpy(aa_pixel(band, x0, y0 + j * LINE + r), aa_pixel(&line, 0, r),
+                   sizeof(double) * 3 * (size_t)line.w);
+    }
+    aa_image_free(&line);
     int ty = y0 + src->lines * LINE + 4;
     for (int j = 0; j < (im ? im->h : 0) && !st; j++)
         memcpy(aa_pixel(band, x0, ty + j), aa_pixel(im, 0, j), sizeof(double) * 3 * (size_t)im->w);

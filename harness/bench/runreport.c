@@ -90,7 +90,7 @@ static void view_section(FILE *m, const char *dir, const aa_row *rows, size_t n,
     fprintf(m, " %dx%d, ", r0->w, r0->h);
     aa_html_escape(m, r0->filter);
     fputs("</h2>\n<table>\n<tr><th>method</th><th>rmse</th><th>edge_rmse</th><th>max_err</th>"
-          "<th>flip</th><th>ssim</th><th>psnr dB</th><th>ms (median)</th></tr>\n",
+          "<th>flip</th><th>ssim</th><th>psnr dB</th><th>ms (median)</th><th>init ms</th></tr>\n",
           m);
     for (size_t q = 0; q < k; q++) {
         const aa_row *r = &rows[idx[q]];
@@ -98,7 +98,7 @@ static void view_section(FILE *m, const char *dir, const aa_row *rows, size_t n,
         aa_html_escape(m, r->method);
         fputs("</td>", m);
         if (!r->ok) {
-            fputs("<td colspan=\"7\" class=\"note\">", m);
+            fputs("<td colspan=\"8\" class=\"note\">", m);
             aa_html_escape(m, r->note);
             fputs("</td></tr>\n", m);
             continue;
@@ -112,7 +112,9 @@ static void view_section(FILE *m, const char *dir, const aa_row *rows, size_t n,
         fputs("<td>", m);
         if (isfinite(r->seconds))
             fprintf(m, "%.3f%s", r->seconds * 1e3, r->timing.noisy ? " *" : "");
-        fputs("</td></tr>\n", m);
+        fputs("</td>", m);
+        num(m, "%.3f", r->timing.init_seconds * 1e3); /* the init, once, outside those */
+        fputs("</tr>\n", m);
     }
     fputs("</table>\n", m);
     if (is_first)

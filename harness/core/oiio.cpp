@@ -474,18 +474,20 @@ static void close_file(aa__oiio_in *in)
 #define AA_FONT "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 
 /* Draw `text` into a W x H x C double buffer with OpenImageIO's FreeType text
- * renderer, left aligned, top of the text at (x, y).  Used for the labels of
- * montages. */
+ * renderer, left aligned, its line's top at (x, y): the baseline 0.8 size
+ * below, wherever the text's own glyphs reach (aligning their tops would
+ * set "point" lower than "(box)").  Used for the labels of montages and
+ * error maps. */
 static int draw_text(double *pixels, int w, int h, int c, int x, int y, const char *text,
                      int size, const float *colour)
 {
     return guarded("text", [&] {
         ImageSpec spec(w, h, c, TypeDesc::DOUBLE);
         ImageBuf buf(spec, pixels);
-        bool ok = ImageBufAlgo::render_text(buf, x, y, text, size, AA_FONT,
-                                            OIIO::cspan<float>(colour, c),
+        bool ok = ImageBufAlgo::render_text(buf, x, y + (int)lround(0.8 * size), text, size,
+                                            AA_FONT, OIIO::cspan<float>(colour, c),
                                             ImageBufAlgo::TextAlignX::Left,
-                                            ImageBufAlgo::TextAlignY::Top);
+                                            ImageBufAlgo::TextAlignY::Baseline);
         std::string why = call_error(buf, ok);
         if (!why.empty())
             return fail(AA_EIO, "text", "cannot draw a label (is a font installed?)", why);
