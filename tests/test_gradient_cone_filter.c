@@ -307,6 +307,31 @@ static void reference(const aa_scene *s, const filt *f, aa_image *ref, aa_image 
         fail_msg("%s: largest bound %.3g", f->spec, stats->max_bound);
 }
 
+/* The reference of pixel (i, j) alone under f, its value and bound
+ * (*bd): s mapped by aa_scene_transform so that the pixel is a view of
+ * its own, the same picture on the same pixel square; its bound within
+ * 1e-12 as reference's, *max_bound the largest so far.  A check of a few
+ * pixels against the 2-D quadrature need not integrate the view's other
+ * pixels (check_2d_spread and test_beside: 6 to 12 of its 192). */
+static double reference_pixel(const aa_scene *s, const filt *f, int i, int j, double *bd,
+                              double *max_bound)
+{
+    aa_scene *part = aa_scene_transform(s, W, H, -i, -j);
+    assert_non_null(part);
+    support_view v = {1, 1, 0, 0, 0, f->spec, 1, 1, 0};
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    support_reference(part, &v, &ref, &bound, &stats);
+    if (!(stats.max_bound <= 1e-12))
+        fail_msg("%s: pixel (%d, %d)'s bound %.3g", f->spec, i, j, stats.max_bound);
+    double got = aa_pixel(&ref, 0, 0)[0];
+    *bd = *aa_pixel(&bound, 0, 0), *max_bound = fmax(*max_bound, stats.max_bound);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(part);
+    return got;
+}
+
 /* ---- the painted area, and pixels wholly in or out ---- */
 
 static void check_area(const filt *f, const geom *gm)
@@ -673,14 +698,11 @@ static void check_2d_spread(const filt *f, const geom *gm, int spread, double bg
         }
     pc.nh = co_region(gm->p, pc.hp, &pc.wedge, pc.apex);
     aa_scene *s = grad_scene(gm->p, spread, black_white, 2, bg);
-    aa_image ref, bound;
-    aa_truth_stats stats;
-    reference(s, f, &ref, &bound, &stats);
-    double worst = 0;
+    double worst = 0, max_bound = 0;
     for (int k = 0; k < npx; k++) {
         int i = px[k][0], j = px[k][1];
-        double want = pic_pixel(&pc, i, j), got = aa_pixel(&ref, i, j)[0];
-        double bd = *aa_pixel(&bound, i, j);
+        double bd, got = reference_pixel(s, f, i, j, &bd, &max_bound);
+        double want = pic_pixel(&pc, i, j);
         worst = fmax(worst, fabs(got - want));
         if (!(fabs(got - want) <= bd + 1e-14))
             fail_msg("%s, %s: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound %.3g)",
@@ -692,9 +714,7 @@ static void check_2d_spread(const filt *f, const geom *gm, int spread, double bg
                   spread == AA_SPREAD_REPEAT    ? "repeat, "
                   : spread == AA_SPREAD_REFLECT ? "reflect, "
                                                 : "",
-                  npx, worst, stats.max_bound);
-    aa_image_free(&ref);
-    aa_image_free(&bound);
+                  npx, worst, max_bound);
     aa_scene_free(s);
 }
 
@@ -930,14 +950,11 @@ static void test_beside(void **state)
         pc.lin = (go_pic){0, 0, 10, 0, 14, 0, {BB[0], BB[1], BB[2], BB[3]}, 0.3, 0, 0, 0, 0, 0};
         pc.rad = (go_pic){1, 1, 0, 0, 0, 0, {0, 0, 0, 0}, 0.3, 12, 8.25, 3, 12.5, 8};
         aa_scene *s = beside_scene(&geoms[0], black_white, 0.3, 0);
-        aa_image ref, bound;
-        aa_truth_stats stats;
-        reference(s, &f, &ref, &bound, &stats);
-        double worst = 0;
+        double worst = 0, max_bound = 0;
         for (size_t q = 0; q < sizeof px / sizeof *px; q++) {
             int i = px[q][0], j = px[q][1];
-            double want = pic_pixel(&pc, i, j), got = aa_pixel(&ref, i, j)[0];
-            double bd = *aa_pixel(&bound, i, j);
+            double bd, got = reference_pixel(s, &f, i, j, &bd, &max_bound);
+            double want = pic_pixel(&pc, i, j);
             worst = fmax(worst, fabs(got - want));
             if (!(fabs(got - want) <= bd + 1e-14))
                 fail_msg("%s, beside: pixel (%d, %d) is %.17g, 2-D quadrature %.17g (bound %.3g)",
@@ -945,9 +962,7 @@ static void test_beside(void **state)
         }
         print_message("%-18s beside, ramps: %d pixels, largest difference from 2-D quadrature "
                       "%.2g, largest bound %.2g\n",
-                      f.spec, (int)(sizeof px / sizeof *px), worst, stats.max_bound);
-        aa_image_free(&ref);
-        aa_image_free(&bound);
+                      f.spec, (int)(sizeof px / sizeof *px), worst, max_bound);
         aa_scene_free(s);
     }
     /* a translucent linear or radial gradient in front of the cone and
@@ -975,14 +990,11 @@ static void test_beside(void **state)
                         ? (go_pic){0, 0, 6, 0, 12, 0, {OV[0], OV[1], OV[2], OV[3]}, 0, 0, 0, 0, 0, 0}
                         : (go_pic){1, 1, 0, 0, 0, 0, {0, 0, 0, 0}, 0, 9, 6, 5, 8, 5.5};
             aa_scene *s = beside_scene(&geoms[0], black_white, 0.0, over);
-            aa_image ref, bound;
-            aa_truth_stats stats;
-            reference(s, &f, &ref, &bound, &stats);
-            double worst = 0;
+            double worst = 0, max_bound = 0;
             for (size_t q = 0; q < sizeof po / sizeof *po; q++) {
                 int i = po[q][0], j = po[q][1];
-                double want = pic_pixel(&pc, i, j), got = aa_pixel(&ref, i, j)[0];
-                double bd = *aa_pixel(&bound, i, j);
+                double bd, got = reference_pixel(s, &f, i, j, &bd, &max_bound);
+                double want = pic_pixel(&pc, i, j);
                 worst = fmax(worst, fabs(got - want));
                 if (!(fabs(got - want) <= bd + 1e-14))
                     fail_msg("%s, %s gradient over the cone: pixel (%d, %d) is %.17g, 2-D "
@@ -992,9 +1004,7 @@ static void test_beside(void **state)
             print_message("%-18s %s over the cone: %d pixels, largest difference from 2-D "
                           "quadrature %.2g, largest bound %.2g\n",
                           f.spec, over == 1 ? "linear" : "radial", (int)(sizeof po / sizeof *po),
-                          worst, stats.max_bound);
-            aa_image_free(&ref);
-            aa_image_free(&bound);
+                          worst, max_bound);
             aa_scene_free(s);
         }
 }
