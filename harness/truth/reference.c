@@ -32,7 +32,7 @@
 #include <unistd.h>
 
 /* Bump when the ground truth's results could change. */
-#define TRUTH_VERSION 14/* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
+#define TRUTH_VERSION 15/* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
                           * pieces, and the cone's breakpoint where a piece passes
                           * closest to the centre; 4: the square root substitution on
                           * intervals that end near a turning point; 5: which radial
@@ -65,7 +65,9 @@
                           * certified box by box too (thr_offset_x); under radial
                           * filters the threshold's slivers bounded by the weight's
                           * slope (4 R its peak a unit of height was), and windows
-                          * that edges enter certified there too */
+                          * that edges enter certified there too;
+                          * 15: windows of cone-case gradients certified box by
+                          * box (thr_cone_t) */
 #define CACHE_MAGIC "aabench-reference 2\n"
 
 static int field_key(const aa_view *view, char *buf, size_t len);

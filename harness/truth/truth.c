@@ -304,8 +304,8 @@
  * and nothing mixes; scene_translucent; found once a render: thr_setup),
  * each pixel's heights are found as follows.
  *
- * Certified (thr_certify), where every gradient is linear or radial but
- * the cone case (any number of them in the scene: a span that more than
+ * Certified (thr_certify), where every gradient is linear or radial
+ * (any number of them in the scene: a span that more than
  * GEN_LAYERS paint is refused as ever): the window's rows between its
  * first and last breakpoints are halved into boxes (across x too where a
  * box is 16 times wider than high and E depends on x there), and on each box E of
@@ -418,15 +418,42 @@
  * --bound b.txt`); with the radial layer on a disc of radius 6, 108
  * pixels scanned then, none now, the values within 4.1e-14 of the scan's
  * (inside both bounds), 2.55e10 instructions against 2.21e10 (`valgrind
- * --tool=callgrind`, --threads 1).  The cone case is scanned: its t
- * would need the wedge's two linear forms in intervals (the layer taken
- * painted and not on a box its tangent lines cross, as a piece's layer
- * is) and the root by the form whose range keeps off 0.
+ * --tool=callgrind`, --threads 1).
+ *
+ * The cone case (thr_cone_t): the wedge's linear forms L0, L1 ("the cone
+ * case") in intervals over the box decide where the layer paints; a box
+ * they show wholly painted takes t = (b + sqrt(L0 L1)) / a, or c / (b -
+ * sqrt(L0 L1)) where b keeps below 0 (CONE_NESTED: |L0|^2 for d;
+ * CONE_HALF: c / (2 b)), as a jet, tight next to a tangent line where b^2
+ * - a c would cancel; one wholly unpainted takes the layer transparent;
+ * one a tangent line (or the half-plane's edge) crosses is cut and takes
+ * the layer both painted (t over the painted part: each form's range
+ * clamped to its sign) and not, as a piece's layer is covered and not,
+ * up to THR_PART such layers.  A box holding P* is one of those (the
+ * wedge), or has d's range reach 0 (CONE_NESTED: t's kink), a cut.  Where
+ * the threshold's curve meets a tangent line it touches it (the curve is
+ * near a circle of one t, and each touches the lines), and the boxes
+ * about that point grow without end: a window of a scene with a cone
+ * layer whose boxes pass THR_CONE_BOXES (50000; those certified on the
+ * 24x24 document below took at most 12055, under cone:r=1) or whose
+ * slivers' bounds pass THR_CONE_LEFT (1e-13) in all is left to the scan.  On a 24x24 document (a linear gradient along
+ * y, #000 to #404040, under a cone-case radial gradient at fill-opacity
+ * 0.6, focus (3, 10) and fr 1.5 outside the circle (14, 12) of radius 5,
+ * dark stops) 1 pixel of 576 is scanned (576 before), 4 under cone:r=1
+ * (576), the values within 8.9e-16 of the scan's (1.3e-15 under
+ * cone:r=1), each difference inside both bounds, largest bound 1.7e-13
+ * (1.8e-13 before); 5.48e9 instructions against 4.16e9 scanned
+ * (`valgrind --tool=callgrind aabench truth -p svg:file=F --no-cache
+ * --threads 1`; the pixel left to the scan took its 50000 boxes first).
+ * On a 16x16 one (focus (-4, 5), fr 6, outside the circle (36, 11) of
+ * radius 6.5: the tangent lines nearly parallel, an arc of the curve
+ * between them) 256 pixels were scanned, none now, 3.26e9 instructions
+ * against 4.47e9, the values within 1.1e-16, largest bound 1.8e-13 both.
  *
  * Scanned (thr_heights), elsewhere (an evolute in the window on the half
  * of a cubic next to an end where B' vanishes whose factored form
- * (offset.c) has Q x Q' not shown off 0, thr_offset_stopped; a
- * cone-case gradient): between the breakpoints, THR_ROWS = 32 rows a
+ * (offset.c) has Q x Q' not shown off 0, thr_offset_stopped; a window of
+ * a cone layer left by the boxes, above): between the breakpoints, THR_ROWS = 32 rows a
  * window's height, and one just inside
  * each interval's ends; each row's signature is the count of the
  * threshold's places (gen_section's certified isolation) per channel in
@@ -720,6 +747,9 @@ typedef struct worker {
      * rows take a declared bound (triples: the ends, the bound of |F(s) -
      * F(m)| on them) */
     int thr_on, thr_cert;
+    /* thr_cone: the scene has a layer of the cone case; thr_left: the
+     * pixel's boxes left it to the scan (thr_boxes) */
+    int thr_cone, thr_left;
     double *sliv;
     size_t nsliv, cap_sliv;
     local_piece *lp;
@@ -5790,6 +5820,9 @@ static int thr_total(const thr_sig *a)
 #define THR_SEG 8        /* one layer's stop segments a box is taken in, one at a time */
 #define THR_ASPECT 16.0  /* boxes are halved across x only if this many times wider than high */
 #define THR_GAP 0x1p-32  /* slivers closer than this times 2 R are merged, the rows between kept */
+#define THR_PART 3       /* most cone layers painting part of a box taken painted and not */
+#define THR_CONE_LEFT 1e-13 /* slivers' bound past which a window of a cone layer is scanned */
+#define THR_CONE_BOXES 50000 /* boxes past which a window of a cone layer is scanned */
 
 typedef struct thr_iv {
     double lo, hi;
@@ -5923,13 +5956,81 @@ typedef struct thr_ctx {
     int npc;
     const int *pc;
     struct thr_cache *cache;
+    /* per layer of the cone case: its linear forms L0, L1 at the pixel's
+     * centre (CONE_NESTED: L0's real and imaginary parts; 4 a layer), and
+     * whether it paints the box (thr_t: 1 all of it, 0 none, 2 part) */
+    thr_iv *lc;
+    unsigned char *paint;
 } thr_ctx;
 
+/* 1 / a, the whole line where a's range holds 0. */
+static thr_jet j_inv(thr_jet a)
+{
+    if (!(a.v.lo > 0.0 || a.v.hi < 0.0))
+        return (thr_jet){{-INFINITY, INFINITY}, {-INFINITY, INFINITY}};
+    thr_iv r = iv_out(1.0 / a.v.hi, 1.0 / a.v.lo);
+    return (thr_jet){r, iv_sub(iv_k(0.0), iv_mul(a.d, iv_sqr(r)))};
+}
+
+/* A layer of the cone case on the box (thr_t; "the cone case"): its
+ * linear forms' ranges decide where it paints, {L0 >= 0, L1 >= 0}
+ * (CONE_HALF: L0 > 0; CONE_NESTED: everywhere), *paint 1 on the whole
+ * box, 0 nowhere, 2 on part of it (a tangent line or the half-plane's
+ * edge crosses it: a cut, *bad set, the layer taken both painted and not
+ * by thr_box).  Where it paints, t from the forms over the painted part
+ * (each form's range clamped to its sign there): (b + sqrt d) / a with d
+ * = L0 L1 (CONE_NESTED: |L0|^2), exact near a tangent line, or c / (b -
+ * sqrt d) where b keeps below 0 (the two forms of cone_t_sq; neither
+ * cancels), c / (2 b) for CONE_HALF.  d's range reaching 0 (the apex P*
+ * in the box, or a tangent line) leaves t's derivative unbounded: *bad. */
+static thr_jet thr_cone_t(const thr_ctx *c, int l, thr_jet b, thr_jet cc, thr_iv X, thr_iv S,
+                          int *bad, unsigned char *paint)
+{
+    const grad_radial *r = c->w->gl[l].rg;
+    thr_jet L[2];
+    for (int k = 0; k < 2; k++) {
+        const double complex *f = r->cone == CONE_NESTED ? r->lf[0] : r->lf[k];
+        double f0 = k && r->cone == CONE_NESTED ? cimag(f[0]) : creal(f[0]);
+        double f1 = k && r->cone == CONE_NESTED ? cimag(f[1]) : creal(f[1]);
+        L[k].v = iv_add(c->lc[4 * l + k], iv_add(iv_mul(iv_k(f0), X), iv_mul(iv_k(f1), S)));
+        L[k].d = iv_k(c->dy ? f1 : f0);
+    }
+    *paint = 1;
+    if (r->cone != CONE_NESTED) {
+        double least = r->cone == CONE_HALF ? 0x1p-1074 : 0.0; /* the edge is not painted */
+        if (L[0].v.hi < least || L[1].v.hi < least) {
+            *paint = 0;
+            return (thr_jet){{0.0, 0.0}, {0.0, 0.0}};
+        }
+        if (!(L[0].v.lo >= least && L[1].v.lo >= least)) {
+            *paint = 2, *bad = 1;
+            for (int k = 0; k < 2; k++)
+                L[k].v.lo = fmax(L[k].v.lo, 0.0), L[k].d = (thr_iv){-INFINITY, INFINITY};
+            b.d = cc.d = (thr_iv){-INFINITY, INFINITY};
+        }
+    }
+    if (r->cone == CONE_HALF) { /* b = sg L0 where it paints, t = c / (2 b) */
+        thr_jet b2 = r->dr > 0.0 ? L[0] : j_scale(-1.0, L[0]);
+        return j_mul(cc, j_inv(j_scale(2.0, b2)));
+    }
+    thr_jet d = r->cone == CONE_NESTED ? j_add(j_sqr(L[0]), j_sqr(L[1])) : j_mul(L[0], L[1]);
+    thr_jet sq = j_sqrt(d, bad);
+    if (b.v.lo + b.v.hi < 0.0) {
+        thr_jet den = j_sub(b, sq);
+        if (den.v.hi < 0.0)
+            return j_mul(cc, j_inv(den));
+    }
+    return j_mul(j_add(b, sq), j_k(iv_out(1.0 / r->a, 1.0 / r->a)));
+}
+
 /* Layer l's t on the box X x S (relative); *bad set where its derivative's
- * range is not had (a radial layer's discriminant near 0). */
-static thr_jet thr_t(const thr_ctx *c, int l, thr_iv X, thr_iv S, int *bad)
+ * range is not had (a radial layer's discriminant near 0, a cone's
+ * tangent line or P*); *paint: 1, or the cone case's (thr_cone_t). */
+static thr_jet thr_t(const thr_ctx *c, int l, thr_iv X, thr_iv S, int *bad,
+                     unsigned char *paint)
 {
     const gen_layer *g = &c->w->gl[l];
+    *paint = 1;
     if (g->gp) {
         const grad_plane *p = g->gp;
         thr_iv v = iv_add(c->q0[2 * l], iv_add(iv_mul(iv_k(p->tx), X), iv_mul(iv_k(p->ty), S)));
@@ -5945,6 +6046,8 @@ static thr_jet thr_t(const thr_ctx *c, int l, thr_iv X, thr_iv S, int *bad)
     thr_jet b = j_add(j_add(j_scale(r->Dx, qx), j_scale(r->Dy, qy)),
                       j_k(iv_mul(iv_k(r->fr), iv_k(r->dr))));
     thr_jet cc = j_sub(j_add(j_sqr(qx), j_sqr(qy)), j_k(iv_sqr(iv_k(r->fr))));
+    if (r->cone)
+        return thr_cone_t(c, l, b, cc, X, S, bad, paint);
     thr_jet disc = j_sub(j_sqr(b), j_scale(r->a, cc));
     /* t = (b - sqrt(disc)) / a, a < 0 (rad_t's two forms are this) */
     return j_mul(j_sub(b, j_sqrt(disc, bad)), j_k(iv_out(1.0 / r->a, 1.0 / r->a)));
@@ -6146,17 +6249,26 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
      * be 0.04045 */
     double brk[THR_SEG + 1], elo[3] = {INFINITY, INFINITY, INFINITY};
     double ehi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    int split = -1, nbrk = 0, hit = 0, flat = 0;
+    int split = -1, nbrk = 0, hit = 0, flat = 0, part[THR_PART], np = 0;
     for (int l = 0; l < w->ngl; l++) {
         int bad = 0;
         if (!c->used[l])
             continue;
-        t[l] = thr_t(c, l, X, S, &bad);
+        t[l] = thr_t(c, l, X, S, &bad, &c->paint[l]);
         cut |= bad;
+        if (c->paint[l] == 2 && np == THR_PART) { /* too many painting part of it: kept */
+            if (wid)
+                *wid = INFINITY;
+            if (lip)
+                *lip = INFINITY;
+            return 1;
+        }
+        if (c->paint[l] == 2)
+            part[np++] = l;
         const gen_layer *g = &w->gl[l];
         double ta = t[l].v.lo, tb = t[l].v.hi;
         double pad = 8.0 * DBL_EPSILON * (1.0 + fmax(fabs(ta), fabs(tb)));
-        if (split >= 0 || !(ta > -INFINITY && tb < INFINITY))
+        if (split >= 0 || !c->paint[l] || !(ta > -INFINITY && tb < INFINITY))
             continue;
         size_t nb = grad_taus(g->gp ? g->gp : &g->rg->plane, ta - pad, tb + pad, c->buf, c->cap);
         if (nb == 0 || nb >= THR_SEG)
@@ -6166,67 +6278,82 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
         qsort(brk + 1, nb, sizeof *brk, truth_cmp_double);
         brk[0] = -INFINITY, brk[nb + 1] = INFINITY;
     }
-    for (int j = 0; j <= nbrk; j++) {
-        int cj = cut;
-        thr_jet ts = {{0.0, 0.0}, {0.0, 0.0}};
-        for (int l = 0; l < w->ngl; l++) {
-            thr_jet p[4];
-            if (!c->used[l])
-                continue;
-            if (l == split) {
-                ts = t[l];
-                ts.v.lo = fmax(ts.v.lo, brk[j]), ts.v.hi = fmin(ts.v.hi, brk[j + 1]);
-                if (!(ts.v.lo <= ts.v.hi))
-                    goto next;
-                thr_affine(&w->gl[l], ts, p);
-            } else
-                thr_paint(c, l, t[l], p, &cj);
-            a[l] = p[3];
-            for (int ch = 0; ch < c->nch; ch++)
-                ac[l][ch] = j_mul(p[3], p[ch]);
-        }
-        thr_jet E[3];
-        thr_fold(c, a, ac, E);
-        /* the split layer's stop lines that bound the segment on the box:
-         * a cut where the curve may meet one, E there (the layer's paint
-         * at that t, from the segment's side) holding 0.04045 */
-        for (int e = 0; e < 2 && split >= 0 && !cj; e++) {
-            double b = e ? brk[j + 1] : brk[j], tm = 0.5 * (ts.v.lo + ts.v.hi);
-            if (b != (e ? ts.v.hi : ts.v.lo))
-                continue; /* not met on the box */
-            thr_jet p[4], Eb[3], tb = {{b, b}, {0.0, 0.0}};
-            thr_jet keep = a[split], kc[3];
-            thr_affine_at(&w->gl[split], tb, tm, p);
-            a[split] = p[3];
-            for (int ch = 0; ch < c->nch; ch++)
-                kc[ch] = ac[split][ch], ac[split][ch] = j_mul(p[3], p[ch]);
-            thr_fold(c, a, ac, Eb);
-            a[split] = keep;
-            for (int ch = 0; ch < c->nch; ch++) {
-                ac[split][ch] = kc[ch];
-                cj |= Eb[ch].v.lo <= 0.04045 && Eb[ch].v.hi >= 0.04045;
+    /* a cone layer painting part of the box is taken painted and not
+     * (bit k of m: part[k] painted), each folded, as a piece's layer is
+     * taken covered and not (thr_box_at); the box is cut */
+    unsigned char *on = c->paint;
+    for (int m = 0; m < 1 << np && !(hit && !wid); m++) {
+        for (int k = 0; k < np; k++)
+            on[part[k]] = (m >> k) & 1 ? 2 : 0;
+        int sp = split >= 0 && on[split] ? split : -1;
+        for (int j = 0; j <= (sp >= 0 ? nbrk : 0); j++) {
+            int cj = cut;
+            thr_jet ts = {{0.0, 0.0}, {0.0, 0.0}};
+            for (int l = 0; l < w->ngl; l++) {
+                thr_jet p[4];
+                if (!c->used[l])
+                    continue;
+                if (!on[l]) { /* not painted: transparent */
+                    a[l] = j_k(iv_k(0.0));
+                    for (int ch = 0; ch < c->nch; ch++)
+                        ac[l][ch] = a[l];
+                    continue;
+                }
+                if (l == sp) {
+                    ts = t[l];
+                    ts.v.lo = fmax(ts.v.lo, brk[j]), ts.v.hi = fmin(ts.v.hi, brk[j + 1]);
+                    if (!(ts.v.lo <= ts.v.hi))
+                        goto next;
+                    thr_affine(&w->gl[l], ts, p);
+                } else
+                    thr_paint(c, l, t[l], p, &cj);
+                a[l] = p[3];
+                for (int ch = 0; ch < c->nch; ch++)
+                    ac[l][ch] = j_mul(p[3], p[ch]);
             }
+            thr_jet E[3];
+            thr_fold(c, a, ac, E);
+            /* the split layer's stop lines that bound the segment on the box:
+             * a cut where the curve may meet one, E there (the layer's paint
+             * at that t, from the segment's side) holding 0.04045 */
+            for (int e = 0; e < 2 && sp >= 0 && !cj; e++) {
+                double b = e ? brk[j + 1] : brk[j], tm = 0.5 * (ts.v.lo + ts.v.hi);
+                if (b != (e ? ts.v.hi : ts.v.lo))
+                    continue; /* not met on the box */
+                thr_jet p[4], Eb[3], tb = {{b, b}, {0.0, 0.0}};
+                thr_jet keep = a[split], kc[3];
+                thr_affine_at(&w->gl[split], tb, tm, p);
+                a[split] = p[3];
+                for (int ch = 0; ch < c->nch; ch++)
+                    kc[ch] = ac[split][ch], ac[split][ch] = j_mul(p[3], p[ch]);
+                thr_fold(c, a, ac, Eb);
+                a[split] = keep;
+                for (int ch = 0; ch < c->nch; ch++) {
+                    ac[split][ch] = kc[ch];
+                    cj |= Eb[ch].v.lo <= 0.04045 && Eb[ch].v.hi >= 0.04045;
+                }
+            }
+            for (int ch = 0; ch < c->nch && wid; ch++)
+                elo[ch] = fmin(elo[ch], E[ch].v.lo), ehi[ch] = fmax(ehi[ch], E[ch].v.hi);
+            for (int ch = 0; ch < c->nch && lip; ch++) {
+                double d = fmax(fabs(E[ch].d.lo), fabs(E[ch].d.hi));
+                *lip = split >= 0 || np > 0 || !(d <= INFINITY) ? INFINITY : fmax(*lip, d);
+            }
+            for (int ch = 0; ch < c->nch && !hit; ch++) {
+                thr_jet e = E[ch];
+                if (!(e.v.lo <= 0.04045 && e.v.hi >= 0.04045))
+                    continue;
+                if (!cj && (e.d.lo > 0.0 || e.d.hi < 0.0))
+                    continue;
+                hit = 1;
+                flat = e.d.lo >= -1e-300 && e.d.hi <= 1e-300;
+            }
+            if (hit && !wid) {
+                *xfree |= flat;
+                return 1;
+            }
+        next:;
         }
-        for (int ch = 0; ch < c->nch && wid; ch++)
-            elo[ch] = fmin(elo[ch], E[ch].v.lo), ehi[ch] = fmax(ehi[ch], E[ch].v.hi);
-        for (int ch = 0; ch < c->nch && lip; ch++) {
-            double d = fmax(fabs(E[ch].d.lo), fabs(E[ch].d.hi));
-            *lip = split >= 0 || !(d <= INFINITY) ? INFINITY : fmax(*lip, d);
-        }
-        for (int ch = 0; ch < c->nch && !hit; ch++) {
-            thr_jet e = E[ch];
-            if (!(e.v.lo <= 0.04045 && e.v.hi >= 0.04045))
-                continue;
-            if (!cj && (e.d.lo > 0.0 || e.d.hi < 0.0))
-                continue;
-            hit = 1;
-            flat = e.d.lo >= -1e-300 && e.d.hi <= 1e-300;
-        }
-        if (hit && !wid) {
-            *xfree |= flat;
-            return 1;
-        }
-    next:;
     }
     for (int ch = 0; ch < c->nch && wid; ch++)
         *wid = fmax(*wid, ehi[ch] - elo[ch]);
@@ -6770,7 +6897,7 @@ static int thr_boxes(worker *w, thr_ctx *cp)
         double *b = &box[4 * --top];
         double x0 = b[0], x1 = b[1], s0 = b[2], s1 = b[3];
         int xfree = 0;
-        if (!spent && ++nbox > THR_BOXES)
+        if (!spent && ++nbox > (w->thr_cone ? THR_CONE_BOXES : THR_BOXES))
             spent = 1;
         if (!spent && !thr_box_at(&c, x0, x1, s0, s1, &xfree, NULL, NULL))
             continue;
@@ -6831,6 +6958,17 @@ static int thr_boxes(worker *w, thr_ctx *cp)
         for (int i = 0; i < 256; i++)
             wid += thr_strip(&c, -R + 2.0 * R * i / 256, -R + 2.0 * R * (i + 1) / 256, a, b, 0);
         w->sliv[3 * k + 2] = fmin(crude, fabs(pk) * (wid + 2.0 * R * 2.4e-9) * (1.0 + 1e-9));
+    }
+    /* a cone-case layer's tangent line that the threshold's curve touches
+     * (a circle of one t touches it) takes boxes without end about that
+     * point: past the work limit, or slivers bounded above THR_CONE_LEFT
+     * in all, the window is left to the scan (thr_heights) */
+    double sum = 0.0;
+    for (size_t k = 0; k < w->nsliv; k++)
+        sum += (w->sliv[3 * k + 1] - w->sliv[3 * k]) * w->sliv[3 * k + 2];
+    if (w->thr_cone && (spent || !(sum <= THR_CONE_LEFT))) {
+        w->nsliv = 0, w->thr_left = 1;
+        return AA_OK;
     }
     int st = AA_OK;
     for (size_t k = 0; k < w->nsliv && !st; k++) {
@@ -6913,15 +7051,25 @@ static int thr_certify(worker *w, int nch, int edges, int *taken)
     *taken = 0;
     c.nk = w->f->type->kinks(w->f->spec.v, c.kink);
     size_t n = (size_t)w->ngl;
-    char *mem = malloc(n * (2 * sizeof(thr_iv) + 5 * sizeof(thr_jet)) + n);
+    char *mem = malloc(n * (6 * sizeof(thr_iv) + 5 * sizeof(thr_jet)) + 2 * n);
     if (!mem)
         return aa_fail(AA_ENOMEM, "out of memory for the threshold's boxes");
     thr_iv *q0 = (thr_iv *)(void *)mem, U = iv_k(w->uc), V = iv_k(w->vc);
-    c.scr = (thr_jet *)(void *)(q0 + 2 * n);
+    c.lc = q0 + 2 * n;
+    c.scr = (thr_jet *)(void *)(c.lc + 4 * n);
     c.used = (unsigned char *)(c.scr + 5 * n);
+    c.paint = c.used + n;
     memset(c.used, 0, n);
     for (int l = 0; l < w->ngl; l++) {
         const gen_layer *g = &w->gl[l];
+        const grad_radial *r = g->rg;
+        for (int k = 0; r && r->cone && k < 2; k++) { /* the cone's forms at the centre */
+            const double complex *f = r->cone == CONE_NESTED ? r->lf[0] : r->lf[k];
+            int im = k && r->cone == CONE_NESTED;
+            double f0 = im ? cimag(f[0]) : creal(f[0]), f1 = im ? cimag(f[1]) : creal(f[1]);
+            double f2 = im ? cimag(f[2]) : creal(f[2]);
+            c.lc[4 * l + k] = iv_add(iv_add(iv_mul(iv_k(f0), U), iv_mul(iv_k(f1), V)), iv_k(f2));
+        }
         if (g->gp) {
             q0[2 * l] = iv_add(iv_add(iv_mul(iv_k(g->gp->tx), U), iv_mul(iv_k(g->gp->ty), V)),
                                iv_k(g->gp->t0));
@@ -6985,8 +7133,8 @@ static int scene_translucent(const worker *w)
 }
 
 /* Once a render: whether its layers are not all of one t and something is
- * translucent (thr_on), and whether they are all linear or radial but the
- * cone case (thr_cert: thr_certify's kinds). */
+ * translucent (thr_on), whether thr_certify takes the scene (thr_cert: no
+ * field), and whether a layer is of the cone case (thr_cone). */
 static void thr_setup(worker *w)
 {
     int mixed = 0;
@@ -6994,9 +7142,9 @@ static void thr_setup(worker *w)
         mixed = !gen_same_t(&w->gl[0], &w->gl[k]);
     w->thr_on = mixed && scene_translucent(w);
     w->thr_cert = !aa_scene_field(w->scene, NULL, NULL, NULL);
+    w->thr_cone = 0;
     for (int k = 0; k < w->ngl; k++)
-        if (w->gl[k].rg && w->gl[k].rg->cone)
-            w->thr_cert = 0;
+        w->thr_cone |= w->gl[k].rg && w->gl[k].rg->cone;
 }
 
 /* The breakpoints sorted, each once. */
@@ -7020,10 +7168,11 @@ static int thr_heights(worker *w, int nch)
     int clear = w->thr_cert ? thr_window_clear(w) : -1;
     if (clear >= 0) {
         size_t n0 = w->npts;
+        w->thr_left = 0;
         int st = thr_certify(w, nch, !clear, &taken);
         if (st)
             return st;
-        if (taken) {
+        if (taken && !w->thr_left) {
             if (w->npts > n0)
                 thr_sort(w);
             return AA_OK;
