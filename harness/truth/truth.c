@@ -359,8 +359,10 @@
  * 2.4e-9 its step), and on each of 256 strips across the window |E(x, s)
  * - E(x, m)| is at most b - a times the largest |dE/dy| on the strip's
  * box (bounded as dE/dx is) where no stop, period's end or piece crosses it,
- * else the width of E's range there, such a strip halved up to 8 times
- * while that is above 1e-6 (thr_strip).  Under a separable filter the
+ * else the width of E's range there (where a piece crosses, each cover's,
+ * and over the piece's x on those rows, where the cover may change between
+ * s and m, the range over both covers together), such a strip halved up to
+ * 8 times while that is above 1e-6 (thr_strip).  Under a separable filter the
  * sliver takes G(m), F = w(s) G(s), times the weight's integral over it,
  * with that bound times the weight's peak twice.  Under a radial filter
  * (F(s) = int dec(E(x, s)) w(x, s) dx, w = W(distance) on the mask's
@@ -5820,6 +5822,7 @@ static int thr_total(const thr_sig *a)
 #define THR_SEG 8        /* one layer's stop segments a box is taken in, one at a time */
 #define THR_ASPECT 16.0  /* boxes are halved across x only if this many times wider than high */
 #define THR_GAP 0x1p-32  /* slivers closer than this times 2 R are merged, the rows between kept */
+#define THR_STRIP_DEPTH 8 /* a strip of the sliver bound halved in x at most this often */
 #define THR_PART 3       /* most cone layers painting part of a box taken painted and not */
 #define THR_CONE_LEFT 1e-13 /* slivers' bound past which a window of a cone layer is scanned */
 #define THR_CONE_BOXES 50000 /* boxes past which a window of a cone layer is scanned */
@@ -6221,9 +6224,12 @@ static void thr_fold(const thr_ctx *c, const thr_jet *a, thr_jet (*ac)[3], thr_j
  * along x on the box: a radial layer padded beyond its last stop over a
  * linear one along y), so the curve is rows, each an event, and the box
  * is halved along y only.  cut0: a piece may cross the box (a cut).  wid
- * (may be NULL): the widest of the channels' ranges of E on the box. */
+ * (may be NULL): the widest of the channels' ranges of E on the box.  un
+ * (may be NULL, with wid): each channel's range merged into un[ch] and
+ * un[3 + ch], for a caller that takes the box in several cases and needs
+ * the range over all of them (thr_box_at). */
 static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1, int cut0,
-                   int *xfree, double *wid, double *lip)
+                   int *xfree, double *wid, double *lip, double *un)
 {
     const worker *w = c->w;
     *xfree = 1;
@@ -6355,8 +6361,11 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
         next:;
         }
     }
-    for (int ch = 0; ch < c->nch && wid; ch++)
+    for (int ch = 0; ch < c->nch && wid; ch++) {
         *wid = fmax(*wid, ehi[ch] - elo[ch]);
+        if (un)
+            un[ch] = fmin(un[ch], elo[ch]), un[3 + ch] = fmax(un[3 + ch], ehi[ch]);
+    }
     return hit;
 }
 
@@ -6711,16 +6720,21 @@ static const thr_fc *thr_fold_of(const thr_ctx *c, const int *wind)
 /* thr_box on a box of a window that pieces enter: its windings found
  * (the comment above), thr_box under each combination, a cut where a
  * piece may cross it; the box not resolved (kept) where more than
- * THR_UNSURE layers' cover is unknown. */
+ * THR_UNSURE layers' cover is unknown.  wid: the widest of each
+ * combination's ranges of E; cross (may be NULL, with wid): the range of E
+ * over every combination together times the length of the pieces' x on the
+ * box's rows within [x0, x1], where the cover may differ from row to row. */
 static int thr_box_at(const thr_ctx *c, double x0, double x1, double s0, double s1, int *xfree,
-                      double *wid, double *lip)
+                      double *wid, double *lip, double *cross)
 {
+    if (cross)
+        *cross = 0.0;
     if (c->npc == 0)
-        return thr_box(c, x0, x1, s0, s1, 0, xfree, wid, lip);
+        return thr_box(c, x0, x1, s0, s1, 0, xfree, wid, lip, NULL);
     worker *w = c->w;
     thr_cache *h = c->cache;
     int *wind = h->wind, unsure[THR_UNSURE], nu = 0, over = 0;
-    double sm = 0.5 * (s0 + s1);
+    double sm = 0.5 * (s0 + s1), xc = 0.0; /* the pieces' x over the rows, on the box */
     aa_strip_winding_left_at(w->strip, w->vc, sm, wind);
     for (size_t k = 0; k < w->nlp; k++) {
         const local_piece *q = &w->lp[k];
@@ -6746,6 +6760,7 @@ static int thr_box_at(const thr_ctx *c, double x0, double x1, double s0, double 
                 wind[q->layer] += q->dir;
             continue;
         }
+        xc += fmin(X.hi, x1) - fmax(X.lo, x0);
         int seen = 0;
         for (int j = 0; j < nu; j++)
             seen |= unsure[j] == q->layer;
@@ -6762,7 +6777,10 @@ static int thr_box_at(const thr_ctx *c, double x0, double x1, double s0, double 
             *lip = INFINITY;
         return 1;
     }
+    /* E's range over every case of the unsure layers together: where a
+     * piece passes between two rows the cover changes, and E with it */
     int hit = 0;
+    double un[6] = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
     for (int m = 0; m < 1 << nu && !(hit && !wid); m++) {
         for (int j = 0; j < nu; j++)
             wind[unsure[j]] = (m >> j) & 1;
@@ -6779,10 +6797,12 @@ static int thr_box_at(const thr_ctx *c, double x0, double x1, double s0, double 
         cc.nst = f->nst, cc.st = f->st, cc.sl = f->sl;
         memcpy(cc.base, f->base, sizeof cc.base);
         cc.used = f->used;
-        hit |= thr_box(&cc, x0, x1, s0, s1, nu > 0, &xf, wid, lip);
+        hit |= thr_box(&cc, x0, x1, s0, s1, nu > 0, &xf, wid, lip, wid ? un : NULL);
         if (nu == 0)
             *xfree = xf;
     }
+    for (int ch = 0; ch < c->nch && wid && cross && nu > 0; ch++)
+        *cross = fmax(*cross, (un[3 + ch] - un[ch]) * fmin(xc, x1 - x0));
     if (nu > 0 && lip)
         *lip = INFINITY; /* E jumps along a column the piece crosses */
     return hit;
@@ -6818,19 +6838,23 @@ static void thr_merge(worker *w)
  * the box, b - a times the largest |dE/dy| where no layer's stop or
  * period's end crosses it (E is then smooth along each column), else the
  * width of E's range, a strip whose bound is still wide (a jump of the
- * paint at a sharp stop) halved in x up to 8 times; times the box's
- * width. */
+ * paint at a sharp stop) halved in x up to THR_STRIP_DEPTH times; times the
+ * box's width.  Where pieces pass the box (thr_box_at), E's range is each
+ * cover's, the widest, except over the pieces' x on the box's rows, where
+ * the cover may differ between s and m: there the range over every cover
+ * together (thr_box_at's cross). */
 static double thr_strip(const thr_ctx *c, double x0, double x1, double a, double b, int depth)
 {
     thr_ctx cy = *c;
     double wid = 0.0, lip = 0.0, xm = 0.5 * (x0 + x1);
     int xfree;
     cy.dy = 1;
-    thr_box_at(&cy, x0, x1, a, b, &xfree, &wid, &lip);
+    double cross;
+    thr_box_at(&cy, x0, x1, a, b, &xfree, &wid, &lip, &cross);
     double d = fmin(wid, (b - a) * lip);
-    if (d > 1e-6 && depth < 8 && xm > x0 && xm < x1)
+    if (d > 1e-6 && depth < THR_STRIP_DEPTH && xm > x0 && xm < x1)
         return thr_strip(c, x0, xm, a, b, depth + 1) + thr_strip(c, xm, x1, a, b, depth + 1);
-    return 2.3 * d * (x1 - x0);
+    return 2.3 * (d * (x1 - x0) + cross);
 }
 
 /* The half chord of the filter's mask at row s, 0 outside it. */
@@ -6899,7 +6923,7 @@ static int thr_boxes(worker *w, thr_ctx *cp)
         int xfree = 0;
         if (!spent && ++nbox > (w->thr_cone ? THR_CONE_BOXES : THR_BOXES))
             spent = 1;
-        if (!spent && !thr_box_at(&c, x0, x1, s0, s1, &xfree, NULL, NULL))
+        if (!spent && !thr_box_at(&c, x0, x1, s0, s1, &xfree, NULL, NULL, NULL))
             continue;
         double xm = 0.5 * (x0 + x1), sm = 0.5 * (s0 + s1);
         int byx = !xfree && x1 - x0 >= THR_ASPECT * (s1 - s0);
