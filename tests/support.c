@@ -672,3 +672,30 @@ double support_method_against_filters(const char *method, const char *what, cons
     print_message("%-28s largest difference over the filters %.1e\n", what, worst);
     return worst;
 }
+
+int support_lib_run(const char *const *args, const char *cache, size_t *failed)
+{
+    int argc = 0, asked;
+    while (args[argc])
+        argc++;
+    aa_plan plan;
+    aa_run_options opt;
+    aa_runfolder *rf = NULL;
+    aa_plan_default(&plan);
+    aa_run_options_default(&opt);
+    if (cache)
+        opt.cache = cache;
+    if (failed)
+        *failed = 0;
+    int st = aa_plan_parse(argc, (char *const *)args, &plan, &opt, &asked);
+    if (!st && !(st = aa_runfolder_create(&plan, &opt, &rf)) && !(st = aa_runfolder_run(rf)))
+        st = aa_runfolder_finish(rf);
+    if (rf && failed) {
+        size_t n;
+        const aa_row *rows = aa_runfolder_rows(rf, &n);
+        for (size_t k = 0; k < n; k++)
+            *failed += rows[k].failed != 0;
+    }
+    aa_runfolder_free(rf);
+    return st;
+}

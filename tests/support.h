@@ -206,6 +206,14 @@ void support_in_child(int (*body)(void *arg), void *arg);
 /* Make a fresh folder $TMPDIR/aabench-TAG-XXXXXX (TMPDIR unset: /tmp) and
  * put its path in buf; 0 on success, -1 with errno on failure. */
 int support_tmpdir(char *buf, size_t len, const char *tag);
+
+/* `run ARGS...` (args[0] "run", NULL-terminated) through the library's run
+ * folder in this process, as the command does but for its printing: the
+ * library's status (its message: aa_last_error()).  cache: the references'
+ * cache, NULL for the default; failed (may be NULL): the cases that failed.
+ * A test runs so what the command's own start does not check, sparing a
+ * process and, where images are written, an OpenImageIO load. */
+int support_lib_run(const char *const *args, const char *cache, size_t *failed);
 /* Remove a file or a folder and everything under it (links are removed,
  * not followed); 0 on success. */
 int support_rmtree(const char *path);

@@ -225,18 +225,7 @@ static int merge_lib(const char *s1, const char *s2, const char *out, char *text
  * checks is their folders, made the same way. */
 static int lib_run(const char *const *args, char *text, size_t cap)
 {
-    int argc = 0, asked;
-    while (args[argc])
-        argc++;
-    aa_plan plan;
-    aa_run_options opt;
-    aa_runfolder *rf = NULL;
-    aa_plan_default(&plan);
-    aa_run_options_default(&opt);
-    int st = aa_plan_parse(argc, (char *const *)args, &plan, &opt, &asked);
-    if (!st && !(st = aa_runfolder_create(&plan, &opt, &rf)) && !(st = aa_runfolder_run(rf)))
-        st = aa_runfolder_finish(rf);
-    aa_runfolder_free(rf);
+    int st = support_lib_run(args, NULL, NULL);
     snprintf(text, cap, "%s", st ? aa_last_error() : "");
     return st;
 }

@@ -48,18 +48,7 @@ static int run_cmd(const char *const *args, int interrupt_after_ms)
  * command does but for its printing; the status, the message in output. */
 static int lib_run(const char *const *args)
 {
-    int argc = 0, asked;
-    while (args[argc])
-        argc++;
-    aa_plan plan;
-    aa_run_options opt;
-    aa_runfolder *rf = NULL;
-    aa_plan_default(&plan);
-    aa_run_options_default(&opt);
-    int st = aa_plan_parse(argc, (char *const *)args, &plan, &opt, &asked);
-    if (!st && !(st = aa_runfolder_create(&plan, &opt, &rf)) && !(st = aa_runfolder_run(rf)))
-        st = aa_runfolder_finish(rf);
-    aa_runfolder_free(rf);
+    int st = support_lib_run(args, NULL, NULL);
     snprintf(output, sizeof output, "%s", st ? aa_last_error() : "");
     return st;
 }

@@ -110,31 +110,12 @@ static int run(const char *const *args)
  * command does but for its printing (the plug-ins are loaded once, by the
  * set-up): the exit status the command gives (1 when a case failed), the
  * library's message in err_text, the failed cases counted in lib_failed. */
-static int lib_failed;
+static size_t lib_failed;
 
 static int lib_run(const char *const *args)
 {
-    int argc = 0, asked;
-    while (args[argc])
-        argc++;
-    aa_plan plan;
-    aa_run_options opt;
-    aa_runfolder *rf = NULL;
-    aa_plan_default(&plan);
-    aa_run_options_default(&opt);
-    opt.cache = getenv("AABENCH_CACHE");
-    lib_failed = 0;
     err_text[0] = '\0';
-    int st = aa_plan_parse(argc, (char *const *)args, &plan, &opt, &asked);
-    if (!st && !(st = aa_runfolder_create(&plan, &opt, &rf)) && !(st = aa_runfolder_run(rf)))
-        st = aa_runfolder_finish(rf);
-    if (rf) {
-        size_t n;
-        const aa_row *rows = aa_runfolder_rows(rf, &n);
-        for (size_t k = 0; k < n; k++)
-            lib_failed += rows[k].failed != 0;
-    }
-    aa_runfolder_free(rf);
+    int st = support_lib_run(args, getenv("AABENCH_CACHE"), &lib_failed);
     if (st) {
         snprintf(err_text, sizeof err_text, "%s", aa_last_error());
         return aa_exit_code(st);
