@@ -409,19 +409,31 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
     return st ? st : panels_rec(oc, m, b, det2, width, depth + 1, out);
 }
 
-int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel **out,
-                       size_t *n)
+int area_offset_panels_append(const aa_offset_curve *oc, double t0, double t1, ar_panel **arr,
+                              size_t *n, size_t *cap)
 {
-    panel_buf buf = {NULL, 0, 0};
+    panel_buf buf = {*arr, *n, *cap};
     double a = fmin(t0, t1), b = fmax(t0, t1);
     double det2 = 0.5 * fabs(oc->m[0] * oc->m[3] - oc->m[2] * oc->m[1]);
     int st = panels_rec(oc, a, b, det2, b - a, 0, &buf);
+    *arr = buf.p, *cap = buf.cap; /* grown, even on a failure */
+    if (!st)
+        *n = buf.n;
+    return st;
+}
+
+int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel **out,
+                       size_t *n)
+{
+    ar_panel *p = NULL;
+    size_t np = 0, cap = 0;
+    int st = area_offset_panels_append(oc, t0, t1, &p, &np, &cap);
     if (st) {
-        free(buf.p);
+        free(p);
         return st;
     }
-    *out = buf.p;
-    *n = buf.n;
+    *out = p;
+    *n = np;
     return AA_OK;
 }
 
