@@ -350,10 +350,14 @@ typedef struct panel_buf {
     size_t n, cap;
 } panel_buf;
 
+/* The Bernstein ellipses' rho tried on a panel, ascending; NRHO of them */
+#define NRHO 12
+static const double rhos[NRHO] = {1.25, 1.5, 2, 3, 4, 6, 8, 12, 16, 32, 64, 128};
+
+/* lr: 2 AR_QUAD_NMAX log rho for each rho, made once per piece */
 static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2, double width,
-                      int depth, panel_buf *out)
+                      const double *lr, int depth, panel_buf *out)
 {
-    static const double rhos[] = {1.25, 1.5, 2, 3, 4, 6, 8, 12, 16, 32, 64, 128};
     double m = 0.5 * (a + b), h = 0.5 * (b - a), bx[4] = {0}, by[4] = {0};
     int ell = oc->base == AA_OFFSET_ELLIPSE;
     double up[2], vp[2], te, q[4];
@@ -370,14 +374,14 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
     else if (!ell)
         panel_pre_cubic(oc, bx, by, h, &pre);
     double best = INFINITY, bR = 0, bM = 0;
-    const double logtol = log(AR_QUAD_TOL), nmax = AR_QUAD_NMAX;
-    for (size_t k = 0; k < sizeof rhos / sizeof *rhos; k++) {
+    const double logtol = log(AR_QUAD_TOL);
+    for (size_t k = 0; k < NRHO; k++) {
         double rho = rhos[k], R = 0.5 * h * (rho + 1.0 / rho);
         double M = (ell ? panel_M_ellipse(oc, up, vp, h, R) : panel_M(&pre, R)) * det2 *
                    (1.0 + 1e-12);
         if (!(M < INFINITY))
             break; /* larger discs only hold more */
-        double e = log_factor(h, M, rho) - 2.0 * nmax * log(rho);
+        double e = log_factor(h, M, rho) - lr[k];
         if (e < best)
             best = e, bR = R, bM = M;
     }
@@ -405,8 +409,8 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
                        "bound (%g px^2) it cannot meet (its speed or curvature within rounding "
                        "of 0 there)",
                        m, AR_QUAD_TOL);
-    int st = panels_rec(oc, a, m, det2, width, depth + 1, out);
-    return st ? st : panels_rec(oc, m, b, det2, width, depth + 1, out);
+    int st = panels_rec(oc, a, m, det2, width, lr, depth + 1, out);
+    return st ? st : panels_rec(oc, m, b, det2, width, lr, depth + 1, out);
 }
 
 int area_offset_panels_append(const aa_offset_curve *oc, double t0, double t1, ar_panel **arr,
@@ -415,7 +419,11 @@ int area_offset_panels_append(const aa_offset_curve *oc, double t0, double t1, a
     panel_buf buf = {*arr, *n, *cap};
     double a = fmin(t0, t1), b = fmax(t0, t1);
     double det2 = 0.5 * fabs(oc->m[0] * oc->m[3] - oc->m[2] * oc->m[1]);
-    int st = panels_rec(oc, a, b, det2, b - a, 0, &buf);
+    double lr[NRHO];
+    const double nmax = AR_QUAD_NMAX;
+    for (int k = 0; k < NRHO; k++)
+        lr[k] = 2.0 * nmax * log(rhos[k]);
+    int st = panels_rec(oc, a, b, det2, b - a, lr, 0, &buf);
     *arr = buf.p, *cap = buf.cap; /* grown, even on a failure */
     if (!st)
         *n = buf.n;
