@@ -2312,23 +2312,13 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
         q->ote = a < b ? a : b;
         q->ote2 = n > 1 ? (a < b ? b : a) : INFINITY;
     }
-    ar_panel *pan;
-    size_t np;
-    int st = area_offset_panels(&p->oc, p->ot0, p->ot1, &pan, &np);
+    size_t n0 = S->npan;
+    int st = area_offset_panels_append(&p->oc, p->ot0, p->ot1, &S->pan, &S->npan, &S->cappan);
     if (st)
         return st;
-    ar_panel *all = realloc(S->pan, (S->npan + np) * sizeof *all);
-    if (!all) {
-        free(pan);
-        return aa_fail(AA_ENOMEM, "out of memory for offset panels");
-    }
-    memcpy(all + S->npan, pan, np * sizeof *pan);
-    free(pan);
-    S->pan = all;
-    q->pan0 = S->npan;
-    q->npan = np;
+    q->pan0 = n0;
+    q->npan = S->npan - n0;
     q->quad = &S->quad;
-    S->npan += np;
     return AA_OK;
 }
 

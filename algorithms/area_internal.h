@@ -281,8 +281,8 @@ typedef struct ar_state {
      * 1 under even-odd, all under nonzero (colour_of's one test) */
     int *inside;
     ar_worker *workers;
-    ar_panel *pan; /* the offset pieces' panels */
-    size_t npan;
+    ar_panel *pan; /* the offset pieces' panels (cappan allocated) */
+    size_t npan, cappan;
     double *ytab; /* the offset pieces' tables' nodes (capyt allocated) */
     size_t nyt, capyt;
     ar_quad quad;
@@ -681,12 +681,15 @@ int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo
                              const int *w);
 
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
- * (*out to be freed); 1/2 the integral of (P - P(ta)) x P' from t = ta to
+ * (*out to be freed), or appended to an array (*n of *cap used, grown
+ * geometrically; on a failure *n is as it was); 1/2 the integral of (P - P(ta)) x P' from t = ta to
  * tb, the segment between the part and its chord, in px^2 (with its
  * proven bound, AR_QUAD_TOL per panel it meets). */
 int area_quad_init(ar_quad *q);
 int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel **out,
                        size_t *n);
+int area_offset_panels_append(const aa_offset_curve *oc, double t0, double t1, ar_panel **arr,
+                              size_t *n, size_t *cap);
 double area_offset_segment(const ar_piece *pc, double ta, double tb);
 /* A bound on the speed |P'| of an offset curve or evolute (unmapped, its
  * own units) on each disc |t - m| <= R[k], k < n, R ascending: INFINITY

@@ -184,46 +184,124 @@ static void taylor(const aa_offset_curve *oc, double m, double *bx, double *by)
 
 /* The bound on |f| (the curve's own units) over the disc |s| <= R of a
  * panel of half width h, for start points on the panel; INFINITY if a
- * denominator may vanish there. */
-static double panel_M(const aa_offset_curve *oc, const double *bx, const double *by, double h,
-                      double R)
+ * denominator may vanish there.  Made in two steps: panel_pre, once per
+ * panel, the polynomials in s and the terms that do not depend on R (the
+ * panel tries up to a dozen discs), and panel_M, per disc, their sums. */
+typedef struct panel_pre {
+    int kind; /* 0 offset, 1 evolute, 2 stop offset, 3 stop evolute, -1 none */
+    double ux[3], uy[3], L2[5], c[4], G[6], dd[4], cp[3];
+    double Qx[2], Qy[2], Q2[3], QQ[2], X, mte;
+    double A, d;
+} panel_pre;
+
+static void panel_pre_cubic(const aa_offset_curve *oc, const double *bx, const double *by,
+                            double h, panel_pre *P)
 {
-    double ux[3], uy[3], vx[2], vy[2], L2[5], c[4], G[6], t3[6];
-    speed_polys(bx, by, ux, uy, vx, vy, L2, c);
-    double Uux = pabs(ux, 3, 0, R), Uuy = pabs(uy, 3, 0, R), Uu = hypot(Uux, Uuy);
+    double vx[2], vy[2], t3[6];
+    speed_polys(bx, by, P->ux, P->uy, vx, vy, P->L2, P->c);
+    const double *ux = P->ux, *uy = P->uy;
     /* the start point's distance from B(m): |B(t) - B(m)| on the panel,
      * plus the normal's length */
-    double A = hypot(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
+    P->A = hypot(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
     if (!oc->evolute) {
-        double lo = plow(L2, 5, R), d = fabs(oc->d);
-        if (!(lo > 0.0))
-            return INFINITY;
-        A += d;
-        pmul(bx, 4, uy, 3, G); /* D x B' with D = B - B(m): Bx B'y - By B'x */
+        P->kind = 0;
+        P->d = fabs(oc->d);
+        P->A += P->d;
+        pmul(bx, 4, uy, 3, P->G); /* D x B' with D = B - B(m): Bx B'y - By B'x */
         pmul(by, 4, ux, 3, t3);
         for (int k = 0; k < 6; k++)
-            G[k] -= t3[k];
-        return (pabs(G, 6, 0, R) + A * Uu + d * sqrt(pabs(L2, 5, 0, R))) *
-               (1.0 + d * pabs(c, 4, 0, R) / (lo * sqrt(lo)));
+            P->G[k] -= t3[k];
+        return;
     }
-    double cl = plow(c, 4, R), ch = plow(c, 4, h);
-    if (!(cl > 0.0) || !(ch > 0.0))
-        return INFINITY;
-    double L2h = pabs(L2, 5, 0, h);
-    A += L2h * sqrt(L2h) / ch; /* |r| = L^3/|c| on the panel */
-    double dd[4], t2[4], cp[3], w[2] = {6 * bx[3], 6 * by[3]};
-    pmul(ux, 3, vx, 2, dd);
+    double ch = plow(P->c, 4, h);
+    if (!(ch > 0.0)) {
+        P->kind = -1;
+        return;
+    }
+    P->kind = 1;
+    double L2h = pabs(P->L2, 5, 0, h);
+    P->A += L2h * sqrt(L2h) / ch; /* |r| = L^3/|c| on the panel */
+    double t2[4], w[2] = {6 * bx[3], 6 * by[3]};
+    pmul(ux, 3, vx, 2, P->dd);
     pmul(uy, 3, vy, 2, t2);
     for (int k = 0; k < 4; k++)
-        dd[k] += t2[k];
+        P->dd[k] += t2[k];
     for (int k = 0; k < 3; k++)
-        cp[k] = ux[k] * w[1] - uy[k] * w[0];
-    pmul(bx, 4, ux, 3, G); /* D . B' */
+        P->cp[k] = ux[k] * w[1] - uy[k] * w[0];
+    pmul(bx, 4, ux, 3, P->G); /* D . B' */
     pmul(by, 4, uy, 3, t3);
     for (int k = 0; k < 6; k++)
-        G[k] += t3[k];
-    return (3 * pabs(dd, 4, 0, R) * pabs(c, 4, 0, R) + pabs(L2, 5, 0, R) * pabs(cp, 3, 0, R)) *
-           (pabs(G, 6, 0, R) + A * Uu) / (cl * cl);
+        P->G[k] += t3[k];
+}
+
+/* panel_pre for a cubic in the factored form about te (q: Q's
+ * coefficients, aa__offset_stop). */
+static void panel_pre_stop(const aa_offset_curve *oc, const double *bx, const double *by,
+                           double m, double te, const double *q, double h, panel_pre *P)
+{
+    double *Qx = P->Qx, *Qy = P->Qy, *Q2 = P->Q2, t1[3], t2[5];
+    Qx[0] = q[0] + q[1] * m, Qx[1] = q[1];
+    Qy[0] = q[2] + q[3] * m, Qy[1] = q[3];
+    pmul(Qx, 2, Qx, 2, Q2);
+    pmul(Qy, 2, Qy, 2, t1);
+    for (int k = 0; k < 3; k++)
+        Q2[k] += t1[k];
+    P->X = fabs(Qx[0] * q[3] - Qy[0] * q[1]), P->mte = fabs(m - te);
+    double Bdh = hypot(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
+    if (!oc->evolute) {
+        P->kind = 2;
+        P->d = fabs(oc->d);
+        P->A = Bdh;
+        pmul(bx, 4, Qy, 2, P->G); /* (B - B(m)) x Q */
+        pmul(by, 4, Qx, 2, t2);
+        for (int k = 0; k < 5; k++)
+            P->G[k] -= t2[k];
+        return;
+    }
+    if (!(P->X > 0.0)) {
+        P->kind = -1;
+        return;
+    }
+    P->kind = 3;
+    pmul(bx, 4, Qx, 2, P->G); /* (B - B(m)) . Q */
+    pmul(by, 4, Qy, 2, t2);
+    for (int k = 0; k < 5; k++)
+        P->G[k] += t2[k];
+    P->QQ[0] = Qx[0] * q[1] + Qy[0] * q[3], P->QQ[1] = q[1] * q[1] + q[3] * q[3];
+    /* |Ea - B(m)|: |B(ta) - B(m)| + |ta - te| |Q(ta)|^2/|X| on the panel */
+    P->A = Bdh + (P->mte + h) * pabs(Q2, 3, 0, h) / P->X;
+}
+
+static double panel_M(const panel_pre *P, double R)
+{
+    if (P->kind < 0)
+        return INFINITY;
+    if (P->kind >= 2) {
+        double sd = P->mte + R, Qmax = sqrt(pabs(P->Q2, 3, 0, R)), X = P->X;
+        if (P->kind == 2) {
+            double lo = plow(P->Q2, 3, R), d = P->d;
+            if (!(lo > 0.0))
+                return INFINITY;
+            return (pabs(P->G, 5, 0, R) + (P->A + d) * Qmax + d * Qmax) *
+                   (sd + d * X / (lo * sqrt(lo)));
+        }
+        return (pabs(P->G, 5, 0, R) + P->A * Qmax) *
+               (pabs(P->Q2, 3, 0, R) + 3 * sd * pabs(P->QQ, 2, 0, R)) / X;
+    }
+    double Uux = pabs(P->ux, 3, 0, R), Uuy = pabs(P->uy, 3, 0, R), Uu = hypot(Uux, Uuy);
+    if (P->kind == 0) {
+        double lo = plow(P->L2, 5, R), d = P->d;
+        if (!(lo > 0.0))
+            return INFINITY;
+        return (pabs(P->G, 6, 0, R) + P->A * Uu + d * sqrt(pabs(P->L2, 5, 0, R))) *
+               (1.0 + d * pabs(P->c, 4, 0, R) / (lo * sqrt(lo)));
+    }
+    double cl = plow(P->c, 4, R);
+    if (!(cl > 0.0))
+        return INFINITY;
+    return (3 * pabs(P->dd, 4, 0, R) * pabs(P->c, 4, 0, R) +
+            pabs(P->L2, 5, 0, R) * pabs(P->cp, 3, 0, R)) *
+           (pabs(P->G, 6, 0, R) + P->A * Uu) / (cl * cl);
 }
 
 /* panel_M for the ellipse: u', v' its semi-diameters at m (B(m) - c and
@@ -252,42 +330,6 @@ static double panel_M_ellipse(const aa_offset_curve *oc, const double *up, const
     return 3.0 * dot * (Bd + A) * Uu / J;
 }
 
-/* panel_M for a cubic in the factored form about te (q: Q's
- * coefficients, aa__offset_stop). */
-static double panel_M_stop(const aa_offset_curve *oc, const double *bx, const double *by,
-                           double m, double te, const double *q, double h, double R)
-{
-    double Qx[2] = {q[0] + q[1] * m, q[1]}, Qy[2] = {q[2] + q[3] * m, q[3]};
-    double Q2[3], t1[3], G[5], t2[5];
-    pmul(Qx, 2, Qx, 2, Q2);
-    pmul(Qy, 2, Qy, 2, t1);
-    for (int k = 0; k < 3; k++)
-        Q2[k] += t1[k];
-    double X = fabs(Qx[0] * q[3] - Qy[0] * q[1]), sd = fabs(m - te) + R;
-    double Qmax = sqrt(pabs(Q2, 3, 0, R)), Bdh = hypot(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
-    if (!oc->evolute) {
-        double lo = plow(Q2, 3, R), d = fabs(oc->d);
-        if (!(lo > 0.0))
-            return INFINITY;
-        pmul(bx, 4, Qy, 2, G); /* (B - B(m)) x Q */
-        pmul(by, 4, Qx, 2, t2);
-        for (int k = 0; k < 5; k++)
-            G[k] -= t2[k];
-        return (pabs(G, 5, 0, R) + (Bdh + d) * Qmax + d * Qmax) *
-               (sd + d * X / (lo * sqrt(lo)));
-    }
-    if (!(X > 0.0))
-        return INFINITY;
-    pmul(bx, 4, Qx, 2, G); /* (B - B(m)) . Q */
-    pmul(by, 4, Qy, 2, t2);
-    for (int k = 0; k < 5; k++)
-        G[k] += t2[k];
-    double QQ[2] = {Qx[0] * q[1] + Qy[0] * q[3], q[1] * q[1] + q[3] * q[3]};
-    /* |Ea - B(m)|: |B(ta) - B(m)| + |ta - te| |Q(ta)|^2/|X| on the panel */
-    double A = Bdh + (fabs(m - te) + h) * pabs(Q2, 3, 0, h) / X;
-    return (pabs(G, 5, 0, R) + A * Qmax) * (pabs(Q2, 3, 0, R) + 3 * sd * pabs(QQ, 2, 0, R)) / X;
-}
-
 /* The ellipse's semi-diameters at m: u' = B(m) - c, v' = B'(m). */
 static void ellipse_at(const aa_offset_curve *oc, double m, double *up, double *vp)
 {
@@ -308,10 +350,14 @@ typedef struct panel_buf {
     size_t n, cap;
 } panel_buf;
 
+/* The Bernstein ellipses' rho tried on a panel, ascending; NRHO of them */
+#define NRHO 12
+static const double rhos[NRHO] = {1.25, 1.5, 2, 3, 4, 6, 8, 12, 16, 32, 64, 128};
+
+/* lr: 2 AR_QUAD_NMAX log rho for each rho, made once per piece */
 static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2, double width,
-                      int depth, panel_buf *out)
+                      const double *lr, int depth, panel_buf *out)
 {
-    static const double rhos[] = {1.25, 1.5, 2, 3, 4, 6, 8, 12, 16, 32, 64, 128};
     double m = 0.5 * (a + b), h = 0.5 * (b - a), bx[4] = {0}, by[4] = {0};
     int ell = oc->base == AA_OFFSET_ELLIPSE;
     double up[2], vp[2], te, q[4];
@@ -322,17 +368,20 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
     } else {
         taylor(oc, m, bx, by);
     }
+    panel_pre pre;
+    if (stop && !ell)
+        panel_pre_stop(oc, bx, by, m, te, q, h, &pre);
+    else if (!ell)
+        panel_pre_cubic(oc, bx, by, h, &pre);
     double best = INFINITY, bR = 0, bM = 0;
-    const double logtol = log(AR_QUAD_TOL), nmax = AR_QUAD_NMAX;
-    for (size_t k = 0; k < sizeof rhos / sizeof *rhos; k++) {
+    const double logtol = log(AR_QUAD_TOL);
+    for (size_t k = 0; k < NRHO; k++) {
         double rho = rhos[k], R = 0.5 * h * (rho + 1.0 / rho);
-        double M = (ell    ? panel_M_ellipse(oc, up, vp, h, R)
-                    : stop ? panel_M_stop(oc, bx, by, m, te, q, h, R)
-                           : panel_M(oc, bx, by, h, R)) *
-                   det2 * (1.0 + 1e-12);
+        double M = (ell ? panel_M_ellipse(oc, up, vp, h, R) : panel_M(&pre, R)) * det2 *
+                   (1.0 + 1e-12);
         if (!(M < INFINITY))
             break; /* larger discs only hold more */
-        double e = log_factor(h, M, rho) - 2.0 * nmax * log(rho);
+        double e = log_factor(h, M, rho) - lr[k];
         if (e < best)
             best = e, bR = R, bM = M;
     }
@@ -360,23 +409,39 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
                        "bound (%g px^2) it cannot meet (its speed or curvature within rounding "
                        "of 0 there)",
                        m, AR_QUAD_TOL);
-    int st = panels_rec(oc, a, m, det2, width, depth + 1, out);
-    return st ? st : panels_rec(oc, m, b, det2, width, depth + 1, out);
+    int st = panels_rec(oc, a, m, det2, width, lr, depth + 1, out);
+    return st ? st : panels_rec(oc, m, b, det2, width, lr, depth + 1, out);
+}
+
+int area_offset_panels_append(const aa_offset_curve *oc, double t0, double t1, ar_panel **arr,
+                              size_t *n, size_t *cap)
+{
+    panel_buf buf = {*arr, *n, *cap};
+    double a = fmin(t0, t1), b = fmax(t0, t1);
+    double det2 = 0.5 * fabs(oc->m[0] * oc->m[3] - oc->m[2] * oc->m[1]);
+    double lr[NRHO];
+    const double nmax = AR_QUAD_NMAX;
+    for (int k = 0; k < NRHO; k++)
+        lr[k] = 2.0 * nmax * log(rhos[k]);
+    int st = panels_rec(oc, a, b, det2, b - a, lr, 0, &buf);
+    *arr = buf.p, *cap = buf.cap; /* grown, even on a failure */
+    if (!st)
+        *n = buf.n;
+    return st;
 }
 
 int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel **out,
                        size_t *n)
 {
-    panel_buf buf = {NULL, 0, 0};
-    double a = fmin(t0, t1), b = fmax(t0, t1);
-    double det2 = 0.5 * fabs(oc->m[0] * oc->m[3] - oc->m[2] * oc->m[1]);
-    int st = panels_rec(oc, a, b, det2, b - a, 0, &buf);
+    ar_panel *p = NULL;
+    size_t np = 0, cap = 0;
+    int st = area_offset_panels_append(oc, t0, t1, &p, &np, &cap);
     if (st) {
-        free(buf.p);
+        free(p);
         return st;
     }
-    *out = buf.p;
-    *n = buf.n;
+    *out = p;
+    *n = np;
     return AA_OK;
 }
 
