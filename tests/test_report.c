@@ -141,7 +141,8 @@ static void test_header_is_the_table(void **state)
      * after it */
     size_t old_len = (size_t)(strchr(old_csv, '\n') - old_csv);
     assert_int_equal(strncmp(old_csv, want, old_len), 0);
-    assert_true(want[old_len] == ',' && strstr(want + old_len, ",lag,flip,edge_rmse,init_seconds,init_cpu_seconds\n"));
+    assert_true(want[old_len] == ',' &&
+                strstr(want + old_len, ",lag,flip,edge_rmse,init_seconds,init_cpu_seconds\n"));
     aa_row *rows;
     size_t n;
     assert_int_equal(aa_rows_read_csv(path, &rows, &n), AA_OK);
