@@ -441,8 +441,8 @@
  * slivers' bounds pass THR_CONE_LEFT (1e-13) in all is left to the scan.
  * On a 24x24 document (a linear gradient along y, #000 to #404040, under a
  * cone-case radial gradient at fill-opacity 0.6, focus (3, 10) and fr 1.5
- * outside the circle (14, 12) of radius 5, dark stops) 1 pixel of 576 is scanned (576 before), 4 under cone:r=1
- * (576), the values within 8.9e-16 of the scan's (1.3e-15 under
+ * outside the circle (14, 12) of radius 5, dark stops) 1 pixel of 576 is
+ * scanned (576 before), 4 under cone:r=1 (576), the values within 8.9e-16 of the scan's (1.3e-15 under
  * cone:r=1), each difference inside both bounds, largest bound 1.7e-13
  * (1.8e-13 before); 5.48e9 instructions against 4.16e9 scanned
  * (`valgrind --tool=callgrind aabench truth -p svg:file=F --no-cache
