@@ -442,11 +442,12 @@
  * On a 24x24 document (a linear gradient along y, #000 to #404040, under a
  * cone-case radial gradient at fill-opacity 0.6, focus (3, 10) and fr 1.5
  * outside the circle (14, 12) of radius 5, dark stops) 1 pixel of 576 is
- * scanned (576 before), 4 under cone:r=1 (576), the values within 8.9e-16 of the scan's (1.3e-15 under
- * cone:r=1), each difference inside both bounds, largest bound 1.7e-13
- * (1.8e-13 before); 5.48e9 instructions against 4.16e9 scanned
- * (`valgrind --tool=callgrind aabench truth -p svg:file=F --no-cache
- * --threads 1`; the pixel left to the scan took its 50000 boxes first).
+ * scanned (576 before), 4 under cone:r=1 (576), the values within 8.9e-16
+ * of the scan's (1.3e-15 under cone:r=1), each difference inside both
+ * bounds, largest bound 1.7e-13 (1.8e-13 before); 5.48e9 instructions
+ * against 4.16e9 scanned (`valgrind --tool=callgrind aabench truth -p
+ * svg:file=F --no-cache --threads 1`; the pixel left to the scan took its
+ * 50000 boxes first).
  * On a 16x16 one (focus (-4, 5), fr 6, outside the circle (36, 11) of
  * radius 6.5: the tangent lines nearly parallel, an arc of the curve
  * between them) 256 pixels were scanned, none now, 3.26e9 instructions
