@@ -100,6 +100,24 @@ void support_reference(const aa_scene *scene, const support_view *v, aa_image *o
     aa_scene_free(placed);
 }
 
+aa_scene *support_scene_part(const aa_scene *s, int sw, int sh, int x0, int y0, int w, int h)
+{
+    aa_scene *part = aa_scene_transform(s, (double)sw / w, (double)sh / h, -(double)x0 / w,
+                                        -(double)y0 / h);
+    assert_non_null(part);
+    return part;
+}
+
+void support_reference_part(const aa_scene *s, int sw, int sh, int x0, int y0, int w, int h,
+                            const char *filter, aa_image *out, aa_image *bound,
+                            aa_truth_stats *stats)
+{
+    aa_scene *part = support_scene_part(s, sw, sh, x0, y0, w, h);
+    support_view v = {w, h, 0, 0, 0, filter, 1, 1, 0};
+    support_reference(part, &v, out, bound, stats);
+    aa_scene_free(part);
+}
+
 void support_pattern_reference(const char *pattern, const support_view *v, aa_image *out,
                                aa_image *bound, aa_truth_stats *stats)
 {
@@ -653,9 +671,7 @@ double support_method_against_part(const char *method, const char *what, const a
                                    int sw, int sh, int x0, int y0, int w, int h,
                                    const char *filter)
 {
-    aa_scene *part = aa_scene_transform(s, (double)sw / w, (double)sh / h, -(double)x0 / w,
-                                        -(double)y0 / h);
-    assert_non_null(part);
+    aa_scene *part = support_scene_part(s, sw, sh, x0, y0, w, h);
     char name[128];
     snprintf(name, sizeof name, "%s, [%d, %d) x [%d, %d)", what, x0, x0 + w, y0, y0 + h);
     double worst = support_method_against_reference(method, name, part, w, h, filter);

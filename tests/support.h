@@ -68,6 +68,17 @@ void support_render(const char *method, const aa_scene *scene, const char *filte
  * `stats` may be NULL. */
 void support_reference(const aa_scene *scene, const support_view *v, aa_image *out,
                        aa_image *bound, aa_truth_stats *stats);
+/* The scene mapped (x' = (sw x - x0) / w, y' likewise) so that the pixels
+ * [x0, x0 + w) x [y0, y0 + h) of its sw x sh view make a w x h view of
+ * their own: the same picture on the same pixel squares, the rest of it
+ * still there for a filter's cells that reach beyond them (free it). */
+aa_scene *support_scene_part(const aa_scene *s, int sw, int sh, int x0, int y0, int w, int h);
+/* The reference of those pixels alone, as support_reference of that view
+ * (still, one thread): a check of a few pixels need not integrate the
+ * view's others. */
+void support_reference_part(const aa_scene *s, int sw, int sh, int x0, int y0, int w, int h,
+                            const char *filter, aa_image *out, aa_image *bound,
+                            aa_truth_stats *stats);
 /* Fails the test if an image (3 channels) is more than tol from the
  * reference r anywhere, naming the pixel and channel; returns the largest
  * difference. */
@@ -79,10 +90,7 @@ double support_within_reference(const char *what, const char *filter, const aa_i
 double support_method_against_reference(const char *method, const char *what, const aa_scene *s,
                                         int w, int h, const char *filter);
 /* The same on the pixels [x0, x0 + w) x [y0, y0 + h) of the scene's sw x
- * sh view: the scene mapped (x' = (sw x - x0) / w, y' likewise) so that
- * they make a w x h view of their own, the same picture on the same pixel
- * squares, the rest of it still there for the filter's cells that reach
- * beyond them. */
+ * sh view (support_scene_part). */
 double support_method_against_part(const char *method, const char *what, const aa_scene *s,
                                    int sw, int sh, int x0, int y0, int w, int h,
                                    const char *filter);

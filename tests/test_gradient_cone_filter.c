@@ -308,27 +308,23 @@ static void reference(const aa_scene *s, const filt *f, aa_image *ref, aa_image 
 }
 
 /* The reference of pixel (i, j) alone under f, its value and bound
- * (*bd): s mapped by aa_scene_transform so that the pixel is a view of
- * its own, the same picture on the same pixel square; its bound within
- * 1e-12 as reference's, *max_bound the largest so far.  A check of a few
+ * (*bd): s mapped so that the pixel is a view of its own
+ * (support_reference_part), the same picture on the same pixel square;
+ * its bound within 1e-12 as reference's, *max_bound the largest so far.  A check of a few
  * pixels against the 2-D quadrature need not integrate the view's other
  * pixels (check_2d_spread and test_beside: 6 to 12 of its 192). */
 static double reference_pixel(const aa_scene *s, const filt *f, int i, int j, double *bd,
                               double *max_bound)
 {
-    aa_scene *part = aa_scene_transform(s, W, H, -i, -j);
-    assert_non_null(part);
-    support_view v = {1, 1, 0, 0, 0, f->spec, 1, 1, 0};
     aa_image ref, bound;
     aa_truth_stats stats;
-    support_reference(part, &v, &ref, &bound, &stats);
+    support_reference_part(s, W, H, i, j, 1, 1, f->spec, &ref, &bound, &stats);
     if (!(stats.max_bound <= 1e-12))
         fail_msg("%s: pixel (%d, %d)'s bound %.3g", f->spec, i, j, stats.max_bound);
     double got = aa_pixel(&ref, 0, 0)[0];
     *bd = *aa_pixel(&bound, 0, 0), *max_bound = fmax(*max_bound, stats.max_bound);
     aa_image_free(&ref);
     aa_image_free(&bound);
-    aa_scene_free(part);
     return got;
 }
 
