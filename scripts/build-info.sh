@@ -3,7 +3,8 @@
 # (harness/bench/context.c): the commit the program was built from and
 # whether the tree was dirty, and the libraries' versions from pkg-config.
 # The Makefile writes it into build/build-info.h, replacing it only when it
-# changes.  A program run inside a git checkout asks git at run time instead.
+# changes.  A program run inside a git checkout also records the checkout's
+# commit at run time, beside this one.
 commit=$(git rev-parse HEAD 2>/dev/null || echo unknown)
 if [ "$commit" = unknown ]; then
     dirty=-1

@@ -626,6 +626,30 @@ static void test_results_round_trip(void **state)
     for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
         if (!strstr(t, keys[k]))
             fail_msg("results.json lacks %s", keys[k]);
+    /* the commit is the build's; the checkout the test lives in, as git
+     * itself names it here, is recorded beside it ("" outside one) */
+    assert_string_equal(ctx.commit_from, "build");
+    char exe[4096], cmd[4200], head[128] = "";
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    assert_true(len > 0);
+    exe[len] = '\0';
+    *strrchr(exe, '/') = '\0';
+    snprintf(cmd, sizeof cmd, "git -C '%s' rev-parse HEAD 2>/dev/null", exe);
+    FILE *git = popen(cmd, "r");
+    assert_non_null(git);
+    if (!fgets(head, sizeof head, git))
+        head[0] = '\0';
+    int git_status = pclose(git);
+    head[strcspn(head, "\n")] = '\0';
+    if (git_status == 0 && head[0]) {
+        assert_string_equal(ctx.checkout, head);
+        assert_true(ctx.checkout_dirty == 0 || ctx.checkout_dirty == 1);
+        snprintf(cmd, sizeof cmd, "\"checkout\": \"%s\"", head);
+        assert_non_null(strstr(t, cmd));
+    } else {
+        assert_string_equal(ctx.checkout, "");
+        assert_non_null(strstr(t, "\"checkout\": null"));
+    }
     free(rows);
 }
 

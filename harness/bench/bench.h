@@ -451,14 +451,20 @@ int aa_rows_parse_json(const char *name, const char *data, size_t len, aa_row **
 double aa_rows_parallelism(const aa_row *rows, size_t n, size_t *least, size_t *most);
 
 /* What a results file says of the run that made it (context.c): the
- * commit (git, run in the program's checkout; else the one it was built
- * from), the compiler and its flags, the CPU, cores, threads, OS and
+ * commit the program was built from (and the commit and state of the
+ * checkout it lives in at run time, which may have moved on), the compiler and its flags, the CPU, cores, threads, OS and
  * kernel, the libraries' versions, the date, the load and the command
  * line. */
+/* The commit the program was built from ("unknown" outside a git checkout)
+ * and, into *dirty, whether the tree was dirty then (1, 0, -1 unknown). */
+const char *aa_build_commit(int *dirty);
+
 typedef struct aa_context {
     char commit[64];
     int dirty;             /* 1 dirty, 0 clean, -1 unknown */
-    char commit_from[16];  /* "checkout" (git at run time) or "build" */
+    char commit_from[16];  /* "build": the commit is the build's */
+    char checkout[64];     /* the checkout's commit at run time, "" outside one */
+    int checkout_dirty;    /* its state then: 1 dirty, 0 clean, -1 unknown */
     char compiler[128], cflags[512];
     char cpu[256];
     int cores, cores_allowed, threads;

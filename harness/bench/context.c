@@ -5,12 +5,15 @@
  * the OS and kernel, the libraries' versions, the date, the load and the
  * exact command line.
  *
- * The commit is asked of git at run time when the program lives in a git
- * checkout (git rev-parse HEAD; dirty when git status --porcelain lists a
- * tracked file changed); otherwise it is the one compiled in by the
- * Makefile (build/build-info.h, written at build time, with the libraries'
- * versions from pkg-config: OpenImageIO's is read there, so no image module
- * is loaded to name it).  GSL's version is also read at run time.
+ * The commit is the one the program was built from, compiled in by the
+ * Makefile (build/build-info.h, written at build time, with whether the
+ * tree was dirty and the libraries' versions from pkg-config: OpenImageIO's
+ * is read there, so no image module is loaded to name it).  When the
+ * program lives in a git checkout, the checkout's own commit and state at
+ * run time are recorded beside it (git rev-parse HEAD; dirty when git status
+ * --porcelain lists a tracked file changed): a checkout committed to or
+ * edited after the build says so, and a run does not take the checkout's
+ * commit for the program's.  GSL's version is also read at run time.
  */
 #define _GNU_SOURCE /* sched_getaffinity, CPU_COUNT */
 #include "bench.h"
@@ -105,8 +108,9 @@ static int first_line(char *const argv[], char *buf, size_t len, int *any_output
     return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : -1;
 }
 
-/* The commit of the checkout the program lives in; 0 if found. */
-static int commit_at_run_time(aa_context *c)
+/* The commit and state of the checkout the program lives in, into
+ * c->checkout and c->checkout_dirty; 0 if found. */
+static int checkout_at_run_time(aa_context *c)
 {
     char exe[4096], dir[4096], line[256];
     ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
@@ -121,10 +125,9 @@ static int commit_at_run_time(aa_context *c)
     char *head[] = {"git", "-C", dir, "rev-parse", "HEAD", NULL};
     if (first_line(head, line, sizeof line, &any) || strlen(line) < 7)
         return -1;
-    snprintf(c->commit, sizeof c->commit, "%.63s", line);
+    snprintf(c->checkout, sizeof c->checkout, "%.63s", line);
     char *status[] = {"git", "-C", dir, "status", "--porcelain", "--untracked-files=no", NULL};
-    c->dirty = first_line(status, line, sizeof line, &any) ? -1 : any;
-    snprintf(c->commit_from, sizeof c->commit_from, "checkout");
+    c->checkout_dirty = first_line(status, line, sizeof line, &any) ? -1 : any;
     return 0;
 }
 
@@ -154,17 +157,23 @@ static void file_value(const char *path, const char *key, char sep, char *buf, s
     fclose(f);
 }
 
+const char *aa_build_commit(int *dirty)
+{
+    *dirty = AA_BUILD_DIRTY;
+    return AA_BUILD_COMMIT;
+}
+
 int aa_context_collect(aa_context *c, int argc, const char *const *argv, int threads)
 {
     memset(c, 0, sizeof *c);
     c->argc = argc;
     c->argv = argv;
     c->threads = threads;
-    if (commit_at_run_time(c)) {
-        snprintf(c->commit, sizeof c->commit, "%s", AA_BUILD_COMMIT);
-        c->dirty = AA_BUILD_DIRTY;
-        snprintf(c->commit_from, sizeof c->commit_from, "build");
-    }
+    snprintf(c->commit, sizeof c->commit, "%s", aa_build_commit(&c->dirty));
+    snprintf(c->commit_from, sizeof c->commit_from, "build");
+    c->checkout_dirty = -1;
+    if (checkout_at_run_time(c))
+        c->checkout[0] = '\0';
 #if defined(__clang__)
     snprintf(c->compiler, sizeof c->compiler, "clang %s", __clang_version__);
 #elif defined(__GNUC__)
@@ -245,6 +254,14 @@ char *aa_context_json(const aa_context *c, int indent)
     fprintf(f, ",\n%*s\"dirty\": %s,\n%*s\"commit_from\": ", in, "",
             c->dirty < 0 ? "null" : c->dirty ? "true" : "false", in, "");
     json_str(f, c->commit_from);
+    fprintf(f, ",\n%*s\"checkout\": ", in, "");
+    if (c->checkout[0]) {
+        json_str(f, c->checkout);
+        fprintf(f, ",\n%*s\"checkout_dirty\": %s", in, "",
+                c->checkout_dirty < 0 ? "null" : c->checkout_dirty ? "true" : "false");
+    } else {
+        fprintf(f, "null,\n%*s\"checkout_dirty\": null", in, "");
+    }
     fprintf(f, ",\n%*s\"compiler\": ", in, "");
     json_str(f, c->compiler);
     fprintf(f, ",\n%*s\"cflags\": ", in, "");

@@ -1508,6 +1508,13 @@ static int set_up(aa_runfolder *rf)
         if (!(rf->refused[g] = calloc(aa_run_case_count(&rf->cfgs[g]) + 1, 1)))
             return aa_fail(AA_ENOMEM, "out of memory");
     aa_context_collect(&rf->context, rf->opt.argc, rf->opt.argv, rf->threads);
+    const aa_context *c = &rf->context;
+    if (rf->opt.note && c->checkout[0] && strcmp(c->checkout, c->commit)) {
+        char msg[256];
+        snprintf(msg, sizeof msg, "this aabench was built from commit %.12s, its checkout is at "
+                 "%.12s: the run records the build's (make rebuilds it)", c->commit, c->checkout);
+        rf->opt.note(rf->opt.hook, msg);
+    }
     return AA_OK;
 }
 
@@ -1532,14 +1539,16 @@ int aa_runfolder_create(const aa_plan *plan, const aa_run_options *opt, aa_runfo
 /* The commit of this program and of the manifest's run agree. */
 static int same_commit(const aa_manifest *m)
 {
-    aa_context now;
-    aa_context_collect(&now, 0, NULL, 1);
-    if (strcmp(now.commit, m->commit) || (m->dirty >= 0 && now.dirty >= 0 && m->dirty != now.dirty))
+    /* the program's own build, not the checkout it lives in: a checkout
+     * committed to while a run goes on still holds the same program */
+    int dirty;
+    const char *commit = aa_build_commit(&dirty);
+    if (strcmp(commit, m->commit) || (m->dirty >= 0 && dirty >= 0 && m->dirty != dirty))
         return aa_fail(AA_EINVAL,
-                       "the run was measured at commit %s%s, this program is at %s%s: resume it "
-                       "with that commit's aabench, or start a new run",
-                       m->commit, m->dirty > 0 ? " (dirty)" : "", now.commit,
-                       now.dirty > 0 ? " (dirty)" : "");
+                       "the run was measured at commit %s%s, this program was built from %s%s: "
+                       "resume it with that commit's aabench, or start a new run",
+                       m->commit, m->dirty > 0 ? " (dirty)" : "", commit,
+                       dirty > 0 ? " (dirty)" : "");
     return AA_OK;
 }
 

@@ -89,7 +89,8 @@ typedef struct aa_run_options {
      * complete (a signal handler sets a flag; this reads it) */
     int (*interrupted)(void *hook);
     /* something the caller may show: a suite's external method whose
-     * renderer is not installed, left out */
+     * renderer is not installed, left out; a program older than its
+     * checkout */
     void (*note)(void *hook, const char *message);
     void *hook;
 } aa_run_options;
@@ -118,8 +119,9 @@ int aa_runfolder_create(const aa_plan *plan, const aa_run_options *opt, aa_runfo
  * results.csv are kept (each one of the run's cases left to measure, else
  * AA_EINVAL), and so are the cases recorded as refused. */
 int aa_runfolder_open(const char *dir, const aa_run_options *opt, aa_runfolder **rf);
-/* AA_OK if the manifest's run was measured at this program's commit (and
- * as dirty), else AA_EINVAL saying both: what open checks first. */
+/* AA_OK if the manifest's run was measured at the commit this program was
+ * built from (and as dirty), else AA_EINVAL saying both: what open checks
+ * first.  The checkout's commit at run time does not count. */
 int aa_manifest_same_commit(const aa_manifest *m);
 /* The cases left, in the run's order, results saved after every case (a
  * resumed run's in case order); then the cases skipped as refused added
