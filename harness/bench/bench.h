@@ -450,15 +450,15 @@ int aa_rows_parse_json(const char *name, const char *data, size_t len, aa_row **
 #define AA_PARALLELISM_FACTOR 1.5
 double aa_rows_parallelism(const aa_row *rows, size_t n, size_t *least, size_t *most);
 
-/* What a results file says of the run that made it (context.c): the
- * commit the program was built from (and the commit and state of the
- * checkout it lives in at run time, which may have moved on), the compiler and its flags, the CPU, cores, threads, OS and
- * kernel, the libraries' versions, the date, the load and the command
- * line. */
 /* The commit the program was built from ("unknown" outside a git checkout)
  * and, into *dirty, whether the tree was dirty then (1, 0, -1 unknown). */
 const char *aa_build_commit(int *dirty);
 
+/* What a results file says of the run that made it (context.c): the
+ * commit the program was built from (and the commit and state of the
+ * checkout it lives in at run time, which may have moved on), the
+ * compiler and its flags, the CPU, cores, threads, OS and kernel, the
+ * libraries' versions, the date, the load and the command line. */
 typedef struct aa_context {
     char commit[64];
     int dirty;             /* 1 dirty, 0 clean, -1 unknown */

@@ -1511,8 +1511,9 @@ static int set_up(aa_runfolder *rf)
     const aa_context *c = &rf->context;
     if (rf->opt.note && c->checkout[0] && strcmp(c->checkout, c->commit)) {
         char msg[256];
-        snprintf(msg, sizeof msg, "this aabench was built from commit %.12s, its checkout is at "
-                 "%.12s: the run records the build's (make rebuilds it)", c->commit, c->checkout);
+        snprintf(msg, sizeof msg, "this aabench was built from commit %.12s%s, its checkout is at "
+                 "%.12s: the run records the build's (make rebuilds it)", c->commit,
+                 c->dirty > 0 ? " (dirty)" : "", c->checkout);
         rf->opt.note(rf->opt.hook, msg);
     }
     return AA_OK;
