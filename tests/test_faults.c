@@ -125,11 +125,12 @@ static void test_cache_damage(void **state)
     long size = file_size(path);
     size_t pixels = (size_t)24 * 16 * 3 * sizeof(double);
     /* byte offsets: the first key byte (after the 20-byte magic and the
-     * 4-byte length), the bound (just before the pixels), a pixel, the
-     * checksum (the last 8 bytes) */
-    long at[] = {24, size - 8 - (long)pixels - 8, size - 8 - (long)pixels / 2, size - 3};
-    const char *name[] = {"key", "bound", "pixels", "checksum"};
-    for (int k = 0; k < 4; k++) {
+     * 4-byte length), the count of pixels scanned and the bound (just
+     * before the pixels), a pixel, the checksum (the last 8 bytes) */
+    long at[] = {24, size - 8 - (long)pixels - 16, size - 8 - (long)pixels - 8,
+                 size - 8 - (long)pixels / 2, size - 3};
+    const char *name[] = {"key", "count scanned", "bound", "pixels", "checksum"};
+    for (int k = 0; k < 5; k++) {
         copy_file(save, path);
         flip_byte(path, at[k]);
         expect_recomputed(&v, dir, path, &fresh, name[k]);

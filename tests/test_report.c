@@ -142,7 +142,8 @@ static void test_header_is_the_table(void **state)
     size_t old_len = (size_t)(strchr(old_csv, '\n') - old_csv);
     assert_int_equal(strncmp(old_csv, want, old_len), 0);
     assert_true(want[old_len] == ',' &&
-                strstr(want + old_len, ",lag,flip,edge_rmse,init_seconds,init_cpu_seconds\n"));
+                strstr(want + old_len, ",lag,flip,edge_rmse,init_seconds,init_cpu_seconds,"
+                                       "ref_bound,ref_scanned\n"));
     aa_row *rows;
     size_t n;
     assert_int_equal(aa_rows_read_csv(path, &rows, &n), AA_OK);
@@ -227,8 +228,8 @@ static void test_old_file_round_trip(void **state)
     /* cell by cell; the times' statistics are not read but recomputed
      * from the times, written with nine digits: they may differ in the
      * last digit.  The columns added since (flip, edge_rmse, init_seconds,
-     * init_cpu_seconds) are written
-     * after the old ones, empty: the old file has no value for them */
+     * init_cpu_seconds, ref_bound, ref_scanned) are written after the old
+     * ones, empty: the old file has no value for them */
     static const char *const recomputed[] = {"render_seconds_mean", "render_seconds_sd",
                                              "render_seconds_mad", "render_seconds_ci_lo",
                                              "render_seconds_ci_hi"};
@@ -248,7 +249,7 @@ static void test_old_file_round_trip(void **state)
             assert_non_null(end);
             if (header)
                 assert_int_equal(strncmp(b + nb, ",lag,flip,edge_rmse,init_seconds,init_cpu_"
-                                         "seconds\n", 50), 0);
+                                         "seconds,ref_bound,ref_scanned\n", 72), 0);
             else
                 for (const char *c = b + nb; c < end; c++)
                     assert_true(*c == ',');
@@ -467,6 +468,43 @@ static void test_json(void **state)
     free(members);
 }
 
+/* A view whose reference is not proven everywhere is named once, at its
+ * first measured row: pixels bounded by an estimate, or a bound above the
+ * promise; a proven one, a refused row and a file without the columns
+ * (NaN) are not. */
+static void test_reference_unproven(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *pattern;
+        int w, ok;
+        double bound, scanned;
+        int named;
+    } c[] = {
+        {"crow", 16, 0, 1e-13, 3, 0},        /* refused: its reference not used */
+        {"crow", 16, 1, 1e-13, 3, 1},        /* 3 pixels estimated */
+        {"crow", 16, 1, 1e-13, 3, 0},        /* the same view again */
+        {"crow", 32, 1, 2e-13, 0, 0},        /* proven */
+        {"star", 16, 1, 2e-12, 0, 1},        /* above the promise */
+        {"star", 32, 1, NAN, NAN, 0},        /* not known */
+        {"star", 48, 1, AA_TRUTH_BOUND, 0, 0}, /* at the promise */
+    };
+    enum { N = sizeof c / sizeof *c };
+    aa_row rows[N];
+    for (size_t k = 0; k < N; k++) {
+        memset(&rows[k], 0, sizeof rows[k]);
+        snprintf(rows[k].pattern, sizeof rows[k].pattern, "%s", c[k].pattern);
+        snprintf(rows[k].filter, sizeof rows[k].filter, "box");
+        rows[k].w = rows[k].h = c[k].w;
+        rows[k].ok = c[k].ok;
+        rows[k].ref_bound = c[k].bound, rows[k].ref_scanned = c[k].scanned;
+    }
+    for (size_t k = 0; k < N; k++)
+        if (aa_row_reference_unproven(rows, k) != c[k].named)
+            fail_msg("row %zu (%s %d): named %d, expected %d", k, c[k].pattern, c[k].w,
+                     aa_row_reference_unproven(rows, k), c[k].named);
+}
+
 int main(void)
 {
     if (!mkdtemp(dir))
@@ -474,7 +512,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_header_is_the_table), cmocka_unit_test(test_header_refused),
         cmocka_unit_test(test_old_file_round_trip), cmocka_unit_test(test_rows_round_trip),
-        cmocka_unit_test(test_json),
+        cmocka_unit_test(test_json), cmocka_unit_test(test_reference_unproven),
     };
     int failed = cmocka_run_group_tests(tests, NULL, NULL);
     char cmd[256];

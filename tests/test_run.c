@@ -53,6 +53,37 @@ static int lib_run(const char *const *args)
     return st;
 }
 
+/* The view's reference's largest bound and count scanned in out's
+ * results.csv: the same as the reference computed here, without a cache,
+ * gives (the bound reaches the results whether the run computed the
+ * reference or read it from a cache). */
+static void expect_ref_stats(const char *out, const char *pattern, int w, int h)
+{
+    char csv[400];
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    aa_row *rows;
+    size_t n;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    assert_true(n >= 1);
+    aa_view v;
+    memset(&v, 0, sizeof v);
+    assert_int_equal(aa_pattern_parse(pattern, &v.pattern), AA_OK);
+    v.w = w, v.h = h;
+    aa_filter_default(&v.filter);
+    aa_image ref;
+    aa_truth_stats ts;
+    assert_int_equal(aa_reference(&v, NULL, 1, &ref, &ts, NULL), AA_OK);
+    aa_image_free(&ref);
+    assert_true(ts.max_bound > 0 && ts.max_bound <= AA_TRUTH_BOUND);
+    for (size_t k = 0; k < n; k++) { /* results.csv's nine digits */
+        if (!(fabs(rows[k].ref_bound - ts.max_bound) <= 5e-9 * ts.max_bound))
+            fail_msg("%s: ref_bound %.17g, the reference's %.17g", csv, rows[k].ref_bound,
+                     ts.max_bound);
+        assert_true(rows[k].ref_scanned == (double)ts.scanned);
+    }
+    free(rows);
+}
+
 /* ---- a strict JSON validator (RFC 8259 grammar) ---- */
 
 static const char *ws(const char *p)
@@ -261,6 +292,7 @@ static void test_cache_options(void **state)
     assert_int_equal(lib_run(none), AA_OK);
     snprintf(cmd, sizeof cmd, "%s/montage.png", out);
     assert_int_equal(access(cmd, F_OK), 0); /* the montage was made */
+    expect_ref_stats(out, "crow", 24, 24);
     snprintf(cmd, sizeof cmd, "test -z \"$(find %s -name 'ref-*.bin' | head -1)\"", dir);
     if (system(cmd) != 0)
         fail_msg("run --no-cache wrote a reference under %s", dir);
@@ -274,6 +306,9 @@ static void test_cache_options(void **state)
              "test -z \"$(find %s -name 'ref-*.bin' -not -path '%s/*' | head -1)\"", dir, mine);
     if (system(cmd) != 0)
         fail_msg("run --cache %s wrote a reference elsewhere", mine);
+    expect_ref_stats(out, "crow", 24, 24);
+    assert_int_equal(lib_run(given), AA_OK); /* the reference from the cache */
+    expect_ref_stats(out, "crow", 24, 24);
     /* the command's default cache is $AABENCH_CACHE: --cache replaces it */
     char env[400], def[300], log[300];
     snprintf(def, sizeof def, "%s/default-cache", dir);

@@ -675,6 +675,8 @@ static void test_old_results(void **state)
     assert_true(rows[0].timing.noisy == 0);
     /* no init columns: not measured, not 0 */
     assert_true(isnan(rows[0].timing.init_seconds) && isnan(rows[0].timing.init_cpu));
+    /* nor the reference's bound and count scanned */
+    assert_true(isnan(rows[0].ref_bound) && isnan(rows[0].ref_scanned));
     free(rows);
 }
 

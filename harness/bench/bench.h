@@ -207,6 +207,10 @@ typedef struct aa_row {
     /* the input files the case was made from, by their hash and length
      * (aa_pattern_inputs): "" when none or unknown (an older file) */
     char inputs[256];
+    /* the view's reference: its largest per-pixel error bound, and how many
+     * of its pixels' bounds are estimates, not proofs (aa_truth_stats's
+     * max_bound and scanned); NaN unknown (an older file) */
+    double ref_bound, ref_scanned;
 } aa_row;
 
 /* A suite is a list of groups; each group is a cross product of patterns,
@@ -449,6 +453,11 @@ int aa_rows_parse_json(const char *name, const char *data, size_t len, aa_row **
  * AA_PARALLELISM_FACTOR is worth a warning. */
 #define AA_PARALLELISM_FACTOR 1.5
 double aa_rows_parallelism(const aa_row *rows, size_t n, size_t *least, size_t *most);
+
+/* 1 if rows[k] is the first measured row (ok) of its view (pattern, size,
+ * filter) and its reference is not proven everywhere: pixels whose bounds
+ * are estimates (ref_scanned > 0) or a bound above AA_TRUTH_BOUND. */
+int aa_row_reference_unproven(const aa_row *rows, size_t k);
 
 /* The commit the program was built from ("unknown" outside a git checkout)
  * and, into *dirty, whether the tree was dirty then (1, 0, -1 unknown). */

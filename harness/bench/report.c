@@ -391,6 +391,10 @@ static const column columns[] = {
      * out) */
     REAL(init_seconds, timing.init_seconds, G_MEASURE_OPTIONAL, 0, 0, DBL_MAX),
     REAL(init_cpu_seconds, timing.init_cpu, G_MEASURE_OPTIONAL, 0, 0, DBL_MAX),
+    /* the view's reference: its largest per-pixel bound, and its pixels
+     * whose bounds are estimates */
+    REAL(ref_bound, ref_bound, G_MEASURE_OPTIONAL, 0, 0, DBL_MAX),
+    REAL(ref_scanned, ref_scanned, G_MEASURE_OPTIONAL, 0, 0, 1e12),
 };
 #undef TEXT
 #undef REAL
@@ -618,6 +622,8 @@ static cJSON *row_json(const aa_row *r)
                  {"render_seconds_max", r->seconds_max},
                  {"init_seconds", r->timing.init_seconds},
                  {"init_cpu_seconds", r->timing.init_cpu},
+                 {"ref_bound", r->ref_bound},
+                 {"ref_scanned", r->ref_scanned},
                  {"ns_per_pixel", r->ns_per_pixel},
                  {"ns_per_sample", r->ns_per_sample},
                  {"expensive_fraction", r->expensive_fraction}};
@@ -717,6 +723,24 @@ int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row 
 
 #define CSV_MAX_BYTES ((size_t)256 << 20)
 #define CSV_MAX_FIELDS 256
+
+/* 1 if rows a and b measured the same view (pattern, size, filter). */
+static int one_view(const aa_row *a, const aa_row *b)
+{
+    return !strcmp(a->pattern, b->pattern) && !strcmp(a->filter, b->filter) && a->w == b->w &&
+           a->h == b->h;
+}
+
+int aa_row_reference_unproven(const aa_row *rows, size_t k)
+{
+    const aa_row *r = &rows[k];
+    if (!r->ok || !(r->ref_scanned > 0 || r->ref_bound > AA_TRUTH_BOUND))
+        return 0;
+    for (size_t e = 0; e < k; e++)
+        if (rows[e].ok && one_view(&rows[e], r))
+            return 0;
+    return 1;
+}
 
 double aa_rows_parallelism(const aa_row *rows, size_t n, size_t *least, size_t *most)
 {
@@ -1117,6 +1141,7 @@ static int parse_csv(const char *name, const char *data, size_t len, aa_row **ro
         row->tm.popping = row->tm.lag = NAN;
         row->m.flip = row->m.edge_rmse = NAN;
         row->timing.init_seconds = row->timing.init_cpu = NAN;
+        row->ref_bound = row->ref_scanned = NAN;
         row->case_index = -1;
         /* ok first: which columns must hold a value depends on it; then
          * whether the row is animated */
@@ -1325,6 +1350,7 @@ static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
     row->m.rmse = row->m.max_err = row->seconds = NAN;
     row->m.flip = row->m.edge_rmse = NAN;
     row->timing.init_seconds = row->timing.init_cpu = NAN;
+    row->ref_bound = row->ref_scanned = NAN;
     if (!cJSON_IsObject(o))
         return json_fail(name, k, "results", "a row is not an object");
     if ((st = json_text(name, k, o, "pattern", row->pattern, sizeof row->pattern, 0)) ||
@@ -1383,6 +1409,8 @@ static int json_row(const char *name, size_t k, const cJSON *o, aa_row *row)
         (st = json_real(name, k, o, "render_seconds", 0, DBL_MAX, 1, &row->seconds)) ||
         (st = json_real(name, k, o, "init_seconds", 0, DBL_MAX, 1, &row->timing.init_seconds)) ||
         (st = json_real(name, k, o, "init_cpu_seconds", 0, DBL_MAX, 1, &row->timing.init_cpu)) ||
+        (st = json_real(name, k, o, "ref_bound", 0, DBL_MAX, 1, &row->ref_bound)) ||
+        (st = json_real(name, k, o, "ref_scanned", 0, 1e12, 1, &row->ref_scanned)) ||
         (st = json_real(name, k, o, "spp", 0, DBL_MAX, 1, &row->spp)) ||
         (st = json_real(name, k, o, "seeds", 1, 1e9, 1, &seeds)))
         return st;

@@ -185,6 +185,7 @@ static void row_names(aa_row *row, const char *pattern, int w, int h, const char
     row->seed = cfg->seed;
     row->threads = cfg->threads;
     row->reps = cfg->reps;
+    row->ref_bound = row->ref_scanned = NAN;
 }
 
 /* The note of a case the method refused: a result (ok 0, failed 0). */
@@ -601,6 +602,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
     aa_row *rows = calloc(total ? total : 1, sizeof *rows);
     aa_scene *scene = NULL;
     aa_image ref = {0}, img = {0};
+    aa_truth_stats rstats = {0};
     aa_job job = {0};
     const int nt = animated(cfg) ? frame_count(cfg) : 0;
     aa_image *refs = nt ? calloc((size_t)nt, sizeof *refs) : NULL;
@@ -660,7 +662,7 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                     st = aa_fail(AA_EFAIL, "interrupted");
                     break;
                 }
-                if ((st = aa_reference(&view, cfg->cache_dir, cfg->threads, &ref, NULL, NULL)) ||
+                if ((st = aa_reference(&view, cfg->cache_dir, cfg->threads, &ref, &rstats, NULL)) ||
                     (st = aa_job_init(&job, scene, view.w, view.h, cfg->t, cfg->vx, cfg->vy,
                                       &view.filter, cfg->seed, cfg->threads)))
                     break;
@@ -711,6 +713,8 @@ int aa_run(const aa_run_config *cfg, aa_row **rows_out, size_t *n_out)
                         memset(row, 0, sizeof *row);
                         continue;
                     }
+                    row->ref_bound = rstats.max_bound;
+                    row->ref_scanned = (double)rstats.scanned;
                     /* images are written here, by this process, whichever ran the case */
                     if (row->ok && images_dir && (st = write_images(cfg, stem, &ref, &img)))
                         break;

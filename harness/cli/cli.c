@@ -298,6 +298,26 @@ size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n)
     return noisy;
 }
 
+size_t cli_warn_references(const char *cmd, const aa_row *rows, size_t n)
+{
+    size_t views = 0;
+    for (size_t k = 0; k < n; k++) {
+        const aa_row *r = &rows[k];
+        if (!aa_row_reference_unproven(rows, k))
+            continue;
+        if (!views++)
+            fflush(stdout);
+        fprintf(stderr,
+                "aabench %s: warning: the reference of %s %dx%d %s is not proven everywhere: "
+                "%.0f pixel%s bounded by an estimate, not a proof (where gradients of different "
+                "t mix), its largest bound %.2g (the promise is %.0e): errors below that are not "
+                "resolved (ref_scanned and ref_bound in the results)\n",
+                cmd, r->pattern, r->w, r->h, r->filter, r->ref_scanned,
+                r->ref_scanned == 1 ? "" : "s", r->ref_bound, AA_TRUTH_BOUND);
+    }
+    return views;
+}
+
 int cli_warn_parallelism(const char *cmd, const aa_row *rows, size_t n)
 {
     size_t lo, hi;

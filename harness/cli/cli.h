@@ -93,6 +93,10 @@ void cli_time_text(const aa_row *r, char *buf, size_t len);
 /* On stderr, a warning naming each case whose timing is marked noisy, with
  * the reasons; returns their count. */
 size_t cli_warn_noisy(const char *cmd, const aa_row *rows, size_t n);
+/* A warning on stderr for each view whose reference is not proven
+ * everywhere (pixels' bounds estimated, or a bound above AA_TRUTH_BOUND);
+ * the count of such views. */
+size_t cli_warn_references(const char *cmd, const aa_row *rows, size_t n);
 /* On stderr, a warning when the rows' effective parallelism (CPU time /
  * wall time) differs by more than AA_PARALLELISM_FACTOR (aa_rows_parallelism),
  * naming the two ends; 1 if warned.  Standard output is flushed first. */

@@ -367,6 +367,7 @@ int cli_run_report(aa_runfolder *rf, int quiet, int st)
     if (!quiet)
         print_table(all, nall);
     cli_warn_noisy("run", all, nall);
+    cli_warn_references("run", all, nall);
     cli_warn_parallelism("run", all, nall);
     printf("results: %s/results.csv%s\n", dir, aa_runfolder_linked(rf) ? " (results/latest)" : "");
     /* the sizes whose views have no images (--images small) */

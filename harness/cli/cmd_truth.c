@@ -246,7 +246,7 @@ int cmd_truth(int argc, char **argv)
                    "%.2g, %.3f s\n",
                    a.out, spec, a.view.w, a.view.h, filter, stats.integrated, stats.filled,
                    stats.max_bound, seconds);
-        if (!cached && stats.scanned)
+        if (stats.scanned)
             printf("%zu pixels' threshold heights (gradients of different t mixing) scanned, "
                    "not certified: their bounds are QAG's estimates (truth.c, \"several "
                    "gradients\")\n",

@@ -9,7 +9,9 @@
  * compared on reading, so a hash collision is a miss, never a wrong image.
  *
  * Cache file: CACHE_MAGIC, the key's length (uint32) and text, w, h, c
- * (int32), the largest error bound (double), w h c doubles, then a 64-bit
+ * (int32), the count of pixels whose bounds are estimates (uint64:
+ * aa_truth_stats.scanned), the largest error bound (double), w h c
+ * doubles, then a 64-bit
  * checksum of everything after the magic; host byte order.  A file from
  * another version, or for another key (a hash collision), is a miss and is
  * recomputed.  A file of ours that does not hold together (short, long, a
@@ -71,7 +73,7 @@
                           * crosses it bounded over the piece's x by E's range
                           * over the covered and uncovered cases together, not
                           * the wider of the two */
-#define CACHE_MAGIC "aabench-reference 2\n"
+#define CACHE_MAGIC "aabench-reference 3\n" /* 3: the count scanned */
 
 static int field_key(const aa_view *view, char *buf, size_t len);
 
@@ -189,7 +191,7 @@ static size_t read_bytes(int fd, void *buf, size_t n)
  * like damaged pixels, while a whole file of another view (a hash
  * collision) is a quiet miss. */
 static int cache_read(const char *path, const char *key, int w, int h, const aa_filter *f,
-                      aa_image *out, double *max_bound)
+                      aa_image *out, double *max_bound, size_t *scanned)
 {
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)
@@ -205,7 +207,7 @@ static int cache_read(const char *path, const char *key, int w, int h, const aa_
     char magic[sizeof CACHE_MAGIC];
     uint32_t klen = 0;
     int32_t dims[3];
-    uint64_t stored_sum;
+    uint64_t stored_sum, nscanned = 0;
     int hit = 0;
     const char *why = NULL;
     char *stored = NULL;
@@ -225,6 +227,7 @@ static int cache_read(const char *path, const char *key, int w, int h, const aa_
         goto done;
     }
     if (read_bytes(fd, stored, klen) != klen || read_bytes(fd, dims, sizeof dims) != sizeof dims ||
+        read_bytes(fd, &nscanned, sizeof nscanned) != sizeof nscanned ||
         read_bytes(fd, max_bound, sizeof *max_bound) != sizeof *max_bound)
         goto done;
     if (dims[0] < 1 || dims[1] < 1 || dims[0] > AA_MAX_SIDE || dims[1] > AA_MAX_SIDE ||
@@ -234,7 +237,8 @@ static int cache_read(const char *path, const char *key, int w, int h, const aa_
     }
     size_t count = (size_t)dims[0] * (size_t)dims[1] * 3;
     uint64_t expect = (uint64_t)(sizeof CACHE_MAGIC - 1) + sizeof klen + klen + sizeof dims +
-                      sizeof *max_bound + count * sizeof(double) + sizeof stored_sum;
+                      sizeof nscanned + sizeof *max_bound + count * sizeof(double) +
+                      sizeof stored_sum;
     if ((uint64_t)sb.st_size != expect) {
         why = (uint64_t)sb.st_size < expect ? "cut short" : "of the wrong length";
         goto done;
@@ -242,6 +246,7 @@ static int cache_read(const char *path, const char *key, int w, int h, const aa_
     checksum_add(&sum, &klen, sizeof klen);
     checksum_add(&sum, stored, klen);
     checksum_add(&sum, dims, sizeof dims);
+    checksum_add(&sum, &nscanned, sizeof nscanned);
     checksum_add(&sum, max_bound, sizeof *max_bound);
     int ours = dims[0] == w && dims[1] == h;
     if (ours) {
@@ -267,7 +272,8 @@ static int cache_read(const char *path, const char *key, int w, int h, const aa_
     why = NULL;
     if (klen != strlen(key) || memcmp(stored, key, klen) != 0)
         goto done; /* a whole file of another view under the same hash */
-    if (!ours || !(*max_bound >= 0.0) || !isfinite(*max_bound)) {
+    if (!ours || !(*max_bound >= 0.0) || !isfinite(*max_bound) ||
+        nscanned > (uint64_t)w * (uint64_t)h) {
         why = "inconsistent with its key";
         goto done;
     }
@@ -281,6 +287,7 @@ static int cache_read(const char *path, const char *key, int w, int h, const aa_
             why = "holding a value outside the range of its filter";
             goto done;
         }
+    *scanned = (size_t)nscanned;
     hit = 1;
 done:
     if (why)
@@ -291,16 +298,17 @@ done:
 }
 
 static int cache_write(const char *dir, const char *path, const char *key, const aa_image *im,
-                       double max_bound)
+                       double max_bound, size_t scanned)
 {
     int st = aa_mkdirs(dir);
     if (st)
         return st;
     uint32_t klen = (uint32_t)strlen(key);
     int32_t dims[3] = {im->w, im->h, im->c};
+    uint64_t nscanned = scanned;
     size_t pixels = (size_t)im->w * (size_t)im->h * (size_t)im->c * sizeof *im->v;
-    size_t len = sizeof CACHE_MAGIC - 1 + sizeof klen + klen + sizeof dims + sizeof max_bound +
-                 pixels + sizeof(uint64_t);
+    size_t len = sizeof CACHE_MAGIC - 1 + sizeof klen + klen + sizeof dims + sizeof nscanned +
+                 sizeof max_bound + pixels + sizeof(uint64_t);
     char *buf = malloc(len), *p = buf;
     if (!buf)
         return aa_fail(AA_ENOMEM, "out of memory writing the reference cache");
@@ -310,11 +318,13 @@ static int cache_write(const char *dir, const char *path, const char *key, const
     checksum_add(&sum, &klen, sizeof klen);
     checksum_add(&sum, key, klen);
     checksum_add(&sum, dims, sizeof dims);
+    checksum_add(&sum, &nscanned, sizeof nscanned);
     checksum_add(&sum, &max_bound, sizeof max_bound);
     checksum_add(&sum, im->v, pixels);
     memcpy(p, &klen, sizeof klen), p += sizeof klen;
     memcpy(p, key, klen), p += klen;
     memcpy(p, dims, sizeof dims), p += sizeof dims;
+    memcpy(p, &nscanned, sizeof nscanned), p += sizeof nscanned;
     memcpy(p, &max_bound, sizeof max_bound), p += sizeof max_bound;
     memcpy(p, im->v, pixels), p += pixels;
     memcpy(p, &sum.h, sizeof sum.h);
@@ -342,7 +352,8 @@ int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_ima
         return st;
     if ((st = aa_image_alloc(out, view->w, view->h, 3)))
         return st;
-    if (cache_dir && cache_read(path, key, view->w, view->h, &view->filter, out, &stats->max_bound)) {
+    if (cache_dir && cache_read(path, key, view->w, view->h, &view->filter, out, &stats->max_bound,
+                                &stats->scanned)) {
         if (from_cache)
             *from_cache = 1;
         stats->worst_i = stats->worst_j = -1;
@@ -362,7 +373,7 @@ int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_ima
     /* A cache that cannot be written costs time later, not correctness:
      * the image is still returned. */
     if (cache_dir)
-        cache_write(cache_dir, path, key, out, stats->max_bound);
+        cache_write(cache_dir, path, key, out, stats->max_bound, stats->scanned);
     return AA_OK;
 fail:
     aa_scene_free(placed);

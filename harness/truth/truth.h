@@ -61,7 +61,8 @@ int aa_view_key(const aa_view *view, char *buf, size_t len);
 
 /* The reference of a view, from the cache under `cache_dir` when present
  * (NULL: no cache), else computed and stored there. `from_cache` (may be
- * NULL) says which. */
+ * NULL) says which.  From the cache, stats holds only max_bound and
+ * scanned (the cache keeps both). */
 int aa_reference(const aa_view *view, const char *cache_dir, int threads, aa_image *out,
                  aa_truth_stats *stats, int *from_cache);
 
