@@ -43,6 +43,12 @@ static int sized_index(const aa_spec *spec)
 
 int aa_pattern_sized(const aa_spec *spec) { return sized_index(spec) >= 0; }
 
+int aa_pattern_has_own_size(const aa_spec *spec)
+{
+    int k = sized_index(spec);
+    return k >= 0 && sized[k].own_size != NULL;
+}
+
 int aa_pattern_own_size(const aa_spec *spec, int *w, int *h)
 {
     int k = sized_index(spec);

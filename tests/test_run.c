@@ -472,6 +472,69 @@ static void test_ignored_options(void **state)
         fail_msg("no reason given: %s", output);
 }
 
+/* out's results.csv: its rows' pattern, size, filter and method, one line
+ * each, into buf. */
+static void cases_of(const char *out, char *buf, size_t len)
+{
+    char csv[400];
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    aa_row *rows;
+    size_t n, used = 0;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    buf[0] = '\0';
+    for (size_t k = 0; k < n; k++)
+        used += (size_t)snprintf(buf + used, len - used, "%s %dx%d %s %s\n", rows[k].pattern,
+                                 rows[k].w, rows[k].h, rows[k].filter, rows[k].method);
+    free(rows);
+}
+
+/* Which cases a run measures from the lists given and the suite's groups:
+ * an svg file given without -s at its own size (its width and height, 20
+ * and 12, times its scale, written here), a pattern without a size of its
+ * own at the suite's sizes (the quick suite's 128x128, suite.c), each case
+ * once where the suite's groups become the same cross product (the quick
+ * suite's three groups under -p, -f and -m: each case was measured three
+ * times), and a case two groups would both hold refused. */
+static void test_group_cases(void **state)
+{
+    (void)state;
+    char svg[300], out[300], text[1024];
+    snprintf(svg, sizeof svg, "%s/own.svg", dir);
+    static const char doc[] = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"20\" "
+                              "height=\"12\"><rect x=\"2\" y=\"3\" width=\"9\" "
+                              "height=\"5\" fill=\"#fff\"/></svg>\n";
+    support_write_file(svg, doc, sizeof doc - 1);
+    char p1[400], p2[400];
+    snprintf(p1, sizeof p1, "svg:file=%s", svg);
+    snprintf(p2, sizeof p2, "svg:file=%s,scale=2", svg);
+    snprintf(out, sizeof out, "%s/own", dir);
+    const char *own[] = {"run", "--suite", "quick", "-p", "crow", "-p", p1, "-p", p2, "-f",
+                         "box", "-m", "point", "--reps", "1", "--no-images", "--no-plots", "-q",
+                         "--no-cache", "--out", out, NULL};
+    assert_int_equal(lib_run(own), AA_OK);
+    cases_of(out, text, sizeof text);
+    char want[1024];
+    snprintf(want, sizeof want, "crow 128x128 box point\n%s 20x12 box point\n%s 40x24 box point\n",
+             p1, p2);
+    assert_string_equal(text, want);
+    /* a pattern given at a size: as given */
+    const char *sized[] = {"run", "--suite", "quick", "-p", p1, "-s", "16x16", "-f", "box",
+                           "-m", "point", "--reps", "1", "--no-images", "--no-plots", "-q",
+                           "--no-cache", "--out", out, NULL};
+    assert_int_equal(lib_run(sized), AA_OK);
+    cases_of(out, text, sizeof text);
+    snprintf(want, sizeof want, "%s 16x16 box point\n", p1);
+    assert_string_equal(text, want);
+    /* the paper suite's groups of crow 256x256 box (point, supersample:n=3,
+     * area) and crow 512x512 box and tent:r=1 (point, crowtiler) both hold
+     * crow 16x16 box point once -s 16x16 replaces their sizes */
+    const char *twice[] = {"run", "--suite", "paper", "-p", "crow", "-s", "16x16", "--reps", "1",
+                           "--no-images", "--no-plots", "-q", "--no-cache", "--out", out, NULL};
+    assert_int_equal(lib_run(twice), AA_EINVAL);
+    if (!strstr(output, "point on crow 16x16 box would be measured twice"))
+        fail_msg("not said: %s", output);
+}
+
 /* Temporary files (aa_temp_name's .aa-PID-N.ext) left by a run killed
  * outright are removed when it is resumed; those of a process still
  * running, and other hidden files, are kept. */
@@ -572,4 +635,5 @@ SUPPORT_MAIN(setup, support_teardown_dir,
              cmocka_unit_test(test_interrupted),
              cmocka_unit_test(test_ignored_options),
              cmocka_unit_test(test_resume_removes_stale),
+             cmocka_unit_test(test_group_cases),
              cmocka_unit_test(test_hangup))

@@ -615,7 +615,7 @@ static void test_refused_pairs(void **state)
     snprintf(whole, sizeof whole, "%s/pwhole", dir);
     snprintf(merged, sizeof merged, "%s/pmerged", dir);
     snprintf(cache, sizeof cache, "%s/cache", dir);
-#define PAIRS "--suite", "paper", "-p", "crow", "-s", "12x12", "-m", "point", "-m", "area", \
+#define PAIRS "--suite", "default", "-p", "crow", "-s", "12x12", "-m", "point", "-m", "area", \
               "-m", "supersample:n=3", "--reps", "1", "--no-plots", "--no-images", "--threads", \
               "1", "-q", "--cache", cache
     const char *run[] = {"run", PAIRS, "--out", whole, NULL};

@@ -39,7 +39,7 @@
 
 /* The arrays of parsed lists, freed together with the run folder. */
 typedef struct owned {
-    void *v[4 * (MAX_GROUPS + 1)];
+    void *v[4 * (MAX_GROUPS + 2)];
     size_t n;
 } owned;
 
@@ -969,12 +969,98 @@ static size_t drop_missing_external(const char *suite, aa_run_spec *m, size_t n,
     return kept;
 }
 
+/* The index in b of the first of a's values that b holds too, into *ia and
+ * *ib; 0 if they share none. */
+static int shared_spec(const aa_run_spec *a, size_t na, const aa_run_spec *b, size_t nb,
+                       size_t *ia, size_t *ib)
+{
+    for (*ia = 0; *ia < na; ++*ia)
+        for (*ib = 0; *ib < nb; ++*ib)
+            if (!strcmp(a[*ia].text, b[*ib].text))
+                return 1;
+    return 0;
+}
+
+static int shared_filter(const aa_run_filter *a, size_t na, const aa_run_filter *b, size_t nb,
+                         size_t *ia)
+{
+    for (*ia = 0; *ia < na; ++*ia)
+        for (size_t k = 0; k < nb; k++)
+            if (!strcmp(a[*ia].text, b[k].text))
+                return 1;
+    return 0;
+}
+
+static int shared_size(const aa_run_size *a, size_t na, const aa_run_size *b, size_t nb,
+                       size_t *ia)
+{
+    for (*ia = 0; *ia < na; ++*ia)
+        for (size_t k = 0; k < nb; k++)
+            if (a[*ia].w == b[k].w && a[*ia].h == b[k].h)
+                return 1;
+    return 0;
+}
+
+/* 1 if every value of a is in b. */
+static int specs_within(const aa_run_spec *a, size_t na, const aa_run_spec *b, size_t nb)
+{
+    size_t ia, ib;
+    for (size_t k = 0; k < na; k++)
+        if (!shared_spec(a + k, 1, b, nb, &ia, &ib))
+            return 0;
+    return 1;
+}
+
+/* 1 if config c's cases are all config d's: every list of c within d's. */
+static int cases_within(const aa_run_config *c, const aa_run_config *d)
+{
+    size_t i;
+    for (size_t k = 0; k < c->nsizes; k++)
+        if (!shared_size(c->sizes + k, 1, d->sizes, d->nsizes, &i))
+            return 0;
+    for (size_t k = 0; k < c->nfilters; k++)
+        if (!shared_filter(c->filters + k, 1, d->filters, d->nfilters, &i))
+            return 0;
+    return specs_within(c->patterns, c->npatterns, d->patterns, d->npatterns) &&
+           specs_within(c->methods, c->nmethods, d->methods, d->nmethods);
+}
+
+/* Two groups holding one case would measure it twice and double its rows:
+ * a group whose cases an earlier one holds all of is left out (-p, -f and
+ * -m given, the sizes the groups': every group of the default suite is then
+ * the same cross product), and a case in two groups otherwise is refused,
+ * naming it.  A suite's groups can meet so once the lists
+ * given replace theirs (--suite paper -p crow -s 32x32: two of its groups
+ * then hold crow 32x32 box point). */
+static int no_case_twice(const aa_run_config *cfgs, size_t ng, const char *suite)
+{
+    for (size_t g = 0; g < ng; g++)
+        for (size_t h = g + 1; h < ng; h++) {
+            const aa_run_config *a = &cfgs[g], *b = &cfgs[h];
+            size_t p, q, s, f, m;
+            if (shared_spec(a->patterns, a->npatterns, b->patterns, b->npatterns, &p, &q) &&
+                shared_size(a->sizes, a->nsizes, b->sizes, b->nsizes, &s) &&
+                shared_filter(a->filters, a->nfilters, b->filters, b->nfilters, &f) &&
+                shared_spec(a->methods, a->nmethods, b->methods, b->nmethods, &m, &q))
+                return aa_fail(AA_EINVAL,
+                               "%s on %s %dx%d %s would be measured twice: two of the suite "
+                               "%s's cross products hold it once the lists given replace "
+                               "theirs; give -p, -s, -f and -m all (one cross product)",
+                               a->methods[m].text, a->patterns[p].text, a->sizes[s].w,
+                               a->sizes[s].h, a->filters[f].text, suite);
+        }
+    return AA_OK;
+}
+
 /* The cross products to run: the suite's groups, with any list given on the
  * command line replacing the groups' own.  The lists given are parsed once,
- * and shared by every group. */
+ * and shared by every group.  Patterns given without sizes: a pattern of a
+ * size of its own (an svg file's, times its scale) is measured at that size
+ * alone, the others at the groups' sizes; so each group becomes one cross
+ * product for each size the patterns have of their own, and one for the
+ * patterns without. */
 static int groups_of(const aa_plan *a, const aa_suite *suite, owned *o, const aa_run_options *opt,
-                     aa_run_config *cfgs,
-                     size_t max, size_t *ng)
+                     aa_run_config *cfgs, size_t max, size_t *ng)
 {
     aa_run_spec *gp = NULL, *gm = NULL;
     aa_run_size *gs = NULL;
@@ -986,9 +1072,44 @@ static int groups_of(const aa_plan *a, const aa_suite *suite, owned *o, const aa
         (a->nfilters && (st = parse_filters(o, a->filters, a->nfilters, &gf))) ||
         (a->nmethods && (st = parse_methods(o, a->methods, a->nmethods, &gm))))
         return st;
-    for (const aa_suite_group *g = suite->groups; g->patterns && *ng < max; g++) {
-        aa_run_config *c = &cfgs[(*ng)++];
-        aa_run_spec *p = gp, *m = gm;
+    /* the given patterns by class: class c holds cp[cstart[c] .. cstart[c] +
+     * cn[c]), of size csize[c] (0x0: the groups' sizes) */
+    size_t ncls = 1, cstart[AA_PLAN_MAX + 1] = {0}, cn[AA_PLAN_MAX + 1] = {0};
+    aa_run_spec *cp = gp;
+    aa_run_size *csize = NULL;
+    if (a->npatterns && !a->nsizes) {
+        aa_run_size *own_of = own(o, a->npatterns, sizeof *own_of);
+        cp = own(o, a->npatterns, sizeof *cp);
+        csize = own(o, a->npatterns, sizeof *csize);
+        if (!own_of || !cp || !csize)
+            return aa_fail(AA_ENOMEM, "out of memory");
+        ncls = 0;
+        for (size_t k = 0; k < a->npatterns; k++) {
+            aa_run_size *z = &own_of[k];
+            if (aa_pattern_has_own_size(&gp[k].spec) &&
+                ((st = aa_pattern_own_size(&gp[k].spec, &z->w, &z->h)) ||
+                 (st = aa_size_check(z->w, z->h, 3, 4))))
+                return aa_fail_context(st, "pattern %s", gp[k].text);
+            size_t c = 0;
+            while (c < ncls && !(csize[c].w == z->w && csize[c].h == z->h))
+                c++;
+            if (c == ncls)
+                csize[ncls++] = *z;
+            cn[c]++;
+        }
+        for (size_t c = 1; c <= ncls; c++)
+            cstart[c] = cstart[c - 1] + cn[c - 1];
+        size_t at[AA_PLAN_MAX + 1];
+        memcpy(at, cstart, sizeof at);
+        for (size_t k = 0; k < a->npatterns; k++) {
+            size_t c = 0;
+            while (!(csize[c].w == own_of[k].w && csize[c].h == own_of[k].h))
+                c++;
+            cp[at[c]++] = gp[k];
+        }
+    }
+    for (const aa_suite_group *g = suite->groups; g->patterns; g++) {
+        aa_run_spec *p = cp, *m = gm;
         aa_run_size *s = gs;
         aa_run_filter *f = gf;
         size_t np = a->npatterns ? a->npatterns : count(g->patterns), ns = a->nsizes ? a->nsizes : count(g->sizes),
@@ -1000,15 +1121,32 @@ static int groups_of(const aa_plan *a, const aa_suite *suite, owned *o, const aa
             return st;
         if (!a->nmethods)
             nm = drop_missing_external(suite->name, m, nm, opt);
-        memset(c, 0, sizeof *c);
-        c->patterns = p, c->npatterns = np;
-        c->sizes = s, c->nsizes = ns;
-        c->filters = f, c->nfilters = nf;
-        c->methods = m, c->nmethods = nm;
+        for (size_t k = 0; k < ncls; k++) {
+            if (*ng == max)
+                return aa_fail(AA_EINVAL, "the suite %s with the patterns given makes more than "
+                                          "%zu cross products: give the sizes (-s)",
+                               suite->name, max);
+            aa_run_config *c = &cfgs[*ng];
+            memset(c, 0, sizeof *c);
+            c->patterns = p, c->npatterns = np;
+            c->sizes = s, c->nsizes = ns;
+            if (csize) {
+                c->patterns = cp + cstart[k], c->npatterns = cn[k];
+                if (csize[k].w)
+                    c->sizes = &csize[k], c->nsizes = 1;
+            }
+            c->filters = f, c->nfilters = nf;
+            c->methods = m, c->nmethods = nm;
+            size_t d = 0;
+            while (d < *ng && !cases_within(c, &cfgs[d]))
+                d++;
+            if (d == *ng)
+                ++*ng;
+        }
         if (a->npatterns && a->nsizes && a->nfilters && a->nmethods)
             break; /* everything given: one cross product */
     }
-    return AA_OK;
+    return no_case_twice(cfgs, *ng, suite->name);
 }
 
 /* Everything checked before any work or any file: every method runs some

@@ -439,6 +439,8 @@ int aa_pattern_sized(const aa_spec *spec);
  * the file's width and height times its scale), or AA_EINVAL saying -s is
  * needed. */
 int aa_pattern_own_size(const aa_spec *spec, int *w, int *h);
+/* 1 if the pattern has a size of its own (aa_pattern_own_size). */
+int aa_pattern_has_own_size(const aa_spec *spec);
 /* What the cache key of a view adds for the pattern beyond its canonical
  * text: for a pattern read from files (`svg`, `text`), a line per file with
  * the hash and length of its bytes, so that a file changed under the same
