@@ -430,7 +430,12 @@
  * - a c would cancel; one wholly unpainted takes the layer transparent;
  * one a tangent line (or the half-plane's edge) crosses is cut and takes
  * the layer both painted (t over the painted part: each form's range
- * clamped to its sign) and not, as a piece's layer is covered and not,
+ * clamped to its sign; across the half-plane's edge t beyond c's least
+ * over twice b's greatest towards the pole, whose padded paint is the
+ * last or first stop's: thr_paint clamps an unbounded t to the stops,
+ * where the whole line's range of t had every stop's colour and the
+ * windows along the edge were scanned, 22 of 576 on the 24x24 document
+ * of the half-plane below) and not, as a piece's layer is covered and not,
  * up to THR_PART such layers.  A box holding P* is one of those (the
  * wedge), or has d's range reach 0 (CONE_NESTED: t's kink), a cut.  Where
  * the threshold's curve meets a tangent line it touches it (the curve is
@@ -452,6 +457,16 @@
  * radius 6.5: the tangent lines nearly parallel, an arc of the curve
  * between them) 256 pixels were scanned, none now, 3.26e9 instructions
  * against 4.47e9, the values within 1.1e-16, largest bound 1.8e-13 both.
+ * The same two layers with the end circle (12, 12) r 3 inside the focal
+ * circle (13, 12) r 10 (nested), and with the focal circle (8, 12) r 4
+ * touching the end circle (12, 12) r 8 inside (the half-plane x > 4),
+ * stops #100000 to #603020: both were refused (a row grazing the curve's
+ * lowest point: "a cone beside other gradients"); none of 576 pixels is
+ * scanned now for the nested one (largest bound 1.5e-14, 2.69e9
+ * instructions; under cone:r=1 none, 8.8e-14; tent:r=1 none, 6.4e-14),
+ * for the half-plane none (7.6e-14, 1.77e9), 1 under cone:r=1 and 2
+ * under tent:r=1 (pixels (4, 8), (4, 9), beside the edge: slivers there
+ * pass THR_CONE_LEFT), largest bounds 1.4e-13 and 7.9e-14.
  *
  * Scanned (thr_heights), elsewhere (an evolute in the window on the half
  * of a cubic next to an end where B' vanishes whose factored form
@@ -3269,8 +3284,10 @@ static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double
 
 /* Layer l's t(m) and t'(m) into *tm, *tp, and bounds |t| <= *T, |t'|
  * <= *P and |t''| <= *Q on the real segment [m - h, m + h] in x
- * (gen_taylor); 0 if none are had (a painted cone-case layer: none; a
- * flat one's are 0). */
+ * (gen_taylor); 0 if none are had (a flat cone-case layer's are 0; a
+ * painted one's: gen_cone_tpq). */
+static int gen_cone_tpq(const gen_span_ctx *c, int l, double m, double h, double *tp, double *T,
+                        double *P, double *Q);
 static int gen_tpq(const gen_span_ctx *c, int l, double m, double h, double *tm, double *tp,
                    double *T, double *P, double *Q)
 {
@@ -3278,7 +3295,7 @@ static int gen_tpq(const gen_span_ctx *c, int l, double m, double h, double *tm,
     *tm = gen_t(c, l, m);
     if (g->rg && g->rg->cone) {
         if (!c->flat[l])
-            return 0; /* a painted cone: the Lipschitz test alone */
+            return gen_cone_tpq(c, l, m, h, tp, T, P, Q);
         *tm = *tp = *T = *P = *Q = 0.0; /* its paint constant */
         return 1;
     }
@@ -3305,6 +3322,55 @@ static int gen_tpq(const gen_span_ctx *c, int l, double m, double h, double *tm,
     double U = r->dmin >= 0.0 ? Z : lo, dU = sqrt(r->d2 * U * U + r->dmin);
     *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * h + dz) * ia;
     *P = (fabs(r->b1) + (dU > 0.0 ? r->d2 * U / dU : 0.0)) * ia;
+    return 1;
+}
+
+/* A painted cone-case layer's t'(m) and bounds of |t|, |t'| and |t''| on
+ * the real segment [m - h, m + h] of a piece in x ("a cone beside other
+ * gradients": its ends are no tangent line's crossing, so d > 0 there).
+ * With L_k = lam_k x + mu_k on the row, d = L0 L1, d' = lam0 L1 + lam1 L0
+ * and d'' = 2 lam0 lam1, t = (b + sqrt d) / a has t' = (b1 + d' / (2
+ * sqrt d)) / a and t'' = (2 d d'' - d'^2) / (4 a d^(3/2)) = -(lam0 mu1 -
+ * lam1 mu0)^2 / (4 a d^(3/2)), the x terms cancelling; |d| >= |L0| |L1|
+ * each bounded below by |lam_k| times its zero's distance from the
+ * segment (gen_layer_tp's T and P).  CONE_HALF: t = c / (2 b), t' = (c'
+ * b - c b1) / (2 b^2), t'' = c'' / (2 b) - c' b1 / b^2 + c b1^2 / b^3,
+ * |b| >= |b(m)| - |b1| h > 0. */
+static int gen_cone_tpq(const gen_span_ctx *c, int l, double m, double h, double *tp, double *T,
+                        double *P, double *Q)
+{
+    const grad_radial *q = c->L[l]->rg;
+    const rad_row *r = &c->row[l];
+    if (!gen_layer_tp(c, l, m, h, 0.0, T, P))
+        return 0;
+    double bm = r->b0 + r->b1 * m;
+    if (q->cone == CONE_HALF) {
+        double bl = fabs(bm) - fabs(r->b1) * h, cm = r->c0 + m * (r->c1 + m * r->c2);
+        double c1m = r->c1 + 2.0 * r->c2 * m, c1b = fabs(c1m) + 2.0 * r->c2 * h;
+        double cz = fabs(cm) + fabs(c1m) * h + r->c2 * h * h;
+        if (!(bl > 0.0))
+            return 0;
+        *tp = (c1m * bm - cm * r->b1) / (2.0 * bm * bm);
+        *Q = r->c2 / bl + c1b * fabs(r->b1) / (bl * bl) + cz * r->b1 * r->b1 / (bl * bl * bl);
+        return 1;
+    }
+    double complex lam0 = c->lam[l][0], lam1 = c->lam[l][1], mu0 = c->mu[l][0], mu1 = c->mu[l][1];
+    double complex L0 = lam0 * m + mu0, L1 = lam1 * m + mu1;
+    double dm = creal(L0 * L1), dpm = creal(lam0 * L1 + lam1 * L0), lo = 1.0;
+    for (int k = 0; k < 2; k++) {
+        double complex lam = c->lam[l][k], mu = c->mu[l][k];
+        if (lam == 0.0)
+            lo *= cabs(mu);
+        else {
+            double complex z = -mu / lam;
+            lo *= cabs(lam) * fmax(fabs(creal(z) - m) - h, fabs(cimag(z)));
+        }
+    }
+    if (!(lo > 0.0 && dm > 0.0))
+        return 0;
+    double k2 = cabs(lam0 * mu1 - lam1 * mu0);
+    *tp = (r->b1 + dpm / (2.0 * sqrt(dm))) / q->a;
+    *Q = k2 * k2 / (4.0 * fabs(q->a) * lo * sqrt(lo));
     return 1;
 }
 
@@ -3419,10 +3485,10 @@ static int gen_taylor(const gen_span_ctx *c, int ch, double m, double h, double 
  * gives gen_bounds' |e| <= S, |e'| <= D and gen_taylor's e'(m) and |e''|
  * <= H, so the threshold's isolation and the rule's Bernstein-ellipse
  * bound are those of the path above, with the fold's bounds in place of
- * sum |K_a| prod F; gen_taylor's rule holds the same (in u, or with a
- * painted cone-case layer, no Taylor bound: the Lipschitz test alone,
- * "a cone beside other gradients").  Work per evaluation is one pass over the scene's
- * steps, linear in the layers. */
+ * sum |K_a| prod F; gen_taylor's rule holds the same (in u no Taylor
+ * bound: the Lipschitz test alone, "a cone beside other gradients").
+ * Work per evaluation is one pass over the scene's steps, linear in the
+ * layers. */
 typedef struct gjet {
     double v, d, D, H, S;
 } gjet;
@@ -4173,17 +4239,22 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
  *    on the power piece Re(e + 0.055) > 0 from |e(z) - e(m)| <= A max
  *    |e'|; in linear light Re v > 0 likewise, keeping v = 0 out) are then
  *    those of several gradients in the piece's variable, and the
- *    threshold's isolation runs in it too, by the Lipschitz test alone
- *    (gen_taylor gives no bound in u or with a painted cone layer, whose
- *    t'' it does not bound; the halving is then on the signs and the
- *    budget as ever, a row tangent to the threshold's curve at worst
- *    refusing the pixel by name); a narrow interval in u is its x range
- *    times the colour at its middle, with the same bound;
+ *    threshold's isolation runs in it too, in u by the Lipschitz test
+ *    alone (gen_taylor gives no bound there; the halving is then on the
+ *    signs and the budget as ever, a row tangent to the threshold's curve
+ *    at worst refusing the pixel by name), in x with Taylor's theorem as
+ *    well, a painted cone layer's t'' bounded from its forms
+ *    (gen_cone_tpq: t'' = -(lam0 mu1 - lam1 mu0)^2 / (4 a d^(3/2)),
+ *    CONE_HALF's from c / (2 b)); with the Lipschitz test alone a row
+ *    grazing the curve's lowest point (2e-7 below the threshold: a nested
+ *    cone at alpha 0.6 over a linear gradient) ran out of work and the
+ *    document was refused; a narrow interval in u is its x range times
+ *    the colour at its middle, with the same bound;
  *  - past GEN_MAX layers at a point (a cone and other gradients, or more
  *    than GEN_MAX layers of one cone) the composite is folded ("the
  *    fold"), its bounds from the same layers' T and P in the piece's
- *    variable (gen_layer_tp_s) and no Taylor bound in u or with a painted
- *    cone layer, as above; past GEN_LAYERS the pixel is refused.
+ *    variable (gen_layer_tp_s) and no Taylor bound in u, as above; past
+ *    GEN_LAYERS the pixel is refused.
  * The outer breakpoints are the union of the layers' own, as for several
  * gradients (grad_breakpoints): the cone's tangent lines and front arcs
  * among them.
@@ -6015,6 +6086,21 @@ static thr_jet thr_cone_t(const thr_ctx *c, int l, thr_jet b, thr_jet cc, thr_iv
     }
     if (r->cone == CONE_HALF) { /* b = sg L0 where it paints, t = c / (2 b) */
         thr_jet b2 = r->dr > 0.0 ? L[0] : j_scale(-1.0, L[0]);
+        if (*paint == 2) {
+            /* the edge crosses the box: on its painted part sg b in (0,
+             * sg L0's greatest], so t = c / (2 b) lies beyond c's least
+             * over twice that (sg c > 0) towards sg infinity, the pole;
+             * a padded layer's paint there is its last or first stop's
+             * (thr_paint), whatever the derivative */
+            thr_iv v = {-INFINITY, INFINITY};
+            double bh = L[0].v.hi, k = r->dr > 0.0 ? 1.0 : -1.0;
+            thr_iv sc = k > 0.0 ? cc.v : (thr_iv){-cc.v.hi, -cc.v.lo};
+            if (bh > 0.0 && sc.lo > 0.0) {
+                double q = iv_out(sc.lo / (2.0 * bh), 0.0).lo;
+                v = k > 0.0 ? (thr_iv){q, INFINITY} : (thr_iv){-INFINITY, -q};
+            }
+            return (thr_jet){v, {-INFINITY, INFINITY}};
+        }
         return j_mul(cc, j_inv(j_scale(2.0, b2)));
     }
     thr_jet d = r->cone == CONE_NESTED ? j_add(j_sqr(L[0]), j_sqr(L[1])) : j_mul(L[0], L[1]);
@@ -6129,6 +6215,13 @@ static void thr_paint(const thr_ctx *c, int l, thr_jet t, thr_jet p[4], int *cut
     const gen_layer *g = &c->w->gl[l];
     const grad_plane *gp = g->gp ? g->gp : &g->rg->plane;
     double ta = t.v.lo, tb = t.v.hi, v0[4], v1[4];
+    if (g->rg && g->rg->cone && g->spread == AA_SPREAD_PAD && g->nstops > 0 &&
+        (ta == -INFINITY || tb == INFINITY)) {
+        /* a cone's t unbounded (the half-plane's pole): padded, the paint
+         * of t is that of t clamped to the stops' offsets */
+        double o0 = g->stops[0].offset, o1 = g->stops[g->nstops - 1].offset;
+        ta = fmin(fmax(ta, o0), o1), tb = fmin(fmax(tb, o0), o1);
+    }
     double pad = 8.0 * DBL_EPSILON * (1.0 + fmax(fabs(ta), fabs(tb)));
     size_t nb = ta == -INFINITY || tb == INFINITY
                     ? SIZE_MAX
