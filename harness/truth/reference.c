@@ -71,8 +71,10 @@
                           * crosses it bounded over the piece's x by E's range
                           * over the covered and uncovered cases together, not
                           * the wider of the two; 17: a painted cone layer's t''
-                          * bounded for the threshold's Taylor test, and the
-                          * half-plane's t across its edge in a box */
+                          * bounded for the threshold's Taylor test, the
+                          * half-plane's t across its edge in a box, and a
+                          * sliver's strip that a cone's line crosses bounded
+                          * over the line's x by both cases' range */
 #define CACHE_MAGIC "aabench-reference 2\n"
 
 static int field_key(const aa_view *view, char *buf, size_t len);

@@ -361,7 +361,8 @@
  * box (bounded as dE/dx is) where no stop, period's end or piece crosses it,
  * else the width of E's range there (where a piece crosses, each cover's,
  * and over the piece's x on those rows, where the cover may change between
- * s and m, the range over both covers together), such a strip halved up to
+ * s and m, the range over both covers together; a cone's tangent line
+ * likewise, painted and not), such a strip halved up to
  * 8 times while that is above 1e-6 (thr_strip).  Under a separable filter the
  * sliver takes G(m), F = w(s) G(s), times the weight's integral over it,
  * with that bound times the weight's peak twice.  Under a radial filter
@@ -464,9 +465,14 @@
  * lowest point: "a cone beside other gradients"); none of 576 pixels is
  * scanned now for the nested one (largest bound 1.5e-14, 2.69e9
  * instructions; under cone:r=1 none, 8.8e-14; tent:r=1 none, 6.4e-14),
- * for the half-plane none (7.6e-14, 1.77e9), 1 under cone:r=1 and 2
- * under tent:r=1 (pixels (4, 8), (4, 9), beside the edge: slivers there
- * pass THR_CONE_LEFT), largest bounds 1.4e-13 and 7.9e-14.
+ * for the half-plane none (1.6e-14, 1.77e9), none under cone:r=1 and
+ * tent:r=1 (1.0e-13, 6.5e-14).  Its windows beside the edge under those
+ * filters (pixels (4, 8), (4, 9)) were scanned until a sliver's strip
+ * that a tangent line or the edge crosses took E's range over both cases
+ * only over the line's x on the sliver's rows, elsewhere one case's
+ * (thr_box, thr_cone_cross: a column's rows are painted alike but where
+ * the line passes between them), as a piece's strip does: slivers of
+ * 8e-9 px took 2.5e-5 a unit of height, past THR_CONE_LEFT in all.
  *
  * Scanned (thr_heights), elsewhere (an evolute in the window on the half
  * of a cubic next to an end where B' vanishes whose factored form
@@ -6309,6 +6315,31 @@ static void thr_fold(const thr_ctx *c, const thr_jet *a, thr_jet (*ac)[3], thr_j
     }
 }
 
+/* The share of [x0, x1] over which the cone layers part[0 .. np - 1]'s
+ * tangent lines (the half-plane's edge) that cross the box [x0, x1] x
+ * [s0, s1] (relative) lie on its rows: each line L = f0 x + f1 s + l = 0
+ * whose range there holds 0 moves |f1 / f0| (s1 - s0) in x over them (the
+ * whole width where f0 is 0), with 1e-9 of that and 1e-14 of the window
+ * for rounding; at most 1. */
+static double thr_cone_cross(const thr_ctx *c, const int *part, int np, double x0, double x1,
+                             double s0, double s1)
+{
+    thr_iv X = {x0, x1}, S = {s0, s1};
+    double len = 0.0, wd = x1 - x0;
+    for (int i = 0; i < np; i++) {
+        const grad_radial *r = c->w->gl[part[i]].rg;
+        for (int k = 0; k < (r->cone == CONE_HALF ? 1 : 2) && r->cone != CONE_NESTED; k++) {
+            double f0 = creal(r->lf[k][0]), f1 = creal(r->lf[k][1]);
+            thr_iv L = iv_add(c->lc[4 * part[i] + k],
+                              iv_add(iv_mul(iv_k(f0), X), iv_mul(iv_k(f1), S)));
+            if (!(L.lo <= 0.0 && L.hi >= 0.0))
+                continue;
+            len += f0 != 0.0 ? fabs(f1 / f0) * (s1 - s0) * (1.0 + 1e-9) + 1e-14 * c->w->R : wd;
+        }
+    }
+    return wd > 0.0 ? fmin(1.0, len / wd) : 1.0;
+}
+
 /* Whether the box [x0, x1] x [s0, s1] (relative) may hold an event of
  * the threshold's curve: for some channel, 0.04045 is in E's range and,
  * unless a cut meets the box (a stop line or circle, the window's side,
@@ -6382,7 +6413,9 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
      * (bit k of m: part[k] painted), each folded, as a piece's layer is
      * taken covered and not (thr_box_at); the box is cut */
     unsigned char *on = c->paint;
+    double mw[3] = {0.0, 0.0, 0.0}; /* each channel's widest range of one case */
     for (int m = 0; m < 1 << np && !(hit && !wid); m++) {
+        double mlo[3] = {INFINITY, INFINITY, INFINITY}, mhi[3] = {-INFINITY, -INFINITY, -INFINITY};
         for (int k = 0; k < np; k++)
             on[part[k]] = (m >> k) & 1 ? 2 : 0;
         int sp = split >= 0 && on[split] ? split : -1;
@@ -6433,8 +6466,10 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
                     cj |= Eb[ch].v.lo <= 0.04045 && Eb[ch].v.hi >= 0.04045;
                 }
             }
-            for (int ch = 0; ch < c->nch && wid; ch++)
+            for (int ch = 0; ch < c->nch && wid; ch++) {
                 elo[ch] = fmin(elo[ch], E[ch].v.lo), ehi[ch] = fmax(ehi[ch], E[ch].v.hi);
+                mlo[ch] = fmin(mlo[ch], E[ch].v.lo), mhi[ch] = fmax(mhi[ch], E[ch].v.hi);
+            }
             for (int ch = 0; ch < c->nch && lip; ch++) {
                 double d = fmax(fabs(E[ch].d.lo), fabs(E[ch].d.hi));
                 *lip = split >= 0 || np > 0 || !(d <= INFINITY) ? INFINITY : fmax(*lip, d);
@@ -6454,9 +6489,19 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
             }
         next:;
         }
+        for (int ch = 0; ch < c->nch && wid; ch++)
+            if (mhi[ch] >= mlo[ch])
+                mw[ch] = fmax(mw[ch], mhi[ch] - mlo[ch]);
     }
+    /* cone layers painting part of the box: a column's two rows s and m
+     * are painted alike but where a tangent line (the half-plane's edge)
+     * passes between them, over at most its x on the box's rows
+     * (thr_cone_cross); there E may take the range of every case
+     * together, elsewhere that of one case: wid their mean over [x0, x1] */
+    double fr = np > 0 && wid ? thr_cone_cross(c, part, np, x0, x1, s0, s1) : 0.0;
     for (int ch = 0; ch < c->nch && wid; ch++) {
-        *wid = fmax(*wid, ehi[ch] - elo[ch]);
+        double all = ehi[ch] - elo[ch];
+        *wid = fmax(*wid, np > 0 ? fmin(all, mw[ch] + all * fr) : all);
         if (un)
             un[ch] = fmin(un[ch], elo[ch]), un[3 + ch] = fmax(un[3 + ch], ehi[ch]);
     }
