@@ -2624,7 +2624,10 @@ static void test_mixed_cone(void **state)
  *    5 s of CPU); and the windows the edge crosses (columns 3 and 4 above
  *    row 11) were scanned, their boxes holding the edge taking t over
  *    the whole line: now t beyond c's least over twice b's greatest,
- *    the padded paint the last stop's.
+ *    the padded paint the last stop's; under tent:r=1 pixel (4, 8)'s
+ *    window was scanned still, its slivers' strips across the edge
+ *    taking E's range painted and not over the strip's whole width (now
+ *    over the edge's x on the sliver's rows alone): certified now.
  * main took neither document (both 24 x 24 SVG files of these layers;
  * Chromium and resvg draw them). */
 static const aa_gradient_stop nest_lin[2] = {{0.0, {{0, 0, 0}}, 1.0},
@@ -2651,6 +2654,20 @@ static void test_mixed_nested_half(void **state)
     const double half[6] = {12, 12, 8, 8, 12, 4};
     memcpy(p.l[1].p, half, sizeof half);
     assert_int_equal(mpic_check_px("half-plane over linear", &p, half_px, 3), 0);
+    /* under tent:r=1 pixel (4, 8)'s window, the edge across it, certified too */
+    gw = gh = W;
+    aa_scene *s = mpic_scene(&p);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    support_reference_part(s, W, W, 4, 8, 1, 1, "tent:r=1", &ref, &bound, &stats);
+    print_message("half-plane over linear, tent:r=1: pixel (4, 8) %s\n",
+                  stats.scanned ? "scanned" : "certified");
+    assert_int_equal(stats.scanned, 0);
+    expect_bound("half-plane over linear, tent:r=1", &stats);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+    gw = W, gh = H;
 }
 
 /* Which pixels take the certified step and which the scan, as truth.c's
