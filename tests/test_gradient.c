@@ -1571,7 +1571,9 @@ static void mpic_sig(const mpic *p, double x, double y, int *s)
         const mlayer *m = &p->l[k];
         double t = mlayer_t(m, x, y), u = spread_fold(m->spread, t);
         s[n++] = mlayer_in(m, x, y);
-        s[n++] = (int)floor(t);
+        /* padded, t's whole numbers past -1 and 2 are no events (the half-plane's t
+         * runs to infinity at its edge) */
+        s[n++] = (int)floor(m->spread == AA_SPREAD_PAD ? fmin(fmax(t, -1.0), 2.0) : t);
         int seg = 0;
         for (int q = 0; q < m->n; q++)
             seg += u >= m->st[q].offset;
@@ -2008,7 +2010,7 @@ static void test_many_layers_stack(void **state)
  * 9 s of CPU.
  * The stack of 7 keeps its whole view, whose windows where more than
  * THR_UNSURE layers' cover is unknown (truth.c) its two pixels miss. */
-static void mpic_check_px(const char *what, mpic *p, const int (*px)[2], int npx)
+static size_t mpic_check_px(const char *what, mpic *p, const int (*px)[2], int npx)
 {
     gw = gh = W;
     aa_scene *s = mpic_scene(p);
@@ -2019,6 +2021,7 @@ static void mpic_check_px(const char *what, mpic *p, const int (*px)[2], int npx
         aa_truth_stats stats;
         support_reference_part(s, W, W, px[k][0], px[k][1], 1, 1, NULL, &ref, &bound, &stats);
         all.max_bound = fmax(all.max_bound, stats.max_bound);
+        all.scanned += stats.scanned;
         for (int ch = 0; ch < 3; ch++) {
             p->ch = ch;
             double want = mpic_pixel(p, px[k][0], px[k][1]);
@@ -2032,9 +2035,11 @@ static void mpic_check_px(const char *what, mpic *p, const int (*px)[2], int npx
         aa_image_free(&bound);
     }
     expect_bound(what, &all);
-    print_message("%s: %d pixels x 3 channels within %.2g of GSL 2-D\n", what, npx, worst);
+    print_message("%s: %d pixels x 3 channels within %.2g of GSL 2-D, %zu scanned\n", what, npx,
+                  worst, all.scanned);
     aa_scene_free(s);
     gw = W, gh = H;
+    return all.scanned;
 }
 
 static void test_many_layers_mixed(void **state)
@@ -2599,6 +2604,72 @@ static void test_mixed_cone(void **state)
     gw = W, gh = H;
 }
 
+/* The cone case's two other kinds at alpha 0.6 over an opaque linear
+ * gradient along y (#000 at y = 2 to #404040 at y = 22, padded), the
+ * stops #100000 and #603020 (their decoded values below), each against
+ * the 2-D quadrature of its picture (mpic_pixel, t from SVG 2's
+ * definition, mlayer_cone_t) pixel by pixel (mpic_check_px), none of
+ * them scanned:
+ *  - nested: the end circle (12, 12) r 3 inside the focal circle (13,
+ *    12) r 10.  Red's threshold curve has its lowest point in pixel (12,
+ *    2), where a row grazes it (2e-7 below 0.04045 at x = 13): with only
+ *    the Lipschitz test for a painted cone layer the row's isolation ran
+ *    out of work and the document was refused ("a row of the gradients'
+ *    composite not resolved within the work limit").  t's second
+ *    derivative along the row, -(lam0 mu1 - lam1 mu0)^2 / (4 a
+ *    d^(3/2)), now bounds the Taylor test (truth.c, gen_cone_tpq);
+ *  - the half-plane: the focal circle (8, 12) r 4 touching the end
+ *    circle (12, 12) r 8 from inside, the edge x = 4.  Blue's curve
+ *    grazes a row of pixel (8, 7) likewise (refused, the same way, after
+ *    5 s of CPU); and the windows the edge crosses (columns 3 and 4 above
+ *    row 11) were scanned, their boxes holding the edge taking t over
+ *    the whole line: now t beyond c's least over twice b's greatest,
+ *    the padded paint the last stop's; under tent:r=1 pixel (4, 8)'s
+ *    window was scanned still, its slivers' strips across the edge
+ *    taking E's range painted and not over the strip's whole width (now
+ *    over the edge's x on the sliver's rows alone): certified now.
+ * main took neither document (both 24 x 24 SVG files of these layers;
+ * Chromium and resvg draw them). */
+static const aa_gradient_stop nest_lin[2] = {{0.0, {{0, 0, 0}}, 1.0},
+                                             {1.0,
+                                              {{0.05126945837404324, 0.05126945837404324,
+                                                0.05126945837404324}},
+                                              1.0}};
+static const aa_gradient_stop nest_rad[2] = {
+    {0.0, {{0.005181516702338386, 0, 0}}, 1.0},
+    {1.0, {{0.11697066775851084, 0.0295568344378088, 0.014443843596092545}}, 1.0}};
+
+static void test_mixed_nested_half(void **state)
+{
+    (void)state;
+    mpic p = {2,
+              {{0, {0, 0, W, W}, AA_GRADIENT_LINEAR, {0, 2, 0, 22, 0, 0}, AA_SPREAD_PAD, 2,
+                nest_lin, 1.0},
+               {0, {0, 0, W, W}, AA_GRADIENT_RADIAL, {12, 12, 3, 13, 12, 10}, AA_SPREAD_PAD, 2,
+                nest_rad, 0.6}},
+              {0, 0, 0},
+              0};
+    static const int nest_px[2][2] = {{12, 2}, {12, 3}}, half_px[3][2] = {{8, 7}, {4, 5}, {3, 5}};
+    assert_int_equal(mpic_check_px("nested cone over linear", &p, nest_px, 2), 0);
+    const double half[6] = {12, 12, 8, 8, 12, 4};
+    memcpy(p.l[1].p, half, sizeof half);
+    assert_int_equal(mpic_check_px("half-plane over linear", &p, half_px, 3), 0);
+    /* under tent:r=1 pixel (4, 8)'s window, the edge across it, certified too */
+    gw = gh = W;
+    aa_scene *s = mpic_scene(&p);
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    support_reference_part(s, W, W, 4, 8, 1, 1, "tent:r=1", &ref, &bound, &stats);
+    print_message("half-plane over linear, tent:r=1: pixel (4, 8) %s\n",
+                  stats.scanned ? "scanned" : "certified");
+    assert_int_equal(stats.scanned, 0);
+    expect_bound("half-plane over linear, tent:r=1", &stats);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+    gw = W, gh = H;
+}
+
 /* Which pixels take the certified step and which the scan, as truth.c's
  * opening comment ("several gradients") states the rule: the lens's
  * scene, both layers filling the view (no edge in any window, a linear
@@ -2690,6 +2761,7 @@ int main(void)
         cmocka_unit_test(test_mixed_stroke),
         cmocka_unit_test(test_mixed_which_step),
         cmocka_unit_test(test_mixed_cone),
+        cmocka_unit_test(test_mixed_nested_half),
         cmocka_unit_test(test_threshold_mid_span),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

@@ -34,7 +34,7 @@
 #include <unistd.h>
 
 /* Bump when the ground truth's results could change. */
-#define TRUTH_VERSION 16/* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
+#define TRUTH_VERSION 17/* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
                           * pieces, and the cone's breakpoint where a piece passes
                           * closest to the centre; 4: the square root substitution on
                           * intervals that end near a turning point; 5: which radial
@@ -72,7 +72,11 @@
                           * box (thr_cone_t); 16: a sliver's strip where a piece
                           * crosses it bounded over the piece's x by E's range
                           * over the covered and uncovered cases together, not
-                          * the wider of the two */
+                          * the wider of the two; 17: a painted cone layer's t''
+                          * bounded for the threshold's Taylor test, the
+                          * half-plane's t across its edge in a box, and a
+                          * sliver's strip that a cone's line crosses bounded
+                          * over the line's x by both cases' range */
 #define CACHE_MAGIC "aabench-reference 3\n" /* 3: the count scanned */
 
 static int field_key(const aa_view *view, char *buf, size_t len);

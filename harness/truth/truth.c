@@ -361,7 +361,8 @@
  * box (bounded as dE/dx is) where no stop, period's end or piece crosses it,
  * else the width of E's range there (where a piece crosses, each cover's,
  * and over the piece's x on those rows, where the cover may change between
- * s and m, the range over both covers together), such a strip halved up to
+ * s and m, the range over both covers together; a cone's tangent line
+ * likewise, painted and not), such a strip halved up to
  * 8 times while that is above 1e-6 (thr_strip).  Under a separable filter the
  * sliver takes G(m), F = w(s) G(s), times the weight's integral over it,
  * with that bound times the weight's peak twice.  Under a radial filter
@@ -430,7 +431,12 @@
  * - a c would cancel; one wholly unpainted takes the layer transparent;
  * one a tangent line (or the half-plane's edge) crosses is cut and takes
  * the layer both painted (t over the painted part: each form's range
- * clamped to its sign) and not, as a piece's layer is covered and not,
+ * clamped to its sign; across the half-plane's edge t beyond c's least
+ * over twice b's greatest towards the pole, whose padded paint is the
+ * last or first stop's: thr_paint clamps an unbounded t to the stops,
+ * where the whole line's range of t had every stop's colour and the
+ * windows along the edge were scanned, 22 of 576 on the 24x24 document
+ * of the half-plane below) and not, as a piece's layer is covered and not,
  * up to THR_PART such layers.  A box holding P* is one of those (the
  * wedge), or has d's range reach 0 (CONE_NESTED: t's kink), a cut.  Where
  * the threshold's curve meets a tangent line it touches it (the curve is
@@ -452,6 +458,21 @@
  * radius 6.5: the tangent lines nearly parallel, an arc of the curve
  * between them) 256 pixels were scanned, none now, 3.26e9 instructions
  * against 4.47e9, the values within 1.1e-16, largest bound 1.8e-13 both.
+ * The same two layers with the end circle (12, 12) r 3 inside the focal
+ * circle (13, 12) r 10 (nested), and with the focal circle (8, 12) r 4
+ * touching the end circle (12, 12) r 8 inside (the half-plane x > 4),
+ * stops #100000 to #603020: both were refused (a row grazing the curve's
+ * lowest point: "a cone beside other gradients"); none of 576 pixels is
+ * scanned now for the nested one (largest bound 1.5e-14, 2.69e9
+ * instructions; under cone:r=1 none, 8.8e-14; tent:r=1 none, 6.4e-14),
+ * for the half-plane none (1.6e-14, 1.77e9), none under cone:r=1 and
+ * tent:r=1 (1.0e-13, 6.5e-14).  Its windows beside the edge under those
+ * filters (pixels (4, 8), (4, 9)) were scanned until a sliver's strip
+ * that a tangent line or the edge crosses took E's range over both cases
+ * only over the line's x on the sliver's rows, elsewhere one case's
+ * (thr_box, thr_cone_cross: a column's rows are painted alike but where
+ * the line passes between them), as a piece's strip does: slivers of
+ * 8e-9 px took 2.5e-5 a unit of height, past THR_CONE_LEFT in all.
  *
  * Scanned (thr_heights), elsewhere (an evolute in the window on the half
  * of a cubic next to an end where B' vanishes whose factored form
@@ -3269,8 +3290,10 @@ static void gen_piece(worker *w, const gen_span_ctx *c, const int *power, double
 
 /* Layer l's t(m) and t'(m) into *tm, *tp, and bounds |t| <= *T, |t'|
  * <= *P and |t''| <= *Q on the real segment [m - h, m + h] in x
- * (gen_taylor); 0 if none are had (a painted cone-case layer: none; a
- * flat one's are 0). */
+ * (gen_taylor); 0 if none are had (a flat cone-case layer's are 0; a
+ * painted one's: gen_cone_tpq). */
+static int gen_cone_tpq(const gen_span_ctx *c, int l, double m, double h, double *tp, double *T,
+                        double *P, double *Q);
 static int gen_tpq(const gen_span_ctx *c, int l, double m, double h, double *tm, double *tp,
                    double *T, double *P, double *Q)
 {
@@ -3278,7 +3301,7 @@ static int gen_tpq(const gen_span_ctx *c, int l, double m, double h, double *tm,
     *tm = gen_t(c, l, m);
     if (g->rg && g->rg->cone) {
         if (!c->flat[l])
-            return 0; /* a painted cone: the Lipschitz test alone */
+            return gen_cone_tpq(c, l, m, h, tp, T, P, Q);
         *tm = *tp = *T = *P = *Q = 0.0; /* its paint constant */
         return 1;
     }
@@ -3305,6 +3328,55 @@ static int gen_tpq(const gen_span_ctx *c, int l, double m, double h, double *tm,
     double U = r->dmin >= 0.0 ? Z : lo, dU = sqrt(r->d2 * U * U + r->dmin);
     *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * h + dz) * ia;
     *P = (fabs(r->b1) + (dU > 0.0 ? r->d2 * U / dU : 0.0)) * ia;
+    return 1;
+}
+
+/* A painted cone-case layer's t'(m) and bounds of |t|, |t'| and |t''| on
+ * the real segment [m - h, m + h] of a piece in x ("a cone beside other
+ * gradients": its ends are no tangent line's crossing, so d > 0 there).
+ * With L_k = lam_k x + mu_k on the row, d = L0 L1, d' = lam0 L1 + lam1 L0
+ * and d'' = 2 lam0 lam1, t = (b + sqrt d) / a has t' = (b1 + d' / (2
+ * sqrt d)) / a and t'' = (2 d d'' - d'^2) / (4 a d^(3/2)) = -(lam0 mu1 -
+ * lam1 mu0)^2 / (4 a d^(3/2)), the x terms cancelling; |d| >= |L0| |L1|
+ * each bounded below by |lam_k| times its zero's distance from the
+ * segment (gen_layer_tp's T and P).  CONE_HALF: t = c / (2 b), t' = (c'
+ * b - c b1) / (2 b^2), t'' = c'' / (2 b) - c' b1 / b^2 + c b1^2 / b^3,
+ * |b| >= |b(m)| - |b1| h > 0. */
+static int gen_cone_tpq(const gen_span_ctx *c, int l, double m, double h, double *tp, double *T,
+                        double *P, double *Q)
+{
+    const grad_radial *q = c->L[l]->rg;
+    const rad_row *r = &c->row[l];
+    if (!gen_layer_tp(c, l, m, h, 0.0, T, P))
+        return 0;
+    double bm = r->b0 + r->b1 * m;
+    if (q->cone == CONE_HALF) {
+        double bl = fabs(bm) - fabs(r->b1) * h, cm = r->c0 + m * (r->c1 + m * r->c2);
+        double c1m = r->c1 + 2.0 * r->c2 * m, c1b = fabs(c1m) + 2.0 * r->c2 * h;
+        double cz = fabs(cm) + fabs(c1m) * h + r->c2 * h * h;
+        if (!(bl > 0.0))
+            return 0;
+        *tp = (c1m * bm - cm * r->b1) / (2.0 * bm * bm);
+        *Q = r->c2 / bl + c1b * fabs(r->b1) / (bl * bl) + cz * r->b1 * r->b1 / (bl * bl * bl);
+        return 1;
+    }
+    double complex lam0 = c->lam[l][0], lam1 = c->lam[l][1], mu0 = c->mu[l][0], mu1 = c->mu[l][1];
+    double complex L0 = lam0 * m + mu0, L1 = lam1 * m + mu1;
+    double dm = creal(L0 * L1), dpm = creal(lam0 * L1 + lam1 * L0), lo = 1.0;
+    for (int k = 0; k < 2; k++) {
+        double complex lam = c->lam[l][k], mu = c->mu[l][k];
+        if (lam == 0.0)
+            lo *= cabs(mu);
+        else {
+            double complex z = -mu / lam;
+            lo *= cabs(lam) * fmax(fabs(creal(z) - m) - h, fabs(cimag(z)));
+        }
+    }
+    if (!(lo > 0.0 && dm > 0.0))
+        return 0;
+    double k2 = cabs(lam0 * mu1 - lam1 * mu0);
+    *tp = (r->b1 + dpm / (2.0 * sqrt(dm))) / q->a;
+    *Q = k2 * k2 / (4.0 * fabs(q->a) * lo * sqrt(lo));
     return 1;
 }
 
@@ -3419,10 +3491,10 @@ static int gen_taylor(const gen_span_ctx *c, int ch, double m, double h, double 
  * gives gen_bounds' |e| <= S, |e'| <= D and gen_taylor's e'(m) and |e''|
  * <= H, so the threshold's isolation and the rule's Bernstein-ellipse
  * bound are those of the path above, with the fold's bounds in place of
- * sum |K_a| prod F; gen_taylor's rule holds the same (in u, or with a
- * painted cone-case layer, no Taylor bound: the Lipschitz test alone,
- * "a cone beside other gradients").  Work per evaluation is one pass over the scene's
- * steps, linear in the layers. */
+ * sum |K_a| prod F; gen_taylor's rule holds the same (in u no Taylor
+ * bound: the Lipschitz test alone, "a cone beside other gradients").
+ * Work per evaluation is one pass over the scene's steps, linear in the
+ * layers. */
 typedef struct gjet {
     double v, d, D, H, S;
 } gjet;
@@ -4173,17 +4245,22 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
  *    on the power piece Re(e + 0.055) > 0 from |e(z) - e(m)| <= A max
  *    |e'|; in linear light Re v > 0 likewise, keeping v = 0 out) are then
  *    those of several gradients in the piece's variable, and the
- *    threshold's isolation runs in it too, by the Lipschitz test alone
- *    (gen_taylor gives no bound in u or with a painted cone layer, whose
- *    t'' it does not bound; the halving is then on the signs and the
- *    budget as ever, a row tangent to the threshold's curve at worst
- *    refusing the pixel by name); a narrow interval in u is its x range
- *    times the colour at its middle, with the same bound;
+ *    threshold's isolation runs in it too, in u by the Lipschitz test
+ *    alone (gen_taylor gives no bound there; the halving is then on the
+ *    signs and the budget as ever, a row tangent to the threshold's curve
+ *    at worst refusing the pixel by name), in x with Taylor's theorem as
+ *    well, a painted cone layer's t'' bounded from its forms
+ *    (gen_cone_tpq: t'' = -(lam0 mu1 - lam1 mu0)^2 / (4 a d^(3/2)),
+ *    CONE_HALF's from c / (2 b)); with the Lipschitz test alone a row
+ *    grazing the curve's lowest point (2e-7 below the threshold: a nested
+ *    cone at alpha 0.6 over a linear gradient) ran out of work and the
+ *    document was refused; a narrow interval in u is its x range times
+ *    the colour at its middle, with the same bound;
  *  - past GEN_MAX layers at a point (a cone and other gradients, or more
  *    than GEN_MAX layers of one cone) the composite is folded ("the
  *    fold"), its bounds from the same layers' T and P in the piece's
- *    variable (gen_layer_tp_s) and no Taylor bound in u or with a painted
- *    cone layer, as above; past GEN_LAYERS the pixel is refused.
+ *    variable (gen_layer_tp_s) and no Taylor bound in u, as above; past
+ *    GEN_LAYERS the pixel is refused.
  * The outer breakpoints are the union of the layers' own, as for several
  * gradients (grad_breakpoints): the cone's tangent lines and front arcs
  * among them.
@@ -6015,6 +6092,21 @@ static thr_jet thr_cone_t(const thr_ctx *c, int l, thr_jet b, thr_jet cc, thr_iv
     }
     if (r->cone == CONE_HALF) { /* b = sg L0 where it paints, t = c / (2 b) */
         thr_jet b2 = r->dr > 0.0 ? L[0] : j_scale(-1.0, L[0]);
+        if (*paint == 2) {
+            /* the edge crosses the box: on its painted part sg b in (0,
+             * sg L0's greatest], so t = c / (2 b) lies beyond c's least
+             * over twice that (sg c > 0) towards sg infinity, the pole;
+             * a padded layer's paint there is its last or first stop's
+             * (thr_paint), whatever the derivative */
+            thr_iv v = {-INFINITY, INFINITY};
+            double bh = L[0].v.hi, k = r->dr > 0.0 ? 1.0 : -1.0;
+            thr_iv sc = k > 0.0 ? cc.v : (thr_iv){-cc.v.hi, -cc.v.lo};
+            if (bh > 0.0 && sc.lo > 0.0) {
+                double q = iv_out(sc.lo / (2.0 * bh), 0.0).lo;
+                v = k > 0.0 ? (thr_iv){q, INFINITY} : (thr_iv){-INFINITY, -q};
+            }
+            return (thr_jet){v, {-INFINITY, INFINITY}};
+        }
         return j_mul(cc, j_inv(j_scale(2.0, b2)));
     }
     thr_jet d = r->cone == CONE_NESTED ? j_add(j_sqr(L[0]), j_sqr(L[1])) : j_mul(L[0], L[1]);
@@ -6129,6 +6221,13 @@ static void thr_paint(const thr_ctx *c, int l, thr_jet t, thr_jet p[4], int *cut
     const gen_layer *g = &c->w->gl[l];
     const grad_plane *gp = g->gp ? g->gp : &g->rg->plane;
     double ta = t.v.lo, tb = t.v.hi, v0[4], v1[4];
+    if (g->rg && g->rg->cone && g->spread == AA_SPREAD_PAD && g->nstops > 0 &&
+        (ta == -INFINITY || tb == INFINITY)) {
+        /* a cone's t unbounded (the half-plane's pole): padded, the paint
+         * of t is that of t clamped to the stops' offsets */
+        double o0 = g->stops[0].offset, o1 = g->stops[g->nstops - 1].offset;
+        ta = fmin(fmax(ta, o0), o1), tb = fmin(fmax(tb, o0), o1);
+    }
     double pad = 8.0 * DBL_EPSILON * (1.0 + fmax(fabs(ta), fabs(tb)));
     size_t nb = ta == -INFINITY || tb == INFINITY
                     ? SIZE_MAX
@@ -6216,6 +6315,31 @@ static void thr_fold(const thr_ctx *c, const thr_jet *a, thr_jet (*ac)[3], thr_j
     }
 }
 
+/* The share of [x0, x1] over which the cone layers part[0 .. np - 1]'s
+ * tangent lines (the half-plane's edge) that cross the box [x0, x1] x
+ * [s0, s1] (relative) lie on its rows: each line L = f0 x + f1 s + l = 0
+ * whose range there holds 0 moves |f1 / f0| (s1 - s0) in x over them (the
+ * whole width where f0 is 0), with 1e-9 of that and 1e-14 of the window
+ * for rounding; at most 1. */
+static double thr_cone_cross(const thr_ctx *c, const int *part, int np, double x0, double x1,
+                             double s0, double s1)
+{
+    thr_iv X = {x0, x1}, S = {s0, s1};
+    double len = 0.0, wd = x1 - x0;
+    for (int i = 0; i < np; i++) {
+        const grad_radial *r = c->w->gl[part[i]].rg;
+        for (int k = 0; k < (r->cone == CONE_HALF ? 1 : 2) && r->cone != CONE_NESTED; k++) {
+            double f0 = creal(r->lf[k][0]), f1 = creal(r->lf[k][1]);
+            thr_iv L = iv_add(c->lc[4 * part[i] + k],
+                              iv_add(iv_mul(iv_k(f0), X), iv_mul(iv_k(f1), S)));
+            if (!(L.lo <= 0.0 && L.hi >= 0.0))
+                continue;
+            len += f0 != 0.0 ? fabs(f1 / f0) * (s1 - s0) * (1.0 + 1e-9) + 1e-14 * c->w->R : wd;
+        }
+    }
+    return wd > 0.0 ? fmin(1.0, len / wd) : 1.0;
+}
+
 /* Whether the box [x0, x1] x [s0, s1] (relative) may hold an event of
  * the threshold's curve: for some channel, 0.04045 is in E's range and,
  * unless a cut meets the box (a stop line or circle, the window's side,
@@ -6289,7 +6413,9 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
      * (bit k of m: part[k] painted), each folded, as a piece's layer is
      * taken covered and not (thr_box_at); the box is cut */
     unsigned char *on = c->paint;
+    double mw[3] = {0.0, 0.0, 0.0}; /* each channel's widest range of one case */
     for (int m = 0; m < 1 << np && !(hit && !wid); m++) {
+        double mlo[3] = {INFINITY, INFINITY, INFINITY}, mhi[3] = {-INFINITY, -INFINITY, -INFINITY};
         for (int k = 0; k < np; k++)
             on[part[k]] = (m >> k) & 1 ? 2 : 0;
         int sp = split >= 0 && on[split] ? split : -1;
@@ -6340,8 +6466,10 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
                     cj |= Eb[ch].v.lo <= 0.04045 && Eb[ch].v.hi >= 0.04045;
                 }
             }
-            for (int ch = 0; ch < c->nch && wid; ch++)
+            for (int ch = 0; ch < c->nch && wid; ch++) {
                 elo[ch] = fmin(elo[ch], E[ch].v.lo), ehi[ch] = fmax(ehi[ch], E[ch].v.hi);
+                mlo[ch] = fmin(mlo[ch], E[ch].v.lo), mhi[ch] = fmax(mhi[ch], E[ch].v.hi);
+            }
             for (int ch = 0; ch < c->nch && lip; ch++) {
                 double d = fmax(fabs(E[ch].d.lo), fabs(E[ch].d.hi));
                 *lip = split >= 0 || np > 0 || !(d <= INFINITY) ? INFINITY : fmax(*lip, d);
@@ -6361,9 +6489,19 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
             }
         next:;
         }
+        for (int ch = 0; ch < c->nch && wid; ch++)
+            if (mhi[ch] >= mlo[ch])
+                mw[ch] = fmax(mw[ch], mhi[ch] - mlo[ch]);
     }
+    /* cone layers painting part of the box: a column's two rows s and m
+     * are painted alike but where a tangent line (the half-plane's edge)
+     * passes between them, over at most its x on the box's rows
+     * (thr_cone_cross); there E may take the range of every case
+     * together, elsewhere that of one case: wid their mean over [x0, x1] */
+    double fr = np > 0 && wid ? thr_cone_cross(c, part, np, x0, x1, s0, s1) : 0.0;
     for (int ch = 0; ch < c->nch && wid; ch++) {
-        *wid = fmax(*wid, ehi[ch] - elo[ch]);
+        double all = ehi[ch] - elo[ch];
+        *wid = fmax(*wid, np > 0 ? fmin(all, mw[ch] + all * fr) : all);
         if (un)
             un[ch] = fmin(un[ch], elo[ch]), un[3 + ch] = fmax(un[3 + ch], ehi[ch]);
     }
