@@ -361,7 +361,7 @@ void aa_offset_point(const aa_offset_curve *oc, double t, double *x, double *y, 
                      double *dy)
 {
     long double X, Y, DX, DY;
-    aa__offset_eval(oc, t, &X, &Y, &DX, &DY);
+    offset_eval(oc, STOP_ASK, t, &X, &Y, dx ? &DX : NULL, dy ? &DY : NULL);
     *x = (double)X, *y = (double)Y;
     if (dx)
         *dx = (double)DX;
@@ -613,6 +613,24 @@ long double aa__offset_solve_end(const aa_offset_curve *oc, int coord, double ta
 double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                           long double ta, long double tb, long double fa, long double target,
                           double guess, const double *endb, long double xy[2])
+{
+    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
+}
+
+/* The same two with arguments in double (converted exactly: the same
+ * roots), for callers whose brackets and targets are doubles: long double
+ * arguments go through memory, at both ends of the call. */
+double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                            double ta, double tb, double fa, double target, double guess,
+                            long double *other)
+{
+    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, NULL, other, NULL,
+                               NULL);
+}
+
+double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                           double ta, double tb, double fa, double target, double guess,
+                           const double *endb, long double xy[2])
 {
     return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
 }
