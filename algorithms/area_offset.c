@@ -727,12 +727,12 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
     return ta < tb ? det * seg : -det * seg;
 }
 
-/* segment compiled for AVX (its nodes inline, no call of 13 arguments a
- * share; its scalar arithmetic the same operations, VEX-encoded: the same
- * numbers) and without, chosen once a part by the processor (ar_quad's
- * avx) */
-__attribute__((target("avx"))) static double segment_avx(const ar_piece *pc, double ta,
-                                                        double tb)
+/* segment compiled for AVX, flattened (its shares, start points and nodes
+ * inline: no call of 13 arguments a share; its scalar arithmetic the same
+ * operations, VEX-encoded: the same numbers) and without, chosen once a
+ * part by the processor (ar_quad's avx) */
+__attribute__((target("avx"), flatten)) static double segment_avx(const ar_piece *pc,
+                                                                 double ta, double tb)
 {
     return segment(pc, ta, tb, 1);
 }
