@@ -166,16 +166,40 @@ static void stop_eval(const aa_offset_curve *oc, long double t, double te, const
     }
 }
 
+/* offset_eval's common case, a cubic's offset away from a stop: the same
+ * operations in the same order as offset_eval_any's, without B''' (unused)
+ * and without B'' where the derivative is not asked (the parts' ends);
+ * inline in the roots' solvers. */
+static __attribute__((always_inline)) inline void
+cubic_offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
+                  long double *dx, long double *dy)
+{
+    const double *b = oc->b, *m = oc->m;
+    long double Bx = b[0] + t * (b[1] + t * (b[2] + t * (long double)b[3]));
+    long double By = b[4] + t * (b[5] + t * (b[6] + t * (long double)b[7]));
+    long double ux = b[1] + t * (2 * b[2] + 3 * t * (long double)b[3]);
+    long double uy = b[5] + t * (2 * b[6] + 3 * t * (long double)b[7]);
+    long double L = sqrtl(ux * ux + uy * uy);
+    long double px = Bx - oc->d * uy / L, py = By + oc->d * ux / L;
+    *x = m[0] * px + m[2] * py + m[4];
+    *y = m[1] * px + m[3] * py + m[5];
+    if (!dx && !dy)
+        return;
+    long double vx = 2 * b[2] + 6 * t * (long double)b[3];
+    long double vy = 2 * b[6] + 6 * t * (long double)b[7];
+    long double c = ux * vy - uy * vx, k = c / (L * L * L), f = 1 - oc->d * k;
+    long double qx = ux * f, qy = uy * f;
+    if (dx)
+        *dx = m[0] * qx + m[2] * qy;
+    if (dy)
+        *dy = m[1] * qx + m[3] * qy;
+}
+
 /* aa__offset_eval given stop_ends' bits (stops): an evaluation asks
  * offset_stop only where the bit of its half of [0, 1] is set (the same
  * test in the same arithmetic, so the same answer), and the curvature
  * only where the derivative is wanted (the roots' long double phase; not
  * the parts' ends, which take the point alone). */
-static __attribute__((noinline)) void cubic_offset_eval(const aa_offset_curve *oc,
-                                                        long double t, long double *x,
-                                                        long double *y, long double *dx,
-                                                        long double *dy);
-
 static __attribute__((noinline)) void offset_eval_any(const aa_offset_curve *oc, int stops,
                                                       long double t, long double *x,
                                                       long double *y, long double *dx,
@@ -230,35 +254,6 @@ static __attribute__((always_inline)) inline void offset_eval(const aa_offset_cu
         cubic_offset_eval(oc, t, x, y, dx, dy);
     else
         offset_eval_any(oc, stops, t, x, y, dx, dy);
-}
-
-/* offset_eval's common case, a cubic's offset away from a stop: the same
- * operations in the same order, without B''' (unused) and without B''
- * where the derivative is not asked (the parts' ends). */
-static __attribute__((noinline)) void cubic_offset_eval(const aa_offset_curve *oc,
-                                                        long double t, long double *x,
-                                                        long double *y, long double *dx,
-                                                        long double *dy)
-{
-    const double *b = oc->b, *m = oc->m;
-    long double Bx = b[0] + t * (b[1] + t * (b[2] + t * (long double)b[3]));
-    long double By = b[4] + t * (b[5] + t * (b[6] + t * (long double)b[7]));
-    long double ux = b[1] + t * (2 * b[2] + 3 * t * (long double)b[3]);
-    long double uy = b[5] + t * (2 * b[6] + 3 * t * (long double)b[7]);
-    long double L = sqrtl(ux * ux + uy * uy);
-    long double px = Bx - oc->d * uy / L, py = By + oc->d * ux / L;
-    *x = m[0] * px + m[2] * py + m[4];
-    *y = m[1] * px + m[3] * py + m[5];
-    if (!dx && !dy)
-        return;
-    long double vx = 2 * b[2] + 6 * t * (long double)b[3];
-    long double vy = 2 * b[6] + 6 * t * (long double)b[7];
-    long double c = ux * vy - uy * vx, k = c / (L * L * L), f = 1 - oc->d * k;
-    long double qx = ux * f, qy = uy * f;
-    if (dx)
-        *dx = m[0] * qx + m[2] * qy;
-    if (dy)
-        *dy = m[1] * qx + m[3] * qy;
 }
 
 void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
