@@ -463,7 +463,8 @@ static inline double yt_herm(const double *a, const double *b, double y)
  * the walk finds it from any *hint (the seg's last, kept by the worker:
  * the lines of successive bands are a node or two apart); the start is a
  * function of the piece and yl alone. */
-static inline double ytab_guess(const ar_piece *p, double yl, size_t *hint)
+static __attribute__((always_inline)) inline double ytab_guess(const ar_piece *p, double yl,
+                                                              size_t *hint)
 {
     const double *n = p->ytab;
     size_t last = p->nyt - 1, k = *hint;
