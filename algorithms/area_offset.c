@@ -447,8 +447,9 @@ int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel
 
 /* The point of the curve at t, less B(m) of panel p (its own coordinates),
  * and B' there. */
-static void rel_point(const aa_offset_curve *oc, const ar_panel *p, double t, double *x,
-                      double *y)
+static __attribute__((always_inline)) inline void rel_point(const aa_offset_curve *oc,
+                                                           const ar_panel *p, double t,
+                                                           double *x, double *y)
 {
     double s = t - p->m;
     const double *bx = p->bx, *by = p->by;
