@@ -659,8 +659,8 @@ static double offset_line_t(const ar_piece *p, double fa, double yl, long double
 {
     const aa_piece *q = p->src;
     long double xy[2];
-    double t = aa__offset_root_xy(&q->oc, &p->ofix, 1, q->ot0, q->ot1, fa, yl,
-                                  ytab_guess(p, yl, hint), p->oend, xy);
+    double t = aa__offset_root_xyd(&q->oc, &p->ofix, 1, q->ot0, q->ot1, fa, yl,
+                                   ytab_guess(p, yl, hint), p->oend, xy);
     if (t == q->ot0 || t == q->ot1)
         offset_point(p, t, X, Y);
     else

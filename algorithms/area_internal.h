@@ -463,7 +463,8 @@ static inline double yt_herm(const double *a, const double *b, double y)
  * the walk finds it from any *hint (the seg's last, kept by the worker:
  * the lines of successive bands are a node or two apart); the start is a
  * function of the piece and yl alone. */
-static inline double ytab_guess(const ar_piece *p, double yl, size_t *hint)
+static __attribute__((always_inline)) inline double ytab_guess(const ar_piece *p, double yl,
+                                                              size_t *hint)
 {
     const double *n = p->ytab;
     size_t last = p->nyt - 1, k = *hint;
@@ -577,8 +578,8 @@ static inline double offset_tau(const ar_seg *s, int coord, double a, double b, 
                                 double target)
 {
     double sg = s->p->sg, g = coord ? ytab_guess(s->p, target, &((ar_seg *)s)->ythint) : NAN;
-    return sg * (double)aa__offset_root_fix(&s->p->src->oc, &s->p->ofix, coord, sg * a, sg * b,
-                                            fa, target, g, NULL, NULL, NULL);
+    return sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, coord, sg * a, sg * b, fa,
+                                     target, g, NULL);
 }
 
 /* offset_tau where x is target (a cell's side), keeping v there as the
@@ -594,8 +595,8 @@ static inline double offset_tau_u(const ar_seg *s, double a, double b, double fa
     double sg = s->p->sg, k = target - s->c0;
     double g = ub != ua ? a + (b - a) * ((k - ua) / (ub - ua)) : NAN;
     long double y;
-    double t = sg * (double)aa__offset_root_fix(&s->p->src->oc, &s->p->ofix, 0, sg * a, sg * b,
-                                                fa, target, sg * g, NULL, &y, NULL);
+    double t = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 0, sg * a, sg * b, fa,
+                                         target, sg * g, &y);
     offset_keep(s, t, (double)(y + s->V));
     return t;
 }
@@ -638,8 +639,8 @@ static inline double key_u(const ar_seg *s, double v)
         return u_at(s, tau_of_v(s, v));
     double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &((ar_seg *)s)->ythint);
     long double x;
-    aa__offset_root_fix(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb, s->va - v,
-                        v - s->V, g, NULL, &x, NULL);
+    aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb, s->va - v,
+                         v - s->V, g, &x);
     return (double)(x - s->c0);
 }
 

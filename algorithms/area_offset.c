@@ -447,8 +447,9 @@ int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel
 
 /* The point of the curve at t, less B(m) of panel p (its own coordinates),
  * and B' there. */
-static void rel_point(const aa_offset_curve *oc, const ar_panel *p, double t, double *x,
-                      double *y)
+static __attribute__((always_inline)) inline void rel_point(const aa_offset_curve *oc,
+                                                           const ar_panel *p, double t,
+                                                           double *x, double *y)
 {
     double s = t - p->m;
     const double *bx = p->bx, *by = p->by;
@@ -548,8 +549,11 @@ __attribute__((target("avx"))) static void nodes_avx(const double *qx, const dou
 }
 
 /* 1/2 the integral of (P - P(al)) x P' over [al, be] inside panel p, in
- * the curve's own units, by the fewest points whose bound holds. */
-static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
+ * the curve's own units, by the fewest points whose bound holds; `avx` (a
+ * constant where it is inlined, area_offset_segment's choice): a cubic's
+ * nodes four at a time (nodes_avx, then inline), else two. */
+static __attribute__((always_inline)) inline double share(const ar_piece *pc, const ar_panel *p,
+                                                          double al, double be, const int avx)
 {
     const aa_offset_curve *oc = &pc->src->oc;
     const ar_quad *q = pc->quad;
@@ -630,7 +634,7 @@ static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
     const int n = q->n[r];
     const double *qx = q->x + q->at[r], *qw = q->w + q->at[r];
     double wf[AR_QUAD_NMAX + 3];
-    if (q->avx) {
+    if (avx) {
         nodes_avx(qx, qw, n, mm, h, p->m, bx, by, d, ax, ay, oc->evolute, wf);
         int i = 0;
         for (; i + 4 <= n; i += 4) /* one by one in the nodes' order */
@@ -685,7 +689,8 @@ static double share(const ar_piece *pc, const ar_panel *p, double al, double be)
     return 0.5 * h * sum;
 }
 
-double area_offset_segment(const ar_piece *pc, double ta, double tb)
+static __attribute__((always_inline)) inline double segment(const ar_piece *pc, double ta,
+                                                            double tb, const int avx)
 {
     double lo = ta < tb ? ta : tb, hi = ta < tb ? tb : ta;
     if (!(hi > lo))
@@ -701,7 +706,7 @@ double area_offset_segment(const ar_piece *pc, double ta, double tb)
     }
     double seg;
     if (hi <= pan[k].b || k + 1 == n) {
-        seg = share(pc, &pan[k], lo, hi);
+        seg = share(pc, &pan[k], lo, hi, avx);
     } else {
         /* shares joined by the polygon of their ends about P(lo), the
          * ends relative to the first panel's B(m) (a cubic's Taylor form
@@ -713,7 +718,7 @@ double area_offset_segment(const ar_piece *pc, double ta, double tb)
         seg = 0.0;
         for (double al = lo; k < n && al < hi; k++) {
             double be = k + 1 < n && pan[k].b < hi ? pan[k].b : hi;
-            seg += share(pc, &pan[k], al, be);
+            seg += share(pc, &pan[k], al, be, avx);
             rel_point(&pc->src->oc, p0, be, &xb, &yb);
             seg += 0.5 * ((xa - x0) * (yb - ya) - (ya - y0) * (xb - xa));
             xa = xb, ya = yb, al = be;
@@ -721,6 +726,26 @@ double area_offset_segment(const ar_piece *pc, double ta, double tb)
     }
     double det = pc->src->oc.m[0] * pc->src->oc.m[3] - pc->src->oc.m[2] * pc->src->oc.m[1];
     return ta < tb ? det * seg : -det * seg;
+}
+
+/* segment compiled for AVX, flattened (its shares, start points and nodes
+ * inline: no call of 13 arguments a share; its scalar arithmetic the same
+ * operations, VEX-encoded: the same numbers) and without, chosen once a
+ * part by the processor (ar_quad's avx) */
+__attribute__((target("avx"), flatten)) static double segment_avx(const ar_piece *pc,
+                                                                 double ta, double tb)
+{
+    return segment(pc, ta, tb, 1);
+}
+
+static double segment_sse(const ar_piece *pc, double ta, double tb)
+{
+    return segment(pc, ta, tb, 0);
+}
+
+double area_offset_segment(const ar_piece *pc, double ta, double tb)
+{
+    return pc->quad->avx ? segment_avx(pc, ta, tb) : segment_sse(pc, ta, tb);
 }
 
 /* ---- the speed of the curve on a disc (for `analytic`) ----

@@ -472,8 +472,10 @@ static void test_stops(void **state)
  * solvers that find them at every root (aa__offset_root, with and without
  * a guess; aa__offset_solve_end given aa__offset_end's value at the far
  * end; aa__offset_root_xy, its root rounded to double, with its point
- * checked against the curve's there): the same root, the same other
- * coordinate and slope, bit for bit,
+ * checked against the curve's there; aa__offset_root_fixd and
+ * aa__offset_root_xyd, their arguments in double, against the long double
+ * forms): the same root, the same other coordinate and slope, bit for bit,
+ * and aa__offset_eval_s given the stops the same point as aa__offset_eval,
  * on test_stops' curves (offsets and evolutes, two maps), x and y, over 16
  * brackets of 1/32 each; the stops expected by construction as there, and
  * the terms' sizes the sums of the magnitudes of the x and the y terms
@@ -482,7 +484,7 @@ static void test_stops(void **state)
 static void test_fix(void **state)
 {
     (void)state;
-    int roots = 0;
+    int roots = 0, dbl = 0, evals = 0;
     double worst = 0.0;
     for (int c = 0; c < 5; c++)
         for (int e = 0; e < 2; e++)
@@ -498,6 +500,19 @@ static void test_fix(void **state)
                                    : fabs(b[4]) + fabs(b[5]) + fabs(b[6]) + fabs(b[7]);
                 assert_int_equal(fx.stops, stops_want[c]);
                 assert_true(fx.sx == sx && fx.sy == sy);
+                /* the evaluation given the stops (a cubic's offset away
+                 * from them by its own form) the same bit for bit as the
+                 * one that asks at each point, with and without the
+                 * derivative */
+                for (int i = 0; i <= 64; i++) {
+                    long double t = i / 64.0L, X, Y, DX, DY, x, y, dx, dy;
+                    aa__offset_eval(&oc, t, &X, &Y, &DX, &DY);
+                    aa__offset_eval_s(&oc, fx.stops, t, &x, &y, &dx, &dy);
+                    assert_true(x == X && y == Y && dx == DX && dy == DY);
+                    aa__offset_eval_s(&oc, fx.stops, t, &x, &y, NULL, NULL);
+                    assert_true(x == X && y == Y);
+                    evals++;
+                }
                 for (int i = 0; i < 16; i++)
                     for (int coord = 0; coord < 2; coord++) {
                         long double ta = i / 16.0L + 1 / 64.0L, tb = ta + 1 / 32.0L;
@@ -560,12 +575,37 @@ static void test_fix(void **state)
                                         fabsl(sl) * fabsl((long double)t - (eb == 2 ? rg : r1)) +
                                             tol);
                         }
+                        /* with the bracket and the target in double (the
+                         * target rounded, fa from it): aa__offset_root_fixd
+                         * and aa__offset_root_xyd against the long double
+                         * forms given the same values, bit for bit */
+                        double td = (double)target, fd = (double)(va - td);
+                        if (fd != 0 && (fd < 0) == (fa < 0)) {
+                            for (int g = 0; g < 2; g++) {
+                                double gs = g ? guess : NAN;
+                                long double od, ol, xyd[2], xyl[2];
+                                long double rl = aa__offset_root_fix(&oc, &fx, coord, ta, tb, fd,
+                                                                     td, gs, NULL, &ol, NULL);
+                                double rd = aa__offset_root_fixd(&oc, &fx, coord, (double)ta,
+                                                                 (double)tb, fd, td, gs, &od);
+                                assert_true(rd == (double)rl && od == ol);
+                                double tl = aa__offset_root_xy(&oc, &fx, coord, ta, tb, fd, td,
+                                                               gs, g ? NULL : end, xyl);
+                                double tx = aa__offset_root_xyd(&oc, &fx, coord, (double)ta,
+                                                                (double)tb, fd, td, gs,
+                                                                g ? NULL : end, xyd);
+                                assert_true(tx == tl && xyd[0] == xyl[0] && xyd[1] == xyl[1]);
+                                dbl++;
+                            }
+                        }
                         roots++;
                     }
             }
-    print_message("%d brackets, each root the same bit for bit; aa__offset_root_xy's points "
+    assert_true(dbl > 200 && evals == 20 * 65);
+    print_message("%d brackets, each root the same bit for bit (%d in double); "
+                  "aa__offset_root_xy's points "
                   "within %.2g px of the curve at its roots\n",
-                  roots, worst);
+                  roots, dbl, worst);
     assert_true(roots > 200);
 }
 

@@ -863,6 +863,15 @@ long double aa__offset_root_fix(const aa_offset_curve *oc, const aa__offset_fix 
 double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                           long double ta, long double tb, long double fa, long double target,
                           double guess, const double *endb, long double xy[2]);
+/* aa__offset_root_fix (its root rounded to double; no endb, no slope) and
+ * aa__offset_root_xy with their bracket and target in double: the same
+ * roots bit for bit, without long double arguments (`area`'s roots). */
+double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                            double ta, double tb, double fa, double target, double guess,
+                            long double *other);
+double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                           double ta, double tb, double fa, double target, double guess,
+                           const double *endb, long double xy[2]);
 /* Coordinate coord of oc at t as the double phase of the solvers first
  * evaluates it at a bracket's far end (e[4], opaque): for a caller that
  * solves for many targets in one bracket [ta, tb] (a piece's band lines),

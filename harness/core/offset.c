@@ -166,13 +166,44 @@ static void stop_eval(const aa_offset_curve *oc, long double t, double te, const
     }
 }
 
+/* offset_eval's common case, a cubic's offset away from a stop: the same
+ * operations in the same order as offset_eval_any's, without B''' (unused)
+ * and without B'' where the derivative is not asked (the parts' ends);
+ * inline in the roots' solvers. */
+static __attribute__((always_inline)) inline void
+cubic_offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
+                  long double *dx, long double *dy)
+{
+    const double *b = oc->b, *m = oc->m;
+    long double Bx = b[0] + t * (b[1] + t * (b[2] + t * (long double)b[3]));
+    long double By = b[4] + t * (b[5] + t * (b[6] + t * (long double)b[7]));
+    long double ux = b[1] + t * (2 * b[2] + 3 * t * (long double)b[3]);
+    long double uy = b[5] + t * (2 * b[6] + 3 * t * (long double)b[7]);
+    long double L = sqrtl(ux * ux + uy * uy);
+    long double px = Bx - oc->d * uy / L, py = By + oc->d * ux / L;
+    *x = m[0] * px + m[2] * py + m[4];
+    *y = m[1] * px + m[3] * py + m[5];
+    if (!dx && !dy)
+        return;
+    long double vx = 2 * b[2] + 6 * t * (long double)b[3];
+    long double vy = 2 * b[6] + 6 * t * (long double)b[7];
+    long double c = ux * vy - uy * vx, k = c / (L * L * L), f = 1 - oc->d * k;
+    long double qx = ux * f, qy = uy * f;
+    if (dx)
+        *dx = m[0] * qx + m[2] * qy;
+    if (dy)
+        *dy = m[1] * qx + m[3] * qy;
+}
+
 /* aa__offset_eval given stop_ends' bits (stops): an evaluation asks
  * offset_stop only where the bit of its half of [0, 1] is set (the same
  * test in the same arithmetic, so the same answer), and the curvature
  * only where the derivative is wanted (the roots' long double phase; not
  * the parts' ends, which take the point alone). */
-static inline void offset_eval(const aa_offset_curve *oc, int stops, long double t,
-                               long double *x, long double *y, long double *dx, long double *dy)
+static __attribute__((noinline)) void offset_eval_any(const aa_offset_curve *oc, int stops,
+                                                      long double t, long double *x,
+                                                      long double *y, long double *dx,
+                                                      long double *dy)
 {
     const double *m = oc->m;
     long double px, py, qx = 0, qy = 0; /* the point and its derivative, unmapped */
@@ -209,6 +240,20 @@ static inline void offset_eval(const aa_offset_curve *oc, int stops, long double
         *dx = m[0] * qx + m[2] * qy;
     if (dy)
         *dy = m[1] * qx + m[3] * qy;
+}
+
+/* offset_eval: a cubic's offset away from a stop (a stop's bit set for
+ * t's half of [0, 1] is offset_stop's answer there) by cubic_offset_eval,
+ * the rest by offset_eval_any; chosen where it is called. */
+static __attribute__((always_inline)) inline void offset_eval(const aa_offset_curve *oc,
+                                                             int stops, long double t,
+                                                             long double *x, long double *y,
+                                                             long double *dx, long double *dy)
+{
+    if (oc->base == AA_OFFSET_CUBIC && !oc->evolute && !(stops & ((double)t < 0.5 ? 1 : 2)))
+        cubic_offset_eval(oc, t, x, y, dx, dy);
+    else
+        offset_eval_any(oc, stops, t, x, y, dx, dy);
 }
 
 void aa__offset_eval(const aa_offset_curve *oc, long double t, long double *x, long double *y,
@@ -361,7 +406,7 @@ void aa_offset_point(const aa_offset_curve *oc, double t, double *x, double *y, 
                      double *dy)
 {
     long double X, Y, DX, DY;
-    aa__offset_eval(oc, t, &X, &Y, &DX, &DY);
+    offset_eval(oc, STOP_ASK, t, &X, &Y, dx ? &DX : NULL, dy ? &DY : NULL);
     *x = (double)X, *y = (double)Y;
     if (dx)
         *dx = (double)DX;
@@ -613,6 +658,24 @@ long double aa__offset_solve_end(const aa_offset_curve *oc, int coord, double ta
 double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                           long double ta, long double tb, long double fa, long double target,
                           double guess, const double *endb, long double xy[2])
+{
+    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
+}
+
+/* The same two with arguments in double (converted exactly: the same
+ * roots), for callers whose brackets and targets are doubles: long double
+ * arguments go through memory, at both ends of the call. */
+double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                            double ta, double tb, double fa, double target, double guess,
+                            long double *other)
+{
+    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, NULL, other, NULL,
+                               NULL);
+}
+
+double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                           double ta, double tb, double fa, double target, double guess,
+                           const double *endb, long double xy[2])
 {
     return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
 }
