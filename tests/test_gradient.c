@@ -1539,22 +1539,36 @@ static double mlayer_linear(const mlayer *m, double t, int ch)
     return s[m->n - 1].colour.c[ch];
 }
 
-/* The encoded composite of channel ch at (x, y). */
-static double mpic_enc(const mpic *p, int ch, double x, double y)
+/* The encoded composite of channel ch at a point where layer k's region
+ * holds it if in[k], its t there t[k] (mlayer_in and mlayer_t, found once
+ * for the three channels). */
+static double mpic_enc_at(const mpic *p, int ch, const int *in, const double *t)
 {
     double acc = p->bg[ch];
     for (int k = 0; k < p->nl; k++) {
         const mlayer *m = &p->l[k];
-        if (!mlayer_in(m, x, y))
+        if (!in[k])
             continue;
         picture pc = {0};
         pc.spread = m->spread, pc.stops = m->st, pc.n = m->n;
-        double op, c = stop_value(&pc, mlayer_t(m, x, y), ch, &op), a = m->alpha * op;
+        double op, c = stop_value(&pc, t[k], ch, &op), a = m->alpha * op;
         if ((mpic_lin >> k) & 1u)
-            c = enc(mlayer_linear(m, mlayer_t(m, x, y), ch));
+            c = enc(mlayer_linear(m, t[k], ch));
         acc = a * c + (1 - a) * acc;
     }
     return acc;
+}
+
+/* The encoded composite of channel ch at (x, y). */
+static double mpic_enc(const mpic *p, int ch, double x, double y)
+{
+    int in[12];
+    double t[12];
+    for (int k = 0; k < p->nl; k++) {
+        in[k] = mlayer_in(&p->l[k], x, y);
+        t[k] = in[k] ? mlayer_t(&p->l[k], x, y) : 0.0;
+    }
+    return mpic_enc_at(p, ch, in, t);
 }
 
 /* The signature of (x, y): where the picture is smooth it does not change.
@@ -1566,11 +1580,13 @@ static double mpic_enc(const mpic *p, int ch, double x, double y)
 #define SIG_END INT_MIN
 static void mpic_sig(const mpic *p, double x, double y, int *s)
 {
-    int n = 0;
+    int n = 0, in[12];
+    double tk[12];
     for (int k = 0; k < p->nl; k++) {
         const mlayer *m = &p->l[k];
         double t = mlayer_t(m, x, y), u = spread_fold(m->spread, t);
-        s[n++] = mlayer_in(m, x, y);
+        s[n++] = in[k] = mlayer_in(m, x, y);
+        tk[k] = t;
         s[n++] = (int)floor(t);
         int seg = 0;
         for (int q = 0; q < m->n; q++)
@@ -1580,7 +1596,7 @@ static void mpic_sig(const mpic *p, double x, double y, int *s)
             s[n++] = mlayer_linear(m, t, c) > 0.0031308;
     }
     for (int c = 0; c < 3; c++)
-        s[n++] = mpic_enc(p, c, x, y) > 0.04045;
+        s[n++] = mpic_enc_at(p, c, in, tk) > 0.04045;
     s[n] = SIG_END;
 }
 
