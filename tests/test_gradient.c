@@ -1539,22 +1539,36 @@ static double mlayer_linear(const mlayer *m, double t, int ch)
     return s[m->n - 1].colour.c[ch];
 }
 
-/* The encoded composite of channel ch at (x, y). */
-static double mpic_enc(const mpic *p, int ch, double x, double y)
+/* The encoded composite of channel ch at a point where layer k's region
+ * holds it if in[k], its t there t[k] (mlayer_in and mlayer_t, found once
+ * for the three channels). */
+static double mpic_enc_at(const mpic *p, int ch, const int *in, const double *t)
 {
     double acc = p->bg[ch];
     for (int k = 0; k < p->nl; k++) {
         const mlayer *m = &p->l[k];
-        if (!mlayer_in(m, x, y))
+        if (!in[k])
             continue;
         picture pc = {0};
         pc.spread = m->spread, pc.stops = m->st, pc.n = m->n;
-        double op, c = stop_value(&pc, mlayer_t(m, x, y), ch, &op), a = m->alpha * op;
+        double op, c = stop_value(&pc, t[k], ch, &op), a = m->alpha * op;
         if ((mpic_lin >> k) & 1u)
-            c = enc(mlayer_linear(m, mlayer_t(m, x, y), ch));
+            c = enc(mlayer_linear(m, t[k], ch));
         acc = a * c + (1 - a) * acc;
     }
     return acc;
+}
+
+/* The encoded composite of channel ch at (x, y). */
+static double mpic_enc(const mpic *p, int ch, double x, double y)
+{
+    int in[12];
+    double t[12];
+    for (int k = 0; k < p->nl; k++) {
+        in[k] = mlayer_in(&p->l[k], x, y);
+        t[k] = in[k] ? mlayer_t(&p->l[k], x, y) : 0.0;
+    }
+    return mpic_enc_at(p, ch, in, t);
 }
 
 /* The signature of (x, y): where the picture is smooth it does not change.
@@ -1566,11 +1580,13 @@ static double mpic_enc(const mpic *p, int ch, double x, double y)
 #define SIG_END INT_MIN
 static void mpic_sig(const mpic *p, double x, double y, int *s)
 {
-    int n = 0;
+    int n = 0, in[12];
+    double tk[12];
     for (int k = 0; k < p->nl; k++) {
         const mlayer *m = &p->l[k];
         double t = mlayer_t(m, x, y), u = spread_fold(m->spread, t);
-        s[n++] = mlayer_in(m, x, y);
+        s[n++] = in[k] = mlayer_in(m, x, y);
+        tk[k] = t;
         /* padded, t's whole numbers past -1 and 2 are no events (the half-plane's t
          * runs to infinity at its edge) */
         s[n++] = (int)floor(m->spread == AA_SPREAD_PAD ? fmin(fmax(t, -1.0), 2.0) : t);
@@ -1582,7 +1598,7 @@ static void mpic_sig(const mpic *p, double x, double y, int *s)
             s[n++] = mlayer_linear(m, t, c) > 0.0031308;
     }
     for (int c = 0; c < 3; c++)
-        s[n++] = mpic_enc(p, c, x, y) > 0.04045;
+        s[n++] = mpic_enc_at(p, c, in, tk) > 0.04045;
     s[n] = SIG_END;
 }
 
@@ -1643,12 +1659,102 @@ static int mrow_cuts(const mpic *p, double y, double xa, double xb, double *cut)
     return nc;
 }
 
+/* The places along the rows of one pixel of one picture, kept by height:
+ * they do not depend on the channel (mpic_sig looks at all three), so the
+ * pixel's three channels find each row's once (mrow_events' heights, and
+ * the heights the outer QAG asks of each channel, most of them the same),
+ * the same values bit for bit.  The picture is known by what mpic_sig
+ * reads, written out (memo_key): its layers, their stops, the background,
+ * mpic_lin and mpic_cubic's curve. */
+enum { MEMO_SLOTS = 1 << 13, MEMO_KEY = 2 + 12 * (15 + 5 * 10) + 13 };
+static struct {
+    double key[MEMO_KEY];
+    int nkey, ne;
+    double ev[64];
+    struct {
+        uint64_t y;
+        int nc; /* 0: empty */
+        double *cut;
+    } slot[MEMO_SLOTS];
+} memo;
+
+static int memo_key(const mpic *p, int i, int j, double *k)
+{
+    int n = 0;
+    k[n++] = i, k[n++] = j;
+    for (int l = 0; l < p->nl; l++) {
+        const mlayer *m = &p->l[l];
+        k[n++] = m->disc, k[n++] = m->kind, k[n++] = m->spread, k[n++] = m->n;
+        k[n++] = m->alpha;
+        for (int q = 0; q < 4; q++)
+            k[n++] = m->r[q];
+        for (int q = 0; q < 6; q++)
+            k[n++] = m->p[q];
+        for (int q = 0; q < m->n; q++) {
+            k[n++] = m->st[q].offset, k[n++] = m->st[q].opacity;
+            for (int c = 0; c < 3; c++)
+                k[n++] = m->st[q].colour.c[c];
+        }
+    }
+    for (int c = 0; c < 3; c++)
+        k[n++] = p->bg[c];
+    k[n++] = mpic_lin;
+    for (int q = 0; q < 9; q++)
+        k[n++] = mpic_cubic ? mpic_cubic[q] : NAN;
+    return n;
+}
+
+/* Forgets what memo kept unless it is of the picture p at pixel (i, j);
+ * 1 if it is (its events kept). */
+static int memo_of(const mpic *p, int i, int j)
+{
+    double k[MEMO_KEY];
+    assert_true(p->nl <= 12);
+    for (int l = 0; l < p->nl; l++)
+        assert_true(p->l[l].n <= 10);
+    int n = memo_key(p, i, j, k);
+    if (n == memo.nkey && memcmp(k, memo.key, (size_t)n * sizeof *k) == 0)
+        return 1;
+    for (int s = 0; s < MEMO_SLOTS; s++)
+        if (memo.slot[s].nc)
+            free(memo.slot[s].cut), memo.slot[s].nc = 0;
+    memcpy(memo.key, k, (size_t)n * sizeof *k);
+    memo.nkey = n, memo.ne = 0;
+    return 0;
+}
+
+/* mrow_cuts of the memo's pixel at height y, kept. */
+static int memo_cuts(const mpic *p, double y, double xa, double xb, double *cut)
+{
+    union {
+        double d;
+        uint64_t u;
+    } bits = {y};
+    unsigned h = (unsigned)((bits.u * 0x9E3779B97F4A7C15u) >> 51);
+    for (int probe = 0; probe < 64; probe++, h = (h + 1) % MEMO_SLOTS) {
+        if (memo.slot[h].nc && memo.slot[h].y == bits.u) {
+            memcpy(cut, memo.slot[h].cut, (size_t)memo.slot[h].nc * sizeof *cut);
+            return memo.slot[h].nc;
+        }
+        if (!memo.slot[h].nc)
+            break;
+    }
+    int nc = mrow_cuts(p, y, xa, xb, cut);
+    if (!memo.slot[h].nc) {
+        memo.slot[h].cut = malloc((size_t)nc * sizeof *cut);
+        assert_non_null(memo.slot[h].cut);
+        memcpy(memo.slot[h].cut, cut, (size_t)nc * sizeof *cut);
+        memo.slot[h].y = bits.u, memo.slot[h].nc = nc;
+    }
+    return nc;
+}
+
 static double mrow_y(double y, void *v)
 {
     mrow *c = v;
     c->y = y;
     double cut[1024];
-    int nc = mrow_cuts(c->p, y, c->xa, c->xb, cut);
+    int nc = memo_cuts(c->p, y, c->xa, c->xb, cut);
     gsl_function F = {mrow_x, c};
     double sum = 0, res, err;
     for (int k = 0; k + 1 < nc; k++) {
@@ -1667,18 +1773,18 @@ static int mrow_events(const mpic *p, double xa, double xb, double ya, double yb
 {
     const int N = 64;
     double cut[1024];
-    int ne = 0, na = mrow_cuts(p, ya, xa, xb, cut);
+    int ne = 0, na = memo_cuts(p, ya, xa, xb, cut);
     ev[ne++] = ya;
     for (int k = 1; k <= N; k++) {
         double a = ya + (yb - ya) * (k - 1) / N, bk = ya + (yb - ya) * k / N;
-        int nb = mrow_cuts(p, bk, xa, xb, cut);
+        int nb = memo_cuts(p, bk, xa, xb, cut);
         for (int rep = 0; rep < 16 && nb != na; rep++) {
             double b = bk;
             for (int it = 0; it < 200; it++) {
                 double m = 0.5 * (a + b);
                 if (m <= a || m >= b)
                     break;
-                if (mrow_cuts(p, m, xa, xb, cut) == na)
+                if (memo_cuts(p, m, xa, xb, cut) == na)
                     a = m;
                 else
                     b = m;
@@ -1686,7 +1792,7 @@ static int mrow_events(const mpic *p, double xa, double xb, double ya, double yb
             if (ne < 60 && b > ev[ne - 1] && b < yb)
                 ev[ne++] = b;
             a = b;
-            na = mrow_cuts(p, b, xa, xb, cut);
+            na = memo_cuts(p, b, xa, xb, cut);
         }
         na = nb;
     }
@@ -1701,7 +1807,10 @@ static double mpic_pixel(const mpic *p, int i, int j)
     mrow c = {p, 0, i, i + 1.0, gsl_integration_workspace_alloc(1000)};
     gsl_function F = {mrow_y, &c};
     double ev[64], sum = 0, res, err;
-    int ne = mrow_events(p, i, i + 1.0, j, j + 1.0, ev);
+    if (!memo_of(p, i, j)) /* the events: once a pixel */
+        memo.ne = mrow_events(p, i, i + 1.0, j, j + 1.0, memo.ev);
+    int ne = memo.ne;
+    memcpy(ev, memo.ev, sizeof ev);
     for (int k = 0; k + 1 < ne; k++) {
         gsl_integration_qag(&F, ev[k], ev[k + 1], 1e-16, 1e-14, 1000, GSL_INTEG_GAUSS21, wo, &res,
                             &err);
