@@ -1029,9 +1029,9 @@ static int cases_within(const aa_run_config *c, const aa_run_config *d)
  * a group whose cases an earlier one holds all of is left out (-p, -f and
  * -m given, the sizes the groups': every group of the default suite is then
  * the same cross product), and a case in two groups otherwise is refused,
- * naming it.  A suite's groups can meet so once the lists
- * given replace theirs (--suite paper -p crow -s 32x32: two of its groups
- * then hold crow 32x32 box point). */
+ * naming it.  A suite's groups can meet so once the lists given replace
+ * theirs (--suite paper -p crow -s 32x32: two of its groups then hold crow
+ * 32x32 box point). */
 static int no_case_twice(const aa_run_config *cfgs, size_t ng, const char *suite)
 {
     for (size_t g = 0; g < ng; g++)
