@@ -61,9 +61,9 @@
  *
  * Panels.  A piece's parameter range is cut in halves until on each panel
  * some rho of a fixed list gives a bound of at most AR_QUAD_TOL with
- * AR_QUAD_NMAX points; the panel keeps its disc (m, R) and M, the disc of
- * least bound searched from the one the last panel of its width kept.  A part
- * [ta, tb] of the piece is integrated panel by panel: on each panel's share
+ * AR_QUAD_NMAX points; the panel keeps its disc (m, R) and M, searched
+ * from the one the last panel of its width kept.  A part [ta, tb] of the
+ * piece is integrated panel by panel: on each panel's share
  * [alpha, beta] from its own start point, the shares joined by the polygon
  * of their end points (seg = sum of the shares' segments + 1/2 sum (P(alpha)
  * - Pa) x (P(beta) - P(alpha))).  A share of half width h' about m' lies in
@@ -398,10 +398,10 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
         panel_pre_stop(oc, bx, by, m, te, q, h, &pre);
     else if (!ell)
         panel_pre_cubic(oc, bx, by, h, &pre);
-    /* The disc of least bound, searched from the hint: down while the disc
-     * holds a zero of a denominator (so does every larger one), then
-     * towards the smaller bound while it falls (a local least; on the
-     * benchmark's scenes every panel's least over all the discs) */
+    /* The disc, searched from the hint: down while the disc holds a zero
+     * of a denominator (so does every larger one); the first finite bound
+     * kept if it meets the tolerance, else towards the smaller bound while
+     * it falls (a local least) */
     int k = NRHO / 4; /* a piece's first panel */
     if (hint[depth] >= 0)
         k = hint[depth];
@@ -415,11 +415,11 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
     }
     if (best < INFINITY) {
         double R, M, e;
-        int up1 = 0;
-        while (!down && k + 1 < NRHO &&
+        int kept = best <= AR_QUAD_TOL, up1 = 0;
+        while (!down && !kept && k + 1 < NRHO &&
                (e = disc_e(oc, &pre, up, vp, ell, h, det2, cf, k + 1, &R, &M)) < best)
             k++, best = e, bR = R, bM = M, up1 = 1;
-        while (!up1 && k > 0 &&
+        while (!kept && !up1 && k > 0 &&
                (e = disc_e(oc, &pre, up, vp, ell, h, det2, cf, k - 1, &R, &M)) < best)
             k--, best = e, bR = R, bM = M;
         hint[depth] = k;
