@@ -119,19 +119,23 @@ int area_quad_init(ar_quad *q)
 
 /* ---- small polynomials in s = t - m (coefficients ascending) ---- */
 
-static void pmul(const double *a, int na, const double *b, int nb, double *out)
+static inline void pmul(const double *a, int na, const double *b, int nb, double *out)
 {
+#pragma GCC unroll 8
     for (int k = 0; k < na + nb - 1; k++)
         out[k] = 0.0;
+#pragma GCC unroll 4
     for (int i = 0; i < na; i++)
+#pragma GCC unroll 4
         for (int j = 0; j < nb; j++)
             out[i + j] += a[i] * b[j];
 }
 
 /* sum |p_k| R^k over k >= from */
-static double pabs(const double *p, int n, int from, double R)
+static inline double pabs(const double *p, int n, int from, double R)
 {
     double s = 0.0, r = 1.0;
+#pragma GCC unroll 6
     for (int k = 0; k < n; k++) {
         if (k >= from)
             s += fabs(p[k]) * r;
