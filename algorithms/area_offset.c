@@ -61,9 +61,10 @@
  *
  * Panels.  A piece's parameter range is cut in halves until on each panel
  * some rho of a fixed list gives a bound of at most AR_QUAD_TOL with
- * AR_QUAD_NMAX points; the panel keeps its disc (m, R) and M.  A part
- * [ta, tb] of the piece is integrated panel by panel: on each panel's share
- * [alpha, beta] from its own start point, the shares joined by the polygon
+ * AR_QUAD_NMAX points; the panel keeps its disc (m, R) and M, searched
+ * from the one the last panel of its width kept.  A part [ta, tb] of the
+ * piece is integrated panel by panel: on each panel's share [alpha, beta]
+ * from its own start point, the shares joined by the polygon
  * of their end points (seg = sum of the shares' segments + 1/2 sum (P(alpha)
  * - Pa) x (P(beta) - P(alpha))).  A share of half width h' about m' lies in
  * the disc |z - m'| <= R - |m' - m| inside the panel's, where M still
@@ -116,21 +117,30 @@ int area_quad_init(ar_quad *q)
     return AA_OK;
 }
 
-/* ---- small polynomials in s = t - m (coefficients ascending) ---- */
+/* ---- small polynomials in s = t - m (coefficients ascending) ----
+ *
+ * Their sizes are constants where they are used: the loops unrolled there
+ * (the panels' bounds take them at every panel and disc: 25 M of the
+ * init's 163 M instructions at 256 px on tests/bench_bezstroke.c), the same
+ * operations in the same order. */
 
-static void pmul(const double *a, int na, const double *b, int nb, double *out)
+static inline void pmul(const double *a, int na, const double *b, int nb, double *out)
 {
+#pragma GCC unroll 8
     for (int k = 0; k < na + nb - 1; k++)
         out[k] = 0.0;
+#pragma GCC unroll 4
     for (int i = 0; i < na; i++)
+#pragma GCC unroll 4
         for (int j = 0; j < nb; j++)
             out[i + j] += a[i] * b[j];
 }
 
 /* sum |p_k| R^k over k >= from */
-static double pabs(const double *p, int n, int from, double R)
+static inline double pabs(const double *p, int n, int from, double R)
 {
     double s = 0.0, r = 1.0;
+#pragma GCC unroll 6
     for (int k = 0; k < n; k++) {
         if (k >= from)
             s += fabs(p[k]) * r;
@@ -182,6 +192,14 @@ static void taylor(const aa_offset_curve *oc, double m, double *bx, double *by)
     by[3] = b[7];
 }
 
+/* The length of (a, b) for the bounds: sqrt of the sum of squares, not
+ * hypot (a library call, a sixth of a disc's bound); its rounding, a few
+ * units in the last place, within the bound's 1e-12 margin. */
+static inline double len2(double a, double b)
+{
+    return sqrt(a * a + b * b);
+}
+
 /* The bound on |f| (the curve's own units) over the disc |s| <= R of a
  * panel of half width h, for start points on the panel; INFINITY if a
  * denominator may vanish there.  Made in two steps: panel_pre, once per
@@ -202,7 +220,7 @@ static void panel_pre_cubic(const aa_offset_curve *oc, const double *bx, const d
     const double *ux = P->ux, *uy = P->uy;
     /* the start point's distance from B(m): |B(t) - B(m)| on the panel,
      * plus the normal's length */
-    P->A = hypot(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
+    P->A = len2(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
     if (!oc->evolute) {
         P->kind = 0;
         P->d = fabs(oc->d);
@@ -247,7 +265,7 @@ static void panel_pre_stop(const aa_offset_curve *oc, const double *bx, const do
     for (int k = 0; k < 3; k++)
         Q2[k] += t1[k];
     P->X = fabs(Qx[0] * q[3] - Qy[0] * q[1]), P->mte = fabs(m - te);
-    double Bdh = hypot(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
+    double Bdh = len2(pabs(bx, 4, 1, h), pabs(by, 4, 1, h));
     if (!oc->evolute) {
         P->kind = 2;
         P->d = fabs(oc->d);
@@ -288,17 +306,17 @@ static double panel_M(const panel_pre *P, double R)
         return (pabs(P->G, 5, 0, R) + P->A * Qmax) *
                (pabs(P->Q2, 3, 0, R) + 3 * sd * pabs(P->QQ, 2, 0, R)) / X;
     }
-    double Uux = pabs(P->ux, 3, 0, R), Uuy = pabs(P->uy, 3, 0, R), Uu = hypot(Uux, Uuy);
+    /* the denominators first: a disc holding a zero is refused at once */
+    double lo = P->kind == 0 ? plow(P->L2, 5, R) : plow(P->c, 4, R);
+    if (!(lo > 0.0))
+        return INFINITY;
+    double Uux = pabs(P->ux, 3, 0, R), Uuy = pabs(P->uy, 3, 0, R), Uu = len2(Uux, Uuy);
     if (P->kind == 0) {
-        double lo = plow(P->L2, 5, R), d = P->d;
-        if (!(lo > 0.0))
-            return INFINITY;
+        double d = P->d;
         return (pabs(P->G, 6, 0, R) + P->A * Uu + d * sqrt(pabs(P->L2, 5, 0, R))) *
                (1.0 + d * pabs(P->c, 4, 0, R) / (lo * sqrt(lo)));
     }
-    double cl = plow(P->c, 4, R);
-    if (!(cl > 0.0))
-        return INFINITY;
+    double cl = lo;
     return (3 * pabs(P->dd, 4, 0, R) * pabs(P->c, 4, 0, R) +
             pabs(P->L2, 5, 0, R) * pabs(P->cp, 3, 0, R)) *
            (pabs(P->G, 6, 0, R) + P->A * Uu) / (cl * cl);
@@ -339,12 +357,6 @@ static void ellipse_at(const aa_offset_curve *oc, double m, double *up, double *
     vp[0] = -b[2] * sm + b[4] * cm, vp[1] = -b[3] * sm + b[5] * cm;
 }
 
-/* log of the n-point bound's factor without rho^-2n: h 64 M/(15 (1 - rho^-2)) */
-static double log_factor(double h, double M, double rho)
-{
-    return log(h * 64.0 * M / (15.0 * (1.0 - 1.0 / (rho * rho))));
-}
-
 typedef struct panel_buf {
     ar_panel *p;
     size_t n, cap;
@@ -352,11 +364,41 @@ typedef struct panel_buf {
 
 /* The Bernstein ellipses' rho tried on a panel, ascending; NRHO of them */
 #define NRHO 12
+#define PANEL_DEPTH 60 /* the deepest halving */
 static const double rhos[NRHO] = {1.25, 1.5, 2, 3, 4, 6, 8, 12, 16, 32, 64, 128};
 
-/* lr: 2 AR_QUAD_NMAX log rho for each rho, made once per piece */
+/* Each rho's factor in the AR_QUAD_NMAX-point bound, 64/(15 (1 - rho^-2)
+ * rho^2n) (disc_e), with rho^32 as five squarings */
+_Static_assert(AR_QUAD_NMAX == 16, "disc_cf's rho^32 is rho^(2 AR_QUAD_NMAX)");
+#define CF_SQ(x) ((x) * (x))
+#define CF(r) (64.0 / (15.0 * (1.0 - 1.0 / ((r) * (r))) * CF_SQ(CF_SQ(CF_SQ(CF_SQ(CF_SQ(r)))))))
+static const double disc_cf[NRHO] = {CF(1.25), CF(1.5), CF(2.0),  CF(3.0),  CF(4.0),  CF(6.0),
+                                     CF(8.0),  CF(12.0), CF(16.0), CF(32.0), CF(64.0), CF(128.0)};
+#undef CF
+#undef CF_SQ
+
+/* The panel's bound with AR_QUAD_NMAX points on disc k, h M cf[k] (cf[k]
+ * = 64/(15 (1 - rho^-2) rho^2n), rho = rhos[k]); INFINITY if the disc may
+ * hold a zero of a denominator.  Its rounding, a few units in the last
+ * place, is within the 1e-12 margin on M. */
+static double disc_e(const aa_offset_curve *oc, const panel_pre *pre, const double *up,
+                     const double *vp, int ell, double h, double det2, const double *cf, int k,
+                     double *Rk, double *Mk)
+{
+    double rho = rhos[k], R = 0.5 * h * (rho + 1.0 / rho);
+    double M = (ell ? panel_M_ellipse(oc, up, vp, h, R) : panel_M(pre, R)) * det2 *
+               (1.0 + 1e-12);
+    *Rk = R, *Mk = M;
+    if (!(M < INFINITY))
+        return INFINITY;
+    return h * M * cf[k];
+}
+
+/* cf: the bound's factor for each rho (disc_cf); hint[d]: the disc of
+ * least bound on the last panel at depth d (-1 before one), where the
+ * search at that depth starts */
 static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2, double width,
-                      const double *lr, int depth, panel_buf *out)
+                      const double *cf, int *hint, int depth, panel_buf *out)
 {
     double m = 0.5 * (a + b), h = 0.5 * (b - a), bx[4] = {0}, by[4] = {0};
     int ell = oc->base == AA_OFFSET_ELLIPSE;
@@ -373,19 +415,33 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
         panel_pre_stop(oc, bx, by, m, te, q, h, &pre);
     else if (!ell)
         panel_pre_cubic(oc, bx, by, h, &pre);
-    double best = INFINITY, bR = 0, bM = 0;
-    const double logtol = log(AR_QUAD_TOL);
-    for (size_t k = 0; k < NRHO; k++) {
-        double rho = rhos[k], R = 0.5 * h * (rho + 1.0 / rho);
-        double M = (ell ? panel_M_ellipse(oc, up, vp, h, R) : panel_M(&pre, R)) * det2 *
-                   (1.0 + 1e-12);
-        if (!(M < INFINITY))
-            break; /* larger discs only hold more */
-        double e = log_factor(h, M, rho) - lr[k];
-        if (e < best)
-            best = e, bR = R, bM = M;
+    /* The disc, searched from the hint: down while the disc holds a zero
+     * of a denominator (so does every larger one); the first finite bound
+     * kept if it meets the tolerance, else towards the smaller bound while
+     * it falls (a local least) */
+    int k = NRHO / 4; /* a piece's first panel */
+    if (hint[depth] >= 0)
+        k = hint[depth];
+    else if (depth > 0 && hint[depth - 1] >= 0) /* half the width: a larger rho */
+        k = hint[depth - 1] + 1 < NRHO ? hint[depth - 1] + 1 : NRHO - 1;
+    double bR, bM, best = disc_e(oc, &pre, up, vp, ell, h, det2, cf, k, &bR, &bM);
+    int down = 0;
+    while (!(best < INFINITY) && k > 0) {
+        k--, down = 1;
+        best = disc_e(oc, &pre, up, vp, ell, h, det2, cf, k, &bR, &bM);
     }
-    if (best <= logtol) {
+    if (best < INFINITY) {
+        double R, M, e;
+        int kept = best <= AR_QUAD_TOL, up1 = 0;
+        while (!down && !kept && k + 1 < NRHO &&
+               (e = disc_e(oc, &pre, up, vp, ell, h, det2, cf, k + 1, &R, &M)) < best)
+            k++, best = e, bR = R, bM = M, up1 = 1;
+        while (!kept && !up1 && k > 0 &&
+               (e = disc_e(oc, &pre, up, vp, ell, h, det2, cf, k - 1, &R, &M)) < best)
+            k--, best = e, bR = R, bM = M;
+        hint[depth] = k;
+    }
+    if (best <= AR_QUAD_TOL) {
         if (out->n == out->cap) {
             size_t cap = out->cap ? 2 * out->cap : 8;
             ar_panel *p = realloc(out->p, cap * sizeof *p);
@@ -396,21 +452,21 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
         ar_panel *p = &out->p[out->n++];
         p->a = a, p->b = b, p->m = m, p->R = bR, p->M = bM;
         p->stop = stop, p->te = stop ? te : 0.0;
-        for (int k = 0; k < 4; k++)
-            p->q[k] = stop ? q[k] : 0.0;
+        for (int j = 0; j < 4; j++)
+            p->q[j] = stop ? q[j] : 0.0;
         memcpy(p->bx, bx, sizeof bx);
         memcpy(p->by, by, sizeof by);
         return AA_OK;
     }
-    if (depth >= 60 || b - a <= 1e-12 * width || !(m > a && m < b))
+    if (depth >= PANEL_DEPTH || b - a <= 1e-12 * width || !(m > a && m < b))
         return aa_fail(AA_EINVAL,
                        "area: an offset curve of a Bezier arc or ellipse near t = %.17g whose "
                        "quadrature "
                        "bound (%g px^2) it cannot meet (its speed or curvature within rounding "
                        "of 0 there)",
                        m, AR_QUAD_TOL);
-    int st = panels_rec(oc, a, m, det2, width, lr, depth + 1, out);
-    return st ? st : panels_rec(oc, m, b, det2, width, lr, depth + 1, out);
+    int st = panels_rec(oc, a, m, det2, width, cf, hint, depth + 1, out);
+    return st ? st : panels_rec(oc, m, b, det2, width, cf, hint, depth + 1, out);
 }
 
 int area_offset_panels_append(const aa_offset_curve *oc, double t0, double t1, ar_panel **arr,
@@ -419,11 +475,10 @@ int area_offset_panels_append(const aa_offset_curve *oc, double t0, double t1, a
     panel_buf buf = {*arr, *n, *cap};
     double a = fmin(t0, t1), b = fmax(t0, t1);
     double det2 = 0.5 * fabs(oc->m[0] * oc->m[3] - oc->m[2] * oc->m[1]);
-    double lr[NRHO];
-    const double nmax = AR_QUAD_NMAX;
-    for (int k = 0; k < NRHO; k++)
-        lr[k] = 2.0 * nmax * log(rhos[k]);
-    int st = panels_rec(oc, a, b, det2, b - a, lr, 0, &buf);
+    int hint[PANEL_DEPTH + 1];
+    for (int k = 0; k <= PANEL_DEPTH; k++)
+        hint[k] = -1;
+    int st = panels_rec(oc, a, b, det2, b - a, disc_cf, hint, 0, &buf);
     *arr = buf.p, *cap = buf.cap; /* grown, even on a failure */
     if (!st)
         *n = buf.n;

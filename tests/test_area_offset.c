@@ -53,7 +53,11 @@
  *    and two at a time (SSE2), give the same segment bit for bit, on every
  *    offset piece and evolute of two strokes and 300 parts of each
  *    (test_nodes: on a processor with AVX the tests above take the first,
- *    so this keeps the second, the form without AVX, held to it).
+ *    so this keeps the second, the form without AVX, held to it);
+ *  - the quadrature's panels (test_panels): they tile each offset piece,
+ *    each one's disc meets the tolerance by Trefethen's bound computed
+ *    here, and its M bounds the integrand evaluated here in complex long
+ *    double on the disc's circle.
  */
 #include "area_internal.h"
 #include "path.h"
@@ -61,6 +65,7 @@
 #include "scenes.h"
 #include "support.h"
 
+#include <complex.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -1002,6 +1007,102 @@ static void test_nodes(void **state)
     assert_true(parts > 0 && evolutes > 0);
 }
 
+/* The panels of an offset piece (area_offset.c, area_offset_panels; the
+ * disc each keeps searched from the last panel's at its depth): they tile
+ * the piece's parameter range in order, each m their middle; each panel's
+ * disc (R, M) meets the quadrature's tolerance by Trefethen's bound, h 64
+ * M/(15 (1 - rho^-2) rho^32) <= AR_QUAD_TOL with rho from R = h (rho +
+ * 1/rho)/2, computed here in long double; and M bounds the integrand f =
+ * ((B - Pa) x B' - d L)(1 - d c/L^3) (the curve's units, times half the
+ * map's determinant) evaluated here in complex long double from the
+ * cubic's power basis at 64 points on the disc's circle (the largest of
+ * an analytic function on a disc is on its circle; L = sqrt(B'.B'), the
+ * principal branch: on the disc |L^2 - L(m)^2| < L(m)^2, M's own proof),
+ * for start points Pa at the panel's ends and middle; on the offsets
+ * (not the evolutes, nor the factored form next to a cusp) of the tight
+ * arc and the three arcs at three widths. */
+static void test_panels(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    int pieces = 0, panels = 0, checked = 0;
+    double worst = 0.0;
+    for (int c = 0; c < 6; c++) {
+        st.width = (const double[]){0.02, 0.08, 0.3}[c % 3];
+        aa_scene *s = stroke_scene(c < 3 ? tight : three, c < 3 ? 1 : 3, &st, NULL);
+        aa_scene *placed = aa_scene_place(s, 64, 64, 0, 0, 0);
+        assert_non_null(placed);
+        size_t np;
+        const aa_piece *pc = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pc[k].kind != AA_PIECE_OFFSET || pc[k].oc.base == AA_OFFSET_ELLIPSE)
+                continue;
+            const aa_offset_curve *oc = &pc[k].oc;
+            ar_panel *pan;
+            size_t npan;
+            must(area_offset_panels(oc, pc[k].ot0, pc[k].ot1, &pan, &npan));
+            pieces++, panels += (int)npan;
+            assert_true(npan > 0);
+            assert_true(pan[0].a == fmin(pc[k].ot0, pc[k].ot1));
+            assert_true(pan[npan - 1].b == fmax(pc[k].ot0, pc[k].ot1));
+            long double b[8], det2 = 0.5L * fabsl((long double)oc->m[0] * oc->m[3] -
+                                                  (long double)oc->m[2] * oc->m[1]);
+            for (int i = 0; i < 8; i++)
+                b[i] = oc->b[i];
+            for (size_t i = 0; i < npan; i++) {
+                const ar_panel *p = &pan[i];
+                if (i + 1 < npan)
+                    assert_true(p->b == pan[i + 1].a);
+                assert_true(p->a < p->b && p->m == 0.5 * (p->a + p->b));
+                long double h = 0.5L * ((long double)p->b - p->a), z = p->R / h;
+                assert_true(z > 1);
+                long double rho = z + sqrtl((z - 1) * (z + 1)), r32 = powl(rho, 32);
+                long double e = h * 64 * p->M / (15 * (1 - 1 / (rho * rho)) * r32);
+                if (!(e <= AR_QUAD_TOL * (1 + 1e-9L)))
+                    fail_msg("piece %zu panel %zu: bound %Lg", k, i, e);
+                if (oc->evolute || p->stop)
+                    continue;
+                long double d = oc->d;
+                for (int a = 0; a < 3; a++) {
+                    long double ta = a == 0 ? p->a : a == 1 ? p->m : p->b;
+                    long double X1 = b[1] + ta * (2 * b[2] + 3 * ta * b[3]);
+                    long double Y1 = b[5] + ta * (2 * b[6] + 3 * ta * b[7]), l = hypotl(X1, Y1);
+                    long double pax = b[0] + ta * (b[1] + ta * (b[2] + ta * b[3])) - d * Y1 / l;
+                    long double pay = b[4] + ta * (b[5] + ta * (b[6] + ta * b[7])) + d * X1 / l;
+                    for (int j = 0; j < 64; j++) {
+                        long double complex t = p->m + p->R * cexpl(I * (2 * M_PI * j / 64));
+                        long double complex x = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+                        long double complex y = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+                        long double complex x1 = b[1] + t * (2 * b[2] + 3 * t * b[3]);
+                        long double complex y1 = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+                        long double complex x2 = 2 * b[2] + 6 * t * b[3];
+                        long double complex y2 = 2 * b[6] + 6 * t * b[7];
+                        long double complex L = csqrtl(x1 * x1 + y1 * y1);
+                        long double complex cc = x1 * y2 - y1 * x2;
+                        long double complex f = ((x - pax) * y1 - (y - pay) * x1 - d * L) *
+                                                (1 - d * cc / (L * L * L));
+                        double v = (double)(cabsl(f) * det2);
+                        if (!(v <= p->M))
+                            fail_msg("piece %zu panel %zu: |f| %g on the disc over M %g", k,
+                                     i, v, p->M);
+                        worst = fmax(worst, v / p->M);
+                        checked++;
+                    }
+                }
+            }
+            free(pan);
+        }
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+    print_message("%d panels of %d offset pieces tile them and meet the bound; |f| at most %.2f "
+                  "of M at %d points\n",
+                  panels, pieces, worst, checked);
+    assert_true(pieces > 0 && checked > 0);
+}
+
 /* area's band lines' starts on an offset piece (area_internal.h,
  * ytab_guess) from a table of nodes (t, y, dt/dy) made here as area.c's
  * load_offset makes them (y and its slope by aa__offset_end), at t = k/64
@@ -1327,6 +1428,7 @@ int main(void)
                                        cmocka_unit_test(test_vertex),
                                        cmocka_unit_test(test_ulp_vertex),
                                        cmocka_unit_test(test_nodes),
+                                       cmocka_unit_test(test_panels),
                                        cmocka_unit_test(test_starts),
                                        cmocka_unit_test(test_shared_ends),
                                        cmocka_unit_test(test_common_heights)};

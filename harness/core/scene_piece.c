@@ -21,6 +21,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* fmax and fmin written out (the library's are calls: about 1.5 million a
+ * render of tests/bench_bezstroke.c's scene at 256 px in the meetings),
+ * the same values, a NaN argument ignored as theirs are */
+static inline double dmax(double a, double b)
+{
+    return a > b || b != b ? a : b;
+}
+
+static inline double dmin(double a, double b)
+{
+    return a < b || b != b ? a : b;
+}
+
 /* ---- roots of cubics ---- */
 
 /* Roots of the derivative k1 + 2 k2 t + 3 k3 t^2 of a cubic's coordinate
@@ -72,7 +85,7 @@ double aa__poly3_bracketed(const double c[4], double a, double b, double fa, dou
          * below 2^-54 of the root (or of 2^-10 near zero) */
         if (next >= a && next <= b && df != 0.0 &&
             fabs(c[2] + 3.0 * t * c[3]) * (next - t) * (next - t) <=
-                0x1p-54 * fabs(df) * fmax(fabs(next), 0x1p-10))
+                0x1p-54 * fabs(df) * dmax(fabs(next), 0x1p-10))
             return next;
         if (!(next > a && next < b) || fabs(next - t) > 0.5 * prev)
             next = m;
@@ -127,9 +140,9 @@ int aa__poly3_roots(const double c[4], double lo, double hi, double *t)
 
 static void conic_cs(const aa_piece *p, double y, double *c, double *sn)
 {
-    double dt = fmax(y - (p->ey - p->er), 0.0), db = fmax((p->ey + p->er) - y, 0.0);
-    *c = fmin(1.0, fmax(-1.0, (db - dt) / (2.0 * p->er)));
-    *sn = fmin(1.0, sqrt(dt * db) / p->er);
+    double dt = dmax(y - (p->ey - p->er), 0.0), db = dmax((p->ey + p->er) - y, 0.0);
+    *c = dmin(1.0, dmax(-1.0, (db - dt) / (2.0 * p->er)));
+    *sn = dmin(1.0, sqrt(dt * db) / p->er);
 }
 
 double aa__conic_s_at(const aa_piece *p, double y)
@@ -138,10 +151,10 @@ double aa__conic_s_at(const aa_piece *p, double y)
         return p->s0;
     if (!(y < p->y1))
         return p->s1;
-    double dt = fmax(y - (p->ey - p->er), 0.0), db = fmax((p->ey + p->er) - y, 0.0);
-    double s = dt <= db ? 2.0 * asin(fmin(1.0, sqrt(dt / (2.0 * p->er))))
-                        : M_PI - 2.0 * asin(fmin(1.0, sqrt(db / (2.0 * p->er))));
-    return fmin(fmax(s, p->s0), p->s1);
+    double dt = dmax(y - (p->ey - p->er), 0.0), db = dmax((p->ey + p->er) - y, 0.0);
+    double s = dt <= db ? 2.0 * asin(dmin(1.0, sqrt(dt / (2.0 * p->er))))
+                        : M_PI - 2.0 * asin(dmin(1.0, sqrt(db / (2.0 * p->er))));
+    return dmin(dmax(s, p->s0), p->s1);
 }
 
 static double conic_x_at(const aa_piece *p, double y)
@@ -159,13 +172,13 @@ static double conic_x_at(const aa_piece *p, double y)
 static void conic_range(const aa_piece *p, double sa, double xa, double sb, double xb,
                         double *xmin, double *xmax)
 {
-    *xmin = fmin(xa, xb);
-    *xmax = fmax(xa, xb);
+    *xmin = dmin(xa, xb);
+    *xmax = dmax(xa, xb);
     double R = hypot(p->ea, p->eb), alpha = atan2(p->eb, p->ea);
     if (alpha > sa && alpha < sb)
-        *xmax = fmax(*xmax, p->ex + R);
+        *xmax = dmax(*xmax, p->ex + R);
     if (alpha + M_PI > sa && alpha + M_PI < sb)
-        *xmin = fmin(*xmin, p->ex - R);
+        *xmin = dmin(*xmin, p->ex - R);
 }
 
 void aa__conic_xrange(const aa_piece *p, double sa, double sb, double *xmin, double *xmax)
@@ -182,7 +195,7 @@ static int conic_meet_x(const aa_piece *p, double x, double ys[3])
     double R = hypot(p->ea, p->eb), alpha = atan2(p->eb, p->ea);
     if (!(R > 0.0) || fabs(x - p->ex) > R)
         return 0;
-    double d = acos(fmin(1.0, fmax(-1.0, (x - p->ex) / R)));
+    double d = acos(dmin(1.0, dmax(-1.0, (x - p->ex) / R)));
     double cand[6] = {alpha + d, alpha - d, alpha + d - 2.0 * M_PI,
                       alpha - d + 2.0 * M_PI, alpha + d + 2.0 * M_PI, alpha - d - 2.0 * M_PI};
     int m = 0;
@@ -235,14 +248,14 @@ static double offset_x(const aa_piece *p, double t)
 static void offset_range_x(const aa_piece *p, double ta, double tb, double xa, double xb,
                            double *xmin, double *xmax)
 {
-    double lo = fmin(ta, tb), hi = fmax(ta, tb), ts[2];
-    *xmin = fmin(xa, xb);
-    *xmax = fmax(xa, xb);
+    double lo = dmin(ta, tb), hi = dmax(ta, tb), ts[2];
+    *xmin = dmin(xa, xb);
+    *xmax = dmax(xa, xb);
     int n = aa__offset_turns(&p->oc, 0, lo, hi, ts);
     for (int k = 0; k < n; k++) {
         double x = offset_x(p, ts[k]);
-        *xmin = fmin(*xmin, x);
-        *xmax = fmax(*xmax, x);
+        *xmin = dmin(*xmin, x);
+        *xmax = dmax(*xmax, x);
     }
 }
 
@@ -255,7 +268,7 @@ static void offset_range(const aa_piece *p, double ta, double tb, double *xmin, 
  * x turns, x is monotone and the root is solved for. */
 static int offset_meet_x(const aa_piece *p, double x, double ys[3])
 {
-    double lo = fmin(p->ot0, p->ot1), hi = fmax(p->ot0, p->ot1), ts[4];
+    double lo = dmin(p->ot0, p->ot1), hi = dmax(p->ot0, p->ot1), ts[4];
     int n = aa__offset_turns(&p->oc, 0, lo, hi, ts + 1), m = 0;
     /* in the order of y: from ot0 */
     if (p->ot0 > p->ot1) {
@@ -345,8 +358,8 @@ void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, doub
         a = b;
     if (p->kind == AA_PIECE_LINE) {
         double xa = aa_piece_x_at(p, a), xb = aa_piece_x_at(p, b);
-        *xmin = fmin(xa, xb);
-        *xmax = fmax(xa, xb);
+        *xmin = dmin(xa, xb);
+        *xmax = dmax(xa, xb);
         return;
     }
     if (p->kind == AA_PIECE_CONIC) {
@@ -361,25 +374,25 @@ void aa_piece_xrange(const aa_piece *p, double ya, double yb, double *xmin, doub
     double ta = aa_piece_t_at(p, a), tb = aa_piece_t_at(p, b);
     if (p->kind == AA_PIECE_CUBIC) {
         double c[4] = {p->x0, p->bx, p->ax, p->dx}, ts[2];
-        *xmin = fmin(poly3(c, ta), poly3(c, tb));
-        *xmax = fmax(poly3(c, ta), poly3(c, tb));
+        *xmin = dmin(poly3(c, ta), poly3(c, tb));
+        *xmax = dmax(poly3(c, ta), poly3(c, tb));
         int n = aa__cubic_turns(p->bx, p->ax, p->dx, ts);
         for (int k = 0; k < n; k++)
             if (ts[k] > ta && ts[k] < tb) {
-                *xmin = fmin(*xmin, poly3(c, ts[k]));
-                *xmax = fmax(*xmax, poly3(c, ts[k]));
+                *xmin = dmin(*xmin, poly3(c, ts[k]));
+                *xmax = dmax(*xmax, poly3(c, ts[k]));
             }
         return;
     }
     double xa = p->x0 + ta * (p->bx + ta * p->ax), xb = p->x0 + tb * (p->bx + tb * p->ax);
-    *xmin = fmin(xa, xb);
-    *xmax = fmax(xa, xb);
+    *xmin = dmin(xa, xb);
+    *xmax = dmax(xa, xb);
     if (p->ax != 0.0) {
         double t = -p->bx / (2.0 * p->ax);
         if (t > ta && t < tb) {
             double x = p->x0 + t * (p->bx + t * p->ax);
-            *xmin = fmin(*xmin, x);
-            *xmax = fmax(*xmax, x);
+            *xmin = dmin(*xmin, x);
+            *xmax = dmax(*xmax, x);
         }
     }
 }
@@ -579,7 +592,8 @@ static int extents_meet(meet_ctx *c, double a, double b)
     aa_piece_xrange(c->q, a, b, &qa, &qb);
     /* a margin of rounding: a meeting at an end of the interval must not
      * look disjoint in both halves */
-    double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
+    double tol = 8.0 * DBL_EPSILON *
+                 dmax(1.0, dmax(dmax(fabs(pa), fabs(pb)), dmax(fabs(qa), fabs(qb))));
     return !(pb < qa - tol || qb < pa - tol);
 }
 
@@ -596,7 +610,7 @@ static void subdivide(meet_ctx *c, double a, double b, int depth)
 {
     if (!extents_meet(c, a, b))
         return;
-    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m));
+    double m = 0.5 * (a + b), scale = dmax(1.0, fabs(m));
     if (depth >= 60 || b - a <= 1e-12 * scale || !(m > a && m < b)) {
         record_meet(c, m, scale);
         return;
@@ -673,7 +687,7 @@ static double polish_line_offset(const aa_piece *p, const aa_piece *q, double a,
 {
     double ta = tq[0], tb = tq[1], t = ta + (tb - ta) * (fa / (fa - fb)), h1 = NAN, prev;
     int neg = fa > 0.0; /* the sign of g at a: g = -by (x_p - x_q) */
-    if (!(fmin(ta, tb) < t && t < fmax(ta, tb)))
+    if (!(dmin(ta, tb) < t && t < dmax(ta, tb)))
         t = 0.5 * (ta + tb);
     prev = fabs(tb - ta);
     for (int it = 0; it < 100; it++) {
@@ -687,11 +701,11 @@ static double polish_line_offset(const aa_piece *p, const aa_piece *q, double a,
         else
             tb = t;
         double mid = 0.5 * (ta + tb);
-        if (!(fmin(ta, tb) < mid && mid < fmax(ta, tb)))
+        if (!(dmin(ta, tb) < mid && mid < dmax(ta, tb)))
             return y > a && y < b ? y : NAN;
         double next = dg != 0.0 && isfinite(dg) ? t - g / dg : mid;
         double h = fabs(next - t), hy = fabs(dy) * h, r = 4.0 * DBL_EPSILON * fabs(y);
-        int inside = fmin(ta, tb) < next && next < fmax(ta, tb);
+        int inside = dmin(ta, tb) < next && next < dmax(ta, tb);
         if (inside && (hy <= r || (h < h1 && hy * h * h <= r * h1 * h1))) {
             double v = y + dy * (next - t);
             return v > a && v < b ? v : NAN;
@@ -785,13 +799,13 @@ static void subdivide_cubic(meet_ctx *c, double a, double b, int depth)
 {
     if (!extents_meet(c, a, b))
         return;
-    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m));
+    double m = 0.5 * (a + b), scale = dmax(1.0, fabs(m));
     if (b - a <= 1e-6 * scale) {
         double xpa = aa_piece_x_at(c->p, a), xqa = aa_piece_x_at(c->q, a);
         double xpb = aa_piece_x_at(c->p, b), xqb = aa_piece_x_at(c->q, b);
         double fa = xpa - xqa, fb = xpb - xqb;
         double tol = 8.0 * DBL_EPSILON *
-                     fmax(1.0, fmax(fmax(fabs(xpa), fabs(xqa)), fmax(fabs(xpb), fabs(xqb))));
+                     dmax(1.0, dmax(dmax(fabs(xpa), fabs(xqa)), dmax(fabs(xpb), fabs(xqb))));
         /* a common end point of both pieces at or just beyond the
          * interval's end, and no crossing after it this close: the end
          * itself (near_shared_end) */
@@ -851,7 +865,7 @@ static void range_at(const aa_piece *p, double a, double b, const double t[2], c
 static int ratio_range(const double *A, const double *C, double ta, double tb, double *lo,
                        double *hi)
 {
-    double t0 = fmin(ta, tb), len = fabs(tb - ta), r[2];
+    double t0 = dmin(ta, tb), len = fabs(tb - ta), r[2];
     /* about t0: A(t0 + u), C(t0 + u) */
     double c0 = C[0] + t0 * (C[1] + t0 * C[2]), c1 = C[1] + 2.0 * t0 * C[2], c2 = C[2];
     double a0 = A[0] + t0 * (A[1] + t0 * A[2]), a1 = A[1] + 2.0 * t0 * A[2], a2 = A[2];
@@ -860,12 +874,12 @@ static int ratio_range(const double *A, const double *C, double ta, double tb, d
         quadratic_roots(c2, c1, c0, len, r) > 0)
         return 0;
     double s0 = a0 / c0, s1 = (a0 + len * (a1 + len * a2)) / cend;
-    *lo = fmin(s0, s1), *hi = fmax(s0, s1);
+    *lo = dmin(s0, s1), *hi = dmax(s0, s1);
     int n = quadratic_roots(a2 * c1 - a1 * c2, 2.0 * (a2 * c0 - a0 * c2), a1 * c0 - a0 * c1, len,
                             r);
     for (int k = 0; k < n; k++) {
         double sk = (a0 + r[k] * (a1 + r[k] * a2)) / (c0 + r[k] * (c1 + r[k] * c2));
-        *lo = fmin(*lo, sk), *hi = fmax(*hi, sk);
+        *lo = dmin(*lo, sk), *hi = dmax(*hi, sk);
     }
     return 1;
 }
@@ -893,7 +907,7 @@ static int slope_range(const aa_piece *p, double a, double b, const double t[2],
             return 0;
         double ka = -p->ea / p->er + p->eb / (p->er * tan(sa));
         double kb = -p->ea / p->er + p->eb / (p->er * tan(sb));
-        *lo = fmin(ka, kb), *hi = fmax(ka, kb);
+        *lo = dmin(ka, kb), *hi = dmax(ka, kb);
         ok = 1;
     } else if (p->kind == AA_PIECE_OFFSET && p->oc.base == AA_OFFSET_ELLIPSE) {
         const double *c = p->oc.b, *m = p->oc.m;
@@ -904,7 +918,7 @@ static int slope_range(const aa_piece *p, double a, double b, const double t[2],
             A[k] = m[0] * vx + m[2] * vy;
             C[k] = m[1] * vx + m[3] * vy;
         }
-        double ta = fmin(t[0], t[1]), tb = fmax(t[0], t[1]);
+        double ta = dmin(t[0], t[1]), tb = dmax(t[0], t[1]);
         double ca = C[0] * cos(ta) + C[1] * sin(ta), cb = C[0] * cos(tb) + C[1] * sin(tb);
         /* C's zeros are pi apart: none inside if its ends agree in sign on
          * a range shorter than pi */
@@ -912,7 +926,7 @@ static int slope_range(const aa_piece *p, double a, double b, const double t[2],
             return 0;
         double ka = (A[0] * cos(ta) + A[1] * sin(ta)) / ca;
         double kb = (A[0] * cos(tb) + A[1] * sin(tb)) / cb;
-        *lo = fmin(ka, kb), *hi = fmax(ka, kb);
+        *lo = dmin(ka, kb), *hi = dmax(ka, kb);
         ok = 1;
     } else if (p->kind == AA_PIECE_OFFSET) {
         const double *c = p->oc.b, *m = p->oc.m;
@@ -992,7 +1006,7 @@ static int slopes_say(const aa_piece *p, const aa_piece *q, double a, double b,
     double da = xp[0] - xq[0], db = xp[1] - xq[1], slo = plo - qhi, shi = phi - qlo;
     *fa = da;
     if (fabs(da) <= tol && fabs(db) <= tol) {
-        double h = b - a, M = fmax(fabs(slo), fabs(shi));
+        double h = b - a, M = dmax(fabs(slo), fabs(shi));
         if (2.0 * tol * h + 0.25 * M * h * h <= sliver)
             return NEAR;
     }
@@ -1016,8 +1030,8 @@ static int slopes_say(const aa_piece *p, const aa_piece *q, double a, double b,
         double t = slo;
         da = -da, db = -db, slo = -shi, shi = -t;
     }
-    double h = b - a, u = fmin(fmax((db - da - shi * h) / (slo - shi), 0.0), h);
-    return fmax(da + slo * u, db - shi * (h - u)) > tol ? APART : UNKNOWN;
+    double h = b - a, u = dmin(dmax((db - da - shi * h) / (slo - shi), 0.0), h);
+    return dmax(da + slo * u, db - shi * (h - u)) > tol ? APART : UNKNOWN;
 }
 
 /* 1 if p's x is strictly monotone over [a, b] (t: an offset piece's
@@ -1030,7 +1044,7 @@ static int x_monotone(const aa_piece *p, const double t[2])
         return 1;
     if (p->kind != AA_PIECE_OFFSET)
         return 0;
-    return aa__offset_turns(&p->oc, 0, fmin(t[0], t[1]), fmax(t[0], t[1]), ts) == 0;
+    return aa__offset_turns(&p->oc, 0, dmin(t[0], t[1]), dmax(t[0], t[1]), ts) == 0;
 }
 
 /* 1 if p and q, leaving the end point they share at an end of [a, b]
@@ -1084,7 +1098,7 @@ static int step_in(const aa_piece *p, double a, double b, const double t[2], int
         return 0;
     for (int k = 0; k < 2; k++) {
         double ts = t[e] + (t[1 - e] - t[e]) * f, xs, ys;
-        if (!(ts > fmin(t[0], t[1]) && ts < fmax(t[0], t[1])))
+        if (!(ts > dmin(t[0], t[1]) && ts < dmax(t[0], t[1])))
             return 0;
         aa_offset_point(&p->oc, ts, &xs, &ys, NULL, NULL);
         double d = fabs(ys - end);
@@ -1162,10 +1176,11 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
         return;
     range_at(c->p, a, b, tp, xp, &pa, &pb);
     range_at(c->q, a, b, tq, xq, &qa, &qb);
-    double tol = 8.0 * DBL_EPSILON * fmax(1.0, fmax(fmax(fabs(pa), fabs(pb)), fmax(fabs(qa), fabs(qb))));
+    double tol = 8.0 * DBL_EPSILON *
+                 dmax(1.0, dmax(dmax(fabs(pa), fabs(pb)), dmax(fabs(qa), fabs(qb))));
     if (pb < qa - tol || qb < pa - tol || part_at_end(c, a, b, tp, tq, xp, xq, tol))
         return;
-    double m = 0.5 * (a + b), scale = fmax(1.0, fabs(m)), da;
+    double m = 0.5 * (a + b), scale = dmax(1.0, fabs(m)), da;
     switch (slopes_say(c->p, c->q, a, b, tp, tq, xp, xq, tol, 1e-12 * scale, 1e-15, &da)) {
     case APART:
     case NEAR:
@@ -1213,7 +1228,7 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
      * once (the same rule decides it), and the rest, away from the end, is
      * parted by the slopes, now of one sign there.  Area's form
      * (c->quick) does not ask the part cut off at all (shared_end_cut). */
-    double cut = 0.5e-6 * fmax(1.0, fmin(fabs(a), fabs(b)));
+    double cut = 0.5e-6 * dmax(1.0, dmin(fabs(a), fabs(b)));
     if (b - a > 4.0 * cut) {
         int e = a == c->lo && c->lo_shared && a + cut > a
                     ? 0
@@ -1294,7 +1309,7 @@ static int meet_pair(const aa_piece *p, const aa_piece *q, double ya, double yb,
 {
     if (!p->dir || !q->dir || max < 1)
         return 0;
-    double lo = fmax(fmax(p->y0, q->y0), ya), hi = fmin(fmin(p->y1, q->y1), yb);
+    double lo = dmax(dmax(p->y0, q->y0), ya), hi = dmin(dmin(p->y1, q->y1), yb);
     if (!(lo < hi))
         return 0;
     int conic = p->kind == AA_PIECE_CONIC || q->kind == AA_PIECE_CONIC;
@@ -1327,13 +1342,13 @@ static int meet_pair(const aa_piece *p, const aa_piece *q, double ya, double yb,
     int lo_ends = (lo == p->y0 || lo == p->y1) && (lo == q->y0 || lo == q->y1);
     int hi_ends = (hi == p->y0 || hi == p->y1) && (hi == q->y0 || hi == q->y1);
     /* the same at the common rows' ends when [ya, yb] stops short of them */
-    double top = fmax(p->y0, q->y0), bot = fmin(p->y1, q->y1);
+    double top = dmax(p->y0, q->y0), bot = dmin(p->y1, q->y1);
     if (top == p->y0 && top == q->y0 && aa_piece_x_at(p, top) == aa_piece_x_at(q, top))
         c.end_lo = top;
     if (bot == p->y1 && bot == q->y1 && aa_piece_x_at(p, bot) == aa_piece_x_at(q, bot))
         c.end_hi = bot;
-    int near_end = lo - c.end_lo <= 1e-6 * fmax(1.0, fabs(lo)) ||
-                   c.end_hi - hi <= 1e-6 * fmax(1.0, fabs(hi));
+    int near_end = lo - c.end_lo <= 1e-6 * dmax(1.0, fabs(lo)) ||
+                   c.end_hi - hi <= 1e-6 * dmax(1.0, fabs(hi));
     if (p->kind == AA_PIECE_OFFSET || q->kind == AA_PIECE_OFFSET) {
         /* the ends' parameters and x, found once (aa_piece_x_at of an
          * offset piece is offset_x at offset_t_at, param_at's parameter) */
