@@ -732,7 +732,9 @@ static int attr_known(const xmlNode *node, const char *name)
                {"use", {"x", "y", "width", "height", "href"}},
                {"symbol",
                 {"viewBox", "preserveAspectRatio", "x", "y", "width", "height", "refX", "refY"}}};
-    static const char *const any[] = {"id", "class", "style", "transform"};
+    static const char *const any[] = {"id",          "class",          "style",
+                                      "transform",   "systemLanguage", "requiredExtensions",
+                                      "requiredFeatures"};
     for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
         if (!strcmp(name, any[k]))
             return 1;
@@ -748,6 +750,75 @@ static int attr_known(const xmlNode *node, const char *name)
                 if (!strcmp(name, own[k].attrs[j]))
                     return 1;
     return 0;
+}
+
+/* Conditional processing (SVG 2, "Conditional processing"): 1 when the
+ * element's conditions hold, 0 when one does not (the element and its
+ * content are not drawn; in a <switch> the next child is tried).
+ *   - systemLanguage: a comma-separated list of language tags, true when
+ *     one is the reader's language, "en", or begins with "en-" (the
+ *     language is a prefix of the tag followed by "-"), case-insensitive;
+ *     an empty list is false;
+ *   - requiredExtensions: a list of extension URLs, true when every one is
+ *     supported; the reader supports none (it draws no foreignObject), so
+ *     the attribute is false whenever it is given, as SVG 2 says of an
+ *     empty list too (Chromium holds the XHTML namespace supported: a
+ *     list of it alone is true there);
+ *   - requiredFeatures: no longer in SVG 2, always true in browsers. */
+static int conditions_hold(const xmlNode *node)
+{
+    xmlChar *e = xmlGetNoNsProp(node, (const xmlChar *)"requiredExtensions");
+    if (e) {
+        xmlFree(e);
+        return 0;
+    }
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"systemLanguage");
+    if (!t)
+        return 1;
+    int hold = 0;
+    for (const char *s = (const char *)t; *s && !hold;) {
+        s = skip_wsp(s);
+        size_t n = strcspn(s, ",");
+        size_t m = n;
+        while (m && isspace((unsigned char)s[m - 1]))
+            m--;
+        hold = (m == 2 || (m > 2 && s[2] == '-')) && !strncasecmp(s, "en", 2);
+        s += n + (s[n] == ',');
+    }
+    xmlFree(t);
+    return hold;
+}
+
+static int is_svg(const xmlNode *node);
+static int named(const xmlNode *node, const char *name);
+
+/* The child of a <switch> drawn (SVG 2, "The switch element"): the first
+ * direct child of the SVG namespace whose conditions hold, in *chosen
+ * (NULL: none).  Elements of other namespaces are passed over (Chromium
+ * and resvg draw none of them as a switch's child).  A chosen child
+ * that draws nothing of itself (title, desc, metadata, defs, style, a
+ * paint server, clipPath...) is refused: Chromium chooses it and draws
+ * nothing, resvg passes it over and draws the next. */
+static int switch_choice(reader *r, const xmlNode *sw, const xmlNode **chosen)
+{
+    static const char *const drawn[] = {"g",    "switch",  "svg",     "use",    "path",
+                                        "rect", "circle",  "ellipse", "line",   "polygon",
+                                        "polyline", "text", "image",  "foreignObject", "a"};
+    *chosen = NULL;
+    for (const xmlNode *c = sw->children; c; c = c->next) {
+        if (c->type != XML_ELEMENT_NODE || !is_svg(c) || !conditions_hold(c))
+            continue;
+        for (size_t k = 0; k < sizeof drawn / sizeof drawn[0]; k++)
+            if (named(c, drawn[k])) {
+                *chosen = c;
+                return AA_OK;
+            }
+        r->node = c;
+        return fail_at(r, "<%s> as the child a <switch> draws is not supported (Chromium "
+                          "draws nothing, resvg the next child)",
+                       (const char *)c->name);
+    }
+    return AA_OK;
 }
 
 /* A declaration that applies to r->node (aa_css_each): refused unless
@@ -3417,7 +3488,8 @@ static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double bo
     int st = AA_OK;
     const xmlNode *was = r->node;
     r->node = node;
-    if (prop(r, node, "display", v, sizeof v, &st) && !strcasecmp(v, "none")) {
+    if ((prop(r, node, "display", v, sizeof v, &st) && !strcasecmp(v, "none")) ||
+        !conditions_hold(node)) {
         r->node = was;
         return AA_OK;
     }
@@ -3480,6 +3552,14 @@ static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double bo
                 st = geometry_walk(r, c, &mc, box, depth + 1);
         }
         r->vpw = pw, r->vph = ph;
+    } else if (!st && named(node, "switch")) {
+        /* the child it draws */
+        const xmlNode *c;
+        if (!(st = switch_choice(r, node, &c)) && c) {
+            mat mc = *m;
+            if (!(st = element_transform(r, c, &mc)))
+                st = geometry_walk(r, c, &mc, box, depth + 1);
+        }
     }
     r->node = was;
     return st;
@@ -3709,7 +3789,7 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
     static const char *const shapes[] = {"path", "rect", "circle", "ellipse", "polygon",
                                          "polyline", "line"};
     for (const xmlNode *c = cp->children; c && !st; c = c->next) {
-        if (c->type != XML_ELEMENT_NODE || !is_svg(c))
+        if (c->type != XML_ELEMENT_NODE || !is_svg(c) || !conditions_hold(c))
             continue;
         r->node = c;
         if (named(c, "title") || named(c, "desc") || named(c, "metadata"))
@@ -3740,7 +3820,7 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
             int direct = 0;
             for (size_t k = 0; t && is_svg(t) && k < sizeof shapes / sizeof shapes[0]; k++)
                 direct |= named(t, shapes[k]);
-            if (!direct)
+            if (!direct || !conditions_hold(t))
                 continue;
             r->node = t;
         }
@@ -4268,6 +4348,8 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     for (size_t k = 0; k < sizeof silent / sizeof silent[0]; k++)
         if (named(node, silent[k]))
             return AA_OK;
+    if (!conditions_hold(node))
+        return AA_OK; /* not drawn, with its content */
     int skip, st;
     if (named(node, "svg") || named(node, "use") || named(node, "symbol") ||
         named(node, "style"))
@@ -4277,7 +4359,8 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     int shape = 0;
     for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
         shape |= named(node, shapes[k]);
-    if (!shape && !named(node, "g")) {
+    const int group = named(node, "g") || named(node, "switch");
+    if (!shape && !group) {
         static const struct {
             const char *name, *why;
         } known[] = {{"text", "text is not supported (the pattern text draws glyphs)"},
@@ -4295,7 +4378,7 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
      * inside that clip */
     const int outer = r->clip;
     int clip;
-    if (named(node, "g")) {
+    if (group) {
         if ((st = clip_of(r, node, &m, outer, &clip)))
             return st;
         r->node = node;
@@ -4305,7 +4388,13 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         if (opacity < 1 && (st = group_begin(r, opacity)))
             return st;
         r->clip = clip;
-        st = children(r, node, sty, m, depth);
+        if (named(node, "g"))
+            st = children(r, node, sty, m, depth);
+        else { /* a switch: the child it draws */
+            const xmlNode *c;
+            if (!(st = switch_choice(r, node, &c)) && c)
+                st = element(r, c, sty, m, depth + 1);
+        }
         r->clip = outer;
         if (!st && opacity < 1) {
             r->node = node;
@@ -5000,7 +5089,7 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
                                  "give the view's size");
         }
         if (!st && sink && !(st = element_props(&r, root, &sty, &m, &skip, &opacity)) &&
-            !skip && opacity > 0) {
+            !skip && opacity > 0 && conditions_hold(root)) {
             /* the root's clip-path would be in its viewport's coordinates, not
              * its viewBox's: refused */
             char v[1024];

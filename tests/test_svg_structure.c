@@ -517,6 +517,72 @@ static void test_units(void **state)
                    BLACK " M 0 0 L 10 0 L 10 1 L 0 1 Z", "negative");
 }
 
+/* ---- conditional processing ---- */
+
+static void test_conditions(void **state)
+{
+    (void)state;
+    /* SVG 2, "Conditional processing": systemLanguage is true when one of
+     * its comma-separated tags is the user's language or begins with it
+     * and "-" (the reader's language is "en"), case-insensitive; an empty
+     * list is false; requiredExtensions is true only when every extension
+     * listed is supported (none is: false, the empty list too, as SVG 2
+     * says); requiredFeatures is no longer SVG 2's: true.  Kept: the
+     * rects at x = 1 ("en"), 3 ("EN-gb", the prefix followed by "-"), 5
+     * (requiredFeatures); left out: 2 ("english"), 4 (""), 6 and 7
+     * (requiredExtensions, one URL and none) */
+    expect(OPEN "<rect x=\"1\" width=\"1\" height=\"1\" systemLanguage=\"en\"/>"
+                "<rect x=\"2\" width=\"1\" height=\"1\" systemLanguage=\"english\"/>"
+                "<rect x=\"3\" width=\"1\" height=\"1\" systemLanguage=\"fr, EN-gb\"/>"
+                "<rect x=\"4\" width=\"1\" height=\"1\" systemLanguage=\"\"/>"
+                "<rect x=\"5\" width=\"1\" height=\"1\" "
+                "requiredFeatures=\"http://www.w3.org/TR/SVG11/feature#Shape\"/>"
+                "<rect x=\"6\" width=\"1\" height=\"1\" "
+                "requiredExtensions=\"http://example.org/x\"/>"
+                "<rect x=\"7\" width=\"1\" height=\"1\" requiredExtensions=\"\"/></svg>",
+           BLACK " M 1 0 L 2 0 L 2 1 L 1 1 Z " BLACK " M 3 0 L 4 0 L 4 1 L 3 1 Z " BLACK
+                 " M 5 0 L 6 0 L 6 1 L 5 1 Z");
+    /* a false condition on a group leaves out its content */
+    expect(OPEN "<g systemLanguage=\"de\"><rect width=\"1\" height=\"1\"/></g>"
+                "<rect x=\"2\" width=\"1\" height=\"1\"/></svg>",
+           BLACK " M 2 0 L 3 0 L 3 1 L 2 1 Z");
+    /* <switch> draws its first direct child whose conditions hold (SVG
+     * 2, "The switch element"): of fr, en-US and none, the second */
+    expect(OPEN "<switch fill=\"white\"><rect width=\"1\" height=\"1\" systemLanguage=\"fr\"/>"
+                "<rect x=\"1\" width=\"1\" height=\"1\" systemLanguage=\"en-US\"/>"
+                "<rect x=\"2\" width=\"1\" height=\"1\"/></switch></svg>",
+           WHITE " M 1 0 L 2 0 L 2 1 L 1 1 Z");
+    /* as Illustrator writes it: a foreignObject of an extension, then the
+     * group drawn instead; elements of other namespaces are passed over */
+    expect(OPEN "<switch><foreignObject requiredExtensions=\"http://ns.adobe.com/AI/10.0/\">"
+                "<i xmlns=\"http://example.org/\"/></foreignObject>"
+                "<x:i xmlns:x=\"http://example.org/\"/>"
+                "<g><rect x=\"3\" width=\"1\" height=\"1\"/></g>"
+                "<rect x=\"4\" width=\"1\" height=\"1\"/></switch></svg>",
+           BLACK " M 3 0 L 4 0 L 4 1 L 3 1 Z");
+    /* display and visibility do not take part in the choice (SVG 2): the
+     * first child chosen, display none, draws nothing, and the second is
+     * not drawn; a switch without a child whose conditions hold draws
+     * nothing */
+    expect(OPEN "<switch><rect width=\"1\" height=\"1\" display=\"none\"/>"
+                "<rect x=\"1\" width=\"1\" height=\"1\"/></switch>"
+                "<switch><rect width=\"1\" height=\"1\" requiredExtensions=\"\"/></switch>"
+                "</svg>",
+           "");
+    /* a switch as a group: its transform and opacity are its child's */
+    expect(OPEN "<switch transform=\"translate(5 6)\"><rect width=\"1\" height=\"1\"/></switch>"
+                "</svg>",
+           BLACK " M 5 6 L 6 6 L 6 7 L 5 7 Z");
+    /* the root's false condition: nothing is drawn */
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" systemLanguage=\"fr\">"
+           "<rect width=\"1\" height=\"1\"/></svg>",
+           "");
+    /* a title chosen is refused: Chromium chooses it (nothing drawn),
+     * resvg passes over it */
+    refused(OPEN "<switch><title>t</title><rect width=\"1\" height=\"1\"/></switch></svg>",
+            "<title>", "<switch>");
+}
+
 /* ---- style sheets and the cascade ---- */
 
 /* The colours of the shapes a document gives, in order. */
@@ -1129,7 +1195,8 @@ static void test_pictures(void **state)
 
 SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_use), cmocka_unit_test(test_viewports),
              cmocka_unit_test(test_viewport_clips),
-             cmocka_unit_test(test_units), cmocka_unit_test(test_sheets),
+             cmocka_unit_test(test_units), cmocka_unit_test(test_conditions),
+             cmocka_unit_test(test_sheets),
              cmocka_unit_test(test_css_transform), cmocka_unit_test(test_path_errors),
              cmocka_unit_test(test_invalid_attributes),
              cmocka_unit_test(test_invalid_declarations),
