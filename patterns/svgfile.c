@@ -18,8 +18,10 @@
  *   - lengths as CSS Values 4 writes them (scan_length): px, in, cm, mm,
  *     Q, pt, pc at 96 px to the inch, em of font-size (inherited; lengths
  *     and the absolute-size keywords), ex as half an em (no font metrics:
- *     CSS's fallback), and % of the nearest viewport's width, height or
- *     normalised diagonal (SVG 2, "Units");
+ *     CSS's fallback), rem of the root's font-size, vw, vh, vmin and vmax
+ *     of the view (the window the document is drawn in; not in the root's
+ *     own size, which may make the view), and % of the nearest viewport's
+ *     width, height or normalised diagonal (SVG 2, "Units");
  *   - structure (SVG 2): <use> (href or xlink:href to "#id", x, y, and
  *     width and height for <svg> and <symbol> targets; the target drawn
  *     as the use's child, inheriting from it; a missing target or a
@@ -301,6 +303,8 @@ typedef struct reader {
                                * NULL (its stroke box) */
     double font_size;        /* the element's font-size in px (em) */
     double vpw, vph;         /* the nearest viewport's size in user units (%) */
+    double rem;              /* the root's font-size in px (rem) */
+    double icbw, icbh;       /* the view's size in CSS px (vw, vh, vmin, vmax) */
     struct svg_ids *ids;     /* the elements with an id, sorted */
     long elements;           /* elements read, use instances counted */
     const xmlNode *use;      /* the <use> whose target is being read, or NULL */
@@ -432,6 +436,12 @@ static int scan_number(const char **s, double *v)
  * parent's in font-size itself); ex half an em, CSS's value "where it is
  * impossible or impractical to determine the x-height" (the reader has no
  * font: a browser takes its default font's x-height, so an ex differs);
+ * rem the root element's font-size (in the root's own font-size, the
+ * initial medium, 16px); vw and vh 1% of the width and the height of the
+ * initial containing block, which for an SVG document drawn alone is the
+ * view it is drawn in (the window: the reader's view of W x H pixels at
+ * `scale` pixels a CSS pixel, W / scale by H / scale CSS pixels), vmin
+ * and vmax the smaller and the larger of them;
  * a percentage of the nearest viewport's width (x, width, cx, rx, x1,
  * x2), height (y, height, cy, ry, y1, y2) or normalised diagonal
  * sqrt((w^2 + h^2)/2) (any other length: r, stroke-width, dashes), SVG 2
@@ -458,7 +468,8 @@ static int length_axis(const char *attr)
     return 2;
 }
 
-/* A number and its unit at *s (none, an absolute unit, em, ex or %) in px:
+/* A number and its unit at *s (none, an absolute unit, em, ex, rem, the
+ * viewport units or %) in px:
  * 0 and *s advanced; -1 for no number, -2 out of range, -3 a unit this
  * reader does not know (*s at it). */
 static int scan_length(reader *r, const char **s, int axis, double *v)
@@ -487,8 +498,21 @@ static int scan_length(reader *r, const char **s, int axis, double *v)
             *v *= r->font_size;
         else if (n == 2 && !strncasecmp(u, "ex", 2))
             *v *= r->font_size / 2;
+        else if (n == 3 && !strncasecmp(u, "rem", 3))
+            *v *= r->rem;
+        else if (n >= 2 && (u[0] == 'v' || u[0] == 'V') && !(r->icbw >= 0)) {
+            r->unsupported = 1; /* in the root's size: the view is not known */
+            return -3;
+        } else if (n == 2 && !strncasecmp(u, "vw", 2))
+            *v *= r->icbw / 100;
+        else if (n == 2 && !strncasecmp(u, "vh", 2))
+            *v *= r->icbh / 100;
+        else if (n == 4 && !strncasecmp(u, "vmin", 4))
+            *v *= fmin(r->icbw, r->icbh) / 100;
+        else if (n == 4 && !strncasecmp(u, "vmax", 4))
+            *v *= fmax(r->icbw, r->icbh) / 100;
         else {
-            r->unsupported = 1; /* a unit of CSS (vw, ch...) may be valid */
+            r->unsupported = 1; /* a unit of CSS (ch, lh...) may be valid */
             return -3;
         }
         *s = u + n;
@@ -512,7 +536,7 @@ static int parse_length(reader *r, const char *attr, const char *text, double *v
     s = skip_wsp(s);
     if (k == -3 || *s)
         return fail_at(r, "%s=\"%s\" is not a length (a number, optionally of px, in, cm, mm, "
-                          "Q, pt, pc, em, ex or %%)",
+                          "Q, pt, pc, em, ex, rem, vw, vh, vmin, vmax or %%)",
                        attr, aa_echo(text));
     return AA_OK;
 }
@@ -5057,8 +5081,8 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
          * the view's, em of the initial font-size */
         svg_ids ids = {NULL, 0, 0};
         r.ids = &ids;
-        r.font_size = 16;
-        r.vpw = w / scale, r.vph = h / scale;
+        r.font_size = r.rem = 16;
+        r.vpw = r.icbw = w / scale, r.vph = r.icbh = h / scale;
         if (!st && !(st = collect_ids(&ids, root))) {
             if (ids.n)
                 qsort(ids.e, ids.n, sizeof *ids.e, id_cmp);
@@ -5072,14 +5096,19 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         {
             double size;
             if (!(st = parse_font_size(&r, fs, 16, &size)))
-                r.font_size = size; /* em in the root's size */
+                r.font_size = r.rem = size; /* em and rem in the root's size */
         }
         /* at `scale` pixels a CSS pixel: the document laid out in a view of
          * (w, h) / scale CSS pixels, then everything scaled */
         double vb[2];
         mat vbm;
-        if (!st && !(st = root_map(&r, root, w / scale, h / scale, &m, vp, given)) &&
-            !(st = viewbox_map(&r, root, vp[0], vp[1], &vbm, vb))) {
+        /* the view units in the root's size are refused: the view may be
+         * that size */
+        r.icbw = r.icbh = NAN;
+        if (!st)
+            st = root_map(&r, root, w / scale, h / scale, &m, vp, given);
+        r.icbw = w / scale, r.icbh = h / scale;
+        if (!st && !(st = viewbox_map(&r, root, vp[0], vp[1], &vbm, vb))) {
             r.vpw = vb[0], r.vph = vb[1]; /* percentages in the document */
             const mat zoom = {scale, 0, 0, scale, 0, 0};
             m = mat_mul(zoom, m);
