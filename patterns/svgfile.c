@@ -746,13 +746,13 @@ static int attr_known(const xmlNode *node, const char *name)
                {"stop", {"offset"}},
                {"svg", {"width", "height", "viewBox", "preserveAspectRatio", "version",
                         "baseProfile", "x", "y"}},
-               {"rect", {"x", "y", "width", "height", "rx", "ry"}},
-               {"circle", {"cx", "cy", "r"}},
-               {"ellipse", {"cx", "cy", "rx", "ry"}},
-               {"path", {"d"}},
-               {"polygon", {"points"}},
-               {"polyline", {"points"}},
-               {"line", {"x1", "y1", "x2", "y2"}},
+               {"rect", {"x", "y", "width", "height", "rx", "ry", "pathLength"}},
+               {"circle", {"cx", "cy", "r", "pathLength"}},
+               {"ellipse", {"cx", "cy", "rx", "ry", "pathLength"}},
+               {"path", {"d", "pathLength"}},
+               {"polygon", {"points", "pathLength"}},
+               {"polyline", {"points", "pathLength"}},
+               {"line", {"x1", "y1", "x2", "y2", "pathLength"}},
                {"use", {"x", "y", "width", "height", "href"}},
                {"symbol",
                 {"viewBox", "preserveAspectRatio", "x", "y", "width", "height", "refX", "refY"}}};
@@ -2715,6 +2715,58 @@ static int stroke_outline_of(reader *r, const aa_path *p, const style *sty, aa_s
     return st;
 }
 
+/* pathLength (SVG 2, "The pathLength attribute"): the author's length of
+ * the path, onto which its computed length L (aa_path_length, in user
+ * units, as dashes measure it) maps, so that the dash lengths and the
+ * offset are scaled by L / pathLength.  Of no effect without dashes (the
+ * reader draws no markers or text on a path).  A negative value or not a
+ * number is an error: ignored with a warning, as Chromium and resvg draw
+ * it.  0 is an infinite scale: a dash of non-zero length covers each
+ * subpath (Chromium draws the stroke solid; resvg ignores pathLength
+ * whatever its value, wrong by SVG 2); a first dash of 0 or a non-zero
+ * offset, whose infinite scale leaves no one picture, is refused. */
+static int path_length_dashes(reader *r, const xmlNode *node, const aa_path *p, style *sty)
+{
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"pathLength");
+    if (!t)
+        return AA_OK;
+    const char *s = skip_wsp((const char *)t);
+    double author;
+    int st = AA_OK;
+    if (scan_number(&s, &author) || *skip_wsp(s) || author < 0) {
+        warn_at(r, "pathLength=\"%s\" is not a number of at least 0: ignored, as browsers "
+                   "ignore it",
+                aa_echo((const char *)t));
+    } else if (sty->ndash && author == 0) {
+        if (sty->dash[0] > 0 && sty->dashoffset == 0)
+            sty->ndash = 0; /* one dash of infinite length */
+        else
+            st = fail_at(r, "pathLength=\"%s\" with a first dash of 0 or a dash offset is "
+                            "not supported",
+                         aa_echo((const char *)t));
+    } else if (sty->ndash) {
+        double len;
+        if ((st = aa_path_length(p, &len)))
+            st = at_element(r, st);
+        else {
+            const double k = len / author;
+            for (size_t j = 0; j < sty->ndash; j++)
+                sty->dash[j] *= k;
+            sty->dashoffset *= k;
+            for (size_t j = 0; j <= sty->ndash && !st; j++) {
+                const double v = j < sty->ndash ? sty->dash[j] : sty->dashoffset;
+                if (!(fabs(v) <= AA_SVG_MAX_NUMBER))
+                    st = fail_at(r, "pathLength=\"%s\": the dashes it scales are out of range",
+                                 aa_echo((const char *)t));
+            }
+            if (!(k > 0)) /* no length: the dashes all 0, none drawn as dashes */
+                sty->ndash = 0;
+        }
+    }
+    xmlFree(t);
+    return st;
+}
+
 /* The element's stroke: its outline (aa_stroke_outline, in user units)
  * through m to the sink as a shape of the stroke's colour, nonzero. */
 static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty,
@@ -4445,6 +4497,8 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     aa_path p;
     aa_path_init(&p);
     st = shape_path(r, node, &p);
+    if (!st && stroke)
+        st = path_length_dashes(r, node, &p, &sty);
     /* paint servers: resolved against the geometry (its bounding box) */
     paint_res fp = {0}, sp = {0};
     if (!st && fill && sty.fill_server && !(st = grad_resolve(r, sty.fill_server, &p, &m, &fp))) {
