@@ -37,6 +37,9 @@
  *     in its user space, translate(x, y) included, and on a nested <svg>
  *     or a <symbol> in the user space it establishes (its content's),
  *     the viewport's clip within it (viewport_element);
+ *   - conditional processing: systemLanguage, requiredExtensions and
+ *     requiredFeatures (conditions_hold), and <switch> drawing its first
+ *     child whose conditions hold (switch_choice);
  *   - style: the style attribute and <style> sheets, cascaded by CSS
  *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
  *     !important; presentation attributes below every rule);
@@ -78,7 +81,8 @@
  *     and display;
  *   - stroke (a colour or none), stroke-width, stroke-linejoin,
  *     stroke-linecap, stroke-miterlimit, stroke-dasharray and
- *     stroke-dashoffset: the stroke is the path's outline in user units
+ *     stroke-dashoffset (scaled by pathLength: path_length_dashes): the
+ *     stroke is the path's outline in user units
  *     (aa_stroke_outline), a shape of its own after the fill, nonzero; the
  *     pattern keeps it as a stroke (aa_scene_stroke: a layer of its own
  *     with its source, so that peers stroke it themselves and `export`
