@@ -18,8 +18,10 @@
  *   - lengths as CSS Values 4 writes them (scan_length): px, in, cm, mm,
  *     Q, pt, pc at 96 px to the inch, em of font-size (inherited; lengths
  *     and the absolute-size keywords), ex as half an em (no font metrics:
- *     CSS's fallback), and % of the nearest viewport's width, height or
- *     normalised diagonal (SVG 2, "Units");
+ *     CSS's fallback), rem of the root's font-size, vw, vh, vmin and vmax
+ *     of the view (the window the document is drawn in; not in the root's
+ *     own size, which may make the view), and % of the nearest viewport's
+ *     width, height or normalised diagonal (SVG 2, "Units");
  *   - structure (SVG 2): <use> (href or xlink:href to "#id", x, y, and
  *     width and height for <svg> and <symbol> targets; the target drawn
  *     as the use's child, inheriting from it; a missing target or a
@@ -35,6 +37,9 @@
  *     in its user space, translate(x, y) included, and on a nested <svg>
  *     or a <symbol> in the user space it establishes (its content's),
  *     the viewport's clip within it (viewport_element);
+ *   - conditional processing: systemLanguage, requiredExtensions and
+ *     requiredFeatures (conditions_hold), and <switch> drawing its first
+ *     child whose conditions hold (switch_choice);
  *   - style: the style attribute and <style> sheets, cascaded by CSS
  *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
  *     !important; presentation attributes below every rule);
@@ -76,7 +81,8 @@
  *     and display;
  *   - stroke (a colour or none), stroke-width, stroke-linejoin,
  *     stroke-linecap, stroke-miterlimit, stroke-dasharray and
- *     stroke-dashoffset: the stroke is the path's outline in user units
+ *     stroke-dashoffset (scaled by pathLength: path_length_dashes): the
+ *     stroke is the path's outline in user units
  *     (aa_stroke_outline), a shape of its own after the fill, nonzero; the
  *     pattern keeps it as a stroke (aa_scene_stroke: a layer of its own
  *     with its source, so that peers stroke it themselves and `export`
@@ -301,6 +307,8 @@ typedef struct reader {
                                * NULL (its stroke box) */
     double font_size;        /* the element's font-size in px (em) */
     double vpw, vph;         /* the nearest viewport's size in user units (%) */
+    double rem;              /* the root's font-size in px (rem) */
+    double icbw, icbh;       /* the view's size in CSS px (vw, vh, vmin, vmax) */
     struct svg_ids *ids;     /* the elements with an id, sorted */
     long elements;           /* elements read, use instances counted */
     const xmlNode *use;      /* the <use> whose target is being read, or NULL */
@@ -432,6 +440,12 @@ static int scan_number(const char **s, double *v)
  * parent's in font-size itself); ex half an em, CSS's value "where it is
  * impossible or impractical to determine the x-height" (the reader has no
  * font: a browser takes its default font's x-height, so an ex differs);
+ * rem the root element's font-size (in the root's own font-size, the
+ * initial medium, 16px); vw and vh 1% of the width and the height of the
+ * initial containing block, which for an SVG document drawn alone is the
+ * view it is drawn in (the window: the reader's view of W x H pixels at
+ * `scale` pixels a CSS pixel, W / scale by H / scale CSS pixels), vmin
+ * and vmax the smaller and the larger of them;
  * a percentage of the nearest viewport's width (x, width, cx, rx, x1,
  * x2), height (y, height, cy, ry, y1, y2) or normalised diagonal
  * sqrt((w^2 + h^2)/2) (any other length: r, stroke-width, dashes), SVG 2
@@ -458,7 +472,8 @@ static int length_axis(const char *attr)
     return 2;
 }
 
-/* A number and its unit at *s (none, an absolute unit, em, ex or %) in px:
+/* A number and its unit at *s (none, an absolute unit, em, ex, rem, the
+ * viewport units or %) in px:
  * 0 and *s advanced; -1 for no number, -2 out of range, -3 a unit this
  * reader does not know (*s at it). */
 static int scan_length(reader *r, const char **s, int axis, double *v)
@@ -487,8 +502,21 @@ static int scan_length(reader *r, const char **s, int axis, double *v)
             *v *= r->font_size;
         else if (n == 2 && !strncasecmp(u, "ex", 2))
             *v *= r->font_size / 2;
+        else if (n == 3 && !strncasecmp(u, "rem", 3))
+            *v *= r->rem;
+        else if (n >= 2 && (u[0] == 'v' || u[0] == 'V') && !(r->icbw >= 0)) {
+            r->unsupported = 1; /* in the root's size: the view is not known */
+            return -3;
+        } else if (n == 2 && !strncasecmp(u, "vw", 2))
+            *v *= r->icbw / 100;
+        else if (n == 2 && !strncasecmp(u, "vh", 2))
+            *v *= r->icbh / 100;
+        else if (n == 4 && !strncasecmp(u, "vmin", 4))
+            *v *= fmin(r->icbw, r->icbh) / 100;
+        else if (n == 4 && !strncasecmp(u, "vmax", 4))
+            *v *= fmax(r->icbw, r->icbh) / 100;
         else {
-            r->unsupported = 1; /* a unit of CSS (vw, ch...) may be valid */
+            r->unsupported = 1; /* a unit of CSS (ch, lh...) may be valid */
             return -3;
         }
         *s = u + n;
@@ -512,7 +540,7 @@ static int parse_length(reader *r, const char *attr, const char *text, double *v
     s = skip_wsp(s);
     if (k == -3 || *s)
         return fail_at(r, "%s=\"%s\" is not a length (a number, optionally of px, in, cm, mm, "
-                          "Q, pt, pc, em, ex or %%)",
+                          "Q, pt, pc, em, ex, rem, vw, vh, vmin, vmax or %%)",
                        attr, aa_echo(text));
     return AA_OK;
 }
@@ -722,17 +750,19 @@ static int attr_known(const xmlNode *node, const char *name)
                {"stop", {"offset"}},
                {"svg", {"width", "height", "viewBox", "preserveAspectRatio", "version",
                         "baseProfile", "x", "y"}},
-               {"rect", {"x", "y", "width", "height", "rx", "ry"}},
-               {"circle", {"cx", "cy", "r"}},
-               {"ellipse", {"cx", "cy", "rx", "ry"}},
-               {"path", {"d"}},
-               {"polygon", {"points"}},
-               {"polyline", {"points"}},
-               {"line", {"x1", "y1", "x2", "y2"}},
+               {"rect", {"x", "y", "width", "height", "rx", "ry", "pathLength"}},
+               {"circle", {"cx", "cy", "r", "pathLength"}},
+               {"ellipse", {"cx", "cy", "rx", "ry", "pathLength"}},
+               {"path", {"d", "pathLength"}},
+               {"polygon", {"points", "pathLength"}},
+               {"polyline", {"points", "pathLength"}},
+               {"line", {"x1", "y1", "x2", "y2", "pathLength"}},
                {"use", {"x", "y", "width", "height", "href"}},
                {"symbol",
                 {"viewBox", "preserveAspectRatio", "x", "y", "width", "height", "refX", "refY"}}};
-    static const char *const any[] = {"id", "class", "style", "transform"};
+    static const char *const any[] = {"id",          "class",          "style",
+                                      "transform",   "systemLanguage", "requiredExtensions",
+                                      "requiredFeatures"};
     for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
         if (!strcmp(name, any[k]))
             return 1;
@@ -748,6 +778,75 @@ static int attr_known(const xmlNode *node, const char *name)
                 if (!strcmp(name, own[k].attrs[j]))
                     return 1;
     return 0;
+}
+
+/* Conditional processing (SVG 2, "Conditional processing"): 1 when the
+ * element's conditions hold, 0 when one does not (the element and its
+ * content are not drawn; in a <switch> the next child is tried).
+ *   - systemLanguage: a comma-separated list of language tags, true when
+ *     one is the reader's language, "en", or begins with "en-" (the
+ *     language is a prefix of the tag followed by "-"), case-insensitive;
+ *     an empty list is false;
+ *   - requiredExtensions: a list of extension URLs, true when every one is
+ *     supported; the reader supports none (it draws no foreignObject), so
+ *     the attribute is false whenever it is given, as SVG 2 says of an
+ *     empty list too (Chromium holds the XHTML namespace supported: a
+ *     list of it alone is true there);
+ *   - requiredFeatures: no longer in SVG 2, always true in browsers. */
+static int conditions_hold(const xmlNode *node)
+{
+    xmlChar *e = xmlGetNoNsProp(node, (const xmlChar *)"requiredExtensions");
+    if (e) {
+        xmlFree(e);
+        return 0;
+    }
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"systemLanguage");
+    if (!t)
+        return 1;
+    int hold = 0;
+    for (const char *s = (const char *)t; *s && !hold;) {
+        s = skip_wsp(s);
+        size_t n = strcspn(s, ",");
+        size_t m = n;
+        while (m && isspace((unsigned char)s[m - 1]))
+            m--;
+        hold = (m == 2 || (m > 2 && s[2] == '-')) && !strncasecmp(s, "en", 2);
+        s += n + (s[n] == ',');
+    }
+    xmlFree(t);
+    return hold;
+}
+
+static int is_svg(const xmlNode *node);
+static int named(const xmlNode *node, const char *name);
+
+/* The child of a <switch> drawn (SVG 2, "The switch element"): the first
+ * direct child of the SVG namespace whose conditions hold, in *chosen
+ * (NULL: none).  Elements of other namespaces are passed over (Chromium
+ * and resvg draw none of them as a switch's child).  A chosen child
+ * that draws nothing of itself (title, desc, metadata, defs, style, a
+ * paint server, clipPath...) is refused: Chromium chooses it and draws
+ * nothing, resvg passes it over and draws the next. */
+static int switch_choice(reader *r, const xmlNode *sw, const xmlNode **chosen)
+{
+    static const char *const drawn[] = {"g",    "switch",  "svg",     "use",    "path",
+                                        "rect", "circle",  "ellipse", "line",   "polygon",
+                                        "polyline", "text", "image",  "foreignObject", "a"};
+    *chosen = NULL;
+    for (const xmlNode *c = sw->children; c; c = c->next) {
+        if (c->type != XML_ELEMENT_NODE || !is_svg(c) || !conditions_hold(c))
+            continue;
+        for (size_t k = 0; k < sizeof drawn / sizeof drawn[0]; k++)
+            if (named(c, drawn[k])) {
+                *chosen = c;
+                return AA_OK;
+            }
+        r->node = c;
+        return fail_at(r, "<%s> as the child a <switch> draws is not supported (Chromium "
+                          "draws nothing, resvg the next child)",
+                       (const char *)c->name);
+    }
+    return AA_OK;
 }
 
 /* A declaration that applies to r->node (aa_css_each): refused unless
@@ -2620,6 +2719,58 @@ static int stroke_outline_of(reader *r, const aa_path *p, const style *sty, aa_s
     return st;
 }
 
+/* pathLength (SVG 2, "The pathLength attribute"): the author's length of
+ * the path, onto which its computed length L (aa_path_length, in user
+ * units, as dashes measure it) maps, so that the dash lengths and the
+ * offset are scaled by L / pathLength.  Of no effect without dashes (the
+ * reader draws no markers or text on a path).  A negative value or not a
+ * number is an error: ignored with a warning, as Chromium and resvg draw
+ * it.  0 is an infinite scale: a dash of non-zero length covers each
+ * subpath (Chromium draws the stroke solid; resvg ignores pathLength
+ * whatever its value, wrong by SVG 2); a first dash of 0 or a non-zero
+ * offset, whose infinite scale leaves no one picture, is refused. */
+static int path_length_dashes(reader *r, const xmlNode *node, const aa_path *p, style *sty)
+{
+    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)"pathLength");
+    if (!t)
+        return AA_OK;
+    const char *s = skip_wsp((const char *)t);
+    double author;
+    int st = AA_OK;
+    if (scan_number(&s, &author) || *skip_wsp(s) || author < 0) {
+        warn_at(r, "pathLength=\"%s\" is not a number of at least 0: ignored, as browsers "
+                   "ignore it",
+                aa_echo((const char *)t));
+    } else if (sty->ndash && author == 0) {
+        if (sty->dash[0] > 0 && sty->dashoffset == 0)
+            sty->ndash = 0; /* one dash of infinite length */
+        else
+            st = fail_at(r, "pathLength=\"%s\" with a first dash of 0 or a dash offset is "
+                            "not supported",
+                         aa_echo((const char *)t));
+    } else if (sty->ndash) {
+        double len;
+        if ((st = aa_path_length(p, &len)))
+            st = at_element(r, st);
+        else {
+            const double k = len / author;
+            for (size_t j = 0; j < sty->ndash; j++)
+                sty->dash[j] *= k;
+            sty->dashoffset *= k;
+            for (size_t j = 0; j <= sty->ndash && !st; j++) {
+                const double v = j < sty->ndash ? sty->dash[j] : sty->dashoffset;
+                if (!(fabs(v) <= AA_SVG_MAX_NUMBER))
+                    st = fail_at(r, "pathLength=\"%s\": the dashes it scales are out of range",
+                                 aa_echo((const char *)t));
+            }
+            if (!(k > 0)) /* no length: the dashes all 0, none drawn as dashes */
+                sty->ndash = 0;
+        }
+    }
+    xmlFree(t);
+    return st;
+}
+
 /* The element's stroke: its outline (aa_stroke_outline, in user units)
  * through m to the sink as a shape of the stroke's colour, nonzero. */
 static int give_stroke(reader *r, const aa_path *p, const mat *m, const style *sty,
@@ -3417,7 +3568,8 @@ static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double bo
     int st = AA_OK;
     const xmlNode *was = r->node;
     r->node = node;
-    if (prop(r, node, "display", v, sizeof v, &st) && !strcasecmp(v, "none")) {
+    if ((prop(r, node, "display", v, sizeof v, &st) && !strcasecmp(v, "none")) ||
+        !conditions_hold(node)) {
         r->node = was;
         return AA_OK;
     }
@@ -3480,6 +3632,14 @@ static int geometry_walk(reader *r, const xmlNode *node, const mat *m, double bo
                 st = geometry_walk(r, c, &mc, box, depth + 1);
         }
         r->vpw = pw, r->vph = ph;
+    } else if (!st && named(node, "switch")) {
+        /* the child it draws */
+        const xmlNode *c;
+        if (!(st = switch_choice(r, node, &c)) && c) {
+            mat mc = *m;
+            if (!(st = element_transform(r, c, &mc)))
+                st = geometry_walk(r, c, &mc, box, depth + 1);
+        }
     }
     r->node = was;
     return st;
@@ -3709,7 +3869,7 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
     static const char *const shapes[] = {"path", "rect", "circle", "ellipse", "polygon",
                                          "polyline", "line"};
     for (const xmlNode *c = cp->children; c && !st; c = c->next) {
-        if (c->type != XML_ELEMENT_NODE || !is_svg(c))
+        if (c->type != XML_ELEMENT_NODE || !is_svg(c) || !conditions_hold(c))
             continue;
         r->node = c;
         if (named(c, "title") || named(c, "desc") || named(c, "metadata"))
@@ -3740,7 +3900,7 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
             int direct = 0;
             for (size_t k = 0; t && is_svg(t) && k < sizeof shapes / sizeof shapes[0]; k++)
                 direct |= named(t, shapes[k]);
-            if (!direct)
+            if (!direct || !conditions_hold(t))
                 continue;
             r->node = t;
         }
@@ -4268,6 +4428,8 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     for (size_t k = 0; k < sizeof silent / sizeof silent[0]; k++)
         if (named(node, silent[k]))
             return AA_OK;
+    if (!conditions_hold(node))
+        return AA_OK; /* not drawn, with its content */
     int skip, st;
     if (named(node, "svg") || named(node, "use") || named(node, "symbol") ||
         named(node, "style"))
@@ -4277,7 +4439,8 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     int shape = 0;
     for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
         shape |= named(node, shapes[k]);
-    if (!shape && !named(node, "g")) {
+    const int group = named(node, "g") || named(node, "switch");
+    if (!shape && !group) {
         static const struct {
             const char *name, *why;
         } known[] = {{"text", "text is not supported (the pattern text draws glyphs)"},
@@ -4295,7 +4458,7 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
      * inside that clip */
     const int outer = r->clip;
     int clip;
-    if (named(node, "g")) {
+    if (group) {
         if ((st = clip_of(r, node, &m, outer, &clip)))
             return st;
         r->node = node;
@@ -4305,7 +4468,13 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
         if (opacity < 1 && (st = group_begin(r, opacity)))
             return st;
         r->clip = clip;
-        st = children(r, node, sty, m, depth);
+        if (named(node, "g"))
+            st = children(r, node, sty, m, depth);
+        else { /* a switch: the child it draws */
+            const xmlNode *c;
+            if (!(st = switch_choice(r, node, &c)) && c)
+                st = element(r, c, sty, m, depth + 1);
+        }
         r->clip = outer;
         if (!st && opacity < 1) {
             r->node = node;
@@ -4332,6 +4501,8 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     aa_path p;
     aa_path_init(&p);
     st = shape_path(r, node, &p);
+    if (!st && stroke)
+        st = path_length_dashes(r, node, &p, &sty);
     /* paint servers: resolved against the geometry (its bounding box) */
     paint_res fp = {0}, sp = {0};
     if (!st && fill && sty.fill_server && !(st = grad_resolve(r, sty.fill_server, &p, &m, &fp))) {
@@ -4968,8 +5139,8 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
          * the view's, em of the initial font-size */
         svg_ids ids = {NULL, 0, 0};
         r.ids = &ids;
-        r.font_size = 16;
-        r.vpw = w / scale, r.vph = h / scale;
+        r.font_size = r.rem = 16;
+        r.vpw = r.icbw = w / scale, r.vph = r.icbh = h / scale;
         if (!st && !(st = collect_ids(&ids, root))) {
             if (ids.n)
                 qsort(ids.e, ids.n, sizeof *ids.e, id_cmp);
@@ -4983,14 +5154,19 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         {
             double size;
             if (!(st = parse_font_size(&r, fs, 16, &size)))
-                r.font_size = size; /* em in the root's size */
+                r.font_size = r.rem = size; /* em and rem in the root's size */
         }
         /* at `scale` pixels a CSS pixel: the document laid out in a view of
          * (w, h) / scale CSS pixels, then everything scaled */
         double vb[2];
         mat vbm;
-        if (!st && !(st = root_map(&r, root, w / scale, h / scale, &m, vp, given)) &&
-            !(st = viewbox_map(&r, root, vp[0], vp[1], &vbm, vb))) {
+        /* the view units in the root's size are refused: the view may be
+         * that size */
+        r.icbw = r.icbh = NAN;
+        if (!st)
+            st = root_map(&r, root, w / scale, h / scale, &m, vp, given);
+        r.icbw = w / scale, r.icbh = h / scale;
+        if (!st && !(st = viewbox_map(&r, root, vp[0], vp[1], &vbm, vb))) {
             r.vpw = vb[0], r.vph = vb[1]; /* percentages in the document */
             const mat zoom = {scale, 0, 0, scale, 0, 0};
             m = mat_mul(zoom, m);
@@ -5000,7 +5176,7 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
                                  "give the view's size");
         }
         if (!st && sink && !(st = element_props(&r, root, &sty, &m, &skip, &opacity)) &&
-            !skip && opacity > 0) {
+            !skip && opacity > 0 && conditions_hold(root)) {
             /* the root's clip-path would be in its viewport's coordinates, not
              * its viewBox's: refused */
             char v[1024];

@@ -6,8 +6,9 @@
  * style sheets and the cascade, the CSS transform property and path data
  * with an error, invalid declarations and attributes, font-size larger,
  * a symbol's reference point, the object bounding box of a group holding
- * a use and of a use, a symbol's x and y, and transform-box stroke-box, as
- * browsers draw them:
+ * a use and of a use, a symbol's x and y, transform-box stroke-box,
+ * pathLength, the units rem, vw and vmin, and conditional processing with
+ * <switch>, as browsers draw them:
  * the exact box reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -51,7 +52,7 @@
 
 #define CELL 40
 #define COLS 4
-#define ROWS 17
+#define ROWS 18
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
@@ -725,6 +726,45 @@ static const cell cells[] = {
      "transform: scale(1.5)\"/>",
      {{20, 20, {0, 1, 0}}, {10, 20, {0, 0, 1}}, {30, 20, {0, 0, 1}}, {35, 20, {0, 0, 0}}},
      4, "resvg rsvg"},
+    /* pathLength (SVG 2): a line of 32 given as 16, so "2 2" dashes 4 on,
+     * 4 off from x = 4: [4, 8] white, [8, 12] not (Chromium draws it so;
+     * resvg and librsvg 2.54 ignore pathLength and dash 2 on, 2 off: [6,
+     * 8] black and [10, 12] white, wrong by SVG 2) */
+    {"pathLength",
+     "<path d=\"M4 20 H36\" stroke=\"white\" stroke-width=\"12\" pathLength=\"16\" "
+     "stroke-dasharray=\"2 2\"/>",
+     {{6, 20, {1, 1, 1}}, {10, 20, {0, 0, 0}}, {22, 20, {1, 1, 1}}, {26, 20, {0, 0, 0}}},
+     4, "resvg rsvg"},
+    /* rem, vw and vmin (CSS Values 4): 1rem is the root's font-size, 16px
+     * (none set), 10vw and 10vmin a tenth of the 160 px wide view (its
+     * smaller side): three white bars 16 wide (Chromium draws them so, the
+     * document inline in a page whose root's font-size is 16px, the page
+     * as wide as the view; resvg and librsvg 2.54 draw none: they take no
+     * rem, vw or vmin, wrong by CSS Values 4) */
+    {"rem and vw",
+     "<g fill=\"white\"><rect x=\"4\" y=\"4\" width=\"1rem\" height=\"8\"/>"
+     "<rect x=\"4\" y=\"16\" width=\"10vw\" height=\"8\"/>"
+     "<rect x=\"4\" y=\"28\" width=\"10vmin\" height=\"8\"/></g>",
+     {{12, 8, {1, 1, 1}}, {12, 20, {1, 1, 1}}, {12, 32, {1, 1, 1}}, {26, 20, {0, 0, 0}}},
+     4, "resvg rsvg"},
+    /* conditional processing (SVG 2): the switch draws its first child
+     * whose systemLanguage holds, "en" (lime); requiredExtensions of an
+     * extension no renderer has is false, an empty systemLanguage too,
+     * requiredFeatures always true (Chromium and resvg draw it so, their
+     * language English; librsvg 2.54 takes its language from the locale,
+     * here not English, so draws the blue, and holds the unknown extension
+     * true, drawing the top right white: wrong by SVG 2) */
+    {"switch and conditions",
+     "<switch><rect width=\"20\" height=\"20\" fill=\"red\" systemLanguage=\"fr\"/>"
+     "<rect width=\"20\" height=\"20\" fill=\"lime\" systemLanguage=\"de, en\"/>"
+     "<rect width=\"20\" height=\"20\" fill=\"blue\"/></switch>"
+     "<rect x=\"20\" width=\"20\" height=\"20\" fill=\"white\" "
+     "requiredExtensions=\"http://example.org/x\"/>"
+     "<rect y=\"20\" width=\"20\" height=\"20\" fill=\"white\" systemLanguage=\"\"/>"
+     "<rect x=\"20\" y=\"20\" width=\"20\" height=\"20\" fill=\"white\" "
+     "requiredFeatures=\"http://www.w3.org/TR/SVG11/feature#Shape\"/>",
+     {{10, 10, {0, 1, 0}}, {30, 10, {0, 0, 0}}, {10, 30, {0, 0, 0}}, {30, 30, {1, 1, 1}}},
+     4, "rsvg"},
     /* clip-path on a nested svg, in the user space it establishes (the
      * viewBox's 16 units onto 32 px at (4, 4)): the rect [8, 28] x [4, 12]
      * is [20, 60] x [12, 28] in the cell, within the viewport [4, 36]^2, so

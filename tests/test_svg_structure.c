@@ -487,7 +487,41 @@ static void test_units(void **state)
                               "height=\"2.54cm\"/>";
     assert_int_equal(aa_svg_read(own, strlen(own), "t.svg", 1, 1, NULL, NULL, vp), AA_OK);
     assert_true(vp[0] == 96 && fabs(vp[1] - 96) < 1e-13);
-    refused(OPEN "<rect width=\"1vw\" height=\"1\"/></svg>", "<rect>", "not a length");
+    refused(OPEN "<rect width=\"1ch\" height=\"1\"/></svg>", "<rect>", "not a length");
+    /* rem: the root's font-size (CSS Values 4), whatever the element's;
+     * 16px, medium, when the root sets none; a rem in the root's own
+     * font-size is of the initial 16px, so 2rem there is 32 */
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" font-size=\"10px\"><g font-size=\"30\">"
+           "<rect width=\"2rem\" height=\"1REM\" font-size=\"40px\"/></g></svg>",
+           BLACK " M 0 0 L 20 0 L 20 10 L 0 10 Z");
+    expect(OPEN "<rect width=\"1rem\" height=\"1\" font-size=\"5\"/></svg>",
+           BLACK " M 0 0 L 16 0 L 16 1 L 0 1 Z");
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" style=\"font-size: 2rem\">"
+           "<rect width=\"1rem\" height=\"1\"/></svg>",
+           BLACK " M 0 0 L 32 0 L 32 1 L 0 1 Z");
+    /* vw, vh, vmin, vmax: 1% of the initial containing block's width,
+     * height, smaller and larger side (CSS Values 4), for a document
+     * drawn alone its window: here the view of 200 x 100, whatever the
+     * root's own size (50 x 40); in CSS px, so in a nested svg's user
+     * units, which its viewBox (0 0 25 25 on 50 x 50) doubles: 10vw is 20
+     * there, 20px in user units 40 px */
+    {
+        static const char doc[] =
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"50\" height=\"40\">"
+            "<rect x=\"1vw\" y=\"2vh\" width=\"10vmin\" height=\"10vmax\"/>"
+            "<svg width=\"50\" height=\"50\" viewBox=\"0 0 25 25\"><rect width=\"10vw\" "
+            "height=\"1VH\"/></svg></svg>";
+        support_text t = {.n = 0};
+        if (aa_svg_read(doc, strlen(doc), "test.svg", 200, 100, &sink, &t, NULL) != AA_OK)
+            fail_msg("%s: %s", doc, aa_last_error());
+        const char *wv = BLACK " M 2 2 L 12 2 L 12 22 L 2 22 Z " BLACK
+                                 " M 0 0 L 40 0 L 40 2 L 0 2 Z";
+        if (strcmp(t.buf, wv))
+            fail_msg("%s\n  got  %s\n  wv %s", doc, t.buf, wv);
+    }
+    /* in the root's own size they are refused: the view may be that size */
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"50vw\"/>", "<svg>",
+            "not a length");
     /* larger and smaller: the parent's size times and over 1.2 (CSS Fonts
      * 4 suggests the ratio; Chromium and resvg take it): of 10px, 12px and
      * 10/1.2 px; twice larger of 25px, 36px; xx-small and xxx-large are
@@ -515,6 +549,72 @@ static void test_units(void **state)
     expect_partial(OPEN "<g font-size=\"10px\"><rect width=\"1em\" height=\"1\" "
                         "style=\"font-size: -2px\"/></g></svg>",
                    BLACK " M 0 0 L 10 0 L 10 1 L 0 1 Z", "negative");
+}
+
+/* ---- conditional processing ---- */
+
+static void test_conditions(void **state)
+{
+    (void)state;
+    /* SVG 2, "Conditional processing": systemLanguage is true when one of
+     * its comma-separated tags is the user's language or begins with it
+     * and "-" (the reader's language is "en"), case-insensitive; an empty
+     * list is false; requiredExtensions is true only when every extension
+     * listed is supported (none is: false, the empty list too, as SVG 2
+     * says); requiredFeatures is no longer SVG 2's: true.  Kept: the
+     * rects at x = 1 ("en"), 3 ("EN-gb", the prefix followed by "-"), 5
+     * (requiredFeatures); left out: 2 ("english"), 4 (""), 6 and 7
+     * (requiredExtensions, one URL and none) */
+    expect(OPEN "<rect x=\"1\" width=\"1\" height=\"1\" systemLanguage=\"en\"/>"
+                "<rect x=\"2\" width=\"1\" height=\"1\" systemLanguage=\"english\"/>"
+                "<rect x=\"3\" width=\"1\" height=\"1\" systemLanguage=\"fr, EN-gb\"/>"
+                "<rect x=\"4\" width=\"1\" height=\"1\" systemLanguage=\"\"/>"
+                "<rect x=\"5\" width=\"1\" height=\"1\" "
+                "requiredFeatures=\"http://www.w3.org/TR/SVG11/feature#Shape\"/>"
+                "<rect x=\"6\" width=\"1\" height=\"1\" "
+                "requiredExtensions=\"http://example.org/x\"/>"
+                "<rect x=\"7\" width=\"1\" height=\"1\" requiredExtensions=\"\"/></svg>",
+           BLACK " M 1 0 L 2 0 L 2 1 L 1 1 Z " BLACK " M 3 0 L 4 0 L 4 1 L 3 1 Z " BLACK
+                 " M 5 0 L 6 0 L 6 1 L 5 1 Z");
+    /* a false condition on a group leaves out its content */
+    expect(OPEN "<g systemLanguage=\"de\"><rect width=\"1\" height=\"1\"/></g>"
+                "<rect x=\"2\" width=\"1\" height=\"1\"/></svg>",
+           BLACK " M 2 0 L 3 0 L 3 1 L 2 1 Z");
+    /* <switch> draws its first direct child whose conditions hold (SVG
+     * 2, "The switch element"): of fr, en-US and none, the second */
+    expect(OPEN "<switch fill=\"white\"><rect width=\"1\" height=\"1\" systemLanguage=\"fr\"/>"
+                "<rect x=\"1\" width=\"1\" height=\"1\" systemLanguage=\"en-US\"/>"
+                "<rect x=\"2\" width=\"1\" height=\"1\"/></switch></svg>",
+           WHITE " M 1 0 L 2 0 L 2 1 L 1 1 Z");
+    /* as Illustrator writes it: a foreignObject of an extension, then the
+     * group drawn instead; elements of other namespaces are passed over */
+    expect(OPEN "<switch><foreignObject requiredExtensions=\"http://ns.adobe.com/AI/10.0/\">"
+                "<i xmlns=\"http://example.org/\"/></foreignObject>"
+                "<x:i xmlns:x=\"http://example.org/\"/>"
+                "<g><rect x=\"3\" width=\"1\" height=\"1\"/></g>"
+                "<rect x=\"4\" width=\"1\" height=\"1\"/></switch></svg>",
+           BLACK " M 3 0 L 4 0 L 4 1 L 3 1 Z");
+    /* display and visibility do not take part in the choice (SVG 2): the
+     * first child chosen, display none, draws nothing, and the second is
+     * not drawn; a switch without a child whose conditions hold draws
+     * nothing */
+    expect(OPEN "<switch><rect width=\"1\" height=\"1\" display=\"none\"/>"
+                "<rect x=\"1\" width=\"1\" height=\"1\"/></switch>"
+                "<switch><rect width=\"1\" height=\"1\" requiredExtensions=\"\"/></switch>"
+                "</svg>",
+           "");
+    /* a switch as a group: its transform and opacity are its child's */
+    expect(OPEN "<switch transform=\"translate(5 6)\"><rect width=\"1\" height=\"1\"/></switch>"
+                "</svg>",
+           BLACK " M 5 6 L 6 6 L 6 7 L 5 7 Z");
+    /* the root's false condition: nothing is drawn */
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" systemLanguage=\"fr\">"
+           "<rect width=\"1\" height=\"1\"/></svg>",
+           "");
+    /* a title chosen is refused: Chromium chooses it (nothing drawn),
+     * resvg passes over it */
+    refused(OPEN "<switch><title>t</title><rect width=\"1\" height=\"1\"/></switch></svg>",
+            "<title>", "<switch>");
 }
 
 /* ---- style sheets and the cascade ---- */
@@ -798,7 +898,7 @@ static void test_path_errors(void **state)
  * Chromium, resvg and librsvg: x="zz" draws at 0, a negative width or r
  * draws nothing, opacity="half" draws opaque, transform="spin(3)" and
  * transform="translate(10px, 0)" draw untransformed); a warning names it.
- * What may be valid but is not read here (a unit such as vw, a function
+ * What may be valid but is not read here (a unit such as ch, a function
  * such as calc()) is still refused, and so is an invalid declaration in
  * CSS, where the cascade would fall to a lower one. */
 static void test_invalid_attributes(void **state)
@@ -829,7 +929,7 @@ static void test_invalid_attributes(void **state)
                    "transform=\"spin(3)\"");
     expect_partial(OPEN "<path transform=\"translate(10px, 0)\" d=\"M1 0\"/></svg>",
                    BLACK " M 1 0 Z", "not a transform list");
-    refused(OPEN "<rect width=\"1vw\" height=\"1\"/></svg>", "<rect>", "not a length");
+    refused(OPEN "<rect width=\"1ch\" height=\"1\"/></svg>", "<rect>", "not a length");
     refused(OPEN "<rect width=\"calc(1px + 1px)\" height=\"1\"/></svg>", "<rect>",
             "calc(");
     refused(OPEN "<rect width=\"1\" height=\"1\" opacity=\"calc(0.5)\"/></svg>", "<rect>",
@@ -886,7 +986,7 @@ static void test_invalid_declarations(void **state)
     /* valid, not drawn: refused naming the element */
     refused(OPEN R("style=\"fill: revert\"") "</svg>", "<rect>", "revert");
     refused(OPEN R("style=\"opacity: calc(0.5)\"") "</svg>", "<rect>", "opacity");
-    refused(OPEN R("style=\"stroke-width: 1vw\"") "</svg>", "<rect>", "not a length");
+    refused(OPEN R("style=\"stroke-width: 1ch\"") "</svg>", "<rect>", "not a length");
     refused(OPEN R("style=\"filter: blur(1px)\"") "</svg>", "<rect>", "filters");
     refused(OPEN R("style=\"color-interpolation: linearRGB\"") "</svg>", "<rect>",
             "linear light");
@@ -1129,7 +1229,8 @@ static void test_pictures(void **state)
 
 SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_use), cmocka_unit_test(test_viewports),
              cmocka_unit_test(test_viewport_clips),
-             cmocka_unit_test(test_units), cmocka_unit_test(test_sheets),
+             cmocka_unit_test(test_units), cmocka_unit_test(test_conditions),
+             cmocka_unit_test(test_sheets),
              cmocka_unit_test(test_css_transform), cmocka_unit_test(test_path_errors),
              cmocka_unit_test(test_invalid_attributes),
              cmocka_unit_test(test_invalid_declarations),

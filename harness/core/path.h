@@ -116,6 +116,12 @@ void aa_stroke_style_default(aa_stroke_style *st);
  * closed subpaths).  On failure `out` is as it was. */
 int aa_stroke_outline(const aa_path *in, const aa_stroke_style *style, aa_path *out);
 
+/* The length of `in` (every subpath's, a close's closing line included),
+ * as aa_stroke_outline measures it for dashes: lines and circular arcs in
+ * closed form, Bezier and elliptical arcs by Gauss-Legendre quadrature to
+ * about 1e-15 of their length.  AA_EINVAL for a path it cannot measure. */
+int aa_path_length(const aa_path *in, double *len);
+
 /* ---- strokes in the scene model (scene_stroke.c) ----
  *
  * A stroke layer is drawn by its exact outline, and the scene keeps what

@@ -1354,6 +1354,61 @@ static int outline(const aa_path *in, const aa_stroke_style *style, aa_path *out
     return st;
 }
 
+int aa_path_length(const aa_path *in, double *len)
+{
+    double sx = 0, sy = 0, px = 0, py = 0, sum = 0;
+    int started = 0, st = AA_OK;
+    for (size_t k = 0; k < in->n && !st; k++) {
+        const aa_path_seg *g = &in->seg[k];
+        piece p = {0}, parts[3];
+        int np;
+        if (g->op != AA_PATH_MOVE && !started)
+            return aa_fail(AA_EINVAL, "length: segment %zu comes before any move", k);
+        switch (g->op) {
+        case AA_PATH_MOVE:
+            sx = px = g->p[0], sy = py = g->p[1];
+            started = 1;
+            break;
+        case AA_PATH_LINE:
+            line_piece(px, py, g->p[0], g->p[1], &p);
+            sum += p.len;
+            px = g->p[0], py = g->p[1];
+            break;
+        case AA_PATH_ARC:
+            if (!(st = circle_piece(g, k, px, py, &p)))
+                sum += p.len;
+            px = g->p[8], py = g->p[9];
+            break;
+        case AA_PATH_QUAD:
+        case AA_PATH_CUBIC: {
+            double ex = g->op == AA_PATH_QUAD ? g->p[2] : g->p[4];
+            double ey = g->op == AA_PATH_QUAD ? g->p[3] : g->p[5];
+            if (bez_on_ends(g, px, py)) {
+                line_piece(px, py, ex, ey, &p);
+                sum += p.len;
+            } else if (!(st = bez_piece(g, k, px, py, parts, &np))) {
+                for (int j = 0; j < np; j++)
+                    sum += parts[j].len;
+            }
+            px = ex, py = ey;
+            break;
+        }
+        case AA_PATH_CLOSE:
+            line_piece(px, py, sx, sy, &p);
+            sum += p.len;
+            px = sx, py = sy;
+            break;
+        default:
+            return aa_fail(AA_EINVAL, "length: segment %zu: unknown operation %d", k, (int)g->op);
+        }
+    }
+    if (!st && !isfinite(sum))
+        st = aa_fail(AA_EINVAL, "length: the path's length is out of range");
+    if (!st)
+        *len = sum;
+    return st;
+}
+
 int aa_stroke_outline(const aa_path *in, const aa_stroke_style *style, aa_path *out)
 {
     int st = check_style(style);
