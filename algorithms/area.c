@@ -641,11 +641,16 @@ static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
  * YT_TOL (0 at the first).  On tests/bench_bezstroke.c's scene at 1024 px
  * (algorithms/README.md): 115,222 nodes for 4,558 offset pieces, the
  * band lines' double evaluations 159,574 a render to 65,500, the heights'
- * 77,416 to 52,237. */
+ * 77,416 to 52,237.  A piece's halvings stop too at about YT_ROWS rows an
+ * interval (the lines it serves are one a row: at 256 px the table had 8
+ * nodes a row), and an interval stopped so is kept where its form is
+ * within YT_ROWS_TOL: 70,140 nodes at 1024 px, 44,406 at 256 px (201,184). */
 #define YT_TOL 3e-5
 #define YT_DEPTH 8
 #define YT_MIN 3
 #define YT_TURN 4.0
+#define YT_ROWS 2.0
+#define YT_ROWS_TOL 0.1
 
 /* An offset piece's parameter t where it meets the line y = yl (fa = y0 -
  * yl: its top's height over it, negative) and its point there (X, Y): the
@@ -2279,19 +2284,21 @@ static int yt_push(ar_state *S, const double nd[4], int ok)
 
 /* The nodes after a, up to b (a pushed already) */
 static int yt_rec(ar_state *S, const aa_piece *p, const double a[4], const double b[4],
-                  int depth)
+                  int depth, int dmax)
 {
     double m[4];
     yt_node(p, 0.5 * (a[0] + b[0]), m);
     int ok = fabs(yt_herm(a, b, m[1]) - m[0]) <= YT_TOL;
     double ch = fabs((b[0] - a[0]) / (b[1] - a[1]));
     int turn = !(fabs(a[2]) <= YT_TURN * ch && fabs(b[2]) <= YT_TURN * ch);
-    if (ok || depth >= YT_DEPTH || (depth >= YT_MIN && turn)) {
+    if (!ok && depth >= dmax && dmax < YT_DEPTH) /* stopped by the piece's rows */
+        ok = fabs(yt_herm(a, b, m[1]) - m[0]) <= YT_ROWS_TOL;
+    if (ok || depth >= dmax || (depth >= YT_MIN && turn)) {
         int st = yt_push(S, m, ok);
         return st ? st : yt_push(S, b, ok);
     }
-    int st = yt_rec(S, p, a, m, depth + 1);
-    return st ? st : yt_rec(S, p, m, b, depth + 1);
+    int st = yt_rec(S, p, a, m, depth + 1, dmax);
+    return st ? st : yt_rec(S, p, m, b, depth + 1, dmax);
 }
 
 /* An offset piece: tau = sg t rising down it, its x turns in tau, its
@@ -2332,8 +2339,13 @@ static int load_ytab(ar_state *S, ar_piece *q)
     yt_node(p, p->ot0, a);
     yt_node(p, p->ot1, b);
     q->yt0 = S->nyt;
+    /* halvings to about two rows an interval (YT_ROWS) */
+    double rows = ceil(q->y1) - floor(q->y0);
+    int dmax = -1;
+    while (dmax < YT_DEPTH && ldexp(YT_ROWS, dmax) < rows)
+        dmax++;
     int st = yt_push(S, a, 0);
-    if (st || (st = yt_rec(S, p, a, b, 0)))
+    if (st || (st = yt_rec(S, p, a, b, 0, dmax)))
         return st;
     q->nyt = S->nyt - q->yt0;
     /* the nodes' y rising strictly (ytab_guess's walk), else no table */
