@@ -1007,6 +1007,16 @@ static void test_nodes(void **state)
     assert_true(parts > 0 && evolutes > 0);
 }
 
+/* The stroke of cs (stroke_scene) placed on a size x size view. */
+static aa_scene *placed_stroke(const double *cs, int nc, const aa_stroke_style *st, int size)
+{
+    aa_scene *s = stroke_scene(cs, nc, st, NULL);
+    aa_scene *placed = aa_scene_place(s, size, size, 0, 0, 0);
+    assert_non_null(placed);
+    aa_scene_free(s);
+    return placed;
+}
+
 /* The panels of an offset piece (area_offset.c, area_offset_panels; the
  * disc each keeps searched from the last panel's at its depth): they tile
  * the piece's parameter range in order, each m their middle; each panel's
@@ -1031,9 +1041,7 @@ static void test_panels(void **state)
     double worst = 0.0;
     for (int c = 0; c < 6; c++) {
         st.width = (const double[]){0.02, 0.08, 0.3}[c % 3];
-        aa_scene *s = stroke_scene(c < 3 ? tight : three, c < 3 ? 1 : 3, &st, NULL);
-        aa_scene *placed = aa_scene_place(s, 64, 64, 0, 0, 0);
-        assert_non_null(placed);
+        aa_scene *placed = placed_stroke(c < 3 ? tight : three, c < 3 ? 1 : 3, &st, 64);
         size_t np;
         const aa_piece *pc = aa_scene_pieces(placed, &np);
         for (size_t k = 0; k < np; k++) {
@@ -1095,7 +1103,6 @@ static void test_panels(void **state)
             free(pan);
         }
         aa_scene_free(placed);
-        aa_scene_free(s);
     }
     print_message("%d panels of %d offset pieces tile them and meet the bound; |f| at most %.2f "
                   "of M at %d points\n",
@@ -1286,16 +1293,6 @@ static int shared_ends(const char *what, const aa_scene *s, int *tangent, int *a
     assert_int_equal(bad, 0);
     *all_changes += changes;
     return pairs;
-}
-
-/* The stroke of cs (stroke_scene) placed on a size x size view. */
-static aa_scene *placed_stroke(const double *cs, int nc, const aa_stroke_style *st, int size)
-{
-    aa_scene *s = stroke_scene(cs, nc, st, NULL);
-    aa_scene *placed = aa_scene_place(s, size, size, 0, 0, 0);
-    assert_non_null(placed);
-    aa_scene_free(s);
-    return placed;
 }
 
 static void test_shared_ends(void **state)
