@@ -454,6 +454,9 @@ int aa_rows_parse_json(const char *name, const char *data, size_t len, aa_row **
 #define AA_PARALLELISM_FACTOR 1.5
 double aa_rows_parallelism(const aa_row *rows, size_t n, size_t *least, size_t *most);
 
+/* 1 if rows a and b are of the same view (pattern, size, filter). */
+int aa_rows_same_view(const aa_row *a, const aa_row *b);
+
 /* 1 if rows[k] is the first measured row (ok) of its view (pattern, size,
  * filter) and its reference is not proven everywhere: pixels whose bounds
  * are estimates (ref_scanned > 0) or a bound above AA_TRUTH_BOUND. */

@@ -134,12 +134,6 @@ fail:
     return st;
 }
 
-static int same_view(const aa_row *a, const aa_row *b)
-{
-    return !strcmp(a->pattern, b->pattern) && !strcmp(a->filter, b->filter) && a->w == b->w &&
-           a->h == b->h;
-}
-
 static int cmp_time(const void *a, const void *b)
 {
     const aa_row *const *x = a, *const *y = b;
@@ -244,7 +238,7 @@ static int plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
             continue;
         nviews++;
         for (size_t q = k; q < n; q++)
-            if (rows[q].ok && same_view(&rows[k], &rows[q]))
+            if (rows[q].ok && aa_rows_same_view(&rows[k], &rows[q]))
                 done[q] = 1;
     }
     memset(done, 0, n * sizeof *done);
@@ -267,7 +261,8 @@ static int plot_error_vs_time(const char *dir, const aa_row *rows, size_t n)
         size_t nv = 0;
         double lowest = INFINITY;
         for (size_t q = k; q < n; q++)
-            if (!done[q] && rows[q].ok && rows[q].seconds > 0 && same_view(&rows[k], &rows[q])) {
+            if (!done[q] && rows[q].ok && rows[q].seconds > 0 &&
+                aa_rows_same_view(&rows[k], &rows[q])) {
                 view[nv++] = &rows[q];
                 done[q] = 1;
                 if (rows[q].m.rmse >= EXACT)

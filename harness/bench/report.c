@@ -724,8 +724,7 @@ int aa_results_write_json(const char *path, const aa_context *ctx, const aa_row 
 #define CSV_MAX_BYTES ((size_t)256 << 20)
 #define CSV_MAX_FIELDS 256
 
-/* 1 if rows a and b measured the same view (pattern, size, filter). */
-static int one_view(const aa_row *a, const aa_row *b)
+int aa_rows_same_view(const aa_row *a, const aa_row *b)
 {
     return !strcmp(a->pattern, b->pattern) && !strcmp(a->filter, b->filter) && a->w == b->w &&
            a->h == b->h;
@@ -737,7 +736,7 @@ int aa_row_reference_unproven(const aa_row *rows, size_t k)
     if (!r->ok || !(r->ref_scanned > 0 || r->ref_bound > AA_TRUTH_BOUND))
         return 0;
     for (size_t e = 0; e < k; e++)
-        if (rows[e].ok && one_view(&rows[e], r))
+        if (rows[e].ok && aa_rows_same_view(&rows[e], r))
             return 0;
     return 1;
 }

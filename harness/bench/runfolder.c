@@ -697,13 +697,6 @@ static void montage_put(void *vctx, size_t k)
     aa_image_free(&((montage_source *)vctx)->crop);
 }
 
-/* 1 if rows a and b are of the same view. */
-static int same_view(const aa_row *a, const aa_row *b)
-{
-    return !strcmp(a->pattern, b->pattern) && !strcmp(a->filter, b->filter) && a->w == b->w &&
-           a->h == b->h;
-}
-
 /* The montage file of the view of row r. */
 static int montage_path(char *path, size_t len, const char *dir, const aa_row *r)
 {
@@ -731,7 +724,7 @@ static int write_view_montage(const char *dir, const char *cache, const aa_row *
     s.x0 = (r0->w - s.tw) / 2, s.y0 = (r0->h - s.th) / 2;
     size_t nt = 1;
     for (size_t k = first; k < n && nt < MONTAGE_TILES; k++)
-        if (rows[k].ok && same_view(&rows[k], r0) && rows[k].t == r0->t)
+        if (rows[k].ok && aa_rows_same_view(&rows[k], r0) && rows[k].t == r0->t)
             s.row[nt++] = k;
     aa_tile_source src = {.n = nt, .tw = s.tw, .th = s.th, .lines = MONTAGE_LINES,
                           .get = montage_get, .put = montage_put, .ctx = &s};
@@ -766,7 +759,7 @@ static int write_montage(const char *dir, const aa_run_config *first, const aa_r
         if (!rows[k].ok)
             continue;
         size_t q = 0;
-        while (q < k && !(rows[q].ok && same_view(&rows[q], &rows[k])))
+        while (q < k && !(rows[q].ok && aa_rows_same_view(&rows[q], &rows[k])))
             q++;
         if (q < k) /* drawn with an earlier row of its view */
             continue;

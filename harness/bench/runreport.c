@@ -22,17 +22,11 @@ static int present(const char *dir, const char *rel)
     return !aa_pathf(path, sizeof path, "%s/%s", dir, rel) && access(path, R_OK) == 0;
 }
 
-static int same_view(const aa_row *a, const aa_row *b)
-{
-    return !strcmp(a->pattern, b->pattern) && !strcmp(a->filter, b->filter) && a->w == b->w &&
-           a->h == b->h;
-}
-
 /* 1 if rows[k] is the first of the rows with its view */
 static int first_of_view(const aa_row *rows, size_t k)
 {
     for (size_t q = 0; q < k; q++)
-        if (same_view(&rows[q], &rows[k]))
+        if (aa_rows_same_view(&rows[q], &rows[k]))
             return 0;
     return 1;
 }
@@ -78,7 +72,7 @@ static void view_section(FILE *m, const char *dir, const aa_row *rows, size_t n,
     const aa_row *r0 = &rows[first];
     size_t k = 0;
     for (size_t q = first; q < n; q++)
-        if (same_view(&rows[q], r0))
+        if (aa_rows_same_view(&rows[q], r0))
             idx[k++] = q;
     sort_rows = rows;
     qsort(idx, k, sizeof *idx, by_rmse);
@@ -230,7 +224,7 @@ int aa_run_report(const char *dir, const aa_row *rows, size_t n)
         int is_first = 0;
         if (!first_done) {
             for (size_t p = k; p < n && !is_first; p++)
-                is_first = rows[p].ok && same_view(&rows[p], &rows[k]);
+                is_first = rows[p].ok && aa_rows_same_view(&rows[p], &rows[k]);
             first_done = is_first;
         }
         view_section(m, dir, rows, n, k, is_first, idx);
