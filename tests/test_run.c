@@ -82,6 +82,21 @@ static void expect_ref_stats(const char *out, const char *pattern, int w, int h)
         assert_true(rows[k].ref_scanned == (double)ts.scanned);
     }
     free(rows);
+    /* index.html says the view's bound, proven (nothing scanned here) */
+    assert_true(ts.scanned == 0);
+    char html[400], want[200];
+    snprintf(html, sizeof html, "%s/index.html", out);
+    if (access(html, F_OK) == 0) { /* (a run without images writes none) */
+        size_t cap = 1 << 20;
+        char *text = malloc(cap);
+        assert_non_null(text);
+        support_read_file(html, text, cap, NULL);
+        snprintf(want, sizeof want, "each pixel within %.2e of the filtered scene, proven",
+                 ts.max_bound);
+        if (!strstr(text, want))
+            fail_msg("%s does not say \"%s\"", html, want);
+        free(text);
+    }
 }
 
 /* ---- a strict JSON validator (RFC 8259 grammar) ---- */
@@ -352,6 +367,29 @@ static void test_table_names(void **state)
                          "--no-images", "--no-cache", "--out", out, NULL};
     assert_int_equal(run_cmd(run, 0), 0);
     int seen[2] = {0, 0};
+    /* each row shows its reference's bound, as results.csv holds it */
+    char csv[400];
+    snprintf(csv, sizeof csv, "%s/results.csv", out);
+    aa_row *rows;
+    size_t n;
+    assert_int_equal(aa_rows_read_csv(csv, &rows, &n), AA_OK);
+    assert_int_equal(n, 2);
+    if (!strstr(output, " max_err ref_bound "))
+        fail_msg("the table's header has no ref_bound:\n%s", output);
+    for (size_t k = 0; k < n; k++) {
+        char want[sizeof rows[k].pattern + 8];
+        assert_true(rows[k].ref_bound > 0 && rows[k].ref_bound <= AA_TRUTH_BOUND);
+        snprintf(want, sizeof want, " %s ", rows[k].pattern);
+        const char *row = strstr(output, want);
+        assert_non_null(row);
+        snprintf(want, sizeof want, " %.2e ", rows[k].ref_bound);
+        const char *end = strchr(row, '\n');
+        const char *at = strstr(row, want);
+        if (!at || (end && at > end))
+            fail_msg("the row of %s does not show ref_bound%s:\n%s", rows[k].pattern, want,
+                     output);
+    }
+    free(rows);
     for (const char *line = output; *line;) {
         size_t len = strcspn(line, "\n");
         const char *next = line[len] ? line + len + 1 : line + len;

@@ -278,10 +278,10 @@ static void print_table(const aa_row *rows, size_t n)
         temporal |= rows[k].temporal;
     qsort(order, n, sizeof *order, temporal ? cmp_eye : cmp_rmse);
     widths c = widths_of(order, n);
-    printf("%-*s %-*s %-12s %-*s %10s %9s %9s %6s %8s %-27s %3s %9s %9s %9s %6s\n", c.method,
-           "method", c.pattern, "pattern", "size", c.filter, "filter", "rmse", "edge_rmse",
-           "max_err", "flip", "psnr", "ms, median +-CI", "thr", "cpu ms", "init ms",
-           "ns/px", "exp%");
+    printf("%-*s %-*s %-12s %-*s %10s %9s %9s %9s %6s %8s %-27s %3s %9s %9s %9s %6s\n",
+           c.method, "method", c.pattern, "pattern", "size", c.filter, "filter", "rmse",
+           "edge_rmse", "max_err", "ref_bound", "flip", "psnr", "ms, median +-CI", "thr",
+           "cpu ms", "init ms", "ns/px", "exp%");
     for (size_t k = 0; k < n; k++) {
         const aa_row *r = order[k];
         char size[32];
@@ -299,10 +299,16 @@ static void print_table(const aa_row *rows, size_t n)
         char init[32] = "-"; /* the method's init, once, outside the renders' times */
         if (isfinite(r->timing.init_seconds))
             snprintf(init, sizeof init, "%.3f", r->timing.init_seconds * 1e3);
-        printf("%-*.*s %-*.*s %-12s %-*.*s %10.3e %9.2e %9.2e %6.4f %8.2f %-27s %3d %9s %9s "
-               "%9.2f %6.1f\n",
+        /* the reference's largest per-pixel bound: errors below it are not measured;
+         * "~" marks one with pixels bounded by an estimate (cli_warn_references) */
+        char bound[32] = "-";
+        if (isfinite(r->ref_bound))
+            snprintf(bound, sizeof bound, "%s%.2e", r->ref_scanned > 0 ? "~" : "",
+                     r->ref_bound);
+        printf("%-*.*s %-*.*s %-12s %-*.*s %10.3e %9.2e %9.2e %9s %6.4f %8.2f %-27s %3d %9s "
+               "%9s %9.2f %6.1f\n",
                c.method, c.method, r->method, c.pattern, c.pattern, r->pattern, size, c.filter,
-               c.filter, r->filter, r->m.rmse, r->m.edge_rmse, r->m.max_err, r->m.flip,
+               c.filter, r->filter, r->m.rmse, r->m.edge_rmse, r->m.max_err, bound, r->m.flip,
                r->m.psnr, ms, r->threads, cpu, init, r->ns_per_pixel,
                100 * r->expensive_fraction);
     }
