@@ -34,19 +34,21 @@
 #include <time.h>
 #include <unistd.h>
 
-#define MAX_GROUPS 16
+#define MAX_GROUPS 64
 #define MAX_WORDS (8 * AA_PLAN_MAX + 64)
 
 /* The arrays of parsed lists, freed together with the run folder. */
 typedef struct owned {
-    void *v[4 * (MAX_GROUPS + 2)];
-    size_t n;
+    void **v;
+    size_t n, cap;
 } owned;
 
 static void owned_free(owned *o)
 {
     while (o->n)
         free(o->v[--o->n]);
+    free(o->v);
+    o->v = NULL, o->cap = 0;
 }
 
 struct aa_runfolder {
@@ -875,7 +877,14 @@ static int write_convergence(const char *dir, const aa_runfolder *rf, const aa_r
 
 static void *own(owned *o, size_t n, size_t size)
 {
-    void *p = o->n < sizeof o->v / sizeof o->v[0] ? calloc(n ? n : 1, size) : NULL;
+    if (o->n == o->cap) {
+        size_t cap = o->cap ? 2 * o->cap : 64;
+        void **v = realloc(o->v, cap * sizeof *v);
+        if (!v)
+            return NULL;
+        o->v = v, o->cap = cap;
+    }
+    void *p = calloc(n ? n : 1, size);
     if (p)
         o->v[o->n++] = p;
     return p;
@@ -994,54 +1003,130 @@ static int shared_size(const aa_run_size *a, size_t na, const aa_run_size *b, si
     return 0;
 }
 
-/* 1 if every value of a is in b. */
-static int specs_within(const aa_run_spec *a, size_t na, const aa_run_spec *b, size_t nb)
+/* Whether the list (n values) holds x: by text for specs and filters. */
+typedef int holds_fn(const void *list, size_t n, const void *x);
+
+static int holds_spec(const void *list, size_t n, const void *x)
 {
-    size_t ia, ib;
-    for (size_t k = 0; k < na; k++)
-        if (!shared_spec(a + k, 1, b, nb, &ia, &ib))
-            return 0;
-    return 1;
+    size_t i, j;
+    return shared_spec(x, 1, list, n, &i, &j);
 }
 
-/* 1 if config c's cases are all config d's: every list of c within d's. */
-static int cases_within(const aa_run_config *c, const aa_run_config *d)
+static int holds_filter(const void *list, size_t n, const void *x)
 {
     size_t i;
-    for (size_t k = 0; k < c->nsizes; k++)
-        if (!shared_size(c->sizes + k, 1, d->sizes, d->nsizes, &i))
-            return 0;
-    for (size_t k = 0; k < c->nfilters; k++)
-        if (!shared_filter(c->filters + k, 1, d->filters, d->nfilters, &i))
-            return 0;
-    return specs_within(c->patterns, c->npatterns, d->patterns, d->npatterns) &&
-           specs_within(c->methods, c->nmethods, d->methods, d->nmethods);
+    return shared_filter(x, 1, list, n, &i);
 }
 
-/* Two groups holding one case would measure it twice and double its rows:
- * a group whose cases an earlier one holds all of is left out (-p, -f and
- * -m given, the sizes the groups': every group of the default suite is then
- * the same cross product), and a case in two groups otherwise is refused,
- * naming it.  A suite's groups can meet so once the lists given replace
- * theirs (--suite paper -p crow -s 32x32: two of its groups then hold crow
- * 32x32 box point). */
-static int no_case_twice(const aa_run_config *cfgs, size_t ng, const char *suite)
+static int holds_size(const void *list, size_t n, const void *x)
 {
-    for (size_t g = 0; g < ng; g++)
-        for (size_t h = g + 1; h < ng; h++) {
-            const aa_run_config *a = &cfgs[g], *b = &cfgs[h];
-            size_t p, q, s, f, m;
-            if (shared_spec(a->patterns, a->npatterns, b->patterns, b->npatterns, &p, &q) &&
-                shared_size(a->sizes, a->nsizes, b->sizes, b->nsizes, &s) &&
-                shared_filter(a->filters, a->nfilters, b->filters, b->nfilters, &f) &&
-                shared_spec(a->methods, a->nmethods, b->methods, b->nmethods, &m, &q))
-                return aa_fail(AA_EINVAL,
-                               "%s on %s %dx%d %s would be measured twice: two of the suite "
-                               "%s's cross products hold it once the lists given replace "
-                               "theirs; give -p, -s, -f and -m all (one cross product)",
-                               a->methods[m].text, a->patterns[p].text, a->sizes[s].w,
-                               a->sizes[s].h, a->filters[f].text, suite);
-        }
+    size_t i;
+    return shared_size(x, 1, list, n, &i);
+}
+
+/* The values of a (na of them, each `size` bytes) that b holds, into a new
+ * array *in (*nin of them), and those it does not, into *out (*nout). */
+static int split_list(owned *o, const void *a, size_t na, size_t size, const void *b, size_t nb,
+                      holds_fn *holds, const void **in, size_t *nin, const void **out,
+                      size_t *nout)
+{
+    char *vin = own(o, na, size), *vout = own(o, na, size);
+    if (!vin || !vout)
+        return aa_fail(AA_ENOMEM, "out of memory");
+    *nin = *nout = 0;
+    for (size_t k = 0; k < na; k++) {
+        const char *x = (const char *)a + k * size;
+        if (holds(b, nb, x))
+            memcpy(vin + (*nin)++ * size, x, size);
+        else
+            memcpy(vout + (*nout)++ * size, x, size);
+    }
+    *in = vin, *out = vout;
+    return AA_OK;
+}
+
+/* cases_not_in's status when out holds too few configs (not an aa_status) */
+#define TOO_MANY (-1)
+
+/* The cases of c that d does not hold, as at most four cross products
+ * sharing no case, into out[0 .. *n): c's patterns d lacks (with c's other
+ * lists); of the patterns both have, the sizes d lacks; of the patterns and
+ * sizes both have, the filters d lacks; of the patterns, sizes and filters
+ * both have, the methods d lacks.  c itself when the two share no case,
+ * none when d holds them all. */
+static int cases_not_in(owned *o, const aa_run_config *c, const aa_run_config *d,
+                        aa_run_config *out, size_t max, size_t *n)
+{
+    size_t ia, ib;
+    *n = 0;
+    if (!shared_spec(c->patterns, c->npatterns, d->patterns, d->npatterns, &ia, &ib) ||
+        !shared_size(c->sizes, c->nsizes, d->sizes, d->nsizes, &ia) ||
+        !shared_filter(c->filters, c->nfilters, d->filters, d->nfilters, &ia) ||
+        !shared_spec(c->methods, c->nmethods, d->methods, d->nmethods, &ia, &ib)) {
+        if (max < 1)
+            return TOO_MANY;
+        out[(*n)++] = *c;
+        return AA_OK;
+    }
+    const void *pin, *pout, *sin, *sout, *fin, *fout, *min, *mout;
+    size_t npin, npout, nsin, nsout, nfin, nfout, nmin, nmout;
+    int st;
+    if ((st = split_list(o, c->patterns, c->npatterns, sizeof *c->patterns, d->patterns,
+                         d->npatterns, holds_spec, &pin, &npin, &pout, &npout)) ||
+        (st = split_list(o, c->sizes, c->nsizes, sizeof *c->sizes, d->sizes, d->nsizes,
+                         holds_size, &sin, &nsin, &sout, &nsout)) ||
+        (st = split_list(o, c->filters, c->nfilters, sizeof *c->filters, d->filters,
+                         d->nfilters, holds_filter, &fin, &nfin, &fout, &nfout)) ||
+        (st = split_list(o, c->methods, c->nmethods, sizeof *c->methods, d->methods,
+                         d->nmethods, holds_spec, &min, &nmin, &mout, &nmout)))
+        return st;
+    aa_run_config piece = *c;
+    for (int k = 0; k < 4; k++) {
+        piece.patterns = k ? pin : pout, piece.npatterns = k ? npin : npout;
+        if (k >= 1)
+            piece.sizes = k > 1 ? sin : sout, piece.nsizes = k > 1 ? nsin : nsout;
+        if (k >= 2)
+            piece.filters = k > 2 ? fin : fout, piece.nfilters = k > 2 ? nfin : nfout;
+        if (k == 3)
+            piece.methods = mout, piece.nmethods = nmout;
+        if (!piece.npatterns || !piece.nsizes || !piece.nfilters || !piece.nmethods)
+            continue;
+        if (*n == max)
+            return TOO_MANY;
+        out[(*n)++] = piece;
+    }
+    return AA_OK;
+}
+
+/* Config c, less every case of cfgs[0 .. *ng), appended to cfgs as
+ * cross products sharing no case (none when those hold all of c): no case
+ * is measured twice, however the suite's groups meet once the lists given
+ * replace theirs (--suite paper -p crow -s 32x32: two of its groups then
+ * hold crow 32x32 box point; under -p, -f and -m every group of the default
+ * suite is the same cross product). */
+static int add_new_cases(owned *o, const aa_run_config *c, aa_run_config *cfgs, size_t max,
+                         size_t *ng, const char *suite)
+{
+    aa_run_config work[MAX_GROUPS], next[MAX_GROUPS];
+    size_t nw = 1;
+    int st = AA_OK;
+    work[0] = *c;
+    for (size_t d = 0; d < *ng && nw && !st; d++) {
+        size_t nn = 0, k;
+        for (size_t w = 0; w < nw && !st; w++, nn += k)
+            st = cases_not_in(o, &work[w], &cfgs[d], next + nn, MAX_GROUPS - nn, &k);
+        memcpy(work, next, nn * sizeof *work);
+        nw = nn;
+    }
+    if (st == TOO_MANY || (!st && *ng + nw > max))
+        return aa_fail(AA_EINVAL,
+                       "the suite %s with the lists given makes more than %zu cross "
+                       "products: give -p, -s, -f and -m all (one cross product)",
+                       suite, max);
+    if (st)
+        return st;
+    memcpy(cfgs + *ng, work, nw * sizeof *work);
+    *ng += nw;
     return AA_OK;
 }
 
@@ -1115,11 +1200,7 @@ static int groups_of(const aa_plan *a, const aa_suite *suite, owned *o, const aa
         if (!a->nmethods)
             nm = drop_missing_external(suite->name, m, nm, opt);
         for (size_t k = 0; k < ncls; k++) {
-            if (*ng == max)
-                return aa_fail(AA_EINVAL, "the suite %s with the patterns given makes more than "
-                                          "%zu cross products: give the sizes (-s)",
-                               suite->name, max);
-            aa_run_config *c = &cfgs[*ng];
+            aa_run_config one, *c = &one;
             memset(c, 0, sizeof *c);
             c->patterns = p, c->npatterns = np;
             c->sizes = s, c->nsizes = ns;
@@ -1130,16 +1211,13 @@ static int groups_of(const aa_plan *a, const aa_suite *suite, owned *o, const aa
             }
             c->filters = f, c->nfilters = nf;
             c->methods = m, c->nmethods = nm;
-            size_t d = 0;
-            while (d < *ng && !cases_within(c, &cfgs[d]))
-                d++;
-            if (d == *ng)
-                ++*ng;
+            if ((st = add_new_cases(o, c, cfgs, max, ng, suite->name)))
+                return st;
         }
         if (a->npatterns && a->nsizes && a->nfilters && a->nmethods)
             break; /* everything given: one cross product */
     }
-    return no_case_twice(cfgs, *ng, suite->name);
+    return AA_OK;
 }
 
 /* Everything checked before any work or any file: every method runs some
