@@ -1263,6 +1263,65 @@ static int flush(aa_path *out, pieces *ps, int drawn, int closed, double px, dou
     return st;
 }
 
+/* The pieces of drawing segment k (a line, an arc, a Bezier arc, or a
+ * close's line back to the start (sx, sy)) from the pen (*px, *py), which
+ * moves to its end: into parts, *np of them (at most 3), those of length 0
+ * left out.  The stroke's outline and the path's length walk a path through
+ * it alike, so that dashes scaled by a length the walk measured fit the
+ * pieces the stroke lays them on. */
+static int seg_pieces(const aa_path_seg *g, size_t k, double *px, double *py, double sx,
+                      double sy, piece parts[3], int *np)
+{
+    int st = AA_OK;
+    *np = 0;
+    switch (g->op) {
+    case AA_PATH_LINE:
+    case AA_PATH_CLOSE: {
+        double ex = g->op == AA_PATH_LINE ? g->p[0] : sx;
+        double ey = g->op == AA_PATH_LINE ? g->p[1] : sy;
+        if (g->op == AA_PATH_CLOSE && *px == sx && *py == sy)
+            return AA_OK;
+        line_piece(*px, *py, ex, ey, &parts[0]);
+        *px = ex, *py = ey;
+        *np = 1;
+        break;
+    }
+    case AA_PATH_ARC:
+        if ((st = circle_piece(g, k, *px, *py, &parts[0])))
+            return st;
+        *px = g->p[8], *py = g->p[9];
+        *np = 1;
+        break;
+    case AA_PATH_QUAD:
+    case AA_PATH_CUBIC: {
+        double ex = g->op == AA_PATH_QUAD ? g->p[2] : g->p[4];
+        double ey = g->op == AA_PATH_QUAD ? g->p[3] : g->p[5];
+        if (bez_on_ends(g, *px, *py)) {
+            /* its points are on the chord, traced from one end to the
+             * other without turning back, its end directions the chord's:
+             * the line's stroke, dashes included */
+            line_piece(*px, *py, ex, ey, &parts[0]);
+            *np = 1;
+        } else if ((st = bez_piece(g, k, *px, *py, parts, np))) {
+            return st;
+        }
+        *px = ex, *py = ey;
+        break;
+    }
+    default:
+        return aa_fail(AA_EINVAL, "stroke: segment %zu: unknown operation %d", k, (int)g->op);
+    }
+    int kept = 0;
+    for (int j = 0; j < *np; j++) {
+        if (!isfinite(parts[j].len))
+            return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
+        if (parts[j].len > 0)
+            parts[kept++] = parts[j];
+    }
+    *np = kept;
+    return AA_OK;
+}
+
 static int outline(const aa_path *in, const aa_stroke_style *style, aa_path *out, pieces *ps,
                    pieces *tmp)
 {
@@ -1271,82 +1330,28 @@ static int outline(const aa_path *in, const aa_stroke_style *style, aa_path *out
     int drawn = 0, started = 0, st = AA_OK;
     for (size_t k = 0; k < in->n && !st; k++) {
         const aa_path_seg *g = &in->seg[k];
-        piece p = {0};
-        switch (g->op) {
-        case AA_PATH_MOVE:
+        if (g->op == AA_PATH_MOVE) {
             if (started && (st = flush(out, ps, drawn, 0, sx, sy, style, h, tmp)))
                 break;
             sx = px = g->p[0];
             sy = py = g->p[1];
             started = 1;
             drawn = 0;
-            break;
-        case AA_PATH_LINE:
-        case AA_PATH_ARC:
-            if (!started)
-                return aa_fail(AA_EINVAL, "stroke: segment %zu comes before any move", k);
-            if (g->op == AA_PATH_LINE) {
-                line_piece(px, py, g->p[0], g->p[1], &p);
-                px = g->p[0], py = g->p[1];
-            } else {
-                if ((st = circle_piece(g, k, px, py, &p)))
-                    break;
-                px = g->p[8], py = g->p[9];
-            }
-            drawn = 1;
-            if (p.len > 0 && isfinite(p.len))
-                st = pieces_push(ps, &p);
-            else if (!isfinite(p.len))
-                st = aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
-            break;
-        case AA_PATH_QUAD:
-        case AA_PATH_CUBIC: {
-            if (!started)
-                return aa_fail(AA_EINVAL, "stroke: segment %zu comes before any move", k);
-            if (bez_on_ends(g, px, py)) {
-                /* its points are on the chord, traced from one end to the
-                 * other without turning back, its end directions the
-                 * chord's: the line's stroke, dashes included */
-                double ex = g->op == AA_PATH_QUAD ? g->p[2] : g->p[4];
-                double ey = g->op == AA_PATH_QUAD ? g->p[3] : g->p[5];
-                line_piece(px, py, ex, ey, &p);
-                px = ex, py = ey;
-                drawn = 1;
-                if (!isfinite(p.len))
-                    st = aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
-                else if (p.len > 0)
-                    st = pieces_push(ps, &p);
-                break;
-            }
-            piece parts[3];
-            int np;
-            if ((st = bez_piece(g, k, px, py, parts, &np)))
-                break;
-            px = g->op == AA_PATH_QUAD ? g->p[2] : g->p[4];
-            py = g->op == AA_PATH_QUAD ? g->p[3] : g->p[5];
-            drawn = 1;
-            for (int j = 0; j < np && !st; j++)
-                if (parts[j].len > 0)
-                    st = pieces_push(ps, &parts[j]);
-            break;
+            continue;
         }
-        case AA_PATH_CLOSE:
-            if (!started)
-                return aa_fail(AA_EINVAL, "stroke: segment %zu closes before any move", k);
-            if (px != sx || py != sy) {
-                line_piece(px, py, sx, sy, &p);
-                if (!isfinite(p.len))
-                    return aa_fail(AA_EINVAL, "stroke: segment %zu is out of range", k);
-                if (p.len > 0 && (st = pieces_push(ps, &p)))
-                    break;
-            }
-            st = flush(out, ps, 1, 1, sx, sy, style, h, tmp);
-            px = sx, py = sy;
-            drawn = 0;
-            /* a segment after it starts again from the start (SVG) */
+        if (!started)
+            return aa_fail(AA_EINVAL, "stroke: segment %zu comes before any move", k);
+        piece parts[3];
+        int np;
+        if ((st = seg_pieces(g, k, &px, &py, sx, sy, parts, &np)))
             break;
-        default:
-            return aa_fail(AA_EINVAL, "stroke: segment %zu: unknown operation %d", k, (int)g->op);
+        for (int j = 0; j < np && !st; j++)
+            st = pieces_push(ps, &parts[j]);
+        drawn = 1;
+        if (!st && g->op == AA_PATH_CLOSE) {
+            st = flush(out, ps, 1, 1, sx, sy, style, h, tmp);
+            /* a segment after it starts again from the start (SVG) */
+            drawn = 0;
         }
     }
     if (!st && started)
@@ -1360,50 +1365,20 @@ int aa_path_length(const aa_path *in, double *len)
     int started = 0, st = AA_OK;
     for (size_t k = 0; k < in->n && !st; k++) {
         const aa_path_seg *g = &in->seg[k];
-        piece p = {0}, parts[3];
+        piece parts[3];
         int np;
-        if (g->op != AA_PATH_MOVE && !started)
-            return aa_fail(AA_EINVAL, "length: segment %zu comes before any move", k);
-        switch (g->op) {
-        case AA_PATH_MOVE:
+        if (g->op == AA_PATH_MOVE) {
             sx = px = g->p[0], sy = py = g->p[1];
             started = 1;
-            break;
-        case AA_PATH_LINE:
-            line_piece(px, py, g->p[0], g->p[1], &p);
-            sum += p.len;
-            px = g->p[0], py = g->p[1];
-            break;
-        case AA_PATH_ARC:
-            if (!(st = circle_piece(g, k, px, py, &p)))
-                sum += p.len;
-            px = g->p[8], py = g->p[9];
-            break;
-        case AA_PATH_QUAD:
-        case AA_PATH_CUBIC: {
-            double ex = g->op == AA_PATH_QUAD ? g->p[2] : g->p[4];
-            double ey = g->op == AA_PATH_QUAD ? g->p[3] : g->p[5];
-            if (bez_on_ends(g, px, py)) {
-                line_piece(px, py, ex, ey, &p);
-                sum += p.len;
-            } else if (!(st = bez_piece(g, k, px, py, parts, &np))) {
-                for (int j = 0; j < np; j++)
-                    sum += parts[j].len;
-            }
-            px = ex, py = ey;
-            break;
-        }
-        case AA_PATH_CLOSE:
-            line_piece(px, py, sx, sy, &p);
-            sum += p.len;
-            px = sx, py = sy;
-            break;
-        default:
-            return aa_fail(AA_EINVAL, "length: segment %zu: unknown operation %d", k, (int)g->op);
+        } else if (!started) {
+            return aa_fail(AA_EINVAL, "stroke: segment %zu comes before any move", k);
+        } else if (!(st = seg_pieces(g, k, &px, &py, sx, sy, parts, &np))) {
+            for (int j = 0; j < np; j++)
+                sum += parts[j].len;
         }
     }
     if (!st && !isfinite(sum))
-        st = aa_fail(AA_EINVAL, "length: the path's length is out of range");
+        st = aa_fail(AA_EINVAL, "stroke: the path's length is out of range");
     if (!st)
         *len = sum;
     return st;
