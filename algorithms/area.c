@@ -1509,7 +1509,7 @@ static void reaching(const ar_row *r, const ar_key *keys, uint32_t *act, size_t 
     const ar_seg *seg = r->wk->seg;
     size_t keep = 0;
     for (size_t a = 0; a < *nact; a++)
-        if (right_end(&seg[keys[act[a]].idx], lo) >= left)
+        if (right_end(&seg[keys[act[a]].idx], lo) > left)
             act[keep++] = act[a];
     *nact = keep;
 }
