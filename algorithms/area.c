@@ -1499,10 +1499,14 @@ static inline double right_end(const ar_seg *s, int lo)
 }
 
 /* The segs before keys[k] (in order of left end) whose extent reaches
- * keys[k]'s left end: act[0..*nact) holds, in ascending order, those that
- * reached the one before; drop those left behind for good (left ends only
- * grow).  So each seg is tested against the segs overlapping it only, in
- * the order of a scan over all those before it, not against every one. */
+ * past keys[k]'s left end: act[0..*nact) holds, in ascending order, those
+ * that reached past the one before; drop those left behind for good (left
+ * ends only grow).  So each seg is tested against the segs overlapping it
+ * only, in the order of a scan over all those before it, not against every
+ * one.  Extents that only touch (at one x) are not overlapping: the two
+ * segs lie on either side of that x, may touch there, and never change
+ * order (a stroke's inner join line and its offset leaving their common
+ * vertex on either side of it). */
 static void reaching(const ar_row *r, const ar_key *keys, uint32_t *act, size_t *nact,
                      double left, int lo)
 {
@@ -1556,6 +1560,24 @@ static inline void ends_u(const ar_seg *s, int lo, double ya, double yb, int sub
     *bot = base + u;
 }
 
+/* 1 if two segs' x at each height of the (sub-)band is a function of
+ * their x at its ends alone: two lines (x linear in y), or two offset
+ * pieces of one curve over one range of its parameter (the outline traces
+ * an offset curve's part between its folds twice), one x at every height.
+ * Such a pair, in order at both ends up to rounding (ORDER_TIE), is in
+ * that order inside (within rounding of each other where the ends are). */
+static inline int same_track(const ar_seg *a, const ar_seg *b)
+{
+    const ar_piece *p = a->p, *q = b->p;
+    if (p->line && q->line)
+        return 1;
+    if (!(p->offset && q->offset))
+        return 0;
+    const aa_piece *P = p->src, *Q = q->src;
+    return ((P->ot0 == Q->ot0 && P->ot1 == Q->ot1) || (P->ot0 == Q->ot1 && P->ot1 == Q->ot0)) &&
+           !memcmp(&P->oc, &Q->oc, sizeof P->oc);
+}
+
 /* keys[0..n) = in[0..n), segs none of which crosses another inside the
  * band or sub-band [ya, yb] (all spanning it), in their order along x
  * inside it, from u at its ends: sorted by the sum of the two, and kept
@@ -1580,7 +1602,9 @@ static int order_ends(const ar_row *r, const ar_key *in, size_t n, int lo, doubl
     for (size_t k = 0; k < n; k++) {
         ends_u(&seg[keys[k].idx], lo, ya, yb, sub, &top, &bot);
         double dt = top - pt, db = bot - pb;
-        if (k > 0 && !((dt > ORDER_GAP && db > -ORDER_TIE) || (db > ORDER_GAP && dt > -ORDER_TIE)))
+        if (k > 0 && !((dt > ORDER_GAP && db > -ORDER_TIE) || (db > ORDER_GAP && dt > -ORDER_TIE) ||
+                       (dt > -ORDER_TIE && db > -ORDER_TIE &&
+                        same_track(&seg[keys[k - 1].idx], &seg[keys[k].idx]))))
             return 0;
         pt = top, pb = bot;
     }
