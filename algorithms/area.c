@@ -402,6 +402,25 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : (x > y);
 }
 
+/* Ascending, v[0..n) none NaN: an insertion sort where there are few
+ * (a band's events: qsort's calls through its comparison were most of
+ * their sort), else qsort.  Equal values are equal bits (no -0: the events
+ * are positive), so the result is the same either way. */
+static void sort_doubles(double *v, size_t n)
+{
+    if (n > 32) {
+        qsort(v, n, sizeof *v, cmp_double);
+        return;
+    }
+    for (size_t a = 1; a < n; a++) {
+        double x = v[a];
+        size_t at = a;
+        for (; at > 0 && v[at - 1] > x; at--)
+            v[at] = v[at - 1];
+        v[at] = x;
+    }
+}
+
 /* a after b in the order by (key, id) */
 static inline int key_after(const ar_key *a, const ar_key *b)
 {
@@ -1714,7 +1733,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
             }
         act[nact++] = (uint32_t)k;
     }
-    qsort(b.v, b.n, sizeof *b.v, cmp_double);
+    sort_doubles(b.v, b.n);
     size_t m = 0;
     for (size_t k = 0; k < b.n; k++)
         if (m == 0 || b.v[k] > b.v[m - 1])
