@@ -1724,7 +1724,10 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
                 const ar_seg *t = &seg[keys[act[a]].idx];
                 if (t->p->flat)
                     continue;
-                double ya = fmax(fmax(s->va, t->va), y), yb = fmin(fmin(s->vb, t->vb), b.lim);
+                /* the larger top and smaller bottom written out (fmax
+                 * and fmin are library calls; none of these is NaN) */
+                double ya = s->va > t->va ? s->va : t->va, yb = s->vb < t->vb ? s->vb : t->vb;
+                ya = ya > y ? ya : y, yb = yb < b.lim ? yb : b.lim;
                 if (!(ya < yb))
                     continue;
                 int c = pair_crossings(t, s, ya, yb, r->j, out);
