@@ -402,6 +402,25 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : (x > y);
 }
 
+/* Ascending, v[0..n) none NaN: an insertion sort where there are few
+ * (a band's events: qsort's calls through its comparison were most of
+ * their sort), else qsort.  Equal values are equal bits (no -0: the events
+ * are positive), so the result is the same either way. */
+static void sort_doubles(double *v, size_t n)
+{
+    if (n > 32) {
+        qsort(v, n, sizeof *v, cmp_double);
+        return;
+    }
+    for (size_t a = 1; a < n; a++) {
+        double x = v[a];
+        size_t at = a;
+        for (; at > 0 && v[at - 1] > x; at--)
+            v[at] = v[at - 1];
+        v[at] = x;
+    }
+}
+
 /* a after b in the order by (key, id) */
 static inline int key_after(const ar_key *a, const ar_key *b)
 {
@@ -976,6 +995,64 @@ static void band_fields(ar_seg *s, int j)
     s->V = s->Va - (j - s->ja);
     s->va = p->y0 > j ? p->y0 - j : 0.0;
     s->vb = p->y1 < j + 1.0 ? p->y1 - j : 1.0;
+    s->bv[0] = s->bv[1] = NAN, s->bn = 0;
+}
+
+/* tau (*t) and u (*u) where v(tau) = v in the band, for a sub-band's
+ * order: u at the band's ends as seg_make found it, inside it an offset
+ * piece's from its root's last evaluation moved by its slope (key_u's),
+ * the root the one tau_of_v finds (the same call); kept in the seg for
+ * the band (bv), the slot's index returned. */
+static int sub_key(const ar_seg *s, double v, double *t, double *u)
+{
+    ar_seg *w = (ar_seg *)s; /* the worker's own seg */
+    int k = v == s->bv[0] ? 0 : v == s->bv[1] ? 1 : -1;
+    if (k >= 0) {
+        *t = s->bt[k], *u = s->bu[k];
+        return k;
+    }
+    double tt, uu;
+    if (v <= s->va) {
+        tt = s->ta, uu = s->ua;
+    } else if (v >= s->vb) {
+        tt = s->tb, uu = s->ub;
+    } else if (s->p->curved && s->p->offset) {
+        double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &w->ythint);
+        long double x;
+        tt = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb,
+                                       s->va - v, v - s->V, g, &x);
+        uu = (double)(x - s->c0);
+    } else {
+        tt = solve_v(s, v), uu = u_at(s, tt);
+    }
+    k = s->bn;
+    w->bv[k] = v, w->bt[k] = tt, w->bu[k] = uu, w->bx[k] = NAN, w->bn ^= 1;
+    *t = tt, *u = uu;
+    return k;
+}
+
+/* tau (*t) and u (*u) where v(tau) = v in the band, as the sweep takes
+ * them: tau_of_v's root and seg_u there (an offset piece's point
+ * evaluated, its v kept for part_area: offset_keep), each found once a
+ * band (sub_key's slot) */
+static void sub_end(const ar_seg *s, double v, double *t, double *u)
+{
+    ar_seg *w = (ar_seg *)s;
+    double uk;
+    int k = sub_key(s, v, t, &uk), off = s->p->curved && s->p->offset;
+    if (s->bx[k] != s->bx[k]) {
+        if (off) { /* offset_seg_u's evaluation */
+            long double X, Y;
+            offset_point(s->p, s->p->sg * *t, &X, &Y);
+            w->bk[k] = (double)(Y + s->V);
+            w->bx[k] = (double)(X - s->c0);
+        } else {
+            w->bx[k] = u_at(s, *t);
+        }
+    }
+    if (off)
+        offset_keep(s, *t, s->bk[k]);
+    *u = s->bx[k];
 }
 
 /* ------------------------------------------------------------------------
@@ -1207,8 +1284,10 @@ static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const d
         if (whole) {
             accumulate(r->wk, s, s->ta, s->tb, s->ua, s->ub, dc, S->nch, r->W);
         } else {
-            double t1 = tau_of_v(s, ya), t2 = tau_of_v(s, yb);
-            accumulate(r->wk, s, t1, t2, seg_u(s, t1), seg_u(s, t2), dc, S->nch, r->W);
+            double t1, t2, u1, u2;
+            sub_end(s, ya, &t1, &u1);
+            sub_end(s, yb, &t2, &u2);
+            accumulate(r->wk, s, t1, t2, u1, u2, dc, S->nch, r->W);
         }
     }
 }
@@ -1439,17 +1518,21 @@ static inline double right_end(const ar_seg *s, int lo)
 }
 
 /* The segs before keys[k] (in order of left end) whose extent reaches
- * keys[k]'s left end: act[0..*nact) holds, in ascending order, those that
- * reached the one before; drop those left behind for good (left ends only
- * grow).  So each seg is tested against the segs overlapping it only, in
- * the order of a scan over all those before it, not against every one. */
+ * past keys[k]'s left end: act[0..*nact) holds, in ascending order, those
+ * that reached past the one before; drop those left behind for good (left
+ * ends only grow).  So each seg is tested against the segs overlapping it
+ * only, in the order of a scan over all those before it, not against every
+ * one.  Extents that only touch (at one x) are not overlapping: the two
+ * segs lie on either side of that x, may touch there, and never change
+ * order (a stroke's inner join line and its offset leaving their common
+ * vertex on either side of it). */
 static void reaching(const ar_row *r, const ar_key *keys, uint32_t *act, size_t *nact,
                      double left, int lo)
 {
     const ar_seg *seg = r->wk->seg;
     size_t keep = 0;
     for (size_t a = 0; a < *nact; a++)
-        if (right_end(&seg[keys[act[a]].idx], lo) >= left)
+        if (right_end(&seg[keys[act[a]].idx], lo) > left)
             act[keep++] = act[a];
     *nact = keep;
 }
@@ -1471,6 +1554,80 @@ static int any_crossing(const ar_row *r, const ar_key *keys, size_t n, int lo)
         act[nact++] = (uint32_t)k;
     }
     return 0;
+}
+
+/* Order along x from the ends (order_ends): a pair of neighbours is in
+ * order where it is apart by more than ORDER_GAP px at one end of the
+ * (sub-)band and not reversed by more than ORDER_TIE px (rounding: two
+ * pieces leaving one vertex) at the other. */
+#define ORDER_GAP 1e-9
+#define ORDER_TIE 1e-12
+
+/* u at the top and the bottom of the band (sub = 0: the seg spans it) or
+ * of the sub-band [ya, yb] (sub_key), relative to cell lo */
+static inline void ends_u(const ar_seg *s, int lo, double ya, double yb, int sub, double *top,
+                          double *bot)
+{
+    double base = (double)(s->c0 - lo), t, u;
+    if (!sub) {
+        *top = base + s->ua, *bot = base + s->ub;
+        return;
+    }
+    sub_key(s, ya, &t, &u);
+    *top = base + u;
+    sub_key(s, yb, &t, &u);
+    *bot = base + u;
+}
+
+/* 1 if two segs' x at each height of the (sub-)band is a function of
+ * their x at its ends alone: two lines (x linear in y), or two offset
+ * pieces of one curve over one range of its parameter (the outline traces
+ * an offset curve's part between its folds twice), one x at every height.
+ * Such a pair, in order at both ends up to rounding (ORDER_TIE), is in
+ * that order inside (within rounding of each other where the ends are). */
+static inline int same_track(const ar_seg *a, const ar_seg *b)
+{
+    const ar_piece *p = a->p, *q = b->p;
+    if (p->line && q->line)
+        return 1;
+    if (!(p->offset && q->offset))
+        return 0;
+    const aa_piece *P = p->src, *Q = q->src;
+    return ((P->ot0 == Q->ot0 && P->ot1 == Q->ot1) || (P->ot0 == Q->ot1 && P->ot1 == Q->ot0)) &&
+           !memcmp(&P->oc, &Q->oc, sizeof P->oc);
+}
+
+/* keys[0..n) = in[0..n), segs none of which crosses another inside the
+ * band or sub-band [ya, yb] (all spanning it), in their order along x
+ * inside it, from u at its ends: sorted by the sum of the two, and kept
+ * if each pair of neighbours is in order at both ends, apart at one
+ * (ORDER_GAP).  Two that do not cross keep one order inside; at an end
+ * they are in it or meet (a vertex on the band's line), up to rounding.
+ * 0 if some pair is not so ordered (the same ends, pieces traced twice,
+ * or ends within ORDER_GAP): the order is then taken at the middle,
+ * a root on each offset piece (key_u), which the ends spare. */
+static int order_ends(const ar_row *r, const ar_key *in, size_t n, int lo, double ya, double yb,
+                      int sub, ar_key *keys)
+{
+    const ar_seg *seg = r->wk->seg;
+    double top, bot, pt = 0.0, pb = 0.0;
+    for (size_t k = 0; k < n; k++) {
+        ends_u(&seg[in[k].idx], lo, ya, yb, sub, &top, &bot);
+        keys[k].key = top + bot;
+        keys[k].id = in[k].id;
+        keys[k].idx = in[k].idx;
+    }
+    sort_keys(keys, n);
+    for (size_t k = 0; k < n; k++) {
+        ends_u(&seg[keys[k].idx], lo, ya, yb, sub, &top, &bot);
+        double dt = top - pt, db = bot - pb;
+        if (k > 0 && !((dt > ORDER_GAP && db > -ORDER_TIE) || (db > ORDER_GAP && dt > -ORDER_TIE) ||
+                       (dt > -ORDER_TIE && db > -ORDER_TIE &&
+                        same_track(&seg[keys[k - 1].idx], &seg[keys[k].idx]))))
+            return 0;
+        pt = top, pb = bot;
+    }
+    return 1;
 }
 
 /* keys[0..n) = the cluster's segs (all spanning the band) in their order
@@ -1512,7 +1669,7 @@ static void cluster_fast(const ar_row *r, const ar_key *in, size_t n, int lo, in
         ar_key *k = r->wk->sub;
         if (n == 1)
             k[0] = in[0];
-        else
+        else if (!order_ends(r, in, n, lo, 0.0, 1.0, 0, k))
             order_mid(r, in, n, lo, k);
         keys = k;
     }
@@ -1567,7 +1724,10 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
                 const ar_seg *t = &seg[keys[act[a]].idx];
                 if (t->p->flat)
                     continue;
-                double ya = fmax(fmax(s->va, t->va), y), yb = fmin(fmin(s->vb, t->vb), b.lim);
+                /* the larger top and smaller bottom written out (fmax
+                 * and fmin are library calls; none of these is NaN) */
+                double ya = s->va > t->va ? s->va : t->va, yb = s->vb < t->vb ? s->vb : t->vb;
+                ya = ya > y ? ya : y, yb = yb < b.lim ? yb : b.lim;
                 if (!(ya < yb))
                     continue;
                 int c = pair_crossings(t, s, ya, yb, r->j, out);
@@ -1576,7 +1736,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
             }
         act[nact++] = (uint32_t)k;
     }
-    qsort(b.v, b.n, sizeof *b.v, cmp_double);
+    sort_doubles(b.v, b.n);
     size_t m = 0;
     for (size_t k = 0; k < b.n; k++)
         if (m == 0 || b.v[k] > b.v[m - 1])
@@ -1605,15 +1765,19 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
             /* the segs spanning the sub-band, ordered along x at its middle */
             double vm = 0.5 * (ya + yb);
             size_t m = 0;
+            ar_key *span = list + n; /* keys[0..n) sits before list */
             for (size_t k = 0; k < n; k++) {
                 const ar_seg *s = &wk->seg[keys[k].idx];
                 if (s->p->flat || !(s->va <= ya && s->vb >= yb))
                     continue;
-                list[m].key = (double)(s->c0 - lo) + key_u(s, vm);
-                list[m].id = keys[k].id;
-                list[m++].idx = keys[k].idx;
+                span[m++] = keys[k];
             }
-            sort_keys(list, m);
+            if (!order_ends(r, span, m, lo, ya, yb, 1, list)) {
+                for (size_t k = 0; k < m; k++)
+                    list[k].key = (double)(wk->seg[list[k].idx].c0 - lo) +
+                                  key_u(&wk->seg[list[k].idx], vm);
+                sort_keys(list, m);
+            }
             memcpy(wk->wtmp, w, nl * sizeof *w);
             sweep(r, list, m, wk->wtmp, cin, ya, yb, 0);
         }
@@ -2468,7 +2632,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->seg = line_alloc(n, sizeof *wk->seg);
     wk->list = line_alloc(n, sizeof *wk->list);
     wk->order = line_alloc(n, sizeof *wk->order);
-    wk->sub = line_alloc(2 * n, sizeof *wk->sub);
+    wk->sub = line_alloc(3 * n, sizeof *wk->sub);
     wk->acc = line_alloc(cells, sizeof *wk->acc);
     wk->cov = line_alloc(cells, sizeof *wk->cov);
     wk->wind = line_alloc(nl, sizeof *wk->wind);

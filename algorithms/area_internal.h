@@ -163,6 +163,15 @@ typedef struct ar_seg {
      * (pair_crossings), mn the one written next */
     double my[2], mt[2];
     int mn;
+    /* the ends of the sub-bands of a band cut at its events (area.c,
+     * cluster_bands; sub_key, sub_end) at up to two heights bv
+     * (band-relative; NAN: none, from band_fields): tau bt, u for the
+     * order bu (an offset piece's from its root's last evaluation, as
+     * key_u's), u as seg_u gives it bx (NAN: not yet) and an offset
+     * piece's v kept there bk; bn the one written next.  A sub-band's
+     * bottom is the next one's top, and its order and its sweep both ask. */
+    double bv[2], bt[2], bu[2], bx[2], bk[2];
+    int bn;
     /* the current band */
     double V;
     double ta, tb;  /* tau at the band's (or piece's) top and bottom */
