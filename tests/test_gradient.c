@@ -2779,6 +2779,66 @@ static void test_mixed_nested_half(void **state)
     gw = W, gh = H;
 }
 
+/* A cone-case radial gradient (focal circle (3, 10) r 1.5 outside the end
+ * circle (14, 12) r 5; its stops and the linear gradient under it as
+ * test_mixed_nested_half's) at alpha 0.6: inside the wedge t is (b +
+ * sqrt(L0 L1)) / a, so across the lower tangent line L0 = 0 the
+ * composite E moves like sqrt(L0), and the threshold's curve E = 0.04045
+ * ends on the line, tangent to it, where E on the line (t = b / a) is
+ * 0.04045: green's at (3.57, 8.41), blue's at (3.99, 8.35), both in pixel
+ * (3, 8).  Its windows' boxes about those points were halved without end
+ * and left to the scan (1 pixel under the box, 4 under tent:r=1 and
+ * cone:r=1); now certified.  Pixel (3, 8) against the 2-D quadrature of
+ * SVG 2's definition (mpic_pixel, mlayer_cone_t; its rows' events found
+ * by sampling, the touching heights among them), and its window and
+ * (4, 7)'s, both touching points in them, under tent:r=1 and cone:r=1
+ * certified within 1e-12.  Then the end circle (36, 11) r 6.5 and the
+ * focal circle (-4, 5) r 6, the lines nearly parallel, green's touching
+ * point at (11.17, 1.03): under tent:r=1 pixel (10, 0)'s rows next to
+ * that height put a threshold's place within 1e-19 of the line in the
+ * square root of the distance, where the weight's fit over the piece's
+ * x range, below x's resolution, was 0 / 0 and the row was refused
+ * (truth.c, gen_rule_bound); certified now too. */
+static void test_mixed_cone_touch(void **state)
+{
+    (void)state;
+    mpic p = {2,
+              {{0, {0, 0, W, W}, AA_GRADIENT_LINEAR, {0, 2, 0, 22, 0, 0}, AA_SPREAD_PAD, 2,
+                nest_lin, 1.0},
+               {0, {0, 0, W, W}, AA_GRADIENT_RADIAL, {14, 12, 5, 3, 10, 1.5}, AA_SPREAD_PAD, 2,
+                nest_rad, 0.6}},
+              {0, 0, 0},
+              0};
+    static const int px[1][2] = {{3, 8}}, fpx[2][2] = {{3, 8}, {4, 7}};
+    static const char *const filt[2] = {"tent:r=1", "cone:r=1"};
+    assert_int_equal(mpic_check_px("cone over linear, the curve touching a tangent line", &p, px,
+                                   1),
+                     0);
+    gw = gh = W;
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass) {
+            const double par[6] = {36, 11, 6.5, -4, 5, 6};
+            memcpy(p.l[1].p, par, sizeof par);
+        }
+        aa_scene *s = mpic_scene(&p);
+        for (int f = 0; f < (pass ? 1 : 2); f++)
+            for (int k = 0; k < (pass ? 1 : 2); k++) {
+                aa_image ref, bound;
+                aa_truth_stats stats;
+                int i = pass ? 10 : fpx[k][0], j = pass ? 0 : fpx[k][1];
+                support_reference_part(s, W, W, i, j, 1, 1, filt[f], &ref, &bound, &stats);
+                print_message("cone touching, %s: pixel (%d, %d) %s\n", filt[f], i, j,
+                              stats.scanned ? "scanned" : "certified");
+                assert_int_equal(stats.scanned, 0);
+                expect_bound(filt[f], &stats);
+                aa_image_free(&ref);
+                aa_image_free(&bound);
+            }
+        aa_scene_free(s);
+    }
+    gw = W, gh = H;
+}
+
 /* Which pixels take the certified step and which the scan, as truth.c's
  * opening comment ("several gradients") states the rule: the lens's
  * scene, both layers filling the view (no edge in any window, a linear
@@ -2871,6 +2931,7 @@ int main(void)
         cmocka_unit_test(test_mixed_which_step),
         cmocka_unit_test(test_mixed_cone),
         cmocka_unit_test(test_mixed_nested_half),
+        cmocka_unit_test(test_mixed_cone_touch),
         cmocka_unit_test(test_threshold_mid_span),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

@@ -34,7 +34,7 @@
 #include <unistd.h>
 
 /* Bump when the ground truth's results could change. */
-#define TRUTH_VERSION 17/* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
+#define TRUTH_VERSION 18/* 2: crowded windows one piece at a time (truth_crowd.c); 3: conic
                           * pieces, and the cone's breakpoint where a piece passes
                           * closest to the centre; 4: the square root substitution on
                           * intervals that end near a turning point; 5: which radial
@@ -76,7 +76,12 @@
                           * bounded for the threshold's Taylor test, the
                           * half-plane's t across its edge in a box, and a
                           * sliver's strip that a cone's line crosses bounded
-                          * over the line's x by both cases' range */
+                          * over the line's x by both cases' range; 18: a box
+                          * that a wedge's tangent line crosses free where E on
+                          * the line is off 0.04045 and u E' (u = sqrt(L0 L1)) is
+                          * off 0 (the curve touching the line was scanned), and
+                          * a piece in u below x's resolution weighed by the fit
+                          * over its stretch (0 / 0: the row refused) */
 #define CACHE_MAGIC "aabench-reference 3\n" /* 3: the count scanned */
 
 static int field_key(const aa_view *view, char *buf, size_t len);

@@ -439,21 +439,43 @@
  * of the half-plane below) and not, as a piece's layer is covered and not,
  * up to THR_PART such layers.  A box holding P* is one of those (the
  * wedge), or has d's range reach 0 (CONE_NESTED: t's kink), a cut.  Where
- * the threshold's curve meets a tangent line it touches it (the curve is
- * near a circle of one t, and each touches the lines), and the boxes
- * about that point grow without end: a window of a scene with a cone
- * layer whose boxes pass THR_CONE_BOXES (50000; those certified on the
- * 24x24 document below took at most 12055, under cone:r=1) or whose
- * slivers' bounds pass THR_CONE_LEFT (1e-13) in all is left to the scan.
- * On a 24x24 document (a linear gradient along y, #000 to #404040, under a
- * cone-case radial gradient at fill-opacity 0.6, focus (3, 10) and fr 1.5
- * outside the circle (14, 12) of radius 5, dark stops) 1 pixel of 576 is
- * scanned (576 before), 4 under cone:r=1 (576), the values within 8.9e-16
- * of the scan's (1.3e-15 under cone:r=1), each difference inside both
- * bounds, largest bound 1.7e-13 (1.8e-13 before); 5.48e9 instructions
- * against 4.16e9 scanned (`valgrind --tool=callgrind aabench truth -p
- * svg:file=F --no-cache --threads 1`; the pixel left to the scan took its
- * 50000 boxes first).
+ * the threshold's curve meets a tangent line it touches it: on the
+ * painted side t = (b + u) / a, u = sqrt(L0 L1), so across the line L_k
+ * = 0 E moves like sqrt(L_k), and the curve is half a parabola that ends
+ * on the line, tangent to it, where E on the line (t = b / a) is
+ * 0.04045.  Taken as a cut, a box of side h holding the line has E's
+ * range about sqrt(h) wide, and the boxes along the line that hold
+ * 0.04045 grow like h^(-1/2) in number.  So a box that one line crosses
+ * (the other form above 0 on it; thr_cone_line) takes, painted, u t' =
+ * (u b' + (L0' L1 + L0 L1') / 2) / a, bounded up to the line, in place
+ * of t', and every other layer's derivative times u in [0, U]: u E',
+ * whose sign is E''s where u > 0; and the line is a cut of the painted
+ * case only where E on it (the layer's paint at b / a over the box) may
+ * be 0.04045 (as a stop line bounding a segment is), of the unpainted
+ * case always.  The curve then meets the line on no box free of events,
+ * and crosses the rows of the painted part transversally there; the
+ * boxes about the touching point are halved as about a transversal
+ * crossing.  A window of a scene with a cone layer whose boxes still pass
+ * THR_CONE_BOXES (50000) or whose slivers' bounds pass THR_CONE_LEFT
+ * (1e-13) in all is left to the scan.  On a 24x24 document (a linear
+ * gradient along y, #000 to #404040, under a cone-case radial gradient at
+ * fill-opacity 0.6, focus (3, 10) and fr 1.5 outside the circle (14, 12)
+ * of radius 5, dark stops; green's curve touches the lower line at
+ * (3.57, 8.41), blue's at (3.99, 8.35)) 1 pixel of 576 was scanned under
+ * the box, 4 under tent:r=1 and cone:r=1, none now; the values within
+ * 3.0e-17 of the scan's (1.7e-18 under tent:r=1, 1.7e-17 under
+ * cone:r=1), each difference inside both bounds, the others the same to
+ * the bit, largest bound 1.7e-13 as before (not at those pixels; 2.9e-14
+ * at pixel (3, 8), 1.8e-14 scanned); 2.66e9 instructions against
+ * 5.41e9 (`valgrind --tool=callgrind aabench truth -p svg:file=F
+ * --no-cache --threads 1`), 6.22e9 against 4.11e10 under tent:r=1,
+ * 3.57e10 against 4.91e10 under cone:r=1 (each window left to the scan
+ * took its 50000 boxes first).
+ * Where a row passes within rounding of the touching point, the place
+ * of the threshold next to the line in u (below) lies within 1e-19 of
+ * it, and the pieces there have x ranges below x's resolution: under a
+ * polynomial weight (tent) the weight's fit over such a piece was 0 / 0
+ * and the row was refused (gen_rule_bound).
  * On a 16x16 one (focus (-4, 5), fr 6, outside the circle (36, 11) of
  * radius 6.5: the tangent lines nearly parallel, an arc of the curve
  * between them) 256 pixels were scanned, none now, 3.26e9 instructions
@@ -1662,6 +1684,9 @@ typedef struct gen_span_ctx {
      * sqrt(P0 + P1 u^2); else the variable is x */
     int umode, ul;
     double xr, eps, P0, P1;
+    /* in u: the x range of the whole stretch taken in u, sxm +- sxh (one
+     * piece of a polynomial weight: the row is cut at its kinks) */
+    double sxm, sxh;
     /* uroot[l]: layer l is of the same cone as ul (the same forms) and
      * takes ul's sqrt(d) = u sqrt(P) on the piece in u */
     int uroot[GEN_LAYERS];
@@ -3169,13 +3194,23 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
     if (!(rmax > 1.0 + 1e-9))
         return INFINITY;
     double best = INFINITY, wa[4] = {0, 0, 0, 0}, xm = m, xh = h;
+    int poly = c->weighted && !c->radial && c->f->type != &aa_filter_lanczos &&
+               c->f->type != &aa_filter_gauss;
     if (c->umode) { /* the weight fitted about the piece's own x range */
         double xa = gen_x(c, m - h), xb = gen_x(c, m + h);
         xm = 0.5 * (xa + xb), xh = 0.5 * fabs(xb - xa);
     }
-    if (c->weighted && !c->radial && c->f->type != &aa_filter_lanczos &&
-        c->f->type != &aa_filter_gauss)
-        wt_poly(c, xm, xh, wa);
+    /* a piece in u next to the line whose x range is below x's
+     * resolution (u^2 below an ulp of x; a row within rounding of where
+     * the threshold's curve touches the line puts a place there): the
+     * weight's polynomial fitted over the whole stretch in u, one piece
+     * of it, and bounded about that centre (wt_bound's disc, grown by
+     * the distance between the centres) */
+    double wm = xm, wh = xh;
+    if (c->umode && poly && !(xh > 0.0) && c->sxh > 0.0)
+        wm = c->sxm, wh = c->sxh;
+    if (poly)
+        wt_poly(c, wm, wh, wa);
     /* weighted, also rho at geometric steps towards rmax (the Gaussian's
      * bound grows like exp(B^2 / (2 s^2)): its best rho is small) */
     for (int k = 1; k < (c->weighted ? 15 : 8); k++) {
@@ -3204,8 +3239,8 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
             double Zu = fabs(m) + A;
             worst *= 2.0 * Zu;
             if (c->weighted) {
-                double Aw = fabs(c->xr - xm) + Zu * Zu;
-                worst *= wt_bound(c, wa, xm, xh, Aw, fmin(Aw, 2.0 * Zu * B));
+                double Aw = fabs(c->xr - xm) + Zu * Zu + fabs(xm - wm);
+                worst *= wt_bound(c, wa, wm, wh, Aw, fmin(Aw, 2.0 * Zu * B));
             }
         } else if (c->weighted)
             worst *= wt_bound(c, wa, m, h, A, B);
@@ -3896,6 +3931,8 @@ static void gen_section(worker *w, const gen_span_ctx *c, double a, double b, do
                  * weighed at x(mid), inside it */
                 double pa = gen_x(c, fa), pb = gen_x(c, fb), lx = fabs(pb - pa);
                 double xm = gen_x(c, 0.5 * (fa + fb)), wm = 1.0, sup = 1.0, slope = 0.0;
+                if (!(lx > 0.0)) /* below x's resolution: its length from u */
+                    lx = fmax((fb - fa) * (fb + fa) * (1.0 + 4.0 * DBL_EPSILON), 0x1p-1021);
                 if (c->weighted) {
                     wm = c->radial ? rwt(c, xm - c->uc) : aa_filter_weight(c->f, xm - c->uc);
                     wt_real(c, 0.5 * (pa + pb), 0.5 * lx, &sup, &slope);
@@ -3979,6 +4016,7 @@ static void gen_root(gen_span_ctx *c, int l, int k, double xr, double eps)
     double Lo = creal(c->lam[l][o] * xr + c->mu[l][o]);
     c->umode = 1, c->ul = l, c->xr = xr, c->eps = eps;
     c->P0 = eps * lk * Lo, c->P1 = lk * lo;
+    c->sxm = c->sxh = 0.0;
     for (int q = 0; q < c->n; q++) /* layers of the same cone: the same forms */
         c->uroot[q] = c->L[q]->rg && c->L[q]->rg->cone && !c->flat[q] &&
                       c->lam[q][0] == c->lam[l][0] && c->lam[q][1] == c->lam[l][1] &&
@@ -4184,12 +4222,16 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
         }
         double mid = 0.5 * (a + b);
         if (la >= 0) {
+            double e = lb >= 0 ? mid : b;
             gen_root(&c, la, ka, a, 1.0);
-            gen_section(w, &c, 0.0, sqrt((lb >= 0 ? mid : b) - a), sum, &err);
+            c.sxm = 0.5 * (a + e), c.sxh = 0.5 * (e - a);
+            gen_section(w, &c, 0.0, sqrt(e - a), sum, &err);
         }
         if (lb >= 0 && !w->gen_stuck) {
+            double e = la >= 0 ? mid : a;
             gen_root(&c, lb, kb, b, -1.0);
-            gen_section(w, &c, 0.0, sqrt(b - (la >= 0 ? mid : a)), sum, &err);
+            c.sxm = 0.5 * (e + b), c.sxh = 0.5 * (b - e);
+            gen_section(w, &c, 0.0, sqrt(b - e), sum, &err);
         }
         c.umode = 0;
     }
@@ -5913,6 +5955,15 @@ typedef struct thr_jet {
     thr_iv v, d;
 } thr_jet;
 
+/* A cone layer's tangent line crossing a box (thr_cone_line): on, the
+ * layer's derivative returned times u = sqrt(L0 L1) in [0, U], and tl, t
+ * on the line from its painted side. */
+typedef struct thr_line {
+    int on;
+    double U;
+    thr_iv tl;
+} thr_line;
+
 /* lo and hi moved out by |x| 2^-52 and the least subnormal: a correctly
  * rounded result is within 2^-53 |x| of the exact one (or half the least
  * subnormal), and the move, at least an ulp of x, survives its own
@@ -6053,6 +6104,37 @@ static thr_jet j_inv(thr_jet a)
     return (thr_jet){r, iv_sub(iv_k(0.0), iv_mul(a.d, iv_sqr(r)))};
 }
 
+/* A wedge's tangent line L_k0 = 0 crossing the box, the other form L_k1
+ * above 0 on it (thr_cone_t; "a tangent line the curve touches" in
+ * truth.c's opening comment): the layer paints part of the box (*paint
+ * 2).  On that part t = (b + u) / a, u = sqrt(L0 L1) in [0, U] (or c /
+ * (b - u) where b keeps below 0), its derivative t' = (b' + (L0' L1 +
+ * L0 L1') / (2 u)) / a unbounded at the line; returned is u t' = (u b'
+ * + (L0' L1 + L0 L1') / 2) / a, bounded, of t''s sign where u > 0, with
+ * ln: U and t on the line, b / a (u = 0, L_k0 = 0). */
+static thr_jet thr_cone_line(const grad_radial *r, thr_jet *L, int k0, thr_jet b, thr_jet cc,
+                             unsigned char *paint, thr_line *ln)
+{
+    thr_iv ia = iv_out(1.0 / r->a, 1.0 / r->a), P[2];
+    *paint = 2;
+    for (int k = 0; k < 2; k++)
+        P[k] = L[k].v;
+    P[k0].lo = 0.0;
+    thr_iv d = iv_mul(P[0], P[1]), u = iv_out(0.0, sqrt(fmax(d.hi, 0.0)));
+    u.lo = 0.0;
+    thr_jet t;
+    t.v = iv_mul(iv_add(b.v, u), ia);
+    if (b.v.lo + b.v.hi < 0.0) {
+        thr_iv den = iv_sub(b.v, u);
+        if (den.hi < 0.0)
+            t.v = iv_mul(cc.v, iv_out(1.0 / den.hi, 1.0 / den.lo));
+    }
+    thr_iv dd = iv_add(iv_mul(L[0].d, P[1]), iv_mul(P[0], L[1].d));
+    t.d = iv_mul(iv_add(iv_mul(u, b.d), iv_mul(iv_k(0.5), dd)), ia);
+    ln->on = 1, ln->U = u.hi, ln->tl = iv_mul(b.v, ia);
+    return t;
+}
+
 /* A layer of the cone case on the box (thr_t; "the cone case"): its
  * linear forms' ranges decide where it paints, {L0 >= 0, L1 >= 0}
  * (CONE_HALF: L0 > 0; CONE_NESTED: everywhere), *paint 1 on the whole
@@ -6065,7 +6147,7 @@ static thr_jet j_inv(thr_jet a)
  * cancels), c / (2 b) for CONE_HALF.  d's range reaching 0 (the apex P*
  * in the box, or a tangent line) leaves t's derivative unbounded: *bad. */
 static thr_jet thr_cone_t(const thr_ctx *c, int l, thr_jet b, thr_jet cc, thr_iv X, thr_iv S,
-                          int *bad, unsigned char *paint)
+                          int *bad, unsigned char *paint, thr_line *ln)
 {
     const grad_radial *r = c->w->gl[l].rg;
     thr_jet L[2];
@@ -6083,6 +6165,10 @@ static thr_jet thr_cone_t(const thr_ctx *c, int l, thr_jet b, thr_jet cc, thr_iv
             *paint = 0;
             return (thr_jet){{0.0, 0.0}, {0.0, 0.0}};
         }
+        int k0 = L[0].v.lo >= least; /* the form whose range may hold 0 */
+        if (!(L[0].v.lo >= least && L[1].v.lo >= least) && ln && r->cone == CONE_WEDGE &&
+            L[1 - k0].v.lo > 0.0)
+            return thr_cone_line(r, L, k0, b, cc, paint, ln);
         if (!(L[0].v.lo >= least && L[1].v.lo >= least)) {
             *paint = 2, *bad = 1;
             for (int k = 0; k < 2; k++)
@@ -6123,7 +6209,7 @@ static thr_jet thr_cone_t(const thr_ctx *c, int l, thr_jet b, thr_jet cc, thr_iv
  * range is not had (a radial layer's discriminant near 0, a cone's
  * tangent line or P*); *paint: 1, or the cone case's (thr_cone_t). */
 static thr_jet thr_t(const thr_ctx *c, int l, thr_iv X, thr_iv S, int *bad,
-                     unsigned char *paint)
+                     unsigned char *paint, thr_line *ln)
 {
     const gen_layer *g = &c->w->gl[l];
     *paint = 1;
@@ -6143,7 +6229,7 @@ static thr_jet thr_t(const thr_ctx *c, int l, thr_iv X, thr_iv S, int *bad,
                       j_k(iv_mul(iv_k(r->fr), iv_k(r->dr))));
     thr_jet cc = j_sub(j_add(j_sqr(qx), j_sqr(qy)), j_k(iv_sqr(iv_k(r->fr))));
     if (r->cone)
-        return thr_cone_t(c, l, b, cc, X, S, bad, paint);
+        return thr_cone_t(c, l, b, cc, X, S, bad, paint, ln);
     thr_jet disc = j_sub(j_sqr(b), j_scale(r->a, cc));
     /* t = (b - sqrt(disc)) / a, a < 0 (rad_t's two forms are this) */
     return j_mul(j_sub(b, j_sqrt(disc, bad)), j_k(iv_out(1.0 / r->a, 1.0 / r->a)));
@@ -6381,12 +6467,21 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
     double brk[THR_SEG + 1], elo[3] = {INFINITY, INFINITY, INFINITY};
     double ehi[3] = {-INFINITY, -INFINITY, -INFINITY};
     int split = -1, nbrk = 0, hit = 0, flat = 0, part[THR_PART], np = 0;
+    /* ln: the one cone layer lnl whose tangent line crosses the box, its
+     * derivative times u (thr_cone_line); a second one is a cut */
+    thr_line ln = {0, 0.0, {0.0, 0.0}};
+    int lnl = -1;
     for (int l = 0; l < w->ngl; l++) {
         int bad = 0;
         if (!c->used[l])
             continue;
-        t[l] = thr_t(c, l, X, S, &bad, &c->paint[l]);
+        thr_line li = {0, 0.0, {0.0, 0.0}};
+        t[l] = thr_t(c, l, X, S, &bad, &c->paint[l], &li);
         cut |= bad;
+        if (li.on && lnl >= 0)
+            cut = 1;
+        else if (li.on)
+            lnl = l, ln = li;
         if (c->paint[l] == 2 && np == THR_PART) { /* too many painting part of it: kept */
             if (wid)
                 *wid = INFINITY;
@@ -6419,8 +6514,16 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
         for (int k = 0; k < np; k++)
             on[part[k]] = (m >> k) & 1 ? 2 : 0;
         int sp = split >= 0 && on[split] ? split : -1;
+        /* the tangent line of layer lnl: a cut where it is not painted;
+         * where it is, every other layer's derivative is taken times u
+         * in [0, U] (as lnl's is), and the line a cut only where E on it
+         * (the layer's paint at its t there) may be 0.04045: else the
+         * curve meets it nowhere on the box, and where u > 0, u E' has
+         * E''s sign */
+        int lon = lnl >= 0 && on[lnl];
+        thr_iv us = {0.0, ln.U};
         for (int j = 0; j <= (sp >= 0 ? nbrk : 0); j++) {
-            int cj = cut;
+            int cj = cut || (lnl >= 0 && !lon);
             thr_jet ts = {{0.0, 0.0}, {0.0, 0.0}};
             for (int l = 0; l < w->ngl; l++) {
                 thr_jet p[4];
@@ -6440,6 +6543,8 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
                     thr_affine(&w->gl[l], ts, p);
                 } else
                     thr_paint(c, l, t[l], p, &cj);
+                for (int k = 0; k < 4 && lon && l != lnl; k++)
+                    p[k].d = iv_mul(p[k].d, us);
                 a[l] = p[3];
                 for (int ch = 0; ch < c->nch; ch++)
                     ac[l][ch] = j_mul(p[3], p[ch]);
@@ -6466,6 +6571,20 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
                     cj |= Eb[ch].v.lo <= 0.04045 && Eb[ch].v.hi >= 0.04045;
                 }
             }
+            if (lon && !cj) { /* E on the tangent line, from its painted side */
+                thr_jet p[4], El[3], keep = a[lnl], kc[3];
+                int lc = 0;
+                thr_paint(c, lnl, j_k(ln.tl), p, &lc);
+                a[lnl] = p[3];
+                for (int ch = 0; ch < c->nch; ch++)
+                    kc[ch] = ac[lnl][ch], ac[lnl][ch] = j_mul(p[3], p[ch]);
+                thr_fold(c, a, ac, El);
+                a[lnl] = keep;
+                for (int ch = 0; ch < c->nch; ch++) {
+                    ac[lnl][ch] = kc[ch];
+                    cj |= El[ch].v.lo <= 0.04045 && El[ch].v.hi >= 0.04045;
+                }
+            }
             for (int ch = 0; ch < c->nch && wid; ch++) {
                 elo[ch] = fmin(elo[ch], E[ch].v.lo), ehi[ch] = fmax(ehi[ch], E[ch].v.hi);
                 mlo[ch] = fmin(mlo[ch], E[ch].v.lo), mhi[ch] = fmax(mhi[ch], E[ch].v.hi);
@@ -6481,7 +6600,7 @@ static int thr_box(const thr_ctx *c, double x0, double x1, double s0, double s1,
                 if (!cj && (e.d.lo > 0.0 || e.d.hi < 0.0))
                     continue;
                 hit = 1;
-                flat = e.d.lo >= -1e-300 && e.d.hi <= 1e-300;
+                flat = !lon && e.d.lo >= -1e-300 && e.d.hi <= 1e-300;
             }
             if (hit && !wid) {
                 *xfree |= flat;
