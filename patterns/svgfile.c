@@ -4360,6 +4360,76 @@ static int bs_shape(reader *r, const char *fn, size_t n, const char **s, const d
     return 0;
 }
 
+/* The stroke bounding box of the content of the <g> node (its style sty,
+ * m its user space to the box's) grown into e: the union of its
+ * children's (SVG 2, "Bounding boxes"), each through its transform, a
+ * shape's its fill box grown by its stroke outline's exact bounds when it
+ * is stroked, a group's its content's; elements with display="none", and
+ * those never drawn where they stand, add nothing.  A <use>, a nested
+ * <svg> or a <switch> inside is refused, as is a stroke with offset curves
+ * (its extent not computed exactly here). */
+static int group_stroke_box(reader *r, const xmlNode *node, const style *sty, const mat *m,
+                            double e[4], int depth)
+{
+    static const char *const shapes[] = {"path", "rect",    "circle",  "ellipse",
+                                         "line", "polygon", "polyline"};
+    static const char *const silent[] = {"title",  "desc",           "metadata", "defs",
+                                         "style",  "clipPath",       "linearGradient",
+                                         "filter", "radialGradient", "mask",     "marker",
+                                         "pattern"};
+    if (depth > AA_SVG_MAX_DEPTH)
+        return fail_at(r, "elements nested deeper than %d", AA_SVG_MAX_DEPTH);
+    int st = AA_OK;
+    for (const xmlNode *c = node->children; c && !st; c = c->next) {
+        if (!is_svg(c) || !conditions_hold(c))
+            continue;
+        int shape = 0, quiet = 0;
+        for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+            shape |= named(c, shapes[k]);
+        for (size_t k = 0; k < sizeof silent / sizeof silent[0]; k++)
+            quiet |= named(c, silent[k]);
+        if (quiet)
+            continue;
+        r->node = c;
+        if (!shape && !named(c, "g"))
+            return fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box "
+                              "given) of a group holding a <%s> is not supported: give "
+                              "fill-box or view-box",
+                           (const char *)c->name);
+        style cs = *sty;
+        mat mc = *m;
+        int skip;
+        double opacity;
+        if ((st = element_props(r, c, &cs, &mc, &skip, &opacity)) || skip)
+            continue;
+        if (!shape) {
+            st = group_stroke_box(r, c, &cs, &mc, e, depth + 1);
+            continue;
+        }
+        aa_path p, out;
+        aa_path_init(&p);
+        aa_path_init(&out);
+        if (!(st = shape_path(r, c, &p)) && p.n) {
+            path_box(&p, &mc, e);
+            aa_stroke_style ss;
+            if (!cs.stroke_none && cs.stroke_width > 0 &&
+                !(st = stroke_outline_of(r, &p, &cs, &ss, &out))) {
+                for (size_t k = 0; k < out.n && !st; k++)
+                    if (out.seg[k].op == AA_PATH_OFFSET)
+                        st = fail_at(r, "clip-path: the stroke-box of a group holding a stroke "
+                                        "with offset curves (a Bezier or non-circular arc "
+                                        "stroked) is not supported: their extent is not "
+                                        "computed exactly");
+                if (!st)
+                    path_box(&out, &mc, e);
+            }
+        }
+        aa_path_free(&p);
+        aa_path_free(&out);
+    }
+    return st;
+}
+
 /* The reference box `kind` (0 fill-box, 1 stroke-box, 2 view-box) of the
  * element ref in its user space (where its clip-path lies), x y w h into
  * b: of the root, its viewport in CSS px; of a shape, its exact bounds,
@@ -4388,11 +4458,16 @@ static int bs_box(reader *r, const xmlNode *ref, int kind, double b[4])
     for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
         shape |= named(ref, shapes[k]);
     double e[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
-    if (kind == 1 && !(shape && r->csty_node == ref))
+    const int group = named(ref, "g");
+    if (kind == 1 && !((shape || group) && r->csty_node == ref))
         return fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box given) "
                           "of a <%s>%s is not supported: give fill-box or view-box",
                        (const char *)ref->name, shape ? " in a <clipPath>" : "");
-    if (shape) {
+    if (kind == 1 && group) {
+        const double em = r->font_size; /* the group's, which its children change */
+        st = group_stroke_box(r, ref, r->csty, &identity, e, 1);
+        r->font_size = em;
+    } else if (shape) {
         aa_path p;
         aa_path_init(&p);
         if (!(st = shape_path(r, ref, &p))) {
@@ -4998,7 +5073,10 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     const int outer = r->clip;
     int clip;
     if (group) {
-        if ((st = clip_of(r, node, &m, outer, &clip)))
+        r->csty_node = node, r->csty = &sty;
+        st = clip_of(r, node, &m, outer, &clip);
+        r->csty_node = NULL, r->csty = NULL;
+        if (st)
             return st;
         r->node = node;
         /* a group of opacity below 1 is composited as a whole (SVG 2,

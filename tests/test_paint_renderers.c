@@ -881,6 +881,15 @@ static const cell cells[] = {
      "height=\"24\" fill=\"white\"/></g>",
      {{12, 12, {1, 1, 1}}, {28, 28, {0, 0, 0}}, {22, 9, {0, 0, 0}}},
      3, "resvg rsvg"},
+    /* a group's stroke-box (the default box): its child's rect [10, 30]^2
+     * stroked 8 wide in red, [6, 34]^2; inset(0 50% 0 0) keeps [6, 20] x
+     * [6, 34]: red at (8, 20) (fill-box would cut it), white at (16, 20),
+     * black at (25, 20) */
+    {"clip-path: a group's stroke-box",
+     "<g style=\"clip-path: inset(0 50% 0 0)\" stroke=\"red\" stroke-width=\"8\"><rect "
+     "x=\"10\" y=\"10\" width=\"20\" height=\"20\" fill=\"white\"/></g>",
+     {{8, 20, {1, 0, 0}}, {16, 20, {1, 1, 1}}, {25, 20, {0, 0, 0}}},
+     3, "resvg rsvg"},
 };
 
 /* clip-path on a used symbol, as on the nested svg above, the use's x

@@ -699,6 +699,22 @@ static void test_geometry_boxes(void **state)
                  boxes[k].clip);
         check_area(boxes[k].clip, body, boxes[k].area);
     }
+    /* a group's: the union of its children's, each through its
+     * transform, a stroke inherited; a child group's stroke none: the
+     * rect [10, 40] x [10, 30] stroked ([7, 43] x [7, 33]) and [30, 50]^2,
+     * overlapping in [30, 43] x [30, 33]; all of it inside the stroke-box
+     * [7, 50]^2, 936 + 400 - 39; the fill-box [10, 50]^2 cuts the stroke
+     * to [10, 43] x [10, 33], 759 + 400 - 39 */
+    check_area("group-stroke-box",
+               "<g style=\"clip-path: inset(0)\" stroke=\"white\" stroke-width=\"6\"><rect "
+               "x=\"5\" width=\"30\" height=\"20\" transform=\"translate(5 10)\"/><g "
+               "stroke=\"none\"><rect x=\"30\" y=\"30\" width=\"20\" height=\"20\"/></g></g>",
+               936 + 400 - 39);
+    check_area("group-fill-box",
+               "<g style=\"clip-path: inset(0) fill-box\" stroke=\"white\" stroke-width=\"6\">"
+               "<rect x=\"5\" width=\"30\" height=\"20\" transform=\"translate(5 10)\"/><g "
+               "stroke=\"none\"><rect x=\"30\" y=\"30\" width=\"20\" height=\"20\"/></g></g>",
+               759 + 400 - 39);
     check_area("view-box", "<rect x=\"-10\" y=\"-10\" width=\"100\" height=\"100\" "
                            "clip-path=\"view-box\"/>",
                4096);
@@ -812,8 +828,12 @@ static void test_refused(void **state)
             "basic shape");
     /* the stroke-box of a group, and of a shape in a clipPath, whose
      * stroke is not known there */
-    refused("<g clip-path=\"circle(4px)\"><rect width=\"9\" height=\"9\"/></g>", "<g>",
-            "stroke-box");
+    refused("<rect id=\"r\" width=\"9\" height=\"9\"/><g clip-path=\"circle(4px)\"><use "
+            "href=\"#r\"/></g>",
+            "<use>", "stroke-box");
+    refused("<use href=\"#r\" clip-path=\"circle(4px)\"/><rect id=\"r\" width=\"9\" "
+            "height=\"9\"/>",
+            "<use>", "stroke-box");
     refused("<clipPath id=\"a\"><rect width=\"9\" height=\"9\" clip-path=\"inset(1px)\"/>"
             "</clipPath><rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
             "<rect>", "stroke-box");
