@@ -88,7 +88,11 @@
  *     with its source, so that peers stroke it themselves and `export`
  *     writes it as a stroke);
  *   - clipPath and clip-path="url(#id)" as the scene's clips (the sink's
- *     clip_begin, clip_end and clip; "clip paths" below);
+ *     clip_begin, clip_end and clip; "clip paths" below), and clip-path as
+ *     a basic shape and a geometry box ("basic shapes" below);
+ *   - the root's transform and clip-path, those of its layout box: in CSS
+ *     px outside its viewBox map, about the viewport's centre, the
+ *     viewport clipping the content as transformed (aa_svg_read_at);
  *   - linearGradient and radialGradient as fill and stroke paint
  *     (url(#id) with an optional fallback; the sink's `gradient`;
  *     "gradients" below).
@@ -98,9 +102,12 @@
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
  * linearRGB on what is drawn (compositing in linear light, which no browser
  * does; on a gradient element it is read: "gradients"), <pattern> paint servers, the
- * radial gradients whose focal circle is their end circle (grad_resolve), text, images, clip-path other than url(#id) or
- * none (basic shapes, geometry boxes, other documents) and on the root,
- * <text>, <g> and other non-shapes in a clipPath, references to clip
+ * radial gradients whose focal circle is their end circle (grad_resolve), text, images,
+ * clip-path into other documents, the stroke-box of a <use>, of a group
+ * holding a <use>, a nested <svg> or a <switch> and of a shape in a
+ * clipPath, basic shapes and boxes on a nested <svg> or a <symbol>, a
+ * singular transform on the root, <text>, <g> and other non-shapes in a
+ * clipPath, references to clip
  * paths forming a cycle, masks, filters, transform-box
  * stroke-box of a stroke with offset curves (its extent not computed
  * exactly) or inside an object bounding box (its stroke not known there),
@@ -3347,16 +3354,16 @@ static int group_begin(reader *r, double o)
  * shapes are drawn inside it (`clip`).
  *
  *   - clip-path="url(#id)" (or url('#id'), url("#id")) on a shape, a <g>,
- *     a child of a clipPath or a clipPath itself (on the root <svg> it is
- *     refused: it would be in the viewport's coordinates); none is
- *     no clip.  A reference to no element, or to an element that is not a
+ *     a child of a clipPath or a clipPath itself (on the root <svg>, in
+ *     the CSS px of its layout box, objectBoundingBox its viewport); none
+ *     is no clip.  A reference to no element, or to an element that is not a
  *     clipPath, is as if clip-path were not given (SVG 1.1's clip-path: a
  *     reference that is not valid is "treated as if it hadn't been
  *     specified"; the web-platform test css-masking/clip-path-svg-content/
  *     clip-path-invalid-reference.svg and Chromium draw the element
  *     unclipped).  References that come back to a clipPath being read form
- *     a cycle, an error.  Other URLs, basic shapes
- *     (circle() and the like) and geometry boxes are refused.
+ *     a cycle, an error.  Other URLs are refused; basic shapes and
+ *     geometry boxes are read below (basic_clip).
  *   - The clip is in the user space of the element referencing it (its
  *     own transform applied, SVG 1.1 14.3.5), then the clipPath's own
  *     transform; with clipPathUnits="objectBoundingBox" the unit square
@@ -4434,8 +4441,9 @@ static int group_stroke_box(reader *r, const xmlNode *node, const style *sty, co
  * element ref in its user space (where its clip-path lies), x y w h into
  * b: of the root, its viewport in CSS px; of a shape, its exact bounds,
  * and its stroke bounding box when its style is known (r->csty: where it
- * is drawn); of a group or a use, its object bounding box as
- * clipPathUnits="objectBoundingBox" takes it (a use's less its
+ * is drawn); of a <g>, its stroke bounding box (group_stroke_box, its
+ * style known likewise) or its object bounding box; of a <use>, its object
+ * bounding box as clipPathUnits="objectBoundingBox" takes it (less its
  * translate(x, y), which its user space holds); a box of nothing is the
  * point (0, 0). */
 static int bs_box(reader *r, const xmlNode *ref, int kind, double b[4])

@@ -7,8 +7,9 @@
  * with an error, invalid declarations and attributes, font-size larger,
  * a symbol's reference point, the object bounding box of a group holding
  * a use and of a use, a symbol's x and y, transform-box stroke-box,
- * pathLength, the units rem, vw and vmin, and conditional processing with
- * <switch>, as browsers draw them:
+ * pathLength, the units rem, vw and vmin, conditional processing with
+ * <switch>, clip-path's basic shapes and geometry boxes, and a transform on
+ * the root, as browsers draw them:
  * the exact box reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -915,10 +916,11 @@ static const cell symbol_cells[] = {
  * onto itself; the cell is written in the last cell's place, so that it
  * lands on the first, turned half a turn: the rect [4, 16] x [4, 24]
  * written is [24, 36] x [16, 36] drawn, white at (30, 26), black at (8,
- * 8) and (20, 10).  resvg turns it about the origin (0, 0), out of the
- * view: it draws nothing, wrong by CSS Transforms 1 and SVG 2 ("the
- * transform property" on the root, a layout box); librsvg 2.54 ignores
- * the root's transform, drawing the rect where written */
+ * 8) and (20, 10).  resvg turns it about the origin (0, 0), inside its
+ * viewBox map, out of the view: it draws nothing, wrong by CSS Transforms
+ * 1 (the root has a layout box, its transform-origin initially 50% 50%);
+ * librsvg 2.54 turns it about the origin too, outside the viewBox map, and
+ * draws nothing either */
 static const cell root_cells[] = {
     {"transform on the root",
      "<rect x=\"4\" y=\"4\" width=\"12\" height=\"20\" fill=\"white\"/>",

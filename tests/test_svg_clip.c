@@ -7,8 +7,10 @@
  * of the shape inside it, so the image's sum is the area of what is drawn
  * (within the view): each clipped picture's area is derived by hand in a
  * comment beside it (a half disk, a lens of two disks, the cells of a
- * self-overlapping path under either rule, a strip of an ellipse), never
- * taken from the code under test.  Where a clip is translucent paint, the
+ * self-overlapping path under either rule, a strip of an ellipse; the
+ * basic shapes of clip-path by pi r^2, the rounded rectangle's closed form
+ * and the shoelace formula), never taken from the code under test; the
+ * root's transform by the pixels of a rect moved, worked by hand.  Where a clip is translucent paint, the
  * integral is the area times the one colour it has, SVG 2's group opacity
  * over black worked in sRGB-encoded values.  The exact method `area`
  * (algorithms/area.c) is run on every such scene under both its
