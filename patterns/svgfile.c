@@ -4367,6 +4367,33 @@ static int bs_shape(reader *r, const char *fn, size_t n, const char **s, const d
     return 0;
 }
 
+/* A shape's stroke bounding box (SVG 2, "Bounding boxes"): the path p's
+ * fill geometry through m grown into e, and its stroke outline's when it
+ * is stroked (style sty), bounded exactly (lines and circular arcs); a
+ * stroke with offset curves is refused, its extent not computed exactly
+ * here. */
+static int clip_stroke_box(reader *r, const aa_path *p, const style *sty, const mat *m,
+                           double e[4])
+{
+    path_box(p, m, e);
+    if (sty->stroke_none || !(sty->stroke_width > 0))
+        return AA_OK;
+    aa_stroke_style ss;
+    aa_path out;
+    aa_path_init(&out);
+    int st = stroke_outline_of(r, p, sty, &ss, &out);
+    for (size_t k = 0; k < out.n && !st; k++)
+        if (out.seg[k].op == AA_PATH_OFFSET)
+            st = fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box "
+                            "given) of a stroke with offset curves (a Bezier or non-circular "
+                            "arc stroked) is not supported: their extent is not computed "
+                            "exactly; give fill-box or view-box");
+    if (!st)
+        path_box(&out, m, e);
+    aa_path_free(&out);
+    return st;
+}
+
 /* The stroke bounding box of the content of the <g> node (its style sty,
  * m its user space to the box's) grown into e: the union of its
  * children's (SVG 2, "Bounding boxes"), each through its transform, a
@@ -4374,7 +4401,7 @@ static int bs_shape(reader *r, const char *fn, size_t n, const char **s, const d
  * is stroked, a group's its content's; elements with display="none", and
  * those never drawn where they stand, add nothing.  A <use>, a nested
  * <svg> or a <switch> inside is refused, as is a stroke with offset curves
- * (its extent not computed exactly here). */
+ * (clip_stroke_box). */
 static int group_stroke_box(reader *r, const xmlNode *node, const style *sty, const mat *m,
                             double e[4], int depth)
 {
@@ -4413,26 +4440,11 @@ static int group_stroke_box(reader *r, const xmlNode *node, const style *sty, co
             st = group_stroke_box(r, c, &cs, &mc, e, depth + 1);
             continue;
         }
-        aa_path p, out;
+        aa_path p;
         aa_path_init(&p);
-        aa_path_init(&out);
-        if (!(st = shape_path(r, c, &p)) && p.n) {
-            path_box(&p, &mc, e);
-            aa_stroke_style ss;
-            if (!cs.stroke_none && cs.stroke_width > 0 &&
-                !(st = stroke_outline_of(r, &p, &cs, &ss, &out))) {
-                for (size_t k = 0; k < out.n && !st; k++)
-                    if (out.seg[k].op == AA_PATH_OFFSET)
-                        st = fail_at(r, "clip-path: the stroke-box of a group holding a stroke "
-                                        "with offset curves (a Bezier or non-circular arc "
-                                        "stroked) is not supported: their extent is not "
-                                        "computed exactly");
-                if (!st)
-                    path_box(&out, &mc, e);
-            }
-        }
+        if (!(st = shape_path(r, c, &p)) && p.n)
+            st = clip_stroke_box(r, &p, &cs, &mc, e);
         aa_path_free(&p);
-        aa_path_free(&out);
     }
     return st;
 }
@@ -4478,10 +4490,11 @@ static int bs_box(reader *r, const xmlNode *ref, int kind, double b[4])
     } else if (shape) {
         aa_path p;
         aa_path_init(&p);
-        if (!(st = shape_path(r, ref, &p))) {
-            path_box(&p, &identity, e);
-            if (p.n && kind == 1)
-                st = stroke_box(r, &p, r->csty, e);
+        if (!(st = shape_path(r, ref, &p)) && p.n) {
+            if (kind == 1)
+                st = clip_stroke_box(r, &p, r->csty, &identity, e);
+            else
+                path_box(&p, &identity, e);
         }
         aa_path_free(&p);
     } else {

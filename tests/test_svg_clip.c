@@ -717,6 +717,12 @@ static void test_geometry_boxes(void **state)
                "<rect x=\"5\" width=\"30\" height=\"20\" transform=\"translate(5 10)\"/><g "
                "stroke=\"none\"><rect x=\"30\" y=\"30\" width=\"20\" height=\"20\"/></g></g>",
                759 + 400 - 39);
+    /* a stroked circle's stroke-box, [20, 44]^2 (the outline's arcs bounded
+     * exactly): inset(0 50% 0 0) keeps x < 32, half the disk of radius
+     * 12, 72 pi */
+    check_area("circle-stroke-box", "<circle cx=\"32\" cy=\"32\" r=\"10\" stroke=\"white\" "
+                                    "stroke-width=\"4\" style=\"clip-path: inset(0 50% 0 0)\"/>",
+               72 * M_PI);
     check_area("view-box", "<rect x=\"-10\" y=\"-10\" width=\"100\" height=\"100\" "
                            "clip-path=\"view-box\"/>",
                4096);
@@ -841,6 +847,10 @@ static void test_refused(void **state)
             "<rect>", "stroke-box");
     refused("<svg width=\"9\" height=\"9\" clip-path=\"circle(4px)\"/>", "<svg>",
             "nested <svg>");
+    /* the stroke-box of a stroke with offset curves (an ellipse's) */
+    refused("<ellipse cx=\"9\" cy=\"9\" rx=\"8\" ry=\"4\" stroke=\"white\" "
+            "clip-path=\"circle(4px)\"/>",
+            "<ellipse>", "offset curves");
     root_attrs = " transform=\"scale(0)\"";
     refused("<rect width=\"9\" height=\"9\"/>", "<svg>", "singular");
     root_attrs = "";
