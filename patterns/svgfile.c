@@ -4180,7 +4180,8 @@ static int bs_rect(reader *r, aa_path *p, double x0, double y0, double x1, doubl
         return st;
     if (x1 - tr[0] > x0 + tl[0] && (st = p_line(r, p, x1 - tr[0], y0)))
         return st;
-    if (tr[0] > 0 && (st = p_quarter(r, p, x1 - tr[0], y0 + tr[1], tr[0], tr[1], -1, x1, y0 + tr[1])))
+    if (tr[0] > 0 &&
+        (st = p_quarter(r, p, x1 - tr[0], y0 + tr[1], tr[0], tr[1], -1, x1, y0 + tr[1])))
         return st;
     if (y1 - br[1] > y0 + tr[1] && (st = p_line(r, p, x1, y1 - br[1])))
         return st;

@@ -10,9 +10,9 @@
  * self-overlapping path under either rule, a strip of an ellipse; the
  * basic shapes of clip-path by pi r^2, the rounded rectangle's closed form
  * and the shoelace formula), never taken from the code under test; the
- * root's transform by the pixels of a rect moved, worked by hand.  Where a clip is translucent paint, the
- * integral is the area times the one colour it has, SVG 2's group opacity
- * over black worked in sRGB-encoded values.  The exact method `area`
+ * root's transform by the pixels of a rect moved, worked by hand.  Where a
+ * clip is translucent paint, the integral is the area times the one colour
+ * it has, SVG 2's group opacity over black worked in sRGB-encoded values.  The exact method `area`
  * (algorithms/area.c) is run on every such scene under both its
  * integrators: within 1e-12 of the reference at every pixel, so its sums
  * meet the same closed forms.
