@@ -103,9 +103,10 @@
  * linearRGB on what is drawn (compositing in linear light, which no browser
  * does; on a gradient element it is read: "gradients"), <pattern> paint servers, the
  * radial gradients whose focal circle is their end circle (grad_resolve), text, images,
- * clip-path into other documents, the stroke-box of a <use>, of a group
- * holding a <use>, a nested <svg> or a <switch> and of a shape in a
- * clipPath, basic shapes and boxes on a nested <svg> or a <symbol>, a
+ * clip-path into other documents, the stroke-box of what holds a nested
+ * <svg>, a <switch> or a use of a <symbol>, of a stroke with offset curves
+ * and of a shape in a clipPath, basic shapes and boxes on a nested <svg>
+ * or a <symbol>, a
  * singular transform on the root, <text>, <g> and other non-shapes in a
  * clipPath, references to clip
  * paths forming a cycle, masks, filters, transform-box
@@ -4395,16 +4396,20 @@ static int clip_stroke_box(reader *r, const aa_path *p, const style *sty, const 
     return st;
 }
 
-/* The stroke bounding box of the content of the <g> node (its style sty,
- * m its user space to the box's) grown into e: the union of its
- * children's (SVG 2, "Bounding boxes"), each through its transform, a
- * shape's its fill box grown by its stroke outline's exact bounds when it
- * is stroked, a group's its content's; elements with display="none", and
- * those never drawn where they stand, add nothing.  A <use>, a nested
- * <svg> or a <switch> inside is refused, as is a stroke with offset curves
- * (clip_stroke_box). */
-static int group_stroke_box(reader *r, const xmlNode *node, const style *sty, const mat *m,
-                            double e[4], int depth)
+/* The stroke bounding box of node (its style sty, m its user space to the
+ * box's) grown into e (SVG 2, "Bounding boxes"): of a shape, its fill box
+ * grown by its stroke outline's exact bounds when it is stroked
+ * (clip_stroke_box); of a <g>, the union of its children's, each through
+ * its transform (elements with display="none", and those never drawn
+ * where they stand, adding nothing); of a <use>, its target's through
+ * translate(x, y) and the target's transform, the target's style
+ * inherited from the use (a missing target or a reference cycle adding
+ * nothing, as it draws nothing).  A nested <svg>, a <symbol>, a <switch>
+ * or any other element is refused.  At most AA_SVG_MAX_ELEMENTS elements
+ * are visited, uses' instances counted (r->belements; r->bchain the uses
+ * followed, as geometry_walk's). */
+static int stroke_walk(reader *r, const xmlNode *node, const style *sty, const mat *m,
+                       double e[4], int depth)
 {
     static const char *const shapes[] = {"path", "rect",    "circle",  "ellipse",
                                          "line", "polygon", "polyline"};
@@ -4412,40 +4417,74 @@ static int group_stroke_box(reader *r, const xmlNode *node, const style *sty, co
                                          "style",  "clipPath",       "linearGradient",
                                          "filter", "radialGradient", "mask",     "marker",
                                          "pattern"};
+    r->node = node;
     if (depth > AA_SVG_MAX_DEPTH)
         return fail_at(r, "elements nested deeper than %d", AA_SVG_MAX_DEPTH);
-    int st = AA_OK;
+    if (++r->belements > AA_SVG_MAX_ELEMENTS)
+        return fail_at(r, "a bounding box of more than %d elements (use instances counted)",
+                       AA_SVG_MAX_ELEMENTS);
+    int shape = 0, st = AA_OK;
+    for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+        shape |= named(node, shapes[k]);
+    if (shape) {
+        aa_path p;
+        aa_path_init(&p);
+        if (!(st = shape_path(r, node, &p)) && p.n)
+            st = clip_stroke_box(r, &p, sty, m, e);
+        aa_path_free(&p);
+        return st;
+    }
+    if (named(node, "use")) {
+        const xmlNode *t;
+        double x, y;
+        if ((st = use_target(r, node, &t)) || !t || !is_svg(t) || bbox_cycle(r, node, t))
+            return st;
+        if ((st = attr_length(r, node, "x", 0, &x)) || (st = attr_length(r, node, "y", 0, &y)))
+            return st;
+        if (!conditions_hold(t))
+            return AA_OK;
+        int drawn = named(t, "g");
+        for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+            drawn |= named(t, shapes[k]);
+        if (!drawn) {
+            r->node = node;
+            return fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box "
+                              "given) of a use of a <%s> is not supported: give fill-box or "
+                              "view-box",
+                           (const char *)t->name);
+        }
+        const mat at = {1, 0, 0, 1, x, y};
+        mat mt = mat_mul(*m, at);
+        style ts = *sty;
+        int skip;
+        double opacity;
+        r->node = t;
+        if ((st = element_props(r, t, &ts, &mt, &skip, &opacity)) || skip)
+            return st;
+        r->bchain[r->nb++] = node;
+        st = stroke_walk(r, t, &ts, &mt, e, depth + 1);
+        r->nb--;
+        return st;
+    }
+    if (!named(node, "g"))
+        return fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box given) "
+                          "of a <%s> is not supported: give fill-box or view-box",
+                       (const char *)node->name);
     for (const xmlNode *c = node->children; c && !st; c = c->next) {
         if (!is_svg(c) || !conditions_hold(c))
             continue;
-        int shape = 0, quiet = 0;
-        for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
-            shape |= named(c, shapes[k]);
+        int quiet = 0;
         for (size_t k = 0; k < sizeof silent / sizeof silent[0]; k++)
             quiet |= named(c, silent[k]);
         if (quiet)
             continue;
-        r->node = c;
-        if (!shape && !named(c, "g"))
-            return fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box "
-                              "given) of a group holding a <%s> is not supported: give "
-                              "fill-box or view-box",
-                           (const char *)c->name);
         style cs = *sty;
         mat mc = *m;
         int skip;
         double opacity;
-        if ((st = element_props(r, c, &cs, &mc, &skip, &opacity)) || skip)
-            continue;
-        if (!shape) {
-            st = group_stroke_box(r, c, &cs, &mc, e, depth + 1);
-            continue;
-        }
-        aa_path p;
-        aa_path_init(&p);
-        if (!(st = shape_path(r, c, &p)) && p.n)
-            st = clip_stroke_box(r, &p, &cs, &mc, e);
-        aa_path_free(&p);
+        r->node = c;
+        if (!(st = element_props(r, c, &cs, &mc, &skip, &opacity)) && !skip)
+            st = stroke_walk(r, c, &cs, &mc, e, depth + 1);
     }
     return st;
 }
@@ -4454,10 +4493,10 @@ static int group_stroke_box(reader *r, const xmlNode *node, const style *sty, co
  * element ref in its user space (where its clip-path lies), x y w h into
  * b: of the root, its viewport in CSS px; of a shape, its exact bounds,
  * and its stroke bounding box when its style is known (r->csty: where it
- * is drawn); of a <g>, its stroke bounding box (group_stroke_box, its
- * style known likewise) or its object bounding box; of a <use>, its object
- * bounding box as clipPathUnits="objectBoundingBox" takes it (less its
- * translate(x, y), which its user space holds); a box of nothing is the
+ * is drawn); of a <g> or a <use>, its stroke bounding box (stroke_walk,
+ * its style known likewise) or its object bounding box as
+ * clipPathUnits="objectBoundingBox" takes it; a use's less its
+ * translate(x, y), which its user space holds; a box of nothing is the
  * point (0, 0). */
 static int bs_box(reader *r, const xmlNode *ref, int kind, double b[4])
 {
@@ -4479,14 +4518,24 @@ static int bs_box(reader *r, const xmlNode *ref, int kind, double b[4])
     for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
         shape |= named(ref, shapes[k]);
     double e[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
-    const int group = named(ref, "g");
+    const int group = named(ref, "g") || named(ref, "use");
     if (kind == 1 && !((shape || group) && r->csty_node == ref))
         return fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box given) "
                           "of a <%s>%s is not supported: give fill-box or view-box",
                        (const char *)ref->name, shape ? " in a <clipPath>" : "");
     if (kind == 1 && group) {
-        const double em = r->font_size; /* the group's, which its children change */
-        st = group_stroke_box(r, ref, r->csty, &identity, e, 1);
+        /* in the space of its clip-path: a use's has its translate(x, y),
+         * which the walk applies */
+        double x = 0, y = 0;
+        if (named(ref, "use") &&
+            ((st = attr_length(r, ref, "x", 0, &x)) || (st = attr_length(r, ref, "y", 0, &y))))
+            return st;
+        const mat back = {1, 0, 0, 1, -x, -y};
+        const double em = r->font_size; /* the element's, which its content changes */
+        if (!r->blevel++)
+            r->belements = 0, r->nb = 0, r->bvia = NULL;
+        st = stroke_walk(r, ref, r->csty, &back, e, 1);
+        r->blevel--;
         r->font_size = em;
     } else if (shape) {
         aa_path p;
@@ -5641,7 +5690,10 @@ static int use_element(reader *r, const xmlNode *node, style sty, mat m, int dep
      * librsvg clip there), within the clip it is drawn in */
     const int outer = r->clip;
     int clip;
-    if ((st = clip_of(r, node, &m, outer, &clip)))
+    r->csty_node = node, r->csty = &sty;
+    st = clip_of(r, node, &m, outer, &clip);
+    r->csty_node = NULL, r->csty = NULL;
+    if (st)
         return st;
     r->node = node;
     if (opacity < 1 && (st = group_begin(r, opacity)))

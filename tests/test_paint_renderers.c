@@ -891,6 +891,16 @@ static const cell cells[] = {
      "x=\"10\" y=\"10\" width=\"20\" height=\"20\" fill=\"white\"/></g>",
      {{8, 20, {1, 0, 0}}, {16, 20, {1, 1, 1}}, {25, 20, {0, 0, 0}}},
      3, "resvg rsvg"},
+    /* a use's stroke-box, in its space after translate(4, 4): its target's
+     * [6, 26]^2 stroked 8 wide, [2, 30]^2; inset(0 50% 0 0) keeps x < 16
+     * there, 20 in the cell: red at (8, 20) (fill-box would cut it),
+     * white at (17, 20), black at (24, 20) */
+    {"clip-path: a use's stroke-box",
+     "<defs><rect id=\"r80\" x=\"6\" y=\"6\" width=\"20\" height=\"20\" fill=\"white\" "
+     "stroke=\"red\" stroke-width=\"8\"/></defs><use href=\"#r80\" x=\"4\" y=\"4\" "
+     "style=\"clip-path: inset(0 50% 0 0)\"/>",
+     {{8, 20, {1, 0, 0}}, {17, 20, {1, 1, 1}}, {24, 20, {0, 0, 0}}},
+     3, "resvg rsvg"},
 };
 
 /* clip-path on a used symbol, as on the nested svg above, the use's x

@@ -723,6 +723,20 @@ static void test_geometry_boxes(void **state)
     check_area("circle-stroke-box", "<circle cx=\"32\" cy=\"32\" r=\"10\" stroke=\"white\" "
                                     "stroke-width=\"4\" style=\"clip-path: inset(0 50% 0 0)\"/>",
                72 * M_PI);
+    /* a use's, in its space after translate(x, y): its target's stroke
+     * box [7, 43] x [7, 33], the left half [7, 25] kept, drawn at [12, 30]
+     * x [12, 38]: 18 x 26; a group's holding a use whose target inherits
+     * the group's stroke: [12, 48] x [12, 38], the top half kept, 36 x 13 */
+    check_area("use-stroke-box",
+               "<defs><rect id=\"r\" x=\"10\" y=\"10\" width=\"30\" height=\"20\" "
+               "stroke=\"white\" stroke-width=\"6\"/></defs><use href=\"#r\" x=\"5\" y=\"5\" "
+               "style=\"clip-path: inset(0 50% 0 0)\"/>",
+               18 * 26);
+    check_area("group-use-stroke-box",
+               "<defs><rect id=\"q\" x=\"10\" y=\"10\" width=\"30\" height=\"20\"/></defs>"
+               "<g style=\"clip-path: inset(0 0 50% 0)\" stroke=\"white\" stroke-width=\"6\">"
+               "<use href=\"#q\" x=\"5\" y=\"5\"/></g>",
+               36 * 13);
     check_area("view-box", "<rect x=\"-10\" y=\"-10\" width=\"100\" height=\"100\" "
                            "clip-path=\"view-box\"/>",
                4096);
@@ -836,12 +850,11 @@ static void test_refused(void **state)
             "basic shape");
     /* the stroke-box of a group, and of a shape in a clipPath, whose
      * stroke is not known there */
-    refused("<rect id=\"r\" width=\"9\" height=\"9\"/><g clip-path=\"circle(4px)\"><use "
-            "href=\"#r\"/></g>",
-            "<use>", "stroke-box");
-    refused("<use href=\"#r\" clip-path=\"circle(4px)\"/><rect id=\"r\" width=\"9\" "
-            "height=\"9\"/>",
-            "<use>", "stroke-box");
+    refused("<symbol id=\"s\"><rect width=\"9\" height=\"9\"/></symbol><g "
+            "clip-path=\"circle(4px)\"><use href=\"#s\"/></g>",
+            "<use>", "use of a <symbol>");
+    refused("<g clip-path=\"circle(4px)\"><svg width=\"9\" height=\"9\"/></g>", "<svg>",
+            "stroke-box");
     refused("<clipPath id=\"a\"><rect width=\"9\" height=\"9\" clip-path=\"inset(1px)\"/>"
             "</clipPath><rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
             "<rect>", "stroke-box");
