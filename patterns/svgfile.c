@@ -88,7 +88,11 @@
  *     with its source, so that peers stroke it themselves and `export`
  *     writes it as a stroke);
  *   - clipPath and clip-path="url(#id)" as the scene's clips (the sink's
- *     clip_begin, clip_end and clip; "clip paths" below);
+ *     clip_begin, clip_end and clip; "clip paths" below), and clip-path as
+ *     a basic shape and a geometry box ("basic shapes" below);
+ *   - the root's transform and clip-path, those of its layout box: in CSS
+ *     px outside its viewBox map, about the viewport's centre, the
+ *     viewport clipping the content as transformed (aa_svg_read_at);
  *   - linearGradient and radialGradient as fill and stroke paint
  *     (url(#id) with an optional fallback; the sink's `gradient`;
  *     "gradients" below).
@@ -98,9 +102,13 @@
  * rounding of 0), the joins miter-clip and arcs, color-interpolation:
  * linearRGB on what is drawn (compositing in linear light, which no browser
  * does; on a gradient element it is read: "gradients"), <pattern> paint servers, the
- * radial gradients whose focal circle is their end circle (grad_resolve), text, images, clip-path other than url(#id) or
- * none (basic shapes, geometry boxes, other documents) and on the root,
- * <text>, <g> and other non-shapes in a clipPath, references to clip
+ * radial gradients whose focal circle is their end circle (grad_resolve), text, images,
+ * clip-path into other documents, the stroke-box of what holds a nested
+ * <svg>, a <switch> or a use of a <symbol>, of a stroke with offset curves
+ * and of a shape in a clipPath, basic shapes and boxes on a nested <svg>
+ * or a <symbol>, a
+ * singular transform on the root, <text>, <g> and other non-shapes in a
+ * clipPath, references to clip
  * paths forming a cycle, masks, filters, transform-box
  * stroke-box of a stroke with offset curves (its extent not computed
  * exactly) or inside an object bounding box (its stroke not known there),
@@ -333,6 +341,11 @@ typedef struct reader {
      * its viewport's): what percentages in its content refer to */
     const xmlNode *clip_viewport;
     double clip_viewport_vb[2];
+    /* the shape whose clip-path is being resolved where it is drawn, and
+     * its style (its stroke-box); the root's viewport in CSS px */
+    const xmlNode *csty_node;
+    const struct style *csty;
+    double rootw, rooth;
 } reader;
 
 /* AA_EINVAL naming the element and its line. */
@@ -3006,11 +3019,14 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
     const int css = r->from_css;
     if (!strcasecmp(v, "inherit"))
         return fail_at(r, "transform: inherit is not supported");
-    if (node->parent && node->parent->type == XML_DOCUMENT_NODE)
-        return fail_at(r, "a transform on the root <svg> is not supported");
-    double box[4] = {0, 0, r->vpw, r->vph};
+    /* the root has a layout box (CSS Transforms 1): every transform-box is
+     * its viewport in CSS px, and transform-origin is initially its centre
+     * (Chromium turns it so) */
+    const int root = node == r->root;
+    double box[4] = {0, 0, root ? r->rootw : r->vpw, root ? r->rooth : r->vph};
     char kind[64];
-    if (prop(r, node, "transform-box", kind, sizeof kind, &st) && strcasecmp(kind, "view-box")) {
+    if (!root && prop(r, node, "transform-box", kind, sizeof kind, &st) &&
+        strcasecmp(kind, "view-box")) {
         const int stroked = !strcasecmp(kind, "stroke-box") || !strcasecmp(kind, "border-box");
         if (strcasecmp(kind, "fill-box") && strcasecmp(kind, "content-box") && !stroked)
             return fail_at(r, "transform-box=\"%s\" is not supported (view-box, fill-box, "
@@ -3061,7 +3077,7 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
     }
     if (st)
         return st;
-    double o[2] = {box[0], box[1]};
+    double o[2] = {box[0] + (root ? box[2] / 2 : 0), box[1] + (root ? box[3] / 2 : 0)};
     if (prop(r, node, "transform-origin", v, sizeof v, &st) &&
         (st = parse_transform_origin(r, v, box, o)))
         return st;
@@ -3339,16 +3355,16 @@ static int group_begin(reader *r, double o)
  * shapes are drawn inside it (`clip`).
  *
  *   - clip-path="url(#id)" (or url('#id'), url("#id")) on a shape, a <g>,
- *     a child of a clipPath or a clipPath itself (on the root <svg> it is
- *     refused: it would be in the viewport's coordinates); none is
- *     no clip.  A reference to no element, or to an element that is not a
+ *     a child of a clipPath or a clipPath itself (on the root <svg>, in
+ *     the CSS px of its layout box, objectBoundingBox its viewport); none
+ *     is no clip.  A reference to no element, or to an element that is not a
  *     clipPath, is as if clip-path were not given (SVG 1.1's clip-path: a
  *     reference that is not valid is "treated as if it hadn't been
  *     specified"; the web-platform test css-masking/clip-path-svg-content/
  *     clip-path-invalid-reference.svg and Chromium draw the element
  *     unclipped).  References that come back to a clipPath being read form
- *     a cycle, an error.  Other URLs, basic shapes
- *     (circle() and the like) and geometry boxes are refused.
+ *     a cycle, an error.  Other URLs are refused; basic shapes and
+ *     geometry boxes are read below (basic_clip).
  *   - The clip is in the user space of the element referencing it (its
  *     own transform applied, SVG 1.1 14.3.5), then the clipPath's own
  *     transform; with clipPathUnits="objectBoundingBox" the unit square
@@ -3798,7 +3814,11 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
         if (st)
             return st;
     }
-    if (obb && ref == r->clip_viewport) {
+    if (obb && ref == r->root) {
+        /* the root: its layout box, the viewport in CSS px (CSS Masking 1:
+         * an element with a layout box takes its border box) */
+        box[2] = r->rootw, box[3] = r->rooth;
+    } else if (obb && ref == r->clip_viewport) {
         /* a nested <svg> or a <symbol>: the clip is in the user space the
          * element establishes, and so is the box, its content's there
          * (content_box; Chromium draws it so) */
@@ -3964,6 +3984,668 @@ static int clip_make(reader *r, const xmlNode *cp, const xmlNode *ref, const mat
     return clip_record(r, cp, m, box, outer, *out);
 }
 
+/* ---- clip-path: basic shapes and geometry boxes ----
+ *
+ * CSS Masking 1's clip-path = <basic-shape> || <geometry-box>, made a clip
+ * of one member: the shape (CSS Shapes 1: inset(), circle(), ellipse(),
+ * polygon(), path(), xywh(), rect()) in the element's user space, placed
+ * and sized by the reference box, or the box itself when no shape is
+ * given.  For an element without a CSS layout box (every SVG element but
+ * the root) border-box and margin-box are stroke-box, padding-box and
+ * content-box fill-box, and the box defaults to border-box, so stroke-box
+ * (Chromium draws it so: a shape's stroke inside clip-path: inset(0) is
+ * kept whole); view-box is the nearest viewport's viewBox (its origin and
+ * size; the viewport's size without one).  The root <svg> has a layout
+ * box: every box is its viewport's rectangle, in CSS px before its
+ * viewBox map (as Chromium draws it).  Percentages are of the box's width
+ * or height, a circle's radius of its normalised diagonal sqrt((w^2 + h^2)
+ * / 2); the shape's coordinates start at the box's top left corner. */
+
+/* A length or percentage of a basic shape at *s: *pct 1 for a percentage
+ * (v in percent), else v in user units; whitespace after it skipped. */
+static int bs_lp(reader *r, const char **s, double *v, int *pct)
+{
+    const char *a = *s;
+    if (!scan_number(s, v) && **s == '%') {
+        *pct = 1;
+        *s = skip_wsp(*s + 1);
+        return 0;
+    }
+    *s = a;
+    *pct = 0;
+    if (css_length(r, s, 0, 1, v)) {
+        *s = a;
+        return -1;
+    }
+    *s = skip_wsp(*s);
+    return 0;
+}
+
+/* A length or percentage of `ref` at *s. */
+static int bs_len(reader *r, const char **s, double ref, double *v)
+{
+    int pct;
+    if (bs_lp(r, s, v, &pct))
+        return -1;
+    if (pct)
+        *v *= ref / 100;
+    return 0;
+}
+
+/* 1 and *s past it (and whitespace) if the keyword w is at *s. */
+static int bs_word(const char **s, const char *w)
+{
+    const size_t n = strlen(w);
+    const char c = (*s)[n];
+    if (strncasecmp(*s, w, n) || isalnum((unsigned char)c) || c == '-' || c == '_')
+        return 0;
+    *s = skip_wsp(*s + n);
+    return 1;
+}
+
+/* A comma and whitespace at *s: 1 if there was one. */
+static int bs_comma(const char **s)
+{
+    if (**s != ',')
+        return 0;
+    *s = skip_wsp(*s + 1);
+    return 1;
+}
+
+/* A <position> (CSS Values 4: one value; two, x then y or two keywords in
+ * either order; four, a side and an offset for each axis) in the box b
+ * (x y w h) into c. */
+static int bs_position(reader *r, const char **s, const double b[4], double c[2])
+{
+    /* each value: a keyword (0 left, 1 right, 2 top, 3 bottom, 4 center)
+     * or 5 a length-percentage */
+    static const char *const kw[] = {"left", "right", "top", "bottom", "center"};
+    int kind[4], pct[4], n = 0;
+    double v[4];
+    while (**s && **s != ')' && **s != ',') {
+        if (n == 4)
+            return -1;
+        int k = 0;
+        while (k < 5 && !bs_word(s, kw[k]))
+            k++;
+        if (k == 5 && bs_lp(r, s, &v[n], &pct[n]))
+            return -1;
+        kind[n++] = k;
+    }
+    /* x and y as a fraction of the box (f, when frac) or an offset from
+     * its left or top */
+    double off[2] = {0, 0}, f[2] = {0.5, 0.5};
+    int frac[2] = {1, 1};
+    if (n == 1) {
+        if (kind[0] == 5)
+            frac[0] = pct[0], f[0] = v[0] / 100, off[0] = v[0];
+        else if (kind[0] < 4)
+            f[kind[0] / 2] = kind[0] & 1;
+    } else if (n == 2) {
+        int a = 0, bb = 1;
+        /* two keywords with the vertical first, or center and a horizontal */
+        if (kind[0] != 5 && kind[1] != 5 &&
+            (kind[0] == 2 || kind[0] == 3 || kind[1] == 0 || kind[1] == 1))
+            a = 1, bb = 0;
+        if (kind[a] == 2 || kind[a] == 3 || kind[bb] == 0 || kind[bb] == 1)
+            return -1;
+        const int ax[2] = {a, bb};
+        for (int k = 0; k < 2; k++) {
+            const int i = ax[k];
+            if (kind[i] == 5)
+                frac[k] = pct[i], f[k] = v[i] / 100, off[k] = v[i];
+            else if (kind[i] != 4)
+                f[k] = kind[i] & 1;
+        }
+    } else if (n == 4) {
+        if (kind[0] > 3 || kind[2] > 3 || kind[1] != 5 || kind[3] != 5 ||
+            kind[0] / 2 == kind[2] / 2)
+            return -1;
+        for (int k = 0; k < 4; k += 2) {
+            const int axis = kind[k] / 2, far = kind[k] & 1;
+            const double d = pct[k + 1] ? v[k + 1] / 100 * b[2 + axis] : v[k + 1];
+            frac[axis] = 0;
+            off[axis] = far ? b[2 + axis] - d : d;
+        }
+    } else
+        return -1;
+    for (int k = 0; k < 2; k++)
+        c[k] = b[k] + (frac[k] ? f[k] * b[2 + k] : off[k]);
+    return 0;
+}
+
+/* border-radius's values after `round` (CSS Backgrounds 3: one to four
+ * horizontal radii, then optionally / and one to four vertical ones;
+ * percentages of the box's width and height) into rad[corner][axis], the
+ * corners top left, top right, bottom right, bottom left. */
+static int bs_radii(reader *r, const char **s, const double b[4], double rad[4][2])
+{
+    double v[2][4];
+    int pct[2][4], n[2] = {0, 0};
+    for (int axis = 0; axis < 2; axis++) {
+        while (**s && **s != ')' && **s != '/') {
+            if (n[axis] == 4 || bs_lp(r, s, &v[axis][n[axis]], &pct[axis][n[axis]]) ||
+                v[axis][n[axis]] < 0)
+                return -1;
+            n[axis]++;
+        }
+        if (!n[axis])
+            return -1;
+        if (axis == 0 && **s != '/') {
+            memcpy(v[1], v[0], sizeof v[0]);
+            memcpy(pct[1], pct[0], sizeof pct[0]);
+            n[1] = n[0];
+            break;
+        }
+        if (axis == 0)
+            *s = skip_wsp(*s + 1);
+    }
+    /* the omitted corners: bottom right as top left, top right's for the
+     * others */
+    static const int from[4][4] = {{0, 0, 0, 0}, {0, 1, 0, 1}, {0, 1, 2, 1}, {0, 1, 2, 3}};
+    for (int axis = 0; axis < 2; axis++)
+        for (int k = 0; k < 4; k++) {
+            const int j = from[n[axis] - 1][k];
+            rad[k][axis] = pct[axis][j] ? v[axis][j] / 100 * b[2 + axis] : v[axis][j];
+        }
+    return 0;
+}
+
+/* The rectangle x0 y0 x1 y1 with corners of radii rad (as bs_radii),
+ * scaled down together when they do not fit (CSS Backgrounds 3: by the
+ * least ratio of a side to the sum of its two radii), a corner with a
+ * radius of 0 square; nothing when it has no area. */
+static int bs_rect(reader *r, aa_path *p, double x0, double y0, double x1, double y1,
+                   double rad[4][2])
+{
+    if (!(x1 > x0 && y1 > y0))
+        return AA_OK;
+    const double w = x1 - x0, h = y1 - y0;
+    const double sums[4] = {rad[0][0] + rad[1][0], rad[1][1] + rad[2][1], rad[2][0] + rad[3][0],
+                            rad[3][1] + rad[0][1]};
+    double f = 1;
+    for (int k = 0; k < 4; k++)
+        if (sums[k] > 0)
+            f = fmin(f, (k & 1 ? h : w) / sums[k]);
+    for (int k = 0; k < 4; k++) {
+        rad[k][0] *= f, rad[k][1] *= f;
+        if (!(rad[k][0] > 0 && rad[k][1] > 0))
+            rad[k][0] = rad[k][1] = 0;
+    }
+    /* the corners' ends along the sides, clockwise from the top left's
+     * end on the top side */
+    const double tl[2] = {rad[0][0], rad[0][1]}, tr[2] = {rad[1][0], rad[1][1]};
+    const double br[2] = {rad[2][0], rad[2][1]}, bl[2] = {rad[3][0], rad[3][1]};
+    int st;
+    if ((st = p_move(r, p, x0 + tl[0], y0)))
+        return st;
+    if (x1 - tr[0] > x0 + tl[0] && (st = p_line(r, p, x1 - tr[0], y0)))
+        return st;
+    if (tr[0] > 0 &&
+        (st = p_quarter(r, p, x1 - tr[0], y0 + tr[1], tr[0], tr[1], -1, x1, y0 + tr[1])))
+        return st;
+    if (y1 - br[1] > y0 + tr[1] && (st = p_line(r, p, x1, y1 - br[1])))
+        return st;
+    if (br[0] > 0 &&
+        (st = p_quarter(r, p, x1 - br[0], y1 - br[1], br[0], br[1], 0, x1 - br[0], y1)))
+        return st;
+    if (x0 + bl[0] < x1 - br[0] && (st = p_line(r, p, x0 + bl[0], y1)))
+        return st;
+    if (bl[0] > 0 &&
+        (st = p_quarter(r, p, x0 + bl[0], y1 - bl[1], bl[0], bl[1], 1, x0, y1 - bl[1])))
+        return st;
+    if (y0 + tl[1] < y1 - bl[1] && (st = p_line(r, p, x0, y0 + tl[1])))
+        return st;
+    if (tl[0] > 0 &&
+        (st = p_quarter(r, p, x0 + tl[0], y0 + tl[1], tl[0], tl[1], 2, x0 + tl[0], y0)))
+        return st;
+    return p_close(r, p);
+}
+
+/* The ellipse of centre c and radii rx, ry: four quarters, closed, as
+ * <ellipse> draws it; nothing if a radius is 0. */
+static int bs_ellipse(reader *r, aa_path *p, const double c[2], double rx, double ry)
+{
+    int st;
+    if (!(rx > 0 && ry > 0))
+        return AA_OK;
+    if ((st = p_move(r, p, c[0] + rx, c[1])) ||
+        (st = p_quarter(r, p, c[0], c[1], rx, ry, 0, c[0], c[1] + ry)) ||
+        (st = p_quarter(r, p, c[0], c[1], rx, ry, 1, c[0] - rx, c[1])) ||
+        (st = p_quarter(r, p, c[0], c[1], rx, ry, 2, c[0], c[1] - ry)) ||
+        (st = p_quarter(r, p, c[0], c[1], rx, ry, 3, c[0] + rx, c[1])))
+        return st;
+    return p_close(r, p);
+}
+
+/* A fill-rule and a comma at the start of polygon() or path(), if there. */
+static void bs_rule(const char **s, aa_fill_rule *rule)
+{
+    const char *a = *s;
+    int k = bs_word(s, "nonzero") ? 1 : bs_word(s, "evenodd") ? 2 : 0;
+    if (k && bs_comma(s))
+        *rule = k == 2 ? AA_FILL_EVENODD : AA_FILL_NONZERO;
+    else
+        *s = a;
+}
+
+/* The basic shape `fn` (its name n characters long; s its arguments, up
+ * to the closing parenthesis) in the box b (x y w h) as a path in user
+ * units and its fill rule (path(): in the units from the box's corner,
+ * shift); -1 malformed, else 0 with *st the status of making it. */
+static int bs_shape(reader *r, const char *fn, size_t n, const char **s, const double b[4],
+                    aa_path *p, aa_fill_rule *rule, double shift[2], int *st)
+{
+    static const char *const names[] = {"inset", "circle", "ellipse", "polygon",
+                                        "path",  "xywh",   "rect"};
+    size_t kind = 0;
+    while (kind < 7 && !(strlen(names[kind]) == n && !strncasecmp(fn, names[kind], n)))
+        kind++;
+    if (kind == 7)
+        return -1;
+    *rule = AA_FILL_NONZERO;
+    double rad[4][2] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}};
+    double e[4], c[2];
+    if (kind == 1 || kind == 2) { /* circle(), ellipse() */
+        /* the radii: closest-side (initial), farthest-side or a length */
+        int side[2] = {1, 1}, nr = 0;
+        double rr[2];
+        while (nr < (kind == 1 ? 1 : 2) && **s != ')' && strncasecmp(*s, "at", 2)) {
+            if (bs_word(s, "closest-side"))
+                side[nr] = 1;
+            else if (bs_word(s, "farthest-side"))
+                side[nr] = 2;
+            else {
+                const double ref = kind == 1 ? sqrt((b[2] * b[2] + b[3] * b[3]) / 2) : b[2 + nr];
+                if (bs_len(r, s, ref, &rr[nr]) || rr[nr] < 0)
+                    return -1;
+                side[nr] = 0;
+            }
+            nr++;
+        }
+        if (kind == 2 && nr == 1)
+            return -1;
+        c[0] = b[0] + b[2] / 2, c[1] = b[1] + b[3] / 2;
+        if (bs_word(s, "at") && bs_position(r, s, b, c))
+            return -1;
+        if (**s != ')')
+            return -1;
+        const double dx[2] = {fabs(c[0] - b[0]), fabs(b[0] + b[2] - c[0])};
+        const double dy[2] = {fabs(c[1] - b[1]), fabs(b[1] + b[3] - c[1])};
+        double rx, ry;
+        if (kind == 1) {
+            rx = side[0] == 0 ? rr[0]
+                 : side[0] == 1 ? fmin(fmin(dx[0], dx[1]), fmin(dy[0], dy[1]))
+                                : fmax(fmax(dx[0], dx[1]), fmax(dy[0], dy[1]));
+            ry = rx;
+        } else {
+            rx = side[0] == 0 ? rr[0] : side[0] == 1 ? fmin(dx[0], dx[1]) : fmax(dx[0], dx[1]);
+            ry = side[1] == 0 ? rr[1] : side[1] == 1 ? fmin(dy[0], dy[1]) : fmax(dy[0], dy[1]);
+        }
+        *st = bs_ellipse(r, p, c, rx, ry);
+        return 0;
+    }
+    if (kind == 3) { /* polygon([rule,] x y, ...) */
+        bs_rule(s, rule);
+        int k = 0;
+        do {
+            double xy[2];
+            if (bs_len(r, s, b[2], &xy[0]) || bs_len(r, s, b[3], &xy[1]))
+                return -1;
+            *st = k++ ? p_line(r, p, b[0] + xy[0], b[1] + xy[1])
+                      : p_move(r, p, b[0] + xy[0], b[1] + xy[1]);
+            if (*st)
+                return 0;
+        } while (bs_comma(s));
+        if (**s != ')')
+            return -1;
+        *st = p_close(r, p);
+        return 0;
+    }
+    if (kind == 4) { /* path([rule,] "data"), from the box's corner (shift) */
+        bs_rule(s, rule);
+        const char q = **s;
+        const char *end = q == '"' || q == '\'' ? strchr(*s + 1, q) : NULL;
+        if (!end || *skip_wsp(end + 1) != ')')
+            return -1;
+        char *d = strndup(*s + 1, (size_t)(end - *s - 1));
+        if (!d) {
+            *st = aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
+            return 0;
+        }
+        *st = path_data(r, p, d);
+        free(d);
+        shift[0] = b[0], shift[1] = b[1];
+        *s = skip_wsp(end + 1);
+        return 0;
+    }
+    /* inset() (one to four insets, as margin writes them), xywh() (x, y,
+     * width, height) and rect() (its edges from the top and the left, auto
+     * the box's edge): four values, each a percentage of the box's height
+     * (the first and third of inset() and rect(), the second and fourth of
+     * xywh()) or width; then round and the radii */
+    int ne = 0, pct[4] = {0, 0, 0, 0}, autos[4] = {0, 0, 0, 0};
+    while (ne < 4 && **s != ')' && strncasecmp(*s, "round", 5)) {
+        if (kind == 6 && bs_word(s, "auto"))
+            autos[ne] = 1;
+        else if (bs_lp(r, s, &e[ne], &pct[ne]))
+            return -1;
+        ne++;
+    }
+    if (!ne || (kind != 0 && ne < 4))
+        return -1;
+    if (bs_word(s, "round") && bs_radii(r, s, b, rad))
+        return -1;
+    if (**s != ')')
+        return -1;
+    /* value k of the four, of the box's height or width */
+    static const int from[4][4] = {{0, 0, 0, 0}, {0, 1, 0, 1}, {0, 1, 2, 1}, {0, 1, 2, 3}};
+    double t[4];
+    for (int k = 0; k < 4; k++) {
+        const int j = kind == 0 ? from[ne - 1][k] : k, vert = kind == 5 ? k & 1 : !(k & 1);
+        t[k] = autos[j] ? (k == 1 ? b[2] : k == 2 ? b[3] : 0)
+               : pct[j] ? e[j] / 100 * b[2 + vert]
+                        : e[j];
+    }
+    double x0, y0, x1, y1;
+    if (kind == 0) {
+        /* insets adding up to more than the box: both reduced in
+         * proportion to fit it (CSS Shapes 1) */
+        for (int k = 0; k < 2; k++) {
+            const double sum = t[k] + t[k + 2], size = b[3 - k];
+            if (sum > size && sum > 0)
+                t[k] *= size / sum, t[k + 2] *= size / sum;
+        }
+        x0 = b[0] + t[3], y0 = b[1] + t[0], x1 = b[0] + b[2] - t[1], y1 = b[1] + b[3] - t[2];
+    } else if (kind == 5) {
+        if (t[2] < 0 || t[3] < 0)
+            return -1;
+        x0 = b[0] + t[0], y0 = b[1] + t[1], x1 = x0 + t[2], y1 = y0 + t[3];
+    } else { /* an edge before its opposite one is put on it */
+        x0 = b[0] + t[3], y0 = b[1] + t[0];
+        x1 = b[0] + fmax(t[1], t[3]), y1 = b[1] + fmax(t[2], t[0]);
+    }
+    *st = bs_rect(r, p, x0, y0, x1, y1, rad);
+    return 0;
+}
+
+/* A shape's stroke bounding box (SVG 2, "Bounding boxes"): the path p's
+ * fill geometry through m grown into e, and its stroke outline's when it
+ * is stroked (style sty), bounded exactly (lines and circular arcs); a
+ * stroke with offset curves is refused, its extent not computed exactly
+ * here. */
+static int clip_stroke_box(reader *r, const aa_path *p, const style *sty, const mat *m,
+                           double e[4])
+{
+    path_box(p, m, e);
+    if (sty->stroke_none || !(sty->stroke_width > 0))
+        return AA_OK;
+    aa_stroke_style ss;
+    aa_path out;
+    aa_path_init(&out);
+    int st = stroke_outline_of(r, p, sty, &ss, &out);
+    for (size_t k = 0; k < out.n && !st; k++)
+        if (out.seg[k].op == AA_PATH_OFFSET)
+            st = fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box "
+                            "given) of a stroke with offset curves (a Bezier or non-circular "
+                            "arc stroked) is not supported: their extent is not computed "
+                            "exactly; give fill-box or view-box");
+    if (!st)
+        path_box(&out, m, e);
+    aa_path_free(&out);
+    return st;
+}
+
+/* The stroke bounding box of node (its style sty, m its user space to the
+ * box's) grown into e (SVG 2, "Bounding boxes"): of a shape, its fill box
+ * grown by its stroke outline's exact bounds when it is stroked
+ * (clip_stroke_box); of a <g>, the union of its children's, each through
+ * its transform (elements with display="none", and those never drawn
+ * where they stand, adding nothing); of a <use>, its target's through
+ * translate(x, y) and the target's transform, the target's style
+ * inherited from the use (a missing target or a reference cycle adding
+ * nothing, as it draws nothing).  A nested <svg>, a <symbol>, a <switch>
+ * or any other element is refused.  At most AA_SVG_MAX_ELEMENTS elements
+ * are visited, uses' instances counted (r->belements; r->bchain the uses
+ * followed, as geometry_walk's). */
+static int stroke_walk(reader *r, const xmlNode *node, const style *sty, const mat *m,
+                       double e[4], int depth)
+{
+    static const char *const shapes[] = {"path", "rect",    "circle",  "ellipse",
+                                         "line", "polygon", "polyline"};
+    static const char *const silent[] = {"title",  "desc",           "metadata", "defs",
+                                         "style",  "clipPath",       "linearGradient",
+                                         "filter", "radialGradient", "mask",     "marker",
+                                         "pattern"};
+    r->node = node;
+    if (depth > AA_SVG_MAX_DEPTH)
+        return fail_at(r, "elements nested deeper than %d", AA_SVG_MAX_DEPTH);
+    if (++r->belements > AA_SVG_MAX_ELEMENTS)
+        return fail_at(r, "a bounding box of more than %d elements (use instances counted)",
+                       AA_SVG_MAX_ELEMENTS);
+    int shape = 0, st = AA_OK;
+    for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+        shape |= named(node, shapes[k]);
+    if (shape) {
+        aa_path p;
+        aa_path_init(&p);
+        if (!(st = shape_path(r, node, &p)) && p.n)
+            st = clip_stroke_box(r, &p, sty, m, e);
+        aa_path_free(&p);
+        return st;
+    }
+    if (named(node, "use")) {
+        const xmlNode *t;
+        double x, y;
+        if ((st = use_target(r, node, &t)) || !t || !is_svg(t) || bbox_cycle(r, node, t))
+            return st;
+        if ((st = attr_length(r, node, "x", 0, &x)) || (st = attr_length(r, node, "y", 0, &y)))
+            return st;
+        if (!conditions_hold(t))
+            return AA_OK;
+        int drawn = named(t, "g");
+        for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+            drawn |= named(t, shapes[k]);
+        if (!drawn) {
+            r->node = node;
+            return fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box "
+                              "given) of a use of a <%s> is not supported: give fill-box or "
+                              "view-box",
+                           (const char *)t->name);
+        }
+        const mat at = {1, 0, 0, 1, x, y};
+        mat mt = mat_mul(*m, at);
+        style ts = *sty;
+        int skip;
+        double opacity;
+        r->node = t;
+        if ((st = element_props(r, t, &ts, &mt, &skip, &opacity)) || skip)
+            return st;
+        r->bchain[r->nb++] = node;
+        st = stroke_walk(r, t, &ts, &mt, e, depth + 1);
+        r->nb--;
+        return st;
+    }
+    if (!named(node, "g"))
+        return fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box given) "
+                          "of a <%s> is not supported: give fill-box or view-box",
+                       (const char *)node->name);
+    for (const xmlNode *c = node->children; c && !st; c = c->next) {
+        if (!is_svg(c) || !conditions_hold(c))
+            continue;
+        int quiet = 0;
+        for (size_t k = 0; k < sizeof silent / sizeof silent[0]; k++)
+            quiet |= named(c, silent[k]);
+        if (quiet)
+            continue;
+        style cs = *sty;
+        mat mc = *m;
+        int skip;
+        double opacity;
+        r->node = c;
+        if (!(st = element_props(r, c, &cs, &mc, &skip, &opacity)) && !skip)
+            st = stroke_walk(r, c, &cs, &mc, e, depth + 1);
+    }
+    return st;
+}
+
+/* The reference box `kind` (0 fill-box, 1 stroke-box, 2 view-box) of the
+ * element ref in its user space (where its clip-path lies), x y w h into
+ * b: of the root, its viewport in CSS px; of a shape, its exact bounds,
+ * and its stroke bounding box when its style is known (r->csty: where it
+ * is drawn); of a <g> or a <use>, its stroke bounding box (stroke_walk,
+ * its style known likewise) or its object bounding box as
+ * clipPathUnits="objectBoundingBox" takes it; a use's less its
+ * translate(x, y), which its user space holds; a box of nothing is the
+ * point (0, 0). */
+static int bs_box(reader *r, const xmlNode *ref, int kind, double b[4])
+{
+    static const char *const shapes[] = {"path", "rect",    "circle",  "ellipse",
+                                         "line", "polygon", "polyline"};
+    b[0] = b[1] = b[2] = b[3] = 0;
+    if (ref == r->root) {
+        b[2] = r->rootw, b[3] = r->rooth;
+        return AA_OK;
+    }
+    if (ref == r->clip_viewport)
+        return fail_at(r, "clip-path: basic shapes and geometry boxes on a nested <svg> or a "
+                          "<symbol> are not supported");
+    if (kind == 2) {
+        b[2] = r->vpw, b[3] = r->vph;
+        return AA_OK;
+    }
+    int shape = 0, st = AA_OK;
+    for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++)
+        shape |= named(ref, shapes[k]);
+    double e[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    const int group = named(ref, "g") || named(ref, "use");
+    if (kind == 1 && !((shape || group) && r->csty_node == ref))
+        return fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box given) "
+                          "of a <%s>%s is not supported: give fill-box or view-box",
+                       (const char *)ref->name, shape ? " in a <clipPath>" : "");
+    if (kind == 1 && group) {
+        /* in the space of its clip-path: a use's has its translate(x, y),
+         * which the walk applies */
+        double x = 0, y = 0;
+        if (named(ref, "use") &&
+            ((st = attr_length(r, ref, "x", 0, &x)) || (st = attr_length(r, ref, "y", 0, &y))))
+            return st;
+        const mat back = {1, 0, 0, 1, -x, -y};
+        const double em = r->font_size; /* the element's, which its content changes */
+        if (!r->blevel++)
+            r->belements = 0, r->nb = 0, r->bvia = NULL;
+        st = stroke_walk(r, ref, r->csty, &back, e, 1);
+        r->blevel--;
+        r->font_size = em;
+    } else if (shape) {
+        aa_path p;
+        aa_path_init(&p);
+        if (!(st = shape_path(r, ref, &p)) && p.n) {
+            if (kind == 1)
+                st = clip_stroke_box(r, &p, r->csty, &identity, e);
+            else
+                path_box(&p, &identity, e);
+        }
+        aa_path_free(&p);
+    } else {
+        double x = 0, y = 0;
+        if (named(ref, "use") &&
+            ((st = attr_length(r, ref, "x", 0, &x)) || (st = attr_length(r, ref, "y", 0, &y))))
+            return st;
+        const mat back = {1, 0, 0, 1, -x, -y};
+        st = geometry_box(r, ref, &back, e, 0);
+    }
+    r->node = ref;
+    if (!st && e[2] >= e[0] && e[3] >= e[1])
+        b[0] = e[0], b[1] = e[1], b[2] = e[2] - e[0], b[3] = e[3] - e[1];
+    return st;
+}
+
+/* The clip of a clip-path of basic shape and geometry box `value` on ref
+ * (whose user space is m) within `outer`: one member, the shape in the
+ * box (or the box), its number into *out. */
+static int basic_clip(reader *r, const char *value, const xmlNode *ref, const mat *m, int outer,
+                      int *out)
+{
+    static const char *const boxes[] = {"fill-box",    "content-box", "padding-box",
+                                        "stroke-box",  "border-box",  "margin-box",
+                                        "view-box"};
+    static const int kinds[] = {0, 0, 0, 1, 1, 1, 2};
+    const char *s = skip_wsp(value), *fn = NULL, *args = NULL;
+    size_t fnlen = 0;
+    int kind = -1;
+    /* <basic-shape> || <geometry-box>: each at most once, in either order */
+    for (int item = 0; item < 2 && *s; item++) {
+        size_t n = 0;
+        while (isalnum((unsigned char)s[n]) || s[n] == '-')
+            n++;
+        if (s[n] == '(' && !fn) {
+            fn = s, fnlen = n, args = skip_wsp(s + n + 1);
+            int depth = 1;
+            for (s += n + 1; *s && depth; s++) /* to its closing parenthesis */
+                depth += *s == '(' ? 1 : *s == ')' ? -1 : 0;
+            if (depth)
+                goto bad;
+        } else {
+            size_t k = 0;
+            while (k < 7 && !(strlen(boxes[k]) == n && !strncasecmp(s, boxes[k], n)))
+                k++;
+            if (k == 7 || kind >= 0)
+                goto bad;
+            kind = kinds[k];
+            s += n;
+        }
+        s = skip_wsp(s);
+    }
+    if (*s || (!fn && kind < 0))
+        goto bad;
+    int st = AA_OK;
+    if (!r->sink->clip_begin || !r->sink->clip_end || !r->sink->clip)
+        return fail_at(r, "clip paths are not taken here");
+    double b[4];
+    if ((st = bs_box(r, ref, kind < 0 ? 1 : kind, b)))
+        return st;
+    aa_path p;
+    aa_path_init(&p);
+    aa_fill_rule rule = AA_FILL_NONZERO;
+    double shift[2] = {0, 0};
+    double none[4][2] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}};
+    r->node = ref;
+    if (!fn)
+        st = bs_rect(r, &p, b[0], b[1], b[0] + b[2], b[1] + b[3], none);
+    else if (bs_shape(r, fn, fnlen, &args, b, &p, &rule, shift, &st)) {
+        aa_path_free(&p);
+        goto bad;
+    }
+    mat mp = *m;
+    if (shift[0] != 0 || shift[1] != 0) {
+        const mat at = {1, 0, 0, 1, shift[0], shift[1]};
+        mp = mat_mul(*m, at);
+    }
+    if (!st)
+        st = viewport_clip(r, outer, &outer);
+    if (!st && (st = r->sink->clip_begin(r->ctx, outer)))
+        st = at_element(r, st);
+    if (!st) {
+        const int was = r->clip;
+        const aa_rgb black = {{0, 0, 0}};
+        r->clip = -1;
+        st = give_path(r, &p, &mp, black, rule, 1.0, NULL);
+        r->clip = was;
+        if (!st)
+            st = r->sink->clip_end(r->ctx);
+    }
+    aa_path_free(&p);
+    if (!st)
+        *out = r->nclips++;
+    return st;
+bad:
+    return fail_at(r, "clip-path=\"%s\" is not url(#id), none, or a basic shape (inset(), "
+                      "circle(), ellipse(), polygon(), path(), xywh(), rect()) and a geometry "
+                      "box drawn here",
+                   aa_echo(value));
+}
+
 static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const mat *m,
                         int outer, int *out)
 {
@@ -3971,6 +4653,9 @@ static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const 
     const char *id;
     int st;
     *out = outer;
+    const char *s = skip_wsp(value);
+    if (strcasecmp(s, "none") && strncasecmp(s, "url(", 4))
+        return basic_clip(r, value, ref, m, outer, out);
     if ((st = clip_ref(r, value, buf, sizeof buf, &id)) || !id)
         return st;
     const xmlNode *cp = find_id(r->ids, id);
@@ -4459,7 +5144,10 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     const int outer = r->clip;
     int clip;
     if (group) {
-        if ((st = clip_of(r, node, &m, outer, &clip)))
+        r->csty_node = node, r->csty = &sty;
+        st = clip_of(r, node, &m, outer, &clip);
+        r->csty_node = NULL, r->csty = NULL;
+        if (st)
             return st;
         r->node = node;
         /* a group of opacity below 1 is composited as a whole (SVG 2,
@@ -4495,7 +5183,10 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     int stroke = !sty.stroke_none && sty.stroke_width > 0 && sty.visible && sa > 0;
     if (!fill && !stroke)
         return AA_OK;
-    if ((st = clip_of(r, node, &m, outer, &clip)))
+    r->csty_node = node, r->csty = &sty;
+    st = clip_of(r, node, &m, outer, &clip);
+    r->csty_node = NULL, r->csty = NULL;
+    if (st)
         return st;
     r->node = node;
     aa_path p;
@@ -4999,7 +5690,10 @@ static int use_element(reader *r, const xmlNode *node, style sty, mat m, int dep
      * librsvg clip there), within the clip it is drawn in */
     const int outer = r->clip;
     int clip;
-    if ((st = clip_of(r, node, &m, outer, &clip)))
+    r->csty_node = node, r->csty = &sty;
+    st = clip_of(r, node, &m, outer, &clip);
+    r->csty_node = NULL, r->csty = NULL;
+    if (st)
         return st;
     r->node = node;
     if (opacity < 1 && (st = group_begin(r, opacity)))
@@ -5129,11 +5823,6 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         int skip;
         r.node = root;
         r.root = root;
-        xmlChar *t = xmlGetNoNsProp(root, (const xmlChar *)"transform");
-        if (t) {
-            xmlFree(t);
-            st = fail_at(&r, "a transform on the root <svg> is not supported");
-        }
         double opacity = 1;
         /* the ids, the style sheets; percentages in the root's size are of
          * the view's, em of the initial font-size */
@@ -5159,7 +5848,8 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         /* at `scale` pixels a CSS pixel: the document laid out in a view of
          * (w, h) / scale CSS pixels, then everything scaled */
         double vb[2];
-        mat vbm;
+        mat vbm, root_vb = identity;
+        const mat zoom = {scale, 0, 0, scale, 0, 0};
         /* the view units in the root's size are refused: the view may be
          * that size */
         r.icbw = r.icbh = NAN;
@@ -5168,20 +5858,40 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
         r.icbw = w / scale, r.icbh = h / scale;
         if (!st && !(st = viewbox_map(&r, root, vp[0], vp[1], &vbm, vb))) {
             r.vpw = vb[0], r.vph = vb[1]; /* percentages in the document */
-            const mat zoom = {scale, 0, 0, scale, 0, 0};
+            r.rootw = vp[0], r.rooth = vp[1];
+            root_vb = m;
             m = mat_mul(zoom, m);
             vp[0] *= scale, vp[1] *= scale;
             if (!sink && !(given[0] && given[1]))
                 st = fail_at(&r, "the root has no size of its own (width and height in px): "
                                  "give the view's size");
         }
-        if (!st && sink && !(st = element_props(&r, root, &sty, &m, &skip, &opacity)) &&
+        /* the root's transform and clip-path are those of its layout box:
+         * in CSS px, its viewport (0, 0, width, height) there, outside its
+         * viewBox map (CSS Transforms 1 and CSS Masking 1 on an element with
+         * a layout box, as Chromium draws an <svg> in a page), the viewport
+         * clipping its content as transformed (a clip of the scene, which
+         * the caller's clip to the untransformed viewport would not be:
+         * viewport[] is then the view) */
+        mat top = zoom;
+        if (!st && sink && !(st = element_props(&r, root, &sty, &top, &skip, &opacity)) &&
             !skip && opacity > 0 && conditions_hold(root)) {
-            /* the root's clip-path would be in its viewport's coordinates, not
-             * its viewBox's: refused */
-            char v[1024];
-            if (prop(&r, root, "clip-path", v, sizeof v, &st) && !st && strcasecmp(v, "none"))
-                st = fail_at(&r, "clip-path on the root <svg> is not supported");
+            m = mat_mul(top, root_vb);
+            int cp;
+            st = clip_of(&r, root, &top, -1, &cp);
+            r.node = root;
+            r.clip = cp;
+            if (!st && memcmp(&top, &zoom, sizeof top)) {
+                mat to;
+                if (mat_inverse(&top, &to))
+                    st = fail_at(&r, "a singular transform on the root <svg> is not supported");
+                else {
+                    r.vclip[0] =
+                        (struct svg_clip){top, to, {0, 0, r.rootw, r.rooth}, root, cp, -1};
+                    r.nvclip = 1, r.clip = -2;
+                    vp[0] = w, vp[1] = h;
+                }
+            }
             /* the root's opacity: its content as a group */
             if (!st && opacity < 1)
                 st = group_begin(&r, opacity);

@@ -96,8 +96,9 @@ typedef struct aa_svg_sink {
  * a view of w x h pixels: the viewport is the root's width and height, or
  * the view's where they are absent.  viewport[0..1] (may be NULL) receives
  * its width and height in pixels; everything outside it is clipped by the
- * caller.  Returns the first failing status of the sink or of the
- * document. */
+ * caller (when the root has a transform, the reader clips to the
+ * transformed viewport itself and viewport[] is the view's size).
+ * Returns the first failing status of the sink or of the document. */
 int aa_svg_read(const char *data, size_t len, const char *name, int w, int h,
                 const aa_svg_sink *sink, void *ctx, double viewport[2]);
 

@@ -7,8 +7,9 @@
  * with an error, invalid declarations and attributes, font-size larger,
  * a symbol's reference point, the object bounding box of a group holding
  * a use and of a use, a symbol's x and y, transform-box stroke-box,
- * pathLength, the units rem, vw and vmin, and conditional processing with
- * <switch>, as browsers draw them:
+ * pathLength, the units rem, vw and vmin, conditional processing with
+ * <switch>, clip-path's basic shapes and geometry boxes, and a transform on
+ * the root, as browsers draw them:
  * the exact box reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -52,7 +53,7 @@
 
 #define CELL 40
 #define COLS 4
-#define ROWS 18
+#define ROWS 21
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
@@ -765,7 +766,81 @@ static const cell cells[] = {
      "requiredFeatures=\"http://www.w3.org/TR/SVG11/feature#Shape\"/>",
      {{10, 10, {0, 1, 0}}, {30, 10, {0, 0, 0}}, {10, 30, {0, 0, 0}}, {30, 30, {1, 1, 1}}},
      4, "rsvg"},
-    /* clip-path on a nested svg, in the user space it establishes (the
+    /* clip-path: circle(25% at 25% 50%) on the rect [4, 36] x [4, 28]
+     * (no stroke: its stroke-box, the default box, is its fill box, 32 x
+     * 24): the radius 25% of the box's normalised diagonal sqrt((32^2 +
+     * 24^2) / 2) = 28.28, so 7.07, about (4 + 8, 4 + 12) = (12, 16) (CSS
+     * Shapes 1): white there, black at (22, 16) and (12, 26) (resvg and
+     * librsvg 2.54 draw no basic shape nor geometry box: they ignore the
+     * clip-path, drawing the element unclipped, in this cell and the
+     * next ones) */
+    {"clip-path: circle()",
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"24\" fill=\"white\" "
+     "style=\"clip-path: circle(25% at 25% 50%)\"/>",
+     {{12, 16, {1, 1, 1}}, {22, 16, {0, 0, 0}}, {12, 26, {0, 0, 0}}},
+     3, "resvg rsvg"},
+    /* ellipse(closest-side farthest-side at 12px 10px) on the rect [4,
+     * 36]^2: the centre (16, 14), rx the nearer side's 12, ry the farther
+     * side's 22: white at (6, 14) ((9.5 / 12)^2 < 1) and (16, 30) ((16.5 /
+     * 22)^2 < 1), black at (32, 14) (16.5 / 12 > 1) */
+    {"clip-path: ellipse()",
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"white\" "
+     "style=\"clip-path: ellipse(closest-side farthest-side at 12px 10px)\"/>",
+     {{6, 14, {1, 1, 1}}, {16, 30, {1, 1, 1}}, {32, 14, {0, 0, 0}}},
+     3, "resvg rsvg"},
+    /* inset(2px 4px round 10px 0) of the stroke-box (the default) of the
+     * rect [4, 36]^2 stroked 6 wide in red, [1, 39]^2: [5, 35] x [3, 37],
+     * its top left and bottom right corners of radius 10 (centre (15,
+     * 13)), the others square: red at (20, 4) and in the square top right
+     * corner (33, 4), black at (5, 3) (more than 11 from the corner's
+     * centre), white inside; with fill-box the red at (20, 4) would be
+     * cut */
+    {"clip-path: inset() round",
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"white\" stroke=\"red\" "
+     "stroke-width=\"6\" style=\"clip-path: inset(2px 4px round 10px 0)\"/>",
+     {{20, 4, {1, 0, 0}}, {33, 4, {1, 0, 0}}, {5, 3, {0, 0, 0}}, {20, 20, {1, 1, 1}}},
+     4, "resvg rsvg"},
+    /* polygon(evenodd, ...) of two squares of the box [0, 40]^2, [4,
+     * 24]^2 and [16, 36]^2, joined at their corners (the joining edge
+     * there and back): their overlap [16, 24]^2 is covered twice, so
+     * outside under evenodd: white at (8, 8) and (30, 30), black at (20,
+     * 20) and (32, 8) */
+    {"clip-path: polygon() evenodd",
+     "<rect width=\"40\" height=\"40\" fill=\"white\" style=\"clip-path: polygon(evenodd, "
+     "10% 10%, 60% 10%, 60% 60%, 10% 60%, 10% 10%, 40% 40%, 90% 40%, 90% 90%, 40% 90%, "
+     "40% 40%)\"/>",
+     {{8, 8, {1, 1, 1}}, {30, 30, {1, 1, 1}}, {20, 20, {0, 0, 0}}, {32, 8, {0, 0, 0}}},
+     4, "resvg rsvg"},
+    /* path(evenodd, ...) in the fill-box of the rect [4, 36]^2, its
+     * coordinates from the box's corner (4, 4): the ring between [4, 36]^2
+     * and [12, 28]^2: white at (6, 6) and (10, 10) (which would be in the
+     * hole were the path not moved to the box), black at (20, 20) */
+    {"clip-path: path() in fill-box",
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"32\" fill=\"white\" "
+     "style=\"clip-path: path(evenodd, 'M0 0 H32 V32 H0 Z M8 8 H24 V24 H8 Z') fill-box\"/>",
+     {{6, 6, {1, 1, 1}}, {10, 10, {1, 1, 1}}, {20, 20, {0, 0, 0}}},
+     3, "resvg rsvg"},
+    /* a geometry box alone: fill-box keeps the rect [10, 30] x [4, 18]
+     * and the inner half of its red stroke 8 wide, [10, 14] (red at 12),
+     * cutting the outer half (black at 7); stroke-box keeps the whole
+     * stroke (red at 7 in the second rect) */
+    {"clip-path: fill-box and stroke-box",
+     "<rect x=\"10\" y=\"4\" width=\"20\" height=\"14\" fill=\"white\" stroke=\"red\" "
+     "stroke-width=\"8\" clip-path=\"fill-box\"/>"
+     "<rect x=\"10\" y=\"28\" width=\"20\" height=\"6\" fill=\"white\" stroke=\"red\" "
+     "stroke-width=\"8\" style=\"clip-path: stroke-box\"/>",
+     {{12, 11, {1, 0, 0}}, {7, 11, {0, 0, 0}}, {20, 11, {1, 1, 1}}, {7, 31, {1, 0, 0}}},
+     4, "resvg rsvg"},
+    /* view-box: the nearest viewport's viewBox (the root's, 160 x 840 px,
+     * at the origin of the cell's user space): circle(10px at 20px 20px)
+     * there on a rect of the cell: white at (20, 20), black at (20, 34) */
+    {"clip-path: view-box",
+     "<rect width=\"40\" height=\"40\" fill=\"white\" "
+     "style=\"clip-path: circle(10px at 20px 20px) view-box\"/>",
+     {{20, 20, {1, 1, 1}}, {20, 34, {0, 0, 0}}, {34, 20, {0, 0, 0}}},
+     3, "resvg rsvg"},
+    /* clip-path on a nested svg (the last of its row: Chromium draws
+     * beyond it, into the cell to its right), in the user space it establishes (the
      * viewBox's 16 units onto 32 px at (4, 4)): the rect [8, 28] x [4, 12]
      * is [20, 60] x [12, 28] in the cell, within the viewport [4, 36]^2, so
      * white on [20, 36] x [12, 28] only; (24, 8) would be white were the
@@ -787,6 +862,45 @@ static const cell cells[] = {
      "fill=\"white\"/></svg>",
      {{28, 20, {1, 1, 1}}, {38, 20, {0, 0, 0}}, {24, 8, {0, 0, 0}}, {12, 20, {0, 0, 0}}},
      4, "chromium resvg rsvg"},
+    /* xywh(4px 2px 50% 10px) of the rect [4, 36] x [4, 20]: [8, 24] x
+     * [6, 16]; rect(2px auto 10px 50%) of the rect [4, 36] x [24, 36]:
+     * top 2, right the box's right edge, bottom 10, left 16 from the
+     * corner: [20, 36] x [26, 34]: white at (16, 10) and (28, 30), black
+     * at (30, 10) and (12, 30) */
+    {"clip-path: xywh() and rect()",
+     "<rect x=\"4\" y=\"4\" width=\"32\" height=\"16\" fill=\"white\" "
+     "style=\"clip-path: xywh(4px 2px 50% 10px)\"/>"
+     "<rect x=\"4\" y=\"24\" width=\"32\" height=\"12\" fill=\"white\" "
+     "style=\"clip-path: rect(2px auto 10px 50%)\"/>",
+     {{16, 10, {1, 1, 1}}, {28, 30, {1, 1, 1}}, {30, 10, {0, 0, 0}}, {12, 30, {0, 0, 0}}},
+     4, "resvg rsvg"},
+    /* a basic shape on a group, in its fill-box (the object bounding box
+     * [8, 32]^2): circle(50% at 0 0), radius 12 about (8, 8): white at
+     * (12, 12), black at (28, 28) and (20, 8) */
+    {"clip-path: circle() on a group",
+     "<g style=\"clip-path: circle(50% at 0 0) fill-box\"><rect x=\"8\" y=\"8\" width=\"24\" "
+     "height=\"24\" fill=\"white\"/></g>",
+     {{12, 12, {1, 1, 1}}, {28, 28, {0, 0, 0}}, {22, 9, {0, 0, 0}}},
+     3, "resvg rsvg"},
+    /* a group's stroke-box (the default box): its child's rect [10, 30]^2
+     * stroked 8 wide in red, [6, 34]^2; inset(0 50% 0 0) keeps [6, 20] x
+     * [6, 34]: red at (8, 20) (fill-box would cut it), white at (16, 20),
+     * black at (25, 20) */
+    {"clip-path: a group's stroke-box",
+     "<g style=\"clip-path: inset(0 50% 0 0)\" stroke=\"red\" stroke-width=\"8\"><rect "
+     "x=\"10\" y=\"10\" width=\"20\" height=\"20\" fill=\"white\"/></g>",
+     {{8, 20, {1, 0, 0}}, {16, 20, {1, 1, 1}}, {25, 20, {0, 0, 0}}},
+     3, "resvg rsvg"},
+    /* a use's stroke-box, in its space after translate(4, 4): its target's
+     * [6, 26]^2 stroked 8 wide, [2, 30]^2; inset(0 50% 0 0) keeps x < 16
+     * there, 20 in the cell: red at (8, 20) (fill-box would cut it),
+     * white at (17, 20), black at (24, 20) */
+    {"clip-path: a use's stroke-box",
+     "<defs><rect id=\"r80\" x=\"6\" y=\"6\" width=\"20\" height=\"20\" fill=\"white\" "
+     "stroke=\"red\" stroke-width=\"8\"/></defs><use href=\"#r80\" x=\"4\" y=\"4\" "
+     "style=\"clip-path: inset(0 50% 0 0)\"/>",
+     {{8, 20, {1, 0, 0}}, {17, 20, {1, 1, 1}}, {24, 20, {0, 0, 0}}},
+     3, "resvg rsvg"},
 };
 
 /* clip-path on a used symbol, as on the nested svg above, the use's x
@@ -806,9 +920,30 @@ static const cell symbol_cells[] = {
      4, "chromium rsvg"},
 };
 
-/* The table drawn: cells, then symbol_cells (each test runs on both). */
+/* A transform on the root <svg>: rotate(180), about the centre of its
+ * layout box (CSS Transforms 1's initial transform-origin, 50% 50%, for an
+ * element with a layout box; Chromium turns it so), which maps the view
+ * onto itself; the cell is written in the last cell's place, so that it
+ * lands on the first, turned half a turn: the rect [4, 16] x [4, 24]
+ * written is [24, 36] x [16, 36] drawn, white at (30, 26), black at (8,
+ * 8) and (20, 10).  resvg turns it about the origin (0, 0), inside its
+ * viewBox map, out of the view: it draws nothing, wrong by CSS Transforms
+ * 1 (the root has a layout box, its transform-origin initially 50% 50%);
+ * librsvg 2.54 turns it about the origin too, outside the viewBox map, and
+ * draws nothing either */
+static const cell root_cells[] = {
+    {"transform on the root",
+     "<rect x=\"4\" y=\"4\" width=\"12\" height=\"20\" fill=\"white\"/>",
+     {{30, 26, {1, 1, 1}}, {8, 8, {0, 0, 0}}, {20, 10, {0, 0, 0}}},
+     3, "resvg rsvg"},
+};
+
+/* The table drawn: cells, then symbol_cells, then root_cells with the
+ * root's attributes root_attrs, each in the place of the cell numbered
+ * from the last (each test runs on all three). */
 static const cell *tab = cells;
 static size_t ntab = sizeof cells / sizeof cells[0];
+static const char *root_attrs = "";
 #define NCELLS ntab
 
 /* Run body on each table in turn. */
@@ -818,7 +953,16 @@ static void each_table(void (*body)(void *), void *arg)
     body(arg);
     tab = symbol_cells, ntab = sizeof symbol_cells / sizeof symbol_cells[0];
     body(arg);
-    tab = cells, ntab = sizeof cells / sizeof cells[0];
+    tab = root_cells, ntab = sizeof root_cells / sizeof root_cells[0];
+    root_attrs = " transform=\"rotate(180)\"";
+    body(arg);
+    tab = cells, ntab = sizeof cells / sizeof cells[0], root_attrs = "";
+}
+
+/* The file name of the table drawn, after "paint" */
+static const char *table_name(void)
+{
+    return tab == cells ? "" : tab == symbol_cells ? "-symbol" : "-root";
 }
 
 /* The document of every cell, and its box reference. */
@@ -828,15 +972,17 @@ static void document(char *path, size_t len, aa_image *ref)
     size_t n = (size_t)snprintf(doc, sizeof doc,
                                 "<svg xmlns=\"http://www.w3.org/2000/svg\" "
                                 "xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"%d\" "
-                                "height=\"%d\">\n<rect width=\"%d\" height=\"%d\"/>\n",
-                                W, H, W, H);
-    for (size_t k = 0; k < NCELLS; k++)
+                                "height=\"%d\"%s>\n<rect width=\"%d\" height=\"%d\"/>\n",
+                                W, H, root_attrs, W, H);
+    for (size_t k = 0; k < NCELLS; k++) {
+        const size_t at = *root_attrs ? COLS * ROWS - 1 - k : k;
         n += (size_t)snprintf(doc + n, sizeof doc - n,
                               "<g transform=\"translate(%d %d)\">%s</g>\n",
-                              (int)(k % COLS) * CELL, (int)(k / COLS) * CELL, tab[k].body);
+                              (int)(at % COLS) * CELL, (int)(at / COLS) * CELL, tab[k].body);
+    }
     n += (size_t)snprintf(doc + n, sizeof doc - n, "</svg>\n");
     assert_true(n < sizeof doc);
-    snprintf(path, len, "%s/paint%s.svg", dir, tab == cells ? "" : "-symbol");
+    snprintf(path, len, "%s/paint%s.svg", dir, table_name());
     support_write_file(path, doc, n);
     char spec[4200];
     snprintf(spec, sizeof spec, "svg:file=%s", path);
@@ -963,7 +1109,7 @@ static void renderer_table(void *arg)
         snprintf(doc, sizeof doc, "%s", path);
         exported(doc, path, sizeof path);
     }
-    snprintf(png, sizeof png, "%s/%s%s.png", dir, name, tab == cells ? "" : "-symbol");
+    snprintf(png, sizeof png, "%s/%s%s.png", dir, name, table_name());
     snprintf(cmd, sizeof cmd, "'%s' '%s' %d %d '%s' >/dev/null", adapter, path, W, H, png);
     if (system(cmd) != 0)
         fail_msg("%s failed on %s", name, path);

@@ -529,6 +529,16 @@ static void test_viewbox(void **state)
                    64, 32, vp);
     assert_string_equal(got, BLACK " M 1 1 Z");
     assert_true(vp[0] == 10 && vp[1] == 32);
+    /* a transform on the root, in CSS px outside the viewBox map, about
+     * the centre of the viewport (CSS Transforms 1 on a layout box):
+     * rotate(90) about (50, 50) takes (x, y) to (100 - y, x), after the
+     * viewBox's scale 10; the viewport is then the view (the caller's
+     * clip; the reader clips to the turned viewport) */
+    got = read_doc("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100\" height=\"100\" "
+                   "viewBox=\"0 0 10 10\" transform=\"rotate(90)\"><path d=\"M1 2\"/></svg>",
+                   120, 110, vp);
+    assert_string_equal(got, BLACK " M 80 10 Z");
+    assert_true(vp[0] == 120 && vp[1] == 110);
 }
 
 /* ---- refusals ---- */
@@ -621,7 +631,7 @@ static void test_refusals(void **state)
     refused(L2("<clipPath id=\"c\"/><rect width=\"1\" height=\"1\" clip-path=\"url(#c)\"/>"),
             "<rect>", "clip paths are not taken here");
     refused(L2("<rect width=\"1\" height=\"1\" clip-path=\"circle(1px)\"/>"), "<rect>",
-            "basic shapes");
+            "clip paths are not taken here");
     refused(L2("<use href=\"other.svg#a\"/>"), "<use>", "another document");
     refused(L2("<style>rect:first-child{fill:red}</style>"), "line 2: <style>", "pseudo-class");
     /* nor content beyond a viewport that clips, which needs a clip */
@@ -639,7 +649,11 @@ static void test_refusals(void **state)
     refused(L2("<path transform=\"scale(1e5)\" d=\"M 1e3 0\"/>"), "<path>", "beyond");
     refused("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1e300\"/>", "width", NULL);
     refused("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 0 1\"/>", "viewBox", "positive");
-    refused("<svg xmlns=\"http://www.w3.org/2000/svg\" transform=\"scale(2)\"/>", "<svg>", "transform");
+    /* a root transform moving the viewport: content beyond it needs a
+     * clip, which this sink does not take */
+    refused("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\" "
+            "transform=\"translate(1 0)\"><rect width=\"20\" height=\"1\"/></svg>",
+            "<rect>", "beyond the viewport of the <svg> at line 1");
     refused("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 1 1\" "
             "preserveAspectRatio=\"xMidYMed\"/>",
             "preserveAspectRatio", NULL);

@@ -7,10 +7,12 @@
  * of the shape inside it, so the image's sum is the area of what is drawn
  * (within the view): each clipped picture's area is derived by hand in a
  * comment beside it (a half disk, a lens of two disks, the cells of a
- * self-overlapping path under either rule, a strip of an ellipse), never
- * taken from the code under test.  Where a clip is translucent paint, the
- * integral is the area times the one colour it has, SVG 2's group opacity
- * over black worked in sRGB-encoded values.  The exact method `area`
+ * self-overlapping path under either rule, a strip of an ellipse; the
+ * basic shapes of clip-path by pi r^2, the rounded rectangle's closed form
+ * and the shoelace formula), never taken from the code under test; the
+ * root's transform by the pixels of a rect moved, worked by hand.  Where a
+ * clip is translucent paint, the integral is the area times the one colour
+ * it has, SVG 2's group opacity over black worked in sRGB-encoded values.  The exact method `area`
  * (algorithms/area.c) is run on every such scene under both its
  * integrators: within 1e-12 of the reference at every pixel, so its sums
  * meet the same closed forms.
@@ -47,16 +49,23 @@ static int teardown(void **state)
     return support_rmtree(dir);
 }
 
-/* `body` inside a root <svg> of N x N pixels, white shapes, written to a
- * file of the temporary folder; its pattern spec into spec. */
+/* The root's attributes but its size (width and height: N unless given
+ * here), in svg_spec's documents. */
+static const char *root_attrs = "";
+
+/* `body` inside a root <svg> of N x N pixels (or as root_attrs says),
+ * white shapes, written to a file of the temporary folder; its pattern
+ * spec into spec. */
 static void svg_spec(const char *name, const char *body, char *spec, size_t len)
 {
-    char path[4200], doc[8192];
+    char path[4200], doc[8192], size[64] = "";
     snprintf(path, sizeof path, "%s/%s.svg", dir, name);
+    if (!strstr(root_attrs, "width="))
+        snprintf(size, sizeof size, " width=\"%d\" height=\"%d\"", N, N);
     int n = snprintf(doc, sizeof doc,
-                     "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" "
+                     "<svg xmlns=\"http://www.w3.org/2000/svg\"%s%s "
                      "fill=\"white\">\n%s\n</svg>\n",
-                     N, N, body);
+                     size, root_attrs, body);
     assert_true(n > 0 && (size_t)n < sizeof doc);
     support_write_file(path, doc, strlen(doc));
     snprintf(spec, len, "svg:file=%s", path);
@@ -556,6 +565,252 @@ static void test_invalid_references(void **state)
                200 * M_PI);
 }
 
+/* ---- basic shapes and geometry boxes ---- */
+
+/* The signed area of the polygon (x[k], y[k]) by the shoelace formula,
+ * sum (x_k y_k+1 - x_k+1 y_k) / 2. */
+static double shoelace(const double *x, const double *y, int n)
+{
+    double s = 0;
+    for (int k = 0; k < n; k++)
+        s += x[k] * y[(k + 1) % n] - x[(k + 1) % n] * y[k];
+    return s / 2;
+}
+
+/* The area of a rectangle w x h whose corners are quarters of ellipses of
+ * radii rx[k], ry[k]: each corner cuts rx ry - pi rx ry / 4 off. */
+static double rounded_rect(double w, double h, const double *rx, const double *ry)
+{
+    double a = w * h;
+    for (int k = 0; k < 4; k++)
+        a -= (1 - M_PI / 4) * rx[k] * ry[k];
+    return a;
+}
+
+/* CSS Shapes 1's basic shapes as clip-path, in the reference box (a
+ * shape's stroke-box by default, its fill box when it has no stroke):
+ * each picture's area worked by hand beside it. */
+static void test_basic_shapes(void **state)
+{
+    (void)state;
+    /* circle(30% at 40% 50%) of the box 40 x 30 at (8, 8): the radius
+     * 30% of the normalised diagonal sqrt((40^2 + 30^2) / 2) = sqrt(1250),
+     * about (24, 23), inside the rect: pi 0.09 x 1250 */
+    check_area("circle", "<rect x=\"8\" y=\"8\" width=\"40\" height=\"30\" "
+                         "style=\"clip-path: circle(30% at 40% 50%)\"/>",
+               M_PI * 0.09 * 1250);
+    /* closest-side about (20, 24) of the box [0, 64]^2: radius 20 */
+    check_area("circle-closest", "<rect width=\"64\" height=\"64\" "
+                                 "clip-path=\"circle(closest-side at 20px 24px)\"/>",
+               400 * M_PI);
+    /* ellipse(30% 10px at right 30px top 50%) of the box 50 x 40 at (4,
+     * 4): rx 15, ry 10 about (4 + 50 - 30, 4 + 20) = (24, 24): 150 pi */
+    check_area("ellipse", "<rect x=\"4\" y=\"4\" width=\"50\" height=\"40\" "
+                          "style=\"clip-path: ellipse(30% 10px at right 30px top 50%)\"/>",
+               150 * M_PI);
+    /* inset(4px 6px round 8px 4px / 6px) of the box 50 x 40 at (4, 4):
+     * [10, 48] x [8, 40], 38 x 32, the corners' horizontal radii 8, 4, 8,
+     * 4 (top left, top right, bottom right, bottom left), vertical 6 */
+    const double rx1[4] = {8, 4, 8, 4}, ry1[4] = {6, 6, 6, 6};
+    check_area("inset", "<rect x=\"4\" y=\"4\" width=\"50\" height=\"40\" "
+                        "style=\"clip-path: inset(4px 6px round 8px 4px / 6px)\"/>",
+               rounded_rect(38, 32, rx1, ry1));
+    /* inset(0 round 30px) of 40 x 20: the radii scaled by the least of
+     * 40 / 60 and 20 / 60, to 10: a stadium, 20 x 20 + pi 10^2 */
+    check_area("inset-scaled", "<rect x=\"8\" y=\"8\" width=\"40\" height=\"20\" "
+                               "style=\"clip-path: inset(0 round 30px)\"/>",
+               400 + 100 * M_PI);
+    /* inset(0 round 50%) of 40 x 20: radii 20 and 10, just fitting: the
+     * ellipse, pi 20 x 10 */
+    check_area("inset-ellipse", "<rect x=\"4\" y=\"4\" width=\"40\" height=\"20\" "
+                                "style=\"clip-path: inset(0 round 50%)\"/>",
+               200 * M_PI);
+    /* polygon() of two squares joined at a corner, [8, 40]^2 and [24,
+     * 56]^2 (12.5% to 62.5% and 37.5% to 87.5% of the view): evenodd
+     * leaves their overlap [24, 40]^2 out, nonzero keeps it */
+    const double ax[4] = {8, 40, 40, 8}, ay[4] = {8, 8, 40, 40};
+    const double bx[4] = {24, 56, 56, 24}, by[4] = {24, 24, 56, 56};
+    const double ox[4] = {24, 40, 40, 24}, oy[4] = {24, 24, 40, 40};
+    const double a = shoelace(ax, ay, 4), b = shoelace(bx, by, 4), o = shoelace(ox, oy, 4);
+    check_area("polygon-evenodd",
+               "<rect width=\"64\" height=\"64\" style=\"clip-path: polygon(evenodd, 12.5% "
+               "12.5%, 62.5% 12.5%, 62.5% 62.5%, 12.5% 62.5%, 12.5% 12.5%, 37.5% 37.5%, "
+               "87.5% 37.5%, 87.5% 87.5%, 37.5% 87.5%, 37.5% 37.5%)\"/>",
+               a + b - 2 * o);
+    check_area("polygon-nonzero",
+               "<rect width=\"64\" height=\"64\" style=\"clip-path: polygon(8px 8px, 40px "
+               "8px, 40px 40px, 8px 40px, 8px 8px, 24px 24px, 56px 24px, 56px 56px, 24px "
+               "56px, 24px 24px)\"/>",
+               a + b - o);
+    /* path() from the fill box's corner (10, 10): the square [10, 42]^2
+     * with a hole [18, 34]^2 under evenodd (1024 - 256), none under
+     * nonzero (both drawn the same way round) */
+    check_area("path-evenodd", "<rect x=\"10\" y=\"10\" width=\"32\" height=\"32\" "
+                               "style=\"clip-path: path(evenodd, 'M0 0 H32 V32 H0 Z M8 8 "
+                               "H24 V24 H8 Z') fill-box\"/>",
+               768);
+    check_area("path-nonzero", "<rect width=\"64\" height=\"64\" "
+                               "style=\"clip-path: fill-box path('M10 10 H42 V42 H10 Z M18 "
+                               "18 H34 V34 H18 Z')\"/>",
+               1024);
+    /* xywh(2px 3px 50% 10px) of 40 x 40: 20 x 10; rect(2px auto 12px
+     * 25%): the edges 2 from the top, the box's right, 12 from the top,
+     * 10 from the left: 30 x 10 */
+    check_area("xywh", "<rect x=\"4\" y=\"4\" width=\"40\" height=\"40\" "
+                       "style=\"clip-path: xywh(2px 3px 50% 10px)\"/>",
+               200);
+    check_area("rect", "<rect x=\"4\" y=\"4\" width=\"40\" height=\"40\" "
+                       "style=\"clip-path: rect(2px auto 12px 25%)\"/>",
+               300);
+    /* a shape with a transform: the box in its user space, 20 x 20, the
+     * disk of radius 10 inscribed, scaled by 2: 400 pi */
+    check_area("transformed", "<rect width=\"20\" height=\"20\" transform=\"translate(10 10) "
+                              "scale(2)\" style=\"clip-path: circle(50%)\"/>",
+               400 * M_PI);
+    /* inside a group's clip: the disk of radius 20 about (32, 32) within
+     * the left half, 200 pi */
+    check_area("within", "<clipPath id=\"c\"><rect width=\"32\" height=\"64\"/></clipPath>"
+                         "<g clip-path=\"url(#c)\"><rect width=\"64\" height=\"64\" "
+                         "style=\"clip-path: circle(20px at 32px 32px)\"/></g>",
+               200 * M_PI);
+    /* a group in its fill-box, its object bounding box [8, 32]^2: the
+     * quarter of the disk of radius 12 about (8, 8), 36 pi */
+    check_area("group", "<g style=\"clip-path: circle(50% at 0 0) fill-box\"><rect x=\"8\" "
+                        "y=\"8\" width=\"24\" height=\"24\"/></g>",
+               36 * M_PI);
+}
+
+/* Geometry boxes alone and as a shape's reference box: the rect [10, 40] x
+ * [10, 30] stroked 6 wide (its stroke bounding box [7, 43] x [7, 33], 36 x
+ * 26 = 936; its fill box 30 x 20 = 600), white on white; view-box the
+ * root's viewport, 64 x 64, the radius 50% of its normalised diagonal 32. */
+static void test_geometry_boxes(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *clip;
+        double area;
+    } boxes[] = {{"none", 936},        {"fill-box", 600},    {"content-box", 600},
+                 {"padding-box", 600}, {"stroke-box", 936},  {"border-box", 936},
+                 {"margin-box", 936},  {"inset(0)", 936},    {"inset(0) fill-box", 600}};
+    for (size_t k = 0; k < sizeof boxes / sizeof boxes[0]; k++) {
+        char body[512];
+        snprintf(body, sizeof body,
+                 "<rect x=\"10\" y=\"10\" width=\"30\" height=\"20\" stroke=\"white\" "
+                 "stroke-width=\"6\" clip-path=\"%s\"/>",
+                 boxes[k].clip);
+        check_area(boxes[k].clip, body, boxes[k].area);
+    }
+    /* a group's: the union of its children's, each through its
+     * transform, a stroke inherited; a child group's stroke none: the
+     * rect [10, 40] x [10, 30] stroked ([7, 43] x [7, 33]) and [30, 50]^2,
+     * overlapping in [30, 43] x [30, 33]; all of it inside the stroke-box
+     * [7, 50]^2, 936 + 400 - 39; the fill-box [10, 50]^2 cuts the stroke
+     * to [10, 43] x [10, 33], 759 + 400 - 39 */
+    check_area("group-stroke-box",
+               "<g style=\"clip-path: inset(0)\" stroke=\"white\" stroke-width=\"6\"><rect "
+               "x=\"5\" width=\"30\" height=\"20\" transform=\"translate(5 10)\"/><g "
+               "stroke=\"none\"><rect x=\"30\" y=\"30\" width=\"20\" height=\"20\"/></g></g>",
+               936 + 400 - 39);
+    check_area("group-fill-box",
+               "<g style=\"clip-path: inset(0) fill-box\" stroke=\"white\" stroke-width=\"6\">"
+               "<rect x=\"5\" width=\"30\" height=\"20\" transform=\"translate(5 10)\"/><g "
+               "stroke=\"none\"><rect x=\"30\" y=\"30\" width=\"20\" height=\"20\"/></g></g>",
+               759 + 400 - 39);
+    /* a stroked circle's stroke-box, [20, 44]^2 (the outline's arcs bounded
+     * exactly): inset(0 50% 0 0) keeps x < 32, half the disk of radius
+     * 12, 72 pi */
+    check_area("circle-stroke-box", "<circle cx=\"32\" cy=\"32\" r=\"10\" stroke=\"white\" "
+                                    "stroke-width=\"4\" style=\"clip-path: inset(0 50% 0 0)\"/>",
+               72 * M_PI);
+    /* a use's, in its space after translate(x, y): its target's stroke
+     * box [7, 43] x [7, 33], the left half [7, 25] kept, drawn at [12, 30]
+     * x [12, 38]: 18 x 26; a group's holding a use whose target inherits
+     * the group's stroke: [12, 48] x [12, 38], the top half kept, 36 x 13 */
+    check_area("use-stroke-box",
+               "<defs><rect id=\"r\" x=\"10\" y=\"10\" width=\"30\" height=\"20\" "
+               "stroke=\"white\" stroke-width=\"6\"/></defs><use href=\"#r\" x=\"5\" y=\"5\" "
+               "style=\"clip-path: inset(0 50% 0 0)\"/>",
+               18 * 26);
+    check_area("group-use-stroke-box",
+               "<defs><rect id=\"q\" x=\"10\" y=\"10\" width=\"30\" height=\"20\"/></defs>"
+               "<g style=\"clip-path: inset(0 0 50% 0)\" stroke=\"white\" stroke-width=\"6\">"
+               "<use href=\"#q\" x=\"5\" y=\"5\"/></g>",
+               36 * 13);
+    check_area("view-box", "<rect x=\"-10\" y=\"-10\" width=\"100\" height=\"100\" "
+                           "clip-path=\"view-box\"/>",
+               4096);
+    check_area("view-box-circle", "<rect width=\"64\" height=\"64\" "
+                                  "style=\"clip-path: view-box circle(50%)\"/>",
+               1024 * M_PI);
+}
+
+/* The box reference of `body` (under root_attrs) is 1 on the pixels of
+ * [x0, x1) x [y0, y1) and 0 elsewhere (rectangles on whole pixels, worked
+ * by hand). */
+static void check_pixels(const char *name, const char *body, int x0, int y0, int x1, int y1)
+{
+    char spec[4400];
+    svg_spec(name, body, spec, sizeof spec);
+    aa_image img;
+    const support_view v = {.w = N, .h = N};
+    support_pattern_reference(spec, &v, &img, NULL, NULL);
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            const double want = i >= x0 && i < x1 && j >= y0 && j < y1;
+            if (!(fabs(aa_pixel(&img, i, j)[0] - want) <= 1e-12))
+                fail_msg("%s: pixel (%d, %d) is %.17g, not %g", name, i, j,
+                         aa_pixel(&img, i, j)[0], want);
+        }
+    aa_image_free(&img);
+}
+
+/* transform and clip-path on the root <svg>: those of its layout box (CSS
+ * px, outside its viewBox map; transform-origin initially its centre),
+ * its viewport clipping the content as transformed. */
+static void test_root(void **state)
+{
+    (void)state;
+    /* translate(10 5) moves the rect [0, 20] x [0, 10] to [10, 30] x [5,
+     * 15] */
+    root_attrs = " transform=\"translate(10 5)\"";
+    check_pixels("root-translate", "<rect width=\"20\" height=\"10\"/>", 10, 5, 30, 15);
+    /* rotate(90) about the centre (32, 32): (x, y) to (64 - y, x), so the
+     * rect [0, 20] x [0, 10] to [54, 64] x [0, 20] */
+    root_attrs = " transform=\"rotate(90)\"";
+    check_pixels("root-rotate", "<rect width=\"20\" height=\"10\"/>", 54, 0, 64, 20);
+    /* a viewport of 32 x 32 moved by (16, 16): the content clipped to it
+     * there, [16, 48]^2 */
+    root_attrs = " width=\"32\" height=\"32\" transform=\"translate(16 16)\"";
+    check_pixels("root-viewport", "<rect x=\"-50\" y=\"-50\" width=\"200\" height=\"200\"/>",
+                 16, 16, 48, 48);
+    /* scale(1.5) about the origin (transform-origin: 0 0): [0, 48]^2 */
+    root_attrs = " width=\"32\" height=\"32\" style=\"transform: scale(1.5); "
+                 "transform-origin: 0 0\"";
+    check_pixels("root-origin", "<rect x=\"-50\" y=\"-50\" width=\"200\" height=\"200\"/>", 0,
+                 0, 48, 48);
+    /* clip-path in CSS px, not in the viewBox's units (which are 2 px
+     * here): a clipPath rect 10 wide keeps [0, 10] x [0, 64]; one of
+     * objectBoundingBox 0.25 wide, a quarter of the viewport: [0, 16] */
+    root_attrs = " viewBox=\"0 0 32 32\" clip-path=\"url(#c)\"";
+    check_pixels("root-clip", "<clipPath id=\"c\"><rect width=\"10\" height=\"64\"/></clipPath>"
+                              "<rect width=\"32\" height=\"32\"/>",
+                 0, 0, 10, 64);
+    check_pixels("root-clip-box", "<clipPath id=\"c\" clipPathUnits=\"objectBoundingBox\">"
+                                  "<rect width=\"0.25\" height=\"1\"/></clipPath>"
+                                  "<rect width=\"32\" height=\"32\"/>",
+                 0, 0, 16, 64);
+    /* a basic shape in the viewport's box: circle(16px at 32px 32px), 256
+     * pi (1024 pi in the viewBox's units) */
+    root_attrs = " viewBox=\"0 0 32 32\" style=\"clip-path: circle(16px at 32px 32px)\"";
+    check_area("root-circle", "<rect width=\"32\" height=\"32\"/>", 256 * M_PI);
+    /* and moved with the transform: inset(0 32px 0 0) keeps [0, 32] of
+     * the box, at [8, 40] */
+    root_attrs = " transform=\"translate(8 0)\" style=\"clip-path: inset(0 32px 0 0)\"";
+    check_pixels("root-both", "<rect width=\"64\" height=\"64\"/>", 8, 0, 40, 64);
+    root_attrs = "";
+}
+
 /* The refusal for `body`, naming the element and containing `want`. */
 static void refused(const char *body, const char *where, const char *want)
 {
@@ -587,8 +842,31 @@ static void test_refused(void **state)
     refused("<clipPath id=\"a\">\n<rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>"
             "</clipPath><rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
             "line 3: <rect>", "cycle");
-    refused("<rect width=\"9\" height=\"9\" clip-path=\"circle(4px)\"/>", "<rect>",
-            "basic shapes");
+    refused("<rect width=\"9\" height=\"9\" clip-path=\"circle(4px 5px)\"/>", "<rect>",
+            "basic shape");
+    refused("<rect width=\"9\" height=\"9\" clip-path=\"circle(-4px)\"/>", "<rect>",
+            "basic shape");
+    refused("<rect width=\"9\" height=\"9\" clip-path=\"fill-box view-box\"/>", "<rect>",
+            "basic shape");
+    /* the stroke-box of a group, and of a shape in a clipPath, whose
+     * stroke is not known there */
+    refused("<symbol id=\"s\"><rect width=\"9\" height=\"9\"/></symbol><g "
+            "clip-path=\"circle(4px)\"><use href=\"#s\"/></g>",
+            "<use>", "use of a <symbol>");
+    refused("<g clip-path=\"circle(4px)\"><svg width=\"9\" height=\"9\"/></g>", "<svg>",
+            "stroke-box");
+    refused("<clipPath id=\"a\"><rect width=\"9\" height=\"9\" clip-path=\"inset(1px)\"/>"
+            "</clipPath><rect width=\"9\" height=\"9\" clip-path=\"url(#a)\"/>",
+            "<rect>", "stroke-box");
+    refused("<svg width=\"9\" height=\"9\" clip-path=\"circle(4px)\"/>", "<svg>",
+            "nested <svg>");
+    /* the stroke-box of a stroke with offset curves (an ellipse's) */
+    refused("<ellipse cx=\"9\" cy=\"9\" rx=\"8\" ry=\"4\" stroke=\"white\" "
+            "clip-path=\"circle(4px)\"/>",
+            "<ellipse>", "offset curves");
+    root_attrs = " transform=\"scale(0)\"";
+    refused("<rect width=\"9\" height=\"9\"/>", "<svg>", "singular");
+    root_attrs = "";
     refused("<rect width=\"9\" height=\"9\" clip-path=\"url(other.svg#a)\"/>", "<rect>",
             "url(#id)");
     refused("<clipPath id=\"a\"><text>x</text></clipPath>"
@@ -699,5 +977,7 @@ SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_scene_model),
              cmocka_unit_test(test_clip_rule), cmocka_unit_test(test_use_in_clip),
              cmocka_unit_test(test_bounding_box), cmocka_unit_test(test_clip_of_clip),
              cmocka_unit_test(test_group_opacity), cmocka_unit_test(test_invalid_references),
-             cmocka_unit_test(test_refused), cmocka_unit_test(test_shipped),
+             cmocka_unit_test(test_basic_shapes), cmocka_unit_test(test_geometry_boxes),
+             cmocka_unit_test(test_root), cmocka_unit_test(test_refused),
+             cmocka_unit_test(test_shipped),
              cmocka_unit_test(test_export_round_trip))

@@ -840,10 +840,11 @@ static void test_css_transform(void **state)
                    BLACK " M 1 2 Z", "ignored");
     refused(OPEN "<path style=\"transform: rotateX(10deg)\" d=\"M0 0\"/></svg>", "<path>",
             "no 3D");
-    /* the root's transform is refused, as an attribute or a declaration */
-    refused("<svg xmlns=\"http://www.w3.org/2000/svg\"><style>svg { transform: scale(2) }"
-            "</style></svg>",
-            "<svg>", "root");
+    /* the root's transform as a declaration: translate(3px, 4px), the
+     * origin (the viewport's centre) not mattering */
+    expect("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100\" height=\"100\"><style>"
+           "svg { transform: translate(3px, 4px) }</style><path d=\"M1 1\"/></svg>",
+           BLACK " M 4 5 Z");
 }
 
 /* ---- path data errors ---- */
