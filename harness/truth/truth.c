@@ -4829,7 +4829,8 @@ static size_t shared_threshold_taus(worker *w, const grad_radial *g, const int *
                     bz oa = bz_lin(s->a, al[d], 0.0L, bz_const(0.0L)), r;
                     ok = bz_over(&op, &oa, &p[d - 1], &p[d - 1]) &&
                          bz_over(&oa, &oa, &al[d - 1], &r);
-                    al[d - 1] = r;
+                    if (ok) /* (else r is unset, and the fold stops) */
+                        al[d - 1] = r;
                     d--;
                 } else {
                     bz a, ac, r;
@@ -4847,7 +4848,8 @@ static size_t shared_threshold_taus(worker *w, const grad_radial *g, const int *
                     } else
                         a = bz_const(s->a), ac = bz_const((long double)s->a * s->c[c]);
                     ok = ok && bz_over(&ac, &a, &p[d], &p[d]) && bz_over(&a, &a, &al[d], &r);
-                    al[d] = r;
+                    if (ok)
+                        al[d] = r;
                 }
             }
             size_t nr;
