@@ -80,8 +80,10 @@ int aa_arc_endpoints(double x0, double y0, double rx, double ry, double phi, int
  * an elliptical arc (centre and semi-diameters mapped). */
 int aa_path_fill(const aa_path *path, const double m[6], aa_scene *s);
 
+/* SVG 2's joins (stroke.c says how each is drawn): miter-clip and arcs
+ * are SVG 2's, after the three of SVG 1.1. */
 typedef enum aa_line_join {
-    AA_JOIN_MITER = 0, AA_JOIN_ROUND, AA_JOIN_BEVEL
+    AA_JOIN_MITER = 0, AA_JOIN_ROUND, AA_JOIN_BEVEL, AA_JOIN_MITER_CLIP, AA_JOIN_ARCS
 } aa_line_join;
 typedef enum aa_line_cap { AA_CAP_BUTT = 0, AA_CAP_ROUND, AA_CAP_SQUARE } aa_line_cap;
 
