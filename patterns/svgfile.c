@@ -79,10 +79,10 @@
  *     on an element with both a fill and a stroke, a group composited as a
  *     whole (`group_begin`, `group_end`); color, paint-order, visibility
  *     and display;
- *   - stroke (a colour or none), stroke-width, stroke-linejoin,
- *     stroke-linecap, stroke-miterlimit, stroke-dasharray and
- *     stroke-dashoffset (scaled by pathLength: path_length_dashes): the
- *     stroke is the path's outline in user units
+ *   - stroke (a colour or none), stroke-width, stroke-linejoin (SVG 2's
+ *     miter-clip and arcs too), stroke-linecap, stroke-miterlimit,
+ *     stroke-dasharray and stroke-dashoffset (scaled by pathLength:
+ *     path_length_dashes): the stroke is the path's outline in user units
  *     (aa_stroke_outline), a shape of its own after the fill, nonzero; the
  *     pattern keeps it as a stroke (aa_scene_stroke: a layer of its own
  *     with its source, so that peers stroke it themselves and `export`
@@ -95,7 +95,7 @@
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
- * rounding of 0), the joins miter-clip and arcs, color-interpolation:
+ * rounding of 0; an arcs join stroke.c cannot draw), color-interpolation:
  * linearRGB on what is drawn (compositing in linear light, which no browser
  * does; on a gradient element it is read: "gradients"), <pattern> paint servers, the
  * radial gradients whose focal circle is their end circle (grad_resolve), text, images, clip-path other than url(#id) or
@@ -258,7 +258,6 @@ typedef struct style {
     int stroke_none;
     double stroke_width;
     aa_line_join join;
-    const char *join_other; /* a join of SVG 2 not drawn (miter-clip, arcs), or NULL */
     aa_line_cap cap;
     double miterlimit;
     double dash[AA_SVG_MAX_DASHES];
@@ -2667,13 +2666,9 @@ static double length_bound(const aa_path *p)
 #define MAX_DASHES_DRAWN (AA_SVG_MAX_SEGMENTS / 8)
 
 /* The stroke style of sty for the path p into *ss (its dashes pointing
- * into sty), refusing joins not drawn and dash patterns of too many
- * dashes. */
+ * into sty), refusing dash patterns of too many dashes. */
 static int stroke_style_of(reader *r, const aa_path *p, const style *sty, aa_stroke_style *out)
 {
-    if (sty->join_other)
-        return fail_at(r, "stroke-linejoin=\"%s\" is not supported (miter, round or bevel)",
-                       sty->join_other);
     aa_stroke_style ss;
     aa_stroke_style_default(&ss);
     ss.width = sty->stroke_width;
@@ -2875,7 +2870,8 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
     int st = AA_OK, k = 0;
     static const char *const joins[] = {"miter", "round", "bevel", "miter-clip", "arcs"};
     static const char *const caps[] = {"butt", "round", "square"};
-    static const aa_line_join join_of[] = {AA_JOIN_MITER, AA_JOIN_ROUND, AA_JOIN_BEVEL};
+    static const aa_line_join join_of[] = {AA_JOIN_MITER, AA_JOIN_ROUND, AA_JOIN_BEVEL,
+                                           AA_JOIN_MITER_CLIP, AA_JOIN_ARCS};
     static const aa_line_cap cap_of[] = {AA_CAP_BUTT, AA_CAP_ROUND, AA_CAP_SQUARE};
 #define GIVEN(key) (prop(r, node, key, v, sizeof v, &st) && strcasecmp(v, "inherit"))
     if (GIVEN("stroke-width")) {
@@ -2885,10 +2881,10 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
             return fail_at(r, "stroke-width=\"%s\": a negative width is an error", aa_echo(v));
     }
     if (!st && GIVEN("stroke-linejoin")) {
-        if ((st = keyword(r, "stroke-linejoin", v, joins, 5, &k, "miter, round or bevel")))
+        if ((st = keyword(r, "stroke-linejoin", v, joins, 5, &k,
+                          "miter, round, bevel, miter-clip or arcs")))
             return st;
-        sty->join = k < 3 ? join_of[k] : AA_JOIN_MITER;
-        sty->join_other = k < 3 ? NULL : joins[k];
+        sty->join = join_of[k];
     }
     if (!st && GIVEN("stroke-linecap")) {
         if ((st = keyword(r, "stroke-linecap", v, caps, 3, &k, "butt, round or square")))

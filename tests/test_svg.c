@@ -582,10 +582,6 @@ static void test_refusals(void **state)
                "<rect width=\"1\" height=\"1\" stroke=\"url(#g)\"/>"),
             "<rect>", "gradient paint is not taken here");
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-width=\"10ch\"/>"), "<line>", "length");
-    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-linejoin=\"miter-clip\"/>"), "<line>",
-            "stroke-linejoin");
-    refused(L2("<line x2=\"5\" stroke=\"red\" stroke-linejoin=\"arcs\"/>"), "<line>",
-            "stroke-linejoin");
     refused(L2("<line x2=\"5\" stroke-dasharray=\"1 2lh\"/>"), "<line>", "stroke-dasharray");
     /* pathLength 0 scales an offset to infinity: no one picture */
     refused(L2("<line x2=\"5\" stroke=\"red\" stroke-dasharray=\"1\" stroke-dashoffset=\"1\" "
