@@ -709,7 +709,15 @@ int agg_init(void *state, const double *p, const aa_job *job)
 {
     (void)p;
     agg_state *s = static_cast<agg_state *>(state);
-    int st = aa_peer_scene_read("agg", job, &s->ps);
+    /* SVG 2's miter-clip and arcs: AGG's miter_join cuts a miter at the
+     * limit too, but it is not measured against SVG 2's cut here, so both
+     * are refused by name */
+    int st = aa_peer_refuse_joins("agg", job->placed,
+                                  "the agg method does not draw (its joins are SVG 1.1's: "
+                                  "miter_join_revert, round_join and bevel_join)");
+    if (st)
+        return st;
+    st = aa_peer_scene_read("agg", job, &s->ps);
     s->painted = 0;
     if (st == AA_EINVAL && aa_peer_paintable(job->placed)) {
         /* strokes by AGG's stroker: only filled layers' offsets refused */
