@@ -102,8 +102,7 @@
  * none (basic shapes, geometry boxes, other documents) and on the root,
  * <text>, <g> and other non-shapes in a clipPath, references to clip
  * paths forming a cycle, masks, filters, transform-box
- * stroke-box of a stroke with offset curves (its extent not computed
- * exactly) or inside an object bounding box (its stroke not known there),
+ * stroke-box inside an object bounding box (its stroke not known there),
  * content beyond a viewport that clips when the sink takes no clips,
  * references to other documents, what svgcss.h refuses in a style
  * sheet, sheets for other media, any attribute or style property not
@@ -2957,25 +2956,29 @@ static int parse_paint_order(reader *r, const char *v, int *stroke_first)
 static void path_box(const aa_path *p, const mat *m, double box[4]);
 
 /* The stroke bounding box of a shape (SVG 2, "Bounding boxes": its fill
- * box, p's exact bounds, grown by the bounds of its stroke shape when the
- * stroke is not none), x0 y0 x1 y1 in b, which holds the fill box.  The
- * stroke shape is the outline aa_stroke_outline draws: lines and circular
- * arcs, bounded exactly by path_box (an arc's extremes in closed form); a
- * stroke with offset curves (a Bezier arc or a non-circular elliptical arc
- * stroked) is refused, its extent not being computed exactly here. */
+ * box, p's exact bounds, grown by "the tightest rectangle ... that contains
+ * the stroke shape of the element, with the assumption that the element
+ * has no dash pattern" when the stroke is not none: the tightest, no
+ * approximation; dashes, and so pathLength, play no part), x0 y0 x1 y1 in
+ * b, which holds the fill box.  The stroke shape is the outline
+ * aa_stroke_outline draws undashed, bounded exactly by path_box: lines,
+ * circular arcs (their extremes in closed form) and the offset curves and
+ * evolutes of stroked Bezier and elliptical arcs (their ends and the
+ * closed-form parameters where x or y turns: where the base curve's
+ * tangent is axis-aligned; a fold of the offset, where its tangent
+ * vanishes, is an end of the outline's pieces, and so are the joins' and
+ * caps' points; the evolutes lie inside the shape, on the normals within
+ * h of the curve, and add nothing). */
 static int stroke_box(reader *r, const aa_path *p, const style *sty, double b[4])
 {
     if (sty->stroke_none || !(sty->stroke_width > 0))
         return AA_OK;
+    style plain = *sty;
+    plain.ndash = 0;
     aa_stroke_style ss;
     aa_path out;
     aa_path_init(&out);
-    int st = stroke_outline_of(r, p, sty, &ss, &out);
-    for (size_t k = 0; k < out.n && !st; k++)
-        if (out.seg[k].op == AA_PATH_OFFSET)
-            st = fail_at(r, "transform-box: stroke-box of a stroke with offset curves (a "
-                            "Bezier or non-circular arc stroked) is not supported: their "
-                            "extent is not computed exactly");
+    int st = stroke_outline_of(r, p, &plain, &ss, &out);
     if (!st)
         path_box(&out, &identity, b);
     aa_path_free(&out);
@@ -3500,6 +3503,31 @@ static void path_box(const aa_path *p, const mat *m, double box[4])
                     box[k] = fmin(box[k], e), box[k + 2] = fmax(box[k + 2], e);
                 }
             }
+            continue;
+        }
+        case AA_PATH_OFFSET: {
+            /* an offset curve or evolute of a stroke's outline (stroke_box),
+             * through m: its ends and where a mapped coordinate turns, in
+             * closed form (aa__offset_turns; the outline's pieces have no
+             * fold inside, where the offset's tangent would vanish) */
+            aa_offset_curve oc = {{0}, {m->a, m->b, m->c, m->d, m->e, m->f}, v[8], v[9] != 0,
+                                  (int)v[14]};
+            memcpy(oc.b, v, sizeof oc.b);
+            const double lo = fmin(v[10], v[11]), hi = fmax(v[10], v[11]);
+            double t[6] = {lo, hi};
+            int nt = 2;
+            for (int k = 0; k < 2; k++)
+                nt += aa__offset_turns(&oc, k, lo, hi, t + nt);
+            for (int j = 0; j < nt; j++) {
+                double x, y;
+                aa_offset_point(&oc, t[j], &x, &y, NULL, NULL);
+                box[0] = fmin(box[0], x), box[2] = fmax(box[2], x);
+                box[1] = fmin(box[1], y), box[3] = fmax(box[3], y);
+            }
+            px = m->a * v[12] + m->c * v[13] + m->e;
+            py = m->b * v[12] + m->d * v[13] + m->f;
+            box[0] = fmin(box[0], px), box[2] = fmax(box[2], px);
+            box[1] = fmin(box[1], py), box[3] = fmax(box[3], py);
             continue;
         }
         default: /* a close: back to the start, a point already counted */
