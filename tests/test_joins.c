@@ -46,6 +46,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -185,6 +186,179 @@ static void test_miter_clip_lines(void **state)
     aa_path_free(&p);
 }
 
+/* The stroke of a polyline with miter-clip joins and butt caps, by SVG
+ * 2's definition: the union of each segment's rectangle (the segment swept
+ * by its normal of length w) and, at each vertex, the join: on the outer
+ * side of the turn, the kite P A M B (A, B the outer offset points, M
+ * where the outer offset lines meet) if 1/sin(theta/2) <= limit, else the
+ * kite cut by the line perpendicular to the bisector at limit h from P.
+ * Each piece is convex: a point is in the stroke if it is in one, and
+ * *margin is its least distance to any piece's edge (points within 1e-9
+ * of one are not judged). */
+typedef struct polyline {
+    int n, closed;
+    double xy[16], h, limit;
+} polyline;
+
+static double seg_dist(double qx, double qy, double x0, double y0, double x1, double y1)
+{
+    double dx = x1 - x0, dy = y1 - y0, l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? ((qx - x0) * dx + (qy - y0) * dy) / l2 : 0;
+    t = fmin(1, fmax(0, t));
+    return hypot(qx - x0 - t * dx, qy - y0 - t * dy);
+}
+
+/* In the convex polygon (either orientation), and the distance to its
+ * boundary. */
+static int in_convex(const double *xy, int n, double qx, double qy, double *margin)
+{
+    int pos = 0, neg = 0;
+    for (int i = 0; i < n; i++) {
+        int j = (i + 1) % n;
+        double c = (xy[2 * j] - xy[2 * i]) * (qy - xy[2 * i + 1]) -
+                   (xy[2 * j + 1] - xy[2 * i + 1]) * (qx - xy[2 * i]);
+        pos += c > 0, neg += c < 0;
+        *margin = fmin(*margin, seg_dist(qx, qy, xy[2 * i], xy[2 * i + 1], xy[2 * j],
+                                         xy[2 * j + 1]));
+    }
+    return pos == 0 || neg == 0;
+}
+
+static int in_polyline_stroke(const polyline *pl, double qx, double qy, double *margin)
+{
+    int in = 0, nseg = pl->closed ? pl->n : pl->n - 1;
+    const double h = pl->h;
+    *margin = INFINITY;
+    for (int i = 0; i < nseg; i++) {
+        const double *a = pl->xy + 2 * i, *b = pl->xy + 2 * ((i + 1) % pl->n);
+        double dx = b[0] - a[0], dy = b[1] - a[1], l = hypot(dx, dy);
+        double nx = -dy / l * h, ny = dx / l * h;
+        const double r[8] = {a[0] + nx, a[1] + ny, b[0] + nx, b[1] + ny,
+                             b[0] - nx, b[1] - ny, a[0] - nx, a[1] - ny};
+        in |= in_convex(r, 4, qx, qy, margin);
+    }
+    for (int v = pl->closed ? 0 : 1; v < (pl->closed ? pl->n : pl->n - 1); v++) {
+        const double *a = pl->xy + 2 * ((v + pl->n - 1) % pl->n), *p = pl->xy + 2 * v;
+        const double *c = pl->xy + 2 * ((v + 1) % pl->n);
+        double u1[2] = {a[0] - p[0], a[1] - p[1]}, u2[2] = {c[0] - p[0], c[1] - p[1]};
+        double l1 = hypot(u1[0], u1[1]), l2 = hypot(u2[0], u2[1]);
+        u1[0] /= l1, u1[1] /= l1, u2[0] /= l2, u2[1] /= l2;
+        double d1[2] = {-u1[0], -u1[1]}, d2[2] = {u2[0], u2[1]};
+        double cr = d1[0] * d2[1] - d1[1] * d2[0];
+        double sg = cr > 0 ? -1 : 1; /* the outer side: right of a left turn */
+        double n1[2] = {-sg * d1[1] * h, sg * d1[0] * h}, n2[2] = {-sg * d2[1] * h, sg * d2[0] * h};
+        double A[2] = {p[0] + n1[0], p[1] + n1[1]}, B[2] = {p[0] + n2[0], p[1] + n2[1]}, M[2];
+        meet(A, d1, B, d2, M);
+        /* the angle between the segments, between u1 and u2 */
+        double theta = acos(fmax(-1, fmin(1, u1[0] * u2[0] + u1[1] * u2[1])));
+        if (1 / sin(theta / 2) <= pl->limit) {
+            const double k[8] = {p[0], p[1], A[0], A[1], M[0], M[1], B[0], B[1]};
+            in |= in_convex(k, 4, qx, qy, margin);
+            continue;
+        }
+        /* the bisector into the angle is u1 + u2; the cut is on the
+         * other side, at limit h */
+        double bx = u1[0] + u2[0], by = u1[1] + u2[1], bl = hypot(bx, by);
+        bx /= bl, by /= bl;
+        const double y[2] = {p[0] - pl->limit * h * bx, p[1] - pl->limit * h * by};
+        const double along[2] = {-by, bx};
+        double c1[2], c2[2];
+        meet(A, d1, y, along, c1);
+        meet(B, d2, y, along, c2);
+        const double k[10] = {p[0], p[1], A[0], A[1], c1[0], c1[1], c2[0], c2[1], B[0], B[1]};
+        in |= in_convex(k, 5, qx, qy, margin);
+    }
+    return in;
+}
+
+/* Winding number about (qx, qy) of an outline of lines: signed crossings
+ * of the ray towards +x. */
+static int winding(const aa_path *out, double qx, double qy)
+{
+    int w = 0;
+    double sx = 0, sy = 0, px = 0, py = 0;
+    for (size_t k = 0; k < out->n; k++) {
+        const aa_path_seg *g = &out->seg[k];
+        double x = g->p[0], y = g->p[1];
+        if (g->op == AA_PATH_MOVE) {
+            sx = px = x, sy = py = y;
+            continue;
+        }
+        if (g->op == AA_PATH_CLOSE)
+            x = sx, y = sy;
+        else if (g->op != AA_PATH_LINE)
+            fail_msg("a polyline's outline has a segment of kind %d", (int)g->op);
+        if ((py <= qy && qy < y) || (y <= qy && qy < py)) {
+            double cx = px + (qy - py) / (y - py) * (x - px);
+            if (cx > qx)
+                w += y > py ? 1 : -1;
+        }
+        px = x, py = y;
+    }
+    return w;
+}
+
+/* Random polylines (3 to 7 vertices, open and closed, widths 0.02 to
+ * 0.12, limits 1 to 5), miter-clip joins: at 4000 random points each (half
+ * of them near a vertex) the outline's winding number is non-zero exactly
+ * where the shape above holds the point. */
+static void test_miter_clip_points(void **state)
+{
+    (void)state;
+    uint64_t rng = 0x9e3779b97f4a7c15u;
+    long in = 0, out = 0, cut = 0;
+    for (int trial = 0; trial < 60; trial++) {
+        polyline pl;
+        pl.n = 3 + (int)support_uniform(&rng, 0, 5);
+        pl.closed = trial % 2;
+        pl.h = 0.5 * support_uniform(&rng, 0.02, 0.12);
+        pl.limit = support_uniform(&rng, 1, 5);
+        for (int k = 0; k < 2 * pl.n; k++)
+            pl.xy[k] = support_uniform(&rng, 0.15, 0.85);
+        aa_path p = {0};
+        must(aa_path_move_to(&p, pl.xy[0], pl.xy[1]));
+        for (int k = 1; k < pl.n; k++)
+            must(aa_path_line_to(&p, pl.xy[2 * k], pl.xy[2 * k + 1]));
+        if (pl.closed)
+            must(aa_path_close(&p));
+        aa_stroke_style st;
+        aa_stroke_style_default(&st);
+        st.width = 2 * pl.h;
+        st.join = AA_JOIN_MITER_CLIP;
+        st.miterlimit = pl.limit;
+        aa_path o = {0};
+        must(aa_stroke_outline(&p, &st, &o));
+        for (int i = 0; i < 4000; i++) {
+            /* half anywhere, half near a vertex (within (limit + 1) h) */
+            double qx = support_uniform(&rng, -0.1, 1.1), qy = support_uniform(&rng, -0.1, 1.1);
+            if (i % 2) {
+                int v = (int)support_uniform(&rng, 0, pl.n);
+                double r = (pl.limit + 1) * pl.h;
+                qx = pl.xy[2 * v] + support_uniform(&rng, -r, r);
+                qy = pl.xy[2 * v + 1] + support_uniform(&rng, -r, r);
+            }
+            double margin;
+            int want = in_polyline_stroke(&pl, qx, qy, &margin);
+            if (margin < 1e-9) {
+                cut++;
+                continue;
+            }
+            int w = winding(&o, qx, qy);
+            if (w < 0)
+                fail_msg("trial %d: winding number %d at (%.17g, %.17g)", trial, w, qx, qy);
+            if ((w != 0) != want)
+                fail_msg("trial %d: (%.17g, %.17g) is %s the outline but %s the stroke", trial,
+                         qx, qy, w ? "in" : "out of", want ? "in" : "out of");
+            want ? in++ : out++;
+        }
+        aa_path_free(&o);
+        aa_path_free(&p);
+    }
+    print_message("miter-clip points: %ld in, %ld out, %ld within 1e-9 of an edge\n", in, out,
+                  cut);
+    assert_true(in > 10000 && out > 10000);
+}
+
 /* ---- arcs ---- */
 
 /* The area of the region from p1 along the circle (centre o1, radius r1)
@@ -263,6 +437,194 @@ static void test_arcs_circles(void **state)
     expect_area("arcs join, path reversed", stroke_area(&q, &st) - bevel, want);
     aa_path_free(&q);
     aa_path_free(&p);
+}
+
+/* The crossings of the line through y and q with the circle (o, r): the
+ * one whose angle from p1 about o lies within the arc from p1 to x (of at
+ * most half a turn). */
+static void cut_circle(const double y[2], const double q[2], const double o[2], double r,
+                       const double p1[2], const double x[2], double out[2])
+{
+    double dx = q[0] - y[0], dy = q[1] - y[1], l = hypot(dx, dy);
+    dx /= l, dy /= l;
+    double t = (o[0] - y[0]) * dx + (o[1] - y[1]) * dy;
+    double fx = y[0] + t * dx, fy = y[1] + t * dy, e = hypot(o[0] - fx, o[1] - fy);
+    double s = sqrt(r * r - e * e);
+    double a0 = atan2(p1[1] - o[1], p1[0] - o[0]);
+    double sweep = remainder(atan2(x[1] - o[1], x[0] - o[0]) - a0, 2 * M_PI);
+    for (int k = -1; k <= 1; k += 2) {
+        double cx = fx + k * s * dx, cy = fy + k * s * dy;
+        double a = remainder(atan2(cy - o[1], cx - o[0]) - a0, 2 * M_PI);
+        if (a * sweep >= 0 && fabs(a) <= fabs(sweep)) {
+            out[0] = cx, out[1] = cy;
+            return;
+        }
+    }
+    fail_msg("the cut does not cross the arc");
+}
+
+/* The signed area between an arc of the circle (o, r) from a to b (of at
+ * most half a turn) and its chord: r^2 (s - sin s)/2. */
+static double segment(const double o[2], double r, const double a[2], const double b[2])
+{
+    double s = remainder(atan2(b[1] - o[1], b[0] - o[0]) - atan2(a[1] - o[1], a[0] - o[0]),
+                         2 * M_PI);
+    return 0.5 * r * r * (s - sin(s));
+}
+
+/* The same corner as test_arcs_circles with a miter limit of 1.2: the
+ * miter length is measured along the circle tangent to the bisector m at P
+ * through X (centre Q = P + rho n, n perpendicular to m, |Q - X| = |rho|:
+ * rho = |X - P|^2 / (2 (X - P) . n)), and the join is cut by the line
+ * through Q and the point Y of that circle at arc length L = 1.2 h from P
+ * (P turned about Q by L/|rho| towards X).  The join beyond the bevel is
+ * then the region p1 -> circle 1 -> Y1 -> Y2 -> circle 2 -> p2: the
+ * quadrilateral p1 Y1 Y2 p2 plus the two circular segments. */
+static void test_arcs_cut(void **state)
+{
+    (void)state;
+    const double al = 50 * M_PI / 180, sweep = 40 * M_PI / 180;
+    const double P[2] = {0.5, 0.45}, w = 0.08, h = 0.04, limit = 1.2;
+    const double R1 = 0.25, R2 = 0.18;
+    const double N1[2] = {-sin(al), cos(al)}, N2[2] = {sin(al), cos(al)};
+    const double o1[2] = {P[0] - R1 * N1[0], P[1] - R1 * N1[1]};
+    const double o2[2] = {P[0] - R2 * N2[0], P[1] - R2 * N2[1]};
+    const double e1 = atan2(N1[1], N1[0]), s2 = atan2(N2[1], N2[0]);
+    aa_path p = {0};
+    must(aa_path_move_to(&p, o1[0] + R1 * cos(e1 + sweep), o1[1] + R1 * sin(e1 + sweep)));
+    must(aa_path_arc_to(&p, o1[0], o1[1], R1, 0, 0, R1, e1 + sweep, e1, P[0], P[1]));
+    must(aa_path_arc_to(&p, o2[0], o2[1], R2, 0, 0, R2, s2, s2 - sweep,
+                        o2[0] + R2 * cos(s2 - sweep), o2[1] + R2 * sin(s2 - sweep)));
+    const double r1 = R1 + h, r2 = R2 + h;
+    double ex = o2[0] - o1[0], ey = o2[1] - o1[1], d = hypot(ex, ey);
+    ex /= d, ey /= d;
+    double m = (r1 * r1 - r2 * r2 + d * d) / (2 * d), k = sqrt(r1 * r1 - m * m);
+    double xa[2] = {o1[0] + m * ex - k * ey, o1[1] + m * ey + k * ex};
+    double xb[2] = {o1[0] + m * ex + k * ey, o1[1] + m * ey - k * ex};
+    const double *x = hypot(xa[0] - P[0], xa[1] - P[1]) < hypot(xb[0] - P[0], xb[1] - P[1])
+                          ? xa
+                          : xb;
+    /* the bisector: up (d1 = (cos a, sin a), d2 = (cos a, -sin a)) */
+    const double mb[2] = {0, 1}, nb[2] = {-1, 0};
+    double dxp = x[0] - P[0], dyp = x[1] - P[1];
+    double rho = (dxp * dxp + dyp * dyp) / (2 * (dxp * nb[0] + dyp * nb[1]));
+    const double Q[2] = {P[0] + rho * nb[0], P[1] + rho * nb[1]};
+    double ang = atan2(x[1] - Q[1], x[0] - Q[0]) - atan2(P[1] - Q[1], P[0] - Q[0]);
+    ang = remainder(ang, 2 * M_PI);
+    double arclen = fabs(rho * ang), L = limit * h, psi = copysign(L / fabs(rho), ang);
+    double px = P[0] - Q[0], py = P[1] - Q[1];
+    const double Y[2] = {Q[0] + px * cos(psi) - py * sin(psi),
+                         Q[1] + px * sin(psi) + py * cos(psi)};
+    print_message("arcs cut: miter length %.4f h along the arc, cut at %.1f h\n", arclen / h,
+                  limit);
+    assert_true(arclen > L);
+    (void)mb;
+    const double p1[2] = {P[0] + h * N1[0], P[1] + h * N1[1]};
+    const double p2[2] = {P[0] + h * N2[0], P[1] + h * N2[1]};
+    double y1[2], y2[2];
+    cut_circle(Y, Q, o1, r1, p1, x, y1);
+    cut_circle(Y, Q, o2, r2, p2, x, y2);
+    const double quad[8] = {p1[0], p1[1], y1[0], y1[1], y2[0], y2[1], p2[0], p2[1]};
+    double want = fabs(shoelace(quad, 4) + segment(o1, r1, p1, y1) + segment(o2, r2, y2, p2));
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = w;
+    st.miterlimit = limit;
+    st.join = AA_JOIN_BEVEL;
+    double bevel = stroke_area(&p, &st);
+    st.join = AA_JOIN_ARCS;
+    expect_area("arcs join cut by its limit", stroke_area(&p, &st) - bevel, want);
+    aa_path_free(&p);
+}
+
+/* Circles that do not meet: the arcs turn towards the outer side, radius
+ * R = 0.06 with h = 0.04, so that the edges' circles (radius R - h about
+ * P + R N_i) lie apart.  SVG 2 grows both radii by D, each centre moving
+ * along its normal (C_i(D) = P + (R + D) N_i, radius R - h + D), until
+ * they touch: D found here by bisection on |C1(D) - C2(D)| = 2 (R - h +
+ * D), and X the touching point; the join beyond the bevel is the lens of
+ * the grown circles. */
+static void test_arcs_apart(void **state)
+{
+    (void)state;
+    const double al = 50 * M_PI / 180, sweep = 40 * M_PI / 180;
+    const double P[2] = {0.5, 0.45}, w = 0.08, h = 0.04, R = 0.06;
+    const double N1[2] = {-sin(al), cos(al)}, N2[2] = {sin(al), cos(al)};
+    const double o1[2] = {P[0] + R * N1[0], P[1] + R * N1[1]};
+    const double o2[2] = {P[0] + R * N2[0], P[1] + R * N2[1]};
+    /* each arc turns left (counterclockwise) about its centre above P */
+    const double e1 = atan2(-N1[1], -N1[0]), s2 = atan2(-N2[1], -N2[0]);
+    aa_path p = {0};
+    must(aa_path_move_to(&p, o1[0] + R * cos(e1 - sweep), o1[1] + R * sin(e1 - sweep)));
+    must(aa_path_arc_to(&p, o1[0], o1[1], R, 0, 0, R, e1 - sweep, e1, P[0], P[1]));
+    must(aa_path_arc_to(&p, o2[0], o2[1], R, 0, 0, R, s2, s2 + sweep,
+                        o2[0] + R * cos(s2 + sweep), o2[1] + R * sin(s2 + sweep)));
+    double lo = 0, hi = 1;
+    for (int it = 0; it < 200; it++) {
+        double D = 0.5 * (lo + hi);
+        double c1[2] = {P[0] + (R + D) * N1[0], P[1] + (R + D) * N1[1]};
+        double c2[2] = {P[0] + (R + D) * N2[0], P[1] + (R + D) * N2[1]};
+        if (hypot(c1[0] - c2[0], c1[1] - c2[1]) > 2 * (R - h + D))
+            lo = D;
+        else
+            hi = D;
+    }
+    const double D = 0.5 * (lo + hi), r = R - h + D;
+    const double c1[2] = {P[0] + (R + D) * N1[0], P[1] + (R + D) * N1[1]};
+    const double c2[2] = {P[0] + (R + D) * N2[0], P[1] + (R + D) * N2[1]};
+    const double x[2] = {0.5 * (c1[0] + c2[0]), 0.5 * (c1[1] + c2[1])};
+    const double p1[2] = {P[0] + h * N1[0], P[1] + h * N1[1]};
+    const double p2[2] = {P[0] + h * N2[0], P[1] + h * N2[1]};
+    double want = lens(p1, c1, r, x, c2, r, p2);
+    print_message("arcs apart: D = %.6f, X %.4f h from P, lens %.3e\n", D,
+                  hypot(x[0] - P[0], x[1] - P[1]) / h, want);
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = w;
+    st.join = AA_JOIN_BEVEL;
+    double bevel = stroke_area(&p, &st);
+    st.join = AA_JOIN_ARCS;
+    expect_area("arcs join of circles apart", stroke_area(&p, &st) - bevel, want);
+    aa_path_free(&p);
+}
+
+/* A Bezier arc's curvature at its end by SVG 2's closed form (quadratic:
+ * kappa(0) = (1/2) (P1 - P0) x (P2 - P1) / |P1 - P0|^3): a line into a
+ * quadratic has the same arcs join as a line into the circular arc with
+ * that curvature and tangent at the join (the join depends on them only),
+ * so their areas beyond the bevel agree. */
+static void test_arcs_bezier(void **state)
+{
+    (void)state;
+    const double P0[2] = {0.5, 0.4}, Q1[2] = {0.6, 0.62}, Q2[2] = {0.8, 0.6};
+    double ax = Q1[0] - P0[0], ay = Q1[1] - P0[1], bx = Q2[0] - Q1[0], by = Q2[1] - Q1[1];
+    double la = hypot(ax, ay), kap = 0.5 * (ax * by - ay * bx) / (la * la * la);
+    const double dd[2] = {ax / la, ay / la}, n[2] = {-ay / la, ax / la};
+    const double o[2] = {P0[0] + n[0] / kap, P0[1] + n[1] / kap}, r = fabs(1 / kap);
+    double a0 = atan2(P0[1] - o[1], P0[0] - o[0]), sg = kap > 0 ? 1 : -1;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 0.08;
+    double diff[2];
+    for (int c = 0; c < 2; c++) {
+        aa_path p = {0};
+        must(aa_path_move_to(&p, 0.15, 0.45));
+        must(aa_path_line_to(&p, P0[0], P0[1]));
+        if (c == 0)
+            must(aa_path_quad_to(&p, Q1[0], Q1[1], Q2[0], Q2[1]));
+        else
+            must(aa_path_arc_to(&p, o[0], o[1], r, 0, 0, r, a0, a0 + sg * 0.3,
+                                o[0] + r * cos(a0 + sg * 0.3), o[1] + r * sin(a0 + sg * 0.3)));
+        st.join = AA_JOIN_BEVEL;
+        double bevel = stroke_area(&p, &st);
+        st.join = AA_JOIN_ARCS;
+        diff[c] = stroke_area(&p, &st) - bevel;
+        aa_path_free(&p);
+    }
+    print_message("arcs: curvature %.6f, radius %.6f, direction (%.4f, %.4f)\n", kap, r, dd[0],
+                  dd[1]);
+    assert_true(diff[1] > 1e-5);
+    expect_area("arcs join: quadratic as circle", diff[0], diff[1]);
 }
 
 /* A circle of radius under w/2 at the join: SVG 2 falls back to round.
@@ -401,7 +763,11 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_miter_clip_lines),
+        cmocka_unit_test(test_miter_clip_points),
         cmocka_unit_test(test_arcs_circles),
+        cmocka_unit_test(test_arcs_cut),
+        cmocka_unit_test(test_arcs_apart),
+        cmocka_unit_test(test_arcs_bezier),
         cmocka_unit_test(test_arcs_round_fallback),
         cmocka_unit_test(test_svg_round_trip),
         cmocka_unit_test(test_peers),
