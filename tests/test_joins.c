@@ -29,7 +29,7 @@
  *
  * What renderers draw, measured on a 128 px document of two lines at
  * 39.6 degrees, width 16 (librsvg 2.54 by scripts/renderers/rsvg,
- * Chromium by scripts/renderers/chromium; tests/README.md has the
+ * Chromium by scripts/renderers/chromium; patterns/README.md has the
  * figures): both draw miter-clip and arcs as miter, a bevel past a limit
  * of 2 (3,244.6 and 3,233.1 px of white, the same as miter and bevel) and
  * the whole miter under a limit of 4.  Chromium's parser does not know
