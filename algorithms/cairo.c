@@ -367,7 +367,7 @@ static int cairo_init(void *state, const double *p, const aa_job *job)
 {
     cairo_state *s = state;
     /* Cairo's joins are miter (a bevel past the limit), round and bevel */
-    int st = aa_peer_refuse_joins("cairo", job->placed,
+    int st = aa_peer_refuse_joins("cairo", job->placed, 0,
                                   "Cairo's stroker does not have (miter, round and bevel)");
     if (st)
         return st;

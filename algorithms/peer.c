@@ -94,12 +94,13 @@ int aa_peer_refuse_offsets(const char *name, const aa_scene *s)
     return AA_OK;
 }
 
-int aa_peer_refuse_joins(const char *name, const aa_scene *s, const char *what)
+int aa_peer_refuse_joins(const char *name, const aa_scene *s, int miter_clip, const char *what)
 {
     size_t n;
     const aa_stroke_source *src = aa_scene_stroke_sources(s, &n);
     for (size_t k = 0; k < n; k++)
-        if (src[k].style.join == AA_JOIN_MITER_CLIP || src[k].style.join == AA_JOIN_ARCS)
+        if ((src[k].style.join == AA_JOIN_MITER_CLIP && !miter_clip) ||
+            src[k].style.join == AA_JOIN_ARCS)
             return aa_fail(AA_EINVAL,
                            "%s: the stroke of layer %d has the join %s, which %s",
                            name, src[k].layer,
