@@ -112,7 +112,8 @@ void aa_stroke_style_default(aa_stroke_style *st);
  * offset curves and evolutes (AA_PATH_OFFSET, exact pieces: stroke.c says
  * how), cusps included.  What cannot be stroked exactly is refused with
  * AA_EINVAL naming it (a Bezier arc nearly with a cusp: its speed within
- * 1e-9 of its size but not 0 to rounding), and so is a
+ * 1e-9 of its size but not 0 to rounding; an arcs join that is not one
+ * simple region of lines and arcs, stroke.c's arcs_join), and so is a
  * subpath of more than 10000 dashes.  stroke.c says what it
  * chose where SVG leaves room (zero-length subpaths and segments, dashes on
  * closed subpaths).  On failure `out` is as it was. */
