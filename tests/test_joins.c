@@ -39,14 +39,16 @@
  *    exact outline.
  *
  * What renderers draw, measured on a 128 px document of two lines at
- * 39.6 degrees, width 16 (librsvg 2.54 by scripts/renderers/rsvg,
- * Chromium by scripts/renderers/chromium; patterns/README.md has the
- * figures): both draw miter-clip and arcs as miter, a bevel past a limit
- * of 2 (3,244.6 and 3,233.1 px of white, the same as miter and bevel) and
- * the whole miter under a limit of 4.  Chromium's parser does not know
- * the values, so the property keeps its initial value; librsvg reads them
- * but strokes with Cairo, which has no such joins.  The reference follows
- * the spec, not them: past the limit it draws the clipped miter.
+ * 39.6 degrees, width 16 (librsvg 2.54, resvg by @resvg/resvg-js 2.6.2
+ * and Chromium, by scripts/renderers/; patterns/README.md has the
+ * figures): all three draw miter-clip and arcs as miter, a bevel past a
+ * limit of 2 (3,244.6, 3,243.8 and 3,233.1 px of white, the same as miter
+ * and bevel; the reference's miter-clip 3,380.15) and the whole miter
+ * under a limit of 4, as the reference does there.  Chromium's parser
+ * does not know the values, so the property keeps its initial value;
+ * librsvg reads them but strokes with Cairo, which has no such joins;
+ * resvg draws neither as SVG 2 defines it.  The reference follows the
+ * spec, not them: past the limit it draws the clipped miter.
  */
 #include "bench.h"
 #include "path.h"

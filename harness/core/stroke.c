@@ -53,8 +53,9 @@
  *  - arcs falls back to round where "either curvature is greater than
  *    2/(stroke width)": SVG 2 gives the curvature no sign there, so its
  *    magnitude is taken, and at |k| = 1/h (an edge circle of radius 0)
- *    round too; Chromium and librsvg draw miter-clip and arcs as miter
- *    (Chromium's parser does not know them, librsvg strokes with Cairo);
+ *    round too; Chromium, librsvg and resvg draw miter-clip and arcs as
+ *    miter (Chromium's parser does not know them, librsvg strokes with
+ *    Cairo; patterns/README.md has the figures);
  *  - zero-length segments are dropped before joins: a join is between the
  *    neighbouring segments of non-zero length (SVG 2 takes a zero-length
  *    segment's direction from its neighbours, which comes to the same); a
