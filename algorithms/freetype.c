@@ -453,8 +453,8 @@ static int ft_init_painted(ft_state *s, const aa_scene *scene, int w)
                 st = aa_fail(AA_EINVAL,
                              "freetype: layer %d is a stroke FT_Stroker cannot draw as SVG "
                              "says (dashed, mapped other than by a similarity, or joined by "
-                             "arcs), and its exact outline has the offset curves of a Bezier arc, which "
-                             "FreeType's outline cannot hold",
+                             "arcs), and its exact outline has the offset curves of a Bezier "
+                             "arc, which FreeType's outline cannot hold",
                              l);
         if (!st)
             st = ft_build_outline(&s->lo[l], scene, l, aa_scene_layer_rule(scene, l));

@@ -770,8 +770,9 @@ static void peer_measure(const char *peer, const aa_scene *s, double *mean, doub
  * so the join itself is measured: the white area of the miter-clip
  * stroke less the bevel's, 19 px (4.7e-3 of the image) in the reference,
  * must be the peer's within 1e-4 (0.4 px; measured 9e-6 and 1.5e-5), and
- * each white area within 1e-3 of the reference's.  Cairo has no such join and refuses it by name; arcs no peer
- * has: cairo and agg refuse it, freetype fills the exact outline. */
+ * each white area within 1e-3 of the reference's.  Cairo has no such
+ * join and refuses it by name; arcs no peer has: cairo and agg refuse it,
+ * freetype fills the exact outline. */
 static void test_peers(void **state)
 {
     (void)state;
