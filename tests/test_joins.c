@@ -605,7 +605,8 @@ static void test_arcs_apart(void **state)
  * kappa(0) = (1/2) (P1 - P0) x (P2 - P1) / |P1 - P0|^3): a line into a
  * quadratic has the same arcs join as a line into the circular arc with
  * that curvature and tangent at the join (the join depends on them only),
- * so their areas beyond the bevel agree. */
+ * so their areas beyond the bevel agree; so do both paths reversed (the
+ * quadratic's curvature at its end, a circle then a line). */
 static void test_arcs_bezier(void **state)
 {
     (void)state;
@@ -618,16 +619,30 @@ static void test_arcs_bezier(void **state)
     aa_stroke_style st;
     aa_stroke_style_default(&st);
     st.width = 0.08;
-    double diff[2];
-    for (int c = 0; c < 2; c++) {
+    double diff[4];
+    const double a1 = a0 + sg * 0.3, e[2] = {o[0] + r * cos(a1), o[1] + r * sin(a1)};
+    for (int c = 0; c < 4; c++) {
+        /* c = 0, 1: the line, then the quadratic or the circle's arc; 2, 3:
+         * the same paths reversed (the quadratic's end curvature, the
+         * line after it) */
         aa_path p = {0};
-        must(aa_path_move_to(&p, 0.15, 0.45));
-        must(aa_path_line_to(&p, P0[0], P0[1]));
-        if (c == 0)
-            must(aa_path_quad_to(&p, Q1[0], Q1[1], Q2[0], Q2[1]));
-        else
-            must(aa_path_arc_to(&p, o[0], o[1], r, 0, 0, r, a0, a0 + sg * 0.3,
-                                o[0] + r * cos(a0 + sg * 0.3), o[1] + r * sin(a0 + sg * 0.3)));
+        if (c < 2) {
+            must(aa_path_move_to(&p, 0.15, 0.45));
+            must(aa_path_line_to(&p, P0[0], P0[1]));
+            if (c == 0)
+                must(aa_path_quad_to(&p, Q1[0], Q1[1], Q2[0], Q2[1]));
+            else
+                must(aa_path_arc_to(&p, o[0], o[1], r, 0, 0, r, a0, a1, e[0], e[1]));
+        } else {
+            if (c == 2) {
+                must(aa_path_move_to(&p, Q2[0], Q2[1]));
+                must(aa_path_quad_to(&p, Q1[0], Q1[1], P0[0], P0[1]));
+            } else {
+                must(aa_path_move_to(&p, e[0], e[1]));
+                must(aa_path_arc_to(&p, o[0], o[1], r, 0, 0, r, a1, a0, P0[0], P0[1]));
+            }
+            must(aa_path_line_to(&p, 0.15, 0.45));
+        }
         st.join = AA_JOIN_BEVEL;
         double bevel = stroke_area(&p, &st);
         st.join = AA_JOIN_ARCS;
@@ -638,6 +653,8 @@ static void test_arcs_bezier(void **state)
                   dd[1]);
     assert_true(diff[1] > 1e-5);
     expect_area("arcs join: quadratic as circle", diff[0], diff[1]);
+    expect_area("the same, reversed", diff[2], diff[1]);
+    expect_area("the circle's, reversed", diff[3], diff[1]);
 }
 
 /* A circle of radius under w/2 at the join: SVG 2 falls back to round.

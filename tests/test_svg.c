@@ -1224,9 +1224,6 @@ static void test_unknown_properties(void **state)
             "transform");
     refused(L2(R1 "transform=\"scale(2)\" transform-origin=\"2 2 1px\"/>"), "line 2: <rect>",
             "transform-origin");
-    refused(L2("<ellipse rx=\"4\" ry=\"2\" stroke=\"red\" transform=\"scale(2)\" "
-               "style=\"transform-box: stroke-box\"/>"),
-            "line 2: <ellipse>", "transform-box");
     refused(L2("<g mix-blend-mode=\"multiply\">" R1 "/></g>"), "line 2: <g>", "mix-blend-mode");
     refused(L2("<path d=\"M0 0 L4 0 L4 4z\" marker-start=\"url(#m)\"/>"), "line 2: <path>",
             "marker-start");
