@@ -29,6 +29,11 @@
  *    curvature SVG 2 gives in closed form, against the line into the
  *    circle of that curvature; arcs on two lines is miter-clip (both
  *    curvatures 0), and on a circle tighter than w/2 the round join;
+ *  - arcs at random points near the joins of random paths of lines and
+ *    circular arcs: the outline holds a point exactly when the bevel's
+ *    stroke or a join region built here holds it (the region's boundary
+ *    sampled, its winding number by angles; paths whose joins need a
+ *    fallback passed over);
  *  - the reader and the writer: stroke-linejoin="miter-clip" and "arcs"
  *    read into the scene's stroke source and written back by `export`
  *    (the same join read again, the same box reference to 1e-9);
@@ -657,6 +662,246 @@ static void test_arcs_bezier(void **state)
     expect_area("the circle's, reversed", diff[3], diff[1]);
 }
 
+/* ---- arcs at random points ---- */
+
+/* A random path of lines and circular arcs: its pieces' ends, unit
+ * directions and signed curvatures at both ends (positive turning left). */
+typedef struct rpiece {
+    double x0, y0, x1, y1, d0[2], d1[2], k;
+} rpiece;
+
+/* The join region of SVG 2's arcs at P between a piece ending with
+ * direction a->d1, curvature a->k, and one starting with b->d0, b->k, as
+ * a closed polyline of points (P, P1, the first edge's circle or line to
+ * X, the second's back to P2): 0 if the construction is not the plain
+ * one here (circles that do not meet, a curvature at or past 1/h, both 0,
+ * a reversal, an extension past a half turn or backwards along a line),
+ * else its point count.  X is where the edges' circles meet nearest P:
+ * each circle has the centre of its piece's circle of curvature, P + N/k
+ * (N the left normal), and passes through its edge's end P + h n. */
+static int arcs_region(const rpiece *a, const rpiece *b, double h, double *xy, int cap)
+{
+    const double P[2] = {a->x1, a->y1}, *d1 = a->d1, *d2 = b->d0;
+    double cr = d1[0] * d2[1] - d1[1] * d2[0];
+    if (cr == 0 || (a->k == 0 && b->k == 0) || fabs(a->k) * h >= 1 || fabs(b->k) * h >= 1)
+        return 0;
+    double sg = cr > 0 ? -1 : 1;
+    const double p1[2] = {P[0] - sg * h * d1[1], P[1] + sg * h * d1[0]};
+    const double p2[2] = {P[0] - sg * h * d2[1], P[1] + sg * h * d2[0]};
+    const double *e[2] = {d1, d2}, *q[2] = {p1, p2};
+    const double k[2] = {a->k, b->k};
+    double c[2][2], r[2];
+    for (int i = 0; i < 2; i++)
+        if (k[i] != 0) {
+            c[i][0] = P[0] - e[i][1] / k[i], c[i][1] = P[1] + e[i][0] / k[i];
+            r[i] = hypot(q[i][0] - c[i][0], q[i][1] - c[i][1]);
+        }
+    double cand[2][2];
+    if (k[0] != 0 && k[1] != 0) {
+        double ex = c[1][0] - c[0][0], ey = c[1][1] - c[0][1], dd = hypot(ex, ey);
+        if (!(dd < r[0] + r[1] && dd > fabs(r[0] - r[1])))
+            return 0;
+        ex /= dd, ey /= dd;
+        double m = (r[0] * r[0] - r[1] * r[1] + dd * dd) / (2 * dd), kk = sqrt(r[0] * r[0] - m * m);
+        for (int j = 0; j < 2; j++) {
+            double sj = j ? -1 : 1;
+            cand[j][0] = c[0][0] + m * ex - sj * kk * ey;
+            cand[j][1] = c[0][1] + m * ey + sj * kk * ex;
+        }
+    } else {
+        int l = k[0] == 0 ? 0 : 1, o = 1 - l;
+        double t = (c[o][0] - q[l][0]) * e[l][0] + (c[o][1] - q[l][1]) * e[l][1];
+        double f[2] = {q[l][0] + t * e[l][0], q[l][1] + t * e[l][1]};
+        double dist = hypot(c[o][0] - f[0], c[o][1] - f[1]);
+        if (!(dist < r[o]))
+            return 0;
+        double sq = sqrt(r[o] * r[o] - dist * dist);
+        for (int j = 0; j < 2; j++) {
+            cand[j][0] = f[0] + (j ? -sq : sq) * e[l][0];
+            cand[j][1] = f[1] + (j ? -sq : sq) * e[l][1];
+        }
+    }
+    const double *x = hypot(cand[0][0] - P[0], cand[0][1] - P[1]) <=
+                              hypot(cand[1][0] - P[0], cand[1][1] - P[1])
+                          ? cand[0]
+                          : cand[1];
+    /* each edge from its end to X, sampled: edge 0 forwards from p1, edge
+     * 1 backwards from p2 (then reversed) */
+    const int steps = 400;
+    int n = 0;
+    xy[n++] = P[0], xy[n++] = P[1];
+    double pts[2][402][2];
+    for (int i = 0; i < 2; i++) {
+        double way = i ? -1 : 1;
+        if (k[i] == 0) {
+            double t = ((x[0] - q[i][0]) * e[i][0] + (x[1] - q[i][1]) * e[i][1]) * way;
+            if (t < 0)
+                return 0;
+            for (int j = 0; j <= steps; j++) {
+                double u = t * j / steps * way;
+                pts[i][j][0] = q[i][0] + u * e[i][0], pts[i][j][1] = q[i][1] + u * e[i][1];
+            }
+            continue;
+        }
+        /* the angle about the centre from the edge's end to X, turning as
+         * the travel does (with k's sign; backwards for edge 1) */
+        double a0 = atan2(q[i][1] - c[i][1], q[i][0] - c[i][0]);
+        double a1 = atan2(x[1] - c[i][1], x[0] - c[i][0]);
+        double turn = (k[i] > 0 ? 1 : -1) * way, sw = (a1 - a0) * turn;
+        sw = fmod(sw, 2 * M_PI);
+        if (sw < 0)
+            sw += 2 * M_PI;
+        if (sw > M_PI)
+            return 0;
+        for (int j = 0; j <= steps; j++) {
+            double an = a0 + turn * sw * j / steps;
+            pts[i][j][0] = c[i][0] + r[i] * cos(an), pts[i][j][1] = c[i][1] + r[i] * sin(an);
+        }
+    }
+    if (2 * (2 * steps + 3) > cap)
+        fail_msg("region buffer too small");
+    for (int j = 0; j <= steps; j++)
+        xy[n++] = pts[0][j][0], xy[n++] = pts[0][j][1];
+    for (int j = steps; j >= 0; j--)
+        xy[n++] = pts[1][j][0], xy[n++] = pts[1][j][1];
+    return n / 2;
+}
+
+/* The winding number of the closed polyline about q by its angles (each
+ * step subtends less than a half turn seen from a point farther from the
+ * polyline than the step is long), and the least distance to its points
+ * less the longest step. */
+static int poly_winding(const double *xy, int n, double qx, double qy, double *margin)
+{
+    double sum = 0, longest = 0, near = INFINITY;
+    for (int i = 0; i < n; i++) {
+        int j = (i + 1) % n;
+        double ax = xy[2 * i] - qx, ay = xy[2 * i + 1] - qy;
+        double bx = xy[2 * j] - qx, by = xy[2 * j + 1] - qy;
+        sum += atan2(ax * by - ay * bx, ax * bx + ay * by);
+        longest = fmax(longest, hypot(bx - ax, by - ay));
+        near = fmin(near, seg_dist(qx, qy, xy[2 * i], xy[2 * i + 1], xy[2 * j], xy[2 * j + 1]));
+    }
+    *margin = fmin(*margin, near - longest);
+    return (int)lround(sum / (2 * M_PI));
+}
+
+static int in_scene(const aa_scene *s, double x, double y)
+{
+    aa_rgb c = aa_scene_colour_at(s, x, y);
+    return c.c[0] == 1;
+}
+
+static aa_scene *outline_scene(const aa_path *p, const aa_stroke_style *st)
+{
+    aa_path out = {0};
+    must(aa_stroke_outline(p, st, &out));
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO));
+    must(aa_path_fill(&out, NULL, s));
+    must(aa_scene_finish(s));
+    aa_path_free(&out);
+    return s;
+}
+
+/* Random open paths of lines and circular arcs, arcs joins, a limit of
+ * 100 (no cut): at points near the joins the arcs stroke (the outline's
+ * scene) holds a point exactly when the bevel stroke does or one of the
+ * join regions built here does (each holding its bevel triangle).  Paths
+ * whose joins this construction does not cover (circles apart, a
+ * fallback, a long extension) are passed over; the others must be drawn. */
+static void test_arcs_points(void **state)
+{
+    (void)state;
+    uint64_t rng = 0x2545f4914f6cdd1du;
+    long in = 0, out = 0, joins = 0, skipped = 0;
+    static double region[8][2 * 810];
+    int nreg[8];
+    for (int trial = 0; trial < 200 && joins < 120; trial++) {
+        rpiece pc[8];
+        int np = 2 + (int)support_uniform(&rng, 0, 3);
+        double h = support_uniform(&rng, 0.005, 0.03);
+        aa_path p = {0};
+        double x = support_uniform(&rng, 0.3, 0.7), y = support_uniform(&rng, 0.3, 0.7);
+        double head = support_uniform(&rng, -M_PI, M_PI);
+        must(aa_path_move_to(&p, x, y));
+        for (int k = 0; k < np; k++) {
+            rpiece *q = &pc[k];
+            q->x0 = x, q->y0 = y;
+            /* a turn at the start, then a line or an arc */
+            head += support_uniform(&rng, -2.8, 2.8);
+            double len = support_uniform(&rng, 0.1, 0.25);
+            q->d0[0] = cos(head), q->d0[1] = sin(head);
+            if (support_uniform(&rng, 0, 1) < 0.3) {
+                x += len * cos(head), y += len * sin(head);
+                q->k = 0;
+                q->d1[0] = q->d0[0], q->d1[1] = q->d0[1];
+                must(aa_path_line_to(&p, x, y));
+            } else {
+                double r = support_uniform(&rng, 0.08, 0.5), turn = len / r;
+                double sgn = support_uniform(&rng, 0, 1) < 0.5 ? 1 : -1;
+                /* centre to the left (sgn 1, counterclockwise) or right */
+                double cx = x - sgn * r * sin(head), cy = y + sgn * r * cos(head);
+                double a0 = atan2(y - cy, x - cx), a1 = a0 + sgn * turn;
+                x = cx + r * cos(a1), y = cy + r * sin(a1);
+                must(aa_path_arc_to(&p, cx, cy, r, 0, 0, r, a0, a1, x, y));
+                q->k = sgn / r;
+                head += sgn * turn;
+                q->d1[0] = cos(head), q->d1[1] = sin(head);
+            }
+            q->x1 = x, q->y1 = y;
+        }
+        int ok = 1;
+        for (int v = 0; v + 1 < np && ok; v++) {
+            /* the next piece starts where this one ends */
+            pc[v + 1].x0 = pc[v].x1, pc[v + 1].y0 = pc[v].y1;
+            nreg[v] = arcs_region(&pc[v], &pc[v + 1], h, region[v], 2 * 810);
+            ok = nreg[v] > 0;
+        }
+        if (!ok) {
+            skipped++;
+            aa_path_free(&p);
+            continue;
+        }
+        aa_stroke_style st;
+        aa_stroke_style_default(&st);
+        st.width = 2 * h;
+        st.miterlimit = 100;
+        st.join = AA_JOIN_BEVEL;
+        aa_scene *bevel = outline_scene(&p, &st);
+        st.join = AA_JOIN_ARCS;
+        aa_scene *arcs = outline_scene(&p, &st);
+        for (int v = 0; v + 1 < np; v++, joins++) {
+            const double P[2] = {pc[v].x1, pc[v].y1};
+            for (int i = 0; i < 300; i++) {
+                double qx = P[0] + support_uniform(&rng, -4 * h, 4 * h);
+                double qy = P[1] + support_uniform(&rng, -4 * h, 4 * h);
+                double margin = INFINITY;
+                int want = 0;
+                for (int u = 0; u + 1 < np; u++)
+                    want |= poly_winding(region[u], nreg[u], qx, qy, &margin) != 0;
+                if (margin < 1e-9)
+                    continue;
+                int b = in_scene(bevel, qx, qy), got = in_scene(arcs, qx, qy);
+                want |= b;
+                if (got != want)
+                    fail_msg("trial %d, join %d: (%.17g, %.17g) is %s the arcs stroke, %s the "
+                             "bevel's and %s the join regions",
+                             trial, v, qx, qy, got ? "in" : "out of", b ? "in" : "out of",
+                             want && !b ? "in" : "out of");
+                want ? in++ : out++;
+            }
+        }
+        aa_scene_free(arcs);
+        aa_scene_free(bevel);
+        aa_path_free(&p);
+    }
+    print_message("arcs points: %ld joins, %ld in, %ld out, %ld paths passed over\n", joins, in,
+                  out, skipped);
+    assert_true(joins >= 100 && in > 5000 && out > 5000);
+}
+
 /* A circle of radius under w/2 at the join: SVG 2 falls back to round.
  * A line to P = (0.5, 0.5) heading right, then a quarter circle of radius
  * 0.05 < h = 0.08 starting upwards (turning left about (0.45, 0.5)): the
@@ -850,6 +1095,7 @@ int main(void)
         cmocka_unit_test(test_arcs_apart),
         cmocka_unit_test(test_arcs_bezier),
         cmocka_unit_test(test_arcs_round_fallback),
+        cmocka_unit_test(test_arcs_points),
         cmocka_unit_test(test_svg_round_trip),
         cmocka_unit_test(test_peers),
     };
