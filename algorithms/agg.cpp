@@ -298,13 +298,17 @@ void source_path(agg::path_storage &path, const aa_stroke_source &src, double sc
  * rasterizer: conv_stroke in user units with the source's width, join,
  * cap and miter limit, then conv_transform by the source's map, so that a
  * non-uniform map transforms the outline as SVG says.  SVG's miter is
- * AGG's miter_join_revert (a bevel past the limit; AGG's miter_join would
- * cut the miter off at the limit instead). */
+ * AGG's miter_join_revert (a bevel past the limit); SVG 2's miter-clip is
+ * its miter_join, which past the limit cuts the miter where the distance
+ * along the bisector from the vertex is the limit times half the width
+ * (math_stroke's calc_miter: the edges' points moved towards the tip by
+ * (lim - dbevel) / (di - dbevel), lim = limit w/2), SVG 2's cut; arcs is
+ * refused (agg_init). */
 template <class Src>
 void add_stroke(rasterizer &ras, Src &in, const aa_stroke_source &src, double scale)
 {
     static const agg::line_join_e joins[] = {agg::miter_join_revert, agg::round_join,
-                                             agg::bevel_join};
+                                             agg::bevel_join, agg::miter_join};
     static const agg::line_cap_e caps[] = {agg::butt_cap, agg::round_cap, agg::square_cap};
     agg::conv_stroke<Src> stroke(in);
     stroke.width(src.style.width);
@@ -709,7 +713,14 @@ int agg_init(void *state, const double *p, const aa_job *job)
 {
     (void)p;
     agg_state *s = static_cast<agg_state *>(state);
-    int st = aa_peer_scene_read("agg", job, &s->ps);
+    /* SVG 2's miter-clip is AGG's miter_join (add_stroke); arcs it has
+     * not: refused by name */
+    int st = aa_peer_refuse_joins("agg", job->placed, 1,
+                                  "AGG's stroker does not have (miter_join_revert, round_join, "
+                                  "bevel_join and miter_join)");
+    if (st)
+        return st;
+    st = aa_peer_scene_read("agg", job, &s->ps);
     s->painted = 0;
     if (st == AA_EINVAL && aa_peer_paintable(job->placed)) {
         /* strokes by AGG's stroker: only filled layers' offsets refused */

@@ -366,7 +366,12 @@ static int cairo_init_painted(cairo_state *s, const aa_scene *scene, double tole
 static int cairo_init(void *state, const double *p, const aa_job *job)
 {
     cairo_state *s = state;
-    int st = aa_peer_scene_read("cairo", job, &s->ps);
+    /* Cairo's joins are miter (a bevel past the limit), round and bevel */
+    int st = aa_peer_refuse_joins("cairo", job->placed, 0,
+                                  "Cairo's stroker does not have (miter, round and bevel)");
+    if (st)
+        return st;
+    st = aa_peer_scene_read("cairo", job, &s->ps);
     if (st == AA_EINVAL && aa_peer_paintable(job->placed))
         st = cairo_init_painted(s, job->placed, p[TOLERANCE]);
     else if (!st)

@@ -46,9 +46,11 @@
  * SVG's miter, a bevel past the limit), which offsets each curve by
  * cubics it fits itself, draws round joins and caps as arcs of cubics, and
  * the outlines of all strokes, wound alike, are rendered as one non-zero
- * outline.  Otherwise (a dashed stroke, or a non-uniform or sheared map,
- * which FT_Stroker cannot draw) the scene's exact outlines are filled as
- * any outline, stated here rather than approximated otherwise.
+ * outline; SVG 2's miter-clip is FT_STROKER_LINEJOIN_MITER_VARIABLE.
+ * Otherwise (a dashed stroke, a non-uniform or sheared map, or SVG 2's
+ * arcs join, which FT_Stroker cannot draw as SVG says) the scene's exact
+ * outlines are filled as any outline, stated here rather than
+ * approximated otherwise.
  *
  * Painted (peer.h): any other scene (colour, several layers, translucency,
  * groups of opacity, clips) is painted layer by layer: each layer's own
@@ -247,14 +249,17 @@ static int ft_build_outline(FT_Outline *o, const aa_scene *scene, int layer, aa_
  * strokes a source exactly as SVG asks only when the source's map is a
  * similarity (its columns orthogonal and of equal length: a rotation or
  * reflection times a scale k), where the stroke of the mapped path with
- * width k w is the mapped stroke; and it has no dashes. */
+ * width k w is the mapped stroke; and it has no dashes, nor SVG 2's arcs
+ * join (its miter-clip is FT_STROKER_LINEJOIN_MITER_VARIABLE: past the
+ * limit the miter cut perpendicular to the bisector at the limit times the
+ * radius from the vertex, ftstroke.c's ft_stroker_outside). */
 static int ft_strokable(const aa_stroke_source *a)
 {
     const double *m = a->m;
     const double c0 = m[0] * m[0] + m[1] * m[1], c1 = m[2] * m[2] + m[3] * m[3];
     const double dot = m[0] * m[2] + m[1] * m[3];
-    return a->style.ndash == 0 && fabs(c0 - c1) <= 1e-12 * (c0 + c1) &&
-           fabs(dot) <= 1e-12 * (c0 + c1);
+    return a->style.ndash == 0 && a->style.join <= AA_JOIN_MITER_CLIP &&
+           fabs(c0 - c1) <= 1e-12 * (c0 + c1) && fabs(dot) <= 1e-12 * (c0 + c1);
 }
 
 static FT_Vector ft_map(const double *m, double x, double y)
@@ -375,7 +380,8 @@ static int ft_stroke_outline(FT_Outline *o, const aa_scene *scene, FT_Library li
 {
     static const FT_Stroker_LineJoin joins[] = {FT_STROKER_LINEJOIN_MITER_FIXED,
                                                 FT_STROKER_LINEJOIN_ROUND,
-                                                FT_STROKER_LINEJOIN_BEVEL};
+                                                FT_STROKER_LINEJOIN_BEVEL,
+                                                FT_STROKER_LINEJOIN_MITER_VARIABLE};
     static const FT_Stroker_LineCap caps[] = {FT_STROKER_LINECAP_BUTT, FT_STROKER_LINECAP_ROUND,
                                               FT_STROKER_LINECAP_SQUARE};
     size_t nsrc;
@@ -446,9 +452,9 @@ static int ft_init_painted(ft_state *s, const aa_scene *scene, int w)
             if (e[q].quad == 4 && e[q].layer == l)
                 st = aa_fail(AA_EINVAL,
                              "freetype: layer %d is a stroke FT_Stroker cannot draw as SVG "
-                             "says (dashed, or mapped other than by a similarity), and its "
-                             "exact outline has the offset curves of a Bezier arc, which "
-                             "FreeType's outline cannot hold",
+                             "says (dashed, mapped other than by a similarity, or joined by "
+                             "arcs), and its exact outline has the offset curves of a Bezier "
+                             "arc, which FreeType's outline cannot hold",
                              l);
         if (!st)
             st = ft_build_outline(&s->lo[l], scene, l, aa_scene_layer_rule(scene, l));

@@ -94,6 +94,20 @@ int aa_peer_refuse_offsets(const char *name, const aa_scene *s)
     return AA_OK;
 }
 
+int aa_peer_refuse_joins(const char *name, const aa_scene *s, int miter_clip, const char *what)
+{
+    size_t n;
+    const aa_stroke_source *src = aa_scene_stroke_sources(s, &n);
+    for (size_t k = 0; k < n; k++)
+        if ((src[k].style.join == AA_JOIN_MITER_CLIP && !miter_clip) ||
+            src[k].style.join == AA_JOIN_ARCS)
+            return aa_fail(AA_EINVAL,
+                           "%s: the stroke of layer %d has the join %s, which %s",
+                           name, src[k].layer,
+                           src[k].style.join == AA_JOIN_ARCS ? "arcs" : "miter-clip", what);
+    return AA_OK;
+}
+
 void aa_peer_fill(aa_image *out, int j, int i0, int i1, double v)
 {
     double *px = aa_pixel(out, 0, j) + 3 * (size_t)i0;

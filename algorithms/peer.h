@@ -111,6 +111,11 @@ int aa_peer_scene_read(const char *name, const aa_job *job, aa_peer_scene *ps);
 /* Refuse a scene whose outline has the exact offset curves of a Bezier
  * arc's stroke (edge quad 4), for the peers that fill the outline. */
 int aa_peer_refuse_offsets(const char *name, const aa_scene *s);
+/* Refuse a scene with a stroke whose join is SVG 2's arcs, or
+ * miter-clip unless `miter_clip`, naming the join, for the peers whose
+ * strokers do not draw it (`what` says what the peer's stroker has
+ * instead, for the message). */
+int aa_peer_refuse_joins(const char *name, const aa_scene *s, int miter_clip, const char *what);
 /* The grey value of coverage a. */
 static inline double aa_peer_mix(const aa_peer_scene *ps, double a)
 {

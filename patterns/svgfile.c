@@ -79,10 +79,10 @@
  *     on an element with both a fill and a stroke, a group composited as a
  *     whole (`group_begin`, `group_end`); color, paint-order, visibility
  *     and display;
- *   - stroke (a colour or none), stroke-width, stroke-linejoin,
- *     stroke-linecap, stroke-miterlimit, stroke-dasharray and
- *     stroke-dashoffset (scaled by pathLength: path_length_dashes): the
- *     stroke is the path's outline in user units
+ *   - stroke (a colour or none), stroke-width, stroke-linejoin (SVG 2's
+ *     miter-clip and arcs too), stroke-linecap, stroke-miterlimit,
+ *     stroke-dasharray and stroke-dashoffset (scaled by pathLength:
+ *     path_length_dashes): the stroke is the path's outline in user units
  *     (aa_stroke_outline), a shape of its own after the fill, nonzero; the
  *     pattern keeps it as a stroke (aa_scene_stroke: a layer of its own
  *     with its source, so that peers stroke it themselves and `export`
@@ -99,7 +99,7 @@
  *
  * Refused, naming the element and its line: strokes aa_stroke_outline
  * cannot draw exactly (a Bezier arc whose speed nearly vanishes, not within
- * rounding of 0), the joins miter-clip and arcs, color-interpolation:
+ * rounding of 0; an arcs join stroke.c cannot draw), color-interpolation:
  * linearRGB on what is drawn (compositing in linear light, which no browser
  * does; on a gradient element it is read: "gradients"), <pattern> paint servers, the
  * radial gradients whose focal circle is their end circle (grad_resolve), text, images,
@@ -110,8 +110,7 @@
  * singular transform on the root, <text>, <g> and other non-shapes in a
  * clipPath, references to clip
  * paths forming a cycle, masks, filters, transform-box
- * stroke-box of a stroke with offset curves (its extent not computed
- * exactly) or inside an object bounding box (its stroke not known there),
+ * stroke-box inside an object bounding box (its stroke not known there),
  * content beyond a viewport that clips when the sink takes no clips,
  * references to other documents, what svgcss.h refuses in a style
  * sheet, sheets for other media, any attribute or style property not
@@ -266,7 +265,6 @@ typedef struct style {
     int stroke_none;
     double stroke_width;
     aa_line_join join;
-    const char *join_other; /* a join of SVG 2 not drawn (miter-clip, arcs), or NULL */
     aa_line_cap cap;
     double miterlimit;
     double dash[AA_SVG_MAX_DASHES];
@@ -2680,13 +2678,9 @@ static double length_bound(const aa_path *p)
 #define MAX_DASHES_DRAWN (AA_SVG_MAX_SEGMENTS / 8)
 
 /* The stroke style of sty for the path p into *ss (its dashes pointing
- * into sty), refusing joins not drawn and dash patterns of too many
- * dashes. */
+ * into sty), refusing dash patterns of too many dashes. */
 static int stroke_style_of(reader *r, const aa_path *p, const style *sty, aa_stroke_style *out)
 {
-    if (sty->join_other)
-        return fail_at(r, "stroke-linejoin=\"%s\" is not supported (miter, round or bevel)",
-                       sty->join_other);
     aa_stroke_style ss;
     aa_stroke_style_default(&ss);
     ss.width = sty->stroke_width;
@@ -2888,7 +2882,8 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
     int st = AA_OK, k = 0;
     static const char *const joins[] = {"miter", "round", "bevel", "miter-clip", "arcs"};
     static const char *const caps[] = {"butt", "round", "square"};
-    static const aa_line_join join_of[] = {AA_JOIN_MITER, AA_JOIN_ROUND, AA_JOIN_BEVEL};
+    static const aa_line_join join_of[] = {AA_JOIN_MITER, AA_JOIN_ROUND, AA_JOIN_BEVEL,
+                                           AA_JOIN_MITER_CLIP, AA_JOIN_ARCS};
     static const aa_line_cap cap_of[] = {AA_CAP_BUTT, AA_CAP_ROUND, AA_CAP_SQUARE};
 #define GIVEN(key) (prop(r, node, key, v, sizeof v, &st) && strcasecmp(v, "inherit"))
     if (GIVEN("stroke-width")) {
@@ -2898,10 +2893,10 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
             return fail_at(r, "stroke-width=\"%s\": a negative width is an error", aa_echo(v));
     }
     if (!st && GIVEN("stroke-linejoin")) {
-        if ((st = keyword(r, "stroke-linejoin", v, joins, 5, &k, "miter, round or bevel")))
+        if ((st = keyword(r, "stroke-linejoin", v, joins, 5, &k,
+                          "miter, round, bevel, miter-clip or arcs")))
             return st;
-        sty->join = k < 3 ? join_of[k] : AA_JOIN_MITER;
-        sty->join_other = k < 3 ? NULL : joins[k];
+        sty->join = join_of[k];
     }
     if (!st && GIVEN("stroke-linecap")) {
         if ((st = keyword(r, "stroke-linecap", v, caps, 3, &k, "butt, round or square")))
@@ -2974,25 +2969,29 @@ static int parse_paint_order(reader *r, const char *v, int *stroke_first)
 static void path_box(const aa_path *p, const mat *m, double box[4]);
 
 /* The stroke bounding box of a shape (SVG 2, "Bounding boxes": its fill
- * box, p's exact bounds, grown by the bounds of its stroke shape when the
- * stroke is not none), x0 y0 x1 y1 in b, which holds the fill box.  The
- * stroke shape is the outline aa_stroke_outline draws: lines and circular
- * arcs, bounded exactly by path_box (an arc's extremes in closed form); a
- * stroke with offset curves (a Bezier arc or a non-circular elliptical arc
- * stroked) is refused, its extent not being computed exactly here. */
+ * box, p's exact bounds, grown by "the tightest rectangle ... that contains
+ * the stroke shape of the element, with the assumption that the element
+ * has no dash pattern" when the stroke is not none: the tightest, no
+ * approximation; dashes, and so pathLength, play no part), x0 y0 x1 y1 in
+ * b, which holds the fill box.  The stroke shape is the outline
+ * aa_stroke_outline draws undashed, bounded exactly by path_box: lines,
+ * circular arcs (their extremes in closed form) and the offset curves and
+ * evolutes of stroked Bezier and elliptical arcs (their ends and the
+ * closed-form parameters where x or y turns: where the base curve's
+ * tangent is axis-aligned; a fold of the offset, where its tangent
+ * vanishes, is an end of the outline's pieces, and so are the joins' and
+ * caps' points; the evolutes lie inside the shape, on the normals within
+ * h of the curve, and add nothing). */
 static int stroke_box(reader *r, const aa_path *p, const style *sty, double b[4])
 {
     if (sty->stroke_none || !(sty->stroke_width > 0))
         return AA_OK;
+    style plain = *sty;
+    plain.ndash = 0;
     aa_stroke_style ss;
     aa_path out;
     aa_path_init(&out);
-    int st = stroke_outline_of(r, p, sty, &ss, &out);
-    for (size_t k = 0; k < out.n && !st; k++)
-        if (out.seg[k].op == AA_PATH_OFFSET)
-            st = fail_at(r, "transform-box: stroke-box of a stroke with offset curves (a "
-                            "Bezier or non-circular arc stroked) is not supported: their "
-                            "extent is not computed exactly");
+    int st = stroke_outline_of(r, p, &plain, &ss, &out);
     if (!st)
         path_box(&out, &identity, b);
     aa_path_free(&out);
@@ -3520,6 +3519,31 @@ static void path_box(const aa_path *p, const mat *m, double box[4])
                     box[k] = fmin(box[k], e), box[k + 2] = fmax(box[k + 2], e);
                 }
             }
+            continue;
+        }
+        case AA_PATH_OFFSET: {
+            /* an offset curve or evolute of a stroke's outline (stroke_box),
+             * through m: its ends and where a mapped coordinate turns, in
+             * closed form (aa__offset_turns; the outline's pieces have no
+             * fold inside, where the offset's tangent would vanish) */
+            aa_offset_curve oc = {{0}, {m->a, m->b, m->c, m->d, m->e, m->f}, v[8], v[9] != 0,
+                                  (int)v[14]};
+            memcpy(oc.b, v, sizeof oc.b);
+            const double lo = fmin(v[10], v[11]), hi = fmax(v[10], v[11]);
+            double t[6] = {lo, hi};
+            int nt = 2;
+            for (int k = 0; k < 2; k++)
+                nt += aa__offset_turns(&oc, k, lo, hi, t + nt);
+            for (int j = 0; j < nt; j++) {
+                double x, y;
+                aa_offset_point(&oc, t[j], &x, &y, NULL, NULL);
+                box[0] = fmin(box[0], x), box[2] = fmax(box[2], x);
+                box[1] = fmin(box[1], y), box[3] = fmax(box[3], y);
+            }
+            px = m->a * v[12] + m->c * v[13] + m->e;
+            py = m->b * v[12] + m->d * v[13] + m->f;
+            box[0] = fmin(box[0], px), box[2] = fmax(box[2], px);
+            box[1] = fmin(box[1], py), box[3] = fmax(box[3], py);
             continue;
         }
         default: /* a close: back to the start, a point already counted */

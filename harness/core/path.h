@@ -80,8 +80,10 @@ int aa_arc_endpoints(double x0, double y0, double rx, double ry, double phi, int
  * an elliptical arc (centre and semi-diameters mapped). */
 int aa_path_fill(const aa_path *path, const double m[6], aa_scene *s);
 
+/* SVG 2's joins (stroke.c says how each is drawn): miter-clip and arcs
+ * are SVG 2's, after the three of SVG 1.1. */
 typedef enum aa_line_join {
-    AA_JOIN_MITER = 0, AA_JOIN_ROUND, AA_JOIN_BEVEL
+    AA_JOIN_MITER = 0, AA_JOIN_ROUND, AA_JOIN_BEVEL, AA_JOIN_MITER_CLIP, AA_JOIN_ARCS
 } aa_line_join;
 typedef enum aa_line_cap { AA_CAP_BUTT = 0, AA_CAP_ROUND, AA_CAP_SQUARE } aa_line_cap;
 
@@ -110,7 +112,8 @@ void aa_stroke_style_default(aa_stroke_style *st);
  * offset curves and evolutes (AA_PATH_OFFSET, exact pieces: stroke.c says
  * how), cusps included.  What cannot be stroked exactly is refused with
  * AA_EINVAL naming it (a Bezier arc nearly with a cusp: its speed within
- * 1e-9 of its size but not 0 to rounding), and so is a
+ * 1e-9 of its size but not 0 to rounding; an arcs join that is not one
+ * simple region of lines and arcs, stroke.c's arcs_join), and so is a
  * subpath of more than 10000 dashes.  stroke.c says what it
  * chose where SVG leaves room (zero-length subpaths and segments, dashes on
  * closed subpaths).  On failure `out` is as it was. */

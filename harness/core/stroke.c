@@ -24,7 +24,19 @@
  *    the limit, the quadrilateral P A M B with the tip
  *    M = P + 2h (nA + nB)/|nA + nB|^2 where the outer edges' tangent lines
  *    meet (at an arc too: its tangent line, not the `arcs` join), else the
- *    bevel; round the circular sector of radius h about P from A to B.
+ *    bevel; round the circular sector of radius h about P from A to B;
+ *    miter-clip the miter, or past the limit the miter cut by the line
+ *    perpendicular to the outward bisector at limit h from P (SVG 2's
+ *    stroke-miterlimit: half the limit times the width), a pentagon
+ *    (clipped_miter); arcs the outer edges extended by their osculating
+ *    circles to where they meet, cut by the limit along an arc
+ *    (arcs_join, which says how, and SVG 2's fallbacks: miter-clip where
+ *    both curvatures are 0, round where either is at least 1/h, the
+ *    circles' radii changed alike until they touch where they do not
+ *    meet; a Bezier arc's end whose control point is on it has curvature
+ *    0 there, SVG 2's "a line should be used").  At a reversal miter-clip
+ *    and arcs are the rectangle of width 2h and length limit h ahead of
+ *    P (SVG 2's join for parallel tangents).
  *    With round joins and round caps every point within h of the path is
  *    covered (its nearest point on the path is inside a segment, on whose
  *    normal it lies, or a vertex or an end, in whose outward cone it
@@ -38,6 +50,12 @@
  *  - a closed subpath joins its last segment to its first instead of caps.
  *
  * Choices where SVG leaves room, or where this differs from a renderer:
+ *  - arcs falls back to round where "either curvature is greater than
+ *    2/(stroke width)": SVG 2 gives the curvature no sign there, so its
+ *    magnitude is taken, and at |k| = 1/h (an edge circle of radius 0)
+ *    round too; Chromium, librsvg and resvg draw miter-clip and arcs as
+ *    miter (Chromium's parser does not know them, librsvg strokes with
+ *    Cairo; patterns/README.md has the figures);
  *  - zero-length segments are dropped before joins: a join is between the
  *    neighbouring segments of non-zero length (SVG 2 takes a zero-length
  *    segment's direction from its neighbours, which comes to the same); a
@@ -90,7 +108,10 @@
  * nothing is drawn ahead of the cusp's tip; Chromium, resvg and librsvg
  * draw a disk there).  A Bezier arc whose every control point is one of
  * its ends (`C a a b b`) is stroked as the line it is (bez_on_ends).
- * Refused (AA_EINVAL, naming it): a Bezier arc whose
+ * Refused (AA_EINVAL, naming it): an arcs join whose extension would
+ * run backwards along a line or more than a half turn along a circle, or
+ * whose cut by the miter limit does not cross each extension once (the
+ * join is then not one simple region of lines and arcs); a Bezier arc whose
  * speed comes within 1e-9 of its size without being 0 to rounding (1e-12),
  * nearly a cusp; a subpath of more than DASH_MAX (10000) dashes.
  */
@@ -733,9 +754,344 @@ static int stroke_piece(aa_path *out, const piece *p, double h)
     return p->arc ? stroke_arc(out, p, h) : stroke_line(out, p, h);
 }
 
-/* The join at P between unit directions din and dout. */
+/* The clipped miter of miter-clip (and of arcs between straight edges):
+ * the outer edges' tangent lines from A and B, cut by the line
+ * perpendicular to the outward bisector m = (din - dout)/|din - dout| at
+ * the distance L = miterlimit h from P (SVG 2, stroke-miterlimit: half
+ * the limit times the width).  A . m = h cos(phi/2) and din . m =
+ * sin(phi/2) > 0 (phi the turn), so the edge from A reaches the cut at
+ * A + t din, t = (L - h cos(phi/2)) / sin(phi/2) >= 0 (L >= h), and the
+ * one from B at B - t dout: the pentagon P A A' B' B.  A reversal
+ * (dout = -din, m = din) gives the rectangle of width 2h and length L
+ * ahead of P, SVG 2's join for parallel tangents. */
+static int clipped_miter(aa_path *out, double px, double py, const double din[2],
+                         const double dout[2], double ax, double ay, double bx, double by,
+                         double L, double h)
+{
+    double mx = din[0] - dout[0], my = din[1] - dout[1], ml = hypot(mx, my);
+    mx /= ml, my /= ml;
+    double cs = ((ax - px) * mx + (ay - py) * my) / h, sn = din[0] * mx + din[1] * my;
+    double t = (L - h * cs) / sn;
+    const double xy[10] = {px, py, ax, ay, ax + t * din[0], ay + t * din[1],
+                           bx - t * dout[0], by - t * dout[1], bx, by};
+    return emit_polygon(out, xy, 5);
+}
+
+/* ---- the arcs join ---- */
+
+/* One outer edge of an arcs join extended beyond the join: from its end
+ * Q (A or B) in the direction d away from the segment (din after A, -dout
+ * before B), a line (curvature 0) or the circle about the segment's
+ * centre of curvature through Q: Q at parameter 0, the point at s
+ * C + u cos s + v sin s (u = Q - C, v = r d), s growing away from the
+ * segment. */
+typedef struct jedge {
+    int line;
+    double qx, qy, dx, dy;
+    double cx, cy, r, ux, uy, vx, vy;
+} jedge;
+
+static void je_set_circle(jedge *e, double cx, double cy)
+{
+    e->line = 0;
+    e->cx = cx, e->cy = cy;
+    e->ux = e->qx - cx, e->uy = e->qy - cy;
+    e->r = hypot(e->ux, e->uy);
+    e->vx = e->r * e->dx, e->vy = e->r * e->dy;
+}
+
+static void je_point(const jedge *e, double s, double *x, double *y)
+{
+    if (e->line) {
+        *x = e->qx + s * e->dx, *y = e->qy + s * e->dy;
+        return;
+    }
+    arc_point(e->cx, e->cy, e->ux, e->uy, e->vx, e->vy, s, x, y);
+}
+
+/* The parameter of a point on the edge: along the line, or the circle's
+ * angle from Q in [0, 2 pi). */
+static double je_param(const jedge *e, double x, double y)
+{
+    if (e->line)
+        return (x - e->qx) * e->dx + (y - e->qy) * e->dy;
+    double r2 = e->r * e->r;
+    double c = ((x - e->cx) * e->ux + (y - e->cy) * e->uy) / r2;
+    double s = ((x - e->cx) * e->vx + (y - e->cy) * e->vy) / r2;
+    double a = atan2(s, c);
+    return a < 0 ? a + 2 * M_PI : a;
+}
+
+/* The points where two edges' circles (or a circle and a line) meet:
+ * their count, at most 2, in xy. */
+static int je_meet(const jedge *a, const jedge *b, double xy[4])
+{
+    if (a->line && b->line)
+        return 0;
+    if (a->line || b->line) {
+        const jedge *l = a->line ? a : b, *c = a->line ? b : a;
+        double t = (c->cx - l->qx) * l->dx + (c->cy - l->qy) * l->dy;
+        double fx = l->qx + t * l->dx, fy = l->qy + t * l->dy;
+        double d = hypot(c->cx - fx, c->cy - fy);
+        if (!(d <= c->r))
+            return 0;
+        double s = sqrt(fmax(c->r * c->r - d * d, 0.0));
+        xy[0] = fx - s * l->dx, xy[1] = fy - s * l->dy;
+        xy[2] = fx + s * l->dx, xy[3] = fy + s * l->dy;
+        return 2;
+    }
+    double ex = b->cx - a->cx, ey = b->cy - a->cy, d = hypot(ex, ey);
+    if (!(d > 0) || d > a->r + b->r || d < fabs(a->r - b->r))
+        return 0;
+    ex /= d, ey /= d;
+    double m = (a->r * a->r - b->r * b->r + d * d) / (2 * d);
+    double s = sqrt(fmax(a->r * a->r - m * m, 0.0));
+    double fx = a->cx + m * ex, fy = a->cy + m * ey;
+    xy[0] = fx - s * ey, xy[1] = fy + s * ex;
+    xy[2] = fx + s * ey, xy[3] = fy - s * ex;
+    return 2;
+}
+
+/* SVG 2's fallback where the circles do not meet ("Adjusting the circles
+ * for the arcs stroke-linejoin"): both radii changed by the same amount D
+ * > 0, each centre moving along its normal at Q so that the circle stays
+ * tangent to its edge there, until the circles just touch: apart, both
+ * grow, |C1 - C2| = r1 + r2 + 2 D; one inside the other, the larger
+ * shrinks and the smaller grows, |C1 - C2| = R - r - 2 D; with C_i(D) =
+ * C_i + e_i D w_i (w_i the unit vector from Q_i to C_i, e_i = +-1),
+ * |D0 + D w|^2 = (S + sigma D)^2 is a quadratic in D, of which the least
+ * positive root is taken.  A circle and a line: the circle alone grows
+ * until it touches the line, dist(C(D), line) = r + D, linear.  The
+ * touching point in *x, *y and the edges moved; AA_EINVAL if no D. */
+static int je_touch(jedge *a, jedge *b, double *x, double *y)
+{
+    if (a->line || b->line) {
+        jedge *l = a->line ? a : b, *c = a->line ? b : a;
+        double wx = (c->cx - c->qx) / c->r, wy = (c->cy - c->qy) / c->r;
+        double nx = -l->dy, ny = l->dx;
+        double f0 = (c->cx - l->qx) * nx + (c->cy - l->qy) * ny, g = wx * nx + wy * ny;
+        double best = INFINITY;
+        /* f0 + D g = +-(r + D) */
+        if (g != 1) {
+            double D = (c->r - f0) / (g - 1);
+            if (D > 0 && D < best)
+                best = D;
+        }
+        if (g != -1) {
+            double D = (-c->r - f0) / (g + 1);
+            if (D > 0 && D < best)
+                best = D;
+        }
+        if (!isfinite(best))
+            return AA_EINVAL;
+        je_set_circle(c, c->qx + (c->r + best) * wx, c->qy + (c->r + best) * wy);
+        double t = (c->cx - l->qx) * l->dx + (c->cy - l->qy) * l->dy;
+        *x = l->qx + t * l->dx, *y = l->qy + t * l->dy;
+        return AA_OK;
+    }
+    double d0x = a->cx - b->cx, d0y = a->cy - b->cy, d0 = hypot(d0x, d0y);
+    double wax = (a->cx - a->qx) / a->r, way = (a->cy - a->qy) / a->r;
+    double wbx = (b->cx - b->qx) / b->r, wby = (b->cy - b->qy) / b->r;
+    int apart = d0 > a->r + b->r;
+    double ea = 1, eb = 1, S = a->r + b->r, sigma = 2;
+    if (!apart) {
+        /* one inside the other */
+        ea = a->r > b->r ? -1 : 1, eb = -ea;
+        S = fabs(a->r - b->r), sigma = -2;
+    }
+    double wx = ea * wax - eb * wbx, wy = ea * way - eb * wby;
+    double qa = wx * wx + wy * wy - sigma * sigma;
+    double qb = 2 * (d0x * wx + d0y * wy - S * sigma), qc = d0 * d0 - S * S;
+    double roots[2];
+    int nr = 0;
+    if (qa == 0) {
+        if (qb != 0)
+            roots[nr++] = -qc / qb;
+    } else {
+        double disc = qb * qb - 4 * qa * qc;
+        if (disc >= 0) {
+            double sq = sqrt(disc), q = -0.5 * (qb + copysign(sq, qb));
+            roots[nr++] = q / qa;
+            if (q != 0)
+                roots[nr++] = qc / q;
+        }
+    }
+    double best = INFINITY;
+    for (int k = 0; k < nr; k++) {
+        double D = roots[k];
+        if (D > 0 && D < best && S + sigma * D >= 0 && a->r + ea * D > 0 && b->r + eb * D > 0)
+            best = D;
+    }
+    if (!isfinite(best))
+        return AA_EINVAL;
+    je_set_circle(a, a->qx + (a->r + ea * best) * wax, a->qy + (a->r + ea * best) * way);
+    je_set_circle(b, b->qx + (b->r + eb * best) * wbx, b->qy + (b->r + eb * best) * wby);
+    /* the touching point: from the centre of the larger (or of a, apart)
+     * towards the other's, at its radius */
+    const jedge *big = apart || a->r >= b->r ? a : b, *small = big == a ? b : a;
+    double ex = small->cx - big->cx, ey = small->cy - big->cy, el = hypot(ex, ey);
+    if (!(el > 0))
+        return AA_EINVAL;
+    *x = big->cx + big->r * ex / el, *y = big->cy + big->r * ey / el;
+    return AA_OK;
+}
+
+/* The parameters in [0, smax] where edge e crosses the line through Y
+ * perpendicular to T, (Z - Y) . T = 0: their count (at most 2). */
+static int je_cross(const jedge *e, double yx, double yy, double tx, double ty, double smax,
+                    double *s)
+{
+    if (e->line) {
+        double dt = e->dx * tx + e->dy * ty;
+        if (dt == 0)
+            return 0;
+        double v = ((yx - e->qx) * tx + (yy - e->qy) * ty) / dt;
+        if (v >= 0 && v <= smax) {
+            s[0] = v;
+            return 1;
+        }
+        return 0;
+    }
+    /* (C - Y) . T + (u . T) cos s + (v . T) sin s = 0 */
+    double K = (e->cx - yx) * tx + (e->cy - yy) * ty;
+    double A = e->ux * tx + e->uy * ty, B = e->vx * tx + e->vy * ty, R = hypot(A, B);
+    if (!(R > 0) || fabs(K) > R)
+        return 0;
+    double ph = atan2(B, A), ac = acos(-K / R);
+    int n = 0;
+    for (int sg = -1; sg <= 1; sg += 2) {
+        double v = ph + sg * ac;
+        v = fmod(v, 2 * M_PI);
+        if (v < 0)
+            v += 2 * M_PI;
+        if (v <= smax)
+            s[n++] = v;
+    }
+    if (n == 2 && (s[0] == s[1]))
+        n = 1;
+    return n;
+}
+
+/* Append edge e from parameter s0 to s1 to the contour. */
+static void je_append(contour *c, const jedge *e, double s0, double s1)
+{
+    if (e->line) {
+        double x, y;
+        je_point(e, s1, &x, &y);
+        c_line(c, x, y);
+        return;
+    }
+    c_arc(c, e->cx, e->cy, e->ux, e->uy, e->vx, e->vy, s0, s1);
+}
+
+static int arcs_refuse(double px, double py, const char *why)
+{
+    return aa_fail(AA_EINVAL, "stroke: the arcs join at (%g, %g) is not drawn: %s", px, py, why);
+}
+
+/*
+ * The arcs join (SVG 2, "line join shape" and stroke-miterlimit) at P
+ * between a segment ending with direction din and curvature kin and one
+ * starting with dout and kout (signed: positive turning left; 0 for a
+ * line), whose outer edges end at A and start at B.  Each outer edge is
+ * extended by its osculating circle, which is concentric with the
+ * segment's (the offset of a curve at distance h about its centre of
+ * curvature), through A tangent to din (through B tangent to dout), or by
+ * its tangent line where the curvature is 0; the join is the region
+ * bounded by P A, the extension of the first edge to X, the point where
+ * the two extensions meet nearest P, the extension of the second back to
+ * B, and B P.  Where they do not meet, their radii are changed alike
+ * until they touch (je_touch).  The miter limit: the length of the arc
+ * from P tangent there to the outward bisector m and through X, by the
+ * tangent-chord angle a = angle(m, X - P) chord |X - P| times a / sin a,
+ * is at most L = miterlimit h, or the join is cut by the line normal to
+ * that arc at arc length L from P, the side of P kept.  Refused (naming
+ * the join): extensions that would reach X going backwards (a line) or
+ * more than a half turn (a circle), and cuts that do not cross each
+ * extension once.
+ */
+static int arcs_join(aa_path *out, double px, double py, const double din[2],
+                     const double dout[2], double kin, double kout, double ax, double ay,
+                     double bx, double by, double L)
+{
+    jedge e[2];
+    const double k[2] = {kin, kout};
+    const double dir[2][2] = {{din[0], din[1]}, {dout[0], dout[1]}};
+    for (int i = 0; i < 2; i++) {
+        jedge *q = &e[i];
+        memset(q, 0, sizeof *q);
+        q->line = 1;
+        q->qx = i ? bx : ax, q->qy = i ? by : ay;
+        q->dx = i ? -dout[0] : din[0], q->dy = i ? -dout[1] : din[1];
+        if (k[i] != 0)
+            je_set_circle(q, px - dir[i][1] / k[i], py + dir[i][0] / k[i]);
+    }
+    double xy[4], x = 0, y = 0;
+    int n = je_meet(&e[0], &e[1], xy);
+    if (n > 0) {
+        int best = 0;
+        if (n == 2 && hypot(xy[2] - px, xy[3] - py) < hypot(xy[0] - px, xy[1] - py))
+            best = 1;
+        x = xy[2 * best], y = xy[2 * best + 1];
+    } else if (je_touch(&e[0], &e[1], &x, &y)) {
+        return arcs_refuse(px, py, "its circles cannot be made to touch");
+    }
+    double s[2];
+    for (int i = 0; i < 2; i++) {
+        s[i] = je_param(&e[i], x, y);
+        if (e[i].line ? !(s[i] >= 0) : !(s[i] <= M_PI))
+            return arcs_refuse(px, py, e[i].line ? "an edge's line meets the other edge's "
+                                                   "circle behind the join"
+                                                 : "an edge's circle turns more than a half "
+                                                   "turn to meet the other");
+    }
+    /* the miter length along the arc from P tangent to m through X */
+    double mx = din[0] - dout[0], my = din[1] - dout[1], ml = hypot(mx, my);
+    mx /= ml, my /= ml;
+    double cx = x - px, cy = y - py, chord = hypot(cx, cy);
+    double cm = cx * mx + cy * my, cp = -cx * my + cy * mx; /* along m, along its left */
+    double half = atan2(fabs(cp), cm), len = half > 0 ? chord * half / sin(half) : chord;
+    contour c;
+    c_begin(&c, px, py);
+    c_line(&c, ax, ay);
+    if (len <= L) {
+        je_append(&c, &e[0], 0, s[0]);
+        je_append(&c, &e[1], s[1], 0);
+        return c_emit(out, &c);
+    }
+    /* the cut: Y at arc length L, T the arc's tangent there */
+    double yx, yy, tx, ty;
+    if (cp == 0) {
+        yx = px + L * mx, yy = py + L * my, tx = mx, ty = my;
+    } else {
+        double rho = chord / (2 * sin(half)), psi = L / rho, sg = cp > 0 ? 1 : -1;
+        if (!(psi < M_PI))
+            return arcs_refuse(px, py, "its miter limit's arc passes a half turn");
+        double sn = sin(psi), vs = 2 * sin(0.5 * psi) * sin(0.5 * psi);
+        double lx = -my * sg, ly = mx * sg;
+        yx = px + rho * (sn * mx + vs * lx), yy = py + rho * (sn * my + vs * ly);
+        tx = cos(psi) * mx + sn * lx, ty = cos(psi) * my + sn * ly;
+    }
+    double cut[2], v[2];
+    for (int i = 0; i < 2; i++) {
+        double qx = i ? bx : ax, qy = i ? by : ay;
+        if ((qx - yx) * tx + (qy - yy) * ty > 0 || je_cross(&e[i], yx, yy, tx, ty, s[i], v) != 1)
+            return arcs_refuse(px, py, "its miter limit's cut does not cross each edge once");
+        cut[i] = v[0];
+    }
+    je_append(&c, &e[0], 0, cut[0]);
+    double zx, zy;
+    je_point(&e[1], cut[1], &zx, &zy);
+    c_line(&c, zx, zy);
+    je_append(&c, &e[1], cut[1], 0);
+    return c_emit(out, &c);
+}
+
+/* The join at P between unit directions din and dout, with the segments'
+ * curvatures there kin and kout (used by arcs only). */
 static int stroke_join(aa_path *out, double px, double py, const double din[2],
-                       const double dout[2], const aa_stroke_style *style, double h)
+                       const double dout[2], double kin, double kout,
+                       const aa_stroke_style *style, double h)
 {
     double cr = din[0] * dout[1] - din[1] * dout[0];
     double dot = din[0] * dout[0] + din[1] * dout[1];
@@ -747,7 +1103,22 @@ static int stroke_join(aa_path *out, double px, double py, const double din[2],
     double nax = -sg * din[1], nay = sg * din[0];
     double nbx = -sg * dout[1], nby = sg * dout[0];
     double ax = px + h * nax, ay = py + h * nay, bx = px + h * nbx, by = py + h * nby;
-    if (style->join == AA_JOIN_ROUND) {
+    aa_line_join join = style->join;
+    if (join == AA_JOIN_ARCS) {
+        /* SVG 2: both curvatures 0, miter-clip; either beyond 1/h (the
+         * edge's circle would have no radius or fold), round */
+        if (kin == 0 && kout == 0)
+            join = AA_JOIN_MITER_CLIP;
+        else if (!(fabs(kin) * h < 1 && fabs(kout) * h < 1))
+            join = AA_JOIN_ROUND;
+        else if (cr == 0)
+            return clipped_miter(out, px, py, din, dout, ax, ay, bx, by,
+                                 style->miterlimit * h, h);
+        else
+            return arcs_join(out, px, py, din, dout, kin, kout, ax, ay, bx, by,
+                             style->miterlimit * h);
+    }
+    if (join == AA_JOIN_ROUND) {
         /* P + h (cos t nA + sin t din), t from 0 to the turn alpha, ends
          * at P + h nB (the turn of din to dout is that of nA to nB) */
         double alpha = atan2(fabs(cr), dot);
@@ -758,10 +1129,13 @@ static int stroke_join(aa_path *out, double px, double py, const double din[2],
         return c_emit(out, &c);
     }
     double sx = nax + nbx, sy = nay + nby, s2 = sx * sx + sy * sy;
-    if (style->join == AA_JOIN_MITER && s2 > 0 && 2.0 <= style->miterlimit * sqrt(s2)) {
+    int within = s2 > 0 && 2.0 <= style->miterlimit * sqrt(s2);
+    if ((join == AA_JOIN_MITER || join == AA_JOIN_MITER_CLIP) && within) {
         const double xy[8] = {px, py, ax, ay, px + 2 * h * sx / s2, py + 2 * h * sy / s2, bx, by};
         return emit_polygon(out, xy, 4);
     }
+    if (join == AA_JOIN_MITER_CLIP)
+        return clipped_miter(out, px, py, din, dout, ax, ay, bx, by, style->miterlimit * h, h);
     if (s2 == 0)
         return AA_OK; /* a reversal: an empty bevel */
     const double xy[6] = {px, py, ax, ay, bx, by};
@@ -796,6 +1170,37 @@ static int stroke_dot(aa_path *out, double px, double py, const aa_stroke_style 
     return st ? st : stroke_cap(out, px, py, left, style, h);
 }
 
+/* The signed curvature of a piece at its start or end, positive turning
+ * left (the arcs join's): 0 on a line; a circle's 1/r, its sign that of
+ * u x v times the direction of travel; a Bezier or elliptical arc's
+ * B' x B'' / |B'|^3 (bez_curvature).  At a Bezier arc's end whose control
+ * point is on it the curvature is infinite, and SVG 2 says to use a line
+ * there ("if P0 and P1 ... are degenerate, the curvature will be infinite
+ * and a line should be used"): 0. */
+static double piece_curvature(const piece *p, int at_end)
+{
+    if (p->bez) {
+        double k = bez_curvature(p, at_end ? p->t1 : p->t0);
+        return isfinite(k) ? k : 0.0;
+    }
+    if (!p->arc)
+        return 0.0;
+    double uv = p->ux * p->vy - p->uy * p->vx, sg = p->t1 > p->t0 ? 1.0 : -1.0;
+    return (uv > 0 ? sg : -sg) / p->r;
+}
+
+/* The join between pieces a (ending) and b (starting) at b's start. */
+static int join_pieces(aa_path *out, const piece *a, const piece *b,
+                       const aa_stroke_style *style, double h)
+{
+    double din[2], dout[2], kin = 0, kout = 0;
+    piece_tangent(a, 1, din);
+    piece_tangent(b, 0, dout);
+    if (style->join == AA_JOIN_ARCS)
+        kin = piece_curvature(a, 1), kout = piece_curvature(b, 0);
+    return stroke_join(out, b->x0, b->y0, din, dout, kin, kout, style, h);
+}
+
 /* A run of pieces (a subpath or a dash): every piece, the joins between
  * them, and caps at its ends or the join that closes it. */
 static int stroke_run(aa_path *out, const piece *p, size_t n, int closed,
@@ -805,19 +1210,13 @@ static int stroke_run(aa_path *out, const piece *p, size_t n, int closed,
     double din[2], dout[2];
     for (size_t i = 0; i < n && !st; i++) {
         st = stroke_piece(out, &p[i], h);
-        if (!st && i > 0 && !p[i].nojoin) {
-            piece_tangent(&p[i - 1], 1, din);
-            piece_tangent(&p[i], 0, dout);
-            st = stroke_join(out, p[i].x0, p[i].y0, din, dout, style, h);
-        }
+        if (!st && i > 0 && !p[i].nojoin)
+            st = join_pieces(out, &p[i - 1], &p[i], style, h);
     }
     if (st || n == 0)
         return st;
-    if (closed) {
-        piece_tangent(&p[n - 1], 1, din);
-        piece_tangent(&p[0], 0, dout);
-        return stroke_join(out, p[0].x0, p[0].y0, din, dout, style, h);
-    }
+    if (closed)
+        return join_pieces(out, &p[n - 1], &p[0], style, h);
     piece_tangent(&p[0], 0, dout);
     const double back[2] = {-dout[0], -dout[1]};
     if ((st = stroke_cap(out, p[0].x0, p[0].y0, back, style, h)))
@@ -964,7 +1363,7 @@ static int check_style(const aa_stroke_style *st)
 {
     if (!(st->width > 0) || !isfinite(st->width))
         return aa_fail(AA_EINVAL, "stroke: width %g is not a positive number", st->width);
-    if ((int)st->join < AA_JOIN_MITER || (int)st->join > AA_JOIN_BEVEL)
+    if ((int)st->join < AA_JOIN_MITER || (int)st->join > AA_JOIN_ARCS)
         return aa_fail(AA_EINVAL, "stroke: unknown line join %d", (int)st->join);
     if ((int)st->cap < AA_CAP_BUTT || (int)st->cap > AA_CAP_SQUARE)
         return aa_fail(AA_EINVAL, "stroke: unknown line cap %d", (int)st->cap);

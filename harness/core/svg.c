@@ -243,7 +243,7 @@ static void put_source_data(FILE *f, const aa_path *p)
 static void put_stroke(FILE *f, const aa_stroke_source *src, int l, aa_rgb colour,
                        double alpha)
 {
-    static const char *const joins[] = {"miter", "round", "bevel"};
+    static const char *const joins[] = {"miter", "round", "bevel", "miter-clip", "arcs"};
     static const char *const caps[] = {"butt", "round", "square"};
     const aa_stroke_style *st = &src->style;
     fprintf(f, "<path id=\"layer%d\" fill=\"none\" stroke=\"", l);

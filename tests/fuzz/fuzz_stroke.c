@@ -254,7 +254,8 @@ int aa_fuzz_stroke(const uint8_t *data, size_t size)
     double dash[4];
     st.width = fabs(number(&r));
     unsigned f = byte(&r);
-    st.join = (aa_line_join)(f % 4 == 3 ? 0 : f % 4);
+    /* miter, round, bevel; 3 picks SVG 2's miter-clip or arcs */
+    st.join = (aa_line_join)(f % 4 == 3 ? 3 + (f / 60) % 2 : f % 4);
     st.cap = (aa_line_cap)((f / 4) % 3);
     st.miterlimit = 1 + (double)byte(&r) / 16;
     st.ndash = (f / 12) % 5;
