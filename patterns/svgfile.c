@@ -104,8 +104,8 @@
  * does; on a gradient element it is read: "gradients"), <pattern> paint servers, the
  * radial gradients whose focal circle is their end circle (grad_resolve), text, images,
  * clip-path into other documents, the stroke-box of what holds a nested
- * <svg>, a <switch> or a use of a <symbol>, of a stroke with offset curves
- * and of a shape in a clipPath, basic shapes and boxes on a nested <svg>
+ * <svg>, a <switch> or a use of a <symbol> and of a shape in a clipPath,
+ * basic shapes and boxes on a nested <svg>
  * or a <symbol>, a
  * singular transform on the root, <text>, <g> and other non-shapes in a
  * clipPath, references to clip
@@ -2973,7 +2973,7 @@ static void path_box(const aa_path *p, const mat *m, double box[4]);
  * the stroke shape of the element, with the assumption that the element
  * has no dash pattern" when the stroke is not none: the tightest, no
  * approximation; dashes, and so pathLength, play no part), x0 y0 x1 y1 in
- * b, which holds the fill box.  The stroke shape is the outline
+ * b through m, b holding the fill box.  The stroke shape is the outline
  * aa_stroke_outline draws undashed, bounded exactly by path_box: lines,
  * circular arcs (their extremes in closed form) and the offset curves and
  * evolutes of stroked Bezier and elliptical arcs (their ends and the
@@ -2982,7 +2982,7 @@ static void path_box(const aa_path *p, const mat *m, double box[4]);
  * vanishes, is an end of the outline's pieces, and so are the joins' and
  * caps' points; the evolutes lie inside the shape, on the normals within
  * h of the curve, and add nothing). */
-static int stroke_box(reader *r, const aa_path *p, const style *sty, double b[4])
+static int stroke_box(reader *r, const aa_path *p, const style *sty, const mat *m, double b[4])
 {
     if (sty->stroke_none || !(sty->stroke_width > 0))
         return AA_OK;
@@ -2993,7 +2993,7 @@ static int stroke_box(reader *r, const aa_path *p, const style *sty, double b[4]
     aa_path_init(&out);
     int st = stroke_outline_of(r, p, &plain, &ss, &out);
     if (!st)
-        path_box(&out, &identity, b);
+        path_box(&out, m, b);
     aa_path_free(&out);
     return st;
 }
@@ -3052,7 +3052,7 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
         if (!st && p.n && stroked) {
             b[0] = b[1] = INFINITY, b[2] = b[3] = -INFINITY;
             path_box(&p, &identity, b);
-            st = stroke_box(r, &p, r->tsty, b);
+            st = stroke_box(r, &p, r->tsty, &identity, b);
         }
         if (!st && p.n)
             box[0] = b[0], box[1] = b[1], box[2] = b[2] - b[0], box[3] = b[3] - b[1];
@@ -4394,30 +4394,13 @@ static int bs_shape(reader *r, const char *fn, size_t n, const char **s, const d
 }
 
 /* A shape's stroke bounding box (SVG 2, "Bounding boxes"): the path p's
- * fill geometry through m grown into e, and its stroke outline's when it
- * is stroked (style sty), bounded exactly (lines and circular arcs); a
- * stroke with offset curves is refused, its extent not computed exactly
- * here. */
+ * fill geometry through m grown into e, and its undashed stroke outline's
+ * when it is stroked (style sty; stroke_box). */
 static int clip_stroke_box(reader *r, const aa_path *p, const style *sty, const mat *m,
                            double e[4])
 {
     path_box(p, m, e);
-    if (sty->stroke_none || !(sty->stroke_width > 0))
-        return AA_OK;
-    aa_stroke_style ss;
-    aa_path out;
-    aa_path_init(&out);
-    int st = stroke_outline_of(r, p, sty, &ss, &out);
-    for (size_t k = 0; k < out.n && !st; k++)
-        if (out.seg[k].op == AA_PATH_OFFSET)
-            st = fail_at(r, "clip-path: the stroke-box (border-box, margin-box, or no box "
-                            "given) of a stroke with offset curves (a Bezier or non-circular "
-                            "arc stroked) is not supported: their extent is not computed "
-                            "exactly; give fill-box or view-box");
-    if (!st)
-        path_box(&out, m, e);
-    aa_path_free(&out);
-    return st;
+    return stroke_box(r, p, sty, m, e);
 }
 
 /* The stroke bounding box of node (its style sty, m its user space to the

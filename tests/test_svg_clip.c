@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include <cmocka.h>
+#include <gsl/gsl_sf_ellint.h>
 
 #define N 64 /* the view: N x N pixels */
 
@@ -723,6 +724,26 @@ static void test_geometry_boxes(void **state)
     check_area("circle-stroke-box", "<circle cx=\"32\" cy=\"32\" r=\"10\" stroke=\"white\" "
                                     "stroke-width=\"4\" style=\"clip-path: inset(0 50% 0 0)\"/>",
                72 * M_PI);
+    /* a stroked ellipse's (its outline's offset curves bounded exactly):
+     * rx 20, ry 10 at (32, 32), the stroke 4 wide, so the box [10, 54] x
+     * [20, 44]; an inset of 22 px from its left, of 22 px from its right,
+     * of 12 px from its top keeps x > 32, x < 32, y > 32: each half the
+     * ellipse's parallel body at distance d = 2 (its curvature radius, at
+     * least ry^2 / rx = 5, exceeds d, so fill and stroke make the convex
+     * body), by Steiner's formula pi rx ry + d P + pi d^2, P the ellipse's
+     * perimeter 4 rx E(e), e^2 = 1 - ry^2 / rx^2 (GSL's complete elliptic
+     * integral); a box of the fill alone, [12, 52] x [22, 42], or of the
+     * control points, would cut elsewhere */
+    double perim = 4 * 20 * gsl_sf_ellint_Ecomp(sqrt(0.75), GSL_PREC_DOUBLE);
+    static const char *const insets[] = {"0 0 0 22px", "0 22px 0 0", "12px 0 0 0"};
+    for (int k = 0; k < 3; k++) {
+        char body[400];
+        snprintf(body, sizeof body,
+                 "<ellipse cx=\"32\" cy=\"32\" rx=\"20\" ry=\"10\" stroke=\"white\" "
+                 "stroke-width=\"4\" style=\"clip-path: inset(%s)\"/>",
+                 insets[k]);
+        check_area("ellipse-stroke-box", body, 0.5 * (M_PI * 200 + 2 * perim + 4 * M_PI));
+    }
     /* a use's, in its space after translate(x, y): its target's stroke
      * box [7, 43] x [7, 33], the left half [7, 25] kept, drawn at [12, 30]
      * x [12, 38]: 18 x 26; a group's holding a use whose target inherits
@@ -860,10 +881,6 @@ static void test_refused(void **state)
             "<rect>", "stroke-box");
     refused("<svg width=\"9\" height=\"9\" clip-path=\"circle(4px)\"/>", "<svg>",
             "nested <svg>");
-    /* the stroke-box of a stroke with offset curves (an ellipse's) */
-    refused("<ellipse cx=\"9\" cy=\"9\" rx=\"8\" ry=\"4\" stroke=\"white\" "
-            "clip-path=\"circle(4px)\"/>",
-            "<ellipse>", "offset curves");
     root_attrs = " transform=\"scale(0)\"";
     refused("<rect width=\"9\" height=\"9\"/>", "<svg>", "singular");
     root_attrs = "";
