@@ -38,8 +38,9 @@
  *     or a <symbol> in the user space it establishes (its content's),
  *     the viewport's clip within it (viewport_element);
  *   - conditional processing: systemLanguage, requiredExtensions and
- *     requiredFeatures (conditions_hold), and <switch> drawing its first
- *     child whose conditions hold (switch_choice);
+ *     requiredFeatures (conditions_hold; requiredFonts and requiredFormats,
+ *     SVG 1.1 Tiny's, true as browsers take them), and <switch> drawing
+ *     its first child whose conditions hold (switch_choice);
  *   - style: the style attribute and <style> sheets, cascaded by CSS
  *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
  *     !important; presentation attributes below every rule);
@@ -47,7 +48,11 @@
  *     (CSS 2.1, 4.2), and an invalid presentation attribute is its
  *     property's initial value (SVG 2), with a warning (prop, prop_check;
  *     geometry attributes: invalid_attr); what may be valid but is not
- *     read (calc(), vw) is refused;
+ *     read (a unit such as ch, a division by zero) is refused;
+ *   - calc(), min(), max() and clamp() wherever a length, a number or an
+ *     angle is read (scan_math); custom properties and var(), substituted
+ *     before a value is parsed (var_subst); the CSS-wide keywords inherit,
+ *     initial, unset and revert of every property read (css_wide);
  *   - a viewBox maps to the viewport by preserveAspectRatio (default
  *     xMidYMid meet; every alignment, meet, slice and none);
  *   - transform lists (matrix, translate, scale, rotate with or without a
@@ -337,7 +342,7 @@ typedef struct reader {
     double clip_viewport_vb[2];
     int calc;  /* the last length scanned was a math function (scan_length) */
     int depth; /* r->chain[depth] is the element read last */
-    /* custom properties being substituted (var_resolve): the elements
+    /* custom properties being substituted (custom_value): the elements
      * and names, the first of a cycle found, substitutions made */
     const xmlNode *var_node[VAR_MAX_DEPTH];
     const char *var_name[VAR_MAX_DEPTH];
@@ -482,20 +487,23 @@ static int length_axis(const char *attr)
     return 2;
 }
 
+/* the types of math functions' values (scan_math) */
+enum { CALC_NUMBER, CALC_LENGTH, CALC_ANGLE };
+
+static int scan_math(reader *r, const char **s, int pct, double pref, int want, double *v);
+static int is_math(const char *s);
+
 /* A number and its unit at *s (none, an absolute unit, em, ex, rem, the
  * viewport units or %) in px:
  * 0 and *s advanced; -1 for no number, -2 out of range, -3 a unit this
  * reader does not know (*s at it). */
-static int scan_math(reader *r, const char **s, int pct, double pref, int want, double *v);
-static int is_math(const char *s);
-
 static int scan_length(reader *r, const char **s, int axis, double *v)
 {
     r->calc = 0;
     if (is_math(*s)) {
         const double w = r->vpw, h = r->vph;
         return scan_math(r, s, 1, axis == 0 ? w : axis == 1 ? h : sqrt((w * w + h * h) / 2),
-                         1, v);
+                         CALC_LENGTH, v);
     }
     int k = scan_number(s, v);
     if (k == -2)
@@ -559,8 +567,6 @@ static int scan_length(reader *r, const char **s, int axis, double *v)
  * largest value it holds), is out of range, so refused, as any number
  * over AA_SVG_MAX_NUMBER. */
 
-enum { CALC_NUMBER, CALC_LENGTH, CALC_ANGLE };
-
 typedef struct calc_ctx {
     reader *r;
     int pct;     /* 0 no percentage, 1 of pref, 2 a hundredth */
@@ -592,7 +598,8 @@ static int is_math(const char *s)
 static int calc_sum(calc_ctx *c, const char **s, double *v, int *t);
 
 /* A value of a sum: a number, a dimension, a percentage, a sum in
- * parentheses or a math function. 0, or -1 invalid, -2 out of range. */
+ * parentheses or a math function: 0, or -1 invalid, -2 out of range, -3
+ * a unit not read. */
 static int calc_value(calc_ctx *c, const char **s, double *v, int *t)
 {
     static const struct {
