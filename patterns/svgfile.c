@@ -488,7 +488,7 @@ static int length_axis(const char *attr)
 }
 
 /* the types of math functions' values (scan_math) */
-enum { CALC_NUMBER, CALC_LENGTH, CALC_ANGLE };
+enum { CALC_NUMBER, CALC_LENGTH, CALC_ANGLE, CALC_PERCENT };
 
 static int scan_math(reader *r, const char **s, int pct, double pref, int want, double *v);
 static int is_math(const char *s);
@@ -561,8 +561,10 @@ static int scan_length(reader *r, const char **s, int axis, double *v)
  * lengths (every unit scan_length reads) and angles (deg, grad, rad,
  * turn), typed as CSS types them: a sum of one type, a product with at
  * least one number, a quotient by a number; a percentage is a length of
- * what the property's percentages refer to (`pref`, pct 1) or a number
- * of a hundredth (an alpha value, pct 2), else invalid (pct 0).  A
+ * what the property's percentages refer to (`pref`, pct 1), or a
+ * percentage of its own type, a hundredth where a number goes (an alpha
+ * value, pct 2: calc(50% + 0.25) is invalid, as Chromium takes it), else
+ * invalid (pct 0).  A
  * division by zero, infinite in CSS Values 4 (Chromium then draws the
  * largest value it holds), is out of range, so refused, as any number
  * over AA_SVG_MAX_NUMBER. */
@@ -653,7 +655,7 @@ static int calc_value(calc_ctx *c, const char **s, double *v, int *t)
             if (!c->pct)
                 return -1;
             *v *= c->pct == 1 ? c->pref / 100 : 0.01;
-            *t = c->pct == 1 ? CALC_LENGTH : CALC_NUMBER;
+            *t = c->pct == 1 ? CALC_LENGTH : CALC_PERCENT;
             p++;
         } else if (m) {
             size_t k = 0;
@@ -749,8 +751,8 @@ static int calc_sum(calc_ctx *c, const char **s, double *v, int *t)
 /* A math function at *s of the type `want` (CALC_NUMBER, CALC_LENGTH: a
  * number too, in user units as SVG reads a number where a length goes,
  * as Chromium does, CALC_ANGLE), percentages as `pct` and `pref` say
- * (calc_ctx).  0 and *s advanced, r->calc set; -1 invalid, -2 out of
- * range (refused). */
+ * (calc_ctx; a percentage where a number is wanted a hundredth).  0 and
+ * *s advanced, r->calc set; -1 invalid, -2 out of range (refused). */
 static int scan_math(reader *r, const char **s, int pct, double pref, int want, double *v)
 {
     calc_ctx c = {r, pct, pref, 0};
@@ -759,7 +761,8 @@ static int scan_math(reader *r, const char **s, int pct, double pref, int want, 
     int t, e = calc_value(&c, &p, v, &t);
     if (e)
         return e;
-    if (t != want && !(want == CALC_LENGTH && t == CALC_NUMBER))
+    if (t != want && !(want == CALC_LENGTH && t == CALC_NUMBER) &&
+        !(want == CALC_NUMBER && t == CALC_PERCENT))
         return -1;
     *s = p;
     r->calc = 1;

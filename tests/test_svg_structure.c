@@ -979,6 +979,13 @@ static void test_calc(void **state)
                    "not a length");
     expect_partial(OPEN "<rect width=\"calc(2px * 2px)\" height=\"1\"/></svg>", "",
                    "not a length");
+    /* an opacity of a percentage and a number added: invalid, ignored
+     * (opaque: drawn by this sink of no translucent shapes), as Chromium
+     * draws opacity: calc(50% + 0.25); calc(50%) is 0.5, refused here */
+    expect_partial(OPEN R("fill=\"white\" style=\"opacity: calc(50% + 0.25)\"") "</svg>",
+                   WHITE " M 0 0 L 1 0 L 1 1 L 0 1 Z", "opacity");
+    refused(OPEN R("fill=\"white\" style=\"opacity: calc(50%)\"") "</svg>", "<rect>",
+            "alpha 0.5");
     /* a negative width of a math function is clamped to 0 (CSS Values 4):
      * no stroke, where -4 written out is ignored (the width 1) */
     expect(OPEN R("stroke=\"white\" style=\"stroke-width: calc(0px - 4px)\"") "</svg>",
