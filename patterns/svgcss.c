@@ -219,6 +219,8 @@ static int parse_decl(const char *a, const char *b, decl *d)
 
 static int span_is(span s, const char *w)
 {
+    if (w[0] == '-' && w[1] == '-') /* a custom property's name keeps its case */
+        return s.n == strlen(w) && !strncmp(s.s, w, s.n);
     return s.n == strlen(w) && !strncasecmp(s.s, w, s.n);
 }
 

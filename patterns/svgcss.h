@@ -34,9 +34,10 @@ void aa_css_free(aa_css *css);
  * malformed or refused (nothing is added then). */
 int aa_css_add(aa_css *css, const char *text, const char *name, long line);
 
-/* The cascaded value of the property `key` (any case) for the element
- * `node` from the sheet's rules and the element's style attribute text
- * `style` (may be NULL), by CSS Cascade 4 within the author origin:
+/* The cascaded value of the property `key` (any case; a custom property,
+ * --name, in its own case) for the element `node` from the sheet's rules
+ * and the element's style attribute text `style` (may be NULL), by CSS
+ * Cascade 4 within the author origin:
  * !important first, then the style attribute over any rule, then the
  * higher specificity, then the later declaration.  1 and the value
  * (trimmed, without !important) in buf[0 .. len) when one declares it,

@@ -38,8 +38,9 @@
  *     or a <symbol> in the user space it establishes (its content's),
  *     the viewport's clip within it (viewport_element);
  *   - conditional processing: systemLanguage, requiredExtensions and
- *     requiredFeatures (conditions_hold), and <switch> drawing its first
- *     child whose conditions hold (switch_choice);
+ *     requiredFeatures (conditions_hold; requiredFonts and requiredFormats,
+ *     SVG 1.1 Tiny's, true as browsers take them), and <switch> drawing
+ *     its first child whose conditions hold (switch_choice);
  *   - style: the style attribute and <style> sheets, cascaded by CSS
  *     Cascade 4 (patterns/svgcss.c: selectors, specificity, order,
  *     !important; presentation attributes below every rule);
@@ -47,7 +48,11 @@
  *     (CSS 2.1, 4.2), and an invalid presentation attribute is its
  *     property's initial value (SVG 2), with a warning (prop, prop_check;
  *     geometry attributes: invalid_attr); what may be valid but is not
- *     read (calc(), vw) is refused;
+ *     read (a unit such as ch, a division by zero) is refused;
+ *   - calc(), min(), max() and clamp() wherever a length, a number or an
+ *     angle is read (scan_math); custom properties and var(), substituted
+ *     before a value is parsed (var_subst); the CSS-wide keywords inherit,
+ *     initial, unset and revert of every property read (css_wide);
  *   - a viewBox maps to the viewport by preserveAspectRatio (default
  *     xMidYMid meet; every alignment, meet, slice and none);
  *   - transform lists (matrix, translate, scale, rotate with or without a
@@ -145,6 +150,8 @@
 #include <libxml/tree.h>
 
 #define SVG_NS "http://www.w3.org/2000/svg"
+#define VAR_MAX_DEPTH 32     /* custom properties substituted within each other (var()) */
+#define VAR_MAX_SUBST 10000L /* var() substitutions for one value */
 
 
 /* ---- files ---- */
@@ -344,6 +351,14 @@ typedef struct reader {
     const xmlNode *csty_node;
     const struct style *csty;
     double rootw, rooth;
+    int calc;  /* the last length scanned was a math function (scan_length) */
+    int depth; /* r->chain[depth] is the element read last */
+    /* custom properties being substituted (custom_value): the elements
+     * and names, the first of a cycle found, substitutions made */
+    const xmlNode *var_node[VAR_MAX_DEPTH];
+    const char *var_name[VAR_MAX_DEPTH];
+    int nvar, var_cycle;
+    long var_count;
 } reader;
 
 /* AA_EINVAL naming the element and its line. */
@@ -483,12 +498,24 @@ static int length_axis(const char *attr)
     return 2;
 }
 
+/* the types of math functions' values (scan_math) */
+enum { CALC_NUMBER, CALC_LENGTH, CALC_ANGLE, CALC_PERCENT };
+
+static int scan_math(reader *r, const char **s, int pct, double pref, int want, double *v);
+static int is_math(const char *s);
+
 /* A number and its unit at *s (none, an absolute unit, em, ex, rem, the
  * viewport units or %) in px:
  * 0 and *s advanced; -1 for no number, -2 out of range, -3 a unit this
  * reader does not know (*s at it). */
 static int scan_length(reader *r, const char **s, int axis, double *v)
 {
+    r->calc = 0;
+    if (is_math(*s)) {
+        const double w = r->vpw, h = r->vph;
+        return scan_math(r, s, 1, axis == 0 ? w : axis == 1 ? h : sqrt((w * w + h * h) / 2),
+                         CALC_LENGTH, v);
+    }
     int k = scan_number(s, v);
     if (k == -2)
         r->unsupported = 1;
@@ -536,6 +563,221 @@ static int scan_length(reader *r, const char **s, int axis, double *v)
         return 0;
     r->unsupported = 1;
     return -2;
+}
+
+/* ---- math functions ----
+ *
+ * CSS Values 4's calc(), min(), max() and clamp(), nested and with
+ * parentheses: + and - (white space on both sides), * and /, on numbers,
+ * lengths (every unit scan_length reads) and angles (deg, grad, rad,
+ * turn), typed as CSS types them: a sum of one type, a product with at
+ * least one number, a quotient by a number; a percentage is a length of
+ * what the property's percentages refer to (`pref`, pct 1), or a
+ * percentage of its own type, a hundredth where a number goes (an alpha
+ * value, pct 2: calc(50% + 0.25) is invalid, as Chromium takes it), else
+ * invalid (pct 0).  A
+ * division by zero, infinite in CSS Values 4 (Chromium then draws the
+ * largest value it holds), is out of range, so refused, as any number
+ * over AA_SVG_MAX_NUMBER. */
+
+typedef struct calc_ctx {
+    reader *r;
+    int pct;     /* 0 no percentage, 1 of pref, 2 a hundredth */
+    double pref; /* 100% as a length */
+    int depth;   /* nesting of parentheses and functions */
+} calc_ctx;
+
+/* The math function at s: 0 calc, 1 min, 2 max, 3 clamp, -1 none;
+ * *n its name's length with the "(". */
+static int math_function(const char *s, size_t *n)
+{
+    static const char *const names[] = {"calc(", "min(", "max(", "clamp("};
+    for (int k = 0; k < 4; k++) {
+        size_t m = strlen(names[k]);
+        if (!strncasecmp(s, names[k], m)) {
+            *n = m;
+            return k;
+        }
+    }
+    return -1;
+}
+
+static int is_math(const char *s)
+{
+    size_t n;
+    return math_function(s, &n) >= 0;
+}
+
+static int calc_sum(calc_ctx *c, const char **s, double *v, int *t);
+
+/* A value of a sum: a number, a dimension, a percentage, a sum in
+ * parentheses or a math function: 0, or -1 invalid, -2 out of range, -3
+ * a unit not read. */
+static int calc_value(calc_ctx *c, const char **s, double *v, int *t)
+{
+    static const struct {
+        const char *unit;
+        double deg;
+    } angles[] = {{"deg", 1}, {"grad", 0.9}, {"rad", 180 / M_PI}, {"turn", 360}};
+    const char *p = skip_wsp(*s);
+    size_t n = 1;
+    int f = *p == '(' ? 0 : math_function(p, &n), e = 0;
+    if (f >= 0) {
+        if (++c->depth > 32) {
+            c->r->unsupported = 1; /* the reader's limit */
+            return -2;
+        }
+        p += n;
+        double a[3];
+        int na = 0;
+        for (;;) {
+            double x;
+            int u;
+            if ((e = calc_sum(c, &p, &x, &u)))
+                return e;
+            if (na && u != *t)
+                return -1; /* min(), max(), clamp(): one type */
+            *t = u;
+            if (f == 3 && na < 3)
+                a[na] = x;
+            else if (f == 3)
+                return -1;
+            *v = !na || f == 0 ? x : f == 1 ? fmin(*v, x) : f == 2 ? fmax(*v, x) : *v;
+            na++;
+            if (*p != ',' || f == 0)
+                break;
+            p++;
+        }
+        if (*p != ')' || (f == 3 && na != 3))
+            return -1;
+        if (f == 3) /* clamp(min, value, max): max(min, min(value, max)) */
+            *v = fmax(a[0], fmin(a[1], a[2]));
+        c->depth--;
+        p++;
+    } else {
+        const char *at = p;
+        if (scan_number(&p, v))
+            return -1;
+        size_t m = 0;
+        while (isalpha((unsigned char)p[m]))
+            m++;
+        *t = CALC_NUMBER;
+        if (*p == '%') {
+            if (!c->pct)
+                return -1;
+            *v *= c->pct == 1 ? c->pref / 100 : 0.01;
+            *t = c->pct == 1 ? CALC_LENGTH : CALC_PERCENT;
+            p++;
+        } else if (m) {
+            size_t k = 0;
+            while (k < 4 && !(strlen(angles[k].unit) == m && !strncasecmp(p, angles[k].unit, m)))
+                k++;
+            if (k < 4) {
+                *v *= angles[k].deg;
+                *t = CALC_ANGLE;
+                p += m;
+            } else {
+                p = at;
+                if ((e = scan_length(c->r, &p, 2, v)))
+                    return e; /* -3: a unit not read, r->unsupported set */
+                *t = CALC_LENGTH;
+            }
+        }
+    }
+    if (!isfinite(*v) || fabs(*v) > AA_SVG_MAX_NUMBER) {
+        c->r->unsupported = 1;
+        return -2;
+    }
+    *s = p;
+    return 0;
+}
+
+/* A product of values: * with a number on one side, / by a number. */
+static int calc_product(calc_ctx *c, const char **s, double *v, int *t)
+{
+    int e = calc_value(c, s, v, t);
+    while (!e) {
+        const char *p = skip_wsp(*s);
+        if (*p != '*' && *p != '/')
+            break;
+        const int times = *p == '*';
+        double x;
+        int u;
+        p++;
+        if ((e = calc_value(c, &p, &x, &u)))
+            break;
+        if (times) {
+            if (*t != CALC_NUMBER && u != CALC_NUMBER)
+                return -1;
+            *v *= x;
+            if (*t == CALC_NUMBER)
+                *t = u;
+        } else {
+            if (u != CALC_NUMBER)
+                return -1;
+            if (x == 0) {
+                c->r->unsupported = 1; /* infinite, or NaN */
+                return -2;
+            }
+            *v /= x;
+        }
+        if (!isfinite(*v) || fabs(*v) > AA_SVG_MAX_NUMBER) {
+            c->r->unsupported = 1;
+            return -2;
+        }
+        *s = p;
+    }
+    return e;
+}
+
+/* A sum of products, + and - between white space; *s left after the
+ * white space that ends it. */
+static int calc_sum(calc_ctx *c, const char **s, double *v, int *t)
+{
+    int e = calc_product(c, s, v, t);
+    while (!e && is_wsp((unsigned char)**s)) {
+        const char *p = skip_wsp(*s);
+        if ((*p != '+' && *p != '-') || !is_wsp((unsigned char)p[1]))
+            break;
+        const int minus = *p == '-';
+        double x;
+        int u;
+        p++;
+        if ((e = calc_product(c, &p, &x, &u)))
+            break;
+        if (u != *t)
+            return -1;
+        *v += minus ? -x : x;
+        if (!isfinite(*v) || fabs(*v) > AA_SVG_MAX_NUMBER) {
+            c->r->unsupported = 1;
+            return -2;
+        }
+        *s = p;
+    }
+    if (!e)
+        *s = skip_wsp(*s);
+    return e;
+}
+
+/* A math function at *s of the type `want` (CALC_NUMBER, CALC_LENGTH: a
+ * number too, in user units as SVG reads a number where a length goes,
+ * as Chromium does, CALC_ANGLE), percentages as `pct` and `pref` say
+ * (calc_ctx; a percentage where a number is wanted a hundredth).  0 and
+ * *s advanced, r->calc set; -1 invalid, -2 out of range (refused). */
+static int scan_math(reader *r, const char **s, int pct, double pref, int want, double *v)
+{
+    calc_ctx c = {r, pct, pref, 0};
+    const char *p = *s;
+    r->unsupported = 0;
+    int t, e = calc_value(&c, &p, v, &t);
+    if (e)
+        return e;
+    if (t != want && !(want == CALC_LENGTH && t == CALC_NUMBER) &&
+        !(want == CALC_NUMBER && t == CALC_PERCENT))
+        return -1;
+    *s = p;
+    r->calc = 1;
+    return 0;
 }
 
 /* A whole attribute or property value that is one length. */
@@ -588,6 +830,8 @@ static int parse_font_size(reader *r, const char *v, double parent, double *out)
     r->vpw = r->vph = parent; /* a percentage: of the parent's font-size */
     int st = parse_length(r, "font-size", v, out);
     r->font_size = own, r->vpw = w, r->vph = h;
+    if (!st && *out < 0 && r->calc)
+        *out = 0; /* CSS Values 4: a math function's value clamped to the range */
     if (!st && *out < 0)
         st = fail_at(r, "font-size=\"%s\": a negative size is an error", aa_echo(v));
     return st;
@@ -773,7 +1017,7 @@ static int attr_known(const xmlNode *node, const char *name)
                 {"viewBox", "preserveAspectRatio", "x", "y", "width", "height", "refX", "refY"}}};
     static const char *const any[] = {"id",          "class",          "style",
                                       "transform",   "systemLanguage", "requiredExtensions",
-                                      "requiredFeatures"};
+                                      "requiredFeatures", "requiredFonts", "requiredFormats"};
     for (size_t k = 0; k < sizeof any / sizeof any[0]; k++)
         if (!strcmp(name, any[k]))
             return 1;
@@ -876,6 +1120,8 @@ static int check_decl(void *ctx, const char *name, size_t n, long line)
             return AA_OK;
     if (css_noop_index(name, n) >= 0)
         return AA_OK;
+    if (n > 2 && name[0] == '-' && name[1] == '-')
+        return AA_OK; /* a custom property (var_subst) */
     char prop[64];
     snprintf(prop, sizeof prop, "%.*s", (int)n, name);
     return fail_at(r, "the style property %s is not supported%s", aa_echo(prop), at);
@@ -921,6 +1167,274 @@ static const char *last_reason(void)
     return e ? e + 3 : m;
 }
 
+/* The initial values of the properties not inherited that the reader
+ * reads (`initial`, and `unset` of them; CSS Transforms 1 gives
+ * transform-origin 50% 50%, Chromium drawing it so, where an SVG
+ * element's 0 0 comes from the user agent's sheet: user_agent_value). */
+static const struct {
+    const char *key, *value;
+} initial_own[] = {{"opacity", "1"},         {"transform", "none"},     {"display", "inline"},
+                   {"overflow", "visible"},  {"clip-path", "none"},     {"mask", "none"},
+                   {"filter", "none"},       {"transform-box", "view-box"},
+                   {"transform-origin", "50% 50%"}, {"stop-color", "black"},
+                   {"stop-opacity", "1"}};
+
+/* The initial value of `key`, *inherited set when the property is
+ * inherited; NULL for a property of neither table. */
+static const char *initial_of(const char *key, int *inherited)
+{
+    for (size_t k = 0; k < sizeof initial_values / sizeof initial_values[0]; k++)
+        if (!strcmp(key, initial_values[k].key)) {
+            *inherited = 1;
+            return initial_values[k].value;
+        }
+    *inherited = 0;
+    for (size_t k = 0; k < sizeof initial_own / sizeof initial_own[0]; k++)
+        if (!strcmp(key, initial_own[k].key))
+            return initial_own[k].value;
+    return NULL;
+}
+
+/* What the user agent's sheet gives `key` on `node` (CSS Cascade 4's
+ * revert goes back to it), or NULL: overflow hidden on a nested <svg>
+ * and a <symbol> (SVG 2's sheet), transform-origin 0 0 on every element
+ * but the root <svg> (CSS Transforms 1's sheet). */
+static const char *user_agent_value(const char *key, const xmlNode *node)
+{
+    const int root = node->parent && node->parent->type == XML_DOCUMENT_NODE;
+    if (!strcmp(key, "overflow") && !root &&
+        (!strcmp((const char *)node->name, "svg") || !strcmp((const char *)node->name, "symbol")))
+        return "hidden";
+    if (!strcmp(key, "transform-origin") && !root)
+        return "0 0";
+    return NULL;
+}
+
+/* The element `node` inherits from: the one before it in r->chain (a
+ * <use> for the root of what it draws), else its parent element; NULL for
+ * the root. */
+static const xmlNode *style_parent(const reader *r, const xmlNode *node)
+{
+    for (int k = 0; k <= r->depth && k < AA_SVG_MAX_DEPTH + 2; k++)
+        if (r->chain[k] == node)
+            return k ? r->chain[k - 1] : NULL;
+    const xmlNode *p = node->parent;
+    return p && p->type == XML_ELEMENT_NODE ? p : NULL;
+}
+
+/* ---- custom properties and var() ----
+ *
+ * CSS Custom Properties 1: a declaration --name: value (in a sheet or a
+ * style attribute; names are case-sensitive) is inherited; var(--name)
+ * or var(--name, fallback) in a value is replaced by the custom
+ * property's value before the value is parsed, the fallback taken when
+ * the property is not declared (its initial value, the guaranteed-invalid
+ * one), declared initial, or in a cycle of references (every property of
+ * the cycle is invalid).  A value left with a var() of neither, or
+ * invalid once substituted, is invalid at computed-value time: the
+ * declaration is unset (its inherited value or its initial one), not the
+ * cascade's next (prop).  A presentation attribute takes var() alike, as
+ * Chromium does.  The text is substituted, a space kept between what
+ * would otherwise join into one token ("var(--n)px" stays two). */
+
+
+static int is_name_char(int c) { return isalnum(c) || c == '-' || c == '_' || c >= 0x80; }
+
+static int var_subst(reader *r, const xmlNode *node, const char *in, char *out, size_t len,
+                     int *st);
+
+/* 1 if v holds a var(). */
+static int has_var(const char *v)
+{
+    for (const char *p = v; *p; p++)
+        if (!strncasecmp(p, "var(", 4) && (p == v || !is_name_char((unsigned char)p[-1])))
+            return 1;
+    return 0;
+}
+
+/* The computed value of the custom property `name` on node into out: 1,
+ * or 0 for the guaranteed-invalid value (*st set on an error). */
+static int custom_value(reader *r, const xmlNode *node, const char *name, char *out, size_t len,
+                        int *st)
+{
+    for (const xmlNode *e = node; e; e = style_parent(r, e)) {
+        char v[1024];
+        long line;
+        xmlChar *css = xmlGetNoNsProp(e, (const xmlChar *)"style");
+        int found = aa_css_value(r->css, e, (const char *)css, name, v, sizeof v, &line);
+        xmlFree(css);
+        if (found == -2) {
+            *st = aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
+            return 0;
+        }
+        if (found < 0) {
+            *st = fail_at(r, "%s: value too long", name);
+            return 0;
+        }
+        /* inherit, unset, revert: the parent's (the user agent's sheet
+         * declares none) */
+        if (!found || !strcasecmp(v, "inherit") || !strcasecmp(v, "unset") ||
+            !strcasecmp(v, "revert") || !strcasecmp(v, "revert-layer"))
+            continue;
+        if (!strcasecmp(v, "initial"))
+            return 0;
+        for (int k = 0; k < r->nvar; k++)
+            if (r->var_node[k] == e && !strcmp(r->var_name[k], name)) {
+                if (!r->var_cycle || r->var_cycle > k + 1)
+                    r->var_cycle = k + 1; /* a cycle from k up */
+                return 0;
+            }
+        if (r->nvar == VAR_MAX_DEPTH) {
+            *st = fail_at(r, "var(): custom properties referring to each other deeper than %d "
+                             "are not supported",
+                          VAR_MAX_DEPTH);
+            return 0;
+        }
+        r->var_node[r->nvar] = e;
+        r->var_name[r->nvar++] = name;
+        int ok = var_subst(r, e, v, out, len, st);
+        r->nvar--;
+        if (r->var_cycle && r->var_cycle - 1 <= r->nvar) {
+            if (r->var_cycle - 1 == r->nvar)
+                r->var_cycle = 0;
+            return 0; /* in a cycle */
+        }
+        return ok;
+    }
+    return 0;
+}
+
+/* Append a[0 .. n) to out[*o ..), a space first if `apart` and the two
+ * would join. */
+static int var_put(reader *r, char *out, size_t len, size_t *o, const char *a, size_t n,
+                   int apart, int *st)
+{
+    if (apart && n && *o && is_name_char((unsigned char)out[*o - 1]) &&
+        (is_name_char((unsigned char)a[0]) || a[0] == '%' || a[0] == '('))
+        if (*o + 1 < len)
+            out[(*o)++] = ' ';
+    if (*o + n >= len) {
+        *st = fail_at(r, "var(): the value substituted is too long (%zu bytes at most)", len - 1);
+        return -1;
+    }
+    memcpy(out + *o, a, n);
+    *o += n;
+    out[*o] = '\0';
+    return 0;
+}
+
+/* in with its var()s substituted for node into out: 1, or 0 when a var()
+ * is of the guaranteed-invalid value without a fallback or malformed
+ * (*st set on an error). */
+static int var_subst(reader *r, const xmlNode *node, const char *in, char *out, size_t len,
+                     int *st)
+{
+    size_t o = 0;
+    out[0] = '\0';
+    for (const char *s = in; *s;) {
+        if (strncasecmp(s, "var(", 4) || (s > in && is_name_char((unsigned char)s[-1]))) {
+            size_t n = 1;
+            if (var_put(r, out, len, &o, s, n, 0, st))
+                return 0;
+            s += n;
+            continue;
+        }
+        const char *p = skip_wsp(s + 4);
+        size_t m = 0;
+        while (is_name_char((unsigned char)p[m]))
+            m++;
+        char name[128];
+        if (m < 3 || strncmp(p, "--", 2) || m >= sizeof name)
+            return 0;
+        memcpy(name, p, m);
+        name[m] = '\0';
+        const char *q = skip_wsp(p + m), *fb = NULL, *end = q;
+        if (*q == ',') {
+            int depth = 0;
+            fb = q + 1;
+            for (end = fb; *end && (*end != ')' || depth); end++)
+                depth += *end == '(' ? 1 : *end == ')' ? -1 : 0;
+        }
+        if (*end != ')')
+            return 0;
+        if (++r->var_count > VAR_MAX_SUBST) {
+            *st = fail_at(r, "var(): more than %ld substitutions in one value", VAR_MAX_SUBST);
+            return 0;
+        }
+        char val[1024];
+        int got = custom_value(r, node, name, val, sizeof val, st);
+        if (!got && !*st && fb) {
+            char f[1024];
+            size_t n = (size_t)(end - fb);
+            if (n >= sizeof f) {
+                *st = fail_at(r, "var(): a fallback too long");
+                return 0;
+            }
+            memcpy(f, fb, n);
+            f[n] = '\0';
+            got = var_subst(r, node, f, val, sizeof val, st);
+        }
+        if (*st || !got)
+            return 0;
+        const char *v = skip_wsp(val);
+        size_t n = strlen(v);
+        while (n && is_wsp((unsigned char)v[n - 1]))
+            n--;
+        if (var_put(r, out, len, &o, v, n, 1, st))
+            return 0;
+        s = end + 1;
+        if (o && is_name_char((unsigned char)out[o - 1]) &&
+            (is_name_char((unsigned char)*s) || *s == '%' || *s == '(') &&
+            var_put(r, out, len, &o, " ", 1, 0, st))
+            return 0;
+    }
+    return 1;
+}
+
+/* The CSS-wide keywords (CSS Cascade 4) in buf, the value of `key` for
+ * node: initial is the initial value, unset inherit or initial as the
+ * property is inherited or not, revert (revert-layer: no layers) the
+ * user agent sheet's value or as unset; inherit of an inherited
+ * property is left to the caller (which keeps the parent's), of one not
+ * inherited is the parent's value (its cascade, prop), the parent's own
+ * initial or user agent value when it declares none, and at the root
+ * the initial value.  1, or 0 when the property is absent. */
+static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size_t len, int *st);
+
+static int css_wide(reader *r, const xmlNode *node, const char *key, char *buf, size_t len,
+                    int *st)
+{
+    int inherited;
+    const char *initial = initial_of(key, &inherited), *ua;
+    if (!initial)
+        return 1; /* not read here (prop_check refused what it must) */
+    if (!strcasecmp(buf, "revert") || !strcasecmp(buf, "revert-layer")) {
+        if ((ua = user_agent_value(key, node))) {
+            snprintf(buf, len, "%s", ua);
+            return 1;
+        }
+        snprintf(buf, len, "unset");
+    }
+    if (!strcasecmp(buf, "unset"))
+        snprintf(buf, len, "%s", inherited ? "inherit" : "initial");
+    if (!strcasecmp(buf, "initial")) {
+        snprintf(buf, len, "%s", initial);
+        return 1;
+    }
+    if (inherited || strcasecmp(buf, "inherit"))
+        return 1;
+    const xmlNode *parent = style_parent(r, node);
+    if (parent) {
+        if (prop(r, parent, key, buf, len, st) || *st)
+            return !*st;
+        if ((ua = user_agent_value(key, parent)))
+            initial = ua;
+    }
+    snprintf(buf, len, "%s", initial);
+    r->from_css = 1;
+    return 1;
+}
+
 /* The value of property `key` for the element: the cascade of the style
  * sheets and the style attribute (aa_css_value_nth) wins over the
  * presentation attribute, which is lower than any rule.  A declaration
@@ -928,19 +1442,23 @@ static const char *last_reason(void)
  * cascade taking its place (CSS 2.1, 4.2; CSS Syntax 3); a presentation
  * attribute whose value is invalid is its property's initial value (SVG 2,
  * "Attribute syntax"), or absent when that is the same, with a warning
- * naming it.  A value that may be valid but is not drawn is refused in
- * *st.  Written into buf; 1 if given (r->from_css: by a declaration, not
- * the attribute). */
+ * naming it.  A value with var() is substituted (var_subst), unset when
+ * invalid then; the CSS-wide keywords are resolved (css_wide).  A value
+ * that may be valid but is not drawn is refused in *st.  Written into
+ * buf; 1 if given (r->from_css: by a declaration, not the attribute). */
 static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size_t len, int *st)
 {
     xmlChar *css = xmlGetNoNsProp(node, (const xmlChar *)"style");
-    long line;
-    int found = 0;
+    long line = 0;
+    int found = 0, var = 0;
     /* the declarations in the cascade's order, the first valid one
-     * winning (an invalid one is ignored, CSS 2.1 4.2) */
+     * winning (an invalid one is ignored, CSS 2.1 4.2); one with var()
+     * is valid until its computed value is known */
     for (int nth = 0; !*st; nth++) {
         found = aa_css_value_nth(r->css, node, (const char *)css, key, nth, buf, len, &line);
         if (found <= 0)
+            break;
+        if ((var = has_var(buf)))
             break;
         int ok = prop_check(r, key, buf, 1, st);
         if (ok)
@@ -958,19 +1476,9 @@ static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size
                     key, aa_echo(buf), last_reason());
     }
     xmlFree(css);
-    r->from_css = found != 0;
+    r->from_css = found > 0;
     if (*st)
         return 0;
-    if (found > 0 && (!strcasecmp(buf, "initial") || !strcasecmp(buf, "unset"))) {
-        /* of an inherited property (prop_check): its initial value, or
-         * inherit */
-        for (size_t k = 0; k < sizeof initial_values / sizeof initial_values[0]; k++)
-            if (!strcmp(key, initial_values[k].key))
-                snprintf(buf, len, "%s", tolower((unsigned char)buf[0]) == 'i'
-                                             ? initial_values[k].value
-                                             : "inherit");
-        return 1;
-    }
     if (found == -2) {
         *st = aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
         return 0;
@@ -979,10 +1487,10 @@ static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size
         *st = fail_at(r, "style %s: value too long", key);
         return 0;
     }
-    if (found)
-        return 1;
-    xmlChar *v = xmlGetNoNsProp(node, (const xmlChar *)key);
-    if (v) {
+    if (!found) {
+        xmlChar *v = xmlGetNoNsProp(node, (const xmlChar *)key);
+        if (!v)
+            return 0;
         const char *a = skip_wsp((const char *)v);
         size_t n = strlen(a);
         while (n && is_wsp((unsigned char)a[n - 1]))
@@ -996,12 +1504,23 @@ static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size
         }
         xmlFree(v);
         const char *initial = NULL;
-        if (found && !prop_check(r, key, buf, 0, st) && !*st) {
+        if (found && !strcmp(key, "transform") &&
+            (!strcasecmp(buf, "inherit") || !strcasecmp(buf, "initial") ||
+             !strcasecmp(buf, "unset") || !strcasecmp(buf, "revert") ||
+             !strcasecmp(buf, "revert-layer"))) {
+            /* not SVG's transform list: ignored (Chromium ignores
+             * transform="inherit", where it takes opacity="inherit") */
+            warn_at(r, "transform=\"%s\" is not a transform list: ignored, as browsers ignore it",
+                    aa_echo(buf));
+            return 0;
+        }
+        if (found && !(var = has_var(buf)) && !prop_check(r, key, buf, 0, st) && !*st) {
             /* SVG 2, "Attribute syntax": an attribute that does not parse is
              * as if it were given its initial value */
-            for (size_t k = 0; k < sizeof initial_values / sizeof initial_values[0]; k++)
-                if (!strcmp(key, initial_values[k].key))
-                    initial = initial_values[k].value;
+            int inherited;
+            initial = initial_of(key, &inherited);
+            if (!inherited)
+                initial = NULL;
             warn_at(r, "%s=\"%s\" is invalid (%s): %s%s, as SVG 2 says", key, aa_echo(buf),
                     last_reason(), initial ? "its initial value " : "ignored",
                     initial ? initial : "");
@@ -1011,8 +1530,39 @@ static int prop(reader *r, const xmlNode *node, const char *key, char *buf, size
         }
         if (*st)
             found = 0;
+        r->from_css = 0;
     }
-    return found;
+    if (!found)
+        return 0;
+    if (var) {
+        const int from_css = r->from_css;
+        char *sub = malloc(len);
+        if (!sub) {
+            *st = aa_fail(AA_ENOMEM, "out of memory reading %s", r->name);
+            return 0;
+        }
+        r->var_count = 0;
+        int ok = var_subst(r, node, buf, sub, len, st);
+        if (ok && !*st) {
+            const char *t = skip_wsp(sub);
+            size_t n = strlen(t);
+            while (n && is_wsp((unsigned char)t[n - 1]))
+                n--;
+            memmove(buf, t, n);
+            buf[n] = '\0';
+            ok = n && prop_check(r, key, buf, from_css, st);
+        }
+        free(sub);
+        if (*st)
+            return 0;
+        if (!ok) {
+            warn_at(r, "%s: a value with var() is invalid once substituted: unset, as CSS says",
+                    key);
+            snprintf(buf, len, "unset");
+        }
+        r->from_css = from_css;
+    }
+    return css_wide(r, node, key, buf, len, st);
 }
 
 /* The properties of css_noop with a list of values: refused with any
@@ -1572,8 +2122,10 @@ static int parse_transform(reader *r, const char *text, mat *out)
 
 /* An angle of CSS (Values 4): a number of deg, rad, grad or turn, or a
  * unitless 0; in degrees. */
-static int css_angle(const char **s, double *deg)
+static int css_angle(reader *r, const char **s, double *deg)
 {
+    if (is_math(*s))
+        return scan_math(r, s, 0, 0, CALC_ANGLE, deg) ? -1 : 0;
     static const struct {
         const char *unit;
         double deg;
@@ -1600,6 +2152,8 @@ static int css_angle(const char **s, double *deg)
 static int css_length(reader *r, const char **s, double ref, int css, double *v)
 {
     const char *a = *s;
+    if (is_math(a))
+        return scan_math(r, s, 1, ref, CALC_LENGTH, v) ? -1 : 0;
     if (scan_number(s, v))
         return -1;
     if (**s == '%') {
@@ -1657,7 +2211,7 @@ static int parse_css_transform(reader *r, const char *text, const double box[4],
                 e = css_length(r, &s, box[2 + (kind == 3 || (kind == 1 && na == 1))], 1,
                                &a[na]);
             else /* angles */
-                e = css_angle(&s, &a[na]);
+                e = css_angle(r, &s, &a[na]);
             if (e)
                 goto bad;
             na++;
@@ -2070,10 +2624,12 @@ static int invalid_attr(reader *r, const char *key, const char *text, const char
 {
     const char *s = skip_wsp(text);
     if (isalpha((unsigned char)*s)) {
+        const int math = is_math(s);
         while (isalnum((unsigned char)*s) || *s == '-')
             s++;
-        if (*s == '(')
-            return 0; /* a function */
+        if (*s == '(' && (!math || r->unsupported))
+            return 0; /* a function (a math function is read: invalid, but
+                       * for a unit not read or a value out of range) */
     } else {
         double x;
         if (!scan_number(&s, &x) && isalpha((unsigned char)*s))
@@ -2083,15 +2639,36 @@ static int invalid_attr(reader *r, const char *key, const char *text, const char
     return 1;
 }
 
-static int attr_length(reader *r, const xmlNode *node, const char *key, double def, double *v)
+/* The attribute `key` of node, its var()s substituted (var_subst; a value
+ * invalid then is the initial value, as if absent, with a warning), or
+ * NULL, freed by xmlFree; *st set on an error. */
+static xmlChar *attr_var(reader *r, const xmlNode *node, const char *key, int *st)
 {
     xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)key);
+    if (!t || !has_var((const char *)t))
+        return t;
+    char out[1024];
+    r->var_count = 0;
+    int ok = var_subst(r, node, (const char *)t, out, sizeof out, st);
+    if (!ok && !*st)
+        warn_at(r, "%s=\"%s\": a var() of no value: its initial value, as CSS says", key,
+                aa_echo((const char *)t));
+    xmlFree(t);
+    return ok && !*st ? xmlCharStrdup(out) : NULL;
+}
+
+static int attr_length(reader *r, const xmlNode *node, const char *key, double def, double *v)
+{
+    int st = AA_OK;
+    xmlChar *t = attr_var(r, node, key, &st);
+    if (st)
+        return st;
     if (!t) {
         *v = def;
         return AA_OK;
     }
     double x;
-    int st = parse_length(r, key, (const char *)t, &x);
+    st = parse_length(r, key, (const char *)t, &x);
     if (st == AA_EINVAL && invalid_attr(r, key, (const char *)t, "a length"))
         x = def, st = AA_OK;
     xmlFree(t);
@@ -2105,11 +2682,15 @@ static int attr_length(reader *r, const xmlNode *node, const char *key, double d
  * browsers take it, with a warning. */
 static int attr_radius(reader *r, const xmlNode *node, const char *key, double *v, int *is_auto)
 {
-    xmlChar *t = xmlGetNoNsProp(node, (const xmlChar *)key);
     int st = AA_OK;
+    xmlChar *t = attr_var(r, node, key, &st);
     *v = 0;
+    if (st)
+        return st;
     *is_auto = !t || !strcasecmp(skip_wsp((const char *)t), "auto");
-    if (!*is_auto && !(st = parse_length(r, key, (const char *)t, v)) && *v < 0) {
+    if (!*is_auto && !(st = parse_length(r, key, (const char *)t, v)) && *v < 0 && r->calc)
+        *v = 0; /* CSS Values 4: a math function's value clamped to the range */
+    else if (!*is_auto && !st && *v < 0) {
         /* SVG 2: a negative radius is invalid: auto */
         warn_at(r, "%s=\"%s\" is negative: auto, as browsers take it", key,
                 aa_echo((const char *)t));
@@ -2830,10 +3411,14 @@ static int keyword(reader *r, const char *key, const char *v, const char *const 
     return fail_at(r, "%s=\"%s\" is not supported (%s)", key, aa_echo(v), expect);
 }
 
-/* A whole value that is one number (no unit): 0, or -1. */
-static int plain_number(const char *v, double *x)
+/* A whole value that is one number (no unit; a math function of one): 0,
+ * or -1. */
+static int plain_number(reader *r, const char *v, double *x)
 {
     const char *s = v;
+    r->calc = 0;
+    if (is_math(s))
+        return scan_math(r, &s, 0, 0, CALC_NUMBER, x) || *skip_wsp(s) ? -1 : 0;
     return scan_number(&s, x) || *skip_wsp(s) ? -1 : 0;
 }
 
@@ -2861,6 +3446,8 @@ static int parse_dasharray(reader *r, const char *v, style *sty)
                            e == -2 ? "a value is out of range"
                                    : "not a list of lengths (numbers, optionally of px, in, "
                                      "cm, mm, Q, pt, pc, em, ex or %)");
+        if (x < 0 && r->calc)
+            x = 0; /* CSS Values 4: a math function's value clamped to the range */
         if (x < 0)
             return fail_at(r, "stroke-dasharray=\"%s\": a negative value is an error",
                            aa_echo(v));
@@ -2889,6 +3476,8 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
     if (GIVEN("stroke-width")) {
         if ((st = parse_length(r, "stroke-width", v, &sty->stroke_width)))
             return st;
+        if (sty->stroke_width < 0 && r->calc)
+            sty->stroke_width = 0; /* CSS Values 4: clamped to the range */
         if (sty->stroke_width < 0)
             return fail_at(r, "stroke-width=\"%s\": a negative width is an error", aa_echo(v));
     }
@@ -2904,7 +3493,9 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
         sty->cap = cap_of[k];
     }
     if (!st && GIVEN("stroke-miterlimit")) {
-        if (plain_number(v, &sty->miterlimit) || !(sty->miterlimit >= 1))
+        if (!plain_number(r, v, &sty->miterlimit) && r->calc && sty->miterlimit < 1)
+            sty->miterlimit = 1; /* CSS Values 4: a math function's value clamped */
+        if (plain_number(r, v, &sty->miterlimit) || !(sty->miterlimit >= 1))
             return fail_at(r, "stroke-miterlimit=\"%s\" is not a number of at least 1",
                            aa_echo(v));
     }
@@ -2922,9 +3513,12 @@ static int stroke_props(reader *r, const xmlNode *node, style *sty)
 static int parse_opacity(reader *r, const char *key, const char *v, double *o)
 {
     const char *s = v;
-    if (scan_number(&s, o))
+    if (is_math(s)) {
+        if (scan_math(r, &s, 2, 0, CALC_NUMBER, o))
+            return fail_at(r, "%s=\"%s\" is not a number or a percentage", key, aa_echo(v));
+    } else if (scan_number(&s, o))
         return fail_at(r, "%s=\"%s\" is not a number or a percentage", key, aa_echo(v));
-    if (*s == '%')
+    else if (*s == '%')
         *o /= 100, s++;
     if (*skip_wsp(s))
         return fail_at(r, "%s=\"%s\" is not a number or a percentage", key, aa_echo(v));
@@ -3016,8 +3610,6 @@ static int element_transform(reader *r, const xmlNode *node, mat *m)
     if (!prop(r, node, "transform", v, sizeof v, &st))
         return st;
     const int css = r->from_css;
-    if (!strcasecmp(v, "inherit"))
-        return fail_at(r, "transform: inherit is not supported");
     /* the root has a layout box (CSS Transforms 1): every transform-box is
      * its viewport in CSS px, and transform-origin is initially its centre
      * (Chromium turns it so) */
@@ -3098,7 +3690,8 @@ static int unknown_function(const char *v)
     static const char *const known[] = {"rgb",        "rgba",       "hsl",      "hsla",
                                         "matrix",     "translate",  "translatex",
                                         "translatey", "scale",      "scalex",   "scaley",
-                                        "rotate",     "skew",       "skewx",    "skewy"};
+                                        "rotate",     "skew",       "skewx",    "skewy",
+                                        "calc",       "min",        "max",      "clamp"};
     for (const char *p = v; *p; p++) {
         if (*p != '(')
             continue;
@@ -3156,12 +3749,11 @@ static int prop_check(reader *r, const char *key, const char *v, int css, int *s
         return 1;
     if (!strcasecmp(v, "initial") || !strcasecmp(v, "unset") || !strcasecmp(v, "revert") ||
         !strcasecmp(v, "revert-layer")) {
-        /* CSS Cascade 4's keywords: initial and unset of an inherited
-         * property are its initial value and inherit (prop); the others
-         * are refused */
-        for (size_t j = 0; j < sizeof initial_values / sizeof initial_values[0]; j++)
-            if (!strcmp(key, initial_values[j].key) && tolower((unsigned char)v[0]) != 'r')
-                return 1;
+        /* CSS Cascade 4's keywords, of the properties whose initial value
+         * the reader knows (css_wide); the others are refused */
+        int inherited;
+        if (initial_of(key, &inherited))
+            return 1;
         *st = fail_at(r, "%s: %s is not supported here", key, aa_echo(v));
         return 0;
     }
@@ -3184,10 +3776,10 @@ static int prop_check(reader *r, const char *key, const char *v, int css, int *s
     else if (!strcmp(key, "font-size"))
         e = parse_font_size(r, v, 16, &x);
     else if (!strcmp(key, "stroke-width")) {
-        if (!(e = parse_length(r, key, v, &x)) && x < 0)
+        if (!(e = parse_length(r, key, v, &x)) && x < 0 && !r->calc)
             e = fail_at(r, "stroke-width=\"%s\": a negative width is invalid", aa_echo(v));
     } else if (!strcmp(key, "stroke-miterlimit")) {
-        if (plain_number(v, &x) || !(x >= 1))
+        if (plain_number(r, v, &x) || !(x >= 1 || r->calc))
             e = fail_at(r, "stroke-miterlimit=\"%s\" is not a number of at least 1",
                         aa_echo(v));
     } else if (!strcmp(key, "stroke-dasharray"))
@@ -3283,11 +3875,8 @@ static int element_props(reader *r, const xmlNode *node, style *sty, mat *m, int
     double *const to[3] = {opacity, &sty->fill_opacity, &sty->stroke_opacity};
     for (int k = 0; k < 3 && !st; k++)
         if (prop(r, node, opacities[k], v, sizeof v, &st) && !st) {
-            if (!strcasecmp(v, "inherit")) {
-                if (k == 0)
-                    return fail_at(r, "opacity=\"inherit\" is not supported");
+            if (!strcasecmp(v, "inherit"))
                 continue; /* the inherited properties keep the parent's */
-            }
             double o;
             st = parse_opacity(r, opacities[k], v, &o);
             if (!st)
@@ -5100,6 +5689,7 @@ static int element(reader *r, const xmlNode *node, style sty, mat m, int depth)
     if (depth > AA_SVG_MAX_DEPTH)
         return fail_at(r, "elements nested deeper than %d", AA_SVG_MAX_DEPTH);
     r->chain[depth] = node;
+    r->depth = depth;
     if (++r->elements > AA_SVG_MAX_ELEMENTS)
         return fail_at(r, "more than %d elements drawn (<use> instances counted)",
                        AA_SVG_MAX_ELEMENTS);

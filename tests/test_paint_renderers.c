@@ -8,8 +8,8 @@
  * a symbol's reference point, the object bounding box of a group holding
  * a use and of a use, a symbol's x and y, transform-box stroke-box,
  * pathLength, the units rem, vw and vmin, conditional processing with
- * <switch>, clip-path's basic shapes and geometry boxes, and a transform on
- * the root, as browsers draw them:
+ * <switch>, clip-path's basic shapes and geometry boxes, a transform on the
+ * root, calc(), var() and the CSS-wide keywords, as browsers draw them:
  * the exact box reference of the pattern svg against headless Chromium and resvg (and
  * librsvg) drawing the same document, colour by colour away from edges.
  *
@@ -53,7 +53,7 @@
 
 #define CELL 40
 #define COLS 4
-#define ROWS 21
+#define ROWS 22
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
@@ -831,7 +831,7 @@ static const cell cells[] = {
      "stroke-width=\"8\" style=\"clip-path: stroke-box\"/>",
      {{12, 11, {1, 0, 0}}, {7, 11, {0, 0, 0}}, {20, 11, {1, 1, 1}}, {7, 31, {1, 0, 0}}},
      4, "resvg rsvg"},
-    /* view-box: the nearest viewport's viewBox (the root's, 160 x 840 px,
+    /* view-box: the nearest viewport's viewBox (the root's, 160 x 880 px,
      * at the origin of the cell's user space): circle(10px at 20px 20px)
      * there on a rect of the cell: white at (20, 20), black at (20, 34) */
     {"clip-path: view-box",
@@ -839,6 +839,58 @@ static const cell cells[] = {
      "style=\"clip-path: circle(10px at 20px 20px) view-box\"/>",
      {{20, 20, {1, 1, 1}}, {20, 34, {0, 0, 0}}, {34, 20, {0, 0, 0}}},
      3, "resvg rsvg"},
+    /* calc(), max() (CSS Values 4) in a 40 x 40 nested svg: the top rect
+     * 50% + 2px = 22 wide, white; the bottom one max(10px, 50%) = 20
+     * wide at opacity 25% * 2 = 0.5, white at 0.5 over black: 0.5 (resvg
+     * and librsvg 2.54 read no math function: no width, nothing drawn,
+     * wrong by CSS Values 4) */
+    {"calc()",
+     "<svg width=\"40\" height=\"40\"><rect width=\"calc(50% + 2px)\" height=\"20\" "
+     "fill=\"white\"/><rect y=\"20\" width=\"max(10px, 50%)\" height=\"20\" fill=\"white\" "
+     "style=\"opacity: calc(25% * 2)\"/></svg>",
+     {{10, 10, {1, 1, 1}}, {30, 10, {0, 0, 0}}, {10, 30, {0.5, 0.5, 0.5}}, {30, 30, {0, 0, 0}}},
+     4, "resvg rsvg"},
+    /* calc() in a stroke's width (20: y in [0, 20]) and dashes (10 on, 10
+     * off from x = 0), and in the transform property: the lime rect [0,
+     * 10] moved by 20 (resvg and librsvg 2.54 stroke 1 wide, undashed,
+     * and leave the rect at 0: wrong by CSS Values 4) */
+    {"calc() in strokes and transforms",
+     "<path d=\"M0 10 H40\" stroke=\"white\" stroke-width=\"calc(10px * 2)\" "
+     "stroke-dasharray=\"calc(5px + 5px) 10\"/><rect y=\"24\" width=\"10\" height=\"12\" "
+     "fill=\"lime\" style=\"transform: translate(calc(10px + 10px), 0)\"/>",
+     {{5, 10, {1, 1, 1}}, {15, 10, {0, 0, 0}}, {25, 30, {0, 1, 0}}, {5, 30, {0, 0, 0}}},
+     4, "resvg rsvg"},
+    /* var() (CSS Custom Properties 1) under a blue group declaring --c
+     * lime and --w 5px: a rect var(--c), 5px * 4 = 20 wide (lime at (10,
+     * 10)); fill: var(--nope) over fill="red" and a cycle --a, --b are
+     * invalid at computed-value time, so unset, the group's blue (at
+     * (30, 10) and (10, 30)); var(--nope, white) the fallback (resvg and
+     * librsvg 2.54 read no var(): wrong by CSS) */
+    {"var()",
+     "<g style=\"--c: lime; --w: 5px\" fill=\"blue\"><rect width=\"calc(var(--w) * 4)\" "
+     "height=\"20\" fill=\"var(--c)\"/><rect y=\"20\" width=\"20\" height=\"20\" "
+     "style=\"--a: var(--b); --b: var(--a); fill: var(--a)\"/><rect x=\"20\" y=\"20\" "
+     "width=\"20\" height=\"20\" style=\"fill: var(--nope, white)\"/><rect x=\"20\" "
+     "width=\"20\" height=\"20\" fill=\"red\" style=\"fill: var(--nope)\"/></g>",
+     {{10, 10, {0, 1, 0}}, {30, 10, {0, 0, 1}}, {10, 30, {0, 0, 1}}, {30, 30, {1, 1, 1}}},
+     4, "resvg rsvg"},
+    /* CSS Cascade 4's keywords: opacity="inherit" under a group of 0.5 is
+     * a group of 0.5 in it: white at 0.5, 0.5: 0.25; transform: inherit
+     * takes the group's translate(10 0) again, the lime rect [10, 20] at
+     * [30, 40]; opacity: unset is 1 (not inherited): 0.5 of the group
+     * alone; transform: initial is none, over the attribute's translate(40
+     * 0): white at (30, 30) (resvg ignores transform: inherit, librsvg
+     * 2.54 it and transform: initial: wrong by CSS) */
+    {"inherit, initial, unset",
+     "<g opacity=\"0.5\"><rect width=\"20\" height=\"20\" fill=\"white\" opacity=\"inherit\"/>"
+     "</g><g transform=\"translate(10 0)\"><rect x=\"10\" width=\"10\" height=\"20\" "
+     "fill=\"lime\" style=\"transform: inherit\"/></g><g opacity=\"0.5\"><rect y=\"20\" "
+     "width=\"20\" height=\"20\" fill=\"white\" style=\"opacity: unset\"/></g><rect x=\"20\" "
+     "y=\"20\" width=\"20\" height=\"20\" fill=\"white\" transform=\"translate(40 0)\" "
+     "style=\"transform: initial\"/>",
+     {{10, 10, {0.25, 0.25, 0.25}}, {35, 10, {0, 1, 0}}, {10, 30, {0.5, 0.5, 0.5}},
+      {30, 30, {1, 1, 1}}},
+     4, "resvg rsvg"},
     /* clip-path on a nested svg (the last of its row: Chromium draws
      * beyond it, into the cell to its right), in the user space it establishes (the
      * viewBox's 16 units onto 32 px at (4, 4)): the rect [8, 28] x [4, 12]
@@ -854,7 +906,8 @@ static const cell cells[] = {
      * origin: resvg draws 48 px, [16, 28] x [8, 12], the rect in both
      * spaces intersected, where SVG 2 has 640); librsvg clips in the parent's user space, taking the
      * clipPath's units for the element's x, y, width and height, where
-     * its content is not) */
+     * its content is not; the last cell, as Chromium's white beyond it
+     * falls on the empty cell to its right) */
     {"clip-path on a nested svg",
      "<clipPath id=\"c64\"><rect x=\"8\" y=\"4\" width=\"20\" height=\"8\"/></clipPath>"
      "<svg x=\"4\" y=\"4\" width=\"32\" height=\"32\" viewBox=\"0 0 16 16\" "
@@ -901,6 +954,15 @@ static const cell cells[] = {
      "style=\"clip-path: inset(0 50% 0 0)\"/>",
      {{8, 20, {1, 0, 0}}, {17, 20, {1, 1, 1}}, {24, 20, {0, 0, 0}}},
      3, "resvg rsvg"},
+    /* requiredFormats and requiredFonts (SVG 1.1 Tiny, not in SVG 2): true
+     * in all three, the first child of each switch drawn, lime */
+    {"requiredFormats and requiredFonts",
+     "<switch><rect width=\"40\" height=\"20\" fill=\"lime\" requiredFormats=\"image/x-none\"/>"
+     "<rect width=\"40\" height=\"20\" fill=\"red\"/></switch><switch><rect y=\"20\" "
+     "width=\"40\" height=\"20\" fill=\"lime\" requiredFonts=\"NoSuchFont\"/><rect y=\"20\" "
+     "width=\"40\" height=\"20\" fill=\"red\"/></switch>",
+     {{20, 10, {0, 1, 0}}, {20, 30, {0, 1, 0}}},
+     2, ""},
 };
 
 /* clip-path on a used symbol, as on the nested svg above, the use's x

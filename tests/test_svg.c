@@ -605,7 +605,6 @@ static void test_refusals(void **state)
     /* a dash pattern finer than the limits allow */
     refused(L2("<line x2=\"100000\" stroke=\"red\" stroke-dasharray=\"0.001\"/>"), "<line>",
             "dashes");
-    refused(L2("<rect width=\"1\" height=\"1\" opacity=\"inherit\"/>"), "<rect>", "opacity");
     /* fill-opacity: . is ignored and fill="bogus" is black, the initial
      * fill: an opaque black square (this sink takes no translucent shape) */
     assert_string_equal(read_doc(L2("<rect width=\"1\" height=\"1\" style=\"fill-opacity: .\" "
@@ -1248,8 +1247,8 @@ static void test_unknown_properties(void **state)
     refused(L2(R1 "style=\"display: none !importan\"/>"), "line 2: <rect>", "not a declaration");
     refused(L2(R1 "style=\"fill: red!\"/>"), "<rect>", "not a declaration");
     refused(L2(R1 "FILL=\"white\"/>"), "line 2: <rect>", "FILL");
-    refused(L2("\n" R1 "requiredFonts=\"serif\"/>"), "line 3: <rect>", "requiredFonts");
-    refused(L2("<g requiredFormats=\"\">" R1 "/></g>"), "<g>", "requiredFormats");
+    refused(L2("\n" R1 "baseFrequency=\"1\"/>"), "line 3: <rect>", "baseFrequency");
+    refused(L2("<g requiredFoo=\"\">" R1 "/></g>"), "<g>", "requiredFoo");
     refused(L2(R1 "shape-rendering=\"crispEdges\"/>"), "<rect>", "shape-rendering");
     refused(L2(R1 "style=\"fill: red; bogus\"/>"), "<rect>", "bogus");
     refused("<svg xmlns=\"http://www.w3.org/2000/svg\" zoomAndPan=\"x\"/>", "<svg>",

@@ -611,6 +611,15 @@ static void test_conditions(void **state)
     expect("<svg xmlns=\"http://www.w3.org/2000/svg\" systemLanguage=\"fr\">"
            "<rect width=\"1\" height=\"1\"/></svg>",
            "");
+    /* requiredFonts and requiredFormats (SVG 1.1 Tiny's, dropped by SVG
+     * 2) are true: Chromium and resvg take the first child of each switch
+     * (tests/test_paint_renderers.c's probe documents drew them so) */
+    expect(OPEN "<switch><rect x=\"8\" width=\"1\" height=\"1\" requiredFonts=\"NoSuchFont\"/>"
+                "<rect width=\"1\" height=\"1\"/></switch>"
+                "<switch><rect x=\"9\" width=\"1\" height=\"1\" "
+                "requiredFormats=\"image/x-none\"/><rect width=\"1\" height=\"1\"/></switch>"
+                "</svg>",
+           BLACK " M 8 0 L 9 0 L 9 1 L 8 1 Z " BLACK " M 9 0 L 10 0 L 10 1 L 9 1 Z");
     /* a title chosen is refused: Chromium chooses it (nothing drawn),
      * resvg passes over it */
     refused(OPEN "<switch><title>t</title><rect width=\"1\" height=\"1\"/></switch></svg>",
@@ -896,8 +905,8 @@ static void test_path_errors(void **state)
  * Chromium, resvg and librsvg: x="zz" draws at 0, a negative width or r
  * draws nothing, opacity="half" draws opaque, transform="spin(3)" and
  * transform="translate(10px, 0)" draw untransformed); a warning names it.
- * What may be valid but is not read here (a unit such as ch, a function
- * such as calc()) is still refused, and so is an invalid declaration in
+ * What may be valid but is not read here (a unit such as ch, in calc()
+ * too; a division by zero) is still refused, and so is an invalid declaration in
  * CSS, where the cascade would fall to a lower one. */
 static void test_invalid_attributes(void **state)
 {
@@ -928,10 +937,167 @@ static void test_invalid_attributes(void **state)
     expect_partial(OPEN "<path transform=\"translate(10px, 0)\" d=\"M1 0\"/></svg>",
                    BLACK " M 1 0 Z", "not a transform list");
     refused(OPEN "<rect width=\"1ch\" height=\"1\"/></svg>", "<rect>", "not a length");
-    refused(OPEN "<rect width=\"calc(1px + 1px)\" height=\"1\"/></svg>", "<rect>",
+    refused(OPEN "<rect width=\"calc(1ch + 1px)\" height=\"1\"/></svg>", "<rect>",
             "calc(");
-    refused(OPEN "<rect width=\"1\" height=\"1\" opacity=\"calc(0.5)\"/></svg>", "<rect>",
-            "opacity");
+    refused(OPEN "<rect width=\"calc(1px / 0)\" height=\"1\"/></svg>", "<rect>",
+            "out of range");
+}
+
+/* ---- math functions, custom properties, the CSS-wide keywords ---- */
+
+/* CSS Values 4's calc(), min(), max() and clamp() wherever a length or a
+ * number is read, on the 100 x 100 view (100% of its width is 100 px):
+ * each rect's corners worked by hand from the expressions. */
+static void test_calc(void **state)
+{
+    (void)state;
+    /* 50% + 2px = 52, 10 * 2 = 20 (a number alone: user units, as
+     * Chromium takes height="calc(10 * 2)") */
+    expect(OPEN "<rect width=\"calc(50% + 2px)\" height=\"calc(10 * 2)\"/></svg>",
+           BLACK " M 0 0 L 52 0 L 52 20 L 0 20 Z");
+    /* (1 + 2) * 2 = 6; min(5, 3, 4) = 3; max(1, 2) = 2; clamp(1, 10, 4)
+     * = 4; nested calc() */
+    expect(OPEN "<rect x=\"calc((1px + 2px) * 2)\" y=\"min(5px, 3px, 4px)\" "
+                "width=\"max(1px, calc(2px))\" height=\"clamp(1px, 10px, 4px)\"/></svg>",
+           BLACK " M 6 3 L 8 3 L 8 7 L 6 7 Z");
+    /* em of the element's font-size, itself calc(1em + 10px) of the
+     * parent's 10: 20, plus 10% of 100: 30; 1in / 4 = 24, 3mm * 0 = 0 */
+    expect(OPEN "<g font-size=\"10\"><rect width=\"calc(1em + 10%)\" height=\"1\" "
+                "font-size=\"calc(1em + 10px)\"/><rect width=\"calc(1in / 4 - 3mm * 0)\" "
+                "height=\"1\"/></g></svg>",
+           BLACK " M 0 0 L 30 0 L 30 1 L 0 1 Z " BLACK " M 0 0 L 24 0 L 24 1 L 0 1 Z");
+    /* a length and a number added or compared, - without white space, a
+     * length times a length: invalid, so the attribute is ignored (width
+     * 0: nothing) */
+    expect_partial(OPEN "<rect width=\"max(1px, 2)\" height=\"1\"/></svg>", "",
+                   "not a length");
+    expect_partial(OPEN "<rect width=\"calc(10px + 10)\" height=\"1\"/></svg>", "",
+                   "not a length");
+    expect_partial(OPEN "<rect width=\"calc(10px -5px)\" height=\"1\"/></svg>", "",
+                   "not a length");
+    expect_partial(OPEN "<rect width=\"calc(2px * 2px)\" height=\"1\"/></svg>", "",
+                   "not a length");
+    /* an opacity of a percentage and a number added: invalid, ignored
+     * (opaque: drawn by this sink of no translucent shapes), as Chromium
+     * draws opacity: calc(50% + 0.25); calc(50%) is 0.5, refused here */
+    expect_partial(OPEN R("fill=\"white\" style=\"opacity: calc(50% + 0.25)\"") "</svg>",
+                   WHITE " M 0 0 L 1 0 L 1 1 L 0 1 Z", "opacity");
+    refused(OPEN R("fill=\"white\" style=\"opacity: calc(50%)\"") "</svg>", "<rect>",
+            "alpha 0.5");
+    /* a negative width of a math function is clamped to 0 (CSS Values 4):
+     * no stroke, where -4 written out is ignored (the width 1) */
+    expect(OPEN R("stroke=\"white\" style=\"stroke-width: calc(0px - 4px)\"") "</svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* the transform property's lengths (50% of the view box's height, 50)
+     * and angles (a quarter turn less 90 degrees: none) */
+    expect(OPEN R("style=\"transform: translate(calc(5px + 5px), calc(50% - 50px)) "
+                  "rotate(calc(0.25turn - 90deg))\"") "</svg>",
+           BLACK " M 10 0 L 11 0 L 11 1 L 10 1 Z");
+    /* a unit not read (ch), a division by zero: refused */
+    refused(OPEN R("stroke=\"white\" style=\"stroke-width: max(1px, 1ch)\"") "</svg>", "<rect>",
+            "stroke-width");
+    refused(OPEN R("style=\"transform: rotate(calc(1deg / 0))\"") "</svg>", "<rect>",
+            "transform");
+}
+
+/* CSS Custom Properties 1: --name declarations, inherited, and var()
+ * substituted before the value is parsed (Chromium draws each case so:
+ * tests/test_paint_renderers.c's cells). */
+static void test_var(void **state)
+{
+    (void)state;
+    /* on the element, through a group, in an attribute, inside calc() */
+    expect(OPEN R("style=\"--c: lime; fill: var(--c)\"") "</svg>",
+           "0 1 0; M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    expect(OPEN "<g style=\"--c: lime\">" R("fill=\"var(--c)\"") "</g></svg>",
+           "0 1 0; M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    expect(OPEN "<style>g { --w: 5px }</style><g><rect width=\"calc(var(--w) * 2)\" "
+                "height=\"1\"/></g></svg>",
+           BLACK " M 0 0 L 10 0 L 10 1 L 0 1 Z");
+    /* from the <use>, not the element's document parent */
+    expect(OPEN "<defs style=\"--c: red\">" "<rect id=\"u\" width=\"1\" height=\"1\" "
+                "style=\"fill: var(--c)\"/></defs><use href=\"#u\" style=\"--c: lime\"/></svg>",
+           "0 1 0; M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* names keep their case: --c is lime, --C red */
+    expect(OPEN R("style=\"--c: lime; --C: red; fill: var(--c)\"") "</svg>",
+           "0 1 0; M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* the fallback, for a property not declared, declared initial, or in
+     * a cycle (the whole cycle invalid, fallbacks in it too) */
+    expect(OPEN R("style=\"fill: var(--nope, blue)\"") R("style=\"--i: initial; "
+                  "fill: var(--i, blue)\"")
+                R("style=\"--a: var(--b, lime); --b: var(--a); fill: var(--a, blue)\"") "</svg>",
+           "0 0 1; M 0 0 L 1 0 L 1 1 L 0 1 Z 0 0 1; M 0 0 L 1 0 L 1 1 L 0 1 Z 0 0 1; M 0 0 L 1 0 "
+           "L 1 1 L 0 1 Z");
+    /* invalid at computed-value time: unset, the parent's red (fill is
+     * inherited), not the attribute's blue below it: a var() of nothing,
+     * a cycle, a value invalid once substituted */
+    expect(OPEN "<g fill=\"red\">" R("fill=\"blue\" style=\"fill: var(--nope)\"")
+                R("style=\"--a: var(--b); --b: var(--a); fill: var(--a)\"")
+                R("style=\"--c: 12; fill: var(--c)\"") "</g></svg>",
+           "1 0 0; M 0 0 L 1 0 L 1 1 L 0 1 Z 1 0 0; M 0 0 L 1 0 L 1 1 L 0 1 Z 1 0 0; M 0 0 L 1 0 "
+           "L 1 1 L 0 1 Z");
+    /* and of a property not inherited, its initial value: no transform */
+    expect_partial(OPEN R("style=\"transform: translate(20px); transform: var(--nope)\" "
+                          "transform=\"translate(10 0)\"") "</svg>",
+                   BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z", "unset");
+    /* substituted as tokens: "5" and "px" stay two, so not a length */
+    expect_partial(OPEN "<g style=\"--n: 5\"><rect width=\"var(--n)px\" height=\"1\"/></g></svg>",
+                   "", "not a length");
+    /* a value growing past the reader's 1023 bytes: refused */
+    char doc[2048] = OPEN "<rect width=\"1\" height=\"1\" style=\"--a0: 1 1";
+    for (int k = 1; k <= 12; k++)
+        snprintf(doc + strlen(doc), sizeof doc - strlen(doc), "; --a%d: var(--a%d) var(--a%d)",
+                 k, k - 1, k - 1);
+    snprintf(doc + strlen(doc), sizeof doc - strlen(doc), "; stroke-dasharray: var(--a12)\"/>"
+             "</svg>");
+    refused(doc, "<rect>", "too long");
+}
+
+/* CSS Cascade 4's inherit, initial, unset and revert, of the properties
+ * inherited and not (Chromium draws each case so: the cells of
+ * tests/test_paint_renderers.c). */
+static void test_css_wide(void **state)
+{
+    (void)state;
+    /* transform: inherit takes the parent's translate(10 0) again: 4 +
+     * 10 + 10; as an attribute it is not a transform list, ignored: 14 */
+    expect(OPEN "<g transform=\"translate(4 0)\"><g transform=\"translate(10 0)\">"
+                R("style=\"transform: inherit\"") "</g></g></svg>",
+           BLACK " M 24 0 L 25 0 L 25 1 L 24 1 Z");
+    expect_partial(OPEN "<g transform=\"translate(4 0)\"><g transform=\"translate(10 0)\">"
+                   R("transform=\"inherit\"") "</g></g></svg>",
+                   BLACK " M 14 0 L 15 0 L 15 1 L 14 1 Z", "not a transform list");
+    /* initial and unset of transform: none, over the attribute's */
+    expect(OPEN R("transform=\"translate(20 0)\" style=\"transform: initial\"")
+                R("transform=\"translate(20 0)\" style=\"transform: unset\"") "</svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z " BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* fill="initial" as an attribute: black under a red group */
+    expect(OPEN "<g fill=\"red\">" R("fill=\"initial\"") "</g></svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
+    /* transform-origin: initial is CSS's 50% 50%, of the view box (100 x
+     * 100): scale(2) about (50, 50) maps x to 2x - 50; revert is the
+     * user agent's 0 0 */
+    expect(OPEN R("style=\"transform: scale(2); transform-origin: initial\"")
+                R("style=\"transform: scale(2); transform-origin: revert\"") "</svg>",
+           BLACK " M -50 -50 L -48 -50 L -48 -48 L -50 -48 Z " BLACK
+                 " M 0 0 L 2 0 L 2 2 L 0 2 Z");
+    /* overflow: initial is visible, drawn unclipped by a sink of no clips;
+     * revert is the user agent's hidden, which clips: refused here; inherit
+     * from a group, visible */
+    expect(OPEN "<svg width=\"10\" height=\"10\" style=\"overflow: initial\"><rect x=\"-5\" "
+                "width=\"20\" height=\"1\"/></svg></svg>",
+           BLACK " M -5 0 L 15 0 L 15 1 L -5 1 Z");
+    expect(OPEN "<g><svg width=\"10\" height=\"10\" overflow=\"inherit\"><rect x=\"-5\" "
+                "width=\"20\" height=\"1\"/></svg></g></svg>",
+           BLACK " M -5 0 L 15 0 L 15 1 L -5 1 Z");
+    refused(OPEN "<svg width=\"10\" height=\"10\" style=\"overflow: revert\"><rect x=\"-5\" "
+                 "width=\"20\" height=\"1\"/></svg></svg>",
+            "<svg>", "clips");
+    /* stroke-width: revert is unset, inherit: the group's 0 draws no
+     * stroke */
+    expect(OPEN "<g stroke-width=\"0\">" R("stroke=\"white\" style=\"stroke-width: revert\"")
+                "</g></svg>",
+           BLACK " M 0 0 L 1 0 L 1 1 L 0 1 Z");
 }
 
 /* ---- invalid declarations ---- */
@@ -982,8 +1148,8 @@ static void test_invalid_declarations(void **state)
                 "</g></svg>",
            "0 0 0; M 0 0 L 1 0 L 1 1 L 0 1 Z 1 0 0; M 0 0 L 1 0 L 1 1 L 0 1 Z");
     /* valid, not drawn: refused naming the element */
-    refused(OPEN R("style=\"fill: revert\"") "</svg>", "<rect>", "revert");
-    refused(OPEN R("style=\"opacity: calc(0.5)\"") "</svg>", "<rect>", "opacity");
+    refused(OPEN R("style=\"mix-blend-mode: revert\"") "</svg>", "<rect>", "revert");
+    refused(OPEN R("style=\"opacity: calc(1 / 0)\"") "</svg>", "<rect>", "opacity");
     refused(OPEN R("style=\"stroke-width: 1ch\"") "</svg>", "<rect>", "not a length");
     refused(OPEN R("style=\"filter: blur(1px)\"") "</svg>", "<rect>", "filters");
     refused(OPEN R("style=\"color-interpolation: linearRGB\"") "</svg>", "<rect>",
@@ -1026,10 +1192,32 @@ static double image_sum(const aa_image *img)
     return s;
 }
 
+/* sRGB's decoding (IEC 61966-2-1), written out here. */
+static double dec(double v)
+{
+    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+}
+
 static void test_pictures(void **state)
 {
     (void)state;
     aa_image a, b;
+    /* opacity: inherit takes the group's own 0.5 (opacity is not
+     * inherited: the rect is a group of 0.5 inside the group of 0.5, as
+     * Chromium and resvg draw it): white at 0.5 over black is the encoded
+     * 0.5, at 0.5 again 0.25 (source over in encoded values), linear
+     * dec(0.25), on a rect of 8.5 x 4.5 = 38.25; its width calc(50% -
+     * 7.5px) of the 32 px view */
+    reference("opacity inherit",
+              "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"32\" height=\"32\">"
+              "<g opacity=\"0.5\"><rect x=\"2\" y=\"3\" width=\"calc(50% - 7.5px)\" "
+              "height=\"4.5\" fill=\"white\" style=\"opacity: inherit\"/></g></svg>",
+              32, 32, &a);
+    double sum = image_sum(&a);
+    print_message("opacity inherit: sum %.17g, 38.25 dec(0.25) %.17g\n", sum,
+                  38.25 * dec(0.25));
+    assert_true(fabs(sum - 38.25 * dec(0.25)) < 1e-12);
+    aa_image_free(&a);
     /* a use of a white rect [1.25, 9.75] x [2.5, 7] moved by (13.5, 17.25)
      * against the rect written at [14.75, 23.25] x [19.75, 24.25]: the
      * same picture, pixel by pixel, and its sum the area 8.5 x 4.5 */
@@ -1231,5 +1419,6 @@ SUPPORT_MAIN(setup, teardown, cmocka_unit_test(test_use), cmocka_unit_test(test_
              cmocka_unit_test(test_sheets),
              cmocka_unit_test(test_css_transform), cmocka_unit_test(test_path_errors),
              cmocka_unit_test(test_invalid_attributes),
-             cmocka_unit_test(test_invalid_declarations),
+             cmocka_unit_test(test_invalid_declarations), cmocka_unit_test(test_calc),
+             cmocka_unit_test(test_var), cmocka_unit_test(test_css_wide),
              cmocka_unit_test(test_pictures))
