@@ -1158,6 +1158,7 @@ static const struct {
     {"color-interpolation", "sRGB"}, {"font-size", "medium"}};
 
 static int prop_check(reader *r, const char *key, const char *v, int css, int *st);
+static int clip_path_check(reader *r, const char *value);
 static void warn_at(reader *r, const char *fmt, ...) AA_PRINTF(2, 3);
 
 /* The last error's reason, without the file, line and element it names. */
@@ -3791,6 +3792,8 @@ static int prop_check(reader *r, const char *key, const char *v, int css, int *s
         e = parse_opacity(r, key, v, &x);
     else if (!strcmp(key, "paint-order"))
         e = parse_paint_order(r, v, &k);
+    else if (!strcmp(key, "clip-path"))
+        e = clip_path_check(r, v);
     else if (!strcmp(key, "transform") && css) {
         const double box[4] = {0, 0, r->vpw, r->vph};
         e = parse_css_transform(r, v, box, &m);
@@ -3801,7 +3804,8 @@ static int prop_check(reader *r, const char *key, const char *v, int css, int *s
     }
     if (e == AA_OK)
         return 1;
-    if (e == AA_EINVAL && !r->unsupported && !unknown_function(v))
+    /* (clip-path's basic shapes are functions its check reads whole) */
+    if (e == AA_EINVAL && !r->unsupported && (!strcmp(key, "clip-path") || !unknown_function(v)))
         return 0;
     *st = e;
     return 0;
@@ -5157,43 +5161,90 @@ static int bs_box(reader *r, const xmlNode *ref, int kind, double b[4])
     return st;
 }
 
+/* `value` as CSS Masking 1's <basic-shape> || <geometry-box>, each at most
+ * once, in either order: the shape's function (*fn, its name *fnlen
+ * characters long, its arguments at *args; NULL for none) and the box
+ * (*kind: 0 fill-box, 1 stroke-box, 2 view-box, -1 none given); 1 if
+ * malformed. */
+static int basic_parse(const char *value, const char **fn, size_t *fnlen, const char **args,
+                       int *kind)
+{
+    static const char *const boxes[] = {"fill-box",    "content-box", "padding-box",
+                                        "stroke-box",  "border-box",  "margin-box",
+                                        "view-box"};
+    static const int kinds[] = {0, 0, 0, 1, 1, 1, 2};
+    const char *s = skip_wsp(value);
+    *fn = *args = NULL, *fnlen = 0, *kind = -1;
+    for (int item = 0; item < 2 && *s; item++) {
+        size_t n = 0;
+        while (isalnum((unsigned char)s[n]) || s[n] == '-')
+            n++;
+        if (s[n] == '(' && !*fn) {
+            *fn = s, *fnlen = n, *args = skip_wsp(s + n + 1);
+            int depth = 1;
+            for (s += n + 1; *s && depth; s++) /* to its closing parenthesis */
+                depth += *s == '(' ? 1 : *s == ')' ? -1 : 0;
+            if (depth)
+                return 1;
+        } else {
+            size_t k = 0;
+            while (k < 7 && !(strlen(boxes[k]) == n && !strncasecmp(s, boxes[k], n)))
+                k++;
+            if (k == 7 || *kind >= 0)
+                return 1;
+            *kind = kinds[k];
+            s += n;
+        }
+        s = skip_wsp(s);
+    }
+    return *s || (!*fn && *kind < 0);
+}
+
+static int clip_path_invalid(reader *r, const char *value)
+{
+    return fail_at(r, "clip-path=\"%s\" is not url(#id), none, or a basic shape (inset(), "
+                      "circle(), ellipse(), polygon(), path(), xywh(), rect()) and a geometry "
+                      "box",
+                   aa_echo(value));
+}
+
+/* Whether `value` is a valid clip-path (prop_check): none, a URL (read
+ * where it is resolved) or a basic shape and a geometry box by their
+ * grammar, the shape made once in a box of 100 x 100 to check its
+ * arguments; AA_EINVAL naming it if not. */
+static int clip_path_check(reader *r, const char *value)
+{
+    const char *fn, *args;
+    size_t fnlen;
+    int kind, st = AA_OK;
+    const char *v = skip_wsp(value);
+    if (!strcasecmp(v, "none") || !strncasecmp(v, "url(", 4))
+        return AA_OK;
+    if (basic_parse(v, &fn, &fnlen, &args, &kind))
+        return clip_path_invalid(r, value);
+    if (!fn)
+        return AA_OK;
+    const double b[4] = {0, 0, 100, 100};
+    aa_path p;
+    aa_path_init(&p);
+    aa_fill_rule rule;
+    double shift[2] = {0, 0};
+    if (bs_shape(r, fn, fnlen, &args, b, &p, &rule, shift, &st))
+        st = clip_path_invalid(r, value);
+    aa_path_free(&p);
+    return st;
+}
+
 /* The clip of a clip-path of basic shape and geometry box `value` on ref
  * (whose user space is m) within `outer`: one member, the shape in the
  * box (or the box), its number into *out. */
 static int basic_clip(reader *r, const char *value, const xmlNode *ref, const mat *m, int outer,
                       int *out)
 {
-    static const char *const boxes[] = {"fill-box",    "content-box", "padding-box",
-                                        "stroke-box",  "border-box",  "margin-box",
-                                        "view-box"};
-    static const int kinds[] = {0, 0, 0, 1, 1, 1, 2};
-    const char *s = skip_wsp(value), *fn = NULL, *args = NULL;
-    size_t fnlen = 0;
-    int kind = -1;
-    /* <basic-shape> || <geometry-box>: each at most once, in either order */
-    for (int item = 0; item < 2 && *s; item++) {
-        size_t n = 0;
-        while (isalnum((unsigned char)s[n]) || s[n] == '-')
-            n++;
-        if (s[n] == '(' && !fn) {
-            fn = s, fnlen = n, args = skip_wsp(s + n + 1);
-            int depth = 1;
-            for (s += n + 1; *s && depth; s++) /* to its closing parenthesis */
-                depth += *s == '(' ? 1 : *s == ')' ? -1 : 0;
-            if (depth)
-                goto bad;
-        } else {
-            size_t k = 0;
-            while (k < 7 && !(strlen(boxes[k]) == n && !strncasecmp(s, boxes[k], n)))
-                k++;
-            if (k == 7 || kind >= 0)
-                goto bad;
-            kind = kinds[k];
-            s += n;
-        }
-        s = skip_wsp(s);
-    }
-    if (*s || (!fn && kind < 0))
+    const char *fn, *args;
+    size_t fnlen;
+    int kind;
+    if (basic_parse(value, &fn, &fnlen, &args, &kind))
         goto bad;
     int st = AA_OK;
     if (!r->sink->clip_begin || !r->sink->clip_end || !r->sink->clip)
@@ -5236,10 +5287,7 @@ static int basic_clip(reader *r, const char *value, const xmlNode *ref, const ma
         *out = r->nclips++;
     return st;
 bad:
-    return fail_at(r, "clip-path=\"%s\" is not url(#id), none, or a basic shape (inset(), "
-                      "circle(), ellipse(), polygon(), path(), xywh(), rect()) and a geometry "
-                      "box drawn here",
-                   aa_echo(value));
+    return clip_path_invalid(r, value);
 }
 
 static int clip_resolve(reader *r, const char *value, const xmlNode *ref, const mat *m,
