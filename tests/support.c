@@ -4,6 +4,7 @@
 #define _GNU_SOURCE /* pipe2 */
 
 #include "support.h"
+#include "path.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -189,6 +190,61 @@ double support_channel_mean(const aa_image *im, int ch)
         for (int i = 0; i < im->w; i++)
             sum += aa_pixel(im, i, j)[ch];
     return sum / ((double)im->w * im->h);
+}
+
+/* ---- plane geometry for the stroke tests' closed forms ---- */
+
+double support_shoelace(const double *xy, int n)
+{
+    double a = 0;
+    for (int i = 0; i < n; i++) {
+        int j = (i + 1) % n;
+        a += xy[2 * i] * xy[2 * j + 1] - xy[2 * j] * xy[2 * i + 1];
+    }
+    return 0.5 * a;
+}
+
+void support_line_meet(const double p[2], const double d[2], const double q[2],
+                       const double e[2], double out[2])
+{
+    double den = d[0] * e[1] - d[1] * e[0];
+    double s = ((q[0] - p[0]) * e[1] - (q[1] - p[1]) * e[0]) / den;
+    out[0] = p[0] + s * d[0];
+    out[1] = p[1] + s * d[1];
+}
+
+double support_fill_area(const aa_path *p)
+{
+    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
+    assert_non_null(s);
+    if (aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO) || aa_path_fill(p, NULL, s) ||
+        aa_scene_finish(s))
+        fail_msg("%s", aa_last_error());
+    support_view v = {.w = 64, .h = 64, .threads = 1};
+    aa_image im;
+    support_reference(s, &v, &im, NULL, NULL);
+    double area = support_channel_mean(&im, 0);
+    aa_image_free(&im);
+    aa_scene_free(s);
+    return area;
+}
+
+aa_scene *support_svg_scene(const char *dir, const char *name, const char *body, int w, int h)
+{
+    char path[4200], doc[8192], spec[4400];
+    snprintf(path, sizeof path, "%s/%s.svg", dir, name);
+    int n = snprintf(doc, sizeof doc,
+                     "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\">%s"
+                     "</svg>",
+                     w, h, body);
+    assert_true(n > 0 && (size_t)n < sizeof doc);
+    support_write_file(path, doc, strlen(doc));
+    snprintf(spec, sizeof spec, "svg:file=%s", path);
+    aa_spec sp;
+    aa_scene *sc = NULL;
+    if (aa_pattern_parse(spec, &sp) != AA_OK || aa_pattern_scene_at(&sp, w, h, &sc) != AA_OK)
+        fail_msg("%s: %s", body, aa_last_error());
+    return sc;
 }
 
 /* ---- checks shared by several tests ---- */

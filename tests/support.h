@@ -131,6 +131,25 @@ int support_same_image(const aa_image *a, const aa_image *b);
  * integral over the view. */
 double support_channel_mean(const aa_image *im, int ch);
 
+/* ---- plane geometry for the stroke tests' closed forms ---- */
+
+struct aa_path;
+/* The signed area of the polygon of n points xy[0..2n) (x, y pairs) by the
+ * shoelace formula: positive when it turns from +x towards +y. */
+double support_shoelace(const double *xy, int n);
+/* Where the lines p + s d and q + t e meet (d and e not parallel). */
+void support_line_meet(const double p[2], const double d[2], const double q[2],
+                       const double e[2], double out[2]);
+/* The area of what path p (pattern units, inside the unit square) fills
+ * under the nonzero rule: the mean of its exact box reference on 64 x 64
+ * pixels, white on black (to about 1e-14). */
+double support_fill_area(const struct aa_path *p);
+
+/* The scene of the svg pattern at w x h of a document whose root, of that
+ * width and height, holds `body`, written to dir/name.svg; fails the test
+ * (naming body) if it is refused. */
+aa_scene *support_svg_scene(const char *dir, const char *name, const char *body, int w, int h);
+
 /* ---- checks shared by several tests ---- */
 
 /* Every pixel of img, a box-filtered image of crow with parameters p,

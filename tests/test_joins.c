@@ -92,23 +92,12 @@ static void must(int st)
 }
 
 /* The stroke's outline filled into a scene (pattern units, inside the unit
- * square): the sum of its box reference on 64x64 pixels over 4096, its
- * area in pattern units. */
+ * square): its area in pattern units (support_fill_area). */
 static double stroke_area(const aa_path *in, const aa_stroke_style *st)
 {
     aa_path out = {0};
     must(aa_stroke_outline(in, st, &out));
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(s);
-    must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO));
-    must(aa_path_fill(&out, NULL, s));
-    must(aa_scene_finish(s));
-    support_view v = {.w = 64, .h = 64, .threads = 1};
-    aa_image im;
-    support_reference(s, &v, &im, NULL, NULL);
-    double area = support_channel_mean(&im, 0);
-    aa_image_free(&im);
-    aa_scene_free(s);
+    double area = support_fill_area(&out);
     aa_path_free(&out);
     return area;
 }
@@ -118,26 +107,6 @@ static void expect_area(const char *what, double got, double want)
     print_message("%-32s area %.15f, want %.15f (%.1e)\n", what, got, want, got - want);
     if (!(fabs(got - want) < 1e-12))
         fail_msg("%s: area %.17g, want %.17g", what, got, want);
-}
-
-static double shoelace(const double *xy, int n)
-{
-    double a = 0;
-    for (int i = 0; i < n; i++) {
-        int j = (i + 1) % n;
-        a += xy[2 * i] * xy[2 * j + 1] - xy[2 * j] * xy[2 * i + 1];
-    }
-    return 0.5 * a;
-}
-
-/* Where the lines p + s d and q + t e meet. */
-static void meet(const double p[2], const double d[2], const double q[2], const double e[2],
-                 double out[2])
-{
-    double den = d[0] * e[1] - d[1] * e[0];
-    double s = ((q[0] - p[0]) * e[1] - (q[1] - p[1]) * e[0]) / den;
-    out[0] = p[0] + s * d[0];
-    out[1] = p[1] + s * d[1];
 }
 
 /* ---- miter-clip ---- */
@@ -161,8 +130,8 @@ static void test_miter_clip_lines(void **state)
     double ia[2] = {a[0] + h * n1[0], a[1] + h * n1[1]};
     double ic[2] = {c[0] + h * n2[0], c[1] + h * n2[1]};
     double tip[2], in[2];
-    meet(oa, d1, oc, d2, tip);
-    meet(ia, d1, ic, d2, in);
+    support_line_meet(oa, d1, oc, d2, tip);
+    support_line_meet(ia, d1, ic, d2, in);
     const double miter[12] = {oa[0], oa[1], tip[0], tip[1], oc[0], oc[1],
                               ic[0], ic[1], in[0], in[1], ia[0], ia[1]};
     /* the bisector, into the angle, and the cut at limit h outwards */
@@ -171,8 +140,8 @@ static void test_miter_clip_lines(void **state)
     const double limit = 2;
     const double y[2] = {b[0] - limit * h * bx, b[1] - limit * h * by}, along[2] = {-by, bx};
     double c1[2], c2[2];
-    meet(oa, d1, y, along, c1);
-    meet(oc, d2, y, along, c2);
+    support_line_meet(oa, d1, y, along, c1);
+    support_line_meet(oc, d2, y, along, c2);
     const double clipped[14] = {oa[0], oa[1], c1[0], c1[1], c2[0], c2[1], oc[0],
                                 oc[1], ic[0], ic[1], in[0], in[1], ia[0], ia[1]};
     aa_path p = {0};
@@ -184,13 +153,15 @@ static void test_miter_clip_lines(void **state)
     st.width = w;
     st.join = AA_JOIN_MITER_CLIP;
     st.miterlimit = limit;
-    expect_area("miter-clip past its limit", stroke_area(&p, &st), fabs(shoelace(clipped, 7)));
+    expect_area("miter-clip past its limit", stroke_area(&p, &st),
+                fabs(support_shoelace(clipped, 7)));
     st.miterlimit = 4; /* over 1/sin(15 degrees) = 3.86 */
-    expect_area("miter-clip under its limit", stroke_area(&p, &st), fabs(shoelace(miter, 6)));
+    expect_area("miter-clip under its limit", stroke_area(&p, &st),
+                fabs(support_shoelace(miter, 6)));
     /* arcs on two lines: miter-clip (SVG 2: both curvatures 0) */
     st.join = AA_JOIN_ARCS;
     st.miterlimit = limit;
-    expect_area("arcs on two lines", stroke_area(&p, &st), fabs(shoelace(clipped, 7)));
+    expect_area("arcs on two lines", stroke_area(&p, &st), fabs(support_shoelace(clipped, 7)));
     aa_path_free(&p);
     /* a reversal: a line to (0.6, 0.5) and back to (0.3, 0.5) */
     must(aa_path_move_to(&p, 0.2, 0.5));
@@ -266,7 +237,7 @@ static int in_polyline_stroke(const polyline *pl, double qx, double qy, double *
         double sg = cr > 0 ? -1 : 1; /* the outer side: right of a left turn */
         double n1[2] = {-sg * d1[1] * h, sg * d1[0] * h}, n2[2] = {-sg * d2[1] * h, sg * d2[0] * h};
         double A[2] = {p[0] + n1[0], p[1] + n1[1]}, B[2] = {p[0] + n2[0], p[1] + n2[1]}, M[2];
-        meet(A, d1, B, d2, M);
+        support_line_meet(A, d1, B, d2, M);
         /* the angle between the segments, between u1 and u2 */
         double theta = acos(fmax(-1, fmin(1, u1[0] * u2[0] + u1[1] * u2[1])));
         if (1 / sin(theta / 2) <= pl->limit) {
@@ -281,8 +252,8 @@ static int in_polyline_stroke(const polyline *pl, double qx, double qy, double *
         const double y[2] = {p[0] - pl->limit * h * bx, p[1] - pl->limit * h * by};
         const double along[2] = {-by, bx};
         double c1[2], c2[2];
-        meet(A, d1, y, along, c1);
-        meet(B, d2, y, along, c2);
+        support_line_meet(A, d1, y, along, c1);
+        support_line_meet(B, d2, y, along, c2);
         const double k[10] = {p[0], p[1], A[0], A[1], c1[0], c1[1], c2[0], c2[1], B[0], B[1]};
         in |= in_convex(k, 5, qx, qy, margin);
     }
@@ -392,8 +363,53 @@ static double lens(const double p1[2], const double o1[2], double r1, const doub
     double s1 = atan2(x[1] - o1[1], x[0] - o1[0]) - atan2(p1[1] - o1[1], p1[0] - o1[0]);
     double s2 = atan2(p2[1] - o2[1], p2[0] - o2[0]) - atan2(x[1] - o2[1], x[0] - o2[0]);
     s1 = remainder(s1, 2 * M_PI), s2 = remainder(s2, 2 * M_PI);
-    double a = shoelace(tri, 3) + 0.5 * r1 * r1 * (s1 - sin(s1)) + 0.5 * r2 * r2 * (s2 - sin(s2));
+    double a = support_shoelace(tri, 3) + 0.5 * r1 * r1 * (s1 - sin(s1)) +
+               0.5 * r2 * r2 * (s2 - sin(s2));
     return fabs(a);
+}
+
+/* Two circular arcs, each turning right (clockwise in these coordinates)
+ * by `sweep`, meeting at P with directions d1 = (cos a, sin a) and d2 =
+ * (cos a, -sin a): a right turn of 2a, the outer side the left (up).
+ * Their centres o1, o2 are below P at distances R1, R2 (P - R N, N the
+ * left normal), the path from the first arc's start in t->p; the outer
+ * edges' circles have those centres and radii r = R + h, and meet at X
+ * (t->x, at distance m from o1 along o1 -> o2 and k across by the law of
+ * cosines, the nearer P of the two); p1, p2 the outer edges' ends at P;
+ * e1, s2 the arcs' angles at P about their centres. */
+typedef struct two_arcs {
+    double N1[2], N2[2], o1[2], o2[2], e1, s2, r1, r2, x[2], p1[2], p2[2];
+    aa_path p;
+} two_arcs;
+
+static void two_arcs_make(two_arcs *t, double al, double sweep, const double P[2], double R1,
+                          double R2, double h)
+{
+    const double N1[2] = {-sin(al), cos(al)}, N2[2] = {sin(al), cos(al)};
+    double *o1 = t->o1, *o2 = t->o2;
+    o1[0] = P[0] - R1 * N1[0], o1[1] = P[1] - R1 * N1[1];
+    o2[0] = P[0] - R2 * N2[0], o2[1] = P[1] - R2 * N2[1];
+    /* the arcs: angles about their centres, decreasing (clockwise) */
+    const double e1 = t->e1 = atan2(N1[1], N1[0]), s2 = t->s2 = atan2(N2[1], N2[0]);
+    aa_path p = {0};
+    must(aa_path_move_to(&p, o1[0] + R1 * cos(e1 + sweep), o1[1] + R1 * sin(e1 + sweep)));
+    must(aa_path_arc_to(&p, o1[0], o1[1], R1, 0, 0, R1, e1 + sweep, e1, P[0], P[1]));
+    must(aa_path_arc_to(&p, o2[0], o2[1], R2, 0, 0, R2, s2, s2 - sweep,
+                        o2[0] + R2 * cos(s2 - sweep), o2[1] + R2 * sin(s2 - sweep)));
+    t->p = p;
+    const double r1 = t->r1 = R1 + h, r2 = t->r2 = R2 + h;
+    double ex = o2[0] - o1[0], ey = o2[1] - o1[1], d = hypot(ex, ey);
+    ex /= d, ey /= d;
+    double m = (r1 * r1 - r2 * r2 + d * d) / (2 * d), k = sqrt(r1 * r1 - m * m);
+    double xa[2] = {o1[0] + m * ex - k * ey, o1[1] + m * ey + k * ex};
+    double xb[2] = {o1[0] + m * ex + k * ey, o1[1] + m * ey - k * ex};
+    const double *x = hypot(xa[0] - P[0], xa[1] - P[1]) < hypot(xb[0] - P[0], xb[1] - P[1])
+                          ? xa
+                          : xb;
+    t->x[0] = x[0], t->x[1] = x[1];
+    t->p1[0] = P[0] + h * N1[0], t->p1[1] = P[1] + h * N1[1];
+    t->p2[0] = P[0] + h * N2[0], t->p2[1] = P[1] + h * N2[1];
+    memcpy(t->N1, N1, sizeof N1), memcpy(t->N2, N2, sizeof N2);
 }
 
 /* Two circular arcs, each turning right (clockwise in these coordinates)
@@ -408,30 +424,11 @@ static void test_arcs_circles(void **state)
     const double al = 50 * M_PI / 180, sweep = 40 * M_PI / 180;
     const double P[2] = {0.5, 0.45}, w = 0.08, h = 0.04;
     const double R1 = 0.25, R2 = 0.18;
-    const double N1[2] = {-sin(al), cos(al)}, N2[2] = {sin(al), cos(al)};
-    const double o1[2] = {P[0] - R1 * N1[0], P[1] - R1 * N1[1]};
-    const double o2[2] = {P[0] - R2 * N2[0], P[1] - R2 * N2[1]};
-    /* the arcs: angles about their centres, decreasing (clockwise) */
-    const double e1 = atan2(N1[1], N1[0]), s2 = atan2(N2[1], N2[0]);
-    aa_path p = {0};
-    must(aa_path_move_to(&p, o1[0] + R1 * cos(e1 + sweep), o1[1] + R1 * sin(e1 + sweep)));
-    must(aa_path_arc_to(&p, o1[0], o1[1], R1, 0, 0, R1, e1 + sweep, e1, P[0], P[1]));
-    must(aa_path_arc_to(&p, o2[0], o2[1], R2, 0, 0, R2, s2, s2 - sweep,
-                        o2[0] + R2 * cos(s2 - sweep), o2[1] + R2 * sin(s2 - sweep)));
-    /* the edges' circles, radii r1, r2, centres d apart: X at distance m
-     * from o1 along o1 -> o2 and k across (law of cosines), the one
-     * nearer P of the two */
-    const double r1 = R1 + h, r2 = R2 + h;
-    double ex = o2[0] - o1[0], ey = o2[1] - o1[1], d = hypot(ex, ey);
-    ex /= d, ey /= d;
-    double m = (r1 * r1 - r2 * r2 + d * d) / (2 * d), k = sqrt(r1 * r1 - m * m);
-    double xa[2] = {o1[0] + m * ex - k * ey, o1[1] + m * ey + k * ex};
-    double xb[2] = {o1[0] + m * ex + k * ey, o1[1] + m * ey - k * ex};
-    const double *x = hypot(xa[0] - P[0], xa[1] - P[1]) < hypot(xb[0] - P[0], xb[1] - P[1])
-                          ? xa
-                          : xb;
-    const double p1[2] = {P[0] + h * N1[0], P[1] + h * N1[1]};
-    const double p2[2] = {P[0] + h * N2[0], P[1] + h * N2[1]};
+    two_arcs t;
+    two_arcs_make(&t, al, sweep, P, R1, R2, h);
+    aa_path p = t.p;
+    const double *o1 = t.o1, *o2 = t.o2, *x = t.x, *p1 = t.p1, *p2 = t.p2;
+    const double e1 = t.e1, s2 = t.s2, r1 = t.r1, r2 = t.r2;
     double want = lens(p1, o1, r1, x, o2, r2, p2);
     /* the miter length along the arc tangent to the bisector at P through
      * X is under limit h: the limit does not cut it (checked here) */
@@ -504,24 +501,11 @@ static void test_arcs_cut(void **state)
     const double al = 50 * M_PI / 180, sweep = 40 * M_PI / 180;
     const double P[2] = {0.5, 0.45}, w = 0.08, h = 0.04, limit = 1.2;
     const double R1 = 0.25, R2 = 0.18;
-    const double N1[2] = {-sin(al), cos(al)}, N2[2] = {sin(al), cos(al)};
-    const double o1[2] = {P[0] - R1 * N1[0], P[1] - R1 * N1[1]};
-    const double o2[2] = {P[0] - R2 * N2[0], P[1] - R2 * N2[1]};
-    const double e1 = atan2(N1[1], N1[0]), s2 = atan2(N2[1], N2[0]);
-    aa_path p = {0};
-    must(aa_path_move_to(&p, o1[0] + R1 * cos(e1 + sweep), o1[1] + R1 * sin(e1 + sweep)));
-    must(aa_path_arc_to(&p, o1[0], o1[1], R1, 0, 0, R1, e1 + sweep, e1, P[0], P[1]));
-    must(aa_path_arc_to(&p, o2[0], o2[1], R2, 0, 0, R2, s2, s2 - sweep,
-                        o2[0] + R2 * cos(s2 - sweep), o2[1] + R2 * sin(s2 - sweep)));
-    const double r1 = R1 + h, r2 = R2 + h;
-    double ex = o2[0] - o1[0], ey = o2[1] - o1[1], d = hypot(ex, ey);
-    ex /= d, ey /= d;
-    double m = (r1 * r1 - r2 * r2 + d * d) / (2 * d), k = sqrt(r1 * r1 - m * m);
-    double xa[2] = {o1[0] + m * ex - k * ey, o1[1] + m * ey + k * ex};
-    double xb[2] = {o1[0] + m * ex + k * ey, o1[1] + m * ey - k * ex};
-    const double *x = hypot(xa[0] - P[0], xa[1] - P[1]) < hypot(xb[0] - P[0], xb[1] - P[1])
-                          ? xa
-                          : xb;
+    two_arcs t;
+    two_arcs_make(&t, al, sweep, P, R1, R2, h);
+    aa_path p = t.p;
+    const double *o1 = t.o1, *o2 = t.o2, *x = t.x;
+    const double r1 = t.r1, r2 = t.r2;
     /* the bisector: up (d1 = (cos a, sin a), d2 = (cos a, -sin a)) */
     const double mb[2] = {0, 1}, nb[2] = {-1, 0};
     double dxp = x[0] - P[0], dyp = x[1] - P[1];
@@ -537,13 +521,13 @@ static void test_arcs_cut(void **state)
                   limit);
     assert_true(arclen > L);
     (void)mb;
-    const double p1[2] = {P[0] + h * N1[0], P[1] + h * N1[1]};
-    const double p2[2] = {P[0] + h * N2[0], P[1] + h * N2[1]};
+    const double *p1 = t.p1, *p2 = t.p2;
     double y1[2], y2[2];
     cut_circle(Y, Q, o1, r1, p1, x, y1);
     cut_circle(Y, Q, o2, r2, p2, x, y2);
     const double quad[8] = {p1[0], p1[1], y1[0], y1[1], y2[0], y2[1], p2[0], p2[1]};
-    double want = fabs(shoelace(quad, 4) + segment(o1, r1, p1, y1) + segment(o2, r2, y2, p2));
+    double want =
+        fabs(support_shoelace(quad, 4) + segment(o1, r1, p1, y1) + segment(o2, r2, y2, p2));
     aa_stroke_style st;
     aa_stroke_style_default(&st);
     st.width = w;
@@ -934,18 +918,7 @@ static void test_arcs_round_fallback(void **state)
 
 static aa_scene *scene_of(const char *name, const char *body)
 {
-    char path[4200], doc[4096], spec[4400];
-    snprintf(path, sizeof path, "%s/%s.svg", dir, name);
-    snprintf(doc, sizeof doc,
-             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\">%s</svg>", N,
-             N, body);
-    support_write_file(path, doc, strlen(doc));
-    snprintf(spec, sizeof spec, "svg:file=%s", path);
-    aa_spec s;
-    aa_scene *sc = NULL;
-    if (aa_pattern_parse(spec, &s) != AA_OK || aa_pattern_scene_at(&s, N, N, &sc) != AA_OK)
-        fail_msg("%s: %s", body, aa_last_error());
-    return sc;
+    return support_svg_scene(dir, name, body, N, N);
 }
 
 /* The two scenes' box references at N x N: the largest difference. */

@@ -289,25 +289,15 @@ static void circle_start(aa_path *p, double cx, double cy, double r, double t0, 
     must(aa_path_move_to(p, cx + r * cos(t0), cy + s * r * sin(t0)));
 }
 
-/* The stroke's outline filled into a scene (pattern units, inside the unit
- * square): the sum of its box reference on 64x64 pixels over 4096, its
- * area in pattern units. */
+/* The stroke's outline, checked for its orientation, filled into a scene
+ * (pattern units, inside the unit square): its area in pattern units
+ * (support_fill_area). */
 static double stroke_area(const aa_path *in, const aa_stroke_style *st)
 {
     aa_path out = {0};
     must(aa_stroke_outline(in, st, &out));
     check_orientation(&out);
-    aa_scene *s = aa_scene_new((aa_rgb){{0, 0, 0}});
-    assert_non_null(s);
-    must(aa_scene_layer(s, (aa_rgb){{1, 1, 1}}, AA_FILL_NONZERO));
-    must(aa_path_fill(&out, NULL, s));
-    must(aa_scene_finish(s));
-    support_view v = {.w = 64, .h = 64, .threads = 1};
-    aa_image im;
-    support_reference(s, &v, &im, NULL, NULL);
-    double area = support_channel_mean(&im, 0);
-    aa_image_free(&im);
-    aa_scene_free(s);
+    double area = support_fill_area(&out);
     aa_path_free(&out);
     return area;
 }
@@ -321,14 +311,10 @@ static void expect_area(const char *what, const aa_path *in, const aa_stroke_sty
         fail_msg("%s: area %.17g, want %.17g", what, got, want);
 }
 
+/* The polygon's area, unsigned. */
 static double shoelace(const double *xy, int n)
 {
-    double a = 0;
-    for (int i = 0; i < n; i++) {
-        int j = (i + 1) % n;
-        a += xy[2 * i] * xy[2 * j + 1] - xy[2 * j] * xy[2 * i + 1];
-    }
-    return 0.5 * fabs(a);
+    return fabs(support_shoelace(xy, n));
 }
 
 /* ---- areas of strokes of lines ---- */
@@ -375,16 +361,6 @@ static void test_corner(void **state)
     aa_path_free(&p);
 }
 
-/* Where the lines p + s d and q + t e meet. */
-static void meet(const double p[2], const double d[2], const double q[2], const double e[2],
-                 double out[2])
-{
-    double den = d[0] * e[1] - d[1] * e[0];
-    double s = ((q[0] - p[0]) * e[1] - (q[1] - p[1]) * e[0]) / den;
-    out[0] = p[0] + s * d[0];
-    out[1] = p[1] + s * d[1];
-}
-
 /* A turn of 120 degrees (segments meeting at 60): the stroke is the
  * hexagon of the start's two offset points, the outer offset lines' meeting
  * point, the end's two offset points and the inner lines' meeting point
@@ -411,8 +387,8 @@ static void test_sharp_turn(void **state)
     double ia[2] = {a[0] + h * n1[0], a[1] + h * n1[1]};
     double ic[2] = {c[0] + h * n2[0], c[1] + h * n2[1]};
     double m[2], in[2];
-    meet(oa, d1, oc, d2, m);
-    meet(ia, d1, ic, d2, in);
+    support_line_meet(oa, d1, oc, d2, m);
+    support_line_meet(ia, d1, ic, d2, in);
     const double hex[12] = {oa[0], oa[1], m[0], m[1], oc[0], oc[1],
                             ic[0], ic[1], in[0], in[1], ia[0], ia[1]};
     double miter = shoelace(hex, 6);
@@ -1035,7 +1011,7 @@ static int in_join(const shape *sh, double px, double py, const double di[2], co
     if (sh->join == AA_JOIN_MITER && sin(theta / 2) > 0 && 1 / sin(theta / 2) <= sh->limit) {
         const double pa[2] = {ax, ay}, pb[2] = {bx, by};
         double m[2];
-        meet(pa, di, pb, dd, m);
+        support_line_meet(pa, di, pb, dd, m);
         const double quad[8] = {px, py, ax, ay, m[0], m[1], bx, by};
         return in_convex(quad, 4, qx, qy);
     }

@@ -60,17 +60,7 @@ static int teardown(void **state)
 /* The stroke source's map of the one stroked element of `body`. */
 static void stroke_map(const char *name, const char *body, double m[6])
 {
-    char path[4200], doc[4096], spec[4400];
-    snprintf(path, sizeof path, "%s/%s.svg", dir, name);
-    snprintf(doc, sizeof doc,
-             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\">%s</svg>", N,
-             N, body);
-    support_write_file(path, doc, strlen(doc));
-    snprintf(spec, sizeof spec, "svg:file=%s", path);
-    aa_spec s;
-    aa_scene *sc = NULL;
-    if (aa_pattern_parse(spec, &s) != AA_OK || aa_pattern_scene_at(&s, N, N, &sc) != AA_OK)
-        fail_msg("%s: %s", body, aa_last_error());
+    aa_scene *sc = support_svg_scene(dir, name, body, N, N);
     size_t n;
     const aa_stroke_source *src = aa_scene_stroke_sources(sc, &n);
     assert_int_equal(n, 1);
