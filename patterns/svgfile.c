@@ -6481,7 +6481,10 @@ int aa_svg_read_at(const char *data, size_t len, const char *name, int w, int h,
             st = read_sheets(&r, root);
         }
         r.node = root;
-        r.chain[0] = root; /* a use of the root is a cycle */
+        /* a use of the root is a cycle; its children, read at depth 2,
+         * find it as their parent in the chain (style_parent: the
+         * properties they inherit from it, custom ones too) */
+        r.chain[0] = r.chain[1] = root;
         char fs[256];
         if (!st && prop(&r, root, "font-size", fs, sizeof fs, &st) && !st &&
             strcasecmp(fs, "inherit"))

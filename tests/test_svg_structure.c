@@ -1014,6 +1014,20 @@ static void test_var(void **state)
     expect(OPEN "<style>g { --w: 5px }</style><g><rect width=\"calc(var(--w) * 2)\" "
                 "height=\"1\"/></g></svg>",
            BLACK " M 0 0 L 10 0 L 10 1 L 0 1 Z");
+    /* declared on the root (its style attribute, a sheet's rule for it):
+     * inherited by its children and theirs (the root was once passed over,
+     * each such var() of no value) */
+    static const char *const roots[] = {
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" style=\"--c: lime; --w: 5px\">",
+        "<svg xmlns=\"http://www.w3.org/2000/svg\"><style>svg { --c: lime; --w: 5px }</style>"};
+    for (int k = 0; k < 2; k++) {
+        char doc[600];
+        snprintf(doc, sizeof doc,
+                 "%s<rect width=\"1\" height=\"1\" fill=\"var(--c)\"/><g><rect y=\"2\" "
+                 "width=\"calc(var(--w) * 2)\" height=\"1\"/></g></svg>",
+                 roots[k]);
+        expect(doc, "0 1 0; M 0 0 L 1 0 L 1 1 L 0 1 Z " BLACK " M 0 2 L 10 2 L 10 3 L 0 3 Z");
+    }
     /* from the <use>, not the element's document parent */
     expect(OPEN "<defs style=\"--c: red\">" "<rect id=\"u\" width=\"1\" height=\"1\" "
                 "style=\"fill: var(--c)\"/></defs><use href=\"#u\" style=\"--c: lime\"/></svg>",
