@@ -207,6 +207,23 @@ static void expect_bound(const char *what, const aa_truth_stats *stats)
         fail_msg("%s: the reference's bound %.3g is above 1e-12", what, stats->max_bound);
 }
 
+/* Pixel (i, j) of scene s (a W x W view) alone, its reference under
+ * `filter` certified: no window left to the scan, its bound within 1e-12. */
+static void expect_certified(const char *what, const aa_scene *s, int i, int j,
+                             const char *filter)
+{
+    aa_image ref, bound;
+    aa_truth_stats stats;
+    char name[200];
+    support_reference_part(s, W, W, i, j, 1, 1, filter, &ref, &bound, &stats);
+    snprintf(name, sizeof name, "%s, %s: pixel (%d, %d)", what, filter, i, j);
+    print_message("%s %s\n", name, stats.scanned ? "scanned" : "certified");
+    assert_int_equal(stats.scanned, 0);
+    expect_bound(name, &stats);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+}
+
 /* ---- closed forms ---- */
 
 /* Black to white from x = 3.25 to x = 11.5 across the whole 16 x 12
@@ -2766,15 +2783,7 @@ static void test_mixed_nested_half(void **state)
     /* under tent:r=1 pixel (4, 8)'s window, the edge across it, certified too */
     gw = gh = W;
     aa_scene *s = mpic_scene(&p);
-    aa_image ref, bound;
-    aa_truth_stats stats;
-    support_reference_part(s, W, W, 4, 8, 1, 1, "tent:r=1", &ref, &bound, &stats);
-    print_message("half-plane over linear, tent:r=1: pixel (4, 8) %s\n",
-                  stats.scanned ? "scanned" : "certified");
-    assert_int_equal(stats.scanned, 0);
-    expect_bound("half-plane over linear, tent:r=1", &stats);
-    aa_image_free(&ref);
-    aa_image_free(&bound);
+    expect_certified("half-plane over linear", s, 4, 8, "tent:r=1");
     aa_scene_free(s);
     gw = W, gh = H;
 }
@@ -2822,18 +2831,9 @@ static void test_mixed_cone_touch(void **state)
         }
         aa_scene *s = mpic_scene(&p);
         for (int f = 0; f < (pass ? 1 : 2); f++)
-            for (int k = 0; k < (pass ? 1 : 2); k++) {
-                aa_image ref, bound;
-                aa_truth_stats stats;
-                int i = pass ? 10 : fpx[k][0], j = pass ? 0 : fpx[k][1];
-                support_reference_part(s, W, W, i, j, 1, 1, filt[f], &ref, &bound, &stats);
-                print_message("cone touching, %s: pixel (%d, %d) %s\n", filt[f], i, j,
-                              stats.scanned ? "scanned" : "certified");
-                assert_int_equal(stats.scanned, 0);
-                expect_bound(filt[f], &stats);
-                aa_image_free(&ref);
-                aa_image_free(&bound);
-            }
+            for (int k = 0; k < (pass ? 1 : 2); k++)
+                expect_certified("cone touching", s, pass ? 10 : fpx[k][0],
+                                 pass ? 0 : fpx[k][1], filt[f]);
         aa_scene_free(s);
     }
     gw = W, gh = H;
