@@ -11,15 +11,22 @@
  * box reference's time (median of -r REPS renders, default 3, after none
  * untimed: each is seconds long; -r 0: none; then the least and the most)
  * with its largest bound, and `point`'s, `area`'s and `analytic`'s (under
- * the box, and under each filter of -f, repeatable) medians (of 5, then
- * the least and the most), area/point and analytic/area (analytic under
- * each filter against area under the box), the ratios of the medians; each
- * in wall-clock time and in the process's CPU time (`cpu`), which other
- * processes sharing the core lengthen far less.  Each method's init (its
- * tables for the scene and the size, outside the renders' times) is timed
- * too, five times, and area/point is also given for one init and one
- * render, what a scene drawn once costs.  Figures are read, not asserted.
- *
+ * the box, and under each filter of -f, repeatable) medians of -n N
+ * renders (default 11, after one untimed: the image's pages, the caches;
+ * then the least and the most), area/point and analytic/area (analytic
+ * under each filter against area under the box), the ratios of the
+ * medians; each in wall-clock time and in the process's CPU time (`cpu`),
+ * which other processes sharing the core lengthen far less.  `point` and
+ * `area` render in turns, one each a round, the order alternating, and
+ * area/point is also the median of the rounds' ratios (with the least and
+ * the most): a change of load on the shared machine then falls on both
+ * alike, where one method's renders all after the other's took it alone
+ * (area/point 2.7 to 3.8 in three runs on one build).  Each method's init
+ * (its tables for the scene and the size, outside the renders' times) is
+ * timed too, five times, and area/point is also given for one init and
+ * one render, what a scene drawn once costs.  Figures are read, not
+ * asserted.
+
  * --renders N: no timing and no reference: `point` and `area` each render
  * the scene N times, for counting instructions (valgrind --tool=callgrind
  * with N = 1 and N = 3: point_render's and area_render's inclusive counts'
@@ -32,7 +39,8 @@
  * over every channel), and a hash of area's image (FNV-1a of its doubles'
  * bits) to tell an unchanged image from a moved one.
  *
- * usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]... [--renders N | --check]
+ * usage: bench_bezstroke [-s WxH] [-r REPS] [-n N] [-f FILTER]... [--renders N |
+ *        --check]
  */
 #include "bench.h"
 #include "path.h"
@@ -44,6 +52,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+
+/* the most timed renders a method (-n) */
+#define TIMED_MAX 101
 
 static int cmp(const void *a, const void *b)
 {
@@ -108,13 +119,15 @@ static int build(aa_path *p)
 
 int main(int argc, char **argv)
 {
-    int w = 1024, h = 1024, reps = 3, nf = 1, renders = 0, check = 0;
+    int w = 1024, h = 1024, reps = 3, nf = 1, renders = 0, check = 0, timed = 11;
     const char *filters[8] = {"box"};
     for (int k = 1; k < argc; k++) {
         if (!strcmp(argv[k], "-s") && k + 1 < argc && sscanf(argv[k + 1], "%dx%d", &w, &h) == 2)
             k++;
         else if (!strcmp(argv[k], "-r") && k + 1 < argc)
             reps = atoi(argv[++k]);
+        else if (!strcmp(argv[k], "-n") && k + 1 < argc)
+            timed = atoi(argv[++k]);
         else if (!strcmp(argv[k], "-f") && k + 1 < argc && nf < 8)
             filters[nf++] = argv[++k];
         else if (!strcmp(argv[k], "--renders") && k + 1 < argc)
@@ -122,8 +135,8 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[k], "--check"))
             check = 1;
         else {
-            fprintf(stderr, "usage: bench_bezstroke [-s WxH] [-r REPS] [-f FILTER]... [--renders N "
-                            "| --check]\n");
+            fprintf(stderr, "usage: bench_bezstroke [-s WxH] [-r REPS] [-n N] [-f FILTER]... "
+                            "[--renders N | --check]\n");
             return 2;
         }
     }
@@ -131,7 +144,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_bezstroke: --renders and --check exclude each other\n");
         return 2;
     }
-    if (w < 1 || h < 1 || reps < 0 || reps > 100 || renders < 0) {
+    if (w < 1 || h < 1 || reps < 0 || reps > 100 || renders < 0 || timed < 1 ||
+        timed > TIMED_MAX) {
         fprintf(stderr, "bench_bezstroke: bad size or repetitions\n");
         return 2;
     }
@@ -266,14 +280,26 @@ int main(int argc, char **argv)
                1e3 * med, reps, 1e3 * t_ref[0], 1e3 * t_ref[reps - 1], 1e3 * cmed,
                1e3 * c_ref[0], 1e3 * c_ref[reps - 1], worst);
     }
-    double t_m[10][5], c_m[10][5], med[10], cmed[10], t_i[10][5], c_i[10][5], imed[10], icmed[10];
+    /* point and area: each's init five times (the last kept), one render
+     * each untimed (the image's pages, the caches), then N rounds of one
+     * render each, the order alternating from round to round, so that a
+     * change of load on the shared machine falls on both alike; each
+     * round's area/point is a paired ratio, whose median and range are
+     * given beside the ratio of the medians.  analytic after them, N
+     * renders under each filter. */
+    double t_m[10][TIMED_MAX], c_m[10][TIMED_MAX], med[10], cmed[10], t_i[10][5], c_i[10][5],
+        imed[10], icmed[10], rt[TIMED_MAX], rc[TIMED_MAX];
     const char *names[10] = {"point", "area"};
     int nq = 2 + nf;
     for (int q = 2; q < nq; q++)
         names[q] = "analytic";
+    aa_job jobs[2];
+    aa_method ms[2];
     for (int q = 0; q < nq; q++) {
         const char *fname = q < 2 ? "box" : filters[q - 2];
-        if (aa_filter_parse(fname, &f) || aa_job_init(&job, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1) ||
+        aa_job *jb = q < 2 ? &jobs[q] : &job;
+        aa_method *mt = q < 2 ? &ms[q] : &m;
+        if (aa_filter_parse(fname, &f) || aa_job_init(jb, s, w, h, 0.0, 0.0, 0.0, &f, 1, 1) ||
             aa_method_parse(names[q], &f, &spec)) {
             fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
             return 3;
@@ -282,40 +308,60 @@ int main(int argc, char **argv)
          * last kept for the renders */
         for (int k = 0; k < 5; k++) {
             double t0 = aa_now(), c0 = cpu_now();
-            if (aa_method_init(&m, &spec, &job)) {
+            if (aa_method_init(mt, &spec, jb)) {
                 fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
                 return 3;
             }
             t_i[q][k] = aa_now() - t0;
             c_i[q][k] = cpu_now() - c0;
             if (k < 4)
-                aa_method_free(&m);
+                aa_method_free(mt);
         }
-        for (int k = 0; k < 5; k++) {
-            double t0 = aa_now(), c0 = cpu_now();
-            if (aa_method_render(&m, &job, &im, &c)) {
-                fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
-                return 3;
+        if (q == 0)
+            continue; /* point's renders with area's, below */
+        int qs[2] = {0, 1}, nrun = q == 1 ? 2 : 1;
+        if (q > 1)
+            qs[0] = q;
+        for (int r = -1; r < timed; r++) /* r = -1: the untimed render of each */
+            for (int o = 0; o < nrun; o++) {
+                int qq = qs[nrun == 2 && r >= 0 && r % 2 ? 1 - o : o];
+                aa_job *jq = qq < 2 ? &jobs[qq] : &job;
+                aa_method *mq = qq < 2 ? &ms[qq] : &m;
+                double t0 = aa_now(), c0 = cpu_now();
+                if (aa_method_render(mq, jq, &im, &c)) {
+                    fprintf(stderr, "bench_bezstroke: %s\n", aa_last_error());
+                    return 3;
+                }
+                if (r >= 0)
+                    t_m[qq][r] = aa_now() - t0, c_m[qq][r] = cpu_now() - c0;
             }
-            t_m[q][k] = aa_now() - t0;
-            c_m[q][k] = cpu_now() - c0;
+        if (q == 1)
+            for (int r = 0; r < timed; r++)
+                rt[r] = t_m[1][r] / t_m[0][r], rc[r] = c_m[1][r] / c_m[0][r];
+        for (int qq = q == 1 ? 0 : q; qq <= q; qq++) {
+            aa_method_free(qq < 2 ? &ms[qq] : &m);
+            aa_job_free(qq < 2 ? &jobs[qq] : &job);
+            med[qq] = median(t_m[qq], timed); /* sorts them */
+            cmed[qq] = median(c_m[qq], timed);
+            imed[qq] = median(t_i[qq], 5);
+            icmed[qq] = median(c_i[qq], 5);
+            char label[64];
+            snprintf(label, sizeof label, qq < 2 ? "%s" : "%s %s", names[qq],
+                     qq < 2 ? "box" : filters[qq - 2]);
+            printf("%-19s %10.3f ms (median of %d, %.3f .. %.3f), cpu %.3f ms (%.3f .. %.3f)\n",
+                   label, 1e3 * med[qq], timed, 1e3 * t_m[qq][0], 1e3 * t_m[qq][timed - 1],
+                   1e3 * cmed[qq], 1e3 * c_m[qq][0], 1e3 * c_m[qq][timed - 1]);
+            printf("%-19s %10.3f ms (median of 5, %.3f .. %.3f), cpu %.3f ms (%.3f .. %.3f)\n",
+                   "  its init", 1e3 * imed[qq], 1e3 * t_i[qq][0], 1e3 * t_i[qq][4],
+                   1e3 * icmed[qq], 1e3 * c_i[qq][0], 1e3 * c_i[qq][4]);
         }
-        aa_method_free(&m);
-        aa_job_free(&job);
-        med[q] = median(t_m[q], 5); /* sorts them */
-        cmed[q] = median(c_m[q], 5);
-        imed[q] = median(t_i[q], 5);
-        icmed[q] = median(c_i[q], 5);
-        char label[64];
-        snprintf(label, sizeof label, q < 2 ? "%s" : "%s %s", names[q], fname);
-        printf("%-19s %10.3f ms (median of 5, %.3f .. %.3f), cpu %.3f ms (%.3f .. %.3f)\n",
-               label, 1e3 * med[q], 1e3 * t_m[q][0], 1e3 * t_m[q][4], 1e3 * cmed[q],
-               1e3 * c_m[q][0], 1e3 * c_m[q][4]);
-        printf("%-19s %10.3f ms (median of 5, %.3f .. %.3f), cpu %.3f ms (%.3f .. %.3f)\n",
-               "  its init", 1e3 * imed[q], 1e3 * t_i[q][0], 1e3 * t_i[q][4], 1e3 * icmed[q],
-               1e3 * c_i[q][0], 1e3 * c_i[q][4]);
     }
-    printf("area/point          %10.2f (cpu %.2f)\n", med[1] / med[0], cmed[1] / cmed[0]);
+    double mrt = median(rt, timed), mrc = median(rc, timed); /* sorts them */
+    printf("area/point          %10.2f (cpu %.2f), of the medians\n", med[1] / med[0],
+           cmed[1] / cmed[0]);
+    printf("area/point, paired  %10.2f (%.2f .. %.2f), cpu %.2f (%.2f .. %.2f): the median "
+           "of %d rounds' ratios\n",
+           mrt, rt[0], rt[timed - 1], mrc, rc[0], rc[timed - 1], timed);
     printf("area/point, init + render once %4.2f (cpu %.2f)\n",
            (imed[1] + med[1]) / (imed[0] + med[0]), (icmed[1] + cmed[1]) / (icmed[0] + cmed[0]));
     for (int q = 2; q < nq; q++)
