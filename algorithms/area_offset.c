@@ -544,16 +544,16 @@ static __attribute__((always_inline)) inline void rel_point(const aa_offset_curv
 }
 
 /* share's w f at the n nodes x (weights w) of a cubic's offset or evolute
- * (not next to a stop), four at a time, summed lane by lane into acc[0..3]
- * (lane j: nodes j, j + 4, j + 8, ... in order): each lane the operations
+ * (not next to a stop), four at a time, summed lane by lane (lane j: nodes
+ * j, j + 4, j + 8, ... in order), the lanes then as (0 + 2) + (1 + 3): each lane the operations
  * of share's two-at-a-time loop below in their order (AVX without FMA:
  * nothing fused, sqrt and the divisions correctly rounded), so each w f
  * and each lane's sum the same double; the rules' tables are padded to a
  * multiple of 4 with the last node of weight 0. */
-__attribute__((target("avx"), always_inline)) static inline void
+__attribute__((target("avx"), always_inline)) static inline double
 nodes_avx_k(const double *qx, const double *qw, int n, double mm, double h, const double *pm,
             const double *bx, const double *by, const double *d, double ax, double ay,
-            const int evolute, double *acc)
+            const int evolute)
 {
     /* the panel's numbers broadcast from memory (one instruction each),
      * 2 b2 as b2 + b2 (exact) */
@@ -604,19 +604,18 @@ nodes_avx_k(const double *qx, const double *qw, int n, double mm, double h, cons
         }
         sum = _mm256_add_pd(sum, _mm256_mul_pd(w, f));
     }
-    _mm256_storeu_pd(acc, sum);
+    __m128d s2 = _mm_add_pd(_mm256_castpd256_pd128(sum), _mm256_extractf128_pd(sum, 1));
+    return _mm_cvtsd_f64(_mm_add_sd(s2, _mm_unpackhi_pd(s2, s2)));
 }
 
 /* nodes_avx_k for an offset or an evolute (a loop each) */
-__attribute__((target("avx"))) static void
+__attribute__((target("avx"))) static double
 nodes_avx(const double *qx, const double *qw, int n, double mm, double h, const double *pm,
-          const double *bx, const double *by, const double *d, double ax, double ay, int evolute,
-          double *acc)
+          const double *bx, const double *by, const double *d, double ax, double ay, int evolute)
 {
     if (evolute)
-        nodes_avx_k(qx, qw, n, mm, h, pm, bx, by, d, ax, ay, 1, acc);
-    else
-        nodes_avx_k(qx, qw, n, mm, h, pm, bx, by, d, ax, ay, 0, acc);
+        return nodes_avx_k(qx, qw, n, mm, h, pm, bx, by, d, ax, ay, 1);
+    return nodes_avx_k(qx, qw, n, mm, h, pm, bx, by, d, ax, ay, 0);
 }
 
 /* The rule a share of half width h about mm inside panel p takes (an
@@ -718,10 +717,9 @@ static __attribute__((always_inline)) inline double share(const ar_piece *pc, co
      * test_nodes). */
     const int n = q->n[r];
     const double *qx = q->x + q->at[r], *qw = q->w + q->at[r];
-    double acc[4];
     if (avx) {
-        nodes_avx(qx, qw, n, mm, h, &p->m, bx, by, &oc->d, ax, ay, oc->evolute, acc);
-        return 0.5 * h * ((acc[0] + acc[2]) + (acc[1] + acc[3]));
+        sum = nodes_avx(qx, qw, n, mm, h, &p->m, bx, by, &oc->d, ax, ay, oc->evolute);
+        return 0.5 * h * sum;
     }
     const __m128d vmm = _mm_set1_pd(mm), vh = _mm_set1_pd(h), vm = _mm_set1_pd(p->m);
     const __m128d b1x = _mm_set1_pd(bx[1]), b2x = _mm_set1_pd(bx[2]), b3x = _mm_set1_pd(bx[3]);
@@ -764,9 +762,9 @@ static __attribute__((always_inline)) inline double share(const ar_piece *pc, co
         }
         sum2[(i >> 1) & 1] = _mm_add_pd(sum2[(i >> 1) & 1], _mm_mul_pd(w, f));
     }
-    _mm_storeu_pd(acc, sum2[0]);
-    _mm_storeu_pd(acc + 2, sum2[1]);
-    return 0.5 * h * ((acc[0] + acc[2]) + (acc[1] + acc[3]));
+    __m128d s2 = _mm_add_pd(sum2[0], sum2[1]);
+    sum = _mm_cvtsd_f64(_mm_add_sd(s2, _mm_unpackhi_pd(s2, s2)));
+    return 0.5 * h * sum;
 }
 
 static __attribute__((always_inline)) inline double segment(const ar_piece *pc, double ta,
