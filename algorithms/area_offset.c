@@ -551,13 +551,13 @@ static __attribute__((always_inline)) inline void rel_point(const aa_offset_curv
  * and each lane's sum the same double; the rules' tables are padded to a
  * multiple of 4 with the last node of weight 0. */
 __attribute__((target("avx"), always_inline)) static inline double
-nodes_avx_k(const double *qx, const double *qw, int n, double mm, double h, const double *pm,
+nodes_avx_k(const double *qx, const double *qw, int n, double sm, double h,
             const double *bx, const double *by, const double *d, double ax, double ay,
             const int evolute)
 {
     /* the panel's numbers broadcast from memory (one instruction each),
      * 2 b2 as b2 + b2 (exact) */
-    const __m256d vmm = _mm256_set1_pd(mm), vh = _mm256_set1_pd(h), vm = _mm256_broadcast_sd(pm);
+    const __m256d vsm = _mm256_set1_pd(sm), vh = _mm256_set1_pd(h);
     const __m256d b1x = _mm256_broadcast_sd(bx + 1), b2x = _mm256_broadcast_sd(bx + 2);
     const __m256d b3x = _mm256_broadcast_sd(bx + 3), b1y = _mm256_broadcast_sd(by + 1);
     const __m256d b2y = _mm256_broadcast_sd(by + 2), b3y = _mm256_broadcast_sd(by + 3);
@@ -568,7 +568,7 @@ nodes_avx_k(const double *qx, const double *qw, int n, double mm, double h, cons
     __m256d sum = _mm256_setzero_pd();
     for (int i = 0; i < n; i += 4) {
         __m256d x = _mm256_loadu_pd(qx + i), w = _mm256_loadu_pd(qw + i);
-        __m256d s = _mm256_sub_pd(_mm256_add_pd(vmm, _mm256_mul_pd(vh, x)), vm);
+        __m256d s = _mm256_add_pd(vsm, _mm256_mul_pd(vh, x));
         __m256d s3 = _mm256_mul_pd(three, s), s6 = _mm256_mul_pd(six, s);
         __m256d ux =
             _mm256_add_pd(b1x, _mm256_mul_pd(s, _mm256_add_pd(b2x2, _mm256_mul_pd(s3, b3x))));
@@ -610,12 +610,12 @@ nodes_avx_k(const double *qx, const double *qw, int n, double mm, double h, cons
 
 /* nodes_avx_k for an offset or an evolute (a loop each) */
 __attribute__((target("avx"))) static double
-nodes_avx(const double *qx, const double *qw, int n, double mm, double h, const double *pm,
+nodes_avx(const double *qx, const double *qw, int n, double sm, double h,
           const double *bx, const double *by, const double *d, double ax, double ay, int evolute)
 {
     if (evolute)
-        return nodes_avx_k(qx, qw, n, mm, h, pm, bx, by, d, ax, ay, 1);
-    return nodes_avx_k(qx, qw, n, mm, h, pm, bx, by, d, ax, ay, 0);
+        return nodes_avx_k(qx, qw, n, sm, h, bx, by, d, ax, ay, 1);
+    return nodes_avx_k(qx, qw, n, sm, h, bx, by, d, ax, ay, 0);
 }
 
 /* The rule a share of half width h about mm inside panel p takes (an
@@ -718,10 +718,10 @@ static __attribute__((always_inline)) inline double share(const ar_piece *pc, co
     const int n = q->n[r];
     const double *qx = q->x + q->at[r], *qw = q->w + q->at[r];
     if (avx) {
-        sum = nodes_avx(qx, qw, n, mm, h, &p->m, bx, by, &oc->d, ax, ay, oc->evolute);
+        sum = nodes_avx(qx, qw, n, mm - p->m, h, bx, by, &oc->d, ax, ay, oc->evolute);
         return 0.5 * h * sum;
     }
-    const __m128d vmm = _mm_set1_pd(mm), vh = _mm_set1_pd(h), vm = _mm_set1_pd(p->m);
+    const __m128d vsm = _mm_set1_pd(mm - p->m), vh = _mm_set1_pd(h);
     const __m128d b1x = _mm_set1_pd(bx[1]), b2x = _mm_set1_pd(bx[2]), b3x = _mm_set1_pd(bx[3]);
     const __m128d b1y = _mm_set1_pd(by[1]), b2y = _mm_set1_pd(by[2]), b3y = _mm_set1_pd(by[3]);
     const __m128d b2x2 = _mm_set1_pd(2 * bx[2]), b2y2 = _mm_set1_pd(2 * by[2]);
@@ -731,7 +731,7 @@ static __attribute__((always_inline)) inline double share(const ar_piece *pc, co
     __m128d sum2[2] = {_mm_setzero_pd(), _mm_setzero_pd()};
     for (int i = 0; i < ((n + 3) & ~3); i += 2) {
         __m128d x = _mm_loadu_pd(qx + i), w = _mm_loadu_pd(qw + i);
-        __m128d s = _mm_sub_pd(_mm_add_pd(vmm, _mm_mul_pd(vh, x)), vm);
+        __m128d s = _mm_add_pd(vsm, _mm_mul_pd(vh, x));
         __m128d s3 = _mm_mul_pd(three, s), s6 = _mm_mul_pd(six, s);
         __m128d ux = _mm_add_pd(b1x, _mm_mul_pd(s, _mm_add_pd(b2x2, _mm_mul_pd(s3, b3x))));
         __m128d uy = _mm_add_pd(b1y, _mm_mul_pd(s, _mm_add_pd(b2y2, _mm_mul_pd(s3, b3y))));
