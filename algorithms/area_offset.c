@@ -545,11 +545,11 @@ static __attribute__((always_inline)) inline void rel_point(const aa_offset_curv
 
 /* share's w f at the n nodes x (weights w) of a cubic's offset or evolute
  * (not next to a stop), four at a time, summed lane by lane (lane j: nodes
- * j, j + 4, j + 8, ... in order), the lanes then as (0 + 2) + (1 + 3): each lane the operations
- * of share's two-at-a-time loop below in their order (AVX without FMA:
- * nothing fused, sqrt and the divisions correctly rounded), so each w f
- * and each lane's sum the same double; the rules' tables are padded to a
- * multiple of 4 with the last node of weight 0. */
+ * j, j + 4, j + 8, ... in order), the lanes then as (0 + 2) + (1 + 3):
+ * each lane the operations of share's two-at-a-time loop below in their
+ * order (AVX without FMA: nothing fused, sqrt and the divisions correctly
+ * rounded), so each w f and each lane's sum the same double; the rules'
+ * tables are padded to a multiple of 4 with the last node of weight 0. */
 __attribute__((target("avx"), always_inline)) static inline double
 nodes_avx_k(const double *qx, const double *qw, int n, double sm, double h,
             const double *bx, const double *by, const double *d, double ax, double ay,
@@ -817,7 +817,8 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
 /* segment compiled for AVX, flattened (its shares, start points and nodes
  * inline: no call of 13 arguments a share; its scalar arithmetic the same
  * operations, VEX-encoded: the same numbers) and without, chosen once a
- * part by the processor (ar_quad's avx) */
+ * part by the processor (ar_quad's avx); segment_sse out of line (inlined
+ * into area_offset_segment, its register saves came before the choice) */
 __attribute__((target("avx"), flatten)) static double segment_avx(const ar_piece *pc,
                                                                  double ta, double tb)
 {
