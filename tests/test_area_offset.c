@@ -1200,14 +1200,17 @@ static long double segment_l(const aa_offset_curve *oc, long double ta, long dou
  * inside one panel) against the integral computed here: 1/2 the integral
  * of (P - P(ta)) x P' in long double from aa__offset_eval's points and
  * derivatives, by Gauss-Legendre rules made here (20 points on 4 equal
- * parts, checked against 24 points on 6 to 1e-24 of the size), on parts
- * of every width from 1e-7 of a panel to the whole of it, on every offset
- * piece, evolute and offset of an ellipse of three strokes.  Each within
- * AR_QUAD_TOL, the bound each share is held to, plus 16 ulps of the size
- * its double sum's terms have (segment_l's mag: the rounding of the start
- * point and of the nodes relative to the panel's middle).  The rule a
- * share takes is counted here from its panel's disc by Trefethen's bound
- * (in long double, with powl): every rule of ar_quad is taken. */
+ * parts, checked against 24 points on 6 to 1e-17 of the size and 1e-20
+ * px^2), on parts of every width from 1e-7 of a panel to the whole of it,
+ * on every offset piece, evolute and offset of an ellipse of three strokes
+ * at 256 px.  Each within AR_QUAD_TOL, the bound each share is held to,
+ * plus 8 ulps of the size its double sum's terms have (segment_l's mag:
+ * the rounding of the start point and of the nodes relative to the
+ * panel's middle; at most the tolerance on about half the parts, where a
+ * wrong rule shows).  The rule each share takes (area_offset_rule) is the
+ * one computed here from its panel's disc by Trefethen's bound (long
+ * double, powl), where no rule's bound is within 1e-9 of the tolerance;
+ * every rule of ar_quad is taken. */
 static void test_shares(void **state)
 {
     (void)state;
