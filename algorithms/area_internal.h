@@ -50,7 +50,7 @@
  * of Gauss-Legendre rules tried. */
 #define AR_QUAD_TOL 1e-15
 #define AR_QUAD_NMAX 16
-#define AR_QUAD_RULES 5
+#define AR_QUAD_RULES 4
 
 /* Gauss-Legendre rules on [-1, 1]: rule r has n[r] points x, w from at[r]. */
 typedef struct ar_quad {
@@ -701,6 +701,9 @@ int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel
 int area_offset_panels_append(const aa_offset_curve *oc, double t0, double t1, ar_panel **arr,
                               size_t *n, size_t *cap);
 double area_offset_segment(const ar_piece *pc, double ta, double tb);
+/* The rule (index into ar_quad) the share [al, be] of panel p takes: the
+ * fewest points whose bound is within AR_QUAD_TOL. */
+int area_offset_rule(const ar_panel *p, double al, double be);
 /* A bound on the speed |P'| of an offset curve or evolute (unmapped, its
  * own units) on each disc |t - m| <= R[k], k < n, R ascending: INFINITY
  * from the first disc that may hold a zero of a denominator on (the form

@@ -70,9 +70,10 @@
  * the disc |z - m'| <= R - |m' - m| inside the panel's, where M still
  * holds; its rho' is larger than the panel's (rho falls as h grows at fixed
  * slack R - h), so its bound is at most the panel's, and the fewest points
- * of AR_QUAD_RULES whose bound is within AR_QUAD_TOL are used (on the
- * 1,000 stroked cubics of tests/bench_bezstroke.c at 1024 px: 4 points for
- * 19% of the shares, 6 for 50%, 8 for 22%, 11 for 8%, 16 for 1%).  The
+ * of AR_QUAD_RULES whose bound is within AR_QUAD_TOL are used: 4, 8, 12
+ * or 16, whole groups of the four lanes a cubic's nodes are taken in (on
+ * the 1,000 stroked cubics of tests/bench_bezstroke.c at 1024 px: 4 points
+ * for 17% of the shares, 8 for 70%, 12 for 11%, 16 for 1%).  The
  * bound holds up to the rounding of the bound's own terms (a relative
  * 1e-12 margin is added) and of the sum itself (about 1e-16 of the
  * integrand's size times h).
@@ -89,9 +90,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Gauss-Legendre orders tried, ascending; the last is the panels' own. */
-static const int ar_quad_order[AR_QUAD_RULES] = {4, 6, 8, 11, 16}; /* share's choice writes
-                                                                       * them out */
+/* Gauss-Legendre orders tried, ascending; the last is the panels' own.
+ * Multiples of 4: a cubic's nodes go four at a time (nodes_avx), so 6 and
+ * 11 points took as many groups as 8 and 12; 2 or 3 as many as 4. */
+static const int ar_quad_order[AR_QUAD_RULES] = {4, 8, 12, 16}; /* rule writes them out */
 
 int area_quad_init(ar_quad *q)
 {
@@ -106,10 +108,10 @@ int area_quad_init(ar_quad *q)
         for (int i = 0; i < n; i++)
             gsl_integration_glfixed_point(-1.0, 1.0, (size_t)i, &q->x[at + i], &q->w[at + i], t);
         gsl_integration_glfixed_table_free(t);
-        /* padded to a multiple of 4 with the last node (nodes_avx loads
-         * four at a time; the copies are not added) */
+        /* padded to a multiple of 4 with the last node of weight 0 (the
+         * nodes are taken four at a time, and the copies add w f = 0) */
         for (int i = n; i % 4; i++)
-            q->x[at + i] = q->x[at + n - 1], q->w[at + i] = q->w[at + n - 1];
+            q->x[at + i] = q->x[at + n - 1], q->w[at + i] = 0.0;
         at += (n + 3) & ~3;
     }
     __builtin_cpu_init();
@@ -542,30 +544,31 @@ static __attribute__((always_inline)) inline void rel_point(const aa_offset_curv
 }
 
 /* share's w f at the n nodes x (weights w) of a cubic's offset or evolute
- * (not next to a stop), four at a time: each lane the operations of share's
- * two-at-a-time loop below in their order (AVX without FMA: nothing fused,
- * sqrt and the divisions correctly rounded), so each w f the same double;
- * the rules' tables are padded to a multiple of 4 with the last node, and
- * its copies are not added.  Where
- * the rule takes 6 or 8 points (seven tenths of the shares on the 1,000
- * stroked cubics of tests/bench_bezstroke.c) two groups where the pairs
- * took three or four. */
-__attribute__((target("avx"))) static void nodes_avx(const double *qx, const double *qw, int n,
-                                                   double mm, double h, double pm,
-                                                   const double *bx, const double *by, double d,
-                                                   double ax, double ay, int evolute, double *wf)
+ * (not next to a stop), four at a time, summed lane by lane (lane j: nodes
+ * j, j + 4, j + 8, ... in order), the lanes then as (0 + 2) + (1 + 3):
+ * each lane the operations of share's two-at-a-time loop below in their
+ * order (AVX without FMA: nothing fused, sqrt and the divisions correctly
+ * rounded), so each w f and each lane's sum the same double; the rules'
+ * tables are padded to a multiple of 4 with the last node of weight 0. */
+__attribute__((target("avx"), always_inline)) static inline double
+nodes_avx_k(const double *qx, const double *qw, int n, double sm, double h,
+            const double *bx, const double *by, const double *d, double ax, double ay,
+            const int evolute)
 {
-    const __m256d vmm = _mm256_set1_pd(mm), vh = _mm256_set1_pd(h), vm = _mm256_set1_pd(pm);
-    const __m256d b1x = _mm256_set1_pd(bx[1]), b2x = _mm256_set1_pd(bx[2]);
-    const __m256d b3x = _mm256_set1_pd(bx[3]), b1y = _mm256_set1_pd(by[1]);
-    const __m256d b2y = _mm256_set1_pd(by[2]), b3y = _mm256_set1_pd(by[3]);
-    const __m256d b2x2 = _mm256_set1_pd(2 * bx[2]), b2y2 = _mm256_set1_pd(2 * by[2]);
+    /* the panel's numbers broadcast from memory (one instruction each),
+     * 2 b2 as b2 + b2 (exact) */
+    const __m256d vsm = _mm256_set1_pd(sm), vh = _mm256_set1_pd(h);
+    const __m256d b1x = _mm256_broadcast_sd(bx + 1), b2x = _mm256_broadcast_sd(bx + 2);
+    const __m256d b3x = _mm256_broadcast_sd(bx + 3), b1y = _mm256_broadcast_sd(by + 1);
+    const __m256d b2y = _mm256_broadcast_sd(by + 2), b3y = _mm256_broadcast_sd(by + 3);
+    const __m256d b2x2 = _mm256_add_pd(b2x, b2x), b2y2 = _mm256_add_pd(b2y, b2y);
     const __m256d three = _mm256_set1_pd(3.0), six = _mm256_set1_pd(6.0);
-    const __m256d one = _mm256_set1_pd(1.0), vd = _mm256_set1_pd(d);
+    const __m256d one = _mm256_set1_pd(1.0), vd = _mm256_broadcast_sd(d);
     const __m256d vax = _mm256_set1_pd(ax), vay = _mm256_set1_pd(ay);
+    __m256d sum = _mm256_setzero_pd();
     for (int i = 0; i < n; i += 4) {
         __m256d x = _mm256_loadu_pd(qx + i), w = _mm256_loadu_pd(qw + i);
-        __m256d s = _mm256_sub_pd(_mm256_add_pd(vmm, _mm256_mul_pd(vh, x)), vm);
+        __m256d s = _mm256_add_pd(vsm, _mm256_mul_pd(vh, x));
         __m256d s3 = _mm256_mul_pd(three, s), s6 = _mm256_mul_pd(six, s);
         __m256d ux =
             _mm256_add_pd(b1x, _mm256_mul_pd(s, _mm256_add_pd(b2x2, _mm256_mul_pd(s3, b3x))));
@@ -599,8 +602,55 @@ __attribute__((target("avx"))) static void nodes_avx(const double *qx, const dou
                 _mm256_mul_pd(num, _mm256_add_pd(_mm256_mul_pd(Dx, ux), _mm256_mul_pd(Dy, uy))),
                 _mm256_mul_pd(c, c));
         }
-        _mm256_storeu_pd(wf + i, _mm256_mul_pd(w, f));
+        sum = _mm256_add_pd(sum, _mm256_mul_pd(w, f));
     }
+    __m128d s2 = _mm_add_pd(_mm256_castpd256_pd128(sum), _mm256_extractf128_pd(sum, 1));
+    return _mm_cvtsd_f64(_mm_add_sd(s2, _mm_unpackhi_pd(s2, s2)));
+}
+
+/* nodes_avx_k for an offset or an evolute (a loop each) */
+__attribute__((target("avx"))) static double
+nodes_avx(const double *qx, const double *qw, int n, double sm, double h,
+          const double *bx, const double *by, const double *d, double ax, double ay, int evolute)
+{
+    if (evolute)
+        return nodes_avx_k(qx, qw, n, sm, h, bx, by, d, ax, ay, 1);
+    return nodes_avx_k(qx, qw, n, sm, h, bx, by, d, ax, ay, 0);
+}
+
+/* The rule a share of half width h about mm inside panel p takes (an
+ * index into ar_quad): the fewest points whose bound is within
+ * AR_QUAD_TOL; the panel's own (the last) where its disc leaves no room. */
+static __attribute__((always_inline)) inline int rule(const ar_panel *p, double h, double mm)
+{
+    int r = AR_QUAD_RULES - 1;
+    double Rs = p->R - fabs(mm - p->m);
+    if (Rs > h && p->M > 0.0) {
+        /* the fewest points n with h 64 M / (15 (1 - rho^-2) rho^(2n)) <=
+         * AR_QUAD_TOL, as r2^n (r2 - 1) >= h K r2, r2 = rho^2, K = 64 M
+         * (1 + 1e-12) / (15 AR_QUAD_TOL): no division but z's, the powers
+         * by products (no logarithms: two a share were a tenth of its
+         * time) in the same order whatever the share, written out (a
+         * loop's own instructions were a third of the choice's); their
+         * rounding (a few units in the last place) within the 1e-12
+         * margin.  The orders 4, 8, 12 (ar_quad_order): r2^4 apart. */
+        double z = Rs / h, rho = z + sqrt((z - 1.0) * (z + 1.0)), r2 = rho * rho;
+        double need = h * (64.0 / (15.0 * AR_QUAD_TOL) * (1.0 + 1e-12)) * p->M * r2;
+        double p4 = r2 * r2 * (r2 * r2), pw = p4 * (r2 - 1.0);
+        if (pw >= need)
+            r = 0;
+        else if ((pw = pw * p4) >= need)
+            r = 1;
+        else if ((pw = pw * p4) >= need)
+            r = 2;
+    }
+    return r;
+}
+
+int area_offset_rule(const ar_panel *p, double al, double be)
+{
+    double h = 0.5 * (be - al), mm = 0.5 * (al + be);
+    return h > 0.0 ? rule(p, h, mm) : AR_QUAD_RULES - 1;
 }
 
 /* 1/2 the integral of (P - P(al)) x P' over [al, be] inside panel p, in
@@ -615,30 +665,7 @@ static __attribute__((always_inline)) inline double share(const ar_piece *pc, co
     double h = 0.5 * (be - al), mm = 0.5 * (al + be);
     if (!(h > 0.0))
         return 0.0;
-    int r = AR_QUAD_RULES - 1;
-    double Rs = p->R - fabs(mm - p->m);
-    if (Rs > h && p->M > 0.0) {
-        /* the fewest points n with h 64 M / (15 (1 - rho^-2) rho^(2n)) <=
-         * AR_QUAD_TOL, as rho^(2n) >= need: the powers by products (no
-         * logarithms: two a share were a tenth of its time), their
-         * rounding (a few units in the last place) within the 1e-12
-         * margin on need */
-        double z = Rs / h, rho = z + sqrt((z - 1.0) * (z + 1.0)), r2 = rho * rho;
-        double need = h * 64.0 * p->M / (15.0 * (1.0 - 1.0 / r2) * AR_QUAD_TOL) * (1.0 + 1e-12);
-        /* r2^n for the orders 4, 6, 8, 11 (ar_quad_order), each the last
-         * times r2 as often as the orders differ, written out: a loop's
-         * products in the same order (the loops' own instructions were a
-         * third of the choice's) */
-        double pw = r2 * r2 * r2 * r2;
-        if (pw >= need)
-            r = 0;
-        else if ((pw = pw * r2 * r2) >= need)
-            r = 1;
-        else if ((pw = pw * r2 * r2) >= need)
-            r = 2;
-        else if ((pw = pw * r2 * r2 * r2) >= need)
-            r = 3;
-    }
+    const int r = rule(p, h, mm);
     double ax, ay;
     rel_point(oc, p, al, &ax, &ay);
     const double *bx = p->bx, *by = p->by, d = oc->d;
@@ -680,35 +707,31 @@ static __attribute__((always_inline)) inline double share(const ar_piece *pc, co
         }
         return 0.5 * h * sum;
     }
-    /* Two nodes at a time (SSE2): each lane the same operations in the
-     * same order as one node's scalar expression, with sqrt and the
-     * divisions correctly rounded in both, so each w f is the same double;
-     * they are then added one by one in the nodes' order, the sum the
-     * same as a node-by-node loop's.  An odd rule's last pair repeats its
-     * last node, the copy not added. */
+    /* Two nodes at a time (SSE2), the pairs' sums in two accumulators
+     * taken in turn, so that each of the four lanes sums the nodes AVX's
+     * lane does (nodes_avx), in its order, padding and all; each lane the
+     * same operations in the same order as one node's scalar expression,
+     * with sqrt and the divisions correctly rounded in both, so each w f
+     * is the same double.  The lanes then added as (0 + 2) + (1 + 3), the
+     * sum the same bit for bit in both forms (test_area_offset's
+     * test_nodes). */
     const int n = q->n[r];
     const double *qx = q->x + q->at[r], *qw = q->w + q->at[r];
-    double wf[AR_QUAD_NMAX + 3];
     if (avx) {
-        nodes_avx(qx, qw, n, mm, h, p->m, bx, by, d, ax, ay, oc->evolute, wf);
-        int i = 0;
-        for (; i + 4 <= n; i += 4) /* one by one in the nodes' order */
-            sum = sum + wf[i] + wf[i + 1] + wf[i + 2] + wf[i + 3];
-        for (; i < n; i++)
-            sum += wf[i];
+        sum = nodes_avx(qx, qw, n, mm - p->m, h, bx, by, &oc->d, ax, ay, oc->evolute);
         return 0.5 * h * sum;
     }
-    const __m128d vmm = _mm_set1_pd(mm), vh = _mm_set1_pd(h), vm = _mm_set1_pd(p->m);
+    const __m128d vsm = _mm_set1_pd(mm - p->m), vh = _mm_set1_pd(h);
     const __m128d b1x = _mm_set1_pd(bx[1]), b2x = _mm_set1_pd(bx[2]), b3x = _mm_set1_pd(bx[3]);
     const __m128d b1y = _mm_set1_pd(by[1]), b2y = _mm_set1_pd(by[2]), b3y = _mm_set1_pd(by[3]);
     const __m128d b2x2 = _mm_set1_pd(2 * bx[2]), b2y2 = _mm_set1_pd(2 * by[2]);
     const __m128d three = _mm_set1_pd(3.0), six = _mm_set1_pd(6.0);
     const __m128d one = _mm_set1_pd(1.0), vd = _mm_set1_pd(d);
     const __m128d vax = _mm_set1_pd(ax), vay = _mm_set1_pd(ay);
-    for (int i = 0; i < n; i += 2) {
-        int j = i + 1 < n ? i + 1 : i;
-        __m128d x = _mm_set_pd(qx[j], qx[i]), w = _mm_set_pd(qw[j], qw[i]);
-        __m128d s = _mm_sub_pd(_mm_add_pd(vmm, _mm_mul_pd(vh, x)), vm);
+    __m128d sum2[2] = {_mm_setzero_pd(), _mm_setzero_pd()};
+    for (int i = 0; i < ((n + 3) & ~3); i += 2) {
+        __m128d x = _mm_loadu_pd(qx + i), w = _mm_loadu_pd(qw + i);
+        __m128d s = _mm_add_pd(vsm, _mm_mul_pd(vh, x));
         __m128d s3 = _mm_mul_pd(three, s), s6 = _mm_mul_pd(six, s);
         __m128d ux = _mm_add_pd(b1x, _mm_mul_pd(s, _mm_add_pd(b2x2, _mm_mul_pd(s3, b3x))));
         __m128d uy = _mm_add_pd(b1y, _mm_mul_pd(s, _mm_add_pd(b2y2, _mm_mul_pd(s3, b3y))));
@@ -737,10 +760,10 @@ static __attribute__((always_inline)) inline double share(const ar_piece *pc, co
             f = _mm_div_pd(_mm_mul_pd(num, _mm_add_pd(_mm_mul_pd(Dx, ux), _mm_mul_pd(Dy, uy))),
                            _mm_mul_pd(c, c));
         }
-        _mm_storeu_pd(wf + i, _mm_mul_pd(w, f));
+        sum2[(i >> 1) & 1] = _mm_add_pd(sum2[(i >> 1) & 1], _mm_mul_pd(w, f));
     }
-    for (int i = 0; i < n; i++)
-        sum += wf[i];
+    __m128d s2 = _mm_add_pd(sum2[0], sum2[1]);
+    sum = _mm_cvtsd_f64(_mm_add_sd(s2, _mm_unpackhi_pd(s2, s2)));
     return 0.5 * h * sum;
 }
 
@@ -751,13 +774,21 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
     if (!(hi > lo))
         return 0.0;
     const ar_panel *pan = pc->pan;
+    /* the last panel starting at or before lo (the first if none): among
+     * a few, the first ending after it, in order (loads the processor
+     * issues ahead, where a halving's wait on each), else by halving */
     size_t n = pc->npan, k = 0, top = n;
-    while (k + 1 < top) { /* the last panel starting at or before lo */
-        size_t mid = (k + top) / 2;
-        if (pan[mid].a <= lo)
-            k = mid;
-        else
-            top = mid;
+    if (n <= 8) {
+        while (k + 1 < n && pan[k].b <= lo)
+            k++;
+    } else {
+        while (k + 1 < top) {
+            size_t mid = (k + top) / 2;
+            if (pan[mid].a <= lo)
+                k = mid;
+            else
+                top = mid;
+        }
     }
     double seg;
     if (hi <= pan[k].b || k + 1 == n) {
@@ -786,14 +817,15 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
 /* segment compiled for AVX, flattened (its shares, start points and nodes
  * inline: no call of 13 arguments a share; its scalar arithmetic the same
  * operations, VEX-encoded: the same numbers) and without, chosen once a
- * part by the processor (ar_quad's avx) */
+ * part by the processor (ar_quad's avx); segment_sse out of line (inlined
+ * into area_offset_segment, its register saves came before the choice) */
 __attribute__((target("avx"), flatten)) static double segment_avx(const ar_piece *pc,
                                                                  double ta, double tb)
 {
     return segment(pc, ta, tb, 1);
 }
 
-static double segment_sse(const ar_piece *pc, double ta, double tb)
+__attribute__((noinline)) static double segment_sse(const ar_piece *pc, double ta, double tb)
 {
     return segment(pc, ta, tb, 0);
 }

@@ -57,7 +57,13 @@
  *  - the quadrature's panels (test_panels): they tile each offset piece,
  *    each one's disc meets the tolerance by Trefethen's bound computed
  *    here, and its M bounds the integrand evaluated here in complex long
- *    double on the disc's circle.
+ *    double on the disc's circle;
+ *  - the quadrature of a share (test_shares): the segment of parts inside
+ *    one panel, 1e-7 of it wide to all of it, against the integral computed
+ *    here in long double by Gauss-Legendre rules made here, within
+ *    AR_QUAD_TOL plus the double sum's rounding, and the rule each share
+ *    takes (area_offset_rule) the fewest points whose bound, computed here
+ *    with powl, is within the tolerance.
  */
 #include "area_internal.h"
 #include "path.h"
@@ -66,6 +72,7 @@
 #include "support.h"
 
 #include <complex.h>
+#include <float.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -1110,6 +1117,207 @@ static void test_panels(void **state)
     assert_true(pieces > 0 && checked > 0);
 }
 
+/* The n-point Gauss-Legendre rule on [-1, 1] in long double, for
+ * test_shares' own quadrature: each node by Newton's method on the
+ * Legendre polynomial P_n (the three-term recurrence (k + 1) P_(k+1) =
+ * (2 k + 1) x P_k - k P_(k-1)), its weight 2 / ((1 - x^2) P_n'(x)^2). */
+static void gauss_legendre_l(int n, long double *x, long double *w)
+{
+    for (int i = 0; i < n; i++) {
+        long double t = cosl(3.14159265358979323846264338327950288L * (i + 0.75L) / (n + 0.5L));
+        long double dp = 1.0L;
+        for (int it = 0; it < 100; it++) {
+            long double p0 = 1.0L, p1 = t;
+            for (int k = 1; k < n; k++) {
+                long double p2 = ((2 * k + 1) * t * p1 - k * p0) / (k + 1);
+                p0 = p1, p1 = p2;
+            }
+            dp = n * (t * p1 - p0) / (t * t - 1.0L);
+            long double dt = p1 / dp;
+            t -= dt;
+            if (fabsl(dt) <= 1e-20L)
+                break;
+        }
+        x[i] = t, w[i] = 2.0L / ((1.0L - t * t) * dp * dp);
+    }
+}
+
+/* The base curve B of oc at t and B' (aabench.h, aa_offset_curve), mapped
+ * by oc's map, in long double. */
+static void base_l(const aa_offset_curve *oc, long double t, long double *x, long double *y,
+                   long double *dx, long double *dy)
+{
+    const double *b = oc->b, *m = oc->m;
+    long double X, Y, DX, DY;
+    if (oc->base == AA_OFFSET_ELLIPSE) {
+        long double c = cosl(t), sn = sinl(t);
+        X = b[0] + b[2] * c + b[4] * sn, Y = b[1] + b[3] * c + b[5] * sn;
+        DX = -b[2] * sn + b[4] * c, DY = -b[3] * sn + b[5] * c;
+    } else {
+        X = b[0] + t * (b[1] + t * (b[2] + t * (long double)b[3]));
+        Y = b[4] + t * (b[5] + t * (b[6] + t * (long double)b[7]));
+        DX = b[1] + t * (2 * b[2] + 3 * t * (long double)b[3]);
+        DY = b[5] + t * (2 * b[6] + 3 * t * (long double)b[7]);
+    }
+    *x = m[0] * X + m[2] * Y + m[4], *y = m[1] * X + m[3] * Y + m[5];
+    *dx = m[0] * DX + m[2] * DY, *dy = m[1] * DX + m[3] * DY;
+}
+
+/* 1/2 the integral of (P - P(ta)) x P' from ta to tb on oc (mapped: the
+ * scene's units), P and P' from aa__offset_eval (long double), by the
+ * n-point rule (x, w) on sub equal parts.  *mag: the size of what a double
+ * sum of the integrand at its nodes adds and cancels, the integral of (|B
+ * - Pa| + |P - B| + |B - Bm| + |Pa - Bm|) (|B'| + |P'|), B the base curve,
+ * Pa = P(ta), Bm = B(pm) (the panel's middle, about which area_offset.c
+ * takes its Taylor forms). */
+static long double segment_l(const aa_offset_curve *oc, long double ta, long double tb,
+                             long double pm, int sub, int n, const long double *x,
+                             const long double *w, long double *mag)
+{
+    long double ax, ay, mx, my, dmx, dmy, s = 0.0L, a = 0.0L;
+    aa__offset_eval(oc, ta, &ax, &ay, NULL, NULL);
+    base_l(oc, pm, &mx, &my, &dmx, &dmy);
+    for (int j = 0; j < sub; j++) {
+        long double lo = ta + (tb - ta) * j / sub, hi = ta + (tb - ta) * (j + 1) / sub;
+        long double h = 0.5L * (hi - lo), m = 0.5L * (lo + hi);
+        for (int i = 0; i < n; i++) {
+            long double px, py, dx, dy, bx, by, dbx, dby;
+            aa__offset_eval(oc, m + h * x[i], &px, &py, &dx, &dy);
+            base_l(oc, m + h * x[i], &bx, &by, &dbx, &dby);
+            long double f = (px - ax) * dy - (py - ay) * dx;
+            s += w[i] * h * f;
+            a += w[i] * fabsl(h) *
+                 (hypotl(bx - ax, by - ay) + hypotl(px - bx, py - by) +
+                  hypotl(bx - mx, by - my) + hypotl(ax - mx, ay - my)) *
+                 (hypotl(dbx, dby) + hypotl(dx, dy));
+        }
+    }
+    *mag = a;
+    return 0.5L * s;
+}
+
+/* The quadrature of a share (area_offset.c, area_offset_segment on a part
+ * inside one panel) against the integral computed here: 1/2 the integral
+ * of (P - P(ta)) x P' in long double from aa__offset_eval's points and
+ * derivatives, by Gauss-Legendre rules made here (20 points on 4 equal
+ * parts, checked against 24 points on 6 to 1e-17 of the size and 1e-20
+ * px^2), on parts of every width from 1e-7 of a panel to the whole of it,
+ * on every offset piece, evolute and offset of an ellipse of three strokes
+ * at 256 px.  Each within AR_QUAD_TOL, the bound each share is held to,
+ * plus 8 ulps of the size its double sum's terms have (segment_l's mag:
+ * the rounding of the start point and of the nodes relative to the
+ * panel's middle; at most the tolerance on about half the parts, where a
+ * wrong rule shows).  The rule each share takes (area_offset_rule) is the
+ * one computed here from its panel's disc by Trefethen's bound (long
+ * double, powl), where no rule's bound is within 1e-9 of the tolerance;
+ * every rule of ar_quad is taken. */
+static void test_shares(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    ar_quad quad;
+    must(area_quad_init(&quad));
+    long double x1[20], w1[20], x2[24], w2[24];
+    gauss_legendre_l(20, x1, w1);
+    gauss_legendre_l(24, x2, w2);
+    uint64_t rng = 987654321;
+    int parts = 0, taken[AR_QUAD_RULES] = {0};
+    double worst = 0.0, worst_fine = 0.0, oworst = 0.0;
+    int fine = 0, ties = 0;
+    for (int c = 0; c < 3; c++) {
+        st.width = (const double[]){0.02, 0.08, 0.3}[c];
+        aa_scene *placed = placed_stroke(c == 1 ? tight : three, c == 1 ? 1 : 3, &st, 256);
+        size_t np;
+        const aa_piece *pc = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pc[k].kind != AA_PIECE_OFFSET)
+                continue;
+            const aa_offset_curve *oc = &pc[k].oc;
+            ar_panel *pan;
+            size_t npan;
+            must(area_offset_panels(oc, pc[k].ot0, pc[k].ot1, &pan, &npan));
+            ar_piece ap;
+            memset(&ap, 0, sizeof ap);
+            ap.src = &pc[k], ap.pan = pan, ap.npan = npan, ap.quad = &quad;
+            for (int i = 0; i < 40; i++) {
+                double u[3];
+                for (int e = 0; e < 3; e++) { /* uniform in [0, 1), 53 bits */
+                    rng = rng * 6364136223846793005u + 1442695040888963407u;
+                    u[e] = (double)(rng >> 11) * 0x1p-53;
+                }
+                const ar_panel *p = &pan[(size_t)(u[2] * (double)npan)];
+                double wd = (p->b - p->a) * pow(10.0, -7.0 * u[1]);
+                double ta = p->a + (p->b - p->a - wd) * u[0], tb = fmin(ta + wd, p->b);
+                if (!(tb > ta))
+                    continue;
+                double got = area_offset_segment(&ap, ta, tb);
+                long double mag, mag2;
+                long double want = segment_l(oc, ta, tb, p->m, 4, 20, x1, w1, &mag);
+                long double want2 = segment_l(oc, ta, tb, p->m, 6, 24, x2, w2, &mag2);
+                if (fabsl(want - want2) > oworst)
+                    oworst = (double)fabsl(want - want2);
+                if (!(fabsl(want - want2) <= 1e-17L * mag2 + 1e-20L))
+                    fail_msg("piece %zu (evolute %d, base %d) [%.17g, %.17g] of panel [%.17g, "
+                             "%.17g] R %g: %.6Lg %.6Lg apart, size %.3Lg",
+                             k, oc->evolute, (int)oc->base, ta, tb, p->a, p->b, p->R,
+                             want, want - want2, mag2);
+                /* the rule the share's bound allows, computed here (long
+                 * double, powl): area's choice (area_offset_rule, its
+                 * products without division) the same but where the bound
+                 * of the rule or the one before it is within 1e-9 of the
+                 * tolerance */
+                long double h = 0.5L * ((long double)tb - ta), mm = 0.5L * ((long double)ta + tb);
+                long double Rs = p->R - fabsl(mm - p->m), e[AR_QUAD_RULES];
+                int r = AR_QUAD_RULES - 1;
+                if (Rs > h && p->M > 0) {
+                    long double z = Rs / h, rho = z + sqrtl((z - 1) * (z + 1));
+                    for (int j = 0; j < AR_QUAD_RULES; j++)
+                        e[j] = h * 64 * p->M /
+                               (15 * (1 - 1 / (rho * rho)) * powl(rho, 2 * quad.n[j]));
+                    for (r = 0; r < AR_QUAD_RULES - 1 && !(e[r] <= AR_QUAD_TOL); r++)
+                        ;
+                    int ra = area_offset_rule(p, ta, tb);
+                    int tie = fabsl(e[r] / AR_QUAD_TOL - 1) < 1e-9L ||
+                              (r > 0 && fabsl(e[r - 1] / AR_QUAD_TOL - 1) < 1e-9L);
+                    if (ra != r && !tie)
+                        fail_msg("piece %zu [%.17g, %.17g]: %d points, here %d", k, ta, tb,
+                                 quad.n[ra], quad.n[r]);
+                    ties += tie;
+                } else {
+                    assert_int_equal(area_offset_rule(p, ta, tb), r);
+                }
+                taken[r]++;
+                double err = fabs((double)(got - want));
+                double tol = AR_QUAD_TOL + 8 * DBL_EPSILON * (double)mag;
+                if (!(err <= tol))
+                    fail_msg("piece %zu [%.17g, %.17g] (%d points): %.17g, here %.17Lg, %.2e off "
+                             "(allowed %.2e)",
+                             k, ta, tb, quad.n[r], got, want, err, tol);
+                worst = fmax(worst, err / tol);
+                if (tol <= 2 * AR_QUAD_TOL) { /* rounding at most the tolerance */
+                    fine++;
+                    worst_fine = fmax(worst_fine, err);
+                }
+                parts++;
+            }
+            free(pan);
+        }
+        aa_scene_free(placed);
+    }
+    print_message("%d shares within the bound plus rounding (at most %.2f of it; %d whose "
+                  "rounding allowance is at most AR_QUAD_TOL, off by at most %.1e; the two "
+                  "rules here at most %.1e apart; %d ties); rules",
+                  parts, worst, fine, worst_fine, oworst, ties);
+    for (int r = 0; r < AR_QUAD_RULES; r++)
+        print_message(" %d points %d", quad.n[r], taken[r]);
+    print_message("\n");
+    assert_true(parts > 1000);
+    for (int r = 0; r < AR_QUAD_RULES; r++)
+        assert_true(taken[r] > 0);
+}
+
 /* area's band lines' starts on an offset piece (area_internal.h,
  * ytab_guess) from a table of nodes (t, y, dt/dy) made here as area.c's
  * load_offset makes them (y and its slope by aa__offset_end), at t = k/64
@@ -1426,6 +1634,7 @@ int main(void)
                                        cmocka_unit_test(test_ulp_vertex),
                                        cmocka_unit_test(test_nodes),
                                        cmocka_unit_test(test_panels),
+                                       cmocka_unit_test(test_shares),
                                        cmocka_unit_test(test_starts),
                                        cmocka_unit_test(test_shared_ends),
                                        cmocka_unit_test(test_common_heights)};
