@@ -1180,8 +1180,11 @@ static void shared_end_cut(meet_ctx *c, double a, double b, const double tp[2],
  * ta) B''(ta)/2 and B'(tb), inside the cone they span (its Bernstein
  * weights are >= 0); an ellipse's B' = v cos t - u sin t over less than
  * pi of t is inside the cone of its two ends.  The range is widened by
- * 1e-9 of itself (the rounding of the parameters solved for), within the
- * piece's own.  0 for other kinds or where nothing is bounded. */
+ * 1e-9 of itself and a few ulps (the rounding of the parameters solved
+ * for), and within 1e-6 of the piece's own range of an end of it reaches
+ * that end (where the piece's y turns, at a fold or a cusp, the solve for
+ * a height is least sure of t), but never beyond.  0 for other kinds or
+ * where nothing is bounded. */
 static int tangent_cone(const aa_piece *p, const double t[2], double g[3][2], double *s)
 {
     if (p->kind == AA_PIECE_LINE) {
@@ -1193,8 +1196,10 @@ static int tangent_cone(const aa_piece *p, const double t[2], double g[3][2], do
         return 0;
     const double *c = p->oc.b, *m = p->oc.m;
     double pl = dmin(p->ot0, p->ot1), ph = dmax(p->ot0, p->ot1);
-    double ta = dmin(t[0], t[1]), tb = dmax(t[0], t[1]), w = 1e-9 * (tb - ta);
-    ta = dmax(pl, ta - w), tb = dmin(ph, tb + w);
+    double ta = dmin(t[0], t[1]), tb = dmax(t[0], t[1]);
+    double w = 1e-9 * (tb - ta) + 1e-15 * (fabs(ta) + fabs(tb)), near = 1e-6 * (ph - pl);
+    ta = ta - w - pl <= near ? pl : ta - w;
+    tb = ph - (tb + w) <= near ? ph : tb + w;
     double v[3][2], mag;
     int n;
     if (p->oc.base == AA_OFFSET_ELLIPSE) {
