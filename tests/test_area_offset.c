@@ -41,6 +41,16 @@
  *    a piece begins or ends inside a band (the solve over the whole
  *    piece, area.c's seg_t_kept): the same meetings bit for bit
  *    (test_common_heights; area keeps those solves in its segs);
+ *  - the tangents' cones by which area's form parts a pair at once
+ *    (scene_piece.c, cones_apart): on every pair of a line or an offset
+ *    piece and an offset piece of strokes (the benchmark's at 256 px,
+ *    folds, a loop, a hook, round joins), over their common heights and
+ *    parts of them, wherever the cones are said apart x_p - x_q sampled
+ *    at 201 heights is monotone (no step back beyond 1e-12, at most one
+ *    change of sign); and a line along an offset piece's tangent (its
+ *    derivative evaluated) at 33 points of a range of its parameter is
+ *    never said apart from it over that range, on an S whose tangents
+ *    turn back at its inflection among others (test_cones);
  *  - a crossing's root near a turn of the offset's y: y at the parameter
  *    aa__offset_root returns is the line's, to rounding;
  *  - pixel (716, 793) of tests/bench_bezstroke.c's scene, against its area
@@ -1621,6 +1631,176 @@ static void test_common_heights(void **state)
     assert_true(pairs > 100); /* the cases were built */
 }
 
+/* ---- the tangents' cones that part a pair at once ---- */
+
+/* p's parameter at height y in its rows: its own at its ends, else the
+ * solve over the whole piece (a line's: 0, not read) */
+static double param_of(const aa_piece *p, double y)
+{
+    if (p->kind != AA_PIECE_OFFSET)
+        return 0.0;
+    if (!(y > p->y0))
+        return p->ot0;
+    if (!(y < p->y1))
+        return p->ot1;
+    return whole_solve(p, y);
+}
+
+/* Every pair of placed scene s's pieces, one an offset piece and the other
+ * an offset piece or a line, over its common heights and parts of them
+ * (the first and last thirds, 1e-3 of them in the middle, and 1e-6 of
+ * the scale next to each end): where aa__piece_cones_apart says x_p - x_q
+ * is strictly monotone, it is sampled here at 201 heights (aa_piece_x_at)
+ * and must be: no step between neighbouring samples against the
+ * direction from the first to the last beyond 1e-12 (their rounding), and
+ * no more than one change of sign beyond 1e-12 of 0 (none away from an
+ * end point they share).  Adds the parts said apart to *apart and those
+ * not said so whose samples are not monotone to *seen (the oracle sees
+ * such parts).  Returns the failures. */
+static int cones(const char *what, const aa_scene *s, int *apart, int *seen)
+{
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    int bad = 0, parts = 0, yes = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = i + 1; k < n; k++) {
+            const aa_piece *p = &pc[i], *q = &pc[k];
+            double c0, c1;
+            if (!offset_pair(p, q, &c0, &c1) ||
+                (p->kind != AA_PIECE_OFFSET && p->kind != AA_PIECE_LINE) ||
+                (q->kind != AA_PIECE_OFFSET && q->kind != AA_PIECE_LINE))
+                continue;
+            double h = c1 - c0, e0 = 1e-6 * fmax(1.0, fabs(c0)), e1 = 1e-6 * fmax(1.0, fabs(c1));
+            const double ya[5] = {c0, c0, c1 - h / 3.0, c0 + 0.4995 * h, c0};
+            const double yb[5] = {c1, c0 + h / 3.0, c1, c0 + 0.5005 * h, c0 + e0};
+            for (int w = 0; w < 6; w++) {
+                double lo = w < 5 ? ya[w] : c1 - e1, hi = w < 5 ? yb[w] : c1;
+                if (!(lo < hi) || !(lo >= c0 && hi <= c1))
+                    continue;
+                const double tp[2] = {param_of(p, lo), param_of(p, hi)};
+                const double tq[2] = {param_of(q, lo), param_of(q, hi)};
+                int said = aa__piece_cones_apart(p, q, tp, tq);
+                double d[201];
+                for (int j = 0; j <= 200; j++) {
+                    double y = j == 200 ? hi : lo + (hi - lo) * j / 200.0;
+                    d[j] = aa_piece_x_at(p, y) - aa_piece_x_at(q, y);
+                }
+                double dir = d[200] > d[0] ? 1.0 : -1.0, prev = NAN;
+                int back = 0, changes = 0;
+                for (int j = 0; j < 200; j++)
+                    back += dir * (d[j + 1] - d[j]) < -1e-12;
+                for (int j = 0; j <= 200; j++) {
+                    if (!(fabs(d[j]) > 1e-12))
+                        continue;
+                    changes += prev == prev && (prev < 0) != (d[j] < 0);
+                    prev = d[j];
+                }
+                parts++;
+                yes += said;
+                if (!said) {
+                    *seen += back > 0;
+                    continue;
+                }
+                if ((back > 0 || changes > 1) && bad++ < 5)
+                    print_message("%s: pieces %zu and %zu over [%.17g, %.17g] said apart: %d "
+                                  "steps back, %d changes of sign\n",
+                                  what, i, k, lo, hi, back, changes);
+            }
+        }
+    print_message("%-34s %d parts of pairs, %d said apart, %d not so\n", what, parts, yes, bad);
+    *apart += yes;
+    return bad;
+}
+
+/* The cones hold every tangent: for each offset piece of placed scene s,
+ * over its whole parameters and the first and last thirds of them, a line
+ * along its tangent (aa_offset_point's derivative) at each of 33 points
+ * of that range must not be said apart from it (the line's direction lies
+ * in the piece's cone there).  Returns the failures; adds the lines to
+ * *lines. */
+static int cone_holds(const char *what, const aa_scene *s, int *lines)
+{
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    int bad = 0;
+    for (size_t k = 0; k < n; k++) {
+        const aa_piece *q = &pc[k];
+        if (q->kind != AA_PIECE_OFFSET || !q->dir)
+            continue;
+        double t0 = q->ot0, t1 = q->ot1, d = t1 - t0;
+        const double ra[3] = {t0, t0, t1 - d / 3.0}, rb[3] = {t1, t0 + d / 3.0, t1};
+        for (int w = 0; w < 3; w++)
+            for (int j = 0; j <= 32; j++) {
+                double t = ra[w] + (rb[w] - ra[w]) * j / 32.0, x, y, dx, dy;
+                aa_offset_point(&q->oc, t, &x, &y, &dx, &dy);
+                if (!(dy != 0.0) || !isfinite(dx) || !isfinite(dy))
+                    continue;
+                if (dy < 0.0)
+                    dx = -dx, dy = -dy;
+                aa_piece p;
+                memset(&p, 0, sizeof p);
+                p.kind = AA_PIECE_LINE, p.dir = 1;
+                p.x0 = x, p.y0 = y, p.x1 = x + dx, p.y1 = y + dy;
+                const double tp[2] = {0.0, 0.0}, tq[2] = {ra[w], rb[w]};
+                (*lines)++;
+                if (aa__piece_cones_apart(&p, q, tp, tq) && bad++ < 5)
+                    print_message("%s: piece %zu over t in [%.17g, %.17g]: its tangent at %.17g "
+                                  "is said outside its cone\n",
+                                  what, k, ra[w], rb[w], t);
+            }
+    }
+    return bad;
+}
+
+static void test_cones(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    int apart = 0, seen = 0, bad = 0;
+    double cs[2 + 6 * 10];
+    st.width = 2.5 / 256.0;
+    for (int r = 0; r < 20; r += 8) {
+        bench_cubics(r, 0, 10, cs);
+        aa_scene *placed = placed_stroke(cs, 10, &st, 256);
+        char what[64];
+        snprintf(what, sizeof what, "benchmark's row %d, 256 px", r);
+        bad += cones(what, placed, &apart, &seen);
+        aa_scene_free(placed);
+    }
+    const double loop[8] = {0.2, 0.8, 0.9, 0.1, 0.1, 0.1, 0.8, 0.8};
+    const double hook[8] = {0.1, 0.9, 0.1, 0.1, 0.9, 0.1, 0.55, 0.5};
+    const double *cases[4] = {tight, loop, hook, three};
+    const int ncs[4] = {1, 1, 1, 3};
+    const double widths[4] = {0.3, 0.5, 0.4, 0.08};
+    const char *names[4] = {"tight, w 0.3 (folds), 64 px", "loop, w 0.5, 64 px",
+                            "hook, w 0.4, 64 px", "3 arcs, round, w 0.08, 64 px"};
+    for (int c = 0; c < 4; c++) {
+        st.join = c == 3 ? AA_JOIN_ROUND : AA_JOIN_MITER;
+        st.cap = c == 3 ? AA_CAP_ROUND : AA_CAP_BUTT;
+        st.width = widths[c];
+        aa_scene *placed = placed_stroke(cases[c], ncs[c], &st, 64);
+        bad += cones(names[c], placed, &apart, &seen);
+        aa_scene_free(placed);
+    }
+    /* an S: its offsets' tangents turn back at the base's inflection,
+     * beyond the cone of their ends' */
+    const double ess[8] = {0.1, 0.5, 0.45, -0.1, 0.55, 1.1, 0.9, 0.5};
+    int lines = 0;
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    st.width = 0.05;
+    for (int c = 0; c < 2; c++) {
+        aa_scene *placed = placed_stroke(c ? ess : tight, 1, &st, 64);
+        bad += cone_holds(c ? "S, w 0.05, 64 px" : "tight, w 0.05, 64 px", placed, &lines);
+        aa_scene_free(placed);
+    }
+    print_message("%d parts said apart, %d others seen not monotone; %d tangents held\n", apart,
+                  seen, lines);
+    assert_int_equal(bad, 0);
+    assert_true(apart >= 1000 && seen >= 10 && lines >= 500); /* all kinds were met */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -1637,6 +1817,7 @@ int main(void)
                                        cmocka_unit_test(test_shares),
                                        cmocka_unit_test(test_starts),
                                        cmocka_unit_test(test_shared_ends),
-                                       cmocka_unit_test(test_common_heights)};
+                                       cmocka_unit_test(test_common_heights),
+                                       cmocka_unit_test(test_cones)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -329,6 +329,13 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
  * heights as aa_piece_meet's to rounding, not bit for bit. */
 int aa__piece_meet_at(const aa_piece *p, const aa_piece *q, double ya, double yb,
                       const double tpa[2], const double tqa[2], double *ys, int max);
+/* 1 if x_p - x_q is strictly monotone in y over the heights where line or
+ * offset pieces p and q have their parameters between tp[0] and tp[1] and
+ * between tq[0] and tq[1] (offset pieces; a line's are ignored): the cones
+ * of their tangents lie apart (scene_piece.c, cones_apart), by which
+ * aa__piece_meet_at parts a pair at once.  0 where nothing is proven. */
+int aa__piece_cones_apart(const aa_piece *p, const aa_piece *q, const double tp[2],
+                          const double tq[2]);
 
 /* ------------------------------------------------------------------------
  * Fields: a procedural scene, a point function plus its own exact pixel
