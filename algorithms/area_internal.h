@@ -690,6 +690,10 @@ int area_cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, in
 int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                              const int *w);
 
+/* The rows' order of the scene's n pieces (area.c): ord[k] the index of
+ * the k-th, y0 rising, ties by index (tmp: room for 3 n). */
+void area_piece_order(const aa_piece *pc, size_t n, uint32_t *ord, uint64_t *tmp);
+
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
  * (*out to be freed), or appended to an array (*n of *cap used, grown
  * geometrically; on a failure *n is as it was); 1/2 the integral of (P - P(ta)) x P' from t = ta to
