@@ -26,6 +26,9 @@
  *  - crowded clusters (more than AR_CROWD segs, tested for crossings by
  *    neighbours along x): 2048 arcs 1e-5 apart against the closed form, and
  *    120 crossing segs in one cluster against the reference.
+ *  - a seg's parts in the sub-bands of a band joined while its colour jump
+ *    stays the same (sweep_part), three layers in one pixel against the
+ *    clipper.
  *  - the rows' order of the pieces (area_piece_order's radix sort) against
  *    qsort with the comparison it replaced, written here: tops of both
  *    signs, ties, -0 and +0, tiny and huge values, keys alike in most bytes.
@@ -387,6 +390,39 @@ static void test_polygon_layers(void **state)
     for (int z = 0; z < 3; z++)
         against_clipper("three polygon layers", s, sizes[z][0], sizes[z][1], 2, layers_want, &L,
                         tol);
+    aa_scene_free(s);
+}
+
+/* The sub-bands' sweep keeps a seg's part while its colour jump stays the
+ * same from one sub-band to the next, and adds it once (area.c,
+ * sweep_part): three layers as above in one pixel, so the band is cut at
+ * every vertex and crossing.  Back, C's long left edge crosses the whole
+ * band, its jump the same above and below B's vertices and crossings (its
+ * parts joined across them), hidden in the middle heights by the front
+ * triangle A, whose vertex pokes over it (a jump of 0 there: its parts
+ * above and below apart); B (even-odd) crosses both.  Against the
+ * clipper, at 1x1 and 4x3. */
+static void test_sweep_parts(void **state)
+{
+    (void)state;
+    layers L = {.A = {3, {0.05, 0.55, 0.05}, {0.35, 0.5, 0.65}},
+                .B = {3, {0.2, 0.7, 0.25}, {0.1, 0.25, 0.85}},
+                .C = {4, {0.3, 0.95, 0.9, 0.45}, {0.02, 0.05, 0.95, 0.98}},
+                .colours = {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}},
+                .grey = {{0.25, 0.25, 0.25}}};
+    L.AB = oracle_poly_intersect(&L.A, &L.B), L.AC = oracle_poly_intersect(&L.A, &L.C);
+    L.BC = oracle_poly_intersect(&L.B, &L.C), L.ABC = oracle_poly_intersect(&L.AB, &L.C);
+    const oracle_poly *polys[3] = {&L.A, &L.B, &L.C};
+    aa_scene *s = aa_scene_new(L.grey);
+    for (int l = 0; l < 3; l++) {
+        assert_int_equal(
+            aa_scene_layer(s, L.colours[l], l == 1 ? AA_FILL_EVENODD : AA_FILL_NONZERO), AA_OK);
+        scenes_add_poly(s, polys[l]);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    const double tol[3] = {1e-13, 1e-13, 1e-13};
+    against_clipper("sub-bands' parts joined", s, 1, 1, 1, layers_want, &L, tol);
+    against_clipper("sub-bands' parts joined", s, 4, 3, 2, layers_want, &L, tol);
     aa_scene_free(s);
 }
 
@@ -802,4 +838,5 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_filters_refused),
              cmocka_unit_test(test_crowded_cluster),
              cmocka_unit_test(test_crowded_crossings),
-             cmocka_unit_test(test_piece_order))
+             cmocka_unit_test(test_piece_order),
+             cmocka_unit_test(test_sweep_parts))
