@@ -2575,6 +2575,17 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
     return AA_OK;
 }
 
+/* The most halvings of an offset piece's table: to about two rows an
+ * interval (YT_ROWS), at most YT_DEPTH (-1: none) */
+static int yt_dmax(const ar_piece *q)
+{
+    double rows = ceil(q->y1) - floor(q->y0), span = 0.5 * YT_ROWS; /* YT_ROWS 2^dmax */
+    int dmax = -1;
+    while (dmax < YT_DEPTH && span < rows)
+        dmax++, span *= 2.0;
+    return dmax;
+}
+
 /* An offset piece's table of band lines' starts, appended to S->ytab
  * (after every piece's panels: the two arrays grown in turns were copied
  * on most of their reallocations) */
@@ -2585,11 +2596,7 @@ static int load_ytab(ar_state *S, ar_piece *q)
     yt_node(p, p->ot0, a);
     yt_node(p, p->ot1, b);
     q->yt0 = S->nyt;
-    /* halvings to about two rows an interval (YT_ROWS) */
-    double rows = ceil(q->y1) - floor(q->y0);
-    int dmax = -1;
-    while (dmax < YT_DEPTH && ldexp(YT_ROWS, dmax) < rows)
-        dmax++;
+    int dmax = yt_dmax(q);
     int st = yt_push(S, a, 0);
     if (st || (st = yt_rec(S, p, a, b, 0, dmax)))
         return st;
@@ -2603,13 +2610,20 @@ static int load_ytab(ar_state *S, ar_piece *q)
     return AA_OK;
 }
 
+/* Panels an offset piece, the first guess at their room (4.4 on
+ * tests/bench_bezstroke.c's scene at 1024 px, 2.4 at 256 px) */
+#define PAN_GUESS 6
+
 static int load_pieces(ar_state *S, const aa_scene *scene)
 {
     size_t n;
     const aa_piece *pc = aa_scene_pieces(scene, &n);
     if (n >= UINT32_MAX)
         return aa_fail(AA_EINVAL, "area: %zu pieces, more than it indexes", n);
-    if (n && !(S->piece = calloc(n, sizeof *S->piece)))
+    /* each zeroed as it is filled below (calloc's pass over them all
+     * first, then the loop's, read and wrote 3.9 MB twice on
+     * tests/bench_bezstroke.c's scene) */
+    if (n && !(S->piece = malloc(n * sizeof *S->piece)))
         return aa_fail(AA_ENOMEM, "out of memory for %zu pieces", n);
     S->npieces = n;
     S->plain = 1;
@@ -2625,9 +2639,20 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
     if (n)
         area_piece_order(pc, n, ord, tmp);
     free(tmp);
+    /* the panels' room for PAN_GUESS a piece at once (grown as needed:
+     * each reallocation copied them all) */
+    size_t noff = 0;
+    for (size_t k = 0; k < n; k++)
+        noff += pc[k].kind == AA_PIECE_OFFSET;
+    if (noff && !(S->pan = malloc(noff * PAN_GUESS * sizeof *S->pan))) {
+        free(ord);
+        return aa_fail(AA_ENOMEM, "out of memory for offset pieces' panels");
+    }
+    S->cappan = noff * PAN_GUESS;
     for (size_t k = 0; k < n; k++) {
         const aa_piece *p = &pc[ord[k]];
         ar_piece *q = &S->piece[k];
+        *q = (ar_piece){0};
         long double x0 = p->x0, cx = p->cx, x1 = p->x1, y0 = p->y0, cy = p->cy, y1 = p->y1;
         q->flat = p->kind == AA_PIECE_FLAT;
         q->line = p->kind == AA_PIECE_LINE || p->kind == AA_PIECE_FLAT;
@@ -2668,6 +2693,18 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
     free(ord);
     if (st)
         return st;
+    /* the tables' room at once, at most a node where yt_rec starts and two
+     * a leaf, 2^dmax leaves (each reallocation copied the nodes: 1.9 M
+     * instructions of the init on tests/bench_bezstroke.c's scene) */
+    size_t nodes = 0;
+    for (size_t k = 0; k < n; k++)
+        if (S->piece[k].offset) {
+            int d = yt_dmax(&S->piece[k]);
+            nodes += 1 + ((size_t)2 << (d > 0 ? d : 0));
+        }
+    if (nodes && !(S->ytab = malloc(nodes * 4 * sizeof *S->ytab)))
+        return aa_fail(AA_ENOMEM, "out of memory for offset pieces' tables");
+    S->capyt = nodes;
     for (size_t k = 0; k < n; k++)
         if (S->piece[k].offset && (st = load_ytab(S, &S->piece[k])))
             return st;
@@ -2704,16 +2741,22 @@ static int load_colours(ar_state *S, const aa_scene *scene)
     return AA_OK;
 }
 
-/* n zeroed items of `size` bytes on whole cache lines of their own. */
-static void *line_alloc(size_t n, size_t size)
+/* n items of `size` bytes on whole cache lines of their own, zeroed if
+ * `zero`. */
+static void *line_alloc_z(size_t n, size_t size, int zero)
 {
     if (n && size > (SIZE_MAX - 64) / n)
         return NULL;
     size_t bytes = (n * size + 63) & ~(size_t)63;
     void *p = aligned_alloc(64, bytes ? bytes : 64);
-    if (p)
+    if (p && zero)
         memset(p, 0, bytes ? bytes : 64);
     return p;
+}
+
+static void *line_alloc(size_t n, size_t size)
+{
+    return line_alloc_z(n, size, 1);
 }
 
 static int worker_alloc(ar_worker *wk, const ar_state *S)
@@ -2721,7 +2764,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     size_t n = S->npieces ? S->npieces : 1, cells = ((size_t)S->w + 2) * (size_t)S->nch;
     size_t nl = (size_t)(S->nl > 0 ? S->nl : 1);
     wk->active = line_alloc(n, sizeof *wk->active);
-    wk->seg = line_alloc(n, sizeof *wk->seg);
+    wk->seg = line_alloc_z(n, sizeof *wk->seg, 0); /* zeroed below */
     wk->list = line_alloc(n, sizeof *wk->list);
     wk->order = line_alloc(n, sizeof *wk->order);
     wk->sub = line_alloc(3 * n, sizeof *wk->sub);
@@ -2752,9 +2795,12 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
                            S->nl);
     }
     wk->row = -2;
+    /* the segs zeroed one by one, as line_alloc would, with the anchor
+     * none yet: one pass over them (4.7 MB on tests/bench_bezstroke.c's
+     * scene), where line_alloc's and this loop's were two */
     if (wk->seg)
         for (size_t k = 0; k < n; k++)
-            wk->seg[k].ja = INT_MIN;
+            wk->seg[k] = (ar_seg){.ja = INT_MIN};
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
         !wk->wind || !wk->wtmp || !wk->ev || !wk->cm || !wk->act || !wk->pend)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
