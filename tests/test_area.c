@@ -29,6 +29,8 @@
  *  - a seg's parts in the sub-bands of a band joined while its colour jump
  *    stays the same (sweep_part), three layers in one pixel against the
  *    clipper.
+ *  - the sort of a row's new pieces' keys (area_sort_new_keys) against
+ *    qsort with the rows' comparison, written here.
  *  - the rows' order of the pieces (area_piece_order's radix sort) against
  *    qsort with the comparison it replaced, written here: tops of both
  *    signs, ties, -0 and +0, tiny and huge values, keys alike in most bytes.
@@ -154,6 +156,54 @@ static void test_piece_order(void **state)
                          n, k, ord[k], pc[ord[k]].y0, it[k].id, it[k].y0);
     }
     free(pc), free(it), free(ord), free(tmp);
+}
+
+/* The order the rows sort their keys in (area.c, key_after): key rising,
+ * ties by id. */
+static int cmp_row_key(const void *a, const void *b)
+{
+    const ar_key *p = a, *q = b;
+    if (p->key != q->key)
+        return p->key < q->key ? -1 : 1;
+    return p->id < q->id ? -1 : (p->id > q->id);
+}
+
+/* area_sort_new_keys (the runs of insertion sort merged in pairs) against
+ * qsort with that comparison: every size from 0 to 300 and 5000, keys few
+ * (many ties, broken by id) or many, sorted, reversed or shuffled. */
+static void test_sort_new_keys(void **state)
+{
+    (void)state;
+    enum { N = 5000 };
+    ar_key *k = malloc(N * sizeof *k), *want = malloc(N * sizeof *want);
+    ar_key *tmp = malloc(N * sizeof *tmp);
+    uint64_t rs = 0x9e3779b97f4a7c15ull;
+    assert_non_null(k), assert_non_null(want), assert_non_null(tmp);
+    for (size_t n = 0; n <= N; n = n < 300 ? n + 1 : N) {
+        for (int kind = 0; kind < 4; kind++) {
+            for (size_t a = 0; a < n; a++) {
+                uint64_t r = order_rng(&rs);
+                double key = kind == 0 ? (double)(r % 7) - 1.0 : (double)(r >> 11) * 0x1p-40;
+                if (kind == 2)
+                    key = (double)a; /* sorted */
+                if (kind == 3)
+                    key = (double)(n - a); /* reversed */
+                /* ids distinct (an odd factor), in no order */
+                k[a] = (ar_key){key, (uint32_t)a * 2654435761u, (uint32_t)a};
+            }
+            memcpy(want, k, n * sizeof *k);
+            if (n)
+                qsort(want, n, sizeof *want, cmp_row_key);
+            area_sort_new_keys(k, n, tmp);
+            for (size_t a = 0; a < n; a++)
+                if (k[a].key != want[a].key || k[a].id != want[a].id || k[a].idx != want[a].idx)
+                    fail_msg("%zu keys of kind %d: place %zu holds (%g, %u), qsort's (%g, %u)",
+                             n, kind, a, k[a].key, k[a].id, want[a].key, want[a].id);
+        }
+        if (n == N)
+            break;
+    }
+    free(k), free(want), free(tmp);
 }
 
 /* ---- crow ---- */
@@ -839,4 +889,5 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_crowded_cluster),
              cmocka_unit_test(test_crowded_crossings),
              cmocka_unit_test(test_piece_order),
-             cmocka_unit_test(test_sweep_parts))
+             cmocka_unit_test(test_sweep_parts),
+             cmocka_unit_test(test_sort_new_keys))
