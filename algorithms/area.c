@@ -2548,15 +2548,23 @@ static void yt_node(const aa_piece *p, double t, double nd[4])
     nd[0] = t, nd[1] = e[0] + e[1], nd[2] = 1.0 / e[2], nd[3] = 0.0;
 }
 
-static int yt_push(ar_state *S, const double nd[4], int ok)
+/* More room for the tables' nodes (load_pieces gives them all they need
+ * at once: not taken) */
+static __attribute__((noinline, cold)) int yt_grow(ar_state *S)
 {
-    if (S->nyt == S->capyt) {
-        size_t cap = S->capyt ? 2 * S->capyt : 1024;
-        double *t = realloc(S->ytab, cap * 4 * sizeof *t);
-        if (!t)
-            return aa_fail(AA_ENOMEM, "out of memory for offset pieces' tables");
-        S->ytab = t, S->capyt = cap;
-    }
+    size_t cap = S->capyt ? 2 * S->capyt : 1024;
+    double *t = realloc(S->ytab, cap * 4 * sizeof *t);
+    if (!t)
+        return aa_fail(AA_ENOMEM, "out of memory for offset pieces' tables");
+    S->ytab = t, S->capyt = cap;
+    return AA_OK;
+}
+
+static inline int yt_push(ar_state *S, const double nd[4], int ok)
+{
+    int st;
+    if (S->nyt == S->capyt && (st = yt_grow(S)))
+        return st;
     double *o = S->ytab + 4 * S->nyt++;
     o[0] = nd[0], o[1] = nd[1], o[2] = nd[2], o[3] = ok ? 1.0 : 0.0;
     return AA_OK;
