@@ -2541,11 +2541,16 @@ static void state_free(ar_state *S)
 }
 
 /* A node of an offset piece's table of band lines' starts (ytab_guess) */
+static void yt_node_of(const double e[4], double t, double nd[4])
+{
+    nd[0] = t, nd[1] = e[0] + e[1], nd[2] = 1.0 / e[2], nd[3] = 0.0;
+}
+
 static void yt_node(const aa_piece *p, double t, double nd[4])
 {
     double e[4];
     aa__offset_end(&p->oc, 1, t, e);
-    nd[0] = t, nd[1] = e[0] + e[1], nd[2] = 1.0 / e[2], nd[3] = 0.0;
+    yt_node_of(e, t, nd);
 }
 
 /* More room for the tables' nodes (load_pieces gives them all they need
@@ -2636,7 +2641,7 @@ static int load_ytab(ar_state *S, ar_piece *q)
     const aa_piece *p = q->src;
     double a[4], b[4];
     yt_node(p, p->ot0, a);
-    yt_node(p, p->ot1, b);
+    yt_node_of(q->oend, p->ot1, b); /* its bottom's evaluation, load_offset's */
     q->yt0 = S->nyt;
     int dmax = yt_dmax(q);
     int st = yt_push(S, a, 0);
