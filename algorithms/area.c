@@ -2466,43 +2466,12 @@ static int gradient_refusal(const ar_state *S)
  * State
  * ------------------------------------------------------------------------ */
 
-/* ord[0..n) = the scene's pieces' indices in the rows' order, y0 rising,
- * ties by index: a radix sort, stable, of y0's bits made to order as
- * unsigned integers (-0 taken as +0, every other double's order kept; the
- * sign bit set on positives, every bit flipped on negatives) on the
- * indices in scene order, a byte at a time from the lowest, passes skipped
- * where every key has the same byte.  It took qsort's merge sort of the
- * pieces themselves (384 bytes each, a comparison a call): 4.4 M
- * instructions of the init's 79 M on tests/bench_bezstroke.c's 10,108
- * pieces.  tmp: room for 3 n. */
-void area_piece_order(const aa_piece *pc, size_t n, uint32_t *ord, uint64_t *tmp)
+static int cmp_piece(const void *a, const void *b)
 {
-    uint64_t *key = tmp, *k2 = tmp + n;
-    uint32_t *o2 = (uint32_t *)(tmp + 2 * n);
-    for (size_t k = 0; k < n; k++) {
-        double y = pc[k].y0 + 0.0; /* -0 to +0 */
-        uint64_t b;
-        memcpy(&b, &y, sizeof b);
-        key[k] = b >> 63 ? ~b : b | (uint64_t)1 << 63;
-        ord[k] = (uint32_t)k;
-    }
-    for (int sh = 0; sh < 64; sh += 8) {
-        size_t cnt[256] = {0};
-        for (size_t k = 0; k < n; k++)
-            cnt[key[k] >> sh & 255]++;
-        if (cnt[key[0] >> sh & 255] == n)
-            continue; /* one byte for all: the order stays */
-        for (size_t c = 0, at = 0; c < 256; c++) {
-            size_t m = cnt[c];
-            cnt[c] = at, at += m;
-        }
-        for (size_t k = 0; k < n; k++) {
-            size_t at = cnt[key[k] >> sh & 255]++;
-            k2[at] = key[k], o2[at] = ord[k];
-        }
-        memcpy(key, k2, n * sizeof *key);
-        memcpy(ord, o2, n * sizeof *ord);
-    }
+    const ar_piece *p = a, *q = b;
+    if (p->y0 != q->y0)
+        return p->y0 < q->y0 ? -1 : 1;
+    return p->id < q->id ? -1 : (p->id > q->id);
 }
 
 static void state_free(ar_state *S)
@@ -2667,39 +2636,24 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
     const aa_piece *pc = aa_scene_pieces(scene, &n);
     if (n >= UINT32_MAX)
         return aa_fail(AA_EINVAL, "area: %zu pieces, more than it indexes", n);
-    /* each zeroed as it is filled below (calloc's pass over them all
-     * first, then the loop's, read and wrote 3.9 MB twice on
-     * tests/bench_bezstroke.c's scene) */
-    if (n && !(S->piece = malloc(n * sizeof *S->piece)))
+    if (n && !(S->piece = calloc(n, sizeof *S->piece)))
         return aa_fail(AA_ENOMEM, "out of memory for %zu pieces", n);
     S->npieces = n;
     S->plain = 1;
     int st = area_quad_init(&S->quad);
     if (st)
         return st;
-    uint32_t *ord = malloc((n ? n : 1) * sizeof *ord);
-    uint64_t *tmp = malloc((n ? 3 * n : 1) * sizeof *tmp);
-    if (!ord || !tmp) {
-        free(ord), free(tmp);
-        return aa_fail(AA_ENOMEM, "out of memory for %zu pieces", n);
-    }
-    if (n)
-        area_piece_order(pc, n, ord, tmp);
-    free(tmp);
     /* the panels' room for PAN_GUESS a piece at once (grown as needed:
      * each reallocation copied them all) */
     size_t noff = 0;
     for (size_t k = 0; k < n; k++)
         noff += pc[k].kind == AA_PIECE_OFFSET;
-    if (noff && !(S->pan = malloc(noff * PAN_GUESS * sizeof *S->pan))) {
-        free(ord);
+    if (noff && !(S->pan = malloc(noff * PAN_GUESS * sizeof *S->pan)))
         return aa_fail(AA_ENOMEM, "out of memory for offset pieces' panels");
-    }
     S->cappan = noff * PAN_GUESS;
     for (size_t k = 0; k < n; k++) {
-        const aa_piece *p = &pc[ord[k]];
+        const aa_piece *p = &pc[k];
         ar_piece *q = &S->piece[k];
-        *q = (ar_piece){0};
         long double x0 = p->x0, cx = p->cx, x1 = p->x1, y0 = p->y0, cy = p->cy, y1 = p->y1;
         q->flat = p->kind == AA_PIECE_FLAT;
         q->line = p->kind == AA_PIECE_LINE || p->kind == AA_PIECE_FLAT;
@@ -2709,7 +2663,7 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
         S->plain &= !q->curved;
         q->src = p;
         if (p->kind == AA_PIECE_OFFSET && (st = load_offset(S, q, p)))
-            break;
+            return st;
         q->x0 = x0, q->y0l = y0;
         q->dx = q->dy = 0;
         if (q->cubic) {
@@ -2735,11 +2689,8 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
             q->k6 = -0.5 * p->eb * p->er;
         q->dir = p->dir;
         q->layer = p->layer;
-        q->id = ord[k];
+        q->id = (uint32_t)k;
     }
-    free(ord);
-    if (st)
-        return st;
     /* the tables' room at once, at most a node where yt_rec starts and two
      * a leaf, 2^dmax leaves (each reallocation copied the nodes: 1.9 M
      * instructions of the init on tests/bench_bezstroke.c's scene) */
@@ -2760,6 +2711,8 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
             S->piece[k].pan = S->pan + S->piece[k].pan0;
             S->piece[k].ytab = S->ytab + 4 * S->piece[k].yt0;
         }
+    if (n)
+        qsort(S->piece, n, sizeof *S->piece, cmp_piece);
     return AA_OK;
 }
 
@@ -2788,22 +2741,16 @@ static int load_colours(ar_state *S, const aa_scene *scene)
     return AA_OK;
 }
 
-/* n items of `size` bytes on whole cache lines of their own, zeroed if
- * `zero`. */
-static void *line_alloc_z(size_t n, size_t size, int zero)
+/* n zeroed items of `size` bytes on whole cache lines of their own. */
+static void *line_alloc(size_t n, size_t size)
 {
     if (n && size > (SIZE_MAX - 64) / n)
         return NULL;
     size_t bytes = (n * size + 63) & ~(size_t)63;
     void *p = aligned_alloc(64, bytes ? bytes : 64);
-    if (p && zero)
+    if (p)
         memset(p, 0, bytes ? bytes : 64);
     return p;
-}
-
-static void *line_alloc(size_t n, size_t size)
-{
-    return line_alloc_z(n, size, 1);
 }
 
 static int worker_alloc(ar_worker *wk, const ar_state *S)
@@ -2811,7 +2758,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     size_t n = S->npieces ? S->npieces : 1, cells = ((size_t)S->w + 2) * (size_t)S->nch;
     size_t nl = (size_t)(S->nl > 0 ? S->nl : 1);
     wk->active = line_alloc(n, sizeof *wk->active);
-    wk->seg = line_alloc_z(n, sizeof *wk->seg, 0); /* zeroed below */
+    wk->seg = line_alloc(n, sizeof *wk->seg);
     wk->list = line_alloc(n, sizeof *wk->list);
     wk->order = line_alloc(n, sizeof *wk->order);
     wk->sub = line_alloc(3 * n, sizeof *wk->sub);
@@ -2842,12 +2789,9 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
                            S->nl);
     }
     wk->row = -2;
-    /* the segs zeroed one by one, as line_alloc would, with the anchor
-     * none yet: one pass over them (4.7 MB on tests/bench_bezstroke.c's
-     * scene), where line_alloc's and this loop's were two */
     if (wk->seg)
         for (size_t k = 0; k < n; k++)
-            wk->seg[k] = (ar_seg){.ja = INT_MIN};
+            wk->seg[k].ja = INT_MIN;
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
         !wk->wind || !wk->wtmp || !wk->ev || !wk->cm || !wk->act || !wk->pend)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,

@@ -696,9 +696,6 @@ int area_cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, in
 int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                              const int *w);
 
-/* The rows' order of the scene's n pieces (area.c): ord[k] the index of
- * the k-th, y0 rising, ties by index (tmp: room for 3 n). */
-void area_piece_order(const aa_piece *pc, size_t n, uint32_t *ord, uint64_t *tmp);
 /* k[0..n) sorted by (key, id), ascending (tmp: room for n): the row's
  * pieces new in its band (area.c, merge_keys) */
 void area_sort_new_keys(ar_key *k, size_t n, ar_key *tmp);

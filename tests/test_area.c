@@ -31,9 +31,6 @@
  *    clipper.
  *  - the sort of a row's new pieces' keys (area_sort_new_keys) against
  *    qsort with the rows' comparison, written here.
- *  - the rows' order of the pieces (area_piece_order's radix sort) against
- *    qsort with the comparison it replaced, written here: tops of both
- *    signs, ties, -0 and +0, tiny and huge values, keys alike in most bytes.
  */
 #include "area_internal.h"
 #include "bench.h"
@@ -96,66 +93,12 @@ static double check_reference(const char *what, const aa_scene *scene, int w, in
     return worst;
 }
 
-/* ---- the pieces' order ---- */
-
-typedef struct order_item {
-    double y0;
-    uint32_t id;
-} order_item;
-
-/* The order area.c took by qsort before area_piece_order: y0 rising
- * (-0 == +0), ties by the scene's index. */
-static int cmp_order_item(const void *a, const void *b)
-{
-    const order_item *p = a, *q = b;
-    if (p->y0 != q->y0)
-        return p->y0 < q->y0 ? -1 : 1;
-    return p->id < q->id ? -1 : (p->id > q->id);
-}
+/* ---- the rows' sorts ---- */
 
 static uint64_t order_rng(uint64_t *s)
 {
     *s ^= *s << 13, *s ^= *s >> 7, *s ^= *s << 17;
     return *s;
-}
-
-static void test_piece_order(void **state)
-{
-    (void)state;
-    enum { N = 6000 };
-    aa_piece *pc = calloc(N, sizeof *pc);
-    order_item *it = malloc(N * sizeof *it);
-    uint32_t *ord = malloc(N * sizeof *ord);
-    uint64_t *tmp = malloc(3 * N * sizeof *tmp), rs = 88172645463325252ull;
-    assert_non_null(pc), assert_non_null(it), assert_non_null(ord), assert_non_null(tmp);
-    /* five scenes: sizes 1, 2, 17, 1000 and N, each y0 drawn from a kind */
-    const size_t sizes[5] = {1, 2, 17, 1000, N};
-    for (int sc = 0; sc < 5; sc++) {
-        size_t n = sizes[sc];
-        for (size_t k = 0; k < n; k++) {
-            uint64_t r = order_rng(&rs);
-            double u = (double)(r >> 11) * 0x1p-53, y;
-            switch (r % 8) {
-            case 0: y = floor(u * 16.0) - 8.0; break;      /* ties, both signs */
-            case 1: y = (r >> 3) & 1 ? 0.0 : -0.0; break;  /* the two zeros */
-            case 2: y = (u - 0.5) * 1e-300; break;         /* tiny */
-            case 3: y = (u - 0.5) * 1e300; break;          /* huge */
-            case 4: y = 700.0 + u * 1e-12; break;          /* alike but in low bytes */
-            case 5: y = -(700.0 + u * 1e-12); break;
-            default: y = (u - 0.25) * 1024.0; break;       /* a scene's rows */
-            }
-            pc[k].y0 = y;
-            it[k] = (order_item){y, (uint32_t)k};
-        }
-        qsort(it, n, sizeof *it, cmp_order_item);
-        area_piece_order(pc, n, ord, tmp);
-        for (size_t k = 0; k < n; k++)
-            if (ord[k] != it[k].id)
-                fail_msg("scene of %zu: place %zu holds piece %u (y0 %.17g), qsort's %u (y0 "
-                         "%.17g)",
-                         n, k, ord[k], pc[ord[k]].y0, it[k].id, it[k].y0);
-    }
-    free(pc), free(it), free(ord), free(tmp);
 }
 
 /* The order the rows sort their keys in (area.c, key_after): key rising,
@@ -888,6 +831,5 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_filters_refused),
              cmocka_unit_test(test_crowded_cluster),
              cmocka_unit_test(test_crowded_crossings),
-             cmocka_unit_test(test_piece_order),
              cmocka_unit_test(test_sweep_parts),
              cmocka_unit_test(test_sort_new_keys))
