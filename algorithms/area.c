@@ -996,6 +996,7 @@ static void band_fields(ar_seg *s, int j)
     s->va = p->y0 > j ? p->y0 - j : 0.0;
     s->vb = p->y1 < j + 1.0 ? p->y1 - j : 1.0;
     s->bv[0] = s->bv[1] = NAN, s->bn = 0;
+    s->wyb = NAN;
 }
 
 /* tau (*t) and u (*u) where v(tau) = v in the band, for a sub-band's
@@ -1265,8 +1266,60 @@ static void resolve(const ar_row *r, int lo, int hi, const double *cin)
         wk->cov[(size_t)(b + 1) * nch + ch] = 0.0;
 }
 
+/* Add s's kept part (sweep_part) times its colour jump. */
+static void part_flush(ar_worker *wk, ar_seg *s, int nch, int W)
+{
+    double t2, u2;
+    if (s->p->curved && s->p->offset) /* its start's v, as sub_end kept it */
+        offset_keep(s, s->wt, s->wv);
+    sub_end(s, s->wyb, &t2, &u2);
+    accumulate(wk, s, s->wt, t2, s->wu, u2, s->wdc, nch, W);
+}
+
+/* s's part in the sub-band [ya, yb] with colour jump dc.  The area right
+ * of a part is the sum of the areas right of its pieces, so where the part
+ * kept from the sub-bands above ends at ya with the same jump (its
+ * neighbours' order changed, not the windings on its two sides) it is
+ * lengthened, and added once (part_flush) when the jump changes, a
+ * sub-band is missed or the cluster ends (sweep_end): one quadrature and
+ * one point evaluated where there were one a sub-band.  On
+ * tests/bench_bezstroke.c's scene at 1024 px 8,651 of the 22,664 parts of
+ * the sub-bands' sweeps continued the part above, at 256 px 15,051 of
+ * 39,922. */
+static void sweep_part(ar_worker *wk, ar_seg *s, uint32_t idx, const double *dc, double ya,
+                       double yb, int nch, int W)
+{
+    if (s->wyb == ya && s->wdc[0] == dc[0] && s->wdc[1] == dc[1] && s->wdc[2] == dc[2]) {
+        s->wyb = yb;
+        return;
+    }
+    if (s->wyb == s->wyb)
+        part_flush(wk, s, nch, W);
+    else
+        wk->pend[wk->npend++] = idx;
+    sub_end(s, ya, &s->wt, &s->wu);
+    if (s->p->curved && s->p->offset)
+        s->wv = s->vv[s->vn ^ 1]; /* the v sub_end kept last (offset_keep) */
+    s->wya = ya, s->wyb = yb;
+    s->wdc[0] = dc[0], s->wdc[1] = dc[1], s->wdc[2] = dc[2];
+}
+
+/* The cluster's kept parts added (after its last sub-band). */
+static void sweep_end(const ar_row *r)
+{
+    ar_worker *wk = r->wk;
+    for (size_t k = 0; k < wk->npend; k++) {
+        ar_seg *s = &wk->seg[wk->pend[k]];
+        if (s->wyb == s->wyb)
+            part_flush(wk, s, r->S->nch, r->W);
+        s->wyb = NAN;
+    }
+    wk->npend = 0;
+}
+
 /* Add, in order, the colour jump across each seg in keys[0..n) (sorted
- * along x) times its area from v = ya to yb.  w holds the windings left of
+ * along x) times its area from v = ya to yb (whole: the band's, at once;
+ * else a sub-band's, kept by sweep_part).  w holds the windings left of
  * the first; c their colour. */
 static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const double *c,
                   double ya, double yb, int whole)
@@ -1281,14 +1334,10 @@ static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const d
         c = nx;
         if (dc[0] == 0.0 && dc[1] == 0.0 && dc[2] == 0.0)
             continue;
-        if (whole) {
+        if (whole)
             accumulate(r->wk, s, s->ta, s->tb, s->ua, s->ub, dc, S->nch, r->W);
-        } else {
-            double t1, t2, u1, u2;
-            sub_end(s, ya, &t1, &u1);
-            sub_end(s, yb, &t2, &u2);
-            accumulate(r->wk, s, t1, t2, u1, u2, dc, S->nch, r->W);
-        }
+        else
+            sweep_part(r->wk, &seg[keys[k].idx], keys[k].idx, dc, ya, yb, S->nch, r->W);
     }
 }
 
@@ -1782,6 +1831,7 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
             sweep(r, list, m, wk->wtmp, cin, ya, yb, 0);
         }
     }
+    sweep_end(r);
     resolve(r, lo, hi, cin);
 }
 
@@ -2134,6 +2184,40 @@ static void keep_order(ar_worker *wk, const ar_key *keys, size_t n)
         act[k] = keys[k].idx;
 }
 
+/* k[0..n) sorted by (key, id) (tmp: room for n), where its order is far
+ * from x's (the pieces new in a band, in path order): runs of RUN_KEYS by
+ * insertion, then merged in pairs.  sort_keys' insertion sort spent its
+ * budget of moves on them first, then its heapsort sorted them again: 2.5 M
+ * instructions a render on tests/bench_bezstroke.c's scene at 1024 px.  The
+ * same order, (key, id) being a total one. */
+#define RUN_KEYS 8
+void area_sort_new_keys(ar_key *k, size_t n, ar_key *tmp)
+{
+    if (n <= 2 * RUN_KEYS) {
+        sort_keys(k, n);
+        return;
+    }
+    for (size_t a = 0; a < n; a += RUN_KEYS)
+        sort_keys(k + a, n - a < RUN_KEYS ? n - a : RUN_KEYS);
+    ar_key *src = k, *dst = tmp;
+    for (size_t w = RUN_KEYS; w < n; w *= 2) {
+        for (size_t a = 0; a < n; a += 2 * w) {
+            size_t i = a, m = a + w < n ? a + w : n, j = m, e = a + 2 * w < n ? a + 2 * w : n;
+            size_t o = a;
+            while (i < m && j < e)
+                dst[o++] = key_after(&src[i], &src[j]) ? src[j++] : src[i++];
+            while (i < m)
+                dst[o++] = src[i++];
+            while (j < e)
+                dst[o++] = src[j++];
+        }
+        ar_key *t = src;
+        src = dst, dst = t;
+    }
+    if (src != k)
+        memcpy(k, src, n * sizeof *k);
+}
+
 /* keys[0..n) sorted by (key, id) (`tmp`: room for n): the first nold (the pieces carried from the rows
  * before, kept in their x order there: few out of place) and the rest (the
  * pieces new in the band, in path order) sorted apart, then merged.  The
@@ -2143,7 +2227,7 @@ static void keep_order(ar_worker *wk, const ar_key *keys, size_t n)
 static void merge_keys(ar_key *keys, size_t nold, size_t n, ar_key *tmp)
 {
     sort_keys(keys, nold);
-    sort_keys(keys + nold, n - nold);
+    area_sort_new_keys(keys + nold, n - nold, tmp);
     if (nold == 0 || nold == n || !key_after(&keys[nold - 1], &keys[nold]))
         return;
     size_t a = 0, b = nold, k = 0;
@@ -2405,6 +2489,7 @@ static void state_free(ar_state *S)
         free(wk->wtmp);
         free(wk->ev);
         free(wk->act);
+        free(wk->pend);
         free(wk->cm);
         free(wk->ckey);
         free(wk->key);
@@ -2425,22 +2510,35 @@ static void state_free(ar_state *S)
 }
 
 /* A node of an offset piece's table of band lines' starts (ytab_guess) */
+static void yt_node_of(const double e[4], double t, double nd[4])
+{
+    nd[0] = t, nd[1] = e[0] + e[1], nd[2] = 1.0 / e[2], nd[3] = 0.0;
+}
+
 static void yt_node(const aa_piece *p, double t, double nd[4])
 {
     double e[4];
     aa__offset_end(&p->oc, 1, t, e);
-    nd[0] = t, nd[1] = e[0] + e[1], nd[2] = 1.0 / e[2], nd[3] = 0.0;
+    yt_node_of(e, t, nd);
 }
 
-static int yt_push(ar_state *S, const double nd[4], int ok)
+/* More room for the tables' nodes (load_pieces gives them all they need
+ * at once: not taken) */
+static __attribute__((noinline, cold)) int yt_grow(ar_state *S)
 {
-    if (S->nyt == S->capyt) {
-        size_t cap = S->capyt ? 2 * S->capyt : 1024;
-        double *t = realloc(S->ytab, cap * 4 * sizeof *t);
-        if (!t)
-            return aa_fail(AA_ENOMEM, "out of memory for offset pieces' tables");
-        S->ytab = t, S->capyt = cap;
-    }
+    size_t cap = S->capyt ? 2 * S->capyt : 1024;
+    double *t = realloc(S->ytab, cap * 4 * sizeof *t);
+    if (!t)
+        return aa_fail(AA_ENOMEM, "out of memory for offset pieces' tables");
+    S->ytab = t, S->capyt = cap;
+    return AA_OK;
+}
+
+static inline int yt_push(ar_state *S, const double nd[4], int ok)
+{
+    int st;
+    if (S->nyt == S->capyt && (st = yt_grow(S)))
+        return st;
     double *o = S->ytab + 4 * S->nyt++;
     o[0] = nd[0], o[1] = nd[1], o[2] = nd[2], o[3] = ok ? 1.0 : 0.0;
     return AA_OK;
@@ -2493,6 +2591,17 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
     return AA_OK;
 }
 
+/* The most halvings of an offset piece's table: to about two rows an
+ * interval (YT_ROWS), at most YT_DEPTH (-1: none) */
+static int yt_dmax(const ar_piece *q)
+{
+    double rows = ceil(q->y1) - floor(q->y0), span = 0.5 * YT_ROWS; /* YT_ROWS 2^dmax */
+    int dmax = -1;
+    while (dmax < YT_DEPTH && span < rows)
+        dmax++, span *= 2.0;
+    return dmax;
+}
+
 /* An offset piece's table of band lines' starts, appended to S->ytab
  * (after every piece's panels: the two arrays grown in turns were copied
  * on most of their reallocations) */
@@ -2501,13 +2610,9 @@ static int load_ytab(ar_state *S, ar_piece *q)
     const aa_piece *p = q->src;
     double a[4], b[4];
     yt_node(p, p->ot0, a);
-    yt_node(p, p->ot1, b);
+    yt_node_of(q->oend, p->ot1, b); /* its bottom's evaluation, load_offset's */
     q->yt0 = S->nyt;
-    /* halvings to about two rows an interval (YT_ROWS) */
-    double rows = ceil(q->y1) - floor(q->y0);
-    int dmax = -1;
-    while (dmax < YT_DEPTH && ldexp(YT_ROWS, dmax) < rows)
-        dmax++;
+    int dmax = yt_dmax(q);
     int st = yt_push(S, a, 0);
     if (st || (st = yt_rec(S, p, a, b, 0, dmax)))
         return st;
@@ -2520,6 +2625,10 @@ static int load_ytab(ar_state *S, ar_piece *q)
         }
     return AA_OK;
 }
+
+/* Panels an offset piece, the first guess at their room (4.4 on
+ * tests/bench_bezstroke.c's scene at 1024 px, 2.4 at 256 px) */
+#define PAN_GUESS 6
 
 static int load_pieces(ar_state *S, const aa_scene *scene)
 {
@@ -2534,6 +2643,14 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
     int st = area_quad_init(&S->quad);
     if (st)
         return st;
+    /* the panels' room for PAN_GUESS a piece at once (grown as needed:
+     * each reallocation copied them all) */
+    size_t noff = 0;
+    for (size_t k = 0; k < n; k++)
+        noff += pc[k].kind == AA_PIECE_OFFSET;
+    if (noff && !(S->pan = malloc(noff * PAN_GUESS * sizeof *S->pan)))
+        return aa_fail(AA_ENOMEM, "out of memory for offset pieces' panels");
+    S->cappan = noff * PAN_GUESS;
     for (size_t k = 0; k < n; k++) {
         const aa_piece *p = &pc[k];
         ar_piece *q = &S->piece[k];
@@ -2574,6 +2691,18 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
         q->layer = p->layer;
         q->id = (uint32_t)k;
     }
+    /* the tables' room at once, at most a node where yt_rec starts and two
+     * a leaf, 2^dmax leaves (each reallocation copied the nodes: 1.9 M
+     * instructions of the init on tests/bench_bezstroke.c's scene) */
+    size_t nodes = 0;
+    for (size_t k = 0; k < n; k++)
+        if (S->piece[k].offset) {
+            int d = yt_dmax(&S->piece[k]);
+            nodes += 1 + ((size_t)2 << (d > 0 ? d : 0));
+        }
+    if (nodes && !(S->ytab = malloc(nodes * 4 * sizeof *S->ytab)))
+        return aa_fail(AA_ENOMEM, "out of memory for offset pieces' tables");
+    S->capyt = nodes;
     for (size_t k = 0; k < n; k++)
         if (S->piece[k].offset && (st = load_ytab(S, &S->piece[k])))
             return st;
@@ -2639,6 +2768,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->wtmp = line_alloc(nl, sizeof *wk->wtmp);
     wk->ev = line_alloc(CM_MAX_EVENTS, sizeof *wk->ev);
     wk->act = line_alloc(n, sizeof *wk->act);
+    wk->pend = line_alloc(n, sizeof *wk->pend);
     wk->cm = line_alloc(CM_MAX_EDGES + 2, sizeof *wk->cm);
     if (S->composite) {
         wk->ckey = line_alloc((size_t)AR_CACHE_ENTRIES * (size_t)S->nwords, sizeof *wk->ckey);
@@ -2663,7 +2793,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
         for (size_t k = 0; k < n; k++)
             wk->seg[k].ja = INT_MIN;
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
-        !wk->wind || !wk->wtmp || !wk->ev || !wk->cm || !wk->act)
+        !wk->wind || !wk->wtmp || !wk->ev || !wk->cm || !wk->act || !wk->pend)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
                        S->w);
     return AA_OK;

@@ -172,6 +172,10 @@ typedef struct ar_seg {
      * bottom is the next one's top, and its order and its sweep both ask. */
     double bv[2], bt[2], bu[2], bx[2], bk[2];
     int bn;
+    /* a sub-band sweep's part not yet added (area.c, sweep_part): from v =
+     * wya (tau wt, u wu, an offset piece's v there wv) down to wyb (NAN:
+     * none, set so by band_fields), its colour jump wdc */
+    double wya, wyb, wt, wu, wv, wdc[3];
     /* the current band */
     double V;
     double ta, tb;  /* tau at the band's (or piece's) top and bottom */
@@ -214,6 +218,8 @@ typedef struct ar_worker {
     int *wind, *wtmp;
     double *ev;
     uint32_t *act; /* segs whose extent reaches the current one */
+    uint32_t *pend; /* the cluster's segs with a part kept by sweep_part */
+    size_t npend;
     cm_level *cm;
     uint64_t expensive;
     /* a scene that composites (ar_state.composite): the colours of the
@@ -689,6 +695,10 @@ int area_cluster_catmull(const ar_row *r, const ar_key *in, size_t n, int lo, in
  * splits, each region's colour the scene's composite. */
 int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                              const int *w);
+
+/* k[0..n) sorted by (key, id), ascending (tmp: room for n): the row's
+ * pieces new in its band (area.c, merge_keys) */
+void area_sort_new_keys(ar_key *k, size_t n, ar_key *tmp);
 
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
  * (*out to be freed), or appended to an array (*n of *cap used, grown

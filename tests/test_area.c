@@ -26,7 +26,13 @@
  *  - crowded clusters (more than AR_CROWD segs, tested for crossings by
  *    neighbours along x): 2048 arcs 1e-5 apart against the closed form, and
  *    120 crossing segs in one cluster against the reference.
+ *  - a seg's parts in the sub-bands of a band joined while its colour jump
+ *    stays the same (sweep_part), three layers in one pixel against the
+ *    clipper.
+ *  - the sort of a row's new pieces' keys (area_sort_new_keys) against
+ *    qsort with the rows' comparison, written here.
  */
+#include "area_internal.h"
 #include "bench.h"
 #include "oracle.h"
 #include "scenes.h"
@@ -85,6 +91,62 @@ static double check_reference(const char *what, const aa_scene *scene, int w, in
     print_message("%-48s %4dx%-4d max |area - reference| %.2e\n", what, w, h, worst);
     aa_image_free(&ref);
     return worst;
+}
+
+/* ---- the rows' sorts ---- */
+
+static uint64_t order_rng(uint64_t *s)
+{
+    *s ^= *s << 13, *s ^= *s >> 7, *s ^= *s << 17;
+    return *s;
+}
+
+/* The order the rows sort their keys in (area.c, key_after): key rising,
+ * ties by id. */
+static int cmp_row_key(const void *a, const void *b)
+{
+    const ar_key *p = a, *q = b;
+    if (p->key != q->key)
+        return p->key < q->key ? -1 : 1;
+    return p->id < q->id ? -1 : (p->id > q->id);
+}
+
+/* area_sort_new_keys (the runs of insertion sort merged in pairs) against
+ * qsort with that comparison: every size from 0 to 300 and 5000, keys few
+ * (many ties, broken by id) or many, sorted, reversed or shuffled. */
+static void test_sort_new_keys(void **state)
+{
+    (void)state;
+    enum { N = 5000 };
+    ar_key *k = malloc(N * sizeof *k), *want = malloc(N * sizeof *want);
+    ar_key *tmp = malloc(N * sizeof *tmp);
+    uint64_t rs = 0x9e3779b97f4a7c15ull;
+    assert_non_null(k), assert_non_null(want), assert_non_null(tmp);
+    for (size_t n = 0; n <= N; n = n < 300 ? n + 1 : N) {
+        for (int kind = 0; kind < 4; kind++) {
+            for (size_t a = 0; a < n; a++) {
+                uint64_t r = order_rng(&rs);
+                double key = kind == 0 ? (double)(r % 7) - 1.0 : (double)(r >> 11) * 0x1p-40;
+                if (kind == 2)
+                    key = (double)a; /* sorted */
+                if (kind == 3)
+                    key = (double)(n - a); /* reversed */
+                /* ids distinct (an odd factor), in no order */
+                k[a] = (ar_key){key, (uint32_t)a * 2654435761u, (uint32_t)a};
+            }
+            memcpy(want, k, n * sizeof *k);
+            if (n)
+                qsort(want, n, sizeof *want, cmp_row_key);
+            area_sort_new_keys(k, n, tmp);
+            for (size_t a = 0; a < n; a++)
+                if (k[a].key != want[a].key || k[a].id != want[a].id || k[a].idx != want[a].idx)
+                    fail_msg("%zu keys of kind %d: place %zu holds (%g, %u), qsort's (%g, %u)",
+                             n, kind, a, k[a].key, k[a].id, want[a].key, want[a].id);
+        }
+        if (n == N)
+            break;
+    }
+    free(k), free(want), free(tmp);
 }
 
 /* ---- crow ---- */
@@ -321,6 +383,39 @@ static void test_polygon_layers(void **state)
     for (int z = 0; z < 3; z++)
         against_clipper("three polygon layers", s, sizes[z][0], sizes[z][1], 2, layers_want, &L,
                         tol);
+    aa_scene_free(s);
+}
+
+/* The sub-bands' sweep keeps a seg's part while its colour jump stays the
+ * same from one sub-band to the next, and adds it once (area.c,
+ * sweep_part): three layers as above in one pixel, so the band is cut at
+ * every vertex and crossing.  Back, C's long left edge crosses the whole
+ * band, its jump the same above and below B's vertices and crossings (its
+ * parts joined across them), hidden in the middle heights by the front
+ * triangle A, whose vertex pokes over it (a jump of 0 there: its parts
+ * above and below apart); B (even-odd) crosses both.  Against the
+ * clipper, at 1x1 and 4x3. */
+static void test_sweep_parts(void **state)
+{
+    (void)state;
+    layers L = {.A = {3, {0.05, 0.55, 0.05}, {0.35, 0.5, 0.65}},
+                .B = {3, {0.2, 0.7, 0.25}, {0.1, 0.25, 0.85}},
+                .C = {4, {0.3, 0.95, 0.9, 0.45}, {0.02, 0.05, 0.95, 0.98}},
+                .colours = {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}},
+                .grey = {{0.25, 0.25, 0.25}}};
+    L.AB = oracle_poly_intersect(&L.A, &L.B), L.AC = oracle_poly_intersect(&L.A, &L.C);
+    L.BC = oracle_poly_intersect(&L.B, &L.C), L.ABC = oracle_poly_intersect(&L.AB, &L.C);
+    const oracle_poly *polys[3] = {&L.A, &L.B, &L.C};
+    aa_scene *s = aa_scene_new(L.grey);
+    for (int l = 0; l < 3; l++) {
+        assert_int_equal(
+            aa_scene_layer(s, L.colours[l], l == 1 ? AA_FILL_EVENODD : AA_FILL_NONZERO), AA_OK);
+        scenes_add_poly(s, polys[l]);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    const double tol[3] = {1e-13, 1e-13, 1e-13};
+    against_clipper("sub-bands' parts joined", s, 1, 1, 1, layers_want, &L, tol);
+    against_clipper("sub-bands' parts joined", s, 4, 3, 2, layers_want, &L, tol);
     aa_scene_free(s);
 }
 
@@ -735,4 +830,6 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_threads_identical),
              cmocka_unit_test(test_filters_refused),
              cmocka_unit_test(test_crowded_cluster),
-             cmocka_unit_test(test_crowded_crossings))
+             cmocka_unit_test(test_crowded_crossings),
+             cmocka_unit_test(test_sweep_parts),
+             cmocka_unit_test(test_sort_new_keys))
