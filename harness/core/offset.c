@@ -378,8 +378,8 @@ static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *
 }
 
 /* The offset's normal terms d w / L for the point, as hi + lo (x in
- * n[0], y in n[1]), and its derivative (dp, in double; NULL: not
- * wanted): in double, d w / L is off by up to 8 units of its last place (1e-15 px at
+ * n[0], y in n[1]), and its first and second derivatives (dp[0..1],
+ * dp[2..3], in double; NULL: not wanted): in double, d w / L is off by up to 8 units of its last place (1e-15 px at
  * a half width of 1.25 px on tests/bench_bezstroke.c's scene: B' rounded
  * where its terms cancel, then the square root, the division and the
  * products), so here each step is exact or carries its error: B' by
@@ -418,22 +418,30 @@ static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_c
         double eh, nh = dd_two_prod(oc->d, fh, &eh, fma);
         n[c][0] = nh, n[c][1] = eh + oc->d * fl;
     }
-    if (dp) { /* the derivative, in double: m (B' (1 - d c / L^3)) */
+    if (dp) {
+        /* the derivative and the second, in double: P' = B' g, g = 1 - d
+         * k, k = c / L^3, and P'' = B'' g + B' g', g' = -d k', k' = c' /
+         * L^3 - 3 c (B'.B'') / L^5, c' = B' x B''' */
         const double *b = oc->b, *m = oc->m;
         double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
         double ux = u[0][0], uy = u[1][0], il = 1 / lh, cc = ux * vy - uy * vx;
-        double g = 1 - oc->d * cc * (il * il * il), qx = ux * g, qy = uy * g;
+        double il3 = il * il * il, g = 1 - oc->d * cc * il3, qx = ux * g, qy = uy * g;
+        double cp = 6 * (ux * b[7] - uy * b[3]), dot = ux * vx + uy * vy;
+        double gp = -oc->d * il3 * (cp - 3 * cc * dot * (il * il));
+        double rx = vx * g + ux * gp, ry = vy * g + uy * gp;
         dp[0] = m[0] * qx + m[2] * qy, dp[1] = m[1] * qx + m[3] * qy;
+        dp[2] = m[0] * rx + m[2] * ry, dp[3] = m[1] * rx + m[3] * ry;
     }
 }
 
 /* The point at t, each coordinate as the base's hi + lo plus the normal
  * term's (p[c][0..3]: base hi, normal hi, base lo, normal lo), and its
- * derivative dp in double (NULL: not wanted) */
+ * first and second derivatives dp in double (dd_normal_pt's; NULL: not
+ * wanted) */
 static __attribute__((always_inline)) inline void dd_point_parts(const aa_offset_curve *oc,
                                                                 const aa__offset_fix *fx,
                                                                 double t, int fma, double p[2][4],
-                                                                double dp[2])
+                                                                double dp[4])
 {
     double n[2][2];
     dd_normal_pt(oc, fx, t, fma, n, dp);
@@ -443,13 +451,15 @@ static __attribute__((always_inline)) inline void dd_point_parts(const aa_offset
     }
 }
 
-/* The point's coordinate from dd_point_parts' parts, moved by h times its
- * slope s (the step from t to the root rounded to double: at most 1e-11,
- * below), in long double (its last bit 5.6e-17 at 1000 px) for callers
- * that subtract the cell and the band from it */
-static inline long double dd_coord(const double *p, double s, double h)
+/* The point's coordinate from dd_point_parts' parts, moved by h along
+ * its Taylor series to the second order (s, s2: its first and second
+ * derivatives; h the step from t to the root, at most about 1e-7: the
+ * third order's term then at most 1.7e-22 of the third derivative), in
+ * long double (its last bit 5.6e-17 at 1000 px) for callers that
+ * subtract the cell and the band from it */
+static inline long double dd_coord(const double *p, double s, double s2, double h)
 {
-    return ((long double)p[0] + p[1]) + (p[2] + (p[3] + s * h));
+    return ((long double)p[0] + p[1]) + (p[2] + (p[3] + h * (s + 0.5 * s2 * h)));
 }
 
 /* Coordinate coord of oc at t as the base curve's mapped coordinate
@@ -810,41 +820,40 @@ double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, i
     return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
 }
 
-/* The root in the double-double form (fx->dd set; see offset_root, whose
- * steps these are): Newton's method in double (solve_double, the same
- * phase, to a step within ROOT_D_STEP), then on the value evaluated as hi
- * + lo (dd_point_parts), still bracketed by the caller's [ta, tb], each
- * step a full evaluation of the point and its derivative, until a step
- * h is within 1e-13 of t, or the error it leaves, judged from the step
- * before (h^3 / h1^2), is within DD_EST max(|t|, 1) (the long double
- * phase's: 1e-5 of an ulp of t in [0.5, 1), so that the root rounded to
- * double is the nearest but within about that of a midpoint; the steps
- * shrinking as Newton's, h at most 1e-3 h1 and 1e-11), or the step
- * rounds to t itself (t is then the root rounded; taken as a step onto
- * the bracket's end, as offset_root takes it, it bisected from there and
- * ended an ulp off on 5% of the roots of tests/bench_bezstroke.c's scene:
- * 303 pixels beyond the reference's bound against 279), or the bracket
- * is two adjacent doubles.
- * The point at the root rounded to double (xy) is the last evaluation's
- * moved by its derivative over the step to it, and the other coordinate
- * (other) the same over the step unrounded, to where coordinate coord is
- * the target (offset_root's, which its callers pair with the target): off
- * by half the second derivative times h^2, at most 5e-23 of it.  Built
- * twice, for Dekker's products and for fma's. */
+/* The root in the double-double form (fx->dd set): Newton's method in
+ * double (solve_double, to a step within DD_D_STEP: from the table's
+ * start, one evaluation), then on the value evaluated as hi + lo
+ * (dd_point_parts), still bracketed by the caller's [ta, tb], each step
+ * taken to the second order (h = h2 - c2 h2^2 for the Newton step h2 =
+ * -f / f', c2 = f'' / (2 f'): the series of the inverse), which leaves
+ * an error of about 2 c2^2 h2^3 (f''' / (6 f') taken as of the order of
+ * c2^2): the step is the last where that is within DD_EST max(|t|, 1)
+ * (1e-5 of an ulp of t in [0.5, 1), so that the root rounded to double
+ * is the nearest but within about that of a midpoint) and h2 within
+ * 1e-7, or where it rounds to t itself, or where the bracket is two
+ * adjacent doubles.  Where a step stayed at t, offset_root's rule (a
+ * step onto the bracket's end bisects) bisected from there and ended an
+ * ulp off on 5% of the roots of tests/bench_bezstroke.c's scene (303
+ * pixels beyond the reference's bound against 279).  The point at the
+ * root rounded to double (xy) is the last evaluation's moved along its
+ * Taylor series to the second order over the step to it (dd_coord), and
+ * the other coordinate (other) over the step unrounded, to where
+ * coordinate coord is the target (offset_root's, which its callers pair
+ * with the target).  Built twice, for Dekker's products and for fma's. */
 #define DD_EST 1e-21
+#define DD_D_STEP 1e-4
 static __attribute__((always_inline)) inline double
 root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta, double tb,
         double fa, double target, double guess, const double *endb, long double xy[2],
         long double *other, int fma)
 {
-    double t = ta, a, b, h1, p[2][4], dp[2], h = 0.0, hx = 0.0;
+    double t = ta, a, b, h1, p[2][4], dp[4] = {0.0, 0.0, 0.0, 0.0}, h = 0.0, hx = 0.0;
     int neg = fa < 0;
     if (fa == 0) {
         dd_point_parts(oc, fx, t, fma, p, NULL);
-        dp[0] = dp[1] = 0.0;
         goto done;
     }
-    t = solve_double(oc, fx, coord, ta, tb, fa, target, guess, ROOT_D_STEP, endb, &a, &b, &h1);
+    t = solve_double(oc, fx, coord, ta, tb, fa, target, guess, DD_D_STEP, endb, &a, &b, &h1);
     double la = ta, lb = tb;
     for (int it = 0; it < ROOT_LD_STEPS; it++) {
         dd_point_parts(oc, fx, t, fma, p, dp);
@@ -859,33 +868,33 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
         double mid = 0.5 * (la + lb);
         if (!(mid != la && mid != lb))
             break;
-        double next = df != 0 && isfinite(df) ? t - f / df : mid;
-        if (next == t) { /* a step below half an ulp of t: t is the root rounded */
-            hx = -f / df;
+        if (!(df != 0 && isfinite(df))) {
+            t = mid;
+            continue;
+        }
+        double h2 = -f / df, c2 = dp[2 + coord] / (2 * df), ch = c2 * h2;
+        double step = h2 - ch * h2, next = t + step;
+        if (next == t) { /* within half an ulp of t: t is the root rounded */
+            hx = step;
             break;
         }
         int inside = la < lb ? (next > la && next < lb) : (next < la && next > lb);
-        double hs = fabs(next - t), sc = fabs(t) > 1.0 ? fabs(t) : 1.0;
-        if (!inside) {
-            next = mid;
-        } else if (hs <= 1e-13 * fabs(t) ||
-                   (h1 > 0 && hs <= 1e-11 && hs <= 1e-3 * h1 &&
-                    hs * hs * hs <= DD_EST * h1 * h1 * sc)) {
-            h = next - t, hx = -f / df, t = next;
+        double sc = fabs(t) > 1.0 ? fabs(t) : 1.0;
+        if (inside && fabs(h2) <= 1e-7 && 2 * ch * ch * fabs(h2) <= DD_EST * sc) {
+            h = next - t, hx = step, t = next;
             break;
         }
-        t = next;
-        h1 = inside ? hs : NAN;
+        t = inside ? next : mid;
         if (it + 1 == ROOT_LD_STEPS) { /* t not evaluated */
             dd_point_parts(oc, fx, t, fma, p, NULL);
-            dp[0] = dp[1] = 0.0;
+            dp[0] = dp[1] = dp[2] = dp[3] = 0.0;
         }
     }
 done:
     if (xy)
-        xy[0] = dd_coord(p[0], dp[0], h), xy[1] = dd_coord(p[1], dp[1], h);
+        xy[0] = dd_coord(p[0], dp[0], dp[2], h), xy[1] = dd_coord(p[1], dp[1], dp[3], h);
     if (other) /* at the root itself, where coordinate coord is the target */
-        *other = dd_coord(p[1 - coord], dp[1 - coord], hx);
+        *other = dd_coord(p[1 - coord], dp[1 - coord], dp[3 - coord], hx);
     return t;
 }
 
@@ -913,7 +922,7 @@ static __attribute__((noinline)) void point_dd_split(const aa_offset_curve *oc,
 {
     double p[2][4];
     dd_point_parts(oc, fx, t, 0, p, NULL);
-    xy[0] = dd_coord(p[0], 0.0, 0.0), xy[1] = dd_coord(p[1], 0.0, 0.0);
+    xy[0] = dd_coord(p[0], 0.0, 0.0, 0.0), xy[1] = dd_coord(p[1], 0.0, 0.0, 0.0);
 }
 
 static __attribute__((noinline, target("fma"))) void
@@ -921,7 +930,7 @@ point_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, double t, long
 {
     double p[2][4];
     dd_point_parts(oc, fx, t, 1, p, NULL);
-    xy[0] = dd_coord(p[0], 0.0, 0.0), xy[1] = dd_coord(p[1], 0.0, 0.0);
+    xy[0] = dd_coord(p[0], 0.0, 0.0, 0.0), xy[1] = dd_coord(p[1], 0.0, 0.0, 0.0);
 }
 
 void aa__offset_fix_dd(const aa_offset_curve *oc, aa__offset_fix *fx, int fma)
