@@ -405,16 +405,17 @@ static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_c
     double p2 = dd_two_prod(u[1][0], u[1][0], &e2, fma), s = dd_two_sum(p1, p2, &e3);
     double ql = e3 + e1 + e2 + 2 * (u[0][0] * u[0][1] + u[1][0] * u[1][1]);
     double qh = dd_two_sum(s, ql, &ql);
-    double lh = sqrt(qh), el, pl = dd_two_prod(lh, lh, &el, fma);
-    double ll = (((qh - pl) - el) + ql) / (2 * lh);
+    double lh = sqrt(qh), il = 1 / lh, el, pl = dd_two_prod(lh, lh, &el, fma);
+    double ll = (((qh - pl) - el) + ql) * (0.5 * il);
     for (int c = 0; c < 2; c++) {
         double r0 = oc->m[c], r1 = oc->m[2 + c], ea, eb, es;
         double a = dd_two_prod(r1, u[0][0], &ea, fma), b = dd_two_prod(-r0, u[1][0], &eb, fma);
         double ws = dd_two_sum(a, b, &es), wl = es + ea + eb + (r1 * u[0][1] - r0 * u[1][1]);
         double wh = dd_two_sum(ws, wl, &wl);
-        /* w / L: the quotient, then the remainder's */
-        double fh = wh / lh, ef, pf = dd_two_prod(fh, lh, &ef, fma);
-        double fl = (((wh - pf) - ef) + (wl - fh * ll)) / lh;
+        /* w / L: the quotient by 1 / L (within an ulp or two), then the
+         * remainder's (w - fh L, exact by TwoProduct and Sterbenz) */
+        double fh = wh * il, ef, pf = dd_two_prod(fh, lh, &ef, fma);
+        double fl = (((wh - pf) - ef) + (wl - fh * ll)) * il;
         double eh, nh = dd_two_prod(oc->d, fh, &eh, fma);
         n[c][0] = nh, n[c][1] = eh + oc->d * fl;
     }
@@ -424,7 +425,7 @@ static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_c
          * L^3 - 3 c (B'.B'') / L^5, c' = B' x B''' */
         const double *b = oc->b, *m = oc->m;
         double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
-        double ux = u[0][0], uy = u[1][0], il = 1 / lh, cc = ux * vy - uy * vx;
+        double ux = u[0][0], uy = u[1][0], cc = ux * vy - uy * vx;
         double il3 = il * il * il, g = 1 - oc->d * cc * il3, qx = ux * g, qy = uy * g;
         double cp = 6 * (ux * b[7] - uy * b[3]), dot = ux * vx + uy * vy;
         double gp = -oc->d * il3 * (cp - 3 * cc * dot * (il * il));
@@ -872,7 +873,7 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
             t = mid;
             continue;
         }
-        double h2 = -f / df, c2 = dp[2 + coord] / (2 * df), ch = c2 * h2;
+        double idf = 1 / df, h2 = -f * idf, c2 = 0.5 * dp[2 + coord] * idf, ch = c2 * h2;
         double step = h2 - ch * h2, next = t + step;
         if (next == t) { /* within half an ulp of t: t is the root rounded */
             hx = step;
