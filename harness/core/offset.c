@@ -379,13 +379,14 @@ static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *
 
 /* The offset's normal terms d w / L for the point, as hi + lo (x in
  * n[0], y in n[1]), and its first and second derivatives (dp[0..1],
- * dp[2..3], in double; NULL: not wanted): in double, d w / L is off by up to 8 units of its last place (1e-15 px at
- * a half width of 1.25 px on tests/bench_bezstroke.c's scene: B' rounded
- * where its terms cancel, then the square root, the division and the
- * products), so here each step is exact or carries its error: B' by
- * Horner's scheme on fx->du, L^2 = B'.B' and w = r1 B'x - r0 B'y from
- * exact products and sums, L = sqrt(L^2) and w / L each with one Newton
- * correction (their residuals exact by TwoProduct). */
+ * dp[2..3], in double; NULL: not wanted): in double, d w / L is off by
+ * up to 8 units of its last place (1e-15 px at a half width of 1.25 px
+ * on tests/bench_bezstroke.c's scene: B' rounded where its terms cancel,
+ * then the square root, the division and the products), so here each
+ * step is exact or carries its error: B' by Horner's scheme on fx->du,
+ * L^2 = B'.B' and w = r1 B'x - r0 B'y from exact products and sums, L =
+ * sqrt(L^2) and w / L each with one Newton correction (their residuals
+ * exact by TwoProduct), 1 / L the one division. */
 static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_curve *oc,
                                                               const aa__offset_fix *fx,
                                                               double t, int fma, double n[2][2],
