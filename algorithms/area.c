@@ -124,7 +124,10 @@
  * parameter t (times -1 where the piece runs up, so that tau rises down
  * it); a band line or a cell side is met where a coordinate of the curve,
  * monotone there, equals it (aa__offset_solve_from: Newton in double, then
- * in long double, bracketed), x turns where aa__offset_turns says, and u
+ * in long double, bracketed; on a cubic's offset without stops, nearly
+ * every piece, the second phase on its value evaluated as double-double
+ * sums, in double: offset.c, aa__offset_fix_dd), x turns where
+ * aa__offset_turns says, and u
  * and v are the curve's point in extended precision less the cell and the
  * band, but at the piece's ends, which are its own (x0, y0) and (x1, y1):
  * the outline's vertex, rounded to double, that the next piece ends at
@@ -2572,7 +2575,7 @@ static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
     q->sg = p->ot1 > p->ot0 ? 1.0 : -1.0;
     aa__offset_end(&p->oc, 1, p->ot1, q->oend);
     q->ostops = aa__offset_stops(&p->oc);
-    aa__offset_fix_init(&p->oc, &q->ofix);
+    aa__offset_fix_dd(&p->oc, &q->ofix, 1);
     double ts[2];
     int n = aa__offset_turns(&p->oc, 0, fmin(p->ot0, p->ot1), fmax(p->ot0, p->ot1), ts);
     q->ote = q->ote2 = INFINITY;

@@ -369,7 +369,10 @@ static inline const double *colour_of(const ar_state *S, ar_worker *wk, const in
  * that height right of the vertex, wound once more or less, across every
  * cell of the row up to the next one the piece's row finishes uniform
  * (1.1e-13 off in pixel (716, 793) of tests/bench_bezstroke.c's scene).
- * The reference takes the same ends (harness/truth, truth_offset_part). */
+ * The reference takes the same ends (harness/truth, truth_offset_part).
+ * Between them, the point as the piece's roots give it
+ * (aa__offset_point_fix: the double-double form on a cubic's offset
+ * without stops, else aa__offset_eval_s). */
 static inline void offset_point(const ar_piece *p, double t, long double *X, long double *Y)
 {
     const aa_piece *q = p->src;
@@ -378,7 +381,7 @@ static inline void offset_point(const ar_piece *p, double t, long double *X, lon
     } else if (t == q->ot1) {
         *X = q->x1, *Y = q->y1;
     } else {
-        aa__offset_eval_s(&q->oc, p->ostops, t, X, Y, NULL, NULL);
+        aa__offset_point_fix(&q->oc, &p->ofix, t, X, Y);
     }
 }
 

@@ -64,6 +64,11 @@
  *    offset piece and evolute of two strokes and 300 parts of each
  *    (test_nodes: on a processor with AVX the tests above take the first,
  *    so this keeps the second, the form without AVX, held to it);
+ *  - the double-double form of area's roots and points (test_dd):
+ *    every band line and cell side on the pieces of the benchmark's
+ *    scene and a wide stroke, the point at the root within 2e-16 px of
+ *    a __float128 evaluation written here and the root the double
+ *    nearest it, the same bit for bit by fma and by Dekker's products;
  *  - the quadrature's panels (test_panels): they tile each offset piece,
  *    each one's disc meets the tolerance by Trefethen's bound computed
  *    here, and its M bounds the integrand evaluated here in complex long
@@ -963,6 +968,229 @@ static void test_ulp_vertex(void **state)
     }
 }
 
+/* An offset piece's point at t and its derivative there, in __float128 from its
+ * doubles (the formulas of offset.c's header: P = B + d N, P' = B' (1 -
+ * d k); E = B + N L^3 / c, E' = N L (3 (B'.B'') c - L^2 c') / c^2), the
+ * square root by two Newton steps from double's (each doubles the bits). */
+static q128 q_sqrt(q128 x)
+{
+    if (!(x > 0))
+        return 0;
+    q128 r = sqrt((double)x);
+    r = (r + x / r) / 2;
+    return (r + x / r) / 2;
+}
+
+static void q_offset(const aa_offset_curve *oc, double t, q128 P[2], q128 dP[2])
+{
+    const double *b = oc->b, *m = oc->m;
+    q128 T = t, B[2], U[2], V[2];
+    for (int c = 0; c < 2; c++) {
+        const double *k = b + 4 * c;
+        B[c] = k[0] + T * (k[1] + T * (k[2] + T * (q128)k[3]));
+        U[c] = k[1] + T * (2 * (q128)k[2] + 3 * T * (q128)k[3]);
+        V[c] = 2 * (q128)k[2] + 6 * T * (q128)k[3];
+    }
+    q128 L2 = U[0] * U[0] + U[1] * U[1], L = q_sqrt(L2), c = U[0] * V[1] - U[1] * V[0];
+    q128 r = oc->evolute ? L2 * L / c : (q128)oc->d; /* the normal's length */
+    q128 p[2] = {B[0] - r * U[1] / L, B[1] + r * U[0] / L}, dp[2];
+    if (!oc->evolute) {
+        q128 f = 1 - oc->d * c / (L2 * L);
+        dp[0] = U[0] * f, dp[1] = U[1] * f;
+    } else {
+        q128 cp = U[0] * 6 * (q128)b[7] - U[1] * 6 * (q128)b[3];
+        q128 rp = L * (3 * (U[0] * V[0] + U[1] * V[1]) * c - L2 * cp) / (c * c);
+        dp[0] = -rp * U[1] / L, dp[1] = rp * U[0] / L;
+    }
+    for (int k = 0; k < 2; k++) {
+        P[k] = m[k] * p[0] + m[2 + k] * p[1] + m[4 + k];
+        dP[k] = m[k] * dp[0] + m[2 + k] * dp[1];
+    }
+}
+
+/* The double-double form of area's roots and points (offset.c,
+ * aa__offset_fix_dd): on every offset piece of a cubic without stops in
+ * tests/bench_bezstroke.c's scene at 1024 px (about 4,300 pieces; its
+ * evolutes keep the long double form) and of the tight arc's wide stroke
+ * at 1024 px (a half width of 154 px), at every band line y = j a piece
+ * crosses (aa__offset_root_xyd, from the bracket's ends and from a start
+ * 1e-5 off the root) and every cell side x = i between its x turns
+ * (aa__offset_root_fixd, with its other coordinate):
+ *  - the point given at the root against q_offset's there (__float128),
+ *    within 2e-16 px: what the cell's and band's u and v take from it;
+ *    at a side, y where x is the side's (q_offset's point moved along
+ *    its tangent by the residual of x), which its callers pair with the
+ *    side;
+ *  - the root the double nearest the root: the line's coordinate there
+ *    is no farther from the line than at either neighbouring double
+ *    (q_offset, to 1e-20 px);
+ *  - aa__offset_point_fix at 64 parameters a piece within 2e-16 px of
+ *    q_offset;
+ *  - the products by fma (where the processor has it) and by Dekker's
+ *    split give the same roots and points, bit for bit.
+ * With the normal term in double (d w / L) the points were up to 1.1e-15
+ * px off on the benchmark's scene and 9e-14 px on the wide stroke; with
+ * the base's lo dropped the first root's point was 2.9e-15 px off (x =
+ * 52.6), with the normal term's lo dropped the first root was not the
+ * nearest (4.8e-17 px farther than a neighbour). */
+static void test_dd(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    const int n = 1024;
+    int pieces = 0, evolutes = 0, roots = 0, pts = 0;
+    double worst = 0.0, worst_root = 0.0;
+    for (int sc = 0; sc < 2; sc++) {
+        aa_scene *s;
+        if (sc == 0) {
+            aa_path in = {0};
+            for (int r = 0; r < 20; r++) { /* the benchmark's 20 subpaths */
+                double cs[2 + 6 * 50];
+                bench_cubics(r, 0, 50, cs);
+                must(aa_path_move_to(&in, cs[0], cs[1]));
+                for (int c = 0; c < 50; c++) {
+                    const double *q = cs + 2 + 6 * c;
+                    must(aa_path_cubic_to(&in, q[0], q[1], q[2], q[3], q[4], q[5]));
+                }
+            }
+            st.width = 2.5 / n;
+            size_t noff;
+            s = scenes_stroke_outline(&in, &st, NULL, &noff);
+            aa_path_free(&in);
+        } else {
+            st.width = 0.3;
+            s = stroke_scene(tight, 1, &st, NULL);
+        }
+        aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
+        assert_non_null(placed);
+        size_t np;
+        const aa_piece *pc = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pc[k].kind != AA_PIECE_OFFSET)
+                continue;
+            const aa_offset_curve *oc = &pc[k].oc;
+            aa__offset_fix fx, fs;
+            aa__offset_fix_dd(oc, &fx, 1);
+            aa__offset_fix_dd(oc, &fs, 0);
+            if (!fx.dd) {
+                assert_true(oc->base != AA_OFFSET_CUBIC || oc->evolute || fx.stops);
+                evolutes += oc->evolute;
+                continue;
+            }
+            assert_int_equal(fs.dd, 1);
+            pieces++;
+            double t0 = pc[k].ot0, t1 = pc[k].ot1;
+            /* the lines, y = j then x = i, strictly inside the piece's
+             * range (its coordinate monotone on it: y on a piece; x
+             * between its turns, aa__offset_turns) */
+            for (int coord = 1; coord >= 0; coord--) {
+                double ts[4] = {t0}, tt[2];
+                int nt = 1, m = coord ? 0 : aa__offset_turns(oc, 0, fmin(t0, t1), fmax(t0, t1), tt);
+                for (int e = 0; e < m; e++)
+                    ts[nt++] = t0 < t1 ? tt[e] : tt[m - 1 - e];
+                ts[nt++] = t1;
+                for (int e = 0; e + 1 < nt; e++) {
+                    double a = ts[e], b = ts[e + 1];
+                    q128 Pa[2], Pb[2], dPa[2];
+                    q_offset(oc, a, Pa, dPa);
+                    q_offset(oc, b, Pb, dPa);
+                    double ca = (double)Pa[coord], cb = (double)Pb[coord];
+                    double lo = fmin(ca, cb), hi = fmax(ca, cb);
+                    for (double j = ceil(lo + 1e-9); j < hi - 1e-9; j++) {
+                        double fa = ca - j, t[3];
+                        long double xy[3][2], oth[3];
+                        for (int g = 0; g < 2; g++) {
+                            double guess = NAN;
+                            if (g) { /* 1e-5 off the root, inside the bracket */
+                                guess = t[0] + (b > a ? 1e-5 : -1e-5);
+                                if (!(b > a ? guess < b : guess > b))
+                                    continue;
+                            }
+                            if (coord) {
+                                t[g] = aa__offset_root_xyd(oc, &fx, 1, a, b, fa, j, guess,
+                                                           NULL, xy[g]);
+                                t[2] = aa__offset_root_xyd(oc, &fs, 1, a, b, fa, j, guess, NULL,
+                                                           xy[2]);
+                                assert_true(xy[g][0] == xy[2][0] && xy[g][1] == xy[2][1]);
+                            } else {
+                                t[g] = aa__offset_root_fixd(oc, &fx, 0, a, b, fa, j, guess,
+                                                            &oth[g]);
+                                t[2] = aa__offset_root_fixd(oc, &fs, 0, a, b, fa, j, guess,
+                                                            &oth[2]);
+                                assert_true(oth[g] == oth[2]);
+                                xy[g][0] = j, xy[g][1] = oth[g];
+                            }
+                            assert_true(t[g] == t[2]);
+                            /* the point at t; the other coordinate at a
+                             * side at the root itself (where x is the
+                             * side's), P moved along its tangent by the
+                             * residual of x */
+                            q128 P[2], dP[2];
+                            q_offset(oc, t[g], P, dP);
+                            if (!coord)
+                                P[1] += dP[1] / dP[0] * (j - P[0]);
+                            for (int c = !coord; c < 2; c++) {
+                                double d = fabs((double)(xy[g][c] - (long double)P[c]));
+                                if (d > worst)
+                                    worst = d;
+                                if (!(d <= 2e-16))
+                                    fail_msg("piece %zu line %s = %g, t %.17g: %c %.20Lg, "
+                                             "__float128 %.20Lg (%.2g off)",
+                                             k, coord ? "y" : "x", j, t[g], "xy"[c], xy[g][c],
+                                             (long double)P[c], d);
+                            }
+                            /* the root: the double nearest it, the line's
+                             * coordinate there nearer the line than at
+                             * either neighbour (or at most 1e-20 px
+                             * farther: a root within rounding of the
+                             * middle between two) */
+                            q_offset(oc, t[g], P, dP);
+                            q128 e0 = P[coord] - j, Q[2], dQ[2];
+                            for (int side = 0; side < 2; side++) {
+                                q_offset(oc, nextafter(t[g], side ? INFINITY : -INFINITY), Q, dQ);
+                                q128 e1 = Q[coord] - j;
+                                double over = (double)((e0 < 0 ? -e0 : e0) - (e1 < 0 ? -e1 : e1));
+                                if (over > worst_root)
+                                    worst_root = over;
+                                if (!(over <= 1e-20))
+                                    fail_msg("piece %zu line %s = %g: t %.17g not the nearest "
+                                             "(%.2g px farther than a neighbour)",
+                                             k, coord ? "y" : "x", j, t[g], over);
+                            }
+                            roots++;
+                        }
+                    }
+                }
+            }
+            for (int i = 0; i < 64; i++) {
+                double t = t0 + (t1 - t0) * (i + 0.5) / 64;
+                long double X, Y, x2, y2;
+                aa__offset_point_fix(oc, &fx, t, &X, &Y);
+                aa__offset_point_fix(oc, &fs, t, &x2, &y2);
+                assert_true(X == x2 && Y == y2);
+                q128 P[2], dP[2];
+                q_offset(oc, t, P, dP);
+                double e = fmax(fabs((double)(X - (long double)P[0])),
+                                fabs((double)(Y - (long double)P[1])));
+                if (e > worst)
+                    worst = e;
+                if (!(e <= 2e-16))
+                    fail_msg("piece %zu t %.17g: (%.20Lg, %.20Lg), __float128 (%.20Lg, %.20Lg)", k,
+                             t, X, Y, (long double)P[0], (long double)P[1]);
+                pts++;
+            }
+        }
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+    print_message("%d offset pieces (%d evolutes left to the long double form), %d roots, %d "
+                  "points: at most %.2g px off __float128, roots within %.2g px\n",
+                  pieces, evolutes, roots, pts, worst, worst_root);
+    assert_true(pieces > 4000 && evolutes > 0);
+}
+
 static void test_nodes(void **state)
 {
     (void)state;
@@ -1812,6 +2040,7 @@ int main(void)
                                        cmocka_unit_test(test_fix),
                                        cmocka_unit_test(test_vertex),
                                        cmocka_unit_test(test_ulp_vertex),
+                                       cmocka_unit_test(test_dd),
                                        cmocka_unit_test(test_nodes),
                                        cmocka_unit_test(test_panels),
                                        cmocka_unit_test(test_shares),

@@ -852,8 +852,31 @@ long double aa__offset_root(const aa_offset_curve *oc, int coord, long double ta
 typedef struct aa__offset_fix {
     int stops;
     double sx, sy;
+    /* aa__offset_fix_dd: 1 (Dekker's products) or 2 (fma) where the roots
+     * and points take the double-double form, else 0; its mapped base
+     * cubic, coordinate c's coefficient of t^k in dc[c][k] (hi, lo) */
+    int dd;
+    double dc[2][4][2];
+    /* and its base cubic's derivative B' (unmapped), coordinate c's
+     * coefficient of t^k in du[c][k] (hi, lo) */
+    double du[2][3][2];
 } aa__offset_fix;
 void aa__offset_fix_init(const aa_offset_curve *oc, aa__offset_fix *fx);
+/* aa__offset_fix_init, and on a cubic's offset (not an evolute) without
+ * stops the double-double form of its roots and points (offset.c, before
+ * dd_two_sum): aa__offset_root_fixd and aa__offset_root_xyd then solve
+ * by Newton's method in double on the mapped base cubic and the normal
+ * term each evaluated as hi + lo (TwoSum, TwoProduct), their points
+ * evaluated so at the root rounded to double (within about 1.1e-16 px of
+ * __float128's: tests/test_area_offset.c, test_dd), and
+ * aa__offset_point_fix evaluates the point so; fma: 1 its products by
+ * fma where the processor has it, 0 by Dekker's split (the same values,
+ * bit for bit). */
+void aa__offset_fix_dd(const aa_offset_curve *oc, aa__offset_fix *fx, int fma);
+/* The point of oc at t: the double-double form's where fx has it, else
+ * aa__offset_eval_s's (given fx's stops). */
+void aa__offset_point_fix(const aa_offset_curve *oc, const aa__offset_fix *fx, double t,
+                          long double *x, long double *y);
 /* aa__offset_root given oc's aa__offset_fix and, where endb is not NULL,
  * aa__offset_end's e at tb (then without a guess: as
  * aa__offset_solve_end). */

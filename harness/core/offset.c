@@ -291,6 +291,7 @@ static __attribute__((always_inline)) inline void fix_init(const aa_offset_curve
 {
     fx->stops = stop_ends(oc);
     term_sizes(oc, &fx->sx, &fx->sy);
+    fx->dd = 0;
 }
 
 void aa__offset_fix_init(const aa_offset_curve *oc, aa__offset_fix *fx)
@@ -302,6 +303,165 @@ void aa__offset_eval_s(const aa_offset_curve *oc, int stops, long double t, long
                        long double *y, long double *dx, long double *dy)
 {
     offset_eval(oc, stops, t, x, y, dx, dy);
+}
+
+/* The double-double form of a cubic's offset without stops
+ * (aa__offset_fix_dd), for `area`'s roots and points, in double alone:
+ * coordinate c of the point is the mapped base cubic r.B(t) + m[4 + c]
+ * (r = (m[c], m[2 + c]); up to the scene's size, 1e3 px and more, where a
+ * double's last bit is 1.1e-13 px) plus the normal term d w / L (w = r1
+ * B'x - r0 B'y; at most the half width).  The base cubic's coefficients
+ * r.b_k (and m[4 + c]) are kept as unevaluated sums hi + lo (exact
+ * products and sums: TwoProduct, TwoSum; Dekker 1971, Ogita, Rump and
+ * Oishi 2005), and Horner's scheme on them at a double t gives r.B(t) +
+ * m[4 + c] as hi + lo to about 2^-104 of its terms (each step's product
+ * sh t exact, sl t and the sums' errors carried in lo).  The normal term
+ * the same way (dd_normal_pt: B' from its coefficients hi + lo, L^2 and w
+ * from exact products, L and w / L each with a Newton correction whose
+ * residual is exact): in double alone it was off by up to 8 units of its
+ * last place, 1e-15 px at a half width of 1.25 px on
+ * tests/bench_bezstroke.c's scene (B' rounded where its terms cancel,
+ * then the root, the quotient and the products), which put the sum of
+ * the image's errors 4% higher at 1024 px and 16% at 256 px (`--check`)
+ * and roots up to 8e-14 px off at a half width of 154 px.  The
+ * coordinate less a target is then ((hi - target) + normal) + (lo +
+ * normal's lo): near the root hi - target is about the normal term
+ * (exact where the two are within a factor of 2, Sterbenz), so the value
+ * is known to about its own last place, and Newton's method in double
+ * finds the root as the long double phase did (root_dd).  The point in
+ * long double from the parts ((hi + normal) + (lo + normal's lo): its
+ * last bit 5.6e-17 px at 1000 px), for the callers that subtract the
+ * cell and the band.  An evolute's normal term, w L^2 / c, is left to
+ * the long double form (5% of the pieces there).  TwoProduct by fma where
+ * the processor has it (dd 2, a function built for it), else by Dekker's
+ * split (dd 1): both exact, so the same values bit for bit (the file is
+ * built without contraction, -std=c11, so no other product and sum is
+ * fused). */
+static inline double dd_two_sum(double a, double b, double *e)
+{
+    double s = a + b, bb = s - a;
+    *e = (a - (s - bb)) + (b - bb);
+    return s;
+}
+
+static __attribute__((always_inline)) inline double dd_two_prod(double a, double b, double *e,
+                                                                 int fma)
+{
+    double p = a * b;
+    if (fma) {
+        *e = __builtin_fma(a, b, -p);
+        return p;
+    }
+    /* Dekker's split into halves of 26 bits (Veltkamp's constant 2^27 + 1) */
+    double ca = 134217729.0 * a, cb = 134217729.0 * b;
+    double ah = ca - (ca - a), al = a - ah, bh = cb - (cb - b), bl = b - bh;
+    *e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return p;
+}
+
+/* r.B(t) + m[4 + c] as *hi + *lo: Horner's scheme on fx's coefficients */
+static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *fx, int coord,
+                                                         double t, int fma, double *hi,
+                                                         double *lo)
+{
+    const double(*c)[2] = fx->dc[coord];
+    double sh = c[3][0], sl = c[3][1];
+    for (int k = 2; k >= 0; k--) {
+        /* (sh, sl) left unnormalised: sl may exceed half an ulp of sh
+         * (where p and c[k] cancel), and sl t is then still within 2^-53
+         * of a term 2^-53 of sh's size */
+        double e, p = dd_two_prod(sh, t, &e, fma), e2;
+        sh = dd_two_sum(p, c[k][0], &e2);
+        sl = e2 + (e + (sl * t + c[k][1]));
+    }
+    *hi = sh, *lo = sl;
+}
+
+/* The offset's normal terms d w / L for the point, as hi + lo (x in
+ * n[0], y in n[1]), and its first and second derivatives (dp[0..1],
+ * dp[2..3], in double; NULL: not wanted): in double, d w / L is off by
+ * up to 8 units of its last place (1e-15 px at a half width of 1.25 px
+ * on tests/bench_bezstroke.c's scene: B' rounded where its terms cancel,
+ * then the square root, the division and the products), so here each
+ * step is exact or carries its error: B' by Horner's scheme on fx->du,
+ * L^2 = B'.B' and w = r1 B'x - r0 B'y from exact products and sums, L =
+ * sqrt(L^2) and w / L each with one Newton correction (their residuals
+ * exact by TwoProduct), 1 / L the one division. */
+static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_curve *oc,
+                                                              const aa__offset_fix *fx,
+                                                              double t, int fma, double n[2][2],
+                                                              double dp[2])
+{
+    double u[2][2]; /* B'x, B'y as hi, lo */
+    for (int c = 0; c < 2; c++) {
+        const double(*k)[2] = fx->du[c];
+        double e, p = dd_two_prod(k[2][0], t, &e, fma), e2;
+        double sh = dd_two_sum(p, k[1][0], &e2), sl = e2 + (e + k[2][1] * t);
+        p = dd_two_prod(sh, t, &e, fma);
+        double s = dd_two_sum(p, k[0][0], &e2);
+        u[c][0] = dd_two_sum(s, e2 + (e + sl * t), &u[c][1]);
+    }
+    /* L^2 and L */
+    double e1, e2, e3, p1 = dd_two_prod(u[0][0], u[0][0], &e1, fma);
+    double p2 = dd_two_prod(u[1][0], u[1][0], &e2, fma), s = dd_two_sum(p1, p2, &e3);
+    double ql = e3 + e1 + e2 + 2 * (u[0][0] * u[0][1] + u[1][0] * u[1][1]);
+    double qh = dd_two_sum(s, ql, &ql);
+    double lh = sqrt(qh), il = 1 / lh, el, pl = dd_two_prod(lh, lh, &el, fma);
+    double ll = (((qh - pl) - el) + ql) * (0.5 * il);
+    for (int c = 0; c < 2; c++) {
+        double r0 = oc->m[c], r1 = oc->m[2 + c], ea, eb, es;
+        double a = dd_two_prod(r1, u[0][0], &ea, fma), b = dd_two_prod(-r0, u[1][0], &eb, fma);
+        double ws = dd_two_sum(a, b, &es), wl = es + ea + eb + (r1 * u[0][1] - r0 * u[1][1]);
+        double wh = dd_two_sum(ws, wl, &wl);
+        /* w / L: the quotient by 1 / L (within an ulp or two), then the
+         * remainder's (w - fh L, exact by TwoProduct and Sterbenz) */
+        double fh = wh * il, ef, pf = dd_two_prod(fh, lh, &ef, fma);
+        double fl = (((wh - pf) - ef) + (wl - fh * ll)) * il;
+        double eh, nh = dd_two_prod(oc->d, fh, &eh, fma);
+        n[c][0] = nh, n[c][1] = eh + oc->d * fl;
+    }
+    if (dp) {
+        /* the derivative and the second, in double: P' = B' g, g = 1 - d
+         * k, k = c / L^3, and P'' = B'' g + B' g', g' = -d k', k' = c' /
+         * L^3 - 3 c (B'.B'') / L^5, c' = B' x B''' */
+        const double *b = oc->b, *m = oc->m;
+        double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+        double ux = u[0][0], uy = u[1][0], cc = ux * vy - uy * vx;
+        double il3 = il * il * il, g = 1 - oc->d * cc * il3, qx = ux * g, qy = uy * g;
+        double cp = 6 * (ux * b[7] - uy * b[3]), dot = ux * vx + uy * vy;
+        double gp = -oc->d * il3 * (cp - 3 * cc * dot * (il * il));
+        double rx = vx * g + ux * gp, ry = vy * g + uy * gp;
+        dp[0] = m[0] * qx + m[2] * qy, dp[1] = m[1] * qx + m[3] * qy;
+        dp[2] = m[0] * rx + m[2] * ry, dp[3] = m[1] * rx + m[3] * ry;
+    }
+}
+
+/* The point at t, each coordinate as the base's hi + lo plus the normal
+ * term's (p[c][0..3]: base hi, normal hi, base lo, normal lo), and its
+ * first and second derivatives dp in double (dd_normal_pt's; NULL: not
+ * wanted) */
+static __attribute__((always_inline)) inline void dd_point_parts(const aa_offset_curve *oc,
+                                                                const aa__offset_fix *fx,
+                                                                double t, int fma, double p[2][4],
+                                                                double dp[4])
+{
+    double n[2][2];
+    dd_normal_pt(oc, fx, t, fma, n, dp);
+    for (int c = 0; c < 2; c++) {
+        dd_base(fx, c, t, fma, &p[c][0], &p[c][2]);
+        p[c][1] = n[c][0], p[c][3] = n[c][1];
+    }
+}
+
+/* The point's coordinate from dd_point_parts' parts, moved by h along
+ * its Taylor series to the second order (s, s2: its first and second
+ * derivatives; h the step from t to the root, at most about 1e-7: the
+ * third order's term then at most 1.7e-22 of the third derivative), in
+ * long double (its last bit 5.6e-17 at 1000 px) for callers that
+ * subtract the cell and the band from it */
+static inline long double dd_coord(const double *p, double s, double s2, double h)
+{
+    return ((long double)p[0] + p[1]) + (p[2] + (p[3] + h * (s + 0.5 * s2 * h)));
 }
 
 /* Coordinate coord of oc at t as the base curve's mapped coordinate
@@ -662,6 +822,160 @@ double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, i
     return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
 }
 
+/* The root in the double-double form (fx->dd set): Newton's method in
+ * double (solve_double, to a step within DD_D_STEP: from the table's
+ * start, one evaluation), then on the value evaluated as hi + lo
+ * (dd_point_parts), still bracketed by the caller's [ta, tb], each step
+ * taken to the second order (h = h2 - c2 h2^2 for the Newton step h2 =
+ * -f / f', c2 = f'' / (2 f'): the series of the inverse), which leaves
+ * an error of about 2 c2^2 h2^3 (f''' / (6 f') taken as of the order of
+ * c2^2): the step is the last where that is within DD_EST max(|t|, 1)
+ * (1e-5 of an ulp of t in [0.5, 1), so that the root rounded to double
+ * is the nearest but within about that of a midpoint) and h2 within
+ * 1e-7, or where it rounds to t itself, or where the bracket is two
+ * adjacent doubles.  Where a step stayed at t, offset_root's rule (a
+ * step onto the bracket's end bisects) bisected from there and ended an
+ * ulp off on 5% of the roots of tests/bench_bezstroke.c's scene (303
+ * pixels beyond the reference's bound against 279).  The point at the
+ * root rounded to double (xy) is the last evaluation's moved along its
+ * Taylor series to the second order over the step to it (dd_coord), and
+ * the other coordinate (other) over the step unrounded, to where
+ * coordinate coord is the target (offset_root's, which its callers pair
+ * with the target).  Built twice, for Dekker's products and for fma's. */
+#define DD_EST 1e-21
+#define DD_D_STEP 1e-4
+static __attribute__((always_inline)) inline double
+root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta, double tb,
+        double fa, double target, double guess, const double *endb, long double xy[2],
+        long double *other, int fma)
+{
+    double t = ta, a, b, h1, p[2][4], dp[4] = {0.0, 0.0, 0.0, 0.0}, h = 0.0, hx = 0.0;
+    int neg = fa < 0;
+    if (fa == 0) {
+        dd_point_parts(oc, fx, t, fma, p, NULL);
+        goto done;
+    }
+    t = solve_double(oc, fx, coord, ta, tb, fa, target, guess, DD_D_STEP, endb, &a, &b, &h1);
+    double la = ta, lb = tb;
+    for (int it = 0; it < ROOT_LD_STEPS; it++) {
+        dd_point_parts(oc, fx, t, fma, p, dp);
+        const double *q = p[coord];
+        double f = ((q[0] - target) + q[1]) + (q[2] + q[3]), df = dp[coord];
+        if (f == 0)
+            break;
+        if ((f < 0) == neg)
+            la = t;
+        else
+            lb = t;
+        double mid = 0.5 * (la + lb);
+        if (!(mid != la && mid != lb))
+            break;
+        if (!(df != 0 && isfinite(df))) {
+            t = mid;
+            continue;
+        }
+        double idf = 1 / df, h2 = -f * idf, c2 = 0.5 * dp[2 + coord] * idf, ch = c2 * h2;
+        double step = h2 - ch * h2, next = t + step;
+        if (next == t) { /* within half an ulp of t: t is the root rounded */
+            hx = step;
+            break;
+        }
+        int inside = la < lb ? (next > la && next < lb) : (next < la && next > lb);
+        double sc = fabs(t) > 1.0 ? fabs(t) : 1.0;
+        if (inside && fabs(h2) <= 1e-7 && 2 * ch * ch * fabs(h2) <= DD_EST * sc) {
+            h = next - t, hx = step, t = next;
+            break;
+        }
+        t = inside ? next : mid;
+        if (it + 1 == ROOT_LD_STEPS) { /* t not evaluated */
+            dd_point_parts(oc, fx, t, fma, p, NULL);
+            dp[0] = dp[1] = dp[2] = dp[3] = 0.0;
+        }
+    }
+done:
+    if (xy)
+        xy[0] = dd_coord(p[0], dp[0], dp[2], h), xy[1] = dd_coord(p[1], dp[1], dp[3], h);
+    if (other) /* at the root itself, where coordinate coord is the target */
+        *other = dd_coord(p[1 - coord], dp[1 - coord], dp[3 - coord], hx);
+    return t;
+}
+
+static __attribute__((noinline)) double root_dd_split(const aa_offset_curve *oc,
+                                                      const aa__offset_fix *fx, int coord,
+                                                      double ta, double tb, double fa,
+                                                      double target, double guess,
+                                                      const double *endb, long double xy[2],
+                                                      long double *other)
+{
+    return root_dd(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other, 0);
+}
+
+static __attribute__((noinline, target("fma"))) double
+root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta, double tb,
+            double fa, double target, double guess, const double *endb, long double xy[2],
+            long double *other)
+{
+    return root_dd(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other, 1);
+}
+
+static __attribute__((noinline)) void point_dd_split(const aa_offset_curve *oc,
+                                                     const aa__offset_fix *fx, double t,
+                                                     long double xy[2])
+{
+    double p[2][4];
+    dd_point_parts(oc, fx, t, 0, p, NULL);
+    xy[0] = dd_coord(p[0], 0.0, 0.0, 0.0), xy[1] = dd_coord(p[1], 0.0, 0.0, 0.0);
+}
+
+static __attribute__((noinline, target("fma"))) void
+point_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, double t, long double xy[2])
+{
+    double p[2][4];
+    dd_point_parts(oc, fx, t, 1, p, NULL);
+    xy[0] = dd_coord(p[0], 0.0, 0.0, 0.0), xy[1] = dd_coord(p[1], 0.0, 0.0, 0.0);
+}
+
+void aa__offset_fix_dd(const aa_offset_curve *oc, aa__offset_fix *fx, int fma)
+{
+    fix_init(oc, fx);
+    if (oc->base != AA_OFFSET_CUBIC || oc->evolute || fx->stops)
+        return;
+    const double *b = oc->b, *m = oc->m;
+    for (int c = 0; c < 2; c++)
+        for (int k = 0; k < 4; k++) {
+            /* m[c] b[k] + m[2 + c] b[4 + k] (+ m[4 + c]) exactly, then
+             * rounded to hi + lo */
+            double e1, e2, e3, e4 = 0.0;
+            double p1 = dd_two_prod(m[c], b[k], &e1, 0);
+            double p2 = dd_two_prod(m[2 + c], b[4 + k], &e2, 0);
+            double sum = dd_two_sum(p1, p2, &e3);
+            if (k == 0)
+                sum = dd_two_sum(sum, m[4 + c], &e4), e4 += e3;
+            else
+                e4 = e3;
+            fx->dc[c][k][0] = dd_two_sum(sum, e1 + e2 + e4, &fx->dc[c][k][1]);
+        }
+    for (int c = 0; c < 2; c++) { /* B': b1 + 2 b2 t + 3 b3 t^2 */
+        fx->du[c][0][0] = b[4 * c + 1], fx->du[c][0][1] = 0.0;
+        fx->du[c][1][0] = 2 * b[4 * c + 2], fx->du[c][1][1] = 0.0;
+        fx->du[c][2][0] = dd_two_prod(3.0, b[4 * c + 3], &fx->du[c][2][1], 0);
+    }
+    fx->dd = fma && __builtin_cpu_supports("fma") ? 2 : 1;
+}
+
+void aa__offset_point_fix(const aa_offset_curve *oc, const aa__offset_fix *fx, double t,
+                          long double *x, long double *y)
+{
+    long double xy[2];
+    if (fx->dd == 2)
+        point_dd_fma(oc, fx, t, xy);
+    else if (fx->dd)
+        point_dd_split(oc, fx, t, xy);
+    else
+        offset_eval(oc, fx->stops, t, &xy[0], &xy[1], NULL, NULL);
+    *x = xy[0], *y = xy[1];
+}
+
 /* The same two with arguments in double (converted exactly: the same
  * roots), for callers whose brackets and targets are doubles: long double
  * arguments go through memory, at both ends of the call. */
@@ -669,6 +983,10 @@ double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx,
                             double ta, double tb, double fa, double target, double guess,
                             long double *other)
 {
+    if (fx->dd == 2)
+        return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
+    if (fx->dd)
+        return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
     return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, NULL, other, NULL,
                                NULL);
 }
@@ -677,6 +995,10 @@ double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, 
                            double ta, double tb, double fa, double target, double guess,
                            const double *endb, long double xy[2])
 {
+    if (fx->dd == 2)
+        return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
+    if (fx->dd)
+        return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
     return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
 }
 
