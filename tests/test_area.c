@@ -360,6 +360,24 @@ static void layers_want(const void *ctx, int w, int h, int i, int j, double want
     }
 }
 
+/* The scene of layers A (nonzero), B (even-odd) and C (nonzero) over the
+ * grey, with their intersections for the oracle (layers_want). */
+static aa_scene *layers_scene(layers *L)
+{
+    L->AB = oracle_poly_intersect(&L->A, &L->B), L->AC = oracle_poly_intersect(&L->A, &L->C);
+    L->BC = oracle_poly_intersect(&L->B, &L->C), L->ABC = oracle_poly_intersect(&L->AB, &L->C);
+    const oracle_poly *polys[3] = {&L->A, &L->B, &L->C};
+    aa_scene *s = aa_scene_new(L->grey);
+    for (int l = 0; l < 3; l++) {
+        assert_int_equal(aa_scene_layer(s, L->colours[l],
+                                        l == 1 ? AA_FILL_EVENODD : AA_FILL_NONZERO),
+                         AA_OK);
+        scenes_add_poly(s, polys[l]);
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
 static void test_polygon_layers(void **state)
 {
     (void)state;
@@ -368,16 +386,7 @@ static void test_polygon_layers(void **state)
                 .C = {4, {0.05, 0.62, 0.71, 0.12}, {0.55, 0.08, 0.74, 0.97}},
                 .colours = {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}},
                 .grey = {{0.25, 0.25, 0.25}}};
-    L.AB = oracle_poly_intersect(&L.A, &L.B), L.AC = oracle_poly_intersect(&L.A, &L.C);
-    L.BC = oracle_poly_intersect(&L.B, &L.C), L.ABC = oracle_poly_intersect(&L.AB, &L.C);
-    const oracle_poly *polys[3] = {&L.A, &L.B, &L.C};
-    aa_scene *s = aa_scene_new(L.grey);
-    for (int l = 0; l < 3; l++) {
-        assert_int_equal(
-            aa_scene_layer(s, L.colours[l], l == 1 ? AA_FILL_EVENODD : AA_FILL_NONZERO), AA_OK);
-        scenes_add_poly(s, polys[l]);
-    }
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *s = layers_scene(&L);
     const double tol[3] = {1e-13, 1e-13, 1e-13};
     int sizes[3][2] = {{23, 17}, {5, 4}, {1, 1}};
     for (int z = 0; z < 3; z++)
@@ -403,16 +412,7 @@ static void test_sweep_parts(void **state)
                 .C = {4, {0.3, 0.95, 0.9, 0.45}, {0.02, 0.05, 0.95, 0.98}},
                 .colours = {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}},
                 .grey = {{0.25, 0.25, 0.25}}};
-    L.AB = oracle_poly_intersect(&L.A, &L.B), L.AC = oracle_poly_intersect(&L.A, &L.C);
-    L.BC = oracle_poly_intersect(&L.B, &L.C), L.ABC = oracle_poly_intersect(&L.AB, &L.C);
-    const oracle_poly *polys[3] = {&L.A, &L.B, &L.C};
-    aa_scene *s = aa_scene_new(L.grey);
-    for (int l = 0; l < 3; l++) {
-        assert_int_equal(
-            aa_scene_layer(s, L.colours[l], l == 1 ? AA_FILL_EVENODD : AA_FILL_NONZERO), AA_OK);
-        scenes_add_poly(s, polys[l]);
-    }
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *s = layers_scene(&L);
     const double tol[3] = {1e-13, 1e-13, 1e-13};
     against_clipper("sub-bands' parts joined", s, 1, 1, 1, layers_want, &L, tol);
     against_clipper("sub-bands' parts joined", s, 4, 3, 2, layers_want, &L, tol);

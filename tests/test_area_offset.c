@@ -152,6 +152,8 @@ static void against_reference(const char *what, const double *cs, int nc,
 /* Cubics (2 + 6 nc numbers, stroke_scene's) several tests stroke: a tight
  * arc whose offsets fold under a wide stroke, and three chained arcs. */
 static const double tight[8] = {0.2, 0.2, 0.9, 0.3, 0.9, 0.7, 0.25, 0.75};
+static const double loop[8] = {0.2, 0.8, 0.9, 0.1, 0.1, 0.1, 0.8, 0.8};
+static const double hook[8] = {0.1, 0.9, 0.1, 0.1, 0.9, 0.1, 0.55, 0.5};
 static const double three[20] = {0.1, 0.5, 0.3, 0.1,  0.5, 0.1,  0.6, 0.4, 0.7, 0.9,
                                  0.2, 0.6, 0.5, 0.5, 0.95, 0.2, 0.9, 0.8, 0.6, 0.85};
 
@@ -159,8 +161,6 @@ static void test_reference(void **state)
 {
     (void)state;
     const double gentle[8] = {0.1, 0.5, 0.3, 0.2, 0.7, 0.8, 0.9, 0.45};
-    const double loop[8] = {0.2, 0.8, 0.9, 0.1, 0.1, 0.1, 0.8, 0.8};
-    const double hook[8] = {0.1, 0.9, 0.1, 0.1, 0.9, 0.1, 0.55, 0.5};
     const double shear[6] = {1.3, 0.2, 0.5, 0.8, -0.1, -0.05};
     const double dash[2] = {0.07, 0.03};
     aa_stroke_style st;
@@ -1762,8 +1762,6 @@ static void test_shared_ends(void **state)
     }
     /* folds, and a loop and a hook whose pieces sharing an end cross
      * again away from it */
-    const double loop[8] = {0.2, 0.8, 0.9, 0.1, 0.1, 0.1, 0.8, 0.8};
-    const double hook[8] = {0.1, 0.9, 0.1, 0.1, 0.9, 0.1, 0.55, 0.5};
     const double *cases[3] = {tight, loop, hook};
     const double widths[3] = {0.3, 0.5, 0.4};
     const char *names[3] = {"tight, w 0.3 (folds), 64 px", "loop, w 0.5, 64 px",
@@ -1997,8 +1995,6 @@ static void test_cones(void **state)
         bad += cones(what, placed, &apart, &seen);
         aa_scene_free(placed);
     }
-    const double loop[8] = {0.2, 0.8, 0.9, 0.1, 0.1, 0.1, 0.8, 0.8};
-    const double hook[8] = {0.1, 0.9, 0.1, 0.1, 0.9, 0.1, 0.55, 0.5};
     const double *cases[4] = {tight, loop, hook, three};
     const int ncs[4] = {1, 1, 1, 3};
     const double widths[4] = {0.3, 0.5, 0.4, 0.08};
