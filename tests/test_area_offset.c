@@ -1741,41 +1741,59 @@ static int shared_ends(const char *what, const aa_scene *s, int *tangent, int *a
     return pairs;
 }
 
-static void test_shared_ends(void **state)
+/* fn on each of the strokes the meetings' tests take: the benchmark's
+ * cubics (tests/bench_bezstroke.c) at 256 px, 2.5 px wide, round joins
+ * and caps (their offsets fold), every `step` of its 20 rows; then the
+ * first `ncases` of tight (folds), a loop and a hook whose pieces sharing
+ * an end cross again away from it (mitred, butt-capped) and three arcs
+ * (round), at 64 px.  Returns the sum of fn's returns. */
+static int each_stroke(int step, int ncases, int (*fn)(const char *, const aa_scene *, void *),
+                       void *ctx)
 {
-    (void)state;
     aa_stroke_style st;
     aa_stroke_style_default(&st);
     st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
-    int pairs = 0, tangent = 0, changes = 0;
-    /* the benchmark's cubics (tests/bench_bezstroke.c) at 256 px, 2.5 px
-     * wide: their offsets fold */
-    double cs[2 + 6 * 10];
     st.width = 2.5 / 256.0;
-    for (int r = 0; r < 20; r += 4) {
+    double cs[2 + 6 * 10];
+    int sum = 0;
+    for (int r = 0; r < 20; r += step) {
         bench_cubics(r, 0, 10, cs);
         aa_scene *placed = placed_stroke(cs, 10, &st, 256);
         char what[64];
         snprintf(what, sizeof what, "benchmark's row %d, 256 px", r);
-        pairs += shared_ends(what, placed, &tangent, &changes);
+        sum += fn(what, placed, ctx);
         aa_scene_free(placed);
     }
-    /* folds, and a loop and a hook whose pieces sharing an end cross
-     * again away from it */
-    const double *cases[3] = {tight, loop, hook};
-    const double widths[3] = {0.3, 0.5, 0.4};
-    const char *names[3] = {"tight, w 0.3 (folds), 64 px", "loop, w 0.5, 64 px",
-                            "hook, w 0.4, 64 px"};
-    st.join = AA_JOIN_MITER, st.cap = AA_CAP_BUTT;
-    for (int c = 0; c < 3; c++) {
+    const double *cases[4] = {tight, loop, hook, three};
+    const int ncs[4] = {1, 1, 1, 3};
+    const double widths[4] = {0.3, 0.5, 0.4, 0.08};
+    const char *names[4] = {"tight, w 0.3 (folds), 64 px", "loop, w 0.5, 64 px",
+                            "hook, w 0.4, 64 px", "3 arcs, round, w 0.08, 64 px"};
+    for (int c = 0; c < ncases && c < 4; c++) {
+        st.join = c == 3 ? AA_JOIN_ROUND : AA_JOIN_MITER;
+        st.cap = c == 3 ? AA_CAP_ROUND : AA_CAP_BUTT;
         st.width = widths[c];
-        aa_scene *placed = placed_stroke(cases[c], 1, &st, 64);
-        pairs += shared_ends(names[c], placed, &tangent, &changes);
+        aa_scene *placed = placed_stroke(cases[c], ncs[c], &st, 64);
+        sum += fn(names[c], placed, ctx);
         aa_scene_free(placed);
     }
+    return sum;
+}
+
+static int shared_ends_of(const char *what, const aa_scene *placed, void *ctx)
+{
+    int *tc = ctx; /* tangent, changes */
+    return shared_ends(what, placed, &tc[0], &tc[1]);
+}
+
+static void test_shared_ends(void **state)
+{
+    (void)state;
+    int tc[2] = {0, 0};
+    int pairs = each_stroke(4, 3, shared_ends_of, tc);
     print_message("%d pairs sharing an end, %d of them tangent there; %d sign changes\n", pairs,
-                  tangent, changes);
-    assert_true(tangent >= 10 && changes >= 1); /* the cases were built */
+                  tc[0], tc[1]);
+    assert_true(tc[0] >= 10 && tc[1] >= 1); /* the cases were built */
 }
 
 /* ---- a pair's common heights asked with their parameters given ---- */
@@ -1978,36 +1996,19 @@ static int cone_holds(const char *what, const aa_scene *s, int *lines)
     return bad;
 }
 
+static int cones_of(const char *what, const aa_scene *placed, void *ctx)
+{
+    int *as = ctx; /* apart, seen */
+    return cones(what, placed, &as[0], &as[1]);
+}
+
 static void test_cones(void **state)
 {
     (void)state;
     aa_stroke_style st;
     aa_stroke_style_default(&st);
-    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
-    int apart = 0, seen = 0, bad = 0;
-    double cs[2 + 6 * 10];
-    st.width = 2.5 / 256.0;
-    for (int r = 0; r < 20; r += 8) {
-        bench_cubics(r, 0, 10, cs);
-        aa_scene *placed = placed_stroke(cs, 10, &st, 256);
-        char what[64];
-        snprintf(what, sizeof what, "benchmark's row %d, 256 px", r);
-        bad += cones(what, placed, &apart, &seen);
-        aa_scene_free(placed);
-    }
-    const double *cases[4] = {tight, loop, hook, three};
-    const int ncs[4] = {1, 1, 1, 3};
-    const double widths[4] = {0.3, 0.5, 0.4, 0.08};
-    const char *names[4] = {"tight, w 0.3 (folds), 64 px", "loop, w 0.5, 64 px",
-                            "hook, w 0.4, 64 px", "3 arcs, round, w 0.08, 64 px"};
-    for (int c = 0; c < 4; c++) {
-        st.join = c == 3 ? AA_JOIN_ROUND : AA_JOIN_MITER;
-        st.cap = c == 3 ? AA_CAP_ROUND : AA_CAP_BUTT;
-        st.width = widths[c];
-        aa_scene *placed = placed_stroke(cases[c], ncs[c], &st, 64);
-        bad += cones(names[c], placed, &apart, &seen);
-        aa_scene_free(placed);
-    }
+    int as[2] = {0, 0};
+    int bad = each_stroke(8, 4, cones_of, as), apart, seen;
     /* an S: its offsets' tangents turn back at the base's inflection,
      * beyond the cone of their ends' */
     const double ess[8] = {0.1, 0.5, 0.45, -0.1, 0.55, 1.1, 0.9, 0.5};
@@ -2019,6 +2020,7 @@ static void test_cones(void **state)
         bad += cone_holds(c ? "S, w 0.05, 64 px" : "tight, w 0.05, 64 px", placed, &lines);
         aa_scene_free(placed);
     }
+    apart = as[0], seen = as[1];
     print_message("%d parts said apart, %d others seen not monotone; %d tangents held\n", apart,
                   seen, lines);
     assert_int_equal(bad, 0);
