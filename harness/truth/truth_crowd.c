@@ -1072,6 +1072,36 @@ static int sweep(crowd *c)
         }
         if (c->status)
             break;
+        /* Neighbours meeting at h itself: a swap at a meeting, or an
+         * insertion, can make neighbours of two pieces that meet at this
+         * very height (three through one point within rounding: an offset
+         * piece and two lines of tests/bench_bezstroke.c's path at 32 px,
+         * 2.2e-15 apart there), whose meeting no event holds (test_pair
+         * asks a swapped pair from h + margin on).  Each piece marked is
+         * put in its order just after h against its neighbours
+         * (cmp_after), as sort_run does a run; at most a few steps a
+         * piece. */
+        for (size_t d = 0, steps = 0; d < nd && steps < 4 * c->np + 16; d++) {
+            int k = cw->dirty[2 * d];
+            if (cp[k].region != CP_IN)
+                continue;
+            for (int side = 0; side < 2; side++)
+                for (;;) {
+                    int x = cp[k].slot, y = side ? t[x].next : t[x].prev;
+                    if (y < 0 || steps >= 4 * c->np + 16)
+                        break;
+                    int o = t[y].piece;
+                    if ((side ? cmp_after(c, k, o, h, 0) : cmp_after(c, o, k, h, 0)) <= 0)
+                        break;
+                    t[y].piece = k, cp[k].slot = y;
+                    t[x].piece = o, cp[o].slot = x;
+                    c->swaps++, steps++;
+                    add_dirty(c, &nd, o, 1);
+                    add_dirty(c, &nd, k, 1);
+                }
+        }
+        if (c->status)
+            break;
         /* the colour at the left side */
         if (need_w) {
             int *w = cw->wind + nl;
