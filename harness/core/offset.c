@@ -557,6 +557,36 @@ static __attribute__((always_inline)) inline void eval_d(const aa_offset_curve *
     *f = parts_f(base0, nrm, tgt);
 }
 
+/* eval_d on the double-double form's curves (aa__offset_fix_dd: a cubic's
+ * offset without stops): eval_parts' operations there in the same order,
+ * the same values, without its tests of the base curve, the evolute and
+ * the stops at each evaluation. */
+static __attribute__((always_inline)) inline void eval_dd(const aa_offset_curve *oc, int coord,
+                                                          double t, double tgt, double *f,
+                                                          double *df, double *dn)
+{
+    const double *b = oc->b;
+    double r0 = oc->m[coord], r1 = oc->m[2 + coord], base0;
+    if (r0 == 0) {
+        double by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+        base0 = r1 * by + oc->m[4 + coord];
+    } else if (r1 == 0) {
+        double bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+        base0 = r0 * bx + oc->m[4 + coord];
+    } else {
+        double bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+        double by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+        base0 = r0 * bx + r1 * by + oc->m[4 + coord];
+    }
+    double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+    double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+    double c = ux * vy - uy * vx, L2 = ux * ux + uy * uy, w = r1 * ux - r0 * uy;
+    double il = 1 / sqrt(L2), nrm = oc->d * w * il;
+    *df = (r0 * ux + r1 * uy) * (1 - oc->d * c * (il * il * il));
+    *dn = fabs(nrm);
+    *f = parts_f(base0, nrm, tgt);
+}
+
 void aa__offset_end(const aa_offset_curve *oc, int coord, double t, double e[4])
 {
     eval_parts(oc, coord, t, STOP_ASK, &e[0], &e[1], &e[2], &e[3]);
@@ -664,7 +694,8 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * both twice the evaluations in the reference's inner loop.  For the same
  * reason a root at the far end b (within rounding) is taken there: where b
  * was evaluated first, at once, and where it was not (a guess given), when
- * a step goes past it. */
+ * a step goes past it.  dd (a constant where it is called): the curve is
+ * one of the double-double form's, evaluated by eval_dd. */
 #define SOLVE_D_STEP 1e-12
 /* aa__offset_root's: it stops the double phase at a larger step, and its
  * long double phase judges the error left by the two last steps (below). */
@@ -674,9 +705,9 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * long doubles, 64 halvings and more */
 #define ROOT_LD_STEPS 200
 static __attribute__((always_inline)) inline double
-solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double a, double b,
-             double fa, double tgt, double guess, double tol, const double *endb, double *pa,
-             double *pb, double *last)
+solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int dd, int coord, double a,
+             double b, double fa, double tgt, double guess, double tol, const double *endb,
+             double *pa, double *pb, double *last)
 {
     int neg = fa < 0, stops = fx->stops;
     double t = 0.5 * (a + b), prev = fabs(b - a), f, df, dn;
@@ -698,6 +729,8 @@ solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, dou
          * steps only halve the distance); else the chord's */
         if (endb) /* the caller's eval_parts at b (aa__offset_end) */
             f = parts_f(endb[0], endb[1], tgt), df = endb[2], dn = endb[3];
+        else if (dd)
+            eval_dd(oc, coord, b, tgt, &f, &df, &dn);
         else
             eval_d(oc, coord, b, stops, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn)) {
@@ -721,7 +754,10 @@ solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, dou
         }
     }
     for (int it = 0; it < 100; it++) {
-        eval_d(oc, coord, t, stops, tgt, &f, &df, &dn);
+        if (dd)
+            eval_dd(oc, coord, t, tgt, &f, &df, &dn);
+        else
+            eval_d(oc, coord, t, stops, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn))
             break;
         if ((f < 0) == neg)
@@ -763,7 +799,7 @@ double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, doubl
     if (fa == 0)
         return ta;
     fix_init(oc, &fx);
-    return solve_double(oc, &fx, coord, ta, tb, fa, target, NAN, SOLVE_D_STEP, NULL, &a, &b,
+    return solve_double(oc, &fx, 0, coord, ta, tb, fa, target, NAN, SOLVE_D_STEP, NULL, &a, &b,
                         &last);
 }
 
@@ -775,8 +811,8 @@ double aa__offset_solve_dg(const aa_offset_curve *oc, int coord, double ta, doub
     if (fa == 0)
         return ta;
     fix_init(oc, &fx);
-    return solve_double(oc, &fx, coord, ta, tb, fa, target, guess, SOLVE_D_STEP, NULL, &a, &b,
-                        &last);
+    return solve_double(oc, &fx, 0, coord, ta, tb, fa, target, guess, SOLVE_D_STEP, NULL, &a,
+                        &b, &last);
 }
 
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
@@ -849,13 +885,14 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
         double fa, double target, double guess, const double *endb, long double xy[2],
         long double *other, int fma)
 {
-    double t = ta, a, b, h1, p[2][4], dp[4] = {0.0, 0.0, 0.0, 0.0}, h = 0.0, hx = 0.0;
+    double t = ta, a, b, h1, p[2][4], dp[4], h = 0.0, hx = 0.0;
     int neg = fa < 0;
     if (fa == 0) {
         dd_point_parts(oc, fx, t, fma, p, NULL);
+        dp[0] = dp[1] = dp[2] = dp[3] = 0.0;
         goto done;
     }
-    t = solve_double(oc, fx, coord, ta, tb, fa, target, guess, DD_D_STEP, endb, &a, &b, &h1);
+    t = solve_double(oc, fx, 1, coord, ta, tb, fa, target, guess, DD_D_STEP, endb, &a, &b, &h1);
     double la = ta, lb = tb;
     for (int it = 0; it < ROOT_LD_STEPS; it++) {
         dd_point_parts(oc, fx, t, fma, p, dp);
@@ -976,9 +1013,22 @@ void aa__offset_point_fix(const aa_offset_curve *oc, const aa__offset_fix *fx, d
     *x = xy[0], *y = xy[1];
 }
 
+/* The long double form of the two below, out of line: inline there, its
+ * frame (six registers saved, 456 bytes) was set up before the test of
+ * fx->dd, on every root, about 20 instructions a call. */
+static __attribute__((noinline)) double root_ld(const aa_offset_curve *oc,
+                                                const aa__offset_fix *fx, int coord, double ta,
+                                                double tb, double fa, double target,
+                                                double guess, const double *endb,
+                                                long double xy[2], long double *other)
+{
+    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, other, NULL, xy);
+}
+
 /* The same two with arguments in double (converted exactly: the same
  * roots), for callers whose brackets and targets are doubles: long double
- * arguments go through memory, at both ends of the call. */
+ * arguments go through memory, at both ends of the call.  Each passes its
+ * arguments on in registers (a jump, not a call). */
 double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                             double ta, double tb, double fa, double target, double guess,
                             long double *other)
@@ -987,8 +1037,7 @@ double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx,
         return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
     if (fx->dd)
         return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
-    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, NULL, other, NULL,
-                               NULL);
+    return root_ld(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
 }
 
 double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
@@ -999,7 +1048,7 @@ double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, 
         return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
     if (fx->dd)
         return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
-    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
+    return root_ld(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
 }
 
 static __attribute__((always_inline)) inline long double
@@ -1038,8 +1087,8 @@ offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, long
     if (fa == 0)
         goto at_lt;
     double a, b, h1;
-    lt = solve_double(oc, fx, coord, (double)ta, (double)tb, (double)fa, (double)target, guess,
-                      ROOT_D_STEP, endb, &a, &b, &h1);
+    lt = solve_double(oc, fx, 0, coord, (double)ta, (double)tb, (double)fa, (double)target,
+                      guess, ROOT_D_STEP, endb, &a, &b, &h1);
     /* long double: the bracket is the caller's, [ta, tb], not what the
      * double phase left: the signs that shrank it are double's, wrong
      * within its rounding of the root, where long double's Newton steps
