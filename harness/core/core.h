@@ -854,12 +854,14 @@ typedef struct aa__offset_fix {
     double sx, sy;
     /* aa__offset_fix_dd: 1 (Dekker's products) or 2 (fma) where the roots
      * and points take the double-double form, else 0; its mapped base
-     * cubic, coordinate c's coefficient of t^k in dc[c][k] (hi, lo) */
+     * cubic, coordinate c's coefficient of t^k in dc[k][0][c] (hi) and
+     * dc[k][1][c] (lo: the two coordinates side by side, for packed
+     * arithmetic) */
     int dd;
-    double dc[2][4][2];
+    double dc[4][2][2];
     /* and its base cubic's derivative B' (unmapped), coordinate c's
-     * coefficient of t^k in du[c][k] (hi, lo) */
-    double du[2][3][2];
+     * coefficient of t^k in du[k][0][c] (hi) and du[k][1][c] (lo) */
+    double du[3][2][2];
 } aa__offset_fix;
 void aa__offset_fix_init(const aa_offset_curve *oc, aa__offset_fix *fx);
 /* aa__offset_fix_init, and on a cubic's offset (not an evolute) without

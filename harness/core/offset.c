@@ -42,6 +42,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <string.h>
 
 /* B, B', B'', B''' (x in [0], y in [1]) of the base curve at t. */
 static void base_eval(const aa_offset_curve *oc, long double t, long double B[2],
@@ -359,20 +360,55 @@ static __attribute__((always_inline)) inline double dd_two_prod(double a, double
     return p;
 }
 
-/* r.B(t) + m[4 + c] as *hi + *lo: Horner's scheme on fx's coefficients */
-static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *fx, int coord,
-                                                         double t, int fma, double *hi,
-                                                         double *lo)
+/* The two coordinates at once, x in lane 0 and y in lane 1 (SSE2's
+ * packed doubles, GCC's vector extension): each lane's operations those
+ * of the scalar forms above in the same order, so the same values bit
+ * for bit, in half the instructions.  Loads and stores by memcpy (fx's
+ * arrays are 8-byte aligned). */
+typedef double dd_v2 __attribute__((vector_size(16)));
+
+static inline dd_v2 dd_ld(const double *p)
 {
-    const double(*c)[2] = fx->dc[coord];
-    double sh = c[3][0], sl = c[3][1];
+    dd_v2 v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+
+static inline dd_v2 dd_two_sum_v(dd_v2 a, dd_v2 b, dd_v2 *e)
+{
+    dd_v2 s = a + b, bb = s - a;
+    *e = (a - (s - bb)) + (b - bb);
+    return s;
+}
+
+static __attribute__((always_inline)) inline dd_v2 dd_two_prod_v(dd_v2 a, dd_v2 b, dd_v2 *e,
+                                                                  int fma)
+{
+    dd_v2 p = a * b;
+    if (fma) {
+        /* lane by lane: the compiler joins the two (vfmsub132pd) */
+        *e = (dd_v2){__builtin_fma(a[0], b[0], -p[0]), __builtin_fma(a[1], b[1], -p[1])};
+        return p;
+    }
+    dd_v2 ca = 134217729.0 * a, cb = 134217729.0 * b;
+    dd_v2 ah = ca - (ca - a), al = a - ah, bh = cb - (cb - b), bl = b - bh;
+    *e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return p;
+}
+
+/* r.B(t) + m[4 + c] as hi + lo for both coordinates (*hi, *lo: lane c
+ * coordinate c's): Horner's scheme on fx's coefficients */
+static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *fx, double t,
+                                                         int fma, dd_v2 *hi, dd_v2 *lo)
+{
+    dd_v2 sh = dd_ld(fx->dc[3][0]), sl = dd_ld(fx->dc[3][1]);
     for (int k = 2; k >= 0; k--) {
         /* (sh, sl) left unnormalised: sl may exceed half an ulp of sh
          * (where p and c[k] cancel), and sl t is then still within 2^-53
          * of a term 2^-53 of sh's size */
-        double e, p = dd_two_prod(sh, t, &e, fma), e2;
-        sh = dd_two_sum(p, c[k][0], &e2);
-        sl = e2 + (e + (sl * t + c[k][1]));
+        dd_v2 e, p = dd_two_prod_v(sh, (dd_v2){t, t}, &e, fma), e2;
+        sh = dd_two_sum_v(p, dd_ld(fx->dc[k][0]), &e2);
+        sl = e2 + (e + (sl * t + dd_ld(fx->dc[k][1])));
     }
     *hi = sh, *lo = sl;
 }
@@ -389,68 +425,64 @@ static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *
  * exact by TwoProduct), 1 / L the one division. */
 static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_curve *oc,
                                                               const aa__offset_fix *fx,
-                                                              double t, int fma, double n[2][2],
-                                                              double dp[2])
+                                                              double t, int fma, dd_v2 *nh,
+                                                              dd_v2 *nl, double dp[4])
 {
-    double u[2][2]; /* B'x, B'y as hi, lo */
-    for (int c = 0; c < 2; c++) {
-        const double(*k)[2] = fx->du[c];
-        double e, p = dd_two_prod(k[2][0], t, &e, fma), e2;
-        double sh = dd_two_sum(p, k[1][0], &e2), sl = e2 + (e + k[2][1] * t);
-        p = dd_two_prod(sh, t, &e, fma);
-        double s = dd_two_sum(p, k[0][0], &e2);
-        u[c][0] = dd_two_sum(s, e2 + (e + sl * t), &u[c][1]);
-    }
+    /* B'x, B'y (the lanes) as hi (uh) + lo (ul) */
+    dd_v2 tv = {t, t}, e, e2, ul;
+    dd_v2 p = dd_two_prod_v(dd_ld(fx->du[2][0]), tv, &e, fma);
+    dd_v2 sh = dd_two_sum_v(p, dd_ld(fx->du[1][0]), &e2), sl = e2 + (e + dd_ld(fx->du[2][1]) * t);
+    p = dd_two_prod_v(sh, tv, &e, fma);
+    dd_v2 s2 = dd_two_sum_v(p, dd_ld(fx->du[0][0]), &e2);
+    dd_v2 uh = dd_two_sum_v(s2, e2 + (e + sl * t), &ul);
     /* L^2 and L */
-    double e1, e2, e3, p1 = dd_two_prod(u[0][0], u[0][0], &e1, fma);
-    double p2 = dd_two_prod(u[1][0], u[1][0], &e2, fma), s = dd_two_sum(p1, p2, &e3);
-    double ql = e3 + e1 + e2 + 2 * (u[0][0] * u[0][1] + u[1][0] * u[1][1]);
+    double e1, e3, e4, p1 = dd_two_prod(uh[0], uh[0], &e1, fma);
+    double p2 = dd_two_prod(uh[1], uh[1], &e4, fma), s = dd_two_sum(p1, p2, &e3);
+    double ql = e3 + e1 + e4 + 2 * (uh[0] * ul[0] + uh[1] * ul[1]);
     double qh = dd_two_sum(s, ql, &ql);
     double lh = sqrt(qh), il = 1 / lh, el, pl = dd_two_prod(lh, lh, &el, fma);
     double ll = (((qh - pl) - el) + ql) * (0.5 * il);
-    for (int c = 0; c < 2; c++) {
-        double r0 = oc->m[c], r1 = oc->m[2 + c], ea, eb, es;
-        double a = dd_two_prod(r1, u[0][0], &ea, fma), b = dd_two_prod(-r0, u[1][0], &eb, fma);
-        double ws = dd_two_sum(a, b, &es), wl = es + ea + eb + (r1 * u[0][1] - r0 * u[1][1]);
-        double wh = dd_two_sum(ws, wl, &wl);
-        /* w / L: the quotient by 1 / L (within an ulp or two), then the
-         * remainder's (w - fh L, exact by TwoProduct and Sterbenz) */
-        double fh = wh * il, ef, pf = dd_two_prod(fh, lh, &ef, fma);
-        double fl = (((wh - pf) - ef) + (wl - fh * ll)) * il;
-        double eh, nh = dd_two_prod(oc->d, fh, &eh, fma);
-        n[c][0] = nh, n[c][1] = eh + oc->d * fl;
-    }
+    /* w = r1 B'x - r0 B'y for both rows of the map (the lanes: r0 = m[c],
+     * r1 = m[2 + c]) */
+    const double *m = oc->m;
+    dd_v2 r0 = {m[0], m[1]}, r1 = {m[2], m[3]}, ea, eb, es, wl2;
+    dd_v2 a = dd_two_prod_v(r1, (dd_v2){uh[0], uh[0]}, &ea, fma);
+    dd_v2 b = dd_two_prod_v(-r0, (dd_v2){uh[1], uh[1]}, &eb, fma);
+    dd_v2 ws = dd_two_sum_v(a, b, &es), wl = es + ea + eb + (r1 * ul[0] - r0 * ul[1]);
+    dd_v2 wh = dd_two_sum_v(ws, wl, &wl2);
+    /* w / L: the quotient by 1 / L (within an ulp or two), then the
+     * remainder's (w - fh L, exact by TwoProduct and Sterbenz) */
+    dd_v2 fh = wh * il, ef, pf = dd_two_prod_v(fh, (dd_v2){lh, lh}, &ef, fma);
+    dd_v2 fl = (((wh - pf) - ef) + (wl2 - fh * ll)) * il, eh;
+    *nh = dd_two_prod_v((dd_v2){oc->d, oc->d}, fh, &eh, fma);
+    *nl = eh + oc->d * fl;
     if (dp) {
         /* the derivative and the second, in double: P' = B' g, g = 1 - d
          * k, k = c / L^3, and P'' = B'' g + B' g', g' = -d k', k' = c' /
          * L^3 - 3 c (B'.B'') / L^5, c' = B' x B''' */
-        const double *b = oc->b, *m = oc->m;
-        double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
-        double ux = u[0][0], uy = u[1][0], cc = ux * vy - uy * vx;
+        const double *bc = oc->b;
+        double vx = 2 * bc[2] + 6 * t * bc[3], vy = 2 * bc[6] + 6 * t * bc[7];
+        double ux = uh[0], uy = uh[1], cc = ux * vy - uy * vx;
         double il3 = il * il * il, g = 1 - oc->d * cc * il3, qx = ux * g, qy = uy * g;
-        double cp = 6 * (ux * b[7] - uy * b[3]), dot = ux * vx + uy * vy;
+        double cp = 6 * (ux * bc[7] - uy * bc[3]), dot = ux * vx + uy * vy;
         double gp = -oc->d * il3 * (cp - 3 * cc * dot * (il * il));
         double rx = vx * g + ux * gp, ry = vy * g + uy * gp;
-        dp[0] = m[0] * qx + m[2] * qy, dp[1] = m[1] * qx + m[3] * qy;
-        dp[2] = m[0] * rx + m[2] * ry, dp[3] = m[1] * rx + m[3] * ry;
+        dd_v2 d1 = r0 * qx + r1 * qy, d2 = r0 * rx + r1 * ry;
+        dp[0] = d1[0], dp[1] = d1[1], dp[2] = d2[0], dp[3] = d2[1];
     }
 }
 
-/* The point at t, each coordinate as the base's hi + lo plus the normal
- * term's (p[c][0..3]: base hi, normal hi, base lo, normal lo), and its
- * first and second derivatives dp in double (dd_normal_pt's; NULL: not
- * wanted) */
+/* The point at t, both coordinates (the lanes) as the base's hi + lo plus
+ * the normal term's (p[0..3]: base hi, normal hi, base lo, normal lo),
+ * and its first and second derivatives dp in double (dd_normal_pt's;
+ * NULL: not wanted) */
 static __attribute__((always_inline)) inline void dd_point_parts(const aa_offset_curve *oc,
                                                                 const aa__offset_fix *fx,
-                                                                double t, int fma, double p[2][4],
+                                                                double t, int fma, dd_v2 p[4],
                                                                 double dp[4])
 {
-    double n[2][2];
-    dd_normal_pt(oc, fx, t, fma, n, dp);
-    for (int c = 0; c < 2; c++) {
-        dd_base(fx, c, t, fma, &p[c][0], &p[c][2]);
-        p[c][1] = n[c][0], p[c][3] = n[c][1];
-    }
+    dd_normal_pt(oc, fx, t, fma, &p[1], &p[3], dp);
+    dd_base(fx, t, fma, &p[0], &p[2]);
 }
 
 /* The point's coordinate from dd_point_parts' parts, moved by h along
@@ -459,9 +491,9 @@ static __attribute__((always_inline)) inline void dd_point_parts(const aa_offset
  * third order's term then at most 1.7e-22 of the third derivative), in
  * long double (its last bit 5.6e-17 at 1000 px) for callers that
  * subtract the cell and the band from it */
-static inline long double dd_coord(const double *p, double s, double s2, double h)
+static inline long double dd_coord(const dd_v2 *p, int c, double s, double s2, double h)
 {
-    return ((long double)p[0] + p[1]) + (p[2] + (p[3] + h * (s + 0.5 * s2 * h)));
+    return ((long double)p[0][c] + p[1][c]) + (p[2][c] + (p[3][c] + h * (s + 0.5 * s2 * h)));
 }
 
 /* Coordinate coord of oc at t as the base curve's mapped coordinate
@@ -554,6 +586,36 @@ static __attribute__((always_inline)) inline void eval_d(const aa_offset_curve *
 {
     double base0, nrm;
     eval_parts(oc, coord, t, stops, &base0, &nrm, df, dn);
+    *f = parts_f(base0, nrm, tgt);
+}
+
+/* eval_d on the double-double form's curves (aa__offset_fix_dd: a cubic's
+ * offset without stops): eval_parts' operations there in the same order,
+ * the same values, without its tests of the base curve, the evolute and
+ * the stops at each evaluation. */
+static __attribute__((always_inline)) inline void eval_dd(const aa_offset_curve *oc, int coord,
+                                                          double t, double tgt, double *f,
+                                                          double *df, double *dn)
+{
+    const double *b = oc->b;
+    double r0 = oc->m[coord], r1 = oc->m[2 + coord], base0;
+    if (r0 == 0) {
+        double by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+        base0 = r1 * by + oc->m[4 + coord];
+    } else if (r1 == 0) {
+        double bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+        base0 = r0 * bx + oc->m[4 + coord];
+    } else {
+        double bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+        double by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+        base0 = r0 * bx + r1 * by + oc->m[4 + coord];
+    }
+    double ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
+    double vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
+    double c = ux * vy - uy * vx, L2 = ux * ux + uy * uy, w = r1 * ux - r0 * uy;
+    double il = 1 / sqrt(L2), nrm = oc->d * w * il;
+    *df = (r0 * ux + r1 * uy) * (1 - oc->d * c * (il * il * il));
+    *dn = fabs(nrm);
     *f = parts_f(base0, nrm, tgt);
 }
 
@@ -664,7 +726,8 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * both twice the evaluations in the reference's inner loop.  For the same
  * reason a root at the far end b (within rounding) is taken there: where b
  * was evaluated first, at once, and where it was not (a guess given), when
- * a step goes past it. */
+ * a step goes past it.  dd (a constant where it is called): the curve is
+ * one of the double-double form's, evaluated by eval_dd. */
 #define SOLVE_D_STEP 1e-12
 /* aa__offset_root's: it stops the double phase at a larger step, and its
  * long double phase judges the error left by the two last steps (below). */
@@ -674,9 +737,9 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * long doubles, 64 halvings and more */
 #define ROOT_LD_STEPS 200
 static __attribute__((always_inline)) inline double
-solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double a, double b,
-             double fa, double tgt, double guess, double tol, const double *endb, double *pa,
-             double *pb, double *last)
+solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int dd, int coord, double a,
+             double b, double fa, double tgt, double guess, double tol, const double *endb,
+             double *pa, double *pb, double *last)
 {
     int neg = fa < 0, stops = fx->stops;
     double t = 0.5 * (a + b), prev = fabs(b - a), f, df, dn;
@@ -698,6 +761,8 @@ solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, dou
          * steps only halve the distance); else the chord's */
         if (endb) /* the caller's eval_parts at b (aa__offset_end) */
             f = parts_f(endb[0], endb[1], tgt), df = endb[2], dn = endb[3];
+        else if (dd)
+            eval_dd(oc, coord, b, tgt, &f, &df, &dn);
         else
             eval_d(oc, coord, b, stops, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn)) {
@@ -721,7 +786,10 @@ solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, dou
         }
     }
     for (int it = 0; it < 100; it++) {
-        eval_d(oc, coord, t, stops, tgt, &f, &df, &dn);
+        if (dd)
+            eval_dd(oc, coord, t, tgt, &f, &df, &dn);
+        else
+            eval_d(oc, coord, t, stops, tgt, &f, &df, &dn);
         if (fabs(f) <= 2 * DBL_EPSILON * (size + dn))
             break;
         if ((f < 0) == neg)
@@ -763,7 +831,7 @@ double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, doubl
     if (fa == 0)
         return ta;
     fix_init(oc, &fx);
-    return solve_double(oc, &fx, coord, ta, tb, fa, target, NAN, SOLVE_D_STEP, NULL, &a, &b,
+    return solve_double(oc, &fx, 0, coord, ta, tb, fa, target, NAN, SOLVE_D_STEP, NULL, &a, &b,
                         &last);
 }
 
@@ -775,8 +843,8 @@ double aa__offset_solve_dg(const aa_offset_curve *oc, int coord, double ta, doub
     if (fa == 0)
         return ta;
     fix_init(oc, &fx);
-    return solve_double(oc, &fx, coord, ta, tb, fa, target, guess, SOLVE_D_STEP, NULL, &a, &b,
-                        &last);
+    return solve_double(oc, &fx, 0, coord, ta, tb, fa, target, guess, SOLVE_D_STEP, NULL, &a,
+                        &b, &last);
 }
 
 long double aa__offset_solve_from(const aa_offset_curve *oc, int coord, long double ta,
@@ -849,18 +917,20 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
         double fa, double target, double guess, const double *endb, long double xy[2],
         long double *other, int fma)
 {
-    double t = ta, a, b, h1, p[2][4], dp[4] = {0.0, 0.0, 0.0, 0.0}, h = 0.0, hx = 0.0;
+    double t = ta, a, b, h1, dp[4], h = 0.0, hx = 0.0;
+    dd_v2 p[4];
     int neg = fa < 0;
     if (fa == 0) {
         dd_point_parts(oc, fx, t, fma, p, NULL);
+        dp[0] = dp[1] = dp[2] = dp[3] = 0.0;
         goto done;
     }
-    t = solve_double(oc, fx, coord, ta, tb, fa, target, guess, DD_D_STEP, endb, &a, &b, &h1);
+    t = solve_double(oc, fx, 1, coord, ta, tb, fa, target, guess, DD_D_STEP, endb, &a, &b, &h1);
     double la = ta, lb = tb;
     for (int it = 0; it < ROOT_LD_STEPS; it++) {
         dd_point_parts(oc, fx, t, fma, p, dp);
-        const double *q = p[coord];
-        double f = ((q[0] - target) + q[1]) + (q[2] + q[3]), df = dp[coord];
+        double f = ((p[0][coord] - target) + p[1][coord]) + (p[2][coord] + p[3][coord]);
+        double df = dp[coord];
         if (f == 0)
             break;
         if ((f < 0) == neg)
@@ -894,9 +964,9 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
     }
 done:
     if (xy)
-        xy[0] = dd_coord(p[0], dp[0], dp[2], h), xy[1] = dd_coord(p[1], dp[1], dp[3], h);
+        xy[0] = dd_coord(p, 0, dp[0], dp[2], h), xy[1] = dd_coord(p, 1, dp[1], dp[3], h);
     if (other) /* at the root itself, where coordinate coord is the target */
-        *other = dd_coord(p[1 - coord], dp[1 - coord], dp[3 - coord], hx);
+        *other = dd_coord(p, 1 - coord, dp[1 - coord], dp[3 - coord], hx);
     return t;
 }
 
@@ -922,17 +992,17 @@ static __attribute__((noinline)) void point_dd_split(const aa_offset_curve *oc,
                                                      const aa__offset_fix *fx, double t,
                                                      long double xy[2])
 {
-    double p[2][4];
+    dd_v2 p[4];
     dd_point_parts(oc, fx, t, 0, p, NULL);
-    xy[0] = dd_coord(p[0], 0.0, 0.0, 0.0), xy[1] = dd_coord(p[1], 0.0, 0.0, 0.0);
+    xy[0] = dd_coord(p, 0, 0.0, 0.0, 0.0), xy[1] = dd_coord(p, 1, 0.0, 0.0, 0.0);
 }
 
 static __attribute__((noinline, target("fma"))) void
 point_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, double t, long double xy[2])
 {
-    double p[2][4];
+    dd_v2 p[4];
     dd_point_parts(oc, fx, t, 1, p, NULL);
-    xy[0] = dd_coord(p[0], 0.0, 0.0, 0.0), xy[1] = dd_coord(p[1], 0.0, 0.0, 0.0);
+    xy[0] = dd_coord(p, 0, 0.0, 0.0, 0.0), xy[1] = dd_coord(p, 1, 0.0, 0.0, 0.0);
 }
 
 void aa__offset_fix_dd(const aa_offset_curve *oc, aa__offset_fix *fx, int fma)
@@ -953,12 +1023,12 @@ void aa__offset_fix_dd(const aa_offset_curve *oc, aa__offset_fix *fx, int fma)
                 sum = dd_two_sum(sum, m[4 + c], &e4), e4 += e3;
             else
                 e4 = e3;
-            fx->dc[c][k][0] = dd_two_sum(sum, e1 + e2 + e4, &fx->dc[c][k][1]);
+            fx->dc[k][0][c] = dd_two_sum(sum, e1 + e2 + e4, &fx->dc[k][1][c]);
         }
     for (int c = 0; c < 2; c++) { /* B': b1 + 2 b2 t + 3 b3 t^2 */
-        fx->du[c][0][0] = b[4 * c + 1], fx->du[c][0][1] = 0.0;
-        fx->du[c][1][0] = 2 * b[4 * c + 2], fx->du[c][1][1] = 0.0;
-        fx->du[c][2][0] = dd_two_prod(3.0, b[4 * c + 3], &fx->du[c][2][1], 0);
+        fx->du[0][0][c] = b[4 * c + 1], fx->du[0][1][c] = 0.0;
+        fx->du[1][0][c] = 2 * b[4 * c + 2], fx->du[1][1][c] = 0.0;
+        fx->du[2][0][c] = dd_two_prod(3.0, b[4 * c + 3], &fx->du[2][1][c], 0);
     }
     fx->dd = fma && __builtin_cpu_supports("fma") ? 2 : 1;
 }
@@ -976,9 +1046,22 @@ void aa__offset_point_fix(const aa_offset_curve *oc, const aa__offset_fix *fx, d
     *x = xy[0], *y = xy[1];
 }
 
+/* The long double form of the two below, out of line: inline there, its
+ * frame (six registers saved, 456 bytes) was set up before the test of
+ * fx->dd, on every root, about 20 instructions a call. */
+static __attribute__((noinline)) double root_ld(const aa_offset_curve *oc,
+                                                const aa__offset_fix *fx, int coord, double ta,
+                                                double tb, double fa, double target,
+                                                double guess, const double *endb,
+                                                long double xy[2], long double *other)
+{
+    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, other, NULL, xy);
+}
+
 /* The same two with arguments in double (converted exactly: the same
  * roots), for callers whose brackets and targets are doubles: long double
- * arguments go through memory, at both ends of the call. */
+ * arguments go through memory, at both ends of the call.  Each passes its
+ * arguments on in registers (a jump, not a call). */
 double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                             double ta, double tb, double fa, double target, double guess,
                             long double *other)
@@ -987,8 +1070,7 @@ double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx,
         return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
     if (fx->dd)
         return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
-    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, NULL, other, NULL,
-                               NULL);
+    return root_ld(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
 }
 
 double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
@@ -999,7 +1081,7 @@ double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, 
         return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
     if (fx->dd)
         return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
-    return (double)offset_root(oc, fx, coord, ta, tb, fa, target, guess, endb, NULL, NULL, xy);
+    return root_ld(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
 }
 
 static __attribute__((always_inline)) inline long double
@@ -1038,8 +1120,8 @@ offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, long
     if (fa == 0)
         goto at_lt;
     double a, b, h1;
-    lt = solve_double(oc, fx, coord, (double)ta, (double)tb, (double)fa, (double)target, guess,
-                      ROOT_D_STEP, endb, &a, &b, &h1);
+    lt = solve_double(oc, fx, 0, coord, (double)ta, (double)tb, (double)fa, (double)target,
+                      guess, ROOT_D_STEP, endb, &a, &b, &h1);
     /* long double: the bracket is the caller's, [ta, tb], not what the
      * double phase left: the signs that shrank it are double's, wrong
      * within its rounding of the root, where long double's Newton steps
