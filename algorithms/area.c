@@ -698,13 +698,20 @@ static double offset_line_t(const ar_piece *p, double fa, double yl, long double
 /* An offset piece: its cell from its point on the line y = ja (or its
  * top, if lower); its tau is sg t, so its fields are its ends' taus, its
  * x turns, and Va = -ja (V = -j in band j: y = v - V).  On the anchor's
- * line the point is kept as the first band's top (mline 0). */
+ * line the point is kept as the first band's top (mline 0).  That line is
+ * the last band's bottom where the worker did the row above with the seg
+ * (its anchor ANCHOR_ROWS rows up): its root and point are then taken as
+ * kept there (xline, yline), offset_line_t's for the same piece and line,
+ * not solved again (on tests/bench_bezstroke.c's scene at 1024 px 3,492
+ * roots a render). */
 static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
 {
     const aa_piece *q = p->src;
     double t = q->ot0;
     long double X, Y;
-    if (p->y0 < ja)
+    if (p->y0 < ja && a->p == p && a->mline != INT_MIN && a->ja + a->mline == ja)
+        t = p->sg * a->tline, X = a->xline, Y = a->yline;
+    else if (p->y0 < ja)
         t = offset_line_t(p, p->y0 - ja, ja, &X, &Y, &a->ythint);
     else
         offset_point(p, t, &X, &Y);
@@ -726,7 +733,7 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     a->te2 = p->ote2;
     a->mline = INT_MIN;
     if (p->y0 < ja)
-        a->mline = 0, a->tline = a->g, a->uline = a->U, a->yline = Y;
+        a->mline = 0, a->tline = a->g, a->uline = a->U, a->xline = X, a->yline = Y;
 }
 
 /* Expand piece p about its point on line y = ja (or its top, if lower),
@@ -831,14 +838,13 @@ static inline double line_tau(const ar_seg *a, int m)
 }
 
 /* An offset piece's tau on the line y = ja + m = -c (on the whole piece),
- * u there and its y (*y): offset_line_t, the same call as expand_offset's
- * on the anchor's line, so the same root and point. */
-static double offset_line(const ar_seg *a, int m, double *u, long double *y)
+ * u there and its x and y (*x, *y): offset_line_t, the same call as
+ * expand_offset's on the anchor's line, so the same root and point. */
+static double offset_line(const ar_seg *a, int m, double *u, long double *x, long double *y)
 {
     double c = a->Va - m;
-    long double X;
-    double t = offset_line_t(a->p, a->p->y0 + c, -c, &X, y, &((ar_seg *)a)->ythint);
-    *u = (double)(X - a->c0);
+    double t = offset_line_t(a->p, a->p->y0 + c, -c, x, y, &((ar_seg *)a)->ythint);
+    *u = (double)(*x - a->c0);
     return a->p->sg * t;
 }
 
@@ -922,8 +928,8 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     } else if (plain) {
         ta = line_tau_quad(s, m), ua = u_quad(s, ta);
     } else if (special && p->offset) {
-        long double y;
-        ta = offset_line(s, m, &ua, &y);
+        long double x, y;
+        ta = offset_line(s, m, &ua, &x, &y);
         offset_keep(s, ta, (double)(y + s->V));
     } else {
         ta = line_tau(s, m), ua = seg_u(s, ta);
@@ -935,7 +941,7 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
         if (special && p->offset) {
-            tb = offset_line(s, m + 1, &ub, &s->yline);
+            tb = offset_line(s, m + 1, &ub, &s->xline, &s->yline);
             offset_keep(s, tb, (double)(s->yline + s->V));
         } else {
             tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
