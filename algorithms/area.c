@@ -1102,22 +1102,38 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
  * area, 1/2 sum (v_Q - v_P)(u_P + u_Q) over its edges (the trapezoids' own
  * 1 (v_Q - v_P) cancel round it); u and v from x and y in long double, the
  * cell's column dropping out of the sum.  Without it, the triangle V E E'
- * (up to |E E'| |E V| / 2, 5e-14 on the benchmark's scene) stayed. */
-static double offset_end_area(const ar_seg *s, double ta, double tb)
+ * (up to |E E'| |E V| / 2, 5e-14 on the benchmark's scene) stayed.  Where
+ * one end alone is the piece's (the other a band line's, a cell side's or
+ * a sub-band end's point: E = V there), the polygon is taken about the
+ * piece's end, the other end from it by the part's chord (du, dv: u and v
+ * at tb less those at ta, as the trapezoid takes them), not the point
+ * evaluated there again: the triangle's area is 1/2 |E E'| times the
+ * chord's distance across it, so the chord's rounding (and a side's
+ * root's, about 1e-14 px) moves it by about 4e-14 times that (on
+ * tests/bench_bezstroke.c's scene at 1024 px 5,948 evaluations a render,
+ * 354 instructions each). */
+static double offset_end_area(const ar_seg *s, double ta, double tb, double du, double dv)
 {
     const aa_piece *q = s->p->src;
     int ea = ta == q->ot0 || ta == q->ot1, eb = tb == q->ot0 || tb == q->ot1;
     if (!ea && !eb)
         return 0.0;
-    long double P[4][2], X, Y; /* V, E, E', V' as (x, y) */
-    offset_point(s->p, ta, &X, &Y);
-    P[0][0] = P[1][0] = X, P[0][1] = P[1][1] = Y;
-    offset_point(s->p, tb, &X, &Y);
-    P[2][0] = P[3][0] = X, P[2][1] = P[3][1] = Y;
-    if (ea)
+    long double P[4][2], X, Y; /* V, E, E', V' as (x, y), about the piece's end */
+    if (ea && eb) {
+        offset_point(s->p, ta, &X, &Y);
+        P[0][0] = P[1][0] = X, P[0][1] = P[1][1] = Y;
+        offset_point(s->p, tb, &X, &Y);
+        P[2][0] = P[3][0] = X, P[2][1] = P[3][1] = Y;
         aa__offset_eval_s(&q->oc, s->p->ostops, ta, &P[1][0], &P[1][1], NULL, NULL);
-    if (eb)
         aa__offset_eval_s(&q->oc, s->p->ostops, tb, &P[2][0], &P[2][1], NULL, NULL);
+    } else {
+        int e = ea ? 1 : 2, o = ea ? 3 : 0; /* E's slot, and the other end's */
+        double t = ea ? ta : tb, sg = ea ? 1.0 : -1.0;
+        offset_point(s->p, t, &X, &Y);
+        P[3 - o][0] = X, P[3 - o][1] = Y;
+        aa__offset_eval_s(&q->oc, s->p->ostops, t, &P[e][0], &P[e][1], NULL, NULL);
+        P[o][0] = P[3 - e][0] = X + sg * du, P[o][1] = P[3 - e][1] = Y + sg * dv;
+    }
     long double a = 0.0L, x0 = P[0][0], y0 = P[0][1];
     for (int k = 0; k < 4; k++) {
         const long double *A = P[k], *B = P[(k + 1) & 3];
@@ -1141,7 +1157,7 @@ static double part_area_curved(const ar_seg *s, double ta, double tb, double ua,
         *dy = v1 - v0;
         double sg = s->p->sg;
         return *dy * (1.0 - 0.5 * (ua + ub)) - area_offset_segment(s->p, sg * ta, sg * tb) +
-               offset_end_area(s, sg * ta, sg * tb);
+               offset_end_area(s, sg * ta, sg * tb, ub - ua, *dy);
     }
     if (s->p->conic) {
         /* from q: the angle d = 2 atan(pq), pq = (tb - ta)/(1 + ta tb)
