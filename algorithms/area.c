@@ -698,13 +698,20 @@ static double offset_line_t(const ar_piece *p, double fa, double yl, long double
 /* An offset piece: its cell from its point on the line y = ja (or its
  * top, if lower); its tau is sg t, so its fields are its ends' taus, its
  * x turns, and Va = -ja (V = -j in band j: y = v - V).  On the anchor's
- * line the point is kept as the first band's top (mline 0). */
+ * line the point is kept as the first band's top (mline 0).  That line is
+ * the last band's bottom where the worker did the row above with the seg
+ * (its anchor ANCHOR_ROWS rows up): its root and point are then taken as
+ * kept there (xline, yline), offset_line_t's for the same piece and line,
+ * not solved again (on tests/bench_bezstroke.c's scene at 1024 px 3,492
+ * roots a render). */
 static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
 {
     const aa_piece *q = p->src;
     double t = q->ot0;
     long double X, Y;
-    if (p->y0 < ja)
+    if (p->y0 < ja && a->p == p && a->mline != INT_MIN && a->ja + a->mline == ja)
+        t = p->sg * a->tline, X = a->xline, Y = a->yline;
+    else if (p->y0 < ja)
         t = offset_line_t(p, p->y0 - ja, ja, &X, &Y, &a->ythint);
     else
         offset_point(p, t, &X, &Y);
@@ -726,7 +733,7 @@ static void expand_offset(ar_seg *a, const ar_piece *p, int ja)
     a->te2 = p->ote2;
     a->mline = INT_MIN;
     if (p->y0 < ja)
-        a->mline = 0, a->tline = a->g, a->uline = a->U, a->yline = Y;
+        a->mline = 0, a->tline = a->g, a->uline = a->U, a->xline = X, a->yline = Y;
 }
 
 /* Expand piece p about its point on line y = ja (or its top, if lower),
@@ -831,14 +838,13 @@ static inline double line_tau(const ar_seg *a, int m)
 }
 
 /* An offset piece's tau on the line y = ja + m = -c (on the whole piece),
- * u there and its y (*y): offset_line_t, the same call as expand_offset's
- * on the anchor's line, so the same root and point. */
-static double offset_line(const ar_seg *a, int m, double *u, long double *y)
+ * u there and its x and y (*x, *y): offset_line_t, the same call as
+ * expand_offset's on the anchor's line, so the same root and point. */
+static double offset_line(const ar_seg *a, int m, double *u, long double *x, long double *y)
 {
     double c = a->Va - m;
-    long double X;
-    double t = offset_line_t(a->p, a->p->y0 + c, -c, &X, y, &((ar_seg *)a)->ythint);
-    *u = (double)(X - a->c0);
+    double t = offset_line_t(a->p, a->p->y0 + c, -c, x, y, &((ar_seg *)a)->ythint);
+    *u = (double)(*x - a->c0);
     return a->p->sg * t;
 }
 
@@ -922,8 +928,8 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     } else if (plain) {
         ta = line_tau_quad(s, m), ua = u_quad(s, ta);
     } else if (special && p->offset) {
-        long double y;
-        ta = offset_line(s, m, &ua, &y);
+        long double x, y;
+        ta = offset_line(s, m, &ua, &x, &y);
         offset_keep(s, ta, (double)(y + s->V));
     } else {
         ta = line_tau(s, m), ua = seg_u(s, ta);
@@ -935,7 +941,7 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
         if (special && p->offset) {
-            tb = offset_line(s, m + 1, &ub, &s->yline);
+            tb = offset_line(s, m + 1, &ub, &s->xline, &s->yline);
             offset_keep(s, tb, (double)(s->yline + s->V));
         } else {
             tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
@@ -1096,22 +1102,38 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
  * area, 1/2 sum (v_Q - v_P)(u_P + u_Q) over its edges (the trapezoids' own
  * 1 (v_Q - v_P) cancel round it); u and v from x and y in long double, the
  * cell's column dropping out of the sum.  Without it, the triangle V E E'
- * (up to |E E'| |E V| / 2, 5e-14 on the benchmark's scene) stayed. */
-static double offset_end_area(const ar_seg *s, double ta, double tb)
+ * (up to |E E'| |E V| / 2, 5e-14 on the benchmark's scene) stayed.  Where
+ * one end alone is the piece's (the other a band line's, a cell side's or
+ * a sub-band end's point: E = V there), the polygon is taken about the
+ * piece's end, the other end from it by the part's chord (du, dv: u and v
+ * at tb less those at ta, as the trapezoid takes them), not the point
+ * evaluated there again: the triangle's area is 1/2 |E E'| times the
+ * chord's distance across it, so the chord's rounding (and a side's
+ * root's, about 1e-14 px) moves it by about 4e-14 times that (on
+ * tests/bench_bezstroke.c's scene at 1024 px 5,948 evaluations a render,
+ * 354 instructions each). */
+static double offset_end_area(const ar_seg *s, double ta, double tb, double du, double dv)
 {
     const aa_piece *q = s->p->src;
     int ea = ta == q->ot0 || ta == q->ot1, eb = tb == q->ot0 || tb == q->ot1;
     if (!ea && !eb)
         return 0.0;
-    long double P[4][2], X, Y; /* V, E, E', V' as (x, y) */
-    offset_point(s->p, ta, &X, &Y);
-    P[0][0] = P[1][0] = X, P[0][1] = P[1][1] = Y;
-    offset_point(s->p, tb, &X, &Y);
-    P[2][0] = P[3][0] = X, P[2][1] = P[3][1] = Y;
-    if (ea)
+    long double P[4][2], X, Y; /* V, E, E', V' as (x, y), about the piece's end */
+    if (ea && eb) {
+        offset_point(s->p, ta, &X, &Y);
+        P[0][0] = P[1][0] = X, P[0][1] = P[1][1] = Y;
+        offset_point(s->p, tb, &X, &Y);
+        P[2][0] = P[3][0] = X, P[2][1] = P[3][1] = Y;
         aa__offset_eval_s(&q->oc, s->p->ostops, ta, &P[1][0], &P[1][1], NULL, NULL);
-    if (eb)
         aa__offset_eval_s(&q->oc, s->p->ostops, tb, &P[2][0], &P[2][1], NULL, NULL);
+    } else {
+        int e = ea ? 1 : 2, o = ea ? 3 : 0; /* E's slot, and the other end's */
+        double t = ea ? ta : tb, sg = ea ? 1.0 : -1.0;
+        offset_point(s->p, t, &X, &Y);
+        P[3 - o][0] = X, P[3 - o][1] = Y;
+        aa__offset_eval_s(&q->oc, s->p->ostops, t, &P[e][0], &P[e][1], NULL, NULL);
+        P[o][0] = P[3 - e][0] = X + sg * du, P[o][1] = P[3 - e][1] = Y + sg * dv;
+    }
     long double a = 0.0L, x0 = P[0][0], y0 = P[0][1];
     for (int k = 0; k < 4; k++) {
         const long double *A = P[k], *B = P[(k + 1) & 3];
@@ -1135,7 +1157,7 @@ static double part_area_curved(const ar_seg *s, double ta, double tb, double ua,
         *dy = v1 - v0;
         double sg = s->p->sg;
         return *dy * (1.0 - 0.5 * (ua + ub)) - area_offset_segment(s->p, sg * ta, sg * tb) +
-               offset_end_area(s, sg * ta, sg * tb);
+               offset_end_area(s, sg * ta, sg * tb, ub - ua, *dy);
     }
     if (s->p->conic) {
         /* from q: the angle d = 2 atan(pq), pq = (tb - ta)/(1 + ta tb)

@@ -149,7 +149,8 @@ typedef struct ar_seg {
     /* tau and u on the line y = ja + mline (the bottom of the last band
      * rendered): the next band's top, without solving again */
     double tline, uline;
-    long double yline; /* an offset piece's y there (its v in the next band) */
+    long double xline, yline; /* an offset piece's x and y there (the next band's top,
+                               * and the next anchor's point: expand_offset) */
     size_t ythint;     /* an offset piece's last interval of its table (ytab_guess) */
     /* an offset piece: its v at up to four taus vt of the current band
      * (NAN: none), the ends of its parts: [2] and [3] the band's ends as

@@ -2079,6 +2079,59 @@ static void test_crowd_meet_at_swap(void **state)
     aa_scene_free(s);
 }
 
+/* The parts of offset pieces that end at a piece's end (the outline's
+ * vertex, rounded to double) add the sliver between their chord to the
+ * vertex and the chord the quadrature takes (area.c, offset_end_area),
+ * about the vertex and the part's chord where the other end is a line's,
+ * a side's or a sub-band's: the benchmark's row of cubics r = 10
+ * (tests/bench_bezstroke.c, 50 cubics, round joins and caps, 2.5 px wide)
+ * at 1024 px against the reference on the window of 128 x 64 pixels from
+ * (640, 520), each pixel within the reference's bound and 2e-14 (3.7e-15
+ * beyond it at most; 8.7e-14 with the chord taken the wrong way from the
+ * vertex, 3.9e-14 with the sliver left out where one end is the piece's). */
+static void test_end_chord(void **state)
+{
+    (void)state;
+    const int r = 10, n = 1024, x0 = 640, y0 = 520, w = 128, h = 64;
+    double y = (r + 0.5) / 20.0, a = 0.004 + 0.0015 * r, dx = 0.9 / 50.0, x = 0.05;
+    double cs[2 + 6 * 50];
+    cs[0] = x, cs[1] = y;
+    for (int k = 0; k < 50; k++) {
+        double sk = (k % 2 ? -1.0 : 1.0) * a * (1.0 + 0.5 * sin(0.7 * k + r));
+        double kink = k % 7 == 6 ? 0.3 * dx : 0.0, *q = cs + 2 + 6 * k;
+        q[0] = x + dx / 3.0 + kink, q[1] = y + sk, q[2] = x + 2.0 * dx / 3.0, q[3] = y + sk;
+        q[4] = x + dx, q[5] = y;
+        x += dx;
+    }
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 2.5 / n;
+    st.join = AA_JOIN_ROUND;
+    st.cap = AA_CAP_ROUND;
+    aa_scene *s = stroke_scene(cs, 50, &st, NULL);
+    aa_image im, ref, bound;
+    support_render("area", s, "box", n, n, 1, &im, NULL);
+    support_reference_part(s, n, n, x0, y0, w, h, "box", &ref, &bound, NULL);
+    double most = -INFINITY;
+    int wi = -1, wj = -1;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            for (int c = 0; c < 3; c++) {
+                double e = fabs(aa_pixel(&im, x0 + i, y0 + j)[c] - aa_pixel(&ref, i, j)[c]) -
+                           aa_pixel(&bound, i, j)[0];
+                if (e > most)
+                    most = e, wi = x0 + i, wj = y0 + j;
+            }
+    print_message("row %d at %d px: |area - reference| at most %.2g beyond its bound (at %d, %d)\n",
+                  r, n, most, wi, wj);
+    if (!(most <= 2e-14))
+        fail_msg("area %g beyond the reference's bound at (%d, %d)", most, wi, wj);
+    aa_image_free(&im);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -2098,6 +2151,7 @@ int main(void)
                                        cmocka_unit_test(test_shared_ends),
                                        cmocka_unit_test(test_common_heights),
                                        cmocka_unit_test(test_cones),
-                                       cmocka_unit_test(test_crowd_meet_at_swap)};
+                                       cmocka_unit_test(test_crowd_meet_at_swap),
+                                       cmocka_unit_test(test_end_chord)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
