@@ -1661,10 +1661,9 @@ static inline int same_track(const ar_seg *a, const ar_seg *b)
  * they are in it or meet (a vertex on the band's line), up to rounding.
  * 0 if some pair is not so ordered (the same ends, pieces traced twice,
  * or ends within ORDER_GAP): the order is then taken at the middle,
- * a root on each offset piece (key_u), which the ends spare.  *ties set
- * where a pair is in order by same_track alone. */
+ * a root on each offset piece (key_u), which the ends spare. */
 static int order_ends(const ar_row *r, const ar_key *in, size_t n, int lo, double ya, double yb,
-                      int sub, ar_key *keys, int *ties)
+                      int sub, ar_key *keys)
 {
     const ar_seg *seg = r->wk->seg;
     double top, bot, pt = 0.0, pb = 0.0;
@@ -1678,13 +1677,10 @@ static int order_ends(const ar_row *r, const ar_key *in, size_t n, int lo, doubl
     for (size_t k = 0; k < n; k++) {
         ends_u(&seg[keys[k].idx], lo, ya, yb, sub, &top, &bot);
         double dt = top - pt, db = bot - pb;
-        if (k > 0 &&
-            !((dt > ORDER_GAP && db > -ORDER_TIE) || (db > ORDER_GAP && dt > -ORDER_TIE))) {
-            if (!(dt > -ORDER_TIE && db > -ORDER_TIE &&
-                  same_track(&seg[keys[k - 1].idx], &seg[keys[k].idx])))
-                return 0;
-            *ties = 1;
-        }
+        if (k > 0 && !((dt > ORDER_GAP && db > -ORDER_TIE) || (db > ORDER_GAP && dt > -ORDER_TIE) ||
+                       (dt > -ORDER_TIE && db > -ORDER_TIE &&
+                        same_track(&seg[keys[k - 1].idx], &seg[keys[k].idx]))))
+            return 0;
         pt = top, pb = bot;
     }
     return 1;
@@ -1727,10 +1723,9 @@ static void cluster_fast(const ar_row *r, const ar_key *in, size_t n, int lo, in
 {
     if (!keys) {
         ar_key *k = r->wk->sub;
-        int ties;
         if (n == 1)
             k[0] = in[0];
-        else if (!order_ends(r, in, n, lo, 0.0, 1.0, 0, k, &ties))
+        else if (!order_ends(r, in, n, lo, 0.0, 1.0, 0, k))
             order_mid(r, in, n, lo, k);
         keys = k;
     }
@@ -1768,7 +1763,7 @@ static void add_event(ev_buf *b, double v)
  * orders each sub-band afresh (cxfull). */
 static void add_cross(ar_worker *wk, const ev_buf *b, double v, uint32_t a, uint32_t c)
 {
-    if (!(v > b->y && v < b->lim) || wk->cxfull)
+    if (!(v > b->y && v < b->lim))
         return;
     if (wk->ncx == CM_MAX_EVENTS) {
         size_t m = 0;
@@ -1846,12 +1841,14 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
                 int c = pair_crossings(t, s, ya, yb, r->j, out);
                 for (int i = 0; i < c; i++) {
                     add_event(&b, out[i]);
-                    add_cross(r->wk, &b, out[i], keys[act[a]].idx, keys[k].idx);
+                    if (!r->wk->cxfull)
+                        add_cross(r->wk, &b, out[i], keys[act[a]].idx, keys[k].idx);
                 }
             }
         act[nact++] = (uint32_t)k;
     }
-    sort_crosses(r->wk, b.lim);
+    if (r->wk->ncx)
+        sort_crosses(r->wk, b.lim);
     sort_doubles(b.v, b.n);
     size_t m = 0;
     for (size_t k = 0; k < b.n; k++)
@@ -2001,7 +1998,7 @@ static size_t order_next(const ar_row *r, const ar_key *keys, size_t n, ar_key *
     size_t bits = 1;
     while ((size_t)1 << bits <= u + nt)
         bits++;
-    if (4 * nt * bits > u + nt)
+    if (nt * bits > 2 * (u + nt))
         return 0;
     for (size_t k = 0; k < nt; k++) {
         size_t a = 0, b = u;
@@ -2060,15 +2057,13 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
                         continue;
                     span[m++] = keys[k];
                 }
-                int ties = 0;
-                if (!order_ends(r, span, m, lo, ya, yb, 1, list, &ties)) {
+                if (!order_ends(r, span, m, lo, ya, yb, 1, list)) {
                     for (size_t k = 0; k < m; k++)
                         list[k].key = (double)(wk->seg[list[k].idx].c0 - lo) +
                                       key_u(&wk->seg[list[k].idx], vm);
                     sort_keys(list, m);
-                    ties = 1;
                 }
-                if (ties && e < ne && m >= AR_NEXT_MIN) /* else all parted by their ends */
+                if (e < ne && m >= AR_NEXT_MIN && !wk->cxfull) /* order_next's next */
                     mark_unsure(r, list, m, lo, ya, yb);
             }
             above = m > 0;
