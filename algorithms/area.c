@@ -1630,6 +1630,10 @@ static int any_crossing(const ar_row *r, const ar_key *keys, size_t n, int lo)
     return 0;
 }
 
+/* The fewest segs a sub-band's order takes from the one above's
+ * (order_next): fewer are ordered afresh from their ends at less cost. */
+#define AR_NEXT_MIN 32
+
 /* Order along x from the ends (order_ends): a pair of neighbours is in
  * order where it is apart by more than ORDER_GAP px at one end of the
  * (sub-)band and not reversed by more than ORDER_TIE px (rounding: two
@@ -1775,6 +1779,57 @@ static void add_event(ev_buf *b, double v)
     b->v[b->n++] = v;
 }
 
+/* Keep the crossing of segs a and b at height v (inside the buffer's
+ * heights) for the next sub-band's order (order_next); when the array is
+ * full, those past the buffer's lim are dropped, and if none is, the pass
+ * orders each sub-band afresh (cxfull). */
+static void add_cross(ar_worker *wk, const ev_buf *b, double v, uint32_t a, uint32_t c)
+{
+    if (!(v > b->y && v < b->lim))
+        return;
+    if (wk->ncx == CM_MAX_EVENTS) {
+        size_t m = 0;
+        for (size_t k = 0; k < wk->ncx; k++)
+            if (wk->cx[k].v < b->lim)
+                wk->cx[m++] = wk->cx[k];
+        wk->ncx = m;
+        if (m == CM_MAX_EVENTS) {
+            wk->cxfull = 1;
+            return;
+        }
+    }
+    wk->cx[wk->ncx++] = (struct ar_cross){v, a, c};
+}
+
+static int cmp_cross(const void *a, const void *b)
+{
+    const struct ar_cross *x = a, *y = b;
+    return x->v < y->v ? -1 : (x->v > y->v);
+}
+
+/* The crossings kept below lim, in order of height. */
+static void sort_crosses(ar_worker *wk, double lim)
+{
+    size_t m = 0;
+    for (size_t k = 0; k < wk->ncx; k++)
+        if (wk->cx[k].v < lim)
+            wk->cx[m++] = wk->cx[k];
+    wk->ncx = m;
+    if (m > 32) {
+        qsort(wk->cx, m, sizeof *wk->cx, cmp_cross);
+        return;
+    }
+    for (size_t a = 1; a < m; a++) { /* few: by insertion (sort_doubles') */
+        struct ar_cross x = wk->cx[a];
+        size_t at = a;
+        while (at > 0 && wk->cx[at - 1].v > x.v) {
+            wk->cx[at] = wk->cx[at - 1];
+            at--;
+        }
+        wk->cx[at] = x;
+    }
+}
+
 /* Heights inside (y, ylim) where the cluster's order along x changes:
  * vertices, flat edges, crossings.  keys: ordered by left end.  If there
  * are more than CM_MAX_EVENTS, *ylim is lowered so that those found are all
@@ -1785,6 +1840,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
     const ar_seg *seg = r->wk->seg;
     ev_buf b = {r->wk->ev, 0, y, *ylim};
     double out[9]; /* two cubics meet up to 9 times */
+    r->wk->ncx = 0, r->wk->cxfull = n < AR_NEXT_MIN; /* too few for order_next */
     uint32_t *act = r->wk->act;
     size_t nact = 0;
     for (size_t k = 0; k < n; k++) {
@@ -1805,11 +1861,16 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
                 if (!(ya < yb))
                     continue;
                 int c = pair_crossings(t, s, ya, yb, r->j, out);
-                for (int i = 0; i < c; i++)
+                for (int i = 0; i < c; i++) {
                     add_event(&b, out[i]);
+                    if (!r->wk->cxfull)
+                        add_cross(r->wk, &b, out[i], keys[act[a]].idx, keys[k].idx);
+                }
             }
         act[nact++] = (uint32_t)k;
     }
+    if (r->wk->ncx)
+        sort_crosses(r->wk, b.lim);
     sort_doubles(b.v, b.n);
     size_t m = 0;
     for (size_t k = 0; k < b.n; k++)
@@ -1819,39 +1880,215 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
     return m;
 }
 
-/* The band cut into sub-bands with a fixed order along x, each swept. */
+/* 1 if segs a and b are one curve: two offset pieces on one track
+ * (same_track), or two lines each of whose ends lies within ORDER_TIE of
+ * the other's line (the sides of round joins where the curve's normal is
+ * the same on both sides of a vertex: from an offset's end to the vertex
+ * and back), the order order_ends keeps for lines within ORDER_TIE of
+ * each other: either order the same sweep where both are, up to that. */
+static inline int twins(const ar_seg *a, const ar_seg *b)
+{
+    if (!(a->p->line && b->p->line))
+        return a->p->offset && same_track(a, b);
+    const aa_piece *P = a->p->src, *Q = b->p->src;
+    double ex = P->x1 - P->x0, ey = P->y1 - P->y0, fx = Q->x1 - Q->x0, fy = Q->y1 - Q->y0;
+    double tol = ORDER_TIE * ORDER_TIE;
+    double c0 = ex * (Q->y0 - P->y0) - ey * (Q->x0 - P->x0);
+    double c1 = ex * (Q->y1 - P->y0) - ey * (Q->x1 - P->x0);
+    double c2 = fx * (P->y0 - Q->y0) - fy * (P->x0 - Q->x0);
+    double c3 = fx * (P->y1 - Q->y0) - fy * (P->x1 - Q->x0);
+    double le = ex * ex + ey * ey, lf = fx * fx + fy * fy;
+    return c0 * c0 <= tol * le && c1 * c1 <= tol * le && c2 * c2 <= tol * lf &&
+           c3 * c3 <= tol * lf;
+}
+
+/* 1 if seg a goes before seg b (left of it) in the sub-band [ya, yb],
+ * neither crossing the other inside it: order_ends' rule on the pair
+ * (apart at one end, not reversed at the other), else their order at the
+ * middle (key_u), as order_ends' fallback takes it, and for twins within
+ * rounding of each other at both ends by the sum of their ends.  *kind: 2
+ * if the ends decide, 1 if twins or the middle does (by more than
+ * ORDER_GAP), 0 if the order may not hold below yb (a pair meeting near
+ * the sub-band, whose order the next one decides). */
+static int pair_order(const ar_row *r, const ar_key *a, const ar_key *b, int lo, double ya,
+                      double yb, int *kind)
+{
+    const ar_seg *sa = &r->wk->seg[a->idx], *sb = &r->wk->seg[b->idx];
+    double at, ab, bt, bb;
+    ends_u(sa, lo, ya, yb, 1, &at, &ab);
+    ends_u(sb, lo, ya, yb, 1, &bt, &bb);
+    double dt = bt - at, db = bb - ab;
+    *kind = 2;
+    if ((dt > ORDER_GAP && db > -ORDER_TIE) || (db > ORDER_GAP && dt > -ORDER_TIE))
+        return 1;
+    if ((dt < -ORDER_GAP && db < ORDER_TIE) || (db < -ORDER_GAP && dt < ORDER_TIE))
+        return 0;
+    double ka, kb;
+    *kind = 1;
+    if (dt > -ORDER_TIE && db > -ORDER_TIE && dt < ORDER_TIE && db < ORDER_TIE &&
+        twins(sa, sb)) {
+        ka = at + ab, kb = bt + bb;
+    } else {
+        double vm = 0.5 * (ya + yb);
+        ka = (double)(sa->c0 - lo) + key_u(sa, vm);
+        kb = (double)(sb->c0 - lo) + key_u(sb, vm);
+        *kind = fabs(ka - kb) > ORDER_GAP;
+    }
+    return ka < kb || (ka == kb && a->id < b->id);
+}
+
+/* The run of list[0..m) about list[k] whose neighbours the ends do not
+ * part (pair_order's kind below 2: twins, pairs within rounding): if some
+ * pair of it is not sure (kind 0), its segs are marked (to) to be placed
+ * again in the next sub-band, all of them, since twins in it take either
+ * order (a line and its twin, then an offset piece and its twin, the
+ * middle pair unsure: the outer pair is too).  Returns the run's end. */
+static size_t mark_run(const ar_row *r, const ar_key *list, size_t m, size_t k, int lo, double ya,
+                       double yb, uint32_t to)
+{
+    size_t g0 = k, g1 = k;
+    int kind, unsure = 0;
+    while (g0 > 0) {
+        pair_order(r, &list[g0 - 1], &list[g0], lo, ya, yb, &kind);
+        if (kind == 2)
+            break;
+        unsure |= !kind;
+        g0--;
+    }
+    while (g1 + 1 < m) {
+        pair_order(r, &list[g1], &list[g1 + 1], lo, ya, yb, &kind);
+        if (kind == 2)
+            break;
+        unsure |= !kind;
+        g1++;
+    }
+    if (unsure)
+        for (size_t i = g0; i <= g1; i++)
+            r->wk->mark[list[i].idx] = to;
+    return g1;
+}
+
+/* mark_run on the whole of list[0..m), ordered afresh. */
+static void mark_unsure(const ar_row *r, const ar_key *list, size_t m, int lo, double ya,
+                        double yb)
+{
+    for (size_t k = 0; k < m; k++)
+        k = mark_run(r, list, m, k, lo, ya, yb, r->wk->stamp + 1);
+}
+
+/* list[0..m) = the order of the sub-band above [ya, yb] (no two of its
+ * segs cross inside either): made the order of [ya, yb].  Only the segs
+ * with an event at ya change places: those ending there leave, those
+ * beginning there come in, and those crossing another there (band_events'
+ * crossings, wk->cx from *ci on) are taken out; the rest keep their order
+ * (two segs that neither cross nor end between two sub-bands keep it),
+ * and the segs taken out and coming in are put in it one by one, each by
+ * halving (pair_order: u at the sub-band's ends of O(log m) segs, not of
+ * all).  keys[0..n): the cluster; spare: room for n keys.  Returns the
+ * count, or 0 if the sub-band is better ordered afresh (too many
+ * events: each placed seg's halving would take more roots than the ends
+ * of all). */
+static size_t order_next(const ar_row *r, const ar_key *keys, size_t n, ar_key *list, size_t m,
+                         ar_key *spare, int lo, double ya, double yb, size_t *ci)
+{
+    ar_worker *wk = r->wk;
+    const ar_seg *seg = wk->seg;
+    if (wk->stamp >= UINT32_MAX - 2) { /* wrapping: no mark may look current */
+        memset(wk->mark, 0, (size_t)r->S->npieces * sizeof *wk->mark);
+        wk->stamp = 0;
+        return 0; /* the marks of segs to place again are gone */
+    }
+    uint32_t st = ++wk->stamp;
+    for (; *ci < wk->ncx && !(wk->cx[*ci].v > ya); (*ci)++)
+        if (wk->cx[*ci].v == ya)
+            wk->mark[wk->cx[*ci].a] = wk->mark[wk->cx[*ci].b] = st;
+    size_t u = 0, nt = 0;
+    for (size_t k = 0; k < m; k++) {
+        const ar_seg *s = &seg[list[k].idx];
+        if (!(s->vb >= yb))
+            continue; /* ended at ya */
+        if (wk->mark[list[k].idx] == st)
+            spare[nt++] = list[k];
+        else
+            list[u++] = list[k];
+    }
+    for (size_t k = 0; k < n; k++) {
+        const ar_seg *s = &seg[keys[k].idx];
+        if (!s->p->flat && s->va == ya && s->vb >= yb)
+            spare[nt++] = keys[k], wk->mark[keys[k].idx] = st;
+    }
+    size_t bits = 1;
+    while ((size_t)1 << bits <= u + nt)
+        bits++;
+    if (nt * bits > 2 * (u + nt))
+        return 0;
+    for (size_t k = 0; k < nt; k++) {
+        size_t a = 0, b = u;
+        int kind;
+        while (a < b) {
+            size_t h = a + (b - a) / 2;
+            if (pair_order(r, &spare[k], &list[h], lo, ya, yb, &kind))
+                b = h;
+            else
+                a = h + 1;
+        }
+        memmove(&list[a + 1], &list[a], (u - a) * sizeof *list);
+        list[a] = spare[k];
+        u++;
+    }
+    for (size_t k = 0; k < u; k++) /* the runs about the segs placed */
+        if (wk->mark[list[k].idx] == st)
+            k = mark_run(r, list, u, k, lo, ya, yb, st + 1);
+    return u;
+}
+
+/* The band cut into sub-bands with a fixed order along x, each swept;
+ * a sub-band's order from the one above where few segs change places
+ * (order_next), else afresh. */
 static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, int hi,
                           const int *w, const double *cin)
 {
     ar_worker *wk = r->wk;
     ar_key *keys = wk->sub, *list = wk->sub + n;
+    ar_key *span = list + n; /* keys[0..n) sits before list */
     order_by_left(r, in, n, lo, keys);
     double y = 0.0;
-    size_t nl = (size_t)r->S->nl;
+    size_t nl = (size_t)r->S->nl, m = 0;
     while (y < 1.0) {
         double lim = 1.0;
-        size_t ne = band_events(r, keys, n, lo, y, &lim);
+        size_t ne = band_events(r, keys, n, lo, y, &lim), ci = 0;
+        int above = 0; /* list[0..m) holds the order of the sub-band above */
         for (size_t e = 0; e <= ne; e++) {
             double ya = y, yb = e < ne ? wk->ev[e] : lim;
             y = yb;
             if (!(yb > ya))
                 continue;
-            /* the segs spanning the sub-band, ordered along x at its middle */
-            double vm = 0.5 * (ya + yb);
-            size_t m = 0;
-            ar_key *span = list + n; /* keys[0..n) sits before list */
-            for (size_t k = 0; k < n; k++) {
-                const ar_seg *s = &wk->seg[keys[k].idx];
-                if (s->p->flat || !(s->va <= ya && s->vb >= yb))
-                    continue;
-                span[m++] = keys[k];
+            size_t next = 0;
+            if (above && m >= AR_NEXT_MIN && !wk->cxfull)
+                next = order_next(r, keys, n, list, m, span, lo, ya, yb, &ci);
+            if (next) {
+                m = next;
+            } else {
+                /* the segs spanning the sub-band, ordered along x from
+                 * their ends, else at its middle */
+                double vm = 0.5 * (ya + yb);
+                m = 0;
+                for (size_t k = 0; k < n; k++) {
+                    const ar_seg *s = &wk->seg[keys[k].idx];
+                    if (s->p->flat || !(s->va <= ya && s->vb >= yb))
+                        continue;
+                    span[m++] = keys[k];
+                }
+                if (!order_ends(r, span, m, lo, ya, yb, 1, list)) {
+                    for (size_t k = 0; k < m; k++)
+                        list[k].key = (double)(wk->seg[list[k].idx].c0 - lo) +
+                                      key_u(&wk->seg[list[k].idx], vm);
+                    sort_keys(list, m);
+                }
+                if (e < ne && m >= AR_NEXT_MIN && !wk->cxfull) /* order_next's next */
+                    mark_unsure(r, list, m, lo, ya, yb);
             }
-            if (!order_ends(r, span, m, lo, ya, yb, 1, list)) {
-                for (size_t k = 0; k < m; k++)
-                    list[k].key = (double)(wk->seg[list[k].idx].c0 - lo) +
-                                  key_u(&wk->seg[list[k].idx], vm);
-                sort_keys(list, m);
-            }
+            above = m > 0;
             memcpy(wk->wtmp, w, nl * sizeof *w);
             sweep(r, list, m, wk->wtmp, cin, ya, yb, 0);
         }
@@ -2513,6 +2750,8 @@ static void state_free(ar_state *S)
         free(wk->wind);
         free(wk->wtmp);
         free(wk->ev);
+        free(wk->cx);
+        free(wk->mark);
         free(wk->act);
         free(wk->pend);
         free(wk->cm);
@@ -2792,6 +3031,8 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->wind = line_alloc(nl, sizeof *wk->wind);
     wk->wtmp = line_alloc(nl, sizeof *wk->wtmp);
     wk->ev = line_alloc(CM_MAX_EVENTS, sizeof *wk->ev);
+    wk->cx = line_alloc(CM_MAX_EVENTS, sizeof *wk->cx);
+    wk->mark = line_alloc(n, sizeof *wk->mark);
     wk->act = line_alloc(n, sizeof *wk->act);
     wk->pend = line_alloc(n, sizeof *wk->pend);
     wk->cm = line_alloc(CM_MAX_EDGES + 2, sizeof *wk->cm);
@@ -2818,7 +3059,8 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
         for (size_t k = 0; k < n; k++)
             wk->seg[k].ja = INT_MIN;
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
-        !wk->wind || !wk->wtmp || !wk->ev || !wk->cm || !wk->act || !wk->pend)
+        !wk->wind || !wk->wtmp || !wk->ev || !wk->cx || !wk->mark || !wk->cm || !wk->act ||
+        !wk->pend)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
                        S->w);
     return AA_OK;

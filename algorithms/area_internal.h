@@ -218,6 +218,17 @@ typedef struct ar_worker {
     double *acc, *cov; /* per cell and channel */
     int *wind, *wtmp;
     double *ev;
+    /* the crossings band_events found (cx[0..ncx), in order of height after
+     * it; cxfull: some were not kept) and the segs they touch at a
+     * sub-band's top (mark[seg] == stamp), for cluster_bands' order of
+     * the next sub-band from the one above */
+    struct ar_cross {
+        double v;
+        uint32_t a, b;
+    } *cx;
+    size_t ncx;
+    int cxfull;
+    uint32_t *mark, stamp;
     uint32_t *act; /* segs whose extent reaches the current one */
     uint32_t *pend; /* the cluster's segs with a part kept by sweep_part */
     size_t npend;
