@@ -2084,16 +2084,8 @@ static void test_end_chord(void **state)
 {
     (void)state;
     const int r = 10, n = 1024, x0 = 640, y0 = 520, w = 128, h = 64;
-    double y = (r + 0.5) / 20.0, a = 0.004 + 0.0015 * r, dx = 0.9 / 50.0, x = 0.05;
     double cs[2 + 6 * 50];
-    cs[0] = x, cs[1] = y;
-    for (int k = 0; k < 50; k++) {
-        double sk = (k % 2 ? -1.0 : 1.0) * a * (1.0 + 0.5 * sin(0.7 * k + r));
-        double kink = k % 7 == 6 ? 0.3 * dx : 0.0, *q = cs + 2 + 6 * k;
-        q[0] = x + dx / 3.0 + kink, q[1] = y + sk, q[2] = x + 2.0 * dx / 3.0, q[3] = y + sk;
-        q[4] = x + dx, q[5] = y;
-        x += dx;
-    }
+    bench_cubics(r, 0, 50, cs);
     aa_stroke_style st;
     aa_stroke_style_default(&st);
     st.width = 2.5 / n;
