@@ -461,14 +461,20 @@ static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_c
          * k, k = c / L^3, and P'' = B'' g + B' g', g' = -d k', k' = c' /
          * L^3 - 3 c (B'.B'') / L^5, c' = B' x B''' */
         const double *bc = oc->b;
-        double vx = 2 * bc[2] + 6 * t * bc[3], vy = 2 * bc[6] + 6 * t * bc[7];
-        double ux = uh[0], uy = uh[1], cc = ux * vy - uy * vx;
-        double il3 = il * il * il, g = 1 - oc->d * cc * il3, qx = ux * g, qy = uy * g;
-        double cp = 6 * (ux * bc[7] - uy * bc[3]), dot = ux * vx + uy * vy;
+        /* B'' (v) and the products by x and y (lanes) side by side, each
+         * lane's operations the scalar ones in their order: 2 b2 is
+         * fx->du[1]'s (exact); c and c' / 6 from one subtraction */
+        dd_v2 b3 = {bc[3], bc[7]}, v = dd_ld(fx->du[1][0]) + (6 * t) * b3;
+        dd_v2 ux = {uh[0], uh[0]}, uy = {uh[1], uh[1]};
+        dd_v2 cv = ux * (dd_v2){v[1], bc[7]} - uy * (dd_v2){v[0], bc[3]}, uv = uh * v;
+        double cc = cv[0], cp = 6 * cv[1], dot = uv[0] + uv[1];
+        double il3 = il * il * il, g = 1 - oc->d * cc * il3;
+        dd_v2 q = uh * g;
         double gp = -oc->d * il3 * (cp - 3 * cc * dot * (il * il));
-        double rx = vx * g + ux * gp, ry = vy * g + uy * gp;
-        dd_v2 d1 = r0 * qx + r1 * qy, d2 = r0 * rx + r1 * ry;
-        dp[0] = d1[0], dp[1] = d1[1], dp[2] = d2[0], dp[3] = d2[1];
+        dd_v2 rv = v * g + uh * gp;
+        dd_v2 d1 = r0 * q[0] + r1 * q[1], d2 = r0 * rv[0] + r1 * rv[1];
+        memcpy(dp, &d1, sizeof d1);
+        memcpy(dp + 2, &d2, sizeof d2);
     }
 }
 
