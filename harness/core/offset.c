@@ -366,6 +366,7 @@ static __attribute__((always_inline)) inline double dd_two_prod(double a, double
  * for bit, in half the instructions.  Loads and stores by memcpy (fx's
  * arrays are 8-byte aligned). */
 typedef double dd_v2 __attribute__((vector_size(16)));
+typedef long long dd_i2 __attribute__((vector_size(16))); /* a shuffle's lanes */
 
 static inline dd_v2 dd_ld(const double *p)
 {
@@ -414,9 +415,9 @@ static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *
 }
 
 /* The offset's normal terms d w / L for the point, as hi + lo (x in
- * n[0], y in n[1]), and its first and second derivatives (dp[0..1],
- * dp[2..3], in double; NULL: not wanted): in double, d w / L is off by
- * up to 8 units of its last place (1e-15 px at a half width of 1.25 px
+ * n[0], y in n[1]), and its first and second derivatives (dp[0], dp[1],
+ * x and y the lanes, in double; NULL: not wanted): in double, d w / L
+ * is off by up to 8 units of its last place (1e-15 px at a half width of 1.25 px
  * on tests/bench_bezstroke.c's scene: B' rounded where its terms cancel,
  * then the square root, the division and the products), so here each
  * step is exact or carries its error: B' by Horner's scheme on fx->du,
@@ -426,7 +427,7 @@ static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *
 static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_curve *oc,
                                                               const aa__offset_fix *fx,
                                                               double t, int fma, dd_v2 *nh,
-                                                              dd_v2 *nl, double dp[4])
+                                                              dd_v2 *nl, dd_v2 dp[2])
 {
     /* B'x, B'y (the lanes) as hi (uh) + lo (ul) */
     dd_v2 tv = {t, t}, e, e2, ul;
@@ -472,9 +473,7 @@ static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_c
         dd_v2 q = uh * g;
         double gp = -oc->d * il3 * (cp - 3 * cc * dot * (il * il));
         dd_v2 rv = v * g + uh * gp;
-        dd_v2 d1 = r0 * q[0] + r1 * q[1], d2 = r0 * rv[0] + r1 * rv[1];
-        memcpy(dp, &d1, sizeof d1);
-        memcpy(dp + 2, &d2, sizeof d2);
+        dp[0] = r0 * q[0] + r1 * q[1], dp[1] = r0 * rv[0] + r1 * rv[1];
     }
 }
 
@@ -485,10 +484,23 @@ static __attribute__((always_inline)) inline void dd_normal_pt(const aa_offset_c
 static __attribute__((always_inline)) inline void dd_point_parts(const aa_offset_curve *oc,
                                                                 const aa__offset_fix *fx,
                                                                 double t, int fma, dd_v2 p[4],
-                                                                double dp[4])
+                                                                dd_v2 dp[2])
 {
     dd_normal_pt(oc, fx, t, fma, &p[1], &p[3], dp);
     dd_base(fx, t, fma, &p[0], &p[2]);
+}
+
+/* v's lanes swapped */
+static inline dd_v2 dd_swap(dd_v2 v)
+{
+    return __builtin_shuffle(v, (dd_i2){1, 0});
+}
+
+/* Lane c of v (c 0 or 1, known only at run time): by a test, so that v
+ * stays in its register, not stored to the stack to be indexed */
+static inline double dd_lane(dd_v2 v, int c)
+{
+    return c ? v[1] : v[0];
 }
 
 /* The point's coordinate from dd_point_parts' parts, moved by h along
@@ -499,7 +511,8 @@ static __attribute__((always_inline)) inline void dd_point_parts(const aa_offset
  * subtract the cell and the band from it */
 static inline long double dd_coord(const dd_v2 *p, int c, double s, double s2, double h)
 {
-    return ((long double)p[0][c] + p[1][c]) + (p[2][c] + (p[3][c] + h * (s + 0.5 * s2 * h)));
+    return ((long double)dd_lane(p[0], c) + dd_lane(p[1], c)) +
+           (dd_lane(p[2], c) + (dd_lane(p[3], c) + h * (s + 0.5 * s2 * h)));
 }
 
 /* Coordinate coord of oc at t as the base curve's mapped coordinate
@@ -923,20 +936,26 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
         double fa, double target, double guess, const double *endb, long double xy[2],
         long double *other, int fma)
 {
-    double t = ta, a, b, h1, dp[4], h = 0.0, hx = 0.0;
-    dd_v2 p[4];
+    double t = ta, a, b, h1, h = 0.0, hx = 0.0;
+    dd_v2 p[4], dp[2], tv = {target, target};
     int neg = fa < 0;
     if (fa == 0) {
         dd_point_parts(oc, fx, t, fma, p, NULL);
-        dp[0] = dp[1] = dp[2] = dp[3] = 0.0;
+        dp[0] = dp[1] = (dd_v2){0.0, 0.0};
         goto done;
     }
     t = solve_double(oc, fx, 1, coord, ta, tb, fa, target, guess, DD_D_STEP, endb, &a, &b, &h1);
     double la = ta, lb = tb;
     for (int it = 0; it < ROOT_LD_STEPS; it++) {
         dd_point_parts(oc, fx, t, fma, p, dp);
-        double f = ((p[0][coord] - target) + p[1][coord]) + (p[2][coord] + p[3][coord]);
-        double df = dp[coord];
+        /* both lanes (each lane's operations the scalar ones), coord's
+         * moved to lane 0 by one test: the value less the target, the
+         * slope and the second derivative, not three parts and two
+         * derivatives indexed by coord in memory */
+        dd_v2 fv = ((p[0] - tv) + p[1]) + (p[2] + p[3]), d1 = dp[0], d2 = dp[1];
+        if (coord)
+            fv = dd_swap(fv), d1 = dd_swap(d1), d2 = dd_swap(d2);
+        double f = fv[0], df = d1[0];
         if (f == 0)
             break;
         if ((f < 0) == neg)
@@ -950,7 +969,8 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
             t = mid;
             continue;
         }
-        double idf = 1 / df, h2 = -f * idf, c2 = 0.5 * dp[2 + coord] * idf, ch = c2 * h2;
+        double idf = 1 / df, h2 = -f * idf, c2 = 0.5 * d2[0] * idf;
+        double ch = c2 * h2;
         double step = h2 - ch * h2, next = t + step;
         if (next == t) { /* within half an ulp of t: t is the root rounded */
             hx = step;
@@ -965,14 +985,18 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
         t = inside ? next : mid;
         if (it + 1 == ROOT_LD_STEPS) { /* t not evaluated */
             dd_point_parts(oc, fx, t, fma, p, NULL);
-            dp[0] = dp[1] = dp[2] = dp[3] = 0.0;
+            dp[0] = dp[1] = (dd_v2){0.0, 0.0};
         }
     }
 done:
-    if (xy)
-        xy[0] = dd_coord(p, 0, dp[0], dp[2], h), xy[1] = dd_coord(p, 1, dp[1], dp[3], h);
+    if (xy) { /* dd_coord's sum in double for both lanes at once (the same operations) */
+        dd_v2 hv = {h, h}, lo = p[2] + (p[3] + hv * (dp[0] + 0.5 * dp[1] * hv));
+        xy[0] = ((long double)p[0][0] + p[1][0]) + lo[0];
+        xy[1] = ((long double)p[0][1] + p[1][1]) + lo[1];
+    }
     if (other) /* at the root itself, where coordinate coord is the target */
-        *other = dd_coord(p, 1 - coord, dp[1 - coord], dp[3 - coord], hx);
+        *other = dd_coord(p, 1 - coord, dd_lane(dp[0], 1 - coord), dd_lane(dp[1], 1 - coord),
+                          hx);
     return t;
 }
 
