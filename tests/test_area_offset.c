@@ -1746,9 +1746,10 @@ static int shared_ends(const char *what, const aa_scene *s, int *tangent, int *a
  * and caps (their offsets fold), every `step` of its 20 rows; then the
  * first `ncases` of tight (folds), a loop and a hook whose pieces sharing
  * an end cross again away from it (mitred, butt-capped) and three arcs
- * (round), at 64 px.  Returns the sum of fn's returns. */
-static int each_stroke(int step, int ncases, int (*fn)(const char *, const aa_scene *, void *),
-                       void *ctx)
+ * (round), at 64 px; fn adds to the two counters n[0] and n[1].
+ * Returns the sum of fn's returns. */
+static int each_stroke(int step, int ncases,
+                       int (*fn)(const char *, const aa_scene *, int *, int *), int n[2])
 {
     aa_stroke_style st;
     aa_stroke_style_default(&st);
@@ -1761,7 +1762,7 @@ static int each_stroke(int step, int ncases, int (*fn)(const char *, const aa_sc
         aa_scene *placed = placed_stroke(cs, 10, &st, 256);
         char what[64];
         snprintf(what, sizeof what, "benchmark's row %d, 256 px", r);
-        sum += fn(what, placed, ctx);
+        sum += fn(what, placed, &n[0], &n[1]);
         aa_scene_free(placed);
     }
     const double *cases[4] = {tight, loop, hook, three};
@@ -1774,23 +1775,17 @@ static int each_stroke(int step, int ncases, int (*fn)(const char *, const aa_sc
         st.cap = c == 3 ? AA_CAP_ROUND : AA_CAP_BUTT;
         st.width = widths[c];
         aa_scene *placed = placed_stroke(cases[c], ncs[c], &st, 64);
-        sum += fn(names[c], placed, ctx);
+        sum += fn(names[c], placed, &n[0], &n[1]);
         aa_scene_free(placed);
     }
     return sum;
 }
 
-static int shared_ends_of(const char *what, const aa_scene *placed, void *ctx)
-{
-    int *tc = ctx; /* tangent, changes */
-    return shared_ends(what, placed, &tc[0], &tc[1]);
-}
-
 static void test_shared_ends(void **state)
 {
     (void)state;
-    int tc[2] = {0, 0};
-    int pairs = each_stroke(4, 3, shared_ends_of, tc);
+    int tc[2] = {0, 0}; /* tangent, changes */
+    int pairs = each_stroke(4, 3, shared_ends, tc);
     print_message("%d pairs sharing an end, %d of them tangent there; %d sign changes\n", pairs,
                   tc[0], tc[1]);
     assert_true(tc[0] >= 10 && tc[1] >= 1); /* the cases were built */
@@ -1996,19 +1991,13 @@ static int cone_holds(const char *what, const aa_scene *s, int *lines)
     return bad;
 }
 
-static int cones_of(const char *what, const aa_scene *placed, void *ctx)
-{
-    int *as = ctx; /* apart, seen */
-    return cones(what, placed, &as[0], &as[1]);
-}
-
 static void test_cones(void **state)
 {
     (void)state;
     aa_stroke_style st;
     aa_stroke_style_default(&st);
-    int as[2] = {0, 0};
-    int bad = each_stroke(8, 4, cones_of, as), apart, seen;
+    int as[2] = {0, 0}; /* apart, seen */
+    int bad = each_stroke(8, 4, cones, as), apart, seen;
     /* an S: its offsets' tangents turn back at the base's inflection,
      * beyond the cone of their ends' */
     const double ess[8] = {0.1, 0.5, 0.45, -0.1, 0.55, 1.1, 0.9, 0.5};
