@@ -78,7 +78,11 @@
  *    here in long double by Gauss-Legendre rules made here, within
  *    AR_QUAD_TOL plus the double sum's rounding, and the rule each share
  *    takes (area_offset_rule) the fewest points whose bound, computed here
- *    with powl, is within the tolerance.
+ *    with powl, is within the tolerance;
+ *  - parts reaching past their first panel (test_shares_across): against
+ *    the same integral, whether one share of that panel (its disc holds
+ *    the part's ellipse and 4, 8 or 12 points meet the bound) or panel by
+ *    panel, and the rule of one share the fewest points so bound.
  */
 #include "area_internal.h"
 #include "path.h"
@@ -1556,6 +1560,115 @@ static void test_shares(void **state)
         assert_true(taken[r] > 0);
 }
 
+/* Parts reaching past the end of their first panel (area_offset.c,
+ * segment: taken as one share of that panel where the part's Bernstein
+ * ellipse lies in its disc and 4, 8 or 12 points meet the bound, else
+ * panel by panel) against 1/2 the integral of (P - P(ta)) x P' computed
+ * here as in test_shares (long double, 20 points on 4 parts), within
+ * AR_QUAD_TOL plus 8 ulps of the size the double sum's terms have, on
+ * parts from 1e-7 of their first panel wide to four times it, across each
+ * panel end of every offset piece, evolute and ellipse's offset of the
+ * tight and the three arcs at three widths at 256 px; the one-share path
+ * counted here by Trefethen's bound for the part on the panel's disc
+ * (long double, powl), and the rule area_offset_rule gives such a part
+ * the fewest points whose bound that is within the tolerance. */
+static void test_shares_across(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    ar_quad quad;
+    must(area_quad_init(&quad));
+    long double x1[20], w1[20];
+    gauss_legendre_l(20, x1, w1);
+    uint64_t rng = 123456789;
+    int parts = 0, one = 0, ties = 0, taken[AR_QUAD_RULES] = {0};
+    double worst = 0.0;
+    for (int c = 0; c < 3; c++) {
+        st.width = (const double[]){0.02, 0.08, 0.3}[c];
+        aa_scene *placed = placed_stroke(c == 1 ? tight : three, c == 1 ? 1 : 3, &st, 256);
+        size_t np;
+        const aa_piece *pc = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pc[k].kind != AA_PIECE_OFFSET)
+                continue;
+            const aa_offset_curve *oc = &pc[k].oc;
+            ar_panel *pan;
+            size_t npan;
+            must(area_offset_panels(oc, pc[k].ot0, pc[k].ot1, &pan, &npan));
+            ar_piece ap;
+            memset(&ap, 0, sizeof ap);
+            ap.src = &pc[k], ap.pan = pan, ap.npan = npan, ap.quad = &quad;
+            for (size_t j = 0; j + 1 < npan; j++) {
+                const ar_panel *p = &pan[j];
+                double tmax = pan[npan - 1].b;
+                for (int i = 0; i < 16; i++) {
+                    double u[2];
+                    for (int e = 0; e < 2; e++) { /* uniform in [0, 1), 53 bits */
+                        rng = rng * 6364136223846793005u + 1442695040888963407u;
+                        u[e] = (double)(rng >> 11) * 0x1p-53;
+                    }
+                    double wd = 4.0 * (p->b - p->a) * pow(10.0, -7.0 * u[1]);
+                    double ta = fmax(p->b - wd * u[0], p->a), tb = fmin(ta + wd, tmax);
+                    if (!(ta < p->b && tb > p->b))
+                        continue;
+                    double got = area_offset_segment(&ap, i & 1 ? tb : ta, i & 1 ? ta : tb);
+                    if (i & 1)
+                        got = -got;
+                    long double mag;
+                    long double want = segment_l(oc, ta, tb, p->m, 4, 20, x1, w1, &mag);
+                    double err = fabs((double)(got - want));
+                    double tol = AR_QUAD_TOL + 8 * DBL_EPSILON * (double)mag;
+                    if (!(err <= tol))
+                        fail_msg("piece %zu [%.17g, %.17g] across %.17g: %.17g, here %.17Lg, "
+                                 "%.2e off (allowed %.2e)",
+                                 k, ta, tb, p->b, got, want, err, tol);
+                    worst = fmax(worst, err / tol);
+                    parts++;
+                    /* one share of panel j: its ellipse in the disc and a
+                     * rule before the last within the tolerance */
+                    long double h = 0.5L * ((long double)tb - ta);
+                    long double mm = 0.5L * ((long double)ta + tb);
+                    long double Rs = p->R - fabsl(mm - p->m);
+                    if (!(Rs > h && p->M > 0))
+                        continue;
+                    long double z = Rs / h, rho = z + sqrtl((z - 1) * (z + 1));
+                    int r = 0;
+                    long double e[AR_QUAD_RULES];
+                    for (int q = 0; q < AR_QUAD_RULES; q++)
+                        e[q] = h * 64 * p->M /
+                               (15 * (1 - 1 / (rho * rho)) * powl(rho, 2 * quad.n[q]));
+                    while (r < AR_QUAD_RULES - 1 && !(e[r] <= AR_QUAD_TOL))
+                        r++;
+                    if (r == AR_QUAD_RULES - 1)
+                        continue;
+                    int ra = area_offset_rule(p, ta, tb);
+                    int tie = fabsl(e[r] / AR_QUAD_TOL - 1) < 1e-9L ||
+                              (r > 0 && fabsl(e[r - 1] / AR_QUAD_TOL - 1) < 1e-9L);
+                    if (ra != r && !tie)
+                        fail_msg("piece %zu [%.17g, %.17g] across %.17g: %d points, here %d", k,
+                                 ta, tb, p->b, quad.n[ra], quad.n[r]);
+                    ties += tie;
+                    taken[r]++;
+                    one++;
+                }
+            }
+            free(pan);
+        }
+        aa_scene_free(placed);
+    }
+    print_message("%d parts across a panel's end within the bound plus rounding (at most %.2f "
+                  "of it), %d of them one share (%d ties); rules",
+                  parts, worst, one, ties);
+    for (int r = 0; r < AR_QUAD_RULES; r++)
+        print_message(" %d points %d", quad.n[r], taken[r]);
+    print_message("\n");
+    assert_true(parts > 1000 && one > 100 && parts - one > 100);
+    for (int r = 0; r < AR_QUAD_RULES - 1; r++)
+        assert_true(taken[r] > 0);
+}
+
 /* area's band lines' starts on an offset piece (area_internal.h,
  * ytab_guess) from a table of nodes (t, y, dt/dy) made here as area.c's
  * load_offset makes them (y and its slope by aa__offset_end), at t = k/64
@@ -2161,6 +2274,7 @@ int main(void)
                                        cmocka_unit_test(test_nodes),
                                        cmocka_unit_test(test_panels),
                                        cmocka_unit_test(test_shares),
+                                       cmocka_unit_test(test_shares_across),
                                        cmocka_unit_test(test_starts),
                                        cmocka_unit_test(test_shared_ends),
                                        cmocka_unit_test(test_common_heights),
