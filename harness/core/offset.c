@@ -403,6 +403,9 @@ static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *
                                                          int fma, dd_v2 *hi, dd_v2 *lo)
 {
     dd_v2 sh = dd_ld(fx->dc[3][0]), sl = dd_ld(fx->dc[3][1]);
+    /* unrolled: 14 instructions fewer a root (the loop's counter and
+     * tests, the coefficients' addresses) */
+#pragma GCC unroll 3
     for (int k = 2; k >= 0; k--) {
         /* (sh, sl) left unnormalised: sl may exceed half an ulp of sh
          * (where p and c[k] cancel), and sl t is then still within 2^-53
