@@ -862,6 +862,10 @@ typedef struct aa__offset_fix {
     /* and its base cubic's derivative B' (unmapped), coordinate c's
      * coefficient of t^k in du[k][0][c] (hi) and du[k][1][c] (lo) */
     double du[3][2][2];
+    /* and the terms' size the double phase's rounding test takes for
+     * coordinate c, less the target's (its first three terms, summed as
+     * there) */
+    double dsize[2];
 } aa__offset_fix;
 void aa__offset_fix_init(const aa_offset_curve *oc, aa__offset_fix *fx);
 /* aa__offset_fix_init, and on a cubic's offset (not an evolute) without

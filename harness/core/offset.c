@@ -403,6 +403,9 @@ static __attribute__((always_inline)) inline void dd_base(const aa__offset_fix *
                                                          int fma, dd_v2 *hi, dd_v2 *lo)
 {
     dd_v2 sh = dd_ld(fx->dc[3][0]), sl = dd_ld(fx->dc[3][1]);
+    /* unrolled: 14 instructions fewer a root (the loop's counter and
+     * tests, the coefficients' addresses) */
+#pragma GCC unroll 3
     for (int k = 2; k >= 0; k--) {
         /* (sh, sl) left unnormalised: sl may exceed half an ulp of sh
          * (where p and c[k] cancel), and sl t is then still within 2^-53
@@ -755,6 +758,66 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * any bracket of the parameter (a few units wide) to reach two adjacent
  * long doubles, 64 halvings and more */
 #define ROOT_LD_STEPS 200
+/* One step of solve_double's loop, given the evaluation at *t (f less
+ * the target, df, dn) and its state (the bracket *a, *b, the step before
+ * *prev, *unseen, *last): 1 where the loop stops there (*t the result),
+ * else 0 (*t the next point). */
+static __attribute__((always_inline)) inline int
+solve_step(double f, double df, double dn, double size, double tol, int neg, double *t,
+           double *a, double *b, double *prev, int *unseen, double *last)
+{
+    if (fabs(f) <= 2 * DBL_EPSILON * (size + dn))
+        return 1;
+    if ((f < 0) == neg)
+        *a = *t;
+    else
+        *b = *t, *unseen = 0;
+    double mid = 0.5 * (*a + *b);
+    if (!(mid != *a && mid != *b))
+        return 1;
+    double next = df != 0 && isfinite(df) ? *t - f / df : mid;
+    if (fabs(next - *t) <= tol * (fabs(*t) > 1.0 ? fabs(*t) : 1.0)) { /* fmax, not a call */
+        /* a root at an end comes out a rounding beyond it */
+        double lo = *a < *b ? *a : *b, hi = *a < *b ? *b : *a; /* no calls */
+        double cl = next > lo ? next : lo;
+        cl = cl < hi ? cl : hi;
+        *last = cl == next ? fabs(next - *t) : NAN;
+        *t = cl;
+        return 1;
+    }
+    int inside = *a < *b ? (next > *a && next < *b) : (next < *a && next > *b);
+    int newton = 1;
+    if (!inside && *unseen && (*a < *b ? next >= *b : next <= *b))
+        next = *b, *unseen = 0, newton = 0;
+    else if (!inside || fabs(next - *t) > 0.5 * *prev)
+        next = mid, newton = 0;
+    *prev = fabs(next - *t);
+    *last = newton ? *prev : NAN;
+    *t = next;
+    return 0;
+}
+
+/* solve_double's loop from its iteration it0 (at t, the state as
+ * solve_step leaves it). */
+static __attribute__((always_inline)) inline double
+solve_double_loop(const aa_offset_curve *oc, const aa__offset_fix *fx, int dd, int coord,
+                  double a, double b, int neg, double tgt, double t, double prev, int unseen,
+                  double size, double tol, int it0, double *pa, double *pb, double *last)
+{
+    int stops = fx->stops;
+    double f, df, dn;
+    for (int it = it0; it < 100; it++) {
+        if (dd)
+            eval_dd(oc, coord, t, tgt, &f, &df, &dn);
+        else
+            eval_d(oc, coord, t, stops, tgt, &f, &df, &dn);
+        if (solve_step(f, df, dn, size, tol, neg, &t, &a, &b, &prev, &unseen, last))
+            break;
+    }
+    *pa = a, *pb = b;
+    return t;
+}
+
 static __attribute__((always_inline)) inline double
 solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int dd, int coord, double a,
              double b, double fa, double tgt, double guess, double tol, const double *endb,
@@ -804,42 +867,8 @@ solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int dd, int co
                 t = a + r * (b - a);
         }
     }
-    for (int it = 0; it < 100; it++) {
-        if (dd)
-            eval_dd(oc, coord, t, tgt, &f, &df, &dn);
-        else
-            eval_d(oc, coord, t, stops, tgt, &f, &df, &dn);
-        if (fabs(f) <= 2 * DBL_EPSILON * (size + dn))
-            break;
-        if ((f < 0) == neg)
-            a = t;
-        else
-            b = t, unseen = 0;
-        double mid = 0.5 * (a + b);
-        if (!(mid != a && mid != b))
-            break;
-        double next = df != 0 && isfinite(df) ? t - f / df : mid;
-        if (fabs(next - t) <= tol * (fabs(t) > 1.0 ? fabs(t) : 1.0)) { /* fmax, not a call */
-            /* a root at an end comes out a rounding beyond it */
-            double lo = a < b ? a : b, hi = a < b ? b : a; /* no calls */
-            double cl = next > lo ? next : lo;
-            cl = cl < hi ? cl : hi;
-            *last = cl == next ? fabs(next - t) : NAN;
-            t = cl;
-            break;
-        }
-        int inside = a < b ? (next > a && next < b) : (next < a && next > b);
-        int newton = 1;
-        if (!inside && unseen && (a < b ? next >= b : next <= b))
-            next = b, unseen = 0, newton = 0;
-        else if (!inside || fabs(next - t) > 0.5 * prev)
-            next = mid, newton = 0;
-        prev = fabs(next - t);
-        *last = newton ? prev : NAN;
-        t = next;
-    }
-    *pa = a, *pb = b;
-    return t;
+    return solve_double_loop(oc, fx, dd, coord, a, b, neg, tgt, t, prev, unseen, size, tol, 0,
+                             pa, pb, last);
 }
 
 double aa__offset_solve_d(const aa_offset_curve *oc, int coord, double ta, double tb, double fa,
@@ -931,64 +960,59 @@ double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, i
  * with the target).  Built twice, for Dekker's products and for fma's. */
 #define DD_EST 1e-21
 #define DD_D_STEP 1e-4
-static __attribute__((always_inline)) inline double
-root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta, double tb,
-        double fa, double target, double guess, const double *endb, long double xy[2],
-        long double *other, int fma)
+/* One step of root_dd's loop on the double-double value at *t
+ * (dd_point_parts' p and dp there), the caller's bracket [*la, *lb]: 1
+ * where the loop stops there (*t the root, *h the step from the point
+ * evaluated to it, *hx the step unrounded), else 0 (*t the next point). */
+static __attribute__((always_inline)) inline int dd_step(const dd_v2 p[4], const dd_v2 dp[2],
+                                                         dd_v2 tv, int coord, int neg, double *t,
+                                                         double *la, double *lb, double *h,
+                                                         double *hx)
 {
-    double t = ta, a, b, h1, h = 0.0, hx = 0.0;
-    dd_v2 p[4], dp[2], tv = {target, target};
-    int neg = fa < 0;
-    if (fa == 0) {
-        dd_point_parts(oc, fx, t, fma, p, NULL);
-        dp[0] = dp[1] = (dd_v2){0.0, 0.0};
-        goto done;
+    /* both lanes (each lane's operations the scalar ones), coord's moved
+     * to lane 0 by one test: the value less the target, the slope and the
+     * second derivative, not three parts and two derivatives indexed by
+     * coord in memory */
+    dd_v2 fv = ((p[0] - tv) + p[1]) + (p[2] + p[3]), d1 = dp[0], d2 = dp[1];
+    if (coord)
+        fv = dd_swap(fv), d1 = dd_swap(d1), d2 = dd_swap(d2);
+    double f = fv[0], df = d1[0];
+    if (f == 0)
+        return 1;
+    if ((f < 0) == neg)
+        *la = *t;
+    else
+        *lb = *t;
+    double mid = 0.5 * (*la + *lb);
+    if (!(mid != *la && mid != *lb))
+        return 1;
+    if (!(df != 0 && isfinite(df))) {
+        *t = mid;
+        return 0;
     }
-    t = solve_double(oc, fx, 1, coord, ta, tb, fa, target, guess, DD_D_STEP, endb, &a, &b, &h1);
-    double la = ta, lb = tb;
-    for (int it = 0; it < ROOT_LD_STEPS; it++) {
-        dd_point_parts(oc, fx, t, fma, p, dp);
-        /* both lanes (each lane's operations the scalar ones), coord's
-         * moved to lane 0 by one test: the value less the target, the
-         * slope and the second derivative, not three parts and two
-         * derivatives indexed by coord in memory */
-        dd_v2 fv = ((p[0] - tv) + p[1]) + (p[2] + p[3]), d1 = dp[0], d2 = dp[1];
-        if (coord)
-            fv = dd_swap(fv), d1 = dd_swap(d1), d2 = dd_swap(d2);
-        double f = fv[0], df = d1[0];
-        if (f == 0)
-            break;
-        if ((f < 0) == neg)
-            la = t;
-        else
-            lb = t;
-        double mid = 0.5 * (la + lb);
-        if (!(mid != la && mid != lb))
-            break;
-        if (!(df != 0 && isfinite(df))) {
-            t = mid;
-            continue;
-        }
-        double idf = 1 / df, h2 = -f * idf, c2 = 0.5 * d2[0] * idf;
-        double ch = c2 * h2;
-        double step = h2 - ch * h2, next = t + step;
-        if (next == t) { /* within half an ulp of t: t is the root rounded */
-            hx = step;
-            break;
-        }
-        int inside = la < lb ? (next > la && next < lb) : (next < la && next > lb);
-        double sc = fabs(t) > 1.0 ? fabs(t) : 1.0;
-        if (inside && fabs(h2) <= 1e-7 && 2 * ch * ch * fabs(h2) <= DD_EST * sc) {
-            h = next - t, hx = step, t = next;
-            break;
-        }
-        t = inside ? next : mid;
-        if (it + 1 == ROOT_LD_STEPS) { /* t not evaluated */
-            dd_point_parts(oc, fx, t, fma, p, NULL);
-            dp[0] = dp[1] = (dd_v2){0.0, 0.0};
-        }
+    double idf = 1 / df, h2 = -f * idf, c2 = 0.5 * d2[0] * idf;
+    double ch = c2 * h2;
+    double step = h2 - ch * h2, next = *t + step;
+    if (next == *t) { /* within half an ulp of t: t is the root rounded */
+        *hx = step;
+        return 1;
     }
-done:
+    int inside = *la < *lb ? (next > *la && next < *lb) : (next < *la && next > *lb);
+    double sc = fabs(*t) > 1.0 ? fabs(*t) : 1.0;
+    if (inside && fabs(h2) <= 1e-7 && 2 * ch * ch * fabs(h2) <= DD_EST * sc) {
+        *h = next - *t, *hx = step, *t = next;
+        return 1;
+    }
+    *t = inside ? next : mid;
+    return 0;
+}
+
+/* root_dd's outputs from the last evaluation (p, dp) and the steps from
+ * it to the root rounded (h) and unrounded (hx) */
+static __attribute__((always_inline)) inline void dd_out(const dd_v2 p[4], const dd_v2 dp[2],
+                                                         int coord, double h, double hx,
+                                                         long double xy[2], long double *other)
+{
     if (xy) { /* dd_coord's sum in double for both lanes at once (the same operations) */
         dd_v2 hv = {h, h}, lo = p[2] + (p[3] + hv * (dp[0] + 0.5 * dp[1] * hv));
         xy[0] = ((long double)p[0][0] + p[1][0]) + lo[0];
@@ -997,6 +1021,165 @@ done:
     if (other) /* at the root itself, where coordinate coord is the target */
         *other = dd_coord(p, 1 - coord, dd_lane(dp[0], 1 - coord), dd_lane(dp[1], 1 - coord),
                           hx);
+}
+
+/* root_dd's loop on the double-double value from its iteration it0 at t,
+ * the caller's bracket [la, lb], and its outputs */
+static __attribute__((always_inline)) inline double
+root_dd_loop(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double target,
+             int neg, double t, double la, double lb, int it0, long double xy[2],
+             long double *other, int fma)
+{
+    dd_v2 p[4], dp[2], tv = {target, target};
+    double h = 0.0, hx = 0.0;
+    for (int it = it0; it < ROOT_LD_STEPS; it++) {
+        dd_point_parts(oc, fx, t, fma, p, dp);
+        if (dd_step(p, dp, tv, coord, neg, &t, &la, &lb, &h, &hx)) {
+            dd_out(p, dp, coord, h, hx, xy, other);
+            return t;
+        }
+    }
+    dd_point_parts(oc, fx, t, fma, p, NULL); /* t not evaluated */
+    dp[0] = dp[1] = (dd_v2){0.0, 0.0};
+    dd_out(p, dp, coord, 0.0, 0.0, xy, other);
+    return t;
+}
+
+/* root_dd where the caller gives no start inside the bracket (the double
+ * phase from the bracket's ends) or fa is 0 */
+static __attribute__((always_inline)) inline double
+root_dd_ends(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
+             double tb, double fa, double target, double guess, const double *endb,
+             long double xy[2], long double *other, int fma)
+{
+    if (fa == 0) {
+        dd_v2 p[4], dp[2] = {{0.0, 0.0}, {0.0, 0.0}};
+        dd_point_parts(oc, fx, ta, fma, p, NULL);
+        dd_out(p, dp, coord, 0.0, 0.0, xy, other);
+        return ta;
+    }
+    double a, b, h1;
+    double t = solve_double(oc, fx, 1, coord, ta, tb, fa, target, guess, DD_D_STEP, endb, &a,
+                            &b, &h1);
+    return root_dd_loop(oc, fx, coord, target, fa < 0, t, ta, tb, 0, xy, other, fma);
+}
+
+static __attribute__((noinline)) double root_dd_ends_split(const aa_offset_curve *oc,
+                                                           const aa__offset_fix *fx, int coord,
+                                                           double ta, double tb, double fa,
+                                                           double target, double guess,
+                                                           const double *endb,
+                                                           long double xy[2], long double *other)
+{
+    return root_dd_ends(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other, 0);
+}
+
+static __attribute__((noinline, target("fma"))) double
+root_dd_ends_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
+                 double tb, double fa, double target, double guess, const double *endb,
+                 long double xy[2], long double *other)
+{
+    return root_dd_ends(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other, 1);
+}
+
+static __attribute__((noinline)) double root_dd_more_split(const aa_offset_curve *oc,
+                                                           const aa__offset_fix *fx, int coord,
+                                                           double target, int neg, double t,
+                                                           double la, double lb,
+                                                           long double xy[2], long double *other)
+{
+    return root_dd_loop(oc, fx, coord, target, neg, t, la, lb, 1, xy, other, 0);
+}
+
+static __attribute__((noinline, target("fma"))) double
+root_dd_more_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double target,
+                 int neg, double t, double la, double lb, long double xy[2], long double *other)
+{
+    return root_dd_loop(oc, fx, coord, target, neg, t, la, lb, 1, xy, other, 1);
+}
+
+/* The double phase's loop after its first evaluation (solve_step's state
+ * at t), then root_dd_loop from the start, and the outputs: a jump from
+ * root_dd, which then makes no call it returns from (no registers of its
+ * caller's saved, no frame) */
+static __attribute__((always_inline)) inline double
+root_d_more(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta, double tb,
+            double a, double b, int neg, double target, double t, double prev, int unseen,
+            double size, long double xy[2], long double *other, int fma)
+{
+    double pa, pb, last;
+    t = solve_double_loop(oc, fx, 1, coord, a, b, neg, target, t, prev, unseen, size,
+                          DD_D_STEP, 1, &pa, &pb, &last);
+    return root_dd_loop(oc, fx, coord, target, neg, t, ta, tb, 0, xy, other, fma);
+}
+
+static __attribute__((noinline)) double
+root_d_more_split(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
+                  double tb, double a, double b, int neg, double target, double t, double prev,
+                  int unseen, double size, long double xy[2], long double *other)
+{
+    return root_d_more(oc, fx, coord, ta, tb, a, b, neg, target, t, prev, unseen, size, xy, other,
+                       0);
+}
+
+static __attribute__((noinline, target("fma"))) double
+root_d_more_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
+                double tb, double a, double b, int neg, double target, double t, double prev,
+                int unseen, double size, long double xy[2], long double *other)
+{
+    return root_d_more(oc, fx, coord, ta, tb, a, b, neg, target, t, prev, unseen, size, xy, other,
+                       1);
+}
+
+/* root_dd: the common case in one straight line, a start strictly inside
+ * the bracket whose first double evaluation takes a Newton step within
+ * DD_D_STEP and whose first double-double step is the last (on
+ * tests/bench_bezstroke.c's scene at 1024 px 82% of the 100,812 roots a
+ * render); the rest by a jump out of line, with the state as it stands
+ * (root_dd_ends_*: no start or fa 0, 2%; root_d_more_*: the double
+ * phase on, 16%; root_dd_more_*: a second double-double step, 0.1%).
+ * The operations are solve_double's and root_dd_loop's from the start,
+ * in the same order, so the roots and points are the same bit for bit.
+ * As one function with its loops (each evaluation inline in them) the
+ * solver's constants and the loops' invariants were spilled to the
+ * stack once a root and read back as operands, its registers saved and
+ * its frame set up on every root: 591 instructions a root against 529
+ * (algorithms/README.md). */
+static __attribute__((always_inline)) inline double
+root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta, double tb,
+        double fa, double target, double guess, const double *endb, long double xy[2],
+        long double *other, int fma)
+{
+    if (fa == 0 || !(ta < tb ? (guess > ta && guess < tb) : (guess < ta && guess > tb))) {
+        if (fma)
+            return root_dd_ends_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other);
+        return root_dd_ends_split(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other);
+    }
+    int neg = fa < 0, unseen = 1;
+    /* solve_double's set-up and first step from the guess */
+    double size = fx->dsize[coord] + fabs(target);
+    double t = guess, a = ta, b = tb, prev = fabs(tb - ta), last = NAN, f, df, dn;
+    eval_dd(oc, coord, t, target, &f, &df, &dn);
+    if (!solve_step(f, df, dn, size, DD_D_STEP, neg, &t, &a, &b, &prev, &unseen, &last)) {
+        if (fma)
+            return root_d_more_fma(oc, fx, coord, ta, tb, a, b, neg, target, t, prev, unseen,
+                                   size, xy, other);
+        return root_d_more_split(oc, fx, coord, ta, tb, a, b, neg, target, t, prev, unseen, size,
+                                 xy, other);
+    }
+    /* the curve's coefficients loaded again below, not kept from above
+     * (on the stack: the registers are the double-double form's) */
+    __asm__ volatile("" ::: "memory");
+    /* root_dd_loop's first step */
+    dd_v2 p[4], dp[2];
+    double la = ta, lb = tb, h = 0.0, hx = 0.0;
+    dd_point_parts(oc, fx, t, fma, p, dp);
+    if (!dd_step(p, dp, (dd_v2){target, target}, coord, neg, &t, &la, &lb, &h, &hx)) {
+        if (fma)
+            return root_dd_more_fma(oc, fx, coord, target, neg, t, la, lb, xy, other);
+        return root_dd_more_split(oc, fx, coord, target, neg, t, la, lb, xy, other);
+    }
+    dd_out(p, dp, coord, h, hx, xy, other);
     return t;
 }
 
@@ -1060,6 +1243,8 @@ void aa__offset_fix_dd(const aa_offset_curve *oc, aa__offset_fix *fx, int fma)
         fx->du[1][0][c] = 2 * b[4 * c + 2], fx->du[1][1][c] = 0.0;
         fx->du[2][0][c] = dd_two_prod(3.0, b[4 * c + 3], &fx->du[2][1][c], 0);
     }
+    for (int c = 0; c < 2; c++)
+        fx->dsize[c] = fabs(m[c]) * fx->sx + fabs(m[2 + c]) * fx->sy + fabs(m[4 + c]);
     fx->dd = fma && __builtin_cpu_supports("fma") ? 2 : 1;
 }
 
