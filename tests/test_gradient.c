@@ -329,16 +329,19 @@ static double spread_fold(int spread, double t)
     return t;
 }
 
-static double stop_value(const picture *p, double t, int ch, double *opacity)
+/* Where t falls among p's stops: the stop k whose colour it takes (*f < 0:
+ * before the first or past the last) or, *f >= 0, the fraction f of the
+ * way from stop k to k + 1; the opacity there into *opacity. */
+static int stop_at(const picture *p, double t, double *f, double *opacity)
 {
     t = spread_fold(p->spread, t);
     if (p->spread == AA_SPREAD_PAD)
         t = t < 0 ? 0 : (t > 1 ? 1 : t);
     const aa_gradient_stop *s = p->stops;
-    double c0, c1;
+    *f = -1.0;
     if (t <= s[0].offset) {
         *opacity = s[0].opacity;
-        return ch < 3 ? stop_enc(s[0].colour.c[ch]) : 0;
+        return 0;
     }
     int k = p->n - 1;
     for (int q = 0; q + 1 < p->n; q++)
@@ -346,15 +349,30 @@ static double stop_value(const picture *p, double t, int ch, double *opacity)
             k = q;
             break;
         }
-    c0 = stop_enc(s[k].colour.c[ch]);
-    c1 = stop_enc(s[k < p->n - 1 ? k + 1 : k].colour.c[ch]);
     if (k == p->n - 1) {
         *opacity = s[k].opacity;
-        return c0;
+        return k;
     }
-    double f = (t - s[k].offset) / (s[k + 1].offset - s[k].offset);
-    *opacity = s[k].opacity + f * (s[k + 1].opacity - s[k].opacity);
-    return c0 + f * (c1 - c0);
+    *f = (t - s[k].offset) / (s[k + 1].offset - s[k].offset);
+    *opacity = s[k].opacity + *f * (s[k + 1].opacity - s[k].opacity);
+    return k;
+}
+
+/* Channel ch's encoded value at stop_at's k and f (0 for ch 3). */
+static double stop_colour(const picture *p, int k, double f, int ch)
+{
+    const aa_gradient_stop *s = p->stops;
+    if (ch >= 3)
+        return 0;
+    double c0 = stop_enc(s[k].colour.c[ch]);
+    return f < 0 ? c0 : c0 + f * (stop_enc(s[k + 1].colour.c[ch]) - c0);
+}
+
+static double stop_value(const picture *p, double t, int ch, double *opacity)
+{
+    double f;
+    int k = stop_at(p, t, &f, opacity);
+    return stop_colour(p, k, f, ch);
 }
 
 static double picture_at(const picture *p, double x, double y)
@@ -1576,6 +1594,30 @@ static double mpic_enc_at(const mpic *p, int ch, const int *in, const double *t)
     return acc;
 }
 
+/* mpic_enc_at of the three channels into e, each layer's place among its
+ * stops found once for them. */
+static void mpic_enc3_at(const mpic *p, const int *in, const double *t, double *e)
+{
+    for (int ch = 0; ch < 3; ch++)
+        e[ch] = p->bg[ch];
+    for (int k = 0; k < p->nl; k++) {
+        const mlayer *m = &p->l[k];
+        if (!in[k])
+            continue;
+        picture pc = {0};
+        pc.spread = m->spread, pc.stops = m->st, pc.n = m->n;
+        double op, f;
+        int q = stop_at(&pc, t[k], &f, &op);
+        double a = m->alpha * op;
+        for (int ch = 0; ch < 3; ch++) {
+            double c = stop_colour(&pc, q, f, ch);
+            if ((mpic_lin >> k) & 1u)
+                c = enc(mlayer_linear(m, t[k], ch));
+            e[ch] = a * c + (1 - a) * e[ch];
+        }
+    }
+}
+
 /* The encoded composite of channel ch at (x, y). */
 static double mpic_enc(const mpic *p, int ch, double x, double y)
 {
@@ -1614,8 +1656,10 @@ static void mpic_sig(const mpic *p, double x, double y, int *s)
         for (int c = 0; c < 3 && ((mpic_lin >> k) & 1u); c++) /* the encoding's change of piece */
             s[n++] = mlayer_linear(m, t, c) > 0.0031308;
     }
+    double e[3];
+    mpic_enc3_at(p, in, tk, e);
     for (int c = 0; c < 3; c++)
-        s[n++] = mpic_enc_at(p, c, in, tk) > 0.04045;
+        s[n++] = e[c] > 0.04045;
     s[n] = SIG_END;
 }
 

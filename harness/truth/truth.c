@@ -1656,6 +1656,13 @@ typedef struct gen_span_ctx {
     int pw[GEN_LAYERS][3];
     double K[3][243];
     int nk;
+    /* K's nonzero terms of each channel, in a's order (gen_terms): term i
+     * is tk[ch][i] times the product over its layers of nonzero index,
+     * tl[ch][i][0 .. tn[ch][i] - 1] in l's order, their indices td (an
+     * index 0's factor is 1: left out, the products the same bits) */
+    int nt[3], tfin[3];
+    double tk[3][243];
+    unsigned char tn[3][243], tl[3][243][GEN_MAX], td[3][243][GEN_MAX];
     /* fold: more than GEN_MAX layers, the composite folded over the
      * scene's steps st[0 .. nst - 1] from base (sl: worker's fold_sl; the
      * comment above "several gradients at a point") in place of K */
@@ -2928,15 +2935,37 @@ static void gen_eval(const gen_span_ctx *c, double x, double *e)
             f[l][ch][2] = op * (c->pw[l][ch] ? lin_enc(v) : v);
         }
     }
+    /* a zero term adds +-0 to s, which is never -0: left out */
     for (int ch = 0; ch < c->nch; ch++) {
         double s = 0.0;
-        for (int a = 0; a < c->nk; a++) {
-            double p = c->K[ch][a];
-            for (int l = 0, q = a; l < c->n && p != 0.0; l++, q /= 3)
-                p *= f[l][ch][q % 3];
+        for (int i = 0; i < c->nt[ch]; i++) {
+            double p = c->tk[ch][i];
+            const unsigned char *tl = c->tl[ch][i], *td = c->td[ch][i];
+            for (int j = 0; j < c->tn[ch][i] && p != 0.0; j++)
+                p *= f[tl[j]][ch][td[j]];
             s += p;
         }
         e[ch] = s;
+    }
+}
+
+/* K's nonzero terms (gen_span_ctx's tk, tn, tl, td) of each channel. */
+static void gen_terms(gen_span_ctx *c)
+{
+    for (int ch = 0; ch < 3; ch++) {
+        int i = 0;
+        c->tfin[ch] = 1;
+        for (int a = 0; a < c->nk; a++) {
+            if (c->K[ch][a] == 0.0)
+                continue;
+            c->tfin[ch] &= isfinite(c->K[ch][a]) != 0;
+            int m = 0;
+            for (int l = 0, q = a; l < c->n; l++, q /= 3)
+                if (q % 3)
+                    c->tl[ch][i][m] = (unsigned char)l, c->td[ch][i][m++] = (unsigned char)(q % 3);
+            c->tk[ch][i] = c->K[ch][a], c->tn[ch][i++] = (unsigned char)m;
+        }
+        c->nt[ch] = i;
     }
 }
 
@@ -3103,7 +3132,27 @@ static int gen_bounds(const gen_span_ctx *c, double m, double A, double B, doubl
             G[l][0] = 0.0, G[l][1] = o1 * P[l], G[l][2] = o1 * cc * P[l] + op * dc;
         }
         double se = 0.0, sdv = 0.0;
-        for (int a = 0; a < c->nk; a++) {
+        int finite = c->tfin[ch];
+        for (int l = 0; l < c->n; l++)
+            finite &= isfinite(F[l][1]) && isfinite(F[l][2]);
+        /* F and K finite: a layer of index 0 adds G 0 times a finite rest, +0,
+         * to dsum, and its F of 1 leaves the products as they are; the
+         * terms' layers of nonzero index alone give the same bits */
+        for (int i = 0; finite && i < c->nt[ch]; i++) {
+            const unsigned char *tl = c->tl[ch][i], *td = c->td[ch][i];
+            double k = fabs(c->tk[ch][i]), p = k, dsum = 0.0;
+            for (int l = 0; l < c->tn[ch][i]; l++) {
+                double rest = k;
+                for (int j = 0; j < c->tn[ch][i]; j++)
+                    if (j != l)
+                        rest *= F[tl[j]][td[j]];
+                dsum += G[tl[l]][td[l]] * rest;
+                p *= F[tl[l]][td[l]];
+            }
+            se += p;
+            sdv += dsum;
+        }
+        for (int a = 0; !finite && a < c->nk; a++) {
             double k = fabs(c->K[ch][a]);
             if (k == 0.0)
                 continue;
@@ -4104,6 +4153,8 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
                 c.K[ch][a + 2 * stride] = f2 - f1;
             }
         }
+    if (!c.fold)
+        gen_terms(&c);
     /* the cuts: stops and periods' ends of every layer, radial x0 */
     double *xs = w->gbuf;
     size_t nx = 0, cap = w->cap_gbuf - 8;
