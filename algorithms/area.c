@@ -1301,22 +1301,25 @@ static void part_flush(ar_worker *wk, ar_seg *s, int nch, int W)
     accumulate(wk, s, s->wt, t2, s->wu, u2, s->wdc, nch, W);
 }
 
-/* s's part in the sub-band [ya, yb] with colour jump dc.  The area right
- * of a part is the sum of the areas right of its pieces, so where the part
- * kept from the sub-bands above ends at ya with the same jump (its
- * neighbours' order changed, not the windings on its two sides) it is
- * lengthened, and added once (part_flush) when the jump changes, a
- * sub-band is missed or the cluster ends (sweep_end): one quadrature and
- * one point evaluated where there were one a sub-band.  On
- * tests/bench_bezstroke.c's scene at 1024 px 8,651 of the 22,664 parts of
- * the sub-bands' sweeps continued the part above, at 256 px 15,051 of
- * 39,922. */
+/* s's part from the top ya of a sub-band on, with colour jump dc.  The
+ * area right of a part is the sum of the areas right of its pieces, so
+ * where the part kept from the sub-bands above is open (wyb INFINITY: it
+ * had this jump in the last sub-band the sweep walked it in, and the
+ * same in those it passed by since, sweep's windings carried) with the
+ * same jump (its neighbours' order changed, not the windings on its two
+ * sides) it is lengthened, and added once (part_flush) when the jump
+ * changes, the sweep finds none (part_stop), or the cluster ends
+ * (sweep_end): one quadrature and one point evaluated where there were
+ * one a sub-band.  On tests/bench_bezstroke.c's scene at 1024 px 8,651
+ * of the 22,664 parts of the sub-bands' sweeps continued the part above,
+ * at 256 px 15,051 of 39,922. */
 static void sweep_part(ar_worker *wk, ar_seg *s, uint32_t idx, const double *dc, double ya,
-                       double yb, int nch, int W)
+                       int nch, int W)
 {
-    if (s->wyb == ya && s->wdc[0] == dc[0] && s->wdc[1] == dc[1] && s->wdc[2] == dc[2]) {
-        s->wyb = yb;
-        return;
+    if (s->wyb == INFINITY) {
+        if (s->wdc[0] == dc[0] && s->wdc[1] == dc[1] && s->wdc[2] == dc[2])
+            return;
+        s->wyb = ya;
     }
     if (s->wyb == s->wyb)
         part_flush(wk, s, nch, W);
@@ -1325,8 +1328,16 @@ static void sweep_part(ar_worker *wk, ar_seg *s, uint32_t idx, const double *dc,
     sub_end(s, ya, &s->wt, &s->wu);
     if (s->p->curved && s->p->offset)
         s->wv = s->vv[s->vn ^ 1]; /* the v sub_end kept last (offset_keep) */
-    s->wya = ya, s->wyb = yb;
+    s->wya = ya, s->wyb = INFINITY;
     s->wdc[0] = dc[0], s->wdc[1] = dc[1], s->wdc[2] = dc[2];
+}
+
+/* s's open part (sweep_part) ends at ya: the sweep found it with no jump
+ * in the sub-band below. */
+static inline void part_stop(ar_seg *s, double ya)
+{
+    if (s->wyb == INFINITY)
+        s->wyb = ya;
 }
 
 /* The cluster's kept parts added (after its last sub-band). */
@@ -1335,6 +1346,8 @@ static void sweep_end(const ar_row *r)
     ar_worker *wk = r->wk;
     for (size_t k = 0; k < wk->npend; k++) {
         ar_seg *s = &wk->seg[wk->pend[k]];
+        if (s->wyb == INFINITY) /* open to the seg's end (the sub-bands' last yb, or before) */
+            s->wyb = s->vb;
         if (s->wyb == s->wyb)
             part_flush(wk, s, r->S->nch, r->W);
         s->wyb = NAN;
@@ -1343,9 +1356,10 @@ static void sweep_end(const ar_row *r)
 }
 
 /* Add, in order, the colour jump across each seg in keys[0..n) (sorted
- * along x) times its area from v = ya to yb (whole: the band's, at once;
- * else a sub-band's, kept by sweep_part).  w holds the windings left of
- * the first; c their colour.  A colour depends on which layers cover
+ * along x) times its area in the band (whole: at once) or from the top ya
+ * of a sub-band on (kept by sweep_part, open until the sweep finds the
+ * seg with another jump or none, or it ends).  w holds the windings left
+ * of the first; c their colour.  A colour depends on which layers cover
  * (colour_of, area_composite_colour's key), so where a seg leaves its
  * layer inside (or outside) it is not asked for; and an opaque scene's
  * colours are its layers' own, so the same pointer is the same colour (a
@@ -1353,27 +1367,33 @@ static void sweep_end(const ar_row *r)
  * tests/bench_bezstroke.c's scene about 2.3 M of the sweeps' 13.4 M segs
  * change the colour. */
 static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const double *c,
-                  double ya, double yb, int whole)
+                  double ya, int whole)
 {
     const ar_state *S = r->S;
     ar_seg *seg = r->wk->seg;
     for (size_t k = 0; k < n; k++) {
-        const ar_seg *s = &seg[keys[k].idx];
+        ar_seg *s = &seg[keys[k].idx];
         int l = s->p->layer, was = w[l] & S->inside[l];
         w[l] += s->p->dir;
-        if (!was == !(w[l] & S->inside[l])) /* l inside or out as before: the colour too */
+        if (!was == !(w[l] & S->inside[l])) { /* l inside or out as before: the colour too */
+            part_stop(s, ya);
             continue;
+        }
         const double *nx = colour_of(S, r->wk, w);
-        if (nx == c) /* one of an opaque scene's colours, again: no jump */
+        if (nx == c) { /* one of an opaque scene's colours, again: no jump */
+            part_stop(s, ya);
             continue;
+        }
         double dc[3] = {nx[0] - c[0], nx[1] - c[1], nx[2] - c[2]};
         c = nx;
-        if (dc[0] == 0.0 && dc[1] == 0.0 && dc[2] == 0.0)
+        if (dc[0] == 0.0 && dc[1] == 0.0 && dc[2] == 0.0) {
+            part_stop(s, ya);
             continue;
+        }
         if (whole)
             accumulate(r->wk, s, s->ta, s->tb, s->ua, s->ub, dc, S->nch, r->W);
         else
-            sweep_part(r->wk, &seg[keys[k].idx], keys[k].idx, dc, ya, yb, S->nch, r->W);
+            sweep_part(r->wk, s, keys[k].idx, dc, ya, S->nch, r->W);
     }
 }
 
@@ -1762,7 +1782,7 @@ static void cluster_fast(const ar_row *r, const ar_key *in, size_t n, int lo, in
             order_mid(r, in, n, lo, k);
         keys = k;
     }
-    sweep(r, keys, n, w, cin, 0.0, 1.0, 1);
+    sweep(r, keys, n, w, cin, 0.0, 1);
     resolve(r, lo, hi, cin);
 }
 
@@ -2013,15 +2033,19 @@ static size_t order_next(const ar_row *r, const ar_key *keys, size_t n, ar_key *
     for (; *ci < wk->ncx && !(wk->cx[*ci].v > ya); (*ci)++)
         if (wk->cx[*ci].v == ya)
             wk->mark[wk->cx[*ci].a] = wk->mark[wk->cx[*ci].b] = st;
-    size_t u = 0, nt = 0;
+    /* lo_ch: the first place changed; tail: the unchanged segs after the
+     * last */
+    size_t u = 0, nt = 0, lo_ch = m, tail = m;
     for (size_t k = 0; k < m; k++) {
         const ar_seg *s = &seg[list[k].idx];
-        if (!(s->vb >= yb))
-            continue; /* ended at ya */
-        if (wk->mark[list[k].idx] == st)
-            spare[nt++] = list[k];
-        else
+        int out = !(s->vb >= yb); /* ended at ya */
+        if (!out && wk->mark[list[k].idx] != st) {
             list[u++] = list[k];
+            continue;
+        }
+        lo_ch = lo_ch < k ? lo_ch : k, tail = m - 1 - k;
+        if (!out)
+            spare[nt++] = list[k];
     }
     for (size_t k = 0; k < n; k++) {
         const ar_seg *s = &seg[keys[k].idx];
@@ -2045,8 +2069,10 @@ static size_t order_next(const ar_row *r, const ar_key *keys, size_t n, ar_key *
         }
         memmove(&list[a + 1], &list[a], (u - a) * sizeof *list);
         list[a] = spare[k];
+        lo_ch = lo_ch < a ? lo_ch : a, tail = tail < u - a ? tail : u - a;
         u++;
     }
+    wk->chlo = lo_ch, wk->chtail = tail;
     for (size_t k = 0; k < u; k++) /* the runs about the segs placed */
         if (wk->mark[list[k].idx] == st)
             k = mark_run(r, list, u, k, lo, ya, yb, st + 1);
@@ -2101,7 +2127,27 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
             }
             above = m > 0;
             memcpy(wk->wtmp, w, nl * sizeof *w);
-            sweep(r, list, m, wk->wtmp, cin, ya, yb, 0);
+            /* from the one above: the segs before the first change and
+             * after the last have the windings on their sides, so the
+             * jumps, that they had (the windings right of the cluster
+             * are one at every height of the band, its w's right of it),
+             * their parts open (sweep_part); the sweep walks from the
+             * first change to the last, the windings there summed from
+             * the cluster's left */
+            size_t a = 0, b = m;
+            const double *c = cin;
+            if (next) {
+                a = wk->chlo < m ? wk->chlo : m;
+                b = wk->chtail < m - a ? m - wk->chtail : a;
+                if (a > 0 && b > a) {
+                    for (size_t k = 0; k < a; k++) {
+                        const ar_piece *p = wk->seg[list[k].idx].p;
+                        wk->wtmp[p->layer] += p->dir;
+                    }
+                    c = colour_of(r->S, wk, wk->wtmp);
+                }
+            }
+            sweep(r, list + a, b - a, wk->wtmp, c, ya, 0);
         }
     }
     sweep_end(r);
