@@ -2015,12 +2015,17 @@ static void mark_unsure(const ar_row *r, const ar_key *list, size_t m, int lo, d
  * (two segs that neither cross nor end between two sub-bands keep it),
  * and the segs taken out and coming in are put in it one by one, each by
  * halving (pair_order: u at the sub-band's ends of O(log m) segs, not of
- * all).  keys[0..n): the cluster; spare: room for n keys.  Returns the
- * count, or 0 if the sub-band is better ordered afresh (too many
- * events: each placed seg's halving would take more roots than the ends
- * of all). */
-static size_t order_next(const ar_row *r, const ar_key *keys, size_t n, ar_key *list, size_t m,
-                         ar_key *spare, int lo, double ya, double yb, size_t *ci)
+ * all).  keys[0..): the cluster; tops[0..ntops): its segs but the flat
+ * ones by (their top va, their place in keys), *tc the first whose top
+ * is not above the last sub-band's, so that those beginning at ya are
+ * found there, not by a scan of the cluster; spare: room for all of it.
+ * Returns the count, or 0 if the sub-band is better ordered afresh (too
+ * many events: each placed seg's halving would take more roots than the
+ * ends of all).  The first place changed and the count of the segs after
+ * the last that are the order above's: wk->chlo, wk->chtail. */
+static size_t order_next(const ar_row *r, const ar_key *keys, const ar_key *tops, size_t ntops,
+                         size_t *tc, ar_key *list, size_t m, ar_key *spare, int lo, double ya,
+                         double yb, size_t *ci)
 {
     ar_worker *wk = r->wk;
     const ar_seg *seg = wk->seg;
@@ -2047,11 +2052,11 @@ static size_t order_next(const ar_row *r, const ar_key *keys, size_t n, ar_key *
         if (!out)
             spare[nt++] = list[k];
     }
-    for (size_t k = 0; k < n; k++) {
-        const ar_seg *s = &seg[keys[k].idx];
-        if (!s->p->flat && s->va == ya && s->vb >= yb)
-            spare[nt++] = keys[k], wk->mark[keys[k].idx] = st;
-    }
+    while (*tc < ntops && tops[*tc].key < ya) /* the segs begun at ya, in the cluster's order */
+        (*tc)++;
+    for (size_t k = *tc; k < ntops && tops[k].key == ya; k++)
+        if (seg[tops[k].idx].vb >= yb)
+            spare[nt++] = keys[tops[k].id], wk->mark[tops[k].idx] = st;
     size_t bits = 1;
     while ((size_t)1 << bits <= u + nt)
         bits++;
@@ -2088,9 +2093,11 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
     ar_worker *wk = r->wk;
     ar_key *keys = wk->sub, *list = wk->sub + n;
     ar_key *span = list + n; /* keys[0..n) sits before list */
+    ar_key *tops = wk->tops;
     order_by_left(r, in, n, lo, keys);
     double y = 0.0;
-    size_t nl = (size_t)r->S->nl, m = 0;
+    size_t nl = (size_t)r->S->nl, m = 0, ntops = 0, tc = 0;
+    int made = 0; /* tops[0..ntops): the segs by their tops (order_next's, made once) */
     while (y < 1.0) {
         double lim = 1.0;
         size_t ne = band_events(r, keys, n, lo, y, &lim), ci = 0;
@@ -2101,8 +2108,18 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
             if (!(yb > ya))
                 continue;
             size_t next = 0;
-            if (above && m >= AR_NEXT_MIN && !wk->cxfull)
-                next = order_next(r, keys, n, list, m, span, lo, ya, yb, &ci);
+            if (above && m >= AR_NEXT_MIN && !wk->cxfull) {
+                if (!made) {
+                    for (size_t k = 0; k < n; k++) {
+                        const ar_seg *s = &wk->seg[keys[k].idx];
+                        if (!s->p->flat)
+                            tops[ntops++] = (ar_key){s->va, (uint32_t)k, keys[k].idx};
+                    }
+                    sort_keys(tops, ntops);
+                    made = 1;
+                }
+                next = order_next(r, keys, tops, ntops, &tc, list, m, span, lo, ya, yb, &ci);
+            }
             if (next) {
                 m = next;
             } else {
@@ -2794,6 +2811,7 @@ static void state_free(ar_state *S)
         free(wk->list);
         free(wk->order);
         free(wk->sub);
+        free(wk->tops);
         free(wk->acc);
         free(wk->cov);
         free(wk->wind);
@@ -3104,6 +3122,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->list = line_alloc(n, sizeof *wk->list);
     wk->order = line_alloc(n, sizeof *wk->order);
     wk->sub = line_alloc(3 * n, sizeof *wk->sub);
+    wk->tops = malloc(n * sizeof *wk->tops); /* not cleared: read only where written */
     wk->acc = line_alloc(cells, sizeof *wk->acc);
     wk->cov = line_alloc(cells, sizeof *wk->cov);
     wk->wind = line_alloc(nl, sizeof *wk->wind);
@@ -3138,7 +3157,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
             wk->seg[k].ja = INT_MIN;
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
         !wk->wind || !wk->wtmp || !wk->ev || !wk->cx || !wk->mark || !wk->cm || !wk->act ||
-        !wk->pend)
+        !wk->pend || !wk->tops)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
                        S->w);
     return AA_OK;

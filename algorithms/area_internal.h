@@ -217,6 +217,7 @@ typedef struct ar_worker {
     ar_seg *seg;     /* per sorted piece */
     uint32_t *list;  /* the current row's segs, in active order */
     ar_key *order, *sub;
+    ar_key *tops; /* a crowded band's segs by their tops (area.c, order_next) */
     double *acc, *cov; /* per cell and channel */
     int *wind, *wtmp;
     double *ev;
