@@ -1301,22 +1301,25 @@ static void part_flush(ar_worker *wk, ar_seg *s, int nch, int W)
     accumulate(wk, s, s->wt, t2, s->wu, u2, s->wdc, nch, W);
 }
 
-/* s's part in the sub-band [ya, yb] with colour jump dc.  The area right
- * of a part is the sum of the areas right of its pieces, so where the part
- * kept from the sub-bands above ends at ya with the same jump (its
- * neighbours' order changed, not the windings on its two sides) it is
- * lengthened, and added once (part_flush) when the jump changes, a
- * sub-band is missed or the cluster ends (sweep_end): one quadrature and
- * one point evaluated where there were one a sub-band.  On
- * tests/bench_bezstroke.c's scene at 1024 px 8,651 of the 22,664 parts of
- * the sub-bands' sweeps continued the part above, at 256 px 15,051 of
- * 39,922. */
+/* s's part from the top ya of a sub-band on, with colour jump dc.  The
+ * area right of a part is the sum of the areas right of its pieces, so
+ * where the part kept from the sub-bands above is open (wyb INFINITY: it
+ * had this jump in the last sub-band the sweep walked it in, and the
+ * same in those it passed by since, sweep's windings carried) with the
+ * same jump (its neighbours' order changed, not the windings on its two
+ * sides) it is lengthened, and added once (part_flush) when the jump
+ * changes, the sweep finds none (part_stop), or the cluster ends
+ * (sweep_end): one quadrature and one point evaluated where there were
+ * one a sub-band.  On tests/bench_bezstroke.c's scene at 1024 px 8,651
+ * of the 22,664 parts of the sub-bands' sweeps continued the part above,
+ * at 256 px 15,051 of 39,922. */
 static void sweep_part(ar_worker *wk, ar_seg *s, uint32_t idx, const double *dc, double ya,
-                       double yb, int nch, int W)
+                       int nch, int W)
 {
-    if (s->wyb == ya && s->wdc[0] == dc[0] && s->wdc[1] == dc[1] && s->wdc[2] == dc[2]) {
-        s->wyb = yb;
-        return;
+    if (s->wyb == INFINITY) {
+        if (s->wdc[0] == dc[0] && s->wdc[1] == dc[1] && s->wdc[2] == dc[2])
+            return;
+        s->wyb = ya;
     }
     if (s->wyb == s->wyb)
         part_flush(wk, s, nch, W);
@@ -1325,8 +1328,16 @@ static void sweep_part(ar_worker *wk, ar_seg *s, uint32_t idx, const double *dc,
     sub_end(s, ya, &s->wt, &s->wu);
     if (s->p->curved && s->p->offset)
         s->wv = s->vv[s->vn ^ 1]; /* the v sub_end kept last (offset_keep) */
-    s->wya = ya, s->wyb = yb;
+    s->wya = ya, s->wyb = INFINITY;
     s->wdc[0] = dc[0], s->wdc[1] = dc[1], s->wdc[2] = dc[2];
+}
+
+/* s's open part (sweep_part) ends at ya: the sweep found it with no jump
+ * in the sub-band below. */
+static inline void part_stop(ar_seg *s, double ya)
+{
+    if (s->wyb == INFINITY)
+        s->wyb = ya;
 }
 
 /* The cluster's kept parts added (after its last sub-band). */
@@ -1335,6 +1346,8 @@ static void sweep_end(const ar_row *r)
     ar_worker *wk = r->wk;
     for (size_t k = 0; k < wk->npend; k++) {
         ar_seg *s = &wk->seg[wk->pend[k]];
+        if (s->wyb == INFINITY) /* open to the seg's end (the sub-bands' last yb, or before) */
+            s->wyb = s->vb;
         if (s->wyb == s->wyb)
             part_flush(wk, s, r->S->nch, r->W);
         s->wyb = NAN;
@@ -1343,9 +1356,10 @@ static void sweep_end(const ar_row *r)
 }
 
 /* Add, in order, the colour jump across each seg in keys[0..n) (sorted
- * along x) times its area from v = ya to yb (whole: the band's, at once;
- * else a sub-band's, kept by sweep_part).  w holds the windings left of
- * the first; c their colour.  A colour depends on which layers cover
+ * along x) times its area in the band (whole: at once) or from the top ya
+ * of a sub-band on (kept by sweep_part, open until the sweep finds the
+ * seg with another jump or none, or it ends).  w holds the windings left
+ * of the first; c their colour.  A colour depends on which layers cover
  * (colour_of, area_composite_colour's key), so where a seg leaves its
  * layer inside (or outside) it is not asked for; and an opaque scene's
  * colours are its layers' own, so the same pointer is the same colour (a
@@ -1353,27 +1367,33 @@ static void sweep_end(const ar_row *r)
  * tests/bench_bezstroke.c's scene about 2.3 M of the sweeps' 13.4 M segs
  * change the colour. */
 static void sweep(const ar_row *r, const ar_key *keys, size_t n, int *w, const double *c,
-                  double ya, double yb, int whole)
+                  double ya, int whole)
 {
     const ar_state *S = r->S;
     ar_seg *seg = r->wk->seg;
     for (size_t k = 0; k < n; k++) {
-        const ar_seg *s = &seg[keys[k].idx];
+        ar_seg *s = &seg[keys[k].idx];
         int l = s->p->layer, was = w[l] & S->inside[l];
         w[l] += s->p->dir;
-        if (!was == !(w[l] & S->inside[l])) /* l inside or out as before: the colour too */
+        if (!was == !(w[l] & S->inside[l])) { /* l inside or out as before: the colour too */
+            part_stop(s, ya);
             continue;
+        }
         const double *nx = colour_of(S, r->wk, w);
-        if (nx == c) /* one of an opaque scene's colours, again: no jump */
+        if (nx == c) { /* one of an opaque scene's colours, again: no jump */
+            part_stop(s, ya);
             continue;
+        }
         double dc[3] = {nx[0] - c[0], nx[1] - c[1], nx[2] - c[2]};
         c = nx;
-        if (dc[0] == 0.0 && dc[1] == 0.0 && dc[2] == 0.0)
+        if (dc[0] == 0.0 && dc[1] == 0.0 && dc[2] == 0.0) {
+            part_stop(s, ya);
             continue;
+        }
         if (whole)
             accumulate(r->wk, s, s->ta, s->tb, s->ua, s->ub, dc, S->nch, r->W);
         else
-            sweep_part(r->wk, &seg[keys[k].idx], keys[k].idx, dc, ya, yb, S->nch, r->W);
+            sweep_part(r->wk, s, keys[k].idx, dc, ya, S->nch, r->W);
     }
 }
 
@@ -1762,7 +1782,7 @@ static void cluster_fast(const ar_row *r, const ar_key *in, size_t n, int lo, in
             order_mid(r, in, n, lo, k);
         keys = k;
     }
-    sweep(r, keys, n, w, cin, 0.0, 1.0, 1);
+    sweep(r, keys, n, w, cin, 0.0, 1);
     resolve(r, lo, hi, cin);
 }
 
@@ -1995,12 +2015,17 @@ static void mark_unsure(const ar_row *r, const ar_key *list, size_t m, int lo, d
  * (two segs that neither cross nor end between two sub-bands keep it),
  * and the segs taken out and coming in are put in it one by one, each by
  * halving (pair_order: u at the sub-band's ends of O(log m) segs, not of
- * all).  keys[0..n): the cluster; spare: room for n keys.  Returns the
- * count, or 0 if the sub-band is better ordered afresh (too many
- * events: each placed seg's halving would take more roots than the ends
- * of all). */
-static size_t order_next(const ar_row *r, const ar_key *keys, size_t n, ar_key *list, size_t m,
-                         ar_key *spare, int lo, double ya, double yb, size_t *ci)
+ * all).  keys[0..): the cluster; tops[0..ntops): its segs but the flat
+ * ones by (their top va, their place in keys), *tc the first whose top
+ * is not above the last sub-band's, so that those beginning at ya are
+ * found there, not by a scan of the cluster; spare: room for all of it.
+ * Returns the count, or 0 if the sub-band is better ordered afresh (too
+ * many events: each placed seg's halving would take more roots than the
+ * ends of all).  The first place changed and the count of the segs after
+ * the last that are the order above's: wk->chlo, wk->chtail. */
+static size_t order_next(const ar_row *r, const ar_key *keys, const ar_key *tops, size_t ntops,
+                         size_t *tc, ar_key *list, size_t m, ar_key *spare, int lo, double ya,
+                         double yb, size_t *ci)
 {
     ar_worker *wk = r->wk;
     const ar_seg *seg = wk->seg;
@@ -2013,21 +2038,25 @@ static size_t order_next(const ar_row *r, const ar_key *keys, size_t n, ar_key *
     for (; *ci < wk->ncx && !(wk->cx[*ci].v > ya); (*ci)++)
         if (wk->cx[*ci].v == ya)
             wk->mark[wk->cx[*ci].a] = wk->mark[wk->cx[*ci].b] = st;
-    size_t u = 0, nt = 0;
+    /* lo_ch: the first place changed; tail: the unchanged segs after the
+     * last */
+    size_t u = 0, nt = 0, lo_ch = m, tail = m;
     for (size_t k = 0; k < m; k++) {
         const ar_seg *s = &seg[list[k].idx];
-        if (!(s->vb >= yb))
-            continue; /* ended at ya */
-        if (wk->mark[list[k].idx] == st)
-            spare[nt++] = list[k];
-        else
+        int out = !(s->vb >= yb); /* ended at ya */
+        if (!out && wk->mark[list[k].idx] != st) {
             list[u++] = list[k];
+            continue;
+        }
+        lo_ch = lo_ch < k ? lo_ch : k, tail = m - 1 - k;
+        if (!out)
+            spare[nt++] = list[k];
     }
-    for (size_t k = 0; k < n; k++) {
-        const ar_seg *s = &seg[keys[k].idx];
-        if (!s->p->flat && s->va == ya && s->vb >= yb)
-            spare[nt++] = keys[k], wk->mark[keys[k].idx] = st;
-    }
+    while (*tc < ntops && tops[*tc].key < ya) /* the segs begun at ya, in the cluster's order */
+        (*tc)++;
+    for (size_t k = *tc; k < ntops && tops[k].key == ya; k++)
+        if (seg[tops[k].idx].vb >= yb)
+            spare[nt++] = keys[tops[k].id], wk->mark[tops[k].idx] = st;
     size_t bits = 1;
     while ((size_t)1 << bits <= u + nt)
         bits++;
@@ -2045,8 +2074,10 @@ static size_t order_next(const ar_row *r, const ar_key *keys, size_t n, ar_key *
         }
         memmove(&list[a + 1], &list[a], (u - a) * sizeof *list);
         list[a] = spare[k];
+        lo_ch = lo_ch < a ? lo_ch : a, tail = tail < u - a ? tail : u - a;
         u++;
     }
+    wk->chlo = lo_ch, wk->chtail = tail;
     for (size_t k = 0; k < u; k++) /* the runs about the segs placed */
         if (wk->mark[list[k].idx] == st)
             k = mark_run(r, list, u, k, lo, ya, yb, st + 1);
@@ -2062,9 +2093,11 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
     ar_worker *wk = r->wk;
     ar_key *keys = wk->sub, *list = wk->sub + n;
     ar_key *span = list + n; /* keys[0..n) sits before list */
+    ar_key *tops = wk->tops;
     order_by_left(r, in, n, lo, keys);
     double y = 0.0;
-    size_t nl = (size_t)r->S->nl, m = 0;
+    size_t nl = (size_t)r->S->nl, m = 0, ntops = 0, tc = 0;
+    int made = 0; /* tops[0..ntops): the segs by their tops (order_next's, made once) */
     while (y < 1.0) {
         double lim = 1.0;
         size_t ne = band_events(r, keys, n, lo, y, &lim), ci = 0;
@@ -2075,8 +2108,18 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
             if (!(yb > ya))
                 continue;
             size_t next = 0;
-            if (above && m >= AR_NEXT_MIN && !wk->cxfull)
-                next = order_next(r, keys, n, list, m, span, lo, ya, yb, &ci);
+            if (above && m >= AR_NEXT_MIN && !wk->cxfull) {
+                if (!made) {
+                    for (size_t k = 0; k < n; k++) {
+                        const ar_seg *s = &wk->seg[keys[k].idx];
+                        if (!s->p->flat)
+                            tops[ntops++] = (ar_key){s->va, (uint32_t)k, keys[k].idx};
+                    }
+                    sort_keys(tops, ntops);
+                    made = 1;
+                }
+                next = order_next(r, keys, tops, ntops, &tc, list, m, span, lo, ya, yb, &ci);
+            }
             if (next) {
                 m = next;
             } else {
@@ -2101,7 +2144,27 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
             }
             above = m > 0;
             memcpy(wk->wtmp, w, nl * sizeof *w);
-            sweep(r, list, m, wk->wtmp, cin, ya, yb, 0);
+            /* from the one above: the segs before the first change and
+             * after the last have the windings on their sides, so the
+             * jumps, that they had (the windings right of the cluster
+             * are one at every height of the band, its w's right of it),
+             * their parts open (sweep_part); the sweep walks from the
+             * first change to the last, the windings there summed from
+             * the cluster's left */
+            size_t a = 0, b = m;
+            const double *c = cin;
+            if (next) {
+                a = wk->chlo < m ? wk->chlo : m;
+                b = wk->chtail < m - a ? m - wk->chtail : a;
+                if (a > 0 && b > a) {
+                    for (size_t k = 0; k < a; k++) {
+                        const ar_piece *p = wk->seg[list[k].idx].p;
+                        wk->wtmp[p->layer] += p->dir;
+                    }
+                    c = colour_of(r->S, wk, wk->wtmp);
+                }
+            }
+            sweep(r, list + a, b - a, wk->wtmp, c, ya, 0);
         }
     }
     sweep_end(r);
@@ -2748,6 +2811,7 @@ static void state_free(ar_state *S)
         free(wk->list);
         free(wk->order);
         free(wk->sub);
+        free(wk->tops);
         free(wk->acc);
         free(wk->cov);
         free(wk->wind);
@@ -3058,6 +3122,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->list = line_alloc(n, sizeof *wk->list);
     wk->order = line_alloc(n, sizeof *wk->order);
     wk->sub = line_alloc(3 * n, sizeof *wk->sub);
+    wk->tops = malloc(n * sizeof *wk->tops); /* not cleared: read only where written */
     wk->acc = line_alloc(cells, sizeof *wk->acc);
     wk->cov = line_alloc(cells, sizeof *wk->cov);
     wk->wind = line_alloc(nl, sizeof *wk->wind);
@@ -3092,7 +3157,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
             wk->seg[k].ja = INT_MIN;
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
         !wk->wind || !wk->wtmp || !wk->ev || !wk->cx || !wk->mark || !wk->cm || !wk->act ||
-        !wk->pend)
+        !wk->pend || !wk->tops)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
                        S->w);
     return AA_OK;

@@ -175,7 +175,9 @@ typedef struct ar_seg {
     int bn;
     /* a sub-band sweep's part not yet added (area.c, sweep_part): from v =
      * wya (tau wt, u wu, an offset piece's v there wv) down to wyb (NAN:
-     * none, set so by band_fields), its colour jump wdc */
+     * none, set so by band_fields; INFINITY: open, lengthened through
+     * every sub-band since, to where the sweep next finds the seg with
+     * another jump or none, or to its end vb), its colour jump wdc */
     double wya, wyb, wt, wu, wv, wdc[3];
     /* the current band */
     double V;
@@ -215,6 +217,7 @@ typedef struct ar_worker {
     ar_seg *seg;     /* per sorted piece */
     uint32_t *list;  /* the current row's segs, in active order */
     ar_key *order, *sub;
+    ar_key *tops; /* a crowded band's segs by their tops (area.c, order_next) */
     double *acc, *cov; /* per cell and channel */
     int *wind, *wtmp;
     double *ev;
@@ -229,6 +232,9 @@ typedef struct ar_worker {
     size_t ncx;
     int cxfull;
     uint32_t *mark, stamp;
+    /* what order_next changed: the sub-band's order's first chlo segs and
+     * its last chtail are the order above's */
+    size_t chlo, chtail;
     uint32_t *act; /* segs whose extent reaches the current one */
     uint32_t *pend; /* the cluster's segs with a part kept by sweep_part */
     size_t npend;

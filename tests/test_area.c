@@ -801,6 +801,39 @@ static void test_crowded_crossings(void **state)
     aa_scene_free(s);
 }
 
+/* 60 thin crossing hexagons in three layers (two nonzero, one even-odd)
+ * against the reference within 1e-11: a crowded band's sub-bands are
+ * ordered from the one above (area.c, order_next) and the sweep walks
+ * only from their first change to their last, the windings at the first
+ * summed over every layer from the cluster's left.  Each hexagon has a
+ * vertex halfway down its sides at a height it shares with its neighbour
+ * in x, in another layer, so that a sub-band's top changes segs of two
+ * layers at once. */
+static void test_crowded_layers(void **state)
+{
+    (void)state;
+    enum { N = 60 };
+    const aa_rgb col[3] = {{{1, 0, 0}}, {{0, 0.5, 1}}, {{0.25, 1, 0.5}}};
+    const aa_fill_rule rule[3] = {AA_FILL_NONZERO, AA_FILL_EVENODD, AA_FILL_NONZERO};
+    aa_scene *s = aa_scene_new(black);
+    for (int l = 0; l < 3; l++) {
+        assert_int_equal(aa_scene_layer(s, col[l], rule[l]), AA_OK);
+        for (int k = l; k < N; k += 3) {
+            double a = 0.3 + 0.4 * k / N, b = 0.68 - 0.37 * k / N + 0.01 * sin(k), t = 0.002;
+            double ym = 0.25 + 0.5 * (k / 2) / (N / 2.0), xm = a + (b - a) * (ym - 0.02) / 0.96;
+            xm += 0.004 * cos(k);
+            oracle_poly q = {6,
+                             {a, a + t, xm + t, b + t, b, xm},
+                             {0.02, 0.02, ym, 0.98, 0.98, ym}};
+            scenes_add_poly(s, &q);
+        }
+    }
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    check_reference("60 crossing thin hexagons, 3 layers", s, 64, 64, 0, 0, 0, 1e-11);
+    check_reference("60 crossing thin hexagons, 3 layers", s, 37, 101, 0, 0, 0, 1e-11);
+    aa_scene_free(s);
+}
+
 /* Only the box is integrated; other filters are refused, saying so. */
 static void test_filters_refused(void **state)
 {
@@ -831,5 +864,6 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_filters_refused),
              cmocka_unit_test(test_crowded_cluster),
              cmocka_unit_test(test_crowded_crossings),
+             cmocka_unit_test(test_crowded_layers),
              cmocka_unit_test(test_sweep_parts),
              cmocka_unit_test(test_sort_new_keys))
