@@ -1006,6 +1006,7 @@ static void band_fields(ar_seg *s, int j)
     s->vb = p->y1 < j + 1.0 ? p->y1 - j : 1.0;
     s->bv[0] = s->bv[1] = NAN, s->bn = 0;
     s->wyb = NAN;
+    s->xy[0] = s->xy[1] = NAN;
 }
 
 /* tau (*t) and u (*u) where v(tau) = v in the band, for a sub-band's
@@ -1510,6 +1511,28 @@ static inline void seg_t_common(const ar_seg *s, double lo, double hi, double ya
         t[1] = hi < p->y1 ? seg_t_kept(s, hi) : NAN;
 }
 
+/* An offset seg's x at heights Y[0] and Y[1] (absolute), its parameters
+ * there t (NAN: not known, x then NAN too, aa__piece_meet_atx finds it),
+ * as aa__piece_end_x gives it, kept in the seg for the other pairs of the
+ * band that ask there (a crowded band's seg is in several); NAN for other
+ * kinds. */
+static inline void seg_x_known(const ar_seg *s, const double Y[2], const double t[2],
+                               double x[2])
+{
+    x[0] = x[1] = NAN;
+    if (!s->p->offset)
+        return;
+    ar_seg *w = (ar_seg *)s; /* the worker's own seg */
+    for (int e = 0; e < 2; e++) {
+        if (Y[e] == s->xy[e] && t[e] == s->xt[e]) {
+            x[e] = s->xx[e];
+        } else if (t[e] == t[e]) {
+            w->xy[e] = Y[e], w->xt[e] = t[e];
+            x[e] = w->xx[e] = aa__piece_end_x(s->p->src, Y[e], t[e]);
+        }
+    }
+}
+
 /* Heights v in (ya, yb), away from its ends, where segs p and q cross.
  * Both are reparametrised over [ya, yb] as P(s) = Pa + s B + s^2 A in
  * coordinates relative to p's cell; the crossings are where P meets q's
@@ -1547,7 +1570,11 @@ static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb
             seg_t_common(q, lo, hi, Ya, Yb, tq);
             Ya = lo, Yb = hi;
         }
-        int m = aa__piece_meet_at(P, Q, Ya, Yb, tp, tq, ys, 9), n = 0;
+        const double Y[2] = {Ya, Yb};
+        double xp[2], xq[2];
+        seg_x_known(p, Y, tp, xp);
+        seg_x_known(q, Y, tq, xq);
+        int m = aa__piece_meet_atx(P, Q, Ya, Yb, tp, tq, xp, xq, ys, 9), n = 0;
         for (int i = 0; i < m; i++) {
             double v = ys[i] - base;
             if (v > ya + CROSS_MARGIN && v < yb - CROSS_MARGIN)

@@ -164,6 +164,11 @@ typedef struct ar_seg {
      * (pair_crossings), mn the one written next */
     double my[2], mt[2];
     int mn;
+    /* an offset piece: its x xx at up to two heights xy (absolute; NAN:
+     * none, from band_fields) and parameters xt there, found for the first
+     * pair of its band asking there (pair_crossings, aa__piece_end_x) and
+     * kept for the others, xn the one written next */
+    double xy[2], xt[2], xx[2];
     /* the ends of the sub-bands of a band cut at its events (area.c,
      * cluster_bands; sub_key, sub_end) at up to two heights bv
      * (band-relative; NAN: none, from band_fields): tau bt, u for the

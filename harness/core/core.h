@@ -329,6 +329,16 @@ int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, do
  * heights as aa_piece_meet's to rounding, not bit for bit. */
 int aa__piece_meet_at(const aa_piece *p, const aa_piece *q, double ya, double yb,
                       const double tpa[2], const double tqa[2], double *ys, int max);
+/* aa__piece_meet_at with offset pieces' x at heights ya and yb known too
+ * (xpa, xqa; NaN where not known): each must be aa__piece_end_x at the
+ * height and the parameter passed there (area.c keeps a seg's, asked by
+ * every pair the seg is in).  The same meetings bit for bit. */
+int aa__piece_meet_atx(const aa_piece *p, const aa_piece *q, double ya, double yb,
+                       const double tpa[2], const double tqa[2], const double xpa[2],
+                       const double xqa[2], double *ys, int max);
+/* x of piece p at height y, its parameter there t (an offset piece's;
+ * ignored for other kinds): what the meetings take at their ends. */
+double aa__piece_end_x(const aa_piece *p, double y, double t);
 /* 1 if x_p - x_q is strictly monotone in y over the heights where line or
  * offset pieces p and q have their parameters between tp[0] and tp[1] and
  * between tq[0] and tq[1] (offset pieces; a line's are ignored): the cones

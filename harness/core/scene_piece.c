@@ -1438,18 +1438,32 @@ static int same_curve(const aa_piece *p, const aa_piece *q)
 }
 
 static int meet_pair(const aa_piece *p, const aa_piece *q, double ya, double yb,
-                     const double tpa[2], const double tqa[2], double *ys, int max, int quick);
+                     const double tpa[2], const double tqa[2], const double xpa[2],
+                     const double xqa[2], double *ys, int max, int quick);
 
 int aa_piece_meet(const aa_piece *p, const aa_piece *q, double ya, double yb, double *ys, int max)
 {
     const double none[2] = {NAN, NAN};
-    return meet_pair(p, q, ya, yb, none, none, ys, max, 0);
+    return meet_pair(p, q, ya, yb, none, none, none, none, ys, max, 0);
 }
 
 int aa__piece_meet_at(const aa_piece *p, const aa_piece *q, double ya, double yb,
                       const double tpa[2], const double tqa[2], double *ys, int max)
 {
-    return meet_pair(p, q, ya, yb, tpa, tqa, ys, max, 1);
+    const double none[2] = {NAN, NAN};
+    return meet_pair(p, q, ya, yb, tpa, tqa, none, none, ys, max, 1);
+}
+
+int aa__piece_meet_atx(const aa_piece *p, const aa_piece *q, double ya, double yb,
+                       const double tpa[2], const double tqa[2], const double xpa[2],
+                       const double xqa[2], double *ys, int max)
+{
+    return meet_pair(p, q, ya, yb, tpa, tqa, xpa, xqa, ys, max, 1);
+}
+
+double aa__piece_end_x(const aa_piece *p, double y, double t)
+{
+    return end_x(p, y, t);
 }
 
 /* An offset piece's parameter at height y, lo or hi of the pair's common
@@ -1466,8 +1480,23 @@ static double param_known(const aa_piece *p, double y, double ya, double yb, con
     return param_at(p, y);
 }
 
+/* x of p at height y, lo or hi of the pair's common heights, its
+ * parameter there t: at[0] where y is ya, at[1] where it is yb, if known
+ * (not NaN; the caller's end_x at the parameter it passed there, so the
+ * same bits), else end_x. */
+static inline double x_known(const aa_piece *p, double y, double t, double ya, double yb,
+                             const double at[2])
+{
+    if (y == ya && at[0] == at[0])
+        return at[0];
+    if (y == yb && at[1] == at[1])
+        return at[1];
+    return end_x(p, y, t);
+}
+
 static int meet_pair(const aa_piece *p, const aa_piece *q, double ya, double yb,
-                     const double tpa[2], const double tqa[2], double *ys, int max, int quick)
+                     const double tpa[2], const double tqa[2], const double xpa[2],
+                     const double xqa[2], double *ys, int max, int quick)
 {
     if (!p->dir || !q->dir || max < 1)
         return 0;
@@ -1493,9 +1522,10 @@ static int meet_pair(const aa_piece *p, const aa_piece *q, double ya, double yb,
     }
     if (p->kind != AA_PIECE_LINE && q->kind == AA_PIECE_LINE) {
         const aa_piece *t = p;
-        const double *ta = tpa;
+        const double *ta = tpa, *xa = xpa;
         p = q, q = t;
         tpa = tqa, tqa = ta;
+        xpa = xqa, xqa = xa;
     }
     if (same_curve(p, q))
         return 0; /* they meet everywhere: no meeting isolates them */
@@ -1516,8 +1546,10 @@ static int meet_pair(const aa_piece *p, const aa_piece *q, double ya, double yb,
          * offset piece is offset_x at offset_t_at, param_at's parameter) */
         const double tp[2] = {param_known(p, lo, ya, yb, tpa), param_known(p, hi, ya, yb, tpa)};
         const double tq[2] = {param_known(q, lo, ya, yb, tqa), param_known(q, hi, ya, yb, tqa)};
-        const double xp[2] = {end_x(p, lo, tp[0]), end_x(p, hi, tp[1])};
-        const double xq[2] = {end_x(q, lo, tq[0]), end_x(q, hi, tq[1])};
+        const double xp[2] = {x_known(p, lo, tp[0], ya, yb, xpa),
+                              x_known(p, hi, tp[1], ya, yb, xpa)};
+        const double xq[2] = {x_known(q, lo, tq[0], ya, yb, xqa),
+                              x_known(q, hi, tq[1], ya, yb, xqa)};
         c.lo_shared = lo_ends && xp[0] == xq[0];
         c.hi_shared = hi_ends && xp[1] == xq[1];
         subdivide_offset(&c, lo, hi, tp, tq, xp, xq, 0);
