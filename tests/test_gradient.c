@@ -1574,31 +1574,14 @@ static double mlayer_linear(const mlayer *m, double t, int ch)
     return s[m->n - 1].colour.c[ch];
 }
 
-/* The encoded composite of channel ch at a point where layer k's region
- * holds it if in[k], its t there t[k] (mlayer_in and mlayer_t, found once
- * for the three channels). */
-static double mpic_enc_at(const mpic *p, int ch, const int *in, const double *t)
+/* The encoded composites of channels c0 .. c1 - 1 into e[c0 .. c1 - 1], at
+ * a point where layer k's region holds it if in[k], its t there t[k]
+ * (mlayer_in and mlayer_t, found once for the channels), each layer's
+ * place among its stops found once for them. */
+static void mpic_enc_at(const mpic *p, int c0, int c1, const int *in, const double *t,
+                        double *e)
 {
-    double acc = p->bg[ch];
-    for (int k = 0; k < p->nl; k++) {
-        const mlayer *m = &p->l[k];
-        if (!in[k])
-            continue;
-        picture pc = {0};
-        pc.spread = m->spread, pc.stops = m->st, pc.n = m->n;
-        double op, c = stop_value(&pc, t[k], ch, &op), a = m->alpha * op;
-        if ((mpic_lin >> k) & 1u)
-            c = enc(mlayer_linear(m, t[k], ch));
-        acc = a * c + (1 - a) * acc;
-    }
-    return acc;
-}
-
-/* mpic_enc_at of the three channels into e, each layer's place among its
- * stops found once for them. */
-static void mpic_enc3_at(const mpic *p, const int *in, const double *t, double *e)
-{
-    for (int ch = 0; ch < 3; ch++)
+    for (int ch = c0; ch < c1; ch++)
         e[ch] = p->bg[ch];
     for (int k = 0; k < p->nl; k++) {
         const mlayer *m = &p->l[k];
@@ -1609,7 +1592,7 @@ static void mpic_enc3_at(const mpic *p, const int *in, const double *t, double *
         double op, f;
         int q = stop_at(&pc, t[k], &f, &op);
         double a = m->alpha * op;
-        for (int ch = 0; ch < 3; ch++) {
+        for (int ch = c0; ch < c1; ch++) {
             double c = stop_colour(&pc, q, f, ch);
             if ((mpic_lin >> k) & 1u)
                 c = enc(mlayer_linear(m, t[k], ch));
@@ -1627,7 +1610,9 @@ static double mpic_enc(const mpic *p, int ch, double x, double y)
         in[k] = mlayer_in(&p->l[k], x, y);
         t[k] = in[k] ? mlayer_t(&p->l[k], x, y) : 0.0;
     }
-    return mpic_enc_at(p, ch, in, t);
+    double e[3];
+    mpic_enc_at(p, ch, ch + 1, in, t, e);
+    return e[ch];
 }
 
 /* The signature of (x, y): where the picture is smooth it does not change.
@@ -1657,7 +1642,7 @@ static void mpic_sig(const mpic *p, double x, double y, int *s)
             s[n++] = mlayer_linear(m, t, c) > 0.0031308;
     }
     double e[3];
-    mpic_enc3_at(p, in, tk, e);
+    mpic_enc_at(p, 0, 3, in, tk, e);
     for (int c = 0; c < 3; c++)
         s[n++] = e[c] > 0.04045;
     s[n] = SIG_END;
