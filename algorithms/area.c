@@ -884,6 +884,16 @@ static inline int icell(double x)
     return (int)x - (x < 0.0);
 }
 
+/* u at tau t of an offset piece at an end of the band, its v kept in the
+ * memo's slot k (offset_seg_u's values) */
+static inline double offset_band_u(ar_seg *s, double t, int k)
+{
+    long double X, Y;
+    offset_point(s->p, s->p->sg * t, &X, &Y);
+    s->vt[k] = t, s->vv[k] = (double)(Y + s->V);
+    return (double)(X - s->c0);
+}
+
 /* Piece p clipped to the band [j, j+1], in its seg s.  Returns 0 if it
  * lies right of the image.  `plain` (a constant where it is inlined): the
  * scene has no curved piece, so the cubic, conic and offset cases are
@@ -914,35 +924,39 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     /* (p->curved first: the common path reads no other cache line of p) */
     int curved = !plain && p->curved;
     int special = curved && (p->conic || p->offset);
-    if (curved && p->offset) /* part_area's v, none kept yet */
-        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = s->vt[2] = s->vt[3] = NAN, s->vn = 0,
+    /* an offset piece's v at the band's ends, which part_area takes, is
+     * kept in the memo's slots 2 and 3 as it is found (offset_keep's
+     * values), the others cleared (none kept yet) */
+    if (curved && p->offset)
+        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = NAN, s->vn = 0,
         s->my[0] = s->my[1] = NAN, s->mn = 0;
-    if (p->y0 >= j)
-        ta = special ? s->t0 : 0.0, ua = special ? seg_u(s, ta) : s->U;
-    else if (s->mline == m) {
+    if (p->y0 >= j) {
+        ta = special ? s->t0 : 0.0;
+        ua = !special ? s->U : p->offset ? offset_band_u(s, ta, 2) : seg_u(s, ta);
+    } else if (s->mline == m) {
         ta = s->tline, ua = s->uline;
         /* an offset piece's v there from the y the band above kept: what
          * offset_v would give, bit for bit (same y, same V) */
         if (special && p->offset)
-            offset_keep(s, ta, (double)(s->yline + s->V));
+            s->vt[2] = ta, s->vv[2] = (double)(s->yline + s->V);
     } else if (plain) {
         ta = line_tau_quad(s, m), ua = u_quad(s, ta);
     } else if (special && p->offset) {
         long double x, y;
         ta = offset_line(s, m, &ua, &x, &y);
-        offset_keep(s, ta, (double)(y + s->V));
+        s->vt[2] = ta, s->vv[2] = (double)(y + s->V);
     } else {
         ta = line_tau(s, m), ua = seg_u(s, ta);
     }
     if (p->y1 <= j + 1.0) {
         tb = s->tend;
-        ub = plain ? u_quad(s, tb) : seg_u(s, tb);
+        ub = plain ? u_quad(s, tb) : special && p->offset ? offset_band_u(s, tb, 3) : seg_u(s, tb);
     } else {
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
         if (special && p->offset) {
             tb = offset_line(s, m + 1, &ub, &s->xline, &s->yline);
-            offset_keep(s, tb, (double)(s->yline + s->V));
+            s->vt[3] = tb, s->vv[3] = (double)(s->yline + s->V);
         } else {
             tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
             ub = plain ? u_quad(s, tb) : seg_u(s, tb);
@@ -953,10 +967,6 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
         tb = ta, ub = ua;
     s->ta = ta, s->tb = tb;
     s->ua = ua, s->ub = ub;
-    if (curved && p->offset) { /* the band's ends kept apart (offset_keep) */
-        s->vt[2] = s->vt[0], s->vv[2] = s->vv[0], s->vt[3] = s->vt[1], s->vv[3] = s->vv[1];
-        s->vt[0] = s->vt[1] = NAN, s->vn = 0;
-    }
     s->lo = s->ua < s->ub ? s->ua : s->ub;
     s->hi = s->ua < s->ub ? s->ub : s->ua;
     if (s->te > ta && s->te < tb) {
