@@ -3016,8 +3016,9 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
             return st;
     for (size_t k = 0; k < n; k++)
         if (S->piece[k].offset) {
-            S->piece[k].pan = S->pan + S->piece[k].pan0;
-            S->piece[k].ytab = S->ytab + 4 * S->piece[k].yt0;
+            ar_piece *q = &S->piece[k];
+            q->pan = S->pan + q->pan0;
+            ytab_attach(q, S->ytab + 4 * q->yt0);
         }
     return sort_pieces(S);
 }
