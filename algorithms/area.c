@@ -3048,16 +3048,22 @@ static int load_colours(ar_state *S, const aa_scene *scene)
     return AA_OK;
 }
 
-/* n zeroed items of `size` bytes on whole cache lines of their own. */
-static void *line_alloc(size_t n, size_t size)
+/* n items of `size` bytes on whole cache lines of their own, zeroed if
+ * `zero` (else as the allocator gives them). */
+static void *line_alloc_as(size_t n, size_t size, int zero)
 {
     if (n && size > (SIZE_MAX - 64) / n)
         return NULL;
     size_t bytes = (n * size + 63) & ~(size_t)63;
     void *p = aligned_alloc(64, bytes ? bytes : 64);
-    if (p)
+    if (p && zero)
         memset(p, 0, bytes ? bytes : 64);
     return p;
+}
+
+static void *line_alloc(size_t n, size_t size)
+{
+    return line_alloc_as(n, size, 1);
 }
 
 static int worker_alloc(ar_worker *wk, const ar_state *S)
@@ -3065,7 +3071,12 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     size_t n = S->npieces ? S->npieces : 1, cells = ((size_t)S->w + 2) * (size_t)S->nch;
     size_t nl = (size_t)(S->nl > 0 ? S->nl : 1);
     wk->active = line_alloc(n, sizeof *wk->active);
-    wk->seg = line_alloc(n, sizeof *wk->seg);
+    /* the segs not cleared: a seg's fields are written by seg_make and
+     * expand before they are read, but for the four set below (its piece
+     * none, no anchor, no band line kept, its table's hint the first
+     * interval); clearing them was 5.5 M instructions of the init on
+     * tests/bench_bezstroke.c's scene at 1024 px */
+    wk->seg = line_alloc_as(n, sizeof *wk->seg, 0);
     wk->list = line_alloc(n, sizeof *wk->list);
     wk->order = line_alloc(n, sizeof *wk->order);
     wk->sub = line_alloc(3 * n, sizeof *wk->sub);
@@ -3099,8 +3110,10 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     }
     wk->row = -2;
     if (wk->seg)
-        for (size_t k = 0; k < n; k++)
-            wk->seg[k].ja = INT_MIN;
+        for (size_t k = 0; k < n; k++) {
+            ar_seg *s = &wk->seg[k];
+            s->p = NULL, s->ja = s->mline = INT_MIN, s->ythint = 0;
+        }
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
         !wk->wind || !wk->wtmp || !wk->ev || !wk->cx || !wk->mark || !wk->cm || !wk->act ||
         !wk->pend)
