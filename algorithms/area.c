@@ -3070,16 +3070,17 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
 {
     size_t n = S->npieces ? S->npieces : 1, cells = ((size_t)S->w + 2) * (size_t)S->nch;
     size_t nl = (size_t)(S->nl > 0 ? S->nl : 1);
-    wk->active = line_alloc(n, sizeof *wk->active);
-    /* the segs not cleared: a seg's fields are written by seg_make and
-     * expand before they are read, but for the four set below (its piece
-     * none, no anchor, no band line kept, its table's hint the first
-     * interval); clearing them was 5.5 M instructions of the init on
-     * tests/bench_bezstroke.c's scene at 1024 px */
+    /* Not cleared (the last argument 0): the lists of indices and keys and
+     * the clip's levels are written up to their counts before they are
+     * read, and a seg's fields by seg_make and expand, but for the four set
+     * below (its piece none, no anchor, no band line kept, its table's
+     * hint the first interval).  Clearing them was 6.4 M instructions of
+     * the init on tests/bench_bezstroke.c's scene at 1024 px. */
+    wk->active = line_alloc_as(n, sizeof *wk->active, 0);
     wk->seg = line_alloc_as(n, sizeof *wk->seg, 0);
-    wk->list = line_alloc(n, sizeof *wk->list);
-    wk->order = line_alloc(n, sizeof *wk->order);
-    wk->sub = line_alloc(3 * n, sizeof *wk->sub);
+    wk->list = line_alloc_as(n, sizeof *wk->list, 0);
+    wk->order = line_alloc_as(n, sizeof *wk->order, 0);
+    wk->sub = line_alloc_as(3 * n, sizeof *wk->sub, 0);
     wk->acc = line_alloc(cells, sizeof *wk->acc);
     wk->cov = line_alloc(cells, sizeof *wk->cov);
     wk->wind = line_alloc(nl, sizeof *wk->wind);
@@ -3087,9 +3088,9 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->ev = line_alloc(CM_MAX_EVENTS, sizeof *wk->ev);
     wk->cx = line_alloc(CM_MAX_EVENTS, sizeof *wk->cx);
     wk->mark = line_alloc(n, sizeof *wk->mark);
-    wk->act = line_alloc(n, sizeof *wk->act);
-    wk->pend = line_alloc(n, sizeof *wk->pend);
-    wk->cm = line_alloc(CM_MAX_EDGES + 2, sizeof *wk->cm);
+    wk->act = line_alloc_as(n, sizeof *wk->act, 0);
+    wk->pend = line_alloc_as(n, sizeof *wk->pend, 0);
+    wk->cm = line_alloc_as(CM_MAX_EDGES + 2, sizeof *wk->cm, 0);
     if (S->composite) {
         wk->ckey = line_alloc((size_t)AR_CACHE_ENTRIES * (size_t)S->nwords, sizeof *wk->ckey);
         wk->key = line_alloc((size_t)S->nwords, sizeof *wk->key);
