@@ -884,6 +884,16 @@ static inline int icell(double x)
     return (int)x - (x < 0.0);
 }
 
+/* u at tau t of an offset piece at an end of the band, its v kept in the
+ * memo's slot k (offset_seg_u's values) */
+static inline double offset_band_u(ar_seg *s, double t, int k)
+{
+    long double X, Y;
+    offset_point(s->p, s->p->sg * t, &X, &Y);
+    s->vt[k] = t, s->vv[k] = (double)(Y + s->V);
+    return (double)(X - s->c0);
+}
+
 /* Piece p clipped to the band [j, j+1], in its seg s.  Returns 0 if it
  * lies right of the image.  `plain` (a constant where it is inlined): the
  * scene has no curved piece, so the cubic, conic and offset cases are
@@ -914,35 +924,39 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     /* (p->curved first: the common path reads no other cache line of p) */
     int curved = !plain && p->curved;
     int special = curved && (p->conic || p->offset);
-    if (curved && p->offset) /* part_area's v, none kept yet */
-        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = s->vt[2] = s->vt[3] = NAN, s->vn = 0,
+    /* an offset piece's v at the band's ends, which part_area takes, is
+     * kept in the memo's slots 2 and 3 as it is found (offset_keep's
+     * values), the others cleared (none kept yet) */
+    if (curved && p->offset)
+        s->V = s->Va - (j - ja), s->vt[0] = s->vt[1] = NAN, s->vn = 0,
         s->my[0] = s->my[1] = NAN, s->mn = 0;
-    if (p->y0 >= j)
-        ta = special ? s->t0 : 0.0, ua = special ? seg_u(s, ta) : s->U;
-    else if (s->mline == m) {
+    if (p->y0 >= j) {
+        ta = special ? s->t0 : 0.0;
+        ua = !special ? s->U : p->offset ? offset_band_u(s, ta, 2) : seg_u(s, ta);
+    } else if (s->mline == m) {
         ta = s->tline, ua = s->uline;
         /* an offset piece's v there from the y the band above kept: what
          * offset_v would give, bit for bit (same y, same V) */
         if (special && p->offset)
-            offset_keep(s, ta, (double)(s->yline + s->V));
+            s->vt[2] = ta, s->vv[2] = (double)(s->yline + s->V);
     } else if (plain) {
         ta = line_tau_quad(s, m), ua = u_quad(s, ta);
     } else if (special && p->offset) {
         long double x, y;
         ta = offset_line(s, m, &ua, &x, &y);
-        offset_keep(s, ta, (double)(y + s->V));
+        s->vt[2] = ta, s->vv[2] = (double)(y + s->V);
     } else {
         ta = line_tau(s, m), ua = seg_u(s, ta);
     }
     if (p->y1 <= j + 1.0) {
         tb = s->tend;
-        ub = plain ? u_quad(s, tb) : seg_u(s, tb);
+        ub = plain ? u_quad(s, tb) : special && p->offset ? offset_band_u(s, tb, 3) : seg_u(s, tb);
     } else {
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
         if (special && p->offset) {
             tb = offset_line(s, m + 1, &ub, &s->xline, &s->yline);
-            offset_keep(s, tb, (double)(s->yline + s->V));
+            s->vt[3] = tb, s->vv[3] = (double)(s->yline + s->V);
         } else {
             tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
             ub = plain ? u_quad(s, tb) : seg_u(s, tb);
@@ -953,10 +967,6 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
         tb = ta, ub = ua;
     s->ta = ta, s->tb = tb;
     s->ua = ua, s->ub = ub;
-    if (curved && p->offset) { /* the band's ends kept apart (offset_keep) */
-        s->vt[2] = s->vt[0], s->vv[2] = s->vv[0], s->vt[3] = s->vt[1], s->vv[3] = s->vv[1];
-        s->vt[0] = s->vt[1] = NAN, s->vn = 0;
-    }
     s->lo = s->ua < s->ub ? s->ua : s->ub;
     s->hi = s->ua < s->ub ? s->ub : s->ua;
     if (s->te > ta && s->te < tb) {
@@ -3097,8 +3107,9 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
             return st;
     for (size_t k = 0; k < n; k++)
         if (S->piece[k].offset) {
-            S->piece[k].pan = S->pan + S->piece[k].pan0;
-            S->piece[k].ytab = S->ytab + 4 * S->piece[k].yt0;
+            ar_piece *q = &S->piece[k];
+            q->pan = S->pan + q->pan0;
+            ytab_attach(q, S->ytab + 4 * q->yt0);
         }
     return sort_pieces(S);
 }
@@ -3128,27 +3139,40 @@ static int load_colours(ar_state *S, const aa_scene *scene)
     return AA_OK;
 }
 
-/* n zeroed items of `size` bytes on whole cache lines of their own. */
-static void *line_alloc(size_t n, size_t size)
+/* n items of `size` bytes on whole cache lines of their own, zeroed if
+ * `zero` (else as the allocator gives them). */
+static void *line_alloc_as(size_t n, size_t size, int zero)
 {
     if (n && size > (SIZE_MAX - 64) / n)
         return NULL;
     size_t bytes = (n * size + 63) & ~(size_t)63;
     void *p = aligned_alloc(64, bytes ? bytes : 64);
-    if (p)
+    if (p && zero)
         memset(p, 0, bytes ? bytes : 64);
     return p;
+}
+
+static void *line_alloc(size_t n, size_t size)
+{
+    return line_alloc_as(n, size, 1);
 }
 
 static int worker_alloc(ar_worker *wk, const ar_state *S)
 {
     size_t n = S->npieces ? S->npieces : 1, cells = ((size_t)S->w + 2) * (size_t)S->nch;
     size_t nl = (size_t)(S->nl > 0 ? S->nl : 1);
-    wk->active = line_alloc(n, sizeof *wk->active);
-    wk->seg = line_alloc(n, sizeof *wk->seg);
-    wk->list = line_alloc(n, sizeof *wk->list);
-    wk->order = line_alloc(n, sizeof *wk->order);
-    wk->sub = line_alloc(3 * n, sizeof *wk->sub);
+    /* Not cleared (the last argument 0): the lists of indices and keys and
+     * the clip's levels are written up to their counts before they are
+     * read, and a seg's fields by seg_make, expand and band_fields, but for
+     * those set below (its piece none, no anchor, no band line kept, its
+     * table's hint the first interval, no x kept at a pair's ends).
+     * Clearing them was 6.4 M instructions of the init on
+     * tests/bench_bezstroke.c's scene at 1024 px. */
+    wk->active = line_alloc_as(n, sizeof *wk->active, 0);
+    wk->seg = line_alloc_as(n, sizeof *wk->seg, 0);
+    wk->list = line_alloc_as(n, sizeof *wk->list, 0);
+    wk->order = line_alloc_as(n, sizeof *wk->order, 0);
+    wk->sub = line_alloc_as(3 * n, sizeof *wk->sub, 0);
     wk->tops = malloc(n * sizeof *wk->tops); /* not cleared: read only where written */
     wk->acc = line_alloc(cells, sizeof *wk->acc);
     wk->cov = line_alloc(cells, sizeof *wk->cov);
@@ -3157,9 +3181,9 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->ev = line_alloc(CM_MAX_EVENTS, sizeof *wk->ev);
     wk->cx = line_alloc(CM_MAX_EVENTS, sizeof *wk->cx);
     wk->mark = line_alloc(n, sizeof *wk->mark);
-    wk->act = line_alloc(n, sizeof *wk->act);
-    wk->pend = line_alloc(n, sizeof *wk->pend);
-    wk->cm = line_alloc(CM_MAX_EDGES + 2, sizeof *wk->cm);
+    wk->act = line_alloc_as(n, sizeof *wk->act, 0);
+    wk->pend = line_alloc_as(n, sizeof *wk->pend, 0);
+    wk->cm = line_alloc_as(CM_MAX_EDGES + 2, sizeof *wk->cm, 0);
     if (S->composite) {
         wk->ckey = line_alloc((size_t)AR_CACHE_ENTRIES * (size_t)S->nwords, sizeof *wk->ckey);
         wk->key = line_alloc((size_t)S->nwords, sizeof *wk->key);
@@ -3180,8 +3204,11 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     }
     wk->row = -2;
     if (wk->seg)
-        for (size_t k = 0; k < n; k++)
-            wk->seg[k].ja = INT_MIN;
+        for (size_t k = 0; k < n; k++) {
+            ar_seg *s = &wk->seg[k];
+            s->p = NULL, s->ja = s->mline = INT_MIN, s->ythint = 0;
+            s->xy[0] = s->xy[1] = NAN;
+        }
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
         !wk->wind || !wk->wtmp || !wk->ev || !wk->cx || !wk->mark || !wk->cm || !wk->act ||
         !wk->pend || !wk->tops)

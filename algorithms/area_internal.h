@@ -105,7 +105,9 @@ typedef struct ar_piece {
      * line's root would repeat; ofix: what its roots take from the curve
      * alone (aa__offset_fix_init); ytab: the nyt nodes of its table of
      * roots' starts in y (ytab_guess; area.c, load_ytab; state-owned, 4
-     * doubles each, yt0 the first's index in the state's) */
+     * doubles each, yt0 the first's index in the state's), ytlo and ythi
+     * its first and last node's y (ytab_attach; NAN without a table):
+     * ytab_guess's range, not read from the table's two ends each root */
     int offset, ostops; /* ostops: its curve's stops (aa__offset_stops) */
     aa__offset_fix ofix;
     double sg, ote, ote2;
@@ -114,6 +116,7 @@ typedef struct ar_piece {
     size_t pan0, npan; /* pan0: the first panel's index in the state's */
     const double *ytab;
     size_t yt0, nyt;
+    double ytlo, ythi;
     const ar_quad *quad;
 } ar_piece;
 
@@ -498,6 +501,15 @@ static inline double yt_herm(const double *a, const double *b, double y)
            h * (a[2] * (u3 - 2.0 * u2 + u) + b[2] * (u3 - u2));
 }
 
+/* Offset piece p's table of starts (its nyt nodes at n), and the range
+ * of heights ytab_guess takes from it (NAN: no table) */
+static inline void ytab_attach(ar_piece *p, const double *n)
+{
+    p->ytab = n;
+    p->ytlo = p->nyt >= 2 ? n[1] : NAN;
+    p->ythi = p->nyt >= 2 ? n[4 * (p->nyt - 1) + 1] : NAN;
+}
+
 /* The start of a root of y = yl on offset piece p from its table, NaN
  * where the table has none (the solver then starts as it would without).
  * The nodes' y rise strictly (load_ytab), so one interval holds yl and
@@ -509,7 +521,7 @@ static __attribute__((always_inline)) inline double ytab_guess(const ar_piece *p
 {
     const double *n = p->ytab;
     size_t last = p->nyt - 1, k = *hint;
-    if (p->nyt < 2 || !(n[1] <= yl && yl < n[4 * last + 1]))
+    if (!(p->ytlo <= yl && yl < p->ythi)) /* ytab_attach's */
         return NAN;
     k = k < last ? k : last - 1;
     while (n[4 * k + 1] > yl)

@@ -1701,7 +1701,8 @@ static void test_starts(void **state)
     }
     ar_piece ap;
     memset(&ap, 0, sizeof ap);
-    ap.ytab = nd, ap.nyt = N;
+    ap.nyt = N;
+    ytab_attach(&ap, nd);
     double worst = 0.0;
     for (int i = 1; i < 200; i++) {
         double yl = nd[1] + (nd[4 * N - 3] - nd[1]) * i / 200.0;
@@ -1722,6 +1723,11 @@ static void test_starts(void **state)
     size_t h = 0;
     assert_true(isnan(ytab_guess(&ap, nd[1] - 0.5, &h)));
     assert_true(isnan(ytab_guess(&ap, nd[4 * N - 3], &h)));
+    /* a piece without a table (load_ytab's nyt 0 where the nodes' y do
+     * not rise): none at any height */
+    ap.nyt = 0;
+    ytab_attach(&ap, nd);
+    assert_true(isnan(ytab_guess(&ap, nd[4 * 32 + 1], &h)));
     print_message("199 heights: the starts within %.2g of the roots, the same from every hint\n",
                   worst);
     assert_true(worst <= 1e-8);
