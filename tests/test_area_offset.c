@@ -1438,6 +1438,30 @@ static long double segment_l(const aa_offset_curve *oc, long double ta, long dou
     return 0.5L * s;
 }
 
+/* The strokes of test_shares and test_shares_across, c = 0 to 2: the
+ * three arcs 0.02 wide, the tight arc 0.08, the three arcs 0.3, round
+ * joins and caps, at 256 px. */
+static aa_scene *shares_stroke(int c)
+{
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    st.width = (const double[]){0.02, 0.08, 0.3}[c];
+    return placed_stroke(c == 1 ? tight : three, c == 1 ? 1 : 3, &st, 256);
+}
+
+/* Offset piece pc as area's quadrature holds it; its panels returned,
+ * the caller's to free. */
+static ar_panel *shares_piece(const aa_piece *pc, const ar_quad *quad, ar_piece *ap)
+{
+    ar_panel *pan;
+    size_t npan;
+    must(area_offset_panels(&pc->oc, pc->ot0, pc->ot1, &pan, &npan));
+    memset(ap, 0, sizeof *ap);
+    ap->src = pc, ap->pan = pan, ap->npan = npan, ap->quad = quad;
+    return pan;
+}
+
 /* The quadrature of a share (area_offset.c, area_offset_segment on a part
  * inside one panel) against the integral computed here: 1/2 the integral
  * of (P - P(ta)) x P' in long double from aa__offset_eval's points and
@@ -1456,9 +1480,6 @@ static long double segment_l(const aa_offset_curve *oc, long double ta, long dou
 static void test_shares(void **state)
 {
     (void)state;
-    aa_stroke_style st;
-    aa_stroke_style_default(&st);
-    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
     ar_quad quad;
     must(area_quad_init(&quad));
     long double x1[20], w1[20], x2[24], w2[24];
@@ -1469,20 +1490,16 @@ static void test_shares(void **state)
     double worst = 0.0, worst_fine = 0.0, oworst = 0.0;
     int fine = 0, ties = 0;
     for (int c = 0; c < 3; c++) {
-        st.width = (const double[]){0.02, 0.08, 0.3}[c];
-        aa_scene *placed = placed_stroke(c == 1 ? tight : three, c == 1 ? 1 : 3, &st, 256);
+        aa_scene *placed = shares_stroke(c);
         size_t np;
         const aa_piece *pc = aa_scene_pieces(placed, &np);
         for (size_t k = 0; k < np; k++) {
             if (pc[k].kind != AA_PIECE_OFFSET)
                 continue;
             const aa_offset_curve *oc = &pc[k].oc;
-            ar_panel *pan;
-            size_t npan;
-            must(area_offset_panels(oc, pc[k].ot0, pc[k].ot1, &pan, &npan));
             ar_piece ap;
-            memset(&ap, 0, sizeof ap);
-            ap.src = &pc[k], ap.pan = pan, ap.npan = npan, ap.quad = &quad;
+            ar_panel *pan = shares_piece(&pc[k], &quad, &ap);
+            size_t npan = ap.npan;
             for (int i = 0; i < 40; i++) {
                 double u[3];
                 for (int e = 0; e < 3; e++) { /* uniform in [0, 1), 53 bits */
@@ -1575,9 +1592,6 @@ static void test_shares(void **state)
 static void test_shares_across(void **state)
 {
     (void)state;
-    aa_stroke_style st;
-    aa_stroke_style_default(&st);
-    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
     ar_quad quad;
     must(area_quad_init(&quad));
     long double x1[20], w1[20];
@@ -1586,20 +1600,16 @@ static void test_shares_across(void **state)
     int parts = 0, one = 0, ties = 0, taken[AR_QUAD_RULES] = {0};
     double worst = 0.0;
     for (int c = 0; c < 3; c++) {
-        st.width = (const double[]){0.02, 0.08, 0.3}[c];
-        aa_scene *placed = placed_stroke(c == 1 ? tight : three, c == 1 ? 1 : 3, &st, 256);
+        aa_scene *placed = shares_stroke(c);
         size_t np;
         const aa_piece *pc = aa_scene_pieces(placed, &np);
         for (size_t k = 0; k < np; k++) {
             if (pc[k].kind != AA_PIECE_OFFSET)
                 continue;
             const aa_offset_curve *oc = &pc[k].oc;
-            ar_panel *pan;
-            size_t npan;
-            must(area_offset_panels(oc, pc[k].ot0, pc[k].ot1, &pan, &npan));
             ar_piece ap;
-            memset(&ap, 0, sizeof ap);
-            ap.src = &pc[k], ap.pan = pan, ap.npan = npan, ap.quad = &quad;
+            ar_panel *pan = shares_piece(&pc[k], &quad, &ap);
+            size_t npan = ap.npan;
             for (size_t j = 0; j + 1 < npan; j++) {
                 const ar_panel *p = &pan[j];
                 double tmax = pan[npan - 1].b;
