@@ -168,9 +168,9 @@ typedef struct ar_seg {
     double my[2], mt[2];
     int mn;
     /* an offset piece: its x xx at up to two heights xy (absolute; NAN:
-     * none, from band_fields) and parameters xt there, found for the first
+     * none, from band_fields and worker_alloc) and parameters xt there, found for the first
      * pair of its band asking there (pair_crossings, aa__piece_end_x) and
-     * kept for the others, xn the one written next */
+     * kept for the others */
     double xy[2], xt[2], xx[2];
     /* the ends of the sub-bands of a band cut at its events (area.c,
      * cluster_bands; sub_key, sub_end) at up to two heights bv
