@@ -954,7 +954,12 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     } else {
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
-        if (special && p->offset) {
+        if (special && p->offset && s->prej == j) {
+            tb = p->sg * s->pret;
+            s->xline = s->prexy[0], s->yline = s->prexy[1];
+            ub = (double)(s->xline - s->c0);
+            s->vt[3] = tb, s->vv[3] = (double)(s->yline + s->V);
+        } else if (special && p->offset) {
             tb = offset_line(s, m + 1, &ub, &s->xline, &s->yline);
             s->vt[3] = tb, s->vv[3] = (double)(s->yline + s->V);
         } else {
@@ -2611,6 +2616,50 @@ static void merge_keys(ar_key *keys, size_t nold, size_t n, ar_key *tmp)
     memcpy(keys, tmp, k * sizeof *keys); /* keys[b..n) are in place */
 }
 
+/* offset_line_t's end for a root band_roots found (the piece's own end
+ * point where the root is one) */
+static void band_root_done(const ar_piece *p, ar_seg *s, int j, const aa__offset_rootq *q)
+{
+    const aa_piece *src = p->src;
+    s->prej = j, s->pret = q->t;
+    if (q->t == src->ot0 || q->t == src->ot1)
+        offset_point(p, q->t, &s->prexy[0], &s->prexy[1]);
+}
+
+/* The roots of row j's bottom line y = j + 1 on its offset pieces that
+ * seg_make would solve there (offset_line), BAND_ROOTS at a time
+ * (aa__offset_roots: the same roots and points, bit for bit, solved side
+ * by side), kept in their segs for seg_make. */
+#define BAND_ROOTS 8
+static void band_roots(const ar_state *S, ar_worker *wk, int j, int W)
+{
+    aa__offset_rootq q[BAND_ROOTS];
+    const ar_piece *qp[BAND_ROOTS];
+    ar_seg *qs[BAND_ROOTS];
+    size_t n = 0;
+    double yl = j + 1.0;
+    for (size_t k = 0; k <= wk->nactive; k++) {
+        if (k < wk->nactive) {
+            uint32_t ix = wk->active[k];
+            const ar_piece *p = &S->piece[ix];
+            if (!(p->curved && p->offset) || p->flat || p->xmin >= W || !(p->y1 > yl))
+                continue;
+            ar_seg *s = &wk->seg[ix];
+            const aa_piece *src = p->src;
+            q[n] = (aa__offset_rootq){&src->oc, &p->ofix, 1, src->ot0, src->ot1, p->y0 - yl,
+                                      yl, ytab_guess(p, yl, &s->ythint), p->oend, s->prexy,
+                                      NULL, 0.0};
+            qp[n] = p, qs[n++] = s;
+            if (n < BAND_ROOTS)
+                continue;
+        }
+        aa__offset_roots(q, n);
+        for (size_t i = 0; i < n; i++)
+            band_root_done(qp[i], qs[i], j, &q[i]);
+        n = 0;
+    }
+}
+
 /* Row j.  `plain`: S->plain, a constant in each of the two forms below
  * (render_row_plain, render_row_any), chosen once a row. */
 __attribute__((always_inline)) static inline void render_row_k(const ar_state *S, ar_worker *wk,
@@ -2623,6 +2672,8 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
     int *w = wk->wind;
     memset(w, 0, (size_t)S->nl * sizeof *w);
     const double *c = colour_of(S, wk, w);
+    if (!plain)
+        band_roots(S, wk, j, W);
     /* One pass in the active list's order, which for most scenes (and
      * always for `crow`) is already the order along x: a cluster is written
      * as soon as a piece starts right of it.  A piece out of order sends the
@@ -3210,7 +3261,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     if (wk->seg)
         for (size_t k = 0; k < n; k++) {
             ar_seg *s = &wk->seg[k];
-            s->p = NULL, s->ja = s->mline = INT_MIN, s->ythint = 0;
+            s->p = NULL, s->ja = s->mline = s->prej = INT_MIN, s->ythint = 0;
             s->xy[0] = s->xy[1] = NAN;
         }
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||

@@ -194,6 +194,12 @@ typedef struct ar_seg {
     double va, vb;  /* v there: max(0, y0 - j), min(1, y1 - j) */
     double lo, hi;  /* u extent inside the band */
     int ca, cb;     /* first and last cell touched, in [-1, W] */
+    /* an offset piece's root on the line y = prej + 1 (the bottom of band
+     * prej) and its point there, found before the band's segs are made
+     * (area.c, band_roots; INT_MIN: none) */
+    int prej;
+    double pret;
+    long double prexy[2];
 } ar_seg;
 
 typedef struct ar_key {

@@ -1201,6 +1201,105 @@ root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, doub
     return root_dd(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other, 1);
 }
 
+/* root_dd on two requests side by side (q[0], q[1]: each its own curve,
+ * bracket, target and start): each the same operations as root_dd's in
+ * the same order, so the same roots and points bit for bit, the two
+ * chains of dependent square roots and divisions interleaved for the
+ * processor to overlap.  Where one leaves the common case its own way
+ * on (root_dd's out-of-line continuations) is taken after. */
+static __attribute__((noinline, target("fma"))) void roots2_fma(aa__offset_rootq *q)
+{
+    const aa__offset_rootq *A = &q[0], *B = &q[1];
+    int negA = A->fa < 0, negB = B->fa < 0, unseenA = 1, unseenB = 1;
+    double sizeA = A->fx->dsize[A->coord] + fabs(A->target);
+    double sizeB = B->fx->dsize[B->coord] + fabs(B->target);
+    double tA = A->guess, aA = A->ta, bA = A->tb, prevA = fabs(A->tb - A->ta), lastA = NAN;
+    double tB = B->guess, aB = B->ta, bB = B->tb, prevB = fabs(B->tb - B->ta), lastB = NAN;
+    double fA, dfA, dnA, fB, dfB, dnB;
+    eval_dd(A->oc, A->coord, tA, A->target, &fA, &dfA, &dnA);
+    eval_dd(B->oc, B->coord, tB, B->target, &fB, &dfB, &dnB);
+    int sA = solve_step(fA, dfA, dnA, sizeA, DD_D_STEP, negA, &tA, &aA, &bA, &prevA, &unseenA,
+                        &lastA);
+    int sB = solve_step(fB, dfB, dnB, sizeB, DD_D_STEP, negB, &tB, &aB, &bB, &prevB, &unseenB,
+                        &lastB);
+    if (!sA)
+        q[0].t = root_d_more_fma(A->oc, A->fx, A->coord, A->ta, A->tb, aA, bA, negA, A->target,
+                                 tA, prevA, unseenA, sizeA, q[0].xy, q[0].other);
+    if (!sB)
+        q[1].t = root_d_more_fma(B->oc, B->fx, B->coord, B->ta, B->tb, aB, bB, negB, B->target,
+                                 tB, prevB, unseenB, sizeB, q[1].xy, q[1].other);
+    if (!sA && !sB)
+        return;
+    __asm__ volatile("" ::: "memory");
+    dd_v2 pA[4], dpA[2], pB[4], dpB[2];
+    double laA = A->ta, lbA = A->tb, hA = 0.0, hxA = 0.0;
+    double laB = B->ta, lbB = B->tb, hB = 0.0, hxB = 0.0;
+    if (sA && sB) {
+        dd_point_parts(A->oc, A->fx, tA, 1, pA, dpA);
+        dd_point_parts(B->oc, B->fx, tB, 1, pB, dpB);
+    } else if (sA) {
+        dd_point_parts(A->oc, A->fx, tA, 1, pA, dpA);
+    } else {
+        dd_point_parts(B->oc, B->fx, tB, 1, pB, dpB);
+    }
+    if (sA) {
+        if (!dd_step(pA, dpA, (dd_v2){A->target, A->target}, A->coord, negA, &tA, &laA, &lbA,
+                     &hA, &hxA))
+            tA = root_dd_more_fma(A->oc, A->fx, A->coord, A->target, negA, tA, laA, lbA, q[0].xy,
+                                  q[0].other);
+        else
+            dd_out(pA, dpA, A->coord, hA, hxA, q[0].xy, q[0].other);
+        q[0].t = tA;
+    }
+    if (sB) {
+        if (!dd_step(pB, dpB, (dd_v2){B->target, B->target}, B->coord, negB, &tB, &laB, &lbB,
+                     &hB, &hxB))
+            tB = root_dd_more_fma(B->oc, B->fx, B->coord, B->target, negB, tB, laB, lbB, q[1].xy,
+                                  q[1].other);
+        else
+            dd_out(pB, dpB, B->coord, hB, hxB, q[1].xy, q[1].other);
+        q[1].t = tB;
+    }
+}
+
+/* A request outside root_dd's common start (no guess inside, fa 0, no
+ * double-double form) or alone: aa__offset_root_fixd / _xyd's own way */
+static void root_one(aa__offset_rootq *r)
+{
+    if (r->xy)
+        r->t = aa__offset_root_xyd(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa, r->target,
+                                   r->guess, r->endb, r->xy);
+    else
+        r->t = aa__offset_root_fixd(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa, r->target,
+                                    r->guess, r->other);
+}
+
+static inline int root_common(const aa__offset_rootq *r)
+{
+    return r->fx->dd == 2 && r->fa != 0 &&
+           (r->ta < r->tb ? (r->guess > r->ta && r->guess < r->tb)
+                          : (r->guess < r->ta && r->guess > r->tb));
+}
+
+void aa__offset_roots(aa__offset_rootq *q, size_t n)
+{
+    size_t pend = n; /* a common request waiting for a second */
+    for (size_t k = 0; k < n; k++) {
+        if (!root_common(&q[k])) {
+            root_one(&q[k]);
+        } else if (pend == n) {
+            pend = k;
+        } else {
+            aa__offset_rootq two[2] = {q[pend], q[k]};
+            roots2_fma(two);
+            q[pend].t = two[0].t, q[k].t = two[1].t;
+            pend = n;
+        }
+    }
+    if (pend < n)
+        root_one(&q[pend]);
+}
+
 static __attribute__((noinline)) void point_dd_split(const aa_offset_curve *oc,
                                                      const aa__offset_fix *fx, double t,
                                                      long double xy[2])
