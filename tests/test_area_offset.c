@@ -69,6 +69,8 @@
  *    scene and a wide stroke, the point at the root within 2e-16 px of
  *    a __float128 evaluation written here and the root the double
  *    nearest it, the same bit for bit by fma and by Dekker's products;
+ *  - the batched roots (aa__offset_roots: four at a time in AVX2's lanes,
+ *    test_roots_batch) the same bits as the roots asked one by one;
  *  - the quadrature's panels (test_panels): they tile each offset piece,
  *    each one's disc meets the tolerance by Trefethen's bound computed
  *    here, and its M bounds the integrand evaluated here in complex long
@@ -1195,6 +1197,177 @@ static void test_dd(void **state)
     assert_true(pieces > 4000 && evolutes > 0);
 }
 
+/* aa__offset_roots (offset.c: root_dd's common path four requests at a
+ * time in AVX2's lanes, or two at a time, the rest one by one) against
+ * aa__offset_root_xyd and aa__offset_root_fixd asked one by one, which
+ * test_dd holds to __float128: the same roots, points and other
+ * coordinates bit for bit (memcmp), on lines across the offset pieces of
+ * four strokes (the benchmark's cubics 2.5 and 24 px wide at 1024 px, the
+ * tight arc 0.3 and 0.05 wide, whose offsets fold), y = j and x = i where
+ * x is monotone, from starts 1e-12 to 3e-2 of the bracket off the root
+ * on either side (some outside it), none, an end, and fa 0; by fma's
+ * double-double form, Dekker's and the long double form; shuffled, so
+ * that a batch mixes curves, coordinates and outputs (the point, the
+ * other coordinate, neither), asked in batches of 1 to 9. */
+typedef struct rb_req {
+    aa__offset_rootq q;
+    int out; /* 0 the point, 1 the other coordinate, 2 neither */
+} rb_req;
+
+static void test_roots_batch(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    const int n = 1024;
+    size_t cap = 1 << 16, nr = 0, nfx = 0;
+    rb_req *rq = malloc(cap * sizeof *rq);
+    aa__offset_fix *fxs = malloc(3 * 4096 * sizeof *fxs);
+    aa_scene *keep[8];
+    int nkeep = 0;
+    assert_non_null(rq);
+    assert_non_null(fxs);
+    static const double offs[] = {1e-12, 1e-7, 1e-5, 6e-5, 1e-4, 3e-4, 1e-3, 3e-2};
+    for (int sc = 0; sc < 4; sc++) {
+        aa_scene *s;
+        if (sc < 2) {
+            aa_path in = {0};
+            for (int r = 0; r < 3; r++) { /* three of the benchmark's rows */
+                double cs[2 + 6 * 50];
+                bench_cubics(r, 0, 50, cs);
+                must(aa_path_move_to(&in, cs[0], cs[1]));
+                for (int c = 0; c < 50; c++) {
+                    const double *q = cs + 2 + 6 * c;
+                    must(aa_path_cubic_to(&in, q[0], q[1], q[2], q[3], q[4], q[5]));
+                }
+            }
+            st.width = (sc ? 24.0 : 2.5) / n;
+            size_t noff;
+            s = scenes_stroke_outline(&in, &st, NULL, &noff);
+            aa_path_free(&in);
+        } else {
+            st.width = sc == 2 ? 0.3 : 0.05;
+            s = stroke_scene(tight, 1, &st, NULL);
+        }
+        aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
+        assert_non_null(placed);
+        aa_scene_free(s);
+        keep[nkeep++] = placed;
+        size_t np;
+        const aa_piece *pc = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pc[k].kind != AA_PIECE_OFFSET)
+                continue;
+            const aa_offset_curve *oc = &pc[k].oc;
+            /* fma's form for most, Dekker's and the long double form for
+             * every fifth and seventh piece */
+            aa__offset_fix *fx = &fxs[nfx++];
+            assert_true(nfx <= 3 * 4096);
+            if (k % 7 == 3)
+                aa__offset_fix_init(oc, fx);
+            else
+                aa__offset_fix_dd(oc, fx, k % 5 != 2);
+            double t0 = pc[k].ot0, t1 = pc[k].ot1;
+            for (int coord = 1; coord >= 0; coord--) {
+                double ts[4] = {t0}, tt[2];
+                int nt = 1, m = coord ? 0 : aa__offset_turns(oc, 0, fmin(t0, t1), fmax(t0, t1), tt);
+                for (int e = 0; e < m; e++)
+                    ts[nt++] = t0 < t1 ? tt[e] : tt[m - 1 - e];
+                ts[nt++] = t1;
+                for (int e = 0; e + 1 < nt; e++) {
+                    double a = ts[e], b = ts[e + 1], Pa[2], Pb[2];
+                    aa_offset_point(oc, a, &Pa[0], &Pa[1], NULL, NULL);
+                    aa_offset_point(oc, b, &Pb[0], &Pb[1], NULL, NULL);
+                    double lo = fmin(Pa[coord], Pb[coord]), hi = fmax(Pa[coord], Pb[coord]);
+                    for (double j = ceil(lo + 1e-9); j < hi - 1e-9; j += 3) {
+                        double fa = Pa[coord] - j;
+                        double root = aa__offset_root_fixd(oc, fx, coord, a, b, fa, j, NAN, NULL);
+                        int ng = (int)(sizeof offs / sizeof *offs);
+                        for (int g = 0; g < 2 * ng + 3; g++) {
+                            double guess = NAN, f = fa;
+                            if (g < 2 * ng)
+                                guess = root + (g & 1 ? -1 : 1) * offs[g >> 1] * (b - a);
+                            else if (g == 2 * ng + 1)
+                                guess = a;
+                            else if (g == 2 * ng + 2)
+                                f = 0.0;
+                            if (nr == cap) {
+                                cap *= 2;
+                                rq = realloc(rq, cap * sizeof *rq);
+                                assert_non_null(rq);
+                            }
+                            rq[nr].q = (aa__offset_rootq){oc, fx, coord, a, b, f, j, guess,
+                                                          NULL, NULL, NULL, 0.0};
+                            rq[nr].out = (int)((nr * 7 + k) % 3);
+                            nr++;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    /* shuffled (a fixed LCG) */
+    uint64_t lcg = 12345;
+    for (size_t i = nr - 1; i > 0; i--) {
+        lcg = lcg * 6364136223846793005u + 1442695040888963407u;
+        size_t j = (size_t)(lcg >> 33) % (i + 1);
+        rb_req tmp = rq[i];
+        rq[i] = rq[j], rq[j] = tmp;
+    }
+    /* one by one, then in batches: outputs zeroed first, so that a long
+     * double's padding compares equal too */
+    long double(*want)[2] = calloc(nr, sizeof *want), (*got)[2] = calloc(nr, sizeof *got);
+    double *twant = malloc(nr * sizeof *twant);
+    aa__offset_rootq *bq = malloc(nr * sizeof *bq);
+    assert_non_null(want);
+    assert_non_null(got);
+    assert_non_null(twant);
+    assert_non_null(bq);
+    size_t common = 0;
+    for (size_t i = 0; i < nr; i++) {
+        const aa__offset_rootq *r = &rq[i].q;
+        if (rq[i].out == 0)
+            twant[i] = aa__offset_root_xyd(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa,
+                                           r->target, r->guess, NULL, want[i]);
+        else
+            twant[i] = aa__offset_root_fixd(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa,
+                                            r->target, r->guess,
+                                            rq[i].out == 1 ? &want[i][0] : NULL);
+        bq[i] = *r;
+        bq[i].xy = rq[i].out == 0 ? got[i] : NULL;
+        bq[i].other = rq[i].out == 1 ? &got[i][0] : NULL;
+        bq[i].t = NAN;
+        common += r->fx->dd == 2 && r->fa != 0 &&
+                  (r->ta < r->tb ? r->guess > r->ta && r->guess < r->tb
+                                 : r->guess < r->ta && r->guess > r->tb);
+    }
+    for (size_t i = 0, len = 1; i < nr; i += len, len = len % 9 + 1)
+        aa__offset_roots(bq + i, nr - i < len ? nr - i : len);
+    for (size_t i = 0; i < nr; i++) {
+        if (memcmp(&bq[i].t, &twant[i], sizeof twant[i]) != 0 ||
+            memcmp(got[i], want[i], sizeof want[i]) != 0)
+            fail_msg("request %zu (coord %d, [%.17g, %.17g], target %.17g, guess %.17g, fa "
+                     "%g, form %d): t %.17g, one by one %.17g; (%.20Lg, %.20Lg) against "
+                     "(%.20Lg, %.20Lg)",
+                     i, bq[i].coord, bq[i].ta, bq[i].tb, bq[i].target, bq[i].guess, bq[i].fa,
+                     bq[i].fx->dd, bq[i].t, twant[i], got[i][0], got[i][1], want[i][0],
+                     want[i][1]);
+    }
+    print_message("%zu roots (%zu of them root_dd's common start) in batches of 1 to 9: the same "
+                  "bits as one by one\n",
+                  nr, common);
+    assert_true(nr > 20000 && common > nr / 2);
+    free(want);
+    free(got);
+    free(twant);
+    free(bq);
+    free(rq);
+    free(fxs);
+    for (int i = 0; i < nkeep; i++)
+        aa_scene_free(keep[i]);
+}
+
 static void test_nodes(void **state)
 {
     (void)state;
@@ -2287,6 +2460,7 @@ int main(void)
                                        cmocka_unit_test(test_vertex),
                                        cmocka_unit_test(test_ulp_vertex),
                                        cmocka_unit_test(test_dd),
+                                       cmocka_unit_test(test_roots_batch),
                                        cmocka_unit_test(test_nodes),
                                        cmocka_unit_test(test_panels),
                                        cmocka_unit_test(test_shares),
