@@ -719,6 +719,53 @@ static double polish_line_offset(const aa_piece *p, const aa_piece *q, double a,
     return NAN;
 }
 
+/* Area's polish_meet of two offset pieces p and q, whose parameters at a
+ * and b are tp and tq: Newton's method on both parameters at once, F(s,
+ * t) = P(s) - Q(t) = 0 (two equations, the Jacobian's columns P'(s) and
+ * -Q'(t)), started where the chord through the ends' differences meets 0
+ * (each parameter at that fraction of its bracket), and stopped by
+ * polish_line_offset's error estimate on the step in p's height.  One
+ * evaluation of each piece a step (its point and derivative), where a step
+ * in y solved for both parameters first (x_slope: two solves of a few
+ * evaluations each).  Both parameters stay inside their brackets, so the
+ * point found lies on both pieces between heights a and b, where they
+ * meet once (the caller's proof): that meeting.  The height is p's at the
+ * last evaluation moved by its derivative over the last step.  NaN where
+ * a step leaves a bracket, the tangents are parallel, or 40 steps do not
+ * converge (polish_meet then polishes in y).  On the 1,000 stroked cubics
+ * of tests/bench_bezstroke.c at 256 px, 2,055 polishes a render, 6 of them
+ * left to polish_meet, 6,300 steps in all; none of the heights moved from
+ * polish_meet's by more than 1e-12 of y (1.3e-10 px at most; at 1024 px
+ * 1,032 polishes, 15 left, 6.7e-10 px at most). */
+static double polish_offsets(const aa_piece *p, const aa_piece *q, double a, double b,
+                             double fa, double fb, const double tp[2], const double tq[2])
+{
+    double sl = dmin(tp[0], tp[1]), sh = dmax(tp[0], tp[1]);
+    double tl = dmin(tq[0], tq[1]), th = dmax(tq[0], tq[1]), f = fa / (fa - fb), h1 = NAN;
+    double s = tp[0] + (tp[1] - tp[0]) * f, t = tq[0] + (tq[1] - tq[0]) * f;
+    if (!(sl < s && s < sh && tl < t && t < th))
+        return NAN;
+    for (int it = 0; it < 40; it++) {
+        double px, py, pdx, pdy, qx, qy, qdx, qdy;
+        aa_offset_point(&p->oc, s, &px, &py, &pdx, &pdy);
+        aa_offset_point(&q->oc, t, &qx, &qy, &qdx, &qdy);
+        double fx = px - qx, fy = py - qy, det = qdx * pdy - pdx * qdy;
+        if (!(fabs(det) > 1e-12 * (fabs(qdx * pdy) + fabs(pdx * qdy))))
+            return NAN;
+        double ds = (fx * qdy - qdx * fy) / det, dt = (fx * pdy - pdx * fy) / det;
+        double ns = s + ds, nt = t + dt;
+        if (!(sl < ns && ns < sh && tl < nt && nt < th))
+            return NAN;
+        double hy = fabs(pdy * ds), r = 4.0 * DBL_EPSILON * fabs(py);
+        if (hy <= r || (hy < h1 && hy * hy * hy <= r * h1 * h1)) {
+            double v = py + pdy * ds;
+            return v > a && v < b ? v : NAN;
+        }
+        h1 = hy, s = ns, t = nt;
+    }
+    return NAN;
+}
+
 /* The height in [a, b] where x_p - x_q, of opposite signs fa and fb at a
  * and b, vanishes: Newton's method on y kept inside the bracket, bisection
  * where a step would leave it or shrink it too slowly, until the bracket
@@ -742,12 +789,18 @@ static double polish_line_offset(const aa_piece *p, const aa_piece *q, double a,
  * 1e-12 of it (at most 2.9e-7 px), each where a line leaves a round
  * join's arc tangent to it, x_p - x_q within its rounding (3e-14 px)
  * over that stretch, where either height is a root.  A line and an
- * offset piece: polish_line_offset, in the offset's parameter. */
+ * offset piece: polish_line_offset, in the offset's parameter; two offset
+ * pieces: polish_offsets, in both parameters. */
 static double polish_meet(const aa_piece *p, const aa_piece *q, double a, double b, double fa,
                           double fb, const double *tp, const double *tq, int quick)
 {
     if (quick && p->kind == AA_PIECE_LINE && q->kind == AA_PIECE_OFFSET && tq && p->by > 0.0) {
         double v = polish_line_offset(p, q, a, b, fa, fb, tq);
+        if (v == v)
+            return v;
+    }
+    if (quick && p->kind == AA_PIECE_OFFSET && q->kind == AA_PIECE_OFFSET && tp && tq) {
+        double v = polish_offsets(p, q, a, b, fa, fb, tp, tq);
         if (v == v)
             return v;
     }
