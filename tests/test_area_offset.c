@@ -1016,6 +1016,21 @@ static void q_offset(const aa_offset_curve *oc, double t, q128 P[2], q128 dP[2])
     }
 }
 
+/* The ends ts[0..n) (returned n: 2 to 4) of the spans of [t0, t1], in
+ * its direction, on which coordinate coord of oc is monotone: y on a
+ * piece; x between its turns (aa__offset_turns) */
+static int monotone_spans(const aa_offset_curve *oc, int coord, double t0, double t1,
+                          double ts[4])
+{
+    double tt[2];
+    int nt = 1, m = coord ? 0 : aa__offset_turns(oc, 0, fmin(t0, t1), fmax(t0, t1), tt);
+    ts[0] = t0;
+    for (int e = 0; e < m; e++)
+        ts[nt++] = t0 < t1 ? tt[e] : tt[m - 1 - e];
+    ts[nt++] = t1;
+    return nt;
+}
+
 /* The double-double form of area's roots and points (offset.c,
  * aa__offset_fix_dd): on every offset piece of a cubic without stops in
  * tests/bench_bezstroke.c's scene at 1024 px (about 4,300 pieces; its
@@ -1094,11 +1109,8 @@ static void test_dd(void **state)
              * range (its coordinate monotone on it: y on a piece; x
              * between its turns, aa__offset_turns) */
             for (int coord = 1; coord >= 0; coord--) {
-                double ts[4] = {t0}, tt[2];
-                int nt = 1, m = coord ? 0 : aa__offset_turns(oc, 0, fmin(t0, t1), fmax(t0, t1), tt);
-                for (int e = 0; e < m; e++)
-                    ts[nt++] = t0 < t1 ? tt[e] : tt[m - 1 - e];
-                ts[nt++] = t1;
+                double ts[4];
+                int nt = monotone_spans(oc, coord, t0, t1, ts);
                 for (int e = 0; e + 1 < nt; e++) {
                     double a = ts[e], b = ts[e + 1];
                     q128 Pa[2], Pb[2], dPa[2];
@@ -1272,11 +1284,8 @@ static void test_roots_batch(void **state)
                 aa__offset_fix_dd(oc, fx, k % 5 != 2);
             double t0 = pc[k].ot0, t1 = pc[k].ot1;
             for (int coord = 1; coord >= 0; coord--) {
-                double ts[4] = {t0}, tt[2];
-                int nt = 1, m = coord ? 0 : aa__offset_turns(oc, 0, fmin(t0, t1), fmax(t0, t1), tt);
-                for (int e = 0; e < m; e++)
-                    ts[nt++] = t0 < t1 ? tt[e] : tt[m - 1 - e];
-                ts[nt++] = t1;
+                double ts[4];
+                int nt = monotone_spans(oc, coord, t0, t1, ts);
                 for (int e = 0; e + 1 < nt; e++) {
                     double a = ts[e], b = ts[e + 1], Pa[2], Pb[2];
                     aa_offset_point(oc, a, &Pa[0], &Pa[1], NULL, NULL);
