@@ -646,6 +646,19 @@ void aa__offset_end(const aa_offset_curve *oc, int coord, double t, double e[4])
     eval_parts(oc, coord, t, STOP_ASK, &e[0], &e[1], &e[2], &e[3]);
 }
 
+/* aa__offset_end's e[0] + e[1] and e[2] on the double-double form's curves
+ * (aa__offset_fix_dd: a cubic's offset without stops, where offset_stop
+ * never holds and eval_parts takes the cubic's plain path): eval_dd's
+ * value at the target 0, (e[0] - 0) + e[1], the same sum bit for bit (x -
+ * 0 is x, a zero's sign kept), and its slope, without the stops' and the
+ * base's tests at each evaluation. */
+void aa__offset_end_dd(const aa_offset_curve *oc, int coord, double t, double *at,
+                       double *slope)
+{
+    double dn;
+    eval_dd(oc, coord, t, 0.0, at, slope, &dn);
+}
+
 void aa_offset_point(const aa_offset_curve *oc, double t, double *x, double *y, double *dx,
                      double *dy)
 {
