@@ -2394,11 +2394,24 @@ static int end_dd(const char *what, const aa_scene *s, int *pieces, int *evals)
                 double m0 = oc.m[0], m3 = oc.m[3];
                 oc.m[0] = 0.8 * m0, oc.m[1] = 0.6 * m3, oc.m[2] = -0.6 * m0, oc.m[3] = 0.8 * m3;
             }
-            aa__offset_fix fx;
+            aa__offset_fix fx, fs;
             aa__offset_fix_dd(&oc, &fx, 1);
             if (!fx.dd)
                 continue;
             (*pieces)++;
+            /* its coefficients hi + lo by fma's products (fx, where the
+             * processor has it) and by Dekker's split (fs): the same bits
+             * (under the turning map, whose products are not exact; the
+             * scene's, a power of 2, leave every lo 0) */
+            aa__offset_fix_dd(&oc, &fs, 0);
+            if (memcmp(fx.dc, fs.dc, sizeof fx.dc) || memcmp(fx.du, fs.du, sizeof fx.du)) {
+                print_message("%s: piece %zu's coefficients differ by fma and by Dekker's "
+                              "split (map %d): x's t^1 %.17g + %.17g against %.17g + %.17g\n",
+                              what, i, turn, fx.dc[1][0][0], fx.dc[1][1][0], fs.dc[1][0][0],
+                              fs.dc[1][1][0]);
+                if (bad++ >= 5)
+                    return bad;
+            }
             double t0 = pc[i].ot0, t1 = pc[i].ot1;
             for (int coord = 0; coord < 2; coord++)
                 for (int j = 0; j <= 64; j++) {
@@ -2415,7 +2428,9 @@ static int end_dd(const char *what, const aa_scene *s, int *pieces, int *evals)
 /* The tables of the band lines' starts (area.c, yt_node) evaluate the
  * double-double form's pieces by aa__offset_end_dd: the same bits as
  * aa__offset_end (eval_dd against eval_parts without the stops), on the
- * strokes each_stroke takes, every row of the benchmark's at 256 px. */
+ * strokes each_stroke takes, every row of the benchmark's at 256 px; and
+ * aa__offset_fix_dd's coefficients the same by fma (offset.c,
+ * fix_coefs_fma) as by Dekker's split. */
 static void test_end_dd(void **state)
 {
     (void)state;
