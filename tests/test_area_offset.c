@@ -2542,6 +2542,87 @@ static void test_offset_polish(void **state)
     assert_true(mw[0] >= 50); /* the pairs were met */
 }
 
+/* aa__offset_end_dd against aa__offset_end at t (on oc and fx, fx.dd
+ * set): the coordinate e[0] + e[1] and the slope e[2], bit for bit */
+static int end_dd_same(const char *what, const aa_offset_curve *oc, int coord, double t)
+{
+    double e[4], at, slope;
+    aa__offset_end(oc, coord, t, e);
+    aa__offset_end_dd(oc, coord, t, &at, &slope);
+    double sum = e[0] + e[1];
+    if (memcmp(&sum, &at, sizeof at) == 0 && memcmp(&e[2], &slope, sizeof slope) == 0)
+        return 0;
+    print_message("%s: coordinate %d at t = %.17g: %.17g, slope %.17g against aa__offset_end's "
+                  "%.17g, %.17g\n",
+                  what, coord, t, at, slope, sum, e[2]);
+    return 1;
+}
+
+/* Every offset piece of s with the double-double form (aa__offset_fix_dd),
+ * both coordinates at 65 parameters across it and its ends, under the
+ * scene's map (its axes kept: one of each row's two terms 0) and under
+ * one that turns them (both terms), each branch of the base's sum */
+static int end_dd(const char *what, const aa_scene *s, int *pieces, int *evals)
+{
+    size_t n;
+    const aa_piece *pc = aa_scene_pieces(s, &n);
+    int bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (pc[i].kind != AA_PIECE_OFFSET)
+            continue;
+        for (int turn = 0; turn < 2; turn++) {
+            aa_offset_curve oc = pc[i].oc;
+            if (turn) {
+                double m0 = oc.m[0], m3 = oc.m[3];
+                oc.m[0] = 0.8 * m0, oc.m[1] = 0.6 * m3, oc.m[2] = -0.6 * m0, oc.m[3] = 0.8 * m3;
+            }
+            aa__offset_fix fx, fs;
+            aa__offset_fix_dd(&oc, &fx, 1);
+            if (!fx.dd)
+                continue;
+            (*pieces)++;
+            /* its coefficients hi + lo by fma's products (fx, where the
+             * processor has it) and by Dekker's split (fs): the same bits
+             * (under the turning map, whose products are not exact; the
+             * scene's, a power of 2, leave every lo 0) */
+            aa__offset_fix_dd(&oc, &fs, 0);
+            if (memcmp(fx.dc, fs.dc, sizeof fx.dc) || memcmp(fx.du, fs.du, sizeof fx.du)) {
+                print_message("%s: piece %zu's coefficients differ by fma and by Dekker's "
+                              "split (map %d): x's t^1 %.17g + %.17g against %.17g + %.17g\n",
+                              what, i, turn, fx.dc[1][0][0], fx.dc[1][1][0], fs.dc[1][0][0],
+                              fs.dc[1][1][0]);
+                if (bad++ >= 5)
+                    return bad;
+            }
+            double t0 = pc[i].ot0, t1 = pc[i].ot1;
+            for (int coord = 0; coord < 2; coord++)
+                for (int j = 0; j <= 64; j++) {
+                    double t = j == 64 ? t1 : t0 + (t1 - t0) * j / 64.0;
+                    (*evals)++;
+                    if (end_dd_same(what, &oc, coord, t) && bad++ >= 5)
+                        return bad;
+                }
+        }
+    }
+    return bad;
+}
+
+/* The tables of the band lines' starts (area.c, yt_node) evaluate the
+ * double-double form's pieces by aa__offset_end_dd: the same bits as
+ * aa__offset_end (eval_dd against eval_parts without the stops), on the
+ * strokes each_stroke takes, every row of the benchmark's at 256 px; and
+ * aa__offset_fix_dd's coefficients the same by fma (offset.c,
+ * fix_coefs_fma) as by Dekker's split. */
+static void test_end_dd(void **state)
+{
+    (void)state;
+    int pe[2] = {0, 0}; /* pieces, evaluations */
+    int bad = each_stroke(1, 4, end_dd, pe);
+    print_message("%d pieces, %d evaluations against aa__offset_end\n", pe[0], pe[1]);
+    assert_int_equal(bad, 0);
+    assert_true(pe[0] >= 1000);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -2566,6 +2647,7 @@ int main(void)
                                        cmocka_unit_test(test_crowd_meet_at_swap),
                                        cmocka_unit_test(test_end_chord),
                                        cmocka_unit_test(test_crowd_next_order),
-                                       cmocka_unit_test(test_offset_polish)};
+                                       cmocka_unit_test(test_offset_polish),
+                                       cmocka_unit_test(test_end_dd)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

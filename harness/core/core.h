@@ -941,6 +941,11 @@ void aa__offset_roots(aa__offset_rootq *q, size_t n);
  * solves for many targets in one bracket [ta, tb] (a piece's band lines),
  * so that tb is evaluated once. */
 void aa__offset_end(const aa_offset_curve *oc, int coord, double t, double e[4]);
+/* On a curve of the double-double form (aa__offset_fix_dd's fx.dd set):
+ * aa__offset_end's e[0] + e[1] (the coordinate) in *at and e[2] (its
+ * derivative) in *slope, bit for bit, without its tests of the stops. */
+void aa__offset_end_dd(const aa_offset_curve *oc, int coord, double t, double *at,
+                       double *slope);
 /* aa__offset_solve_from without a guess, given aa__offset_end's e at tb:
  * the same root, bit for bit, one evaluation fewer. */
 long double aa__offset_solve_end(const aa_offset_curve *oc, int coord, double ta, double tb,
