@@ -2620,17 +2620,21 @@ static void merge_keys(ar_key *keys, size_t nold, size_t n, ar_key *tmp)
  * point where the root is one) */
 static void band_root_done(const ar_piece *p, ar_seg *s, int j, const aa__offset_rootq *q)
 {
-    const aa_piece *src = p->src;
     s->prej = j, s->pret = q->t;
-    if (q->t == src->ot0 || q->t == src->ot1)
+    if (q->t == p->ot0 || q->t == p->ot1)
         offset_point(p, q->t, &s->prexy[0], &s->prexy[1]);
 }
 
 /* The roots of row j's bottom line y = j + 1 on its offset pieces that
  * seg_make would solve there (offset_line), BAND_ROOTS at a time
  * (aa__offset_roots: the same roots and points, bit for bit, solved side
- * by side), kept in their segs for seg_make. */
+ * by side), kept in their segs for seg_make.  The active list gives the
+ * pieces to come: the lines of the piece 2 BAND_AHEAD on (the first two
+ * of ar_piece, what this loop reads) and its seg's hint are prefetched,
+ * and the table node of the piece BAND_AHEAD on at its hint, which the
+ * next line's walk (ytab_guess) starts from: loads, not values. */
 #define BAND_ROOTS 8
+#define BAND_AHEAD 12
 static void band_roots(const ar_state *S, ar_worker *wk, int j, int W)
 {
     aa__offset_rootq q[BAND_ROOTS];
@@ -2642,11 +2646,25 @@ static void band_roots(const ar_state *S, ar_worker *wk, int j, int W)
         if (k < wk->nactive) {
             uint32_t ix = wk->active[k];
             const ar_piece *p = &S->piece[ix];
+            if (k + 2 * BAND_AHEAD < wk->nactive) {
+                uint32_t ia = wk->active[k + 2 * BAND_AHEAD];
+                const char *a = (const char *)&S->piece[ia];
+                __builtin_prefetch(a), __builtin_prefetch(a + 64), __builtin_prefetch(a + 127);
+                __builtin_prefetch(&wk->seg[ia].ythint);
+            }
+            if (k + BAND_AHEAD < wk->nactive) {
+                uint32_t ia = wk->active[k + BAND_AHEAD];
+                const ar_piece *pa = &S->piece[ia];
+                size_t h = wk->seg[ia].ythint;
+                if (pa->offset && h < pa->nyt) {
+                    const char *a = (const char *)(pa->ytab + 4 * h);
+                    __builtin_prefetch(a), __builtin_prefetch(a + 63);
+                }
+            }
             if (!(p->curved && p->offset) || p->flat || p->xmin >= W || !(p->y1 > yl))
                 continue;
             ar_seg *s = &wk->seg[ix];
-            const aa_piece *src = p->src;
-            q[n] = (aa__offset_rootq){&src->oc, &p->ofix, 1, src->ot0, src->ot1, p->y0 - yl,
+            q[n] = (aa__offset_rootq){&p->src->oc, &p->ofix, 1, p->ot0, p->ot1, p->y0 - yl,
                                       yl, ytab_guess(p, yl, &s->ythint), p->oend, s->prexy,
                                       NULL, 0.0};
             qp[n] = p, qs[n++] = s;
@@ -2998,6 +3016,7 @@ static int yt_rec(ar_state *S, const ar_piece *q, const double a[4], const doubl
 static int load_offset(ar_state *S, ar_piece *q, const aa_piece *p)
 {
     q->offset = 1;
+    q->ot0 = p->ot0, q->ot1 = p->ot1;
     q->sg = p->ot1 > p->ot0 ? 1.0 : -1.0;
     aa__offset_end(&p->oc, 1, p->ot1, q->oend);
     q->ostops = aa__offset_stops(&p->oc);

@@ -87,8 +87,17 @@ typedef struct ar_piece {
     uint32_t id; /* index in the scene: the tie-break of every sort */
     int curved;  /* a cubic, conic or offset piece (0: a line or quadratic, the
                   * common path, whose tests stay in this cache line) */
-    double byd, ayd; /* by and ay rounded, to find T */
-    double k6;       /* (y' x'' - x' y'') / 12, constant along a parabola */
+    double byd;      /* by rounded, to find T */
+    /* what band_roots reads of an offset piece, the 64 bytes after the
+     * above (the fields are described below; ot0 and ot1 src's, copied) */
+    int offset, ostops; /* ostops: its curve's stops (aa__offset_stops) */
+    double ot0, ot1;
+    const double *ytab;
+    size_t nyt;
+    double ytlo, ythi;
+    const aa_piece *src; /* the scene's piece (crossings of cubics and conics) */
+    double ayd;          /* ay rounded, to find T */
+    double k6;           /* (y' x'' - x' y'') / 12, constant along a parabola */
     /* power basis from the control points, extended precision:
      * x(t) = x0 + t (bx + t (ax + t dx)), y(t) = y0 + t (by + t (ay + t dy)),
      * dx = dy = 0 but for cubics */
@@ -96,7 +105,6 @@ typedef struct ar_piece {
     int cubic;
     int conic;            /* an arc of an ellipse: its fields are src's */
     double dyd;           /* dy rounded */
-    const aa_piece *src;  /* the scene's piece (crossings of cubics and conics) */
     /* An offset piece (AA_PIECE_OFFSET): its "tau" is sg t (t the curve's
      * parameter, sg = +-1 so that tau rises down the piece); te, te2: tau
      * where x turns (ascending, infinite if none); its panels (npan of
@@ -107,16 +115,14 @@ typedef struct ar_piece {
      * roots' starts in y (ytab_guess; area.c, load_ytab; state-owned, 4
      * doubles each, yt0 the first's index in the state's), ytlo and ythi
      * its first and last node's y (ytab_attach; NAN without a table):
-     * ytab_guess's range, not read from the table's two ends each root */
-    int offset, ostops; /* ostops: its curve's stops (aa__offset_stops) */
+     * ytab_guess's range, not read from the table's two ends each root;
+     * ot0, ot1: src's (its t range), in band_roots' cache line */
     aa__offset_fix ofix;
     double sg, ote, ote2;
     double oend[4];
     const ar_panel *pan;
     size_t pan0, npan; /* pan0: the first panel's index in the state's */
-    const double *ytab;
-    size_t yt0, nyt;
-    double ytlo, ythi;
+    size_t yt0;
     const ar_quad *quad;
 } ar_piece;
 
