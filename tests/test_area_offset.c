@@ -1212,20 +1212,22 @@ static void test_dd(void **state)
 }
 
 /* aa__offset_roots (offset.c: root_dd's common path four requests at a
- * time in AVX2's lanes, or two at a time, the rest one by one) against
+ * time in AVX2's lanes, the rest one by one) against
  * aa__offset_root_xyd and aa__offset_root_fixd asked one by one, which
  * test_dd holds to __float128: the same roots, points and other
  * coordinates bit for bit (memcmp), on lines across the offset pieces of
- * four strokes (the benchmark's cubics 2.5 and 24 px wide at 1024 px, the
- * tight arc 0.3 and 0.05 wide, whose offsets fold), y = j and x = i where
+ * five strokes (the benchmark's cubics 2.5 and 24 px wide at 1024 px, the
+ * tight arc 0.3 and 0.05 wide, whose offsets fold, and 0.3 wide under a
+ * shear, whose map's rows both mix x and y), y = j and x = i where
  * x is monotone, from starts 1e-12 to 3e-2 of the bracket off the root
  * on either side (some outside it), none, an end, and fa 0; by fma's
  * double-double form, Dekker's and the long double form; shuffled, so
  * that a batch mixes curves, coordinates and outputs (the point, the
- * other coordinate, neither), asked in batches of 1 to 9. */
+ * other coordinate, neither, or both asked: the point, the other left as
+ * it was, as aa__offset_root_xyd gives it), asked in batches of 1 to 9. */
 typedef struct rb_req {
     aa__offset_rootq q;
-    int out; /* 0 the point, 1 the other coordinate, 2 neither */
+    int out; /* 0 the point, 1 the other coordinate, 2 neither, 3 both asked */
 } rb_req;
 
 static void test_roots_batch(void **state)
@@ -1238,12 +1240,13 @@ static void test_roots_batch(void **state)
     size_t cap = 1 << 16, nr = 0, nfx = 0;
     rb_req *rq = malloc(cap * sizeof *rq);
     aa__offset_fix *fxs = malloc(3 * 4096 * sizeof *fxs);
+    const double shear[6] = {1.3, 0.2, 0.5, 0.8, -0.1, -0.05};
     aa_scene *keep[8];
     int nkeep = 0;
     assert_non_null(rq);
     assert_non_null(fxs);
     static const double offs[] = {1e-12, 1e-7, 1e-5, 6e-5, 1e-4, 3e-4, 1e-3, 3e-2};
-    for (int sc = 0; sc < 4; sc++) {
+    for (int sc = 0; sc < 5; sc++) {
         aa_scene *s;
         if (sc < 2) {
             aa_path in = {0};
@@ -1261,8 +1264,8 @@ static void test_roots_batch(void **state)
             s = scenes_stroke_outline(&in, &st, NULL, &noff);
             aa_path_free(&in);
         } else {
-            st.width = sc == 2 ? 0.3 : 0.05;
-            s = stroke_scene(tight, 1, &st, NULL);
+            st.width = sc == 3 ? 0.05 : 0.3;
+            s = stroke_scene(tight, 1, &st, sc == 4 ? shear : NULL);
         }
         aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
         assert_non_null(placed);
@@ -1310,7 +1313,7 @@ static void test_roots_batch(void **state)
                             }
                             rq[nr].q = (aa__offset_rootq){oc, fx, coord, a, b, f, j, guess,
                                                           NULL, NULL, NULL, 0.0};
-                            rq[nr].out = (int)((nr * 7 + k) % 3);
+                            rq[nr].out = (int)((nr * 7 + k) % 4);
                             nr++;
                         }
                     }
@@ -1329,16 +1332,18 @@ static void test_roots_batch(void **state)
     /* one by one, then in batches: outputs zeroed first, so that a long
      * double's padding compares equal too */
     long double(*want)[2] = calloc(nr, sizeof *want), (*got)[2] = calloc(nr, sizeof *got);
+    long double *oth = calloc(nr, sizeof *oth); /* the other asked beside the point */
     double *twant = malloc(nr * sizeof *twant);
     aa__offset_rootq *bq = malloc(nr * sizeof *bq);
     assert_non_null(want);
     assert_non_null(got);
+    assert_non_null(oth);
     assert_non_null(twant);
     assert_non_null(bq);
     size_t common = 0;
     for (size_t i = 0; i < nr; i++) {
         const aa__offset_rootq *r = &rq[i].q;
-        if (rq[i].out == 0)
+        if (rq[i].out == 0 || rq[i].out == 3)
             twant[i] = aa__offset_root_xyd(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa,
                                            r->target, r->guess, NULL, want[i]);
         else
@@ -1346,8 +1351,8 @@ static void test_roots_batch(void **state)
                                             r->target, r->guess,
                                             rq[i].out == 1 ? &want[i][0] : NULL);
         bq[i] = *r;
-        bq[i].xy = rq[i].out == 0 ? got[i] : NULL;
-        bq[i].other = rq[i].out == 1 ? &got[i][0] : NULL;
+        bq[i].xy = rq[i].out == 0 || rq[i].out == 3 ? got[i] : NULL;
+        bq[i].other = rq[i].out == 1 ? &got[i][0] : rq[i].out == 3 ? &oth[i] : NULL;
         bq[i].t = NAN;
         common += r->fx->dd == 2 && r->fa != 0 &&
                   (r->ta < r->tb ? r->guess > r->ta && r->guess < r->tb
@@ -1357,20 +1362,24 @@ static void test_roots_batch(void **state)
         aa__offset_roots(bq + i, nr - i < len ? nr - i : len);
     for (size_t i = 0; i < nr; i++) {
         if (memcmp(&bq[i].t, &twant[i], sizeof twant[i]) != 0 ||
-            memcmp(got[i], want[i], sizeof want[i]) != 0)
+            memcmp(got[i], want[i], sizeof want[i]) != 0 || oth[i] != 0)
             fail_msg("request %zu (coord %d, [%.17g, %.17g], target %.17g, guess %.17g, fa "
                      "%g, form %d): t %.17g, one by one %.17g; (%.20Lg, %.20Lg) against "
-                     "(%.20Lg, %.20Lg)",
+                     "(%.20Lg, %.20Lg); the other beside the point %.20Lg (left 0)",
                      i, bq[i].coord, bq[i].ta, bq[i].tb, bq[i].target, bq[i].guess, bq[i].fa,
                      bq[i].fx->dd, bq[i].t, twant[i], got[i][0], got[i][1], want[i][0],
-                     want[i][1]);
+                     want[i][1], oth[i]);
     }
-    print_message("%zu roots (%zu of them root_dd's common start) in batches of 1 to 9: the same "
-                  "bits as one by one\n",
-                  nr, common);
+    print_message("%zu roots (%zu of them root_dd's common start, %s) in batches of 1 to 9: the "
+                  "same bits as one by one\n",
+                  nr, common,
+                  __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")
+                      ? "four at a time in AVX2's lanes"
+                      : "no AVX2 and FMA here: one by one");
     assert_true(nr > 20000 && common > nr / 2);
     free(want);
     free(got);
+    free(oth);
     free(twant);
     free(bq);
     free(rq);

@@ -919,8 +919,10 @@ double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, 
                            double ta, double tb, double fa, double target, double guess,
                            const double *endb, long double xy[2]);
 /* A root asked of aa__offset_roots: aa__offset_root_xyd's arguments (xy
- * not NULL: its point there) or aa__offset_root_fixd's (other), the root
- * in t */
+ * not NULL: its point there; other then not written) or
+ * aa__offset_root_fixd's (other), the root in t.  The requests' outputs
+ * (t, xy, other) are distinct objects: they are written in another order
+ * than one by one. */
 typedef struct aa__offset_rootq {
     const aa_offset_curve *oc;
     const aa__offset_fix *fx;
@@ -932,9 +934,9 @@ typedef struct aa__offset_rootq {
 } aa__offset_rootq;
 /* n roots: each q[k].t (and its xy or other) as aa__offset_root_xyd or
  * aa__offset_root_fixd give it, bit for bit; where the processor has AVX2
- * and FMA, those starting inside their brackets in the double-double form
- * are solved four at a time, one a lane (offset.c, roots4_avx2), the rest
- * one by one. */
+ * (and FMA: the double-double form by fma, fx->dd 2, says so), those
+ * starting inside their brackets in that form are solved four at a time,
+ * one a lane (offset.c, roots4_avx2), the rest one by one. */
 void aa__offset_roots(aa__offset_rootq *q, size_t n);
 /* Coordinate coord of oc at t as the double phase of the solvers first
  * evaluates it at a bracket's far end (e[4], opaque): for a caller that

@@ -1397,6 +1397,13 @@ static inline void v4_lane_parts(const double pv[4][2][4], const double dpv[2][2
         dp[i] = (dd_v2){dpv[i][0][k], dpv[i][1][k]};
 }
 
+/* A request's other coordinate, where it asks it: not beside its point
+ * (xy), which aa__offset_root_xyd gives alone */
+static inline long double *rq_other(const aa__offset_rootq *q)
+{
+    return q->xy ? NULL : q->other;
+}
+
 /* The requests r[0..n) (n 2 to 4, each root_dd's common start; lanes n
  * and on repeat r[0], their results dropped) */
 static __attribute__((noinline, target("avx2,fma"))) void roots4_avx2(aa__offset_rootq *const *r,
@@ -1465,7 +1472,7 @@ static __attribute__((noinline, target("avx2,fma"))) void roots4_avx2(aa__offset
             solve_step(fv[k], dfv[k], dnv[k], size1, DD_D_STEP, ng, &t1, &a1, &b1, &prev,
                        &unseen, &last);
             q->t = root_d_more_fma(q->oc, q->fx, q->coord, q->ta, q->tb, a1, b1, ng, q->target,
-                                   t1, prev, unseen, size1, q->xy, q->other);
+                                   t1, prev, unseen, size1, q->xy, rq_other(q));
         }
         if (!go)
             return;
@@ -1524,7 +1531,7 @@ static __attribute__((noinline, target("avx2,fma"))) void roots4_avx2(aa__offset
             q->xy[0] = ((long double)pv[0][0][k] + pv[1][0][k]) + lov[0][k];
             q->xy[1] = ((long double)pv[0][1][k] + pv[1][1][k]) + lov[1][k];
         }
-        if (q->other)
+        if (rq_other(q))
             *q->other = ((long double)qv[0][k] + qv[1][k]) + loov[k];
         q->t = tt[k];
     }
@@ -1550,7 +1557,7 @@ static __attribute__((noinline, target("avx2,fma"))) void roots4_avx2(aa__offset
         double t1 = t0[k], la1 = q->ta, lb1 = q->tb, h = 0.0, hx = 0.0;
         dd_step(pk, dpk, (dd_v2){q->target, q->target}, q->coord, ng, &t1, &la1, &lb1, &h, &hx);
         q->t = root_dd_more_fma(q->oc, q->fx, q->coord, q->target, ng, t1, la1, lb1, q->xy,
-                                q->other);
+                                rq_other(q));
     }
 }
 
