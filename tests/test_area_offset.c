@@ -803,6 +803,18 @@ static void bench_cubics(int r, int k0, int k1, double *cs)
     }
 }
 
+/* The benchmark's subpath r (its 50 cubics) appended to *in */
+static void bench_row_path(aa_path *in, int r)
+{
+    double cs[2 + 6 * 50];
+    bench_cubics(r, 0, 50, cs);
+    must(aa_path_move_to(in, cs[0], cs[1]));
+    for (int k = 0; k < 50; k++) {
+        const double *q = cs + 2 + 6 * k;
+        must(aa_path_cubic_to(in, q[0], q[1], q[2], q[3], q[4], q[5]));
+    }
+}
+
 typedef __float128 q128;
 
 static int q_cmp(q128 a, q128 b)
@@ -1069,15 +1081,8 @@ static void test_dd(void **state)
         aa_scene *s;
         if (sc == 0) {
             aa_path in = {0};
-            for (int r = 0; r < 20; r++) { /* the benchmark's 20 subpaths */
-                double cs[2 + 6 * 50];
-                bench_cubics(r, 0, 50, cs);
-                must(aa_path_move_to(&in, cs[0], cs[1]));
-                for (int c = 0; c < 50; c++) {
-                    const double *q = cs + 2 + 6 * c;
-                    must(aa_path_cubic_to(&in, q[0], q[1], q[2], q[3], q[4], q[5]));
-                }
-            }
+            for (int r = 0; r < 20; r++) /* the benchmark's 20 subpaths */
+                bench_row_path(&in, r);
             st.width = 2.5 / n;
             size_t noff;
             s = scenes_stroke_outline(&in, &st, NULL, &noff);
@@ -1250,15 +1255,8 @@ static void test_roots_batch(void **state)
         aa_scene *s;
         if (sc < 2) {
             aa_path in = {0};
-            for (int r = 0; r < 3; r++) { /* three of the benchmark's rows */
-                double cs[2 + 6 * 50];
-                bench_cubics(r, 0, 50, cs);
-                must(aa_path_move_to(&in, cs[0], cs[1]));
-                for (int c = 0; c < 50; c++) {
-                    const double *q = cs + 2 + 6 * c;
-                    must(aa_path_cubic_to(&in, q[0], q[1], q[2], q[3], q[4], q[5]));
-                }
-            }
+            for (int r = 0; r < 3; r++) /* three of the benchmark's rows */
+                bench_row_path(&in, r);
             st.width = (sc ? 24.0 : 2.5) / n;
             size_t noff;
             s = scenes_stroke_outline(&in, &st, NULL, &noff);
@@ -2350,16 +2348,9 @@ static void crowd_rows(const int *rows, int nr, int px, double *e, int *over)
     aa_stroke_style_default(&st);
     st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
     st.width = 2.5 / px;
-    double cs[2 + 6 * 50];
     aa_path in = {0};
-    for (int r = 0; r < nr; r++) { /* one subpath a row */
-        bench_cubics(rows[r], 0, 50, cs);
-        must(aa_path_move_to(&in, cs[0], cs[1]));
-        for (int k = 0; k < 50; k++) {
-            const double *q = cs + 2 + 6 * k;
-            must(aa_path_cubic_to(&in, q[0], q[1], q[2], q[3], q[4], q[5]));
-        }
-    }
+    for (int r = 0; r < nr; r++) /* one subpath a row */
+        bench_row_path(&in, rows[r]);
     size_t noff;
     aa_scene *s = scenes_stroke_outline(&in, &st, NULL, &noff);
     aa_path_free(&in);
