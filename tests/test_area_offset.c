@@ -803,16 +803,24 @@ static void bench_cubics(int r, int k0, int k1, double *cs)
     }
 }
 
-/* The benchmark's subpath r (its 50 cubics) appended to *in */
-static void bench_row_path(aa_path *in, int r)
+/* The stroke outline of the benchmark's subpaths rows[0..nr) (NULL: 0 to
+ * nr - 1), each its 50 cubics, in style st */
+static aa_scene *bench_rows_stroke(const int *rows, int nr, const aa_stroke_style *st)
 {
+    aa_path in = {0};
     double cs[2 + 6 * 50];
-    bench_cubics(r, 0, 50, cs);
-    must(aa_path_move_to(in, cs[0], cs[1]));
-    for (int k = 0; k < 50; k++) {
-        const double *q = cs + 2 + 6 * k;
-        must(aa_path_cubic_to(in, q[0], q[1], q[2], q[3], q[4], q[5]));
+    for (int r = 0; r < nr; r++) {
+        bench_cubics(rows ? rows[r] : r, 0, 50, cs);
+        must(aa_path_move_to(&in, cs[0], cs[1]));
+        for (int k = 0; k < 50; k++) {
+            const double *q = cs + 2 + 6 * k;
+            must(aa_path_cubic_to(&in, q[0], q[1], q[2], q[3], q[4], q[5]));
+        }
     }
+    size_t noff;
+    aa_scene *s = scenes_stroke_outline(&in, st, NULL, &noff);
+    aa_path_free(&in);
+    return s;
 }
 
 typedef __float128 q128;
@@ -1080,13 +1088,8 @@ static void test_dd(void **state)
     for (int sc = 0; sc < 2; sc++) {
         aa_scene *s;
         if (sc == 0) {
-            aa_path in = {0};
-            for (int r = 0; r < 20; r++) /* the benchmark's 20 subpaths */
-                bench_row_path(&in, r);
             st.width = 2.5 / n;
-            size_t noff;
-            s = scenes_stroke_outline(&in, &st, NULL, &noff);
-            aa_path_free(&in);
+            s = bench_rows_stroke(NULL, 20, &st); /* the benchmark's 20 subpaths */
         } else {
             st.width = 0.3;
             s = stroke_scene(tight, 1, &st, NULL);
@@ -1254,13 +1257,8 @@ static void test_roots_batch(void **state)
     for (int sc = 0; sc < 5; sc++) {
         aa_scene *s;
         if (sc < 2) {
-            aa_path in = {0};
-            for (int r = 0; r < 3; r++) /* three of the benchmark's rows */
-                bench_row_path(&in, r);
             st.width = (sc ? 24.0 : 2.5) / n;
-            size_t noff;
-            s = scenes_stroke_outline(&in, &st, NULL, &noff);
-            aa_path_free(&in);
+            s = bench_rows_stroke(NULL, 3, &st); /* three of the benchmark's rows */
         } else {
             st.width = sc == 3 ? 0.05 : 0.3;
             s = stroke_scene(tight, 1, &st, sc == 4 ? shear : NULL);
@@ -2348,12 +2346,7 @@ static void crowd_rows(const int *rows, int nr, int px, double *e, int *over)
     aa_stroke_style_default(&st);
     st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
     st.width = 2.5 / px;
-    aa_path in = {0};
-    for (int r = 0; r < nr; r++) /* one subpath a row */
-        bench_row_path(&in, rows[r]);
-    size_t noff;
-    aa_scene *s = scenes_stroke_outline(&in, &st, NULL, &noff);
-    aa_path_free(&in);
+    aa_scene *s = bench_rows_stroke(rows, nr, &st); /* one subpath a row */
     support_view v = {.w = px, .h = px, .threads = 0};
     aa_image ref, bound, a;
     support_reference(s, &v, &ref, &bound, NULL);
