@@ -674,6 +674,18 @@ static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
 #define YT_ROWS 2.0
 #define YT_ROWS_TOL 0.1
 
+/* An offset piece's point where it meets a band line at t: the root's
+ * point xy, or the piece's own end where the root is one (offset_point;
+ * X and Y may be xy) */
+static inline void line_point(const ar_piece *p, double t, const long double xy[2],
+                              long double *X, long double *Y)
+{
+    if (t == p->ot0 || t == p->ot1)
+        offset_point(p, t, X, Y);
+    else
+        *X = xy[0], *Y = xy[1];
+}
+
 /* An offset piece's parameter t where it meets the line y = yl (fa = y0 -
  * yl: its top's height over it, negative) and its point there (X, Y): the
  * root's point (aa__offset_root_xy: the root's last evaluation moved to
@@ -684,14 +696,10 @@ static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
 static double offset_line_t(const ar_piece *p, double fa, double yl, long double *X,
                             long double *Y, size_t *hint)
 {
-    const aa_piece *q = p->src;
     long double xy[2];
-    double t = aa__offset_root_xyd(&q->oc, &p->ofix, 1, q->ot0, q->ot1, fa, yl,
+    double t = aa__offset_root_xyd(&p->src->oc, &p->ofix, 1, p->ot0, p->ot1, fa, yl,
                                    ytab_guess(p, yl, hint), p->oend, xy);
-    if (t == q->ot0 || t == q->ot1)
-        offset_point(p, t, X, Y);
-    else
-        *X = xy[0], *Y = xy[1];
+    line_point(p, t, xy, X, Y);
     return t;
 }
 
@@ -954,13 +962,12 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     } else {
         /* kept as computed, so that the next band's top is what it would
          * compute itself */
-        if (special && p->offset && s->prej == j) {
+        if (special && p->offset) {
+            /* band_roots' root (offset_line's for the line: it asks every
+             * offset seg made here, before, prej j) */
             tb = p->sg * s->pret;
             s->xline = s->prexy[0], s->yline = s->prexy[1];
             ub = (double)(s->xline - s->c0);
-            s->vt[3] = tb, s->vv[3] = (double)(s->yline + s->V);
-        } else if (special && p->offset) {
-            tb = offset_line(s, m + 1, &ub, &s->xline, &s->yline);
             s->vt[3] = tb, s->vv[3] = (double)(s->yline + s->V);
         } else {
             tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
@@ -2616,17 +2623,17 @@ static void merge_keys(ar_key *keys, size_t nold, size_t n, ar_key *tmp)
     memcpy(keys, tmp, k * sizeof *keys); /* keys[b..n) are in place */
 }
 
-/* offset_line_t's end for a root band_roots found (the piece's own end
- * point where the root is one) */
+/* A root band_roots found kept in its seg, with its point (line_point,
+ * as offset_line_t's) */
 static void band_root_done(const ar_piece *p, ar_seg *s, int j, const aa__offset_rootq *q)
 {
     s->prej = j, s->pret = q->t;
-    if (q->t == p->ot0 || q->t == p->ot1)
-        offset_point(p, q->t, &s->prexy[0], &s->prexy[1]);
+    line_point(p, q->t, s->prexy, &s->prexy[0], &s->prexy[1]);
 }
 
 /* The roots of row j's bottom line y = j + 1 on its offset pieces that
- * seg_make would solve there (offset_line), BAND_ROOTS at a time
+ * seg_make takes there (every offset seg it makes reaching below the
+ * line: offset_line's root for it), BAND_ROOTS at a time
  * (aa__offset_roots: the same roots and points, bit for bit, solved side
  * by side), kept in their segs for seg_make.  The active list gives the
  * pieces to come: the lines of the piece 2 BAND_AHEAD on (the first two
@@ -3245,7 +3252,8 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
      * the clip's levels are written up to their counts before they are
      * read, and a seg's fields by seg_make, expand and band_fields, but for
      * those set below (its piece none, no anchor, no band line kept, its
-     * table's hint the first interval, no x kept at a pair's ends).
+     * table's hint the first interval, no x kept at a pair's ends, no
+     * root of band_roots).
      * Clearing them was 6.4 M instructions of the init on
      * tests/bench_bezstroke.c's scene at 1024 px. */
     wk->active = line_alloc_as(n, sizeof *wk->active, 0);

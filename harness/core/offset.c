@@ -772,6 +772,12 @@ long double aa__offset_solve(const aa_offset_curve *oc, int coord, long double t
  * any bracket of the parameter (a few units wide) to reach two adjacent
  * long doubles, 64 halvings and more */
 #define ROOT_LD_STEPS 200
+/* g strictly inside the bracket [a, b] (either order; a NaN is not): a
+ * caller's start the solvers take */
+static inline int in_bracket(double g, double a, double b)
+{
+    return a < b ? (g > a && g < b) : (g < a && g > b);
+}
 /* One step of solve_double's loop, given the evaluation at *t (f less
  * the target, df, dn) and its state (the bracket *a, *b, the step before
  * *prev, *unseen, *last): 1 where the loop stops there (*t the result),
@@ -799,7 +805,7 @@ solve_step(double f, double df, double dn, double size, double tol, int neg, dou
         *t = cl;
         return 1;
     }
-    int inside = *a < *b ? (next > *a && next < *b) : (next < *a && next > *b);
+    int inside = in_bracket(next, *a, *b);
     int newton = 1;
     if (!inside && *unseen && (*a < *b ? next >= *b : next <= *b))
         next = *b, *unseen = 0, newton = 0;
@@ -846,7 +852,7 @@ solve_double(const aa_offset_curve *oc, const aa__offset_fix *fx, int dd, int co
      * evaluated (with a guess); a Newton step past it goes to it */
     int unseen = 0;
     *last = NAN; /* the step that reached t, where Newton's; none at a start */
-    if (a < b ? (guess > a && guess < b) : (guess < a && guess > b)) {
+    if (in_bracket(guess, a, b)) {
         t = guess; /* a caller's start: the root on a nearby line */
         unseen = 1;
     } else {
@@ -1011,7 +1017,7 @@ static __attribute__((always_inline)) inline int dd_step(const dd_v2 p[4], const
         *hx = step;
         return 1;
     }
-    int inside = *la < *lb ? (next > *la && next < *lb) : (next < *la && next > *lb);
+    int inside = in_bracket(next, *la, *lb);
     double sc = fabs(*t) > 1.0 ? fabs(*t) : 1.0;
     if (inside && fabs(h2) <= 1e-7 && 2 * ch * ch * fabs(h2) <= DD_EST * sc) {
         *h = next - *t, *hx = step, *t = next;
@@ -1164,7 +1170,7 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
         double fa, double target, double guess, const double *endb, long double xy[2],
         long double *other, int fma)
 {
-    if (fa == 0 || !(ta < tb ? (guess > ta && guess < tb) : (guess < ta && guess > tb))) {
+    if (fa == 0 || !in_bracket(guess, ta, tb)) {
         if (fma)
             return root_dd_ends_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other);
         return root_dd_ends_split(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other);
@@ -1575,9 +1581,7 @@ static void root_one(aa__offset_rootq *r)
 
 static inline int root_common(const aa__offset_rootq *r)
 {
-    return r->fx->dd == 2 && r->fa != 0 &&
-           (r->ta < r->tb ? (r->guess > r->ta && r->guess < r->tb)
-                          : (r->guess < r->ta && r->guess > r->tb));
+    return r->fx->dd == 2 && r->fa != 0 && in_bracket(r->guess, r->ta, r->tb);
 }
 
 void aa__offset_roots(aa__offset_rootq *q, size_t n)
