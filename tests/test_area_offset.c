@@ -2616,6 +2616,48 @@ static void test_end_dd(void **state)
     assert_true(pe[0] >= 1000);
 }
 
+/* The parts of offset pieces that start at a piece's end (its top, where
+ * the part's first parameter is the piece's ot0 or ot1): offset_end_area's
+ * test of both ends at once (area.c, the two comparisons of each end two
+ * by two).  The benchmark's row 11 (tests/bench_bezstroke.c, 50 cubics,
+ * round joins and caps, 2.5 px wide) at 1024 px against the reference on
+ * the window of 128 x 64 pixels from (40, 544), its round cap and first
+ * cubics: each pixel within the reference's bound and 1e-14, none beyond
+ * the bound by more than that. */
+static void test_end_top(void **state)
+{
+    (void)state;
+    const int r = 11, n = 1024, x0 = 40, y0 = 544, w = 128, h = 64;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 2.5 / n;
+    st.join = AA_JOIN_ROUND;
+    st.cap = AA_CAP_ROUND;
+    aa_scene *s = bench_rows_stroke(&r, 1, &st);
+    aa_image im, ref, bound;
+    support_render("area", s, "box", n, n, 1, &im, NULL);
+    support_reference_part(s, n, n, x0, y0, w, h, "box", &ref, &bound, NULL);
+    double most = -INFINITY;
+    int wi = -1, wj = -1, over = 0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            double e = fabs(aa_pixel(&im, x0 + i, y0 + j)[0] - aa_pixel(&ref, i, j)[0]) -
+                       aa_pixel(&bound, i, j)[0];
+            over += e > 0.0;
+            if (e > most)
+                most = e, wi = x0 + i, wj = y0 + j;
+        }
+    print_message("row %d at %d px: %d pixels beyond the reference's bound, at most %.2g (at %d, "
+                  "%d)\n",
+                  r, n, over, most, wi, wj);
+    if (!(most <= 1e-14))
+        fail_msg("area %g beyond the reference's bound at (%d, %d)", most, wi, wj);
+    aa_image_free(&im);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -2641,6 +2683,7 @@ int main(void)
                                        cmocka_unit_test(test_end_chord),
                                        cmocka_unit_test(test_crowd_next_order),
                                        cmocka_unit_test(test_offset_polish),
-                                       cmocka_unit_test(test_end_dd)};
+                                       cmocka_unit_test(test_end_dd),
+                                       cmocka_unit_test(test_end_top)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
