@@ -892,6 +892,21 @@ static inline int icell(double x)
     return (int)x - (x < 0.0);
 }
 
+/* icell of lo and hi at once (*a, *b), in the two lanes of SSE2's packed
+ * doubles: the same clamps (maxpd and minpd take their second operand where
+ * the first is NaN, as the scalar forms), the same truncation (cvttpd2dq:
+ * the clamped values fit in an int), the comparison's mask -1 added. */
+static inline void icell2(double lo, double hi, int *a, int *b)
+{
+    __m128d x = _mm_set_pd(hi, lo);
+    x = _mm_max_pd(x, _mm_set1_pd(-CELL_LIMIT));
+    x = _mm_min_pd(x, _mm_set1_pd(CELL_LIMIT));
+    __m128i neg = _mm_shuffle_epi32(_mm_castpd_si128(_mm_cmplt_pd(x, _mm_setzero_pd())), 0x08);
+    __m128i c = _mm_add_epi32(_mm_cvttpd_epi32(x), neg);
+    *a = _mm_cvtsi128_si32(c);
+    *b = _mm_cvtsi128_si32(_mm_shuffle_epi32(c, 0x01));
+}
+
 /* u at tau t of an offset piece at an end of the band, its v kept in the
  * memo's slot k (offset_seg_u's values) */
 static inline double offset_band_u(ar_seg *s, double t, int k)
@@ -1008,7 +1023,9 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
             s->hi = e > s->hi ? e : s->hi;
         }
     }
-    int lo = s->c0 + icell(s->lo), hi = s->c0 + icell(s->hi);
+    int lo, hi;
+    icell2(s->lo, s->hi, &lo, &hi);
+    lo += s->c0, hi += s->c0;
     if (lo >= W)
         return 0;
     s->ca = lo < -1 ? -1 : lo;
