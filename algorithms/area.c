@@ -2525,7 +2525,7 @@ static int flush(const ar_row *r, ar_key *keys, size_t n, int lo, int hi, int x,
                  const double **c)
 {
     if (lo > x)
-        fill(r->px, x, lo, r->W, *c, r->stream);
+        fill_run(r, x, lo, *c);
     double cin[3] = {(*c)[0], (*c)[1], (*c)[2]};
     if (!(n == 1 && cluster_single(r, &r->wk->seg[keys[0].idx], w, cin)))
         cluster(r, keys, n, lo, hi, w, cin);
