@@ -56,7 +56,7 @@
 typedef struct ar_quad {
     int n[AR_QUAD_RULES], at[AR_QUAD_RULES];
     double x[64], w[64];
-    int avx; /* the processor has AVX: a cubic's nodes four at a time */
+    int avx; /* a cubic's nodes eight a pass (2: AVX-512F), four (1: AVX) or two */
 } ar_quad;
 
 /* A panel of an offset piece's parameter (area_offset.c): [a, b], its

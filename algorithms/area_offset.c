@@ -121,7 +121,7 @@ int area_quad_init(ar_quad *q)
         at += (n + 3) & ~3;
     }
     __builtin_cpu_init();
-    q->avx = __builtin_cpu_supports("avx");
+    q->avx = __builtin_cpu_supports("avx512f") ? 2 : __builtin_cpu_supports("avx");
     return AA_OK;
 }
 
@@ -630,6 +630,95 @@ nodes_avx_k(const double *qx, const double *qw, int n, double sm, double h,
     return _mm_cvtsd_f64(_mm_add_sd(s2, _mm_unpackhi_pd(s2, s2)));
 }
 
+/* w f at the eight nodes qx[0..7] (weights qw; the lanes outside `mask`
+ * load x = w = 0, their w f not used) in AVX-512F's eight lanes: each
+ * lane the operations of nodes_avx_k's in their order (nothing fused),
+ * so each w f the same double */
+__attribute__((target("avx512f"), always_inline)) static inline __m512d
+wf_512(const double *qx, const double *qw, __mmask8 mask, double sm, double h,
+       const double *bx, const double *by, const double *d, double ax, double ay,
+       const int evolute)
+{
+    const __m512d vsm = _mm512_set1_pd(sm), vh = _mm512_set1_pd(h);
+    const __m512d b1x = _mm512_set1_pd(bx[1]), b2x = _mm512_set1_pd(bx[2]);
+    const __m512d b3x = _mm512_set1_pd(bx[3]), b1y = _mm512_set1_pd(by[1]);
+    const __m512d b2y = _mm512_set1_pd(by[2]), b3y = _mm512_set1_pd(by[3]);
+    const __m512d b2x2 = _mm512_add_pd(b2x, b2x), b2y2 = _mm512_add_pd(b2y, b2y);
+    const __m512d three = _mm512_set1_pd(3.0), six = _mm512_set1_pd(6.0);
+    const __m512d one = _mm512_set1_pd(1.0), vd = _mm512_set1_pd(*d);
+    const __m512d vax = _mm512_set1_pd(ax), vay = _mm512_set1_pd(ay);
+    __m512d x = _mm512_maskz_loadu_pd(mask, qx), w = _mm512_maskz_loadu_pd(mask, qw);
+    __m512d s = _mm512_add_pd(vsm, _mm512_mul_pd(vh, x));
+    __m512d s3 = _mm512_mul_pd(three, s), s6 = _mm512_mul_pd(six, s);
+    __m512d ux = _mm512_add_pd(b1x, _mm512_mul_pd(s, _mm512_add_pd(b2x2, _mm512_mul_pd(s3, b3x))));
+    __m512d uy = _mm512_add_pd(b1y, _mm512_mul_pd(s, _mm512_add_pd(b2y2, _mm512_mul_pd(s3, b3y))));
+    __m512d vx = _mm512_add_pd(b2x2, _mm512_mul_pd(s6, b3x));
+    __m512d vy = _mm512_add_pd(b2y2, _mm512_mul_pd(s6, b3y));
+    __m512d Dx = _mm512_sub_pd(
+        _mm512_mul_pd(
+            s, _mm512_add_pd(b1x, _mm512_mul_pd(s, _mm512_add_pd(b2x, _mm512_mul_pd(s, b3x))))),
+        vax);
+    __m512d Dy = _mm512_sub_pd(
+        _mm512_mul_pd(
+            s, _mm512_add_pd(b1y, _mm512_mul_pd(s, _mm512_add_pd(b2y, _mm512_mul_pd(s, b3y))))),
+        vay);
+    __m512d L2 = _mm512_add_pd(_mm512_mul_pd(ux, ux), _mm512_mul_pd(uy, uy));
+    __m512d c = _mm512_sub_pd(_mm512_mul_pd(ux, vy), _mm512_mul_pd(uy, vx)), f;
+    if (!evolute) {
+        __m512d L = _mm512_sqrt_pd(L2);
+        __m512d g = _mm512_sub_pd(_mm512_sub_pd(_mm512_mul_pd(Dx, uy), _mm512_mul_pd(Dy, ux)),
+                                  _mm512_mul_pd(vd, L));
+        f = _mm512_mul_pd(g, _mm512_sub_pd(one, _mm512_div_pd(_mm512_mul_pd(vd, c),
+                                                           _mm512_mul_pd(L2, L))));
+    } else {
+        __m512d cp =
+            _mm512_mul_pd(six, _mm512_sub_pd(_mm512_mul_pd(ux, b3y), _mm512_mul_pd(uy, b3x)));
+        __m512d dd = _mm512_add_pd(_mm512_mul_pd(ux, vx), _mm512_mul_pd(uy, vy));
+        __m512d num =
+            _mm512_sub_pd(_mm512_mul_pd(_mm512_mul_pd(three, dd), c), _mm512_mul_pd(L2, cp));
+        f = _mm512_div_pd(
+            _mm512_mul_pd(num, _mm512_add_pd(_mm512_mul_pd(Dx, ux), _mm512_mul_pd(Dy, uy))),
+            _mm512_mul_pd(c, c));
+    }
+    return _mm512_mul_pd(w, f);
+}
+
+/* nodes_avx_k's sum with eight nodes a pass (wf_512) where n >= 8: lane j
+ * of the four, (((0 + wf_j) + wf_j+4) + wf_j+8) + wf_j+12, as the low and
+ * high halves of the passes added in turn, then (0 + 2) + (1 + 3): the
+ * same operations on the same numbers as nodes_avx_k's, so the same sum
+ * bit for bit (test_area_offset's test_nodes_512); 4 points as before
+ * (a pass of eight runs as two halves on some processors) */
+__attribute__((target("avx512f"), always_inline)) static inline double
+nodes_512_k(const double *qx, const double *qw, int n, double sm, double h,
+            const double *bx, const double *by, const double *d, double ax, double ay,
+            const int evolute)
+{
+    if (n < 8)
+        return nodes_avx_k(qx, qw, n, sm, h, bx, by, d, ax, ay, evolute);
+    __m512d a = wf_512(qx, qw, 0xff, sm, h, bx, by, d, ax, ay, evolute);
+    __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_setzero_pd(), _mm512_castpd512_pd256(a)),
+                                _mm512_extractf64x4_pd(a, 1));
+    for (int i = 8; i < n; i += 8) {
+        a = wf_512(qx + i, qw + i, n - i < 8 ? 0x0f : 0xff, sm, h, bx, by, d, ax, ay, evolute);
+        sum = _mm256_add_pd(sum, _mm512_castpd512_pd256(a));
+        if (n - i >= 8)
+            sum = _mm256_add_pd(sum, _mm512_extractf64x4_pd(a, 1));
+    }
+    __m128d s2 = _mm_add_pd(_mm256_castpd256_pd128(sum), _mm256_extractf128_pd(sum, 1));
+    return _mm_cvtsd_f64(_mm_add_sd(s2, _mm_unpackhi_pd(s2, s2)));
+}
+
+/* nodes_512_k for an offset or an evolute */
+__attribute__((target("avx512f"))) static double
+nodes_512(const double *qx, const double *qw, int n, double sm, double h,
+          const double *bx, const double *by, const double *d, double ax, double ay, int evolute)
+{
+    if (evolute)
+        return nodes_512_k(qx, qw, n, sm, h, bx, by, d, ax, ay, 1);
+    return nodes_512_k(qx, qw, n, sm, h, bx, by, d, ax, ay, 0);
+}
+
 /* nodes_avx_k for an offset or an evolute (a loop each) */
 __attribute__((target("avx"))) static double
 nodes_avx(const double *qx, const double *qw, int n, double sm, double h,
@@ -749,6 +838,10 @@ static __attribute__((always_inline)) inline double share_by(const ar_piece *pc,
      * test_nodes). */
     const int n = q->n[r];
     const double *qx = q->x + q->at[r], *qw = q->w + q->at[r];
+    if (avx == 2) {
+        sum = nodes_512(qx, qw, n, mm - p->m, h, bx, by, &oc->d, ax, ay, oc->evolute);
+        return 0.5 * h * sum;
+    }
     if (avx) {
         sum = nodes_avx(qx, qw, n, mm - p->m, h, bx, by, &oc->d, ax, ay, oc->evolute);
         return 0.5 * h * sum;
@@ -877,6 +970,13 @@ __attribute__((target("avx"), flatten)) static double segment_avx(const ar_piece
     return segment(pc, ta, tb, 1);
 }
 
+/* segment_avx with AVX-512F's eight lanes (nodes_512) */
+__attribute__((target("avx512f"), flatten)) static double segment_512(const ar_piece *pc,
+                                                                     double ta, double tb)
+{
+    return segment(pc, ta, tb, 2);
+}
+
 __attribute__((noinline)) static double segment_sse(const ar_piece *pc, double ta, double tb)
 {
     return segment(pc, ta, tb, 0);
@@ -884,7 +984,9 @@ __attribute__((noinline)) static double segment_sse(const ar_piece *pc, double t
 
 double area_offset_segment(const ar_piece *pc, double ta, double tb)
 {
-    return pc->quad->avx ? segment_avx(pc, ta, tb) : segment_sse(pc, ta, tb);
+    int avx = pc->quad->avx;
+    return avx == 2 ? segment_512(pc, ta, tb)
+                    : avx ? segment_avx(pc, ta, tb) : segment_sse(pc, ta, tb);
 }
 
 /* ---- the speed of the curve on a disc (for `analytic`) ----

@@ -66,6 +66,10 @@
  *    offset piece and evolute of two strokes and 300 parts of each
  *    (test_nodes: on a processor with AVX the tests above take the first,
  *    so this keeps the second, the form without AVX, held to it);
+ *  - the third form, eight nodes a pass (AVX-512F, which the tests above
+ *    take where the processor has it), the same segment bit for bit as
+ *    the four-lane and the two-lane forms on 12,000 parts of the offset
+ *    pieces of three strokes, every rule taken (test_nodes_512);
  *  - the double-double form of area's roots and points (test_dd):
  *    every band line and cell side on the pieces of the benchmark's
  *    scene and a wide stroke, the point at the root within 2e-16 px of
@@ -2656,6 +2660,82 @@ static void test_end_top(void **state)
     aa_image_free(&ref);
     aa_image_free(&bound);
     aa_scene_free(s);
+/* The quadrature's eight-lane form (AVX-512F, area_offset.c nodes_512: 8,
+ * 12 and 16 points a pass of eight lanes and their halves summed in the
+ * four-lane order) against the four-lane form (AVX) and the two-at-a-time
+ * form (SSE2), bit for bit, on parts of the offset pieces of three
+ * strokes (the tight arc's folds: evolutes), of every width down to 1e-6
+ * of the piece, so that every rule is taken; on a processor without
+ * AVX-512F the two others alone. */
+static void test_nodes_512(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    ar_quad quad;
+    must(area_quad_init(&quad));
+    const int has = quad.avx;
+    if (has < 2)
+        print_message("no AVX-512F here: the eight-lane form not run\n");
+    static const double *const curves[3] = {three, tight, hook};
+    static const int ncs[3] = {3, 1, 1};
+    static const double widths[3] = {0.08, 0.3, 0.12};
+    uint64_t rng = 987654321;
+    int parts = 0, evolutes = 0, rules[AR_QUAD_RULES] = {0};
+    for (int c = 0; c < 3; c++) {
+        st.width = widths[c];
+        aa_scene *s = stroke_scene(curves[c], ncs[c], &st, NULL);
+        aa_scene *placed = aa_scene_place(s, 64, 64, 0, 0, 0);
+        assert_non_null(placed);
+        size_t np;
+        const aa_piece *pc = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pc[k].kind != AA_PIECE_OFFSET || pc[k].oc.base == AA_OFFSET_ELLIPSE)
+                continue;
+            ar_panel *pan;
+            size_t npan;
+            must(area_offset_panels(&pc[k].oc, pc[k].ot0, pc[k].ot1, &pan, &npan));
+            ar_piece ap;
+            memset(&ap, 0, sizeof ap);
+            ap.src = &pc[k], ap.pan = pan, ap.npan = npan, ap.quad = &quad;
+            evolutes += pc[k].oc.evolute;
+            for (int i = 0; i < 400; i++) {
+                double u[2];
+                for (int e = 0; e < 2; e++) { /* uniform in [0, 1), 53 bits */
+                    rng = rng * 6364136223846793005u + 1442695040888963407u;
+                    u[e] = (double)(rng >> 11) * 0x1p-53;
+                }
+                double w = pow(10.0, -6.0 * u[1]);
+                double ta = pc[k].ot0 + (pc[k].ot1 - pc[k].ot0) * u[0] * (1.0 - w);
+                double tb = ta + (pc[k].ot1 - pc[k].ot0) * w;
+                for (size_t j = 0; j < npan; j++) /* a part inside one panel: its rule */
+                    if (pan[j].a <= ta && tb <= pan[j].b)
+                        rules[area_offset_rule(&pan[j], ta, tb)]++;
+                double v[3];
+                for (int f = 0; f < 3; f++) {
+                    quad.avx = f == 0 ? has : f == 1 ? (has > 0) : 0;
+                    v[f] = area_offset_segment(&ap, ta, tb);
+                }
+                quad.avx = has;
+                if (memcmp(&v[0], &v[1], sizeof v[0]) || memcmp(&v[0], &v[2], sizeof v[0]))
+                    fail_msg("piece %zu [%.17g, %.17g]: %.17g eight at a time, %.17g four, "
+                             "%.17g two",
+                             k, ta, tb, v[0], v[1], v[2]);
+                assert_true(isfinite(v[0]));
+                parts++;
+            }
+            free(pan);
+        }
+        aa_scene_free(placed);
+        aa_scene_free(s);
+    }
+    print_message("%d parts (%d evolute pieces) the same three ways; inside a panel %d, %d, %d, "
+                  "%d took 4, 8, 12, 16 points\n",
+                  parts, evolutes, rules[0], rules[1], rules[2], rules[3]);
+    assert_true(parts > 0 && evolutes > 0);
+    for (int r = 0; r < AR_QUAD_RULES; r++)
+        assert_true(rules[r] > 0);
 }
 
 int main(void)
@@ -2684,6 +2764,7 @@ int main(void)
                                        cmocka_unit_test(test_crowd_next_order),
                                        cmocka_unit_test(test_offset_polish),
                                        cmocka_unit_test(test_end_dd),
-                                       cmocka_unit_test(test_end_top)};
+                                       cmocka_unit_test(test_end_top),
+                                       cmocka_unit_test(test_nodes_512)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
