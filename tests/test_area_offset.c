@@ -2660,6 +2660,8 @@ static void test_end_top(void **state)
     aa_image_free(&ref);
     aa_image_free(&bound);
     aa_scene_free(s);
+}
+
 /* The quadrature's eight-lane form (AVX-512F, area_offset.c nodes_512: 8,
  * 12 and 16 points a pass of eight lanes and their halves summed in the
  * four-lane order) against the four-lane form (AVX) and the two-at-a-time
