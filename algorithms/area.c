@@ -1273,10 +1273,55 @@ static inline void emit(ar_worker *wk, const ar_seg *s, double k, double ta, dou
     }
 }
 
+/* walk on an offset piece: its sides after the first start from
+ * side_guess through the side before (or the part's start) and the two
+ * ends of what is left, the first from the chord (offset_tau_u's start).
+ * The chord alone left the first double step beyond DD_D_STEP (offset.c),
+ * and the root to root_d_more, on 71% of those later sides on
+ * tests/bench_bezstroke.c's scene at 1024 px, the quadratic on 31%
+ * (algorithms/README.md).  Apart from walk's loop: the point before kept
+ * there cost the other pieces' walks more than it saved. */
+static void walk_offset(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1,
+                        double u2, const double *dc, int nch, int W)
+{
+    int right = u2 >= u1;
+    double k = right ? floor(u1) : ceil(u1) - 1.0;
+    double kend = right ? ceil(u2) - 1.0 : floor(u2);
+    if (right ? kend < k : kend > k)
+        kend = k;
+    if (k == kend) { /* one cell (most parts) */
+        emit(wk, s, k, t1, t2, u1, u2, dc, nch, W);
+        return;
+    }
+    double ta = t1, ua = u1, tp = NAN, up = NAN; /* (tp, up): the point before ta */
+    for (;;) {
+        double tb = t2, ub = u2;
+        if (k != kend) {
+            ub = right ? k + 1.0 : k;
+            tb = offset_tau_at(s, ta, t2, ua - ub, (double)s->c0 + ub,
+                               side_guess(tp, up, ta, ua, t2, u2, ub));
+            if (!(tb >= ta))
+                tb = ta;
+            if (tb > t2)
+                tb = t2;
+        }
+        emit(wk, s, k, ta, tb, ua, ub, dc, nch, W);
+        if (k == kend)
+            break;
+        tp = ta, up = ua;
+        ta = tb, ua = ub;
+        k += right ? 1.0 : -1.0;
+    }
+}
+
 /* An x-monotone part from (t1, u1) to (t2, u2): walk its cells. */
 static void walk(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1, double u2,
                  const double *dc, int nch, int W)
 {
+    if (s->p->offset) {
+        walk_offset(wk, s, t1, t2, u1, u2, dc, nch, W);
+        return;
+    }
     int right = u2 >= u1;
     double k = right ? floor(u1) : ceil(u1) - 1.0;
     double kend = right ? ceil(u2) - 1.0 : floor(u2);
@@ -1287,8 +1332,7 @@ static void walk(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1
         double tb = t2, ub = u2;
         if (k != kend) {
             ub = right ? k + 1.0 : k;
-            tb = s->p->cubic || s->p->offset
-                     ? tau_of_u_in(s, ub, right ? 1.0 : -1.0, ta, t2, ua, u2)
+            tb = s->p->cubic ? tau_of_u_in(s, ub, right ? 1.0 : -1.0, ta, t2, ua, u2)
                              : tau_of_u(s, ub, right ? 1.0 : -1.0);
             if (!(tb >= ta))
                 tb = ta;

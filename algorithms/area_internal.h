@@ -647,23 +647,51 @@ static inline double offset_tau(const ar_seg *s, int coord, double a, double b, 
                                      target, g, NULL);
 }
 
-/* offset_tau where x is target (a cell's side), keeping v there as the
- * root gives it (offset_keep).  ua and ub are u at a and b (the part is
- * x-monotone between them): the solver starts where their chord meets
- * the side, b's sign taken from ub and b not evaluated (without the
+/* offset_tau where x is target (a cell's side), from guess g (strictly
+ * inside [a, b], else the solver's own start), keeping v there as the
+ * root gives it (offset_keep). */
+static inline double offset_tau_at(const ar_seg *s, double a, double b, double fa, double target,
+                                   double g)
+{
+    double sg = s->p->sg;
+    long double y;
+    double t = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 0, sg * a, sg * b, fa,
+                                         target, sg * g, &y);
+    offset_keep(s, t, (double)(y + s->V));
+    return t;
+}
+
+/* offset_tau_at from the chord's guess.  ua and ub are u at a and b (the
+ * part is x-monotone between them): the solver starts where their chord
+ * meets the side, b's sign taken from ub and b not evaluated (without the
  * guess it evaluated b for the quadratic through a, b and b's slope, a
  * start about as near the root: on tests/bench_bezstroke.c's scene 2.6
  * double evaluations a side became 2.0). */
 static inline double offset_tau_u(const ar_seg *s, double a, double b, double fa, double target,
                                   double ua, double ub)
 {
-    double sg = s->p->sg, k = target - s->c0;
+    double k = target - s->c0;
     double g = ub != ua ? a + (b - a) * ((k - ua) / (ub - ua)) : NAN;
-    long double y;
-    double t = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 0, sg * a, sg * b, fa,
-                                         target, sg * g, &y);
-    offset_keep(s, t, (double)(y + s->V));
-    return t;
+    return offset_tau_at(s, a, b, fa, target, g);
+}
+
+/* A start for an offset piece's root where u = k (u1 < k < u2 or u1 > k >
+ * u2) on an x-monotone part from (t1, u1) to (t2, u2), given the point
+ * (t0, u0) before t1 on it (t0 NAN: none): the quadratic in u through the
+ * three (Newton's divided differences), if strictly between t1 and t2;
+ * else the chord's from t1 to t2, offset_tau_u's (area.c, walk_offset: a
+ * cell's sides after the first, t0 the side before or the part's start;
+ * tests/test_area_offset.c, test_side_guess). */
+static inline double side_guess(double t0, double u0, double t1, double u1, double t2, double u2,
+                                double k)
+{
+    if (t0 == t0) {
+        double d12 = (t2 - t1) / (u2 - u1), d01 = (t1 - t0) / (u1 - u0);
+        double g = t1 + (k - u1) * (d12 + (k - u2) * ((d12 - d01) / (u2 - u0)));
+        if (t1 < t2 ? (g > t1 && g < t2) : (g < t1 && g > t2))
+            return g;
+    }
+    return t1 + (t2 - t1) * ((k - u1) / (u2 - u1));
 }
 
 /* tau where v(tau) = v: the root on the rising branch (y' >= 0 on a piece),

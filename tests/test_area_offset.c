@@ -77,6 +77,9 @@
  *    nearest it, the same bit for bit by fma and by Dekker's products;
  *  - the batched roots (aa__offset_roots: four at a time in AVX2's lanes,
  *    test_roots_batch) the same bits as the roots asked one by one;
+ *  - the start of a root at a cell's side after a part's first (side_guess,
+ *    test_side_guess): nearer the root than the chord's, and within the
+ *    solver's first double step far more often, on the benchmark's scene;
  *  - the quadrature's panels (test_panels): they tile each offset piece,
  *    each one's disc meets the tolerance by Trefethen's bound computed
  *    here, and its M bounds the integrand evaluated here in complex long
@@ -2740,6 +2743,96 @@ static void test_nodes_512(void **state)
         assert_true(rules[r] > 0);
 }
 
+/* side_guess (area_internal.h), the start area's walk (area.c) takes for
+ * an offset piece's root at a cell's side after the first on an
+ * x-monotone part: on the offset pieces of tests/bench_bezstroke.c's
+ * scene at 1024 px (double-double form), every part between two band
+ * lines (or a line and the piece's end) on which x has no turn
+ * (aa__offset_turns), its ends' x from q_offset (__float128), each side x
+ * = i it crosses solved as walk solves it (aa__offset_root_fixd over what
+ * is left of the part, from the side before, the chord's start: test_dd
+ * holds the solver's roots to the double nearest the root whatever the
+ * start); from the second side on, side_guess's start through the side
+ * before the last (or the part's start), the last and the part's end,
+ * against the chord's from the last to the end: nearer the root on most
+ * sides, and within the solver's first double step (DD_D_STEP, 1e-4 of
+ * the parameter: a start beyond it costs more double steps, offset.c's
+ * root_d_more) on many more of them. */
+static void test_side_guess(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    const int n = 1024;
+    st.width = 2.5 / n;
+    aa_scene *s = bench_rows_stroke(NULL, 20, &st);
+    aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
+    assert_non_null(placed);
+    size_t np;
+    const aa_piece *pc = aa_scene_pieces(placed, &np);
+    int sides = 0, nearer = 0, near_q = 0, near_c = 0;
+    double sum_q = 0.0, sum_c = 0.0;
+    for (size_t k = 0; k < np; k++) {
+        if (pc[k].kind != AA_PIECE_OFFSET)
+            continue;
+        const aa_offset_curve *oc = &pc[k].oc;
+        aa__offset_fix fx;
+        aa__offset_fix_dd(oc, &fx, 1);
+        if (!fx.dd)
+            continue;
+        double t0 = pc[k].ot0, t1 = pc[k].ot1;
+        q128 P0[2], P1[2], dP[2];
+        q_offset(oc, t0, P0, dP);
+        q_offset(oc, t1, P1, dP);
+        double y0 = (double)P0[1], y1 = (double)P1[1], ta = t0;
+        int up = y1 > y0;
+        /* the parts [ta, tb] between the band lines y = j on the piece */
+        for (double j = up ? floor(y0) + 1.0 : ceil(y0) - 1.0;; j += up ? 1.0 : -1.0) {
+            int last = up ? !(j < y1) : !(j > y1);
+            double tb = last ? t1 : aa__offset_root_fixd(oc, &fx, 1, t0, t1, y0 - j, j, NAN, NULL);
+            double tt[2];
+            if (aa__offset_turns(oc, 0, fmin(ta, tb), fmax(ta, tb), tt) == 0) {
+                q128 Pa[2], Pb[2];
+                q_offset(oc, ta, Pa, dP);
+                q_offset(oc, tb, Pb, dP);
+                double xa = (double)Pa[0], xb = (double)Pb[0];
+                int right = xb > xa;
+                double i0 = right ? floor(xa) + 1.0 : ceil(xa) - 1.0;
+                /* the side before the last (tp, xp), the last (tl, xl) */
+                double tp = NAN, xp = NAN, tl = ta, xl = xa;
+                for (double i = i0; right ? i < xb : i > xb; i += right ? 1.0 : -1.0) {
+                    double gc = tl + (tb - tl) * ((i - xl) / (xb - xl));
+                    double gq = side_guess(tp, xp, tl, xl, tb, xb, i);
+                    double t = aa__offset_root_fixd(oc, &fx, 0, tl, tb, xl - i, i, gc, NULL);
+                    if (tp == tp) {
+                        double eq = fabs(gq - t), ec = fabs(gc - t);
+                        double step = 1e-4 * fmax(fabs(t), 1.0);
+                        sides++;
+                        nearer += eq <= ec;
+                        near_q += eq <= step, near_c += ec <= step;
+                        sum_q += eq, sum_c += ec;
+                    }
+                    tp = tl, xp = xl, tl = t, xl = i;
+                }
+            }
+            if (last)
+                break;
+            ta = tb;
+        }
+    }
+    aa_scene_free(placed);
+    aa_scene_free(s);
+    print_message("%d sides after a part's first: side_guess's start nearer the root than the "
+                  "chord's on %d; within 1e-4 of it on %d against %d; the errors' sums %.3g "
+                  "against %.3g\n",
+                  sides, nearer, near_q, near_c, sum_q, sum_c);
+    assert_true(sides > 3000);
+    assert_true(nearer >= 0.9 * sides);
+    assert_true(near_q >= 0.6 * sides && near_c <= 0.4 * sides);
+    assert_true(sum_q <= 0.5 * sum_c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -2767,6 +2860,7 @@ int main(void)
                                        cmocka_unit_test(test_offset_polish),
                                        cmocka_unit_test(test_end_dd),
                                        cmocka_unit_test(test_end_top),
-                                       cmocka_unit_test(test_nodes_512)};
+                                       cmocka_unit_test(test_nodes_512),
+                                       cmocka_unit_test(test_side_guess)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
