@@ -1273,6 +1273,17 @@ static inline void emit(ar_worker *wk, const ar_seg *s, double k, double ta, dou
     }
 }
 
+/* The cells an x-monotone part from u1 to u2 passes, in its direction
+ * (right: u2 >= u1): the first k and the last kend, kend = k where the
+ * part's rounding would put it before k. */
+static inline void walk_cells(double u1, double u2, int right, double *k, double *kend)
+{
+    *k = right ? floor(u1) : ceil(u1) - 1.0;
+    *kend = right ? ceil(u2) - 1.0 : floor(u2);
+    if (right ? *kend < *k : *kend > *k)
+        *kend = *k;
+}
+
 /* walk on an offset piece: its sides after the first start from
  * side_guess through the side before (or the part's start) and the two
  * ends of what is left, the first from the chord (offset_tau_u's start).
@@ -1285,10 +1296,8 @@ static void walk_offset(ar_worker *wk, const ar_seg *s, double t1, double t2, do
                         double u2, const double *dc, int nch, int W)
 {
     int right = u2 >= u1;
-    double k = right ? floor(u1) : ceil(u1) - 1.0;
-    double kend = right ? ceil(u2) - 1.0 : floor(u2);
-    if (right ? kend < k : kend > k)
-        kend = k;
+    double k, kend;
+    walk_cells(u1, u2, right, &k, &kend);
     if (k == kend) { /* one cell (most parts) */
         emit(wk, s, k, t1, t2, u1, u2, dc, nch, W);
         return;
@@ -1323,10 +1332,8 @@ static void walk(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1
         return;
     }
     int right = u2 >= u1;
-    double k = right ? floor(u1) : ceil(u1) - 1.0;
-    double kend = right ? ceil(u2) - 1.0 : floor(u2);
-    if (right ? kend < k : kend > k)
-        kend = k;
+    double k, kend;
+    walk_cells(u1, u2, right, &k, &kend);
     double ta = t1, ua = u1;
     for (;;) {
         double tb = t2, ub = u2;
