@@ -120,8 +120,9 @@ int area_quad_init(ar_quad *q)
             q->x[at + i] = q->x[at + n - 1], q->w[at + i] = 0.0;
         at += (n + 3) & ~3;
     }
+    /* 2, 1 or 0 (__builtin_cpu_supports returns the feature's bit, not 1) */
     __builtin_cpu_init();
-    q->avx = __builtin_cpu_supports("avx512f") ? 2 : __builtin_cpu_supports("avx");
+    q->avx = __builtin_cpu_supports("avx512f") ? 2 : __builtin_cpu_supports("avx") ? 1 : 0;
     return AA_OK;
 }
 
@@ -632,8 +633,9 @@ nodes_avx_k(const double *qx, const double *qw, int n, double sm, double h,
 
 /* w f at the eight nodes qx[0..7] (weights qw; the lanes outside `mask`
  * load x = w = 0, their w f not used) in AVX-512F's eight lanes: each
- * lane the operations of nodes_avx_k's in their order (nothing fused),
- * so each w f the same double */
+ * lane the operations of nodes_avx_k's in their order (nothing fused:
+ * target avx512f includes FMA, but the file is built without contraction,
+ * -std=c11), so each w f the same double */
 __attribute__((target("avx512f"), always_inline)) static inline __m512d
 wf_512(const double *qx, const double *qw, __mmask8 mask, double sm, double h,
        const double *bx, const double *by, const double *d, double ax, double ay,
@@ -699,10 +701,11 @@ nodes_512_k(const double *qx, const double *qw, int n, double sm, double h,
     __m512d a = wf_512(qx, qw, 0xff, sm, h, bx, by, d, ax, ay, evolute);
     __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_setzero_pd(), _mm512_castpd512_pd256(a)),
                                 _mm512_extractf64x4_pd(a, 1));
-    for (int i = 8; i < n; i += 8) {
-        a = wf_512(qx + i, qw + i, n - i < 8 ? 0x0f : 0xff, sm, h, bx, by, d, ax, ay, evolute);
+    const int n4 = (n + 3) & ~3; /* the table's padded count */
+    for (int i = 8; i < n4; i += 8) {
+        a = wf_512(qx + i, qw + i, n4 - i < 8 ? 0x0f : 0xff, sm, h, bx, by, d, ax, ay, evolute);
         sum = _mm256_add_pd(sum, _mm512_castpd512_pd256(a));
-        if (n - i >= 8)
+        if (n4 - i >= 8)
             sum = _mm256_add_pd(sum, _mm512_extractf64x4_pd(a, 1));
     }
     __m128d s2 = _mm_add_pd(_mm256_castpd256_pd128(sum), _mm256_extractf128_pd(sum, 1));
@@ -778,7 +781,8 @@ int area_offset_rule(const ar_panel *p, double al, double be)
 /* 1/2 the integral of (P - P(al)) x P' over [al, be] inside panel p, in
  * the curve's own units, by the fewest points whose bound holds; `avx` (a
  * constant where it is inlined, area_offset_segment's choice): a cubic's
- * nodes four at a time (nodes_avx, then inline), else two. */
+ * nodes eight a pass (nodes_512) where it is 2, four at a time (nodes_avx,
+ * then inline) where 1, else two. */
 static __attribute__((always_inline)) inline double share_by(const ar_piece *pc,
                                                              const ar_panel *p, double al,
                                                              double be, const int r,
@@ -962,8 +966,9 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
 /* segment compiled for AVX, flattened (its shares, start points and nodes
  * inline: no call of 13 arguments a share; its scalar arithmetic the same
  * operations, VEX-encoded: the same numbers) and without, chosen once a
- * part by the processor (ar_quad's avx); segment_sse out of line (inlined
- * into area_offset_segment, its register saves came before the choice) */
+ * part by the processor (ar_quad's avx: 1; 2 takes segment_512, its
+ * AVX-512F form, below); segment_sse out of line (inlined into
+ * area_offset_segment, its register saves came before the choice) */
 __attribute__((target("avx"), flatten)) static double segment_avx(const ar_piece *pc,
                                                                  double ta, double tb)
 {
