@@ -689,7 +689,7 @@ wf_512(const double *qx, const double *qw, __mmask8 mask, double sm, double h,
  * of the four, (((0 + wf_j) + wf_j+4) + wf_j+8) + wf_j+12, as the low and
  * high halves of the passes added in turn, then (0 + 2) + (1 + 3): the
  * same operations on the same numbers as nodes_avx_k's, so the same sum
- * bit for bit (test_area_offset's test_nodes_512); 4 points as before
+ * bit for bit (test_area_offset's test_nodes); 4 points as before
  * (a pass of eight runs as two halves on some processors) */
 __attribute__((target("avx512f"), always_inline)) static inline double
 nodes_512_k(const double *qx, const double *qw, int n, double sm, double h,

@@ -61,15 +61,11 @@
  *    left of the window end at one vertex stored at heights an ulp apart,
  *    against their area derived here exactly from the lines entering them
  *    (test_ulp_vertex): the reference (both paths) and `area`;
- *  - the quadrature's form of a cubic's nodes the processor takes (eight a
- *    pass with AVX-512F, four at a time with AVX) and two at a time (SSE2)
- *    give the same segment bit for bit, on every offset piece and evolute
- *    of two strokes and 300 parts of each (test_nodes: the tests above take
- *    the first, so this keeps the second, the form without AVX, held to it);
- *  - the third form, eight nodes a pass (AVX-512F, which the tests above
- *    take where the processor has it), the same segment bit for bit as
- *    the four-lane and the two-lane forms on 12,000 parts of the offset
- *    pieces of three strokes, every rule taken (test_nodes_512);
+ *  - the quadrature's three forms of a cubic's nodes, eight a pass
+ *    (AVX-512F), four at a time (AVX) and two at a time (SSE2), give the
+ *    same segment bit for bit on 12,000 parts of the offset pieces and
+ *    evolutes of three strokes, every rule taken (test_nodes: the tests
+ *    above take the processor's form, so this holds the others to it);
  *  - the double-double form of area's roots and points (test_dd):
  *    every band line and cell side on the pieces of the benchmark's
  *    scene and a wide stroke, the point at the root within 2e-16 px of
@@ -1391,67 +1387,6 @@ static void test_roots_batch(void **state)
         aa_scene_free(keep[i]);
 }
 
-static void test_nodes(void **state)
-{
-    (void)state;
-    aa_stroke_style st;
-    aa_stroke_style_default(&st);
-    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
-    ar_quad quad;
-    must(area_quad_init(&quad));
-    const int has = quad.avx;
-    if (!has)
-        print_message("no AVX here: the two-at-a-time form only\n");
-    uint64_t rng = 12345;
-    int parts = 0, evolutes = 0;
-    for (int c = 0; c < 2; c++) {
-        st.width = c ? 0.3 : 0.08; /* the tight arc's offset folds: evolutes */
-        aa_scene *s = stroke_scene(c ? tight : three, c ? 1 : 3, &st, NULL);
-        aa_scene *placed = aa_scene_place(s, 64, 64, 0, 0, 0);
-        assert_non_null(placed);
-        size_t np;
-        const aa_piece *pc = aa_scene_pieces(placed, &np);
-        for (size_t k = 0; k < np; k++) {
-            if (pc[k].kind != AA_PIECE_OFFSET || pc[k].oc.base == AA_OFFSET_ELLIPSE)
-                continue;
-            ar_panel *pan;
-            size_t npan;
-            must(area_offset_panels(&pc[k].oc, pc[k].ot0, pc[k].ot1, &pan, &npan));
-            ar_piece ap;
-            memset(&ap, 0, sizeof ap);
-            ap.src = &pc[k], ap.pan = pan, ap.npan = npan, ap.quad = &quad;
-            evolutes += pc[k].oc.evolute;
-            for (int i = 0; i < 300; i++) {
-                double u[2];
-                for (int e = 0; e < 2; e++) { /* uniform in [0, 1), 53 bits */
-                    rng = rng * 6364136223846793005u + 1442695040888963407u;
-                    u[e] = (double)(rng >> 11) * 0x1p-53;
-                }
-                /* parts of every width down to 1e-6 of the piece */
-                double w = pow(10.0, -6.0 * u[1]);
-                double ta = pc[k].ot0 + (pc[k].ot1 - pc[k].ot0) * u[0] * (1.0 - w);
-                double tb = ta + (pc[k].ot1 - pc[k].ot0) * w;
-                double v[2];
-                for (int f = 0; f < 2; f++) {
-                    quad.avx = f ? 0 : has;
-                    v[f] = area_offset_segment(&ap, ta, tb);
-                }
-                quad.avx = has;
-                if (memcmp(&v[0], &v[1], sizeof v[0]))
-                    fail_msg("piece %zu [%.17g, %.17g]: %.17g the processor's form, %.17g two",
-                             k, ta, tb, v[0], v[1]);
-                assert_true(isfinite(v[0]));
-                parts++;
-            }
-            free(pan);
-        }
-        aa_scene_free(placed);
-        aa_scene_free(s);
-    }
-    print_message("%d parts of offset pieces (%d evolutes) the same both ways\n", parts, evolutes);
-    assert_true(parts > 0 && evolutes > 0);
-}
-
 /* The stroke of cs (stroke_scene) placed on a size x size view. */
 static aa_scene *placed_stroke(const double *cs, int nc, const aa_stroke_style *st, int size)
 {
@@ -2665,14 +2600,15 @@ static void test_end_top(void **state)
     aa_scene_free(s);
 }
 
-/* The quadrature's eight-lane form (AVX-512F, area_offset.c nodes_512: 8,
- * 12 and 16 points a pass of eight lanes and their halves summed in the
- * four-lane order) against the four-lane form (AVX) and the two-at-a-time
- * form (SSE2), bit for bit, on parts of the offset pieces of three
- * strokes (the tight arc's folds: evolutes), of every width down to 1e-6
- * of the piece, so that every rule is taken; on a processor without
- * AVX-512F the two others alone. */
-static void test_nodes_512(void **state)
+/* The quadrature's three forms of a cubic's nodes, bit for bit: eight a
+ * pass (AVX-512F, area_offset.c nodes_512: 8, 12 and 16 points a pass of
+ * eight lanes and their halves summed in the four-lane order), four at a
+ * time (AVX) and two at a time (SSE2), on parts of the offset pieces of
+ * three strokes (the tight arc's folds: evolutes), of every width down to
+ * 1e-6 of the piece, so that every rule is taken; on a processor without
+ * AVX-512F (or AVX) the forms it has.  The tests above take the
+ * processor's form, so this holds the others to it. */
+static void test_nodes(void **state)
 {
     (void)state;
     aa_stroke_style st;
@@ -2743,8 +2679,8 @@ static void test_nodes_512(void **state)
     }
     print_message("%d parts (%d evolute pieces) the same %s ways; inside a panel %d, %d, %d, "
                   "%d took 4, 8, 12, 16 points\n",
-                  parts, evolutes, has == 2 ? "three" : "two", rules[0], rules[1], rules[2],
-                  rules[3]);
+                  parts, evolutes, has == 2 ? "three" : has ? "two" : "one (no AVX)", rules[0],
+                  rules[1], rules[2], rules[3]);
     assert_true(parts > 0 && evolutes > 0);
     for (int r = 0; r < AR_QUAD_RULES; r++)
         assert_true(rules[r] > 0);
@@ -2867,7 +2803,6 @@ int main(void)
                                        cmocka_unit_test(test_offset_polish),
                                        cmocka_unit_test(test_end_dd),
                                        cmocka_unit_test(test_end_top),
-                                       cmocka_unit_test(test_nodes_512),
                                        cmocka_unit_test(test_side_guess)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
