@@ -1284,6 +1284,14 @@ static inline void walk_cells(double u1, double u2, int right, double *k, double
         *kend = *k;
 }
 
+/* A side's root tb kept inside the part's rest [ta, t2] (ta where it is
+ * below or NaN). */
+static inline double in_part(double tb, double ta, double t2)
+{
+    tb = tb >= ta ? tb : ta;
+    return tb > t2 ? t2 : tb;
+}
+
 /* walk on an offset piece: its sides after the first start from
  * side_guess through the side before (or the part's start) and the two
  * ends of what is left, the first from the chord (offset_tau_u's start).
@@ -1309,10 +1317,7 @@ static void walk_offset(ar_worker *wk, const ar_seg *s, double t1, double t2, do
             ub = right ? k + 1.0 : k;
             tb = offset_tau_at(s, ta, t2, ua - ub, (double)s->c0 + ub,
                                side_guess(tp, up, ta, ua, t2, u2, ub));
-            if (!(tb >= ta))
-                tb = ta;
-            if (tb > t2)
-                tb = t2;
+            tb = in_part(tb, ta, t2);
         }
         emit(wk, s, k, ta, tb, ua, ub, dc, nch, W);
         if (k == kend)
@@ -1341,10 +1346,7 @@ static void walk(ar_worker *wk, const ar_seg *s, double t1, double t2, double u1
             ub = right ? k + 1.0 : k;
             tb = s->p->cubic ? tau_of_u_in(s, ub, right ? 1.0 : -1.0, ta, t2, ua, u2)
                              : tau_of_u(s, ub, right ? 1.0 : -1.0);
-            if (!(tb >= ta))
-                tb = ta;
-            if (tb > t2)
-                tb = t2;
+            tb = in_part(tb, ta, t2);
         }
         emit(wk, s, k, ta, tb, ua, ub, dc, nch, W);
         if (k == kend)
