@@ -63,11 +63,6 @@ static void against_reference(const char *what, const aa_scene *s, int w, int h)
  * another filter on the same scene takes the same paths with other numbers
  * (tests/README.md, "Tiers", says how that was checked); the plain build
  * runs every case. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 
 static void test_crow(void **state)
 {
@@ -200,7 +195,7 @@ static void test_arcs(void **state)
 
 int main(void)
 {
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_crow),        cmocka_unit_test(test_cubics_and_polygon),
         cmocka_unit_test(test_two_layers),  cmocka_unit_test(test_svg),

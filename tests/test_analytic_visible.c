@@ -24,6 +24,7 @@
  */
 #include "bench.h"
 #include "support.h"
+#include "tier.h"
 #include "visible.h"
 
 #include <math.h>
@@ -43,11 +44,6 @@
  * taken, and another filter on the same scene takes the same paths with
  * other numbers (tests/README.md, "Tiers", says how that was checked); the
  * plain build runs every case. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 
 /* analytic against the reference under each filter of `filters` (NULL
  * ended), at w x h, threads 1 and 2 (the image does not depend on them);
@@ -163,7 +159,7 @@ static void test_many_colours(void **state)
      * bspline:order=3, 300 under tent:r=1 and tent:r=0.65 (SAN_SUBSET) */
     const char *const half[2][3] = {{"box", "bspline:order=3", NULL},
                                     {"tent:r=1", "tent:r=0.65", NULL}};
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     const int counts[2] = {200, 300};
     for (int q = 0; q < 2; q++) {
         int n = counts[q];

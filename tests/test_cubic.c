@@ -38,6 +38,7 @@
 #include "oracle.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -57,11 +58,6 @@ typedef long double ld;
  * four: the same crowded path of the cone's reference, which took most of
  * this test's time (tests/README.md, "Tiers", says how that was checked);
  * the plain build draws every pixel. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 
 static support_view box_view(int w, int h)
 {
@@ -988,7 +984,7 @@ static void test_cubic_near(void **state)
 
 int main(void)
 {
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_building),
         cmocka_unit_test(test_cube_region),

@@ -44,6 +44,7 @@
 #include "path.h"
 #include "patterns.h"
 #include "support.h"
+#include "tier.h"
 #include "truth.h"
 
 #include <limits.h>
@@ -71,11 +72,6 @@
  * paths with other numbers (tests/README.md, "Tiers", says how that was
  * checked); the sanitizers find memory and undefined-behaviour errors
  * along the paths taken, and the plain build runs every case. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 
 static char dir[4096];
 /* the image's size for the helpers below (pattern units to pixels) */
@@ -778,7 +774,6 @@ static void test_radial_sampled(void **state)
     aa_scene_free(s);
     gw = W, gh = H;
 }
-
 
 /* ---- the SVG reader ---- */
 
@@ -2495,7 +2490,6 @@ static void test_mixed_tangent(void **state)
                px, 3);
 }
 
-
 /* The same linear layer under a radial one with a stop at t = 0.8 (the
  * circle of radius 3.2 about (7.5, 11)) whose encoded channel 0.046 breaks
  * its slope: the threshold's curve crosses that stop circle obliquely near
@@ -2938,7 +2932,7 @@ static void test_mixed_which_step(void **state)
 
 int main(void)
 {
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_linear_pad),     cmocka_unit_test(test_repeat_reflect),
         cmocka_unit_test(test_against_2d),     cmocka_unit_test(test_methods),

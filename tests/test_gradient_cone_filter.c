@@ -62,6 +62,7 @@
 #include "core.h"
 #include "gradient_oracle.h"
 #include "support.h"
+#include "tier.h"
 #include "truth.h"
 
 #include <math.h>
@@ -92,11 +93,6 @@
  * (tests/README.md, "Tiers", says how that was checked); the sanitizers
  * find memory and undefined-behaviour errors along the paths taken, and
  * the plain build runs every case. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 #define MARGIN 2 /* the rectangle's distance from the canvas's sides */
 
 static int setup(void **state)
@@ -1121,7 +1117,7 @@ static void test_2d_radial(void **state)
 
 int main(void)
 {
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_area),
         cmocka_unit_test(test_inside),

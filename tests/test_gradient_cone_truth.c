@@ -39,6 +39,7 @@
 #include "core.h"
 #include "gradient_oracle.h"
 #include "support.h"
+#include "tier.h"
 #include "truth.h"
 
 #include <math.h>
@@ -1015,11 +1016,6 @@ static aa_scene *fold_scene(const double p[6], int cones)
  * both tangents and pixels wholly inside and outside the wedge, the same
  * paths of the fold as on the whole view with other numbers (tests/README.md,
  * "Tiers", says how that was checked); the plain build draws every pixel. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 
 static void test_fold(void **state)
 {
@@ -1066,7 +1062,7 @@ static void test_fold(void **state)
 
 int main(void)
 {
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_area),
         cmocka_unit_test(test_2d),

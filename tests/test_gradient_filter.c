@@ -42,6 +42,7 @@
 #include "core.h"
 #include "gradient_oracle.h"
 #include "support.h"
+#include "tier.h"
 #include "truth.h"
 
 #include <math.h>
@@ -90,11 +91,6 @@ typedef struct filt {
  * taken, and another filter on the same scene takes the same paths with
  * other numbers (tests/README.md, "Tiers", says how that was checked); the
  * plain build runs every case. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 
 /* Whether the ramp along x and the constant radial gradient leave filter
  * n out (the subset above). */
@@ -593,6 +589,6 @@ int main(void)
         cmocka_unit_test(test_along_x),   cmocka_unit_test(test_constant),
         cmocka_unit_test(test_linear_2d), cmocka_unit_test(test_radial_2d),
     };
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -34,6 +34,7 @@
 #include "core.h"
 #include "patterns.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -67,11 +68,9 @@ static int setup(void **state)
  * fewer pixels (tests/README.md, "Tiers", says how that was checked); *ref is
  * the middle part, from column X0.  The plain build draws the whole view and
  * compares it with the renderers. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
+#if SAN_SUBSET
 #define X0 28
 #else
-#define SAN_SUBSET 0
 #define X0 0
 #endif
 
@@ -331,7 +330,7 @@ static void test_resvg(void **state)
 /* the cases this build runs (SAN_SUBSET, above), said first */
 static int start(void **state)
 {
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     return setup(state);
 }
 

@@ -41,6 +41,7 @@
 #include "core.h"
 #include "gradient_oracle.h"
 #include "support.h"
+#include "tier.h"
 #include "truth.h"
 
 #include <float.h>
@@ -126,11 +127,6 @@ static filt filt_of(int n)
  * undefined-behaviour errors along the paths taken, and another filter on
  * the same scene takes the same paths with other numbers (tests/README.md,
  * "Tiers", says how that was checked); the plain build runs every case. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 
 /* Whether case c leaves filter n out (the subset above). */
 static int san_skips(int c, int n)
@@ -774,7 +770,7 @@ static void test_mixed_edge(void **state)
 
 int main(void)
 {
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_along_x),
         cmocka_unit_test(test_constant),

@@ -55,6 +55,7 @@
 #include "patterns.h"
 #include "peer.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -72,11 +73,6 @@
 #define W (CELL * COLS)
 #define H (CELL * ROWS)
 
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 /* the rows of the document of many gradients the subset draws */
 #define MANY_Y0 16
 #define MANY_ROWS 12
@@ -926,7 +922,7 @@ static void test_resvg(void **state)
 
 int main(void)
 {
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_points), cmocka_unit_test(test_peers),
         cmocka_unit_test(test_peer_span), cmocka_unit_test(test_chromium),

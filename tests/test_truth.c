@@ -26,6 +26,7 @@
 #include "truth_internal.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <float.h>
 #include <math.h>
@@ -143,11 +144,6 @@ static void test_crow_tent(void **state)
  * find memory and undefined-behaviour errors along the paths taken
  * (tests/README.md, "Tiers", says how that was checked); the plain build
  * runs every case. */
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
 
 static void test_crow_gauss(void **state)
 {
@@ -754,7 +750,7 @@ static void test_crowd_many_layers(void **state)
 static int say_cases(void **state)
 {
     (void)state;
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     return 0;
 }
 

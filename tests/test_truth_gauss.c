@@ -27,6 +27,7 @@
 #include "truth_internal.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -37,13 +38,6 @@
 #include <string.h>
 
 #include <cmocka.h>
-
-#ifdef AA_SANITIZED
-#define SAN_SUBSET 1
-#else
-#define SAN_SUBSET 0
-#endif
-
 
 /* A half-plane of colour fg on bg, its edge through (px, py) at angle theta
  * (degrees) from the vertical, in pixel units: a quadrilateral whose other
@@ -288,7 +282,7 @@ static void test_gauss_crow_against_qagp(void **state)
 
 int main(void)
 {
-    print_message("cases: %s\n", SAN_SUBSET ? "the sanitizer build's subset" : "all");
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_gauss_half_plane),
                                        cmocka_unit_test(test_gauss_fallback),
                                        cmocka_unit_test(test_gauss_crow_against_qagp)};
