@@ -2905,6 +2905,81 @@ static void test_root_starts(void **state)
     assert_true(roots[0] > 10000 && roots[1] > 10000);
 }
 
+/* area's starts of roots of y = yl on an interval of an offset piece's
+ * table whose t(y) Hermite form is not within the table's tolerance
+ * (area_internal.h: ytab_guess, yt_turn; y turning at the piece's end,
+ * where dt/dy is infinite and load_ytab marks the intervals there): the
+ * root of y(t)'s Hermite form through the nodes' heights and slopes, by
+ * Newton's steps from the chord.  On the offset of x = t, y = t^2
+ * (d = 0.1, so y' = 2t (1 - d k) >= 1.6 t: y turns at t = 0 and rises),
+ * mapped 64 px to a unit, a table at t = k/16 with every interval marked
+ * (so each start is yt_turn's), at 199 heights evenly over it and 40
+ * heights 2^-k of the first interval's above its start: each start
+ * against the root bisected in the test on q_offset's y (__float128),
+ * within 1e-6 of it (the solver's first double step, DD_D_STEP, is
+ * 1e-4), and against the chord between the interval's nodes (ytab_guess's
+ * start where the Hermite form of t(y) falls outside).  It failed with no
+ * Newton step after the quadratic's start (3.6e-6 off) and with the
+ * quadratic taken about the other end (6.5e-6 off). */
+static void test_turn_starts(void **state)
+{
+    (void)state;
+    aa_offset_curve oc;
+    memset(&oc, 0, sizeof oc);
+    const double b[8] = {0, 1, 0, 0, 0, 0, 1, 0}, m[6] = {64, 0, 0, 64, 3, 2};
+    memcpy(oc.b, b, sizeof oc.b);
+    memcpy(oc.m, m, sizeof oc.m);
+    oc.d = 0.1;
+    oc.base = AA_OFFSET_CUBIC;
+    enum { N = 65 };
+    double nd[4 * N];
+    for (int k = 0; k < N; k++) {
+        double e[4];
+        aa__offset_end(&oc, 1, k / 64.0, e);
+        nd[4 * k] = k / 64.0, nd[4 * k + 1] = e[0] + e[1], nd[4 * k + 2] = 1.0 / e[2];
+        nd[4 * k + 3] = 0.0;
+        if (k > 0)
+            assert_true(nd[4 * k + 1] > nd[4 * k - 3]);
+    }
+    assert_true(isinf(nd[2])); /* dt/dy at the turn */
+    ar_piece ap;
+    memset(&ap, 0, sizeof ap);
+    ap.nyt = N;
+    ytab_attach(&ap, nd);
+    double worst = 0.0, worst_c = 0.0;
+    int heights = 0, near_c = 0;
+    for (int i = 1; i < 240; i++) {
+        double yl = i < 200 ? nd[1] + (nd[4 * N - 3] - nd[1]) * i / 200.0
+                            : nd[1] + (nd[5] - nd[1]) * ldexp(1.0, -(i - 199));
+        size_t h = 0;
+        double g = ytab_guess(&ap, yl, &h);
+        const double *na = nd + 4 * h, *nb = na + 4;
+        double c = na[0] + (nb[0] - na[0]) * ((yl - na[1]) / (nb[1] - na[1]));
+        /* the root: y(t) - yl bisected on q_offset's y over the interval */
+        double lo = na[0], hi = nb[0];
+        for (int it = 0; it < 200 && nextafter(lo, hi) < hi; it++) {
+            double mid = 0.5 * (lo + hi);
+            q128 P[2], dP[2];
+            q_offset(&oc, mid, P, dP);
+            if (P[1] < yl)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        double e = fabs(g - lo), ec = fabs(c - lo);
+        if (!(e <= 1e-6))
+            fail_msg("y = %.17g: start %.17g, root %.17g (%.3g off; the chord's %.3g)", yl, g,
+                     lo, e, ec);
+        worst = fmax(worst, e), worst_c = fmax(worst_c, ec);
+        near_c += ec <= 1e-4;
+        heights++;
+    }
+    print_message("%d heights on intervals by a y turn: the starts within %.2g of the roots "
+                  "(the chord's within %.2g, within 1e-4 on %d)\n",
+                  heights, worst, worst_c, near_c);
+    assert_true(heights == 239);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -2933,6 +3008,7 @@ int main(void)
                                        cmocka_unit_test(test_end_dd),
                                        cmocka_unit_test(test_end_top),
                                        cmocka_unit_test(test_side_guess),
-                                       cmocka_unit_test(test_root_starts)};
+                                       cmocka_unit_test(test_root_starts),
+                                       cmocka_unit_test(test_turn_starts)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
