@@ -656,7 +656,9 @@ static void expand_conic(ar_seg *a, const ar_piece *p, int ja)
  * is over YT_TURN times the chord's (y turning at the piece's end, dt/dy
  * infinite there, where no halving brings the form within YT_TOL); an
  * interval left not within it is marked, and its lines start from the
- * ends as before.  The heights inside a band (tau_of_v, key_u) start from
+ * root of y(t)'s Hermite form through its two nodes (area_internal.h,
+ * yt_turn: exact where y is quadratic, as by a turn; from the piece's
+ * ends before).  The heights inside a band (tau_of_v, key_u) start from
  * the table too.  Only the start: the bracket is the same and the root
  * Newton's, so a poor start costs steps, not accuracy.  A node is 4
  * doubles: t, y, dt/dy, and 1 where the interval ending at it is within

@@ -2694,8 +2694,10 @@ static void test_nodes(void **state)
  * (aa__offset_turns), its ends' x from q_offset (__float128), each side x
  * = i it crosses solved as walk solves it (aa__offset_root_fixd over what
  * is left of the part, from the side before, the chord's start: test_dd
- * holds the solver's roots to the double nearest the root whatever the
- * start); from the second side on, side_guess's start through the side
+ * and test_root_starts hold the solver's roots from any start to the
+ * double nearest the root, or within 1e-21 max(|t|, 1) of the root where
+ * that does not decide it: near a middle between two doubles, and near t
+ * = 0); from the second side on, side_guess's start through the side
  * before the last (or the part's start), the last and the part's end,
  * against the chord's from the last to the end: nearer the root on most
  * sides, and within the solver's first double step (DD_D_STEP, 1e-4 of
@@ -2776,6 +2778,208 @@ static void test_side_guess(void **state)
     assert_true(sum_q <= 0.5 * sum_c);
 }
 
+/* The roots' independence of their start (offset.c: root_dd and root_ld,
+ * as aa__offset_root_fixd gives them): on the offset pieces of
+ * tests/bench_bezstroke.c's scene at 256 px (the double-double form's
+ * cubics, and the evolutes and pieces with stops the long double form
+ * solves), at lines y = j + 0.37 k (k = 0..2) across each piece and at
+ * lines 1 to 4 doubles inside its start's height (a band's end within
+ * rounding of the piece's start, as area's sub_key meets them: roots
+ * near t = 0), each from four starts (none: the bracket's ends; 1e-5 off
+ * the root; 0.37 of the bracket; its middle), each root against the
+ * double nearest the root by q_offset (__float128): where it is not that
+ * double, the root lies beyond the middle between the two by (e0 - e1)
+ * / (2 |y'|) in t (e0, e1: the line's distance from the point at the
+ * root and at the nearer neighbour, |y'| the slope: __float128).  The
+ * double-double form stops where its error is judged within DD_EST
+ * max(|t|, 1) = 1e-21 max(|t|, 1) (1e-5 of an ulp of t in [0.5, 1),
+ * but many ulps of t below 1e-5, where ulps are finer): held to 1e-20
+ * max(|t|, 1); the long double form rounds a root found in long double,
+ * whose evaluation rounds (the point to about 2^-64 of its terms' size,
+ * 1.4e-17 px at 256 px), so a root that near a middle rounds to either
+ * double: held to the point at the root at most 4e-17 px farther from
+ * the line than at the nearer neighbour (where |y'| is small, as on the
+ * small evolutes nearly flat in y, that leaves t free over many ulps).
+ * Roots from two starts differ by a double only within those margins:
+ * counted and printed.  It failed with DD_EST 1e-13 (a double-double
+ * root 2.78e-17 beyond the middle at t = 0.49999999139946683) and with
+ * the long double form's root taken from its double phase (2.09e-16 px
+ * farther, 5.55e-17 beyond the middle in t). */
+static void test_root_starts(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    const int n = 256;
+    st.width = 2.5 / n;
+    aa_scene *s = bench_rows_stroke(NULL, 20, &st);
+    aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
+    assert_non_null(placed);
+    size_t np;
+    const aa_piece *pc = aa_scene_pieces(placed, &np);
+    /* [0]: the double-double form, [1]: the long double form */
+    int roots[2] = {0, 0}, off[2] = {0, 0}, differ[2] = {0, 0}, near0 = 0, flat = 0;
+    int differ_flat = 0;
+    double worst[2] = {0.0, 0.0}, worst_px = 0.0;
+    for (size_t k = 0; k < np; k++) {
+        if (pc[k].kind != AA_PIECE_OFFSET)
+            continue;
+        const aa_offset_curve *oc = &pc[k].oc;
+        if (oc->base != AA_OFFSET_CUBIC)
+            continue;
+        aa__offset_fix fx;
+        aa__offset_fix_dd(oc, &fx, 1);
+        int form = fx.dd ? 0 : 1;
+        double a = pc[k].ot0, b = pc[k].ot1;
+        q128 Pa[2], Pb[2], dP[2];
+        q_offset(oc, a, Pa, dP);
+        q_offset(oc, b, Pb, dP);
+        double ca = (double)Pa[1], cb = (double)Pb[1], dir = cb > ca ? 1.0 : -1.0;
+        double lo = fmin(ca, cb), hi = fmax(ca, cb);
+        /* the lines: 1 to 4 doubles inside the start's height, then
+         * j + 0.37 k strictly inside the range */
+        double lines[4 + 3 * 300];
+        int nl = 0;
+        double y = ca;
+        for (int u = 0; u < 4; u++)
+            lines[nl++] = y = nextafter(y, dir * INFINITY);
+        for (double j = floor(lo); j < hi && nl + 3 <= (int)(sizeof lines / sizeof *lines);
+             j++)
+            for (int v = 0; v < 3; v++)
+                if (j + 0.37 * v > lo + 1e-9 && j + 0.37 * v < hi - 1e-9)
+                    lines[nl++] = j + 0.37 * v;
+        for (int l = 0; l < nl; l++) {
+            double yl = lines[l], fa = ca - yl, t[4];
+            long double x;
+            for (int g = 0; g < 4; g++) {
+                double guess = g == 0   ? NAN
+                               : g == 1 ? t[0] + (b > a ? 1e-5 : -1e-5)
+                               : g == 2 ? a + 0.37 * (b - a)
+                                        : 0.5 * (a + b);
+                t[g] = aa__offset_root_fixd(oc, &fx, 1, a, b, fa, yl, guess, &x);
+                q128 P[2], Q[2], dQ[2];
+                q_offset(oc, t[g], P, dP);
+                q128 e0 = P[1] - yl;
+                e0 = e0 < 0 ? -e0 : e0;
+                double slope = fabs((double)dP[1]), beyond = 0.0, px = 0.0;
+                for (int side = 0; side < 2; side++) {
+                    q_offset(oc, nextafter(t[g], side ? INFINITY : -INFINITY), Q, dQ);
+                    q128 e1 = Q[1] - yl;
+                    e1 = e1 < 0 ? -e1 : e1;
+                    if (e1 < e0 && (double)(e0 - e1) > px)
+                        px = (double)(e0 - e1);
+                }
+                if (px > 0) {
+                    beyond = px / (2 * slope);
+                    off[form]++;
+                    near0 += form == 0 && fabs(t[g]) < 1e-5;
+                    flat += form == 1 && slope < 1e-3;
+                }
+                double rel = beyond / fmax(fabs(t[g]), 1.0);
+                if (!form && rel > worst[0])
+                    worst[0] = rel;
+                if (form && px > worst_px)
+                    worst_px = px, worst[1] = beyond;
+                if (form ? !(px <= 4e-17) : !(rel <= 1e-20))
+                    fail_msg("piece %zu (%s form) line y = %.17g from start %d: t %.17g beyond "
+                             "the middle between it and the nearer double by %.3g (%.3g px)",
+                             k, form ? "long double" : "double-double", yl, g, t[g], beyond, px);
+                roots[form]++;
+                if (g && t[g] != t[0]) {
+                    differ[form]++;
+                    differ_flat += form == 1 && slope < 1e-3;
+                }
+            }
+        }
+    }
+    aa_scene_free(placed);
+    aa_scene_free(s);
+    print_message("double-double form: %d roots, %d not the nearest double (%d of them below "
+                  "t = 1e-5), at most %.3g max(|t|, 1) beyond the middle, %d differing by start; "
+                  "long double form: %d roots, %d not the nearest (%d of them where |y'| < "
+                  "1e-3 px), at most %.3g px (%.3g in t) beyond it, %d differing by start "
+                  "(%d where |y'| < 1e-3 px)\n",
+                  roots[0], off[0], near0, worst[0], differ[0], roots[1], off[1], flat, worst_px,
+                  worst[1], differ[1], differ_flat);
+    assert_true(roots[0] > 10000 && roots[1] > 10000);
+}
+
+/* area's starts of roots of y = yl on an interval of an offset piece's
+ * table whose t(y) Hermite form is not within the table's tolerance
+ * (area_internal.h: ytab_guess, yt_turn; y turning at the piece's end,
+ * where dt/dy is infinite and load_ytab marks the intervals there): the
+ * root of y(t)'s Hermite form through the nodes' heights and slopes, by
+ * Newton's steps from the chord.  On the offset of x = t, y = t^2
+ * (d = 0.1, so y' = 2t (1 - d k) >= 1.6 t: y turns at t = 0 and rises),
+ * mapped 64 px to a unit, a table at t = k/16 with every interval marked
+ * (so each start is yt_turn's), at 199 heights evenly over it and 40
+ * heights 2^-k of the first interval's above its start: each start
+ * against the root bisected in the test on q_offset's y (__float128),
+ * within 1e-6 of it (the solver's first double step, DD_D_STEP, is
+ * 1e-4), and against the chord between the interval's nodes (ytab_guess's
+ * start where the Hermite form of t(y) falls outside).  It failed with no
+ * Newton step after the quadratic's start (3.6e-6 off) and with the
+ * quadratic taken about the other end (6.5e-6 off). */
+static void test_turn_starts(void **state)
+{
+    (void)state;
+    aa_offset_curve oc;
+    memset(&oc, 0, sizeof oc);
+    const double b[8] = {0, 1, 0, 0, 0, 0, 1, 0}, m[6] = {64, 0, 0, 64, 3, 2};
+    memcpy(oc.b, b, sizeof oc.b);
+    memcpy(oc.m, m, sizeof oc.m);
+    oc.d = 0.1;
+    oc.base = AA_OFFSET_CUBIC;
+    enum { N = 65 };
+    double nd[4 * N];
+    for (int k = 0; k < N; k++) {
+        double e[4];
+        aa__offset_end(&oc, 1, k / 64.0, e);
+        nd[4 * k] = k / 64.0, nd[4 * k + 1] = e[0] + e[1], nd[4 * k + 2] = 1.0 / e[2];
+        nd[4 * k + 3] = 0.0;
+        if (k > 0)
+            assert_true(nd[4 * k + 1] > nd[4 * k - 3]);
+    }
+    assert_true(isinf(nd[2])); /* dt/dy at the turn */
+    ar_piece ap;
+    memset(&ap, 0, sizeof ap);
+    ap.nyt = N;
+    ytab_attach(&ap, nd);
+    double worst = 0.0, worst_c = 0.0;
+    int heights = 0, near_c = 0;
+    for (int i = 1; i < 240; i++) {
+        double yl = i < 200 ? nd[1] + (nd[4 * N - 3] - nd[1]) * i / 200.0
+                            : nd[1] + (nd[5] - nd[1]) * ldexp(1.0, -(i - 199));
+        size_t h = 0;
+        double g = ytab_guess(&ap, yl, &h);
+        const double *na = nd + 4 * h, *nb = na + 4;
+        double c = na[0] + (nb[0] - na[0]) * ((yl - na[1]) / (nb[1] - na[1]));
+        /* the root: y(t) - yl bisected on q_offset's y over the interval */
+        double lo = na[0], hi = nb[0];
+        for (int it = 0; it < 200 && nextafter(lo, hi) < hi; it++) {
+            double mid = 0.5 * (lo + hi);
+            q128 P[2], dP[2];
+            q_offset(&oc, mid, P, dP);
+            if (P[1] < yl)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        double e = fabs(g - lo), ec = fabs(c - lo);
+        if (!(e <= 1e-6))
+            fail_msg("y = %.17g: start %.17g, root %.17g (%.3g off; the chord's %.3g)", yl, g,
+                     lo, e, ec);
+        worst = fmax(worst, e), worst_c = fmax(worst_c, ec);
+        near_c += ec <= 1e-4;
+        heights++;
+    }
+    print_message("%d heights on intervals by a y turn: the starts within %.2g of the roots "
+                  "(the chord's within %.2g, within 1e-4 on %d)\n",
+                  heights, worst, worst_c, near_c);
+    assert_true(heights == 239);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
@@ -2803,6 +3007,8 @@ int main(void)
                                        cmocka_unit_test(test_offset_polish),
                                        cmocka_unit_test(test_end_dd),
                                        cmocka_unit_test(test_end_top),
-                                       cmocka_unit_test(test_side_guess)};
+                                       cmocka_unit_test(test_side_guess),
+                                       cmocka_unit_test(test_root_starts),
+                                       cmocka_unit_test(test_turn_starts)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -969,10 +969,20 @@ double aa__offset_root_xy(const aa_offset_curve *oc, const aa__offset_fix *fx, i
  * (1e-5 of an ulp of t in [0.5, 1), so that the root rounded to double
  * is the nearest but within about that of a midpoint) and h2 within
  * 1e-7, or where it rounds to t itself, or where the bracket is two
- * adjacent doubles.  Where a step stayed at t, offset_root's rule (a
- * step onto the bracket's end bisects) bisected from there and ended an
- * ulp off on 5% of the roots of tests/bench_bezstroke.c's scene (303
- * pixels beyond the reference's bound against 279).  The point at the
+ * adjacent doubles.  Below |t| = 1 that bound stays 1e-21, not relative
+ * to t: near t = 0 (a line within rounding of a piece's start, t about
+ * 1e-15, whose ulps are 2e-31) the root is within 1e-21 of the root,
+ * not always the nearest double (on tests/bench_bezstroke.c's scene at
+ * 256 px 8,380 of 285,204 roots, every one below t = 1e-5, the point
+ * 1e-30 px farther from the line than at the nearest), and two starts'
+ * last steps may round it to different doubles there (area.c's sub_key
+ * from another start, three renders at 256 px: 120 of 39,744 roots a
+ * double away, those not the nearest all below t = 1e-9;
+ * tests/test_area_offset.c, test_root_starts).  Where a step stayed at
+ * t, offset_root's rule (a step onto the bracket's end bisects) bisected
+ * from there and ended an ulp off on 5% of the roots of
+ * tests/bench_bezstroke.c's scene (303 pixels beyond the reference's
+ * bound against 279).  The point at the
  * root rounded to double (xy) is the last evaluation's moved along its
  * Taylor series to the second order over the step to it (dd_coord), and
  * the other coordinate (other) over the step unrounded, to where
@@ -1759,7 +1769,18 @@ offset_root(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, long
      * aa__offset_root_xy) the same way: the last evaluation moved by its
      * derivative over the step from there to the rounded root (at most h
      * plus half an ulp of t), where the caller would evaluate it again;
-     * evaluated there where no evaluation was made. */
+     * evaluated there where no evaluation was made.  Rounded to double
+     * (root_ld: the evolutes and the pieces with stops), the root is the
+     * nearest double but where it lies within the long double
+     * evaluation's rounding of the middle between two (about 1e-17 px at
+     * 256 px, over the slope: a few hundredths of an ulp of t at |y'|
+     * about 1 px, the whole piece where the piece is nearly flat in the
+     * coordinate, as small evolutes are), and there the double follows
+     * where the last evaluation was made, so the start: on
+     * tests/bench_bezstroke.c's scene at 256 px 12,364 of 63,160 roots
+     * from four starts differ (12,160 where |y'| < 1e-3 px), each within
+     * 2.4e-17 px of the nearest double's distance from the line
+     * (tests/test_area_offset.c, test_root_starts). */
     long double X, Y, DX = 0, DY = 0, lt = ta;
     int neg = fa < 0, stops = fx->stops; /* asked once a curve (aa__offset_fix_init) */
     if (fa == 0)
