@@ -90,12 +90,20 @@
  *    the same integral, whether one share of that panel (its disc holds
  *    the part's ellipse and 4, 8 or 12 points meet the bound) or panel by
  *    panel, and the rule of one share the fewest points so bound.
+ *
+ * Under the sanitizers (AA_SANITIZED: the Makefile's sanitizer build sets
+ * it for the tests) a declared subset: test_shared_ends and test_cones
+ * take the benchmark's row 0 only of its rows (not 4 to 16 too), beside
+ * their strokes at 64 px; the other rows take the same code paths with
+ * other numbers (tests/README.md, "Tiers", says how that was checked),
+ * and the plain build runs every case.
  */
 #include "area_internal.h"
 #include "path.h"
 #include "oracle.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <complex.h>
 #include <float.h>
@@ -2003,10 +2011,11 @@ static int shared_ends(const char *what, const aa_scene *s, int *tangent, int *a
 
 /* fn on each of the strokes the meetings' tests take: the benchmark's
  * cubics (tests/bench_bezstroke.c) at 256 px, 2.5 px wide, round joins
- * and caps (their offsets fold), every `step` of its 20 rows; then the
- * first `ncases` of tight (folds), a loop and a hook whose pieces sharing
- * an end cross again away from it (mitred, butt-capped) and three arcs
- * (round), at 64 px; fn adds to the two counters n[0] and n[1].
+ * and caps (their offsets fold), every `step` of its 20 rows (a step of 20
+ * or more: row 0 only); then the first `ncases` of tight (folds), a loop
+ * and a hook whose pieces sharing an end cross again away from it
+ * (mitred, butt-capped) and three arcs (round), at 64 px; fn adds to the
+ * two counters n[0] and n[1].
  * Returns the sum of fn's returns. */
 static int each_stroke(int step, int ncases,
                        int (*fn)(const char *, const aa_scene *, int *, int *), int n[2])
@@ -2045,7 +2054,8 @@ static void test_shared_ends(void **state)
 {
     (void)state;
     int tc[2] = {0, 0}; /* tangent, changes */
-    int pairs = each_stroke(4, 3, shared_ends, tc);
+    /* the sanitizer build's subset: the benchmark's row 0 (SAN_SUBSET) */
+    int pairs = each_stroke(SAN_SUBSET ? 20 : 4, 3, shared_ends, tc);
     print_message("%d pairs sharing an end, %d of them tangent there; %d sign changes\n", pairs,
                   tc[0], tc[1]);
     assert_true(tc[0] >= 10 && tc[1] >= 1); /* the cases were built */
@@ -2257,7 +2267,8 @@ static void test_cones(void **state)
     aa_stroke_style st;
     aa_stroke_style_default(&st);
     int as[2] = {0, 0}; /* apart, seen */
-    int bad = each_stroke(8, 4, cones, as), apart, seen;
+    /* the sanitizer build's subset: the benchmark's row 0 (SAN_SUBSET) */
+    int bad = each_stroke(SAN_SUBSET ? 20 : 8, 4, cones, as), apart, seen;
     /* an S: its offsets' tangents turn back at the base's inflection,
      * beyond the cone of their ends' */
     const double ess[8] = {0.1, 0.5, 0.45, -0.1, 0.55, 1.1, 0.9, 0.5};
@@ -2982,6 +2993,7 @@ static void test_turn_starts(void **state)
 
 int main(void)
 {
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_reference),
                                        cmocka_unit_test(test_tube),
                                        cmocka_unit_test(test_meetings),

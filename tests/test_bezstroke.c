@@ -28,11 +28,16 @@
  *    against the same oracle with the feet taken on B'/(t - tc) (test_cusp
  *    says how), and the points ahead of a cusp's tip outside; a speed near
  *    0 but not within rounding of it refused, naming it.
+ *
+ * Under the sanitizers (AA_SANITIZED) a declared subset: a quarter of the
+ * random points in each oracle's check (SAN_POINTS); tests/README.md,
+ * "Tiers", says how that was checked.
  */
 #include "path.h"
 #include "oracle.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -146,6 +151,11 @@ static double feet(const double *c, double px, double py, int ends, double h, in
     return oracle_curve_feet(cubic_at, c, 0, 1, 4000, px, py, ends, h, unsure);
 }
 
+/* The random points a check takes: npts, a quarter of them in the
+ * sanitizer build's subset (SAN_SUBSET), where the time is the oracle's
+ * own (feet) and the stroke's point query is the code under test */
+#define SAN_POINTS(npts) (SAN_SUBSET ? (npts) / 4 : (npts))
+
 /* The oracle's distance to a path of nc chained cubics: the least over
  * its cubics (feet). */
 typedef struct path_ctx {
@@ -191,7 +201,7 @@ static void oracle(const char *what, const double *cs, int nc, double w, int rou
     }
     const double box[4] = {x0 - 2 * h, y0 - 2 * h, x1 + 2 * h, y1 + 2 * h};
     const path_ctx ctx = {cs, nc, round, h};
-    support_stroke_check(what, s, box, h, m, npts, &rng, path_distance, &ctx);
+    support_stroke_check(what, s, box, h, m, SAN_POINTS(npts), &rng, path_distance, &ctx);
     aa_scene_free(s);
     aa_path_free(&p);
 }
@@ -340,7 +350,7 @@ static void cusp_oracle(const char *what, const cusp_cubic *k, double w, int rou
     }
     const double box[4] = {x0 - 2 * h, y0 - 2 * h, x1 + 2 * h, y1 + 2 * h};
     const cusp_ctx ctx = {k, round, h};
-    support_stroke_check(what, s, box, h, m, npts, &rng, cusp_distance, &ctx);
+    support_stroke_check(what, s, box, h, m, SAN_POINTS(npts), &rng, cusp_distance, &ctx);
     aa_scene_free(s);
     aa_path_free(&p);
 }
@@ -401,6 +411,7 @@ static void test_near_cusp_refused(void **state)
 
 int main(void)
 {
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_tube),
                                        cmocka_unit_test(test_dashes),
                                        cmocka_unit_test(test_oracle_butt),

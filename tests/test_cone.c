@@ -52,6 +52,7 @@
 #include "oracle.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -361,7 +362,11 @@ static void test_crow_polar(void **state)
 {
     (void)state;
     oracle_crow d = oracle_crow_defaults();
-    crow_case("crow", d, 16, 16, "cone");
+    SAN_CASES_PRINT();
+    /* the sanitizer build's subset (SAN_SUBSET): crow under the cone at
+     * 7x3 only, not at 16x16 too */
+    if (!SAN_SUBSET)
+        crow_case("crow", d, 16, 16, "cone");
     crow_case("crow", d, 7, 3, "cone");
     crow_case("crow", d, 7, 3, "cone:r=2.5");
     oracle_crow o = {24, 0.1, 0.03, 0.004};

@@ -30,11 +30,16 @@
  *    of the boundary skipped;
  *  - `area` (algorithms/area.c, area_offset.c) against the box reference,
  *    to 1e-12 per pixel, on folding, dashed and sheared ellipse strokes.
+ *
+ * Under the sanitizers (AA_SANITIZED) a declared subset: a quarter of the
+ * oracle's random points in each check (test_oracle); tests/README.md,
+ * "Tiers", says how that was checked.
  */
 #include "path.h"
 #include "oracle.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -268,7 +273,10 @@ static void oracle(const char *what, const ell *e, double t0, double t1, int clo
     double h = 0.5 * w, r = hypot(e->ux, e->uy) + hypot(e->vx, e->vy) + h;
     const double box[4] = {e->cx - r, e->cy - r, e->cx + r, e->cy + r};
     const arc_ctx ctx = {e, t0, t1, closed || round, h};
-    support_stroke_check(what, s, box, h, m, npts, &rng, arc_distance, &ctx);
+    /* the sanitizer build's subset (SAN_SUBSET): a quarter of the points,
+     * whose time is the oracle's own (feet), not the point query's */
+    support_stroke_check(what, s, box, h, m, SAN_SUBSET ? npts / 4 : npts, &rng, arc_distance,
+                         &ctx);
     aa_scene_free(s);
     aa_path_free(&p);
 }
@@ -338,6 +346,7 @@ static void test_area(void **state)
 
 int main(void)
 {
+    SAN_CASES_PRINT();
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_tube), cmocka_unit_test(test_dashes),
                                        cmocka_unit_test(test_oracle),
                                        cmocka_unit_test(test_area)};

@@ -29,6 +29,7 @@
 #include "oracle.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -344,8 +345,16 @@ static void test_every_pattern(void **state)
 {
     (void)state;
     static const char *filters[] = {"box", "tent:r=1", "gauss"};
+    SAN_CASES_PRINT();
     for (const aa_pattern_type *const *t = aa_pattern_types; *t; t++)
         for (size_t k = 0; k < 3; k++) {
+            /* the sanitizer build's subset (SAN_SUBSET): rings, slivers
+             * and feibush not under the Gaussian (the others take the
+             * same paths of its rule there, star's crowded centre too) */
+            const char *name = (*t)->info.name;
+            if (SAN_SUBSET && k == 2 &&
+                (!strcmp(name, "rings") || !strcmp(name, "slivers") || !strcmp(name, "feibush")))
+                continue;
             /* rings at its default of 64 circles crowds 40 x 28 pixels
              * with conic pieces: seconds under the Gaussian; 16 circles
              * take every path of the reference all the same */

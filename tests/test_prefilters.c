@@ -21,6 +21,7 @@
 #include "bench.h"
 #include "scenes.h"
 #include "support.h"
+#include "tier.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -251,8 +252,14 @@ static void test_cone_patterns(void **state)
     const char *filters[] = {"gauss:s=1", "cone"};
     const char *methods[] = {"conetable:cut=4,res=256", "conetable:res=256"};
     const int sizes[] = {24, 64};
+    SAN_CASES_PRINT();
     for (int k = 0; k < 4; k++)
         for (int f = 0; f < 2; f++) {
+            /* the sanitizer build's subset (SAN_SUBSET): feibush not
+             * under the Gaussian (its stripes' shared edges under the
+             * cone; catmull's abutting layers under both) */
+            if (SAN_SUBSET && f == 0 && k == 0)
+                continue;
             aa_scene *s = scenes_pattern(names[k]);
             aa_image img, ref;
             const int n = sizes[f];
