@@ -103,7 +103,11 @@ static int W, H;
  * scene under one or two of them.  The sanitizers find memory and
  * undefined behaviour errors along the code paths taken; more filters on
  * the same scene take the same paths (tests/README.md, "Tiers", says how
- * that was checked), and the plain build runs everything. */
+ * that was checked), and the plain build runs everything.  The quick tier
+ * under the sanitizers likewise takes the arcs' and offsets' scenes under
+ * bspline:order=3 on their middle 12 x 9 pixels alone (against_arcs; the
+ * box on the whole view), which reach the library's lines the whole views
+ * reach. */
 /* The quick tier's filter for the first five scenes, and the full tier's:
  * every filter but the box */
 #define BOX FILTERS("box")
@@ -122,7 +126,7 @@ static void against(const char *what, const aa_scene *s, int w, int h, const cha
     support_method_against_filters("analytic", what, s, w, h, fl);
 }
 
-#if TIER_FULL
+#if TIER_FULL || SAN_SUBSET
 /* analytic against the reference under `filter` on a part of the view
  * (support_method_against_part) */
 static double against_part(const char *what, const aa_scene *s, int sw, int sh, int x0, int y0,
@@ -166,6 +170,18 @@ static void against_quarters(const char *what, const aa_scene *s, int w, int h,
     against(what, s, w, h, fl);
 #endif
 }
+
+#if !TIER_FULL && SAN_SUBSET
+/* The sanitizer build's subset of the arcs' and offsets' scenes: the box
+ * on the whole view, bspline:order=3 on the part x0, y0, w x h of it
+ * (tests/README.md, "Tiers") */
+static void against_arcs(const char *what, const aa_scene *s, int sw, int sh, int x0, int y0,
+                         int w, int h)
+{
+    against(what, s, sw, sh, BOX);
+    against_part(what, s, sw, sh, x0, y0, w, h, "bspline:order=3");
+}
+#endif
 
 static const aa_gradient_stop three[4] = {{0.0, {{0.9, 0.05, 0.2}}, 1.0},
                                           {0.45, {{0.1, 0.8, 0.3}}, 1.0},
@@ -319,8 +335,12 @@ static void test_arcs(void **state)
         " fill=\"url(#f)\"/>\n"
         "</svg>\n";
     aa_scene *s = scenes_svg_text(dir, "arcs.svg", svg, 24, 18);
+#if !TIER_FULL && SAN_SUBSET
+    against_arcs("circle, ellipse, round rect", s, 24, 18, 6, 4, 12, 9);
+#else
     against("circle, ellipse, round rect", s, 24, 18,
             TIER(ARC_QUICK, ARC_FULL, FILTERS("mitchell")));
+#endif
     aa_scene_free(s);
 }
 
@@ -377,8 +397,12 @@ static void test_curve_strokes(void **state)
         " fill=\"none\" stroke=\"url(#h)\" stroke-width=\"1.7\"/>\n"
         "</svg>\n";
     aa_scene *s = scenes_svg_text(dir, "curvestrokes.svg", svg, 22, 20);
+#if !TIER_FULL && SAN_SUBSET
+    against_arcs("stroked cubic and ellipse", s, 22, 20, 5, 4, 12, 9);
+#else
     against("stroked cubic and ellipse", s, 22, 20,
             TIER(ARC_QUICK, ARC_FULL, FILTERS("tent:r=1")));
+#endif
     aa_scene_free(s);
 }
 
@@ -546,6 +570,9 @@ static void test_refusals(void **state)
 int main(void)
 {
     print_message("tier: %s\n", TIER_NAME);
+#if !TIER_FULL
+    SAN_CASES_PRINT();
+#endif
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_layers),       cmocka_unit_test(test_curves_and_clip),
         cmocka_unit_test(test_sliver),       cmocka_unit_test(test_strokes),
