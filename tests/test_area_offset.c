@@ -2794,28 +2794,32 @@ static void test_side_guess(void **state)
  * tests/bench_bezstroke.c's scene at 256 px (the double-double form's
  * cubics, and the evolutes and pieces with stops the long double form
  * solves), at lines y = j + 0.37 k (k = 0..2) across each piece and at
- * lines 1 to 4 doubles inside its start's height (a band's end within
- * rounding of the piece's start, as area's sub_key meets them: roots
- * near t = 0), each from four starts (none: the bracket's ends; 1e-5 off
- * the root; 0.37 of the bracket; its middle), each root against the
- * double nearest the root by q_offset (__float128): where it is not that
- * double, the root lies beyond the middle between the two by (e0 - e1)
- * / (2 |y'|) in t (e0, e1: the line's distance from the point at the
- * root and at the nearer neighbour, |y'| the slope: __float128).  The
- * double-double form stops where its error is judged within DD_EST
- * max(|t|, 1) = 1e-21 max(|t|, 1) (1e-5 of an ulp of t in [0.5, 1),
- * but many ulps of t below 1e-5, where ulps are finer): held to 1e-20
- * max(|t|, 1); the long double form rounds a root found in long double,
- * whose evaluation rounds (the point to about 2^-64 of its terms' size,
- * 1.4e-17 px at 256 px), so a root that near a middle rounds to either
- * double: held to the point at the root at most 4e-17 px farther from
- * the line than at the nearer neighbour (where |y'| is small, as on the
- * small evolutes nearly flat in y, that leaves t free over many ulps).
- * Roots from two starts differ by a double only within those margins:
- * counted and printed.  It failed with DD_EST 1e-13 (a double-double
- * root 2.78e-17 beyond the middle at t = 0.49999999139946683) and with
- * the long double form's root taken from its double phase (2.09e-16 px
- * farther, 5.55e-17 beyond the middle in t). */
+ * lines 1 to 4 doubles inside its start's height and inside its end's
+ * (a band's end within rounding of the piece's end, as area's sub_key
+ * meets them: roots near t = 0 at a forwards piece's start and a
+ * backwards piece's end), each from four starts (none: the bracket's
+ * ends; 1e-5 off the root; 0.37 of the bracket; its middle), each root t
+ * against the root by q_offset (__float128): the line's distance e0 from
+ * the point at t, and the root's from t, e0 / |y'| (|y'| the slope at
+ * t; y is linear about the root over that distance).  The double-double
+ * form stops where its error is judged within DD_EST max(|t|, 1) =
+ * 1e-21 max(|t|, 1) (1e-5 of an ulp of t in [0.5, 1), but many ulps of t
+ * below 1e-5, where ulps are finer): held to |t - root| <= 1e-20
+ * max(|t|, 1) + ulp(t) / 2; the long double form rounds a root found in
+ * long double, whose evaluation rounds (the point to about 2^-64 of its
+ * terms' size, 1.4e-17 px at 256 px), so a root near a middle between
+ * two doubles rounds to either: held to e0 - |y'| ulp(t) / 2 <= 4e-17
+ * px (where |y'| is small, as on the small evolutes nearly flat in y,
+ * that leaves t free over many ulps).  Roots not the nearest double (the
+ * point at a neighbour nearer the line) and roots from two starts that
+ * differ are counted and printed.  It failed with DD_EST 1e-13 (a
+ * double-double root 2.78e-17 beyond the middle at t =
+ * 0.49999999139946683), with the long double form's root taken from its
+ * double phase (2.09e-16 px farther), with the double-double form's roots
+ * below |t| = 1e-6 moved by 1e-19 (1e-19 off at t = 3.6e-16) and with
+ * the long double form's where |y'| < 1e-3 px moved by 1e-9 (the point
+ * 3.58e-16 px off at |y'| = 3.26e-7 px); a check of the root against its
+ * two neighbouring doubles alone let the last two pass. */
 static void test_root_starts(void **state)
 {
     (void)state;
@@ -2832,7 +2836,7 @@ static void test_root_starts(void **state)
     /* [0]: the double-double form, [1]: the long double form */
     int roots[2] = {0, 0}, off[2] = {0, 0}, differ[2] = {0, 0}, near0 = 0, flat = 0;
     int differ_flat = 0;
-    double worst[2] = {0.0, 0.0}, worst_px = 0.0;
+    double worst_dd = 0.0, worst_dd_t = 0.0, worst_px = 0.0, worst_px_s = 0.0;
     for (size_t k = 0; k < np; k++) {
         if (pc[k].kind != AA_PIECE_OFFSET)
             continue;
@@ -2848,13 +2852,17 @@ static void test_root_starts(void **state)
         q_offset(oc, b, Pb, dP);
         double ca = (double)Pa[1], cb = (double)Pb[1], dir = cb > ca ? 1.0 : -1.0;
         double lo = fmin(ca, cb), hi = fmax(ca, cb);
-        /* the lines: 1 to 4 doubles inside the start's height, then
-         * j + 0.37 k strictly inside the range */
-        double lines[4 + 3 * 300];
+        /* the lines: 1 to 4 doubles inside the start's height and the
+         * end's (a backwards piece's end is at t = 0), then j + 0.37 k
+         * strictly inside the range */
+        double lines[8 + 3 * 300];
         int nl = 0;
         double y = ca;
         for (int u = 0; u < 4; u++)
             lines[nl++] = y = nextafter(y, dir * INFINITY);
+        y = cb;
+        for (int u = 0; u < 4; u++)
+            lines[nl++] = y = nextafter(y, -dir * INFINITY);
         for (double j = floor(lo); j < hi && nl + 3 <= (int)(sizeof lines / sizeof *lines);
              j++)
             for (int v = 0; v < 3; v++)
@@ -2873,7 +2881,7 @@ static void test_root_starts(void **state)
                 q_offset(oc, t[g], P, dP);
                 q128 e0 = P[1] - yl;
                 e0 = e0 < 0 ? -e0 : e0;
-                double slope = fabs((double)dP[1]), beyond = 0.0, px = 0.0;
+                double slope = fabs((double)dP[1]), px = 0.0;
                 for (int side = 0; side < 2; side++) {
                     q_offset(oc, nextafter(t[g], side ? INFINITY : -INFINITY), Q, dQ);
                     q128 e1 = Q[1] - yl;
@@ -2882,20 +2890,26 @@ static void test_root_starts(void **state)
                         px = (double)(e0 - e1);
                 }
                 if (px > 0) {
-                    beyond = px / (2 * slope);
                     off[form]++;
                     near0 += form == 0 && fabs(t[g]) < 1e-5;
                     flat += form == 1 && slope < 1e-3;
                 }
-                double rel = beyond / fmax(fabs(t[g]), 1.0);
-                if (!form && rel > worst[0])
-                    worst[0] = rel;
-                if (form && px > worst_px)
-                    worst_px = px, worst[1] = beyond;
-                if (form ? !(px <= 4e-17) : !(rel <= 1e-20))
-                    fail_msg("piece %zu (%s form) line y = %.17g from start %d: t %.17g beyond "
-                             "the middle between it and the nearer double by %.3g (%.3g px)",
-                             k, form ? "long double" : "double-double", yl, g, t[g], beyond, px);
+                /* the root's distance from t, e0 / |y'| (__float128: y is
+                 * linear about the root over it), beyond half an ulp of t;
+                 * the long double form's in px, e0 beyond |y'| ulp / 2 */
+                double ulp = nextafter(fabs(t[g]), INFINITY) - fabs(t[g]);
+                double dist = (double)(e0 / (q128)slope), ex = (double)e0 - 0.5 * slope * ulp;
+                double rel = (dist - 0.5 * ulp) / fmax(fabs(t[g]), 1.0);
+                if (!form && rel > worst_dd)
+                    worst_dd = rel, worst_dd_t = t[g];
+                if (form && ex > worst_px)
+                    worst_px = ex, worst_px_s = slope;
+                if (form ? !(ex <= 4e-17) : !(rel <= 1e-20))
+                    fail_msg("piece %zu (%s form) line y = %.17g from start %d: t %.17g, the "
+                             "root %.3g from it (half an ulp %.3g), the point %.3g px from the "
+                             "line (|y'| %.3g)",
+                             k, form ? "long double" : "double-double", yl, g, t[g], dist,
+                             0.5 * ulp, (double)e0, slope);
                 roots[form]++;
                 if (g && t[g] != t[0]) {
                     differ[form]++;
@@ -2907,12 +2921,12 @@ static void test_root_starts(void **state)
     aa_scene_free(placed);
     aa_scene_free(s);
     print_message("double-double form: %d roots, %d not the nearest double (%d of them below "
-                  "t = 1e-5), at most %.3g max(|t|, 1) beyond the middle, %d differing by start; "
-                  "long double form: %d roots, %d not the nearest (%d of them where |y'| < "
-                  "1e-3 px), at most %.3g px (%.3g in t) beyond it, %d differing by start "
-                  "(%d where |y'| < 1e-3 px)\n",
-                  roots[0], off[0], near0, worst[0], differ[0], roots[1], off[1], flat, worst_px,
-                  worst[1], differ[1], differ_flat);
+                  "t = 1e-5), the root at most %.3g max(|t|, 1) beyond half an ulp of t (t = "
+                  "%.3g), %d differing by start; long double form: %d roots, %d not the nearest "
+                  "(%d of them where |y'| < 1e-3 px), the point at most %.3g px beyond |y'| ulp "
+                  "/ 2 (|y'| %.3g px), %d differing by start (%d where |y'| < 1e-3 px)\n",
+                  roots[0], off[0], near0, worst_dd, worst_dd_t, differ[0], roots[1], off[1],
+                  flat, worst_px, worst_px_s, differ[1], differ_flat);
     assert_true(roots[0] > 10000 && roots[1] > 10000);
 }
 
