@@ -520,16 +520,21 @@ static inline double yt_herm(const double *a, const double *b, double y)
  * a[0]), from the root of its quadratic Taylor form about the end of the
  * smaller slope (the turn's: exact where y is quadratic, where the
  * chord's s is off by about its square root), by YT_TURN_STEPS Newton
- * steps; NaN where that is not strictly inside.  Within 2.1e-7 of the
- * root by a y turn where the chord is 3.9e-3 off (tests/test_area_offset.c,
- * test_turn_starts); before, these lines' roots started from the piece's
- * ends (the solver's quadratic through them), about 936 instructions a
- * root against about 550 from a start within the first double step. */
+ * steps; a's t at a's height (there the quadratic's root s = 0 is not
+ * strictly inside, and at a turn it is 0/0); NaN where the root is not
+ * strictly inside.  Within 2.1e-7 of the root by a y turn at either end,
+ * forwards or backwards, where the chord is 3.9e-3 off, 9e-6 where y has
+ * a cubic term too (tests/test_area_offset.c, test_turn_starts); before,
+ * these lines' roots started from the piece's ends (the solver's
+ * quadratic through them), about 936 instructions a root against about
+ * 550 from a start within the first double step. */
 #define YT_TURN_STEPS 2
 static inline double yt_turn(const double *a, const double *b, double yl)
 {
     double h = b[0] - a[0], dy = b[1] - a[1], c1 = h / a[2], mb = h / b[2];
     double c0 = a[1] - yl, c2 = 3.0 * dy - (2.0 * c1 + mb), c3 = (c1 + mb) - 2.0 * dy, s;
+    if (c0 == 0.0) /* node a's height */
+        return a[0];
     if (fabs(c1) <= fabs(mb)) { /* about s = 0: c0 + c1 s + c2 s^2, c0 of the sign
                                  * opposite dy's, cancellation-free */
         double q = c1 * c1 - 4.0 * c2 * c0;

@@ -2934,55 +2934,79 @@ static void test_root_starts(void **state)
  * table whose t(y) Hermite form is not within the table's tolerance
  * (area_internal.h: ytab_guess, yt_turn; y turning at the piece's end,
  * where dt/dy is infinite and load_ytab marks the intervals there): the
- * root of y(t)'s Hermite form through the nodes' heights and slopes, by
- * Newton's steps from the chord.  On the offset of x = t, y = t^2
- * (d = 0.1, so y' = 2t (1 - d k) >= 1.6 t: y turns at t = 0 and rises),
- * mapped 64 px to a unit, a table at t = k/16 with every interval marked
- * (so each start is yt_turn's), at 199 heights evenly over it and 40
- * heights 2^-k of the first interval's above its start: each start
- * against the root bisected in the test on q_offset's y (__float128),
- * within 1e-6 of it (the solver's first double step, DD_D_STEP, is
- * 1e-4), and against the chord between the interval's nodes (ytab_guess's
- * start where the Hermite form of t(y) falls outside).  It failed with no
- * Newton step after the quadratic's start (3.6e-6 off) and with the
- * quadratic taken about the other end (6.5e-6 off). */
-static void test_turn_starts(void **state)
+ * root of y(t)'s Hermite form through the nodes' heights and slopes, from
+ * the root of its quadratic Taylor form about the end of the smaller
+ * slope (the chord's where that has none) and two Newton steps.  On the
+ * offsets (d = 0.1) of x = t and five y(t), mapped 64 px to a unit, each
+ * tabled at t = k/64 in the direction y rises (load_ytab's order) with
+ * every interval marked (so each start is yt_turn's): A y = t^2 (t from 0
+ * to 1, the turn at the table's first node), B 2t - t^2 (0 to 1, the
+ * turn at its last: yt_turn's branch about s = 1), C (1 - t)^2 and D 1 -
+ * t^2 (1 to 0: backwards pieces, the turn at the first node and at the
+ * last), E 3t^2 - 2t^3 (0 to 1, turns at both ends).  At 199 heights
+ * evenly over the table, 40 heights 2^-k of the first interval above
+ * the first node and 40 2^-k of the last below the last, each start
+ * against the root bisected in the test on q_offset's y (__float128):
+ * within 1e-6 of it on A to D (the solver's first double step, DD_D_STEP,
+ * is 1e-4), within TURN_TOL_E on E, where y's cubic term makes the
+ * quadratic's start about the turn farther off and its two Newton steps
+ * leave more; no NaN.  At the heights of the nodes but the last (outside
+ * the table's range) the start is the node's t (the quadratic's root s =
+ * 0 is not strictly inside, and at the turn 0/0: it was NaN there).  It
+ * failed with no Newton step after the quadratic's start (3.6e-6 off on
+ * A) and with the quadratic taken about the other end (6.5e-6 off). */
+#define TURN_TOL_E 2e-5
+static void turn_case(const char *name, const double yb[4], double t0, double t1, double tol)
 {
-    (void)state;
     aa_offset_curve oc;
     memset(&oc, 0, sizeof oc);
-    const double b[8] = {0, 1, 0, 0, 0, 0, 1, 0}, m[6] = {64, 0, 0, 64, 3, 2};
-    memcpy(oc.b, b, sizeof oc.b);
+    const double m[6] = {64, 0, 0, 64, 3, 2};
+    oc.b[0] = 0, oc.b[1] = 1, oc.b[2] = 0, oc.b[3] = 0;
+    for (int i = 0; i < 4; i++)
+        oc.b[4 + i] = yb[i];
     memcpy(oc.m, m, sizeof oc.m);
     oc.d = 0.1;
     oc.base = AA_OFFSET_CUBIC;
     enum { N = 65 };
     double nd[4 * N];
     for (int k = 0; k < N; k++) {
-        double e[4];
-        aa__offset_end(&oc, 1, k / 64.0, e);
-        nd[4 * k] = k / 64.0, nd[4 * k + 1] = e[0] + e[1], nd[4 * k + 2] = 1.0 / e[2];
+        double e[4], t = t0 + (t1 - t0) * k / 64.0;
+        aa__offset_end(&oc, 1, t, e);
+        nd[4 * k] = t, nd[4 * k + 1] = e[0] + e[1], nd[4 * k + 2] = 1.0 / e[2];
         nd[4 * k + 3] = 0.0;
-        if (k > 0)
-            assert_true(nd[4 * k + 1] > nd[4 * k - 3]);
+        if (k > 0 && !(nd[4 * k + 1] > nd[4 * k - 3]))
+            fail_msg("%s: the table's heights not rising at node %d", name, k);
     }
-    assert_true(isinf(nd[2])); /* dt/dy at the turn */
     ar_piece ap;
     memset(&ap, 0, sizeof ap);
     ap.nyt = N;
     ytab_attach(&ap, nd);
     double worst = 0.0, worst_c = 0.0;
-    int heights = 0, near_c = 0;
-    for (int i = 1; i < 240; i++) {
-        double yl = i < 200 ? nd[1] + (nd[4 * N - 3] - nd[1]) * i / 200.0
-                            : nd[1] + (nd[5] - nd[1]) * ldexp(1.0, -(i - 199));
+    int heights = 0, nodes = 0;
+    for (int i = 1; i < 280 + N - 1; i++) {
+        double yl;
+        if (i < 200)
+            yl = nd[1] + (nd[4 * N - 3] - nd[1]) * i / 200.0;
+        else if (i < 240)
+            yl = nd[1] + (nd[5] - nd[1]) * ldexp(1.0, -(i - 199));
+        else if (i < 280)
+            yl = nd[4 * N - 3] - (nd[4 * N - 3] - nd[4 * N - 7]) * ldexp(1.0, -(i - 239));
+        else
+            yl = nd[4 * (i - 280) + 1];
         size_t h = 0;
         double g = ytab_guess(&ap, yl, &h);
         const double *na = nd + 4 * h, *nb = na + 4;
+        if (i >= 280) { /* node i - 280's height: its t */
+            if (!(h == (size_t)(i - 280) && g == na[0]))
+                fail_msg("%s: at node %d's height %.17g the start %.17g (interval %zu), not "
+                         "its t %.17g", name, i - 280, yl, g, h, nd[4 * (i - 280)]);
+            nodes++;
+            continue;
+        }
         double c = na[0] + (nb[0] - na[0]) * ((yl - na[1]) / (nb[1] - na[1]));
         /* the root: y(t) - yl bisected on q_offset's y over the interval */
         double lo = na[0], hi = nb[0];
-        for (int it = 0; it < 200 && nextafter(lo, hi) < hi; it++) {
+        for (int it = 0; it < 200 && nextafter(lo, hi) != hi; it++) {
             double mid = 0.5 * (lo + hi);
             q128 P[2], dP[2];
             q_offset(&oc, mid, P, dP);
@@ -2992,17 +3016,27 @@ static void test_turn_starts(void **state)
                 hi = mid;
         }
         double e = fabs(g - lo), ec = fabs(c - lo);
-        if (!(e <= 1e-6))
-            fail_msg("y = %.17g: start %.17g, root %.17g (%.3g off; the chord's %.3g)", yl, g,
-                     lo, e, ec);
+        if (!(e <= tol))
+            fail_msg("%s: y = %.17g (interval %zu): start %.17g, root %.17g (%.3g off; the "
+                     "chord's %.3g)", name, yl, h, g, lo, e, ec);
         worst = fmax(worst, e), worst_c = fmax(worst_c, ec);
-        near_c += ec <= 1e-4;
         heights++;
     }
-    print_message("%d heights on intervals by a y turn: the starts within %.2g of the roots "
-                  "(the chord's within %.2g, within 1e-4 on %d)\n",
-                  heights, worst, worst_c, near_c);
-    assert_true(heights == 239);
+    print_message("%s: %d heights, the starts within %.2g of the roots (the chord's within "
+                  "%.2g); %d nodes' heights, each the node's t\n",
+                  name, heights, worst, worst_c, nodes);
+}
+
+static void test_turn_starts(void **state)
+{
+    (void)state;
+    const double ya[4] = {0, 0, 1, 0}, yb[4] = {0, 2, -1, 0}, yc[4] = {1, -2, 1, 0},
+                 yd[4] = {1, 0, -1, 0}, ye[4] = {0, 0, 3, -2};
+    turn_case("A, y = t^2", ya, 0, 1, 1e-6);
+    turn_case("B, y = 2t - t^2", yb, 0, 1, 1e-6);
+    turn_case("C, y = (1 - t)^2", yc, 1, 0, 1e-6);
+    turn_case("D, y = 1 - t^2", yd, 1, 0, 1e-6);
+    turn_case("E, y = 3t^2 - 2t^3", ye, 0, 1, TURN_TOL_E);
 }
 
 int main(void)
