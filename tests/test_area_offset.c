@@ -834,6 +834,21 @@ static aa_scene *bench_rows_stroke(const int *rows, int nr, const aa_stroke_styl
     return s;
 }
 
+/* The benchmark's scene (its 20 rows of cubics stroked 2.5 px wide, round
+ * joins and caps) placed at n x n px */
+static aa_scene *bench_placed(int n)
+{
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    st.width = 2.5 / n;
+    aa_scene *s = bench_rows_stroke(NULL, 20, &st);
+    aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
+    assert_non_null(placed);
+    aa_scene_free(s);
+    return placed;
+}
+
 typedef __float128 q128;
 
 static int q_cmp(q128 a, q128 b)
@@ -2717,14 +2732,7 @@ static void test_nodes(void **state)
 static void test_side_guess(void **state)
 {
     (void)state;
-    aa_stroke_style st;
-    aa_stroke_style_default(&st);
-    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
-    const int n = 1024;
-    st.width = 2.5 / n;
-    aa_scene *s = bench_rows_stroke(NULL, 20, &st);
-    aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
-    assert_non_null(placed);
+    aa_scene *placed = bench_placed(1024);
     size_t np;
     const aa_piece *pc = aa_scene_pieces(placed, &np);
     int sides = 0, nearer = 0, near_q = 0, near_c = 0;
@@ -2778,7 +2786,6 @@ static void test_side_guess(void **state)
         }
     }
     aa_scene_free(placed);
-    aa_scene_free(s);
     print_message("%d sides after a part's first: side_guess's start nearer the root than the "
                   "chord's on %d; within 1e-4 of it on %d against %d; the errors' sums %.3g "
                   "against %.3g\n",
@@ -2823,14 +2830,7 @@ static void test_side_guess(void **state)
 static void test_root_starts(void **state)
 {
     (void)state;
-    aa_stroke_style st;
-    aa_stroke_style_default(&st);
-    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
-    const int n = 256;
-    st.width = 2.5 / n;
-    aa_scene *s = bench_rows_stroke(NULL, 20, &st);
-    aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
-    assert_non_null(placed);
+    aa_scene *placed = bench_placed(256);
     size_t np;
     const aa_piece *pc = aa_scene_pieces(placed, &np);
     /* [0]: the double-double form, [1]: the long double form */
@@ -2919,7 +2919,6 @@ static void test_root_starts(void **state)
         }
     }
     aa_scene_free(placed);
-    aa_scene_free(s);
     print_message("double-double form: %d roots, %d not the nearest double (%d of them below "
                   "t = 1e-5), the root at most %.3g max(|t|, 1) beyond half an ulp of t (t = "
                   "%.3g), %d differing by start; long double form: %d roots, %d not the nearest "
