@@ -1833,6 +1833,37 @@ static void test_shares_across(void **state)
         assert_true(taken[r] > 0);
 }
 
+/* A table of starts' piece: the offset at d = 0.1 of x = t, y = yb's cubic
+ * in t (coefficients ascending), mapped 64 px to a unit, its table's YT_N
+ * nodes (t, y, dt/dy, the interval ending there within the table's
+ * tolerance: 1, or 0 on every interval where `marked`) at t0 + (t1 - t0)
+ * k / 64, attached to *ap; the heights must rise (y monotone on [t0, t1],
+ * as load_ytab asks). */
+enum { YT_N = 65 };
+static void table_piece(const char *name, const double yb[4], double t0, double t1, int marked,
+                        aa_offset_curve *oc, double *nd, ar_piece *ap)
+{
+    memset(oc, 0, sizeof *oc);
+    const double m[6] = {64, 0, 0, 64, 3, 2};
+    oc->b[1] = 1;
+    for (int i = 0; i < 4; i++)
+        oc->b[4 + i] = yb[i];
+    memcpy(oc->m, m, sizeof oc->m);
+    oc->d = 0.1;
+    oc->base = AA_OFFSET_CUBIC;
+    for (int k = 0; k < YT_N; k++) {
+        double e[4], t = t0 + (t1 - t0) * k / 64.0;
+        aa__offset_end(oc, 1, t, e);
+        nd[4 * k] = t, nd[4 * k + 1] = e[0] + e[1], nd[4 * k + 2] = 1.0 / e[2];
+        nd[4 * k + 3] = !marked && k > 0;
+        if (k > 0 && !(nd[4 * k + 1] > nd[4 * k - 3]))
+            fail_msg("%s: the table's heights not rising at node %d", name, k);
+    }
+    memset(ap, 0, sizeof *ap);
+    ap->nyt = YT_N;
+    ytab_attach(ap, nd);
+}
+
 /* area's band lines' starts on an offset piece (area_internal.h,
  * ytab_guess) from a table of nodes (t, y, dt/dy) made here as area.c's
  * load_offset makes them (y and its slope by aa__offset_end), at t = k/64
@@ -1846,34 +1877,18 @@ static void test_shares_across(void **state)
 static void test_starts(void **state)
 {
     (void)state;
+    const double yb[4] = {0, 1, 0.3, 0};
     aa_offset_curve oc;
-    memset(&oc, 0, sizeof oc);
-    const double b[8] = {0, 1, 0, 0, 0, 1, 0.3, 0}, m[6] = {64, 0, 0, 64, 3, 2};
-    memcpy(oc.b, b, sizeof oc.b);
-    memcpy(oc.m, m, sizeof oc.m);
-    oc.d = 0.1;
-    oc.base = AA_OFFSET_CUBIC;
-    enum { N = 65 };
-    double nd[4 * N];
-    for (int k = 0; k < N; k++) {
-        double e[4];
-        aa__offset_end(&oc, 1, k / 64.0, e);
-        nd[4 * k] = k / 64.0, nd[4 * k + 1] = e[0] + e[1], nd[4 * k + 2] = 1.0 / e[2];
-        nd[4 * k + 3] = k > 0;
-        if (k > 0)
-            assert_true(nd[4 * k + 1] > nd[4 * k - 3]);
-    }
+    double nd[4 * YT_N];
     ar_piece ap;
-    memset(&ap, 0, sizeof ap);
-    ap.nyt = N;
-    ytab_attach(&ap, nd);
+    table_piece("y = t + 0.3 t^2", yb, 0.0, 1.0, 0, &oc, nd, &ap);
     double worst = 0.0;
     for (int i = 1; i < 200; i++) {
-        double yl = nd[1] + (nd[4 * N - 3] - nd[1]) * i / 200.0;
+        double yl = nd[1] + (nd[4 * YT_N - 3] - nd[1]) * i / 200.0;
         size_t h0 = 0;
         double g = ytab_guess(&ap, yl, &h0);
-        assert_true(h0 < N - 1 && nd[4 * h0 + 1] <= yl && yl < nd[4 * h0 + 5]);
-        for (size_t hint = 0; hint < N + 3; hint++) {
+        assert_true(h0 < YT_N - 1 && nd[4 * h0 + 1] <= yl && yl < nd[4 * h0 + 5]);
+        for (size_t hint = 0; hint < YT_N + 3; hint++) {
             size_t h = hint;
             double g2 = ytab_guess(&ap, yl, &h);
             assert_true(h == h0 && memcmp(&g, &g2, sizeof g) == 0);
@@ -1886,7 +1901,7 @@ static void test_starts(void **state)
     /* outside the table's heights: none */
     size_t h = 0;
     assert_true(isnan(ytab_guess(&ap, nd[1] - 0.5, &h)));
-    assert_true(isnan(ytab_guess(&ap, nd[4 * N - 3], &h)));
+    assert_true(isnan(ytab_guess(&ap, nd[4 * YT_N - 3], &h)));
     /* a piece without a table (load_ytab's nyt 0 where the nodes' y do
      * not rise): none at any height */
     ap.nyt = 0;
@@ -2958,38 +2973,19 @@ static void test_root_starts(void **state)
 static void turn_case(const char *name, const double yb[4], double t0, double t1, double tol)
 {
     aa_offset_curve oc;
-    memset(&oc, 0, sizeof oc);
-    const double m[6] = {64, 0, 0, 64, 3, 2};
-    oc.b[0] = 0, oc.b[1] = 1, oc.b[2] = 0, oc.b[3] = 0;
-    for (int i = 0; i < 4; i++)
-        oc.b[4 + i] = yb[i];
-    memcpy(oc.m, m, sizeof oc.m);
-    oc.d = 0.1;
-    oc.base = AA_OFFSET_CUBIC;
-    enum { N = 65 };
-    double nd[4 * N];
-    for (int k = 0; k < N; k++) {
-        double e[4], t = t0 + (t1 - t0) * k / 64.0;
-        aa__offset_end(&oc, 1, t, e);
-        nd[4 * k] = t, nd[4 * k + 1] = e[0] + e[1], nd[4 * k + 2] = 1.0 / e[2];
-        nd[4 * k + 3] = 0.0;
-        if (k > 0 && !(nd[4 * k + 1] > nd[4 * k - 3]))
-            fail_msg("%s: the table's heights not rising at node %d", name, k);
-    }
+    double nd[4 * YT_N];
     ar_piece ap;
-    memset(&ap, 0, sizeof ap);
-    ap.nyt = N;
-    ytab_attach(&ap, nd);
+    table_piece(name, yb, t0, t1, 1, &oc, nd, &ap);
     double worst = 0.0, worst_c = 0.0;
     int heights = 0, nodes = 0;
-    for (int i = 1; i < 280 + N - 1; i++) {
+    for (int i = 1; i < 280 + YT_N - 1; i++) {
         double yl;
         if (i < 200)
-            yl = nd[1] + (nd[4 * N - 3] - nd[1]) * i / 200.0;
+            yl = nd[1] + (nd[4 * YT_N - 3] - nd[1]) * i / 200.0;
         else if (i < 240)
             yl = nd[1] + (nd[5] - nd[1]) * ldexp(1.0, -(i - 199));
         else if (i < 280)
-            yl = nd[4 * N - 3] - (nd[4 * N - 3] - nd[4 * N - 7]) * ldexp(1.0, -(i - 239));
+            yl = nd[4 * YT_N - 3] - (nd[4 * YT_N - 3] - nd[4 * YT_N - 7]) * ldexp(1.0, -(i - 239));
         else
             yl = nd[4 * (i - 280) + 1];
         size_t h = 0;
