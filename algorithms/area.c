@@ -2538,7 +2538,12 @@ static inline void fill_run(const ar_row *r, int i0, int i1, const double *c)
 
 /* Bring the active list to row j: the pieces meeting the band, those of
  * the rows before in the order they were left in (keep_order), the new
- * ones after them in the order of the sorted pieces. */
+ * ones after them in the order of the sorted pieces.  A new piece's table
+ * hint (ytab_guess) is set to the table's first interval: its first band
+ * line lies there, a node or two down.  Left as the render before left it
+ * (the table's last interval), the first root walked back over the whole
+ * table, its nodes out of the caches; the start is the same from any hint,
+ * so the roots are. */
 static void update_active(const ar_state *S, ar_worker *wk, int j)
 {
     if (wk->row != j - 1) {
@@ -2567,6 +2572,7 @@ static void update_active(const ar_state *S, ar_worker *wk, int j)
         if (y1 > j) {
             wk->active[m++] = (uint32_t)wk->next;
             wk->first_end = y1 < wk->first_end ? y1 : wk->first_end;
+            wk->seg[wk->next].ythint = 0;
         }
         wk->next++;
     }
