@@ -996,17 +996,20 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
         tb = ta, ub = ua;
     s->ta = ta, s->tb = tb;
     s->ua = ua, s->ub = ub;
-    s->lo = s->ua < s->ub ? s->ua : s->ub;
-    s->hi = s->ua < s->ub ? s->ub : s->ua;
+    /* the extent in registers, stored once: stored field by field and
+     * read back as a pair (icell2's load), the two stores were not
+     * forwarded to the load, which waited for them to reach the cache;
+     * the same values */
+    double elo = ua < ub ? ua : ub, ehi = ua < ub ? ub : ua;
     if (s->te > ta && s->te < tb) {
         double ue = plain ? u_quad(s, s->te) : u_at(s, s->te);
-        s->lo = ue < s->lo ? ue : s->lo;
-        s->hi = ue > s->hi ? ue : s->hi;
+        elo = ue < elo ? ue : elo;
+        ehi = ue > ehi ? ue : ehi;
     }
     if (!plain && s->te2 > ta && s->te2 < tb) {
         double ue = u_at(s, s->te2);
-        s->lo = ue < s->lo ? ue : s->lo;
-        s->hi = ue > s->hi ? ue : s->hi;
+        elo = ue < elo ? ue : elo;
+        ehi = ue > ehi ? ue : ehi;
     }
     if (special) {
         /* a conic's ends come from its angle (an offset piece's from its
@@ -1016,17 +1019,18 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
          * would not be linked; the extent holds the exact ends too */
         if (p->y0 >= j) {
             double e = (double)(p->x0 - s->c0);
-            s->lo = e < s->lo ? e : s->lo;
-            s->hi = e > s->hi ? e : s->hi;
+            elo = e < elo ? e : elo;
+            ehi = e > ehi ? e : ehi;
         }
         if (p->y1 <= j + 1.0) {
             double e = p->src->x1 - s->c0;
-            s->lo = e < s->lo ? e : s->lo;
-            s->hi = e > s->hi ? e : s->hi;
+            elo = e < elo ? e : elo;
+            ehi = e > ehi ? e : ehi;
         }
     }
+    s->lo = elo, s->hi = ehi;
     int lo, hi;
-    icell2(s->lo, s->hi, &lo, &hi);
+    icell2(elo, ehi, &lo, &hi);
     lo += s->c0, hi += s->c0;
     if (lo >= W)
         return 0;
