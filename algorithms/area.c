@@ -2734,8 +2734,12 @@ static void band_root_done(const ar_piece *p, ar_seg *s, int j, const aa__offset
  * by side), kept in their segs for seg_make.  The active list gives the
  * pieces to come: the lines of the piece 2 BAND_AHEAD on (the first two
  * of ar_piece, what this loop reads) and its seg's hint are prefetched,
- * and the table node of the piece BAND_AHEAD on at its hint, which the
- * next line's walk (ytab_guess) starts from: loads, not values. */
+ * and the table nodes of the piece BAND_AHEAD on from its hint, which the
+ * next line's walk (ytab_guess) starts from: loads, not values.  Four
+ * nodes, the hint's line and the next two (a + 127): a band line is a
+ * node or two on from the last, so the walk reads the node two on and
+ * the interval it lands in, which the hint's line and the next alone
+ * missed half the time (the 32-byte nodes two to a line). */
 #define BAND_ROOTS 8
 #define BAND_AHEAD 12
 static void band_roots(const ar_state *S, ar_worker *wk, int j, int W)
@@ -2761,7 +2765,7 @@ static void band_roots(const ar_state *S, ar_worker *wk, int j, int W)
                 size_t h = wk->seg[ia].ythint;
                 if (pa->offset && h < pa->nyt) {
                     const char *a = (const char *)(pa->ytab + 4 * h);
-                    __builtin_prefetch(a), __builtin_prefetch(a + 63);
+                    __builtin_prefetch(a), __builtin_prefetch(a + 63), __builtin_prefetch(a + 127);
                 }
             }
             if (!(p->curved && p->offset) || p->flat || p->xmin >= W || !(p->y1 > yl))
