@@ -53,6 +53,10 @@
  *    derivative evaluated) at 33 points of a range of its parameter is
  *    never said apart from it over that range, on an S whose tangents
  *    turn back at its inflection among others (test_cones);
+ *  - the proof that a stroke's two sides (the offsets at d and -d of one
+ *    cubic) never meet (aa__piece_sides_apart), against brute force
+ *    written here on random cubics, widths and ranges, and refusing a Z
+ *    whose sides meet, a loop and others built to (test_sides_apart);
  *  - a crossing's root near a turn of the offset's y: y at the parameter
  *    aa__offset_root returns is the line's, to rounding;
  *  - pixel (716, 793) of tests/bench_bezstroke.c's scene, against its area
@@ -3034,6 +3038,231 @@ static void test_turn_starts(void **state)
     turn_case("E, y = 3t^2 - 2t^3", ye, 0, 1, TURN_TOL_E);
 }
 
+/* The offset of the cubic b (power basis, x then y) at distance d and its
+ * derivative B'(1 - d k) at t, in long double (written here, not the
+ * library's). */
+static void sides_point(const double b[8], double d, long double t, long double o[2],
+                        long double o1[2])
+{
+    long double p[2], v[2], a[2];
+    for (int k = 0; k < 2; k++) {
+        const double *c = b + 4 * k;
+        p[k] = c[0] + t * (c[1] + t * (c[2] + t * (long double)c[3]));
+        v[k] = c[1] + t * (2.0L * c[2] + 3.0L * c[3] * t);
+        a[k] = 2.0L * c[2] + 6.0L * c[3] * t;
+    }
+    long double l = sqrtl(v[0] * v[0] + v[1] * v[1]);
+    long double kap = (v[0] * a[1] - v[1] * a[0]) / (l * l * l);
+    o[0] = p[0] - d * v[1] / l, o[1] = p[1] + d * v[0] / l;
+    o1[0] = v[0] * (1.0L - d * kap), o1[1] = v[1] * (1.0L - d * kap);
+}
+
+/* Where the offsets of b at d (t in [pl, ph]) and at -d (u in [ql, qh])
+ * come nearest, by brute force: a 64 x 64 grid of (t, u), then Newton's
+ * method on O_d(t) - O_-d(u) = 0 from its 6 nearest cells, kept in the
+ * ranges, in long double; the least distance found, *ts and *us there. */
+static long double sides_nearest(const double b[8], double d, double pl, double ph, double ql,
+                                 double qh, long double *ts, long double *us)
+{
+    enum { G = 64, S = 6 };
+    long double bd[S], bt[S], bu[S], best = INFINITY;
+    for (int k = 0; k < S; k++)
+        bd[k] = INFINITY, bt[k] = pl, bu[k] = ql;
+    for (int i = 0; i <= G; i++)
+        for (int j = 0; j <= G; j++) {
+            long double t = pl + (ph - pl) * (long double)i / G;
+            long double u = ql + (qh - ql) * (long double)j / G;
+            long double o[2], o1[2], r[2], r1[2];
+            sides_point(b, d, t, o, o1);
+            sides_point(b, -d, u, r, r1);
+            long double e = hypotl(o[0] - r[0], o[1] - r[1]);
+            int w = 0;
+            for (int k = 1; k < S; k++)
+                if (bd[k] > bd[w])
+                    w = k;
+            if (e < bd[w])
+                bd[w] = e, bt[w] = t, bu[w] = u;
+        }
+    for (int k = 0; k < S; k++) {
+        long double t = bt[k], u = bu[k], e = bd[k];
+        for (int it = 0; it < 40; it++) {
+            long double o[2], o1[2], r[2], r1[2];
+            sides_point(b, d, t, o, o1);
+            sides_point(b, -d, u, r, r1);
+            long double fx = o[0] - r[0], fy = o[1] - r[1];
+            e = hypotl(fx, fy);
+            if (e < best)
+                best = e, *ts = t, *us = u;
+            long double det = -o1[0] * r1[1] + o1[1] * r1[0];
+            if (!(fabsl(det) > 0.0L))
+                break;
+            long double dt = (-fx * r1[1] + fy * r1[0]) / det, du = (o1[0] * fy - o1[1] * fx) / det;
+            t -= dt, u -= du;
+            t = t < pl ? pl : (t > ph ? ph : t), u = u < ql ? ql : (u > qh ? qh : u);
+        }
+    }
+    return best;
+}
+
+/* The next of a linear congruential sequence, in [0, 1). */
+static double sides_rnd(uint64_t *lcg)
+{
+    *lcg = *lcg * 6364136223846793005u + 1442695040888963407u;
+    return (double)(*lcg >> 11) * 0x1p-53;
+}
+
+/* Two offset pieces of cubic b, at d over [pl, ph] and at -d over [ql, qh]
+ * of its parameter, under the map m (only what sides_apart reads). */
+static void sides_pieces(const double b[8], const double m[6], double d, double pl, double ph,
+                         double ql, double qh, aa_piece *p, aa_piece *q)
+{
+    memset(p, 0, sizeof *p);
+    p->kind = AA_PIECE_OFFSET, p->dir = 1;
+    memcpy(p->oc.b, b, sizeof p->oc.b);
+    memcpy(p->oc.m, m, sizeof p->oc.m);
+    p->oc.base = AA_OFFSET_CUBIC;
+    *q = *p;
+    p->oc.d = d, q->oc.d = -d;
+    p->ot0 = pl, p->ot1 = ph, q->ot0 = qh, q->ot1 = ql;
+}
+
+/* The proof that a stroke's two sides never meet (aa__piece_sides_apart,
+ * scene_piece.c's sides_apart): on random cubics, widths and parameter
+ * ranges, every pair it accepts has no meeting by brute force
+ * (sides_nearest: their least distance above 1e-6 of d), and every pair
+ * brute force finds meeting (the least distance below 1e-12 of the
+ * curve's size) it refuses; and cases built to meet, each refused: a Z
+ * whose directions span 100 degrees (from pi/2 on, the proof's cone, two
+ * points of it can face each other across the stroke: sides at d and -d
+ * meet where B(t) - B(s) = d (N(s) + N(t)), here found by a root of its
+ * component along the directions' mean, (B(t) - B(s)) . T(phi), on a grid
+ * of (s, t), d its normal component over 2 cos((theta(t) - theta(s))/2)),
+ * over the whole curve and over two ranges each of which alone lies in a
+ * cone narrower than pi/2 (the hull counts); a loop; two different
+ * cubics' offsets that cross; the same under a map of determinant 0. */
+static void test_sides_apart(void **state)
+{
+    (void)state;
+    const double id[6] = {1, 0, 0, 1, 0, 0}, shear[6] = {2, 0.5, -0.75, 1.5, 3, -1};
+    uint64_t lcg = 271828;
+    int accepted = 0, meeting = 0, n = SAN_SUBSET ? 400 : 4000;
+    long double least = INFINITY;
+    for (int c = 0; c < n; c++) {
+        double b[8], cp[8];
+        for (int k = 0; k < 8; k++)
+            cp[k] = 2.0 * sides_rnd(&lcg) - 1.0; /* control points x0..x3, y0..y3 */
+        for (int k = 0; k < 2; k++) {
+            const double *z = cp + 4 * k;
+            b[4 * k] = z[0], b[4 * k + 1] = 3.0 * (z[1] - z[0]);
+            b[4 * k + 2] = 3.0 * (z[2] - 2.0 * z[1] + z[0]);
+            b[4 * k + 3] = z[3] - 3.0 * z[2] + 3.0 * z[1] - z[0];
+        }
+        double sg = sides_rnd(&lcg) < 0.5 ? -1.0 : 1.0, d = sg * 0.01 * pow(300.0, sides_rnd(&lcg));
+        double r[4];
+        for (int k = 0; k < 4; k++)
+            r[k] = sides_rnd(&lcg);
+        double pl = fmin(r[0], r[1]), ph = fmax(r[0], r[1]);
+        double ql = fmin(r[2], r[3]), qh = fmax(r[2], r[3]);
+        if (c % 3 == 0)
+            pl = 0.0, ph = 1.0, ql = 0.0, qh = 1.0;
+        if (!(ph > pl && qh > ql))
+            continue;
+        aa_piece p, q, ps, qs;
+        sides_pieces(b, id, d, pl, ph, ql, qh, &p, &q);
+        sides_pieces(b, shear, d, pl, ph, ql, qh, &ps, &qs);
+        int said = aa__piece_sides_apart(&p, &q);
+        assert_int_equal(said, aa__piece_sides_apart(&qs, &ps));
+        long double ts = 0, us = 0, e = sides_nearest(b, d, pl, ph, ql, qh, &ts, &us);
+        if (e < 1e-12L)
+            meeting++;
+        if (said) {
+            accepted++;
+            least = fminl(least, e / fabs(d));
+            if (!(e > 1e-6L * fabs(d)))
+                fail_msg("case %d: said apart, yet %.3Lg apart at t %.17Lg, u %.17Lg (d %.17g)",
+                         c, e, ts, us, d);
+        } else if (e < 1e-12L) {
+            /* refused, as it must be */
+        }
+    }
+    print_message("sides apart: %d of %d random pairs said apart, none meeting (least distance "
+                  "%.3Lg of d); %d meeting, none said apart\n",
+                  accepted, n, least, meeting);
+    assert_true(accepted > n / 10 && meeting > n / 40);
+    /* a Z: B' from (1, 0) through 30 (cos 100deg, sin 100deg) to (1, 0), its
+     * directions from 0 to 98.1 degrees */
+    double z[8], al = 100.0 * M_PI / 180.0, w1[2] = {30.0 * cos(al), 30.0 * sin(al)};
+    for (int k = 0; k < 2; k++) {
+        double w0 = k ? 0.0 : 1.0;
+        z[4 * k] = 0.0, z[4 * k + 1] = w0, z[4 * k + 2] = w1[k] - w0;
+        z[4 * k + 3] = (2.0 * w0 - 2.0 * w1[k]) / 3.0;
+    }
+    /* a root of g(s, t) = (B(t) - B(s)) . T(phi) with s < t, s = 0: g(0, 0.9)
+     * > 0 > g(0, 1) = (2 + 30 cos 100deg)/3 */
+    long double s0 = 0.0L, lo = 0.9L, hi = 1.0L, gl = 0.0L;
+    for (int it = 0; it < 200; it++) {
+        long double t = it ? 0.5L * (lo + hi) : lo, o[2], o1[2], a[2], a1[2];
+        sides_point(z, 0.0, s0, a, a1);
+        sides_point(z, 0.0, t, o, o1);
+        long double phi = 0.5L * (atan2l(a1[1], a1[0]) + atan2l(o1[1], o1[0]));
+        long double g = (o[0] - a[0]) * cosl(phi) + (o[1] - a[1]) * sinl(phi);
+        if (it == 0) {
+            gl = g;
+            continue;
+        }
+        if ((g < 0) == (gl < 0))
+            lo = t;
+        else
+            hi = t;
+    }
+    long double t0 = 0.5L * (lo + hi), a[2], a1[2], o[2], o1[2];
+    sides_point(z, 0.0, s0, a, a1);
+    sides_point(z, 0.0, t0, o, o1);
+    long double th0 = atan2l(a1[1], a1[0]), th1 = atan2l(o1[1], o1[0]);
+    long double phi = 0.5L * (th0 + th1);
+    double dz = (double)(((o[0] - a[0]) * -sinl(phi) + (o[1] - a[1]) * cosl(phi)) /
+                         (2.0L * cosl(0.5L * (th1 - th0))));
+    /* O_dz(s0) = O_-dz(t0) up to dz's rounding: the sides at dz and -dz meet */
+    long double ts = 0, us = 0, e = sides_nearest(z, dz, 0.0, 1.0, 0.0, 1.0, &ts, &us);
+    print_message("a Z (directions from 0 to 98.1 degrees): its sides %.17g apart meet at t "
+                  "%.6Lf and %.6Lf (%.3Lg apart)\n",
+                  2.0 * dz, ts, us, e);
+    assert_true(gl > 0.0L && e < 1e-12L && fabs(dz) > 0.1);
+    for (int k = 0; k < 2; k++) {
+        /* the whole Z, then the two ends' ranges holding the meeting */
+        aa_piece p, q;
+        double pl = k && ts > 0.5L ? 0.99 : 0.0, ph = k && ts < 0.5L ? 0.01 : 1.0;
+        double ql = k && us > 0.5L ? 0.99 : 0.0, qh = k && us < 0.5L ? 0.01 : 1.0;
+        assert_true(ts >= pl && ts <= ph && us >= ql && us <= qh);
+        sides_pieces(z, id, dz, pl, ph, ql, qh, &p, &q);
+        if (aa__piece_sides_apart(&p, &q) || aa__piece_sides_apart(&q, &p))
+            fail_msg("the Z over [%g, %g] and [%g, %g] said apart; its sides meet", pl, ph, ql,
+                     qh);
+        /* each range alone within a cone narrower than pi/2 */
+        sides_pieces(z, id, dz, pl, ph, pl, ph, &p, &q);
+        assert_true(k == 0 || aa__piece_sides_apart(&p, &q));
+        sides_pieces(z, id, dz, ql, qh, ql, qh, &p, &q);
+        assert_true(k == 0 || aa__piece_sides_apart(&p, &q));
+    }
+    /* a loop: control points (0, 0), (1.5, 1), (-0.5, 1), (1, 0) */
+    const double loopc[8] = {0, 4.5, -10.5, 7, 0, 3, -3, 0};
+    aa_piece p, q;
+    sides_pieces(loopc, id, 0.05, 0.0, 1.0, 0.0, 1.0, &p, &q);
+    e = sides_nearest(loopc, 0.05, 0.0, 1.0, 0.0, 1.0, &ts, &us);
+    assert_true(e < 1e-12L && !aa__piece_sides_apart(&p, &q));
+    /* two cubics' offsets crossing: each straight, one base shifted */
+    const double l1[8] = {0, 1, 0, 0, 0, 0.1, 0, 0};
+    sides_pieces(l1, id, 0.2, 0.0, 1.0, 0.0, 1.0, &p, &q);
+    assert_true(aa__piece_sides_apart(&p, &q));
+    q.oc.b[4] = -0.45; /* its base 0.45 lower: its side at 0.2 meets p's */
+    assert_false(aa__piece_sides_apart(&p, &q));
+    q = p; /* one side twice: the same curve */
+    assert_false(aa__piece_sides_apart(&p, &q));
+    const double flat[6] = {1, 2, 0.5, 1, 0, 0}; /* determinant 0 */
+    sides_pieces(l1, flat, 0.2, 0.0, 1.0, 0.0, 1.0, &p, &q);
+    assert_false(aa__piece_sides_apart(&p, &q));
+}
+
 int main(void)
 {
     SAN_CASES_PRINT();
@@ -3064,6 +3293,7 @@ int main(void)
                                        cmocka_unit_test(test_end_top),
                                        cmocka_unit_test(test_side_guess),
                                        cmocka_unit_test(test_root_starts),
-                                       cmocka_unit_test(test_turn_starts)};
+                                       cmocka_unit_test(test_turn_starts),
+                                       cmocka_unit_test(test_sides_apart)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -346,6 +346,12 @@ double aa__piece_end_x(const aa_piece *p, double y, double t);
  * aa__piece_meet_at parts a pair at once.  0 where nothing is proven. */
 int aa__piece_cones_apart(const aa_piece *p, const aa_piece *q, const double tp[2],
                           const double tq[2]);
+/* 1 if offset pieces p and q are a stroke's two sides, the offsets at d and
+ * -d of one cubic under one map, over parameter ranges on whose hull the
+ * cubic's directions lie in a cone narrower than pi/2: proven never to
+ * meet (scene_piece.c, sides_apart), by which aa__piece_meet_at parts such
+ * a pair where the cones do not.  0 where nothing is proven. */
+int aa__piece_sides_apart(const aa_piece *p, const aa_piece *q);
 
 /* ------------------------------------------------------------------------
  * Fields: a procedural scene, a point function plus its own exact pixel

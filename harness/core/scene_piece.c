@@ -1321,6 +1321,68 @@ int aa__piece_cones_apart(const aa_piece *p, const aa_piece *q, const double tp[
     return cones_apart(p, q, tp, tq);
 }
 
+/* 1 if offset pieces p and q are the two sides of one stroke, proven never
+ * to meet: the offsets O+ = B + d N and O- = B - d N (aabench.h; the same
+ * base cubic b and map m, distances d and -d, d != 0, neither an evolute)
+ * over parameter ranges whose hull [ta, tb] has B' inside a cone narrower
+ * than pi/2.  The proof, in the base's own coordinates (m is one to one:
+ * its determinant is not 0, so it keeps meetings): if O+(s) = O-(t), then
+ * B(t) - B(s) = d (N(s) + N(t)); s = t would give 2 d N(s) = 0, so s !=
+ * t.  With theta(u) the angle of B'(u) (continuous: B' is never 0 in the
+ * cone) and phi = (theta(s) + theta(t))/2, N(s) + N(t) = 2 cos((theta(t)
+ * - theta(s))/2) N(phi) is normal to T(phi) = (cos phi, sin phi), while
+ * (B(t) - B(s)) . T(phi) is the integral over [s, t] of |B'(u)|
+ * cos(theta(u) - phi).  Every theta(u) on [ta, tb], theta(s) and
+ * theta(t) among them, lies in the cone's range of angles, narrower than
+ * pi/2, so |theta(u) - phi| < pi/2 and the integral is not 0: no meeting.
+ * B' over [ta, tb] is the quadratic Bezier curve of control vectors
+ * B'(ta), B'(ta) + (tb - ta) B''(ta)/2, B'(tb) (tangent_cone's), inside
+ * the cone they span (its Bernstein weights are >= 0), which is narrower
+ * than pi/2 when each two of them have a positive dot product (three
+ * vectors so, the angles between them each below pi/2, do not go round
+ * the origin, and the widest angle between two of them is the cone's):
+ * asked beyond 1e-9 of the square of the bound of the terms they were
+ * summed from (cones_apart's margin), far beyond their rounding, and m's
+ * determinant beyond 1e-12 of its terms.  A stroke's two sides come this
+ * near (their x extents overlapping in a band) only where it is narrower
+ * than a band is high (a pixel): at 2.5 px, as tests/bench_bezstroke.c's,
+ * such a pair is never asked (counted at 32 to 1024 px); at 0.5 px 9,458
+ * asks a render at 1024 px (2,727 at 256 px), which the tangents' cones,
+ * nearly parallel on the two sides, seldom part: halved 11,154 times
+ * (3,423).  Asked by subdivide_offset where the cones decide nothing over
+ * the pair's common heights. */
+static __attribute__((noinline)) int sides_apart(const aa_piece *p, const aa_piece *q)
+{
+    if (p->kind != AA_PIECE_OFFSET || q->kind != AA_PIECE_OFFSET || p->oc.d != -q->oc.d ||
+        p->oc.d == 0.0 || p->oc.evolute || q->oc.evolute || p->oc.base != AA_OFFSET_CUBIC ||
+        q->oc.base != AA_OFFSET_CUBIC || memcmp(p->oc.b, q->oc.b, sizeof p->oc.b) ||
+        memcmp(p->oc.m, q->oc.m, sizeof p->oc.m))
+        return 0;
+    const double *c = p->oc.b, *m = p->oc.m;
+    double det = m[0] * m[3] - m[1] * m[2];
+    if (!(fabs(det) > 1e-12 * (fabs(m[0] * m[3]) + fabs(m[1] * m[2]))))
+        return 0;
+    double ta = dmin(dmin(p->ot0, p->ot1), dmin(q->ot0, q->ot1));
+    double tb = dmax(dmax(p->ot0, p->ot1), dmax(q->ot0, q->ot1)), h = tb - ta, v[3][2];
+    double mag = 0.0, T = dmax(1.0, dmax(fabs(ta), fabs(tb)));
+    for (int k = 0; k < 2; k++) {
+        const double *b = c + 4 * k; /* x, then y */
+        double d1 = b[1] + ta * (2.0 * b[2] + 3.0 * b[3] * ta);
+        v[0][k] = d1;
+        v[1][k] = d1 + 0.5 * h * (2.0 * b[2] + 6.0 * b[3] * ta);
+        v[2][k] = b[1] + tb * (2.0 * b[2] + 3.0 * b[3] * tb);
+        mag += fabs(b[1]) + T * (4.0 * fabs(b[2]) + 9.0 * T * fabs(b[3]));
+    }
+    double e = 1e-9 * mag * mag;
+    return v[0][0] * v[1][0] + v[0][1] * v[1][1] > e && v[0][0] * v[2][0] + v[0][1] * v[2][1] > e &&
+           v[1][0] * v[2][0] + v[1][1] * v[2][1] > e;
+}
+
+int aa__piece_sides_apart(const aa_piece *p, const aa_piece *q)
+{
+    return sides_apart(p, q);
+}
+
 /* What the tangents' cones tell of p and q on [a, b] (area's form), with
  * x_p - x_q strictly monotone there (cones_apart): 1 if they meet nowhere
  * but at an end point they share there (x_p - x_q exactly 0 at that end,
@@ -1371,7 +1433,9 @@ static void subdivide_offset(meet_ctx *c, double a, double b, const double tp[2]
     /* area's form: the tangents' cones first (cones_decide), and an end
      * point shared by pieces tangent there cut off at once */
     int cd = c->quick ? cones_decide(c, a, b, tp, tq, xp, xq) : 0;
-    if (cd == 1)
+    /* a stroke's two sides where the cones part nothing: proven apart */
+    if (cd == 1 || (cd == 0 && c->quick && depth == 0 && c->p->oc.d == -c->q->oc.d &&
+                    c->p->oc.d != 0.0 && sides_apart(c->p, c->q)))
         return;
     if (cd == 2) {
         record_meet(c, polish_meet(c->p, c->q, a, b, xp[0] - xq[0], xp[1] - xq[1],
