@@ -2268,7 +2268,9 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
                         continue;
                     span[m++] = keys[k];
                 }
-                if (!order_ends(r, span, m, lo, ya, yb, 1, list)) {
+                if (m <= 1) { /* one seg or none: in order, without its ends' roots */
+                    memcpy(list, span, m * sizeof *list);
+                } else if (!order_ends(r, span, m, lo, ya, yb, 1, list)) {
                     for (size_t k = 0; k < m; k++)
                         list[k].key = (double)(wk->seg[list[k].idx].c0 - lo) +
                                       key_u(&wk->seg[list[k].idx], vm);
