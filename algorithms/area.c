@@ -2263,12 +2263,13 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
                 m = next;
             } else {
                 /* the segs spanning the sub-band, ordered along x from
-                 * their ends, else at its middle */
+                 * their ends, else at its middle (a flat one has va = vb,
+                 * seg_make's, so spans none: yb > ya) */
                 double vm = 0.5 * (ya + yb);
                 m = 0;
                 for (size_t k = 0; k < n; k++) {
                     const ar_seg *s = &wk->seg[keys[k].idx];
-                    if (s->p->flat || !(s->va <= ya && s->vb >= yb))
+                    if (!(s->va <= ya && s->vb >= yb))
                         continue;
                     span[m++] = keys[k];
                 }
