@@ -1050,12 +1050,30 @@ static void band_fields(ar_seg *s, int j)
     s->xy[0] = s->xy[1] = NAN;
 }
 
+/* sub_key's root (tau *t, u *u) strictly inside the seg's heights in
+ * the band, out of line: sub_key's look-up of its slots and the seg's
+ * ends (half of its new heights) are inline, without a call */
+static __attribute__((noinline)) void sub_root(const ar_seg *s, double v, double *t, double *u)
+{
+    ar_seg *w = (ar_seg *)s; /* the worker's own seg */
+    if (s->p->curved && s->p->offset) {
+        double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &w->ythint);
+        long double x;
+        *t = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb,
+                                       s->va - v, v - s->V, g, &x);
+        *u = (double)(x - s->c0);
+    } else {
+        double tt = solve_v(s, v);
+        *t = tt, *u = u_at(s, tt);
+    }
+}
+
 /* tau (*t) and u (*u) where v(tau) = v in the band, for a sub-band's
  * order: u at the band's ends as seg_make found it, inside it an offset
  * piece's from its root's last evaluation moved by its slope (key_u's),
  * the root the one tau_of_v finds (the same call); kept in the seg for
  * the band (bv), the slot's index returned. */
-static int sub_key(const ar_seg *s, double v, double *t, double *u)
+static inline int sub_key(const ar_seg *s, double v, double *t, double *u)
 {
     ar_seg *w = (ar_seg *)s; /* the worker's own seg */
     int k = v == s->bv[0] ? 0 : v == s->bv[1] ? 1 : -1;
@@ -1064,19 +1082,12 @@ static int sub_key(const ar_seg *s, double v, double *t, double *u)
         return k;
     }
     double tt, uu;
-    if (v <= s->va) {
+    if (v <= s->va)
         tt = s->ta, uu = s->ua;
-    } else if (v >= s->vb) {
+    else if (v >= s->vb)
         tt = s->tb, uu = s->ub;
-    } else if (s->p->curved && s->p->offset) {
-        double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &w->ythint);
-        long double x;
-        tt = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb,
-                                       s->va - v, v - s->V, g, &x);
-        uu = (double)(x - s->c0);
-    } else {
-        tt = solve_v(s, v), uu = u_at(s, tt);
-    }
+    else
+        sub_root(s, v, &tt, &uu);
     k = s->bn;
     w->bv[k] = v, w->bt[k] = tt, w->bu[k] = uu, w->bx[k] = NAN, w->bn ^= 1;
     *t = tt, *u = uu;
