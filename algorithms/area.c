@@ -1777,15 +1777,23 @@ static inline double right_end(const ar_seg *s, int lo)
  * segs lie on either side of that x, may touch there, and never change
  * order (a stroke's inner join line and its offset leaving their common
  * vertex on either side of it). */
-static void reaching(const ar_row *r, const ar_key *keys, uint32_t *act, size_t *nact,
-                     double left, int lo)
+static void reaching(const ar_row *r, uint32_t *act, size_t *nact, double left)
 {
-    const ar_seg *seg = r->wk->seg;
+    double *right = r->wk->ends; /* act[a]'s right end (add_reaching's) */
     size_t keep = 0;
     for (size_t a = 0; a < *nact; a++)
-        if (right_end(&seg[keys[act[a]].idx], lo) > left)
-            act[keep++] = act[a];
+        if (right[a] > left)
+            act[keep] = act[a], right[keep++] = right[a];
     *nact = keep;
+}
+
+/* keys[k] (seg s) added to reaching's act[0..*nact), its right end kept
+ * beside it (wk->ends, free while the crossings are sought) */
+static inline void add_reaching(const ar_row *r, uint32_t *act, size_t *nact, size_t k,
+                                const ar_seg *s, int lo)
+{
+    r->wk->ends[*nact] = right_end(s, lo);
+    act[(*nact)++] = (uint32_t)k;
 }
 
 /* Does any pair of the cluster (all spanning the band) cross inside it?
@@ -1798,11 +1806,11 @@ static int any_crossing(const ar_row *r, const ar_key *keys, size_t n, int lo)
     size_t nact = 0;
     for (size_t k = 0; k < n; k++) {
         const ar_seg *s = &seg[keys[k].idx];
-        reaching(r, keys, act, &nact, keys[k].key, lo);
+        reaching(r, act, &nact, keys[k].key);
         for (size_t a = 0; a < nact; a++)
             if (pair_crossings(&seg[keys[act[a]].idx], s, 0.0, 1.0, r->j, out))
                 return 1;
-        act[nact++] = (uint32_t)k;
+        add_reaching(r, act, &nact, k, s, lo);
     }
     return 0;
 }
@@ -2029,7 +2037,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
         add_event(&b, s->va);
         if (!s->p->flat)
             add_event(&b, s->vb);
-        reaching(r, keys, act, &nact, keys[k].key, lo);
+        reaching(r, act, &nact, keys[k].key);
         if (!s->p->flat)
             for (size_t a = 0; a < nact; a++) {
                 const ar_seg *t = &seg[keys[act[a]].idx];
@@ -2048,7 +2056,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
                         add_cross(r->wk, &b, out[i], keys[act[a]].idx, keys[k].idx);
                 }
             }
-        act[nact++] = (uint32_t)k;
+        add_reaching(r, act, &nact, k, s, lo);
     }
     if (r->wk->ncx)
         sort_crosses(r->wk, b.lim);
