@@ -1054,12 +1054,30 @@ static void band_fields(ar_seg *s, int j)
     s->xy[0] = s->xy[1] = NAN;
 }
 
+/* sub_key's root (tau *t, u *u) strictly inside the seg's heights in
+ * the band, out of line: sub_key's look-up of its slots and the seg's
+ * ends (half of its new heights) are inline, without a call */
+static __attribute__((noinline)) void sub_root(const ar_seg *s, double v, double *t, double *u)
+{
+    ar_seg *w = (ar_seg *)s; /* the worker's own seg */
+    if (s->p->curved && s->p->offset) {
+        double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &w->ythint);
+        long double x;
+        *t = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb,
+                                       s->va - v, v - s->V, g, &x);
+        *u = (double)(x - s->c0);
+    } else {
+        double tt = solve_v(s, v);
+        *t = tt, *u = u_at(s, tt);
+    }
+}
+
 /* tau (*t) and u (*u) where v(tau) = v in the band, for a sub-band's
  * order: u at the band's ends as seg_make found it, inside it an offset
  * piece's from its root's last evaluation moved by its slope (key_u's),
  * the root the one tau_of_v finds (the same call); kept in the seg for
  * the band (bv), the slot's index returned. */
-static int sub_key(const ar_seg *s, double v, double *t, double *u)
+static inline int sub_key(const ar_seg *s, double v, double *t, double *u)
 {
     ar_seg *w = (ar_seg *)s; /* the worker's own seg */
     int k = v == s->bv[0] ? 0 : v == s->bv[1] ? 1 : -1;
@@ -1068,19 +1086,12 @@ static int sub_key(const ar_seg *s, double v, double *t, double *u)
         return k;
     }
     double tt, uu;
-    if (v <= s->va) {
+    if (v <= s->va)
         tt = s->ta, uu = s->ua;
-    } else if (v >= s->vb) {
+    else if (v >= s->vb)
         tt = s->tb, uu = s->ub;
-    } else if (s->p->curved && s->p->offset) {
-        double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &w->ythint);
-        long double x;
-        tt = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb,
-                                       s->va - v, v - s->V, g, &x);
-        uu = (double)(x - s->c0);
-    } else {
-        tt = solve_v(s, v), uu = u_at(s, tt);
-    }
+    else
+        sub_root(s, v, &tt, &uu);
     k = s->bn;
     w->bv[k] = v, w->bt[k] = tt, w->bu[k] = uu, w->bx[k] = NAN, w->bn ^= 1;
     *t = tt, *u = uu;
@@ -1770,15 +1781,23 @@ static inline double right_end(const ar_seg *s, int lo)
  * segs lie on either side of that x, may touch there, and never change
  * order (a stroke's inner join line and its offset leaving their common
  * vertex on either side of it). */
-static void reaching(const ar_row *r, const ar_key *keys, uint32_t *act, size_t *nact,
-                     double left, int lo)
+static void reaching(const ar_row *r, uint32_t *act, size_t *nact, double left)
 {
-    const ar_seg *seg = r->wk->seg;
+    double *right = r->wk->ends; /* act[a]'s right end (add_reaching's) */
     size_t keep = 0;
     for (size_t a = 0; a < *nact; a++)
-        if (right_end(&seg[keys[act[a]].idx], lo) > left)
-            act[keep++] = act[a];
+        if (right[a] > left)
+            act[keep] = act[a], right[keep++] = right[a];
     *nact = keep;
+}
+
+/* keys[k] (seg s) added to reaching's act[0..*nact), its right end kept
+ * beside it (wk->ends, free while the crossings are sought) */
+static inline void add_reaching(const ar_row *r, uint32_t *act, size_t *nact, size_t k,
+                                const ar_seg *s, int lo)
+{
+    r->wk->ends[*nact] = right_end(s, lo);
+    act[(*nact)++] = (uint32_t)k;
 }
 
 /* Does any pair of the cluster (all spanning the band) cross inside it?
@@ -1791,11 +1810,11 @@ static int any_crossing(const ar_row *r, const ar_key *keys, size_t n, int lo)
     size_t nact = 0;
     for (size_t k = 0; k < n; k++) {
         const ar_seg *s = &seg[keys[k].idx];
-        reaching(r, keys, act, &nact, keys[k].key, lo);
+        reaching(r, act, &nact, keys[k].key);
         for (size_t a = 0; a < nact; a++)
             if (pair_crossings(&seg[keys[act[a]].idx], s, 0.0, 1.0, r->j, out))
                 return 1;
-        act[nact++] = (uint32_t)k;
+        add_reaching(r, act, &nact, k, s, lo);
     }
     return 0;
 }
@@ -1858,21 +1877,25 @@ static int order_ends(const ar_row *r, const ar_key *in, size_t n, int lo, doubl
                       int sub, ar_key *keys)
 {
     const ar_seg *seg = r->wk->seg;
-    double top, bot, pt = 0.0, pb = 0.0;
+    double *e = r->wk->ends, pt = 0.0, pb = 0.0; /* in[k]'s ends at e[2k], e[2k + 1] */
     for (size_t k = 0; k < n; k++) {
-        ends_u(&seg[in[k].idx], lo, ya, yb, sub, &top, &bot);
-        keys[k].key = top + bot;
+        ends_u(&seg[in[k].idx], lo, ya, yb, sub, &e[2 * k], &e[2 * k + 1]);
+        keys[k].key = e[2 * k] + e[2 * k + 1];
         keys[k].id = in[k].id;
-        keys[k].idx = in[k].idx;
+        keys[k].idx = (uint32_t)k; /* its place in `in` until sorted (by key and id alone) */
     }
     sort_keys(keys, n);
     for (size_t k = 0; k < n; k++) {
-        ends_u(&seg[keys[k].idx], lo, ya, yb, sub, &top, &bot);
-        double dt = top - pt, db = bot - pb;
+        uint32_t i = keys[k].idx;
+        double top = e[2 * i], bot = e[2 * i + 1], dt = top - pt, db = bot - pb;
+        keys[k].idx = in[i].idx;
         if (k > 0 && !((dt > ORDER_GAP && db > -ORDER_TIE) || (db > ORDER_GAP && dt > -ORDER_TIE) ||
                        (dt > -ORDER_TIE && db > -ORDER_TIE &&
-                        same_track(&seg[keys[k - 1].idx], &seg[keys[k].idx]))))
+                        same_track(&seg[keys[k - 1].idx], &seg[keys[k].idx])))) {
+            for (k++; k < n; k++) /* the segs' own indices for the middle's order */
+                keys[k].idx = in[keys[k].idx].idx;
             return 0;
+        }
         pt = top, pb = bot;
     }
     return 1;
@@ -2018,7 +2041,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
         add_event(&b, s->va);
         if (!s->p->flat)
             add_event(&b, s->vb);
-        reaching(r, keys, act, &nact, keys[k].key, lo);
+        reaching(r, act, &nact, keys[k].key);
         if (!s->p->flat)
             for (size_t a = 0; a < nact; a++) {
                 const ar_seg *t = &seg[keys[act[a]].idx];
@@ -2037,7 +2060,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
                         add_cross(r->wk, &b, out[i], keys[act[a]].idx, keys[k].idx);
                 }
             }
-        act[nact++] = (uint32_t)k;
+        add_reaching(r, act, &nact, k, s, lo);
     }
     if (r->wk->ncx)
         sort_crosses(r->wk, b.lim);
@@ -2263,16 +2286,19 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
                 m = next;
             } else {
                 /* the segs spanning the sub-band, ordered along x from
-                 * their ends, else at its middle */
+                 * their ends, else at its middle (a flat one has va = vb,
+                 * seg_make's, so spans none: yb > ya) */
                 double vm = 0.5 * (ya + yb);
                 m = 0;
                 for (size_t k = 0; k < n; k++) {
                     const ar_seg *s = &wk->seg[keys[k].idx];
-                    if (s->p->flat || !(s->va <= ya && s->vb >= yb))
+                    if (!(s->va <= ya && s->vb >= yb))
                         continue;
                     span[m++] = keys[k];
                 }
-                if (!order_ends(r, span, m, lo, ya, yb, 1, list)) {
+                if (m <= 1) { /* one seg or none: in order, without its ends' roots */
+                    memcpy(list, span, m * sizeof *list);
+                } else if (!order_ends(r, span, m, lo, ya, yb, 1, list)) {
                     for (size_t k = 0; k < m; k++)
                         list[k].key = (double)(wk->seg[list[k].idx].c0 - lo) +
                                       key_u(&wk->seg[list[k].idx], vm);
@@ -3025,6 +3051,7 @@ static void state_free(ar_state *S)
         free(wk->order);
         free(wk->sub);
         free(wk->tops);
+        free(wk->ends);
         free(wk->acc);
         free(wk->cov);
         free(wk->wind);
@@ -3366,6 +3393,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
      * fresh pages (page faults of a benchmark run 25.1 k to 39.7 k, the init
      * at 1024 px about 10 to 16 ms of CPU) */
     wk->tops = line_alloc_as(n, sizeof *wk->tops, 0);
+    wk->ends = line_alloc_as(2 * n, sizeof *wk->ends, 0);
     wk->acc = line_alloc(cells, sizeof *wk->acc);
     wk->cov = line_alloc(cells, sizeof *wk->cov);
     wk->wind = line_alloc(nl, sizeof *wk->wind);
@@ -3403,7 +3431,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
         }
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
         !wk->wind || !wk->wtmp || !wk->ev || !wk->cx || !wk->mark || !wk->cm || !wk->act ||
-        !wk->pend || !wk->tops)
+        !wk->pend || !wk->tops || !wk->ends)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
                        S->w);
     return AA_OK;

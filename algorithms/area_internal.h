@@ -238,6 +238,9 @@ typedef struct ar_worker {
     uint32_t *list;  /* the current row's segs, in active order */
     ar_key *order, *sub;
     ar_key *tops; /* a crowded band's segs by their tops (area.c, order_next) */
+    /* 2 doubles a seg: u at the (sub-)band's two ends of each seg
+     * order_ends orders; the right ends of reaching's segs before it */
+    double *ends;
     double *acc, *cov; /* per cell and channel */
     int *wind, *wtmp;
     double *ev;

@@ -31,6 +31,9 @@
  *    clipper.
  *  - the sort of a row's new pieces' keys (area_sort_new_keys) against
  *    qsort with the rows' comparison, written here.
+ *  - sub-bands of a band holding one seg or none (ordered without their
+ *    ends' roots) and sub-bands whose first two segs have the same ends
+ *    (ordered at the middle) against the reference.
  */
 #include "area_internal.h"
 #include "bench.h"
@@ -847,6 +850,51 @@ static void test_filters_refused(void **state)
     assert_int_equal(support_parse_method("area:integrator=exact", NULL, NULL), AA_EINVAL);
 }
 
+/* A crowded band's sub-bands that the ends do not order (area.c,
+ * cluster_bands, order_ends): at 64 x 64, twelve lenses (two quadratics
+ * from one point to another, bulging either way) each from 0.3 to 0.8 of
+ * a row's height down to its bottom, with a thin rectangle right of it in
+ * the same pixel over three rows, so that the sub-band between holds four
+ * segs, the first two of which, in order, have the same ends (the order
+ * then taken at the middle, every seg's index mapped back from order_ends'
+ * places), and those above and below the rectangle's two alone; and a
+ * zigzag whose vertices lie inside the rows, at 0.2 and 0.7 of them, each
+ * band's sub-bands holding one seg (ordered without order_ends' roots).
+ * Against the reference (both integrators: the bands' takes cluster_bands
+ * for the lines too), within 1e-12. */
+static void test_sub_band_orders(void **state)
+{
+    (void)state;
+    aa_scene *s = aa_scene_new(black);
+    assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
+    for (int k = 0; k < 12; k++) {
+        double x = (4.15 + 5 * k + 0.05 * sin(k)) / 64, y0 = (2 + 5 * k + 0.3) / 64,
+               y1 = (2 + 5 * k + 0.8) / 64, b = (0.5 + 0.02 * k) / 64;
+        assert_int_equal(aa_scene_move_to(s, x, y0), AA_OK);
+        assert_int_equal(aa_scene_quad_to(s, x + b, 0.5 * (y0 + y1), x, y1), AA_OK);
+        assert_int_equal(aa_scene_quad_to(s, x - 0.7 * b, 0.5 * (y0 + y1), x, y0), AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+        oracle_poly q = {4,
+                         {x + 0.45 / 64, x + 0.55 / 64, x + 0.56 / 64, x + 0.46 / 64},
+                         {y0 - 1.0 / 64, y0 - 1.0 / 64, y1 + 1.0 / 64, y1 + 1.0 / 64}};
+        scenes_add_poly(s, &q);
+    }
+    /* the zigzag: its left side's vertices at 0.2 and 0.7 of rows 2 to
+     * 61, its right side straight, 9 px to the right */
+    assert_int_equal(aa_scene_move_to(s, 40.0 / 64, 2.2 / 64), AA_OK);
+    for (int r = 2; r < 62; r++) {
+        double x = (40 + 0.8 * sin(0.9 * r)) / 64;
+        assert_int_equal(aa_scene_line_to(s, x, (r + 0.2) / 64), AA_OK);
+        assert_int_equal(aa_scene_line_to(s, x + 0.45 / 64, (r + 0.7) / 64), AA_OK);
+    }
+    assert_int_equal(aa_scene_line_to(s, 49.0 / 64, 61.7 / 64), AA_OK);
+    assert_int_equal(aa_scene_line_to(s, 49.0 / 64, 2.2 / 64), AA_OK);
+    assert_int_equal(aa_scene_close(s), AA_OK);
+    assert_int_equal(aa_scene_finish(s), AA_OK);
+    check_reference("lenses and a zigzag inside rows", s, 64, 64, 0, 0, 0, 1e-12);
+    aa_scene_free(s);
+}
+
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_crow_reference),
              cmocka_unit_test(test_crow_oracle),
@@ -866,4 +914,5 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_crowded_crossings),
              cmocka_unit_test(test_crowded_layers),
              cmocka_unit_test(test_sweep_parts),
-             cmocka_unit_test(test_sort_new_keys))
+             cmocka_unit_test(test_sort_new_keys),
+             cmocka_unit_test(test_sub_band_orders))
