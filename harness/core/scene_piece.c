@@ -1220,6 +1220,29 @@ static void shared_end_cut(meet_ctx *c, double a, double b, const double tp[2],
     c->n = k2;
 }
 
+/* The control vectors v of cubic c's B' over [ta, tb] (its x and y
+ * coefficients c[0..3], c[4..7]): B'(ta), B'(ta) + (tb - ta) B''(ta)/2,
+ * B'(tb), a quadratic Bezier curve inside the cone they span; returns a
+ * bound of the sum of their coordinates' magnitudes and of the terms they
+ * were summed from. */
+static double hodograph_cone(const double *c, double ta, double tb, double v[3][2])
+{
+    double h = tb - ta;
+    for (int k = 0; k < 2; k++) {
+        const double *b = c + 4 * k; /* x, then y */
+        double d1 = b[1] + ta * (2.0 * b[2] + 3.0 * b[3] * ta);
+        v[0][k] = d1;
+        v[1][k] = d1 + 0.5 * h * (2.0 * b[2] + 6.0 * b[3] * ta);
+        v[2][k] = b[1] + tb * (2.0 * b[2] + 3.0 * b[3] * tb);
+    }
+    double T = dmax(1.0, dmax(fabs(ta), fabs(tb))), mag = 0.0;
+    for (int k = 0; k < 2; k++) {
+        const double *b = c + 4 * k;
+        mag += fabs(b[1]) + T * (4.0 * fabs(b[2]) + 9.0 * T * fabs(b[3]));
+    }
+    return mag;
+}
+
 /* Generators g[k] (k < the count returned) of a cone holding the
  * direction of p's tangent, up to a sign fixed along the piece, over its
  * parameters between t[0] and t[1] (an offset piece), and *s a bound of
@@ -1264,20 +1287,7 @@ static int tangent_cone(const aa_piece *p, const double t[2], double g[3][2], do
         mag = fabs(c[2]) + fabs(c[3]) + fabs(c[4]) + fabs(c[5]);
         n = 2;
     } else {
-        double h = tb - ta;
-        for (int k = 0; k < 2; k++) {
-            const double *b = c + 4 * k; /* x, then y */
-            double d1 = b[1] + ta * (2.0 * b[2] + 3.0 * b[3] * ta);
-            v[0][k] = d1;
-            v[1][k] = d1 + 0.5 * h * (2.0 * b[2] + 6.0 * b[3] * ta);
-            v[2][k] = b[1] + tb * (2.0 * b[2] + 3.0 * b[3] * tb);
-        }
-        double T = dmax(1.0, dmax(fabs(ta), fabs(tb)));
-        mag = 0.0;
-        for (int k = 0; k < 2; k++) {
-            const double *b = c + 4 * k;
-            mag += fabs(b[1]) + T * (4.0 * fabs(b[2]) + 9.0 * T * fabs(b[3]));
-        }
+        mag = hodograph_cone(c, ta, tb, v);
         n = 3;
     }
     for (int k = 0; k < n; k++) {
@@ -1336,7 +1346,7 @@ int aa__piece_cones_apart(const aa_piece *p, const aa_piece *q, const double tp[
  * theta(t) among them, lies in the cone's range of angles, narrower than
  * pi/2, so |theta(u) - phi| < pi/2 and the integral is not 0: no meeting.
  * B' over [ta, tb] is the quadratic Bezier curve of control vectors
- * B'(ta), B'(ta) + (tb - ta) B''(ta)/2, B'(tb) (tangent_cone's), inside
+ * B'(ta), B'(ta) + (tb - ta) B''(ta)/2, B'(tb) (hodograph_cone's), inside
  * the cone they span (its Bernstein weights are >= 0), which is narrower
  * than pi/2 when each two of them have a positive dot product (three
  * vectors so, the angles between them each below pi/2, do not go round
@@ -1363,17 +1373,8 @@ static __attribute__((noinline)) int sides_apart(const aa_piece *p, const aa_pie
     if (!(fabs(det) > 1e-12 * (fabs(m[0] * m[3]) + fabs(m[1] * m[2]))))
         return 0;
     double ta = dmin(dmin(p->ot0, p->ot1), dmin(q->ot0, q->ot1));
-    double tb = dmax(dmax(p->ot0, p->ot1), dmax(q->ot0, q->ot1)), h = tb - ta, v[3][2];
-    double mag = 0.0, T = dmax(1.0, dmax(fabs(ta), fabs(tb)));
-    for (int k = 0; k < 2; k++) {
-        const double *b = c + 4 * k; /* x, then y */
-        double d1 = b[1] + ta * (2.0 * b[2] + 3.0 * b[3] * ta);
-        v[0][k] = d1;
-        v[1][k] = d1 + 0.5 * h * (2.0 * b[2] + 6.0 * b[3] * ta);
-        v[2][k] = b[1] + tb * (2.0 * b[2] + 3.0 * b[3] * tb);
-        mag += fabs(b[1]) + T * (4.0 * fabs(b[2]) + 9.0 * T * fabs(b[3]));
-    }
-    double e = 1e-9 * mag * mag;
+    double tb = dmax(dmax(p->ot0, p->ot1), dmax(q->ot0, q->ot1)), v[3][2];
+    double mag = hodograph_cone(c, ta, tb, v), e = 1e-9 * mag * mag;
     return v[0][0] * v[1][0] + v[0][1] * v[1][1] > e && v[0][0] * v[2][0] + v[0][1] * v[2][1] > e &&
            v[1][0] * v[2][0] + v[1][1] * v[2][1] > e;
 }
