@@ -3111,6 +3111,53 @@ static double sides_rnd(uint64_t *lcg)
     return (double)(*lcg >> 11) * 0x1p-53;
 }
 
+/* (B(t) - B(s)) . T(phi) for cubic b, phi the mean of the directions of
+ * B' at s and t: 0 where B(t) - B(s) is normal to T(phi), where the sides
+ * at d and -d meet for the d below (sides_meet_d), in long double. */
+static long double sides_g(const double b[8], long double s, long double t)
+{
+    long double o[2], o1[2], a[2], a1[2];
+    sides_point(b, 0.0, s, a, a1);
+    sides_point(b, 0.0, t, o, o1);
+    long double phi = 0.5L * (atan2l(a1[1], a1[0]) + atan2l(o1[1], o1[0]));
+    return (o[0] - a[0]) * cosl(phi) + (o[1] - a[1]) * sinl(phi);
+}
+
+/* A meeting of cubic b's sides: the root t0 of sides_g(b, 0, t) in [lo,
+ * hi] (its sign at lo in *gl, at hi the other) by bisection, and the d at
+ * which O_d(0) = O_-d(t0): B(t0) - B(0)'s component along N(phi) over 2
+ * cos((theta(t0) - theta(0))/2), as d (N(0) + N(t0)) is that long. */
+static double sides_meet_d(const double b[8], long double lo, long double hi, long double *t0,
+                           long double *gl)
+{
+    long double s0 = 0.0L;
+    *gl = sides_g(b, s0, lo);
+    for (int it = 1; it < 200; it++) {
+        long double t = 0.5L * (lo + hi), g = sides_g(b, s0, t);
+        if ((g < 0) == (*gl < 0))
+            lo = t;
+        else
+            hi = t;
+    }
+    long double a[2], a1[2], o[2], o1[2];
+    *t0 = 0.5L * (lo + hi);
+    sides_point(b, 0.0, s0, a, a1);
+    sides_point(b, 0.0, *t0, o, o1);
+    long double th0 = atan2l(a1[1], a1[0]), th1 = atan2l(o1[1], o1[0]);
+    long double phi = 0.5L * (th0 + th1);
+    return (double)(((o[0] - a[0]) * -sinl(phi) + (o[1] - a[1]) * cosl(phi)) /
+                    (2.0L * cosl(0.5L * (th1 - th0))));
+}
+
+/* The cubic from 0 whose B' has the Bezier control vectors v[0..2]. */
+static void sides_hodo(const double v[3][2], double b[8])
+{
+    for (int k = 0; k < 2; k++) {
+        b[4 * k] = 0.0, b[4 * k + 1] = v[0][k], b[4 * k + 2] = v[1][k] - v[0][k];
+        b[4 * k + 3] = (v[0][k] - 2.0 * v[1][k] + v[2][k]) / 3.0;
+    }
+}
+
 /* Two offset pieces of cubic b, at d over [pl, ph] and at -d over [ql, qh]
  * of its parameter, under the map m (only what sides_apart reads). */
 static void sides_pieces(const double b[8], const double m[6], double d, double pl, double ph,
@@ -3129,17 +3176,19 @@ static void sides_pieces(const double b[8], const double m[6], double d, double 
 /* The proof that a stroke's two sides never meet (aa__piece_sides_apart,
  * scene_piece.c's sides_apart): on random cubics, widths and parameter
  * ranges, every pair it accepts has no meeting by brute force
- * (sides_nearest: their least distance above 1e-6 of d), and every pair
- * brute force finds meeting (the least distance below 1e-12 of the
- * curve's size) it refuses; and cases built to meet, each refused: a Z
- * whose directions span 100 degrees (from pi/2 on, the proof's cone, two
- * points of it can face each other across the stroke: sides at d and -d
- * meet where B(t) - B(s) = d (N(s) + N(t)), here found by a root of its
- * component along the directions' mean, (B(t) - B(s)) . T(phi), on a grid
- * of (s, t), d its normal component over 2 cos((theta(t) - theta(s))/2)),
- * over the whole curve and over two ranges each of which alone lies in a
- * cone narrower than pi/2 (the hull counts); a loop; two different
- * cubics' offsets that cross; the same under a map of determinant 0. */
+ * (sides_nearest: their least distance above 1e-6 of d; the pairs that
+ * meet, below 1e-12 with the control points in [-1, 1], counted); and
+ * cases built to meet, each refused: a Z whose directions span 100
+ * degrees (from pi/2 on, the proof's cone, two points of it can face each
+ * other across the stroke: sides at d and -d meet where B(t) - B(s) = d
+ * (N(s) + N(t)), here found by a root of its component along the
+ * directions' mean, (B(t) - B(s)) . T(phi), with s = 0, d its normal
+ * component over 2 cos((theta(t) - theta(s))/2)), over the whole curve
+ * and over two ranges each of which alone lies in a cone narrower than
+ * pi/2 (the hull counts); a curve refused by v0 . v1 alone, met the same
+ * way; a loop; two different cubics' offsets that cross; the same under a
+ * map of determinant 0 and under two maps; evolutes; d = 0; and a cone
+ * wider than pi/2 by v0 . v2 alone. */
 static void test_sides_apart(void **state)
 {
     (void)state;
@@ -3181,8 +3230,6 @@ static void test_sides_apart(void **state)
             if (!(e > 1e-6L * fabs(d)))
                 fail_msg("case %d: said apart, yet %.3Lg apart at t %.17Lg, u %.17Lg (d %.17g)",
                          c, e, ts, us, d);
-        } else if (e < 1e-12L) {
-            /* refused, as it must be */
         }
     }
     print_message("sides apart: %d of %d random pairs said apart, none meeting (least distance "
@@ -3199,30 +3246,9 @@ static void test_sides_apart(void **state)
     }
     /* a root of g(s, t) = (B(t) - B(s)) . T(phi) with s < t, s = 0: g(0, 0.9)
      * > 0 > g(0, 1) = (2 + 30 cos 100deg)/3 */
-    long double s0 = 0.0L, lo = 0.9L, hi = 1.0L, gl = 0.0L;
-    for (int it = 0; it < 200; it++) {
-        long double t = it ? 0.5L * (lo + hi) : lo, o[2], o1[2], a[2], a1[2];
-        sides_point(z, 0.0, s0, a, a1);
-        sides_point(z, 0.0, t, o, o1);
-        long double phi = 0.5L * (atan2l(a1[1], a1[0]) + atan2l(o1[1], o1[0]));
-        long double g = (o[0] - a[0]) * cosl(phi) + (o[1] - a[1]) * sinl(phi);
-        if (it == 0) {
-            gl = g;
-            continue;
-        }
-        if ((g < 0) == (gl < 0))
-            lo = t;
-        else
-            hi = t;
-    }
-    long double t0 = 0.5L * (lo + hi), a[2], a1[2], o[2], o1[2];
-    sides_point(z, 0.0, s0, a, a1);
-    sides_point(z, 0.0, t0, o, o1);
-    long double th0 = atan2l(a1[1], a1[0]), th1 = atan2l(o1[1], o1[0]);
-    long double phi = 0.5L * (th0 + th1);
-    double dz = (double)(((o[0] - a[0]) * -sinl(phi) + (o[1] - a[1]) * cosl(phi)) /
-                         (2.0L * cosl(0.5L * (th1 - th0))));
-    /* O_dz(s0) = O_-dz(t0) up to dz's rounding: the sides at dz and -dz meet */
+    long double t0, gl;
+    double dz = sides_meet_d(z, 0.9L, 1.0L, &t0, &gl);
+    /* O_dz(0) = O_-dz(t0) up to dz's rounding: the sides at dz and -dz meet */
     long double ts = 0, us = 0, e = sides_nearest(z, dz, 0.0, 1.0, 0.0, 1.0, &ts, &us);
     print_message("a Z (directions from 0 to 98.1 degrees): its sides %.17g apart meet at t "
                   "%.6Lf and %.6Lf (%.3Lg apart)\n",
@@ -3261,6 +3287,54 @@ static void test_sides_apart(void **state)
     const double flat[6] = {1, 2, 0.5, 1, 0, 0}; /* determinant 0 */
     sides_pieces(l1, flat, 0.2, 0.0, 1.0, 0.0, 1.0, &p, &q);
     assert_false(aa__piece_sides_apart(&p, &q));
+    /* the same line's sides under two maps: q's 0.4 higher, its side at
+     * -0.2 on p's at 0.2 (the two sides of different curves) */
+    sides_pieces(l1, id, 0.2, 0.0, 1.0, 0.0, 1.0, &p, &q);
+    q.oc.m[5] = 0.4;
+    assert_false(aa__piece_sides_apart(&p, &q) || aa__piece_sides_apart(&q, &p));
+    /* evolutes (the centres of curvature, m(B + N/k), whatever d): at d and
+     * -d one curve; and d = 0 and -0, both B itself */
+    sides_pieces(l1, id, 0.2, 0.0, 1.0, 0.0, 1.0, &p, &q);
+    p.oc.evolute = q.oc.evolute = 1;
+    assert_false(aa__piece_sides_apart(&p, &q));
+    sides_pieces(l1, id, 0.0, 0.0, 1.0, 0.0, 1.0, &p, &q);
+    assert_false(aa__piece_sides_apart(&p, &q) || aa__piece_sides_apart(&q, &p));
+    /* each of the cone's three tests alone refusing a pair: B' from 80
+     * degrees through 5 (cos -80deg, sin -80deg) to (1, 0) (v0 . v1 < 0
+     * alone), its sides meeting at the d of a root of g(0, t) (from a scan
+     * of t), and from 0 through 80 to 160 degrees (v0 . v2 < 0 alone: the
+     * cone wider than pi/2, outside the proof; the Z above has v1 . v2 < 0
+     * alone) */
+    const double r80 = 80.0 * M_PI / 180.0;
+    const double vm[3][2] = {{cos(r80), sin(r80)}, {5.0 * cos(-r80), 5.0 * sin(-r80)}, {1, 0}};
+    const double vw[3][2] = {{1, 0}, {cos(r80), sin(r80)}, {cos(2 * r80), sin(2 * r80)}};
+    double bm[8], bw[8];
+    sides_hodo(vm, bm);
+    sides_hodo(vw, bw);
+    for (int c = 0; c < 2; c++) {
+        const double(*v)[2] = c ? vw : vm;
+        double d01 = v[0][0] * v[1][0] + v[0][1] * v[1][1];
+        double d02 = v[0][0] * v[2][0] + v[0][1] * v[2][1];
+        double d12 = v[1][0] * v[2][0] + v[1][1] * v[2][1];
+        if (c)
+            assert_true(d01 > 0.1 && d02 < -0.1 && d12 > 0.1);
+        else
+            assert_true(d01 < -0.1 && d02 > 0.1 && d12 > 0.1);
+    }
+    long double tl = 0.0L, th = 0.0L;
+    for (int k = 1; k < 64 && th == 0.0L; k++)
+        if ((sides_g(bm, 0.0L, k / 64.0L) < 0) != (sides_g(bm, 0.0L, (k + 1) / 64.0L) < 0))
+            tl = k / 64.0L, th = (k + 1) / 64.0L;
+    double dm = sides_meet_d(bm, tl, th, &t0, &gl);
+    e = sides_nearest(bm, dm, 0.0, 1.0, 0.0, 1.0, &ts, &us);
+    print_message("B' of control vectors at 80, -80 and 0 degrees: its sides %.17g apart meet "
+                  "at t %.6Lf and %.6Lf (%.3Lg apart)\n",
+                  2.0 * fabs(dm), ts, us, e);
+    assert_true(th > 0.0L && e < 1e-12L && fabs(dm) > 0.1);
+    sides_pieces(bm, id, dm, 0.0, 1.0, 0.0, 1.0, &p, &q);
+    assert_false(aa__piece_sides_apart(&p, &q) || aa__piece_sides_apart(&q, &p));
+    sides_pieces(bw, id, 0.1, 0.0, 1.0, 0.0, 1.0, &p, &q);
+    assert_false(aa__piece_sides_apart(&p, &q) || aa__piece_sides_apart(&q, &p));
 }
 
 int main(void)

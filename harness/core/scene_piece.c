@@ -1358,9 +1358,10 @@ int aa__piece_cones_apart(const aa_piece *p, const aa_piece *q, const double tp[
  * than a band is high (a pixel): at 2.5 px, as tests/bench_bezstroke.c's,
  * such a pair is never asked (counted at 32 to 1024 px); at 0.5 px 9,458
  * asks a render at 1024 px (2,727 at 256 px), which the tangents' cones,
- * nearly parallel on the two sides, seldom part: halved 11,154 times
- * (3,423).  Asked by subdivide_offset where the cones decide nothing over
- * the pair's common heights. */
+ * nearly parallel on the two sides, seldom part (11,154 calls of
+ * subdivide_offset a render, 3,423 at 256 px).  Asked by
+ * subdivide_offset where the cones decide nothing over the pair's common
+ * heights. */
 static __attribute__((noinline)) int sides_apart(const aa_piece *p, const aa_piece *q)
 {
     if (p->kind != AA_PIECE_OFFSET || q->kind != AA_PIECE_OFFSET || p->oc.d != -q->oc.d ||
