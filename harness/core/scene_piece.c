@@ -1225,7 +1225,8 @@ static void shared_end_cut(meet_ctx *c, double a, double b, const double tp[2],
  * B'(tb), a quadratic Bezier curve inside the cone they span; returns a
  * bound of the sum of their coordinates' magnitudes and of the terms they
  * were summed from. */
-static double hodograph_cone(const double *c, double ta, double tb, double v[3][2])
+static inline __attribute__((always_inline)) double hodograph_cone(const double *c, double ta,
+                                                                  double tb, double v[3][2])
 {
     double h = tb - ta;
     for (int k = 0; k < 2; k++) {
