@@ -1059,13 +1059,8 @@ static void band_fields(ar_seg *s, int j)
  * ends (half of its new heights) are inline, without a call */
 static __attribute__((noinline)) void sub_root(const ar_seg *s, double v, double *t, double *u)
 {
-    ar_seg *w = (ar_seg *)s; /* the worker's own seg */
     if (s->p->curved && s->p->offset) {
-        double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &w->ythint);
-        long double x;
-        *t = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb,
-                                       s->va - v, v - s->V, g, &x);
-        *u = (double)(x - s->c0);
+        *t = offset_v_root(s, v, u);
     } else {
         double tt = solve_v(s, v);
         *t = tt, *u = u_at(s, tt);

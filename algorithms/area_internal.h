@@ -762,19 +762,31 @@ static inline double tau_of_v(const ar_seg *s, double v)
     return solve_v(s, v);
 }
 
-/* u where v(tau) = v in the band, for an order's key: an offset piece's
- * from its root's last evaluation moved by its slope over the last step
+/* An offset seg's tau where v(tau) = v strictly inside the band's
+ * heights (the root from the table's start), and u there (*u) from the
+ * root's last evaluation moved by its slope over the last step
  * (aa__offset_root's other coordinate, within about 1e-22 of x'' of the
  * root's own x), not a second evaluation. */
+static __attribute__((always_inline)) inline double offset_v_root(const ar_seg *s, double v,
+                                                                  double *u)
+{
+    double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &((ar_seg *)s)->ythint);
+    long double x;
+    double t = sg * aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb,
+                                         s->va - v, v - s->V, g, &x);
+    *u = (double)(x - s->c0);
+    return t;
+}
+
+/* u where v(tau) = v in the band, for an order's key: an offset piece's
+ * offset_v_root's. */
 static inline double key_u(const ar_seg *s, double v)
 {
     if (!(s->p->curved && s->p->offset) || v <= s->va || v >= s->vb)
         return u_at(s, tau_of_v(s, v));
-    double sg = s->p->sg, g = ytab_guess(s->p, v - s->V, &((ar_seg *)s)->ythint);
-    long double x;
-    aa__offset_root_fixd(&s->p->src->oc, &s->p->ofix, 1, sg * s->ta, sg * s->tb, s->va - v,
-                         v - s->V, g, &x);
-    return (double)(x - s->c0);
+    double u;
+    offset_v_root(s, v, &u);
+    return u;
 }
 
 /* Rounding may step just outside [0, 1]. */
