@@ -3115,8 +3115,39 @@ static int gen_layer_tp_s(const gen_span_ctx *c, int l, double m, double A, doub
     return 1;
 }
 
+/* The probe told of every bound gen_bounds proves (truth.h,
+ * aa__truth_set_gen_probe): tests only, one thread. */
+static aa__gen_probe_fn gen_probe;
+static void *gen_probe_ctx;
+
+void aa__truth_set_gen_probe(aa__gen_probe_fn fn, void *ctx)
+{
+    gen_probe = fn;
+    gen_probe_ctx = ctx;
+}
+
+static int gen_bounds_of(const gen_span_ctx *c, double m, double A, double B, double *emax,
+                         double *dmax);
+
+/* Bounds of |e| and |e'| of each channel on the ellipse of semi-axes A
+ * and B about m in the piece's variable (B = 0, A = h: the real segment
+ * [m - h, m + h]); 0 if none are had (the comment above "several
+ * gradients at a point"). */
 static int gen_bounds(const gen_span_ctx *c, double m, double A, double B, double *emax,
                       double *dmax)
+{
+    int ok = gen_bounds_of(c, m, A, B, emax, dmax);
+    if (ok && gen_probe) {
+        aa__gen_bound b = {c->y, m, A, B, c->umode, c->nch, c->fold, {0, 0, 0}, {0, 0, 0}};
+        for (int ch = 0; ch < c->nch; ch++)
+            b.emax[ch] = emax[ch], b.dmax[ch] = dmax[ch];
+        gen_probe(gen_probe_ctx, &b);
+    }
+    return ok;
+}
+
+static int gen_bounds_of(const gen_span_ctx *c, double m, double A, double B, double *emax,
+                         double *dmax)
 {
     double T[GEN_MAX], P[GEN_MAX];
     if (c->fold)
