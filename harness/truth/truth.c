@@ -2649,7 +2649,9 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
  * (|b(m)| + |b1| A + sqrt(d2 Z^2 + |dmin|)) / |a|, Z = |m - x0| + A, and
  * |t'| <= (|b1| + d2 Z / sqrt(d2 D1 D2)) / |a|, Dk a lower bound on the
  * distance from the branch point k to the rectangle (t' = (b1 - d'/(2
- * sqrt d)) / a, |d| = d2 |z - r1| |z - r2|).  Then |f[1]| <= |o0| + |o1|
+ * sqrt d)) / a, |d| = d2 |z - r1| |z - r2|), dmin's rounding (8 ulps of
+ * its terms) counted: raised by it in T, lowered in P on the real
+ * segment (gen_layer_tp).  Then |f[1]| <= |o0| + |o1|
  * T and so on, |e| <= sum |K_a| prod |f|, and |e'| by the product rule.
  * On the power piece, with |e(z) - e(m)| <= A max |e'| (the segment from
  * m to z lies in the ellipse) below 0.9 (e(m) + 0.055), Re(e + 0.055) > 0
@@ -3036,14 +3038,28 @@ static int gen_layer_tp(const gen_span_ctx *c, int l, double m, double A, double
         return 1;
     }
     const rad_row *r = &c->row[l];
-    double sd = sqrt(fabs(r->dmin) / r->d2), D1, D2, ia = 1.0 / fabs(g->rg->a);
+    /* dmin = d0 - d1^2 / (4 d2) cancels where the row passes near the
+     * focus (d and dmin near 0): its rounding, 8 ulps of its terms' size
+     * (d0 = b0^2 - a c0, c0 = u0^2 + v0^2 - fr^2), is counted in |t|'s
+     * bound (dmin up to it larger) and in |t'|'s on the real segment
+     * (smaller; the focus 7.9e-6 px from a row of a 2 px radial gradient
+     * left S 1.06e-6 of itself short: test_gradient_bound).  Not in the
+     * branch points' distance: rows within about 1e-7 px of the focus,
+     * whose dmin it may take to 0, would then find no ellipse about a
+     * piece ending at x0 (test_gradient_filter's radial pixels: bound
+     * inf); there the distance is the rounded dmin's */
+    double fr = g->rg->fr, ga = fabs(g->rg->a);
+    double de = 8.0 * DBL_EPSILON * (r->b0 * r->b0 + ga * (fabs(r->c0) + 2.0 * fr * fr) +
+                                     r->d1 * r->d1 / (4.0 * r->d2));
+    double dlo = fmax(fabs(r->dmin) - de, 0.0), dhi = fabs(r->dmin) + de;
+    double sd = sqrt(fabs(r->dmin) / r->d2), D1, D2, ia = 1.0 / ga;
     if (B == 0.0 && r->dmin >= 0.0) {
         /* the real segment: |d'| / (2 sqrt d) = d2 u / sqrt(d2 u^2 +
          * dmin), u = |x - x0| <= Z, increasing in u, so at most its
          * value at Z (below sqrt(d2): finite even through x0, where t
          * is a cone) */
-        double Z = fabs(m - r->x0) + A, dz = sqrt(r->d2 * Z * Z + r->dmin);
-        *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + dz) * ia;
+        double Z = fabs(m - r->x0) + A, dz = sqrt(r->d2 * Z * Z + dlo);
+        *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + sqrt(r->d2 * Z * Z + dhi)) * ia;
         *P = (fabs(r->b1) + (dz > 0.0 ? r->d2 * Z / dz : 0.0)) * ia;
         return 1;
     }
@@ -3054,7 +3070,7 @@ static int gen_layer_tp(const gen_span_ctx *c, int l, double m, double A, double
     if (!(D1 > 0.0 && D2 > 0.0))
         return 0;
     double Z = fabs(m - r->x0) + A;
-    *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + sqrt(r->d2 * Z * Z + fabs(r->dmin))) * ia;
+    *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * A + sqrt(r->d2 * Z * Z + dhi)) * ia;
     *P = (fabs(r->b1) + r->d2 * Z / sqrt(r->d2 * D1 * D2)) * ia;
     return 1;
 }
@@ -3099,8 +3115,39 @@ static int gen_layer_tp_s(const gen_span_ctx *c, int l, double m, double A, doub
     return 1;
 }
 
+/* The probe told of every bound gen_bounds proves (truth.h,
+ * aa__truth_set_gen_probe): tests only, one thread. */
+static aa__gen_probe_fn gen_probe;
+static void *gen_probe_ctx;
+
+void aa__truth_set_gen_probe(aa__gen_probe_fn fn, void *ctx)
+{
+    gen_probe = fn;
+    gen_probe_ctx = ctx;
+}
+
+static int gen_bounds_of(const gen_span_ctx *c, double m, double A, double B, double *emax,
+                         double *dmax);
+
+/* Bounds of |e| and |e'| of each channel on the ellipse of semi-axes A
+ * and B about m in the piece's variable (B = 0, A = h: the real segment
+ * [m - h, m + h]); 0 if none are had (the comment above "several
+ * gradients at a point"). */
 static int gen_bounds(const gen_span_ctx *c, double m, double A, double B, double *emax,
                       double *dmax)
+{
+    int ok = gen_bounds_of(c, m, A, B, emax, dmax);
+    if (ok && gen_probe) {
+        aa__gen_bound b = {c->y, m, A, B, c->umode, c->nch, c->fold, {0, 0, 0}, {0, 0, 0}};
+        for (int ch = 0; ch < c->nch; ch++)
+            b.emax[ch] = emax[ch], b.dmax[ch] = dmax[ch];
+        gen_probe(gen_probe_ctx, &b);
+    }
+    return ok;
+}
+
+static int gen_bounds_of(const gen_span_ctx *c, double m, double A, double B, double *emax,
+                         double *dmax)
 {
     double T[GEN_MAX], P[GEN_MAX];
     if (c->fold)

@@ -84,4 +84,21 @@ void aa__truth_gk21l(long double (*f)(long double, const void *), const void *ct
                      long double b, long double *result, long double *abserr, long double *raw,
                      long double *floor);
 
+/* Internal (tests): fn (NULL: none) is told of every bound the path of
+ * several gradients proves on a Bernstein ellipse (truth.c, gen_bounds):
+ * the row's height y (pixels), the ellipse's centre m and semi-axes A, B
+ * in the piece's variable (B = 0: the real segment [m - A, m + A]; umode
+ * 1: the variable is u, x = xr + eps u^2, "a cone beside other
+ * gradients"; else x in pixels), fold 1 if the composite was folded
+ * layer by layer, and for each of nch channels the bounds emax of the
+ * encoded composite |e| and dmax of |e'| there.  One thread only: the
+ * probe is called from the thread that integrates. */
+typedef struct aa__gen_bound {
+    double y, m, A, B;
+    int umode, nch, fold;
+    double emax[3], dmax[3];
+} aa__gen_bound;
+typedef void (*aa__gen_probe_fn)(void *ctx, const aa__gen_bound *b);
+void aa__truth_set_gen_probe(aa__gen_probe_fn fn, void *ctx);
+
 #endif /* AA_TRUTH_H */
