@@ -75,8 +75,9 @@
  *    scene and a wide stroke, the point at the root within 2e-16 px of
  *    a __float128 evaluation written here and the root the double
  *    nearest it, the same bit for bit by fma and by Dekker's products;
- *  - the batched roots (aa__offset_roots: four at a time in AVX2's lanes,
- *    test_roots_batch) the same bits as the roots asked one by one;
+ *  - the batched roots (aa__offset_roots: eight at a time in AVX-512F's
+ *    lanes and four in AVX2's, test_roots_batch) the same bits as the
+ *    roots asked one by one;
  *  - the start of a root at a cell's side after a part's first (side_guess,
  *    test_side_guess): nearer the root than the chord's, and within the
  *    solver's first double step far more often, on the benchmark's scene;
@@ -1249,8 +1250,9 @@ static void test_dd(void **state)
     assert_true(pieces > 4000 && evolutes > 0);
 }
 
-/* aa__offset_roots (offset.c: root_dd's common path four requests at a
- * time in AVX2's lanes, the rest one by one) against
+/* aa__offset_roots (offset.c: root_dd's common path eight requests at a
+ * time in AVX-512F's lanes and four in AVX2's, the rest one by one; both
+ * widths asked by aa__offset_roots_lanes) against
  * aa__offset_root_xyd and aa__offset_root_fixd asked one by one, which
  * test_dd holds to __float128: the same roots, points and other
  * coordinates bit for bit (memcmp), on lines across the offset pieces of
@@ -1384,24 +1386,36 @@ static void test_roots_batch(void **state)
                   (r->ta < r->tb ? r->guess > r->ta && r->guess < r->tb
                                  : r->guess < r->ta && r->guess > r->tb);
     }
-    for (size_t i = 0, len = 1; i < nr; i += len, len = len % 9 + 1)
-        aa__offset_roots(bq + i, nr - i < len ? nr - i : len);
-    for (size_t i = 0; i < nr; i++) {
-        if (memcmp(&bq[i].t, &twant[i], sizeof twant[i]) != 0 ||
-            memcmp(got[i], want[i], sizeof want[i]) != 0 || oth[i] != 0)
-            fail_msg("request %zu (coord %d, [%.17g, %.17g], target %.17g, guess %.17g, fa "
-                     "%g, form %d): t %.17g, one by one %.17g; (%.20Lg, %.20Lg) against "
-                     "(%.20Lg, %.20Lg); the other beside the point %.20Lg (left 0)",
-                     i, bq[i].coord, bq[i].ta, bq[i].tb, bq[i].target, bq[i].guess, bq[i].fa,
-                     bq[i].fx->dd, bq[i].t, twant[i], got[i][0], got[i][1], want[i][0],
-                     want[i][1], oth[i]);
+    /* both widths: eight lanes (AVX-512F, where the processor has it;
+     * batches of five to eight) and four (two to four), each batch's
+     * outputs cleared first */
+    for (int lanes = 8; lanes >= 4; lanes -= 4) {
+        for (size_t i = 0; i < nr; i++) {
+            bq[i].t = NAN;
+            memset(got[i], 0, sizeof got[i]);
+            oth[i] = 0;
+        }
+        for (size_t i = 0, len = 1; i < nr; i += len, len = len % 9 + 1)
+            aa__offset_roots_lanes(bq + i, nr - i < len ? nr - i : len, lanes);
+        for (size_t i = 0; i < nr; i++) {
+            if (memcmp(&bq[i].t, &twant[i], sizeof twant[i]) != 0 ||
+                memcmp(got[i], want[i], sizeof want[i]) != 0 || oth[i] != 0)
+                fail_msg("lanes %d, request %zu (coord %d, [%.17g, %.17g], target %.17g, guess "
+                         "%.17g, fa %g, form %d): t %.17g, one by one %.17g; (%.20Lg, %.20Lg) "
+                         "against (%.20Lg, %.20Lg); the other beside the point %.20Lg (left 0)",
+                         lanes, i, bq[i].coord, bq[i].ta, bq[i].tb, bq[i].target, bq[i].guess,
+                         bq[i].fa, bq[i].fx->dd, bq[i].t, twant[i], got[i][0], got[i][1],
+                         want[i][0], want[i][1], oth[i]);
+        }
     }
+    int avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
     print_message("%zu roots (%zu of them root_dd's common start, %s) in batches of 1 to 9: the "
                   "same bits as one by one\n",
                   nr, common,
-                  __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")
-                      ? "four at a time in AVX2's lanes"
-                      : "no AVX2 and FMA here: one by one");
+                  !avx2 ? "no AVX2 and FMA here: one by one"
+                  : __builtin_cpu_supports("avx512f")
+                      ? "eight and four at a time in AVX-512F's and AVX2's lanes"
+                      : "four at a time in AVX2's lanes, no AVX-512F here");
     assert_true(nr > 20000 && common > nr / 2);
     free(want);
     free(got);

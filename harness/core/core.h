@@ -942,8 +942,14 @@ typedef struct aa__offset_rootq {
  * aa__offset_root_fixd give it, bit for bit; where the processor has AVX2
  * (and FMA: the double-double form by fma, fx->dd 2, says so), those
  * starting inside their brackets in that form are solved four at a time,
- * one a lane (offset.c, roots4_avx2), the rest one by one. */
+ * one a lane (offset.c, roots4_avx2), and where it has AVX-512F too
+ * eight at a time (roots8_512: a batch of more than four), the rest one
+ * by one. */
 void aa__offset_roots(aa__offset_rootq *q, size_t n);
+/* aa__offset_roots with at most `lanes` (8, 4 or 1) requests a batch, as
+ * the processor allows: the same roots and points (for a test of each
+ * width). */
+void aa__offset_roots_lanes(aa__offset_rootq *q, size_t n, int lanes);
 /* Coordinate coord of oc at t as the double phase of the solvers first
  * evaluates it at a bracket's far end (e[4], opaque): for a caller that
  * solves for many targets in one bracket [ta, tb] (a piece's band lines),
