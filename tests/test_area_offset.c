@@ -1264,7 +1264,10 @@ static void test_dd(void **state)
  * double-double form, Dekker's and the long double form; shuffled, so
  * that a batch mixes curves, coordinates and outputs (the point, the
  * other coordinate, neither, or both asked: the point, the other left as
- * it was, as aa__offset_root_xyd gives it), asked in batches of 1 to 9. */
+ * it was, as aa__offset_root_xyd gives it), asked in batches of 1 to 9;
+ * and those of fma's form asked of the solver's FMA build alone
+ * (aa__offset_root_dd_fma), which the two take where the processor has
+ * no AVX-512F (else its AVX-512F build): the same bits. */
 typedef struct rb_req {
     aa__offset_rootq q;
     int out; /* 0 the point, 1 the other coordinate, 2 neither, 3 both asked */
@@ -1368,7 +1371,7 @@ static void test_roots_batch(void **state)
     assert_non_null(oth);
     assert_non_null(twant);
     assert_non_null(bq);
-    size_t common = 0;
+    size_t common = 0, nfma = 0;
     for (size_t i = 0; i < nr; i++) {
         const aa__offset_rootq *r = &rq[i].q;
         if (rq[i].out == 0 || rq[i].out == 3)
@@ -1378,6 +1381,23 @@ static void test_roots_batch(void **state)
             twant[i] = aa__offset_root_fixd(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa,
                                             r->target, r->guess,
                                             rq[i].out == 1 ? &want[i][0] : NULL);
+        if (r->fx->dd == 2) {
+            /* the solver's build for FMA alone, which aa__offset_root_xyd
+             * and _fixd take where the processor has no AVX-512F (else its
+             * build for AVX-512F) */
+            long double w2[2];
+            memset(w2, 0, sizeof w2);
+            int pt = rq[i].out == 0 || rq[i].out == 3;
+            double t2 = aa__offset_root_dd_fma(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa,
+                                               r->target, r->guess, NULL, pt ? w2 : NULL,
+                                               rq[i].out == 1 ? &w2[0] : NULL);
+            if (memcmp(&t2, &twant[i], sizeof t2) != 0 || memcmp(w2, want[i], sizeof w2) != 0)
+                fail_msg("request %zu (coord %d, target %.17g, guess %.17g): t %.17g by the FMA "
+                         "build, %.17g as asked; (%.20Lg, %.20Lg) against (%.20Lg, %.20Lg)",
+                         i, r->coord, r->target, r->guess, t2, twant[i], w2[0], w2[1],
+                         want[i][0], want[i][1]);
+            nfma++;
+        }
         bq[i] = *r;
         bq[i].xy = rq[i].out == 0 || rq[i].out == 3 ? got[i] : NULL;
         bq[i].other = rq[i].out == 1 ? &got[i][0] : rq[i].out == 3 ? &oth[i] : NULL;
@@ -1410,12 +1430,17 @@ static void test_roots_batch(void **state)
     }
     int avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
     print_message("%zu roots (%zu of them root_dd's common start, %s) in batches of 1 to 9: the "
-                  "same bits as one by one\n",
+                  "same bits as one by one, and %zu by fma's form the same by the solver's FMA "
+                  "build (%s)\n",
                   nr, common,
                   !avx2 ? "no AVX2 and FMA here: one by one"
                   : __builtin_cpu_supports("avx512f")
                       ? "eight and four at a time in AVX-512F's and AVX2's lanes"
-                      : "four at a time in AVX2's lanes, no AVX-512F here");
+                      : "four at a time in AVX2's lanes, no AVX-512F here",
+                  nfma,
+                  __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")
+                      ? "one by one by its AVX-512F build"
+                      : "no AVX-512F and VL here: the same build");
     assert_true(nr > 20000 && common > nr / 2);
     free(want);
     free(got);

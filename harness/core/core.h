@@ -924,6 +924,13 @@ double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx,
 double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                            double ta, double tb, double fa, double target, double guess,
                            const double *endb, long double xy[2]);
+/* On the double-double form by fma (fx->dd 2): aa__offset_root_xyd's
+ * (xy not NULL) or aa__offset_root_fixd's root (other) by the solver's
+ * build for FMA alone, which those take where the processor has no
+ * AVX-512F (else its build for AVX-512F: the same bits; for a test). */
+double aa__offset_root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                              double ta, double tb, double fa, double target, double guess,
+                              const double *endb, long double xy[2], long double *other);
 /* A root asked of aa__offset_roots: aa__offset_root_xyd's arguments (xy
  * not NULL: its point there; other then not written) or
  * aa__offset_root_fixd's (other), the root in t.  The requests' outputs

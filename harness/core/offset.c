@@ -1232,6 +1232,36 @@ root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, doub
     return root_dd(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other, 1);
 }
 
+/* root_dd_fma built for AVX-512F and VL, taken where the processor has
+ * them (root_wide): the same operations (no more fused than fma's, the
+ * file built without contraction), compiled with 32 vector registers, not
+ * 16, so fewer of the solver's constants and invariants spilled to the
+ * stack (88 stack accesses in its code against 124); the same roots and
+ * points bit for bit (tests/test_area_offset.c, test_roots_batch, against
+ * aa__offset_root_dd_fma).  By a CPU profile of tests/bench_bezstroke.c
+ * at 1024 px root_dd's share 7.24% to 6.85% (algorithms/README.md);
+ * valgrind's processor has no AVX-512F, so callgrind counts root_dd_fma. */
+static __attribute__((noinline, target("avx512f,avx512vl,fma"))) double
+root_dd_512(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta, double tb,
+            double fa, double target, double guess, const double *endb, long double xy[2],
+            long double *other)
+{
+    return root_dd(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other, 1);
+}
+
+/* AVX-512VL's bit alone (a processor with VL has F) */
+static inline int root_wide(void)
+{
+    return __builtin_cpu_supports("avx512vl");
+}
+
+double aa__offset_root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                              double ta, double tb, double fa, double target, double guess,
+                              const double *endb, long double xy[2], long double *other)
+{
+    return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other);
+}
+
 /* root_dd on four (or eight) requests at once, one a lane of AVX's
  * packed doubles (__m256d; the double-double form's pairs of x and y as
  * two vectors, not one dd_v2): each lane the operations of root_dd's
@@ -1738,7 +1768,9 @@ double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx,
                             long double *other)
 {
     if (fx->dd == 2)
-        return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
+        return root_wide()
+                   ? root_dd_512(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other)
+                   : root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
     if (fx->dd)
         return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
     return root_ld(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
@@ -1749,7 +1781,9 @@ double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, 
                            const double *endb, long double xy[2])
 {
     if (fx->dd == 2)
-        return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
+        return root_wide()
+                   ? root_dd_512(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL)
+                   : root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
     if (fx->dd)
         return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
     return root_ld(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
