@@ -75,8 +75,9 @@
  *    scene and a wide stroke, the point at the root within 2e-16 px of
  *    a __float128 evaluation written here and the root the double
  *    nearest it, the same bit for bit by fma and by Dekker's products;
- *  - the batched roots (aa__offset_roots: four at a time in AVX2's lanes,
- *    test_roots_batch) the same bits as the roots asked one by one;
+ *  - the batched roots (aa__offset_roots: eight at a time in AVX-512F's
+ *    lanes and four in AVX2's, test_roots_batch) the same bits as the
+ *    roots asked one by one;
  *  - the start of a root at a cell's side after a part's first (side_guess,
  *    test_side_guess): nearer the root than the chord's, and within the
  *    solver's first double step far more often, on the benchmark's scene;
@@ -1249,8 +1250,9 @@ static void test_dd(void **state)
     assert_true(pieces > 4000 && evolutes > 0);
 }
 
-/* aa__offset_roots (offset.c: root_dd's common path four requests at a
- * time in AVX2's lanes, the rest one by one) against
+/* aa__offset_roots (offset.c: root_dd's common path eight requests at a
+ * time in AVX-512F's lanes and four in AVX2's, the rest one by one; both
+ * widths asked by aa__offset_roots_lanes) against
  * aa__offset_root_xyd and aa__offset_root_fixd asked one by one, which
  * test_dd holds to __float128: the same roots, points and other
  * coordinates bit for bit (memcmp), on lines across the offset pieces of
@@ -1262,7 +1264,10 @@ static void test_dd(void **state)
  * double-double form, Dekker's and the long double form; shuffled, so
  * that a batch mixes curves, coordinates and outputs (the point, the
  * other coordinate, neither, or both asked: the point, the other left as
- * it was, as aa__offset_root_xyd gives it), asked in batches of 1 to 9. */
+ * it was, as aa__offset_root_xyd gives it), asked in batches of 1 to 9;
+ * and those of fma's form asked of the solver's FMA build alone
+ * (aa__offset_root_dd_fma), which the two take where the processor has
+ * no AVX-512F (else its AVX-512F build): the same bits. */
 typedef struct rb_req {
     aa__offset_rootq q;
     int out; /* 0 the point, 1 the other coordinate, 2 neither, 3 both asked */
@@ -1366,7 +1371,7 @@ static void test_roots_batch(void **state)
     assert_non_null(oth);
     assert_non_null(twant);
     assert_non_null(bq);
-    size_t common = 0;
+    size_t common = 0, nfma = 0;
     for (size_t i = 0; i < nr; i++) {
         const aa__offset_rootq *r = &rq[i].q;
         if (rq[i].out == 0 || rq[i].out == 3)
@@ -1376,6 +1381,23 @@ static void test_roots_batch(void **state)
             twant[i] = aa__offset_root_fixd(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa,
                                             r->target, r->guess,
                                             rq[i].out == 1 ? &want[i][0] : NULL);
+        if (r->fx->dd == 2) {
+            /* the solver's build for FMA alone, which aa__offset_root_xyd
+             * and _fixd take where the processor has no AVX-512F (else its
+             * build for AVX-512F) */
+            long double w2[2];
+            memset(w2, 0, sizeof w2);
+            int pt = rq[i].out == 0 || rq[i].out == 3;
+            double t2 = aa__offset_root_dd_fma(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa,
+                                               r->target, r->guess, NULL, pt ? w2 : NULL,
+                                               rq[i].out == 1 ? &w2[0] : NULL);
+            if (memcmp(&t2, &twant[i], sizeof t2) != 0 || memcmp(w2, want[i], sizeof w2) != 0)
+                fail_msg("request %zu (coord %d, target %.17g, guess %.17g): t %.17g by the FMA "
+                         "build, %.17g as asked; (%.20Lg, %.20Lg) against (%.20Lg, %.20Lg)",
+                         i, r->coord, r->target, r->guess, t2, twant[i], w2[0], w2[1],
+                         want[i][0], want[i][1]);
+            nfma++;
+        }
         bq[i] = *r;
         bq[i].xy = rq[i].out == 0 || rq[i].out == 3 ? got[i] : NULL;
         bq[i].other = rq[i].out == 1 ? &got[i][0] : rq[i].out == 3 ? &oth[i] : NULL;
@@ -1384,24 +1406,41 @@ static void test_roots_batch(void **state)
                   (r->ta < r->tb ? r->guess > r->ta && r->guess < r->tb
                                  : r->guess < r->ta && r->guess > r->tb);
     }
-    for (size_t i = 0, len = 1; i < nr; i += len, len = len % 9 + 1)
-        aa__offset_roots(bq + i, nr - i < len ? nr - i : len);
-    for (size_t i = 0; i < nr; i++) {
-        if (memcmp(&bq[i].t, &twant[i], sizeof twant[i]) != 0 ||
-            memcmp(got[i], want[i], sizeof want[i]) != 0 || oth[i] != 0)
-            fail_msg("request %zu (coord %d, [%.17g, %.17g], target %.17g, guess %.17g, fa "
-                     "%g, form %d): t %.17g, one by one %.17g; (%.20Lg, %.20Lg) against "
-                     "(%.20Lg, %.20Lg); the other beside the point %.20Lg (left 0)",
-                     i, bq[i].coord, bq[i].ta, bq[i].tb, bq[i].target, bq[i].guess, bq[i].fa,
-                     bq[i].fx->dd, bq[i].t, twant[i], got[i][0], got[i][1], want[i][0],
-                     want[i][1], oth[i]);
+    /* both widths: eight lanes (AVX-512F, where the processor has it;
+     * batches of five to eight) and four (two to four), each batch's
+     * outputs cleared first */
+    for (int lanes = 8; lanes >= 4; lanes -= 4) {
+        for (size_t i = 0; i < nr; i++) {
+            bq[i].t = NAN;
+            memset(got[i], 0, sizeof got[i]);
+            oth[i] = 0;
+        }
+        for (size_t i = 0, len = 1; i < nr; i += len, len = len % 9 + 1)
+            aa__offset_roots_lanes(bq + i, nr - i < len ? nr - i : len, lanes);
+        for (size_t i = 0; i < nr; i++) {
+            if (memcmp(&bq[i].t, &twant[i], sizeof twant[i]) != 0 ||
+                memcmp(got[i], want[i], sizeof want[i]) != 0 || oth[i] != 0)
+                fail_msg("lanes %d, request %zu (coord %d, [%.17g, %.17g], target %.17g, guess "
+                         "%.17g, fa %g, form %d): t %.17g, one by one %.17g; (%.20Lg, %.20Lg) "
+                         "against (%.20Lg, %.20Lg); the other beside the point %.20Lg (left 0)",
+                         lanes, i, bq[i].coord, bq[i].ta, bq[i].tb, bq[i].target, bq[i].guess,
+                         bq[i].fa, bq[i].fx->dd, bq[i].t, twant[i], got[i][0], got[i][1],
+                         want[i][0], want[i][1], oth[i]);
+        }
     }
+    int avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
     print_message("%zu roots (%zu of them root_dd's common start, %s) in batches of 1 to 9: the "
-                  "same bits as one by one\n",
+                  "same bits as one by one, and %zu by fma's form the same by the solver's FMA "
+                  "build (%s)\n",
                   nr, common,
-                  __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")
-                      ? "four at a time in AVX2's lanes"
-                      : "no AVX2 and FMA here: one by one");
+                  !avx2 ? "no AVX2 and FMA here: one by one"
+                  : __builtin_cpu_supports("avx512f")
+                      ? "eight and four at a time in AVX-512F's and AVX2's lanes"
+                      : "four at a time in AVX2's lanes, no AVX-512F here",
+                  nfma,
+                  __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")
+                      ? "one by one by its AVX-512F build"
+                      : "no AVX-512F and VL here: the same build");
     assert_true(nr > 20000 && common > nr / 2);
     free(want);
     free(got);

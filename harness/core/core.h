@@ -924,6 +924,13 @@ double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx,
 double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
                            double ta, double tb, double fa, double target, double guess,
                            const double *endb, long double xy[2]);
+/* On the double-double form by fma (fx->dd 2): aa__offset_root_xyd's
+ * (xy not NULL) or aa__offset_root_fixd's root (other) by the solver's
+ * build for FMA alone, which those take where the processor has no
+ * AVX-512F (else its build for AVX-512F: the same bits; for a test). */
+double aa__offset_root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                              double ta, double tb, double fa, double target, double guess,
+                              const double *endb, long double xy[2], long double *other);
 /* A root asked of aa__offset_roots: aa__offset_root_xyd's arguments (xy
  * not NULL: its point there; other then not written) or
  * aa__offset_root_fixd's (other), the root in t.  The requests' outputs
@@ -942,8 +949,14 @@ typedef struct aa__offset_rootq {
  * aa__offset_root_fixd give it, bit for bit; where the processor has AVX2
  * (and FMA: the double-double form by fma, fx->dd 2, says so), those
  * starting inside their brackets in that form are solved four at a time,
- * one a lane (offset.c, roots4_avx2), the rest one by one. */
+ * one a lane (offset.c, roots4_avx2), and where it has AVX-512F too
+ * eight at a time (roots8_512: a batch of more than four), the rest one
+ * by one. */
 void aa__offset_roots(aa__offset_rootq *q, size_t n);
+/* aa__offset_roots with at most `lanes` (8, 4 or 1) requests a batch, as
+ * the processor allows: the same roots and points (for a test of each
+ * width). */
+void aa__offset_roots_lanes(aa__offset_rootq *q, size_t n, int lanes);
 /* Coordinate coord of oc at t as the double phase of the solvers first
  * evaluates it at a bracket's far end (e[4], opaque): for a caller that
  * solves for many targets in one bracket [ta, tb] (a piece's band lines),

@@ -1232,11 +1232,41 @@ root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, doub
     return root_dd(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other, 1);
 }
 
-/* root_dd on four requests at once, one a lane of AVX's packed doubles
- * (__m256d; the double-double form's pairs of x and y as two vectors, not
- * one dd_v2): each lane the operations of root_dd's common path (eval_dd,
- * solve_step's stop at the first evaluation, dd_point_parts, dd_step's
- * stop at the first step, dd_out) in their order, where the scalar form
+/* root_dd_fma built for AVX-512F and VL, taken where the processor has
+ * them (root_wide): the same operations (no more fused than fma's, the
+ * file built without contraction), compiled with 32 vector registers, not
+ * 16, so fewer of the solver's constants and invariants spilled to the
+ * stack (88 stack accesses in its code against 124); the same roots and
+ * points bit for bit (tests/test_area_offset.c, test_roots_batch, against
+ * aa__offset_root_dd_fma).  By a CPU profile of tests/bench_bezstroke.c
+ * at 1024 px root_dd's share 7.24% to 6.85% (algorithms/README.md);
+ * valgrind's processor has no AVX-512F, so callgrind counts root_dd_fma. */
+static __attribute__((noinline, target("avx512f,avx512vl,fma"))) double
+root_dd_512(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta, double tb,
+            double fa, double target, double guess, const double *endb, long double xy[2],
+            long double *other)
+{
+    return root_dd(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other, 1);
+}
+
+/* AVX-512VL's bit alone (a processor with VL has F) */
+static inline int root_wide(void)
+{
+    return __builtin_cpu_supports("avx512vl");
+}
+
+double aa__offset_root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
+                              double ta, double tb, double fa, double target, double guess,
+                              const double *endb, long double xy[2], long double *other)
+{
+    return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, other);
+}
+
+/* root_dd on four (or eight) requests at once, one a lane of AVX's
+ * packed doubles (__m256d; the double-double form's pairs of x and y as
+ * two vectors, not one dd_v2): each lane the operations of root_dd's
+ * common path (eval_dd, solve_step's stop at the first evaluation,
+ * dd_point_parts, dd_step's stop at the first step, dd_out) in their order, where the scalar form
  * chooses by a test both results computed and one blended in (no lane's
  * operation takes another lane's value), fma only where dd_two_prod has
  * it: each root and point the scalar one bit for bit
@@ -1249,8 +1279,15 @@ root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, doub
  * scalar registers (roots2_fma, whose state spilled to the stack, 565
  * stack accesses): one render of tests/bench_bezstroke.c at 1024 px 206.3
  * M instructions to 191.8 M, at 256 px 244.7 M to 241.9 M
- * (algorithms/README.md).  Built for AVX2 and FMA; chosen where the
- * processor has both (aa__offset_roots). */
+ * (algorithms/README.md).  Built for AVX2 and FMA (roots4_avx2), and for
+ * AVX-512F on eight requests at once (roots8_512: the same operations in
+ * __m512d's lanes, its masks __mmask8), from one source
+ * (offset_lanes.h); aa__offset_roots takes eight where the processor
+ * has AVX-512F and a batch holds more than four, else four where it has
+ * AVX2.  Eight lanes on this benchmark's band lines (nearly every batch
+ * of band_roots' eight requests full) took the batches' share of a CPU
+ * profile 5.6% to 5.1% (algorithms/README.md): valgrind's processor has
+ * no AVX-512F, so callgrind counts the four. */
 #define V4 __attribute__((target("avx2,fma"), always_inline)) static inline
 
 /* the four lanes' values a[k] (one each) */
@@ -1259,10 +1296,105 @@ V4 __m256d v4_set(double a0, double a1, double a2, double a3)
     return _mm256_set_pd(a3, a2, a1, a0);
 }
 
+V4 __m256d v4_set1(double a)
+{
+    return _mm256_set1_pd(a);
+}
+
+V4 void v4_st(double *p, __m256d v)
+{
+    _mm256_storeu_pd(p, v);
+}
+
+V4 __m256d v4_sqrt(__m256d a)
+{
+    return _mm256_sqrt_pd(a);
+}
+
+V4 __m256d v4_abs(__m256d a)
+{
+    return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a);
+}
+
+V4 __m256d v4_min(__m256d a, __m256d b)
+{
+    return _mm256_min_pd(a, b);
+}
+
+V4 __m256d v4_max(__m256d a, __m256d b)
+{
+    return _mm256_max_pd(a, b);
+}
+
+/* a b - c by one rounding */
+V4 __m256d v4_fmsub(__m256d a, __m256d b, __m256d c)
+{
+    return _mm256_fmsub_pd(a, b, c);
+}
+
 /* where m (all ones or zeros a lane): b, else a */
 V4 __m256d v4_sel(__m256d m, __m256d a, __m256d b)
 {
     return _mm256_blendv_pd(a, b, m);
+}
+
+V4 __m256d v4_lt(__m256d a, __m256d b)
+{
+    return _mm256_cmp_pd(a, b, _CMP_LT_OQ);
+}
+
+V4 __m256d v4_le(__m256d a, __m256d b)
+{
+    return _mm256_cmp_pd(a, b, _CMP_LE_OQ);
+}
+
+V4 __m256d v4_gt(__m256d a, __m256d b)
+{
+    return _mm256_cmp_pd(a, b, _CMP_GT_OQ);
+}
+
+V4 __m256d v4_eq(__m256d a, __m256d b)
+{
+    return _mm256_cmp_pd(a, b, _CMP_EQ_OQ);
+}
+
+V4 __m256d v4_ne(__m256d a, __m256d b)
+{
+    return _mm256_cmp_pd(a, b, _CMP_NEQ_OQ);
+}
+
+V4 __m256d v4_and(__m256d a, __m256d b)
+{
+    return _mm256_and_pd(a, b);
+}
+
+V4 __m256d v4_or(__m256d a, __m256d b)
+{
+    return _mm256_or_pd(a, b);
+}
+
+V4 __m256d v4_xor(__m256d a, __m256d b)
+{
+    return _mm256_xor_pd(a, b);
+}
+
+/* ~a & b */
+V4 __m256d v4_andnot(__m256d a, __m256d b)
+{
+    return _mm256_andnot_pd(a, b);
+}
+
+V4 int v4_bits(__m256d m)
+{
+    return _mm256_movemask_pd(m);
+}
+
+/* the lanes whose request's coordinate is y */
+V4 __m256d v4_coord(const aa__offset_rootq *const R[4])
+{
+    return _mm256_castsi256_pd(_mm256_set_epi64x(-(long long)R[3]->coord, -(long long)R[2]->coord,
+                                                 -(long long)R[1]->coord,
+                                                 -(long long)R[0]->coord));
 }
 
 /* the pairs (x, y) at p[k] (lane k's: fx's arrays, 8-byte aligned) as
@@ -1289,129 +1421,138 @@ V4 void v4_rows(const double *p0, const double *p1, const double *p2, const doub
     c[2] = _mm256_permute2f128_pd(l01, l23, 0x31), c[3] = _mm256_permute2f128_pd(h01, h23, 0x31);
 }
 
-V4 __m256d v4_abs(__m256d a)
+/* The same on eight lanes in AVX-512F's registers (__m512d; its masks
+ * __mmask8, a bit a lane): the transposes two of four joined */
+#define V8 __attribute__((target("avx512f,avx2,fma"), always_inline)) static inline
+
+V8 __m512d v8_set(double a0, double a1, double a2, double a3, double a4, double a5, double a6,
+                  double a7)
 {
-    return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a);
+    return _mm512_set_pd(a7, a6, a5, a4, a3, a2, a1, a0);
 }
 
-V4 __m256d v4_two_sum(__m256d a, __m256d b, __m256d *e)
+V8 __m512d v8_set1(double a)
 {
-    __m256d s = a + b, bb = s - a;
-    *e = (a - (s - bb)) + (b - bb);
-    return s;
+    return _mm512_set1_pd(a);
 }
 
-/* dd_two_prod's fma form: a b - p by one rounding (fma(a, b, -p)) */
-V4 __m256d v4_two_prod(__m256d a, __m256d b, __m256d *e)
+V8 void v8_st(double *p, __m512d v)
 {
-    __m256d p = a * b;
-    *e = _mm256_fmsub_pd(a, b, p);
-    return p;
+    _mm512_storeu_pd(p, v);
 }
 
-#define V4_LT(a, b) _mm256_cmp_pd(a, b, _CMP_LT_OQ)
-#define V4_LE(a, b) _mm256_cmp_pd(a, b, _CMP_LE_OQ)
-#define V4_GT(a, b) _mm256_cmp_pd(a, b, _CMP_GT_OQ)
-#define V4_EQ(a, b) _mm256_cmp_pd(a, b, _CMP_EQ_OQ)
-#define V4_NE(a, b) _mm256_cmp_pd(a, b, _CMP_NEQ_OQ)
-
-/* A batch's four curves, each lane one request's, loaded and transposed
- * once: the base cubic's coefficients (b[k]: x's t^k; b[4 + k]: y's), the
- * map (m[k]), its row for the request's coordinate (r0, r1, r2 = m[c],
- * m[2 + c], m[4 + c]), d, and fx's double-double form (the pairs of
- * dc[k][h], du[k][0], du[2][1] as x's and y's) */
-typedef struct v4_curves {
-    __m256d b[8], m[4], r0, r1, r2, d;
-    __m256d dch[4][2], dcl[4][2], duh[3][2], du2l[2];
-} v4_curves;
-
-/* eval_dd in each lane: f, df and dn at t (its blends: the sums of the
- * row's products that eval_dd takes where r0 or r1 is 0, and the two) */
-V4 void v4_eval_dd(const v4_curves *C, __m256d t, __m256d tgt, __m256d *f, __m256d *df,
-                   __m256d *dn)
+V8 __m512d v8_sqrt(__m512d a)
 {
-    const __m256d *b = C->b, zero = _mm256_setzero_pd();
-    __m256d bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
-    __m256d by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
-    __m256d s0 = C->r0 * bx, s1 = C->r1 * by;
-    __m256d s = v4_sel(V4_EQ(C->r0, zero), v4_sel(V4_EQ(C->r1, zero), s0 + s1, s0), s1);
-    __m256d base0 = s + C->r2;
-    __m256d ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
-    __m256d vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
-    __m256d c = ux * vy - uy * vx, L2 = ux * ux + uy * uy, w = C->r1 * ux - C->r0 * uy;
-    __m256d il = 1 / _mm256_sqrt_pd(L2), nrm = C->d * w * il;
-    *df = (C->r0 * ux + C->r1 * uy) * (1 - C->d * c * (il * il * il));
-    *dn = v4_abs(nrm);
-    *f = (base0 - tgt) + nrm;
+    return _mm512_sqrt_pd(a);
 }
 
-/* dd_point_parts in each lane: p[k][0] x's, p[k][1] y's (dd_v2 p[k]'s
- * lanes), dp likewise */
-V4 void v4_point_parts(const v4_curves *C, __m256d t, __m256d p[4][2], __m256d dp[2][2])
+V8 __m512d v8_abs(__m512d a)
 {
-    /* dd_normal_pt: B' as hi (uh) + lo (ul) */
-    __m256d uh[2], ul[2], e, e2;
-    for (int c = 0; c < 2; c++) {
-        __m256d q = v4_two_prod(C->duh[2][c], t, &e);
-        __m256d sh = v4_two_sum(q, C->duh[1][c], &e2), sl = e2 + (e + C->du2l[c] * t);
-        q = v4_two_prod(sh, t, &e);
-        __m256d s2 = v4_two_sum(q, C->duh[0][c], &e2);
-        uh[c] = v4_two_sum(s2, e2 + (e + sl * t), &ul[c]);
-    }
-    __m256d e1, e3, e4, p1 = v4_two_prod(uh[0], uh[0], &e1);
-    __m256d p2 = v4_two_prod(uh[1], uh[1], &e4), s = v4_two_sum(p1, p2, &e3);
-    __m256d ql = e3 + e1 + e4 + 2 * (uh[0] * ul[0] + uh[1] * ul[1]);
-    __m256d qh = v4_two_sum(s, ql, &ql);
-    __m256d lh = _mm256_sqrt_pd(qh), il = 1 / lh, el, pl = v4_two_prod(lh, lh, &el);
-    __m256d ll = (((qh - pl) - el) + ql) * (0.5 * il);
-    __m256d fh[2], fl[2];
-    for (int c = 0; c < 2; c++) { /* w for row c: r0 = m[c], r1 = m[2 + c] */
-        __m256d r0 = C->m[c], r1 = C->m[2 + c], ea, eb, es, wl2;
-        __m256d a = v4_two_prod(r1, uh[0], &ea), b = v4_two_prod(-r0, uh[1], &eb);
-        __m256d ws = v4_two_sum(a, b, &es), wl = es + ea + eb + (r1 * ul[0] - r0 * ul[1]);
-        __m256d wh = v4_two_sum(ws, wl, &wl2), ef;
-        fh[c] = wh * il;
-        __m256d pf = v4_two_prod(fh[c], lh, &ef);
-        fl[c] = (((wh - pf) - ef) + (wl2 - fh[c] * ll)) * il;
-    }
-    for (int c = 0; c < 2; c++) {
-        __m256d eh;
-        p[1][c] = v4_two_prod(C->d, fh[c], &eh);
-        p[3][c] = eh + C->d * fl[c];
-    }
-    /* the derivatives (dd_normal_pt's dp) */
-    __m256d v[2] = {C->duh[1][0] + (6 * t) * C->b[3], C->duh[1][1] + (6 * t) * C->b[7]};
-    __m256d cc = uh[0] * v[1] - uh[1] * v[0], cp = 6 * (uh[0] * C->b[7] - uh[1] * C->b[3]);
-    __m256d dot = uh[0] * v[0] + uh[1] * v[1];
-    __m256d il3 = il * il * il, g = 1 - C->d * cc * il3;
-    __m256d q[2] = {uh[0] * g, uh[1] * g};
-    __m256d gp = -C->d * il3 * (cp - 3 * cc * dot * (il * il));
-    __m256d rv[2] = {v[0] * g + uh[0] * gp, v[1] * g + uh[1] * gp};
-    for (int c = 0; c < 2; c++) {
-        dp[0][c] = C->m[c] * q[0] + C->m[2 + c] * q[1];
-        dp[1][c] = C->m[c] * rv[0] + C->m[2 + c] * rv[1];
-    }
-    /* dd_base */
-    for (int c = 0; c < 2; c++) {
-        __m256d sh = C->dch[3][c], sl = C->dcl[3][c];
-        for (int k = 2; k >= 0; k--) {
-            __m256d q2 = v4_two_prod(sh, t, &e);
-            sh = v4_two_sum(q2, C->dch[k][c], &e2);
-            sl = e2 + (e + (sl * t + C->dcl[k][c]));
-        }
-        p[0][c] = sh, p[2][c] = sl;
-    }
+    return _mm512_abs_pd(a);
 }
 
-/* lane k of the parts as dd_point_parts gives them (for a scalar
- * continuation) */
-static inline void v4_lane_parts(const double pv[4][2][4], const double dpv[2][2][4], int k,
-                                 dd_v2 p[4], dd_v2 dp[2])
+V8 __m512d v8_min(__m512d a, __m512d b)
 {
-    for (int i = 0; i < 4; i++)
-        p[i] = (dd_v2){pv[i][0][k], pv[i][1][k]};
-    for (int i = 0; i < 2; i++)
-        dp[i] = (dd_v2){dpv[i][0][k], dpv[i][1][k]};
+    return _mm512_min_pd(a, b);
+}
+
+V8 __m512d v8_max(__m512d a, __m512d b)
+{
+    return _mm512_max_pd(a, b);
+}
+
+V8 __m512d v8_fmsub(__m512d a, __m512d b, __m512d c)
+{
+    return _mm512_fmsub_pd(a, b, c);
+}
+
+V8 __m512d v8_sel(__mmask8 m, __m512d a, __m512d b)
+{
+    return _mm512_mask_blend_pd(m, a, b);
+}
+
+V8 __mmask8 v8_lt(__m512d a, __m512d b)
+{
+    return _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ);
+}
+
+V8 __mmask8 v8_le(__m512d a, __m512d b)
+{
+    return _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ);
+}
+
+V8 __mmask8 v8_gt(__m512d a, __m512d b)
+{
+    return _mm512_cmp_pd_mask(a, b, _CMP_GT_OQ);
+}
+
+V8 __mmask8 v8_eq(__m512d a, __m512d b)
+{
+    return _mm512_cmp_pd_mask(a, b, _CMP_EQ_OQ);
+}
+
+V8 __mmask8 v8_ne(__m512d a, __m512d b)
+{
+    return _mm512_cmp_pd_mask(a, b, _CMP_NEQ_OQ);
+}
+
+V8 __mmask8 v8_and(__mmask8 a, __mmask8 b)
+{
+    return a & b;
+}
+
+V8 __mmask8 v8_or(__mmask8 a, __mmask8 b)
+{
+    return a | b;
+}
+
+V8 __mmask8 v8_xor(__mmask8 a, __mmask8 b)
+{
+    return a ^ b;
+}
+
+V8 __mmask8 v8_andnot(__mmask8 a, __mmask8 b)
+{
+    return (__mmask8)(~a & b);
+}
+
+V8 int v8_bits(__mmask8 m)
+{
+    return m;
+}
+
+V8 __mmask8 v8_coord(const aa__offset_rootq *const R[8])
+{
+    int c = 0;
+    for (int k = 0; k < 8; k++)
+        c |= R[k]->coord << k;
+    return (__mmask8)c;
+}
+
+V8 __m512d v8_join(__m256d lo, __m256d hi)
+{
+    return _mm512_insertf64x4(_mm512_castpd256_pd512(lo), hi, 1);
+}
+
+V8 void v8_pairs(const double *p0, const double *p1, const double *p2, const double *p3,
+                 const double *p4, const double *p5, const double *p6, const double *p7,
+                 __m512d *x, __m512d *y)
+{
+    __m256d x0, y0, x1, y1;
+    v4_pairs(p0, p1, p2, p3, &x0, &y0);
+    v4_pairs(p4, p5, p6, p7, &x1, &y1);
+    *x = v8_join(x0, x1), *y = v8_join(y0, y1);
+}
+
+V8 void v8_rows(const double *p0, const double *p1, const double *p2, const double *p3,
+                const double *p4, const double *p5, const double *p6, const double *p7,
+                __m512d c[4])
+{
+    __m256d lo[4], hi[4];
+    v4_rows(p0, p1, p2, p3, lo);
+    v4_rows(p4, p5, p6, p7, hi);
+    for (int j = 0; j < 4; j++)
+        c[j] = v8_join(lo[j], hi[j]);
 }
 
 /* A request's other coordinate, where it asks it: not beside its point
@@ -1421,162 +1562,41 @@ static inline long double *rq_other(const aa__offset_rootq *q)
     return q->xy ? NULL : q->other;
 }
 
-/* The requests r[0..n) (n 2 to 4, each root_dd's common start; lanes n
- * and on repeat r[0], their results dropped) */
-static __attribute__((noinline, target("avx2,fma"))) void roots4_avx2(aa__offset_rootq *const *r,
-                                                                      int n)
-{
-    const aa__offset_rootq *R[4] = {r[0], r[1], n > 2 ? r[2] : r[0], n > 3 ? r[3] : r[0]};
-    const aa_offset_curve *o[4] = {R[0]->oc, R[1]->oc, R[2]->oc, R[3]->oc};
-    const aa__offset_fix *x[4] = {R[0]->fx, R[1]->fx, R[2]->fx, R[3]->fx};
-#define V4_OF(e) v4_set(R[0]->e, R[1]->e, R[2]->e, R[3]->e)
-    v4_curves C;
-    v4_rows(o[0]->b, o[1]->b, o[2]->b, o[3]->b, C.b);
-    v4_rows(o[0]->b + 4, o[1]->b + 4, o[2]->b + 4, o[3]->b + 4, C.b + 4);
-    v4_rows(o[0]->m, o[1]->m, o[2]->m, o[3]->m, C.m);
-    __m256d cm = _mm256_castsi256_pd(_mm256_set_epi64x(-(long long)R[3]->coord,
-                                                       -(long long)R[2]->coord,
-                                                       -(long long)R[1]->coord,
-                                                       -(long long)R[0]->coord));
-    C.r0 = v4_sel(cm, C.m[0], C.m[1]), C.r1 = v4_sel(cm, C.m[2], C.m[3]);
-    C.r2 = v4_set(o[0]->m[4 + R[0]->coord], o[1]->m[4 + R[1]->coord],
-                  o[2]->m[4 + R[2]->coord], o[3]->m[4 + R[3]->coord]);
-    C.d = v4_set(o[0]->d, o[1]->d, o[2]->d, o[3]->d);
-    for (int k = 0; k < 4; k++)
-        for (int h = 0; h < 2; h++) {
-            __m256d *dst = h ? C.dcl[k] : C.dch[k];
-            v4_pairs(x[0]->dc[k][h], x[1]->dc[k][h], x[2]->dc[k][h], x[3]->dc[k][h], &dst[0],
-                     &dst[1]);
-        }
-    for (int k = 0; k < 3; k++)
-        v4_pairs(x[0]->du[k][0], x[1]->du[k][0], x[2]->du[k][0], x[3]->du[k][0], &C.duh[k][0],
-                 &C.duh[k][1]);
-    v4_pairs(x[0]->du[2][1], x[1]->du[2][1], x[2]->du[2][1], x[3]->du[2][1], &C.du2l[0],
-             &C.du2l[1]);
-    __m256d tgt = V4_OF(target), ta = V4_OF(ta), tb = V4_OF(tb), t = V4_OF(guess);
-    __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
-    __m256d neg = V4_LT(V4_OF(fa), zero);
-    __m256d size = v4_set(x[0]->dsize[R[0]->coord], x[1]->dsize[R[1]->coord],
-                          x[2]->dsize[R[2]->coord], x[3]->dsize[R[3]->coord]) + v4_abs(tgt);
-#undef V4_OF
-    /* solve_step at the guess: its stops (the value within rounding of
-     * the target, the bracket two adjacent doubles, a step within
-     * DD_D_STEP, clamped to the bracket) */
-    __m256d f, df, dn;
-    v4_eval_dd(&C, t, tgt, &f, &df, &dn);
-    __m256d sa = V4_LE(v4_abs(f), 2 * DBL_EPSILON * (size + dn));
-    __m256d side = _mm256_xor_pd(V4_LT(f, zero), neg); /* (f < 0) != neg: b moves */
-    __m256d a = v4_sel(side, t, ta), b = v4_sel(side, tb, t), mid = half * (a + b);
-    __m256d sb = _mm256_or_pd(V4_EQ(mid, a), V4_EQ(mid, b));
-    __m256d dfok = _mm256_and_pd(V4_NE(df, zero), V4_LT(v4_abs(df), _mm256_set1_pd(INFINITY)));
-    __m256d next = v4_sel(dfok, mid, t - f / df);
-    __m256d sc = _mm256_max_pd(v4_abs(t), one);
-    __m256d sn = V4_LE(v4_abs(next - t), DD_D_STEP * sc);
-    __m256d cl = _mm256_min_pd(_mm256_max_pd(next, _mm256_min_pd(a, b)), _mm256_max_pd(b, a));
-    __m256d skeep = _mm256_or_pd(sa, sb);
-    int go = _mm256_movemask_pd(_mm256_or_pd(skeep, sn)) & ((1 << n) - 1);
-    t = v4_sel(skeep, cl, t);
-    if (go != (1 << n) - 1) { /* the lanes on: the double phase's loop (root_d_more_fma) */
-        double fv[4], dfv[4], dnv[4];
-        _mm256_storeu_pd(fv, f), _mm256_storeu_pd(dfv, df), _mm256_storeu_pd(dnv, dn);
-        for (int k = 0; k < n; k++) {
-            if (go >> k & 1)
-                continue;
-            aa__offset_rootq *q = r[k];
-            int ng = q->fa < 0, unseen = 1;
-            double size1 = q->fx->dsize[q->coord] + fabs(q->target);
-            double t1 = q->guess, a1 = q->ta, b1 = q->tb, prev = fabs(q->tb - q->ta), last;
-            solve_step(fv[k], dfv[k], dnv[k], size1, DD_D_STEP, ng, &t1, &a1, &b1, &prev,
-                       &unseen, &last);
-            q->t = root_d_more_fma(q->oc, q->fx, q->coord, q->ta, q->tb, a1, b1, ng, q->target,
-                                   t1, prev, unseen, size1, q->xy, rq_other(q));
-        }
-        if (!go)
-            return;
-    }
-    /* dd_step at t: its stops (the value 0, the bracket two adjacent
-     * doubles, the step rounding to t, the step the last) */
-    __m256d p[4][2], dp[2][2];
-    v4_point_parts(&C, t, p, dp);
-    __m256d P[4], D1 = v4_sel(cm, dp[0][0], dp[0][1]), D2 = v4_sel(cm, dp[1][0], dp[1][1]);
-    for (int i = 0; i < 4; i++)
-        P[i] = v4_sel(cm, p[i][0], p[i][1]);
-    f = ((P[0] - tgt) + P[1]) + (P[2] + P[3]);
-    __m256d za = V4_EQ(f, zero);
-    side = _mm256_xor_pd(V4_LT(f, zero), neg);
-    __m256d la = v4_sel(side, t, ta), lb = v4_sel(side, tb, t);
-    mid = half * (la + lb);
-    __m256d zb = _mm256_or_pd(V4_EQ(mid, la), V4_EQ(mid, lb)), zkeep = _mm256_or_pd(za, zb);
-    dfok = _mm256_and_pd(V4_NE(D1, zero), V4_LT(v4_abs(D1), _mm256_set1_pd(INFINITY)));
-    __m256d idf = 1 / D1, h2 = -f * idf, c2 = half * D2 * idf;
-    __m256d ch = c2 * h2;
-    __m256d step = h2 - ch * h2;
-    next = t + step;
-    __m256d zd = V4_EQ(next, t);
-    __m256d inside = v4_sel(V4_LT(la, lb), _mm256_and_pd(V4_LT(next, la), V4_GT(next, lb)),
-                            _mm256_and_pd(V4_GT(next, la), V4_LT(next, lb)));
-    sc = _mm256_max_pd(v4_abs(t), one);
-    __m256d ze = _mm256_and_pd(_mm256_and_pd(inside, V4_LE(v4_abs(h2), _mm256_set1_pd(1e-7))),
-                               V4_LE(2 * ch * ch * v4_abs(h2), DD_EST * sc));
-    ze = _mm256_andnot_pd(_mm256_or_pd(zkeep, zd), _mm256_and_pd(dfok, ze));
-    __m256d stop = _mm256_or_pd(zkeep, _mm256_and_pd(dfok, _mm256_or_pd(zd, ze)));
-    int done = _mm256_movemask_pd(stop) & go;
-    __m256d hv = v4_sel(ze, zero, next - t), hxv = v4_sel(zkeep, step, zero);
-    __m256d tv = v4_sel(ze, t, next);
-    /* dd_out: the sums in double, x, y and the other coordinate's (lane
-     * 1 - coord) */
-    __m256d lo[2], Q[4], So = v4_sel(cm, dp[0][1], dp[0][0]);
-    __m256d S2o = v4_sel(cm, dp[1][1], dp[1][0]);
-    for (int c = 0; c < 2; c++)
-        lo[c] = p[2][c] + (p[3][c] + hv * (dp[0][c] + half * dp[1][c] * hv));
-    for (int i = 0; i < 4; i++)
-        Q[i] = v4_sel(cm, p[i][1], p[i][0]);
-    __m256d loo = Q[2] + (Q[3] + hxv * (So + half * S2o * hxv));
-    double pv[4][2][4], dpv[2][2][4], lov[2][4], qv[2][4], loov[4], tt[4];
-    for (int i = 0; i < 2; i++)
-        for (int c = 0; c < 2; c++)
-            _mm256_storeu_pd(pv[i][c], p[i][c]);
-    for (int c = 0; c < 2; c++)
-        _mm256_storeu_pd(lov[c], lo[c]);
-    _mm256_storeu_pd(qv[0], Q[0]), _mm256_storeu_pd(qv[1], Q[1]);
-    _mm256_storeu_pd(loov, loo), _mm256_storeu_pd(tt, tv);
-    for (int k = 0; k < n; k++) {
-        if (!(done >> k & 1))
-            continue;
-        aa__offset_rootq *q = r[k];
-        if (q->xy) {
-            q->xy[0] = ((long double)pv[0][0][k] + pv[1][0][k]) + lov[0][k];
-            q->xy[1] = ((long double)pv[0][1][k] + pv[1][1][k]) + lov[1][k];
-        }
-        if (rq_other(q))
-            *q->other = ((long double)qv[0][k] + qv[1][k]) + loov[k];
-        q->t = tt[k];
-    }
-    if (done == go)
-        return;
-    /* the lanes on: root_dd_loop's next steps (root_dd_more_fma) from
-     * dd_step at t again in the lane, on its parts */
-    double t0[4];
-    for (int i = 2; i < 4; i++)
-        for (int c = 0; c < 2; c++)
-            _mm256_storeu_pd(pv[i][c], p[i][c]);
-    for (int i = 0; i < 2; i++)
-        for (int c = 0; c < 2; c++)
-            _mm256_storeu_pd(dpv[i][c], dp[i][c]);
-    _mm256_storeu_pd(t0, t);
-    for (int k = 0; k < n; k++) {
-        if (!(go >> k & 1) || done >> k & 1)
-            continue;
-        aa__offset_rootq *q = r[k];
-        dd_v2 pk[4], dpk[2];
-        v4_lane_parts(pv, dpv, k, pk, dpk);
-        int ng = q->fa < 0;
-        double t1 = t0[k], la1 = q->ta, lb1 = q->tb, h = 0.0, hx = 0.0;
-        dd_step(pk, dpk, (dd_v2){q->target, q->target}, q->coord, ng, &t1, &la1, &lb1, &h, &hx);
-        q->t = root_dd_more_fma(q->oc, q->fx, q->coord, q->target, ng, t1, la1, lb1, q->xy,
-                                rq_other(q));
-    }
-}
+#define VN 4
+#define VD __m256d
+#define VM __m256d
+#define VF(name) v4_##name
+#define V_ALL(E) E(0), E(1), E(2), E(3)
+#define VATTR V4
+#define VTARGET "avx2,fma"
+#define VROOTS roots4_avx2
+#include "offset_lanes.h"
+#undef VN
+#undef VD
+#undef VM
+#undef VF
+#undef V_ALL
+#undef VATTR
+#undef VTARGET
+#undef VROOTS
+
+#define VN 8
+#define VD __m512d
+#define VM __mmask8
+#define VF(name) v8_##name
+#define V_ALL(E) E(0), E(1), E(2), E(3), E(4), E(5), E(6), E(7)
+#define VATTR V8
+#define VTARGET "avx512f,avx2,fma"
+#define VROOTS roots8_512
+#include "offset_lanes.h"
+#undef VN
+#undef VD
+#undef VM
+#undef VF
+#undef V_ALL
+#undef VATTR
+#undef VTARGET
+#undef VROOTS
 
 /* A request outside root_dd's common start (no guess inside, fa 0, no
  * double-double form) or alone: aa__offset_root_fixd / _xyd's own way */
@@ -1595,30 +1615,55 @@ static inline int root_common(const aa__offset_rootq *r)
     return r->fx->dd == 2 && r->fa != 0 && in_bracket(r->guess, r->ta, r->tb);
 }
 
-void aa__offset_roots(aa__offset_rootq *q, size_t n)
+/* a batch of m common requests: eight lanes where more than four (the
+ * caller's lanes 8), else four; one alone by itself */
+static void roots_batch(aa__offset_rootq *const *c, int m)
 {
-    aa__offset_rootq *c[4]; /* common requests waiting for a batch */
+    if (m > 4)
+        roots8_512(c, m);
+    else if (m > 1)
+        roots4_avx2(c, m);
+    else if (m)
+        root_one(c[0]);
+}
+
+static __attribute__((always_inline)) inline void roots_lanes(aa__offset_rootq *q, size_t n,
+                                                             int lanes)
+{
+    aa__offset_rootq *c[8]; /* common requests waiting for a batch */
     int m = 0;
-    if (!__builtin_cpu_supports("avx2")) {
+    if (lanes >= 8 && !__builtin_cpu_supports("avx512f"))
+        lanes = 4;
+    if (lanes >= 4 && !__builtin_cpu_supports("avx2"))
+        lanes = 1;
+    if (lanes < 4) {
         for (size_t k = 0; k < n; k++)
             root_one(&q[k]);
         return;
     }
+    lanes = lanes >= 8 ? 8 : 4;
     for (size_t k = 0; k < n; k++) {
         if (!root_common(&q[k])) {
             root_one(&q[k]);
             continue;
         }
         c[m++] = &q[k];
-        if (m == 4) {
-            roots4_avx2(c, 4);
+        if (m == lanes) {
+            roots_batch(c, m);
             m = 0;
         }
     }
-    if (m > 1)
-        roots4_avx2(c, m);
-    else if (m)
-        root_one(c[0]);
+    roots_batch(c, m);
+}
+
+void aa__offset_roots(aa__offset_rootq *q, size_t n)
+{
+    roots_lanes(q, n, 8);
+}
+
+void aa__offset_roots_lanes(aa__offset_rootq *q, size_t n, int lanes)
+{
+    roots_lanes(q, n, lanes);
 }
 
 static __attribute__((noinline)) void point_dd_split(const aa_offset_curve *oc,
@@ -1723,7 +1768,9 @@ double aa__offset_root_fixd(const aa_offset_curve *oc, const aa__offset_fix *fx,
                             long double *other)
 {
     if (fx->dd == 2)
-        return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
+        return root_wide()
+                   ? root_dd_512(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other)
+                   : root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
     if (fx->dd)
         return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
     return root_ld(oc, fx, coord, ta, tb, fa, target, guess, NULL, NULL, other);
@@ -1734,7 +1781,9 @@ double aa__offset_root_xyd(const aa_offset_curve *oc, const aa__offset_fix *fx, 
                            const double *endb, long double xy[2])
 {
     if (fx->dd == 2)
-        return root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
+        return root_wide()
+                   ? root_dd_512(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL)
+                   : root_dd_fma(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
     if (fx->dd)
         return root_dd_split(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
     return root_ld(oc, fx, coord, ta, tb, fa, target, guess, endb, xy, NULL);
