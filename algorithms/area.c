@@ -983,9 +983,14 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
             /* band_roots' root (offset_line's for the line: it asks every
              * offset seg made here, before, prej j) */
             tb = p->sg * s->pret;
-            s->xline = s->prexy[0], s->yline = s->prexy[1];
-            ub = (double)(s->xline - s->c0);
-            s->vt[3] = tb, s->vv[3] = (double)(s->yline + s->V);
+            ub = (double)(s->prexy[0] - s->c0);
+            s->vt[3] = tb, s->vv[3] = (double)(s->prexy[1] + s->V);
+            /* the point kept as its bytes (two 16-byte moves), not
+             * loaded onto the x87 stack and stored from it (fldt and
+             * fstpt, the 80-bit store several micro-ops): by perf these
+             * lines' samples about halved */
+            memcpy(&s->xline, &s->prexy[0], sizeof s->xline);
+            memcpy(&s->yline, &s->prexy[1], sizeof s->yline);
         } else {
             tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
             ub = plain ? u_quad(s, tb) : seg_u(s, tb);
