@@ -894,19 +894,27 @@ static inline int icell(double x)
     return (int)x - (x < 0.0);
 }
 
-/* icell of lo and hi at once (*a, *b), in the two lanes of SSE2's packed
- * doubles: the same clamps (maxpd and minpd take their second operand where
- * the first is NaN, as the scalar forms), the same truncation (cvttpd2dq:
- * the clamped values fit in an int), the comparison's mask -1 added. */
-static inline void icell2(double lo, double hi, int *a, int *b)
+/* icell of lo and hi at once (*a, *b), x's two lanes {lo, hi}, in SSE2's
+ * packed doubles: the same clamps (maxpd and minpd take their second
+ * operand where the first is NaN, as the scalar forms), the same
+ * truncation (cvttpd2dq: the clamped values fit in an int), the
+ * comparison's mask -1 added. */
+static inline void icell2(__m128d x, int *a, int *b)
 {
-    __m128d x = _mm_set_pd(hi, lo);
     x = _mm_max_pd(x, _mm_set1_pd(-CELL_LIMIT));
     x = _mm_min_pd(x, _mm_set1_pd(CELL_LIMIT));
     __m128i neg = _mm_shuffle_epi32(_mm_castpd_si128(_mm_cmplt_pd(x, _mm_setzero_pd())), 0x08);
     __m128i c = _mm_add_epi32(_mm_cvttpd_epi32(x), neg);
     *a = _mm_cvtsi128_si32(c);
     *b = _mm_cvtsi128_si32(_mm_shuffle_epi32(c, 0x01));
+}
+
+/* An extent {lo, hi} (two lanes) grown to hold e: e < lo ? e : lo and
+ * e > hi ? e : hi (minpd's and maxpd's choices), no branch */
+static inline __m128d extent_with(__m128d x, double e)
+{
+    __m128d v = _mm_set1_pd(e);
+    return _mm_move_sd(_mm_max_pd(v, x), _mm_min_pd(v, x));
 }
 
 /* u at tau t of an offset piece at an end of the band, its v kept in the
@@ -983,9 +991,14 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
             /* band_roots' root (offset_line's for the line: it asks every
              * offset seg made here, before, prej j) */
             tb = p->sg * s->pret;
-            s->xline = s->prexy[0], s->yline = s->prexy[1];
-            ub = (double)(s->xline - s->c0);
-            s->vt[3] = tb, s->vv[3] = (double)(s->yline + s->V);
+            ub = (double)(s->prexy[0] - s->c0);
+            s->vt[3] = tb, s->vv[3] = (double)(s->prexy[1] + s->V);
+            /* the point kept as its bytes (two 16-byte moves), not
+             * loaded onto the x87 stack and stored from it (fldt and
+             * fstpt, the 80-bit store several micro-ops): by perf these
+             * lines' samples about halved */
+            memcpy(&s->xline, &s->prexy[0], sizeof s->xline);
+            memcpy(&s->yline, &s->prexy[1], sizeof s->yline);
         } else {
             tb = plain ? line_tau_quad(s, m + 1) : line_tau(s, m + 1);
             ub = plain ? u_quad(s, tb) : seg_u(s, tb);
@@ -999,38 +1012,32 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     /* the extent in registers, stored once: stored field by field and
      * read back as a pair (icell2's load), the two stores were not
      * forwarded to the load, which waited for them to reach the cache;
-     * the same values */
-    double elo = ua < ub ? ua : ub, ehi = ua < ub ? ub : ua;
-    if (s->te > ta && s->te < tb) {
-        double ue = plain ? u_quad(s, s->te) : u_at(s, s->te);
-        elo = ue < elo ? ue : elo;
-        ehi = ue > ehi ? ue : ehi;
-    }
-    if (!plain && s->te2 > ta && s->te2 < tb) {
-        double ue = u_at(s, s->te2);
-        elo = ue < elo ? ue : elo;
-        ehi = ue > ehi ? ue : ehi;
-    }
+     * the same values.  In two lanes {lo, hi}, its first ends ua < ub ?
+     * ua : ub and ub > ua ? ub : ua by minpd and maxpd: the compiler made
+     * a branch of the two choices on one comparison, and which way a seg
+     * runs in x is its piece's (a stroke's two sides run opposite ways),
+     * so that branch was mispredicted in most segs (callgrind's
+     * --branch-sim: about 49,000 of 69,617 a render at 1024 px) */
+    __m128d uab = _mm_set_pd(ub, ua), uba = _mm_shuffle_pd(uab, uab, 1);
+    __m128d ext = _mm_move_sd(_mm_max_pd(uab, uba), _mm_min_pd(uab, uba));
+    if (s->te > ta && s->te < tb)
+        ext = extent_with(ext, plain ? u_quad(s, s->te) : u_at(s, s->te));
+    if (!plain && s->te2 > ta && s->te2 < tb)
+        ext = extent_with(ext, u_at(s, s->te2));
     if (special) {
         /* a conic's ends come from its angle (an offset piece's from its
          * parameter), off its exact end points
          * (x0, y0) and (x1, y1) by rounding: where two pieces meet on a cell's
          * side, each end could fall in another cell, and the clusters
          * would not be linked; the extent holds the exact ends too */
-        if (p->y0 >= j) {
-            double e = (double)(p->x0 - s->c0);
-            elo = e < elo ? e : elo;
-            ehi = e > ehi ? e : ehi;
-        }
-        if (p->y1 <= j + 1.0) {
-            double e = p->src->x1 - s->c0;
-            elo = e < elo ? e : elo;
-            ehi = e > ehi ? e : ehi;
-        }
+        if (p->y0 >= j)
+            ext = extent_with(ext, (double)(p->x0 - s->c0));
+        if (p->y1 <= j + 1.0)
+            ext = extent_with(ext, p->src->x1 - s->c0);
     }
-    s->lo = elo, s->hi = ehi;
+    _mm_storel_pd(&s->lo, ext), _mm_storeh_pd(&s->hi, ext);
     int lo, hi;
-    icell2(elo, ehi, &lo, &hi);
+    icell2(ext, &lo, &hi);
     lo += s->c0, hi += s->c0;
     if (lo >= W)
         return 0;
@@ -2403,15 +2410,6 @@ single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int pl
     return nx;
 }
 
-/* single() if s is of its kind; 0 (and nothing changed) if not. */
-static int cluster_single(const ar_row *r, const ar_seg *s, int *w, const double *cin)
-{
-    if (s->cb - s->ca > 1 || s->ca < 0 || s->cb >= r->W || !single_kind(r, s, 0))
-        return 0;
-    single(r, s, w, cin, 0);
-    return 1;
-}
-
 /* One cluster: the segs in[0..n) link cells lo..hi; w holds the windings
  * left of it (updated to those right of it), cin their colour. */
 static void cluster(const ar_row *r, const ar_key *in, size_t n, int lo, int hi, int *w,
@@ -2604,17 +2602,35 @@ static void update_active(const ar_state *S, ar_worker *wk, int j)
     wk->nactive = m;
 }
 
+/* The cluster of the one seg s (cells lo..hi) if single() writes it:
+ * the run before it from pixel *x in colour *c, then the seg; w and *c
+ * move past it, *x to the next pixel to write.  Returns 0 (nothing
+ * written) if s is not of single's kind.  Inline in the rows' passes, the
+ * one-pass order's (close_cluster) and the sorted pass's. */
+__attribute__((always_inline)) static inline int close_single(const ar_row *r, const ar_seg *s,
+                                                              int lo, int hi, int *x, int *w,
+                                                              const double **c, const int plain)
+{
+    if (!(s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s, plain)))
+        return 0;
+    if (lo > *x)
+        fill_run(r, *x, lo, *c);
+    *c = single(r, s, w, *c, plain);
+    *x = hi + 1;
+    return 1;
+}
+
 /* Write the row from pixel x to the end of the cluster keys[0..n) (cells
  * lo..hi): the run before it in colour *c, then the cluster; w and *c move
- * past it.  Returns the next pixel to write. */
+ * past it.  Returns the next pixel to write.  A cluster of one seg single()
+ * writes does not come here (close_single, first). */
 static int flush(const ar_row *r, ar_key *keys, size_t n, int lo, int hi, int x, int *w,
                  const double **c)
 {
     if (lo > x)
         fill_run(r, x, lo, *c);
     double cin[3] = {(*c)[0], (*c)[1], (*c)[2]};
-    if (!(n == 1 && cluster_single(r, &r->wk->seg[keys[0].idx], w, cin)))
-        cluster(r, keys, n, lo, hi, w, cin);
+    cluster(r, keys, n, lo, hi, w, cin);
     *c = colour_of(r->S, r->wk, w);
     return hi + 1 > x ? (hi + 1 > r->W ? r->W : hi + 1) : x;
 }
@@ -2650,15 +2666,8 @@ __attribute__((always_inline)) static inline int close_cluster(const ar_row *r,
                                                                int lo, int hi, int x, int *w,
                                                                const double **c, const int plain)
 {
-    if (n == 1) {
-        const ar_seg *s = &r->wk->seg[list[0]];
-        if (s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s, plain)) {
-            if (lo > x)
-                fill_run(r, x, lo, *c);
-            *c = single(r, s, w, *c, plain);
-            return hi + 1;
-        }
-    }
+    if (n == 1 && close_single(r, &r->wk->seg[list[0]], lo, hi, &x, w, c, plain))
+        return x;
     return flush_list(r, list, n, lo, hi, x, w, c);
 }
 
@@ -2916,7 +2925,13 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
             if (wk->seg[keys[k].idx].cb > hi)
                 hi = wk->seg[keys[k].idx].cb;
         wk->expensive += cells_of(lo, hi, W);
-        x = flush(&r, keys + first, k - first, lo, hi, x, w, &c);
+        /* a seg alone that single() writes inline, as in the one pass:
+         * through flush it paid a call, a copy of the colour and a
+         * colour_of after single's (tests/bench_bezstroke.c's scene at
+         * 1024 px: 19,084 of the sorted pass's 23,944 clusters a render) */
+        if (!(k - first == 1 && close_single(&r, &wk->seg[keys[first].idx], lo, hi, &x, w, &c,
+                                             plain)))
+            x = flush(&r, keys + first, k - first, lo, hi, x, w, &c);
     }
     if (x < W)
         fill(r.px, x, W, W, c, stream);
