@@ -427,11 +427,13 @@ static void test_radial(void **state)
         run(&sc[k]);
 }
 
-/* Rows within 1e-9 to 1e-7 px of the focus, P* (a focus 3e-6 px below
- * the pixels' edge y = 3, a cut of the rows' rule): there dmin = d0 - d1^2
- * / (4 d2) in double rounds by more than itself, and the ellipses about
- * the pieces that end at x0 are drawn from the branch points' distance
- * sqrt(dmin / d2).  Each ellipse must keep them out (branch_ellipse). */
+/* Rows within 1e-7 px of the focus, P* (a focus 3e-6 px below the
+ * pixels' edge y = 3, a cut of the rows' rule: rows from 7.1e-12 px of
+ * it): there dmin = d0 - d1^2 / (4 d2) in double rounds by more than
+ * itself, and the ellipses about the pieces that end at x0 are drawn from
+ * the branch points' distance sqrt(dmin / d2) (with that dmin, a row
+ * 2.6e-10 px away had them inside its ellipse).  Each ellipse must keep
+ * them out (branch_ellipse). */
 static void test_focus(void **state)
 {
     (void)state;
