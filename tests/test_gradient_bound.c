@@ -39,7 +39,9 @@
  * The composite is analytic inside every ellipse on which the reference
  * claims a bound (linear layers are entire; the radial's and the power's
  * branch points the reference keeps out), so by the maximum modulus
- * principle |e| and |e'| take their largest values on its boundary: 32
+ * principle |e| and |e'| take their largest values on its boundary (and
+ * each radial layer's branch points, disc's roots found here in
+ * __float128, are required outside each ellipse: branch_ellipse): 32
  * points of it are evaluated (the two ends of its major axis among them,
  * where a single layer's modulus peaks), each required at most S and D
  * (1e-12 relative and 1e-15 for the rounding of both; the largest excess
@@ -99,6 +101,8 @@ typedef struct probe {
     const scene *sc;
     long seen, checked, skipped, folded, segments;
     double worst_e, worst_d;
+    double worst_bp; /* the least of branch_ellipse over the radial layers' ellipses */
+    double near;     /* the least distance of those rows from a radial layer's P* */
     int bad;
     char msg[512];
 } probe;
@@ -223,6 +227,27 @@ static double complex composite(const scene *sc, int ch, double complex z, doubl
     return e;
 }
 
+/* Where the branch points z = F_x + u1, u1 = (-P1 +- i sqrt(4 P2 P0 - P1^2))
+ * / (2 P2) (disc's roots as radial_t writes them) of radial layer g on
+ * row y lie against the ellipse about m of semi-axes A, B: ((Re z - m) /
+ * A)^2 + (Im z / B)^2, above 1 outside.  In __float128: near the focus
+ * 4 P2 P0 - P1^2 cancels (terms of order 1, the difference of order the
+ * square of the row's distance from P*: 1e-18 at 1e-9 px, still 16
+ * digits here, where double has none). */
+typedef __float128 q128;
+static double branch_ellipse(const layer *g, double y, double m, double A, double B)
+{
+    q128 Dx = (q128)g->p[0] - g->p[3], Dy = (q128)g->p[1] - g->p[4];
+    q128 dr = (q128)g->p[2] - g->p[5], fr = g->p[5];
+    q128 a = Dx * Dx + Dy * Dy - dr * dr, v = (q128)y - g->p[4], k = v * Dy + fr * dr;
+    q128 P2 = Dx * Dx - a, P1 = 2 * Dx * k, P0 = k * k - a * (v * v - fr * fr);
+    q128 q = 4 * P2 * P0 - P1 * P1;
+    assert_true(a < 0 && q > 0);
+    long double re = (long double)(((q128)g->p[3] - m) - P1 / (2 * P2));
+    long double im = sqrtl((long double)q) / (long double)(2 * P2);
+    return (double)((re / A) * (re / A) + (im / B) * (im / B));
+}
+
 static void check_bound(void *ctx, const aa__gen_bound *b)
 {
     probe *p = ctx;
@@ -235,6 +260,19 @@ static void check_bound(void *ctx, const aa__gen_bound *b)
     p->checked++;
     p->folded += b->fold;
     p->segments += b->B == 0.0;
+    for (int l = 0; l < p->sc->n && b->B > 0.0; l++) /* the radial layers' branch points out */
+        if (p->sc->L[l].kind == RAD) {
+            double e = branch_ellipse(&p->sc->L[l], b->y + p->sc->y0, b->m + p->sc->x0, b->A,
+                                      b->B);
+            const double *q = p->sc->L[l].p; /* P*'s height: F - (fr / dr) D */
+            double ys = q[4] - q[5] / (q[2] - q[5]) * (q[1] - q[4]);
+            p->worst_bp = fmin(p->worst_bp, e);
+            p->near = fmin(p->near, fabs(b->y + p->sc->y0 - ys));
+            if (!(e > 1.0) && !p->bad++)
+                snprintf(p->msg, sizeof p->msg,
+                         "%s: row %.17g, ellipse about %.17g, A %.6g, B %.6g: layer %d's branch "
+                         "points inside (%.6g)", p->sc->name, b->y, b->m, b->A, b->B, l, e);
+        }
     for (int k = 0; k < NZ; k++) {
         double th = 2.0 * M_PI * k / NZ;
         double complex z = b->m + b->A * cos(th) + I * b->B * sin(th);
@@ -295,7 +333,7 @@ static probe run(const scene *sc)
     assert_int_equal(aa_scene_finish(s), AA_OK);
     probe p;
     memset(&p, 0, sizeof p);
-    p.sc = sc;
+    p.sc = sc, p.worst_bp = p.near = INFINITY;
     aa_image ref, bound;
     aa_truth_stats stats;
     aa__truth_set_gen_probe(check_bound, &p);
@@ -305,6 +343,9 @@ static probe run(const scene *sc)
                   "largest |e| / S %.4f, |e'| / D %.4f; the reference's largest bound %.2g\n",
                   sc->name, p.checked, p.folded, p.segments, p.worst_e, p.worst_d,
                   stats.max_bound);
+    if (p.worst_bp < INFINITY)
+        print_message("%s: the branch points at least %.4f of the ellipses' (1 on them), "
+                      "rows from %.3g px of P*\n", sc->name, p.worst_bp, p.near);
     if (p.bad)
         fail_msg("%ld of the points too large; the first: %s", (long)p.bad, p.msg);
     assert_int_equal(p.skipped, 0);
@@ -386,6 +427,24 @@ static void test_radial(void **state)
         run(&sc[k]);
 }
 
+/* Rows within 1e-7 px of the focus, P* (a focus 3e-6 px below the
+ * pixels' edge y = 3, a cut of the rows' rule: rows from 7.1e-12 px of
+ * it): there dmin = d0 - d1^2 / (4 d2) in double rounds by more than
+ * itself, and the ellipses about the pieces that end at x0 are drawn from
+ * the branch points' distance sqrt(dmin / d2) (with that dmin, a row
+ * 2.6e-10 px away had them inside its ellipse).  Each ellipse must keep
+ * them out (branch_ellipse). */
+static void test_focus(void **state)
+{
+    (void)state;
+    static const scene sc = {"rows by the focus", 3, 2, 2, 2, 1, {{0, 0, 0}}, 1,
+                             {{RAD, {4.0, 3.0, 2.0, 4.6, 3.000003, 0.0}, 1.0, AA_SPREAD_PAD,
+                               0, 2, black_white}}};
+    probe p = run(&sc);
+    if (!(p.near < 1e-7))
+        fail_msg("%s: the nearest row %.3g px from P*: the case is missed", sc.name, p.near);
+}
+
 /* Six layers, past the five read as 3^n composites: the composite folded
  * layer by layer (fold_bounds). */
 static void test_fold(void **state)
@@ -403,5 +462,5 @@ static void test_fold(void **state)
 }
 
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_single), cmocka_unit_test(test_layers),
-             cmocka_unit_test(test_radial),
+             cmocka_unit_test(test_radial), cmocka_unit_test(test_focus),
              cmocka_unit_test(test_fold))

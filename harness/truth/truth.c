@@ -1351,7 +1351,8 @@ static int add_abs(worker *w, double y, double lo, double hi);
  * past which it keeps its length as the bound (f lies in [0, 1]).  The
  * row's bounds add up, and the pixel's bound adds the largest row's times
  * the window's height (integrate_pixel).  The bound is rigorous as
- * mathematics and computed in double, its own rounding not counted; the
+ * mathematics and computed in double, its own rounding not counted but
+ * dmin's (RAD_DMIN_ULPS, the branch points' distance from it lowered); the
  * rounding of the nodes' values (a few ulps each, the weights summing to
  * 2) is within the gradient term of 64 ulps per unit of the window's width
  * that integrate_pixel adds.  A pixel whose pieces cannot reach the
@@ -1359,6 +1360,10 @@ static int add_abs(worker *w, double y, double lo, double hi);
  * carries the larger bound, honestly.
  */
 #define RAD_DEPTH 48
+/* dmin's rounding (rad_row_at), ulps of dmin itself: counted in the bounds
+ * (rad_bound, gen_layer_tp), the branch points' distance from dmin lowered
+ * by it and |t|'s bound from dmin raised */
+#define RAD_DMIN_ULPS 16.0
 
 typedef struct rad_row {
     double y, b0, b1, c0, c1, c2, d0, d1, d2, x0, dmin;
@@ -1379,7 +1384,25 @@ static void rad_row_at(const grad_radial *g, double y, rad_row *r)
     r->d1 = 2.0 * r->b0 * r->b1 - g->a * r->c1;
     r->d0 = r->b0 * r->b0 - g->a * r->c0;
     r->x0 = -r->d1 / (2.0 * r->d2);
-    r->dmin = r->d0 - r->d1 * r->d1 / (4.0 * r->d2);
+    if (g->cone || !(g->a < 0.0 && g->dr > 0.0)) {
+        /* the cone case (a >= 0, or dr < 0) reads its tangent lines, not
+         * dmin, and has no P* of this form where dr = 0 */
+        r->dmin = r->d0 - r->d1 * r->d1 / (4.0 * r->d2);
+        return;
+    }
+    /* d0 - d1^2 / (4 d2) cancels near P*, where dmin is near 0 and its
+     * terms are not.  With p = q - P* (P* = -(fr / dr) D relative to F),
+     * b = p.D - (fr / dr) a and d = b^2 - a c = (p.D)^2 - a |p|^2 = p^T A
+     * p, A = D D^T - a I (the constants cancel as a = |D|^2 - dr^2); along
+     * the row p = p0 + x u, u = (ux, vx), d2 = u^T A u, and by Lagrange's
+     * identity for a symmetric 2x2 A, dmin = (p0^T A p0 u^T A u - (p0^T A
+     * u)^2) / d2 = det(A) (p0 x u)^2 / d2, det(A) = -a dr^2 > 0.  p0 x u
+     * as Kahan's difference of products (fma: within 2 ulps of the p0
+     * formed here), so dmin is within a few ulps of itself (RAD_DMIN_ULPS)
+     * of the p0 and u the other coefficients take. */
+    double k = g->fr / g->dr, px = u0 + k * g->Dx, py = v0 + k * g->Dy, w = py * ux;
+    double cr = fma(px, vx, -w) + fma(-py, ux, w);
+    r->dmin = -g->a * (g->dr * g->dr) * (cr * cr) / r->d2;
 }
 
 /* t at (x, y), as the scene computes it (aa__gradient_t): no cancellation. */
@@ -1582,7 +1605,9 @@ static double rad_bound(const grad_radial *g, const rad_row *r, const rad_chan *
 {
     double complex ex[6];
     int ne = 0;
-    double sd = sqrt(fabs(r->dmin) / r->d2);
+    double dmin = fabs(r->dmin), dhi = dmin * (1.0 + RAD_DMIN_ULPS * DBL_EPSILON);
+    double dlo = r->dmin >= 0.0 ? dmin * (1.0 - RAD_DMIN_ULPS * DBL_EPSILON) : dmin;
+    double sd = sqrt(dlo / r->d2);
     if (r->dmin >= 0.0) {
         ex[ne++] = r->x0 + _Complex_I * sd;
         ex[ne++] = r->x0 - _Complex_I * sd;
@@ -1605,7 +1630,7 @@ static double rad_bound(const grad_radial *g, const rad_row *r, const rad_chan *
     for (int k = 1; k < 8; k++) {
         double rho = 1.0 + (rmax - 1.0) * k / 8.0, semi = 0.5 * h * (rho + 1.0 / rho);
         double Z = fabs(m - r->x0) + semi;
-        double T = (bm + fabs(r->b1) * semi + sqrt(r->d2 * Z * Z + fabs(r->dmin))) / fabs(g->a);
+        double T = (bm + fabs(r->b1) * semi + sqrt(r->d2 * Z * Z + dhi)) / fabs(g->a);
         double E = fabs(ch->E[0]) + fabs(ch->E[1]) * T + fabs(ch->E[2]) * T * T;
         double M = ch->power ? pow((E + 0.055) / 1.055, 2.4) : E / 12.92;
         double b = h * (64.0 / 15.0) * M * pow(rho, -2.0 * RAD_GL) / (rho * rho - 1.0);
@@ -2649,10 +2674,11 @@ static void rad_span(worker *w, double xa, double xb, double y, int nch, double 
  * (|b(m)| + |b1| A + sqrt(d2 Z^2 + |dmin|)) / |a|, Z = |m - x0| + A, and
  * |t'| <= (|b1| + d2 Z / sqrt(d2 D1 D2)) / |a|, Dk a lower bound on the
  * distance from the branch point k to the rectangle (t' = (b1 - d'/(2
- * sqrt d)) / a, |d| = d2 |z - r1| |z - r2|), dmin's rounding (8 ulps of
- * its terms) counted: raised by it in T, lowered in P on the real
- * segment (gen_layer_tp).  Then |f[1]| <= |o0| + |o1|
- * T and so on, |e| <= sum |K_a| prod |f|, and |e'| by the product rule.
+ * sqrt d)) / a, |d| = d2 |z - r1| |z - r2|), dmin's rounding (a few ulps
+ * of itself, rad_row_at) counted: raised by it in T, lowered in the
+ * branch points' distance and in P on the real segment (gen_layer_tp).
+ * Then |f[1]| <= |o0| + |o1| T and so on, |e| <= sum |K_a| prod |f|, and
+ * |e'| by the product rule.
  * On the power piece, with |e(z) - e(m)| <= A max |e'| (the segment from
  * m to z lies in the ellipse) below 0.9 (e(m) + 0.055), Re(e + 0.055) > 0
  * on the ellipse, so u^2.4 is analytic there and bounded by ((|e| +
@@ -3038,21 +3064,15 @@ static int gen_layer_tp(const gen_span_ctx *c, int l, double m, double A, double
         return 1;
     }
     const rad_row *r = &c->row[l];
-    /* dmin = d0 - d1^2 / (4 d2) cancels where the row passes near the
-     * focus (d and dmin near 0): its rounding, 8 ulps of its terms' size
-     * (d0 = b0^2 - a c0, c0 = u0^2 + v0^2 - fr^2), is counted in |t|'s
-     * bound (dmin up to it larger) and in |t'|'s on the real segment
-     * (smaller; the focus 7.9e-6 px from a row of a 2 px radial gradient
-     * left S 1.06e-6 of itself short: test_gradient_bound).  Not in the
-     * branch points' distance: rows within about 1e-7 px of the focus,
-     * whose dmin it may take to 0, would then find no ellipse about a
-     * piece ending at x0 (test_gradient_filter's radial pixels: bound
-     * inf); there the distance is the rounded dmin's */
-    double fr = g->rg->fr, ga = fabs(g->rg->a);
-    double de = 8.0 * DBL_EPSILON * (r->b0 * r->b0 + ga * (fabs(r->c0) + 2.0 * fr * fr) +
-                                     r->d1 * r->d1 / (4.0 * r->d2));
-    double dlo = fmax(fabs(r->dmin) - de, 0.0), dhi = fabs(r->dmin) + de;
-    double sd = sqrt(fabs(r->dmin) / r->d2), D1, D2, ia = 1.0 / ga;
+    /* dmin's rounding (rad_row_at: relative, RAD_DMIN_ULPS of itself,
+     * where d0 - d1^2 / (4 d2) cancelled near P*) is counted: dmin up to
+     * it larger in |t|'s bound, smaller in the branch points' distance
+     * and in |t'|'s bound on the real segment (the focus 7.9e-6 px from a
+     * row of a 2 px radial gradient left S 1.06e-6 of itself short with
+     * the rounded difference: test_gradient_bound) */
+    double ga = fabs(g->rg->a), de = RAD_DMIN_ULPS * DBL_EPSILON * fabs(r->dmin);
+    double dlo = fabs(r->dmin) - de, dhi = fabs(r->dmin) + de;
+    double sd = sqrt((r->dmin >= 0.0 ? dlo : fabs(r->dmin)) / r->d2), D1, D2, ia = 1.0 / ga;
     if (B == 0.0 && r->dmin >= 0.0) {
         /* the real segment: |d'| / (2 sqrt d) = d2 u / sqrt(d2 u^2 +
          * dmin), u = |x - x0| <= Z, increasing in u, so at most its
