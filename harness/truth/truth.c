@@ -3463,20 +3463,24 @@ static int gen_tpq(const gen_span_ctx *c, int l, double m, double h, double *tm,
     }
     const rad_row *r = &c->row[l];
     double ia = 1.0 / fabs(g->rg->a), um = fabs(m - r->x0);
-    double Z = um + h, lo = fmax(0.0, um - h), dlo = r->d2 * lo * lo + r->dmin;
+    /* dmin's rounding (RAD_DMIN_ULPS of itself, rad_row_at) counted as
+     * in gen_layer_tp: dmin raised in |t|'s bound and in |t''|'s
+     * numerator, lowered where it lowers a bound's denominator */
+    double de = RAD_DMIN_ULPS * DBL_EPSILON * fabs(r->dmin);
+    double Z = um + h, lo = fmax(0.0, um - h), dlo = r->d2 * lo * lo + (r->dmin - de);
     if (r->dmin == 0.0) {
         if (!(um >= h))
             return 0; /* x0 inside: a kink, which is a cut */
         *Q = 0.0;
     } else if (dlo > 0.0)
-        *Q = r->d2 * fabs(r->dmin) * ia / (dlo * sqrt(dlo));
+        *Q = r->d2 * (fabs(r->dmin) + de) * ia / (dlo * sqrt(dlo));
     else
         return 0;
-    double dm = r->d2 * um * um + r->dmin, dz = sqrt(r->d2 * Z * Z + r->dmin);
+    double dm = r->d2 * um * um + r->dmin, dz = sqrt(r->d2 * Z * Z + (r->dmin + de));
     if (!(dm > 0.0))
         return 0;
     *tp = (r->b1 - r->d2 * (m - r->x0) / sqrt(dm)) / g->rg->a;
-    double U = r->dmin >= 0.0 ? Z : lo, dU = sqrt(r->d2 * U * U + r->dmin);
+    double U = r->dmin >= 0.0 ? Z : lo, dU = sqrt(fmax(r->d2 * U * U + (r->dmin - de), 0.0));
     *T = (fabs(r->b0 + r->b1 * m) + fabs(r->b1) * h + dz) * ia;
     *P = (fabs(r->b1) + (dU > 0.0 ? r->d2 * U / dU : 0.0)) * ia;
     return 1;
