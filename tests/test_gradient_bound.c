@@ -98,7 +98,7 @@ typedef struct scene {
 typedef struct probe {
     const scene *sc;
     long seen, checked, skipped, folded, segments;
-    double worst_e, worst_d;
+    double worst_e, worst_d, branch; /* branch: the least ratio of branch_ratio, 0: none */
     int bad;
     char msg[512];
 } probe;
@@ -223,6 +223,9 @@ static double complex composite(const scene *sc, int ch, double complex z, doubl
     return e;
 }
 
+static void branch_ratio(probe *p, const aa__gen_bound *b);
+static void check_branch(const probe *p, const scene *sc);
+
 static void check_bound(void *ctx, const aa__gen_bound *b)
 {
     probe *p = ctx;
@@ -235,6 +238,7 @@ static void check_bound(void *ctx, const aa__gen_bound *b)
     p->checked++;
     p->folded += b->fold;
     p->segments += b->B == 0.0;
+    branch_ratio(p, b);
     for (int k = 0; k < NZ; k++) {
         double th = 2.0 * M_PI * k / NZ;
         double complex z = b->m + b->A * cos(th) + I * b->B * sin(th);
@@ -245,8 +249,8 @@ static void check_bound(void *ctx, const aa__gen_bound *b)
             double re = cabs(e) / b->emax[ch], rd = b->dmax[ch] > 0.0 ? cabs(de) / b->dmax[ch]
                                                    : cabs(de) > 0.0 ? INFINITY : 0.0;
             p->worst_e = fmax(p->worst_e, re), p->worst_d = fmax(p->worst_d, rd);
-            if ((cabs(e) > b->emax[ch] * (1.0 + 1e-12) + 1e-15 ||
-                 cabs(de) > b->dmax[ch] * (1.0 + 1e-12) + 1e-15) && !p->bad++)
+            if ((!(cabs(e) <= b->emax[ch] * (1.0 + 1e-12) + 1e-15) ||
+                 !(cabs(de) <= b->dmax[ch] * (1.0 + 1e-12) + 1e-15)) && !p->bad++)
                 snprintf(p->msg, sizeof p->msg,
                          "%s: row %.17g, ellipse about %.17g, A %.6g, B %.6g%s, channel %d at "
                          "%.6g%+.6gi: |e| %.10g against S %.10g, |e'| %.10g against D %.10g",
@@ -382,8 +386,10 @@ static void test_radial(void **state)
          {{RAD, {4.0, 3.0, 3.5, 3.2, 2.6, 0.3}, 0.7, AA_SPREAD_REPEAT, 0, 3, three},
           {LIN, {0.5, 0.0, 7.0, 6.0}, 1.0, AA_SPREAD_PAD, 1, 3, three}}},
     };
-    for (int k = 0; k < 2; k++)
-        run(&sc[k]);
+    for (int k = 0; k < 2; k++) {
+        probe p = run(&sc[k]);
+        check_branch(&p, &sc[k]);
+    }
 }
 
 /* Six layers, past the five read as 3^n composites: the composite folded
@@ -402,6 +408,74 @@ static void test_fold(void **state)
     assert_int_equal(p.folded, p.checked);
 }
 
+/* A radial layer's branch points in complex x on row y (pixels): x1 and
+ * x1*, where disc = b^2 - a c = 0 (radial_t: disc = P2 u^2 + P1 u + P0, u
+ * = x - fx), from the scene's definition in long double; 0 if disc has
+ * real roots (radial_t asserts it has none). */
+static int radial_branch(const layer *g, double y, long double complex *x1)
+{
+    long double Dx = (long double)g->p[0] - g->p[3], Dy = (long double)g->p[1] - g->p[4];
+    long double dr = (long double)g->p[2] - g->p[5], fr = g->p[5];
+    long double a = Dx * Dx + Dy * Dy - dr * dr, v = (long double)y - g->p[4], k = v * Dy + fr * dr;
+    long double P2 = Dx * Dx - a, P1 = 2.0L * Dx * k, P0 = k * k - a * (v * v - fr * fr);
+    long double q = P1 * P1 - 4.0L * P2 * P0;
+    if (!(P2 > 0.0L && q < 0.0L))
+        return 0;
+    *x1 = g->p[3] + (-P1 + I * sqrtl(-q)) / (2.0L * P2);
+    return 1;
+}
+
+/* Every ellipse the probe is told of must hold no branch point of a
+ * radial layer's t: (|w - f1| + |w - f2|) / (2 A) > 1 for both branch
+ * points w (x1 and its conjugate), f1, f2 = m -+ sqrt(A^2 - B^2) the
+ * ellipse's foci; p->branch keeps the least ratio. */
+static void branch_ratio(probe *p, const aa__gen_bound *b)
+{
+    for (int l = 0; l < p->sc->n; l++) {
+        long double complex x1;
+        if (p->sc->L[l].kind != RAD || !radial_branch(&p->sc->L[l], b->y + p->sc->y0, &x1))
+            continue;
+        long double c = sqrtl(fmaxl((long double)b->A * b->A - (long double)b->B * b->B, 0.0L));
+        long double f1 = (long double)b->m - c, f2 = (long double)b->m + c;
+        for (int s = 0; s < 2; s++) {
+            long double complex w = (s ? conjl(x1) : x1) - p->sc->x0;
+            double r = (double)((cabsl(w - f1) + cabsl(w - f2)) / (2.0L * b->A));
+            if (p->branch == 0.0 || r < p->branch)
+                p->branch = r;
+        }
+    }
+}
+
+/* The least ratio of branch_ratio on a scene of a radial layer: above 1,
+ * each branch point outside each ellipse. */
+static void check_branch(const probe *p, const scene *sc)
+{
+    print_message("%s: the branch points' least (|w - f1| + |w - f2|) / (2 A) %.6f\n", sc->name,
+                  p->branch);
+    if (!(p->branch > 1.0))
+        fail_msg("%s: a branch point of t in an ellipse of the bounds: ratio %.6f", sc->name,
+                 p->branch);
+}
+
+/* Two layers whose bound is nearly reached: an opaque black-to-white ramp
+ * under white fading in at alpha 0.05 along the same axis, over black:
+ * e = t + 0.05 t (1 - t), its terms t and 0.05 t of one sign and the
+ * third, -0.05 t^2, small, at the ellipse's real end where |t| is largest
+ * (the scenes of test_layers reach 0.03 to 0.17 of S, too little to show
+ * a bound short by a few times); the ratios must come above 0.85 as the
+ * single ramps' do. */
+static void test_layers_reached(void **state)
+{
+    (void)state;
+    static const scene sc = {"a ramp under white fading in at 0.05", 3, 2, 2, 2, 1, {{0, 0, 0}}, 2,
+                             {{LIN, {2.5, 1.0, 6.0, 3.5}, 0.05, AA_SPREAD_PAD, 0, 2, clear_white},
+                              {LIN, {2.5, 1.0, 6.0, 3.5}, 1.0, AA_SPREAD_PAD, 0, 2, black_white}}};
+    probe p = run(&sc);
+    if (!(p.worst_e > 0.85 && p.worst_d > 0.85))
+        fail_msg("%s: the largest ratios %.4f and %.4f: the check is loose", sc.name, p.worst_e,
+                 p.worst_d);
+}
+
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_single), cmocka_unit_test(test_layers),
-             cmocka_unit_test(test_radial),
-             cmocka_unit_test(test_fold))
+             cmocka_unit_test(test_radial), cmocka_unit_test(test_fold),
+             cmocka_unit_test(test_layers_reached))
