@@ -283,8 +283,8 @@ static void check_bound(void *ctx, const aa__gen_bound *b)
             double re = cabs(e) / b->emax[ch], rd = b->dmax[ch] > 0.0 ? cabs(de) / b->dmax[ch]
                                                    : cabs(de) > 0.0 ? INFINITY : 0.0;
             p->worst_e = fmax(p->worst_e, re), p->worst_d = fmax(p->worst_d, rd);
-            if ((cabs(e) > b->emax[ch] * (1.0 + 1e-12) + 1e-15 ||
-                 cabs(de) > b->dmax[ch] * (1.0 + 1e-12) + 1e-15) && !p->bad++)
+            if ((!(cabs(e) <= b->emax[ch] * (1.0 + 1e-12) + 1e-15) ||
+                 !(cabs(de) <= b->dmax[ch] * (1.0 + 1e-12) + 1e-15)) && !p->bad++)
                 snprintf(p->msg, sizeof p->msg,
                          "%s: row %.17g, ellipse about %.17g, A %.6g, B %.6g%s, channel %d at "
                          "%.6g%+.6gi: |e| %.10g against S %.10g, |e'| %.10g against D %.10g",
@@ -461,6 +461,25 @@ static void test_fold(void **state)
     assert_int_equal(p.folded, p.checked);
 }
 
+/* Two layers whose bound is nearly reached: an opaque black-to-white ramp
+ * under white fading in at alpha 0.05 along the same axis, over black:
+ * e = t + 0.05 t (1 - t), its terms t and 0.05 t of one sign and the
+ * third, -0.05 t^2, small, at the ellipse's real end where |t| is largest
+ * (the scenes of test_layers reach 0.03 to 0.17 of S, too little to show
+ * a bound short by a few times); the ratios must come above 0.85 as the
+ * single ramps' do. */
+static void test_layers_reached(void **state)
+{
+    (void)state;
+    static const scene sc = {"a ramp under white fading in at 0.05", 3, 2, 2, 2, 1, {{0, 0, 0}}, 2,
+                             {{LIN, {2.5, 1.0, 6.0, 3.5}, 0.05, AA_SPREAD_PAD, 0, 2, clear_white},
+                              {LIN, {2.5, 1.0, 6.0, 3.5}, 1.0, AA_SPREAD_PAD, 0, 2, black_white}}};
+    probe p = run(&sc);
+    if (!(p.worst_e > 0.85 && p.worst_d > 0.85))
+        fail_msg("%s: the largest ratios %.4f and %.4f: the check is loose", sc.name, p.worst_e,
+                 p.worst_d);
+}
+
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_single), cmocka_unit_test(test_layers),
              cmocka_unit_test(test_radial), cmocka_unit_test(test_focus),
-             cmocka_unit_test(test_fold))
+             cmocka_unit_test(test_fold), cmocka_unit_test(test_layers_reached))
