@@ -427,22 +427,31 @@ static void test_radial(void **state)
         run(&sc[k]);
 }
 
-/* Rows within 1e-7 px of the focus, P* (a focus 3e-6 px below the
- * pixels' edge y = 3, a cut of the rows' rule: rows from 7.1e-12 px of
- * it): there dmin = d0 - d1^2 / (4 d2) in double rounds by more than
- * itself, and the ellipses about the pieces that end at x0 are drawn from
- * the branch points' distance sqrt(dmin / d2) (with that dmin, a row
- * 2.6e-10 px away had them inside its ellipse).  Each ellipse must keep
- * them out (branch_ellipse). */
+/* Rows within 1e-7 px of P* (the focus, 3e-6 px below the pixels' edge
+ * y = 3, a cut of the rows' rule: rows from 7.1e-12 px of it; and a
+ * focal circle of radius 0.3 whose P* = F - (fr / dr) D lies there, so
+ * that p0 = q + (fr / dr) D is a sum, not q alone): there dmin = d0 -
+ * d1^2 / (4 d2) in double rounds by more than itself, and the ellipses
+ * about the pieces that end at x0 are drawn from the branch points'
+ * distance sqrt(dmin / d2) (with that dmin, a row 2.6e-10 px away had
+ * them inside its ellipse).  Each ellipse must keep them out
+ * (branch_ellipse). */
 static void test_focus(void **state)
 {
     (void)state;
-    static const scene sc = {"rows by the focus", 3, 2, 2, 2, 1, {{0, 0, 0}}, 1,
-                             {{RAD, {4.0, 3.0, 2.0, 4.6, 3.000003, 0.0}, 1.0, AA_SPREAD_PAD,
-                               0, 2, black_white}}};
-    probe p = run(&sc);
-    if (!(p.near < 1e-7))
-        fail_msg("%s: the nearest row %.3g px from P*: the case is missed", sc.name, p.near);
+    static const scene sc[2] = {
+        {"rows by the focus", 3, 2, 2, 2, 1, {{0, 0, 0}}, 1,
+         {{RAD, {4.0, 3.0, 2.0, 4.6, 3.000003, 0.0}, 1.0, AA_SPREAD_PAD, 0, 2, black_white}}},
+        {"rows by P* of a focal circle", 3, 2, 2, 2, 1, {{0, 0, 0}}, 1,
+         {{RAD, {4.0, 3.0, 2.0, 4.6, 3.0000025499999996, 0.3}, 1.0, AA_SPREAD_PAD, 0, 2,
+           black_white}}},
+    };
+    for (int k = 0; k < 2; k++) {
+        probe p = run(&sc[k]);
+        if (!(p.near < 1e-7))
+            fail_msg("%s: the nearest row %.3g px from P*: the case is missed", sc[k].name,
+                     p.near);
+    }
 }
 
 /* Six layers, past the five read as 3^n composites: the composite folded

@@ -1360,9 +1360,13 @@ static int add_abs(worker *w, double y, double lo, double hi);
  * carries the larger bound, honestly.
  */
 #define RAD_DEPTH 48
-/* dmin's rounding (rad_row_at), ulps of dmin itself: counted in the bounds
- * (rad_bound, gen_layer_tp), the branch points' distance from dmin lowered
- * by it and |t|'s bound from dmin raised */
+/* dmin's rounding (rad_row_at), ulps of dmin itself, the row's p0 and u as
+ * formed in double (their own rounding, about an ulp of the coordinates
+ * in the row's place relative to P*, not counted): counted in the bounds
+ * (rad_bound, gen_layer_tp, gen_tpq), the branch points' distance from
+ * dmin lowered by it (gen_rho's largest ellipse is taken from the
+ * distance as it is; gen_layer_tp refuses an ellipse that reaches the
+ * lowered one) and |t|'s bound from dmin raised */
 #define RAD_DMIN_ULPS 16.0
 
 typedef struct rad_row {
