@@ -1371,6 +1371,7 @@ static int add_abs(worker *w, double y, double lo, double hi);
 
 typedef struct rad_row {
     double y, b0, b1, c0, c1, c2, d0, d1, d2, x0, dmin;
+    double de; /* dmin's rounding: RAD_DMIN_ULPS of it (0 in the cone case, not read) */
 } rad_row;
 
 /* The row's coefficients: q(x) = (ux x + u0, vx x + v0). */
@@ -1392,6 +1393,7 @@ static void rad_row_at(const grad_radial *g, double y, rad_row *r)
         /* the cone case (a >= 0, or dr < 0) reads its tangent lines, not
          * dmin, and has no P* of this form where dr = 0 */
         r->dmin = r->d0 - r->d1 * r->d1 / (4.0 * r->d2);
+        r->de = 0.0;
         return;
     }
     /* d0 - d1^2 / (4 d2) cancels near P*, where dmin is near 0 and its
@@ -1407,6 +1409,7 @@ static void rad_row_at(const grad_radial *g, double y, rad_row *r)
     double k = g->fr / g->dr, px = u0 + k * g->Dx, py = v0 + k * g->Dy, w = py * ux;
     double cr = fma(px, vx, -w) + fma(-py, ux, w);
     r->dmin = -g->a * (g->dr * g->dr) * (cr * cr) / r->d2;
+    r->de = RAD_DMIN_ULPS * DBL_EPSILON * r->dmin;
 }
 
 /* t at (x, y), as the scene computes it (aa__gradient_t): no cancellation. */
@@ -1609,8 +1612,8 @@ static double rad_bound(const grad_radial *g, const rad_row *r, const rad_chan *
 {
     double complex ex[6];
     int ne = 0;
-    double dmin = fabs(r->dmin), dhi = dmin * (1.0 + RAD_DMIN_ULPS * DBL_EPSILON);
-    double dlo = r->dmin >= 0.0 ? dmin * (1.0 - RAD_DMIN_ULPS * DBL_EPSILON) : dmin;
+    double dmin = fabs(r->dmin), dhi = dmin + r->de;
+    double dlo = r->dmin >= 0.0 ? dmin - r->de : dmin;
     double sd = sqrt(dlo / r->d2);
     if (r->dmin >= 0.0) {
         ex[ne++] = r->x0 + _Complex_I * sd;
@@ -3074,8 +3077,7 @@ static int gen_layer_tp(const gen_span_ctx *c, int l, double m, double A, double
      * and in |t'|'s bound on the real segment (the focus 7.9e-6 px from a
      * row of a 2 px radial gradient left S 1.06e-6 of itself short with
      * the rounded difference: test_gradient_bound) */
-    double ga = fabs(g->rg->a), de = RAD_DMIN_ULPS * DBL_EPSILON * fabs(r->dmin);
-    double dlo = fabs(r->dmin) - de, dhi = fabs(r->dmin) + de;
+    double ga = fabs(g->rg->a), dlo = fabs(r->dmin) - r->de, dhi = fabs(r->dmin) + r->de;
     double sd = sqrt((r->dmin >= 0.0 ? dlo : fabs(r->dmin)) / r->d2), D1, D2, ia = 1.0 / ga;
     if (B == 0.0 && r->dmin >= 0.0) {
         /* the real segment: |d'| / (2 sqrt d) = d2 u / sqrt(d2 u^2 +
@@ -3470,7 +3472,7 @@ static int gen_tpq(const gen_span_ctx *c, int l, double m, double h, double *tm,
     /* dmin's rounding (RAD_DMIN_ULPS of itself, rad_row_at) counted as
      * in gen_layer_tp: dmin raised in |t|'s bound and in |t''|'s
      * numerator, lowered where it lowers a bound's denominator */
-    double de = RAD_DMIN_ULPS * DBL_EPSILON * fabs(r->dmin);
+    double de = r->de;
     double Z = um + h, lo = fmax(0.0, um - h), dlo = r->d2 * lo * lo + (r->dmin - de);
     if (r->dmin == 0.0) {
         if (!(um >= h))
