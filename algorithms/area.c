@@ -2033,6 +2033,7 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
                           double *ylim)
 {
     const ar_seg *seg = r->wk->seg;
+    const double *vab = r->wk->vab; /* cluster_bands' heights of keys[k] */
     ev_buf b = {r->wk->ev, 0, y, *ylim};
     double out[9]; /* two cubics meet up to 9 times */
     r->wk->ncx = 0, r->wk->cxfull = n < AR_NEXT_MIN; /* too few for order_next */
@@ -2046,15 +2047,16 @@ static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo,
         reaching(r, act, &nact, keys[k].key);
         if (!s->p->flat)
             for (size_t a = 0; a < nact; a++) {
-                const ar_seg *t = &seg[keys[act[a]].idx];
-                if (t->p->flat)
-                    continue;
                 /* the larger top and smaller bottom written out (fmax
-                 * and fmin are library calls; none of these is NaN) */
-                double ya = s->va > t->va ? s->va : t->va, yb = s->vb < t->vb ? s->vb : t->vb;
+                 * and fmin are library calls; none of these is NaN),
+                 * the other seg's from vab; a flat one (va = vb) is
+                 * left out by the test */
+                const double *tv = &vab[2 * (size_t)act[a]];
+                double ya = s->va > tv[0] ? s->va : tv[0], yb = s->vb < tv[1] ? s->vb : tv[1];
                 ya = ya > y ? ya : y, yb = yb < b.lim ? yb : b.lim;
                 if (!(ya < yb))
                     continue;
+                const ar_seg *t = &seg[keys[act[a]].idx];
                 int c = pair_crossings(t, s, ya, yb, r->j, out);
                 for (int i = 0; i < c; i++) {
                     add_event(&b, out[i]);
@@ -2259,6 +2261,11 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
     ar_key *span = list + n; /* keys[0..n) sits before list */
     ar_key *tops = wk->tops;
     order_by_left(r, in, n, lo, keys);
+    double *vab = wk->vab; /* keys[k]'s va and vb at vab[2k], vab[2k + 1] */
+    for (size_t k = 0; k < n; k++) {
+        const ar_seg *s = &wk->seg[keys[k].idx];
+        vab[2 * k] = s->va, vab[2 * k + 1] = s->vb;
+    }
     double y = 0.0;
     size_t nl = (size_t)r->S->nl, m = 0, ntops = 0, tc = 0;
     int made = 0; /* tops[0..ntops): the segs by their tops (order_next's, made once) */
@@ -2292,12 +2299,9 @@ static void cluster_bands(const ar_row *r, const ar_key *in, size_t n, int lo, i
                  * seg_make's, so spans none: yb > ya) */
                 double vm = 0.5 * (ya + yb);
                 m = 0;
-                for (size_t k = 0; k < n; k++) {
-                    const ar_seg *s = &wk->seg[keys[k].idx];
-                    if (!(s->va <= ya && s->vb >= yb))
-                        continue;
-                    span[m++] = keys[k];
-                }
+                for (size_t k = 0; k < n; k++)
+                    if (vab[2 * k] <= ya && vab[2 * k + 1] >= yb)
+                        span[m++] = keys[k];
                 if (m <= 1) { /* one seg or none: in order, without its ends' roots */
                     memcpy(list, span, m * sizeof *list);
                 } else if (!order_ends(r, span, m, lo, ya, yb, 1, list)) {
@@ -3062,6 +3066,7 @@ static void state_free(ar_state *S)
         free(wk->sub);
         free(wk->tops);
         free(wk->ends);
+        free(wk->vab);
         free(wk->acc);
         free(wk->cov);
         free(wk->wind);
@@ -3404,6 +3409,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
      * at 1024 px about 10 to 16 ms of CPU) */
     wk->tops = line_alloc_as(n, sizeof *wk->tops, 0);
     wk->ends = line_alloc_as(2 * n, sizeof *wk->ends, 0);
+    wk->vab = line_alloc_as(2 * n, sizeof *wk->vab, 0);
     wk->acc = line_alloc(cells, sizeof *wk->acc);
     wk->cov = line_alloc(cells, sizeof *wk->cov);
     wk->wind = line_alloc(nl, sizeof *wk->wind);
@@ -3441,7 +3447,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
         }
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
         !wk->wind || !wk->wtmp || !wk->ev || !wk->cx || !wk->mark || !wk->cm || !wk->act ||
-        !wk->pend || !wk->tops || !wk->ends)
+        !wk->pend || !wk->tops || !wk->ends || !wk->vab)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
                        S->w);
     return AA_OK;

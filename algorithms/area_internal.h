@@ -241,6 +241,10 @@ typedef struct ar_worker {
     /* 2 doubles a seg: u at the (sub-)band's two ends of each seg
      * order_ends orders; the right ends of reaching's segs before it */
     double *ends;
+    /* 2 doubles a seg: the heights in the band (va, vb) of a cluster's
+     * segs in its order by left ends, for cluster_bands' sub-bands' spans
+     * and band_events' pairs */
+    double *vab;
     double *acc, *cov; /* per cell and channel */
     int *wind, *wtmp;
     double *ev;
