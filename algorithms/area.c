@@ -2375,8 +2375,21 @@ static inline int single_kind(const ar_row *r, const ar_seg *s, const int plain)
            (plain || !(s->te2 > s->ta && s->te2 < s->tb));
 }
 
+/* single()'s side root on an offset piece, asked in the row's batch
+ * (side_ask, kept in pret and prexy[1]): its y kept as offset_tau_at
+ * keeps it */
+static inline double side_taken(const ar_seg *s)
+{
+    double t = s->p->sg * s->pret;
+    offset_keep(s, t, (double)(s->prexy[1] + s->V));
+    return t;
+}
+
+/* `batch` (a constant where it is inlined): an offset piece's side root
+ * is the row's batch's (side_ask asked it: single's kind, two cells) */
 __attribute__((always_inline)) static inline const double *
-single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int plain)
+single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int plain,
+       const int batch)
 {
     const ar_piece *p = s->p;
     w[p->layer] += p->dir;
@@ -2393,6 +2406,7 @@ single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int pl
     double dl, dr, al, ar;
     if (s->ub > s->ua) {
         double tc = plain ? tau_of_u_quad(s, k + 1.0, 1.0)
+                    : batch && s->p->curved && s->p->offset ? side_taken(s)
                     : s->p->curved && (s->p->cubic || s->p->offset)
                         ? tau_of_u_in(s, k + 1.0, 1.0, s->ta, s->tb, s->ua, s->ub)
                         : tau_of_u(s, k + 1.0, 1.0);
@@ -2406,6 +2420,7 @@ single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int pl
         }
     } else {
         double tc = plain ? tau_of_u_quad(s, k + 1.0, -1.0)
+                    : batch && s->p->curved && s->p->offset ? side_taken(s)
                     : s->p->curved && (s->p->cubic || s->p->offset)
                         ? tau_of_u_in(s, k + 1.0, -1.0, s->ta, s->tb, s->ua, s->ub)
                         : tau_of_u(s, k + 1.0, -1.0);
@@ -2622,13 +2637,14 @@ static void update_active(const ar_state *S, ar_worker *wk, int j)
  * one-pass order's (close_cluster) and the sorted pass's. */
 __attribute__((always_inline)) static inline int close_single(const ar_row *r, const ar_seg *s,
                                                               int lo, int hi, int *x, int *w,
-                                                              const double **c, const int plain)
+                                                              const double **c, const int plain,
+                                                              const int batch)
 {
     if (!(s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s, plain)))
         return 0;
     if (lo > *x)
         fill_run(r, *x, lo, *c);
-    *c = single(r, s, w, *c, plain);
+    *c = single(r, s, w, *c, plain, batch);
     *x = hi + 1;
     return 1;
 }
@@ -2677,9 +2693,10 @@ static inline uint64_t cells_of(int lo, int hi, int W)
 __attribute__((always_inline)) static inline int close_cluster(const ar_row *r,
                                                                const uint32_t *list, size_t n,
                                                                int lo, int hi, int x, int *w,
-                                                               const double **c, const int plain)
+                                                               const double **c, const int plain,
+                                                               const int batch)
 {
-    if (n == 1 && close_single(r, &r->wk->seg[list[0]], lo, hi, &x, w, c, plain))
+    if (n == 1 && close_single(r, &r->wk->seg[list[0]], lo, hi, &x, w, c, plain, batch))
         return x;
     return flush_list(r, list, n, lo, hi, x, w, c);
 }
@@ -2828,11 +2845,49 @@ static void band_roots(const ar_state *S, ar_worker *wk, int j, int W)
     }
 }
 
-/* Row j.  `plain`: S->plain, a constant in each of the two forms below
- * (render_row_plain, render_row_any), chosen once a row. */
+/* The batch's roots kept in their segs (side_taken's) */
+static __attribute__((noinline)) void side_roots(aa__offset_rootq *q, ar_seg **qs, size_t n)
+{
+    aa__offset_roots(q, n);
+    for (size_t i = 0; i < n; i++)
+        qs[i]->pret = q[i].t;
+}
+
+/* The side root single() takes on seg s, alone in its cluster, if s is
+ * an offset piece's of its kind in two cells (close_single's tests, on
+ * the fields seg_make wrote: single() then takes it without a test of its
+ * own), asked in q[*n] (qs: the segs); the requests asked BAND_ROOTS at a
+ * time when q is full (side_roots: aa__offset_roots, the same roots and
+ * y, bit for bit, as offset_tau_u's alone), the rest by the caller
+ * before the row's clusters close.  The clusters of one seg are known in
+ * the one pass as the next cluster begins (render_row_k keeps those in
+ * two cells in wk->side), in the sorted pass by a first walk of its
+ * clusters (kept in wk->side for the second): asked as the segs were
+ * made, 22,024 a render at 1024 px and 3,792 at 256 px (single's kind in
+ * two cells), 21,690 and 2,330 were taken, the rest in clusters of
+ * several (tests/bench_bezstroke.c's scene). */
+__attribute__((always_inline)) static inline void side_ask(const ar_row *r, ar_seg *s,
+                                                          aa__offset_rootq *q, ar_seg **qs,
+                                                          size_t *n)
+{
+    if (!(s->cb - s->ca == 1 && s->ca >= 0 && s->cb < r->W && s->p->curved && s->p->offset &&
+          single_kind(r, s, 0)))
+        return;
+    double k = (double)(s->ca - s->c0) + 1.0; /* the common side, local */
+    q[*n] = offset_side_q(s, s->ta, s->tb, s->ua - k, (double)s->c0 + k, s->ua, s->ub,
+                          &s->prexy[1]);
+    qs[(*n)++] = s;
+    if (*n == BAND_ROOTS)
+        side_roots(q, qs, *n), *n = 0;
+}
+
+/* Row j.  `plain`: S->plain, a constant in each of the three forms below
+ * (render_row_plain, render_row_any, render_row_alone), chosen once a
+ * row; `batch`: single()'s side roots asked in batches (side_ask). */
 __attribute__((always_inline)) static inline void render_row_k(const ar_state *S, ar_worker *wk,
                                                                int j, int integrator, int stream,
-                                                               aa_image *out, const int plain)
+                                                               aa_image *out, const int plain,
+                                                               const int batch)
 {
     int W = S->w;
     update_active(S, wk, j);
@@ -2852,9 +2907,11 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
      * order (keep_order), where a piece that entered the band out of order
      * is found late in the row, and the clusters closed before it were
      * work thrown away. */
-    size_t n = 0, first = 0, nold = 0;
+    size_t n = 0, first = 0, nold = 0, nq = 0, open = 0, ns = 0;
     int lo = 0, hi = 0, x = 0, ordered = 1;
     uint64_t cells = 0;
+    aa__offset_rootq q[BAND_ROOTS];
+    ar_seg *qs[BAND_ROOTS];
     for (size_t k = 0; k < wk->nactive; k++) {
         uint32_t ix = wk->active[k];
         const ar_piece *p = &S->piece[ix];
@@ -2867,19 +2924,26 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
         nold += k < wk->carried;
         if (ordered && !plain) {
             /* not yet closed (below): a piece out of order late in the
-             * row would throw away the clusters closed before it */
-            if (n == 0 || s->ca > hi)
+             * row would throw away the clusters closed before it.  A
+             * cluster of one seg (open: the cluster's first) is kept in
+             * wk->side as the next begins, for side_ask */
+            if (n == 0 || s->ca > hi) {
+                if (batch && n - open + (size_t)(hi - lo) == 2)
+                    wk->side[ns++] = wk->list[open];
+                open = n;
                 lo = s->ca, hi = s->cb;
-            else if (s->ca >= lo)
+            } else if (s->ca >= lo) {
                 hi = s->cb > hi ? s->cb : hi;
-            else
+            } else {
                 ordered = 0;
+            }
         } else if (ordered) {
             if (n == first) {
                 lo = s->ca, hi = s->cb;
             } else if (s->ca > hi) {
                 cells += cells_of(lo, hi, W);
-                x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c, plain);
+                x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c, plain,
+                                  batch);
                 first = n;
                 lo = s->ca, hi = s->cb;
             } else if (s->ca >= lo) {
@@ -2890,6 +2954,15 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
         }
         n++;
     }
+    if (!plain && batch && ordered) {
+        /* the side roots of the clusters of one seg, before any closes */
+        if (n - open + (size_t)(hi - lo) == 2)
+            wk->side[ns++] = wk->list[open];
+        for (size_t k = 0; k < ns; k++)
+            side_ask(&r, &wk->seg[wk->side[k]], q, qs, &nq);
+        if (nq)
+            side_roots(q, qs, nq);
+    }
     if (ordered && !plain) {
         for (size_t k = 0; k < n; k++) {
             const ar_seg *s = &wk->seg[wk->list[k]];
@@ -2897,7 +2970,8 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
                 lo = s->ca, hi = s->cb;
             } else if (s->ca > hi) {
                 cells += cells_of(lo, hi, W);
-                x = close_cluster(&r, wk->list + first, k - first, lo, hi, x, w, &c, plain);
+                x = close_cluster(&r, wk->list + first, k - first, lo, hi, x, w, &c, plain,
+                                  batch);
                 first = k;
                 lo = s->ca, hi = s->cb;
             } else {
@@ -2908,7 +2982,7 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
     if (ordered) {
         if (n > first) {
             cells += cells_of(lo, hi, W);
-            x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c, plain);
+            x = close_cluster(&r, wk->list + first, n - first, lo, hi, x, w, &c, plain, batch);
         }
         if (x < W)
             fill(r.px, x, W, W, c, stream);
@@ -2928,22 +3002,45 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
         merge_keys(keys, nold, n, wk->sub);
         keep_order(wk, keys, n);
     }
+    if (!plain && batch) {
+        /* the clusters found first (each one's end and hi in wk->side,
+         * taken below) and the side roots of those of one seg asked
+         * before any closes */
+        size_t nc = 0;
+        for (size_t k = 0; k < n;) {
+            size_t f = k;
+            int h = wk->seg[keys[k].idx].cb;
+            for (k++; k < n && wk->seg[keys[k].idx].ca <= h; k++)
+                if (wk->seg[keys[k].idx].cb > h)
+                    h = wk->seg[keys[k].idx].cb;
+            wk->side[nc++] = (uint32_t)k, wk->side[nc++] = (uint32_t)h;
+            if (k - f == 1 && h - wk->seg[keys[f].idx].ca == 1)
+                side_ask(&r, &wk->seg[keys[f].idx], q, qs, &nq);
+        }
+        if (nq)
+            side_roots(q, qs, nq);
+    }
     memset(w, 0, (size_t)S->nl * sizeof *w);
     c = colour_of(S, wk, w);
     x = 0;
-    for (size_t k = 0; k < n;) {
+    for (size_t k = 0, nc = 0; k < n; nc += 2) {
         first = k;
-        lo = wk->seg[keys[k].idx].ca, hi = wk->seg[keys[k].idx].cb;
-        for (k++; k < n && wk->seg[keys[k].idx].ca <= hi; k++)
-            if (wk->seg[keys[k].idx].cb > hi)
-                hi = wk->seg[keys[k].idx].cb;
+        lo = wk->seg[keys[k].idx].ca;
+        if (!plain && batch) {
+            k = wk->side[nc], hi = (int)wk->side[nc + 1];
+        } else {
+            hi = wk->seg[keys[k].idx].cb;
+            for (k++; k < n && wk->seg[keys[k].idx].ca <= hi; k++)
+                if (wk->seg[keys[k].idx].cb > hi)
+                    hi = wk->seg[keys[k].idx].cb;
+        }
         wk->expensive += cells_of(lo, hi, W);
         /* a seg alone that single() writes inline, as in the one pass:
          * through flush it paid a call, a copy of the colour and a
          * colour_of after single's (tests/bench_bezstroke.c's scene at
          * 1024 px: 19,084 of the sorted pass's 23,944 clusters a render) */
         if (!(k - first == 1 && close_single(&r, &wk->seg[keys[first].idx], lo, hi, &x, w, &c,
-                                             plain)))
+                                             plain, batch)))
             x = flush(&r, keys + first, k - first, lo, hi, x, w, &c);
     }
     if (x < W)
@@ -2955,14 +3052,24 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
 static void render_row_plain(const ar_state *S, ar_worker *wk, int j, int integrator, int stream,
                              aa_image *out)
 {
-    render_row_k(S, wk, j, integrator, stream, out, 1);
+    render_row_k(S, wk, j, integrator, stream, out, 1, 0);
 }
 
 static void render_row_any(const ar_state *S, ar_worker *wk, int j, int integrator, int stream,
                            aa_image *out)
 {
-    render_row_k(S, wk, j, integrator, stream, out, 0);
+    render_row_k(S, wk, j, integrator, stream, out, 0, 1);
 }
+
+/* render_row_any with single()'s side roots asked alone (area_side_batch
+ * 0: for a test) */
+static void render_row_alone(const ar_state *S, ar_worker *wk, int j, int integrator,
+                             int stream, aa_image *out)
+{
+    render_row_k(S, wk, j, integrator, stream, out, 0, 0);
+}
+
+int area_side_batch = 1;
 
 /* Row j of a scene with gradient paint (area_gradient.c): the clusters
  * as the sorted pass finds them, every cluster by Catmull's integrater
@@ -3071,6 +3178,7 @@ static void state_free(ar_state *S)
         free(wk->active);
         free(wk->seg);
         free(wk->list);
+        free(wk->side);
         free(wk->order);
         free(wk->sub);
         free(wk->tops);
@@ -3410,6 +3518,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->active = line_alloc_as(n, sizeof *wk->active, 0);
     wk->seg = line_alloc_as(n, sizeof *wk->seg, 0);
     wk->list = line_alloc_as(n, sizeof *wk->list, 0);
+    wk->side = line_alloc_as(2 * n, sizeof *wk->side, 0);
     wk->order = line_alloc_as(n, sizeof *wk->order, 0);
     wk->sub = line_alloc_as(3 * n, sizeof *wk->sub, 0);
     /* not cleared either (read only where written); by line_alloc_as as the
@@ -3550,8 +3659,9 @@ static int area_render(void *state, const double *p, const aa_job *job, aa_image
             if (S->ngrad)
                 render_row_gradient(S, wk, j, out);
             else
-                (S->plain ? render_row_plain : render_row_any)(S, wk, j, integrator, stream,
-                                                               out);
+                (S->plain           ? render_row_plain
+                 : area_side_batch ? render_row_any
+                                   : render_row_alone)(S, wk, j, integrator, stream, out);
         }
 #if AR_STREAM
         if (stream)

@@ -202,7 +202,13 @@ typedef struct ar_seg {
     int ca, cb;     /* first and last cell touched, in [-1, W] */
     /* an offset piece's root on the line y = prej + 1 (the bottom of band
      * prej) and its point there, found before the band's segs are made
-     * (area.c, band_roots; INT_MIN: none) */
+     * (area.c, band_roots; INT_MIN: none), taken by seg_make; then, on an
+     * offset seg alone in its cluster and of single()'s kind in two cells,
+     * the root on their common side (as asked: sg times tau) and y there
+     * in prexy[1], asked in the row's batches before its clusters close
+     * (area.c, side_ask) and taken by single() (the struct not grown: 640
+     * bytes; at 672 the segs' indexing cost 0.69 M instructions a render
+     * at 1024 px, 0.97 M at 256 px) */
     int prej;
     double pret;
     long double prexy[2];
@@ -236,6 +242,9 @@ typedef struct ar_worker {
     int row;          /* last row rendered (-2: none) */
     ar_seg *seg;     /* per sorted piece */
     uint32_t *list;  /* the current row's segs, in active order */
+    /* the one pass's clusters of one seg in two cells (their segs), or the
+     * sorted pass's clusters (each one's end and hi): area.c, side_ask */
+    uint32_t *side;
     ar_key *order, *sub;
     ar_key *tops; /* a crowded band's segs by their tops (area.c, order_next) */
     /* 2 doubles a seg: u at the (sub-)band's two ends of each seg
@@ -711,12 +720,30 @@ static inline double offset_tau_at(const ar_seg *s, double a, double b, double f
  * guess it evaluated b for the quadratic through a, b and b's slope, a
  * start about as near the root: on tests/bench_bezstroke.c's scene 2.6
  * double evaluations a side became 2.0). */
+static inline double offset_chord(const ar_seg *s, double a, double b, double target, double ua,
+                                  double ub)
+{
+    double k = target - s->c0;
+    return ub != ua ? a + (b - a) * ((k - ua) / (ub - ua)) : NAN;
+}
+
+/* offset_tau_at from offset_chord's start */
 static inline double offset_tau_u(const ar_seg *s, double a, double b, double fa, double target,
                                   double ua, double ub)
 {
-    double k = target - s->c0;
-    double g = ub != ua ? a + (b - a) * ((k - ua) / (ub - ua)) : NAN;
-    return offset_tau_at(s, a, b, fa, target, g);
+    return offset_tau_at(s, a, b, fa, target, offset_chord(s, a, b, target, ua, ub));
+}
+
+/* offset_tau_u's root as a request of aa__offset_roots (the same
+ * arguments: the same root bit for bit), y there into *y: the root is
+ * sg times the request's t, offset_keep'd as offset_tau_at keeps it */
+static inline aa__offset_rootq offset_side_q(const ar_seg *s, double a, double b, double fa,
+                                             double target, double ua, double ub,
+                                             long double *y)
+{
+    double sg = s->p->sg, g = offset_chord(s, a, b, target, ua, ub);
+    return (aa__offset_rootq){&s->p->src->oc, &s->p->ofix, 0, sg * a, sg * b, fa, target, sg * g,
+                              NULL, NULL, y, 0.0};
 }
 
 /* A start for an offset piece's root where u = k (u1 < k < u2 or u1 > k >
@@ -833,6 +860,11 @@ int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo
 /* k[0..n) sorted by (key, id), ascending (tmp: room for n): the row's
  * pieces new in its band (area.c, merge_keys) */
 void area_sort_new_keys(ar_key *k, size_t n, ar_key *tmp);
+/* 1 (as built): the rows of scenes with curved pieces ask single()'s side
+ * roots on offset pieces in batches before their clusters close (area.c,
+ * side_ask); 0: single() asks each alone.  The same roots, bit for bit
+ * (tests/test_area_offset.c, test_side_batch). */
+extern int area_side_batch;
 
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
  * (*out to be freed), or appended to an array (*n of *cap used, grown
