@@ -96,7 +96,10 @@
  *  - parts reaching past their first panel (test_shares_across): against
  *    the same integral, whether one share of that panel (its disc holds
  *    the part's ellipse and 4, 8 or 12 points meet the bound) or panel by
- *    panel, and the rule of one share the fewest points so bound.
+ *    panel, and the rule of one share the fewest points so bound;
+ *  - the parameters at a pair's common heights inside a band, solved from
+ *    the piece's table's start (test_common_starts): the benchmark's scene
+ *    at 256 px (rows 0 to 127) against the reference within its bound.
  *
  * Under the sanitizers (AA_SANITIZED: the Makefile's sanitizer build sets
  * it for the tests) a declared subset: test_shared_ends and test_cones
@@ -3441,6 +3444,51 @@ static void test_side_batch(void **state)
     aa_scene_free(s);
 }
 
+/* ---- the parameters at a pair's common heights, from the table's start ---- */
+
+/* Where a piece begins or ends inside a band, area solves the other
+ * piece's parameter at that height (area.c, seg_t_kept) over the whole
+ * piece from the piece's table's start (ytab_guess), not from its ends:
+ * a root as good, not always the same double (the meetings found moved
+ * by rounding, within 6e-7 px at 256 px where two pieces leave a shared
+ * end tangent to each other).  The benchmark's scene (its 20 rows, round
+ * joins and caps, 2.5 px wide) at 256 px, `area` against the reference's
+ * pixels in rows 0 to 127 (its first ten rows of cubics), each within the
+ * reference's bound plus 1e-14.  It failed with the table's start taken
+ * as the root (2.63e-09 beyond the bound at (140, 57)). */
+static void test_common_starts(void **state)
+{
+    (void)state;
+    const int n = 256, h = 128;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    st.width = 2.5 / n;
+    aa_scene *s = bench_rows_stroke(NULL, 20, &st);
+    aa_image im, ref, bound;
+    support_render("area", s, "box", n, n, 1, &im, NULL);
+    support_reference_part(s, n, n, 0, 0, n, h, "box", &ref, &bound, NULL);
+    double most = -INFINITY;
+    int wi = -1, wj = -1, over = 0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < n; i++) {
+            double e = fabs(aa_pixel(&im, i, j)[0] - aa_pixel(&ref, i, j)[0]) -
+                       aa_pixel(&bound, i, j)[0];
+            over += e > 0.0;
+            if (e > most)
+                most = e, wi = i, wj = j;
+        }
+    print_message("the benchmark's scene at %d px, rows 0 to %d: %d pixels beyond the "
+                  "reference's bound, at most %.2g (at %d, %d)\n",
+                  n, h - 1, over, most, wi, wj);
+    if (!(most <= 1e-14))
+        fail_msg("area %g beyond the reference's bound at (%d, %d)", most, wi, wj);
+    aa_image_free(&im);
+    aa_image_free(&ref);
+    aa_image_free(&bound);
+    aa_scene_free(s);
+}
+
 int main(void)
 {
     SAN_CASES_PRINT();
@@ -3473,6 +3521,7 @@ int main(void)
                                        cmocka_unit_test(test_root_starts),
                                        cmocka_unit_test(test_turn_starts),
                                        cmocka_unit_test(test_sides_apart),
-                                       cmocka_unit_test(test_side_batch)};
+                                       cmocka_unit_test(test_side_batch),
+                                       cmocka_unit_test(test_common_starts)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
