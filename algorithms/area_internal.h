@@ -50,7 +50,7 @@
  * of Gauss-Legendre rules tried. */
 #define AR_QUAD_TOL 1e-15
 #define AR_QUAD_NMAX 16
-#define AR_QUAD_RULES 4
+#define AR_QUAD_RULES 3
 
 /* Gauss-Legendre rules on [-1, 1]: rule r has n[r] points x, w from at[r]. */
 typedef struct ar_quad {

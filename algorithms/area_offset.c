@@ -70,16 +70,16 @@
  * the disc |z - m'| <= R - |m' - m| inside the panel's, where M still
  * holds; its rho' is larger than the panel's (rho falls as h grows at fixed
  * slack R - h), so its bound is at most the panel's, and the fewest points
- * of AR_QUAD_RULES whose bound is within AR_QUAD_TOL are used: 4, 8, 12
- * or 16, whole groups of the four lanes a cubic's nodes are taken in.  A
- * part reaching past its first panel is one share of that panel where its
- * own ellipse still lies in the panel's disc (R - |m' - m| > h': M holds
- * there for start points on the panel, and the panel's Taylor form is
- * the curve's everywhere) and 4, 8 or 12 points meet the bound, checked
- * (there the panel's own bound does not cover 16).  On the 1,000 stroked
- * cubics of tests/bench_bezstroke.c at 1024 px: 4 points for 12% of the
- * shares, 8 for 71%, 12 for 16%, 16 for 2% (101,282 shares a render;
- * 10,063 of the 14,659 parts reaching past a panel taken as one).  The
+ * of AR_QUAD_RULES whose bound is within AR_QUAD_TOL are used: 8, 12 or
+ * 16, whole groups of the four lanes a cubic's nodes are taken in (no
+ * 4: ar_quad_order).  A part reaching past its first panel is one share
+ * of that panel where its own ellipse still lies in the panel's disc (R -
+ * |m' - m| > h': M holds there for start points on the panel, and the
+ * panel's Taylor form is the curve's everywhere) and 8 or 12 points meet
+ * the bound, checked (there the panel's own bound does not cover 16).  On
+ * the 1,000 stroked cubics of tests/bench_bezstroke.c at 1024 px: 8
+ * points for 86% of the shares, 12 for 12%, 16 for 2% (91,219 shares a
+ * render; those of 4 points before, 11,738, now of 8).  The
  * bound holds up to the rounding of the bound's own terms (a relative
  * 1e-12 margin is added) and of the sum itself (about 1e-16 of the
  * integrand's size times h).
@@ -98,8 +98,12 @@
 
 /* Gauss-Legendre orders tried, ascending; the last is the panels' own.
  * Multiples of 4: a cubic's nodes go four at a time (nodes_avx), so 6 and
- * 11 points took as many groups as 8 and 12; 2 or 3 as many as 4. */
-static const int ar_quad_order[AR_QUAD_RULES] = {4, 8, 12, 16}; /* rule writes them out */
+ * 11 points took as many groups as 8 and 12.  No 4-point rule: a pass of
+ * AVX-512F's eight lanes holds 8 points, and the choice between 4 and 8
+ * (12% and 71% of the shares at 1024 px on tests/bench_bezstroke.c) took
+ * more time than the four nodes saved (algorithms/README.md); 8 points
+ * where 4 met the bound meet it too (a rule's bound falls as n grows). */
+static const int ar_quad_order[AR_QUAD_RULES] = {8, 12, 16}; /* rule writes them out */
 
 int area_quad_init(ar_quad *q)
 {
@@ -735,7 +739,7 @@ nodes_avx(const double *qx, const double *qw, int n, double sm, double h,
 /* The rule a share of half width h about mm inside panel p takes (an
  * index into ar_quad): the fewest points whose bound is within
  * AR_QUAD_TOL; the panel's own (the last) where its disc leaves no room
- * (rule; rule_or_none: -1 there, the last where the three before it fail,
+ * (rule; rule_or_none: -1 there, the last where the two before it fail,
  * which a share inside the panel may take, its bound at most the panel's,
  * but one reaching past the panel may not: segment). */
 static __attribute__((always_inline)) inline int rule_or_none(const ar_panel *p, double h,
@@ -752,16 +756,15 @@ static __attribute__((always_inline)) inline int rule_or_none(const ar_panel *p,
          * time) in the same order whatever the share, written out (a
          * loop's own instructions were a third of the choice's); their
          * rounding (a few units in the last place) within the 1e-12
-         * margin.  The orders 4, 8, 12 (ar_quad_order): r2^4 apart. */
+         * margin.  The orders 8, 12 (ar_quad_order): r2^4 apart, r2^8
+         * (r2 - 1) as (r2^4 (r2 - 1)) r2^4. */
         double z = Rs / h, rho = z + sqrt((z - 1.0) * (z + 1.0)), r2 = rho * rho;
         double need = h * (64.0 / (15.0 * AR_QUAD_TOL) * (1.0 + 1e-12)) * p->M * r2;
-        double p4 = r2 * r2 * (r2 * r2), pw = p4 * (r2 - 1.0);
+        double p4 = r2 * r2 * (r2 * r2), pw = p4 * (r2 - 1.0) * p4;
         if (pw >= need)
             r = 0;
         else if ((pw = pw * p4) >= need)
             r = 1;
-        else if ((pw = pw * p4) >= need)
-            r = 2;
     }
     return r;
 }
@@ -938,9 +941,9 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
         /* a part reaching past its first panel whose Bernstein ellipse
          * still lies in that panel's disc, where M bounds the integrand
          * for start points on the panel (the panel's Taylor form is the
-         * curve's everywhere): one share, its rule's bound met (4, 8 or
-         * 12 points; the 16 of a share inside a panel hold by the
-         * panel's own bound, which this one's is not under) */
+         * curve's everywhere): one share, its rule's bound met (8 or 12
+         * points; the 16 of a share inside a panel hold by the panel's
+         * own bound, which this one's is not under) */
         seg = share_by(pc, &pan[k], lo, hi, r, avx);
     } else {
         /* shares joined by the polygon of their ends about P(lo), the

@@ -95,7 +95,7 @@
  *    with powl, is within the tolerance;
  *  - parts reaching past their first panel (test_shares_across): against
  *    the same integral, whether one share of that panel (its disc holds
- *    the part's ellipse and 4, 8 or 12 points meet the bound) or panel by
+ *    the part's ellipse and 8 or 12 points meet the bound) or panel by
  *    panel, and the rule of one share the fewest points so bound;
  *  - the parameters at a pair's common heights inside a band, solved from
  *    the piece's table's start (test_common_starts): the benchmark's scene
@@ -1781,7 +1781,7 @@ static void test_shares(void **state)
 
 /* Parts reaching past the end of their first panel (area_offset.c,
  * segment: taken as one share of that panel where the part's Bernstein
- * ellipse lies in its disc and 4, 8 or 12 points meet the bound, else
+ * ellipse lies in its disc and 8 or 12 points meet the bound, else
  * panel by panel) against 1/2 the integral of (P - P(ta)) x P' computed
  * here as in test_shares (long double, 20 points on 4 parts), within
  * AR_QUAD_TOL plus 8 ulps of the size the double sum's terms have, on
@@ -2766,10 +2766,10 @@ static void test_nodes(void **state)
         aa_scene_free(placed);
         aa_scene_free(s);
     }
-    print_message("%d parts (%d evolute pieces) the same %s ways; inside a panel %d, %d, %d, "
-                  "%d took 4, 8, 12, 16 points\n",
+    print_message("%d parts (%d evolute pieces) the same %s ways; inside a panel %d, %d, "
+                  "%d took 8, 12, 16 points\n",
                   parts, evolutes, has == 2 ? "three" : has ? "two" : "one (no AVX)", rules[0],
-                  rules[1], rules[2], rules[3]);
+                  rules[1], rules[2]);
     assert_true(parts > 0 && evolutes > 0);
     for (int r = 0; r < AR_QUAD_RULES; r++)
         assert_true(rules[r] > 0);
