@@ -2874,10 +2874,10 @@ static __attribute__((noinline)) void side_roots(aa__offset_rootq *q, ar_seg **q
  * before the row's clusters close.  The clusters of one seg are known in
  * the one pass as the next cluster begins (render_row_k keeps those in
  * two cells in wk->side), in the sorted pass by a first walk of its
- * clusters (kept in wk->side for the second): asked as the segs were
- * made, 22,024 a render at 1024 px and 3,792 at 256 px (single's kind in
- * two cells), 21,690 and 2,330 were taken, the rest in clusters of
- * several (tests/bench_bezstroke.c's scene). */
+ * clusters (kept in wk->side for the second).  Of the segs of single's
+ * kind in two cells, 22,024 a render at 1024 px and 3,792 at 256 px on
+ * tests/bench_bezstroke.c's scene, 21,690 and 2,330 are alone in their
+ * clusters and so asked here; the rest are in clusters of several. */
 __attribute__((always_inline)) static inline void side_ask(const ar_row *r, ar_seg *s,
                                                           aa__offset_rootq *q, ar_seg **qs,
                                                           size_t *n)
@@ -3073,7 +3073,7 @@ static void render_row_any(const ar_state *S, ar_worker *wk, int j, int integrat
     render_row_k(S, wk, j, integrator, stream, out, 0, 1);
 }
 
-/* render_row_any with single()'s side roots asked alone (area_side_batch
+/* render_row_any with single()'s side roots asked alone (aa__area_side_batch
  * 0: for a test) */
 static void render_row_alone(const ar_state *S, ar_worker *wk, int j, int integrator,
                              int stream, aa_image *out)
@@ -3081,7 +3081,7 @@ static void render_row_alone(const ar_state *S, ar_worker *wk, int j, int integr
     render_row_k(S, wk, j, integrator, stream, out, 0, 0);
 }
 
-int area_side_batch = 1;
+int aa__area_side_batch = 1;
 
 /* Row j of a scene with gradient paint (area_gradient.c): the clusters
  * as the sorted pass finds them, every cluster by Catmull's integrater
@@ -3577,7 +3577,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
         }
     if (!wk->active || !wk->seg || !wk->list || !wk->order || !wk->sub || !wk->acc || !wk->cov ||
         !wk->wind || !wk->wtmp || !wk->ev || !wk->cx || !wk->mark || !wk->cm || !wk->act ||
-        !wk->pend || !wk->tops || !wk->ends || !wk->vab)
+        !wk->pend || !wk->tops || !wk->ends || !wk->vab || !wk->side)
         return aa_fail(AA_ENOMEM, "out of memory for an area workspace (%zu pieces, %d px)", n,
                        S->w);
     return AA_OK;
@@ -3672,7 +3672,7 @@ static int area_render(void *state, const double *p, const aa_job *job, aa_image
                 render_row_gradient(S, wk, j, out);
             else
                 (S->plain           ? render_row_plain
-                 : area_side_batch ? render_row_any
+                 : aa__area_side_batch ? render_row_any
                                    : render_row_alone)(S, wk, j, integrator, stream, out);
         }
 #if AR_STREAM

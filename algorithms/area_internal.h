@@ -860,11 +860,11 @@ int area_cluster_catmull_all(const ar_row *r, const ar_key *in, size_t n, int lo
 /* k[0..n) sorted by (key, id), ascending (tmp: room for n): the row's
  * pieces new in its band (area.c, merge_keys) */
 void area_sort_new_keys(ar_key *k, size_t n, ar_key *tmp);
-/* 1 (as built): the rows of scenes with curved pieces ask single()'s side
- * roots on offset pieces in batches before their clusters close (area.c,
- * side_ask); 0: single() asks each alone.  The same roots, bit for bit
- * (tests/test_area_offset.c, test_side_batch). */
-extern int area_side_batch;
+/* Tests only: 1 (as built), the rows of scenes with curved pieces ask
+ * single()'s side roots on offset pieces in batches before their clusters
+ * close (area.c, side_ask); 0, single() asks each alone.  The same roots,
+ * bit for bit (tests/test_area_offset.c, test_side_batch). */
+extern int aa__area_side_batch;
 
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
  * (*out to be freed), or appended to an array (*n of *cap used, grown

@@ -3385,25 +3385,28 @@ static void test_sides_apart(void **state)
  * on the common side of an offset seg alone in its cluster in two cells,
  * asked in AVX-512F's or AVX2's lanes before the row's clusters close,
  * taken by single() without a test of its own) against the same rows
- * asking each of those roots alone (area_side_batch 0: single()'s own
+ * asking each of those roots alone (aa__area_side_batch 0: single()'s own
  * call of offset_tau_u, the form before the batches): the same image,
  * bit for bit, on tests/bench_bezstroke.c's scene at 1024 px (21,690
  * roots a render from the batches) and 256 px (2,330; and on two
- * threads) and on three arcs under a wide stroke at 64 px.  It failed
- * with the taken root an ulp up (53,496 values of the image at 1024 px
- * not the same bits, 5.55e-16 off at most), with its y not kept
- * (offset_keep: 79,038, 6.66e-16), with each batch's roots given to the
- * next seg (129,558, 0.521), with the one pass's clusters at even cells
- * not asked (37,566, 0.499) and with the sorted pass's last cluster's hi
- * one more (735, 1). */
+ * threads), on three arcs 0.08 wide at 64 px and 0.4 wide at 48 px and
+ * on a hook 0.4 wide at 64 px (segs of single's kind in the image's first
+ * and last cells).  It failed with the taken root an ulp up (53,496
+ * values of the image at 1024 px not the same bits, 5.55e-16 off at
+ * most), with its y not kept (offset_keep: 79,038, 6.66e-16), with each
+ * batch's roots given to the next seg (129,558, 0.521), with the one
+ * pass's clusters at even cells not asked (37,566, 0.499), with the
+ * sorted pass's last cluster's hi one more (735, 1) and with side_ask
+ * not asking the segs in the first cell or in the last (on the arcs 0.4
+ * wide: 6 values, 0.0926 off, at (0, 11); 12, 0.141 off, at (46, 37)). */
 static void side_batch_case(const char *what, const aa_scene *s, int n, int threads)
 {
     aa_image a, b;
-    area_side_batch = 1;
+    aa__area_side_batch = 1;
     support_render("area", s, "box", n, n, threads, &a, NULL);
-    area_side_batch = 0;
+    aa__area_side_batch = 0;
     support_render("area", s, "box", n, n, threads, &b, NULL);
-    area_side_batch = 1;
+    aa__area_side_batch = 1;
     size_t moved = 0, nv = (size_t)n * n * 3;
     for (size_t k = 0; k < nv; k++)
         moved += memcmp(&a.v[k], &b.v[k], sizeof a.v[k]) != 0;
@@ -3441,6 +3444,17 @@ static void test_side_batch(void **state)
     st.width = 0.08;
     aa_scene *s = stroke_scene(three, 3, &st, NULL);
     side_batch_case("3 arcs, round, w 0.08, 64 px", s, 64, 1);
+    aa_scene_free(s);
+    /* segs in the image's first and last cells (close_single's ca >= 0
+     * and cb < W, which side_ask must test alike) */
+    st.width = 0.4;
+    s = stroke_scene(three, 3, &st, NULL);
+    side_batch_case("3 arcs, round, w 0.4, 48 px", s, 48, 1);
+    aa_scene_free(s);
+    aa_stroke_style_default(&st);
+    st.width = 0.4;
+    s = stroke_scene(hook, 1, &st, NULL);
+    side_batch_case("hook, w 0.4, 64 px", s, 64, 1);
     aa_scene_free(s);
 }
 
