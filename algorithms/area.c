@@ -1642,8 +1642,10 @@ static double seg_t_kept(const ar_seg *s, double y, double base)
 /* An offset seg's parameters t at the pair's common heights lo >= ya and
  * hi <= yb, from seg_t_at's at ya and yb (NAN: unknown), as
  * aa__piece_meet_at would take them (param_known): t[0] at ya, the
- * piece's own at its ends, else the solve inside it, kept
- * (seg_t_kept); NAN left where it finds them at once. */
+ * piece's own at its ends, else the solve inside it, kept (seg_t_kept:
+ * from the piece's table's start, so not always the double
+ * aa__piece_meet_at's own solve from the piece's ends finds, but as
+ * near the root); NAN left where it finds them at once. */
 static inline void seg_t_common(const ar_seg *s, double lo, double hi, double ya, double yb,
                                 double base, double t[2])
 {
@@ -1704,7 +1706,7 @@ static int pair_crossings(const ar_seg *p, const ar_seg *q, double ya, double yb
         seg_t_at(q, ya, yb, tq);
         /* where a piece begins or ends inside [Ya, Yb], the other's
          * parameter there is kept in its seg (seg_t_common), asked for as
-         * the pair's common heights [lo, hi], aa__piece_meet_at's own */
+         * the pair's common heights [lo, hi] (seg_t_kept's solve) */
         const aa_piece *P = p->p->src, *Q = q->p->src;
         double lo = P->y0 > Q->y0 ? P->y0 : Q->y0, hi = P->y1 < Q->y1 ? P->y1 : Q->y1;
         lo = lo > Ya ? lo : Ya, hi = hi < Yb ? hi : Yb;

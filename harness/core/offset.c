@@ -1145,6 +1145,8 @@ root_d_more(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, doub
     return root_dd_loop(oc, fx, coord, target, neg, t, ta, tb, 0, xy, other, fma);
 }
 
+/* root_dd's (Dekker's products): from the third evaluation, as
+ * root_d_more2_fma; the lanes have no such form (FMA alone) */
 static __attribute__((noinline)) double
 root_d_more_split(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
                   double tb, double a, double b, int neg, double target, double t, double prev,
