@@ -2859,6 +2859,19 @@ static void band_roots(const ar_state *S, ar_worker *wk, int j, int W)
     }
 }
 
+/* The end of the sorted row's cluster that starts at keys[k] (the first
+ * key past it) and its last cell (*hi) */
+static inline size_t cluster_end(const ar_worker *wk, const ar_key *keys, size_t n, size_t k,
+                                 int *hi)
+{
+    int h = wk->seg[keys[k].idx].cb;
+    for (k++; k < n && wk->seg[keys[k].idx].ca <= h; k++)
+        if (wk->seg[keys[k].idx].cb > h)
+            h = wk->seg[keys[k].idx].cb;
+    *hi = h;
+    return k;
+}
+
 /* The batch's roots kept in their segs (side_taken's) */
 static __attribute__((noinline)) void side_roots(aa__offset_rootq *q, ar_seg **qs, size_t n)
 {
@@ -2942,7 +2955,7 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
              * cluster of one seg (open: the cluster's first) is kept in
              * wk->side as the next begins, for side_ask */
             if (n == 0 || s->ca > hi) {
-                if (batch && n - open + (size_t)(hi - lo) == 2)
+                if (batch && n - open == 1 && hi - lo == 1)
                     wk->side[ns++] = wk->list[open];
                 open = n;
                 lo = s->ca, hi = s->cb;
@@ -2970,7 +2983,7 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
     }
     if (!plain && batch && ordered) {
         /* the side roots of the clusters of one seg, before any closes */
-        if (n - open + (size_t)(hi - lo) == 2)
+        if (n - open == 1 && hi - lo == 1)
             wk->side[ns++] = wk->list[open];
         for (size_t k = 0; k < ns; k++)
             side_ask(&r, &wk->seg[wk->side[k]], q, qs, &nq);
@@ -3023,10 +3036,8 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
         size_t nc = 0;
         for (size_t k = 0; k < n;) {
             size_t f = k;
-            int h = wk->seg[keys[k].idx].cb;
-            for (k++; k < n && wk->seg[keys[k].idx].ca <= h; k++)
-                if (wk->seg[keys[k].idx].cb > h)
-                    h = wk->seg[keys[k].idx].cb;
+            int h;
+            k = cluster_end(wk, keys, n, k, &h);
             wk->side[nc++] = (uint32_t)k, wk->side[nc++] = (uint32_t)h;
             if (k - f == 1 && h - wk->seg[keys[f].idx].ca == 1)
                 side_ask(&r, &wk->seg[keys[f].idx], q, qs, &nq);
@@ -3040,14 +3051,10 @@ __attribute__((always_inline)) static inline void render_row_k(const ar_state *S
     for (size_t k = 0, nc = 0; k < n; nc += 2) {
         first = k;
         lo = wk->seg[keys[k].idx].ca;
-        if (!plain && batch) {
+        if (!plain && batch)
             k = wk->side[nc], hi = (int)wk->side[nc + 1];
-        } else {
-            hi = wk->seg[keys[k].idx].cb;
-            for (k++; k < n && wk->seg[keys[k].idx].ca <= hi; k++)
-                if (wk->seg[keys[k].idx].cb > hi)
-                    hi = wk->seg[keys[k].idx].cb;
-        }
+        else
+            k = cluster_end(wk, keys, n, k, &hi);
         wk->expensive += cells_of(lo, hi, W);
         /* a seg alone that single() writes inline, as in the one pass:
          * through flush it paid a call, a copy of the colour and a

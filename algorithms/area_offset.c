@@ -101,9 +101,9 @@
  * 11 points took as many groups as 8 and 12.  No 4-point rule: a pass of
  * AVX-512F's eight lanes holds 8 points, and the choice between 4 and 8
  * (12.9% and 73.4% of the 91,219 shares at 1024 px on
- * tests/bench_bezstroke.c) took
- * more time than the four nodes saved (algorithms/README.md); 8 points
- * where 4 met the bound meet it too (a rule's bound falls as n grows). */
+ * tests/bench_bezstroke.c) took more time than the four nodes saved
+ * (algorithms/README.md); 8 points where 4 met the bound meet it too (a
+ * rule's bound falls as n grows). */
 static const int ar_quad_order[AR_QUAD_RULES] = {8, 12, 16}; /* rule writes them out */
 
 int area_quad_init(ar_quad *q)

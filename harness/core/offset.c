@@ -1145,10 +1145,10 @@ root_d_more(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, doub
     return root_dd_loop(oc, fx, coord, target, neg, t, ta, tb, 0, xy, other, fma);
 }
 
-/* root_dd's (Dekker's products): from the third evaluation, as
- * root_d_more2_fma; the lanes have no such form (FMA alone) */
+/* root_dd's (Dekker's products), from the third evaluation; the lanes'
+ * form (from the second) is root_d_more_fma alone: they run with FMA */
 static __attribute__((noinline)) double
-root_d_more_split(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
+root_d_more2_split(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
                   double tb, double a, double b, int neg, double target, double t, double prev,
                   int unseen, double size, long double xy[2], long double *other)
 {
@@ -1218,8 +1218,8 @@ root_dd(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double t
         if (fma)
             return root_d_more2_fma(oc, fx, coord, ta, tb, a, b, neg, target, t, prev, unseen,
                                     size, xy, other);
-        return root_d_more_split(oc, fx, coord, ta, tb, a, b, neg, target, t, prev, unseen, size,
-                                 xy, other);
+        return root_d_more2_split(oc, fx, coord, ta, tb, a, b, neg, target, t, prev, unseen,
+                                  size, xy, other);
     }
     /* the curve's coefficients loaded again below, not kept from above
      * (on the stack: the registers are the double-double form's) */
