@@ -3503,6 +3503,137 @@ static void test_common_starts(void **state)
     aa_scene_free(s);
 }
 
+/* aa__offset_roots' double phase on, in the lanes (offset_lanes.h: solve_step's next point
+ * where a lane's first evaluation does not stop, Newton's step, b where it passes b still
+ * unseen, else the bracket's middle, then its second step; the lanes that stop at neither
+ * go on alone), against aa__offset_root_xyd and aa__offset_root_fixd asked one by one (the
+ * peer: root_dd takes the same steps in scalar registers): the same roots, points and other
+ * coordinates bit for bit (memcmp).  Lines y = j and x = i across the offset pieces of the
+ * benchmark's cubics (2.5 px wide at 1024 px) and the tight arc (0.3 and 0.05 wide) by
+ * fma's double-double form, from starts spread over the bracket (its 23 inner 24ths and
+ * within 1e-3 of either end), which test_roots_batch's, within 3e-2 of the root, do not
+ * take far: Newton's first step beyond the bracket or over half its width; shuffled and
+ * asked in batches of 1 to 9, eight and four lanes. */
+static void test_roots_far(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    const int n = 1024;
+    size_t cap = 1 << 15, nr = 0, nfx = 0;
+    aa__offset_rootq *rq = malloc(cap * sizeof *rq);
+    aa__offset_fix *fxs = malloc(4096 * sizeof *fxs);
+    aa_scene *keep[3];
+    assert_non_null(rq);
+    assert_non_null(fxs);
+    for (int sc = 0; sc < 3; sc++) {
+        aa_scene *s;
+        if (sc == 0) {
+            st.width = 2.5 / n;
+            s = bench_rows_stroke(NULL, 3, &st); /* three of the benchmark's rows */
+        } else {
+            st.width = sc == 2 ? 0.05 : 0.3;
+            s = stroke_scene(tight, 1, &st, NULL);
+        }
+        aa_scene *placed = aa_scene_place(s, n, n, 0, 0, 0);
+        assert_non_null(placed);
+        aa_scene_free(s);
+        keep[sc] = placed;
+        size_t np;
+        const aa_piece *pc = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pc[k].kind != AA_PIECE_OFFSET)
+                continue;
+            const aa_offset_curve *oc = &pc[k].oc;
+            aa__offset_fix *fx = &fxs[nfx++];
+            assert_true(nfx <= 4096);
+            aa__offset_fix_dd(oc, fx, 1);
+            double t0 = pc[k].ot0, t1 = pc[k].ot1;
+            for (int coord = 1; coord >= 0; coord--) {
+                double ts[4];
+                int nt = monotone_spans(oc, coord, t0, t1, ts);
+                for (int e = 0; e + 1 < nt; e++) {
+                    double a = ts[e], b = ts[e + 1], Pa[2], Pb[2];
+                    aa_offset_point(oc, a, &Pa[0], &Pa[1], NULL, NULL);
+                    aa_offset_point(oc, b, &Pb[0], &Pb[1], NULL, NULL);
+                    double lo = fmin(Pa[coord], Pb[coord]), hi = fmax(Pa[coord], Pb[coord]);
+                    for (double j = ceil(lo + 1e-9); j < hi - 1e-9; j += 5) {
+                        for (int g = 0; g < 27; g++) {
+                            /* the 24ths, then 1e-3 and 1e-5 from a and b */
+                            double w = g < 25 ? 1e-3 : 1e-5;
+                            double r = g < 23 ? (g + 1) / 24.0 : g & 1 ? 1.0 - w : w;
+                            if (nr == cap) {
+                                cap *= 2;
+                                rq = realloc(rq, cap * sizeof *rq);
+                                assert_non_null(rq);
+                            }
+                            rq[nr++] = (aa__offset_rootq){oc, fx, coord, a, b, Pa[coord] - j, j,
+                                                          a + r * (b - a), NULL, NULL, NULL, 0.0};
+                        }
+                    }
+                }
+            }
+        }
+    }
+    uint64_t lcg = 6789; /* shuffled (a fixed LCG) */
+    for (size_t i = nr - 1; i > 0; i--) {
+        lcg = lcg * 6364136223846793005u + 1442695040888963407u;
+        size_t j = (size_t)(lcg >> 33) % (i + 1);
+        aa__offset_rootq tmp = rq[i];
+        rq[i] = rq[j], rq[j] = tmp;
+    }
+    /* outputs zeroed first, so that a long double's padding compares
+     * equal too; every third request asks the other coordinate, not the
+     * point */
+    long double(*want)[2] = calloc(nr, sizeof *want), (*got)[2] = calloc(nr, sizeof *got);
+    double *twant = malloc(nr * sizeof *twant);
+    aa__offset_rootq *bq = malloc(nr * sizeof *bq);
+    assert_non_null(want);
+    assert_non_null(got);
+    assert_non_null(twant);
+    assert_non_null(bq);
+    for (size_t i = 0; i < nr; i++) {
+        const aa__offset_rootq *r = &rq[i];
+        if (i % 3)
+            twant[i] = aa__offset_root_xyd(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa,
+                                           r->target, r->guess, NULL, want[i]);
+        else
+            twant[i] = aa__offset_root_fixd(r->oc, r->fx, r->coord, r->ta, r->tb, r->fa,
+                                            r->target, r->guess, &want[i][0]);
+    }
+    for (int lanes = 8; lanes >= 4; lanes -= 4) {
+        for (size_t i = 0; i < nr; i++) {
+            bq[i] = rq[i], bq[i].t = NAN;
+            memset(got[i], 0, sizeof got[i]);
+            bq[i].xy = i % 3 ? got[i] : NULL;
+            bq[i].other = i % 3 ? NULL : &got[i][0];
+        }
+        for (size_t i = 0, len = 1; i < nr; i += len, len = len % 9 + 1)
+            aa__offset_roots_lanes(bq + i, nr - i < len ? nr - i : len, lanes);
+        for (size_t i = 0; i < nr; i++)
+            if (memcmp(&bq[i].t, &twant[i], sizeof twant[i]) != 0 ||
+                memcmp(got[i], want[i], sizeof want[i]) != 0)
+                fail_msg("lanes %d, request %zu (coord %d, [%.17g, %.17g], target %.17g, guess "
+                         "%.17g): t %.17g, one by one %.17g; (%.20Lg, %.20Lg) against (%.20Lg, "
+                         "%.20Lg)",
+                         lanes, i, bq[i].coord, bq[i].ta, bq[i].tb, bq[i].target, bq[i].guess,
+                         bq[i].t, twant[i], got[i][0], got[i][1], want[i][0], want[i][1]);
+    }
+    print_message("%zu roots from starts spread over their brackets, in batches of 1 to 9: "
+                  "the same bits as one by one\n",
+                  nr);
+    assert_true(nr > 10000);
+    free(want);
+    free(got);
+    free(twant);
+    free(bq);
+    free(rq);
+    free(fxs);
+    for (int i = 0; i < 3; i++)
+        aa_scene_free(keep[i]);
+}
+
 int main(void)
 {
     SAN_CASES_PRINT();
@@ -3536,6 +3667,7 @@ int main(void)
                                        cmocka_unit_test(test_turn_starts),
                                        cmocka_unit_test(test_sides_apart),
                                        cmocka_unit_test(test_side_batch),
-                                       cmocka_unit_test(test_common_starts)};
+                                       cmocka_unit_test(test_common_starts),
+                                       cmocka_unit_test(test_roots_far)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

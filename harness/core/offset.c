@@ -1131,9 +1131,9 @@ root_dd_more_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
 
 /* The double phase's loop after its evaluation it0 - 1 (solve_step's
  * state at t), then root_dd_loop from the start, and the outputs: a jump
- * from root_dd (after its second evaluation, it0 2) or from a batch's lane
- * (after its first, it0 1), which then makes no call it returns from (no
- * registers of its caller's saved, no frame) */
+ * from root_dd or from a batch's lane (after its second evaluation, it0
+ * 2), which then makes no call it returns from (no registers of its
+ * caller's saved, no frame) */
 static __attribute__((always_inline)) inline double
 root_d_more(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta, double tb,
             double a, double b, int neg, double target, double t, double prev, int unseen,
@@ -1145,8 +1145,8 @@ root_d_more(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, doub
     return root_dd_loop(oc, fx, coord, target, neg, t, ta, tb, 0, xy, other, fma);
 }
 
-/* root_dd's (Dekker's products), from the third evaluation; the lanes'
- * form (from the second) is root_d_more_fma alone: they run with FMA */
+/* root_dd's (Dekker's products), from the third evaluation; the lanes
+ * run with FMA and go on by root_d_more2_fma alone */
 static __attribute__((noinline)) double
 root_d_more2_split(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
                   double tb, double a, double b, int neg, double target, double t, double prev,
@@ -1156,17 +1156,7 @@ root_d_more2_split(const aa_offset_curve *oc, const aa__offset_fix *fx, int coor
                        2, 0);
 }
 
-/* the lanes' (offset_lanes.h) */
-static __attribute__((noinline, target("fma"))) double
-root_d_more_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
-                double tb, double a, double b, int neg, double target, double t, double prev,
-                int unseen, double size, long double xy[2], long double *other)
-{
-    return root_d_more(oc, fx, coord, ta, tb, a, b, neg, target, t, prev, unseen, size, xy, other,
-                       1, 1);
-}
-
-/* root_dd's */
+/* root_dd's and a batch's lanes' (offset_lanes.h) */
 static __attribute__((noinline, target("fma"))) double
 root_d_more2_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord, double ta,
                  double tb, double a, double b, int neg, double target, double t, double prev,
@@ -1184,9 +1174,10 @@ root_d_more2_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
  * (root_dd_ends_*: no start or fa 0, 2%; root_d_more_*: the double
  * phase on, 16%; root_dd_more_*: a second double-double step, 0.1%).
  * The double phase's second step is inline too: of the 45,069 single
- * roots a render at 1024 px 13,520 took it in root_d_more_fma (544
- * instructions each), 433 now go on past it (root_d_more2_*), and a root
- * takes 537.5 instructions against 552.7 (algorithms/README.md).
+ * roots a render at 1024 px 13,520 took it out of line (then the lanes'
+ * continuation, 544 instructions each), 433 now go on past it
+ * (root_d_more2_*), and a root takes 537.5 instructions against 552.7
+ * (algorithms/README.md).
  * The operations are solve_double's and root_dd_loop's from the start,
  * in the same order, so the roots and points are the same bit for bit.
  * As one function with its loops (each evaluation inline in them) the
@@ -1288,16 +1279,19 @@ double aa__offset_root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *f
 /* root_dd on four (or eight) requests at once, one a lane of AVX's
  * packed doubles (__m256d; the double-double form's pairs of x and y as
  * two vectors, not one dd_v2): each lane the operations of root_dd's
- * common path (eval_dd, solve_step's stop at the first evaluation,
- * dd_point_parts, dd_step's stop at the first step, dd_out) in their order, where the scalar form
- * chooses by a test both results computed and one blended in (no lane's
- * operation takes another lane's value), fma only where dd_two_prod has
- * it: each root and point the scalar one bit for bit
- * (tests/test_area_offset.c, test_roots_batch).  A lane that leaves the
- * common path is finished one by one by root_dd's continuations from its
- * own state (solve_step again on its lane's first evaluation, then
- * root_d_more_fma; dd_step again on its lane's parts, then
- * root_dd_more_fma).  The four curves' coefficients are loaded and
+ * common path (eval_dd, solve_step's stop at the first evaluation or,
+ * where a lane does not stop there, its next point and second step, as
+ * root_dd takes it inline; dd_point_parts, dd_step's stop at the first
+ * step, dd_out) in their order, where the scalar form chooses by a test
+ * both results computed and one blended in (no lane's operation takes
+ * another lane's value), fma only where dd_two_prod has it: each root and
+ * point the scalar one bit for bit (tests/test_area_offset.c,
+ * test_roots_batch).  A lane that leaves the common path is finished one
+ * by one by root_dd's continuations from its own state (solve_step again
+ * on its lane's second evaluation, then root_d_more2_fma; dd_step again
+ * on its lane's parts, then root_dd_more_fma).  The second step in the
+ * lanes took the lanes sent on alone from 6,309 of 77,326 a render at
+ * 1024 px to 9 (algorithms/README.md).  The four curves' coefficients are loaded and
  * transposed once a batch.  It replaced two requests interleaved in
  * scalar registers (roots2_fma, whose state spilled to the stack, 565
  * stack accesses): one render of tests/bench_bezstroke.c at 1024 px 206.3

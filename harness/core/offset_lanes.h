@@ -209,28 +209,61 @@ static __attribute__((noinline, target(VTARGET))) void VROOTS(aa__offset_rootq *
     VD sc = VF(max)(VF(abs)(t), one);
     VM sn = VF(le)(VF(abs)(next - t), DD_D_STEP * sc);
     VD cl = VF(min)(VF(max)(next, VF(min)(a, b)), VF(max)(b, a));
-    VM skeep = VF(or)(sa, sb);
+    VM skeep = VF(or)(sa, sb), s1 = VF(or)(skeep, sn);
     int all = (1 << n) - 1;
-    int go = VF(bits)(VF(or)(skeep, sn)) & all;
-    t = VF(sel)(skeep, cl, t);
-    if (go != all) { /* the lanes on: the double phase's loop (root_d_more_fma) */
-        double fv[VN], dfv[VN], dnv[VN];
-        VF(st)(fv, f), VF(st)(dfv, df), VF(st)(dnv, dn);
-        for (int k = 0; k < n; k++) {
-            if (go >> k & 1)
-                continue;
-            aa__offset_rootq *q = r[k];
-            int ng = q->fa < 0, unseen = 1;
-            double size1 = q->fx->dsize[q->coord] + fabs(q->target);
-            double t1 = q->guess, a1 = q->ta, b1 = q->tb, prev = fabs(q->tb - q->ta), last;
-            solve_step(fv[k], dfv[k], dnv[k], size1, DD_D_STEP, ng, &t1, &a1, &b1, &prev,
-                       &unseen, &last);
-            q->t = root_d_more_fma(q->oc, q->fx, q->coord, q->ta, q->tb, a1, b1, ng, q->target,
-                                   t1, prev, unseen, size1, q->xy, rq_other(q));
+    int go = VF(bits)(s1) & all;
+    VD tn = VF(sel)(skeep, cl, t);
+    if (go != all) {
+        /* the lanes on: solve_step's next point (a Newton step inside
+         * the bracket and at most half the step before, the bracket's
+         * width at first; else b, unseen, where the step passes it; else
+         * the bracket's middle), then its second step there, as root_dd
+         * takes it; the lanes that stop at neither go on alone
+         * (root_d_more2_fma) */
+        VM ab = VF(lt)(a, b);
+        VM inside = VF(or)(VF(and)(ab, VF(and)(VF(gt)(next, a), VF(lt)(next, b))),
+                           VF(andnot)(ab, VF(and)(VF(lt)(next, a), VF(gt)(next, b))));
+        VM past = VF(or)(VF(and)(ab, VF(le)(b, next)), VF(andnot)(ab, VF(le)(next, b)));
+        VM jump = VF(andnot)(inside, VF(andnot)(side, past)), seen = VF(or)(side, jump);
+        VM newton = VF(andnot)(VF(gt)(VF(abs)(next - t), half * VF(abs)(tb - ta)), inside);
+        VD t2 = VF(sel)(jump, VF(sel)(newton, mid, next), b), prev = VF(abs)(t2 - t);
+        VF(eval_dd)(&C, t2, tgt, &f, &df, &dn);
+        sa = VF(le)(VF(abs)(f), 2 * DBL_EPSILON * (size + dn));
+        VM side2 = VF(xor)(VF(lt)(f, zero), neg);
+        VD a2 = VF(sel)(side2, t2, a), b2 = VF(sel)(side2, b, t2);
+        mid = half * (a2 + b2);
+        sb = VF(or)(VF(eq)(mid, a2), VF(eq)(mid, b2));
+        dfok = VF(and)(VF(ne)(df, zero), VF(lt)(VF(abs)(df), VF(set1)(INFINITY)));
+        next = VF(sel)(dfok, mid, t2 - f / df);
+        sc = VF(max)(VF(abs)(t2), one);
+        sn = VF(le)(VF(abs)(next - t2), DD_D_STEP * sc);
+        cl = VF(min)(VF(max)(next, VF(min)(a2, b2)), VF(max)(b2, a2));
+        skeep = VF(or)(sa, sb);
+        tn = VF(sel)(s1, VF(sel)(skeep, cl, t2), tn);
+        int go2 = VF(bits)(VF(or)(skeep, sn)) & all & ~go;
+        if ((go | go2) != all) {
+            double fv[VN], dfv[VN], dnv[VN], av[VN], bv[VN], tv2[VN], pv2[VN];
+            int sv = VF(bits)(seen);
+            VF(st)(fv, f), VF(st)(dfv, df), VF(st)(dnv, dn), VF(st)(av, a), VF(st)(bv, b);
+            VF(st)(tv2, t2), VF(st)(pv2, prev);
+            for (int k = 0; k < n; k++) {
+                if ((go | go2) >> k & 1)
+                    continue;
+                aa__offset_rootq *q = r[k];
+                int ng = q->fa < 0, unseen = !(sv >> k & 1);
+                double size1 = q->fx->dsize[q->coord] + fabs(q->target);
+                double t3 = tv2[k], a3 = av[k], b3 = bv[k], prev3 = pv2[k], last;
+                solve_step(fv[k], dfv[k], dnv[k], size1, DD_D_STEP, ng, &t3, &a3, &b3, &prev3,
+                           &unseen, &last);
+                q->t = root_d_more2_fma(q->oc, q->fx, q->coord, q->ta, q->tb, a3, b3, ng,
+                                        q->target, t3, prev3, unseen, size1, q->xy, rq_other(q));
+            }
         }
+        go |= go2;
         if (!go)
             return;
     }
+    t = tn;
     /* dd_step at t: its stops (the value 0, the bracket two adjacent
      * doubles, the step rounding to t, the step the last) */
     VD p[4][2], dp[2][2];
