@@ -1607,6 +1607,15 @@ static void seg_t_at(const ar_seg *s, double ya, double yb, double t[2])
         t[1] = s->p->sg * s->tb;
 }
 
+void (*aa__area_kept_solve)(const aa_piece *p, double y, double r, double ta, double tb);
+
+/* aa__area_kept_solve's call (tests only), out of line and cold: the solve tests the
+ * pointer alone */
+__attribute__((noinline, cold)) static void kept_solve_call(const ar_seg *s, double y, double r)
+{
+    aa__area_kept_solve(s->p->src, y, r, s->p->sg * s->ta, s->p->sg * s->tb);
+}
+
 /* An offset seg's parameter at height y (absolute) inside its piece, where
  * a pair's common heights begin or end away from the band's ends asked
  * about (band j = base), kept in the seg.  A vertex inside the band begins
@@ -1635,6 +1644,8 @@ static double seg_t_kept(const ar_seg *s, double y, double base)
         g = yb > ya ? ta + (s->p->sg * s->tb - ta) * ((y - ya) / (yb - ya)) : NAN;
     }
     double r = aa__offset_solve_dg(&p->oc, 1, p->ot0, p->ot1, p->y0 - y, y, g);
+    if (__builtin_expect(aa__area_kept_solve != NULL, 0))
+        kept_solve_call(s, y, r);
     w->my[w->mn] = y, w->mt[w->mn] = r, w->mn ^= 1;
     return r;
 }

@@ -865,6 +865,12 @@ void area_sort_new_keys(ar_key *k, size_t n, ar_key *tmp);
  * close (area.c, side_ask); 0, single() asks each alone.  The same roots,
  * bit for bit (tests/test_area_offset.c, test_side_batch). */
 extern int aa__area_side_batch;
+/* Tests only: NULL (as built), else called with each solve of seg_t_kept
+ * (area.c: an offset seg's parameter r at height y inside its band, where
+ * a pair's common heights begin or end), the piece and the seg's
+ * parameters at its band's ends ta and tb (tests/test_area_offset.c,
+ * test_kept_solves). */
+extern void (*aa__area_kept_solve)(const aa_piece *p, double y, double r, double ta, double tb);
 
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
  * (*out to be freed), or appended to an array (*n of *cap used, grown

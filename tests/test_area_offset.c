@@ -99,7 +99,15 @@
  *    panel, and the rule of one share the fewest points so bound;
  *  - the parameters at a pair's common heights inside a band, solved from
  *    the piece's table's start (test_common_starts): the benchmark's scene
- *    at 256 px (rows 0 to 127) against the reference within its bound.
+ *    at 256 px (rows 0 to 127) against the reference within its bound;
+ *    and each of those solves (test_kept_solves): y at the root,
+ *    evaluated here in __float128, within the solver's stated tolerance of
+ *    the height asked, and the root inside the seg's parameter range;
+ *  - parts reaching past their first panel that neither 8 nor 12 points
+ *    may take as one share (test_shares_past: rho near 1, among them an
+ *    evolute's panels next to a pole of its integrand): against the
+ *    integral computed here adaptively in __float128, within AR_QUAD_TOL
+ *    a panel the part meets.
  *
  * Under the sanitizers (AA_SANITIZED: the Makefile's sanitizer build sets
  * it for the tests) a declared subset: test_shared_ends and test_cones
@@ -1045,7 +1053,7 @@ static q128 q_sqrt(q128 x)
     return (r + x / r) / 2;
 }
 
-static void q_offset(const aa_offset_curve *oc, double t, q128 P[2], q128 dP[2])
+static void q_offset(const aa_offset_curve *oc, q128 t, q128 P[2], q128 dP[2])
 {
     const double *b = oc->b, *m = oc->m;
     q128 T = t, B[2], U[2], V[2];
@@ -3634,6 +3642,327 @@ static void test_roots_far(void **state)
         aa_scene_free(keep[i]);
 }
 
+/* ---- each solve of the parameters at a pair's common heights ---- */
+
+/* What test_kept_solves gathers from area's solves (aa__area_kept_solve) */
+static struct {
+    int solves, over, outside, cubic;
+    double worst, worst_out; /* the residual / its allowance; beyond the range / allowance */
+    double wy, wr, wta, wtb, we, wtol;
+} kept;
+
+/* One of seg_t_kept's solves (area.c): r, the piece's parameter at height
+ * y, held to the solver's stated stop (offset.c, solve_double: its double
+ * evaluation of y within 2 DBL_EPSILON of the size of its terms, the
+ * curve's coefficients times the map's, the map's offset, the normal term
+ * and the target, or a Newton step within 1e-12, which leaves an error of
+ * its square), here |y(r) - y| <= 4 DBL_EPSILON (size + |normal term|) +
+ * |y'(r)| ulp(r) (twice the stop, for that evaluation's own rounding, and
+ * r's): y(r) and y' by q_offset (__float128, from the curve's doubles);
+ * and r within the seg's parameters at its band's ends [ta, tb] (either
+ * order), beyond them only by the allowance over |y'|. */
+static void kept_solve(const aa_piece *p, double y, double r, double ta, double tb)
+{
+    const aa_offset_curve *oc = &p->oc;
+    kept.solves++;
+    if (oc->base != AA_OFFSET_CUBIC)
+        return; /* q_offset's are cubics' (none else in the scenes here) */
+    kept.cubic++;
+    q128 P[2], dP[2];
+    q_offset(oc, r, P, dP);
+    const double *b = oc->b, *m = oc->m;
+    double sx = 0.0, sy = 0.0;
+    for (int i = 0; i < 4; i++)
+        sx += fabs(b[i]), sy += fabs(b[4 + i]);
+    /* the normal term: y less the base curve's mapped y */
+    q128 T = r, bx = b[0] + T * (b[1] + T * (b[2] + T * (q128)b[3]));
+    q128 by = b[4] + T * (b[5] + T * (b[6] + T * (q128)b[7]));
+    q128 nq = P[1] - (m[1] * bx + m[3] * by + m[5]);
+    double size = fabs(m[1]) * sx + fabs(m[3]) * sy + fabs(m[5]) + fabs(y);
+    double dn = fabs((double)nq), slope = fabs((double)dP[1]);
+    double ulp = nextafter(fabs(r), INFINITY) - fabs(r);
+    double tol = 4 * DBL_EPSILON * (size + dn) + slope * ulp;
+    q128 eq = P[1] - y;
+    double e = fabs((double)eq), ratio = e / tol;
+    double lo = fmin(ta, tb), hi = fmax(ta, tb);
+    double out = r < lo ? lo - r : r > hi ? r - hi : 0.0, ro = out * slope / tol;
+    kept.over += !(ratio <= 1.0);
+    kept.outside += !(ro <= 1.0);
+    if (ratio > kept.worst || !(ratio == ratio))
+        kept.worst = ratio, kept.wy = y, kept.wr = r, kept.we = e, kept.wtol = tol;
+    if (ro > kept.worst_out)
+        kept.worst_out = ro, kept.wta = ta, kept.wtb = tb;
+}
+
+/* area's solves of an offset seg's parameter where a pair's common heights
+ * begin or end inside a band (area.c, seg_t_kept, from the piece's
+ * table's start or the chord of the seg's parameters in the band), each
+ * held directly (kept_solve, through aa__area_kept_solve): its residual
+ * |y(r) - y| evaluated here in __float128 within the solver's stated
+ * tolerance, and r inside the seg's parameters at its band's ends, over
+ * every solve of a render of the benchmark's scene at 256 px and 1024 px
+ * (4,323 and 2,651 solves; the residual at most 0.49 and 0.51 of its
+ * allowance, none outside the range) and of the tight arc's folding
+ * strokes (0.3 wide at 64 px, also sheared; 1.0 wide at 48 px).
+ * test_common_starts, against the reference, let a root moved by 1e-5 of
+ * the piece's parameter range pass; this failed with the root moved by
+ * 1e-9, 1e-12, 1e-13 and 1e-14 of the range (at 256 px 4,288, 3,917,
+ * 2,289 and 30 residuals beyond the allowance, at most 1.4e5, 139, 13.9
+ * and 1.4 times it), not with 3e-15 (0.58), and with the solve replaced
+ * by the root at y on the piece's neighbour beyond a turn of y at either
+ * end (2,663 solves outside the seg's range; the residuals within their
+ * allowance, 0.47 at most). */
+static void kept_case(const char *what, const aa_scene *s, int n)
+{
+    aa_image im;
+    memset(&kept, 0, sizeof kept);
+    aa__area_kept_solve = kept_solve;
+    support_render("area", s, "box", n, n, 1, &im, NULL);
+    aa__area_kept_solve = NULL;
+    aa_image_free(&im);
+    print_message("%-28s %d solves (%d of cubics' offsets): the residual at most %.3g of its "
+                  "allowance (%.3g px of %.3g at y = %.17g, r = %.17g), %d beyond it; beyond "
+                  "the seg's range at most %.3g of the allowance, %d beyond it\n",
+                  what, kept.solves, kept.cubic, kept.worst, kept.we, kept.wtol, kept.wy,
+                  kept.wr, kept.over, kept.worst_out, kept.outside);
+    if (kept.over || kept.outside)
+        fail_msg("%s: %d solves beyond the residual's allowance (%.3g of it at y = %.17g, r = "
+                 "%.17g), %d outside the seg's range (%.3g of the allowance, [%.17g, %.17g])",
+                 what, kept.over, kept.worst, kept.wy, kept.wr, kept.outside, kept.worst_out,
+                 kept.wta, kept.wtb);
+    assert_true(kept.cubic > 0 && kept.cubic == kept.solves);
+}
+
+static void test_kept_solves(void **state)
+{
+    (void)state;
+    static const int sizes[2] = {256, 1024};
+    for (int k = 0; k < 2; k++) {
+        int n = sizes[k];
+        aa_stroke_style st;
+        aa_stroke_style_default(&st);
+        st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+        st.width = 2.5 / n;
+        aa_scene *s = bench_rows_stroke(NULL, 20, &st);
+        char what[40];
+        snprintf(what, sizeof what, "the benchmark's, %d px", n);
+        kept_case(what, s, n);
+        aa_scene_free(s);
+    }
+    static const double shear[6] = {1.3, 0.2, 0.5, 0.8, -0.1, -0.05}; /* test_reference's */
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 0.3;
+    aa_scene *s = stroke_scene(tight, 1, &st, NULL);
+    kept_case("tight, w 0.3, 64 px", s, 64);
+    aa_scene_free(s);
+    s = stroke_scene(tight, 1, &st, shear);
+    kept_case("tight, w 0.3, sheared, 64 px", s, 64);
+    aa_scene_free(s);
+    st.width = 1.0;
+    s = stroke_scene(tight, 1, &st, NULL);
+    kept_case("tight, w 1.0, 48 px", s, 48);
+    aa_scene_free(s);
+}
+
+/* ---- parts reaching past their panel: never the 16-point rule in one share ---- */
+
+/* The 20-point rule (x, w) on [lo, hi] of 1/2 (P - Pa) x P', P and P'
+ * from q_offset (__float128); *g the same of |(P - Pa) x P'|. */
+static q128 q_gl20(const aa_offset_curve *oc, const q128 Pa[2], q128 lo, q128 hi,
+                   const long double *x, const long double *w, q128 *g)
+{
+    q128 h = (hi - lo) / 2, m = (lo + hi) / 2, s = 0, a = 0;
+    for (int i = 0; i < 20; i++) {
+        q128 P[2], dP[2];
+        q_offset(oc, m + h * x[i], P, dP);
+        q128 f = (P[0] - Pa[0]) * dP[1] - (P[1] - Pa[1]) * dP[0];
+        s += w[i] * f, a += w[i] * (f < 0 ? -f : f);
+    }
+    *g = (h < 0 ? -h : h) * a / 2;
+    return h * s / 2;
+}
+
+/* 1/2 the integral of (P - Pa) x P' over [lo, hi], adaptively: given
+ * whole, the 20-point rule's value there, the same rule on each half,
+ * their sum taken where it is within 1e-24 px^2 plus 1e-20 of the size of
+ * its terms (q_gl20's g) of whole, else each half so again (at most to
+ * depth 30: *deep counts the intervals that stopped there). */
+static q128 q_adapt(const aa_offset_curve *oc, const q128 Pa[2], q128 lo, q128 hi, q128 whole,
+                    const long double *x, const long double *w, int depth, int *deep)
+{
+    q128 mid = (lo + hi) / 2, ga, gb;
+    q128 a = q_gl20(oc, Pa, lo, mid, x, w, &ga), b = q_gl20(oc, Pa, mid, hi, x, w, &gb);
+    q128 e = a + b - whole;
+    if ((e < 0 ? -e : e) <= 1e-24 + 1e-20 * (ga + gb))
+        return a + b;
+    if (depth >= 30) {
+        (*deep)++;
+        return a + b;
+    }
+    return q_adapt(oc, Pa, lo, mid, a, x, w, depth + 1, deep) +
+           q_adapt(oc, Pa, mid, hi, b, x, w, depth + 1, deep);
+}
+
+/* test_shares_past's counts */
+typedef struct {
+    int parts, no812, no16, deep, met;
+    double worst, worst_no812;
+} past_stats;
+
+/* test_shares_past on `per` parts from each panel but the last of offset
+ * piece pc (a cubic's offset or evolute) */
+static void past_piece(const char *what, const aa_piece *pc, const ar_quad *quad,
+                       const long double *x1, const long double *w1, int per, uint64_t *rng,
+                       past_stats *st)
+{
+    const aa_offset_curve *oc = &pc->oc;
+    ar_piece ap;
+    ar_panel *pan = shares_piece(pc, quad, &ap);
+    size_t npan = ap.npan;
+    double tmax = pan[npan - 1].b;
+    for (size_t j = 0; j + 1 < npan; j++) {
+        const ar_panel *p = &pan[j];
+        double hmax = fmin(p->m + p->R, tmax);
+        for (int i = 0; i < per; i++) {
+            double u[2];
+            for (int e = 0; e < 2; e++) { /* uniform in [0, 1), 53 bits */
+                *rng = *rng * 6364136223846793005u + 1442695040888963407u;
+                u[e] = (double)(*rng >> 11) * 0x1p-53;
+            }
+            double ta = p->b - (p->b - p->a) * u[0];
+            double tb = hmax - (hmax - p->b) * pow(10.0, -3.0 * u[1]);
+            if (!(ta >= p->a && ta < p->b && tb > p->b && tb < hmax))
+                continue;
+            double got = area_offset_segment(&ap, i & 1 ? tb : ta, i & 1 ? ta : tb);
+            if (i & 1)
+                got = -got;
+            int dp = 0;
+            q128 Pa[2], dPa[2], g;
+            q_offset(oc, ta, Pa, dPa);
+            q128 want = q_adapt(oc, Pa, ta, tb, q_gl20(oc, Pa, ta, tb, x1, w1, &g), x1, w1, 0,
+                                &dp);
+            long double mag;
+            segment_l(oc, ta, tb, p->m, 4, 20, x1, w1, &mag);
+            st->deep += dp;
+            int panels = 0;
+            for (size_t q = j; q < npan && pan[q].a < tb; q++)
+                panels++;
+            double err = fabs((double)(got - want));
+            double tol = panels * AR_QUAD_TOL + 8 * DBL_EPSILON * (double)mag;
+            /* the part's rho on the panel's disc, and each rule's bound */
+            long double h = 0.5L * ((long double)tb - ta), mm = 0.5L * ((long double)ta + tb);
+            long double z = (p->R - fabsl(mm - p->m)) / h;
+            long double rho = z + sqrtl((z - 1) * (z + 1)), e[AR_QUAD_RULES];
+            for (int q = 0; q < AR_QUAD_RULES; q++)
+                e[q] = h * 64 * p->M / (15 * (1 - 1 / (rho * rho)) * powl(rho, 2 * quad->n[q]));
+            int cannot = z > 1 && !(e[0] <= AR_QUAD_TOL) && !(e[1] <= AR_QUAD_TOL);
+            if (!(err <= tol))
+                fail_msg("%s: [%.17g, %.17g] from panel [%.17g, %.17g] (R %g, %d panels; 8 and "
+                         "12 points' bounds %s): %.17g, here %.17g, %.2e off (allowed %.2e)",
+                         what, ta, tb, p->a, p->b, p->R, panels,
+                         cannot ? "beyond the tolerance" : "one within it", got, (double)want,
+                         err, tol);
+            st->worst = fmax(st->worst, err / tol);
+            st->parts++;
+            st->met += panels;
+            if (cannot) {
+                st->no812++;
+                st->no16 += !(e[2] <= AR_QUAD_TOL);
+                st->worst_no812 = fmax(st->worst_no812, err / tol);
+            }
+        }
+    }
+    free(pan);
+}
+
+/* Parts reaching past the end of their first panel whose Bernstein
+ * ellipse lies in that panel's disc (area_offset.c, segment).  The
+ * panel's M bounds the integrand on its disc, so on such a part's ellipse
+ * (rho from the room R - |m' - m| about the part's middle m') an n-point
+ * rule errs by at most h 64 M / (15 (1 - rho^-2) rho^(2n)), and one whose
+ * bound is within AR_QUAD_TOL may take the part as one share.  The
+ * 16-point rule rule_or_none gives where 8 and 12 fail is not such a rule:
+ * unchecked, it is a share's inside a panel (its rho at least the
+ * panel's, so its bound at most the panel's, which the panel meets), and
+ * a part reaching past its panel's rho may be near 1; such a part goes
+ * panel by panel, each share within AR_QUAD_TOL.  Here, from inside each
+ * panel (but the last) to past its end, up to where the part's ellipse
+ * leaves the disc (hi < m + R, many near there, rho near 1): the evolute
+ * of x = t, y = k (t - 1/2)^3 (k = 1 and 10, 64 px to a unit) on [0.1,
+ * 0.47], 0.03 short of its inflection, where c = B' x B'' (linear in t:
+ * its lower bound on a disc exact along the axis) vanishes, a pole of the
+ * integrand just beyond the discs of the panels next to the end; and 2
+ * parts a panel of the offsets and evolutes of the tight and the three
+ * arcs at three widths at 256 px (shares_stroke; cubics').
+ * area_offset_segment against 1/2 the integral of (P - P(ta)) x P'
+ * computed here adaptively (q_adapt: 20-point Gauss-Legendre on
+ * q_offset's __float128 points, halved until the halves agree within
+ * 1e-20 of their size), within AR_QUAD_TOL for each panel the part meets
+ * plus 8 ulps of the size the double sum's terms have (segment_l's mag).
+ * Each rule's bound is computed here (long double, powl) to count the
+ * parts neither 8 nor 12 points may take as one share, and of them those
+ * beyond 16 points' bound too (the evolutes: 128 parts, at most 0.029 of
+ * the allowance, 122 and 110; the strokes: 244, 0.020, 238 and 227).  It
+ * failed with such parts let take 16 points as one share (the evolute's,
+ * k 1, [0.28384, 0.46966] over 5 panels: 4.54e-07 off, allowed 1.75e-10);
+ * on the strokes' pieces alone that passed (976 parts, at most 0.026 of
+ * the allowance: their integrands' poles lie far outside the discs). */
+static void test_shares_past(void **state)
+{
+    (void)state;
+    ar_quad quad;
+    must(area_quad_init(&quad));
+    long double x1[20], w1[20];
+    gauss_legendre_l(20, x1, w1);
+    uint64_t rng = 192837465;
+    past_stats ev = {0}, sk = {0};
+    for (int c = 0; c < 2; c++) {
+        double k = c ? 10.0 : 1.0;
+        aa_piece pc;
+        memset(&pc, 0, sizeof pc);
+        pc.kind = AA_PIECE_OFFSET, pc.dir = 1;
+        aa_offset_curve *oc = &pc.oc;
+        oc->b[1] = 1; /* x = t; y = k (t - 1/2)^3 */
+        oc->b[4] = -0.125 * k, oc->b[5] = 0.75 * k, oc->b[6] = -1.5 * k, oc->b[7] = k;
+        const double m[6] = {64, 0, 0, 64, 3, 2};
+        memcpy(oc->m, m, sizeof m);
+        oc->evolute = 1;
+        oc->base = AA_OFFSET_CUBIC;
+        pc.ot0 = 0.1, pc.ot1 = 0.47;
+        past_piece(c ? "evolute, k 10" : "evolute, k 1", &pc, &quad, x1, w1, 16, &rng, &ev);
+    }
+    int ell = 0;
+    for (int c = 0; c < 3; c++) {
+        aa_scene *placed = shares_stroke(c);
+        size_t np;
+        const aa_piece *pc = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pc[k].kind != AA_PIECE_OFFSET)
+                continue;
+            if (pc[k].oc.base != AA_OFFSET_CUBIC) {
+                ell++;
+                continue;
+            }
+            past_piece("stroke", &pc[k], &quad, x1, w1, 2, &rng, &sk);
+        }
+        aa_scene_free(placed);
+    }
+    past_stats *sts[2] = {&ev, &sk};
+    for (int c = 0; c < 2; c++) {
+        past_stats *st = sts[c];
+        print_message("%s: %d parts past their first panel (%d panels met) within AR_QUAD_TOL a "
+                      "panel plus rounding (at most %.3f of it); %d that 8 and 12 points' "
+                      "bounds cannot take as one share (at most %.3f), %d of them beyond 16 "
+                      "points' bound too; %d intervals here at the depth limit\n",
+                      c ? "the strokes' pieces" : "the evolutes", st->parts, st->met, st->worst,
+                      st->no812, st->worst_no812, st->no16, st->deep);
+        assert_true(st->no16 > 100);
+        assert_int_equal(st->deep, 0);
+    }
+    print_message("(%d pieces on ellipses left out)\n", ell);
+}
+
 int main(void)
 {
     SAN_CASES_PRINT();
@@ -3668,6 +3997,8 @@ int main(void)
                                        cmocka_unit_test(test_sides_apart),
                                        cmocka_unit_test(test_side_batch),
                                        cmocka_unit_test(test_common_starts),
-                                       cmocka_unit_test(test_roots_far)};
+                                       cmocka_unit_test(test_roots_far),
+                                       cmocka_unit_test(test_kept_solves),
+                                       cmocka_unit_test(test_shares_past)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
