@@ -2647,14 +2647,18 @@ static void update_active(const ar_state *S, ar_worker *wk, int j)
 /* The cluster of the one seg s (cells lo..hi) if single() writes it:
  * the run before it from pixel *x in colour *c, then the seg; w and *c
  * move past it, *x to the next pixel to write.  Returns 0 (nothing
- * written) if s is not of single's kind.  Inline in the rows' passes, the
- * one-pass order's (close_cluster) and the sorted pass's. */
+ * written) if s is not of single's kind (in two cells with `batch`, as
+ * side_ask found it: every such cluster passed there first).  Inline in
+ * the rows' passes, the one-pass order's (close_cluster) and the sorted
+ * pass's. */
 __attribute__((always_inline)) static inline int close_single(const ar_row *r, const ar_seg *s,
                                                               int lo, int hi, int *x, int *w,
                                                               const double **c, const int plain,
                                                               const int batch)
 {
-    if (!(s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s, plain)))
+    if (batch && hi - lo == 1 ? !s->kind
+                              : !(s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W &&
+                                  single_kind(r, s, plain)))
         return 0;
     if (lo > *x)
         fill_run(r, *x, lo, *c);
@@ -2880,10 +2884,11 @@ static __attribute__((noinline)) void side_roots(aa__offset_rootq *q, ar_seg **q
         qs[i]->pret = q[i].t;
 }
 
-/* The side root single() takes on seg s, alone in its cluster, if s is
- * an offset piece's of its kind in two cells (close_single's tests, on
- * the fields seg_make wrote: single() then takes it without a test of its
- * own), asked in q[*n] (qs: the segs); the requests asked BAND_ROOTS at a
+/* The side root single() takes on seg s, alone in its cluster in two
+ * cells, if s is an offset piece's of its kind (close_single's tests, on
+ * the fields seg_make wrote, kept in s->kind whatever its piece:
+ * close_single then takes them, and single() the root, without a test of
+ * its own), asked in q[*n] (qs: the segs); the requests asked BAND_ROOTS at a
  * time when q is full (side_roots: aa__offset_roots, the same roots and
  * y, bit for bit, as offset_tau_u's alone), the rest by the caller
  * before the row's clusters close.  The clusters of one seg are known in
@@ -2897,8 +2902,8 @@ __attribute__((always_inline)) static inline void side_ask(const ar_row *r, ar_s
                                                           aa__offset_rootq *q, ar_seg **qs,
                                                           size_t *n)
 {
-    if (!(s->cb - s->ca == 1 && s->ca >= 0 && s->cb < r->W && s->p->curved && s->p->offset &&
-          single_kind(r, s, 0)))
+    s->kind = s->ca >= 0 && s->cb < r->W && single_kind(r, s, 0);
+    if (!(s->kind && s->p->curved && s->p->offset))
         return;
     double k = (double)(s->ca - s->c0) + 1.0; /* the common side, local */
     q[*n] = offset_side_q(s, s->ta, s->tb, s->ua - k, (double)s->c0 + k, s->ua, s->ub,

@@ -200,6 +200,10 @@ typedef struct ar_seg {
     double va, vb;  /* v there: max(0, y0 - j), min(1, y1 - j) */
     double lo, hi;  /* u extent inside the band */
     int ca, cb;     /* first and last cell touched, in [-1, W] */
+    /* a seg alone in its cluster in two cells (cb = ca + 1): of single()'s
+     * kind (the image's cells, single_kind), as side_ask found it for the
+     * row's batches, taken by close_single (not tested again there) */
+    int kind;
     /* an offset piece's root on the line y = prej + 1 (the bottom of band
      * prej) and its point there, found before the band's segs are made
      * (area.c, band_roots; INT_MIN: none), taken by seg_make; then, on an
