@@ -1020,10 +1020,14 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
      * --branch-sim: about 49,000 of 69,617 a render at 1024 px) */
     __m128d uab = _mm_set_pd(ub, ua), uba = _mm_shuffle_pd(uab, uab, 1);
     __m128d ext = _mm_move_sd(_mm_max_pd(uab, uba), _mm_min_pd(uab, uba));
-    if (s->te > ta && s->te < tb)
-        ext = extent_with(ext, plain ? u_quad(s, s->te) : u_at(s, s->te));
-    if (!plain && s->te2 > ta && s->te2 < tb)
-        ext = extent_with(ext, u_at(s, s->te2));
+    /* te2 >= te (expand's, and infinite where te is): neither inside
+     * unless te < tb, as on few segs */
+    if (s->te < tb) {
+        if (s->te > ta)
+            ext = extent_with(ext, plain ? u_quad(s, s->te) : u_at(s, s->te));
+        if (!plain && s->te2 > ta && s->te2 < tb)
+            ext = extent_with(ext, u_at(s, s->te2));
+    }
     if (special) {
         /* a conic's ends come from its angle (an offset piece's from its
          * parameter), off its exact end points
@@ -2382,11 +2386,13 @@ static inline void put(const ar_row *r, double *px, const double *cin, const dou
 /* The common cluster: one seg spanning the band, monotone in x, in one or
  * two cells of the image (single_kind and the cells checked), written
  * directly, without the cell arrays: a tenth of the cost of the general
- * path on `crow`.  w moves past the seg; returns the colour right of it. */
+ * path on `crow`.  w moves past the seg; returns the colour right of it.
+ * (te2 >= te, as seg_make tests them.) */
 static inline int single_kind(const ar_row *r, const ar_seg *s, const int plain)
 {
-    return s->p->y0 <= r->j && s->p->y1 >= r->j + 1.0 && !(s->te > s->ta && s->te < s->tb) &&
-           (plain || !(s->te2 > s->ta && s->te2 < s->tb));
+    return s->p->y0 <= r->j && s->p->y1 >= r->j + 1.0 &&
+           (!(s->te < s->tb) ||
+            (!(s->te > s->ta) && (plain || !(s->te2 > s->ta && s->te2 < s->tb))));
 }
 
 /* single()'s side root on an offset piece, asked in the row's batch

@@ -141,7 +141,10 @@ typedef struct ar_seg {
     /* a cubic's terms (0 for others): u and v gain tau^3 cx3, tau^3 cy3 */
     double cx3, cy3;
     double t0;   /* tau at the piece's top (-T) */
-    double te2;  /* a cubic's second x extremum, after te (infinite if none) */
+    /* a cubic's (an offset piece's) second x extremum, not before te
+     * (infinite if none, and where te is): seg_make and single_kind test
+     * te < tb first */
+    double te2;
     double te;   /* tau of the x extremum (infinite if none) */
     double ivy;  /* 1 / vy when ay = 0, and for a cubic (its guesses) */
     double k6;   /* (y' x'' - x' y'') / 12, constant along a parabola */
