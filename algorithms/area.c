@@ -1020,10 +1020,14 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
      * --branch-sim: about 49,000 of 69,617 a render at 1024 px) */
     __m128d uab = _mm_set_pd(ub, ua), uba = _mm_shuffle_pd(uab, uab, 1);
     __m128d ext = _mm_move_sd(_mm_max_pd(uab, uba), _mm_min_pd(uab, uba));
-    if (s->te > ta && s->te < tb)
-        ext = extent_with(ext, plain ? u_quad(s, s->te) : u_at(s, s->te));
-    if (!plain && s->te2 > ta && s->te2 < tb)
-        ext = extent_with(ext, u_at(s, s->te2));
+    /* te2 >= te (expand's, and infinite where te is): neither inside
+     * unless te < tb, as on few segs */
+    if (s->te < tb) {
+        if (s->te > ta)
+            ext = extent_with(ext, plain ? u_quad(s, s->te) : u_at(s, s->te));
+        if (!plain && s->te2 > ta && s->te2 < tb)
+            ext = extent_with(ext, u_at(s, s->te2));
+    }
     if (special) {
         /* a conic's ends come from its angle (an offset piece's from its
          * parameter), off its exact end points
@@ -2393,11 +2397,13 @@ static inline void put(const ar_row *r, double *px, const double *cin, const dou
 /* The common cluster: one seg spanning the band, monotone in x, in one or
  * two cells of the image (single_kind and the cells checked), written
  * directly, without the cell arrays: a tenth of the cost of the general
- * path on `crow`.  w moves past the seg; returns the colour right of it. */
+ * path on `crow`.  w moves past the seg; returns the colour right of it.
+ * (te2 >= te, as seg_make tests them.) */
 static inline int single_kind(const ar_row *r, const ar_seg *s, const int plain)
 {
-    return s->p->y0 <= r->j && s->p->y1 >= r->j + 1.0 && !(s->te > s->ta && s->te < s->tb) &&
-           (plain || !(s->te2 > s->ta && s->te2 < s->tb));
+    return s->p->y0 <= r->j && s->p->y1 >= r->j + 1.0 &&
+           (!(s->te < s->tb) ||
+            (!(s->te > s->ta) && (plain || !(s->te2 > s->ta && s->te2 < s->tb))));
 }
 
 /* single()'s side root on an offset piece, asked in the row's batch
@@ -2658,14 +2664,18 @@ static void update_active(const ar_state *S, ar_worker *wk, int j)
 /* The cluster of the one seg s (cells lo..hi) if single() writes it:
  * the run before it from pixel *x in colour *c, then the seg; w and *c
  * move past it, *x to the next pixel to write.  Returns 0 (nothing
- * written) if s is not of single's kind.  Inline in the rows' passes, the
- * one-pass order's (close_cluster) and the sorted pass's. */
+ * written) if s is not of single's kind (in two cells with `batch`, as
+ * side_ask found it: every such cluster passed there first).  Inline in
+ * the rows' passes, the one-pass order's (close_cluster) and the sorted
+ * pass's. */
 __attribute__((always_inline)) static inline int close_single(const ar_row *r, const ar_seg *s,
                                                               int lo, int hi, int *x, int *w,
                                                               const double **c, const int plain,
                                                               const int batch)
 {
-    if (!(s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W && single_kind(r, s, plain)))
+    if (batch && hi - lo == 1 ? !s->kind
+                              : !(s->cb - s->ca <= 1 && s->ca >= 0 && s->cb < r->W &&
+                                  single_kind(r, s, plain)))
         return 0;
     if (lo > *x)
         fill_run(r, *x, lo, *c);
@@ -2891,10 +2901,11 @@ static __attribute__((noinline)) void side_roots(aa__offset_rootq *q, ar_seg **q
         qs[i]->pret = q[i].t;
 }
 
-/* The side root single() takes on seg s, alone in its cluster, if s is
- * an offset piece's of its kind in two cells (close_single's tests, on
- * the fields seg_make wrote: single() then takes it without a test of its
- * own), asked in q[*n] (qs: the segs); the requests asked BAND_ROOTS at a
+/* The side root single() takes on seg s, alone in its cluster in two
+ * cells, if s is an offset piece's of its kind (close_single's tests, on
+ * the fields seg_make wrote, kept in s->kind whatever its piece:
+ * close_single then takes them, and single() the root, without a test of
+ * its own), asked in q[*n] (qs: the segs); the requests asked BAND_ROOTS at a
  * time when q is full (side_roots: aa__offset_roots, the same roots and
  * y, bit for bit, as offset_tau_u's alone), the rest by the caller
  * before the row's clusters close.  The clusters of one seg are known in
@@ -2908,8 +2919,8 @@ __attribute__((always_inline)) static inline void side_ask(const ar_row *r, ar_s
                                                           aa__offset_rootq *q, ar_seg **qs,
                                                           size_t *n)
 {
-    if (!(s->cb - s->ca == 1 && s->ca >= 0 && s->cb < r->W && s->p->curved && s->p->offset &&
-          single_kind(r, s, 0)))
+    s->kind = s->ca >= 0 && s->cb < r->W && single_kind(r, s, 0);
+    if (!(s->kind && s->p->curved && s->p->offset))
         return;
     double k = (double)(s->ca - s->c0) + 1.0; /* the common side, local */
     q[*n] = offset_side_q(s, s->ta, s->tb, s->ua - k, (double)s->c0 + k, s->ua, s->ub,

@@ -141,7 +141,10 @@ typedef struct ar_seg {
     /* a cubic's terms (0 for others): u and v gain tau^3 cx3, tau^3 cy3 */
     double cx3, cy3;
     double t0;   /* tau at the piece's top (-T) */
-    double te2;  /* a cubic's second x extremum, after te (infinite if none) */
+    /* a cubic's (an offset piece's) second x extremum, not before te
+     * (infinite if none, and where te is): seg_make and single_kind test
+     * te < tb first */
+    double te2;
     double te;   /* tau of the x extremum (infinite if none) */
     double ivy;  /* 1 / vy when ay = 0, and for a cubic (its guesses) */
     double k6;   /* (y' x'' - x' y'') / 12, constant along a parabola */
@@ -200,6 +203,10 @@ typedef struct ar_seg {
     double va, vb;  /* v there: max(0, y0 - j), min(1, y1 - j) */
     double lo, hi;  /* u extent inside the band */
     int ca, cb;     /* first and last cell touched, in [-1, W] */
+    /* a seg alone in its cluster in two cells (cb = ca + 1): of single()'s
+     * kind (the image's cells, single_kind), as side_ask found it for the
+     * row's batches, taken by close_single (not tested again there) */
+    int kind;
     /* an offset piece's root on the line y = prej + 1 (the bottom of band
      * prej) and its point there, found before the band's segs are made
      * (area.c, band_roots; INT_MIN: none), taken by seg_make; then, on an
