@@ -1686,6 +1686,10 @@ typedef struct gen_span_ctx {
      * lin_enc of it ("gradients in linear light"); 0: the encoded channel
      * is v0 + v1 t itself */
     int pw[GEN_LAYERS][3];
+    /* enc0[l][ch]: lin_enc(v0) where pw[l][ch] and v1 = 0 (a stop's
+     * colour held, or a channel the stops keep), the encoded channel at
+     * every x of the piece whose t is finite (v0 + 0 t is v0 there) */
+    double enc0[GEN_LAYERS][3];
     double K[3][243];
     int nk;
     /* K's nonzero terms of each channel, in a's order (gen_terms): term i
@@ -2954,6 +2958,16 @@ static double gen_t(const gen_span_ctx *c, int l, double s)
 /* e of each channel at real x (on the current piece). */
 static void fold_eval(const gen_span_ctx *c, double x, double *e);
 
+/* The encoded value of layer l's channel ch at t, its linear value v =
+ * v0 + v1 t (gen_span_ctx's pw, enc0): lin_enc(v0) kept for the piece
+ * where v1 = 0, the same bits as lin_enc(v) at a finite t. */
+static inline double gen_enc(const gen_span_ctx *c, int l, int ch, double t, double v)
+{
+    if (!c->pw[l][ch])
+        return v;
+    return c->v1[l][ch] == 0.0 && isfinite(t) ? c->enc0[l][ch] : lin_enc(v);
+}
+
 static void gen_eval(const gen_span_ctx *c, double x, double *e)
 {
     double f[GEN_MAX][3][3];
@@ -2967,7 +2981,7 @@ static void gen_eval(const gen_span_ctx *c, double x, double *e)
             double v = c->v0[l][ch] + c->v1[l][ch] * t;
             f[l][ch][0] = 1.0;
             f[l][ch][1] = op;
-            f[l][ch][2] = op * (c->pw[l][ch] ? lin_enc(v) : v);
+            f[l][ch][2] = op * gen_enc(c, l, ch, t, v);
         }
     }
     /* a zero term adds +-0 to s, which is never -0: left out */
@@ -3367,14 +3381,21 @@ static double gen_rule_bound(const gen_span_ctx *c, double m, double h, const in
         } else if (c->weighted)
             worst *= wt_bound(c, wa, m, h, A, B);
         double F = h * (64.0 / 15.0) * worst / (rho * rho - 1.0);
-        for (int r = 0; r < GEN_NLO; r++) {
+        /* the 20-point rule's bound first: a shorter rule's, F rho^(-2 n)
+         * with n < RAD_GL, is no smaller (rmax > 1 + 1e-9 puts rho above
+         * 1 + 6e-11, so rho^(-2 n) is above rho^(-2 RAD_GL) by a factor of
+         * 1 + 1.2e-9 at least, far more than pow's rounding), so where that
+         * is not enough neither is any shorter one's, whose pows are then
+         * not taken; the same bound and rule come out */
+        double b20 = F * pow(rho, -2.0 * RAD_GL);
+        for (int r = 0; r < GEN_NLO && b20 <= enough; r++) {
             double b = F * pow(rho, -2.0 * GEN_LO[r]);
             if (b <= enough) {
                 *lo = r;
                 return b;
             }
         }
-        best = fmin(best, F * pow(rho, -2.0 * RAD_GL));
+        best = fmin(best, b20);
         if (best <= enough)
             break;
     }
@@ -3731,7 +3752,7 @@ static void fold_eval(const gen_span_ctx *c, double x, double *e)
         a[l] = op;
         for (int ch = 0; ch < c->nch; ch++) {
             double v = c->v0[l][ch] + c->v1[l][ch] * t;
-            ac[l][ch] = op * (c->pw[l][ch] ? lin_enc(v) : v);
+            ac[l][ch] = op * gen_enc(c, l, ch, t, v);
         }
     }
     int d = 0;
@@ -4322,9 +4343,11 @@ static void gen_span(worker *w, double xa, double xb, double y, int nch, double 
                 /* linear light: the stops cut where a channel passes
                  * LIN_T, so on the piece it keeps to one side: below,
                  * the encoding is 12.92 v, affine; above, its power */
-                if (c.v0[l][ch] + c.v1[l][ch] * tm > LIN_T)
+                if (c.v0[l][ch] + c.v1[l][ch] * tm > LIN_T) {
                     c.pw[l][ch] = 1;
-                else
+                    if (c.v1[l][ch] == 0.0)
+                        c.enc0[l][ch] = lin_enc(c.v0[l][ch]);
+                } else
                     c.v0[l][ch] *= 12.92, c.v1[l][ch] *= 12.92;
             }
         }
