@@ -876,7 +876,8 @@ extern int aa__area_side_batch;
  * (area.c: an offset seg's parameter r at height y inside its band, where
  * a pair's common heights begin or end), the piece and the seg's
  * parameters at its band's ends ta and tb (tests/test_area_offset.c,
- * test_kept_solves). */
+ * test_kept_solves).  It is called from the render's worker threads: the
+ * callback must be thread-safe, or the render run on one thread. */
 extern void (*aa__area_kept_solve)(const aa_piece *p, double y, double r, double ta, double tb);
 
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
