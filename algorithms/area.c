@@ -2394,11 +2394,8 @@ static inline void put(const ar_row *r, double *px, const double *cin, const dou
     store_px(r, px, v);
 }
 
-/* The common cluster: one seg spanning the band, monotone in x, in one or
- * two cells of the image (single_kind and the cells checked), written
- * directly, without the cell arrays: a tenth of the cost of the general
- * path on `crow`.  w moves past the seg; returns the colour right of it.
- * (te2 >= te, as seg_make tests them.) */
+/* Whether s is of single()'s kind: it spans the band and has no x extremum
+ * inside it (te < tb first: te2 >= te, as seg_make tests them). */
 static inline int single_kind(const ar_row *r, const ar_seg *s, const int plain)
 {
     return s->p->y0 <= r->j && s->p->y1 >= r->j + 1.0 &&
@@ -2416,7 +2413,11 @@ static inline double side_taken(const ar_seg *s)
     return t;
 }
 
-/* `batch` (a constant where it is inlined): an offset piece's side root
+/* The common cluster: one seg spanning the band, monotone in x, in one or
+ * two cells of the image (single_kind and the cells checked), written
+ * directly, without the cell arrays: a tenth of the cost of the general
+ * path on `crow`.  w moves past the seg; returns the colour right of it.
+ * `batch` (a constant where it is inlined): an offset piece's side root
  * is the row's batch's (side_ask asked it: single's kind, two cells) */
 __attribute__((always_inline)) static inline const double *
 single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int plain,
@@ -3552,7 +3553,8 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     size_t nl = (size_t)(S->nl > 0 ? S->nl : 1);
     /* Not cleared (the last argument 0): the lists of indices and keys and
      * the clip's levels are written up to their counts before they are
-     * read, and a seg's fields by seg_make, expand and band_fields, but for
+     * read, and a seg's fields by seg_make, expand and band_fields (its kind
+     * by side_ask, read only on the segs it asked in the row), but for
      * those set below (its piece none, no anchor, no band line kept, its
      * table's hint the first interval, no x kept at a pair's ends, no
      * root of band_roots).

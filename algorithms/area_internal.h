@@ -205,7 +205,8 @@ typedef struct ar_seg {
     int ca, cb;     /* first and last cell touched, in [-1, W] */
     /* a seg alone in its cluster in two cells (cb = ca + 1): of single()'s
      * kind (the image's cells, single_kind), as side_ask found it for the
-     * row's batches, taken by close_single (not tested again there) */
+     * row's batches, taken by close_single (not tested again there); set
+     * only on those segs, by side_ask in the row, and read only there */
     int kind;
     /* an offset piece's root on the line y = prej + 1 (the bottom of band
      * prej) and its point there, found before the band's segs are made
