@@ -3520,8 +3520,29 @@ static void test_common_starts(void **state)
  * benchmark's cubics (2.5 px wide at 1024 px) and the tight arc (0.3 and 0.05 wide) by
  * fma's double-double form, from starts spread over the bracket (its 23 inner 24ths and
  * within 1e-3 of either end), which test_roots_batch's, within 3e-2 of the root, do not
- * take far: Newton's first step beyond the bracket or over half its width; shuffled and
- * asked in batches of 1 to 9, eight and four lanes. */
+ * take far: Newton's first step beyond the bracket or over half its width; and each span's
+ * line through its end b, whose root is at the bracket's end (the second step's stop on
+ * the value and its clamp to the bracket), and the line x = 946.95 across the benchmark's
+ * rows stroked 12 px wide (a lane going on alone with b's unseen mark inverted takes
+ * another path there, its point 5e-17 px off); shuffled and asked in batches of 1 to 9,
+ * eight and four lanes. */
+static void far_line(aa__offset_rootq **rq, size_t *nr, size_t *cap, const aa_offset_curve *oc,
+                     const aa__offset_fix *fx, int coord, double a, double b, double fa, double j)
+{
+    for (int g = 0; g < 27; g++) {
+        /* the 24ths, then 1e-3 and 1e-5 from a and b */
+        double w = g < 25 ? 1e-3 : 1e-5;
+        double r = g < 23 ? (g + 1) / 24.0 : g & 1 ? 1.0 - w : w;
+        if (*nr == *cap) {
+            *cap *= 2;
+            *rq = realloc(*rq, *cap * sizeof **rq);
+            assert_non_null(*rq);
+        }
+        (*rq)[(*nr)++] =
+            (aa__offset_rootq){oc, fx, coord, a, b, fa, j, a + r * (b - a), NULL, NULL, NULL, 0.0};
+    }
+}
+
 static void test_roots_far(void **state)
 {
     (void)state;
@@ -3529,16 +3550,16 @@ static void test_roots_far(void **state)
     aa_stroke_style_default(&st);
     st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
     const int n = 1024;
-    size_t cap = 1 << 15, nr = 0, nfx = 0;
+    size_t cap = 1 << 15, nr = 0, nfx = 0, nwide = 0;
     aa__offset_rootq *rq = malloc(cap * sizeof *rq);
     aa__offset_fix *fxs = malloc(4096 * sizeof *fxs);
-    aa_scene *keep[3];
+    aa_scene *keep[4];
     assert_non_null(rq);
     assert_non_null(fxs);
-    for (int sc = 0; sc < 3; sc++) {
+    for (int sc = 0; sc < 4; sc++) {
         aa_scene *s;
-        if (sc == 0) {
-            st.width = 2.5 / n;
+        if (sc == 0 || sc == 3) {
+            st.width = (sc ? 12.0 : 2.5) / n;
             s = bench_rows_stroke(NULL, 3, &st); /* three of the benchmark's rows */
         } else {
             st.width = sc == 2 ? 0.05 : 0.3;
@@ -3566,20 +3587,17 @@ static void test_roots_far(void **state)
                     aa_offset_point(oc, a, &Pa[0], &Pa[1], NULL, NULL);
                     aa_offset_point(oc, b, &Pb[0], &Pb[1], NULL, NULL);
                     double lo = fmin(Pa[coord], Pb[coord]), hi = fmax(Pa[coord], Pb[coord]);
-                    for (double j = ceil(lo + 1e-9); j < hi - 1e-9; j += 5) {
-                        for (int g = 0; g < 27; g++) {
-                            /* the 24ths, then 1e-3 and 1e-5 from a and b */
-                            double w = g < 25 ? 1e-3 : 1e-5;
-                            double r = g < 23 ? (g + 1) / 24.0 : g & 1 ? 1.0 - w : w;
-                            if (nr == cap) {
-                                cap *= 2;
-                                rq = realloc(rq, cap * sizeof *rq);
-                                assert_non_null(rq);
-                            }
-                            rq[nr++] = (aa__offset_rootq){oc, fx, coord, a, b, Pa[coord] - j, j,
-                                                          a + r * (b - a), NULL, NULL, NULL, 0.0};
+                    if (sc == 3) {
+                        if (coord == 0 && lo < 946.95 && hi > 946.95) {
+                            far_line(&rq, &nr, &cap, oc, fx, 0, a, b, Pa[0] - 946.95, 946.95);
+                            nwide += 27;
                         }
+                        continue;
                     }
+                    for (double j = ceil(lo + 1e-9); j < hi - 1e-9; j += 5)
+                        far_line(&rq, &nr, &cap, oc, fx, coord, a, b, Pa[coord] - j, j);
+                    far_line(&rq, &nr, &cap, oc, fx, coord, a, b, Pa[coord] - Pb[coord],
+                             Pb[coord]);
                 }
             }
         }
@@ -3628,17 +3646,18 @@ static void test_roots_far(void **state)
                          lanes, i, bq[i].coord, bq[i].ta, bq[i].tb, bq[i].target, bq[i].guess,
                          bq[i].t, twant[i], got[i][0], got[i][1], want[i][0], want[i][1]);
     }
-    print_message("%zu roots from starts spread over their brackets, in batches of 1 to 9: "
-                  "the same bits as one by one\n",
-                  nr);
+    print_message("%zu roots from starts spread over their brackets (%zu on x = 946.95, 12 px "
+                  "wide), in batches of 1 to 9: the same bits as one by one\n",
+                  nr, nwide);
     assert_true(nr > 10000);
+    assert_true(nwide >= 27);
     free(want);
     free(got);
     free(twant);
     free(bq);
     free(rq);
     free(fxs);
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 4; i++)
         aa_scene_free(keep[i]);
 }
 

@@ -1171,12 +1171,13 @@ root_d_more2_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
  * DD_D_STEP and whose first double-double step is the last (on
  * tests/bench_bezstroke.c's scene at 1024 px 82% of the 100,812 roots a
  * render); the rest by a jump out of line, with the state as it stands
- * (root_dd_ends_*: no start or fa 0, 2%; root_d_more_*: the double
- * phase on, 16%; root_dd_more_*: a second double-double step, 0.1%).
+ * (root_dd_ends_*: no start or fa 0, 2%; root_d_more2_*: the double
+ * phase on past its second step; root_dd_more_*: a second double-double
+ * step, 0.1%).
  * The double phase's second step is inline too: of the 45,069 single
- * roots a render at 1024 px 13,520 took it out of line (then the lanes'
- * continuation, 544 instructions each), 433 now go on past it
- * (root_d_more2_*), and a root takes 537.5 instructions against 552.7
+ * roots a render at 1024 px 13,520 took it out of line (by a
+ * continuation from the second evaluation, 544 instructions each, since
+ * gone), 433 now go on past it (root_d_more2_*), and a root takes 537.5 instructions against 552.7
  * (algorithms/README.md).
  * The operations are solve_double's and root_dd_loop's from the start,
  * in the same order, so the roots and points are the same bit for bit.
@@ -1291,8 +1292,8 @@ double aa__offset_root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *f
  * on its lane's second evaluation, then root_d_more2_fma; dd_step again
  * on its lane's parts, then root_dd_more_fma).  The second step in the
  * lanes took the lanes sent on alone from 6,309 of 77,326 a render at
- * 1024 px to 9 (algorithms/README.md).  The four curves' coefficients are loaded and
- * transposed once a batch.  It replaced two requests interleaved in
+ * 1024 px to 9 (algorithms/README.md).  The four curves' coefficients
+ * are loaded and transposed once a batch.  It replaced two requests interleaved in
  * scalar registers (roots2_fma, whose state spilled to the stack, 565
  * stack accesses): one render of tests/bench_bezstroke.c at 1024 px 206.3
  * M instructions to 191.8 M, at 256 px 244.7 M to 241.9 M
