@@ -1010,19 +1010,35 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
          * about the point given where ta is the piece's end (the
          * outline's vertex Q, off the curve: the polygon's edges (P_k - Q)
          * x (P_k+1 - P_k) / 2 hold about any Q), the ends relative to the
-         * first panel's B(m) (a cubic's Taylor form and an ellipse's form
-         * about m are exact everywhere) */
+         * first panel's B(m): each share's start relative to its own
+         * panel's plus the two B(m) apart, the part's end by the first
+         * panel's form (a cubic's Taylor form and an ellipse's form about m
+         * are exact everywhere) */
         const ar_panel *p0 = &pan[k];
         double x0, y0, xa, ya, xb, yb;
-        rel_point(oc, p0, lo, &xa, &ya);
-        x0 = xa, y0 = ya;
+        rel_point(oc, p0, lo, &ax, &ay);
+        x0 = xa = ax, y0 = ya = ay;
         if (u == u && (ta == pc->ot0 || ta == pc->ot1))
             start_at(oc, p0, det, px, u, py, v, &x0, &y0);
         seg = 0.0;
         for (double al = lo; k < n && al < hi; k++) {
             double be = k + 1 < n && pan[k].b < hi ? pan[k].b : hi;
-            seg += share(pc, &pan[k], al, be, avx);
-            rel_point(oc, p0, be, &xb, &yb);
+            double h = 0.5 * (be - al), mm = 0.5 * (al + be);
+            if (h > 0.0)
+                seg += share_by(pc, &pan[k], al, be, ax, ay, rule(&pan[k], h, mm), avx);
+            if (be < hi) {
+                /* the next share's start, relative to its panel's B(m),
+                 * and to the first's by the two B(m) in the image */
+                const ar_panel *q = &pan[k + 1];
+                double dx = (q->qx[0] - p0->qx[0]) + (q->qx[1] - p0->qx[1]);
+                double dy = (q->qy[0] - p0->qy[0]) + (q->qy[1] - p0->qy[1]);
+                const double *m = oc->m;
+                rel_point(oc, q, be, &ax, &ay);
+                xb = ax + (m[3] * dx - m[2] * dy) / det;
+                yb = ay + (m[0] * dy - m[1] * dx) / det;
+            } else {
+                rel_point(oc, p0, be, &xb, &yb);
+            }
             seg += 0.5 * ((xa - x0) * (yb - ya) - (ya - y0) * (xb - xa));
             xa = xb, ya = yb, al = be;
         }
