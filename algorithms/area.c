@@ -1140,7 +1140,7 @@ __attribute__((always_inline)) static inline void sub_end(const ar_seg *s, doubl
  * relative to its column) inside the column, and its height *dy
  * (part_area_quad: of a line or a quadratic). */
 static double part_area_curved(const ar_seg *s, double ta, double tb, double ua, double ub,
-                               double *dy);
+                               double kc, double *dy);
 
 static inline double part_area_quad(const ar_seg *s, double ta, double tb, double ua,
                                     double ub, double *dy)
@@ -1151,10 +1151,10 @@ static inline double part_area_quad(const ar_seg *s, double ta, double tb, doubl
 }
 
 static inline double part_area(const ar_seg *s, double ta, double tb, double ua, double ub,
-                               double *dy)
+                               double kc, double *dy)
 {
     if (s->p->curved)
-        return part_area_curved(s, ta, tb, ua, ub, dy);
+        return part_area_curved(s, ta, tb, ua, ub, kc, dy);
     return part_area_quad(s, ta, tb, ua, ub, dy);
 }
 
@@ -1178,7 +1178,9 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
  * chord's distance across it, so the chord's rounding (and a side's
  * root's, about 1e-14 px) moves it by about 4e-14 times that (on
  * tests/bench_bezstroke.c's scene at 1024 px 5,948 evaluations a render,
- * 354 instructions each). */
+ * 354 instructions each).  The segment is taken about the row's point at
+ * ta (part_area_curved), V where ta is the piece's end: 1/2 (E - V) x (E'
+ * - E) more than about E, which the polygon's area takes back. */
 __attribute__((noinline)) static double offset_end_poly(const ar_seg *s, double ta, double tb,
                                                         double du, double dv, int ea, int eb)
 {
@@ -1204,6 +1206,8 @@ __attribute__((noinline)) static double offset_end_poly(const ar_seg *s, double 
         const long double *A = P[k], *B = P[(k + 1) & 3];
         a += ((B[1] - y0) - (A[1] - y0)) * ((A[0] - x0) + (B[0] - x0));
     }
+    if (ea) /* the segment taken about V, not E: 1/2 (E - V) x (E' - E) more */
+        a -= (P[1][0] - P[0][0]) * (P[2][1] - P[1][1]) - (P[1][1] - P[0][1]) * (P[2][0] - P[1][0]);
     return (double)(-0.5L * a);
 }
 
@@ -1222,22 +1226,26 @@ static inline double offset_end_area(const ar_seg *s, double ta, double tb, doub
     return offset_end_poly(s, ta, tb, du, dv, m & 1, m >> 1);
 }
 
-/* part_area of a cubic, conic or offset piece */
+/* part_area of a cubic, conic or offset piece (kc: the column's left
+ * side x = c0 + kc, an offset piece's) */
 static double part_area_curved(const ar_seg *s, double ta, double tb, double ua, double ub,
-                               double *dy)
+                               double kc, double *dy)
 {
     double d = tb - ta;
     if (s->p->offset) {
         /* the chord's height from the ends, the segment between chord and
-         * arc by quadrature with its bound (area_offset.c); v at the
-         * ends as kept (offset_keep) */
+         * arc by quadrature with its bound (area_offset.c), about the
+         * row's point at ta (x = c0 + kc + ua, y = v0 - V: the curve's, but
+         * at the piece's end, offset_end_poly); v at the ends as kept
+         * (offset_keep) */
         int kb = offset_slot(s, tb); /* looked up once: offset_v keeps nothing */
         double v0 = offset_v_kept(s, ta), v1 = kb >= 0 ? s->vv[kb] : offset_v(s, tb);
         if (kb < 0)
             offset_keep(s, tb, v1);
         *dy = v1 - v0;
         double sg = s->p->sg;
-        return *dy * (1.0 - 0.5 * (ua + ub)) - area_offset_segment(s->p, sg * ta, sg * tb) +
+        return *dy * (1.0 - 0.5 * (ua + ub)) -
+               area_offset_segment_at(s->p, sg * ta, sg * tb, s->c0 + kc, ua, -s->V, v0) +
                offset_end_area(s, sg * ta, sg * tb, ub - ua, *dy);
     }
     if (s->p->conic) {
@@ -1280,7 +1288,7 @@ static double part_area_curved(const ar_seg *s, double ta, double tb, double ua,
 static inline void emit(ar_worker *wk, const ar_seg *s, double k, double ta, double tb,
                         double ua, double ub, const double *dc, int nch, int W)
 {
-    double dy, right = part_area(s, ta, tb, ua - k, ub - k, &dy);
+    double dy, right = part_area(s, ta, tb, ua - k, ub - k, k, &dy);
     int col = s->c0 + (int)k;
     if (col < s->ca)
         col = s->ca;
@@ -2430,7 +2438,7 @@ single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int pl
     double k = (double)(s->ca - s->c0); /* the left cell, local */
     if (s->ca == s->cb) {
         double a = plain ? part_area_quad(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy)
-                         : part_area(s, s->ta, s->tb, s->ua - k, s->ub - k, &dy);
+                         : part_area(s, s->ta, s->tb, s->ua - k, s->ub - k, k, &dy);
         put(r, px, cin, nx, a);
         return nx;
     }
@@ -2447,8 +2455,8 @@ single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int pl
             al = part_area_quad(s, s->ta, tc, s->ua - k, 1.0, &dl);
             ar = part_area_quad(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
         } else {
-            al = part_area(s, s->ta, tc, s->ua - k, 1.0, &dl);
-            ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, &dr);
+            al = part_area(s, s->ta, tc, s->ua - k, 1.0, k, &dl);
+            ar = part_area(s, tc, s->tb, 0.0, s->ub - k - 1.0, k + 1.0, &dr);
         }
     } else {
         double tc = plain ? tau_of_u_quad(s, k + 1.0, -1.0)
@@ -2461,8 +2469,8 @@ single(const ar_row *r, const ar_seg *s, int *w, const double *cin, const int pl
             ar = part_area_quad(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
             al = part_area_quad(s, tc, s->tb, 1.0, s->ub - k, &dl);
         } else {
-            ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, &dr);
-            al = part_area(s, tc, s->tb, 1.0, s->ub - k, &dl);
+            ar = part_area(s, s->ta, tc, s->ua - k - 1.0, 0.0, k + 1.0, &dr);
+            al = part_area(s, tc, s->tb, 1.0, s->ub - k, k, &dl);
         }
     }
     put(r, px, cin, nx, al);

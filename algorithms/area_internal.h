@@ -73,6 +73,10 @@ typedef struct ar_panel {
      * m, found once): stop, te, Q's coefficients q */
     int stop;
     double te, q[4];
+    /* B(m) mapped into the image (the curve's map), each coordinate as a
+     * sum hi + lo of two doubles ([0] + [1], from long double): a part's
+     * start from the row's point (area_offset_segment_at) */
+    double qx[2], qy[2];
 } ar_panel;
 
 /* ------------------------------------------------------------------------
@@ -885,13 +889,17 @@ extern void (*aa__area_kept_solve)(const aa_piece *p, double y, double r, double
  * (*out to be freed), or appended to an array (*n of *cap used, grown
  * geometrically; on a failure *n is as it was); 1/2 the integral of (P - P(ta)) x P' from t = ta to
  * tb, the segment between the part and its chord, in px^2 (with its
- * proven bound, AR_QUAD_TOL per panel it meets). */
+ * proven bound, AR_QUAD_TOL per panel it meets); _at: the same about the
+ * point (x0 + u, y0 + v) of the image (P(ta) as the row holds it, or the
+ * outline's vertex at the piece's end ta), the sums not rounded. */
 int area_quad_init(ar_quad *q);
 int area_offset_panels(const aa_offset_curve *oc, double t0, double t1, ar_panel **out,
                        size_t *n);
 int area_offset_panels_append(const aa_offset_curve *oc, double t0, double t1, ar_panel **arr,
                               size_t *n, size_t *cap);
 double area_offset_segment(const ar_piece *pc, double ta, double tb);
+double area_offset_segment_at(const ar_piece *pc, double ta, double tb, double x0, double u,
+                              double y0, double v);
 /* The rule (index into ar_quad) the share [al, be] of panel p takes: the
  * fewest points whose bound is within AR_QUAD_TOL. */
 int area_offset_rule(const ar_panel *p, double al, double be);

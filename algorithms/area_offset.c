@@ -382,6 +382,26 @@ static void ellipse_at(const aa_offset_curve *oc, double m, double *up, double *
     vp[0] = -b[2] * sm + b[4] * cm, vp[1] = -b[3] * sm + b[5] * cm;
 }
 
+/* B(m) mapped into the image, each coordinate as hi + lo (x[0] + x[1]):
+ * evaluated in long double (a relative 1e-19 or so: about 1e-16 px on an
+ * image of 1024 px), then rounded twice */
+static void image_point(const aa_offset_curve *oc, double m, double *x, double *y)
+{
+    const double *b = oc->b, *mp = oc->m;
+    long double M = m, X, Y;
+    if (oc->base == AA_OFFSET_ELLIPSE) {
+        long double cm = cosl(M), sm = sinl(M);
+        X = b[0] + (b[2] * cm + b[4] * sm), Y = b[1] + (b[3] * cm + b[5] * sm);
+    } else {
+        X = b[0] + M * (b[1] + M * (b[2] + M * (long double)b[3]));
+        Y = b[4] + M * (b[5] + M * (b[6] + M * (long double)b[7]));
+    }
+    long double x1 = mp[4] + ((long double)mp[0] * X + (long double)mp[2] * Y);
+    long double y1 = mp[5] + ((long double)mp[1] * X + (long double)mp[3] * Y);
+    x[0] = (double)x1, x[1] = (double)(x1 - x[0]);
+    y[0] = (double)y1, y[1] = (double)(y1 - y[0]);
+}
+
 typedef struct panel_buf {
     ar_panel *p;
     size_t n, cap;
@@ -486,6 +506,7 @@ static int panels_rec(const aa_offset_curve *oc, double a, double b, double det2
             p->q[j] = stop ? q[j] : 0.0;
         memcpy(p->bx, bx, sizeof bx);
         memcpy(p->by, by, sizeof by);
+        image_point(oc, m, p->qx, p->qy);
         return AA_OK;
     }
     if (depth >= PANEL_DEPTH || b - a <= 1e-12 * width || !(m > a && m < b))
@@ -789,14 +810,12 @@ int area_offset_rule(const ar_panel *p, double al, double be)
  * then inline) where 1, else two. */
 static __attribute__((always_inline)) inline double share_by(const ar_piece *pc,
                                                              const ar_panel *p, double al,
-                                                             double be, const int r,
-                                                             const int avx)
+                                                             double be, double ax, double ay,
+                                                             const int r, const int avx)
 {
     const aa_offset_curve *oc = &pc->src->oc;
     const ar_quad *q = pc->quad;
     double h = 0.5 * (be - al), mm = 0.5 * (al + be);
-    double ax, ay;
-    rel_point(oc, p, al, &ax, &ay);
     const double *bx = p->bx, *by = p->by, d = oc->d;
     double sum = 0.0;
     if (oc->base == AA_OFFSET_ELLIPSE) {
@@ -900,22 +919,43 @@ static __attribute__((always_inline)) inline double share_by(const ar_piece *pc,
     return 0.5 * h * sum;
 }
 
-/* share_by with the rule its bound allows inside the panel */
+/* share_by from P(al) with the rule its bound allows inside the panel */
 static __attribute__((always_inline)) inline double share(const ar_piece *pc, const ar_panel *p,
                                                           double al, double be, const int avx)
 {
-    double h = 0.5 * (be - al), mm = 0.5 * (al + be);
+    double h = 0.5 * (be - al), mm = 0.5 * (al + be), ax, ay;
     if (!(h > 0.0))
         return 0.0;
-    return share_by(pc, p, al, be, rule(p, h, mm), avx);
+    rel_point(&pc->src->oc, p, al, &ax, &ay);
+    return share_by(pc, p, al, be, ax, ay, rule(p, h, mm), avx);
+}
+
+/* The point (x0 + u, y0 + v) of the image (the row's: x0 and y0 its
+ * cell's corner, u and v in the cell), less panel p's B(m), in the curve's
+ * own coordinates: the difference in the image from B(m)'s hi + lo
+ * (image_point), then the map's inverse (det: the map's determinant).
+ * Its rounding, a few units in the last place of the difference, is
+ * rel_point's. */
+static __attribute__((always_inline)) inline void start_at(const aa_offset_curve *oc,
+                                                           const ar_panel *p, double det,
+                                                           double x0, double u, double y0,
+                                                           double v, double *ax, double *ay)
+{
+    double ex = ((x0 - p->qx[0]) + u) - p->qx[1], ey = ((y0 - p->qy[0]) + v) - p->qy[1];
+    const double *m = oc->m;
+    *ax = (m[3] * ex - m[2] * ey) / det;
+    *ay = (m[0] * ey - m[1] * ex) / det;
 }
 
 static __attribute__((always_inline)) inline double segment(const ar_piece *pc, double ta,
-                                                            double tb, const int avx)
+                                                            double tb, double px, double u,
+                                                            double py, double v, const int avx)
 {
     double lo = ta < tb ? ta : tb, hi = ta < tb ? tb : ta;
     if (!(hi > lo))
         return 0.0;
+    const aa_offset_curve *oc = &pc->src->oc;
+    const double det = oc->m[0] * oc->m[3] - oc->m[2] * oc->m[1];
     const ar_panel *pan = pc->pan;
     /* the last panel starting at or before lo (the first if none): among
      * a few, the first ending after it, in order (loads the processor
@@ -933,37 +973,76 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
                 top = mid;
         }
     }
-    double seg;
+    double seg, ax, ay;
     int r;
     if (hi <= pan[k].b || k + 1 == n) {
-        seg = share(pc, &pan[k], lo, hi, avx);
+        /* one share, about the point given where there is one (the
+         * integral about P(tb) the same as about P(ta): (P(tb) - P(ta)) x
+         * (P(tb) - P(ta)) = 0) */
+        double h = 0.5 * (hi - lo), mm = 0.5 * (lo + hi);
+        seg = 0.0;
+        if (h > 0.0) {
+            if (u == u)
+                start_at(oc, &pan[k], det, px, u, py, v, &ax, &ay);
+            else
+                rel_point(oc, &pan[k], lo, &ax, &ay);
+            seg = share_by(pc, &pan[k], lo, hi, ax, ay, rule(&pan[k], h, mm), avx);
+        }
     } else if ((r = rule_or_none(&pan[k], 0.5 * (hi - lo), 0.5 * (lo + hi))) >= 0 &&
-               r < AR_QUAD_RULES - 1) {
+               r < AR_QUAD_RULES - 1 &&
+               !(u == u && ta > tb && (ta == pc->ot0 || ta == pc->ot1))) {
         /* a part reaching past its first panel whose Bernstein ellipse
          * still lies in that panel's disc, where M bounds the integrand
          * for start points on the panel (the panel's Taylor form is the
          * curve's everywhere): one share, its rule's bound met (8 or 12
          * points; the 16 of a share inside a panel hold by the panel's
-         * own bound, which this one's is not under) */
-        seg = share_by(pc, &pan[k], lo, hi, r, avx);
+         * own bound, which this one's is not under); about the point
+         * given at lo, else about P(lo), the same as about P(hi) (a point
+         * given at hi is off the panel; at the piece's end, the outline's
+         * vertex, off the curve: the polygon below) */
+        if (u == u && ta < tb)
+            start_at(oc, &pan[k], det, px, u, py, v, &ax, &ay);
+        else
+            rel_point(oc, &pan[k], lo, &ax, &ay);
+        seg = share_by(pc, &pan[k], lo, hi, ax, ay, r, avx);
     } else {
-        /* shares joined by the polygon of their ends about P(lo), the
-         * ends relative to the first panel's B(m) (a cubic's Taylor form
-         * and an ellipse's form about m are exact everywhere) */
+        /* shares joined by the polygon of their ends about P(lo), or
+         * about the point given where ta is the piece's end (the
+         * outline's vertex Q, off the curve: the polygon's edges (P_k - Q)
+         * x (P_k+1 - P_k) / 2 hold about any Q), the ends relative to the
+         * first panel's B(m): each share's start relative to its own
+         * panel's plus the two B(m) apart, the part's end by the first
+         * panel's form (a cubic's Taylor form and an ellipse's form about m
+         * are exact everywhere) */
         const ar_panel *p0 = &pan[k];
         double x0, y0, xa, ya, xb, yb;
-        rel_point(&pc->src->oc, p0, lo, &x0, &y0);
-        xa = x0, ya = y0;
+        rel_point(oc, p0, lo, &ax, &ay);
+        x0 = xa = ax, y0 = ya = ay;
+        if (u == u && (ta == pc->ot0 || ta == pc->ot1))
+            start_at(oc, p0, det, px, u, py, v, &x0, &y0);
         seg = 0.0;
         for (double al = lo; k < n && al < hi; k++) {
             double be = k + 1 < n && pan[k].b < hi ? pan[k].b : hi;
-            seg += share(pc, &pan[k], al, be, avx);
-            rel_point(&pc->src->oc, p0, be, &xb, &yb);
+            double h = 0.5 * (be - al), mm = 0.5 * (al + be);
+            if (h > 0.0)
+                seg += share_by(pc, &pan[k], al, be, ax, ay, rule(&pan[k], h, mm), avx);
+            if (be < hi) {
+                /* the next share's start, relative to its panel's B(m),
+                 * and to the first's by the two B(m) in the image */
+                const ar_panel *q = &pan[k + 1];
+                double dx = (q->qx[0] - p0->qx[0]) + (q->qx[1] - p0->qx[1]);
+                double dy = (q->qy[0] - p0->qy[0]) + (q->qy[1] - p0->qy[1]);
+                const double *m = oc->m;
+                rel_point(oc, q, be, &ax, &ay);
+                xb = ax + (m[3] * dx - m[2] * dy) / det;
+                yb = ay + (m[0] * dy - m[1] * dx) / det;
+            } else {
+                rel_point(oc, p0, be, &xb, &yb);
+            }
             seg += 0.5 * ((xa - x0) * (yb - ya) - (ya - y0) * (xb - xa));
             xa = xb, ya = yb, al = be;
         }
     }
-    double det = pc->src->oc.m[0] * pc->src->oc.m[3] - pc->src->oc.m[2] * pc->src->oc.m[1];
     return ta < tb ? det * seg : -det * seg;
 }
 
@@ -973,29 +1052,37 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
  * part by the processor (ar_quad's avx: 1; 2 takes segment_512, its
  * AVX-512F form, below); segment_sse out of line (inlined into
  * area_offset_segment, its register saves came before the choice) */
-__attribute__((target("avx"), flatten)) static double segment_avx(const ar_piece *pc,
-                                                                 double ta, double tb)
+__attribute__((target("avx"), flatten)) static double
+segment_avx(const ar_piece *pc, double ta, double tb, double x0, double u, double y0, double v)
 {
-    return segment(pc, ta, tb, 1);
+    return segment(pc, ta, tb, x0, u, y0, v, 1);
 }
 
 /* segment_avx with AVX-512F's eight lanes (nodes_512) */
-__attribute__((target("avx512f"), flatten)) static double segment_512(const ar_piece *pc,
-                                                                     double ta, double tb)
+__attribute__((target("avx512f"), flatten)) static double
+segment_512(const ar_piece *pc, double ta, double tb, double x0, double u, double y0, double v)
 {
-    return segment(pc, ta, tb, 2);
+    return segment(pc, ta, tb, x0, u, y0, v, 2);
 }
 
-__attribute__((noinline)) static double segment_sse(const ar_piece *pc, double ta, double tb)
+__attribute__((noinline)) static double segment_sse(const ar_piece *pc, double ta, double tb,
+                                                    double x0, double u, double y0, double v)
 {
-    return segment(pc, ta, tb, 0);
+    return segment(pc, ta, tb, x0, u, y0, v, 0);
+}
+
+double area_offset_segment_at(const ar_piece *pc, double ta, double tb, double x0, double u,
+                              double y0, double v)
+{
+    int avx = pc->quad->avx;
+    return avx == 2 ? segment_512(pc, ta, tb, x0, u, y0, v)
+           : avx    ? segment_avx(pc, ta, tb, x0, u, y0, v)
+                    : segment_sse(pc, ta, tb, x0, u, y0, v);
 }
 
 double area_offset_segment(const ar_piece *pc, double ta, double tb)
 {
-    int avx = pc->quad->avx;
-    return avx == 2 ? segment_512(pc, ta, tb)
-                    : avx ? segment_avx(pc, ta, tb) : segment_sse(pc, ta, tb);
+    return area_offset_segment_at(pc, ta, tb, 0.0, NAN, 0.0, 0.0);
 }
 
 /* ---- the speed of the curve on a disc (for `analytic`) ----

@@ -107,7 +107,11 @@
  *    may take as one share (test_shares_past: rho near 1, among them an
  *    evolute's panels next to a pole of its integrand): against the
  *    integral computed here adaptively in __float128, within AR_QUAD_TOL
- *    a panel the part meets.
+ *    a panel the part meets;
+ *  - a part's segment about the row's point (test_shares_at,
+ *    area_offset_segment_at): against test_shares' integral, inside a panel,
+ *    across panel ends and from a piece's end about its vertex moved off
+ *    the curve, under the scenes' maps and one mixing x and y 3,000 px on.
  *
  * Under the sanitizers (AA_SANITIZED: the Makefile's sanitizer build sets
  * it for the tests) a declared subset: test_shared_ends and test_cones
@@ -3981,6 +3985,136 @@ static void test_shares_past(void **state)
     }
 }
 
+/* The point (X, Y) of the image as the rows hold it: a corner of its cell
+ * (*x0, *y0, integers) and the rest, rounded to double (*u, *v). */
+static void cell_split(long double X, long double Y, double *x0, double *u, double *y0,
+                       double *v)
+{
+    *x0 = (double)floorl(X), *y0 = (double)floorl(Y);
+    *u = (double)(X - *x0), *v = (double)(Y - *y0);
+}
+
+/* A share's segment about the row's point (area_offset_segment_at: the
+ * start from the point the row holds, a cell's corner and the rest, less
+ * the panel's B(m) kept in the image as hi + lo, mapped back by the map's
+ * inverse) against 1/2 the integral of (P - P(t1)) x P' from t1 to t2
+ * computed in long double as in test_shares (20 points on 4 parts), the
+ * point given at t1, either end of the part: parts inside one panel and
+ * parts across each panel end (1e-7 of the panel wide to four times it),
+ * on every offset piece, evolute and ellipse's offset of the three
+ * strokes of test_shares at 256 px, under the scenes' maps and under the
+ * same followed by a map that mixes x and y and moves them 3,000 px (its
+ * B(m) about 3,000 px from the origin, where a double's ulp is 4.5e-13);
+ * and parts from each piece's end, where the row's point is the outline's
+ * vertex V, not the curve's E (here E moved by 3e-10 px): about V, the
+ * integral about E plus 1/2 (E - V) x (P(t2) - E).  Each within
+ * AR_QUAD_TOL plus 8 ulps of the size the double sum's terms have
+ * (segment_l's mag), as test_shares holds area_offset_segment. */
+static void test_shares_at(void **state)
+{
+    (void)state;
+    ar_quad quad;
+    must(area_quad_init(&quad));
+    long double x1[20], w1[20];
+    gauss_legendre_l(20, x1, w1);
+    uint64_t rng = 192837465;
+    int parts = 0, ends = 0, past = 0;
+    double worst = 0.0;
+    for (int c = 0; c < 6; c++) {
+        aa_scene *placed = shares_stroke(c % 3);
+        size_t np;
+        const aa_piece *pcs = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pcs[k].kind != AA_PIECE_OFFSET)
+                continue;
+            aa_piece pm = pcs[k];
+            if (c >= 3) { /* (0.8 -0.6; 0.7 0.9) after the scene's map, and 3,000 px on */
+                const double *m = pcs[k].oc.m;
+                for (int j = 0; j < 3; j++) {
+                    pm.oc.m[2 * j] = 0.8 * m[2 * j] - 0.6 * m[2 * j + 1];
+                    pm.oc.m[2 * j + 1] = 0.7 * m[2 * j] + 0.9 * m[2 * j + 1];
+                }
+                pm.oc.m[4] += 3000.25, pm.oc.m[5] -= 2999.75;
+            }
+            const aa_offset_curve *oc = &pm.oc;
+            ar_piece ap;
+            ar_panel *pan = shares_piece(&pm, &quad, &ap);
+            ap.ot0 = pm.ot0, ap.ot1 = pm.ot1;
+            size_t npan = ap.npan;
+            double tmin = pan[0].a, tmax = pan[npan - 1].b;
+            for (int i = 0; i < 48 + 16 * (int)npan; i++) {
+                double r[3];
+                for (int e = 0; e < 3; e++) { /* uniform in [0, 1), 53 bits */
+                    rng = rng * 6364136223846793005u + 1442695040888963407u;
+                    r[e] = (double)(rng >> 11) * 0x1p-53;
+                }
+                double ta, tb;
+                const ar_panel *p;
+                int end = i < 48 ? i % 2 : -1; /* from t = tmin (0) or tmax (1) */
+                if (end >= 0) {
+                    p = &pan[end ? npan - 1 : 0];
+                    double wd = 4.0 * (p->b - p->a) * pow(10.0, -7.0 * r[1]);
+                    ta = end ? tmax : tmin;
+                    tb = end ? fmax(tmax - wd, tmin) : fmin(tmin + wd, tmax);
+                    if (i % 4 >= 2 && npan > 1) { /* just into the next panel */
+                        const ar_panel *q = &pan[end ? npan - 2 : 1];
+                        wd = 0.5 * (q->b - q->a) * pow(10.0, -7.0 * r[1]);
+                        tb = end ? q->b - wd : q->a + wd;
+                    }
+                    if (end)
+                        p = &pan[npan > 1 && tb < p->a ? npan - 2 : npan - 1];
+                    past += end ? tb < pan[npan - 1].a : tb > pan[0].b;
+                } else if (i % 2) { /* inside panel j */
+                    p = &pan[(size_t)(r[2] * (double)npan)];
+                    double wd = (p->b - p->a) * pow(10.0, -7.0 * r[1]);
+                    ta = p->a + (p->b - p->a - wd) * r[0], tb = fmin(ta + wd, p->b);
+                } else { /* across panel j's end */
+                    size_t j = (size_t)(r[2] * (double)(npan - 1));
+                    p = &pan[j];
+                    if (j + 1 >= npan)
+                        continue;
+                    double wd = 4.0 * (p->b - p->a) * pow(10.0, -7.0 * r[1]);
+                    ta = fmax(p->b - wd * r[0], p->a), tb = fmin(ta + wd, tmax);
+                    if (i % 4 == 2) { /* the point given at the part's upper end */
+                        double t = ta;
+                        ta = tb, tb = t;
+                    }
+                }
+                if (!(ta != tb))
+                    continue;
+                long double X, Y, X2, Y2, mag;
+                aa__offset_eval(oc, ta, &X, &Y, NULL, NULL);
+                long double want = segment_l(oc, ta, tb, p->m, 4, 20, x1, w1, &mag);
+                if (end >= 0) { /* about V = E + (3e-10, -2e-10) */
+                    long double Vx = X + 3e-10L, Vy = Y - 2e-10L;
+                    aa__offset_eval(oc, tb, &X2, &Y2, NULL, NULL);
+                    want += 0.5L * ((X - Vx) * (Y2 - Y) - (Y - Vy) * (X2 - X));
+                    X = Vx, Y = Vy;
+                    ends++;
+                }
+                double x0, u, y0, v;
+                cell_split(X, Y, &x0, &u, &y0, &v);
+                double got = area_offset_segment_at(&ap, ta, tb, x0, u, y0, v);
+                double err = fabs((double)(got - want));
+                double tol = AR_QUAD_TOL + 8 * DBL_EPSILON * (double)mag;
+                if (!(err <= tol))
+                    fail_msg("map %d piece %zu [%.17g, %.17g] (panel [%.17g, %.17g]): %.17g, "
+                             "here %.17Lg, %.2e off (allowed %.2e)",
+                             c, k, ta, tb, p->a, p->b, got, want, err, tol);
+                worst = fmax(worst, err / tol);
+                parts++;
+            }
+            free(pan);
+        }
+        aa_scene_free(placed);
+    }
+    print_message("%d parts about the row's point within the bound plus rounding (at most "
+                  "%.2f of it), %d of them from a piece's end about its vertex (%d reaching "
+                  "past the end's panel)\n",
+                  parts, worst, ends, past);
+    assert_true(parts > 4000 && ends > 1000 && past > 100);
+}
+
 int main(void)
 {
     SAN_CASES_PRINT();
@@ -4017,6 +4151,7 @@ int main(void)
                                        cmocka_unit_test(test_common_starts),
                                        cmocka_unit_test(test_roots_far),
                                        cmocka_unit_test(test_kept_solves),
-                                       cmocka_unit_test(test_shares_past)};
+                                       cmocka_unit_test(test_shares_past),
+                                       cmocka_unit_test(test_shares_at)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
