@@ -1161,8 +1161,9 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
 /* A part of an offset piece that ends at an end of the piece: its chord
  * runs to the piece's own end V (offset_point: the outline's vertex,
  * rounded to double), while the segment between chord and arc
- * (area_offset_segment) is the curve's own, whose end E is up to about an
- * ulp of the coordinates from V.  The part is the arc joined to V by the
+ * (area_offset_segment_at) is the curve's own, whose end E is up to about
+ * an ulp of the coordinates from V (or, where the piece takes the row's
+ * point, about V when ta is the piece's end: below).  The part is the arc joined to V by the
  * short edge E V: its area right is the trapezoids under V E, E E' and E' V'
  * less the segment, and this is those less the trapezoid under V V', the
  * polygon V E E' V' (ends that are no piece's end: E = V), minus its signed
@@ -1180,7 +1181,8 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
  * tests/bench_bezstroke.c's scene at 1024 px 5,948 evaluations a render,
  * 354 instructions each).  The segment is taken about the row's point at
  * ta (part_area_curved), V where ta is the piece's end: 1/2 (E - V) x (E'
- * - E) more than about E, which the polygon's area takes back. */
+ * - E) more than about E, which the polygon's area takes back (where the
+ * piece takes the row's point: ar_piece's rowpt). */
 __attribute__((noinline)) static double offset_end_poly(const ar_seg *s, double ta, double tb,
                                                         double du, double dv, int ea, int eb)
 {
@@ -1206,7 +1208,7 @@ __attribute__((noinline)) static double offset_end_poly(const ar_seg *s, double 
         const long double *A = P[k], *B = P[(k + 1) & 3];
         a += ((B[1] - y0) - (A[1] - y0)) * ((A[0] - x0) + (B[0] - x0));
     }
-    if (ea) /* the segment taken about V, not E: 1/2 (E - V) x (E' - E) more */
+    if (ea && s->p->rowpt) /* the segment taken about V, not E: 1/2 (E - V) x (E' - E) more */
         a -= (P[1][0] - P[0][0]) * (P[2][1] - P[1][1]) - (P[1][1] - P[0][1]) * (P[2][0] - P[1][0]);
     return (double)(-0.5L * a);
 }
@@ -1236,7 +1238,8 @@ static double part_area_curved(const ar_seg *s, double ta, double tb, double ua,
         /* the chord's height from the ends, the segment between chord and
          * arc by quadrature with its bound (area_offset.c), about the
          * row's point at ta (x = c0 + kc + ua, y = v0 - V: the curve's, but
-         * at the piece's end, offset_end_poly); v at the ends as kept
+         * at the piece's end, offset_end_poly) where the piece takes it
+         * (rowpt), else about the curve's own; v at the ends as kept
          * (offset_keep) */
         int kb = offset_slot(s, tb); /* looked up once: offset_v keeps nothing */
         double v0 = offset_v_kept(s, ta), v1 = kb >= 0 ? s->vv[kb] : offset_v(s, tb);
@@ -1245,7 +1248,8 @@ static double part_area_curved(const ar_seg *s, double ta, double tb, double ua,
         *dy = v1 - v0;
         double sg = s->p->sg;
         return *dy * (1.0 - 0.5 * (ua + ub)) -
-               area_offset_segment_at(s->p, sg * ta, sg * tb, s->c0 + kc, ua, -s->V, v0) +
+               area_offset_segment_at(s->p, sg * ta, sg * tb, s->c0 + kc,
+                                      s->p->rowpt ? ua : NAN, -s->V, v0) +
                offset_end_area(s, sg * ta, sg * tb, ub - ua, *dy);
     }
     if (s->p->conic) {
@@ -3503,11 +3507,20 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
     for (size_t k = 0; k < n; k++)
         if (S->piece[k].offset && (st = load_ytab(S, &S->piece[k])))
             return st;
+    /* long double wider than double (as truth_local.c tests it: not under
+     * valgrind, whose x87 rounds to double) */
+    volatile long double one = 1.0L, tiny = 0x1p-60L;
+    int extended = one + tiny != one;
     for (size_t k = 0; k < n; k++)
         if (S->piece[k].offset) {
             ar_piece *q = &S->piece[k];
             q->pan = S->pan + q->pan0;
             ytab_attach(q, S->ytab + 4 * q->yt0);
+            /* the map's |M|^2 / |det| (Frobenius) is k + 1/k, k its condition number */
+            const double *m = q->src->oc.m;
+            double det = m[0] * m[3] - m[1] * m[2];
+            q->rowpt = extended && (m[0] * m[0] + m[1] * m[1] + m[2] * m[2] + m[3] * m[3]) <=
+                                       4.25 * fabs(det);
         }
     return sort_pieces(S);
 }

@@ -108,6 +108,12 @@ typedef struct ar_piece {
     long double x0, bx, ax, y0l, by, ay, dx, dy;
     int cubic;
     int conic;            /* an arc of an ellipse: its fields are src's */
+    /* an offset piece's parts integrated about the row's point
+     * (area_offset_segment_at): where long double is wider than double and
+     * the map's condition number is at most 4, so that the start's error
+     * in the image stays a few ulps of the coordinates; else about the
+     * curve's own (rel_point, the point not given) */
+    int rowpt;
     double dyd;           /* dy rounded */
     /* An offset piece (AA_PIECE_OFFSET): its "tau" is sg t (t the curve's
      * parameter, sg = +-1 so that tau rises down the piece); te, te2: tau

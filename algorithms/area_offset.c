@@ -384,7 +384,9 @@ static void ellipse_at(const aa_offset_curve *oc, double m, double *up, double *
 
 /* B(m) mapped into the image, each coordinate as hi + lo (x[0] + x[1]):
  * evaluated in long double (a relative 1e-19 or so: about 1e-16 px on an
- * image of 1024 px), then rounded twice */
+ * image of 1024 px, where long double is x87's; where it is no wider than
+ * double, lo is 0 and area's rows pass no point: ar_piece's rowpt), then
+ * rounded twice */
 static void image_point(const aa_offset_curve *oc, double m, double *x, double *y)
 {
     const double *b = oc->b, *mp = oc->m;
@@ -934,8 +936,12 @@ static __attribute__((always_inline)) inline double share(const ar_piece *pc, co
  * cell's corner, u and v in the cell), less panel p's B(m), in the curve's
  * own coordinates: the difference in the image from B(m)'s hi + lo
  * (image_point), then the map's inverse (det: the map's determinant).
- * Its rounding, a few units in the last place of the difference, is
- * rel_point's. */
+ * Its rounding: a few units in the last place of the difference, B(m)'s
+ * own in long double (about 1e-19 of the image's coordinate: 1e-16 px at
+ * 1024 px, 1e-13 px a million px from the origin), and the inverse's,
+ * which grows with the map's condition number: area takes the row's point
+ * only where that is at most 4 and long double is wider than double
+ * (ar_piece's rowpt), else passes none (rel_point's start). */
 static __attribute__((always_inline)) inline void start_at(const aa_offset_curve *oc,
                                                            const ar_panel *p, double det,
                                                            double x0, double u, double y0,
@@ -1023,21 +1029,30 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
         seg = 0.0;
         for (double al = lo; k < n && al < hi; k++) {
             double be = k + 1 < n && pan[k].b < hi ? pan[k].b : hi;
-            double h = 0.5 * (be - al), mm = 0.5 * (al + be);
-            if (h > 0.0)
-                seg += share_by(pc, &pan[k], al, be, ax, ay, rule(&pan[k], h, mm), avx);
-            if (be < hi) {
-                /* the next share's start, relative to its panel's B(m),
-                 * and to the first's by the two B(m) in the image */
-                const ar_panel *q = &pan[k + 1];
-                double dx = (q->qx[0] - p0->qx[0]) + (q->qx[1] - p0->qx[1]);
-                double dy = (q->qy[0] - p0->qy[0]) + (q->qy[1] - p0->qy[1]);
-                const double *m = oc->m;
-                rel_point(oc, q, be, &ax, &ay);
-                xb = ax + (m[3] * dx - m[2] * dy) / det;
-                yb = ay + (m[0] * dy - m[1] * dx) / det;
-            } else {
+            if (!pc->rowpt) {
+                /* the map's inverse not trusted (ar_piece's rowpt): each
+                 * share from its own start, each vertex about the first
+                 * panel by its form */
+                seg += share(pc, &pan[k], al, be, avx);
                 rel_point(oc, p0, be, &xb, &yb);
+            } else {
+                double h = 0.5 * (be - al), mm = 0.5 * (al + be);
+                if (h > 0.0)
+                    seg += share_by(pc, &pan[k], al, be, ax, ay, rule(&pan[k], h, mm), avx);
+                if (be < hi) {
+                    /* the next share's start, relative to its panel's
+                     * B(m), and to the first's by the two B(m) in the
+                     * image */
+                    const ar_panel *q = &pan[k + 1];
+                    double dx = (q->qx[0] - p0->qx[0]) + (q->qx[1] - p0->qx[1]);
+                    double dy = (q->qy[0] - p0->qy[0]) + (q->qy[1] - p0->qy[1]);
+                    const double *m = oc->m;
+                    rel_point(oc, q, be, &ax, &ay);
+                    xb = ax + (m[3] * dx - m[2] * dy) / det;
+                    yb = ay + (m[0] * dy - m[1] * dx) / det;
+                } else {
+                    rel_point(oc, p0, be, &xb, &yb);
+                }
             }
             seg += 0.5 * ((xa - x0) * (yb - ya) - (ya - y0) * (xb - xa));
             xa = xb, ya = yb, al = be;
