@@ -1029,30 +1029,26 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
         seg = 0.0;
         for (double al = lo; k < n && al < hi; k++) {
             double be = k + 1 < n && pan[k].b < hi ? pan[k].b : hi;
-            if (!pc->rowpt) {
-                /* the map's inverse not trusted (ar_piece's rowpt): each
-                 * share from its own start, each vertex about the first
-                 * panel by its form */
-                seg += share(pc, &pan[k], al, be, avx);
-                rel_point(oc, p0, be, &xb, &yb);
+            double h = 0.5 * (be - al), mm = 0.5 * (al + be);
+            if (h > 0.0)
+                seg += share_by(pc, &pan[k], al, be, ax, ay, rule(&pan[k], h, mm), avx);
+            if (be < hi && pc->rowpt) {
+                /* the next share's start, relative to its panel's B(m),
+                 * and to the first's by the two B(m) in the image */
+                const ar_panel *q = &pan[k + 1];
+                double dx = (q->qx[0] - p0->qx[0]) + (q->qx[1] - p0->qx[1]);
+                double dy = (q->qy[0] - p0->qy[0]) + (q->qy[1] - p0->qy[1]);
+                const double *m = oc->m;
+                rel_point(oc, q, be, &ax, &ay);
+                xb = ax + (m[3] * dx - m[2] * dy) / det;
+                yb = ay + (m[0] * dy - m[1] * dx) / det;
             } else {
-                double h = 0.5 * (be - al), mm = 0.5 * (al + be);
-                if (h > 0.0)
-                    seg += share_by(pc, &pan[k], al, be, ax, ay, rule(&pan[k], h, mm), avx);
-                if (be < hi) {
-                    /* the next share's start, relative to its panel's
-                     * B(m), and to the first's by the two B(m) in the
-                     * image */
-                    const ar_panel *q = &pan[k + 1];
-                    double dx = (q->qx[0] - p0->qx[0]) + (q->qx[1] - p0->qx[1]);
-                    double dy = (q->qy[0] - p0->qy[0]) + (q->qy[1] - p0->qy[1]);
-                    const double *m = oc->m;
-                    rel_point(oc, q, be, &ax, &ay);
-                    xb = ax + (m[3] * dx - m[2] * dy) / det;
-                    yb = ay + (m[0] * dy - m[1] * dx) / det;
-                } else {
-                    rel_point(oc, p0, be, &xb, &yb);
-                }
+                /* the part's end; or, the map's inverse not trusted
+                 * (ar_piece's rowpt), the next vertex about the first
+                 * panel by its form, the next share's start about its own */
+                rel_point(oc, p0, be, &xb, &yb);
+                if (be < hi)
+                    rel_point(oc, &pan[k + 1], be, &ax, &ay);
             }
             seg += 0.5 * ((xa - x0) * (yb - ya) - (ya - y0) * (xb - xa));
             xa = xb, ya = yb, al = be;

@@ -1673,7 +1673,9 @@ static ar_panel *shares_piece(const aa_piece *pc, const ar_quad *quad, ar_piece 
     must(area_offset_panels(&pc->oc, pc->ot0, pc->ot1, &pan, &npan));
     memset(ap, 0, sizeof *ap);
     ap->src = pc, ap->pan = pan, ap->npan = npan, ap->quad = quad;
-    /* as area's init sets it on these maps (condition numbers at most 4) */
+    /* as area's init sets it on these maps (condition numbers at most 4),
+     * where long double is wider than double at run time (not under
+     * valgrind, whose x87 rounds to double) */
     ap->rowpt = aa_long_double_is_extended();
     return pan;
 }
