@@ -856,6 +856,17 @@ static aa_scene *bench_rows_stroke(const int *rows, int nr, const aa_stroke_styl
     return s;
 }
 
+/* The benchmark's scene at n px: its subpaths 0 to nr - 1, round joins and
+ * caps, 2.5 px wide (tests/bench_bezstroke.c) */
+static aa_scene *bench_scene_at(int n, int nr)
+{
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    st.width = 2.5 / n;
+    return bench_rows_stroke(NULL, nr, &st);
+}
+
 /* The benchmark's scene (its 20 rows of cubics stroked 2.5 px wide, round
  * joins and caps) placed at n x n px */
 static aa_scene *bench_placed(int n)
@@ -3442,11 +3453,7 @@ static void test_side_batch(void **state)
     static const int sizes[2] = {1024, 256};
     for (int k = 0; k < 2; k++) {
         int n = sizes[k];
-        aa_stroke_style st;
-        aa_stroke_style_default(&st);
-        st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
-        st.width = 2.5 / n;
-        aa_scene *s = bench_rows_stroke(NULL, 20, &st);
+        aa_scene *s = bench_scene_at(n, 20);
         char what[40];
         snprintf(what, sizeof what, "the benchmark's, %d px", n);
         side_batch_case(what, s, n, 1);
@@ -3767,11 +3774,7 @@ static void test_kept_solves(void **state)
     static const int sizes[2] = {256, 1024};
     for (int k = 0; k < 2; k++) {
         int n = sizes[k];
-        aa_stroke_style st;
-        aa_stroke_style_default(&st);
-        st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
-        st.width = 2.5 / n;
-        aa_scene *s = bench_rows_stroke(NULL, 20, &st);
+        aa_scene *s = bench_scene_at(n, 20);
         char what[40];
         snprintf(what, sizeof what, "the benchmark's, %d px", n);
         kept_case(what, s, n);
