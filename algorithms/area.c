@@ -1164,8 +1164,8 @@ static inline double part_area(const ar_seg *s, double ta, double tb, double ua,
  * rounded to double), while the segment between chord and arc
  * (area_offset_segment_at) is the curve's own, whose end E is up to about
  * an ulp of the coordinates from V (or, where the piece takes the row's
- * point, about V when ta is the piece's end: below).  The part is the arc joined to V by the
- * short edge E V: its area right is the trapezoids under V E, E E' and E' V'
+ * point, about V when ta is the piece's end: below).  The part is the arc
+ * joined to V by the short edge E V: its area right is the trapezoids under V E, E E' and E' V'
  * less the segment, and this is those less the trapezoid under V V', the
  * polygon V E E' V' (ends that are no piece's end: E = V), minus its signed
  * area, 1/2 sum (v_Q - v_P)(u_P + u_Q) over its edges (the trapezoids' own
@@ -3128,6 +3128,8 @@ static void render_row_alone(const ar_state *S, ar_worker *wk, int j, int integr
 
 int aa__area_side_batch = 1;
 
+int aa__area_rowpt = 1;
+
 /* Row j of a scene with gradient paint (area_gradient.c): the clusters
  * as the sorted pass finds them, every cluster by Catmull's integrater
  * split on every edge and every run between clusters pixel by pixel, each
@@ -3518,11 +3520,11 @@ static int load_pieces(ar_state *S, const aa_scene *scene)
             ar_piece *q = &S->piece[k];
             q->pan = S->pan + q->pan0;
             ytab_attach(q, S->ytab + 4 * q->yt0);
-            /* the map's |M|^2 / |det| (Frobenius) is k + 1/k, k its condition number */
+            /* the map's |M|^2 / |det| (Frobenius) is c + 1/c, c its condition number */
             const double *m = q->src->oc.m;
             double det = m[0] * m[3] - m[1] * m[2];
-            q->rowpt = extended && (m[0] * m[0] + m[1] * m[1] + m[2] * m[2] + m[3] * m[3]) <=
-                                       4.25 * fabs(det);
+            q->rowpt = aa__area_rowpt && extended &&
+                       (m[0] * m[0] + m[1] * m[1] + m[2] * m[2] + m[3] * m[3]) <= 4.25 * fabs(det);
         }
     return sort_pieces(S);
 }

@@ -883,6 +883,10 @@ void area_sort_new_keys(ar_key *k, size_t n, ar_key *tmp);
  * close (area.c, side_ask); 0, single() asks each alone.  The same roots,
  * bit for bit (tests/test_area_offset.c, test_side_batch). */
 extern int aa__area_side_batch;
+/* Tests only: 1 (as built), offset pieces take the row's point where their
+ * map lets them (ar_piece's rowpt); 0, none does (tests/test_area_offset.c,
+ * test_rowpt_gate). */
+extern int aa__area_rowpt;
 /* Tests only: NULL (as built), else called with each solve of seg_t_kept
  * (area.c: an offset seg's parameter r at height y inside its band, where
  * a pair's common heights begin or end), the piece and the seg's

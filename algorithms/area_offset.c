@@ -921,17 +921,6 @@ static __attribute__((always_inline)) inline double share_by(const ar_piece *pc,
     return 0.5 * h * sum;
 }
 
-/* share_by from P(al) with the rule its bound allows inside the panel */
-static __attribute__((always_inline)) inline double share(const ar_piece *pc, const ar_panel *p,
-                                                          double al, double be, const int avx)
-{
-    double h = 0.5 * (be - al), mm = 0.5 * (al + be), ax, ay;
-    if (!(h > 0.0))
-        return 0.0;
-    rel_point(&pc->src->oc, p, al, &ax, &ay);
-    return share_by(pc, p, al, be, ax, ay, rule(p, h, mm), avx);
-}
-
 /* The point (x0 + u, y0 + v) of the image (the row's: x0 and y0 its
  * cell's corner, u and v in the cell), less panel p's B(m), in the curve's
  * own coordinates: the difference in the image from B(m)'s hi + lo
@@ -1032,23 +1021,21 @@ static __attribute__((always_inline)) inline double segment(const ar_piece *pc, 
             double h = 0.5 * (be - al), mm = 0.5 * (al + be);
             if (h > 0.0)
                 seg += share_by(pc, &pan[k], al, be, ax, ay, rule(&pan[k], h, mm), avx);
+            if (be < hi) /* the next share's start, relative to its panel's B(m) */
+                rel_point(oc, &pan[k + 1], be, &ax, &ay);
             if (be < hi && pc->rowpt) {
-                /* the next share's start, relative to its panel's B(m),
-                 * and to the first's by the two B(m) in the image */
+                /* the vertex: that start, relative to the first panel's
+                 * B(m) by the two B(m) in the image */
                 const ar_panel *q = &pan[k + 1];
                 double dx = (q->qx[0] - p0->qx[0]) + (q->qx[1] - p0->qx[1]);
                 double dy = (q->qy[0] - p0->qy[0]) + (q->qy[1] - p0->qy[1]);
                 const double *m = oc->m;
-                rel_point(oc, q, be, &ax, &ay);
                 xb = ax + (m[3] * dx - m[2] * dy) / det;
                 yb = ay + (m[0] * dy - m[1] * dx) / det;
             } else {
-                /* the part's end; or, the map's inverse not trusted
-                 * (ar_piece's rowpt), the next vertex about the first
-                 * panel by its form, the next share's start about its own */
+                /* the part's end, or the map's inverse not trusted
+                 * (ar_piece's rowpt): by the first panel's form */
                 rel_point(oc, p0, be, &xb, &yb);
-                if (be < hi)
-                    rel_point(oc, &pan[k + 1], be, &ax, &ay);
             }
             seg += 0.5 * ((xa - x0) * (yb - ya) - (ya - y0) * (xb - xa));
             xa = xb, ya = yb, al = be;

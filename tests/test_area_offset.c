@@ -111,7 +111,10 @@
  *  - a part's segment about the row's point (test_shares_at,
  *    area_offset_segment_at): against test_shares' integral, inside a panel,
  *    across panel ends and from a piece's end about its vertex moved off
- *    the curve, under the scenes' maps and one mixing x and y 3,000 px on.
+ *    the curve, under the scenes' maps and one mixing x and y 3,000 px on;
+ *  - area's gate on that point (test_rowpt_gate): shut under a map of
+ *    condition number 12.5 (the image's bits as with no piece taking it),
+ *    open under 3 and 1.
  *
  * Under the sanitizers (AA_SANITIZED: the Makefile's sanitizer build sets
  * it for the tests) a declared subset: test_shared_ends and test_cones
@@ -838,7 +841,8 @@ static void bench_cubics(int r, int k0, int k1, double *cs)
 
 /* The stroke outline of the benchmark's subpaths rows[0..nr) (NULL: 0 to
  * nr - 1), each its 50 cubics, in style st */
-static aa_scene *bench_rows_stroke(const int *rows, int nr, const aa_stroke_style *st)
+static aa_scene *bench_rows_stroke_map(const int *rows, int nr, const aa_stroke_style *st,
+                                      const double *m)
 {
     aa_path in = {0};
     double cs[2 + 6 * 50];
@@ -851,9 +855,14 @@ static aa_scene *bench_rows_stroke(const int *rows, int nr, const aa_stroke_styl
         }
     }
     size_t noff;
-    aa_scene *s = scenes_stroke_outline(&in, st, NULL, &noff);
+    aa_scene *s = scenes_stroke_outline(&in, st, m, &noff);
     aa_path_free(&in);
     return s;
+}
+
+static aa_scene *bench_rows_stroke(const int *rows, int nr, const aa_stroke_style *st)
+{
+    return bench_rows_stroke_map(rows, nr, st, NULL);
 }
 
 /* The benchmark's scene at n px: its subpaths 0 to nr - 1, round joins and
@@ -865,6 +874,21 @@ static aa_scene *bench_scene_at(int n, int nr)
     st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
     st.width = 2.5 / n;
     return bench_rows_stroke(NULL, nr, &st);
+}
+
+/* The n elements of `size` bytes at a shuffled (Fisher-Yates, a fixed LCG from seed) */
+static void shuffle(void *a, size_t n, size_t size, uint64_t seed)
+{
+    unsigned char *p = a;
+    uint64_t lcg = seed;
+    for (size_t i = n - 1; n > 1 && i > 0; i--) {
+        lcg = lcg * 6364136223846793005u + 1442695040888963407u;
+        size_t j = (size_t)(lcg >> 33) % (i + 1);
+        for (size_t b = 0; b < size; b++) {
+            unsigned char t = p[i * size + b];
+            p[i * size + b] = p[j * size + b], p[j * size + b] = t;
+        }
+    }
 }
 
 /* The benchmark's scene (its 20 rows of cubics stroked 2.5 px wide, round
@@ -1380,14 +1404,7 @@ static void test_roots_batch(void **state)
             }
         }
     }
-    /* shuffled (a fixed LCG) */
-    uint64_t lcg = 12345;
-    for (size_t i = nr - 1; i > 0; i--) {
-        lcg = lcg * 6364136223846793005u + 1442695040888963407u;
-        size_t j = (size_t)(lcg >> 33) % (i + 1);
-        rb_req tmp = rq[i];
-        rq[i] = rq[j], rq[j] = tmp;
-    }
+    shuffle(rq, nr, sizeof *rq, 12345);
     /* one by one, then in batches: outputs zeroed first, so that a long
      * double's padding compares equal too */
     long double(*want)[2] = calloc(nr, sizeof *want), (*got)[2] = calloc(nr, sizeof *got);
@@ -3617,13 +3634,7 @@ static void test_roots_far(void **state)
             }
         }
     }
-    uint64_t lcg = 6789; /* shuffled (a fixed LCG) */
-    for (size_t i = nr - 1; i > 0; i--) {
-        lcg = lcg * 6364136223846793005u + 1442695040888963407u;
-        size_t j = (size_t)(lcg >> 33) % (i + 1);
-        aa__offset_rootq tmp = rq[i];
-        rq[i] = rq[j], rq[j] = tmp;
-    }
+    shuffle(rq, nr, sizeof *rq, 6789);
     /* outputs zeroed first, so that a long double's padding compares
      * equal too; every third request asks the other coordinate, not the
      * point */
@@ -4122,6 +4133,51 @@ static void test_shares_at(void **state)
     assert_true(parts > 4000 && ends > 1000 && past > 100);
 }
 
+/* area's gate on the row's point (area.c, load_pieces: ar_piece's rowpt,
+ * the map's |M|^2 / |det| at most 4.25, a condition number of at most 4):
+ * the image with the gate as built against the image with no piece taking
+ * the row's point (aa__area_rowpt 0), the benchmark's first 4 rows of
+ * cubics stroked 2.5 px wide at 256 px under maps of condition number
+ * 12.5 (rotate(30) scale(1 0.08)) and 3 (rotate(30) scale(1 1/3)) and a
+ * uniform one: the same bits under the first (the gate shut: the start
+ * from rel_point, the polygon's vertices about the first panel, no vertex
+ * term), not under the others (the gate open), so that a gate that let
+ * the first through, or shut on the others, fails. */
+static void test_rowpt_gate(void **state)
+{
+    (void)state;
+    const double c = cos(M_PI / 6), s = sin(M_PI / 6);
+    const double squash[6] = {c, s, -s * 0.08, c * 0.08, 0, 0};
+    const double third[6] = {c, s, -s / 3, c / 3, 0, 0};
+    const double *maps[3] = {squash, third, NULL};
+    static const char *const names[3] = {"condition number 12.5", "condition number 3",
+                                         "uniform"};
+    const int n = 256;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.join = AA_JOIN_ROUND, st.cap = AA_CAP_ROUND;
+    st.width = 2.5 / n;
+    int bad = 0;
+    for (int k = 0; k < 3; k++) {
+        aa_scene *sc = bench_rows_stroke_map(NULL, 4, &st, maps[k]);
+        aa_image a, b;
+        support_render("area", sc, "box", n, n, 1, &a, NULL);
+        aa__area_rowpt = 0;
+        support_render("area", sc, "box", n, n, 1, &b, NULL);
+        aa__area_rowpt = 1;
+        size_t moved = 0, nv = (size_t)n * n * 3;
+        for (size_t v = 0; v < nv; v++)
+            moved += memcmp(&a.v[v], &b.v[v], sizeof a.v[v]) != 0;
+        print_message("%-22s %zu values moved by the row's point\n", names[k], moved);
+        bad |= k == 0 ? moved != 0 : moved == 0;
+        aa_image_free(&a);
+        aa_image_free(&b);
+        aa_scene_free(sc);
+    }
+    if (bad)
+        fail_msg("the gate on the row's point not as its maps' condition numbers say");
+}
+
 int main(void)
 {
     SAN_CASES_PRINT();
@@ -4159,6 +4215,7 @@ int main(void)
                                        cmocka_unit_test(test_roots_far),
                                        cmocka_unit_test(test_kept_solves),
                                        cmocka_unit_test(test_shares_past),
-                                       cmocka_unit_test(test_shares_at)};
+                                       cmocka_unit_test(test_shares_at),
+                                       cmocka_unit_test(test_rowpt_gate)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

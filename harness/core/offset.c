@@ -1177,8 +1177,8 @@ root_d_more2_fma(const aa_offset_curve *oc, const aa__offset_fix *fx, int coord,
  * The double phase's second step is inline too: of the 45,069 single
  * roots a render at 1024 px 13,520 took it out of line (by a
  * continuation from the second evaluation, 544 instructions each, since
- * gone), 433 now go on past it (root_d_more2_*), and a root takes 537.5 instructions against 552.7
- * (algorithms/README.md).
+ * gone), 433 now go on past it (root_d_more2_*), and a root takes 537.5
+ * instructions against 552.7 (algorithms/README.md).
  * The operations are solve_double's and root_dd_loop's from the start,
  * in the same order, so the roots and points are the same bit for bit.
  * As one function with its loops (each evaluation inline in them) the
@@ -1293,11 +1293,11 @@ double aa__offset_root_dd_fma(const aa_offset_curve *oc, const aa__offset_fix *f
  * on its lane's parts, then root_dd_more_fma).  The second step in the
  * lanes took the lanes sent on alone from 6,309 of 77,326 a render at
  * 1024 px to 9 (algorithms/README.md).  The four curves' coefficients
- * are loaded and transposed once a batch.  It replaced two requests interleaved in
- * scalar registers (roots2_fma, whose state spilled to the stack, 565
- * stack accesses): one render of tests/bench_bezstroke.c at 1024 px 206.3
- * M instructions to 191.8 M, at 256 px 244.7 M to 241.9 M
- * (algorithms/README.md).  Built for AVX2 and FMA (roots4_avx2), and for
+ * are loaded and transposed once a batch.  It replaced two requests
+ * interleaved in scalar registers (roots2_fma, whose state spilled to
+ * the stack, 565 stack accesses): one render of tests/bench_bezstroke.c
+ * at 1024 px 206.3 M instructions to 191.8 M, at 256 px 244.7 M to 241.9
+ * M (algorithms/README.md).  Built for AVX2 and FMA (roots4_avx2), and for
  * AVX-512F on eight requests at once (roots8_512: the same operations in
  * __m512d's lanes, its masks __mmask8), from one source
  * (offset_lanes.h); aa__offset_roots takes eight where the processor
