@@ -464,12 +464,11 @@ static void heap_keys(ar_key *k, size_t n)
     }
 }
 
-/* Sort by (key, id): a total order, so the result does not depend on the
- * starting order.  Insertion sort (the common input is nearly sorted),
- * heapsort past a budget of moves. */
-static void sort_keys(ar_key *k, size_t n)
+/* k[0..n) sorted by (key, id) by insertion within `budget` moves: 1 if
+ * sorted, 0 (k still a permutation of its keys) if the budget ran out. */
+static inline int insert_keys(ar_key *k, size_t n, size_t budget)
 {
-    size_t moves = 0, budget = 8 * n + 64;
+    size_t moves = 0;
     for (size_t a = 1; a < n; a++) {
         ar_key v = k[a];
         size_t at = a;
@@ -478,12 +477,21 @@ static void sort_keys(ar_key *k, size_t n)
             at--;
             if (++moves > budget) {
                 k[at] = v;
-                heap_keys(k, n);
-                return;
+                return 0;
             }
         }
         k[at] = v;
     }
+    return 1;
+}
+
+/* Sort by (key, id): a total order, so the result does not depend on the
+ * starting order.  Insertion sort (the common input is nearly sorted),
+ * heapsort past a budget of moves. */
+static void sort_keys(ar_key *k, size_t n)
+{
+    if (!insert_keys(k, n, 8 * n + 64))
+        heap_keys(k, n);
 }
 
 /* ------------------------------------------------------------------------
@@ -2810,14 +2818,17 @@ void area_sort_new_keys(ar_key *k, size_t n, ar_key *tmp)
 
 /* keys[0..n) sorted by (key, id) (`tmp`: room for n): the first nold (the pieces carried from the rows
  * before, kept in their x order there: few out of place) and the rest (the
- * pieces new in the band, in path order) sorted apart, then merged.  The
- * new ones at the end sent one insertion sort past its budget, to the
- * heapsort, in a third of a stroke scene's rows.  (key, id) is a total
- * order, so the result is sort_keys' of all n. */
+ * pieces new in the band, nearly in x order: sort_pieces) sorted apart,
+ * the new ones by insertion within 2 moves a key, else (pieces whose
+ * least x is far from their first row's) by area_sort_new_keys, then
+ * merged.  The new ones at the end sent one insertion sort past its
+ * budget, to the heapsort, in a third of a stroke scene's rows.  (key, id)
+ * is a total order, so the result is sort_keys' of all n. */
 static void merge_keys(ar_key *keys, size_t nold, size_t n, ar_key *tmp)
 {
     sort_keys(keys, nold);
-    area_sort_new_keys(keys + nold, n - nold, tmp);
+    if (!insert_keys(keys + nold, n - nold, 2 * (n - nold)))
+        area_sort_new_keys(keys + nold, n - nold, tmp);
     if (nold == 0 || nold == n || !key_after(&keys[nold - 1], &keys[nold]))
         return;
     size_t a = 0, b = nold, k = 0;
@@ -3399,11 +3410,26 @@ static int load_ytab(ar_state *S, ar_piece *q)
     return AA_OK;
 }
 
-/* The pieces put in order by (y0, id), a total order: their keys sorted
- * (area_sort_new_keys, the comparison inline) and each piece copied once
- * into its place.  qsort called its comparison through a pointer and
- * permuted the pieces after sorting pointers to them: 4.6 M instructions
- * of the init on tests/bench_bezstroke.c's scene at 1024 px. */
+/* The row a piece enters the active list in (update_active: the first
+ * row j with y0 < j + 1), those above the image in row 0 */
+static inline double first_row(double y0)
+{
+    return y0 > 0.0 ? floor(y0) : 0.0;
+}
+
+/* The pieces put in order by the row they enter in (first_row), then by
+ * (xmin, id), a total order: their keys sorted by (xmin, id)
+ * (area_sort_new_keys, the comparison inline), then counted into their
+ * rows in that order, and each piece copied once into its place.  The
+ * pieces new in a row then come nearly in the order of their cells
+ * (merge_keys): in (y0, id) order, a stroke's pieces came in path order,
+ * and their sort was 1.0 M instructions a render on
+ * tests/bench_bezstroke.c's scene at 1024 px.  A scene reaching more rows
+ * down than twice its pieces (a piece far below) takes the order by (y0,
+ * id): every row counted would cost more than the sort (and so does one
+ * whose counts find no memory: the same rows, slower).  qsort called its
+ * comparison through a pointer and permuted the pieces after sorting
+ * pointers to them: 4.6 M instructions of the init at 1024 px. */
 static int sort_pieces(ar_state *S)
 {
     size_t n = S->npieces;
@@ -3413,9 +3439,29 @@ static int sort_pieces(ar_state *S)
     if (!k)
         return aa_fail(AA_ENOMEM, "out of memory for %zu pieces' order", n);
     ar_piece *p = S->piece;
-    for (size_t i = 0; i < n; i++)
-        k[i].key = p[i].y0, k[i].id = p[i].id, k[i].idx = (uint32_t)i;
-    area_sort_new_keys(k, n, k + n);
+    double last = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double r = first_row(p[i].y0);
+        last = r > last ? r : last;
+    }
+    size_t *at = last <= (double)(2 * n) ? calloc((size_t)last + 2, sizeof *at) : NULL;
+    if (at) {
+        for (size_t i = 0; i < n; i++)
+            k[i].key = p[i].xmin, k[i].id = p[i].id, k[i].idx = (uint32_t)i;
+        area_sort_new_keys(k, n, k + n);
+        for (size_t i = 0; i < n; i++) /* at[r + 1]: the pieces entering in row r */
+            at[(size_t)first_row(p[i].y0) + 1]++;
+        for (size_t r = 1; r <= (size_t)last; r++) /* at[r]: where row r's begin */
+            at[r] += at[r - 1];
+        for (size_t i = 0; i < n; i++)
+            k[n + at[(size_t)first_row(p[k[i].idx].y0)]++] = k[i];
+        memcpy(k, k + n, n * sizeof *k);
+        free(at);
+    } else {
+        for (size_t i = 0; i < n; i++)
+            k[i].key = p[i].y0, k[i].id = p[i].id, k[i].idx = (uint32_t)i;
+        area_sort_new_keys(k, n, k + n);
+    }
     /* in place, a cycle of the permutation at a time (k[j].idx = j: done) */
     for (size_t i = 0; i < n; i++) {
         if (k[i].idx == i)

@@ -350,7 +350,7 @@ typedef struct ar_grad {
 typedef struct ar_state {
     const aa_scene *scene;
     int w, nworkers;
-    ar_piece *piece; /* sorted by (y0, id) */
+    ar_piece *piece; /* by the row they enter in, then (xmin, id) (area.c, sort_pieces) */
     size_t npieces;
     int nl, nch;         /* layers; channels computed (1 for grey scenes) */
     /* 1 if the colour of a winding state is the scene's composite of the

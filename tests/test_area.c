@@ -895,6 +895,60 @@ static void test_sub_band_orders(void **state)
     aa_scene_free(s);
 }
 
+/* The pieces' order by the row they enter in, then by x (area.c,
+ * sort_pieces), against the reference on 64 x 64 px (both integrators,
+ * two threads: rows taken out of turn start the active list again).  Six
+ * parallelograms 1 px wide enter row 5 left to right, each running down
+ * and left at 45 degrees, the longer the further right, so that their
+ * least x (the order they are put in) is the reverse of their cells' in
+ * the row they enter (merge_keys' insertion runs past its budget); twelve
+ * triangles, added right to left, enter rows 0 (from above the image) and
+ * 1, 29 and 30 (exactly on its line), each left of one entering the row
+ * before, and 33; a disc of cubics makes the scene's rows take the curved
+ * pieces' path.  With `far`, a rectangle
+ * reaching 300 px down (its bottom's row more than twice the pieces) sends
+ * the order to the one by (y0, id). */
+static void test_piece_rows(void **state)
+{
+    (void)state;
+    for (int far = 0; far < 2; far++) {
+        aa_scene *s = aa_scene_new(black);
+        assert_int_equal(aa_scene_layer(s, white, AA_FILL_NONZERO), AA_OK);
+        for (int k = 0; k < 6; k++) {
+            double x = 10.0 + 3 * k, h = 4.0 * k + 2, y = 5.3;
+            assert_int_equal(aa_scene_move_to(s, x / 64, y / 64), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, (x + 1) / 64, y / 64), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, (x + 1 - h) / 64, (y + h) / 64), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, (x - h) / 64, (y + h) / 64), AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+        }
+        for (int k = 11; k >= 0; k--) {
+            double x = 2.0 + 4 * k, y = k < 4 ? (k % 2 ? -2.5 : 1.4)
+                                               : k < 8 ? (k % 2 ? 29.6 : 30.0) : 33.25;
+            assert_int_equal(aa_scene_move_to(s, (x + 1.5) / 64, y / 64), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, (x + 3.2) / 64, (y + 6.4) / 64), AA_OK);
+            assert_int_equal(aa_scene_line_to(s, x / 64, (y + 5.1) / 64), AA_OK);
+            assert_int_equal(aa_scene_close(s), AA_OK);
+        }
+        const double cx = 54.0 / 64, cy = 48.0 / 64, r = 6.5 / 64, c = 0.5523 * r;
+        assert_int_equal(aa_scene_move_to(s, cx + r, cy), AA_OK);
+        assert_int_equal(aa_scene_cubic_to(s, cx + r, cy + c, cx + c, cy + r, cx, cy + r), AA_OK);
+        assert_int_equal(aa_scene_cubic_to(s, cx - c, cy + r, cx - r, cy + c, cx - r, cy), AA_OK);
+        assert_int_equal(aa_scene_cubic_to(s, cx - r, cy - c, cx - c, cy - r, cx, cy - r), AA_OK);
+        assert_int_equal(aa_scene_cubic_to(s, cx + c, cy - r, cx + r, cy - c, cx + r, cy), AA_OK);
+        assert_int_equal(aa_scene_close(s), AA_OK);
+        if (far) {
+            oracle_poly q = {4, {40.2 / 64, 44.7 / 64, 44.7 / 64, 40.2 / 64},
+                             {56.4 / 64, 56.4 / 64, 300.0 / 64, 300.0 / 64}};
+            scenes_add_poly(s, &q);
+        }
+        assert_int_equal(aa_scene_finish(s), AA_OK);
+        check_reference(far ? "pieces by rows and x, one far below" : "pieces by rows and x", s,
+                        64, 64, 0, 0, 0, 1e-12);
+        aa_scene_free(s);
+    }
+}
+
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_crow_reference),
              cmocka_unit_test(test_crow_oracle),
@@ -915,4 +969,5 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_crowded_layers),
              cmocka_unit_test(test_sweep_parts),
              cmocka_unit_test(test_sort_new_keys),
-             cmocka_unit_test(test_sub_band_orders))
+             cmocka_unit_test(test_sub_band_orders),
+             cmocka_unit_test(test_piece_rows))
