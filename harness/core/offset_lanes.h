@@ -42,17 +42,29 @@ VATTR VD VF(two_prod)(VD a, VD b, VD *e)
 typedef struct VF(curves) {
     VD b[8], m[4], r0, r1, r2, d;
     VD dch[4][2], dcl[4][2], duh[3][2], du2l[2];
+    int axes; /* 1: r0 is 0 in every lane, 2: r1 is (and r0 in none), else 0 */
 } VF(curves);
 
 /* eval_dd in each lane: f, df and dn at t (its blends: the sums of the
- * row's products that eval_dd takes where r0 or r1 is 0, and the two) */
+ * row's products that eval_dd takes where r0 or r1 is 0, and the two).
+ * Where the map keeps the axes in every lane (C->axes, as a scene's
+ * placement does: r0 0 on y's rows, r1 on x's), the one product eval_dd
+ * takes there alone, without the other coordinate's base and the blends:
+ * the same value in each lane. */
 VATTR void VF(eval_dd)(const VF(curves) *C, VD t, VD tgt, VD *f, VD *df, VD *dn)
 {
     const VD *b = C->b, zero = VF(set1)(0.0);
-    VD bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
-    VD by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
-    VD s0 = C->r0 * bx, s1 = C->r1 * by;
-    VD s = VF(sel)(VF(eq)(C->r0, zero), VF(sel)(VF(eq)(C->r1, zero), s0 + s1, s0), s1);
+    VD s;
+    if (C->axes == 1) {
+        s = C->r1 * (b[4] + t * (b[5] + t * (b[6] + t * b[7])));
+    } else if (C->axes == 2) {
+        s = C->r0 * (b[0] + t * (b[1] + t * (b[2] + t * b[3])));
+    } else {
+        VD bx = b[0] + t * (b[1] + t * (b[2] + t * b[3]));
+        VD by = b[4] + t * (b[5] + t * (b[6] + t * b[7]));
+        VD s0 = C->r0 * bx, s1 = C->r1 * by;
+        s = VF(sel)(VF(eq)(C->r0, zero), VF(sel)(VF(eq)(C->r1, zero), s0 + s1, s0), s1);
+    }
     VD base0 = s + C->r2;
     VD ux = b[1] + t * (2 * b[2] + 3 * t * b[3]), uy = b[5] + t * (2 * b[6] + 3 * t * b[7]);
     VD vx = 2 * b[2] + 6 * t * b[3], vy = 2 * b[6] + 6 * t * b[7];
@@ -151,6 +163,13 @@ static __attribute__((noinline, target(VTARGET))) void VROOTS(aa__offset_rootq *
     VF(rows)(V_ALL(V_M), C.m);
     VM cm = VF(coord)(R);
     C.r0 = VF(sel)(cm, C.m[0], C.m[1]), C.r1 = VF(sel)(cm, C.m[2], C.m[3]);
+    {
+        const int full = (1 << VN) - 1; /* lanes n and on repeat r[0] */
+        VD z = VF(set1)(0.0);
+        C.axes = VF(bits)(VF(eq)(C.r0, z)) == full   ? 1
+                 : VF(bits)(VF(eq)(C.r1, z)) == full ? (VF(bits)(VF(eq)(C.r0, z)) ? 0 : 2)
+                                                     : 0;
+    }
 #define V_R2(k) o[k]->m[4 + R[k]->coord]
 #define V_D(k) o[k]->d
     C.r2 = VF(set)(V_ALL(V_R2));
