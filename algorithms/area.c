@@ -2816,14 +2816,13 @@ void area_sort_new_keys(ar_key *k, size_t n, ar_key *tmp)
         memcpy(k, src, n * sizeof *k);
 }
 
-/* keys[0..n) sorted by (key, id) (`tmp`: room for n): the first nold (the pieces carried from the rows
- * before, kept in their x order there: few out of place) and the rest (the
- * pieces new in the band, nearly in x order: sort_pieces) sorted apart,
- * the new ones by insertion within 2 moves a key, else (pieces whose
- * least x is far from their first row's) by area_sort_new_keys, then
- * merged.  The new ones at the end sent one insertion sort past its
- * budget, to the heapsort, in a third of a stroke scene's rows.  (key, id)
- * is a total order, so the result is sort_keys' of all n. */
+/* keys[0..n) sorted by (key, id) (`tmp`: room for n): the first nold (the
+ * pieces carried from the rows before, kept in their x order there: few
+ * out of place) and the rest (the pieces new in the band, nearly in x
+ * order: sort_pieces) sorted apart, the new ones by insertion within 2
+ * moves a key, else (pieces whose least x is far from their first row's)
+ * by area_sort_new_keys, then merged.  (key, id) is a total order, so the
+ * result is sort_keys' of all n. */
 static void merge_keys(ar_key *keys, size_t nold, size_t n, ar_key *tmp)
 {
     sort_keys(keys, nold);
@@ -3424,9 +3423,9 @@ static inline double first_row(double y0)
  * pieces new in a row then come nearly in the order of their cells
  * (merge_keys): in (y0, id) order, a stroke's pieces came in path order,
  * and their sort was 1.0 M instructions a render on
- * tests/bench_bezstroke.c's scene at 1024 px.  A scene reaching more rows
- * down than twice its pieces (a piece far below) takes the order by (y0,
- * id): every row counted would cost more than the sort (and so does one
+ * tests/bench_bezstroke.c's scene at 1024 px.  A scene whose pieces begin
+ * more rows down than twice their count (a piece far below) takes the
+ * order by (y0, id): every row counted would cost more than the sort (and so does one
  * whose counts find no memory: the same rows, slower).  qsort called its
  * comparison through a pointer and permuted the pieces after sorting
  * pointers to them: 4.6 M instructions of the init at 1024 px. */
