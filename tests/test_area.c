@@ -34,6 +34,9 @@
  *  - sub-bands of a band holding one seg or none (ordered without their
  *    ends' roots) and sub-bands whose first two segs have the same ends
  *    (ordered at the middle) against the reference.
+ *  - pieces entering rows out of the order by x, and a scene whose pieces
+ *    begin far below (the order by (y0, id)), against the reference
+ *    (sort_pieces' order by rows, merge_keys' insertion).
  */
 #include "area_internal.h"
 #include "bench.h"
@@ -905,9 +908,9 @@ static void test_sub_band_orders(void **state)
  * triangles, added right to left, enter rows 0 (from above the image) and
  * 1, 29 and 30 (exactly on its line), each left of one entering the row
  * before, and 33; a disc of cubics makes the scene's rows take the curved
- * pieces' path.  With `far`, a rectangle
- * reaching 300 px down (its bottom's row more than twice the pieces) sends
- * the order to the one by (y0, id). */
+ * pieces' path.  With `far`, a rectangle reaching 300 px down (its bottom
+ * edge begins in a row more than twice the pieces) sends the order to the
+ * one by (y0, id). */
 static void test_piece_rows(void **state)
 {
     (void)state;
