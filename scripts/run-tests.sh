@@ -20,6 +20,11 @@
 # test through $AABENCH and the example plug-in through $AABENCH_PLUGIN.
 # AABENCH_VALGRIND=1 (make valgrind): each test under memcheck; errors and
 # definite or indirect leaks fail it.
+# AABENCH_TEST_TIMEOUT=S: a test still running after S seconds is stopped
+# (TERM, then KILL 10 s later) and fails, its log ending "timed out after S
+# s"; default 900 (the slowest took 89 s in CI, under the sanitizers, the
+# two builds' tests side by side on 2 cores), none under valgrind; 0: no
+# limit.  A test that hangs fails rather than holding up the whole run.
 set -u
 
 now() { date +%s.%N; }
@@ -41,15 +46,36 @@ one() {
 --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect \
 --suppressions=$(pwd)/tests/valgrind.supp --quiet"
     fi
+    if [ -n "${AABENCH_VALGRIND:-}" ]; then
+        limit=${AABENCH_TEST_TIMEOUT:-0}
+    else
+        limit=${AABENCH_TEST_TIMEOUT:-900}
+    fi
+    case $limit in
+    '' | *[!0-9]*)
+        echo "run-tests.sh: AABENCH_TEST_TIMEOUT must be a whole number of seconds, not '$limit'" >&2
+        exit 2
+        ;;
+    esac
+    if [ "$limit" -gt 0 ]; then
+        run="timeout -k 10 $limit $run"
+    fi
     rm -f "$t.result"
     start=$(now)
     # the test in a subshell whose `times` (its children's user and system
     # CPU: the test and every process it waited for) follows its status;
     # CPU time is what a busy machine inflates least
     out=$( { $run "$t" >"$t.log" 2>&1; echo "$?"; times; } )
+    status=${out%%[!0-9]*}
     result=failed
-    [ "${out%%[!0-9]*}" = 0 ] && result=passed
+    [ "$status" = 0 ] && result=passed
     seconds=$(awk -v a="$start" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }')
+    # timeout's status: 124 after TERM, 137 (128 + 9) where KILL was needed;
+    # the same from a test of its own only if it ran less than the limit
+    if [ "$limit" -gt 0 ] && { [ "$status" = 124 ] || [ "$status" = 137 ]; } &&
+        awk -v s="$seconds" -v l="$limit" 'BEGIN { exit !(s >= l) }'; then
+        echo "timed out after $limit s" >>"$t.log"
+    fi
     # times' last line: the children's user and system time, as 1m2.5s
     cpu=$(echo "$out" | awk 'END {
         for (i = 1; i <= 2; i++) { split($i, p, "m"); sub("s", "", p[2]); s[i] = p[1] * 60 + p[2] }
