@@ -913,6 +913,11 @@ double area_offset_segment_at(const ar_piece *pc, double ta, double tb, double x
 /* The rule (index into ar_quad) the share [al, be] of panel p takes: the
  * fewest points whose bound is within AR_QUAD_TOL. */
 int area_offset_rule(const ar_panel *p, double al, double be);
+/* 1 where the test of area_offset_rule's 8 points without a division or a
+ * square root (area_offset.c, rule8_sure) tells that share [al, be] of
+ * panel p takes 8 points, 0 where it cannot tell (the exact test then
+ * decides). */
+int area_offset_rule_sure(const ar_panel *p, double al, double be);
 /* A bound on the speed |P'| of an offset curve or evolute (unmapped, its
  * own units) on each disc |t - m| <= R[k], k < n, R ascending: INFINITY
  * from the first disc that may hold a zero of a denominator on (the form

@@ -97,6 +97,12 @@
  *    the same integral, whether one share of that panel (its disc holds
  *    the part's ellipse and 8 or 12 points meet the bound) or panel by
  *    panel, and the rule of one share the fewest points so bound;
+ *  - the rule's test of 8 points without a division or a square root
+ *    (test_rule_sure): wherever it tells 8 points, on random discs down to
+ *    and beyond the ranges its powers are guarded for, the exact test
+ *    (written here in double) tells 8 too and Trefethen's bound (long
+ *    double) is within the tolerance; and it tells on nearly every share
+ *    of 8 points of three strokes;
  *  - the parameters at a pair's common heights inside a band, solved from
  *    the piece's table's start (test_common_starts): the benchmark's scene
  *    at 256 px (rows 0 to 127) against the reference within its bound;
@@ -1954,6 +1960,103 @@ static void table_piece(const char *name, const double yb[4], double t0, double 
     memset(ap, 0, sizeof *ap);
     ap->nyt = YT_N;
     ytab_attach(ap, nd);
+}
+
+/* The test of the 8 points' rule without a division or a square root
+ * (area_offset.c, rule8_sure, through area_offset_rule_sure): wherever it
+ * tells 8 points, (a) the exact test tells 8 too, the base's operations
+ * written here in double (z = Rs/h, rho = z + sqrt((z - 1)(z + 1)), r2 =
+ * rho^2, r2^8 (r2 - 1) as (r2^4 (r2 - 1)) r2^4 against h K M r2, K =
+ * 64 (1 + 1e-12) / (15 AR_QUAD_TOL)), and Trefethen's bound for 8 points,
+ * computed here in long double, is within AR_QUAD_TOL; on 2,000,000 random
+ * discs (h from 2^-80 to 2^30, z = Rs/h from 1 + 2^-40 to 2^61, M within a
+ * relative 2^-60 to 1/2 of the 8 points' limit, a quarter anywhere from
+ * 2^-1000 to 2^1000); and (b) it tells on at least 95% of the shares inside
+ * a panel that take 8 points, on the offset pieces of test_shares' three
+ * strokes (so it is not left dead). */
+static void test_rule_sure(void **state)
+{
+    (void)state;
+    const double K = 64.0 / (15.0 * AR_QUAD_TOL) * (1.0 + 1e-12);
+    uint64_t rng = 42424242;
+    int sure = 0, tried = 0, eight = 0, told = 0;
+    long double worst = 0.0L;
+    for (int i = 0; i < 2000000; i++) {
+        double u[6];
+        for (int e = 0; e < 6; e++) { /* uniform in [0, 1), 53 bits */
+            rng = rng * 6364136223846793005u + 1442695040888963407u;
+            u[e] = (double)(rng >> 11) * 0x1p-53;
+        }
+        double h = ldexp(1.0 + u[0], (int)(-80 + 110 * u[1]));
+        double Rs = h * (1.0 + ldexp(1.0 + u[2], (int)(-40 + 100 * u[3])));
+        if (!(Rs > h) || !isfinite(Rs))
+            continue;
+        long double zl = (long double)Rs / h, rl = zl + sqrtl((zl - 1) * (zl + 1));
+        long double r2l = rl * rl, lim = powl(r2l, 7) * (r2l - 1) / ((long double)h * K);
+        double M;
+        if (u[4] < 0.25) {
+            M = ldexp(1.0 + u[0], (int)(-1000 + 2000 * u[4] * 4));
+        } else {
+            long double dl = ldexpl(1.0L, -(int)(1 + 60 * u[5]));
+            M = (double)(lim * (u[4] < 0.625 ? 1 - dl : 1 + dl));
+        }
+        if (!(M > 0.0) || !isfinite(M))
+            continue;
+        ar_panel p;
+        memset(&p, 0, sizeof p);
+        p.R = Rs, p.M = M;
+        tried++;
+        if (!area_offset_rule_sure(&p, -h, h))
+            continue;
+        sure++;
+        double z = Rs / h, rho = z + sqrt((z - 1.0) * (z + 1.0)), r2 = rho * rho;
+        double need = h * K * M * r2;
+        double p4 = r2 * r2 * (r2 * r2), pw = p4 * (r2 - 1.0) * p4;
+        long double e8 = (long double)h * 64 * M / (15 * (1 - 1 / r2l) * powl(r2l, 8));
+        if (!(pw >= need) || !(e8 <= AR_QUAD_TOL))
+            fail_msg("h %a Rs %a M %a: 8 points told, the exact test %s (%.17g against "
+                     "%.17g, %.3e apart); the bound %.6Le",
+                     h, Rs, M, pw >= need ? "too" : "not", pw, need, pw / need - 1, e8);
+        worst = fmaxl(worst, e8 / AR_QUAD_TOL);
+    }
+    /* (b) on the shares of three strokes */
+    ar_quad quad;
+    must(area_quad_init(&quad));
+    for (int c = 0; c < 3; c++) {
+        aa_scene *placed = shares_stroke(c);
+        size_t np;
+        const aa_piece *pc = aa_scene_pieces(placed, &np);
+        for (size_t k = 0; k < np; k++) {
+            if (pc[k].kind != AA_PIECE_OFFSET)
+                continue;
+            ar_piece ap;
+            ar_panel *pan = shares_piece(&pc[k], &quad, &ap);
+            for (int i = 0; i < 200; i++) {
+                double v[3];
+                for (int e = 0; e < 3; e++) {
+                    rng = rng * 6364136223846793005u + 1442695040888963407u;
+                    v[e] = (double)(rng >> 11) * 0x1p-53;
+                }
+                const ar_panel *q = &pan[(size_t)(v[2] * (double)ap.npan)];
+                double wd = (q->b - q->a) * pow(10.0, -4.0 * v[1]);
+                double ta = q->a + (q->b - q->a - wd) * v[0], tb = fmin(ta + wd, q->b);
+                if (!(tb > ta) || area_offset_rule(q, ta, tb) != 0)
+                    continue;
+                eight++;
+                told += area_offset_rule_sure(q, ta, tb);
+            }
+            free(pan);
+        }
+        aa_scene_free(placed);
+    }
+    print_message("%d random discs, %d told 8 points, the exact test 8 on each (its bound "
+                  "at most %.4Lf of the tolerance); on three strokes %d of %d shares of 8 "
+                  "points told\n",
+                  tried, sure, worst, told, eight);
+    assert_true(sure > 10000);
+    assert_true(eight > 1000);
+    if (!(told >= 0.95 * eight))
+        fail_msg("8 points told on %d of %d shares that take them", told, eight);
 }
 
 /* area's band lines' starts on an offset piece (area_internal.h,
@@ -4196,6 +4299,7 @@ int main(void)
                                        cmocka_unit_test(test_panels),
                                        cmocka_unit_test(test_shares),
                                        cmocka_unit_test(test_shares_across),
+                                       cmocka_unit_test(test_rule_sure),
                                        cmocka_unit_test(test_starts),
                                        cmocka_unit_test(test_shared_ends),
                                        cmocka_unit_test(test_common_heights),
