@@ -963,9 +963,11 @@ __attribute__((always_inline)) static inline int seg_make(ar_seg *s, const ar_pi
     if (s->ja != ja)
         expand(s, p, ja);
     double ta, tb, ua, ub;
-    /* (p->curved first: the common path reads no other cache line of p) */
+    /* (p->curved first: the common path reads no other cache line of p;
+     * then p->offset, in the line band_roots has read, before p->conic,
+     * four lines on, which an offset piece's seg need not read) */
     int curved = !plain && p->curved;
-    int special = curved && (p->conic || p->offset);
+    int special = curved && (p->offset || p->conic);
     /* an offset piece's v at the band's ends, which part_area takes, is
      * kept in the memo's slots 2 and 3 as it is found (offset_keep's
      * values), the others cleared (none kept yet) */
