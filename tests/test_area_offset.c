@@ -1968,7 +1968,7 @@ static void table_piece(const char *name, const double yb[4], double t0, double 
  * written here in double (z = Rs/h, rho = z + sqrt((z - 1)(z + 1)), r2 =
  * rho^2, r2^8 (r2 - 1) as (r2^4 (r2 - 1)) r2^4 against h K M r2, K =
  * 64 (1 + 1e-12) / (15 AR_QUAD_TOL)), and Trefethen's bound for 8 points,
- * computed here in long double, is within AR_QUAD_TOL; on 2,000,000 random
+ * computed here in long double, is within AR_QUAD_TOL; on 200,000 random
  * discs (h from 2^-80 to 2^30, z = Rs/h from 1 + 2^-40 to 2^61, M within a
  * relative 2^-60 to 1/2 of the 8 points' limit, a quarter anywhere from
  * 2^-1000 to 2^1000); and (b) it tells on at least 95% of the shares inside
@@ -1981,7 +1981,7 @@ static void test_rule_sure(void **state)
     uint64_t rng = 42424242;
     int sure = 0, tried = 0, eight = 0, told = 0;
     long double worst = 0.0L;
-    for (int i = 0; i < 2000000; i++) {
+    for (int i = 0; i < 200000; i++) {
         double u[6];
         for (int e = 0; e < 6; e++) { /* uniform in [0, 1), 53 bits */
             rng = rng * 6364136223846793005u + 1442695040888963407u;
@@ -2053,7 +2053,7 @@ static void test_rule_sure(void **state)
                   "at most %.4Lf of the tolerance); on three strokes %d of %d shares of 8 "
                   "points told\n",
                   tried, sure, worst, told, eight);
-    assert_true(sure > 10000);
+    assert_true(sure > 1000);
     assert_true(eight > 1000);
     if (!(told >= 0.95 * eight))
         fail_msg("8 points told on %d of %d shares that take them", told, eight);
