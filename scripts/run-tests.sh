@@ -57,15 +57,30 @@ one() {
         exit 2
         ;;
     esac
-    if [ "$limit" -gt 0 ]; then
-        run="timeout -k 10 $limit $run"
-    fi
     rm -f "$t.result"
     start=$(now)
     # the test in a subshell whose `times` (its children's user and system
     # CPU: the test and every process it waited for) follows its status;
-    # CPU time is what a busy machine inflates least
-    out=$( { $run "$t" >"$t.log" 2>&1; echo "$?"; times; } )
+    # CPU time is what a busy machine inflates least.  Under a limit,
+    # timeout runs the test in a process group of its own, which a
+    # terminal's Ctrl-C does not reach: timeout runs in the background and
+    # the INT, TERM or HUP the subshell gets is passed on to it (it passes
+    # it on to the test's group), then the subshell waits for it again
+    if [ "$limit" -gt 0 ]; then
+        out=$( {
+            timeout -k 10 "$limit" $run "$t" >"$t.log" 2>&1 &
+            pid=$!
+            trap 'kill -s INT $pid 2>/dev/null' INT
+            trap 'kill -s TERM $pid 2>/dev/null' TERM HUP
+            # wait returns early (above 128) where a trapped signal came;
+            # the last wait, once the process is gone, gives its status
+            while wait $pid 2>>"$t.log"; st=$?; kill -0 $pid 2>/dev/null; do :; done
+            echo "$st"
+            times
+        } )
+    else
+        out=$( { $run "$t" >"$t.log" 2>&1; echo "$?"; times; } )
+    fi
     status=${out%%[!0-9]*}
     result=failed
     [ "$status" = 0 ] && result=passed
