@@ -777,7 +777,9 @@ nodes_avx(const double *qx, const double *qw, int n, double sm, double h,
  * 40 u of its value, the right 20 u.  At z = 2 the left side over b^8 is
  * 13^7 12 < 2^30, so t >= 2^30 makes z > 2 where this test passes, and
  * there the exact test's z - 1 does not cancel either: its left side within
- * 110 u, its right 15 u.  The left side times 1 - 1e-12 (about 9,000 u)
+ * 110 u, its right 15 u (a guard of the proof: near z = 1 this test's bound
+ * is looser than the exact one by far more than that rounding, and no test
+ * tells the guard apart).  The left side times 1 - 1e-12 (about 9,000 u)
  * covers the four, so the exact test's rounded sides pass wherever these
  * do.  With 2^-24 <= h < Rs <= 2^20 the powers stay finite and b^8 t
  * normal (b^8 within 2^-384 and 2^320, the left side, at most (4a -
