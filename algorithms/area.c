@@ -3427,10 +3427,10 @@ static inline double first_row(double y0)
  * and their sort was 1.0 M instructions a render on
  * tests/bench_bezstroke.c's scene at 1024 px.  A scene whose pieces begin
  * more rows down than twice their count (a piece far below) takes the
- * order by (y0, id): every row counted would cost more than the sort (and so does one
- * whose counts find no memory: the same rows, slower).  qsort called its
- * comparison through a pointer and permuted the pieces after sorting
- * pointers to them: 4.6 M instructions of the init at 1024 px. */
+ * order by (y0, id): every row counted would cost more than the sort (and
+ * so does one whose counts find no memory: the same rows, slower).  qsort
+ * called its comparison through a pointer and permuted the pieces after
+ * sorting pointers to them: 4.6 M instructions of the init at 1024 px. */
 static int sort_pieces(ar_state *S)
 {
     size_t n = S->npieces;

@@ -788,6 +788,13 @@ nodes_avx(const double *qx, const double *qw, int n, double sm, double h,
  * the exact test decides.  On the stroke benchmark it decides 83,832 of
  * the 83,961 shares a render that take 8 points at 1024 px, 15,990 of
  * 16,098 at 256 px. */
+/* t = h K M of a share of half width h in panel p, K = 64 (1 + 1e-12) /
+ * (15 AR_QUAD_TOL): the product both tests compare against */
+static __attribute__((always_inline)) inline double rule_t(const ar_panel *p, double h)
+{
+    return h * (64.0 / (15.0 * AR_QUAD_TOL) * (1.0 + 1e-12)) * p->M;
+}
+
 static __attribute__((always_inline)) inline int rule8_sure(double Rs, double h, double t)
 {
     if (!(t >= 0x1p30 && h >= 0x1p-24 && Rs <= 0x1p20))
@@ -821,7 +828,7 @@ static __attribute__((always_inline)) inline int rule_or_none(const ar_panel *p,
          * (r2 - 1) as (r2^4 (r2 - 1)) r2^4.  8 points first by rule8_sure
          * where it can tell (the same rule, without z's division and
          * square root, whose chain the share waited on). */
-        double t = h * (64.0 / (15.0 * AR_QUAD_TOL) * (1.0 + 1e-12)) * p->M;
+        double t = rule_t(p, h);
         if (rule8_sure(Rs, h, t))
             return 0;
         double z = Rs / h, rho = z + sqrt((z - 1.0) * (z + 1.0)), r2 = rho * rho;
@@ -852,7 +859,7 @@ int area_offset_rule_sure(const ar_panel *p, double al, double be)
     double h = 0.5 * (be - al), mm = 0.5 * (al + be), Rs = p->R - fabs(mm - p->m);
     if (!(h > 0.0 && Rs > h && p->M > 0.0))
         return 0;
-    return rule8_sure(Rs, h, h * (64.0 / (15.0 * AR_QUAD_TOL) * (1.0 + 1e-12)) * p->M);
+    return rule8_sure(Rs, h, rule_t(p, h));
 }
 
 /* 1/2 the integral of (P - P(al)) x P' over [al, be] inside panel p, in

@@ -166,9 +166,8 @@ static __attribute__((noinline, target(VTARGET))) void VROOTS(aa__offset_rootq *
     {
         const int full = (1 << VN) - 1; /* lanes n and on repeat r[0] */
         VD z = VF(set1)(0.0);
-        C.axes = VF(bits)(VF(eq)(C.r0, z)) == full   ? 1
-                 : VF(bits)(VF(eq)(C.r1, z)) == full ? (VF(bits)(VF(eq)(C.r0, z)) ? 0 : 2)
-                                                     : 0;
+        int z0 = VF(bits)(VF(eq)(C.r0, z)), z1 = VF(bits)(VF(eq)(C.r1, z));
+        C.axes = z0 == full ? 1 : z1 == full && !z0 ? 2 : 0;
     }
 #define V_R2(k) o[k]->m[4 + R[k]->coord]
 #define V_D(k) o[k]->d
