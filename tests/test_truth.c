@@ -620,7 +620,7 @@ static void test_crowd_rule(void **state)
 /* The progress hook: calls with pixels done, non-decreasing, ending with
  * the total; none once unset. */
 typedef struct progress_log {
-    size_t calls, last, total;
+    size_t calls, last, total, within;
     int backwards;
 } progress_log;
 
@@ -629,6 +629,7 @@ static void log_progress(void *ctx, size_t done, size_t total)
     progress_log *p = ctx;
     p->backwards |= done < p->last;
     p->calls++;
+    p->within += done < total;
     p->last = done;
     p->total = total;
 }
@@ -636,7 +637,7 @@ static void log_progress(void *ctx, size_t done, size_t total)
 static void test_progress(void **state)
 {
     (void)state;
-    progress_log log = {0, 0, 0, 0};
+    progress_log log = {0, 0, 0, 0, 0};
     aa_image img;
     aa_truth_stats st;
     aa_truth_set_progress(log_progress, &log);
@@ -651,6 +652,34 @@ static void test_progress(void **state)
     reference("crow", 16, 16, "box", 2, &img, NULL, &st);
     aa_image_free(&img);
     assert_int_equal(log.calls, calls);
+}
+
+/* Progress within a row: a pixel of a crowded window can take seconds and a
+ * row of them minutes (a thumbnail of a dense drawing), so the hook hears
+ * of pixels as they are done, not of rows at their end.  One row of crow
+ * at 64 px, no least time between calls: a call for each pixel integrated
+ * or run of uniform ones before the last, each after the one before.  Told
+ * of rows only, the hook was called once, with the total. */
+static void test_progress_pixels(void **state)
+{
+    (void)state;
+    progress_log log = {0, 0, 0, 0, 0};
+    aa_image img;
+    aa_truth_stats st;
+    aa_truth_set_progress(log_progress, &log);
+    aa__truth_set_progress_interval(0.0);
+    reference("crow", 64, 1, "box", 1, &img, NULL, &st);
+    aa__truth_set_progress_interval(0.1);
+    aa_truth_set_progress(NULL, NULL);
+    aa_image_free(&img);
+    print_message("progress in one row of 64 pixels: %zu calls, %zu before the total (%zu "
+                  "pixels integrated)\n",
+                  log.calls, log.within, st.integrated);
+    assert_true(st.integrated >= 8);
+    assert_true(log.within >= st.integrated - 1);
+    assert_int_equal(log.total, 64);
+    assert_int_equal(log.last, 64);
+    assert_false(log.backwards);
 }
 
 /* Many overlapping layers (more than CROWD_WL_LAYERS, past which the
@@ -772,4 +801,5 @@ SUPPORT_MAIN(say_cases, NULL,
              cmocka_unit_test(test_crowd_many_layers),
              cmocka_unit_test(test_crowd_random_arcs),
              cmocka_unit_test(test_crowd_rule),
-             cmocka_unit_test(test_progress))
+             cmocka_unit_test(test_progress),
+             cmocka_unit_test(test_progress_pixels))

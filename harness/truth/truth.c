@@ -7806,10 +7806,16 @@ typedef struct row_stats {
     int worst_i, worst_j;
 } row_stats;
 
+typedef struct progress progress;
+static void progress_add(progress *p, size_t pixels);
+
 /* Row j.  fs, if not NULL, offers the fixed rule to the non-uniform
- * pixels (Gaussian); the others, or those it declines, take QAG. */
+ * pixels (Gaussian); the others, or those it declines, take QAG.  prog, if
+ * not NULL, is told of each pixel integrated and each run of uniform ones,
+ * not of the row at its end: one crowded pixel can take seconds, and a row
+ * of them minutes (tests/bench_bezstroke.c's scene at a few pixels). */
 static int render_row(worker *w, panel_worker *fs, int j, aa_image *out, aa_image *bound,
-                      row_stats *rs)
+                      row_stats *rs, progress *prog)
 {
     double R = w->R;
     int grey = aa_scene_is_grey(w->scene);
@@ -7832,6 +7838,8 @@ static int render_row(worker *w, panel_worker *fs, int j, aa_image *out, aa_imag
                     *aa_pixel(bound, k, j) = b;
             }
             rs->filled += (size_t)(end - i);
+            if (prog)
+                progress_add(prog, (size_t)(end - i));
             if (b > rs->max_bound) {
                 rs->max_bound = b;
                 rs->worst_i = i;
@@ -7849,6 +7857,8 @@ static int render_row(worker *w, panel_worker *fs, int j, aa_image *out, aa_imag
         else if ((st = integrate_pixel(w, grey, px, &b)))
             return st;
         rs->integrated++;
+        if (prog)
+            progress_add(prog, 1);
         if (bound)
             *aa_pixel(bound, i, j) = b;
         if (b > rs->max_bound) {
@@ -7891,6 +7901,7 @@ static int field_render(const aa_scene *placed, const aa_filter *f, int threads,
 
 static aa_truth_progress_fn progress_fn;
 static void *progress_ctx;
+static double progress_interval = 0.1;
 
 void aa_truth_set_progress(aa_truth_progress_fn fn, void *ctx)
 {
@@ -7898,22 +7909,27 @@ void aa_truth_set_progress(aa_truth_progress_fn fn, void *ctx)
     progress_ctx = ctx;
 }
 
-typedef struct progress {
+void aa__truth_set_progress_interval(double seconds)
+{
+    progress_interval = seconds;
+}
+
+struct progress {
     aa_truth_progress_fn fn;
     void *ctx;
     size_t done, total;
     double last;
-} progress;
+};
 
-/* A row of `pixels` is done: tell, one thread at a time, at most ten
- * times a second. */
-static void progress_row(progress *p, size_t pixels)
+/* `pixels` more are done: tell, one thread at a time, at most ten times a
+ * second (progress_interval). */
+static void progress_add(progress *p, size_t pixels)
 {
 #pragma omp critical(aa_truth_progress)
     {
         p->done += pixels;
         double now = aa_now();
-        if (now - p->last >= 0.1 && p->done < p->total) {
+        if (now - p->last >= progress_interval && p->done < p->total) {
             p->last = now;
             p->fn(p->ctx, p->done, p->total);
         }
@@ -7983,9 +7999,8 @@ int aa__truth_render_mode(const aa_scene *placed, const aa_filter *f, int thread
             fs.valid = 0;
             int j1 = (blk + 1) * rows < out->h ? (blk + 1) * rows : out->h;
             for (int j = blk * rows; j < j1 && st == AA_OK; j++) {
-                st = render_row(&w, use_fast ? &fs : NULL, j, out, bound, &rs);
-                if (prog.fn)
-                    progress_row(&prog, (size_t)out->w);
+                st = render_row(&w, use_fast ? &fs : NULL, j, out, bound, &rs,
+                                prog.fn ? &prog : NULL);
             }
         }
         rs.crowded = w.crowded;

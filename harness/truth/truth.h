@@ -40,13 +40,17 @@ int aa_truth_render(const aa_scene *placed, const aa_filter *f, int threads,
 
 /* Progress of the references rendered from now on (aa_truth_render, and so
  * aa_reference when it computes one): fn(ctx, done, total) with the pixels
- * done so far, called by whichever rendering thread finishes a row, one
- * call at a time, at most ten times a second, and once with done == total
- * at the end.  The library prints nothing: the command line shows it
- * (cmd_truth.c).  NULL: no calls.  One setting for the process, changed
- * only between renders. */
+ * done so far, called by whichever rendering thread finishes a pixel or a
+ * run of uniform ones, one call at a time, at most ten times a second (the
+ * least time between calls is aa__truth_set_progress_interval's), and
+ * once with done == total at the end.  The library prints nothing: the
+ * command line shows it (cmd_truth.c).  NULL: no calls.  One setting for
+ * the process, changed only between renders. */
 typedef void (*aa_truth_progress_fn)(void *ctx, size_t done, size_t total);
 void aa_truth_set_progress(aa_truth_progress_fn fn, void *ctx);
+/* For tests: the least time between two calls of the progress hook, 0.1 s
+ * unless set (0: a call for every pixel or uniform run done). */
+void aa__truth_set_progress_interval(double seconds);
 
 /* What defines a reference image. */
 typedef struct aa_view {

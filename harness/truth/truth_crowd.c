@@ -327,6 +327,25 @@ static long double end_x(const crowd *c, const crowd_piece *k, double s)
     return x_at(k, s);
 }
 
+/* x at height s as a function of s alone, for comparisons that must come
+ * out the same each time they are asked.  x_at starts an offset piece's
+ * root from its last crossing, and where it ends depends on that start in
+ * the last bits: two pieces within rounding of each other then compared
+ * one way, were swapped, and compared the other way, and the marked
+ * pieces' pass (sweep, "Neighbours meeting at h itself") swapped them
+ * back and forth to its limit of steps, every batch.  Here the root is
+ * solved for from its bracket alone. */
+static long double x_fixed(const crowd_piece *k, long double s)
+{
+    const local_piece *q = &k->q;
+    if (!q->offset || !(s > q->y0) || !(s < q->y1))
+        return x_at(k, s);
+    const aa_piece *p = q->src;
+    long double y = q->vc + s, x;
+    aa__offset_root(&p->oc, 1, p->ot0, p->ot1, (long double)p->y0 - y, y, NAN, &x, NULL);
+    return x - q->uc;
+}
+
 static int region_at(const crowd *c, const crowd_piece *k, double s)
 {
     long double x = x_at(k, s);
@@ -458,19 +477,24 @@ static double next_meet(const crowd *c, const crowd_piece *a, const crowd_piece 
 
 /* The order of pieces a and b just after height h (negative: a left of b).
  * Apart by more than CROWD_TIE at h, their order there; else (a vertex they
- * share, a meeting at h) their order half way to their next meeting. */
+ * share, a meeting at h) their order half way to their next meeting.  The
+ * answer is a function of the pieces and h alone, the same each time and
+ * the opposite with a and b exchanged: x_fixed decides wherever x_at's
+ * last bits could (near the tie's threshold, and at the probe). */
 static int cmp_after(const crowd *c, int ia, int ib, double h, int tie)
 {
     const crowd_piece *a = &c->cw->cp[ia], *b = &c->cw->cp[ib];
     if (!tie) {
         long double d = x_at(a, h) - x_at(b, h);
+        if (!(d > 2 * CROWD_TIE || d < -2 * CROWD_TIE))
+            d = x_fixed(a, h) - x_fixed(b, h);
         if (d > CROWD_TIE || d < -CROWD_TIE)
             return d < 0 ? -1 : 1;
     }
     double hi = fmin(a->hi, b->hi);
     double from = h + margin(c), top = next_meet(c, a, b, from, hi);
     double probe = from < top ? from + 0.5 * (top - from) : h + 0.5 * (hi - h);
-    long double d = x_at(a, probe) - x_at(b, probe);
+    long double d = x_fixed(a, probe) - x_fixed(b, probe);
     if (d != 0)
         return d < 0 ? -1 : 1;
     return ia < ib ? -1 : (ia > ib);
