@@ -37,6 +37,14 @@
  *    each of area's meetings lies between such samples or where x_p -
  *    x_q is within 1e-13 of 0, never within that of the end
  *    (test_shared_ends);
+ *  - pairs of a line and an evolute whose copies of the end point they
+ *    share are stored an ulp apart (the normal line ending a fold's
+ *    region and the evolute piece it ends on, each end found its own
+ *    way), on the benchmark's rows at 256 px: held to what a shared end
+ *    gives (test_shared_ends' rule), and with the line moved off the end
+ *    by 1e-7 to 1e-11 px in x, either way, every sign change of x_p -
+ *    x_q sampled, next to the end too, holds a meeting of area's form
+ *    (test_touching_ends);
  *  - a pair asked over heights beyond or inside its common rows, no
  *    parameter known, and over the common heights aa__piece_meet_at takes
  *    from those with the parameters there given as area finds them where
@@ -125,7 +133,8 @@
  * Under the sanitizers (AA_SANITIZED: the Makefile's sanitizer build sets
  * it for the tests) a declared subset: test_shared_ends and test_cones
  * take the benchmark's row 0 only of its rows (not 4 to 16 too), beside
- * their strokes at 64 px; the other rows take the same code paths with
+ * their strokes at 64 px, and test_touching_ends its rows 0, 4, 8, 12
+ * and 16 (not all 20); the other rows take the same code paths with
  * other numbers (tests/README.md, "Tiers", says how that was checked),
  * and the plain build runs every case.
  */
@@ -2286,6 +2295,128 @@ static void test_shared_ends(void **state)
     assert_true(tc[0] >= 10 && tc[1] >= 1); /* the cases were built */
 }
 
+/* Line p and the shared end E (at_lo: at the start of their common
+ * heights) it nearly shares with evolute q, moved by dx in x, so that its
+ * end is off the evolute by far more than rounding: x_p - x_q sampled as
+ * shared_pair samples it; every change of sign between neighbouring
+ * samples, both beyond 1e-12 of 0, must hold a meeting of area's form
+ * (aa__piece_meet_at), near E too (E is no longer shared), and each of
+ * area's meetings lie between such samples or where x_p - x_q is within
+ * 1e-13 of 0.  Adds the changes to *changes and those within 1e-6 of the
+ * scale of E (where the cut next to a shared end reports none) to *near.
+ * Returns the failures (their first few printed). */
+static int moved_pair(const char *what, const aa_piece *line, const aa_piece *q, int at_lo,
+                      double dx, int *changes, int *near)
+{
+    enum { NS = 2000 + 50 };
+    aa_piece p = *line;
+    p.x0 += dx, p.x1 += dx, p.cx += dx, p.xmin += dx, p.xmax += dx;
+    double ys[NS], lo = fmax(p.y0, q->y0), hi = fmin(p.y1, q->y1);
+    double e = at_lo ? lo : hi, sg = at_lo ? 1.0 : -1.0, h = hi - lo;
+    int m = 0, bad = 0;
+    for (int j = 1; j < 2000; j++)
+        ys[m++] = lo + h * j / 2000.0;
+    for (int j = 1; j <= 50; j++)
+        ys[m++] = e + sg * ldexp(h, -j);
+    qsort(ys, (size_t)m, sizeof *ys, cmp_dbl);
+    const double none[2] = {NAN, NAN};
+    double ya[16];
+    int na = aa__piece_meet_at(&p, q, lo, hi, none, none, ya, 16), in_change[16] = {0};
+    double prev = NAN, yprev = lo;
+    for (int j = 0; j < m; j++) {
+        double y = ys[j], d = aa_piece_x_at(&p, y) - aa_piece_x_at(q, y);
+        if (!(fabs(d) > 1e-12))
+            continue;
+        if (prev == prev && (prev < 0) != (d < 0)) {
+            (*changes)++;
+            *near += fmin(fabs(yprev - e), fabs(y - e)) <= 1e-6 * fmax(1.0, fabs(e));
+            int fa = 0;
+            for (int r = 0; r < na; r++)
+                if (ya[r] >= yprev - 1e-9 && ya[r] <= y + 1e-9)
+                    fa = in_change[r] = 1;
+            if (!fa && bad++ < 3)
+                print_message("%s, line moved %.3g: change of sides in [%.17g, %.17g] (%.3g "
+                              "from the end) not met\n",
+                              what, dx, yprev, y, fabs(yprev - e));
+        }
+        prev = d, yprev = y;
+    }
+    for (int r = 0; r < na; r++) {
+        double d = aa_piece_x_at(&p, ya[r]) - aa_piece_x_at(q, ya[r]);
+        if (!(in_change[r] || fabs(d) <= 1e-13) && bad++ < 3)
+            print_message("%s, line moved %.3g: area's meeting at %.17g, x_p - x_q %.3g\n", what,
+                          dx, ya[r], d);
+    }
+    return bad;
+}
+
+/* The pairs of a line and an evolute of a placed scene that end at one
+ * point stored apart by rounding: an end of each within 1e-12 px of the
+ * other's in x and in y but not the same bits, at an end of their common
+ * heights (where a folding offset's region ends, the normal line and the
+ * evolute piece it ends on, each end found its own way).  Area's form
+ * takes such an end as shared (scene_piece.c, ends_touch): shared_pair
+ * holds it to what a shared end must give.  And with the line moved off
+ * the end in x by 1e-7 to 1e-11 px, either way, far beyond rounding
+ * (moved_pair), the end is no longer shared, and every change of sides,
+ * next to it too, must be met.  n[0] counts the pairs, n[1] the changes
+ * within 1e-6 of the scale of the end on the moved lines.  Returns the
+ * pairs. */
+static int touching_ends(const char *what, const aa_scene *s, int *n, int *near)
+{
+    size_t np;
+    const aa_piece *pc = aa_scene_pieces(s, &np);
+    int pairs = 0, changes = 0, moved = 0, bad = 0, nr = 0;
+    for (size_t i = 0; i < np; i++)
+        for (size_t k = 0; k < np; k++) {
+            const aa_piece *p = &pc[i], *q = &pc[k];
+            double lo, hi;
+            if (p->kind != AA_PIECE_LINE || q->kind != AA_PIECE_OFFSET || !q->oc.evolute ||
+                !offset_pair(p, q, &lo, &hi))
+                continue;
+            for (int at_lo = 0; at_lo < 2; at_lo++) {
+                /* E: the evolute's end at lo or hi, and the line's end next to it */
+                double ye = at_lo ? lo : hi, xe, yl, xl;
+                if (q->y0 == ye)
+                    xe = q->x0;
+                else if (q->y1 == ye)
+                    xe = q->x1;
+                else
+                    continue;
+                int l0 = fabs(p->y0 - ye) < fabs(p->y1 - ye);
+                yl = l0 ? p->y0 : p->y1, xl = l0 ? p->x0 : p->x1;
+                if (!(fabs(yl - ye) <= 1e-12 && fabs(xl - xe) <= 1e-12) ||
+                    (yl == ye && xl == xe))
+                    continue;
+                pairs++;
+                int tangent = 0;
+                bad += shared_pair(what, p, q, at_lo, &changes, &tangent);
+                const double dx[6] = {1e-7, -1e-7, 1e-9, -1e-9, 1e-11, -1e-11};
+                for (int j = 0; j < 6; j++, moved++)
+                    bad += moved_pair(what, p, q, at_lo, dx[j], &changes, &nr);
+            }
+        }
+    print_message("%-34s %d pairs of a line and an evolute ending an ulp apart, %d lines "
+                  "moved, %d sign changes sampled (%d next to the end), %d not met or off\n",
+                  what, pairs, moved, changes, nr, bad);
+    assert_int_equal(bad, 0);
+    *n += pairs, *near += nr;
+    return pairs;
+}
+
+/* Ends of a line and an evolute stored an ulp apart (touching_ends) on
+ * the benchmark's rows at 256 px and the tight stroke's folds. */
+static void test_touching_ends(void **state)
+{
+    (void)state;
+    int n[2] = {0, 0};
+    each_stroke(SAN_SUBSET ? 4 : 1, 1, touching_ends, n);
+    print_message("%d pairs ending an ulp apart; %d changes of sides next to the end on the "
+                  "moved lines\n",
+                  n[0], n[1]);
+    assert_true(n[0] >= 10 && n[1] >= 1); /* the cases were found */
+}
+
 /* ---- a pair's common heights asked with their parameters given ---- */
 
 /* An offset piece's parameter at height y strictly inside its rows as area
@@ -4302,6 +4433,7 @@ int main(void)
                                        cmocka_unit_test(test_rule_sure),
                                        cmocka_unit_test(test_starts),
                                        cmocka_unit_test(test_shared_ends),
+                                       cmocka_unit_test(test_touching_ends),
                                        cmocka_unit_test(test_common_heights),
                                        cmocka_unit_test(test_cones),
                                        cmocka_unit_test(test_crowd_meet_at_swap),
