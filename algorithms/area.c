@@ -313,8 +313,9 @@
  * without crossing are not split (their order does not change).  In
  * Catmull's integrater edges within CM_EPS (1e-14 px) of a splitting line
  * count as lying on it.  A pixel with more than CM_MAX_EDGES edges goes to
- * the bands instead; a cluster's crossings are gathered CM_MAX_EVENTS at a
- * time (bounded memory, more passes).  Coordinates beyond 2^30 px lose
+ * the bands instead; a cluster's crossings are gathered up to
+ * CM_MAX_EVENTS_GROWN (1,048,576) at a time (bounded memory, more passes
+ * beyond).  Coordinates beyond 2^30 px lose
  * precision.  Whether a cluster's pieces cross is asked of every pair
  * whose extents overlap, or, in a cluster of more than AR_CROWD pieces, of
  * neighbours along x at mid-band only (a row of 65536 arcs 0.01 px apart:
@@ -2021,23 +2022,51 @@ static void cluster_fast(const ar_row *r, const ar_key *in, size_t n, int lo, in
     resolve(r, lo, hi, cin);
 }
 
-/* The sub-band boundaries of one pass over the band, from y up to lim. */
+/* The sub-band boundaries of one pass over the band, from y up to lim, in
+ * wk->ev (v). */
 typedef struct ev_buf {
     double *v;
-    size_t n;
+    size_t n, room; /* room: wk->ev_room */
     double y, lim;
+    ar_worker *wk;
 } ev_buf;
 
-/* Keep boundary v if it lies inside (y, lim).  When the buffer is full,
- * keep its lower half and lower lim to the first value dropped: the next
- * pass starts there and finds the rest again (bounded memory). */
+static void *line_alloc_as(size_t n, size_t size, int zero);
+
+size_t aa__area_events_grown = CM_MAX_EVENTS_GROWN;
+
+/* Twice the room of *p (*room elements of size bytes, n of them kept),
+ * up to aa__area_events_grown (CM_MAX_EVENTS_GROWN): 1 if grown, 0 if at
+ * that or out of memory (*p as it was).  A crowded cluster's band can
+ * hold many more crossings than CM_MAX_EVENTS: without room for them,
+ * each pass kept half and the next asked every pair again (bench_bezstroke
+ * at 16 px: 634 passes and 32 million pairs a render). */
+__attribute__((noinline, cold)) static int grow_room(void **p, size_t *room, size_t size, size_t n)
+{
+    if (*room >= aa__area_events_grown)
+        return 0;
+    void *q = line_alloc_as(2 * *room, size, 0);
+    if (!q)
+        return 0;
+    memcpy(q, *p, n * size);
+    free(*p);
+    *p = q, *room *= 2;
+    return 1;
+}
+
+/* Keep boundary v if it lies inside (y, lim).  When the buffer is full
+ * and cannot grow, keep its lower half and lower lim to the first value
+ * dropped: the next pass starts there and finds the rest again (bounded
+ * memory). */
 __attribute__((always_inline)) static inline void add_event(ev_buf *b, double v)
 {
     if (!(v > b->y && v < b->lim))
         return;
-    if (b->n == CM_MAX_EVENTS) {
+    if (b->n == b->room && grow_room((void **)&b->wk->ev, &b->wk->ev_room, sizeof *b->v, b->n))
+        b->v = b->wk->ev, b->room = b->wk->ev_room;
+    if (b->n == b->room) {
         qsort(b->v, b->n, sizeof *b->v, cmp_double);
-        b->n = CM_MAX_EVENTS / 2;
+        b->n = b->n / 2;
         b->lim = b->v[b->n];
         if (!(v < b->lim))
             return;
@@ -2047,19 +2076,21 @@ __attribute__((always_inline)) static inline void add_event(ev_buf *b, double v)
 
 /* Keep the crossing of segs a and b at height v (inside the buffer's
  * heights) for the next sub-band's order (order_next); when the array is
- * full, those past the buffer's lim are dropped, and if none is, the pass
- * orders each sub-band afresh (cxfull). */
+ * full and cannot grow, those past the buffer's lim are dropped, and if
+ * none is, the pass orders each sub-band afresh (cxfull). */
 static void add_cross(ar_worker *wk, const ev_buf *b, double v, uint32_t a, uint32_t c)
 {
     if (!(v > b->y && v < b->lim))
         return;
-    if (wk->ncx == CM_MAX_EVENTS) {
+    if (wk->ncx == wk->cx_room)
+        grow_room((void **)&wk->cx, &wk->cx_room, sizeof *wk->cx, wk->ncx);
+    if (wk->ncx == wk->cx_room) {
         size_t m = 0;
         for (size_t k = 0; k < wk->ncx; k++)
             if (wk->cx[k].v < b->lim)
                 wk->cx[m++] = wk->cx[k];
         wk->ncx = m;
-        if (m == CM_MAX_EVENTS) {
+        if (m == wk->cx_room) {
             wk->cxfull = 1;
             return;
         }
@@ -2098,14 +2129,15 @@ static void sort_crosses(ar_worker *wk, double lim)
 
 /* Heights inside (y, ylim) where the cluster's order along x changes:
  * vertices, flat edges, crossings.  keys: ordered by left end.  If there
- * are more than CM_MAX_EVENTS, *ylim is lowered so that those found are all
- * there are below it.  Returns the count, sorted, unique, in r->wk->ev. */
+ * are more than CM_MAX_EVENTS_GROWN (r->wk->ev grows to hold them up to
+ * that), *ylim is lowered so that those found are all there are below it.
+ * Returns the count, sorted, unique, in r->wk->ev. */
 static size_t band_events(const ar_row *r, const ar_key *keys, size_t n, int lo, double y,
                           double *ylim)
 {
     const ar_seg *seg = r->wk->seg;
     const double *vab = r->wk->vab; /* cluster_bands' heights of keys[k] */
-    ev_buf b = {r->wk->ev, 0, y, *ylim};
+    ev_buf b = {r->wk->ev, 0, r->wk->ev_room, y, *ylim, r->wk};
     double out[9]; /* two cubics meet up to 9 times */
     r->wk->ncx = 0, r->wk->cxfull = n < AR_NEXT_MIN; /* too few for order_next */
     uint32_t *act = r->wk->act;
@@ -3661,6 +3693,7 @@ static int worker_alloc(ar_worker *wk, const ar_state *S)
     wk->wtmp = line_alloc(nl, sizeof *wk->wtmp);
     wk->ev = line_alloc(CM_MAX_EVENTS, sizeof *wk->ev);
     wk->cx = line_alloc(CM_MAX_EVENTS, sizeof *wk->cx);
+    wk->ev_room = wk->cx_room = CM_MAX_EVENTS;
     wk->mark = line_alloc(n, sizeof *wk->mark);
     wk->act = line_alloc_as(n, sizeof *wk->act, 0);
     wk->pend = line_alloc_as(n, sizeof *wk->pend, 0);

@@ -24,8 +24,11 @@
 /* Catmull's integrater works on at most this many edges in a pixel. */
 #define CM_MAX_EDGES 48
 #define CM_MAX_VERTS (CM_MAX_EDGES + 8)
-/* Sub-band boundaries gathered per pass (bounded memory). */
+/* Sub-band boundaries (and crossings) gathered per pass: room for this
+ * many at first, doubled where a band has more, up to CM_MAX_EVENTS_GROWN
+ * (24 bytes each, 24 MB); beyond that, more passes (bounded memory). */
 #define CM_MAX_EVENTS 2048
+#define CM_MAX_EVENTS_GROWN (1 << 20)
 /* Crossings this close (in y, px) to a band's edge are not split. */
 #define CROSS_MARGIN 1e-12
 /* Catmull: edges this close (px) to a splitting line lie on it. */
@@ -275,6 +278,7 @@ typedef struct ar_worker {
     double *acc, *cov; /* per cell and channel */
     int *wind, *wtmp;
     double *ev;
+    size_t ev_room, cx_room; /* ev's and cx's room, CM_MAX_EVENTS or grown */
     /* the crossings band_events found (cx[0..ncx), in order of height after
      * it; cxfull: some were not kept) and the segs they touch at a
      * sub-band's top (mark[seg] == stamp), for cluster_bands' order of
@@ -894,6 +898,12 @@ extern int aa__area_rowpt;
  * test_kept_solves).  It is called from the render's worker threads: the
  * callback must be thread-safe, or the render run on one thread. */
 extern void (*aa__area_kept_solve)(const aa_piece *p, double y, double r, double ta, double tb);
+/* Tests only: CM_MAX_EVENTS_GROWN (as built), the room band_events' heights
+ * and crossings grow to in a crowded band before it takes more passes;
+ * CM_MAX_EVENTS, they do not grow (a pass per CM_MAX_EVENTS / 2 of them
+ * beyond the first, every pair asked again each pass: tests/test_area.c,
+ * test_crowded_passes). */
+extern size_t aa__area_events_grown;
 
 /* Offset pieces (area_offset.c): the rules; a piece's panels from t0 to t1
  * (*out to be freed), or appended to an array (*n of *cap used, grown
