@@ -502,24 +502,32 @@ static void strips_want(const void *ctx, int w, int h, int i, int j, double want
     want[0] = red_area, want[1] = 0.0, want[2] = blue_area;
 }
 
-static void test_many_crossings(void **state)
+/* The strips' scene, S filled in: blue's strips B (non-zero) behind red's
+ * strips A (even-odd), on black. */
+static aa_scene *strips_scene(strips *S)
 {
-    (void)state;
-    static strips S;
     for (int k = 0; k < STRIPS; k++) {
         double a = 0.05 + 0.9 * k / STRIPS, t = 0.011;
-        S.A[k] = (oracle_poly){4, {0.02, 0.98, 0.98, 0.02}, {a, a + 0.03, a + 0.03 + t, a + t}};
-        S.B[k] = (oracle_poly){4, {a + 0.02, a + 0.02 + t, a + t, a}, {0.01, 0.01, 0.99, 0.99}};
+        S->A[k] = (oracle_poly){4, {0.02, 0.98, 0.98, 0.02}, {a, a + 0.03, a + 0.03 + t, a + t}};
+        S->B[k] = (oracle_poly){4, {a + 0.02, a + 0.02 + t, a + t, a}, {0.01, 0.01, 0.99, 0.99}};
     }
     const aa_rgb red = {{1, 0, 0}}, blue = {{0, 0, 1}};
     aa_scene *s = aa_scene_new(black);
     assert_int_equal(aa_scene_layer(s, blue, AA_FILL_NONZERO), AA_OK);
     for (int k = 0; k < STRIPS; k++)
-        scenes_add_poly(s, &S.B[k]);
+        scenes_add_poly(s, &S->B[k]);
     assert_int_equal(aa_scene_layer(s, red, AA_FILL_EVENODD), AA_OK);
     for (int k = 0; k < STRIPS; k++)
-        scenes_add_poly(s, &S.A[k]);
+        scenes_add_poly(s, &S->A[k]);
     assert_int_equal(aa_scene_finish(s), AA_OK);
+    return s;
+}
+
+static void test_many_crossings(void **state)
+{
+    (void)state;
+    static strips S;
+    aa_scene *s = strips_scene(&S);
     const double tol[3] = {1e-13, 0.0, 1e-13};
     int sizes[2][2] = {{1, 1}, {3, 2}};
     for (int z = 0; z < 2; z++)
@@ -857,20 +865,7 @@ static void test_crowded_passes(void **state)
     (void)state;
     enum { N = 30 };
     static strips S;
-    for (int k = 0; k < STRIPS; k++) {
-        double a = 0.05 + 0.9 * k / STRIPS, t = 0.011;
-        S.A[k] = (oracle_poly){4, {0.02, 0.98, 0.98, 0.02}, {a, a + 0.03, a + 0.03 + t, a + t}};
-        S.B[k] = (oracle_poly){4, {a + 0.02, a + 0.02 + t, a + t, a}, {0.01, 0.01, 0.99, 0.99}};
-    }
-    const aa_rgb red = {{1, 0, 0}}, blue = {{0, 0, 1}};
-    aa_scene *s = aa_scene_new(black);
-    assert_int_equal(aa_scene_layer(s, blue, AA_FILL_NONZERO), AA_OK);
-    for (int k = 0; k < STRIPS; k++)
-        scenes_add_poly(s, &S.B[k]);
-    assert_int_equal(aa_scene_layer(s, red, AA_FILL_EVENODD), AA_OK);
-    for (int k = 0; k < STRIPS; k++)
-        scenes_add_poly(s, &S.A[k]);
-    assert_int_equal(aa_scene_finish(s), AA_OK);
+    aa_scene *s = strips_scene(&S);
     const double tol[3] = {1e-13, 0.0, 1e-13};
     aa_path p = {0};
     for (int k = 0; k < N; k++) {

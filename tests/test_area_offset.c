@@ -2124,6 +2124,20 @@ static int cmp_dbl(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+/* The heights a shared end's test samples over [lo, lo + h] (2,000 + 50 of
+ * them, sorted): evenly, then towards the end e (sg: the side of e the
+ * heights lie on) at h 2^-j. */
+static int end_heights(double *ys, double lo, double h, double e, double sg)
+{
+    int m = 0;
+    for (int j = 1; j < 2000; j++)
+        ys[m++] = lo + h * j / 2000.0;
+    for (int j = 1; j <= 50; j++)
+        ys[m++] = e + sg * ldexp(h, -j);
+    qsort(ys, (size_t)m, sizeof *ys, cmp_dbl);
+    return m;
+}
+
 /* Pieces p and q (one an offset piece) that share an end point E, whose
  * common heights [lo, hi] start (at_lo) or end at E: x_p - x_q sampled at
  * 2,000 heights evenly over [lo, hi] and at 2^-k of it from E (k = 1 ..
@@ -2145,12 +2159,7 @@ static int shared_pair(const char *what, const aa_piece *p, const aa_piece *q, i
     double lo = fmax(p->y0, q->y0), hi = fmin(p->y1, q->y1);
     double e = at_lo ? lo : hi, sg = at_lo ? 1.0 : -1.0, h = hi - lo;
     double res = 1e-6 * fmax(1.0, fabs(e));
-    int m = 0, bad = 0;
-    for (int j = 1; j < 2000; j++)
-        ys[m++] = lo + h * j / 2000.0;
-    for (int j = 1; j <= 50; j++)
-        ys[m++] = e + sg * ldexp(h, -j);
-    qsort(ys, (size_t)m, sizeof *ys, cmp_dbl);
+    int m = end_heights(ys, lo, h, e, sg), bad = 0;
     const double none[2] = {NAN, NAN};
     double ya[16], yr[16];
     int na = aa__piece_meet_at(p, q, lo, hi, none, none, ya, 16);
@@ -2313,12 +2322,7 @@ static int moved_pair(const char *what, const aa_piece *line, const aa_piece *q,
     p.x0 += dx, p.x1 += dx, p.cx += dx, p.xmin += dx, p.xmax += dx;
     double ys[NS], lo = fmax(p.y0, q->y0), hi = fmin(p.y1, q->y1);
     double e = at_lo ? lo : hi, sg = at_lo ? 1.0 : -1.0, h = hi - lo;
-    int m = 0, bad = 0;
-    for (int j = 1; j < 2000; j++)
-        ys[m++] = lo + h * j / 2000.0;
-    for (int j = 1; j <= 50; j++)
-        ys[m++] = e + sg * ldexp(h, -j);
-    qsort(ys, (size_t)m, sizeof *ys, cmp_dbl);
+    int m = end_heights(ys, lo, h, e, sg), bad = 0;
     const double none[2] = {NAN, NAN};
     double ya[16];
     int na = aa__piece_meet_at(&p, q, lo, hi, none, none, ya, 16), in_change[16] = {0};
