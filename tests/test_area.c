@@ -885,12 +885,38 @@ static void test_crowded_passes(void **state)
     aa_path_free(&p);
     assert_true(noff > 0);
     /* the reference at 16x16 summed over blocks: the box's pixel at 1x1,
-     * 2x2 and 4x4 is the mean of its 16x16 pixels (the reference itself
-     * at those sizes is off by up to 2.5e-2 here: its crowded pixels) */
+     * 2x2 and 4x4 is the mean of its 16x16 pixels.  The reference itself at
+     * those sizes, its windows crowded, must agree: it was off by up to
+     * 2.5e-2 (truth_crowd.c, cmp_after: a pair just swapped at a meeting
+     * swapped back by x at the meeting's height, on a nearly horizontal
+     * piece) */
     enum { F = 16 };
     aa_image fine;
     const support_view fv = view_at(F, F, 0, 0, 0, 0);
     support_reference(c, &fv, &fine, NULL, NULL);
+    for (int n = 1; n <= 4; n *= 2) {
+        aa_image ref;
+        const support_view rv = view_at(n, n, 0, 0, 0, 0);
+        support_reference(c, &rv, &ref, NULL, NULL);
+        double worst = 0;
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                double want = 0;
+                for (int fj = j * (F / n); fj < (j + 1) * (F / n); fj++)
+                    for (int fi = i * (F / n); fi < (i + 1) * (F / n); fi++)
+                        want += aa_pixel(&fine, fi, fj)[0];
+                want /= (double)(F / n) * (F / n);
+                double d = fabs(aa_pixel(&ref, i, j)[0] - want);
+                worst = fmax(worst, d);
+                if (!(d <= 1e-13))
+                    fail_msg("60 crossing strokes: the reference at %dx%d pixel (%d, %d) %.17g, "
+                             "at %dx%d summed %.17g (%.3e off)",
+                             n, n, i, j, aa_pixel(&ref, i, j)[0], F, F, want, d);
+            }
+        print_message("%-32s %dx%d max |reference - reference %dx%d summed| %.2e\n",
+                      "60 crossing strokes", n, n, F, F, worst);
+        aa_image_free(&ref);
+    }
     size_t rooms[2] = {CM_MAX_EVENTS_GROWN, CM_MAX_EVENTS};
     for (int z = 0; z < 2; z++) {
         aa__area_events_grown = rooms[z];

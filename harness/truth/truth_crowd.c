@@ -476,8 +476,9 @@ static double next_meet(const crowd *c, const crowd_piece *a, const crowd_piece 
 }
 
 /* The order of pieces a and b just after height h (negative: a left of b).
- * Apart by more than CROWD_TIE at h, their order there; else (a vertex they
- * share, a meeting at h) their order half way to their next meeting.  The
+ * Apart at h by more than CROWD_TIE and than their motion in x over the
+ * margin above h, their order there; else (a vertex they share, a meeting
+ * at h) their order half way to their next meeting.  The
  * answer is a function of the pieces and h alone, the same each time and
  * the opposite with a and b exchanged: x_fixed decides wherever x_at's
  * last bits could (near the tie's threshold, and at the probe). */
@@ -485,10 +486,19 @@ static int cmp_after(const crowd *c, int ia, int ib, double h, int tie)
 {
     const crowd_piece *a = &c->cw->cp[ia], *b = &c->cw->cp[ib];
     if (!tie) {
+        /* apart by more than the tie and than the two move in x over the
+         * margin above h: a meeting's height is known to a few ulps, and
+         * on a nearly horizontal piece (|dx/dy| in the hundreds) those
+         * are more than CROWD_TIE in x, so x at h can still show the
+         * order from before a meeting the sweep has just passed; such a
+         * pair is ordered half way to its next meeting, as at a tie */
+        double e = margin(c);
+        long double tol = CROWD_TIE + fabsl(x_fixed(a, h + e) - x_fixed(a, h)) +
+                          fabsl(x_fixed(b, h + e) - x_fixed(b, h));
         long double d = x_at(a, h) - x_at(b, h);
-        if (!(d > 2 * CROWD_TIE || d < -2 * CROWD_TIE))
+        if (!(d > 2 * tol || d < -2 * tol))
             d = x_fixed(a, h) - x_fixed(b, h);
-        if (d > CROWD_TIE || d < -CROWD_TIE)
+        if (d > tol || d < -tol)
             return d < 0 ? -1 : 1;
     }
     double hi = fmin(a->hi, b->hi);
