@@ -851,6 +851,31 @@ static void test_crowded_layers(void **state)
     aa_scene_free(s);
 }
 
+/* The largest |img - the mean of fine's F/n x F/n block| over img's n x n
+ * pixels (n dividing F: the box's pixel is the mean of the finer pixels
+ * it covers), channel 0; a pixel off by more than 1e-13 fails, named by
+ * `what`. */
+static double off_blocks(const char *what, const aa_image *img, const aa_image *fine, int F)
+{
+    int n = img->w, b = F / n;
+    double worst = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double want = 0;
+            for (int fj = j * b; fj < (j + 1) * b; fj++)
+                for (int fi = i * b; fi < (i + 1) * b; fi++)
+                    want += aa_pixel(fine, fi, fj)[0];
+            want /= (double)b * b;
+            double d = fabs(aa_pixel(img, i, j)[0] - want);
+            worst = fmax(worst, d);
+            if (!(d <= 1e-13))
+                fail_msg("60 crossing strokes %dx%d %s pixel (%d, %d): %.17g, the reference "
+                         "at %dx%d summed %.17g (%.3e off)",
+                         n, n, what, i, j, aa_pixel(img, i, j)[0], F, F, want, d);
+        }
+    return worst;
+}
+
 /* Crowded bands with more crossings than band_events' first room
  * (CM_MAX_EVENTS, 2048): the room grows to hold them (as built), or, with
  * aa__area_events_grown at CM_MAX_EVENTS, they are taken a pass per 1024
@@ -898,21 +923,7 @@ static void test_crowded_passes(void **state)
         aa_image ref;
         const support_view rv = view_at(n, n, 0, 0, 0, 0);
         support_reference(c, &rv, &ref, NULL, NULL);
-        double worst = 0;
-        for (int j = 0; j < n; j++)
-            for (int i = 0; i < n; i++) {
-                double want = 0;
-                for (int fj = j * (F / n); fj < (j + 1) * (F / n); fj++)
-                    for (int fi = i * (F / n); fi < (i + 1) * (F / n); fi++)
-                        want += aa_pixel(&fine, fi, fj)[0];
-                want /= (double)(F / n) * (F / n);
-                double d = fabs(aa_pixel(&ref, i, j)[0] - want);
-                worst = fmax(worst, d);
-                if (!(d <= 1e-13))
-                    fail_msg("60 crossing strokes: the reference at %dx%d pixel (%d, %d) %.17g, "
-                             "at %dx%d summed %.17g (%.3e off)",
-                             n, n, i, j, aa_pixel(&ref, i, j)[0], F, F, want, d);
-            }
+        double worst = off_blocks("the reference", &ref, &fine, F);
         print_message("%-32s %dx%d max |reference - reference %dx%d summed| %.2e\n",
                       "60 crossing strokes", n, n, F, F, worst);
         aa_image_free(&ref);
@@ -928,22 +939,7 @@ static void test_crowded_passes(void **state)
                 aa_counters cnt;
                 const support_view mv = view_at(n, n, 0, 0, 0, 1);
                 support_render_must(methods[m], c, &mv, &img, &cnt);
-                double worst = 0;
-                for (int j = 0; j < n; j++)
-                    for (int i = 0; i < n; i++) {
-                        double want = 0;
-                        for (int fj = j * (F / n); fj < (j + 1) * (F / n); fj++)
-                            for (int fi = i * (F / n); fi < (i + 1) * (F / n); fi++)
-                                want += aa_pixel(&fine, fi, fj)[0];
-                        want /= (double)(F / n) * (F / n);
-                        double d = fabs(aa_pixel(&img, i, j)[0] - want);
-                        worst = fmax(worst, d);
-                        if (!(d <= 1e-13))
-                            fail_msg("60 crossing strokes %dx%d %s pixel (%d, %d): %.17g, the "
-                                     "reference's %dx%d summed %.17g (%.3e off)",
-                                     n, n, methods[m], i, j, aa_pixel(&img, i, j)[0], F, F,
-                                     want, d);
-                    }
+                double worst = off_blocks(methods[m], &img, &fine, F);
                 print_message("%-32s %dx%d %-22s max |area - reference %dx%d summed| %.2e\n",
                               "60 crossing strokes", n, n, methods[m], F, F, worst);
                 aa_image_free(&img);
