@@ -356,6 +356,11 @@ typedef struct ar_state {
     int w, nworkers;
     ar_piece *piece; /* by the row they enter in, then (xmin, id) (area.c, sort_pieces) */
     size_t npieces;
+    /* each piece's layer and direction, 4 layer + dir + 1, side by side:
+     * the windings a crowded sub-band's sweep starts from (area.c,
+     * cluster_bands), summed over the head of its order, without a load
+     * of each seg and its piece */
+    int *ldir;
     int nl, nch;         /* layers; channels computed (1 for grey scenes) */
     /* 1 if the colour of a winding state is the scene's composite of the
      * layers covering it (translucent layers, groups of opacity, clips:
