@@ -2318,7 +2318,6 @@ static size_t order_next(const ar_row *r, const ar_key *keys, const ar_key *tops
                          double yb, size_t *ci)
 {
     ar_worker *wk = r->wk;
-    const ar_seg *seg = wk->seg;
     if (wk->stamp >= UINT32_MAX - 2) { /* wrapping: no mark may look current */
         memset(wk->mark, 0, (size_t)r->S->npieces * sizeof *wk->mark);
         wk->stamp = 0;
@@ -2343,11 +2342,11 @@ static size_t order_next(const ar_row *r, const ar_key *keys, const ar_key *tops
     }
     while (*tc < ntops && tops[*tc].key < ya) /* the segs begun at ya, in the cluster's order */
         (*tc)++;
-    for (size_t k = *tc; k < ntops && tops[k].key == ya; k++)
-        if (seg[tops[k].idx].vb >= yb) {
-            spare[nt] = keys[tops[k].id], spare[nt++].key = seg[tops[k].idx].vb;
-            wk->mark[tops[k].idx] = st;
-        }
+    for (size_t k = *tc; k < ntops && tops[k].key == ya; k++) {
+        double vb = wk->vab[2 * (size_t)tops[k].id + 1]; /* keys[id]'s, cluster_bands' */
+        if (vb >= yb)
+            spare[nt] = keys[tops[k].id], spare[nt++].key = vb, wk->mark[tops[k].idx] = st;
+    }
     size_t bits = 1;
     while ((size_t)1 << bits <= u + nt)
         bits++;
