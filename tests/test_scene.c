@@ -3,7 +3,8 @@
  *
  * Known answers are worked by hand in the comments.  The strip (windowed
  * queries) is checked against the plain point query on many random points
- * of `crow` and of a polygon scene with vertices inside the bands.
+ * of `crow` and of a polygon scene with vertices inside the bands.  The
+ * crossings of a line against each edge's own (test_crossings_sorted).
  */
 #include "bench.h"
 #include "scenes.h"
@@ -248,6 +249,78 @@ static void test_strip_polygons(void **state)
     aa_scene_free(s);
 }
 
+/* The crossings of a line come sorted by x (then layer, then direction)
+ * whatever order the pieces give them: a comb whose contour runs right
+ * along its teeth and back along its spine (the crossings in two runs,
+ * one rising and one falling, as a stroke's outline gives them), and a
+ * star whose edges cross the line in no order.  The known answer: each
+ * edge (x0, y0)-(x1, y1) with y strictly between its ends crosses at
+ * x0 + (y - y0) (x1 - x0) / (y1 - y0), going down (dir +1) where y1 > y0;
+ * those sorted by qsort; the lines' y are off every vertex. */
+static int cmp_cross(const void *a, const void *b)
+{
+    const aa_crossing *p = a, *q = b;
+    return p->x < q->x ? -1 : p->x > q->x ? 1 : p->dir - q->dir;
+}
+
+static void check_crossings(const double *xy, int n, double y)
+{
+    aa_scene *s = scenes_polygon(xy, n, white, black, AA_FILL_NONZERO);
+    aa_crossing got[256], want[256];
+    size_t m = 0;
+    for (int k = 0; k < n; k++) {
+        double x0 = xy[2 * k], y0 = xy[2 * k + 1];
+        double x1 = xy[2 * ((k + 1) % n)], y1 = xy[2 * ((k + 1) % n) + 1];
+        if ((y0 < y && y < y1) || (y1 < y && y < y0)) {
+            want[m].x = x0 + (y - y0) * (x1 - x0) / (y1 - y0);
+            want[m].dir = y1 > y0 ? 1 : -1;
+            want[m++].layer = 0;
+        }
+    }
+    qsort(want, m, sizeof *want, cmp_cross);
+    size_t got_n = aa_scene_crossings(s, y, got, 256);
+    assert_int_equal(got_n, m);
+    for (size_t k = 0; k < m; k++) {
+        assert_true(fabs(got[k].x - want[k].x) < 1e-12);
+        assert_int_equal(got[k].dir, want[k].dir);
+        if (k > 0)
+            assert_true(got[k - 1].x <= got[k].x);
+    }
+    aa_scene_free(s);
+}
+
+static void test_crossings_sorted(void **state)
+{
+    (void)state;
+    /* the comb: 40 teeth from x = 0.05 to 0.95, tips at y = 0.2 and
+     * roots at y = 0.6 along the way out, then back along a spine with
+     * notches from y = 0.9 down to 0.35 (across the teeth: the lines at
+     * y 0.4137 and 0.5137 meet both, in a rising run and a falling one) */
+    double xy[2 * 200];
+    int n = 0;
+    for (int k = 0; k < 40; k++) {
+        double x = 0.05 + 0.9 * k / 40.0;
+        xy[2 * n] = x, xy[2 * n + 1] = 0.6, n++;
+        xy[2 * n] = x + 0.01125, xy[2 * n + 1] = 0.2, n++;
+    }
+    for (int k = 40; k-- > 0;) {
+        double x = 0.05 + 0.9 * (k + 1) / 40.0;
+        xy[2 * n] = x, xy[2 * n + 1] = 0.9, n++;
+        xy[2 * n] = x - 0.01125, xy[2 * n + 1] = 0.35, n++;
+    }
+    for (int j = 0; j < 7; j++)
+        check_crossings(xy, n, 0.2137 + 0.1 * j);
+    /* a star of 61 points (each edge jumps 30 vertices of a circle): a
+     * line meets its edges in no order along the contour */
+    n = 0;
+    for (int k = 0; k < 61; k++) {
+        double a = 2 * M_PI * (30.0 * k) / 61.0 + 0.01;
+        xy[2 * n] = 0.5 + 0.45 * cos(a), xy[2 * n + 1] = 0.5 + 0.45 * sin(a), n++;
+    }
+    for (int j = 0; j < 7; j++)
+        check_crossings(xy, n, 0.2137 + 0.1 * j);
+}
+
 SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_square),
              cmocka_unit_test(test_arc_pieces),
@@ -255,4 +328,5 @@ SUPPORT_MAIN(NULL, NULL,
              cmocka_unit_test(test_refusals),
              cmocka_unit_test(test_transform_and_clip),
              cmocka_unit_test(test_strip_crow),
-             cmocka_unit_test(test_strip_polygons))
+             cmocka_unit_test(test_strip_polygons),
+             cmocka_unit_test(test_crossings_sorted))

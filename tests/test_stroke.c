@@ -319,6 +319,84 @@ static double shoelace(const double *xy, int n)
 
 /* ---- areas of strokes of lines ---- */
 
+/* A run's bodies, joins and caps are one contour (stroke.c, "runs"), a
+ * closed subpath's last join a contour of its own: the count of contours
+ * is that, and the area the union's.  Known answers: three collinear lines
+ * 0.6 long stroked 0.1 wide (h = 0.05), the rectangle 0.6 x 0.1 with butt
+ * caps, 0.7 x 0.1 with square caps, and with round caps the rectangle and
+ * a disk of radius h; a right-angle corner of legs 0.4 and 0.3 with a miter
+ * join, the outer rectangle's area less the inner one's:
+ * (0.4 + h)(0.3 + h) - (0.4 - h)(0.3 - h) = 1.4 h. */
+static int stroke_contours(const aa_path *in, const aa_stroke_style *st)
+{
+    aa_path out = {0};
+    must(aa_stroke_outline(in, st, &out));
+    int n = check_orientation(&out);
+    aa_path_free(&out);
+    return n;
+}
+
+static void test_runs_one_contour(void **state)
+{
+    (void)state;
+    aa_stroke_style st;
+    aa_stroke_style_default(&st);
+    st.width = 0.1;
+    aa_path p = {0};
+    must(aa_path_move_to(&p, 0.1, 0.5));
+    must(aa_path_line_to(&p, 0.3, 0.5));
+    must(aa_path_line_to(&p, 0.45, 0.5));
+    must(aa_path_line_to(&p, 0.7, 0.5));
+    assert_int_equal(stroke_contours(&p, &st), 1);
+    expect_area("collinear run", &p, &st, 0.06);
+    st.cap = AA_CAP_SQUARE;
+    assert_int_equal(stroke_contours(&p, &st), 1);
+    expect_area("collinear run, square caps", &p, &st, 0.07);
+    st.cap = AA_CAP_ROUND;
+    assert_int_equal(stroke_contours(&p, &st), 1);
+    expect_area("collinear run, round caps", &p, &st, 0.06 + M_PI * 0.05 * 0.05);
+    st.cap = AA_CAP_BUTT;
+    aa_path_free(&p);
+    aa_path_init(&p);
+    must(aa_path_move_to(&p, 0.2, 0.2));
+    must(aa_path_line_to(&p, 0.6, 0.2));
+    must(aa_path_line_to(&p, 0.6, 0.5));
+    assert_int_equal(stroke_contours(&p, &st), 1);
+    expect_area("miter corner run", &p, &st, 1.4 * 0.05);
+    aa_path_free(&p);
+    /* a zigzag of lines and a circular arc: one contour for each join,
+     * turning either way, and each cap */
+    const aa_line_join joins[4] = {AA_JOIN_MITER, AA_JOIN_ROUND, AA_JOIN_BEVEL, AA_JOIN_ARCS};
+    for (int j = 0; j < 4; j++) {
+        aa_path_init(&p);
+        must(aa_path_move_to(&p, 0.1, 0.3));
+        must(aa_path_line_to(&p, 0.25, 0.6));
+        must(aa_path_line_to(&p, 0.4, 0.3));
+        circle_to(&p, 0.5, 0.3, 0.1, M_PI, 2 * M_PI, 0);
+        must(aa_path_line_to(&p, 0.75, 0.6));
+        must(aa_path_line_to(&p, 0.9, 0.35));
+        st.join = joins[j];
+        st.cap = AA_CAP_BUTT;
+        assert_int_equal(stroke_contours(&p, &st), 1);
+        st.cap = AA_CAP_ROUND;
+        assert_int_equal(stroke_contours(&p, &st), 1);
+        st.cap = AA_CAP_SQUARE;
+        assert_int_equal(stroke_contours(&p, &st), 1);
+        aa_path_free(&p);
+    }
+    /* closed: the run and its closing join */
+    aa_path_init(&p);
+    must(aa_path_move_to(&p, 0.25, 0.25));
+    must(aa_path_line_to(&p, 0.75, 0.25));
+    must(aa_path_line_to(&p, 0.75, 0.75));
+    must(aa_path_line_to(&p, 0.25, 0.75));
+    must(aa_path_close(&p));
+    st.join = AA_JOIN_MITER;
+    assert_int_equal(stroke_contours(&p, &st), 2);
+    aa_path_free(&p);
+}
+
+
 static void test_line_caps(void **state)
 {
     (void)state;
@@ -1472,6 +1550,7 @@ static void test_default_style(void **state)
 SUPPORT_MAIN(NULL, NULL, cmocka_unit_test(test_default_style), cmocka_unit_test(test_line_caps),
              cmocka_unit_test(test_corner), cmocka_unit_test(test_sharp_turn),
              cmocka_unit_test(test_closed_square), cmocka_unit_test(test_dashes_line),
+             cmocka_unit_test(test_runs_one_contour),
              cmocka_unit_test(test_dashes_closed), cmocka_unit_test(test_arc_areas),
              cmocka_unit_test(test_round_fixed), cmocka_unit_test(test_round_random),
              cmocka_unit_test(test_round_dashes), cmocka_unit_test(test_arc_butt),

@@ -104,9 +104,10 @@ void aa_stroke_style_default(aa_stroke_style *st);
 /* The stroke of `in` as closed contours appended to `out`, in the same
  * coordinates, such that the stroke's shape (SVG 2, "Stroke shape") is
  * exactly the set of points of non-zero winding number of `out`: every
- * contour winds about each point a non-negative number of times (the
- * contours of lines, arcs, joins and caps are simple and turn the positive
- * way), so their union is what the non-zero rule fills.  Lines and
+ * contour winds about each point a non-negative number of times (each is
+ * the sum of simple contours of lines, arcs, joins and caps turning the
+ * positive way: a run's bodies and joins are one contour, the lines they
+ * share cancelled), so their union is what the non-zero rule fills.  Lines and
  * circular arcs stroke exactly to lines and circular arcs; quadratic and
  * cubic Bezier arcs and elliptical arcs that are not circles to their
  * offset curves and evolutes (AA_PATH_OFFSET, exact pieces: stroke.c says

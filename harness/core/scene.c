@@ -2036,24 +2036,63 @@ static int cmp_crossing(const void *a, const void *b)
     return p->dir - q->dir;
 }
 
-/* Pieces come in path order, so a line's crossings are nearly sorted:
- * insertion sort is linear then; past a budget of moves, qsort. */
+/* The most crossings sort_crossings merges in a buffer on the stack. */
+#define CROSS_MERGE_MAX 512
+
+/* Pieces come in path order, so a line's crossings come in runs sorted one
+ * way or the other: a contour crosses the line going one way along x and,
+ * when it comes back (the far side of a stroke's outline), the other.
+ * So: the runs found, the falling ones reversed, and merged in pairs
+ * (a natural merge sort, O(n log runs)); past CROSS_MERGE_MAX crossings or
+ * with runs shorter than 4 on average, qsort.  Crossings that compare equal
+ * are equal in every field, so the order is the one order. */
 static void sort_crossings(aa_crossing *c, size_t n)
 {
-    size_t moves = 0, budget = 8 * n + 64;
-    for (size_t k = 1; k < n; k++) {
-        aa_crossing v = c[k];
-        size_t at = k;
-        while (at > 0 && cmp_crossing(&c[at - 1], &v) > 0) {
-            c[at] = c[at - 1];
-            at--;
-            if (++moves > budget) {
-                c[at] = v;
-                qsort(c, n, sizeof *c, cmp_crossing);
-                return;
+    size_t run[CROSS_MERGE_MAX + 1], nr = 0;
+    for (size_t i = 0; i < n;) {
+        size_t j = i + 1;
+        if (j < n && cmp_crossing(&c[j - 1], &c[j]) > 0) {
+            while (j < n && cmp_crossing(&c[j - 1], &c[j]) > 0)
+                j++;
+            for (size_t a = i, b = j - 1; a < b; a++, b--) {
+                aa_crossing t = c[a];
+                c[a] = c[b], c[b] = t;
             }
+        } else {
+            while (j < n && cmp_crossing(&c[j - 1], &c[j]) <= 0)
+                j++;
         }
-        c[at] = v;
+        if (nr == CROSS_MERGE_MAX)
+            break;
+        run[nr++] = i;
+        i = j;
+    }
+    if (nr <= 1)
+        return;
+    if (n > CROSS_MERGE_MAX || 4 * nr > n) {
+        qsort(c, n, sizeof *c, cmp_crossing);
+        return;
+    }
+    aa_crossing tmp[CROSS_MERGE_MAX];
+    run[nr] = n;
+    while (nr > 1) {
+        size_t m = 0;
+        for (size_t r = 0; r < nr; r += 2) {
+            size_t lo = run[r], mid = r + 1 < nr ? run[r + 1] : n;
+            size_t hi = r + 2 <= nr ? run[r + 2 < nr ? r + 2 : nr] : n;
+            run[m++] = lo;
+            if (mid >= hi)
+                continue;
+            /* merge [lo, mid) and [mid, hi): the first run copied out */
+            memcpy(tmp, &c[lo], (mid - lo) * sizeof *c);
+            size_t a = 0, na = mid - lo, b = mid, o = lo;
+            while (a < na && b < hi)
+                c[o++] = cmp_crossing(&c[b], &tmp[a]) < 0 ? c[b++] : tmp[a++];
+            while (a < na)
+                c[o++] = tmp[a++];
+        }
+        nr = m;
+        run[nr] = n;
     }
 }
 

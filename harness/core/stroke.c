@@ -3,9 +3,9 @@
  * SVG 2 stroke shape ("Stroke shape", with stroke-linejoin, -linecap,
  * -miterlimit and dashing) of a path of lines, elliptical arcs and Bezier
  * arcs (those and the arcs that are not circles below), exactly,
- * as a union of simple closed contours of lines and circular arcs that all
- * turn the same way (positive signed area), so that the non-zero rule
- * fills exactly their union.
+ * as closed contours that all turn the same way (positive signed area),
+ * each the sum of simple ones, so that the non-zero rule fills exactly the
+ * union of the simple ones.
  *
  * The pieces of the union, h = width / 2:
  *  - a line segment: its rectangle, the segment swept by the normal of
@@ -15,7 +15,7 @@
  *    normal passes through the centre, and the region is the sector of
  *    radius r + h plus the opposite sector (angles t + pi) of radius h - r.
  *    Arcs are cut into parts of at most a quarter turn, so that every
- *    contour is simple;
+ *    piece of the union is simple;
  *  - a join at a vertex inside a subpath, between the tangent directions
  *    d_in and d_out there, on the outer side of the turn, whose outer
  *    offset points are A = P + h nA and B = P + h nB: bevel the triangle
@@ -48,6 +48,11 @@
  *    direction d: butt nothing, square the rectangle of length h beyond the
  *    end, round the half disk beyond it;
  *  - a closed subpath joins its last segment to its first instead of caps.
+ * A run's bodies whose ends are their normals (lines, annular sectors,
+ * Bezier and elliptical arcs' parts without folds), the joins between them
+ * and the caps at their ends are written as one contour, their shared
+ * lines cancelled (the runs section below says how); the other bodies and
+ * a closed subpath's last join are contours of their own.
  *
  * Choices where SVG leaves room, or where this differs from a renderer:
  *  - arcs falls back to round where "either curvature is greater than
@@ -254,14 +259,12 @@ static int c_emit(aa_path *out, const contour *c)
     return st ? st : aa_path_close(out);
 }
 
-/* A convex polygon of up to 4 points. */
-static int emit_polygon(aa_path *out, const double *xy, int n)
+/* The polygon of n points xy as a contour. */
+static void c_polygon(contour *c, const double *xy, int n)
 {
-    contour c;
-    c_begin(&c, xy[0], xy[1]);
+    c_begin(c, xy[0], xy[1]);
     for (int k = 1; k < n; k++)
-        c_line(&c, xy[2 * k], xy[2 * k + 1]);
-    return c_emit(out, &c);
+        c_line(c, xy[2 * k], xy[2 * k + 1]);
 }
 
 /* ---- pieces: the segments of non-zero length ---- */
@@ -409,39 +412,322 @@ static piece piece_part(const piece *p, double a, double b)
     return q;
 }
 
-/* ---- the shapes ---- */
+/* ---- runs: a run's bodies, joins and caps as one contour ----
+ *
+ * A strip is a part of a piece whose region is bounded by its offsets at -h
+ * (right of the travel) and h (left) and by the normals at its ends: a
+ * line's rectangle, an annular sector (h < r), a Bezier or elliptical
+ * arc's part where |k| h <= 1.  Its contour turning the positive way is
+ * the right side forward, the end normal from right to left, the left side
+ * backward, the start normal.  A join's contour is P, A, its outer edge to
+ * B, then B P; A and B are the strips' ends on the outer side, so the
+ * halves of the normals from P to A and from B to P are edges of the join
+ * and, the other way, of the strips.  A cap's contour is its edge from the
+ * end normal's one end round to the other, closed by that normal.  So a
+ * run's strips, the joins between them and its caps are one contour: the
+ * right sides forward, at each join its outer edge if the outer side is
+ * the right, else the lines to P and on; the last cap's edge or end
+ * normal; the left sides backward, at each join its outer edge backward if
+ * the outer side is the left, else the lines to P and on; the first cap's
+ * edge or start normal.  As a sum of edges it is the sum of the strips',
+ * the joins' and the caps' contours, the shared lines cancelled: its
+ * winding number about every point is the sum of theirs, and the non-zero
+ * rule fills the same union.  At each join the four lines on the normals
+ * (two normals, two sides of the join) become two, from the inner ends to
+ * P, and a vertex straight on keeps none.  The ends meet up to rounding
+ * only (a strip's ends are the offset's points, a join's and a cap's come
+ * from the unit tangents): where they differ, a line joins them, and the
+ * sliver between is the one the separate contours had.  Ends farther apart
+ * than STRIP_GAP of the size leave the join or cap a contour of its own. */
 
-static int stroke_line(aa_path *out, const piece *p, double h)
+/* The largest gap, relative to the size (the coordinates and h), between a
+ * strip's end and the join's point that should be on it. */
+#define STRIP_GAP 1e-12
+
+enum { STRIP_LINE, STRIP_ARC, STRIP_OFFSET };
+/* a join's outer side (stroke_join) */
+enum { JOIN_RIGHT, JOIN_LEFT, JOIN_STRAIGHT };
+/* how a strip follows the one before it in a chain */
+enum { LINK_DIRECT, LINK_RIGHT, LINK_LEFT, LINK_PIVOT };
+
+typedef struct strip {
+    int kind, link;
+    double rs[2], re[2], ls[2], le[2]; /* right and left sides' starts and ends */
+    double cx, cy, r[4], l[4];         /* arcs: c + r[0..1] cos t + r[2..3] sin t, left l */
+    double a, b;                       /* arcs and offsets: the parameter from a to b */
+    aa_offset_curve oc[2];             /* offsets: at -h and h */
+    contour j;                         /* LINK_RIGHT, LINK_LEFT: the join before it */
+} strip;
+
+/* A run being stroked: the chain of strips not yet written, and the join
+ * before the next piece's first part. */
+typedef struct run {
+    aa_path *out;
+    strip *s;
+    size_t n, cap;
+    int first, joined, outer; /* the next part is its piece's first; a join before it */
+    int from_start;           /* the chain begins with the run's first part */
+    contour j;
+    int capped[2]; /* run_flush writes the caps at the start and the end */
+    contour ends[2];
+} run;
+
+static int same_point(const double p[2], double x, double y, double tol)
 {
-    double nx = -p->dy * h, ny = p->dx * h;
-    const double xy[8] = {p->x0 + nx, p->y0 + ny, p->x1 + nx, p->y1 + ny,
-                          p->x1 - nx, p->y1 - ny, p->x0 - nx, p->y0 - ny};
-    return emit_polygon(out, xy, 4);
+    return fabs(p[0] - x) <= tol && fabs(p[1] - y) <= tol;
 }
 
-/* The region swept by the normal of length 2h on the arc part [a, b]. */
-static int stroke_arc_part(aa_path *out, const piece *p, double a, double b, double h)
+static int pen_to(aa_path *out, const double p[2])
+{
+    if (out->penx == p[0] && out->peny == p[1])
+        return AA_OK;
+    return aa_path_line_to(out, p[0], p[1]);
+}
+
+static int strip_right(aa_path *out, const strip *s)
+{
+    if (s->kind == STRIP_LINE)
+        return aa_path_line_to(out, s->re[0], s->re[1]);
+    if (s->kind == STRIP_ARC)
+        return aa_path_arc_to(out, s->cx, s->cy, s->r[0], s->r[1], s->r[2], s->r[3], s->a, s->b,
+                              s->re[0], s->re[1]);
+    return aa_path_offset_to(out, &s->oc[0], s->a, s->b, s->re[0], s->re[1]);
+}
+
+static int strip_left_back(aa_path *out, const strip *s)
+{
+    if (s->kind == STRIP_LINE)
+        return aa_path_line_to(out, s->ls[0], s->ls[1]);
+    if (s->kind == STRIP_ARC)
+        return aa_path_arc_to(out, s->cx, s->cy, s->l[0], s->l[1], s->l[2], s->l[3], s->b, s->a,
+                              s->ls[0], s->ls[1]);
+    return aa_path_offset_to(out, &s->oc[1], s->b, s->a, s->ls[0], s->ls[1]);
+}
+
+/* A join's outer edge, from A to B, or backwards from B to A. */
+static int join_edge(aa_path *out, const contour *j, int back)
+{
+    int st = AA_OK;
+    if (!back) {
+        const double a[2] = {j->e[0].x, j->e[0].y};
+        st = pen_to(out, a);
+        for (int k = 1; k < j->n && !st; k++)
+            st = emit_elem(out, &j->e[k], j->e[k].x, j->e[k].y, 0);
+        return st;
+    }
+    const double b[2] = {j->e[j->n - 1].x, j->e[j->n - 1].y};
+    st = pen_to(out, b);
+    for (int k = j->n - 1; k >= 1 && !st; k--)
+        st = emit_elem(out, &j->e[k], j->e[k - 1].x, j->e[k - 1].y, 1);
+    return st;
+}
+
+/* A cap's edge (cap_contour: from the end normal's left end ahead round to
+ * its right end) backwards: from its last point to its first. */
+static int cap_back(aa_path *out, const contour *c)
+{
+    const double b[2] = {c->e[c->n - 1].x, c->e[c->n - 1].y};
+    int st = pen_to(out, b);
+    for (int k = c->n - 1; k >= 0 && !st; k--)
+        st = emit_elem(out, &c->e[k], k > 0 ? c->e[k - 1].x : c->sx,
+                       k > 0 ? c->e[k - 1].y : c->sy, 1);
+    return st;
+}
+
+/* The chain written as one contour, and emptied. */
+static int run_flush(run *R)
+{
+    if (R->n == 0)
+        return AA_OK;
+    R->from_start = 0;
+    aa_path *out = R->out;
+    const strip *s = R->s;
+    int st = aa_path_move_to(out, s[0].rs[0], s[0].rs[1]);
+    for (size_t k = 0; k < R->n && !st; k++) {
+        if (k > 0) {
+            if (s[k].link == LINK_RIGHT) {
+                st = join_edge(out, &s[k].j, 0);
+            } else if (s[k].link != LINK_DIRECT) {
+                const double pv[2] = {s[k].j.sx, s[k].j.sy};
+                st = pen_to(out, pv);
+            }
+            if (!st)
+                st = pen_to(out, s[k].rs);
+        }
+        if (!st)
+            st = strip_right(out, &s[k]);
+    }
+    if (!st)
+        st = R->capped[1] ? cap_back(out, &R->ends[1]) : AA_OK;
+    if (!st)
+        st = pen_to(out, s[R->n - 1].le);
+    for (size_t k = R->n; k-- > 0 && !st;) {
+        st = strip_left_back(out, &s[k]);
+        if (k > 0 && !st) {
+            if (s[k].link == LINK_LEFT) {
+                st = join_edge(out, &s[k].j, 1);
+            } else if (s[k].link != LINK_DIRECT) {
+                const double pv[2] = {s[k].j.sx, s[k].j.sy};
+                st = pen_to(out, pv);
+            }
+            if (!st)
+                st = pen_to(out, s[k - 1].le);
+        }
+    }
+    if (!st && R->capped[0])
+        st = cap_back(out, &R->ends[0]);
+    R->n = 0;
+    R->capped[0] = R->capped[1] = 0;
+    return st ? st : aa_path_close(out);
+}
+
+/* The link from strip a to strip b across the pending join, or -1 if the
+ * join's points are not on the strips' ends (up to STRIP_GAP). */
+static int run_link(const run *R, const strip *a, const strip *b)
+{
+    const contour *j = &R->j;
+    double size = fabs(j->sx) + fabs(j->sy) + fabs(a->re[0] - a->le[0]) +
+                  fabs(a->re[1] - a->le[1]);
+    double tol = STRIP_GAP * size;
+    if (R->outer == JOIN_STRAIGHT)
+        return same_point(a->re, b->rs[0], b->rs[1], tol) &&
+                       same_point(a->le, b->ls[0], b->ls[1], tol)
+                   ? LINK_DIRECT
+                   : -1;
+    /* P on both normals: each end normal's midpoint */
+    if (!same_point(a->re, 2 * j->sx - a->le[0], 2 * j->sy - a->le[1], 2 * tol) ||
+        !same_point(b->rs, 2 * j->sx - b->ls[0], 2 * j->sy - b->ls[1], 2 * tol))
+        return -1;
+    double area = c_area(j);
+    if (j->n == 0 || area == 0)
+        return LINK_PIVOT; /* no join: c_emit writes none */
+    const double *A = &j->e[0].x, *B = &j->e[j->n - 1].x;
+    if (R->outer == JOIN_RIGHT && area > 0 && same_point(a->re, A[0], A[1], tol) &&
+        same_point(b->rs, B[0], B[1], tol))
+        return LINK_RIGHT;
+    if (R->outer == JOIN_LEFT && area < 0 && same_point(a->le, A[0], A[1], tol) &&
+        same_point(b->ls, B[0], B[1], tol))
+        return LINK_LEFT;
+    return -1;
+}
+
+static int corners_finite(const strip *s)
+{
+    return isfinite(s->rs[0]) && isfinite(s->rs[1]) && isfinite(s->re[0]) &&
+           isfinite(s->re[1]) && isfinite(s->ls[0]) && isfinite(s->ls[1]) &&
+           isfinite(s->le[0]) && isfinite(s->le[1]);
+}
+
+/* A strip, the next part of the run: joined to the chain, or a chain's
+ * start (the chain before written, and the pending join on its own). */
+static int run_strip(run *R, strip *s)
+{
+    if (!corners_finite(s))
+        return aa_fail(AA_EINVAL, "stroke: the outline is out of range (not finite)");
+    int link = -1, st = AA_OK;
+    if (R->n > 0) {
+        if (!R->first)
+            link = LINK_DIRECT; /* the same piece's parts, on one normal */
+        else if (R->joined)
+            link = run_link(R, &R->s[R->n - 1], s);
+    }
+    if (link < 0) {
+        st = run_flush(R);
+        if (!st && R->first && R->joined)
+            st = c_emit(R->out, &R->j);
+        if (st)
+            return st;
+    } else if (link == LINK_RIGHT || link == LINK_LEFT || link == LINK_PIVOT) {
+        s->j = R->j;
+    }
+    s->link = link < 0 ? LINK_DIRECT : link;
+    R->first = R->joined = 0;
+    if (R->n == R->cap) {
+        size_t cap = R->cap ? 2 * R->cap : 16;
+        strip *q = realloc(R->s, cap * sizeof *q);
+        if (!q)
+            return aa_fail(AA_EFAIL, "out of memory for a stroke's run of %zu parts", cap);
+        R->s = q;
+        R->cap = cap;
+    }
+    R->s[R->n++] = *s;
+    return AA_OK;
+}
+
+/* Before a part that is not a strip (contours of its own): the chain
+ * written, and the pending join. */
+static int run_break(run *R)
+{
+    int st = run_flush(R);
+    R->from_start = 0;
+    if (!st && R->first && R->joined)
+        st = c_emit(R->out, &R->j);
+    R->first = R->joined = 0;
+    return st;
+}
+
+/* ---- the shapes ---- */
+
+static int stroke_line(run *R, const piece *p, double h)
+{
+    double nx = -p->dy * h, ny = p->dx * h;
+    strip q = {.kind = STRIP_LINE};
+    q.rs[0] = p->x0 - nx, q.rs[1] = p->y0 - ny, q.re[0] = p->x1 - nx, q.re[1] = p->y1 - ny;
+    q.ls[0] = p->x0 + nx, q.ls[1] = p->y0 + ny, q.le[0] = p->x1 + nx, q.le[1] = p->y1 + ny;
+    /* a rectangle of no area after rounding (a dash's last sliver) is
+     * none, as c_emit would leave it out */
+    contour c;
+    const double xy[8] = {q.rs[0], q.rs[1], q.re[0], q.re[1], q.le[0], q.le[1], q.ls[0], q.ls[1]};
+    c_polygon(&c, xy, 4);
+    if (c_area(&c) == 0)
+        return run_break(R);
+    return run_strip(R, &q);
+}
+
+/* The region swept by the normal of length 2h on the arc part [a, b]: an
+ * annular sector (a strip) if h < r, else one or two sectors. */
+static int stroke_arc_part(run *R, const piece *p, double a, double b, double h)
 {
     double lu = hypot(p->ux, p->uy), lv = hypot(p->vx, p->vy);
-    double R = p->r + h, rho = p->r - h;
+    double R1 = p->r + h, rho = p->r - h;
+    if (rho > 0) {
+        /* the side towards the centre: left where the arc turns left */
+        double ta[2], pa[2];
+        piece_tangent(p, 0, ta);
+        arc_point(0, 0, p->ux, p->uy, p->vx, p->vy, p->t0, &pa[0], &pa[1]);
+        int left_in = -ta[1] * pa[0] + ta[0] * pa[1] < 0;
+        double rr = left_in ? R1 : rho, rl = left_in ? rho : R1;
+        strip q = {.kind = STRIP_ARC, .cx = p->cx, .cy = p->cy, .a = a, .b = b};
+        q.r[0] = p->ux * (rr / lu), q.r[1] = p->uy * (rr / lu);
+        q.r[2] = p->vx * (rr / lv), q.r[3] = p->vy * (rr / lv);
+        q.l[0] = p->ux * (rl / lu), q.l[1] = p->uy * (rl / lu);
+        q.l[2] = p->vx * (rl / lv), q.l[3] = p->vy * (rl / lv);
+        arc_point(p->cx, p->cy, q.r[0], q.r[1], q.r[2], q.r[3], a, &q.rs[0], &q.rs[1]);
+        arc_point(p->cx, p->cy, q.r[0], q.r[1], q.r[2], q.r[3], b, &q.re[0], &q.re[1]);
+        arc_point(p->cx, p->cy, q.l[0], q.l[1], q.l[2], q.l[3], a, &q.ls[0], &q.ls[1]);
+        arc_point(p->cx, p->cy, q.l[0], q.l[1], q.l[2], q.l[3], b, &q.le[0], &q.le[1]);
+        contour c; /* none if of no area after rounding, as c_emit */
+        c_begin(&c, q.rs[0], q.rs[1]);
+        c_arc(&c, p->cx, p->cy, q.r[0], q.r[1], q.r[2], q.r[3], a, b);
+        c_line(&c, q.le[0], q.le[1]);
+        c_arc(&c, p->cx, p->cy, q.l[0], q.l[1], q.l[2], q.l[3], b, a);
+        if (c_area(&c) == 0)
+            return run_break(R);
+        return run_strip(R, &q);
+    }
+    int st = run_break(R);
+    if (st)
+        return st;
     contour c;
-    /* outer arc, radius R */
-    double oux = p->ux * (R / lu), ouy = p->uy * (R / lu);
-    double ovx = p->vx * (R / lv), ovy = p->vy * (R / lv);
+    /* outer arc, radius R1 */
+    double oux = p->ux * (R1 / lu), ouy = p->uy * (R1 / lu);
+    double ovx = p->vx * (R1 / lv), ovy = p->vy * (R1 / lv);
     double x, y;
     arc_point(p->cx, p->cy, oux, ouy, ovx, ovy, a, &x, &y);
     c_begin(&c, x, y);
     c_arc(&c, p->cx, p->cy, oux, ouy, ovx, ovy, a, b);
-    if (rho > 0) {
-        double iux = p->ux * (rho / lu), iuy = p->uy * (rho / lu);
-        double ivx = p->vx * (rho / lv), ivy = p->vy * (rho / lv);
-        arc_point(p->cx, p->cy, iux, iuy, ivx, ivy, b, &x, &y);
-        c_line(&c, x, y);
-        c_arc(&c, p->cx, p->cy, iux, iuy, ivx, ivy, b, a);
-        return c_emit(out, &c);
-    }
     c_line(&c, p->cx, p->cy);
-    int st = c_emit(out, &c);
+    st = c_emit(R->out, &c);
     if (st || rho == 0)
         return st;
     /* h > r: the opposite sector, radius h - r, at the angles t + pi */
@@ -452,10 +738,10 @@ static int stroke_arc_part(aa_path *out, const piece *p, double a, double b, dou
     arc_point(p->cx, p->cy, qux, quy, qvx, qvy, a, &x, &y);
     c_line(&c, x, y);
     c_arc(&c, p->cx, p->cy, qux, quy, qvx, qvy, a, b);
-    return c_emit(out, &c);
+    return c_emit(R->out, &c);
 }
 
-static int stroke_arc(aa_path *out, const piece *p, double h)
+static int stroke_arc(run *R, const piece *p, double h)
 {
     double dt = p->t1 - p->t0;
     int parts = (int)ceil(fabs(dt) / (0.5 * M_PI));
@@ -467,7 +753,7 @@ static int stroke_arc(aa_path *out, const piece *p, double h)
     for (int k = 0; k < parts && !st; k++) {
         double a = k == 0 ? p->t0 : p->t0 + dt * k / parts;
         double b = k == parts - 1 ? p->t1 : p->t0 + dt * (k + 1) / parts;
-        st = stroke_arc_part(out, p, a, b, h);
+        st = stroke_arc_part(R, p, a, b, h);
     }
     return st;
 }
@@ -673,7 +959,7 @@ static int bez_region(aa_path *out, const piece *p, double u, double v, side lo,
  * (negative); where k h < -1 the same with the signs swapped.  Each region
  * contributes its number of preimages of a point, at least 0, so the
  * winding number of all of them is positive exactly on the image. */
-static int stroke_bez(aa_path *out, const piece *p, double h)
+static int stroke_bez(run *R, const piece *p, double h)
 {
     double cut[32], turns[8];
     int n = 0, nt = bez_curvature_turns(p, p->t0, p->t1, turns);
@@ -737,21 +1023,33 @@ static int stroke_bez(aa_path *out, const piece *p, double h)
                 v = w;
                 k++;
             }
-            st = bez_region(out, p, u, v, minus, plus, 1);
+            strip q = {.kind = STRIP_OFFSET, .a = u, .b = v};
+            for (int i = 0; i < 2; i++) {
+                aa_offset_curve oc = {{0}, {1, 0, 0, 1, 0, 0}, i ? h : -h, 0, p->base};
+                memcpy(oc.b, p->b, sizeof oc.b);
+                q.oc[i] = oc;
+            }
+            bez_point(p, u, 0, -h, &q.rs[0], &q.rs[1]);
+            bez_point(p, v, 0, -h, &q.re[0], &q.re[1]);
+            bez_point(p, u, 0, h, &q.ls[0], &q.ls[1]);
+            bez_point(p, v, 0, h, &q.le[0], &q.le[1]);
+            st = run_strip(R, &q);
         } else {
-            st = bez_region(out, p, u, v, minus, ev, kh > 1);
+            st = run_break(R);
             if (!st)
-                st = bez_region(out, p, u, v, ev, plus, kh < -1);
+                st = bez_region(R->out, p, u, v, minus, ev, kh > 1);
+            if (!st)
+                st = bez_region(R->out, p, u, v, ev, plus, kh < -1);
         }
     }
     return st;
 }
 
-static int stroke_piece(aa_path *out, const piece *p, double h)
+static int stroke_piece(run *R, const piece *p, double h)
 {
     if (p->bez)
-        return stroke_bez(out, p, h);
-    return p->arc ? stroke_arc(out, p, h) : stroke_line(out, p, h);
+        return stroke_bez(R, p, h);
+    return p->arc ? stroke_arc(R, p, h) : stroke_line(R, p, h);
 }
 
 /* The clipped miter of miter-clip (and of arcs between straight edges):
@@ -764,9 +1062,9 @@ static int stroke_piece(aa_path *out, const piece *p, double h)
  * one from B at B - t dout: the pentagon P A A' B' B.  A reversal
  * (dout = -din, m = din) gives the rectangle of width 2h and length L
  * ahead of P, SVG 2's join for parallel tangents. */
-static int clipped_miter(aa_path *out, double px, double py, const double din[2],
-                         const double dout[2], double ax, double ay, double bx, double by,
-                         double L, double h)
+static void clipped_miter(contour *c, double px, double py, const double din[2],
+                          const double dout[2], double ax, double ay, double bx, double by,
+                          double L, double h)
 {
     double mx = din[0] - dout[0], my = din[1] - dout[1], ml = hypot(mx, my);
     mx /= ml, my /= ml;
@@ -774,7 +1072,7 @@ static int clipped_miter(aa_path *out, double px, double py, const double din[2]
     double t = (L - h * cs) / sn;
     const double xy[10] = {px, py, ax, ay, ax + t * din[0], ay + t * din[1],
                            bx - t * dout[0], by - t * dout[1], bx, by};
-    return emit_polygon(out, xy, 5);
+    c_polygon(c, xy, 5);
 }
 
 /* ---- the arcs join ---- */
@@ -1010,7 +1308,7 @@ static int arcs_refuse(double px, double py, const char *why)
  * more than a half turn (a circle), and cuts that do not cross each
  * extension once.
  */
-static int arcs_join(aa_path *out, double px, double py, const double din[2],
+static int arcs_join(contour *c, double px, double py, const double din[2],
                      const double dout[2], double kin, double kout, double ax, double ay,
                      double bx, double by, double L)
 {
@@ -1051,13 +1349,12 @@ static int arcs_join(aa_path *out, double px, double py, const double din[2],
     double cx = x - px, cy = y - py, chord = hypot(cx, cy);
     double cm = cx * mx + cy * my, cp = -cx * my + cy * mx; /* along m, along its left */
     double half = atan2(fabs(cp), cm), len = half > 0 ? chord * half / sin(half) : chord;
-    contour c;
-    c_begin(&c, px, py);
-    c_line(&c, ax, ay);
+    c_begin(c, px, py);
+    c_line(c, ax, ay);
     if (len <= L) {
-        je_append(&c, &e[0], 0, s[0]);
-        je_append(&c, &e[1], s[1], 0);
-        return c_emit(out, &c);
+        je_append(c, &e[0], 0, s[0]);
+        je_append(c, &e[1], s[1], 0);
+        return AA_OK;
     }
     /* the cut: Y at arc length L, T the arc's tangent there */
     double yx, yy, tx, ty;
@@ -1079,26 +1376,35 @@ static int arcs_join(aa_path *out, double px, double py, const double din[2],
             return arcs_refuse(px, py, "its miter limit's cut does not cross each edge once");
         cut[i] = v[0];
     }
-    je_append(&c, &e[0], 0, cut[0]);
+    je_append(c, &e[0], 0, cut[0]);
     double zx, zy;
     je_point(&e[1], cut[1], &zx, &zy);
-    c_line(&c, zx, zy);
-    je_append(&c, &e[1], cut[1], 0);
-    return c_emit(out, &c);
+    c_line(c, zx, zy);
+    je_append(c, &e[1], cut[1], 0);
+    return AA_OK;
 }
 
 /* The join at P between unit directions din and dout, with the segments'
- * curvatures there kin and kout (used by arcs only). */
-static int stroke_join(aa_path *out, double px, double py, const double din[2],
+ * curvatures there kin and kout (used by arcs only), as the contour P, A,
+ * its outer edge to B (closed by B P; c->n = 0: no join, straight on or an
+ * empty bevel at a reversal).  *outer: the side of the travel its outer
+ * edge is on, JOIN_RIGHT or JOIN_LEFT (A and B the ends of the offsets at
+ * -h or at h), or JOIN_STRAIGHT straight on. */
+static int stroke_join(contour *c, int *outer, double px, double py, const double din[2],
                        const double dout[2], double kin, double kout,
                        const aa_stroke_style *style, double h)
 {
     double cr = din[0] * dout[1] - din[1] * dout[0];
     double dot = din[0] * dout[0] + din[1] * dout[1];
-    if (cr == 0 && dot > 0)
-        return AA_OK; /* straight on */
+    c->n = 0;
+    c->sx = px, c->sy = py;
     /* the outer side: right of the travel for a left turn (cr > 0), else
      * left (a reversal, cr = 0, counts as a right turn) */
+    *outer = cr > 0 ? JOIN_RIGHT : JOIN_LEFT;
+    if (cr == 0 && dot > 0) {
+        *outer = JOIN_STRAIGHT;
+        return AA_OK;
+    }
     double sg = cr > 0 ? -1.0 : 1.0;
     double nax = -sg * din[1], nay = sg * din[0];
     double nbx = -sg * dout[1], nby = sg * dout[0];
@@ -1107,59 +1413,64 @@ static int stroke_join(aa_path *out, double px, double py, const double din[2],
     if (join == AA_JOIN_ARCS) {
         /* SVG 2: both curvatures 0, miter-clip; either beyond 1/h (the
          * edge's circle would have no radius or fold), round */
-        if (kin == 0 && kout == 0)
+        if (kin == 0 && kout == 0) {
             join = AA_JOIN_MITER_CLIP;
-        else if (!(fabs(kin) * h < 1 && fabs(kout) * h < 1))
+        } else if (!(fabs(kin) * h < 1 && fabs(kout) * h < 1)) {
             join = AA_JOIN_ROUND;
-        else if (cr == 0)
-            return clipped_miter(out, px, py, din, dout, ax, ay, bx, by,
-                                 style->miterlimit * h, h);
-        else
-            return arcs_join(out, px, py, din, dout, kin, kout, ax, ay, bx, by,
+        } else if (cr == 0) {
+            clipped_miter(c, px, py, din, dout, ax, ay, bx, by, style->miterlimit * h, h);
+            return AA_OK;
+        } else {
+            return arcs_join(c, px, py, din, dout, kin, kout, ax, ay, bx, by,
                              style->miterlimit * h);
+        }
     }
     if (join == AA_JOIN_ROUND) {
         /* P + h (cos t nA + sin t din), t from 0 to the turn alpha, ends
          * at P + h nB (the turn of din to dout is that of nA to nB) */
         double alpha = atan2(fabs(cr), dot);
-        contour c;
-        c_begin(&c, px, py);
-        c_line(&c, ax, ay);
-        c_arc(&c, px, py, h * nax, h * nay, h * din[0], h * din[1], 0, alpha);
-        return c_emit(out, &c);
+        c_begin(c, px, py);
+        c_line(c, ax, ay);
+        c_arc(c, px, py, h * nax, h * nay, h * din[0], h * din[1], 0, alpha);
+        return AA_OK;
     }
     double sx = nax + nbx, sy = nay + nby, s2 = sx * sx + sy * sy;
     int within = s2 > 0 && 2.0 <= style->miterlimit * sqrt(s2);
     if ((join == AA_JOIN_MITER || join == AA_JOIN_MITER_CLIP) && within) {
         const double xy[8] = {px, py, ax, ay, px + 2 * h * sx / s2, py + 2 * h * sy / s2, bx, by};
-        return emit_polygon(out, xy, 4);
+        c_polygon(c, xy, 4);
+    } else if (join == AA_JOIN_MITER_CLIP) {
+        clipped_miter(c, px, py, din, dout, ax, ay, bx, by, style->miterlimit * h, h);
+    } else if (s2 > 0) { /* a reversal's bevel is empty */
+        const double xy[6] = {px, py, ax, ay, bx, by};
+        c_polygon(c, xy, 3);
     }
-    if (join == AA_JOIN_MITER_CLIP)
-        return clipped_miter(out, px, py, din, dout, ax, ay, bx, by, style->miterlimit * h, h);
-    if (s2 == 0)
-        return AA_OK; /* a reversal: an empty bevel */
-    const double xy[6] = {px, py, ax, ay, bx, by};
-    return emit_polygon(out, xy, 3);
+    return AA_OK;
 }
 
 /* The cap at P with outward unit direction d. */
-static int stroke_cap(aa_path *out, double px, double py, const double d[2],
-                      const aa_stroke_style *style, double h)
+static void cap_contour(contour *c, double px, double py, const double d[2],
+                        const aa_stroke_style *style, double h)
 {
     double nx = -d[1] * h, ny = d[0] * h, ex = d[0] * h, ey = d[1] * h;
+    c->n = 0;
     if (style->cap == AA_CAP_SQUARE) {
         const double xy[8] = {px + nx, py + ny, px + nx + ex, py + ny + ey,
                               px - nx + ex, py - ny + ey, px - nx, py - ny};
-        return emit_polygon(out, xy, 4);
-    }
-    if (style->cap == AA_CAP_ROUND) {
+        c_polygon(c, xy, 4);
+    } else if (style->cap == AA_CAP_ROUND) {
         /* P + h (cos t n + sin t d), t from 0 to pi: the half disk ahead */
-        contour c;
-        c_begin(&c, px + nx, py + ny);
-        c_arc(&c, px, py, nx, ny, ex, ey, 0, M_PI);
-        return c_emit(out, &c);
+        c_begin(c, px + nx, py + ny);
+        c_arc(c, px, py, nx, ny, ex, ey, 0, M_PI);
     }
-    return AA_OK;
+}
+
+static int stroke_cap(aa_path *out, double px, double py, const double d[2],
+                      const aa_stroke_style *style, double h)
+{
+    contour c;
+    cap_contour(&c, px, py, d, style, h);
+    return c.n ? c_emit(out, &c) : AA_OK;
 }
 
 /* A subpath of no length at P: its caps in the x axis's direction. */
@@ -1189,8 +1500,9 @@ static double piece_curvature(const piece *p, int at_end)
     return (uv > 0 ? sg : -sg) / p->r;
 }
 
-/* The join between pieces a (ending) and b (starting) at b's start. */
-static int join_pieces(aa_path *out, const piece *a, const piece *b,
+/* The join between pieces a (ending) and b (starting) at b's start, as a
+ * contour (stroke_join). */
+static int join_pieces(contour *c, int *outer, const piece *a, const piece *b,
                        const aa_stroke_style *style, double h)
 {
     double din[2], dout[2], kin = 0, kout = 0;
@@ -1198,31 +1510,65 @@ static int join_pieces(aa_path *out, const piece *a, const piece *b,
     piece_tangent(b, 0, dout);
     if (style->join == AA_JOIN_ARCS)
         kin = piece_curvature(a, 1), kout = piece_curvature(b, 0);
-    return stroke_join(out, b->x0, b->y0, din, dout, kin, kout, style, h);
+    return stroke_join(c, outer, b->x0, b->y0, din, dout, kin, kout, style, h);
 }
 
 /* A run of pieces (a subpath or a dash): every piece, the joins between
- * them, and caps at its ends or the join that closes it. */
+ * them (with the pieces' strips one contour, the run's), and caps at its
+ * ends or the join that closes it. */
 static int stroke_run(aa_path *out, const piece *p, size_t n, int closed,
                       const aa_stroke_style *style, double h)
 {
+    run R = {0};
+    R.out = out;
+    R.from_start = 1;
     int st = AA_OK;
     double din[2], dout[2];
     for (size_t i = 0; i < n && !st; i++) {
-        st = stroke_piece(out, &p[i], h);
-        if (!st && i > 0 && !p[i].nojoin)
-            st = join_pieces(out, &p[i - 1], &p[i], style, h);
+        R.first = 1, R.joined = 0;
+        if (i > 0 && !p[i].nojoin) {
+            st = join_pieces(&R.j, &R.outer, &p[i - 1], &p[i], style, h);
+            R.joined = !st;
+        } else if (i > 0) {
+            st = run_flush(&R); /* after a cusp: no join, and the chain ends */
+        }
+        if (!st)
+            st = stroke_piece(&R, &p[i], h);
     }
-    if (st || n == 0)
+    if (!st && !closed && n > 0) {
+        /* the caps, each in the chain where it meets its end (from the
+         * left end of the end normal ahead round to its right end, that
+         * normal's line cancelled: the same sum), else on its own */
+        piece_tangent(&p[0], 0, dout);
+        const double back[2] = {-dout[0], -dout[1]};
+        cap_contour(&R.ends[0], p[0].x0, p[0].y0, back, style, h);
+        piece_tangent(&p[n - 1], 1, din);
+        cap_contour(&R.ends[1], p[n - 1].x1, p[n - 1].y1, din, style, h);
+        for (int e = 0; e < 2; e++) {
+            const contour *c = &R.ends[e];
+            if (R.n == 0 || (e == 0 && !R.from_start) || c->n == 0 || !(c_area(c) < 0))
+                continue;
+            /* the start cap runs from the right start to the left, the end
+             * cap from the left end to the right */
+            const strip *q = e ? &R.s[R.n - 1] : &R.s[0];
+            const double *from = e ? q->le : q->rs, *to = e ? q->re : q->ls;
+            double tol = STRIP_GAP * (fabs(from[0]) + fabs(from[1]) + 2 * h);
+            R.capped[e] = same_point(from, c->sx, c->sy, tol) &&
+                          same_point(to, c->e[c->n - 1].x, c->e[c->n - 1].y, tol);
+        }
+        for (int e = 0; e < 2 && !st; e++)
+            if (!R.capped[e])
+                st = c_emit(out, &R.ends[e]);
+    }
+    if (!st)
+        st = run_flush(&R);
+    free(R.s);
+    if (st || n == 0 || !closed)
         return st;
-    if (closed)
-        return join_pieces(out, &p[n - 1], &p[0], style, h);
-    piece_tangent(&p[0], 0, dout);
-    const double back[2] = {-dout[0], -dout[1]};
-    if ((st = stroke_cap(out, p[0].x0, p[0].y0, back, style, h)))
-        return st;
-    piece_tangent(&p[n - 1], 1, din);
-    return stroke_cap(out, p[n - 1].x1, p[n - 1].y1, din, style, h);
+    contour c;
+    int outer;
+    st = join_pieces(&c, &outer, &p[n - 1], &p[0], style, h);
+    return st ? st : c_emit(out, &c);
 }
 
 /* ---- dashes ---- */
