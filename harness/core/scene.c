@@ -2036,52 +2036,56 @@ static int cmp_crossing(const void *a, const void *b)
     return p->dir - q->dir;
 }
 
-/* The most crossings sort_crossings merges in a buffer on the stack. */
+/* The most crossings sort_crossings merges in a buffer on the stack, and
+ * the length of the chunks it sorts first. */
 #define CROSS_MERGE_MAX 512
+#define CROSS_CHUNK 16
 
-/* Pieces come in path order, so a line's crossings come in runs sorted one
+/* Pieces come in path order, so a line's crossings come nearly sorted one
  * way or the other: a contour crosses the line going one way along x and,
- * when it comes back (the far side of a stroke's outline), the other.
- * So: the runs found, the falling ones reversed, and merged in pairs
- * (a natural merge sort, O(n log runs)); past CROSS_MERGE_MAX crossings or
- * with runs shorter than 4 on average, qsort.  Crossings that compare equal
- * are equal in every field, so the order is the one order. */
+ * when it comes back (the far side of a stroke's outline), the other, with
+ * neighbours out of order here and there (a wave's two crossings of the
+ * line about its crest, the pieces of a join).  So: in chunks of
+ * CROSS_CHUNK, each reversed if it falls from end to end and sorted by
+ * insertion (nearly in order then: few moves), chunks in order with the one
+ * before joined to it, and the runs so found merged in pairs; more than
+ * CROSS_MERGE_MAX crossings, qsort.  Crossings that compare equal are equal
+ * in every field, so the order is the one order. */
 static void sort_crossings(aa_crossing *c, size_t n)
 {
-    size_t run[CROSS_MERGE_MAX + 1], nr = 0;
-    for (size_t i = 0; i < n;) {
-        size_t j = i + 1;
-        if (j < n && cmp_crossing(&c[j - 1], &c[j]) > 0) {
-            while (j < n && cmp_crossing(&c[j - 1], &c[j]) > 0)
-                j++;
-            for (size_t a = i, b = j - 1; a < b; a++, b--) {
-                aa_crossing t = c[a];
-                c[a] = c[b], c[b] = t;
-            }
-        } else {
-            while (j < n && cmp_crossing(&c[j - 1], &c[j]) <= 0)
-                j++;
-        }
-        if (nr == CROSS_MERGE_MAX)
-            break;
-        run[nr++] = i;
-        i = j;
-    }
-    if (nr <= 1)
-        return;
-    if (n > CROSS_MERGE_MAX || 4 * nr > n) {
+    if (n > CROSS_MERGE_MAX) {
         qsort(c, n, sizeof *c, cmp_crossing);
         return;
+    }
+    size_t run[CROSS_MERGE_MAX / CROSS_CHUNK + 2], nr = 0;
+    for (size_t i = 0; i < n; i += CROSS_CHUNK) {
+        size_t m = n - i < CROSS_CHUNK ? n - i : CROSS_CHUNK;
+        aa_crossing *q = c + i;
+        if (cmp_crossing(&q[0], &q[m - 1]) > 0)
+            for (size_t a = 0, b = m - 1; a < b; a++, b--) {
+                aa_crossing t = q[a];
+                q[a] = q[b], q[b] = t;
+            }
+        for (size_t k = 1; k < m; k++) {
+            aa_crossing v = q[k];
+            size_t at = k;
+            while (at > 0 && cmp_crossing(&q[at - 1], &v) > 0) {
+                q[at] = q[at - 1];
+                at--;
+            }
+            q[at] = v;
+        }
+        if (i == 0 || cmp_crossing(&c[i - 1], &c[i]) > 0)
+            run[nr++] = i;
     }
     aa_crossing tmp[CROSS_MERGE_MAX];
     run[nr] = n;
     while (nr > 1) {
         size_t m = 0;
         for (size_t r = 0; r < nr; r += 2) {
-            size_t lo = run[r], mid = r + 1 < nr ? run[r + 1] : n;
-            size_t hi = r + 2 <= nr ? run[r + 2 < nr ? r + 2 : nr] : n;
+            size_t lo = run[r], mid = run[r + 1], hi = r + 2 <= nr ? run[r + 2] : n;
             run[m++] = lo;
-            if (mid >= hi)
+            if (r + 1 >= nr)
                 continue;
             /* merge [lo, mid) and [mid, hi): the first run copied out */
             memcpy(tmp, &c[lo], (mid - lo) * sizeof *c);
