@@ -894,21 +894,13 @@ static double line_tau_curved(const ar_seg *a, int m)
     return den > 0.0 ? -2.0 * c / den : 0.0;
 }
 
-/* The cell of x (clamped to +-2^30): floor(x), except that a negative
- * integer gives the cell to its left.  A piece exactly on a cell's side
- * may be put in either cell: its area share in the other is zero. */
-static inline int icell(double x)
-{
-    x = x > -CELL_LIMIT ? x : -CELL_LIMIT; /* maxsd, minsd: no branch */
-    x = x < CELL_LIMIT ? x : CELL_LIMIT;
-    return (int)x - (x < 0.0);
-}
-
-/* icell of lo and hi at once (*a, *b), x's two lanes {lo, hi}, in SSE2's
- * packed doubles: the same clamps (maxpd and minpd take their second
- * operand where the first is NaN, as the scalar forms), the same
- * truncation (cvttpd2dq: the clamped values fit in an int), the
- * comparison's mask -1 added. */
+/* The cells of lo and hi at once (*a, *b), x's two lanes {lo, hi}, in
+ * SSE2's packed doubles.  The cell of x (clamped to +-2^30): floor(x),
+ * except that a negative integer gives the cell to its left (a piece
+ * exactly on a cell's side may be put in either cell: its area share in the
+ * other is zero): x clamped (maxpd and minpd, which take their second
+ * operand where the first is NaN), truncated (cvttpd2dq: the clamped values
+ * fit in an int), the comparison's mask -1 added. */
 static inline void icell2(__m128d x, int *a, int *b)
 {
     x = _mm_max_pd(x, _mm_set1_pd(-CELL_LIMIT));

@@ -494,10 +494,15 @@ static __attribute__((always_inline)) inline void dd_point_parts(const aa_offset
     dd_base(fx, t, fma, &p[0], &p[2]);
 }
 
-/* v's lanes swapped */
+/* v's lanes swapped (clang, which `make fuzz` builds with, names GCC's
+ * __builtin_shuffle __builtin_shufflevector) */
 static inline dd_v2 dd_swap(dd_v2 v)
 {
+#ifdef __clang__
+    return __builtin_shufflevector(v, v, 1, 0);
+#else
     return __builtin_shuffle(v, (dd_i2){1, 0});
+#endif
 }
 
 /* Lane c of v (c 0 or 1, known only at run time): by a test, so that v
