@@ -266,7 +266,7 @@ static int cmp_cross(const void *a, const void *b)
 static void check_crossings(const double *xy, int n, double y)
 {
     aa_scene *s = scenes_polygon(xy, n, white, black, AA_FILL_NONZERO);
-    aa_crossing got[256], want[256];
+    static aa_crossing got[1024], want[1024];
     size_t m = 0;
     for (int k = 0; k < n; k++) {
         double x0 = xy[2 * k], y0 = xy[2 * k + 1];
@@ -278,7 +278,7 @@ static void check_crossings(const double *xy, int n, double y)
         }
     }
     qsort(want, m, sizeof *want, cmp_cross);
-    size_t got_n = aa_scene_crossings(s, y, got, 256);
+    size_t got_n = aa_scene_crossings(s, y, got, 1024);
     assert_int_equal(got_n, m);
     for (size_t k = 0; k < m; k++) {
         assert_true(fabs(got[k].x - want[k].x) < 1e-12);
@@ -292,24 +292,32 @@ static void check_crossings(const double *xy, int n, double y)
 static void test_crossings_sorted(void **state)
 {
     (void)state;
-    /* the comb: 40 teeth from x = 0.05 to 0.95, tips at y = 0.2 and
-     * roots at y = 0.6 along the way out, then back along a spine with
-     * notches from y = 0.9 down to 0.35 (across the teeth: the lines at
-     * y 0.4137 and 0.5137 meet both, in a rising run and a falling one) */
-    double xy[2 * 200];
+    /* the comb: T teeth from x = 0.05 to 0.95, tips at y = 0.2 and roots
+     * at y = 0.6 along the way out, then back along a spine with notches
+     * from y = 0.9 down to 0.35 (across the teeth: the lines at y 0.4137
+     * and 0.5137 meet both, in a rising run and a falling one); 40 teeth,
+     * then 150 (600 crossings, more than sort_crossings holds on the
+     * stack) */
+    static double xy[2 * 600];
     int n = 0;
-    for (int k = 0; k < 40; k++) {
-        double x = 0.05 + 0.9 * k / 40.0;
-        xy[2 * n] = x, xy[2 * n + 1] = 0.6, n++;
-        xy[2 * n] = x + 0.01125, xy[2 * n + 1] = 0.2, n++;
+    const int teeth[2] = {40, 150};
+    for (int c = 0; c < 2; c++) {
+        int T = teeth[c];
+        double d = 0.45 / T; /* a tooth's half width */
+        n = 0;
+        for (int k = 0; k < T; k++) {
+            double x = 0.05 + 0.9 * k / T;
+            xy[2 * n] = x, xy[2 * n + 1] = 0.6, n++;
+            xy[2 * n] = x + d, xy[2 * n + 1] = 0.2, n++;
+        }
+        for (int k = T; k-- > 0;) {
+            double x = 0.05 + 0.9 * (k + 1) / T;
+            xy[2 * n] = x, xy[2 * n + 1] = 0.9, n++;
+            xy[2 * n] = x - d, xy[2 * n + 1] = 0.35, n++;
+        }
+        for (int j = 0; j < 7; j++)
+            check_crossings(xy, n, 0.2137 + 0.1 * j);
     }
-    for (int k = 40; k-- > 0;) {
-        double x = 0.05 + 0.9 * (k + 1) / 40.0;
-        xy[2 * n] = x, xy[2 * n + 1] = 0.9, n++;
-        xy[2 * n] = x - 0.01125, xy[2 * n + 1] = 0.35, n++;
-    }
-    for (int j = 0; j < 7; j++)
-        check_crossings(xy, n, 0.2137 + 0.1 * j);
     /* a star of 61 points (each edge jumps 30 vertices of a circle): a
      * line meets its edges in no order along the contour */
     n = 0;

@@ -106,8 +106,10 @@ void aa_stroke_style_default(aa_stroke_style *st);
  * exactly the set of points of non-zero winding number of `out`: every
  * contour winds about each point a non-negative number of times (each is
  * the sum of simple contours of lines, arcs, joins and caps turning the
- * positive way: a run's bodies and joins are one contour, the lines they
- * share cancelled), so their union is what the non-zero rule fills.  Lines and
+ * positive way: a run's bodies, joins and caps are one contour, the lines
+ * they share cancelled, and at a join whose inner side's triangle lies in
+ * both bodies one line across it), so their union is what the non-zero
+ * rule fills.  Lines and
  * circular arcs stroke exactly to lines and circular arcs; quadratic and
  * cubic Bezier arcs and elliptical arcs that are not circles to their
  * offset curves and evolutes (AA_PATH_OFFSET, exact pieces: stroke.c says

@@ -2036,8 +2036,8 @@ static int cmp_crossing(const void *a, const void *b)
     return p->dir - q->dir;
 }
 
-/* The most crossings sort_crossings merges in a buffer on the stack, and
- * the length of the chunks it sorts first. */
+/* The most crossings sort_crossings merges in buffers on the stack (more in
+ * buffers it allocates), and the length of the chunks it sorts first. */
 #define CROSS_MERGE_MAX 512
 #define CROSS_CHUNK 16
 
@@ -2048,16 +2048,23 @@ static int cmp_crossing(const void *a, const void *b)
  * line about its crest, the pieces of a join).  So: in chunks of
  * CROSS_CHUNK, each reversed if it falls from end to end and sorted by
  * insertion (nearly in order then: few moves), chunks in order with the one
- * before joined to it, and the runs so found merged in pairs; more than
- * CROSS_MERGE_MAX crossings, qsort.  Crossings that compare equal are equal
- * in every field, so the order is the one order. */
+ * before joined to it, and the runs so found merged in pairs (qsort if the
+ * buffers for more than CROSS_MERGE_MAX cannot be had).  Crossings that
+ * compare equal are equal in every field, so the order is the one order. */
 static void sort_crossings(aa_crossing *c, size_t n)
 {
+    aa_crossing stmp[CROSS_MERGE_MAX], *tmp = stmp;
+    size_t srun[CROSS_MERGE_MAX / CROSS_CHUNK + 2], *run = srun, nr = 0;
     if (n > CROSS_MERGE_MAX) {
-        qsort(c, n, sizeof *c, cmp_crossing);
-        return;
+        tmp = malloc(n * sizeof *tmp);
+        run = malloc((n / CROSS_CHUNK + 2) * sizeof *run);
+        if (!tmp || !run) {
+            free(tmp);
+            free(run);
+            qsort(c, n, sizeof *c, cmp_crossing);
+            return;
+        }
     }
-    size_t run[CROSS_MERGE_MAX / CROSS_CHUNK + 2], nr = 0;
     for (size_t i = 0; i < n; i += CROSS_CHUNK) {
         size_t m = n - i < CROSS_CHUNK ? n - i : CROSS_CHUNK;
         aa_crossing *q = c + i;
@@ -2078,7 +2085,6 @@ static void sort_crossings(aa_crossing *c, size_t n)
         if (i == 0 || cmp_crossing(&c[i - 1], &c[i]) > 0)
             run[nr++] = i;
     }
-    aa_crossing tmp[CROSS_MERGE_MAX];
     run[nr] = n;
     while (nr > 1) {
         size_t m = 0;
@@ -2097,6 +2103,10 @@ static void sort_crossings(aa_crossing *c, size_t n)
         }
         nr = m;
         run[nr] = n;
+    }
+    if (tmp != stmp) {
+        free(tmp);
+        free(run);
     }
 }
 

@@ -4,8 +4,9 @@
  * -miterlimit and dashing) of a path of lines, elliptical arcs and Bezier
  * arcs (those and the arcs that are not circles below), exactly,
  * as closed contours that all turn the same way (positive signed area),
- * each the sum of simple ones, so that the non-zero rule fills exactly the
- * union of the simple ones.
+ * each the sum of simple ones (less, at some joins, a triangle where two of
+ * them overlap), so that the non-zero rule fills exactly the union of the
+ * simple ones.
  *
  * The pieces of the union, h = width / 2:
  *  - a line segment: its rectangle, the segment swept by the normal of
@@ -434,7 +435,9 @@ static piece piece_part(const piece *p, double a, double b)
  * winding number about every point is the sum of theirs, and the non-zero
  * rule fills the same union.  At each join the four lines on the normals
  * (two normals, two sides of the join) become two, from the inner ends to
- * P, and a vertex straight on keeps none.  The ends meet up to rounding
+ * P, or one between the inner ends where the triangle they leave out lies
+ * in both strips (inner_cut: there the winding number is at least 2 and
+ * stays at least 1), and a vertex straight on keeps none.  The ends meet up to rounding
  * only (a strip's ends are the offset's points, a join's and a cap's come
  * from the unit tangents): where they differ, a line joins them, and the
  * sliver between is the one the separate contours had.  Ends farther apart
@@ -452,6 +455,7 @@ enum { LINK_DIRECT, LINK_RIGHT, LINK_LEFT, LINK_PIVOT };
 
 typedef struct strip {
     int kind, link;
+    int cut;                           /* the join's inner lines cut short (run_link) */
     double rs[2], re[2], ls[2], le[2]; /* right and left sides' starts and ends */
     double cx, cy, r[4], l[4];         /* arcs: c + r[0..1] cos t + r[2..3] sin t, left l */
     double a, b;                       /* arcs and offsets: the parameter from a to b */
@@ -547,7 +551,7 @@ static int run_flush(run *R)
         if (k > 0) {
             if (s[k].link == LINK_RIGHT) {
                 st = join_edge(out, &s[k].j, 0);
-            } else if (s[k].link != LINK_DIRECT) {
+            } else if (s[k].link != LINK_DIRECT && !s[k].cut) {
                 const double pv[2] = {s[k].j.sx, s[k].j.sy};
                 st = pen_to(out, pv);
             }
@@ -566,7 +570,7 @@ static int run_flush(run *R)
         if (k > 0 && !st) {
             if (s[k].link == LINK_LEFT) {
                 st = join_edge(out, &s[k].j, 1);
-            } else if (s[k].link != LINK_DIRECT) {
+            } else if (s[k].link != LINK_DIRECT && !s[k].cut) {
                 const double pv[2] = {s[k].j.sx, s[k].j.sy};
                 st = pen_to(out, pv);
             }
@@ -611,6 +615,30 @@ static int run_link(const run *R, const strip *a, const strip *b)
     return -1;
 }
 
+/* 1 if the lines from the inner ends of a join at P between strips a and b
+ * to P (a's end normal's inner half, b's start normal's) can be one line
+ * between those ends: the triangle T they leave out lies in both strips,
+ * where the winding number is at least 2 (each strip's contour winds at
+ * least once about each point of its region, every contour at least 0
+ * times), so that it is at least 1 with or without T.  T (P and the inner
+ * ends Ia, Ib) lies within h of P.  A point q of T is behind P along a's
+ * travel, (q - P) . d_a <= 0 (Ib - P = h n, n the inner normal at b's start,
+ * which makes an angle of 90 degrees and the turn with d_a), and 0 only on
+ * a's end normal; so P, a's base curve's end, is not the nearest point of
+ * that curve to q unless q is on its normal, and its start is not either
+ * if it is more than 2h from P (|q - start| > 2h - h >= |q - P|): the
+ * nearest point is inside, q on its normal within h, in a's region (a strip
+ * has no fold: every normal of length h is in it).  The same for b, ahead of
+ * P.  The base curve's ends: the strips' normals' midpoints. */
+static int inner_cut(const strip *a, const strip *b, double px, double py)
+{
+    double ha = 0.5 * hypot(a->re[0] - a->le[0], a->re[1] - a->le[1]);
+    double hb = 0.5 * hypot(b->rs[0] - b->ls[0], b->rs[1] - b->ls[1]);
+    double ca = hypot(0.5 * (a->rs[0] + a->ls[0]) - px, 0.5 * (a->rs[1] + a->ls[1]) - py);
+    double cb = hypot(0.5 * (b->re[0] + b->le[0]) - px, 0.5 * (b->re[1] + b->le[1]) - py);
+    return ca > 2.0 * ha * (1 + 1e-6) && cb > 2.0 * hb * (1 + 1e-6);
+}
+
 static int corners_finite(const strip *s)
 {
     return isfinite(s->rs[0]) && isfinite(s->rs[1]) && isfinite(s->re[0]) &&
@@ -639,6 +667,7 @@ static int run_strip(run *R, strip *s)
             return st;
     } else if (link == LINK_RIGHT || link == LINK_LEFT || link == LINK_PIVOT) {
         s->j = R->j;
+        s->cut = link != LINK_PIVOT && inner_cut(&R->s[R->n - 1], s, R->j.sx, R->j.sy);
     }
     s->link = link < 0 ? LINK_DIRECT : link;
     R->first = R->joined = 0;
