@@ -2036,79 +2036,10 @@ static int cmp_crossing(const void *a, const void *b)
     return p->dir - q->dir;
 }
 
-/* The most crossings sort_crossings merges in buffers on the stack (more in
- * buffers it allocates), and the length of the chunks it sorts first. */
-#define CROSS_MERGE_MAX 512
-#define CROSS_CHUNK 16
-
-/* Pieces come in path order, so a line's crossings come nearly sorted one
- * way or the other: a contour crosses the line going one way along x and,
- * when it comes back (the far side of a stroke's outline), the other, with
- * neighbours out of order here and there (a wave's two crossings of the
- * line about its crest, the pieces of a join).  So: in chunks of
- * CROSS_CHUNK, each reversed if it falls from end to end and sorted by
- * insertion (nearly in order then: few moves), chunks in order with the one
- * before joined to it, and the runs so found merged in pairs (qsort if the
- * buffers for more than CROSS_MERGE_MAX cannot be had).  Crossings that
+/* A line's crossings come from the pieces in path order, nearly sorted one
+ * way or the other (scene_internal.h, AA__NEAR_SORT).  Crossings that
  * compare equal are equal in every field, so the order is the one order. */
-static void sort_crossings(aa_crossing *c, size_t n)
-{
-    aa_crossing stmp[CROSS_MERGE_MAX], *tmp = stmp;
-    size_t srun[CROSS_MERGE_MAX / CROSS_CHUNK + 2], *run = srun, nr = 0;
-    if (n > CROSS_MERGE_MAX) {
-        tmp = malloc(n * sizeof *tmp);
-        run = malloc((n / CROSS_CHUNK + 2) * sizeof *run);
-        if (!tmp || !run) {
-            free(tmp);
-            free(run);
-            qsort(c, n, sizeof *c, cmp_crossing);
-            return;
-        }
-    }
-    for (size_t i = 0; i < n; i += CROSS_CHUNK) {
-        size_t m = n - i < CROSS_CHUNK ? n - i : CROSS_CHUNK;
-        aa_crossing *q = c + i;
-        if (cmp_crossing(&q[0], &q[m - 1]) > 0)
-            for (size_t a = 0, b = m - 1; a < b; a++, b--) {
-                aa_crossing t = q[a];
-                q[a] = q[b], q[b] = t;
-            }
-        for (size_t k = 1; k < m; k++) {
-            aa_crossing v = q[k];
-            size_t at = k;
-            while (at > 0 && cmp_crossing(&q[at - 1], &v) > 0) {
-                q[at] = q[at - 1];
-                at--;
-            }
-            q[at] = v;
-        }
-        if (i == 0 || cmp_crossing(&c[i - 1], &c[i]) > 0)
-            run[nr++] = i;
-    }
-    run[nr] = n;
-    while (nr > 1) {
-        size_t m = 0;
-        for (size_t r = 0; r < nr; r += 2) {
-            size_t lo = run[r], mid = run[r + 1], hi = r + 2 <= nr ? run[r + 2] : n;
-            run[m++] = lo;
-            if (r + 1 >= nr)
-                continue;
-            /* merge [lo, mid) and [mid, hi): the first run copied out */
-            memcpy(tmp, &c[lo], (mid - lo) * sizeof *c);
-            size_t a = 0, na = mid - lo, b = mid, o = lo;
-            while (a < na && b < hi)
-                c[o++] = cmp_crossing(&c[b], &tmp[a]) < 0 ? c[b++] : tmp[a++];
-            while (a < na)
-                c[o++] = tmp[a++];
-        }
-        nr = m;
-        run[nr] = n;
-    }
-    if (tmp != stmp) {
-        free(tmp);
-        free(run);
-    }
-}
+AA__NEAR_SORT(sort_crossings, aa_crossing, cmp_crossing)
 
 size_t aa_scene_crossings(const aa_scene *s, double y, aa_crossing *out, size_t cap)
 {

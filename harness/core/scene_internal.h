@@ -8,6 +8,9 @@
 #include "core.h"
 #include "path.h"
 
+#include <stdlib.h>
+#include <string.h>
+
 typedef struct aa_scene_group {
     int parent;
     double opacity;
@@ -156,5 +159,77 @@ int aa__arc_check(double px, double py, double cx, double cy, double ux, double 
 
 aa_scene *aa__scene_transform(const aa_scene *s, double sx, double sy, double tx, double ty,
                               double hint);
+
+/* Sorts for what the pieces' path order gives nearly sorted one way or the
+ * other (a line's crossings, a band's pieces: a contour crosses a line
+ * going one way along x and, coming back, the other, as a stroke's outline
+ * does; neighbours out of order here and there): AA__NEAR_SORT(name, type,
+ * cmp) defines static void name(type *a, size_t n), cmp a qsort comparison
+ * under which elements that compare equal are alike.  In chunks of 16, each
+ * reversed if it falls from end to end and sorted by insertion (nearly in
+ * order then: few moves), a chunk in order with the one before joined to
+ * it, and the runs so found merged in pairs, in buffers on the stack up to
+ * 512 elements and allocated past that (qsort if they cannot be had). */
+#define AA__NEAR_CHUNK 16
+#define AA__NEAR_STACK 512
+#define AA__NEAR_SORT(name, type, cmp)                                                          \
+    static void name(type *a, size_t n)                                                          \
+    {                                                                                            \
+        type stmp[AA__NEAR_STACK], *tmp = stmp;                                                  \
+        size_t srun[AA__NEAR_STACK / AA__NEAR_CHUNK + 2], *run = srun, nr = 0;                  \
+        if (n > AA__NEAR_STACK) {                                                                \
+            tmp = malloc(n * sizeof *tmp);                                                       \
+            run = malloc((n / AA__NEAR_CHUNK + 2) * sizeof *run);                                \
+            if (!tmp || !run) {                                                                  \
+                free(tmp);                                                                       \
+                free(run);                                                                       \
+                qsort(a, n, sizeof *a, cmp);                                                     \
+                return;                                                                          \
+            }                                                                                    \
+        }                                                                                        \
+        for (size_t i = 0; i < n; i += AA__NEAR_CHUNK) {                                         \
+            size_t m = n - i < AA__NEAR_CHUNK ? n - i : AA__NEAR_CHUNK;                          \
+            type *q = a + i;                                                                     \
+            if (cmp(&q[0], &q[m - 1]) > 0)                                                       \
+                for (size_t lo = 0, hi = m - 1; lo < hi; lo++, hi--) {                           \
+                    type t = q[lo];                                                              \
+                    q[lo] = q[hi], q[hi] = t;                                                    \
+                }                                                                                \
+            for (size_t k = 1; k < m; k++) {                                                     \
+                type v = q[k];                                                                   \
+                size_t at = k;                                                                   \
+                while (at > 0 && cmp(&q[at - 1], &v) > 0) {                                      \
+                    q[at] = q[at - 1];                                                           \
+                    at--;                                                                        \
+                }                                                                                \
+                q[at] = v;                                                                       \
+            }                                                                                    \
+            if (i == 0 || cmp(&a[i - 1], &a[i]) > 0)                                             \
+                run[nr++] = i;                                                                   \
+        }                                                                                        \
+        run[nr] = n;                                                                             \
+        while (nr > 1) {                                                                         \
+            size_t m = 0;                                                                        \
+            for (size_t r = 0; r < nr; r += 2) {                                                 \
+                size_t lo = run[r], mid = run[r + 1], hi = r + 2 <= nr ? run[r + 2] : n;         \
+                run[m++] = lo;                                                                   \
+                if (r + 1 >= nr)                                                                 \
+                    continue;                                                                    \
+                /* [lo, mid) copied out, merged with [mid, hi) */                                \
+                memcpy(tmp, &a[lo], (mid - lo) * sizeof *a);                                     \
+                size_t x = 0, nx = mid - lo, y = mid, o = lo;                                    \
+                while (x < nx && y < hi)                                                         \
+                    a[o++] = cmp(&a[y], &tmp[x]) < 0 ? a[y++] : tmp[x++];                        \
+                while (x < nx)                                                                   \
+                    a[o++] = tmp[x++];                                                           \
+            }                                                                                    \
+            nr = m;                                                                              \
+            run[nr] = n;                                                                         \
+        }                                                                                        \
+        if (tmp != stmp) {                                                                       \
+            free(tmp);                                                                           \
+            free(run);                                                                           \
+        }                                                                                        \
+    }
 
 #endif
