@@ -437,11 +437,12 @@ static piece piece_part(const piece *p, double a, double b)
  * (two normals, two sides of the join) become two, from the inner ends to
  * P, or one between the inner ends where the triangle they leave out lies
  * in both strips (inner_cut: there the winding number is at least 2 and
- * stays at least 1), and a vertex straight on keeps none.  The ends meet up to rounding
- * only (a strip's ends are the offset's points, a join's and a cap's come
- * from the unit tangents): where they differ, a line joins them, and the
- * sliver between is the one the separate contours had.  Ends farther apart
- * than STRIP_GAP of the size leave the join or cap a contour of its own. */
+ * stays at least 1), and a vertex straight on keeps none.  The ends meet
+ * up to rounding only (a strip's ends are the offset's points, a join's
+ * and a cap's come from the unit tangents): where they differ, a line
+ * joins them, and the sliver between is the one the separate contours
+ * had.  Ends farther apart than STRIP_GAP of the size leave the join or
+ * cap a contour of its own. */
 
 /* The largest gap, relative to the size (the coordinates and h), between a
  * strip's end and the join's point that should be on it. */
@@ -455,12 +456,12 @@ enum { LINK_DIRECT, LINK_RIGHT, LINK_LEFT, LINK_PIVOT };
 
 typedef struct strip {
     int kind, link;
-    int cut;                           /* the join's inner lines cut short (run_link) */
+    int cut;                           /* the join's inner side one line (inner_cut) */
     double rs[2], re[2], ls[2], le[2]; /* right and left sides' starts and ends */
     double cx, cy, r[4], l[4];         /* arcs: c + r[0..1] cos t + r[2..3] sin t, left l */
     double a, b;                       /* arcs and offsets: the parameter from a to b */
     aa_offset_curve oc[2];             /* offsets: at -h and h */
-    contour j;                         /* LINK_RIGHT, LINK_LEFT: the join before it */
+    contour j;                         /* the join before it (LINK_PIVOT: P, sx sy) */
 } strip;
 
 /* A run being stroked: the chain of strips not yet written, and the join
