@@ -286,16 +286,29 @@ typedef struct pieces {
     size_t n, cap;
 } pieces;
 
+/* The array *a of n elements of `size` bytes with room for one more:
+ * grown to twice its room (16 at first) when full; 0, or AA_EFAIL naming
+ * `what` (nothing changed) if the memory cannot be had. */
+static int grow(void **a, size_t n, size_t *cap, size_t size, const char *what)
+{
+    if (n < *cap)
+        return AA_OK;
+    size_t room = *cap ? 2 * *cap : 16;
+    void *q = realloc(*a, room * size);
+    if (!q)
+        return aa_fail(AA_EFAIL, "out of memory for a stroke's %zu %s", room, what);
+    *a = q;
+    *cap = room;
+    return AA_OK;
+}
+
 static int pieces_push(pieces *ps, const piece *p)
 {
-    if (ps->n == ps->cap) {
-        size_t cap = ps->cap ? 2 * ps->cap : 16;
-        piece *q = realloc(ps->p, cap * sizeof *q);
-        if (!q)
-            return aa_fail(AA_EFAIL, "out of memory for a stroke of %zu segments", cap);
-        ps->p = q;
-        ps->cap = cap;
-    }
+    void *a = ps->p;
+    int st = grow(&a, ps->n, &ps->cap, sizeof *p, "segments");
+    ps->p = a;
+    if (st)
+        return st;
     ps->p[ps->n++] = *p;
     return AA_OK;
 }
@@ -672,14 +685,11 @@ static int run_strip(run *R, strip *s)
     }
     s->link = link < 0 ? LINK_DIRECT : link;
     R->first = R->joined = 0;
-    if (R->n == R->cap) {
-        size_t cap = R->cap ? 2 * R->cap : 16;
-        strip *q = realloc(R->s, cap * sizeof *q);
-        if (!q)
-            return aa_fail(AA_EFAIL, "out of memory for a stroke's run of %zu parts", cap);
-        R->s = q;
-        R->cap = cap;
-    }
+    void *a = R->s;
+    st = grow(&a, R->n, &R->cap, sizeof *s, "parts of a run");
+    R->s = a;
+    if (st)
+        return st;
     R->s[R->n++] = *s;
     return AA_OK;
 }
